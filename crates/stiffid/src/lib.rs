@@ -1,0 +1,28 @@
+//! # stiffid
+//!
+//! Joint stiffness identification of 6-axis serial industrial robots, and the design of its
+//! experiment: which postures to measure in.
+//!
+//! The model is the Virtual Joint Method of Zhang, Guo, Sun and Sun, "Method of Postures Selection
+//! for Industrial Robot Joint Stiffness Identification", IEEE Access 9, 2021,
+//! doi:10.1109/ACCESS.2021.3073671 (equation numbers in these docs are that paper's): rigid links,
+//! one torsional spring per joint, a wrench at a loading point of a tool and the displacements of
+//! measuring points of the same tool.
+//!
+//! Data flows one way:
+//! [`Setup`] -> postures -> [`observation`] matrix -> [`identify`] -> report.
+//!
+//! ## Conventions
+//! - SI inside: metres, radians, newtons, newton-metres, Nm/rad. Files speak mm and degrees.
+//! - Jacobians are geometric, in the robot base frame, rows `[v; omega]`.
+//! - Postures are *axis* angles q (what the controller shows), `theta = M q + c` maps them to the
+//!   kinematic angles of the DH table or URDF (see [`AxisMap`]).
+#![deny(missing_docs)]
+
+mod error;
+pub mod kinematics;
+pub mod robot;
+
+pub use error::{Error, Result};
+pub use kinematics::{dexterity, Coordinates, Frames};
+pub use robot::{AxisMap, Joint, Robot};

@@ -1,0 +1,200 @@
+//! Robot files in TOML: a DH table with units in the field names.
+//!
+//! ```toml
+//! name = "COMAU SMART5 NJ 165-3.0"
+//! source = "where the numbers come from"
+//! convention = "modified-dh"            # or "standard-dh"
+//! [[joint]]                             # six, base to flange
+//! a_mm = 0.0
+//! alpha_deg = 0.0
+//! d_mm = 830.0
+//! theta_offset_deg = 0.0                # optional, default 0
+//! lower_deg = -175.0                    # axis (controller) coordinates
+//! upper_deg = 175.0
+//! # ... five more [[joint]] tables
+//! [axis_map]                            # optional: theta = matrix * q + offset
+//! matrix = [[-1,0,0,0,0,0], [0,1,0,0,0,0], [0,-1,-1,0,0,0], [0,0,0,-1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,-1]]
+//! offset_deg = [0, -90, -90, 0, 0, 180]
+//! [base]                                # optional: world to the first DH frame
+//! xyz_mm = [0, 0, 0]
+//! rpy_deg = [0, 0, 0]                   # fixed-axis roll, pitch, yaw as in URDF
+//! [flange]                              # optional: last DH frame to the flange frame
+//! xyz_mm = [0, 0, 0]
+//! rpy_deg = [0, 0, 0]
+//! ```
+//! Unknown keys are rejected.
+
+use super::dh::{self, Convention, Row};
+use super::{AxisMap, Robot};
+use crate::{Error, Result};
+use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
+use serde::Deserialize;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotFile {
+    name: String,
+    #[serde(default)]
+    source: String,
+    convention: Convention,
+    joint: Vec<JointRow>,
+    axis_map: Option<AxisMapFile>,
+    base: Option<TransformFile>,
+    flange: Option<TransformFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JointRow {
+    a_mm: f64,
+    alpha_deg: f64,
+    d_mm: f64,
+    #[serde(default)]
+    theta_offset_deg: f64,
+    lower_deg: f64,
+    upper_deg: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AxisMapFile {
+    matrix: [[f64; 6]; 6],
+    offset_deg: [f64; 6],
+}
+
+/// A rigid transform as written in files: translation in mm, URDF roll-pitch-yaw in degrees.
+#[derive(Debug, Deserialize, Default, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct TransformFile {
+    /// Translation, mm.
+    #[serde(default)]
+    pub xyz_mm: [f64; 3],
+    /// Fixed-axis roll, pitch, yaw (`R = Rz(yaw) Ry(pitch) Rx(roll)`), degrees.
+    #[serde(default)]
+    pub rpy_deg: [f64; 3],
+}
+
+impl TransformFile {
+    /// The transform in SI units.
+    pub fn isometry(&self) -> Isometry3<f64> {
+        let [x, y, z] = self.xyz_mm.map(|v| v * 1e-3);
+        let [r, p, w] = self.rpy_deg.map(f64::to_radians);
+        Isometry3::from_parts(
+            Translation3::new(x, y, z),
+            UnitQuaternion::from_euler_angles(r, p, w),
+        )
+    }
+}
+
+/// Parses a robot TOML file; `source_name` (the file name) is used in error messages.
+///
+/// # Errors
+/// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types (the message names
+/// the key, line and column), [`Error::InvalidField`] for a joint count other than six, non-finite
+/// numbers, `lower_deg >= upper_deg` or a singular axis map.
+pub fn parse(text: &str, source_name: &str) -> Result<Robot> {
+    let file: RobotFile = toml::from_str(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: one_line(&e.to_string()),
+    })?;
+    build(file, source_name)
+}
+
+/// Collapses a multi-line parser message into one line.
+pub(crate) fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && *l != "|")
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn invalid(source_name: &str, field: String, message: &str) -> Error {
+    Error::InvalidField {
+        field: format!("{source_name}: {field}"),
+        message: message.to_string(),
+    }
+}
+
+fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
+    if file.joint.len() != 6 {
+        return Err(invalid(
+            source_name,
+            "joint".into(),
+            &format!("expected 6 [[joint]] tables, found {}", file.joint.len()),
+        ));
+    }
+    let mut lower = Vector6::zeros();
+    let mut upper = Vector6::zeros();
+    let mut rows = Vec::with_capacity(6);
+    for (i, j) in file.joint.iter().enumerate() {
+        let values = [
+            j.a_mm,
+            j.alpha_deg,
+            j.d_mm,
+            j.theta_offset_deg,
+            j.lower_deg,
+            j.upper_deg,
+        ];
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err(invalid(
+                source_name,
+                format!("joint[{}]", i + 1),
+                "every number must be finite",
+            ));
+        }
+        if j.lower_deg >= j.upper_deg {
+            return Err(invalid(
+                source_name,
+                format!("joint[{}].lower_deg", i + 1),
+                "expected lower_deg < upper_deg",
+            ));
+        }
+        lower[i] = j.lower_deg.to_radians();
+        upper[i] = j.upper_deg.to_radians();
+        rows.push(dh::joint(
+            file.convention,
+            &Row {
+                a: j.a_mm * 1e-3,
+                alpha: j.alpha_deg.to_radians(),
+                d: j.d_mm * 1e-3,
+                theta_offset: j.theta_offset_deg.to_radians(),
+            },
+        ));
+    }
+    let axis_map = match file.axis_map {
+        None => AxisMap::default(),
+        Some(m) => axis_map(&m, source_name)?,
+    };
+    Ok(Robot {
+        name: file.name,
+        source: file.source,
+        joints: rows.try_into().expect("six joints checked above"),
+        axis_map,
+        lower,
+        upper,
+        base: file.base.unwrap_or_default().isometry(),
+        flange: file.flange.unwrap_or_default().isometry(),
+    })
+}
+
+fn axis_map(m: &AxisMapFile, source_name: &str) -> Result<AxisMap> {
+    let matrix = Matrix6::from_fn(|r, c| m.matrix[r][c]);
+    let offset = Vector6::from_iterator(m.offset_deg.iter().map(|d| d.to_radians()));
+    if matrix.iter().chain(offset.iter()).any(|v| !v.is_finite()) {
+        return Err(invalid(
+            source_name,
+            "axis_map".into(),
+            "every number must be finite",
+        ));
+    }
+    if matrix.determinant().abs() < 1e-12 {
+        return Err(invalid(
+            source_name,
+            "axis_map.matrix".into(),
+            "expected an invertible 6x6 matrix",
+        ));
+    }
+    Ok(AxisMap { matrix, offset })
+}

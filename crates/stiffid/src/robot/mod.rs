@@ -1,0 +1,69 @@
+//! The robot model: an immutable 6-axis serial chain of revolute joints.
+//!
+//! A [`Robot`] is built from a DH table ([`dh`]), a URDF file ([`urdf`]), a robot TOML file
+//! ([`file`]) or a built-in preset ([`presets`]). Its kinematics are in [`crate::kinematics`].
+
+pub mod dh;
+pub mod file;
+pub mod presets;
+pub mod urdf;
+
+mod axis_map;
+pub use axis_map::AxisMap;
+
+use nalgebra::{Isometry3, Unit, Vector3, Vector6};
+
+/// One revolute joint of the chain, in the frame of the previous joint's child link.
+///
+/// The transform across the joint at kinematic angle `theta` is
+/// `pre * Rot(axis, theta + offset) * post`. A modified-DH row gives
+/// `pre = RotX(alpha_{i-1}) TransX(a_{i-1})`, `post = TransZ(d_i)`; a standard-DH row gives
+/// `pre = I`, `post = TransZ(d_i) TransX(a_i) RotX(alpha_i)`; a URDF joint gives `pre` = its origin
+/// (with fixed joints before it folded in) and `post = I`. Lengths in metres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    /// Fixed transform from the previous joint frame to this joint's rotation frame.
+    pub pre: Isometry3<f64>,
+    /// Unit rotation axis, in the rotation frame.
+    pub axis: Unit<Vector3<f64>>,
+    /// Fixed transform after the rotation, to this joint's frame.
+    pub post: Isometry3<f64>,
+    /// Constant added to the kinematic angle (a DH table's theta offset), rad.
+    pub offset: f64,
+}
+
+/// An immutable 6-axis serial robot with revolute joints.
+///
+/// Postures are axis angles `q` (rad, controller convention); [`AxisMap`] turns them into the
+/// kinematic angles `theta` of the chain. Joint limits are in axis coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Robot {
+    /// Human-readable name, e.g. "COMAU SMART5 NJ 165-3.0".
+    pub name: String,
+    /// Where the numbers come from (datasheet, paper, repository).
+    pub source: String,
+    /// The six joints, base to flange.
+    pub joints: [Joint; 6],
+    /// Controller axis angles to kinematic angles.
+    pub axis_map: AxisMap,
+    /// Lower joint limits, axis coordinates, rad.
+    pub lower: Vector6<f64>,
+    /// Upper joint limits, axis coordinates, rad.
+    pub upper: Vector6<f64>,
+    /// Base transform: world (robot base frame of all results) to the chain's first frame.
+    pub base: Isometry3<f64>,
+    /// Flange transform: last joint frame to the flange frame.
+    pub flange: Isometry3<f64>,
+}
+
+impl Robot {
+    /// Whether every axis angle of `q` (rad) lies within the joint limits (inclusive).
+    pub fn within_limits(&self, q: &Vector6<f64>) -> bool {
+        (0..6).all(|i| q[i] >= self.lower[i] && q[i] <= self.upper[i])
+    }
+
+    /// The first axis (0-based) of `q` outside the joint limits, if any.
+    pub fn first_out_of_limits(&self, q: &Vector6<f64>) -> Option<usize> {
+        (0..6).find(|&i| !(q[i] >= self.lower[i] && q[i] <= self.upper[i]))
+    }
+}

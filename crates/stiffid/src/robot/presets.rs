@@ -1,0 +1,45 @@
+//! Built-in robot presets, embedded in the library. Each file cites its source.
+
+use super::{file, Robot};
+use crate::{Error, Result};
+
+/// `(name, robot TOML)` of every preset.
+const PRESETS: &[(&str, &str)] = &[
+    (
+        "comau-smart5-nj165-3.0",
+        include_str!("../../presets/comau-smart5-nj165-3.0.toml"),
+    ),
+    (
+        "fanuc-r2000ic-165f",
+        include_str!("../../presets/fanuc-r2000ic-165f.toml"),
+    ),
+];
+
+/// The preset names, in listing order.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    PRESETS.iter().map(|(n, _)| *n)
+}
+
+/// The robot TOML text of a preset.
+///
+/// # Errors
+/// [`Error::Unknown`] if no preset has this name.
+pub fn text(name: &str) -> Result<&'static str> {
+    PRESETS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| Error::Unknown {
+            kind: "robot preset",
+            name: name.to_string(),
+            known: names().collect::<Vec<_>>().join(", "),
+        })
+}
+
+/// The robot of a preset.
+///
+/// # Errors
+/// [`Error::Unknown`] if no preset has this name.
+pub fn get(name: &str) -> Result<Robot> {
+    file::parse(text(name)?, &format!("preset {name}"))
+}
