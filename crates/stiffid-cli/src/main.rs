@@ -1,1 +1,40 @@
-fn main() {}
+//! The `stiffid` command: robot kinematics, joint stiffness identification, posture selection
+//! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
+
+mod commands;
+mod load;
+mod output;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Joint stiffness identification of industrial robots, and which postures to measure in.
+#[derive(Parser)]
+#[command(name = "stiffid", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the built-in robot presets.
+    Robots,
+    /// List the built-in setups, or print one as TOML to copy and edit.
+    Setups(commands::setups::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Robots => commands::robots::run(),
+        Command::Setups(args) => commands::setups::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {}", output::one_line_chain(&e));
+            ExitCode::from(2)
+        }
+    }
+}

@@ -39,6 +39,20 @@ pub enum Error {
         /// The names that exist, comma-separated.
         known: String,
     },
+    /// The data cannot identify these joints' compliances.
+    #[error("{} cannot be identified: {reason}", joint_list(joints))]
+    Unidentifiable {
+        /// The joints concerned, 1-based.
+        joints: Vec<usize>,
+        /// Why: no posture loads them, or their columns of `Psi` are dependent.
+        reason: String,
+    },
+    /// Fewer observation rows than unknowns.
+    #[error("{rows} observation rows cannot identify 6 compliances (need at least 6 independent rows)")]
+    TooFewRows {
+        /// The number of rows given.
+        rows: usize,
+    },
     /// A number was NaN or infinite where a finite number is needed.
     #[error("{what} is not finite")]
     NotFinite {
@@ -49,3 +63,11 @@ pub enum Error {
 
 /// Result with the library's [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
+
+fn joint_list(joints: &[usize]) -> String {
+    let names: Vec<String> = joints.iter().map(|j| j.to_string()).collect();
+    match names.len() {
+        1 => format!("joint {}", names[0]),
+        _ => format!("joints {}", names.join(", ")),
+    }
+}

@@ -26,3 +26,9 @@ pub mod robot;
 pub use error::{Error, Result};
 pub use kinematics::{dexterity, Coordinates, Frames};
 pub use robot::{AxisMap, Joint, Robot};
+pub mod lsq;
+pub mod observation;
+pub mod setup;
+pub mod stiffness;
+
+pub use setup::Setup;

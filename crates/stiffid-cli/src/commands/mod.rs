@@ -1,0 +1,4 @@
+//! One module per subcommand.
+
+pub mod robots;
+pub mod setups;

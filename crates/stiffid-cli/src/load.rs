@@ -1,0 +1,73 @@
+//! Turning command-line arguments into robots, setups and angle lists.
+
+use anyhow::{bail, Context, Result};
+use nalgebra::Vector6;
+use std::path::Path;
+use stiffid::robot::{file, presets, urdf};
+use stiffid::{setup, Robot, Setup};
+
+/// A robot from a preset name, a robot `.toml` file or a `.urdf` file (`tip`: URDF tip link).
+pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
+    let path = Path::new(arg);
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("toml") => Ok(file::parse(&read(path)?, arg)?),
+        Some("urdf") => Ok(urdf::parse(&read(path)?, arg, tip)?),
+        _ => Ok(presets::get(arg)?),
+    }
+}
+
+/// A setup from a built-in name or a setup `.toml` file. A robot file named in a setup file is
+/// looked for relative to the setup file.
+pub fn setup(arg: &str) -> Result<Setup> {
+    let path = Path::new(arg);
+    if path.extension().and_then(|e| e.to_str()) != Some("toml") {
+        return Ok(setup::builtin(arg)?);
+    }
+    let text = read(path)?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    Ok(setup::parse(&text, arg, |r, tip| {
+        let candidate = dir.join(r);
+        let reference = match Path::new(r).extension() {
+            Some(_) => candidate.to_string_lossy().into_owned(),
+            None => r.to_string(),
+        };
+        robot(&reference, tip).map_err(|e| stiffid::Error::Parse {
+            source_name: format!("{arg}: robot"),
+            message: e.to_string(),
+        })
+    })?)
+}
+
+/// The text of a file, with its name in the error.
+pub fn read(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
+}
+
+/// Six comma-separated finite numbers, e.g. `--q-deg 0,0,-90,0,0,0`; `what` names the option.
+pub fn six(text: &str, what: &str) -> Result<Vector6<f64>> {
+    let values = numbers(text, what)?;
+    if values.len() != 6 {
+        bail!(
+            "{what}: expected 6 comma-separated numbers, got {}",
+            values.len()
+        );
+    }
+    Ok(Vector6::from_column_slice(&values))
+}
+
+/// Comma-separated finite numbers; `what` names the option in errors.
+pub fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, s)| {
+            let v: f64 = s
+                .trim()
+                .parse()
+                .with_context(|| format!("{what}: value {} '{}' is not a number", i + 1, s.trim()))?;
+            if !v.is_finite() {
+                bail!("{what}: value {} '{}' is not finite", i + 1, s.trim());
+            }
+            Ok(v)
+        })
+        .collect()
+}

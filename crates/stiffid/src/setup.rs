@@ -1,0 +1,435 @@
+//! The experimental cell: robot, tool, spring placement, loading, noise, bounds, nominal stiffness.
+//!
+//! A setup is written in TOML with units in the field names; unknown keys are rejected:
+//! ```toml
+//! name = "zhang2021-comau-nj165"
+//! description = "what this cell is"
+//! robot = "comau-smart5-nj165-3.0"       # a preset name, or a robot .toml / .urdf file
+//! # robot_tip = "tool0"                  # URDF only: the tip link
+//! springs = "axis"                       # or "kinematic": where the joint springs sit
+//! characteristic_length_mm = 1200.0      # L of the dexterity index (Eq. 20)
+//! nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]
+//! [tool]                                 # points in the flange frame
+//! loading_point_mm = [150, 0, 200]
+//! measuring_points_mm = [[80, 80, 260], [-80, 80, 260]]
+//! # tcp_mm = [80, 80, 260]               # for the dexterity index; default measuring point 1
+//! [loading]                              # rope and mass over a pulley
+//! load_n = 500.0
+//! anchor_mm = [1500, 1500, 0]            # base frame
+//! [noise]
+//! variance_mm2 = 9.23e-5                 # per measured coordinate
+//! level_multiples = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]
+//! [bounds]                               # experiment bounds, axis coordinates
+//! lower_deg = [-90, -60, -180, -180, -90, -180]
+//! upper_deg = [90, 40, -40, 180, 90, 180]
+//! [test]                                 # optional: postures to validate and design for
+//! postures_deg = [[12.81, 33.07, -126.36, 72.81, -67.88, 24.27]]
+//! [constraints]                          # optional, for posture search
+//! loading_point_min_z_mm = 300.0
+//! anchor_below_loading_point = true
+//! ```
+
+use crate::kinematics::{Coordinates, Frames};
+use crate::robot::file::one_line;
+use crate::{Error, Result, Robot};
+use nalgebra::{Vector3, Vector6};
+use serde::Deserialize;
+
+/// Points of the tool, in the flange frame, m.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tool {
+    /// Where the load is applied.
+    pub loading_point: Vector3<f64>,
+    /// Where the displacements are measured (at least one).
+    pub measuring_points: Vec<Vector3<f64>>,
+    /// The tool centre point whose Jacobian gives the dexterity index.
+    pub tcp: Vector3<f64>,
+}
+
+/// Rope-and-mass loading: a force of magnitude `load` (N) pulling the loading point toward the rope
+/// anchor (pulley), `F = G (P2 - P1) / |P2 - P1|` (Zhang et al. 2021, Section IV-A), no moment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RopeLoad {
+    /// `G`, N.
+    pub load: f64,
+    /// `P2`, base frame, m.
+    pub anchor: Vector3<f64>,
+}
+
+impl RopeLoad {
+    /// The wrench `[f; m]` (N, Nm, base frame) at a loading point `p1` (base frame, m). A loading
+    /// point at the anchor gets a zero wrench.
+    pub fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
+        let d = self.anchor - p1;
+        let n = d.norm();
+        let f = if n > 0.0 {
+            d * (self.load / n)
+        } else {
+            Vector3::zeros()
+        };
+        Vector6::new(f.x, f.y, f.z, 0.0, 0.0, 0.0)
+    }
+}
+
+/// Laser-tracker noise: white Gaussian on every measured coordinate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Noise {
+    /// Variance `sigma^2` of one coordinate at multiple 1, m^2.
+    pub variance: f64,
+    /// The noise levels, as multiples of the variance (Table 3: 0.5 .. 3.0).
+    pub levels: Vec<f64>,
+}
+
+impl Noise {
+    /// Standard deviation `sigma` at multiple 1, m.
+    pub fn sigma(&self) -> f64 {
+        self.variance.sqrt()
+    }
+}
+
+/// Box bounds on the axis angles of the experiment postures, rad (Table 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bounds {
+    /// Lower bounds, rad.
+    pub lower: Vector6<f64>,
+    /// Upper bounds, rad.
+    pub upper: Vector6<f64>,
+}
+
+impl Bounds {
+    /// Whether every angle of `q` (rad) lies within the bounds (inclusive).
+    pub fn contains(&self, q: &Vector6<f64>) -> bool {
+        (0..6).all(|i| q[i] >= self.lower[i] && q[i] <= self.upper[i])
+    }
+}
+
+/// Constraints of a real cell on the postures a search may choose.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CellConstraints {
+    /// The loading point stays at or above this height (base z), m.
+    pub loading_point_min_z: Option<f64>,
+    /// The rope anchor stays below the loading point (a hanging mass pulls down).
+    pub anchor_below_loading_point: bool,
+}
+
+/// A resolved experimental setup, SI units throughout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    /// Short name, e.g. `zhang2021-comau-nj165`.
+    pub name: String,
+    /// What this cell is, free text.
+    pub description: String,
+    /// The robot reference as written (preset name or file).
+    pub robot_ref: String,
+    /// The robot.
+    pub robot: Robot,
+    /// Tool points.
+    pub tool: Tool,
+    /// Where the springs sit: in the drives (axis coordinates) or on the kinematic joints.
+    pub springs: Coordinates,
+    /// The loading of the simulation and of the posture search.
+    pub load: RopeLoad,
+    /// Measurement noise.
+    pub noise: Noise,
+    /// Experiment bounds, axis coordinates.
+    pub bounds: Bounds,
+    /// Nominal (or true, in simulation) joint stiffness, Nm/rad.
+    pub nominal_stiffness: Vector6<f64>,
+    /// Characteristic length `L` of the dexterity index, m.
+    pub characteristic_length: f64,
+    /// Test (validation) postures, axis angles, rad.
+    pub test_postures: Vec<Vector6<f64>>,
+    /// Optional cell constraints for posture search.
+    pub constraints: CellConstraints,
+}
+
+impl Setup {
+    /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm.
+    pub fn nominal_compliance(&self) -> Vector6<f64> {
+        self.nominal_stiffness.map(|k| 1.0 / k)
+    }
+
+    /// The rope-mass wrench on the loading point of a posture, base frame.
+    pub fn rope_wrench(&self, frames: &Frames) -> Vector6<f64> {
+        self.load.wrench(&frames.point(&self.tool.loading_point))
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SetupFile {
+    name: String,
+    #[serde(default)]
+    description: String,
+    robot: String,
+    robot_tip: Option<String>,
+    #[serde(default)]
+    springs: Coordinates,
+    characteristic_length_mm: f64,
+    nominal_stiffness_nm_per_rad: [f64; 6],
+    tool: ToolFile,
+    loading: LoadingFile,
+    noise: NoiseFile,
+    bounds: BoundsFile,
+    test: Option<TestFile>,
+    constraints: Option<ConstraintsFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ToolFile {
+    loading_point_mm: [f64; 3],
+    measuring_points_mm: Vec<[f64; 3]>,
+    tcp_mm: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoadingFile {
+    load_n: f64,
+    anchor_mm: [f64; 3],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NoiseFile {
+    variance_mm2: f64,
+    level_multiples: Vec<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoundsFile {
+    lower_deg: [f64; 6],
+    upper_deg: [f64; 6],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TestFile {
+    postures_deg: Vec<[f64; 6]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConstraintsFile {
+    loading_point_min_z_mm: Option<f64>,
+    #[serde(default)]
+    anchor_below_loading_point: bool,
+}
+
+/// The built-in setups: `(name, TOML)`.
+const BUILTIN: &[(&str, &str)] = &[
+    (
+        "zhang2021-comau-nj165",
+        include_str!("../setups/zhang2021-comau-nj165.toml"),
+    ),
+    (
+        "fanuc-r2000ic-165f",
+        include_str!("../setups/fanuc-r2000ic-165f.toml"),
+    ),
+];
+
+/// Names of the built-in setups.
+pub fn builtin_names() -> impl Iterator<Item = &'static str> {
+    BUILTIN.iter().map(|(n, _)| *n)
+}
+
+/// The TOML text of a built-in setup.
+///
+/// # Errors
+/// [`Error::Unknown`] if no built-in setup has this name.
+pub fn builtin_text(name: &str) -> Result<&'static str> {
+    BUILTIN
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| Error::Unknown {
+            kind: "setup",
+            name: name.to_string(),
+            known: builtin_names().collect::<Vec<_>>().join(", "),
+        })
+}
+
+/// A built-in setup, its robot taken from the presets.
+///
+/// # Errors
+/// [`Error::Unknown`] if no built-in setup has this name.
+pub fn builtin(name: &str) -> Result<Setup> {
+    parse(builtin_text(name)?, &format!("setup {name}"), |r, _| {
+        crate::robot::presets::get(r)
+    })
+}
+
+/// Parses a setup TOML. `source_name` (the file name) is used in errors; `resolve_robot` turns the
+/// `robot` field (and the optional `robot_tip`) into a [`Robot`] (a preset, or a file the caller
+/// reads).
+///
+/// # Errors
+/// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
+/// [`Error::InvalidField`] naming the field for non-finite or non-positive values, no measuring
+/// point, bounds outside the robot's limits or test postures outside them; whatever
+/// `resolve_robot` returns.
+pub fn parse<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
+where
+    F: FnOnce(&str, Option<&str>) -> Result<Robot>,
+{
+    let file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: one_line(&e.to_string()),
+    })?;
+    let robot = resolve_robot(&file.robot, file.robot_tip.as_deref())?;
+    build(file, robot, source_name)
+}
+
+fn field_error(source_name: &str, field: &str, message: impl Into<String>) -> Error {
+    Error::InvalidField {
+        field: format!("{source_name}: {field}"),
+        message: message.into(),
+    }
+}
+
+fn mm(v: &[f64; 3]) -> Vector3<f64> {
+    Vector3::new(v[0], v[1], v[2]) * 1e-3
+}
+
+fn deg6(v: &[f64; 6]) -> Vector6<f64> {
+    Vector6::from_iterator(v.iter().map(|d| d.to_radians()))
+}
+
+fn check_finite(source_name: &str, field: &str, values: &[f64]) -> Result<()> {
+    match values.iter().all(|v| v.is_finite()) {
+        true => Ok(()),
+        false => Err(field_error(source_name, field, "every number must be finite")),
+    }
+}
+
+fn check_positive(source_name: &str, field: &str, values: &[f64]) -> Result<()> {
+    match values.iter().all(|v| v.is_finite() && *v > 0.0) {
+        true => Ok(()),
+        false => Err(field_error(
+            source_name,
+            field,
+            "expected finite numbers > 0",
+        )),
+    }
+}
+
+fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
+    check_positive(src, "characteristic_length_mm", &[f.characteristic_length_mm])?;
+    check_positive(
+        src,
+        "nominal_stiffness_nm_per_rad",
+        &f.nominal_stiffness_nm_per_rad,
+    )?;
+    check_finite(src, "tool.loading_point_mm", &f.tool.loading_point_mm)?;
+    if f.tool.measuring_points_mm.is_empty() {
+        return Err(field_error(
+            src,
+            "tool.measuring_points_mm",
+            "expected at least one measuring point",
+        ));
+    }
+    check_finite(
+        src,
+        "tool.measuring_points_mm",
+        f.tool.measuring_points_mm.as_flattened(),
+    )?;
+    check_finite(src, "tool.tcp_mm", &f.tool.tcp_mm.unwrap_or_default())?;
+    check_positive(src, "loading.load_n", &[f.loading.load_n])?;
+    check_finite(src, "loading.anchor_mm", &f.loading.anchor_mm)?;
+    check_positive(src, "noise.variance_mm2", &[f.noise.variance_mm2])?;
+    check_positive(src, "noise.level_multiples", &f.noise.level_multiples)?;
+    let bounds = bounds(&f.bounds, &robot, src)?;
+    let test_postures = match &f.test {
+        None => Vec::new(),
+        Some(t) => test_postures(&t.postures_deg, &robot, src)?,
+    };
+    let measuring_points: Vec<_> = f.tool.measuring_points_mm.iter().map(mm).collect();
+    let constraints = f.constraints.map_or(Ok(CellConstraints::default()), |c| {
+        check_finite(
+            src,
+            "constraints.loading_point_min_z_mm",
+            &[c.loading_point_min_z_mm.unwrap_or_default()],
+        )?;
+        Ok(CellConstraints {
+            loading_point_min_z: c.loading_point_min_z_mm.map(|z| z * 1e-3),
+            anchor_below_loading_point: c.anchor_below_loading_point,
+        })
+    })?;
+    Ok(Setup {
+        name: f.name,
+        description: f.description,
+        robot_ref: f.robot,
+        robot,
+        tool: Tool {
+            loading_point: mm(&f.tool.loading_point_mm),
+            tcp: f.tool.tcp_mm.as_ref().map_or(measuring_points[0], mm),
+            measuring_points,
+        },
+        springs: f.springs,
+        load: RopeLoad {
+            load: f.loading.load_n,
+            anchor: mm(&f.loading.anchor_mm),
+        },
+        noise: Noise {
+            variance: f.noise.variance_mm2 * 1e-6,
+            levels: f.noise.level_multiples,
+        },
+        bounds,
+        nominal_stiffness: Vector6::from_column_slice(&f.nominal_stiffness_nm_per_rad),
+        characteristic_length: f.characteristic_length_mm * 1e-3,
+        test_postures,
+        constraints,
+    })
+}
+
+fn bounds(b: &BoundsFile, robot: &Robot, src: &str) -> Result<Bounds> {
+    check_finite(src, "bounds.lower_deg", &b.lower_deg)?;
+    check_finite(src, "bounds.upper_deg", &b.upper_deg)?;
+    let bounds = Bounds {
+        lower: deg6(&b.lower_deg),
+        upper: deg6(&b.upper_deg),
+    };
+    for i in 0..6 {
+        if bounds.lower[i] >= bounds.upper[i] {
+            return Err(field_error(
+                src,
+                &format!("bounds.lower_deg[{}]", i + 1),
+                "expected lower_deg < upper_deg",
+            ));
+        }
+        if bounds.lower[i] < robot.lower[i] - 1e-12 || bounds.upper[i] > robot.upper[i] + 1e-12 {
+            return Err(field_error(
+                src,
+                &format!("bounds, axis {}", i + 1),
+                format!(
+                    "expected within the robot's limits [{:.2}, {:.2}] deg",
+                    robot.lower[i].to_degrees(),
+                    robot.upper[i].to_degrees()
+                ),
+            ));
+        }
+    }
+    Ok(bounds)
+}
+
+fn test_postures(postures: &[[f64; 6]], robot: &Robot, src: &str) -> Result<Vec<Vector6<f64>>> {
+    postures
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let field = format!("test.postures_deg[{}]", i + 1);
+            check_finite(src, &field, p)?;
+            let q = deg6(p);
+            match robot.first_out_of_limits(&q) {
+                None => Ok(q),
+                Some(axis) => Err(field_error(
+                    src,
+                    &field,
+                    format!("axis {} is outside the robot's limits", axis + 1),
+                )),
+            }
+        })
+        .collect()
+}
