@@ -20,6 +20,7 @@
 #![deny(missing_docs)]
 
 mod error;
+pub mod design;
 pub mod kinematics;
 pub mod robot;
 

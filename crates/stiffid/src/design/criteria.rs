@@ -1,0 +1,229 @@
+//! Design criteria: how good a group of postures is for identification. All smaller-is-better.
+//!
+//! For a group of n postures under the setup's rope-mass load, `Psi` is the `3pn x 6` observation
+//! matrix ([`crate::observation::rope_observation_matrix`]) and
+//! `S = Psi diag(h_nominal) / sigma` its unitless scaling (`sigma` the noise standard deviation at
+//! multiple 1, m): `(S^T S)^-1` is the covariance of the *relative* compliance errors at noise
+//! level 1. Everything is computed from the QR factor `Psi = Q R` ([`crate::lsq::Factor`]):
+//! `S = Q (R diag(h) / sigma)`, so `S` never needs forming. A group whose `Psi` is rank deficient gets
+//! `+infinity` for every criterion that depends on `Psi`, never NaN.
+
+use crate::dexterity;
+use crate::lsq::Factor;
+use crate::observation::{posture_block, rope_observation_matrix};
+use crate::setup::Setup;
+use nalgebra::{Matrix6, Vector6};
+use std::f64::consts::PI;
+use std::fmt;
+use std::str::FromStr;
+
+/// A design criterion (smaller is better).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Criterion {
+    /// `max_i k(J_N)_i` over the postures, J the TCP Jacobian in the springs' coordinates (Eq. 21;
+    /// Dumas et al. 2011; the paper's "classical index").
+    Classical,
+    /// `classical * cond_2(Psi)`: the paper's novel index (Section III-B, step 5).
+    Zhang2021,
+    /// `cond_2(S)`: the condition number of the scaled observation matrix (scale-free).
+    ScaledCond,
+    /// `det((S^T S)^-1)^(1/12)`: the geometric mean of the relative standard deviations (D-optimal).
+    DOptimal,
+    /// `sqrt(mean_j [(S^T S)^-1]_jj)`: the RMS predicted relative standard deviation (A-optimal on
+    /// relative compliance).
+    RelativeA,
+    /// `sigma sqrt(mean_t tr(A_t (Psi^T Psi)^-1 A_t^T))`: the RMS error (m) of the deflection predicted
+    /// at the setup's test postures under their rope-mass load, `A_t` their observation rows
+    /// (Klimchik & Pashkevich's industry-oriented measure).
+    TestPose,
+}
+
+impl Criterion {
+    /// Every criterion, in report order.
+    pub const ALL: [Criterion; 6] = [
+        Criterion::Classical,
+        Criterion::Zhang2021,
+        Criterion::ScaledCond,
+        Criterion::DOptimal,
+        Criterion::RelativeA,
+        Criterion::TestPose,
+    ];
+
+    /// The name used on the command line and in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Criterion::Classical => "classical",
+            Criterion::Zhang2021 => "zhang2021",
+            Criterion::ScaledCond => "scaled-cond",
+            Criterion::DOptimal => "d-optimal",
+            Criterion::RelativeA => "relative-a",
+            Criterion::TestPose => "test-pose",
+        }
+    }
+}
+
+impl fmt::Display for Criterion {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Criterion {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Criterion::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| {
+                let known: Vec<_> = Criterion::ALL.iter().map(|c| c.name()).collect();
+                format!("unknown criterion '{s}' (known: {})", known.join(", "))
+            })
+    }
+}
+
+/// Every criterion of one group of postures, and the predicted deviation rates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    /// [`Criterion::Classical`], dimensionless.
+    pub classical: f64,
+    /// [`Criterion::Zhang2021`], dimensionless.
+    pub zhang2021: f64,
+    /// [`Criterion::ScaledCond`], dimensionless.
+    pub scaled_cond: f64,
+    /// [`Criterion::DOptimal`], dimensionless (relative standard deviation at noise level 1).
+    pub d_optimal: f64,
+    /// [`Criterion::RelativeA`], dimensionless (relative standard deviation at noise level 1).
+    pub relative_a: f64,
+    /// [`Criterion::TestPose`], m; `NaN`-free: 0 when the setup has no test postures.
+    pub test_pose: f64,
+    /// `cond_2(Psi)` in SI units.
+    pub cond_psi: f64,
+    /// Relative standard deviation of each compliance at noise level 1:
+    /// `sqrt([(S^T S)^-1]_jj)`.
+    pub relative_std: Vector6<f64>,
+    /// Predicted mean deviation rate (%) per noise level of the setup and joint, first order:
+    /// `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)` (the mean of |N(0, s^2)| is `sqrt(2/pi) s`).
+    pub predicted_deviation_pct: Vec<[f64; 6]>,
+}
+
+impl Evaluation {
+    /// The value of one criterion.
+    pub fn value(&self, criterion: Criterion) -> f64 {
+        match criterion {
+            Criterion::Classical => self.classical,
+            Criterion::Zhang2021 => self.zhang2021,
+            Criterion::ScaledCond => self.scaled_cond,
+            Criterion::DOptimal => self.d_optimal,
+            Criterion::RelativeA => self.relative_a,
+            Criterion::TestPose => self.test_pose,
+        }
+    }
+}
+
+/// `max_i k(J_N)_i` over the postures (axis angles, rad): the classical index.
+pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
+    postures
+        .iter()
+        .map(|q| {
+            let j = setup.robot.frames(q).jacobian(&setup.tool.tcp, setup.springs);
+            dexterity(&j, setup.characteristic_length)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Predicted mean deviation rate (%) of each joint at noise multiple `m` from relative standard
+/// deviations at multiple 1: `100 sqrt(2/pi) sqrt(m) s_j`.
+pub fn predicted_deviation_pct(relative_std: &Vector6<f64>, multiple: f64) -> [f64; 6] {
+    let f = 100.0 * (2.0 / PI).sqrt() * multiple.sqrt();
+    std::array::from_fn(|j| f * relative_std[j])
+}
+
+/// Every criterion of a group of postures (axis angles, rad).
+pub fn evaluate(setup: &Setup, postures: &[Vector6<f64>]) -> Evaluation {
+    let classical = classical(setup, postures);
+    let psi = rope_observation_matrix(setup, postures);
+    match Factor::try_new(&psi) {
+        Ok(factor) => from_factor(setup, classical, &factor),
+        Err(_) => rank_deficient(setup, classical),
+    }
+}
+
+fn from_factor(setup: &Setup, classical: f64, factor: &Factor) -> Evaluation {
+    let sigma = setup.noise.sigma();
+    let h = setup.nominal_compliance();
+    let cond_psi = factor.cond();
+    let cov = factor.unit_covariance();
+    let rel_cov = Matrix6::from_fn(|i, j| sigma * sigma * cov[(i, j)] / (h[i] * h[j]));
+    let relative_std = rel_cov.diagonal().map(f64::sqrt);
+    let rs = factor.r() * Matrix6::from_diagonal(&h) / sigma;
+    let scaled_cond = rs
+        .try_svd(false, false, f64::EPSILON, 200)
+        .map(|s| s.singular_values.max() / s.singular_values.min())
+        .unwrap_or(f64::INFINITY);
+    let log_det_rs: f64 = rs.diagonal().iter().map(|d| d.abs().ln()).sum();
+    let test_pose = test_pose(setup, &cov) * sigma;
+    finite_or_inf(Evaluation {
+        classical,
+        zhang2021: classical * cond_psi,
+        scaled_cond,
+        d_optimal: (-log_det_rs / 6.0).exp(),
+        relative_a: (rel_cov.trace() / 6.0).sqrt(),
+        test_pose,
+        cond_psi,
+        relative_std,
+        predicted_deviation_pct: setup
+            .noise
+            .levels
+            .iter()
+            .map(|&m| predicted_deviation_pct(&relative_std, m))
+            .collect(),
+    })
+}
+
+/// `sqrt(mean_t tr(A_t C A_t^T))` over the setup's test postures, C = `(Psi^T Psi)^-1`.
+fn test_pose(setup: &Setup, cov: &Matrix6<f64>) -> f64 {
+    if setup.test_postures.is_empty() {
+        return 0.0;
+    }
+    let sum: f64 = setup
+        .test_postures
+        .iter()
+        .map(|q| {
+            let frames = setup.robot.frames(q);
+            let a = posture_block(setup, &frames, &setup.rope_wrench(&frames));
+            (&a * cov * a.transpose()).trace()
+        })
+        .sum();
+    (sum / setup.test_postures.len() as f64).sqrt()
+}
+
+fn finite_or_inf(mut e: Evaluation) -> Evaluation {
+    for v in [
+        &mut e.zhang2021,
+        &mut e.scaled_cond,
+        &mut e.d_optimal,
+        &mut e.relative_a,
+        &mut e.test_pose,
+        &mut e.cond_psi,
+    ] {
+        if !v.is_finite() {
+            *v = f64::INFINITY;
+        }
+    }
+    e
+}
+
+fn rank_deficient(setup: &Setup, classical: f64) -> Evaluation {
+    let inf = f64::INFINITY;
+    Evaluation {
+        classical,
+        zhang2021: inf,
+        scaled_cond: inf,
+        d_optimal: inf,
+        relative_a: inf,
+        test_pose: inf,
+        cond_psi: inf,
+        relative_std: Vector6::repeat(inf),
+        predicted_deviation_pct: vec![[inf; 6]; setup.noise.levels.len()],
+    }
+}
