@@ -1,7 +1,7 @@
 //! Turning command-line arguments into robots, setups and angle lists.
 
 use anyhow::{bail, Context, Result};
-use nalgebra::Vector6;
+use nalgebra::{SVector, Vector6};
 use std::path::Path;
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{setup, Robot, Setup};
@@ -45,14 +45,19 @@ pub fn read(path: &Path) -> Result<String> {
 
 /// Six comma-separated finite numbers, e.g. `--q-deg 0,0,-90,0,0,0`; `what` names the option.
 pub fn six(text: &str, what: &str) -> Result<Vector6<f64>> {
+    vector(text, what)
+}
+
+/// Exactly `N` comma-separated finite numbers, e.g. `--point-mm 150,0,200`; `what` names the option.
+pub fn vector<const N: usize>(text: &str, what: &str) -> Result<SVector<f64, N>> {
     let values = numbers(text, what)?;
-    if values.len() != 6 {
+    if values.len() != N {
         bail!(
-            "{what}: expected 6 comma-separated numbers, got {}",
+            "{what}: expected {N} comma-separated numbers, got {}",
             values.len()
         );
     }
-    Ok(Vector6::from_column_slice(&values))
+    Ok(SVector::from_column_slice(&values))
 }
 
 /// Comma-separated finite numbers; `what` names the option in errors.
@@ -60,10 +65,9 @@ pub fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
     text.split(',')
         .enumerate()
         .map(|(i, s)| {
-            let v: f64 = s
-                .trim()
-                .parse()
-                .with_context(|| format!("{what}: value {} '{}' is not a number", i + 1, s.trim()))?;
+            let v: f64 = s.trim().parse().with_context(|| {
+                format!("{what}: value {} '{}' is not a number", i + 1, s.trim())
+            })?;
             if !v.is_finite() {
                 bail!("{what}: value {} '{}' is not finite", i + 1, s.trim());
             }

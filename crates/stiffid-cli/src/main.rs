@@ -20,6 +20,8 @@ struct Cli {
 enum Command {
     /// List the built-in robot presets.
     Robots,
+    /// Forward kinematics, point Jacobian and dexterity of one posture.
+    Kinematics(commands::kinematics::Args),
     /// List the built-in setups, or print one as TOML to copy and edit.
     Setups(commands::setups::Args),
 }
@@ -28,6 +30,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Robots => commands::robots::run(),
+        Command::Kinematics(args) => commands::kinematics::run(&args),
         Command::Setups(args) => commands::setups::run(&args),
     };
     match result {

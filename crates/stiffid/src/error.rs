@@ -48,7 +48,9 @@ pub enum Error {
         reason: String,
     },
     /// Fewer observation rows than unknowns.
-    #[error("{rows} observation rows cannot identify 6 compliances (need at least 6 independent rows)")]
+    #[error(
+        "{rows} observation rows cannot identify 6 compliances (need at least 6 independent rows)"
+    )]
     TooFewRows {
         /// The number of rows given.
         rows: usize,

@@ -91,19 +91,21 @@ impl Frames {
 /// normalised Jacobian, Paden & Sastry 1988).
 ///
 /// `jacobian` is 6x6 with rows `[v; omega]` (m/rad, rad/rad); `characteristic_length` L in m.
-/// 1 for an isotropic Jacobian, larger is worse; `+infinity` at a singularity or for non-finite input.
-/// Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
+/// 1 for an isotropic Jacobian, larger is worse; `+infinity` at a singularity (also a numerical
+/// one: a value of `1 / f64::EPSILON` or more, where the computed inverse is rounding noise) or for
+/// non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
 /// `|J_N|_F |J_N^-1|_F / 6` without forming `A`.
 pub fn dexterity(jacobian: &Matrix6<f64>, characteristic_length: f64) -> f64 {
     let mut jn = *jacobian;
-    jn.fixed_rows_mut::<3>(0).scale_mut(1.0 / characteristic_length);
+    jn.fixed_rows_mut::<3>(0)
+        .scale_mut(1.0 / characteristic_length);
     if !jn.iter().all(|v| v.is_finite()) {
         return f64::INFINITY;
     }
     match jn.try_inverse() {
         Some(inv) => {
             let k = jn.norm() * inv.norm() / 6.0;
-            if k.is_finite() {
+            if k < 1.0 / f64::EPSILON {
                 k
             } else {
                 f64::INFINITY

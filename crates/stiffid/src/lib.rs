@@ -19,8 +19,8 @@
 //!   kinematic angles of the DH table or URDF (see [`AxisMap`]).
 #![deny(missing_docs)]
 
-mod error;
 pub mod design;
+mod error;
 pub mod kinematics;
 pub mod robot;
 

@@ -52,13 +52,18 @@ impl Factor {
         }
         let qr = psi.clone().qr();
         let r: Matrix6<f64> = qr.r().fixed_view::<6, 6>(0, 0).into_owned();
-        let svd = r.try_svd(false, true, f64::EPSILON, 200).ok_or(Error::NotFinite {
-            what: "the SVD of the observation matrix".into(),
-        })?;
+        let svd = r
+            .try_svd(false, true, f64::EPSILON, 200)
+            .ok_or(Error::NotFinite {
+                what: "the SVD of the observation matrix".into(),
+            })?;
         let (imin, smin) = svd.singular_values.argmin();
         if smin <= svd.singular_values.max() * RANK_TOLERANCE {
             let v = svd.v_t.expect("requested").row(imin).transpose();
-            let joints = (0..6).filter(|&j| v[j].abs() > 0.1).map(|j| j + 1).collect();
+            let joints = (0..6)
+                .filter(|&j| v[j].abs() > 0.1)
+                .map(|j| j + 1)
+                .collect();
             return Err(Error::Unidentifiable {
                 joints,
                 reason: "their columns of Psi are linearly dependent: choose postures that load them differently".into(),

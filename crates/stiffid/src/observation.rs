@@ -15,7 +15,12 @@ use nalgebra::{DMatrix, Matrix3x6, Vector6};
 
 /// The three translation rows of one measuring point (index into the setup's measuring points)
 /// under joint torques `tau` (Nm): `J_m[0..3, j] * tau_j`.
-pub fn point_rows(setup: &Setup, frames: &Frames, point: usize, tau: &Vector6<f64>) -> Matrix3x6<f64> {
+pub fn point_rows(
+    setup: &Setup,
+    frames: &Frames,
+    point: usize,
+    tau: &Vector6<f64>,
+) -> Matrix3x6<f64> {
     let jm = frames.jacobian(&setup.tool.measuring_points[point], setup.springs);
     let mut rows = jm.fixed_rows::<3>(0).into_owned();
     for (j, mut col) in rows.column_iter_mut().enumerate() {

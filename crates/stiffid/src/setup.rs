@@ -300,7 +300,11 @@ fn deg6(v: &[f64; 6]) -> Vector6<f64> {
 fn check_finite(source_name: &str, field: &str, values: &[f64]) -> Result<()> {
     match values.iter().all(|v| v.is_finite()) {
         true => Ok(()),
-        false => Err(field_error(source_name, field, "every number must be finite")),
+        false => Err(field_error(
+            source_name,
+            field,
+            "every number must be finite",
+        )),
     }
 }
 
@@ -316,7 +320,11 @@ fn check_positive(source_name: &str, field: &str, values: &[f64]) -> Result<()> 
 }
 
 fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
-    check_positive(src, "characteristic_length_mm", &[f.characteristic_length_mm])?;
+    check_positive(
+        src,
+        "characteristic_length_mm",
+        &[f.characteristic_length_mm],
+    )?;
     check_positive(
         src,
         "nominal_stiffness_nm_per_rad",

@@ -24,7 +24,11 @@ fn observation_matrix_times_compliance_is_the_forward_displacement() {
         let setup = setup::builtin(name).unwrap();
         let qs: Vec<_> = postures()
             .iter()
-            .map(|q| q.zip_zip_map(&setup.bounds.lower, &setup.bounds.upper, |v, l, u| v.clamp(l, u)))
+            .map(|q| {
+                q.zip_zip_map(&setup.bounds.lower, &setup.bounds.upper, |v, l, u| {
+                    v.clamp(l, u)
+                })
+            })
             .collect();
         let psi = rope_observation_matrix(&setup, &qs);
         let delta: Vec<f64> = qs

@@ -1,4 +1,5 @@
 //! One module per subcommand.
 
+pub mod kinematics;
 pub mod robots;
 pub mod setups;

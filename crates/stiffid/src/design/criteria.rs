@@ -125,7 +125,10 @@ pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
     postures
         .iter()
         .map(|q| {
-            let j = setup.robot.frames(q).jacobian(&setup.tool.tcp, setup.springs);
+            let j = setup
+                .robot
+                .frames(q)
+                .jacobian(&setup.tool.tcp, setup.springs);
             dexterity(&j, setup.characteristic_length)
         })
         .fold(0.0, f64::max)

@@ -13,6 +13,10 @@ const PRESETS: &[(&str, &str)] = &[
         "fanuc-r2000ic-165f",
         include_str!("../../presets/fanuc-r2000ic-165f.toml"),
     ),
+    (
+        "kuka-kr210-robond",
+        include_str!("../../presets/kuka-kr210-robond.toml"),
+    ),
 ];
 
 /// The preset names, in listing order.

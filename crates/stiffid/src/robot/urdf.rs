@@ -98,16 +98,22 @@ fn fold(
                     offset: 0.0,
                 });
                 let continuous = j.joint_type == JointType::Continuous;
-                lower.push(if continuous { f64::NEG_INFINITY } else { j.limit.lower });
-                upper.push(if continuous { f64::INFINITY } else { j.limit.upper });
+                lower.push(if continuous {
+                    f64::NEG_INFINITY
+                } else {
+                    j.limit.lower
+                });
+                upper.push(if continuous {
+                    f64::INFINITY
+                } else {
+                    j.limit.upper
+                });
                 acc = Isometry3::identity();
             }
-            ref other => {
-                return Err(format!(
-                    "joint '{}' is {other:?}; only revolute, continuous and fixed joints are supported",
-                    j.name
-                ))
-            }
+            ref other => return Err(format!(
+                "joint '{}' is {other:?}; only revolute, continuous and fixed joints are supported",
+                j.name
+            )),
         }
     }
     let joints: [Joint; 6] = joints.try_into().map_err(|v: Vec<Joint>| {

@@ -1,0 +1,204 @@
+//! `stiffid kinematics`: forward kinematics, point Jacobian and dexterity of one posture.
+
+use crate::{load, output};
+use anyhow::{bail, Result};
+use nalgebra::Vector6;
+use serde::Serialize;
+use stiffid::{dexterity, Coordinates, Robot};
+
+/// Arguments of `stiffid kinematics`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// A preset name (see `stiffid robots`), a robot .toml file or a .urdf file.
+    #[arg(long)]
+    robot: String,
+    /// URDF only: the tip link of the chain (default: the only leaf link).
+    #[arg(long)]
+    tip: Option<String>,
+    /// The posture: six axis angles in degrees, comma-separated, e.g. 0,0,-90,0,0,0.
+    #[arg(long, allow_hyphen_values = true)]
+    q_deg: String,
+    /// A point in the flange frame, mm, comma-separated (default: the flange origin).
+    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
+    point_mm: String,
+    /// The characteristic length L of the dexterity index k(J_N) (Eq. 20), mm.
+    #[arg(long, default_value_t = 1200.0)]
+    characteristic_length_mm: f64,
+    /// The joint coordinates of the Jacobian's columns.
+    #[arg(long, value_enum, default_value_t = CoordinatesArg::Axis)]
+    coordinates: CoordinatesArg,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `--coordinates`: axis (controller) or kinematic (DH/URDF) angles.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum CoordinatesArg {
+    /// Controller axis angles q: J_q = J_theta M.
+    Axis,
+    /// Kinematic angles theta of the DH table or URDF.
+    Kinematic,
+}
+
+impl From<CoordinatesArg> for Coordinates {
+    fn from(c: CoordinatesArg) -> Self {
+        match c {
+            CoordinatesArg::Axis => Coordinates::Axis,
+            CoordinatesArg::Kinematic => Coordinates::Kinematic,
+        }
+    }
+}
+
+/// The `--json` output: mm and degrees for positions and angles, SI (m/rad, rad/rad) for the
+/// Jacobian, rows `[v; omega]`. `dexterity` is `null` at a singularity.
+#[derive(Serialize)]
+struct Report {
+    robot: String,
+    q_deg: [f64; 6],
+    coordinates: Coordinates,
+    characteristic_length_mm: f64,
+    point_mm: [f64; 3],
+    flange_position_mm: [f64; 3],
+    /// Rotation matrix of the flange frame in the base frame, row-major.
+    flange_rotation: [[f64; 3]; 3],
+    point_position_mm: [f64; 3],
+    /// Row-major, rows vx, vy, vz (m/rad), wx, wy, wz (rad/rad); column j is joint j.
+    jacobian: [[f64; 6]; 6],
+    dexterity: f64,
+    /// Origin of each joint frame (after the joint), base frame.
+    joint_positions_mm: [[f64; 3]; 6],
+}
+
+/// Prints the kinematics of one posture.
+pub fn run(args: &Args) -> Result<()> {
+    let robot = load::robot(&args.robot, args.tip.as_deref())?;
+    let q_deg = load::six(&args.q_deg, "--q-deg")?;
+    let point_mm = load::vector::<3>(&args.point_mm, "--point-mm")?;
+    let length_mm = args.characteristic_length_mm;
+    if !(length_mm.is_finite() && length_mm > 0.0) {
+        bail!("--characteristic-length-mm: expected a positive number of mm, got {length_mm}");
+    }
+    let q = q_deg.map(f64::to_radians);
+    check_limits(&robot, &q, &q_deg)?;
+    let coordinates = Coordinates::from(args.coordinates);
+    let frames = robot.frames(&q);
+    let point = point_mm * 1e-3;
+    let jacobian = frames.jacobian(&point, coordinates);
+    let report = Report {
+        robot: robot.name.clone(),
+        q_deg: q_deg.into(),
+        coordinates,
+        characteristic_length_mm: length_mm,
+        point_mm: point_mm.into(),
+        flange_position_mm: (frames.flange.translation.vector * 1e3).into(),
+        flange_rotation: rows(&frames.flange.rotation.to_rotation_matrix().into_inner()),
+        point_position_mm: (frames.point(&point) * 1e3).into(),
+        jacobian: rows(&jacobian),
+        dexterity: dexterity(&jacobian, length_mm * 1e-3),
+        joint_positions_mm: frames.joints.map(|f| (f.translation.vector * 1e3).into()),
+    };
+    if args.json {
+        print!("{}", output::json(&report)?);
+    } else {
+        print!("{}", text(&report));
+    }
+    Ok(())
+}
+
+/// Rejects a posture outside the robot's joint limits, naming the axis.
+fn check_limits(robot: &Robot, q: &Vector6<f64>, q_deg: &Vector6<f64>) -> Result<()> {
+    if let Some(i) = robot.first_out_of_limits(q) {
+        bail!(
+            "--q-deg: axis {} = {} deg is outside the joint limits [{}, {}] deg of {}",
+            i + 1,
+            q_deg[i],
+            robot.lower[i].to_degrees(),
+            robot.upper[i].to_degrees(),
+            robot.name
+        );
+    }
+    Ok(())
+}
+
+/// A matrix as an array of rows.
+fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
+}
+
+fn text(r: &Report) -> String {
+    let (unit, var) = match r.coordinates {
+        Coordinates::Axis => ("axis angles", "q"),
+        Coordinates::Kinematic => ("kinematic angles", "theta"),
+    };
+    let mut s = format!("{}\n", r.robot);
+    s += &format!("posture q_deg: {}\n", list(&r.q_deg, 2));
+    s += &format!("flange position_mm: {}\n", list(&r.flange_position_mm, 3));
+    s += "flange rotation (base frame; columns: flange x, y, z axes):\n";
+    for row in &r.flange_rotation {
+        s += &format!("  {}\n", list(row, 6));
+    }
+    s += &format!(
+        "point in flange frame_mm: {}\npoint position_mm: {}\n",
+        list(&r.point_mm, 3),
+        list(&r.point_position_mm, 3)
+    );
+    s += &format!(
+        "Jacobian of the point (base frame, {unit}; rows vx vy vz in m/rad, wx wy wz in rad/rad):\n"
+    );
+    s += "      ";
+    for j in 1..=6 {
+        s += &format!("{:>11}", format!("{var}{j}"));
+    }
+    s += "\n";
+    for (row, name) in r.jacobian.iter().zip(["vx", "vy", "vz", "wx", "wy", "wz"]) {
+        s += &format!("  {name:<4}");
+        for v in row {
+            s += &format!("{:>11}", fixed(*v, 6));
+        }
+        s += "\n";
+    }
+    let k = match r.dexterity {
+        k if k.is_finite() => fixed(k, 4),
+        _ => "infinite (singular posture)".into(),
+    };
+    s += &format!(
+        "dexterity k(J_N) (L = {} mm): {k}\n",
+        r.characteristic_length_mm
+    );
+    s
+}
+
+/// `v` with `decimals` digits after the point, without a sign on a value that rounds to zero.
+fn fixed(v: f64, decimals: usize) -> String {
+    let scale = 10f64.powi(decimals as i32);
+    let rounded = (v * scale).round() / scale + 0.0;
+    format!("{rounded:.decimals$}")
+}
+
+/// Numbers joined by ", " with `decimals` digits after the point.
+fn list<const N: usize>(values: &[f64; N], decimals: usize) -> String {
+    values
+        .iter()
+        .map(|v| fixed(*v, decimals))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_are_row_major() {
+        let m = nalgebra::Matrix2x3::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
+        assert_eq!(rows(&m), [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+    }
+
+    #[test]
+    fn fixed_drops_the_sign_of_zero() {
+        assert_eq!(fixed(-1e-14, 3), "0.000");
+        assert_eq!(fixed(-0.0006, 3), "-0.001");
+        assert_eq!(fixed(2074.0000000000005, 3), "2074.000");
+    }
+}

@@ -1,0 +1,248 @@
+//! `stiffid kinematics` end to end: real values through `--json` and the text output, and bad
+//! input giving one line on stderr that names what was wrong, exit code 2, no panic.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const COMAU: &str = "comau-smart5-nj165-3.0";
+
+fn stiffid(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stiffid"))
+        .args(args)
+        .output()
+        .expect("run stiffid")
+}
+
+/// A file of the library's test data.
+fn data(name: &str) -> String {
+    format!(
+        "{}/../stiffid/tests/data/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+/// Writes `text` to a fresh file in the test scratch directory.
+fn scratch(name: &str, text: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+/// Runs a command that must fail on bad input; returns its one stderr line.
+fn bad_input(args: &[&str]) -> String {
+    let out = stiffid(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(out.stdout.is_empty(), "{args:?} printed {:?}", out.stdout);
+    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    assert_eq!(
+        stderr.lines().count(),
+        1,
+        "{args:?}: not one line: {stderr}"
+    );
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    stderr
+}
+
+fn assert_mentions(message: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(message.contains(part), "'{part}' missing from: {message}");
+    }
+}
+
+#[test]
+fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
+    let out = stiffid(&[
+        "kinematics",
+        "--robot",
+        COMAU,
+        "--q-deg",
+        "10,20,-90,30,20,10",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let numbers = |key: &str| -> Vec<f64> {
+        v[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{key} missing"))
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let flange = numbers("flange_position_mm");
+    for (got, want) in flange.iter().zip([2417.77, -466.26, 2116.01]) {
+        assert!((got - want).abs() < 0.01, "flange {flange:?}");
+    }
+    assert_eq!(numbers("point_position_mm"), flange);
+    // Column of axis 1: theta_1 = -q_1, so [v; omega] = [(p_y, -p_x, 0) m/rad; (0, 0, -1)].
+    let jacobian = v["jacobian"].as_array().unwrap();
+    assert_eq!(jacobian.len(), 6);
+    let column_1: Vec<f64> = jacobian
+        .iter()
+        .map(|row| row[0].as_f64().unwrap())
+        .collect();
+    let expected = [flange[1] * 1e-3, -flange[0] * 1e-3, 0.0, 0.0, 0.0, -1.0];
+    for (got, want) in column_1.iter().zip(expected) {
+        assert!(
+            (got - want).abs() < 1e-9,
+            "column 1 {column_1:?}, expected {expected:?}"
+        );
+    }
+    let rotation = v["flange_rotation"].as_array().unwrap();
+    assert_eq!(rotation.len(), 3);
+    let k = v["dexterity"].as_f64().unwrap();
+    assert!(k > 1.0 && k.is_finite());
+    assert_eq!(v["joint_positions_mm"].as_array().unwrap().len(), 6);
+}
+
+#[test]
+fn text_output_names_units_and_shows_the_point() {
+    let out = stiffid(&[
+        "kinematics",
+        "--robot",
+        COMAU,
+        "--q-deg",
+        "0,0,-90,0,0,0",
+        "--point-mm",
+        "0,0,100",
+        "--coordinates",
+        "kinematic",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    // At this posture the flange z axis points along the base x axis, and axes 4 and 6 align.
+    assert_mentions(
+        &text,
+        &[
+            "flange position_mm: 2074.000, 0.000, 2255.000",
+            "point position_mm: 2174.000, 0.000, 2255.000",
+            "kinematic angles",
+            "m/rad",
+            "theta6",
+            "dexterity k(J_N) (L = 1200 mm): infinite (singular posture)",
+        ],
+    );
+}
+
+#[test]
+fn a_urdf_robot_works_with_its_tip() {
+    let out = stiffid(&[
+        "kinematics",
+        "--robot",
+        &data("comau-nj165-two-leaves.urdf"),
+        "--tip",
+        "tool0",
+        "--q-deg",
+        "0,-90,0,0,0,180",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn unknown_preset() {
+    let e = bad_input(&[
+        "kinematics",
+        "--robot",
+        "kuka-kr9000",
+        "--q-deg",
+        "0,0,0,0,0,0",
+    ]);
+    assert_mentions(&e, &["unknown robot preset 'kuka-kr9000'", COMAU]);
+}
+
+#[test]
+fn missing_robot_file() {
+    let e = bad_input(&[
+        "kinematics",
+        "--robot",
+        "no/such/robot.toml",
+        "--q-deg",
+        "0,0,0,0,0,0",
+    ]);
+    assert_mentions(&e, &["no/such/robot.toml", "cannot read"]);
+}
+
+#[test]
+fn malformed_robot_toml() {
+    let file = scratch(
+        "malformed-robot.toml",
+        "name = \"x\"\nconvention = \"modified-dh\n",
+    );
+    let e = bad_input(&["kinematics", "--robot", &file, "--q-deg", "0,0,0,0,0,0"]);
+    assert_mentions(&e, &[&file, "line 2"]);
+}
+
+#[test]
+fn unknown_key_in_a_robot_toml() {
+    let preset = include_str!("../../stiffid/presets/comau-smart5-nj165-3.0.toml");
+    let text = preset.replacen("d_mm = 830.0", "d_mm = 830.0\nlength_mm = 1.0", 1);
+    assert_ne!(text, preset);
+    let file = scratch("unknown-key-robot.toml", &text);
+    let e = bad_input(&["kinematics", "--robot", &file, "--q-deg", "0,0,-90,0,0,0"]);
+    assert_mentions(&e, &[&file, "unknown field `length_mm`", "a_mm"]);
+}
+
+#[test]
+fn urdf_without_the_tip_link() {
+    let urdf = data("comau-nj165.urdf");
+    let e = bad_input(&[
+        "kinematics",
+        "--robot",
+        &urdf,
+        "--tip",
+        "gripper",
+        "--q-deg",
+        "0,0,0,0,0,0",
+    ]);
+    assert_mentions(&e, &[&urdf, "no link named 'gripper'"]);
+    let urdf = data("comau-nj165-two-leaves.urdf");
+    let e = bad_input(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]);
+    assert_mentions(&e, &[&urdf, "several leaf links", "--tip"]);
+}
+
+#[test]
+fn urdf_with_a_prismatic_joint() {
+    let urdf = data("comau-nj165-prismatic.urdf");
+    let e = bad_input(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]);
+    assert_mentions(&e, &[&urdf, "joint_3", "Prismatic", "revolute"]);
+}
+
+#[test]
+fn wrong_number_of_angles() {
+    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90"]);
+    assert_mentions(&e, &["--q-deg", "expected 6", "got 3"]);
+}
+
+#[test]
+fn nan_or_text_in_the_angles() {
+    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,NaN,0,0,0"]);
+    assert_mentions(&e, &["--q-deg", "value 3", "not finite"]);
+    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,ten,-90,0,0,0"]);
+    assert_mentions(&e, &["--q-deg", "value 2 'ten'", "not a number"]);
+}
+
+#[test]
+fn posture_outside_the_joint_limits() {
+    // COMAU axis 3 (absolute forearm angle) runs from -256 to -10 deg.
+    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,0,0,0,0"]);
+    assert_mentions(&e, &["--q-deg", "axis 3 = 0 deg", "[-256, -10] deg"]);
+}
+
+#[test]
+fn bad_point_and_characteristic_length() {
+    let args = ["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90,0,0,0"];
+    let e = bad_input(&[&args[..], &["--point-mm", "1,2"]].concat());
+    assert_mentions(&e, &["--point-mm", "expected 3"]);
+    let e = bad_input(&[&args[..], &["--characteristic-length-mm", "0"]].concat());
+    assert_mentions(&e, &["--characteristic-length-mm", "positive"]);
+}

@@ -1,0 +1,190 @@
+//! Robots from URDF: the same kinematics as their DH tables, and clear errors for chains stiffid
+//! cannot use.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use stiffid::robot::{presets, urdf};
+use stiffid::{AxisMap, Coordinates, Error, Robot};
+
+fn data(name: &str) -> String {
+    let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
+    let limit = 2.0 * std::f64::consts::PI;
+    Vector6::from_fn(|i, _| rng.random_range(robot.lower[i].max(-limit)..robot.upper[i].min(limit)))
+}
+
+fn assert_close(a: &[f64], b: &[f64], tolerance: f64, what: &str) {
+    let worst = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= tolerance,
+        "{what}: differ by {worst:e}\n{a:?}\n{b:?}"
+    );
+}
+
+#[test]
+fn comau_as_urdf_has_the_kinematics_of_its_dh_table() {
+    // The URDF mounts the robot on a base transform, turns joint 3 about a non-z axis, flips
+    // joint 4's axis and carries a tool frame; give the DH robot the same base and flange, and
+    // the identity axis map (URDF joint positions are the kinematic angles).
+    let from_urdf = urdf::parse(&data("comau-nj165.urdf"), "comau-nj165.urdf", None).unwrap();
+    let preset = presets::get("comau-smart5-nj165-3.0").unwrap();
+    let from_dh = Robot {
+        axis_map: AxisMap::default(),
+        base: Isometry3::from_parts(
+            Translation3::new(0.1, -0.2, 0.5),
+            UnitQuaternion::from_euler_angles(0.0, 0.0, 0.7),
+        ),
+        flange: Isometry3::from_parts(
+            Translation3::new(0.01, 0.02, 0.03),
+            UnitQuaternion::from_euler_angles(0.1, 0.2, 0.3),
+        ),
+        ..preset.clone()
+    };
+    assert_ne!(from_urdf.joints[2].axis, Vector3::z_axis());
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    for _ in 0..50 {
+        let theta = preset
+            .axis_map
+            .kinematic(&random_posture(&preset, &mut rng));
+        let (a, b) = (from_dh.frames(&theta), from_urdf.frames(&theta));
+        let (ra, rb) = (
+            a.flange.rotation.to_rotation_matrix(),
+            b.flange.rotation.to_rotation_matrix(),
+        );
+        assert_close(
+            ra.matrix().as_slice(),
+            rb.matrix().as_slice(),
+            1e-9,
+            "flange rotation",
+        );
+        for p in [
+            Vector3::zeros(),
+            Vector3::new(0.15, 0.0, 0.2),
+            Vector3::new(-0.08, 0.08, 0.26),
+        ] {
+            assert_close(
+                a.point(&p).as_slice(),
+                b.point(&p).as_slice(),
+                1e-9,
+                "point",
+            );
+            let (ja, jb) = (
+                a.jacobian(&p, Coordinates::Kinematic),
+                b.jacobian(&p, Coordinates::Kinematic),
+            );
+            assert_close(ja.as_slice(), jb.as_slice(), 1e-9, "Jacobian");
+        }
+    }
+}
+
+#[test]
+fn kuka_preset_matches_its_source_urdf() {
+    // The kuka-kr210-robond preset's DH table against the joint origins of kr210.urdf.xacro. Its
+    // flange frame is DH frame 6 (z out of the flange); the URDF's link_6 is the same frame turned
+    // by a constant rotation.
+    let from_urdf = urdf::parse(&data("kuka-kr210-robond.urdf"), "kr210", None).unwrap();
+    let preset = presets::get("kuka-kr210-robond").unwrap();
+    assert_close(
+        preset.lower.as_slice(),
+        from_urdf.lower.as_slice(),
+        1e-12,
+        "lower limits",
+    );
+    assert_close(
+        preset.upper.as_slice(),
+        from_urdf.upper.as_slice(),
+        1e-12,
+        "upper limits",
+    );
+    let mut rng = ChaCha8Rng::seed_from_u64(210);
+    let mut turn = None;
+    for _ in 0..50 {
+        let q = random_posture(&preset, &mut rng);
+        let (a, b) = (preset.frames(&q), from_urdf.frames(&q));
+        let relative = (a.flange.rotation.inverse() * b.flange.rotation).to_rotation_matrix();
+        let turn = *turn.get_or_insert(relative);
+        assert_close(
+            relative.matrix().as_slice(),
+            turn.matrix().as_slice(),
+            1e-9,
+            "flange turn",
+        );
+        let p_urdf = Vector3::new(0.1, -0.05, 0.02);
+        let p_dh = turn * p_urdf;
+        assert_close(
+            a.point(&p_dh).as_slice(),
+            b.point(&p_urdf).as_slice(),
+            1e-9,
+            "point",
+        );
+        for coordinates in [Coordinates::Axis, Coordinates::Kinematic] {
+            let (ja, jb) = (
+                a.jacobian(&p_dh, coordinates),
+                b.jacobian(&p_urdf, coordinates),
+            );
+            assert_close(ja.as_slice(), jb.as_slice(), 1e-9, "Jacobian");
+        }
+    }
+    // At zero the flange (link_6) sits at (0.35 + 0.96 + 0.54 + 0.193, 0, 0.33 + 0.42 + 1.25 - 0.054).
+    let zero = preset.frames(&Vector6::zeros()).flange.translation.vector;
+    assert_close(
+        zero.as_slice(),
+        &[2.043, 0.0, 1.946],
+        1e-12,
+        "flange at zero",
+    );
+}
+
+fn chain_error(file: &str, tip: Option<&str>) -> String {
+    match urdf::parse(&data(file), file, tip) {
+        Err(e @ Error::Chain { .. }) => e.to_string(),
+        other => panic!("{file}: expected a chain error, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_prismatic_joint_in_the_chain_is_an_error_naming_it() {
+    let message = chain_error("comau-nj165-prismatic.urdf", None);
+    assert!(
+        message.starts_with("comau-nj165-prismatic.urdf: "),
+        "{message}"
+    );
+    assert!(
+        message.contains("joint_3") && message.contains("Prismatic"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_missing_or_ambiguous_tip_link_is_an_error() {
+    let message = chain_error("comau-nj165.urdf", Some("gripper"));
+    assert!(message.contains("no link named 'gripper'"), "{message}");
+    let message = chain_error("comau-nj165-two-leaves.urdf", None);
+    assert!(
+        message.contains("several leaf links") && message.contains("camera"),
+        "{message}"
+    );
+    // Naming the tip resolves the ambiguity; a tip short of six revolute joints does not.
+    assert!(urdf::parse(&data("comau-nj165-two-leaves.urdf"), "x", Some("tool0")).is_ok());
+    let message = chain_error("comau-nj165-two-leaves.urdf", Some("camera"));
+    assert!(
+        message.contains("3 revolute joints; expected 6"),
+        "{message}"
+    );
+}
+
+#[test]
+fn malformed_urdf_is_a_parse_error_naming_the_file() {
+    match urdf::parse("<robot name='x'><link", "broken.urdf", None) {
+        Err(e @ Error::Parse { .. }) => assert!(e.to_string().starts_with("broken.urdf: ")),
+        other => panic!("expected a parse error, got {other:?}"),
+    }
+}
