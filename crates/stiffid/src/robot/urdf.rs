@@ -110,10 +110,12 @@ fn fold(
                 });
                 acc = Isometry3::identity();
             }
-            ref other => return Err(format!(
+            ref other => {
+                return Err(format!(
                 "joint '{}' is {other:?}; only revolute, continuous and fixed joints are supported",
                 j.name
-            )),
+            ))
+            }
         }
     }
     let joints: [Joint; 6] = joints.try_into().map_err(|v: Vec<Joint>| {
