@@ -1,0 +1,67 @@
+//! Global search: local searches in parallel from seeded space-filling starts, the best kept.
+
+use super::local::{check_count, local};
+use super::sample::group_from_stream;
+use super::{SearchOptions, SearchOutcome};
+use crate::design::Criterion;
+use crate::setup::Setup;
+use crate::{Error, Result};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Minimises `criterion` over groups of `postures` postures by [`SearchOptions::starts`] local
+/// searches ([`local`], each with the budget [`SearchOptions::max_evals`]) run in parallel (rayon)
+/// from Latin-hypercube start groups (as [`super::random_group`]; start s uses stream `s + 1` of
+/// [`SearchOptions::seed`]), and keeps the best (with cell constraints, the least violating first; the lowest start index on
+/// ties).
+///
+/// Every start is seeded on its own and the results are compared in start order, so the same
+/// options give the same postures whatever the thread count. `progress` is called with the number
+/// of local searches finished so far, after each one (from the worker threads).
+///
+/// # Errors
+/// [`Error::InvalidField`] for fewer than 2 postures, no start, or the `test-pose` criterion on a
+/// setup without test postures.
+pub fn global(
+    setup: &Setup,
+    criterion: Criterion,
+    postures: usize,
+    options: &SearchOptions,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<SearchOutcome> {
+    check_count(setup, criterion, postures)?;
+    if options.starts == 0 {
+        return Err(Error::InvalidField {
+            field: "starts".into(),
+            message: "a global search needs at least 1 start".into(),
+        });
+    }
+    let done = AtomicUsize::new(0);
+    let outcomes: Vec<SearchOutcome> = (0..options.starts)
+        .into_par_iter()
+        .map(|s| {
+            let start = group_from_stream(setup, postures, options.seed, s as u64 + 1);
+            let outcome = local(setup, criterion, &start, options);
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            outcome
+        })
+        .collect::<Result<_>>()?;
+    let evaluations = outcomes.iter().map(|o| o.evaluations).sum();
+    let violation =
+        |o: &SearchOutcome| -> f64 { o.postures.iter().map(|q| super::violation(setup, q)).sum() };
+    let best = outcomes
+        .into_iter()
+        .map(|o| (violation(&o), o))
+        .reduce(
+            |(bv, best), (v, o)| match v < bv || (v == bv && o.value < best.value) {
+                true => (v, o),
+                false => (bv, best),
+            },
+        )
+        .expect("at least one start")
+        .1;
+    Ok(SearchOutcome {
+        evaluations,
+        ..best
+    })
+}

@@ -1,0 +1,113 @@
+//! Posture search: bounds, monotonicity, determinism, rank deficiency, and the paper setup.
+
+use nalgebra::Vector6;
+use stiffid::design::{self, Criterion, SearchOptions};
+use stiffid::setup::{self, Setup};
+
+fn paper() -> Setup {
+    setup::builtin("zhang2021-comau-nj165").unwrap()
+}
+
+fn small(max_evals: usize) -> SearchOptions {
+    SearchOptions {
+        max_evals,
+        starts: 4,
+        seed: 7,
+        ..SearchOptions::default()
+    }
+}
+
+/// A start group with every angle on a bound: the search has to push into the box or along it.
+fn corner_group(setup: &Setup) -> Vec<Vector6<f64>> {
+    let (l, u) = (&setup.bounds.lower, &setup.bounds.upper);
+    (0..6)
+        .map(|i| Vector6::from_fn(|a, _| if (i + a) % 2 == 0 { l[a] } else { u[a] }))
+        .map(|mut q| {
+            q[4] = 0.3 + 0.1 * q[0]; // away from the wrist singularity
+            q
+        })
+        .collect()
+}
+
+#[test]
+fn local_search_stays_within_bounds_and_never_ends_worse() {
+    let setup = paper();
+    for start in [design::random_group(&setup, 6, 3), corner_group(&setup)] {
+        for criterion in Criterion::ALL {
+            let out = design::local(&setup, criterion, &start, &small(300)).unwrap();
+            assert!(
+                out.postures.iter().all(|q| setup.bounds.contains(q)),
+                "{criterion}"
+            );
+            assert!(
+                out.value <= out.start_value,
+                "{criterion}: {} > {}",
+                out.value,
+                out.start_value
+            );
+            assert!(out.evaluations <= 300, "{criterion}: {}", out.evaluations);
+            let again = design::evaluate(&setup, &out.postures).value(criterion);
+            assert!((again - out.value).abs() <= 1e-9 * out.value, "{criterion}");
+        }
+    }
+}
+
+#[test]
+fn random_groups_are_seeded_and_within_bounds() {
+    let setup = paper();
+    let a = design::random_group(&setup, 9, 11);
+    assert_eq!(a, design::random_group(&setup, 9, 11));
+    assert_ne!(a, design::random_group(&setup, 9, 12));
+    assert!(a.iter().all(|q| setup.bounds.contains(q)));
+    // Latin hypercube: on every axis, one posture per ninth of the range.
+    for axis in 0..6 {
+        let (l, u) = (setup.bounds.lower[axis], setup.bounds.upper[axis]);
+        let mut strata: Vec<usize> = a
+            .iter()
+            .map(|q| ((q[axis] - l) / (u - l) * 9.0) as usize)
+            .collect();
+        strata.sort();
+        assert_eq!(strata, (0..9).collect::<Vec<_>>());
+    }
+}
+
+#[test]
+fn global_search_is_the_same_with_one_and_two_threads() {
+    let setup = paper();
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            design::global(&setup, Criterion::DOptimal, 6, &small(200), &|_| {}).unwrap()
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one, two);
+    assert_eq!(one.evaluations, two.evaluations);
+}
+
+#[test]
+fn rank_deficient_group_is_infinite_not_nan() {
+    // q5 = 0 in every posture: axes 4 and 6 are collinear, so their columns of Psi are equal.
+    let setup = paper();
+    let group: Vec<Vector6<f64>> = design::random_group(&setup, 6, 5)
+        .into_iter()
+        .map(|mut q| {
+            q[4] = 0.0;
+            q
+        })
+        .collect();
+    let e = design::evaluate(&setup, &group);
+    for c in Criterion::ALL
+        .into_iter()
+        .filter(|&c| c != Criterion::Classical)
+    {
+        assert_eq!(e.value(c), f64::INFINITY, "{c}");
+    }
+    // The search starts there without NaN and leaves the penalty region or stays put.
+    let out = design::local(&setup, Criterion::RelativeA, &group, &small(200)).unwrap();
+    assert!(!out.value.is_nan());
+    assert!(out.postures.iter().all(|q| setup.bounds.contains(q)));
+}
