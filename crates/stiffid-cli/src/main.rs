@@ -4,6 +4,7 @@
 mod commands;
 mod load;
 mod output;
+mod postures;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -24,6 +25,8 @@ enum Command {
     Kinematics(commands::kinematics::Args),
     /// List the built-in setups, or print one as TOML to copy and edit.
     Setups(commands::setups::Args),
+    /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
+    Simulate(commands::simulate::Args),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +35,7 @@ fn main() -> ExitCode {
         Command::Robots => commands::robots::run(),
         Command::Kinematics(args) => commands::kinematics::run(&args),
         Command::Setups(args) => commands::setups::run(&args),
+        Command::Simulate(args) => commands::simulate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -30,6 +30,7 @@ pub use robot::{AxisMap, Joint, Robot};
 pub mod lsq;
 pub mod observation;
 pub mod setup;
+pub mod simulate;
 pub mod stiffness;
 
 pub use setup::Setup;

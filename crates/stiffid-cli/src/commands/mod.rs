@@ -3,3 +3,4 @@
 pub mod kinematics;
 pub mod robots;
 pub mod setups;
+pub mod simulate;

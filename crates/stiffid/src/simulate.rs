@@ -1,0 +1,180 @@
+//! Monte Carlo simulation of the identification experiment (Zhang et al. 2021, Section IV-A,
+//! Fig. 4, Fig. 8, Tables 3-4).
+//!
+//! For each group of postures: the exact translation of every measuring point under the setup's
+//! rope-mass load and its true (nominal) stiffness ([`crate::stiffness::rope_displacements`]); white
+//! Gaussian noise of variance `sigma^2 m` on every coordinate, for each level multiple `m` of the
+//! setup (Table 3); the compliances identified by least squares (Eq. 13-14) with the QR factor of
+//! `Psi`, computed once per group and reused by every run; the deviation rate
+//! `|k_identified - k_true| / k_true` of every joint. Mean and standard deviation over the runs per
+//! group, level and joint, beside the first-order prediction of [`crate::design::criteria`].
+//!
+//! Every run draws its noise from its own generator, seeded from `(seed, group, level, run)`, and the
+//! sums are taken in run order, so the result is the same whatever the number of threads.
+
+use crate::design::criteria::evaluate;
+use crate::lsq::Factor;
+use crate::observation::rope_observation_matrix;
+use crate::setup::Setup;
+use crate::stiffness::rope_displacements;
+use crate::{Error, Result};
+use nalgebra::{DVector, Vector6};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+use rayon::prelude::*;
+
+/// How many runs, and the seed of the noise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Options {
+    /// Monte Carlo runs per group and noise level (the paper: 200). At least 1.
+    pub runs: usize,
+    /// Seed of the noise; the result depends on nothing else.
+    pub seed: u64,
+}
+
+impl Default for Options {
+    /// 200 runs (the paper's), seed 1.
+    fn default() -> Self {
+        Self { runs: 200, seed: 1 }
+    }
+}
+
+/// The simulated identification of one group of postures. Every `Vec` has one entry per noise
+/// level of the setup, in the setup's order; every array one entry per joint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroupSimulation {
+    /// Mean deviation rate `|k_id - k_true| / k_true` over the runs, percent.
+    pub mean_deviation_pct: Vec<[f64; 6]>,
+    /// Sample standard deviation (divisor `runs - 1`; 0 for one run) of the deviation rate, percent.
+    pub std_deviation_pct: Vec<[f64; 6]>,
+    /// The first-order prediction of the mean deviation rate, percent
+    /// ([`crate::design::criteria::predicted_deviation_pct`]).
+    pub predicted_deviation_pct: Vec<[f64; 6]>,
+    /// Mean identified stiffness over the runs, Nm/rad.
+    pub mean_stiffness: Vec<Vector6<f64>>,
+}
+
+/// One group made ready for the runs: its factor and exact displacements.
+struct Prepared {
+    factor: Factor,
+    exact: DVector<f64>,
+}
+
+/// Simulates the identification with every group of postures (axis angles, rad) at every noise level
+/// of the setup, `options.runs` times each.
+///
+/// # Errors
+/// [`Error::InvalidField`] for `runs == 0`; the errors of [`Factor::try_new`] (for example
+/// [`Error::Unidentifiable`]) for a group whose observation matrix cannot identify every joint.
+pub fn simulate(
+    setup: &Setup,
+    groups: &[Vec<Vector6<f64>>],
+    options: &Options,
+) -> Result<Vec<GroupSimulation>> {
+    if options.runs == 0 {
+        return Err(Error::InvalidField {
+            field: "runs".into(),
+            message: "expected at least one Monte Carlo run".into(),
+        });
+    }
+    let prepared = groups
+        .iter()
+        .map(|g| prepare(setup, g))
+        .collect::<Result<Vec<_>>>()?;
+    let levels = setup.noise.levels.len();
+    let runs = options.runs;
+    let rates: Vec<[f64; 6]> = (0..groups.len() * levels * runs)
+        .into_par_iter()
+        .map(|i| {
+            let (g, l, r) = (i / (levels * runs), (i / runs) % levels, i % runs);
+            let sigma = (setup.noise.variance * setup.noise.levels[l]).sqrt();
+            let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
+            identify_once(&prepared[g], sigma, &mut rng)
+        })
+        .collect();
+    Ok(groups
+        .iter()
+        .enumerate()
+        .map(|(g, postures)| {
+            let predicted = evaluate(setup, postures).predicted_deviation_pct;
+            let chunk = &rates[g * levels * runs..(g + 1) * levels * runs];
+            summarise(setup, chunk, runs, predicted)
+        })
+        .collect())
+}
+
+fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {
+    let factor = Factor::try_new(&rope_observation_matrix(setup, postures))?;
+    let exact: Vec<f64> = postures
+        .iter()
+        .flat_map(|q| rope_displacements(setup, &setup.robot.frames(q), &setup.nominal_stiffness))
+        .flat_map(|d| [d.x, d.y, d.z])
+        .collect();
+    Ok(Prepared {
+        factor,
+        exact: DVector::from_vec(exact),
+    })
+}
+
+/// Identified stiffness (Nm/rad) of one run: the exact displacements plus noise of standard
+/// deviation `sigma` (m) on every coordinate, solved with the group's factor.
+fn identify_once(group: &Prepared, sigma: f64, rng: &mut ChaCha8Rng) -> [f64; 6] {
+    let noisy = group
+        .exact
+        .map(|d| d + sigma * rng.sample::<f64, _>(StandardNormal));
+    let h = group.factor.solve(&noisy);
+    std::array::from_fn(|j| 1.0 / h[j])
+}
+
+/// The seed of run `run` at level `level` of group `group`: the four numbers mixed by SplitMix64
+/// steps, so neighbouring runs get unrelated streams.
+pub fn run_seed(seed: u64, group: usize, level: usize, run: usize) -> u64 {
+    [group as u64, level as u64, run as u64]
+        .into_iter()
+        .fold(splitmix64(seed), |acc, x| splitmix64(acc ^ x))
+}
+
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Mean and standard deviation of the deviation rates, and the mean stiffness, per level, from the
+/// identified stiffness of every run of one group (level-major, `runs` per level).
+fn summarise(
+    setup: &Setup,
+    stiffness: &[[f64; 6]],
+    runs: usize,
+    predicted: Vec<[f64; 6]>,
+) -> GroupSimulation {
+    let k_true = &setup.nominal_stiffness;
+    let mut out = GroupSimulation {
+        mean_deviation_pct: Vec::new(),
+        std_deviation_pct: Vec::new(),
+        predicted_deviation_pct: predicted,
+        mean_stiffness: Vec::new(),
+    };
+    for level in stiffness.chunks(runs) {
+        let n = level.len() as f64;
+        let rate = |k: &[f64; 6], j: usize| 100.0 * (k[j] - k_true[j]).abs() / k_true[j];
+        let mean: [f64; 6] =
+            std::array::from_fn(|j| level.iter().map(|k| rate(k, j)).sum::<f64>() / n);
+        let std = std::array::from_fn(|j| match level.len() {
+            1 => 0.0,
+            _ => (level
+                .iter()
+                .map(|k| (rate(k, j) - mean[j]).powi(2))
+                .sum::<f64>()
+                / (n - 1.0))
+                .sqrt(),
+        });
+        let k_mean = Vector6::from_fn(|j, _| level.iter().map(|k| k[j]).sum::<f64>() / n);
+        out.mean_deviation_pct.push(mean);
+        out.std_deviation_pct.push(std);
+        out.mean_stiffness.push(k_mean);
+    }
+    out
+}

@@ -1,0 +1,101 @@
+//! Monte Carlo simulation: agreement with the first-order prediction, exactness without noise,
+//! independence of the thread count.
+
+use nalgebra::Vector6;
+use stiffid::setup;
+use stiffid::simulate::{simulate, Options};
+
+/// Six spread postures within the paper's Table 1 bounds, deg.
+fn group() -> Vec<Vector6<f64>> {
+    [
+        [10.0, -20.0, -100.0, 30.0, 40.0, -60.0],
+        [-45.0, 10.0, -70.0, -90.0, -30.0, 120.0],
+        [60.0, -40.0, -130.0, 150.0, 60.0, 10.0],
+        [-80.0, 30.0, -50.0, -20.0, -70.0, -150.0],
+        [30.0, 0.0, -160.0, 100.0, 20.0, 80.0],
+        [-10.0, -55.0, -90.0, -160.0, 80.0, -30.0],
+    ]
+    .iter()
+    .map(|q| Vector6::from_iterator(q.iter().map(|d: &f64| d.to_radians())))
+    .collect()
+}
+
+#[test]
+fn mean_deviation_rates_agree_with_the_prediction_at_2000_runs() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let options = Options {
+        runs: 2000,
+        seed: 7,
+    };
+    let sim = &simulate(&setup, &[group()], &options).unwrap()[0];
+    assert_eq!(sim.mean_deviation_pct.len(), 6);
+    for (level, (mean, predicted)) in sim
+        .mean_deviation_pct
+        .iter()
+        .zip(&sim.predicted_deviation_pct)
+        .enumerate()
+    {
+        for j in 0..6 {
+            let ratio = mean[j] / predicted[j];
+            assert!(
+                (ratio - 1.0).abs() < 0.15,
+                "level {} joint {}: simulated {:.4}% predicted {:.4}%",
+                level + 1,
+                j + 1,
+                mean[j],
+                predicted[j]
+            );
+        }
+    }
+    // Noise grows with the level: the level-6 (3x variance) deviation exceeds the level-1 (0.5x).
+    for j in 0..6 {
+        assert!(sim.mean_deviation_pct[5][j] > sim.mean_deviation_pct[0][j]);
+        assert!(sim.std_deviation_pct[5][j] > 0.0);
+    }
+}
+
+#[test]
+fn without_noise_the_stiffness_is_recovered_exactly() {
+    let mut setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    setup.noise.levels = vec![0.0];
+    let sim = &simulate(&setup, &[group()], &Options { runs: 3, seed: 1 }).unwrap()[0];
+    for j in 0..6 {
+        assert!(
+            sim.mean_deviation_pct[0][j] < 1e-8,
+            "{:?}",
+            sim.mean_deviation_pct
+        );
+        let k = sim.mean_stiffness[0][j];
+        assert!((k / setup.nominal_stiffness[j] - 1.0).abs() < 1e-10);
+    }
+}
+
+#[test]
+fn same_seed_same_result_whatever_the_thread_count() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let groups = [
+        group(),
+        group()[..5].iter().chain(&group()[..1]).cloned().collect(),
+    ];
+    let options = Options { runs: 50, seed: 3 };
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| simulate(&setup, &groups, &options).unwrap())
+    };
+    assert_eq!(run(1), run(2));
+    let other = simulate(&setup, &groups, &Options { seed: 4, ..options }).unwrap();
+    assert_ne!(run(2), other);
+}
+
+#[test]
+fn zero_runs_and_unidentifiable_groups_are_errors() {
+    let mut setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let e = simulate(&setup, &[group()], &Options { runs: 0, seed: 1 }).unwrap_err();
+    assert!(e.to_string().contains("runs"), "{e}");
+    setup.tool.measuring_points.truncate(1);
+    let e = simulate(&setup, &[group()[..1].to_vec()], &Options::default()).unwrap_err();
+    assert!(e.to_string().contains("3 observation rows"), "{e}");
+}
