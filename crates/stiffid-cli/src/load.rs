@@ -18,7 +18,6 @@ pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
 
 /// A setup from a built-in name or a setup `.toml` file. A robot file named in a setup file is
 /// looked for relative to the setup file.
-#[allow(dead_code)] // for the commands that read setups / write files; drop once one uses it
 pub fn setup(arg: &str) -> Result<Setup> {
     let path = Path::new(arg);
     if path.extension().and_then(|e| e.to_str()) != Some("toml") {

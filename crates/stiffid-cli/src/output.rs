@@ -6,7 +6,6 @@ use std::path::Path;
 
 /// Writes `bytes` to `path` whole: into a temporary file beside it, then renamed over it, so a
 /// reader never sees half a file and a failure leaves nothing behind.
-#[allow(dead_code)] // for the commands that read setups / write files; drop once one uses it
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
