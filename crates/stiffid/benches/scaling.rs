@@ -43,9 +43,17 @@ fn identification(c: &mut Criterion) {
         let psi = rope_observation_matrix(&setup, &postures(&setup, n));
         let delta: DVector<f64> = &psi * setup.nominal_compliance();
         group.throughput(Throughput::Elements(n as u64));
-        group.bench_with_input(BenchmarkId::from_parameter(n), &(psi, delta), |b, (psi, delta)| {
-            b.iter(|| Factor::try_new(black_box(psi)).unwrap().solve(black_box(delta)))
-        });
+        group.bench_with_input(
+            BenchmarkId::from_parameter(n),
+            &(psi, delta),
+            |b, (psi, delta)| {
+                b.iter(|| {
+                    Factor::try_new(black_box(psi))
+                        .unwrap()
+                        .solve(black_box(delta))
+                })
+            },
+        );
     }
     group.finish();
 }
