@@ -3,11 +3,12 @@
 //!
 //! - `compare/zhang2021`: one evaluation of the paper's index, 6 postures x 4 measuring points;
 //! - `compare/evaluate`: every criterion and the predicted deviation rates (`stiffid evaluate`);
-//! - `compare/lstsq`: the least-squares step alone, 72 x 6 (QR factor and solve).
+//! - `compare/lstsq`: the least-squares step alone, 72 x 6 (QR factor and solve);
+//! - `compare/local-search`: SLSQP on `zhang2021` from the start group, default options.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
-use stiffid::design::evaluate;
+use stiffid::design::{evaluate, local, Criterion as Design, Evaluator, SearchOptions};
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
 use stiffid::setup;
@@ -35,7 +36,8 @@ fn compare(c: &mut Criterion) {
     let start = start_group();
     let mut group = c.benchmark_group("compare");
     group.bench_function("zhang2021", |b| {
-        b.iter(|| evaluate(&setup, black_box(&start)).zhang2021)
+        let evaluator = Evaluator::new(&setup);
+        b.iter(|| evaluator.value(Design::Zhang2021, black_box(&start)))
     });
     group.bench_function("evaluate", |b| {
         b.iter(|| evaluate(&setup, black_box(&start)))
@@ -48,6 +50,10 @@ fn compare(c: &mut Criterion) {
                 .unwrap()
                 .solve(black_box(&delta))
         })
+    });
+    let options = SearchOptions::default();
+    group.sample_size(10).bench_function("local-search", |b| {
+        b.iter(|| local(&setup, Design::Zhang2021, black_box(&start), &options).unwrap())
     });
     group.finish();
 }
