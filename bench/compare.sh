@@ -49,9 +49,11 @@ if has reproduce; then
   echo "{\"elapsed_s\": $(echo "$t1 - $t0" | bc -l)}" >"$out/rs-reproduce-time.json"
 fi
 
-echo "== stiffid criterion benches (bench 'compare')" >&2
+echo "== stiffid criterion benches (benches 'compare' and 'scaling')" >&2
 if [ -n "${QUICK:-}" ]; then times=(--warm-up-time 1 --measurement-time 2); else times=(); fi
-cargo bench -q -p stiffid --bench compare -- --save-baseline compare "${times[@]}" >&2
+for bench in compare scaling; do
+  cargo bench -q -p stiffid --bench "$bench" -- --save-baseline compare "${times[@]}" >&2
+done
 
 echo "== NumPy/SciPy baseline (timeit)" >&2
 repeat=$([ -n "${QUICK:-}" ] && echo 5 || echo 15)

@@ -20,7 +20,7 @@ ROWS = [
     ("least squares alone, 72 x 6", "compare/lstsq", ("identify", "lstsq"), 5e-6, None),
     ("identification from the measurement rows, 72 x 6", "compare/identify", ("identify", "identify"), None, None),
     ("local search, zhang2021, SLSQP from the start group", "compare/local-search", ("select", "local_search"), 0.5, 30),
-    ("Monte Carlo of reproduce (5 groups x 6 levels x 200 runs)", "compare/reproduce-monte-carlo", None, 50e-3, None),
+    ("Monte Carlo of reproduce (5 groups x 6 levels x 200 runs)", "monte-carlo/reproduce-5x6x200", None, 50e-3, None),
 ]
 
 
@@ -108,6 +108,27 @@ def table(out, criterion_dir, extra):
         print("| " + " | ".join(c.ljust(w) for c, w in zip(r, widths)) + " |")
 
 
+SCALING = [
+    ("criterion evaluation (every criterion)", "scaling-evaluate", [6, 24, 96, 384], "posture"),
+    ("identification (QR factor and solve)", "scaling-identify", [6, 24, 96, 384], "posture"),
+    ("Monte Carlo, 1 group x 6 levels", "monte-carlo", [200, 2000, 20000], "run and level"),
+]
+
+
+def scaling(criterion_dir):
+    """How the cost grows: median and cost per unit, relative to the smallest size."""
+    print("\nScaling (stiffid, criterion medians)")
+    for label, prefix, sizes, unit in SCALING:
+        medians = [median_s(criterion_dir, f"{prefix}/{n}") for n in sizes]
+        if None in medians:
+            print(f"  {label}: (not measured)")
+            continue
+        per = [m / n for m, n in zip(medians, sizes)]
+        cells = ", ".join(f"{n}: {fmt_s(m)} ({fmt_s(p)} per {unit}, x{p / per[0]:.2f})"
+                          for n, m, p in zip(sizes, medians, per))
+        print(f"  {label}: {cells}")
+
+
 def main():
     out, criterion_dir = Path(sys.argv[1]), Path(sys.argv[2])
     ok = check(out)
@@ -116,6 +137,7 @@ def main():
     if e2e:
         extra.append(("stiffid reproduce, end to end (wall clock)", e2e["elapsed_s"], 30.0))
     table(out, criterion_dir, extra)
+    scaling(criterion_dir)
     sys.exit(0 if ok else 1)
 
 
