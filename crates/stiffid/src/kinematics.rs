@@ -3,7 +3,7 @@
 //! All results are in the robot base frame (the world frame of [`Robot::base`]), SI units.
 
 use crate::Robot;
-use nalgebra::{Isometry3, Matrix6, Point3, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Isometry3, Matrix3x6, Matrix6, Point3, UnitQuaternion, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// Which joint coordinates a Jacobian's columns refer to.
@@ -29,33 +29,86 @@ pub struct Frames {
     pub axis_directions: [Vector3<f64>; 6],
     /// The flange frame, base frame, m.
     pub flange: Isometry3<f64>,
-    /// `M` of the robot's axis map, for Jacobians in axis coordinates.
-    axis_matrix: Matrix6<f64>,
+    /// The joint screws (Pluecker coordinates) of the Jacobian columns, per [`Coordinates`]:
+    /// directions `z_j` and moments `z_j x o_j` (m), kinematic columns first, then the axis
+    /// columns (both times `M`), so a point Jacobian costs six cross products.
+    screws: [Screws; 2],
+}
+
+/// Column directions (rad/rad) and moments (m/rad) of the screws of the six Jacobian columns:
+/// column j of the point Jacobian is `[d_j x p - m_j; d_j]`.
+#[derive(Debug, Clone, PartialEq)]
+struct Screws {
+    directions: Matrix3x6<f64>,
+    moments: Matrix3x6<f64>,
 }
 
 impl Robot {
     /// Forward kinematics at axis angles `q` (rad).
     pub fn frames(&self, q: &Vector6<f64>) -> Frames {
         let theta = self.axis_map.kinematic(q);
-        let mut t = self.base;
-        let mut joints = [Isometry3::identity(); 6];
-        let mut axis_points = [Vector3::zeros(); 6];
-        let mut axis_directions = [Vector3::zeros(); 6];
+        // Filled in place (no large temporaries to copy into the result); `flange` carries the
+        // running transform, base to the current joint, until it reaches the flange.
+        let mut f = Frames {
+            joints: [Isometry3::identity(); 6],
+            axis_points: [Vector3::zeros(); 6],
+            axis_directions: [Vector3::zeros(); 6],
+            flange: self.base,
+            screws: [Screws::zeros(), Screws::zeros()],
+        };
+        let t = &mut f.flange;
+        let [kinematic, axis] = &mut f.screws;
         for (i, joint) in self.joints.iter().enumerate() {
-            t *= joint.pre;
-            axis_points[i] = t.translation.vector;
-            axis_directions[i] = t.rotation * joint.axis.into_inner();
-            t *= UnitQuaternion::from_axis_angle(&joint.axis, theta[i] + joint.offset);
-            t *= joint.post;
-            joints[i] = t;
+            compose(t, &joint.pre);
+            let (o, z) = (t.translation.vector, t.rotation * joint.axis.into_inner());
+            f.axis_points[i] = o;
+            f.axis_directions[i] = z;
+            kinematic.directions.set_column(i, &z);
+            kinematic.moments.set_column(i, &z.cross(&o));
+            *t *= UnitQuaternion::from_axis_angle(&joint.axis, theta[i] + joint.offset);
+            compose(t, &joint.post);
+            f.joints[i] = *t;
         }
-        Frames {
-            joints,
-            axis_points,
-            axis_directions,
-            flange: t * self.flange,
-            axis_matrix: self.axis_map.matrix,
+        compose(t, &self.flange);
+        kinematic.times(&self.axis_map.matrix, axis);
+        f
+    }
+}
+
+impl Screws {
+    fn zeros() -> Self {
+        Self {
+            directions: Matrix3x6::zeros(),
+            moments: Matrix3x6::zeros(),
         }
+    }
+
+    /// Writes into `out` (zeros) the screws of the columns of `J M`: column c is
+    /// `sum_k M[k, c]` times column k. Skips the zeros of `M` (most axis maps are a signed
+    /// permutation plus the J2/J3 coupling).
+    fn times(&self, m: &Matrix6<f64>, out: &mut Screws) {
+        for c in 0..6 {
+            for k in 0..6 {
+                let f = m[(k, c)];
+                if f != 0.0 {
+                    let mut d = out.directions.column_mut(c);
+                    d.axpy(f, &self.directions.column(k), 1.0);
+                    let mut w = out.moments.column_mut(c);
+                    w.axpy(f, &self.moments.column(k), 1.0);
+                }
+            }
+        }
+    }
+}
+
+/// `t *= a`, skipping the rotation product when `a` is a pure translation (exactly: most DH
+/// `pre`/`post` transforms) and everything when `a` is the identity.
+#[inline(always)]
+fn compose(t: &mut Isometry3<f64>, a: &Isometry3<f64>) {
+    if a.rotation.as_ref().imag() != Vector3::zeros() {
+        *t *= a;
+    } else if a.translation.vector != Vector3::zeros() {
+        t.translation.vector += t.rotation * a.translation.vector;
     }
 }
 
@@ -70,19 +123,21 @@ impl Frames {
     ///
     /// Column j in kinematic coordinates is `[z_j x (p - o_j); z_j]`, `z_j` the joint axis and `o_j`
     /// a point on it; in axis coordinates the matrix is multiplied by `M` (`J_q = J_theta M`).
+    /// Both are computed from the joint screws of [`Robot::frames`]: `[d_j x p - m_j; d_j]`.
     pub fn jacobian(&self, in_flange: &Vector3<f64>, coordinates: Coordinates) -> Matrix6<f64> {
         let p = self.point(in_flange);
+        let screws = match coordinates {
+            Coordinates::Kinematic => &self.screws[0],
+            Coordinates::Axis => &self.screws[1],
+        };
         let mut j = Matrix6::zeros();
         for c in 0..6 {
-            let z = self.axis_directions[c];
-            let v = z.cross(&(p - self.axis_points[c]));
+            let d = screws.directions.column(c);
+            let v = d.cross(&p) - screws.moments.column(c);
             j.fixed_view_mut::<3, 1>(0, c).copy_from(&v);
-            j.fixed_view_mut::<3, 1>(3, c).copy_from(&z);
+            j.fixed_view_mut::<3, 1>(3, c).copy_from(&d);
         }
-        match coordinates {
-            Coordinates::Kinematic => j,
-            Coordinates::Axis => j * self.axis_matrix,
-        }
+        j
     }
 }
 
