@@ -34,3 +34,8 @@ pub mod simulate;
 pub mod stiffness;
 
 pub use setup::Setup;
+
+/// The Rust examples of the README, run as doctests.
+#[doc = include_str!("../../../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
