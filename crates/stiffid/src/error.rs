@@ -55,6 +55,17 @@ pub enum Error {
         /// The number of rows given.
         rows: usize,
     },
+    /// One measurement of a data set cannot be used.
+    #[error("measurement {number}, {field}: {message}")]
+    Measurement {
+        /// Its 1-based position in the list of measurements.
+        number: usize,
+        /// What is wrong in it: `posture`, `point`, `q1`..`q6` (an axis angle), `wrench` or
+        /// `displacement`.
+        field: String,
+        /// What was expected.
+        message: String,
+    },
     /// A number was NaN or infinite where a finite number is needed.
     #[error("{what} is not finite")]
     NotFinite {

@@ -27,11 +27,13 @@ pub mod robot;
 pub use error::{Error, Result};
 pub use kinematics::{dexterity, Coordinates, Frames};
 pub use robot::{AxisMap, Joint, Robot};
+pub mod identify;
 pub mod lsq;
 pub mod observation;
 pub mod setup;
 pub mod simulate;
 pub mod stiffness;
+pub mod validate;
 
 pub use setup::Setup;
 

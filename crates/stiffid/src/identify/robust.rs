@@ -1,0 +1,169 @@
+//! Robust identification: iteratively reweighted least squares (IRLS) with Huber or Tukey weights.
+//!
+//! A laser tracker that loses its target, or a rope that slips, gives a few coordinates far off the
+//! model. Least squares spreads such an outlier over all compliances; IRLS down-weights it.
+//!
+//! Each iteration, from the current compliance `h`:
+//! 1. residuals `r = delta - Psi h`;
+//! 2. scale `s = 1.4826 * median(|r_i|)` ([`MAD_TO_SIGMA`]: the median absolute residual, about
+//!    zero, as an estimate of the noise standard deviation that is consistent for Gaussian errors
+//!    and insensitive to up to half the rows being outliers);
+//! 3. weights `w_i = w(r_i / s)` of the [`Loss`];
+//! 4. `h` = the least-squares solution of the rows scaled by `sqrt(w_i)` (`sqrt(w) Psi h = sqrt(w)
+//!    delta`), by QR as always.
+//!
+//! It stops when no compliance changes by more than [`TOLERANCE`] relative to the largest, or after
+//! [`MAX_ITERATIONS`]. Huber starts from the least-squares fit; Tukey, whose weights can reach zero
+//! and whose objective is not convex, starts from the converged Huber fit (the usual practice, e.g.
+//! Holland & Welsch 1977; statsmodels RLM).
+//!
+//! Tuning constants (Huber 1.345, Tukey 4.685) give 95% of the efficiency of least squares when
+//! the errors are Gaussian (Holland & Welsch 1977).
+
+use crate::lsq::Factor;
+use crate::Result;
+use nalgebra::{DMatrix, DVector, Vector6};
+
+/// `1 / Phi^-1(3/4)`: turns the median absolute deviation of Gaussian errors into their standard
+/// deviation.
+pub const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
+
+/// Iteration limit.
+pub const MAX_ITERATIONS: usize = 100;
+
+/// Convergence: largest change of a compliance, relative to the largest compliance.
+pub const TOLERANCE: f64 = 1e-10;
+
+/// The weight function of IRLS.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Loss {
+    /// Huber: `w(u) = 1` for `|u| <= c`, `c / |u|` beyond; `c = 1.345`. Never zero: an outlier keeps
+    /// a small say.
+    Huber,
+    /// Tukey's biweight: `w(u) = (1 - (u/c)^2)^2` for `|u| < c`, 0 beyond; `c = 4.685`. Rejects far
+    /// outliers entirely.
+    Tukey,
+}
+
+impl Loss {
+    /// The tuning constant `c`, in units of the scale `s`.
+    pub const fn tuning_constant(self) -> f64 {
+        match self {
+            Loss::Huber => 1.345,
+            Loss::Tukey => 4.685,
+        }
+    }
+
+    /// The weight `w(u)` of a residual `u` in units of the scale, in `[0, 1]`.
+    pub fn weight(self, u: f64) -> f64 {
+        let c = self.tuning_constant();
+        match self {
+            Loss::Huber if u.abs() <= c => 1.0,
+            Loss::Huber => c / u.abs(),
+            Loss::Tukey if u.abs() < c => (1.0 - (u / c).powi(2)).powi(2),
+            Loss::Tukey => 0.0,
+        }
+    }
+
+    /// Lower-case name: `huber` or `tukey`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Loss::Huber => "huber",
+            Loss::Tukey => "tukey",
+        }
+    }
+}
+
+/// What the robust fit did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobustFit {
+    /// The weight function.
+    pub loss: Loss,
+    /// The final scale `s`, m.
+    pub scale: f64,
+    /// IRLS iterations taken with `loss` (after the Huber start, for Tukey).
+    pub iterations: usize,
+    /// Whether the iterations met [`TOLERANCE`] before [`MAX_ITERATIONS`].
+    pub converged: bool,
+    /// The final weight of every row of `Psi`, in `[0, 1]`.
+    pub weights: DVector<f64>,
+}
+
+impl RobustFit {
+    /// The rows (indices into `Psi`) with weight below 1, lowest weight first.
+    pub fn down_weighted(&self) -> Vec<usize> {
+        let mut rows: Vec<usize> = (0..self.weights.len())
+            .filter(|&i| self.weights[i] < 1.0)
+            .collect();
+        rows.sort_by(|&a, &b| self.weights[a].total_cmp(&self.weights[b]));
+        rows
+    }
+}
+
+/// Runs IRLS with `loss` from the least-squares solution `start`. Returns the compliance, the QR
+/// factor of the weighted observation matrix (for its covariance) and the fit.
+///
+/// # Errors
+/// [`crate::Error::Unidentifiable`] if the rows left with weight make `Psi` rank deficient.
+pub(crate) fn fit(
+    psi: &DMatrix<f64>,
+    delta: &DVector<f64>,
+    start: Vector6<f64>,
+    loss: Loss,
+) -> Result<(Vector6<f64>, Factor, RobustFit)> {
+    let start = match loss {
+        Loss::Huber => start,
+        Loss::Tukey => iterate(psi, delta, start, Loss::Huber)?.0,
+    };
+    iterate(psi, delta, start, loss)
+}
+
+fn iterate(
+    psi: &DMatrix<f64>,
+    delta: &DVector<f64>,
+    mut h: Vector6<f64>,
+    loss: Loss,
+) -> Result<(Vector6<f64>, Factor, RobustFit)> {
+    let mut iterations = 0;
+    loop {
+        iterations += 1;
+        let residuals = delta - psi * h;
+        let scale = mad_scale(&residuals, delta.amax());
+        let weights = residuals.map(|r| loss.weight(r / scale));
+        let roots = weights.map(f64::sqrt);
+        let mut weighted = psi.clone();
+        for (mut row, w) in weighted.row_iter_mut().zip(roots.iter()) {
+            row *= *w;
+        }
+        let factor = Factor::try_new(&weighted)?;
+        let next = factor.solve(&delta.component_mul(&roots));
+        let change = (next - h).amax();
+        h = next;
+        let converged = change <= TOLERANCE * h.amax();
+        if converged || iterations == MAX_ITERATIONS {
+            let fit = RobustFit {
+                loss,
+                scale,
+                iterations,
+                converged,
+                weights,
+            };
+            return Ok((h, factor, fit));
+        }
+    }
+}
+
+/// `MAD_TO_SIGMA * median(|r|)`, floored at a tiny fraction of the data's size so that an exact
+/// fit of most rows (noise-free data) does not divide by zero.
+fn mad_scale(residuals: &DVector<f64>, size: f64) -> f64 {
+    let mut abs: Vec<f64> = residuals.iter().map(|r| r.abs()).collect();
+    abs.sort_by(f64::total_cmp);
+    let n = abs.len();
+    let median = match n % 2 {
+        1 => abs[n / 2],
+        _ => 0.5 * (abs[n / 2 - 1] + abs[n / 2]),
+    };
+    (MAD_TO_SIGMA * median)
+        .max(f64::EPSILON * size)
+        .max(f64::MIN_POSITIVE)
+}

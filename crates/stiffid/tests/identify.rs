@@ -1,0 +1,265 @@
+//! Identification from synthetic measurements made with the forward model: exact recovery without
+//! noise, confidence intervals that cover the truth at their nominal rate, robust mode, validation
+//! (Eq. 22) and the errors.
+
+use nalgebra::{Vector3, Vector6};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use stiffid::identify::{identify, identify_robust, Loss, Measurement};
+use stiffid::kinematics::Coordinates;
+use stiffid::validate::validate;
+use stiffid::{robot::presets, setup, stiffness, Error, Setup};
+
+/// The paper's six validation-style postures (deg), inside the paper setup's bounds.
+const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [
+    [10.0, -20.0, -100.0, 30.0, 40.0, 50.0],
+    [-40.0, 10.0, -70.0, -60.0, -30.0, 120.0],
+    [60.0, -40.0, -140.0, 90.0, 60.0, -90.0],
+    [-70.0, 30.0, -60.0, -150.0, -70.0, 10.0],
+    [30.0, -50.0, -160.0, 160.0, 20.0, -150.0],
+    [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
+];
+
+fn deg(q: &[f64; 6]) -> Vector6<f64> {
+    Vector6::from_iterator(q.iter().map(|v| v.to_radians()))
+}
+
+/// Noise-free measurements of every measuring point in each posture, under `wrench(posture)`.
+fn synthetic(
+    setup: &Setup,
+    postures: &[Vector6<f64>],
+    wrench: impl Fn(usize, &Vector6<f64>) -> Vector6<f64>,
+) -> Vec<Measurement> {
+    let mut out = Vec::new();
+    for (i, q) in postures.iter().enumerate() {
+        let frames = setup.robot.frames(q);
+        let w = wrench(i, q);
+        let d = stiffness::deflection(setup, &frames, &w, &setup.nominal_stiffness);
+        for (point, disp) in d.displacements.iter().enumerate() {
+            out.push(Measurement {
+                posture: format!("P{}", i + 1),
+                point,
+                q: *q,
+                wrench: w,
+                displacement: disp.fixed_rows::<3>(0).into_owned(),
+            });
+        }
+    }
+    out
+}
+
+fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
+    let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
+    synthetic(setup, &qs, |_, q| setup.rope_wrench(&setup.robot.frames(q)))
+}
+
+fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
+    (a - truth).component_div(truth).amax()
+}
+
+#[test]
+fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for name in presets::names() {
+        for springs in [Coordinates::Axis, Coordinates::Kinematic] {
+            let mut setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+            setup.robot = presets::get(name).unwrap();
+            setup.springs = springs;
+            let (lo, hi) = (setup.robot.lower, setup.robot.upper);
+            let postures: Vec<Vector6<f64>> = (0..8)
+                .map(|_| {
+                    Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i]))
+                })
+                .collect();
+            let wrenches: Vec<Vector6<f64>> = (0..8)
+                .map(|_| {
+                    Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [500.0, 100.0][i / 3])
+                })
+                .collect();
+            let data = synthetic(&setup, &postures, |i, _| wrenches[i]);
+            let id = identify(&setup, &data).unwrap();
+            let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness);
+            assert!(err < 1e-9, "{name}, {springs:?}: relative error {err:e}");
+            assert_eq!((id.rows, id.postures), (96, 8));
+            assert!(id.residual_rms < 1e-12 * data[0].displacement.norm().max(1e-6));
+        }
+    }
+}
+
+#[test]
+fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let data = paper_measurements(&setup);
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let noise = Normal::new(0.0, setup.noise.sigma()).unwrap();
+    let noisy: Vec<Measurement> = data
+        .iter()
+        .map(|m| Measurement {
+            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
+            ..m.clone()
+        })
+        .collect();
+    let id = identify(&setup, &noisy).unwrap();
+    let u = id.uncertainty.unwrap();
+    assert_eq!(u.dof, 66);
+    // t_{0.975, 66} from R: qt(0.975, 66) = 1.996564418952332.
+    assert!((u.t_quantile - 1.996564418952332).abs() < 1e-9);
+    let rss = id.residuals.norm_squared();
+    assert!((u.residual_variance - rss / 66.0).abs() < 1e-12 * u.residual_variance);
+    for j in 0..6 {
+        let (h, se) = (id.compliance[j], u.compliance_std_error[j]);
+        assert!((u.stiffness_std_error[j] - se / (h * h)).abs() < 1e-9 * u.stiffness_std_error[j]);
+        assert!((u.compliance_ci95[j][1] - h - u.t_quantile * se).abs() < 1e-12 * h);
+        let [lo, hi] = u.stiffness_ci95_from_compliance[j];
+        assert!((lo - 1.0 / u.compliance_ci95[j][1]).abs() < 1e-9 * lo);
+        assert!((hi - 1.0 / u.compliance_ci95[j][0]).abs() < 1e-9 * hi);
+    }
+}
+
+#[test]
+fn confidence_intervals_cover_the_truth_at_about_95_percent() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let clean = paper_measurements(&setup);
+    let truth_h = setup.nominal_compliance();
+    let truth_k = setup.nominal_stiffness;
+    // Ten times the paper's noise, so that the intervals are wide enough to matter.
+    let noise = Normal::new(0.0, 10.0 * setup.noise.sigma()).unwrap();
+    let sets = 300;
+    let (mut covered_h, mut covered_k) = (0, 0);
+    for set in 0..sets {
+        let mut rng =
+            ChaCha8Rng::seed_from_u64(0x5eed ^ (set as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        let noisy: Vec<Measurement> = clean
+            .iter()
+            .map(|m| Measurement {
+                displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
+                ..m.clone()
+            })
+            .collect();
+        let u = identify(&setup, &noisy).unwrap().uncertainty.unwrap();
+        for j in 0..6 {
+            let [lo, hi] = u.compliance_ci95[j];
+            covered_h += usize::from(lo <= truth_h[j] && truth_h[j] <= hi);
+            let [lo, hi] = u.stiffness_ci95[j];
+            covered_k += usize::from(lo <= truth_k[j] && truth_k[j] <= hi);
+        }
+    }
+    let total = (6 * sets) as f64;
+    let (rate_h, rate_k) = (covered_h as f64 / total, covered_k as f64 / total);
+    assert!(
+        (0.90..=0.99).contains(&rate_h),
+        "compliance coverage {rate_h}"
+    );
+    assert!(
+        (0.90..=0.99).contains(&rate_k),
+        "stiffness (delta method) coverage {rate_k}"
+    );
+}
+
+#[test]
+fn robust_modes_down_weight_an_injected_outlier() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let noise = Normal::new(0.0, setup.noise.sigma()).unwrap();
+    let mut data: Vec<Measurement> = paper_measurements(&setup)
+        .into_iter()
+        .map(|m| Measurement {
+            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
+            ..m
+        })
+        .collect();
+    // Measurement 10 (posture 3, point 2), y: 0.3 mm off, about 30 sigma.
+    data[9].displacement.y += 0.3e-3;
+    let outlier_row = 3 * 9 + 1;
+    let plain = identify(&setup, &data).unwrap();
+    let plain_err = max_relative_error(&plain.stiffness, &setup.nominal_stiffness);
+    for loss in [Loss::Huber, Loss::Tukey] {
+        let id = identify_robust(&setup, &data, loss).unwrap();
+        let fit = id.robust.as_ref().unwrap();
+        assert!(fit.converged, "{loss:?}");
+        assert_eq!(fit.down_weighted()[0], outlier_row, "{loss:?}");
+        assert!(
+            fit.weights[outlier_row] < 0.1,
+            "{loss:?}: {}",
+            fit.weights[outlier_row]
+        );
+        // The MAD scale estimates the noise, not the outlier.
+        let ratio = fit.scale / setup.noise.sigma();
+        assert!((0.6..1.6).contains(&ratio), "{loss:?}: scale/sigma {ratio}");
+        let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness);
+        assert!(
+            err < plain_err / 2.0,
+            "{loss:?}: {err} vs least squares {plain_err}"
+        );
+    }
+    let tukey = identify_robust(&setup, &data, Loss::Tukey).unwrap();
+    assert_eq!(tukey.robust.unwrap().weights[outlier_row], 0.0);
+}
+
+#[test]
+fn validation_compares_measured_and_predicted_displacements() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let data = paper_measurements(&setup);
+    let exact = validate(&setup, &setup.nominal_stiffness, &data).unwrap();
+    assert_eq!(exact.checks.len(), 24);
+    assert!(exact.max < 1e-15, "{}", exact.max);
+    // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
+    let stiffer = validate(&setup, &(setup.nominal_stiffness * 2.0), &data).unwrap();
+    for (c, m) in stiffer.checks.iter().zip(&data) {
+        assert!((c.predicted - m.displacement / 2.0).norm() < 1e-15);
+        assert!((c.delta_b - m.displacement.norm() / 2.0).abs() < 1e-15);
+    }
+    let halves: Vec<f64> = data.iter().map(|m| m.displacement.norm() / 2.0).collect();
+    let mean = halves.iter().sum::<f64>() / 24.0;
+    assert!((stiffer.mean - mean).abs() < 1e-15);
+    assert!((stiffer.max - halves.iter().cloned().fold(0.0, f64::max)).abs() < 1e-15);
+    assert!(validate(&setup, &Vector6::repeat(-1.0), &data).is_err());
+}
+
+#[test]
+fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let data = paper_measurements(&setup);
+    let field = |e: Error| match e {
+        Error::Measurement { number, field, .. } => (number, field),
+        other => panic!("unexpected {other}"),
+    };
+    let mut bad = data.clone();
+    bad[4].point = 4;
+    assert_eq!(
+        field(identify(&setup, &bad).unwrap_err()),
+        (5, "point".into())
+    );
+    let mut bad = data.clone();
+    bad[6].q[2] = setup.robot.upper[2] + 0.1;
+    assert_eq!(field(identify(&setup, &bad).unwrap_err()), (7, "q3".into()));
+    let mut bad = data.clone();
+    bad[2].wrench[1] = f64::NAN;
+    assert_eq!(
+        field(identify(&setup, &bad).unwrap_err()),
+        (3, "wrench".into())
+    );
+    let mut bad = data.clone();
+    bad[5].posture = "P1".into();
+    assert_eq!(
+        field(identify(&setup, &bad).unwrap_err()),
+        (6, "posture".into())
+    );
+    assert_eq!(
+        identify(&setup, &data[..1]).unwrap_err(),
+        Error::TooFewRows { rows: 3 }
+    );
+}
+
+#[test]
+fn a_joint_no_measurement_loads_is_named() {
+    // The loading point on the joint-6 axis and no moment: tau_6 = 0 in every posture.
+    let mut setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    setup.tool.loading_point = Vector3::new(0.0, 0.0, 0.2);
+    let data = paper_measurements(&setup);
+    match identify(&setup, &data).unwrap_err() {
+        Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![6]),
+        other => panic!("unexpected {other}"),
+    }
+}
