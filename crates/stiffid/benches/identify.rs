@@ -45,9 +45,6 @@ fn bench(c: &mut Criterion) {
     c.bench_function("identify/72x6 least squares and statistics", |b| {
         b.iter(|| black_box(&obs).identify().expect("identifiable"))
     });
-    c.bench_function("factor", |b| {
-        b.iter(|| stiffid::lsq::Factor::try_new(black_box(&obs.psi)).unwrap())
-    });
     c.bench_function("identify/observation matrix of 24 measurements", |b| {
         b.iter(|| observations(black_box(&setup), black_box(&data)).expect("valid"))
     });

@@ -71,9 +71,9 @@ def main():
     psi = np.vstack(rows)
     delta = np.concatenate(rhs)
     h, _, _, sv = np.linalg.lstsq(psi, delta, rcond=None)
-    print(f"rows {psi.shape[0]}, postures {len(q)}, cond(Psi) {sv[0] / sv[-1]!r}")
-    print("compliance_rad_per_nm", [repr(v) for v in h])
-    print("stiffness_nm_per_rad", [repr(v) for v in 1.0 / h])
+    print(f"rows {psi.shape[0]}, postures {len(q)}, cond(Psi) {float(sv[0] / sv[-1])!r}")
+    print("compliance_rad_per_nm", [float(v) for v in h])
+    print("stiffness_nm_per_rad", [float(v) for v in 1.0 / h])
 
 
 if __name__ == "__main__":
