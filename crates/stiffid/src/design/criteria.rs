@@ -4,15 +4,15 @@
 //! matrix ([`crate::observation::rope_observation_matrix`]) and
 //! `S = Psi diag(h_nominal) / sigma` its unitless scaling (`sigma` the noise standard deviation at
 //! multiple 1, m): `(S^T S)^-1` is the covariance of the *relative* compliance errors at noise
-//! level 1. Everything is computed from the QR factor `Psi = Q R` ([`crate::lsq::Factor`]):
-//! `S = Q (R diag(h) / sigma)`, so `S` never needs forming. A group whose `Psi` is rank deficient gets
-//! `+infinity` for every criterion that depends on `Psi`, never NaN.
+//! level 1. Everything is computed from the triangular factor `Psi = Q R` ([`Evaluator`]):
+//! `S = Q (R diag(h) / sigma)`, so `S` never needs forming. A group whose `Psi` is rank deficient
+//! (the rule of [`crate::lsq::Factor::try_new`]) gets `+infinity` for every criterion that depends
+//! on `Psi`, never NaN.
 
+use super::Evaluator;
 use crate::dexterity;
-use crate::lsq::Factor;
-use crate::observation::{posture_block, rope_observation_matrix};
 use crate::setup::Setup;
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::Vector6;
 use std::f64::consts::PI;
 use std::fmt;
 use std::str::FromStr;
@@ -141,92 +141,8 @@ pub fn predicted_deviation_pct(relative_std: &Vector6<f64>, multiple: f64) -> [f
     std::array::from_fn(|j| f * relative_std[j])
 }
 
-/// Every criterion of a group of postures (axis angles, rad).
+/// Every criterion of a group of postures (axis angles, rad); see [`Evaluator`] for how they are
+/// computed, and to evaluate many groups of one setup.
 pub fn evaluate(setup: &Setup, postures: &[Vector6<f64>]) -> Evaluation {
-    let classical = classical(setup, postures);
-    let psi = rope_observation_matrix(setup, postures);
-    match Factor::try_new(&psi) {
-        Ok(factor) => from_factor(setup, classical, &factor),
-        Err(_) => rank_deficient(setup, classical),
-    }
-}
-
-fn from_factor(setup: &Setup, classical: f64, factor: &Factor) -> Evaluation {
-    let sigma = setup.noise.sigma();
-    let h = setup.nominal_compliance();
-    let cond_psi = factor.cond();
-    let cov = factor.unit_covariance();
-    let rel_cov = Matrix6::from_fn(|i, j| sigma * sigma * cov[(i, j)] / (h[i] * h[j]));
-    let relative_std = rel_cov.diagonal().map(f64::sqrt);
-    let rs = factor.r() * Matrix6::from_diagonal(&h) / sigma;
-    let scaled_cond = rs
-        .try_svd(false, false, f64::EPSILON, 200)
-        .map(|s| s.singular_values.max() / s.singular_values.min())
-        .unwrap_or(f64::INFINITY);
-    let log_det_rs: f64 = rs.diagonal().iter().map(|d| d.abs().ln()).sum();
-    let test_pose = test_pose(setup, &cov) * sigma;
-    finite_or_inf(Evaluation {
-        classical,
-        zhang2021: classical * cond_psi,
-        scaled_cond,
-        d_optimal: (-log_det_rs / 6.0).exp(),
-        relative_a: (rel_cov.trace() / 6.0).sqrt(),
-        test_pose,
-        cond_psi,
-        relative_std,
-        predicted_deviation_pct: setup
-            .noise
-            .levels
-            .iter()
-            .map(|&m| predicted_deviation_pct(&relative_std, m))
-            .collect(),
-    })
-}
-
-/// `sqrt(mean_t tr(A_t C A_t^T))` over the setup's test postures, C = `(Psi^T Psi)^-1`.
-fn test_pose(setup: &Setup, cov: &Matrix6<f64>) -> f64 {
-    if setup.test_postures.is_empty() {
-        return 0.0;
-    }
-    let sum: f64 = setup
-        .test_postures
-        .iter()
-        .map(|q| {
-            let frames = setup.robot.frames(q);
-            let a = posture_block(setup, &frames, &setup.rope_wrench(&frames));
-            (&a * cov * a.transpose()).trace()
-        })
-        .sum();
-    (sum / setup.test_postures.len() as f64).sqrt()
-}
-
-fn finite_or_inf(mut e: Evaluation) -> Evaluation {
-    for v in [
-        &mut e.zhang2021,
-        &mut e.scaled_cond,
-        &mut e.d_optimal,
-        &mut e.relative_a,
-        &mut e.test_pose,
-        &mut e.cond_psi,
-    ] {
-        if !v.is_finite() {
-            *v = f64::INFINITY;
-        }
-    }
-    e
-}
-
-fn rank_deficient(setup: &Setup, classical: f64) -> Evaluation {
-    let inf = f64::INFINITY;
-    Evaluation {
-        classical,
-        zhang2021: inf,
-        scaled_cond: inf,
-        d_optimal: inf,
-        relative_a: inf,
-        test_pose: inf,
-        cond_psi: inf,
-        relative_std: Vector6::repeat(inf),
-        predicted_deviation_pct: vec![[inf; 6]; setup.noise.levels.len()],
-    }
+    Evaluator::new(setup).evaluation(postures)
 }

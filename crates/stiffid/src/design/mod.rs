@@ -8,5 +8,5 @@ mod evaluator;
 pub mod search;
 
 pub use criteria::{evaluate, Criterion, Evaluation};
-pub use evaluator::Evaluator;
+pub use evaluator::{Evaluator, PostureTerms};
 pub use search::{global, local, random_group, SearchOptions, SearchOutcome};

@@ -2,6 +2,7 @@
 
 use super::constraints::{kinds, Kind};
 use super::{SearchOptions, SearchOutcome};
+use crate::design::PostureTerms;
 use crate::design::{Criterion, Evaluator};
 use crate::setup::Setup;
 use crate::{Error, Result};
@@ -132,7 +133,7 @@ impl<'a> Problem<'a> {
         let state = self.state.into_inner();
         let (_, value, x) = state.best.expect("the start was evaluated");
         SearchOutcome {
-            postures: x.chunks(6).map(Vector6::from_column_slice).collect(),
+            postures: postures(&x),
             start_value,
             value,
             evaluations: state.evaluations,
@@ -187,9 +188,15 @@ impl<'a> Problem<'a> {
     /// The criterion at `x` (clamped), recorded if best so far.
     fn value(&self, x: &[f64]) -> f64 {
         let x = self.clamp(x);
-        let postures: Vec<Vector6<f64>> = x.chunks(6).map(Vector6::from_column_slice).collect();
+        let postures = postures(&x);
         let value = self.evaluator.value(self.criterion, &postures);
-        let violation = self.violation(&postures);
+        self.record(x, &postures, value)
+    }
+
+    /// Counts an evaluation and keeps `x` if it is the best so far (least constraint violation,
+    /// then lowest value). Returns `value`.
+    fn record(&self, x: Vec<f64>, postures: &[Vector6<f64>], value: f64) -> f64 {
+        let violation = self.violation(postures);
         let mut state = self.state.borrow_mut();
         state.evaluations += 1;
         let replace = match &state.best {
@@ -210,19 +217,34 @@ impl<'a> Problem<'a> {
         postures.iter().map(|q| super::violation(setup, q)).sum()
     }
 
-    /// `ln(criterion)` at `x`, and its forward-difference gradient if asked for.
+    /// `ln(criterion)` at `x`, and its forward-difference gradient if asked for. A probe changes
+    /// one posture, so the other postures' terms are reused.
     fn objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
         let x = self.clamp(x);
-        let f = log_value(self.value(&x));
+        let postures = postures(&x);
+        let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
+        let refs: Vec<&PostureTerms> = terms.iter().collect();
+        let value = self.evaluator.value_of(self.criterion, &refs);
+        let f = log_value(self.record(x.clone(), &postures, value));
         if let Some(g) = grad {
-            self.gradient(&x, f, g, |p| log_value(self.value(p)));
+            self.gradient(&x, f, g, |k, probe| {
+                let i = k / 6;
+                let mut probed = postures.clone();
+                probed[i] = Vector6::from_column_slice(&probe[6 * i..6 * i + 6]);
+                let changed = self.evaluator.posture(&probed[i]);
+                let mut refs = refs.clone();
+                refs[i] = &changed;
+                let value = self.evaluator.value_of(self.criterion, &refs);
+                log_value(self.record(probe.to_vec(), &probed, value))
+            });
         }
         f
     }
 
     /// Forward differences of `f` at `x` (where it is `fx`), backwards at an upper bound or where
-    /// the forward probe hits the penalty; 0 where both do.
-    fn gradient(&self, x: &[f64], fx: f64, g: &mut [f64], f: impl Fn(&[f64]) -> f64) {
+    /// the forward probe hits the penalty; 0 where both do. `f` gets the index changed and the
+    /// probe.
+    fn gradient(&self, x: &[f64], fx: f64, g: &mut [f64], mut f: impl FnMut(usize, &[f64]) -> f64) {
         let h = self.options.fd_step;
         let mut probe = x.to_vec();
         for k in 0..x.len() {
@@ -234,8 +256,11 @@ impl<'a> Problem<'a> {
             for step in [first, -first] {
                 probe[k] = (x[k] + step).clamp(self.lower[k], self.upper[k]);
                 let d = probe[k] - x[k];
-                let fp = f(&probe);
-                if fp < PENALTY && d != 0.0 {
+                if d == 0.0 {
+                    continue;
+                }
+                let fp = f(k, &probe);
+                if fp < PENALTY {
                     g[k] = (fp - fx) / d;
                     break;
                 }
@@ -275,6 +300,11 @@ impl<'a> Problem<'a> {
         }
         value
     }
+}
+
+/// The postures of the variables `x` (6 angles each).
+fn postures(x: &[f64]) -> Vec<Vector6<f64>> {
+    x.chunks(6).map(Vector6::from_column_slice).collect()
 }
 
 /// `ln v`, or [`PENALTY`] for `+infinity` or NaN.

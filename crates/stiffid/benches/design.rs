@@ -1,0 +1,41 @@
+//! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one local
+//! search from a fixed seeded start group, and the default global search, on the paper setup.
+
+use criterion::{criterion_group, criterion_main, Criterion as Bench};
+use std::hint::black_box;
+use stiffid::design::{self, Criterion, Evaluator, SearchOptions};
+
+fn evaluation(c: &mut Bench) {
+    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let group = design::random_group(&setup, 6, 1);
+    let evaluator = Evaluator::new(&setup);
+    for criterion in Criterion::ALL {
+        c.bench_function(&format!("design/evaluate/{criterion}/6x4"), |b| {
+            b.iter(|| evaluator.value(criterion, black_box(&group)))
+        });
+    }
+    c.bench_function("design/evaluate/all/6x4", |b| {
+        b.iter(|| design::evaluate(&setup, black_box(&group)))
+    });
+}
+
+fn search(c: &mut Bench) {
+    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let start = design::random_group(&setup, 6, 1);
+    let options = SearchOptions::default();
+    let mut g = c.benchmark_group("design/search");
+    g.sample_size(10);
+    g.bench_function("local/zhang2021", |b| {
+        b.iter(|| design::local(&setup, Criterion::Zhang2021, black_box(&start), &options).unwrap())
+    });
+    g.bench_function("local/relative-a", |b| {
+        b.iter(|| design::local(&setup, Criterion::RelativeA, black_box(&start), &options).unwrap())
+    });
+    g.bench_function("global/relative-a/default", |b| {
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, evaluation, search);
+criterion_main!(benches);

@@ -1,0 +1,222 @@
+//! The design criteria against independent formulas, their units, and rank deficiency.
+
+use nalgebra::{DMatrix, Matrix6, Vector6};
+use stiffid::design::{self, criteria, Criterion, Evaluator};
+use stiffid::observation::{posture_block, rope_observation_matrix};
+use stiffid::setup::{self, Setup};
+
+fn paper() -> Setup {
+    setup::builtin("zhang2021-comau-nj165").unwrap()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+fn cond(m: &DMatrix<f64>) -> f64 {
+    let s = m.clone().svd(false, false).singular_values;
+    s.max() / s.min()
+}
+
+/// Every criterion from its definition: `Psi` from the observation module, `S` formed explicitly,
+/// singular values by SVD and `(S^T S)^-1` by explicit inversion.
+fn reference(setup: &Setup, group: &[Vector6<f64>]) -> (Vec<f64>, Vector6<f64>) {
+    let psi = rope_observation_matrix(setup, group);
+    let h = setup.nominal_compliance();
+    let sigma = setup.noise.sigma();
+    let s =
+        &psi * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(h.as_slice())) / sigma;
+    let c: Matrix6<f64> = (s.transpose() * &s)
+        .fixed_view::<6, 6>(0, 0)
+        .into_owned()
+        .try_inverse()
+        .unwrap();
+    let unit_cov = (psi.transpose() * &psi).try_inverse().unwrap();
+    let classical = criteria::classical(setup, group);
+    let test_pose = setup
+        .test_postures
+        .iter()
+        .map(|q| {
+            let frames = setup.robot.frames(q);
+            let a = posture_block(setup, &frames, &setup.rope_wrench(&frames));
+            (&a * &unit_cov * a.transpose()).trace()
+        })
+        .sum::<f64>()
+        / setup.test_postures.len() as f64;
+    let values = vec![
+        classical,
+        classical * cond(&psi),
+        cond(&s),
+        c.determinant().powf(1.0 / 12.0),
+        (c.trace() / 6.0).sqrt(),
+        sigma * test_pose.sqrt(),
+    ];
+    (values, c.diagonal().map(f64::sqrt))
+}
+
+#[test]
+fn every_criterion_matches_its_definition() {
+    let setup = paper();
+    for seed in 0..5 {
+        let group = design::random_group(&setup, 6, seed);
+        let (want, want_std) = reference(&setup, &group);
+        let e = design::evaluate(&setup, &group);
+        let fast = Evaluator::new(&setup);
+        for (c, w) in Criterion::ALL.into_iter().zip(&want) {
+            assert!(rel(e.value(c), *w) < 1e-8, "{c}: {} vs {w}", e.value(c));
+            assert!(rel(fast.value(c, &group), *w) < 1e-8, "{c} (value)");
+        }
+        assert!(rel(e.cond_psi, want[1] / want[0]) < 1e-8);
+        for j in 0..6 {
+            assert!(rel(e.relative_std[j], want_std[j]) < 1e-8);
+            for (l, m) in setup.noise.levels.iter().enumerate() {
+                let pct = 100.0 * (2.0 / std::f64::consts::PI).sqrt() * m.sqrt() * want_std[j];
+                assert!(rel(e.predicted_deviation_pct[l][j], pct) < 1e-8);
+            }
+        }
+    }
+}
+
+#[test]
+fn cached_posture_terms_give_the_same_values() {
+    let setup = paper();
+    let group = design::random_group(&setup, 7, 2);
+    let fast = Evaluator::new(&setup);
+    let terms: Vec<_> = group.iter().map(|q| fast.posture(q)).collect();
+    let refs: Vec<_> = terms.iter().collect();
+    for c in Criterion::ALL {
+        assert_eq!(fast.value_of(c, &refs), fast.value(c, &group), "{c}");
+    }
+}
+
+#[test]
+fn hand_case_predicted_deviation_rate() {
+    // 100 sqrt(2/pi) sqrt(m) s: s = 0.01 at m = 4 gives 100 * 0.797885 * 2 * 0.01.
+    let p = criteria::predicted_deviation_pct(&Vector6::repeat(0.01), 4.0);
+    for v in p {
+        assert!((v - 1.595769).abs() < 1e-6, "{v}");
+    }
+}
+
+/// The setup with joint coordinates `q' = D^-1 q` (a gear ratio on each spring): `M' = M D`, bounds
+/// and test postures `D^-1`, stiffness `k' = k d^2` (same spring energy). Psi's columns scale by
+/// `d^2`, the compliances by `1/d^2`: the identification problem is the same, in other units.
+fn in_other_joint_units(setup: &Setup, d: &Vector6<f64>) -> Setup {
+    let mut s = setup.clone();
+    s.robot.axis_map.matrix = setup.robot.axis_map.matrix * Matrix6::from_diagonal(d);
+    s.bounds.lower = setup.bounds.lower.component_div(d);
+    s.bounds.upper = setup.bounds.upper.component_div(d);
+    s.nominal_stiffness = setup.nominal_stiffness.component_mul(&d.component_mul(d));
+    s.test_postures = setup
+        .test_postures
+        .iter()
+        .map(|q| q.component_div(d))
+        .collect();
+    s
+}
+
+/// The setup with every length times `c` (robot, tool, anchor, characteristic length, noise sigma)
+/// and torques and stiffness in the matching unit (`k c`): e.g. metres to millimetres with `c = 1000`.
+fn in_other_length_unit(setup: &Setup, c: f64) -> Setup {
+    let mut s = setup.clone();
+    let scale = |iso: &mut nalgebra::Isometry3<f64>| iso.translation.vector *= c;
+    for j in s.robot.joints.iter_mut() {
+        scale(&mut j.pre);
+        scale(&mut j.post);
+    }
+    scale(&mut s.robot.base);
+    scale(&mut s.robot.flange);
+    s.tool.loading_point *= c;
+    s.tool.tcp *= c;
+    s.tool.measuring_points.iter_mut().for_each(|p| *p *= c);
+    s.load.anchor *= c;
+    s.characteristic_length *= c;
+    s.noise.variance *= c * c;
+    s.nominal_stiffness *= c;
+    s
+}
+
+#[test]
+fn scale_free_criteria_do_not_depend_on_units_and_the_papers_index_does() {
+    let setup = paper();
+    let group = design::random_group(&setup, 6, 4);
+    let base = design::evaluate(&setup, &group);
+
+    let c = 1000.0;
+    let mm = design::evaluate(&in_other_length_unit(&setup, c), &group);
+    for k in [
+        Criterion::DOptimal,
+        Criterion::RelativeA,
+        Criterion::ScaledCond,
+        Criterion::Zhang2021,
+    ] {
+        assert!(rel(mm.value(k), base.value(k)) < 1e-8, "{k} in mm");
+    }
+    assert!(
+        rel(mm.test_pose, base.test_pose * c) < 1e-8,
+        "test-pose is a length"
+    );
+
+    let d = Vector6::new(1.0, 10.0, 1.0, 0.5, 1.0, 0.1);
+    let geared = in_other_joint_units(&setup, &d);
+    let geared_group: Vec<_> = group.iter().map(|q| q.component_div(&d)).collect();
+    let g = design::evaluate(&geared, &geared_group);
+    for k in [
+        Criterion::DOptimal,
+        Criterion::RelativeA,
+        Criterion::ScaledCond,
+        Criterion::TestPose,
+    ] {
+        assert!(
+            rel(g.value(k), base.value(k)) < 1e-8,
+            "{k}: {} vs {}",
+            g.value(k),
+            base.value(k)
+        );
+    }
+    for j in 0..6 {
+        assert!(rel(g.relative_std[j], base.relative_std[j]) < 1e-8);
+    }
+    let change = g.zhang2021 / base.zhang2021;
+    assert!(
+        !(0.5..2.0).contains(&change),
+        "zhang2021 changed by only {change}"
+    );
+    println!(
+        "zhang2021 changes by a factor {change:.2} with the joint units; cond(Psi) by {:.2}",
+        g.cond_psi / base.cond_psi
+    );
+}
+
+#[test]
+fn rank_deficient_groups_are_infinite_never_nan() {
+    let setup = paper();
+    let fast = Evaluator::new(&setup);
+    // q5 = 0: axes 4 and 6 collinear, equal columns of Psi.
+    let wrist: Vec<_> = design::random_group(&setup, 6, 5)
+        .into_iter()
+        .map(|mut q| {
+            q[4] = 0.0;
+            q
+        })
+        .collect();
+    // One posture repeated: rows are those of one posture (rank 6 at most), still full rank, so
+    // also try a single posture repeated at the wrist singularity.
+    let repeated = vec![wrist[0]; 6];
+    for group in [wrist, repeated] {
+        let e = design::evaluate(&setup, &group);
+        for c in Criterion::ALL
+            .into_iter()
+            .filter(|&c| c != Criterion::Classical)
+        {
+            assert_eq!(e.value(c), f64::INFINITY, "{c}");
+            assert_eq!(fast.value(c, &group), f64::INFINITY, "{c}");
+        }
+        assert!(e.relative_std.iter().all(|s| *s == f64::INFINITY));
+        assert!(e
+            .predicted_deviation_pct
+            .iter()
+            .flatten()
+            .all(|s| *s == f64::INFINITY));
+    }
+}
