@@ -4,16 +4,20 @@
 //! - `compare/zhang2021`: one evaluation of the paper's index, 6 postures x 4 measuring points;
 //! - `compare/evaluate`: every criterion and the predicted deviation rates (`stiffid evaluate`);
 //! - `compare/lstsq`: the least-squares step alone, 72 x 6 (QR factor and solve);
+//! - `compare/identify`: identification from the 24 measurements of `bench/inputs/measurements.csv`
+//!   (observation matrix, least squares and statistics, as `stiffid identify` without file I/O);
 //! - `compare/local-search`: SLSQP on `zhang2021` from the start group, default options.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use nalgebra::{DVector, Vector6};
+use nalgebra::{DVector, Vector3, Vector6};
 use stiffid::design::{evaluate, local, Criterion as Design, Evaluator, SearchOptions};
+use stiffid::identify::{identify, Measurement};
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
 use stiffid::setup;
 
 const START: &str = include_str!("../../../bench/inputs/start-group.csv");
+const MEASUREMENTS: &str = include_str!("../../../bench/inputs/measurements.csv");
 
 /// The start group (axis angles, rad) from its CSV `posture,q1_deg,...,q6_deg`.
 fn start_group() -> Vec<Vector6<f64>> {
@@ -27,6 +31,25 @@ fn start_group() -> Vec<Vector6<f64>> {
                 .map(|v| v.parse().unwrap())
                 .collect();
             Vector6::from_iterator(deg.iter().map(|d| d.to_radians()))
+        })
+        .collect()
+}
+
+/// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm` (point 1-based).
+fn measurements() -> Vec<Measurement> {
+    MEASUREMENTS
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let f: Vec<&str> = line.split(',').collect();
+            let v: Vec<f64> = f[2..].iter().map(|v| v.parse().unwrap()).collect();
+            Measurement {
+                posture: f[0].to_string(),
+                point: f[1].parse::<usize>().unwrap() - 1,
+                q: Vector6::from_iterator(v[..6].iter().map(|d| d.to_radians())),
+                wrench: Vector6::new(v[6], v[7], v[8], 0.0, 0.0, 0.0),
+                displacement: Vector3::new(v[9], v[10], v[11]) * 1e-3,
+            }
         })
         .collect()
 }
@@ -50,6 +73,10 @@ fn compare(c: &mut Criterion) {
                 .unwrap()
                 .solve(black_box(&delta))
         })
+    });
+    let data = measurements();
+    group.bench_function("identify", |b| {
+        b.iter(|| identify(&setup, black_box(&data)).unwrap())
     });
     let options = SearchOptions::default();
     group.sample_size(10).bench_function("local-search", |b| {
