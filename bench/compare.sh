@@ -49,9 +49,9 @@ if has reproduce; then
   echo "{\"elapsed_s\": $(echo "$t1 - $t0" | bc -l)}" >"$out/rs-reproduce-time.json"
 fi
 
-echo "== stiffid criterion benches (benches 'compare' and 'scaling')" >&2
+echo "== stiffid criterion benches" >&2
 if [ -n "${QUICK:-}" ]; then times=(--warm-up-time 1 --measurement-time 2); else times=(); fi
-for bench in compare scaling; do
+for bench in compare scaling identify; do
   cargo bench -q -p stiffid --bench "$bench" -- --save-baseline compare "${times[@]}" >&2
 done
 
