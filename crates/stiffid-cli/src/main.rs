@@ -5,6 +5,8 @@ mod commands;
 mod load;
 mod output;
 mod postures;
+mod report;
+mod study;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -27,6 +29,8 @@ enum Command {
     Setups(commands::setups::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
+    /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
+    Reproduce(commands::reproduce::Args),
 }
 
 fn main() -> ExitCode {
@@ -36,6 +40,7 @@ fn main() -> ExitCode {
         Command::Kinematics(args) => commands::kinematics::run(&args),
         Command::Setups(args) => commands::setups::run(&args),
         Command::Simulate(args) => commands::simulate::run(&args),
+        Command::Reproduce(args) => commands::reproduce::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

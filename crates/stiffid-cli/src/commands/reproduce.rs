@@ -1,0 +1,104 @@
+//! `stiffid reproduce`: the paper's simulation study end to end, with a report.
+
+use crate::load;
+use crate::report::{self, figures, findings::findings};
+use crate::study::{self, Progress, StudyOptions, DEFAULT_STARTS};
+use anyhow::Result;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::time::Instant;
+
+/// Arguments of `stiffid reproduce`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Directory of the report (created if missing; an existing directory must be empty or hold a
+    /// previous report, unless --force).
+    #[arg(long, default_value = "stiffid-report")]
+    out: PathBuf,
+    /// Monte Carlo runs per group and noise level (the paper: 200).
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+    runs: u64,
+    /// Seed of the start group, the global searches and the noise.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Setup: a built-in name or a setup .toml file.
+    #[arg(long, default_value = "zhang2021-comau-nj165")]
+    setup: String,
+    /// Local searches per global search (the beyond-the-paper groups).
+    #[arg(long, default_value_t = DEFAULT_STARTS as u64, value_parser = clap::value_parser!(u64).range(1..))]
+    starts: u64,
+    /// Write into --out even if it holds other files.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Progress bars on stderr (hidden when stderr is not a terminal).
+struct Bars(Mutex<Option<ProgressBar>>);
+
+impl Progress for Bars {
+    fn begin(&self, what: &str, total: usize) {
+        let bar = ProgressBar::new(total as u64).with_message(what.to_string());
+        let style = ProgressStyle::with_template("{msg:32} [{bar:30}] {pos}/{len} {elapsed}")
+            .expect("valid template")
+            .progress_chars("=> ");
+        bar.set_style(style);
+        *self.0.lock().expect("progress lock") = Some(bar);
+    }
+    fn advance(&self, done: usize) {
+        if let Some(bar) = self.0.lock().expect("progress lock").as_ref() {
+            bar.set_position(done as u64);
+        }
+    }
+    fn end(&self) {
+        if let Some(bar) = self.0.lock().expect("progress lock").take() {
+            bar.finish();
+        }
+    }
+}
+
+/// Runs the study, writes the report, prints the summary.
+pub fn run(args: &Args) -> Result<()> {
+    let started = Instant::now();
+    let setup = load::setup(&args.setup)?;
+    report::check_target(&args.out, args.force)?;
+    let options = StudyOptions {
+        runs: args.runs as usize,
+        seed: args.seed,
+        starts: args.starts as usize,
+    };
+    let bars = Bars(Mutex::new(None));
+    let mut study = study::run(&setup, &options, &bars)?;
+    bars.begin("figures", 1);
+    let figures = figures::all(&study)?;
+    bars.end();
+    study.elapsed_s = started.elapsed().as_secs_f64();
+    report::write(&args.out, &study, &figures)?;
+    print_summary(&study);
+    println!("\nreport: {}", args.out.join("report.html").display());
+    Ok(())
+}
+
+fn print_summary(study: &study::Study) {
+    let l = study.validation_level;
+    println!(
+        "\n{} runs per group and level, seed {}, {:.1} s\n",
+        study.runs, study.seed, study.elapsed_s
+    );
+    println!(
+        "{:<28} {:>10} {:>10} {:>9} {:>9}   mean deviation rate % at level {}, joints 1-6",
+        "group", "classical", "zhang2021", "rel.-a", "avg dev%", l + 1
+    );
+    for g in &study.groups {
+        let e = &g.evaluation;
+        let rates: Vec<String> = g.simulation.mean_deviation_pct[l].iter().map(|r| format!("{r:6.3}")).collect();
+        println!(
+            "{:<28} {:>10.4} {:>10.1} {:>9.5} {:>9.3}   {}",
+            g.title, e.classical, e.zhang2021, e.relative_a, g.average_deviation_pct(), rates.join(" ")
+        );
+    }
+    println!();
+    for s in findings(study).sentences(study) {
+        println!("- {s}");
+    }
+}

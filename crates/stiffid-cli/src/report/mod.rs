@@ -1,0 +1,85 @@
+//! The report of `stiffid reproduce`: `report.html` (self-contained, figures inline as SVG),
+//! `report.md`, `summary.json`, `deviation_rates.csv`, one postures CSV per group and `figures/`
+//! (SVG and PNG).
+
+pub mod figures;
+pub mod findings;
+mod content;
+mod html;
+mod markdown;
+pub mod summary;
+mod tables;
+
+use crate::commands::simulate::deviation_csv;
+use crate::output::write_atomic;
+use crate::postures;
+use crate::study::Study;
+use anyhow::{bail, Context, Result};
+use figures::Figure;
+use std::path::Path;
+use stiffid::design::Evaluation;
+
+/// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.
+pub const CRITERIA: [(&str, &str); 7] = [
+    ("classical", "max k(J_N) over the postures (the paper's classical index)"),
+    ("zhang2021", "classical x cond(Psi) (the paper's novel index)"),
+    ("scaled_cond", "cond(Psi diag(h) / sigma), scale-free"),
+    ("d_optimal", "geometric mean relative std of the compliances at level 1"),
+    ("relative_a", "RMS relative std of the compliances at level 1"),
+    ("test_pose_mm", "RMS error of the deflection predicted at the test postures, mm"),
+    ("cond_psi", "cond(Psi) in SI units"),
+];
+
+/// The values of [`CRITERIA`] of one group, in that order (`test_pose_mm` in mm).
+pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
+    let v = [
+        e.classical,
+        e.zhang2021,
+        e.scaled_cond,
+        e.d_optimal,
+        e.relative_a,
+        e.test_pose * 1e3,
+        e.cond_psi,
+    ];
+    std::array::from_fn(|i| (CRITERIA[i].0, v[i]))
+}
+
+/// Refuses to write into `dir` if it exists, is not empty and holds no report of ours (no
+/// `summary.json` with our generator signature), unless `force`.
+pub fn check_target(dir: &Path, force: bool) -> Result<()> {
+    if !dir.exists() || force {
+        return Ok(());
+    }
+    if !dir.is_dir() {
+        bail!("{}: exists and is not a directory", dir.display());
+    }
+    let mut entries = std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
+    if entries.next().is_none() || summary::is_ours(&dir.join("summary.json")) {
+        return Ok(());
+    }
+    bail!(
+        "{}: not empty and not a stiffid report (no summary.json written by stiffid reproduce); choose another --out or pass --force",
+        dir.display()
+    )
+}
+
+/// Writes every file of the report into `dir` (created if missing), each file whole;
+/// `summary.json` first, so the directory is recognisably ours from then on.
+pub fn write(dir: &Path, study: &Study, figures: &[Figure]) -> Result<()> {
+    std::fs::create_dir_all(dir.join("figures")).with_context(|| format!("{}: cannot create", dir.display()))?;
+    write_atomic(&dir.join("summary.json"), summary::json(study)?.as_bytes())?;
+    for f in figures {
+        write_atomic(&dir.join("figures").join(format!("{}.svg", f.name)), f.svg.as_bytes())?;
+        write_atomic(&dir.join("figures").join(format!("{}.png", f.name)), &f.png)?;
+    }
+    for g in &study.groups {
+        postures::write(&dir.join(format!("{}.csv", g.name)), &g.postures)?;
+    }
+    let names: Vec<String> = study.groups.iter().map(|g| g.name.clone()).collect();
+    let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
+    let csv = deviation_csv(&names, &sims, &study.setup.noise.levels);
+    write_atomic(&dir.join("deviation_rates.csv"), csv.as_bytes())?;
+    write_atomic(&dir.join("report.md"), markdown::report(study, figures).as_bytes())?;
+    write_atomic(&dir.join("report.html"), html::report(study, figures).as_bytes())?;
+    Ok(())
+}
