@@ -86,7 +86,6 @@ pub fn to_csv(postures: &[Vector6<f64>]) -> String {
 }
 
 /// Writes postures (axis angles, rad) to a postures file, whole.
-#[allow(dead_code)] // for `select` and `reproduce`; drop once one uses it
 pub fn write(path: &Path, postures: &[Vector6<f64>]) -> Result<()> {
     write_atomic(path, to_csv(postures).as_bytes())
 }

@@ -3,7 +3,9 @@
 
 use anyhow::{Context, Result};
 use nalgebra::{Vector3, Vector6};
-use stiffid::design::{evaluate, global, local, random_group, Criterion, Evaluation, SearchOptions};
+use stiffid::design::{
+    evaluate, global, local, random_group, Criterion, Evaluation, SearchOptions,
+};
 use stiffid::simulate::{simulate, GroupSimulation, Options};
 use stiffid::stiffness::rope_displacements;
 use stiffid::Setup;
@@ -123,7 +125,11 @@ pub trait Progress {
 }
 
 /// Runs the study: the groups, their Monte Carlo identification at every noise level, the validation.
-pub fn run(setup: &Setup, options: &StudyOptions, progress: &(impl Progress + Sync)) -> Result<Study> {
+pub fn run(
+    setup: &Setup,
+    options: &StudyOptions,
+    progress: &(impl Progress + Sync),
+) -> Result<Study> {
     let start = random_group(setup, POSTURES, options.seed);
     let search = SearchOptions {
         starts: options.starts,
@@ -133,20 +139,34 @@ pub fn run(setup: &Setup, options: &StudyOptions, progress: &(impl Progress + Sy
     let mut found = vec![(Origin::Start, start.clone(), 0)];
     for criterion in [Criterion::Classical, Criterion::Zhang2021] {
         progress.begin(&format!("local search on {criterion}"), 1);
-        let o = local(setup, criterion, &start, &search).with_context(|| format!("local search on {criterion}"))?;
+        let o = local(setup, criterion, &start, &search)
+            .with_context(|| format!("local search on {criterion}"))?;
         progress.end();
         found.push((Origin::Local(criterion), o.postures, o.evaluations));
     }
     for criterion in [Criterion::RelativeA, Criterion::DOptimal] {
         progress.begin(&format!("global search on {criterion}"), options.starts);
-        let o = global(setup, criterion, POSTURES, &search, &|done| progress.advance(done))
-            .with_context(|| format!("global search on {criterion}"))?;
+        let o = global(setup, criterion, POSTURES, &search, &|done| {
+            progress.advance(done)
+        })
+        .with_context(|| format!("global search on {criterion}"))?;
         progress.end();
-        found.push((Origin::Global(criterion, options.starts), o.postures, o.evaluations));
+        found.push((
+            Origin::Global(criterion, options.starts),
+            o.postures,
+            o.evaluations,
+        ));
     }
     progress.begin("Monte Carlo identification", 1);
     let groups: Vec<Vec<Vector6<f64>>> = found.iter().map(|(_, p, _)| p.clone()).collect();
-    let sims = simulate(setup, &groups, &Options { runs: options.runs, seed: options.seed })?;
+    let sims = simulate(
+        setup,
+        &groups,
+        &Options {
+            runs: options.runs,
+            seed: options.seed,
+        },
+    )?;
     progress.end();
     let validation_level = nearest_level(&setup.noise.levels, 1.0);
     let test_deflection: Vec<Vec<Vector3<f64>>> = setup

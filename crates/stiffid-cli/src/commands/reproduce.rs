@@ -87,14 +87,27 @@ fn print_summary(study: &study::Study) {
     );
     println!(
         "{:<28} {:>10} {:>10} {:>9} {:>9}   mean deviation rate % at level {}, joints 1-6",
-        "group", "classical", "zhang2021", "rel.-a", "avg dev%", l + 1
+        "group",
+        "classical",
+        "zhang2021",
+        "rel.-a",
+        "avg dev%",
+        l + 1
     );
     for g in &study.groups {
         let e = &g.evaluation;
-        let rates: Vec<String> = g.simulation.mean_deviation_pct[l].iter().map(|r| format!("{r:6.3}")).collect();
+        let rates: Vec<String> = g.simulation.mean_deviation_pct[l]
+            .iter()
+            .map(|r| format!("{r:6.3}"))
+            .collect();
         println!(
             "{:<28} {:>10.4} {:>10.1} {:>9.5} {:>9.3}   {}",
-            g.title, e.classical, e.zhang2021, e.relative_a, g.average_deviation_pct(), rates.join(" ")
+            g.title,
+            e.classical,
+            e.zhang2021,
+            e.relative_a,
+            g.average_deviation_pct(),
+            rates.join(" ")
         );
     }
     println!();

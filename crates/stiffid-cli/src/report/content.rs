@@ -36,11 +36,20 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut impl Writer) {
     w.heading(2, "Findings");
     w.list(&f.sentences(study));
     w.table(&tables::groups(study));
-    w.heading(2, "Average deviation rate against noise level (the paper's Fig. 8)");
+    w.heading(
+        2,
+        "Average deviation rate against noise level (the paper's Fig. 8)",
+    );
     if let Some(fig) = find(figures, "deviation_vs_noise") {
         w.figure(fig);
     }
-    w.heading(2, &format!("Deviation rates at noise level {} (the paper's Table 4)", study.validation_level + 1));
+    w.heading(
+        2,
+        &format!(
+            "Deviation rates at noise level {} (the paper's Table 4)",
+            study.validation_level + 1
+        ),
+    );
     if let Some(fig) = find(figures, "table4_level2") {
         w.figure(fig);
     }
@@ -55,7 +64,11 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut impl Writer) {
     w.heading(2, "The groups of postures (the paper's Figs. 5-7)");
     for (g, group) in study.groups.iter().enumerate() {
         w.heading(3, &group.title);
-        w.paragraph(&format!("{}. Postures in `{}.csv`.", group.origin.describe(study.seed), group.name));
+        w.paragraph(&format!(
+            "{}. Postures in `{}.csv`.",
+            group.origin.describe(study.seed),
+            group.name
+        ));
         w.table(&tables::postures(study, g));
         if let Some(fig) = find(figures, &format!("postures_{}", group.name)) {
             w.figure(fig);

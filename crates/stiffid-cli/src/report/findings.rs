@@ -41,7 +41,9 @@ fn versus(study: &Study, a: usize, b: usize) -> Versus {
         other: b,
         factor: gb.average_deviation_pct() / ga.average_deviation_pct(),
         joints_better: (0..6)
-            .filter(|&j| ga.simulation.mean_deviation_pct[l][j] < gb.simulation.mean_deviation_pct[l][j])
+            .filter(|&j| {
+                ga.simulation.mean_deviation_pct[l][j] < gb.simulation.mean_deviation_pct[l][j]
+            })
             .count(),
     }
 }
@@ -61,7 +63,11 @@ pub fn findings(study: &Study) -> Findings {
             other: r,
             ..versus(study, r, 2)
         });
-    let averages: Vec<f64> = study.groups.iter().map(Group::average_deviation_pct).collect();
+    let averages: Vec<f64> = study
+        .groups
+        .iter()
+        .map(Group::average_deviation_pct)
+        .collect();
     Findings {
         paper_claim_holds: !group3.is_empty() && group3.iter().all(|v| v.factor > 1.0),
         group3,
@@ -69,7 +75,11 @@ pub fn findings(study: &Study) -> Findings {
         prediction_error: prediction_error(study),
         rank_correlation: (0..CRITERIA.len())
             .map(|c| {
-                let xs: Vec<f64> = study.groups.iter().map(|g| criteria_values(&g.evaluation)[c].1).collect();
+                let xs: Vec<f64> = study
+                    .groups
+                    .iter()
+                    .map(|g| criteria_values(&g.evaluation)[c].1)
+                    .collect();
                 spearman(&xs, &averages)
             })
             .collect(),
@@ -166,10 +176,13 @@ impl Findings {
             study.runs
         ));
         let best = (0..CRITERIA.len()).max_by(|&a, &b| {
-            self.rank_correlation[a].unwrap_or(-2.0).total_cmp(&self.rank_correlation[b].unwrap_or(-2.0))
+            self.rank_correlation[a]
+                .unwrap_or(-2.0)
+                .total_cmp(&self.rank_correlation[b].unwrap_or(-2.0))
         });
         if let Some(b) = best {
-            let rho = |c: usize| self.rank_correlation[c].map_or("n/a".into(), |r| format!("{r:+.2}"));
+            let rho =
+                |c: usize| self.rank_correlation[c].map_or("n/a".into(), |r| format!("{r:+.2}"));
             out.push(format!(
                 "Which criterion predicts accuracy (Spearman's rho between criterion and average deviation rate over the {} groups): best {} (rho {}); the paper's zhang2021 {}, classical {}.",
                 study.groups.len(),

@@ -7,7 +7,10 @@ use crate::study::Study;
 
 /// Text with `&`, `<`, `>` and `"` escaped.
 fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// Escaped text with `code spans` as `<code>`.
@@ -55,7 +58,9 @@ impl Writer for Html {
     }
     fn figure(&mut self, figure: &Figure) {
         let svg = figure.svg.trim_start_matches(|c| c != '<');
-        let svg = svg.strip_prefix("<?xml version=\"1.0\" encoding=\"UTF-8\"?>").unwrap_or(svg);
+        let svg = svg
+            .strip_prefix("<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+            .unwrap_or(svg);
         self.0 += &format!(
             "<figure id=\"{}\">\n{}\n<figcaption>{} <span class=\"files\">(figures/{}.svg, .png)</span></figcaption>\n</figure>\n",
             figure.name,

@@ -25,7 +25,16 @@ impl Writer for Markdown {
         self.0 += "\n";
     }
     fn table(&mut self, table: &Table) {
-        let row = |cells: &[String]| format!("| {} |\n", cells.iter().map(|c| cell(c)).collect::<Vec<_>>().join(" | "));
+        let row = |cells: &[String]| {
+            format!(
+                "| {} |\n",
+                cells
+                    .iter()
+                    .map(|c| cell(c))
+                    .collect::<Vec<_>>()
+                    .join(" | ")
+            )
+        };
         self.0 += &row(&table.header);
         self.0 += &format!("|{}\n", "---|".repeat(table.header.len()));
         for r in &table.rows {
@@ -34,7 +43,10 @@ impl Writer for Markdown {
         self.0 += "\n";
     }
     fn figure(&mut self, figure: &Figure) {
-        self.0 += &format!("![{}](figures/{}.png)\n\n*{}*\n\n", figure.name, figure.name, figure.caption);
+        self.0 += &format!(
+            "![{}](figures/{}.png)\n\n*{}*\n\n",
+            figure.name, figure.name, figure.caption
+        );
     }
 }
 

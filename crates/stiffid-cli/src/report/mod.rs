@@ -2,9 +2,9 @@
 //! `report.md`, `summary.json`, `deviation_rates.csv`, one postures CSV per group and `figures/`
 //! (SVG and PNG).
 
+mod content;
 pub mod figures;
 pub mod findings;
-mod content;
 mod html;
 mod markdown;
 pub mod summary;
@@ -21,12 +21,27 @@ use stiffid::design::Evaluation;
 
 /// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.
 pub const CRITERIA: [(&str, &str); 7] = [
-    ("classical", "max k(J_N) over the postures (the paper's classical index)"),
-    ("zhang2021", "classical x cond(Psi) (the paper's novel index)"),
+    (
+        "classical",
+        "max k(J_N) over the postures (the paper's classical index)",
+    ),
+    (
+        "zhang2021",
+        "classical x cond(Psi) (the paper's novel index)",
+    ),
     ("scaled_cond", "cond(Psi diag(h) / sigma), scale-free"),
-    ("d_optimal", "geometric mean relative std of the compliances at level 1"),
-    ("relative_a", "RMS relative std of the compliances at level 1"),
-    ("test_pose_mm", "RMS error of the deflection predicted at the test postures, mm"),
+    (
+        "d_optimal",
+        "geometric mean relative std of the compliances at level 1",
+    ),
+    (
+        "relative_a",
+        "RMS relative std of the compliances at level 1",
+    ),
+    (
+        "test_pose_mm",
+        "RMS error of the deflection predicted at the test postures, mm",
+    ),
     ("cond_psi", "cond(Psi) in SI units"),
 ];
 
@@ -53,7 +68,8 @@ pub fn check_target(dir: &Path, force: bool) -> Result<()> {
     if !dir.is_dir() {
         bail!("{}: exists and is not a directory", dir.display());
     }
-    let mut entries = std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
+    let mut entries =
+        std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
     if entries.next().is_none() || summary::is_ours(&dir.join("summary.json")) {
         return Ok(());
     }
@@ -66,10 +82,14 @@ pub fn check_target(dir: &Path, force: bool) -> Result<()> {
 /// Writes every file of the report into `dir` (created if missing), each file whole;
 /// `summary.json` first, so the directory is recognisably ours from then on.
 pub fn write(dir: &Path, study: &Study, figures: &[Figure]) -> Result<()> {
-    std::fs::create_dir_all(dir.join("figures")).with_context(|| format!("{}: cannot create", dir.display()))?;
+    std::fs::create_dir_all(dir.join("figures"))
+        .with_context(|| format!("{}: cannot create", dir.display()))?;
     write_atomic(&dir.join("summary.json"), summary::json(study)?.as_bytes())?;
     for f in figures {
-        write_atomic(&dir.join("figures").join(format!("{}.svg", f.name)), f.svg.as_bytes())?;
+        write_atomic(
+            &dir.join("figures").join(format!("{}.svg", f.name)),
+            f.svg.as_bytes(),
+        )?;
         write_atomic(&dir.join("figures").join(format!("{}.png", f.name)), &f.png)?;
     }
     for g in &study.groups {
@@ -79,7 +99,39 @@ pub fn write(dir: &Path, study: &Study, figures: &[Figure]) -> Result<()> {
     let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
     let csv = deviation_csv(&names, &sims, &study.setup.noise.levels);
     write_atomic(&dir.join("deviation_rates.csv"), csv.as_bytes())?;
-    write_atomic(&dir.join("report.md"), markdown::report(study, figures).as_bytes())?;
-    write_atomic(&dir.join("report.html"), html::report(study, figures).as_bytes())?;
+    write_atomic(
+        &dir.join("report.md"),
+        markdown::report(study, figures).as_bytes(),
+    )?;
+    write_atomic(
+        &dir.join("report.html"),
+        html::report(study, figures).as_bytes(),
+    )?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_target;
+
+    #[test]
+    fn only_empty_missing_or_own_directories_are_written_without_force() {
+        let dir = std::env::temp_dir().join(format!("stiffid-target-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(check_target(&dir, false).is_ok(), "missing");
+        std::fs::create_dir_all(&dir).unwrap();
+        assert!(check_target(&dir, false).is_ok(), "empty");
+        std::fs::write(dir.join("summary.json"), r#"{"generator": "someone else"}"#).unwrap();
+        assert!(check_target(&dir, false).is_err(), "foreign summary.json");
+        assert!(check_target(&dir, true).is_ok(), "forced");
+        std::fs::write(
+            dir.join("summary.json"),
+            r#"{"generator": "stiffid reproduce"}"#,
+        )
+        .unwrap();
+        assert!(check_target(&dir, false).is_ok(), "own report");
+        let file = dir.join("summary.json");
+        assert!(check_target(&file, false).is_err(), "a file");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

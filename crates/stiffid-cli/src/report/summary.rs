@@ -84,24 +84,44 @@ fn group_json(study: &Study, g: usize) -> Value {
     let mut v = Map::new();
     v.insert("name".into(), json!(group.name));
     v.insert("title".into(), json!(group.title));
-    v.insert("criterion".into(), json!(group.origin.criterion().map(|c| c.name())));
+    v.insert(
+        "criterion".into(),
+        json!(group.origin.criterion().map(|c| c.name())),
+    );
     v.insert("search".into(), json!(group.origin.describe(study.seed)));
     v.insert("search_evaluations".into(), json!(group.evaluations));
-    v.insert("postures_deg".into(), json!(group.postures.iter().map(deg).collect::<Vec<_>>()));
+    v.insert(
+        "postures_deg".into(),
+        json!(group.postures.iter().map(deg).collect::<Vec<_>>()),
+    );
     for (key, value) in criteria_values(&group.evaluation) {
         v.insert(key.into(), finite(value));
     }
     v.insert("mean_deviation_pct".into(), json!(s.mean_deviation_pct));
     v.insert("std_deviation_pct".into(), json!(s.std_deviation_pct));
-    v.insert("predicted_deviation_pct".into(), json!(s.predicted_deviation_pct));
-    v.insert("average_deviation_pct".into(), json!(group.average_deviation_pct()));
+    v.insert(
+        "predicted_deviation_pct".into(),
+        json!(s.predicted_deviation_pct),
+    );
+    v.insert(
+        "average_deviation_pct".into(),
+        json!(group.average_deviation_pct()),
+    );
     v.insert(
         "mean_stiffness_nm_per_rad".into(),
-        json!(s.mean_stiffness.iter().map(|k| k.as_slice().to_vec()).collect::<Vec<_>>()),
+        json!(s
+            .mean_stiffness
+            .iter()
+            .map(|k| k.as_slice().to_vec())
+            .collect::<Vec<_>>()),
     );
     v.insert(
         "validation_error_mm".into(),
-        json!(group.validation_error.iter().map(|t| t.iter().map(|e| e * 1e3).collect::<Vec<_>>()).collect::<Vec<_>>()),
+        json!(group
+            .validation_error
+            .iter()
+            .map(|t| t.iter().map(|e| e * 1e3).collect::<Vec<_>>())
+            .collect::<Vec<_>>()),
     );
     Value::Object(v)
 }

@@ -23,7 +23,11 @@ pub fn num(v: f64) -> String {
     }
     match v.abs() {
         a if a != 0.0 && !(1e-3..1e5).contains(&a) => format!("{v:.3e}"),
-        _ => format!("{:.*}", (3 - v.abs().max(1e-300).log10().floor() as i32).clamp(0, 6) as usize, v),
+        _ => format!(
+            "{:.*}",
+            (3 - v.abs().max(1e-300).log10().floor() as i32).clamp(0, 6) as usize,
+            v
+        ),
     }
 }
 
@@ -32,7 +36,11 @@ pub fn groups(study: &Study) -> Table {
     let l = study.validation_level;
     Table {
         header: strings([
-            "group", "classical", "zhang2021", "relative_a", "average deviation %",
+            "group",
+            "classical",
+            "zhang2021",
+            "relative_a",
+            "average deviation %",
             &format!("worst joint at level {} %", l + 1),
             "search evaluations",
         ]),
@@ -73,7 +81,9 @@ pub fn table4(study: &Study) -> Table {
                     let s = &g.simulation;
                     format!(
                         "{:.3} ± {:.3} [{:.3}]",
-                        s.mean_deviation_pct[l][j], s.std_deviation_pct[l][j], s.predicted_deviation_pct[l][j]
+                        s.mean_deviation_pct[l][j],
+                        s.std_deviation_pct[l][j],
+                        s.predicted_deviation_pct[l][j]
                     )
                 }));
                 row
@@ -92,13 +102,26 @@ pub fn criteria(study: &Study, findings: &Findings) -> Table {
         .enumerate()
         .map(|(c, (key, meaning))| {
             let mut row = vec![key.to_string(), meaning.to_string()];
-            row.extend(study.groups.iter().map(|g| num(criteria_values(&g.evaluation)[c].1)));
+            row.extend(
+                study
+                    .groups
+                    .iter()
+                    .map(|g| num(criteria_values(&g.evaluation)[c].1)),
+            );
             row.push(findings.rank_correlation[c].map_or("n/a".into(), |r| format!("{r:+.2}")));
             row
         })
         .collect();
-    let mut avg = vec!["average deviation %".to_string(), "measured, mean over joints and levels".to_string()];
-    avg.extend(study.groups.iter().map(|g| format!("{:.3}", g.average_deviation_pct())));
+    let mut avg = vec![
+        "average deviation %".to_string(),
+        "measured, mean over joints and levels".to_string(),
+    ];
+    avg.extend(
+        study
+            .groups
+            .iter()
+            .map(|g| format!("{:.3}", g.average_deviation_pct())),
+    );
     avg.push(String::new());
     rows.push(avg);
     Table { header, rows }
@@ -107,7 +130,9 @@ pub fn criteria(study: &Study, findings: &Findings) -> Table {
 /// The postures of group `g`, axis angles in degrees.
 pub fn postures(study: &Study, g: usize) -> Table {
     Table {
-        header: strings(["posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg"]),
+        header: strings([
+            "posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg",
+        ]),
         rows: study.groups[g]
             .postures
             .iter()
@@ -124,8 +149,16 @@ pub fn postures(study: &Study, g: usize) -> Table {
 /// Validation: the true deflection of each test posture and each group's prediction error with its
 /// mean identified stiffness (largest over the measuring points).
 pub fn validation(study: &Study) -> Table {
-    let mut header = vec!["test posture (deg)".to_string(), "true deflection |delta|, mm (max over points)".to_string()];
-    header.extend(study.groups.iter().map(|g| format!("{}: error, µm", g.title)));
+    let mut header = vec![
+        "test posture (deg)".to_string(),
+        "true deflection |delta|, mm (max over points)".to_string(),
+    ];
+    header.extend(
+        study
+            .groups
+            .iter()
+            .map(|g| format!("{}: error, µm", g.title)),
+    );
     Table {
         header,
         rows: study
@@ -134,11 +167,18 @@ pub fn validation(study: &Study) -> Table {
             .iter()
             .enumerate()
             .map(|(t, q)| {
-                let angles: Vec<String> = q.iter().map(|v| format!("{:.2}", v.to_degrees())).collect();
-                let max_true = study.test_deflection[t].iter().map(|d| d.norm()).fold(0.0, f64::max);
+                let angles: Vec<String> =
+                    q.iter().map(|v| format!("{:.2}", v.to_degrees())).collect();
+                let max_true = study.test_deflection[t]
+                    .iter()
+                    .map(|d| d.norm())
+                    .fold(0.0, f64::max);
                 let mut row = vec![angles.join(", "), format!("{:.4}", max_true * 1e3)];
                 row.extend(study.groups.iter().map(|g| {
-                    format!("{:.4}", g.validation_error[t].iter().copied().fold(0.0, f64::max) * 1e6)
+                    format!(
+                        "{:.4}",
+                        g.validation_error[t].iter().copied().fold(0.0, f64::max) * 1e6
+                    )
                 }));
                 row
             })
@@ -149,25 +189,75 @@ pub fn validation(study: &Study) -> Table {
 /// The setup in one table: what and value.
 pub fn setup(study: &Study) -> Table {
     let s = &study.setup;
-    let mm3 = |v: &nalgebra::Vector3<f64>| format!("({:.1}, {:.1}, {:.1})", v.x * 1e3, v.y * 1e3, v.z * 1e3);
-    let six = |v: &nalgebra::Vector6<f64>, f: f64| v.iter().map(|x| format!("{:.0}", x * f)).collect::<Vec<_>>().join(", ");
+    let mm3 = |v: &nalgebra::Vector3<f64>| {
+        format!("({:.1}, {:.1}, {:.1})", v.x * 1e3, v.y * 1e3, v.z * 1e3)
+    };
+    let six = |v: &nalgebra::Vector6<f64>, f: f64| {
+        v.iter()
+            .map(|x| format!("{:.0}", x * f))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     let rows = vec![
         ("setup", s.name.clone()),
         ("robot", format!("{} ({})", s.robot.name, s.robot_ref)),
-        ("springs in", format!("{:?} coordinates", s.springs).to_lowercase()),
+        (
+            "springs in",
+            format!("{:?} coordinates", s.springs).to_lowercase(),
+        ),
         ("true stiffness, Nm/rad", six(&s.nominal_stiffness, 1.0)),
-        ("loading point (flange frame), mm", mm3(&s.tool.loading_point)),
-        ("measuring points (flange frame), mm", s.tool.measuring_points.iter().map(mm3).collect::<Vec<_>>().join(" ")),
-        ("rope load, N / anchor (base frame), mm", format!("{} / {}", s.load.load, mm3(&s.load.anchor))),
-        ("noise variance sigma^2, mm^2", format!("{:.3e}", s.noise.variance * 1e6)),
-        ("noise levels (multiples of sigma^2)", s.noise.levels.iter().map(|m| m.to_string()).collect::<Vec<_>>().join(", ")),
-        ("bounds lower, deg", six(&s.bounds.lower, 180.0 / std::f64::consts::PI)),
-        ("bounds upper, deg", six(&s.bounds.upper, 180.0 / std::f64::consts::PI)),
-        ("characteristic length L, mm", format!("{:.0}", s.characteristic_length * 1e3)),
-        ("Monte Carlo runs per group and level / seed", format!("{} / {}", study.runs, study.seed)),
+        (
+            "loading point (flange frame), mm",
+            mm3(&s.tool.loading_point),
+        ),
+        (
+            "measuring points (flange frame), mm",
+            s.tool
+                .measuring_points
+                .iter()
+                .map(mm3)
+                .collect::<Vec<_>>()
+                .join(" "),
+        ),
+        (
+            "rope load, N / anchor (base frame), mm",
+            format!("{} / {}", s.load.load, mm3(&s.load.anchor)),
+        ),
+        (
+            "noise variance sigma^2, mm^2",
+            format!("{:.3e}", s.noise.variance * 1e6),
+        ),
+        (
+            "noise levels (multiples of sigma^2)",
+            s.noise
+                .levels
+                .iter()
+                .map(|m| m.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
+        (
+            "bounds lower, deg",
+            six(&s.bounds.lower, 180.0 / std::f64::consts::PI),
+        ),
+        (
+            "bounds upper, deg",
+            six(&s.bounds.upper, 180.0 / std::f64::consts::PI),
+        ),
+        (
+            "characteristic length L, mm",
+            format!("{:.0}", s.characteristic_length * 1e3),
+        ),
+        (
+            "Monte Carlo runs per group and level / seed",
+            format!("{} / {}", study.runs, study.seed),
+        ),
     ];
     Table {
         header: strings(["", "value"]),
-        rows: rows.into_iter().map(|(a, b)| vec![a.to_string(), b]).collect(),
+        rows: rows
+            .into_iter()
+            .map(|(a, b)| vec![a.to_string(), b])
+            .collect(),
     }
 }

@@ -30,7 +30,12 @@ impl Plot for CriteriaPlot<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let (legend, panels) = root.split_vertically(70);
         super::deviation::legend_row(&legend, self.0)?;
-        for (c, panel) in panels.split_evenly((3, 3)).iter().take(CRITERIA.len()).enumerate() {
+        for (c, panel) in panels
+            .split_evenly((3, 3))
+            .iter()
+            .take(CRITERIA.len())
+            .enumerate()
+        {
             criterion_panel(panel, self.0, c)?;
         }
         Ok(())
@@ -39,8 +44,13 @@ impl Plot for CriteriaPlot<'_> {
 
 /// The range of `log10` of the positive finite values, padded.
 fn log_range(values: &[f64]) -> (f64, f64) {
-    let logs = values.iter().filter(|v| v.is_finite() && **v > 0.0).map(|v| v.log10());
-    let (lo, hi) = logs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let logs = values
+        .iter()
+        .filter(|v| v.is_finite() && **v > 0.0)
+        .map(|v| v.log10());
+    let (lo, hi) = logs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
     match lo <= hi {
         true => {
             let pad = 0.12 * (hi - lo).max(0.2);
@@ -50,15 +60,37 @@ fn log_range(values: &[f64]) -> (f64, f64) {
     }
 }
 
-fn criterion_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, study: &Study, c: usize) -> Result<()> {
-    let xs: Vec<f64> = study.groups.iter().map(|g| criteria_values(&g.evaluation)[c].1).collect();
-    let ys: Vec<f64> = study.groups.iter().map(|g| g.average_deviation_pct()).collect();
+fn criterion_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    study: &Study,
+    c: usize,
+) -> Result<()> {
+    let xs: Vec<f64> = study
+        .groups
+        .iter()
+        .map(|g| criteria_values(&g.evaluation)[c].1)
+        .collect();
+    let ys: Vec<f64> = study
+        .groups
+        .iter()
+        .map(|g| g.average_deviation_pct())
+        .collect();
     let (key, _) = CRITERIA[c];
     let rho = spearman(&xs, &ys);
     let (x0, x1) = log_range(&xs);
-    let y1 = 1.15 * ys.iter().copied().filter(|y| y.is_finite()).fold(0.0, f64::max);
+    let y1 = 1.15
+        * ys.iter()
+            .copied()
+            .filter(|y| y.is_finite())
+            .fold(0.0, f64::max);
     let mut chart = ChartBuilder::on(area)
-        .caption(format!("{key}   rho = {}", rho.map_or("n/a".into(), |r| format!("{r:+.2}"))), ("sans-serif", 18))
+        .caption(
+            format!(
+                "{key}   rho = {}",
+                rho.map_or("n/a".into(), |r| format!("{r:+.2}"))
+            ),
+            ("sans-serif", 18),
+        )
         .margin(10)
         .x_label_area_size(35)
         .y_label_area_size(50)
@@ -75,7 +107,12 @@ fn criterion_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, study: &St
         .light_line_style(WHITE.mix(0.0))
         .draw()
         .map_err(failed)?;
-    for (g, (x, y)) in xs.iter().zip(&ys).enumerate().filter(|(_, (x, _))| x.is_finite() && **x > 0.0) {
+    for (g, (x, y)) in xs
+        .iter()
+        .zip(&ys)
+        .enumerate()
+        .filter(|(_, (x, _))| x.is_finite() && **x > 0.0)
+    {
         chart
             .draw_series([EmptyElement::at((x.log10(), *y))
                 + Circle::new((0, 0), 6, colour(g).filled())

@@ -51,22 +51,36 @@ pub fn legend_row<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, study: &Stu
             .map_err(failed)?;
         area.draw(&Circle::new((x + 18, y), 4, colour(g).filled()))
             .map_err(failed)?;
-        area.draw(&Text::new(group.title.clone(), (x + 44, y - 9), ("sans-serif", 18)))
-            .map_err(failed)?;
+        area.draw(&Text::new(
+            group.title.clone(),
+            (x + 44, y - 9),
+            ("sans-serif", 18),
+        ))
+        .map_err(failed)?;
     }
     Ok(())
 }
 
-fn joint_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, study: &Study, j: usize) -> Result<()> {
+fn joint_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    study: &Study,
+    j: usize,
+) -> Result<()> {
     let levels = study.setup.noise.levels.len();
     let values = study.groups.iter().flat_map(|g| {
         let s = &g.simulation;
-        s.mean_deviation_pct.iter().chain(&s.predicted_deviation_pct).map(move |r| r[j])
+        s.mean_deviation_pct
+            .iter()
+            .chain(&s.predicted_deviation_pct)
+            .map(move |r| r[j])
     });
     let hi = values.filter(|v| v.is_finite()).fold(0.0f64, f64::max);
     let hi = if hi > 0.0 { 1.1 * hi } else { 1.0 };
     let mut chart = ChartBuilder::on(area)
-        .caption(format!("({}) joint {}", (b'a' + j as u8) as char, j + 1), ("sans-serif", 20))
+        .caption(
+            format!("({}) joint {}", (b'a' + j as u8) as char, j + 1),
+            ("sans-serif", 20),
+        )
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(60)
@@ -86,14 +100,22 @@ fn joint_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, study: &Study,
     for (g, group) in study.groups.iter().enumerate() {
         let s = &group.simulation;
         let points = |rates: &[[f64; 6]]| -> Vec<(f64, f64)> {
-            rates.iter().enumerate().map(|(l, r)| ((l + 1) as f64, r[j])).collect()
+            rates
+                .iter()
+                .enumerate()
+                .map(|(l, r)| ((l + 1) as f64, r[j]))
+                .collect()
         };
         let style = ShapeStyle::from(colour(g)).stroke_width(2);
         chart
             .draw_series(LineSeries::new(points(&s.mean_deviation_pct), style))
             .map_err(failed)?;
         chart
-            .draw_series(points(&s.mean_deviation_pct).into_iter().map(|p| Circle::new(p, 3, colour(g).filled())))
+            .draw_series(
+                points(&s.mean_deviation_pct)
+                    .into_iter()
+                    .map(|p| Circle::new(p, 3, colour(g).filled())),
+            )
             .map_err(failed)?;
         chart
             .draw_series(DashedLineSeries::new(

@@ -61,9 +61,14 @@ pub fn failed<E: std::fmt::Debug>(e: E) -> anyhow::Error {
 pub fn render(name: &str, caption: &str, plot: &impl Plot) -> Result<Figure> {
     static FONTS: OnceLock<bool> = OnceLock::new();
     let registered = FONTS.get_or_init(|| {
-        [FontStyle::Normal, FontStyle::Bold, FontStyle::Italic, FontStyle::Oblique]
-            .into_iter()
-            .all(|style| register_font("sans-serif", style, FONT).is_ok())
+        [
+            FontStyle::Normal,
+            FontStyle::Bold,
+            FontStyle::Italic,
+            FontStyle::Oblique,
+        ]
+        .into_iter()
+        .all(|style| register_font("sans-serif", style, FONT).is_ok())
     });
     if !registered {
         bail!("the bundled font assets/DejaVuSans.ttf does not parse");

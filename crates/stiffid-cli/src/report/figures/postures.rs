@@ -48,7 +48,11 @@ pub fn figure(study: &Study, group: usize) -> Result<Figure> {
             g.title,
             g.postures.len()
         ),
-        &Postures { study, group, range: data_range(study) },
+        &Postures {
+            study,
+            group,
+            range: data_range(study),
+        },
     )
 }
 
@@ -74,7 +78,10 @@ fn data_range(study: &Study) -> [(f64, f64); 3] {
 fn distinct(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
     let mut out: Vec<(f64, f64)> = Vec::new();
     for p in points {
-        if out.last().is_none_or(|q| (p.0 - q.0).hypot(p.1 - q.1) > 1e-4) {
+        if out
+            .last()
+            .is_none_or(|q| (p.0 - q.0).hypot(p.1 - q.1) > 1e-4)
+        {
             out.push(p);
         }
     }
@@ -107,9 +114,19 @@ impl Plot for Postures<'_> {
 
 impl Postures<'_> {
     /// One projection: x against axis `v` (2: z, 1: y).
-    fn view<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>, name: &str, v: usize) -> Result<()> {
+    fn view<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        name: &str,
+        v: usize,
+    ) -> Result<()> {
         let (w, h) = area.dim_in_pixel();
-        let (xr, yr) = equal_aspect(self.range[0], self.range[v], w as f64 - 90.0, h as f64 - 90.0);
+        let (xr, yr) = equal_aspect(
+            self.range[0],
+            self.range[v],
+            w as f64 - 90.0,
+            h as f64 - 90.0,
+        );
         let mut chart = ChartBuilder::on(area)
             .caption(name, ("sans-serif", 18))
             .margin(10)
@@ -132,24 +149,37 @@ impl Postures<'_> {
             let c = colour(i + 1);
             let lp = (s.loading_point.x, s.loading_point[v]);
             chart
-                .draw_series(LineSeries::new([lp, anchor], ShapeStyle::from(BLACK.mix(0.25))))
+                .draw_series(LineSeries::new(
+                    [lp, anchor],
+                    ShapeStyle::from(BLACK.mix(0.25)),
+                ))
                 .map_err(failed)?;
             let pts = distinct(s.chain.iter().map(|p| (p.x, p[v])));
             // One line per link: a polyline's joins spike where a link folds back in projection.
             for link in pts.windows(2) {
                 chart
-                    .draw_series(LineSeries::new(link.to_vec(), ShapeStyle::from(c).stroke_width(3)))
+                    .draw_series(LineSeries::new(
+                        link.to_vec(),
+                        ShapeStyle::from(c).stroke_width(3),
+                    ))
                     .map_err(failed)?;
             }
             chart
                 .draw_series(pts.iter().map(|p| Circle::new(*p, 3, c.filled())))
                 .map_err(failed)?;
             chart
-                .draw_series([EmptyElement::at(lp) + Rectangle::new([(-4, -4), (4, 4)], c.filled())])
+                .draw_series(
+                    [EmptyElement::at(lp) + Rectangle::new([(-4, -4), (4, 4)], c.filled())],
+                )
                 .map_err(failed)?;
             let tip = pts[pts.len() - 1];
             chart
-                .draw_series([EmptyElement::at(tip) + Text::new(format!("{}", i + 1), (6, -18), ("sans-serif", 18).into_font().color(&c))])
+                .draw_series([EmptyElement::at(tip)
+                    + Text::new(
+                        format!("{}", i + 1),
+                        (6, -18),
+                        ("sans-serif", 18).into_font().color(&c),
+                    )])
                 .map_err(failed)?;
         }
         chart
@@ -157,7 +187,10 @@ impl Postures<'_> {
             .map_err(failed)?;
         if v == 2 {
             chart
-                .draw_series(LineSeries::new([(xr.0, 0.0), (xr.1, 0.0)], ShapeStyle::from(BLACK.mix(0.5))))
+                .draw_series(LineSeries::new(
+                    [(xr.0, 0.0), (xr.1, 0.0)],
+                    ShapeStyle::from(BLACK.mix(0.5)),
+                ))
                 .map_err(failed)?;
         }
         Ok(())

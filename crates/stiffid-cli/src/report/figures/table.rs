@@ -42,7 +42,8 @@ impl Plot for Table<'_> {
         let l = study.validation_level;
         let width = 190;
         let text = |s: String, x: i32, y: i32, size: i32| {
-            root.draw(&Text::new(s, (x, y), ("sans-serif", size))).map_err(failed)
+            root.draw(&Text::new(s, (x, y), ("sans-serif", size)))
+                .map_err(failed)
         };
         text("joint".into(), 20, 32, 17)?;
         for (g, group) in study.groups.iter().enumerate() {
@@ -57,16 +58,28 @@ impl Plot for Table<'_> {
         }
         for j in 0..6 {
             let y = HEAD + ROW * j as i32;
-            let means: Vec<f64> = study.groups.iter().map(|g| g.simulation.mean_deviation_pct[l][j]).collect();
-            let best = (0..means.len()).min_by(|&a, &b| means[a].total_cmp(&means[b])).unwrap_or(0);
-            root.draw(&PathElement::new(vec![(10, y), (FIRST + width * means.len() as i32, y)], BLACK.mix(0.3)))
-                .map_err(failed)?;
+            let means: Vec<f64> = study
+                .groups
+                .iter()
+                .map(|g| g.simulation.mean_deviation_pct[l][j])
+                .collect();
+            let best = (0..means.len())
+                .min_by(|&a, &b| means[a].total_cmp(&means[b]))
+                .unwrap_or(0);
+            root.draw(&PathElement::new(
+                vec![(10, y), (FIRST + width * means.len() as i32, y)],
+                BLACK.mix(0.3),
+            ))
+            .map_err(failed)?;
             text(format!("{}", j + 1), 40, y + 12, 18)?;
             for (g, group) in study.groups.iter().enumerate() {
                 let x = FIRST + width * g as i32;
                 if g == best {
-                    root.draw(&Rectangle::new([(x - 6, y + 2), (x + width - 12, y + ROW - 2)], RGBColor(200, 235, 200).filled()))
-                        .map_err(failed)?;
+                    root.draw(&Rectangle::new(
+                        [(x - 6, y + 2), (x + width - 12, y + ROW - 2)],
+                        RGBColor(200, 235, 200).filled(),
+                    ))
+                    .map_err(failed)?;
                 }
                 let std = group.simulation.std_deviation_pct[l][j];
                 text(format!("{:.3} ± {:.3}", means[g], std), x, y + 12, 17)?;
