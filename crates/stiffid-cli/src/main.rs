@@ -27,6 +27,10 @@ enum Command {
     Kinematics(commands::kinematics::Args),
     /// List the built-in setups, or print one as TOML to copy and edit.
     Setups(commands::setups::Args),
+    /// Every design criterion of a group of postures and its predicted deviation rates.
+    Evaluate(commands::evaluate::Args),
+    /// Choose postures: minimise a design criterion by local SQP or global multistart search.
+    Select(commands::select::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
@@ -40,6 +44,8 @@ fn main() -> ExitCode {
         Command::Kinematics(args) => commands::kinematics::run(&args),
         Command::Setups(args) => commands::setups::run(&args),
         Command::Simulate(args) => commands::simulate::run(&args),
+        Command::Evaluate(args) => commands::evaluate::run(&args),
+        Command::Select(args) => commands::select::run(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
     };
     match result {

@@ -111,3 +111,86 @@ fn rank_deficient_group_is_infinite_not_nan() {
     assert!(!out.value.is_nan());
     assert!(out.postures.iter().all(|q| setup.bounds.contains(q)));
 }
+
+#[test]
+fn local_search_lowers_the_papers_index_by_a_large_factor() {
+    let setup = paper();
+    let start = design::random_group(&setup, 6, 1);
+    let out = design::local(
+        &setup,
+        Criterion::Zhang2021,
+        &start,
+        &SearchOptions::default(),
+    )
+    .unwrap();
+    let factor = out.start_value / out.value;
+    println!(
+        "zhang2021: {:.1} -> {:.2}, factor {factor:.1}",
+        out.start_value, out.value
+    );
+    assert!(factor > 50.0, "factor {factor}");
+    assert!(out.postures.iter().all(|q| setup.bounds.contains(q)));
+}
+
+#[test]
+fn global_relative_a_predicts_lower_deviation_than_the_papers_index() {
+    let setup = paper();
+    let start = design::random_group(&setup, 6, 1);
+    let paper_group = design::local(
+        &setup,
+        Criterion::Zhang2021,
+        &start,
+        &SearchOptions::default(),
+    )
+    .unwrap();
+    let ours = design::global(
+        &setup,
+        Criterion::RelativeA,
+        6,
+        &SearchOptions::quick(),
+        &|_| {},
+    )
+    .unwrap();
+    let mean = |g: &[Vector6<f64>]| {
+        let e = design::evaluate(&setup, g);
+        e.predicted_deviation_pct.iter().flatten().sum::<f64>()
+            / (6 * e.predicted_deviation_pct.len()) as f64
+    };
+    let (theirs, mine) = (mean(&paper_group.postures), mean(&ours.postures));
+    println!("predicted mean deviation rate: zhang2021 group {theirs:.3} %, relative-a group {mine:.3} %");
+    assert!(mine < theirs, "{mine} vs {theirs}");
+}
+
+#[test]
+fn cell_constraints_are_respected() {
+    let mut setup = paper();
+    let start = design::random_group(&setup, 6, 2);
+    let height = |q: &Vector6<f64>| setup.robot.frames(q).point(&setup.tool.loading_point).z;
+    let free = design::local(&setup, Criterion::DOptimal, &start, &small(2000)).unwrap();
+    // A floor above the lowest loading point of the unconstrained optimum: the constraint binds.
+    let floor = free
+        .postures
+        .iter()
+        .map(height)
+        .fold(f64::INFINITY, f64::min)
+        + 0.3;
+    setup.constraints.loading_point_min_z = Some(floor);
+    setup.constraints.anchor_below_loading_point = true;
+    let height = |q: &Vector6<f64>| setup.robot.frames(q).point(&setup.tool.loading_point).z;
+    let start = design::random_group(&setup, 6, 2);
+    assert!(
+        start.iter().all(|q| height(q) >= floor),
+        "random groups satisfy the constraints"
+    );
+    let out = design::local(&setup, Criterion::DOptimal, &start, &small(2000)).unwrap();
+    assert!(out.value < out.start_value);
+    for q in &out.postures {
+        assert!(setup.bounds.contains(q));
+        assert!(
+            height(q) >= floor - 1e-9,
+            "loading point at {} m, floor {floor}",
+            height(q)
+        );
+        assert!(design::search::violation(&setup, q) <= 1e-9);
+    }
+}

@@ -26,9 +26,9 @@ use nalgebra::Vector6;
 #[derive(Debug, Clone, PartialEq)]
 pub struct SearchOptions {
     /// Most criterion evaluations of one local search, finite differences included (default
-    /// 4000). Each SQP step costs at most `6n + 1` evaluations.
+    /// 6000). Each SQP step costs at most `6n + 1` evaluations.
     pub max_evals: usize,
-    /// Local searches of a global search (default 16).
+    /// Local searches of a global search (default 32).
     pub starts: usize,
     /// Seed of the global search's start groups (default 1).
     pub seed: u64,
@@ -45,12 +45,24 @@ pub struct SearchOptions {
 impl Default for SearchOptions {
     fn default() -> Self {
         Self {
-            max_evals: 4000,
-            starts: 16,
+            max_evals: 6000,
+            starts: 32,
             seed: 1,
             ftol: 1e-6,
             xtol: 1e-6,
             fd_step: 1e-7,
+        }
+    }
+}
+
+impl SearchOptions {
+    /// A cheaper budget (8 starts of at most 3000 evaluations, seed 1): a global search about 8
+    /// times faster than the default, within a few percent of its value on the paper setup.
+    pub fn quick() -> Self {
+        Self {
+            max_evals: 3000,
+            starts: 8,
+            ..Self::default()
         }
     }
 }

@@ -1,0 +1,214 @@
+//! `stiffid select` and `stiffid evaluate`: files written, JSON keys, one-line errors (exit 2).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+const GROUP: &str = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg
+1,10,-20,-100,30,40,-60
+2,-45,10,-70,-90,-30,120
+3,60,-40,-130,150,60,10
+4,-80,30,-50,-20,-70,-150
+5,30,0,-160,100,20,80
+6,-10,-55,-90,-160,80,-30
+";
+
+fn stiffid(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_stiffid"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("stiffid-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn json(out: &std::process::Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
+    let d = dir("select");
+    let start = d.join("start.csv");
+    std::fs::write(&start, GROUP).unwrap();
+    let out = d.join("best.csv");
+    let setup = "zhang2021-comau-nj165";
+    let doc = json(&stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--criterion",
+        "zhang2021",
+        "--start",
+        start.to_str().unwrap(),
+        "--max-evals",
+        "800",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let (before, after) = (
+        doc["start_value"].as_f64().unwrap(),
+        doc["value"].as_f64().unwrap(),
+    );
+    assert!(after < before, "{after} vs {before}");
+    assert!(doc["evaluations"].as_u64().unwrap() <= 800);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n"));
+    assert_eq!(text.lines().count(), 7);
+
+    let eval = json(&stiffid(&[
+        "evaluate",
+        "--setup",
+        setup,
+        "--postures",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    for key in [
+        "classical",
+        "zhang2021",
+        "scaled_cond",
+        "d_optimal",
+        "relative_a",
+        "test_pose_mm",
+        "cond_psi",
+    ] {
+        assert!(eval[key].as_f64().unwrap() > 0.0, "{key}");
+    }
+    let z = eval["zhang2021"].as_f64().unwrap();
+    assert!(
+        (z - after).abs() < 1e-5 * after,
+        "file round trip: {z} vs {after}"
+    );
+    let rates = eval["predicted_deviation_pct"].as_array().unwrap();
+    assert_eq!(rates.len(), 6);
+    assert!(rates.iter().all(|r| r.as_array().unwrap().len() == 6));
+
+    // The start file is never the output.
+    let refused = stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--criterion",
+        "d-optimal",
+        "--start",
+        start.to_str().unwrap(),
+        "--out",
+        start.to_str().unwrap(),
+    ]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("refusing to overwrite"));
+    assert_eq!(std::fs::read_to_string(&start).unwrap(), GROUP);
+}
+
+#[test]
+fn select_random_and_global_write_postures_within_bounds() {
+    let d = dir("select-global");
+    for extra in [
+        &["--start-random", "--postures", "4"][..],
+        &["--global", "--starts", "2", "--max-evals", "300"][..],
+    ] {
+        let out = d.join("g.csv");
+        let mut args = vec![
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--criterion",
+            "relative-a",
+            "--seed",
+            "3",
+        ];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap(), "--json"]);
+        let doc = json(&stiffid(&args));
+        let postures = doc["postures_deg"].as_array().unwrap();
+        let (lower, upper) = (
+            [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0],
+            [90.0, 40.0, -40.0, 180.0, 90.0, 180.0],
+        );
+        for q in postures {
+            for (a, v) in q.as_array().unwrap().iter().enumerate() {
+                let v = v.as_f64().unwrap();
+                assert!(v >= lower[a] && v <= upper[a], "axis {}: {v}", a + 1);
+            }
+        }
+        assert!(doc["value"].as_f64().unwrap() <= doc["start_value"].as_f64().unwrap());
+    }
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_place() {
+    let d = dir("select-bad");
+    let out = d.join("never.csv");
+    let outside = d.join("outside.csv");
+    std::fs::write(&outside, GROUP.replace("3,60,-40,-130", "3,60,-40,-20")).unwrap();
+    let e = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "relative-a",
+        "--start",
+        outside.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(e.status.code(), Some(2));
+    let msg = String::from_utf8_lossy(&e.stderr);
+    assert!(
+        msg.contains("outside.csv") && msg.contains("line 4") && msg.contains("q3_deg"),
+        "{msg}"
+    );
+    assert_eq!(msg.lines().count(), 1, "{msg}");
+    assert!(!out.exists());
+
+    let unknown = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "best",
+        "--start-random",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("relative-a"));
+
+    let no_start = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "relative-a",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(no_start.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&no_start.stderr).contains("--start-random"));
+
+    let broken = d.join("broken.csv");
+    std::fs::write(&broken, GROUP.replace("2,-45,10", "2,-45,ten")).unwrap();
+    let e = stiffid(&[
+        "evaluate",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--postures",
+        broken.to_str().unwrap(),
+    ]);
+    assert_eq!(e.status.code(), Some(2));
+    let msg = String::from_utf8_lossy(&e.stderr);
+    assert!(
+        msg.contains("broken.csv") && msg.contains("line 3") && msg.contains("q2_deg"),
+        "{msg}"
+    );
+}
