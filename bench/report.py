@@ -14,13 +14,17 @@ REL = 1e-9  # agreement tolerance, relative
 CRITERIA = ["classical", "zhang2021", "scaled_cond", "d_optimal", "relative_a", "test_pose_mm", "cond_psi"]
 
 # (label, Rust criterion bench id, Python timing (file, key) or None, target median s, target ratio)
+NAMES = ["classical", "zhang2021", "scaled-cond", "d-optimal", "relative-a", "test-pose"]
 ROWS = [
-    ("criterion evaluation (zhang2021, 6 postures x 4 points)", "compare/zhang2021", ("evaluate", "zhang2021"), 10e-6, 300),
-    ("every criterion + predicted rates (stiffid evaluate)", "compare/evaluate", ("evaluate", "evaluate"), None, None),
+    (f"criterion evaluation, {name}, 6 postures x 4 points", f"design_evaluate_{name}_6x4", ("evaluate", name), 10e-6, 300)
+    for name in NAMES
+] + [
+    ("every criterion + predicted rates (stiffid evaluate)", "design_evaluate_all_6x4", ("evaluate", "evaluate"), None, None),
     ("least squares alone, 72 x 6 (QR factor and solve; numpy.linalg.lstsq)", "compare/lstsq", ("identify", "lstsq"), None, None),
     ("identification 72 x 6 with statistics (bench identify)", "identify_72x6 least squares and statistics", None, 5e-6, None),
-    ("identification from the measurement rows, 72 x 6", "compare/identify", ("identify", "identify"), None, None),
+    ("identification from the 24 measurement rows", "compare/identify", ("identify", "identify"), None, None),
     ("local search, zhang2021, SLSQP from the start group", "compare/local-search", ("select", "local_search"), 0.5, 30),
+    ("default global search, relative-a (bench design)", "design_search/global_relative-a_default", None, 10.0, None),
     ("Monte Carlo of reproduce (5 groups x 6 levels x 200 runs)", "monte-carlo/reproduce-5x6x200", None, 50e-3, None),
 ]
 

@@ -57,10 +57,8 @@ def cmd_evaluate(a, setup):
     out["test_pose_mm"] = e["test_pose_m"] * 1e3
     out["predicted_deviation_pct"] = e["predicted_deviation_pct"].tolist()
     if a.time:
-        out["time_s"] = {
-            "zhang2021": median_time(lambda: model.zhang2021(setup, P), a.repeat),
-            "evaluate": median_time(lambda: model.evaluate(setup, P), a.repeat),
-        }
+        out["time_s"] = {name: median_time(lambda f=f: f(setup, P), a.repeat) for name, f in model.CRITERIA.items()}
+        out["time_s"]["evaluate"] = median_time(lambda: model.evaluate(setup, P), a.repeat)
     return out
 
 

@@ -185,21 +185,53 @@ def zhang2021(setup, postures):
     return classical(setup, postures) * np.linalg.cond(observation_matrix(setup, postures))
 
 
+def scaled(setup, Psi):
+    """S = Psi diag(h_nominal) / sigma: unitless; inv(S^T S) is the covariance of relative errors."""
+    return Psi * (1.0 / setup["k_nominal"]) / setup["sigma"]
+
+
+def scaled_cond(setup, postures):
+    """cond_2(S)."""
+    return np.linalg.cond(scaled(setup, observation_matrix(setup, postures)))
+
+
+def d_optimal(setup, postures):
+    """det((S^T S)^-1)^(1/12): the geometric mean of the relative standard deviations."""
+    S = scaled(setup, observation_matrix(setup, postures))
+    return np.linalg.det(np.linalg.inv(S.T @ S)) ** (1.0 / 12.0)
+
+
+def relative_a(setup, postures):
+    """sqrt(mean_j [(S^T S)^-1]_jj): the RMS predicted relative standard deviation."""
+    S = scaled(setup, observation_matrix(setup, postures))
+    return np.sqrt(np.mean(np.diag(np.linalg.inv(S.T @ S))))
+
+
+def test_pose_with(setup, cov):
+    """sigma sqrt(mean_t tr(A_t cov A_t^T)) over the test postures under the rope load, m."""
+    if not len(setup["test_postures"]):
+        return 0.0
+    A = [posture_block(setup, q) for q in setup["test_postures"]]
+    return setup["sigma"] * np.sqrt(np.mean([np.trace(a @ cov @ a.T) for a in A]))
+
+
+def test_pose(setup, postures):
+    """The RMS error (m) of the deflection predicted at the test postures (Klimchik & Pashkevich)."""
+    Psi = observation_matrix(setup, postures)
+    return test_pose_with(setup, np.linalg.inv(Psi.T @ Psi))
+
+
+CRITERIA = {"classical": classical, "zhang2021": zhang2021, "scaled-cond": scaled_cond,
+            "d-optimal": d_optimal, "relative-a": relative_a, "test-pose": test_pose}
+
+
 def evaluate(setup, postures):
     """Every design criterion of stiffid's `evaluate` (issue 4 definitions), SI (test pose in m)."""
     Psi = observation_matrix(setup, postures)
-    h = 1.0 / setup["k_nominal"]
-    sigma = setup["sigma"]
-    S = Psi * h / sigma
-    C = np.linalg.inv(S.T @ S)                      # covariance of relative compliance errors
-    cov = np.linalg.inv(Psi.T @ Psi)                # (Psi^T Psi)^-1
+    S = scaled(setup, Psi)
+    C = np.linalg.inv(S.T @ S)
     kc = classical(setup, postures)
     cond_psi = np.linalg.cond(Psi)
-    if len(setup["test_postures"]):
-        A = [posture_block(setup, q) for q in setup["test_postures"]]
-        test_pose = sigma * np.sqrt(np.mean([np.trace(a @ cov @ a.T) for a in A]))
-    else:
-        test_pose = 0.0
     rel_std = np.sqrt(np.diag(C))
     return {
         "classical": kc,
@@ -207,7 +239,7 @@ def evaluate(setup, postures):
         "scaled_cond": np.linalg.cond(S),
         "d_optimal": np.linalg.det(C) ** (1.0 / 12.0),
         "relative_a": np.sqrt(np.mean(np.diag(C))),
-        "test_pose_m": test_pose,
+        "test_pose_m": test_pose_with(setup, np.linalg.inv(Psi.T @ Psi)),
         "cond_psi": cond_psi,
         "predicted_deviation_pct": 100 * np.sqrt(2 / np.pi) * np.sqrt(setup["levels"])[:, None] * rel_std,
     }

@@ -1,8 +1,7 @@
 //! The stiffid side of `bench/compare.sh`: the same work as the NumPy/SciPy baseline
-//! (`bench/baseline`) on the same inputs (`bench/inputs`), on the paper setup.
+//! (`bench/baseline`) on the same inputs (`bench/inputs`), on the paper setup. Criterion evaluation
+//! is timed by the `design` bench (its cost does not depend on the posture values).
 //!
-//! - `compare/zhang2021`: one evaluation of the paper's index, 6 postures x 4 measuring points;
-//! - `compare/evaluate`: every criterion and the predicted deviation rates (`stiffid evaluate`);
 //! - `compare/lstsq`: the least-squares step alone, 72 x 6 (QR factor and solve);
 //! - `compare/identify`: identification from the 24 measurements of `bench/inputs/measurements.csv`
 //!   (observation matrix, least squares and statistics, as `stiffid identify` without file I/O);
@@ -10,7 +9,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector3, Vector6};
-use stiffid::design::{evaluate, local, Criterion as Design, Evaluator, SearchOptions};
+use stiffid::design::{local, Criterion as Design, SearchOptions};
 use stiffid::identify::{identify, Measurement};
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
@@ -58,13 +57,6 @@ fn compare(c: &mut Criterion) {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let start = start_group();
     let mut group = c.benchmark_group("compare");
-    group.bench_function("zhang2021", |b| {
-        let evaluator = Evaluator::new(&setup);
-        b.iter(|| evaluator.value(Design::Zhang2021, black_box(&start)))
-    });
-    group.bench_function("evaluate", |b| {
-        b.iter(|| evaluate(&setup, black_box(&start)))
-    });
     let psi = rope_observation_matrix(&setup, &start);
     let delta: DVector<f64> = &psi * setup.nominal_compliance();
     group.bench_function("lstsq", |b| {
