@@ -18,7 +18,7 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
-/// A small but complete study: 20 runs, 2 starts per global search.
+/// A small but complete study: 20 runs, 2 starts per global search, 2 start groups checked.
 fn reproduce(out: &Path, extra: &[&str]) -> Output {
     let mut args = vec![
         "reproduce",
@@ -27,6 +27,8 @@ fn reproduce(out: &Path, extra: &[&str]) -> Output {
         "--runs",
         "20",
         "--starts",
+        "2",
+        "--trials",
         "2",
         "--seed",
         "5",
@@ -138,6 +140,30 @@ fn the_report_is_complete_self_contained_and_reproducible() {
         "Group 3 {} not below Group 1 {}",
         zhang(2),
         zhang(0)
+    );
+    let trials = first["start_trials"].as_array().unwrap();
+    assert_eq!(trials.len(), 2);
+    assert_eq!(trials[0]["seed"], 5);
+    // The first start group of the check is Group 1, searched the same way: same predictions.
+    let predicted_avg = |g: &Value| {
+        let rows = g["predicted_deviation_pct"].as_array().unwrap();
+        let sum: f64 = rows
+            .iter()
+            .flat_map(|r| r.as_array().unwrap())
+            .map(|v| v.as_f64().unwrap())
+            .sum();
+        sum / 36.0
+    };
+    let t0 = &trials[0];
+    assert!(
+        (t0["start_predicted_average_pct"].as_f64().unwrap() / predicted_avg(&groups[0]) - 1.0)
+            .abs()
+            < 1e-12
+    );
+    assert!(
+        (t0["zhang2021_predicted_average_pct"].as_f64().unwrap() / predicted_avg(&groups[2]) - 1.0)
+            .abs()
+            < 1e-12
     );
     let csv = std::fs::read_to_string(dir.join("deviation_rates.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 5 * 6 * 6);

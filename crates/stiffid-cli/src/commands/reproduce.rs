@@ -2,7 +2,7 @@
 
 use crate::load;
 use crate::report::{self, figures, findings::findings};
-use crate::study::{self, Progress, StudyOptions, DEFAULT_STARTS};
+use crate::study::{self, Progress, StudyOptions, DEFAULT_STARTS, DEFAULT_TRIALS};
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -28,6 +28,10 @@ pub struct Args {
     /// Local searches per global search (the beyond-the-paper groups).
     #[arg(long, default_value_t = DEFAULT_STARTS as u64, value_parser = clap::value_parser!(u64).range(1..))]
     starts: u64,
+    /// Start groups of the start-group check (the paper's local searches from other seeded start
+    /// groups; 0 skips it).
+    #[arg(long, default_value_t = DEFAULT_TRIALS as u64)]
+    trials: u64,
     /// Write into --out even if it holds other files.
     #[arg(long)]
     force: bool,
@@ -66,6 +70,7 @@ pub fn run(args: &Args) -> Result<()> {
         runs: args.runs as usize,
         seed: args.seed,
         starts: args.starts as usize,
+        trials: args.trials as usize,
     };
     let bars = Bars(Mutex::new(None));
     let mut study = study::run(&setup, &options, &bars)?;

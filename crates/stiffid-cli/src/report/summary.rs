@@ -149,11 +149,19 @@ pub fn json(study: &Study) -> Result<String> {
         "test_deflection_mm": study.test_deflection.iter()
             .map(|t| t.iter().map(mm).collect::<Vec<_>>()).collect::<Vec<_>>(),
         "groups": (0..study.groups.len()).map(|g| group_json(study, g)).collect::<Vec<_>>(),
+        "start_trials": study.trials.iter().map(|t| json!({
+            "seed": t.seed,
+            "start_predicted_average_pct": t.predicted_average_pct[0],
+            "classical_predicted_average_pct": t.predicted_average_pct[1],
+            "zhang2021_predicted_average_pct": t.predicted_average_pct[2],
+        })).collect::<Vec<_>>(),
         "findings": {
             "group3_beats_groups_1_and_2": f.paper_claim_holds,
             "group3_factor_vs_group1": f.group3.first().map(|v| v.factor),
             "group3_factor_vs_group2": f.group3.get(1).map(|v| v.factor),
             "relative_a_factor_vs_group3": f.relative_a.as_ref().map(|v| v.factor),
+            "start_groups_where_zhang2021_beats_both": f.start_check.0,
+            "start_groups": f.start_check.1,
             "prediction_mean_abs_relative_error": f.prediction_error,
             "sentences": f.sentences(study),
         },

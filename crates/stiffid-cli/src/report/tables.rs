@@ -261,3 +261,30 @@ pub fn setup(study: &Study) -> Table {
             .collect(),
     }
 }
+
+/// The start-group check: predicted average deviation rates of the paper's three groups per seed.
+pub fn trials(study: &Study) -> Table {
+    Table {
+        header: strings([
+            "start seed",
+            "start group %",
+            "classical local %",
+            "zhang2021 local %",
+            "zhang2021 beats both",
+        ]),
+        rows: study
+            .trials
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.predicted_average_pct;
+                vec![
+                    t.seed.to_string(),
+                    format!("{a:.3}"),
+                    format!("{b:.3}"),
+                    format!("{c:.3}"),
+                    if t.zhang_beats_both() { "yes" } else { "no" }.to_string(),
+                ]
+            })
+            .collect(),
+    }
+}
