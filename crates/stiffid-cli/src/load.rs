@@ -75,3 +75,24 @@ pub fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
         })
         .collect()
 }
+
+/// The joint stiffness (Nm/rad) in a JSON file's key `stiffness_nm_per_rad`: six finite numbers
+/// > 0, for example the result of `stiffid identify --out`. Other keys are ignored.
+pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
+    #[derive(serde::Deserialize)]
+    struct StiffnessFile {
+        stiffness_nm_per_rad: [f64; 6],
+    }
+    let name = path.display();
+    let file: StiffnessFile = serde_json::from_str(&read(path)?).with_context(|| {
+        format!("{name}: expected JSON with the key stiffness_nm_per_rad (six numbers, Nm/rad)")
+    })?;
+    let k = Vector6::from(file.stiffness_nm_per_rad);
+    if let Some(j) = (0..6).find(|&j| !(k[j].is_finite() && k[j] > 0.0)) {
+        bail!(
+            "{name}: stiffness_nm_per_rad[{j}] = {}: expected a finite number > 0",
+            k[j]
+        );
+    }
+    Ok(k)
+}

@@ -2,6 +2,7 @@
 //! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
 
 mod commands;
+mod data;
 mod load;
 mod output;
 mod postures;
@@ -31,6 +32,12 @@ enum Command {
     Evaluate(commands::evaluate::Args),
     /// Choose postures: minimise a design criterion by local SQP or global multistart search.
     Select(commands::select::Args),
+    /// Torques, joint deflections and measuring-point displacements for a posture and wrench.
+    Predict(commands::predict::Args),
+    /// Identify the joint stiffness from measurements, with confidence intervals.
+    Identify(commands::identify::Args),
+    /// Compare measured and predicted displacements for an identified stiffness (Eq. 22).
+    Validate(commands::validate::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
@@ -47,6 +54,9 @@ fn main() -> ExitCode {
         Command::Evaluate(args) => commands::evaluate::run(&args),
         Command::Select(args) => commands::select::run(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
+        Command::Predict(args) => commands::predict::run(&args),
+        Command::Identify(args) => commands::identify::run(&args),
+        Command::Validate(args) => commands::validate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,9 +1,12 @@
 //! One module per subcommand.
 
 pub mod evaluate;
+pub mod identify;
 pub mod kinematics;
+pub mod predict;
 pub mod reproduce;
 pub mod robots;
 pub mod select;
 pub mod setups;
 pub mod simulate;
+pub mod validate;

@@ -28,6 +28,11 @@ use nalgebra::{DMatrix, DVector, Vector6};
 /// deviation.
 pub const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
 
+/// Rows with a final weight below this count as down-weighted: a residual beyond about 2.6 scale
+/// units for both losses (Huber `2c = 2.69`, Tukey `0.541c = 2.53`). Tukey gives every non-zero
+/// residual some weight below 1, so "below 1" would list every row.
+pub const DOWN_WEIGHTED: f64 = 0.5;
+
 /// Iteration limit.
 pub const MAX_ITERATIONS: usize = 100;
 
@@ -90,10 +95,10 @@ pub struct RobustFit {
 }
 
 impl RobustFit {
-    /// The rows (indices into `Psi`) with weight below 1, lowest weight first.
+    /// The rows (indices into `Psi`) with weight below [`DOWN_WEIGHTED`], lowest weight first.
     pub fn down_weighted(&self) -> Vec<usize> {
         let mut rows: Vec<usize> = (0..self.weights.len())
-            .filter(|&i| self.weights[i] < 1.0)
+            .filter(|&i| self.weights[i] < DOWN_WEIGHTED)
             .collect();
         rows.sort_by(|&a, &b| self.weights[a].total_cmp(&self.weights[b]));
         rows

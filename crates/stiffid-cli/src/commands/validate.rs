@@ -1,0 +1,118 @@
+//! `stiffid validate`: predicted against measured displacements for an identified stiffness
+//! (Zhang et al. 2021, Eq. 22, Table 7).
+
+use crate::output::json;
+use crate::{data, load};
+use anyhow::{Context, Result};
+use serde::Serialize;
+use std::path::PathBuf;
+use stiffid::validate::validate;
+
+/// Arguments of `stiffid validate`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
+    #[arg(long)]
+    setup: String,
+    /// JSON file with `stiffness_nm_per_rad` (six values), e.g. from `stiffid identify --out`.
+    #[arg(long)]
+    stiffness: PathBuf,
+    /// Measurements CSV (same format as for `identify`), ideally postures not used to identify.
+    #[arg(long)]
+    data: PathBuf,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct ValidationJson {
+    setup: String,
+    data: String,
+    stiffness_nm_per_rad: [f64; 6],
+    checks: Vec<CheckJson>,
+    mean_delta_b_mm: f64,
+    max_delta_b_mm: f64,
+    rms_delta_b_mm: f64,
+}
+
+#[derive(Serialize)]
+struct CheckJson {
+    posture: String,
+    point: usize,
+    line: u64,
+    measured_mm: [f64; 3],
+    predicted_mm: [f64; 3],
+    delta_b_mm: f64,
+}
+
+/// Validates and prints.
+pub fn run(args: &Args) -> Result<()> {
+    let setup = load::setup(&args.setup)?;
+    let stiffness = load::stiffness(&args.stiffness)?;
+    let data = data::read(&args.data)?;
+    let name = args.data.display().to_string();
+    let v = validate(&setup, &stiffness, &data.measurements)
+        .map_err(|e| data.explain(e))
+        .with_context(|| name.clone())?;
+    let result = ValidationJson {
+        setup: args.setup.clone(),
+        data: name,
+        stiffness_nm_per_rad: stiffness.into(),
+        checks: v
+            .checks
+            .iter()
+            .enumerate()
+            .map(|(i, c)| CheckJson {
+                posture: c.posture.clone(),
+                point: c.point + 1,
+                line: data.line(i),
+                measured_mm: (c.measured * 1e3).into(),
+                predicted_mm: (c.predicted * 1e3).into(),
+                delta_b_mm: c.delta_b * 1e3,
+            })
+            .collect(),
+        mean_delta_b_mm: v.mean * 1e3,
+        max_delta_b_mm: v.max * 1e3,
+        rms_delta_b_mm: v.rms * 1e3,
+    };
+    match args.json {
+        true => print!("{}", json(&result)?),
+        false => print!("{}", human(&result)),
+    }
+    Ok(())
+}
+
+fn human(r: &ValidationJson) -> String {
+    let k: Vec<String> = r
+        .stiffness_nm_per_rad
+        .iter()
+        .map(|k| format!("{k:.0}"))
+        .collect();
+    let mut s = format!(
+        "setup {}, data {}\nstiffness Nm/rad: {}\n\n\
+         posture  point   measured mm (x, y, z)           predicted mm (x, y, z)          delta_b mm\n",
+        r.setup,
+        r.data,
+        k.join(", ")
+    );
+    let v3 = |v: &[f64; 3]| format!("({:+.4}, {:+.4}, {:+.4})", v[0], v[1], v[2]);
+    for c in &r.checks {
+        s += &format!(
+            "{:>7}  {:>5}   {:<30}  {:<30}  {:.4}\n",
+            c.posture,
+            c.point,
+            v3(&c.measured_mm),
+            v3(&c.predicted_mm),
+            c.delta_b_mm
+        );
+    }
+    s += &format!(
+        "\ndelta_b (Eq. 22) over {} measurements: mean {:.4} mm, max {:.4} mm, RMS {:.4} mm\n",
+        r.checks.len(),
+        r.mean_delta_b_mm,
+        r.max_delta_b_mm,
+        r.rms_delta_b_mm
+    );
+    s
+}
