@@ -73,7 +73,7 @@ def check(out):
         print("  (skipped: stiffid identify output missing)")
     py, rs = load(out, "py-select"), load(out, "rs-select")
     if py and rs:
-        after = rs["after"]
+        after = rs["value"]
         line("local search result", after <= py["after"] * (1 + REL),
              f"zhang2021 from {py['before']:.6g}: stiffid {after:.6g}, SciPy SLSQP {py['after']:.6g} "
              f"({py['evaluations']} evaluations, {py['message']})")
@@ -114,21 +114,21 @@ def table(out, criterion_dir, extra):
 
 
 SCALING = [
-    ("criterion evaluation (every criterion)", "scaling-evaluate", [6, 24, 96, 384], "posture"),
-    ("identification (QR factor and solve)", "scaling-identify", [6, 24, 96, 384], "posture"),
-    ("Monte Carlo, 1 group x 6 levels", "monte-carlo", [200, 2000, 20000], "run and level"),
+    ("criterion evaluation (every criterion)", "scaling-evaluate", [6, 24, 96, 384], "posture", 1),
+    ("identification (QR factor and solve)", "scaling-identify", [6, 24, 96, 384], "posture", 1),
+    ("Monte Carlo, 1 group x 6 levels", "monte-carlo", [200, 2000, 20000], "identification (run x level)", 6),
 ]
 
 
 def scaling(criterion_dir):
     """How the cost grows: median and cost per unit, relative to the smallest size."""
     print("\nScaling (stiffid, criterion medians)")
-    for label, prefix, sizes, unit in SCALING:
+    for label, prefix, sizes, unit, per_size in SCALING:
         medians = [median_s(criterion_dir, f"{prefix}/{n}") for n in sizes]
         if None in medians:
             print(f"  {label}: (not measured)")
             continue
-        per = [m / n for m, n in zip(medians, sizes)]
+        per = [m / (n * per_size) for m, n in zip(medians, sizes)]
         cells = ", ".join(f"{n}: {fmt_s(m)} ({fmt_s(p)} per {unit}, x{p / per[0]:.2f})"
                           for n, m, p in zip(sizes, medians, per))
         print(f"  {label}: {cells}")
