@@ -177,18 +177,24 @@ const JACOBI_PAIRS: [(usize, usize); 15] = [
 
 /// The singular values of a 6x6 matrix by one-sided (Hestenes) Jacobi: plane rotations of column
 /// pairs until every pair is orthogonal to working precision (`|u_i . u_j| <= eps |u_i| |u_j|`);
-/// the column norms are then the singular values, in no particular order.
+/// the column norms are then the singular values, in no particular order. Columns whose squared
+/// norm is below `eps^2 |r|_F^2` are numerically zero and left alone (a rank-deficient `R` would
+/// otherwise rotate rounding noise for the full 60 sweeps).
 fn jacobi_singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
     let mut u: [[f64; 6]; 6] = std::array::from_fn(|j| std::array::from_fn(|i| r[(i, j)]));
     let dot6 = |x: &[f64; 6], y: &[f64; 6]| {
         (x[0] * y[0] + x[1] * y[1]) + (x[2] * y[2] + x[3] * y[3]) + (x[4] * y[4] + x[5] * y[5])
     };
+    let negligible = f64::EPSILON * f64::EPSILON * r.norm_squared();
     for _sweep in 0..60 {
         let mut norms: [f64; 6] = std::array::from_fn(|i| dot6(&u[i], &u[i]));
         let mut rotated = false;
         for &(i, j) in &JACOBI_PAIRS {
             let g = dot6(&u[i], &u[j]);
-            if g * g <= f64::EPSILON * f64::EPSILON * norms[i] * norms[j] {
+            if g * g <= f64::EPSILON * f64::EPSILON * norms[i] * norms[j]
+                || norms[i] <= negligible
+                || norms[j] <= negligible
+            {
                 continue;
             }
             rotated = true;
