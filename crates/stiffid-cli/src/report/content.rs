@@ -92,7 +92,10 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut impl Writer) {
     ));
     w.table(&tables::validation(study));
     w.heading(2, "Setup and method");
-    w.paragraph(&s.description);
+    w.paragraph(&format!(
+        "{} The paper does not give every number (its tool drawing, Fig. 3, is not in the text): the setup's own choices for the tool points, the rope anchor and the characteristic length, and why, are in `stiffid setups show {}` (or the setup file).",
+        s.description, s.name
+    ));
     w.table(&tables::setup(study));
     w.list(&[
         "Load: a rope pulls the loading point toward the anchor with the load G, F = G (P2 - P1)/|P2 - P1|, no moment (Section IV-A).".into(),

@@ -46,6 +46,7 @@ impl Plot for Table<'_> {
                 .map_err(failed)
         };
         text("joint".into(), 20, 32, 17)?;
+        text("%".into(), 20, 8, 15)?;
         for (g, group) in study.groups.iter().enumerate() {
             let x = FIRST + width * g as i32;
             root.draw(&Rectangle::new([(x, 10), (x + 14, 24)], colour(g).filled()))
