@@ -4,7 +4,7 @@ use crate::load;
 use crate::report::{self, figures, findings::findings};
 use crate::study::{self, Progress, StudyOptions, DEFAULT_STARTS, DEFAULT_TRIALS};
 use anyhow::Result;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
@@ -37,25 +37,30 @@ pub struct Args {
     force: bool,
 }
 
-/// Progress bars on stderr (hidden when stderr is not a terminal).
-struct Bars(Mutex<Option<ProgressBar>>);
+/// Progress bars on stderr (hidden when stderr is not a terminal), one line per finished step.
+struct Bars {
+    lines: MultiProgress,
+    current: Mutex<Option<ProgressBar>>,
+}
 
 impl Progress for Bars {
     fn begin(&self, what: &str, total: usize) {
-        let bar = ProgressBar::new(total as u64).with_message(what.to_string());
+        let bar = self
+            .lines
+            .add(ProgressBar::new(total as u64).with_message(what.to_string()));
         let style = ProgressStyle::with_template("{msg:32} [{bar:30}] {pos}/{len} {elapsed}")
             .expect("valid template")
             .progress_chars("=> ");
         bar.set_style(style);
-        *self.0.lock().expect("progress lock") = Some(bar);
+        *self.current.lock().expect("progress lock") = Some(bar);
     }
     fn advance(&self, done: usize) {
-        if let Some(bar) = self.0.lock().expect("progress lock").as_ref() {
+        if let Some(bar) = self.current.lock().expect("progress lock").as_ref() {
             bar.set_position(done as u64);
         }
     }
     fn end(&self) {
-        if let Some(bar) = self.0.lock().expect("progress lock").take() {
+        if let Some(bar) = self.current.lock().expect("progress lock").take() {
             bar.finish();
         }
     }
@@ -72,7 +77,10 @@ pub fn run(args: &Args) -> Result<()> {
         starts: args.starts as usize,
         trials: args.trials as usize,
     };
-    let bars = Bars(Mutex::new(None));
+    let bars = Bars {
+        lines: MultiProgress::new(),
+        current: Mutex::new(None),
+    };
     let mut study = study::run(&setup, &options, &bars)?;
     bars.begin("figures", 1);
     let figures = figures::all(&study)?;

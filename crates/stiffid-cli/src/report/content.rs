@@ -55,6 +55,10 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut impl Writer) {
     }
     w.paragraph("The same numbers: mean ± standard deviation over the runs, [first-order prediction], %. The paper's Table 4 shows a single run; a mean over runs is what a reader can compare across seeds.");
     w.table(&tables::table4(study));
+    if s.name == "zhang2021-comau-nj165" && study.validation_level == 1 {
+        w.paragraph("For reference, the paper's own Table 4 (one run, its own tool, rope anchor and start group, none of which the paper gives in full) beside this study's means. Single runs scatter by about their mean (the standard deviations above are close to the means), so only the orders of magnitude compare, and one cell (0.002%, the paper's Group 3, joint 3) can land near zero by chance.");
+        w.table(&tables::paper_table4(study));
+    }
     w.heading(2, "Does the criterion predict accuracy?");
     w.paragraph("Every design criterion of every group (smaller is better) beside the group's measured average deviation rate. rho is Spearman's rank correlation between the criterion and the measured average deviation rate over the groups: +1 means the criterion ranks the groups exactly as their accuracy does.");
     w.table(&tables::criteria(study, &f));

@@ -288,3 +288,44 @@ pub fn trials(study: &Study) -> Table {
             .collect(),
     }
 }
+
+/// The paper's Table 4: deviation rates (%) of one simulation run at noise level 2, joints 1-6,
+/// Groups 1-3 (Zhang et al. 2021, Section IV-A).
+const PAPER_TABLE4: [[f64; 3]; 6] = [
+    [0.726, 0.339, 0.268],
+    [1.413, 9.845, 0.820],
+    [0.251, 0.488, 0.002],
+    [7.304, 2.259, 2.075],
+    [2.712, 2.236, 0.045],
+    [3.242, 2.364, 0.469],
+];
+
+/// The paper's Table 4 beside this study's means for Groups 1-3 at the same level.
+pub fn paper_table4(study: &Study) -> Table {
+    let l = study.validation_level;
+    let mut header = strings(["joint", "paper Group 1", "paper Group 2", "paper Group 3"]);
+    header.extend(
+        study
+            .groups
+            .iter()
+            .take(3)
+            .map(|g| format!("{}: mean", g.title)),
+    );
+    Table {
+        header,
+        rows: (0..6)
+            .map(|j| {
+                let mut row = vec![(j + 1).to_string()];
+                row.extend(PAPER_TABLE4[j].iter().map(|v| format!("{v:.3}")));
+                row.extend(
+                    study
+                        .groups
+                        .iter()
+                        .take(3)
+                        .map(|g| format!("{:.3}", g.simulation.mean_deviation_pct[l][j])),
+                );
+                row
+            })
+            .collect(),
+    }
+}
