@@ -2,21 +2,12 @@
 //! same seed, the paper's index lowered by Group 3, and foreign directories left alone.
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
-fn stiffid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stiffid"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stiffid-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
+use common::{fresh_dir, stiffid};
 
 /// A small but complete study: 20 runs, 2 starts per global search, 2 start groups checked.
 fn reproduce(out: &Path, extra: &[&str]) -> Output {
@@ -43,7 +34,7 @@ fn summary(dir: &Path) -> Value {
 
 #[test]
 fn the_report_is_complete_self_contained_and_reproducible() {
-    let dir = temp_dir("report");
+    let dir = fresh_dir("report");
     let out = reproduce(&dir, &[]);
     assert!(
         out.status.success(),
@@ -186,7 +177,7 @@ fn the_report_is_complete_self_contained_and_reproducible() {
 
 #[test]
 fn a_foreign_non_empty_directory_is_refused_without_force() {
-    let dir = temp_dir("foreign");
+    let dir = fresh_dir("foreign");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
     let out = reproduce(&dir, &[]);

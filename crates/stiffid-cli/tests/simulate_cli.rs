@@ -1,26 +1,12 @@
 //! `stiffid simulate` from files: JSON shape, written files, one-line errors with exit code 2.
 
-use std::process::Command;
+mod common;
 
-const GROUP: &str = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg
-1,10,-20,-100,30,40,-60
-2,-45,10,-70,-90,-30,120
-3,60,-40,-130,150,60,10
-4,-80,30,-50,-20,-70,-150
-5,30,0,-160,100,20,80
-6,-10,-55,-90,-160,80,-30
-";
-
-fn stiffid(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_stiffid"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use common::{fresh_dir, stiffid, GROUP};
 
 #[test]
 fn simulate_writes_json_and_csv() {
-    let dir = std::env::temp_dir().join(format!("stiffid-simulate-{}", std::process::id()));
+    let dir = fresh_dir("simulate");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("start.csv");
     std::fs::write(&file, GROUP).unwrap();
@@ -55,7 +41,7 @@ fn simulate_writes_json_and_csv() {
 
 #[test]
 fn a_bad_postures_file_is_one_line_and_exit_2() {
-    let dir = std::env::temp_dir().join(format!("stiffid-simulate-bad-{}", std::process::id()));
+    let dir = fresh_dir("simulate-bad");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("bad.csv");
     std::fs::write(&file, GROUP.replace("-160,80", "-160,oops")).unwrap();
