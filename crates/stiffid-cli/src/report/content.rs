@@ -81,7 +81,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut impl Writer) {
     if !study.trials.is_empty() {
         w.heading(2, "Does the paper's result depend on the start group?");
         w.paragraph(&format!(
-            "The paper searches locally from one start group. The same two local searches (`classical`, `zhang2021`) from {} seeded start groups, each group judged by its first-order predicted average deviation rate (mean over joints and the {} noise levels, %; it matches the Monte Carlo mean within a few percent, see Findings). Seed {} is Group 1 above.",
+            "The paper searches locally from one start group. The same two local searches (`classical`, `zhang2021`) from {} seeded start groups, each group judged by its first-order predicted average deviation rate (mean over joints and the {} noise levels, %; the Findings say how closely it follows the Monte Carlo means). Seed {} is Group 1 above.",
             study.trials.len(),
             s.noise.levels.len(),
             study.seed
