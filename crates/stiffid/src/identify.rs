@@ -81,30 +81,31 @@ pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Obser
     let mut psi = DMatrix::zeros(3 * n, 6);
     let mut delta = DVector::zeros(3 * n);
     let mut labels: Vec<(&str, &Vector6<f64>)> = Vec::new();
-    let mut cache: Option<(usize, Frames, Vector6<f64>)> = None;
+    // The measurement the frames and torques were computed for, the frames and the torques.
+    let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
     for (i, meas) in measurements.iter().enumerate() {
         check(setup, i + 1, meas)?;
         check_label(&mut labels, i + 1, meas)?;
-        let (frames, tau) = match cache.take() {
-            Some((j, frames, tau)) if measurements[j].q == meas.q => {
-                let tau = match measurements[j].wrench == meas.wrench {
-                    true => tau,
-                    false => joint_torques(setup, &frames, &meas.wrench),
-                };
-                (frames, tau)
-            }
-            _ => {
-                let frames = setup.robot.frames(&meas.q);
-                let tau = joint_torques(setup, &frames, &meas.wrench);
-                (frames, tau)
-            }
-        };
+        if state
+            .as_ref()
+            .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
+        {
+            state = None;
+        }
+        let (j, frames, tau) = state.get_or_insert_with(|| {
+            let frames = setup.robot.frames(&meas.q);
+            let tau = joint_torques(setup, &frames, &meas.wrench);
+            (i, frames, tau)
+        });
+        if measurements[*j].wrench != meas.wrench {
+            *tau = joint_torques(setup, frames, &meas.wrench);
+        }
+        *j = i;
         psi.fixed_view_mut::<3, 6>(3 * i, 0)
-            .copy_from(&point_rows(setup, &frames, meas.point, &tau));
+            .copy_from(&point_rows(setup, frames, meas.point, tau));
         delta
             .fixed_rows_mut::<3>(3 * i)
             .copy_from(&meas.displacement);
-        cache = Some((i, frames, tau));
     }
     Ok(Observations {
         psi,

@@ -263,3 +263,26 @@ fn a_joint_no_measurement_loads_is_named() {
         other => panic!("unexpected {other}"),
     }
 }
+
+#[test]
+fn one_posture_may_carry_several_wrenches() {
+    // Each posture loaded twice (rope load, then a wrench with moments), rows interleaved so that
+    // the torques change within a posture while its frames are reused.
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
+    let rope = synthetic(&setup, &qs, |_, q| {
+        setup.rope_wrench(&setup.robot.frames(q))
+    });
+    let twist = synthetic(&setup, &qs, |i, _| {
+        Vector6::new(100.0, -50.0 * i as f64, 200.0, 20.0, -30.0, 40.0)
+    });
+    let data: Vec<Measurement> = rope
+        .into_iter()
+        .zip(twist)
+        .flat_map(|(a, b)| [a, b])
+        .collect();
+    let id = identify(&setup, &data).unwrap();
+    assert_eq!((id.rows, id.postures), (144, 6));
+    let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness);
+    assert!(err < 1e-9, "relative error {err:e}");
+}
