@@ -1,16 +1,12 @@
 //! `stiffid identify`, `validate` and `predict` from the command line: the real FANUC data against
 //! an independent NumPy fit, noise-free round trips through `predict`, and bad input.
 
+mod common;
+
+use common::{fresh_dir, stiffid};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn stiffid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stiffid"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use std::process::Output;
 
 fn json(out: &Output) -> Value {
     assert!(
@@ -35,7 +31,7 @@ fn fanuc_csv() -> PathBuf {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stiffid-{name}-{}", std::process::id()));
+    let dir = fresh_dir(name);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
