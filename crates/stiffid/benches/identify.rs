@@ -3,44 +3,26 @@
 //! confidence intervals). Target: < 5 microseconds median. Also the kinematics that build `Psi` from
 //! the 24 measurements, and the whole path, for reference.
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 use criterion::{criterion_group, criterion_main, Criterion};
-use nalgebra::Vector6;
+use nalgebra::Vector3;
 use std::hint::black_box;
 use stiffid::identify::{identify, observations, Measurement};
-use stiffid::{setup, stiffness};
-
-fn paper_measurements() -> (stiffid::Setup, Vec<Measurement>) {
-    let setup = setup::builtin("zhang2021-comau-nj165").expect("built-in setup");
-    let postures = [
-        [10.0, -20.0, -100.0, 30.0, 40.0, 50.0],
-        [-40.0, 10.0, -70.0, -60.0, -30.0, 120.0],
-        [60.0, -40.0, -140.0, 90.0, 60.0, -90.0],
-        [-70.0, 30.0, -60.0, -150.0, -70.0, 10.0],
-        [30.0, -50.0, -160.0, 160.0, 20.0, -150.0],
-        [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
-    ];
-    let mut data = Vec::new();
-    for (i, q) in postures.iter().enumerate() {
-        let q = Vector6::from_iterator(q.iter().map(|v: &f64| v.to_radians()));
-        let frames = setup.robot.frames(&q);
-        let wrench = setup.rope_wrench(&frames);
-        let d = stiffness::deflection(&setup, &frames, &wrench, &setup.nominal_stiffness);
-        for (point, disp) in d.displacements.iter().enumerate() {
-            data.push(Measurement {
-                posture: format!("{}", i + 1),
-                point,
-                q,
-                wrench,
-                // A little deterministic "noise" so that the statistics are not degenerate.
-                displacement: disp.fixed_rows::<3>(0) * (1.0 + 1e-3 * ((point + i) % 3) as f64),
-            });
-        }
-    }
-    (setup, data)
-}
+use stiffid::setup;
 
 fn bench(c: &mut Criterion) {
-    let (setup, data) = paper_measurements();
+    let setup = setup::builtin("zhang2021-comau-nj165").expect("built-in setup");
+    // A little deterministic "noise" so that the statistics are not degenerate.
+    let data: Vec<Measurement> = common::paper_measurements(&setup)
+        .into_iter()
+        .enumerate()
+        .map(|(i, m)| Measurement {
+            displacement: m.displacement + Vector3::repeat(1e-6 * ((i % 5) as f64 - 2.0)),
+            ..m
+        })
+        .collect();
     let obs = observations(&setup, &data).expect("valid measurements");
     c.bench_function("identify/72x6 least squares and statistics", |b| {
         b.iter(|| black_box(&obs).identify().expect("identifiable"))

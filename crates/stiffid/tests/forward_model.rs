@@ -1,21 +1,13 @@
 //! The forward model and the observation matrix agree: `Psi h = delta` (Eq. 10) for the nominal
 //! compliance, and noise-free identification recovers it.
 
+mod common;
+
 use nalgebra::{DVector, Vector6};
 use stiffid::{lsq::Factor, observation::rope_observation_matrix, setup, stiffness};
 
 fn postures() -> Vec<Vector6<f64>> {
-    [
-        [10.0, -20.0, -100.0, 30.0, 40.0, 50.0],
-        [-40.0, 10.0, -70.0, -60.0, -30.0, 120.0],
-        [60.0, -40.0, -140.0, 90.0, 60.0, -90.0],
-        [-70.0, 30.0, -60.0, -150.0, -70.0, 10.0],
-        [30.0, -50.0, -160.0, 160.0, 20.0, -150.0],
-        [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
-    ]
-    .iter()
-    .map(|q| Vector6::from_iterator(q.iter().map(|v: &f64| v.to_radians())))
-    .collect()
+    common::PAPER_POSTURES_DEG.iter().map(common::deg).collect()
 }
 
 #[test]

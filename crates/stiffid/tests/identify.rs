@@ -2,6 +2,9 @@
 //! noise, confidence intervals that cover the truth at their nominal rate, robust mode, validation
 //! (Eq. 22) and the errors.
 
+mod common;
+
+use common::{deg, paper_measurements, synthetic, PAPER_POSTURES_DEG};
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -9,50 +12,7 @@ use rand_distr::{Distribution, Normal};
 use stiffid::identify::{identify, identify_robust, Loss, Measurement};
 use stiffid::kinematics::Coordinates;
 use stiffid::validate::validate;
-use stiffid::{robot::presets, setup, stiffness, Error, Setup};
-
-/// The paper's six validation-style postures (deg), inside the paper setup's bounds.
-const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [
-    [10.0, -20.0, -100.0, 30.0, 40.0, 50.0],
-    [-40.0, 10.0, -70.0, -60.0, -30.0, 120.0],
-    [60.0, -40.0, -140.0, 90.0, 60.0, -90.0],
-    [-70.0, 30.0, -60.0, -150.0, -70.0, 10.0],
-    [30.0, -50.0, -160.0, 160.0, 20.0, -150.0],
-    [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
-];
-
-fn deg(q: &[f64; 6]) -> Vector6<f64> {
-    Vector6::from_iterator(q.iter().map(|v| v.to_radians()))
-}
-
-/// Noise-free measurements of every measuring point in each posture, under `wrench(posture)`.
-fn synthetic(
-    setup: &Setup,
-    postures: &[Vector6<f64>],
-    wrench: impl Fn(usize, &Vector6<f64>) -> Vector6<f64>,
-) -> Vec<Measurement> {
-    let mut out = Vec::new();
-    for (i, q) in postures.iter().enumerate() {
-        let frames = setup.robot.frames(q);
-        let w = wrench(i, q);
-        let d = stiffness::deflection(setup, &frames, &w, &setup.nominal_stiffness);
-        for (point, disp) in d.displacements.iter().enumerate() {
-            out.push(Measurement {
-                posture: format!("P{}", i + 1),
-                point,
-                q: *q,
-                wrench: w,
-                displacement: disp.fixed_rows::<3>(0).into_owned(),
-            });
-        }
-    }
-    out
-}
-
-fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
-    let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
-    synthetic(setup, &qs, |_, q| setup.rope_wrench(&setup.robot.frames(q)))
-}
+use stiffid::{robot::presets, setup, Error};
 
 fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
     (a - truth).component_div(truth).amax()

@@ -1,0 +1,52 @@
+//! Synthetic measurements from the forward model, shared by the identification tests and bench.
+#![allow(dead_code)] // each user takes its own subset
+
+use nalgebra::Vector6;
+use stiffid::identify::Measurement;
+use stiffid::{stiffness, Setup};
+
+/// Six spread postures (deg) inside the paper setup's Table 1 bounds.
+pub const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [
+    [10.0, -20.0, -100.0, 30.0, 40.0, 50.0],
+    [-40.0, 10.0, -70.0, -60.0, -30.0, 120.0],
+    [60.0, -40.0, -140.0, 90.0, 60.0, -90.0],
+    [-70.0, 30.0, -60.0, -150.0, -70.0, 10.0],
+    [30.0, -50.0, -160.0, 160.0, 20.0, -150.0],
+    [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
+];
+
+/// Degrees to radians.
+pub fn deg(q: &[f64; 6]) -> Vector6<f64> {
+    Vector6::from_iterator(q.iter().map(|v| v.to_radians()))
+}
+
+/// Noise-free measurements of every measuring point in each posture, under `wrench(posture)`,
+/// with the setup's nominal stiffness.
+pub fn synthetic(
+    setup: &Setup,
+    postures: &[Vector6<f64>],
+    wrench: impl Fn(usize, &Vector6<f64>) -> Vector6<f64>,
+) -> Vec<Measurement> {
+    let mut out = Vec::new();
+    for (i, q) in postures.iter().enumerate() {
+        let frames = setup.robot.frames(q);
+        let w = wrench(i, q);
+        let d = stiffness::deflection(setup, &frames, &w, &setup.nominal_stiffness);
+        for (point, disp) in d.displacements.iter().enumerate() {
+            out.push(Measurement {
+                posture: format!("P{}", i + 1),
+                point,
+                q: *q,
+                wrench: w,
+                displacement: disp.fixed_rows::<3>(0).into_owned(),
+            });
+        }
+    }
+    out
+}
+
+/// The six postures under the setup's rope-mass load: 24 measurements (72 rows) on the paper setup.
+pub fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
+    let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
+    synthetic(setup, &qs, |_, q| setup.rope_wrench(&setup.robot.frames(q)))
+}
