@@ -140,6 +140,17 @@ impl Columns {
             Ok([need(names[0])?, need(names[1])?, need(names[2])?])
         };
         let any = |names: &[&str]| names.iter().any(|n| find(n).is_some());
+        let posture = need(POSTURE)?;
+        let point = need(POINT)?;
+        let q = [
+            need(Q[0])?,
+            need(Q[1])?,
+            need(Q[2])?,
+            need(Q[3])?,
+            need(Q[4])?,
+            need(Q[5])?,
+        ];
+        let force = need3(FORCE)?;
         let moment = match any(&MOMENT) {
             true => Some(need3(MOMENT)?),
             false => None,
@@ -153,17 +164,10 @@ impl Columns {
             _ => Displacement::Relative(need3(DISPLACEMENT)?),
         };
         Ok(Self {
-            posture: need(POSTURE)?,
-            point: need(POINT)?,
-            q: [
-                need(Q[0])?,
-                need(Q[1])?,
-                need(Q[2])?,
-                need(Q[3])?,
-                need(Q[4])?,
-                need(Q[5])?,
-            ],
-            force: need3(FORCE)?,
+            posture,
+            point,
+            q,
+            force,
             moment,
             displacement,
         })
