@@ -22,6 +22,7 @@
 pub mod design;
 mod error;
 pub mod kinematics;
+mod linalg;
 pub mod robot;
 
 pub use error::{Error, Result};

@@ -30,7 +30,7 @@ fn factor_matches_the_svd_solution_singular_values_and_covariance() {
         let h = factor.solve(&delta);
         let rel = (h - &reference).amax() / reference.amax();
         assert!(rel < 1e-12, "m = {m}: solution differs by {rel:e}");
-        let sv = sorted(&factor.singular_values().clone_owned());
+        let sv = sorted(&factor.singular_values());
         let reference_sv = sorted(&Vector6::from_iterator(svd.singular_values.iter().copied()));
         let rel = (sv - reference_sv).component_div(&reference_sv).amax();
         assert!(rel < 1e-12, "m = {m}: singular values differ by {rel:e}");
@@ -54,7 +54,7 @@ fn singular_values_of_an_ill_conditioned_matrix_are_accurate() {
     let psi =
         &q * DMatrix::from_diagonal(&DVector::from_column_slice(sigma.as_slice())) * v.transpose();
     let factor = Factor::try_new(&psi).unwrap();
-    let sv = sorted(&factor.singular_values().clone_owned());
+    let sv = sorted(&factor.singular_values());
     let rel = (sv - sorted(&sigma)).component_div(&sorted(&sigma)).amax();
     // Backward-stable QR perturbs psi by ~eps |psi|, so the smallest singular value (1e-9) is
     // good to ~eps / 1e-9 relative.

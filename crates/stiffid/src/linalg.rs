@@ -1,0 +1,150 @@
+//! Dense kernels for the `m x 6` least-squares problems of stiffid: Householder QR specialised to
+//! six columns and one-sided Jacobi singular values of a 6x6 triangular factor.
+//!
+//! The six-column case is small enough that general-purpose routines spend most of their time on
+//! bookkeeping; these kernels keep [`crate::lsq::Factor`] and the design evaluator
+//! ([`crate::design::Evaluator`]) within their microsecond budgets. Everything else uses nalgebra.
+
+use nalgebra::{Matrix6, Vector6};
+
+/// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
+/// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below
+/// it. Returns the `tau_k`.
+pub(crate) fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
+    let mut taus = Vector6::zeros();
+    for k in 0..6 {
+        let (left, right) = a.split_at_mut((k + 1) * m);
+        let col = &mut left[k * m + k..];
+        let alpha = col[0];
+        let tail = dot(&col[1..], &col[1..]).sqrt();
+        if tail == 0.0 {
+            continue;
+        }
+        let beta = -alpha.signum() * (alpha * alpha + tail * tail).sqrt();
+        let tau = (beta - alpha) / beta;
+        let inv = 1.0 / (alpha - beta);
+        col[1..].iter_mut().for_each(|x| *x *= inv);
+        col[0] = beta;
+        taus[k] = tau;
+        let v = &col[1..];
+        for c in right.chunks_exact_mut(m) {
+            let c = &mut c[k..];
+            let w = tau * (c[0] + dot(v, &c[1..]));
+            c[0] -= w;
+            axpy(-w, v, &mut c[1..]);
+        }
+    }
+    taus
+}
+
+/// The 15 column pairs of a 6-column matrix in five rounds of three disjoint pairs (round-robin
+/// order): the three rotations of a round are independent, which lets the processor overlap them.
+const JACOBI_PAIRS: [(usize, usize); 15] = [
+    (0, 1),
+    (2, 5),
+    (3, 4),
+    (0, 5),
+    (1, 4),
+    (2, 3),
+    (0, 4),
+    (3, 5),
+    (1, 2),
+    (0, 3),
+    (2, 4),
+    (1, 5),
+    (0, 2),
+    (1, 3),
+    (4, 5),
+];
+
+/// The singular values of a 6x6 matrix by one-sided (Hestenes) Jacobi: plane rotations of column
+/// pairs until every pair is orthogonal to working precision (`|u_i . u_j| <= eps |u_i| |u_j|`);
+/// the column norms are then the singular values, in no particular order. Columns whose squared
+/// norm is below `eps^2 |r|_F^2` are numerically zero and left alone (a rank-deficient `R` would
+/// otherwise rotate rounding noise for the full 60 sweeps).
+pub(crate) fn singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
+    let mut u: [[f64; 6]; 6] = std::array::from_fn(|j| std::array::from_fn(|i| r[(i, j)]));
+    let dot6 = |x: &[f64; 6], y: &[f64; 6]| {
+        (x[0] * y[0] + x[1] * y[1]) + (x[2] * y[2] + x[3] * y[3]) + (x[4] * y[4] + x[5] * y[5])
+    };
+    let negligible = f64::EPSILON * f64::EPSILON * r.norm_squared();
+    for _sweep in 0..60 {
+        let mut norms: [f64; 6] = std::array::from_fn(|i| dot6(&u[i], &u[i]));
+        let mut largest_tangent: f64 = 0.0;
+        for &(i, j) in &JACOBI_PAIRS {
+            let g = dot6(&u[i], &u[j]);
+            if g * g <= f64::EPSILON * f64::EPSILON * norms[i] * norms[j]
+                || norms[i] <= negligible
+                || norms[j] <= negligible
+            {
+                continue;
+            }
+            // The rotation that zeroes u_i . u_j: tan = t = 2g sign(d) / (|d| + sqrt(d^2 + 4g^2)),
+            // d = |u_j|^2 - |u_i|^2 (the smaller root of t^2 g + t d - g = 0).
+            let d = norms[j] - norms[i];
+            let t = 2.0 * g * d.signum() / (d.abs() + (d * d + 4.0 * g * g).sqrt());
+            let c = 1.0 / (1.0 + t * t).sqrt();
+            let s = c * t;
+            let (head, tail) = u.split_at_mut(j);
+            let (ui, uj) = (&mut head[i], &mut tail[0]);
+            for k in 0..6 {
+                let (x, y) = (ui[k], uj[k]);
+                ui[k] = c * x - s * y;
+                uj[k] = s * x + c * y;
+            }
+            norms[i] -= t * g;
+            norms[j] += t * g;
+            largest_tangent = largest_tangent.max(t.abs());
+        }
+        // Cyclic Jacobi converges quadratically: after a sweep whose rotations were all below
+        // 1e-8 the next one would rotate by ~1e-16, below rounding, so it is skipped.
+        if largest_tangent < 1e-8 {
+            break;
+        }
+    }
+    Vector6::from_fn(|i, _| dot6(&u[i], &u[i]).sqrt())
+}
+
+/// `s_max / s_min` of a 6x6 matrix ([`singular_values`]): `+infinity` (or NaN for NaN input) when
+/// singular.
+pub(crate) fn cond(a: &Matrix6<f64>) -> f64 {
+    let s = singular_values(a);
+    s.max() / s.min()
+}
+
+/// The upper triangle `R` (6x6) of the in-place result of [`householder_qr`] on `a` with `m` rows.
+pub(crate) fn upper_triangle(a: &[f64], m: usize) -> Matrix6<f64> {
+    Matrix6::from_fn(|i, j| if i <= j { a[j * m + i] } else { 0.0 })
+}
+
+/// The Euclidean norms of the six columns of the column-major `a` with `m` rows (NaN or infinity
+/// if an entry is not finite).
+pub(crate) fn column_norms(a: &[f64], m: usize) -> Vector6<f64> {
+    Vector6::from_fn(|j, _| {
+        let c = &a[j * m..(j + 1) * m];
+        dot(c, c).sqrt()
+    })
+}
+
+/// `a . b` over the shorter length, with four partial sums (independent chains run in parallel).
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (a[..n].chunks_exact(4), b[..n].chunks_exact(4));
+    let rest: f64 = a
+        .remainder()
+        .iter()
+        .zip(b.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    let mut s = [0.0; 4];
+    for (x, y) in a.zip(b) {
+        for i in 0..4 {
+            s[i] += x[i] * y[i];
+        }
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + rest
+}
+
+pub(crate) fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
+    y.iter_mut().zip(x).for_each(|(y, x)| *y += alpha * x);
+}
