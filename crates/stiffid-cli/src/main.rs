@@ -45,6 +45,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    restore_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Robots => commands::robots::run(),
@@ -64,5 +65,15 @@ fn main() -> ExitCode {
             eprintln!("error: {}", output::one_line_chain(&e));
             ExitCode::from(2)
         }
+    }
+}
+
+/// Restores the default SIGPIPE action (Rust ignores it), so `stiffid ... | head` ends quietly
+/// like other Unix tools instead of panicking on a closed stdout.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in main, before any other thread exists; SIG_DFL is a valid action.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }

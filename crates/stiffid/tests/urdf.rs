@@ -188,3 +188,17 @@ fn malformed_urdf_is_a_parse_error_naming_the_file() {
         other => panic!("expected a parse error, got {other:?}"),
     }
 }
+
+#[test]
+fn revolute_joint_without_limit_is_unlimited_and_the_others_keep_theirs() {
+    let text = data("comau-nj165.urdf").replacen(
+        r#"<limit lower="-3.2" upper="3.2" effort="1000" velocity="2"/>"#,
+        "",
+        1,
+    );
+    let robot = urdf::parse(&text, "no-limit.urdf", None).unwrap();
+    assert_eq!(robot.lower[0], f64::NEG_INFINITY);
+    assert_eq!(robot.upper[0], f64::INFINITY);
+    assert_eq!((robot.lower[1], robot.upper[1]), (-3.2, 3.2));
+    assert!(robot.within_limits(&Vector6::new(10.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+}

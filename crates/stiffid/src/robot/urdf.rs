@@ -4,7 +4,9 @@
 //! Fixed joints along it are folded into the next revolute joint (or into the flange transform after
 //! the last one); revolute and continuous joints may turn about any axis. Prismatic, floating and
 //! planar joints in the chain are an error, as is a chain without exactly six revolute joints. The
-//! axis map is the identity: axis angles are the URDF joint positions.
+//! axis map is the identity: axis angles are the URDF joint positions. Joint limits come from each
+//! revolute joint's `<limit lower upper>`; continuous joints, and revolute joints without a usable
+//! limit (`lower >= upper`, as urdf-rs reads a missing `<limit>`), are unlimited.
 
 use super::{AxisMap, Joint, Robot};
 use crate::{Error, Result};
@@ -97,16 +99,16 @@ fn fold(
                     post: Isometry3::identity(),
                     offset: 0.0,
                 });
-                let continuous = j.joint_type == JointType::Continuous;
-                lower.push(if continuous {
-                    f64::NEG_INFINITY
-                } else {
+                let limited = j.joint_type == JointType::Revolute && j.limit.lower < j.limit.upper;
+                lower.push(if limited {
                     j.limit.lower
-                });
-                upper.push(if continuous {
-                    f64::INFINITY
                 } else {
+                    f64::NEG_INFINITY
+                });
+                upper.push(if limited {
                     j.limit.upper
+                } else {
+                    f64::INFINITY
                 });
                 acc = Isometry3::identity();
             }
