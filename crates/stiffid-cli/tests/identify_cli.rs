@@ -3,19 +3,9 @@
 
 mod common;
 
-use common::{fresh_dir, stiffid};
+use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Output;
-
-fn json(out: &Output) -> Value {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()
@@ -28,12 +18,6 @@ fn numbers(v: &Value) -> Vec<f64> {
 fn fanuc_csv() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = fresh_dir(name);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 #[test]
@@ -210,8 +194,7 @@ fn noise_free_predictions_identify_back_to_the_nominal_stiffness() {
         ("relative.csv", relative, 1e-9),
         ("positions.csv", positions, 1e-7),
     ] {
-        let file = dir.join(name);
-        std::fs::write(&file, text).unwrap();
+        let file = write_file(&dir, name, &text);
         let r = json(&stiffid(&[
             "identify",
             "--setup",
@@ -241,8 +224,7 @@ fn noise_free_predictions_identify_back_to_the_nominal_stiffness() {
 /// `expected` part, no panic, no output file.
 fn rejects(name: &str, text: &str, setup: &str, expected: &[&str]) {
     let dir = temp_dir(&format!("bad-{name}"));
-    let file = dir.join(format!("{name}.csv"));
-    std::fs::write(&file, text).unwrap();
+    let file = write_file(&dir, &format!("{name}.csv"), text);
     let out_file = dir.join("result.json");
     let out = stiffid(&[
         "identify",
@@ -253,14 +235,7 @@ fn rejects(name: &str, text: &str, setup: &str, expected: &[&str]) {
         "--out",
         out_file.to_str().unwrap(),
     ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
-    assert!(stderr.contains(file.to_str().unwrap()), "{name}: {stderr}");
-    for part in expected {
-        assert!(stderr.contains(part), "{name}: '{part}' not in {stderr}");
-    }
+    assert_usage_error(&out, &[&[file.to_str().unwrap()], expected].concat());
     assert!(!out_file.exists(), "{name}: output file left behind");
     assert!(
         std::fs::read_dir(&dir).unwrap().count() == 1,
@@ -385,9 +360,8 @@ fn bad_data_files_are_one_line_errors_naming_line_and_column() {
 #[test]
 fn out_never_overwrites_the_data_file() {
     let dir = temp_dir("overwrite");
-    let file = dir.join("data.csv");
     let text = std::fs::read_to_string(fanuc_csv()).unwrap();
-    std::fs::write(&file, &text).unwrap();
+    let file = write_file(&dir, "data.csv", &text);
     let out = stiffid(&[
         "identify",
         "--setup",
@@ -397,8 +371,7 @@ fn out_never_overwrites_the_data_file() {
         "--out",
         file.to_str().unwrap(),
     ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("refusing"));
+    assert_usage_error(&out, &["refusing"]);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), text);
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -406,8 +379,11 @@ fn out_never_overwrites_the_data_file() {
 #[test]
 fn bad_stiffness_files_and_arguments_are_errors() {
     let dir = temp_dir("bad-stiffness");
-    let file = dir.join("k.json");
-    std::fs::write(&file, r#"{"stiffness_nm_per_rad": [1, 2, 3, 4, 5, -6]}"#).unwrap();
+    let file = write_file(
+        &dir,
+        "k.json",
+        r#"{"stiffness_nm_per_rad": [1, 2, 3, 4, 5, -6]}"#,
+    );
     let data = fanuc_csv();
     let cases: [(&[&str], &str); 4] = [
         (
@@ -460,13 +436,7 @@ fn bad_stiffness_files_and_arguments_are_errors() {
         ),
     ];
     for (args, expected) in cases {
-        let out = stiffid(args);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{stderr}");
-        assert!(
-            stderr.contains(expected) && !stderr.contains("panicked"),
-            "{stderr}"
-        );
+        assert_usage_error(&stiffid(args), &[expected]);
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,17 +1,12 @@
 //! `stiffid kinematics` end to end: real values through `--json` and the text output, and bad
 //! input giving one line on stderr that names what was wrong, exit code 2, no panic.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
+
+use common::{assert_success, assert_usage_error, json, stiffid, write_file};
+use std::path::Path;
 
 const COMAU: &str = "comau-smart5-nj165-3.0";
-
-fn stiffid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stiffid"))
-        .args(args)
-        .output()
-        .expect("run stiffid")
-}
 
 /// A file of the library's test data.
 fn data(name: &str) -> String {
@@ -21,33 +16,10 @@ fn data(name: &str) -> String {
     )
 }
 
-/// Writes `text` to a fresh file in the test scratch directory.
+/// Writes `text` to a file in the test scratch directory; returns its path.
 fn scratch(name: &str, text: &str) -> String {
-    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    std::fs::write(&path, text).unwrap();
+    let path = write_file(Path::new(env!("CARGO_TARGET_TMPDIR")), name, text);
     path.to_string_lossy().into_owned()
-}
-
-/// Runs a command that must fail on bad input; returns its one stderr line.
-fn bad_input(args: &[&str]) -> String {
-    let out = stiffid(args);
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(out.stdout.is_empty(), "{args:?} printed {:?}", out.stdout);
-    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
-    assert_eq!(
-        stderr.lines().count(),
-        1,
-        "{args:?}: not one line: {stderr}"
-    );
-    assert!(stderr.starts_with("error: "), "{stderr}");
-    stderr
-}
-
-fn assert_mentions(message: &str, parts: &[&str]) {
-    for part in parts {
-        assert!(message.contains(part), "'{part}' missing from: {message}");
-    }
 }
 
 #[test]
@@ -60,12 +32,7 @@ fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
         "10,20,-90,30,20,10",
         "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = json(&out);
     let numbers = |key: &str| -> Vec<f64> {
         v[key]
             .as_array()
@@ -113,25 +80,24 @@ fn text_output_names_units_and_shows_the_point() {
         "--coordinates",
         "kinematic",
     ]);
-    assert!(out.status.success());
+    assert_success(&out);
     let text = String::from_utf8(out.stdout).unwrap();
     // At this posture the flange z axis points along the base x axis, and axes 4 and 6 align.
-    assert_mentions(
-        &text,
-        &[
-            "flange position_mm: 2074.000, 0.000, 2255.000",
-            "point position_mm: 2174.000, 0.000, 2255.000",
-            "kinematic angles",
-            "m/rad",
-            "theta6",
-            "dexterity k(J_N) (L = 1200 mm): infinite (singular posture)",
-        ],
-    );
+    for part in [
+        "flange position_mm: 2074.000, 0.000, 2255.000",
+        "point position_mm: 2174.000, 0.000, 2255.000",
+        "kinematic angles",
+        "m/rad",
+        "theta6",
+        "dexterity k(J_N) (L = 1200 mm): infinite (singular posture)",
+    ] {
+        assert!(text.contains(part), "'{part}' missing from: {text}");
+    }
 }
 
 #[test]
 fn a_urdf_robot_works_with_its_tip() {
-    let out = stiffid(&[
+    assert_success(&stiffid(&[
         "kinematics",
         "--robot",
         &data("comau-nj165-two-leaves.urdf"),
@@ -140,36 +106,35 @@ fn a_urdf_robot_works_with_its_tip() {
         "--q-deg",
         "0,-90,0,0,0,180",
         "--json",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ]));
 }
 
 #[test]
 fn unknown_preset() {
-    let e = bad_input(&[
-        "kinematics",
-        "--robot",
-        "kuka-kr9000",
-        "--q-deg",
-        "0,0,0,0,0,0",
-    ]);
-    assert_mentions(&e, &["unknown robot preset 'kuka-kr9000'", COMAU]);
+    assert_usage_error(
+        &stiffid(&[
+            "kinematics",
+            "--robot",
+            "kuka-kr9000",
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ]),
+        &["unknown robot preset 'kuka-kr9000'", COMAU],
+    );
 }
 
 #[test]
 fn missing_robot_file() {
-    let e = bad_input(&[
-        "kinematics",
-        "--robot",
-        "no/such/robot.toml",
-        "--q-deg",
-        "0,0,0,0,0,0",
-    ]);
-    assert_mentions(&e, &["no/such/robot.toml", "cannot read"]);
+    assert_usage_error(
+        &stiffid(&[
+            "kinematics",
+            "--robot",
+            "no/such/robot.toml",
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ]),
+        &["no/such/robot.toml", "cannot read"],
+    );
 }
 
 #[test]
@@ -178,8 +143,10 @@ fn malformed_robot_toml() {
         "malformed-robot.toml",
         "name = \"x\"\nconvention = \"modified-dh\n",
     );
-    let e = bad_input(&["kinematics", "--robot", &file, "--q-deg", "0,0,0,0,0,0"]);
-    assert_mentions(&e, &[&file, "line 2"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &file, "--q-deg", "0,0,0,0,0,0"]),
+        &[&file, "line 2"],
+    );
 }
 
 #[test]
@@ -188,61 +155,77 @@ fn unknown_key_in_a_robot_toml() {
     let text = preset.replacen("d_mm = 830.0", "d_mm = 830.0\nlength_mm = 1.0", 1);
     assert_ne!(text, preset);
     let file = scratch("unknown-key-robot.toml", &text);
-    let e = bad_input(&["kinematics", "--robot", &file, "--q-deg", "0,0,-90,0,0,0"]);
-    assert_mentions(&e, &[&file, "unknown field `length_mm`", "a_mm"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &file, "--q-deg", "0,0,-90,0,0,0"]),
+        &[&file, "unknown field `length_mm`", "a_mm"],
+    );
 }
 
 #[test]
 fn urdf_without_the_tip_link() {
     let urdf = data("comau-nj165.urdf");
-    let e = bad_input(&[
-        "kinematics",
-        "--robot",
-        &urdf,
-        "--tip",
-        "gripper",
-        "--q-deg",
-        "0,0,0,0,0,0",
-    ]);
-    assert_mentions(&e, &[&urdf, "no link named 'gripper'"]);
+    assert_usage_error(
+        &stiffid(&[
+            "kinematics",
+            "--robot",
+            &urdf,
+            "--tip",
+            "gripper",
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ]),
+        &[&urdf, "no link named 'gripper'"],
+    );
     let urdf = data("comau-nj165-two-leaves.urdf");
-    let e = bad_input(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]);
-    assert_mentions(&e, &[&urdf, "several leaf links", "--tip"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]),
+        &[&urdf, "several leaf links", "--tip"],
+    );
 }
 
 #[test]
 fn urdf_with_a_prismatic_joint() {
     let urdf = data("comau-nj165-prismatic.urdf");
-    let e = bad_input(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]);
-    assert_mentions(&e, &[&urdf, "joint_3", "Prismatic", "revolute"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]),
+        &[&urdf, "joint_3", "Prismatic", "revolute"],
+    );
 }
 
 #[test]
 fn wrong_number_of_angles() {
-    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90"]);
-    assert_mentions(&e, &["--q-deg", "expected 6", "got 3"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90"]),
+        &["--q-deg", "expected 6", "got 3"],
+    );
 }
 
 #[test]
 fn nan_or_text_in_the_angles() {
-    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,NaN,0,0,0"]);
-    assert_mentions(&e, &["--q-deg", "value 3", "not finite"]);
-    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,ten,-90,0,0,0"]);
-    assert_mentions(&e, &["--q-deg", "value 2 'ten'", "not a number"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,NaN,0,0,0"]),
+        &["--q-deg", "value 3", "not finite"],
+    );
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,ten,-90,0,0,0"]),
+        &["--q-deg", "value 2 'ten'", "not a number"],
+    );
 }
 
 #[test]
 fn posture_outside_the_joint_limits() {
     // COMAU axis 3 (absolute forearm angle) runs from -256 to -10 deg.
-    let e = bad_input(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,0,0,0,0"]);
-    assert_mentions(&e, &["--q-deg", "axis 3 = 0 deg", "[-256, -10] deg"]);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,0,0,0,0"]),
+        &["--q-deg", "axis 3 = 0 deg", "[-256, -10] deg"],
+    );
 }
 
 #[test]
 fn bad_point_and_characteristic_length() {
     let args = ["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90,0,0,0"];
-    let e = bad_input(&[&args[..], &["--point-mm", "1,2"]].concat());
-    assert_mentions(&e, &["--point-mm", "expected 3"]);
-    let e = bad_input(&[&args[..], &["--characteristic-length-mm", "0"]].concat());
-    assert_mentions(&e, &["--characteristic-length-mm", "positive"]);
+    let e = stiffid(&[&args[..], &["--point-mm", "1,2"]].concat());
+    assert_usage_error(&e, &["--point-mm", "expected 3"]);
+    let e = stiffid(&[&args[..], &["--characteristic-length-mm", "0"]].concat());
+    assert_usage_error(&e, &["--characteristic-length-mm", "positive"]);
 }

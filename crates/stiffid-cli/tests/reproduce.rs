@@ -7,7 +7,7 @@ use std::process::Output;
 
 mod common;
 
-use common::{fresh_dir, stiffid};
+use common::{assert_success, assert_usage_error, fresh_dir, stiffid, temp_dir};
 
 /// A small but complete study: 20 runs, 2 starts per global search, 2 start groups checked.
 fn reproduce(out: &Path, extra: &[&str]) -> Output {
@@ -36,11 +36,7 @@ fn summary(dir: &Path) -> Value {
 fn the_report_is_complete_self_contained_and_reproducible() {
     let dir = fresh_dir("report");
     let out = reproduce(&dir, &[]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.contains("report.html") && stdout.contains("Groups 1 and 2"),
@@ -160,12 +156,7 @@ fn the_report_is_complete_self_contained_and_reproducible() {
     assert_eq!(csv.lines().count(), 1 + 5 * 6 * 6);
 
     // Its own directory is rewritten without --force, identically apart from the time.
-    let again = reproduce(&dir, &[]);
-    assert!(
-        again.status.success(),
-        "{}",
-        String::from_utf8_lossy(&again.stderr)
-    );
+    assert_success(&reproduce(&dir, &[]));
     let mut second = summary(&dir);
     let mut first = first;
     assert!(second["elapsed_s"].as_f64().unwrap() > 0.0);
@@ -177,17 +168,9 @@ fn the_report_is_complete_self_contained_and_reproducible() {
 
 #[test]
 fn a_foreign_non_empty_directory_is_refused_without_force() {
-    let dir = fresh_dir("foreign");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("foreign");
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
-    let out = reproduce(&dir, &[]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(
-        err.contains("--force") && err.contains("not a stiffid report"),
-        "{err}"
-    );
+    assert_usage_error(&reproduce(&dir, &[]), &["--force", "not a stiffid report"]);
     let entries: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(entries.len(), 1, "wrote into a foreign directory");
     assert_eq!(

@@ -1,44 +1,13 @@
 //! `stiffid select` and `stiffid evaluate`: files written, JSON keys, one-line errors (exit 2).
 
-use std::path::PathBuf;
-use std::process::Command;
+mod common;
 
-const GROUP: &str = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg
-1,10,-20,-100,30,40,-60
-2,-45,10,-70,-90,-30,120
-3,60,-40,-130,150,60,10
-4,-80,30,-50,-20,-70,-150
-5,30,0,-160,100,20,80
-6,-10,-55,-90,-160,80,-30
-";
-
-fn stiffid(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_stiffid"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stiffid-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn json(out: &std::process::Output) -> serde_json::Value {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use common::{assert_usage_error, json, stiffid, temp_dir, write_file, GROUP};
 
 #[test]
 fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
-    let d = dir("select");
-    let start = d.join("start.csv");
-    std::fs::write(&start, GROUP).unwrap();
+    let d = temp_dir("select");
+    let start = write_file(&d, "start.csv", GROUP);
     let out = d.join("best.csv");
     let setup = "zhang2021-comau-nj165";
     let doc = json(&stiffid(&[
@@ -105,14 +74,13 @@ fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
         "--out",
         start.to_str().unwrap(),
     ]);
-    assert_eq!(refused.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&refused.stderr).contains("refusing to overwrite"));
+    assert_usage_error(&refused, &["refusing to overwrite"]);
     assert_eq!(std::fs::read_to_string(&start).unwrap(), GROUP);
 }
 
 #[test]
 fn select_random_and_global_write_postures_within_bounds() {
-    let d = dir("select-global");
+    let d = temp_dir("select-global");
     for extra in [
         &["--start-random", "--postures", "4"][..],
         &["--global", "--starts", "2", "--max-evals", "300"][..],
@@ -147,10 +115,13 @@ fn select_random_and_global_write_postures_within_bounds() {
 
 #[test]
 fn bad_input_is_one_line_naming_the_place() {
-    let d = dir("select-bad");
+    let d = temp_dir("select-bad");
     let out = d.join("never.csv");
-    let outside = d.join("outside.csv");
-    std::fs::write(&outside, GROUP.replace("3,60,-40,-130", "3,60,-40,-20")).unwrap();
+    let outside = write_file(
+        &d,
+        "outside.csv",
+        &GROUP.replace("3,60,-40,-130", "3,60,-40,-20"),
+    );
     let e = stiffid(&[
         "select",
         "--setup",
@@ -162,13 +133,7 @@ fn bad_input_is_one_line_naming_the_place() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(e.status.code(), Some(2));
-    let msg = String::from_utf8_lossy(&e.stderr);
-    assert!(
-        msg.contains("outside.csv") && msg.contains("line 4") && msg.contains("q3_deg"),
-        "{msg}"
-    );
-    assert_eq!(msg.lines().count(), 1, "{msg}");
+    assert_usage_error(&e, &["outside.csv", "line 4", "q3_deg"]);
     assert!(!out.exists());
 
     let unknown = stiffid(&[
@@ -193,11 +158,9 @@ fn bad_input_is_one_line_naming_the_place() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(no_start.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&no_start.stderr).contains("--start-random"));
+    assert_usage_error(&no_start, &["--start-random"]);
 
-    let broken = d.join("broken.csv");
-    std::fs::write(&broken, GROUP.replace("2,-45,10", "2,-45,ten")).unwrap();
+    let broken = write_file(&d, "broken.csv", &GROUP.replace("2,-45,10", "2,-45,ten"));
     let e = stiffid(&[
         "evaluate",
         "--setup",
@@ -205,10 +168,5 @@ fn bad_input_is_one_line_naming_the_place() {
         "--postures",
         broken.to_str().unwrap(),
     ]);
-    assert_eq!(e.status.code(), Some(2));
-    let msg = String::from_utf8_lossy(&e.stderr);
-    assert!(
-        msg.contains("broken.csv") && msg.contains("line 3") && msg.contains("q2_deg"),
-        "{msg}"
-    );
+    assert_usage_error(&e, &["broken.csv", "line 3", "q2_deg"]);
 }

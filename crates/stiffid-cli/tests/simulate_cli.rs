@@ -2,16 +2,14 @@
 
 mod common;
 
-use common::{fresh_dir, stiffid, GROUP};
+use common::{assert_usage_error, json, stiffid, temp_dir, write_file, GROUP};
 
 #[test]
 fn simulate_writes_json_and_csv() {
-    let dir = fresh_dir("simulate");
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("start.csv");
-    std::fs::write(&file, GROUP).unwrap();
+    let dir = temp_dir("simulate");
+    let file = write_file(&dir, "start.csv", GROUP);
     let out_dir = dir.join("out");
-    let out = stiffid(&[
+    let doc = json(&stiffid(&[
         "simulate",
         "--setup",
         "zhang2021-comau-nj165",
@@ -22,13 +20,7 @@ fn simulate_writes_json_and_csv() {
         "--json",
         "--out",
         out_dir.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    ]));
     assert_eq!(doc["runs"], 20);
     let group = &doc["groups"][0];
     assert_eq!(group["name"], "start");
@@ -41,10 +33,8 @@ fn simulate_writes_json_and_csv() {
 
 #[test]
 fn a_bad_postures_file_is_one_line_and_exit_2() {
-    let dir = fresh_dir("simulate-bad");
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("bad.csv");
-    std::fs::write(&file, GROUP.replace("-160,80", "-160,oops")).unwrap();
+    let dir = temp_dir("simulate-bad");
+    let file = write_file(&dir, "bad.csv", &GROUP.replace("-160,80", "-160,oops"));
     let out = stiffid(&[
         "simulate",
         "--setup",
@@ -52,12 +42,6 @@ fn a_bad_postures_file_is_one_line_and_exit_2() {
         "--postures",
         file.to_str().unwrap(),
     ]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(
-        err.contains("bad.csv") && err.contains("line 7") && err.contains("q5_deg"),
-        "{err}"
-    );
+    assert_usage_error(&out, &["bad.csv", "line 7", "q5_deg"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }

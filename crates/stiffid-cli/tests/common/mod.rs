@@ -1,7 +1,8 @@
 //! Helpers shared by the command-line tests.
 #![allow(dead_code)] // each test file uses its own subset
 
-use std::path::PathBuf;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Six spread postures within the paper's Table 1 bounds, as a postures file.
@@ -19,7 +20,38 @@ pub fn stiffid(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_stiffid"))
         .args(args)
         .output()
-        .unwrap()
+        .expect("run stiffid")
+}
+
+/// Asserts that the command succeeded, showing its stderr otherwise.
+pub fn assert_success(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The JSON document a successful command printed on stdout.
+pub fn json(out: &Output) -> Value {
+    assert_success(out);
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Asserts that the command failed on bad input the documented way: exit code 2, nothing on stdout,
+/// no panic, and one stderr line starting with `error: ` that contains every part of
+/// `must_mention`. Returns that line.
+pub fn assert_usage_error(out: &Output, must_mention: &[&str]) -> String {
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(out.stdout.is_empty(), "printed {:?}", out.stdout);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "not one line: {stderr}");
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    for part in must_mention {
+        assert!(stderr.contains(part), "'{part}' missing from: {stderr}");
+    }
+    stderr
 }
 
 /// A fresh, not yet existing directory under the system's temporary directory, unique per test
@@ -28,4 +60,18 @@ pub fn fresh_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("stiffid-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     dir
+}
+
+/// [`fresh_dir`], created empty.
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = fresh_dir(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes `text` to the file `name` in `dir`; returns its path.
+pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
 }
