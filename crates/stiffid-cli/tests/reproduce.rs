@@ -7,7 +7,9 @@ use std::process::Output;
 
 mod common;
 
-use common::{assert_success, assert_usage_error, fresh_dir, stiffid, temp_dir};
+use common::{
+    assert_criteria_positive, assert_success, assert_usage_error, fresh_dir, stiffid, temp_dir,
+};
 
 /// A small but complete study: 20 runs, 2 starts per global search, 2 start groups checked.
 fn reproduce(out: &Path, extra: &[&str]) -> Output {
@@ -109,17 +111,7 @@ fn the_report_is_complete_self_contained_and_reproducible() {
             assert_eq!(rows.len(), 6, "{key}");
             assert!(rows.iter().all(|r| r.as_array().unwrap().len() == 6));
         }
-        for key in [
-            "classical",
-            "zhang2021",
-            "scaled_cond",
-            "d_optimal",
-            "relative_a",
-            "test_pose_mm",
-            "cond_psi",
-        ] {
-            assert!(g[key].as_f64().is_some_and(|v| v > 0.0), "{key}");
-        }
+        assert_criteria_positive(g);
     }
     let zhang = |g: usize| groups[g]["zhang2021"].as_f64().unwrap();
     assert!(

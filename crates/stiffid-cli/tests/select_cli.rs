@@ -2,7 +2,9 @@
 
 mod common;
 
-use common::{assert_usage_error, json, stiffid, temp_dir, write_file, GROUP};
+use common::{
+    assert_criteria_positive, assert_usage_error, json, stiffid, temp_dir, write_file, GROUP,
+};
 
 #[test]
 fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
@@ -42,17 +44,7 @@ fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
         out.to_str().unwrap(),
         "--json",
     ]));
-    for key in [
-        "classical",
-        "zhang2021",
-        "scaled_cond",
-        "d_optimal",
-        "relative_a",
-        "test_pose_mm",
-        "cond_psi",
-    ] {
-        assert!(eval[key].as_f64().unwrap() > 0.0, "{key}");
-    }
+    assert_criteria_positive(&eval);
     let z = eval["zhang2021"].as_f64().unwrap();
     assert!(
         (z - after).abs() < 1e-5 * after,

@@ -54,6 +54,22 @@ pub fn assert_usage_error(out: &Output, must_mention: &[&str]) -> String {
     stderr
 }
 
+/// Asserts that a group's JSON (from `evaluate`, or `reproduce`'s summary) has every design
+/// criterion, the test-pose deviation and cond(Psi) as positive numbers.
+pub fn assert_criteria_positive(group: &Value) {
+    for key in [
+        "classical",
+        "zhang2021",
+        "scaled_cond",
+        "d_optimal",
+        "relative_a",
+        "test_pose_mm",
+        "cond_psi",
+    ] {
+        assert!(group[key].as_f64().is_some_and(|v| v > 0.0), "{key}");
+    }
+}
+
 /// A fresh, not yet existing directory under the system's temporary directory, unique per test
 /// process and `name`.
 pub fn fresh_dir(name: &str) -> PathBuf {
