@@ -18,6 +18,18 @@ fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
     (a - truth).component_div(truth).amax()
 }
 
+/// `data` with independent Gaussian noise of standard deviation `sigma` (m) on every displacement
+/// component, drawn in measurement order from `rng`.
+fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec<Measurement> {
+    let noise = Normal::new(0.0, sigma).unwrap();
+    data.iter()
+        .map(|m| Measurement {
+            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(rng)),
+            ..m.clone()
+        })
+        .collect()
+}
+
 #[test]
 fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
@@ -52,14 +64,7 @@ fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let noise = Normal::new(0.0, setup.noise.sigma()).unwrap();
-    let noisy: Vec<Measurement> = data
-        .iter()
-        .map(|m| Measurement {
-            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
-            ..m.clone()
-        })
-        .collect();
+    let noisy = with_noise(&data, setup.noise.sigma(), &mut rng);
     let id = identify(&setup, &noisy).unwrap();
     let u = id.uncertainty.unwrap();
     assert_eq!(u.dof, 66);
@@ -84,19 +89,13 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
     let truth_h = setup.nominal_compliance();
     let truth_k = setup.nominal_stiffness;
     // Ten times the paper's noise, so that the intervals are wide enough to matter.
-    let noise = Normal::new(0.0, 10.0 * setup.noise.sigma()).unwrap();
+    let sigma = 10.0 * setup.noise.sigma();
     let sets = 300;
     let (mut covered_h, mut covered_k) = (0, 0);
     for set in 0..sets {
         let mut rng =
             ChaCha8Rng::seed_from_u64(0x5eed ^ (set as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-        let noisy: Vec<Measurement> = clean
-            .iter()
-            .map(|m| Measurement {
-                displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
-                ..m.clone()
-            })
-            .collect();
+        let noisy = with_noise(&clean, sigma, &mut rng);
         let u = identify(&setup, &noisy).unwrap().uncertainty.unwrap();
         for j in 0..6 {
             let [lo, hi] = u.compliance_ci95[j];
@@ -121,14 +120,7 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
 fn robust_modes_down_weight_an_injected_outlier() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let noise = Normal::new(0.0, setup.noise.sigma()).unwrap();
-    let mut data: Vec<Measurement> = paper_measurements(&setup)
-        .into_iter()
-        .map(|m| Measurement {
-            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
-            ..m
-        })
-        .collect();
+    let mut data = with_noise(&paper_measurements(&setup), setup.noise.sigma(), &mut rng);
     // Measurement 10 (posture 3, point 2), y: 0.3 mm off, about 30 sigma.
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
