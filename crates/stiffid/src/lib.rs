@@ -19,6 +19,7 @@
 //!   kinematic angles of the DH table or URDF (see [`AxisMap`]).
 #![deny(missing_docs)]
 
+mod builtin;
 pub mod design;
 mod error;
 pub mod kinematics;

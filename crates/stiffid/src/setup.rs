@@ -219,7 +219,7 @@ struct ConstraintsFile {
 }
 
 /// The built-in setups: `(name, TOML)`.
-const BUILTIN: &[(&str, &str)] = &[
+const BUILTIN: &crate::builtin::Table = &[
     (
         "zhang2021-comau-nj165",
         include_str!("../setups/zhang2021-comau-nj165.toml"),
@@ -232,7 +232,7 @@ const BUILTIN: &[(&str, &str)] = &[
 
 /// Names of the built-in setups.
 pub fn builtin_names() -> impl Iterator<Item = &'static str> {
-    BUILTIN.iter().map(|(n, _)| *n)
+    crate::builtin::names(BUILTIN)
 }
 
 /// The TOML text of a built-in setup.
@@ -240,15 +240,7 @@ pub fn builtin_names() -> impl Iterator<Item = &'static str> {
 /// # Errors
 /// [`Error::Unknown`] if no built-in setup has this name.
 pub fn builtin_text(name: &str) -> Result<&'static str> {
-    BUILTIN
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, t)| *t)
-        .ok_or_else(|| Error::Unknown {
-            kind: "setup",
-            name: name.to_string(),
-            known: builtin_names().collect::<Vec<_>>().join(", "),
-        })
+    crate::builtin::text(BUILTIN, "setup", name)
 }
 
 /// A built-in setup, its robot taken from the presets.

@@ -1,10 +1,10 @@
 //! Built-in robot presets, embedded in the library. Each file cites its source.
 
 use super::{file, Robot};
-use crate::{Error, Result};
+use crate::{builtin, Result};
 
 /// `(name, robot TOML)` of every preset.
-const PRESETS: &[(&str, &str)] = &[
+const PRESETS: &builtin::Table = &[
     (
         "comau-smart5-nj165-3.0",
         include_str!("../../presets/comau-smart5-nj165-3.0.toml"),
@@ -21,29 +21,21 @@ const PRESETS: &[(&str, &str)] = &[
 
 /// The preset names, in listing order.
 pub fn names() -> impl Iterator<Item = &'static str> {
-    PRESETS.iter().map(|(n, _)| *n)
+    builtin::names(PRESETS)
 }
 
 /// The robot TOML text of a preset.
 ///
 /// # Errors
-/// [`Error::Unknown`] if no preset has this name.
+/// [`Error::Unknown`](crate::Error::Unknown) if no preset has this name.
 pub fn text(name: &str) -> Result<&'static str> {
-    PRESETS
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, t)| *t)
-        .ok_or_else(|| Error::Unknown {
-            kind: "robot preset",
-            name: name.to_string(),
-            known: names().collect::<Vec<_>>().join(", "),
-        })
+    builtin::text(PRESETS, "robot preset", name)
 }
 
 /// The robot of a preset.
 ///
 /// # Errors
-/// [`Error::Unknown`] if no preset has this name.
+/// [`Error::Unknown`](crate::Error::Unknown) if no preset has this name.
 pub fn get(name: &str) -> Result<Robot> {
     file::parse(text(name)?, &format!("preset {name}"))
 }
