@@ -33,6 +33,19 @@ pub fn json<T: serde::Serialize>(value: &T) -> Result<String> {
     Ok(serde_json::to_string_pretty(value)? + "\n")
 }
 
+/// Prints `value` as pretty JSON if `as_json`, else the text `human` makes of it.
+pub fn print_json_or<T: serde::Serialize>(
+    as_json: bool,
+    value: &T,
+    human: impl FnOnce(&T) -> String,
+) -> Result<()> {
+    match as_json {
+        true => print!("{}", json(value)?),
+        false => print!("{}", human(value)),
+    }
+    Ok(())
+}
+
 /// An error and its causes on one line, outermost first.
 pub fn one_line_chain(e: &anyhow::Error) -> String {
     e.chain()

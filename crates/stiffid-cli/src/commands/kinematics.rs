@@ -98,12 +98,7 @@ pub fn run(args: &Args) -> Result<()> {
         dexterity: dexterity(&jacobian, length_mm * 1e-3),
         joint_positions_mm: frames.joints.map(|f| (f.translation.vector * 1e3).into()),
     };
-    if args.json {
-        print!("{}", output::json(&report)?);
-    } else {
-        print!("{}", text(&report));
-    }
-    Ok(())
+    output::print_json_or(args.json, &report, text)
 }
 
 /// Rejects a posture outside the robot's joint limits, naming the axis.

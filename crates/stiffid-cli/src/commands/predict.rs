@@ -1,7 +1,7 @@
 //! `stiffid predict`: the forward model (Zhang et al. 2021, Eq. 3-7) for one posture and wrench.
 
 use crate::load;
-use crate::output::json;
+use crate::output::print_json_or;
 use anyhow::{bail, Result};
 use nalgebra::Vector6;
 use serde::Serialize;
@@ -103,11 +103,7 @@ pub fn run(args: &Args) -> Result<()> {
             })
             .collect(),
     };
-    match args.json {
-        true => print!("{}", json(&result)?),
-        false => print!("{}", human(&result)),
-    }
-    Ok(())
+    print_json_or(args.json, &result, human)
 }
 
 fn human(r: &PredictJson) -> String {

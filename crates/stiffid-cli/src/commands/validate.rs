@@ -1,7 +1,7 @@
 //! `stiffid validate`: predicted against measured displacements for an identified stiffness
 //! (Zhang et al. 2021, Eq. 22, Table 7).
 
-use crate::output::json;
+use crate::output::print_json_or;
 use crate::{data, load};
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -76,11 +76,7 @@ pub fn run(args: &Args) -> Result<()> {
         max_delta_b_mm: v.max * 1e3,
         rms_delta_b_mm: v.rms * 1e3,
     };
-    match args.json {
-        true => print!("{}", json(&result)?),
-        false => print!("{}", human(&result)),
-    }
-    Ok(())
+    print_json_or(args.json, &result, human)
 }
 
 fn human(r: &ValidationJson) -> String {
