@@ -43,6 +43,24 @@ pub fn read(path: &Path) -> Result<String> {
     std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
 }
 
+/// A `--q-deg` posture: six comma-separated axis angles in degrees, within the robot's joint
+/// limits. Returns the angles in degrees and in radians; the error names the axis and the limits.
+pub fn posture(text: &str, robot: &Robot) -> Result<(Vector6<f64>, Vector6<f64>)> {
+    let q_deg = six(text, "--q-deg")?;
+    let q = q_deg.map(f64::to_radians);
+    if let Some(i) = robot.first_out_of_limits(&q) {
+        bail!(
+            "--q-deg: axis {} = {} deg is outside the joint limits [{:.2}, {:.2}] deg of {}",
+            i + 1,
+            q_deg[i],
+            robot.lower[i].to_degrees(),
+            robot.upper[i].to_degrees(),
+            robot.name
+        );
+    }
+    Ok((q_deg, q))
+}
+
 /// Six comma-separated finite numbers, e.g. `--q-deg 0,0,-90,0,0,0`; `what` names the option.
 pub fn six(text: &str, what: &str) -> Result<Vector6<f64>> {
     vector(text, what)

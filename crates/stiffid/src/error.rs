@@ -74,7 +74,7 @@ pub enum Error {
     },
 }
 
-/// Result with the library's [`Error`].
+/// Result with the library's [`enum@Error`].
 pub type Result<T> = std::result::Result<T, Error>;
 
 fn joint_list(joints: &[usize]) -> String {

@@ -2,9 +2,8 @@
 
 use crate::{load, output};
 use anyhow::{bail, Result};
-use nalgebra::Vector6;
 use serde::Serialize;
-use stiffid::{dexterity, Coordinates, Robot};
+use stiffid::{dexterity, Coordinates};
 
 /// Arguments of `stiffid kinematics`.
 #[derive(clap::Args)]
@@ -73,14 +72,12 @@ struct Report {
 /// Prints the kinematics of one posture.
 pub fn run(args: &Args) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
-    let q_deg = load::six(&args.q_deg, "--q-deg")?;
+    let (q_deg, q) = load::posture(&args.q_deg, &robot)?;
     let point_mm = load::vector::<3>(&args.point_mm, "--point-mm")?;
     let length_mm = args.characteristic_length_mm;
     if !(length_mm.is_finite() && length_mm > 0.0) {
         bail!("--characteristic-length-mm: expected a positive number of mm, got {length_mm}");
     }
-    let q = q_deg.map(f64::to_radians);
-    check_limits(&robot, &q, &q_deg)?;
     let coordinates = Coordinates::from(args.coordinates);
     let frames = robot.frames(&q);
     let point = point_mm * 1e-3;
@@ -99,21 +96,6 @@ pub fn run(args: &Args) -> Result<()> {
         joint_positions_mm: frames.joints.map(|f| (f.translation.vector * 1e3).into()),
     };
     output::print_json_or(args.json, &report, text)
-}
-
-/// Rejects a posture outside the robot's joint limits, naming the axis.
-fn check_limits(robot: &Robot, q: &Vector6<f64>, q_deg: &Vector6<f64>) -> Result<()> {
-    if let Some(i) = robot.first_out_of_limits(q) {
-        bail!(
-            "--q-deg: axis {} = {} deg is outside the joint limits [{}, {}] deg of {}",
-            i + 1,
-            q_deg[i],
-            robot.lower[i].to_degrees(),
-            robot.upper[i].to_degrees(),
-            robot.name
-        );
-    }
-    Ok(())
 }
 
 /// A matrix as an array of rows.

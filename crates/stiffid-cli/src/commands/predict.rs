@@ -52,17 +52,7 @@ struct PointJson {
 /// Predicts and prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let q_deg = load::six(&args.q_deg, "--q-deg")?;
-    let q = q_deg.map(f64::to_radians);
-    if let Some(i) = setup.robot.first_out_of_limits(&q) {
-        bail!(
-            "--q-deg: axis {} = {} deg is outside the robot's limits [{:.2}, {:.2}] deg",
-            i + 1,
-            q_deg[i],
-            setup.robot.lower[i].to_degrees(),
-            setup.robot.upper[i].to_degrees()
-        );
-    }
+    let (q_deg, q) = load::posture(&args.q_deg, &setup.robot)?;
     let w = load::numbers(&args.wrench, "--wrench")?;
     if w.len() != 3 && w.len() != 6 {
         bail!(

@@ -1,7 +1,7 @@
 //! The robot model: an immutable 6-axis serial chain of revolute joints.
 //!
 //! A [`Robot`] is built from a DH table ([`dh`]), a URDF file ([`urdf`]), a robot TOML file
-//! ([`file`]) or a built-in preset ([`presets`]). Its kinematics are in [`crate::kinematics`].
+//! ([`mod@file`]) or a built-in preset ([`presets`]). Its kinematics are in [`crate::kinematics`].
 
 pub mod dh;
 pub mod file;
