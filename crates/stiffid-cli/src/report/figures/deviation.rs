@@ -15,8 +15,18 @@ pub fn figure(study: &Study) -> Result<Figure> {
         "deviation_vs_noise",
         &format!(
             "Average deviation rate |k_id - k_true| / k_true of each joint against the noise level \
-             (variance multiple of sigma^2 = {:.3e} mm^2), {} Monte Carlo runs per point; solid: \
-             simulated mean, dashed: first-order prediction (the paper's Fig. 8). Log scale.",
+             (levels 1-{} are the variance multiples {} of sigma^2 = {:.3e} mm^2, the paper's \
+             Table 3), {} Monte Carlo runs per point; solid: simulated mean, dashed: first-order \
+             prediction (the paper's Fig. 8).",
+            study.setup.noise.levels.len(),
+            study
+                .setup
+                .noise
+                .levels
+                .iter()
+                .map(|m| m.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
             study.setup.noise.variance * 1e6,
             study.runs
         ),
