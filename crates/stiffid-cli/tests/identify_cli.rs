@@ -440,3 +440,33 @@ fn bad_stiffness_files_and_arguments_are_errors() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn robust_flag_alone_is_the_huber_fit_and_lists_down_weighted_rows() {
+    let data = fanuc_csv();
+    let data = data.to_str().unwrap();
+    let base = [
+        "identify",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--data",
+        data,
+        "--json",
+    ];
+    let alone = json(&stiffid(&[&base[..], &["--robust"]].concat()));
+    let huber = json(&stiffid(&[&base[..], &["--robust", "huber"]].concat()));
+    let plain = json(&stiffid(&base));
+    assert_eq!(alone, huber);
+    assert_ne!(
+        numbers(&alone["stiffness_nm_per_rad"]),
+        numbers(&plain["stiffness_nm_per_rad"]),
+        "the robust fit reweights the FANUC rows"
+    );
+    assert!(plain["robust"].is_null());
+    assert_eq!(alone["robust"]["loss"], "huber");
+    let down = alone["robust"]["down_weighted"].as_array().unwrap();
+    assert!(
+        !down.is_empty() && down.len() < 43,
+        "some, not all, of the 43 FANUC rows are down-weighted: {down:?}"
+    );
+}

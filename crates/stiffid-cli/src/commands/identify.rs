@@ -18,8 +18,8 @@ pub struct Args {
     /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm],dx_mm,dy_mm,dz_mm.
     #[arg(long)]
     data: PathBuf,
-    /// Down-weight outliers by iteratively reweighted least squares.
-    #[arg(long, value_enum)]
+    /// Down-weight outliers by iteratively reweighted least squares (`--robust` alone: huber).
+    #[arg(long, value_enum, num_args = 0..=1, default_missing_value = "huber")]
     robust: Option<Robust>,
     /// Print JSON instead of tables.
     #[arg(long)]
