@@ -10,8 +10,8 @@
 //! on `Psi`, never NaN.
 
 use super::Evaluator;
-use crate::dexterity;
 use crate::setup::Setup;
+use crate::{dexterity, Frames};
 use nalgebra::Vector6;
 use std::f64::consts::PI;
 use std::fmt;
@@ -124,14 +124,15 @@ impl Evaluation {
 pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
     postures
         .iter()
-        .map(|q| {
-            let j = setup
-                .robot
-                .frames(q)
-                .jacobian(&setup.tool.tcp, setup.springs);
-            dexterity(&j, setup.characteristic_length)
-        })
+        .map(|q| tcp_dexterity(setup, &setup.robot.frames(q)))
         .fold(0.0, f64::max)
+}
+
+/// `k(J_N)` (Eq. 20-21) of the setup's TCP in one posture, its Jacobian in the springs' coordinates
+/// and normalised by the setup's characteristic length; `+infinity` at a singularity.
+pub fn tcp_dexterity(setup: &Setup, frames: &Frames) -> f64 {
+    let j = frames.jacobian(&setup.tool.tcp, setup.springs);
+    dexterity(&j, setup.characteristic_length)
 }
 
 /// Predicted mean deviation rate (%) of each joint at noise multiple `m` from relative standard

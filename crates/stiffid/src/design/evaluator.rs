@@ -12,12 +12,12 @@
 //! - `relative-a`, relative standard deviations: row norms of `(R diag(h) / sigma)^-1`;
 //! - `test-pose`: `sigma |A R^-1|_F / sqrt(T)`, A the `T` test postures' rows.
 
-use super::criteria::{predicted_deviation_pct, Criterion, Evaluation};
+use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
 use crate::linalg::cond;
 use crate::lsq::Factor;
 use crate::observation::{posture_block, rope_observation_matrix};
 use crate::setup::Setup;
-use crate::{dexterity, Frames};
+use crate::Frames;
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use std::cell::OnceCell;
 
@@ -62,7 +62,7 @@ impl<'a> Evaluator<'a> {
         if criterion == Criterion::Classical {
             return postures
                 .iter()
-                .map(|q| self.dexterity(&self.setup.robot.frames(q)))
+                .map(|q| tcp_dexterity(self.setup, &self.setup.robot.frames(q)))
                 .fold(0.0, f64::max);
         }
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.posture(q)).collect();
@@ -140,17 +140,14 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// `k(J_N)` of the TCP (Eq. 20-21) in the springs' coordinates.
-    fn dexterity(&self, frames: &Frames) -> f64 {
-        let j = frames.jacobian(&self.setup.tool.tcp, self.setup.springs);
-        dexterity(&j, self.setup.characteristic_length)
-    }
-
     /// The classical index `max_i k(J_N)_i` of the postures' terms.
     fn classical(&self, terms: &[&PostureTerms]) -> f64 {
         terms
             .iter()
-            .map(|t| *t.dexterity.get_or_init(|| self.dexterity(&t.frames)))
+            .map(|t| {
+                *t.dexterity
+                    .get_or_init(|| tcp_dexterity(self.setup, &t.frames))
+            })
             .fold(0.0, f64::max)
     }
 
