@@ -1,30 +1,32 @@
 //! Postures files: CSV with the header `posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg`, one
-//! posture per row, axis angles in degrees, `posture` numbering the rows from 1.
+//! posture per row (at most [`limits::MAX_GROUP_POSTURES`]), axis angles in degrees within the
+//! setup's bounds, `posture` numbering the rows from 1.
 
-use crate::output::write_atomic;
 use anyhow::{bail, Context, Result};
 use nalgebra::Vector6;
 use std::path::Path;
-use stiffid::Robot;
+use stiffid::limits::{self, short};
+use stiffid::Setup;
 
 /// The header of a postures file.
 pub const HEADER: [&str; 7] = [
     "posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg",
 ];
 
-/// Reads a postures file; angles returned in rad. Every posture must lie within the robot's joint
-/// limits.
+/// Reads a postures file; angles returned in rad. Every posture must lie within the setup's bounds
+/// (which lie within the robot's joint limits).
 ///
 /// # Errors
 /// One line naming the file and line: unreadable file, wrong header, a row without 7 fields, a value
-/// that is not a finite number, an angle outside the robot's limits, or no posture at all.
-pub fn read(path: &Path, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
+/// that is not a finite number, an angle outside the setup's bounds, no posture at all or more than
+/// [`limits::MAX_GROUP_POSTURES`].
+pub fn read(path: &Path, setup: &Setup) -> Result<Vec<Vector6<f64>>> {
     let text = crate::load::read(path)?;
-    parse(&text, robot).with_context(|| path.display().to_string())
+    parse(&text, setup).with_context(|| path.display().to_string())
 }
 
 /// Parses the text of a postures file (see [`read`]); errors name the line.
-pub fn parse(text: &str, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
+pub fn parse(text: &str, setup: &Setup) -> Result<Vec<Vector6<f64>>> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -37,7 +39,13 @@ pub fn parse(text: &str, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
     for record in reader.records() {
         let record = record.context("cannot read a row")?;
         let line = record.position().map_or(0, |p| p.line());
-        postures.push(row(&record, line, robot)?);
+        if postures.len() == limits::MAX_GROUP_POSTURES {
+            bail!(
+                "line {line}: more than {} postures",
+                limits::MAX_GROUP_POSTURES
+            );
+        }
+        postures.push(row(&record, line, setup)?);
     }
     if postures.is_empty() {
         bail!("expected at least one posture row after the header");
@@ -45,7 +53,7 @@ pub fn parse(text: &str, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
     Ok(postures)
 }
 
-fn row(record: &csv::StringRecord, line: u64, robot: &Robot) -> Result<Vector6<f64>> {
+fn row(record: &csv::StringRecord, line: u64, setup: &Setup) -> Result<Vector6<f64>> {
     if record.len() != HEADER.len() {
         bail!("line {line}: expected 7 fields, got {}", record.len());
     }
@@ -57,19 +65,21 @@ fn row(record: &csv::StringRecord, line: u64, robot: &Robot) -> Result<Vector6<f
             .filter(|v: &f64| v.is_finite())
             .with_context(|| {
                 format!(
-                    "line {line}: {} '{field}' is not a finite number",
-                    HEADER[i + 1]
+                    "line {line}: {} '{}' is not a finite number",
+                    HEADER[i + 1],
+                    short(field)
                 )
             })?;
         q[i] = deg.to_radians();
     }
-    if let Some(i) = robot.first_out_of_limits(&q) {
+    let b = &setup.bounds;
+    if let Some(i) = (0..6).find(|&i| !(q[i] >= b.lower[i] && q[i] <= b.upper[i])) {
         bail!(
-            "line {line}: {} = {} is outside the robot's limits [{:.1}, {:.1}]",
+            "line {line}: {} = {} is outside the setup's bounds [{:.1}, {:.1}]",
             HEADER[i + 1],
-            q[i].to_degrees(),
-            robot.lower[i].to_degrees(),
-            robot.upper[i].to_degrees()
+            limits::number(q[i].to_degrees()),
+            b.lower[i].to_degrees(),
+            b.upper[i].to_degrees()
         );
     }
     Ok(q)
@@ -85,18 +95,13 @@ pub fn to_csv(postures: &[Vector6<f64>]) -> String {
     text
 }
 
-/// Writes postures (axis angles, rad) to a postures file, whole.
-pub fn write(path: &Path, postures: &[Vector6<f64>]) -> Result<()> {
-    write_atomic(path, to_csv(postures).as_bytes())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
-    fn robot() -> Robot {
-        stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap()
+    fn robot() -> Setup {
+        stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
     }
 
     #[test]
@@ -131,6 +136,6 @@ mod tests {
         let e = parse(&format!("{head}\n1,0,0,-90,0,0,9000\n"), &robot())
             .unwrap_err()
             .to_string();
-        assert!(e.contains("q6_deg") && e.contains("limits"), "{e}");
+        assert!(e.contains("q6_deg") && e.contains("bounds"), "{e}");
     }
 }

@@ -23,6 +23,7 @@ mod builtin;
 pub mod design;
 mod error;
 pub mod kinematics;
+pub mod limits;
 mod linalg;
 pub mod robot;
 

@@ -1,11 +1,11 @@
 //! `stiffid identify`: joint stiffness from a measurement file (Zhang et al. 2021, Eq. 10-14), with
 //! standard errors, 95% confidence intervals, residuals and an optional robust fit.
 
-use crate::output::{json, write_atomic};
+use crate::output::{self, json, OutFile};
 use crate::{data, load};
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stiffid::identify::{observations, Identification, Loss};
 use stiffid::kinematics::Coordinates;
 
@@ -95,10 +95,12 @@ struct RowJson {
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    if let Some(out) = &args.out {
-        refuse_to_overwrite(out, &args.data)?;
-    }
     let data = data::read(&args.data)?;
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| OutFile::prepare(p, "--out"))
+        .transpose()?;
     let name = args.data.display().to_string();
     let obs = observations(&setup, &data.measurements)
         .map_err(|e| data.explain(e))
@@ -111,29 +113,13 @@ pub fn run(args: &Args) -> Result<()> {
     .with_context(|| name.clone())?;
     let result = to_json(&args.setup, &name, setup.springs, &data, &id);
     let text = json(&result)?;
-    if let Some(out) = &args.out {
-        write_atomic(out, text.as_bytes())?;
+    if let Some(out) = &out {
+        out.write(text.as_bytes())?;
     }
     match args.json {
-        true => print!("{text}"),
-        false => print!("{}", human(&result, &id)),
+        true => output::print(&text),
+        false => output::print(&human(&result, &id)),
     }
-    Ok(())
-}
-
-/// `--out` must not be the data file (nor any existing file that is the same file).
-fn refuse_to_overwrite(out: &Path, data: &Path) -> Result<()> {
-    let same = match (out.canonicalize(), data.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        bail!(
-            "--out {}: refusing to write the result over the data file",
-            out.display()
-        );
-    }
-    Ok(())
 }
 
 fn mm(v: f64) -> f64 {

@@ -6,6 +6,7 @@ use anyhow::{bail, Result};
 use nalgebra::Vector6;
 use serde::Serialize;
 use std::path::PathBuf;
+use stiffid::limits;
 use stiffid::stiffness::deflection;
 
 /// Arguments of `stiffid predict`.
@@ -17,7 +18,8 @@ pub struct Args {
     /// Axis angles q1..q6, deg, comma-separated.
     #[arg(long, allow_hyphen_values = true)]
     q_deg: String,
-    /// Wrench at the loading point, base frame: fx,fy,fz (N) or fx,fy,fz,mx,my,mz (N, Nm).
+    /// Wrench at the loading point, base frame: fx,fy,fz (N) or fx,fy,fz,mx,my,mz (N, Nm); each
+    /// component within +-1e7.
     #[arg(long, allow_hyphen_values = true)]
     wrench: String,
     /// JSON file with `stiffness_nm_per_rad` (e.g. from `stiffid identify --out`); default: the
@@ -53,7 +55,7 @@ struct PointJson {
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     let (q_deg, q) = load::posture(&args.q_deg, &setup.robot)?;
-    let w = load::numbers(&args.wrench, "--wrench")?;
+    let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;
     if w.len() != 3 && w.len() != 6 {
         bail!(
             "--wrench: expected fx,fy,fz or fx,fy,fz,mx,my,mz, got {} numbers",

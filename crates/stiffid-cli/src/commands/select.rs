@@ -1,16 +1,17 @@
 //! `stiffid select`: the group of postures that minimises a design criterion (local SQP from a
 //! start group, or global multistart).
 
-use super::evaluate::{number, print_criteria, CriteriaJson};
-use crate::output::json;
+use super::evaluate::{criteria_text, identifiable, number, CriteriaJson};
+use crate::output::{self, json, OutFile};
 use crate::{load, postures};
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector6;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use stiffid::design::{self, evaluate, Criterion, SearchOptions, SearchOutcome};
+use stiffid::limits::{self, short};
 use stiffid::Setup;
 
 /// Arguments of `stiffid select`.
@@ -32,17 +33,18 @@ pub struct Args {
     /// Global search: local searches from --starts seeded start groups, the best kept.
     #[arg(long)]
     global: bool,
-    /// Number of postures (random or global starts) [default: 6].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(2..), conflicts_with = "start")]
+    /// Number of postures (random or global starts) [default: 6; 2 to 100].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(2..=limits::MAX_SEARCH_POSTURES), conflicts_with = "start")]
     postures: Option<u64>,
     /// Seed of the random start group or of the global starts.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Local searches of a global search [default: 32].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Local searches of a global search [default: 32; 1 to 10000].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     starts: Option<u64>,
-    /// Most criterion evaluations per local search, finite differences included [default: 6000].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Most criterion evaluations per local search, finite differences included [default: 6000;
+    /// 1 to 10000000].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_EVALS))]
     max_evals: Option<u64>,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
@@ -70,6 +72,12 @@ struct SelectJson<'a> {
 /// Runs the search, writes the postures and prints the result.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
+    let n = args.postures.unwrap_or(6) as usize;
+    let start = match args.global {
+        true => None,
+        false => Some(start_group(args, &setup, n)?),
+    };
+    let out = OutFile::prepare(&args.out, "--out")?;
     let mut options = SearchOptions {
         seed: args.seed,
         ..SearchOptions::default()
@@ -80,19 +88,24 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(m) = args.max_evals {
         options.max_evals = m as usize;
     }
-    let n = args.postures.unwrap_or(6) as usize;
     let started = Instant::now();
-    let (search, outcome) = if args.global {
-        ("global", global(&setup, args.criterion, n, &options)?)
-    } else {
-        let start = start_group(args, &setup, n)?;
-        let bar = spinner(&format!("local search ({})", args.criterion));
-        let outcome = design::local(&setup, args.criterion, &start, &options);
-        bar.finish_and_clear();
-        ("local", outcome?)
+    let (search, outcome) = match &start {
+        None => ("global", global(&setup, args.criterion, n, &options)?),
+        Some(start) => {
+            let bar = spinner(&format!("local search ({})", args.criterion));
+            let outcome = design::local(&setup, args.criterion, start, &options);
+            bar.finish_and_clear();
+            ("local", outcome?)
+        }
     };
     let elapsed = started.elapsed().as_secs_f64();
-    postures::write(&args.out, &outcome.postures)?;
+    identifiable(&setup, &outcome.postures).with_context(|| {
+        format!(
+            "setup {}: the best group the search found",
+            short(&setup.name)
+        )
+    })?;
+    out.write(postures::to_csv(&outcome.postures).as_bytes())?;
     let e = evaluate(&setup, &outcome.postures);
     if args.json {
         let doc = SelectJson {
@@ -108,13 +121,12 @@ pub fn run(args: &Args) -> Result<()> {
             criteria: CriteriaJson::from(&e),
             out: args.out.display().to_string(),
         };
-        print!("{}", json(&doc)?);
-        return Ok(());
+        return output::print(&json(&doc)?);
     }
-    print_outcome(args, &setup, search, &outcome, elapsed);
-    print_criteria(&e);
-    println!("postures written to {}", args.out.display());
-    Ok(())
+    let mut text = outcome_text(args, &setup, search, &outcome, elapsed);
+    text += &criteria_text(&e);
+    text += &format!("postures written to {}\n", out.path().display());
+    output::print(&text)
 }
 
 fn global(
@@ -136,8 +148,8 @@ fn global(
     Ok(outcome?)
 }
 
-/// The start group of a local search: the --start file (refusing to overwrite it with --out) or
-/// a seeded random group.
+/// The start group of a local search: the --start file (read as an input, so --out cannot
+/// overwrite it) or a seeded random group.
 fn start_group(args: &Args, setup: &Setup, n: usize) -> Result<Vec<Vector6<f64>>> {
     let Some(path) = &args.start else {
         if !args.start_random {
@@ -145,39 +157,16 @@ fn start_group(args: &Args, setup: &Setup, n: usize) -> Result<Vec<Vector6<f64>>
         }
         return Ok(design::random_group(setup, n, args.seed));
     };
-    if same_file(path, &args.out) {
+    let start = postures::read(path, setup)?;
+    let most = limits::MAX_SEARCH_POSTURES as usize;
+    if start.len() < 2 || start.len() > most {
         bail!(
-            "--out {}: refusing to overwrite the --start file",
-            args.out.display()
+            "{}: a search needs 2 to {most} postures, the file holds {}",
+            path.display(),
+            start.len()
         );
     }
-    let start = postures::read(path, &setup.robot)?;
-    for (i, q) in start.iter().enumerate() {
-        let b = &setup.bounds;
-        if let Some(a) = (0..6).find(|&a| q[a] < b.lower[a] || q[a] > b.upper[a]) {
-            bail!(
-                "{}: posture {} (line {}): q{}_deg = {} is outside the setup's bounds [{}, {}]",
-                path.display(),
-                i + 1,
-                i + 2,
-                a + 1,
-                q[a].to_degrees(),
-                b.lower[a].to_degrees(),
-                b.upper[a].to_degrees()
-            );
-        }
-    }
-    if start.len() < 2 {
-        bail!("{}: a search needs at least 2 postures", path.display());
-    }
     Ok(start)
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => a == b,
-    }
 }
 
 fn spinner(message: &str) -> ProgressBar {
@@ -193,24 +182,29 @@ fn degrees(postures: &[Vector6<f64>]) -> Vec<[f64; 6]> {
         .collect()
 }
 
-fn print_outcome(args: &Args, setup: &Setup, search: &str, o: &SearchOutcome, elapsed: f64) {
-    println!(
-        "{search} search of {} postures on setup {} (seed {})",
-        o.postures.len(),
-        setup.name,
-        args.seed
-    );
+fn outcome_text(
+    args: &Args,
+    setup: &Setup,
+    search: &str,
+    o: &SearchOutcome,
+    elapsed: f64,
+) -> String {
     let factor = o.start_value / o.value;
-    println!(
-        "{}: {} -> {} ({} lower)",
+    format!(
+        "{search} search of {} postures on setup {} (seed {})\n\
+         {}: {} -> {} ({})\n\
+         {} evaluations in {elapsed:.2} s\n\
+         criteria of the result (smaller is better):\n",
+        o.postures.len(),
+        short(&setup.name),
+        args.seed,
         args.criterion,
         number(o.start_value),
         number(o.value),
         match factor.is_finite() {
-            true => format!("{factor:.3}x"),
-            false => "from a rank-deficient start".into(),
-        }
-    );
-    println!("{} evaluations in {elapsed:.2} s", o.evaluations);
-    println!("criteria of the result (smaller is better):");
+            true => format!("{factor:.3}x lower"),
+            false => "the start's criterion was infinite".into(),
+        },
+        o.evaluations,
+    )
 }

@@ -1,5 +1,6 @@
 //! `stiffid setups [show NAME]`: the built-in setups.
 
+use crate::output;
 use anyhow::Result;
 use stiffid::setup;
 
@@ -22,12 +23,13 @@ enum Show {
 /// Lists the setups, or prints one.
 pub fn run(args: &Args) -> Result<()> {
     match &args.show {
-        Some(Show::Show { name }) => print!("{}", setup::builtin_text(name)?),
+        Some(Show::Show { name }) => output::print(setup::builtin_text(name)?),
         None => {
+            let mut text = String::new();
             for name in setup::builtin_names() {
-                println!("{name}\n  {}", setup::builtin(name)?.description);
+                text += &format!("{name}\n  {}\n", setup::builtin(name)?.description);
             }
+            output::print(&text)
         }
     }
-    Ok(())
 }
