@@ -175,14 +175,19 @@ pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
 }
 
 /// The joint stiffness (Nm/rad) in a JSON file's key `stiffness_nm_per_rad`: six numbers within
-/// [`limits::STIFFNESS_NM_PER_RAD`], for example the result of `stiffid identify --out`. Other keys are ignored.
+/// [`limits::STIFFNESS_NM_PER_RAD`], for example the result of `stiffid identify --out`. Other
+/// keys are ignored.
 pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
+    parse_stiffness(&read(path)?, &path.display().to_string())
+}
+
+/// [`stiffness`] of the text of a file named `name`.
+pub fn parse_stiffness(text: &str, name: &str) -> Result<Vector6<f64>> {
     #[derive(serde::Deserialize)]
     struct StiffnessFile {
         stiffness_nm_per_rad: [f64; 6],
     }
-    let name = path.display();
-    let file: StiffnessFile = serde_json::from_str(&read(path)?).with_context(|| {
+    let file: StiffnessFile = serde_json::from_str(text).with_context(|| {
         format!("{name}: expected JSON with the key stiffness_nm_per_rad (six numbers, Nm/rad)")
     })?;
     let k = file.stiffness_nm_per_rad;

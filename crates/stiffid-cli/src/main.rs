@@ -6,6 +6,8 @@ mod data;
 mod load;
 mod output;
 mod postures;
+#[cfg(test)]
+mod proptests;
 mod report;
 mod study;
 

@@ -33,6 +33,7 @@ pub mod robust;
 pub use robust::{Loss, RobustFit};
 
 use crate::kinematics::Frames;
+use crate::limits;
 use crate::lsq::Factor;
 use crate::observation::point_rows;
 use crate::stiffness::joint_torques;
@@ -74,7 +75,8 @@ pub struct Observations {
 /// # Errors
 /// [`Error::Measurement`] naming the measurement (1-based) and what is wrong: a measuring point the
 /// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
-/// `q6`), a non-finite `wrench` or `displacement`, or a posture label used with different axis
+/// `q6`), a `wrench` component outside [`limits::WRENCH`] or a `displacement` outside
+/// [`limits::DISPLACEMENT_MM`] (non-finite included), or a posture label used with different axis
 /// angles (`posture`).
 pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Observations> {
     let n = measurements.len();
@@ -143,14 +145,16 @@ fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
         };
         return Err(error(format!("q{}", axis + 1), message));
     }
-    if !meas.wrench.iter().all(|v| v.is_finite()) {
-        return Err(error("wrench".into(), "expected finite numbers".into()));
+    let out_of = |values: &[f64], range: &limits::Range| {
+        let v = values.iter().find(|v| !range.contains(**v))?;
+        Some(format!("{} is outside {range}", limits::number(*v)))
+    };
+    if let Some(message) = out_of(meas.wrench.as_slice(), &limits::WRENCH) {
+        return Err(error("wrench".into(), message));
     }
-    if !meas.displacement.iter().all(|v| v.is_finite()) {
-        return Err(error(
-            "displacement".into(),
-            "expected finite numbers".into(),
-        ));
+    let displacement_mm = meas.displacement * 1e3;
+    if let Some(message) = out_of(displacement_mm.as_slice(), &limits::DISPLACEMENT_MM) {
+        return Err(error("displacement".into(), message));
     }
     Ok(())
 }
@@ -169,7 +173,7 @@ fn check_label<'a>(
                 field: "posture".into(),
                 message: format!(
                     "posture '{}' was measured before at other axis angles (give each posture its own label)",
-                    meas.posture
+                    limits::short(&meas.posture)
                 ),
             })
         }
