@@ -16,7 +16,12 @@ use std::process::ExitCode;
 
 /// Joint stiffness identification of industrial robots, and which postures to measure in.
 #[derive(Parser)]
-#[command(name = "stiffid", version, about)]
+#[command(
+    name = "stiffid",
+    version,
+    about,
+    after_help = "Input files are read up to 64 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; the README's 'Limits and safety' lists them all."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
