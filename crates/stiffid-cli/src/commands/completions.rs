@@ -1,8 +1,8 @@
 //! `stiffid completions SHELL` and `stiffid man [SUBCOMMAND]`: shell completions and man pages,
 //! generated from the command's own definition (clap_complete, clap_mangen), so they never lag it.
 
+use crate::output::write_stdout;
 use anyhow::{bail, Result};
-use std::io::Write;
 
 /// Arguments of `stiffid completions`.
 #[derive(clap::Args)]
@@ -50,11 +50,4 @@ pub fn man(args: &ManArgs, command: clap::Command) -> Result<()> {
     let mut roff = Vec::new();
     clap_mangen::Man::new(page).render(&mut roff)?;
     write_stdout(&roff)
-}
-
-/// Writes `bytes` to standard output, a write error (a full disk, a closed pipe) being an error.
-fn write_stdout(bytes: &[u8]) -> Result<()> {
-    let mut out = std::io::stdout().lock();
-    out.write_all(bytes)?;
-    Ok(out.flush()?)
 }

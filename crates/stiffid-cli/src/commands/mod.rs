@@ -9,5 +9,6 @@ pub mod reproduce;
 pub mod robots;
 pub mod select;
 pub mod setups;
+pub mod setups_new;
 pub mod simulate;
 pub mod validate;
