@@ -65,9 +65,14 @@ pub fn setup(arg: &str) -> Result<Setup> {
             false => e.into(),
         });
     }
-    let text = read(path)?;
-    let dir = path.parent().unwrap_or(Path::new("."));
-    Ok(setup::parse(&text, arg, |r, tip| {
+    setup_text(&read(path)?, arg, path.parent().unwrap_or(Path::new("")))
+}
+
+/// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
+/// file it names is looked for; a preset name wins over a path that does not exist).
+pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
+    let arg = source_name;
+    Ok(setup::parse(text, arg, |r, tip| {
         robot_in(dir, r, tip).map_err(|e| stiffid::Error::Parse {
             source_name: format!("{arg}: robot"),
             message: e.to_string(),

@@ -17,13 +17,21 @@ pub use file::OutFile;
 use anyhow::{Context, Result};
 use std::io::Write;
 
-/// Writes `text` to stdout (locked, flushed).
+/// Writes `text` to stdout (locked, flushed): [`write_stdout`] of its bytes.
 ///
 /// # Errors
 /// When stdout cannot take it (for example `> /dev/full`).
 pub fn print(text: &str) -> Result<()> {
+    write_stdout(text.as_bytes())
+}
+
+/// Writes `bytes` to stdout (locked, flushed).
+///
+/// # Errors
+/// When stdout cannot take them (for example `> /dev/full`).
+pub fn write_stdout(bytes: &[u8]) -> Result<()> {
     let mut out = std::io::stdout().lock();
-    out.write_all(text.as_bytes())
+    out.write_all(bytes)
         .and_then(|_| out.flush())
         .context("stdout: cannot write")
 }
