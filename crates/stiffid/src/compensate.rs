@@ -34,7 +34,7 @@
 
 use crate::deflection::{base_wrench, Frame, Points};
 use crate::ik::{self, pose_error, tool_pose};
-use crate::kinematics::Coordinates;
+use crate::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Setup};
 use nalgebra::{Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
@@ -175,24 +175,27 @@ impl<'a> Model<'a> {
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
     /// TCP (module docs).
     pub fn loaded_pose(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
+        self.loaded(&self.setup.robot.frames(q), q, wrench)
+    }
+
+    /// [`Model::loaded_pose`] with the frames of `q` given.
+    fn loaded(&self, frames: &Frames, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
         let tcp = &self.setup.tool.tcp;
-        let frames = self.setup.robot.frames(q);
         let j = frames.jacobian(tcp, self.setup.springs);
         let dq = self.to_axis * j.tr_mul(wrench).component_mul(&self.compliance.h);
         tool_pose(&self.setup.robot.frames(&(q + dq)), tcp)
     }
 
-    /// The TCP deflection (Eq. 6) at posture `q` under `wrench` (base frame) and its standard
-    /// deviation.
+    /// The TCP deflection (Eq. 6) in the posture `frames` under `wrench` (base frame) and its
+    /// standard deviation.
     fn deflection(
         &self,
-        q: &Vector6<f64>,
+        frames: &Frames,
         wrench: &Vector6<f64>,
     ) -> (Vector6<f64>, Option<Vector6<f64>>) {
-        let frames = self.setup.robot.frames(q);
         let tcp = &self.setup.tool.tcp;
         let points = Points {
-            frames: &frames,
+            frames,
             springs: self.setup.springs,
             loaded: tcp,
             observed: tcp,
@@ -213,26 +216,24 @@ impl<'a> Model<'a> {
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
         let tcp = &self.setup.tool.tcp;
-        let target = tool_pose(&self.setup.robot.frames(q), tcp);
+        let mut frames = self.setup.robot.frames(q);
+        let target = tool_pose(&frames, tcp);
         let mut qc = *q;
         let mut iterations = 0;
         loop {
-            let e = pose_error(&target, &self.loaded_pose(&qc, wrench));
+            let e = pose_error(&target, &self.loaded(&frames, &qc, wrench));
             let (ep, eo) = (e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm());
             if (ep <= TOLERANCE_M && eo <= TOLERANCE_RAD) || iterations == MAX_ITERATIONS {
                 return Ok((qc, ep, eo, iterations));
             }
-            let j = self
-                .setup
-                .robot
-                .frames(&qc)
-                .jacobian(tcp, Coordinates::Axis);
+            let j = frames.jacobian(tcp, Coordinates::Axis);
             let step = j.lu().solve(&e).ok_or_else(|| Error::InvalidField {
                 field: "posture".into(),
                 message: "singular: the TCP Jacobian is not invertible, no compensation exists"
                     .into(),
             })?;
             qc += step;
+            frames = self.setup.robot.frames(&qc);
             iterations += 1;
         }
     }
@@ -271,13 +272,15 @@ pub fn path(
                 .compensate(q, &wrenches[i])
                 .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
             check_compensated(setup, points[i].line, &qc, ep, eo)?;
-            let (deflection, deflection_std) = model.deflection(q, &wrenches[i]);
-            let deflection_before = options
-                .free_tool_axis
-                .map(|_| model.deflection(&nominal[i], &wrenches[i]).0);
+            let frames = setup.robot.frames(q);
+            let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
+            let deflection_before = options.free_tool_axis.map(|_| {
+                let frames = setup.robot.frames(&nominal[i]);
+                model.deflection(&frames, &wrenches[i]).0
+            });
             Ok(Compensated {
                 q: *q,
-                pose: tool_pose(&setup.robot.frames(q), &setup.tool.tcp),
+                pose: tool_pose(&frames, &setup.tool.tcp),
                 wrench: wrenches[i],
                 deflection,
                 deflection_std,
@@ -488,7 +491,10 @@ fn column(
                 }
             };
             previous = q;
-            q.map(|q| (q, model.deflection(&q, w).0.fixed_rows::<3>(0).norm()))
+            q.map(|q| {
+                let d = model.deflection(&setup.robot.frames(&q), w).0;
+                (q, d.fixed_rows::<3>(0).norm())
+            })
         })
         .collect()
 }
