@@ -25,7 +25,7 @@
 use crate::kinematics::{Coordinates, Frames};
 use nalgebra::{Matrix6, Vector3, Vector6};
 
-/// `C_x = J_p diag(h) J_p^T` (6x6, base frame, SI blocks as in the module docs) of the tool point
+/// `C_x = J_p diag(h) J_p^T` (6x6, symmetric, base frame, SI blocks as in the module docs) of the tool point
 /// `point` (flange frame, m) in the posture `frames`, with joint compliance `h` (rad/Nm) in the
 /// coordinates `springs`.
 pub fn compliance(
@@ -39,10 +39,15 @@ pub fn compliance(
     for (c, mut col) in jh.column_iter_mut().enumerate() {
         col *= h[c];
     }
-    jh * j.transpose()
+    symmetric(jh * j.transpose())
 }
 
-/// `K_x = J_p^-T diag(k) J_p^-1 = C_x^-1` (6x6, base frame, SI blocks as in the module docs) of
+/// `(A + A^T) / 2`: exactly symmetric, as `C_x` and `K_x` are in exact arithmetic.
+fn symmetric(a: Matrix6<f64>) -> Matrix6<f64> {
+    (a + a.transpose()) * 0.5
+}
+
+/// `K_x = J_p^-T diag(k) J_p^-1 = C_x^-1` (6x6, symmetric, base frame, SI blocks as in the module docs) of
 /// the tool point `point` (flange frame, m), with joint stiffness `k` (Nm/rad); computed from the
 /// inverse Jacobian, not by inverting `C_x` (whose condition number is the square of `J_p`'s).
 /// `None` where `J_p` is singular (numerically: not invertible or non-finite).
@@ -57,6 +62,6 @@ pub fn stiffness(
     for (r, mut row) in kj.row_iter_mut().enumerate() {
         row *= k[r];
     }
-    let kx = inv.transpose() * kj;
+    let kx = symmetric(inv.transpose() * kj);
     kx.iter().all(|v| v.is_finite()).then_some(kx)
 }

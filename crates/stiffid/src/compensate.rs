@@ -123,6 +123,9 @@ pub struct Compensated {
     pub deflection: Vector6<f64>,
     /// Its standard deviation per coordinate, given the compliance covariance.
     pub deflection_std: Option<Vector6<f64>>,
+    /// The standard deviation of the translation's length `|dp|` (first order:
+    /// `sqrt(u^T Cov(dp) u)`, `u = dp / |dp|`), m.
+    pub translation_norm_std: Option<f64>,
     /// The compensated axis angles `q_c`, rad.
     pub q_compensated: Vector6<f64>,
     /// `|p_nominal - p_loaded(q_c)|`, m.
@@ -192,7 +195,7 @@ impl<'a> Model<'a> {
         &self,
         frames: &Frames,
         wrench: &Vector6<f64>,
-    ) -> (Vector6<f64>, Option<Vector6<f64>>) {
+    ) -> (Vector6<f64>, Option<(Vector6<f64>, f64)>) {
         let tcp = &self.setup.tool.tcp;
         let points = Points {
             frames,
@@ -201,7 +204,15 @@ impl<'a> Model<'a> {
             observed: tcp,
         };
         let d = points.deflection(wrench, &self.compliance.h);
-        let std = self.compliance.covariance.as_ref().map(|c| d.std(c));
+        let std = self.compliance.covariance.as_ref().map(|c| {
+            let cov = d.covariance(c);
+            let u = d.displacement.fixed_rows::<3>(0).normalize();
+            let along = (u.transpose() * cov.fixed_view::<3, 3>(0, 0) * u)[0];
+            (
+                cov.diagonal().map(|v| v.max(0.0).sqrt()),
+                along.max(0.0).sqrt(),
+            )
+        });
         (d.displacement, std)
     }
 
@@ -283,7 +294,8 @@ pub fn path(
                 pose: tool_pose(&frames, &setup.tool.tcp),
                 wrench: wrenches[i],
                 deflection,
-                deflection_std,
+                deflection_std: deflection_std.map(|s| s.0),
+                translation_norm_std: deflection_std.map(|s| s.1),
                 q_compensated: qc,
                 residual_position: ep,
                 residual_rotation: eo,

@@ -12,12 +12,14 @@ use plotters::prelude::*;
 use stiffid::Setup;
 
 /// The points of one posture's stick figure (base frame, m), and its loading point.
-struct Stick {
-    chain: Vec<Vector3<f64>>,
-    loading_point: Vector3<f64>,
+pub struct Stick {
+    /// Base, joint origins, flange, TCP, base frame, m.
+    pub chain: Vec<Vector3<f64>>,
+    /// The loading point, base frame, m.
+    pub loading_point: Vector3<f64>,
 }
 
-fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
+pub fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
     let frames = setup.robot.frames(q);
     let mut chain = vec![setup.robot.base.translation.vector];
     chain.extend(frames.axis_points.iter().copied());
@@ -75,7 +77,7 @@ fn data_range(study: &Study) -> [(f64, f64); 3] {
 
 /// The points without those that coincide with the previous one (a zero-length segment would
 /// make a thick line's outline degenerate), closer than 0.1 mm.
-fn distinct(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
+pub fn distinct(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
     let mut out: Vec<(f64, f64)> = Vec::new();
     for p in points {
         if out
@@ -89,7 +91,7 @@ fn distinct(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
 }
 
 /// Ranges of two axes widened so one metre has the same length on both in a `w x h` pixel area.
-fn equal_aspect(x: (f64, f64), y: (f64, f64), w: f64, h: f64) -> ((f64, f64), (f64, f64)) {
+pub fn equal_aspect(x: (f64, f64), y: (f64, f64), w: f64, h: f64) -> ((f64, f64), (f64, f64)) {
     let scale = ((x.1 - x.0) / w).max((y.1 - y.0) / h);
     let widen = |r: (f64, f64), px: f64| {
         let c = 0.5 * (r.0 + r.1);
