@@ -220,7 +220,7 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
     let cases = [
         (
             "missing.csv",
-            format!("x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n\n"),
+            "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n\n".to_string(),
             vec!["missing.csv", "line 1", "column fz_n"],
         ),
         (

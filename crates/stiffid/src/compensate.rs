@@ -419,7 +419,7 @@ fn optimise_tool_axis(
     let (spacing, reach) = free.grid();
     let half = (free.range / spacing + 1e-9).floor() as isize;
     let angles: Vec<f64> = (-half..=half).map(|g| g as f64 * spacing).collect();
-    let columns: Vec<Vec<Option<(Vector6<f64>, f64)>>> = angles
+    let columns: Vec<Column> = angles
         .par_iter()
         .map(|&phi| column(model, nominal, wrenches, phi, ik_options))
         .collect();
@@ -469,6 +469,10 @@ fn optimise_tool_axis(
         .unzip()
 }
 
+/// One angle's posture and TCP translation deflection (m) at every path point; `None` where
+/// inverse kinematics fails.
+type Column = Vec<Option<(Vector6<f64>, f64)>>;
+
 /// The postures of the path turned by `phi` about tool z, continued along the path, and their TCP
 /// translation deflection (m); `None` where inverse kinematics fails.
 fn column(
@@ -477,7 +481,7 @@ fn column(
     wrenches: &[Vector6<f64>],
     phi: f64,
     ik_options: &ik::Options,
-) -> Vec<Option<(Vector6<f64>, f64)>> {
+) -> Column {
     let setup = model.setup;
     let tcp = &setup.tool.tcp;
     let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi);
