@@ -3,9 +3,8 @@
 
 mod common;
 
-use common::{assert_success, assert_usage_error, fresh_dir, json, stiffid};
-use serde_json::Value;
-use std::path::{Path, PathBuf};
+use common::{assert_success, assert_usage_error, json, numbers, stiffid, temp_dir, write_file};
+use std::path::Path;
 
 const FANUC_Q: &str = "--q-deg=-59.991,-16.693,-28.93,3.788,-62.93,144.919";
 
@@ -15,14 +14,6 @@ fn example(name: &str) -> String {
         .join(name)
         .to_string_lossy()
         .into_owned()
-}
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 #[test]
@@ -88,8 +79,7 @@ fn a_tool_frame_wrench_predicts_what_the_rotated_base_wrench_does() {
 
 #[test]
 fn identified_covariance_gives_standard_deviations() {
-    let dir = fresh_dir("covariance");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("covariance");
     let out = dir.join("k.json");
     let data = example("data/fanuc-r2000ic-165f/measurements.csv");
     let id = json(&stiffid(&[
@@ -153,9 +143,8 @@ fn compensate(path: &str, out: &Path, extra: &[&str]) -> std::process::Output {
 
 #[test]
 fn the_milling_example_is_compensated_with_a_report() {
-    let dir = fresh_dir("milling");
+    let dir = temp_dir("milling");
     let out = dir.join("out.csv");
-    std::fs::create_dir_all(&dir).unwrap();
     let report = dir.join("report");
     let path = example("milling/path.csv");
     let r = json(&compensate(
@@ -204,16 +193,9 @@ fn the_milling_example_is_compensated_with_a_report() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
 #[test]
 fn bad_path_files_exit_2_naming_line_and_column_without_output() {
-    let dir = fresh_dir("badpath");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("badpath");
     let out = dir.join("out.csv");
     let report = dir.join("report");
     let pose = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n";
@@ -235,7 +217,7 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
         ),
     ];
     for (name, text, mentions) in cases {
-        let path = write(&dir, name, &text);
+        let path = write_file(&dir, name, &text);
         let o = compensate(
             path.to_str().unwrap(),
             &out,
@@ -246,7 +228,7 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
         assert!(!report.exists(), "{name}: wrote the report");
     }
     // The output is never one of the inputs, and a foreign directory is not written into.
-    let path = write(
+    let path = write_file(
         &dir,
         "ok.csv",
         &format!("{pose}\n1300,-800,400,180,0,0,1,2,3\n"),
@@ -255,7 +237,7 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
     assert_usage_error(&o, &["refusing"]);
     let foreign = dir.join("foreign");
     std::fs::create_dir_all(&foreign).unwrap();
-    write(&foreign, "notes.txt", "mine");
+    write_file(&foreign, "notes.txt", "mine");
     let o = compensate(
         path.to_str().unwrap(),
         &out,

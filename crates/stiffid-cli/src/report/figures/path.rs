@@ -1,7 +1,7 @@
 //! The figures of `stiffid compensate --report`: the TCP deflection along the path before and
 //! after compensation with its uncertainty band, and the path drawn over the robot.
 
-use super::postures::{distinct, equal_aspect, stick};
+use super::postures::{draw_stick, projection, stick};
 use super::{colour, failed, render, short, Figure, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
@@ -156,42 +156,15 @@ impl PathOverRobot<'_> {
         for (a, b) in all {
             (xr, yr) = ((xr.0.min(a), xr.1.max(a)), (yr.0.min(b), yr.1.max(b)));
         }
-        let (w, h) = area.dim_in_pixel();
-        let (xr, yr) = equal_aspect(
+        let (mut chart, _) = projection(
+            area,
+            name,
+            v,
             (xr.0 - 0.2, xr.1 + 0.2),
             (yr.0 - 0.2, yr.1 + 0.2),
-            w as f64 - 90.0,
-            h as f64 - 90.0,
-        );
-        let mut chart = ChartBuilder::on(area)
-            .caption(name, ("sans-serif", 18))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(45)
-            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-            .map_err(failed)?;
-        chart
-            .configure_mesh()
-            .x_desc("x, m")
-            .y_desc(if v == 2 { "z, m" } else { "y, m" })
-            .label_style(("sans-serif", 13))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(failed)?;
+        )?;
         for (k, s) in sticks.iter().enumerate() {
-            let c = colour(k + 2);
-            let pts = distinct(s.chain.iter().map(|p| (p.x, p[v])));
-            for link in pts.windows(2) {
-                chart
-                    .draw_series(LineSeries::new(
-                        link.to_vec(),
-                        ShapeStyle::from(c).stroke_width(3),
-                    ))
-                    .map_err(failed)?;
-            }
-            chart
-                .draw_series(pts.iter().map(|p| Circle::new(*p, 3, c.filled())))
-                .map_err(failed)?;
+            draw_stick(&mut chart, s, v, colour(k + 2))?;
         }
         chart
             .draw_series(LineSeries::new(tcp, ShapeStyle::from(RED).stroke_width(2)))
