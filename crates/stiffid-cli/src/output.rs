@@ -46,6 +46,13 @@ pub fn refuse_to_overwrite(out: &Path, inputs: &[&Path]) -> Result<()> {
     Ok(())
 }
 
+/// Writes `bytes` to standard output; a write error (a full disk, a closed pipe) is an error.
+pub fn write_stdout(bytes: &[u8]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)?;
+    Ok(out.flush()?)
+}
+
 /// Pretty JSON of `value`, with a final newline.
 pub fn json<T: serde::Serialize>(value: &T) -> Result<String> {
     Ok(serde_json::to_string_pretty(value)? + "\n")

@@ -2,7 +2,7 @@
 //! wrench, and the compensated axis angles that cancel it ([`stiffid::compensate`]).
 
 use crate::load::{self, WrenchFrame};
-use crate::output::{json, refuse_to_overwrite, write_atomic};
+use crate::output::{print_json_or, refuse_to_overwrite, write_atomic};
 use crate::report::{self, compensation};
 use anyhow::{Context, Result};
 use nalgebra::Vector6;
@@ -98,14 +98,9 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(dir) = &args.report {
         compensation::write(dir, &setup, &results, &table, &document)?;
     }
-    match args.json {
-        true => print!("{}", json(&document)?),
-        false => print!(
-            "{}",
-            summary.human(args, &setup, compliance.covariance.is_some())
-        ),
-    }
-    Ok(())
+    print_json_or(args.json, &document, |_| {
+        summary.human(args, &setup, compliance.covariance.is_some())
+    })
 }
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
