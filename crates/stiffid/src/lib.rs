@@ -21,6 +21,7 @@
 
 mod builtin;
 pub mod cartesian;
+pub mod cell;
 pub mod compensate;
 pub mod deflection;
 pub mod design;
