@@ -66,8 +66,12 @@ fn check_postures(text: &str, setup: &Setup) {
 }
 
 fn check_stiffness(text: &str) {
-    if let Ok(k) = load::parse_stiffness(text, "k.json") {
-        assert!(k.iter().all(|v| STIFFNESS_NM_PER_RAD.contains(*v)));
+    if let Ok(k) = load::parse_identified(text, "k.json") {
+        assert!(k
+            .stiffness
+            .iter()
+            .all(|v| STIFFNESS_NM_PER_RAD.contains(*v)));
+        assert!(k.covariance.is_none_or(|c| c.iter().all(|v| v.is_finite())));
     }
 }
 
@@ -75,7 +79,7 @@ fn check_stiffness(text: &str) {
 fn the_real_files_are_accepted() {
     assert!(data::parse(measurements()).is_ok());
     assert_eq!(postures::parse(POSTURES, &comau()).unwrap().len(), 3);
-    assert!(load::parse_stiffness(STIFFNESS, "k.json").is_ok());
+    assert!(load::parse_identified(STIFFNESS, "k.json").is_ok());
 }
 
 proptest! {

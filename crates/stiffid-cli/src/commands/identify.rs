@@ -55,6 +55,7 @@ struct IdentifyJson {
     ci95_from_compliance_nm_per_rad: Option<[[Option<f64>; 2]; 6]>,
     compliance_std_error_rad_per_nm: Option<[f64; 6]>,
     compliance_ci95_rad_per_nm: Option<[[f64; 2]; 6]>,
+    compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
     degrees_of_freedom: Option<usize>,
     t_quantile: Option<f64>,
     residual_std_mm: Option<f64>,
@@ -189,6 +190,9 @@ fn to_json(
         }),
         compliance_std_error_rad_per_nm: u.map(|u| u.compliance_std_error.into()),
         compliance_ci95_rad_per_nm: u.map(|u| u.compliance_ci95),
+        compliance_covariance_rad2_per_nm2: u.map(|u| {
+            std::array::from_fn(|r| std::array::from_fn(|c| u.compliance_covariance[(r, c)]))
+        }),
         degrees_of_freedom: u.map(|u| u.dof),
         t_quantile: u.map(|u| u.t_quantile),
         residual_std_mm: u.map(|u| mm(u.residual_variance.sqrt())),

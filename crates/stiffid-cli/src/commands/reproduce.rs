@@ -71,7 +71,13 @@ impl Progress for Bars {
 pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
     let setup = load::setup(&args.setup)?;
-    let out = report::open(&args.out, args.force)?;
+    let out = report::open(
+        &args.out,
+        "--out",
+        Some(args.force),
+        report::summary::GENERATOR,
+        &report::holds,
+    )?;
     let options = StudyOptions {
         runs: args.runs as usize,
         seed: args.seed,

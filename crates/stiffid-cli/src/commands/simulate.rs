@@ -87,7 +87,7 @@ pub fn run(args: &Args) -> Result<()> {
         Some(dir) => Some(ReportDir::prepare(
             dir,
             "--out",
-            args.force,
+            Some(args.force),
             &|rel| FILES.iter().any(|f| rel == Path::new(f)),
             &|_| false,
         )?),

@@ -28,7 +28,7 @@ pub struct ReportDir {
 impl ReportDir {
     /// Checks and opens `dir` (the command-line `option`): it must be a directory or a new path;
     /// an existing directory must be empty, or `reusable` (a previous report of ours), unless
-    /// `force`. Every existing entry the report will write (`holds`, given the path relative to
+    /// `force` is `Some(true)` (`None`: the command has no `--force`). Every existing entry the report will write (`holds`, given the path relative to
     /// `dir`) must pass [`resolve`] (a regular file, not an input). The directory is created if
     /// missing and proven writable by creating [`TEMP_DIR`] in it.
     ///
@@ -37,15 +37,16 @@ impl ReportDir {
     pub fn prepare(
         dir: &Path,
         option: &str,
-        force: bool,
+        force: Option<bool>,
         holds: &dyn Fn(&Path) -> bool,
         reusable: &dyn Fn(&Path) -> bool,
     ) -> Result<Self> {
         let name = dir.display();
         match std::fs::metadata(dir) {
             Ok(m) if !m.is_dir() => bail!("{option} {name}: exists and is not a directory"),
-            Ok(_) if !force && !is_empty(dir)? && !reusable(dir) => bail!(
-                "{option} {name}: not empty and not a previous report of this command; choose another {option} or pass --force"
+            Ok(_) if force != Some(true) && !is_empty(dir)? && !reusable(dir) => bail!(
+                "{option} {name}: not empty and not a previous report of this command; choose another {option}{}",
+                if force.is_some() { " or pass --force" } else { "" }
             ),
             Ok(_) => {}
             Err(e) if e.kind() == ErrorKind::NotFound => {}

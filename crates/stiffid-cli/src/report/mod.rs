@@ -2,13 +2,14 @@
 //! `report.md`, `summary.json`, `deviation_rates.csv`, one postures CSV per group and `figures/`
 //! (SVG and PNG).
 
+pub mod compensation;
 mod content;
 pub mod figures;
 pub mod findings;
-mod html;
+pub mod html;
 mod markdown;
 pub mod summary;
-mod tables;
+pub mod tables;
 
 use crate::commands::simulate::deviation_csv;
 use crate::output::ReportDir;
@@ -59,17 +60,24 @@ pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
     std::array::from_fn(|i| (CRITERIA[i].0, v[i]))
 }
 
-/// Opens the report directory `dir` before the study runs (see [`ReportDir::prepare`]): a
-/// non-empty directory only if it holds a previous report of ours (its `summary.json`), or with
-/// `force`; never over an input file.
-pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
-    ReportDir::prepare(dir, "--out", force, &holds, &|d| {
-        summary::is_ours(&d.join("summary.json"))
+/// Opens the report directory `dir` (given with `option`) before the computation (see
+/// [`ReportDir::prepare`]): a non-empty directory only if it holds an earlier report of
+/// `generator` (its `summary.json`), or with `force` (`None`: no `--force` option); `holds` names the files the report writes,
+/// none of which may be an input.
+pub fn open(
+    dir: &Path,
+    option: &str,
+    force: Option<bool>,
+    generator: &str,
+    holds: &dyn Fn(&Path) -> bool,
+) -> Result<ReportDir> {
+    ReportDir::prepare(dir, option, force, holds, &|d| {
+        summary::is_ours(&d.join("summary.json"), generator)
     })
 }
 
-/// Whether the report writes the file `rel` (relative to its directory).
-fn holds(rel: &Path) -> bool {
+/// Whether the study's report writes the file `rel` (relative to its directory).
+pub fn holds(rel: &Path) -> bool {
     let name = rel.to_string_lossy();
     FILES.contains(&name.as_ref())
         || rel.starts_with("figures")
@@ -107,7 +115,12 @@ pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::open;
+    use super::{holds, summary};
+    use std::path::Path;
+
+    fn open(dir: &Path, force: bool) -> anyhow::Result<crate::output::ReportDir> {
+        super::open(dir, "--out", Some(force), summary::GENERATOR, &holds)
+    }
 
     #[test]
     fn only_empty_missing_or_own_directories_are_written_without_force() {

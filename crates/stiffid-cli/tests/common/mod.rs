@@ -128,3 +128,12 @@ pub fn refused(dir: &Path, args: &[&str], must_mention: &[&str]) -> String {
     assert_eq!(snapshot(dir), before, "{args:?} changed {}", dir.display());
     line
 }
+
+/// The numbers of a JSON array.
+pub fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
