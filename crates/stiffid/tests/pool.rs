@@ -135,7 +135,7 @@ fn the_smallest_group_for_a_target_is_monotone_and_fails_when_out_of_reach() {
     let setup = paper();
     let postures = random_group(&setup, 40, 2);
     let pool = Pool::new(&setup, &postures, &[]).unwrap();
-    let choose = |n| {
+    let choose = |n| -> stiffid::Result<_> {
         let c = pool.best(Criterion::RelativeA, n, &PoolOptions::default())?;
         Ok(pool.postures(&c.indices))
     };

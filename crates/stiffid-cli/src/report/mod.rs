@@ -7,6 +7,7 @@ pub mod figures;
 pub mod findings;
 mod html;
 mod markdown;
+pub mod plan;
 pub mod summary;
 mod tables;
 
@@ -62,6 +63,22 @@ pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
 /// Refuses to write into `dir` if it exists, is not empty and holds no report of ours (no
 /// `summary.json` with our generator signature), unless `force`.
 pub fn check_target(dir: &Path, force: bool) -> Result<()> {
+    check_dir(
+        dir,
+        force,
+        "a stiffid report (no summary.json written by stiffid reproduce)",
+        |d| summary::is_ours(&d.join("summary.json")),
+    )
+}
+
+/// Refuses to write into `dir` if it exists and is not a directory, or is not empty and
+/// `is_ours(dir)` is false, unless `force`; `what` names what `is_ours` recognises.
+pub fn check_dir(
+    dir: &Path,
+    force: bool,
+    what: &str,
+    is_ours: impl Fn(&Path) -> bool,
+) -> Result<()> {
     if !dir.exists() || force {
         return Ok(());
     }
@@ -70,11 +87,11 @@ pub fn check_target(dir: &Path, force: bool) -> Result<()> {
     }
     let mut entries =
         std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
-    if entries.next().is_none() || summary::is_ours(&dir.join("summary.json")) {
+    if entries.next().is_none() || is_ours(dir) {
         return Ok(());
     }
     bail!(
-        "{}: not empty and not a stiffid report (no summary.json written by stiffid reproduce); choose another --out or pass --force",
+        "{}: not empty and not {what}; choose another directory or pass --force",
         dir.display()
     )
 }

@@ -7,7 +7,7 @@
 use super::criteria::predicted_deviation_pct;
 use super::Evaluator;
 use crate::setup::Setup;
-use crate::{Error, Result};
+use crate::Error;
 use nalgebra::Vector6;
 
 /// The smallest group size tried.
@@ -65,24 +65,26 @@ impl TargetOutcome {
 /// # Errors
 /// [`Error::InvalidField`] (`target_pct`) for a target that is not a finite number > 0,
 /// (`postures`) for `max_postures` below [`MIN_POSTURES`]; whatever `choose` returns.
-pub fn smallest_group(
+pub fn smallest_group<E: From<Error>>(
     setup: &Setup,
     target_pct: f64,
     max_postures: usize,
-    mut choose: impl FnMut(usize) -> Result<Vec<Vector6<f64>>>,
-) -> Result<TargetOutcome> {
+    mut choose: impl FnMut(usize) -> std::result::Result<Vec<Vector6<f64>>, E>,
+) -> std::result::Result<TargetOutcome, E> {
     if !(target_pct.is_finite() && target_pct > 0.0) {
         return Err(Error::InvalidField {
             field: "target_pct".into(),
             message: format!("{target_pct} given: expected a finite percentage > 0"),
-        });
+        }
+        .into());
     }
     let max = max_postures.min(MAX_POSTURES);
     if max < MIN_POSTURES {
         return Err(Error::InvalidField {
             field: "postures".into(),
             message: format!("{max_postures} available: at least {MIN_POSTURES} are needed"),
-        });
+        }
+        .into());
     }
     let evaluator = Evaluator::new(setup);
     let mut steps = Vec::new();

@@ -4,6 +4,7 @@ pub mod criteria;
 pub mod deviation;
 pub mod postures;
 pub mod table;
+pub mod target;
 
 use crate::study::Study;
 use anyhow::{anyhow, bail, Context, Result};

@@ -29,16 +29,44 @@ fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
     }
 }
 
-struct Postures<'a> {
-    study: &'a Study,
-    group: usize,
-    /// Data box of every group, m: (min, max) per axis.
+/// Postures of one setup drawn in side and top views.
+pub struct Postures<'a> {
+    setup: &'a Setup,
+    title: String,
+    /// The postures drawn, each with its number (label and colour).
+    postures: Vec<(usize, Vector6<f64>)>,
+    /// Data box, m: (min, max) per axis.
     range: [(f64, f64); 3],
+}
+
+impl<'a> Postures<'a> {
+    /// The numbered `postures` (axis angles, rad) of `setup` in views of the data box `range`
+    /// (see [`data_range`]).
+    pub fn new(
+        setup: &'a Setup,
+        title: &str,
+        postures: Vec<(usize, Vector6<f64>)>,
+        range: [(f64, f64); 3],
+    ) -> Self {
+        Self {
+            setup,
+            title: title.to_string(),
+            postures,
+            range,
+        }
+    }
 }
 
 /// The figure `postures_<group>`.
 pub fn figure(study: &Study, group: usize) -> Result<Figure> {
     let g = &study.groups[group];
+    let all = study.groups.iter().flat_map(|g| g.postures.iter());
+    let numbered = g
+        .postures
+        .iter()
+        .copied()
+        .enumerate()
+        .map(|(i, q)| (i + 1, q));
     render(
         &format!("postures_{}", g.name),
         &format!(
@@ -48,21 +76,60 @@ pub fn figure(study: &Study, group: usize) -> Result<Figure> {
             g.title,
             g.postures.len()
         ),
-        &Postures {
-            study,
-            group,
-            range: data_range(study),
-        },
+        &Postures::new(
+            &study.setup,
+            &g.title,
+            numbered.collect(),
+            data_range(&study.setup, all),
+        ),
     )
 }
 
-fn data_range(study: &Study) -> [(f64, f64); 3] {
-    let setup = &study.setup;
-    let mut range = [(f64::INFINITY, f64::NEG_INFINITY); 3];
-    let points = study
-        .groups
+/// The figures of a group of postures of `setup` (axis angles, rad), all at one scale: `postures`
+/// (every posture) and `posture_<i>` (each alone, i from 01), numbered from 1 as in `plan.csv`.
+pub fn each(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Vec<Figure>> {
+    let range = data_range(setup, postures.iter());
+    let numbered: Vec<(usize, Vector6<f64>)> = postures
         .iter()
-        .flat_map(|g| g.postures.iter().map(|q| stick(setup, q)))
+        .copied()
+        .enumerate()
+        .map(|(i, q)| (i + 1, q))
+        .collect();
+    let legend = "side view (x-z) and top view (x-y), base frame, m. Lines: base, joint origins, \
+                  flange, tool centre point (numbered); squares: loading point; grey: the rope to \
+                  the anchor (star); the line z = 0: the base plane.";
+    let mut figures = vec![render(
+        "postures",
+        &format!(
+            "The robot in the {} postures of the plan, {legend}",
+            postures.len()
+        ),
+        &Postures::new(setup, "every posture", numbered.clone(), range),
+    )?];
+    for (number, q) in numbered {
+        figures.push(render(
+            &format!("posture_{number:02}"),
+            &format!("Posture {number}, {legend}"),
+            &Postures::new(
+                setup,
+                &format!("posture {number}"),
+                vec![(number, q)],
+                range,
+            ),
+        )?);
+    }
+    Ok(figures)
+}
+
+/// The box (m, (min, max) per axis, 0.2 m margin) of the robot in `postures`, the anchor and the
+/// base origin.
+pub fn data_range<'p>(
+    setup: &Setup,
+    postures: impl Iterator<Item = &'p Vector6<f64>>,
+) -> [(f64, f64); 3] {
+    let mut range = [(f64::INFINITY, f64::NEG_INFINITY); 3];
+    let points = postures
+        .map(|q| stick(setup, q))
         .flat_map(|s| s.chain.into_iter().chain([s.loading_point]))
         .chain([setup.load.anchor, Vector3::zeros()]);
     for p in points {
@@ -104,8 +171,9 @@ impl Plot for Postures<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let title = &self.study.groups[self.group].title;
-        let root = root.titled(title, ("sans-serif", 22)).map_err(failed)?;
+        let root = root
+            .titled(&self.title, ("sans-serif", 22))
+            .map_err(failed)?;
         let (side, top) = root.split_horizontally(600);
         self.view(&side, "side view", 2)?;
         self.view(&top, "top view", 1)
@@ -142,11 +210,11 @@ impl Postures<'_> {
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(failed)?;
-        let setup = &self.study.setup;
+        let setup = self.setup;
         let anchor = (setup.load.anchor.x, setup.load.anchor[v]);
-        for (i, q) in self.study.groups[self.group].postures.iter().enumerate() {
+        for (number, q) in &self.postures {
             let s = stick(setup, q);
-            let c = colour(i + 1);
+            let c = colour(*number);
             let lp = (s.loading_point.x, s.loading_point[v]);
             chart
                 .draw_series(LineSeries::new(
@@ -176,7 +244,7 @@ impl Postures<'_> {
             chart
                 .draw_series([EmptyElement::at(tip)
                     + Text::new(
-                        format!("{}", i + 1),
+                        format!("{number}"),
                         (6, -18),
                         ("sans-serif", 18).into_font().color(&c),
                     )])
