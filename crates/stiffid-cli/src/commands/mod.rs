@@ -3,6 +3,7 @@
 pub mod evaluate;
 pub mod identify;
 pub mod kinematics;
+pub mod plot;
 pub mod predict;
 pub mod reproduce;
 pub mod robots;

@@ -142,7 +142,7 @@ impl<'a> Evaluator<'a> {
             Criterion::ScaledCond => cond(&group.rs),
             Criterion::DOptimal => group.d_optimal(),
             Criterion::RelativeA => group.relative_a(),
-            Criterion::TestPose => self.test_pose(&group),
+            Criterion::TestPose => self.test_pose(group),
         })
     }
 
