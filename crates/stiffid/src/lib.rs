@@ -32,6 +32,7 @@ pub use robot::{AxisMap, Joint, Robot};
 pub mod identify;
 pub mod lsq;
 pub mod observation;
+pub mod prior;
 pub mod setup;
 pub mod simulate;
 pub mod stiffness;
