@@ -51,7 +51,8 @@ pub struct Args {
     restarts: Option<u64>,
     /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
-    /// prints and plots the group size against the worst joint's rate.
+    /// prints the group size against the worst joint's rate and plots it (into --report, else
+    /// beside --out as OUT.target.svg and .png).
     #[arg(long, conflicts_with = "postures")]
     target_pct: Option<f64>,
     /// Number of postures (random or global starts, pool) [default: 6].
