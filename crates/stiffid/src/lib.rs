@@ -20,6 +20,7 @@
 #![deny(missing_docs)]
 
 mod builtin;
+pub mod cell;
 pub mod design;
 mod error;
 pub mod kinematics;
