@@ -10,6 +10,7 @@ use crate::output::write_atomic;
 use anyhow::{Context, Result};
 use nalgebra::{Vector3, Vector6};
 use std::path::Path;
+use stiffid::cell::{Check, Checker};
 use stiffid::design::criteria::predicted_deviation_pct;
 use stiffid::design::target::TargetOutcome;
 use stiffid::design::{Criterion, Evaluation, Evaluator};
@@ -46,6 +47,11 @@ struct Row {
     displacements: Vec<Vector3<f64>>,
     /// Predicted deviation rate of each joint at noise multiple 1 without this posture, %.
     without_pct: [f64; 6],
+    /// The smallest clearance between bodies (and lines) that must not touch, m; `None` without
+    /// `[cell]` or `[tracker]`.
+    clearance: Option<f64>,
+    /// The cell's checks the posture fails, in words.
+    failed: Vec<String>,
 }
 
 /// A measurement plan: the group, what each posture asks of the operator, what it predicts.
@@ -65,6 +71,7 @@ impl<'a> Plan<'a> {
         target: Option<&'a TargetOutcome>,
     ) -> Self {
         let evaluator = Evaluator::new(setup);
+        let checker = Checker::new(setup);
         let rows = postures
             .iter()
             .enumerate()
@@ -75,6 +82,7 @@ impl<'a> Plan<'a> {
                 let mut others = postures.to_vec();
                 others.remove(i);
                 let without = evaluator.evaluation(&others).relative_std;
+                let feasibility = checker.feasibility(q);
                 Row {
                     q: *q,
                     rope_direction: rope.normalize(),
@@ -82,6 +90,8 @@ impl<'a> Plan<'a> {
                     loading_point_z: lp.z,
                     displacements: rope_displacements(setup, &frames, &setup.nominal_stiffness),
                     without_pct: predicted_deviation_pct(&without, 1.0),
+                    clearance: feasibility.min_clearance(),
+                    failed: feasibility.violations().map(describe).collect(),
                 }
             })
             .collect();
@@ -161,6 +171,7 @@ fn csv(plan: &Plan) -> String {
         header.extend(["dx", "dy", "dz"].map(|c| format!("point{k}_{c}_mm")));
     }
     header.extend((1..=6).map(|j| format!("without_joint{j}_pct")));
+    header.extend(["min_clearance_mm", "failed_checks"].map(String::from));
     let mut text = header.join(",") + "\n";
     for (i, r) in plan.rows.iter().enumerate() {
         let mut cells = vec![(i + 1).to_string()];
@@ -170,6 +181,11 @@ fn csv(plan: &Plan) -> String {
         cells.push(format!("{:.1}", r.loading_point_z * 1e3));
         cells.extend(r.displacements.iter().flat_map(mm3));
         cells.extend(r.without_pct.iter().map(|v| format!("{v:.4}")));
+        cells.push(
+            r.clearance
+                .map_or(String::new(), |c| format!("{:.1}", c * 1e3)),
+        );
+        cells.push(format!("\"{}\"", r.failed.join("; ").replace('"', "'")));
         text += &(cells.join(",") + "\n");
     }
     text
@@ -249,7 +265,14 @@ fn postures_table(plan: &Plan) -> Table {
     ]
     .map(String::from)
     .to_vec();
-    header.push("without it: worst joint, %".into());
+    header.extend(
+        [
+            "smallest clearance, mm",
+            "cell checks",
+            "without it: worst joint, %",
+        ]
+        .map(String::from),
+    );
     let rows = plan
         .rows
         .iter()
@@ -267,6 +290,12 @@ fn postures_table(plan: &Plan) -> Table {
                 dir.join(", "),
                 format!("{:.0}", r.rope_length * 1e3),
                 format!("{:.0}", r.loading_point_z * 1e3),
+                r.clearance
+                    .map_or("-".into(), |c| format!("{:.0}", c * 1e3)),
+                match r.failed.is_empty() {
+                    true => "pass".into(),
+                    false => format!("FAIL: {}", r.failed.join("; ")),
+                },
                 num(worst),
             ]
         })
@@ -289,4 +318,19 @@ fn displacements_table(plan: &Plan) -> Table {
         })
         .collect();
     Table { header, rows }
+}
+
+/// A failed check of the cell in words: its kind, the tightest pair and by how much it fails (mm
+/// or deg).
+pub fn describe(c: &Check) -> String {
+    let by = match c.kind.is_angle() {
+        true => format!("{:.1} deg", -c.margin.to_degrees()),
+        false => format!("{:.0} mm", -c.margin * 1e3),
+    };
+    let (a, b) = &c.between;
+    let pair = match a == b {
+        true => a.clone(),
+        false => format!("{a} - {b}"),
+    };
+    format!("{} ({pair}) fails by {by}", c.kind)
 }

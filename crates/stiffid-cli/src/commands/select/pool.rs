@@ -1,11 +1,14 @@
-//! `select --pool FILE.csv`: the best group of the postures of a file, those outside the setup's
-//! bounds reported and skipped.
+//! `select --pool FILE.csv`: the best group of the postures of a file, those that fail a check of
+//! the cell ([`stiffid::cell::Checker`]: bounds, floor, obstacles, self-collision, rope, line of
+//! sight, `[constraints]`) reported and skipped.
 
-use super::{outside_bounds, same_file, Args, Selection};
+use super::{same_file, Args, Selection};
 use crate::postures;
+use crate::report::plan::describe;
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use stiffid::cell::Checker;
 use stiffid::design::pool::MAX_POOL;
 use stiffid::design::{Pool, PoolMethod, PoolOptions};
 use stiffid::Setup;
@@ -44,7 +47,7 @@ pub struct PoolJson {
 }
 
 impl<'a> Input<'a> {
-    /// Reads the pool file (never the `--out` file); postures outside the setup's bounds are
+    /// Reads the pool file (never the `--out` file); postures that fail a check of the cell are
     /// skipped.
     pub fn read(path: &Path, out: &Path, setup: &'a Setup) -> Result<Self> {
         if same_file(path, out) {
@@ -61,13 +64,16 @@ impl<'a> Input<'a> {
                 postures.len()
             );
         }
+        let checker = Checker::new(setup);
         let skipped: Vec<Skipped> = postures
             .iter()
             .enumerate()
             .filter_map(|(i, q)| {
-                outside_bounds(setup, q).map(|reason| Skipped {
+                let f = checker.feasibility(q);
+                let failed: Vec<String> = f.violations().map(describe).collect();
+                (!failed.is_empty()).then(|| Skipped {
                     posture: i + 1,
-                    reason,
+                    reason: failed.join("; "),
                 })
             })
             .collect();
