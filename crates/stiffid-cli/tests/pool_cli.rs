@@ -65,10 +65,11 @@ fn pool_choice_is_the_enumerated_optimum_and_skips_postures_outside_the_bounds()
     assert_eq!(p["postures"], 13);
     assert_eq!(p["usable"], 12);
     assert_eq!(p["skipped"][0]["posture"], 13);
+    assert_eq!(p["skipped"][0]["checks"][0], "bounds");
     assert!(p["skipped"][0]["reason"]
         .as_str()
         .unwrap()
-        .contains("q3_deg"));
+        .contains("axis 3"));
     assert_eq!(p["method"], "enumeration", "C(12, 6) = 924 groups");
     let chosen: Vec<u64> = p["chosen"]
         .as_array()
@@ -119,7 +120,7 @@ fn pool_choice_is_the_enumerated_optimum_and_skips_postures_outside_the_bounds()
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_usage_error(&too_many, &["pool.csv", "12 usable"]);
+    assert_usage_error(&too_many, &["pool.csv", "only 12 of the 13", "bounds 1"]);
     let unknown = select(&[
         "--criterion",
         "relative",
@@ -130,6 +131,82 @@ fn pool_choice_is_the_enumerated_optimum_and_skips_postures_outside_the_bounds()
     ]);
     assert_eq!(unknown.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&unknown.stderr).contains("unknown criterion 'relative'"));
+}
+
+#[test]
+fn pool_postures_that_fail_the_cells_checks_are_skipped() {
+    let d = temp_dir("pool-cell");
+    let paper = stiffid(&["setups", "show", "zhang2021-comau-nj165"]);
+    let setup = String::from_utf8(paper.stdout).unwrap()
+        + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n";
+    let setup = write_file(&d, "cell.toml", &setup);
+    // Posture 14: upper arm 40 deg forward, forearm 100 deg down: the tool is in the floor.
+    let pool = write_file(&d, "pool.csv", &(pool_text() + "14,0,40,-170,0,0,0\n"));
+    let run = |n: &str| {
+        stiffid(&[
+            "select",
+            "--setup",
+            setup.to_str().unwrap(),
+            "--pool",
+            pool.to_str().unwrap(),
+            "--postures",
+            n,
+            "--out",
+            d.join("best.csv").to_str().unwrap(),
+            "--json",
+        ])
+    };
+    let doc = json(&run("3"));
+    let p = &doc["pool"];
+    let skipped = p["skipped"].as_array().unwrap();
+    let floor = skipped.iter().find(|s| s["posture"] == 14).unwrap();
+    assert!(floor["checks"]
+        .as_array()
+        .unwrap()
+        .contains(&"floor".into()));
+    assert!(floor["reason"].as_str().unwrap().contains("floor"));
+    assert_eq!(
+        p["usable"].as_u64().unwrap() as usize + skipped.len(),
+        14,
+        "every posture is usable or skipped"
+    );
+    for c in p["chosen"].as_array().unwrap() {
+        assert!(
+            skipped.iter().all(|s| s["posture"] != *c),
+            "{c} was skipped"
+        );
+    }
+    let e = run("14");
+    assert_usage_error(
+        &e,
+        &["pass the cell's checks", "failed most often: ", "floor"],
+    );
+
+    // The plot draws the floor, the obstacles and the tracker of the cell.
+    let cell = std::fs::read_to_string(&setup).unwrap()
+        + "[[cell.obstacle]]\nname = \"table\"\nmin_mm = [1200, -400, 0]\nmax_mm = [1800, 400, 750]\n\
+           [tracker]\nposition_mm = [3000, -2000, 1500]\n";
+    let cell = write_file(&d, "cell-tracker.toml", &cell);
+    let figs = d.join("figs");
+    let out = stiffid(&[
+        "plot",
+        "--setup",
+        cell.to_str().unwrap(),
+        "--postures",
+        d.join("best.csv").to_str().unwrap(),
+        "--out",
+        figs.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(figs.join("posture_01.svg")).unwrap();
+    for label in [">\nfloor\n<", ">\ntable\n<", ">\ntracker\n<"] {
+        assert!(svg.contains(label), "{label}");
+    }
+    assert_eq!(png_size(&figs.join("posture_01.png")), (1200, 560));
 }
 
 #[test]

@@ -22,10 +22,12 @@ pub struct Input<'a> {
 }
 
 /// A pool posture that cannot be measured, and why.
-#[derive(Serialize)]
+#[derive(Serialize, Clone)]
 struct Skipped {
     /// Its number in the pool file (1-based).
     posture: usize,
+    /// The checks it fails (`floor`, `rope`, ...).
+    checks: Vec<&'static str>,
     reason: String,
 }
 
@@ -73,6 +75,7 @@ impl<'a> Input<'a> {
                 let failed: Vec<String> = f.violations().map(describe).collect();
                 (!failed.is_empty()).then(|| Skipped {
                     posture: i + 1,
+                    checks: f.violations().map(|c| c.kind.key()).collect(),
                     reason: failed.join("; "),
                 })
             })
@@ -91,7 +94,21 @@ impl<'a> Input<'a> {
     }
 
     /// The best group of `n` usable postures for the arguments' criterion.
+    ///
+    /// # Errors
+    /// Fewer usable postures than `n` (naming the checks that failed most often), and the
+    /// errors of [`Pool::best`].
     pub fn choose(&self, args: &Args, n: usize) -> Result<Selection> {
+        if n > self.usable() && !self.skipped.is_empty() {
+            bail!(
+                "--pool {}: {} postures asked for, but only {} of the {} pass the cell's checks (failed most often: {})",
+                self.path.display(),
+                n,
+                self.usable(),
+                self.total,
+                self.most_failed()
+            );
+        }
         let options = PoolOptions {
             seed: args.seed,
             restarts: args
@@ -116,6 +133,20 @@ impl<'a> Input<'a> {
         })
     }
 
+    /// The checks the skipped postures fail, most often first, with their counts.
+    fn most_failed(&self) -> String {
+        let mut counts: Vec<(&str, usize)> = Vec::new();
+        for kind in self.skipped.iter().flat_map(|s| &s.checks) {
+            match counts.iter_mut().find(|(k, _)| k == kind) {
+                Some(c) => c.1 += 1,
+                None => counts.push((kind, 1)),
+            }
+        }
+        counts.sort_by(|a, b| b.1.cmp(&a.1));
+        let parts: Vec<String> = counts.iter().map(|(k, c)| format!("{k} {c}")).collect();
+        parts.join(", ")
+    }
+
     /// Postures the pool can offer.
     pub fn usable(&self) -> usize {
         self.pool.usable().len()
@@ -127,14 +158,7 @@ impl<'a> Input<'a> {
             file: self.path.display().to_string(),
             postures: self.total,
             usable: self.usable(),
-            skipped: self
-                .skipped
-                .iter()
-                .map(|s| Skipped {
-                    posture: s.posture,
-                    reason: s.reason.clone(),
-                })
-                .collect(),
+            skipped: self.skipped.clone(),
             method: chosen.map_or("", |c| match c.method {
                 PoolMethod::Enumeration => "enumeration",
                 PoolMethod::Exchange => "exchange",
