@@ -225,7 +225,7 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
         "Move the robot to the posture's axis angles (the controller's, degrees) and check the rope runs freely from the loading point to the pulley (direction and length below).".into(),
         "Measure every measuring point with the tracker unloaded, hang the load, measure again: the difference is the displacement.".into(),
         "Compare with the expected displacement below (nominal stiffness): a measured value several times larger or smaller points at a wrong point, a slipping rope or a wrong load.".into(),
-        "If a posture cannot be measured, the last columns say what the group predicts without it.".into(),
+        "If a posture cannot be measured, the last column says what the group predicts without it.".into(),
     ]);
     w.table(&postures_table(plan));
     w.table(&displacements_table(plan));
