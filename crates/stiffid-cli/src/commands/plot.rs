@@ -48,7 +48,7 @@ pub fn run(args: &Args) -> Result<()> {
     check_dir(
         &args.out,
         args.force,
-        "a directory of stiffid plot figures",
+        "a directory of stiffid plot figures; choose another directory or pass --force",
         only_our_figures,
     )?;
     let figures = figures::postures::each(&setup, &group)?;

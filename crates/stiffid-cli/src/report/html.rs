@@ -1,6 +1,7 @@
 //! `report.html`: self-contained, figures inline as SVG, no external resources.
 
-use super::content::{compose, Writer};
+use super::content::compose;
+pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
 use crate::study::Study;
@@ -25,7 +26,8 @@ fn inline(text: &str) -> String {
         .collect()
 }
 
-struct Html(String);
+/// An HTML body being written; [`page`] wraps it into a document.
+pub struct Html(String);
 
 impl Writer for Html {
     fn heading(&mut self, level: usize, text: &str) {
@@ -96,7 +98,7 @@ pub fn page(title: &str, generator: &str, body: impl FnOnce(&mut dyn Writer)) ->
 pub fn report(study: &Study, figures: &[Figure]) -> String {
     page(
         &format!("stiffid report: {}", study.setup.name),
-        "stiffid reproduce",
+        super::summary::GENERATOR,
         |w| compose(study, figures, w),
     )
 }

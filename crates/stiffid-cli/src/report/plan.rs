@@ -25,7 +25,7 @@ pub fn check_target(dir: &Path, force: bool) -> Result<()> {
     super::check_dir(
         dir,
         force,
-        "a stiffid plan (no plan.html written by stiffid select)",
+        "a stiffid plan (no plan.html written by stiffid select); choose another directory or pass --force",
         |d| {
             std::fs::read_to_string(d.join("plan.html"))
                 .is_ok_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))

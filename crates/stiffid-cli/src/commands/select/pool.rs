@@ -142,7 +142,7 @@ impl<'a> Input<'a> {
                 None => counts.push((kind, 1)),
             }
         }
-        counts.sort_by(|a, b| b.1.cmp(&a.1));
+        counts.sort_by_key(|c| std::cmp::Reverse(c.1));
         let parts: Vec<String> = counts.iter().map(|(k, c)| format!("{k} {c}")).collect();
         parts.join(", ")
     }
