@@ -254,8 +254,8 @@ impl<'a> Model<'a> {
 /// depend on the number of threads.
 ///
 /// # Errors
-/// [`Error::Row`] naming the line of the first point (in path order) that fails, and how many
-/// others do: axis angles outside the joint limits (`q1_deg..q6_deg`), a pose inverse kinematics
+/// [`Error::Row`] naming the line of the first point (in path order) that fails, and the lines
+/// of the others: axis angles outside the joint limits (`q1_deg..q6_deg`), a pose inverse kinematics
 /// cannot reach (`x_mm..rz_deg`, [`Error::Unreachable`]'s message), or compensated axis angles
 /// outside the joint limits or a residual above 0.1 micrometre / 1 microradian (`q_compensated`).
 pub fn path(
@@ -316,9 +316,16 @@ fn row(line: u64, column: &str, message: String) -> Error {
     }
 }
 
-/// The results, or the first error (in path order) with the number of other failing points.
+/// The results, or the first error (in path order) naming the lines of the other failing points
+/// (the first ten).
 fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
-    let failed = results.iter().filter(|r| r.is_err()).count();
+    let failed: Vec<u64> = results
+        .iter()
+        .filter_map(|r| match r {
+            Err(Error::Row { line, .. }) => Some(*line),
+            _ => None,
+        })
+        .collect();
     let mut out = Vec::with_capacity(results.len());
     for r in results {
         match r {
@@ -327,12 +334,20 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
                 line,
                 column,
                 message,
-            }) if failed > 1 => {
+            }) if failed.len() > 1 => {
+                let others: Vec<String> = failed[1..].iter().take(10).map(u64::to_string).collect();
+                let more = match failed.len() - 1 {
+                    n if n > 10 => format!(", ... ({n} in all)"),
+                    _ => String::new(),
+                };
                 return Err(row(
                     line,
                     &column,
-                    format!("{message} (and {} more points fail)", failed - 1),
-                ))
+                    format!(
+                        "{message}; the same for the points on lines {}{more}",
+                        others.join(", ")
+                    ),
+                ));
             }
             Err(e) => return Err(e),
         }
