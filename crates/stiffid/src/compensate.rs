@@ -226,8 +226,17 @@ impl<'a> Model<'a> {
         q: &Vector6<f64>,
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
+        self.compensate_from(q, self.setup.robot.frames(q), wrench)
+    }
+
+    /// [`Model::compensate`] with the frames of `q` given.
+    fn compensate_from(
+        &self,
+        q: &Vector6<f64>,
+        mut frames: Frames,
+        wrench: &Vector6<f64>,
+    ) -> Result<(Vector6<f64>, f64, f64, usize)> {
         let tcp = &self.setup.tool.tcp;
-        let mut frames = self.setup.robot.frames(q);
         let target = tool_pose(&frames, tcp);
         let mut qc = *q;
         let mut iterations = 0;
@@ -267,7 +276,7 @@ pub fn path(
     let model = Model::new(setup, compliance)?;
     let nominal = nominal_postures(setup, points, options)?;
     let wrenches: Vec<Vector6<f64>> = points
-        .iter()
+        .par_iter()
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&setup.robot.frames(q), &p.wrench, p.frame))
         .collect();
@@ -279,11 +288,12 @@ pub fn path(
         .into_par_iter()
         .map(|i| {
             let q = &postures[i];
-            let (qc, ep, eo, iterations) = model
-                .compensate(q, &wrenches[i])
-                .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
-            check_compensated(setup, points[i].line, &qc, ep, eo)?;
             let frames = setup.robot.frames(q);
+            let (qc, ep, eo, iterations) =
+                model
+                    .compensate_from(q, frames.clone(), &wrenches[i])
+                    .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
+            check_compensated(setup, points[i].line, &qc, ep, eo)?;
             let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
             let deflection_before = options.free_tool_axis.map(|_| {
                 let frames = setup.robot.frames(&nominal[i]);
