@@ -59,7 +59,7 @@ fn check_measurements(text: &str, setup: &Setup) {
 }
 
 fn check_postures(text: &str, setup: &Setup) {
-    if let Ok(group) = postures::parse(text, setup) {
+    if let Ok(group) = postures::parse(text, &setup.robot, Some(&setup.bounds)) {
         assert!(!group.is_empty());
         assert!(group.iter().all(|q| setup.bounds.contains(q)));
     }
@@ -78,7 +78,12 @@ fn check_stiffness(text: &str) {
 #[test]
 fn the_real_files_are_accepted() {
     assert!(data::parse(measurements()).is_ok());
-    assert_eq!(postures::parse(POSTURES, &comau()).unwrap().len(), 3);
+    assert_eq!(
+        postures::parse(POSTURES, &comau().robot, Some(&comau().bounds))
+            .unwrap()
+            .len(),
+        3
+    );
     assert!(load::parse_identified(STIFFNESS, "k.json").is_ok());
 }
 

@@ -68,7 +68,7 @@ impl From<&Evaluation> for CriteriaJson {
 /// Evaluates the postures file and prints the criteria.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let group = postures::read(&args.postures, &setup)?;
+    let group = postures::read(&args.postures, &setup.robot, Some(&setup.bounds))?;
     identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
     if args.json {

@@ -79,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = args
         .postures
         .iter()
-        .map(|p| postures::read(p, &setup))
+        .map(|p| postures::read(p, &setup.robot, Some(&setup.bounds)))
         .collect::<Result<Vec<_>>>()?;
     let names = group_names(&args.postures);
     let out = match &args.out {

@@ -8,8 +8,6 @@ use std::path::{Path, PathBuf};
 /// see [`resolve`]; its directory proven writable by creating and removing a temporary file.
 #[derive(Debug)]
 pub struct OutFile {
-    /// The path as given, for messages.
-    path: PathBuf,
     /// Where the bytes go (the symlink's target for a symlink).
     target: PathBuf,
 }
@@ -23,10 +21,7 @@ impl OutFile {
         let target = resolve(path, option)?;
         let (probe, _file) = temporary(dir_of(&target))?;
         std::fs::remove_file(probe)?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            target,
-        })
+        Ok(Self { target })
     }
 
     /// Writes `bytes` as the whole file.
@@ -35,11 +30,6 @@ impl OutFile {
     /// When the file cannot be written (nothing is left behind then).
     pub fn write(&self, bytes: &[u8]) -> Result<()> {
         replace(&self.target, dir_of(&self.target), bytes)
-    }
-
-    /// The path as given.
-    pub fn path(&self) -> &Path {
-        &self.path
     }
 }
 

@@ -43,15 +43,17 @@ pub fn write(
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
-    let html = page(&format!("stiffid compensation: {}", setup.name), |w| {
-        compose(w, setup, results, document, &figures)
-    });
+    let html = page(
+        &format!("stiffid compensation: {}", setup.name),
+        GENERATOR,
+        |w| compose(w, setup, results, document, &figures),
+    );
     dir.write(FILES[2], html.as_bytes())?;
     dir.finish()
 }
 
 fn compose(
-    w: &mut impl Writer,
+    w: &mut dyn Writer,
     setup: &Setup,
     results: &[Compensated],
     document: &Value,

@@ -8,6 +8,7 @@ pub mod figures;
 pub mod findings;
 pub mod html;
 mod markdown;
+pub mod plan;
 pub mod summary;
 pub mod tables;
 

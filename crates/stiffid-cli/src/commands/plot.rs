@@ -1,0 +1,72 @@
+//! `stiffid plot`: side and top views of every posture of a postures file, SVG and PNG.
+
+use crate::output::{self, ReportDir};
+use crate::report::figures;
+use crate::{load, postures};
+use anyhow::Result;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `stiffid plot`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
+    #[arg(long)]
+    setup: String,
+    /// Postures file (posture,q1_deg,...,q6_deg).
+    #[arg(long)]
+    postures: PathBuf,
+    /// Directory of the figures (created if missing; an existing one must be empty or hold only
+    /// figures of `stiffid plot`, unless --force).
+    #[arg(long)]
+    out: PathBuf,
+    /// Write into --out even if it holds other files.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Whether every file in `dir` is a figure `stiffid plot` writes.
+fn only_our_figures(dir: &Path) -> bool {
+    std::fs::read_dir(dir).is_ok_and(|entries| {
+        entries
+            .flatten()
+            .all(|e| is_our_figure(&e.file_name().to_string_lossy()))
+    })
+}
+
+/// Whether `name` is the name of a figure `stiffid plot` writes.
+fn is_our_figure(name: &str) -> bool {
+    let stem = name
+        .strip_suffix(".svg")
+        .or_else(|| name.strip_suffix(".png"))
+        .unwrap_or("");
+    stem == "postures"
+        || stem
+            .strip_prefix("posture_")
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// Draws the postures and writes `postures.svg/.png` and `posture_NN.svg/.png`.
+pub fn run(args: &Args) -> Result<()> {
+    let setup = load::setup(&args.setup)?;
+    let group = postures::read(&args.postures, &setup.robot, None)?;
+    let holds = |rel: &Path| is_our_figure(&rel.to_string_lossy());
+    let dir = ReportDir::prepare(
+        &args.out,
+        "--out",
+        Some(args.force),
+        &holds,
+        &only_our_figures,
+    )?;
+    let figures = figures::postures::each(&setup, &group)?;
+    for f in &figures {
+        dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
+        dir.write(&format!("{}.png", f.name), &f.png)?;
+    }
+    dir.finish()?;
+    output::print(&format!(
+        "{} figures (SVG and PNG) of {} postures written to {}\n",
+        figures.len(),
+        group.len(),
+        args.out.display()
+    ))
+}
