@@ -129,7 +129,7 @@ fn global(
             .progress_chars("=> "),
     );
     bar.set_message(format!("global search ({criterion})"));
-    let outcome = design::global(setup, criterion, n, options, &|done| {
+    let outcome = design::global(setup, criterion, n, options, &|done: usize| {
         bar.set_position(done as u64)
     });
     bar.finish_and_clear();
