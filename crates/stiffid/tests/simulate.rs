@@ -107,7 +107,8 @@ fn predictions_given_are_kept_and_must_match_the_groups() {
     let own = &simulate(&setup, &[group()], &options).unwrap()[0];
     let given = vec![[1.0; 6]; setup.noise.levels.len()];
     let with =
-        &simulate_with_predictions(&setup, &[group()], &[given.clone()], &options).unwrap()[0];
+        &simulate_with_predictions(&setup, &[group()], std::slice::from_ref(&given), &options)
+            .unwrap()[0];
     // The runs are the same; only the prediction is the one given.
     assert_eq!(with.mean_deviation_pct, own.mean_deviation_pct);
     assert_eq!(with.predicted_deviation_pct, given);

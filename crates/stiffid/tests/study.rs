@@ -171,16 +171,21 @@ fn a_small_study_on_the_paper_setup_reports_its_stages_and_repeats_itself() {
         .collect();
     assert_eq!(got, expected);
 
-    let names: Vec<&str> = s.groups.iter().map(|g| g.name.as_str()).collect();
+    let origins: Vec<Origin> = s.groups.iter().map(|g| g.origin.clone()).collect();
+    use Criterion::*;
     assert_eq!(
-        names,
+        origins,
         [
-            "group1-start",
-            "group2-classical",
-            "group3-zhang2021",
-            "group4-relative-a",
-            "group5-d-optimal"
+            Origin::Start,
+            Origin::Local(Classical),
+            Origin::Local(Zhang2021),
+            Origin::Global(RelativeA, 2),
+            Origin::Global(DOptimal, 2),
         ]
+    );
+    assert_eq!(
+        (s.groups[2].name.as_str(), s.groups[4].title.as_str()),
+        ("group3-zhang2021", "Group 5 (d-optimal, global)")
     );
     // Multiple 1 is the paper's level 2.
     assert_eq!(setup.noise.levels[s.validation_level], 1.0);
