@@ -9,7 +9,6 @@ mod postures;
 #[cfg(test)]
 mod proptests;
 mod report;
-mod study;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;

@@ -62,7 +62,8 @@ struct Prepared {
 }
 
 /// Simulates the identification with every group of postures (axis angles, rad) at every noise level
-/// of the setup, `options.runs` times each.
+/// of the setup, `options.runs` times each, beside the first-order prediction of each group
+/// ([`evaluate`]).
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `runs == 0`; the errors of [`Factor::try_new`] (for example
@@ -72,10 +73,36 @@ pub fn simulate(
     groups: &[Vec<Vector6<f64>>],
     options: &Options,
 ) -> Result<Vec<GroupSimulation>> {
-    if options.runs == 0 {
+    check_runs(options)?;
+    let predicted: Vec<Vec<[f64; 6]>> = groups
+        .iter()
+        .map(|g| evaluate(setup, g).predicted_deviation_pct)
+        .collect();
+    simulate_with_predictions(setup, groups, &predicted, options)
+}
+
+/// [`simulate`] with the first-order predictions already at hand (for example from the groups'
+/// [`crate::design::Evaluation`]s): `predicted[g]` is group `g`'s
+/// [`crate::design::Evaluation::predicted_deviation_pct`], percent, [levels][6], copied into its
+/// result as is.
+///
+/// # Errors
+/// As [`simulate`]; [`Error::InvalidField`] when `predicted` does not hold one entry per group.
+pub fn simulate_with_predictions(
+    setup: &Setup,
+    groups: &[Vec<Vector6<f64>>],
+    predicted: &[Vec<[f64; 6]>],
+    options: &Options,
+) -> Result<Vec<GroupSimulation>> {
+    check_runs(options)?;
+    if predicted.len() != groups.len() {
         return Err(Error::InvalidField {
-            field: "runs".into(),
-            message: "expected at least one Monte Carlo run".into(),
+            field: "predicted".into(),
+            message: format!(
+                "expected one prediction per group ({}), got {}",
+                groups.len(),
+                predicted.len()
+            ),
         });
     }
     let prepared = groups
@@ -83,18 +110,13 @@ pub fn simulate(
         .map(|g| prepare(setup, g))
         .collect::<Result<Vec<_>>>()?;
     let runs = options.runs;
-    Ok(groups
+    Ok(prepared
         .iter()
-        .zip(&prepared)
+        .zip(predicted)
         .enumerate()
-        .map(|(g, (postures, group))| {
-            let predicted = evaluate(setup, postures).predicted_deviation_pct;
-            summarise(
-                setup,
-                &group_runs(setup, group, g, options),
-                runs,
-                predicted,
-            )
+        .map(|(g, (group, predicted))| {
+            let rates = group_runs(setup, group, g, options);
+            summarise(setup, &rates, runs, predicted.clone())
         })
         .collect())
 }
@@ -112,6 +134,16 @@ fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> V
             identify_once(group, sigma, &mut rng)
         })
         .collect()
+}
+
+fn check_runs(options: &Options) -> Result<()> {
+    match options.runs {
+        0 => Err(Error::InvalidField {
+            field: "runs".into(),
+            message: "expected at least one Monte Carlo run".into(),
+        }),
+        _ => Ok(()),
+    }
 }
 
 fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {

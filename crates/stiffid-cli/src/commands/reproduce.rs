@@ -1,7 +1,6 @@
 //! `stiffid reproduce`: the paper's simulation study end to end, with a report.
 
-use crate::report::{self, figures, findings::findings};
-use crate::study::{self, Progress, StudyOptions, DEFAULT_STARTS, DEFAULT_TRIALS};
+use crate::report::{self, figures, findings::sentences};
 use crate::{load, output};
 use anyhow::Result;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
@@ -9,6 +8,8 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
 use stiffid::limits;
+use stiffid::study::{self, findings, Options, DEFAULT_STARTS, DEFAULT_TRIALS};
+use stiffid::Progress;
 
 /// Arguments of `stiffid reproduce`.
 #[derive(clap::Args)]
@@ -78,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
         report::summary::GENERATOR,
         &report::holds,
     )?;
-    let options = StudyOptions {
+    let options = Options {
         runs: args.runs as usize,
         seed: args.seed,
         starts: args.starts as usize,
@@ -130,7 +131,7 @@ fn summary(study: &study::Study) -> String {
         );
     }
     s += "\n";
-    for sentence in findings(study).sentences(study) {
+    for sentence in sentences(&findings(study), study) {
         s += &format!("- {sentence}\n");
     }
     s
