@@ -3,6 +3,7 @@
 use anyhow::{bail, Context, Result};
 use nalgebra::{SVector, Vector6};
 use std::path::Path;
+use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{setup, Robot, Setup};
 
@@ -113,4 +114,14 @@ pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
         );
     }
     Ok(k)
+}
+
+/// A measurement file (`stiffid::formats::measurements`), its measurements turned into the robot
+/// base frame; errors start with the file name, then the line and column. The text is dropped
+/// once parsed.
+pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
+    let name = || path.display().to_string();
+    let mut file = measurements::parse(&read(path)?).with_context(name)?;
+    file.to_base_frame(setup).with_context(name)?;
+    Ok(file)
 }

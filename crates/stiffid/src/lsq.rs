@@ -105,6 +105,15 @@ impl Factor {
     /// # Panics
     /// If `delta` does not have as many entries as `Psi` has rows.
     pub fn solve(&self, delta: &DVector<f64>) -> Vector6<f64> {
+        self.r_inv * self.project(delta)
+    }
+
+    /// The first six entries `c` of `Q^T delta`: `|Psi h - delta|^2 = |R h - c|^2 + const`, so
+    /// any problem in `h` over these rows (e.g. with bounds) can be solved on the 6x6 `R`.
+    ///
+    /// # Panics
+    /// If `delta` does not have as many entries as `Psi` has rows.
+    pub fn project(&self, delta: &DVector<f64>) -> Vector6<f64> {
         assert_eq!(
             delta.len(),
             self.reflectors.nrows(),
@@ -119,7 +128,7 @@ impl Factor {
             d[k] -= w;
             axpy(-w, v, &mut d[k + 1..]);
         }
-        self.r_inv * Vector6::from_column_slice(&d[..6])
+        Vector6::from_column_slice(&d[..6])
     }
 
     /// `(Psi^T Psi)^-1 = R^-1 R^-T`: the covariance of `h` per unit noise variance.

@@ -24,15 +24,17 @@
 //! upper_deg = [90, 40, -40, 180, 90, 180]
 //! [test]                                 # optional: postures to validate and design for
 //! postures_deg = [[12.81, 33.07, -126.36, 72.81, -67.88, 24.27]]
+//! [tracker]                              # optional: where the laser tracker stands
+//! base_from_tracker = { xyz_mm = [3000, 0, 0], rpy_deg = [0, 0, 180] }  # for dx_tracker_mm, ...
 //! [constraints]                          # optional, for posture search
 //! loading_point_min_z_mm = 300.0
 //! anchor_below_loading_point = true
 //! ```
 
 use crate::kinematics::{Coordinates, Frames};
-use crate::robot::file::one_line;
+use crate::robot::file::{one_line, TransformFile};
 use crate::{Error, Result, Robot};
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use serde::Deserialize;
 
 /// Points of the tool, in the flange frame, m.
@@ -112,6 +114,14 @@ pub struct CellConstraints {
     pub anchor_below_loading_point: bool,
 }
 
+/// The laser tracker of the cell.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Tracker {
+    /// The tracker frame in the robot base frame (m), to turn displacements measured in the
+    /// tracker frame into the base frame ([`crate::identify::frames`]).
+    pub base_from_tracker: Option<Isometry3<f64>>,
+}
+
 /// A resolved experimental setup, SI units throughout.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setup {
@@ -141,6 +151,8 @@ pub struct Setup {
     pub test_postures: Vec<Vector6<f64>>,
     /// Optional cell constraints for posture search.
     pub constraints: CellConstraints,
+    /// The laser tracker (optional `[tracker]` table).
+    pub tracker: Tracker,
 }
 
 impl Setup {
@@ -173,6 +185,13 @@ struct SetupFile {
     bounds: BoundsFile,
     test: Option<TestFile>,
     constraints: Option<ConstraintsFile>,
+    tracker: Option<TrackerFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrackerFile {
+    base_from_tracker: Option<TransformFile>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -357,6 +376,16 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
             anchor_below_loading_point: c.anchor_below_loading_point,
         })
     })?;
+    let tracker = match f.tracker.and_then(|t| t.base_from_tracker) {
+        None => Tracker::default(),
+        Some(t) => {
+            check_finite(src, "tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
+            check_finite(src, "tracker.base_from_tracker.rpy_deg", &t.rpy_deg)?;
+            Tracker {
+                base_from_tracker: Some(t.isometry()),
+            }
+        }
+    };
     Ok(Setup {
         name: f.name,
         description: f.description,
@@ -381,6 +410,7 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
         characteristic_length: f.characteristic_length_mm * 1e-3,
         test_postures,
         constraints,
+        tracker,
     })
 }
 

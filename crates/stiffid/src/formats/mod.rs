@@ -1,0 +1,6 @@
+//! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here): the
+//! caller reads the file and adds its name to errors.
+//!
+//! - [`measurements`]: the measurement CSV of an identification or validation.
+
+pub mod measurements;
