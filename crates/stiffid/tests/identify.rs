@@ -5,6 +5,7 @@
 mod common;
 
 use common::{deg, paper_measurements, synthetic, PAPER_POSTURES_DEG};
+use stiffid::MeasurementField;
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -181,22 +182,22 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
     bad[4].point = 4;
     assert_eq!(
         field(identify(&setup, &bad).unwrap_err()),
-        (5, "point".into())
+        (5, MeasurementField::Point)
     );
     let mut bad = data.clone();
     bad[6].q[2] = setup.robot.upper[2] + 0.1;
-    assert_eq!(field(identify(&setup, &bad).unwrap_err()), (7, "q3".into()));
+    assert_eq!(field(identify(&setup, &bad).unwrap_err()), (7, MeasurementField::Axis(2)));
     let mut bad = data.clone();
     bad[2].wrench[1] = f64::NAN;
     assert_eq!(
         field(identify(&setup, &bad).unwrap_err()),
-        (3, "wrench".into())
+        (3, MeasurementField::Force)
     );
     let mut bad = data.clone();
-    bad[5].posture = "P1".into();
+    bad[5].posture = 0;
     assert_eq!(
         field(identify(&setup, &bad).unwrap_err()),
-        (6, "posture".into())
+        (6, MeasurementField::Posture)
     );
     assert_eq!(
         identify(&setup, &data[..1]).unwrap_err(),

@@ -34,7 +34,7 @@ pub fn synthetic(
         let d = stiffness::deflection(setup, &frames, &w, &setup.nominal_stiffness);
         for (point, disp) in d.displacements.iter().enumerate() {
             out.push(Measurement {
-                posture: format!("P{}", i + 1),
+                posture: i,
                 point,
                 q: *q,
                 wrench: w,
