@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{deg, paper_measurements, synthetic, PAPER_POSTURES_DEG};
+use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use stiffid::MeasurementField;
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
@@ -17,18 +17,6 @@ use stiffid::{robot::presets, setup, Error};
 
 fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
     (a - truth).component_div(truth).amax()
-}
-
-/// `data` with independent Gaussian noise of standard deviation `sigma` (m) on every displacement
-/// component, drawn in measurement order from `rng`.
-fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec<Measurement> {
-    let noise = Normal::new(0.0, sigma).unwrap();
-    data.iter()
-        .map(|m| Measurement {
-            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(rng)),
-            ..m.clone()
-        })
-        .collect()
 }
 
 #[test]
