@@ -167,29 +167,31 @@ fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
         };
         return Err(error(MeasurementField::Axis(axis), message));
     }
-    let force = meas.wrench.fixed_rows::<3>(0).norm();
-    let moment = meas.wrench.fixed_rows::<3>(3).norm();
+    let force: Vector3<f64> = meas.wrench.fixed_rows::<3>(0).into();
+    let moment: Vector3<f64> = meas.wrench.fixed_rows::<3>(3).into();
     let magnitudes = [
         (MeasurementField::Force, force, MAX_FORCE, 1.0, "N"),
         (MeasurementField::Moment, moment, MAX_MOMENT, 1.0, "Nm"),
         (
             MeasurementField::Displacement,
-            meas.displacement.norm(),
+            meas.displacement,
             MAX_DISPLACEMENT,
             1e3,
             "mm",
         ),
     ];
-    for (field, value, limit, scale, unit) in magnitudes {
-        if !value.is_finite() {
+    for (field, v, limit, scale, unit) in magnitudes {
+        if !v.iter().all(|x| x.is_finite()) {
             return Err(error(field, "expected finite numbers".into()));
         }
-        if value > limit {
+        // The largest component where the norm would overflow.
+        let size = Some(v.norm()).filter(|n| n.is_finite()).unwrap_or(v.amax());
+        if size > limit {
             return Err(error(
                 field,
                 format!(
                     "magnitude {:.4e} {unit} is above the limit {:.0e} {unit}: check the unit of the columns",
-                    value * scale,
+                    size * scale,
                     limit * scale
                 ),
             ));
