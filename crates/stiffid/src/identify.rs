@@ -46,7 +46,6 @@ use crate::{Error, MeasurementField, Result, Setup};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::cell::Cell;
-use std::collections::HashMap;
 
 /// Largest accepted displacement of a measuring point, m: a robot deflects by millimetres, so a
 /// larger value is a unit or transcription error.
@@ -61,8 +60,9 @@ pub const MAX_MOMENT: f64 = 1e6;
 /// One measured displacement: a measuring point in a posture under a wrench.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measurement {
-    /// The posture: any number that identifies it (a file's labels are numbered in order of first
-    /// appearance). Measurements of the same posture must have the same axis angles.
+    /// The posture: a number below the number of measurements that identifies it (a file's labels
+    /// are numbered `0, 1, ...` in order of first appearance). Measurements of the same posture
+    /// must have the same axis angles.
     pub posture: usize,
     /// Index of the measuring point in the setup's tool, 0-based.
     pub point: usize,
@@ -96,13 +96,17 @@ pub struct Observations {
 /// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
 /// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
 /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
-/// angles (`posture`). Postures are told apart by a hash map: linear in the measurements.
+/// angles or with a number not below the number of measurements (`posture`). Linear in the
+/// measurements whatever the number of postures.
 pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Observations> {
     let n = measurements.len();
     let mut psi = DMatrix::zeros(3 * n, 6);
     let mut delta = DVector::zeros(3 * n);
-    // Posture -> (its dense number, its first measurement).
-    let mut labels: HashMap<usize, (usize, usize)> = HashMap::new();
+    // Posture -> (its dense number, its first measurement); usize::MAX before it is seen.
+    let mut labels = Postures {
+        first: vec![(usize::MAX, usize::MAX); n],
+        count: 0,
+    };
     let mut posture_index = Vec::with_capacity(n);
     // The measurement the frames and torques were computed for, the frames and the torques.
     let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
@@ -133,7 +137,7 @@ pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Obser
     Ok(Observations {
         psi,
         delta,
-        postures: labels.len(),
+        postures: labels.count,
         posture_index,
     })
 }
@@ -200,25 +204,38 @@ fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
     Ok(())
 }
 
-/// The dense number of measurement `i`'s posture; an error if it was measured before at other
-/// axis angles.
-fn check_label(
-    labels: &mut HashMap<usize, (usize, usize)>,
-    measurements: &[Measurement],
-    i: usize,
-) -> Result<usize> {
+/// The postures seen so far: posture -> (its dense number, its first measurement).
+struct Postures {
+    first: Vec<(usize, usize)>,
+    count: usize,
+}
+
+/// The dense number of measurement `i`'s posture; an error if the posture number is not below the
+/// number of measurements or if it was measured before at other axis angles.
+fn check_label(labels: &mut Postures, measurements: &[Measurement], i: usize) -> Result<usize> {
     let meas = &measurements[i];
-    let next = labels.len();
-    let &mut (index, first) = labels.entry(meas.posture).or_insert((next, i));
+    let error = |message: String| Error::Measurement {
+        number: i + 1,
+        field: MeasurementField::Posture,
+        message,
+    };
+    let n = measurements.len();
+    let slot = labels.first.get_mut(meas.posture).ok_or_else(|| {
+        error(format!(
+            "posture number {} is not below the number of measurements, {n}",
+            meas.posture
+        ))
+    })?;
+    if slot.0 == usize::MAX {
+        *slot = (labels.count, i);
+        labels.count += 1;
+    }
+    let (index, first) = *slot;
     if measurements[first].q != meas.q {
-        return Err(Error::Measurement {
-            number: i + 1,
-            field: MeasurementField::Posture,
-            message: format!(
-                "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
-                first + 1
-            ),
-        });
+        return Err(error(format!(
+            "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
+            first + 1
+        )));
     }
     Ok(index)
 }
@@ -398,7 +415,23 @@ impl Observations {
         self.check_deflection()?;
         let factor = Factor::try_new(&self.psi)?;
         let h = factor.solve(&self.delta);
-        Ok(self.finish(h, factor.unit_covariance(), 6, factor.cond(), None))
+        let residuals = &self.delta - &self.psi * h;
+        Ok(self.finish(h, residuals, factor.unit_covariance(), 6, factor.cond(), None))
+    }
+
+    /// [`Observations::identify`] without a copy of `Psi`: it is factored in place and the
+    /// residuals come from the factor ([`Factor::residuals`]). For large data sets (a million
+    /// measurements make `Psi` 144 MB).
+    ///
+    /// # Errors
+    /// Those of [`Observations::identify`].
+    pub fn into_identification(mut self) -> Result<Identification> {
+        self.check_deflection()?;
+        let psi = std::mem::replace(&mut self.psi, DMatrix::zeros(0, 6));
+        let factor = Factor::try_from_matrix(psi)?;
+        let h = factor.solve(&self.delta);
+        let residuals = factor.residuals(&self.delta);
+        Ok(self.finish(h, residuals, factor.unit_covariance(), 6, factor.cond(), None))
     }
 
     /// The least-squares compliance with the bounds `h >= 0` (a joint cannot be softer than
@@ -418,6 +451,7 @@ impl Observations {
         let free = fit.active.iter().filter(|a| !**a).count();
         let mut id = self.finish(
             fit.h,
+            &self.delta - &self.psi * fit.h,
             nonnegative::unit_covariance(factor.r(), &fit.active),
             free,
             factor.cond(),
@@ -451,20 +485,28 @@ impl Observations {
         let factor = Factor::try_new(&self.psi)?;
         let start = factor.solve(&self.delta);
         let (h, weighted, fit) = robust::fit(&self.psi, &self.delta, start, loss)?;
-        Ok(self.finish(h, weighted.unit_covariance(), 6, factor.cond(), Some(fit)))
+        let residuals = &self.delta - &self.psi * h;
+        Ok(self.finish(
+            h,
+            residuals,
+            weighted.unit_covariance(),
+            6,
+            factor.cond(),
+            Some(fit),
+        ))
     }
 
-    /// The statistics of compliance `h` with `(Psi^T W Psi)^-1 = unit_covariance` and `free`
-    /// estimated compliances.
+    /// The statistics of compliance `h` with residuals `delta - Psi h`,
+    /// `(Psi^T W Psi)^-1 = unit_covariance` and `free` estimated compliances.
     fn finish(
         &self,
         h: Vector6<f64>,
+        residuals: DVector<f64>,
         unit_covariance: Matrix6<f64>,
         free: usize,
         cond_psi: f64,
         robust: Option<RobustFit>,
     ) -> Identification {
-        let residuals = &self.delta - &self.psi * h;
         let rows = residuals.len();
         let (weighted_rss, weighted_rows) = match &robust {
             None => (residuals.norm_squared(), rows),

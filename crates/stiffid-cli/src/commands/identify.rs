@@ -9,7 +9,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use stiffid::formats::measurements::MeasurementFile;
 use stiffid::identify::{
-    cross_validate, observations, Adequacy, CrossValidation, Identification, Loss, Uncertainty,
+    cross_validate, observations, Adequacy, Observations, CrossValidation, Identification, Loss, Uncertainty,
     UnitCheck,
 };
 use stiffid::kinematics::Coordinates;
@@ -185,25 +185,11 @@ pub fn run(args: &Args) -> Result<()> {
     let obs = observations(&setup, &file.measurements)
         .map_err(|e| file.explain(e))
         .with_context(|| name.clone())?;
-    let id = match (args.robust, args.nonnegative) {
-        (Some(Robust::Huber), _) => obs.identify_robust(Loss::Huber),
-        (Some(Robust::Tukey), _) => obs.identify_robust(Loss::Tukey),
-        (None, true) => obs.identify_nonnegative(),
-        (None, false) => obs.identify(),
-    }
-    .with_context(|| name.clone())?;
-    let cross_validation = match (args.cross_validate, args.folds) {
-        (false, None) => None,
-        (_, folds) => Some(
-            cross_validate(&obs, &id, folds.unwrap_or(obs.postures))
-                .with_context(|| format!("{name}: --folds"))?,
-        ),
-    };
     let mut first_of_posture = vec![usize::MAX; obs.postures];
     for (i, &p) in obs.posture_index.iter().enumerate().rev() {
         first_of_posture[p] = i;
     }
-    drop(obs);
+    let (id, cross_validation) = fit(args, obs).with_context(|| name.clone())?;
     let run = Run {
         setup_name: &args.setup,
         data_name: name,
@@ -230,6 +216,26 @@ pub fn run(args: &Args) -> Result<()> {
     }
     print!("{}", text::human(&run));
     Ok(())
+}
+
+/// The fit the arguments ask for, and the cross-validation if asked.
+fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossValidation>)> {
+    let id = match (args.robust, args.nonnegative) {
+        (Some(Robust::Huber), _) => obs.identify_robust(Loss::Huber)?,
+        (Some(Robust::Tukey), _) => obs.identify_robust(Loss::Tukey)?,
+        (None, true) => obs.identify_nonnegative()?,
+        (None, false) if args.cross_validate || args.folds.is_some() => obs.identify()?,
+        // Nothing else needs Psi: factor it in place (no copy of a large Psi).
+        (None, false) => return Ok((obs.into_identification()?, None)),
+    };
+    let cross_validation = match args.cross_validate || args.folds.is_some() {
+        false => None,
+        true => Some(
+            cross_validate(&obs, &id, args.folds.unwrap_or(obs.postures))
+                .context("--folds")?,
+        ),
+    };
+    Ok((id, cross_validation))
 }
 
 /// `--out` must not be the data file (nor any existing file that is the same file).

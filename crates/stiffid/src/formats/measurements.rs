@@ -103,16 +103,18 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
         ));
     }
     let columns = Columns::new(&header, line_of_header)?;
+    // At most one row per line: reserved once, no reallocation of a large vector.
+    let rows = text.bytes().filter(|b| *b == b'\n').count() + 1;
     let mut file = MeasurementFile {
-        measurements: Vec::new(),
+        measurements: Vec::with_capacity(rows),
         labels: Vec::new(),
-        lines: Vec::new(),
+        lines: Vec::with_capacity(rows),
         wrench_frame: columns.wrench_frame,
         displacement_frame: columns.displacement_frame,
         header,
         columns,
     };
-    let mut index: HashMap<String, usize> = HashMap::new();
+    let mut index: HashMap<Box<str>, usize> = HashMap::new();
     let mut record = csv::StringRecord::new();
     loop {
         let line = reader.position().line();
@@ -129,7 +131,7 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
     }
     file.labels = vec![String::new(); index.len()];
     for (label, i) in index {
-        file.labels[i] = label;
+        file.labels[i] = label.into();
     }
     Ok(file)
 }
@@ -139,7 +141,7 @@ impl MeasurementFile {
         &mut self,
         record: &csv::StringRecord,
         line: u64,
-        index: &mut HashMap<String, usize>,
+        index: &mut HashMap<Box<str>, usize>,
     ) -> Result<()> {
         if record.len() != self.header.len() {
             return Err(problem(
@@ -159,7 +161,7 @@ impl MeasurementFile {
             }
             None => {
                 let i = index.len();
-                index.insert(label.to_string(), i);
+                index.insert(label.into(), i);
                 i
             }
         };
