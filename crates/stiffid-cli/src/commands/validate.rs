@@ -119,9 +119,8 @@ fn human(r: &ValidationJson) -> String {
         r.rms_delta_b_mm
     );
     s += &format!(
-        "measured deflection |delta_m|: mean {:.4} mm, max {:.4} mm, RMS {:.4} mm
-         share of the measured deflection the model explains, 1 - RMS(delta_b)/RMS(|delta_m|): {:.1}%
-",
+        "measured deflection |delta_m|: mean {:.4} mm, max {:.4} mm, RMS {:.4} mm\n\
+         share of the measured deflection the model explains, 1 - RMS(delta_b)/RMS(|delta_m|): {:.1}%\n",
         r.mean_measured_mm,
         r.max_measured_mm,
         r.rms_measured_mm,
