@@ -46,6 +46,7 @@ use crate::{Error, MeasurementField, Result, Setup};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::cell::Cell;
+use std::collections::HashMap;
 
 /// Largest accepted displacement of a measuring point, m: a robot deflects by millimetres, so a
 /// larger value is a unit or transcription error.
@@ -60,9 +61,9 @@ pub const MAX_MOMENT: f64 = 1e6;
 /// One measured displacement: a measuring point in a posture under a wrench.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measurement {
-    /// The posture: a number below the number of measurements that identifies it (a file's labels
-    /// are numbered `0, 1, ...` in order of first appearance). Measurements of the same posture
-    /// must have the same axis angles.
+    /// The posture: any number that identifies it (a file's labels are numbered `0, 1, ...` in
+    /// order of first appearance). Measurements of the same posture must have the same axis
+    /// angles.
     pub posture: usize,
     /// Index of the measuring point in the setup's tool, 0-based.
     pub point: usize,
@@ -96,17 +97,12 @@ pub struct Observations {
 /// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
 /// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
 /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
-/// angles or with a number not below the number of measurements (`posture`). Linear in the
-/// measurements whatever the number of postures.
+/// angles (`posture`). Linear in the measurements whatever the number of postures.
 pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Observations> {
     let n = measurements.len();
     let mut psi = DMatrix::zeros(3 * n, 6);
     let mut delta = DVector::zeros(3 * n);
-    // Posture -> (its dense number, its first measurement); usize::MAX before it is seen.
-    let mut labels = Postures {
-        first: vec![(usize::MAX, usize::MAX); n],
-        count: 0,
-    };
+    let mut labels = Postures::new(measurements);
     let mut posture_index = Vec::with_capacity(n);
     // The measurement the frames and torques were computed for, the frames and the torques.
     let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
@@ -204,38 +200,59 @@ fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
     Ok(())
 }
 
-/// The postures seen so far: posture -> (its dense number, its first measurement).
+/// The postures seen so far: posture -> (its dense number, its first measurement). A table
+/// indexed by the posture number when the numbers are small (as a file's are), else a hash map.
 struct Postures {
-    first: Vec<(usize, usize)>,
+    table: Table,
     count: usize,
 }
 
-/// The dense number of measurement `i`'s posture; an error if the posture number is not below the
-/// number of measurements or if it was measured before at other axis angles.
+enum Table {
+    /// `usize::MAX` before the posture is seen.
+    Dense(Vec<(usize, usize)>),
+    Sparse(HashMap<usize, (usize, usize)>),
+}
+
+impl Postures {
+    fn new(measurements: &[Measurement]) -> Self {
+        let n = measurements.len();
+        let table = match measurements.iter().all(|m| m.posture < 2 * n) {
+            true => Table::Dense(vec![(usize::MAX, usize::MAX); 2 * n]),
+            false => Table::Sparse(HashMap::new()),
+        };
+        Self { table, count: 0 }
+    }
+
+    /// The dense number and the first measurement of `posture`, first seen at measurement `i`
+    /// if new.
+    fn entry(&mut self, posture: usize, i: usize) -> (usize, usize) {
+        let next = (self.count, i);
+        let slot = match &mut self.table {
+            Table::Dense(v) => &mut v[posture],
+            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, usize::MAX)),
+        };
+        if slot.0 == usize::MAX {
+            *slot = next;
+            self.count += 1;
+        }
+        *slot
+    }
+}
+
+/// The dense number of measurement `i`'s posture; an error if it was measured before at other
+/// axis angles.
 fn check_label(labels: &mut Postures, measurements: &[Measurement], i: usize) -> Result<usize> {
     let meas = &measurements[i];
-    let error = |message: String| Error::Measurement {
-        number: i + 1,
-        field: MeasurementField::Posture,
-        message,
-    };
-    let n = measurements.len();
-    let slot = labels.first.get_mut(meas.posture).ok_or_else(|| {
-        error(format!(
-            "posture number {} is not below the number of measurements, {n}",
-            meas.posture
-        ))
-    })?;
-    if slot.0 == usize::MAX {
-        *slot = (labels.count, i);
-        labels.count += 1;
-    }
-    let (index, first) = *slot;
+    let (index, first) = labels.entry(meas.posture, i);
     if measurements[first].q != meas.q {
-        return Err(error(format!(
-            "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
-            first + 1
-        )));
+        return Err(Error::Measurement {
+            number: i + 1,
+            field: MeasurementField::Posture,
+            message: format!(
+                "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
+                first + 1
+            ),
+        });
     }
     Ok(index)
 }
@@ -416,7 +433,14 @@ impl Observations {
         let factor = Factor::try_new(&self.psi)?;
         let h = factor.solve(&self.delta);
         let residuals = &self.delta - &self.psi * h;
-        Ok(self.finish(h, residuals, factor.unit_covariance(), 6, factor.cond(), None))
+        Ok(self.finish(
+            h,
+            residuals,
+            factor.unit_covariance(),
+            6,
+            factor.cond(),
+            None,
+        ))
     }
 
     /// [`Observations::identify`] without a copy of `Psi`: it is factored in place and the
@@ -431,7 +455,14 @@ impl Observations {
         let factor = Factor::try_from_matrix(psi)?;
         let h = factor.solve(&self.delta);
         let residuals = factor.residuals(&self.delta);
-        Ok(self.finish(h, residuals, factor.unit_covariance(), 6, factor.cond(), None))
+        Ok(self.finish(
+            h,
+            residuals,
+            factor.unit_covariance(),
+            6,
+            factor.cond(),
+            None,
+        ))
     }
 
     /// The least-squares compliance with the bounds `h >= 0` (a joint cannot be softer than

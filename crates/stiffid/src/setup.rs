@@ -24,17 +24,20 @@
 //! upper_deg = [90, 40, -40, 180, 90, 180]
 //! [test]                                 # optional: postures to validate and design for
 //! postures_deg = [[12.81, 33.07, -126.36, 72.81, -67.88, 24.27]]
-//! [tracker]                              # optional: where the laser tracker stands
-//! base_from_tracker = { xyz_mm = [3000, 0, 0], rpy_deg = [0, 0, 180] }  # for dx_tracker_mm, ...
 //! [constraints]                          # optional, for posture search
 //! loading_point_min_z_mm = 300.0
 //! anchor_below_loading_point = true
 //! ```
+//! and optionally the physical cell, `[cell]`, `[robot_geometry]` and `[tracker]` (see [`Cell`]).
+
+mod cell;
+
+pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
 
 use crate::kinematics::{Coordinates, Frames};
-use crate::robot::file::{one_line, TransformFile};
+use crate::robot::file::one_line;
 use crate::{Error, Result, Robot};
-use nalgebra::{Isometry3, Vector3, Vector6};
+use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
 
 /// Points of the tool, in the flange frame, m.
@@ -114,14 +117,6 @@ pub struct CellConstraints {
     pub anchor_below_loading_point: bool,
 }
 
-/// The laser tracker of the cell.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Tracker {
-    /// The tracker frame in the robot base frame (m), to turn displacements measured in the
-    /// tracker frame into the base frame ([`crate::identify::frames`]).
-    pub base_from_tracker: Option<Isometry3<f64>>,
-}
-
 /// A resolved experimental setup, SI units throughout.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setup {
@@ -151,8 +146,12 @@ pub struct Setup {
     pub test_postures: Vec<Vector6<f64>>,
     /// Optional cell constraints for posture search.
     pub constraints: CellConstraints,
-    /// The laser tracker (optional `[tracker]` table).
-    pub tracker: Tracker,
+    /// The floor, clearance and obstacles; `None`: no body checks (the paper's study).
+    pub cell: Option<Cell>,
+    /// Capsule radii of the robot and tool bodies (defaults scaled to the robot's size).
+    pub geometry: RobotGeometry,
+    /// The laser tracker, for the line-of-sight and incidence checks.
+    pub tracker: Option<Tracker>,
 }
 
 impl Setup {
@@ -185,13 +184,9 @@ struct SetupFile {
     bounds: BoundsFile,
     test: Option<TestFile>,
     constraints: Option<ConstraintsFile>,
-    tracker: Option<TrackerFile>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TrackerFile {
-    base_from_tracker: Option<TransformFile>,
+    cell: Option<cell::CellFile>,
+    robot_geometry: Option<cell::GeometryFile>,
+    tracker: Option<cell::TrackerFile>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -376,26 +371,24 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
             anchor_below_loading_point: c.anchor_below_loading_point,
         })
     })?;
-    let tracker = match f.tracker.and_then(|t| t.base_from_tracker) {
-        None => Tracker::default(),
-        Some(t) => {
-            check_finite(src, "tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
-            check_finite(src, "tracker.base_from_tracker.rpy_deg", &t.rpy_deg)?;
-            Tracker {
-                base_from_tracker: Some(t.isometry()),
-            }
-        }
+    let tool = Tool {
+        loading_point: mm(&f.tool.loading_point_mm),
+        tcp: f.tool.tcp_mm.as_ref().map_or(measuring_points[0], mm),
+        measuring_points,
     };
+    let cell = f.cell.map(|c| cell::cell(c, src)).transpose()?;
+    let defaults = crate::cell::default_geometry(&robot, &tool);
+    let geometry = cell::geometry(f.robot_geometry, defaults, src)?;
+    let tracker = f
+        .tracker
+        .map(|t| cell::tracker(t, tool.measuring_points.len(), cell.as_ref(), src))
+        .transpose()?;
     Ok(Setup {
         name: f.name,
         description: f.description,
         robot_ref: f.robot,
         robot,
-        tool: Tool {
-            loading_point: mm(&f.tool.loading_point_mm),
-            tcp: f.tool.tcp_mm.as_ref().map_or(measuring_points[0], mm),
-            measuring_points,
-        },
+        tool,
         springs: f.springs,
         load: RopeLoad {
             load: f.loading.load_n,
@@ -410,6 +403,8 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
         characteristic_length: f.characteristic_length_mm * 1e-3,
         test_postures,
         constraints,
+        cell,
+        geometry,
         tracker,
     })
 }

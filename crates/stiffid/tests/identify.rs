@@ -5,14 +5,13 @@
 mod common;
 
 use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
-use stiffid::MeasurementField;
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use stiffid::identify::{identify, identify_robust, Loss, Measurement};
 use stiffid::kinematics::Coordinates;
 use stiffid::validate::validate;
+use stiffid::MeasurementField;
 use stiffid::{robot::presets, setup, Error};
 
 fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
@@ -174,7 +173,10 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
     );
     let mut bad = data.clone();
     bad[6].q[2] = setup.robot.upper[2] + 0.1;
-    assert_eq!(field(identify(&setup, &bad).unwrap_err()), (7, MeasurementField::Axis(2)));
+    assert_eq!(
+        field(identify(&setup, &bad).unwrap_err()),
+        (7, MeasurementField::Axis(2))
+    );
     let mut bad = data.clone();
     bad[2].wrench[1] = f64::NAN;
     assert_eq!(

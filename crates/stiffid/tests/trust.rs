@@ -36,11 +36,22 @@ fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     assert_eq!(a.dof, 720 - 6);
     // s / sigma has a standard deviation of about 1 / sqrt(2 dof) = 0.026.
     assert!((a.noise_ratio - 1.0).abs() < 0.1, "ratio {}", a.noise_ratio);
-    assert!(a.p_value > 0.001 && !a.model_error_dominates(), "p {}", a.p_value);
+    assert!(
+        a.p_value > 0.001 && !a.model_error_dominates(),
+        "p {}",
+        a.p_value
+    );
     assert!((a.chi2 - a.dof as f64 * a.noise_ratio.powi(2)).abs() < 1e-9 * a.chi2);
     // Ten times the noise: the model check fails.
-    let loud = with_noise(&paper_measurements(&setup), 10.0 * setup.noise.sigma(), &mut ChaCha8Rng::seed_from_u64(1));
-    let a = identify(&setup, &loud).unwrap().adequacy(setup.noise.variance).unwrap();
+    let loud = with_noise(
+        &paper_measurements(&setup),
+        10.0 * setup.noise.sigma(),
+        &mut ChaCha8Rng::seed_from_u64(1),
+    );
+    let a = identify(&setup, &loud)
+        .unwrap()
+        .adequacy(setup.noise.variance)
+        .unwrap();
     assert!(a.noise_ratio > 5.0 && a.model_error_dominates(), "{a:?}");
     // The noise intervals: normal quantile, sigma^2 instead of s^2.
     let u = id.uncertainty.as_ref().unwrap();
@@ -99,7 +110,10 @@ fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
         }
         some_active += usize::from(fit.active.iter().any(|a| *a));
     }
-    assert!(some_active > 100, "the cases exercise the bounds: {some_active}");
+    assert!(
+        some_active > 100,
+        "the cases exercise the bounds: {some_active}"
+    );
 }
 
 #[test]
@@ -111,8 +125,14 @@ fn nonnegative_fit_equals_least_squares_when_that_is_non_negative() {
     assert!(plain.compliance.iter().all(|h| *h > 0.0));
     assert_eq!(bounded.active_bounds, Some([false; 6]));
     assert!((plain.compliance - bounded.compliance).amax() < 1e-12 * plain.compliance.amax());
-    let (u, v) = (plain.uncertainty.as_ref().unwrap(), bounded.uncertainty.as_ref().unwrap());
-    assert!((u.compliance_std_error - v.compliance_std_error).amax() < 1e-9 * u.compliance_std_error.amax());
+    let (u, v) = (
+        plain.uncertainty.as_ref().unwrap(),
+        bounded.uncertainty.as_ref().unwrap(),
+    );
+    assert!(
+        (u.compliance_std_error - v.compliance_std_error).amax()
+            < 1e-9 * u.compliance_std_error.amax()
+    );
     assert_eq!(plain.physical(), [true; 6]);
 }
 
@@ -122,7 +142,10 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
     let setup = paper();
     let flipped: Vec<Measurement> = paper_measurements(&setup)
         .into_iter()
-        .map(|m| Measurement { displacement: -m.displacement, ..m })
+        .map(|m| Measurement {
+            displacement: -m.displacement,
+            ..m
+        })
         .collect();
     let obs = observations(&setup, &flipped).unwrap();
     let plain = obs.identify().unwrap();
@@ -147,7 +170,9 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
         let (held, rest): (Vec<Measurement>, Vec<Measurement>) =
             data.iter().cloned().partition(|m| m.posture == p);
         let by_hand = identify(&setup, &rest).unwrap();
-        let rel = (fold.stiffness - by_hand.stiffness).component_div(&by_hand.stiffness).amax();
+        let rel = (fold.stiffness - by_hand.stiffness)
+            .component_div(&by_hand.stiffness)
+            .amax();
         assert!(rel < 1e-9, "fold {p}: {rel:e}");
         let check = validate(&setup, &by_hand.stiffness, &held).unwrap();
         for (a, c) in fold.delta_b.iter().zip(&check.checks) {
@@ -163,11 +188,27 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
     let std = (ks.iter().map(|k| (k - mean).powi(2)).sum::<f64>() / 5.0).sqrt();
     assert!((cv.stiffness_mean[3] - mean).abs() < 1e-9 * mean);
     assert!((cv.stiffness_std[3] - std).abs() < 1e-9 * std);
+    // Large posture numbers (a hash map instead of a table) tell the postures apart the same way.
+    let sparse: Vec<Measurement> = data
+        .iter()
+        .map(|m| Measurement {
+            posture: m.posture * 1_000_003 + 7,
+            ..m.clone()
+        })
+        .collect();
+    let again = observations(&setup, &sparse).unwrap();
+    assert_eq!(
+        (again.postures, &again.posture_index),
+        (6, &obs.posture_index)
+    );
     // Two folds: postures 0, 2, 4 and 1, 3, 5, every measurement held out once.
     let two = cross_validate(&obs, &full, 2).unwrap();
     assert_eq!(two.folds[0].postures, vec![0, 2, 4]);
     assert_eq!(two.folds[1].postures, vec![1, 3, 5]);
-    assert_eq!(two.folds[0].measurements.len() + two.folds[1].measurements.len(), 24);
+    assert_eq!(
+        two.folds[0].measurements.len() + two.folds[1].measurements.len(),
+        24
+    );
     assert!(cross_validate(&obs, &full, 7).is_err());
     assert!(cross_validate(&obs, &full, 1).is_err());
 }
@@ -182,17 +223,17 @@ fn fanuc_in_other_frames(setup: &Setup, tracker: &Isometry3<f64>) -> String {
         let moment = r.inverse() * m.wrench.fixed_rows::<3>(3);
         let d = tracker.rotation.inverse() * m.displacement * 1e3;
         let q = m.q.map(f64::to_degrees);
-        let row: Vec<String> = [
-            q.as_slice(),
-            f.as_slice(),
-            moment.as_slice(),
-            d.as_slice(),
-        ]
-        .concat()
-        .iter()
-        .map(|v| format!("{v:e}"))
-        .collect();
-        text += &format!("{},{},{}\n", file.labels[m.posture], m.point + 1, row.join(","));
+        let row: Vec<String> = [q.as_slice(), f.as_slice(), moment.as_slice(), d.as_slice()]
+            .concat()
+            .iter()
+            .map(|v| format!("{v:e}"))
+            .collect();
+        text += &format!(
+            "{},{},{}\n",
+            file.labels[m.posture],
+            m.point + 1,
+            row.join(",")
+        );
     }
     text
 }
@@ -215,25 +256,55 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
         file.clone().to_base_frame(&setup),
         Err(Error::InvalidField { field, .. }) if field == "tracker.base_from_tracker"
     ));
-    setup.tracker.base_from_tracker = Some(tracker);
+    setup.tracker = Some(stiffid::setup::Tracker {
+        position: tracker.translation.vector,
+        max_incidence: None,
+        measuring_normals: vec![nalgebra::Vector3::z()],
+        base_from_tracker: Some(tracker),
+    });
     file.to_base_frame(&setup).unwrap();
     let other = identify(&setup, &file.measurements).unwrap();
-    let rel = (other.stiffness - base.stiffness).component_div(&base.stiffness).amax();
+    let rel = (other.stiffness - base.stiffness)
+        .component_div(&base.stiffness)
+        .amax();
     assert!(rel < 1e-9, "relative difference {rel:e}");
 }
 
 #[test]
 fn the_setup_reads_the_tracker_transform() {
-    let text = setup::builtin_text("fanuc-r2000ic-165f").unwrap().to_string()
+    let text = setup::builtin_text("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_string()
         + "\n[tracker]\nbase_from_tracker = { xyz_mm = [3000, 0, 500], rpy_deg = [0, 0, 90] }\n";
     let s = setup::parse(&text, "t.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
-    let t = s.tracker.base_from_tracker.unwrap();
+    let tracker = s.tracker.unwrap();
+    let t = tracker.base_from_tracker.unwrap();
     assert!((t.translation.vector - nalgebra::Vector3::new(3.0, 0.0, 0.5)).norm() < 1e-12);
+    assert_eq!(
+        tracker.position, t.translation.vector,
+        "the position is the transform's"
+    );
     let x = t.rotation * nalgebra::Vector3::x();
-    assert!((x - nalgebra::Vector3::y()).norm() < 1e-12, "yaw 90 deg turns x into y: {x}");
+    assert!(
+        (x - nalgebra::Vector3::y()).norm() < 1e-12,
+        "yaw 90 deg turns x into y: {x}"
+    );
+    let parse = |text: &str| setup::parse(text, "t.toml", |r, _| stiffid::robot::presets::get(r));
     let bad = text.replace("rpy_deg = [0, 0, 90]", "rpy_deg = [0, nan, 90]");
-    let e = setup::parse(&bad, "t.toml", |r, _| stiffid::robot::presets::get(r)).unwrap_err();
-    assert!(e.to_string().contains("tracker.base_from_tracker.rpy_deg"), "{e}");
+    let e = parse(&bad).unwrap_err();
+    assert!(
+        e.to_string().contains("tracker.base_from_tracker.rpy_deg"),
+        "{e}"
+    );
+    let apart = text.replace("[tracker]\n", "[tracker]\nposition_mm = [3000, 0, 600]\n");
+    let e = parse(&apart).unwrap_err();
+    assert!(
+        e.to_string().contains("tracker.position_mm")
+            && e.to_string().contains("translation of base_from_tracker"),
+        "{e}"
+    );
+    let agree = text.replace("[tracker]\n", "[tracker]\nposition_mm = [3000, 0, 500]\n");
+    assert!(parse(&agree).is_ok());
 }
 
 #[test]
@@ -249,7 +320,9 @@ fn the_unit_check_fires_on_displacements_in_metres_and_forces_in_kilonewtons() {
                 ..m.clone()
             })
             .collect();
-        identify(&setup, &scaled).unwrap().unit_check(&setup.nominal_stiffness)
+        identify(&setup, &scaled)
+            .unwrap()
+            .unit_check(&setup.nominal_stiffness)
     };
     assert_eq!(fit(1.0, 1.0), None);
     let metres = fit(1e-3, 1.0).unwrap();
@@ -266,27 +339,46 @@ fn absurd_magnitudes_and_no_deflection_are_errors() {
     let mut bad = data.clone();
     bad[3].displacement.x = 1.5;
     let e = identify(&setup, &bad).unwrap_err();
-    assert!(e.to_string().contains("measurement 4, displacement") && e.to_string().contains("limit"), "{e}");
+    assert!(
+        e.to_string().contains("measurement 4, displacement") && e.to_string().contains("limit"),
+        "{e}"
+    );
     let mut bad = data.clone();
     bad[2].wrench[2] = -2e6;
-    assert!(identify(&setup, &bad).unwrap_err().to_string().contains("measurement 3, force"));
+    assert!(identify(&setup, &bad)
+        .unwrap_err()
+        .to_string()
+        .contains("measurement 3, force"));
     let zero: Vec<Measurement> = data
         .iter()
-        .map(|m| Measurement { displacement: nalgebra::Vector3::zeros(), ..m.clone() })
+        .map(|m| Measurement {
+            displacement: nalgebra::Vector3::zeros(),
+            ..m.clone()
+        })
         .collect();
     let e = identify(&setup, &zero).unwrap_err();
-    assert!(e.to_string().contains("every measured displacement is zero"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("every measured displacement is zero"),
+        "{e}"
+    );
 }
 
 #[test]
 fn validation_reports_the_share_of_the_deflection_explained() {
     let setup = paper();
     let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
-    let data = synthetic(&setup, &qs, |_, q| setup.rope_wrench(&setup.robot.frames(q)));
+    let data = synthetic(&setup, &qs, |_, q| {
+        setup.rope_wrench(&setup.robot.frames(q))
+    });
     let exact = validate(&setup, &setup.nominal_stiffness, &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
     let stiffer = validate(&setup, &(setup.nominal_stiffness * 2.0), &data).unwrap();
-    assert!((stiffer.explained - 0.5).abs() < 1e-12, "{}", stiffer.explained);
+    assert!(
+        (stiffer.explained - 0.5).abs() < 1e-12,
+        "{}",
+        stiffer.explained
+    );
     let norms: Vec<f64> = data.iter().map(|m| m.displacement.norm()).collect();
     let rms = (norms.iter().map(|v| v * v).sum::<f64>() / norms.len() as f64).sqrt();
     assert!((stiffer.measured[2] - rms).abs() < 1e-15);

@@ -9,8 +9,8 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use stiffid::formats::measurements::MeasurementFile;
 use stiffid::identify::{
-    cross_validate, observations, Adequacy, Observations, CrossValidation, Identification, Loss, Uncertainty,
-    UnitCheck,
+    cross_validate, observations, Adequacy, CrossValidation, Identification, Loss, Observations,
+    Uncertainty, UnitCheck,
 };
 use stiffid::kinematics::Coordinates;
 use stiffid::Setup;
@@ -230,10 +230,9 @@ fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossVa
     };
     let cross_validation = match args.cross_validate || args.folds.is_some() {
         false => None,
-        true => Some(
-            cross_validate(&obs, &id, args.folds.unwrap_or(obs.postures))
-                .context("--folds")?,
-        ),
+        true => {
+            Some(cross_validate(&obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
+        }
     };
     Ok((id, cross_validation))
 }
@@ -281,7 +280,10 @@ impl Run<'_> {
             .filter(|f| f.influential.iter().any(|i| *i))
             .map(|f| InfluentialJson {
                 postures: self.labels(&f.postures),
-                joints: (0..6).filter(|&j| f.influential[j]).map(|j| j + 1).collect(),
+                joints: (0..6)
+                    .filter(|&j| f.influential[j])
+                    .map(|j| j + 1)
+                    .collect(),
             })
             .collect()
     }

@@ -87,10 +87,7 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
         .flexible(true)
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
-    let header_record = reader
-        .headers()
-        .map_err(|e| unreadable(1, &e))?
-        .clone();
+    let header_record = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
     let line_of_header = header_record.position().map_or(1, |p| p.line());
     let header: Vec<String> = header_record.iter().map(str::to_string).collect();
     if header.iter().all(|h| h.is_empty()) {
@@ -165,7 +162,9 @@ impl MeasurementFile {
                 i
             }
         };
-        let measurement = self.columns.measurement(record, posture, |c, p| self.at(line, c, p))?;
+        let measurement = self
+            .columns
+            .measurement(record, posture, |c, p| self.at(line, c, p))?;
         self.measurements.push(measurement);
         self.lines.push(line);
         Ok(())
@@ -340,15 +339,15 @@ impl Header<'_> {
     }
 
     fn need3(&self, names: [&str; 3]) -> Result<[usize; 3]> {
-        Ok([self.need(names[0])?, self.need(names[1])?, self.need(names[2])?])
+        Ok([
+            self.need(names[0])?,
+            self.need(names[1])?,
+            self.need(names[2])?,
+        ])
     }
 
     /// The columns of one quantity given in one of two frames (`None` if neither is there).
-    fn one_of<F: Copy>(
-        &self,
-        first: (&[&str], F),
-        second: (&[&str], F),
-    ) -> Result<Option<F>> {
+    fn one_of<F: Copy>(&self, first: (&[&str], F), second: (&[&str], F)) -> Result<Option<F>> {
         match (self.any(first.0), self.any(second.0)) {
             (true, true) => Err(problem(
                 self.line,
@@ -397,7 +396,10 @@ impl Columns {
             q[a] = h.need(name)?;
         }
         let wrench_frame = h
-            .one_of((&FORCE, WrenchFrame::Base), (&FORCE_TOOL, WrenchFrame::Tool))?
+            .one_of(
+                (&FORCE, WrenchFrame::Base),
+                (&FORCE_TOOL, WrenchFrame::Tool),
+            )?
             .unwrap_or(WrenchFrame::Base);
         let (force_names, moment_names) = match wrench_frame {
             WrenchFrame::Base => (FORCE, MOMENT),

@@ -79,10 +79,19 @@ pub fn cross_validate(
         .sum::<Vector6<f64>>()
         / (n - 1.0);
     let range = [
-        folds.iter().fold(Vector6::repeat(f64::INFINITY), |a, f| a.inf(&f.stiffness)),
-        folds.iter().fold(Vector6::repeat(f64::NEG_INFINITY), |a, f| a.sup(&f.stiffness)),
+        folds
+            .iter()
+            .fold(Vector6::repeat(f64::INFINITY), |a, f| a.inf(&f.stiffness)),
+        folds
+            .iter()
+            .fold(Vector6::repeat(f64::NEG_INFINITY), |a, f| {
+                a.sup(&f.stiffness)
+            }),
     ];
-    let held_out: Vec<f64> = folds.iter().flat_map(|f| f.delta_b.iter().copied()).collect();
+    let held_out: Vec<f64> = folds
+        .iter()
+        .flat_map(|f| f.delta_b.iter().copied())
+        .collect();
     let measured = obs.delta.norm_squared() / (obs.delta.len() / 3) as f64;
     Ok(CrossValidation {
         stiffness_mean: mean,

@@ -51,7 +51,11 @@ pub fn to_base(
     displacement: DisplacementFrame,
 ) -> Result<()> {
     if displacement == DisplacementFrame::Tracker {
-        let transform = setup.tracker.base_from_tracker.ok_or_else(|| Error::InvalidField {
+        let transform = setup
+            .tracker
+            .as_ref()
+            .and_then(|t| t.base_from_tracker)
+            .ok_or_else(|| Error::InvalidField {
             field: "tracker.base_from_tracker".into(),
             message: "the displacements are in the tracker frame (dx_tracker_mm, ...): the setup needs [tracker] base_from_tracker = { xyz_mm = [..], rpy_deg = [..] }".into(),
         })?;

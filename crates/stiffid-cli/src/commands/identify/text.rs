@@ -253,7 +253,9 @@ fn largest_residuals(run: &Run) -> String {
     let norm = |i: usize| id.residuals.fixed_rows::<3>(3 * i).norm();
     let mut order: Vec<usize> = (0..n).collect();
     let shown = 5.min(n);
-    order.select_nth_unstable_by(shown.saturating_sub(1), |&a, &b| norm(b).total_cmp(&norm(a)));
+    order.select_nth_unstable_by(shown.saturating_sub(1), |&a, &b| {
+        norm(b).total_cmp(&norm(a))
+    });
     order.truncate(shown);
     order.sort_by(|&a, &b| norm(b).total_cmp(&norm(a)));
     let mut s = "\nlargest residuals (measured - fitted), mm (all of them: --json):\n".to_string();
@@ -326,7 +328,11 @@ fn cross_validation(run: &Run) -> String {
             n if n > 3 => format!("{} ... ({n})", labels[..3].join(",")),
             _ => labels.join(","),
         };
-        let k: Vec<String> = fold.stiffness.iter().map(|k| format!("{:>10}", num(*k, 0))).collect();
+        let k: Vec<String> = fold
+            .stiffness
+            .iter()
+            .map(|k| format!("{:>10}", num(*k, 0)))
+            .collect();
         s += &format!(
             "{:>4}  {:<20}  {}  {:.4}\n",
             f + 1,
