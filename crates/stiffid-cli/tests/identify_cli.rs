@@ -3,9 +3,8 @@
 
 mod common;
 
-use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, fanuc_csv, json, stiffid, temp_dir, write_file};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
 
 fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()
@@ -13,11 +12,6 @@ fn numbers(v: &Value) -> Vec<f64> {
         .iter()
         .map(|x| x.as_f64().unwrap())
         .collect()
-}
-
-fn fanuc_csv() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
 }
 
 #[test]

@@ -4,16 +4,10 @@
 
 mod common;
 
-use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
-use std::path::{Path, PathBuf};
+use common::{assert_usage_error, fanuc_csv, json, stiffid, temp_dir, write_file};
 use std::process::Output;
 
 const FANUC: &str = "fanuc-r2000ic-165f";
-
-fn fanuc_csv() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
-}
 
 /// The FANUC file with every data row's fields changed by `edit` (fields as strings, 0-based:
 /// posture, point, q1..q6, fx..fz, dx..dz); rows `keep` only.

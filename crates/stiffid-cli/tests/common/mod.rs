@@ -91,3 +91,9 @@ pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+
+/// The real FANUC R-2000iC/165F measurement file of the examples.
+pub fn fanuc_csv() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+}

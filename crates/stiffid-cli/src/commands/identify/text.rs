@@ -190,7 +190,7 @@ fn table(id: &Identification, u: &Uncertainty, marks: bool) -> String {
     let physical = id.physical();
     let mut s = "joint  stiffness Nm/rad  std error  rel.    95% CI (delta method)    95% CI (1/compliance CI)  compliance rad/Nm\n".to_string();
     let mut poor = Vec::new();
-    for j in 0..6 {
+    for (j, physical) in physical.iter().enumerate() {
         let k = id.stiffness[j];
         let rel = u.stiffness_std_error[j] / k.abs();
         if rel > POOR {
@@ -217,7 +217,7 @@ fn table(id: &Identification, u: &Uncertainty, marks: bool) -> String {
             lower,
             upper,
             sci(id.compliance[j]),
-            match physical[j] {
+            match physical {
                 true => "",
                 false => "  not physical",
             }
