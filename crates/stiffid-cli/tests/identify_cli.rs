@@ -3,16 +3,8 @@
 
 mod common;
 
-use common::{assert_usage_error, fanuc_csv, json, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, fanuc_csv, json, numbers, stiffid, temp_dir, write_file};
 use serde_json::Value;
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
 
 #[test]
 fn fanuc_data_agree_with_the_numpy_least_squares_fit() {

@@ -3,10 +3,10 @@
 //! residuals, and optionally a robust or non-negative fit and cross-validation.
 
 use crate::load;
-use crate::output::{json, write_atomic};
-use anyhow::{bail, Context, Result};
+use crate::output::{json, refuse_to_overwrite, write_atomic};
+use anyhow::{Context, Result};
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stiffid::formats::measurements::MeasurementFile;
 use stiffid::identify::{
     cross_validate, observations, Adequacy, CrossValidation, Identification, Loss, Observations,
@@ -90,6 +90,7 @@ struct IdentifyJson {
     ci95_from_compliance_nm_per_rad: Option<[[f64; 2]; 6]>,
     compliance_std_error_rad_per_nm: Option<[f64; 6]>,
     compliance_ci95_rad_per_nm: Option<[[f64; 2]; 6]>,
+    compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
     degrees_of_freedom: Option<usize>,
     t_quantile: Option<f64>,
     residual_std_mm: Option<f64>,
@@ -178,7 +179,7 @@ struct InfluentialJson {
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     if let Some(out) = &args.out {
-        refuse_to_overwrite(out, &args.data)?;
+        refuse_to_overwrite(out, &[&args.data])?;
     }
     let file = load::measurements(&args.data, &setup)?;
     let name = args.data.display().to_string();
@@ -235,21 +236,6 @@ fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossVa
         }
     };
     Ok((id, cross_validation))
-}
-
-/// `--out` must not be the data file (nor any existing file that is the same file).
-fn refuse_to_overwrite(out: &Path, data: &Path) -> Result<()> {
-    let same = match (out.canonicalize(), data.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        bail!(
-            "--out {}: refusing to write the result over the data file",
-            out.display()
-        );
-    }
-    Ok(())
 }
 
 fn mm(v: f64) -> f64 {
@@ -352,6 +338,9 @@ fn to_json(run: &Run) -> IdentifyJson {
         ci95_from_compliance_nm_per_rad: u.map(|u| u.stiffness_ci95_from_compliance),
         compliance_std_error_rad_per_nm: u.map(|u| u.compliance_std_error.into()),
         compliance_ci95_rad_per_nm: u.map(|u| u.compliance_ci95),
+        compliance_covariance_rad2_per_nm2: u.map(|u| {
+            std::array::from_fn(|r| std::array::from_fn(|c| u.compliance_covariance[(r, c)]))
+        }),
         degrees_of_freedom: u.map(|u| u.dof),
         t_quantile: u.map(|u| u.t_quantile),
         residual_std_mm: u.map(|u| mm(u.residual_variance.sqrt())),

@@ -97,3 +97,12 @@ pub fn fanuc_csv() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
 }
+
+/// The numbers of a JSON array.
+pub fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}

@@ -22,8 +22,9 @@
 //! [`MeasurementFile::displacement_frame`]); [`MeasurementFile::to_base_frame`] turns them into the
 //! base frame ([`crate::identify::frames`]).
 
+use crate::deflection::Frame;
 use crate::error::{ColumnProblem, MeasurementField};
-use crate::identify::frames::{self, DisplacementFrame, WrenchFrame};
+use crate::identify::frames::{self, DisplacementFrame};
 use crate::identify::Measurement;
 use crate::{Error, Result, Setup};
 use nalgebra::{Vector3, Vector6};
@@ -64,7 +65,7 @@ pub struct MeasurementFile {
     /// The line of each measurement in the text (1-based).
     pub lines: Vec<u64>,
     /// The frame of the wrench columns.
-    pub wrench_frame: WrenchFrame,
+    pub wrench_frame: Frame,
     /// The frame of the displacement columns.
     pub displacement_frame: DisplacementFrame,
     /// The header, to name columns in errors.
@@ -182,7 +183,7 @@ impl MeasurementFile {
 
     /// Turns the measurements into the robot base frame, in place: wrenches rotated with each
     /// posture's flange orientation, displacements with the setup's tracker transform
-    /// ([`frames::to_base`]); afterwards both frames are [`WrenchFrame::Base`] and
+    /// ([`frames::to_base`]); afterwards both frames are [`Frame::Base`] and
     /// [`DisplacementFrame::Base`].
     ///
     /// # Errors
@@ -194,7 +195,7 @@ impl MeasurementFile {
             self.wrench_frame,
             self.displacement_frame,
         )?;
-        self.wrench_frame = WrenchFrame::Base;
+        self.wrench_frame = Frame::Base;
         self.displacement_frame = DisplacementFrame::Base;
         Ok(())
     }
@@ -301,7 +302,7 @@ struct Columns {
     force: [usize; 3],
     moment: Option<[usize; 3]>,
     displacement: Displacement,
-    wrench_frame: WrenchFrame,
+    wrench_frame: Frame,
     displacement_frame: DisplacementFrame,
 }
 
@@ -396,18 +397,15 @@ impl Columns {
             q[a] = h.need(name)?;
         }
         let wrench_frame = h
-            .one_of(
-                (&FORCE, WrenchFrame::Base),
-                (&FORCE_TOOL, WrenchFrame::Tool),
-            )?
-            .unwrap_or(WrenchFrame::Base);
+            .one_of((&FORCE, Frame::Base), (&FORCE_TOOL, Frame::Tool))?
+            .unwrap_or(Frame::Base);
         let (force_names, moment_names) = match wrench_frame {
-            WrenchFrame::Base => (FORCE, MOMENT),
-            WrenchFrame::Tool => (FORCE_TOOL, MOMENT_TOOL),
+            Frame::Base => (FORCE, MOMENT),
+            Frame::Tool => (FORCE_TOOL, MOMENT_TOOL),
         };
         let other_moment = match wrench_frame {
-            WrenchFrame::Base => MOMENT_TOOL,
-            WrenchFrame::Tool => MOMENT,
+            Frame::Base => MOMENT_TOOL,
+            Frame::Tool => MOMENT,
         };
         h.one_of((&force_names, ()), (&other_moment, ()))?;
         let force = h.need3(force_names)?;

@@ -2,5 +2,7 @@
 //! caller reads the file and adds its name to errors.
 //!
 //! - [`measurements`]: the measurement CSV of an identification or validation.
+//! - [`path`]: the path (pose list) CSV of compensation.
 
 pub mod measurements;
+pub mod path;

@@ -13,19 +13,10 @@
 //! Sign convention: the wrench is the one that acts on the robot at the loading point (a mass
 //! hanging from it pulls down: `f_z < 0`); the displacement is loaded minus unloaded position.
 
+use crate::deflection::{base_wrench, Frame};
 use crate::identify::Measurement;
+use crate::kinematics::Frames;
 use crate::{Error, Result, Setup};
-use nalgebra::Vector6;
-
-/// The frame of a file's wrench columns.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum WrenchFrame {
-    /// The robot base frame.
-    #[default]
-    Base,
-    /// The tool (flange) frame of the measurement's posture.
-    Tool,
-}
 
 /// The frame of a file's displacement columns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -47,7 +38,7 @@ pub enum DisplacementFrame {
 pub fn to_base(
     setup: &Setup,
     measurements: &mut [Measurement],
-    wrench: WrenchFrame,
+    wrench: Frame,
     displacement: DisplacementFrame,
 ) -> Result<()> {
     if displacement == DisplacementFrame::Tracker {
@@ -63,20 +54,16 @@ pub fn to_base(
             m.displacement = transform.rotation * m.displacement;
         }
     }
-    if wrench == WrenchFrame::Tool {
-        let mut last: Option<(Vector6<f64>, nalgebra::UnitQuaternion<f64>)> = None;
+    if wrench == Frame::Tool {
+        // The posture's frames, computed once per run of measurements with the same angles.
+        let mut last: Option<(nalgebra::Vector6<f64>, Frames)> = None;
         for m in measurements.iter_mut() {
-            let rotation = match last {
-                Some((q, r)) if q == m.q => r,
-                _ => {
-                    let r = setup.robot.frames(&m.q).flange.rotation;
-                    last = Some((m.q, r));
-                    r
-                }
-            };
-            let f = rotation * m.wrench.fixed_rows::<3>(0);
-            let moment = rotation * m.wrench.fixed_rows::<3>(3);
-            m.wrench = Vector6::new(f.x, f.y, f.z, moment.x, moment.y, moment.z);
+            if last.as_ref().is_none_or(|(q, _)| *q != m.q) {
+                last = Some((m.q, setup.robot.frames(&m.q)));
+            }
+            if let Some((_, frames)) = &last {
+                m.wrench = base_wrench(frames, &m.wrench, Frame::Tool);
+            }
         }
     }
     Ok(())
