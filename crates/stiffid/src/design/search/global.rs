@@ -4,6 +4,7 @@ use super::local::{check_count, local};
 use super::sample::group_from_stream;
 use super::{SearchOptions, SearchOutcome};
 use crate::design::Criterion;
+use crate::progress::Progress;
 use crate::setup::Setup;
 use crate::{Error, Result};
 use rayon::prelude::*;
@@ -16,8 +17,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// ties).
 ///
 /// Every start is seeded on its own and the results are compared in start order, so the same
-/// options give the same postures whatever the thread count. `progress` is called with the number
-/// of local searches finished so far, after each one (from the worker threads).
+/// options give the same postures whatever the thread count. `progress` receives
+/// [`Progress::advance`] with the number of local searches finished so far, after each one (from
+/// the worker threads); the caller begins and ends the stage.
 ///
 /// # Errors
 /// [`Error::InvalidField`] for fewer than 2 postures, no start, or the `test-pose` criterion on a
@@ -27,7 +29,7 @@ pub fn global(
     criterion: Criterion,
     postures: usize,
     options: &SearchOptions,
-    progress: &(dyn Fn(usize) + Sync),
+    progress: &dyn Progress,
 ) -> Result<SearchOutcome> {
     check_count(setup, criterion, postures)?;
     if options.starts == 0 {
@@ -42,7 +44,7 @@ pub fn global(
         .map(|s| {
             let start = group_from_stream(setup, postures, options.seed, s as u64 + 1);
             let outcome = local(setup, criterion, &start, options);
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
             outcome
         })
         .collect::<Result<_>>()?;
