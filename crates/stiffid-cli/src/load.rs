@@ -8,13 +8,15 @@ use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use stiffid::deflection::Frame;
+use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::limits::{self, short, Range};
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{setup, Robot, Setup};
 
-/// Largest input file accepted, bytes (64 MiB): far above any real robot, setup, measurement or
-/// postures file, and a bound on the memory a file (or `/dev/zero`) can take.
-pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+/// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
+/// (the 1e6-row files of the README take 119 MB), and a bound on the memory a file (or
+/// `/dev/zero`) can take.
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Every file read so far (resolved path, device and inode), so no output is written over one.
 static INPUTS: Mutex<Vec<(PathBuf, u64, u64)>> = Mutex::new(Vec::new());
@@ -253,4 +255,14 @@ impl From<WrenchFrame> for Frame {
             WrenchFrame::Tool => Frame::Tool,
         }
     }
+}
+
+/// A measurement file (`stiffid::formats::measurements`), its measurements turned into the robot
+/// base frame; errors start with the file name, then the line and column. The text is dropped
+/// once parsed.
+pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
+    let name = || path.display().to_string();
+    let mut file = measurements::parse(&read(path)?).with_context(name)?;
+    file.to_base_frame(setup).with_context(name)?;
+    Ok(file)
 }

@@ -2,7 +2,6 @@
 //! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
 
 mod commands;
-mod data;
 mod load;
 mod output;
 mod postures;
@@ -19,7 +18,7 @@ use std::process::ExitCode;
     name = "stiffid",
     version,
     about,
-    after_help = "Input files are read up to 64 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; the README's 'Limits and safety' lists them all."
+    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; the README's 'Limits and safety' lists them all."
 )]
 struct Cli {
     #[command(subcommand)]

@@ -9,9 +9,10 @@
 #[path = "../../stiffid/tests/mutate/mod.rs"]
 mod mutate;
 
-use crate::{data, load, postures};
+use crate::{load, postures};
 use mutate::{apply, edit, hostile_number, Edit};
 use proptest::prelude::*;
+use stiffid::formats::measurements;
 use stiffid::limits::STIFFNESS_NM_PER_RAD;
 use stiffid::Setup;
 
@@ -25,7 +26,7 @@ fn fanuc() -> Setup {
     stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap()
 }
 
-fn measurements() -> &'static str {
+fn measurements_text() -> &'static str {
     include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv")
 }
 
@@ -39,7 +40,9 @@ const STIFFNESS: &str = r#"{"setup": "x", "stiffness_nm_per_rad": [950000.0, 300
 
 /// Accepted measurements identify finite stiffness, or fail with an error (never NaN).
 fn check_measurements(text: &str, setup: &Setup) {
-    let Ok(d) = data::parse(text) else { return };
+    let Ok(d) = measurements::parse(text) else {
+        return;
+    };
     for m in &d.measurements {
         assert!(m
             .q
@@ -77,7 +80,7 @@ fn check_stiffness(text: &str) {
 
 #[test]
 fn the_real_files_are_accepted() {
-    assert!(data::parse(measurements()).is_ok());
+    assert!(measurements::parse(measurements_text()).is_ok());
     assert_eq!(
         postures::parse(POSTURES, &comau().robot, Some(&comau().bounds))
             .unwrap()
@@ -99,7 +102,7 @@ proptest! {
 
     #[test]
     fn mutated_measurements(edits in prop::collection::vec(edit(), 1..4)) {
-        check_measurements(&apply(measurements(), &edits), &fanuc());
+        check_measurements(&apply(measurements_text(), &edits), &fanuc());
     }
 
     #[test]
@@ -114,7 +117,7 @@ proptest! {
 
     #[test]
     fn hostile_numbers_in_measurements(k in any::<usize>(), n in hostile_number()) {
-        check_measurements(&apply(measurements(), &[Edit::Number(k, n)]), &fanuc());
+        check_measurements(&apply(measurements_text(), &[Edit::Number(k, n)]), &fanuc());
     }
 
     #[test]

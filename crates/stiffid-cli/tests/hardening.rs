@@ -523,7 +523,7 @@ fn input_files_have_a_size_limit() {
     refused(
         &dir,
         &["evaluate", "--setup", SETUP, "--postures", "/dev/zero"],
-        &["/dev/zero", "larger than the input limit of 64 MiB"],
+        &["/dev/zero", "larger than the input limit of 256 MiB"],
     );
     refused(
         &dir,
@@ -1018,4 +1018,24 @@ fn report_markdown_escapes_html_from_the_setup() {
         assert!(text.contains("&lt;script&gt;"), "{file}");
     }
     assert!(!out.join(".stiffid-tmp").exists());
+}
+
+#[test]
+fn a_measurement_row_labelled_with_a_hash_is_not_dropped_as_a_comment() {
+    let dir = temp_dir("hash-label");
+    let data = std::fs::read_to_string(common::fanuc_csv()).unwrap();
+    let mut lines: Vec<String> = data.lines().map(str::to_string).collect();
+    lines[3] = format!("#{}", lines[3]);
+    write_file(&dir, "hash.csv", &(lines.join("\n") + "\n"));
+    refused(
+        &dir,
+        &[
+            "identify",
+            "--setup",
+            "fanuc-r2000ic-165f",
+            "--data",
+            "{dir}/hash.csv",
+        ],
+        &["hash.csv", "line 4", "may not start with '#'"],
+    );
 }

@@ -33,7 +33,7 @@ pub mod limits;
 mod linalg;
 pub mod robot;
 
-pub use error::{Error, Result};
+pub use error::{ColumnProblem, Error, MeasurementField, Result};
 pub use kinematics::{dexterity, Coordinates, Frames};
 pub use robot::{AxisMap, Joint, Robot};
 pub mod identify;

@@ -80,15 +80,8 @@ pub const LOAD_N: Range = Range {
     unit: "N",
 };
 
-/// A measured displacement of a measuring point under load, per coordinate: a deflection of a
-/// metre is no longer small, and the model (Eq. 3-7) is linear in small deflections.
-pub const DISPLACEMENT_MM: Range = Range {
-    min: -1e3,
-    max: 1e3,
-    unit: "mm",
-};
-
-/// Forces and moments on the command line and in measurement files, per component.
+/// Forces and moments on the command line, per component (measurement files: the magnitude
+/// limits of [`crate::identify::MAX_FORCE`] and [`crate::identify::MAX_MOMENT`]).
 pub const WRENCH: Range = Range {
     min: -1e7,
     max: 1e7,

@@ -36,6 +36,12 @@ pub fn write_stdout(bytes: &[u8]) -> Result<()> {
         .context("stdout: cannot write")
 }
 
+/// Prints `warning: {text}` on stderr; a stderr that cannot be written is ignored (the result
+/// still goes to stdout, the exit code still says how it went).
+pub fn warn(text: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "warning: {text}");
+}
+
 /// Pretty JSON of `value`, with a final newline.
 pub fn json<T: serde::Serialize>(value: &T) -> Result<String> {
     Ok(serde_json::to_string_pretty(value)? + "\n")

@@ -129,6 +129,12 @@ pub fn refused(dir: &Path, args: &[&str], must_mention: &[&str]) -> String {
     line
 }
 
+/// The real FANUC R-2000iC/165F measurement file of the examples.
+pub fn fanuc_csv() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+}
+
 /// The numbers of a JSON array.
 pub fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()
