@@ -3,6 +3,7 @@
 
 mod commands;
 mod data;
+mod feasibility;
 mod load;
 mod output;
 mod postures;

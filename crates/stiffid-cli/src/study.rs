@@ -142,8 +142,7 @@ impl StartTrial {
 }
 
 fn predicted_average_pct(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
-    let p = evaluate(setup, postures).predicted_deviation_pct;
-    p.iter().flatten().sum::<f64>() / (6 * p.len()).max(1) as f64
+    evaluate(setup, postures).predicted_average_pct()
 }
 
 /// Runs the start-group check: for each seed, a start group, the `classical` and `zhang2021`

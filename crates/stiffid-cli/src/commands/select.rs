@@ -10,7 +10,8 @@ use nalgebra::Vector6;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use stiffid::design::{self, evaluate, Criterion, SearchOptions, SearchOutcome};
+use stiffid::cell::Checker;
+use stiffid::design::{self, evaluate, Criterion, Evaluation, SearchOptions, SearchOutcome};
 use stiffid::Setup;
 
 /// Arguments of `stiffid select`.
@@ -64,7 +65,17 @@ struct SelectJson<'a> {
     elapsed_s: f64,
     postures_deg: Vec<[f64; 6]>,
     criteria: CriteriaJson,
+    /// With cell checks: the optimum of the same search without them.
+    unconstrained: Option<UnconstrainedJson>,
     out: String,
+}
+
+/// The unconstrained optimum beside the feasible one: what feasibility costs.
+#[derive(Serialize)]
+struct UnconstrainedJson {
+    value: f64,
+    postures_deg: Vec<[f64; 6]>,
+    criteria: CriteriaJson,
 }
 
 /// Runs the search, writes the postures and prints the result.
@@ -82,18 +93,21 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let n = args.postures.unwrap_or(6) as usize;
     let started = Instant::now();
-    let (search, outcome) = if args.global {
-        ("global", global(&setup, args.criterion, n, &options)?)
-    } else {
-        let start = start_group(args, &setup, n)?;
-        let bar = spinner(&format!("local search ({})", args.criterion));
-        let outcome = design::local(&setup, args.criterion, &start, &options);
-        bar.finish_and_clear();
-        ("local", outcome?)
+    let start = match args.global {
+        true => Vec::new(),
+        false => start_group(args, &setup, n)?,
     };
+    let (search, outcome) = run_search(args, &setup, &start, n, &options)?;
     let elapsed = started.elapsed().as_secs_f64();
+    let unconstrained = match Checker::new(&setup).constrains() {
+        true => Some(run_search(args, &setup.without_cell(), &start, n, &options)?.1),
+        false => None,
+    };
     postures::write(&args.out, &outcome.postures)?;
     let e = evaluate(&setup, &outcome.postures);
+    let free = unconstrained
+        .as_ref()
+        .map(|o| (o, evaluate(&setup, &o.postures)));
     if args.json {
         let doc = SelectJson {
             setup: &setup.name,
@@ -106,6 +120,11 @@ pub fn run(args: &Args) -> Result<()> {
             elapsed_s: elapsed,
             postures_deg: degrees(&outcome.postures),
             criteria: CriteriaJson::from(&e),
+            unconstrained: free.as_ref().map(|(o, e)| UnconstrainedJson {
+                value: o.value,
+                postures_deg: degrees(&o.postures),
+                criteria: CriteriaJson::from(e),
+            }),
             out: args.out.display().to_string(),
         };
         print!("{}", json(&doc)?);
@@ -113,8 +132,52 @@ pub fn run(args: &Args) -> Result<()> {
     }
     print_outcome(args, &setup, search, &outcome, elapsed);
     print_criteria(&e);
+    if let Some((o, free)) = &free {
+        print_cost(args.criterion, &outcome, &e, o, free);
+    }
     println!("postures written to {}", args.out.display());
     Ok(())
+}
+
+/// The local (from `start`) or global search of `setup`.
+fn run_search(
+    args: &Args,
+    setup: &Setup,
+    start: &[Vector6<f64>],
+    n: usize,
+    options: &SearchOptions,
+) -> Result<(&'static str, SearchOutcome)> {
+    if args.global {
+        return Ok(("global", global(setup, args.criterion, n, options)?));
+    }
+    let bar = spinner(&format!("local search ({})", args.criterion));
+    let outcome = design::local(setup, args.criterion, start, options);
+    bar.finish_and_clear();
+    Ok(("local", outcome?))
+}
+
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum.
+fn print_cost(
+    criterion: Criterion,
+    feasible: &SearchOutcome,
+    e: &Evaluation,
+    free: &SearchOutcome,
+    free_e: &Evaluation,
+) {
+    let mean = Evaluation::predicted_average_pct;
+    println!("what the cell's checks cost (the same search without them):");
+    println!(
+        "  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)",
+        number(feasible.value),
+        number(free.value),
+        100.0 * (feasible.value / free.value - 1.0)
+    );
+    println!(
+        "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)",
+        mean(e),
+        mean(free_e),
+        100.0 * (mean(e) / mean(free_e) - 1.0)
+    );
 }
 
 fn global(

@@ -4,6 +4,11 @@
 use crate::cell::{CheckKind, Checker, Margin};
 use nalgebra::Vector6;
 
+/// What a search keeps on top of every check's margin (m, or rad for angles; the bounds excepted,
+/// which the SQP keeps exactly): 0.1 mm, so that postures written with 6 decimals of a degree
+/// still pass the exact checks.
+const SLACK: f64 = 1e-4;
+
 /// Scale of the smooth minimum of a check's margins over its pairs, for lengths (m).
 const SMOOTHING_M: f64 = 2e-3;
 /// The same for angles (rad).
@@ -20,13 +25,31 @@ pub(super) fn kinds(checker: &Checker) -> Vec<CheckKind> {
         .collect()
 }
 
-/// One inequality `c_k(q) <= 0` per check k of `kinds`: `c_k = -softmin_k`, the smooth minimum of
-/// the check's pair margins `softmin = m_min - tau ln sum_i exp(-(m_i - m_min) / tau)` (tau 2 mm,
-/// or 0.005 rad for angles). `softmin <= m_min`, so `c_k <= 0` implies that the exact check passes
-/// (at most `tau ln(pairs)` conservative), and unlike the minimum it has a continuous gradient.
+/// One inequality `c_k(q) <= 0` per check k of `kinds`: `c_k = SLACK - softmin_k`, with the
+/// smooth minimum of the check's pair margins `softmin = m_min - tau ln sum_i exp(-(m_i - m_min) /
+/// tau)` (tau 2 mm, or 0.005 rad for angles). `softmin <= m_min`, so `c_k <= 0` implies that the
+/// exact check passes (at most `tau ln(pairs)` conservative), and unlike the minimum it has a
+/// continuous gradient.
 pub(super) fn inequalities(checker: &Checker, kinds: &[CheckKind], q: &Vector6<f64>) -> Vec<f64> {
     let margins = checker.margins(q);
-    kinds.iter().map(|&k| -smooth_min(&margins, k)).collect()
+    kinds
+        .iter()
+        .map(|&k| SLACK - smooth_min(&margins, k))
+        .collect()
+}
+
+/// How much posture `q` misses the checks by, the search's [`SLACK`] included (m and rad
+/// summed over the failing pairs): 0 when it passes them all with the slack.
+pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
+    if !checker.constrains() {
+        return 0.0;
+    }
+    let slack = |k: CheckKind| if k == CheckKind::Bounds { 0.0 } else { SLACK };
+    checker
+        .margins(q)
+        .iter()
+        .map(|m| (slack(m.kind) - m.margin).max(0.0))
+        .sum()
 }
 
 fn smooth_min(margins: &[Margin], kind: CheckKind) -> f64 {

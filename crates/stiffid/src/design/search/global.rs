@@ -1,5 +1,6 @@
 //! Global search: local searches in parallel from seeded space-filling starts, the best kept.
 
+use super::constraints::violation;
 use super::local::{check_count, infeasible, local_in};
 use super::sample::group_from_stream;
 use super::{SearchOptions, SearchOutcome};
@@ -53,7 +54,7 @@ pub fn global(
     infeasible(&checker, outcomes.iter())?;
     let evaluations = outcomes.iter().map(|o| o.evaluations).sum();
     let violation =
-        |o: &SearchOutcome| -> f64 { o.postures.iter().map(|q| checker.violation(q)).sum() };
+        |o: &SearchOutcome| -> f64 { o.postures.iter().map(|q| violation(&checker, q)).sum() };
     let best = outcomes
         .into_iter()
         .map(|o| (violation(&o), o))

@@ -1,6 +1,6 @@
 //! Local search: SLSQP from a start group, gradients by forward finite differences.
 
-use super::constraints::{inequalities, kinds, most_failed};
+use super::constraints::{inequalities, kinds, most_failed, violation};
 use super::{SearchOptions, SearchOutcome};
 use crate::cell::{CheckKind, Checker};
 use crate::design::PostureTerms;
@@ -286,7 +286,7 @@ impl<'a> Problem<'a> {
                 *cache
                     .violations
                     .entry(q.map(f64::to_bits).into())
-                    .or_insert_with(|| self.checker.violation(q))
+                    .or_insert_with(|| violation(self.checker, q))
             })
             .sum()
     }

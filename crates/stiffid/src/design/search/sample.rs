@@ -1,5 +1,6 @@
 //! Seeded, space-filling start groups within the setup's bounds (and cell constraints).
 
+use super::constraints::violation;
 use crate::cell::Checker;
 use crate::setup::Setup;
 use nalgebra::Vector6;
@@ -62,8 +63,7 @@ pub(super) fn group_from_stream(
 
 fn make_feasible(checker: &Checker, q: &mut Vector6<f64>, rng: &mut ChaCha8Rng) {
     let setup = checker.setup();
-    let violation = |q: &Vector6<f64>| checker.violation(q);
-    let mut worst = violation(q);
+    let mut worst = violation(checker, q);
     for _ in 0..CONSTRAINT_TRIES {
         if worst <= 0.0 {
             return;
@@ -71,7 +71,7 @@ fn make_feasible(checker: &Checker, q: &mut Vector6<f64>, rng: &mut ChaCha8Rng) 
         let candidate = Vector6::from_fn(|a, _| {
             rng.random_range(setup.bounds.lower[a]..=setup.bounds.upper[a])
         });
-        let v = violation(&candidate);
+        let v = violation(checker, &candidate);
         if v < worst {
             worst = v;
             *q = candidate;
