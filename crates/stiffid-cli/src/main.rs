@@ -39,6 +39,8 @@ enum Command {
     Identify(commands::identify::Args),
     /// Compare measured and predicted displacements for an identified stiffness (Eq. 22).
     Validate(commands::validate::Args),
+    /// Deflection of a machining path under its process wrench, and the compensated axis angles.
+    Compensate(commands::compensate::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
@@ -63,6 +65,7 @@ fn main() -> ExitCode {
         Command::Predict(args) => commands::predict::run(&args),
         Command::Identify(args) => commands::identify::run(&args),
         Command::Validate(args) => commands::validate::run(&args),
+        Command::Compensate(args) => commands::compensate::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, Cli::command()),
         Command::Man(args) => commands::completions::man(&args, Cli::command()),
     };

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod compensate;
 pub mod completions;
 pub mod evaluate;
 pub mod identify;

@@ -1,6 +1,7 @@
 //! `report.html`: self-contained, figures inline as SVG, no external resources.
 
-use super::content::{compose, Writer};
+use super::content::compose;
+pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
 use crate::study::Study;
@@ -25,7 +26,8 @@ fn inline(text: &str) -> String {
         .collect()
 }
 
-struct Html(String);
+/// An HTML body being written; [`page`] wraps it into a document.
+pub struct Html(String);
 
 impl Writer for Html {
     fn heading(&mut self, level: usize, text: &str) {
@@ -80,11 +82,18 @@ figure{margin:1.5em 0}figure svg{max-width:100%;height:auto;display:block}figcap
 
 /// The text of `report.html`.
 pub fn report(study: &Study, figures: &[Figure]) -> String {
+    page(&format!("stiffid report: {}", study.setup.name), |w| {
+        compose(study, figures, w)
+    })
+}
+
+/// A self-contained HTML document titled `title` whose body `body` writes.
+pub fn page(title: &str, body: impl FnOnce(&mut Html)) -> String {
     let mut w = Html(String::new());
-    compose(study, figures, &mut w);
+    body(&mut w);
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>stiffid report: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{}<p class=\"files\">Written by stiffid {}.</p>\n</body>\n</html>\n",
-        escape(&study.setup.name),
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{}<p class=\"files\">Written by stiffid {}.</p>\n</body>\n</html>\n",
+        escape(title),
         w.0,
         env!("CARGO_PKG_VERSION")
     )

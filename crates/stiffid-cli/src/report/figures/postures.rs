@@ -7,17 +7,20 @@ use super::{colour, failed, render, Figure, Plot};
 use crate::study::Study;
 use anyhow::Result;
 use nalgebra::{Vector3, Vector6};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use stiffid::Setup;
 
 /// The points of one posture's stick figure (base frame, m), and its loading point.
-struct Stick {
-    chain: Vec<Vector3<f64>>,
-    loading_point: Vector3<f64>,
+pub struct Stick {
+    /// Base, joint origins, flange, TCP, base frame, m.
+    pub chain: Vec<Vector3<f64>>,
+    /// The loading point, base frame, m.
+    pub loading_point: Vector3<f64>,
 }
 
-fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
+pub fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
     let frames = setup.robot.frames(q);
     let mut chain = vec![setup.robot.base.translation.vector];
     chain.extend(frames.axis_points.iter().copied());
@@ -98,6 +101,62 @@ fn equal_aspect(x: (f64, f64), y: (f64, f64), w: f64, h: f64) -> ((f64, f64), (f
     (widen(x, w), widen(y, h))
 }
 
+/// A chart of one projection of the base frame, x against axis `v` (2: z, 1: y), m, with one
+/// metre as long on both axes, covering the ranges `x` and `y`; and its x range.
+pub fn projection<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    name: &str,
+    v: usize,
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Result<(Projection<'a, DB>, (f64, f64))> {
+    let (w, h) = area.dim_in_pixel();
+    let (xr, yr) = equal_aspect(x, y, w as f64 - 90.0, h as f64 - 90.0);
+    let mut chart = ChartBuilder::on(area)
+        .caption(name, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(45)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+        .map_err(failed)?;
+    chart
+        .configure_mesh()
+        .x_desc("x, m")
+        .y_desc(if v == 2 { "z, m" } else { "y, m" })
+        .label_style(("sans-serif", 13))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(failed)?;
+    Ok((chart, xr))
+}
+
+/// A chart of [`projection`].
+pub type Projection<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws a stick figure projected on x and axis `v` in colour `c`, a line per link and a dot per
+/// point; returns the projected points.
+pub fn draw_stick<DB: DrawingBackend>(
+    chart: &mut Projection<'_, DB>,
+    stick: &Stick,
+    v: usize,
+    c: RGBColor,
+) -> Result<Vec<(f64, f64)>> {
+    let pts = distinct(stick.chain.iter().map(|p| (p.x, p[v])));
+    // One line per link: a polyline's joins spike where a link folds back in projection.
+    for link in pts.windows(2) {
+        chart
+            .draw_series(LineSeries::new(
+                link.to_vec(),
+                ShapeStyle::from(c).stroke_width(3),
+            ))
+            .map_err(failed)?;
+    }
+    chart
+        .draw_series(pts.iter().map(|p| Circle::new(*p, 3, c.filled())))
+        .map_err(failed)?;
+    Ok(pts)
+}
+
 impl Plot for Postures<'_> {
     fn size(&self) -> (u32, u32) {
         (1200, 560)
@@ -120,28 +179,7 @@ impl Postures<'_> {
         name: &str,
         v: usize,
     ) -> Result<()> {
-        let (w, h) = area.dim_in_pixel();
-        let (xr, yr) = equal_aspect(
-            self.range[0],
-            self.range[v],
-            w as f64 - 90.0,
-            h as f64 - 90.0,
-        );
-        let mut chart = ChartBuilder::on(area)
-            .caption(name, ("sans-serif", 18))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(45)
-            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-            .map_err(failed)?;
-        chart
-            .configure_mesh()
-            .x_desc("x, m")
-            .y_desc(if v == 2 { "z, m" } else { "y, m" })
-            .label_style(("sans-serif", 13))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(failed)?;
+        let (mut chart, xr) = projection(area, name, v, self.range[0], self.range[v])?;
         let setup = &self.study.setup;
         let anchor = (setup.load.anchor.x, setup.load.anchor[v]);
         for (i, q) in self.study.groups[self.group].postures.iter().enumerate() {
@@ -154,19 +192,7 @@ impl Postures<'_> {
                     ShapeStyle::from(BLACK.mix(0.25)),
                 ))
                 .map_err(failed)?;
-            let pts = distinct(s.chain.iter().map(|p| (p.x, p[v])));
-            // One line per link: a polyline's joins spike where a link folds back in projection.
-            for link in pts.windows(2) {
-                chart
-                    .draw_series(LineSeries::new(
-                        link.to_vec(),
-                        ShapeStyle::from(c).stroke_width(3),
-                    ))
-                    .map_err(failed)?;
-            }
-            chart
-                .draw_series(pts.iter().map(|p| Circle::new(*p, 3, c.filled())))
-                .map_err(failed)?;
+            let pts = draw_stick(&mut chart, &s, v, c)?;
             chart
                 .draw_series(
                     [EmptyElement::at(lp) + Rectangle::new([(-4, -4), (4, 4)], c.filled())],
