@@ -152,7 +152,15 @@ const REMEMBERED: usize = 4096;
 #[derive(Default)]
 struct Cache {
     violations: HashMap<[u64; 6], f64>,
-    constraints: Vec<Option<(Vector6<f64>, Vec<f64>, Vec<Vector6<f64>>)>>,
+    constraints: Vec<Option<PostureConstraints>>,
+}
+
+/// The constraints of one posture and their gradients in its six angles.
+#[derive(Clone)]
+struct PostureConstraints {
+    at: Vector6<f64>,
+    values: Vec<f64>,
+    gradients: Vec<Vector6<f64>>,
 }
 
 impl<'a> Problem<'a> {
@@ -351,23 +359,19 @@ impl<'a> Problem<'a> {
         let q = Vector6::from_column_slice(&x[6 * i..6 * i + 6]);
         let mut cache = self.cache.borrow_mut();
         let entry = &mut cache.constraints[i];
-        if entry.as_ref().is_none_or(|(at, _, _)| *at != q) {
+        if entry.as_ref().is_none_or(|c| c.at != q) {
             *entry = Some(self.constraints_at(i, &q));
         }
-        let (_, values, gradients) = entry.as_ref().expect("just filled");
+        let c = entry.as_ref().expect("just filled");
         if let Some(g) = grad {
             g.fill(0.0);
-            g[6 * i..6 * i + 6].copy_from_slice(gradients[k].as_slice());
+            g[6 * i..6 * i + 6].copy_from_slice(c.gradients[k].as_slice());
         }
-        values[k]
+        c.values[k]
     }
 
     /// Every constraint of posture `i` at `q`, and their gradients in `q`.
-    fn constraints_at(
-        &self,
-        i: usize,
-        q: &Vector6<f64>,
-    ) -> (Vector6<f64>, Vec<f64>, Vec<Vector6<f64>>) {
+    fn constraints_at(&self, i: usize, q: &Vector6<f64>) -> PostureConstraints {
         let values = inequalities(self.checker, &self.kinds, q);
         let mut gradients = vec![Vector6::zeros(); values.len()];
         let h = self.options.fd_step;
@@ -384,7 +388,11 @@ impl<'a> Problem<'a> {
                 g[a] = (p - v) / step;
             }
         }
-        (*q, values, gradients)
+        PostureConstraints {
+            at: *q,
+            values,
+            gradients,
+        }
     }
 }
 
