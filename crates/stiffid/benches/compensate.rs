@@ -18,7 +18,22 @@ fn benches(c: &mut Criterion) {
             cartesian::stiffness(&frames, &s.tool.tcp, s.springs, &s.nominal_stiffness)
         })
     });
-    let start = tool_pose(&s.robot.frames(&q), &s.tool.tcp);
+    let frames = s.robot.frames(&q);
+    c.bench_function("Cartesian stiffness, frames given (J, K_x)", |b| {
+        b.iter(|| {
+            cartesian::stiffness(
+                black_box(&frames),
+                &s.tool.tcp,
+                s.springs,
+                &s.nominal_stiffness,
+            )
+        })
+    });
+    let h = s.nominal_compliance();
+    c.bench_function("Cartesian compliance, frames given (J, C_x)", |b| {
+        b.iter(|| cartesian::compliance(black_box(&frames), &s.tool.tcp, s.springs, &h))
+    });
+    let start = tool_pose(&frames, &s.tool.tcp);
     let n = 10_000;
     let poses: Vec<PathPoint> = (0..n)
         .map(|i| PathPoint {

@@ -226,8 +226,17 @@ impl<'a> Model<'a> {
         q: &Vector6<f64>,
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
+        self.compensate_from(q, self.setup.robot.frames(q), wrench)
+    }
+
+    /// [`Model::compensate`] with the frames of `q` given.
+    fn compensate_from(
+        &self,
+        q: &Vector6<f64>,
+        mut frames: Frames,
+        wrench: &Vector6<f64>,
+    ) -> Result<(Vector6<f64>, f64, f64, usize)> {
         let tcp = &self.setup.tool.tcp;
-        let mut frames = self.setup.robot.frames(q);
         let target = tool_pose(&frames, tcp);
         let mut qc = *q;
         let mut iterations = 0;
@@ -254,8 +263,8 @@ impl<'a> Model<'a> {
 /// depend on the number of threads.
 ///
 /// # Errors
-/// [`Error::Row`] naming the line of the first point (in path order) that fails, and how many
-/// others do: axis angles outside the joint limits (`q1_deg..q6_deg`), a pose inverse kinematics
+/// [`Error::Row`] naming the line of the first point (in path order) that fails, and the lines
+/// of the others: axis angles outside the joint limits (`q1_deg..q6_deg`), a pose inverse kinematics
 /// cannot reach (`x_mm..rz_deg`, [`Error::Unreachable`]'s message), or compensated axis angles
 /// outside the joint limits or a residual above 0.1 micrometre / 1 microradian (`q_compensated`).
 pub fn path(
@@ -267,7 +276,7 @@ pub fn path(
     let model = Model::new(setup, compliance)?;
     let nominal = nominal_postures(setup, points, options)?;
     let wrenches: Vec<Vector6<f64>> = points
-        .iter()
+        .par_iter()
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&setup.robot.frames(q), &p.wrench, p.frame))
         .collect();
@@ -279,11 +288,12 @@ pub fn path(
         .into_par_iter()
         .map(|i| {
             let q = &postures[i];
-            let (qc, ep, eo, iterations) = model
-                .compensate(q, &wrenches[i])
-                .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
-            check_compensated(setup, points[i].line, &qc, ep, eo)?;
             let frames = setup.robot.frames(q);
+            let (qc, ep, eo, iterations) =
+                model
+                    .compensate_from(q, frames.clone(), &wrenches[i])
+                    .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
+            check_compensated(setup, points[i].line, &qc, ep, eo)?;
             let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
             let deflection_before = options.free_tool_axis.map(|_| {
                 let frames = setup.robot.frames(&nominal[i]);
@@ -316,9 +326,16 @@ fn row(line: u64, column: &str, message: String) -> Error {
     }
 }
 
-/// The results, or the first error (in path order) with the number of other failing points.
+/// The results, or the first error (in path order) naming the lines of the other failing points
+/// (the first ten).
 fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
-    let failed = results.iter().filter(|r| r.is_err()).count();
+    let failed: Vec<u64> = results
+        .iter()
+        .filter_map(|r| match r {
+            Err(Error::Row { line, .. }) => Some(*line),
+            _ => None,
+        })
+        .collect();
     let mut out = Vec::with_capacity(results.len());
     for r in results {
         match r {
@@ -327,12 +344,20 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
                 line,
                 column,
                 message,
-            }) if failed > 1 => {
+            }) if failed.len() > 1 => {
+                let others: Vec<String> = failed[1..].iter().take(10).map(u64::to_string).collect();
+                let more = match failed.len() - 1 {
+                    n if n > 10 => format!(", ... ({n} in all)"),
+                    _ => String::new(),
+                };
                 return Err(row(
                     line,
                     &column,
-                    format!("{message} (and {} more points fail)", failed - 1),
-                ))
+                    format!(
+                        "{message}; the same for the points on lines {}{more}",
+                        others.join(", ")
+                    ),
+                ));
             }
             Err(e) => return Err(e),
         }

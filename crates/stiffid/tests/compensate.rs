@@ -259,31 +259,6 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
 }
 
 #[test]
-fn compensation_outside_the_joint_limits_is_named() {
-    let mut s = loaded_at_tcp("fanuc-r2000ic-165f");
-    let q = s.test_postures[0];
-    // A limit exactly at the nominal posture of axis 2: one direction of compensation leaves it.
-    s.robot.upper[1] = q[1];
-    s.robot.lower[1] = q[1];
-    let compliance = Compliance {
-        h: s.nominal_compliance(),
-        covariance: None,
-    };
-    let path = [PathPoint {
-        line: 9,
-        target: Target::Posture(q),
-        wrench: Vector6::new(300.0, 300.0, -300.0, 0.0, 0.0, 0.0),
-        frame: Frame::Base,
-    }];
-    match compensate::path(&s, &compliance, &path, &options(&s, None)) {
-        Err(Error::Row {
-            line: 9, column, ..
-        }) => assert_eq!(column, "q_compensated"),
-        other => panic!("{other:?}"),
-    }
-}
-
-#[test]
 fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let compliance = Compliance {
@@ -346,4 +321,42 @@ fn the_complementary_stiffness_is_about_a_thousandth_of_the_deflection() {
     let change = (p(&dq) - p(&dq0)).norm();
     assert!((1.9e-3..2.1e-3).contains(&deflection), "{deflection}");
     assert!((0.5e-6..5e-6).contains(&change), "{change} m");
+}
+
+/// A limit exactly at the nominal posture of axis 2: any compensation that moves axis 2 leaves it.
+#[test]
+fn every_point_that_cannot_be_compensated_is_named() {
+    let mut s = loaded_at_tcp("fanuc-r2000ic-165f");
+    let q = s.test_postures[0];
+    s.robot.upper[1] = q[1];
+    s.robot.lower[1] = q[1];
+    let compliance = Compliance {
+        h: s.nominal_compliance(),
+        covariance: None,
+    };
+    let point = |line: u64, fz: f64| PathPoint {
+        line,
+        target: Target::Posture(q),
+        wrench: Vector6::new(fz.abs(), fz.abs(), fz, 0.0, 0.0, 0.0),
+        frame: Frame::Base,
+    };
+    // A zero wrench needs no compensation; the others leave axis 2.
+    let path = [
+        point(4, -300.0),
+        point(5, 0.0),
+        point(6, -300.0),
+        point(7, 300.0),
+    ];
+    match compensate::path(&s, &compliance, &path, &options(&s, None)) {
+        Err(Error::Row {
+            line: 4,
+            column,
+            message,
+        }) => {
+            assert_eq!(column, "q_compensated");
+            assert!(message.contains("axis 2"), "{message}");
+            assert!(message.ends_with("lines 6, 7"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
