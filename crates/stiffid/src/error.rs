@@ -32,7 +32,7 @@ pub enum Error {
     /// No built-in preset or setup has this name.
     #[error("unknown {kind} '{name}' (known: {known})")]
     Unknown {
-        /// "robot preset" or "setup".
+        /// "robot preset", "setup" or "criterion".
         kind: &'static str,
         /// The name asked for.
         name: String,

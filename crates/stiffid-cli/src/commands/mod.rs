@@ -5,6 +5,7 @@ pub mod completions;
 pub mod evaluate;
 pub mod identify;
 pub mod kinematics;
+pub mod plot;
 pub mod predict;
 pub mod reproduce;
 pub mod robots;

@@ -38,14 +38,16 @@ pub fn write(
         write_atomic(&stem.with_extension("svg"), f.svg.as_bytes())?;
         write_atomic(&stem.with_extension("png"), &f.png)?;
     }
-    let html = page(&format!("stiffid compensation: {}", setup.name), |w| {
-        compose(w, setup, results, document, &figures)
-    });
+    let html = page(
+        &format!("stiffid compensation: {}", setup.name),
+        GENERATOR,
+        |w| compose(w, setup, results, document, &figures),
+    );
     write_atomic(&dir.join("report.html"), html.as_bytes())
 }
 
 fn compose(
-    w: &mut impl Writer,
+    w: &mut dyn Writer,
     setup: &Setup,
     results: &[Compensated],
     document: &Value,

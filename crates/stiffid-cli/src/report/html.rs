@@ -80,21 +80,25 @@ th{background:#f3f3f3}tbody tr:nth-child(even){background:#fafafa}.scroll{overfl
 figure{margin:1.5em 0}figure svg{max-width:100%;height:auto;display:block}figcaption{font-size:.9em;color:#444;margin-top:.4em}
 .files{color:#888}code{background:#f3f3f3;padding:0 .2em}";
 
-/// The text of `report.html`.
-pub fn report(study: &Study, figures: &[Figure]) -> String {
-    page(&format!("stiffid report: {}", study.setup.name), |w| {
-        compose(study, figures, w)
-    })
-}
-
-/// A self-contained HTML document titled `title` whose body `body` writes.
-pub fn page(title: &str, body: impl FnOnce(&mut Html)) -> String {
+/// A self-contained HTML page (figures inline, no external resources) titled `title`, marked as
+/// written by `generator` (`<meta name="generator">`), with the body `body` writes.
+pub fn page(title: &str, generator: &str, body: impl FnOnce(&mut dyn Writer)) -> String {
     let mut w = Html(String::new());
     body(&mut w);
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{}<p class=\"files\">Written by stiffid {}.</p>\n</body>\n</html>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<meta name=\"generator\" content=\"{}\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{}<p class=\"files\">Written by stiffid {}.</p>\n</body>\n</html>\n",
+        escape(generator),
         escape(title),
         w.0,
         env!("CARGO_PKG_VERSION")
+    )
+}
+
+/// The text of `report.html`.
+pub fn report(study: &Study, figures: &[Figure]) -> String {
+    page(
+        &format!("stiffid report: {}", study.setup.name),
+        super::summary::GENERATOR,
+        |w| compose(study, figures, w),
     )
 }

@@ -8,6 +8,7 @@ pub mod figures;
 pub mod findings;
 pub mod html;
 mod markdown;
+pub mod plan;
 pub mod summary;
 pub mod tables;
 
@@ -63,6 +64,28 @@ pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
 /// Refuses to write into `dir` if it exists, is not empty and holds no report of ours (no
 /// `summary.json` whose `generator` is `generator`), unless `force`.
 pub fn check_target(dir: &Path, force: bool, generator: &str) -> Result<()> {
+    let hint = match generator == summary::GENERATOR {
+        true => " or pass --force",
+        false => "",
+    };
+    check_dir(
+        dir,
+        force,
+        &format!(
+            "a stiffid report (no summary.json written by {generator}); choose another directory{hint}"
+        ),
+        |d| summary::is_ours(&d.join("summary.json"), generator),
+    )
+}
+
+/// Refuses to write into `dir` if it exists and is not a directory, or is not empty and
+/// `is_ours(dir)` is false, unless `force`; `refusal` says what `is_ours` recognises and what to do.
+pub fn check_dir(
+    dir: &Path,
+    force: bool,
+    refusal: &str,
+    is_ours: impl Fn(&Path) -> bool,
+) -> Result<()> {
     if !dir.exists() || force {
         return Ok(());
     }
@@ -71,14 +94,10 @@ pub fn check_target(dir: &Path, force: bool, generator: &str) -> Result<()> {
     }
     let mut entries =
         std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
-    if entries.next().is_none() || summary::is_ours(&dir.join("summary.json"), generator) {
+    if entries.next().is_none() || is_ours(dir) {
         return Ok(());
     }
-    bail!(
-        "{}: not empty and not a stiffid report (no summary.json written by {generator}); choose another directory{}",
-        dir.display(),
-        if generator == summary::GENERATOR { " or pass --force" } else { "" }
-    )
+    bail!("{}: not empty and not {refusal}", dir.display())
 }
 
 /// Writes every file of the report into `dir` (created if missing), each file whole;

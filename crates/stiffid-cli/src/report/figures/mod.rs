@@ -5,6 +5,7 @@ pub mod deviation;
 pub mod path;
 pub mod postures;
 pub mod table;
+pub mod target;
 
 use crate::study::Study;
 use anyhow::{anyhow, bail, Context, Result};

@@ -16,6 +16,7 @@ mod local;
 mod sample;
 
 pub use global::global;
+pub(super) use local::check_count;
 pub use local::local;
 pub use sample::{random_group, CONSTRAINT_TRIES};
 
