@@ -33,7 +33,7 @@ fn search(c: &mut Bench) {
         b.iter(|| design::local(&setup, Criterion::RelativeA, black_box(&start), &options).unwrap())
     });
     g.bench_function("global/relative-a/default", |b| {
-        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &()).unwrap())
     });
     g.finish();
 }

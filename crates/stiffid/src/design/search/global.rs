@@ -6,6 +6,7 @@ use super::sample::group_from_stream;
 use super::{SearchOptions, SearchOutcome};
 use crate::cell::Checker;
 use crate::design::Criterion;
+use crate::progress::Progress;
 use crate::setup::Setup;
 use crate::{Error, Result};
 use rayon::prelude::*;
@@ -19,8 +20,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// start index on ties).
 ///
 /// Every start is seeded on its own and the results are compared in start order, so the same
-/// options give the same postures whatever the thread count. `progress` is called with the number
-/// of local searches finished so far, after each one (from the worker threads).
+/// options give the same postures whatever the thread count. `progress` receives
+/// [`Progress::advance`] with the number of local searches finished so far, after each one (from
+/// the worker threads); the caller begins and ends the stage.
 ///
 /// # Errors
 /// [`Error::InvalidField`] for fewer than 2 postures, no start, or the `test-pose` criterion on a
@@ -31,7 +33,7 @@ pub fn global(
     criterion: Criterion,
     postures: usize,
     options: &SearchOptions,
-    progress: &(dyn Fn(usize) + Sync),
+    progress: &dyn Progress,
 ) -> Result<SearchOutcome> {
     check_count(setup, criterion, postures)?;
     if options.starts == 0 {
@@ -47,7 +49,7 @@ pub fn global(
         .map(|s| {
             let start = group_from_stream(&checker, postures, options.seed, s as u64 + 1);
             let outcome = local_in(&checker, criterion, &start, options);
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
             outcome
         })
         .collect();
