@@ -2,7 +2,7 @@
 //! rates.
 
 use crate::output::{self, json};
-use crate::{load, postures};
+use crate::{feasibility, load, postures};
 use anyhow::{Context, Result};
 use nalgebra::Vector6;
 use serde::Serialize;
@@ -65,14 +65,27 @@ impl From<&Evaluation> for CriteriaJson {
     }
 }
 
-/// Evaluates the postures file and prints the criteria.
+/// `stiffid evaluate --json`: the criteria, and every posture's feasibility in the cell.
+#[derive(Serialize)]
+struct EvaluateJson {
+    #[serde(flatten)]
+    criteria: CriteriaJson,
+    feasibility: Vec<feasibility::PostureJson>,
+}
+
+/// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     let group = postures::read(&args.postures, &setup.robot, Some(&setup.bounds))?;
     identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
+    let checks = feasibility::of_group(&setup, &group);
     if args.json {
-        return output::print(&json(&CriteriaJson::from(&e))?);
+        let doc = EvaluateJson {
+            criteria: CriteriaJson::from(&e),
+            feasibility: feasibility::json(&checks),
+        };
+        return output::print(&json(&doc)?);
     }
     let mut s = format!(
         "{} postures of {} on setup {}\n",
@@ -93,6 +106,7 @@ pub fn run(args: &Args) -> Result<()> {
         let cells: Vec<String> = row.iter().map(|v| format!("{v:>9.4}")).collect();
         s += &format!("{:>5} {:>6.2}  {}\n", l + 1, m, cells.join(" "));
     }
+    s += &feasibility::text(&checks);
     output::print(&s)
 }
 

@@ -15,7 +15,8 @@ use nalgebra::Vector6;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use stiffid::design::{self, evaluate, Criterion, SearchOptions, SearchOutcome};
+use stiffid::cell::Checker;
+use stiffid::design::{self, evaluate, Criterion, Evaluation, SearchOptions, SearchOutcome};
 use stiffid::limits::{self, short, Range};
 use stiffid::Setup;
 
@@ -101,9 +102,20 @@ struct SelectJson<'a> {
     pool: Option<pool::PoolJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
     target: Option<target::TargetJson>,
+    /// With cell checks, for a local or global search: the same search without them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    unconstrained: Option<UnconstrainedJson>,
     out: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     report: Option<String>,
+}
+
+/// The unconstrained optimum beside the feasible one: what feasibility costs.
+#[derive(Serialize)]
+struct UnconstrainedJson {
+    value: f64,
+    postures_deg: Vec<[f64; 6]>,
+    criteria: CriteriaJson,
 }
 
 /// The group a search or a pool choice found.
@@ -188,6 +200,10 @@ pub fn run(args: &Args) -> Result<()> {
         )?;
     }
     let e = evaluate(&setup, &selection.postures);
+    let free = match pool.is_none() && target.is_none() {
+        true => unconstrained(args, &setup, selection.postures.len())?,
+        false => None,
+    };
     if args.json {
         let doc = SelectJson {
             setup: &setup.name,
@@ -202,6 +218,11 @@ pub fn run(args: &Args) -> Result<()> {
             criteria: CriteriaJson::from(&e),
             pool: pool.as_ref().map(|p| p.json(selection.pool.as_ref())),
             target: target.as_ref().map(target::TargetJson::from),
+            unconstrained: free.as_ref().map(|(s, e)| UnconstrainedJson {
+                value: s.value,
+                postures_deg: degrees(&s.postures),
+                criteria: CriteriaJson::from(e),
+            }),
             out: args.out.display().to_string(),
             report: args.report.as_ref().map(|d| d.display().to_string()),
         };
@@ -216,6 +237,9 @@ pub fn run(args: &Args) -> Result<()> {
     }
     text += &outcome_text(args, &setup, &selection, elapsed);
     text += &criteria_text(&e);
+    if let Some((s, free_e)) = &free {
+        text += &cost_text(args.criterion, &selection, &e, s, free_e);
+    }
     text += &format!("postures written to {}\n", args.out.display());
     if let Some(dir) = &args.report {
         text += &format!("plan: {}\n", dir.join("plan.html").display());
@@ -229,6 +253,37 @@ const TARGET_PCT: Range = Range {
     max: 1e4,
     unit: "%",
 };
+
+/// With cell checks: the group of the same search of `n` postures without them, and its
+/// criteria (evaluated on the setup: the criteria do not depend on the cell).
+fn unconstrained(args: &Args, setup: &Setup, n: usize) -> Result<Option<(Selection, Evaluation)>> {
+    if !Checker::new(setup).constrains() {
+        return Ok(None);
+    }
+    let free = choose(args, &setup.without_cell(), None, n)?;
+    let e = evaluate(setup, &free.postures);
+    Ok(Some((free, e)))
+}
+
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
+fn cost_text(
+    criterion: Criterion,
+    feasible: &Selection,
+    e: &Evaluation,
+    free: &Selection,
+    free_e: &Evaluation,
+) -> String {
+    let mean = Evaluation::predicted_average_pct;
+    format!(
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+        number(feasible.value),
+        number(free.value),
+        100.0 * (feasible.value / free.value - 1.0),
+        mean(e),
+        mean(free_e),
+        100.0 * (mean(e) / mean(free_e) - 1.0)
+    )
+}
 
 /// The group of `n` postures by the search the arguments ask for.
 fn choose(args: &Args, setup: &Setup, pool: Option<&pool::Input>, n: usize) -> Result<Selection> {
