@@ -216,8 +216,8 @@ enum Table {
 impl Postures {
     fn new(measurements: &[Measurement]) -> Self {
         let n = measurements.len();
-        let table = match measurements.iter().all(|m| m.posture < 2 * n) {
-            true => Table::Dense(vec![(usize::MAX, usize::MAX); 2 * n]),
+        let table = match measurements.iter().all(|m| m.posture < n) {
+            true => Table::Dense(vec![(usize::MAX, usize::MAX); n]),
             false => Table::Sparse(HashMap::new()),
         };
         Self { table, count: 0 }
