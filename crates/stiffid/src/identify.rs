@@ -453,8 +453,7 @@ impl Observations {
         self.check_deflection()?;
         let psi = std::mem::replace(&mut self.psi, DMatrix::zeros(0, 6));
         let factor = Factor::try_from_matrix(psi)?;
-        let h = factor.solve(&self.delta);
-        let residuals = factor.residuals(&self.delta);
+        let (h, residuals) = factor.solve_with_residuals(&self.delta);
         Ok(self.finish(
             h,
             residuals,

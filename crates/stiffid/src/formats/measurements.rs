@@ -140,12 +140,7 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
 }
 
 impl MeasurementFile {
-    fn push(
-        &mut self,
-        record: &csv::StringRecord,
-        line: u64,
-        labels: &mut Labels,
-    ) -> Result<()> {
+    fn push(&mut self, record: &csv::StringRecord, line: u64, labels: &mut Labels) -> Result<()> {
         if record.len() != self.header.len() {
             return Err(problem(
                 line,
