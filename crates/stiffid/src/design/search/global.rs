@@ -1,8 +1,10 @@
 //! Global search: local searches in parallel from seeded space-filling starts, the best kept.
 
-use super::local::{check_count, local};
+use super::constraints::violation;
+use super::local::{check_count, infeasible, local_in};
 use super::sample::group_from_stream;
 use super::{SearchOptions, SearchOutcome};
+use crate::cell::Checker;
 use crate::design::Criterion;
 use crate::progress::Progress;
 use crate::setup::Setup;
@@ -12,9 +14,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Minimises `criterion` over groups of `postures` postures by [`SearchOptions::starts`] local
 /// searches ([`local`], each with the budget [`SearchOptions::max_evals`]) run in parallel (rayon)
-/// from Latin-hypercube start groups (as [`super::random_group`]; start s uses stream `s + 1` of
-/// [`SearchOptions::seed`]), and keeps the best (with cell constraints, the least violating first; the lowest start index on
-/// ties).
+/// from Latin-hypercube start groups (as [`super::random_group`], each posture redrawn until it
+/// passes the cell's checks, at most [`super::CONSTRAINT_TRIES`] times; start s uses stream
+/// `s + 1` of [`SearchOptions::seed`]), and keeps the best (the least violating first; the lowest
+/// start index on ties).
 ///
 /// Every start is seeded on its own and the results are compared in start order, so the same
 /// options give the same postures whatever the thread count. `progress` receives
@@ -23,7 +26,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 ///
 /// # Errors
 /// [`Error::InvalidField`] for fewer than 2 postures, no start, or the `test-pose` criterion on a
-/// setup without test postures.
+/// setup without test postures; [`Error::Infeasible`] naming the check failed by the most postures
+/// of the starts' results when none of them passes every check.
 pub fn global(
     setup: &Setup,
     criterion: Criterion,
@@ -38,19 +42,21 @@ pub fn global(
             message: "a global search needs at least 1 start".into(),
         });
     }
+    let checker = Checker::new(setup);
     let done = AtomicUsize::new(0);
     let outcomes: Vec<SearchOutcome> = (0..options.starts)
         .into_par_iter()
         .map(|s| {
-            let start = group_from_stream(setup, postures, options.seed, s as u64 + 1);
-            let outcome = local(setup, criterion, &start, options);
+            let start = group_from_stream(&checker, postures, options.seed, s as u64 + 1);
+            let outcome = local_in(&checker, criterion, &start, options);
             progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
             outcome
         })
-        .collect::<Result<_>>()?;
+        .collect();
+    infeasible(&checker, outcomes.iter())?;
     let evaluations = outcomes.iter().map(|o| o.evaluations).sum();
     let violation =
-        |o: &SearchOutcome| -> f64 { o.postures.iter().map(|q| super::violation(setup, q)).sum() };
+        |o: &SearchOutcome| -> f64 { o.postures.iter().map(|q| violation(&checker, q)).sum() };
     let best = outcomes
         .into_iter()
         .map(|o| (violation(&o), o))
