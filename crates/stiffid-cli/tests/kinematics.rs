@@ -178,8 +178,16 @@ fn urdf_without_the_tip_link() {
     );
     let urdf = data("comau-nj165-two-leaves.urdf");
     assert_usage_error(
-        &stiffid(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]),
-        &[&urdf, "several leaf links", "--tip"],
+        &stiffid(&[
+            "kinematics",
+            "--robot",
+            &urdf,
+            "--tip",
+            "camera",
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ]),
+        &[&urdf, "3 revolute joints; expected 6"],
     );
 }
 

@@ -167,11 +167,6 @@ fn a_prismatic_joint_in_the_chain_is_an_error_naming_it() {
 fn a_missing_or_ambiguous_tip_link_is_an_error() {
     let message = chain_error("comau-nj165.urdf", Some("gripper"));
     assert!(message.contains("no link named 'gripper'"), "{message}");
-    let message = chain_error("comau-nj165-two-leaves.urdf", None);
-    assert!(
-        message.contains("several leaf links") && message.contains("camera"),
-        "{message}"
-    );
     // Naming the tip resolves the ambiguity; a tip short of six revolute joints does not.
     assert!(urdf::parse(&data("comau-nj165-two-leaves.urdf"), "x", Some("tool0")).is_ok());
     let message = chain_error("comau-nj165-two-leaves.urdf", Some("camera"));
@@ -201,4 +196,48 @@ fn revolute_joint_without_limit_is_unlimited_and_the_others_keep_theirs() {
     assert_eq!(robot.upper[0], f64::INFINITY);
     assert_eq!((robot.lower[1], robot.upper[1]), (-3.2, 3.2));
     assert!(robot.within_limits(&Vector6::new(10.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+}
+
+/// The two-leaves test URDF with a third leaf `sensor` fixed to link_6 (so two leaves end the chain
+/// of six revolute joints), and `tool0` renamed to `rename` (None: kept).
+fn three_leaves(rename: Option<&str>) -> String {
+    let sensor = r#"<link name="sensor"/>
+  <joint name="sensor_mount" type="fixed">
+    <parent link="link_6"/>
+    <child link="sensor"/>
+    <origin xyz="0.1 0 0" rpy="0 0 0"/>
+  </joint>
+</robot>"#;
+    let text = data("comau-nj165-two-leaves.urdf").replace("</robot>", sensor);
+    match rename {
+        Some(name) => text.replace("\"tool0\"", &format!("\"{name}\"")),
+        None => text,
+    }
+}
+
+#[test]
+fn the_tip_defaults_to_the_leaf_ending_six_revolute_joints_else_tool0() {
+    let two = data("comau-nj165-two-leaves.urdf");
+    let named = urdf::parse(&two, "two.urdf", Some("tool0")).unwrap();
+    let chosen = urdf::parse(&two, "two.urdf", None).unwrap();
+    assert_eq!(chosen.joints, named.joints);
+    assert_eq!(chosen.flange, named.flange);
+    assert_eq!(chosen.source, "two.urdf, tip link 'tool0'");
+    // Two leaves after six revolute joints (tool0 and sensor) and a short one: tool0 wins.
+    let chosen = urdf::parse(&three_leaves(None), "three.urdf", None).unwrap();
+    assert_eq!(chosen.flange, named.flange);
+    assert!(chosen.source.ends_with("tip link 'tool0'"));
+    // Without a tool0 the choice is left to the user, with both names and where to put it.
+    let e = urdf::parse(&three_leaves(Some("tcp")), "three.urdf", None).unwrap_err();
+    let message = e.to_string();
+    for part in [
+        "several leaf links end a chain of six",
+        "tcp",
+        "sensor",
+        "robot_tip",
+        "--tip",
+    ] {
+        assert!(message.contains(part), "{part}: {message}");
+    }
+    assert!(!message.contains("camera"), "{message}");
 }

@@ -11,7 +11,8 @@ pub struct Args {
     /// A preset name (see `stiffid robots`), a robot .toml file or a .urdf file.
     #[arg(long)]
     robot: String,
-    /// URDF only: the tip link of the chain (default: the only leaf link).
+    /// URDF only: the tip link of the chain (default: the only leaf link, else the leaf ending the
+    /// chain of six revolute joints, else tool0).
     #[arg(long)]
     tip: Option<String>,
     /// The posture: six axis angles in degrees, comma-separated, e.g. 0,0,-90,0,0,0.
@@ -55,6 +56,8 @@ impl From<CoordinatesArg> for Coordinates {
 #[derive(Serialize)]
 struct Report {
     robot: String,
+    /// Where the robot comes from (for a URDF: the file and the tip link used).
+    robot_source: String,
     q_deg: [f64; 6],
     coordinates: Coordinates,
     characteristic_length_mm: f64,
@@ -84,6 +87,7 @@ pub fn run(args: &Args) -> Result<()> {
     let jacobian = frames.jacobian(&point, coordinates);
     let report = Report {
         robot: robot.name.clone(),
+        robot_source: robot.source.clone(),
         q_deg: q_deg.into(),
         coordinates,
         characteristic_length_mm: length_mm,
@@ -108,7 +112,7 @@ fn text(r: &Report) -> String {
         Coordinates::Axis => ("axis angles", "q"),
         Coordinates::Kinematic => ("kinematic angles", "theta"),
     };
-    let mut s = format!("{}\n", r.robot);
+    let mut s = format!("{}\nsource: {}\n", r.robot, r.robot_source);
     s += &format!("posture q_deg: {}\n", list(&r.q_deg, 2));
     s += &format!("flange position_mm: {}\n", list(&r.flange_position_mm, 3));
     s += "flange rotation (base frame; columns: flange x, y, z axes):\n";

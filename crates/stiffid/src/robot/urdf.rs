@@ -1,6 +1,7 @@
 //! Robots from URDF files (parsed by `urdf-rs`; the kinematics are ours).
 //!
-//! The chain runs from the root link to a tip link: by default the only leaf link, or the one named.
+//! The chain runs from the root link to a tip link: the one named, else the only leaf link, else the
+//! only leaf ending a chain of six revolute joints, else `tool0` among several such (ROS-Industrial).
 //! Fixed joints along it are folded into the next revolute joint (or into the flange transform after
 //! the last one); revolute and continuous joints may turn about any axis. Prismatic, floating and
 //! planar joints in the chain are an error, as is a chain without exactly six revolute joints. The
@@ -22,7 +23,9 @@ use std::collections::{HashMap, HashSet};
 use urdf_rs::JointType;
 
 /// Parses a URDF document into a [`Robot`]. `source_name` (the file name) is used in errors;
-/// `tip` names the tip link, by default the only leaf link.
+/// `tip` names the tip link; by default the only leaf link, else the only leaf at the end of a
+/// chain of six revolute joints, else `tool0` among several (ROS-Industrial URDFs have the leaves
+/// `tool0` and `base`). The robot's `source` names the tip link used.
 ///
 /// # Errors
 /// [`Error::Parse`] for malformed XML or nesting deeper than [`limits::MAX_XML_DEPTH`];
@@ -47,21 +50,32 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
         Some(t) if urdf.links.iter().any(|l| l.name == t) => t.to_string(),
         Some(t) => {
             let t = limits::short(t);
-            return Err(chain_error(format!("no link named '{t}' (--tip)")));
+            return Err(chain_error(format!("no link named '{t}' (the tip link)")));
         }
-        None => only_leaf(&urdf).map_err(chain_error)?,
+        None => default_tip(&urdf, &by_child).map_err(chain_error)?,
     };
+    let path = chain_to(&tip, &by_child, urdf.joints.len()).map_err(chain_error)?;
+    let source = format!("{source_name}, tip link '{}'", limits::short(&tip));
+    fold(&path, &urdf.name, &source).map_err(chain_error)
+}
+
+/// The joints from the root to `tip`, root first.
+fn chain_to<'a>(
+    tip: &str,
+    by_child: &HashMap<&str, &'a urdf_rs::Joint>,
+    joint_count: usize,
+) -> std::result::Result<Vec<&'a urdf_rs::Joint>, String> {
     let mut path = Vec::new();
-    let mut link = tip.as_str();
+    let mut link = tip;
     while let Some(joint) = by_child.get(link) {
         path.push(*joint);
         link = joint.parent.link.as_str();
-        if path.len() > urdf.joints.len() {
-            return Err(chain_error("the joints form a loop".into()));
+        if path.len() > joint_count {
+            return Err("the joints form a loop".into());
         }
     }
     path.reverse();
-    fold(&path, &urdf.name, source_name).map_err(chain_error)
+    Ok(path)
 }
 
 /// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`]. Comments,
@@ -159,7 +173,13 @@ fn tree(urdf: &urdf_rs::Robot) -> std::result::Result<HashMap<&str, &urdf_rs::Jo
     }
 }
 
-fn only_leaf(urdf: &urdf_rs::Robot) -> std::result::Result<String, String> {
+/// The tip link when none is named: the only leaf link; else the only leaf at the end of a chain
+/// of six revolute joints; else, among several such leaves, `tool0` (the ROS-Industrial
+/// convention, whose URDFs also have a `base` leaf).
+fn default_tip(
+    urdf: &urdf_rs::Robot,
+    by_child: &HashMap<&str, &urdf_rs::Joint>,
+) -> std::result::Result<String, String> {
     let parents: HashSet<&str> = urdf.joints.iter().map(|j| j.parent.link.as_str()).collect();
     let leaves: Vec<&str> = urdf
         .links
@@ -167,11 +187,27 @@ fn only_leaf(urdf: &urdf_rs::Robot) -> std::result::Result<String, String> {
         .map(|l| l.name.as_str())
         .filter(|l| !parents.contains(l))
         .collect();
-    match leaves.as_slice() {
-        [one] => Ok(one.to_string()),
-        [] => Err("no leaf link: name the tip link with --tip".into()),
-        many => Err(format!(
-            "several leaf links ({}): name the tip link with --tip",
+    let six_revolute = |leaf: &&str| {
+        chain_to(leaf, by_child, urdf.joints.len()).is_ok_and(|path| {
+            let revolute = [JointType::Revolute, JointType::Continuous];
+            path.iter()
+                .filter(|j| revolute.contains(&j.joint_type))
+                .count()
+                == 6
+        })
+    };
+    let ends: Vec<&str> = leaves.iter().copied().filter(six_revolute).collect();
+    let name_it = "name the tip link (robot_tip in a setup, --tip on the command line)";
+    match (leaves.as_slice(), ends.as_slice()) {
+        ([one], _) | (_, [one]) => Ok(one.to_string()),
+        (_, many) if many.contains(&"tool0") => Ok("tool0".into()),
+        ([], _) => Err(format!("no leaf link: {name_it}")),
+        (all, []) => Err(format!(
+            "no leaf link ({}) ends a chain of six revolute joints: {name_it}",
+            limits::short(&all.join(", "))
+        )),
+        (_, many) => Err(format!(
+            "several leaf links end a chain of six revolute joints ({}): {name_it}",
             limits::short(&many.join(", "))
         )),
     }
