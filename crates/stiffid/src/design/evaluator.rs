@@ -21,6 +21,8 @@ use crate::Frames;
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use std::cell::OnceCell;
 
+mod gradient;
+
 /// Evaluates design criteria of groups of postures for one setup.
 #[derive(Debug, Clone)]
 pub struct Evaluator<'a> {
@@ -29,6 +31,8 @@ pub struct Evaluator<'a> {
     scaling: Vector6<f64>,
     /// Observation rows of every test posture under its rope-mass load, stacked (`3pT x 6`).
     test_rows: DMatrix<f64>,
+    /// `A^T A` of the test rows `A` (6x6), for the gradient of `test-pose`.
+    test_gram: Matrix6<f64>,
 }
 
 /// What one posture contributes to a group: its `3p x 6` block of `Psi` and its TCP dexterity.
@@ -43,10 +47,14 @@ pub struct PostureTerms {
 impl<'a> Evaluator<'a> {
     /// An evaluator for `setup`.
     pub fn new(setup: &'a Setup) -> Self {
+        let test_rows = rope_observation_matrix(setup, &setup.test_postures);
         Self {
             setup,
             scaling: setup.nominal_compliance() / setup.noise.sigma(),
-            test_rows: rope_observation_matrix(setup, &setup.test_postures),
+            test_gram: (test_rows.transpose() * &test_rows)
+                .fixed_view::<6, 6>(0, 0)
+                .into_owned(),
+            test_rows,
         }
     }
 
@@ -85,20 +93,25 @@ impl<'a> Evaluator<'a> {
     /// The value of `criterion` for the group of postures whose terms are given: the same as
     /// [`Evaluator::value`] of those postures.
     pub fn value_of(&self, criterion: Criterion, terms: &[&PostureTerms]) -> f64 {
-        let classical = || self.classical(terms);
         if criterion == Criterion::Classical {
-            return classical();
+            return self.classical(terms);
         }
-        let Some(group) = self.group(terms) else {
-            return f64::INFINITY;
-        };
+        match self.group(terms) {
+            Some(group) => self.value_with(criterion, terms, &group),
+            None => f64::INFINITY,
+        }
+    }
+
+    /// [`Evaluator::value_of`] given the group's factor.
+    fn value_with(&self, criterion: Criterion, terms: &[&PostureTerms], group: &Group) -> f64 {
+        let classical = || self.classical(terms);
         finite(match criterion {
             Criterion::Classical => classical(),
             Criterion::Zhang2021 => classical() * cond(&group.r),
             Criterion::ScaledCond => cond(&group.rs),
             Criterion::DOptimal => group.d_optimal(),
             Criterion::RelativeA => group.relative_a(),
-            Criterion::TestPose => self.test_pose(&group),
+            Criterion::TestPose => self.test_pose(group),
         })
     }
 
