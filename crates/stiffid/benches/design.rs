@@ -1,9 +1,10 @@
-//! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one local
-//! search from a fixed seeded start group, and the default global search, on the paper setup.
+//! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one
+//! evaluation with its exact gradient, local searches from a fixed seeded start group (exact and
+//! finite-difference gradients), and the default global search, on the paper setup.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::design::{self, Criterion, Evaluator, SearchOptions};
+use stiffid::design::{self, Criterion, Evaluator, Gradient, SearchOptions};
 
 fn evaluation(c: &mut Bench) {
     let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -12,6 +13,11 @@ fn evaluation(c: &mut Bench) {
     for criterion in Criterion::ALL {
         c.bench_function(&format!("design/evaluate/{criterion}/6x4"), |b| {
             b.iter(|| evaluator.value(criterion, black_box(&group)))
+        });
+    }
+    for criterion in Criterion::ALL {
+        c.bench_function(&format!("design/gradient/{criterion}/6x4"), |b| {
+            b.iter(|| evaluator.value_and_gradient(criterion, black_box(&group)))
         });
     }
     c.bench_function("design/evaluate/all/6x4", |b| {
@@ -30,6 +36,13 @@ fn search(c: &mut Bench) {
     });
     g.bench_function("local/relative-a", |b| {
         b.iter(|| design::local(&setup, Criterion::RelativeA, black_box(&start), &options).unwrap())
+    });
+    let fd = SearchOptions {
+        gradient: Gradient::FiniteDifference,
+        ..options.clone()
+    };
+    g.bench_function("local-fd/zhang2021", |b| {
+        b.iter(|| design::local(&setup, Criterion::Zhang2021, black_box(&start), &fd).unwrap())
     });
     g.bench_function("global/relative-a/default", |b| {
         b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())

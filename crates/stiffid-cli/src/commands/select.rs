@@ -10,7 +10,7 @@ use nalgebra::Vector6;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use stiffid::design::{self, evaluate, Criterion, SearchOptions, SearchOutcome};
+use stiffid::design::{self, evaluate, Criterion, Gradient, SearchOptions, SearchOutcome};
 use stiffid::Setup;
 
 /// Arguments of `stiffid select`.
@@ -41,9 +41,14 @@ pub struct Args {
     /// Local searches of a global search [default: 32].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     starts: Option<u64>,
-    /// Most criterion evaluations per local search, finite differences included [default: 6000].
+    /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
+    /// each finite-difference probe as one) [default: 6000].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     max_evals: Option<u64>,
+    /// Gradient of the SQP objective: exact (closed form) or fd (forward finite differences, for
+    /// comparison).
+    #[arg(long, default_value_t = Gradient::Exact)]
+    gradient: Gradient,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     out: PathBuf,
@@ -57,6 +62,7 @@ struct SelectJson<'a> {
     setup: &'a str,
     criterion: &'a str,
     search: &'a str,
+    gradient: &'a str,
     seed: u64,
     start_value: f64,
     value: f64,
@@ -72,6 +78,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     let mut options = SearchOptions {
         seed: args.seed,
+        gradient: args.gradient,
         ..SearchOptions::default()
     };
     if let Some(s) = args.starts {
@@ -99,6 +106,7 @@ pub fn run(args: &Args) -> Result<()> {
             setup: &setup.name,
             criterion: args.criterion.name(),
             search,
+            gradient: args.gradient.name(),
             seed: args.seed,
             start_value: outcome.start_value,
             value: outcome.value,

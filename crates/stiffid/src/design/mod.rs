@@ -9,4 +9,4 @@ pub mod search;
 
 pub use criteria::{evaluate, Criterion, Evaluation};
 pub use evaluator::{Evaluator, PostureTerms};
-pub use search::{global, local, random_group, SearchOptions, SearchOutcome};
+pub use search::{global, local, random_group, Gradient, SearchOptions, SearchOutcome};
