@@ -130,7 +130,10 @@ fn select_gradient_exact_or_fd_from_the_same_start() {
     assert_eq!(exact["gradient"], "exact");
     assert_eq!(fd["gradient"], "fd");
     let value = |doc: &serde_json::Value| doc["value"].as_f64().unwrap();
-    assert!(value(&exact) <= value(&fd) * (1.0 + 1e-6), "{exact} vs {fd}");
+    assert!(
+        value(&exact) <= value(&fd) * (1.0 + 1e-6),
+        "{exact} vs {fd}"
+    );
     assert!(value(&fd) < fd["start_value"].as_f64().unwrap());
     let evaluations = |doc: &serde_json::Value| doc["evaluations"].as_u64().unwrap();
     assert!(evaluations(&exact) * 10 < evaluations(&fd));

@@ -47,6 +47,9 @@ fn search(c: &mut Bench) {
     g.bench_function("global/relative-a/default", |b| {
         b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
     });
+    g.bench_function("global-fd/relative-a/default", |b| {
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &fd, &|_| {}).unwrap())
+    });
     g.finish();
 }
 
