@@ -173,10 +173,17 @@ impl<'a> Evaluator<'a> {
         }
         let factor = Factor::try_from_matrix(psi).ok()?;
         let (r, r_inv) = (*factor.r(), *factor.r_inv());
+        // R diag(h / sigma) and its inverse diag(sigma / h) R^-1: column and row scalings.
+        let mut rs = r;
+        let mut rs_inv = r_inv;
+        for j in 0..6 {
+            rs.column_mut(j).scale_mut(self.scaling[j]);
+            rs_inv.row_mut(j).scale_mut(1.0 / self.scaling[j]);
+        }
         Some(Group {
             r,
-            rs: r * Matrix6::from_diagonal(&self.scaling),
-            rs_inv: Matrix6::from_diagonal(&self.scaling.map(|s| 1.0 / s)) * r_inv,
+            rs,
+            rs_inv,
             r_inv,
         })
     }
