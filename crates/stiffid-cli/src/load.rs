@@ -23,13 +23,20 @@ pub fn setup(arg: &str) -> Result<Setup> {
     if path.extension().and_then(|e| e.to_str()) != Some("toml") {
         return Ok(setup::builtin(arg)?);
     }
-    let text = read(path)?;
-    let dir = path.parent().unwrap_or(Path::new("."));
-    Ok(setup::parse(&text, arg, |r, tip| {
+    setup_text(&read(path)?, arg, path.parent().unwrap_or(Path::new("")))
+}
+
+/// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
+/// file it names is looked for).
+pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
+    let arg = source_name;
+    Ok(setup::parse(text, arg, |r, tip| {
         let candidate = dir.join(r);
+        // A preset name (which may hold a dot, as "nj165-3.0") wins over a file that is not there.
+        let is_preset = presets::get(r).is_ok() && !candidate.exists();
         let reference = match Path::new(r).extension() {
-            Some(_) => candidate.to_string_lossy().into_owned(),
-            None => r.to_string(),
+            Some(_) if !is_preset => candidate.to_string_lossy().into_owned(),
+            _ => r.to_string(),
         };
         robot(&reference, tip).map_err(|e| stiffid::Error::Parse {
             source_name: format!("{arg}: robot"),

@@ -9,7 +9,7 @@ mod postures;
 mod report;
 mod study;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// Joint stiffness identification of industrial robots, and which postures to measure in.
@@ -42,6 +42,10 @@ enum Command {
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
     Reproduce(commands::reproduce::Args),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(commands::completions::CompletionsArgs),
+    /// Print the man page (roff) of stiffid or of one subcommand.
+    Man(commands::completions::ManArgs),
 }
 
 fn main() -> ExitCode {
@@ -58,6 +62,8 @@ fn main() -> ExitCode {
         Command::Predict(args) => commands::predict::run(&args),
         Command::Identify(args) => commands::identify::run(&args),
         Command::Validate(args) => commands::validate::run(&args),
+        Command::Completions(args) => commands::completions::completions(&args, Cli::command()),
+        Command::Man(args) => commands::completions::man(&args, Cli::command()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

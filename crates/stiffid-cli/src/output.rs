@@ -28,6 +28,13 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     written.with_context(|| format!("{}: cannot write", path.display()))
 }
 
+/// Writes `bytes` to standard output; a write error (a full disk, a closed pipe) is an error.
+pub fn write_stdout(bytes: &[u8]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)?;
+    Ok(out.flush()?)
+}
+
 /// Pretty JSON of `value`, with a final newline.
 pub fn json<T: serde::Serialize>(value: &T) -> Result<String> {
     Ok(serde_json::to_string_pretty(value)? + "\n")

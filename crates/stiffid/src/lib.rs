@@ -20,6 +20,7 @@
 #![deny(missing_docs)]
 
 mod builtin;
+pub mod cell;
 pub mod design;
 mod error;
 pub mod kinematics;
@@ -32,6 +33,7 @@ pub use robot::{AxisMap, Joint, Robot};
 pub mod identify;
 pub mod lsq;
 pub mod observation;
+pub mod prior;
 pub mod setup;
 pub mod simulate;
 pub mod stiffness;

@@ -28,6 +28,11 @@
 //! loading_point_min_z_mm = 300.0
 //! anchor_below_loading_point = true
 //! ```
+//! and optionally the physical cell, `[cell]`, `[robot_geometry]` and `[tracker]` (see [`Cell`]).
+
+mod cell;
+
+pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
 
 use crate::kinematics::{Coordinates, Frames};
 use crate::robot::file::one_line;
@@ -155,6 +160,12 @@ pub struct Setup {
     pub test_postures: Vec<Vector6<f64>>,
     /// Optional cell constraints for posture search.
     pub constraints: CellConstraints,
+    /// The floor, clearance and obstacles; `None`: no body checks (the paper's study).
+    pub cell: Option<Cell>,
+    /// Capsule radii of the robot and tool bodies (defaults scaled to the robot's size).
+    pub geometry: RobotGeometry,
+    /// The laser tracker, for the line-of-sight and incidence checks.
+    pub tracker: Option<Tracker>,
 }
 
 impl Setup {
@@ -187,6 +198,9 @@ struct SetupFile {
     bounds: BoundsFile,
     test: Option<TestFile>,
     constraints: Option<ConstraintsFile>,
+    cell: Option<cell::CellFile>,
+    robot_geometry: Option<cell::GeometryFile>,
+    tracker: Option<cell::TrackerFile>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -371,16 +385,24 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
             anchor_below_loading_point: c.anchor_below_loading_point,
         })
     })?;
+    let tool = Tool {
+        loading_point: mm(&f.tool.loading_point_mm),
+        tcp: f.tool.tcp_mm.as_ref().map_or(measuring_points[0], mm),
+        measuring_points,
+    };
+    let cell = f.cell.map(|c| cell::cell(c, src)).transpose()?;
+    let defaults = crate::cell::default_geometry(&robot, &tool);
+    let geometry = cell::geometry(f.robot_geometry, defaults, src)?;
+    let tracker = f
+        .tracker
+        .map(|t| cell::tracker(t, tool.measuring_points.len(), cell.as_ref(), src))
+        .transpose()?;
     Ok(Setup {
         name: f.name,
         description: f.description,
         robot_ref: f.robot,
         robot,
-        tool: Tool {
-            loading_point: mm(&f.tool.loading_point_mm),
-            tcp: f.tool.tcp_mm.as_ref().map_or(measuring_points[0], mm),
-            measuring_points,
-        },
+        tool,
         springs: f.springs,
         load: RopeLoad {
             load: f.loading.load_n,
@@ -395,6 +417,9 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
         characteristic_length: f.characteristic_length_mm * 1e-3,
         test_postures,
         constraints,
+        cell,
+        geometry,
+        tracker,
     })
 }
 

@@ -1,4 +1,4 @@
-//! The COMAU SMART5 NJ 165-3.0 flange check positions of DESIGN.md section 4.
+//! The COMAU SMART5 NJ 165-3.0 flange check positions of docs/model.md section 4.
 
 use nalgebra::{Vector3, Vector6};
 use stiffid::robot::presets;

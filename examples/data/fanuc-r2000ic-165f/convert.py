@@ -10,7 +10,7 @@ three files) into stiffid's measurement CSV (measurements.csv).
 - posture = the row number 1..43, point = 1 (the TCP, the setup's only measuring point).
 
 Usage: python3 convert.py [DIR] > measurements.csv
-       (DIR defaults to /work/shared/data/fanuc-r2000ic-165f)
+       (DIR defaults to original/ beside this script)
 """
 import csv
 import math
@@ -25,7 +25,7 @@ def rows(path):
 
 
 def main():
-    src = Path(sys.argv[1] if len(sys.argv) > 1 else "/work/shared/data/fanuc-r2000ic-165f")
+    src = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent / "original"
     q, f, d = (rows(src / n) for n in ("joint_angles.csv", "forces.csv", "deltaX.csv"))
     assert len(q) == len(f) == len(d)
     out = csv.writer(sys.stdout, lineterminator="\n")

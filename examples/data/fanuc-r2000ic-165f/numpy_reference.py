@@ -7,9 +7,9 @@ authors did: tau = J_theta^T [F; 0], Psi[r, j] = J_theta[r, j] * tau_j (r = x, y
 h = argmin |Psi h - delta| by numpy.linalg.lstsq (SVD), k = 1 / h.
 
 The kinematics are written here from the data README (modified DH, axis map, TCP), not taken from
-stiffid. The printed stiffness values are the reference in crates/stiffid-cli/tests/fanuc.rs.
+stiffid. The printed stiffness values are the reference in crates/stiffid-cli/tests/identify_cli.rs.
 
-Usage: python3 numpy_reference.py [DIR]   (DIR defaults to /work/shared/data/fanuc-r2000ic-165f)
+Usage: python3 numpy_reference.py [DIR]   (DIR defaults to original/ beside this script)
 """
 import sys
 from pathlib import Path
@@ -58,7 +58,7 @@ def tcp_jacobian(q):
 
 
 def main():
-    data = Path(sys.argv[1] if len(sys.argv) > 1 else "/work/shared/data/fanuc-r2000ic-165f")
+    data = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent / "original"
     q = np.loadtxt(data / "joint_angles.csv", delimiter=",", skiprows=1)
     f = np.loadtxt(data / "forces.csv", delimiter=",", skiprows=1)
     dx = np.loadtxt(data / "deltaX.csv", delimiter=",", skiprows=1)

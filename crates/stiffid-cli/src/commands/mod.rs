@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod completions;
 pub mod evaluate;
 pub mod identify;
 pub mod kinematics;
@@ -8,5 +9,6 @@ pub mod reproduce;
 pub mod robots;
 pub mod select;
 pub mod setups;
+pub mod setups_new;
 pub mod simulate;
 pub mod validate;

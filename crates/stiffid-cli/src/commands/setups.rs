@@ -7,22 +7,25 @@ use stiffid::setup;
 #[derive(clap::Args)]
 pub struct Args {
     #[command(subcommand)]
-    show: Option<Show>,
+    action: Option<Action>,
 }
 
 #[derive(clap::Subcommand)]
-enum Show {
+enum Action {
     /// Print a built-in setup's TOML (copy it, edit it, pass the file to --setup).
     Show {
         /// The setup's name.
         name: String,
     },
+    /// Write a complete, commented setup for your own robot (preset, robot TOML or URDF).
+    New(super::setups_new::NewArgs),
 }
 
 /// Lists the setups, or prints one.
 pub fn run(args: &Args) -> Result<()> {
-    match &args.show {
-        Some(Show::Show { name }) => print!("{}", setup::builtin_text(name)?),
+    match &args.action {
+        Some(Action::Show { name }) => print!("{}", setup::builtin_text(name)?),
+        Some(Action::New(args)) => super::setups_new::run(args)?,
         None => {
             for name in setup::builtin_names() {
                 println!("{name}\n  {}", setup::builtin(name)?.description);

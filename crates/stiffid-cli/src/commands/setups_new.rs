@@ -1,0 +1,239 @@
+//! `stiffid setups new --robot R`: a complete, commented setup for the user's own robot, with every
+//! field's unit and meaning, starting values derived from the robot, and the optional fields
+//! commented out. The text is loaded back before it is written, so it always loads as written.
+
+use crate::{load, output};
+use anyhow::{bail, Context, Result};
+use nalgebra::{Vector3, Vector6};
+use std::path::{Path, PathBuf};
+use stiffid::{prior, robot::presets, Robot};
+
+/// Arguments of `stiffid setups new`.
+#[derive(clap::Args)]
+pub struct NewArgs {
+    /// The robot: a preset name (see `stiffid robots`), a robot `.toml` file or a `.urdf` file.
+    #[arg(long)]
+    robot: String,
+    /// URDF only: the tip link of the chain.
+    #[arg(long)]
+    tip: Option<String>,
+    /// The robot's rated payload, kg (0 < payload <= 2500); sets the rough nominal stiffness.
+    /// Default: a class guessed from the robot's reach.
+    #[arg(long)]
+    payload_kg: Option<f64>,
+    /// Write the setup to this new file (an existing file is never replaced); default: stdout.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// The paper's robot, whose Table 2 stiffness the prior scales.
+const REFERENCE_ROBOT: &str = "comau-smart5-nj165-3.0";
+/// Bounds stay this far inside the joint limits, deg.
+const LIMIT_MARGIN_DEG: f64 = 5.0;
+/// The seed of the sampled postures behind the starting values (same robot, same file).
+const SEED: u64 = 1;
+
+/// Writes (or prints) the setup.
+pub fn run(args: &NewArgs) -> Result<()> {
+    if let Some(out) = &args.out {
+        if out.symlink_metadata().is_ok() {
+            bail!(
+                "--out {}: exists; setups new writes a new file only",
+                out.display()
+            );
+        }
+    }
+    let robot = load::robot(&args.robot, args.tip.as_deref())?;
+    let robot_ref = reference_from(&args.robot, args.out.as_deref())?;
+    let text = template(&robot, &robot_ref, args)?;
+    let source_name = args
+        .out
+        .as_ref()
+        .map_or("setups new".into(), |p| p.display().to_string());
+    check_loads(&text, &source_name, args)?;
+    match &args.out {
+        Some(out) => output::write_atomic(out, text.as_bytes()),
+        None => output::write_stdout(text.as_bytes()),
+    }
+}
+
+/// The robot reference as the setup file must hold it: a preset name as is; a file path relative
+/// to the directory of `--out` (or to the current directory).
+fn reference_from(robot: &str, out: Option<&Path>) -> Result<String> {
+    if presets::get(robot).is_ok() {
+        return Ok(robot.to_string());
+    }
+    let file = std::fs::canonicalize(robot).with_context(|| format!("--robot {robot}"))?;
+    let dir = match out
+        .and_then(Path::parent)
+        .filter(|d| !d.as_os_str().is_empty())
+    {
+        Some(d) => std::fs::canonicalize(d).with_context(|| format!("--out {}", d.display()))?,
+        None => std::env::current_dir()?,
+    };
+    Ok(relative(&file, &dir).to_string_lossy().into_owned())
+}
+
+/// `path` relative to `dir` (both absolute), through `..` where needed.
+fn relative(path: &Path, dir: &Path) -> PathBuf {
+    let (p, d): (Vec<_>, Vec<_>) = (path.components().collect(), dir.components().collect());
+    let common = p.iter().zip(&d).take_while(|(a, b)| a == b).count();
+    let mut rel: PathBuf = d[common..].iter().map(|_| "..").collect();
+    rel.extend(&p[common..]);
+    rel
+}
+
+/// Parses the generated text as `--setup` would read it from `--out`.
+fn check_loads(text: &str, source_name: &str, args: &NewArgs) -> Result<()> {
+    let dir = args
+        .out
+        .as_deref()
+        .and_then(Path::parent)
+        .unwrap_or(Path::new(""));
+    load::setup_text(text, source_name, dir)
+        .map(|_| ())
+        .context("setups new: the generated setup does not load (please report this)")
+}
+
+/// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], within +-180 deg, degrees.
+fn bounds_deg(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
+    let lower = robot
+        .lower
+        .map(|l| (l.to_degrees() + LIMIT_MARGIN_DEG).max(-180.0));
+    let upper = robot
+        .upper
+        .map(|u| (u.to_degrees() - LIMIT_MARGIN_DEG).min(180.0));
+    // A joint narrower than twice the margin keeps its full range.
+    let narrow = |a: usize| lower[a] > upper[a];
+    (
+        Vector6::from_fn(|a, _| match narrow(a) {
+            true => robot.lower[a].to_degrees().max(-180.0),
+            false => lower[a],
+        }),
+        Vector6::from_fn(|a, _| match narrow(a) {
+            true => robot.upper[a].to_degrees().min(180.0),
+            false => upper[a],
+        }),
+    )
+}
+
+/// The template of [`template`]: `@NAME@` placeholders, each replaced once.
+const TEMPLATE: &str = include_str!("../../assets/setup-template.toml");
+
+/// The commented TOML of the new setup.
+fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
+    let reach = prior::reach(robot, SEED);
+    let reference_reach = prior::reach(&presets::get(REFERENCE_ROBOT)?, SEED);
+    let (payload, payload_note) = match args.payload_kg {
+        Some(kg) => (kg, format!("the rated payload given, {kg} kg")),
+        None => {
+            let kg = prior::payload_class_kg(reach, reference_reach);
+            let note = format!("a payload class of about {kg:.0} kg guessed from the reach");
+            (kg, note + " (give --payload-kg)")
+        }
+    };
+    let stiffness = prior::nominal_stiffness(payload).context("--payload-kg")?;
+    // The paper's tool (a 160 mm plate 260 mm out, a loading arm 150 mm off axis 6), scaled down
+    // for robots smaller than the paper's.
+    let scale = (reach / reference_reach).min(1.0);
+    let tool = |x: f64, y: f64, z: f64| Vector3::new(x, y, z) * scale;
+    let (lower, upper) = bounds_deg(robot);
+    let to_rad = |v: &Vector6<f64>| v.map(f64::to_radians);
+    let tcp = tool(80.0, 80.0, 260.0) * 1e-3;
+    let l = prior::characteristic_length(robot, &to_rad(&lower), &to_rad(&upper), &tcp, SEED)?;
+    let corners = [(80.0, 80.0), (-80.0, 80.0), (-80.0, -80.0), (80.0, -80.0)];
+    let points: Vec<String> = corners
+        .iter()
+        .map(|&(x, y)| list(tool(x, y, 260.0).iter(), 1))
+        .collect();
+    let stem = match presets::get(robot_ref) {
+        Ok(_) => robot_ref.into(),
+        Err(_) => Path::new(robot_ref)
+            .file_stem()
+            .map_or(robot_ref.into(), |s| s.to_string_lossy()),
+    };
+    let tip_line = match &args.tip {
+        Some(tip) => format!("robot_tip = {}", quoted(tip)),
+        None => "# robot_tip = \"tool0\"".into(),
+    };
+    let reach_mm = reach * 1e3;
+    fill(&[
+        ("ROBOT_NAME", robot.name.clone()),
+        ("ROBOT_REF", robot_ref.to_string()),
+        ("NAME", quoted(&format!("{stem}-cell"))),
+        (
+            "DESCRIPTION",
+            quoted(&format!(
+                "Stiffness identification cell of the {}",
+                robot.name
+            )),
+        ),
+        ("ROBOT", quoted(robot_ref)),
+        ("TIP_LINE", tip_line),
+        ("REACH_MM", format!("{reach_mm:.0}")),
+        ("LENGTH_MM", format!("{:.1}", l * 1e3)),
+        ("PAYLOAD_NOTE", payload_note),
+        ("STIFFNESS", list(stiffness.iter(), 0)),
+        ("LOADING_POINT", list(tool(150.0, 0.0, 200.0).iter(), 1)),
+        (
+            "MEASURING_POINTS",
+            format!("[\n  {},\n]", points.join(",\n  ")),
+        ),
+        ("TCP", list(tool(0.0, 0.0, 300.0).iter(), 1)),
+        (
+            "LOAD_N",
+            format!("{:.1}", (50.0 * scale).max(5.0).round() * 10.0),
+        ),
+        (
+            "ANCHOR",
+            list([0.65 * reach_mm, 0.5 * reach_mm, 0.0].iter(), 0),
+        ),
+        ("MARGIN_DEG", format!("{LIMIT_MARGIN_DEG}")),
+        ("LOWER", list(lower.iter(), 1)),
+        ("UPPER", list(upper.iter(), 1)),
+    ])
+}
+
+/// [`TEMPLATE`] with every `@KEY@` replaced by its value.
+fn fill(values: &[(&str, String)]) -> Result<String> {
+    Ok(values
+        .iter()
+        .fold(TEMPLATE.to_string(), |text, (key, value)| {
+            text.replace(&format!("@{key}@"), value)
+        }))
+}
+
+/// `[a, b, c]` with `decimals` digits after the point.
+fn list<'a>(values: impl Iterator<Item = &'a f64>, decimals: usize) -> String {
+    let v: Vec<String> = values.map(|x| format!("{x:.decimals$}")).collect();
+    format!("[{}]", v.join(", "))
+}
+
+/// A TOML basic string.
+fn quoted(s: &str) -> String {
+    toml::Value::String(s.to_string()).to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_placeholder_of_the_template_is_filled() {
+        let robot = presets::get(REFERENCE_ROBOT).unwrap();
+        let args = NewArgs {
+            robot: REFERENCE_ROBOT.into(),
+            tip: None,
+            payload_kg: None,
+            out: None,
+        };
+        let text = template(&robot, REFERENCE_ROBOT, &args).unwrap();
+        assert!(!text.contains('@'), "{text}");
+    }
+
+    #[test]
+    fn relative_paths_climb_out_of_the_output_directory() {
+        let rel = relative(Path::new("/a/robots/r.urdf"), Path::new("/a/cells/x"));
+        assert_eq!(rel, Path::new("../../robots/r.urdf"));
+    }
+}

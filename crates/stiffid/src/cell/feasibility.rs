@@ -1,0 +1,512 @@
+//! The checks a posture must pass in the cell, with the signed margin of every pair they test.
+
+use super::bodies::{capsules, Capsule, Part};
+use super::distance::{capsule_box, capsule_capsule, capsule_floor};
+use crate::setup::Setup;
+use nalgebra::{Vector3, Vector6};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::fmt;
+
+/// One kind of feasibility check (the checks 1-6; the body checks split by what they
+/// test).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CheckKind {
+    /// 1. Inside the experiment bounds (which lie within the joint limits). Margin in rad.
+    Bounds,
+    /// 2. No body below `floor_z + clearance` (the base excepted: it stands on the floor). m.
+    Floor,
+    /// 2. Every body (base included) at least the clearance from every obstacle. m.
+    Obstacles,
+    /// 3. Non-adjacent links, and the tool against the base and links 1-3, at least the clearance
+    ///    apart. m.
+    SelfCollision,
+    /// 4. The rope (loading point to anchor) at least the clearance from every body and obstacle
+    ///    (from the tool only beyond `tool_radius + clearance` of the loading point). m.
+    Rope,
+    /// 5. The line from the tracker to every measuring point misses every body and obstacle (the
+    ///    tool only beyond `tool_radius` of the measuring point). m.
+    LineOfSight,
+    /// 5. The angle between a measuring point's normal and its line of sight at most
+    ///    `max_incidence`. rad.
+    Incidence,
+    /// 6. `[constraints] loading_point_min_z_mm`. m.
+    LoadingPointHeight,
+    /// 6. `[constraints] anchor_below_loading_point`. m.
+    AnchorBelow,
+}
+
+impl CheckKind {
+    /// Every kind, in report order.
+    pub const ALL: [CheckKind; 9] = [
+        CheckKind::Bounds,
+        CheckKind::Floor,
+        CheckKind::Obstacles,
+        CheckKind::SelfCollision,
+        CheckKind::Rope,
+        CheckKind::LineOfSight,
+        CheckKind::Incidence,
+        CheckKind::LoadingPointHeight,
+        CheckKind::AnchorBelow,
+    ];
+
+    /// Its name in reports and JSON, e.g. `self-collision`.
+    pub fn key(self) -> &'static str {
+        match self {
+            CheckKind::Bounds => "bounds",
+            CheckKind::Floor => "floor",
+            CheckKind::Obstacles => "obstacles",
+            CheckKind::SelfCollision => "self-collision",
+            CheckKind::Rope => "rope",
+            CheckKind::LineOfSight => "line-of-sight",
+            CheckKind::Incidence => "incidence",
+            CheckKind::LoadingPointHeight => "loading-point-min-z",
+            CheckKind::AnchorBelow => "anchor-below-loading-point",
+        }
+    }
+
+    /// Whether the margin is an angle (rad) rather than a length (m).
+    pub fn is_angle(self) -> bool {
+        matches!(self, CheckKind::Bounds | CheckKind::Incidence)
+    }
+}
+
+impl fmt::Display for CheckKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.key())
+    }
+}
+
+/// What a margin is measured at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Thing {
+    /// A robot or tool body.
+    Part(Part),
+    /// The floor.
+    Floor,
+    /// Obstacle i (0-based) of the cell.
+    Obstacle(usize),
+    /// The rope.
+    Rope,
+    /// The line of sight to measuring point i (0-based).
+    Sight(usize),
+    /// Measuring point i (0-based).
+    MeasuringPoint(usize),
+    /// Axis i (0-based).
+    Axis(usize),
+    /// The loading point.
+    LoadingPoint,
+    /// The rope anchor.
+    Anchor,
+}
+
+impl Thing {
+    /// Its name in reports, obstacles by their names in the setup.
+    pub fn name(self, setup: &Setup) -> String {
+        match self {
+            Thing::Part(p) => p.to_string(),
+            Thing::Floor => "floor".into(),
+            Thing::Obstacle(i) => setup.cell.as_ref().map_or_else(
+                || format!("obstacle {}", i + 1),
+                |c| c.obstacles[i].name.clone(),
+            ),
+            Thing::Rope => "rope".into(),
+            Thing::Sight(i) => format!("line of sight {}", i + 1),
+            Thing::MeasuringPoint(i) => format!("measuring point {}", i + 1),
+            Thing::Axis(i) => format!("axis {}", i + 1),
+            Thing::LoadingPoint => "loading point".into(),
+            Thing::Anchor => "anchor".into(),
+        }
+    }
+}
+
+/// The signed margin of one tested pair: `>= 0` satisfied.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Margin {
+    /// The check it belongs to.
+    pub kind: CheckKind,
+    /// Distance (or angle, height) minus what is required: m, or rad for angles.
+    pub margin: f64,
+    /// What is required on top of contact (the clearance for body checks), m; 0 for the others.
+    pub required: f64,
+    /// The pair.
+    pub between: (Thing, Thing),
+}
+
+/// The tightest pair of one check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Check {
+    /// Which check.
+    pub kind: CheckKind,
+    /// Whether it passes (`margin >= 0`).
+    pub ok: bool,
+    /// The smallest signed margin of its pairs: m, or rad for [`CheckKind::is_angle`].
+    pub margin: f64,
+    /// For the body checks, the smallest distance between the pair's surfaces, m (negative:
+    /// penetration); `None` for bounds, incidence and `[constraints]`.
+    pub clearance: Option<f64>,
+    /// The names of the tightest pair, e.g. `("link 3", "floor")`.
+    pub between: (String, String),
+}
+
+/// The feasibility of one posture: one [`Check`] per active check kind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Feasibility {
+    /// The checks the setup asks for, in [`CheckKind::ALL`] order.
+    pub checks: Vec<Check>,
+}
+
+impl Feasibility {
+    /// Whether every check passes.
+    pub fn feasible(&self) -> bool {
+        self.checks.iter().all(|c| c.ok)
+    }
+
+    /// The checks that fail.
+    pub fn violations(&self) -> impl Iterator<Item = &Check> {
+        self.checks.iter().filter(|c| !c.ok)
+    }
+
+    /// The smallest distance between bodies (and lines) that must not touch, m; `None` without
+    /// body checks.
+    pub fn min_clearance(&self) -> Option<f64> {
+        self.checks
+            .iter()
+            .filter_map(|c| c.clearance)
+            .reduce(f64::min)
+    }
+}
+
+/// Postures of the sample that decides which body pairs always touch.
+const CONTACT_SAMPLE: usize = 64;
+
+/// The feasibility checker of a setup: which checks apply and which body pairs are tested, worked
+/// out once, for any number of postures.
+#[derive(Debug, Clone)]
+pub struct Checker<'a> {
+    setup: &'a Setup,
+    kinds: Vec<CheckKind>,
+    /// Capsule index pairs of the self-collision check.
+    pairs: Vec<(usize, usize)>,
+}
+
+impl<'a> Checker<'a> {
+    /// The checker of `setup`: bounds and `[constraints]` always; floor, obstacles, self-collision
+    /// and rope with a `[cell]`; line of sight (and incidence, with `max_incidence_deg`) with a
+    /// `[tracker]`.
+    ///
+    /// Self-collision tests pairs of capsules of non-adjacent parts (links whose chain between
+    /// them has zero length, like links 4 and 6 of a spherical wrist, count as adjacent) and the
+    /// tool against the base and links 1-3, except pairs closer than the clearance in every one
+    /// of 64 seeded postures spread over the bounds: those overlap by construction (the upper
+    /// arm and the forearm at an offset elbow), as a collision checker's "always in contact"
+    /// list.
+    pub fn new(setup: &'a Setup) -> Self {
+        let mut kinds = vec![CheckKind::Bounds];
+        if let Some(cell) = &setup.cell {
+            if cell.floor_z.is_some() {
+                kinds.push(CheckKind::Floor);
+            }
+            if !cell.obstacles.is_empty() {
+                kinds.push(CheckKind::Obstacles);
+            }
+            kinds.extend([CheckKind::SelfCollision, CheckKind::Rope]);
+        }
+        if let Some(t) = &setup.tracker {
+            kinds.push(CheckKind::LineOfSight);
+            if t.max_incidence.is_some() {
+                kinds.push(CheckKind::Incidence);
+            }
+        }
+        if setup.constraints.loading_point_min_z.is_some() {
+            kinds.push(CheckKind::LoadingPointHeight);
+        }
+        if setup.constraints.anchor_below_loading_point {
+            kinds.push(CheckKind::AnchorBelow);
+        }
+        let mut checker = Self {
+            setup,
+            kinds,
+            pairs: Vec::new(),
+        };
+        if setup.cell.is_some() {
+            checker.pairs = checker.self_pairs();
+        }
+        checker
+    }
+
+    /// The setup.
+    pub fn setup(&self) -> &'a Setup {
+        self.setup
+    }
+
+    /// The check kinds that apply, in [`CheckKind::ALL`] order.
+    pub fn kinds(&self) -> &[CheckKind] {
+        &self.kinds
+    }
+
+    /// Whether any check beyond the bounds applies.
+    pub fn constrains(&self) -> bool {
+        self.kinds.len() > 1
+    }
+
+    /// The feasibility of posture `q` (axis angles, rad).
+    pub fn feasibility(&self, q: &Vector6<f64>) -> Feasibility {
+        let margins = self.margins(q);
+        let checks = self
+            .kinds
+            .iter()
+            .map(|&kind| {
+                let tightest = margins
+                    .iter()
+                    .filter(|m| m.kind == kind)
+                    .min_by(|a, b| a.margin.total_cmp(&b.margin))
+                    .expect("every active check has a pair");
+                let body = !matches!(
+                    kind,
+                    CheckKind::Bounds
+                        | CheckKind::Incidence
+                        | CheckKind::LoadingPointHeight
+                        | CheckKind::AnchorBelow
+                );
+                Check {
+                    kind,
+                    ok: tightest.margin >= 0.0,
+                    margin: tightest.margin,
+                    clearance: body.then_some(tightest.margin + tightest.required),
+                    between: (
+                        tightest.between.0.name(self.setup),
+                        tightest.between.1.name(self.setup),
+                    ),
+                }
+            })
+            .collect();
+        Feasibility { checks }
+    }
+
+    /// The sum over the failing pairs of how much they fail by (m and rad): 0 when `q` passes
+    /// every check.
+    pub fn violation(&self, q: &Vector6<f64>) -> f64 {
+        if !self.constrains() {
+            return 0.0;
+        }
+        self.margins(q).iter().map(|m| (-m.margin).max(0.0)).sum()
+    }
+
+    /// The signed margin of every pair every active check tests at posture `q` (axis angles,
+    /// rad), in [`Checker::kinds`] order; the same pairs in every posture.
+    pub fn margins(&self, q: &Vector6<f64>) -> Vec<Margin> {
+        let s = self.setup;
+        let mut out = Vec::with_capacity(64);
+        for a in 0..6 {
+            let m = (q[a] - s.bounds.lower[a]).min(s.bounds.upper[a] - q[a]);
+            let m = if m.is_nan() { f64::NEG_INFINITY } else { m };
+            out.push(margin(
+                CheckKind::Bounds,
+                m,
+                0.0,
+                Thing::Axis(a),
+                Thing::Axis(a),
+            ));
+        }
+        if !self.constrains() {
+            return out;
+        }
+        let frames = s.robot.frames(q);
+        let bodies = capsules(s, &frames);
+        let loading = frames.point(&s.tool.loading_point);
+        if let Some(cell) = &s.cell {
+            self.body_margins(&bodies, &loading, cell, &mut out);
+        }
+        if let Some(t) = &s.tracker {
+            for (i, p) in s.tool.measuring_points.iter().enumerate() {
+                let p = frames.point(p);
+                let sight = line(&t.position, &p, s.geometry.tool_radius);
+                self.line_margins(
+                    CheckKind::LineOfSight,
+                    &sight,
+                    Thing::Sight(i),
+                    &bodies,
+                    0.0,
+                    &mut out,
+                );
+                if let Some(max) = t.max_incidence {
+                    let normal = frames.flange.rotation * t.measuring_normals[i];
+                    let angle = normal.angle(&(t.position - p));
+                    let m = Thing::MeasuringPoint(i);
+                    out.push(margin(CheckKind::Incidence, max - angle, 0.0, m, m));
+                }
+            }
+        }
+        let c = &s.constraints;
+        if let Some(z) = c.loading_point_min_z {
+            let (l, f) = (Thing::LoadingPoint, Thing::Floor);
+            out.push(margin(
+                CheckKind::LoadingPointHeight,
+                loading.z - z,
+                0.0,
+                l,
+                f,
+            ));
+        }
+        if c.anchor_below_loading_point {
+            let (l, a) = (Thing::LoadingPoint, Thing::Anchor);
+            out.push(margin(
+                CheckKind::AnchorBelow,
+                loading.z - s.load.anchor.z,
+                0.0,
+                l,
+                a,
+            ));
+        }
+        out
+    }
+
+    fn body_margins(
+        &self,
+        bodies: &[Capsule],
+        loading: &Vector3<f64>,
+        cell: &crate::setup::Cell,
+        out: &mut Vec<Margin>,
+    ) {
+        let c = cell.clearance;
+        if let Some(z) = cell.floor_z {
+            for b in bodies.iter().filter(|b| b.part != Part::Base) {
+                let m = capsule_floor(b, z) - c;
+                out.push(margin(
+                    CheckKind::Floor,
+                    m,
+                    c,
+                    Thing::Part(b.part),
+                    Thing::Floor,
+                ));
+            }
+        }
+        for b in bodies {
+            for (i, o) in cell.obstacles.iter().enumerate() {
+                let m = capsule_box(b, o) - c;
+                out.push(margin(
+                    CheckKind::Obstacles,
+                    m,
+                    c,
+                    Thing::Part(b.part),
+                    Thing::Obstacle(i),
+                ));
+            }
+        }
+        for &(i, j) in &self.pairs {
+            let m = capsule_capsule(&bodies[i], &bodies[j]) - c;
+            let (a, b) = (Thing::Part(bodies[i].part), Thing::Part(bodies[j].part));
+            out.push(margin(CheckKind::SelfCollision, m, c, a, b));
+        }
+        let exempt = self.setup.geometry.tool_radius + c;
+        let rope = line(&self.setup.load.anchor, loading, exempt);
+        self.line_margins(CheckKind::Rope, &rope, Thing::Rope, bodies, c, out);
+    }
+
+    /// Margins of a line (rope or sight) against every body and obstacle.
+    fn line_margins(
+        &self,
+        kind: CheckKind,
+        line: &Line,
+        thing: Thing,
+        bodies: &[Capsule],
+        required: f64,
+        out: &mut Vec<Margin>,
+    ) {
+        for b in bodies {
+            let segment = match b.part {
+                Part::Tool => line.short.as_ref(),
+                _ => Some(&line.full),
+            };
+            let m = segment.map_or(f64::INFINITY, |s| capsule_capsule(s, b) - required);
+            out.push(margin(kind, m, required, thing, Thing::Part(b.part)));
+        }
+        let obstacles = self.setup.cell.iter().flat_map(|c| c.obstacles.iter());
+        for (i, o) in obstacles.enumerate() {
+            let m = capsule_box(&line.full, o) - required;
+            out.push(margin(kind, m, required, thing, Thing::Obstacle(i)));
+        }
+    }
+
+    /// The self-collision pairs: non-adjacent parts, not in contact in every sampled posture.
+    fn self_pairs(&self) -> Vec<(usize, usize)> {
+        let s = self.setup;
+        let rest = capsules(s, &s.robot.frames(&s.bounds.lower));
+        let candidates: Vec<(usize, usize)> = (0..rest.len())
+            .flat_map(|i| (i + 1..rest.len()).map(move |j| (i, j)))
+            .filter(|&(i, j)| !adjacent(&rest, rest[i].part, rest[j].part))
+            .collect();
+        let clearance = s.cell.as_ref().map_or(0.0, |c| c.clearance);
+        let mut free = vec![false; candidates.len()];
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        for _ in 0..CONTACT_SAMPLE {
+            let q =
+                Vector6::from_fn(|a, _| rng.random_range(s.bounds.lower[a]..=s.bounds.upper[a]));
+            let bodies = capsules(s, &s.robot.frames(&q));
+            for (k, &(i, j)) in candidates.iter().enumerate() {
+                free[k] |= capsule_capsule(&bodies[i], &bodies[j]) >= clearance;
+            }
+        }
+        candidates
+            .into_iter()
+            .zip(free)
+            .filter_map(|(p, f)| f.then_some(p))
+            .collect()
+    }
+}
+
+/// Whether two parts need no self-collision test: the same part, neighbours in the chain (with
+/// zero-length parts between them skipped), or the tool and a part other than the base and links
+/// 1-3.
+fn adjacent(bodies: &[Capsule], p: Part, q: Part) -> bool {
+    let (lo, hi) = (p.index().min(q.index()), p.index().max(q.index()));
+    if hi == Part::Tool.index() {
+        return lo > 3;
+    }
+    let zero_length = |k: usize| {
+        bodies
+            .iter()
+            .filter(|b| b.part.index() == k)
+            .all(|b| (b.a - b.b).norm() == 0.0)
+    };
+    (lo + 1..hi).all(zero_length)
+}
+
+/// A rope or line of sight as capsules of radius 0: the whole segment, and the part the tool must
+/// clear (`None` when too short).
+struct Line {
+    full: Capsule,
+    short: Option<Capsule>,
+}
+
+/// The line from `from` to `to` (on the tool), and its part beyond `exempt` (m) of `to`.
+fn line(from: &Vector3<f64>, to: &Vector3<f64>, exempt: f64) -> Line {
+    let d = from - to;
+    let length = d.norm();
+    let capsule = |b: Vector3<f64>| Capsule {
+        part: Part::Tool,
+        a: *from,
+        b,
+        radius: 0.0,
+    };
+    Line {
+        full: capsule(*to),
+        short: (length > exempt).then(|| capsule(to + d * (exempt / length))),
+    }
+}
+
+fn margin(kind: CheckKind, margin: f64, required: f64, a: Thing, b: Thing) -> Margin {
+    Margin {
+        kind,
+        margin,
+        required,
+        between: (a, b),
+    }
+}
+
+/// The feasibility of posture `q` (axis angles, rad) in the setup's cell: a [`Checker`] built for
+/// this one posture (build one [`Checker`] to check many).
+pub fn feasibility(setup: &Setup, q: &Vector6<f64>) -> Feasibility {
+    Checker::new(setup).feasibility(q)
+}

@@ -1,0 +1,30 @@
+//! The physical cell: robot and tool bodies as capsules, and whether a posture can really be
+//! measured in the cell (the setup's `[cell]`, `[robot_geometry]`, `[tracker]` and `[constraints]`).
+//!
+//! - [`capsules`]: the bodies of a posture (base, links 1-6, tool), base frame, m: what a plot draws;
+//! - [`feasibility`] / [`Checker::feasibility`]: per check ([`CheckKind`]) whether the posture
+//!   passes, the smallest margin and clearance, and the tightest pair of bodies;
+//! - [`Checker::margins`]: the signed margin of every tested pair, for constrained searches.
+//!
+//! Distances come from dimforge's `parry3d-f64` (segment-segment closest points for capsules,
+//! GJK/EPA for capsules against boxes). Units: m and rad inside; the setup file speaks mm and deg.
+//!
+//! ```
+//! use nalgebra::Vector6;
+//! let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+//!     + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n";
+//! let setup = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
+//! // Upper arm tilted 40 deg forward, forearm pointing 100 deg down: the tool is in the floor.
+//! let q = Vector6::new(0.0, 40f64.to_radians(), -170f64.to_radians(), 0.0, 0.0, 0.0);
+//! let f = stiffid::cell::feasibility(&setup, &q);
+//! assert!(!f.feasible());
+//! assert!(f.violations().any(|c| c.kind == stiffid::cell::CheckKind::Floor));
+//! ```
+
+mod bodies;
+mod distance;
+mod feasibility;
+
+pub use bodies::{capsules, default_geometry, Capsule, Part, DEFAULT_RADIUS_FRACTIONS};
+pub use distance::{capsule_box, capsule_capsule, capsule_floor};
+pub use feasibility::{feasibility, Check, CheckKind, Checker, Feasibility, Margin, Thing};
