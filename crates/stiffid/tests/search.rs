@@ -231,3 +231,24 @@ fn exact_gradients_end_no_worse_than_finite_differences() {
     }
     assert!(exact_total <= fd_total, "{exact_total} vs {fd_total}");
 }
+
+#[test]
+fn screened_global_search_matches_running_every_start_for_fewer_evaluations() {
+    let setup = paper();
+    for criterion in [Criterion::RelativeA, Criterion::DOptimal] {
+        let run = |screen_steps| {
+            let options = SearchOptions {
+                screen_steps,
+                ..SearchOptions::default()
+            };
+            design::global(&setup, criterion, 6, &options, &|_| {}).unwrap()
+        };
+        let (screened, full) = (run(60), run(0));
+        println!(
+            "{criterion}: screened {:.8} ({} evaluations), every start {:.8} ({} evaluations)",
+            screened.value, screened.evaluations, full.value, full.evaluations
+        );
+        assert!(screened.value <= full.value * (1.0 + 1e-4), "{criterion}");
+        assert!(screened.evaluations < full.evaluations, "{criterion}");
+    }
+}

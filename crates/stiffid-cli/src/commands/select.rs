@@ -41,6 +41,13 @@ pub struct Args {
     /// Local searches of a global search [default: 32].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     starts: Option<u64>,
+    /// SQP steps of every global start before the best --polished continue; 0 runs every start
+    /// to convergence [default: 60].
+    #[arg(long, requires = "global")]
+    screen_steps: Option<u64>,
+    /// Global starts that continue after the screening [default: 8].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..))]
+    polished: Option<u64>,
     /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
     /// each finite-difference probe as one) [default: 6000].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
@@ -83,6 +90,12 @@ pub fn run(args: &Args) -> Result<()> {
     };
     if let Some(s) = args.starts {
         options.starts = s as usize;
+    }
+    if let Some(s) = args.screen_steps {
+        options.screen_steps = s as usize;
+    }
+    if let Some(p) = args.polished {
+        options.polished = p as usize;
     }
     if let Some(m) = args.max_evals {
         options.max_evals = m as usize;

@@ -45,6 +45,15 @@ pub fn local(
     Ok(problem.run(start))
 }
 
+/// Criterion evaluations of one SQP call for `n` postures: 1 with the exact gradient, `6n + 1`
+/// with finite differences.
+pub(super) fn evals_per_step(options: &SearchOptions, n: usize) -> usize {
+    match options.gradient {
+        Gradient::Exact => 1,
+        Gradient::FiniteDifference => 6 * n + 1,
+    }
+}
+
 /// Checks a start group: at least 2 postures, finite, within the bounds.
 pub(super) fn check_start(
     setup: &Setup,
@@ -127,12 +136,8 @@ impl<'a> Problem<'a> {
     fn run(self, start: &[Vector6<f64>]) -> SearchOutcome {
         let x0: Vec<f64> = start.iter().flat_map(|q| q.iter().copied()).collect();
         let start_value = self.value(&x0);
-        let dim = x0.len();
-        let per_call = match self.options.gradient {
-            Gradient::Exact => 1,
-            Gradient::FiniteDifference => dim + 1,
-        };
-        let iterations = self.options.max_evals.saturating_sub(1) / per_call;
+        let iterations =
+            self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
         if iterations > 0 {
             self.minimise(&x0, iterations);
         }
