@@ -1,8 +1,9 @@
 //! Turning command-line arguments into robots, setups and angle lists.
 
 use anyhow::{bail, Context, Result};
-use nalgebra::{SVector, Vector6};
+use nalgebra::{Matrix6, SVector, Vector6};
 use std::path::Path;
+use stiffid::deflection::Frame;
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{setup, Robot, Setup};
 
@@ -104,13 +105,28 @@ pub fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
 /// The joint stiffness (Nm/rad) in a JSON file's key `stiffness_nm_per_rad`: six finite numbers
 /// > 0, for example the result of `stiffid identify --out`. Other keys are ignored.
 pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
+    Ok(identified(path)?.stiffness)
+}
+
+/// A stiffness file's joint stiffness and, if it has the key `compliance_covariance_rad2_per_nm2`
+/// (6x6, (rad/Nm)^2, as `stiffid identify --out` writes it), the covariance of the compliance.
+pub struct Identified {
+    /// Nm/rad.
+    pub stiffness: Vector6<f64>,
+    /// `Cov(h)`, (rad/Nm)^2: finite, symmetric, non-negative diagonal.
+    pub covariance: Option<Matrix6<f64>>,
+}
+
+/// Reads a stiffness file (see [`Identified`]); other keys are ignored.
+pub fn identified(path: &Path) -> Result<Identified> {
     #[derive(serde::Deserialize)]
     struct StiffnessFile {
         stiffness_nm_per_rad: [f64; 6],
+        compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
     }
     let name = path.display();
     let file: StiffnessFile = serde_json::from_str(&read(path)?).with_context(|| {
-        format!("{name}: expected JSON with the key stiffness_nm_per_rad (six numbers, Nm/rad)")
+        format!("{name}: expected JSON with the key stiffness_nm_per_rad (six numbers, Nm/rad) and optionally compliance_covariance_rad2_per_nm2 (6x6)")
     })?;
     let k = Vector6::from(file.stiffness_nm_per_rad);
     if let Some(j) = (0..6).find(|&j| !(k[j].is_finite() && k[j] > 0.0)) {
@@ -119,5 +135,41 @@ pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
             k[j]
         );
     }
-    Ok(k)
+    let covariance = match file.compliance_covariance_rad2_per_nm2 {
+        None => None,
+        Some(rows) => {
+            let c = Matrix6::from_fn(|r, col| rows[r][col]);
+            let scale = c.diagonal().amax();
+            let valid = c.iter().all(|v| v.is_finite())
+                && c.diagonal().iter().all(|v| *v >= 0.0)
+                && (c - c.transpose()).amax() <= 1e-9 * scale;
+            if !valid {
+                bail!("{name}: compliance_covariance_rad2_per_nm2: expected a symmetric 6x6 matrix of finite numbers with a non-negative diagonal");
+            }
+            Some(c)
+        }
+    };
+    Ok(Identified {
+        stiffness: k,
+        covariance,
+    })
+}
+
+/// The frame of a wrench, as a command-line value.
+#[derive(Clone, Copy, Default, clap::ValueEnum)]
+pub enum WrenchFrame {
+    /// The robot base frame.
+    #[default]
+    Base,
+    /// The tool (flange) frame, moving with the tool.
+    Tool,
+}
+
+impl From<WrenchFrame> for Frame {
+    fn from(f: WrenchFrame) -> Self {
+        match f {
+            WrenchFrame::Base => Frame::Base,
+            WrenchFrame::Tool => Frame::Tool,
+        }
+    }
 }

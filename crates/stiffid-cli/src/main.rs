@@ -30,14 +30,19 @@ enum Command {
     Setups(commands::setups::Args),
     /// Every design criterion of a group of postures and its predicted deviation rates.
     Evaluate(commands::evaluate::Args),
-    /// Choose postures: minimise a design criterion by local SQP or global multistart search.
+    /// Choose postures: minimise a design criterion by local SQP, global multistart search or from a
+    /// pool of postures; how many are needed; a measurement plan.
     Select(commands::select::Args),
+    /// Side and top views of every posture of a postures file, SVG and PNG.
+    Plot(commands::plot::Args),
     /// Torques, joint deflections and measuring-point displacements for a posture and wrench.
     Predict(commands::predict::Args),
     /// Identify the joint stiffness from measurements, with confidence intervals.
     Identify(commands::identify::Args),
     /// Compare measured and predicted displacements for an identified stiffness (Eq. 22).
     Validate(commands::validate::Args),
+    /// Deflection of a machining path under its process wrench, and the compensated axis angles.
+    Compensate(commands::compensate::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
@@ -58,10 +63,12 @@ fn main() -> ExitCode {
         Command::Simulate(args) => commands::simulate::run(&args),
         Command::Evaluate(args) => commands::evaluate::run(&args),
         Command::Select(args) => commands::select::run(&args),
+        Command::Plot(args) => commands::plot::run(&args),
         Command::Reproduce(args) => commands::reproduce::run(&args),
         Command::Predict(args) => commands::predict::run(&args),
         Command::Identify(args) => commands::identify::run(&args),
         Command::Validate(args) => commands::validate::run(&args),
+        Command::Compensate(args) => commands::compensate::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, Cli::command()),
         Command::Man(args) => commands::completions::man(&args, Cli::command()),
     };

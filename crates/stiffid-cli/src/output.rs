@@ -28,6 +28,24 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     written.with_context(|| format!("{}: cannot write", path.display()))
 }
 
+/// Refuses to write `out` over one of the `inputs` (the same file, by canonical path).
+pub fn refuse_to_overwrite(out: &Path, inputs: &[&Path]) -> Result<()> {
+    let Ok(target) = out.canonicalize() else {
+        return Ok(());
+    };
+    if let Some(input) = inputs
+        .iter()
+        .find(|i| i.canonicalize().is_ok_and(|c| c == target))
+    {
+        anyhow::bail!(
+            "{}: refusing to write the result over the input {}",
+            out.display(),
+            input.display()
+        );
+    }
+    Ok(())
+}
+
 /// Writes `bytes` to standard output; a write error (a full disk, a closed pipe) is an error.
 pub fn write_stdout(bytes: &[u8]) -> Result<()> {
     let mut out = std::io::stdout().lock();

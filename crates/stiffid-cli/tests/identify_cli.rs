@@ -3,17 +3,9 @@
 
 mod common;
 
-use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, json, numbers, stiffid, temp_dir, write_file};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-
-fn numbers(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
 
 fn fanuc_csv() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -1,10 +1,11 @@
 //! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one
 //! evaluation with its exact gradient, local searches from a fixed seeded start group (exact and
-//! finite-difference gradients), and the default global search, on the paper setup.
+//! finite-difference gradients), the default global search, and the best 6 of a pool of 1000
+//! postures (`select --pool`: building the pool and the exchange), on the paper setup.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::design::{self, Criterion, Evaluator, Gradient, SearchOptions};
+use stiffid::design::{self, Criterion, Evaluator, Gradient, Pool, PoolOptions, SearchOptions};
 
 fn evaluation(c: &mut Bench) {
     let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -53,5 +54,20 @@ fn search(c: &mut Bench) {
     g.finish();
 }
 
-criterion_group!(benches, evaluation, search);
+fn pool(c: &mut Bench) {
+    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let postures = design::random_group(&setup, 1000, 1);
+    let options = PoolOptions::default();
+    let mut g = c.benchmark_group("design/pool");
+    g.sample_size(10);
+    g.bench_function("relative-a/1000/6", |b| {
+        b.iter(|| {
+            let pool = Pool::new(&setup, black_box(&postures), &[]).unwrap();
+            pool.best(Criterion::RelativeA, 6, &options).unwrap()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, evaluation, search, pool);
 criterion_main!(benches);

@@ -32,7 +32,7 @@ pub enum Error {
     /// No built-in preset or setup has this name.
     #[error("unknown {kind} '{name}' (known: {known})")]
     Unknown {
-        /// "robot preset" or "setup".
+        /// "robot preset", "setup" or "criterion".
         kind: &'static str,
         /// The name asked for.
         name: String,
@@ -65,6 +65,24 @@ pub enum Error {
         field: String,
         /// What was expected.
         message: String,
+    },
+    /// A row of a table file (CSV) cannot be used. `line` is 1-based, as an editor shows it.
+    #[error("line {line}, column {column}: {message}")]
+    Row {
+        /// The line in the file.
+        line: u64,
+        /// The column (or columns, e.g. `x_mm..rz_deg`) as named in the header.
+        column: String,
+        /// What was wrong and what was expected, with the value given (shortened).
+        message: String,
+    },
+    /// Inverse kinematics found no posture within the joint limits that reaches the pose.
+    #[error("pose not reached within the joint limits: {position_error_mm:.3} mm and {rotation_error_deg:.3} deg away at best (outside the workspace, or only reachable beyond a joint limit)")]
+    Unreachable {
+        /// The remaining distance of the tool point, mm.
+        position_error_mm: f64,
+        /// The remaining rotation of the tool frame, deg.
+        rotation_error_deg: f64,
     },
     /// A number was NaN or infinite where a finite number is needed.
     #[error("{what} is not finite")]

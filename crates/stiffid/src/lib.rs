@@ -20,9 +20,14 @@
 #![deny(missing_docs)]
 
 mod builtin;
+pub mod cartesian;
 pub mod cell;
+pub mod compensate;
+pub mod deflection;
 pub mod design;
 mod error;
+pub mod formats;
+pub mod ik;
 pub mod kinematics;
 mod linalg;
 pub mod robot;

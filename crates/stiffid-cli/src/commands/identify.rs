@@ -1,11 +1,11 @@
 //! `stiffid identify`: joint stiffness from a measurement file (Zhang et al. 2021, Eq. 10-14), with
 //! standard errors, 95% confidence intervals, residuals and an optional robust fit.
 
-use crate::output::{json, write_atomic};
+use crate::output::{json, refuse_to_overwrite, write_atomic};
 use crate::{data, load};
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stiffid::identify::{observations, Identification, Loss};
 use stiffid::kinematics::Coordinates;
 
@@ -55,6 +55,7 @@ struct IdentifyJson {
     ci95_from_compliance_nm_per_rad: Option<[[Option<f64>; 2]; 6]>,
     compliance_std_error_rad_per_nm: Option<[f64; 6]>,
     compliance_ci95_rad_per_nm: Option<[[f64; 2]; 6]>,
+    compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
     degrees_of_freedom: Option<usize>,
     t_quantile: Option<f64>,
     residual_std_mm: Option<f64>,
@@ -96,7 +97,7 @@ struct RowJson {
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     if let Some(out) = &args.out {
-        refuse_to_overwrite(out, &args.data)?;
+        refuse_to_overwrite(out, &[&args.data])?;
     }
     let data = data::read(&args.data)?;
     let name = args.data.display().to_string();
@@ -117,21 +118,6 @@ pub fn run(args: &Args) -> Result<()> {
     match args.json {
         true => print!("{text}"),
         false => print!("{}", human(&result, &id)),
-    }
-    Ok(())
-}
-
-/// `--out` must not be the data file (nor any existing file that is the same file).
-fn refuse_to_overwrite(out: &Path, data: &Path) -> Result<()> {
-    let same = match (out.canonicalize(), data.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        bail!(
-            "--out {}: refusing to write the result over the data file",
-            out.display()
-        );
     }
     Ok(())
 }
@@ -203,6 +189,9 @@ fn to_json(
         }),
         compliance_std_error_rad_per_nm: u.map(|u| u.compliance_std_error.into()),
         compliance_ci95_rad_per_nm: u.map(|u| u.compliance_ci95),
+        compliance_covariance_rad2_per_nm2: u.map(|u| {
+            std::array::from_fn(|r| std::array::from_fn(|c| u.compliance_covariance[(r, c)]))
+        }),
         degrees_of_freedom: u.map(|u| u.dof),
         t_quantile: u.map(|u| u.t_quantile),
         residual_std_mm: u.map(|u| mm(u.residual_variance.sqrt())),

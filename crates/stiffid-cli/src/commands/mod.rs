@@ -1,9 +1,11 @@
 //! One module per subcommand.
 
+pub mod compensate;
 pub mod completions;
 pub mod evaluate;
 pub mod identify;
 pub mod kinematics;
+pub mod plot;
 pub mod predict;
 pub mod reproduce;
 pub mod robots;

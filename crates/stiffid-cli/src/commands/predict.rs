@@ -1,12 +1,14 @@
-//! `stiffid predict`: the forward model (Zhang et al. 2021, Eq. 3-7) for one posture and wrench.
+//! `stiffid predict`: the forward model (Zhang et al. 2021, Eq. 3-7) for one posture and wrench,
+//! with the TCP deflection and the Cartesian compliance and stiffness of the loaded point.
 
-use crate::load;
+use crate::load::{self, WrenchFrame};
 use crate::output::print_json_or;
 use anyhow::{bail, Result};
-use nalgebra::Vector6;
+use nalgebra::{Matrix6, Vector3, Vector6};
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid::stiffness::deflection;
+use stiffid::cartesian;
+use stiffid::deflection::{base_wrench, Points};
 
 /// Arguments of `stiffid predict`.
 #[derive(clap::Args)]
@@ -17,11 +19,20 @@ pub struct Args {
     /// Axis angles q1..q6, deg, comma-separated.
     #[arg(long, allow_hyphen_values = true)]
     q_deg: String,
-    /// Wrench at the loading point, base frame: fx,fy,fz (N) or fx,fy,fz,mx,my,mz (N, Nm).
+    /// Wrench at the loading point (or --at-mm): fx,fy,fz (N) or fx,fy,fz,mx,my,mz (N, Nm), in the
+    /// frame of --frame.
     #[arg(long, allow_hyphen_values = true)]
     wrench: String,
+    /// Where the wrench acts: a tool point x,y,z in the flange frame, mm; default the setup's
+    /// loading point.
+    #[arg(long, allow_hyphen_values = true)]
+    at_mm: Option<String>,
+    /// The frame of the wrench: base, or tool (the flange frame, moving with the tool).
+    #[arg(long, value_enum, default_value = "base")]
+    frame: WrenchFrame,
     /// JSON file with `stiffness_nm_per_rad` (e.g. from `stiffid identify --out`); default: the
-    /// setup's nominal stiffness.
+    /// setup's nominal stiffness. With `compliance_covariance_rad2_per_nm2` in it, every
+    /// displacement also gets its standard deviation.
     #[arg(long)]
     stiffness: Option<PathBuf>,
     /// Print JSON instead of a table.
@@ -34,11 +45,22 @@ struct PredictJson {
     setup: String,
     q_deg: [f64; 6],
     wrench: [f64; 6],
+    wrench_frame: &'static str,
+    wrench_point_mm: [f64; 3],
+    wrench_base_frame: [f64; 6],
     stiffness_nm_per_rad: [f64; 6],
     torques_nm: [f64; 6],
     joint_deflections_mrad: [f64; 6],
     flange_rotation_mrad: [f64; 3],
+    flange_rotation_std_mrad: Option<[f64; 3]>,
     measuring_points: Vec<PointJson>,
+    tcp_mm: [f64; 3],
+    tcp_deflection_mm: [f64; 3],
+    tcp_deflection_std_mm: Option<[f64; 3]>,
+    tcp_rotation_mrad: [f64; 3],
+    tcp_rotation_std_mrad: Option<[f64; 3]>,
+    cartesian_compliance: ComplianceJson,
+    cartesian_stiffness: Option<StiffnessJson>,
 }
 
 #[derive(Serialize)]
@@ -46,7 +68,37 @@ struct PointJson {
     point: usize,
     position_mm: [f64; 3],
     displacement_mm: [f64; 3],
+    displacement_std_mm: Option<[f64; 3]>,
     displacement_norm_mm: f64,
+}
+
+/// `C_x` of the loaded point, base frame, by blocks and whole (rows and columns `[f; m]` and
+/// `[translation; rotation]`, SI).
+#[derive(Serialize)]
+struct ComplianceJson {
+    translation_per_force_m_per_n: [[f64; 3]; 3],
+    translation_per_moment_m_per_nm: [[f64; 3]; 3],
+    rotation_per_force_rad_per_n: [[f64; 3]; 3],
+    rotation_per_moment_rad_per_nm: [[f64; 3]; 3],
+    matrix_si: [[f64; 6]; 6],
+}
+
+/// `K_x = C_x^-1` of the loaded point, base frame, by blocks and whole (SI).
+#[derive(Serialize)]
+struct StiffnessJson {
+    force_per_translation_n_per_m: [[f64; 3]; 3],
+    force_per_rotation_n_per_rad: [[f64; 3]; 3],
+    moment_per_translation_nm_per_m: [[f64; 3]; 3],
+    moment_per_rotation_nm_per_rad: [[f64; 3]; 3],
+    matrix_si: [[f64; 6]; 6],
+}
+
+fn rows<const N: usize>(m: &Matrix6<f64>, r0: usize, c0: usize) -> [[f64; N]; N] {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r0 + r, c0 + c)]))
+}
+
+fn xyz(v: &Vector6<f64>, from: usize, scale: f64) -> [f64; 3] {
+    std::array::from_fn(|i| v[from + i] * scale)
 }
 
 /// Predicts and prints.
@@ -62,36 +114,82 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let mut wrench = Vector6::zeros();
     wrench.as_mut_slice()[..w.len()].copy_from_slice(&w);
-    let stiffness = match &args.stiffness {
-        Some(path) => load::stiffness(path)?,
-        None => setup.nominal_stiffness,
+    let at: Vector3<f64> = match &args.at_mm {
+        Some(text) => load::vector::<3>(text, "--at-mm")? * 1e-3,
+        None => setup.tool.loading_point,
     };
+    let (stiffness, covariance) = match &args.stiffness {
+        Some(path) => {
+            let file = load::identified(path)?;
+            (file.stiffness, file.covariance)
+        }
+        None => (setup.nominal_stiffness, None),
+    };
+    let h = stiffness.map(|k| 1.0 / k);
     let frames = setup.robot.frames(&q);
-    let d = deflection(&setup, &frames, &wrench, &stiffness);
-    let rotation = d.displacements[0].fixed_rows::<3>(3) * 1e3;
+    let base = base_wrench(&frames, &wrench, args.frame.into());
+    let at_point = |observed| Points {
+        frames: &frames,
+        springs: setup.springs,
+        loaded: &at,
+        observed,
+    };
+    let std = |d: &stiffid::deflection::PointDeflection| covariance.as_ref().map(|c| d.std(c));
+    let tcp = at_point(&setup.tool.tcp).deflection(&base, &h);
+    let tcp_std = std(&tcp);
+    let c = cartesian::compliance(&frames, &at, setup.springs, &h);
+    let k = cartesian::stiffness(&frames, &at, setup.springs, &stiffness);
     let result = PredictJson {
         setup: args.setup.clone(),
         q_deg: q_deg.into(),
         wrench: wrench.into(),
+        wrench_frame: match args.frame {
+            WrenchFrame::Base => "base",
+            WrenchFrame::Tool => "tool",
+        },
+        wrench_point_mm: (at * 1e3).into(),
+        wrench_base_frame: base.into(),
         stiffness_nm_per_rad: stiffness.into(),
-        torques_nm: d.torques.into(),
-        joint_deflections_mrad: (d.joint_deflections * 1e3).into(),
-        flange_rotation_mrad: rotation.into(),
-        measuring_points: d
-            .displacements
+        torques_nm: tcp.torques.into(),
+        joint_deflections_mrad: (tcp.joint_deflections * 1e3).into(),
+        flange_rotation_mrad: xyz(&tcp.displacement, 3, 1e3),
+        flange_rotation_std_mrad: tcp_std.map(|s| xyz(&s, 3, 1e3)),
+        measuring_points: setup
+            .tool
+            .measuring_points
             .iter()
-            .zip(&setup.tool.measuring_points)
             .enumerate()
-            .map(|(k, (disp, p))| {
-                let t = disp.fixed_rows::<3>(0) * 1e3;
+            .map(|(i, p)| {
+                let d = at_point(p).deflection(&base, &h);
+                let t = d.displacement.fixed_rows::<3>(0) * 1e3;
                 PointJson {
-                    point: k + 1,
+                    point: i + 1,
                     position_mm: (frames.point(p) * 1e3).into(),
                     displacement_mm: t.into(),
+                    displacement_std_mm: std(&d).map(|s| xyz(&s, 0, 1e3)),
                     displacement_norm_mm: t.norm(),
                 }
             })
             .collect(),
+        tcp_mm: (frames.point(&setup.tool.tcp) * 1e3).into(),
+        tcp_deflection_mm: xyz(&tcp.displacement, 0, 1e3),
+        tcp_deflection_std_mm: tcp_std.map(|s| xyz(&s, 0, 1e3)),
+        tcp_rotation_mrad: xyz(&tcp.displacement, 3, 1e3),
+        tcp_rotation_std_mrad: tcp_std.map(|s| xyz(&s, 3, 1e3)),
+        cartesian_compliance: ComplianceJson {
+            translation_per_force_m_per_n: rows(&c, 0, 0),
+            translation_per_moment_m_per_nm: rows(&c, 0, 3),
+            rotation_per_force_rad_per_n: rows(&c, 3, 0),
+            rotation_per_moment_rad_per_nm: rows(&c, 3, 3),
+            matrix_si: rows(&c, 0, 0),
+        },
+        cartesian_stiffness: k.map(|k| StiffnessJson {
+            force_per_translation_n_per_m: rows(&k, 0, 0),
+            force_per_rotation_n_per_rad: rows(&k, 0, 3),
+            moment_per_translation_nm_per_m: rows(&k, 3, 0),
+            moment_per_rotation_nm_per_rad: rows(&k, 3, 3),
+            matrix_si: rows(&k, 0, 0),
+        }),
     };
     print_json_or(args.json, &result, human)
 }
@@ -104,9 +202,11 @@ fn human(r: &PredictJson) -> String {
             .join("")
     };
     let mut s = format!(
-        "setup {}, q = ({}) deg\nwrench at the loading point, base frame: f = ({}) N, m = ({}) Nm\n\n",
+        "setup {}, q = ({}) deg\nwrench at ({}) mm (flange frame), {} frame: f = ({}) N, m = ({}) Nm\n\n",
         r.setup,
         r.q_deg.map(|v| v.to_string()).join(", "),
+        r.wrench_point_mm.map(|v| format!("{v:.1}")).join(", "),
+        r.wrench_frame,
         r.wrench[..3].iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", "),
         r.wrench[3..].iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")
     );
@@ -135,5 +235,43 @@ fn human(r: &PredictJson) -> String {
     }
     let [a, b, c] = r.flange_rotation_mrad;
     s += &format!("\nflange rotation (base frame): ({a:.5}, {b:.5}, {c:.5}) mrad\n");
+    let pm = |v: &[f64; 3], sd: &Option<[f64; 3]>, digits: usize| match sd {
+        None => v.map(|x| format!("{x:.digits$}")).join(", "),
+        Some(sd) => (0..3)
+            .map(|i| format!("{:.digits$} +- {:.digits$}", v[i], sd[i]))
+            .collect::<Vec<_>>()
+            .join(", "),
+    };
+    s += &format!(
+        "TCP at ({}) mm: deflection ({}) mm, |d| {:.4} mm; rotation ({}) mrad{}\n",
+        r.tcp_mm.map(|v| format!("{v:.1}")).join(", "),
+        pm(&r.tcp_deflection_mm, &r.tcp_deflection_std_mm, 4),
+        r.tcp_deflection_mm
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt(),
+        pm(&r.tcp_rotation_mrad, &r.tcp_rotation_std_mrad, 5),
+        match r.tcp_deflection_std_mm {
+            Some(_) => " (+- one standard deviation from the compliance covariance)",
+            None => "",
+        }
+    );
+    s += "\nCartesian compliance C_x at the loaded point, base frame, rows dx dy dz (mm) drx dry drz (mrad), per fx fy fz (kN) mx my mz (kNm):\n";
+    let c = &r.cartesian_compliance.matrix_si;
+    for line in c {
+        let values: Vec<f64> = line.iter().map(|v| v * 1e6).collect();
+        s += &format!("  {}\n", row(&values, 5));
+    }
+    match &r.cartesian_stiffness {
+        None => s += "Cartesian stiffness: none (the Jacobian of the loaded point is singular)\n",
+        Some(k) => {
+            s += "Cartesian stiffness K_x = C_x^-1, rows fx fy fz (N) mx my mz (Nm), per dx dy dz (um) drx dry drz (urad):\n";
+            for line in &k.matrix_si {
+                let values: Vec<f64> = line.iter().map(|v| v * 1e-6).collect();
+                s += &format!("  {}\n", row(&values, 4));
+            }
+        }
+    }
     s
 }

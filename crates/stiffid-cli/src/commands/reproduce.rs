@@ -70,7 +70,7 @@ impl Progress for Bars {
 pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
     let setup = load::setup(&args.setup)?;
-    report::check_target(&args.out, args.force)?;
+    report::check_target(&args.out, args.force, report::summary::GENERATOR)?;
     let options = StudyOptions {
         runs: args.runs as usize,
         seed: args.seed,

@@ -25,7 +25,7 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
 }
 
 /// Writes the whole report.
-pub fn compose(study: &Study, figures: &[Figure], w: &mut impl Writer) {
+pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
     let f = findings(study);
     let s = &study.setup;
     w.heading(1, "Posture selection for joint stiffness identification: the simulation study of Zhang et al. (2021)");

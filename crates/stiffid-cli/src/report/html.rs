@@ -1,6 +1,7 @@
 //! `report.html`: self-contained, figures inline as SVG, no external resources.
 
-use super::content::{compose, Writer};
+use super::content::compose;
+pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
 use crate::study::Study;
@@ -25,7 +26,8 @@ fn inline(text: &str) -> String {
         .collect()
 }
 
-struct Html(String);
+/// An HTML body being written; [`page`] wraps it into a document.
+pub struct Html(String);
 
 impl Writer for Html {
     fn heading(&mut self, level: usize, text: &str) {
@@ -78,14 +80,25 @@ th{background:#f3f3f3}tbody tr:nth-child(even){background:#fafafa}.scroll{overfl
 figure{margin:1.5em 0}figure svg{max-width:100%;height:auto;display:block}figcaption{font-size:.9em;color:#444;margin-top:.4em}
 .files{color:#888}code{background:#f3f3f3;padding:0 .2em}";
 
-/// The text of `report.html`.
-pub fn report(study: &Study, figures: &[Figure]) -> String {
+/// A self-contained HTML page (figures inline, no external resources) titled `title`, marked as
+/// written by `generator` (`<meta name="generator">`), with the body `body` writes.
+pub fn page(title: &str, generator: &str, body: impl FnOnce(&mut dyn Writer)) -> String {
     let mut w = Html(String::new());
-    compose(study, figures, &mut w);
+    body(&mut w);
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>stiffid report: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{}<p class=\"files\">Written by stiffid {}.</p>\n</body>\n</html>\n",
-        escape(&study.setup.name),
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<meta name=\"generator\" content=\"{}\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{}<p class=\"files\">Written by stiffid {}.</p>\n</body>\n</html>\n",
+        escape(generator),
+        escape(title),
         w.0,
         env!("CARGO_PKG_VERSION")
+    )
+}
+
+/// The text of `report.html`.
+pub fn report(study: &Study, figures: &[Figure]) -> String {
+    page(
+        &format!("stiffid report: {}", study.setup.name),
+        super::summary::GENERATOR,
+        |w| compose(study, figures, w),
     )
 }

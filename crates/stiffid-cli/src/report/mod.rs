@@ -2,13 +2,15 @@
 //! `report.md`, `summary.json`, `deviation_rates.csv`, one postures CSV per group and `figures/`
 //! (SVG and PNG).
 
+pub mod compensation;
 mod content;
 pub mod figures;
 pub mod findings;
-mod html;
+pub mod html;
 mod markdown;
+pub mod plan;
 pub mod summary;
-mod tables;
+pub mod tables;
 
 use crate::commands::simulate::deviation_csv;
 use crate::output::write_atomic;
@@ -60,8 +62,30 @@ pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
 }
 
 /// Refuses to write into `dir` if it exists, is not empty and holds no report of ours (no
-/// `summary.json` with our generator signature), unless `force`.
-pub fn check_target(dir: &Path, force: bool) -> Result<()> {
+/// `summary.json` whose `generator` is `generator`), unless `force`.
+pub fn check_target(dir: &Path, force: bool, generator: &str) -> Result<()> {
+    let hint = match generator == summary::GENERATOR {
+        true => " or pass --force",
+        false => "",
+    };
+    check_dir(
+        dir,
+        force,
+        &format!(
+            "a stiffid report (no summary.json written by {generator}); choose another directory{hint}"
+        ),
+        |d| summary::is_ours(&d.join("summary.json"), generator),
+    )
+}
+
+/// Refuses to write into `dir` if it exists and is not a directory, or is not empty and
+/// `is_ours(dir)` is false, unless `force`; `refusal` says what `is_ours` recognises and what to do.
+pub fn check_dir(
+    dir: &Path,
+    force: bool,
+    refusal: &str,
+    is_ours: impl Fn(&Path) -> bool,
+) -> Result<()> {
     if !dir.exists() || force {
         return Ok(());
     }
@@ -70,13 +94,10 @@ pub fn check_target(dir: &Path, force: bool) -> Result<()> {
     }
     let mut entries =
         std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
-    if entries.next().is_none() || summary::is_ours(&dir.join("summary.json")) {
+    if entries.next().is_none() || is_ours(dir) {
         return Ok(());
     }
-    bail!(
-        "{}: not empty and not a stiffid report (no summary.json written by stiffid reproduce); choose another --out or pass --force",
-        dir.display()
-    )
+    bail!("{}: not empty and not {refusal}", dir.display())
 }
 
 /// Writes every file of the report into `dir` (created if missing), each file whole;
@@ -112,26 +133,44 @@ pub fn write(dir: &Path, study: &Study, figures: &[Figure]) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::check_target;
+    use super::{check_target, summary};
 
     #[test]
     fn only_empty_missing_or_own_directories_are_written_without_force() {
         let dir = std::env::temp_dir().join(format!("stiffid-target-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        assert!(check_target(&dir, false).is_ok(), "missing");
+        assert!(
+            check_target(&dir, false, summary::GENERATOR).is_ok(),
+            "missing"
+        );
         std::fs::create_dir_all(&dir).unwrap();
-        assert!(check_target(&dir, false).is_ok(), "empty");
+        assert!(
+            check_target(&dir, false, summary::GENERATOR).is_ok(),
+            "empty"
+        );
         std::fs::write(dir.join("summary.json"), r#"{"generator": "someone else"}"#).unwrap();
-        assert!(check_target(&dir, false).is_err(), "foreign summary.json");
-        assert!(check_target(&dir, true).is_ok(), "forced");
+        assert!(
+            check_target(&dir, false, summary::GENERATOR).is_err(),
+            "foreign summary.json"
+        );
+        assert!(
+            check_target(&dir, true, summary::GENERATOR).is_ok(),
+            "forced"
+        );
         std::fs::write(
             dir.join("summary.json"),
             r#"{"generator": "stiffid reproduce"}"#,
         )
         .unwrap();
-        assert!(check_target(&dir, false).is_ok(), "own report");
+        assert!(
+            check_target(&dir, false, summary::GENERATOR).is_ok(),
+            "own report"
+        );
         let file = dir.join("summary.json");
-        assert!(check_target(&file, false).is_err(), "a file");
+        assert!(
+            check_target(&file, false, summary::GENERATOR).is_err(),
+            "a file"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -13,12 +13,12 @@ use stiffid::{Coordinates, Setup};
 /// The value of the `generator` key that marks a directory as a report of ours.
 pub const GENERATOR: &str = "stiffid reproduce";
 
-/// Whether `path` is a `summary.json` written by `stiffid reproduce`.
-pub fn is_ours(path: &Path) -> bool {
+/// Whether `path` is a `summary.json` whose `generator` is `generator` (e.g. [`GENERATOR`]).
+pub fn is_ours(path: &Path, generator: &str) -> bool {
     std::fs::read_to_string(path)
         .ok()
         .and_then(|t| serde_json::from_str::<Value>(&t).ok())
-        .is_some_and(|v| v["generator"] == GENERATOR)
+        .is_some_and(|v| v["generator"] == generator)
 }
 
 fn mm(v: &Vector3<f64>) -> [f64; 3] {

@@ -11,7 +11,7 @@
 
 use super::Evaluator;
 use crate::setup::Setup;
-use crate::{dexterity, Frames};
+use crate::{dexterity, Error, Frames};
 use nalgebra::Vector6;
 use std::f64::consts::PI;
 use std::fmt;
@@ -60,6 +60,19 @@ impl Criterion {
             Criterion::TestPose => "test-pose",
         }
     }
+
+    /// The key of the criterion in JSON documents (`stiffid evaluate --json`): the name with
+    /// underscores, and the unit for `test_pose_mm`.
+    pub fn key(self) -> &'static str {
+        match self {
+            Criterion::Classical => "classical",
+            Criterion::Zhang2021 => "zhang2021",
+            Criterion::ScaledCond => "scaled_cond",
+            Criterion::DOptimal => "d_optimal",
+            Criterion::RelativeA => "relative_a",
+            Criterion::TestPose => "test_pose_mm",
+        }
+    }
 }
 
 impl fmt::Display for Criterion {
@@ -69,14 +82,21 @@ impl fmt::Display for Criterion {
 }
 
 impl FromStr for Criterion {
-    type Err = String;
+    type Err = Error;
+    /// A criterion from its [`Criterion::name`] (`relative-a`) or its JSON key
+    /// ([`Criterion::key`]: `relative_a`, `test_pose_mm`); one set of spellings for the command
+    /// line and files.
+    ///
+    /// # Errors
+    /// [`Error::Unknown`] listing the names.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Criterion::ALL
             .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| {
-                let known: Vec<_> = Criterion::ALL.iter().map(|c| c.name()).collect();
-                format!("unknown criterion '{s}' (known: {})", known.join(", "))
+            .find(|c| c.name() == s || c.key() == s)
+            .ok_or_else(|| Error::Unknown {
+                kind: "criterion",
+                name: s.to_string(),
+                known: Criterion::ALL.map(|c| c.name()).join(", "),
             })
     }
 }

@@ -97,14 +97,52 @@ impl<'a> Evaluator<'a> {
             return self.classical(terms);
         }
         match self.group(terms) {
-            Some(group) => self.value_with(criterion, terms, &group),
+            Some(group) => self.score(criterion, &group, || self.classical(terms)),
             None => f64::INFINITY,
         }
     }
 
-    /// [`Evaluator::value_of`] given the group's factor.
-    fn value_with(&self, criterion: Criterion, terms: &[&PostureTerms], group: &Group) -> f64 {
-        let classical = || self.classical(terms);
+    /// The information matrix `S_i^T S_i` (6 x 6, unitless at noise level 1) of one posture's
+    /// terms: a group's `S^T S` is the sum over its postures. For exchange algorithms
+    /// ([`super::pool`]).
+    pub(crate) fn information(&self, terms: &PostureTerms) -> Matrix6<f64> {
+        let s = &terms.block * Matrix6::from_diagonal(&self.scaling);
+        let m = s.transpose() * s;
+        Matrix6::from_fn(|i, j| m[(i, j)])
+    }
+
+    /// The TCP dexterity `k(J_N)` of one posture's terms (Eq. 21).
+    pub(crate) fn dexterity(&self, terms: &PostureTerms) -> f64 {
+        *terms
+            .dexterity
+            .get_or_init(|| tcp_dexterity(self.setup, &terms.frames))
+    }
+
+    /// The value of `criterion` for a group given its information matrix `S^T S` (a sum of
+    /// [`Evaluator::information`]) and its classical index: the group's triangular factor is
+    /// the Cholesky factor of `S^T S` (equal to `R_s` up to the signs of its rows, which no criterion
+    /// sees). `+infinity` when `S^T S` is not positive definite. Equal to [`Evaluator::value`] of
+    /// the group up to rounding (the Cholesky factor of `S^T S` loses about `cond(S)^2 eps`
+    /// relative in the smallest singular value, which ranks groups as well; reports re-evaluate).
+    pub(crate) fn value_from_information(
+        &self,
+        criterion: Criterion,
+        information: &Matrix6<f64>,
+        classical: f64,
+    ) -> f64 {
+        let Some(cholesky) = information.cholesky() else {
+            return f64::INFINITY;
+        };
+        let rs = cholesky.l().transpose();
+        match Group::from_scaled(rs, &self.scaling) {
+            Some(group) => self.score(criterion, &group, || classical),
+            None => f64::INFINITY,
+        }
+    }
+
+    /// The value of `criterion` (not [`Criterion::Classical`] alone) from a full-rank group's
+    /// factor; `classical` gives the classical index when the criterion needs it.
+    fn score(&self, criterion: Criterion, group: &Group, classical: impl Fn() -> f64) -> f64 {
         finite(match criterion {
             Criterion::Classical => classical(),
             Criterion::Zhang2021 => classical() * cond(&group.r),
@@ -155,13 +193,7 @@ impl<'a> Evaluator<'a> {
 
     /// The classical index `max_i k(J_N)_i` of the postures' terms.
     fn classical(&self, terms: &[&PostureTerms]) -> f64 {
-        terms
-            .iter()
-            .map(|t| {
-                *t.dexterity
-                    .get_or_init(|| tcp_dexterity(self.setup, &t.frames))
-            })
-            .fold(0.0, f64::max)
+        terms.iter().map(|t| self.dexterity(t)).fold(0.0, f64::max)
     }
 
     /// The factor of the group's `Psi` (the blocks stacked), `None` if rank deficient.
@@ -217,6 +249,18 @@ struct Group {
 }
 
 impl Group {
+    /// The group of the upper triangular `R_s` (`scaling` = `h / sigma`); `None` if `R_s` is
+    /// singular.
+    fn from_scaled(rs: Matrix6<f64>, scaling: &Vector6<f64>) -> Option<Group> {
+        let rs_inv = rs.solve_upper_triangular(&Matrix6::identity())?;
+        Some(Group {
+            r: rs * Matrix6::from_diagonal(&scaling.map(|s| 1.0 / s)),
+            r_inv: Matrix6::from_diagonal(scaling) * rs_inv,
+            rs,
+            rs_inv,
+        })
+    }
+
     /// `sqrt([(S^T S)^-1]_jj)`: the row norms of `R_s^-1` (`(S^T S)^-1 = R_s^-1 R_s^-T`).
     fn relative_std(&self) -> Vector6<f64> {
         Vector6::from_fn(|j, _| finite(self.rs_inv.row(j).norm()))

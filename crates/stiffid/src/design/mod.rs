@@ -1,12 +1,17 @@
 //! Experiment design: which postures to measure in (step 1 of the experiment).
 //!
-//! [`criteria`] scores a group of postures, [`Evaluator`] scores it fast for the search, and
-//! [`search`] chooses the postures that minimise a criterion within the setup's bounds.
+//! [`criteria`] scores a group of postures, [`Evaluator`] scores it fast for the search,
+//! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
+//! chooses them from a list of candidate postures, and [`target`] finds how many postures reach a
+//! predicted accuracy.
 
 pub mod criteria;
 mod evaluator;
+pub mod pool;
 pub mod search;
+pub mod target;
 
 pub use criteria::{evaluate, Criterion, Evaluation};
 pub use evaluator::{Evaluator, PostureTerms};
+pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
 pub use search::{global, local, random_group, Gradient, SearchOptions, SearchOutcome};

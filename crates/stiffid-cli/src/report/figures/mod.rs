@@ -2,8 +2,10 @@
 
 pub mod criteria;
 pub mod deviation;
+pub mod path;
 pub mod postures;
 pub mod table;
+pub mod target;
 
 use crate::study::Study;
 use anyhow::{anyhow, bail, Context, Result};

@@ -66,7 +66,7 @@ impl Evaluator<'_> {
             },
         };
         let value = match &group {
-            Some(group) => self.value_with(criterion, terms, group),
+            Some(group) => self.score(criterion, group, || self.classical(terms)),
             None => self.classical(terms),
         };
         if !value.is_finite() {

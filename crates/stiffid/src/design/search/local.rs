@@ -81,7 +81,7 @@ pub(super) fn check_start(
 }
 
 /// Checks a group size and that the setup can evaluate the criterion.
-pub(super) fn check_count(setup: &Setup, criterion: Criterion, n: usize) -> Result<()> {
+pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usize) -> Result<()> {
     if n < 2 {
         return Err(Error::InvalidField {
             field: "postures".into(),

@@ -17,6 +17,7 @@ mod sample;
 
 pub use constraints::{inequalities, violation};
 pub use global::global;
+pub(super) use local::check_count;
 pub use local::local;
 pub use sample::{random_group, CONSTRAINT_TRIES};
 

@@ -1,0 +1,348 @@
+//! `stiffid compensate`: the deflection of every point of a machining path under its process
+//! wrench, and the compensated axis angles that cancel it ([`stiffid::compensate`]).
+
+use crate::load::{self, WrenchFrame};
+use crate::output::{print_json_or, refuse_to_overwrite, write_atomic};
+use crate::report::{self, compensation};
+use anyhow::{Context, Result};
+use nalgebra::Vector6;
+use serde_json::{json as value, Map, Value};
+use std::path::{Path, PathBuf};
+use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
+use stiffid::formats::path;
+use stiffid::{ik, Setup};
+
+/// Arguments of `stiffid compensate`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Setup: a built-in name or a setup .toml file (its robot, springs and `tcp_mm`).
+    #[arg(long)]
+    setup: String,
+    /// JSON file with `stiffness_nm_per_rad` (from `stiffid identify --out`); with
+    /// `compliance_covariance_rad2_per_nm2` the deflections get standard deviations.
+    #[arg(long)]
+    stiffness: PathBuf,
+    /// Path CSV: q1_deg..q6_deg or x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg, then fx_n,fy_n,fz_n
+    /// [,mx_nm,my_nm,mz_nm] [,frame] (at most 1 000 000 rows).
+    #[arg(long)]
+    path: PathBuf,
+    /// Output CSV, one row per path point, units in the header (never one of the inputs).
+    #[arg(long)]
+    out: PathBuf,
+    /// Print the result as JSON (the same columns per point, and a summary).
+    #[arg(long)]
+    json: bool,
+    /// Also write a report into this directory (created; must be missing, empty or hold an
+    /// earlier compensation report).
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Where inverse kinematics starts for the first pose, axis angles q1..q6, deg; default the
+    /// setup's first test posture, else the middle of its bounds.
+    #[arg(long, allow_hyphen_values = true)]
+    q0_deg: Option<String>,
+    /// The frame of the wrench in rows without a `frame` column value.
+    #[arg(long, value_enum, default_value = "base")]
+    frame: WrenchFrame,
+    /// Choose the rotation about the tool z axis of every point to minimise the TCP deflection.
+    #[arg(long)]
+    free_tool_axis: bool,
+    /// With --free-tool-axis: the largest change of that rotation between consecutive points, deg
+    /// (0 < value <= 90).
+    #[arg(long, default_value_t = 2.0, requires = "free_tool_axis")]
+    max_step_deg: f64,
+    /// With --free-tool-axis: the rotation stays within +- this of the path's, deg (0 < value <= 180).
+    #[arg(long, default_value_t = 90.0, requires = "free_tool_axis")]
+    tool_axis_range_deg: f64,
+}
+
+/// Compensates, writes the CSV (and the report), prints.
+pub fn run(args: &Args) -> Result<()> {
+    let setup = load::setup(&args.setup)?;
+    let mut inputs = vec![args.path.as_path(), args.stiffness.as_path()];
+    if Path::new(&args.setup).exists() {
+        inputs.push(Path::new(&args.setup));
+    }
+    refuse_to_overwrite(&args.out, &inputs)?;
+    if let Some(dir) = &args.report {
+        report::check_target(dir, false, compensation::GENERATOR)?;
+    }
+    let file = load::identified(&args.stiffness)?;
+    let compliance = Compliance {
+        h: file.stiffness.map(|k| 1.0 / k),
+        covariance: file.covariance,
+    };
+    let options = options(args, &setup)?;
+    let name = args.path.display().to_string();
+    let points = path::parse(&load::read(&args.path)?, args.frame.into()).context(name.clone())?;
+    let results = compensate::path(&setup, &compliance, &points, &options).context(name)?;
+    let lines: Vec<u64> = points.iter().map(|p| p.line).collect();
+    let table = table(&results, &lines);
+    write_atomic(&args.out, table.csv().as_bytes())?;
+    let summary = Summary::of(&results, &lines);
+    let document = value!({
+        "generator": compensation::GENERATOR,
+        "setup": args.setup,
+        "stiffness": args.stiffness.display().to_string(),
+        "path": args.path.display().to_string(),
+        "out": args.out.display().to_string(),
+        "springs": setup.springs,
+        "stiffness_nm_per_rad": file.stiffness.as_slice(),
+        "has_covariance": compliance.covariance.is_some(),
+        "free_tool_axis": options.free_tool_axis.map(|f| value!({
+            "max_step_deg": f.max_step.to_degrees(),
+            "range_deg": f.range.to_degrees(),
+        })),
+        "summary": summary.json(),
+        "points": table.json(),
+    });
+    if let Some(dir) = &args.report {
+        compensation::write(dir, &setup, &results, &table, &document)?;
+    }
+    print_json_or(args.json, &document, |_| {
+        summary.human(args, &setup, compliance.covariance.is_some())
+    })
+}
+
+fn options(args: &Args, setup: &Setup) -> Result<Options> {
+    let q0 = match &args.q0_deg {
+        Some(text) => load::posture(text, &setup.robot)?.1,
+        None => setup
+            .test_postures
+            .first()
+            .copied()
+            .unwrap_or((setup.bounds.lower + setup.bounds.upper) / 2.0),
+    };
+    let free_tool_axis = match args.free_tool_axis {
+        false => None,
+        true => {
+            let check = |v: f64, max: f64, what: &str| match v > 0.0 && v <= max {
+                true => Ok(v.to_radians()),
+                false => Err(anyhow::anyhow!(
+                    "{what}: {v}: expected a number > 0 and <= {max}"
+                )),
+            };
+            Some(FreeToolAxis {
+                max_step: check(args.max_step_deg, 90.0, "--max-step-deg")?,
+                range: check(args.tool_axis_range_deg, 180.0, "--tool-axis-range-deg")?,
+            })
+        }
+    };
+    Ok(Options {
+        q0,
+        ik: ik::Options::default(),
+        free_tool_axis,
+    })
+}
+
+/// The per-point results as named columns, units in the names; `None` for an empty cell.
+pub struct Table {
+    /// Column names.
+    pub header: Vec<String>,
+    /// One row per path point.
+    pub rows: Vec<Vec<Option<f64>>>,
+}
+
+fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
+    items.iter().map(|i| format!("{prefix}{i}{unit}")).collect()
+}
+
+fn table(results: &[Compensated], lines: &[u64]) -> Table {
+    let axes = ["1", "2", "3", "4", "5", "6"];
+    let xyz = ["x", "y", "z"];
+    let mut header = vec!["point".to_string(), "line".to_string()];
+    header.extend(names("q", &axes, "_deg"));
+    header.extend(names("", &xyz, "_mm"));
+    header.extend(names("r", &xyz, "_deg"));
+    header.extend(names("f", &xyz, "_base_n"));
+    header.extend(names("m", &xyz, "_base_nm"));
+    header.extend(names("d", &xyz, "_mm"));
+    header.push("d_norm_mm".into());
+    header.extend(names("dr", &xyz, "_mrad"));
+    header.extend(names("d", &xyz, "_std_mm"));
+    header.extend(names("dr", &xyz, "_std_mrad"));
+    header.extend(names("qc", &axes, "_deg"));
+    header.extend(
+        ["residual_um", "residual_urad", "iterations"]
+            .iter()
+            .map(|s| s.to_string()),
+    );
+    header.extend(
+        ["tool_rotation_deg", "d_norm_before_mm"]
+            .iter()
+            .map(|s| s.to_string()),
+    );
+    let rows = results
+        .iter()
+        .zip(lines)
+        .enumerate()
+        .map(|(i, (r, line))| row(i, *line, r))
+        .collect();
+    Table { header, rows }
+}
+
+fn row(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
+    let deg = |q: &Vector6<f64>| q.iter().map(|v| Some(v.to_degrees())).collect::<Vec<_>>();
+    let (rx, ry, rz) = r.pose.rotation.euler_angles();
+    let p = r.pose.translation.vector * 1e3;
+    let d = &r.deflection;
+    let mut v = vec![Some(i as f64 + 1.0), Some(line as f64)];
+    v.extend(deg(&r.q));
+    v.extend([p.x, p.y, p.z].map(Some));
+    v.extend([rx, ry, rz].map(|a| Some(a.to_degrees())));
+    v.extend(r.wrench.iter().map(|w| Some(*w)));
+    v.extend((0..3).map(|k| Some(d[k] * 1e3)));
+    v.push(Some(d.fixed_rows::<3>(0).norm() * 1e3));
+    v.extend((3..6).map(|k| Some(d[k] * 1e3)));
+    v.extend((0..6).map(|k| r.deflection_std.map(|s| s[k] * 1e3)));
+    v.extend(deg(&r.q_compensated));
+    v.extend([
+        Some(r.residual_position * 1e6),
+        Some(r.residual_rotation * 1e6),
+        Some(r.iterations as f64),
+        Some(r.tool_rotation.to_degrees()),
+        r.deflection_before
+            .map(|b| b.fixed_rows::<3>(0).norm() * 1e3),
+    ]);
+    v
+}
+
+impl Table {
+    /// The CSV text: header, then one line per point; empty cells for missing values.
+    pub fn csv(&self) -> String {
+        let mut s = self.header.join(",") + "\n";
+        for row in &self.rows {
+            let cells: Vec<String> = row.iter().map(|v| v.map_or(String::new(), cell)).collect();
+            s += &(cells.join(",") + "\n");
+        }
+        s
+    }
+
+    /// One JSON object per point, keyed by the column names (`null` for a missing value).
+    pub fn json(&self) -> Value {
+        Value::Array(
+            self.rows
+                .iter()
+                .map(|row| {
+                    let map: Map<String, Value> = self
+                        .header
+                        .iter()
+                        .zip(row)
+                        .map(|(h, v)| (h.clone(), value!(v)))
+                        .collect();
+                    Value::Object(map)
+                })
+                .collect(),
+        )
+    }
+}
+
+/// A number with 9 decimals (1 nm in mm, 2e-11 rad in deg), trailing zeros dropped.
+fn cell(x: f64) -> String {
+    let s = format!("{x:.9}");
+    match s.trim_end_matches('0').trim_end_matches('.') {
+        "-0" => "0".into(),
+        t => t.into(),
+    }
+}
+
+/// The largest and mean values along the path.
+pub struct Summary {
+    points: usize,
+    max_deflection_mm: (f64, u64),
+    mean_deflection_mm: f64,
+    max_rotation_mrad: f64,
+    max_residual_um: f64,
+    max_residual_urad: f64,
+    max_iterations: usize,
+    /// Sum of |d| before and after the tool-axis optimisation, and the rotation range, deg.
+    free: Option<(f64, f64, f64, f64)>,
+}
+
+impl Summary {
+    fn of(results: &[Compensated], lines: &[u64]) -> Self {
+        let norm = |d: &Vector6<f64>| d.fixed_rows::<3>(0).norm() * 1e3;
+        let max = |f: &dyn Fn(&Compensated) -> f64| results.iter().map(f).fold(0.0, f64::max);
+        let (mut worst, mut worst_line) = (0.0, lines[0]);
+        for (r, line) in results.iter().zip(lines) {
+            if norm(&r.deflection) > worst {
+                (worst, worst_line) = (norm(&r.deflection), *line);
+            }
+        }
+        let free = results[0].deflection_before.map(|_| {
+            let before: f64 = results
+                .iter()
+                .filter_map(|r| r.deflection_before.as_ref().map(norm))
+                .sum();
+            let after: f64 = results.iter().map(|r| norm(&r.deflection)).sum();
+            let (lo, hi) = results.iter().fold((0f64, 0f64), |(lo, hi), r| {
+                (
+                    lo.min(r.tool_rotation.to_degrees()),
+                    hi.max(r.tool_rotation.to_degrees()),
+                )
+            });
+            (before, after, lo, hi)
+        });
+        Self {
+            points: results.len(),
+            max_deflection_mm: (worst, worst_line),
+            mean_deflection_mm: results.iter().map(|r| norm(&r.deflection)).sum::<f64>()
+                / results.len() as f64,
+            max_rotation_mrad: max(&|r| r.deflection.fixed_rows::<3>(3).norm() * 1e3),
+            max_residual_um: max(&|r| r.residual_position * 1e6),
+            max_residual_urad: max(&|r| r.residual_rotation * 1e6),
+            max_iterations: results.iter().map(|r| r.iterations).max().unwrap_or(0),
+            free,
+        }
+    }
+
+    fn json(&self) -> Value {
+        value!({
+            "points": self.points,
+            "max_deflection_mm": self.max_deflection_mm.0,
+            "max_deflection_line": self.max_deflection_mm.1,
+            "mean_deflection_mm": self.mean_deflection_mm,
+            "max_rotation_mrad": self.max_rotation_mrad,
+            "max_residual_um": self.max_residual_um,
+            "max_residual_urad": self.max_residual_urad,
+            "max_iterations": self.max_iterations,
+            "free_tool_axis": self.free.map(|(before, after, lo, hi)| value!({
+                "sum_deflection_before_mm": before,
+                "sum_deflection_after_mm": after,
+                "tool_rotation_range_deg": [lo, hi],
+            })),
+        })
+    }
+
+    fn human(&self, args: &Args, setup: &Setup, covariance: bool) -> String {
+        let mut s = format!(
+            "{} path points of {} compensated (setup {}, stiffness {}{})\n\
+             TCP deflection under the path's wrench: largest {:.4} mm (line {}), mean {:.4} mm; largest tool rotation {:.4} mrad\n\
+             compensated axis angles: residual at most {:.2e} um and {:.2e} urad (required: 0.1 um, 1 urad), at most {} Newton steps\n",
+            self.points,
+            args.path.display(),
+            setup.name,
+            args.stiffness.display(),
+            if covariance { ", with its covariance: standard deviations in the CSV" } else { "" },
+            self.max_deflection_mm.0,
+            self.max_deflection_mm.1,
+            self.mean_deflection_mm,
+            self.max_rotation_mrad,
+            self.max_residual_um,
+            self.max_residual_urad,
+            self.max_iterations
+        );
+        if let Some((before, after, lo, hi)) = self.free {
+            s += &format!(
+                "free tool axis: mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
+                before / self.points as f64,
+                after / self.points as f64,
+                100.0 * (after / before - 1.0)
+            );
+        }
+        s += &format!("written: {}\n", args.out.display());
+        if let Some(dir) = &args.report {
+            s += &format!("report: {}\n", dir.join("report.html").display());
+        }
+        s
+    }
+}

@@ -1,0 +1,137 @@
+//! The report of `stiffid compensate --report DIR`: `report.html` (self-contained, figures inline
+//! as SVG), `summary.json` (what `--json` prints), `compensation.csv` (what `--out` holds) and
+//! `figures/` (SVG and PNG).
+
+use super::figures::{self, Figure};
+use super::html::{page, Writer};
+use super::tables::{num, Table};
+use crate::commands::compensate::Table as Columns;
+use crate::output::{json, write_atomic};
+use anyhow::{Context, Result};
+use serde_json::Value;
+use std::path::Path;
+use stiffid::compensate::Compensated;
+use stiffid::Setup;
+
+/// The value of the `generator` key of `summary.json` that marks a compensation report.
+pub const GENERATOR: &str = "stiffid compensate";
+
+/// Writes every file of the report into `dir` (created if missing), each whole; `summary.json`
+/// first, so the directory is recognisably ours from then on.
+pub fn write(
+    dir: &Path,
+    setup: &Setup,
+    results: &[Compensated],
+    columns: &Columns,
+    document: &Value,
+) -> Result<()> {
+    let figures = [
+        figures::path::deflection(results)?,
+        figures::path::path(setup, results)?,
+    ];
+    std::fs::create_dir_all(dir.join("figures"))
+        .with_context(|| format!("{}: cannot create", dir.display()))?;
+    write_atomic(&dir.join("summary.json"), json(document)?.as_bytes())?;
+    write_atomic(&dir.join("compensation.csv"), columns.csv().as_bytes())?;
+    for f in &figures {
+        let stem = dir.join("figures").join(&f.name);
+        write_atomic(&stem.with_extension("svg"), f.svg.as_bytes())?;
+        write_atomic(&stem.with_extension("png"), &f.png)?;
+    }
+    let html = page(
+        &format!("stiffid compensation: {}", setup.name),
+        GENERATOR,
+        |w| compose(w, setup, results, document, &figures),
+    );
+    write_atomic(&dir.join("report.html"), html.as_bytes())
+}
+
+fn compose(
+    w: &mut dyn Writer,
+    setup: &Setup,
+    results: &[Compensated],
+    document: &Value,
+    figures: &[Figure],
+) {
+    let s = &document["summary"];
+    let f = |key: &str| s[key].as_f64().unwrap_or(f64::NAN);
+    w.heading(1, "Deflection compensation of a machining path");
+    w.paragraph(&format!(
+        "Path `{}` ({} points) on the setup `{}` ({}), joint stiffness from `{}`. Each point's TCP deflection under its wrench (Zhang et al. 2021, Eq. 4-6) and the compensated axis angles that put the loaded TCP where the unloaded robot puts it at the nominal posture.",
+        document["path"].as_str().unwrap_or(""),
+        results.len(),
+        setup.name,
+        setup.robot.name,
+        document["stiffness"].as_str().unwrap_or(""),
+    ));
+    let mut items = vec![
+        format!(
+            "Largest TCP deflection {} mm (line {}), mean {} mm; largest tool rotation {} mrad.",
+            num(f("max_deflection_mm")),
+            s["max_deflection_line"],
+            num(f("mean_deflection_mm")),
+            num(f("max_rotation_mrad"))
+        ),
+        format!(
+            "After compensation: residual at most {:.2e} um and {:.2e} urad (required 0.1 um and 1 urad), at most {} Newton steps per point.",
+            f("max_residual_um"),
+            f("max_residual_urad"),
+            s["max_iterations"]
+        ),
+    ];
+    if let Some(free) = s["free_tool_axis"].as_object() {
+        let g = |k: &str| free[k].as_f64().unwrap_or(f64::NAN);
+        items.push(format!(
+            "Free tool axis: sum of the TCP deflections {} mm before, {} mm after the optimisation of the rotation about tool z.",
+            num(g("sum_deflection_before_mm")),
+            num(g("sum_deflection_after_mm"))
+        ));
+    }
+    if document["has_covariance"] != true {
+        items.push("The stiffness file has no compliance covariance: no uncertainty band (run `stiffid identify --out` to get one).".into());
+    }
+    w.list(&items);
+    for fig in figures {
+        w.figure(fig);
+    }
+    w.heading(2, "The ten largest deflections");
+    w.table(&largest(results));
+    w.paragraph("Every point, every column: `compensation.csv` (the same as `--out`) and `summary.json` (the same as `--json`).");
+}
+
+fn largest(results: &[Compensated]) -> Table {
+    let norm = |c: &Compensated| c.deflection.fixed_rows::<3>(0).norm() * 1e3;
+    let mut order: Vec<usize> = (0..results.len()).collect();
+    order.sort_by(|&a, &b| norm(&results[b]).total_cmp(&norm(&results[a])));
+    Table {
+        header: [
+            "point",
+            "|d| mm",
+            "std of |d| mm",
+            "rotation mrad",
+            "residual um",
+            "q_c - q, deg (axes 1-6)",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: order
+            .iter()
+            .take(10)
+            .map(|&i| {
+                let c = &results[i];
+                let dq = (c.q_compensated - c.q).map(f64::to_degrees);
+                vec![
+                    (i + 1).to_string(),
+                    num(norm(c)),
+                    c.translation_norm_std.map_or("-".into(), |s| num(s * 1e3)),
+                    num(c.deflection.fixed_rows::<3>(3).norm() * 1e3),
+                    format!("{:.2e}", c.residual_position * 1e6),
+                    dq.iter()
+                        .map(|v| format!("{v:.4}"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                ]
+            })
+            .collect(),
+    }
+}

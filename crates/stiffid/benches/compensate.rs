@@ -1,0 +1,77 @@
+//! Cartesian stiffness of one posture (issue 13 target: under 1 microsecond) and compensating a
+//! 10 000-point path on the FANUC R-2000iC/165F cell, postures given (under 100 ms on 2 cores) and
+//! poses given, inverse kinematics included (under 1 s).
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use nalgebra::{Translation3, Vector6};
+use stiffid::compensate::{self, Compliance, Options, PathPoint, Target};
+use stiffid::deflection::Frame;
+use stiffid::ik::{self, tool_pose};
+use stiffid::{cartesian, setup};
+
+fn benches(c: &mut Criterion) {
+    let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let q = s.test_postures[0];
+    c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
+        b.iter(|| {
+            let frames = s.robot.frames(black_box(&q));
+            cartesian::stiffness(&frames, &s.tool.tcp, s.springs, &s.nominal_stiffness)
+        })
+    });
+    let frames = s.robot.frames(&q);
+    c.bench_function("Cartesian stiffness, frames given (J, K_x)", |b| {
+        b.iter(|| {
+            cartesian::stiffness(
+                black_box(&frames),
+                &s.tool.tcp,
+                s.springs,
+                &s.nominal_stiffness,
+            )
+        })
+    });
+    let h = s.nominal_compliance();
+    c.bench_function("Cartesian compliance, frames given (J, C_x)", |b| {
+        b.iter(|| cartesian::compliance(black_box(&frames), &s.tool.tcp, s.springs, &h))
+    });
+    let start = tool_pose(&frames, &s.tool.tcp);
+    let n = 10_000;
+    let poses: Vec<PathPoint> = (0..n)
+        .map(|i| PathPoint {
+            line: i as u64 + 2,
+            // 300 mm along x and 100 mm along y, 0.03 mm steps.
+            target: Target::Pose(Translation3::new(3e-5 * i as f64, -1e-5 * i as f64, 0.0) * start),
+            wrench: Vector6::new(0.0, 200.0, 0.0, 0.0, 0.0, 0.0),
+            frame: Frame::Tool,
+        })
+        .collect();
+    let compliance = Compliance {
+        h: s.nominal_compliance(),
+        covariance: None,
+    };
+    let options = Options {
+        q0: q,
+        ik: ik::Options::default(),
+        free_tool_axis: None,
+    };
+    let solved = compensate::path(&s, &compliance, &poses, &options).unwrap();
+    let postures: Vec<PathPoint> = poses
+        .iter()
+        .zip(&solved)
+        .map(|(p, r)| PathPoint {
+            target: Target::Posture(r.q),
+            ..p.clone()
+        })
+        .collect();
+    let mut group = c.benchmark_group("compensate 10 000 points");
+    group.sample_size(10);
+    group.bench_function("postures given", |b| {
+        b.iter(|| compensate::path(&s, &compliance, black_box(&postures), &options).unwrap())
+    });
+    group.bench_function("poses given (inverse kinematics)", |b| {
+        b.iter(|| compensate::path(&s, &compliance, black_box(&poses), &options).unwrap())
+    });
+    group.finish();
+}
+
+criterion_group!(compensate_benches, benches);
+criterion_main!(compensate_benches);

@@ -1,0 +1,541 @@
+//! Deflection compensation of a machining path: the axis angles that put the loaded tool where
+//! the unloaded robot would.
+//!
+//! ## The loaded robot
+//! At commanded axis angles q a wrench `W` (base frame) at the tool centre point (TCP) deflects the
+//! joint springs by `dq = h .* (J^T W)` (Zhang et al. 2021, Eq. 4-5, the torques of the unloaded
+//! posture: the complementary stiffness is neglected, see [`crate::cartesian`]), and the rigid links
+//! then put the tool at the forward kinematics of the deflected joints, [`loaded_pose`]. (Eq. 6's
+//! `J dq` is its first-order approximation; the two differ by about `|dq|^2` times the reach,
+//! a micrometre, which matters at the 0.1 micrometre this module solves to.)
+//!
+//! ## Compensation
+//! The compensated axis angles `q_c` solve `loaded_pose(q_c) = T_nominal`, the TCP pose of the
+//! unloaded robot at the nominal posture, by Newton steps `q += J^-1 e` from the nominal posture
+//! (the first step is the classical `q - J^-1 J dq`), until the residual is below
+//! [`TOLERANCE_M`] and [`TOLERANCE_RAD`] (success needs 0.1 micrometre and 1 microradian). The
+//! Jacobian neglects `d(dq)/dq`, so the convergence is linear with a rate of about `|dq|`:
+//! three or four steps.
+//!
+//! ## The free tool axis
+//! In 5-axis milling and drilling the rotation about the spindle (tool z) is free. With
+//! [`FreeToolAxis`], every path point's pose is turned about its tool z by the angle that minimises
+//! the TCP translation deflection, within the joint limits and with at most
+//! [`FreeToolAxis::max_step`] between consecutive points: dynamic programming over a grid of
+//! angles, each angle's postures continued along the path by inverse kinematics; a point only takes
+//! an angle whose deflection is no larger than at the nominal angle (so the nominal path is always
+//! feasible and no point's deflection rises); the sum of the deflections is minimised. The wrench
+//! stays fixed in the base frame (the process force does not turn with the spindle). This is the
+//! redundancy resolution of stiffness-oriented posture optimisation for robotic machining: Caro,
+//! Dumas, Garnier and Furet, "Workpiece placement optimization for machining operations with a
+//! KUKA KR270-2 robot", IEEE ICRA 2013; Xiong, Ding and Zhu, "Stiffness-based pose optimization of
+//! an industrial robot for five-axis milling", Robotics and Computer-Integrated Manufacturing 55,
+//! 2019.
+
+use crate::deflection::{base_wrench, Frame, Points};
+use crate::ik::{self, pose_error, tool_pose};
+use crate::kinematics::{Coordinates, Frames};
+use crate::{Error, Result, Setup};
+use nalgebra::{Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
+use rayon::prelude::*;
+
+/// The residual the Newton steps aim at, m.
+pub const TOLERANCE_M: f64 = 1e-10;
+/// The residual rotation the Newton steps aim at, rad.
+pub const TOLERANCE_RAD: f64 = 1e-10;
+/// The residual a compensated point must reach: 0.1 micrometre.
+pub const REQUIRED_M: f64 = 1e-7;
+/// The residual rotation a compensated point must reach: 1 microradian.
+pub const REQUIRED_RAD: f64 = 1e-6;
+/// Newton steps at most.
+pub const MAX_ITERATIONS: usize = 30;
+
+/// Where a path point is: axis angles, or a TCP pose reached by inverse kinematics.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// Axis angles, rad.
+    Posture(Vector6<f64>),
+    /// TCP position (m) and tool orientation, base frame.
+    Pose(Isometry3<f64>),
+}
+
+/// One point of a machining path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathPoint {
+    /// Its line in the path file (for errors), 1-based.
+    pub line: u64,
+    /// Where the TCP is.
+    pub target: Target,
+    /// The wrench `[f; m]` at the TCP, N and Nm, in `frame`.
+    pub wrench: Vector6<f64>,
+    /// The frame of the wrench.
+    pub frame: Frame,
+}
+
+/// The joint compliance and, from an identification, its covariance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compliance {
+    /// `h`, rad/Nm, springs' coordinates.
+    pub h: Vector6<f64>,
+    /// `Cov(h)`, (rad/Nm)^2.
+    pub covariance: Option<Matrix6<f64>>,
+}
+
+/// The stiffness-optimal rotation about the tool z axis (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeToolAxis {
+    /// Largest change of the rotation between consecutive points, rad, > 0.
+    pub max_step: f64,
+    /// The rotation stays within `+-range` of the path's, rad.
+    pub range: f64,
+}
+
+impl FreeToolAxis {
+    /// The grid spacing: `max_step` divided into whole cells of at most 5 deg, and the number of
+    /// cells one step may move.
+    fn grid(&self) -> (f64, usize) {
+        let cells = (self.max_step / 5f64.to_radians()).ceil().max(1.0);
+        (self.max_step / cells, cells as usize)
+    }
+}
+
+/// How to compensate a path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Where inverse kinematics starts for the first pose, axis angles, rad.
+    pub q0: Vector6<f64>,
+    /// Inverse kinematics tolerances and effort.
+    pub ik: ik::Options,
+    /// Optimise the rotation about the tool z axis.
+    pub free_tool_axis: Option<FreeToolAxis>,
+}
+
+/// One compensated path point, SI units, base frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compensated {
+    /// The nominal axis angles (after the tool-axis rotation, if optimised), rad.
+    pub q: Vector6<f64>,
+    /// The nominal TCP pose (m).
+    pub pose: Isometry3<f64>,
+    /// The wrench at the TCP, base frame, N and Nm.
+    pub wrench: Vector6<f64>,
+    /// TCP translation (m) and tool rotation (rad) under the wrench at the nominal posture (Eq. 6).
+    pub deflection: Vector6<f64>,
+    /// Its standard deviation per coordinate, given the compliance covariance.
+    pub deflection_std: Option<Vector6<f64>>,
+    /// The standard deviation of the translation's length `|dp|` (first order:
+    /// `sqrt(u^T Cov(dp) u)`, `u = dp / |dp|`), m.
+    pub translation_norm_std: Option<f64>,
+    /// The compensated axis angles `q_c`, rad.
+    pub q_compensated: Vector6<f64>,
+    /// `|p_nominal - p_loaded(q_c)|`, m.
+    pub residual_position: f64,
+    /// The rotation between the nominal and the loaded tool at `q_c`, rad.
+    pub residual_rotation: f64,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// The rotation about tool z chosen by [`FreeToolAxis`] (0 without), rad.
+    pub tool_rotation: f64,
+    /// With [`FreeToolAxis`]: the deflection at the path's own rotation, before optimisation.
+    pub deflection_before: Option<Vector6<f64>>,
+}
+
+/// The compensation model of one setup: its robot, TCP, springs and compliance.
+#[derive(Debug, Clone)]
+pub struct Model<'a> {
+    setup: &'a Setup,
+    compliance: &'a Compliance,
+    /// Spring deflections to axis angles: `M^-1` for kinematic springs, else the identity.
+    to_axis: Matrix6<f64>,
+}
+
+impl<'a> Model<'a> {
+    /// The model of `setup` (its TCP and springs) with the compliance `compliance`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] when the springs are kinematic and the robot's axis map is singular.
+    pub fn new(setup: &'a Setup, compliance: &'a Compliance) -> Result<Self> {
+        let to_axis =
+            match setup.springs {
+                Coordinates::Axis => Matrix6::identity(),
+                Coordinates::Kinematic => {
+                    setup.robot.axis_map.matrix.try_inverse().ok_or_else(|| {
+                        Error::InvalidField {
+                            field: "axis_map".into(),
+                            message: "singular: kinematic spring deflections have no axis angles"
+                                .into(),
+                        }
+                    })?
+                }
+            };
+        Ok(Self {
+            setup,
+            compliance,
+            to_axis,
+        })
+    }
+
+    /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
+    /// TCP (module docs).
+    pub fn loaded_pose(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
+        self.loaded(&self.setup.robot.frames(q), q, wrench)
+    }
+
+    /// [`Model::loaded_pose`] with the frames of `q` given.
+    fn loaded(&self, frames: &Frames, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
+        let tcp = &self.setup.tool.tcp;
+        let j = frames.jacobian(tcp, self.setup.springs);
+        let dq = self.to_axis * j.tr_mul(wrench).component_mul(&self.compliance.h);
+        tool_pose(&self.setup.robot.frames(&(q + dq)), tcp)
+    }
+
+    /// The TCP deflection (Eq. 6) in the posture `frames` under `wrench` (base frame) and its
+    /// standard deviation.
+    fn deflection(
+        &self,
+        frames: &Frames,
+        wrench: &Vector6<f64>,
+    ) -> (Vector6<f64>, Option<(Vector6<f64>, f64)>) {
+        let tcp = &self.setup.tool.tcp;
+        let points = Points {
+            frames,
+            springs: self.setup.springs,
+            loaded: tcp,
+            observed: tcp,
+        };
+        let d = points.deflection(wrench, &self.compliance.h);
+        let std = self.compliance.covariance.as_ref().map(|c| {
+            let cov = d.covariance(c);
+            let u = d.displacement.fixed_rows::<3>(0).normalize();
+            let along = (u.transpose() * cov.fixed_view::<3, 3>(0, 0) * u)[0];
+            (
+                cov.diagonal().map(|v| v.max(0.0).sqrt()),
+                along.max(0.0).sqrt(),
+            )
+        });
+        (d.displacement, std)
+    }
+
+    /// Compensates one point: the nominal posture `q` (rad) under `wrench` (base frame) at the
+    /// TCP. Returns `q_c`, the residual (m, rad) and the steps taken (module docs).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (field `posture`) when the Jacobian is singular on the way.
+    pub fn compensate(
+        &self,
+        q: &Vector6<f64>,
+        wrench: &Vector6<f64>,
+    ) -> Result<(Vector6<f64>, f64, f64, usize)> {
+        self.compensate_from(q, self.setup.robot.frames(q), wrench)
+    }
+
+    /// [`Model::compensate`] with the frames of `q` given.
+    fn compensate_from(
+        &self,
+        q: &Vector6<f64>,
+        mut frames: Frames,
+        wrench: &Vector6<f64>,
+    ) -> Result<(Vector6<f64>, f64, f64, usize)> {
+        let tcp = &self.setup.tool.tcp;
+        let target = tool_pose(&frames, tcp);
+        let mut qc = *q;
+        let mut iterations = 0;
+        loop {
+            let e = pose_error(&target, &self.loaded(&frames, &qc, wrench));
+            let (ep, eo) = (e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm());
+            if (ep <= TOLERANCE_M && eo <= TOLERANCE_RAD) || iterations == MAX_ITERATIONS {
+                return Ok((qc, ep, eo, iterations));
+            }
+            let j = frames.jacobian(tcp, Coordinates::Axis);
+            let step = j.lu().solve(&e).ok_or_else(|| Error::InvalidField {
+                field: "posture".into(),
+                message: "singular: the TCP Jacobian is not invertible, no compensation exists"
+                    .into(),
+            })?;
+            qc += step;
+            frames = self.setup.robot.frames(&qc);
+            iterations += 1;
+        }
+    }
+}
+
+/// Compensates every point of a path (module docs), the points in parallel; the result does not
+/// depend on the number of threads.
+///
+/// # Errors
+/// [`Error::Row`] naming the line of the first point (in path order) that fails, and the lines
+/// of the others: axis angles outside the joint limits (`q1_deg..q6_deg`), a pose inverse kinematics
+/// cannot reach (`x_mm..rz_deg`, [`Error::Unreachable`]'s message), or compensated axis angles
+/// outside the joint limits or a residual above 0.1 micrometre / 1 microradian (`q_compensated`).
+pub fn path(
+    setup: &Setup,
+    compliance: &Compliance,
+    points: &[PathPoint],
+    options: &Options,
+) -> Result<Vec<Compensated>> {
+    let model = Model::new(setup, compliance)?;
+    let nominal = nominal_postures(setup, points, options)?;
+    let wrenches: Vec<Vector6<f64>> = points
+        .par_iter()
+        .zip(&nominal)
+        .map(|(p, q)| base_wrench(&setup.robot.frames(q), &p.wrench, p.frame))
+        .collect();
+    let (postures, rotations) = match &options.free_tool_axis {
+        None => (nominal.clone(), vec![0.0; points.len()]),
+        Some(free) => optimise_tool_axis(&model, &nominal, &wrenches, free, &options.ik),
+    };
+    let results: Vec<Result<Compensated>> = (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let q = &postures[i];
+            let frames = setup.robot.frames(q);
+            let (qc, ep, eo, iterations) =
+                model
+                    .compensate_from(q, frames.clone(), &wrenches[i])
+                    .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
+            check_compensated(setup, points[i].line, &qc, ep, eo)?;
+            let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
+            let deflection_before = options.free_tool_axis.map(|_| {
+                let frames = setup.robot.frames(&nominal[i]);
+                model.deflection(&frames, &wrenches[i]).0
+            });
+            Ok(Compensated {
+                q: *q,
+                pose: tool_pose(&frames, &setup.tool.tcp),
+                wrench: wrenches[i],
+                deflection,
+                deflection_std: deflection_std.map(|s| s.0),
+                translation_norm_std: deflection_std.map(|s| s.1),
+                q_compensated: qc,
+                residual_position: ep,
+                residual_rotation: eo,
+                iterations,
+                tool_rotation: rotations[i],
+                deflection_before,
+            })
+        })
+        .collect();
+    first_error(results)
+}
+
+fn row(line: u64, column: &str, message: String) -> Error {
+    Error::Row {
+        line,
+        column: column.into(),
+        message,
+    }
+}
+
+/// The results, or the first error (in path order) naming the lines of the other failing points
+/// (the first ten).
+fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
+    let failed: Vec<u64> = results
+        .iter()
+        .filter_map(|r| match r {
+            Err(Error::Row { line, .. }) => Some(*line),
+            _ => None,
+        })
+        .collect();
+    let mut out = Vec::with_capacity(results.len());
+    for r in results {
+        match r {
+            Ok(v) => out.push(v),
+            Err(Error::Row {
+                line,
+                column,
+                message,
+            }) if failed.len() > 1 => {
+                let others: Vec<String> = failed[1..].iter().take(10).map(u64::to_string).collect();
+                let more = match failed.len() - 1 {
+                    n if n > 10 => format!(", ... ({n} in all)"),
+                    _ => String::new(),
+                };
+                return Err(row(
+                    line,
+                    &column,
+                    format!(
+                        "{message}; the same for the points on lines {}{more}",
+                        others.join(", ")
+                    ),
+                ));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(out)
+}
+
+fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
+    let robot = &setup.robot;
+    if let Some(i) = robot.first_out_of_limits(qc) {
+        return Err(row(
+            line,
+            "q_compensated",
+            format!(
+                "cannot be compensated within the joint limits: axis {} would need {:.4} deg, limits [{:.2}, {:.2}] deg",
+                i + 1,
+                qc[i].to_degrees(),
+                robot.lower[i].to_degrees(),
+                robot.upper[i].to_degrees()
+            ),
+        ));
+    }
+    if !(ep <= REQUIRED_M && eo <= REQUIRED_RAD) {
+        return Err(row(
+            line,
+            "q_compensated",
+            format!(
+                "the compensation did not converge: residual {:.3} um and {:.3} urad after {MAX_ITERATIONS} steps (near a singularity?)",
+                ep * 1e6,
+                eo * 1e6
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The nominal axis angles of every point: given, or by inverse kinematics continued from the
+/// previous point (the first from `options.q0`).
+fn nominal_postures(
+    setup: &Setup,
+    points: &[PathPoint],
+    options: &Options,
+) -> Result<Vec<Vector6<f64>>> {
+    let robot = &setup.robot;
+    let mut previous = options.q0;
+    let mut out = Vec::with_capacity(points.len());
+    for p in points {
+        let q = match &p.target {
+            Target::Posture(q) => {
+                if let Some(i) = robot.first_out_of_limits(q) {
+                    return Err(row(
+                        p.line,
+                        &format!("q{}_deg", i + 1),
+                        format!(
+                            "{:.4} deg is outside the joint limits [{:.2}, {:.2}] deg",
+                            q[i].to_degrees(),
+                            robot.lower[i].to_degrees(),
+                            robot.upper[i].to_degrees()
+                        ),
+                    ));
+                }
+                *q
+            }
+            Target::Pose(t) => {
+                ik::solve(robot, &setup.tool.tcp, t, &previous, &options.ik)
+                    .map_err(|e| row(p.line, "x_mm..rz_deg", e.to_string()))?
+                    .q
+            }
+        };
+        previous = q;
+        out.push(q);
+    }
+    Ok(out)
+}
+
+/// The postures and tool rotations of the free tool axis (module docs).
+fn optimise_tool_axis(
+    model: &Model,
+    nominal: &[Vector6<f64>],
+    wrenches: &[Vector6<f64>],
+    free: &FreeToolAxis,
+    ik_options: &ik::Options,
+) -> (Vec<Vector6<f64>>, Vec<f64>) {
+    let (spacing, reach) = free.grid();
+    let half = (free.range / spacing + 1e-9).floor() as isize;
+    let angles: Vec<f64> = (-half..=half).map(|g| g as f64 * spacing).collect();
+    let columns: Vec<Column> = angles
+        .par_iter()
+        .map(|&phi| column(model, nominal, wrenches, phi, ik_options))
+        .collect();
+    let zero = half as usize;
+    let n = nominal.len();
+    let g_count = angles.len();
+    // cost[i][g]: the smallest sum of deflections up to point i ending at angle g.
+    let feasible = |i: usize, g: usize| {
+        columns[g][i]
+            .as_ref()
+            .filter(|(_, d)| *d <= columns[zero][i].as_ref().map_or(0.0, |z| z.1))
+            .map(|(_, d)| *d)
+    };
+    let mut cost = vec![vec![f64::INFINITY; g_count]; n];
+    let mut from = vec![vec![0usize; g_count]; n];
+    for i in 0..n {
+        for g in 0..g_count {
+            let Some(d) = feasible(i, g) else { continue };
+            if i == 0 {
+                cost[0][g] = d;
+                continue;
+            }
+            let lo = g.saturating_sub(reach);
+            let hi = (g + reach).min(g_count - 1);
+            if let Some(best) = (lo..=hi).min_by(|&a, &b| cost[i - 1][a].total_cmp(&cost[i - 1][b]))
+            {
+                cost[i][g] = cost[i - 1][best] + d;
+                from[i][g] = best;
+            }
+        }
+    }
+    let mut g = (0..g_count)
+        .min_by(|&a, &b| cost[n - 1][a].total_cmp(&cost[n - 1][b]))
+        .unwrap_or(zero);
+    let mut chosen = vec![zero; n];
+    for i in (0..n).rev() {
+        chosen[i] = g;
+        g = from[i][g];
+    }
+    chosen
+        .iter()
+        .enumerate()
+        .map(|(i, &g)| {
+            let q = columns[g][i].as_ref().map_or(nominal[i], |c| c.0);
+            (q, angles[g])
+        })
+        .unzip()
+}
+
+/// One angle's posture and TCP translation deflection (m) at every path point; `None` where
+/// inverse kinematics fails.
+type Column = Vec<Option<(Vector6<f64>, f64)>>;
+
+/// The postures of the path turned by `phi` about tool z, continued along the path, and their TCP
+/// translation deflection (m); `None` where inverse kinematics fails.
+fn column(
+    model: &Model,
+    nominal: &[Vector6<f64>],
+    wrenches: &[Vector6<f64>],
+    phi: f64,
+    ik_options: &ik::Options,
+) -> Column {
+    let setup = model.setup;
+    let tcp = &setup.tool.tcp;
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi);
+    let options = ik::Options {
+        restarts: 0,
+        ..*ik_options
+    };
+    let mut previous: Option<Vector6<f64>> = None;
+    nominal
+        .iter()
+        .zip(wrenches)
+        .map(|(q, w)| {
+            let q = match phi == 0.0 {
+                true => Some(*q),
+                false => {
+                    let mut target = tool_pose(&setup.robot.frames(q), tcp);
+                    target.rotation *= turn;
+                    let start = previous.unwrap_or(*q);
+                    ik::solve(&setup.robot, tcp, &target, &start, &options)
+                        .or_else(|_| ik::solve(&setup.robot, tcp, &target, q, &options))
+                        .ok()
+                        .map(|s| s.q)
+                }
+            };
+            previous = q;
+            q.map(|q| {
+                let d = model.deflection(&setup.robot.frames(&q), w).0;
+                (q, d.fixed_rows::<3>(0).norm())
+            })
+        })
+        .collect()
+}

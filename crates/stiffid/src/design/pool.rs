@@ -1,0 +1,368 @@
+//! Choosing the best group from a pool of candidate postures: postures the user already knows are
+//! reachable (taught on the pendant, seen by the tracker).
+//!
+//! The group of `n` pool postures that minimises a design criterion is found
+//! - exactly, by enumerating every group, when there are at most
+//!   [`PoolOptions::enumeration_limit`] of them (`C(pool, n)`, default 100 000);
+//! - otherwise by the modified Fedorov exchange algorithm (Cook & Nachtsheim 1980, Technometrics
+//!   22(3)): from a seeded random group, each posture of the group in turn is exchanged for the
+//!   pool posture that lowers the criterion most, until a whole pass exchanges none; from
+//!   [`PoolOptions::restarts`] seeded groups, the best kept.
+//!
+//! Updates: the information matrix of a group is `S^T S = sum_i M_i` (6 x 6, `S` the scaled
+//! observation matrix of [`super::criteria`]) with `M_i = S_i^T S_i` of each pool posture, its
+//! `3p x 6` block (rank <= min(3p, 6)), computed once. An exchange is the rank-`<= 6` update
+//! `S^T S - M_i + M_j`, refactored by a 6 x 6 Cholesky (whose factor is the group's triangular
+//! factor `R_s` up to row signs, so every criterion is computed by the same code as
+//! [`super::Evaluator`]); that is cheaper than a Woodbury update, which needs a `3p x 3p` solve
+//! per candidate. The chosen group's value is then recomputed from its observation matrix by QR
+//! ([`super::Evaluator::value`]).
+//!
+//! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to [`MAX_GROUP`] postures.
+
+use super::search::check_count;
+use super::{Criterion, Evaluator};
+use crate::setup::Setup;
+use crate::{Error, Result};
+use nalgebra::{Matrix6, Vector6};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+/// Most postures in a pool (each costs one forward kinematics and a 6 x 6 matrix; an exchange
+/// pass costs `n x pool` Cholesky factorisations).
+pub const MAX_POOL: usize = 10_000;
+
+/// Most postures in a group chosen from a pool.
+pub const MAX_GROUP: usize = 60;
+
+/// Most passes of one exchange run (each pass that exchanges nothing ends the run; the criterion
+/// falls strictly at every exchange, so the limit is a guard, not reached in practice).
+const MAX_PASSES: usize = 100;
+
+/// How a pool is searched.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoolOptions {
+    /// Exchange runs from seeded random groups (default 8).
+    pub restarts: usize,
+    /// Seed of the random groups: run r uses ChaCha8 stream `r` of it (default 1).
+    pub seed: u64,
+    /// Enumerate every group when there are at most this many (default 100 000); 0 always uses
+    /// the exchange algorithm.
+    pub enumeration_limit: u64,
+}
+
+impl Default for PoolOptions {
+    fn default() -> Self {
+        Self {
+            restarts: 8,
+            seed: 1,
+            enumeration_limit: 100_000,
+        }
+    }
+}
+
+/// How a group was chosen from a pool.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PoolMethod {
+    /// Every group was evaluated: the group is the exact optimum.
+    Enumeration,
+    /// The exchange algorithm: the best of its restarts, a local optimum.
+    Exchange,
+}
+
+/// The group chosen from a pool.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoolChoice {
+    /// The chosen postures, as indices into the pool given to [`Pool::new`], ascending.
+    pub indices: Vec<usize>,
+    /// The criterion of the group, computed from its observation matrix by QR
+    /// ([`Evaluator::value`]).
+    pub value: f64,
+    /// Enumeration or exchange.
+    pub method: PoolMethod,
+    /// Groups evaluated (by their information matrix).
+    pub evaluations: usize,
+}
+
+/// A pool of candidate postures of one setup, with each usable posture's information matrix.
+#[derive(Debug, Clone)]
+pub struct Pool<'a> {
+    evaluator: Evaluator<'a>,
+    postures: Vec<Vector6<f64>>,
+    /// Pool indices of the usable postures, ascending.
+    usable: Vec<usize>,
+    /// `M_i = S_i^T S_i` of each usable posture.
+    information: Vec<Matrix6<f64>>,
+    /// TCP dexterity `k(J_N)` of each usable posture (for the classical index).
+    dexterity: Vec<f64>,
+}
+
+impl<'a> Pool<'a> {
+    /// A pool of `postures` (axis angles, rad) of `setup`; `usable[i]` false skips posture i (an
+    /// infeasible posture: see the setup's cell checks). `usable` empty means every posture.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (field `pool`) for more than [`MAX_POOL`] postures, or a `usable`
+    /// mask of another length than the pool.
+    pub fn new(setup: &'a Setup, postures: &[Vector6<f64>], usable: &[bool]) -> Result<Self> {
+        if postures.len() > MAX_POOL {
+            return Err(pool_error(format!(
+                "{} postures: at most {MAX_POOL} are allowed",
+                postures.len()
+            )));
+        }
+        if !usable.is_empty() && usable.len() != postures.len() {
+            return Err(pool_error(format!(
+                "{} usability flags for {} postures",
+                usable.len(),
+                postures.len()
+            )));
+        }
+        let evaluator = Evaluator::new(setup);
+        let usable: Vec<usize> = (0..postures.len())
+            .filter(|&i| usable.get(i).copied().unwrap_or(true))
+            .collect();
+        let (information, dexterity) = usable
+            .iter()
+            .map(|&i| {
+                let terms = evaluator.posture(&postures[i]);
+                (evaluator.information(&terms), evaluator.dexterity(&terms))
+            })
+            .unzip();
+        Ok(Self {
+            evaluator,
+            postures: postures.to_vec(),
+            usable,
+            information,
+            dexterity,
+        })
+    }
+
+    /// Pool indices of the usable postures, ascending.
+    pub fn usable(&self) -> &[usize] {
+        &self.usable
+    }
+
+    /// The postures of pool indices (axis angles, rad).
+    pub fn postures(&self, indices: &[usize]) -> Vec<Vector6<f64>> {
+        indices.iter().map(|&i| self.postures[i]).collect()
+    }
+
+    /// The group of `n` usable pool postures that minimises `criterion` (see the module docs for
+    /// how). The same options give the same group whatever the thread count.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`]: `n` below 2, above [`MAX_GROUP`] or above the usable postures;
+    /// the `test-pose` criterion without test postures; no restart with exchange; no group of `n`
+    /// usable postures that identifies all six compliances (field `pool`).
+    pub fn best(
+        &self,
+        criterion: Criterion,
+        n: usize,
+        options: &PoolOptions,
+    ) -> Result<PoolChoice> {
+        check_count(self.evaluator.setup(), criterion, n)?;
+        if n > MAX_GROUP.min(self.usable.len()) {
+            return Err(Error::InvalidField {
+                field: "postures".into(),
+                message: format!(
+                    "{n} given: expected at most {MAX_GROUP} and at most the {} usable pool postures",
+                    self.usable.len()
+                ),
+            });
+        }
+        let groups = binomial(self.usable.len(), n);
+        let (group, evaluations, method) = if groups <= options.enumeration_limit as u128 {
+            let (group, _) = self.enumerate(criterion, n);
+            (group, groups as usize, PoolMethod::Enumeration)
+        } else {
+            let (group, evaluations) = self.exchange_restarts(criterion, n, options)?;
+            (group, evaluations, PoolMethod::Exchange)
+        };
+        let mut indices: Vec<usize> = group.iter().map(|&k| self.usable[k]).collect();
+        indices.sort_unstable();
+        let value = self.evaluator.value(criterion, &self.postures(&indices));
+        if !value.is_finite() {
+            return Err(pool_error(format!(
+                "no group of {n} of the {} usable postures identifies all six compliances",
+                self.usable.len()
+            )));
+        }
+        Ok(PoolChoice {
+            indices,
+            value,
+            method,
+            evaluations,
+        })
+    }
+
+    /// The criterion of a group of usable postures (positions in [`Pool::usable`]) from its
+    /// information matrix.
+    fn value(&self, criterion: Criterion, group: &[usize]) -> f64 {
+        let information = group.iter().map(|&k| self.information[k]).sum();
+        let classical = group.iter().map(|&k| self.dexterity[k]).fold(0.0, f64::max);
+        self.evaluator
+            .value_from_information(criterion, &information, classical)
+    }
+
+    /// The best group of every group of `n` usable postures (lexicographic order, the first on
+    /// ties), and its value.
+    fn enumerate(&self, criterion: Criterion, n: usize) -> (Vec<usize>, f64) {
+        let u = self.usable.len();
+        let mut group: Vec<usize> = (0..n).collect();
+        let mut best = (group.clone(), self.value(criterion, &group));
+        while next_combination(&mut group, u) {
+            let v = self.value(criterion, &group);
+            if v < best.1 {
+                best = (group.clone(), v);
+            }
+        }
+        best
+    }
+
+    /// The best of the exchange runs (the lowest run index on ties) and the evaluations of all.
+    fn exchange_restarts(
+        &self,
+        criterion: Criterion,
+        n: usize,
+        options: &PoolOptions,
+    ) -> Result<(Vec<usize>, usize)> {
+        if options.restarts == 0 {
+            return Err(Error::InvalidField {
+                field: "restarts".into(),
+                message: "the exchange algorithm needs at least 1 restart".into(),
+            });
+        }
+        let runs: Vec<(Vec<usize>, f64, usize)> = (0..options.restarts)
+            .into_par_iter()
+            .map(|r| {
+                let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
+                rng.set_stream(r as u64);
+                let start = rand::seq::index::sample(&mut rng, self.usable.len(), n).into_vec();
+                self.exchange(criterion, start)
+            })
+            .collect();
+        let evaluations = runs.iter().map(|r| r.2).sum();
+        let best = runs
+            .into_iter()
+            .reduce(|best, run| if run.1 < best.1 { run } else { best })
+            .expect("at least one restart");
+        Ok((best.0, evaluations))
+    }
+
+    /// One modified Fedorov run from `group`: its end group, value and evaluations.
+    fn exchange(&self, criterion: Criterion, mut group: Vec<usize>) -> (Vec<usize>, f64, usize) {
+        let mut in_group = vec![false; self.usable.len()];
+        group.iter().for_each(|&k| in_group[k] = true);
+        let mut value = self.value(criterion, &group);
+        let mut evaluations = 1;
+        for _ in 0..MAX_PASSES {
+            let mut exchanged = false;
+            for slot in 0..group.len() {
+                let out = group[slot];
+                let mut best: Option<(usize, f64)> = None;
+                for candidate in (0..self.usable.len()).filter(|&j| !in_group[j]) {
+                    group[slot] = candidate;
+                    let v = self.value(criterion, &group);
+                    evaluations += 1;
+                    if improves(v, best.map_or(value, |b| b.1)) {
+                        best = Some((candidate, v));
+                    }
+                }
+                group[slot] = out;
+                if let Some((candidate, v)) = best {
+                    in_group[out] = false;
+                    in_group[candidate] = true;
+                    group[slot] = candidate;
+                    value = v;
+                    exchanged = true;
+                }
+            }
+            if !exchanged {
+                break;
+            }
+        }
+        (group, value, evaluations)
+    }
+}
+
+/// Whether `v` is lower than `than` by more than rounding (so an exchange loop cannot cycle).
+fn improves(v: f64, than: f64) -> bool {
+    v < than && (than.is_infinite() || than - v > 1e-12 * than.abs())
+}
+
+/// The next combination of `group.len()` of `0..u` in lexicographic order; false after the last.
+fn next_combination(group: &mut [usize], u: usize) -> bool {
+    let n = group.len();
+    let Some(i) = (0..n).rev().find(|&i| group[i] < u - n + i) else {
+        return false;
+    };
+    group[i] += 1;
+    for k in i + 1..n {
+        group[k] = group[k - 1] + 1;
+    }
+    true
+}
+
+/// `C(u, n)`, `u128::MAX` when larger.
+fn binomial(u: usize, n: usize) -> u128 {
+    if n > u {
+        return 0;
+    }
+    // C(u, k + 1) = C(u, k) (u - k) / (k + 1), exact in integers.
+    (0..n.min(u - n))
+        .try_fold(1u128, |c, k| {
+            c.checked_mul((u - k) as u128).map(|p| p / (k as u128 + 1))
+        })
+        .unwrap_or(u128::MAX)
+}
+
+fn pool_error(message: String) -> Error {
+    Error::InvalidField {
+        field: "pool".into(),
+        message,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::design::random_group;
+
+    #[test]
+    fn criteria_from_the_information_matrix_equal_those_from_qr() {
+        let setup = crate::setup::builtin("zhang2021-comau-nj165").unwrap();
+        let postures = random_group(&setup, 7, 3);
+        let pool = Pool::new(&setup, &postures, &[]).unwrap();
+        let evaluator = Evaluator::new(&setup);
+        for criterion in Criterion::ALL {
+            let qr = evaluator.value(criterion, &postures);
+            let cholesky = pool.value(criterion, &(0..7).collect::<Vec<_>>());
+            assert!(
+                (cholesky - qr).abs() <= 1e-9 * qr,
+                "{criterion}: {cholesky} vs {qr}"
+            );
+        }
+        let none = evaluator.value_from_information(Criterion::RelativeA, &Matrix6::zeros(), 1.0);
+        assert_eq!(none, f64::INFINITY, "no information");
+    }
+
+    #[test]
+    fn combinations_are_all_visited_once_in_order() {
+        let mut g = vec![0, 1, 2];
+        let mut count = 1;
+        let mut last = g.clone();
+        while next_combination(&mut g, 6) {
+            assert!(g > last && g.windows(2).all(|w| w[0] < w[1]) && g[2] < 6);
+            last = g.clone();
+            count += 1;
+        }
+        assert_eq!(count, binomial(6, 3));
+        assert_eq!(count, 20);
+        assert_eq!(binomial(1000, 6), 1_368_173_298_991_500);
+        assert_eq!(binomial(12, 6), 924);
+        assert_eq!(binomial(5, 6), 0);
+        assert_eq!(binomial(10_000, 60), u128::MAX);
+    }
+}

@@ -1,0 +1,362 @@
+//! Cartesian stiffness, tool-point deflection and its uncertainty, inverse kinematics and path
+//! compensation, checked against the forward model, finite differences and Monte Carlo.
+
+use approx::assert_relative_eq;
+use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector3, Vector6};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+use stiffid::compensate::{self, Compliance, FreeToolAxis, Options, PathPoint, Target};
+use stiffid::deflection::{base_wrench, Frame, Points};
+use stiffid::ik::{self, pose_error, tool_pose};
+use stiffid::kinematics::Coordinates;
+use stiffid::robot::presets;
+use stiffid::{cartesian, setup, stiffness, Error, Setup};
+
+/// The TCP pose of the robot at axis angles `q` whose springs deflect by `dq` (springs'
+/// coordinates): forward kinematics of the deflected joints.
+fn deflected_pose(s: &Setup, q: &Vector6<f64>, dq: &Vector6<f64>) -> Isometry3<f64> {
+    let q_loaded = match s.springs {
+        Coordinates::Axis => q + dq,
+        Coordinates::Kinematic => {
+            let map = &s.robot.axis_map;
+            map.axis(&(map.kinematic(q) + dq)).unwrap()
+        }
+    };
+    tool_pose(&s.robot.frames(&q_loaded), &s.tool.tcp)
+}
+
+/// A setup whose loading point is its TCP, so `stiffness::deflection` loads the TCP.
+fn loaded_at_tcp(name: &str) -> Setup {
+    let mut s = setup::builtin(name).unwrap();
+    s.tool.loading_point = s.tool.tcp;
+    s
+}
+
+#[test]
+fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
+    for name in ["zhang2021-comau-nj165", "fanuc-r2000ic-165f"] {
+        let s = loaded_at_tcp(name);
+        let h = s.nominal_compliance();
+        for q in &s.test_postures {
+            let frames = s.robot.frames(q);
+            let c = cartesian::compliance(&frames, &s.tool.tcp, s.springs, &h);
+            let unloaded = tool_pose(&frames, &s.tool.tcp);
+            for k in 0..6 {
+                let eps = if k < 3 { 50.0 } else { 20.0 };
+                let at = |sign: f64| {
+                    let w = Vector6::from_fn(|i, _| if i == k { sign * eps } else { 0.0 });
+                    let dq = stiffness::deflection(&s, &frames, &w, &s.nominal_stiffness)
+                        .joint_deflections;
+                    -pose_error(&unloaded, &deflected_pose(&s, q, &dq))
+                };
+                let column = (at(1.0) - at(-1.0)) / (2.0 * eps);
+                for r in 0..6 {
+                    let scale = c.column(k).amax();
+                    assert!(
+                        (column[r] - c[(r, k)]).abs() <= 1e-6 * scale,
+                        "{name} C[{r},{k}]: finite difference {} vs {}",
+                        column[r],
+                        c[(r, k)]
+                    );
+                }
+            }
+            let kx = cartesian::stiffness(&frames, &s.tool.tcp, s.springs, &s.nominal_stiffness)
+                .unwrap();
+            assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-8);
+        }
+    }
+}
+
+#[test]
+fn a_tool_frame_wrench_is_the_base_wrench_rotated_by_the_flange() {
+    let s = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let q = s.test_postures[0];
+    let frames = s.robot.frames(&q);
+    let tool = Vector6::new(30.0, -200.0, 50.0, 4.0, 0.0, -7.0);
+    let r = frames.flange.rotation;
+    let f = r * Vector3::new(30.0, -200.0, 50.0);
+    let m = r * Vector3::new(4.0, 0.0, -7.0);
+    let rotated = Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
+    assert_relative_eq!(
+        base_wrench(&frames, &tool, Frame::Tool),
+        rotated,
+        epsilon = 1e-12
+    );
+    assert_eq!(base_wrench(&frames, &tool, Frame::Base), tool);
+    // The flange z axis in the base frame is where a tool-frame fz pushes.
+    let push = base_wrench(
+        &frames,
+        &Vector6::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0),
+        Frame::Tool,
+    );
+    assert_relative_eq!(
+        push.fixed_rows::<3>(0).into_owned(),
+        frames.flange.rotation * Vector3::z(),
+        epsilon = 1e-12
+    );
+    // A wrench at another tool point: the deflection of the TCP equals J_tcp h .* J_a^T W.
+    let points = Points {
+        frames: &frames,
+        springs: s.springs,
+        loaded: &s.tool.loading_point,
+        observed: &s.tool.tcp,
+    };
+    let d = points.deflection(&rotated, &s.nominal_compliance());
+    let expected = frames.jacobian(&s.tool.tcp, s.springs)
+        * stiffness::deflection(&s, &frames, &rotated, &s.nominal_stiffness).joint_deflections;
+    assert_relative_eq!(d.displacement, expected, max_relative = 1e-12);
+}
+
+#[test]
+fn covariance_propagation_agrees_with_monte_carlo() {
+    let s = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let h = s.nominal_compliance();
+    // A correlated covariance with relative standard deviations of 2% to 12%.
+    let rel = Vector6::new(0.02, 0.05, 0.03, 0.08, 0.12, 0.06);
+    let sd = h.component_mul(&rel);
+    let mut corr = Matrix6::identity();
+    corr[(1, 2)] = 0.6;
+    corr[(2, 1)] = 0.6;
+    corr[(3, 5)] = -0.4;
+    corr[(5, 3)] = -0.4;
+    let cov = Matrix6::from_diagonal(&sd) * corr * Matrix6::from_diagonal(&sd);
+    let chol = cov.cholesky().unwrap().l();
+    let q = s.test_postures[0];
+    let frames = s.robot.frames(&q);
+    let points = Points {
+        frames: &frames,
+        springs: s.springs,
+        loaded: &s.tool.loading_point,
+        observed: &s.tool.tcp,
+    };
+    let w = Vector6::new(150.0, -80.0, -200.0, 10.0, 5.0, 0.0);
+    let analytic = points.deflection(&w, &h).std(&cov);
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let runs = 2000;
+    let samples: Vec<Vector6<f64>> = (0..runs)
+        .map(|_| {
+            let z = Vector6::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal));
+            points.deflection(&w, &(h + chol * z)).displacement
+        })
+        .collect();
+    let mean = samples.iter().sum::<Vector6<f64>>() / runs as f64;
+    for c in 0..6 {
+        let var = samples
+            .iter()
+            .map(|d| (d[c] - mean[c]).powi(2))
+            .sum::<f64>()
+            / (runs - 1) as f64;
+        let ratio = var.sqrt() / analytic[c];
+        assert!(
+            (ratio - 1.0).abs() < 0.10,
+            "coordinate {c}: Monte Carlo {} vs first order {}",
+            var.sqrt(),
+            analytic[c]
+        );
+    }
+}
+
+#[test]
+fn inverse_kinematics_round_trips_for_every_preset() {
+    let tcp = Vector3::new(0.1, 0.05, 0.25);
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for name in presets::names() {
+        let robot = presets::get(name).unwrap();
+        let mut iterations = 0;
+        for _ in 0..40 {
+            let q = Vector6::from_fn(|i, _| {
+                let (lo, hi) = (robot.lower[i].max(-3.0), robot.upper[i].min(3.0));
+                lo + (hi - lo) * rng.random::<f64>()
+            });
+            let target = tool_pose(&robot.frames(&q), &tcp);
+            let start = Vector6::from_fn(|i, _| {
+                (q[i] + rng.random_range(-0.3..0.3)).clamp(robot.lower[i], robot.upper[i])
+            });
+            let sol = ik::solve(&robot, &tcp, &target, &start, &ik::Options::default())
+                .unwrap_or_else(|e| panic!("{name}, q = {q:?}: {e}"));
+            let reached = pose_error(&target, &tool_pose(&robot.frames(&sol.q), &tcp));
+            assert!(reached.fixed_rows::<3>(0).norm() < 1e-9, "{name}");
+            assert!(reached.fixed_rows::<3>(3).norm() < 1e-9, "{name}");
+            assert!(robot.within_limits(&sol.q), "{name}");
+            iterations += sol.iterations;
+        }
+        assert!(
+            iterations < 40 * 30,
+            "{name}: {iterations} steps for 40 poses"
+        );
+        let far = Isometry3::translation(10.0, 0.0, 1.0);
+        match ik::solve(
+            &robot,
+            &tcp,
+            &far,
+            &Vector6::zeros(),
+            &ik::Options::default(),
+        ) {
+            Err(Error::Unreachable {
+                position_error_mm, ..
+            }) => assert!(position_error_mm > 5000.0, "{name}: {position_error_mm}"),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+}
+
+/// A straight line of poses around the TCP of the setup's first test posture, 2 mm apart, with a
+/// 200 N force in the tool frame.
+fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
+    let start = tool_pose(&s.robot.frames(&s.test_postures[0]), &s.tool.tcp);
+    (0..n)
+        .map(|i| {
+            let shift = Translation3::new(0.002 * i as f64, -0.001 * i as f64, 0.0);
+            PathPoint {
+                line: i as u64 + 2,
+                target: Target::Pose(shift * start),
+                wrench: Vector6::new(200.0, 0.0, -100.0, 0.0, 0.0, 0.0),
+                frame: Frame::Tool,
+            }
+        })
+        .collect()
+}
+
+fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
+    Options {
+        q0: s.test_postures[0],
+        ik: ik::Options::default(),
+        free_tool_axis: free,
+    }
+}
+
+#[test]
+fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
+    for name in ["zhang2021-comau-nj165", "fanuc-r2000ic-165f"] {
+        let s = loaded_at_tcp(name);
+        let compliance = Compliance {
+            h: s.nominal_compliance(),
+            covariance: None,
+        };
+        let path = line_path(&s, 25);
+        let out = compensate::path(&s, &compliance, &path, &options(&s, None)).unwrap();
+        for (p, c) in path.iter().zip(&out) {
+            let Target::Pose(nominal) = &p.target else {
+                unreachable!()
+            };
+            let frames = s.robot.frames(&c.q_compensated);
+            let dq = stiffness::deflection(&s, &frames, &c.wrench, &s.nominal_stiffness)
+                .joint_deflections;
+            let e = pose_error(nominal, &deflected_pose(&s, &c.q_compensated, &dq));
+            assert!(e.fixed_rows::<3>(0).norm() < 1e-7, "{name}: {e}");
+            assert!(e.fixed_rows::<3>(3).norm() < 1e-6, "{name}: {e}");
+            // It compensated something: the deflection is of the order of 0.1 mm.
+            assert!(c.deflection.fixed_rows::<3>(0).norm() > 1e-5, "{name}");
+            assert!(c.iterations <= 6, "{name}: {} steps", c.iterations);
+            assert_relative_eq!(
+                c.wrench,
+                base_wrench(&s.robot.frames(&c.q), &p.wrench, Frame::Tool),
+                epsilon = 1e-9
+            );
+        }
+    }
+}
+
+#[test]
+fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
+    let s = loaded_at_tcp("fanuc-r2000ic-165f");
+    let compliance = Compliance {
+        h: s.nominal_compliance(),
+        covariance: None,
+    };
+    let path = line_path(&s, 30);
+    let free = FreeToolAxis {
+        max_step: 3f64.to_radians(),
+        range: 60f64.to_radians(),
+    };
+    let out = compensate::path(&s, &compliance, &path, &options(&s, Some(free))).unwrap();
+    let norm = |d: &Vector6<f64>| d.fixed_rows::<3>(0).norm();
+    let (mut before, mut after) = (0.0, 0.0);
+    for (i, (p, c)) in path.iter().zip(&out).enumerate() {
+        let d0 = norm(c.deflection_before.as_ref().unwrap());
+        assert!(norm(&c.deflection) <= d0 * (1.0 + 1e-12), "point {i}");
+        assert!(s.robot.within_limits(&c.q), "point {i}");
+        assert!(c.tool_rotation.abs() <= free.range + 1e-12);
+        if i > 0 {
+            let step = (c.tool_rotation - out[i - 1].tool_rotation).abs();
+            assert!(step <= free.max_step + 1e-12, "point {i}: step {step}");
+        }
+        // The pose is the path's, turned about tool z.
+        let Target::Pose(t) = &p.target else {
+            unreachable!()
+        };
+        let turned = t * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), c.tool_rotation);
+        let e = pose_error(&turned, &tool_pose(&s.robot.frames(&c.q), &s.tool.tcp));
+        assert!(e.norm() < 1e-9, "point {i}: {e}");
+        before += d0;
+        after += norm(&c.deflection);
+    }
+    assert!(after < 0.95 * before, "{after} vs {before}");
+}
+
+/// The documented size of the neglected complementary stiffness: on the paper's setup, the README's
+/// `predict` example (2 mm at measuring point 1) moves by about 2 micrometres when the torques are
+/// those of the deflected posture (a fixed point `dq = h .* J_f(q + dq)^T W`) instead of the
+/// unloaded one.
+#[test]
+fn the_complementary_stiffness_is_about_a_thousandth_of_the_deflection() {
+    let s = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let q = s.test_postures[0];
+    let w = Vector6::new(300.0, -200.0, -400.0, 0.0, 0.0, 0.0);
+    let h = s.nominal_compliance();
+    let torques_at = |dq: &Vector6<f64>| {
+        s.robot
+            .frames(&(q + dq))
+            .jacobian(&s.tool.loading_point, s.springs)
+            .tr_mul(&w)
+    };
+    let dq0 = torques_at(&Vector6::zeros()).component_mul(&h);
+    let mut dq = dq0;
+    for _ in 0..20 {
+        dq = torques_at(&dq).component_mul(&h);
+    }
+    let p = |dq: &Vector6<f64>| s.robot.frames(&(q + dq)).point(&s.tool.measuring_points[0]);
+    let deflection = (p(&dq0) - p(&Vector6::zeros())).norm();
+    let change = (p(&dq) - p(&dq0)).norm();
+    assert!((1.9e-3..2.1e-3).contains(&deflection), "{deflection}");
+    assert!((0.5e-6..5e-6).contains(&change), "{change} m");
+}
+
+/// A limit exactly at the nominal posture of axis 2: any compensation that moves axis 2 leaves it.
+#[test]
+fn every_point_that_cannot_be_compensated_is_named() {
+    let mut s = loaded_at_tcp("fanuc-r2000ic-165f");
+    let q = s.test_postures[0];
+    s.robot.upper[1] = q[1];
+    s.robot.lower[1] = q[1];
+    let compliance = Compliance {
+        h: s.nominal_compliance(),
+        covariance: None,
+    };
+    let point = |line: u64, fz: f64| PathPoint {
+        line,
+        target: Target::Posture(q),
+        wrench: Vector6::new(fz.abs(), fz.abs(), fz, 0.0, 0.0, 0.0),
+        frame: Frame::Base,
+    };
+    // A zero wrench needs no compensation; the others leave axis 2.
+    let path = [
+        point(4, -300.0),
+        point(5, 0.0),
+        point(6, -300.0),
+        point(7, 300.0),
+    ];
+    match compensate::path(&s, &compliance, &path, &options(&s, None)) {
+        Err(Error::Row {
+            line: 4,
+            column,
+            message,
+        }) => {
+            assert_eq!(column, "q_compensated");
+            assert!(message.contains("axis 2"), "{message}");
+            assert!(message.ends_with("lines 6, 7"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
