@@ -7,7 +7,6 @@ mod load;
 mod output;
 mod postures;
 mod report;
-mod study;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;

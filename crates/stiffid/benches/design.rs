@@ -46,10 +46,10 @@ fn search(c: &mut Bench) {
         b.iter(|| design::local(&setup, Criterion::Zhang2021, black_box(&start), &fd).unwrap())
     });
     g.bench_function("global/relative-a/default", |b| {
-        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &()).unwrap())
     });
     g.bench_function("global-fd/relative-a/default", |b| {
-        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &fd, &|_| {}).unwrap())
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &fd, &()).unwrap())
     });
     g.finish();
 }

@@ -39,11 +39,14 @@ pub mod identify;
 pub mod lsq;
 pub mod observation;
 pub mod prior;
+pub mod progress;
 pub mod setup;
 pub mod simulate;
 pub mod stiffness;
+pub mod study;
 pub mod validate;
 
+pub use progress::Progress;
 pub use setup::Setup;
 
 /// The Rust examples of the README, run as doctests.

@@ -62,7 +62,8 @@ struct Prepared {
 }
 
 /// Simulates the identification with every group of postures (axis angles, rad) at every noise level
-/// of the setup, `options.runs` times each.
+/// of the setup, `options.runs` times each, beside the first-order prediction of each group
+/// ([`evaluate`]).
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `runs == 0`; the errors of [`Factor::try_new`] (for example
@@ -72,10 +73,36 @@ pub fn simulate(
     groups: &[Vec<Vector6<f64>>],
     options: &Options,
 ) -> Result<Vec<GroupSimulation>> {
-    if options.runs == 0 {
+    check_runs(options)?;
+    let predicted: Vec<Vec<[f64; 6]>> = groups
+        .iter()
+        .map(|g| evaluate(setup, g).predicted_deviation_pct)
+        .collect();
+    simulate_with_predictions(setup, groups, &predicted, options)
+}
+
+/// [`simulate`] with the first-order predictions already at hand (for example from the groups'
+/// [`crate::design::Evaluation`]s): `predicted[g]` is group `g`'s
+/// [`crate::design::Evaluation::predicted_deviation_pct`], percent, [levels][6], copied into its
+/// result as is.
+///
+/// # Errors
+/// As [`simulate`]; [`Error::InvalidField`] when `predicted` does not hold one entry per group.
+pub fn simulate_with_predictions(
+    setup: &Setup,
+    groups: &[Vec<Vector6<f64>>],
+    predicted: &[Vec<[f64; 6]>],
+    options: &Options,
+) -> Result<Vec<GroupSimulation>> {
+    check_runs(options)?;
+    if predicted.len() != groups.len() {
         return Err(Error::InvalidField {
-            field: "runs".into(),
-            message: "expected at least one Monte Carlo run".into(),
+            field: "predicted".into(),
+            message: format!(
+                "expected one prediction per group ({}), got {}",
+                groups.len(),
+                predicted.len()
+            ),
         });
     }
     let prepared = groups
@@ -93,15 +120,24 @@ pub fn simulate(
             identify_once(&prepared[g], sigma, &mut rng)
         })
         .collect();
-    Ok(groups
+    Ok(predicted
         .iter()
         .enumerate()
-        .map(|(g, postures)| {
-            let predicted = evaluate(setup, postures).predicted_deviation_pct;
+        .map(|(g, predicted)| {
             let chunk = &rates[g * levels * runs..(g + 1) * levels * runs];
-            summarise(setup, chunk, runs, predicted)
+            summarise(setup, chunk, runs, predicted.clone())
         })
         .collect())
+}
+
+fn check_runs(options: &Options) -> Result<()> {
+    match options.runs {
+        0 => Err(Error::InvalidField {
+            field: "runs".into(),
+            message: "expected at least one Monte Carlo run".into(),
+        }),
+        _ => Ok(()),
+    }
 }
 
 fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {

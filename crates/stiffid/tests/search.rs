@@ -91,9 +91,7 @@ fn global_search_is_the_same_with_one_and_two_threads() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| {
-            design::global(&setup, Criterion::DOptimal, 6, &small(200), &|_| {}).unwrap()
-        })
+        pool.install(|| design::global(&setup, Criterion::DOptimal, 6, &small(200), &()).unwrap())
     };
     let (one, two) = (run(1), run(2));
     assert_eq!(one, two);
@@ -146,7 +144,7 @@ fn global_relative_a_predicts_lower_deviation_than_the_papers_index() {
         Criterion::RelativeA,
         6,
         &SearchOptions::quick(),
-        &|_| {},
+        &(),
     )
     .unwrap();
     let mean = |g: &[Vector6<f64>]| {
@@ -241,7 +239,7 @@ fn screened_global_search_matches_running_every_start_for_fewer_evaluations() {
                 screen_steps,
                 ..SearchOptions::default()
             };
-            design::global(&setup, criterion, 6, &options, &|_| {}).unwrap()
+            design::global(&setup, criterion, 6, &options, &()).unwrap()
         };
         let (screened, full) = (run(60), run(0));
         println!(

@@ -1,13 +1,14 @@
 //! `stiffid reproduce`: the paper's simulation study end to end, with a report.
 
 use crate::load;
-use crate::report::{self, figures, findings::findings};
-use crate::study::{self, Progress, StudyOptions, DEFAULT_STARTS, DEFAULT_TRIALS};
+use crate::report::{self, figures, findings::sentences};
 use anyhow::Result;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
+use stiffid::study::{self, findings, Options, DEFAULT_STARTS, DEFAULT_TRIALS};
+use stiffid::Progress;
 
 /// Arguments of `stiffid reproduce`.
 #[derive(clap::Args)]
@@ -71,7 +72,7 @@ pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
     let setup = load::setup(&args.setup)?;
     report::check_target(&args.out, args.force, report::summary::GENERATOR)?;
-    let options = StudyOptions {
+    let options = Options {
         runs: args.runs as usize,
         seed: args.seed,
         starts: args.starts as usize,
@@ -124,7 +125,7 @@ fn print_summary(study: &study::Study) {
         );
     }
     println!();
-    for s in findings(study).sentences(study) {
+    for s in sentences(&findings(study), study) {
         println!("- {s}");
     }
 }

@@ -46,7 +46,7 @@ pub struct Args {
     /// setup's bounds are reported and skipped.
     #[arg(long, conflicts_with_all = ["start", "start_random", "global"])]
     pool: Option<PathBuf>,
-    /// Exchange runs of a --pool choice [default: 8].
+    /// Exchange runs of a --pool choice, 1 to 1000 [default: 8].
     #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=1000))]
     restarts: Option<u64>,
     /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
@@ -262,7 +262,7 @@ fn global(
             .progress_chars("=> "),
     );
     bar.set_message(format!("global search ({criterion})"));
-    let outcome = design::global(setup, criterion, n, options, &|done| {
+    let outcome = design::global(setup, criterion, n, options, &|done: usize| {
         bar.set_position(done as u64)
     });
     bar.finish_and_clear();

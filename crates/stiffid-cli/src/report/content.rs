@@ -2,9 +2,10 @@
 //! [`super::markdown`] implement [`Writer`].
 
 use super::figures::Figure;
-use super::findings::findings;
+use super::findings::sentences;
+use super::search_words;
 use super::tables::{self, Table};
-use crate::study::Study;
+use stiffid::study::{findings, paper_table4, Study};
 
 /// A report format.
 pub trait Writer {
@@ -31,10 +32,10 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(1, "Posture selection for joint stiffness identification: the simulation study of Zhang et al. (2021)");
     w.paragraph(&format!(
         "Reproduces Section IV-A of Zhang, Guo, Sun and Sun, \"Method of Postures Selection for Industrial Robot Joint Stiffness Identification\", IEEE Access 9 (2021), doi:10.1109/ACCESS.2021.3073671 (Figs. 5-8, Tables 3-4) on the setup `{}` ({}), and shows beside it what scale-free criteria searched globally achieve. {} groups of {} postures, {} Monte Carlo runs per group and noise level, seed {}; computed in {:.1} s.",
-        s.name, s.robot.name, study.groups.len(), crate::study::POSTURES, study.runs, study.seed, study.elapsed_s
+        s.name, s.robot.name, study.groups.len(), stiffid::study::POSTURES, study.runs, study.seed, study.elapsed_s
     ));
     w.heading(2, "Findings");
-    w.list(&f.sentences(study));
+    w.list(&sentences(&f, study));
     w.table(&tables::groups(study));
     w.heading(
         2,
@@ -55,9 +56,9 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
     }
     w.paragraph("The same numbers: mean ± standard deviation over the runs, [first-order prediction], %. The paper's Table 4 shows a single run; a mean over runs is what a reader can compare across seeds.");
     w.table(&tables::table4(study));
-    if s.name == "zhang2021-comau-nj165" && study.validation_level == 1 {
+    if let Some(paper) = paper_table4(study) {
         w.paragraph("For reference, the paper's own Table 4 (one run, its own tool, rope anchor and start group, none of which the paper gives in full) beside this study's means. Single runs scatter by about their mean (the standard deviations above are close to the means), so only the orders of magnitude compare, and one cell (0.002%, the paper's Group 3, joint 3) can land near zero by chance.");
-        w.table(&tables::paper_table4(study));
+        w.table(&tables::paper_table4(study, paper));
     }
     w.heading(2, "Does the criterion predict accuracy?");
     w.paragraph("Every design criterion of every group (smaller is better) beside the group's measured average deviation rate. rho is Spearman's rank correlation between the criterion and the measured average deviation rate over the groups: +1 means the criterion ranks the groups exactly as their accuracy does.");
@@ -70,7 +71,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
         w.heading(3, &group.title);
         w.paragraph(&format!(
             "{}. Postures in `{}.csv`.",
-            group.origin.describe(study.seed),
+            search_words(&group.origin, study.seed),
             group.name
         ));
         w.table(&tables::postures(study, g));

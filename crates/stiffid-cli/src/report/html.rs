@@ -4,7 +4,7 @@ use super::content::compose;
 pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
-use crate::study::Study;
+use stiffid::study::Study;
 
 /// Text with `&`, `<`, `>` and `"` escaped.
 fn escape(text: &str) -> String {

@@ -3,7 +3,7 @@
 use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
-use crate::study::Study;
+use stiffid::study::Study;
 
 struct Markdown(String);
 

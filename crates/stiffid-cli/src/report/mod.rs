@@ -15,11 +15,11 @@ pub mod tables;
 use crate::commands::simulate::deviation_csv;
 use crate::output::write_atomic;
 use crate::postures;
-use crate::study::Study;
 use anyhow::{bail, Context, Result};
 use figures::Figure;
 use std::path::Path;
 use stiffid::design::Evaluation;
+use stiffid::study::{criterion_values, Origin, Study};
 
 /// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.
 pub const CRITERIA: [(&str, &str); 7] = [
@@ -47,18 +47,25 @@ pub const CRITERIA: [(&str, &str); 7] = [
     ("cond_psi", "cond(Psi) in SI units"),
 ];
 
-/// The values of [`CRITERIA`] of one group, in that order (`test_pose_mm` in mm).
+/// The values of [`CRITERIA`] of one group, in that order (the library's [`criterion_values`],
+/// `test_pose_mm` in mm).
 pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
-    let v = [
-        e.classical,
-        e.zhang2021,
-        e.scaled_cond,
-        e.d_optimal,
-        e.relative_a,
-        e.test_pose * 1e3,
-        e.cond_psi,
-    ];
+    let mut v = criterion_values(e);
+    v[5] *= 1e3;
     std::array::from_fn(|i| (CRITERIA[i].0, v[i]))
+}
+
+/// How a group was obtained, in words.
+pub fn search_words(origin: &Origin, seed: u64) -> String {
+    match origin {
+        Origin::Start => format!(
+            "seeded random start group: a Latin hypercube in the bounds (seed {seed}; each axis range cut into 6 equal strata, one posture per stratum of every axis, uniform within it)"
+        ),
+        Origin::Local(c) => format!("`{c}` minimised by SQP from Group 1 (as the paper)"),
+        Origin::Global(c, n) => format!(
+            "`{c}` minimised globally: best of {n} SQP searches from seeded Latin-hypercube starts (beyond the paper)"
+        ),
+    }
 }
 
 /// Refuses to write into `dir` if it exists, is not empty and holds no report of ours (no

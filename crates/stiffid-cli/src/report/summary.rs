@@ -2,12 +2,13 @@
 //! deviation rates. mm, deg, N and Nm/rad at the edges, units in the key names.
 
 use super::criteria_values;
-use super::findings::findings;
-use crate::study::Study;
+use super::findings::sentences;
+use super::search_words;
 use anyhow::Result;
 use nalgebra::{Isometry3, Vector3, Vector6};
 use serde_json::{json, Map, Value};
 use std::path::Path;
+use stiffid::study::{findings, Study};
 use stiffid::{Coordinates, Setup};
 
 /// The value of the `generator` key that marks a directory as a report of ours.
@@ -88,7 +89,10 @@ fn group_json(study: &Study, g: usize) -> Value {
         "criterion".into(),
         json!(group.origin.criterion().map(|c| c.name())),
     );
-    v.insert("search".into(), json!(group.origin.describe(study.seed)));
+    v.insert(
+        "search".into(),
+        json!(search_words(&group.origin, study.seed)),
+    );
     v.insert("search_evaluations".into(), json!(group.evaluations));
     v.insert(
         "postures_deg".into(),
@@ -160,10 +164,10 @@ pub fn json(study: &Study) -> Result<String> {
             "group3_factor_vs_group1": f.group3.first().map(|v| v.factor),
             "group3_factor_vs_group2": f.group3.get(1).map(|v| v.factor),
             "relative_a_factor_vs_group3": f.relative_a.as_ref().map(|v| v.factor),
-            "start_groups_where_zhang2021_beats_both": f.start_check.0,
-            "start_groups": f.start_check.1,
+            "start_groups_where_zhang2021_beats_both": f.start_check.wins,
+            "start_groups": f.start_check.trials,
             "prediction_mean_abs_relative_error": f.prediction_error,
-            "sentences": f.sentences(study),
+            "sentences": sentences(&f, study),
         },
     });
     crate::output::json(&doc)

@@ -1,8 +1,7 @@
 //! The report's tables as text cells, rendered by both [`super::html`] and [`super::markdown`].
 
-use super::findings::Findings;
 use super::{criteria_values, CRITERIA};
-use crate::study::Study;
+use stiffid::study::{Findings, Study};
 
 /// A table: header and rows of text cells.
 pub struct Table {
@@ -289,19 +288,9 @@ pub fn trials(study: &Study) -> Table {
     }
 }
 
-/// The paper's Table 4: deviation rates (%) of one simulation run at noise level 2, joints 1-6,
-/// Groups 1-3 (Zhang et al. 2021, Section IV-A).
-const PAPER_TABLE4: [[f64; 3]; 6] = [
-    [0.726, 0.339, 0.268],
-    [1.413, 9.845, 0.820],
-    [0.251, 0.488, 0.002],
-    [7.304, 2.259, 2.075],
-    [2.712, 2.236, 0.045],
-    [3.242, 2.364, 0.469],
-];
-
-/// The paper's Table 4 beside this study's means for Groups 1-3 at the same level.
-pub fn paper_table4(study: &Study) -> Table {
+/// The paper's Table 4 ([`stiffid::study::TABLE4`], [joint][group]) beside this study's means for
+/// Groups 1-3 at the same level.
+pub fn paper_table4(study: &Study, paper: &[[f64; 3]; 6]) -> Table {
     let l = study.validation_level;
     let mut header = strings(["joint", "paper Group 1", "paper Group 2", "paper Group 3"]);
     header.extend(
@@ -316,7 +305,7 @@ pub fn paper_table4(study: &Study) -> Table {
         rows: (0..6)
             .map(|j| {
                 let mut row = vec![(j + 1).to_string()];
-                row.extend(PAPER_TABLE4[j].iter().map(|v| format!("{v:.3}")));
+                row.extend(paper[j].iter().map(|v| format!("{v:.3}")));
                 row.extend(
                     study
                         .groups

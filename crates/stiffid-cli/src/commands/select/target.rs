@@ -44,8 +44,9 @@ impl From<&TargetOutcome> for TargetJson {
     }
 }
 
-/// The smallest group that reaches `pct`, chosen from the pool or by global searches, and every
-/// group size tried. Without `--report`, the figure is written beside `--out`.
+/// The smallest group that reaches `pct`, chosen from the pool or by global searches (its
+/// evaluations those of every group size tried), and every group size tried. Without `--report`,
+/// the figure is written beside `--out`.
 ///
 /// # Errors
 /// Neither `--pool` nor `--global`; a target no group size reaches (naming the best rate).
@@ -59,16 +60,19 @@ pub fn smallest(
         bail!("--target-pct needs --pool FILE.csv or --global to choose each group");
     }
     let max = pool.map_or(MAX_POSTURES, |p| p.usable());
-    let mut last = None;
+    let (mut last, mut evaluations) = (None, 0);
     let outcome = smallest_group(setup, pct, max, |n| -> Result<_> {
         let s = choose(args, setup, pool, n)?;
         let postures = s.postures.clone();
+        evaluations += s.evaluations;
         last = Some(s);
         Ok(postures)
     })?;
-    let (Some(selection), Some(step)) = (last, outcome.steps.last()) else {
+    let (Some(mut selection), Some(step)) = (last, outcome.steps.last()) else {
         bail!("--target-pct: no group size was tried");
     };
+    // Every group size's search counts.
+    selection.evaluations = evaluations;
     if !outcome.reached {
         let (j, worst) = step.worst_joint();
         let tried = match pool {

@@ -2,12 +2,11 @@
 //! measured average deviation rate, one panel per criterion, with Spearman's rank correlation.
 
 use super::{colour, failed, render, short, Figure, Plot};
-use crate::report::findings::spearman;
 use crate::report::{criteria_values, CRITERIA};
-use crate::study::Study;
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use stiffid::study::{spearman, Study};
 
 struct CriteriaPlot<'a>(&'a Study);
 

@@ -2,10 +2,10 @@
 //! per group; dashed, the first-order prediction.
 
 use super::{colour, failed, render, short, Figure, Plot};
-use crate::study::Study;
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use stiffid::study::Study;
 
 struct Deviation<'a>(&'a Study);
 

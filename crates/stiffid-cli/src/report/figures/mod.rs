@@ -7,12 +7,12 @@ pub mod postures;
 pub mod table;
 pub mod target;
 
-use crate::study::Study;
 use anyhow::{anyhow, bail, Context, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 use std::sync::OnceLock;
+use stiffid::study::Study;
 
 /// DejaVu Sans (Bitstream Vera license, `assets/DejaVuSans-LICENSE.txt`): the PNG text font.
 const FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");

@@ -4,13 +4,13 @@
 //! group so the figures compare.
 
 use super::{colour, failed, render, Figure, Plot};
-use crate::study::Study;
 use anyhow::Result;
 use nalgebra::{Vector3, Vector6};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use stiffid::cell::{capsules, Part};
+use stiffid::study::Study;
 use stiffid::Setup;
 
 /// The points of one posture's stick figure (base frame, m), and its loading point.

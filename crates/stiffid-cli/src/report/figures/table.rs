@@ -3,10 +3,10 @@
 //! shaded.
 
 use super::{colour, failed, render, Figure, Plot};
-use crate::study::Study;
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use stiffid::study::Study;
 
 struct Table<'a>(&'a Study);
 

@@ -5,6 +5,7 @@ use super::local::{check_count, evals_per_step, local};
 use super::sample::group_from_stream;
 use super::{SearchOptions, SearchOutcome};
 use crate::design::Criterion;
+use crate::progress::Progress;
 use crate::setup::Setup;
 use crate::{Error, Result};
 use rayon::prelude::*;
@@ -24,8 +25,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// convergence.
 ///
 /// Every start is seeded on its own and the results are compared in start order, so the same
-/// options give the same postures whatever the thread count. `progress` is called with the number
-/// of starts screened so far, after each one (from the worker threads).
+/// options give the same postures whatever the thread count. `progress` receives
+/// [`Progress::advance`] with the number of starts screened so far, after each one (from the
+/// worker threads); the caller begins and ends the stage.
 ///
 /// # Errors
 /// [`Error::InvalidField`] for fewer than 2 postures, no start, or the `test-pose` criterion on a
@@ -35,7 +37,7 @@ pub fn global(
     criterion: Criterion,
     postures: usize,
     options: &SearchOptions,
-    progress: &(dyn Fn(usize) + Sync),
+    progress: &dyn Progress,
 ) -> Result<SearchOutcome> {
     check_count(setup, criterion, postures)?;
     if options.starts == 0 {
@@ -57,7 +59,7 @@ pub fn global(
         .map(|s| {
             let start = group_from_stream(setup, postures, options.seed, s as u64 + 1);
             let outcome = local(setup, criterion, &start, &screening);
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
             outcome
         })
         .collect::<Result<_>>()?;
