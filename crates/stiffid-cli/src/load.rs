@@ -4,6 +4,7 @@ use anyhow::{bail, Context, Result};
 use nalgebra::{Matrix6, SVector, Vector6};
 use std::path::Path;
 use stiffid::deflection::Frame;
+use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{setup, Robot, Setup};
 
@@ -172,4 +173,14 @@ impl From<WrenchFrame> for Frame {
             WrenchFrame::Tool => Frame::Tool,
         }
     }
+}
+
+/// A measurement file (`stiffid::formats::measurements`), its measurements turned into the robot
+/// base frame; errors start with the file name, then the line and column. The text is dropped
+/// once parsed.
+pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
+    let name = || path.display().to_string();
+    let mut file = measurements::parse(&read(path)?).with_context(name)?;
+    file.to_base_frame(setup).with_context(name)?;
+    Ok(file)
 }

@@ -2,7 +2,6 @@
 //! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
 
 mod commands;
-mod data;
 mod load;
 mod output;
 mod postures;

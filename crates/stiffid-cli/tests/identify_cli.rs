@@ -3,14 +3,8 @@
 
 mod common;
 
-use common::{assert_usage_error, json, numbers, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, fanuc_csv, json, numbers, stiffid, temp_dir, write_file};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-
-fn fanuc_csv() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
-}
 
 #[test]
 fn fanuc_data_agree_with_the_numpy_least_squares_fit() {

@@ -9,7 +9,7 @@
 //!   gradient); `compare/local-search-fd`: the same with finite-difference gradients.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use nalgebra::{DVector, Vector3, Vector6};
+use nalgebra::{DVector, Vector6};
 use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions};
 use stiffid::identify::{identify, Measurement};
 use stiffid::lsq::Factor;
@@ -35,23 +35,12 @@ fn start_group() -> Vec<Vector6<f64>> {
         .collect()
 }
 
-/// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm` (point 1-based).
+/// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm`, read by the
+/// library's parser.
 fn measurements() -> Vec<Measurement> {
-    MEASUREMENTS
-        .lines()
-        .skip(1)
-        .map(|line| {
-            let f: Vec<&str> = line.split(',').collect();
-            let v: Vec<f64> = f[2..].iter().map(|v| v.parse().unwrap()).collect();
-            Measurement {
-                posture: f[0].to_string(),
-                point: f[1].parse::<usize>().unwrap() - 1,
-                q: Vector6::from_iterator(v[..6].iter().map(|d| d.to_radians())),
-                wrench: Vector6::new(v[6], v[7], v[8], 0.0, 0.0, 0.0),
-                displacement: Vector3::new(v[9], v[10], v[11]) * 1e-3,
-            }
-        })
-        .collect()
+    stiffid::formats::measurements::parse(MEASUREMENTS)
+        .unwrap()
+        .measurements
 }
 
 fn compare(c: &mut Criterion) {

@@ -60,11 +60,22 @@ pub enum Error {
     Measurement {
         /// Its 1-based position in the list of measurements.
         number: usize,
-        /// What is wrong in it: `posture`, `point`, `q1`..`q6` (an axis angle), `wrench` or
-        /// `displacement`.
-        field: String,
+        /// What is wrong in it.
+        field: MeasurementField,
         /// What was expected.
         message: String,
+    },
+    /// A measurement file (CSV) cannot be read: the line and, where there is one, the column.
+    #[error("line {line}{}: {problem}", column_name(*column, name))]
+    Column {
+        /// The 1-based line of the text.
+        line: u64,
+        /// The 1-based column (field) of the line, if the problem is in one.
+        column: Option<usize>,
+        /// The column's name in the header (empty if unknown).
+        name: String,
+        /// What is wrong.
+        problem: ColumnProblem,
     },
     /// A row of a table file (CSV) cannot be used. `line` is 1-based, as an editor shows it.
     #[error("line {line}, column {column}: {message}")]
@@ -90,6 +101,123 @@ pub enum Error {
         /// What held the non-finite number.
         what: String,
     },
+}
+
+/// The part of a [`Error::Measurement`] that is wrong.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeasurementField {
+    /// The posture index or label (e.g. one label at two sets of axis angles).
+    Posture,
+    /// The measuring point.
+    Point,
+    /// Axis angle `q_{i+1}` (0-based index `i`).
+    Axis(usize),
+    /// The force part of the wrench.
+    Force,
+    /// The moment part of the wrench.
+    Moment,
+    /// The measured displacement.
+    Displacement,
+}
+
+impl std::fmt::Display for MeasurementField {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            MeasurementField::Posture => write!(f, "posture"),
+            MeasurementField::Point => write!(f, "point"),
+            MeasurementField::Axis(i) => write!(f, "q{}", i + 1),
+            MeasurementField::Force => write!(f, "force"),
+            MeasurementField::Moment => write!(f, "moment"),
+            MeasurementField::Displacement => write!(f, "displacement"),
+        }
+    }
+}
+
+/// What is wrong in a line of a measurement file ([`Error::Column`]).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ColumnProblem {
+    /// No header (an empty file).
+    #[error("the file is empty: expected the header '{expected}' and one row per measurement")]
+    Empty {
+        /// The minimal header.
+        expected: String,
+    },
+    /// A header without rows.
+    #[error("expected at least one measurement row after the header")]
+    NoRows,
+    /// The CSV reader failed (e.g. invalid UTF-8 or quoting).
+    #[error("cannot read the row: {message}")]
+    Unreadable {
+        /// The reader's message.
+        message: String,
+    },
+    /// A header name that is not a known column.
+    #[error("unknown column '{given}'{}; expected {expected}", suggestion.as_ref().map_or(String::new(), |s| format!(" (did you mean '{s}'?)")))]
+    Unknown {
+        /// The name given, shortened.
+        given: String,
+        /// A known column the name probably meant.
+        suggestion: Option<String>,
+        /// The accepted columns.
+        expected: String,
+    },
+    /// A column named twice.
+    #[error("column '{given}' appears twice")]
+    Duplicate {
+        /// The name given, shortened.
+        given: String,
+    },
+    /// A needed column is absent from the header.
+    #[error("missing column '{missing}'")]
+    Missing {
+        /// The absent column.
+        missing: String,
+    },
+    /// Columns that exclude each other (two forms or two frames of one quantity).
+    #[error("give either {first} or {second}, not both")]
+    Conflict {
+        /// One set of columns.
+        first: String,
+        /// The other.
+        second: String,
+    },
+    /// A row with another number of fields than the header.
+    #[error("expected {expected} fields as in the header, got {got}")]
+    FieldCount {
+        /// Fields in the header.
+        expected: usize,
+        /// Fields in the row.
+        got: usize,
+    },
+    /// A field that is not a finite number.
+    #[error("'{value}' is not a finite number")]
+    NotANumber {
+        /// The field, shortened.
+        value: String,
+    },
+    /// An empty posture label.
+    #[error("empty posture label")]
+    EmptyLabel,
+    /// A measuring-point field that is not 1, 2, ...
+    #[error("'{value}' is not a measuring point number (1, 2, ...)")]
+    NotAPoint {
+        /// The field, shortened.
+        value: String,
+    },
+    /// A measurement the library rejected ([`Error::Measurement`]), placed in the file.
+    #[error("{message}")]
+    Measurement {
+        /// What was expected.
+        message: String,
+    },
+}
+
+fn column_name(column: Option<usize>, name: &str) -> String {
+    match (column, name.is_empty()) {
+        (None, _) => String::new(),
+        (Some(c), true) => format!(", column {c}"),
+        (Some(c), false) => format!(", column {c} ({name})"),
+    }
 }
 
 /// Result with the library's [`enum@Error`].

@@ -28,24 +28,43 @@
 //!
 //! With exactly six rows the fit is exact and there is no uncertainty estimate (`None`).
 
+pub mod adequacy;
+pub mod cross_validation;
+pub mod frames;
+pub mod nonnegative;
 pub mod robust;
 
+pub use adequacy::{Adequacy, UnitCheck};
+pub use cross_validation::{cross_validate, CrossValidation, Fold};
 pub use robust::{Loss, RobustFit};
 
 use crate::kinematics::Frames;
 use crate::lsq::Factor;
 use crate::observation::point_rows;
 use crate::stiffness::joint_torques;
-use crate::{Error, Result, Setup};
+use crate::{Error, MeasurementField, Result, Setup};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::cell::Cell;
+use std::collections::HashMap;
+
+/// Largest accepted displacement of a measuring point, m: a robot deflects by millimetres, so a
+/// larger value is a unit or transcription error.
+pub const MAX_DISPLACEMENT: f64 = 1.0;
+
+/// Largest accepted force magnitude, N.
+pub const MAX_FORCE: f64 = 1e6;
+
+/// Largest accepted moment magnitude, Nm.
+pub const MAX_MOMENT: f64 = 1e6;
 
 /// One measured displacement: a measuring point in a posture under a wrench.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measurement {
-    /// The posture's label. Measurements with the same label must have the same axis angles.
-    pub posture: String,
+    /// The posture: any number that identifies it (a file's labels are numbered `0, 1, ...` in
+    /// order of first appearance). Measurements of the same posture must have the same axis
+    /// angles.
+    pub posture: usize,
     /// Index of the measuring point in the setup's tool, 0-based.
     pub point: usize,
     /// Axis angles q, rad (controller convention).
@@ -63,8 +82,10 @@ pub struct Observations {
     pub psi: DMatrix<f64>,
     /// `delta`, `3n`, m.
     pub delta: DVector<f64>,
-    /// The number of distinct posture labels.
+    /// The number of distinct postures.
     pub postures: usize,
+    /// The posture of each measurement, numbered `0..postures` in order of first appearance.
+    pub posture_index: Vec<usize>,
 }
 
 /// Checks every measurement and stacks its three rows of `Psi` and `delta` (Eq. 10-11). Frames are
@@ -74,18 +95,20 @@ pub struct Observations {
 /// # Errors
 /// [`Error::Measurement`] naming the measurement (1-based) and what is wrong: a measuring point the
 /// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
-/// `q6`), a non-finite `wrench` or `displacement`, or a posture label used with different axis
-/// angles (`posture`).
+/// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
+/// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
+/// angles (`posture`). Linear in the measurements whatever the number of postures.
 pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Observations> {
     let n = measurements.len();
     let mut psi = DMatrix::zeros(3 * n, 6);
     let mut delta = DVector::zeros(3 * n);
-    let mut labels: Vec<(&str, &Vector6<f64>)> = Vec::new();
+    let mut labels = Postures::new(measurements);
+    let mut posture_index = Vec::with_capacity(n);
     // The measurement the frames and torques were computed for, the frames and the torques.
     let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
     for (i, meas) in measurements.iter().enumerate() {
         check(setup, i + 1, meas)?;
-        check_label(&mut labels, i + 1, meas)?;
+        posture_index.push(check_label(&mut labels, measurements, i)?);
         if state
             .as_ref()
             .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
@@ -110,12 +133,13 @@ pub fn observations(setup: &Setup, measurements: &[Measurement]) -> Result<Obser
     Ok(Observations {
         psi,
         delta,
-        postures: labels.len(),
+        postures: labels.count,
+        posture_index,
     })
 }
 
 fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
-    let error = |field: String, message: String| Error::Measurement {
+    let error = |field, message: String| Error::Measurement {
         number,
         field,
         message,
@@ -123,7 +147,7 @@ fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
     let points = setup.tool.measuring_points.len();
     if meas.point >= points {
         return Err(error(
-            "point".into(),
+            MeasurementField::Point,
             format!(
                 "measuring point {} does not exist: the setup has {points} (1 to {points})",
                 meas.point + 1
@@ -141,40 +165,96 @@ fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
                 robot.upper[axis].to_degrees()
             ),
         };
-        return Err(error(format!("q{}", axis + 1), message));
+        return Err(error(MeasurementField::Axis(axis), message));
     }
-    if !meas.wrench.iter().all(|v| v.is_finite()) {
-        return Err(error("wrench".into(), "expected finite numbers".into()));
-    }
-    if !meas.displacement.iter().all(|v| v.is_finite()) {
-        return Err(error(
-            "displacement".into(),
-            "expected finite numbers".into(),
-        ));
+    let force: Vector3<f64> = meas.wrench.fixed_rows::<3>(0).into();
+    let moment: Vector3<f64> = meas.wrench.fixed_rows::<3>(3).into();
+    let magnitudes = [
+        (MeasurementField::Force, force, MAX_FORCE, 1.0, "N"),
+        (MeasurementField::Moment, moment, MAX_MOMENT, 1.0, "Nm"),
+        (
+            MeasurementField::Displacement,
+            meas.displacement,
+            MAX_DISPLACEMENT,
+            1e3,
+            "mm",
+        ),
+    ];
+    for (field, v, limit, scale, unit) in magnitudes {
+        if !v.iter().all(|x| x.is_finite()) {
+            return Err(error(field, "expected finite numbers".into()));
+        }
+        // The largest component where the norm would overflow.
+        let size = Some(v.norm()).filter(|n| n.is_finite()).unwrap_or(v.amax());
+        if size > limit {
+            return Err(error(
+                field,
+                format!(
+                    "magnitude {:.4e} {unit} is above the limit {:.0e} {unit}: check the unit of the columns",
+                    size * scale,
+                    limit * scale
+                ),
+            ));
+        }
     }
     Ok(())
 }
 
-fn check_label<'a>(
-    labels: &mut Vec<(&'a str, &'a Vector6<f64>)>,
-    number: usize,
-    meas: &'a Measurement,
-) -> Result<()> {
-    match labels.iter().find(|(label, _)| *label == meas.posture) {
-        None => labels.push((&meas.posture, &meas.q)),
-        Some((_, q)) if **q == meas.q => {}
-        Some(_) => {
-            return Err(Error::Measurement {
-                number,
-                field: "posture".into(),
-                message: format!(
-                    "posture '{}' was measured before at other axis angles (give each posture its own label)",
-                    meas.posture
-                ),
-            })
-        }
+/// The postures seen so far: posture -> (its dense number, its first measurement). A table
+/// indexed by the posture number when the numbers are small (as a file's are), else a hash map.
+struct Postures {
+    table: Table,
+    count: usize,
+}
+
+enum Table {
+    /// `usize::MAX` before the posture is seen.
+    Dense(Vec<(usize, usize)>),
+    Sparse(HashMap<usize, (usize, usize)>),
+}
+
+impl Postures {
+    fn new(measurements: &[Measurement]) -> Self {
+        let n = measurements.len();
+        let table = match measurements.iter().all(|m| m.posture < 2 * n) {
+            true => Table::Dense(vec![(usize::MAX, usize::MAX); 2 * n]),
+            false => Table::Sparse(HashMap::new()),
+        };
+        Self { table, count: 0 }
     }
-    Ok(())
+
+    /// The dense number and the first measurement of `posture`, first seen at measurement `i`
+    /// if new.
+    fn entry(&mut self, posture: usize, i: usize) -> (usize, usize) {
+        let next = (self.count, i);
+        let slot = match &mut self.table {
+            Table::Dense(v) => &mut v[posture],
+            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, usize::MAX)),
+        };
+        if slot.0 == usize::MAX {
+            *slot = next;
+            self.count += 1;
+        }
+        *slot
+    }
+}
+
+/// The dense number of measurement `i`'s posture; an error if it was measured before at other
+/// axis angles.
+fn check_label(labels: &mut Postures, measurements: &[Measurement], i: usize) -> Result<usize> {
+    let meas = &measurements[i];
+    let (index, first) = labels.entry(meas.posture, i);
+    if measurements[first].q != meas.q {
+        return Err(Error::Measurement {
+            number: i + 1,
+            field: MeasurementField::Posture,
+            message: format!(
+                "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
+                first + 1
+            ),
+        });
+    }
+    Ok(index)
 }
 
 /// The result of an identification.
@@ -198,6 +278,23 @@ pub struct Identification {
     pub postures: usize,
     /// The iteratively reweighted fit, in robust mode.
     pub robust: Option<RobustFit>,
+    /// `(Psi^T W Psi)^-1` over the free compliances (zero rows and columns for compliances held
+    /// at a bound), (rad/Nm)^2 per m^2: the covariance of `h` per unit noise variance.
+    pub unit_covariance: Matrix6<f64>,
+    /// The compliances held at their bound `h_j = 0` by [`Observations::identify_nonnegative`]
+    /// (the active constraints); `None` for an unbounded fit.
+    pub active_bounds: Option<[bool; 6]>,
+}
+
+impl Identification {
+    /// Whether each joint's result is physical: a finite, positive compliance and stiffness.
+    /// A negative compliance, a zero one (infinitely stiff) or a non-finite one is not.
+    pub fn physical(&self) -> [bool; 6] {
+        std::array::from_fn(|j| {
+            let (h, k) = (self.compliance[j], self.stiffness[j]);
+            h.is_finite() && k.is_finite() && h > 0.0 && k > 0.0
+        })
+    }
 }
 
 /// Standard errors and 95% confidence intervals of an identification (see the module docs).
@@ -205,9 +302,11 @@ pub struct Identification {
 pub struct Uncertainty {
     /// Degrees of freedom `m - 6` (robust mode: rows of non-zero weight minus 6).
     pub dof: usize,
-    /// `s^2`, the residual variance of one coordinate, m^2.
+    /// The variance the intervals use, m^2: `s^2`, the residual variance of one coordinate (or,
+    /// in [`Adequacy::from_noise`], the setup's tracker noise variance).
     pub residual_variance: f64,
-    /// The 0.975 quantile of Student's t with `dof` degrees of freedom.
+    /// The quantile of the 95% intervals: of Student's t with `dof` degrees of freedom, or of the
+    /// normal distribution for a known variance.
     pub t_quantile: f64,
     /// `s^2 (Psi^T Psi)^-1`, (rad/Nm)^2.
     pub compliance_covariance: Matrix6<f64>,
@@ -234,14 +333,31 @@ impl Uncertainty {
         residual_variance: f64,
         dof: usize,
     ) -> Option<Self> {
-        let t_quantile = t975(dof)?;
+        Some(Self::with_quantile(
+            h,
+            unit_covariance,
+            residual_variance,
+            dof,
+            t975(dof)?,
+        ))
+    }
+
+    /// As [`Uncertainty::new`] with a given quantile of the 95% intervals (e.g. 1.96 for a known
+    /// variance).
+    pub fn with_quantile(
+        h: &Vector6<f64>,
+        unit_covariance: &Matrix6<f64>,
+        residual_variance: f64,
+        dof: usize,
+        t_quantile: f64,
+    ) -> Self {
         let compliance_covariance = unit_covariance * residual_variance;
         let se = compliance_covariance.diagonal().map(f64::sqrt);
         let k = h.map(|v| 1.0 / v);
         let se_k = se.component_div(&h.component_mul(h));
         let interval = |c: f64, s: f64| [c - t_quantile * s, c + t_quantile * s];
         let compliance_ci95: [[f64; 2]; 6] = std::array::from_fn(|j| interval(h[j], se[j]));
-        Some(Self {
+        Self {
             dof,
             residual_variance,
             t_quantile,
@@ -251,7 +367,7 @@ impl Uncertainty {
             stiffness_std_error: se_k,
             stiffness_ci95: std::array::from_fn(|j| interval(k[j], se_k[j])),
             stiffness_ci95_from_compliance: compliance_ci95.map(invert),
-        })
+        }
     }
 }
 
@@ -313,9 +429,78 @@ impl Observations {
     /// the data cannot identify and why (no measurement loads them, or their columns of `Psi` are
     /// dependent); [`Error::NotFinite`] for non-finite entries.
     pub fn identify(&self) -> Result<Identification> {
+        self.check_deflection()?;
         let factor = Factor::try_new(&self.psi)?;
         let h = factor.solve(&self.delta);
-        Ok(self.finish(h, &factor, factor.cond(), None))
+        let residuals = &self.delta - &self.psi * h;
+        Ok(self.finish(
+            h,
+            residuals,
+            factor.unit_covariance(),
+            6,
+            factor.cond(),
+            None,
+        ))
+    }
+
+    /// [`Observations::identify`] without a copy of `Psi`: it is factored in place and the
+    /// residuals come from the factor ([`Factor::residuals`]). For large data sets (a million
+    /// measurements make `Psi` 144 MB).
+    ///
+    /// # Errors
+    /// Those of [`Observations::identify`].
+    pub fn into_identification(mut self) -> Result<Identification> {
+        self.check_deflection()?;
+        let psi = std::mem::replace(&mut self.psi, DMatrix::zeros(0, 6));
+        let factor = Factor::try_from_matrix(psi)?;
+        let h = factor.solve(&self.delta);
+        let residuals = factor.residuals(&self.delta);
+        Ok(self.finish(
+            h,
+            residuals,
+            factor.unit_covariance(),
+            6,
+            factor.cond(),
+            None,
+        ))
+    }
+
+    /// The least-squares compliance with the bounds `h >= 0` (a joint cannot be softer than
+    /// infinitely stiff): the Lawson-Hanson active-set method ([`nonnegative`]) on the QR-reduced
+    /// problem `min |R h - c|`, `c` the first six entries of `Q^T delta`. Equal to
+    /// [`Observations::identify`] when that is already non-negative. Joints at their bound have
+    /// `h_j = 0` (`k_j = inf`, not physical: the data cannot tell them from rigid) and are listed
+    /// in [`Identification::active_bounds`]; the uncertainty is that of the free compliances
+    /// with the bound ones fixed, with `m - free` degrees of freedom.
+    ///
+    /// # Errors
+    /// Those of [`Observations::identify`].
+    pub fn identify_nonnegative(&self) -> Result<Identification> {
+        self.check_deflection()?;
+        let factor = Factor::try_new(&self.psi)?;
+        let fit = nonnegative::solve(factor.r(), &factor.project(&self.delta));
+        let free = fit.active.iter().filter(|a| !**a).count();
+        let mut id = self.finish(
+            fit.h,
+            &self.delta - &self.psi * fit.h,
+            nonnegative::unit_covariance(factor.r(), &fit.active),
+            free,
+            factor.cond(),
+            None,
+        );
+        id.active_bounds = Some(fit.active);
+        Ok(id)
+    }
+
+    /// [`Error::InvalidField`] when every measured displacement is zero: nothing deflected.
+    fn check_deflection(&self) -> Result<()> {
+        match self.delta.iter().any(|d| *d != 0.0) {
+            true => Ok(()),
+            false => Err(Error::InvalidField {
+                field: "displacement".into(),
+                message: "every measured displacement is zero: nothing to identify (check the displacement columns)".into(),
+            }),
+        }
     }
 
     /// Robust identification: iteratively reweighted least squares with `loss` ([`robust`]),
@@ -327,20 +512,32 @@ impl Observations {
     /// Those of [`Observations::identify`]; [`Error::Unidentifiable`] also when the rows left with
     /// weight make `Psi` rank deficient.
     pub fn identify_robust(&self, loss: Loss) -> Result<Identification> {
+        self.check_deflection()?;
         let factor = Factor::try_new(&self.psi)?;
         let start = factor.solve(&self.delta);
         let (h, weighted, fit) = robust::fit(&self.psi, &self.delta, start, loss)?;
-        Ok(self.finish(h, &weighted, factor.cond(), Some(fit)))
+        let residuals = &self.delta - &self.psi * h;
+        Ok(self.finish(
+            h,
+            residuals,
+            weighted.unit_covariance(),
+            6,
+            factor.cond(),
+            Some(fit),
+        ))
     }
 
+    /// The statistics of compliance `h` with residuals `delta - Psi h`,
+    /// `(Psi^T W Psi)^-1 = unit_covariance` and `free` estimated compliances.
     fn finish(
         &self,
         h: Vector6<f64>,
-        factor: &Factor,
+        residuals: DVector<f64>,
+        unit_covariance: Matrix6<f64>,
+        free: usize,
         cond_psi: f64,
         robust: Option<RobustFit>,
     ) -> Identification {
-        let residuals = &self.delta - &self.psi * h;
         let rows = residuals.len();
         let (weighted_rss, weighted_rows) = match &robust {
             None => (residuals.norm_squared(), rows),
@@ -349,15 +546,10 @@ impl Observations {
                 fit.weights.iter().filter(|w| **w > 0.0).count(),
             ),
         };
-        let dof = weighted_rows.saturating_sub(6);
+        let dof = weighted_rows.saturating_sub(free);
         let uncertainty = match dof {
             0 => None,
-            _ => Uncertainty::new(
-                &h,
-                &factor.unit_covariance(),
-                weighted_rss / dof as f64,
-                dof,
-            ),
+            _ => Uncertainty::new(&h, &unit_covariance, weighted_rss / dof as f64, dof),
         };
         Identification {
             compliance: h,
@@ -369,6 +561,8 @@ impl Observations {
             rows,
             postures: self.postures,
             robust,
+            unit_covariance,
+            active_bounds: None,
         }
     }
 }

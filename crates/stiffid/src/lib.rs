@@ -32,7 +32,7 @@ pub mod kinematics;
 mod linalg;
 pub mod robot;
 
-pub use error::{Error, Result};
+pub use error::{ColumnProblem, Error, MeasurementField, Result};
 pub use kinematics::{dexterity, Coordinates, Frames};
 pub use robot::{AxisMap, Joint, Robot};
 pub mod identify;

@@ -105,21 +105,48 @@ impl Factor {
     /// # Panics
     /// If `delta` does not have as many entries as `Psi` has rows.
     pub fn solve(&self, delta: &DVector<f64>) -> Vector6<f64> {
+        self.r_inv * self.project(delta)
+    }
+
+    /// The first six entries `c` of `Q^T delta`: `|Psi h - delta|^2 = |R h - c|^2 + const`, so
+    /// any problem in `h` over these rows (e.g. with bounds) can be solved on the 6x6 `R`.
+    ///
+    /// # Panics
+    /// If `delta` does not have as many entries as `Psi` has rows.
+    pub fn project(&self, delta: &DVector<f64>) -> Vector6<f64> {
+        let mut d = delta.clone();
+        self.reflect(&mut d, 0..6);
+        Vector6::from_column_slice(&d.as_slice()[..6])
+    }
+
+    /// The least-squares residuals `delta - Psi h` (h = [`Factor::solve`]) without `Psi`:
+    /// `Q^T delta` with its first six entries zeroed, multiplied by `Q` (as LAPACK's `dgels`).
+    ///
+    /// # Panics
+    /// If `delta` does not have as many entries as `Psi` has rows.
+    pub fn residuals(&self, delta: &DVector<f64>) -> DVector<f64> {
+        let mut d = delta.clone();
+        self.reflect(&mut d, 0..6);
+        d.rows_mut(0, 6).fill(0.0);
+        self.reflect(&mut d, (0..6).rev());
+        d
+    }
+
+    /// Applies the reflectors `H_k` in the order given: `0..6` is `Q^T d`, the reverse `Q d`.
+    fn reflect(&self, d: &mut DVector<f64>, order: impl Iterator<Item = usize>) {
         assert_eq!(
-            delta.len(),
+            d.len(),
             self.reflectors.nrows(),
             "delta must have one entry per row of Psi"
         );
-        let mut d = delta.clone();
         let m = d.len();
         let (a, d) = (self.reflectors.as_slice(), d.as_mut_slice());
-        for k in 0..6 {
+        for k in order {
             let v = &a[k * m + k + 1..(k + 1) * m];
             let w = self.taus[k] * (d[k] + dot(v, &d[k + 1..]));
             d[k] -= w;
             axpy(-w, v, &mut d[k + 1..]);
         }
-        self.r_inv * Vector6::from_column_slice(&d[..6])
     }
 
     /// `(Psi^T Psi)^-1 = R^-1 R^-T`: the covariance of `h` per unit noise variance.

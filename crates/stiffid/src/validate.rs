@@ -3,7 +3,10 @@
 //!
 //! For each measurement the forward model predicts the translation of its measuring point,
 //! `delta_c = J_m (h .* tau)` (Eq. 4-7; computed as the measurement's rows of `Psi` times `h`), and
-//! `delta_b = |delta_m - delta_c|` (Eq. 22) is how far the prediction is off.
+//! `delta_b = |delta_m - delta_c|` (Eq. 22) is how far the prediction is off. Beside it, the size of
+//! the measured deflections `|delta_m|` and the share of them the model explains,
+//! `1 - RMS(delta_b) / RMS(|delta_m|)` (1: perfect prediction; 0: no better than predicting no
+//! deflection; negative: worse).
 
 use crate::identify::{observations, Measurement};
 use crate::{Error, Result, Setup};
@@ -12,8 +15,8 @@ use nalgebra::{Vector3, Vector6};
 /// The check of one measurement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PointCheck {
-    /// The posture's label.
-    pub posture: String,
+    /// The posture ([`Measurement::posture`]).
+    pub posture: usize,
     /// The measuring point, 0-based.
     pub point: usize,
     /// Measured translation `delta_m`, base frame, m.
@@ -35,6 +38,10 @@ pub struct Validation {
     pub max: f64,
     /// Root mean square of `delta_b`, m.
     pub rms: f64,
+    /// Mean, largest and root mean square of the measured displacement magnitudes `|delta_m|`, m.
+    pub measured: [f64; 3],
+    /// `1 - RMS(delta_b) / RMS(|delta_m|)`: the share of the measured deflection the model explains.
+    pub explained: f64,
 }
 
 /// Predicts every measurement with joint stiffness `stiffness` (Nm/rad) and compares (Eq. 22).
@@ -67,7 +74,7 @@ pub fn validate(
         .map(|(i, meas)| {
             let predicted: Vector3<f64> = predicted.fixed_rows::<3>(3 * i).into_owned();
             PointCheck {
-                posture: meas.posture.clone(),
+                posture: meas.posture,
                 point: meas.point,
                 measured: meas.displacement,
                 predicted,
@@ -75,14 +82,24 @@ pub fn validate(
             }
         })
         .collect();
-    let n = checks.len() as f64;
-    let mean = checks.iter().map(|c| c.delta_b).sum::<f64>() / n;
-    let max = checks.iter().map(|c| c.delta_b).fold(0.0, f64::max);
-    let rms = (checks.iter().map(|c| c.delta_b.powi(2)).sum::<f64>() / n).sqrt();
+    let [mean, max, rms] = summary(checks.iter().map(|c| c.delta_b));
+    let measured = summary(checks.iter().map(|c| c.measured.norm()));
     Ok(Validation {
         checks,
         mean,
         max,
         rms,
+        explained: 1.0 - rms / measured[2],
+        measured,
     })
+}
+
+/// Mean, largest and root mean square of non-negative values.
+fn summary(values: impl Iterator<Item = f64> + Clone) -> [f64; 3] {
+    let n = values.clone().count() as f64;
+    [
+        values.clone().sum::<f64>() / n,
+        values.clone().fold(0.0, f64::max),
+        (values.map(|v| v * v).sum::<f64>() / n).sqrt(),
+    ]
 }

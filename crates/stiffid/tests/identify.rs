@@ -4,30 +4,18 @@
 
 mod common;
 
-use common::{deg, paper_measurements, synthetic, PAPER_POSTURES_DEG};
+use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 use stiffid::identify::{identify, identify_robust, Loss, Measurement};
 use stiffid::kinematics::Coordinates;
 use stiffid::validate::validate;
+use stiffid::MeasurementField;
 use stiffid::{robot::presets, setup, Error};
 
 fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
     (a - truth).component_div(truth).amax()
-}
-
-/// `data` with independent Gaussian noise of standard deviation `sigma` (m) on every displacement
-/// component, drawn in measurement order from `rng`.
-fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec<Measurement> {
-    let noise = Normal::new(0.0, sigma).unwrap();
-    data.iter()
-        .map(|m| Measurement {
-            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(rng)),
-            ..m.clone()
-        })
-        .collect()
 }
 
 #[test]
@@ -181,22 +169,25 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
     bad[4].point = 4;
     assert_eq!(
         field(identify(&setup, &bad).unwrap_err()),
-        (5, "point".into())
+        (5, MeasurementField::Point)
     );
     let mut bad = data.clone();
     bad[6].q[2] = setup.robot.upper[2] + 0.1;
-    assert_eq!(field(identify(&setup, &bad).unwrap_err()), (7, "q3".into()));
+    assert_eq!(
+        field(identify(&setup, &bad).unwrap_err()),
+        (7, MeasurementField::Axis(2))
+    );
     let mut bad = data.clone();
     bad[2].wrench[1] = f64::NAN;
     assert_eq!(
         field(identify(&setup, &bad).unwrap_err()),
-        (3, "wrench".into())
+        (3, MeasurementField::Force)
     );
     let mut bad = data.clone();
-    bad[5].posture = "P1".into();
+    bad[5].posture = 0;
     assert_eq!(
         field(identify(&setup, &bad).unwrap_err()),
-        (6, "posture".into())
+        (6, MeasurementField::Posture)
     );
     assert_eq!(
         identify(&setup, &data[..1]).unwrap_err(),

@@ -1,13 +1,21 @@
 //! `stiffid identify`: joint stiffness from a measurement file (Zhang et al. 2021, Eq. 10-14), with
-//! standard errors, 95% confidence intervals, residuals and an optional robust fit.
+//! standard errors, 95% confidence intervals, the model check against the tracker noise,
+//! residuals, and optionally a robust or non-negative fit and cross-validation.
 
+use crate::load;
 use crate::output::{json, refuse_to_overwrite, write_atomic};
-use crate::{data, load};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid::identify::{observations, Identification, Loss};
+use stiffid::formats::measurements::MeasurementFile;
+use stiffid::identify::{
+    cross_validate, observations, Adequacy, CrossValidation, Identification, Loss, Observations,
+    Uncertainty, UnitCheck,
+};
 use stiffid::kinematics::Coordinates;
+use stiffid::Setup;
+
+mod text;
 
 /// Arguments of `stiffid identify`.
 #[derive(clap::Args)]
@@ -19,8 +27,18 @@ pub struct Args {
     #[arg(long)]
     data: PathBuf,
     /// Down-weight outliers by iteratively reweighted least squares (`--robust` alone: huber).
-    #[arg(long, value_enum, num_args = 0..=1, default_missing_value = "huber")]
+    #[arg(long, value_enum, num_args = 0..=1, default_missing_value = "huber", conflicts_with = "nonnegative")]
     robust: Option<Robust>,
+    /// Bound every compliance at >= 0 (Lawson-Hanson non-negative least squares) and report the
+    /// active bounds.
+    #[arg(long)]
+    nonnegative: bool,
+    /// Cross-validate over postures: leave one posture out (or `--folds K`), refit, predict it.
+    #[arg(long)]
+    cross_validate: bool,
+    /// Number of cross-validation folds, 2 to the number of postures (implies --cross-validate).
+    #[arg(long)]
+    folds: Option<usize>,
     /// Print JSON instead of tables.
     #[arg(long)]
     json: bool,
@@ -38,8 +56,22 @@ enum Robust {
     Tukey,
 }
 
-/// The JSON result. Units in the key names; intervals `[lower, upper]`; `null` for an unbounded
-/// end or when there are no degrees of freedom left.
+/// Everything one run found, for the JSON and the text.
+pub struct Run<'a> {
+    setup_name: &'a str,
+    data_name: String,
+    setup: &'a Setup,
+    file: &'a MeasurementFile,
+    id: Identification,
+    adequacy: Option<Adequacy>,
+    unit: Option<UnitCheck>,
+    cross_validation: Option<CrossValidation>,
+    /// The postures' dense numbers -> their first measurement.
+    first_of_posture: Vec<usize>,
+}
+
+/// The JSON result. Units in the key names; intervals `[lower, upper]`; `null` for a number that
+/// is not finite (an unbounded end, an infinite stiffness) or when there are no degrees of freedom.
 #[derive(Serialize)]
 struct IdentifyJson {
     setup: String,
@@ -50,19 +82,41 @@ struct IdentifyJson {
     postures: usize,
     stiffness_nm_per_rad: [f64; 6],
     compliance_rad_per_nm: [f64; 6],
+    physical: [bool; 6],
+    active_bounds: Option<[bool; 6]>,
+    intervals_from: &'static str,
     std_error_nm_per_rad: Option<[f64; 6]>,
     ci95_nm_per_rad: Option<[[f64; 2]; 6]>,
-    ci95_from_compliance_nm_per_rad: Option<[[Option<f64>; 2]; 6]>,
+    ci95_from_compliance_nm_per_rad: Option<[[f64; 2]; 6]>,
     compliance_std_error_rad_per_nm: Option<[f64; 6]>,
     compliance_ci95_rad_per_nm: Option<[[f64; 2]; 6]>,
     compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
     degrees_of_freedom: Option<usize>,
     t_quantile: Option<f64>,
     residual_std_mm: Option<f64>,
+    noise_std_mm: f64,
+    noise_ratio: Option<f64>,
+    chi2_statistic: Option<f64>,
+    chi2_p_value: Option<f64>,
+    model_error_dominates: Option<bool>,
+    tracker_noise: Option<IntervalsJson>,
+    unit_warning: Option<String>,
     cond_psi: f64,
     residual_rms_mm: f64,
     residuals: Vec<ResidualJson>,
     robust: Option<RobustJson>,
+    cross_validation: Option<CrossValidationJson>,
+}
+
+/// Standard errors and intervals computed from a known variance.
+#[derive(Serialize)]
+struct IntervalsJson {
+    std_error_nm_per_rad: [f64; 6],
+    ci95_nm_per_rad: [[f64; 2]; 6],
+    ci95_from_compliance_nm_per_rad: [[f64; 2]; 6],
+    compliance_std_error_rad_per_nm: [f64; 6],
+    compliance_ci95_rad_per_nm: [[f64; 2]; 6],
+    quantile: f64,
 }
 
 #[derive(Serialize)]
@@ -93,57 +147,157 @@ struct RowJson {
     residual_mm: f64,
 }
 
+#[derive(Serialize)]
+struct CrossValidationJson {
+    folds: usize,
+    stiffness_mean_nm_per_rad: [f64; 6],
+    stiffness_std_nm_per_rad: [f64; 6],
+    stiffness_min_nm_per_rad: [f64; 6],
+    stiffness_max_nm_per_rad: [f64; 6],
+    rms_delta_b_mm: f64,
+    rms_measured_mm: f64,
+    explained: f64,
+    influential_postures: Vec<InfluentialJson>,
+    per_fold: Vec<FoldJson>,
+}
+
+#[derive(Serialize)]
+struct FoldJson {
+    postures: Vec<String>,
+    stiffness_nm_per_rad: [f64; 6],
+    rms_delta_b_mm: f64,
+    delta_b_mm: Vec<f64>,
+}
+
+#[derive(Serialize)]
+struct InfluentialJson {
+    postures: Vec<String>,
+    joints: Vec<usize>,
+}
+
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     if let Some(out) = &args.out {
         refuse_to_overwrite(out, &[&args.data])?;
     }
-    let data = data::read(&args.data)?;
+    let file = load::measurements(&args.data, &setup)?;
     let name = args.data.display().to_string();
-    let obs = observations(&setup, &data.measurements)
-        .map_err(|e| data.explain(e))
+    let obs = observations(&setup, &file.measurements)
+        .map_err(|e| file.explain(e))
         .with_context(|| name.clone())?;
-    let id = match args.robust {
-        None => obs.identify(),
-        Some(Robust::Huber) => obs.identify_robust(Loss::Huber),
-        Some(Robust::Tukey) => obs.identify_robust(Loss::Tukey),
+    let mut first_of_posture = vec![usize::MAX; obs.postures];
+    for (i, &p) in obs.posture_index.iter().enumerate().rev() {
+        first_of_posture[p] = i;
     }
-    .with_context(|| name.clone())?;
-    let result = to_json(&args.setup, &name, setup.springs, &data, &id);
-    let text = json(&result)?;
-    if let Some(out) = &args.out {
-        write_atomic(out, text.as_bytes())?;
+    let (id, cross_validation) = fit(args, obs).with_context(|| name.clone())?;
+    let run = Run {
+        setup_name: &args.setup,
+        data_name: name,
+        setup: &setup,
+        file: &file,
+        adequacy: id.adequacy(setup.noise.variance),
+        unit: id.unit_check(&setup.nominal_stiffness),
+        id,
+        cross_validation,
+        first_of_posture,
+    };
+    for warning in text::warnings(&run) {
+        eprintln!("warning: {warning}");
     }
-    match args.json {
-        true => print!("{text}"),
-        false => print!("{}", human(&result, &id)),
+    if args.json || args.out.is_some() {
+        let text = json(&to_json(&run))?;
+        if let Some(out) = &args.out {
+            write_atomic(out, text.as_bytes())?;
+        }
+        if args.json {
+            print!("{text}");
+            return Ok(());
+        }
     }
+    print!("{}", text::human(&run));
     Ok(())
+}
+
+/// The fit the arguments ask for, and the cross-validation if asked.
+fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossValidation>)> {
+    let id = match (args.robust, args.nonnegative) {
+        (Some(Robust::Huber), _) => obs.identify_robust(Loss::Huber)?,
+        (Some(Robust::Tukey), _) => obs.identify_robust(Loss::Tukey)?,
+        (None, true) => obs.identify_nonnegative()?,
+        (None, false) if args.cross_validate || args.folds.is_some() => obs.identify()?,
+        // Nothing else needs Psi: factor it in place (no copy of a large Psi).
+        (None, false) => return Ok((obs.into_identification()?, None)),
+    };
+    let cross_validation = match args.cross_validate || args.folds.is_some() {
+        false => None,
+        true => {
+            Some(cross_validate(&obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
+        }
+    };
+    Ok((id, cross_validation))
 }
 
 fn mm(v: f64) -> f64 {
     v * 1e3
 }
 
-fn to_json(
-    setup: &str,
-    name: &str,
-    springs: Coordinates,
-    data: &data::Data,
-    id: &Identification,
-) -> IdentifyJson {
+impl Run<'_> {
+    /// The label of measurement `i`'s posture.
+    fn label(&self, i: usize) -> &str {
+        &self.file.labels[self.file.measurements[i].posture]
+    }
+
+    /// The labels of dense posture numbers.
+    fn labels(&self, postures: &[usize]) -> Vec<String> {
+        postures
+            .iter()
+            .map(|&p| self.label(self.first_of_posture[p]).to_string())
+            .collect()
+    }
+
+    /// The postures of each influential fold and the joints (1-based) it moves.
+    fn influential(&self) -> Vec<InfluentialJson> {
+        let Some(cv) = &self.cross_validation else {
+            return Vec::new();
+        };
+        cv.folds
+            .iter()
+            .filter(|f| f.influential.iter().any(|i| *i))
+            .map(|f| InfluentialJson {
+                postures: self.labels(&f.postures),
+                joints: (0..6)
+                    .filter(|&j| f.influential[j])
+                    .map(|j| j + 1)
+                    .collect(),
+            })
+            .collect()
+    }
+}
+
+fn intervals(u: &Uncertainty) -> IntervalsJson {
+    IntervalsJson {
+        std_error_nm_per_rad: u.stiffness_std_error.into(),
+        ci95_nm_per_rad: u.stiffness_ci95,
+        ci95_from_compliance_nm_per_rad: u.stiffness_ci95_from_compliance,
+        compliance_std_error_rad_per_nm: u.compliance_std_error.into(),
+        compliance_ci95_rad_per_nm: u.compliance_ci95,
+        quantile: u.t_quantile,
+    }
+}
+
+fn to_json(run: &Run) -> IdentifyJson {
+    let (id, file) = (&run.id, run.file);
     let u = id.uncertainty.as_ref();
-    let finite = |v: f64| v.is_finite().then_some(v);
     let residual = |i: usize| id.residuals.fixed_rows::<3>(3 * i).map(mm).into();
-    let residuals = data
+    let residuals = file
         .measurements
         .iter()
         .enumerate()
         .map(|(i, m)| ResidualJson {
-            posture: m.posture.clone(),
+            posture: run.label(i).to_string(),
             point: m.point + 1,
-            line: data.line(i),
+            line: file.lines[i],
             residual_mm: residual(i),
         })
         .collect();
@@ -156,37 +310,32 @@ fn to_json(
         down_weighted: fit
             .down_weighted()
             .into_iter()
-            .map(|row| {
-                let m = &data.measurements[row / 3];
-                RowJson {
-                    posture: m.posture.clone(),
-                    point: m.point + 1,
-                    line: data.line(row / 3),
-                    coordinate: ['x', 'y', 'z'][row % 3],
-                    weight: fit.weights[row],
-                    residual_mm: mm(id.residuals[row]),
-                }
+            .map(|row| RowJson {
+                posture: run.label(row / 3).to_string(),
+                point: file.measurements[row / 3].point + 1,
+                line: file.lines[row / 3],
+                coordinate: ['x', 'y', 'z'][row % 3],
+                weight: fit.weights[row],
+                residual_mm: mm(id.residuals[row]),
             })
             .collect(),
     });
+    let a = run.adequacy.as_ref();
     IdentifyJson {
-        setup: setup.to_string(),
-        data: name.to_string(),
-        springs,
-        method: id
-            .robust
-            .as_ref()
-            .map_or("least-squares", |f| f.loss.name()),
+        setup: run.setup_name.to_string(),
+        data: run.data_name.clone(),
+        springs: run.setup.springs,
+        method: text::method_key(id),
         rows: id.rows,
         postures: id.postures,
         stiffness_nm_per_rad: id.stiffness.into(),
         compliance_rad_per_nm: id.compliance.into(),
+        physical: id.physical(),
+        active_bounds: id.active_bounds,
+        intervals_from: "residual variance",
         std_error_nm_per_rad: u.map(|u| u.stiffness_std_error.into()),
         ci95_nm_per_rad: u.map(|u| u.stiffness_ci95),
-        ci95_from_compliance_nm_per_rad: u.map(|u| {
-            u.stiffness_ci95_from_compliance
-                .map(|[a, b]| [finite(a), finite(b)])
-        }),
+        ci95_from_compliance_nm_per_rad: u.map(|u| u.stiffness_ci95_from_compliance),
         compliance_std_error_rad_per_nm: u.map(|u| u.compliance_std_error.into()),
         compliance_ci95_rad_per_nm: u.map(|u| u.compliance_ci95),
         compliance_covariance_rad2_per_nm2: u.map(|u| {
@@ -195,136 +344,37 @@ fn to_json(
         degrees_of_freedom: u.map(|u| u.dof),
         t_quantile: u.map(|u| u.t_quantile),
         residual_std_mm: u.map(|u| mm(u.residual_variance.sqrt())),
+        noise_std_mm: mm(run.setup.noise.sigma()),
+        noise_ratio: a.map(|a| a.noise_ratio),
+        chi2_statistic: a.map(|a| a.chi2),
+        chi2_p_value: a.map(|a| a.p_value),
+        model_error_dominates: a.map(Adequacy::model_error_dominates),
+        tracker_noise: a.map(|a| intervals(&a.from_noise)),
+        unit_warning: run.unit.as_ref().map(|u| text::unit_warning(run, u)),
         cond_psi: id.cond_psi,
         residual_rms_mm: mm(id.residual_rms),
         residuals,
         robust,
+        cross_validation: run.cross_validation.as_ref().map(|cv| CrossValidationJson {
+            folds: cv.folds.len(),
+            stiffness_mean_nm_per_rad: cv.stiffness_mean.into(),
+            stiffness_std_nm_per_rad: cv.stiffness_std.into(),
+            stiffness_min_nm_per_rad: cv.stiffness_range[0].into(),
+            stiffness_max_nm_per_rad: cv.stiffness_range[1].into(),
+            rms_delta_b_mm: mm(cv.rms_delta_b),
+            rms_measured_mm: mm(cv.rms_measured),
+            explained: 1.0 - cv.rms_delta_b / cv.rms_measured,
+            influential_postures: run.influential(),
+            per_fold: cv
+                .folds
+                .iter()
+                .map(|f| FoldJson {
+                    postures: run.labels(&f.postures),
+                    stiffness_nm_per_rad: f.stiffness.into(),
+                    rms_delta_b_mm: mm(f.rms_delta_b),
+                    delta_b_mm: f.delta_b.iter().map(|d| mm(*d)).collect(),
+                })
+                .collect(),
+        }),
     }
-}
-
-/// Relative standard error above which a joint is called poorly determined.
-const POOR: f64 = 0.25;
-
-fn human(r: &IdentifyJson, id: &Identification) -> String {
-    let springs = match r.springs {
-        Coordinates::Axis => "axes (drives)",
-        Coordinates::Kinematic => "kinematic joints",
-    };
-    let mut s = format!(
-        "setup {}, data {}\nsprings on the {springs}; {} rows of Psi from {} postures; {}\n\
-         cond(Psi) {:.4}, residual RMS {:.4} mm",
-        r.setup,
-        r.data,
-        r.rows,
-        r.postures,
-        match r.method {
-            "least-squares" => "least squares (QR)".to_string(),
-            loss => format!("robust: iteratively reweighted least squares, {loss} weights"),
-        },
-        r.cond_psi,
-        r.residual_rms_mm
-    );
-    let Some(u) = &id.uncertainty else {
-        s += "\n\njoint  stiffness Nm/rad  compliance rad/Nm\n";
-        for j in 0..6 {
-            s += &format!(
-                "{:>5}  {:>16.0}  {:>17.6e}\n",
-                j + 1,
-                r.stiffness_nm_per_rad[j],
-                r.compliance_rad_per_nm[j]
-            );
-        }
-        s += "exactly six rows: the fit is exact and there is no uncertainty estimate\n";
-        return s;
-    };
-    s += &format!(
-        ", residual standard deviation s {:.4} mm ({} degrees of freedom, t = {:.4})\n\n",
-        mm(u.residual_variance.sqrt()),
-        u.dof,
-        u.t_quantile
-    );
-    s += "joint  stiffness Nm/rad  std error  rel.   95% CI (delta method)    95% CI (1/compliance CI)  compliance rad/Nm\n";
-    let mut poor = Vec::new();
-    for j in 0..6 {
-        let k = id.stiffness[j];
-        let rel = u.stiffness_std_error[j] / k.abs();
-        if rel > POOR {
-            poor.push(j + 1);
-        }
-        let [a, b] = u.stiffness_ci95[j];
-        let [c, d] = u.stiffness_ci95_from_compliance[j];
-        let upper = match d.is_finite() {
-            true => format!("{d:.0}"),
-            false => "unbounded".into(),
-        };
-        s += &format!(
-            "{:>5}  {:>16.0}  {:>9.0}  {:>4.1}%  [{:>10.0}, {:>10.0}]  [{:>10.0}, {:>10}]  {:>17.6e}\n",
-            j + 1,
-            k,
-            u.stiffness_std_error[j],
-            100.0 * rel,
-            a,
-            b,
-            c,
-            upper,
-            id.compliance[j]
-        );
-    }
-    if !poor.is_empty() {
-        s += &format!(
-            "poorly determined (std error > {:.0}% of the value): joint {}; the delta-method interval \
-             is unreliable there, trust the 1/compliance interval and measure postures that load these joints more\n",
-            100.0 * POOR,
-            poor.iter().map(|j| j.to_string()).collect::<Vec<_>>().join(", ")
-        );
-    }
-    s += &largest_residuals(r);
-    if let Some(robust) = &r.robust {
-        s += &down_weighted(robust);
-    }
-    s
-}
-
-fn largest_residuals(r: &IdentifyJson) -> String {
-    let norm = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let mut order: Vec<&ResidualJson> = r.residuals.iter().collect();
-    order.sort_by(|a, b| norm(&b.residual_mm).total_cmp(&norm(&a.residual_mm)));
-    let mut s = "\nlargest residuals (measured - fitted), mm (all of them: --json):\n".to_string();
-    for res in order.iter().take(5) {
-        let [x, y, z] = res.residual_mm;
-        s += &format!(
-            "  line {:>4}  posture {:>4}  point {}  ({x:+.4}, {y:+.4}, {z:+.4})  |{:.4}|\n",
-            res.line,
-            res.posture,
-            res.point,
-            norm(&res.residual_mm)
-        );
-    }
-    s
-}
-
-fn down_weighted(robust: &RobustJson) -> String {
-    let shown = 10;
-    let mut s = format!(
-        "\nrobust fit: {} weights, c = {}, scale {:.4} mm (1.4826 x median |residual|), {} iterations{}\n\
-         down-weighted rows (weight < {}), lowest weight first:\n",
-        robust.loss,
-        robust.tuning_constant,
-        robust.scale_mm,
-        robust.iterations,
-        if robust.converged { "" } else { " (not converged)" },
-        stiffid::identify::robust::DOWN_WEIGHTED
-    );
-    for row in robust.down_weighted.iter().take(shown) {
-        s += &format!(
-            "  line {:>4}  posture {:>4}  point {}  {}: weight {:.3}, residual {:+.4} mm\n",
-            row.line, row.posture, row.point, row.coordinate, row.weight, row.residual_mm
-        );
-    }
-    match robust.down_weighted.len() {
-        0 => s += "  none\n",
-        n if n > shown => s += &format!("  ... and {} more (--json)\n", n - shown),
-        _ => {}
-    }
-    s
 }

@@ -1,8 +1,8 @@
 //! `stiffid validate`: predicted against measured displacements for an identified stiffness
 //! (Zhang et al. 2021, Eq. 22, Table 7).
 
+use crate::load;
 use crate::output::print_json_or;
-use crate::{data, load};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -34,6 +34,10 @@ struct ValidationJson {
     mean_delta_b_mm: f64,
     max_delta_b_mm: f64,
     rms_delta_b_mm: f64,
+    mean_measured_mm: f64,
+    max_measured_mm: f64,
+    rms_measured_mm: f64,
+    explained: f64,
 }
 
 #[derive(Serialize)]
@@ -50,7 +54,7 @@ struct CheckJson {
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     let stiffness = load::stiffness(&args.stiffness)?;
-    let data = data::read(&args.data)?;
+    let data = load::measurements(&args.data, &setup)?;
     let name = args.data.display().to_string();
     let v = validate(&setup, &stiffness, &data.measurements)
         .map_err(|e| data.explain(e))
@@ -64,9 +68,9 @@ pub fn run(args: &Args) -> Result<()> {
             .iter()
             .enumerate()
             .map(|(i, c)| CheckJson {
-                posture: c.posture.clone(),
+                posture: data.labels[c.posture].clone(),
                 point: c.point + 1,
-                line: data.line(i),
+                line: data.lines[i],
                 measured_mm: (c.measured * 1e3).into(),
                 predicted_mm: (c.predicted * 1e3).into(),
                 delta_b_mm: c.delta_b * 1e3,
@@ -75,6 +79,10 @@ pub fn run(args: &Args) -> Result<()> {
         mean_delta_b_mm: v.mean * 1e3,
         max_delta_b_mm: v.max * 1e3,
         rms_delta_b_mm: v.rms * 1e3,
+        mean_measured_mm: v.measured[0] * 1e3,
+        max_measured_mm: v.measured[1] * 1e3,
+        rms_measured_mm: v.measured[2] * 1e3,
+        explained: v.explained,
     };
     print_json_or(args.json, &result, human)
 }
@@ -109,6 +117,14 @@ fn human(r: &ValidationJson) -> String {
         r.mean_delta_b_mm,
         r.max_delta_b_mm,
         r.rms_delta_b_mm
+    );
+    s += &format!(
+        "measured deflection |delta_m|: mean {:.4} mm, max {:.4} mm, RMS {:.4} mm\n\
+         share of the measured deflection the model explains, 1 - RMS(delta_b)/RMS(|delta_m|): {:.1}%\n",
+        r.mean_measured_mm,
+        r.max_measured_mm,
+        r.rms_measured_mm,
+        100.0 * r.explained
     );
     s
 }

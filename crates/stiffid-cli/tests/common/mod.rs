@@ -92,6 +92,12 @@ pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     path
 }
 
+/// The real FANUC R-2000iC/165F measurement file of the examples.
+pub fn fanuc_csv() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+}
+
 /// The numbers of a JSON array.
 pub fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()

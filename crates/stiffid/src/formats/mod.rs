@@ -1,3 +1,8 @@
-//! File formats, parsed from text (`&str -> Result<_, Error>`): no file I/O here.
+//! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here): the
+//! caller reads the file and adds its name to errors.
+//!
+//! - [`measurements`]: the measurement CSV of an identification or validation.
+//! - [`path`]: the path (pose list) CSV of compensation.
 
+pub mod measurements;
 pub mod path;

@@ -13,14 +13,17 @@
 //! link_radius_mm = [350, 260, 195, 175, 130, 110, 90]   # base, links 1-6
 //! tool_radius_mm = 150
 //! [tracker]
-//! position_mm = [3000, -2000, 1500]
+//! position_mm = [3000, -2000, 1500]  # or the translation of base_from_tracker
+//! # base_from_tracker = { xyz_mm = [3000, -2000, 1500], rpy_deg = [0, 0, 180] }
+//! #   the tracker's frame: measurement files may give displacements in it (dx_tracker_mm, ...)
 //! max_incidence_deg = 30            # SMR acceptance half-angle; needs no other field
 //! measuring_normals = [[0, 0, 1]]   # per measuring point, flange frame; default flange z
 //! ```
 
 use super::{field_error, mm};
+use crate::robot::file::TransformFile;
 use crate::Result;
-use nalgebra::Vector3;
+use nalgebra::{Isometry3, Vector3};
 use serde::Deserialize;
 
 /// Most obstacles a cell may list.
@@ -77,6 +80,9 @@ pub struct Tracker {
     pub max_incidence: Option<f64>,
     /// Outward unit normal of every measuring point, flange frame (default the flange z axis).
     pub measuring_normals: Vec<Vector3<f64>>,
+    /// The tracker frame in the robot base frame (m), to turn displacements measured in the
+    /// tracker frame into the base frame ([`crate::identify::frames`]); `None` if not given.
+    pub base_from_tracker: Option<Isometry3<f64>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -106,9 +112,10 @@ pub(super) struct GeometryFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct TrackerFile {
-    position_mm: [f64; 3],
+    position_mm: Option<[f64; 3]>,
     max_incidence_deg: Option<f64>,
     measuring_normals: Option<Vec<[f64; 3]>>,
+    base_from_tracker: Option<TransformFile>,
 }
 
 /// The numbers of a field for messages, shortened.
@@ -229,15 +236,23 @@ pub(super) fn tracker(
     cell: Option<&Cell>,
     src: &str,
 ) -> Result<Tracker> {
-    finite(src, "tracker.position_mm", &f.position_mm)?;
-    let position = mm(&f.position_mm);
+    let base_from_tracker = match &f.base_from_tracker {
+        None => None,
+        Some(t) => {
+            finite(src, "tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
+            finite(src, "tracker.base_from_tracker.rpy_deg", &t.rpy_deg)?;
+            Some(t.isometry())
+        }
+    };
+    let position_mm = position_mm(&f, src)?;
+    let position = mm(&position_mm);
     if let Some(o) = cell.and_then(|c| c.obstacles.iter().find(|o| o.contains(&position))) {
         return Err(field_error(
             src,
             "tracker.position_mm",
             format!(
                 "{} is inside obstacle '{}': every line of sight would be blocked",
-                shown(&f.position_mm),
+                shown(&position_mm),
                 o.name
             ),
         ));
@@ -258,7 +273,37 @@ pub(super) fn tracker(
         position,
         max_incidence,
         measuring_normals,
+        base_from_tracker,
     })
+}
+
+/// The tracker position, mm: `position_mm`, or the translation of `base_from_tracker`; both given
+/// must agree to 1 mm.
+fn position_mm(f: &TrackerFile, src: &str) -> Result<[f64; 3]> {
+    let from_transform = f.base_from_tracker.map(|t| t.xyz_mm);
+    let position = match (f.position_mm, from_transform) {
+        (Some(p), Some(t)) if (0..3).any(|i| (p[i] - t[i]).abs() > 1.0) => {
+            return Err(field_error(
+                src,
+                "tracker.position_mm",
+                format!(
+                    "{} given: expected the translation of base_from_tracker, {} (or leave one out)",
+                    shown(&p),
+                    shown(&t)
+                ),
+            ))
+        }
+        (Some(p), _) | (None, Some(p)) => p,
+        (None, None) => {
+            return Err(field_error(
+                src,
+                "tracker",
+                "expected position_mm or base_from_tracker",
+            ))
+        }
+    };
+    finite(src, "tracker.position_mm", &position)?;
+    Ok(position)
 }
 
 fn normals(given: Option<Vec<[f64; 3]>>, count: usize, src: &str) -> Result<Vec<Vector3<f64>>> {

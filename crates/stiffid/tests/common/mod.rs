@@ -1,7 +1,9 @@
 //! Synthetic measurements from the forward model, shared by the identification tests and bench.
 #![allow(dead_code)] // each user takes its own subset
 
-use nalgebra::Vector6;
+use nalgebra::{Vector3, Vector6};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
 use stiffid::identify::Measurement;
 use stiffid::{stiffness, Setup};
 
@@ -34,7 +36,7 @@ pub fn synthetic(
         let d = stiffness::deflection(setup, &frames, &w, &setup.nominal_stiffness);
         for (point, disp) in d.displacements.iter().enumerate() {
             out.push(Measurement {
-                posture: format!("P{}", i + 1),
+                posture: i,
                 point,
                 q: *q,
                 wrench: w,
@@ -49,4 +51,16 @@ pub fn synthetic(
 pub fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
     let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
     synthetic(setup, &qs, |_, q| setup.rope_wrench(&setup.robot.frames(q)))
+}
+
+/// `data` with independent Gaussian noise of standard deviation `sigma` (m) on every displacement
+/// component, drawn in measurement order from `rng`.
+pub fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec<Measurement> {
+    let noise = Normal::new(0.0, sigma).unwrap();
+    data.iter()
+        .map(|m| Measurement {
+            displacement: m.displacement + Vector3::from_fn(|_, _| noise.sample(rng)),
+            ..m.clone()
+        })
+        .collect()
 }

@@ -1,0 +1,380 @@
+//! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
+//! words, never as `NaN` or `inf`.
+
+use super::{mm, Run};
+use stiffid::identify::adequacy::{SIGNIFICANCE, UNIT_FACTOR};
+use stiffid::identify::{Identification, Uncertainty, UnitCheck};
+use stiffid::kinematics::Coordinates;
+
+/// Relative standard error above which a joint is called poorly determined.
+const POOR: f64 = 0.25;
+
+/// The `method` key of the JSON.
+pub fn method_key(id: &Identification) -> &'static str {
+    match (&id.robust, id.active_bounds) {
+        (Some(fit), _) => fit.loss.name(),
+        (None, Some(_)) => "nonnegative-least-squares",
+        (None, None) => "least-squares",
+    }
+}
+
+/// `v` with `decimals` decimals, or `n/a` if it is not finite.
+fn num(v: f64, decimals: usize) -> String {
+    match v.is_finite() {
+        true => format!("{v:.decimals$}"),
+        false => "n/a".into(),
+    }
+}
+
+/// `v` in scientific notation, or `n/a`.
+fn sci(v: f64) -> String {
+    match v.is_finite() {
+        true => format!("{v:.6e}"),
+        false => "n/a".into(),
+    }
+}
+
+fn joint_list(joints: impl IntoIterator<Item = usize>) -> String {
+    let names: Vec<String> = joints.into_iter().map(|j| (j + 1).to_string()).collect();
+    match names.len() {
+        1 => format!("joint {}", names[0]),
+        _ => format!("joints {}", names.join(", ")),
+    }
+}
+
+/// The stderr warnings: results that are not physical, a likely unit mix-up.
+pub fn warnings(run: &Run) -> Vec<String> {
+    let id = &run.id;
+    let physical = id.physical();
+    let mut out = Vec::new();
+    let negative: Vec<usize> = (0..6).filter(|&j| id.compliance[j] < 0.0).collect();
+    let other: Vec<usize> = (0..6)
+        .filter(|&j| !physical[j] && id.compliance[j] >= 0.0)
+        .collect();
+    match negative.len() {
+        0 => {}
+        6 => out.push(
+            "every compliance is negative (not physical): the displacements or the forces probably have the wrong sign (the wrench is the force on the robot; the displacement is loaded minus unloaded)"
+                .into(),
+        ),
+        _ => out.push(format!(
+            "{}: negative compliance, not physical: the model or the data are wrong there; --nonnegative bounds the compliances at 0",
+            joint_list(negative)
+        )),
+    }
+    if !other.is_empty() {
+        out.push(format!(
+            "{}: zero or non-finite compliance (infinitely stiff), not physical: the data cannot tell the joint from a rigid one",
+            joint_list(other)
+        ));
+    }
+    if let Some(unit) = &run.unit {
+        out.push(unit_warning(run, unit));
+    }
+    out
+}
+
+/// The unit warning, naming the columns.
+pub fn unit_warning(run: &Run, unit: &UnitCheck) -> String {
+    let (forces, displacements) = (run.file.force_columns(), run.file.displacement_columns());
+    let cause = match unit.stiffer {
+        true => format!(
+            "displacements ({displacements}) in m instead of mm, or forces ({forces}) in mN instead of N"
+        ),
+        false => format!(
+            "forces ({forces}) in kN instead of N, or displacements ({displacements}) in um instead of mm"
+        ),
+    };
+    format!(
+        "the identified stiffness is {} times the setup's nominal on {} (more than {UNIT_FACTOR}x off): a unit is the likely cause: {cause}; the axis angles must be in degrees (q1_deg..q6_deg)",
+        match unit.typical_ratio >= 1.0 {
+            true => format!("about {:.3e}", unit.typical_ratio),
+            false => format!("about 1/{:.3e}", 1.0 / unit.typical_ratio),
+        },
+        joint_list(unit.joints.iter().copied())
+    )
+}
+
+/// The text report.
+pub fn human(run: &Run) -> String {
+    let id = &run.id;
+    let springs = match run.setup.springs {
+        Coordinates::Axis => "axes (drives)",
+        Coordinates::Kinematic => "kinematic joints",
+    };
+    let method = match method_key(id) {
+        "least-squares" => "least squares (QR)".to_string(),
+        "nonnegative-least-squares" => {
+            "least squares with compliances >= 0 (Lawson-Hanson active set on the QR-reduced problem)"
+                .to_string()
+        }
+        loss => format!("robust: iteratively reweighted least squares, {loss} weights"),
+    };
+    let mut s = format!(
+        "setup {}, data {}\nsprings on the {springs}; {} rows of Psi from {} postures; {method}\n\
+         cond(Psi) {}, residual RMS {} mm",
+        run.setup_name,
+        run.data_name,
+        id.rows,
+        id.postures,
+        num(id.cond_psi, 4),
+        num(mm(id.residual_rms), 4)
+    );
+    let Some(u) = &id.uncertainty else {
+        s += "\n\njoint  stiffness Nm/rad  compliance rad/Nm\n";
+        for j in 0..6 {
+            s += &format!(
+                "{:>5}  {:>16}  {:>17}\n",
+                j + 1,
+                num(id.stiffness[j], 0),
+                sci(id.compliance[j])
+            );
+        }
+        s += "exactly six rows: the fit is exact and there is no uncertainty estimate\n";
+        return s;
+    };
+    s += &format!(
+        ", residual standard deviation s {} mm ({} degrees of freedom, t = {:.4})\n",
+        num(mm(u.residual_variance.sqrt()), 4),
+        u.dof,
+        u.t_quantile
+    );
+    s += &model_check(run);
+    s += "\n95% intervals from the residual variance s^2:\n";
+    s += &table(id, u, true);
+    s += &bounds_and_physics(id);
+    if let Some(a) = &run.adequacy {
+        s += &format!(
+            "\n95% intervals from the tracker noise sigma^2 (valid only if the model were exact{}):\n",
+            match a.model_error_dominates() {
+                true => "; it is not: too narrow",
+                false => "",
+            }
+        );
+        s += &table(id, &a.from_noise, false);
+    }
+    s += &largest_residuals(run);
+    if let Some(robust) = &id.robust {
+        s += &down_weighted(run, robust);
+    }
+    if run.cross_validation.is_some() {
+        s += &cross_validation(run);
+    }
+    s
+}
+
+fn model_check(run: &Run) -> String {
+    let Some(a) = &run.adequacy else {
+        return String::new();
+    };
+    let p = match a.p_value {
+        p if p < 1e-300 => "< 1e-300".to_string(),
+        p => format!("= {p:.3e}"),
+    };
+    let head = format!(
+        "model check: s is {} x the tracker noise sigma = {:.4} mm (chi-square {} with {} degrees of freedom, p {p})",
+        num(a.noise_ratio, 2),
+        mm(a.noise_variance.sqrt()),
+        num(a.chi2, 1),
+        a.dof
+    );
+    match a.model_error_dominates() {
+        true => format!(
+            "{head}:\n  the model error dominates (p < {SIGNIFICANCE}), not the tracker: trust the intervals from the residual variance; those from the tracker noise assume an exact model and are too narrow\n"
+        ),
+        false => format!("{head}: the residuals are consistent with the tracker noise\n"),
+    }
+}
+
+fn table(id: &Identification, u: &Uncertainty, marks: bool) -> String {
+    let physical = id.physical();
+    let mut s = "joint  stiffness Nm/rad  std error  rel.    95% CI (delta method)    95% CI (1/compliance CI)  compliance rad/Nm\n".to_string();
+    let mut poor = Vec::new();
+    for (j, physical) in physical.iter().enumerate() {
+        let k = id.stiffness[j];
+        let rel = u.stiffness_std_error[j] / k.abs();
+        if rel > POOR {
+            poor.push(j);
+        }
+        let [a, b] = u.stiffness_ci95[j];
+        let [c, d] = u.stiffness_ci95_from_compliance[j];
+        let upper = match d.is_finite() {
+            true => format!("{d:.0}"),
+            false => "unbounded".into(),
+        };
+        let lower = match c.is_finite() {
+            true => format!("{c:.0}"),
+            false => "none".into(),
+        };
+        s += &format!(
+            "{:>5}  {:>16}  {:>9}  {:>5}%  [{:>10}, {:>10}]  [{:>10}, {:>10}]  {:>17}{}\n",
+            j + 1,
+            num(k, 0),
+            num(u.stiffness_std_error[j], 0),
+            num(100.0 * rel, 1),
+            num(a, 0),
+            num(b, 0),
+            lower,
+            upper,
+            sci(id.compliance[j]),
+            match physical {
+                true => "",
+                false => "  not physical",
+            }
+        );
+    }
+    if marks && !poor.is_empty() {
+        s += &format!(
+            "poorly determined (std error > {:.0}% of the value): {}; the delta-method interval \
+             is unreliable there, trust the 1/compliance interval and measure postures that load these joints more\n",
+            100.0 * POOR,
+            joint_list(poor)
+        );
+    }
+    s
+}
+
+fn bounds_and_physics(id: &Identification) -> String {
+    let Some(active) = id.active_bounds else {
+        return String::new();
+    };
+    match active.iter().any(|a| *a) {
+        false => "bounds h >= 0: none active (the same as plain least squares)\n".into(),
+        true => format!(
+            "bounds h >= 0 active on {}: compliance 0 (infinitely stiff), the data cannot identify these joints\n",
+            joint_list((0..6).filter(|&j| active[j]))
+        ),
+    }
+}
+
+fn largest_residuals(run: &Run) -> String {
+    let id = &run.id;
+    let n = id.residuals.len() / 3;
+    let norm = |i: usize| id.residuals.fixed_rows::<3>(3 * i).norm();
+    let mut order: Vec<usize> = (0..n).collect();
+    let shown = 5.min(n);
+    order.select_nth_unstable_by(shown.saturating_sub(1), |&a, &b| {
+        norm(b).total_cmp(&norm(a))
+    });
+    order.truncate(shown);
+    order.sort_by(|&a, &b| norm(b).total_cmp(&norm(a)));
+    let mut s = "\nlargest residuals (measured - fitted), mm (all of them: --json):\n".to_string();
+    for i in order {
+        let r = id.residuals.fixed_rows::<3>(3 * i).map(mm);
+        s += &format!(
+            "  line {:>4}  posture {:>4}  point {}  ({:+.4}, {:+.4}, {:+.4})  |{:.4}|\n",
+            run.file.lines[i],
+            run.label(i),
+            run.file.measurements[i].point + 1,
+            r.x,
+            r.y,
+            r.z,
+            r.norm()
+        );
+    }
+    s
+}
+
+fn down_weighted(run: &Run, fit: &stiffid::identify::RobustFit) -> String {
+    let shown = 10;
+    let rows = fit.down_weighted();
+    let mut s = format!(
+        "\nrobust fit: {} weights, c = {}, scale {:.4} mm (1.4826 x median |residual|), {} iterations{}\n\
+         down-weighted rows (weight < {}), lowest weight first:\n",
+        fit.loss.name(),
+        fit.loss.tuning_constant(),
+        mm(fit.scale),
+        fit.iterations,
+        if fit.converged { "" } else { " (not converged)" },
+        stiffid::identify::robust::DOWN_WEIGHTED
+    );
+    for &row in rows.iter().take(shown) {
+        let i = row / 3;
+        s += &format!(
+            "  line {:>4}  posture {:>4}  point {}  {}: weight {:.3}, residual {:+.4} mm\n",
+            run.file.lines[i],
+            run.label(i),
+            run.file.measurements[i].point + 1,
+            ['x', 'y', 'z'][row % 3],
+            fit.weights[row],
+            mm(run.id.residuals[row])
+        );
+    }
+    match rows.len() {
+        0 => s += "  none\n",
+        n if n > shown => s += &format!("  ... and {} more (--json)\n", n - shown),
+        _ => {}
+    }
+    s
+}
+
+fn cross_validation(run: &Run) -> String {
+    let Some(cv) = &run.cross_validation else {
+        return String::new();
+    };
+    let postures = run.id.postures;
+    let mut s = format!(
+        "\ncross-validation: {} folds{}, each refitted without its postures and validated on them (Eq. 22)\n\
+         fold  held-out postures      stiffness Nm/rad (joints 1-6)                                        held-out RMS delta_b mm\n",
+        cv.folds.len(),
+        match cv.folds.len() == postures {
+            true => " (leave one posture out)",
+            false => "",
+        }
+    );
+    for (f, fold) in cv.folds.iter().enumerate() {
+        let labels = run.labels(&fold.postures);
+        let shown = match labels.len() {
+            n if n > 3 => format!("{} ... ({n})", labels[..3].join(",")),
+            _ => labels.join(","),
+        };
+        let k: Vec<String> = fold
+            .stiffness
+            .iter()
+            .map(|k| format!("{:>10}", num(*k, 0)))
+            .collect();
+        s += &format!(
+            "{:>4}  {:<20}  {}  {:.4}\n",
+            f + 1,
+            shown,
+            k.join(" "),
+            mm(fold.rms_delta_b)
+        );
+    }
+    s += "\nspread across folds:\njoint  full fit Nm/rad  fold mean   fold std  std/full        min         max\n";
+    for j in 0..6 {
+        let full = run.id.stiffness[j];
+        s += &format!(
+            "{:>5}  {:>15}  {:>9}  {:>9}  {:>7}%  {:>10}  {:>10}\n",
+            j + 1,
+            num(full, 0),
+            num(cv.stiffness_mean[j], 0),
+            num(cv.stiffness_std[j], 0),
+            num(100.0 * cv.stiffness_std[j] / full.abs(), 1),
+            num(cv.stiffness_range[0][j], 0),
+            num(cv.stiffness_range[1][j], 0)
+        );
+    }
+    s += &format!(
+        "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% of the held-out deflection\n",
+        mm(cv.rms_delta_b),
+        mm(cv.rms_measured),
+        100.0 * (1.0 - cv.rms_delta_b / cv.rms_measured)
+    );
+    let influential = run.influential();
+    s += "influential (removal moves a stiffness by more than its standard error): ";
+    match influential.is_empty() {
+        true => s += "none\n",
+        false => {
+            let items: Vec<String> = influential
+                .iter()
+                .map(|i| {
+                    let joints = joint_list(i.joints.iter().map(|j| j - 1));
+                    format!("{} ({joints})", i.postures.join(","))
+                })
+                .collect();
+            s += &format!("postures {}\n", items.join("; "));
+        }
+    }
+    s
+}

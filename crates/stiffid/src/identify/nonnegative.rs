@@ -1,0 +1,112 @@
+//! Non-negative least squares for six compliances: the active-set method of Lawson and Hanson
+//! ("Solving Least Squares Problems", 1974, ch. 23, algorithm NNLS), the method of SciPy's
+//! `scipy.optimize.nnls` and MATLAB's `lsqnonneg`.
+//!
+//! It solves `min |A x - b|` subject to `x >= 0` for the 6x6 triangular factor `A = R` of the
+//! observation matrix and `b = c` (first six entries of `Q^T delta`), which has the same minimiser
+//! as the full problem `min |Psi h - delta|` and needs no normal equations. Starting from `x = 0`
+//! with every variable at its bound, it frees the variable with the largest gradient of the
+//! objective `w = A^T (b - A x)` and solves the least-squares problem of the free variables (by
+//! QR); a free variable that would turn negative stops the step at the bound and is held there
+//! again. It ends when no held variable has a positive gradient (the Karush-Kuhn-Tucker conditions
+//! of the bounded problem, convex: the minimum is global). For 6 unknowns it takes a few steps.
+
+use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
+
+/// The bounded fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bounded {
+    /// The minimiser, every entry `>= 0`.
+    pub h: Vector6<f64>,
+    /// Which entries are held at the bound 0 (the active constraints).
+    pub active: [bool; 6],
+}
+
+/// Iteration limit of the outer loop (Lawson and Hanson use 3n).
+const MAX_ITERATIONS: usize = 3 * 6 * 10;
+
+/// `min |a x - b|` subject to `x >= 0` (module docs). `a` must have full rank (a [`crate::lsq::Factor`]'s `R`).
+pub fn solve(a: &Matrix6<f64>, b: &Vector6<f64>) -> Bounded {
+    let tolerance = 10.0 * f64::EPSILON * a.abs().column_sum().max() * 6.0 * b.norm().max(1e-300);
+    let mut x = Vector6::zeros();
+    let mut free = [false; 6];
+    for _ in 0..MAX_ITERATIONS {
+        let w = a.tr_mul(&(b - a * x));
+        let entering = (0..6)
+            .filter(|&j| !free[j] && w[j] > tolerance)
+            .max_by(|&i, &j| w[i].total_cmp(&w[j]));
+        let Some(t) = entering else { break };
+        free[t] = true;
+        loop {
+            let z = free_solution(a, b, &free);
+            if (0..6).all(|j| !free[j] || z[j] > 0.0) {
+                x = z;
+                break;
+            }
+            // Step from x toward z until the first free variable reaches 0.
+            let alpha = (0..6)
+                .filter(|&j| free[j] && z[j] <= 0.0)
+                .map(|j| x[j] / (x[j] - z[j]))
+                .fold(f64::INFINITY, f64::min);
+            x += (z - x) * alpha;
+            for j in 0..6 {
+                if free[j] && x[j] <= 0.0 {
+                    free[j] = false;
+                    x[j] = 0.0;
+                }
+            }
+            if !free.iter().any(|f| *f) {
+                break;
+            }
+        }
+    }
+    Bounded {
+        h: x,
+        active: free.map(|f| !f),
+    }
+}
+
+/// The columns of `a` that are free, as a 6 x k matrix.
+fn free_columns(a: &Matrix6<f64>, free: &[bool; 6]) -> DMatrix<f64> {
+    let index: Vec<usize> = (0..6).filter(|&j| free[j]).collect();
+    DMatrix::from_fn(6, index.len(), |i, k| a[(i, index[k])])
+}
+
+/// The least-squares solution over the free variables (by QR), zero elsewhere.
+fn free_solution(a: &Matrix6<f64>, b: &Vector6<f64>, free: &[bool; 6]) -> Vector6<f64> {
+    let qr = free_columns(a, free).qr();
+    let qtb = qr.q().tr_mul(&DVector::from_column_slice(b.as_slice()));
+    let z = qr
+        .r()
+        .solve_upper_triangular(&qtb)
+        .unwrap_or_else(|| DVector::zeros(qtb.len()));
+    let mut x = Vector6::zeros();
+    for (value, j) in z.iter().zip((0..6).filter(|&j| free[j])) {
+        x[j] = *value;
+    }
+    x
+}
+
+/// `(A_F^T A_F)^-1` of the free columns `F` (those not `active`), embedded in a 6x6 matrix with
+/// zero rows and columns for the active ones: the covariance per unit noise variance of the
+/// compliances with the active ones fixed at their bound.
+pub fn unit_covariance(a: &Matrix6<f64>, active: &[bool; 6]) -> Matrix6<f64> {
+    let free = active.map(|a| !a);
+    let mut out = Matrix6::zeros();
+    if !free.iter().any(|f| *f) {
+        return out;
+    }
+    let r = free_columns(a, &free).qr().r();
+    let k = r.nrows();
+    let r_inv = r
+        .solve_upper_triangular(&DMatrix::identity(k, k))
+        .unwrap_or_else(|| DMatrix::from_element(k, k, f64::NAN));
+    let small = &r_inv * r_inv.transpose();
+    let index: Vec<usize> = (0..6).filter(|&j| free[j]).collect();
+    for (a, &i) in index.iter().enumerate() {
+        for (b, &j) in index.iter().enumerate() {
+            out[(i, j)] = small[(a, b)];
+        }
+    }
+    out
+}
