@@ -2,6 +2,7 @@
 //! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
 
 mod commands;
+mod feasibility;
 mod load;
 mod output;
 mod postures;

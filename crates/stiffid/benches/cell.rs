@@ -1,10 +1,11 @@
-//! The cell: the exact feasibility check of one posture on the paper setup with a floor at z = 0,
-//! 50 mm clearance, default radii and a tracker at (3000, -2000, 1500) mm.
+//! The cell: the exact feasibility check of one posture, and the default constrained global
+//! search (`relative-a`, 6 postures), on the paper setup with a floor at z = 0, 50 mm clearance,
+//! default radii and a tracker at (3000, -2000, 1500) mm.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
 use stiffid::cell::Checker;
-use stiffid::design;
+use stiffid::design::{self, Criterion, SearchOptions};
 
 /// The paper setup in the README's cell.
 fn paper_cell() -> stiffid::Setup {
@@ -20,7 +21,24 @@ fn feasibility(c: &mut Bench) {
     c.bench_function("cell/feasibility/one-posture", |b| {
         b.iter(|| checker.feasibility(black_box(&q)))
     });
+    c.bench_function("cell/margins/one-posture", |b| {
+        b.iter(|| checker.margins(black_box(&q)))
+    });
+    c.bench_function("cell/capsules/one-posture", |b| {
+        b.iter(|| stiffid::cell::capsules(&setup, &setup.robot.frames(black_box(&q))))
+    });
 }
 
-criterion_group!(benches, feasibility);
+fn search(c: &mut Bench) {
+    let setup = paper_cell();
+    let options = SearchOptions::default();
+    let mut g = c.benchmark_group("cell/search");
+    g.sample_size(10);
+    g.bench_function("global/relative-a/default", |b| {
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, feasibility, search);
 criterion_main!(benches);

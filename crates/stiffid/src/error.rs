@@ -65,6 +65,19 @@ pub enum Error {
         /// What was expected.
         message: String,
     },
+    /// No group of postures that passes every feasibility check of the cell was found.
+    #[error(
+        "no feasible group found: the {check} check failed in {failed} of the {postures} postures \
+         of the groups searched (`stiffid evaluate` shows every posture's checks)"
+    )]
+    Infeasible {
+        /// The check failed by the most postures, e.g. `self-collision`.
+        check: String,
+        /// In how many postures it failed.
+        failed: usize,
+        /// How many postures were checked.
+        postures: usize,
+    },
     /// A measurement file (CSV) cannot be read: the line and, where there is one, the column.
     #[error("line {line}{}: {problem}", column_name(*column, name))]
     Column {

@@ -174,6 +174,17 @@ impl Setup {
         self.nominal_stiffness.map(|k| 1.0 / k)
     }
 
+    /// The same setup without the cell's checks (no `[cell]`, `[tracker]` or `[constraints]`):
+    /// what the unconstrained optimum is searched on, to show what feasibility costs.
+    pub fn without_cell(&self) -> Setup {
+        Setup {
+            cell: None,
+            tracker: None,
+            constraints: CellConstraints::default(),
+            ..self.clone()
+        }
+    }
+
     /// The rope-mass wrench on the loading point of a posture, base frame.
     pub fn rope_wrench(&self, frames: &Frames) -> Vector6<f64> {
         self.load.wrench(&frames.point(&self.tool.loading_point))

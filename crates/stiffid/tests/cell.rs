@@ -1,20 +1,13 @@
 //! The cell model: distances against hand-computed cases, known collisions, the cell tables.
 
 use approx::assert_relative_eq;
-use nalgebra::{Vector3, Vector6};
+use nalgebra::Vector3;
 use stiffid::cell::{self, Capsule, CheckKind, Checker, Part};
 use stiffid::setup::Obstacle;
-use stiffid::{Error, Setup};
+use stiffid::Error;
 
-/// The paper setup with extra TOML appended (the cell tables).
-fn paper_with(extra: &str) -> stiffid::Result<Setup> {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string() + extra;
-    stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))
-}
-
-fn deg(q: [f64; 6]) -> Vector6<f64> {
-    Vector6::from_iterator(q.iter().map(|d| d.to_radians()))
-}
+mod common;
+use common::{deg, paper_with};
 
 fn capsule(a: [f64; 3], b: [f64; 3], radius: f64) -> Capsule {
     Capsule {
@@ -84,7 +77,7 @@ fn segment_against_a_capsule() {
 #[test]
 fn capsules_follow_the_comau_kinematics() {
     let setup = paper_with("").unwrap();
-    let q = deg([0.0, 0.0, -90.0, 0.0, 0.0, 0.0]);
+    let q = deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]);
     let bodies = cell::capsules(&setup, &setup.robot.frames(&q));
     let base = bodies[0];
     assert_eq!(base.part, Part::Base);
@@ -110,14 +103,14 @@ fn a_tool_in_the_floor_is_infeasible_naming_the_bodies() {
     let setup = paper_with("\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n").unwrap();
     // Upper arm 40 deg forward, forearm pointing 80 deg below the horizontal: the wrist dips into
     // the floor.
-    let f = cell::feasibility(&setup, &deg([0.0, 40.0, -170.0, 0.0, 0.0, 0.0]));
+    let f = cell::feasibility(&setup, &deg(&[0.0, 40.0, -170.0, 0.0, 0.0, 0.0]));
     assert!(!f.feasible());
     let floor = f.violations().find(|c| c.kind == CheckKind::Floor).unwrap();
     assert_eq!(floor.between.1, "floor");
     assert!(["tool", "link 6", "link 5"].contains(&floor.between.0.as_str()));
     assert!(floor.clearance.unwrap() < 0.0);
     // The arm stretched up, wrist bent: clear of the floor and of itself.
-    let ok = cell::feasibility(&setup, &deg([0.0, 0.0, -90.0, 0.0, 45.0, 0.0]));
+    let ok = cell::feasibility(&setup, &deg(&[0.0, 0.0, -90.0, 0.0, 45.0, 0.0]));
     assert!(ok.feasible(), "{ok:?}");
     assert!(ok.min_clearance().unwrap() >= 0.05);
 }
@@ -126,13 +119,13 @@ fn a_tool_in_the_floor_is_infeasible_naming_the_bodies() {
 fn a_forearm_down_the_column_is_a_self_collision() {
     let setup = paper_with("\n[cell]\nclearance_mm = 50.0\n").unwrap();
     // Upper arm 50 deg back, forearm pointing 80 deg down: the forearm runs into the column.
-    let f = cell::feasibility(&setup, &deg([0.0, -50.0, -170.0, 0.0, 0.0, 0.0]));
+    let f = cell::feasibility(&setup, &deg(&[0.0, -50.0, -170.0, 0.0, 0.0, 0.0]));
     let c = f.violations().next().unwrap();
     assert_eq!(c.kind, CheckKind::SelfCollision);
     assert!(["base", "link 1"].contains(&c.between.0.as_str()), "{c:?}");
     assert!(["link 4", "tool"].contains(&c.between.1.as_str()), "{c:?}");
     // The same arm with the forearm level is clear.
-    assert!(cell::feasibility(&setup, &deg([0.0, -50.0, -90.0, 0.0, 0.0, 0.0])).feasible());
+    assert!(cell::feasibility(&setup, &deg(&[0.0, -50.0, -90.0, 0.0, 0.0, 0.0])).feasible());
 }
 
 #[test]
@@ -141,7 +134,7 @@ fn an_obstacle_and_a_tracker_block_and_name() {
         "\n[cell]\nclearance_mm = 50.0\n[[cell.obstacle]]\nname = \"table\"\nmin_mm = [1800, -500, 0]\nmax_mm = [2600, 500, 2200]\n[tracker]\nposition_mm = [3000.0, 0.0, 1000.0]\n",
     )
     .unwrap();
-    let f = cell::feasibility(&setup, &deg([0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));
+    let f = cell::feasibility(&setup, &deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));
     let obstacles = f
         .checks
         .iter()
@@ -162,11 +155,11 @@ fn an_obstacle_and_a_tracker_block_and_name() {
 fn impossible_constraints_are_reported() {
     let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e9\n").unwrap();
     let checker = Checker::new(&setup);
-    let f = checker.feasibility(&deg([0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));
+    let f = checker.feasibility(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));
     let c = f.violations().next().unwrap();
     assert_eq!(c.kind, CheckKind::LoadingPointHeight);
     assert!(c.margin < -9e5);
-    assert!(checker.violation(&deg([0.0, 0.0, -90.0, 0.0, 0.0, 0.0])) > 9e5);
+    assert!(checker.violation(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0])) > 9e5);
 }
 
 #[test]

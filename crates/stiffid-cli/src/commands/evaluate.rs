@@ -2,7 +2,7 @@
 //! rates.
 
 use crate::output::json;
-use crate::{load, postures};
+use crate::{feasibility, load, postures};
 use anyhow::Result;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -59,13 +59,26 @@ impl From<&Evaluation> for CriteriaJson {
     }
 }
 
-/// Evaluates the postures file and prints the criteria.
+/// `stiffid evaluate --json`: the criteria, and every posture's feasibility in the cell.
+#[derive(Serialize)]
+struct EvaluateJson {
+    #[serde(flatten)]
+    criteria: CriteriaJson,
+    feasibility: Vec<feasibility::PostureJson>,
+}
+
+/// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     let group = postures::read(&args.postures, &setup.robot)?;
     let e = evaluate(&setup, &group);
+    let checks = feasibility::of_group(&setup, &group);
     if args.json {
-        print!("{}", json(&CriteriaJson::from(&e))?);
+        let doc = EvaluateJson {
+            criteria: CriteriaJson::from(&e),
+            feasibility: feasibility::json(&checks),
+        };
+        print!("{}", json(&doc)?);
         return Ok(());
     }
     println!(
@@ -87,6 +100,7 @@ pub fn run(args: &Args) -> Result<()> {
         let cells: Vec<String> = row.iter().map(|v| format!("{v:>9.4}")).collect();
         println!("{:>5} {:>6.2}  {}", l + 1, m, cells.join(" "));
     }
+    feasibility::print(&checks);
     Ok(())
 }
 

@@ -15,7 +15,10 @@ use nalgebra::Vector6;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use stiffid::design::{self, evaluate, Criterion, Gradient, SearchOptions, SearchOutcome};
+use stiffid::cell::Checker;
+use stiffid::design::{
+    self, evaluate, Criterion, Evaluation, Gradient, SearchOptions, SearchOutcome,
+};
 use stiffid::Setup;
 
 /// Arguments of `stiffid select`.
@@ -114,9 +117,20 @@ struct SelectJson<'a> {
     pool: Option<pool::PoolJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
     target: Option<target::TargetJson>,
+    /// With cell checks, for a local or global search: the same search without them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    unconstrained: Option<UnconstrainedJson>,
     out: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     report: Option<String>,
+}
+
+/// The unconstrained optimum beside the feasible one: what feasibility costs.
+#[derive(Serialize)]
+struct UnconstrainedJson {
+    value: f64,
+    postures_deg: Vec<[f64; 6]>,
+    criteria: CriteriaJson,
 }
 
 /// The group a search or a pool choice found.
@@ -179,6 +193,10 @@ pub fn run(args: &Args) -> Result<()> {
         )?;
     }
     let e = evaluate(&setup, &selection.postures);
+    let free = match pool.is_none() && target.is_none() {
+        true => unconstrained(args, &setup, selection.postures.len())?,
+        false => None,
+    };
     if args.json {
         let doc = SelectJson {
             setup: &setup.name,
@@ -194,6 +212,11 @@ pub fn run(args: &Args) -> Result<()> {
             criteria: CriteriaJson::from(&e),
             pool: pool.as_ref().map(|p| p.json(selection.pool.as_ref())),
             target: target.as_ref().map(target::TargetJson::from),
+            unconstrained: free.as_ref().map(|(s, e)| UnconstrainedJson {
+                value: s.value,
+                postures_deg: degrees(&s.postures),
+                criteria: CriteriaJson::from(e),
+            }),
             out: args.out.display().to_string(),
             report: args.report.as_ref().map(|d| d.display().to_string()),
         };
@@ -208,11 +231,49 @@ pub fn run(args: &Args) -> Result<()> {
     }
     print_outcome(args, &setup, &selection, elapsed);
     print_criteria(&e);
+    if let Some((s, free_e)) = &free {
+        print_cost(args.criterion, &selection, &e, s, free_e);
+    }
     println!("postures written to {}", args.out.display());
     if let Some(dir) = &args.report {
         println!("plan: {}", dir.join("plan.html").display());
     }
     Ok(())
+}
+
+/// With cell checks: the group of the same search of `n` postures without them, and its
+/// criteria (evaluated on the setup: the criteria do not depend on the cell).
+fn unconstrained(args: &Args, setup: &Setup, n: usize) -> Result<Option<(Selection, Evaluation)>> {
+    if !Checker::new(setup).constrains() {
+        return Ok(None);
+    }
+    let free = choose(args, &setup.without_cell(), None, n)?;
+    let e = evaluate(setup, &free.postures);
+    Ok(Some((free, e)))
+}
+
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum.
+fn print_cost(
+    criterion: Criterion,
+    feasible: &Selection,
+    e: &Evaluation,
+    free: &Selection,
+    free_e: &Evaluation,
+) {
+    let mean = Evaluation::predicted_average_pct;
+    println!("what the cell's checks cost (the same search without them):");
+    println!(
+        "  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)",
+        number(feasible.value),
+        number(free.value),
+        100.0 * (feasible.value / free.value - 1.0)
+    );
+    println!(
+        "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)",
+        mean(e),
+        mean(free_e),
+        100.0 * (mean(e) / mean(free_e) - 1.0)
+    );
 }
 
 /// The group of `n` postures by the search the arguments ask for.

@@ -142,8 +142,9 @@ pub struct Check {
     pub ok: bool,
     /// The smallest signed margin of its pairs: m, or rad for [`CheckKind::is_angle`].
     pub margin: f64,
-    /// For the body checks, the smallest distance between the pair's surfaces, m (negative:
-    /// penetration); `None` for bounds, incidence and `[constraints]`.
+    /// For the checks that require the clearance (floor, obstacles, self-collision, rope), the
+    /// smallest distance between the pair's surfaces, m (negative: penetration); `None` for the
+    /// others.
     pub clearance: Option<f64>,
     /// The names of the tightest pair, e.g. `("link 3", "floor")`.
     pub between: (String, String),
@@ -167,8 +168,8 @@ impl Feasibility {
         self.checks.iter().filter(|c| !c.ok)
     }
 
-    /// The smallest distance between bodies (and lines) that must not touch, m; `None` without
-    /// body checks.
+    /// The smallest distance between bodies (and the rope) that must keep the clearance, m;
+    /// `None` without `[cell]`.
     pub fn min_clearance(&self) -> Option<f64> {
         self.checks
             .iter()
@@ -262,12 +263,12 @@ impl<'a> Checker<'a> {
                     .filter(|m| m.kind == kind)
                     .min_by(|a, b| a.margin.total_cmp(&b.margin))
                     .expect("every active check has a pair");
-                let body = !matches!(
+                let body = matches!(
                     kind,
-                    CheckKind::Bounds
-                        | CheckKind::Incidence
-                        | CheckKind::LoadingPointHeight
-                        | CheckKind::AnchorBelow
+                    CheckKind::Floor
+                        | CheckKind::Obstacles
+                        | CheckKind::SelfCollision
+                        | CheckKind::Rope
                 );
                 Check {
                     kind,

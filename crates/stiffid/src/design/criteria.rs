@@ -138,6 +138,13 @@ impl Evaluation {
             Criterion::TestPose => self.test_pose,
         }
     }
+
+    /// The predicted average deviation rate, %: the mean of
+    /// [`Evaluation::predicted_deviation_pct`] over noise levels and joints (0 without levels).
+    pub fn predicted_average_pct(&self) -> f64 {
+        let p = &self.predicted_deviation_pct;
+        p.iter().flatten().sum::<f64>() / (6 * p.len()).max(1) as f64
+    }
 }
 
 /// `max_i k(J_N)_i` over the postures (axis angles, rad): the classical index.

@@ -112,7 +112,7 @@ impl Group {
 
     /// The same mean of the first-order predicted deviation rate, percent.
     pub fn predicted_average_pct(&self) -> f64 {
-        average(&self.evaluation.predicted_deviation_pct)
+        self.evaluation.predicted_average_pct()
     }
 }
 

@@ -1,7 +1,7 @@
 //! The start-group check: does the paper's result depend on its start group? The paper's two local
 //! searches from many seeded start groups, each group judged by its first-order prediction.
 
-use super::{average, POSTURES};
+use super::POSTURES;
 use crate::design::{evaluate, local, random_group, Criterion, SearchOptions};
 use crate::progress::Progress;
 use crate::setup::Setup;
@@ -30,7 +30,7 @@ impl StartTrial {
 }
 
 fn predicted_average_pct(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
-    average(&evaluate(setup, postures).predicted_deviation_pct)
+    evaluate(setup, postures).predicted_average_pct()
 }
 
 /// Runs the start-group check: for each seed, a start group of [`POSTURES`] postures

@@ -17,6 +17,22 @@ pub const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [
     [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
 ];
 
+/// The README's cell around the paper setup: floor at z = 0, 50 mm clearance, default radii,
+/// tracker at (3000, -2000, 1500) mm.
+pub const PAPER_CELL: &str = "
+[cell]
+floor_z_mm = 0.0
+clearance_mm = 50.0
+[tracker]
+position_mm = [3000.0, -2000.0, 1500.0]
+";
+
+/// The paper setup with extra TOML appended (cell tables, constraints).
+pub fn paper_with(extra: &str) -> stiffid::Result<Setup> {
+    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string() + extra;
+    stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))
+}
+
 /// Degrees to radians.
 pub fn deg(q: &[f64; 6]) -> Vector6<f64> {
     Vector6::from_iterator(q.iter().map(|v| v.to_radians()))

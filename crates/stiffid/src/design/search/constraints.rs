@@ -1,60 +1,88 @@
-//! The cell constraints of a setup as inequalities `c(q) <= 0` on one posture.
+//! The cell's feasibility checks ([`crate::cell`]) as smooth inequality constraints `c(q) <= 0` on
+//! one posture, for SLSQP.
 
-use crate::setup::Setup;
+use crate::cell::{CheckKind, Checker, Margin};
 use nalgebra::Vector6;
 
-/// The inequalities `c(q) <= 0` (m) of the setup's [`crate::setup::CellConstraints`] for one
-/// posture q (axis angles, rad), z the base-frame height of the loading point:
-/// `z_min - z` (loading point at or above `loading_point_min_z`) and `anchor_z - z` (rope anchor at
-/// or below the loading point). Empty without constraints.
-pub fn inequalities(setup: &Setup, q: &Vector6<f64>) -> Vec<f64> {
-    let kinds = kinds(setup);
-    if kinds.is_empty() {
-        return Vec::new();
+/// What a search keeps on top of every check's margin (m, or rad for angles; the bounds excepted,
+/// which the SQP keeps exactly): 0.1 mm, so that postures written with 6 decimals of a degree
+/// still pass the exact checks.
+const SLACK: f64 = 1e-4;
+
+/// Scale of the smooth minimum of a check's margins over its pairs, for lengths (m).
+const SMOOTHING_M: f64 = 2e-3;
+/// The same for angles (rad).
+const SMOOTHING_RAD: f64 = 5e-3;
+
+/// The checks a search constrains: every check of the checker but the bounds (which the SQP keeps
+/// by itself).
+pub(super) fn kinds(checker: &Checker) -> Vec<CheckKind> {
+    checker
+        .kinds()
+        .iter()
+        .copied()
+        .filter(|&k| k != CheckKind::Bounds)
+        .collect()
+}
+
+/// One inequality `c_k(q) <= 0` per check k of `kinds`: `c_k = SLACK - softmin_k`, with the
+/// smooth minimum of the check's pair margins `softmin = m_min - tau ln sum_i exp(-(m_i - m_min) /
+/// tau)` (tau 2 mm, or 0.005 rad for angles). `softmin <= m_min`, so `c_k <= 0` implies that the
+/// exact check passes (at most `tau ln(pairs)` conservative), and unlike the minimum it has a
+/// continuous gradient.
+pub(super) fn inequalities(checker: &Checker, kinds: &[CheckKind], q: &Vector6<f64>) -> Vec<f64> {
+    let margins = checker.margins(q);
+    kinds
+        .iter()
+        .map(|&k| SLACK - smooth_min(&margins, k))
+        .collect()
+}
+
+/// How much posture `q` misses the checks by, the search's [`SLACK`] included (m and rad
+/// summed over the failing pairs): 0 when it passes them all with the slack.
+pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
+    if !checker.constrains() {
+        return 0.0;
     }
-    let z = setup.robot.frames(q).point(&setup.tool.loading_point).z;
-    kinds.iter().map(|k| k.value(setup, z)).collect()
+    let slack = |k: CheckKind| if k == CheckKind::Bounds { 0.0 } else { SLACK };
+    checker
+        .margins(q)
+        .iter()
+        .map(|m| (slack(m.kind) - m.margin).max(0.0))
+        .sum()
 }
 
-/// The largest of [`inequalities`] clamped at 0: 0 when q satisfies every constraint, m.
-pub fn violation(setup: &Setup, q: &Vector6<f64>) -> f64 {
-    inequalities(setup, q).into_iter().fold(0.0, f64::max)
+fn smooth_min(margins: &[Margin], kind: CheckKind) -> f64 {
+    let tau = match kind.is_angle() {
+        true => SMOOTHING_RAD,
+        false => SMOOTHING_M,
+    };
+    let values = || margins.iter().filter(|m| m.kind == kind).map(|m| m.margin);
+    let min = values().fold(f64::INFINITY, f64::min);
+    if !min.is_finite() {
+        return min;
+    }
+    let sum: f64 = values().map(|m| (-(m - min) / tau).exp()).sum();
+    min - tau * sum.ln()
 }
 
-/// One kind of cell constraint.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kind {
-    /// Loading point at or above the floor height.
-    MinZ,
-    /// Anchor at or below the loading point.
-    AnchorBelow,
-}
-
-impl Kind {
-    /// `c <= 0` given the loading point height `z` (m).
-    pub(super) fn value(self, setup: &Setup, z: f64) -> f64 {
-        match self {
-            Kind::MinZ => {
-                setup
-                    .constraints
-                    .loading_point_min_z
-                    .unwrap_or(f64::NEG_INFINITY)
-                    - z
-            }
-            Kind::AnchorBelow => setup.load.anchor.z - z,
+/// The check that fails in the most postures of `groups`, with that count and the number of
+/// postures; `None` if every posture passes.
+pub(super) fn most_failed<'g>(
+    checker: &Checker,
+    groups: impl Iterator<Item = &'g [Vector6<f64>]>,
+) -> Option<(CheckKind, usize, usize)> {
+    let mut counts = [0usize; CheckKind::ALL.len()];
+    let mut total = 0;
+    for q in groups.flatten() {
+        total += 1;
+        for c in checker.feasibility(q).violations() {
+            counts[c.kind as usize] += 1;
         }
     }
-}
-
-/// The constraint kinds the setup asks for.
-pub(super) fn kinds(setup: &Setup) -> Vec<Kind> {
-    let c = &setup.constraints;
-    let mut kinds = Vec::new();
-    if c.loading_point_min_z.is_some() {
-        kinds.push(Kind::MinZ);
-    }
-    if c.anchor_below_loading_point {
-        kinds.push(Kind::AnchorBelow);
-    }
-    kinds
+    let (i, &n) = counts
+        .iter()
+        .enumerate()
+        .max_by_key(|&(i, n)| (*n, std::cmp::Reverse(i)))?;
+    (n > 0).then_some((CheckKind::ALL[i], n, total))
 }

@@ -1,13 +1,15 @@
 //! Local search: SLSQP from a start group, with exact gradients or forward finite differences.
 
-use super::constraints::{kinds, Kind};
+use super::constraints::{inequalities, kinds, most_failed, violation};
 use super::{Gradient, SearchOptions, SearchOutcome};
+use crate::cell::{CheckKind, Checker};
 use crate::design::PostureTerms;
 use crate::design::{Criterion, Evaluator};
 use crate::setup::Setup;
 use crate::{Error, Result};
 use nalgebra::Vector6;
 use std::cell::RefCell;
+use std::collections::HashMap;
 
 /// What the SQP minimises for a criterion value `v`: `ln v`, and this penalty for `+infinity`
 /// (rank-deficient groups), above `ln f64::MAX ~ 709.8` so any finite value is better.
@@ -25,15 +27,19 @@ const PENALTY: f64 = 1e3;
 ///   group takes the other side, or a zero component.
 /// - Every point evaluated is clamped into the bounds; the best point evaluated is returned, so the
 ///   result never leaves the bounds and is never worse than the start.
-/// - The setup's [`crate::setup::CellConstraints`] become inequality constraints per posture
-///   (loading point at or above `loading_point_min_z`, rope anchor at or below the loading point);
-///   a point that satisfies them better always beats one that satisfies them worse.
+/// - The cell's feasibility checks ([`crate::cell::Checker`]: floor, obstacles, self-collision,
+///   rope, line of sight, incidence, `[constraints]`) become one smooth inequality constraint per
+///   check and posture (the smooth minimum of the check's pair margins, never above the exact
+///   minimum); a point that violates the exact checks less always beats one that violates them
+///   more, so the best exactly feasible point seen is returned.
 /// - Stops at [`SearchOptions::ftol`] / [`SearchOptions::xtol`] or after at most
 ///   [`SearchOptions::max_evals`] criterion evaluations (finite differences included).
 ///
 /// # Errors
 /// [`Error::InvalidField`] for fewer than 2 postures, a non-finite angle or one outside the bounds
-/// (naming the posture and axis), or the `test-pose` criterion on a setup without test postures.
+/// (naming the posture and axis), or the `test-pose` criterion on a setup without test postures;
+/// [`Error::Infeasible`] naming the check failed by the most postures when no point seen passes
+/// every check.
 pub fn local(
     setup: &Setup,
     criterion: Criterion,
@@ -41,8 +47,40 @@ pub fn local(
     options: &SearchOptions,
 ) -> Result<SearchOutcome> {
     check_start(setup, criterion, start)?;
-    let problem = Problem::new(setup, criterion, start.len(), options);
-    Ok(problem.run(start))
+    let checker = Checker::new(setup);
+    let outcome = local_in(&checker, criterion, start, options);
+    infeasible(&checker, std::iter::once(&outcome))?;
+    Ok(outcome)
+}
+
+/// [`local`] with a checker built once, from a checked start; the result may be infeasible.
+pub(super) fn local_in(
+    checker: &Checker,
+    criterion: Criterion,
+    start: &[Vector6<f64>],
+    options: &SearchOptions,
+) -> SearchOutcome {
+    Problem::new(checker, criterion, start.len(), options).run(start)
+}
+
+/// [`Error::Infeasible`] if the best of `outcomes` (the least violating) fails a check, naming the
+/// check failed by the most postures of all of them.
+pub(super) fn infeasible<'o>(
+    checker: &Checker,
+    outcomes: impl Iterator<Item = &'o SearchOutcome> + Clone,
+) -> Result<()> {
+    let feasible = |o: &SearchOutcome| o.postures.iter().all(|q| checker.violation(q) == 0.0);
+    if !checker.constrains() || outcomes.clone().any(feasible) {
+        return Ok(());
+    }
+    let groups = outcomes.map(|o| o.postures.as_slice());
+    let (check, failed, postures) =
+        most_failed(checker, groups).unwrap_or((CheckKind::Bounds, 0, 0));
+    Err(Error::Infeasible {
+        check: check.key().to_string(),
+        failed,
+        postures,
+    })
 }
 
 /// Criterion evaluations of one SQP call for `n` postures: 1 with the exact gradient, `6n + 1`
@@ -100,13 +138,15 @@ pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usi
 /// The SQP problem of one local search.
 struct Problem<'a> {
     evaluator: Evaluator<'a>,
+    checker: &'a Checker<'a>,
     criterion: Criterion,
     n: usize,
     lower: Vec<f64>,
     upper: Vec<f64>,
-    kinds: Vec<Kind>,
+    kinds: Vec<CheckKind>,
     options: &'a SearchOptions,
     state: RefCell<State>,
+    cache: RefCell<Cache>,
 }
 
 /// The best point seen and the evaluations spent.
@@ -115,20 +155,50 @@ struct State {
     best: Option<(f64, f64, Vec<f64>)>,
 }
 
+/// Most postures whose exact violation is remembered (a probe changes one posture of a group).
+const REMEMBERED: usize = 4096;
+
+/// Per-posture results reused between calls: exact violations, and the constraint values with
+/// their gradients of the postures last asked for.
+#[derive(Default)]
+struct Cache {
+    violations: HashMap<[u64; 6], f64>,
+    constraints: Vec<Option<PostureConstraints>>,
+}
+
+/// The constraints of one posture and their gradients in its six angles.
+#[derive(Clone)]
+struct PostureConstraints {
+    at: Vector6<f64>,
+    values: Vec<f64>,
+    gradients: Vec<Vector6<f64>>,
+}
+
 impl<'a> Problem<'a> {
-    fn new(setup: &'a Setup, criterion: Criterion, n: usize, options: &'a SearchOptions) -> Self {
+    fn new(
+        checker: &'a Checker<'a>,
+        criterion: Criterion,
+        n: usize,
+        options: &'a SearchOptions,
+    ) -> Self {
+        let setup = checker.setup();
         let b = &setup.bounds;
         Self {
             evaluator: Evaluator::new(setup),
+            checker,
             criterion,
             n,
             lower: (0..6 * n).map(|k| b.lower[k % 6]).collect(),
             upper: (0..6 * n).map(|k| b.upper[k % 6]).collect(),
-            kinds: kinds(setup),
+            kinds: kinds(checker),
             options,
             state: RefCell::new(State {
                 evaluations: 0,
                 best: None,
+            }),
+            cache: RefCell::new(Cache {
+                constraints: vec![None; n],
+                ..Cache::default()
             }),
         }
     }
@@ -160,7 +230,7 @@ impl<'a> Problem<'a> {
             .collect();
         let objective = |x: &[f64], grad: Option<&mut [f64]>, _: &mut ()| self.objective(x, grad);
         let constraints: Vec<_> = (0..self.n)
-            .flat_map(|i| self.kinds.iter().map(move |&k| (i, k)))
+            .flat_map(|i| (0..self.kinds.len()).map(move |k| (i, k)))
             .map(|(i, k)| {
                 move |x: &[f64], grad: Option<&mut [f64]>, _: &mut ()| {
                     self.constraint(i, k, x, grad)
@@ -220,12 +290,24 @@ impl<'a> Problem<'a> {
         value
     }
 
+    /// The exact violation of a group: the sum of its postures' (remembered per posture).
     fn violation(&self, postures: &[Vector6<f64>]) -> f64 {
         if self.kinds.is_empty() {
             return 0.0;
         }
-        let setup = self.evaluator.setup();
-        postures.iter().map(|q| super::violation(setup, q)).sum()
+        let mut cache = self.cache.borrow_mut();
+        if cache.violations.len() > REMEMBERED {
+            cache.violations.clear();
+        }
+        postures
+            .iter()
+            .map(|q| {
+                *cache
+                    .violations
+                    .entry(q.map(f64::to_bits).into())
+                    .or_insert_with(|| violation(self.checker, q))
+            })
+            .sum()
     }
 
     /// `ln(criterion)` at `x`, and its gradient if asked for ([`SearchOptions::gradient`]).
@@ -305,36 +387,48 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// Constraint `k` of posture `i` at `x`: `c <= 0`, m, with its gradient (nonzero on the six
-    /// angles of posture i only).
-    fn constraint(&self, i: usize, k: Kind, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
+    /// Constraint `k` (of [`Problem::kinds`]) of posture `i` at `x`: `c <= 0` (m, or rad for
+    /// angles), with its forward-difference gradient (nonzero on the six angles of posture i
+    /// only). The constraints of a posture are worked out together and reused.
+    fn constraint(&self, i: usize, k: usize, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
         let x = self.clamp(x);
-        let setup = self.evaluator.setup();
-        let c = |q: &[f64]| {
-            let q = Vector6::from_column_slice(q);
-            k.value(
-                setup,
-                setup.robot.frames(&q).point(&setup.tool.loading_point).z,
-            )
-        };
-        let q = &x[6 * i..6 * i + 6];
-        let value = c(q);
+        let q = Vector6::from_column_slice(&x[6 * i..6 * i + 6]);
+        let mut cache = self.cache.borrow_mut();
+        let entry = &mut cache.constraints[i];
+        if entry.as_ref().is_none_or(|c| c.at != q) {
+            *entry = Some(self.constraints_at(i, &q));
+        }
+        let c = entry.as_ref().expect("just filled");
         if let Some(g) = grad {
             g.fill(0.0);
-            let h = self.options.fd_step;
-            let mut probe = q.to_vec();
-            for a in 0..6 {
-                let step = if q[a] + h <= self.upper[6 * i + a] {
-                    h
-                } else {
-                    -h
-                };
-                probe[a] = q[a] + step;
-                g[6 * i + a] = (c(&probe) - value) / step;
-                probe[a] = q[a];
+            g[6 * i..6 * i + 6].copy_from_slice(c.gradients[k].as_slice());
+        }
+        c.values[k]
+    }
+
+    /// Every constraint of posture `i` at `q`, and their gradients in `q`.
+    fn constraints_at(&self, i: usize, q: &Vector6<f64>) -> PostureConstraints {
+        let values = inequalities(self.checker, &self.kinds, q);
+        let mut gradients = vec![Vector6::zeros(); values.len()];
+        let h = self.options.fd_step;
+        for a in 0..6 {
+            let step = if q[a] + h <= self.upper[6 * i + a] {
+                h
+            } else {
+                -h
+            };
+            let mut probe = *q;
+            probe[a] += step;
+            let probed = inequalities(self.checker, &self.kinds, &probe);
+            for (g, (p, v)) in gradients.iter_mut().zip(probed.iter().zip(&values)) {
+                g[a] = (p - v) / step;
             }
         }
-        value
+        PostureConstraints {
+            at: *q,
+            values,
+            gradients,
+        }
     }
 }
 

@@ -1,5 +1,5 @@
 //! Posture search: the group of postures that minimises a design criterion within the setup's
-//! bounds (and optional cell constraints).
+//! bounds and the cell's feasibility checks ([`crate::cell`]).
 //!
 //! - [`local`]: SQP (SLSQP, Kraft 1988, through the `slsqp` crate: the counterpart of the MATLAB
 //!   `fmincon` the paper uses) from a start group, as in Zhang et al. 2021, Section III-B step 5;
@@ -15,7 +15,6 @@ mod global;
 mod local;
 mod sample;
 
-pub use constraints::{inequalities, violation};
 pub use global::global;
 pub(super) use local::check_count;
 pub use local::local;

@@ -1,37 +1,40 @@
 //! Seeded, space-filling start groups within the setup's bounds (and cell constraints).
 
 use super::constraints::violation;
+use crate::cell::Checker;
 use crate::setup::Setup;
 use nalgebra::Vector6;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-/// Uniform redraws of a posture that violates the cell constraints before the least violating
-/// draw is kept.
+/// Uniform redraws of a posture that fails the cell's checks before the least violating draw is
+/// kept.
 pub const CONSTRAINT_TRIES: usize = 1000;
 
 /// A seeded group of `n` postures (axis angles, rad) within the setup's bounds: a Latin hypercube
 /// (each axis's range cut into `n` equal strata, every posture in a different stratum of every
 /// axis, uniform within the stratum), so the group spreads over the whole box.
 ///
-/// With [`crate::setup::CellConstraints`], a posture that violates them is redrawn uniformly in the
-/// box, up to [`CONSTRAINT_TRIES`] times; if none satisfies them, the least violating draw is kept
+/// A posture that fails the cell's checks ([`crate::cell::Checker`]: floor, obstacles,
+/// self-collision, rope, line of sight, `[constraints]`) is redrawn uniformly in the box, up to
+/// [`CONSTRAINT_TRIES`] times (rejection sampling); if no draw passes, the least violating is kept
 /// (the search then moves toward feasibility).
 ///
 /// The same `(setup, n, seed)` gives the same group on every machine: ChaCha8 seeded with `seed`,
 /// stream 0 ([`super::global`] uses streams 1, 2, ... for its starts).
 pub fn random_group(setup: &Setup, n: usize, seed: u64) -> Vec<Vector6<f64>> {
-    group_from_stream(setup, n, seed, 0)
+    group_from_stream(&Checker::new(setup), n, seed, 0)
 }
 
 /// [`random_group`] from stream `stream` of the seed.
 pub(super) fn group_from_stream(
-    setup: &Setup,
+    checker: &Checker,
     n: usize,
     seed: u64,
     stream: u64,
 ) -> Vec<Vector6<f64>> {
+    let setup = checker.setup();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(stream);
     let (lower, upper) = (&setup.bounds.lower, &setup.bounds.upper);
@@ -50,14 +53,17 @@ pub(super) fn group_from_stream(
             })
         })
         .collect();
-    for q in group.iter_mut() {
-        make_feasible(setup, q, &mut rng);
+    if checker.constrains() {
+        for q in group.iter_mut() {
+            make_feasible(checker, q, &mut rng);
+        }
     }
     group
 }
 
-fn make_feasible(setup: &Setup, q: &mut Vector6<f64>, rng: &mut ChaCha8Rng) {
-    let mut worst = violation(setup, q);
+fn make_feasible(checker: &Checker, q: &mut Vector6<f64>, rng: &mut ChaCha8Rng) {
+    let setup = checker.setup();
+    let mut worst = violation(checker, q);
     for _ in 0..CONSTRAINT_TRIES {
         if worst <= 0.0 {
             return;
@@ -65,7 +71,7 @@ fn make_feasible(setup: &Setup, q: &mut Vector6<f64>, rng: &mut ChaCha8Rng) {
         let candidate = Vector6::from_fn(|a, _| {
             rng.random_range(setup.bounds.lower[a]..=setup.bounds.upper[a])
         });
-        let v = violation(setup, &candidate);
+        let v = violation(checker, &candidate);
         if v < worst {
             worst = v;
             *q = candidate;
