@@ -138,3 +138,25 @@ fn impossible_constraints_exit_2_naming_the_check() {
     assert_usage_error(&e, &["no feasible group", "loading-point-min-z"]);
     assert!(!out.exists());
 }
+
+#[test]
+fn the_readme_cell_example_group_is_feasible_in_its_cell() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/cell");
+    let setup = root.join("zhang2021-tracker.toml");
+    let postures = root.join("feasible-relative-a.csv");
+    let out = stiffid(&[
+        "evaluate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--postures",
+        postures.to_str().unwrap(),
+        "--json",
+    ]);
+    let doc = json(&out);
+    let f = doc["feasibility"].as_array().unwrap();
+    assert_eq!(f.len(), 6);
+    for p in f {
+        assert_eq!(p["feasible"], true, "{p}");
+        assert!(p["min_clearance_mm"].as_f64().unwrap() >= 50.0, "{p}");
+    }
+}

@@ -216,8 +216,8 @@ enum Table {
 impl Postures {
     fn new(measurements: &[Measurement]) -> Self {
         let n = measurements.len();
-        let table = match measurements.iter().all(|m| m.posture < 2 * n) {
-            true => Table::Dense(vec![(usize::MAX, usize::MAX); 2 * n]),
+        let table = match measurements.iter().all(|m| m.posture < n) {
+            true => Table::Dense(vec![(usize::MAX, usize::MAX); n]),
             false => Table::Sparse(HashMap::new()),
         };
         Self { table, count: 0 }
@@ -453,8 +453,7 @@ impl Observations {
         self.check_deflection()?;
         let psi = std::mem::replace(&mut self.psi, DMatrix::zeros(0, 6));
         let factor = Factor::try_from_matrix(psi)?;
-        let h = factor.solve(&self.delta);
-        let residuals = factor.residuals(&self.delta);
+        let (h, residuals) = factor.solve_with_residuals(&self.delta);
         Ok(self.finish(
             h,
             residuals,

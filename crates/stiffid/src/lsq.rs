@@ -119,17 +119,19 @@ impl Factor {
         Vector6::from_column_slice(&d.as_slice()[..6])
     }
 
-    /// The least-squares residuals `delta - Psi h` (h = [`Factor::solve`]) without `Psi`:
-    /// `Q^T delta` with its first six entries zeroed, multiplied by `Q` (as LAPACK's `dgels`).
+    /// The solution `h` ([`Factor::solve`]) and the least-squares residuals `delta - Psi h`
+    /// without `Psi`: `Q^T delta` with its first six entries zeroed, multiplied by `Q` (as
+    /// LAPACK's `dgels`). One application of `Q^T` serves both.
     ///
     /// # Panics
     /// If `delta` does not have as many entries as `Psi` has rows.
-    pub fn residuals(&self, delta: &DVector<f64>) -> DVector<f64> {
+    pub fn solve_with_residuals(&self, delta: &DVector<f64>) -> (Vector6<f64>, DVector<f64>) {
         let mut d = delta.clone();
         self.reflect(&mut d, 0..6);
+        let h = self.r_inv * Vector6::from_column_slice(&d.as_slice()[..6]);
         d.rows_mut(0, 6).fill(0.0);
         self.reflect(&mut d, (0..6).rev());
-        d
+        (h, d)
     }
 
     /// Applies the reflectors `H_k` in the order given: `0..6` is `Q^T d`, the reverse `Q d`.

@@ -84,7 +84,8 @@ pub struct MeasurementFile {
 /// is not 1, 2, ...
 pub fn parse(text: &str) -> Result<MeasurementFile> {
     let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
+        // Fields are trimmed where they are read: cheaper than trimming whole records.
+        .trim(csv::Trim::Headers)
         .flexible(true)
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
@@ -112,7 +113,11 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
         header,
         columns,
     };
-    let mut index: HashMap<Box<str>, usize> = HashMap::new();
+    // Sized for a label per row (the worst case): no rehashing of a growing map.
+    let mut labels = Labels {
+        index: HashMap::with_capacity(rows),
+        last: (String::new(), 0),
+    };
     let mut record = csv::StringRecord::new();
     loop {
         let line = reader.position().line();
@@ -122,25 +127,20 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
             Err(e) => return Err(unreadable(line, &e)),
         }
         let line = record.position().map_or(line, |p| p.line());
-        file.push(&record, line, &mut index)?;
+        file.push(&record, line, &mut labels)?;
     }
     if file.measurements.is_empty() {
         return Err(problem(line_of_header, None, ColumnProblem::NoRows));
     }
-    file.labels = vec![String::new(); index.len()];
-    for (label, i) in index {
+    file.labels = vec![String::new(); labels.index.len()];
+    for (label, i) in labels.index {
         file.labels[i] = label.into();
     }
     Ok(file)
 }
 
 impl MeasurementFile {
-    fn push(
-        &mut self,
-        record: &csv::StringRecord,
-        line: u64,
-        index: &mut HashMap<Box<str>, usize>,
-    ) -> Result<()> {
+    fn push(&mut self, record: &csv::StringRecord, line: u64, labels: &mut Labels) -> Result<()> {
         if record.len() != self.header.len() {
             return Err(problem(
                 line,
@@ -151,18 +151,11 @@ impl MeasurementFile {
                 },
             ));
         }
-        let label = &record[self.columns.posture];
-        let posture = match index.get(label) {
-            Some(&i) => i,
-            None if label.is_empty() => {
-                return Err(self.at(line, self.columns.posture, ColumnProblem::EmptyLabel))
-            }
-            None => {
-                let i = index.len();
-                index.insert(label.into(), i);
-                i
-            }
-        };
+        let label = record[self.columns.posture].trim();
+        if label.is_empty() {
+            return Err(self.at(line, self.columns.posture, ColumnProblem::EmptyLabel));
+        }
+        let posture = labels.number(label);
         let measurement = self
             .columns
             .measurement(record, posture, |c, p| self.at(line, c, p))?;
@@ -243,6 +236,27 @@ impl MeasurementFile {
         };
         let line = self.lines.get(number.wrapping_sub(1)).copied().unwrap_or(0);
         self.at(line, column, ColumnProblem::Measurement { message })
+    }
+}
+
+/// The posture labels seen so far and their numbers, in order of first appearance.
+struct Labels {
+    index: HashMap<Box<str>, usize>,
+    /// The previous row's label and number (rows of one posture usually follow each other).
+    last: (String, usize),
+}
+
+impl Labels {
+    /// The number of `label`, a new one if it was not seen before (one hash per row whose
+    /// label differs from the previous row's).
+    fn number(&mut self, label: &str) -> usize {
+        if self.last.0 != label {
+            let next = self.index.len();
+            self.last.1 = *self.index.entry(label.into()).or_insert(next);
+            self.last.0.clear();
+            self.last.0.push_str(label);
+        }
+        self.last.1
     }
 }
 
@@ -434,7 +448,7 @@ impl Columns {
         error: impl Fn(usize, ColumnProblem) -> Error,
     ) -> Result<Measurement> {
         let number = |i: usize| -> Result<f64> {
-            let field = &record[i];
+            let field = record[i].trim();
             field
                 .parse::<f64>()
                 .ok()
@@ -451,7 +465,8 @@ impl Columns {
         let vector3 = |c: [usize; 3]| -> Result<Vector3<f64>> {
             Ok(Vector3::new(number(c[0])?, number(c[1])?, number(c[2])?))
         };
-        let point = record[self.point]
+        let point_field = record[self.point].trim();
+        let point = point_field
             .parse::<usize>()
             .ok()
             .filter(|p| *p >= 1)
@@ -459,7 +474,7 @@ impl Columns {
                 error(
                     self.point,
                     ColumnProblem::NotAPoint {
-                        value: shorten(&record[self.point]),
+                        value: shorten(point_field),
                     },
                 )
             })?;
