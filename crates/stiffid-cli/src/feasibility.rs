@@ -60,21 +60,22 @@ pub fn json(checks: &[Feasibility]) -> Vec<PostureJson> {
         .collect()
 }
 
-/// Prints one line per posture: feasible with its smallest clearance, or the failing checks.
-pub fn print(checks: &[Feasibility]) {
-    println!("\nfeasibility in the cell (checks: {})", kinds(checks));
+/// One line per posture: feasible with its smallest clearance, or the failing checks.
+pub fn text(checks: &[Feasibility]) -> String {
+    let mut s = format!("\nfeasibility in the cell (checks: {})\n", kinds(checks));
     for (i, f) in checks.iter().enumerate() {
         let clearance = f.min_clearance().map_or(String::new(), |c| {
             format!(", smallest clearance {:.1} mm", c * 1e3)
         });
-        match f.feasible() {
-            true => println!("  posture {}: feasible{clearance}", i + 1),
+        s += &match f.feasible() {
+            true => format!("  posture {}: feasible{clearance}\n", i + 1),
             false => {
                 let failing: Vec<String> = f.violations().map(describe).collect();
-                println!("  posture {}: INFEASIBLE: {}", i + 1, failing.join("; "));
+                format!("  posture {}: INFEASIBLE: {}\n", i + 1, failing.join("; "))
             }
-        }
+        };
     }
+    s
 }
 
 fn kinds(checks: &[Feasibility]) -> String {

@@ -1,83 +1,160 @@
 //! Turning command-line arguments into robots, setups and angle lists.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use nalgebra::{Matrix6, SVector, Vector6};
-use std::path::Path;
+use std::fs::File;
+use std::io::Read;
+use std::os::unix::fs::MetadataExt;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
+use stiffid::limits::{self, short, Range};
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{setup, Robot, Setup};
 
-/// A robot from a preset name, a robot `.toml` file or a `.urdf` file (`tip`: URDF tip link).
+/// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
+/// (the 1e6-row files of the README take 119 MB), and a bound on the memory a file (or
+/// `/dev/zero`) can take.
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
+
+/// Every file read so far (resolved path, device and inode), so no output is written over one.
+static INPUTS: Mutex<Vec<(PathBuf, u64, u64)>> = Mutex::new(Vec::new());
+
+/// A robot: a robot `.toml` or `.urdf` file if one exists at `arg`, else the preset named `arg`
+/// (`tip`: URDF tip link). The error names what was tried.
 pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
-    let path = Path::new(arg);
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("toml") => Ok(file::parse(&read(path)?, arg)?),
-        Some("urdf") => Ok(urdf::parse(&read(path)?, arg, tip)?),
-        _ => Ok(presets::get(arg)?),
-    }
+    robot_in(Path::new(""), arg, tip)
 }
 
-/// A setup from a built-in name or a setup `.toml` file. A robot file named in a setup file is
-/// looked for relative to the setup file.
+/// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`; a
+/// preset name wins over a path that does not exist (so a preset named `...-3.0` is no file).
+fn robot_in(dir: &Path, arg: &str, tip: Option<&str>) -> Result<Robot> {
+    let path = dir.join(arg);
+    if path.exists() {
+        let name = path.display().to_string();
+        return match path.extension().and_then(|e| e.to_str()) {
+            Some("toml") => Ok(file::parse(&read(&path)?, &name)?),
+            Some("urdf") => Ok(urdf::parse(&read(&path)?, &name, tip)?),
+            _ => bail!("{name}: a robot file must end in .toml or .urdf"),
+        };
+    }
+    presets::get(arg).map_err(|e| match is_file_like(arg) {
+        true => anyhow!(
+            "robot '{}': no file {} and no preset of that name ({e})",
+            short(arg),
+            short(&path.display().to_string())
+        ),
+        false => e.into(),
+    })
+}
+
+/// Whether a reference looks like a file path (an extension or a directory separator).
+fn is_file_like(arg: &str) -> bool {
+    let path = Path::new(arg);
+    path.extension().is_some() || path.components().count() > 1
+}
+
+/// A setup from a setup `.toml` file if one exists at `arg`, else the built-in setup named
+/// `arg`. A robot file named in a setup file is looked for relative to the setup file.
 pub fn setup(arg: &str) -> Result<Setup> {
     let path = Path::new(arg);
-    if path.extension().and_then(|e| e.to_str()) != Some("toml") {
-        return Ok(setup::builtin(arg)?);
+    if !path.exists() {
+        return setup::builtin(arg).map_err(|e| match is_file_like(arg) {
+            true => anyhow!(
+                "setup '{}': no such file and no built-in setup of that name ({e})",
+                short(arg)
+            ),
+            false => e.into(),
+        });
     }
     setup_text(&read(path)?, arg, path.parent().unwrap_or(Path::new("")))
 }
 
 /// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
-/// file it names is looked for).
+/// file it names is looked for; a preset name wins over a path that does not exist).
 pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
     let arg = source_name;
     Ok(setup::parse(text, arg, |r, tip| {
-        let candidate = dir.join(r);
-        // A preset name (which may hold a dot, as "nj165-3.0") wins over a file that is not there.
-        let is_preset = presets::get(r).is_ok() && !candidate.exists();
-        let reference = match Path::new(r).extension() {
-            Some(_) if !is_preset => candidate.to_string_lossy().into_owned(),
-            _ => r.to_string(),
-        };
-        robot(&reference, tip).map_err(|e| stiffid::Error::Parse {
+        robot_in(dir, r, tip).map_err(|e| stiffid::Error::Parse {
             source_name: format!("{arg}: robot"),
             message: e.to_string(),
         })
     })?)
 }
 
-/// The text of a file, with its name in the error.
+/// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8. The file is
+/// remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))
+    let name = path.display();
+    let file = File::open(path).with_context(|| format!("{name}: cannot read"))?;
+    let meta = file
+        .metadata()
+        .with_context(|| format!("{name}: cannot read"))?;
+    if meta.is_dir() {
+        bail!("{name}: is a directory, expected a file");
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("{name}: cannot read"))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        bail!(
+            "{name}: larger than the input limit of {} MiB",
+            MAX_INPUT_BYTES >> 20
+        );
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        anyhow!(
+            "{name}: not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        )
+    })?;
+    if let Ok(resolved) = path.canonicalize() {
+        let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+        inputs.push((resolved, meta.dev(), meta.ino()));
+    }
+    Ok(text)
+}
+
+/// The input file (as read) that `target` (a resolved path) is, if any: the same path, or the
+/// same file under another name (a hard link).
+pub fn input_at(target: &Path) -> Option<PathBuf> {
+    let meta = std::fs::metadata(target).ok();
+    let inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+    inputs
+        .iter()
+        .find(|(p, dev, ino)| {
+            p == target
+                || meta
+                    .as_ref()
+                    .is_some_and(|m| m.dev() == *dev && m.ino() == *ino)
+        })
+        .map(|(p, _, _)| p.clone())
 }
 
 /// A `--q-deg` posture: six comma-separated axis angles in degrees, within the robot's joint
 /// limits. Returns the angles in degrees and in radians; the error names the axis and the limits.
 pub fn posture(text: &str, robot: &Robot) -> Result<(Vector6<f64>, Vector6<f64>)> {
-    let q_deg = six(text, "--q-deg")?;
+    let q_deg = vector::<6>(text, "--q-deg", &limits::ANGLE_DEG)?;
     let q = q_deg.map(f64::to_radians);
     if let Some(i) = robot.first_out_of_limits(&q) {
         bail!(
             "--q-deg: axis {} = {} deg is outside the joint limits [{:.2}, {:.2}] deg of {}",
             i + 1,
-            q_deg[i],
+            limits::number(q_deg[i]),
             robot.lower[i].to_degrees(),
             robot.upper[i].to_degrees(),
-            robot.name
+            short(&robot.name)
         );
     }
     Ok((q_deg, q))
 }
 
-/// Six comma-separated finite numbers, e.g. `--q-deg 0,0,-90,0,0,0`; `what` names the option.
-pub fn six(text: &str, what: &str) -> Result<Vector6<f64>> {
-    vector(text, what)
-}
-
-/// Exactly `N` comma-separated finite numbers, e.g. `--point-mm 150,0,200`; `what` names the option.
-pub fn vector<const N: usize>(text: &str, what: &str) -> Result<SVector<f64, N>> {
-    let values = numbers(text, what)?;
+/// Exactly `N` comma-separated numbers within `range`, e.g. `--point-mm 150,0,200`; `what` names
+/// the option.
+pub fn vector<const N: usize>(text: &str, what: &str, range: &Range) -> Result<SVector<f64, N>> {
+    let values = numbers(text, what, range)?;
     if values.len() != N {
         bail!(
             "{what}: expected {N} comma-separated numbers, got {}",
@@ -87,24 +164,27 @@ pub fn vector<const N: usize>(text: &str, what: &str) -> Result<SVector<f64, N>>
     Ok(SVector::from_column_slice(&values))
 }
 
-/// Comma-separated finite numbers; `what` names the option in errors.
-pub fn numbers(text: &str, what: &str) -> Result<Vec<f64>> {
-    text.split(',')
+/// Comma-separated numbers within `range`; `what` names the option in errors. At most 64 numbers.
+pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).take(65).collect();
+    if fields.len() > 64 {
+        bail!("{what}: more than 64 comma-separated numbers");
+    }
+    let values = fields
+        .iter()
         .enumerate()
         .map(|(i, s)| {
-            let v: f64 = s.trim().parse().with_context(|| {
-                format!("{what}: value {} '{}' is not a number", i + 1, s.trim())
-            })?;
-            if !v.is_finite() {
-                bail!("{what}: value {} '{}' is not finite", i + 1, s.trim());
-            }
-            Ok(v)
+            s.parse::<f64>()
+                .with_context(|| format!("{what}: value {} '{}' is not a number", i + 1, short(s)))
         })
-        .collect()
+        .collect::<Result<Vec<f64>>>()?;
+    limits::check(what, &values, range)?;
+    Ok(values)
 }
 
-/// The joint stiffness (Nm/rad) in a JSON file's key `stiffness_nm_per_rad`: six finite numbers
-/// > 0, for example the result of `stiffid identify --out`. Other keys are ignored.
+/// The joint stiffness (Nm/rad) in a JSON file's key `stiffness_nm_per_rad`: six numbers within
+/// [`limits::STIFFNESS_NM_PER_RAD`], for example the result of `stiffid identify --out`. Other
+/// keys are ignored.
 pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
     Ok(identified(path)?.stiffness)
 }
@@ -120,22 +200,24 @@ pub struct Identified {
 
 /// Reads a stiffness file (see [`Identified`]); other keys are ignored.
 pub fn identified(path: &Path) -> Result<Identified> {
+    parse_identified(&read(path)?, &path.display().to_string())
+}
+
+/// [`identified`] of the text of a file named `name`: the stiffness within
+/// [`limits::STIFFNESS_NM_PER_RAD`].
+pub fn parse_identified(text: &str, name: &str) -> Result<Identified> {
     #[derive(serde::Deserialize)]
     struct StiffnessFile {
         stiffness_nm_per_rad: [f64; 6],
         compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
     }
-    let name = path.display();
-    let file: StiffnessFile = serde_json::from_str(&read(path)?).with_context(|| {
+    let file: StiffnessFile = serde_json::from_str(text).with_context(|| {
         format!("{name}: expected JSON with the key stiffness_nm_per_rad (six numbers, Nm/rad) and optionally compliance_covariance_rad2_per_nm2 (6x6)")
     })?;
-    let k = Vector6::from(file.stiffness_nm_per_rad);
-    if let Some(j) = (0..6).find(|&j| !(k[j].is_finite() && k[j] > 0.0)) {
-        bail!(
-            "{name}: stiffness_nm_per_rad[{j}] = {}: expected a finite number > 0",
-            k[j]
-        );
-    }
+    let k = file.stiffness_nm_per_rad;
+    let field = format!("{name}: stiffness_nm_per_rad");
+    limits::check(&field, &k, &limits::STIFFNESS_NM_PER_RAD)?;
+    let k = Vector6::from(k);
     let covariance = match file.compliance_covariance_rad2_per_nm2 {
         None => None,
         Some(rows) => {

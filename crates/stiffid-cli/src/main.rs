@@ -6,6 +6,8 @@ mod feasibility;
 mod load;
 mod output;
 mod postures;
+#[cfg(test)]
+mod proptests;
 mod report;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -13,7 +15,12 @@ use std::process::ExitCode;
 
 /// Joint stiffness identification of industrial robots, and which postures to measure in.
 #[derive(Parser)]
-#[command(name = "stiffid", version, about)]
+#[command(
+    name = "stiffid",
+    version,
+    about,
+    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; the README's 'Limits and safety' lists them all."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -54,7 +61,17 @@ enum Command {
 
 fn main() -> ExitCode {
     restore_sigpipe();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if e.use_stderr() => return fail(&e.to_string()),
+        Err(e) => {
+            // --help, --version: their text on stdout.
+            return match output::print(&e.render().to_string()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => fail(&output::one_line_chain(&e)),
+            };
+        }
+    };
     let result = match cli.command {
         Command::Robots => commands::robots::run(),
         Command::Kinematics(args) => commands::kinematics::run(&args),
@@ -73,11 +90,20 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {}", output::one_line_chain(&e));
-            ExitCode::from(2)
-        }
+        Err(e) => fail(&output::one_line_chain(&e)),
     }
+}
+
+/// Prints `message` as one `error: ` line on stderr (its first line for a clap error, long words
+/// cut) and returns exit code 2. A stderr that cannot be written is ignored: the exit code still
+/// says it.
+fn fail(message: &str) -> ExitCode {
+    use std::io::Write;
+    let first = message.lines().next().unwrap_or_default();
+    let first = first.strip_prefix("error: ").unwrap_or(first);
+    let line = output::one_line(first);
+    let _ = writeln!(std::io::stderr().lock(), "error: {line}");
+    ExitCode::from(2)
 }
 
 /// Restores the default SIGPIPE action (Rust ignores it), so `stiffid ... | head` ends quietly

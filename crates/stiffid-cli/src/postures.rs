@@ -1,10 +1,13 @@
 //! Postures files: CSV with the header `posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg`, one
-//! posture per row, axis angles in degrees, `posture` numbering the rows from 1.
+//! posture per row (at most [`limits::MAX_GROUP_POSTURES`]), axis angles in degrees within the
+//! robot's joint limits (and, where a command needs it, the setup's bounds), `posture` numbering
+//! the rows from 1.
 
-use crate::output::write_atomic;
 use anyhow::{bail, Context, Result};
 use nalgebra::Vector6;
 use std::path::Path;
+use stiffid::limits::{self, short};
+use stiffid::setup::Bounds;
 use stiffid::Robot;
 
 /// The header of a postures file.
@@ -13,18 +16,19 @@ pub const HEADER: [&str; 7] = [
 ];
 
 /// Reads a postures file; angles returned in rad. Every posture must lie within the robot's joint
-/// limits.
+/// limits and, if given, the `bounds` (a setup's).
 ///
 /// # Errors
 /// One line naming the file and line: unreadable file, wrong header, a row without 7 fields, a value
-/// that is not a finite number, an angle outside the robot's limits, or no posture at all.
-pub fn read(path: &Path, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
+/// that is not a finite number, an angle outside the limits or bounds, no posture at all or more
+/// than [`limits::MAX_GROUP_POSTURES`].
+pub fn read(path: &Path, robot: &Robot, bounds: Option<&Bounds>) -> Result<Vec<Vector6<f64>>> {
     let text = crate::load::read(path)?;
-    parse(&text, robot).with_context(|| path.display().to_string())
+    parse(&text, robot, bounds).with_context(|| path.display().to_string())
 }
 
 /// Parses the text of a postures file (see [`read`]); errors name the line.
-pub fn parse(text: &str, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
+pub fn parse(text: &str, robot: &Robot, bounds: Option<&Bounds>) -> Result<Vec<Vector6<f64>>> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -37,7 +41,13 @@ pub fn parse(text: &str, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
     for record in reader.records() {
         let record = record.context("cannot read a row")?;
         let line = record.position().map_or(0, |p| p.line());
-        postures.push(row(&record, line, robot)?);
+        if postures.len() == limits::MAX_GROUP_POSTURES {
+            bail!(
+                "line {line}: more than {} postures",
+                limits::MAX_GROUP_POSTURES
+            );
+        }
+        postures.push(row(&record, line, robot, bounds)?);
     }
     if postures.is_empty() {
         bail!("expected at least one posture row after the header");
@@ -45,7 +55,12 @@ pub fn parse(text: &str, robot: &Robot) -> Result<Vec<Vector6<f64>>> {
     Ok(postures)
 }
 
-fn row(record: &csv::StringRecord, line: u64, robot: &Robot) -> Result<Vector6<f64>> {
+fn row(
+    record: &csv::StringRecord,
+    line: u64,
+    robot: &Robot,
+    bounds: Option<&Bounds>,
+) -> Result<Vector6<f64>> {
     if record.len() != HEADER.len() {
         bail!("line {line}: expected 7 fields, got {}", record.len());
     }
@@ -57,19 +72,24 @@ fn row(record: &csv::StringRecord, line: u64, robot: &Robot) -> Result<Vector6<f
             .filter(|v: &f64| v.is_finite())
             .with_context(|| {
                 format!(
-                    "line {line}: {} '{field}' is not a finite number",
-                    HEADER[i + 1]
+                    "line {line}: {} '{}' is not a finite number",
+                    HEADER[i + 1],
+                    short(field)
                 )
             })?;
         q[i] = deg.to_radians();
     }
-    if let Some(i) = robot.first_out_of_limits(&q) {
+    let (lower, upper, what) = match bounds {
+        Some(b) => (&b.lower, &b.upper, "the setup's bounds"),
+        None => (&robot.lower, &robot.upper, "the robot's limits"),
+    };
+    if let Some(i) = (0..6).find(|&i| !(q[i] >= lower[i] && q[i] <= upper[i])) {
         bail!(
-            "line {line}: {} = {} is outside the robot's limits [{:.1}, {:.1}]",
+            "line {line}: {} = {} is outside {what} [{:.1}, {:.1}]",
             HEADER[i + 1],
-            q[i].to_degrees(),
-            robot.lower[i].to_degrees(),
-            robot.upper[i].to_degrees()
+            limits::number(q[i].to_degrees()),
+            lower[i].to_degrees(),
+            upper[i].to_degrees()
         );
     }
     Ok(q)
@@ -85,18 +105,18 @@ pub fn to_csv(postures: &[Vector6<f64>]) -> String {
     text
 }
 
-/// Writes postures (axis angles, rad) to a postures file, whole.
-pub fn write(path: &Path, postures: &[Vector6<f64>]) -> Result<()> {
-    write_atomic(path, to_csv(postures).as_bytes())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
-    fn robot() -> Robot {
-        stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap()
+    fn setup() -> stiffid::Setup {
+        stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    }
+
+    fn parse_in_bounds(text: &str) -> Result<Vec<Vector6<f64>>> {
+        let s = setup();
+        parse(text, &s.robot, Some(&s.bounds))
     }
 
     #[test]
@@ -105,7 +125,7 @@ mod tests {
             Vector6::new(0.1, -0.2, -1.5, 0.4, 0.5, -0.6),
             Vector6::new(-0.3, 0.2, -2.0, -1.0, 0.0, 3.0),
         ];
-        let back = parse(&to_csv(&q), &robot()).unwrap();
+        let back = parse_in_bounds(&to_csv(&q)).unwrap();
         assert_eq!(back.len(), 2);
         for (a, b) in q.iter().zip(&back) {
             assert_relative_eq!(a, b, epsilon = 1e-7);
@@ -116,21 +136,21 @@ mod tests {
     fn errors_name_the_line_and_column() {
         let head = HEADER.join(",");
         let bad = format!("{head}\n1,0,0,-90,0,0,0\n2,0,x,-90,0,0,0\n");
-        let e = parse(&bad, &robot()).unwrap_err().to_string();
+        let e = parse_in_bounds(&bad).unwrap_err().to_string();
         assert!(e.contains("line 3") && e.contains("q2_deg"), "{e}");
-        let e = parse("posture,a\n", &robot()).unwrap_err().to_string();
+        let e = parse_in_bounds("posture,a\n").unwrap_err().to_string();
         assert!(e.contains("line 1"), "{e}");
-        let e = parse(&format!("{head}\n"), &robot())
+        let e = parse_in_bounds(&format!("{head}\n"))
             .unwrap_err()
             .to_string();
         assert!(e.contains("at least one"), "{e}");
-        let e = parse(&format!("{head}\n1,0,0,-90\n"), &robot())
+        let e = parse_in_bounds(&format!("{head}\n1,0,0,-90\n"))
             .unwrap_err()
             .to_string();
         assert!(e.contains("line 2: expected 7 fields"), "{e}");
-        let e = parse(&format!("{head}\n1,0,0,-90,0,0,9000\n"), &robot())
+        let e = parse_in_bounds(&format!("{head}\n1,0,0,-90,0,0,9000\n"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("q6_deg") && e.contains("limits"), "{e}");
+        assert!(e.contains("q6_deg") && e.contains("bounds"), "{e}");
     }
 }

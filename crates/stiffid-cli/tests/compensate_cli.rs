@@ -243,7 +243,7 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
         &out,
         &["--report", foreign.to_str().unwrap()],
     );
-    assert_usage_error(&o, &["not a stiffid report"]);
+    assert_usage_error(&o, &["not a previous report", "--report"]);
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

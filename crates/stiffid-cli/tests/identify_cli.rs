@@ -382,7 +382,7 @@ fn bad_stiffness_files_and_arguments_are_errors() {
                 "--data",
                 data.to_str().unwrap(),
             ],
-            "stiffness_nm_per_rad[5]",
+            "stiffness_nm_per_rad[6]: -6 is outside",
         ),
         (
             &[

@@ -133,7 +133,7 @@ fn missing_robot_file() {
             "--q-deg",
             "0,0,0,0,0,0",
         ]),
-        &["no/such/robot.toml", "cannot read"],
+        &["no/such/robot.toml", "no file", "no preset"],
     );
 }
 
@@ -204,7 +204,7 @@ fn wrong_number_of_angles() {
 fn nan_or_text_in_the_angles() {
     assert_usage_error(
         &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,NaN,0,0,0"]),
-        &["--q-deg", "value 3", "not finite"],
+        &["--q-deg", "--q-deg[3]: NaN is outside"],
     );
     assert_usage_error(
         &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,ten,-90,0,0,0"]),
@@ -227,5 +227,8 @@ fn bad_point_and_characteristic_length() {
     let e = stiffid(&[&args[..], &["--point-mm", "1,2"]].concat());
     assert_usage_error(&e, &["--point-mm", "expected 3"]);
     let e = stiffid(&[&args[..], &["--characteristic-length-mm", "0"]].concat());
-    assert_usage_error(&e, &["--characteristic-length-mm", "positive"]);
+    assert_usage_error(
+        &e,
+        &["--characteristic-length-mm", "0 is outside [1, 100000] mm"],
+    );
 }

@@ -111,7 +111,7 @@ fn pool_choice_is_the_enumerated_optimum_and_skips_postures_outside_the_bounds()
         "--out",
         pool.to_str().unwrap(),
     ]);
-    assert_usage_error(&refused, &["refusing to overwrite the --pool file"]);
+    assert_usage_error(&refused, &["refusing to write over the input file"]);
     let too_many = select(&[
         "--pool",
         pool.to_str().unwrap(),

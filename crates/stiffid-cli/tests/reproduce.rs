@@ -162,7 +162,7 @@ fn the_report_is_complete_self_contained_and_reproducible() {
 fn a_foreign_non_empty_directory_is_refused_without_force() {
     let dir = temp_dir("foreign");
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
-    assert_usage_error(&reproduce(&dir, &[]), &["--force", "not a stiffid report"]);
+    assert_usage_error(&reproduce(&dir, &[]), &["--force", "not a previous report"]);
     let entries: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(entries.len(), 1, "wrote into a foreign directory");
     assert_eq!(

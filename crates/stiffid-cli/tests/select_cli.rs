@@ -66,7 +66,7 @@ fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
         "--out",
         start.to_str().unwrap(),
     ]);
-    assert_usage_error(&refused, &["refusing to overwrite"]);
+    assert_usage_error(&refused, &["refusing to write over the input file"]);
     assert_eq!(std::fs::read_to_string(&start).unwrap(), GROUP);
 }
 

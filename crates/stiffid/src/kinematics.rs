@@ -147,14 +147,20 @@ impl Frames {
     }
 }
 
+/// The dexterity index from which a posture counts as singular: `1e-3 / f64::EPSILON` (about
+/// 4.5e12), where the inverse keeps fewer than 3 correct digits. A wrist angle of 1e-6 rad from
+/// the singularity still gives a finite index of about 1e6.
+pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
+
 /// Dexterity index `k(J_N) = (1/6) sqrt(tr(A) tr(A^-1))`, `A = J_N J_N^T`,
 /// `J_N = diag(I/L, I) J` (Zhang et al. 2021, Eq. 20-21; the Frobenius-norm condition number of the
 /// normalised Jacobian, Paden & Sastry 1988).
 ///
 /// `jacobian` is 6x6 with rows `[v; omega]` (m/rad, rad/rad); `characteristic_length` L in m.
 /// 1 for an isotropic Jacobian, larger is worse; `+infinity` at a singularity (also a numerical
-/// one: a value of `1 / f64::EPSILON` or more, where the computed inverse is rounding noise) or for
-/// non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
+/// one: a value of [`NUMERICALLY_SINGULAR`] or more, where the computed inverse is mostly rounding
+/// noise: at an exactly singular posture rounding leaves values near `1 / f64::EPSILON`, 4.5e15)
+/// or for non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
 /// `|J_N|_F |J_N^-1|_F / 6` without forming `A`.
 pub fn dexterity(jacobian: &Matrix6<f64>, characteristic_length: f64) -> f64 {
     normalised(jacobian, characteristic_length).map_or(f64::INFINITY, |n| n.dexterity)
@@ -176,7 +182,7 @@ fn normalised(jacobian: &Matrix6<f64>, characteristic_length: f64) -> Option<Nor
     }
     let inverse = crate::linalg::inverse(&jn)?;
     let dexterity = jn.norm() * inverse.norm() / 6.0;
-    (dexterity < 1.0 / f64::EPSILON).then_some(Normalised {
+    (dexterity < NUMERICALLY_SINGULAR).then_some(Normalised {
         jn,
         inverse,
         dexterity,

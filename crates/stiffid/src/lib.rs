@@ -29,6 +29,7 @@ mod error;
 pub mod formats;
 pub mod ik;
 pub mod kinematics;
+pub mod limits;
 mod linalg;
 pub mod robot;
 

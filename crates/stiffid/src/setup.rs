@@ -35,7 +35,7 @@ mod cell;
 pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
 
 use crate::kinematics::{Coordinates, Frames};
-use crate::robot::file::one_line;
+use crate::limits::{self, check_in};
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
@@ -298,8 +298,10 @@ pub fn builtin(name: &str) -> Result<Setup> {
 ///
 /// # Errors
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
-/// [`Error::InvalidField`] naming the field for non-finite or non-positive values, no measuring
-/// point, bounds outside the robot's limits or test postures outside them; whatever
+/// [`Error::InvalidField`] naming the field and the value for an empty name, a number that is not
+/// finite or outside its documented range ([`crate::limits`]: for example a stiffness outside
+/// [`limits::STIFFNESS_NM_PER_RAD`]), no measuring point or no noise level (or more than their
+/// limits), bounds outside the robot's limits or test postures outside them; whatever
 /// `resolve_robot` returns.
 pub fn parse<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
 where
@@ -307,7 +309,7 @@ where
 {
     let file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
-        message: one_line(&e.to_string()),
+        message: limits::one_line(&e.to_string()),
     })?;
     let robot = resolve_robot(&file.robot, file.robot_tip.as_deref())?;
     build(file, robot, source_name)
@@ -328,74 +330,104 @@ fn deg6(v: &[f64; 6]) -> Vector6<f64> {
     Vector6::from_iterator(v.iter().map(|d| d.to_radians()))
 }
 
-fn check_finite(source_name: &str, field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().all(|v| v.is_finite()) {
-        true => Ok(()),
-        false => Err(field_error(
-            source_name,
-            field,
-            "every number must be finite",
-        )),
-    }
+fn check_count(src: &str, field: &str, count: usize, min: usize, max: usize) -> Result<()> {
+    limits::check_count(&format!("{src}: {field}"), count, min, max)
 }
 
-fn check_positive(source_name: &str, field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().all(|v| v.is_finite() && *v > 0.0) {
-        true => Ok(()),
-        false => Err(field_error(
-            source_name,
-            field,
-            "expected finite numbers > 0",
-        )),
+/// Checks every field of a setup file against the documented limits ([`crate::limits`]).
+fn check_fields(f: &SetupFile, src: &str) -> Result<()> {
+    if f.name.trim().is_empty() {
+        return Err(field_error(src, "name", "expected a non-empty name"));
     }
-}
-
-fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
-    check_positive(
+    check_in(
         src,
         "characteristic_length_mm",
         &[f.characteristic_length_mm],
+        &limits::CHARACTERISTIC_LENGTH_MM,
     )?;
-    check_positive(
+    check_in(
         src,
         "nominal_stiffness_nm_per_rad",
         &f.nominal_stiffness_nm_per_rad,
+        &limits::STIFFNESS_NM_PER_RAD,
     )?;
-    check_finite(src, "tool.loading_point_mm", &f.tool.loading_point_mm)?;
-    if f.tool.measuring_points_mm.is_empty() {
-        return Err(field_error(
-            src,
-            "tool.measuring_points_mm",
-            "expected at least one measuring point",
-        ));
-    }
-    check_finite(
+    let length = &limits::LENGTH_MM;
+    check_in(
+        src,
+        "tool.loading_point_mm",
+        &f.tool.loading_point_mm,
+        length,
+    )?;
+    let points = &f.tool.measuring_points_mm;
+    check_count(
         src,
         "tool.measuring_points_mm",
-        f.tool.measuring_points_mm.as_flattened(),
+        points.len(),
+        1,
+        limits::MAX_MEASURING_POINTS,
     )?;
-    check_finite(src, "tool.tcp_mm", &f.tool.tcp_mm.unwrap_or_default())?;
-    check_positive(src, "loading.load_n", &[f.loading.load_n])?;
-    check_finite(src, "loading.anchor_mm", &f.loading.anchor_mm)?;
-    check_positive(src, "noise.variance_mm2", &[f.noise.variance_mm2])?;
-    check_positive(src, "noise.level_multiples", &f.noise.level_multiples)?;
+    check_in(
+        src,
+        "tool.measuring_points_mm",
+        points.as_flattened(),
+        length,
+    )?;
+    check_in(
+        src,
+        "tool.tcp_mm",
+        &f.tool.tcp_mm.unwrap_or_default(),
+        length,
+    )?;
+    check_in(src, "loading.load_n", &[f.loading.load_n], &limits::LOAD_N)?;
+    check_in(src, "loading.anchor_mm", &f.loading.anchor_mm, length)?;
+    check_in(
+        src,
+        "noise.variance_mm2",
+        &[f.noise.variance_mm2],
+        &limits::VARIANCE_MM2,
+    )?;
+    let levels = &f.noise.level_multiples;
+    check_count(
+        src,
+        "noise.level_multiples",
+        levels.len(),
+        1,
+        limits::MAX_LEVELS,
+    )?;
+    check_in(
+        src,
+        "noise.level_multiples",
+        levels,
+        &limits::LEVEL_MULTIPLE,
+    )?;
+    if let Some(t) = &f.test {
+        let n = t.postures_deg.len();
+        check_count(src, "test.postures_deg", n, 0, limits::MAX_TEST_POSTURES)?;
+    }
+    if let Some(z) = f
+        .constraints
+        .as_ref()
+        .and_then(|c| c.loading_point_min_z_mm)
+    {
+        check_in(src, "constraints.loading_point_min_z_mm", &[z], length)?;
+    }
+    Ok(())
+}
+
+fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
+    check_fields(&f, src)?;
     let bounds = bounds(&f.bounds, &robot, src)?;
     let test_postures = match &f.test {
         None => Vec::new(),
         Some(t) => test_postures(&t.postures_deg, &robot, src)?,
     };
     let measuring_points: Vec<_> = f.tool.measuring_points_mm.iter().map(mm).collect();
-    let constraints = f.constraints.map_or(Ok(CellConstraints::default()), |c| {
-        check_finite(
-            src,
-            "constraints.loading_point_min_z_mm",
-            &[c.loading_point_min_z_mm.unwrap_or_default()],
-        )?;
-        Ok(CellConstraints {
+    let constraints = f
+        .constraints
+        .map_or(CellConstraints::default(), |c| CellConstraints {
             loading_point_min_z: c.loading_point_min_z_mm.map(|z| z * 1e-3),
             anchor_below_loading_point: c.anchor_below_loading_point,
-        })
-    })?;
+        });
     let tool = Tool {
         loading_point: mm(&f.tool.loading_point_mm),
         tcp: f.tool.tcp_mm.as_ref().map_or(measuring_points[0], mm),
@@ -435,8 +467,8 @@ fn build(f: SetupFile, robot: Robot, src: &str) -> Result<Setup> {
 }
 
 fn bounds(b: &BoundsFile, robot: &Robot, src: &str) -> Result<Bounds> {
-    check_finite(src, "bounds.lower_deg", &b.lower_deg)?;
-    check_finite(src, "bounds.upper_deg", &b.upper_deg)?;
+    check_in(src, "bounds.lower_deg", &b.lower_deg, &limits::ANGLE_DEG)?;
+    check_in(src, "bounds.upper_deg", &b.upper_deg, &limits::ANGLE_DEG)?;
     let bounds = Bounds {
         lower: deg6(&b.lower_deg),
         upper: deg6(&b.upper_deg),
@@ -470,7 +502,7 @@ fn test_postures(postures: &[[f64; 6]], robot: &Robot, src: &str) -> Result<Vec<
         .enumerate()
         .map(|(i, p)| {
             let field = format!("test.postures_deg[{}]", i + 1);
-            check_finite(src, &field, p)?;
+            check_in(src, &field, p, &limits::ANGLE_DEG)?;
             let q = deg6(p);
             match robot.first_out_of_limits(&q) {
                 None => Ok(q),

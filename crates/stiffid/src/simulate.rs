@@ -109,25 +109,31 @@ pub fn simulate_with_predictions(
         .iter()
         .map(|g| prepare(setup, g))
         .collect::<Result<Vec<_>>>()?;
-    let levels = setup.noise.levels.len();
     let runs = options.runs;
-    let rates: Vec<[f64; 6]> = (0..groups.len() * levels * runs)
-        .into_par_iter()
-        .map(|i| {
-            let (g, l, r) = (i / (levels * runs), (i / runs) % levels, i % runs);
-            let sigma = (setup.noise.variance * setup.noise.levels[l]).sqrt();
-            let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
-            identify_once(&prepared[g], sigma, &mut rng)
-        })
-        .collect();
-    Ok(predicted
+    Ok(prepared
         .iter()
+        .zip(predicted)
         .enumerate()
-        .map(|(g, predicted)| {
-            let chunk = &rates[g * levels * runs..(g + 1) * levels * runs];
-            summarise(setup, chunk, runs, predicted.clone())
+        .map(|(g, (group, predicted))| {
+            let rates = group_runs(setup, group, g, options);
+            summarise(setup, &rates, runs, predicted.clone())
         })
         .collect())
+}
+
+/// The identified stiffness of every run of group `g`, level-major: one group at a time, so the
+/// memory held is `levels x runs` results whatever the number of groups.
+fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> Vec<[f64; 6]> {
+    let runs = options.runs;
+    (0..setup.noise.levels.len() * runs)
+        .into_par_iter()
+        .map(|i| {
+            let (l, r) = (i / runs, i % runs);
+            let sigma = (setup.noise.variance * setup.noise.levels[l]).sqrt();
+            let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
+            identify_once(group, sigma, &mut rng)
+        })
+        .collect()
 }
 
 fn check_runs(options: &Options) -> Result<()> {

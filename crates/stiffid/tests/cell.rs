@@ -153,13 +153,14 @@ fn an_obstacle_and_a_tracker_block_and_name() {
 
 #[test]
 fn impossible_constraints_are_reported() {
-    let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e9\n").unwrap();
+    // 100 m: the highest the limits accept (stiffid::limits::LENGTH_MM), far out of reach.
+    let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e5\n").unwrap();
     let checker = Checker::new(&setup);
     let f = checker.feasibility(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));
     let c = f.violations().next().unwrap();
     assert_eq!(c.kind, CheckKind::LoadingPointHeight);
-    assert!(c.margin < -9e5);
-    assert!(checker.violation(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0])) > 9e5);
+    assert!(c.margin < -90.0);
+    assert!(checker.violation(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0])) > 90.0);
 }
 
 #[test]
@@ -176,7 +177,7 @@ fn bad_cell_fields_are_named_with_their_values() {
         (
             "[robot_geometry]\nlink_radius_mm = [1, 2, 3, 4, 5, 6, 1e9]\n",
             "link_radius_mm[7]",
-            "1000000000",
+            "1e9",
         ),
         ("[tracker]\nposition_mm = [0, 0, 0]\nmax_incidence_deg = 95\n", "max_incidence_deg", "95"),
         (

@@ -2,12 +2,12 @@
 //! wrench, and the compensated axis angles that cancel it ([`stiffid::compensate`]).
 
 use crate::load::{self, WrenchFrame};
-use crate::output::{print_json_or, refuse_to_overwrite, write_atomic};
+use crate::output::{print_json_or, OutFile};
 use crate::report::{self, compensation};
 use anyhow::{Context, Result};
 use nalgebra::Vector6;
 use serde_json::{json as value, Map, Value};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
 use stiffid::formats::path;
 use stiffid::{ik, Setup};
@@ -58,14 +58,6 @@ pub struct Args {
 /// Compensates, writes the CSV (and the report), prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let mut inputs = vec![args.path.as_path(), args.stiffness.as_path()];
-    if Path::new(&args.setup).exists() {
-        inputs.push(Path::new(&args.setup));
-    }
-    refuse_to_overwrite(&args.out, &inputs)?;
-    if let Some(dir) = &args.report {
-        report::check_target(dir, false, compensation::GENERATOR)?;
-    }
     let file = load::identified(&args.stiffness)?;
     let compliance = Compliance {
         h: file.stiffness.map(|k| 1.0 / k),
@@ -74,10 +66,19 @@ pub fn run(args: &Args) -> Result<()> {
     let options = options(args, &setup)?;
     let name = args.path.display().to_string();
     let points = path::parse(&load::read(&args.path)?, args.frame.into()).context(name.clone())?;
+    let out = OutFile::prepare(&args.out, "--out")?;
+    let report = args
+        .report
+        .as_deref()
+        .map(|dir| {
+            let holds = compensation::holds;
+            report::open(dir, "--report", None, compensation::GENERATOR, &holds)
+        })
+        .transpose()?;
     let results = compensate::path(&setup, &compliance, &points, &options).context(name)?;
     let lines: Vec<u64> = points.iter().map(|p| p.line).collect();
     let table = table(&results, &lines);
-    write_atomic(&args.out, table.csv().as_bytes())?;
+    out.write(table.csv().as_bytes())?;
     let summary = Summary::of(&results, &lines);
     let document = value!({
         "generator": compensation::GENERATOR,
@@ -95,7 +96,7 @@ pub fn run(args: &Args) -> Result<()> {
         "summary": summary.json(),
         "points": table.json(),
     });
-    if let Some(dir) = &args.report {
+    if let Some(dir) = report {
         compensation::write(dir, &setup, &results, &table, &document)?;
     }
     print_json_or(args.json, &document, |_| {
@@ -118,7 +119,8 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
             let check = |v: f64, max: f64, what: &str| match v > 0.0 && v <= max {
                 true => Ok(v.to_radians()),
                 false => Err(anyhow::anyhow!(
-                    "{what}: {v}: expected a number > 0 and <= {max}"
+                    "{what}: {}: expected a number > 0 and <= {max}",
+                    stiffid::limits::number(v)
                 )),
             };
             Some(FreeToolAxis {

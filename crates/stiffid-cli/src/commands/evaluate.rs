@@ -1,12 +1,17 @@
 //! `stiffid evaluate`: every design criterion of a group of postures and its predicted deviation
 //! rates.
 
-use crate::output::json;
+use crate::output::{self, json};
 use crate::{feasibility, load, postures};
-use anyhow::Result;
+use anyhow::{Context, Result};
+use nalgebra::Vector6;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::design::{evaluate, Criterion, Evaluation};
+use stiffid::limits::short;
+use stiffid::lsq::Factor;
+use stiffid::observation::rope_observation_matrix;
+use stiffid::Setup;
 
 /// Arguments of `stiffid evaluate`.
 #[derive(clap::Args)]
@@ -23,7 +28,8 @@ pub struct Args {
 }
 
 /// Every criterion of a group under the keys of `stiffid evaluate --json` (`null` for `+infinity`:
-/// a rank-deficient group).
+/// a singular posture for `classical` and `zhang2021`, else a value beyond the floating-point
+/// range).
 #[derive(Debug, Serialize)]
 pub struct CriteriaJson {
     /// `max_i k(J_N)_i`.
@@ -70,7 +76,8 @@ struct EvaluateJson {
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let group = postures::read(&args.postures, &setup.robot)?;
+    let group = postures::read(&args.postures, &setup.robot, Some(&setup.bounds))?;
+    identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
     let checks = feasibility::of_group(&setup, &group);
     if args.json {
@@ -78,18 +85,17 @@ pub fn run(args: &Args) -> Result<()> {
             criteria: CriteriaJson::from(&e),
             feasibility: feasibility::json(&checks),
         };
-        print!("{}", json(&doc)?);
-        return Ok(());
+        return output::print(&json(&doc)?);
     }
-    println!(
-        "{} postures of {} on setup {}",
+    let mut s = format!(
+        "{} postures of {} on setup {}\n",
         group.len(),
         args.postures.display(),
-        setup.name
+        short(&setup.name)
     );
-    print_criteria(&e);
-    println!("\npredicted mean deviation rate, % (first order)");
-    println!("{:>5} {:>6}  {}", "level", "x var", joints_header());
+    s += &criteria_text(&e);
+    s += "\npredicted mean deviation rate, % (first order)\n";
+    s += &format!("{:>5} {:>6}  {}\n", "level", "x var", joints_header());
     for (l, (m, row)) in setup
         .noise
         .levels
@@ -98,28 +104,54 @@ pub fn run(args: &Args) -> Result<()> {
         .enumerate()
     {
         let cells: Vec<String> = row.iter().map(|v| format!("{v:>9.4}")).collect();
-        println!("{:>5} {:>6.2}  {}", l + 1, m, cells.join(" "));
+        s += &format!("{:>5} {:>6.2}  {}\n", l + 1, m, cells.join(" "));
     }
-    feasibility::print(&checks);
+    s += &feasibility::text(&checks);
+    output::print(&s)
+}
+
+/// Fails, naming the joints, when the group's observation matrix cannot identify every joint
+/// (the same error as `stiffid simulate`).
+pub fn identifiable(setup: &Setup, postures: &[Vector6<f64>]) -> Result<()> {
+    Factor::try_from_matrix(rope_observation_matrix(setup, postures))?;
     Ok(())
 }
 
-/// Prints every criterion of an evaluation, one per line (smaller is better).
-pub fn print_criteria(e: &Evaluation) {
+/// Every criterion of an evaluation, one per line (smaller is better), for a group that can
+/// identify every joint ([`identifiable`]): an infinite value says why.
+pub fn criteria_text(e: &Evaluation) -> String {
+    let mut s = String::new();
     for c in Criterion::ALL {
         let (value, unit) = match c {
             Criterion::TestPose => (e.test_pose * 1e3, " mm"),
             _ => (e.value(c), ""),
         };
-        println!("  {:<12} {}{unit}", c.name(), number(value));
+        let singular =
+            matches!(c, Criterion::Classical | Criterion::Zhang2021) && e.classical.is_infinite();
+        let text = match (value.is_finite(), singular) {
+            (true, _) => format!("{}{unit}", number(value)),
+            (false, true) => SINGULAR.to_string(),
+            (false, false) => OVERFLOW.to_string(),
+        };
+        s += &format!("  {:<12} {text}\n", c.name());
     }
-    println!("  {:<12} {}", "cond(Psi)", number(e.cond_psi));
+    let cond = match e.cond_psi.is_finite() {
+        true => number(e.cond_psi),
+        false => OVERFLOW.to_string(),
+    };
+    s + &format!("  {:<12} {cond}\n", "cond(Psi)")
 }
 
-/// A criterion value for people: 6 significant digits, `inf (rank deficient)` for `+infinity`.
+/// An infinite classical index: a posture where the TCP Jacobian has no inverse.
+const SINGULAR: &str = "infinite (a posture is singular: its TCP Jacobian has no inverse)";
+
+/// Any other infinite criterion of a full-rank group: a number beyond the range of f64.
+const OVERFLOW: &str = "infinite (beyond the floating-point range: loads or variances too extreme)";
+
+/// A criterion value for people: 6 significant digits, `infinite` for `+infinity`.
 pub fn number(v: f64) -> String {
     if v.is_infinite() {
-        "inf (rank deficient)".into()
+        "infinite".into()
     } else if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
         format!("{v:.5e}")
     } else {

@@ -3,7 +3,7 @@
 //! residuals, and optionally a robust or non-negative fit and cross-validation.
 
 use crate::load;
-use crate::output::{json, refuse_to_overwrite, write_atomic};
+use crate::output::{self, json, OutFile};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -178,10 +178,12 @@ struct InfluentialJson {
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    if let Some(out) = &args.out {
-        refuse_to_overwrite(out, &[&args.data])?;
-    }
     let file = load::measurements(&args.data, &setup)?;
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| OutFile::prepare(p, "--out"))
+        .transpose()?;
     let name = args.data.display().to_string();
     let obs = observations(&setup, &file.measurements)
         .map_err(|e| file.explain(e))
@@ -203,20 +205,18 @@ pub fn run(args: &Args) -> Result<()> {
         first_of_posture,
     };
     for warning in text::warnings(&run) {
-        eprintln!("warning: {warning}");
+        output::warn(&warning);
     }
-    if args.json || args.out.is_some() {
+    if args.json || out.is_some() {
         let text = json(&to_json(&run))?;
-        if let Some(out) = &args.out {
-            write_atomic(out, text.as_bytes())?;
+        if let Some(out) = &out {
+            out.write(text.as_bytes())?;
         }
         if args.json {
-            print!("{text}");
-            return Ok(());
+            return output::print(&text);
         }
     }
-    print!("{}", text::human(&run));
-    Ok(())
+    output::print(&text::human(&run))
 }
 
 /// The fit the arguments ask for, and the cross-validation if asked.

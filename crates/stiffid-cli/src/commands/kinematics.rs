@@ -1,9 +1,9 @@
 //! `stiffid kinematics`: forward kinematics, point Jacobian and dexterity of one posture.
 
 use crate::{load, output};
-use anyhow::{bail, Result};
+use anyhow::Result;
 use serde::Serialize;
-use stiffid::{dexterity, Coordinates};
+use stiffid::{dexterity, limits, Coordinates};
 
 /// Arguments of `stiffid kinematics`.
 #[derive(clap::Args)]
@@ -17,10 +17,11 @@ pub struct Args {
     /// The posture: six axis angles in degrees, comma-separated, e.g. 0,0,-90,0,0,0.
     #[arg(long, allow_hyphen_values = true)]
     q_deg: String,
-    /// A point in the flange frame, mm, comma-separated (default: the flange origin).
+    /// A point in the flange frame, mm, comma-separated (default: the flange origin); each
+    /// coordinate within +-100000 mm.
     #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
     point_mm: String,
-    /// The characteristic length L of the dexterity index k(J_N) (Eq. 20), mm.
+    /// The characteristic length L of the dexterity index k(J_N) (Eq. 20), mm [1 to 100000].
     #[arg(long, default_value_t = 1200.0)]
     characteristic_length_mm: f64,
     /// The joint coordinates of the Jacobian's columns.
@@ -73,11 +74,10 @@ struct Report {
 pub fn run(args: &Args) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
     let (q_deg, q) = load::posture(&args.q_deg, &robot)?;
-    let point_mm = load::vector::<3>(&args.point_mm, "--point-mm")?;
+    let point_mm = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)?;
     let length_mm = args.characteristic_length_mm;
-    if !(length_mm.is_finite() && length_mm > 0.0) {
-        bail!("--characteristic-length-mm: expected a positive number of mm, got {length_mm}");
-    }
+    let range = &limits::CHARACTERISTIC_LENGTH_MM;
+    limits::check("--characteristic-length-mm", &[length_mm], range)?;
     let coordinates = Coordinates::from(args.coordinates);
     let frames = robot.frames(&q);
     let point = point_mm * 1e-3;

@@ -9,6 +9,7 @@ use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::cartesian;
 use stiffid::deflection::{base_wrench, Points};
+use stiffid::limits;
 
 /// Arguments of `stiffid predict`.
 #[derive(clap::Args)]
@@ -20,7 +21,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     q_deg: String,
     /// Wrench at the loading point (or --at-mm): fx,fy,fz (N) or fx,fy,fz,mx,my,mz (N, Nm), in the
-    /// frame of --frame.
+    /// frame of --frame; each component within +-1e7.
     #[arg(long, allow_hyphen_values = true)]
     wrench: String,
     /// Where the wrench acts: a tool point x,y,z in the flange frame, mm; default the setup's
@@ -105,7 +106,7 @@ fn xyz(v: &Vector6<f64>, from: usize, scale: f64) -> [f64; 3] {
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     let (q_deg, q) = load::posture(&args.q_deg, &setup.robot)?;
-    let w = load::numbers(&args.wrench, "--wrench")?;
+    let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;
     if w.len() != 3 && w.len() != 6 {
         bail!(
             "--wrench: expected fx,fy,fz or fx,fy,fz,mx,my,mz, got {} numbers",
@@ -115,7 +116,7 @@ pub fn run(args: &Args) -> Result<()> {
     let mut wrench = Vector6::zeros();
     wrench.as_mut_slice()[..w.len()].copy_from_slice(&w);
     let at: Vector3<f64> = match &args.at_mm {
-        Some(text) => load::vector::<3>(text, "--at-mm")? * 1e-3,
+        Some(text) => load::vector::<3>(text, "--at-mm", &limits::LENGTH_MM)? * 1e-3,
         None => setup.tool.loading_point,
     };
     let (stiffness, covariance) = match &args.stiffness {

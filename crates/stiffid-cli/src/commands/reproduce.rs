@@ -1,12 +1,13 @@
 //! `stiffid reproduce`: the paper's simulation study end to end, with a report.
 
-use crate::load;
 use crate::report::{self, figures, findings::sentences};
+use crate::{load, output};
 use anyhow::Result;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
+use stiffid::limits;
 use stiffid::study::{self, findings, Options, DEFAULT_STARTS, DEFAULT_TRIALS};
 use stiffid::Progress;
 
@@ -17,8 +18,8 @@ pub struct Args {
     /// previous report, unless --force).
     #[arg(long, default_value = "stiffid-report")]
     out: PathBuf,
-    /// Monte Carlo runs per group and noise level (the paper: 200).
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Monte Carlo runs per group and noise level (the paper: 200) [1 to 100000].
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_RUNS))]
     runs: u64,
     /// Seed of the start group, the global searches and the noise.
     #[arg(long, default_value_t = 1)]
@@ -26,12 +27,12 @@ pub struct Args {
     /// Setup: a built-in name or a setup .toml file.
     #[arg(long, default_value = "zhang2021-comau-nj165")]
     setup: String,
-    /// Local searches per global search (the beyond-the-paper groups).
-    #[arg(long, default_value_t = DEFAULT_STARTS as u64, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Local searches per global search (the beyond-the-paper groups) [1 to 10000].
+    #[arg(long, default_value_t = DEFAULT_STARTS as u64, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     starts: u64,
     /// Start groups of the start-group check (the paper's local searches from other seeded start
-    /// groups; 0 skips it).
-    #[arg(long, default_value_t = DEFAULT_TRIALS as u64)]
+    /// groups; 0 skips it) [0 to 10000].
+    #[arg(long, default_value_t = DEFAULT_TRIALS as u64, value_parser = clap::value_parser!(u64).range(0..=limits::MAX_TRIALS))]
     trials: u64,
     /// Write into --out even if it holds other files.
     #[arg(long)]
@@ -71,7 +72,13 @@ impl Progress for Bars {
 pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
     let setup = load::setup(&args.setup)?;
-    report::check_target(&args.out, args.force, report::summary::GENERATOR)?;
+    let out = report::open(
+        &args.out,
+        "--out",
+        Some(args.force),
+        report::summary::GENERATOR,
+        &report::holds,
+    )?;
     let options = Options {
         runs: args.runs as usize,
         seed: args.seed,
@@ -87,20 +94,19 @@ pub fn run(args: &Args) -> Result<()> {
     let figures = figures::all(&study)?;
     bars.end();
     study.elapsed_s = started.elapsed().as_secs_f64();
-    report::write(&args.out, &study, &figures)?;
-    print_summary(&study);
-    println!("\nreport: {}", args.out.join("report.html").display());
-    Ok(())
+    report::write(out, &study, &figures)?;
+    let report = args.out.join("report.html");
+    output::print(&(summary(&study) + &format!("\nreport: {}\n", report.display())))
 }
 
-fn print_summary(study: &study::Study) {
+fn summary(study: &study::Study) -> String {
     let l = study.validation_level;
-    println!(
-        "\n{} runs per group and level, seed {}, {:.1} s\n",
+    let mut s = format!(
+        "\n{} runs per group and level, seed {}, {:.1} s\n\n",
         study.runs, study.seed, study.elapsed_s
     );
-    println!(
-        "{:<28} {:>10} {:>10} {:>9} {:>9}   mean deviation rate % at level {}, joints 1-6",
+    s += &format!(
+        "{:<28} {:>10} {:>10} {:>9} {:>9}   mean deviation rate % at level {}, joints 1-6\n",
         "group",
         "classical",
         "zhang2021",
@@ -114,8 +120,8 @@ fn print_summary(study: &study::Study) {
             .iter()
             .map(|r| format!("{r:6.3}"))
             .collect();
-        println!(
-            "{:<28} {:>10.4} {:>10.1} {:>9.5} {:>9.3}   {}",
+        s += &format!(
+            "{:<28} {:>10.4} {:>10.1} {:>9.5} {:>9.3}   {}\n",
             g.title,
             e.classical,
             e.zhang2021,
@@ -124,8 +130,9 @@ fn print_summary(study: &study::Study) {
             rates.join(" ")
         );
     }
-    println!();
-    for s in sentences(&findings(study), study) {
-        println!("- {s}");
+    s += "\n";
+    for sentence in sentences(&findings(study), study) {
+        s += &format!("- {sentence}\n");
     }
+    s
 }

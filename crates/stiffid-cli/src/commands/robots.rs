@@ -1,13 +1,15 @@
 //! `stiffid robots`: the built-in robot presets.
 
+use crate::output;
 use anyhow::Result;
 use stiffid::robot::presets;
 
 /// Prints every preset: name, robot, source.
 pub fn run() -> Result<()> {
+    let mut text = String::new();
     for name in presets::names() {
         let robot = presets::get(name)?;
-        println!("{name}\n  {}\n  source: {}", robot.name, robot.source);
+        text += &format!("{name}\n  {}\n  source: {}\n", robot.name, robot.source);
     }
-    Ok(())
+    output::print(&text)
 }

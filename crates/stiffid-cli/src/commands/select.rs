@@ -5,20 +5,21 @@
 mod pool;
 mod target;
 
-use super::evaluate::{number, print_criteria, CriteriaJson};
-use crate::output::json;
+use super::evaluate::{criteria_text, identifiable, number, CriteriaJson};
+use crate::output::{self, json, OutFile};
 use crate::report::plan;
 use crate::{load, postures};
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector6;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use stiffid::cell::Checker;
 use stiffid::design::{
     self, evaluate, Criterion, Evaluation, Gradient, SearchOptions, SearchOutcome,
 };
+use stiffid::limits::{self, short, Range};
 use stiffid::Setup;
 
 /// Arguments of `stiffid select`.
@@ -58,25 +59,25 @@ pub struct Args {
     /// beside --out as OUT.target.svg and .png).
     #[arg(long, conflicts_with = "postures")]
     target_pct: Option<f64>,
-    /// Number of postures (random or global starts, pool) [default: 6].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(2..), conflicts_with = "start")]
+    /// Number of postures (random or global starts, pool) [default: 6; 2 to 100].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(2..=limits::MAX_SEARCH_POSTURES), conflicts_with = "start")]
     postures: Option<u64>,
     /// Seed of the random start group, of the global starts or of the pool's exchange runs.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Local searches of a global search [default: 32].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Local searches of a global search [default: 32; 1 to 10000].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     starts: Option<u64>,
     /// SQP steps of every global start before the best --polished continue; 0 runs every start
-    /// to convergence [default: 60].
-    #[arg(long, requires = "global")]
+    /// to convergence [default: 60; 0 to 10000000].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
     screen_steps: Option<u64>,
-    /// Global starts that continue after the screening [default: 8].
-    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..))]
+    /// Global starts that continue after the screening [default: 8; 1 to 10000].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     polished: Option<u64>,
     /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
-    /// each finite-difference probe as one) [default: 6000].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    /// each finite-difference probe as one) [default: 6000; 1 to 10000000].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_EVALS))]
     max_evals: Option<u64>,
     /// Gradient of the SQP objective: exact (closed form) or fd (forward finite differences, for
     /// comparison).
@@ -163,13 +164,26 @@ impl Selection {
 /// Runs the search, writes the postures (and the plan) and prints the result.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    if let Some(dir) = &args.report {
-        plan::check_target(dir, args.force)?;
-    }
     let pool = match &args.pool {
-        Some(path) => Some(pool::Input::read(path, &args.out, &setup)?),
+        Some(path) => Some(pool::Input::read(path, &setup)?),
         None => None,
     };
+    if args.start.is_some() {
+        start_group(args, &setup, 0)?; // read (an input from now on) and checked before searching
+    }
+    if let Some(pct) = args.target_pct {
+        limits::check("--target-pct", &[pct], &TARGET_PCT)?;
+    }
+    let out = OutFile::prepare(&args.out, "--out")?;
+    let target_files = match (args.target_pct, &args.report) {
+        (Some(_), None) => Some(target::files(&args.out)?),
+        _ => None,
+    };
+    let report = args
+        .report
+        .as_deref()
+        .map(|dir| plan::open(dir, args.force))
+        .transpose()?;
     let started = Instant::now();
     let (selection, target) = match args.target_pct {
         None => {
@@ -182,8 +196,17 @@ pub fn run(args: &Args) -> Result<()> {
         }
     };
     let elapsed = started.elapsed().as_secs_f64();
-    postures::write(&args.out, &selection.postures)?;
-    if let Some(dir) = &args.report {
+    identifiable(&setup, &selection.postures).with_context(|| {
+        format!(
+            "setup {}: the best group the search found",
+            short(&setup.name)
+        )
+    })?;
+    out.write(postures::to_csv(&selection.postures).as_bytes())?;
+    if let (Some(files), Some(t)) = (&target_files, &target) {
+        target::write_figure(files, t)?;
+    }
+    if let Some(dir) = report {
         plan::write(
             dir,
             &setup,
@@ -220,26 +243,33 @@ pub fn run(args: &Args) -> Result<()> {
             out: args.out.display().to_string(),
             report: args.report.as_ref().map(|d| d.display().to_string()),
         };
-        print!("{}", json(&doc)?);
-        return Ok(());
+        return output::print(&json(&doc)?);
     }
+    let mut text = String::new();
     if let Some(p) = &pool {
-        p.print(selection.pool.as_ref());
+        text += &p.text(selection.pool.as_ref());
     }
     if let Some(t) = &target {
-        target::print(t);
+        text += &target::text(t);
     }
-    print_outcome(args, &setup, &selection, elapsed);
-    print_criteria(&e);
+    text += &outcome_text(args, &setup, &selection, elapsed);
+    text += &criteria_text(&e);
     if let Some((s, free_e)) = &free {
-        print_cost(args.criterion, &selection, &e, s, free_e);
+        text += &cost_text(args.criterion, &selection, &e, s, free_e);
     }
-    println!("postures written to {}", args.out.display());
+    text += &format!("postures written to {}\n", args.out.display());
     if let Some(dir) = &args.report {
-        println!("plan: {}", dir.join("plan.html").display());
+        text += &format!("plan: {}\n", dir.join("plan.html").display());
     }
-    Ok(())
+    output::print(&text)
 }
+
+/// The accepted `--target-pct`.
+const TARGET_PCT: Range = Range {
+    min: 1e-6,
+    max: 1e4,
+    unit: "%",
+};
 
 /// With cell checks: the group of the same search of `n` postures without them, and its
 /// criteria (evaluated on the setup: the criteria do not depend on the cell).
@@ -252,28 +282,24 @@ fn unconstrained(args: &Args, setup: &Setup, n: usize) -> Result<Option<(Selecti
     Ok(Some((free, e)))
 }
 
-/// What the cell's checks cost: the feasible group beside the unconstrained optimum.
-fn print_cost(
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
+fn cost_text(
     criterion: Criterion,
     feasible: &Selection,
     e: &Evaluation,
     free: &Selection,
     free_e: &Evaluation,
-) {
+) -> String {
     let mean = Evaluation::predicted_average_pct;
-    println!("what the cell's checks cost (the same search without them):");
-    println!(
-        "  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)",
+    format!(
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
         number(feasible.value),
         number(free.value),
-        100.0 * (feasible.value / free.value - 1.0)
-    );
-    println!(
-        "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)",
+        100.0 * (feasible.value / free.value - 1.0),
         mean(e),
         mean(free_e),
         100.0 * (mean(e) / mean(free_e) - 1.0)
-    );
+    )
 }
 
 /// The group of `n` postures by the search the arguments ask for.
@@ -330,59 +356,25 @@ fn global(
     Ok(outcome?)
 }
 
-/// The start group of a local search: the --start file (refusing to overwrite it with --out) or
-/// a seeded random group.
+/// The start group of a local search: the --start file (read as an input, so --out cannot
+/// overwrite it; within the setup's bounds) or a seeded random group.
 fn start_group(args: &Args, setup: &Setup, n: usize) -> Result<Vec<Vector6<f64>>> {
     let Some(path) = &args.start else {
         if !args.start_random {
-            bail!("give --start FILE.csv, --start-random or --global");
+            bail!("give --start FILE.csv, --start-random, --global or --pool FILE.csv");
         }
         return Ok(design::random_group(setup, n, args.seed));
     };
-    if same_file(path, &args.out) {
+    let start = postures::read(path, &setup.robot, Some(&setup.bounds))?;
+    let most = limits::MAX_SEARCH_POSTURES as usize;
+    if start.len() < 2 || start.len() > most {
         bail!(
-            "--out {}: refusing to overwrite the --start file",
-            args.out.display()
+            "{}: a search needs 2 to {most} postures, the file holds {}",
+            path.display(),
+            start.len()
         );
     }
-    let start = postures::read(path, &setup.robot)?;
-    for (i, q) in start.iter().enumerate() {
-        if let Some(reason) = outside_bounds(setup, q) {
-            bail!(
-                "{}: posture {} (line {}): {reason}",
-                path.display(),
-                i + 1,
-                i + 2
-            );
-        }
-    }
-    if start.len() < 2 {
-        bail!("{}: a search needs at least 2 postures", path.display());
-    }
     Ok(start)
-}
-
-/// Why `q` (rad) lies outside the setup's bounds, if it does.
-fn outside_bounds(setup: &Setup, q: &Vector6<f64>) -> Option<String> {
-    let b = &setup.bounds;
-    (0..6)
-        .find(|&a| q[a] < b.lower[a] || q[a] > b.upper[a])
-        .map(|a| {
-            format!(
-                "q{}_deg = {} is outside the setup's bounds [{}, {}]",
-                a + 1,
-                q[a].to_degrees(),
-                b.lower[a].to_degrees(),
-                b.upper[a].to_degrees()
-            )
-        })
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => a == b,
-    }
 }
 
 fn spinner(message: &str) -> ProgressBar {
@@ -398,30 +390,30 @@ fn degrees(postures: &[Vector6<f64>]) -> Vec<[f64; 6]> {
         .collect()
 }
 
-fn print_outcome(args: &Args, setup: &Setup, s: &Selection, elapsed: f64) {
-    println!(
-        "{} search of {} postures on setup {} (seed {})",
+fn outcome_text(args: &Args, setup: &Setup, s: &Selection, elapsed: f64) -> String {
+    let mut text = format!(
+        "{} search of {} postures on setup {} (seed {})\n",
         s.search,
         s.postures.len(),
-        setup.name,
+        short(&setup.name),
         args.seed
     );
-    match s.start_value {
+    text += &match s.start_value {
         Some(start) => {
             let factor = start / s.value;
-            println!(
-                "{}: {} -> {} ({} lower)",
+            format!(
+                "{}: {} -> {} ({})\n",
                 args.criterion,
                 number(start),
                 number(s.value),
                 match factor.is_finite() {
-                    true => format!("{factor:.3}x"),
-                    false => "from a rank-deficient start".into(),
+                    true => format!("{factor:.3}x lower"),
+                    false => "the start's criterion was infinite".into(),
                 }
-            );
+            )
         }
-        None => println!("{}: {}", args.criterion, number(s.value)),
-    }
-    println!("{} evaluations in {elapsed:.2} s", s.evaluations);
-    println!("criteria of the result (smaller is better):");
+        None => format!("{}: {}\n", args.criterion, number(s.value)),
+    };
+    text += &format!("{} evaluations in {elapsed:.2} s\n", s.evaluations);
+    text + "criteria of the result (smaller is better):\n"
 }

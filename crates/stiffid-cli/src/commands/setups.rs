@@ -1,5 +1,6 @@
 //! `stiffid setups [show NAME]`: the built-in setups.
 
+use crate::output;
 use anyhow::Result;
 use stiffid::setup;
 
@@ -24,13 +25,14 @@ enum Action {
 /// Lists the setups, or prints one.
 pub fn run(args: &Args) -> Result<()> {
     match &args.action {
-        Some(Action::Show { name }) => print!("{}", setup::builtin_text(name)?),
-        Some(Action::New(args)) => super::setups_new::run(args)?,
+        Some(Action::Show { name }) => output::print(setup::builtin_text(name)?),
+        Some(Action::New(args)) => super::setups_new::run(args),
         None => {
+            let mut text = String::new();
             for name in setup::builtin_names() {
-                println!("{name}\n  {}", setup::builtin(name)?.description);
+                text += &format!("{name}\n  {}\n", setup::builtin(name)?.description);
             }
+            output::print(&text)
         }
     }
-    Ok(())
 }

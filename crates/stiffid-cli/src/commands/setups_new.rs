@@ -44,6 +44,11 @@ pub fn run(args: &NewArgs) -> Result<()> {
         }
     }
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| output::OutFile::prepare(p, "--out"))
+        .transpose()?;
     let robot_ref = reference_from(&args.robot, args.out.as_deref())?;
     let text = template(&robot, &robot_ref, args)?;
     let source_name = args
@@ -51,9 +56,9 @@ pub fn run(args: &NewArgs) -> Result<()> {
         .as_ref()
         .map_or("setups new".into(), |p| p.display().to_string());
     check_loads(&text, &source_name, args)?;
-    match &args.out {
-        Some(out) => output::write_atomic(out, text.as_bytes()),
-        None => output::write_stdout(text.as_bytes()),
+    match &out {
+        Some(out) => out.write(text.as_bytes()),
+        None => output::print(&text),
     }
 }
 

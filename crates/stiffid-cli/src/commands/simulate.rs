@@ -1,11 +1,12 @@
 //! `stiffid simulate`: Monte Carlo identification with groups of postures from files
 //! (Zhang et al. 2021, Section IV-A).
 
-use crate::output::{json, write_atomic};
+use crate::output::{self, json, ReportDir};
 use crate::{load, postures};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use stiffid::limits;
 use stiffid::simulate::{simulate, GroupSimulation, Options};
 
 /// Arguments of `stiffid simulate`.
@@ -14,18 +15,22 @@ pub struct Args {
     /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
     #[arg(long)]
     setup: String,
-    /// Postures files (posture,q1_deg,...,q6_deg), one group of postures each.
-    #[arg(long, num_args = 1.., required = true)]
+    /// Postures files (posture,q1_deg,...,q6_deg), one group of postures each [1 to 100 files].
+    #[arg(long, num_args = 1..=limits::MAX_GROUPS, required = true)]
     postures: Vec<PathBuf>,
-    /// Monte Carlo runs per group and noise level.
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Monte Carlo runs per group and noise level [1 to 100000].
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_RUNS))]
     runs: u64,
     /// Seed of the measurement noise.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Directory to write deviation_rates.csv and simulation.json into (created if missing).
+    /// Directory to write deviation_rates.csv and simulation.json into (created if missing; an
+    /// existing directory must be empty, unless --force).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Write into --out even if it holds other files (never over an input file).
+    #[arg(long, requires = "out")]
+    force: bool,
     /// Print JSON instead of tables.
     #[arg(long)]
     json: bool,
@@ -74,9 +79,19 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = args
         .postures
         .iter()
-        .map(|p| postures::read(p, &setup.robot))
+        .map(|p| postures::read(p, &setup.robot, Some(&setup.bounds)))
         .collect::<Result<Vec<_>>>()?;
-    let names: Vec<String> = args.postures.iter().map(|p| group_name(p)).collect();
+    let names = group_names(&args.postures);
+    let out = match &args.out {
+        None => None,
+        Some(dir) => Some(ReportDir::prepare(
+            dir,
+            "--out",
+            Some(args.force),
+            &|rel| FILES.iter().any(|f| rel == Path::new(f)),
+            &|_| false,
+        )?),
+    };
     let options = Options {
         runs: args.runs as usize,
         seed: args.seed,
@@ -93,26 +108,42 @@ pub fn run(args: &Args) -> Result<()> {
             .map(|(n, s)| GroupJson::new(n, s))
             .collect(),
     };
-    if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create", dir.display()))?;
+    if let Some(dir) = out {
         let csv = deviation_csv(&names, &sims, &setup.noise.levels);
-        write_atomic(&dir.join("deviation_rates.csv"), csv.as_bytes())?;
-        write_atomic(&dir.join("simulation.json"), json(&doc)?.as_bytes())?;
+        dir.write(FILES[0], csv.as_bytes())?;
+        dir.write(FILES[1], json(&doc)?.as_bytes())?;
+        dir.finish()?;
     }
     match args.json {
-        true => print!("{}", json(&doc)?),
-        false => print_tables(&names, &sims, &setup.noise.levels, options.runs),
+        true => output::print(&json(&doc)?),
+        false => output::print(&tables(&names, &sims, &setup.noise.levels, options.runs)),
     }
-    Ok(())
 }
 
-/// The group name of a postures file: its file stem.
-fn group_name(path: &Path) -> String {
-    path.file_stem().map_or_else(
-        || path.display().to_string(),
-        |s| s.to_string_lossy().into_owned(),
-    )
+/// The files of `--out`.
+const FILES: [&str; 2] = ["deviation_rates.csv", "simulation.json"];
+
+/// The group name of each postures file: its file stem, or the path as given where two files
+/// share a stem (the same path twice gets ` (2)`, ...).
+fn group_names(paths: &[PathBuf]) -> Vec<String> {
+    let stem = |p: &Path| p.file_stem().map(|s| s.to_string_lossy().into_owned());
+    let mut names: Vec<String> = Vec::with_capacity(paths.len());
+    for p in paths {
+        let shared = paths.iter().filter(|q| stem(q) == stem(p)).count() > 1;
+        let base = match (stem(p), shared) {
+            (Some(s), false) => s,
+            _ => p.display().to_string(),
+        };
+        let seen = names
+            .iter()
+            .filter(|n| n.split(" (").next() == Some(base.as_str()))
+            .count();
+        names.push(match seen {
+            0 => base,
+            k => format!("{base} ({})", k + 1),
+        });
+    }
+    names
 }
 
 /// `deviation_rates.csv`: one row per group, noise level and joint.
@@ -124,7 +155,8 @@ pub fn deviation_csv(names: &[String], sims: &[GroupSimulation], levels: &[f64])
         for (l, m) in levels.iter().enumerate() {
             for j in 0..6 {
                 text += &format!(
-                    "{name},{},{m},{},{:.6},{:.6},{:.6},{:.1}\n",
+                    "{},{},{m},{},{:.6},{:.6},{:.6},{:.1}\n",
+                    output::csv_field(name),
                     l + 1,
                     j + 1,
                     sim.mean_deviation_pct[l][j],
@@ -138,11 +170,12 @@ pub fn deviation_csv(names: &[String], sims: &[GroupSimulation], levels: &[f64])
     text
 }
 
-fn print_tables(names: &[String], sims: &[GroupSimulation], levels: &[f64], runs: usize) {
-    println!("mean deviation rate % (+- std over {runs} runs) [first-order prediction]");
+fn tables(names: &[String], sims: &[GroupSimulation], levels: &[f64], runs: usize) -> String {
+    let mut s =
+        format!("mean deviation rate % (+- std over {runs} runs) [first-order prediction]\n");
     for (name, sim) in names.iter().zip(sims) {
-        println!("\n{name}");
-        println!("{:>5} {:>5}  {}", "level", "x var", joint_header());
+        s += &format!("\n{name}\n");
+        s += &format!("{:>5} {:>5}  {}\n", "level", "x var", joint_header());
         for (l, m) in levels.iter().enumerate() {
             let cells: Vec<String> = (0..6)
                 .map(|j| {
@@ -154,9 +187,10 @@ fn print_tables(names: &[String], sims: &[GroupSimulation], levels: &[f64], runs
                     )
                 })
                 .collect();
-            println!("{:>5} {:>5.1}  {}", l + 1, m, cells.join(" "));
+            s += &format!("{:>5} {:>5.1}  {}\n", l + 1, m, cells.join(" "));
         }
     }
+    s
 }
 
 fn joint_header() -> String {

@@ -6,8 +6,8 @@ use super::figures::{self, Figure};
 use super::html::{page, Writer};
 use super::tables::{num, Table};
 use crate::commands::compensate::Table as Columns;
-use crate::output::{json, write_atomic};
-use anyhow::{Context, Result};
+use crate::output::{json, ReportDir};
+use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
 use stiffid::compensate::Compensated;
@@ -16,10 +16,18 @@ use stiffid::Setup;
 /// The value of the `generator` key of `summary.json` that marks a compensation report.
 pub const GENERATOR: &str = "stiffid compensate";
 
-/// Writes every file of the report into `dir` (created if missing), each whole; `summary.json`
-/// first, so the directory is recognisably ours from then on.
+/// The fixed files of the report (besides `figures/`).
+const FILES: [&str; 3] = ["summary.json", "compensation.csv", "report.html"];
+
+/// Whether the report writes the file `rel` (relative to its directory).
+pub fn holds(rel: &Path) -> bool {
+    FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures")
+}
+
+/// Writes every file of the report into `dir`, each whole; `summary.json` first, so the
+/// directory is recognisably ours from then on.
 pub fn write(
-    dir: &Path,
+    dir: ReportDir,
     setup: &Setup,
     results: &[Compensated],
     columns: &Columns,
@@ -29,21 +37,19 @@ pub fn write(
         figures::path::deflection(results)?,
         figures::path::path(setup, results)?,
     ];
-    std::fs::create_dir_all(dir.join("figures"))
-        .with_context(|| format!("{}: cannot create", dir.display()))?;
-    write_atomic(&dir.join("summary.json"), json(document)?.as_bytes())?;
-    write_atomic(&dir.join("compensation.csv"), columns.csv().as_bytes())?;
+    dir.write(FILES[0], json(document)?.as_bytes())?;
+    dir.write(FILES[1], columns.csv().as_bytes())?;
     for f in &figures {
-        let stem = dir.join("figures").join(&f.name);
-        write_atomic(&stem.with_extension("svg"), f.svg.as_bytes())?;
-        write_atomic(&stem.with_extension("png"), &f.png)?;
+        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
+        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
     let html = page(
         &format!("stiffid compensation: {}", setup.name),
         GENERATOR,
         |w| compose(w, setup, results, document, &figures),
     );
-    write_atomic(&dir.join("report.html"), html.as_bytes())
+    dir.write(FILES[2], html.as_bytes())?;
+    dir.finish()
 }
 
 fn compose(

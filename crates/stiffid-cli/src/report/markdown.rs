@@ -7,20 +7,35 @@ use stiffid::study::Study;
 
 struct Markdown(String);
 
+/// Text outside `code spans` with `&`, `<` and `>` as entities, so text from a setup (its name,
+/// its description) can never become raw HTML in a Markdown renderer.
+fn inline(text: &str) -> String {
+    text.split('`')
+        .enumerate()
+        .map(|(i, part)| match i % 2 {
+            1 => format!("`{part}`"),
+            _ => part
+                .replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;"),
+        })
+        .collect()
+}
+
 fn cell(text: &str) -> String {
-    text.replace('|', "\\|")
+    inline(text).replace('|', "\\|")
 }
 
 impl Writer for Markdown {
     fn heading(&mut self, level: usize, text: &str) {
-        self.0 += &format!("{} {text}\n\n", "#".repeat(level));
+        self.0 += &format!("{} {}\n\n", "#".repeat(level), inline(text));
     }
     fn paragraph(&mut self, text: &str) {
-        self.0 += &format!("{text}\n\n");
+        self.0 += &format!("{}\n\n", inline(text));
     }
     fn list(&mut self, items: &[String]) {
         for item in items {
-            self.0 += &format!("- {item}\n");
+            self.0 += &format!("- {}\n", inline(item));
         }
         self.0 += "\n";
     }
@@ -45,7 +60,9 @@ impl Writer for Markdown {
     fn figure(&mut self, figure: &Figure) {
         self.0 += &format!(
             "![{}](figures/{}.png)\n\n*{}*\n\n",
-            figure.name, figure.name, figure.caption
+            figure.name,
+            figure.name,
+            inline(&figure.caption)
         );
     }
 }
@@ -55,4 +72,17 @@ pub fn report(study: &Study, figures: &[Figure]) -> String {
     let mut w = Markdown(String::new());
     compose(study, figures, &mut w);
     w.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::inline;
+
+    #[test]
+    fn html_in_text_is_escaped_but_code_spans_are_kept() {
+        assert_eq!(
+            inline("setup <script>x</script> & `a<b`"),
+            "setup &lt;script&gt;x&lt;/script&gt; &amp; `a<b`"
+        );
+    }
 }

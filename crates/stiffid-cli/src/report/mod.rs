@@ -13,9 +13,9 @@ pub mod summary;
 pub mod tables;
 
 use crate::commands::simulate::deviation_csv;
-use crate::output::write_atomic;
+use crate::output::ReportDir;
 use crate::postures;
-use anyhow::{bail, Context, Result};
+use anyhow::Result;
 use figures::Figure;
 use std::path::Path;
 use stiffid::design::Evaluation;
@@ -68,116 +68,91 @@ pub fn search_words(origin: &Origin, seed: u64) -> String {
     }
 }
 
-/// Refuses to write into `dir` if it exists, is not empty and holds no report of ours (no
-/// `summary.json` whose `generator` is `generator`), unless `force`.
-pub fn check_target(dir: &Path, force: bool, generator: &str) -> Result<()> {
-    let hint = match generator == summary::GENERATOR {
-        true => " or pass --force",
-        false => "",
-    };
-    check_dir(
-        dir,
-        force,
-        &format!(
-            "a stiffid report (no summary.json written by {generator}); choose another directory{hint}"
-        ),
-        |d| summary::is_ours(&d.join("summary.json"), generator),
-    )
-}
-
-/// Refuses to write into `dir` if it exists and is not a directory, or is not empty and
-/// `is_ours(dir)` is false, unless `force`; `refusal` says what `is_ours` recognises and what to do.
-pub fn check_dir(
+/// Opens the report directory `dir` (given with `option`) before the computation (see
+/// [`ReportDir::prepare`]): a non-empty directory only if it holds an earlier report of
+/// `generator` (its `summary.json`), or with `force` (`None`: no `--force` option); `holds` names the files the report writes,
+/// none of which may be an input.
+pub fn open(
     dir: &Path,
-    force: bool,
-    refusal: &str,
-    is_ours: impl Fn(&Path) -> bool,
-) -> Result<()> {
-    if !dir.exists() || force {
-        return Ok(());
-    }
-    if !dir.is_dir() {
-        bail!("{}: exists and is not a directory", dir.display());
-    }
-    let mut entries =
-        std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
-    if entries.next().is_none() || is_ours(dir) {
-        return Ok(());
-    }
-    bail!("{}: not empty and not {refusal}", dir.display())
+    option: &str,
+    force: Option<bool>,
+    generator: &str,
+    holds: &dyn Fn(&Path) -> bool,
+) -> Result<ReportDir> {
+    ReportDir::prepare(dir, option, force, holds, &|d| {
+        summary::is_ours(&d.join("summary.json"), generator)
+    })
 }
 
-/// Writes every file of the report into `dir` (created if missing), each file whole;
-/// `summary.json` first, so the directory is recognisably ours from then on.
-pub fn write(dir: &Path, study: &Study, figures: &[Figure]) -> Result<()> {
-    std::fs::create_dir_all(dir.join("figures"))
-        .with_context(|| format!("{}: cannot create", dir.display()))?;
-    write_atomic(&dir.join("summary.json"), summary::json(study)?.as_bytes())?;
+/// Whether the study's report writes the file `rel` (relative to its directory).
+pub fn holds(rel: &Path) -> bool {
+    let name = rel.to_string_lossy();
+    FILES.contains(&name.as_ref())
+        || rel.starts_with("figures")
+        || (name.starts_with("group") && name.ends_with(".csv"))
+}
+
+/// The fixed files of a report (besides one postures CSV per group and `figures/`).
+const FILES: [&str; 4] = [
+    "summary.json",
+    "deviation_rates.csv",
+    "report.md",
+    "report.html",
+];
+
+/// Writes every file of the report into `dir`, each file whole; `summary.json` first, so the
+/// directory is recognisably ours from then on.
+pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
+    dir.write(FILES[0], summary::json(study)?.as_bytes())?;
     for f in figures {
-        write_atomic(
-            &dir.join("figures").join(format!("{}.svg", f.name)),
-            f.svg.as_bytes(),
-        )?;
-        write_atomic(&dir.join("figures").join(format!("{}.png", f.name)), &f.png)?;
+        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
+        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
     for g in &study.groups {
-        postures::write(&dir.join(format!("{}.csv", g.name)), &g.postures)?;
+        let csv = postures::to_csv(&g.postures);
+        dir.write(&format!("{}.csv", g.name), csv.as_bytes())?;
     }
     let names: Vec<String> = study.groups.iter().map(|g| g.name.clone()).collect();
     let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
     let csv = deviation_csv(&names, &sims, &study.setup.noise.levels);
-    write_atomic(&dir.join("deviation_rates.csv"), csv.as_bytes())?;
-    write_atomic(
-        &dir.join("report.md"),
-        markdown::report(study, figures).as_bytes(),
-    )?;
-    write_atomic(
-        &dir.join("report.html"),
-        html::report(study, figures).as_bytes(),
-    )?;
-    Ok(())
+    dir.write(FILES[1], csv.as_bytes())?;
+    dir.write(FILES[2], markdown::report(study, figures).as_bytes())?;
+    dir.write(FILES[3], html::report(study, figures).as_bytes())?;
+    dir.finish()
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{check_target, summary};
+    use super::{holds, summary};
+    use std::path::Path;
+
+    fn open(dir: &Path, force: bool) -> anyhow::Result<crate::output::ReportDir> {
+        super::open(dir, "--out", Some(force), summary::GENERATOR, &holds)
+    }
 
     #[test]
     fn only_empty_missing_or_own_directories_are_written_without_force() {
         let dir = std::env::temp_dir().join(format!("stiffid-target-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
+        drop(open(&dir, false).expect("missing"));
         assert!(
-            check_target(&dir, false, summary::GENERATOR).is_ok(),
-            "missing"
+            !dir.exists(),
+            "a directory it created and did not finish is removed"
         );
         std::fs::create_dir_all(&dir).unwrap();
-        assert!(
-            check_target(&dir, false, summary::GENERATOR).is_ok(),
-            "empty"
-        );
+        drop(open(&dir, false).expect("empty"));
+        assert!(dir.exists(), "a directory it did not create stays");
         std::fs::write(dir.join("summary.json"), r#"{"generator": "someone else"}"#).unwrap();
-        assert!(
-            check_target(&dir, false, summary::GENERATOR).is_err(),
-            "foreign summary.json"
-        );
-        assert!(
-            check_target(&dir, true, summary::GENERATOR).is_ok(),
-            "forced"
-        );
+        assert!(open(&dir, false).is_err(), "foreign summary.json");
+        assert!(open(&dir, true).is_ok(), "forced");
         std::fs::write(
             dir.join("summary.json"),
             r#"{"generator": "stiffid reproduce"}"#,
         )
         .unwrap();
-        assert!(
-            check_target(&dir, false, summary::GENERATOR).is_ok(),
-            "own report"
-        );
+        assert!(open(&dir, false).is_ok(), "own report");
         let file = dir.join("summary.json");
-        assert!(
-            check_target(&file, false, summary::GENERATOR).is_err(),
-            "a file"
-        );
+        assert!(open(&file, false).is_err(), "a file");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

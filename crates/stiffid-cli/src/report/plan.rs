@@ -6,8 +6,8 @@ use super::content::Writer;
 use super::figures::{self, Figure};
 use super::html;
 use super::tables::{num, Table};
-use crate::output::write_atomic;
-use anyhow::{Context, Result};
+use crate::output::ReportDir;
+use anyhow::Result;
 use nalgebra::{Vector3, Vector6};
 use std::path::Path;
 use stiffid::cell::{Check, Checker};
@@ -20,17 +20,16 @@ use stiffid::Setup;
 /// The generator mark of `plan.html`, by which a plan directory is recognised as ours.
 const GENERATOR: &str = "stiffid select";
 
-/// Refuses to write a plan into `dir` if it is not empty and holds no plan of ours, unless `force`.
-pub fn check_target(dir: &Path, force: bool) -> Result<()> {
-    super::check_dir(
-        dir,
-        force,
-        "a stiffid plan (no plan.html written by stiffid select); choose another directory or pass --force",
-        |d| {
-            std::fs::read_to_string(d.join("plan.html"))
-                .is_ok_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))
-        },
-    )
+/// Opens the plan directory `dir` (`--report`) before the search: new, empty or holding a plan of
+/// ours (its `plan.html`), unless `force`; see [`ReportDir::prepare`].
+pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
+    let holds = |rel: &Path| {
+        rel == Path::new("plan.html") || rel == Path::new("plan.csv") || rel.starts_with("figures")
+    };
+    ReportDir::prepare(dir, "--report", Some(force), &holds, &|d| {
+        std::fs::read_to_string(d.join("plan.html"))
+            .is_ok_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))
+    })
 }
 
 /// What the plan says about one posture.
@@ -115,10 +114,10 @@ impl<'a> Plan<'a> {
     }
 }
 
-/// Writes `plan.html`, `plan.csv` and `figures/` of `postures` (axis angles, rad) into `dir`
-/// (created if missing), each file whole.
+/// Writes `plan.html`, `plan.csv` and `figures/` of `postures` (axis angles, rad) into `dir`,
+/// each file whole.
 pub fn write(
-    dir: &Path,
+    dir: ReportDir,
     setup: &Setup,
     criterion: Criterion,
     postures: &[Vector6<f64>],
@@ -126,22 +125,19 @@ pub fn write(
 ) -> Result<()> {
     let plan = Plan::new(setup, criterion, postures, target);
     let figures = plan.figures()?;
-    std::fs::create_dir_all(dir.join("figures"))
-        .with_context(|| format!("{}: cannot create", dir.display()))?;
     let title = format!(
         "Measurement plan: {} postures, {}",
         postures.len(),
         setup.name
     );
     let page = html::page(&title, GENERATOR, |w| compose(&plan, &figures, w));
-    write_atomic(&dir.join("plan.html"), page.as_bytes())?;
-    write_atomic(&dir.join("plan.csv"), csv(&plan).as_bytes())?;
+    dir.write("plan.html", page.as_bytes())?;
+    dir.write("plan.csv", csv(&plan).as_bytes())?;
     for f in &figures {
-        let stem = dir.join("figures").join(&f.name);
-        write_atomic(&stem.with_extension("svg"), f.svg.as_bytes())?;
-        write_atomic(&stem.with_extension("png"), &f.png)?;
+        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
+        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
-    Ok(())
+    dir.finish()
 }
 
 fn mm3(v: &Vector3<f64>) -> [String; 3] {

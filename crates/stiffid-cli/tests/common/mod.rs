@@ -92,6 +92,43 @@ pub fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     path
 }
 
+/// Every file under `dir` (recursively, symlinks not followed) with its bytes, or its link
+/// target for a symlink: to assert that a failed command wrote nothing and changed no input.
+pub fn snapshot(dir: &Path) -> std::collections::BTreeMap<PathBuf, Vec<u8>> {
+    let mut files = std::collections::BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            let meta = std::fs::symlink_metadata(&path).unwrap();
+            if meta.is_dir() {
+                stack.push(path.clone());
+                files.insert(path, Vec::new());
+            } else if meta.file_type().is_symlink() {
+                let target = std::fs::read_link(&path).unwrap();
+                files.insert(path, target.to_string_lossy().as_bytes().to_vec());
+            } else if meta.is_file() {
+                let bytes = std::fs::read(&path).unwrap();
+                files.insert(path, bytes);
+            }
+        }
+    }
+    files
+}
+
+/// Runs `args` in the scratch directory `dir` (`{dir}` in an argument is replaced by its path)
+/// and asserts the documented failure ([`assert_usage_error`] with `must_mention`) and that the
+/// directory is byte for byte as before. Returns the error line.
+pub fn refused(dir: &Path, args: &[&str], must_mention: &[&str]) -> String {
+    let before = snapshot(dir);
+    let d = dir.to_str().unwrap();
+    let args: Vec<String> = args.iter().map(|a| a.replace("{dir}", d)).collect();
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    let line = assert_usage_error(&stiffid(&refs), must_mention);
+    assert_eq!(snapshot(dir), before, "{args:?} changed {}", dir.display());
+    line
+}
+
 /// The real FANUC R-2000iC/165F measurement file of the examples.
 pub fn fanuc_csv() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

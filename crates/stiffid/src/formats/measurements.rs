@@ -52,9 +52,6 @@ const UNLOADED_TRACKER: [&str; 3] = [
     "z_unloaded_tracker_mm",
 ];
 
-/// Longest field text quoted in an error.
-const QUOTED: usize = 40;
-
 /// The measurements of a file and where each came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasurementFile {
@@ -102,6 +99,7 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
         ));
     }
     let columns = Columns::new(&header, line_of_header)?;
+    commented_rows(text, header.len())?;
     // At most one row per line: reserved once, no reallocation of a large vector.
     let rows = text.bytes().filter(|b| *b == b'\n').count() + 1;
     let mut file = MeasurementFile {
@@ -279,10 +277,23 @@ fn unreadable(line: u64, e: &csv::Error) -> Error {
     )
 }
 
-fn shorten(text: &str) -> String {
-    match text.char_indices().nth(QUOTED) {
-        None => text.to_string(),
-        Some((end, _)) => format!("{}...", &text[..end]),
+/// Fails on a comment line (`#` first) that holds as many fields as the header: a measurement
+/// row whose posture label starts with `#` would otherwise be dropped without a word.
+fn commented_rows(text: &str, fields: usize) -> Result<()> {
+    let row = text.lines().enumerate().find(|(_, l)| {
+        l.trim_start().starts_with('#') && l.split(',').count() == fields && fields > 1
+    });
+    match row {
+        None => Ok(()),
+        Some((i, _)) => Err(problem(
+            i as u64 + 1,
+            None,
+            ColumnProblem::Unreadable {
+                message: format!(
+                    "a comment line ('#' first) with the {fields} fields of a measurement row: a posture label may not start with '#'"
+                ),
+            },
+        )),
     }
 }
 
@@ -387,7 +398,7 @@ impl Columns {
                     line,
                     Some(i + 1),
                     ColumnProblem::Unknown {
-                        given: shorten(name),
+                        given: crate::limits::short(name),
                         suggestion: suggestion(name).map(str::to_string),
                         expected: expected_columns(),
                     },
@@ -398,7 +409,7 @@ impl Columns {
                     line,
                     Some(i + 1),
                     ColumnProblem::Duplicate {
-                        given: shorten(name),
+                        given: crate::limits::short(name),
                     },
                 ));
             }
@@ -457,7 +468,7 @@ impl Columns {
                     error(
                         i,
                         ColumnProblem::NotANumber {
-                            value: shorten(field),
+                            value: crate::limits::short(field),
                         },
                     )
                 })
@@ -474,7 +485,7 @@ impl Columns {
                 error(
                     self.point,
                     ColumnProblem::NotAPoint {
-                        value: shorten(point_field),
+                        value: crate::limits::short(point_field),
                     },
                 )
             })?;

@@ -26,6 +26,7 @@
 
 use super::dh::{self, Convention, Row};
 use super::{AxisMap, Robot};
+use crate::limits::{self, check_in};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
 use serde::Deserialize;
@@ -90,24 +91,16 @@ impl TransformFile {
 ///
 /// # Errors
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types (the message names
-/// the key, line and column), [`Error::InvalidField`] for a joint count other than six, non-finite
-/// numbers, `lower_deg >= upper_deg` or a singular axis map.
+/// the key, line and column), [`Error::InvalidField`] for a joint count other than six, a number
+/// that is not finite or outside its range ([`crate::limits`]: lengths [`limits::LENGTH_MM`],
+/// angles [`limits::ANGLE_DEG`]), `lower_deg >= upper_deg` or an axis map whose condition number
+/// exceeds [`limits::MAX_AXIS_MAP_COND`].
 pub fn parse(text: &str, source_name: &str) -> Result<Robot> {
     let file: RobotFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
-        message: one_line(&e.to_string()),
+        message: limits::one_line(&e.to_string()),
     })?;
     build(file, source_name)
-}
-
-/// Collapses a multi-line parser message into one line.
-pub(crate) fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && *l != "|")
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn invalid(source_name: &str, field: String, message: &str) -> Error {
@@ -129,20 +122,17 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let mut upper = Vector6::zeros();
     let mut rows = Vec::with_capacity(6);
     for (i, j) in file.joint.iter().enumerate() {
-        let values = [
-            j.a_mm,
-            j.alpha_deg,
-            j.d_mm,
-            j.theta_offset_deg,
-            j.lower_deg,
-            j.upper_deg,
-        ];
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(invalid(
-                source_name,
-                format!("joint[{}]", i + 1),
-                "every number must be finite",
-            ));
+        let field = |name: &str| format!("joint[{}].{name}", i + 1);
+        let (length, angle) = (&limits::LENGTH_MM, &limits::ANGLE_DEG);
+        check_in(source_name, &field("a_mm"), &[j.a_mm], length)?;
+        check_in(source_name, &field("d_mm"), &[j.d_mm], length)?;
+        for (name, v) in [
+            ("alpha_deg", j.alpha_deg),
+            ("theta_offset_deg", j.theta_offset_deg),
+            ("lower_deg", j.lower_deg),
+            ("upper_deg", j.upper_deg),
+        ] {
+            check_in(source_name, &field(name), &[v], angle)?;
         }
         if j.lower_deg >= j.upper_deg {
             return Err(invalid(
@@ -174,26 +164,52 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         axis_map,
         lower,
         upper,
-        base: file.base.unwrap_or_default().isometry(),
-        flange: file.flange.unwrap_or_default().isometry(),
+        base: transform(file.base, "base", source_name)?,
+        flange: transform(file.flange, "flange", source_name)?,
     })
 }
 
+/// The optional `[base]` or `[flange]` transform, its numbers checked against the limits.
+fn transform(t: Option<TransformFile>, name: &str, source_name: &str) -> Result<Isometry3<f64>> {
+    let t = t.unwrap_or_default();
+    check_in(
+        source_name,
+        &format!("{name}.xyz_mm"),
+        &t.xyz_mm,
+        &limits::LENGTH_MM,
+    )?;
+    check_in(
+        source_name,
+        &format!("{name}.rpy_deg"),
+        &t.rpy_deg,
+        &limits::ANGLE_DEG,
+    )?;
+    Ok(t.isometry())
+}
+
 fn axis_map(m: &AxisMapFile, source_name: &str) -> Result<AxisMap> {
+    for (r, row) in m.matrix.iter().enumerate() {
+        let field = format!("axis_map.matrix[{}]", r + 1);
+        check_in(source_name, &field, row, &limits::AXIS_MAP_ENTRY)?;
+    }
+    check_in(
+        source_name,
+        "axis_map.offset_deg",
+        &m.offset_deg,
+        &limits::ANGLE_DEG,
+    )?;
     let matrix = Matrix6::from_fn(|r, c| m.matrix[r][c]);
     let offset = Vector6::from_iterator(m.offset_deg.iter().map(|d| d.to_radians()));
-    if matrix.iter().chain(offset.iter()).any(|v| !v.is_finite()) {
-        return Err(invalid(
-            source_name,
-            "axis_map".into(),
-            "every number must be finite",
-        ));
-    }
-    if matrix.determinant().abs() < 1e-12 {
+    let cond = crate::linalg::cond(&matrix);
+    if cond.is_nan() || cond > limits::MAX_AXIS_MAP_COND {
         return Err(invalid(
             source_name,
             "axis_map.matrix".into(),
-            "expected an invertible 6x6 matrix",
+            &format!(
+                "expected an invertible 6x6 matrix; its condition number is {} (at most {})",
+                limits::number(cond),
+                limits::number(limits::MAX_AXIS_MAP_COND)
+            ),
         ));
     }
     Ok(AxisMap { matrix, offset })

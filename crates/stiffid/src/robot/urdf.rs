@@ -5,11 +5,18 @@
 //! the last one); revolute and continuous joints may turn about any axis. Prismatic, floating and
 //! planar joints in the chain are an error, as is a chain without exactly six revolute joints. The
 //! axis map is the identity: axis angles are the URDF joint positions. Joint limits come from each
-//! revolute joint's `<limit lower upper>`; continuous joints, and revolute joints without a usable
-//! limit (`lower >= upper`, as urdf-rs reads a missing `<limit>`), are unlimited.
+//! revolute joint's `<limit lower upper>`; continuous joints, and revolute joints without a
+//! `<limit>` (urdf-rs reads it as `lower = upper = 0`), are unlimited; an inverted or non-finite
+//! limit is an error.
+//!
+//! Before the XML parser sees the text, its element nesting is bounded
+//! ([`crate::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
+//! must name declared links, no link may be the child of two joints, every link must hang from
+//! one root, and every number of an origin, axis or limit must be finite and within the limits
+//! ([`crate::limits::LENGTH_M`], [`crate::limits::ANGLE_RAD`]).
 
 use super::{AxisMap, Joint, Robot};
-use crate::{Error, Result};
+use crate::{limits, Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
 use std::collections::{HashMap, HashSet};
 use urdf_rs::JointType;
@@ -18,26 +25,30 @@ use urdf_rs::JointType;
 /// `tip` names the tip link, by default the only leaf link.
 ///
 /// # Errors
-/// [`Error::Parse`] for malformed XML; [`Error::Chain`] when the tip link is missing or ambiguous,
-/// the tree has no single root, a joint in the chain is not revolute or fixed, or the chain does not
-/// hold exactly six revolute joints.
+/// [`Error::Parse`] for malformed XML or nesting deeper than [`limits::MAX_XML_DEPTH`];
+/// [`Error::Chain`] when a joint names an undeclared link, a link is the child of two joints, the
+/// links do not hang from one root, the tip link is missing or ambiguous, a joint in the chain is
+/// not revolute or fixed, has a non-finite or out-of-range number or an inverted limit, or the
+/// chain does not hold exactly six revolute joints.
 pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> {
-    let urdf = urdf_rs::read_from_string(text).map_err(|e| Error::Parse {
+    let parse_error = |message: String| Error::Parse {
         source_name: source_name.to_string(),
-        message: super::file::one_line(&e.to_string()),
-    })?;
+        message,
+    };
+    check_depth(text).map_err(parse_error)?;
+    let urdf = urdf_rs::read_from_string(text)
+        .map_err(|e| parse_error(limits::one_line(&e.to_string())))?;
     let chain_error = |message: String| Error::Chain {
         source_name: source_name.to_string(),
         message,
     };
-    let by_child: HashMap<&str, &urdf_rs::Joint> = urdf
-        .joints
-        .iter()
-        .map(|j| (j.child.link.as_str(), j))
-        .collect();
+    let by_child = tree(&urdf).map_err(chain_error)?;
     let tip = match tip {
         Some(t) if urdf.links.iter().any(|l| l.name == t) => t.to_string(),
-        Some(t) => return Err(chain_error(format!("no link named '{t}' (--tip)"))),
+        Some(t) => {
+            let t = limits::short(t);
+            return Err(chain_error(format!("no link named '{t}' (--tip)")));
+        }
         None => only_leaf(&urdf).map_err(chain_error)?,
     };
     let mut path = Vec::new();
@@ -53,6 +64,101 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     fold(&path, &urdf.name, source_name).map_err(chain_error)
 }
 
+/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`]. Comments,
+/// CDATA, declarations and quoted attribute values are skipped, so nothing hides an element.
+fn check_depth(text: &str) -> std::result::Result<(), String> {
+    let b = text.as_bytes();
+    let (mut i, mut depth) = (0, 0usize);
+    let skip_to = |from: usize, end: &str| {
+        text[from..]
+            .find(end)
+            .map_or(b.len(), |k| from + k + end.len())
+    };
+    while let Some(k) = text[i..].find('<') {
+        i += k;
+        let rest = &text[i..];
+        if rest.starts_with("<!--") {
+            i = skip_to(i, "-->");
+        } else if rest.starts_with("<![CDATA[") {
+            i = skip_to(i, "]]>");
+        } else if rest.starts_with("<?") || rest.starts_with("<!") {
+            i = skip_to(i, ">");
+        } else if rest.starts_with("</") {
+            depth = depth.saturating_sub(1);
+            i = skip_to(i, ">");
+        } else {
+            let (end, self_closing) = tag_end(b, i + 1);
+            if !self_closing {
+                depth += 1;
+                if depth > limits::MAX_XML_DEPTH {
+                    return Err(format!(
+                        "elements nest deeper than {} levels (a URDF nests about 5)",
+                        limits::MAX_XML_DEPTH
+                    ));
+                }
+            }
+            i = end;
+        }
+    }
+    Ok(())
+}
+
+/// The index after the `>` ending the tag that starts before `from`, and whether it is `/>`;
+/// `>` inside quoted attribute values does not count.
+fn tag_end(b: &[u8], from: usize) -> (usize, bool) {
+    let mut quote = None;
+    for (k, &c) in b.iter().enumerate().skip(from) {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), _) => {}
+            (None, b'"' | b'\'') => quote = Some(c),
+            (None, b'>') => return (k + 1, k > from && b[k - 1] == b'/'),
+            _ => {}
+        }
+    }
+    (b.len(), false)
+}
+
+/// Checks the links and joints form one tree (every joint between declared links, no link the
+/// child of two joints, one root) and returns each joint by its child link.
+fn tree(urdf: &urdf_rs::Robot) -> std::result::Result<HashMap<&str, &urdf_rs::Joint>, String> {
+    let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let mut by_child = HashMap::new();
+    for j in &urdf.joints {
+        for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
+            if !links.contains(link.as_str()) {
+                return Err(format!(
+                    "joint '{}' names the {role} link '{}', which is not declared",
+                    limits::short(&j.name),
+                    limits::short(link)
+                ));
+            }
+        }
+        if let Some(other) = by_child.insert(j.child.link.as_str(), j) {
+            return Err(format!(
+                "link '{}' is the child of two joints ('{}' and '{}')",
+                limits::short(&j.child.link),
+                limits::short(&other.name),
+                limits::short(&j.name)
+            ));
+        }
+    }
+    let roots: Vec<&str> = urdf
+        .links
+        .iter()
+        .map(|l| l.name.as_str())
+        .filter(|l| !by_child.contains_key(l))
+        .collect();
+    match roots.len() {
+        1 => Ok(by_child),
+        0 => Err("every link is the child of a joint: the joints form a loop".into()),
+        n => Err(format!(
+            "the links are not connected: {n} links have no parent joint ({}); a robot has one root link",
+            limits::short(&roots.join(", "))
+        )),
+    }
+}
+
 fn only_leaf(urdf: &urdf_rs::Robot) -> std::result::Result<String, String> {
     let parents: HashSet<&str> = urdf.joints.iter().map(|j| j.parent.link.as_str()).collect();
     let leaves: Vec<&str> = urdf
@@ -66,16 +172,56 @@ fn only_leaf(urdf: &urdf_rs::Robot) -> std::result::Result<String, String> {
         [] => Err("no leaf link: name the tip link with --tip".into()),
         many => Err(format!(
             "several leaf links ({}): name the tip link with --tip",
-            many.join(", ")
+            limits::short(&many.join(", "))
         )),
     }
 }
 
-fn pose(p: &urdf_rs::Pose) -> Isometry3<f64> {
-    Isometry3::from_parts(
+/// The origin of joint `j`, its numbers checked against the limits.
+fn pose(j: &urdf_rs::Joint) -> std::result::Result<Isometry3<f64>, String> {
+    let (p, name) = (&j.origin, limits::short(&j.name));
+    let field = |f: &str| format!("joint '{name}': origin {f}");
+    limits::check(&field("xyz"), &p.xyz[..], &limits::LENGTH_M).map_err(|e| e.to_string())?;
+    limits::check(&field("rpy"), &p.rpy[..], &limits::ANGLE_RAD).map_err(|e| e.to_string())?;
+    Ok(Isometry3::from_parts(
         Translation3::new(p.xyz[0], p.xyz[1], p.xyz[2]),
         UnitQuaternion::from_euler_angles(p.rpy[0], p.rpy[1], p.rpy[2]),
+    ))
+}
+
+/// The unit axis of joint `j`.
+fn axis(j: &urdf_rs::Joint) -> std::result::Result<Unit<Vector3<f64>>, String> {
+    let name = limits::short(&j.name);
+    let xyz = &j.axis.xyz[..];
+    limits::check(&format!("joint '{name}': axis xyz"), xyz, &limits::LENGTH_M)
+        .map_err(|e| e.to_string())?;
+    Unit::try_new(Vector3::new(xyz[0], xyz[1], xyz[2]), 1e-12)
+        .ok_or_else(|| format!("joint '{name}' has a zero axis"))
+}
+
+/// The limits `(lower, upper)` of joint `j`, rad: infinite for a continuous joint or a revolute
+/// joint without `<limit>` (read as `lower = upper = 0`).
+fn joint_limits(j: &urdf_rs::Joint) -> std::result::Result<(f64, f64), String> {
+    let (lower, upper) = (j.limit.lower, j.limit.upper);
+    let missing = lower == 0.0 && upper == 0.0;
+    if j.joint_type == JointType::Continuous || missing {
+        return Ok((f64::NEG_INFINITY, f64::INFINITY));
+    }
+    let name = limits::short(&j.name);
+    limits::check(
+        &format!("joint '{name}': limit lower, upper"),
+        &[lower, upper],
+        &limits::ANGLE_RAD,
     )
+    .map_err(|e| e.to_string())?;
+    if lower >= upper {
+        return Err(format!(
+            "joint '{name}': limit lower = {} is not below upper = {}",
+            limits::number(lower),
+            limits::number(upper)
+        ));
+    }
+    Ok((lower, upper))
 }
 
 fn fold(
@@ -88,34 +234,23 @@ fn fold(
     let mut acc = Isometry3::identity();
     for j in path {
         match j.joint_type {
-            JointType::Fixed => acc *= pose(&j.origin),
+            JointType::Fixed => acc *= pose(j)?,
             JointType::Revolute | JointType::Continuous => {
-                let axis = Vector3::new(j.axis.xyz[0], j.axis.xyz[1], j.axis.xyz[2]);
-                let axis = Unit::try_new(axis, 1e-12)
-                    .ok_or_else(|| format!("joint '{}' has a zero axis", j.name))?;
                 joints.push(Joint {
-                    pre: acc * pose(&j.origin),
-                    axis,
+                    pre: acc * pose(j)?,
+                    axis: axis(j)?,
                     post: Isometry3::identity(),
                     offset: 0.0,
                 });
-                let limited = j.joint_type == JointType::Revolute && j.limit.lower < j.limit.upper;
-                lower.push(if limited {
-                    j.limit.lower
-                } else {
-                    f64::NEG_INFINITY
-                });
-                upper.push(if limited {
-                    j.limit.upper
-                } else {
-                    f64::INFINITY
-                });
+                let (l, u) = joint_limits(j)?;
+                lower.push(l);
+                upper.push(u);
                 acc = Isometry3::identity();
             }
             ref other => {
                 return Err(format!(
                 "joint '{}' is {other:?}; only revolute, continuous and fixed joints are supported",
-                j.name
+                limits::short(&j.name)
             ))
             }
         }

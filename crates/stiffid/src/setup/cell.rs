@@ -22,7 +22,7 @@
 
 use super::{field_error, mm};
 use crate::robot::file::TransformFile;
-use crate::Result;
+use crate::{limits, Result};
 use nalgebra::{Isometry3, Vector3};
 use serde::Deserialize;
 
@@ -120,7 +120,7 @@ pub(super) struct TrackerFile {
 
 /// The numbers of a field for messages, shortened.
 fn shown(values: &[f64]) -> String {
-    let text: Vec<String> = values.iter().take(7).map(|v| format!("{v}")).collect();
+    let text: Vec<String> = values.iter().take(7).map(|v| limits::number(*v)).collect();
     let more = if values.len() > 7 { ", ..." } else { "" };
     format!("[{}{more}]", text.join(", "))
 }
@@ -146,7 +146,10 @@ fn length(src: &str, field: &str, v: f64, open: bool) -> Result<f64> {
     Err(field_error(
         src,
         field,
-        format!("{v} given: expected a length {low} and <= {MAX_LENGTH_MM} mm"),
+        format!(
+            "{} given: expected a length {low} and <= {MAX_LENGTH_MM} mm",
+            limits::number(v)
+        ),
     ))
 }
 
@@ -264,7 +267,10 @@ pub(super) fn tracker(
             return Err(field_error(
                 src,
                 "tracker.max_incidence_deg",
-                format!("{a} given: expected an angle in (0, 90] deg"),
+                format!(
+                    "{} given: expected an angle in (0, 90] deg",
+                    limits::number(a)
+                ),
             ))
         }
     };

@@ -2,7 +2,7 @@
 //! the cell ([`stiffid::cell::Checker`]: bounds, floor, obstacles, self-collision, rope, line of
 //! sight, `[constraints]`) reported and skipped.
 
-use super::{same_file, Args, Selection};
+use super::{Args, Selection};
 use crate::postures;
 use crate::report::plan::describe;
 use anyhow::{bail, Context, Result};
@@ -49,16 +49,10 @@ pub struct PoolJson {
 }
 
 impl<'a> Input<'a> {
-    /// Reads the pool file (never the `--out` file); postures that fail a check of the cell are
-    /// skipped.
-    pub fn read(path: &Path, out: &Path, setup: &'a Setup) -> Result<Self> {
-        if same_file(path, out) {
-            bail!(
-                "--out {}: refusing to overwrite the --pool file",
-                out.display()
-            );
-        }
-        let postures = postures::read(path, &setup.robot)?;
+    /// Reads the pool file (an input: no output is written over it); postures that fail a check
+    /// of the cell are skipped.
+    pub fn read(path: &Path, setup: &'a Setup) -> Result<Self> {
+        let postures = postures::read(path, &setup.robot, None)?;
         if postures.len() > MAX_POOL {
             bail!(
                 "{}: {} postures: a pool holds at most {MAX_POOL}",
@@ -167,25 +161,26 @@ impl<'a> Input<'a> {
         }
     }
 
-    /// Prints what the pool held and what was chosen.
-    pub fn print(&self, chosen: Option<&Chosen>) {
-        println!(
-            "pool {}: {} postures, {} usable",
+    /// What the pool held and what was chosen, in words.
+    pub fn text(&self, chosen: Option<&Chosen>) -> String {
+        let mut s = format!(
+            "pool {}: {} postures, {} usable\n",
             self.path.display(),
             self.total,
             self.usable()
         );
-        for s in &self.skipped {
-            println!("  skipped posture {}: {}", s.posture, s.reason);
+        for k in &self.skipped {
+            s += &format!("  skipped posture {}: {}\n", k.posture, k.reason);
         }
         if let Some(c) = chosen {
             let numbers: Vec<String> = c.numbers.iter().map(|n| n.to_string()).collect();
-            println!(
-                "chosen ({}): postures {} of the pool",
+            s += &format!(
+                "chosen ({}): postures {} of the pool\n",
                 method_name(c.method),
                 numbers.join(", ")
             );
         }
+        s
     }
 }
 

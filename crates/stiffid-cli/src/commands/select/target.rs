@@ -2,10 +2,11 @@
 //! rate at noise level multiple 1 is at most X % on every joint.
 
 use super::{choose, pool, Args, Selection};
-use crate::output::write_atomic;
+use crate::output::OutFile;
 use crate::report::figures::target as figure;
 use anyhow::{bail, Result};
 use serde::Serialize;
+use std::path::Path;
 use stiffid::design::target::{smallest_group, TargetOutcome, MAX_POSTURES};
 use stiffid::Setup;
 
@@ -84,24 +85,39 @@ pub fn smallest(
             j + 1
         );
     }
-    if args.report.is_none() {
-        let f = figure::figure(&outcome)?;
-        let stem = args.out.with_extension("");
-        write_atomic(&stem.with_extension("target.svg"), f.svg.as_bytes())?;
-        write_atomic(&stem.with_extension("target.png"), &f.png)?;
-    }
     Ok((selection, outcome))
 }
 
-/// Prints the group sizes tried and their worst joint.
-pub fn print(t: &TargetOutcome) {
-    println!(
-        "smallest group predicting at most {} % on every joint (noise level multiple 1):",
+/// The figure files beside `--out` without `--report` (`OUT.target.svg`, `OUT.target.png`),
+/// checked before the search.
+pub fn files(out: &Path) -> Result<[OutFile; 2]> {
+    let stem = out.with_extension("");
+    Ok([
+        OutFile::prepare(&stem.with_extension("target.svg"), "--out (target figure)")?,
+        OutFile::prepare(&stem.with_extension("target.png"), "--out (target figure)")?,
+    ])
+}
+
+/// Writes the figure of the group sizes tried into the [`files`].
+pub fn write_figure(files: &[OutFile; 2], outcome: &TargetOutcome) -> Result<()> {
+    let f = figure::figure(outcome)?;
+    files[0].write(f.svg.as_bytes())?;
+    files[1].write(&f.png)
+}
+
+/// The group sizes tried and their worst joint, in words.
+pub fn text(t: &TargetOutcome) -> String {
+    let mut s = format!(
+        "smallest group predicting at most {} % on every joint (noise level multiple 1):\n",
         t.target_pct
     );
-    println!("{:>8}  {:>11}  {:>6}", "postures", "worst joint", "rate %");
-    for s in &t.steps {
-        let (j, w) = s.worst_joint();
-        println!("{:>8}  {:>11}  {:>6.3}", s.postures.len(), j + 1, w);
+    s += &format!(
+        "{:>8}  {:>11}  {:>6}\n",
+        "postures", "worst joint", "rate %"
+    );
+    for step in &t.steps {
+        let (j, w) = step.worst_joint();
+        s += &format!("{:>8}  {:>11}  {:>6.3}\n", step.postures.len(), j + 1, w);
     }
+    s
 }

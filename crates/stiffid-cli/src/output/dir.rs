@@ -1,0 +1,148 @@
+//! One output directory (`--out DIR` of `simulate` and `reproduce`).
+
+use super::target::{replace, resolve};
+use anyhow::{bail, Context, Result};
+use std::io::ErrorKind;
+use std::path::{Path, PathBuf};
+
+/// The hidden directory inside a report directory that holds the temporary files while they are
+/// written. A run killed mid-write (SIGKILL) leaves it behind; the next run into the same
+/// directory removes it.
+pub const TEMP_DIR: &str = ".stiffid-tmp";
+
+/// A directory being filled with a report, checked when the command starts (before computing).
+///
+/// Dropped without [`ReportDir::finish`] (an error on the way), it removes its temporary files
+/// and, if it created the directory, the directory with everything written into it.
+#[derive(Debug)]
+pub struct ReportDir {
+    /// The directory, resolved.
+    dir: PathBuf,
+    /// [`TEMP_DIR`] inside it.
+    tmp: PathBuf,
+    /// The top-most directory this run created, if any.
+    created: Option<PathBuf>,
+    done: bool,
+}
+
+impl ReportDir {
+    /// Checks and opens `dir` (the command-line `option`): it must be a directory or a new path;
+    /// an existing directory must be empty, or `reusable` (a previous report of ours), unless
+    /// `force` is `Some(true)` (`None`: the command has no `--force`). Every existing entry the report will write (`holds`, given the path relative to
+    /// `dir`) must pass [`resolve`] (a regular file, not an input). The directory is created if
+    /// missing and proven writable by creating [`TEMP_DIR`] in it.
+    ///
+    /// # Errors
+    /// One line naming the option, the directory and what is wrong.
+    pub fn prepare(
+        dir: &Path,
+        option: &str,
+        force: Option<bool>,
+        holds: &dyn Fn(&Path) -> bool,
+        reusable: &dyn Fn(&Path) -> bool,
+    ) -> Result<Self> {
+        let name = dir.display();
+        match std::fs::metadata(dir) {
+            Ok(m) if !m.is_dir() => bail!("{option} {name}: exists and is not a directory"),
+            Ok(_) if force != Some(true) && !is_empty(dir)? && !reusable(dir) => bail!(
+                "{option} {name}: not empty and not a previous report of this command; choose another {option}{}",
+                if force.is_some() { " or pass --force" } else { "" }
+            ),
+            Ok(_) => {}
+            Err(e) if e.kind() == ErrorKind::NotFound => {}
+            Err(e) => return Err(e).with_context(|| format!("{option} {name}: cannot inspect")),
+        }
+        let created = create(dir).with_context(|| format!("{option} {name}: cannot create"))?;
+        let resolved = dir.canonicalize()?;
+        let report = Self {
+            tmp: resolved.join(TEMP_DIR),
+            dir: resolved,
+            created,
+            done: false,
+        };
+        report.check_existing(&report.dir, Path::new(""), holds, option)?;
+        if report.tmp.exists() {
+            std::fs::remove_dir_all(&report.tmp)
+                .with_context(|| format!("{option} {name}: cannot remove {TEMP_DIR}"))?;
+        }
+        std::fs::create_dir(&report.tmp)
+            .with_context(|| format!("{option} {name}: cannot write into it"))?;
+        Ok(report)
+    }
+
+    /// Checks every existing entry under `dir` (`rel` relative to the report) that the report
+    /// will write, two levels deep.
+    fn check_existing(
+        &self,
+        dir: &Path,
+        rel: &Path,
+        holds: &dyn Fn(&Path) -> bool,
+        option: &str,
+    ) -> Result<()> {
+        for entry in std::fs::read_dir(dir)? {
+            let entry = entry?;
+            let rel = rel.join(entry.file_name());
+            let is_dir = entry.file_type()?.is_dir();
+            if is_dir && rel.components().count() < 2 && entry.file_name() != TEMP_DIR {
+                self.check_existing(&entry.path(), &rel, holds, option)?;
+            } else if holds(&rel) {
+                resolve(&entry.path(), option)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `bytes` whole as the file `rel` (relative to the directory; subdirectories are
+    /// created), through an existing symlink to its target.
+    ///
+    /// # Errors
+    /// Those of [`resolve`]; a file that cannot be written.
+    pub fn write(&self, rel: &str, bytes: &[u8]) -> Result<()> {
+        let path = self.dir.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("{}: cannot create", parent.display()))?;
+        }
+        replace(&resolve(&path, "report file")?, &self.tmp, bytes)
+    }
+
+    /// Ends the report: removes the temporary directory.
+    ///
+    /// # Errors
+    /// When it cannot be removed.
+    pub fn finish(mut self) -> Result<()> {
+        self.done = true;
+        std::fs::remove_dir_all(&self.tmp)
+            .with_context(|| format!("{}: cannot remove", self.tmp.display()))
+    }
+}
+
+impl Drop for ReportDir {
+    fn drop(&mut self) {
+        if self.done {
+            return;
+        }
+        let _ = std::fs::remove_dir_all(&self.tmp);
+        if let Some(created) = &self.created {
+            let _ = std::fs::remove_dir_all(created);
+        }
+    }
+}
+
+/// Whether `dir` holds nothing but a stale [`TEMP_DIR`].
+fn is_empty(dir: &Path) -> Result<bool> {
+    let mut entries =
+        std::fs::read_dir(dir).with_context(|| format!("{}: cannot read", dir.display()))?;
+    Ok(entries.all(|e| e.is_ok_and(|e| e.file_name() == TEMP_DIR)))
+}
+
+/// Creates `dir` and its missing parents; returns the top-most directory created, if any.
+fn create(dir: &Path) -> std::io::Result<Option<PathBuf>> {
+    let top = dir
+        .ancestors()
+        .take_while(|a| !a.as_os_str().is_empty() && !a.exists())
+        .last()
+        .map(Path::to_path_buf);
+    std::fs::create_dir_all(dir)?;
+    Ok(top)
+}

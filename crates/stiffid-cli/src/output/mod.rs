@@ -1,0 +1,87 @@
+//! Everything the command writes, through one module so every command gets the same guarantees:
+//! - results on stdout through [`print`] (a write error such as a full device is an error exit,
+//!   never a panic; a closed pipe ends the process quietly);
+//! - files through [`OutFile`] and report directories through [`ReportDir`] ([`target`]): checked
+//!   before any computation, never over an input, a device, a directory or any other non-regular
+//!   file, through an existing symlink to its target, whole (a short temporary name, then a
+//!   rename), nothing left behind on failure;
+//! - errors on one line ([`one_line_chain`]), long values cut.
+
+mod dir;
+mod file;
+mod target;
+
+pub use dir::ReportDir;
+pub use file::OutFile;
+
+use anyhow::{Context, Result};
+use std::io::Write;
+
+/// Writes `text` to stdout (locked, flushed): [`write_stdout`] of its bytes.
+///
+/// # Errors
+/// When stdout cannot take it (for example `> /dev/full`).
+pub fn print(text: &str) -> Result<()> {
+    write_stdout(text.as_bytes())
+}
+
+/// Writes `bytes` to stdout (locked, flushed).
+///
+/// # Errors
+/// When stdout cannot take them (for example `> /dev/full`).
+pub fn write_stdout(bytes: &[u8]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)
+        .and_then(|_| out.flush())
+        .context("stdout: cannot write")
+}
+
+/// Prints `warning: {text}` on stderr; a stderr that cannot be written is ignored (the result
+/// still goes to stdout, the exit code still says how it went).
+pub fn warn(text: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "warning: {text}");
+}
+
+/// Pretty JSON of `value`, with a final newline.
+pub fn json<T: serde::Serialize>(value: &T) -> Result<String> {
+    Ok(serde_json::to_string_pretty(value)? + "\n")
+}
+
+/// Prints `value` as pretty JSON if `as_json`, else the text `human` makes of it.
+pub fn print_json_or<T: serde::Serialize>(
+    as_json: bool,
+    value: &T,
+    human: impl FnOnce(&T) -> String,
+) -> Result<()> {
+    match as_json {
+        true => print(&json(value)?),
+        false => print(&human(value)),
+    }
+}
+
+/// `text` as one CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
+pub fn csv_field(text: &str) -> String {
+    match text.contains([',', '"', '\n', '\r']) {
+        true => format!("\"{}\"", text.replace('"', "\"\"")),
+        false => text.to_string(),
+    }
+}
+
+/// Longest word of an error line: a path may be this long; values quoted in messages are cut
+/// shorter where they are quoted ([`stiffid::limits::short`]).
+const MAX_ERROR_WORD: usize = 4096;
+
+/// Longest error line.
+const MAX_ERROR_CHARS: usize = 3 * MAX_ERROR_WORD;
+
+/// An error and its causes on one line, outermost first, as a safety net every word cut at
+/// [`MAX_ERROR_WORD`] characters and the whole at [`MAX_ERROR_CHARS`].
+pub fn one_line(message: &str) -> String {
+    stiffid::limits::one_line_within(message, MAX_ERROR_WORD, MAX_ERROR_CHARS)
+}
+
+/// [`one_line`] of an error and its causes, outermost first.
+pub fn one_line_chain(e: &anyhow::Error) -> String {
+    let chain: Vec<String> = e.chain().map(|c| c.to_string()).collect();
+    one_line(&chain.join(": "))
+}
