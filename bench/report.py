@@ -16,15 +16,20 @@ CRITERIA = ["classical", "zhang2021", "scaled_cond", "d_optimal", "relative_a", 
 # (label, Rust criterion bench id, Python timing (file, key) or None, target median s, target ratio)
 NAMES = ["classical", "zhang2021", "scaled-cond", "d-optimal", "relative-a", "test-pose"]
 ROWS = [
-    (f"criterion evaluation, {name}, 6 postures x 4 points", f"design_evaluate_{name}_6x4", ("evaluate", name), 10e-6, 300)
+    (f"criterion evaluation, {name}, 6 postures x 4 points", f"design_evaluate_{name}_6x4", ("evaluate", name), 4e-6, 1000)
+    for name in NAMES
+] + [
+    (f"criterion and its exact gradient, {name}", f"design_gradient_{name}_6x4", None, 25e-6, None)
     for name in NAMES
 ] + [
     ("every criterion + predicted rates (stiffid evaluate)", "design_evaluate_all_6x4", ("evaluate", "evaluate"), None, None),
     ("least squares alone, 72 x 6 (QR factor and solve; numpy.linalg.lstsq)", "compare/lstsq", ("identify", "lstsq"), None, None),
     ("identification 72 x 6 with statistics (bench identify)", "identify_72x6 least squares and statistics", None, 5e-6, None),
     ("identification from the 24 measurement rows", "compare/identify", ("identify", "identify"), None, None),
-    ("local search, zhang2021, SLSQP from the start group", "compare/local-search", ("select", "local_search"), 0.5, 30),
-    ("default global search, relative-a (bench design)", "design_search/global_relative-a_default", None, 10.0, None),
+    ("local search, zhang2021, SLSQP from the start group, exact gradient", "compare/local-search", ("select", "local_search"), 10e-3, 2000),
+    ("local search, zhang2021, from the start group, finite differences", "compare/local-search-fd", ("select", "local_search"), None, None),
+    ("default global search, relative-a (bench design)", "design_search/global_relative-a_default", None, 0.3, None),
+    ("default global search, relative-a, finite differences", "design_search/global-fd_relative-a_default", None, None, None),
     ("Monte Carlo of reproduce (5 groups x 6 levels x 200 runs)", "monte-carlo/reproduce-5x6x200", None, 50e-3, None),
 ]
 
@@ -140,7 +145,7 @@ def main():
     extra = []
     e2e = load(out, "rs-reproduce-time")
     if e2e:
-        extra.append(("stiffid reproduce, end to end (wall clock)", e2e["elapsed_s"], 30.0))
+        extra.append(("stiffid reproduce, end to end (wall clock)", e2e["elapsed_s"], 0.5))
     table(out, criterion_dir, extra)
     scaling(criterion_dir)
     sys.exit(0 if ok else 1)

@@ -106,6 +106,55 @@ fn select_random_and_global_write_postures_within_bounds() {
 }
 
 #[test]
+fn select_gradient_exact_or_fd_from_the_same_start() {
+    let d = temp_dir("select-gradient");
+    let start = write_file(&d, "start.csv", GROUP);
+    let run = |gradient: &str| {
+        let out = d.join(format!("{gradient}.csv"));
+        json(&stiffid(&[
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--criterion",
+            "d-optimal",
+            "--start",
+            start.to_str().unwrap(),
+            "--gradient",
+            gradient,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]))
+    };
+    let (exact, fd) = (run("exact"), run("fd"));
+    assert_eq!(exact["gradient"], "exact");
+    assert_eq!(fd["gradient"], "fd");
+    let value = |doc: &serde_json::Value| doc["value"].as_f64().unwrap();
+    assert!(
+        value(&exact) <= value(&fd) * (1.0 + 1e-6),
+        "{exact} vs {fd}"
+    );
+    assert!(value(&fd) < fd["start_value"].as_f64().unwrap());
+    let evaluations = |doc: &serde_json::Value| doc["evaluations"].as_u64().unwrap();
+    assert!(evaluations(&exact) * 10 < evaluations(&fd));
+
+    let unknown = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "d-optimal",
+        "--start-random",
+        "--gradient",
+        "numeric",
+        "--out",
+        d.join("never.csv").to_str().unwrap(),
+    ]);
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("exact, fd"));
+}
+
+#[test]
 fn bad_input_is_one_line_naming_the_place() {
     let d = temp_dir("select-bad");
     let out = d.join("never.csv");

@@ -5,11 +5,12 @@
 //! - `compare/lstsq`: the least-squares step alone, 72 x 6 (QR factor and solve);
 //! - `compare/identify`: identification from the 24 measurements of `bench/inputs/measurements.csv`
 //!   (observation matrix, least squares and statistics, as `stiffid identify` without file I/O);
-//! - `compare/local-search`: SLSQP on `zhang2021` from the start group, default options.
+//! - `compare/local-search`: SLSQP on `zhang2021` from the start group, default options (exact
+//!   gradient); `compare/local-search-fd`: the same with finite-difference gradients.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
-use stiffid::design::{local, Criterion as Design, SearchOptions};
+use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions};
 use stiffid::identify::{identify, Measurement};
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
@@ -62,6 +63,13 @@ fn compare(c: &mut Criterion) {
     let options = SearchOptions::default();
     group.sample_size(10).bench_function("local-search", |b| {
         b.iter(|| local(&setup, Design::Zhang2021, black_box(&start), &options).unwrap())
+    });
+    let fd = SearchOptions {
+        gradient: Gradient::FiniteDifference,
+        ..options.clone()
+    };
+    group.bench_function("local-search-fd", |b| {
+        b.iter(|| local(&setup, Design::Zhang2021, black_box(&start), &fd).unwrap())
     });
     group.finish();
 }

@@ -1,10 +1,11 @@
-//! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one local
-//! search from a fixed seeded start group, the default global search, and the best 6 of a pool of
-//! 1000 postures (`select --pool`: building the pool and the exchange), on the paper setup.
+//! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one
+//! evaluation with its exact gradient, local searches from a fixed seeded start group (exact and
+//! finite-difference gradients), the default global search, and the best 6 of a pool of 1000
+//! postures (`select --pool`: building the pool and the exchange), on the paper setup.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::design::{self, Criterion, Evaluator, Pool, PoolOptions, SearchOptions};
+use stiffid::design::{self, Criterion, Evaluator, Gradient, Pool, PoolOptions, SearchOptions};
 
 fn evaluation(c: &mut Bench) {
     let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -13,6 +14,11 @@ fn evaluation(c: &mut Bench) {
     for criterion in Criterion::ALL {
         c.bench_function(&format!("design/evaluate/{criterion}/6x4"), |b| {
             b.iter(|| evaluator.value(criterion, black_box(&group)))
+        });
+    }
+    for criterion in Criterion::ALL {
+        c.bench_function(&format!("design/gradient/{criterion}/6x4"), |b| {
+            b.iter(|| evaluator.value_and_gradient(criterion, black_box(&group)))
         });
     }
     c.bench_function("design/evaluate/all/6x4", |b| {
@@ -32,8 +38,18 @@ fn search(c: &mut Bench) {
     g.bench_function("local/relative-a", |b| {
         b.iter(|| design::local(&setup, Criterion::RelativeA, black_box(&start), &options).unwrap())
     });
+    let fd = SearchOptions {
+        gradient: Gradient::FiniteDifference,
+        ..options.clone()
+    };
+    g.bench_function("local-fd/zhang2021", |b| {
+        b.iter(|| design::local(&setup, Criterion::Zhang2021, black_box(&start), &fd).unwrap())
+    });
     g.bench_function("global/relative-a/default", |b| {
         b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &()).unwrap())
+    });
+    g.bench_function("global-fd/relative-a/default", |b| {
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &fd, &()).unwrap())
     });
     g.finish();
 }

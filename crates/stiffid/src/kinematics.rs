@@ -6,6 +6,9 @@ use crate::Robot;
 use nalgebra::{Isometry3, Matrix3x6, Matrix6, Point3, UnitQuaternion, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
+mod gradient;
+pub use gradient::dexterity_log_gradient;
+
 /// Which joint coordinates a Jacobian's columns refer to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -33,6 +36,8 @@ pub struct Frames {
     /// directions `z_j` and moments `z_j x o_j` (m), kinematic columns first, then the axis
     /// columns (both times `M`), so a point Jacobian costs six cross products.
     screws: [Screws; 2],
+    /// The axis map's `M` (`theta = M q + c`), for derivatives with respect to q.
+    axis_map: Matrix6<f64>,
 }
 
 /// Column directions (rad/rad) and moments (m/rad) of the screws of the six Jacobian columns:
@@ -55,6 +60,7 @@ impl Robot {
             axis_directions: [Vector3::zeros(); 6],
             flange: self.base,
             screws: [Screws::zeros(), Screws::zeros()],
+            axis_map: self.axis_map.matrix,
         };
         let t = &mut f.flange;
         let [kinematic, axis] = &mut f.screws;
@@ -157,21 +163,28 @@ pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
 /// or for non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
 /// `|J_N|_F |J_N^-1|_F / 6` without forming `A`.
 pub fn dexterity(jacobian: &Matrix6<f64>, characteristic_length: f64) -> f64 {
+    normalised(jacobian, characteristic_length).map_or(f64::INFINITY, |n| n.dexterity)
+}
+
+/// The normalised Jacobian `J_N`, its inverse and `k(J_N)`, where the dexterity is finite.
+struct Normalised {
+    jn: Matrix6<f64>,
+    inverse: Matrix6<f64>,
+    dexterity: f64,
+}
+
+fn normalised(jacobian: &Matrix6<f64>, characteristic_length: f64) -> Option<Normalised> {
     let mut jn = *jacobian;
     jn.fixed_rows_mut::<3>(0)
         .scale_mut(1.0 / characteristic_length);
     if !jn.iter().all(|v| v.is_finite()) {
-        return f64::INFINITY;
+        return None;
     }
-    match jn.try_inverse() {
-        Some(inv) => {
-            let k = jn.norm() * inv.norm() / 6.0;
-            if k < NUMERICALLY_SINGULAR {
-                k
-            } else {
-                f64::INFINITY
-            }
-        }
-        None => f64::INFINITY,
-    }
+    let inverse = crate::linalg::inverse(&jn)?;
+    let dexterity = jn.norm() * inverse.norm() / 6.0;
+    (dexterity < NUMERICALLY_SINGULAR).then_some(Normalised {
+        jn,
+        inverse,
+        dexterity,
+    })
 }

@@ -63,6 +63,22 @@ const JACOBI_PAIRS: [(usize, usize); 15] = [
 /// norm is below `eps^2 |r|_F^2` are numerically zero and left alone (a rank-deficient `R` would
 /// otherwise rotate rounding noise for the full 60 sweeps).
 pub(crate) fn singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
+    jacobi(r, None)
+}
+
+/// The singular values of a 6x6 matrix `r` ([`singular_values`]) and its right singular vectors:
+/// column k of the matrix is the unit vector `v_k` with `|r v_k| = s_k` (the product of the Jacobi
+/// rotations, `r V = U diag(s)`).
+pub(crate) fn singular_values_and_vectors(r: &Matrix6<f64>) -> (Vector6<f64>, Matrix6<f64>) {
+    let mut v: [[f64; 6]; 6] =
+        std::array::from_fn(|j| std::array::from_fn(|i| f64::from(u8::from(i == j))));
+    let s = jacobi(r, Some(&mut v));
+    (s, Matrix6::from_fn(|i, j| v[j][i]))
+}
+
+/// One-sided Jacobi on the columns of `r`; the rotations are also applied to the columns of `v`
+/// (column-major) if given.
+fn jacobi(r: &Matrix6<f64>, mut v: Option<&mut [[f64; 6]; 6]>) -> Vector6<f64> {
     let mut u: [[f64; 6]; 6] = std::array::from_fn(|j| std::array::from_fn(|i| r[(i, j)]));
     let dot6 = |x: &[f64; 6], y: &[f64; 6]| {
         (x[0] * y[0] + x[1] * y[1]) + (x[2] * y[2] + x[3] * y[3]) + (x[4] * y[4] + x[5] * y[5])
@@ -85,12 +101,9 @@ pub(crate) fn singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
             let t = 2.0 * g * d.signum() / (d.abs() + (d * d + 4.0 * g * g).sqrt());
             let c = 1.0 / (1.0 + t * t).sqrt();
             let s = c * t;
-            let (head, tail) = u.split_at_mut(j);
-            let (ui, uj) = (&mut head[i], &mut tail[0]);
-            for k in 0..6 {
-                let (x, y) = (ui[k], uj[k]);
-                ui[k] = c * x - s * y;
-                uj[k] = s * x + c * y;
+            rotate(&mut u, i, j, c, s);
+            if let Some(v) = v.as_deref_mut() {
+                rotate(v, i, j, c, s);
             }
             norms[i] -= t * g;
             norms[j] += t * g;
@@ -105,11 +118,63 @@ pub(crate) fn singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
     Vector6::from_fn(|i, _| dot6(&u[i], &u[i]).sqrt())
 }
 
+/// Columns `i < j` of `u` (column-major) rotated: `(u_i, u_j) <- (c u_i - s u_j, s u_i + c u_j)`.
+#[inline(always)]
+fn rotate(u: &mut [[f64; 6]; 6], i: usize, j: usize, c: f64, s: f64) {
+    let (head, tail) = u.split_at_mut(j);
+    let (ui, uj) = (&mut head[i], &mut tail[0]);
+    for k in 0..6 {
+        let (x, y) = (ui[k], uj[k]);
+        ui[k] = c * x - s * y;
+        uj[k] = s * x + c * y;
+    }
+}
+
 /// `s_max / s_min` of a 6x6 matrix ([`singular_values`]): `+infinity` (or NaN for NaN input) when
 /// singular.
 pub(crate) fn cond(a: &Matrix6<f64>) -> f64 {
     let s = singular_values(a);
     s.max() / s.min()
+}
+
+/// The inverse of a 6x6 matrix by Gauss-Jordan elimination with partial pivoting, on a fixed-size
+/// array (no allocation, no dimension bookkeeping); `None` when a pivot is exactly zero. Accurate
+/// to `cond(a)` times rounding, as an LU-based inverse.
+pub(crate) fn inverse(a: &Matrix6<f64>) -> Option<Matrix6<f64>> {
+    // Rows of [a | I].
+    let mut m: [[f64; 12]; 6] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            if j < 6 {
+                a[(i, j)]
+            } else {
+                f64::from(u8::from(j - 6 == i))
+            }
+        })
+    });
+    for k in 0..6 {
+        let mut p = k;
+        for r in k + 1..6 {
+            if m[r][k].abs() > m[p][k].abs() {
+                p = r;
+            }
+        }
+        if m[p][k] == 0.0 {
+            return None;
+        }
+        m.swap(k, p);
+        let inv = 1.0 / m[k][k];
+        let pivot_row: [f64; 12] = std::array::from_fn(|c| m[k][c] * inv);
+        m[k] = pivot_row;
+        for (r, row) in m.iter_mut().enumerate() {
+            let f = row[k];
+            if r != k && f != 0.0 {
+                for c in k..12 {
+                    row[c] -= f * pivot_row[c];
+                }
+            }
+        }
+    }
+    Some(Matrix6::from_fn(|i, j| m[i][j + 6]))
 }
 
 /// The upper triangle `R` (6x6) of the in-place result of [`householder_qr`] on `a` with `m` rows.

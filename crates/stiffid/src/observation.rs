@@ -11,7 +11,7 @@
 use crate::kinematics::Frames;
 use crate::setup::Setup;
 use crate::stiffness::joint_torques;
-use nalgebra::{DMatrix, Matrix3x6, Vector6};
+use nalgebra::{DMatrix, Matrix3x6, Matrix6, MatrixXx6, Vector3, Vector6};
 
 /// The three translation rows of one measuring point (index into the setup's measuring points)
 /// under joint torques `tau` (Nm): `J_m[0..3, j] * tau_j`.
@@ -54,4 +54,44 @@ pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMat
             .copy_from(&posture_block(setup, &frames, &wrench));
     }
     psi
+}
+
+/// The gradient with respect to the axis angles q (per rad) of `<G, B(q)>` (Frobenius product),
+/// `B(q)` the `3p x 6` block of the posture under the setup's rope-mass load
+/// ([`rope_observation_matrix`]) and `G` a fixed weight of the same shape: the vector-Jacobian
+/// product through which every design criterion's gradient reaches the postures.
+///
+/// With `B_m = J_m diag(tau)` the rows of measuring point m (translation rows of its Jacobian
+/// `J_m`), `tau = J_f^T W` and the rope wrench `W = [f(p_f); 0]` at the loading point p_f:
+/// `d<G, B> = sum_m <G_m diag(tau), dJ_m> + c . dtau`, `c_j = sum_m G_m[:, j] . J_m[:, j]`, and
+/// `c . dtau = <W c^T, dJ_f> + (J_f c) . dW`, the last through [`crate::setup::RopeLoad::force_gradient`].
+/// Each term is a [`Frames::jacobian_gradient`].
+pub fn rope_block_gradient(
+    setup: &Setup,
+    frames: &Frames,
+    weight: &MatrixXx6<f64>,
+) -> Vector6<f64> {
+    let wrench = setup.rope_wrench(frames);
+    let tau = joint_torques(setup, frames, &wrench);
+    let mut c = Vector6::zeros();
+    let mut grad = Vector6::zeros();
+    for (k, p) in setup.tool.measuring_points.iter().enumerate() {
+        let g = weight.fixed_view::<3, 6>(3 * k, 0);
+        let jm = frames.jacobian(p, setup.springs);
+        let mut w = Matrix6::zeros();
+        for j in 0..6 {
+            let gj = g.column(j);
+            c[j] += gj.dot(&jm.fixed_view::<3, 1>(0, j));
+            w.fixed_view_mut::<3, 1>(0, j).copy_from(&(gj * tau[j]));
+        }
+        grad += frames.jacobian_gradient(p, setup.springs, &w, &Vector3::zeros());
+    }
+    let loading = &setup.tool.loading_point;
+    let jf = frames.jacobian(loading, setup.springs);
+    let mut w = Matrix6::zeros();
+    w.fixed_view_mut::<3, 6>(0, 0)
+        .copy_from(&(wrench.fixed_rows::<3>(0) * c.transpose()));
+    let e = (jf * c).fixed_rows::<3>(0).into_owned();
+    let point = setup.load.force_gradient(&frames.point(loading), &e);
+    grad + frames.jacobian_gradient(loading, setup.springs, &w, &point)
 }

@@ -74,6 +74,20 @@ impl RopeLoad {
         };
         Vector6::new(f.x, f.y, f.z, 0.0, 0.0, 0.0)
     }
+
+    /// The gradient with respect to the loading point `p1` (base frame, m) of `e . f(p1)`, f the
+    /// force of [`RopeLoad::wrench`] and `e` a weight on it (per N): with `d = P2 - p1`,
+    /// `u = d / |d|`, `df = -(G / |d|) (I - u u^T) dp1`, so the gradient is
+    /// `-(G / |d|) (e - (u . e) u)` (per m). Zero at the anchor, where the wrench is zero.
+    pub fn force_gradient(&self, p1: &Vector3<f64>, e: &Vector3<f64>) -> Vector3<f64> {
+        let d = self.anchor - p1;
+        let n = d.norm();
+        if n == 0.0 {
+            return Vector3::zeros();
+        }
+        let u = d / n;
+        (e - u * u.dot(e)) * (-self.load / n)
+    }
 }
 
 /// Laser-tracker noise: white Gaussian on every measured coordinate.

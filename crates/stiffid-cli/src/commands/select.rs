@@ -16,7 +16,9 @@ use serde::Serialize;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use stiffid::cell::Checker;
-use stiffid::design::{self, evaluate, Criterion, Evaluation, SearchOptions, SearchOutcome};
+use stiffid::design::{
+    self, evaluate, Criterion, Evaluation, Gradient, SearchOptions, SearchOutcome,
+};
 use stiffid::limits::{self, short, Range};
 use stiffid::Setup;
 
@@ -66,10 +68,21 @@ pub struct Args {
     /// Local searches of a global search [default: 32; 1 to 10000].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     starts: Option<u64>,
-    /// Most criterion evaluations per local search, finite differences included [default: 6000;
-    /// 1 to 10000000].
+    /// SQP steps of every global start before the best --polished continue; 0 runs every start
+    /// to convergence [default: 60; 0 to 10000000].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
+    screen_steps: Option<u64>,
+    /// Global starts that continue after the screening [default: 8; 1 to 10000].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
+    polished: Option<u64>,
+    /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
+    /// each finite-difference probe as one) [default: 6000; 1 to 10000000].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_EVALS))]
     max_evals: Option<u64>,
+    /// Gradient of the SQP objective: exact (closed form) or fd (forward finite differences, for
+    /// comparison).
+    #[arg(long, default_value_t = Gradient::Exact)]
+    gradient: Gradient,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     out: PathBuf,
@@ -90,6 +103,9 @@ struct SelectJson<'a> {
     setup: &'a str,
     criterion: &'a str,
     search: &'a str,
+    /// The SQP objective's gradient (`exact` or `fd`); absent for a pool choice.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gradient: Option<&'a str>,
     seed: u64,
     /// `null` for a pool choice (no start group).
     start_value: Option<f64>,
@@ -209,6 +225,7 @@ pub fn run(args: &Args) -> Result<()> {
             setup: &setup.name,
             criterion: args.criterion.name(),
             search: selection.search,
+            gradient: (selection.search != "pool").then(|| args.gradient.name()),
             seed: args.seed,
             start_value: selection.start_value,
             value: selection.value,
@@ -292,10 +309,17 @@ fn choose(args: &Args, setup: &Setup, pool: Option<&pool::Input>, n: usize) -> R
     }
     let mut options = SearchOptions {
         seed: args.seed,
+        gradient: args.gradient,
         ..SearchOptions::default()
     };
     if let Some(s) = args.starts {
         options.starts = s as usize;
+    }
+    if let Some(s) = args.screen_steps {
+        options.screen_steps = s as usize;
+    }
+    if let Some(p) = args.polished {
+        options.polished = p as usize;
     }
     if let Some(m) = args.max_evals {
         options.max_evals = m as usize;

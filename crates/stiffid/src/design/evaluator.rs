@@ -21,6 +21,8 @@ use crate::Frames;
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use std::cell::OnceCell;
 
+mod gradient;
+
 /// Evaluates design criteria of groups of postures for one setup.
 #[derive(Debug, Clone)]
 pub struct Evaluator<'a> {
@@ -29,6 +31,8 @@ pub struct Evaluator<'a> {
     scaling: Vector6<f64>,
     /// Observation rows of every test posture under its rope-mass load, stacked (`3pT x 6`).
     test_rows: DMatrix<f64>,
+    /// `A^T A` of the test rows `A` (6x6), for the gradient of `test-pose`.
+    test_gram: Matrix6<f64>,
 }
 
 /// What one posture contributes to a group: its `3p x 6` block of `Psi` and its TCP dexterity.
@@ -43,10 +47,14 @@ pub struct PostureTerms {
 impl<'a> Evaluator<'a> {
     /// An evaluator for `setup`.
     pub fn new(setup: &'a Setup) -> Self {
+        let test_rows = rope_observation_matrix(setup, &setup.test_postures);
         Self {
             setup,
             scaling: setup.nominal_compliance() / setup.noise.sigma(),
-            test_rows: rope_observation_matrix(setup, &setup.test_postures),
+            test_gram: (test_rows.transpose() * &test_rows)
+                .fixed_view::<6, 6>(0, 0)
+                .into_owned(),
+            test_rows,
         }
     }
 
@@ -85,12 +93,11 @@ impl<'a> Evaluator<'a> {
     /// The value of `criterion` for the group of postures whose terms are given: the same as
     /// [`Evaluator::value`] of those postures.
     pub fn value_of(&self, criterion: Criterion, terms: &[&PostureTerms]) -> f64 {
-        let classical = || self.classical(terms);
         if criterion == Criterion::Classical {
-            return classical();
+            return self.classical(terms);
         }
         match self.group(terms) {
-            Some(group) => self.score(criterion, &group, classical),
+            Some(group) => self.score(criterion, &group, || self.classical(terms)),
             None => f64::INFINITY,
         }
     }
@@ -198,10 +205,17 @@ impl<'a> Evaluator<'a> {
         }
         let factor = Factor::try_from_matrix(psi).ok()?;
         let (r, r_inv) = (*factor.r(), *factor.r_inv());
+        // R diag(h / sigma) and its inverse diag(sigma / h) R^-1: column and row scalings.
+        let mut rs = r;
+        let mut rs_inv = r_inv;
+        for j in 0..6 {
+            rs.column_mut(j).scale_mut(self.scaling[j]);
+            rs_inv.row_mut(j).scale_mut(1.0 / self.scaling[j]);
+        }
         Some(Group {
             r,
-            rs: r * Matrix6::from_diagonal(&self.scaling),
-            rs_inv: Matrix6::from_diagonal(&self.scaling.map(|s| 1.0 / s)) * r_inv,
+            rs,
+            rs_inv,
             r_inv,
         })
     }

@@ -1,7 +1,7 @@
-//! Local search: SLSQP from a start group, gradients by forward finite differences.
+//! Local search: SLSQP from a start group, with exact gradients or forward finite differences.
 
 use super::constraints::{inequalities, kinds, most_failed, violation};
-use super::{SearchOptions, SearchOutcome};
+use super::{Gradient, SearchOptions, SearchOutcome};
 use crate::cell::{CheckKind, Checker};
 use crate::design::PostureTerms;
 use crate::design::{Criterion, Evaluator};
@@ -20,9 +20,11 @@ const PENALTY: f64 = 1e3;
 /// postures of `start` (rad), within the setup's bounds.
 ///
 /// - The objective is `ln(criterion)` (scale-free steps; a rank-deficient group, `+infinity`,
-///   counts as a large finite penalty, never NaN); its gradient is by forward differences of step
-///   [`SearchOptions::fd_step`], backwards where the forward probe would leave the bounds; a probe
-///   that hits a rank-deficient group takes the other side, or a zero component.
+///   counts as a large finite penalty, never NaN, with a zero gradient). Its gradient is exact
+///   ([`crate::design::Evaluator::value_and_gradient`], [`Gradient::Exact`], the default) or by
+///   forward differences of step [`SearchOptions::fd_step`] ([`Gradient::FiniteDifference`]),
+///   backwards where the forward probe would leave the bounds; a probe that hits a rank-deficient
+///   group takes the other side, or a zero component.
 /// - Every point evaluated is clamped into the bounds; the best point evaluated is returned, so the
 ///   result never leaves the bounds and is never worse than the start.
 /// - The cell's feasibility checks ([`crate::cell::Checker`]: floor, obstacles, self-collision,
@@ -79,6 +81,15 @@ pub(super) fn infeasible<'o>(
         failed,
         postures,
     })
+}
+
+/// Criterion evaluations of one SQP call for `n` postures: 1 with the exact gradient, `6n + 1`
+/// with finite differences.
+pub(super) fn evals_per_step(options: &SearchOptions, n: usize) -> usize {
+    match options.gradient {
+        Gradient::Exact => 1,
+        Gradient::FiniteDifference => 6 * n + 1,
+    }
 }
 
 /// Checks a start group: at least 2 postures, finite, within the bounds.
@@ -195,8 +206,8 @@ impl<'a> Problem<'a> {
     fn run(self, start: &[Vector6<f64>]) -> SearchOutcome {
         let x0: Vec<f64> = start.iter().flat_map(|q| q.iter().copied()).collect();
         let start_value = self.value(&x0);
-        let dim = x0.len();
-        let iterations = self.options.max_evals.saturating_sub(1) / (dim + 1);
+        let iterations =
+            self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
         if iterations > 0 {
             self.minimise(&x0, iterations);
         }
@@ -299,9 +310,34 @@ impl<'a> Problem<'a> {
             .sum()
     }
 
+    /// `ln(criterion)` at `x`, and its gradient if asked for ([`SearchOptions::gradient`]).
+    fn objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
+        match (grad, self.options.gradient) {
+            (Some(g), Gradient::Exact) => self.exact_objective(x, g),
+            (grad, _) => self.fd_objective(x, grad),
+        }
+    }
+
+    /// `ln(criterion)` at `x` and its exact gradient into `g` (zeros at the penalty).
+    fn exact_objective(&self, x: &[f64], g: &mut [f64]) -> f64 {
+        let x = self.clamp(x);
+        let postures = postures(&x);
+        let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
+        let refs: Vec<&PostureTerms> = terms.iter().collect();
+        let (value, gradient) = self.evaluator.value_and_log_gradient(self.criterion, &refs);
+        let f = log_value(self.record(x, &postures, value));
+        for (gi, d) in g.chunks_mut(6).zip(&gradient) {
+            gi.copy_from_slice(d.as_slice());
+        }
+        if f >= PENALTY {
+            g.fill(0.0);
+        }
+        f
+    }
+
     /// `ln(criterion)` at `x`, and its forward-difference gradient if asked for. A probe changes
     /// one posture, so the other postures' terms are reused.
-    fn objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
+    fn fd_objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
         let x = self.clamp(x);
         let postures = postures(&x);
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();

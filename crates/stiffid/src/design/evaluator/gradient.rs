@@ -1,0 +1,137 @@
+//! Exact gradients of the design criteria with respect to the axis angles of every posture.
+//!
+//! Every criterion F is differentiated as `ln F`, in reverse mode: first the derivative of `ln F`
+//! with respect to the observation matrix, `d ln F = <Psi Y, dPsi>` with a symmetric 6x6 `Y` from
+//! the triangular factor (`M = Psi^T Psi = R^T R`, `S = Psi D`, `D = diag(h) / sigma`,
+//! `C = (S^T S)^-1 = R_s^-1 R_s^-T`):
+//!
+//! - `d-optimal`, `ln F = -(1/12) ln det M + const`, `d ln det M = tr(M^-1 dM) = 2 <Psi M^-1, dPsi>`:
+//!   `Y = -M^-1 / 6`;
+//! - `relative-a`, `ln F = (1/2) ln tr C + const`, `d tr C = -tr(C d(S^T S) C) = -2 <Psi D C^2 D, dPsi>`:
+//!   `Y = -D C^2 D / tr C`;
+//! - `test-pose`, `ln F = (1/2) ln tr(B M^-1) + const` with `B = A^T A` of the test rows A,
+//!   `d tr(B M^-1) = -tr(M^-1 B M^-1 dM)`: `Y = -M^-1 B M^-1 / tr(B M^-1)`;
+//! - `cond_2` of `Psi D` (`D = I` for `zhang2021`, `diag(h) / sigma` for `scaled-cond`): a simple
+//!   singular value s with right singular vector v moves by `ds = u^T dPsi D v`, `u = Psi D v / s`,
+//!   so `d ln cond = d ln s_max - d ln s_min` gives `Y = D (v_max v_max^T / s_max^2 - v_min v_min^T / s_min^2) D`
+//!   (v from the Jacobi rotations of `R` or `R_s`).
+//!
+//! Each posture's block `B_i` of `Psi` then carries the weight `B_i Y`, and
+//! [`crate::observation::rope_block_gradient`] takes it through the Jacobians and the rope wrench to
+//! the six axis angles of the posture. The `classical` index (a maximum over the postures) adds
+//! `d ln k(J_N)` of the active posture (the first with the largest dexterity) through
+//! [`crate::kinematics::dexterity_log_gradient`]; it is smooth except where two postures tie, and
+//! `cond_2` except where its extreme singular values are repeated.
+
+use super::{Evaluator, Group, PostureTerms};
+use crate::design::Criterion;
+use crate::kinematics::dexterity_log_gradient;
+use crate::linalg::singular_values_and_vectors;
+use crate::observation::rope_block_gradient;
+use nalgebra::{Matrix6, Vector6};
+
+impl Evaluator<'_> {
+    /// The value of `criterion` for `postures` (axis angles, rad), as [`Evaluator::value`], and its
+    /// gradient with respect to the six axis angles of each posture (criterion units per rad, one
+    /// vector per posture). Exact (closed form, see the module source), at about the cost of 3-5
+    /// evaluations; zeros when the value is `+infinity` (no gradient exists).
+    pub fn value_and_gradient(
+        &self,
+        criterion: Criterion,
+        postures: &[Vector6<f64>],
+    ) -> (f64, Vec<Vector6<f64>>) {
+        let terms: Vec<PostureTerms> = postures.iter().map(|q| self.posture(q)).collect();
+        let refs: Vec<&PostureTerms> = terms.iter().collect();
+        let (value, mut gradient) = self.value_and_log_gradient(criterion, &refs);
+        if value.is_finite() {
+            gradient.iter_mut().for_each(|g| *g *= value);
+        }
+        (value, gradient)
+    }
+
+    /// The value of `criterion` for the postures' terms and the gradient of its logarithm
+    /// (per rad); zeros when the value is `+infinity`.
+    pub(crate) fn value_and_log_gradient(
+        &self,
+        criterion: Criterion,
+        terms: &[&PostureTerms],
+    ) -> (f64, Vec<Vector6<f64>>) {
+        let zeros = || vec![Vector6::zeros(); terms.len()];
+        let mut gradient = zeros();
+        let group = match criterion {
+            Criterion::Classical => None,
+            _ => match self.group(terms) {
+                Some(group) => Some(group),
+                None => return (f64::INFINITY, zeros()),
+            },
+        };
+        let value = match &group {
+            Some(group) => self.score(criterion, group, || self.classical(terms)),
+            None => self.classical(terms),
+        };
+        if !value.is_finite() {
+            return (value, zeros());
+        }
+        if matches!(criterion, Criterion::Classical | Criterion::Zhang2021) {
+            self.add_classical_log_gradient(terms, &mut gradient);
+        }
+        if let Some(y) = group.and_then(|g| self.psi_weight(criterion, &g)) {
+            for (t, g) in terms.iter().zip(gradient.iter_mut()) {
+                *g += rope_block_gradient(self.setup, &t.frames, &(&t.block * y));
+            }
+        }
+        (value, gradient)
+    }
+
+    /// `d ln k(J_N)` of the posture with the largest dexterity (the first of equals), added to its
+    /// gradient.
+    fn add_classical_log_gradient(&self, terms: &[&PostureTerms], gradient: &mut [Vector6<f64>]) {
+        let dexterity = |t: &PostureTerms| self.classical(&[t]);
+        let mut active = 0;
+        for (i, t) in terms.iter().enumerate() {
+            if dexterity(t) > dexterity(terms[active]) {
+                active = i;
+            }
+        }
+        let setup = self.setup;
+        let frames = &terms[active].frames;
+        let jacobian = frames.jacobian(&setup.tool.tcp, setup.springs);
+        if let Some(w) = dexterity_log_gradient(&jacobian, setup.characteristic_length) {
+            gradient[active] +=
+                frames.jacobian_gradient(&setup.tool.tcp, setup.springs, &w, &Default::default());
+        }
+    }
+
+    /// The `Y` of `d ln F = <Psi Y, dPsi>` (module docs); `None` for `classical`, which does not
+    /// depend on `Psi`, and for `test-pose` without test postures (constant 0).
+    fn psi_weight(&self, criterion: Criterion, group: &Group) -> Option<Matrix6<f64>> {
+        let d = Matrix6::from_diagonal(&self.scaling);
+        let m_inv = group.r_inv * group.r_inv.transpose();
+        Some(match criterion {
+            Criterion::Classical => return None,
+            Criterion::Zhang2021 => cond_weight(&group.r),
+            Criterion::ScaledCond => d * cond_weight(&group.rs) * d,
+            Criterion::DOptimal => m_inv / -6.0,
+            Criterion::RelativeA => {
+                let c = group.rs_inv * group.rs_inv.transpose();
+                -(d * c * c * d) / c.trace()
+            }
+            Criterion::TestPose => {
+                let b = m_inv * self.test_gram;
+                let trace = b.trace();
+                if trace <= 0.0 {
+                    return None;
+                }
+                -(b * m_inv) / trace
+            }
+        })
+    }
+}
+
+/// `v_max v_max^T / s_max^2 - v_min v_min^T / s_min^2` of the 6x6 `r`: the `Y` of `d ln cond_2`.
+fn cond_weight(r: &Matrix6<f64>) -> Matrix6<f64> {
+    let (s, v) = singular_values_and_vectors(r);
+    let (max, min) = (s.imax(), s.imin());
+    let (v_max, v_min) = (v.column(max), v.column(min));
+    v_max * v_max.transpose() / (s[max] * s[max]) - v_min * v_min.transpose() / (s[min] * s[min])
+}
