@@ -6,6 +6,11 @@
 //! description = "what this cell is"
 //! robot = "comau-smart5-nj165-3.0"       # a preset name, or a robot .toml / .urdf file
 //! # robot_tip = "tool0"                  # URDF only: the tip link
+//! # [robot_base]                         # optional: the robot on a pedestal, in the cell frame
+//! # xyz_mm = [0, 0, 500]                 # (before the robot's own base transform)
+//! # rpy_deg = [0, 0, 0]                  # fixed-axis roll, pitch, yaw as URDF
+//! # [robot_flange]                       # optional: an adapter plate after the flange
+//! # xyz_mm = [0, 0, 20]
 //! springs = "axis"                       # or "kinematic": where the joint springs sit
 //! characteristic_length_mm = 1200.0      # L of the dexterity index (Eq. 20)
 //! nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]
@@ -36,6 +41,7 @@ pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTAC
 
 use crate::kinematics::{Coordinates, Frames};
 use crate::limits::{self, check_in};
+use crate::robot::file::{transform, TransformFile};
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
@@ -199,6 +205,8 @@ struct SetupFile {
     description: String,
     robot: String,
     robot_tip: Option<String>,
+    robot_base: Option<TransformFile>,
+    robot_flange: Option<TransformFile>,
     #[serde(default)]
     springs: Coordinates,
     characteristic_length_mm: f64,
@@ -312,7 +320,22 @@ where
         message: limits::one_line(&e.to_string()),
     })?;
     let robot = resolve_robot(&file.robot, file.robot_tip.as_deref())?;
+    let robot = mounted(robot, &file, source_name)?;
     build(file, robot, source_name)
+}
+
+/// The robot with the setup's offsets: `[robot_base]` places the robot's base frame in the cell
+/// (a pedestal: results are then in the cell frame), before the robot's own base transform;
+/// `[robot_flange]` adds an adapter plate after its flange. Either is `xyz_mm` and `rpy_deg`
+/// (fixed-axis roll, pitch, yaw as URDF), the same as a robot TOML's `[base]` and `[flange]`.
+fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+    if f.robot_base.is_some() {
+        robot.base = transform(f.robot_base, "robot_base", src)? * robot.base;
+    }
+    if f.robot_flange.is_some() {
+        robot.flange *= transform(f.robot_flange, "robot_flange", src)?;
+    }
+    Ok(robot)
 }
 
 fn field_error(source_name: &str, field: &str, message: impl Into<String>) -> Error {

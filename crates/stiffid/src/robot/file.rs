@@ -169,8 +169,13 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     })
 }
 
-/// The optional `[base]` or `[flange]` transform, its numbers checked against the limits.
-fn transform(t: Option<TransformFile>, name: &str, source_name: &str) -> Result<Isometry3<f64>> {
+/// The optional `[base]` or `[flange]` transform (or a setup's `[robot_base]` / `[robot_flange]`),
+/// its numbers checked against the limits; `name` is the table's name in errors.
+pub(crate) fn transform(
+    t: Option<TransformFile>,
+    name: &str,
+    source_name: &str,
+) -> Result<Isometry3<f64>> {
     let t = t.unwrap_or_default();
     check_in(
         source_name,

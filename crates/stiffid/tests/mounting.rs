@@ -1,0 +1,66 @@
+//! A setup's `[robot_base]` and `[robot_flange]` offsets equal the same transforms written into the
+//! robot's own TOML file as `[base]` and `[flange]`.
+
+use approx::assert_relative_eq;
+use nalgebra::{Vector3, Vector6};
+use stiffid::robot::{file, presets};
+use stiffid::setup;
+
+const PRESET: &str = "comau-smart5-nj165-3.0";
+const BASE: &str = "xyz_mm = [100.0, -50.0, 500.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
+const FLANGE: &str = "xyz_mm = [0.0, 0.0, 20.0]\nrpy_deg = [0.0, 0.0, 45.0]\n";
+
+/// The paper setup with `extra` appended after its top-level keys, on `robot`.
+fn paper_setup(extra: &str, robot: stiffid::Robot) -> stiffid::Setup {
+    let text = setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let with = text.replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
+    setup::parse(&with, "mounted.toml", |_, _| Ok(robot)).unwrap()
+}
+
+#[test]
+fn setup_offsets_equal_the_robot_files_base_and_flange() {
+    let preset = presets::get(PRESET).unwrap();
+    let offsets = format!("[robot_base]\n{BASE}\n[robot_flange]\n{FLANGE}");
+    let mounted = paper_setup(&offsets, preset);
+    let robot_text = presets::text(PRESET).unwrap();
+    let in_file = format!("{robot_text}\n[base]\n{BASE}\n[flange]\n{FLANGE}");
+    let in_file = file::parse(&in_file, "comau-with-base.toml").unwrap();
+    let plain = paper_setup("", presets::get(PRESET).unwrap());
+    let point = Vector3::new(0.08, 0.08, 0.26);
+    for q_deg in [
+        [0.0, 0.0, -90.0, 0.0, 0.0, 0.0],
+        [10.0, 20.0, -90.0, 30.0, 20.0, 10.0],
+    ] {
+        let q = Vector6::from(q_deg).map(f64::to_radians);
+        let (a, b) = (mounted.robot.frames(&q), in_file.frames(&q));
+        assert_relative_eq!(a.point(&point), b.point(&point), epsilon = 1e-12);
+        let ja = a.jacobian(&point, stiffid::Coordinates::Axis);
+        assert_relative_eq!(
+            ja,
+            b.jacobian(&point, stiffid::Coordinates::Axis),
+            epsilon = 1e-12
+        );
+        // The pedestal lifts the tool by 500 mm plus what the flange plate adds.
+        let lifted = a.point(&point) - plain.robot.frames(&q).point(&point);
+        assert!(lifted.norm() > 0.4, "{lifted}");
+    }
+}
+
+#[test]
+fn bad_offsets_name_the_table_and_the_value() {
+    let text = setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let bad = text.replacen(
+        "\n[tool]",
+        "\n[robot_base]\nxyz_mm = [0.0, 0.0, 1e300]\n\n[tool]",
+        1,
+    );
+    let e = setup::parse(&bad, "bad.toml", |r, _| presets::get(r)).unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.contains("robot_base.xyz_mm") && message.contains("1e300"),
+        "{message}"
+    );
+    let unknown = text.replacen("\n[tool]", "\n[robot_flange]\nz_mm = 1.0\n\n[tool]", 1);
+    let e = setup::parse(&unknown, "bad.toml", |r, _| presets::get(r)).unwrap_err();
+    assert!(e.to_string().contains("z_mm"), "{e}");
+}
