@@ -56,9 +56,16 @@ pub fn run(args: &NewArgs) -> Result<()> {
         .as_ref()
         .map_or("setups new".into(), |p| p.display().to_string());
     check_loads(&text, &source_name, args)?;
-    match &out {
-        Some(out) => out.write(text.as_bytes()),
-        None => output::print(&text),
+    match (&out, &args.out) {
+        (Some(file), Some(path)) => {
+            file.write(text.as_bytes())?;
+            output::print(&format!(
+                "setup for {} written to {}: edit the values under EDIT (tool, rope, pulley)\n",
+                robot.name,
+                path.display()
+            ))
+        }
+        _ => output::print(&text),
     }
 }
 
