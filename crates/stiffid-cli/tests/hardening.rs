@@ -50,6 +50,13 @@ fn select_args<'a>(setup: &'a str, out: &'a str) -> Vec<&'a str> {
     ]
 }
 
+/// `select` from a seeded random start group, a short search, on the paper setup, writing `out`.
+#[rustfmt::skip]
+fn random_select_args(out: &str) -> [&str; 10] {
+    ["select", "--setup", SETUP, "--criterion", "classical",
+     "--start-random", "--max-evals", "20", "--out", out]
+}
+
 #[test]
 fn special_files_are_never_replaced_and_symlinks_are_written_through() {
     let dir = scratch("special");
@@ -60,34 +67,12 @@ fn special_files_are_never_replaced_and_symlinks_are_written_through() {
         &["--out", "sub", "directory"],
     );
     assert!(line.contains("not a regular file"), "{line}");
-    let device = assert_usage_error_dev(&[
-        "select",
-        "--setup",
-        SETUP,
-        "--criterion",
-        "classical",
-        "--start-random",
-        "--max-evals",
-        "20",
-        "--out",
-        "/dev/null",
-    ]);
+    let device = assert_usage_error_dev(&random_select_args("/dev/null"));
     assert!(device.contains("a device"), "{device}");
     std::os::unix::fs::symlink("target.csv", dir.join("link.csv")).unwrap();
     write_file(&dir, "target.csv", "old");
     let out = dir.join("link.csv");
-    let args = [
-        "select",
-        "--setup",
-        SETUP,
-        "--criterion",
-        "classical",
-        "--start-random",
-        "--max-evals",
-        "20",
-        "--out",
-        out.to_str().unwrap(),
-    ];
+    let args = random_select_args(out.to_str().unwrap());
     assert_success(&stiffid(&args));
     assert!(std::fs::symlink_metadata(&out)
         .unwrap()
@@ -164,18 +149,7 @@ fn long_names_work_and_failures_leave_nothing_behind() {
     let dir = scratch("leftovers");
     let name = format!("{}.csv", "p".repeat(251));
     let out = dir.join(&name);
-    let args = [
-        "select",
-        "--setup",
-        SETUP,
-        "--criterion",
-        "classical",
-        "--start-random",
-        "--max-evals",
-        "20",
-        "--out",
-        out.to_str().unwrap(),
-    ];
+    let args = random_select_args(out.to_str().unwrap());
     assert_success(&stiffid(&args));
     assert!(out.is_file());
     // A group that cannot identify joint 6 fails after the output directory was created: it goes.
