@@ -189,7 +189,7 @@ pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
 /// errors start with the file name.
 pub fn stiffness(path: &Path) -> Result<StiffnessFile> {
     let text = read(path)?;
-    Ok(stiffness::parse(&text).with_context(|| path.display().to_string())?)
+    stiffness::parse(&text).with_context(|| path.display().to_string())
 }
 
 /// A postures file (`stiffid::formats::postures`), every posture within the robot's joint limits
@@ -197,7 +197,7 @@ pub fn stiffness(path: &Path) -> Result<StiffnessFile> {
 /// the line and column.
 pub fn postures(path: &Path, robot: &Robot, bounds: Option<&Bounds>) -> Result<Vec<Vector6<f64>>> {
     let text = read(path)?;
-    Ok(postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())?)
+    postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())
 }
 
 /// The frame of a wrench, as a command-line value.
