@@ -9,7 +9,7 @@ use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::formats::measurements::MeasurementFile;
 use stiffid::identify::{
-    cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
+    self, cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
 };
 use stiffid::kinematics::Coordinates;
 use stiffid::observation::Observations;
@@ -66,7 +66,7 @@ pub struct Run<'a> {
     adequacy: Option<Adequacy>,
     unit: Option<UnitCheck>,
     cross_validation: Option<CrossValidation>,
-    /// The postures' dense numbers -> their first measurement.
+    /// The postures' dense numbers -> their first measurement (with cross-validation only).
     first_of_posture: Vec<usize>,
 }
 
@@ -185,14 +185,30 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
     let name = args.data.display().to_string();
-    let obs = Observations::from_measurements(&setup, &file.measurements)
-        .map_err(|e| file.explain(e))
-        .with_context(|| name.clone())?;
-    let mut first_of_posture = vec![usize::MAX; obs.postures];
-    for (i, &p) in obs.posture_index.iter().enumerate().rev() {
-        first_of_posture[p] = i;
-    }
-    let (id, cross_validation) = fit(args, obs).with_context(|| name.clone())?;
+    let (id, cross_validation, first_of_posture) = match args.robust.is_some()
+        || args.nonnegative
+        || args.cross_validate
+        || args.folds.is_some()
+    {
+        // Plain least squares: in blocks, without the whole Psi (bounded memory, parallel).
+        false => {
+            let id = identify::least_squares(&setup, &file.measurements)
+                .map_err(|e| file.explain(e))
+                .with_context(|| name.clone())?;
+            (id, None, Vec::new())
+        }
+        true => {
+            let obs = Observations::from_measurements(&setup, &file.measurements)
+                .map_err(|e| file.explain(e))
+                .with_context(|| name.clone())?;
+            let mut first_of_posture = vec![usize::MAX; obs.postures];
+            for (i, &p) in obs.posture_index.iter().enumerate().rev() {
+                first_of_posture[p] = i;
+            }
+            let (id, cv) = fit(args, &obs).with_context(|| name.clone())?;
+            (id, cv, first_of_posture)
+        }
+    };
     let run = Run {
         setup_name: &args.setup,
         data_name: name,
@@ -219,20 +235,19 @@ pub fn run(args: &Args) -> Result<()> {
     output::print(&text::human(&run))
 }
 
-/// The fit the arguments ask for, and the cross-validation if asked.
-fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossValidation>)> {
+/// The fit the arguments ask for (robust, bounded or, for cross-validation, least squares on the
+/// whole `Psi`), and the cross-validation if asked.
+fn fit(args: &Args, obs: &Observations) -> Result<(Identification, Option<CrossValidation>)> {
     let id = match (args.robust, args.nonnegative) {
         (Some(Robust::Huber), _) => obs.robust(Loss::Huber)?,
         (Some(Robust::Tukey), _) => obs.robust(Loss::Tukey)?,
         (None, true) => obs.nonnegative()?,
-        (None, false) if args.cross_validate || args.folds.is_some() => obs.least_squares()?,
-        // Nothing else needs Psi: factor it in place (no copy of a large Psi).
-        (None, false) => return Ok((obs.into_least_squares()?, None)),
+        (None, false) => obs.least_squares()?,
     };
     let cross_validation = match args.cross_validate || args.folds.is_some() {
         false => None,
         true => {
-            Some(cross_validate(&obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
+            Some(cross_validate(obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
         }
     };
     Ok((id, cross_validation))
