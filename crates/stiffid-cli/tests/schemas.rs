@@ -66,7 +66,7 @@ fn the_shipped_schemas_are_the_generated_ones() {
 }
 
 /// Asserts that `doc` is valid under the shipped schema `name`, and (a schema that can fail)
-/// invalid without its first key and, for a `closed` schema, with an unknown key.
+/// invalid without any one of its required keys and, for a `closed` schema, with an unknown key.
 fn assert_valid(name: &str, doc: &Value, closed: bool) {
     let schema = read_json(&schema_path(name));
     let validator = jsonschema::validator_for(&schema).unwrap();
@@ -76,13 +76,14 @@ fn assert_valid(name: &str, doc: &Value, closed: bool) {
         .collect();
     assert!(errors.is_empty(), "{name}: {errors:#?}");
     let object = doc.as_object().unwrap();
-    let mut missing = object.clone();
-    let first = object.keys().next().unwrap();
-    missing.remove(first);
-    assert!(
-        !validator.is_valid(&Value::Object(missing)),
-        "{name}: valid without {first}"
-    );
+    for key in schema["required"].as_array().unwrap() {
+        let mut missing = object.clone();
+        missing.remove(key.as_str().unwrap());
+        assert!(
+            !validator.is_valid(&Value::Object(missing)),
+            "{name}: valid without {key}"
+        );
+    }
     let mut extra = object.clone();
     extra.insert("an_unknown_key".into(), Value::Null);
     assert_eq!(
