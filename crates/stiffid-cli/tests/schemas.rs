@@ -41,7 +41,7 @@ fn names() -> Vec<String> {
 #[test]
 fn the_shipped_schemas_are_the_generated_ones() {
     let names = names();
-    assert!(names.len() >= 9, "{names:?}");
+    assert!(names.len() >= 10, "{names:?}");
     for name in &names {
         let out = stiffid(&["schema", name]);
         common::assert_success(&out);
@@ -207,8 +207,9 @@ fn identify_validate_and_compensate_outputs_match_their_schemas() {
     assert_valid("identify", &bounded, true);
     // What identify --out writes is a stiffness file; so is the milling example's.
     assert_valid("identify", &read_json(&stiffness), true);
-    // assert_valid("stiffness", &read_json(&stiffness), false);
-    // assert_valid("stiffness", &read_json(&PathBuf::from(example("milling/stiffness.json"))), false);
+    assert_valid("stiffness", &read_json(&stiffness), false);
+    let example_file = read_json(Path::new(&example("milling/stiffness.json")));
+    assert_valid("stiffness", &example_file, false);
 
     let stiffness = stiffness.to_str().unwrap();
     let v = json(&stiffid(&[

@@ -9,6 +9,7 @@ use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
 use schemars::transform::RecursiveTransform;
 use schemars::{JsonSchema, Schema};
+use stiffid::formats::stiffness::StiffnessFile;
 
 /// Arguments of `stiffid schema`.
 #[derive(clap::Args)]
@@ -18,12 +19,13 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 9] = [
+const DOCUMENTS: [(&str, &str); 10] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
     ("predict", "stiffid predict --json"),
     ("identify", "stiffid identify --json (and --out)"),
+    ("stiffness", "the stiffness file --stiffness reads"),
     ("validate", "stiffid validate --json"),
     (
         "compensate",
@@ -66,7 +68,8 @@ pub fn schema(name: &str) -> Result<Schema> {
         "validate" => closed::<validate::ValidationJson>(),
         "compensate" => closed::<compensate::Document<'static>>(),
         "simulate" => closed::<simulate::SimulationJson<'static>>(),
-        _ => closed::<summary::Summary<'static>>(),
+        "reproduce" => closed::<summary::Summary<'static>>(),
+        _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());
     Ok(schema)
@@ -83,6 +86,14 @@ fn closed<T: JsonSchema>() -> Schema {
     SchemaSettings::draft2020_12()
         .for_serialize()
         .with_transform(RecursiveTransform(close))
+        .into_generator()
+        .into_root_schema_for::<T>()
+}
+
+/// The schema of a document stiffid reads: other keys are allowed (and ignored).
+fn open<T: JsonSchema>() -> Schema {
+    SchemaSettings::draft2020_12()
+        .for_deserialize()
         .into_generator()
         .into_root_schema_for::<T>()
 }
