@@ -8,7 +8,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use stiffid::limits;
-use stiffid::simulate::{simulate, GroupSimulation, Options};
+use stiffid::simulate::{monte_carlo, GroupSimulation, Options};
 
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]
@@ -103,7 +103,7 @@ pub fn run(args: &Args) -> Result<()> {
         runs: args.runs as usize,
         seed: args.seed,
     };
-    let sims = simulate(&setup, &groups, &options)?;
+    let sims = monte_carlo(&setup, &groups, &options)?;
     let doc = SimulationJson {
         setup: &setup.name,
         seed: args.seed,
