@@ -86,8 +86,16 @@ struct Found {
     value: f64,
     start_value: Option<f64>,
     evaluations: usize,
-    /// Pool rows chosen, how, and the rows skipped with the checks they fail.
-    pool: Option<(Vec<usize>, PoolMethod, Vec<(usize, Vec<&'static str>)>)>,
+    pool: Option<PoolFound>,
+}
+
+/// What a pool choice found besides the group.
+struct PoolFound {
+    /// Pool rows chosen, 0-based, ascending.
+    indices: Vec<usize>,
+    method: PoolMethod,
+    /// The rows skipped and the checks they fail.
+    skipped: Vec<(usize, Vec<&'static str>)>,
 }
 
 /// Runs `Setup.select` (the GIL released during the search).
@@ -144,14 +152,14 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     d.set_item("evaluations", found.evaluations)?;
     let e = py.detach(|| design::evaluate(setup, &found.postures));
     d.set_item("criteria", criteria(py, &e)?)?;
-    if let Some((indices, how, skipped)) = found.pool {
-        d.set_item("pool_indices", indices)?;
-        let exact = matches!(how, PoolMethod::Enumeration);
-        d.set_item(
-            "pool_method",
-            if exact { "enumeration" } else { "exchange" },
-        )?;
-        d.set_item("pool_skipped", skipped)?;
+    if let Some(p) = found.pool {
+        d.set_item("pool_indices", p.indices)?;
+        let how = match p.method {
+            PoolMethod::Enumeration => "enumeration",
+            PoolMethod::Exchange => "exchange",
+        };
+        d.set_item("pool_method", how)?;
+        d.set_item("pool_skipped", p.skipped)?;
     }
     Ok(d)
 }
@@ -266,6 +274,10 @@ fn from_pool(
         value: c.value,
         start_value: None,
         evaluations: c.evaluations,
-        pool: Some((c.indices, c.method, skipped)),
+        pool: Some(PoolFound {
+            indices: c.indices,
+            method: c.method,
+            skipped,
+        }),
     })
 }
