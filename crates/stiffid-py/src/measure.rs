@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::formats::measurements::{self, MeasurementFile};
+use stiffid::formats::stiffness;
 use stiffid::identify::{observations, Identification as Fit, Loss, Measurement};
 use stiffid::limits;
 
@@ -291,7 +292,20 @@ pub fn identify(
     Ok(Identification::new(py, &fit, data.labels()))
 }
 
-/// Validates a joint stiffness (``stiffness_nm_per_rad``, shape ``(6,)``, Nm/rad) on measurements
+/// Six stiffness values (Nm/rad), or the stiffness of a stiffness JSON file (`stiffid identify
+/// --out`) at a path.
+fn stiffness(obj: &Bound<'_, PyAny>) -> PyResult<Vector6<f64>> {
+    if let Ok(path) = obj.extract::<PathBuf>() {
+        let name = path.display().to_string();
+        let file = stiffness::parse(&error::read(&path)?).map_err(|e| error::raise_in(&name, e))?;
+        return Ok(file.stiffness());
+    }
+    let range = &limits::STIFFNESS_NM_PER_RAD;
+    Ok(arrays::vector::<6>(obj, "stiffness_nm_per_rad", range)?.into())
+}
+
+/// Validates a joint stiffness (``stiffness_nm_per_rad``: shape ``(6,)``, Nm/rad, or the path of a
+/// stiffness JSON file as ``stiffid identify --out`` writes it) on measurements
 /// it was not fitted to (Zhang et al. 2021, Eq. 22, Table 7): the measurements as for
 /// ``identify``. Returns a dict: ``delta_b_mm`` (shape ``(n,)``: ``|delta_m - delta_c|`` per
 /// measurement), ``measured_mm`` and ``predicted_mm`` (``(n, 3)``), ``mean_delta_b_mm``,
@@ -309,11 +323,10 @@ pub fn validate<'py>(
     displacement_mm: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
-    let range = &limits::STIFFNESS_NM_PER_RAD;
-    let k = arrays::vector::<6>(stiffness_nm_per_rad, "stiffness_nm_per_rad", range)?;
+    let k = stiffness(stiffness_nm_per_rad)?;
     let data = data(s, measurements, [q_deg, wrench, displacement_mm])?;
     let v = py
-        .detach(|| stiffid::validate::validate(s, &Vector6::from(k), &data.measurements))
+        .detach(|| stiffid::validate::validate(s, &k, &data.measurements))
         .map_err(|e| data.error(e))?;
     let mm = |x: &Vector3<f64>| [x.x * 1e3, x.y * 1e3, x.z * 1e3];
     let d = PyDict::new(py);

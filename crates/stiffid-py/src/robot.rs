@@ -1,13 +1,14 @@
 //! `stiffid.Robot`: an immutable 6-axis robot, its forward kinematics, point Jacobians and the
 //! dexterity index.
 
-use crate::arrays::{self, choice, postures};
+use crate::arrays::{self, choice};
 use crate::error::{self, raise};
 use nalgebra::{Matrix4, Matrix6, Vector3};
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use std::path::{Path, PathBuf};
+use stiffid::formats::postures;
 use stiffid::limits;
 use stiffid::robot::{file, presets, urdf};
 use stiffid::{dexterity, Coordinates};
@@ -143,6 +144,21 @@ impl Robot {
         }
     }
 
+    /// The postures of a postures CSV file (``posture,q1_deg,...,q6_deg``, as ``stiffid select``
+    /// writes them), axis angles in deg, shape ``(n, 6)``, each within the joint limits.
+    /// ``ValueError`` naming the file, line and column.
+    fn read_postures<'py>(
+        &self,
+        py: Python<'py>,
+        path: PathBuf,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let name = path.display().to_string();
+        let text = error::read(&path)?;
+        let group =
+            postures::parse(&text, &self.inner, None).map_err(|e| error::raise_in(&name, e))?;
+        Ok(arrays::degrees(py, &group))
+    }
+
     fn __repr__(&self) -> String {
         format!("Robot({:?})", self.inner.name)
     }
@@ -152,7 +168,7 @@ impl Robot {
     /// Postures within the joint limits, and whether one posture of shape (6,) was given.
     fn postures(&self, q_deg: &Bound<'_, PyAny>) -> PyResult<(Vec<nalgebra::Vector6<f64>>, bool)> {
         let limits = (&self.inner.lower, &self.inner.upper, "the joint limits");
-        postures(q_deg, "q_deg", limits, MAX_POSTURES)
+        arrays::postures(q_deg, "q_deg", limits, MAX_POSTURES)
     }
 
     /// The Jacobians of [`Robot::jacobian`], and whether one posture was given.

@@ -93,6 +93,8 @@ def test_validate_equals_the_command(fanuc, cli, fanuc_cli, tmp_path):
     mine = stiffid.validate(fanuc, fanuc_cli["stiffness_nm_per_rad"], FANUC_DATA)
     for key in ["mean_delta_b_mm", "max_delta_b_mm", "rms_delta_b_mm", "explained"]:
         assert mine[key] == pytest.approx(theirs[key], rel=1e-12), key
+    from_file = stiffid.validate(fanuc, path, FANUC_DATA)
+    np.testing.assert_array_equal(from_file["delta_b_mm"], mine["delta_b_mm"])
     np.testing.assert_allclose(mine["delta_b_mm"], [c["delta_b_mm"] for c in theirs["checks"]], rtol=1e-12)
 
 
@@ -153,3 +155,10 @@ def test_validate_refuses_a_bad_stiffness(paper):
         stiffid.validate(paper, [1, 2, 3], q_deg=q, wrench=wrench, displacement_mm=d)
     with pytest.raises(ValueError, match="stiffness_nm_per_rad"):
         stiffid.validate(paper, [-1, 2, 3, 4, 5, 6], q_deg=q, wrench=wrench, displacement_mm=d)
+
+
+def test_bad_stiffness_file_names_it(fanuc, tmp_path):
+    path = tmp_path / "k.json"
+    path.write_text('{"stiffness_nm_per_rad": [1, 2]}')
+    with pytest.raises(ValueError, match="k.json: "):
+        stiffid.validate(fanuc, path, FANUC_DATA)

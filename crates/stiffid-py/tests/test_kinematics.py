@@ -141,3 +141,14 @@ def test_robot_file_errors(tmp_path):
     bad.write_text("name = 3\n")
     with pytest.raises(ValueError, match="robot.toml"):
         stiffid.Robot.from_file(bad)
+
+
+def test_postures_file_round_trip(robot, tmp_path):
+    from conftest import write_postures
+
+    q = np.array([k[0] for k in KNOWN], dtype=float)
+    np.testing.assert_allclose(robot.read_postures(write_postures(tmp_path / "p.csv", q)), q, atol=1e-12)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,-90,0,0,x\n")
+    with pytest.raises(ValueError, match="bad.csv: line 2"):
+        robot.read_postures(bad)

@@ -41,6 +41,8 @@ class Robot:
         self, q_deg: ArrayLike, point_mm: Optional[ArrayLike] = None, coordinates: _Coordinates = "axis"
     ) -> _Array:
         """(6, 6) or (n, 6, 6), rows [v; omega] in m/rad and rad/rad, base frame."""
+    def read_postures(self, path: _PathLike) -> _Array:
+        """(n, 6) deg from a postures CSV (posture,q1_deg,...,q6_deg)."""
     @overload
     def dexterity(
         self,
@@ -209,7 +211,7 @@ def identify(
 ) -> Identification: ...
 def validate(
     setup: Setup,
-    stiffness_nm_per_rad: ArrayLike,
+    stiffness_nm_per_rad: Union[ArrayLike, _PathLike],
     measurements: Optional[_PathLike] = None,
     *,
     q_deg: Optional[ArrayLike] = None,
