@@ -7,6 +7,7 @@
 //! found nothing feasible), with the library's message. Long calls release the GIL.
 
 mod arrays;
+mod deflection;
 mod design;
 mod error;
 mod measure;
@@ -28,5 +29,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measure::validate, m)?)?;
     m.add_function(wrap_pyfunction!(study::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
+    m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
     Ok(())
 }

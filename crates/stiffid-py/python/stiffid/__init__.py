@@ -2,7 +2,8 @@
 
 A thin Python layer over the stiffid Rust library (the same code as the ``stiffid`` command):
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
-identification and validation from measurements (``identify``, ``validate``), the Monte Carlo
+identification and validation from measurements (``identify``, ``validate``), the deflection
+under a wrench (``deflection``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
 
 Units: postures in degrees (controller axis angles), points in mm, forces in N, moments in Nm,
@@ -20,6 +21,7 @@ from ._stiffid import (
     Setup,
     Study,
     __version__,
+    deflection,
     identify,
     reproduce,
     simulate,
@@ -32,6 +34,7 @@ __all__ = [
     "Setup",
     "Study",
     "__version__",
+    "deflection",
     "identify",
     "reproduce",
     "simulate",

@@ -222,3 +222,15 @@ def simulate(setup: Setup, groups: Sequence[ArrayLike], runs: int = 200, seed: i
 def reproduce(
     setup: Optional[Setup] = None, runs: int = 200, seed: int = 1, starts: int = 16, trials: int = 20
 ) -> Study: ...
+def deflection(
+    setup: Setup,
+    q_deg: ArrayLike,
+    wrench: ArrayLike,
+    *,
+    loaded_mm: Optional[ArrayLike] = None,
+    observed_mm: Optional[ArrayLike] = None,
+    stiffness_nm_per_rad: Optional[ArrayLike] = None,
+    frame: Literal["base", "tool"] = "base",
+    compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
+) -> dict[str, _Array]:
+    """displacement_mm, rotation_rad (n, 3); torques_nm, joint_deflections_rad (n, 6); std with a covariance."""
