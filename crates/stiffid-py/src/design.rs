@@ -31,7 +31,7 @@ pub fn evaluate<'py>(
 
 /// Fails, naming the joints, when the group's observation matrix cannot identify every joint.
 fn identifiable(setup: &Setup, group: &[Vector6<f64>]) -> stiffid::Result<()> {
-    Factor::try_from_matrix(rope_observation_matrix(setup, group)).map(|_| ())
+    Factor::try_new(rope_observation_matrix(setup, group)).map(|_| ())
 }
 
 /// An evaluation under the keys of `stiffid evaluate --json`, plus `relative_std`.

@@ -12,8 +12,9 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness;
-use stiffid::identify::{observations, Identification as Fit, Loss, Measurement};
+use stiffid::identify::{Identification as Fit, Loss};
 use stiffid::limits;
+use stiffid::observation::{Measurement, Observations};
 
 /// Measurements and, when read from a file, the file (to name its lines and columns in errors).
 struct Data {
@@ -281,11 +282,11 @@ pub fn identify(
     }
     let data = data(s, measurements, [q_deg, wrench, displacement_mm])?;
     let fit = py.detach(|| {
-        let obs = observations(s, &data.measurements)?;
+        let obs = Observations::from_measurements(s, &data.measurements)?;
         match (loss, nonnegative) {
-            (Some(l), _) => obs.identify_robust(l),
-            (None, true) => obs.identify_nonnegative(),
-            (None, false) => obs.into_identification(),
+            (Some(l), _) => obs.robust(l),
+            (None, true) => obs.nonnegative(),
+            (None, false) => obs.into_least_squares(),
         }
     });
     let fit = fit.map_err(|e| data.error(e))?;
@@ -326,7 +327,7 @@ pub fn validate<'py>(
     let k = stiffness(stiffness_nm_per_rad)?;
     let data = data(s, measurements, [q_deg, wrench, displacement_mm])?;
     let v = py
-        .detach(|| stiffid::validate::validate(s, &k, &data.measurements))
+        .detach(|| stiffid::validate::compare(s, &k, &data.measurements))
         .map_err(|e| data.error(e))?;
     let mm = |x: &Vector3<f64>| [x.x * 1e3, x.y * 1e3, x.z * 1e3];
     let d = PyDict::new(py);

@@ -62,7 +62,7 @@ pub fn simulate<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     let options = monte_carlo::Options { runs, seed };
     let sims = py
-        .detach(|| monte_carlo::simulate(&setup.inner, &groups, &options))
+        .detach(|| monte_carlo::monte_carlo(&setup.inner, &groups, &options))
         .map_err(raise)?;
     let out = PyList::empty(py);
     for s in &sims {
