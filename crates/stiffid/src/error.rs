@@ -39,6 +39,20 @@ pub enum Error {
         /// The names that exist, comma-separated.
         known: String,
     },
+    /// A reference that looks like a file path names neither an existing file nor a built-in.
+    #[error("{kind} '{reference}': no file {path} and no {builtin} of that name (known: {known})")]
+    NotFound {
+        /// "robot" or "setup".
+        kind: &'static str,
+        /// The reference as given, shortened.
+        reference: String,
+        /// The path looked at, shortened.
+        path: String,
+        /// "preset" or "built-in setup".
+        builtin: &'static str,
+        /// The built-in names, comma-separated.
+        known: String,
+    },
     /// The data cannot identify these joints' compliances.
     #[error("{} cannot be identified: {reason}", joint_list(joints))]
     Unidentifiable {
