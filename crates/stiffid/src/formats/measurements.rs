@@ -79,6 +79,20 @@ pub struct MeasurementFile {
 /// an unknown (with a suggestion), repeated, missing or conflicting column, a row with the wrong
 /// number of fields, a field that is not a finite number, an empty label or a measuring point that
 /// is not 1, 2, ...
+///
+/// # Examples
+/// The FANUC R-2000iC/165F data of the repository, turned into the base frame of its setup:
+/// ```
+/// use stiffid::formats::measurements;
+/// let text = include_str!(concat!(
+///     env!("CARGO_MANIFEST_DIR"),
+///     "/../../examples/data/fanuc-r2000ic-165f/measurements.csv"
+/// ));
+/// let mut file = measurements::parse(text)?;
+/// assert_eq!((file.measurements.len(), file.labels.len()), (43, 43));
+/// file.to_base_frame(&stiffid::setup::builtin("fanuc-r2000ic-165f")?)?;
+/// # Ok::<(), stiffid::Error>(())
+/// ```
 pub fn parse(text: &str) -> Result<MeasurementFile> {
     let mut reader = csv::ReaderBuilder::new()
         // Fields are trimmed where they are read: cheaper than trimming whole records.

@@ -26,7 +26,7 @@ use std::path::Path;
 /// use stiffid::formats::reference;
 /// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
 /// let robot = reference::robot("fanuc-r2000ic-165f", None, no_files).unwrap();
-/// assert_eq!(robot.name, "fanuc-r2000ic-165f");
+/// assert_eq!(robot.name, "FANUC R-2000iC/165F");
 /// let e = reference::robot("robots/mine.toml", None, no_files).unwrap_err();
 /// assert!(e.to_string().contains("no file robots/mine.toml and no preset"), "{e}");
 /// ```
@@ -74,7 +74,7 @@ where
 /// use stiffid::formats::reference;
 /// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
 /// let setup = reference::setup("zhang2021-comau-nj165", no_files).unwrap();
-/// assert_eq!(setup.robot.name, "comau-smart5-nj165-3.0");
+/// assert_eq!(setup.robot.name, "COMAU SMART5 NJ 165-3.0");
 /// ```
 pub fn setup<E, F>(reference: &str, read: F) -> Result<Setup, E>
 where
