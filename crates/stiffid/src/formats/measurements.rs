@@ -25,7 +25,7 @@
 use crate::deflection::Frame;
 use crate::error::{ColumnProblem, MeasurementField};
 use crate::identify::frames::{self, DisplacementFrame};
-use crate::identify::Measurement;
+use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
 use nalgebra::{Vector3, Vector6};
 use std::collections::HashMap;
@@ -128,7 +128,13 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
         file.push(&record, line, &mut labels)?;
     }
     if file.measurements.is_empty() {
-        return Err(problem(line_of_header, None, ColumnProblem::NoRows));
+        return Err(problem(
+            line_of_header,
+            None,
+            ColumnProblem::NoRows {
+                what: "measurement row",
+            },
+        ));
     }
     file.labels = vec![String::new(); labels.index.len()];
     for (label, i) in labels.index {
