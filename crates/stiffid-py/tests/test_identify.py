@@ -34,6 +34,8 @@ def test_fanuc_identification_equals_the_command(fanuc, fanuc_cli):
     assert mine.residual_rms_mm == pytest.approx(theirs["residual_rms_mm"], rel=1e-12)
     np.testing.assert_allclose(mine.residuals_mm, [r["residual_mm"] for r in theirs["residuals"]], atol=1e-15)
     assert mine.physical == theirs["physical"]
+    for key in ["noise_ratio", "chi2_statistic", "chi2_p_value", "model_error_dominates"]:
+        assert getattr(mine, key) == pytest.approx(theirs[key], rel=1e-12), key
     assert mine.labels[0] == theirs["residuals"][0]["posture"]
 
 
