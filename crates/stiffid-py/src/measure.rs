@@ -135,7 +135,8 @@ fn wrenches(w: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<Vector6<f64>>> {
 
 /// The result of `stiffid.identify`: the joint stiffness and compliance with standard errors and
 /// 95% confidence intervals (Student's t with ``degrees_of_freedom``; ``None`` with exactly six
-/// rows), the covariance of the compliance and the residuals. Keys as ``stiffid identify --json``.
+/// rows), the covariance of the compliance, the residuals and the chi-square check of the
+/// residuals against the setup's tracker noise. Keys as ``stiffid identify --json``.
 #[pyclass(frozen, module = "stiffid", name = "Identification")]
 pub struct Identification {
     /// ``"least-squares"``, ``"nonnegative-least-squares"``, ``"huber"`` or ``"tukey"``.
@@ -192,6 +193,19 @@ pub struct Identification {
     /// A file's posture labels, in order of first appearance (None for arrays).
     #[pyo3(get)]
     labels: Option<Vec<String>>,
+    /// The residual standard deviation in units of the setup's tracker noise ``s / sigma`` (about 1
+    /// for an adequate model).
+    #[pyo3(get)]
+    noise_ratio: Option<f64>,
+    /// ``dof s^2 / sigma^2``, chi-square with ``dof`` degrees of freedom for an adequate model.
+    #[pyo3(get)]
+    chi2_statistic: Option<f64>,
+    /// ``P(X >= chi2_statistic)``: small when the residuals exceed the tracker noise.
+    #[pyo3(get)]
+    chi2_p_value: Option<f64>,
+    /// Whether ``chi2_p_value < 0.01``: the model error dominates the tracker noise.
+    #[pyo3(get)]
+    model_error_dominates: Option<bool>,
 }
 
 #[pymethods]
@@ -206,8 +220,9 @@ impl Identification {
 }
 
 impl Identification {
-    fn new(py: Python<'_>, id: &Fit, labels: Option<Vec<String>>) -> Self {
+    fn new(py: Python<'_>, id: &Fit, labels: Option<Vec<String>>, noise_variance: f64) -> Self {
         let u = id.uncertainty.as_ref();
+        let a = id.adequacy(noise_variance);
         let v = |x: &Vector6<f64>| arrays::vec1(py, x.iter().copied()).unbind();
         let t = |x: &[[f64; 2]; 6]| arrays::table(py, x).unbind();
         let residuals: Vec<[f64; 3]> = id
@@ -240,6 +255,10 @@ impl Identification {
             rows: id.rows,
             postures: id.postures,
             labels,
+            noise_ratio: a.as_ref().map(|a| a.noise_ratio),
+            chi2_statistic: a.as_ref().map(|a| a.chi2),
+            chi2_p_value: a.as_ref().map(|a| a.p_value),
+            model_error_dominates: a.as_ref().map(|a| a.model_error_dominates()),
         }
     }
 }
@@ -291,7 +310,12 @@ pub fn identify(
         }
     });
     let fit = fit.map_err(|e| data.error(e))?;
-    Ok(Identification::new(py, &fit, data.labels()))
+    Ok(Identification::new(
+        py,
+        &fit,
+        data.labels(),
+        s.noise.variance,
+    ))
 }
 
 /// Six stiffness values (Nm/rad), or the stiffness of a stiffness JSON file (`stiffid identify

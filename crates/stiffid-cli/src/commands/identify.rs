@@ -2,6 +2,7 @@
 //! standard errors, 95% confidence intervals, the model check against the tracker noise,
 //! residuals, and optionally a robust or non-negative fit and cross-validation.
 
+use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::{Context, Result};
@@ -21,9 +22,8 @@ mod text;
 /// Arguments of `stiffid identify`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
+    #[command(flatten)]
+    common: Common,
     /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm],dx_mm,dy_mm,dz_mm.
     #[arg(long)]
     data: PathBuf,
@@ -40,9 +40,6 @@ pub struct Args {
     /// Number of cross-validation folds, 2 to the number of postures (implies --cross-validate).
     #[arg(long)]
     folds: Option<usize>,
-    /// Print JSON instead of tables.
-    #[arg(long)]
-    json: bool,
     /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -268,7 +265,7 @@ struct InfluentialJson {
 
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
+    let setup = args.common.load_setup()?;
     let file = load::measurements(&args.data, &setup)?;
     let out = args
         .out
@@ -301,7 +298,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
     };
     let run = Run {
-        setup_name: &args.setup,
+        setup_name: &args.common.setup,
         data_name: name,
         setup: &setup,
         file: &file,
@@ -314,12 +311,12 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in text::warnings(&run) {
         output::warn(&warning);
     }
-    if args.json || out.is_some() {
+    if args.common.json || out.is_some() {
         let text = json(&to_json(&run))?;
         if let Some(out) = &out {
             out.write(text.as_bytes())?;
         }
-        if args.json {
+        if args.common.json {
             return output::print(&text);
         }
     }
