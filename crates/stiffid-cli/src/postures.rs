@@ -116,7 +116,7 @@ mod tests {
 
     fn parse_in_bounds(text: &str) -> Result<Vec<Vector6<f64>>> {
         let s = setup();
-        parse(text, &s.robot, Some(&s.bounds))
+        parse(text, &s.robot(), Some(&s.bounds()))
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub fn point_rows(
     point: usize,
     tau: &Vector6<f64>,
 ) -> Matrix3x6<f64> {
-    let jm = frames.jacobian(&setup.tool.measuring_points[point], setup.springs);
+    let jm = frames.jacobian(&setup.tool().measuring_points[point], setup.springs());
     let mut rows = jm.fixed_rows::<3>(0).into_owned();
     for (j, mut col) in rows.column_iter_mut().enumerate() {
         col *= tau[j];
@@ -32,7 +32,7 @@ pub fn point_rows(
 /// The `3p x 6` block of one posture under a wrench `[f; m]` (N, Nm, base frame) at the loading point.
 pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> DMatrix<f64> {
     let tau = joint_torques(setup, frames, wrench);
-    let p = setup.tool.measuring_points.len();
+    let p = setup.tool().measuring_points.len();
     let mut block = DMatrix::zeros(3 * p, 6);
     for k in 0..p {
         block
@@ -45,10 +45,10 @@ pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> D
 /// The `3pn x 6` observation matrix of postures `q` (axis angles, rad) under the setup's rope-mass
 /// load (the design matrix of Section III and of the simulation of Section IV-A).
 pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMatrix<f64> {
-    let p3 = 3 * setup.tool.measuring_points.len();
+    let p3 = 3 * setup.tool().measuring_points.len();
     let mut psi = DMatrix::zeros(p3 * postures.len(), 6);
     for (i, q) in postures.iter().enumerate() {
-        let frames = setup.robot.frames(q);
+        let frames = setup.robot().frames(q);
         let wrench = setup.rope_wrench(&frames);
         psi.view_mut((p3 * i, 0), (p3, 6))
             .copy_from(&posture_block(setup, &frames, &wrench));
@@ -75,23 +75,23 @@ pub fn rope_block_gradient(
     let tau = joint_torques(setup, frames, &wrench);
     let mut c = Vector6::zeros();
     let mut grad = Vector6::zeros();
-    for (k, p) in setup.tool.measuring_points.iter().enumerate() {
+    for (k, p) in setup.tool().measuring_points.iter().enumerate() {
         let g = weight.fixed_view::<3, 6>(3 * k, 0);
-        let jm = frames.jacobian(p, setup.springs);
+        let jm = frames.jacobian(p, setup.springs());
         let mut w = Matrix6::zeros();
         for j in 0..6 {
             let gj = g.column(j);
             c[j] += gj.dot(&jm.fixed_view::<3, 1>(0, j));
             w.fixed_view_mut::<3, 1>(0, j).copy_from(&(gj * tau[j]));
         }
-        grad += frames.jacobian_gradient(p, setup.springs, &w, &Vector3::zeros());
+        grad += frames.jacobian_gradient(p, setup.springs(), &w, &Vector3::zeros());
     }
-    let loading = &setup.tool.loading_point;
-    let jf = frames.jacobian(loading, setup.springs);
+    let loading = &setup.tool().loading_point;
+    let jf = frames.jacobian(loading, setup.springs());
     let mut w = Matrix6::zeros();
     w.fixed_view_mut::<3, 6>(0, 0)
         .copy_from(&(wrench.fixed_rows::<3>(0) * c.transpose()));
     let e = (jf * c).fixed_rows::<3>(0).into_owned();
-    let point = setup.load.force_gradient(&frames.point(loading), &e);
-    grad + frames.jacobian_gradient(loading, setup.springs, &w, &point)
+    let point = setup.load().force_gradient(&frames.point(loading), &e);
+    grad + frames.jacobian_gradient(loading, setup.springs(), &w, &point)
 }

@@ -79,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = args
         .postures
         .iter()
-        .map(|p| postures::read(p, &setup.robot, Some(&setup.bounds)))
+        .map(|p| postures::read(p, &setup.robot(), Some(&setup.bounds())))
         .collect::<Result<Vec<_>>>()?;
     let names = group_names(&args.postures);
     let out = match &args.out {
@@ -98,10 +98,10 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let sims = simulate(&setup, &groups, &options)?;
     let doc = SimulationJson {
-        setup: &setup.name,
+        setup: &setup.name(),
         seed: args.seed,
         runs: options.runs,
-        levels: &setup.noise.levels,
+        levels: &setup.noise().levels,
         groups: names
             .iter()
             .zip(&sims)
@@ -109,14 +109,14 @@ pub fn run(args: &Args) -> Result<()> {
             .collect(),
     };
     if let Some(dir) = out {
-        let csv = deviation_csv(&names, &sims, &setup.noise.levels);
+        let csv = deviation_csv(&names, &sims, &setup.noise().levels);
         dir.write(FILES[0], csv.as_bytes())?;
         dir.write(FILES[1], json(&doc)?.as_bytes())?;
         dir.finish()?;
     }
     match args.json {
         true => output::print(&json(&doc)?),
-        false => output::print(&tables(&names, &sims, &setup.noise.levels, options.runs)),
+        false => output::print(&tables(&names, &sims, &setup.noise().levels, options.runs)),
     }
 }
 

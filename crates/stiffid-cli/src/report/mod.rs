@@ -114,7 +114,7 @@ pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
     }
     let names: Vec<String> = study.groups.iter().map(|g| g.name.clone()).collect();
     let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
-    let csv = deviation_csv(&names, &sims, &study.setup.noise.levels);
+    let csv = deviation_csv(&names, &sims, &study.setup.noise().levels);
     dir.write(FILES[1], csv.as_bytes())?;
     dir.write(FILES[2], markdown::report(study, figures).as_bytes())?;
     dir.write(FILES[3], html::report(study, figures).as_bytes())?;

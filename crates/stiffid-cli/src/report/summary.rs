@@ -40,13 +40,13 @@ fn frame(t: &Isometry3<f64>) -> Value {
 
 /// The resolved setup.
 pub fn setup_json(s: &Setup) -> Value {
-    let r = &s.robot;
+    let r = &s.robot();
     let m = &r.axis_map.matrix;
     json!({
-        "name": s.name,
-        "description": s.description,
+        "name": s.name(),
+        "description": s.description(),
         "robot": {
-            "reference": s.robot_ref,
+            "reference": s.robot_ref(),
             "name": r.name,
             "source": r.source,
             "joints": r.joints.iter().map(|j| json!({
@@ -64,18 +64,18 @@ pub fn setup_json(s: &Setup) -> Value {
             "matrix": (0..6).map(|i| (0..6).map(|j| m[(i, j)]).collect::<Vec<_>>()).collect::<Vec<_>>(),
             "offset_deg": deg(&r.axis_map.offset),
         },
-        "springs": match s.springs { Coordinates::Axis => "axis", Coordinates::Kinematic => "kinematic" },
+        "springs": match s.springs() { Coordinates::Axis => "axis", Coordinates::Kinematic => "kinematic" },
         "tool": {
-            "loading_point_mm": mm(&s.tool.loading_point),
-            "measuring_points_mm": s.tool.measuring_points.iter().map(mm).collect::<Vec<_>>(),
-            "tcp_mm": mm(&s.tool.tcp),
+            "loading_point_mm": mm(&s.tool().loading_point),
+            "measuring_points_mm": s.tool().measuring_points.iter().map(mm).collect::<Vec<_>>(),
+            "tcp_mm": mm(&s.tool().tcp),
         },
-        "loading": { "load_n": s.load.load, "anchor_mm": mm(&s.load.anchor) },
-        "noise": { "variance_mm2": s.noise.variance * 1e6, "level_multiples": s.noise.levels },
-        "bounds": { "lower_deg": deg(&s.bounds.lower), "upper_deg": deg(&s.bounds.upper) },
-        "stiffness_nm_per_rad": s.nominal_stiffness.as_slice(),
-        "characteristic_length_mm": s.characteristic_length * 1e3,
-        "test_postures_deg": s.test_postures.iter().map(deg).collect::<Vec<_>>(),
+        "loading": { "load_n": s.load().load, "anchor_mm": mm(&s.load().anchor) },
+        "noise": { "variance_mm2": s.noise().variance * 1e6, "level_multiples": s.noise().levels },
+        "bounds": { "lower_deg": deg(&s.bounds().lower), "upper_deg": deg(&s.bounds().upper) },
+        "stiffness_nm_per_rad": s.nominal_stiffness().as_slice(),
+        "characteristic_length_mm": s.characteristic_length() * 1e3,
+        "test_postures_deg": s.test_postures().iter().map(deg).collect::<Vec<_>>(),
     })
 }
 
@@ -147,7 +147,7 @@ pub fn json(study: &Study) -> Result<String> {
         "setup": setup_json(&study.setup),
         "seed": study.seed,
         "runs": study.runs,
-        "levels": study.setup.noise.levels,
+        "levels": study.setup.noise().levels,
         "validation_level": study.validation_level + 1,
         "elapsed_s": study.elapsed_s,
         "test_deflection_mm": study.test_deflection.iter()
