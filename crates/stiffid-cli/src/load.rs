@@ -1,7 +1,7 @@
 //! Turning command-line arguments into robots, setups and angle lists.
 
 use anyhow::{anyhow, bail, Context, Result};
-use nalgebra::{Matrix6, SVector, Vector6};
+use nalgebra::{SVector, Vector6};
 use std::fs::File;
 use std::io::Read;
 use std::os::unix::fs::MetadataExt;
@@ -9,9 +9,12 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
+use stiffid::formats::postures;
+use stiffid::formats::stiffness::{self, StiffnessFile};
 use stiffid::limits::{self, short, Range};
 use stiffid::robot::{file, presets, urdf};
-use stiffid::{setup, Robot, Setup};
+use stiffid::setup::{self, Bounds};
+use stiffid::{Robot, Setup};
 
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
 /// (the 1e6-row files of the README take 119 MB), and a bound on the memory a file (or
@@ -182,60 +185,19 @@ pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
     Ok(values)
 }
 
-/// The joint stiffness (Nm/rad) in a JSON file's key `stiffness_nm_per_rad`: six numbers within
-/// [`limits::STIFFNESS_NM_PER_RAD`], for example the result of `stiffid identify --out`. Other
-/// keys are ignored.
-pub fn stiffness(path: &Path) -> Result<Vector6<f64>> {
-    Ok(identified(path)?.stiffness)
+/// A stiffness file (`stiffid::formats::stiffness`), e.g. the result of `stiffid identify --out`;
+/// errors start with the file name.
+pub fn stiffness(path: &Path) -> Result<StiffnessFile> {
+    let text = read(path)?;
+    stiffness::parse(&text).with_context(|| path.display().to_string())
 }
 
-/// A stiffness file's joint stiffness and, if it has the key `compliance_covariance_rad2_per_nm2`
-/// (6x6, (rad/Nm)^2, as `stiffid identify --out` writes it), the covariance of the compliance.
-pub struct Identified {
-    /// Nm/rad.
-    pub stiffness: Vector6<f64>,
-    /// `Cov(h)`, (rad/Nm)^2: finite, symmetric, non-negative diagonal.
-    pub covariance: Option<Matrix6<f64>>,
-}
-
-/// Reads a stiffness file (see [`Identified`]); other keys are ignored.
-pub fn identified(path: &Path) -> Result<Identified> {
-    parse_identified(&read(path)?, &path.display().to_string())
-}
-
-/// [`identified`] of the text of a file named `name`: the stiffness within
-/// [`limits::STIFFNESS_NM_PER_RAD`].
-pub fn parse_identified(text: &str, name: &str) -> Result<Identified> {
-    #[derive(serde::Deserialize)]
-    struct StiffnessFile {
-        stiffness_nm_per_rad: [f64; 6],
-        compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
-    }
-    let file: StiffnessFile = serde_json::from_str(text).with_context(|| {
-        format!("{name}: expected JSON with the key stiffness_nm_per_rad (six numbers, Nm/rad) and optionally compliance_covariance_rad2_per_nm2 (6x6)")
-    })?;
-    let k = file.stiffness_nm_per_rad;
-    let field = format!("{name}: stiffness_nm_per_rad");
-    limits::check(&field, &k, &limits::STIFFNESS_NM_PER_RAD)?;
-    let k = Vector6::from(k);
-    let covariance = match file.compliance_covariance_rad2_per_nm2 {
-        None => None,
-        Some(rows) => {
-            let c = Matrix6::from_fn(|r, col| rows[r][col]);
-            let scale = c.diagonal().amax();
-            let valid = c.iter().all(|v| v.is_finite())
-                && c.diagonal().iter().all(|v| *v >= 0.0)
-                && (c - c.transpose()).amax() <= 1e-9 * scale;
-            if !valid {
-                bail!("{name}: compliance_covariance_rad2_per_nm2: expected a symmetric 6x6 matrix of finite numbers with a non-negative diagonal");
-            }
-            Some(c)
-        }
-    };
-    Ok(Identified {
-        stiffness: k,
-        covariance,
-    })
+/// A postures file (`stiffid::formats::postures`), every posture within the robot's joint limits
+/// and, if given, the `bounds` (a setup's); angles in rad. Errors start with the file name, then
+/// the line and column.
+pub fn postures(path: &Path, robot: &Robot, bounds: Option<&Bounds>) -> Result<Vec<Vector6<f64>>> {
+    let text = read(path)?;
+    postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())
 }
 
 /// The frame of a wrench, as a command-line value.

@@ -5,9 +5,6 @@ mod commands;
 mod feasibility;
 mod load;
 mod output;
-mod postures;
-#[cfg(test)]
-mod proptests;
 mod report;
 
 use clap::{CommandFactory, Parser, Subcommand};

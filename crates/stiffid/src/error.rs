@@ -78,7 +78,7 @@ pub enum Error {
         /// How many postures were checked.
         postures: usize,
     },
-    /// A measurement file (CSV) cannot be read: the line and, where there is one, the column.
+    /// A table file (CSV) cannot be read: the line and, where there is one, the column.
     #[error("line {line}{}: {problem}", column_name(*column, name))]
     Column {
         /// The 1-based line of the text.
@@ -99,6 +99,18 @@ pub enum Error {
         column: String,
         /// What was wrong and what was expected, with the value given (shortened).
         message: String,
+    },
+    /// A JSON text cannot be read: not JSON, or a key missing or of another shape.
+    #[error("line {line}, column {column}: {message}; expected {expected}")]
+    Json {
+        /// The 1-based line of the text.
+        line: usize,
+        /// The 1-based column (character) of the line.
+        column: usize,
+        /// What the JSON reader found wrong.
+        message: String,
+        /// What the text should hold.
+        expected: &'static str,
     },
     /// Inverse kinematics found no posture within the joint limits that reaches the pose.
     #[error("pose not reached within the joint limits: {position_error_mm:.3} mm and {rotation_error_deg:.3} deg away at best (outside the workspace, or only reachable beyond a joint limit)")]
@@ -146,7 +158,7 @@ impl std::fmt::Display for MeasurementField {
     }
 }
 
-/// What is wrong in a line of a measurement file ([`Error::Column`]).
+/// What is wrong in a line of a table file (CSV) ([`Error::Column`]).
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum ColumnProblem {
     /// No header (an empty file).
@@ -155,9 +167,26 @@ pub enum ColumnProblem {
         /// The minimal header.
         expected: String,
     },
+    /// A header other than the one the format has.
+    #[error("expected the header '{expected}'")]
+    Header {
+        /// The header of the format.
+        expected: String,
+    },
     /// A header without rows.
-    #[error("expected at least one measurement row after the header")]
-    NoRows,
+    #[error("expected at least one {what} after the header")]
+    NoRows {
+        /// What a row holds, e.g. "measurement row".
+        what: &'static str,
+    },
+    /// More rows than the format allows.
+    #[error("more than {limit} {what}")]
+    TooMany {
+        /// The most rows allowed.
+        limit: usize,
+        /// What a row holds, plural, e.g. "postures".
+        what: &'static str,
+    },
     /// The CSV reader failed (e.g. invalid UTF-8 or quoting).
     #[error("cannot read the row: {message}")]
     Unreadable {
@@ -207,6 +236,20 @@ pub enum ColumnProblem {
     NotANumber {
         /// The field, shortened.
         value: String,
+    },
+    /// A number outside the range it must lie in, e.g. an axis angle outside the joint limits.
+    #[error("{name} = {} is outside {within} [{lower:.1}, {upper:.1}]", crate::limits::number(*value))]
+    Outside {
+        /// The column's name.
+        name: String,
+        /// The value given, in the column's unit.
+        value: f64,
+        /// What the range is, e.g. "the robot's limits".
+        within: &'static str,
+        /// The lower end of the range, in the column's unit.
+        lower: f64,
+        /// The upper end of the range, in the column's unit.
+        upper: f64,
     },
     /// An empty posture label.
     #[error("empty posture label")]

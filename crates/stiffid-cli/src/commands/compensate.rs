@@ -58,10 +58,10 @@ pub struct Args {
 /// Compensates, writes the CSV (and the report), prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let file = load::identified(&args.stiffness)?;
+    let file = load::stiffness(&args.stiffness)?;
     let compliance = Compliance {
-        h: file.stiffness.map(|k| 1.0 / k),
-        covariance: file.covariance,
+        h: file.stiffness().map(|k| 1.0 / k),
+        covariance: file.covariance(),
     };
     let options = options(args, &setup)?;
     let name = args.path.display().to_string();
@@ -87,7 +87,7 @@ pub fn run(args: &Args) -> Result<()> {
         "path": args.path.display().to_string(),
         "out": args.out.display().to_string(),
         "springs": setup.springs(),
-        "stiffness_nm_per_rad": file.stiffness.as_slice(),
+        "stiffness_nm_per_rad": file.stiffness_nm_per_rad,
         "has_covariance": compliance.covariance.is_some(),
         "free_tool_axis": options.free_tool_axis.map(|f| value!({
             "max_step_deg": f.max_step.to_degrees(),

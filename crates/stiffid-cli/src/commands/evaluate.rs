@@ -2,7 +2,7 @@
 //! rates.
 
 use crate::output::{self, json};
-use crate::{feasibility, load, postures};
+use crate::{feasibility, load};
 use anyhow::{Context, Result};
 use nalgebra::Vector6;
 use serde::Serialize;
@@ -76,7 +76,7 @@ struct EvaluateJson {
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let group = postures::read(&args.postures, &setup.robot(), Some(&setup.bounds()))?;
+    let group = load::postures(&args.postures, &setup.robot(), Some(&setup.bounds()))?;
     identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
     let checks = feasibility::of_group(&setup, &group);

@@ -121,8 +121,8 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let (stiffness, covariance) = match &args.stiffness {
         Some(path) => {
-            let file = load::identified(path)?;
-            (file.stiffness, file.covariance)
+            let file = load::stiffness(path)?;
+            (file.stiffness(), file.covariance())
         }
         None => (*setup.nominal_stiffness(), None),
     };

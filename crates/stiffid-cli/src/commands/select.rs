@@ -6,9 +6,9 @@ mod pool;
 mod target;
 
 use super::evaluate::{criteria_text, identifiable, number, CriteriaJson};
+use crate::load;
 use crate::output::{self, json, OutFile};
 use crate::report::plan;
-use crate::{load, postures};
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector6;
@@ -19,6 +19,7 @@ use stiffid::cell::Checker;
 use stiffid::design::{
     self, evaluate, Criterion, Evaluation, Gradient, SearchOptions, SearchOutcome,
 };
+use stiffid::formats::postures;
 use stiffid::limits::{self, short, Range};
 use stiffid::Setup;
 
@@ -365,7 +366,7 @@ fn start_group(args: &Args, setup: &Setup, n: usize) -> Result<Vec<Vector6<f64>>
         }
         return Ok(design::random_group(setup, n, args.seed));
     };
-    let start = postures::read(path, &setup.robot(), Some(&setup.bounds()))?;
+    let start = load::postures(path, &setup.robot(), Some(&setup.bounds()))?;
     let most = limits::MAX_SEARCH_POSTURES as usize;
     if start.len() < 2 || start.len() > most {
         bail!(

@@ -1,8 +1,8 @@
 //! `stiffid simulate`: Monte Carlo identification with groups of postures from files
 //! (Zhang et al. 2021, Section IV-A).
 
+use crate::load;
 use crate::output::{self, json, ReportDir};
-use crate::{load, postures};
 use anyhow::Result;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -79,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = args
         .postures
         .iter()
-        .map(|p| postures::read(p, &setup.robot(), Some(&setup.bounds())))
+        .map(|p| load::postures(p, &setup.robot(), Some(&setup.bounds())))
         .collect::<Result<Vec<_>>>()?;
     let names = group_names(&args.postures);
     let out = match &args.out {

@@ -53,7 +53,7 @@ struct CheckJson {
 /// Validates and prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let stiffness = load::stiffness(&args.stiffness)?;
+    let stiffness = load::stiffness(&args.stiffness)?.stiffness();
     let data = load::measurements(&args.data, &setup)?;
     let name = args.data.display().to_string();
     let v = validate(&setup, &stiffness, &data.measurements)

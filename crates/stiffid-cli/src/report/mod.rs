@@ -14,11 +14,11 @@ pub mod tables;
 
 use crate::commands::simulate::deviation_csv;
 use crate::output::ReportDir;
-use crate::postures;
 use anyhow::Result;
 use figures::Figure;
 use std::path::Path;
 use stiffid::design::Evaluation;
+use stiffid::formats::postures;
 use stiffid::study::{criterion_values, Origin, Study};
 
 /// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.

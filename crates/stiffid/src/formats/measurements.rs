@@ -128,7 +128,13 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
         file.push(&record, line, &mut labels)?;
     }
     if file.measurements.is_empty() {
-        return Err(problem(line_of_header, None, ColumnProblem::NoRows));
+        return Err(problem(
+            line_of_header,
+            None,
+            ColumnProblem::NoRows {
+                what: "measurement row",
+            },
+        ));
     }
     file.labels = vec![String::new(); labels.index.len()];
     for (label, i) in labels.index {

@@ -3,6 +3,10 @@
 //!
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
+//! - [`postures`]: the postures CSV of a group of postures.
+//! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
 pub mod measurements;
 pub mod path;
+pub mod postures;
+pub mod stiffness;

@@ -1,4 +1,4 @@
-//! Property tests of the command's parsers (measurement CSV, postures CSV, stiffness JSON):
+//! Property tests of the file formats' parsers (measurement CSV, postures CSV, stiffness JSON):
 //! arbitrary text, mutated real files and hostile numbers never panic, and whatever is accepted
 //! gives finite results (angles within the setup's bounds, stiffness within its range, an
 //! identification that is finite or a clear error).
@@ -6,13 +6,11 @@
 //! Generated cases per run: 128 arbitrary texts (each given to all three parsers) + 3 x 128
 //! mutated files + 3 x 128 files with a hostile number = 896.
 
-#[path = "../../stiffid/tests/mutate/mod.rs"]
 mod mutate;
 
-use crate::{load, postures};
 use mutate::{apply, edit, hostile_number, Edit};
 use proptest::prelude::*;
-use stiffid::formats::measurements;
+use stiffid::formats::{measurements, postures, stiffness};
 use stiffid::limits::STIFFNESS_NM_PER_RAD;
 use stiffid::Setup;
 
@@ -69,12 +67,14 @@ fn check_postures(text: &str, setup: &Setup) {
 }
 
 fn check_stiffness(text: &str) {
-    if let Ok(k) = load::parse_identified(text, "k.json") {
+    if let Ok(k) = stiffness::parse(text) {
         assert!(k
-            .stiffness
+            .stiffness()
             .iter()
             .all(|v| STIFFNESS_NM_PER_RAD.contains(*v)));
-        assert!(k.covariance.is_none_or(|c| c.iter().all(|v| v.is_finite())));
+        assert!(k
+            .covariance()
+            .is_none_or(|c| c.iter().all(|v| v.is_finite())));
     }
 }
 
@@ -87,7 +87,7 @@ fn the_real_files_are_accepted() {
             .len(),
         3
     );
-    assert!(load::parse_identified(STIFFNESS, "k.json").is_ok());
+    assert!(stiffness::parse(STIFFNESS).is_ok());
 }
 
 proptest! {
