@@ -15,7 +15,7 @@ fn benches(c: &mut Criterion) {
     c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
         b.iter(|| {
             let frames = s.robot().frames(black_box(&q));
-            cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), &s.nominal_stiffness())
+            cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), s.nominal_stiffness())
         })
     });
     let frames = s.robot().frames(&q);
@@ -25,7 +25,7 @@ fn benches(c: &mut Criterion) {
                 black_box(&frames),
                 &s.tool().tcp,
                 s.springs(),
-                &s.nominal_stiffness(),
+                s.nominal_stiffness(),
             )
         })
     });

@@ -525,8 +525,8 @@ fn column(
                     let mut target = tool_pose(&setup.robot().frames(q), tcp);
                     target.rotation *= turn;
                     let start = previous.unwrap_or(*q);
-                    ik::solve(&setup.robot(), tcp, &target, &start, &options)
-                        .or_else(|_| ik::solve(&setup.robot(), tcp, &target, q, &options))
+                    ik::solve(setup.robot(), tcp, &target, &start, &options)
+                        .or_else(|_| ik::solve(setup.robot(), tcp, &target, q, &options))
                         .ok()
                         .map(|s| s.q)
                 }

@@ -151,7 +151,7 @@ fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {
     let exact: Vec<f64> = postures
         .iter()
         .flat_map(|q| {
-            rope_displacements(setup, &setup.robot().frames(q), &setup.nominal_stiffness())
+            rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness())
         })
         .flat_map(|d| [d.x, d.y, d.z])
         .collect();

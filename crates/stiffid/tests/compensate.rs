@@ -47,7 +47,7 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
                 let eps = if k < 3 { 50.0 } else { 20.0 };
                 let at = |sign: f64| {
                     let w = Vector6::from_fn(|i, _| if i == k { sign * eps } else { 0.0 });
-                    let dq = stiffness::deflection(&s, &frames, &w, &s.nominal_stiffness())
+                    let dq = stiffness::deflection(&s, &frames, &w, s.nominal_stiffness())
                         .joint_deflections;
                     -pose_error(&unloaded, &deflected_pose(&s, q, &dq))
                 };
@@ -63,7 +63,7 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
                 }
             }
             let kx =
-                cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), &s.nominal_stiffness())
+                cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), s.nominal_stiffness())
                     .unwrap();
             assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-8);
         }
@@ -106,7 +106,7 @@ fn a_tool_frame_wrench_is_the_base_wrench_rotated_by_the_flange() {
     };
     let d = points.deflection(&rotated, &s.nominal_compliance());
     let expected = frames.jacobian(&s.tool().tcp, s.springs())
-        * stiffness::deflection(&s, &frames, &rotated, &s.nominal_stiffness()).joint_deflections;
+        * stiffness::deflection(&s, &frames, &rotated, s.nominal_stiffness()).joint_deflections;
     assert_relative_eq!(d.displacement, expected, max_relative = 1e-12);
 }
 
@@ -243,7 +243,7 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
                 unreachable!()
             };
             let frames = s.robot().frames(&c.q_compensated);
-            let dq = stiffness::deflection(&s, &frames, &c.wrench, &s.nominal_stiffness())
+            let dq = stiffness::deflection(&s, &frames, &c.wrench, s.nominal_stiffness())
                 .joint_deflections;
             let e = pose_error(nominal, &deflected_pose(&s, &c.q_compensated, &dq));
             assert!(e.fixed_rows::<3>(0).norm() < 1e-7, "{name}: {e}");

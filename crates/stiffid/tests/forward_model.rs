@@ -27,7 +27,7 @@ fn observation_matrix_times_compliance_is_the_forward_displacement() {
             .iter()
             .flat_map(|q| {
                 let frames = setup.robot().frames(q);
-                stiffness::rope_displacements(&setup, &frames, &setup.nominal_stiffness())
+                stiffness::rope_displacements(&setup, &frames, setup.nominal_stiffness())
                     .into_iter()
                     .flat_map(|d| [d.x, d.y, d.z])
             })

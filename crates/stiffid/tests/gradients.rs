@@ -70,7 +70,7 @@ fn point_jacobian_gradient_matches_central_differences() {
     let mut rng = ChaCha8Rng::seed_from_u64(14);
     for setup in setups() {
         for _ in 0..5 {
-            let q = random_posture(&setup.robot(), &mut rng);
+            let q = random_posture(setup.robot(), &mut rng);
             let w: Matrix6<f64> = random_matrix(&mut rng, 6).fixed_view::<6, 6>(0, 0).into();
             let g = Vector3::from_fn(|_, _| rng.random_range(-1.0..1.0));
             let p = setup.tool().measuring_points[0];
@@ -95,7 +95,7 @@ fn dexterity_gradient_matches_central_differences() {
         let (tcp, l) = (setup.tool().tcp, setup.characteristic_length());
         let ln_k = |f: &Frames| dexterity(&f.jacobian(&tcp, setup.springs()), l).ln();
         for _ in 0..5 {
-            let q = random_posture(&setup.robot(), &mut rng);
+            let q = random_posture(setup.robot(), &mut rng);
             let frames = setup.robot().frames(&q);
             let jacobian = frames.jacobian(&tcp, setup.springs());
             let w = kinematics::dexterity_log_gradient(&jacobian, l).unwrap();
@@ -113,7 +113,7 @@ fn rope_block_gradient_matches_central_differences() {
     for setup in setups() {
         let rows = 3 * setup.tool().measuring_points.len();
         for _ in 0..5 {
-            let q = random_posture(&setup.robot(), &mut rng);
+            let q = random_posture(setup.robot(), &mut rng);
             let g: MatrixXx6<f64> =
                 MatrixXx6::from_column_slice(random_matrix(&mut rng, rows).as_slice());
             let phi = |q: &Vector6<f64>| {
@@ -134,7 +134,7 @@ fn every_criterion_gradient_matches_central_differences() {
         let evaluator = Evaluator::new(&setup);
         for _ in 0..3 {
             let group: Vec<Vector6<f64>> = (0..6)
-                .map(|_| random_posture(&setup.robot(), &mut rng))
+                .map(|_| random_posture(setup.robot(), &mut rng))
                 .collect();
             for criterion in Criterion::ALL {
                 let (value, exact) = evaluator.value_and_gradient(criterion, &group);

@@ -38,7 +38,7 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
                 .collect();
             let data = synthetic(&setup, &postures, |i, _| wrenches[i]);
             let id = identify(&setup, &data).unwrap();
-            let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness());
+            let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
             assert!(err < 1e-9, "{name}, {springs:?}: relative error {err:e}");
             assert_eq!((id.rows, id.postures), (96, 8));
             assert!(id.residual_rms < 1e-12 * data[0].displacement.norm().max(1e-6));
@@ -112,7 +112,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
     let plain = identify(&setup, &data).unwrap();
-    let plain_err = max_relative_error(&plain.stiffness, &setup.nominal_stiffness());
+    let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness());
     for loss in [Loss::Huber, Loss::Tukey] {
         let id = identify_robust(&setup, &data, loss).unwrap();
         let fit = id.robust.as_ref().unwrap();
@@ -126,7 +126,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
         // The MAD scale estimates the noise, not the outlier.
         let ratio = fit.scale / setup.noise().sigma();
         assert!((0.6..1.6).contains(&ratio), "{loss:?}: scale/sigma {ratio}");
-        let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness());
+        let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
         assert!(
             err < plain_err / 2.0,
             "{loss:?}: {err} vs least squares {plain_err}"
@@ -140,7 +140,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact = validate(&setup, &setup.nominal_stiffness(), &data).unwrap();
+    let exact = validate(&setup, setup.nominal_stiffness(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
@@ -229,6 +229,6 @@ fn one_posture_may_carry_several_wrenches() {
         .collect();
     let id = identify(&setup, &data).unwrap();
     assert_eq!((id.rows, id.postures), (144, 6));
-    let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness());
+    let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
     assert!(err < 1e-9, "relative error {err:e}");
 }

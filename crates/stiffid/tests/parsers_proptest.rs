@@ -59,7 +59,7 @@ fn assert_robot_usable(robot: &Robot) {
 /// A setup that was accepted: a usable robot, finite SI numbers, and criteria of a seeded group
 /// that are finite or +infinity, never NaN.
 fn assert_setup_usable(setup: &Setup) {
-    assert_robot_usable(&setup.robot());
+    assert_robot_usable(setup.robot());
     assert!(setup
         .nominal_compliance()
         .iter()

@@ -106,7 +106,7 @@ pub fn run(args: &Args) -> Result<()> {
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let q0 = match &args.q0_deg {
-        Some(text) => load::posture(text, &setup.robot())?.1,
+        Some(text) => load::posture(text, setup.robot())?.1,
         None => setup
             .test_postures()
             .first()

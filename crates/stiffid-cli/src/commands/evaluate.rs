@@ -76,7 +76,7 @@ struct EvaluateJson {
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
-    let group = load::postures(&args.postures, &setup.robot(), Some(&setup.bounds()))?;
+    let group = load::postures(&args.postures, setup.robot(), Some(setup.bounds()))?;
     identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
     let checks = feasibility::of_group(&setup, &group);
@@ -91,7 +91,7 @@ pub fn run(args: &Args) -> Result<()> {
         "{} postures of {} on setup {}\n",
         group.len(),
         args.postures.display(),
-        short(&setup.name())
+        short(setup.name())
     );
     s += &criteria_text(&e);
     s += "\npredicted mean deviation rate, % (first order)\n";

@@ -199,7 +199,7 @@ pub fn run(args: &Args) -> Result<()> {
         setup: &setup,
         file: &file,
         adequacy: id.adequacy(setup.noise().variance),
-        unit: id.unit_check(&setup.nominal_stiffness()),
+        unit: id.unit_check(setup.nominal_stiffness()),
         id,
         cross_validation,
         first_of_posture,

@@ -79,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = args
         .postures
         .iter()
-        .map(|p| load::postures(p, &setup.robot(), Some(&setup.bounds())))
+        .map(|p| load::postures(p, setup.robot(), Some(setup.bounds())))
         .collect::<Result<Vec<_>>>()?;
     let names = group_names(&args.postures);
     let out = match &args.out {
@@ -98,7 +98,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let sims = simulate(&setup, &groups, &options)?;
     let doc = SimulationJson {
-        setup: &setup.name(),
+        setup: setup.name(),
         seed: args.seed,
         runs: options.runs,
         levels: &setup.noise().levels,

@@ -87,7 +87,7 @@ impl<'a> Plan<'a> {
                     rope_direction: rope.normalize(),
                     rope_length: rope.norm(),
                     loading_point_z: lp.z,
-                    displacements: rope_displacements(setup, &frames, &setup.nominal_stiffness()),
+                    displacements: rope_displacements(setup, &frames, setup.nominal_stiffness()),
                     without_pct: predicted_deviation_pct(&without, 1.0),
                     clearance: feasibility.min_clearance(),
                     failed: feasibility.violations().map(describe).collect(),

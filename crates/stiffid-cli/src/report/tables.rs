@@ -204,7 +204,7 @@ pub fn setup(study: &Study) -> Table {
             "springs in",
             format!("{:?} coordinates", s.springs()).to_lowercase(),
         ),
-        ("true stiffness, Nm/rad", six(&s.nominal_stiffness(), 1.0)),
+        ("true stiffness, Nm/rad", six(s.nominal_stiffness(), 1.0)),
         (
             "loading point (flange frame), mm",
             mm3(&s.tool().loading_point),

@@ -74,7 +74,7 @@ pub fn capsules(setup: &Setup, frames: &Frames) -> Vec<Capsule> {
     for (part, points) in polylines(frames) {
         push_polyline(&mut out, part, &points, g.link_radii[part.index()]);
     }
-    let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(&setup.tool())));
+    let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(setup.tool())));
     out.push(Capsule {
         part: Part::Tool,
         a: frames.flange.translation.vector,

@@ -47,7 +47,7 @@ pub struct PostureTerms {
 impl<'a> Evaluator<'a> {
     /// An evaluator for `setup`.
     pub fn new(setup: &'a Setup) -> Self {
-        let test_rows = rope_observation_matrix(setup, &setup.test_postures());
+        let test_rows = rope_observation_matrix(setup, setup.test_postures());
         Self {
             setup,
             scaling: setup.nominal_compliance() / setup.noise().sigma(),

@@ -213,7 +213,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     let test_deflection: Vec<Vec<Vector3<f64>>> = setup
         .test_postures()
         .iter()
-        .map(|q| rope_displacements(setup, &setup.robot().frames(q), &setup.nominal_stiffness()))
+        .map(|q| rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness()))
         .collect();
     let groups = found
         .into_iter()
