@@ -346,6 +346,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         .to_builder()
         .with_robot(robot)
         .with_bounds(bounds)
+        .with_test_postures(vec![q])
         .build()
         .unwrap();
     let compliance = Compliance {
