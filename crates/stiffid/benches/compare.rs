@@ -11,9 +11,10 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
 use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions};
-use stiffid::identify::{identify, Measurement};
+use stiffid::identify;
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
+use stiffid::observation::Measurement;
 use stiffid::setup;
 
 const START: &str = include_str!("../../../bench/inputs/start-group.csv");
@@ -51,14 +52,14 @@ fn compare(c: &mut Criterion) {
     let delta: DVector<f64> = &psi * setup.nominal_compliance();
     group.bench_function("lstsq", |b| {
         b.iter(|| {
-            Factor::try_new(black_box(&psi))
+            Factor::try_new(black_box(&psi).clone())
                 .unwrap()
                 .solve(black_box(&delta))
         })
     });
     let data = measurements();
     group.bench_function("identify", |b| {
-        b.iter(|| identify(&setup, black_box(&data)).unwrap())
+        b.iter(|| identify::least_squares(&setup, black_box(&data)).unwrap())
     });
     let options = SearchOptions::default();
     group.sample_size(10).bench_function("local-search", |b| {

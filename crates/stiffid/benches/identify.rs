@@ -9,7 +9,8 @@ mod common;
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
 use std::hint::black_box;
-use stiffid::identify::{identify, observations, Measurement};
+use stiffid::identify;
+use stiffid::observation::{Measurement, Observations};
 use stiffid::setup;
 
 fn bench(c: &mut Criterion) {
@@ -23,15 +24,19 @@ fn bench(c: &mut Criterion) {
             ..m
         })
         .collect();
-    let obs = observations(&setup, &data).expect("valid measurements");
+    let obs = Observations::from_measurements(&setup, &data).expect("valid measurements");
     c.bench_function("identify/72x6 least squares and statistics", |b| {
-        b.iter(|| black_box(&obs).identify().expect("identifiable"))
+        b.iter(|| black_box(&obs).least_squares().expect("identifiable"))
     });
     c.bench_function("identify/observation matrix of 24 measurements", |b| {
-        b.iter(|| observations(black_box(&setup), black_box(&data)).expect("valid"))
+        b.iter(|| {
+            Observations::from_measurements(black_box(&setup), black_box(&data)).expect("valid")
+        })
     });
     c.bench_function("identify/from measurements", |b| {
-        b.iter(|| identify(black_box(&setup), black_box(&data)).expect("identifiable"))
+        b.iter(|| {
+            identify::least_squares(black_box(&setup), black_box(&data)).expect("identifiable")
+        })
     });
 }
 

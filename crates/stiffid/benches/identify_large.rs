@@ -7,7 +7,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use stiffid::formats::measurements;
-use stiffid::identify::observations;
+use stiffid::observation::Observations;
 use stiffid::setup;
 
 const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
@@ -42,9 +42,9 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let mut file = measurements::parse(black_box(&text)).unwrap();
             file.to_base_frame(&setup).unwrap();
-            observations(&setup, &file.measurements)
+            Observations::from_measurements(&setup, &file.measurements)
                 .unwrap()
-                .into_identification()
+                .into_least_squares()
                 .unwrap()
         })
     });

@@ -48,7 +48,7 @@ fn kinematics(c: &mut Criterion) {
     });
     // cond_2 of a 6x6 triangular factor: one-sided Jacobi (Factor::cond) against nalgebra's SVD.
     let psi = rope_observation_matrix(&setup, setup.test_postures());
-    let factor = Factor::try_new(&psi).unwrap();
+    let factor = Factor::try_new(psi.clone()).unwrap();
     let r = *factor.r();
     c.bench_function("cond of R (Jacobi)", |b| {
         b.iter(|| black_box(&factor).cond())

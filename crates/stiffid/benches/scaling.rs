@@ -14,7 +14,7 @@ use rand_chacha::ChaCha8Rng;
 use stiffid::design::evaluate;
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
-use stiffid::simulate::{simulate, Options};
+use stiffid::simulate::{self, Options};
 use stiffid::{setup, Setup};
 
 const POSTURES: [usize; 4] = [6, 24, 96, 384];
@@ -52,7 +52,7 @@ fn identification(c: &mut Criterion) {
             &(psi, delta),
             |b, (psi, delta)| {
                 b.iter(|| {
-                    Factor::try_new(black_box(psi))
+                    Factor::try_new(black_box(psi).clone())
                         .unwrap()
                         .solve(black_box(delta))
                 })
@@ -72,14 +72,14 @@ fn monte_carlo(c: &mut Criterion) {
         let options = Options { runs, seed: 1 };
         group.throughput(Throughput::Elements((runs * levels) as u64));
         group.bench_with_input(BenchmarkId::from_parameter(runs), &one, |b, groups| {
-            b.iter(|| simulate(&setup, black_box(groups), &options).unwrap())
+            b.iter(|| simulate::monte_carlo(&setup, black_box(groups), &options).unwrap())
         });
     }
     let five: Vec<_> = postures(&setup, 30).chunks(6).map(<[_]>::to_vec).collect();
     let options = Options::default();
     group.throughput(Throughput::Elements((5 * levels * options.runs) as u64));
     group.bench_function("reproduce-5x6x200", |b| {
-        b.iter(|| simulate(&setup, black_box(&five), &options).unwrap())
+        b.iter(|| simulate::monte_carlo(&setup, black_box(&five), &options).unwrap())
     });
     group.finish();
 }

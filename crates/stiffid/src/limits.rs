@@ -81,7 +81,7 @@ pub const LOAD_N: Range = Range {
 };
 
 /// Forces and moments on the command line, per component (measurement files: the magnitude
-/// limits of [`crate::identify::MAX_FORCE`] and [`crate::identify::MAX_MOMENT`]).
+/// limits of [`crate::observation::MAX_FORCE`] and [`crate::observation::MAX_MOMENT`]).
 pub const WRENCH: Range = Range {
     min: -1e7,
     max: 1e7,

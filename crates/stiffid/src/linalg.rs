@@ -213,3 +213,116 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 pub(crate) fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     y.iter_mut().zip(x).for_each(|(y, x)| *y += alpha * x);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{DMatrix, Rotation3, Vector3};
+
+    /// A fixed, well-conditioned 9x6 matrix (column-major), not triangular, not symmetric.
+    fn sample() -> DMatrix<f64> {
+        DMatrix::from_fn(9, 6, |i, j| {
+            let (i, j) = (i as f64, j as f64);
+            (1.0 + i * 0.7 + j * 1.3).sin() + if i == j { 2.0 } else { 0.0 }
+        })
+    }
+
+    /// `Q = H_1 .. H_6` (m x m) from the reflectors below the diagonal of `a` and `taus`.
+    fn q_of(a: &DMatrix<f64>, taus: &Vector6<f64>) -> DMatrix<f64> {
+        let m = a.nrows();
+        let mut q = DMatrix::identity(m, m);
+        for k in 0..6 {
+            let mut v = DMatrix::zeros(m, 1);
+            v[k] = 1.0;
+            for i in k + 1..m {
+                v[i] = a[(i, k)];
+            }
+            let h = DMatrix::identity(m, m) - &v * v.transpose() * taus[k];
+            q *= h;
+        }
+        q
+    }
+
+    #[test]
+    fn householder_qr_gives_orthogonal_q_triangular_r_and_q_r_equal_to_a() {
+        let a = sample();
+        let m = a.nrows();
+        let mut f = a.clone();
+        let taus = householder_qr(f.as_mut_slice(), m);
+        let q = q_of(&f, &taus);
+        assert!((q.transpose() * &q - DMatrix::identity(m, m)).amax() < 1e-14);
+        let r = upper_triangle(f.as_slice(), m);
+        let mut r_full = DMatrix::zeros(m, 6);
+        r_full.view_mut((0, 0), (6, 6)).copy_from(&r);
+        assert!((&q * r_full - &a).amax() < 1e-13 * a.amax());
+        // R is nalgebra's up to the signs of its rows.
+        let reference = a.clone().qr().r();
+        for i in 0..6 {
+            let sign = (r[(i, i)] * reference[(i, i)]).signum();
+            for j in 0..6 {
+                assert!((r[(i, j)] - sign * reference[(i, j)]).abs() < 1e-13);
+            }
+        }
+    }
+
+    #[test]
+    fn householder_qr_skips_a_column_already_triangular() {
+        // Column 0 is e_0: no reflection needed (tau = 0), and R[0, 0] keeps its value.
+        let mut a = sample();
+        a.column_mut(0).fill(0.0);
+        a[(0, 0)] = 3.0;
+        let taus = householder_qr(a.as_mut_slice(), 9);
+        assert_eq!(taus[0], 0.0);
+        assert_eq!(a[(0, 0)], 3.0);
+    }
+
+    #[test]
+    fn singular_values_of_a_rotated_diagonal_matrix_are_its_diagonal() {
+        let s = [7.0, 3.0, 1e-3, 2.0, 0.5, 11.0];
+        let rotation = |axis: Vector3<f64>, angle: f64| {
+            let r = Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle);
+            let mut m = Matrix6::identity();
+            m.fixed_view_mut::<3, 3>(0, 0).copy_from(r.matrix());
+            m.fixed_view_mut::<3, 3>(3, 3).copy_from(r.matrix());
+            m
+        };
+        let u = rotation(Vector3::new(1.0, 2.0, 3.0), 0.7);
+        let v = rotation(Vector3::new(-2.0, 0.5, 1.0), 1.9)
+            * Matrix6::from_fn(|i, j| {
+                // A permutation mixing the two 3x3 blocks.
+                f64::from(u8::from(j == (i + 2) % 6))
+            });
+        let a = u * Matrix6::from_diagonal(&Vector6::from_column_slice(&s)) * v.transpose();
+        let mut got: Vec<f64> = singular_values(&a).iter().copied().collect();
+        got.sort_by(f64::total_cmp);
+        let mut want = s.to_vec();
+        want.sort_by(f64::total_cmp);
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() < 1e-13 * w.max(1.0), "{g} vs {w}");
+        }
+        assert!((cond(&a) - 11.0 / 1e-3).abs() < 1e-8 * 11e3);
+    }
+
+    #[test]
+    fn singular_values_of_a_diagonal_matrix_are_exact_and_of_a_singular_one_include_zero() {
+        let d = Vector6::new(-4.0, 1.0, 2.5, 8.0, 0.25, 3.0);
+        assert_eq!(singular_values(&Matrix6::from_diagonal(&d)), d.abs());
+        let mut singular = Matrix6::from_diagonal(&d);
+        singular.set_column(2, &(singular.column(0) * 2.0));
+        let s = singular_values(&singular);
+        assert!(s.min() <= 1e-15 * s.max());
+        assert_eq!(cond(&singular), f64::INFINITY);
+    }
+
+    #[test]
+    fn singular_vectors_map_to_their_singular_values() {
+        let a = Matrix6::from_fn(|i, j| {
+            ((i * 6 + j) as f64 * 0.37).cos() + f64::from(u8::from(i == j))
+        });
+        let (s, v) = singular_values_and_vectors(&a);
+        assert!((v.transpose() * v - Matrix6::identity()).amax() < 1e-14);
+        for k in 0..6 {
+            assert!(((a * v.column(k)).norm() - s[k]).abs() < 1e-13 * s.max());
+        }
+    }
+}

@@ -30,16 +30,10 @@ pub struct Factor {
 }
 
 impl Factor {
-    /// Factors `psi` (m x 6, m >= 6); see [`Factor::try_from_matrix`], which takes `psi` by value
-    /// and saves the copy.
-    ///
-    /// # Errors
-    /// As [`Factor::try_from_matrix`].
-    pub fn try_new(psi: &DMatrix<f64>) -> Result<Self> {
-        Self::try_from_matrix(psi.clone())
-    }
-
-    /// Factors `psi` (m x 6, m >= 6) in place.
+    /// Factors `psi` (m x 6, m >= 6) in place: it takes the matrix by value and reuses its storage
+    /// for the reflectors, as nalgebra's `QR::new` and `SVD::try_new` do (clone to keep `Psi`).
+    /// `try_`: it fails unless `Psi` has full column rank (nalgebra's convention for a fallible
+    /// constructor).
     ///
     /// The rank rule: `Psi` is rank deficient when a column's norm is at most [`RANK_TOLERANCE`]
     /// times the largest, or when `cond_2(Psi) >= 1 / RANK_TOLERANCE`. The condition number is
@@ -51,7 +45,7 @@ impl Factor {
     /// or infinite entries (checked before any decomposition), [`Error::Unidentifiable`] naming the
     /// joints whose column is zero (no posture loads them or no measuring point moves with them) or
     /// whose columns are dependent.
-    pub fn try_from_matrix(mut psi: DMatrix<f64>) -> Result<Self> {
+    pub fn try_new(mut psi: DMatrix<f64>) -> Result<Self> {
         let m = psi.nrows();
         if m < 6 || psi.ncols() != 6 {
             return Err(Error::TooFewRows { rows: m });

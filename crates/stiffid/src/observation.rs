@@ -5,8 +5,19 @@
 //! point, both in the springs' coordinates. Only translations are observed (laser tracker), so each
 //! measuring point gives three rows (x, y, z, base frame, m/Nm * Nm = m per rad/Nm).
 //!
-//! Row order of a stacked matrix: posture-major, then measuring point, then x, y, z: row
-//! `3 (p i + k) + a` is posture i, measuring point k (of p), coordinate a.
+//! Two sources of rows: measured data ([`Measurement`]s, checked and stacked by
+//! [`Observations::from_measurements`], for identification) and a planned group of postures under
+//! the setup's rope-mass load ([`rope_observation_matrix`], for experiment design and simulation).
+//!
+//! **Row order** (the one definition; every stacked `Psi`, `delta` and residual vector of stiffid
+//! uses it): three rows per measuring point in a posture, x, y, z (base frame), in the order the
+//! measurements are given: row `3 i + a` is measurement `i`, coordinate `a`. A planned group is
+//! posture-major, then measuring point: measurement `i = p j + k` is posture `j`, measuring point
+//! `k` of `p`.
+
+mod measurement;
+
+pub use measurement::{Measurement, Observations, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT};
 
 use crate::kinematics::Frames;
 use crate::setup::Setup;

@@ -68,7 +68,7 @@ struct Prepared {
 /// # Errors
 /// [`Error::InvalidField`] for `runs == 0`; the errors of [`Factor::try_new`] (for example
 /// [`Error::Unidentifiable`]) for a group whose observation matrix cannot identify every joint.
-pub fn simulate(
+pub fn monte_carlo(
     setup: &Setup,
     groups: &[Vec<Vector6<f64>>],
     options: &Options,
@@ -78,17 +78,17 @@ pub fn simulate(
         .iter()
         .map(|g| evaluate(setup, g).predicted_deviation_pct)
         .collect();
-    simulate_with_predictions(setup, groups, &predicted, options)
+    monte_carlo_with_predictions(setup, groups, &predicted, options)
 }
 
-/// [`simulate`] with the first-order predictions already at hand (for example from the groups'
+/// [`monte_carlo`] with the first-order predictions already at hand (for example from the groups'
 /// [`crate::design::Evaluation`]s): `predicted[g]` is group `g`'s
 /// [`crate::design::Evaluation::predicted_deviation_pct`], percent, [levels][6], copied into its
 /// result as is.
 ///
 /// # Errors
-/// As [`simulate`]; [`Error::InvalidField`] when `predicted` does not hold one entry per group.
-pub fn simulate_with_predictions(
+/// As [`monte_carlo`]; [`Error::InvalidField`] when `predicted` does not hold one entry per group.
+pub fn monte_carlo_with_predictions(
     setup: &Setup,
     groups: &[Vec<Vector6<f64>>],
     predicted: &[Vec<[f64; 6]>],
@@ -147,7 +147,7 @@ fn check_runs(options: &Options) -> Result<()> {
 }
 
 fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {
-    let factor = Factor::try_new(&rope_observation_matrix(setup, postures))?;
+    let factor = Factor::try_new(rope_observation_matrix(setup, postures))?;
     let exact: Vec<f64> = postures
         .iter()
         .flat_map(|q| {

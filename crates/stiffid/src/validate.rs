@@ -8,7 +8,7 @@
 //! `1 - RMS(delta_b) / RMS(|delta_m|)` (1: perfect prediction; 0: no better than predicting no
 //! deflection; negative: worse).
 
-use crate::identify::{observations, Measurement};
+use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};
 use nalgebra::{Vector3, Vector6};
 
@@ -48,8 +48,8 @@ pub struct Validation {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`stiffness`) unless all six values are finite and positive, or
-/// (`measurements`) for an empty list; those of [`observations`].
-pub fn validate(
+/// (`measurements`) for an empty list; those of [`Observations::from_measurements`].
+pub fn compare(
     setup: &Setup,
     stiffness: &Vector6<f64>,
     measurements: &[Measurement],
@@ -66,7 +66,7 @@ pub fn validate(
             message: "expected at least one measurement".into(),
         });
     }
-    let obs = observations(setup, measurements)?;
+    let obs = Observations::from_measurements(setup, measurements)?;
     let predicted = &obs.psi * stiffness.map(|k| 1.0 / k);
     let checks: Vec<PointCheck> = measurements
         .iter()

@@ -8,9 +8,10 @@ use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POS
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::identify::{identify, identify_robust, Loss, Measurement};
+use stiffid::identify::{least_squares, Loss};
 use stiffid::kinematics::Coordinates;
-use stiffid::validate::validate;
+use stiffid::observation::{Measurement, Observations};
+use stiffid::validate;
 use stiffid::MeasurementField;
 use stiffid::{robot::presets, setup, Error};
 
@@ -37,7 +38,7 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
                 })
                 .collect();
             let data = synthetic(&setup, &postures, |i, _| wrenches[i]);
-            let id = identify(&setup, &data).unwrap();
+            let id = least_squares(&setup, &data).unwrap();
             let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
             assert!(err < 1e-9, "{name}, {springs:?}: relative error {err:e}");
             assert_eq!((id.rows, id.postures), (96, 8));
@@ -52,7 +53,7 @@ fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
     let data = paper_measurements(&setup);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let noisy = with_noise(&data, setup.noise().sigma(), &mut rng);
-    let id = identify(&setup, &noisy).unwrap();
+    let id = least_squares(&setup, &noisy).unwrap();
     let u = id.uncertainty.unwrap();
     assert_eq!(u.dof, 66);
     // t_{0.975, 66} from R: qt(0.975, 66) = 1.996564418952332.
@@ -83,7 +84,7 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
         let mut rng =
             ChaCha8Rng::seed_from_u64(0x5eed ^ (set as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         let noisy = with_noise(&clean, sigma, &mut rng);
-        let u = identify(&setup, &noisy).unwrap().uncertainty.unwrap();
+        let u = least_squares(&setup, &noisy).unwrap().uncertainty.unwrap();
         for j in 0..6 {
             let [lo, hi] = u.compliance_ci95[j];
             covered_h += usize::from(lo <= truth_h[j] && truth_h[j] <= hi);
@@ -111,10 +112,13 @@ fn robust_modes_down_weight_an_injected_outlier() {
     // Measurement 10 (posture 3, point 2), y: 0.3 mm off, about 30 sigma.
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
-    let plain = identify(&setup, &data).unwrap();
+    let plain = least_squares(&setup, &data).unwrap();
     let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness());
     for loss in [Loss::Huber, Loss::Tukey] {
-        let id = identify_robust(&setup, &data, loss).unwrap();
+        let id = Observations::from_measurements(&setup, &data)
+            .unwrap()
+            .robust(loss)
+            .unwrap();
         let fit = id.robust.as_ref().unwrap();
         assert!(fit.converged, "{loss:?}");
         assert_eq!(fit.down_weighted()[0], outlier_row, "{loss:?}");
@@ -132,7 +136,10 @@ fn robust_modes_down_weight_an_injected_outlier() {
             "{loss:?}: {err} vs least squares {plain_err}"
         );
     }
-    let tukey = identify_robust(&setup, &data, Loss::Tukey).unwrap();
+    let tukey = Observations::from_measurements(&setup, &data)
+        .unwrap()
+        .robust(Loss::Tukey)
+        .unwrap();
     assert_eq!(tukey.robust.unwrap().weights[outlier_row], 0.0);
 }
 
@@ -140,11 +147,11 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact = validate(&setup, setup.nominal_stiffness(), &data).unwrap();
+    let exact = validate::compare(&setup, setup.nominal_stiffness(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
-    let stiffer = validate(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
+    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
     for (c, m) in stiffer.checks.iter().zip(&data) {
         assert!((c.predicted - m.displacement / 2.0).norm() < 1e-15);
         assert!((c.delta_b - m.displacement.norm() / 2.0).abs() < 1e-15);
@@ -153,7 +160,7 @@ fn validation_compares_measured_and_predicted_displacements() {
     let mean = halves.iter().sum::<f64>() / 24.0;
     assert!((stiffer.mean - mean).abs() < 1e-15);
     assert!((stiffer.max - halves.iter().cloned().fold(0.0, f64::max)).abs() < 1e-15);
-    assert!(validate(&setup, &Vector6::repeat(-1.0), &data).is_err());
+    assert!(validate::compare(&setup, &Vector6::repeat(-1.0), &data).is_err());
 }
 
 #[test]
@@ -167,29 +174,29 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
     let mut bad = data.clone();
     bad[4].point = 4;
     assert_eq!(
-        field(identify(&setup, &bad).unwrap_err()),
+        field(least_squares(&setup, &bad).unwrap_err()),
         (5, MeasurementField::Point)
     );
     let mut bad = data.clone();
     bad[6].q[2] = setup.robot().upper[2] + 0.1;
     assert_eq!(
-        field(identify(&setup, &bad).unwrap_err()),
+        field(least_squares(&setup, &bad).unwrap_err()),
         (7, MeasurementField::Axis(2))
     );
     let mut bad = data.clone();
     bad[2].wrench[1] = f64::NAN;
     assert_eq!(
-        field(identify(&setup, &bad).unwrap_err()),
+        field(least_squares(&setup, &bad).unwrap_err()),
         (3, MeasurementField::Force)
     );
     let mut bad = data.clone();
     bad[5].posture = 0;
     assert_eq!(
-        field(identify(&setup, &bad).unwrap_err()),
+        field(least_squares(&setup, &bad).unwrap_err()),
         (6, MeasurementField::Posture)
     );
     assert_eq!(
-        identify(&setup, &data[..1]).unwrap_err(),
+        least_squares(&setup, &data[..1]).unwrap_err(),
         Error::TooFewRows { rows: 3 }
     );
 }
@@ -204,7 +211,7 @@ fn a_joint_no_measurement_loads_is_named() {
         .build()
         .unwrap();
     let data = paper_measurements(&setup);
-    match identify(&setup, &data).unwrap_err() {
+    match least_squares(&setup, &data).unwrap_err() {
         Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![6]),
         other => panic!("unexpected {other}"),
     }
@@ -227,7 +234,7 @@ fn one_posture_may_carry_several_wrenches() {
         .zip(twist)
         .flat_map(|(a, b)| [a, b])
         .collect();
-    let id = identify(&setup, &data).unwrap();
+    let id = least_squares(&setup, &data).unwrap();
     assert_eq!((id.rows, id.postures), (144, 6));
     let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
     assert!(err < 1e-9, "relative error {err:e}");

@@ -24,7 +24,7 @@ fn factor_matches_the_svd_solution_singular_values_and_covariance() {
     for (seed, m) in [(1, 6), (2, 7), (3, 72), (4, 129), (5, 4608)] {
         let psi = random(m, [1e-3, 2e-4, 5e-4, 3e-3, 4e-3, 6e-3], seed);
         let delta = DVector::from_fn(m, |i, _| (i as f64 * 0.37).sin() * 1e-3);
-        let factor = Factor::try_new(&psi).unwrap();
+        let factor = Factor::try_new(psi.clone()).unwrap();
         let svd = psi.clone().svd(true, true);
         let reference = svd.solve(&delta, 0.0).unwrap();
         let h = factor.solve(&delta);
@@ -53,7 +53,7 @@ fn singular_values_of_an_ill_conditioned_matrix_are_accurate() {
     let v = random(6, [1.0; 6], 11).qr().q();
     let psi =
         &q * DMatrix::from_diagonal(&DVector::from_column_slice(sigma.as_slice())) * v.transpose();
-    let factor = Factor::try_new(&psi).unwrap();
+    let factor = Factor::try_new(psi.clone()).unwrap();
     let sv = sorted(&factor.singular_values());
     let rel = (sv - sorted(&sigma)).component_div(&sorted(&sigma)).amax();
     // Backward-stable QR perturbs psi by ~eps |psi|, so the smallest singular value (1e-9) is
@@ -70,25 +70,25 @@ fn singular_values_of_an_ill_conditioned_matrix_are_accurate() {
 fn rank_checks_name_the_joints() {
     let mut psi = random(30, [1.0; 6], 12);
     psi.column_mut(3).fill(0.0);
-    match Factor::try_new(&psi).unwrap_err() {
+    match Factor::try_new(psi.clone()).unwrap_err() {
         Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![4]),
         other => panic!("{other}"),
     }
     let mut psi = random(30, [1.0; 6], 13);
     let combination = psi.column(1) * 2.0 - psi.column(4);
     psi.set_column(5, &combination);
-    match Factor::try_new(&psi).unwrap_err() {
+    match Factor::try_new(psi.clone()).unwrap_err() {
         Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![2, 5, 6]),
         other => panic!("{other}"),
     }
     let mut psi = random(30, [1.0; 6], 14);
     psi[(7, 2)] = f64::NAN;
     assert!(matches!(
-        Factor::try_new(&psi),
+        Factor::try_new(psi.clone()),
         Err(Error::NotFinite { .. })
     ));
     assert_eq!(
-        Factor::try_new(&random(5, [1.0; 6], 15)).unwrap_err(),
+        Factor::try_new(random(5, [1.0; 6], 15)).unwrap_err(),
         Error::TooFewRows { rows: 5 }
     );
 }

@@ -4,7 +4,7 @@
 use nalgebra::Vector6;
 use stiffid::limits;
 use stiffid::setup::{self, Noise};
-use stiffid::simulate::{simulate, simulate_with_predictions, Options};
+use stiffid::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
 
 /// Six spread postures within the paper's Table 1 bounds, deg.
 fn group() -> Vec<Vector6<f64>> {
@@ -28,7 +28,7 @@ fn mean_deviation_rates_agree_with_the_prediction_at_2000_runs() {
         runs: 2000,
         seed: 7,
     };
-    let sim = &simulate(&setup, &[group()], &options).unwrap()[0];
+    let sim = &monte_carlo(&setup, &[group()], &options).unwrap()[0];
     assert_eq!(sim.mean_deviation_pct.len(), 6);
     for (level, (mean, predicted)) in sim
         .mean_deviation_pct
@@ -68,7 +68,7 @@ fn at_the_smallest_noise_the_stiffness_is_recovered_to_1e_7() {
         })
         .build()
         .unwrap();
-    let sim = &simulate(&setup, &[group()], &Options { runs: 3, seed: 1 }).unwrap()[0];
+    let sim = &monte_carlo(&setup, &[group()], &Options { runs: 3, seed: 1 }).unwrap()[0];
     for j in 0..6 {
         assert!(
             sim.mean_deviation_pct[0][j] < 1e-5,
@@ -93,17 +93,17 @@ fn same_seed_same_result_whatever_the_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| simulate(&setup, &groups, &options).unwrap())
+            .install(|| monte_carlo(&setup, &groups, &options).unwrap())
     };
     assert_eq!(run(1), run(2));
-    let other = simulate(&setup, &groups, &Options { seed: 4, ..options }).unwrap();
+    let other = monte_carlo(&setup, &groups, &Options { seed: 4, ..options }).unwrap();
     assert_ne!(run(2), other);
 }
 
 #[test]
 fn zero_runs_and_unidentifiable_groups_are_errors() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let e = simulate(&setup, &[group()], &Options { runs: 0, seed: 1 }).unwrap_err();
+    let e = monte_carlo(&setup, &[group()], &Options { runs: 0, seed: 1 }).unwrap_err();
     assert!(e.to_string().contains("runs"), "{e}");
     let first = setup.tool().measuring_points[0];
     let setup = setup
@@ -111,7 +111,7 @@ fn zero_runs_and_unidentifiable_groups_are_errors() {
         .with_measuring_points(vec![first])
         .build()
         .unwrap();
-    let e = simulate(&setup, &[group()[..1].to_vec()], &Options::default()).unwrap_err();
+    let e = monte_carlo(&setup, &[group()[..1].to_vec()], &Options::default()).unwrap_err();
     assert!(e.to_string().contains("3 observation rows"), "{e}");
 }
 
@@ -119,15 +119,16 @@ fn zero_runs_and_unidentifiable_groups_are_errors() {
 fn predictions_given_are_kept_and_must_match_the_groups() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let options = Options { runs: 20, seed: 4 };
-    let own = &simulate(&setup, &[group()], &options).unwrap()[0];
+    let own = &monte_carlo(&setup, &[group()], &options).unwrap()[0];
     let given = vec![[1.0; 6]; setup.noise().levels.len()];
     let with =
-        &simulate_with_predictions(&setup, &[group()], std::slice::from_ref(&given), &options)
+        &monte_carlo_with_predictions(&setup, &[group()], std::slice::from_ref(&given), &options)
             .unwrap()[0];
     // The runs are the same; only the prediction is the one given.
     assert_eq!(with.mean_deviation_pct, own.mean_deviation_pct);
     assert_eq!(with.predicted_deviation_pct, given);
-    let e = simulate_with_predictions(&setup, &[group(), group()], &[given], &options).unwrap_err();
+    let e =
+        monte_carlo_with_predictions(&setup, &[group(), group()], &[given], &options).unwrap_err();
     assert!(
         e.to_string()
             .contains("one prediction per group (2), got 1"),

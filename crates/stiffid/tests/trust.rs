@@ -9,8 +9,9 @@ use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternio
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiffid::formats::measurements;
-use stiffid::identify::{cross_validate, identify, nonnegative, observations, Measurement};
-use stiffid::validate::validate;
+use stiffid::identify::{cross_validate, least_squares, nonnegative};
+use stiffid::observation::{Measurement, Observations};
+use stiffid::validate;
 use stiffid::{setup, Error, Setup};
 
 const FANUC_CSV: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
@@ -31,7 +32,7 @@ fn noisy_paper_data(setup: &Setup, repeats: usize, seed: u64) -> Vec<Measurement
 #[test]
 fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     let setup = paper();
-    let id = identify(&setup, &noisy_paper_data(&setup, 10, 7)).unwrap();
+    let id = least_squares(&setup, &noisy_paper_data(&setup, 10, 7)).unwrap();
     let a = id.adequacy(setup.noise().variance).unwrap();
     assert_eq!(a.dof, 720 - 6);
     // s / sigma has a standard deviation of about 1 / sqrt(2 dof) = 0.026.
@@ -48,7 +49,7 @@ fn chi_square_ratio_is_near_one_with_the_setups_noise() {
         10.0 * setup.noise().sigma(),
         &mut ChaCha8Rng::seed_from_u64(1),
     );
-    let a = identify(&setup, &loud)
+    let a = least_squares(&setup, &loud)
         .unwrap()
         .adequacy(setup.noise().variance)
         .unwrap();
@@ -120,8 +121,8 @@ fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
 fn nonnegative_fit_equals_least_squares_when_that_is_non_negative() {
     let setup = paper();
     let data = noisy_paper_data(&setup, 1, 3);
-    let obs = observations(&setup, &data).unwrap();
-    let (plain, bounded) = (obs.identify().unwrap(), obs.identify_nonnegative().unwrap());
+    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    let (plain, bounded) = (obs.least_squares().unwrap(), obs.nonnegative().unwrap());
     assert!(plain.compliance.iter().all(|h| *h > 0.0));
     assert_eq!(bounded.active_bounds, Some([false; 6]));
     assert!((plain.compliance - bounded.compliance).amax() < 1e-12 * plain.compliance.amax());
@@ -147,10 +148,10 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
             ..m
         })
         .collect();
-    let obs = observations(&setup, &flipped).unwrap();
-    let plain = obs.identify().unwrap();
+    let obs = Observations::from_measurements(&setup, &flipped).unwrap();
+    let plain = obs.least_squares().unwrap();
     assert_eq!(plain.physical(), [false; 6]);
-    let bounded = obs.identify_nonnegative().unwrap();
+    let bounded = obs.nonnegative().unwrap();
     assert_eq!(bounded.active_bounds, Some([true; 6]));
     assert_eq!(bounded.compliance, Vector6::zeros());
     assert_eq!(bounded.physical(), [false; 6]);
@@ -160,8 +161,8 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
 fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
     let setup = paper();
     let data = noisy_paper_data(&setup, 1, 5);
-    let obs = observations(&setup, &data).unwrap();
-    let full = obs.identify().unwrap();
+    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    let full = obs.least_squares().unwrap();
     let cv = cross_validate(&obs, &full, 6).unwrap();
     assert_eq!(cv.folds.len(), 6);
     let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;
@@ -169,12 +170,12 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
         assert_eq!(fold.postures, vec![p]);
         let (held, rest): (Vec<Measurement>, Vec<Measurement>) =
             data.iter().cloned().partition(|m| m.posture == p);
-        let by_hand = identify(&setup, &rest).unwrap();
+        let by_hand = least_squares(&setup, &rest).unwrap();
         let rel = (fold.stiffness - by_hand.stiffness)
             .component_div(&by_hand.stiffness)
             .amax();
         assert!(rel < 1e-9, "fold {p}: {rel:e}");
-        let check = validate(&setup, &by_hand.stiffness, &held).unwrap();
+        let check = validate::compare(&setup, &by_hand.stiffness, &held).unwrap();
         for (a, c) in fold.delta_b.iter().zip(&check.checks) {
             assert!((a - c.delta_b).abs() < 1e-12, "{a} vs {}", c.delta_b);
         }
@@ -196,7 +197,7 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
             ..m.clone()
         })
         .collect();
-    let again = observations(&setup, &sparse).unwrap();
+    let again = Observations::from_measurements(&setup, &sparse).unwrap();
     assert_eq!(
         (again.postures, &again.posture_index),
         (6, &obs.posture_index)
@@ -244,7 +245,7 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
     let base = {
         let mut f = measurements::parse(FANUC_CSV).unwrap();
         f.to_base_frame(&setup).unwrap();
-        identify(&setup, &f.measurements).unwrap()
+        least_squares(&setup, &f.measurements).unwrap()
     };
     let tracker = Isometry3::from_parts(
         Translation3::new(3.2, -1.1, 0.4),
@@ -267,7 +268,7 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
         .build()
         .unwrap();
     file.to_base_frame(&setup).unwrap();
-    let other = identify(&setup, &file.measurements).unwrap();
+    let other = least_squares(&setup, &file.measurements).unwrap();
     let rel = (other.stiffness - base.stiffness)
         .component_div(&base.stiffness)
         .amax();
@@ -324,7 +325,7 @@ fn the_unit_check_fires_on_displacements_in_metres_and_forces_in_kilonewtons() {
                 ..m.clone()
             })
             .collect();
-        identify(&setup, &scaled)
+        least_squares(&setup, &scaled)
             .unwrap()
             .unit_check(setup.nominal_stiffness())
     };
@@ -342,14 +343,14 @@ fn absurd_magnitudes_and_no_deflection_are_errors() {
     let data = paper_measurements(&setup);
     let mut bad = data.clone();
     bad[3].displacement.x = 1.5;
-    let e = identify(&setup, &bad).unwrap_err();
+    let e = least_squares(&setup, &bad).unwrap_err();
     assert!(
         e.to_string().contains("measurement 4, displacement") && e.to_string().contains("limit"),
         "{e}"
     );
     let mut bad = data.clone();
     bad[2].wrench[2] = -2e6;
-    assert!(identify(&setup, &bad)
+    assert!(least_squares(&setup, &bad)
         .unwrap_err()
         .to_string()
         .contains("measurement 3, force"));
@@ -360,7 +361,7 @@ fn absurd_magnitudes_and_no_deflection_are_errors() {
             ..m.clone()
         })
         .collect();
-    let e = identify(&setup, &zero).unwrap_err();
+    let e = least_squares(&setup, &zero).unwrap_err();
     assert!(
         e.to_string()
             .contains("every measured displacement is zero"),
@@ -375,9 +376,9 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let data = synthetic(&setup, &qs, |_, q| {
         setup.rope_wrench(&setup.robot().frames(q))
     });
-    let exact = validate(&setup, setup.nominal_stiffness(), &data).unwrap();
+    let exact = validate::compare(&setup, setup.nominal_stiffness(), &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
-    let stiffer = validate(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
+    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
     assert!(
         (stiffer.explained - 0.5).abs() < 1e-12,
         "{}",

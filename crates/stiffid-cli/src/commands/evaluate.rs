@@ -113,7 +113,7 @@ pub fn run(args: &Args) -> Result<()> {
 /// Fails, naming the joints, when the group's observation matrix cannot identify every joint
 /// (the same error as `stiffid simulate`).
 pub fn identifiable(setup: &Setup, postures: &[Vector6<f64>]) -> Result<()> {
-    Factor::try_from_matrix(rope_observation_matrix(setup, postures))?;
+    Factor::try_new(rope_observation_matrix(setup, postures))?;
     Ok(())
 }
 

@@ -9,10 +9,10 @@ use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::formats::measurements::MeasurementFile;
 use stiffid::identify::{
-    cross_validate, observations, Adequacy, CrossValidation, Identification, Loss, Observations,
-    Uncertainty, UnitCheck,
+    cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
 };
 use stiffid::kinematics::Coordinates;
+use stiffid::observation::Observations;
 use stiffid::Setup;
 
 mod text;
@@ -185,7 +185,7 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
     let name = args.data.display().to_string();
-    let obs = observations(&setup, &file.measurements)
+    let obs = Observations::from_measurements(&setup, &file.measurements)
         .map_err(|e| file.explain(e))
         .with_context(|| name.clone())?;
     let mut first_of_posture = vec![usize::MAX; obs.postures];
@@ -222,12 +222,12 @@ pub fn run(args: &Args) -> Result<()> {
 /// The fit the arguments ask for, and the cross-validation if asked.
 fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossValidation>)> {
     let id = match (args.robust, args.nonnegative) {
-        (Some(Robust::Huber), _) => obs.identify_robust(Loss::Huber)?,
-        (Some(Robust::Tukey), _) => obs.identify_robust(Loss::Tukey)?,
-        (None, true) => obs.identify_nonnegative()?,
-        (None, false) if args.cross_validate || args.folds.is_some() => obs.identify()?,
+        (Some(Robust::Huber), _) => obs.robust(Loss::Huber)?,
+        (Some(Robust::Tukey), _) => obs.robust(Loss::Tukey)?,
+        (None, true) => obs.nonnegative()?,
+        (None, false) if args.cross_validate || args.folds.is_some() => obs.least_squares()?,
         // Nothing else needs Psi: factor it in place (no copy of a large Psi).
-        (None, false) => return Ok((obs.into_identification()?, None)),
+        (None, false) => return Ok((obs.into_least_squares()?, None)),
     };
     let cross_validation = match args.cross_validate || args.folds.is_some() {
         false => None,

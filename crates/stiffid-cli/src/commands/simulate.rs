@@ -7,7 +7,7 @@ use anyhow::Result;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use stiffid::limits;
-use stiffid::simulate::{simulate, GroupSimulation, Options};
+use stiffid::simulate::{monte_carlo, GroupSimulation, Options};
 
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]
@@ -96,7 +96,7 @@ pub fn run(args: &Args) -> Result<()> {
         runs: args.runs as usize,
         seed: args.seed,
     };
-    let sims = simulate(&setup, &groups, &options)?;
+    let sims = monte_carlo(&setup, &groups, &options)?;
     let doc = SimulationJson {
         setup: setup.name(),
         seed: args.seed,

@@ -6,7 +6,7 @@ use crate::output::print_json_or;
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid::validate::validate;
+use stiffid::validate;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
@@ -56,7 +56,7 @@ pub fn run(args: &Args) -> Result<()> {
     let stiffness = load::stiffness(&args.stiffness)?.stiffness();
     let data = load::measurements(&args.data, &setup)?;
     let name = args.data.display().to_string();
-    let v = validate(&setup, &stiffness, &data.measurements)
+    let v = validate::compare(&setup, &stiffness, &data.measurements)
         .map_err(|e| data.explain(e))
         .with_context(|| name.clone())?;
     let result = ValidationJson {

@@ -4,7 +4,7 @@
 //! the observation rows of the test postures). Each posture's forward kinematics is computed once
 //! ([`Evaluator::posture`]) and gives its block of `Psi` and, only when a criterion needs it, the TCP
 //! dexterity; the search reuses the terms of postures a finite-difference step did not move. The
-//! group's `Psi` is factored by [`Factor::try_from_matrix`] (Householder, with its rank rule:
+//! group's `Psi` is factored by [`Factor::try_new`] (Householder, with its rank rule:
 //! `+infinity` for a rank-deficient group), and only what the chosen criterion needs is computed
 //! from `R`:
 //! - `cond_2(Psi)`, `cond_2(S)`: singular values of `R`, `R diag(h) / sigma` (one-sided Jacobi);
@@ -203,7 +203,7 @@ impl<'a> Evaluator<'a> {
         for (i, t) in terms.iter().enumerate() {
             psi.view_mut((p3 * i, 0), (p3, 6)).copy_from(&t.block);
         }
-        let factor = Factor::try_from_matrix(psi).ok()?;
+        let factor = Factor::try_new(psi).ok()?;
         let (r, r_inv) = (*factor.r(), *factor.r_inv());
         // R diag(h / sigma) and its inverse diag(sigma / h) R^-1: column and row scalings.
         let mut rs = r;

@@ -25,7 +25,7 @@
 use crate::deflection::Frame;
 use crate::error::{ColumnProblem, MeasurementField};
 use crate::identify::frames::{self, DisplacementFrame};
-use crate::identify::Measurement;
+use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
 use nalgebra::{Vector3, Vector6};
 use std::collections::HashMap;

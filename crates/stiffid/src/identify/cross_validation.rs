@@ -8,8 +8,9 @@
 //! fold whose removal moves a stiffness by more than its standard error in the full fit is
 //! influential for that joint.
 
-use crate::identify::{Identification, Observations};
+use crate::identify::Identification;
 use crate::lsq::Factor;
+use crate::observation::Observations;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Vector6};
 
@@ -130,7 +131,7 @@ fn fold(
         (psi, delta)
     };
     let (psi, delta) = rows(&train);
-    let h = Factor::try_from_matrix(psi)
+    let h = Factor::try_new(psi)
         .map_err(|e| Error::InvalidField {
             field: format!("cross-validation fold {}", f + 1),
             message: format!("the other postures cannot identify the stiffness: {e}"),

@@ -14,8 +14,8 @@
 //! hanging from it pulls down: `f_z < 0`); the displacement is loaded minus unloaded position.
 
 use crate::deflection::{base_wrench, Frame};
-use crate::identify::Measurement;
 use crate::kinematics::Frames;
+use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
 
 /// The frame of a file's displacement columns.

@@ -140,7 +140,7 @@ fn iterate(
         for (mut row, w) in weighted.row_iter_mut().zip(roots.iter()) {
             row *= *w;
         }
-        let factor = Factor::try_new(&weighted)?;
+        let factor = Factor::try_new(weighted)?;
         let next = factor.solve(&delta.component_mul(&roots));
         let change = (next - h).amax();
         h = next;
@@ -171,4 +171,28 @@ fn mad_scale(residuals: &DVector<f64>, size: f64) -> f64 {
     (MAD_TO_SIGMA * median)
         .max(f64::EPSILON * size)
         .max(f64::MIN_POSITIVE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mad_scale_is_the_median_absolute_residual_times_the_gaussian_factor() {
+        // |r| sorted: 0.5 1 2 3 100 -> median 2 (odd count, the outlier does not move it).
+        let odd = DVector::from_vec(vec![-1.0, 3.0, 0.5, -100.0, 2.0]);
+        assert_eq!(mad_scale(&odd, 100.0), MAD_TO_SIGMA * 2.0);
+        // Even count: the mean of the middle two, 1 and 2.
+        let even = DVector::from_vec(vec![2.0, -1.0, 0.5, 4.0]);
+        assert_eq!(mad_scale(&even, 4.0), MAD_TO_SIGMA * 1.5);
+        // 1.4826 is 1 / Phi^-1(3/4): the MAD of N(0, 1) is 0.6744897501960817.
+        assert!((MAD_TO_SIGMA * 0.674_489_750_196_081_7 - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn mad_scale_of_an_exact_fit_is_floored_above_zero() {
+        let exact = DVector::from_vec(vec![0.0, 0.0, 0.0, 1e-3]);
+        assert_eq!(mad_scale(&exact, 2.0), f64::EPSILON * 2.0);
+        assert_eq!(mad_scale(&DVector::zeros(3), 0.0), f64::MIN_POSITIVE);
+    }
 }

@@ -19,7 +19,9 @@ pub use trials::{start_trials, StartTrial};
 use crate::design::{evaluate, global, local, random_group, Criterion, Evaluation, SearchOptions};
 use crate::progress::Progress;
 use crate::setup::Setup;
-use crate::simulate::{simulate_with_predictions, GroupSimulation, Options as SimulationOptions};
+use crate::simulate::{
+    monte_carlo_with_predictions, GroupSimulation, Options as SimulationOptions,
+};
 use crate::stiffness::rope_displacements;
 use crate::{Error, Result};
 use nalgebra::{Vector3, Vector6};
@@ -156,7 +158,7 @@ pub struct Study {
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `runs` or `starts` 0; the errors of the searches and of
-/// [`crate::simulate::simulate`] (for example [`Error::Unidentifiable`] for a group that cannot
+/// [`crate::simulate::monte_carlo`] (for example [`Error::Unidentifiable`] for a group that cannot
 /// identify every joint).
 ///
 /// # Examples
@@ -196,7 +198,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     )?;
     let evaluations: Vec<Evaluation> = found.iter().map(|(_, p, _)| evaluate(setup, p)).collect();
     progress.begin("Monte Carlo identification", 1);
-    let sims = simulate_with_predictions(
+    let sims = monte_carlo_with_predictions(
         setup,
         &found.iter().map(|(_, p, _)| p.clone()).collect::<Vec<_>>(),
         &evaluations

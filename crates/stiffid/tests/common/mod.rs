@@ -4,7 +4,7 @@
 use nalgebra::{Vector3, Vector6};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::identify::Measurement;
+use stiffid::observation::Measurement;
 use stiffid::{stiffness, Setup};
 
 /// Six spread postures (deg) inside the paper setup's Table 1 bounds.

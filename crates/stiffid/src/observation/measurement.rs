@@ -1,0 +1,221 @@
+//! The observation matrix of measured data: [`Measurement`]s checked and stacked into
+//! [`Observations`] (`Psi` and `delta`, Eq. 10-11), row order as in [`crate::observation`].
+
+use crate::kinematics::Frames;
+use crate::observation::point_rows;
+use crate::stiffness::joint_torques;
+use crate::{Error, MeasurementField, Result, Setup};
+use nalgebra::{DMatrix, DVector, Vector3, Vector6};
+use std::collections::HashMap;
+
+/// Largest accepted displacement of a measuring point, m: a robot deflects by millimetres, so a
+/// larger value is a unit or transcription error.
+pub const MAX_DISPLACEMENT: f64 = 1.0;
+
+/// Largest accepted force magnitude, N.
+pub const MAX_FORCE: f64 = 1e6;
+
+/// Largest accepted moment magnitude, Nm.
+pub const MAX_MOMENT: f64 = 1e6;
+
+/// One measured displacement: a measuring point in a posture under a wrench.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Measurement {
+    /// The posture: any number that identifies it (a file's labels are numbered `0, 1, ...` in
+    /// order of first appearance). Measurements of the same posture must have the same axis
+    /// angles.
+    pub posture: usize,
+    /// Index of the measuring point in the setup's tool, 0-based.
+    pub point: usize,
+    /// Axis angles q, rad (controller convention).
+    pub q: Vector6<f64>,
+    /// Wrench `[f; m]` at the loading point, base frame, N and Nm (Eq. 1).
+    pub wrench: Vector6<f64>,
+    /// Translation of the measuring point, loaded minus unloaded, base frame, m.
+    pub displacement: Vector3<f64>,
+}
+
+/// The observation matrix and measured displacements of a list of measurements.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Observations {
+    /// `Psi`, `3n x 6` for n measurements, m per (rad/Nm) (Eq. 11), rows in the order of the
+    /// [module docs](crate::observation).
+    pub psi: DMatrix<f64>,
+    /// `delta`, `3n`, m.
+    pub delta: DVector<f64>,
+    /// The number of distinct postures.
+    pub postures: usize,
+    /// The posture of each measurement, numbered `0..postures` in order of first appearance.
+    pub posture_index: Vec<usize>,
+}
+
+impl Observations {
+    /// Checks every measurement and stacks its three rows of `Psi` and `delta` (Eq. 10-11), in the
+    /// row order of the [module docs](crate::observation). Frames are computed once per run of
+    /// measurements with the same axis angles, torques once per run with the same angles and wrench.
+    ///
+    /// # Errors
+    /// [`Error::Measurement`] naming the measurement (1-based) and what is wrong: a measuring point the
+    /// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
+    /// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
+    /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
+    /// angles (`posture`). Linear in the measurements whatever the number of postures.
+    pub fn from_measurements(setup: &Setup, measurements: &[Measurement]) -> Result<Self> {
+        let n = measurements.len();
+        let mut psi = DMatrix::zeros(3 * n, 6);
+        let mut delta = DVector::zeros(3 * n);
+        let mut labels = Postures::new(measurements);
+        let mut posture_index = Vec::with_capacity(n);
+        // The measurement the frames and torques were computed for, the frames and the torques.
+        let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
+        for (i, meas) in measurements.iter().enumerate() {
+            check(setup, i + 1, meas)?;
+            posture_index.push(check_label(&mut labels, measurements, i)?);
+            if state
+                .as_ref()
+                .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
+            {
+                state = None;
+            }
+            let (j, frames, tau) = state.get_or_insert_with(|| {
+                let frames = setup.robot().frames(&meas.q);
+                let tau = joint_torques(setup, &frames, &meas.wrench);
+                (i, frames, tau)
+            });
+            if measurements[*j].wrench != meas.wrench {
+                *tau = joint_torques(setup, frames, &meas.wrench);
+            }
+            *j = i;
+            psi.fixed_view_mut::<3, 6>(3 * i, 0)
+                .copy_from(&point_rows(setup, frames, meas.point, tau));
+            delta
+                .fixed_rows_mut::<3>(3 * i)
+                .copy_from(&meas.displacement);
+        }
+        Ok(Observations {
+            psi,
+            delta,
+            postures: labels.count,
+            posture_index,
+        })
+    }
+}
+
+fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
+    let error = |field, message: String| Error::Measurement {
+        number,
+        field,
+        message,
+    };
+    let points = setup.tool().measuring_points.len();
+    if meas.point >= points {
+        return Err(error(
+            MeasurementField::Point,
+            format!(
+                "measuring point {} does not exist: the setup has {points} (1 to {points})",
+                meas.point + 1
+            ),
+        ));
+    }
+    let robot = &setup.robot();
+    if let Some(axis) = robot.first_out_of_limits(&meas.q) {
+        let message = match meas.q[axis].is_finite() {
+            false => "the axis angle is not finite".to_string(),
+            true => format!(
+                "{:.3} deg is outside the robot's limits [{:.2}, {:.2}] deg",
+                meas.q[axis].to_degrees(),
+                robot.lower[axis].to_degrees(),
+                robot.upper[axis].to_degrees()
+            ),
+        };
+        return Err(error(MeasurementField::Axis(axis), message));
+    }
+    let force: Vector3<f64> = meas.wrench.fixed_rows::<3>(0).into();
+    let moment: Vector3<f64> = meas.wrench.fixed_rows::<3>(3).into();
+    let magnitudes = [
+        (MeasurementField::Force, force, MAX_FORCE, 1.0, "N"),
+        (MeasurementField::Moment, moment, MAX_MOMENT, 1.0, "Nm"),
+        (
+            MeasurementField::Displacement,
+            meas.displacement,
+            MAX_DISPLACEMENT,
+            1e3,
+            "mm",
+        ),
+    ];
+    for (field, v, limit, scale, unit) in magnitudes {
+        if !v.iter().all(|x| x.is_finite()) {
+            return Err(error(field, "expected finite numbers".into()));
+        }
+        // The largest component where the norm would overflow.
+        let size = Some(v.norm()).filter(|n| n.is_finite()).unwrap_or(v.amax());
+        if size > limit {
+            return Err(error(
+                field,
+                format!(
+                    "magnitude {:.4e} {unit} is above the limit {:.0e} {unit}: check the unit of the columns",
+                    size * scale,
+                    limit * scale
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The postures seen so far: posture -> (its dense number, its first measurement). A table
+/// indexed by the posture number when the numbers are small (as a file's are), else a hash map.
+struct Postures {
+    table: Table,
+    count: usize,
+}
+
+enum Table {
+    /// `usize::MAX` before the posture is seen.
+    Dense(Vec<(usize, usize)>),
+    Sparse(HashMap<usize, (usize, usize)>),
+}
+
+impl Postures {
+    fn new(measurements: &[Measurement]) -> Self {
+        let n = measurements.len();
+        let table = match measurements.iter().all(|m| m.posture < n) {
+            true => Table::Dense(vec![(usize::MAX, usize::MAX); n]),
+            false => Table::Sparse(HashMap::new()),
+        };
+        Self { table, count: 0 }
+    }
+
+    /// The dense number and the first measurement of `posture`, first seen at measurement `i`
+    /// if new.
+    fn entry(&mut self, posture: usize, i: usize) -> (usize, usize) {
+        let next = (self.count, i);
+        let slot = match &mut self.table {
+            Table::Dense(v) => &mut v[posture],
+            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, usize::MAX)),
+        };
+        if slot.0 == usize::MAX {
+            *slot = next;
+            self.count += 1;
+        }
+        *slot
+    }
+}
+
+/// The dense number of measurement `i`'s posture; an error if it was measured before at other
+/// axis angles.
+fn check_label(labels: &mut Postures, measurements: &[Measurement], i: usize) -> Result<usize> {
+    let meas = &measurements[i];
+    let (index, first) = labels.entry(meas.posture, i);
+    if measurements[first].q != meas.q {
+        return Err(Error::Measurement {
+            number: i + 1,
+            field: MeasurementField::Posture,
+            message: format!(
+                "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
+                first + 1
+            ),
+        });
+    }
+    Ok(index)
+}
