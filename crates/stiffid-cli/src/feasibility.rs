@@ -1,12 +1,13 @@
 //! The cell's feasibility checks of a group of postures, as text and JSON.
 
 use nalgebra::Vector6;
+use schemars::JsonSchema;
 use serde::Serialize;
 use stiffid::cell::{Check, Checker, Feasibility};
 use stiffid::Setup;
 
 /// One posture's checks under `feasibility` in `stiffid evaluate --json`.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, JsonSchema)]
 pub struct PostureJson {
     /// 1-based position in the group.
     pub posture: usize,
@@ -20,7 +21,7 @@ pub struct PostureJson {
 }
 
 /// One failing check.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, JsonSchema)]
 pub struct ViolationJson {
     /// The check, e.g. `self-collision`.
     pub check: &'static str,

@@ -54,6 +54,10 @@ enum Command {
     Completions(commands::completions::CompletionsArgs),
     /// Print the man page (roff) of stiffid or of one subcommand.
     Man(commands::completions::ManArgs),
+    /// Print the JSON Schema of a JSON document stiffid writes or reads (without a name: the
+    /// names); the repository ships them in docs/schemas/.
+    #[command(hide = true)]
+    Schema(commands::schema::Args),
 }
 
 fn main() -> ExitCode {
@@ -84,6 +88,7 @@ fn main() -> ExitCode {
         Command::Compensate(args) => commands::compensate::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, Cli::command()),
         Command::Man(args) => commands::completions::man(&args, Cli::command()),
+        Command::Schema(args) => commands::schema::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -11,6 +11,7 @@ pub use gradient::dexterity_log_gradient;
 
 /// Which joint coordinates a Jacobian's columns refer to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "kebab-case")]
 pub enum Coordinates {
     /// Controller axis angles q: `J_q = J_theta M` (the springs sit in the drives).

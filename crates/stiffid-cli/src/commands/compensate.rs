@@ -6,11 +6,14 @@ use crate::output::{print_json_or, OutFile};
 use crate::report::{self, compensation};
 use anyhow::{Context, Result};
 use nalgebra::Vector6;
-use serde_json::{json as value, Map, Value};
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
+use serde::Serialize;
+use serde_json::{Map, Value};
+use std::borrow::Cow;
 use std::path::PathBuf;
 use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
 use stiffid::formats::path;
-use stiffid::{ik, Setup};
+use stiffid::{ik, Coordinates, Setup};
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -55,6 +58,117 @@ pub struct Args {
     tool_axis_range_deg: f64,
 }
 
+/// `stiffid compensate --json` (and the report's `summary.json`).
+#[derive(Serialize, JsonSchema)]
+pub struct Document<'a> {
+    /// `stiffid compensate`: marks a report directory as ours.
+    generator: &'static str,
+    /// The setup as given (`--setup`).
+    setup: &'a str,
+    /// The stiffness file (`--stiffness`).
+    stiffness: String,
+    /// The path file (`--path`).
+    path: String,
+    /// The CSV written (`--out`).
+    out: String,
+    /// Where the springs sit.
+    springs: Coordinates,
+    /// The joint stiffness used, Nm/rad.
+    stiffness_nm_per_rad: [f64; 6],
+    /// Whether the stiffness file has the compliance covariance (then the `*_std_*` columns
+    /// have values).
+    has_covariance: bool,
+    /// With `--free-tool-axis`: its options; else `null`.
+    free_tool_axis: Option<FreeToolAxisJson>,
+    /// The largest and mean values along the path.
+    summary: SummaryJson,
+    /// One object per path point: the columns of the CSV by name.
+    points: Vec<Row>,
+}
+
+/// The options of `--free-tool-axis`.
+#[derive(Serialize, JsonSchema)]
+struct FreeToolAxisJson {
+    /// The largest change of the rotation about tool z between consecutive points, deg.
+    max_step_deg: f64,
+    /// The rotation stays within +- this of the path's, deg.
+    range_deg: f64,
+}
+
+/// The largest and mean values along the path.
+#[derive(Serialize, JsonSchema)]
+struct SummaryJson {
+    /// Path points.
+    points: usize,
+    /// The largest TCP deflection, mm.
+    max_deflection_mm: f64,
+    /// Its line in the path file.
+    max_deflection_line: u64,
+    /// The mean TCP deflection, mm.
+    mean_deflection_mm: f64,
+    /// The largest tool rotation, mrad.
+    max_rotation_mrad: f64,
+    /// The largest position residual of the compensated axis angles, um.
+    max_residual_um: f64,
+    /// The largest rotation residual, urad.
+    max_residual_urad: f64,
+    /// The most Newton steps of a point.
+    max_iterations: usize,
+    /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
+    free_tool_axis: Option<FreeSummaryJson>,
+}
+
+/// What the free tool axis gained.
+#[derive(Serialize, JsonSchema)]
+struct FreeSummaryJson {
+    /// Sum of the TCP deflections with the path's rotation, mm.
+    sum_deflection_before_mm: f64,
+    /// Sum of the TCP deflections with the rotations chosen, mm.
+    sum_deflection_after_mm: f64,
+    /// The smallest and largest rotation chosen, deg.
+    tool_rotation_range_deg: [f64; 2],
+}
+
+/// One path point: the columns of [`header`] by name, `null` for an empty cell.
+pub struct Row(Map<String, Value>);
+
+impl Serialize for Row {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.0.serialize(serializer)
+    }
+}
+
+impl JsonSchema for Row {
+    fn schema_name() -> Cow<'static, str> {
+        "Row".into()
+    }
+
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        let columns = header();
+        let properties: Map<String, Value> = columns
+            .iter()
+            .map(|name| {
+                let kind = match may_be_empty(name) {
+                    true => serde_json::json!(["number", "null"]),
+                    false => serde_json::json!("number"),
+                };
+                (name.clone(), serde_json::json!({ "type": kind }))
+            })
+            .collect();
+        json_schema!({
+            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis).",
+            "type": "object",
+            "properties": properties,
+            "required": columns,
+        })
+    }
+}
+
+/// Whether the column `name` may be empty (see [`Row`]'s schema).
+fn may_be_empty(name: &str) -> bool {
+    name.contains("_std_") || name == "d_norm_before_mm"
+}
+
 /// Compensates, writes the CSV (and the report), prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
@@ -80,22 +194,24 @@ pub fn run(args: &Args) -> Result<()> {
     let table = table(&results, &lines);
     out.write(table.csv().as_bytes())?;
     let summary = Summary::of(&results, &lines);
-    let document = value!({
-        "generator": compensation::GENERATOR,
-        "setup": args.setup,
-        "stiffness": args.stiffness.display().to_string(),
-        "path": args.path.display().to_string(),
-        "out": args.out.display().to_string(),
-        "springs": setup.springs(),
-        "stiffness_nm_per_rad": file.stiffness_nm_per_rad,
-        "has_covariance": compliance.covariance.is_some(),
-        "free_tool_axis": options.free_tool_axis.map(|f| value!({
-            "max_step_deg": f.max_step.to_degrees(),
-            "range_deg": f.range.to_degrees(),
-        })),
-        "summary": summary.json(),
-        "points": table.json(),
-    });
+    let document = Document {
+        generator: compensation::GENERATOR,
+        setup: &args.setup,
+        stiffness: args.stiffness.display().to_string(),
+        path: args.path.display().to_string(),
+        out: args.out.display().to_string(),
+        springs: setup.springs(),
+        stiffness_nm_per_rad: file.stiffness_nm_per_rad,
+        has_covariance: compliance.covariance.is_some(),
+        free_tool_axis: options.free_tool_axis.map(|f| FreeToolAxisJson {
+            max_step_deg: f.max_step.to_degrees(),
+            range_deg: f.range.to_degrees(),
+        }),
+        summary: summary.json(),
+        points: table.json(),
+    };
+    // Through a `Value`: its keys in alphabetical order, as the output has always had them.
+    let document = serde_json::to_value(&document)?;
     if let Some(dir) = report {
         compensation::write(dir, &setup, &results, &table, &document)?;
     }
@@ -148,7 +264,8 @@ fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
     items.iter().map(|i| format!("{prefix}{i}{unit}")).collect()
 }
 
-fn table(results: &[Compensated], lines: &[u64]) -> Table {
+/// The column names of the table.
+fn header() -> Vec<String> {
     let axes = ["1", "2", "3", "4", "5", "6"];
     let xyz = ["x", "y", "z"];
     let mut header = vec!["point".to_string(), "line".to_string()];
@@ -173,13 +290,20 @@ fn table(results: &[Compensated], lines: &[u64]) -> Table {
             .iter()
             .map(|s| s.to_string()),
     );
+    header
+}
+
+fn table(results: &[Compensated], lines: &[u64]) -> Table {
     let rows = results
         .iter()
         .zip(lines)
         .enumerate()
         .map(|(i, (r, line))| row(i, *line, r))
         .collect();
-    Table { header, rows }
+    Table {
+        header: header(),
+        rows,
+    }
 }
 
 fn row(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
@@ -220,21 +344,19 @@ impl Table {
     }
 
     /// One JSON object per point, keyed by the column names (`null` for a missing value).
-    pub fn json(&self) -> Value {
-        Value::Array(
-            self.rows
-                .iter()
-                .map(|row| {
-                    let map: Map<String, Value> = self
-                        .header
-                        .iter()
-                        .zip(row)
-                        .map(|(h, v)| (h.clone(), value!(v)))
-                        .collect();
-                    Value::Object(map)
-                })
-                .collect(),
-        )
+    pub fn json(&self) -> Vec<Row> {
+        self.rows
+            .iter()
+            .map(|row| {
+                let map = self
+                    .header
+                    .iter()
+                    .zip(row)
+                    .map(|(h, v)| (h.clone(), serde_json::json!(v)))
+                    .collect();
+                Row(map)
+            })
+            .collect()
     }
 }
 
@@ -297,22 +419,22 @@ impl Summary {
         }
     }
 
-    fn json(&self) -> Value {
-        value!({
-            "points": self.points,
-            "max_deflection_mm": self.max_deflection_mm.0,
-            "max_deflection_line": self.max_deflection_mm.1,
-            "mean_deflection_mm": self.mean_deflection_mm,
-            "max_rotation_mrad": self.max_rotation_mrad,
-            "max_residual_um": self.max_residual_um,
-            "max_residual_urad": self.max_residual_urad,
-            "max_iterations": self.max_iterations,
-            "free_tool_axis": self.free.map(|(before, after, lo, hi)| value!({
-                "sum_deflection_before_mm": before,
-                "sum_deflection_after_mm": after,
-                "tool_rotation_range_deg": [lo, hi],
-            })),
-        })
+    fn json(&self) -> SummaryJson {
+        SummaryJson {
+            points: self.points,
+            max_deflection_mm: self.max_deflection_mm.0,
+            max_deflection_line: self.max_deflection_mm.1,
+            mean_deflection_mm: self.mean_deflection_mm,
+            max_rotation_mrad: self.max_rotation_mrad,
+            max_residual_um: self.max_residual_um,
+            max_residual_urad: self.max_residual_urad,
+            max_iterations: self.max_iterations,
+            free_tool_axis: self.free.map(|(before, after, lo, hi)| FreeSummaryJson {
+                sum_deflection_before_mm: before,
+                sum_deflection_after_mm: after,
+                tool_rotation_range_deg: [lo, hi],
+            }),
+        }
     }
 
     fn human(&self, args: &Args, setup: &Setup, covariance: bool) -> String {

@@ -5,6 +5,7 @@ use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::{Context, Result};
 use nalgebra::Vector6;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::design::{evaluate, Criterion, Evaluation};
@@ -27,30 +28,44 @@ pub struct Args {
     json: bool,
 }
 
-/// Every criterion of a group under the keys of `stiffid evaluate --json` (`null` for `+infinity`:
-/// a singular posture for `classical` and `zhang2021`, else a value beyond the floating-point
-/// range).
-#[derive(Debug, Serialize)]
+/// Every criterion of a group under the keys of `stiffid evaluate --json`, and its predicted
+/// deviation rates.
+#[derive(Debug, Serialize, JsonSchema)]
 pub struct CriteriaJson {
-    /// `max_i k(J_N)_i`.
-    pub classical: f64,
-    /// `classical * cond(Psi)`: the paper's index.
-    pub zhang2021: f64,
-    /// `cond(S)`.
-    pub scaled_cond: f64,
-    /// `det((S^T S)^-1)^(1/12)`.
-    pub d_optimal: f64,
-    /// `sqrt(mean_j [(S^T S)^-1]_jj)`.
-    pub relative_a: f64,
-    /// RMS predicted deflection error at the test postures, mm.
-    pub test_pose_mm: f64,
-    /// `cond_2(Psi)`, SI units.
-    pub cond_psi: f64,
+    #[serde(flatten)]
+    values: CriteriaValuesJson,
     /// Predicted mean deviation rate, percent, [levels][6].
-    pub predicted_deviation_pct: Vec<[f64; 6]>,
+    predicted_deviation_pct: Vec<[f64; 6]>,
 }
 
-impl From<&Evaluation> for CriteriaJson {
+/// The design criteria of a group (smaller is better; `null` for `+infinity`: a singular posture
+/// for `classical` and `zhang2021`, else a value beyond the floating-point range).
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct CriteriaValuesJson {
+    /// `max_i k(J_N)_i`.
+    #[schemars(with = "Option<f64>")]
+    classical: f64,
+    /// `classical * cond(Psi)`: the paper's index.
+    #[schemars(with = "Option<f64>")]
+    zhang2021: f64,
+    /// `cond(S)`.
+    #[schemars(with = "Option<f64>")]
+    scaled_cond: f64,
+    /// `det((S^T S)^-1)^(1/12)`.
+    #[schemars(with = "Option<f64>")]
+    d_optimal: f64,
+    /// `sqrt(mean_j [(S^T S)^-1]_jj)`.
+    #[schemars(with = "Option<f64>")]
+    relative_a: f64,
+    /// RMS predicted deflection error at the test postures, mm.
+    #[schemars(with = "Option<f64>")]
+    test_pose_mm: f64,
+    /// `cond_2(Psi)`, SI units.
+    #[schemars(with = "Option<f64>")]
+    cond_psi: f64,
+}
+
+impl From<&Evaluation> for CriteriaValuesJson {
     fn from(e: &Evaluation) -> Self {
         Self {
             classical: e.classical,
@@ -60,16 +75,25 @@ impl From<&Evaluation> for CriteriaJson {
             relative_a: e.relative_a,
             test_pose_mm: e.test_pose * 1e3,
             cond_psi: e.cond_psi,
+        }
+    }
+}
+
+impl From<&Evaluation> for CriteriaJson {
+    fn from(e: &Evaluation) -> Self {
+        Self {
+            values: CriteriaValuesJson::from(e),
             predicted_deviation_pct: e.predicted_deviation_pct.clone(),
         }
     }
 }
 
 /// `stiffid evaluate --json`: the criteria, and every posture's feasibility in the cell.
-#[derive(Serialize)]
-struct EvaluateJson {
+#[derive(Serialize, JsonSchema)]
+pub struct EvaluateJson {
     #[serde(flatten)]
     criteria: CriteriaJson,
+    /// Every posture's checks in the cell, in the order of the postures file.
     feasibility: Vec<feasibility::PostureJson>,
 }
 

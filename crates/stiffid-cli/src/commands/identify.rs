@@ -5,6 +5,7 @@
 use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::{Context, Result};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::formats::measurements::MeasurementFile;
@@ -70,108 +71,198 @@ pub struct Run<'a> {
     first_of_posture: Vec<usize>,
 }
 
-/// The JSON result. Units in the key names; intervals `[lower, upper]`; `null` for a number that
-/// is not finite (an unbounded end, an infinite stiffness) or when there are no degrees of freedom.
-#[derive(Serialize)]
-struct IdentifyJson {
+/// `stiffid identify --json` (and `--out`, a stiffness file). Units in the key names; intervals
+/// `[lower, upper]`; `null` for a number that is not finite (an unbounded end, an infinite
+/// stiffness) or when there are no degrees of freedom.
+#[derive(Serialize, JsonSchema)]
+pub struct IdentifyJson {
+    /// The setup as given (`--setup`).
     setup: String,
+    /// The measurements file (`--data`).
     data: String,
+    /// Where the springs sit: in the drives (`axis`) or on the kinematic joints.
     springs: Coordinates,
+    /// The fit: `least-squares`, `nonnegative-least-squares`, `huber` or `tukey`.
     method: &'static str,
+    /// Rows of the stacked system (3 per measurement).
     rows: usize,
+    /// Distinct postures in the file.
     postures: usize,
+    /// The identified joint stiffness, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     stiffness_nm_per_rad: [f64; 6],
+    /// The identified joint compliance (the unknowns of Eq. 14), rad/Nm.
     compliance_rad_per_nm: [f64; 6],
+    /// Whether each compliance is positive (a physical spring).
     physical: [bool; 6],
+    /// With `--nonnegative`: which compliances sit at their bound 0; else `null`.
     active_bounds: Option<[bool; 6]>,
+    /// Where the intervals below come from (`residual variance`).
     intervals_from: &'static str,
+    /// Standard error of each stiffness (delta method), Nm/rad.
+    #[schemars(with = "Option<[Option<f64>; 6]>")]
     std_error_nm_per_rad: Option<[f64; 6]>,
+    /// 95% confidence interval of each stiffness, symmetric in the stiffness, Nm/rad.
+    #[schemars(with = "Option<[[Option<f64>; 2]; 6]>")]
     ci95_nm_per_rad: Option<[[f64; 2]; 6]>,
+    /// 95% confidence interval of each stiffness, the compliance's interval inverted, Nm/rad.
+    #[schemars(with = "Option<[[Option<f64>; 2]; 6]>")]
     ci95_from_compliance_nm_per_rad: Option<[[f64; 2]; 6]>,
+    /// Standard error of each compliance, rad/Nm.
     compliance_std_error_rad_per_nm: Option<[f64; 6]>,
+    /// 95% confidence interval of each compliance, rad/Nm.
     compliance_ci95_rad_per_nm: Option<[[f64; 2]; 6]>,
+    /// `Cov(h)` of the compliance, (rad/Nm)^2, row-major.
     compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
+    /// Rows minus unknowns.
     degrees_of_freedom: Option<usize>,
+    /// Student's t quantile of the 95% intervals.
     t_quantile: Option<f64>,
+    /// Standard deviation of the residuals, mm.
     residual_std_mm: Option<f64>,
+    /// The setup's tracker noise (standard deviation per coordinate), mm.
     noise_std_mm: f64,
+    /// `residual_std_mm / noise_std_mm`: about 1 if the model is adequate.
     noise_ratio: Option<f64>,
+    /// `dof s^2 / sigma^2`: the residual variance against the tracker noise variance.
     chi2_statistic: Option<f64>,
+    /// `P(X >= chi2_statistic)` for `X ~ chi2(dof)`: small when the residuals exceed the noise.
     chi2_p_value: Option<f64>,
+    /// Whether `chi2_p_value < 0.01`: the model error dominates the tracker noise.
     model_error_dominates: Option<bool>,
+    /// The intervals computed from the setup's tracker noise instead of the residuals.
     tracker_noise: Option<IntervalsJson>,
+    /// A warning when most joints are far off the setup's nominal stiffness the same way (a unit
+    /// mistake?).
     unit_warning: Option<String>,
+    /// `cond_2(Psi)` of the observation matrix, SI units.
     cond_psi: f64,
+    /// RMS of the residuals, mm.
     residual_rms_mm: f64,
+    /// Every measurement's residual (measured - fitted), file order.
     residuals: Vec<ResidualJson>,
+    /// With `--robust`: the reweighting.
     robust: Option<RobustJson>,
+    /// With `--cross-validate` or `--folds`: the cross-validation over postures.
     cross_validation: Option<CrossValidationJson>,
 }
 
 /// Standard errors and intervals computed from a known variance.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 struct IntervalsJson {
+    /// Standard error of each stiffness, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     std_error_nm_per_rad: [f64; 6],
+    /// 95% confidence interval of each stiffness, Nm/rad.
+    #[schemars(with = "[[Option<f64>; 2]; 6]")]
     ci95_nm_per_rad: [[f64; 2]; 6],
+    /// 95% confidence interval of each stiffness from the compliance's, Nm/rad.
+    #[schemars(with = "[[Option<f64>; 2]; 6]")]
     ci95_from_compliance_nm_per_rad: [[f64; 2]; 6],
+    /// Standard error of each compliance, rad/Nm.
     compliance_std_error_rad_per_nm: [f64; 6],
+    /// 95% confidence interval of each compliance, rad/Nm.
     compliance_ci95_rad_per_nm: [[f64; 2]; 6],
+    /// The normal quantile of these 95% intervals.
     quantile: f64,
 }
 
-#[derive(Serialize)]
+/// One measurement's residual.
+#[derive(Serialize, JsonSchema)]
 struct ResidualJson {
+    /// The posture's label in the file.
     posture: String,
+    /// The measuring point (1-based).
     point: usize,
+    /// The line in the file.
     line: u64,
+    /// Measured minus fitted displacement, x, y, z, mm.
     residual_mm: [f64; 3],
 }
 
-#[derive(Serialize)]
+/// The robust fit's reweighting.
+#[derive(Serialize, JsonSchema)]
 struct RobustJson {
+    /// `huber` or `tukey`.
     loss: &'static str,
+    /// The tuning constant, MAD scales.
     tuning_constant: f64,
+    /// The robust residual scale, mm.
     scale_mm: f64,
+    /// Reweighting iterations.
     iterations: usize,
+    /// Whether the weights converged.
     converged: bool,
+    /// Every row with a weight below 1.
     down_weighted: Vec<RowJson>,
 }
 
-#[derive(Serialize)]
+/// One down-weighted row.
+#[derive(Serialize, JsonSchema)]
 struct RowJson {
+    /// The posture's label in the file.
     posture: String,
+    /// The measuring point (1-based).
     point: usize,
+    /// The line in the file.
     line: u64,
+    /// `x`, `y` or `z`.
     coordinate: char,
+    /// Its final weight, 0 to 1.
     weight: f64,
+    /// Its residual, mm.
     residual_mm: f64,
 }
 
-#[derive(Serialize)]
+/// The cross-validation over postures.
+#[derive(Serialize, JsonSchema)]
 struct CrossValidationJson {
+    /// Number of folds.
     folds: usize,
+    /// Mean over the folds of each stiffness, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     stiffness_mean_nm_per_rad: [f64; 6],
+    /// Standard deviation over the folds, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     stiffness_std_nm_per_rad: [f64; 6],
+    /// Smallest over the folds, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     stiffness_min_nm_per_rad: [f64; 6],
+    /// Largest over the folds, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     stiffness_max_nm_per_rad: [f64; 6],
+    /// RMS prediction error of the left-out measurements (Eq. 22), mm.
     rms_delta_b_mm: f64,
+    /// RMS of the measured displacements, mm.
     rms_measured_mm: f64,
+    /// `1 - rms_delta_b_mm / rms_measured_mm`.
     explained: f64,
+    /// Folds whose removal moves a stiffness by more than its standard error in the full fit.
     influential_postures: Vec<InfluentialJson>,
+    /// Every fold.
     per_fold: Vec<FoldJson>,
 }
 
-#[derive(Serialize)]
+/// One fold.
+#[derive(Serialize, JsonSchema)]
 struct FoldJson {
+    /// The postures left out (labels).
     postures: Vec<String>,
+    /// The stiffness fitted without them, Nm/rad.
+    #[schemars(with = "[Option<f64>; 6]")]
     stiffness_nm_per_rad: [f64; 6],
+    /// RMS prediction error of the left-out measurements, mm.
     rms_delta_b_mm: f64,
+    /// Prediction error of each left-out measurement (Eq. 22), mm.
     delta_b_mm: Vec<f64>,
 }
 
-#[derive(Serialize)]
+/// An influential fold.
+#[derive(Serialize, JsonSchema)]
 struct InfluentialJson {
+    /// The postures left out (labels).
     postures: Vec<String>,
+    /// The joints (1-based) it moves.
     joints: Vec<usize>,
 }
 

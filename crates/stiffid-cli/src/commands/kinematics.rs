@@ -2,6 +2,7 @@
 
 use crate::{load, output};
 use anyhow::Result;
+use schemars::JsonSchema;
 use serde::Serialize;
 use stiffid::{dexterity, limits, Coordinates};
 
@@ -51,23 +52,33 @@ impl From<CoordinatesArg> for Coordinates {
     }
 }
 
-/// The `--json` output: mm and degrees for positions and angles, SI (m/rad, rad/rad) for the
-/// Jacobian, rows `[v; omega]`. `dexterity` is `null` at a singularity.
-#[derive(Serialize)]
-struct Report {
+/// `stiffid kinematics --json`: mm and degrees for positions and angles, SI (m/rad, rad/rad) for
+/// the Jacobian, rows `[v; omega]`; base frame.
+#[derive(Serialize, JsonSchema)]
+pub struct Report {
+    /// The robot's name.
     robot: String,
     /// Where the robot comes from (for a URDF: the file and the tip link used).
     robot_source: String,
+    /// Axis angles q1..q6, deg.
     q_deg: [f64; 6],
+    /// The joint coordinates of the Jacobian's columns.
     coordinates: Coordinates,
+    /// The characteristic length of the dexterity index, mm.
     characteristic_length_mm: f64,
+    /// The point of the Jacobian, flange frame, mm.
     point_mm: [f64; 3],
+    /// The flange's origin, mm.
     flange_position_mm: [f64; 3],
     /// Rotation matrix of the flange frame in the base frame, row-major.
     flange_rotation: [[f64; 3]; 3],
+    /// The point's position, mm.
     point_position_mm: [f64; 3],
     /// Row-major, rows vx, vy, vz (m/rad), wx, wy, wz (rad/rad); column j is joint j.
     jacobian: [[f64; 6]; 6],
+    /// The dexterity index k(J_N) (Eq. 20): 1 for an isotropic Jacobian, larger is worse; `null`
+    /// at a singularity.
+    #[schemars(with = "Option<f64>")]
     dexterity: f64,
     /// Origin of each joint frame (after the joint), base frame.
     joint_positions_mm: [[f64; 3]; 6],

@@ -9,6 +9,7 @@ pub mod plot;
 pub mod predict;
 pub mod reproduce;
 pub mod robots;
+pub mod schema;
 pub mod select;
 pub mod setups;
 pub mod setups_new;

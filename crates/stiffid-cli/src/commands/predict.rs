@@ -5,6 +5,7 @@ use crate::load::{self, WrenchFrame};
 use crate::output::print_json_or;
 use anyhow::{bail, Result};
 use nalgebra::{Matrix6, Vector3, Vector6};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::cartesian;
@@ -41,41 +42,68 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct PredictJson {
+/// `stiffid predict --json`: the forward model for one posture and wrench. `*_std_*` keys are
+/// standard deviations from the stiffness file's compliance covariance, `null` without one.
+#[derive(Serialize, JsonSchema)]
+pub struct PredictJson {
+    /// The setup as given (`--setup`).
     setup: String,
+    /// Axis angles q1..q6, deg.
     q_deg: [f64; 6],
+    /// The wrench as given, fx, fy, fz (N), mx, my, mz (Nm), in `wrench_frame`.
     wrench: [f64; 6],
+    /// `base` or `tool`.
     wrench_frame: &'static str,
+    /// Where the wrench acts: a tool point in the flange frame, mm.
     wrench_point_mm: [f64; 3],
+    /// The wrench in the base frame, N and Nm.
     wrench_base_frame: [f64; 6],
+    /// The joint stiffness used, Nm/rad.
     stiffness_nm_per_rad: [f64; 6],
+    /// Joint torques, Nm.
     torques_nm: [f64; 6],
+    /// Joint deflections, mrad.
     joint_deflections_mrad: [f64; 6],
+    /// Rotation of the flange, base frame, mrad.
     flange_rotation_mrad: [f64; 3],
+    /// Its standard deviation, mrad.
     flange_rotation_std_mrad: Option<[f64; 3]>,
+    /// Every measuring point of the setup's tool.
     measuring_points: Vec<PointJson>,
+    /// The TCP's position, base frame, mm.
     tcp_mm: [f64; 3],
+    /// The TCP's displacement, base frame, mm.
     tcp_deflection_mm: [f64; 3],
+    /// Its standard deviation, mm.
     tcp_deflection_std_mm: Option<[f64; 3]>,
+    /// The tool's rotation, base frame, mrad.
     tcp_rotation_mrad: [f64; 3],
+    /// Its standard deviation, mrad.
     tcp_rotation_std_mrad: Option<[f64; 3]>,
+    /// `C_x` of the loaded point.
     cartesian_compliance: ComplianceJson,
+    /// `K_x` of the loaded point; `null` where `C_x` is singular.
     cartesian_stiffness: Option<StiffnessJson>,
 }
 
-#[derive(Serialize)]
+/// One measuring point's displacement.
+#[derive(Serialize, JsonSchema)]
 struct PointJson {
+    /// The measuring point (1-based).
     point: usize,
+    /// Its position, base frame, mm.
     position_mm: [f64; 3],
+    /// Its displacement, base frame, mm.
     displacement_mm: [f64; 3],
+    /// Its standard deviation, mm.
     displacement_std_mm: Option<[f64; 3]>,
+    /// The displacement's length, mm.
     displacement_norm_mm: f64,
 }
 
 /// `C_x` of the loaded point, base frame, by blocks and whole (rows and columns `[f; m]` and
 /// `[translation; rotation]`, SI).
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 struct ComplianceJson {
     translation_per_force_m_per_n: [[f64; 3]; 3],
     translation_per_moment_m_per_nm: [[f64; 3]; 3],
@@ -85,7 +113,7 @@ struct ComplianceJson {
 }
 
 /// `K_x = C_x^-1` of the loaded point, base frame, by blocks and whole (SI).
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 struct StiffnessJson {
     force_per_translation_n_per_m: [[f64; 3]; 3],
     force_per_rotation_n_per_rad: [[f64; 3]; 3],

@@ -12,6 +12,7 @@ use crate::report::plan;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector6;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -99,39 +100,59 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct SelectJson<'a> {
+/// `stiffid select --json`: the group found, how, and its criteria.
+#[derive(Serialize, JsonSchema)]
+pub struct SelectJson<'a> {
+    /// The setup's name.
     setup: &'a str,
+    /// The criterion minimised (`relative-a`, ...).
     criterion: &'a str,
+    /// `local`, `global` or `pool`.
     search: &'a str,
     /// The SQP objective's gradient (`exact` or `fd`); absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none")]
     gradient: Option<&'a str>,
+    /// The seed of the random start group, the global starts or the pool's exchange runs.
     seed: u64,
-    /// `null` for a pool choice (no start group).
+    /// The criterion of the start group; `null` for a pool choice (no start group) or an
+    /// infinite value.
     start_value: Option<f64>,
+    /// The criterion of the group found (`null` if infinite).
+    #[schemars(with = "Option<f64>")]
     value: f64,
+    /// Criterion evaluations of the search.
     evaluations: usize,
+    /// Wall-clock time of the search, s.
     elapsed_s: f64,
+    /// The group found, axis angles q1..q6, deg, one row per posture.
     postures_deg: Vec<[f64; 6]>,
+    /// Every criterion of the group found.
     criteria: CriteriaJson,
+    /// With `--pool`: the pool and the postures chosen from it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pool: Option<pool::PoolJson>,
+    /// With `--target-pct`: every group size tried.
     #[serde(skip_serializing_if = "Option::is_none")]
     target: Option<target::TargetJson>,
     /// With cell checks, for a local or global search: the same search without them.
     #[serde(skip_serializing_if = "Option::is_none")]
     unconstrained: Option<UnconstrainedJson>,
+    /// The postures file written (`--out`).
     out: String,
+    /// The measurement plan's directory (`--report`).
     #[serde(skip_serializing_if = "Option::is_none")]
     report: Option<String>,
 }
 
 /// The unconstrained optimum beside the feasible one: what feasibility costs.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 struct UnconstrainedJson {
+    /// Its criterion (`null` if infinite).
+    #[schemars(with = "Option<f64>")]
     value: f64,
+    /// Axis angles q1..q6, deg, one row per posture.
     postures_deg: Vec<[f64; 6]>,
+    /// Every criterion of the unconstrained group.
     criteria: CriteriaJson,
 }
 

@@ -4,6 +4,7 @@
 use crate::load;
 use crate::output::{self, json, ReportDir};
 use anyhow::Result;
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use stiffid::limits;
@@ -37,7 +38,7 @@ pub struct Args {
 }
 
 /// One group's simulation in files: deviation rates in percent, per level then joint.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 pub struct GroupJson<'a> {
     /// Name of the group.
     pub name: &'a str,
@@ -64,12 +65,18 @@ impl<'a> GroupJson<'a> {
     }
 }
 
-#[derive(Serialize)]
-struct SimulationJson<'a> {
+/// `stiffid simulate --json` (and `--out DIR/simulation.json`).
+#[derive(Serialize, JsonSchema)]
+pub struct SimulationJson<'a> {
+    /// The setup's name.
     setup: &'a str,
+    /// The seed of the measurement noise.
     seed: u64,
+    /// Monte Carlo runs per group and noise level.
     runs: usize,
+    /// The noise level multiples of the setup's variance.
     levels: &'a [f64],
+    /// One per postures file, in the order given.
     groups: Vec<GroupJson<'a>>,
 }
 

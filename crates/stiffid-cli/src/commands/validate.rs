@@ -4,6 +4,7 @@
 use crate::load;
 use crate::output::print_json_or;
 use anyhow::{Context, Result};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::validate;
@@ -25,28 +26,47 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct ValidationJson {
+/// `stiffid validate --json`: measured against predicted displacements (Eq. 22).
+#[derive(Serialize, JsonSchema)]
+pub struct ValidationJson {
+    /// The setup as given (`--setup`).
     setup: String,
+    /// The measurements file (`--data`).
     data: String,
+    /// The stiffness validated (`--stiffness`), Nm/rad.
     stiffness_nm_per_rad: [f64; 6],
+    /// Every measurement, file order.
     checks: Vec<CheckJson>,
+    /// Mean of `delta_b` over the measurements, mm.
     mean_delta_b_mm: f64,
+    /// Largest `delta_b`, mm.
     max_delta_b_mm: f64,
+    /// RMS of `delta_b`, mm.
     rms_delta_b_mm: f64,
+    /// Mean length of the measured displacements, mm.
     mean_measured_mm: f64,
+    /// Largest measured displacement, mm.
     max_measured_mm: f64,
+    /// RMS of the measured displacements, mm.
     rms_measured_mm: f64,
+    /// `1 - rms_delta_b_mm / rms_measured_mm`.
     explained: f64,
 }
 
-#[derive(Serialize)]
+/// One measurement against its prediction.
+#[derive(Serialize, JsonSchema)]
 struct CheckJson {
+    /// The posture's label in the file.
     posture: String,
+    /// The measuring point (1-based).
     point: usize,
+    /// The line in the file.
     line: u64,
+    /// Measured displacement x, y, z, base frame, mm.
     measured_mm: [f64; 3],
+    /// Predicted displacement x, y, z, base frame, mm.
     predicted_mm: [f64; 3],
+    /// `|measured - predicted|` (Eq. 22), mm.
     delta_b_mm: f64,
 }
 

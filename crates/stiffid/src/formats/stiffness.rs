@@ -13,9 +13,17 @@ use serde::{Deserialize, Serialize};
 
 /// What a stiffness file holds, as its JSON keys (other keys of the file are ignored).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct StiffnessFile {
     /// The joint stiffness `k_i`, Nm/rad, joints 1..6; each within
     /// [`limits::STIFFNESS_NM_PER_RAD`].
+    #[cfg_attr(
+        feature = "schema",
+        schemars(
+            description = "The joint stiffness `k_i`, Nm/rad, joints 1..6.",
+            inner(range(min = STIFFNESS_NM_PER_RAD.min, max = STIFFNESS_NM_PER_RAD.max))
+        )
+    )]
     pub stiffness_nm_per_rad: [f64; 6],
     /// Optional: the covariance `Cov(h)` of the compliance `h_i = 1/k_i`, (rad/Nm)^2, row-major
     /// 6x6 (paper eq. 12); finite, symmetric, non-negative diagonal.

@@ -6,6 +6,7 @@ use super::{Args, Selection};
 use crate::load;
 use crate::report::plan::describe;
 use anyhow::{bail, Context, Result};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use stiffid::cell::Checker;
@@ -22,12 +23,13 @@ pub struct Input<'a> {
 }
 
 /// A pool posture that cannot be measured, and why.
-#[derive(Serialize, Clone)]
+#[derive(Serialize, Clone, JsonSchema)]
 struct Skipped {
     /// Its number in the pool file (1-based).
     posture: usize,
     /// The checks it fails (`floor`, `rope`, ...).
     checks: Vec<&'static str>,
+    /// Every failing check in words, `; `-separated.
     reason: String,
 }
 
@@ -38,13 +40,19 @@ pub struct Chosen {
 }
 
 /// The `pool` object of `select --json`.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 pub struct PoolJson {
+    /// The pool file.
     file: String,
+    /// Postures in the pool file.
     postures: usize,
+    /// Postures that pass every check of the cell.
     usable: usize,
+    /// The postures skipped, and why.
     skipped: Vec<Skipped>,
+    /// How the group was chosen (`enumeration` or `exchange`).
     method: &'static str,
+    /// The chosen postures' numbers in the pool file (1-based).
     chosen: Vec<usize>,
 }
 

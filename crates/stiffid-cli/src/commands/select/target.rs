@@ -5,24 +5,33 @@ use super::{choose, pool, Args, Selection};
 use crate::output::OutFile;
 use crate::report::figures::target as figure;
 use anyhow::{bail, Result};
+use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::Path;
 use stiffid::design::target::{smallest_group, TargetOutcome, MAX_POSTURES};
 use stiffid::Setup;
 
 /// The `target` object of `select --json`.
-#[derive(Serialize)]
+#[derive(Serialize, JsonSchema)]
 pub struct TargetJson {
+    /// The target: predicted mean deviation rate at noise level multiple 1, percent.
     target_pct: f64,
+    /// The size of the group chosen.
     postures: usize,
+    /// Every group size tried, smallest first.
     steps: Vec<StepJson>,
 }
 
-#[derive(Serialize)]
+/// One group size tried.
+#[derive(Serialize, JsonSchema)]
 struct StepJson {
+    /// Postures in the group.
     postures: usize,
+    /// The joint (1-based) with the largest predicted rate.
     worst_joint: usize,
+    /// Its predicted mean deviation rate, percent.
     worst_joint_pct: f64,
+    /// Predicted mean deviation rate of each joint, percent.
     deviation_pct: [f64; 6],
 }
 
