@@ -165,11 +165,13 @@ pub(crate) fn inverse(a: &Matrix6<f64>) -> Option<Matrix6<f64>> {
         let inv = 1.0 / m[k][k];
         let pivot_row: [f64; 12] = std::array::from_fn(|c| m[k][c] * inv);
         m[k] = pivot_row;
+        // Whole rows, a fixed length the compiler unrolls: columns left of k are never read
+        // again, so updating them changes nothing else.
         for (r, row) in m.iter_mut().enumerate() {
             let f = row[k];
             if r != k && f != 0.0 {
-                for c in k..12 {
-                    row[c] -= f * pivot_row[c];
+                for (x, p) in row.iter_mut().zip(&pivot_row) {
+                    *x -= f * p;
                 }
             }
         }

@@ -42,27 +42,47 @@ pub fn point_rows(
 
 /// The `3p x 6` block of one posture under a wrench `[f; m]` (N, Nm, base frame) at the loading point.
 pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> DMatrix<f64> {
+    let mut block = DMatrix::zeros(3 * setup.tool().measuring_points.len(), 6);
+    write_posture_block(setup, frames, wrench, &mut block, 0);
+    block
+}
+
+/// Writes the block of one posture ([`posture_block`]) into rows `first..first + 3p` of `psi`
+/// (no temporary matrix).
+pub(crate) fn write_posture_block(
+    setup: &Setup,
+    frames: &Frames,
+    wrench: &Vector6<f64>,
+    psi: &mut DMatrix<f64>,
+    first: usize,
+) {
     let tau = joint_torques(setup, frames, wrench);
-    let p = setup.tool().measuring_points.len();
-    let mut block = DMatrix::zeros(3 * p, 6);
-    for k in 0..p {
-        block
-            .fixed_view_mut::<3, 6>(3 * k, 0)
+    for k in 0..setup.tool().measuring_points.len() {
+        psi.fixed_view_mut::<3, 6>(first + 3 * k, 0)
             .copy_from(&point_rows(setup, frames, k, &tau));
     }
-    block
 }
 
 /// The `3pn x 6` observation matrix of postures `q` (axis angles, rad) under the setup's rope-mass
 /// load (the design matrix of Section III and of the simulation of Section IV-A).
 pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMatrix<f64> {
+    rope_observation_matrix_with(setup, postures, |_| {})
+}
+
+/// [`rope_observation_matrix`], showing `each` the forward kinematics of every posture in turn
+/// (for what else a caller needs of them).
+pub(crate) fn rope_observation_matrix_with(
+    setup: &Setup,
+    postures: &[Vector6<f64>],
+    mut each: impl FnMut(&Frames),
+) -> DMatrix<f64> {
     let p3 = 3 * setup.tool().measuring_points.len();
     let mut psi = DMatrix::zeros(p3 * postures.len(), 6);
     for (i, q) in postures.iter().enumerate() {
         let frames = setup.robot().frames(q);
         let wrench = setup.rope_wrench(&frames);
-        psi.view_mut((p3 * i, 0), (p3, 6))
-            .copy_from(&posture_block(setup, &frames, &wrench));
+        write_posture_block(setup, &frames, &wrench, &mut psi, p3 * i);
+        each(&frames);
     }
     psi
 }

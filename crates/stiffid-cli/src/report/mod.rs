@@ -16,6 +16,7 @@ use crate::commands::simulate::deviation_csv;
 use crate::output::ReportDir;
 use anyhow::Result;
 use figures::Figure;
+use rayon::prelude::*;
 use std::path::Path;
 use stiffid::design::Evaluation;
 use stiffid::formats::postures;
@@ -104,20 +105,33 @@ const FILES: [&str; 4] = [
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
     dir.write(FILES[0], summary::json(study)?.as_bytes())?;
-    for f in figures {
-        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
-        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
-    }
-    for g in &study.groups {
-        let csv = postures::to_csv(&g.postures);
-        dir.write(&format!("{}.csv", g.name), csv.as_bytes())?;
-    }
     let names: Vec<String> = study.groups.iter().map(|g| g.name.clone()).collect();
     let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
-    let csv = deviation_csv(&names, &sims, &study.setup.noise().levels);
-    dir.write(FILES[1], csv.as_bytes())?;
-    dir.write(FILES[2], markdown::report(study, figures).as_bytes())?;
-    dir.write(FILES[3], html::report(study, figures).as_bytes())?;
+    let mut texts: Vec<(String, String)> = study
+        .groups
+        .iter()
+        .map(|g| (format!("{}.csv", g.name), postures::to_csv(&g.postures)))
+        .collect();
+    texts.push((
+        FILES[1].into(),
+        deviation_csv(&names, &sims, &study.setup.noise().levels),
+    ));
+    texts.push((FILES[2].into(), markdown::report(study, figures)));
+    texts.push((FILES[3].into(), html::report(study, figures)));
+    let mut files: Vec<(String, &[u8])> = Vec::new();
+    for f in figures {
+        files.push((format!("figures/{}.svg", f.name), f.svg.as_bytes()));
+        files.push((format!("figures/{}.png", f.name), &f.png));
+    }
+    files.extend(
+        texts
+            .iter()
+            .map(|(rel, text)| (rel.clone(), text.as_bytes())),
+    );
+    // In parallel: each file is synced before its rename, and the syncs overlap.
+    files
+        .par_iter()
+        .try_for_each(|(rel, bytes)| dir.write(rel, bytes))?;
     dir.finish()
 }
 

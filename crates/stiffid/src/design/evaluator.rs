@@ -15,7 +15,7 @@
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
 use crate::linalg::cond;
 use crate::lsq::Factor;
-use crate::observation::{posture_block, rope_observation_matrix};
+use crate::observation::{posture_block, rope_observation_matrix, rope_observation_matrix_with};
 use crate::setup::Setup;
 use crate::Frames;
 use nalgebra::{DMatrix, Matrix6, Vector6};
@@ -73,9 +73,17 @@ impl<'a> Evaluator<'a> {
                 .map(|q| tcp_dexterity(self.setup, &self.setup.robot().frames(q)))
                 .fold(0.0, f64::max);
         }
-        let terms: Vec<PostureTerms> = postures.iter().map(|q| self.posture(q)).collect();
-        let refs: Vec<&PostureTerms> = terms.iter().collect();
-        self.value_of(criterion, &refs)
+        // Each posture's rows straight into Psi; its dexterity only for zhang2021.
+        let mut classical = 0.0;
+        let psi = rope_observation_matrix_with(self.setup, postures, |frames| {
+            if criterion == Criterion::Zhang2021 {
+                classical = f64::max(classical, tcp_dexterity(self.setup, frames));
+            }
+        });
+        match self.factor(psi) {
+            Some(group) => self.score(criterion, &group, || classical),
+            None => f64::INFINITY,
+        }
     }
 
     /// The terms of one posture (axis angles, rad), to reuse across groups that share it (finite
@@ -203,6 +211,11 @@ impl<'a> Evaluator<'a> {
         for (i, t) in terms.iter().enumerate() {
             psi.view_mut((p3 * i, 0), (p3, 6)).copy_from(&t.block);
         }
+        self.factor(psi)
+    }
+
+    /// The factor of a group's `Psi`, `None` if rank deficient.
+    fn factor(&self, psi: DMatrix<f64>) -> Option<Group> {
         let factor = Factor::try_new(psi).ok()?;
         let (r, r_inv) = (*factor.r(), *factor.r_inv());
         // R diag(h / sigma) and its inverse diag(sigma / h) R^-1: column and row scalings.

@@ -14,6 +14,7 @@ mod trials;
 pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
 pub use spearman::spearman;
 pub use table4::{paper_table4, TABLE4};
+use trials::trials;
 pub use trials::{start_trials, StartTrial};
 
 use crate::design::{evaluate, global, local, random_group, Criterion, Evaluation, SearchOptions};
@@ -148,7 +149,8 @@ pub struct Study {
 /// Runs the study on a setup (its nominal stiffness is the true one): Group 1 a seeded random
 /// start group ([`random_group`]); Groups 2 and 3 the paper's local searches on `classical` and
 /// `zhang2021` from it; Groups 4 and 5 global searches on `relative-a` and `d-optimal`
-/// ([`global`], `options.starts` starts); then the start-group check ([`start_trials`]), the
+/// ([`global`], `options.starts` starts); then the start-group check ([`start_trials`]; its first
+/// start group is Group 1, whose local searches it reuses), the
 /// Monte Carlo identification of every group at every noise level ([`crate::simulate`]) and
 /// the validation-posture deflections with each group's mean identified stiffness. Parallel
 /// (rayon); the same options give the same study whatever the thread count.
@@ -190,11 +192,13 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
         ..SearchOptions::default()
     };
     let found = search_groups(setup, options, &search, progress)?;
-    let trials = start_trials(
+    // The first start group of the check is Group 1: its local searches are Groups 2 and 3.
+    let trials = trials(
         setup,
         options.seed..options.seed + options.trials as u64,
         &search,
         progress,
+        Some([&found[1].1, &found[2].1]),
     )?;
     let evaluations: Vec<Evaluation> = found.iter().map(|(_, p, _)| evaluate(setup, p)).collect();
     progress.begin("Monte Carlo identification", 1);

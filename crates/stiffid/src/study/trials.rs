@@ -46,7 +46,20 @@ pub fn start_trials(
     search: &SearchOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<StartTrial>> {
+    trials(setup, seeds, search, progress, None)
+}
+
+/// [`start_trials`], the local searches from the first seed's start group given as `first`
+/// (`classical`, `zhang2021`) if already done.
+pub(super) fn trials(
+    setup: &Setup,
+    seeds: std::ops::Range<u64>,
+    search: &SearchOptions,
+    progress: &dyn Progress,
+    first: Option<[&[Vector6<f64>]; 2]>,
+) -> Result<Vec<StartTrial>> {
     let done = AtomicUsize::new(0);
+    let first_seed = seeds.start;
     progress.begin("start-group check", seeds.clone().count());
     let trials = seeds
         .into_par_iter()
@@ -57,8 +70,10 @@ pub fn start_trials(
                 .into_iter()
                 .enumerate()
             {
-                let found = local(setup, c, &start, search)?;
-                avg[i + 1] = predicted_average_pct(setup, &found.postures);
+                avg[i + 1] = match first {
+                    Some(found) if seed == first_seed => predicted_average_pct(setup, found[i]),
+                    _ => predicted_average_pct(setup, &local(setup, c, &start, search)?.postures),
+                };
             }
             progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
             Ok(StartTrial {

@@ -11,6 +11,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
+use rayon::prelude::*;
 use std::sync::OnceLock;
 use stiffid::study::Study;
 
@@ -98,29 +99,32 @@ pub fn render(name: &str, caption: &str, plot: &impl Plot) -> Result<Figure> {
     })
 }
 
+/// The PNG of an RGB image: fast compression with adaptive row filters. On the report's figures
+/// that is 40x faster than `Best` (then a fifth of `stiffid reproduce`) for files 1.4x larger.
 fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>> {
     let mut out = Vec::new();
     let mut encoder = png::Encoder::new(&mut out, w, h);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_compression(png::Compression::Best);
+    encoder.set_compression(png::Compression::Fast);
+    encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
     let mut writer = encoder.write_header()?;
     writer.write_image_data(rgb)?;
     writer.finish()?;
     Ok(out)
 }
 
-/// Every figure of the report, in report order.
+/// Every figure of the report, in report order; drawn in parallel.
 pub fn all(study: &Study) -> Result<Vec<Figure>> {
-    let mut figures = vec![
-        deviation::figure(study)?,
-        table::figure(study)?,
-        criteria::figure(study)?,
-    ];
-    for g in 0..study.groups.len() {
-        figures.push(postures::figure(study, g)?);
-    }
-    Ok(figures)
+    (0..3 + study.groups.len())
+        .into_par_iter()
+        .map(|i| match i {
+            0 => deviation::figure(study),
+            1 => table::figure(study),
+            2 => criteria::figure(study),
+            _ => postures::figure(study, i - 3),
+        })
+        .collect()
 }
 
 /// `v` with 3 significant digits, no trailing zeros (axis labels).

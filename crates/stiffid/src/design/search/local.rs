@@ -336,26 +336,29 @@ impl<'a> Problem<'a> {
     }
 
     /// `ln(criterion)` at `x`, and its forward-difference gradient if asked for. A probe changes
-    /// one posture, so the other postures' terms are reused.
+    /// one posture, so the other postures' terms are reused; without a gradient the value comes
+    /// from [`Evaluator::value`], which keeps no terms.
     fn fd_objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
         let x = self.clamp(x);
         let postures = postures(&x);
+        let Some(g) = grad else {
+            let value = self.evaluator.value(self.criterion, &postures);
+            return log_value(self.record(x, &postures, value));
+        };
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
         let refs: Vec<&PostureTerms> = terms.iter().collect();
         let value = self.evaluator.value_of(self.criterion, &refs);
         let f = log_value(self.record(x.clone(), &postures, value));
-        if let Some(g) = grad {
-            self.gradient(&x, f, g, |k, probe| {
-                let i = k / 6;
-                let mut probed = postures.clone();
-                probed[i] = Vector6::from_column_slice(&probe[6 * i..6 * i + 6]);
-                let changed = self.evaluator.posture(&probed[i]);
-                let mut refs = refs.clone();
-                refs[i] = &changed;
-                let value = self.evaluator.value_of(self.criterion, &refs);
-                log_value(self.record(probe.to_vec(), &probed, value))
-            });
-        }
+        self.gradient(&x, f, g, |k, probe| {
+            let i = k / 6;
+            let mut probed = postures.clone();
+            probed[i] = Vector6::from_column_slice(&probe[6 * i..6 * i + 6]);
+            let changed = self.evaluator.posture(&probed[i]);
+            let mut refs = refs.clone();
+            refs[i] = &changed;
+            let value = self.evaluator.value_of(self.criterion, &refs);
+            log_value(self.record(probe.to_vec(), &probed, value))
+        });
         f
     }
 

@@ -1,0 +1,244 @@
+"""Types of the native module of stiffid (see the docstrings for shapes, units and sources)."""
+
+import os
+from typing import Any, Literal, Optional, Sequence, Union, final, overload
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__version__: str
+__all__: list[str]
+
+_Coordinates = Literal["axis", "kinematic"]
+_CriterionName = Literal[
+    "classical", "zhang2021", "scaled-cond", "d-optimal", "relative-a", "test-pose",
+    "scaled_cond", "d_optimal", "relative_a", "test_pose_mm",
+]
+_PathLike = Union[str, "os.PathLike[str]"]
+_Array = NDArray[np.float64]
+
+@final
+class Robot:
+    """A 6-axis serial robot (immutable); postures in deg, (6,) or (n, 6)."""
+
+    @staticmethod
+    def preset(name: str) -> "Robot": ...
+    @staticmethod
+    def presets() -> list[str]: ...
+    @staticmethod
+    def from_file(path: _PathLike, tip: Optional[str] = None) -> "Robot": ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def lower_limit_deg(self) -> _Array: ...
+    @property
+    def upper_limit_deg(self) -> _Array: ...
+    def flange_pose(self, q_deg: ArrayLike) -> _Array:
+        """(4, 4) or (n, 4, 4) homogeneous transform, translation in mm."""
+    def jacobian(
+        self, q_deg: ArrayLike, point_mm: Optional[ArrayLike] = None, coordinates: _Coordinates = "axis"
+    ) -> _Array:
+        """(6, 6) or (n, 6, 6), rows [v; omega] in m/rad and rad/rad, base frame."""
+    def read_postures(self, path: _PathLike) -> _Array:
+        """(n, 6) deg from a postures CSV (posture,q1_deg,...,q6_deg)."""
+    @overload
+    def dexterity(
+        self,
+        q_deg: Sequence[float],
+        point_mm: Optional[ArrayLike] = None,
+        characteristic_length_mm: float = 1200.0,
+        coordinates: _Coordinates = "axis",
+    ) -> float: ...
+    @overload
+    def dexterity(
+        self,
+        q_deg: ArrayLike,
+        point_mm: Optional[ArrayLike] = None,
+        characteristic_length_mm: float = 1200.0,
+        coordinates: _Coordinates = "axis",
+    ) -> Union[float, _Array]: ...
+
+@final
+class Setup:
+    """An experimental setup (read-only): mm, deg, N, Nm/rad."""
+
+    @staticmethod
+    def builtin(name: str) -> "Setup": ...
+    @staticmethod
+    def builtins() -> list[str]: ...
+    @staticmethod
+    def from_file(path: _PathLike) -> "Setup": ...
+    @staticmethod
+    def from_toml(text: str, source_name: str = "<string>", base_dir: Optional[_PathLike] = None) -> "Setup": ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def description(self) -> str: ...
+    @property
+    def robot_ref(self) -> str: ...
+    @property
+    def robot(self) -> Robot: ...
+    @property
+    def springs(self) -> _Coordinates: ...
+    @property
+    def nominal_stiffness_nm_per_rad(self) -> _Array: ...
+    @property
+    def characteristic_length_mm(self) -> float: ...
+    @property
+    def loading_point_mm(self) -> _Array: ...
+    @property
+    def measuring_points_mm(self) -> _Array: ...
+    @property
+    def tcp_mm(self) -> _Array: ...
+    @property
+    def load_n(self) -> float: ...
+    @property
+    def anchor_mm(self) -> _Array: ...
+    @property
+    def noise_variance_mm2(self) -> float: ...
+    @property
+    def level_multiples(self) -> _Array: ...
+    @property
+    def lower_deg(self) -> _Array: ...
+    @property
+    def upper_deg(self) -> _Array: ...
+    @property
+    def test_postures_deg(self) -> _Array: ...
+    def evaluate(self, postures_deg: ArrayLike) -> dict[str, Any]:
+        """Criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6)."""
+    def select(
+        self,
+        criterion: _CriterionName = "relative-a",
+        method: Optional[Literal["global", "local", "pool"]] = None,
+        start: Optional[ArrayLike] = None,
+        n: Optional[int] = None,
+        seed: int = 1,
+        *,
+        starts: Optional[int] = None,
+        screen_steps: Optional[int] = None,
+        polished: Optional[int] = None,
+        max_evals: Optional[int] = None,
+        gradient: Literal["exact", "fd"] = "exact",
+        pool: Optional[ArrayLike] = None,
+        restarts: Optional[int] = None,
+    ) -> dict[str, Any]:
+        """postures_deg (n, 6), value, start_value, evaluations, criteria, pool_* for a pool."""
+    def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...
+
+@final
+class Identification:
+    """Identified stiffness with standard errors, 95% intervals, covariance and residuals."""
+
+    @property
+    def method(self) -> str: ...
+    @property
+    def stiffness_nm_per_rad(self) -> _Array: ...
+    @property
+    def compliance_rad_per_nm(self) -> _Array: ...
+    @property
+    def physical(self) -> list[bool]: ...
+    @property
+    def std_error_nm_per_rad(self) -> Optional[_Array]: ...
+    @property
+    def ci95_nm_per_rad(self) -> Optional[_Array]: ...
+    @property
+    def ci95_from_compliance_nm_per_rad(self) -> Optional[_Array]: ...
+    @property
+    def compliance_std_error_rad_per_nm(self) -> Optional[_Array]: ...
+    @property
+    def compliance_ci95_rad_per_nm(self) -> Optional[_Array]: ...
+    @property
+    def compliance_covariance_rad2_per_nm2(self) -> Optional[_Array]: ...
+    @property
+    def degrees_of_freedom(self) -> Optional[int]: ...
+    @property
+    def t_quantile(self) -> Optional[float]: ...
+    @property
+    def residuals_mm(self) -> _Array: ...
+    @property
+    def residual_rms_mm(self) -> float: ...
+    @property
+    def cond_psi(self) -> float: ...
+    @property
+    def rows(self) -> int: ...
+    @property
+    def postures(self) -> int: ...
+    @property
+    def labels(self) -> Optional[list[str]]: ...
+    @property
+    def noise_ratio(self) -> Optional[float]: ...
+    @property
+    def chi2_statistic(self) -> Optional[float]: ...
+    @property
+    def chi2_p_value(self) -> Optional[float]: ...
+    @property
+    def model_error_dominates(self) -> Optional[bool]: ...
+
+@final
+class Study:
+    """The paper's study: groups, deviation rates (groups, levels, 6) and findings."""
+
+    @property
+    def seed(self) -> int: ...
+    @property
+    def runs(self) -> int: ...
+    @property
+    def elapsed_s(self) -> float: ...
+    @property
+    def level_multiples(self) -> _Array: ...
+    @property
+    def validation_level(self) -> int: ...
+    @property
+    def names(self) -> list[str]: ...
+    @property
+    def titles(self) -> list[str]: ...
+    @property
+    def mean_deviation_pct(self) -> _Array: ...
+    @property
+    def std_deviation_pct(self) -> _Array: ...
+    @property
+    def predicted_deviation_pct(self) -> _Array: ...
+    @property
+    def average_deviation_pct(self) -> _Array: ...
+    @property
+    def groups(self) -> list[dict[str, Any]]: ...
+    @property
+    def findings(self) -> dict[str, Any]: ...
+
+def identify(
+    setup: Setup,
+    measurements: Optional[_PathLike] = None,
+    *,
+    q_deg: Optional[ArrayLike] = None,
+    wrench: Optional[ArrayLike] = None,
+    displacement_mm: Optional[ArrayLike] = None,
+    robust: Optional[Literal["huber", "tukey"]] = None,
+    nonnegative: bool = False,
+) -> Identification: ...
+def validate(
+    setup: Setup,
+    stiffness_nm_per_rad: Union[ArrayLike, _PathLike],
+    measurements: Optional[_PathLike] = None,
+    *,
+    q_deg: Optional[ArrayLike] = None,
+    wrench: Optional[ArrayLike] = None,
+    displacement_mm: Optional[ArrayLike] = None,
+) -> dict[str, Any]: ...
+def simulate(setup: Setup, groups: Sequence[ArrayLike], runs: int = 200, seed: int = 1) -> list[dict[str, _Array]]: ...
+def reproduce(
+    setup: Optional[Setup] = None, runs: int = 200, seed: int = 1, starts: int = 16, trials: int = 20
+) -> Study: ...
+def deflection(
+    setup: Setup,
+    q_deg: ArrayLike,
+    wrench: ArrayLike,
+    *,
+    loaded_mm: Optional[ArrayLike] = None,
+    observed_mm: Optional[ArrayLike] = None,
+    stiffness_nm_per_rad: Optional[ArrayLike] = None,
+    frame: Literal["base", "tool"] = "base",
+    compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
+) -> dict[str, _Array]:
+    """displacement_mm, rotation_rad (n, 3); torques_nm, joint_deflections_rad (n, 6); std with a covariance."""

@@ -1,0 +1,151 @@
+//! NumPy arrays in and out: shapes checked with messages naming the argument, degrees and
+//! millimetres at the boundary.
+
+use crate::error::value;
+use nalgebra::{Matrix6, Vector3, Vector6};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayLikeDyn};
+use pyo3::prelude::*;
+use stiffid::limits::{self, short};
+
+/// Rows of `N` numbers from an array-like of shape `(N,)` (one row, `single`) or `(n, N)`.
+pub struct Rows<const N: usize> {
+    /// The rows, in order.
+    pub rows: Vec<[f64; N]>,
+    /// Whether the input was one row of shape `(N,)`.
+    pub single: bool,
+}
+
+/// Reads `obj` (any array-like of numbers) as [`Rows`]; `what` names the argument in errors.
+/// Refuses another shape, and a NaN or infinite value (naming its row and column).
+pub fn rows<const N: usize>(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Rows<N>> {
+    let expected = format!("expected an array of shape ({N},) or (n, {N})");
+    let array: PyArrayLikeDyn<'_, f64, AllowTypeChange> = obj
+        .extract()
+        .map_err(|_| value(format!("{what}: {expected} of numbers")))?;
+    let view = array.as_array();
+    let single = match view.shape() {
+        [c] if *c == N => true,
+        [_, c] if *c == N => false,
+        shape => {
+            let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+            let got = match dims.len() {
+                1 => format!("({},)", dims[0]),
+                _ => format!("({})", dims.join(", ")),
+            };
+            return Err(value(format!("{what}: {expected}, got shape {got}")));
+        }
+    };
+    let flat: Vec<f64> = view.iter().copied().collect();
+    let rows: Vec<[f64; N]> = flat
+        .chunks_exact(N)
+        .map(|c| std::array::from_fn(|i| c[i]))
+        .collect();
+    for (r, row) in rows.iter().enumerate() {
+        if let Some(c) = row.iter().position(|v| !v.is_finite()) {
+            return Err(value(format!(
+                "{what}[{r}, {c}] = {} is not a finite number",
+                row[c]
+            )));
+        }
+    }
+    Ok(Rows { rows, single })
+}
+
+/// Exactly one row of `N` numbers (shape `(N,)`), each within `range`.
+pub fn vector<const N: usize>(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    range: &limits::Range,
+) -> PyResult<[f64; N]> {
+    let r = rows::<N>(obj, what)?;
+    if !r.single {
+        return Err(value(format!("{what}: expected an array of shape ({N},)")));
+    }
+    limits::check(what, &r.rows[0], range).map_err(crate::error::raise)?;
+    Ok(r.rows[0])
+}
+
+/// Postures in degrees (rows of six axis angles) as radians, each axis within `[lower, upper]`
+/// (rad; `within` names them, e.g. "the setup's bounds"), at most `max` postures.
+pub fn postures(
+    obj: &Bound<'_, PyAny>,
+    what: &str,
+    (lower, upper, within): (&Vector6<f64>, &Vector6<f64>, &str),
+    max: usize,
+) -> PyResult<(Vec<Vector6<f64>>, bool)> {
+    let r = rows::<6>(obj, what)?;
+    if r.rows.is_empty() || r.rows.len() > max {
+        return Err(value(format!(
+            "{what}: expected 1 to {max} postures, got {}",
+            r.rows.len()
+        )));
+    }
+    let mut out = Vec::with_capacity(r.rows.len());
+    for (i, row) in r.rows.iter().enumerate() {
+        let q = Vector6::from_iterator(row.iter().map(|d| d.to_radians()));
+        if let Some(a) = (0..6).find(|&a| !(q[a] >= lower[a] && q[a] <= upper[a])) {
+            return Err(value(format!(
+                "{what}: posture {i}, q{}_deg = {} is outside {within} [{:.1}, {:.1}]",
+                a + 1,
+                limits::number(row[a]),
+                lower[a].to_degrees(),
+                upper[a].to_degrees()
+            )));
+        }
+        out.push(q);
+    }
+    Ok((out, r.single))
+}
+
+/// A string option among `choices`, e.g. `coordinates="axis"`.
+pub fn choice<T: Copy>(name: &str, given: &str, choices: &[(&str, T)]) -> PyResult<T> {
+    choices
+        .iter()
+        .find(|(n, _)| *n == given)
+        .map(|(_, v)| *v)
+        .ok_or_else(|| {
+            let known: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
+            value(format!(
+                "{name}: unknown value '{}' (known: {})",
+                short(given),
+                known.join(", ")
+            ))
+        })
+}
+
+/// A vector as a 1-D array.
+pub fn vec1<'py>(py: Python<'py>, v: impl IntoIterator<Item = f64>) -> Bound<'py, PyArray1<f64>> {
+    v.into_iter().collect::<Vec<f64>>().into_pyarray(py)
+}
+
+/// Rows of `N` as an `(n, N)` array.
+pub fn table<'py, const N: usize>(py: Python<'py>, rows: &[[f64; N]]) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((rows.len(), N), |(r, c)| rows[r][c]).into_pyarray(py)
+}
+
+/// Postures (rad) as an `(n, 6)` array of degrees.
+pub fn degrees<'py>(py: Python<'py>, postures: &[Vector6<f64>]) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((postures.len(), 6), |(r, c)| postures[r][c].to_degrees())
+        .into_pyarray(py)
+}
+
+/// Points (m) as an `(n, 3)` array of millimetres.
+pub fn millimetres<'py>(py: Python<'py>, points: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((points.len(), 3), |(r, c)| points[r][c] * 1e3).into_pyarray(py)
+}
+
+/// A 6x6 matrix as a `(6, 6)` array (row-major as printed).
+pub fn matrix6<'py>(py: Python<'py>, m: &Matrix6<f64>) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((6, 6), |(r, c)| m[(r, c)]).into_pyarray(py)
+}
+
+/// Square matrices of size `N` (given by a function of the index, row, column) as an `(n, N, N)`
+/// array.
+pub fn stack<'py, const N: usize>(
+    py: Python<'py>,
+    n: usize,
+    entry: impl Fn(usize, usize, usize) -> f64,
+) -> Bound<'py, PyArray3<f64>> {
+    Array3::from_shape_fn((n, N, N), |(k, r, c)| entry(k, r, c)).into_pyarray(py)
+}

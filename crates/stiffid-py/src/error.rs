@@ -1,0 +1,47 @@
+//! The library's errors as Python exceptions.
+
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::PyErr;
+use std::path::Path;
+use stiffid::Error;
+
+/// `RuntimeError` for a computation that found no answer (no feasible group, a pose out of
+/// reach), `ValueError` for everything else (the input is wrong), with the library's message.
+pub fn raise(e: Error) -> PyErr {
+    exception(&e, e.to_string())
+}
+
+/// [`raise`] with the message after `name` (a file): `name: message`.
+pub fn raise_in(name: &str, e: Error) -> PyErr {
+    exception(&e, format!("{name}: {e}"))
+}
+
+fn exception(e: &Error, message: String) -> PyErr {
+    match e {
+        Error::Infeasible { .. } | Error::Unreachable { .. } => PyRuntimeError::new_err(message),
+        _ => PyValueError::new_err(message),
+    }
+}
+
+/// A `ValueError` with this message.
+pub fn value(message: impl Into<String>) -> PyErr {
+    PyValueError::new_err(message.into())
+}
+
+/// The text of a file, the path in the error (`FileNotFoundError` or `OSError`; `ValueError` for
+/// a file that is not UTF-8 text).
+pub fn read(path: &Path) -> Result<String, PyErr> {
+    let name = path.display();
+    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => {
+            PyFileNotFoundError::new_err(format!("{name}: no such file"))
+        }
+        _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
+    })?;
+    String::from_utf8(bytes).map_err(|e| {
+        value(format!(
+            "{name}: not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}

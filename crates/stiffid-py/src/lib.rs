@@ -1,0 +1,34 @@
+//! Python bindings of stiffid: the `stiffid` package (PyO3 + NumPy), a thin layer over the
+//! library's API. Postures and points cross the boundary in degrees and millimetres, as in the
+//! files and on the command line; Jacobians, compliances and stiffness in SI units, as the library
+//! computes them. Every key and attribute carries its unit in its name.
+//!
+//! Errors: [`stiffid::Error`] becomes `ValueError` (bad input) or `RuntimeError` (a search that
+//! found nothing feasible), with the library's message. Long calls release the GIL.
+
+mod arrays;
+mod deflection;
+mod design;
+mod error;
+mod measure;
+mod robot;
+mod setup;
+mod study;
+
+use pyo3::prelude::*;
+
+/// The native module, re-exported by the `stiffid` package.
+#[pymodule]
+fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<robot::Robot>()?;
+    m.add_class::<setup::Setup>()?;
+    m.add_class::<measure::Identification>()?;
+    m.add_class::<study::Study>()?;
+    m.add_function(wrap_pyfunction!(measure::identify, m)?)?;
+    m.add_function(wrap_pyfunction!(measure::validate, m)?)?;
+    m.add_function(wrap_pyfunction!(study::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
+    m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
+    Ok(())
+}

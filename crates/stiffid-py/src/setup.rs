@@ -1,0 +1,301 @@
+//! `stiffid.Setup`: an experimental cell (robot, tool, loading, noise, bounds, nominal stiffness),
+//! read-only, with the design methods (evaluate, select) of [`crate::design`].
+
+use crate::arrays::{self, postures};
+use crate::design;
+use crate::error::{self, raise};
+use crate::robot::{coordinates_name, parse_file, Robot};
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyAny, PyDict};
+use std::path::{Path, PathBuf};
+use stiffid::robot::presets;
+use stiffid::{setup, Error};
+
+/// An experimental setup (read-only). Lengths in mm, angles in deg, stiffness in Nm/rad.
+#[pyclass(frozen, module = "stiffid", name = "Setup")]
+pub struct Setup {
+    pub inner: stiffid::Setup,
+}
+
+#[pymethods]
+impl Setup {
+    /// A built-in setup (see ``Setup.builtins()``): ``"zhang2021-comau-nj165"`` (the paper's
+    /// cell) or ``"fanuc-r2000ic-165f"`` (the real data's). ``ValueError`` for an unknown name.
+    #[staticmethod]
+    fn builtin(name: &str) -> PyResult<Self> {
+        Ok(Self {
+            inner: setup::builtin(name).map_err(raise)?,
+        })
+    }
+
+    /// The names of the built-in setups.
+    #[staticmethod]
+    fn builtins() -> Vec<&'static str> {
+        setup::builtin_names().collect()
+    }
+
+    /// A setup from a setup ``.toml`` file; a robot file it names is looked for relative to the
+    /// file (a preset name wins over a path that does not exist).
+    #[staticmethod]
+    fn from_file(path: PathBuf) -> PyResult<Self> {
+        let text = error::read(&path)?;
+        let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+        Self::parse(&text, &path.display().to_string(), &dir)
+    }
+
+    /// A setup from the text of a setup TOML (``source_name`` names it in errors; robot files are
+    /// looked for in ``base_dir``, default the current directory).
+    #[staticmethod]
+    #[pyo3(signature = (text, source_name="<string>", base_dir=None))]
+    fn from_toml(text: &str, source_name: &str, base_dir: Option<PathBuf>) -> PyResult<Self> {
+        Self::parse(text, source_name, &base_dir.unwrap_or_default())
+    }
+
+    /// Short name, e.g. ``"zhang2021-comau-nj165"``.
+    #[getter]
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+
+    /// What this cell is, free text.
+    #[getter]
+    fn description(&self) -> &str {
+        self.inner.description()
+    }
+
+    /// The robot reference as written (a preset name or a file).
+    #[getter]
+    fn robot_ref(&self) -> &str {
+        self.inner.robot_ref()
+    }
+
+    /// The robot (with the setup's base and flange offsets).
+    #[getter]
+    fn robot(&self) -> Robot {
+        Robot {
+            inner: self.inner.robot().clone(),
+        }
+    }
+
+    /// Where the springs sit: ``"axis"`` (in the drives) or ``"kinematic"``.
+    #[getter]
+    fn springs(&self) -> &'static str {
+        coordinates_name(self.inner.springs())
+    }
+
+    /// Nominal (in simulation: true) joint stiffness, Nm/rad, shape ``(6,)`` (Table 2).
+    #[getter]
+    fn nominal_stiffness_nm_per_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.nominal_stiffness().iter().copied())
+    }
+
+    /// Characteristic length ``L`` of the dexterity index (Eq. 20), mm.
+    #[getter]
+    fn characteristic_length_mm(&self) -> f64 {
+        self.inner.characteristic_length() * 1e3
+    }
+
+    /// Loading point, flange frame, mm, shape ``(3,)``.
+    #[getter]
+    fn loading_point_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.tool().loading_point.iter().map(|v| v * 1e3))
+    }
+
+    /// Measuring points, flange frame, mm, shape ``(p, 3)``.
+    #[getter]
+    fn measuring_points_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        arrays::millimetres(py, &self.inner.tool().measuring_points)
+    }
+
+    /// Tool centre point of the dexterity index, flange frame, mm, shape ``(3,)``.
+    #[getter]
+    fn tcp_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.tool().tcp.iter().map(|v| v * 1e3))
+    }
+
+    /// Rope load ``G``, N.
+    #[getter]
+    fn load_n(&self) -> f64 {
+        self.inner.load().load
+    }
+
+    /// Rope anchor (pulley) ``P2``, base frame, mm, shape ``(3,)``.
+    #[getter]
+    fn anchor_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.load().anchor.iter().map(|v| v * 1e3))
+    }
+
+    /// Variance of one measured coordinate at noise multiple 1, mm^2.
+    #[getter]
+    fn noise_variance_mm2(&self) -> f64 {
+        self.inner.noise().variance * 1e6
+    }
+
+    /// Noise levels as multiples of the variance, shape ``(levels,)`` (Table 3).
+    #[getter]
+    fn level_multiples<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.noise().levels.iter().copied())
+    }
+
+    /// Lower experiment bounds, axis angles, deg, shape ``(6,)`` (Table 1).
+    #[getter]
+    fn lower_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.bounds().lower.iter().map(|v| v.to_degrees()))
+    }
+
+    /// Upper experiment bounds, axis angles, deg, shape ``(6,)`` (Table 1).
+    #[getter]
+    fn upper_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.bounds().upper.iter().map(|v| v.to_degrees()))
+    }
+
+    /// Test (validation) postures, axis angles, deg, shape ``(t, 6)`` (Table 5).
+    #[getter]
+    fn test_postures_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        arrays::degrees(py, self.inner.test_postures())
+    }
+
+    /// Every design criterion of a group of postures (``postures_deg``, shape ``(n, 6)``, axis
+    /// angles within the setup's bounds) and the first-order predicted deviation rates, as
+    /// ``stiffid evaluate --json``: ``classical``, ``zhang2021``, ``scaled_cond``, ``d_optimal``,
+    /// ``relative_a``, ``test_pose_mm``, ``cond_psi`` (floats, ``inf`` for a singular posture),
+    /// ``relative_std`` (shape ``(6,)``) and ``predicted_deviation_pct`` (shape ``(levels, 6)``,
+    /// percent: ``100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)``). Sources: Zhang et al. 2021,
+    /// Eq. 19-21; DESIGN.md section 5. ``ValueError`` for a group that cannot identify every joint.
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        postures_deg: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let group = self.group(postures_deg, "postures_deg")?;
+        design::evaluate(py, &self.inner, &group)
+    }
+
+    /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises ``criterion`` (``"classical"``,
+    /// ``"zhang2021"``, ``"scaled-cond"``, ``"d-optimal"``, ``"relative-a"``, ``"test-pose"``)
+    /// within the setup's bounds and cell checks, as ``stiffid select``:
+    ///
+    /// - ``method="global"`` (default): ``starts`` local searches from seeded Latin-hypercube
+    ///   groups (default 32; ``screen_steps`` SQP steps each, default 60, then the best
+    ///   ``polished``, default 8, continue), the best kept;
+    /// - ``method="local"``: SQP (SLSQP) from ``start`` (shape ``(n, 6)``, deg), or from the
+    ///   seeded random group of ``n`` postures when ``start`` is None (the paper's procedure);
+    /// - ``method="pool"`` (or ``pool`` given): the best ``n`` of the postures ``pool``
+    ///   (shape ``(m, 6)``, deg, at most 10000; postures failing a cell check are skipped), exact
+    ///   by enumeration up to 100000 groups, else the best of ``restarts`` exchange runs.
+    ///
+    /// ``max_evals`` bounds the evaluations of one local search (default 6000); ``gradient`` is
+    /// ``"exact"`` or ``"fd"``. Deterministic for a ``seed``. Returns a dict: ``method``,
+    /// ``criterion``, ``postures_deg`` (shape ``(n, 6)``), ``value``, ``start_value`` (None for a
+    /// pool), ``evaluations``, ``criteria`` (the dict of ``evaluate``) and, for a pool,
+    /// ``pool_indices`` (0-based rows of ``pool``) and ``pool_skipped`` (rows skipped and the
+    /// checks they fail). ``RuntimeError`` when no feasible group is found.
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", pool=None, restarts=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn select<'py>(
+        &self,
+        py: Python<'py>,
+        criterion: &str,
+        method: Option<&str>,
+        start: Option<&Bound<'py, PyAny>>,
+        n: Option<usize>,
+        seed: u64,
+        starts: Option<u64>,
+        screen_steps: Option<u64>,
+        polished: Option<u64>,
+        max_evals: Option<u64>,
+        gradient: &str,
+        pool: Option<&Bound<'py, PyAny>>,
+        restarts: Option<u64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let start = start.map(|s| self.group(s, "start")).transpose()?;
+        let pool = match pool {
+            None => None,
+            Some(p) => Some(self.pool(p)?),
+        };
+        let request = design::Request {
+            criterion,
+            method,
+            start,
+            n,
+            seed,
+            starts,
+            screen_steps,
+            polished,
+            max_evals,
+            gradient,
+            pool,
+            restarts,
+        };
+        design::select(py, &self.inner, request)
+    }
+
+    /// A seeded Latin-hypercube group of ``n`` postures within the bounds (the start group of a
+    /// local search), deg, shape ``(n, 6)``.
+    #[pyo3(signature = (n=6, seed=1))]
+    fn random_group<'py>(
+        &self,
+        py: Python<'py>,
+        n: usize,
+        seed: u64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        design::check_postures(n)?;
+        Ok(arrays::degrees(
+            py,
+            &stiffid::design::random_group(&self.inner, n, seed),
+        ))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Setup({:?})", self.inner.name())
+    }
+}
+
+impl Setup {
+    fn parse(text: &str, source_name: &str, dir: &Path) -> PyResult<Self> {
+        let inner = setup::parse(text, source_name, |r, tip| {
+            robot_in(dir, r, tip, source_name)
+        });
+        Ok(Self {
+            inner: inner.map_err(raise)?,
+        })
+    }
+
+    /// A group of postures within the setup's bounds (at most 10000).
+    pub fn group(
+        &self,
+        obj: &Bound<'_, PyAny>,
+        what: &str,
+    ) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
+        let b = &self.inner.bounds();
+        let within = (&b.lower, &b.upper, "the setup's bounds");
+        Ok(postures(obj, what, within, stiffid::limits::MAX_GROUP_POSTURES)?.0)
+    }
+
+    /// Pool postures: within the robot's joint limits (the cell's checks, bounds included, decide
+    /// which are usable).
+    fn pool(&self, obj: &Bound<'_, PyAny>) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
+        let r = &self.inner.robot();
+        let within = (&r.lower, &r.upper, "the joint limits");
+        Ok(postures(obj, "pool", within, stiffid::design::pool::MAX_POOL)?.0)
+    }
+}
+
+/// The robot a setup names: a robot file relative to `dir` if one exists, else a preset.
+fn robot_in(
+    dir: &Path,
+    reference: &str,
+    tip: Option<&str>,
+    source_name: &str,
+) -> stiffid::Result<stiffid::Robot> {
+    let path = dir.join(reference);
+    if !path.exists() {
+        return presets::get(reference);
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| Error::Parse {
+        source_name: format!("{source_name}: robot"),
+        message: format!("{}: cannot read: {e}", path.display()),
+    })?;
+    parse_file(&path, &text, tip)
+}

@@ -1,0 +1,272 @@
+//! `stiffid.simulate` and `stiffid.reproduce`: the Monte Carlo identification of groups of
+//! postures and the paper's simulation study, over [`stiffid::simulate`] and [`stiffid::study`].
+
+use crate::arrays;
+use crate::design::criteria;
+use crate::error::{raise, value};
+use crate::setup::Setup;
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray3};
+use pyo3::prelude::*;
+use pyo3::types::{PyAny, PyDict, PyList};
+use stiffid::limits::{self, check_count};
+use stiffid::simulate::{self as monte_carlo, GroupSimulation};
+use stiffid::study::{self, findings, Options};
+
+/// A count within `[min, max]` (`field` names it in errors).
+fn count(field: &str, v: u64, min: u64, max: u64) -> PyResult<usize> {
+    check_count(field, v as usize, min as usize, max as usize).map_err(raise)?;
+    Ok(v as usize)
+}
+
+/// A group's simulation as a dict of `(levels, 6)` arrays.
+fn simulation<'py>(py: Python<'py>, s: &GroupSimulation, d: &Bound<'py, PyDict>) -> PyResult<()> {
+    d.set_item(
+        "mean_deviation_pct",
+        arrays::table(py, &s.mean_deviation_pct),
+    )?;
+    d.set_item("std_deviation_pct", arrays::table(py, &s.std_deviation_pct))?;
+    let predicted = &s.predicted_deviation_pct;
+    d.set_item("predicted_deviation_pct", arrays::table(py, predicted))?;
+    let k: Vec<[f64; 6]> = s.mean_stiffness.iter().map(|k| (*k).into()).collect();
+    d.set_item("mean_stiffness_nm_per_rad", arrays::table(py, &k))?;
+    Ok(())
+}
+
+/// Simulates the identification with each group of postures (``groups``: a list of arrays of
+/// shape ``(n_i, 6)``, axis angles in deg within the setup's bounds; at most 100 groups) at every
+/// noise level of the setup, ``runs`` times (1 to 100000; the paper: 200), the noise seeded by
+/// ``seed`` (Zhang et al. 2021, Section IV-A, Fig. 8). Returns one dict per group:
+/// ``mean_deviation_pct``, ``std_deviation_pct``, ``predicted_deviation_pct`` (first order) and
+/// ``mean_stiffness_nm_per_rad``, each of shape ``(levels, 6)``. The same seed gives the same
+/// numbers whatever the thread count.
+#[pyfunction]
+#[pyo3(signature = (setup, groups, runs=200, seed=1))]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    setup: &Setup,
+    groups: &Bound<'py, PyAny>,
+    runs: u64,
+    seed: u64,
+) -> PyResult<Bound<'py, PyList>> {
+    let runs = count("runs", runs, 1, limits::MAX_RUNS)?;
+    let items: Vec<Bound<'py, PyAny>> = groups
+        .try_iter()
+        .map_err(|_| value("groups: expected a list of (n, 6) arrays"))?
+        .collect::<PyResult<_>>()?;
+    count("groups", items.len() as u64, 1, limits::MAX_GROUPS as u64)?;
+    let groups = items
+        .iter()
+        .enumerate()
+        .map(|(i, g)| setup.group(g, &format!("groups[{i}]")))
+        .collect::<PyResult<Vec<_>>>()?;
+    let options = monte_carlo::Options { runs, seed };
+    let sims = py
+        .detach(|| monte_carlo::monte_carlo(&setup.inner, &groups, &options))
+        .map_err(raise)?;
+    let out = PyList::empty(py);
+    for s in &sims {
+        let d = PyDict::new(py);
+        simulation(py, s, &d)?;
+        out.append(d)?;
+    }
+    Ok(out)
+}
+
+/// The paper's simulation study (``stiffid reproduce``): Group 1 a seeded random start group,
+/// Groups 2 and 3 the paper's local searches on ``classical`` and ``zhang2021`` from it, Groups 4
+/// and 5 global searches on ``relative-a`` and ``d-optimal`` (``starts`` starts each), the
+/// start-group check over ``trials`` start groups, and the Monte Carlo identification of every
+/// group at every noise level (``runs`` runs). ``setup`` defaults to the paper's
+/// (``"zhang2021-comau-nj165"``). Deterministic for a ``seed``; returns a ``Study``.
+#[pyfunction]
+#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20))]
+pub fn reproduce(
+    py: Python<'_>,
+    setup: Option<&Setup>,
+    runs: u64,
+    seed: u64,
+    starts: u64,
+    trials: u64,
+) -> PyResult<Study> {
+    let options = Options {
+        runs: count("runs", runs, 1, limits::MAX_RUNS)?,
+        seed,
+        starts: count("starts", starts, 1, limits::MAX_STARTS)?,
+        trials: count("trials", trials, 0, limits::MAX_TRIALS)?,
+    };
+    let paper;
+    let setup = match setup {
+        Some(s) => &s.inner,
+        None => {
+            paper = stiffid::setup::builtin("zhang2021-comau-nj165").map_err(raise)?;
+            &paper
+        }
+    };
+    let study = py
+        .detach(|| study::run(setup, &options, &()))
+        .map_err(raise)?;
+    Ok(Study { inner: study })
+}
+
+/// The result of ``stiffid.reproduce``: every group's postures, criteria and deviation rates,
+/// and the findings. Deviation rates in percent; arrays over groups in the groups' order.
+#[pyclass(frozen, module = "stiffid", name = "Study")]
+pub struct Study {
+    inner: study::Study,
+}
+
+#[pymethods]
+impl Study {
+    /// Seed of everything random.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.inner.seed
+    }
+
+    /// Monte Carlo runs per group and noise level.
+    #[getter]
+    fn runs(&self) -> usize {
+        self.inner.runs
+    }
+
+    /// Wall time of the study, s.
+    #[getter]
+    fn elapsed_s(&self) -> f64 {
+        self.inner.elapsed_s
+    }
+
+    /// The noise levels, multiples of the variance, shape ``(levels,)``.
+    #[getter]
+    fn level_multiples<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arrays::vec1(py, self.inner.setup.noise().levels.iter().copied())
+    }
+
+    /// The noise level (0-based) whose mean stiffness is validated: the one nearest multiple 1.
+    #[getter]
+    fn validation_level(&self) -> usize {
+        self.inner.validation_level
+    }
+
+    /// The groups' names, e.g. ``"group3-zhang2021"``.
+    #[getter]
+    fn names(&self) -> Vec<String> {
+        self.inner.groups.iter().map(|g| g.name.clone()).collect()
+    }
+
+    /// The groups' titles, e.g. ``"Group 3 (zhang2021, local)"`` (the legend of Fig. 8).
+    #[getter]
+    fn titles(&self) -> Vec<String> {
+        self.inner.groups.iter().map(|g| g.title.clone()).collect()
+    }
+
+    /// Mean deviation rate ``|k_id - k_true| / k_true`` over the runs, %, shape
+    /// ``(groups, levels, 6)`` (Fig. 8, Table 4).
+    #[getter]
+    fn mean_deviation_pct<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        self.rates(py, |s| &s.mean_deviation_pct)
+    }
+
+    /// Sample standard deviation of the deviation rate, %, shape ``(groups, levels, 6)``.
+    #[getter]
+    fn std_deviation_pct<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        self.rates(py, |s| &s.std_deviation_pct)
+    }
+
+    /// First-order predicted mean deviation rate, %, shape ``(groups, levels, 6)``.
+    #[getter]
+    fn predicted_deviation_pct<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        self.rates(py, |s| &s.predicted_deviation_pct)
+    }
+
+    /// Each group's mean over levels and joints of the mean deviation rate, %, shape
+    /// ``(groups,)``.
+    #[getter]
+    fn average_deviation_pct<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let g = &self.inner.groups;
+        arrays::vec1(py, g.iter().map(|g| g.average_deviation_pct()))
+    }
+
+    /// One dict per group, the keys of ``summary.json``'s groups: ``name``, ``title``,
+    /// ``criterion`` (None for the start group), ``search_evaluations``, ``postures_deg``
+    /// (``(n, 6)``), the criteria of ``Setup.evaluate`` (``classical`` ... ``cond_psi``),
+    /// ``mean_deviation_pct``, ``std_deviation_pct``, ``predicted_deviation_pct``,
+    /// ``mean_stiffness_nm_per_rad`` (``(levels, 6)``), ``average_deviation_pct`` and
+    /// ``validation_error_mm`` (``(test postures, measuring points)``).
+    #[getter]
+    fn groups<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let out = PyList::empty(py);
+        for g in &self.inner.groups {
+            let d = criteria(py, &g.evaluation)?;
+            d.set_item("name", &g.name)?;
+            d.set_item("title", &g.title)?;
+            d.set_item("criterion", g.origin.criterion().map(|c| c.name()))?;
+            d.set_item("search_evaluations", g.evaluations)?;
+            d.set_item("postures_deg", arrays::degrees(py, &g.postures))?;
+            simulation(py, &g.simulation, &d)?;
+            d.set_item("average_deviation_pct", g.average_deviation_pct())?;
+            let e = &g.validation_error;
+            let points = e.first().map_or(0, Vec::len);
+            let mm = Array2::from_shape_fn((e.len(), points), |(t, p)| e[t][p] * 1e3);
+            d.set_item("validation_error_mm", mm.into_pyarray(py))?;
+            out.append(d)?;
+        }
+        Ok(out)
+    }
+
+    /// What the study found (``stiffid::study::findings``), keys as ``summary.json``'s
+    /// ``findings`` (without the sentences, which the command writes): ``group3_beats_groups_1_and_2``,
+    /// ``group3_factor_vs_group1``, ``group3_factor_vs_group2``, ``relative_a_factor_vs_group3``
+    /// (factors of average deviation rates, > 1: the first group better),
+    /// ``start_groups_where_zhang2021_beats_both``, ``start_groups``,
+    /// ``zhang2021_range_pct`` (its predicted average over the start groups, min and max),
+    /// ``prediction_mean_abs_relative_error`` and ``rank_correlation`` (Spearman's rho of each
+    /// criterion against the average deviation rate, in the order of ``Setup.evaluate``'s
+    /// criteria and ``cond_psi``).
+    #[getter]
+    fn findings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let f = findings(&self.inner);
+        let d = PyDict::new(py);
+        d.set_item("group3_beats_groups_1_and_2", f.paper_claim_holds)?;
+        d.set_item(
+            "group3_factor_vs_group1",
+            f.group3.first().map(|v| v.factor),
+        )?;
+        d.set_item("group3_factor_vs_group2", f.group3.get(1).map(|v| v.factor))?;
+        let relative_a = f.relative_a.as_ref().map(|v| v.factor);
+        d.set_item("relative_a_factor_vs_group3", relative_a)?;
+        let wins = f.start_check.wins;
+        d.set_item("start_groups_where_zhang2021_beats_both", wins)?;
+        d.set_item("start_groups", f.start_check.trials)?;
+        let range = f.start_check.zhang_range_pct.map(|(lo, hi)| vec![lo, hi]);
+        d.set_item("zhang2021_range_pct", range)?;
+        d.set_item("prediction_mean_abs_relative_error", f.prediction_error)?;
+        d.set_item("rank_correlation", f.rank_correlation)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Study(groups={}, runs={}, seed={})",
+            self.inner.groups.len(),
+            self.inner.runs,
+            self.inner.seed
+        )
+    }
+}
+
+impl Study {
+    /// A rate of every group's simulation as a `(groups, levels, 6)` array.
+    fn rates<'py>(
+        &self,
+        py: Python<'py>,
+        rate: impl Fn(&GroupSimulation) -> &Vec<[f64; 6]>,
+    ) -> Bound<'py, PyArray3<f64>> {
+        let g = &self.inner.groups;
+        let levels = self.inner.setup.noise().levels.len();
+        Array3::from_shape_fn((g.len(), levels, 6), |(i, l, j)| {
+            rate(&g[i].simulation)[l][j]
+        })
+        .into_pyarray(py)
+    }
+}

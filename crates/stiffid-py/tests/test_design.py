@@ -1,0 +1,154 @@
+"""Setup, evaluate and select: equal to the command's JSON for the same postures."""
+
+import numpy as np
+import pytest
+
+import stiffid
+from conftest import write_postures
+
+CRITERIA = ["classical", "zhang2021", "scaled_cond", "d_optimal", "relative_a", "test_pose_mm", "cond_psi"]
+
+
+def test_setup_fields(paper):
+    assert paper.name == "zhang2021-comau-nj165"
+    np.testing.assert_array_equal(
+        paper.nominal_stiffness_nm_per_rad, [950000, 3000000, 900000, 250000, 200000, 150000]
+    )
+    np.testing.assert_allclose(paper.lower_deg, [-90, -60, -180, -180, -90, -180], atol=1e-12)
+    np.testing.assert_allclose(paper.upper_deg, [90, 40, -40, 180, 90, 180], atol=1e-12)
+    assert paper.load_n == 500.0
+    assert paper.noise_variance_mm2 == pytest.approx(9.23e-5)
+    np.testing.assert_array_equal(paper.level_multiples, [0.5, 1.0, 1.5, 2.0, 2.5, 3.0])
+    assert paper.measuring_points_mm.shape == (4, 3)
+    assert paper.test_postures_deg.shape == (3, 6)
+    assert paper.springs == "axis"
+    assert paper.robot.name == "COMAU SMART5 NJ 165-3.0"
+    assert set(stiffid.Setup.builtins()) >= {"zhang2021-comau-nj165", "fanuc-r2000ic-165f"}
+
+
+def assert_criteria_equal(mine, cli_json):
+    for key in CRITERIA:
+        assert mine[key] == pytest.approx(cli_json[key], rel=1e-12), key
+    np.testing.assert_allclose(mine["predicted_deviation_pct"], cli_json["predicted_deviation_pct"], rtol=1e-12)
+
+
+@pytest.mark.parametrize("seed", [1, 7])
+def test_evaluate_equals_the_command(paper, cli, tmp_path, seed):
+    group = paper.random_group(6, seed)
+    path = write_postures(tmp_path / "group.csv", group)
+    mine = paper.evaluate(group)
+    assert mine["predicted_deviation_pct"].shape == (6, 6)
+    assert_criteria_equal(mine, cli("evaluate", "--setup", "zhang2021-comau-nj165", "--postures", path, "--json"))
+
+
+def test_evaluate_prediction_is_the_formula(paper):
+    e = paper.evaluate(paper.random_group(6, 1))
+    factor = 100 * np.sqrt(2 / np.pi) * np.sqrt(paper.level_multiples)[:, None]
+    np.testing.assert_allclose(e["predicted_deviation_pct"], factor * e["relative_std"][None, :], rtol=1e-12)
+    assert e["relative_a"] == pytest.approx(np.sqrt(np.mean(e["relative_std"] ** 2)), rel=1e-12)
+
+
+def test_local_select_equals_the_command(paper, cli, tmp_path):
+    mine = paper.select("zhang2021", method="local", n=6, seed=1)
+    theirs = cli(
+        "select", "--setup", "zhang2021-comau-nj165", "--criterion", "zhang2021", "--start-random",
+        "--seed", 1, "--out", tmp_path / "out.csv", "--json",
+    )
+    assert mine["method"] == "local" and mine["criterion"] == "zhang2021"
+    assert mine["evaluations"] == theirs["evaluations"]
+    assert mine["value"] == pytest.approx(theirs["value"], rel=1e-12)
+    assert mine["start_value"] == pytest.approx(theirs["start_value"], rel=1e-12)
+    np.testing.assert_allclose(mine["postures_deg"], theirs["postures_deg"], atol=1e-9)
+    assert_criteria_equal(mine["criteria"], theirs["criteria"])
+    assert mine["value"] < mine["start_value"]
+
+
+def test_global_select_equals_the_command(paper, cli, tmp_path):
+    options = dict(starts=4, polished=2, max_evals=1000)
+    mine = paper.select("relative-a", method="global", n=6, seed=3, **options)
+    theirs = cli(
+        "select", "--setup", "zhang2021-comau-nj165", "--global", "--seed", 3, "--starts", 4,
+        "--polished", 2, "--max-evals", 1000, "--out", tmp_path / "out.csv", "--json",
+    )
+    assert mine["value"] == pytest.approx(theirs["value"], rel=1e-12)
+    np.testing.assert_allclose(mine["postures_deg"], theirs["postures_deg"], atol=1e-9)
+
+
+def test_local_select_from_a_start(paper):
+    start = paper.random_group(6, 2)
+    found = paper.select("relative-a", start=start)
+    assert found["method"] == "local"
+    assert found["start_value"] == pytest.approx(paper.evaluate(start)["relative_a"], rel=1e-12)
+    assert found["value"] == pytest.approx(found["criteria"]["relative_a"], rel=1e-12)
+    assert found["value"] < found["start_value"]
+
+
+def test_pool_select_equals_the_command(paper, cli, tmp_path):
+    pool = paper.random_group(12, 5)
+    path = write_postures(tmp_path / "pool.csv", pool)
+    mine = paper.select("relative-a", pool=pool, n=6, seed=1)
+    theirs = cli(
+        "select", "--setup", "zhang2021-comau-nj165", "--pool", path, "--postures", 6,
+        "--out", tmp_path / "out.csv", "--json",
+    )
+    assert mine["pool_method"] == "enumeration" and mine["pool_skipped"] == []
+    assert [i + 1 for i in mine["pool_indices"]] == theirs["pool"]["chosen"]
+    assert mine["value"] == pytest.approx(theirs["value"], rel=1e-12)
+    np.testing.assert_allclose(mine["postures_deg"], pool[mine["pool_indices"]])
+
+
+def test_same_seed_same_group(paper):
+    a = paper.select("d-optimal", method="global", seed=2, starts=2, polished=1, max_evals=300)
+    b = paper.select("d-optimal", method="global", seed=2, starts=2, polished=1, max_evals=300)
+    np.testing.assert_array_equal(a["postures_deg"], b["postures_deg"])
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(criterion="best"), r"unknown criterion 'best' \(known: classical, zhang2021"),
+        (dict(method="annealing"), "method: unknown value 'annealing'"),
+        (dict(n=1), "n"),
+        (dict(n=101), "n"),
+        (dict(starts=0), "starts"),
+        (dict(gradient="numeric"), "unknown gradient 'numeric'"),
+        (dict(method="global", start=np.zeros((6, 6))), "start"),
+        (dict(method="pool"), "pool"),
+        (dict(restarts=3), "restarts: only with pool"),
+    ],
+)
+def test_bad_select_arguments(paper, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        paper.select(**kwargs)
+
+
+def test_start_outside_the_bounds_is_refused(paper):
+    start = paper.random_group(6, 1)
+    start[2, 1] = 45.0  # q2 bound: [-60, 40]
+    with pytest.raises(ValueError, match=r"start: posture 2, q2_deg = 45 is outside the setup's bounds \[-60.0, 40.0\]"):
+        paper.select(start=start)
+
+
+def test_setup_from_toml_and_file(tmp_path, paper):
+    text = (
+        'name = "mine"\nrobot = "comau-smart5-nj165-3.0"\ncharacteristic_length_mm = 1200.0\n'
+        "nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]\n"
+        "[tool]\nloading_point_mm = [150, 0, 200]\nmeasuring_points_mm = [[80, 80, 260], [-80, 80, 260]]\n"
+        "[loading]\nload_n = 500.0\nanchor_mm = [1500, 1500, 0]\n"
+        "[noise]\nvariance_mm2 = 9.23e-5\nlevel_multiples = [1.0]\n"
+        "[bounds]\nlower_deg = [-90, -60, -180, -180, -90, -180]\nupper_deg = [90, 40, -40, 180, 90, 180]\n"
+    )
+    s = stiffid.Setup.from_toml(text)
+    assert s.name == "mine" and s.measuring_points_mm.shape == (2, 3)
+    path = tmp_path / "mine.toml"
+    path.write_text(text)
+    assert stiffid.Setup.from_file(path).name == "mine"
+    with pytest.raises(ValueError, match=r"bad.toml: nominal_stiffness_nm_per_rad"):
+        stiffid.Setup.from_toml(text.replace("950000,", "-1,"), source_name="bad.toml")
+    with pytest.raises(ValueError, match="unknown field|unknown"):
+        stiffid.Setup.from_toml(text + "colour = 1\n")
+    one_point = stiffid.Setup.from_toml(text.replace(", [-80, 80, 260]]", "]"))
+    with pytest.raises(ValueError, match="3 observation rows cannot identify 6 compliances"):
+        one_point.evaluate(one_point.random_group(2, 1)[:1])
+    with pytest.raises(ValueError, match=r"unknown setup 'nope' \(known: "):
+        stiffid.Setup.builtin("nope")

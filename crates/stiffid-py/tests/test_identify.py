@@ -1,0 +1,199 @@
+"""identify and validate: the FANUC data equal to the command's, noise-free recovery, bad data."""
+
+import numpy as np
+import pytest
+
+import stiffid
+from conftest import FANUC_DATA
+
+
+@pytest.fixture(scope="module")
+def fanuc_cli(cli):
+    return cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--json")
+
+
+def test_fanuc_identification_equals_the_command(fanuc, fanuc_cli):
+    mine = stiffid.identify(fanuc, FANUC_DATA)
+    theirs = fanuc_cli
+    assert mine.method == theirs["method"] == "least-squares"
+    assert (mine.rows, mine.postures) == (theirs["rows"], theirs["postures"])
+    for key in [
+        "stiffness_nm_per_rad",
+        "compliance_rad_per_nm",
+        "std_error_nm_per_rad",
+        "ci95_nm_per_rad",
+        "ci95_from_compliance_nm_per_rad",
+        "compliance_std_error_rad_per_nm",
+        "compliance_ci95_rad_per_nm",
+        "compliance_covariance_rad2_per_nm2",
+    ]:
+        np.testing.assert_allclose(getattr(mine, key), theirs[key], rtol=1e-12, err_msg=key)
+    assert mine.degrees_of_freedom == theirs["degrees_of_freedom"]
+    assert mine.t_quantile == pytest.approx(theirs["t_quantile"], rel=1e-12)
+    assert mine.cond_psi == pytest.approx(theirs["cond_psi"], rel=1e-12)
+    assert mine.residual_rms_mm == pytest.approx(theirs["residual_rms_mm"], rel=1e-12)
+    np.testing.assert_allclose(mine.residuals_mm, [r["residual_mm"] for r in theirs["residuals"]], atol=1e-15)
+    assert mine.physical == theirs["physical"]
+    for key in ["noise_ratio", "chi2_statistic", "chi2_p_value", "model_error_dominates"]:
+        assert getattr(mine, key) == pytest.approx(theirs[key], rel=1e-12), key
+    assert mine.labels[0] == theirs["residuals"][0]["posture"]
+
+
+def test_fanuc_stiffness_is_the_numpy_reference(fanuc):
+    """The independent NumPy fit of examples/data/fanuc-r2000ic-165f/numpy_reference.py (also the
+    reference of crates/stiffid-cli/tests/identify_cli.rs): k1 of about 8.6e5 Nm/rad."""
+    k = stiffid.identify(fanuc, FANUC_DATA).stiffness_nm_per_rad
+    assert k.shape == (6,)
+    assert k[0] == pytest.approx(8.609e5, rel=1e-3)
+
+
+def test_robust_and_nonnegative_equal_the_command(fanuc, cli):
+    for flag, kwargs in [("--robust", dict(robust="huber")), ("--nonnegative", dict(nonnegative=True))]:
+        theirs = cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, flag, "--json")
+        mine = stiffid.identify(fanuc, FANUC_DATA, **kwargs)
+        assert mine.method == theirs["method"]
+        np.testing.assert_allclose(mine.stiffness_nm_per_rad, theirs["stiffness_nm_per_rad"], rtol=1e-12)
+
+
+def synthetic(setup, stiffness):
+    """Noise-free displacements of the setup's measuring points in its test postures under the
+    rope load, from the library's forward model (validate's prediction)."""
+    q = np.vstack([setup.test_postures_deg, setup.random_group(6, 3)])
+    wrench = np.tile([300.0, -200.0, -400.0, 20.0, -10.0, 5.0], (len(q), 1))
+    p = len(setup.measuring_points_mm)
+    zero = np.zeros((len(q) * p, 3))
+    v = stiffid.validate(setup, stiffness, q_deg=q, wrench=wrench, displacement_mm=zero)
+    return q, wrench, v["predicted_mm"]
+
+
+def test_noise_free_recovery_from_arrays(paper):
+    k = np.array([900000.0, 2500000, 1000000, 300000, 180000, 120000])
+    q, wrench, d = synthetic(paper, k)
+    mine = stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d)
+    np.testing.assert_allclose(mine.stiffness_nm_per_rad, k, rtol=1e-9)
+    assert mine.residual_rms_mm < 1e-12
+    assert mine.labels is None and mine.postures == len(q)
+    checked = stiffid.validate(paper, k, q_deg=q, wrench=wrench, displacement_mm=d)
+    assert checked["max_delta_b_mm"] < 1e-12 and checked["explained"] == pytest.approx(1.0)
+
+
+def test_force_only_wrench_is_a_zero_moment(paper):
+    k = paper.nominal_stiffness_nm_per_rad
+    q, wrench, _ = synthetic(paper, k)
+    force = wrench[:, :3]
+    zero = np.zeros((len(q) * 4, 3))
+    a = stiffid.validate(paper, k, q_deg=q, wrench=force, displacement_mm=zero)
+    six = np.hstack([force, np.zeros_like(force)])
+    b = stiffid.validate(paper, k, q_deg=q, wrench=six, displacement_mm=zero)
+    np.testing.assert_array_equal(a["predicted_mm"], b["predicted_mm"])
+
+
+def test_validate_equals_the_command(fanuc, cli, fanuc_cli, tmp_path):
+    path = tmp_path / "k.json"
+    path.write_text('{"stiffness_nm_per_rad": %s}' % list(fanuc_cli["stiffness_nm_per_rad"]))
+    theirs = cli("validate", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--stiffness", path, "--json")
+    mine = stiffid.validate(fanuc, fanuc_cli["stiffness_nm_per_rad"], FANUC_DATA)
+    for key in ["mean_delta_b_mm", "max_delta_b_mm", "rms_delta_b_mm", "explained"]:
+        assert mine[key] == pytest.approx(theirs[key], rel=1e-12), key
+    from_file = stiffid.validate(fanuc, path, FANUC_DATA)
+    np.testing.assert_array_equal(from_file["delta_b_mm"], mine["delta_b_mm"])
+    np.testing.assert_allclose(mine["delta_b_mm"], [c["delta_b_mm"] for c in theirs["checks"]], rtol=1e-12)
+
+
+def test_bad_csv_names_file_line_and_column(fanuc, tmp_path):
+    lines = FANUC_DATA.read_text().splitlines()
+    fields = lines[3].split(",")
+    fields[8] = "heavy"
+    lines[3] = ",".join(fields)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"bad.csv: line 4, column 9 \(fx_n\).*heavy"):
+        stiffid.identify(fanuc, bad)
+
+
+def test_measurement_outside_the_limits_names_its_line(fanuc, tmp_path):
+    lines = FANUC_DATA.read_text().splitlines()
+    fields = lines[2].split(",")
+    fields[2] = "400"
+    lines[2] = ",".join(fields)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"bad.csv: line 3, column 3 \(q1_deg\)"):
+        stiffid.identify(fanuc, bad)
+
+
+def test_missing_file(fanuc, tmp_path):
+    with pytest.raises(FileNotFoundError, match="none.csv: no such file"):
+        stiffid.identify(fanuc, tmp_path / "none.csv")
+
+
+def test_wrong_shapes_are_refused(paper):
+    q, wrench, d = synthetic(paper, paper.nominal_stiffness_nm_per_rad)
+    with pytest.raises(ValueError, match=r"wrench: expected 9 rows \(one per posture\), got 8"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench[:8], displacement_mm=d)
+    with pytest.raises(ValueError, match=r"wrench: expected an array of shape \(n, 3\) or \(n, 6\)"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench[:, :4], displacement_mm=d)
+    with pytest.raises(ValueError, match="displacement_mm: expected n \\* m rows"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d[:-1])
+    with pytest.raises(ValueError, match="displacement_mm: expected an array of shape"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d[:, :2])
+    with pytest.raises(ValueError, match="give either a measurements CSV path"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench)
+    with pytest.raises(ValueError, match="robust: unknown value 'cauchy'"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d, robust="cauchy")
+
+
+def test_unphysical_data_names_the_measurement(paper):
+    q, wrench, d = synthetic(paper, paper.nominal_stiffness_nm_per_rad)
+    d = d.copy()
+    d[5, 1] = 5000.0  # 5 m: a unit error
+    with pytest.raises(ValueError, match="measurement 6"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d)
+
+
+def test_validate_refuses_a_bad_stiffness(paper):
+    q, wrench, d = synthetic(paper, paper.nominal_stiffness_nm_per_rad)
+    with pytest.raises(ValueError, match="stiffness_nm_per_rad"):
+        stiffid.validate(paper, [1, 2, 3], q_deg=q, wrench=wrench, displacement_mm=d)
+    with pytest.raises(ValueError, match="stiffness_nm_per_rad"):
+        stiffid.validate(paper, [-1, 2, 3, 4, 5, 6], q_deg=q, wrench=wrench, displacement_mm=d)
+
+
+def test_bad_stiffness_file_names_it(fanuc, tmp_path):
+    path = tmp_path / "k.json"
+    path.write_text('{"stiffness_nm_per_rad": [1, 2]}')
+    with pytest.raises(ValueError, match="k.json: "):
+        stiffid.validate(fanuc, path, FANUC_DATA)
+
+
+def test_deflection_equals_predict(paper, cli):
+    q, w = [10, 20, -90, 30, 20, 10], [100, -50, 200, 5, 0, 3]
+    theirs = cli("predict", "--setup", "zhang2021-comau-nj165", "--q-deg", "10,20,-90,30,20,10",
+                 "--wrench", "100,-50,200,5,0,3", "--frame", "tool", "--json")
+    point = paper.measuring_points_mm[0]
+    mine = stiffid.deflection(paper, q, w, frame="tool", observed_mm=point)
+    np.testing.assert_allclose(mine["displacement_mm"][0], theirs["measuring_points"][0]["displacement_mm"], rtol=1e-12)
+    np.testing.assert_allclose(mine["torques_nm"][0], theirs["torques_nm"], rtol=1e-12)
+    np.testing.assert_allclose(mine["joint_deflections_rad"][0] * 1e3, theirs["joint_deflections_mrad"], rtol=1e-12)
+    np.testing.assert_allclose(mine["rotation_rad"][0] * 1e3, theirs["flange_rotation_mrad"], rtol=1e-12)
+
+
+def test_deflection_is_the_measurement_model(paper):
+    """The displacement of measuring point i under the rope wrench is what validate predicts."""
+    k = np.array([900000.0, 2500000, 1000000, 300000, 180000, 120000])
+    q, wrench, d = synthetic(paper, k)
+    for i, point in enumerate(paper.measuring_points_mm):
+        mine = stiffid.deflection(paper, q, wrench, stiffness_nm_per_rad=k, observed_mm=point)
+        np.testing.assert_allclose(mine["displacement_mm"], d[i::4], rtol=1e-10, atol=1e-15)
+
+
+def test_deflection_uncertainty(fanuc):
+    result = stiffid.identify(fanuc, FANUC_DATA)
+    q = fanuc.random_group(3, 1)
+    out = stiffid.deflection(fanuc, q, [0, 0, -1000, 0, 0, 0], stiffness_nm_per_rad=result.stiffness_nm_per_rad,
+                             compliance_covariance_rad2_per_nm2=result.compliance_covariance_rad2_per_nm2)
+    assert out["displacement_std_mm"].shape == (3, 3) and np.all(out["displacement_std_mm"] > 0)
+    with pytest.raises(ValueError, match="compliance_covariance_rad2_per_nm2: expected a symmetric"):
+        stiffid.deflection(fanuc, q, [0, 0, -1000, 0, 0, 0], compliance_covariance_rad2_per_nm2=-np.eye(6))
+    with pytest.raises(ValueError, match=r"wrench: expected shape \(6,\) or \(3, 6\)"):
+        stiffid.deflection(fanuc, q, np.zeros((2, 6)))

@@ -1,0 +1,154 @@
+"""Robot kinematics: known flange positions, Jacobians against finite differences, shapes."""
+
+import numpy as np
+import pytest
+
+import stiffid
+
+COMAU = "comau-smart5-nj165-3.0"
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return stiffid.Robot.preset(COMAU)
+
+
+# DESIGN.md section 4: flange positions (mm) of the COMAU SMART5 NJ 165-3.0, checked against
+# independent public kinematics.
+KNOWN = [
+    ([0, 0, -90, 0, 0, 0], [2074.0, 0.0, 2255.0]),
+    ([0, 10, -90, 0, 0, 0], [2278.04, 0.0, 2237.15]),
+    ([0, 0, -80, 0, 0, 0], [2005.16, 0.0, 2541.89]),
+    ([10, 20, -90, 30, 20, 10], [2417.77, -466.26, 2116.01]),
+]
+
+
+def test_flange_positions_match_the_reference(robot):
+    for q, p in KNOWN:
+        pose = robot.flange_pose(q)
+        assert pose.shape == (4, 4)
+        np.testing.assert_allclose(pose[:3, 3], p, atol=0.01)
+        np.testing.assert_allclose(pose[3], [0, 0, 0, 1])
+        r = pose[:3, :3]
+        np.testing.assert_allclose(r @ r.T, np.eye(3), atol=1e-12)
+
+
+def test_vectorised_equals_one_by_one(robot):
+    q = np.array([k[0] for k in KNOWN], dtype=float)
+    poses = robot.flange_pose(q)
+    jacobians = robot.jacobian(q, point_mm=[150, 0, 200])
+    dexterity = robot.dexterity(q)
+    assert poses.shape == (4, 4, 4) and jacobians.shape == (4, 6, 6) and dexterity.shape == (4,)
+    for i, qi in enumerate(q):
+        np.testing.assert_array_equal(poses[i], robot.flange_pose(qi))
+        np.testing.assert_array_equal(jacobians[i], robot.jacobian(qi, point_mm=[150, 0, 200]))
+        assert dexterity[i] == robot.dexterity(qi)
+
+
+def point_position(robot, q_deg, point_mm):
+    pose = robot.flange_pose(q_deg)
+    return (pose[:3, :3] @ np.asarray(point_mm) + pose[:3, 3]) * 1e-3  # m
+
+
+def rotation(robot, q_deg):
+    return robot.flange_pose(q_deg)[:3, :3]
+
+
+@pytest.mark.parametrize("q", [[10, 20, -90, 30, 20, 10], [-35, -12, -120, 70, -40, 100]])
+def test_jacobian_matches_central_differences(robot, q):
+    """Column j: d(point)/dq_j (m/rad) and the angular velocity of the flange per rad of q_j."""
+    point = [80, 80, 260]
+    jac = robot.jacobian(q, point_mm=point)
+    h = 1e-6  # rad
+    for j in range(6):
+        dq = np.zeros(6)
+        dq[j] = np.degrees(h)
+        qp, qm = np.add(q, dq), np.subtract(q, dq)
+        v = (point_position(robot, qp, point) - point_position(robot, qm, point)) / (2 * h)
+        dr = (rotation(robot, qp) - rotation(robot, qm)) / (2 * h)
+        w_hat = dr @ rotation(robot, q).T
+        w = [w_hat[2, 1], w_hat[0, 2], w_hat[1, 0]]
+        np.testing.assert_allclose(jac[:3, j], v, atol=1e-7)
+        np.testing.assert_allclose(jac[3:, j], w, atol=1e-7)
+
+
+def test_axis_jacobian_is_kinematic_times_axis_map(robot):
+    """J_q = J_theta M: for the COMAU, theta = [-q1, q2 - 90, -q3 - q2 - 90, -q4, q5, 180 - q6]."""
+    q = [10, 20, -90, 30, 20, 10]
+    m = np.diag([-1.0, 1, -1, -1, 1, -1])
+    m[2, 1] = -1
+    ja = robot.jacobian(q, coordinates="axis")
+    jk = robot.jacobian(q, coordinates="kinematic")
+    np.testing.assert_allclose(ja, jk @ m, atol=1e-12)
+
+
+def test_dexterity_is_equation_21(robot):
+    q = [10, 20, -90, 30, 20, 10]
+    length = 1.2
+    jn = robot.jacobian(q, point_mm=[80, 80, 260]).copy()
+    jn[:3] /= length
+    a = jn @ jn.T
+    expected = np.sqrt(np.trace(a) * np.trace(np.linalg.inv(a))) / 6
+    k = robot.dexterity(q, point_mm=[80, 80, 260], characteristic_length_mm=1200)
+    assert k == pytest.approx(expected, rel=1e-10)
+    assert k >= 1
+
+
+def test_wrist_singularity_is_infinite(robot):
+    assert robot.dexterity([0, 0, -90, 0, 0, 0]) == float("inf")
+
+
+def test_limits_and_names(robot):
+    assert robot.name == "COMAU SMART5 NJ 165-3.0"
+    assert COMAU in stiffid.Robot.presets()
+    assert robot.lower_limit_deg.shape == (6,) and np.all(robot.lower_limit_deg < robot.upper_limit_deg)
+
+
+@pytest.mark.parametrize(
+    "q, message",
+    [
+        (np.zeros(5), r"q_deg: expected an array of shape \(6,\) or \(n, 6\), got shape \(5,\)"),
+        (np.zeros((2, 7)), r"got shape \(2, 7\)"),
+        (np.zeros((2, 2, 6)), r"got shape \(2, 2, 6\)"),
+        ([0, 0, float("nan"), 0, 0, 0], r"q_deg\[0, 2\] = NaN is not a finite number"),
+        ([0, 0, -90, 0, 130, 0], r"q_deg: posture 0, q5_deg = 130 is outside the joint limits \[-125.0, 125.0\]"),
+        ("abc", r"q_deg: expected an array"),
+    ],
+)
+def test_bad_postures_are_refused(robot, q, message):
+    with pytest.raises(ValueError, match=message):
+        robot.flange_pose(q)
+
+
+def test_bad_options_are_refused(robot):
+    with pytest.raises(ValueError, match="coordinates: unknown value 'joint' .known: axis, kinematic."):
+        robot.jacobian([0, 0, -90, 0, 30, 0], coordinates="joint")
+    with pytest.raises(ValueError, match="point_mm"):
+        robot.jacobian([0, 0, -90, 0, 30, 0], point_mm=[1, 2])
+    with pytest.raises(ValueError, match="characteristic_length_mm"):
+        robot.dexterity([0, 0, -90, 0, 30, 0], characteristic_length_mm=0)
+
+
+def test_unknown_preset_names_the_known_ones():
+    with pytest.raises(ValueError, match=r"unknown robot preset 'nope' \(known: .*comau-smart5-nj165-3.0"):
+        stiffid.Robot.preset("nope")
+
+
+def test_robot_file_errors(tmp_path):
+    with pytest.raises(FileNotFoundError, match="missing.urdf: no such file"):
+        stiffid.Robot.from_file(tmp_path / "missing.urdf")
+    bad = tmp_path / "robot.toml"
+    bad.write_text("name = 3\n")
+    with pytest.raises(ValueError, match="robot.toml"):
+        stiffid.Robot.from_file(bad)
+
+
+def test_postures_file_round_trip(robot, tmp_path):
+    from conftest import write_postures
+
+    q = np.array([k[0] for k in KNOWN], dtype=float)
+    np.testing.assert_allclose(robot.read_postures(write_postures(tmp_path / "p.csv", q)), q, atol=1e-12)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,-90,0,0,x\n")
+    with pytest.raises(ValueError, match="bad.csv: line 2"):
+        robot.read_postures(bad)

@@ -1,0 +1,104 @@
+"""reproduce and simulate: equal to the command's summary.json for seed 1."""
+
+import json
+
+import numpy as np
+import pytest
+
+import stiffid
+
+CRITERIA = ["classical", "zhang2021", "scaled_cond", "d_optimal", "relative_a", "test_pose_mm", "cond_psi"]
+RATES = ["mean_deviation_pct", "std_deviation_pct", "predicted_deviation_pct", "mean_stiffness_nm_per_rad"]
+
+
+@pytest.fixture(scope="module")
+def study():
+    """The paper's study with the command's defaults: 200 runs, seed 1, 16 starts, 20 trials."""
+    return stiffid.reproduce()
+
+
+@pytest.fixture(scope="module")
+def summary(cli, tmp_path_factory):
+    out = tmp_path_factory.mktemp("reproduce") / "report"
+    cli("reproduce", "--out", out, parse=False)
+    return json.loads((out / "summary.json").read_text())
+
+
+def test_reproduce_equals_summary_json(study, summary):
+    assert (study.seed, study.runs) == (summary["seed"], summary["runs"])
+    assert study.validation_level + 1 == summary["validation_level"]
+    np.testing.assert_array_equal(study.level_multiples, summary["levels"])
+    assert len(study.groups) == len(summary["groups"]) == 5
+    for mine, theirs in zip(study.groups, summary["groups"]):
+        for key in ["name", "title", "criterion", "search_evaluations"]:
+            assert mine[key] == theirs[key], key
+        np.testing.assert_allclose(mine["postures_deg"], theirs["postures_deg"], rtol=1e-12, atol=1e-12)
+        for key in CRITERIA:
+            assert mine[key] == pytest.approx(theirs[key], rel=1e-12), key
+        for key in RATES + ["validation_error_mm"]:
+            np.testing.assert_allclose(mine[key], theirs[key], rtol=1e-12, err_msg=key)
+        assert mine["average_deviation_pct"] == pytest.approx(theirs["average_deviation_pct"], rel=1e-12)
+    f, g = study.findings, summary["findings"]
+    for key in [
+        "group3_beats_groups_1_and_2",
+        "group3_factor_vs_group1",
+        "group3_factor_vs_group2",
+        "relative_a_factor_vs_group3",
+        "start_groups_where_zhang2021_beats_both",
+        "start_groups",
+        "prediction_mean_abs_relative_error",
+    ]:
+        assert f[key] == pytest.approx(g[key], rel=1e-12), key
+    lo, hi = f["zhang2021_range_pct"]
+    trials = [t["zhang2021_predicted_average_pct"] for t in summary["start_trials"]]
+    assert (lo, hi) == pytest.approx((min(trials), max(trials)), rel=1e-12)
+
+
+def test_study_arrays(study):
+    g = len(study.groups)
+    levels = len(study.level_multiples)
+    assert study.mean_deviation_pct.shape == (g, levels, 6)
+    assert study.predicted_deviation_pct.shape == (g, levels, 6)
+    np.testing.assert_allclose(study.average_deviation_pct, study.mean_deviation_pct.mean(axis=(1, 2)), rtol=1e-12)
+    assert study.names[2] == "group3-zhang2021"
+    # The paper's claim (Fig. 8) and the first-order prediction within 10% on average.
+    assert study.findings["group3_beats_groups_1_and_2"]
+    assert study.findings["prediction_mean_abs_relative_error"] < 0.1
+
+
+def test_simulate_equals_the_study(study, paper):
+    """The study simulates its groups with the same seed: the same groups in the same order give
+    the same numbers."""
+    groups = [g["postures_deg"] for g in study.groups]
+    sims = stiffid.simulate(paper, groups, runs=study.runs, seed=study.seed)
+    assert len(sims) == 5
+    for sim, g in zip(sims, study.groups):
+        for key in RATES:
+            np.testing.assert_allclose(sim[key], g[key], rtol=1e-9, err_msg=key)
+
+
+def test_simulate_is_deterministic_and_seeded(paper):
+    group = [paper.random_group(6, 1)]
+    a = stiffid.simulate(paper, group, runs=10, seed=4)[0]
+    b = stiffid.simulate(paper, group, runs=10, seed=4)[0]
+    c = stiffid.simulate(paper, group, runs=10, seed=5)[0]
+    np.testing.assert_array_equal(a["mean_deviation_pct"], b["mean_deviation_pct"])
+    assert not np.array_equal(a["mean_deviation_pct"], c["mean_deviation_pct"])
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [(dict(runs=0), "runs"), (dict(starts=0), "starts"), (dict(runs=100001), "runs")],
+)
+def test_bad_reproduce_arguments(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        stiffid.reproduce(**kwargs)
+
+
+def test_bad_simulate_arguments(paper):
+    with pytest.raises(ValueError, match="groups: expected a list"):
+        stiffid.simulate(paper, 3)
+    with pytest.raises(ValueError, match=r"groups\[0\]: expected an array of shape"):
+        stiffid.simulate(paper, [np.zeros((6, 5))])
+    with pytest.raises(ValueError, match="runs"):
+        stiffid.simulate(paper, [paper.random_group(6, 1)], runs=0)
