@@ -9,11 +9,10 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
-use stiffid::formats::postures;
 use stiffid::formats::stiffness::{self, StiffnessFile};
+use stiffid::formats::{postures, reference};
 use stiffid::limits::{self, short, Range};
-use stiffid::robot::{file, presets, urdf};
-use stiffid::setup::{self, Bounds};
+use stiffid::setup::Bounds;
 use stiffid::{Robot, Setup};
 
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
@@ -25,65 +24,27 @@ pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 static INPUTS: Mutex<Vec<(PathBuf, u64, u64)>> = Mutex::new(Vec::new());
 
 /// A robot: a robot `.toml` or `.urdf` file if one exists at `arg`, else the preset named `arg`
-/// (`tip`: URDF tip link). The error names what was tried.
+/// (`tip`: URDF tip link; `stiffid::formats::reference::robot`). The error names what was tried.
 pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
-    robot_in(Path::new(""), arg, tip)
-}
-
-/// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`; a
-/// preset name wins over a path that does not exist (so a preset named `...-3.0` is no file).
-fn robot_in(dir: &Path, arg: &str, tip: Option<&str>) -> Result<Robot> {
-    let path = dir.join(arg);
-    if path.exists() {
-        let name = path.display().to_string();
-        return match path.extension().and_then(|e| e.to_str()) {
-            Some("toml") => Ok(file::parse(&read(&path)?, &name)?),
-            Some("urdf") => Ok(urdf::parse(&read(&path)?, &name, tip)?),
-            _ => bail!("{name}: a robot file must end in .toml or .urdf"),
-        };
-    }
-    presets::get(arg).map_err(|e| match is_file_like(arg) {
-        true => anyhow!(
-            "robot '{}': no file {} and no preset of that name ({e})",
-            short(arg),
-            short(&path.display().to_string())
-        ),
-        false => e.into(),
-    })
-}
-
-/// Whether a reference looks like a file path (an extension or a directory separator).
-fn is_file_like(arg: &str) -> bool {
-    let path = Path::new(arg);
-    path.extension().is_some() || path.components().count() > 1
+    reference::robot(arg, tip, existing)
 }
 
 /// A setup from a setup `.toml` file if one exists at `arg`, else the built-in setup named
-/// `arg`. A robot file named in a setup file is looked for relative to the setup file.
+/// `arg` (`stiffid::formats::reference::setup`). A robot file named in a setup file is looked for
+/// relative to the setup file.
 pub fn setup(arg: &str) -> Result<Setup> {
-    let path = Path::new(arg);
-    if !path.exists() {
-        return setup::builtin(arg).map_err(|e| match is_file_like(arg) {
-            true => anyhow!(
-                "setup '{}': no such file and no built-in setup of that name ({e})",
-                short(arg)
-            ),
-            false => e.into(),
-        });
-    }
-    setup_text(&read(path)?, arg, path.parent().unwrap_or(Path::new("")))
+    reference::setup(arg, existing)
 }
 
 /// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
-/// file it names is looked for; a preset name wins over a path that does not exist).
+/// file it names is looked for).
 pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
-    let arg = source_name;
-    Ok(setup::parse(text, arg, |r, tip| {
-        robot_in(dir, r, tip).map_err(|e| stiffid::Error::Parse {
-            source_name: format!("{arg}: robot"),
-            message: e.to_string(),
-        })
-    })?)
+    reference::setup_text(text, source_name, dir, existing)
+}
+
+/// The text of the file at `path` ([`read`]), `None` if nothing exists there.
+fn existing(path: &Path) -> Option<Result<String>> {
+    path.exists().then(|| read(path))
 }
 
 /// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8. The file is

@@ -208,7 +208,7 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
         (
             "nan.csv",
             format!("{pose}\n1300,-800,400,180,0,0,1,2,3\n1300,-800,NaN,180,0,0,1,2,3\n"),
-            vec!["line 3", "column z_mm", "NaN"],
+            vec!["line 3", "column 3 (z_mm)", "NaN"],
         ),
         (
             "far.csv",

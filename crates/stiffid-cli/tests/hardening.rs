@@ -956,7 +956,7 @@ fn a_saved_builtin_setup_works_from_any_directory() {
             "--postures",
             "{dir}/g.csv",
         ],
-        &["nothing.toml", "no such file and no built-in setup"],
+        &["nothing.toml", "no file", "and no built-in setup"],
     );
 }
 

@@ -1,7 +1,7 @@
 //! The library's errors as Python exceptions.
 
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
-use pyo3::PyErr;
+use pyo3::{PyErr, Python};
 use std::path::Path;
 use stiffid::Error;
 
@@ -21,6 +21,27 @@ fn exception(e: &Error, message: String) -> PyErr {
         Error::Infeasible { .. } | Error::Unreachable { .. } => PyRuntimeError::new_err(message),
         _ => PyValueError::new_err(message),
     }
+}
+
+/// A Python exception where the library's file lookups
+/// ([`stiffid::formats::reference`]) want an error that holds the library's errors.
+pub struct Failure(pub PyErr);
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Self {
+        Failure(raise(e))
+    }
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        Python::attach(|py| write!(f, "{}", self.0.value(py)))
+    }
+}
+
+/// The text of the file at `path` for the library's lookups: `None` if nothing exists there.
+pub fn read_if_exists(path: &Path) -> Option<Result<String, Failure>> {
+    path.exists().then(|| read(path).map_err(Failure))
 }
 
 /// A `ValueError` with this message.

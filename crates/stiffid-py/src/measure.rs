@@ -301,11 +301,12 @@ pub fn identify(
     }
     let data = data(s, measurements, [q_deg, wrench, displacement_mm])?;
     let fit = py.detach(|| {
-        let obs = Observations::from_measurements(s, &data.measurements)?;
+        let obs = || Observations::from_measurements(s, &data.measurements);
         match (loss, nonnegative) {
-            (Some(l), _) => obs.robust(l),
-            (None, true) => obs.nonnegative(),
-            (None, false) => obs.into_least_squares(),
+            (Some(l), _) => obs()?.robust(l),
+            (None, true) => obs()?.nonnegative(),
+            // As the command: in blocks, without the whole Psi.
+            (None, false) => stiffid::identify::least_squares(s, &data.measurements),
         }
     });
     let fit = fit.map_err(|e| data.error(e))?;

@@ -2,15 +2,16 @@
 //! dexterity index.
 
 use crate::arrays::{self, choice};
-use crate::error::{self, raise};
+use crate::error::{self, raise, Failure};
 use nalgebra::{Matrix4, Matrix6, Vector3};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use std::path::{Path, PathBuf};
 use stiffid::formats::postures;
+use stiffid::formats::reference;
 use stiffid::limits;
-use stiffid::robot::{file, presets, urdf};
+use stiffid::robot::presets;
 use stiffid::{dexterity, Coordinates};
 
 /// Most postures of one vectorised call (an `(n, 6)` array): 1 000 000.
@@ -225,20 +226,10 @@ fn shaped<'py>(out: Bound<'py, numpy::PyArray3<f64>>, single: bool) -> PyResult<
     }
 }
 
-/// A robot from a `.toml` or `.urdf` file.
+/// A robot from a `.toml` or `.urdf` file (never a preset: a missing file is
+/// `FileNotFoundError`).
 fn from_path(path: &Path, tip: Option<&str>) -> PyResult<stiffid::Robot> {
-    parse_file(path, &error::read(path)?, tip).map_err(raise)
-}
-
-/// A robot from the text of the `.toml` or `.urdf` file at `path` (the extension decides).
-pub fn parse_file(path: &Path, text: &str, tip: Option<&str>) -> stiffid::Result<stiffid::Robot> {
-    let name = path.display().to_string();
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("toml") => file::parse(text, &name),
-        Some("urdf") => urdf::parse(text, &name, tip),
-        _ => Err(stiffid::Error::Parse {
-            source_name: name,
-            message: "a robot file must end in .toml or .urdf".into(),
-        }),
-    }
+    let read = |p: &Path| Some(error::read(p).map_err(Failure));
+    let reference = path.to_string_lossy();
+    reference::robot(&reference, tip, read).map_err(|e: Failure| e.0)
 }

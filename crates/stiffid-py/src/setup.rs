@@ -3,14 +3,14 @@
 
 use crate::arrays::{self, postures};
 use crate::design;
-use crate::error::{self, raise};
-use crate::robot::{coordinates_name, parse_file, Robot};
+use crate::error::{self, raise, Failure};
+use crate::robot::{coordinates_name, Robot};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::robot::presets;
-use stiffid::{setup, Error};
+use stiffid::formats::reference;
+use stiffid::setup;
 
 /// An experimental setup (read-only). Lengths in mm, angles in deg, stiffness in Nm/rad.
 #[pyclass(frozen, module = "stiffid", name = "Setup")]
@@ -254,11 +254,9 @@ impl Setup {
 
 impl Setup {
     fn parse(text: &str, source_name: &str, dir: &Path) -> PyResult<Self> {
-        let inner = setup::parse(text, source_name, |r, tip| {
-            robot_in(dir, r, tip, source_name)
-        });
+        let inner = reference::setup_text(text, source_name, dir, error::read_if_exists);
         Ok(Self {
-            inner: inner.map_err(raise)?,
+            inner: inner.map_err(|e: Failure| e.0)?,
         })
     }
 
@@ -280,22 +278,4 @@ impl Setup {
         let within = (&r.lower, &r.upper, "the joint limits");
         Ok(postures(obj, "pool", within, stiffid::design::pool::MAX_POOL)?.0)
     }
-}
-
-/// The robot a setup names: a robot file relative to `dir` if one exists, else a preset.
-fn robot_in(
-    dir: &Path,
-    reference: &str,
-    tip: Option<&str>,
-    source_name: &str,
-) -> stiffid::Result<stiffid::Robot> {
-    let path = dir.join(reference);
-    if !path.exists() {
-        return presets::get(reference);
-    }
-    let text = std::fs::read_to_string(&path).map_err(|e| Error::Parse {
-        source_name: format!("{source_name}: robot"),
-        message: format!("{}: cannot read: {e}", path.display()),
-    })?;
-    parse_file(&path, &text, tip)
 }

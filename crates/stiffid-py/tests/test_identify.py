@@ -100,26 +100,25 @@ def test_validate_equals_the_command(fanuc, cli, fanuc_cli, tmp_path):
     np.testing.assert_allclose(mine["delta_b_mm"], [c["delta_b_mm"] for c in theirs["checks"]], rtol=1e-12)
 
 
-def test_bad_csv_names_file_line_and_column(fanuc, tmp_path):
+def fanuc_with(tmp_path, line, column, value):
+    """The FANUC data with one field replaced (line and column 1-based), as bad.csv."""
     lines = FANUC_DATA.read_text().splitlines()
-    fields = lines[3].split(",")
-    fields[8] = "heavy"
-    lines[3] = ",".join(fields)
+    fields = lines[line - 1].split(",")
+    fields[column - 1] = value
+    lines[line - 1] = ",".join(fields)
     bad = tmp_path / "bad.csv"
     bad.write_text("\n".join(lines) + "\n")
+    return bad
+
+
+def test_bad_csv_names_file_line_and_column(fanuc, tmp_path):
     with pytest.raises(ValueError, match=r"bad.csv: line 4, column 9 \(fx_n\).*heavy"):
-        stiffid.identify(fanuc, bad)
+        stiffid.identify(fanuc, fanuc_with(tmp_path, 4, 9, "heavy"))
 
 
 def test_measurement_outside_the_limits_names_its_line(fanuc, tmp_path):
-    lines = FANUC_DATA.read_text().splitlines()
-    fields = lines[2].split(",")
-    fields[2] = "400"
-    lines[2] = ",".join(fields)
-    bad = tmp_path / "bad.csv"
-    bad.write_text("\n".join(lines) + "\n")
     with pytest.raises(ValueError, match=r"bad.csv: line 3, column 3 \(q1_deg\)"):
-        stiffid.identify(fanuc, bad)
+        stiffid.identify(fanuc, fanuc_with(tmp_path, 3, 3, "400"))
 
 
 def test_missing_file(fanuc, tmp_path):

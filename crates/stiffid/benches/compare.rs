@@ -20,20 +20,10 @@ use stiffid::setup;
 const START: &str = include_str!("../../../bench/inputs/start-group.csv");
 const MEASUREMENTS: &str = include_str!("../../../bench/inputs/measurements.csv");
 
-/// The start group (axis angles, rad) from its CSV `posture,q1_deg,...,q6_deg`.
+/// The start group (axis angles, rad), read by the library's parser.
 fn start_group() -> Vec<Vector6<f64>> {
-    START
-        .lines()
-        .skip(1)
-        .map(|line| {
-            let deg: Vec<f64> = line
-                .split(',')
-                .skip(1)
-                .map(|v| v.parse().unwrap())
-                .collect();
-            Vector6::from_iterator(deg.iter().map(|d| d.to_radians()))
-        })
-        .collect()
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    stiffid::formats::postures::parse(START, setup.robot(), None).unwrap()
 }
 
 /// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm`, read by the

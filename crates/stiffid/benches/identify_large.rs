@@ -1,13 +1,14 @@
 //! Identification at size: a measurement CSV of 1e6 rows, each its own posture with its own label
 //! (the FANUC R-2000iC/165F rows cycled with shifted axis angles, as `bench/large_measurements.py`
-//! writes them), parsed, turned into the base frame, stacked into `Psi` (3e6 x 6) and identified
-//! with statistics. Targets: under 1 s (issue 14) or 2 s (issue 11) on 2 cores. Peak memory is
-//! measured on the command line (`/usr/bin/time -v`, README).
+//! writes them), parsed, turned into the base frame and identified with statistics by
+//! `identify::least_squares` (`Psi` is 3e6 x 6 but never whole: reduced by QR in blocks). Target:
+//! under 1 s on 2 cores (issue 14). Peak memory is measured on the command line
+//! (`/usr/bin/time -v`, README).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use stiffid::formats::measurements;
-use stiffid::observation::Observations;
+use stiffid::identify;
 use stiffid::setup;
 
 const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
@@ -42,10 +43,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let mut file = measurements::parse(black_box(&text)).unwrap();
             file.to_base_frame(&setup).unwrap();
-            Observations::from_measurements(&setup, &file.measurements)
-                .unwrap()
-                .into_least_squares()
-                .unwrap()
+            identify::least_squares(&setup, &file.measurements).unwrap()
         })
     });
     group.finish();

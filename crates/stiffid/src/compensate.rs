@@ -33,6 +33,7 @@
 //! 2019.
 
 use crate::deflection::{base_wrench, Frame, Points};
+use crate::error::ColumnProblem;
 use crate::ik::{self, pose_error, tool_pose};
 use crate::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Setup};
@@ -263,10 +264,12 @@ impl<'a> Model<'a> {
 /// depend on the number of threads.
 ///
 /// # Errors
-/// [`Error::Row`] naming the line of the first point (in path order) that fails, and the lines
-/// of the others: axis angles outside the joint limits (`q1_deg..q6_deg`), a pose inverse kinematics
-/// cannot reach (`x_mm..rz_deg`, [`Error::Unreachable`]'s message), or compensated axis angles
-/// outside the joint limits or a residual above 0.1 micrometre / 1 microradian (`q_compensated`).
+/// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
+/// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
+/// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
+/// message, `x_mm..rz_deg`), or compensated axis angles outside the joint limits or a residual
+/// above 0.1 micrometre / 1 microradian (`Uncompensated` with the lines of the other points that
+/// fail, `q_compensated`).
 pub fn path(
     setup: &Setup,
     compliance: &Compliance,
@@ -292,7 +295,7 @@ pub fn path(
             let (qc, ep, eo, iterations) =
                 model
                     .compensate_from(q, frames.clone(), &wrenches[i])
-                    .map_err(|e| row(points[i].line, "q_compensated", e.to_string()))?;
+                    .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
             check_compensated(setup, points[i].line, &qc, ep, eo)?;
             let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
             let deflection_before = options.free_tool_axis.map(|_| {
@@ -318,11 +321,17 @@ pub fn path(
     first_error(results)
 }
 
-fn row(line: u64, column: &str, message: String) -> Error {
-    Error::Row {
+/// The error of the path point at `line` that cannot be compensated; `columns` names where.
+fn uncompensated(line: u64, columns: &str, reason: String) -> Error {
+    Error::Column {
         line,
-        column: column.into(),
-        message,
+        column: None,
+        name: columns.into(),
+        problem: ColumnProblem::Uncompensated {
+            reason,
+            others: Vec::new(),
+            failed: 1,
+        },
     }
 }
 
@@ -332,7 +341,7 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
     let failed: Vec<u64> = results
         .iter()
         .filter_map(|r| match r {
-            Err(Error::Row { line, .. }) => Some(*line),
+            Err(Error::Column { line, .. }) => Some(*line),
             _ => None,
         })
         .collect();
@@ -340,24 +349,23 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
     for r in results {
         match r {
             Ok(v) => out.push(v),
-            Err(Error::Row {
+            Err(Error::Column {
                 line,
                 column,
-                message,
-            }) if failed.len() > 1 => {
-                let others: Vec<String> = failed[1..].iter().take(10).map(u64::to_string).collect();
-                let more = match failed.len() - 1 {
-                    n if n > 10 => format!(", ... ({n} in all)"),
-                    _ => String::new(),
+                name,
+                problem: ColumnProblem::Uncompensated { reason, .. },
+            }) => {
+                let problem = ColumnProblem::Uncompensated {
+                    reason,
+                    others: failed[1..].iter().take(10).copied().collect(),
+                    failed: failed.len(),
                 };
-                return Err(row(
+                return Err(Error::Column {
                     line,
-                    &column,
-                    format!(
-                        "{message}; the same for the points on lines {}{more}",
-                        others.join(", ")
-                    ),
-                ));
+                    column,
+                    name,
+                    problem,
+                });
             }
             Err(e) => return Err(e),
         }
@@ -368,7 +376,7 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
 fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
     let robot = &setup.robot();
     if let Some(i) = robot.first_out_of_limits(qc) {
-        return Err(row(
+        return Err(uncompensated(
             line,
             "q_compensated",
             format!(
@@ -381,7 +389,7 @@ fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f
         ));
     }
     if !(ep <= REQUIRED_M && eo <= REQUIRED_RAD) {
-        return Err(row(
+        return Err(uncompensated(
             line,
             "q_compensated",
             format!(
@@ -408,22 +416,26 @@ fn nominal_postures(
         let q = match &p.target {
             Target::Posture(q) => {
                 if let Some(i) = robot.first_out_of_limits(q) {
-                    return Err(row(
-                        p.line,
-                        &format!("q{}_deg", i + 1),
-                        format!(
-                            "{:.4} deg is outside the joint limits [{:.2}, {:.2}] deg",
-                            q[i].to_degrees(),
-                            robot.lower[i].to_degrees(),
-                            robot.upper[i].to_degrees()
-                        ),
-                    ));
+                    let name = format!("q{}_deg", i + 1);
+                    let outside = ColumnProblem::Outside {
+                        name: name.clone(),
+                        value: q[i].to_degrees(),
+                        within: "the joint limits",
+                        lower: robot.lower[i].to_degrees(),
+                        upper: robot.upper[i].to_degrees(),
+                    };
+                    return Err(Error::Column {
+                        line: p.line,
+                        column: None,
+                        name,
+                        problem: outside,
+                    });
                 }
                 *q
             }
             Target::Pose(t) => {
                 ik::solve(robot, &setup.tool().tcp, t, &previous, &options.ik)
-                    .map_err(|e| row(p.line, "x_mm..rz_deg", e.to_string()))?
+                    .map_err(|e| uncompensated(p.line, "x_mm..rz_deg", e.to_string()))?
                     .q
             }
         };

@@ -39,6 +39,20 @@ pub enum Error {
         /// The names that exist, comma-separated.
         known: String,
     },
+    /// A reference that looks like a file path names neither an existing file nor a built-in.
+    #[error("{kind} '{reference}': no file {path} and no {builtin} of that name (known: {known})")]
+    NotFound {
+        /// "robot" or "setup".
+        kind: &'static str,
+        /// The reference as given, shortened.
+        reference: String,
+        /// The path looked at, shortened.
+        path: String,
+        /// "preset" or "built-in setup".
+        builtin: &'static str,
+        /// The built-in names, comma-separated.
+        known: String,
+    },
     /// The data cannot identify these joints' compliances.
     #[error("{} cannot be identified: {reason}", joint_list(joints))]
     Unidentifiable {
@@ -85,20 +99,11 @@ pub enum Error {
         line: u64,
         /// The 1-based column (field) of the line, if the problem is in one.
         column: Option<usize>,
-        /// The column's name in the header (empty if unknown).
+        /// The column's name (or columns', e.g. `x_mm..rz_deg`) as the format names it; empty if
+        /// the problem is in no column.
         name: String,
         /// What is wrong.
         problem: ColumnProblem,
-    },
-    /// A row of a table file (CSV) cannot be used. `line` is 1-based, as an editor shows it.
-    #[error("line {line}, column {column}: {message}")]
-    Row {
-        /// The line in the file.
-        line: u64,
-        /// The column (or columns, e.g. `x_mm..rz_deg`) as named in the header.
-        column: String,
-        /// What was wrong and what was expected, with the value given (shortened).
-        message: String,
     },
     /// A JSON text cannot be read: not JSON, or a key missing or of another shape.
     #[error("line {line}, column {column}: {message}; expected {expected}")]
@@ -260,6 +265,33 @@ pub enum ColumnProblem {
         /// The field, shortened.
         value: String,
     },
+    /// Columns of which one set must be given.
+    #[error("missing columns: expected {first} or {second}")]
+    Neither {
+        /// One set of columns.
+        first: String,
+        /// The other.
+        second: String,
+    },
+    /// A field that is none of the words it may hold.
+    #[error("'{value}': expected {expected}")]
+    Choice {
+        /// The field, shortened.
+        value: String,
+        /// The words it may hold, e.g. "base or tool".
+        expected: &'static str,
+    },
+    /// A path point that cannot be compensated ([`crate::compensate::path`]).
+    #[error("{reason}{}", other_lines(others, *failed))]
+    Uncompensated {
+        /// Why: a pose not reached (the message of [`Error::Unreachable`]), compensated axis
+        /// angles outside the joint limits or a compensation that did not converge.
+        reason: String,
+        /// The lines of the other points that fail too (the first ten).
+        others: Vec<u64>,
+        /// How many points fail in all (this one included).
+        failed: usize,
+    },
     /// A measurement the library rejected ([`Error::Measurement`]), placed in the file.
     #[error("{message}")]
     Measurement {
@@ -270,10 +302,26 @@ pub enum ColumnProblem {
 
 fn column_name(column: Option<usize>, name: &str) -> String {
     match (column, name.is_empty()) {
-        (None, _) => String::new(),
+        (None, true) => String::new(),
+        (None, false) => format!(", column {name}"),
         (Some(c), true) => format!(", column {c}"),
         (Some(c), false) => format!(", column {c} ({name})"),
     }
+}
+
+fn other_lines(others: &[u64], failed: usize) -> String {
+    if others.is_empty() {
+        return String::new();
+    }
+    let lines: Vec<String> = others.iter().map(u64::to_string).collect();
+    let more = match failed - 1 > others.len() {
+        true => format!(", ... ({} in all)", failed - 1),
+        false => String::new(),
+    };
+    format!(
+        "; the same for the points on lines {}{more}",
+        lines.join(", ")
+    )
 }
 
 /// Result with the library's [`enum@Error`].

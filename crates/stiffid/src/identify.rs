@@ -38,10 +38,11 @@ pub use cross_validation::{cross_validate, CrossValidation, Fold};
 pub use robust::{Loss, RobustFit};
 pub use uncertainty::Uncertainty;
 
-use crate::lsq::Factor;
-use crate::observation::{Measurement, Observations};
+use crate::lsq::{Factor, Reduced};
+use crate::observation::{assemble, check, Measurement, Observations};
 use crate::{Error, Result, Setup};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
+use rayon::prelude::*;
 
 /// The result of an identification.
 #[derive(Debug, Clone, PartialEq)]
@@ -83,16 +84,71 @@ impl Identification {
     }
 }
 
-/// Identifies the joint compliance and stiffness by linear least squares (Eq. 13-14, QR), with
-/// standard errors and 95% confidence intervals (module docs):
-/// [`Observations::from_measurements`] then [`Observations::least_squares`]. The other fits
-/// ([`Observations::robust`], [`Observations::nonnegative`]) and cross-validation start from the
-/// [`Observations`].
+/// Identifies the joint compliance and stiffness by linear least squares (Eq. 13-14), with
+/// standard errors and 95% confidence intervals (module docs), in bounded memory: the rows of
+/// `Psi` are made and reduced by QR in blocks of [`BLOCK`] measurements ([`Reduced`]), in
+/// parallel, merged in block order, then made again for the residuals. The result is the same
+/// whatever the number of threads, and equal to [`Observations::least_squares`] to rounding
+/// (the same QR, in another order). The other fits ([`Observations::robust`],
+/// [`Observations::nonnegative`]) and cross-validation need the whole [`Observations`].
 ///
 /// # Errors
-/// Those of [`Observations::from_measurements`] and [`Observations::least_squares`].
+/// Those of [`check`] and [`Observations::least_squares`].
 pub fn least_squares(setup: &Setup, measurements: &[Measurement]) -> Result<Identification> {
-    Observations::from_measurements(setup, measurements)?.least_squares()
+    let (postures, _) = check(setup, measurements)?;
+    check_deflection(measurements.iter().flat_map(|m| m.displacement.iter()))?;
+    let blocks: Vec<Reduced> = measurements
+        .par_chunks(BLOCK)
+        .map(|block| {
+            let (psi, delta) = rows(setup, block);
+            let mut reduced = Reduced::default();
+            reduced.push(&psi, &delta);
+            reduced
+        })
+        .collect();
+    let whole = blocks.iter().fold(Reduced::default(), |mut all, b| {
+        all.merge(b);
+        all
+    });
+    let solution = whole.try_solve()?;
+    let residuals: Vec<f64> = measurements
+        .par_chunks(BLOCK)
+        .flat_map_iter(|block| {
+            let (psi, delta) = rows(setup, block);
+            (delta - psi * solution.h).as_slice().to_vec()
+        })
+        .collect();
+    Ok(finish(
+        postures,
+        solution.h,
+        DVector::from_vec(residuals),
+        solution.unit_covariance,
+        6,
+        solution.cond,
+        None,
+    ))
+}
+
+/// Measurements per block of [`least_squares`]: 3072 rows of `Psi`, 147 kB.
+pub const BLOCK: usize = 1024;
+
+/// `Psi` and `delta` of some measurements ([`assemble`]).
+fn rows(setup: &Setup, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f64>) {
+    let n = 3 * measurements.len();
+    let (mut psi, mut delta) = (DMatrix::zeros(n, 6), DVector::zeros(n));
+    assemble(setup, measurements, &mut psi, &mut delta);
+    (psi, delta)
+}
+
+/// [`Error::InvalidField`] when every measured displacement is zero: nothing deflected.
+fn check_deflection<'a>(mut displacements: impl Iterator<Item = &'a f64>) -> Result<()> {
+    match displacements.any(|d| *d != 0.0) {
+        true => Ok(()),
+        false => Err(Error::InvalidField {
+            field: "displacement".into(),
+            message: "every measured displacement is zero: nothing to identify (check the displacement columns)".into(),
+        }),
+    }
 }
 
 /// The fits of the observations (Eq. 13-14): least squares, bounded, robust. Each checks that
@@ -106,32 +162,12 @@ impl Observations {
     /// the data cannot identify and why (no measurement loads them, or their columns of `Psi` are
     /// dependent); [`Error::NotFinite`] for non-finite entries.
     pub fn least_squares(&self) -> Result<Identification> {
-        self.check_deflection()?;
+        check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let h = factor.solve(&self.delta);
         let residuals = &self.delta - &self.psi * h;
-        Ok(self.finish(
-            h,
-            residuals,
-            factor.unit_covariance(),
-            6,
-            factor.cond(),
-            None,
-        ))
-    }
-
-    /// [`Observations::least_squares`] without a copy of `Psi`: it is factored in place and the
-    /// residuals come from the factor ([`Factor::solve_with_residuals`]). For large data sets (a million
-    /// measurements make `Psi` 144 MB).
-    ///
-    /// # Errors
-    /// Those of [`Observations::least_squares`].
-    pub fn into_least_squares(mut self) -> Result<Identification> {
-        self.check_deflection()?;
-        let psi = std::mem::replace(&mut self.psi, DMatrix::zeros(0, 6));
-        let factor = Factor::try_new(psi)?;
-        let (h, residuals) = factor.solve_with_residuals(&self.delta);
-        Ok(self.finish(
+        Ok(finish(
+            self.postures,
             h,
             residuals,
             factor.unit_covariance(),
@@ -152,11 +188,12 @@ impl Observations {
     /// # Errors
     /// Those of [`Observations::least_squares`].
     pub fn nonnegative(&self) -> Result<Identification> {
-        self.check_deflection()?;
+        check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let fit = nonnegative::solve(factor.r(), &factor.project(&self.delta));
         let free = fit.active.iter().filter(|a| !**a).count();
-        let mut id = self.finish(
+        let mut id = finish(
+            self.postures,
             fit.h,
             &self.delta - &self.psi * fit.h,
             nonnegative::unit_covariance(factor.r(), &fit.active),
@@ -168,17 +205,6 @@ impl Observations {
         Ok(id)
     }
 
-    /// [`Error::InvalidField`] when every measured displacement is zero: nothing deflected.
-    fn check_deflection(&self) -> Result<()> {
-        match self.delta.iter().any(|d| *d != 0.0) {
-            true => Ok(()),
-            false => Err(Error::InvalidField {
-                field: "displacement".into(),
-                message: "every measured displacement is zero: nothing to identify (check the displacement columns)".into(),
-            }),
-        }
-    }
-
     /// Robust identification: iteratively reweighted least squares with `loss` ([`robust`]),
     /// starting from the least-squares fit. The uncertainty treats the final weights as known:
     /// `s^2 = sum w_i r_i^2 / (m_w - 6)` with `m_w` the rows of non-zero weight, and
@@ -188,12 +214,13 @@ impl Observations {
     /// Those of [`Observations::least_squares`]; [`Error::Unidentifiable`] also when the rows left with
     /// weight make `Psi` rank deficient.
     pub fn robust(&self, loss: Loss) -> Result<Identification> {
-        self.check_deflection()?;
+        check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let start = factor.solve(&self.delta);
         let (h, weighted, fit) = robust::fit(&self.psi, &self.delta, start, loss)?;
         let residuals = &self.delta - &self.psi * h;
-        Ok(self.finish(
+        Ok(finish(
+            self.postures,
             h,
             residuals,
             weighted.unit_covariance(),
@@ -202,43 +229,43 @@ impl Observations {
             Some(fit),
         ))
     }
+}
 
-    /// The statistics of compliance `h` with residuals `delta - Psi h`,
-    /// `(Psi^T W Psi)^-1 = unit_covariance` and `free` estimated compliances.
-    fn finish(
-        &self,
-        h: Vector6<f64>,
-        residuals: DVector<f64>,
-        unit_covariance: Matrix6<f64>,
-        free: usize,
-        cond_psi: f64,
-        robust: Option<RobustFit>,
-    ) -> Identification {
-        let rows = residuals.len();
-        let (weighted_rss, weighted_rows) = match &robust {
-            None => (residuals.norm_squared(), rows),
-            Some(fit) => (
-                residuals.component_mul(&residuals).dot(&fit.weights),
-                fit.weights.iter().filter(|w| **w > 0.0).count(),
-            ),
-        };
-        let dof = weighted_rows.saturating_sub(free);
-        let uncertainty = match dof {
-            0 => None,
-            _ => Uncertainty::new(&h, &unit_covariance, weighted_rss / dof as f64, dof),
-        };
-        Identification {
-            compliance: h,
-            stiffness: h.map(|v| 1.0 / v),
-            uncertainty,
-            residual_rms: (residuals.norm_squared() / rows as f64).sqrt(),
-            residuals,
-            cond_psi,
-            rows,
-            postures: self.postures,
-            robust,
-            unit_covariance,
-            active_bounds: None,
-        }
+/// The statistics of compliance `h` with residuals `delta - Psi h`,
+/// `(Psi^T W Psi)^-1 = unit_covariance` and `free` estimated compliances.
+fn finish(
+    postures: usize,
+    h: Vector6<f64>,
+    residuals: DVector<f64>,
+    unit_covariance: Matrix6<f64>,
+    free: usize,
+    cond_psi: f64,
+    robust: Option<RobustFit>,
+) -> Identification {
+    let rows = residuals.len();
+    let (weighted_rss, weighted_rows) = match &robust {
+        None => (residuals.norm_squared(), rows),
+        Some(fit) => (
+            residuals.component_mul(&residuals).dot(&fit.weights),
+            fit.weights.iter().filter(|w| **w > 0.0).count(),
+        ),
+    };
+    let dof = weighted_rows.saturating_sub(free);
+    let uncertainty = match dof {
+        0 => None,
+        _ => Uncertainty::new(&h, &unit_covariance, weighted_rss / dof as f64, dof),
+    };
+    Identification {
+        compliance: h,
+        stiffness: h.map(|v| 1.0 / v),
+        uncertainty,
+        residual_rms: (residuals.norm_squared() / rows as f64).sqrt(),
+        residuals,
+        cond_psi,
+        rows,
+        postures,
+        robust,
+        unit_covariance,
+        active_bounds: None,
     }
 }

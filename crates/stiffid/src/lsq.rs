@@ -4,12 +4,16 @@
 //! `h = R^-1 Q^T delta` solves Eq. 13-14 without forming `Psi^T Psi` (whose condition number is
 //! `cond^2(Psi)`, Eq. 19), and `(Psi^T Psi)^-1 = R^-1 R^-T`. The singular values of `R` are those of
 //! `Psi`. A factor is made once per observation matrix and reused for many right-hand sides (Monte
-//! Carlo runs).
+//! Carlo runs). A problem too large to hold `Psi` is reduced block by block instead ([`Reduced`]).
 //!
 //! The kernels are specialised to six columns (`crate::linalg`): Householder QR in place (LAPACK
 //! `dgeqrf` convention, `Q` kept as its six reflectors) and one-sided Jacobi (Hestenes) for the
 //! singular values of `R`, accurate to a few ulps relative to each singular value (Demmel & Veselic
 //! 1992), as good as the SVD.
+
+mod reduced;
+
+pub use reduced::{Reduced, Solution};
 
 use crate::linalg::{axpy, column_norms, dot, householder_qr, singular_values, upper_triangle};
 use crate::{Error, Result};
@@ -56,36 +60,9 @@ impl Factor {
                 what: "the observation matrix".into(),
             });
         }
-        let largest = norms.max();
-        let unloaded: Vec<usize> = (0..6)
-            .filter(|&j| norms[j] <= largest * RANK_TOLERANCE)
-            .map(|j| j + 1)
-            .collect();
-        if !unloaded.is_empty() {
-            return Err(Error::Unidentifiable {
-                joints: unloaded,
-                reason: "no posture loads the joint or moves a measuring point with it (zero column of Psi)".into(),
-            });
-        }
         let taus = householder_qr(psi.as_mut_slice(), m);
         let r = upper_triangle(psi.as_slice(), m);
-        let r_inv = r
-            .solve_upper_triangular(&Matrix6::identity())
-            .filter(|inv| inv.iter().all(|v| v.is_finite()))
-            .ok_or_else(|| dependent_columns(&r))?;
-        let bound = r.norm() * r_inv.norm();
-        let deficient = match bound {
-            b if !b.is_finite() => true,
-            b if b * RANK_TOLERANCE < 1.0 => false,
-            b if b * RANK_TOLERANCE >= 6.0 => true,
-            _ => {
-                let s = singular_values(&r);
-                s.min() <= s.max() * RANK_TOLERANCE
-            }
-        };
-        if deficient {
-            return Err(dependent_columns(&r));
-        }
+        let r_inv = checked_inverse(&r, &norms)?;
         Ok(Self {
             reflectors: psi,
             taus,
@@ -109,27 +86,12 @@ impl Factor {
     /// If `delta` does not have as many entries as `Psi` has rows.
     pub fn project(&self, delta: &DVector<f64>) -> Vector6<f64> {
         let mut d = delta.clone();
-        self.reflect(&mut d, 0..6);
+        self.reflect(&mut d);
         Vector6::from_column_slice(&d.as_slice()[..6])
     }
 
-    /// The solution `h` ([`Factor::solve`]) and the least-squares residuals `delta - Psi h`
-    /// without `Psi`: `Q^T delta` with its first six entries zeroed, multiplied by `Q` (as
-    /// LAPACK's `dgels`). One application of `Q^T` serves both.
-    ///
-    /// # Panics
-    /// If `delta` does not have as many entries as `Psi` has rows.
-    pub fn solve_with_residuals(&self, delta: &DVector<f64>) -> (Vector6<f64>, DVector<f64>) {
-        let mut d = delta.clone();
-        self.reflect(&mut d, 0..6);
-        let h = self.r_inv * Vector6::from_column_slice(&d.as_slice()[..6]);
-        d.rows_mut(0, 6).fill(0.0);
-        self.reflect(&mut d, (0..6).rev());
-        (h, d)
-    }
-
-    /// Applies the reflectors `H_k` in the order given: `0..6` is `Q^T d`, the reverse `Q d`.
-    fn reflect(&self, d: &mut DVector<f64>, order: impl Iterator<Item = usize>) {
+    /// `d <- Q^T d`: the reflectors `H_1 .. H_6` applied in turn.
+    fn reflect(&self, d: &mut DVector<f64>) {
         assert_eq!(
             d.len(),
             self.reflectors.nrows(),
@@ -137,7 +99,7 @@ impl Factor {
         );
         let m = d.len();
         let (a, d) = (self.reflectors.as_slice(), d.as_mut_slice());
-        for k in order {
+        for k in 0..6 {
             let v = &a[k * m + k + 1..(k + 1) * m];
             let w = self.taus[k] * (d[k] + dot(v, &d[k + 1..]));
             d[k] -= w;
@@ -169,6 +131,41 @@ impl Factor {
     pub fn cond(&self) -> f64 {
         crate::linalg::cond(&self.r)
     }
+}
+
+/// `R^-1` after the rank rule of [`Factor::try_new`] on `R` and the column norms of `Psi`.
+fn checked_inverse(r: &Matrix6<f64>, norms: &Vector6<f64>) -> Result<Matrix6<f64>> {
+    let largest = norms.max();
+    let unloaded: Vec<usize> = (0..6)
+        .filter(|&j| norms[j] <= largest * RANK_TOLERANCE)
+        .map(|j| j + 1)
+        .collect();
+    if !unloaded.is_empty() {
+        return Err(Error::Unidentifiable {
+            joints: unloaded,
+            reason:
+                "no posture loads the joint or moves a measuring point with it (zero column of Psi)"
+                    .into(),
+        });
+    }
+    let r_inv = r
+        .solve_upper_triangular(&Matrix6::identity())
+        .filter(|inv| inv.iter().all(|v| v.is_finite()))
+        .ok_or_else(|| dependent_columns(r))?;
+    let bound = r.norm() * r_inv.norm();
+    let deficient = match bound {
+        b if !b.is_finite() => true,
+        b if b * RANK_TOLERANCE < 1.0 => false,
+        b if b * RANK_TOLERANCE >= 6.0 => true,
+        _ => {
+            let s = singular_values(r);
+            s.min() <= s.max() * RANK_TOLERANCE
+        }
+    };
+    if deficient {
+        return Err(dependent_columns(r));
+    }
+    Ok(r_inv)
 }
 
 /// The error for dependent columns of `Psi`: the joints with a large share in the right singular

@@ -17,7 +17,9 @@
 
 mod measurement;
 
-pub use measurement::{Measurement, Observations, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT};
+pub use measurement::{
+    assemble, check, Measurement, Observations, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT,
+};
 
 use crate::kinematics::Frames;
 use crate::setup::Setup;

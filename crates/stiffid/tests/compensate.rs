@@ -367,12 +367,14 @@ fn every_point_that_cannot_be_compensated_is_named() {
         point(7, 300.0),
     ];
     match compensate::path(&s, &compliance, &path, &options(&s, None)) {
-        Err(Error::Row {
+        Err(Error::Column {
             line: 4,
-            column,
-            message,
+            name,
+            problem,
+            ..
         }) => {
-            assert_eq!(column, "q_compensated");
+            let message = problem.to_string();
+            assert_eq!(name, "q_compensated");
             assert!(message.contains("axis 2"), "{message}");
             assert!(message.ends_with("lines 6, 7"), "{message}");
         }

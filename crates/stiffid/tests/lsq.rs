@@ -5,7 +5,8 @@
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::{lsq::Factor, Error};
+use stiffid::lsq::{Factor, Reduced};
+use stiffid::Error;
 
 /// A random m x 6 matrix whose columns have the given scales.
 fn random(m: usize, scales: [f64; 6], seed: u64) -> DMatrix<f64> {
@@ -91,4 +92,66 @@ fn rank_checks_name_the_joints() {
         Factor::try_new(random(5, [1.0; 6], 15)).unwrap_err(),
         Error::TooFewRows { rows: 5 }
     );
+}
+
+#[test]
+fn reduction_in_blocks_of_any_size_equals_the_one_shot_factor() {
+    let m = 1000;
+    let psi = random(m, [1e-3, 2e-4, 5e-4, 3e-3, 4e-3, 6e-3], 11);
+    let delta = DVector::from_fn(m, |i, _| (i as f64 * 0.53).cos() * 1e-3);
+    let factor = Factor::try_new(psi.clone()).unwrap();
+    let h = factor.solve(&delta);
+    // Uneven blocks (1 row, fewer than six, many), then merged reductions of disjoint rows.
+    let mut reduced = Reduced::default();
+    let mut other = Reduced::default();
+    let mut start = 0;
+    for (k, size) in [1, 2, 5, 6, 7, 64, 300, 15].into_iter().cycle().enumerate() {
+        let size = size.min(m - start);
+        if size == 0 {
+            break;
+        }
+        let (p, d) = (
+            psi.rows(start, size).into_owned(),
+            delta.rows(start, size).into_owned(),
+        );
+        match k % 3 {
+            0 => reduced.push(&p, &d),
+            _ => other.push(&p, &d),
+        }
+        start += size;
+    }
+    reduced.merge(&other);
+    assert_eq!(reduced.rows(), m);
+    // Another row order: same problem, same solution.
+    let solution = reduced.try_solve().unwrap();
+    assert!(
+        (solution.h - h).amax() < 1e-12 * h.amax(),
+        "{} vs {h}",
+        solution.h
+    );
+    let covariance = factor.unit_covariance();
+    assert!((solution.unit_covariance - covariance).amax() < 1e-12 * covariance.amax());
+    assert!((solution.cond - factor.cond()).abs() < 1e-12 * factor.cond());
+}
+
+#[test]
+fn reduction_refuses_what_the_factor_refuses() {
+    let mut few = Reduced::default();
+    few.push(&random(5, [1.0; 6], 15), &DVector::zeros(5));
+    assert!(matches!(
+        few.try_solve(),
+        Err(Error::TooFewRows { rows: 5 })
+    ));
+    let mut psi = random(40, [1.0; 6], 16);
+    psi.column_mut(3).fill(0.0);
+    let mut zero = Reduced::default();
+    zero.push(&psi, &DVector::zeros(40));
+    match zero.try_solve().unwrap_err() {
+        Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![4]),
+        e => panic!("{e}"),
+    }
+    psi[(0, 0)] = f64::NAN;
+    let mut nan = Reduced::default();
+    nan.push(&psi, &DVector::zeros(40));
+    assert!(matches!(nan.try_solve(), Err(Error::NotFinite { .. })));
 }

@@ -45,11 +45,12 @@ fn postures_and_poses_parse_in_si_units() {
 
 fn row_error(text: &str) -> (u64, String, String) {
     match parse(text, Frame::Base) {
-        Err(Error::Row {
+        Err(Error::Column {
             line,
-            column,
-            message,
-        }) => (line, column, message),
+            name,
+            problem,
+            ..
+        }) => (line, name, problem.to_string()),
         other => panic!("{other:?}"),
     }
 }
@@ -62,10 +63,15 @@ fn bad_files_name_the_line_and_column() {
         (
             "fx_n,fy_n,fz_n\n1,2,3\n".to_string(),
             1,
-            "q1_deg",
-            "missing",
+            "",
+            "missing columns: expected q1_deg",
         ),
-        (format!("{q},fx_n,fy_n,fz_n,speed\n"), 1, "speed", "unknown"),
+        (
+            format!("{q},fx_n,fy_n,fz_n,speed\n"),
+            1,
+            "",
+            "unknown column 'speed'",
+        ),
         (
             format!("{q},fx_n,fy_n,fz_n\n0,0,0,0,0,0,1,2,3\n0,0,NaN,0,0,0,1,2,3\n"),
             3,
@@ -76,7 +82,7 @@ fn bad_files_name_the_line_and_column() {
             format!("{q},fx_n,fy_n,fz_n\n0,0,0,0,0,0,1,2,abc\n"),
             2,
             "fz_n",
-            "'abc' is not a number",
+            "'abc' is not a finite number",
         ),
         (
             format!("{q},fx_n,fy_n,fz_n,frame\n0,0,0,0,0,0,1,2,3,world\n"),
@@ -87,14 +93,14 @@ fn bad_files_name_the_line_and_column() {
         (
             format!("{q},fx_n,fy_n,fz_n\n0,0,0,0,0,0,1,2\n"),
             2,
-            "-",
+            "",
             "expected 9 fields",
         ),
-        (format!("{q},fx_n,fy_n,fz_n\n"), 1, "-", "at least one"),
+        (format!("{q},fx_n,fy_n,fz_n\n"), 1, "", "at least one"),
         (
             format!("{q},x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n\n"),
             1,
-            "q1_deg",
+            "",
             "not both",
         ),
         (format!("{q},fx_n,fy_n,fz_n,mx_nm\n"), 1, "my_nm", "missing"),

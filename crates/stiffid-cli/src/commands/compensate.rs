@@ -1,6 +1,7 @@
 //! `stiffid compensate`: the deflection of every point of a machining path under its process
 //! wrench, and the compensated axis angles that cancel it ([`stiffid::compensate`]).
 
+use crate::commands::common::{Common, Stiffness};
 use crate::load::{self, WrenchFrame};
 use crate::output::{print_json_or, OutFile};
 use crate::report::{self, compensation};
@@ -18,13 +19,10 @@ use stiffid::{ik, Coordinates, Setup};
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name or a setup .toml file (its robot, springs and `tcp_mm`).
-    #[arg(long)]
-    setup: String,
-    /// JSON file with `stiffness_nm_per_rad` (from `stiffid identify --out`); with
-    /// `compliance_covariance_rad2_per_nm2` the deflections get standard deviations.
-    #[arg(long)]
-    stiffness: PathBuf,
+    #[command(flatten)]
+    common: Common,
+    #[command(flatten)]
+    stiffness: Stiffness,
     /// Path CSV: q1_deg..q6_deg or x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg, then fx_n,fy_n,fz_n
     /// [,mx_nm,my_nm,mz_nm] [,frame] (at most 1 000 000 rows).
     #[arg(long)]
@@ -32,9 +30,6 @@ pub struct Args {
     /// Output CSV, one row per path point, units in the header (never one of the inputs).
     #[arg(long)]
     out: PathBuf,
-    /// Print the result as JSON (the same columns per point, and a summary).
-    #[arg(long)]
-    json: bool,
     /// Also write a report into this directory (created; must be missing, empty or hold an
     /// earlier compensation report).
     #[arg(long)]
@@ -171,8 +166,8 @@ fn may_be_empty(name: &str) -> bool {
 
 /// Compensates, writes the CSV (and the report), prints.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
-    let file = load::stiffness(&args.stiffness)?;
+    let setup = args.common.load_setup()?;
+    let file = args.stiffness.load()?;
     let compliance = Compliance {
         h: file.stiffness().map(|k| 1.0 / k),
         covariance: file.covariance(),
@@ -196,8 +191,8 @@ pub fn run(args: &Args) -> Result<()> {
     let summary = Summary::of(&results, &lines);
     let document = Document {
         generator: compensation::GENERATOR,
-        setup: &args.setup,
-        stiffness: args.stiffness.display().to_string(),
+        setup: &args.common.setup,
+        stiffness: args.stiffness.stiffness.display().to_string(),
         path: args.path.display().to_string(),
         out: args.out.display().to_string(),
         springs: setup.springs(),
@@ -215,7 +210,7 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(dir) = report {
         compensation::write(dir, &setup, &results, &table, &document)?;
     }
-    print_json_or(args.json, &document, |_| {
+    print_json_or(args.common.json, &document, |_| {
         summary.human(args, &setup, compliance.covariance.is_some())
     })
 }
@@ -445,7 +440,7 @@ impl Summary {
             self.points,
             args.path.display(),
             setup.name(),
-            args.stiffness.display(),
+            args.stiffness.stiffness.display(),
             if covariance { ", with its covariance: standard deviations in the CSV" } else { "" },
             self.max_deflection_mm.0,
             self.max_deflection_mm.1,

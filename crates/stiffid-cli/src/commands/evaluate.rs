@@ -1,6 +1,7 @@
 //! `stiffid evaluate`: every design criterion of a group of postures and its predicted deviation
 //! rates.
 
+use crate::commands::common::Common;
 use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::{Context, Result};
@@ -17,15 +18,11 @@ use stiffid::Setup;
 /// Arguments of `stiffid evaluate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
+    #[command(flatten)]
+    common: Common,
     /// Postures file (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     postures: PathBuf,
-    /// Print JSON instead of a table.
-    #[arg(long)]
-    json: bool,
 }
 
 /// Every criterion of a group under the keys of `stiffid evaluate --json`, and its predicted
@@ -99,12 +96,12 @@ pub struct EvaluateJson {
 
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
+    let setup = args.common.load_setup()?;
     let group = load::postures(&args.postures, setup.robot(), Some(setup.bounds()))?;
     identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
     let checks = feasibility::of_group(&setup, &group);
-    if args.json {
+    if args.common.json {
         let doc = EvaluateJson {
             criteria: CriteriaJson::from(&e),
             feasibility: feasibility::json(&checks),

@@ -2,6 +2,7 @@
 //! standard errors, 95% confidence intervals, the model check against the tracker noise,
 //! residuals, and optionally a robust or non-negative fit and cross-validation.
 
+use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::{Context, Result};
@@ -10,7 +11,7 @@ use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::formats::measurements::MeasurementFile;
 use stiffid::identify::{
-    cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
+    self, cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
 };
 use stiffid::kinematics::Coordinates;
 use stiffid::observation::Observations;
@@ -21,9 +22,8 @@ mod text;
 /// Arguments of `stiffid identify`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
+    #[command(flatten)]
+    common: Common,
     /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm],dx_mm,dy_mm,dz_mm.
     #[arg(long)]
     data: PathBuf,
@@ -40,9 +40,6 @@ pub struct Args {
     /// Number of cross-validation folds, 2 to the number of postures (implies --cross-validate).
     #[arg(long)]
     folds: Option<usize>,
-    /// Print JSON instead of tables.
-    #[arg(long)]
-    json: bool,
     /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -67,7 +64,7 @@ pub struct Run<'a> {
     adequacy: Option<Adequacy>,
     unit: Option<UnitCheck>,
     cross_validation: Option<CrossValidation>,
-    /// The postures' dense numbers -> their first measurement.
+    /// The postures' dense numbers -> their first measurement (with cross-validation only).
     first_of_posture: Vec<usize>,
 }
 
@@ -268,7 +265,7 @@ struct InfluentialJson {
 
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
+    let setup = args.common.load_setup()?;
     let file = load::measurements(&args.data, &setup)?;
     let out = args
         .out
@@ -276,16 +273,32 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
     let name = args.data.display().to_string();
-    let obs = Observations::from_measurements(&setup, &file.measurements)
-        .map_err(|e| file.explain(e))
-        .with_context(|| name.clone())?;
-    let mut first_of_posture = vec![usize::MAX; obs.postures];
-    for (i, &p) in obs.posture_index.iter().enumerate().rev() {
-        first_of_posture[p] = i;
-    }
-    let (id, cross_validation) = fit(args, obs).with_context(|| name.clone())?;
+    let (id, cross_validation, first_of_posture) = match args.robust.is_some()
+        || args.nonnegative
+        || args.cross_validate
+        || args.folds.is_some()
+    {
+        // Plain least squares: in blocks, without the whole Psi (bounded memory, parallel).
+        false => {
+            let id = identify::least_squares(&setup, &file.measurements)
+                .map_err(|e| file.explain(e))
+                .with_context(|| name.clone())?;
+            (id, None, Vec::new())
+        }
+        true => {
+            let obs = Observations::from_measurements(&setup, &file.measurements)
+                .map_err(|e| file.explain(e))
+                .with_context(|| name.clone())?;
+            let mut first_of_posture = vec![usize::MAX; obs.postures];
+            for (i, &p) in obs.posture_index.iter().enumerate().rev() {
+                first_of_posture[p] = i;
+            }
+            let (id, cv) = fit(args, &obs).with_context(|| name.clone())?;
+            (id, cv, first_of_posture)
+        }
+    };
     let run = Run {
-        setup_name: &args.setup,
+        setup_name: &args.common.setup,
         data_name: name,
         setup: &setup,
         file: &file,
@@ -298,32 +311,31 @@ pub fn run(args: &Args) -> Result<()> {
     for warning in text::warnings(&run) {
         output::warn(&warning);
     }
-    if args.json || out.is_some() {
+    if args.common.json || out.is_some() {
         let text = json(&to_json(&run))?;
         if let Some(out) = &out {
             out.write(text.as_bytes())?;
         }
-        if args.json {
+        if args.common.json {
             return output::print(&text);
         }
     }
     output::print(&text::human(&run))
 }
 
-/// The fit the arguments ask for, and the cross-validation if asked.
-fn fit(args: &Args, obs: Observations) -> Result<(Identification, Option<CrossValidation>)> {
+/// The fit the arguments ask for (robust, bounded or, for cross-validation, least squares on the
+/// whole `Psi`), and the cross-validation if asked.
+fn fit(args: &Args, obs: &Observations) -> Result<(Identification, Option<CrossValidation>)> {
     let id = match (args.robust, args.nonnegative) {
         (Some(Robust::Huber), _) => obs.robust(Loss::Huber)?,
         (Some(Robust::Tukey), _) => obs.robust(Loss::Tukey)?,
         (None, true) => obs.nonnegative()?,
-        (None, false) if args.cross_validate || args.folds.is_some() => obs.least_squares()?,
-        // Nothing else needs Psi: factor it in place (no copy of a large Psi).
-        (None, false) => return Ok((obs.into_least_squares()?, None)),
+        (None, false) => obs.least_squares()?,
     };
     let cross_validation = match args.cross_validate || args.folds.is_some() {
         false => None,
         true => {
-            Some(cross_validate(&obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
+            Some(cross_validate(obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
         }
     };
     Ok((id, cross_validation))

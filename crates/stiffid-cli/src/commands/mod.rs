@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod common;
 pub mod compensate;
 pub mod completions;
 pub mod evaluate;

@@ -1,6 +1,7 @@
 //! `stiffid predict`: the forward model (Zhang et al. 2021, Eq. 3-7) for one posture and wrench,
 //! with the TCP deflection and the Cartesian compliance and stiffness of the loaded point.
 
+use crate::commands::common::Common;
 use crate::load::{self, WrenchFrame};
 use crate::output::print_json_or;
 use anyhow::{bail, Result};
@@ -15,9 +16,8 @@ use stiffid::limits;
 /// Arguments of `stiffid predict`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
+    #[command(flatten)]
+    common: Common,
     /// Axis angles q1..q6, deg, comma-separated.
     #[arg(long, allow_hyphen_values = true)]
     q_deg: String,
@@ -37,9 +37,6 @@ pub struct Args {
     /// displacement also gets its standard deviation.
     #[arg(long)]
     stiffness: Option<PathBuf>,
-    /// Print JSON instead of a table.
-    #[arg(long)]
-    json: bool,
 }
 
 /// `stiffid predict --json`: the forward model for one posture and wrench. `*_std_*` keys are
@@ -132,7 +129,7 @@ fn xyz(v: &Vector6<f64>, from: usize, scale: f64) -> [f64; 3] {
 
 /// Predicts and prints.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
+    let setup = args.common.load_setup()?;
     let (q_deg, q) = load::posture(&args.q_deg, setup.robot())?;
     let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;
     if w.len() != 3 && w.len() != 6 {
@@ -169,7 +166,7 @@ pub fn run(args: &Args) -> Result<()> {
     let c = cartesian::compliance(&frames, &at, setup.springs(), &h);
     let k = cartesian::stiffness(&frames, &at, setup.springs(), &stiffness);
     let result = PredictJson {
-        setup: args.setup.clone(),
+        setup: args.common.setup.clone(),
         q_deg: q_deg.into(),
         wrench: wrench.into(),
         wrench_frame: match args.frame {
@@ -220,7 +217,7 @@ pub fn run(args: &Args) -> Result<()> {
             matrix_si: rows(&k, 0, 0),
         }),
     };
-    print_json_or(args.json, &result, human)
+    print_json_or(args.common.json, &result, human)
 }
 
 fn human(r: &PredictJson) -> String {

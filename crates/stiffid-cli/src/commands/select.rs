@@ -6,6 +6,7 @@ mod pool;
 mod target;
 
 use super::evaluate::{criteria_text, identifiable, number, CriteriaJson};
+use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use crate::report::plan;
@@ -27,9 +28,8 @@ use stiffid::Setup;
 /// Arguments of `stiffid select`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
+    #[command(flatten)]
+    common: Common,
     /// Design criterion to minimise: classical, zhang2021, scaled-cond, d-optimal, relative-a,
     /// test-pose (or their JSON keys: relative_a, test_pose_mm, ...). The default, relative-a,
     /// ranks groups of postures as their measured accuracy does (in `stiffid reproduce`,
@@ -95,9 +95,6 @@ pub struct Args {
     /// Write the --report into a directory that holds other files.
     #[arg(long, requires = "report")]
     force: bool,
-    /// Print JSON instead of text.
-    #[arg(long)]
-    json: bool,
 }
 
 /// `stiffid select --json`: the group found, how, and its criteria.
@@ -185,7 +182,7 @@ impl Selection {
 
 /// Runs the search, writes the postures (and the plan) and prints the result.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
+    let setup = args.common.load_setup()?;
     let pool = match &args.pool {
         Some(path) => Some(pool::Input::read(path, &setup)?),
         None => None,
@@ -242,7 +239,7 @@ pub fn run(args: &Args) -> Result<()> {
         true => unconstrained(args, &setup, selection.postures.len())?,
         false => None,
     };
-    if args.json {
+    if args.common.json {
         let doc = SelectJson {
             setup: setup.name(),
             criterion: args.criterion.name(),

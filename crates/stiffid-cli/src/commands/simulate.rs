@@ -1,6 +1,7 @@
 //! `stiffid simulate`: Monte Carlo identification with groups of postures from files
 //! (Zhang et al. 2021, Section IV-A).
 
+use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, ReportDir};
 use anyhow::Result;
@@ -13,9 +14,8 @@ use stiffid::simulate::{monte_carlo, GroupSimulation, Options};
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
+    #[command(flatten)]
+    common: Common,
     /// Postures files (posture,q1_deg,...,q6_deg), one group of postures each [1 to 100 files].
     #[arg(long, num_args = 1..=limits::MAX_GROUPS, required = true)]
     postures: Vec<PathBuf>,
@@ -32,9 +32,6 @@ pub struct Args {
     /// Write into --out even if it holds other files (never over an input file).
     #[arg(long, requires = "out")]
     force: bool,
-    /// Print JSON instead of tables.
-    #[arg(long)]
-    json: bool,
 }
 
 /// One group's simulation in files: deviation rates in percent, per level then joint.
@@ -82,7 +79,7 @@ pub struct SimulationJson<'a> {
 
 /// Runs the simulation and prints or writes the deviation rates.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
+    let setup = args.common.load_setup()?;
     let groups = args
         .postures
         .iter()
@@ -121,7 +118,7 @@ pub fn run(args: &Args) -> Result<()> {
         dir.write(FILES[1], json(&doc)?.as_bytes())?;
         dir.finish()?;
     }
-    match args.json {
+    match args.common.json {
         true => output::print(&json(&doc)?),
         false => output::print(&tables(&names, &sims, &setup.noise().levels, options.runs)),
     }

@@ -1,6 +1,7 @@
 //! `stiffid validate`: predicted against measured displacements for an identified stiffness
 //! (Zhang et al. 2021, Eq. 22, Table 7).
 
+use crate::commands::common::{Common, Stiffness};
 use crate::load;
 use crate::output::print_json_or;
 use anyhow::{Context, Result};
@@ -12,18 +13,13 @@ use stiffid::validate;
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Setup: a built-in name (see `stiffid setups`) or a setup .toml file.
-    #[arg(long)]
-    setup: String,
-    /// JSON file with `stiffness_nm_per_rad` (six values), e.g. from `stiffid identify --out`.
-    #[arg(long)]
-    stiffness: PathBuf,
+    #[command(flatten)]
+    common: Common,
+    #[command(flatten)]
+    stiffness: Stiffness,
     /// Measurements CSV (same format as for `identify`), ideally postures not used to identify.
     #[arg(long)]
     data: PathBuf,
-    /// Print JSON instead of a table.
-    #[arg(long)]
-    json: bool,
 }
 
 /// `stiffid validate --json`: measured against predicted displacements (Eq. 22).
@@ -72,15 +68,15 @@ struct CheckJson {
 
 /// Validates and prints.
 pub fn run(args: &Args) -> Result<()> {
-    let setup = load::setup(&args.setup)?;
-    let stiffness = load::stiffness(&args.stiffness)?.stiffness();
+    let setup = args.common.load_setup()?;
+    let stiffness = args.stiffness.load()?.stiffness();
     let data = load::measurements(&args.data, &setup)?;
     let name = args.data.display().to_string();
     let v = validate::compare(&setup, &stiffness, &data.measurements)
         .map_err(|e| data.explain(e))
         .with_context(|| name.clone())?;
     let result = ValidationJson {
-        setup: args.setup.clone(),
+        setup: args.common.setup.clone(),
         data: name,
         stiffness_nm_per_rad: stiffness.into(),
         checks: v
@@ -104,7 +100,7 @@ pub fn run(args: &Args) -> Result<()> {
         rms_measured_mm: v.measured[2] * 1e3,
         explained: v.explained,
     };
-    print_json_or(args.json, &result, human)
+    print_json_or(args.common.json, &result, human)
 }
 
 fn human(r: &ValidationJson) -> String {

@@ -4,9 +4,96 @@
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
 //! - [`postures`]: the postures CSV of a group of postures.
+//! - [`reference`]: a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
 pub mod measurements;
 pub mod path;
 pub mod postures;
+pub mod reference;
 pub mod stiffness;
+
+use crate::error::ColumnProblem;
+use crate::limits::short;
+use crate::{Error, Result};
+
+/// The error for a column `name` missing from the header at `line`.
+fn missing(line: u64, name: &str) -> Error {
+    Error::Column {
+        line,
+        column: None,
+        name: name.into(),
+        problem: ColumnProblem::Missing {
+            missing: name.into(),
+        },
+    }
+}
+
+/// Checks that every name of a header (at `line`) is one of `known`, and none comes twice.
+///
+/// # Errors
+/// [`ColumnProblem::Unknown`] (with a suggestion and `expected()`) or
+/// [`ColumnProblem::Duplicate`], naming the column.
+fn known_names<'a, S, I>(names: &[S], line: u64, known: I, expected: fn() -> String) -> Result<()>
+where
+    S: AsRef<str>,
+    I: Iterator<Item = &'a str> + Clone,
+{
+    for (i, name) in names.iter().map(AsRef::as_ref).enumerate() {
+        let problem = if !known.clone().any(|k| k == name) {
+            ColumnProblem::Unknown {
+                given: short(name),
+                suggestion: suggestion(name, known.clone()).map(str::to_string),
+                expected: expected(),
+            }
+        } else if names[..i].iter().any(|n| n.as_ref() == name) {
+            ColumnProblem::Duplicate { given: short(name) }
+        } else {
+            continue;
+        };
+        return Err(Error::Column {
+            line,
+            column: Some(i + 1),
+            name: String::new(),
+            problem,
+        });
+    }
+    Ok(())
+}
+
+/// The `known` column a misspelled one probably meant: the same but for case or a missing unit
+/// suffix (`q4` for `q4_deg`), or at most two edits away.
+fn suggestion<'a, I>(name: &str, known: I) -> Option<&'a str>
+where
+    I: Iterator<Item = &'a str> + Clone,
+{
+    let lower = name.to_lowercase();
+    let unit_missing = |k: &str| {
+        k.strip_prefix(lower.as_str())
+            .is_some_and(|r| r.starts_with('_'))
+    };
+    known.clone().find(|k| unit_missing(k)).or_else(|| {
+        known
+            .map(|k| (edit_distance(&lower, k), k))
+            .filter(|(d, _)| *d <= 2)
+            .min()
+            .map(|(_, k)| k)
+    })
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let next = (diagonal + usize::from(ca != *cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            diagonal = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}

@@ -13,10 +13,12 @@
 //!   takes the default the caller gives.
 //!
 //! Columns may come in any order; lines starting with `#` are comments. At most [`MAX_POINTS`]
-//! rows. Errors name the line and column ([`Error::Row`]).
+//! rows. Errors name the line and column ([`Error::Column`]).
 
 use crate::compensate::{PathPoint, Target};
 use crate::deflection::Frame;
+use crate::error::ColumnProblem;
+use crate::limits::short;
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
 
@@ -29,11 +31,13 @@ const FORCE: [&str; 3] = ["fx_n", "fy_n", "fz_n"];
 const MOMENT: [&str; 3] = ["mx_nm", "my_nm", "mz_nm"];
 const FRAME: &str = "frame";
 
-fn row(line: u64, column: &str, message: impl Into<String>) -> Error {
-    Error::Row {
+/// The error at `line`, in no column.
+fn problem(line: u64, problem: ColumnProblem) -> Error {
+    Error::Column {
         line,
-        column: column.into(),
-        message: message.into(),
+        column: None,
+        name: String::new(),
+        problem,
     }
 }
 
@@ -49,140 +53,99 @@ struct Columns {
 /// Parses a path file (module docs); `default_frame` is the wrench frame of rows without one.
 ///
 /// # Errors
-/// [`Error::Row`] naming the line and column: an unknown, repeated or missing column, both or
-/// neither of the axis-angle and pose columns, a row with another number of fields than the
-/// header, a value that is not a finite number (the value shown, shortened), a frame other than
-/// `base` or `tool`, no rows, or more than [`MAX_POINTS`].
+/// [`Error::Column`] naming the line, the column and the [`ColumnProblem`]: an unknown (with a
+/// suggestion), repeated or missing column, both or neither of the axis-angle and pose columns, a
+/// row with another number of fields than the header, a value that is not a finite number (the
+/// value shown, shortened), a frame other than `base` or `tool`, no rows, or more than
+/// [`MAX_POINTS`].
+///
+/// # Examples
+/// ```
+/// use stiffid::deflection::Frame;
+/// let text = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n0,0,-90,0,30,0,0,0,-500\n";
+/// let points = stiffid::formats::path::parse(text, Frame::Base).unwrap();
+/// assert_eq!((points.len(), points[0].line, points[0].wrench[2]), (1, 2, -500.0));
+/// ```
 pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
-    let header = reader
-        .headers()
-        .map_err(|e| row(1, "header", e.to_string()))?
-        .clone();
+    let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
     let header_line = header.position().map_or(1, |p| p.line());
     let names: Vec<&str> = header.iter().collect();
     let columns = columns(&names, header_line)?;
     let mut points = Vec::new();
     for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map_or(0, |p| p.line());
-            row(line, "-", e.to_string())
-        })?;
+        let record = record.map_err(|e| unreadable(e.position().map_or(0, |p| p.line()), &e))?;
         let line = record.position().map_or(0, |p| p.line());
         if record.len() != names.len() {
-            return Err(row(
-                line,
-                "-",
-                format!(
-                    "expected {} fields as in the header, got {}",
-                    names.len(),
-                    record.len()
-                ),
-            ));
+            let count = ColumnProblem::FieldCount {
+                expected: names.len(),
+                got: record.len(),
+            };
+            return Err(problem(line, count));
         }
         if points.len() == MAX_POINTS {
-            return Err(row(
-                line,
-                "-",
-                format!("more than {MAX_POINTS} path points"),
-            ));
+            let too_many = ColumnProblem::TooMany {
+                limit: MAX_POINTS,
+                what: "path points",
+            };
+            return Err(problem(line, too_many));
         }
         points.push(point(&columns, &names, &record, line, default_frame)?);
     }
     if points.is_empty() {
-        return Err(row(
-            header_line,
-            "-",
-            "expected at least one path point after the header",
-        ));
+        let what = "path point";
+        return Err(problem(header_line, ColumnProblem::NoRows { what }));
     }
     Ok(points)
 }
 
+fn unreadable(line: u64, e: &csv::Error) -> Error {
+    let message = e.to_string();
+    problem(line, ColumnProblem::Unreadable { message })
+}
+
+fn expected_columns() -> String {
+    format!(
+        "{} or {}, {}, optional {} and {FRAME}",
+        Q.join(","),
+        POSE.join(","),
+        FORCE.join(","),
+        MOMENT.join(",")
+    )
+}
+
 fn columns(names: &[&str], line: u64) -> Result<Columns> {
-    let known = |n: &str| {
-        Q.contains(&n)
-            || POSE.contains(&n)
-            || FORCE.contains(&n)
-            || MOMENT.contains(&n)
-            || n == FRAME
-    };
-    for (i, n) in names.iter().enumerate() {
-        if !known(n) {
-            return Err(row(
-                line,
-                n,
-                format!(
-                    "unknown column (expected {}, {}, {}, optional {} and {FRAME})",
-                    Q.join(","),
-                    POSE.join(","),
-                    FORCE.join(","),
-                    MOMENT.join(",")
-                ),
-            ));
-        }
-        if names[..i].contains(n) {
-            return Err(row(line, n, "the column appears twice"));
-        }
-    }
+    let known = Q.iter().chain(&POSE).chain(&FORCE).chain(&MOMENT);
+    let known = known.copied().chain([FRAME]);
+    super::known_names(names, line, known, expected_columns)?;
     let find = |n: &str| names.iter().position(|h| *h == n);
     let all = |set: &[&str]| -> Result<Option<Vec<usize>>> {
         let found: Vec<Option<usize>> = set.iter().map(|n| find(n)).collect();
-        match (
-            found.iter().all(Option::is_some),
-            found.iter().any(Option::is_some),
-        ) {
-            (true, _) => Ok(Some(found.into_iter().flatten().collect())),
-            (false, false) => Ok(None),
-            (false, true) => {
-                let missing = set
-                    .iter()
-                    .zip(&found)
-                    .find(|(_, f)| f.is_none())
-                    .map_or("", |(n, _)| n);
-                Err(row(
-                    line,
-                    missing,
-                    format!("missing column: {} go together", set.join(",")),
-                ))
-            }
+        match found.iter().position(Option::is_none) {
+            None => Ok(Some(found.into_iter().flatten().collect())),
+            Some(_) if found.iter().all(Option::is_none) => Ok(None),
+            Some(i) => Err(super::missing(line, set[i])),
         }
     };
-    let q = all(&Q)?;
-    let pose = all(&POSE)?;
-    let (target, is_pose) = match (q, pose) {
+    let (target, is_pose) = match (all(&Q)?, all(&POSE)?) {
         (Some(q), None) => (q, false),
         (None, Some(p)) => (p, true),
-        (Some(_), Some(_)) => {
-            return Err(row(
+        (q, _) => {
+            let (first, second) = (Q.join(","), POSE.join(","));
+            return Err(problem(
                 line,
-                "q1_deg",
-                "give either the axis angles q1_deg..q6_deg or the pose x_mm..rz_deg, not both",
-            ))
-        }
-        (None, None) => {
-            return Err(row(
-                line,
-                "q1_deg",
-                format!(
-                    "missing columns: expected the axis angles {} or the TCP pose {}",
-                    Q.join(","),
-                    POSE.join(",")
-                ),
-            ))
+                match q {
+                    Some(_) => ColumnProblem::Conflict { first, second },
+                    None => ColumnProblem::Neither { first, second },
+                },
+            ));
         }
     };
-    let force = all(&FORCE)?.ok_or_else(|| {
-        row(
-            line,
-            "fx_n",
-            format!("missing columns: expected the force {}", FORCE.join(",")),
-        )
-    })?;
+    let force = all(&FORCE)?.ok_or_else(|| super::missing(line, FORCE[0]))?;
     let as3 = |v: Vec<usize>| [v[0], v[1], v[2]];
     Ok(Columns {
         target: [
@@ -195,17 +158,26 @@ fn columns(names: &[&str], line: u64) -> Result<Columns> {
     })
 }
 
+/// The error in field `i` (0-based) of a row at `line`.
+fn at(names: &[&str], line: u64, i: usize, problem: ColumnProblem) -> Error {
+    Error::Column {
+        line,
+        column: Some(i + 1),
+        name: names[i].into(),
+        problem,
+    }
+}
+
 fn number(record: &csv::StringRecord, names: &[&str], i: usize, line: u64) -> Result<f64> {
     let text = &record[i];
-    let shown: String = text.chars().take(24).collect();
     match text.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(row(
+        _ => Err(at(
+            names,
             line,
-            names[i],
-            format!("'{shown}' is not a finite number"),
+            i,
+            ColumnProblem::NotANumber { value: short(text) },
         )),
-        Err(_) => Err(row(line, names[i], format!("'{shown}' is not a number"))),
     }
 }
 
@@ -243,12 +215,11 @@ fn point(
         Some("base") => Frame::Base,
         Some("tool") => Frame::Tool,
         Some(other) => {
-            let shown: String = other.chars().take(24).collect();
-            return Err(row(
-                line,
-                FRAME,
-                format!("'{shown}': expected base or tool"),
-            ));
+            let choice = ColumnProblem::Choice {
+                value: short(other),
+                expected: "base or tool",
+            };
+            return Err(at(names, line, c.frame.unwrap_or(0), choice));
         }
     };
     Ok(PathPoint {

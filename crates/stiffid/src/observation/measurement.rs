@@ -50,58 +50,88 @@ pub struct Observations {
 }
 
 impl Observations {
-    /// Checks every measurement and stacks its three rows of `Psi` and `delta` (Eq. 10-11), in the
-    /// row order of the [module docs](crate::observation). Frames are computed once per run of
-    /// measurements with the same axis angles, torques once per run with the same angles and wrench.
+    /// Checks every measurement ([`check`]) and stacks its three rows of `Psi` and `delta`
+    /// (Eq. 10-11, [`assemble`]), in the row order of the [module docs](crate::observation).
     ///
     /// # Errors
-    /// [`Error::Measurement`] naming the measurement (1-based) and what is wrong: a measuring point the
-    /// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
-    /// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
-    /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
-    /// angles (`posture`). Linear in the measurements whatever the number of postures.
+    /// Those of [`check`].
     pub fn from_measurements(setup: &Setup, measurements: &[Measurement]) -> Result<Self> {
+        let (postures, posture_index) = check(setup, measurements)?;
         let n = measurements.len();
         let mut psi = DMatrix::zeros(3 * n, 6);
         let mut delta = DVector::zeros(3 * n);
-        let mut labels = Postures::new(measurements);
-        let mut posture_index = Vec::with_capacity(n);
-        // The measurement the frames and torques were computed for, the frames and the torques.
-        let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
-        for (i, meas) in measurements.iter().enumerate() {
-            check(setup, i + 1, meas)?;
-            posture_index.push(check_label(&mut labels, measurements, i)?);
-            if state
-                .as_ref()
-                .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
-            {
-                state = None;
-            }
-            let (j, frames, tau) = state.get_or_insert_with(|| {
-                let frames = setup.robot().frames(&meas.q);
-                let tau = joint_torques(setup, &frames, &meas.wrench);
-                (i, frames, tau)
-            });
-            if measurements[*j].wrench != meas.wrench {
-                *tau = joint_torques(setup, frames, &meas.wrench);
-            }
-            *j = i;
-            psi.fixed_view_mut::<3, 6>(3 * i, 0)
-                .copy_from(&point_rows(setup, frames, meas.point, tau));
-            delta
-                .fixed_rows_mut::<3>(3 * i)
-                .copy_from(&meas.displacement);
-        }
+        assemble(setup, measurements, &mut psi, &mut delta);
         Ok(Observations {
             psi,
             delta,
-            postures: labels.count,
+            postures,
             posture_index,
         })
     }
 }
 
-fn check(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
+/// Checks every measurement; returns the number of distinct postures and the posture of each
+/// measurement, numbered `0..postures` in order of first appearance. Linear in the measurements
+/// whatever the number of postures.
+///
+/// # Errors
+/// [`Error::Measurement`] naming the measurement (1-based) and what is wrong: a measuring point the
+/// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
+/// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
+/// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
+/// angles (`posture`).
+pub fn check(setup: &Setup, measurements: &[Measurement]) -> Result<(usize, Vec<usize>)> {
+    let mut labels = Postures::new(measurements);
+    let mut posture_index = Vec::with_capacity(measurements.len());
+    for (i, meas) in measurements.iter().enumerate() {
+        check_one(setup, i + 1, meas)?;
+        posture_index.push(check_label(&mut labels, measurements, i)?);
+    }
+    Ok((labels.count, posture_index))
+}
+
+/// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x 6`) and `delta`
+/// (`3n`), in the row order of the [module docs](crate::observation). Frames are computed once per
+/// run of measurements with the same axis angles, torques once per run with the same angles and
+/// wrench.
+///
+/// # Panics
+/// If `psi` or `delta` do not have three rows per measurement, or a measuring point is not the
+/// setup's.
+pub fn assemble(
+    setup: &Setup,
+    measurements: &[Measurement],
+    psi: &mut DMatrix<f64>,
+    delta: &mut DVector<f64>,
+) {
+    assert!(psi.nrows() == 3 * measurements.len() && delta.len() == psi.nrows());
+    // The measurement the frames and torques were computed for, the frames and the torques.
+    let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
+    for (i, meas) in measurements.iter().enumerate() {
+        if state
+            .as_ref()
+            .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
+        {
+            state = None;
+        }
+        let (j, frames, tau) = state.get_or_insert_with(|| {
+            let frames = setup.robot().frames(&meas.q);
+            let tau = joint_torques(setup, &frames, &meas.wrench);
+            (i, frames, tau)
+        });
+        if measurements[*j].wrench != meas.wrench {
+            *tau = joint_torques(setup, frames, &meas.wrench);
+        }
+        *j = i;
+        psi.fixed_view_mut::<3, 6>(3 * i, 0)
+            .copy_from(&point_rows(setup, frames, meas.point, tau));
+        delta
+            .fixed_rows_mut::<3>(3 * i)
+            .copy_from(&meas.displacement);
+    }
+}
+
+fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
     let error = |field, message: String| Error::Measurement {
         number,
         field,

@@ -66,7 +66,7 @@ struct AxisMapFile {
 /// A rigid transform as written in files: translation in mm, URDF roll-pitch-yaw in degrees.
 #[derive(Debug, Deserialize, Default, Clone, Copy)]
 #[serde(deny_unknown_fields)]
-pub struct TransformFile {
+pub(crate) struct TransformFile {
     /// Translation, mm.
     #[serde(default)]
     pub xyz_mm: [f64; 3],

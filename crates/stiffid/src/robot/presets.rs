@@ -36,6 +36,21 @@ pub fn text(name: &str) -> Result<&'static str> {
 ///
 /// # Errors
 /// [`Error::Unknown`](crate::Error::Unknown) if no preset has this name.
+///
+/// # Examples
+/// Forward kinematics and the Jacobian of the flange origin at a posture (axis angles, rad):
+/// ```
+/// use nalgebra::{Vector3, Vector6};
+/// use stiffid::{robot::presets, Coordinates};
+/// let robot = presets::get("comau-smart5-nj165-3.0")?;
+/// let q = Vector6::new(0.0, 0.0, -90.0, 0.0, 30.0, 0.0).map(f64::to_radians);
+/// assert!(robot.first_out_of_limits(&q).is_none());
+/// let frames = robot.frames(&q); // base frame, m
+/// let j = frames.jacobian(&Vector3::zeros(), Coordinates::Axis); // rows [v; omega]
+/// assert_eq!(j.shape(), (6, 6));
+/// assert!(frames.flange.translation.vector.norm() > 1.0);
+/// # Ok::<(), stiffid::Error>(())
+/// ```
 pub fn get(name: &str) -> Result<Robot> {
     file::parse(text(name)?, &format!("preset {name}"))
 }

@@ -197,7 +197,7 @@ fn default_tip(
         })
     };
     let ends: Vec<&str> = leaves.iter().copied().filter(six_revolute).collect();
-    let name_it = "name the tip link (robot_tip in a setup, --tip on the command line)";
+    let name_it = "name the tip link";
     match (leaves.as_slice(), ends.as_slice()) {
         ([one], _) | (_, [one]) => Ok(one.to_string()),
         (_, many) if many.contains(&"tool0") => Ok("tool0".into()),

@@ -1,0 +1,135 @@
+//! Robots and setups named as a user names them: a file if one exists at the reference, else the
+//! built-in of that name (a robot preset, a built-in setup). The caller reads files: `read(path)`
+//! returns `None` if nothing exists at `path`, else the file's text or the caller's error `E`
+//! (which must hold the library's errors: `E: From<Error>`, e.g. `anyhow::Error`).
+//!
+//! A built-in name wins over a file path that does not exist, so a preset named `...-3.0` is no
+//! file; a reference that looks like a path (an extension or a directory) and names neither is
+//! [`Error::NotFound`].
+
+use crate::robot::{file, presets, urdf};
+use crate::{setup, Error, Robot, Setup};
+use std::fmt::Display;
+use std::path::Path;
+
+/// A robot: the robot TOML (`.toml`, [`file::parse`]) or URDF (`.urdf`, [`urdf::parse`] with the
+/// tip link `tip`) file at `reference` if `read` finds one, else the preset named `reference`
+/// ([`presets::get`]).
+///
+/// # Errors
+/// The error of `read`; those of the parser (named after the file); [`Error::Parse`] for a file
+/// with another extension; [`Error::Unknown`] for a name that is no preset, [`Error::NotFound`]
+/// for a path that is neither a file nor a preset.
+///
+/// # Examples
+/// ```
+/// use stiffid::formats::reference;
+/// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
+/// let robot = reference::robot("fanuc-r2000ic-165f", None, no_files).unwrap();
+/// assert_eq!(robot.name, "FANUC R-2000iC/165F");
+/// let e = reference::robot("robots/mine.toml", None, no_files).unwrap_err();
+/// assert!(e.to_string().contains("no file robots/mine.toml and no preset"), "{e}");
+/// ```
+pub fn robot<E, F>(reference: &str, tip: Option<&str>, read: F) -> Result<Robot, E>
+where
+    E: From<Error>,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    robot_in(Path::new(""), reference, tip, &read)
+}
+
+/// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`.
+fn robot_in<E, F>(dir: &Path, reference: &str, tip: Option<&str>, read: &F) -> Result<Robot, E>
+where
+    E: From<Error>,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    let path = dir.join(reference);
+    let name = path.display().to_string();
+    let Some(text) = read(&path) else {
+        let e = presets::get(reference);
+        return e.map_err(|e| not_found(e, "robot", "preset", reference, &path).into());
+    };
+    Ok(match path.extension().and_then(|e| e.to_str()) {
+        Some("toml") => file::parse(&text?, &name)?,
+        Some("urdf") => urdf::parse(&text?, &name, tip)?,
+        _ => Err(Error::Parse {
+            source_name: name,
+            message: "a robot file must end in .toml or .urdf".into(),
+        })?,
+    })
+}
+
+/// A setup: the setup TOML file at `reference` if `read` finds one (a robot file it names is
+/// looked for relative to the setup file), else the built-in setup named `reference`
+/// ([`setup::builtin`]).
+///
+/// # Errors
+/// The error of `read`; those of [`setup::parse`] and [`robot`]; [`Error::Unknown`] for a name
+/// that is no built-in setup, [`Error::NotFound`] for a path that is neither a file nor a
+/// built-in setup.
+///
+/// # Examples
+/// ```
+/// use stiffid::formats::reference;
+/// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
+/// let setup = reference::setup("zhang2021-comau-nj165", no_files).unwrap();
+/// assert_eq!(setup.robot.name, "COMAU SMART5 NJ 165-3.0");
+/// ```
+pub fn setup<E, F>(reference: &str, read: F) -> Result<Setup, E>
+where
+    E: From<Error> + Display,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    let path = Path::new(reference);
+    match read(path) {
+        None => setup::builtin(reference)
+            .map_err(|e| not_found(e, "setup", "built-in setup", reference, path).into()),
+        Some(text) => {
+            let dir = path.parent().unwrap_or(Path::new(""));
+            setup_text(&text?, reference, dir, read)
+        }
+    }
+}
+
+/// A setup from its TOML `text`, read from `source_name` in the directory `dir`, where a robot
+/// file it names is looked for ([`robot`]).
+///
+/// # Errors
+/// Those of [`setup::parse`]; a robot that cannot be resolved is [`Error::Parse`] naming
+/// `source_name` and `robot`, with the message of the robot's error.
+pub fn setup_text<E, F>(text: &str, source_name: &str, dir: &Path, read: F) -> Result<Setup, E>
+where
+    E: From<Error> + Display,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    Ok(setup::parse(text, source_name, |r, tip| {
+        robot_in(dir, r, tip, &read).map_err(|e| Error::Parse {
+            source_name: format!("{source_name}: robot"),
+            message: e.to_string(),
+        })
+    })?)
+}
+
+/// [`Error::NotFound`] instead of [`Error::Unknown`] for a reference that looks like a file path
+/// (an extension or a directory separator).
+fn not_found(
+    e: Error,
+    kind: &'static str,
+    builtin: &'static str,
+    reference: &str,
+    path: &Path,
+) -> Error {
+    let file_like =
+        Path::new(reference).extension().is_some() || Path::new(reference).components().count() > 1;
+    match e {
+        Error::Unknown { known, .. } if file_like => Error::NotFound {
+            kind,
+            reference: crate::limits::short(reference),
+            path: crate::limits::short(&path.display().to_string()),
+            builtin,
+            known,
+        },
+        e => e,
+    }
+}
