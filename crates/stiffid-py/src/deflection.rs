@@ -37,7 +37,7 @@ pub fn deflection<'py>(
     compliance_covariance_rad2_per_nm2: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
-    let r = &s.robot;
+    let r = &s.robot();
     let within = (&r.lower, &r.upper, "the joint limits");
     let (qs, _) = arrays::postures(q_deg, "q_deg", within, crate::robot::MAX_POSTURES)?;
     let wrenches = per_posture(wrench, qs.len())?;
@@ -46,10 +46,10 @@ pub fn deflection<'py>(
             Ok(Vector3::from(arrays::vector::<3>(p, what, &limits::LENGTH_MM)?) * 1e-3)
         })
     };
-    let loaded = point(loaded_mm, s.tool.loading_point, "loaded_mm")?;
+    let loaded = point(loaded_mm, s.tool().loading_point, "loaded_mm")?;
     let observed = point(observed_mm, loaded, "observed_mm")?;
     let k = match stiffness_nm_per_rad {
-        None => s.nominal_stiffness,
+        None => *s.nominal_stiffness(),
         Some(k) => {
             let range = &limits::STIFFNESS_NM_PER_RAD;
             Vector6::from(arrays::vector::<6>(k, "stiffness_nm_per_rad", range)?)
@@ -71,7 +71,7 @@ pub fn deflection<'py>(
                 let frames = r.frames(q);
                 let points = Points {
                     frames: &frames,
-                    springs: s.springs,
+                    springs: s.springs(),
                     loaded: &loaded,
                     observed: &observed,
                 };

@@ -73,7 +73,7 @@ fn from_arrays(
     w: &Bound<'_, PyAny>,
     d: &Bound<'_, PyAny>,
 ) -> PyResult<Data> {
-    let r = &setup.robot;
+    let r = &setup.robot();
     let (q, _) = arrays::postures(
         q,
         "q_deg",
@@ -83,7 +83,7 @@ fn from_arrays(
     let n = q.len();
     let wrench = wrenches(w, n)?;
     let d = rows::<3>(d, "displacement_mm")?.rows;
-    let points = setup.tool.measuring_points.len();
+    let points = setup.tool().measuring_points.len();
     if d.len() % n != 0 || d.len() / n > points || d.is_empty() {
         return Err(value(format!(
             "displacement_mm: expected n * m rows for the n = {n} postures and m = 1 to {points} measuring points, got {}",
@@ -314,7 +314,7 @@ pub fn identify(
         py,
         &fit,
         data.labels(),
-        s.noise.variance,
+        s.noise().variance,
     ))
 }
 

@@ -55,105 +55,105 @@ impl Setup {
     /// Short name, e.g. ``"zhang2021-comau-nj165"``.
     #[getter]
     fn name(&self) -> &str {
-        &self.inner.name
+        self.inner.name()
     }
 
     /// What this cell is, free text.
     #[getter]
     fn description(&self) -> &str {
-        &self.inner.description
+        self.inner.description()
     }
 
     /// The robot reference as written (a preset name or a file).
     #[getter]
     fn robot_ref(&self) -> &str {
-        &self.inner.robot_ref
+        self.inner.robot_ref()
     }
 
     /// The robot (with the setup's base and flange offsets).
     #[getter]
     fn robot(&self) -> Robot {
         Robot {
-            inner: self.inner.robot.clone(),
+            inner: self.inner.robot().clone(),
         }
     }
 
     /// Where the springs sit: ``"axis"`` (in the drives) or ``"kinematic"``.
     #[getter]
     fn springs(&self) -> &'static str {
-        coordinates_name(self.inner.springs)
+        coordinates_name(self.inner.springs())
     }
 
     /// Nominal (in simulation: true) joint stiffness, Nm/rad, shape ``(6,)`` (Table 2).
     #[getter]
     fn nominal_stiffness_nm_per_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.nominal_stiffness.iter().copied())
+        arrays::vec1(py, self.inner.nominal_stiffness().iter().copied())
     }
 
     /// Characteristic length ``L`` of the dexterity index (Eq. 20), mm.
     #[getter]
     fn characteristic_length_mm(&self) -> f64 {
-        self.inner.characteristic_length * 1e3
+        self.inner.characteristic_length() * 1e3
     }
 
     /// Loading point, flange frame, mm, shape ``(3,)``.
     #[getter]
     fn loading_point_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.tool.loading_point.iter().map(|v| v * 1e3))
+        arrays::vec1(py, self.inner.tool().loading_point.iter().map(|v| v * 1e3))
     }
 
     /// Measuring points, flange frame, mm, shape ``(p, 3)``.
     #[getter]
     fn measuring_points_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        arrays::millimetres(py, &self.inner.tool.measuring_points)
+        arrays::millimetres(py, &self.inner.tool().measuring_points)
     }
 
     /// Tool centre point of the dexterity index, flange frame, mm, shape ``(3,)``.
     #[getter]
     fn tcp_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.tool.tcp.iter().map(|v| v * 1e3))
+        arrays::vec1(py, self.inner.tool().tcp.iter().map(|v| v * 1e3))
     }
 
     /// Rope load ``G``, N.
     #[getter]
     fn load_n(&self) -> f64 {
-        self.inner.load.load
+        self.inner.load().load
     }
 
     /// Rope anchor (pulley) ``P2``, base frame, mm, shape ``(3,)``.
     #[getter]
     fn anchor_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.load.anchor.iter().map(|v| v * 1e3))
+        arrays::vec1(py, self.inner.load().anchor.iter().map(|v| v * 1e3))
     }
 
     /// Variance of one measured coordinate at noise multiple 1, mm^2.
     #[getter]
     fn noise_variance_mm2(&self) -> f64 {
-        self.inner.noise.variance * 1e6
+        self.inner.noise().variance * 1e6
     }
 
     /// Noise levels as multiples of the variance, shape ``(levels,)`` (Table 3).
     #[getter]
     fn level_multiples<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.noise.levels.iter().copied())
+        arrays::vec1(py, self.inner.noise().levels.iter().copied())
     }
 
     /// Lower experiment bounds, axis angles, deg, shape ``(6,)`` (Table 1).
     #[getter]
     fn lower_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.bounds.lower.iter().map(|v| v.to_degrees()))
+        arrays::vec1(py, self.inner.bounds().lower.iter().map(|v| v.to_degrees()))
     }
 
     /// Upper experiment bounds, axis angles, deg, shape ``(6,)`` (Table 1).
     #[getter]
     fn upper_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.bounds.upper.iter().map(|v| v.to_degrees()))
+        arrays::vec1(py, self.inner.bounds().upper.iter().map(|v| v.to_degrees()))
     }
 
     /// Test (validation) postures, axis angles, deg, shape ``(t, 6)`` (Table 5).
     #[getter]
     fn test_postures_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        arrays::degrees(py, &self.inner.test_postures)
+        arrays::degrees(py, self.inner.test_postures())
     }
 
     /// Every design criterion of a group of postures (``postures_deg``, shape ``(n, 6)``, axis
@@ -248,7 +248,7 @@ impl Setup {
     }
 
     fn __repr__(&self) -> String {
-        format!("Setup({:?})", self.inner.name)
+        format!("Setup({:?})", self.inner.name())
     }
 }
 
@@ -266,7 +266,7 @@ impl Setup {
         obj: &Bound<'_, PyAny>,
         what: &str,
     ) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
-        let b = &self.inner.bounds;
+        let b = &self.inner.bounds();
         let within = (&b.lower, &b.upper, "the setup's bounds");
         Ok(postures(obj, what, within, stiffid::limits::MAX_GROUP_POSTURES)?.0)
     }
@@ -274,7 +274,7 @@ impl Setup {
     /// Pool postures: within the robot's joint limits (the cell's checks, bounds included, decide
     /// which are usable).
     fn pool(&self, obj: &Bound<'_, PyAny>) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
-        let r = &self.inner.robot;
+        let r = &self.inner.robot();
         let within = (&r.lower, &r.upper, "the joint limits");
         Ok(postures(obj, "pool", within, stiffid::design::pool::MAX_POOL)?.0)
     }

@@ -139,7 +139,7 @@ impl Study {
     /// The noise levels, multiples of the variance, shape ``(levels,)``.
     #[getter]
     fn level_multiples<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.setup.noise.levels.iter().copied())
+        arrays::vec1(py, self.inner.setup.noise().levels.iter().copied())
     }
 
     /// The noise level (0-based) whose mean stiffness is validated: the one nearest multiple 1.
@@ -263,7 +263,7 @@ impl Study {
         rate: impl Fn(&GroupSimulation) -> &Vec<[f64; 6]>,
     ) -> Bound<'py, PyArray3<f64>> {
         let g = &self.inner.groups;
-        let levels = self.inner.setup.noise.levels.len();
+        let levels = self.inner.setup.noise().levels.len();
         Array3::from_shape_fn((g.len(), levels, 6), |(i, l, j)| {
             rate(&g[i].simulation)[l][j]
         })

@@ -25,7 +25,7 @@ fn feasibility(c: &mut Bench) {
         b.iter(|| checker.margins(black_box(&q)))
     });
     c.bench_function("cell/capsules/one-posture", |b| {
-        b.iter(|| stiffid::cell::capsules(&setup, &setup.robot.frames(black_box(&q))))
+        b.iter(|| stiffid::cell::capsules(&setup, &setup.robot().frames(black_box(&q))))
     });
 }
 

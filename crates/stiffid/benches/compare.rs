@@ -22,8 +22,8 @@ const MEASUREMENTS: &str = include_str!("../../../bench/inputs/measurements.csv"
 
 /// The start group (axis angles, rad), read by the library's parser.
 fn start_group() -> Vec<Vector6<f64>> {
-    let robot = setup::builtin("zhang2021-comau-nj165").unwrap().robot;
-    stiffid::formats::postures::parse(START, &robot, None).unwrap()
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    stiffid::formats::postures::parse(START, setup.robot(), None).unwrap()
 }
 
 /// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm`, read by the

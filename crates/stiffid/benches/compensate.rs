@@ -11,29 +11,29 @@ use stiffid::{cartesian, setup};
 
 fn benches(c: &mut Criterion) {
     let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let q = s.test_postures[0];
+    let q = s.test_postures()[0];
     c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
         b.iter(|| {
-            let frames = s.robot.frames(black_box(&q));
-            cartesian::stiffness(&frames, &s.tool.tcp, s.springs, &s.nominal_stiffness)
+            let frames = s.robot().frames(black_box(&q));
+            cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), s.nominal_stiffness())
         })
     });
-    let frames = s.robot.frames(&q);
+    let frames = s.robot().frames(&q);
     c.bench_function("Cartesian stiffness, frames given (J, K_x)", |b| {
         b.iter(|| {
             cartesian::stiffness(
                 black_box(&frames),
-                &s.tool.tcp,
-                s.springs,
-                &s.nominal_stiffness,
+                &s.tool().tcp,
+                s.springs(),
+                s.nominal_stiffness(),
             )
         })
     });
     let h = s.nominal_compliance();
     c.bench_function("Cartesian compliance, frames given (J, C_x)", |b| {
-        b.iter(|| cartesian::compliance(black_box(&frames), &s.tool.tcp, s.springs, &h))
+        b.iter(|| cartesian::compliance(black_box(&frames), &s.tool().tcp, s.springs(), &h))
     });
-    let start = tool_pose(&frames, &s.tool.tcp);
+    let start = tool_pose(&frames, &s.tool().tcp);
     let n = 10_000;
     let poses: Vec<PathPoint> = (0..n)
         .map(|i| PathPoint {

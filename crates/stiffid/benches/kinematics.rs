@@ -11,15 +11,15 @@ use stiffid::{dexterity, setup, Coordinates};
 
 fn kinematics(c: &mut Criterion) {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let points: Vec<Vector3<f64>> = std::iter::once(setup.tool.loading_point)
-        .chain(setup.tool.measuring_points.iter().copied())
+    let points: Vec<Vector3<f64>> = std::iter::once(setup.tool().loading_point)
+        .chain(setup.tool().measuring_points.iter().copied())
         .collect();
-    let q = setup.test_postures[0];
+    let q = setup.test_postures()[0];
     c.bench_function(
         "frames + 5 point Jacobians (COMAU, axis coordinates)",
         |b| {
             b.iter(|| {
-                let frames = setup.robot.frames(black_box(&q));
+                let frames = setup.robot().frames(black_box(&q));
                 let mut sum = Matrix6::zeros();
                 for p in &points {
                     sum += frames.jacobian(black_box(p), Coordinates::Axis);
@@ -29,13 +29,13 @@ fn kinematics(c: &mut Criterion) {
         },
     );
     c.bench_function("frames (COMAU)", |b| {
-        b.iter(|| setup.robot.frames(black_box(&q)))
+        b.iter(|| setup.robot().frames(black_box(&q)))
     });
     // The dexterity's 6x6 inverse: stiffid's fixed-size Gauss-Jordan against nalgebra's LU
     // `try_inverse` (the former kernel), on the same normalised TCP Jacobian.
-    let frames = setup.robot.frames(&q);
-    let tcp = frames.jacobian(&setup.tool.tcp, Coordinates::Axis);
-    let l = setup.characteristic_length;
+    let frames = setup.robot().frames(&q);
+    let tcp = frames.jacobian(&setup.tool().tcp, Coordinates::Axis);
+    let l = setup.characteristic_length();
     c.bench_function("dexterity (fixed-size inverse)", |b| {
         b.iter(|| dexterity(black_box(&tcp), l))
     });
@@ -47,7 +47,7 @@ fn kinematics(c: &mut Criterion) {
         })
     });
     // cond_2 of a 6x6 triangular factor: one-sided Jacobi (Factor::cond) against nalgebra's SVD.
-    let psi = rope_observation_matrix(&setup, &setup.test_postures);
+    let psi = rope_observation_matrix(&setup, setup.test_postures());
     let factor = Factor::try_new(psi.clone()).unwrap();
     let r = *factor.r();
     c.bench_function("cond of R (Jacobi)", |b| {

@@ -21,7 +21,7 @@ const POSTURES: [usize; 4] = [6, 24, 96, 384];
 
 fn postures(setup: &Setup, n: usize) -> Vec<Vector6<f64>> {
     let mut rng = ChaCha8Rng::seed_from_u64(6);
-    let b = &setup.bounds;
+    let b = &setup.bounds();
     (0..n)
         .map(|_| Vector6::from_fn(|i, _| rng.random_range(b.lower[i]..=b.upper[i])))
         .collect()
@@ -64,7 +64,7 @@ fn identification(c: &mut Criterion) {
 
 fn monte_carlo(c: &mut Criterion) {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let levels = setup.noise.levels.len();
+    let levels = setup.noise().levels.len();
     let mut group = c.benchmark_group("monte-carlo");
     group.sample_size(10);
     let one = vec![postures(&setup, 6)];

@@ -157,10 +157,10 @@ impl<'a> Model<'a> {
     /// [`Error::InvalidField`] when the springs are kinematic and the robot's axis map is singular.
     pub fn new(setup: &'a Setup, compliance: &'a Compliance) -> Result<Self> {
         let to_axis =
-            match setup.springs {
+            match setup.springs() {
                 Coordinates::Axis => Matrix6::identity(),
                 Coordinates::Kinematic => {
-                    setup.robot.axis_map.matrix.try_inverse().ok_or_else(|| {
+                    setup.robot().axis_map.matrix.try_inverse().ok_or_else(|| {
                         Error::InvalidField {
                             field: "axis_map".into(),
                             message: "singular: kinematic spring deflections have no axis angles"
@@ -179,15 +179,15 @@ impl<'a> Model<'a> {
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
     /// TCP (module docs).
     pub fn loaded_pose(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
-        self.loaded(&self.setup.robot.frames(q), q, wrench)
+        self.loaded(&self.setup.robot().frames(q), q, wrench)
     }
 
     /// [`Model::loaded_pose`] with the frames of `q` given.
     fn loaded(&self, frames: &Frames, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
-        let tcp = &self.setup.tool.tcp;
-        let j = frames.jacobian(tcp, self.setup.springs);
+        let tcp = &self.setup.tool().tcp;
+        let j = frames.jacobian(tcp, self.setup.springs());
         let dq = self.to_axis * j.tr_mul(wrench).component_mul(&self.compliance.h);
-        tool_pose(&self.setup.robot.frames(&(q + dq)), tcp)
+        tool_pose(&self.setup.robot().frames(&(q + dq)), tcp)
     }
 
     /// The TCP deflection (Eq. 6) in the posture `frames` under `wrench` (base frame) and its
@@ -197,10 +197,10 @@ impl<'a> Model<'a> {
         frames: &Frames,
         wrench: &Vector6<f64>,
     ) -> (Vector6<f64>, Option<(Vector6<f64>, f64)>) {
-        let tcp = &self.setup.tool.tcp;
+        let tcp = &self.setup.tool().tcp;
         let points = Points {
             frames,
-            springs: self.setup.springs,
+            springs: self.setup.springs(),
             loaded: tcp,
             observed: tcp,
         };
@@ -227,7 +227,7 @@ impl<'a> Model<'a> {
         q: &Vector6<f64>,
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
-        self.compensate_from(q, self.setup.robot.frames(q), wrench)
+        self.compensate_from(q, self.setup.robot().frames(q), wrench)
     }
 
     /// [`Model::compensate`] with the frames of `q` given.
@@ -237,7 +237,7 @@ impl<'a> Model<'a> {
         mut frames: Frames,
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
-        let tcp = &self.setup.tool.tcp;
+        let tcp = &self.setup.tool().tcp;
         let target = tool_pose(&frames, tcp);
         let mut qc = *q;
         let mut iterations = 0;
@@ -254,7 +254,7 @@ impl<'a> Model<'a> {
                     .into(),
             })?;
             qc += step;
-            frames = self.setup.robot.frames(&qc);
+            frames = self.setup.robot().frames(&qc);
             iterations += 1;
         }
     }
@@ -281,7 +281,7 @@ pub fn path(
     let wrenches: Vec<Vector6<f64>> = points
         .par_iter()
         .zip(&nominal)
-        .map(|(p, q)| base_wrench(&setup.robot.frames(q), &p.wrench, p.frame))
+        .map(|(p, q)| base_wrench(&setup.robot().frames(q), &p.wrench, p.frame))
         .collect();
     let (postures, rotations) = match &options.free_tool_axis {
         None => (nominal.clone(), vec![0.0; points.len()]),
@@ -291,7 +291,7 @@ pub fn path(
         .into_par_iter()
         .map(|i| {
             let q = &postures[i];
-            let frames = setup.robot.frames(q);
+            let frames = setup.robot().frames(q);
             let (qc, ep, eo, iterations) =
                 model
                     .compensate_from(q, frames.clone(), &wrenches[i])
@@ -299,12 +299,12 @@ pub fn path(
             check_compensated(setup, points[i].line, &qc, ep, eo)?;
             let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
             let deflection_before = options.free_tool_axis.map(|_| {
-                let frames = setup.robot.frames(&nominal[i]);
+                let frames = setup.robot().frames(&nominal[i]);
                 model.deflection(&frames, &wrenches[i]).0
             });
             Ok(Compensated {
                 q: *q,
-                pose: tool_pose(&frames, &setup.tool.tcp),
+                pose: tool_pose(&frames, &setup.tool().tcp),
                 wrench: wrenches[i],
                 deflection,
                 deflection_std: deflection_std.map(|s| s.0),
@@ -374,7 +374,7 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
 }
 
 fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
-    let robot = &setup.robot;
+    let robot = &setup.robot();
     if let Some(i) = robot.first_out_of_limits(qc) {
         return Err(uncompensated(
             line,
@@ -409,7 +409,7 @@ fn nominal_postures(
     points: &[PathPoint],
     options: &Options,
 ) -> Result<Vec<Vector6<f64>>> {
-    let robot = &setup.robot;
+    let robot = &setup.robot();
     let mut previous = options.q0;
     let mut out = Vec::with_capacity(points.len());
     for p in points {
@@ -434,7 +434,7 @@ fn nominal_postures(
                 *q
             }
             Target::Pose(t) => {
-                ik::solve(robot, &setup.tool.tcp, t, &previous, &options.ik)
+                ik::solve(robot, &setup.tool().tcp, t, &previous, &options.ik)
                     .map_err(|e| uncompensated(p.line, "x_mm..rz_deg", e.to_string()))?
                     .q
             }
@@ -520,7 +520,7 @@ fn column(
     ik_options: &ik::Options,
 ) -> Column {
     let setup = model.setup;
-    let tcp = &setup.tool.tcp;
+    let tcp = &setup.tool().tcp;
     let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi);
     let options = ik::Options {
         restarts: 0,
@@ -534,18 +534,18 @@ fn column(
             let q = match phi == 0.0 {
                 true => Some(*q),
                 false => {
-                    let mut target = tool_pose(&setup.robot.frames(q), tcp);
+                    let mut target = tool_pose(&setup.robot().frames(q), tcp);
                     target.rotation *= turn;
                     let start = previous.unwrap_or(*q);
-                    ik::solve(&setup.robot, tcp, &target, &start, &options)
-                        .or_else(|_| ik::solve(&setup.robot, tcp, &target, q, &options))
+                    ik::solve(setup.robot(), tcp, &target, &start, &options)
+                        .or_else(|_| ik::solve(setup.robot(), tcp, &target, q, &options))
                         .ok()
                         .map(|s| s.q)
                 }
             };
             previous = q;
             q.map(|q| {
-                let d = model.deflection(&setup.robot.frames(&q), w).0;
+                let d = model.deflection(&setup.robot().frames(&q), w).0;
                 (q, d.fixed_rows::<3>(0).norm())
             })
         })

@@ -34,7 +34,7 @@ pub fn point_rows(
     point: usize,
     tau: &Vector6<f64>,
 ) -> Matrix3x6<f64> {
-    let jm = frames.jacobian(&setup.tool.measuring_points[point], setup.springs);
+    let jm = frames.jacobian(&setup.tool().measuring_points[point], setup.springs());
     let mut rows = jm.fixed_rows::<3>(0).into_owned();
     for (j, mut col) in rows.column_iter_mut().enumerate() {
         col *= tau[j];
@@ -44,7 +44,7 @@ pub fn point_rows(
 
 /// The `3p x 6` block of one posture under a wrench `[f; m]` (N, Nm, base frame) at the loading point.
 pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> DMatrix<f64> {
-    let mut block = DMatrix::zeros(3 * setup.tool.measuring_points.len(), 6);
+    let mut block = DMatrix::zeros(3 * setup.tool().measuring_points.len(), 6);
     write_posture_block(setup, frames, wrench, &mut block, 0);
     block
 }
@@ -59,7 +59,7 @@ pub(crate) fn write_posture_block(
     first: usize,
 ) {
     let tau = joint_torques(setup, frames, wrench);
-    for k in 0..setup.tool.measuring_points.len() {
+    for k in 0..setup.tool().measuring_points.len() {
         psi.fixed_view_mut::<3, 6>(first + 3 * k, 0)
             .copy_from(&point_rows(setup, frames, k, &tau));
     }
@@ -78,10 +78,10 @@ pub(crate) fn rope_observation_matrix_with(
     postures: &[Vector6<f64>],
     mut each: impl FnMut(&Frames),
 ) -> DMatrix<f64> {
-    let p3 = 3 * setup.tool.measuring_points.len();
+    let p3 = 3 * setup.tool().measuring_points.len();
     let mut psi = DMatrix::zeros(p3 * postures.len(), 6);
     for (i, q) in postures.iter().enumerate() {
-        let frames = setup.robot.frames(q);
+        let frames = setup.robot().frames(q);
         let wrench = setup.rope_wrench(&frames);
         write_posture_block(setup, &frames, &wrench, &mut psi, p3 * i);
         each(&frames);
@@ -108,23 +108,23 @@ pub fn rope_block_gradient(
     let tau = joint_torques(setup, frames, &wrench);
     let mut c = Vector6::zeros();
     let mut grad = Vector6::zeros();
-    for (k, p) in setup.tool.measuring_points.iter().enumerate() {
+    for (k, p) in setup.tool().measuring_points.iter().enumerate() {
         let g = weight.fixed_view::<3, 6>(3 * k, 0);
-        let jm = frames.jacobian(p, setup.springs);
+        let jm = frames.jacobian(p, setup.springs());
         let mut w = Matrix6::zeros();
         for j in 0..6 {
             let gj = g.column(j);
             c[j] += gj.dot(&jm.fixed_view::<3, 1>(0, j));
             w.fixed_view_mut::<3, 1>(0, j).copy_from(&(gj * tau[j]));
         }
-        grad += frames.jacobian_gradient(p, setup.springs, &w, &Vector3::zeros());
+        grad += frames.jacobian_gradient(p, setup.springs(), &w, &Vector3::zeros());
     }
-    let loading = &setup.tool.loading_point;
-    let jf = frames.jacobian(loading, setup.springs);
+    let loading = &setup.tool().loading_point;
+    let jf = frames.jacobian(loading, setup.springs());
     let mut w = Matrix6::zeros();
     w.fixed_view_mut::<3, 6>(0, 0)
         .copy_from(&(wrench.fixed_rows::<3>(0) * c.transpose()));
     let e = (jf * c).fixed_rows::<3>(0).into_owned();
-    let point = setup.load.force_gradient(&frames.point(loading), &e);
-    grad + frames.jacobian_gradient(loading, setup.springs, &w, &point)
+    let point = setup.load().force_gradient(&frames.point(loading), &e);
+    grad + frames.jacobian_gradient(loading, setup.springs(), &w, &point)
 }

@@ -125,11 +125,11 @@ pub fn monte_carlo_with_predictions(
 /// memory held is `levels x runs` results whatever the number of groups.
 fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> Vec<[f64; 6]> {
     let runs = options.runs;
-    (0..setup.noise.levels.len() * runs)
+    (0..setup.noise().levels.len() * runs)
         .into_par_iter()
         .map(|i| {
             let (l, r) = (i / runs, i % runs);
-            let sigma = (setup.noise.variance * setup.noise.levels[l]).sqrt();
+            let sigma = (setup.noise().variance * setup.noise().levels[l]).sqrt();
             let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
             identify_once(group, sigma, &mut rng)
         })
@@ -150,7 +150,9 @@ fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {
     let factor = Factor::try_new(rope_observation_matrix(setup, postures))?;
     let exact: Vec<f64> = postures
         .iter()
-        .flat_map(|q| rope_displacements(setup, &setup.robot.frames(q), &setup.nominal_stiffness))
+        .flat_map(|q| {
+            rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness())
+        })
         .flat_map(|d| [d.x, d.y, d.z])
         .collect();
     Ok(Prepared {
@@ -192,7 +194,7 @@ fn summarise(
     runs: usize,
     predicted: Vec<[f64; 6]>,
 ) -> GroupSimulation {
-    let k_true = &setup.nominal_stiffness;
+    let k_true = &setup.nominal_stiffness();
     let mut out = GroupSimulation {
         mean_deviation_pct: Vec::new(),
         std_deviation_pct: Vec::new(),

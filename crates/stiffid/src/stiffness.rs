@@ -21,7 +21,7 @@ pub struct Deflection {
 /// setup's loading point, in the coordinates of the springs.
 pub fn joint_torques(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> Vector6<f64> {
     frames
-        .jacobian(&setup.tool.loading_point, setup.springs)
+        .jacobian(&setup.tool().loading_point, setup.springs())
         .tr_mul(wrench)
 }
 
@@ -36,10 +36,10 @@ pub fn deflection(
     let torques = joint_torques(setup, frames, wrench);
     let joint_deflections = torques.component_div(stiffness);
     let displacements = setup
-        .tool
+        .tool()
         .measuring_points
         .iter()
-        .map(|p| frames.jacobian(p, setup.springs) * joint_deflections)
+        .map(|p| frames.jacobian(p, setup.springs()) * joint_deflections)
         .collect();
     Deflection {
         torques,

@@ -78,7 +78,7 @@ fn segment_against_a_capsule() {
 fn capsules_follow_the_comau_kinematics() {
     let setup = paper_with("").unwrap();
     let q = deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]);
-    let bodies = cell::capsules(&setup, &setup.robot.frames(&q));
+    let bodies = cell::capsules(&setup, &setup.robot().frames(&q));
     let base = bodies[0];
     assert_eq!(base.part, Part::Base);
     assert_relative_eq!(base.a, Vector3::zeros(), epsilon = 1e-12);
@@ -93,9 +93,9 @@ fn capsules_follow_the_comau_kinematics() {
     // Default radii: fractions of the summed segment lengths (4.329 m), the tool holding the
     // loading point 150 mm off its axis.
     let size = 0.83 + 0.4 + 1.175 + 0.25 + 1.444 + 0.23;
-    assert_relative_eq!(setup.geometry.link_radii[0], 0.08 * size, epsilon = 1e-9);
-    assert_relative_eq!(setup.geometry.link_radii[6], 0.02 * size, epsilon = 1e-9);
-    assert_relative_eq!(setup.geometry.tool_radius, 0.15, epsilon = 1e-12);
+    assert_relative_eq!(setup.geometry().link_radii[0], 0.08 * size, epsilon = 1e-9);
+    assert_relative_eq!(setup.geometry().link_radii[6], 0.02 * size, epsilon = 1e-9);
+    assert_relative_eq!(setup.geometry().tool_radius, 0.15, epsilon = 1e-12);
 }
 
 #[test]

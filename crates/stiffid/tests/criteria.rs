@@ -3,7 +3,7 @@
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use stiffid::design::{self, criteria, Criterion, Evaluator};
 use stiffid::observation::{posture_block, rope_observation_matrix};
-use stiffid::setup::{self, Setup};
+use stiffid::setup::{self, Bounds, Noise, RopeLoad, Setup};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -23,7 +23,7 @@ fn cond(m: &DMatrix<f64>) -> f64 {
 fn reference(setup: &Setup, group: &[Vector6<f64>]) -> (Vec<f64>, Vector6<f64>) {
     let psi = rope_observation_matrix(setup, group);
     let h = setup.nominal_compliance();
-    let sigma = setup.noise.sigma();
+    let sigma = setup.noise().sigma();
     let s =
         &psi * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(h.as_slice())) / sigma;
     let c: Matrix6<f64> = (s.transpose() * &s)
@@ -34,15 +34,15 @@ fn reference(setup: &Setup, group: &[Vector6<f64>]) -> (Vec<f64>, Vector6<f64>) 
     let unit_cov = (psi.transpose() * &psi).try_inverse().unwrap();
     let classical = criteria::classical(setup, group);
     let test_pose = setup
-        .test_postures
+        .test_postures()
         .iter()
         .map(|q| {
-            let frames = setup.robot.frames(q);
+            let frames = setup.robot().frames(q);
             let a = posture_block(setup, &frames, &setup.rope_wrench(&frames));
             (&a * &unit_cov * a.transpose()).trace()
         })
         .sum::<f64>()
-        / setup.test_postures.len() as f64;
+        / setup.test_postures().len() as f64;
     let values = vec![
         classical,
         classical * cond(&psi),
@@ -69,7 +69,7 @@ fn every_criterion_matches_its_definition() {
         assert!(rel(e.cond_psi, want[1] / want[0]) < 1e-8);
         for j in 0..6 {
             assert!(rel(e.relative_std[j], want_std[j]) < 1e-8);
-            for (l, m) in setup.noise.levels.iter().enumerate() {
+            for (l, m) in setup.noise().levels.iter().enumerate() {
                 let pct = 100.0 * (2.0 / std::f64::consts::PI).sqrt() * m.sqrt() * want_std[j];
                 assert!(rel(e.predicted_deviation_pct[l][j], pct) < 1e-8);
             }
@@ -98,42 +98,65 @@ fn hand_case_predicted_deviation_rate() {
     }
 }
 
-/// The setup with joint coordinates `q' = D^-1 q` (a gear ratio on each spring): `M' = M D`, bounds
-/// and test postures `D^-1`, stiffness `k' = k d^2` (same spring energy). Psi's columns scale by
+/// The setup with joint coordinates `q' = D^-1 q` (a gear ratio on each spring): `M' = M D`, joint
+/// limits, bounds and test postures `D^-1`, stiffness `k' = k d^2` (same spring energy). Psi's columns scale by
 /// `d^2`, the compliances by `1/d^2`: the identification problem is the same, in other units.
 fn in_other_joint_units(setup: &Setup, d: &Vector6<f64>) -> Setup {
-    let mut s = setup.clone();
-    s.robot.axis_map.matrix = setup.robot.axis_map.matrix * Matrix6::from_diagonal(d);
-    s.bounds.lower = setup.bounds.lower.component_div(d);
-    s.bounds.upper = setup.bounds.upper.component_div(d);
-    s.nominal_stiffness = setup.nominal_stiffness.component_mul(&d.component_mul(d));
-    s.test_postures = setup
-        .test_postures
-        .iter()
-        .map(|q| q.component_div(d))
-        .collect();
-    s
+    let mut robot = setup.robot().clone();
+    robot.axis_map.matrix = setup.robot().axis_map.matrix * Matrix6::from_diagonal(d);
+    robot.lower = robot.lower.component_div(d);
+    robot.upper = robot.upper.component_div(d);
+    let b = setup.bounds();
+    setup
+        .to_builder()
+        .with_robot(robot)
+        .with_bounds(Bounds {
+            lower: b.lower.component_div(d),
+            upper: b.upper.component_div(d),
+        })
+        .with_nominal_stiffness(setup.nominal_stiffness().component_mul(&d.component_mul(d)))
+        .with_test_postures(
+            setup
+                .test_postures()
+                .iter()
+                .map(|q| q.component_div(d))
+                .collect(),
+        )
+        .build()
+        .unwrap()
 }
 
 /// The setup with every length times `c` (robot, tool, anchor, characteristic length, noise sigma)
-/// and torques and stiffness in the matching unit (`k c`): e.g. metres to millimetres with `c = 1000`.
+/// and torques and stiffness in the matching unit (`k c`): e.g. metres to kilometres with
+/// `c = 1e-3` (the setup's ranges hold the paper's cell in km, not in mm).
 fn in_other_length_unit(setup: &Setup, c: f64) -> Setup {
-    let mut s = setup.clone();
+    let mut robot = setup.robot().clone();
     let scale = |iso: &mut nalgebra::Isometry3<f64>| iso.translation.vector *= c;
-    for j in s.robot.joints.iter_mut() {
+    for j in robot.joints.iter_mut() {
         scale(&mut j.pre);
         scale(&mut j.post);
     }
-    scale(&mut s.robot.base);
-    scale(&mut s.robot.flange);
-    s.tool.loading_point *= c;
-    s.tool.tcp *= c;
-    s.tool.measuring_points.iter_mut().for_each(|p| *p *= c);
-    s.load.anchor *= c;
-    s.characteristic_length *= c;
-    s.noise.variance *= c * c;
-    s.nominal_stiffness *= c;
-    s
+    scale(&mut robot.base);
+    scale(&mut robot.flange);
+    let (tool, load, noise) = (setup.tool(), setup.load(), setup.noise());
+    setup
+        .to_builder()
+        .with_robot(robot)
+        .with_loading_point(tool.loading_point * c)
+        .with_tcp(tool.tcp * c)
+        .with_measuring_points(tool.measuring_points.iter().map(|p| p * c).collect())
+        .with_load(RopeLoad {
+            anchor: load.anchor * c,
+            ..load.clone()
+        })
+        .with_characteristic_length(setup.characteristic_length() * c)
+        .with_noise(Noise {
+            variance: noise.variance * c * c,
+            ..noise.clone()
+        })
+        .with_nominal_stiffness(setup.nominal_stiffness() * c)
+        .build()
+        .unwrap()
 }
 
 #[test]
@@ -142,18 +165,18 @@ fn scale_free_criteria_do_not_depend_on_units_and_the_papers_index_does() {
     let group = design::random_group(&setup, 6, 4);
     let base = design::evaluate(&setup, &group);
 
-    let c = 1000.0;
-    let mm = design::evaluate(&in_other_length_unit(&setup, c), &group);
+    let c = 1e-3;
+    let km = design::evaluate(&in_other_length_unit(&setup, c), &group);
     for k in [
         Criterion::DOptimal,
         Criterion::RelativeA,
         Criterion::ScaledCond,
         Criterion::Zhang2021,
     ] {
-        assert!(rel(mm.value(k), base.value(k)) < 1e-8, "{k} in mm");
+        assert!(rel(km.value(k), base.value(k)) < 1e-8, "{k} in km");
     }
     assert!(
-        rel(mm.test_pose, base.test_pose * c) < 1e-8,
+        rel(km.test_pose, base.test_pose * c) < 1e-8,
         "test-pose is a length"
     );
 

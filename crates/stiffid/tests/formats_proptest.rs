@@ -60,9 +60,9 @@ fn check_measurements(text: &str, setup: &Setup) {
 }
 
 fn check_postures(text: &str, setup: &Setup) {
-    if let Ok(group) = postures::parse(text, &setup.robot, Some(&setup.bounds)) {
+    if let Ok(group) = postures::parse(text, setup.robot(), Some(setup.bounds())) {
         assert!(!group.is_empty());
-        assert!(group.iter().all(|q| setup.bounds.contains(q)));
+        assert!(group.iter().all(|q| setup.bounds().contains(q)));
     }
 }
 
@@ -82,7 +82,7 @@ fn check_stiffness(text: &str) {
 fn the_real_files_are_accepted() {
     assert!(measurements::parse(measurements_text()).is_ok());
     assert_eq!(
-        postures::parse(POSTURES, &comau().robot, Some(&comau().bounds))
+        postures::parse(POSTURES, comau().robot(), Some(comau().bounds()))
             .unwrap()
             .len(),
         3

@@ -17,7 +17,7 @@ fn observation_matrix_times_compliance_is_the_forward_displacement() {
         let qs: Vec<_> = postures()
             .iter()
             .map(|q| {
-                q.zip_zip_map(&setup.bounds.lower, &setup.bounds.upper, |v, l, u| {
+                q.zip_zip_map(&setup.bounds().lower, &setup.bounds().upper, |v, l, u| {
                     v.clamp(l, u)
                 })
             })
@@ -26,8 +26,8 @@ fn observation_matrix_times_compliance_is_the_forward_displacement() {
         let delta: Vec<f64> = qs
             .iter()
             .flat_map(|q| {
-                let frames = setup.robot.frames(q);
-                stiffness::rope_displacements(&setup, &frames, &setup.nominal_stiffness)
+                let frames = setup.robot().frames(q);
+                stiffness::rope_displacements(&setup, &frames, setup.nominal_stiffness())
                     .into_iter()
                     .flat_map(|d| [d.x, d.y, d.z])
             })

@@ -2,6 +2,8 @@
 //! and kinematic spring coordinates: the point-Jacobian kernel, the dexterity index, the rope block
 //! of the observation matrix, and every design criterion.
 
+mod common;
+
 use nalgebra::{DMatrix, Matrix6, MatrixXx6, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -22,11 +24,11 @@ fn setups() -> Vec<Setup> {
     let mut out = vec![setup::builtin("fanuc-r2000ic-165f").unwrap()];
     for name in presets::names() {
         for springs in [Coordinates::Axis, Coordinates::Kinematic] {
-            out.push(Setup {
-                robot: presets::get(name).unwrap(),
+            out.push(common::on_robot(
+                &paper,
+                presets::get(name).unwrap(),
                 springs,
-                ..paper.clone()
-            });
+            ));
         }
     }
     out
@@ -68,20 +70,20 @@ fn point_jacobian_gradient_matches_central_differences() {
     let mut rng = ChaCha8Rng::seed_from_u64(14);
     for setup in setups() {
         for _ in 0..5 {
-            let q = random_posture(&setup.robot, &mut rng);
+            let q = random_posture(setup.robot(), &mut rng);
             let w: Matrix6<f64> = random_matrix(&mut rng, 6).fixed_view::<6, 6>(0, 0).into();
             let g = Vector3::from_fn(|_, _| rng.random_range(-1.0..1.0));
-            let p = setup.tool.measuring_points[0];
+            let p = setup.tool().measuring_points[0];
             let phi = |q: &Vector6<f64>| {
-                let f = setup.robot.frames(q);
-                f.jacobian(&p, setup.springs).dot(&w) + g.dot(&f.point(&p))
+                let f = setup.robot().frames(q);
+                f.jacobian(&p, setup.springs()).dot(&w) + g.dot(&f.point(&p))
             };
             let exact = setup
-                .robot
+                .robot()
                 .frames(&q)
-                .jacobian_gradient(&p, setup.springs, &w, &g);
+                .jacobian_gradient(&p, setup.springs(), &w, &g);
             let err = relative_error(exact.as_slice(), central(&q, phi).as_slice());
-            assert!(err < 1e-6, "{}: {err:e}", setup.robot.name);
+            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name);
         }
     }
 }
@@ -90,17 +92,17 @@ fn point_jacobian_gradient_matches_central_differences() {
 fn dexterity_gradient_matches_central_differences() {
     let mut rng = ChaCha8Rng::seed_from_u64(15);
     for setup in setups() {
-        let (tcp, l) = (setup.tool.tcp, setup.characteristic_length);
-        let ln_k = |f: &Frames| dexterity(&f.jacobian(&tcp, setup.springs), l).ln();
+        let (tcp, l) = (setup.tool().tcp, setup.characteristic_length());
+        let ln_k = |f: &Frames| dexterity(&f.jacobian(&tcp, setup.springs()), l).ln();
         for _ in 0..5 {
-            let q = random_posture(&setup.robot, &mut rng);
-            let frames = setup.robot.frames(&q);
-            let jacobian = frames.jacobian(&tcp, setup.springs);
+            let q = random_posture(setup.robot(), &mut rng);
+            let frames = setup.robot().frames(&q);
+            let jacobian = frames.jacobian(&tcp, setup.springs());
             let w = kinematics::dexterity_log_gradient(&jacobian, l).unwrap();
-            let exact = frames.jacobian_gradient(&tcp, setup.springs, &w, &Vector3::zeros());
-            let approx = central(&q, |q| ln_k(&setup.robot.frames(q)));
+            let exact = frames.jacobian_gradient(&tcp, setup.springs(), &w, &Vector3::zeros());
+            let approx = central(&q, |q| ln_k(&setup.robot().frames(q)));
             let err = relative_error(exact.as_slice(), approx.as_slice());
-            assert!(err < 1e-6, "{}: {err:e}", setup.robot.name);
+            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name);
         }
     }
 }
@@ -109,18 +111,18 @@ fn dexterity_gradient_matches_central_differences() {
 fn rope_block_gradient_matches_central_differences() {
     let mut rng = ChaCha8Rng::seed_from_u64(16);
     for setup in setups() {
-        let rows = 3 * setup.tool.measuring_points.len();
+        let rows = 3 * setup.tool().measuring_points.len();
         for _ in 0..5 {
-            let q = random_posture(&setup.robot, &mut rng);
+            let q = random_posture(setup.robot(), &mut rng);
             let g: MatrixXx6<f64> =
                 MatrixXx6::from_column_slice(random_matrix(&mut rng, rows).as_slice());
             let phi = |q: &Vector6<f64>| {
-                let f = setup.robot.frames(q);
+                let f = setup.robot().frames(q);
                 posture_block(&setup, &f, &setup.rope_wrench(&f)).dot(&g)
             };
-            let exact = rope_block_gradient(&setup, &setup.robot.frames(&q), &g);
+            let exact = rope_block_gradient(&setup, &setup.robot().frames(&q), &g);
             let err = relative_error(exact.as_slice(), central(&q, phi).as_slice());
-            assert!(err < 1e-6, "{}: {err:e}", setup.robot.name);
+            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name);
         }
     }
 }
@@ -132,12 +134,12 @@ fn every_criterion_gradient_matches_central_differences() {
         let evaluator = Evaluator::new(&setup);
         for _ in 0..3 {
             let group: Vec<Vector6<f64>> = (0..6)
-                .map(|_| random_posture(&setup.robot, &mut rng))
+                .map(|_| random_posture(setup.robot(), &mut rng))
                 .collect();
             for criterion in Criterion::ALL {
                 let (value, exact) = evaluator.value_and_gradient(criterion, &group);
                 assert_eq!(value, evaluator.value(criterion, &group), "{criterion}");
-                assert!(value.is_finite(), "{criterion} on {}", setup.robot.name);
+                assert!(value.is_finite(), "{criterion} on {}", setup.robot().name);
                 let mut approx = Vec::new();
                 for i in 0..group.len() {
                     approx.extend(
@@ -154,8 +156,8 @@ fn every_criterion_gradient_matches_central_differences() {
                 assert!(
                     err < 1e-6,
                     "{criterion} on {} ({:?} springs): {err:e}",
-                    setup.robot.name,
-                    setup.springs
+                    setup.robot().name,
+                    setup.springs()
                 );
             }
         }

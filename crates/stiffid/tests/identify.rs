@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
+use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -24,10 +24,9 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     for name in presets::names() {
         for springs in [Coordinates::Axis, Coordinates::Kinematic] {
-            let mut setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-            setup.robot = presets::get(name).unwrap();
-            setup.springs = springs;
-            let (lo, hi) = (setup.robot.lower, setup.robot.upper);
+            let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
+            let setup = on_robot(&paper, presets::get(name).unwrap(), springs);
+            let (lo, hi) = (setup.robot().lower, setup.robot().upper);
             let postures: Vec<Vector6<f64>> = (0..8)
                 .map(|_| {
                     Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i]))
@@ -40,7 +39,7 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
                 .collect();
             let data = synthetic(&setup, &postures, |i, _| wrenches[i]);
             let id = least_squares(&setup, &data).unwrap();
-            let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness);
+            let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
             assert!(err < 1e-9, "{name}, {springs:?}: relative error {err:e}");
             assert_eq!((id.rows, id.postures), (96, 8));
             assert!(id.residual_rms < 1e-12 * data[0].displacement.norm().max(1e-6));
@@ -53,7 +52,7 @@ fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let noisy = with_noise(&data, setup.noise.sigma(), &mut rng);
+    let noisy = with_noise(&data, setup.noise().sigma(), &mut rng);
     let id = least_squares(&setup, &noisy).unwrap();
     let u = id.uncertainty.unwrap();
     assert_eq!(u.dof, 66);
@@ -76,9 +75,9 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let clean = paper_measurements(&setup);
     let truth_h = setup.nominal_compliance();
-    let truth_k = setup.nominal_stiffness;
+    let truth_k = setup.nominal_stiffness();
     // Ten times the paper's noise, so that the intervals are wide enough to matter.
-    let sigma = 10.0 * setup.noise.sigma();
+    let sigma = 10.0 * setup.noise().sigma();
     let sets = 300;
     let (mut covered_h, mut covered_k) = (0, 0);
     for set in 0..sets {
@@ -109,12 +108,12 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
 fn robust_modes_down_weight_an_injected_outlier() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let mut data = with_noise(&paper_measurements(&setup), setup.noise.sigma(), &mut rng);
+    let mut data = with_noise(&paper_measurements(&setup), setup.noise().sigma(), &mut rng);
     // Measurement 10 (posture 3, point 2), y: 0.3 mm off, about 30 sigma.
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
     let plain = least_squares(&setup, &data).unwrap();
-    let plain_err = max_relative_error(&plain.stiffness, &setup.nominal_stiffness);
+    let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness());
     for loss in [Loss::Huber, Loss::Tukey] {
         let id = Observations::from_measurements(&setup, &data)
             .unwrap()
@@ -129,9 +128,9 @@ fn robust_modes_down_weight_an_injected_outlier() {
             fit.weights[outlier_row]
         );
         // The MAD scale estimates the noise, not the outlier.
-        let ratio = fit.scale / setup.noise.sigma();
+        let ratio = fit.scale / setup.noise().sigma();
         assert!((0.6..1.6).contains(&ratio), "{loss:?}: scale/sigma {ratio}");
-        let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness);
+        let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
         assert!(
             err < plain_err / 2.0,
             "{loss:?}: {err} vs least squares {plain_err}"
@@ -148,11 +147,11 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact = validate::compare(&setup, &setup.nominal_stiffness, &data).unwrap();
+    let exact = validate::compare(&setup, setup.nominal_stiffness(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
-    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness * 2.0), &data).unwrap();
+    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
     for (c, m) in stiffer.checks.iter().zip(&data) {
         assert!((c.predicted - m.displacement / 2.0).norm() < 1e-15);
         assert!((c.delta_b - m.displacement.norm() / 2.0).abs() < 1e-15);
@@ -179,7 +178,7 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
         (5, MeasurementField::Point)
     );
     let mut bad = data.clone();
-    bad[6].q[2] = setup.robot.upper[2] + 0.1;
+    bad[6].q[2] = setup.robot().upper[2] + 0.1;
     assert_eq!(
         field(least_squares(&setup, &bad).unwrap_err()),
         (7, MeasurementField::Axis(2))
@@ -205,8 +204,12 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
 #[test]
 fn a_joint_no_measurement_loads_is_named() {
     // The loading point on the joint-6 axis and no moment: tau_6 = 0 in every posture.
-    let mut setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    setup.tool.loading_point = Vector3::new(0.0, 0.0, 0.2);
+    let setup = setup::builtin("zhang2021-comau-nj165")
+        .unwrap()
+        .to_builder()
+        .with_loading_point(Vector3::new(0.0, 0.0, 0.2))
+        .build()
+        .unwrap();
     let data = paper_measurements(&setup);
     match least_squares(&setup, &data).unwrap_err() {
         Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![6]),
@@ -221,7 +224,7 @@ fn one_posture_may_carry_several_wrenches() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
     let rope = synthetic(&setup, &qs, |_, q| {
-        setup.rope_wrench(&setup.robot.frames(q))
+        setup.rope_wrench(&setup.robot().frames(q))
     });
     let twist = synthetic(&setup, &qs, |i, _| {
         Vector6::new(100.0, -50.0 * i as f64, 200.0, 20.0, -30.0, 40.0)
@@ -233,6 +236,6 @@ fn one_posture_may_carry_several_wrenches() {
         .collect();
     let id = least_squares(&setup, &data).unwrap();
     assert_eq!((id.rows, id.postures), (144, 6));
-    let err = max_relative_error(&id.stiffness, &setup.nominal_stiffness);
+    let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
     assert!(err < 1e-9, "relative error {err:e}");
 }

@@ -19,14 +19,14 @@ use stiffid::{setup, Setup};
 /// setup), seeded.
 fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lo, hi) = (setup.robot.lower, setup.robot.upper);
+    let (lo, hi) = (setup.robot().lower, setup.robot().upper);
     let postures: Vec<Vector6<f64>> = (0..n)
         .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
         .collect();
     let wrenches: Vec<Vector6<f64>> = (0..n)
         .map(|_| Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [800.0, 150.0][i / 3]))
         .collect();
-    let noise = Normal::new(0.0, setup.noise.sigma()).unwrap();
+    let noise = Normal::new(0.0, setup.noise().sigma()).unwrap();
     let mut data = synthetic(setup, &postures, |i, _| wrenches[i]);
     for m in &mut data {
         m.displacement += Vector6::from_fn(|_, _| noise.sample(&mut rng)).fixed_rows::<3>(0);
@@ -85,7 +85,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
         ));
     }
     // The noise is the tracker's: the fit is near the truth (a sanity check, not rounding).
-    let k = &setup.nominal_stiffness;
+    let k = setup.nominal_stiffness();
     assert!((blocks.stiffness - k).component_div(k).amax() < 0.05);
 }
 
@@ -137,7 +137,7 @@ fn a_generated_file_of_many_postures_gives_back_the_known_stiffness() {
     file.to_base_frame(&setup).unwrap();
     let id = identify::least_squares(&setup, &file.measurements).unwrap();
     assert_eq!((id.rows, id.postures), (60_000, 5000));
-    let k = &setup.nominal_stiffness;
+    let k = setup.nominal_stiffness();
     let error = (id.stiffness - k).component_div(k).amax();
     assert!(error < 1e-9, "relative error {error:e}");
 }

@@ -32,7 +32,7 @@ fn setup_offsets_equal_the_robot_files_base_and_flange() {
         [10.0, 20.0, -90.0, 30.0, 20.0, 10.0],
     ] {
         let q = Vector6::from(q_deg).map(f64::to_radians);
-        let (a, b) = (mounted.robot.frames(&q), in_file.frames(&q));
+        let (a, b) = (mounted.robot().frames(&q), in_file.frames(&q));
         assert_relative_eq!(a.point(&point), b.point(&point), epsilon = 1e-12);
         let ja = a.jacobian(&point, stiffid::Coordinates::Axis);
         assert_relative_eq!(
@@ -41,7 +41,7 @@ fn setup_offsets_equal_the_robot_files_base_and_flange() {
             epsilon = 1e-12
         );
         // The pedestal lifts the tool by 500 mm plus what the flange plate adds.
-        let lifted = a.point(&point) - plain.robot.frames(&q).point(&point);
+        let lifted = a.point(&point) - plain.robot().frames(&q).point(&point);
         assert!(lifted.norm() > 0.4, "{lifted}");
     }
 }

@@ -59,18 +59,18 @@ fn assert_robot_usable(robot: &Robot) {
 /// A setup that was accepted: a usable robot, finite SI numbers, and criteria of a seeded group
 /// that are finite or +infinity, never NaN.
 fn assert_setup_usable(setup: &Setup) {
-    assert_robot_usable(&setup.robot);
+    assert_robot_usable(setup.robot());
     assert!(setup
         .nominal_compliance()
         .iter()
         .all(|h| h.is_finite() && *h > 0.0));
-    assert!(setup.noise.sigma().is_finite() && setup.noise.sigma() > 0.0);
-    assert!(!setup.noise.levels.is_empty());
+    assert!(setup.noise().sigma().is_finite() && setup.noise().sigma() > 0.0);
+    assert!(!setup.noise().levels.is_empty());
     let group = random_group(setup, 6, 1);
     for q in &group {
-        assert!(setup.bounds.contains(q));
+        assert!(setup.bounds().contains(q));
         assert!(setup
-            .rope_wrench(&setup.robot.frames(q))
+            .rope_wrench(&setup.robot().frames(q))
             .iter()
             .all(|v| v.is_finite()));
     }

@@ -16,15 +16,17 @@ fn median_at(jacobians: &[Matrix6<f64>], l: f64) -> f64 {
 #[test]
 fn the_paper_setup_gets_about_1_2_m_and_it_minimises_the_median_dexterity() {
     let s = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let (lower, upper) = (s.bounds.lower, s.bounds.upper);
-    let l = prior::characteristic_length(&s.robot, &lower, &upper, &s.tool.tcp, 1).unwrap();
+    let (lower, upper) = (s.bounds().lower, s.bounds().upper);
+    let l = prior::characteristic_length(s.robot(), &lower, &upper, &s.tool().tcp, 1).unwrap();
     assert!((1.0..1.4).contains(&l), "L = {l} m");
     // An independent sample (another generator, 4x the postures) agrees that L is the minimum.
     let mut rng = ChaCha8Rng::seed_from_u64(99);
     let jacobians: Vec<Matrix6<f64>> = (0..2000)
         .map(|_| {
             let q = Vector6::from_fn(|a, _| rng.random_range(lower[a]..=upper[a]));
-            s.robot.frames(&q).jacobian(&s.tool.tcp, Coordinates::Axis)
+            s.robot()
+                .frames(&q)
+                .jacobian(&s.tool().tcp, Coordinates::Axis)
         })
         .collect();
     let at_l = median_at(&jacobians, l);
@@ -36,8 +38,8 @@ fn the_paper_setup_gets_about_1_2_m_and_it_minimises_the_median_dexterity() {
 #[test]
 fn bad_bounds_are_refused_with_the_axis() {
     let s = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let mut lower = s.bounds.lower;
+    let mut lower = s.bounds().lower;
     lower[2] = f64::NAN;
-    let e = prior::characteristic_length(&s.robot, &lower, &s.bounds.upper, &s.tool.tcp, 1);
+    let e = prior::characteristic_length(s.robot(), &lower, &s.bounds().upper, &s.tool().tcp, 1);
     assert!(e.unwrap_err().to_string().contains("axis 3"));
 }

@@ -2,7 +2,7 @@
 
 use nalgebra::Vector6;
 use stiffid::design::{self, Criterion, SearchOptions};
-use stiffid::setup::{self, Setup};
+use stiffid::setup::{self, CellConstraints, Setup};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -19,7 +19,7 @@ fn small(max_evals: usize) -> SearchOptions {
 
 /// A start group with every angle on a bound: the search has to push into the box or along it.
 fn corner_group(setup: &Setup) -> Vec<Vector6<f64>> {
-    let (l, u) = (&setup.bounds.lower, &setup.bounds.upper);
+    let (l, u) = (&setup.bounds().lower, &setup.bounds().upper);
     (0..6)
         .map(|i| Vector6::from_fn(|a, _| if (i + a) % 2 == 0 { l[a] } else { u[a] }))
         .map(|mut q| {
@@ -48,7 +48,7 @@ fn local_search_stays_within_bounds_and_never_ends_worse() {
         for criterion in Criterion::ALL {
             let out = design::local(&setup, criterion, &start, &small(300)).unwrap();
             assert!(
-                out.postures.iter().all(|q| setup.bounds.contains(q)),
+                out.postures.iter().all(|q| setup.bounds().contains(q)),
                 "{criterion}"
             );
             assert!(
@@ -70,10 +70,10 @@ fn random_groups_are_seeded_and_within_bounds() {
     let a = design::random_group(&setup, 9, 11);
     assert_eq!(a, design::random_group(&setup, 9, 11));
     assert_ne!(a, design::random_group(&setup, 9, 12));
-    assert!(a.iter().all(|q| setup.bounds.contains(q)));
+    assert!(a.iter().all(|q| setup.bounds().contains(q)));
     // Latin hypercube: on every axis, one posture per ninth of the range.
     for axis in 0..6 {
-        let (l, u) = (setup.bounds.lower[axis], setup.bounds.upper[axis]);
+        let (l, u) = (setup.bounds().lower[axis], setup.bounds().upper[axis]);
         let mut strata: Vec<usize> = a
             .iter()
             .map(|q| ((q[axis] - l) / (u - l) * 9.0) as usize)
@@ -119,7 +119,7 @@ fn rank_deficient_group_is_infinite_not_nan() {
     // The search starts there without NaN and leaves the penalty region or stays put.
     let out = design::local(&setup, Criterion::RelativeA, &group, &small(200)).unwrap();
     assert!(!out.value.is_nan());
-    assert!(out.postures.iter().all(|q| setup.bounds.contains(q)));
+    assert!(out.postures.iter().all(|q| setup.bounds().contains(q)));
 }
 
 #[test]
@@ -132,7 +132,7 @@ fn local_search_lowers_the_papers_index_by_a_large_factor() {
         out.start_value, out.value
     );
     assert!(factor > 50.0, "factor {factor}");
-    assert!(out.postures.iter().all(|q| setup.bounds.contains(q)));
+    assert!(out.postures.iter().all(|q| setup.bounds().contains(q)));
 }
 
 #[test]
@@ -159,9 +159,9 @@ fn global_relative_a_predicts_lower_deviation_than_the_papers_index() {
 
 #[test]
 fn cell_constraints_are_respected() {
-    let mut setup = paper();
+    let setup = paper();
     let start = design::random_group(&setup, 6, 2);
-    let height = |q: &Vector6<f64>| setup.robot.frames(q).point(&setup.tool.loading_point).z;
+    let height = |q: &Vector6<f64>| setup.robot().frames(q).point(&setup.tool().loading_point).z;
     let free = design::local(&setup, Criterion::DOptimal, &start, &small(2000)).unwrap();
     // A floor above the lowest loading point of the unconstrained optimum: the constraint binds.
     let floor = free
@@ -170,9 +170,15 @@ fn cell_constraints_are_respected() {
         .map(height)
         .fold(f64::INFINITY, f64::min)
         + 0.3;
-    setup.constraints.loading_point_min_z = Some(floor);
-    setup.constraints.anchor_below_loading_point = true;
-    let height = |q: &Vector6<f64>| setup.robot.frames(q).point(&setup.tool.loading_point).z;
+    let setup = setup
+        .to_builder()
+        .with_constraints(CellConstraints {
+            loading_point_min_z: Some(floor),
+            anchor_below_loading_point: true,
+        })
+        .build()
+        .unwrap();
+    let height = |q: &Vector6<f64>| setup.robot().frames(q).point(&setup.tool().loading_point).z;
     let start = design::random_group(&setup, 6, 2);
     assert!(
         start.iter().all(|q| height(q) >= floor),
@@ -181,7 +187,7 @@ fn cell_constraints_are_respected() {
     let out = design::local(&setup, Criterion::DOptimal, &start, &small(2000)).unwrap();
     assert!(out.value < out.start_value);
     for q in &out.postures {
-        assert!(setup.bounds.contains(q));
+        assert!(setup.bounds().contains(q));
         assert!(
             height(q) >= floor - 1e-9,
             "loading point at {} m, floor {floor}",

@@ -61,7 +61,7 @@ fn group(origin: Origin, rates: [f64; 6], classical: f64, levels: usize) -> Grou
 #[test]
 fn findings_of_a_made_up_study_match_the_hand_computed_values() {
     let setup = paper();
-    let n = setup.noise.levels.len();
+    let n = setup.noise().levels.len();
     let mut group3 = [1.0; 6];
     group3[0] = 2.5; // average 1.25, worse than Group 1 on joint 1 only
     let groups = vec![
@@ -188,15 +188,15 @@ fn a_small_study_on_the_paper_setup_reports_its_stages_and_repeats_itself() {
         ("group3-zhang2021", "Group 5 (d-optimal, global)")
     );
     // Multiple 1 is the paper's level 2.
-    assert_eq!(setup.noise.levels[s.validation_level], 1.0);
+    assert_eq!(setup.noise().levels[s.validation_level], 1.0);
     for g in &s.groups {
         // The prediction is computed once: the simulation holds the evaluation's.
         assert_eq!(
             g.simulation.predicted_deviation_pct,
             g.evaluation.predicted_deviation_pct
         );
-        assert!(g.postures.iter().all(|q| setup.bounds.contains(q)));
-        assert_eq!(g.validation_error.len(), setup.test_postures.len());
+        assert!(g.postures.iter().all(|q| setup.bounds().contains(q)));
+        assert_eq!(g.validation_error.len(), setup.test_postures().len());
     }
     // The trial from the study's own seed starts from Group 1.
     assert_eq!(s.trials[0].seed, 3);

@@ -25,7 +25,7 @@ fn noisy_paper_data(setup: &Setup, repeats: usize, seed: u64) -> Vec<Measurement
     let clean = paper_measurements(setup);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..repeats)
-        .flat_map(|_| with_noise(&clean, setup.noise.sigma(), &mut rng))
+        .flat_map(|_| with_noise(&clean, setup.noise().sigma(), &mut rng))
         .collect()
 }
 
@@ -33,7 +33,7 @@ fn noisy_paper_data(setup: &Setup, repeats: usize, seed: u64) -> Vec<Measurement
 fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     let setup = paper();
     let id = least_squares(&setup, &noisy_paper_data(&setup, 10, 7)).unwrap();
-    let a = id.adequacy(setup.noise.variance).unwrap();
+    let a = id.adequacy(setup.noise().variance).unwrap();
     assert_eq!(a.dof, 720 - 6);
     // s / sigma has a standard deviation of about 1 / sqrt(2 dof) = 0.026.
     assert!((a.noise_ratio - 1.0).abs() < 0.1, "ratio {}", a.noise_ratio);
@@ -46,18 +46,18 @@ fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     // Ten times the noise: the model check fails.
     let loud = with_noise(
         &paper_measurements(&setup),
-        10.0 * setup.noise.sigma(),
+        10.0 * setup.noise().sigma(),
         &mut ChaCha8Rng::seed_from_u64(1),
     );
     let a = least_squares(&setup, &loud)
         .unwrap()
-        .adequacy(setup.noise.variance)
+        .adequacy(setup.noise().variance)
         .unwrap();
     assert!(a.noise_ratio > 5.0 && a.model_error_dominates(), "{a:?}");
     // The noise intervals: normal quantile, sigma^2 instead of s^2.
     let u = id.uncertainty.as_ref().unwrap();
-    let scale = (setup.noise.variance / u.residual_variance).sqrt();
-    let a = id.adequacy(setup.noise.variance).unwrap();
+    let scale = (setup.noise().variance / u.residual_variance).sqrt();
+    let a = id.adequacy(setup.noise().variance).unwrap();
     for j in 0..6 {
         let se = a.from_noise.compliance_std_error[j];
         assert!((se - u.compliance_std_error[j] * scale).abs() < 1e-12 * se);
@@ -219,7 +219,7 @@ fn fanuc_in_other_frames(setup: &Setup, tracker: &Isometry3<f64>) -> String {
     let file = measurements::parse(FANUC_CSV).unwrap();
     let mut text = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_tool_n,fy_tool_n,fz_tool_n,mx_tool_nm,my_tool_nm,mz_tool_nm,dx_tracker_mm,dy_tracker_mm,dz_tracker_mm\n".to_string();
     for m in &file.measurements {
-        let r = setup.robot.frames(&m.q).flange.rotation;
+        let r = setup.robot().frames(&m.q).flange.rotation;
         let f = r.inverse() * m.wrench.fixed_rows::<3>(0);
         let moment = r.inverse() * m.wrench.fixed_rows::<3>(3);
         let d = tracker.rotation.inverse() * m.displacement * 1e3;
@@ -241,7 +241,7 @@ fn fanuc_in_other_frames(setup: &Setup, tracker: &Isometry3<f64>) -> String {
 
 #[test]
 fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffness() {
-    let mut setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
     let base = {
         let mut f = measurements::parse(FANUC_CSV).unwrap();
         f.to_base_frame(&setup).unwrap();
@@ -257,12 +257,16 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
         file.clone().to_base_frame(&setup),
         Err(Error::InvalidField { field, .. }) if field == "tracker.base_from_tracker"
     ));
-    setup.tracker = Some(stiffid::setup::Tracker {
-        position: tracker.translation.vector,
-        max_incidence: None,
-        measuring_normals: vec![nalgebra::Vector3::z()],
-        base_from_tracker: Some(tracker),
-    });
+    let setup = setup
+        .to_builder()
+        .with_tracker(stiffid::setup::Tracker {
+            position: tracker.translation.vector,
+            max_incidence: None,
+            measuring_normals: vec![nalgebra::Vector3::z()],
+            base_from_tracker: Some(tracker),
+        })
+        .build()
+        .unwrap();
     file.to_base_frame(&setup).unwrap();
     let other = least_squares(&setup, &file.measurements).unwrap();
     let rel = (other.stiffness - base.stiffness)
@@ -278,7 +282,7 @@ fn the_setup_reads_the_tracker_transform() {
         .to_string()
         + "\n[tracker]\nbase_from_tracker = { xyz_mm = [3000, 0, 500], rpy_deg = [0, 0, 90] }\n";
     let s = setup::parse(&text, "t.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
-    let tracker = s.tracker.unwrap();
+    let tracker = s.tracker().unwrap();
     let t = tracker.base_from_tracker.unwrap();
     assert!((t.translation.vector - nalgebra::Vector3::new(3.0, 0.0, 0.5)).norm() < 1e-12);
     assert_eq!(
@@ -323,7 +327,7 @@ fn the_unit_check_fires_on_displacements_in_metres_and_forces_in_kilonewtons() {
             .collect();
         least_squares(&setup, &scaled)
             .unwrap()
-            .unit_check(&setup.nominal_stiffness)
+            .unit_check(setup.nominal_stiffness())
     };
     assert_eq!(fit(1.0, 1.0), None);
     let metres = fit(1e-3, 1.0).unwrap();
@@ -370,11 +374,11 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let setup = paper();
     let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
     let data = synthetic(&setup, &qs, |_, q| {
-        setup.rope_wrench(&setup.robot.frames(q))
+        setup.rope_wrench(&setup.robot().frames(q))
     });
-    let exact = validate::compare(&setup, &setup.nominal_stiffness, &data).unwrap();
+    let exact = validate::compare(&setup, setup.nominal_stiffness(), &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
-    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness * 2.0), &data).unwrap();
+    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
     assert!(
         (stiffer.explained - 0.5).abs() < 1e-12,
         "{}",

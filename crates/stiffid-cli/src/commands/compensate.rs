@@ -195,7 +195,7 @@ pub fn run(args: &Args) -> Result<()> {
         stiffness: args.stiffness.stiffness.display().to_string(),
         path: args.path.display().to_string(),
         out: args.out.display().to_string(),
-        springs: setup.springs,
+        springs: setup.springs(),
         stiffness_nm_per_rad: file.stiffness_nm_per_rad,
         has_covariance: compliance.covariance.is_some(),
         free_tool_axis: options.free_tool_axis.map(|f| FreeToolAxisJson {
@@ -217,12 +217,12 @@ pub fn run(args: &Args) -> Result<()> {
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let q0 = match &args.q0_deg {
-        Some(text) => load::posture(text, &setup.robot)?.1,
+        Some(text) => load::posture(text, setup.robot())?.1,
         None => setup
-            .test_postures
+            .test_postures()
             .first()
             .copied()
-            .unwrap_or((setup.bounds.lower + setup.bounds.upper) / 2.0),
+            .unwrap_or((setup.bounds().lower + setup.bounds().upper) / 2.0),
     };
     let free_tool_axis = match args.free_tool_axis {
         false => None,
@@ -439,7 +439,7 @@ impl Summary {
              compensated axis angles: residual at most {:.2e} um and {:.2e} urad (required: 0.1 um, 1 urad), at most {} Newton steps\n",
             self.points,
             args.path.display(),
-            setup.name,
+            setup.name(),
             args.stiffness.stiffness.display(),
             if covariance { ", with its covariance: standard deviations in the CSV" } else { "" },
             self.max_deflection_mm.0,

@@ -97,7 +97,7 @@ pub struct EvaluateJson {
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let group = load::postures(&args.postures, &setup.robot, Some(&setup.bounds))?;
+    let group = load::postures(&args.postures, setup.robot(), Some(setup.bounds()))?;
     identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
     let e = evaluate(&setup, &group);
     let checks = feasibility::of_group(&setup, &group);
@@ -112,13 +112,13 @@ pub fn run(args: &Args) -> Result<()> {
         "{} postures of {} on setup {}\n",
         group.len(),
         args.postures.display(),
-        short(&setup.name)
+        short(setup.name())
     );
     s += &criteria_text(&e);
     s += "\npredicted mean deviation rate, % (first order)\n";
     s += &format!("{:>5} {:>6}  {}\n", "level", "x var", joints_header());
     for (l, (m, row)) in setup
-        .noise
+        .noise()
         .levels
         .iter()
         .zip(&e.predicted_deviation_pct)

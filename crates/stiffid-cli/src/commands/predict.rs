@@ -130,7 +130,7 @@ fn xyz(v: &Vector6<f64>, from: usize, scale: f64) -> [f64; 3] {
 /// Predicts and prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let (q_deg, q) = load::posture(&args.q_deg, &setup.robot)?;
+    let (q_deg, q) = load::posture(&args.q_deg, setup.robot())?;
     let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;
     if w.len() != 3 && w.len() != 6 {
         bail!(
@@ -142,29 +142,29 @@ pub fn run(args: &Args) -> Result<()> {
     wrench.as_mut_slice()[..w.len()].copy_from_slice(&w);
     let at: Vector3<f64> = match &args.at_mm {
         Some(text) => load::vector::<3>(text, "--at-mm", &limits::LENGTH_MM)? * 1e-3,
-        None => setup.tool.loading_point,
+        None => setup.tool().loading_point,
     };
     let (stiffness, covariance) = match &args.stiffness {
         Some(path) => {
             let file = load::stiffness(path)?;
             (file.stiffness(), file.covariance())
         }
-        None => (setup.nominal_stiffness, None),
+        None => (*setup.nominal_stiffness(), None),
     };
     let h = stiffness.map(|k| 1.0 / k);
-    let frames = setup.robot.frames(&q);
+    let frames = setup.robot().frames(&q);
     let base = base_wrench(&frames, &wrench, args.frame.into());
     let at_point = |observed| Points {
         frames: &frames,
-        springs: setup.springs,
+        springs: setup.springs(),
         loaded: &at,
         observed,
     };
     let std = |d: &stiffid::deflection::PointDeflection| covariance.as_ref().map(|c| d.std(c));
-    let tcp = at_point(&setup.tool.tcp).deflection(&base, &h);
+    let tcp = at_point(&setup.tool().tcp).deflection(&base, &h);
     let tcp_std = std(&tcp);
-    let c = cartesian::compliance(&frames, &at, setup.springs, &h);
-    let k = cartesian::stiffness(&frames, &at, setup.springs, &stiffness);
+    let c = cartesian::compliance(&frames, &at, setup.springs(), &h);
+    let k = cartesian::stiffness(&frames, &at, setup.springs(), &stiffness);
     let result = PredictJson {
         setup: args.common.setup.clone(),
         q_deg: q_deg.into(),
@@ -181,7 +181,7 @@ pub fn run(args: &Args) -> Result<()> {
         flange_rotation_mrad: xyz(&tcp.displacement, 3, 1e3),
         flange_rotation_std_mrad: tcp_std.map(|s| xyz(&s, 3, 1e3)),
         measuring_points: setup
-            .tool
+            .tool()
             .measuring_points
             .iter()
             .enumerate()
@@ -197,7 +197,7 @@ pub fn run(args: &Args) -> Result<()> {
                 }
             })
             .collect(),
-        tcp_mm: (frames.point(&setup.tool.tcp) * 1e3).into(),
+        tcp_mm: (frames.point(&setup.tool().tcp) * 1e3).into(),
         tcp_deflection_mm: xyz(&tcp.displacement, 0, 1e3),
         tcp_deflection_std_mm: tcp_std.map(|s| xyz(&s, 0, 1e3)),
         tcp_rotation_mrad: xyz(&tcp.displacement, 3, 1e3),

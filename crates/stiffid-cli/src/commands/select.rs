@@ -218,7 +218,7 @@ pub fn run(args: &Args) -> Result<()> {
     identifiable(&setup, &selection.postures).with_context(|| {
         format!(
             "setup {}: the best group the search found",
-            short(&setup.name)
+            short(setup.name())
         )
     })?;
     out.write(postures::to_csv(&selection.postures).as_bytes())?;
@@ -241,7 +241,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     if args.common.json {
         let doc = SelectJson {
-            setup: &setup.name,
+            setup: setup.name(),
             criterion: args.criterion.name(),
             search: selection.search,
             gradient: (selection.search != "pool").then(|| args.gradient.name()),
@@ -384,7 +384,7 @@ fn start_group(args: &Args, setup: &Setup, n: usize) -> Result<Vec<Vector6<f64>>
         }
         return Ok(design::random_group(setup, n, args.seed));
     };
-    let start = load::postures(path, &setup.robot, Some(&setup.bounds))?;
+    let start = load::postures(path, setup.robot(), Some(setup.bounds()))?;
     let most = limits::MAX_SEARCH_POSTURES as usize;
     if start.len() < 2 || start.len() > most {
         bail!(
@@ -414,7 +414,7 @@ fn outcome_text(args: &Args, setup: &Setup, s: &Selection, elapsed: f64) -> Stri
         "{} search of {} postures on setup {} (seed {})\n",
         s.search,
         s.postures.len(),
-        short(&setup.name),
+        short(setup.name()),
         args.seed
     );
     text += &match s.start_value {

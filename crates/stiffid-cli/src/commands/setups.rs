@@ -30,7 +30,7 @@ pub fn run(args: &Args) -> Result<()> {
         None => {
             let mut text = String::new();
             for name in setup::builtin_names() {
-                text += &format!("{name}\n  {}\n", setup::builtin(name)?.description);
+                text += &format!("{name}\n  {}\n", setup::builtin(name)?.description());
             }
             output::print(&text)
         }

@@ -83,7 +83,7 @@ pub fn run(args: &Args) -> Result<()> {
     let groups = args
         .postures
         .iter()
-        .map(|p| load::postures(p, &setup.robot, Some(&setup.bounds)))
+        .map(|p| load::postures(p, setup.robot(), Some(setup.bounds())))
         .collect::<Result<Vec<_>>>()?;
     let names = group_names(&args.postures);
     let out = match &args.out {
@@ -102,10 +102,10 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let sims = monte_carlo(&setup, &groups, &options)?;
     let doc = SimulationJson {
-        setup: &setup.name,
+        setup: setup.name(),
         seed: args.seed,
         runs: options.runs,
-        levels: &setup.noise.levels,
+        levels: &setup.noise().levels,
         groups: names
             .iter()
             .zip(&sims)
@@ -113,14 +113,14 @@ pub fn run(args: &Args) -> Result<()> {
             .collect(),
     };
     if let Some(dir) = out {
-        let csv = deviation_csv(&names, &sims, &setup.noise.levels);
+        let csv = deviation_csv(&names, &sims, &setup.noise().levels);
         dir.write(FILES[0], csv.as_bytes())?;
         dir.write(FILES[1], json(&doc)?.as_bytes())?;
         dir.finish()?;
     }
     match args.common.json {
         true => output::print(&json(&doc)?),
-        false => output::print(&tables(&names, &sims, &setup.noise.levels, options.runs)),
+        false => output::print(&tables(&names, &sims, &setup.noise().levels, options.runs)),
     }
 }
 

@@ -44,7 +44,7 @@ pub fn write(
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
     let html = page(
-        &format!("stiffid compensation: {}", setup.name),
+        &format!("stiffid compensation: {}", setup.name()),
         GENERATOR,
         |w| compose(w, setup, results, document, &figures),
     );
@@ -66,8 +66,8 @@ fn compose(
         "Path `{}` ({} points) on the setup `{}` ({}), joint stiffness from `{}`. Each point's TCP deflection under its wrench (Zhang et al. 2021, Eq. 4-6) and the compensated axis angles that put the loaded TCP where the unloaded robot puts it at the nominal posture.",
         document["path"].as_str().unwrap_or(""),
         results.len(),
-        setup.name,
-        setup.robot.name,
+        setup.name(),
+        setup.robot().name,
         document["stiffness"].as_str().unwrap_or(""),
     ));
     let mut items = vec![

@@ -32,7 +32,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(1, "Posture selection for joint stiffness identification: the simulation study of Zhang et al. (2021)");
     w.paragraph(&format!(
         "Reproduces Section IV-A of Zhang, Guo, Sun and Sun, \"Method of Postures Selection for Industrial Robot Joint Stiffness Identification\", IEEE Access 9 (2021), doi:10.1109/ACCESS.2021.3073671 (Figs. 5-8, Tables 3-4) on the setup `{}` ({}), and shows beside it what scale-free criteria searched globally achieve. {} groups of {} postures, {} Monte Carlo runs per group and noise level, seed {}; computed in {:.1} s.",
-        s.name, s.robot.name, study.groups.len(), stiffid::study::POSTURES, study.runs, study.seed, study.elapsed_s
+        s.name(), s.robot().name, study.groups.len(), stiffid::study::POSTURES, study.runs, study.seed, study.elapsed_s
     ));
     w.heading(2, "Findings");
     w.list(&sentences(&f, study));
@@ -84,7 +84,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
         w.paragraph(&format!(
             "The paper searches locally from one start group. The same two local searches (`classical`, `zhang2021`) from {} seeded start groups, each group judged by its first-order predicted average deviation rate (mean over joints and the {} noise levels, %; the Findings say how closely it follows the Monte Carlo means). Seed {} is Group 1 above.",
             study.trials.len(),
-            s.noise.levels.len(),
+            s.noise().levels.len(),
             study.seed
         ));
         w.table(&tables::trials(study));
@@ -99,7 +99,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(2, "Setup and method");
     w.paragraph(&format!(
         "{} The paper does not give every number (its tool drawing, Fig. 3, is not in the text): the setup's own choices for the tool points, the rope anchor and the characteristic length, and why, are in `stiffid setups show {}` (or the setup file).",
-        s.description, s.name
+        s.description(), s.name()
     ));
     w.table(&tables::setup(study));
     w.list(&[

@@ -97,7 +97,7 @@ pub fn page(title: &str, generator: &str, body: impl FnOnce(&mut dyn Writer)) ->
 /// The text of `report.html`.
 pub fn report(study: &Study, figures: &[Figure]) -> String {
     page(
-        &format!("stiffid report: {}", study.setup.name),
+        &format!("stiffid report: {}", study.setup.name()),
         super::summary::GENERATOR,
         |w| compose(study, figures, w),
     )

@@ -114,7 +114,7 @@ pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
         .collect();
     texts.push((
         FILES[1].into(),
-        deviation_csv(&names, &sims, &study.setup.noise.levels),
+        deviation_csv(&names, &sims, &study.setup.noise().levels),
     ));
     texts.push((FILES[2].into(), markdown::report(study, figures)));
     texts.push((FILES[3].into(), html::report(study, figures)));

@@ -75,9 +75,9 @@ impl<'a> Plan<'a> {
             .iter()
             .enumerate()
             .map(|(i, q)| {
-                let frames = setup.robot.frames(q);
-                let lp = frames.point(&setup.tool.loading_point);
-                let rope = setup.load.anchor - lp;
+                let frames = setup.robot().frames(q);
+                let lp = frames.point(&setup.tool().loading_point);
+                let rope = setup.load().anchor - lp;
                 let mut others = postures.to_vec();
                 others.remove(i);
                 let without = evaluator.evaluation(&others).relative_std;
@@ -87,7 +87,7 @@ impl<'a> Plan<'a> {
                     rope_direction: rope.normalize(),
                     rope_length: rope.norm(),
                     loading_point_z: lp.z,
-                    displacements: rope_displacements(setup, &frames, &setup.nominal_stiffness),
+                    displacements: rope_displacements(setup, &frames, setup.nominal_stiffness()),
                     without_pct: predicted_deviation_pct(&without, 1.0),
                     clearance: feasibility.min_clearance(),
                     failed: feasibility.violations().map(describe).collect(),
@@ -128,7 +128,7 @@ pub fn write(
     let title = format!(
         "Measurement plan: {} postures, {}",
         postures.len(),
-        setup.name
+        setup.name()
     );
     let page = html::page(&title, GENERATOR, |w| compose(&plan, &figures, w));
     dir.write("plan.html", page.as_bytes())?;
@@ -147,7 +147,7 @@ fn mm3(v: &Vector3<f64>) -> [String; 3] {
 /// `plan.csv`: one row per posture; the leave-one-out rates are each joint's predicted deviation
 /// rate at noise multiple 1 if that posture could not be measured.
 fn csv(plan: &Plan) -> String {
-    let p = plan.setup.tool.measuring_points.len();
+    let p = plan.setup.tool().measuring_points.len();
     let mut header: Vec<String> = [
         "posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg",
     ]
@@ -195,13 +195,16 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
 fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     let s = plan.setup;
     let n = plan.rows.len();
-    w.heading(1, &format!("Measurement plan: {n} postures on {}", s.name));
+    w.heading(
+        1,
+        &format!("Measurement plan: {n} postures on {}", s.name()),
+    );
     w.paragraph(&format!(
         "Robot {}, {} measuring point(s), a load of {} N hung from the loading point by a rope over the anchor (pulley) at ({}) mm, base frame. Postures chosen by the design criterion `{}`.",
-        s.robot.name,
-        s.tool.measuring_points.len(),
-        s.load.load,
-        mm3(&s.load.anchor).join(", "),
+        s.robot().name,
+        s.tool().measuring_points.len(),
+        s.load().load,
+        mm3(&s.load().anchor).join(", "),
         plan.criterion
     ));
     w.heading(2, "Predicted accuracy");
@@ -238,7 +241,7 @@ fn accuracy(plan: &Plan) -> Table {
     header.extend((1..=6).map(|j| format!("joint {j}, %")));
     let rows = plan
         .setup
-        .noise
+        .noise()
         .levels
         .iter()
         .zip(&plan.evaluation.predicted_deviation_pct)
@@ -300,7 +303,7 @@ fn postures_table(plan: &Plan) -> Table {
 }
 
 fn displacements_table(plan: &Plan) -> Table {
-    let p = plan.setup.tool.measuring_points.len();
+    let p = plan.setup.tool().measuring_points.len();
     let mut header = vec!["posture".to_string()];
     header.extend((1..=p).map(|k| format!("point {k}: dx, dy, dz, mm")));
     let rows = plan

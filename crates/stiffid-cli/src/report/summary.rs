@@ -195,13 +195,13 @@ struct BoundsJson {
 
 impl<'a> SetupJson<'a> {
     fn new(s: &'a Setup) -> Self {
-        let r = &s.robot;
+        let r = &s.robot();
         let m = &r.axis_map.matrix;
         Self {
-            name: &s.name,
-            description: &s.description,
+            name: s.name(),
+            description: s.description(),
             robot: RobotJson {
-                reference: &s.robot_ref,
+                reference: s.robot_ref(),
                 name: &r.name,
                 source: &r.source,
                 joints: r
@@ -223,27 +223,27 @@ impl<'a> SetupJson<'a> {
                 matrix: std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)])),
                 offset_deg: deg(&r.axis_map.offset),
             },
-            springs: s.springs,
+            springs: s.springs(),
             tool: ToolJson {
-                loading_point_mm: mm(&s.tool.loading_point),
-                measuring_points_mm: s.tool.measuring_points.iter().map(mm).collect(),
-                tcp_mm: mm(&s.tool.tcp),
+                loading_point_mm: mm(&s.tool().loading_point),
+                measuring_points_mm: s.tool().measuring_points.iter().map(mm).collect(),
+                tcp_mm: mm(&s.tool().tcp),
             },
             loading: LoadingJson {
-                load_n: s.load.load,
-                anchor_mm: mm(&s.load.anchor),
+                load_n: s.load().load,
+                anchor_mm: mm(&s.load().anchor),
             },
             noise: NoiseJson {
-                variance_mm2: s.noise.variance * 1e6,
-                level_multiples: s.noise.levels.clone(),
+                variance_mm2: s.noise().variance * 1e6,
+                level_multiples: s.noise().levels.clone(),
             },
             bounds: BoundsJson {
-                lower_deg: deg(&s.bounds.lower),
-                upper_deg: deg(&s.bounds.upper),
+                lower_deg: deg(&s.bounds().lower),
+                upper_deg: deg(&s.bounds().upper),
             },
-            stiffness_nm_per_rad: s.nominal_stiffness.into(),
-            characteristic_length_mm: s.characteristic_length * 1e3,
-            test_postures_deg: s.test_postures.iter().map(deg).collect(),
+            stiffness_nm_per_rad: (*s.nominal_stiffness()).into(),
+            characteristic_length_mm: s.characteristic_length() * 1e3,
+            test_postures_deg: s.test_postures().iter().map(deg).collect(),
         }
     }
 }
@@ -338,7 +338,7 @@ pub fn json(study: &Study) -> Result<String> {
         setup: SetupJson::new(&study.setup),
         seed: study.seed,
         runs: study.runs,
-        levels: &study.setup.noise.levels,
+        levels: &study.setup.noise().levels,
         validation_level: study.validation_level + 1,
         elapsed_s: study.elapsed_s,
         test_deflection_mm: study

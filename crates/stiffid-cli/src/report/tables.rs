@@ -162,7 +162,7 @@ pub fn validation(study: &Study) -> Table {
         header,
         rows: study
             .setup
-            .test_postures
+            .test_postures()
             .iter()
             .enumerate()
             .map(|(t, q)| {
@@ -198,20 +198,20 @@ pub fn setup(study: &Study) -> Table {
             .join(", ")
     };
     let rows = vec![
-        ("setup", s.name.clone()),
-        ("robot", format!("{} ({})", s.robot.name, s.robot_ref)),
+        ("setup", s.name().to_string()),
+        ("robot", format!("{} ({})", s.robot().name, s.robot_ref())),
         (
             "springs in",
-            format!("{:?} coordinates", s.springs).to_lowercase(),
+            format!("{:?} coordinates", s.springs()).to_lowercase(),
         ),
-        ("true stiffness, Nm/rad", six(&s.nominal_stiffness, 1.0)),
+        ("true stiffness, Nm/rad", six(s.nominal_stiffness(), 1.0)),
         (
             "loading point (flange frame), mm",
-            mm3(&s.tool.loading_point),
+            mm3(&s.tool().loading_point),
         ),
         (
             "measuring points (flange frame), mm",
-            s.tool
+            s.tool()
                 .measuring_points
                 .iter()
                 .map(mm3)
@@ -220,15 +220,15 @@ pub fn setup(study: &Study) -> Table {
         ),
         (
             "rope load, N / anchor (base frame), mm",
-            format!("{} / {}", s.load.load, mm3(&s.load.anchor)),
+            format!("{} / {}", s.load().load, mm3(&s.load().anchor)),
         ),
         (
             "noise variance sigma^2, mm^2",
-            format!("{:.3e}", s.noise.variance * 1e6),
+            format!("{:.3e}", s.noise().variance * 1e6),
         ),
         (
             "noise levels (multiples of sigma^2)",
-            s.noise
+            s.noise()
                 .levels
                 .iter()
                 .map(|m| m.to_string())
@@ -237,15 +237,15 @@ pub fn setup(study: &Study) -> Table {
         ),
         (
             "bounds lower, deg",
-            six(&s.bounds.lower, 180.0 / std::f64::consts::PI),
+            six(&s.bounds().lower, 180.0 / std::f64::consts::PI),
         ),
         (
             "bounds upper, deg",
-            six(&s.bounds.upper, 180.0 / std::f64::consts::PI),
+            six(&s.bounds().upper, 180.0 / std::f64::consts::PI),
         ),
         (
             "characteristic length L, mm",
-            format!("{:.0}", s.characteristic_length * 1e3),
+            format!("{:.0}", s.characteristic_length() * 1e3),
         ),
         (
             "Monte Carlo runs per group and level / seed",

@@ -69,12 +69,12 @@ const SAME_POINT: f64 = 1e-9;
 ///
 /// Radii from [`RobotGeometry`]. This is what `stiffid plot` draws.
 pub fn capsules(setup: &Setup, frames: &Frames) -> Vec<Capsule> {
-    let g = &setup.geometry;
+    let g = &setup.geometry();
     let mut out = Vec::with_capacity(16);
     for (part, points) in polylines(frames) {
         push_polyline(&mut out, part, &points, g.link_radii[part.index()]);
     }
-    let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(&setup.tool)));
+    let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(setup.tool())));
     out.push(Capsule {
         part: Part::Tool,
         a: frames.flange.translation.vector,

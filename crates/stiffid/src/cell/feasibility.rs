@@ -106,7 +106,7 @@ impl Thing {
         match self {
             Thing::Part(p) => p.to_string(),
             Thing::Floor => "floor".into(),
-            Thing::Obstacle(i) => setup.cell.as_ref().map_or_else(
+            Thing::Obstacle(i) => setup.cell().map_or_else(
                 || format!("obstacle {}", i + 1),
                 |c| c.obstacles[i].name.clone(),
             ),
@@ -204,7 +204,7 @@ impl<'a> Checker<'a> {
     /// list.
     pub fn new(setup: &'a Setup) -> Self {
         let mut kinds = vec![CheckKind::Bounds];
-        if let Some(cell) = &setup.cell {
+        if let Some(cell) = &setup.cell() {
             if cell.floor_z.is_some() {
                 kinds.push(CheckKind::Floor);
             }
@@ -213,16 +213,16 @@ impl<'a> Checker<'a> {
             }
             kinds.extend([CheckKind::SelfCollision, CheckKind::Rope]);
         }
-        if let Some(t) = &setup.tracker {
+        if let Some(t) = &setup.tracker() {
             kinds.push(CheckKind::LineOfSight);
             if t.max_incidence.is_some() {
                 kinds.push(CheckKind::Incidence);
             }
         }
-        if setup.constraints.loading_point_min_z.is_some() {
+        if setup.constraints().loading_point_min_z.is_some() {
             kinds.push(CheckKind::LoadingPointHeight);
         }
-        if setup.constraints.anchor_below_loading_point {
+        if setup.constraints().anchor_below_loading_point {
             kinds.push(CheckKind::AnchorBelow);
         }
         let mut checker = Self {
@@ -230,7 +230,7 @@ impl<'a> Checker<'a> {
             kinds,
             pairs: Vec::new(),
         };
-        if setup.cell.is_some() {
+        if setup.cell().is_some() {
             checker.pairs = checker.self_pairs();
         }
         checker
@@ -300,7 +300,7 @@ impl<'a> Checker<'a> {
         let s = self.setup;
         let mut out = Vec::with_capacity(64);
         for a in 0..6 {
-            let m = (q[a] - s.bounds.lower[a]).min(s.bounds.upper[a] - q[a]);
+            let m = (q[a] - s.bounds().lower[a]).min(s.bounds().upper[a] - q[a]);
             let m = if m.is_nan() { f64::NEG_INFINITY } else { m };
             out.push(margin(
                 CheckKind::Bounds,
@@ -313,16 +313,16 @@ impl<'a> Checker<'a> {
         if !self.constrains() {
             return out;
         }
-        let frames = s.robot.frames(q);
+        let frames = s.robot().frames(q);
         let bodies = capsules(s, &frames);
-        let loading = frames.point(&s.tool.loading_point);
-        if let Some(cell) = &s.cell {
+        let loading = frames.point(&s.tool().loading_point);
+        if let Some(cell) = &s.cell() {
             self.body_margins(&bodies, &loading, cell, &mut out);
         }
-        if let Some(t) = &s.tracker {
-            for (i, p) in s.tool.measuring_points.iter().enumerate() {
+        if let Some(t) = &s.tracker() {
+            for (i, p) in s.tool().measuring_points.iter().enumerate() {
                 let p = frames.point(p);
-                let sight = line(&t.position, &p, s.geometry.tool_radius);
+                let sight = line(&t.position, &p, s.geometry().tool_radius);
                 self.line_margins(
                     CheckKind::LineOfSight,
                     &sight,
@@ -339,7 +339,7 @@ impl<'a> Checker<'a> {
                 }
             }
         }
-        let c = &s.constraints;
+        let c = &s.constraints();
         if let Some(z) = c.loading_point_min_z {
             let (l, f) = (Thing::LoadingPoint, Thing::Floor);
             out.push(margin(
@@ -354,7 +354,7 @@ impl<'a> Checker<'a> {
             let (l, a) = (Thing::LoadingPoint, Thing::Anchor);
             out.push(margin(
                 CheckKind::AnchorBelow,
-                loading.z - s.load.anchor.z,
+                loading.z - s.load().anchor.z,
                 0.0,
                 l,
                 a,
@@ -400,8 +400,8 @@ impl<'a> Checker<'a> {
             let (a, b) = (Thing::Part(bodies[i].part), Thing::Part(bodies[j].part));
             out.push(margin(CheckKind::SelfCollision, m, c, a, b));
         }
-        let exempt = self.setup.geometry.tool_radius + c;
-        let rope = line(&self.setup.load.anchor, loading, exempt);
+        let exempt = self.setup.geometry().tool_radius + c;
+        let rope = line(&self.setup.load().anchor, loading, exempt);
         self.line_margins(CheckKind::Rope, &rope, Thing::Rope, bodies, c, out);
     }
 
@@ -423,7 +423,11 @@ impl<'a> Checker<'a> {
             let m = segment.map_or(f64::INFINITY, |s| capsule_capsule(s, b) - required);
             out.push(margin(kind, m, required, thing, Thing::Part(b.part)));
         }
-        let obstacles = self.setup.cell.iter().flat_map(|c| c.obstacles.iter());
+        let obstacles = self
+            .setup
+            .cell()
+            .into_iter()
+            .flat_map(|c| c.obstacles.iter());
         for (i, o) in obstacles.enumerate() {
             let m = capsule_box(&line.full, o) - required;
             out.push(margin(kind, m, required, thing, Thing::Obstacle(i)));
@@ -433,18 +437,19 @@ impl<'a> Checker<'a> {
     /// The self-collision pairs: non-adjacent parts, not in contact in every sampled posture.
     fn self_pairs(&self) -> Vec<(usize, usize)> {
         let s = self.setup;
-        let rest = capsules(s, &s.robot.frames(&s.bounds.lower));
+        let rest = capsules(s, &s.robot().frames(&s.bounds().lower));
         let candidates: Vec<(usize, usize)> = (0..rest.len())
             .flat_map(|i| (i + 1..rest.len()).map(move |j| (i, j)))
             .filter(|&(i, j)| !adjacent(&rest, rest[i].part, rest[j].part))
             .collect();
-        let clearance = s.cell.as_ref().map_or(0.0, |c| c.clearance);
+        let clearance = s.cell().map_or(0.0, |c| c.clearance);
         let mut free = vec![false; candidates.len()];
         let mut rng = ChaCha8Rng::seed_from_u64(0);
         for _ in 0..CONTACT_SAMPLE {
-            let q =
-                Vector6::from_fn(|a, _| rng.random_range(s.bounds.lower[a]..=s.bounds.upper[a]));
-            let bodies = capsules(s, &s.robot.frames(&q));
+            let q = Vector6::from_fn(|a, _| {
+                rng.random_range(s.bounds().lower[a]..=s.bounds().upper[a])
+            });
+            let bodies = capsules(s, &s.robot().frames(&q));
             for (k, &(i, j)) in candidates.iter().enumerate() {
                 free[k] |= capsule_capsule(&bodies[i], &bodies[j]) >= clearance;
             }

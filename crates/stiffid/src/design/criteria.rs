@@ -151,15 +151,15 @@ impl Evaluation {
 pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
     postures
         .iter()
-        .map(|q| tcp_dexterity(setup, &setup.robot.frames(q)))
+        .map(|q| tcp_dexterity(setup, &setup.robot().frames(q)))
         .fold(0.0, f64::max)
 }
 
 /// `k(J_N)` (Eq. 20-21) of the setup's TCP in one posture, its Jacobian in the springs' coordinates
 /// and normalised by the setup's characteristic length; `+infinity` at a singularity.
 pub fn tcp_dexterity(setup: &Setup, frames: &Frames) -> f64 {
-    let j = frames.jacobian(&setup.tool.tcp, setup.springs);
-    dexterity(&j, setup.characteristic_length)
+    let j = frames.jacobian(&setup.tool().tcp, setup.springs());
+    dexterity(&j, setup.characteristic_length())
 }
 
 /// Predicted mean deviation rate (%) of each joint at noise multiple `m` from relative standard

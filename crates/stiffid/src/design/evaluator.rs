@@ -47,10 +47,10 @@ pub struct PostureTerms {
 impl<'a> Evaluator<'a> {
     /// An evaluator for `setup`.
     pub fn new(setup: &'a Setup) -> Self {
-        let test_rows = rope_observation_matrix(setup, &setup.test_postures);
+        let test_rows = rope_observation_matrix(setup, setup.test_postures());
         Self {
             setup,
-            scaling: setup.nominal_compliance() / setup.noise.sigma(),
+            scaling: setup.nominal_compliance() / setup.noise().sigma(),
             test_gram: (test_rows.transpose() * &test_rows)
                 .fixed_view::<6, 6>(0, 0)
                 .into_owned(),
@@ -70,7 +70,7 @@ impl<'a> Evaluator<'a> {
         if criterion == Criterion::Classical {
             return postures
                 .iter()
-                .map(|q| tcp_dexterity(self.setup, &self.setup.robot.frames(q)))
+                .map(|q| tcp_dexterity(self.setup, &self.setup.robot().frames(q)))
                 .fold(0.0, f64::max);
         }
         // Each posture's rows straight into Psi; its dexterity only for zhang2021.
@@ -89,7 +89,7 @@ impl<'a> Evaluator<'a> {
     /// The terms of one posture (axis angles, rad), to reuse across groups that share it (finite
     /// differences change one posture at a time).
     pub fn posture(&self, q: &Vector6<f64>) -> PostureTerms {
-        let frames = self.setup.robot.frames(q);
+        let frames = self.setup.robot().frames(q);
         let block = posture_block(self.setup, &frames, &self.setup.rope_wrench(&frames));
         PostureTerms {
             frames,
@@ -166,7 +166,7 @@ impl<'a> Evaluator<'a> {
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.posture(q)).collect();
         let refs: Vec<&PostureTerms> = terms.iter().collect();
         let classical = self.classical(&refs);
-        let levels = &self.setup.noise.levels;
+        let levels = &self.setup.noise().levels;
         let Some(group) = self.group(&refs) else {
             let inf = f64::INFINITY;
             return Evaluation {
@@ -206,7 +206,7 @@ impl<'a> Evaluator<'a> {
 
     /// The factor of the group's `Psi` (the blocks stacked), `None` if rank deficient.
     fn group(&self, terms: &[&PostureTerms]) -> Option<Group> {
-        let p3 = 3 * self.setup.tool.measuring_points.len();
+        let p3 = 3 * self.setup.tool().measuring_points.len();
         let mut psi = DMatrix::zeros(p3 * terms.len(), 6);
         for (i, t) in terms.iter().enumerate() {
             psi.view_mut((p3 * i, 0), (p3, 6)).copy_from(&t.block);
@@ -236,7 +236,7 @@ impl<'a> Evaluator<'a> {
     /// `sigma sqrt(mean_t tr(A_t (Psi^T Psi)^-1 A_t^T)) = sigma |A R^-1|_F / sqrt(T)`, m; 0 without
     /// test postures.
     fn test_pose(&self, group: &Group) -> f64 {
-        let t = self.setup.test_postures.len();
+        let t = self.setup.test_postures().len();
         if t == 0 {
             return 0.0;
         }
@@ -249,7 +249,7 @@ impl<'a> Evaluator<'a> {
                 sum += x * x;
             }
         }
-        finite(self.setup.noise.sigma() * (sum / t as f64).sqrt())
+        finite(self.setup.noise().sigma() * (sum / t as f64).sqrt())
     }
 }
 

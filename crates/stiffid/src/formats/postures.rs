@@ -143,7 +143,7 @@ mod tests {
 
     fn parse_in_bounds(text: &str) -> Result<Vec<Vector6<f64>>> {
         let s = crate::setup::builtin("zhang2021-comau-nj165").unwrap();
-        parse(text, &s.robot, Some(&s.bounds))
+        parse(text, s.robot(), Some(s.bounds()))
     }
 
     #[test]

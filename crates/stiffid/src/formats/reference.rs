@@ -74,7 +74,7 @@ where
 /// use stiffid::formats::reference;
 /// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
 /// let setup = reference::setup("zhang2021-comau-nj165", no_files).unwrap();
-/// assert_eq!(setup.robot.name, "COMAU SMART5 NJ 165-3.0");
+/// assert_eq!(setup.robot().name, "COMAU SMART5 NJ 165-3.0");
 /// ```
 pub fn setup<E, F>(reference: &str, read: F) -> Result<Setup, E>
 where

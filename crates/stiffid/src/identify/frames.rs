@@ -43,7 +43,7 @@ pub fn to_base(
 ) -> Result<()> {
     if displacement == DisplacementFrame::Tracker {
         let transform = setup
-            .tracker
+            .tracker()
             .as_ref()
             .and_then(|t| t.base_from_tracker)
             .ok_or_else(|| Error::InvalidField {
@@ -59,7 +59,7 @@ pub fn to_base(
         let mut last: Option<(nalgebra::Vector6<f64>, Frames)> = None;
         for m in measurements.iter_mut() {
             if last.as_ref().is_none_or(|(q, _)| *q != m.q) {
-                last = Some((m.q, setup.robot.frames(&m.q)));
+                last = Some((m.q, setup.robot().frames(&m.q)));
             }
             if let Some((_, frames)) = &last {
                 m.wrench = base_wrench(frames, &m.wrench, Frame::Tool);

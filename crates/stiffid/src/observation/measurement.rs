@@ -115,7 +115,7 @@ pub fn assemble(
             state = None;
         }
         let (j, frames, tau) = state.get_or_insert_with(|| {
-            let frames = setup.robot.frames(&meas.q);
+            let frames = setup.robot().frames(&meas.q);
             let tau = joint_torques(setup, &frames, &meas.wrench);
             (i, frames, tau)
         });
@@ -137,7 +137,7 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
         field,
         message,
     };
-    let points = setup.tool.measuring_points.len();
+    let points = setup.tool().measuring_points.len();
     if meas.point >= points {
         return Err(error(
             MeasurementField::Point,
@@ -147,7 +147,7 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
             ),
         ));
     }
-    let robot = &setup.robot;
+    let robot = &setup.robot();
     if let Some(axis) = robot.first_out_of_limits(&meas.q) {
         let message = match meas.q[axis].is_finite() {
             false => "the axis angle is not finite".to_string(),

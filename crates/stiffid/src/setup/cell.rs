@@ -20,7 +20,8 @@
 //! measuring_normals = [[0, 0, 1]]   # per measuring point, flange frame; default flange z
 //! ```
 
-use super::{field_error, mm};
+use super::file::mm;
+use super::{invalid, SetupBuilder};
 use crate::robot::file::TransformFile;
 use crate::{limits, Result};
 use nalgebra::{Isometry3, Vector3};
@@ -78,7 +79,8 @@ pub struct Tracker {
     /// Largest angle between a measuring point's normal and its line of sight to the tracker
     /// (SMR acceptance half-angle), rad; `None`: not checked.
     pub max_incidence: Option<f64>,
-    /// Outward unit normal of every measuring point, flange frame (default the flange z axis).
+    /// Outward unit normal of every measuring point, flange frame: one per measuring point, or
+    /// none for the flange z axis at every point (normalised when the setup is built).
     pub measuring_normals: Vec<Vector3<f64>>,
     /// The tracker frame in the robot base frame (m), to turn displacements measured in the
     /// tracker frame into the base frame ([`crate::identify::frames`]); `None` if not given.
@@ -125,26 +127,30 @@ fn shown(values: &[f64]) -> String {
     format!("[{}{more}]", text.join(", "))
 }
 
-fn finite(src: &str, field: &str, values: &[f64]) -> Result<()> {
+/// The SI vector `v` in mm, for messages.
+fn in_mm(v: &Vector3<f64>) -> [f64; 3] {
+    [v.x * 1e3, v.y * 1e3, v.z * 1e3]
+}
+
+fn finite(field: &str, values: &[f64]) -> Result<()> {
     match values.iter().all(|v| v.is_finite()) {
         true => Ok(()),
-        false => Err(field_error(
-            src,
+        false => Err(invalid(
             field,
             format!("{} given: expected finite numbers", shown(values)),
         )),
     }
 }
 
-/// A length in `[lowest, MAX_LENGTH_MM]` mm (`lowest` excluded when `open`).
-fn length(src: &str, field: &str, v: f64, open: bool) -> Result<f64> {
+/// A length `v` (m) in `[0, MAX_LENGTH_MM]` mm (0 excluded when `open`).
+fn length(field: &str, v: f64, open: bool) -> Result<()> {
+    let v = v * 1e3;
     let above = if open { v > 0.0 } else { v >= 0.0 };
     if above && v <= MAX_LENGTH_MM {
-        return Ok(v * 1e-3);
+        return Ok(());
     }
     let low = if open { "> 0" } else { ">= 0" };
-    Err(field_error(
-        src,
+    Err(invalid(
         field,
         format!(
             "{} given: expected a length {low} and <= {MAX_LENGTH_MM} mm",
@@ -153,105 +159,139 @@ fn length(src: &str, field: &str, v: f64, open: bool) -> Result<f64> {
     ))
 }
 
-pub(super) fn cell(f: CellFile, src: &str) -> Result<Cell> {
-    if let Some(z) = f.floor_z_mm {
-        finite(src, "cell.floor_z_mm", &[z])?;
-    }
-    let clearance = length(
-        src,
-        "cell.clearance_mm",
-        f.clearance_mm.unwrap_or(0.0),
-        false,
-    )?;
-    if f.obstacle.len() > MAX_OBSTACLES {
-        return Err(field_error(
-            src,
-            "cell.obstacle",
-            format!("{} boxes given: at most {MAX_OBSTACLES}", f.obstacle.len()),
-        ));
-    }
-    let obstacles = f
-        .obstacle
-        .iter()
-        .enumerate()
-        .map(|(i, o)| obstacle(o, &format!("cell.obstacle[{}]", i + 1), src))
-        .collect::<Result<_>>()?;
-    Ok(Cell {
+/// The `[cell]` table in SI units (checked by [`check_cell`] when the setup is built).
+pub(super) fn cell(f: CellFile) -> Cell {
+    Cell {
         floor_z: f.floor_z_mm.map(|z| z * 1e-3),
-        clearance,
-        obstacles,
-    })
+        clearance: f.clearance_mm.unwrap_or(0.0) * 1e-3,
+        obstacles: f
+            .obstacle
+            .into_iter()
+            .map(|o| Obstacle {
+                name: o.name,
+                min: mm(&o.min_mm),
+                max: mm(&o.max_mm),
+            })
+            .collect(),
+    }
 }
 
-fn obstacle(o: &ObstacleFile, field: &str, src: &str) -> Result<Obstacle> {
-    if o.name.trim().is_empty() {
-        return Err(field_error(
-            src,
-            &format!("{field}.name"),
-            "expected a name",
+/// Checks a cell: finite floor, clearance within [`MAX_LENGTH_MM`], at most [`MAX_OBSTACLES`]
+/// named boxes, each with every min below its max.
+pub(super) fn check_cell(c: &Cell) -> Result<()> {
+    if let Some(z) = c.floor_z {
+        finite("cell.floor_z_mm", &[z * 1e3])?;
+    }
+    length("cell.clearance_mm", c.clearance, false)?;
+    if c.obstacles.len() > MAX_OBSTACLES {
+        return Err(invalid(
+            "cell.obstacle",
+            format!("{} boxes given: at most {MAX_OBSTACLES}", c.obstacles.len()),
         ));
     }
-    finite(src, &format!("{field}.min_mm"), &o.min_mm)?;
-    finite(src, &format!("{field}.max_mm"), &o.max_mm)?;
-    if (0..3).any(|i| o.min_mm[i] >= o.max_mm[i]) {
-        return Err(field_error(
-            src,
+    c.obstacles
+        .iter()
+        .enumerate()
+        .try_for_each(|(i, o)| check_obstacle(o, &format!("cell.obstacle[{}]", i + 1)))
+}
+
+fn check_obstacle(o: &Obstacle, field: &str) -> Result<()> {
+    if o.name.trim().is_empty() {
+        return Err(invalid(&format!("{field}.name"), "expected a name"));
+    }
+    let (min, max) = (in_mm(&o.min), in_mm(&o.max));
+    finite(&format!("{field}.min_mm"), &min)?;
+    finite(&format!("{field}.max_mm"), &max)?;
+    if (0..3).any(|i| min[i] >= max[i]) {
+        return Err(invalid(
             field,
             format!(
                 "min_mm {} and max_mm {}: expected every min below its max",
-                shown(&o.min_mm),
-                shown(&o.max_mm)
+                shown(&min),
+                shown(&max)
             ),
         ));
     }
-    Ok(Obstacle {
-        name: o.name.clone(),
-        min: mm(&o.min_mm),
-        max: mm(&o.max_mm),
+    Ok(())
+}
+
+/// The builder with the radii the file gives.
+pub(super) fn geometry(f: GeometryFile, mut b: SetupBuilder) -> SetupBuilder {
+    if let Some(radii) = f.link_radius_mm {
+        b = b.with_link_radii(radii.map(|r| r * 1e-3));
+    }
+    if let Some(r) = f.tool_radius_mm {
+        b = b.with_tool_radius(r * 1e-3);
+    }
+    b
+}
+
+/// Checks every radius: a length in `(0, MAX_LENGTH_MM]` mm.
+pub(super) fn check_geometry(g: &RobotGeometry) -> Result<()> {
+    for (i, r) in g.link_radii.iter().enumerate() {
+        length(
+            &format!("robot_geometry.link_radius_mm[{}]", i + 1),
+            *r,
+            true,
+        )?;
+    }
+    length("robot_geometry.tool_radius_mm", g.tool_radius, true)
+}
+
+/// The `[tracker]` table in SI units: the position is `position_mm`, or the translation of
+/// `base_from_tracker` (checked by [`checked_tracker`] when the setup is built).
+pub(super) fn tracker(f: TrackerFile) -> Result<Tracker> {
+    let base_from_tracker = f.base_from_tracker.map(|t| t.isometry());
+    let position = match (f.position_mm, &base_from_tracker) {
+        (Some(p), _) => mm(&p),
+        (None, Some(t)) => t.translation.vector,
+        (None, None) => {
+            return Err(invalid(
+                "tracker",
+                "expected position_mm or base_from_tracker",
+            ))
+        }
+    };
+    Ok(Tracker {
+        position,
+        max_incidence: f.max_incidence_deg.map(f64::to_radians),
+        measuring_normals: f
+            .measuring_normals
+            .map_or(Vec::new(), |n| n.into_iter().map(Vector3::from).collect()),
+        base_from_tracker,
     })
 }
 
-/// The radii of the file, or `defaults` (m) where it gives none.
-pub(super) fn geometry(
-    f: Option<GeometryFile>,
-    defaults: RobotGeometry,
-    src: &str,
-) -> Result<RobotGeometry> {
-    let Some(f) = f else {
-        return Ok(defaults);
-    };
-    let mut g = defaults;
-    if let Some(radii) = f.link_radius_mm {
-        for (i, r) in radii.iter().enumerate() {
-            let field = format!("robot_geometry.link_radius_mm[{}]", i + 1);
-            g.link_radii[i] = length(src, &field, *r, true)?;
-        }
-    }
-    if let Some(r) = f.tool_radius_mm {
-        g.tool_radius = length(src, "robot_geometry.tool_radius_mm", r, true)?;
-    }
-    Ok(g)
-}
-
-pub(super) fn tracker(
-    f: TrackerFile,
+/// The tracker checked, its normals made unit (the flange z axis for each of the
+/// `measuring_points` if none are given): a finite `base_from_tracker` whose translation is the
+/// position (to 1 mm), a finite position outside every obstacle of the cell, an incidence in
+/// `(0, 90]` deg, one finite non-zero normal per measuring point.
+pub(super) fn checked_tracker(
+    mut t: Tracker,
     measuring_points: usize,
     cell: Option<&Cell>,
-    src: &str,
 ) -> Result<Tracker> {
-    let base_from_tracker = match &f.base_from_tracker {
-        None => None,
-        Some(t) => {
-            finite(src, "tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
-            finite(src, "tracker.base_from_tracker.rpy_deg", &t.rpy_deg)?;
-            Some(t.isometry())
+    let position_mm = in_mm(&t.position);
+    if let Some(b) = &t.base_from_tracker {
+        let xyz = in_mm(&b.translation.vector);
+        finite("tracker.base_from_tracker.xyz_mm", &xyz)?;
+        let (r, p, w) = b.rotation.euler_angles();
+        let rpy = [r, p, w].map(f64::to_degrees);
+        finite("tracker.base_from_tracker.rpy_deg", &rpy)?;
+        if (0..3).any(|i| (position_mm[i] - xyz[i]).abs() > 1.0) {
+            return Err(invalid(
+                "tracker.position_mm",
+                format!(
+                    "{} given: expected the translation of base_from_tracker, {} (or leave one out)",
+                    shown(&position_mm),
+                    shown(&xyz)
+                ),
+            ));
         }
-    };
-    let position_mm = position_mm(&f, src)?;
-    let position = mm(&position_mm);
-    if let Some(o) = cell.and_then(|c| c.obstacles.iter().find(|o| o.contains(&position))) {
-        return Err(field_error(
-            src,
+    }
+    finite("tracker.position_mm", &position_mm)?;
+    if let Some(o) = cell.and_then(|c| c.obstacles.iter().find(|o| o.contains(&t.position))) {
+        return Err(invalid(
             "tracker.position_mm",
             format!(
                 "{} is inside obstacle '{}': every line of sight would be blocked",
@@ -260,65 +300,27 @@ pub(super) fn tracker(
             ),
         ));
     }
-    let max_incidence = match f.max_incidence_deg {
-        None => None,
-        Some(a) if a > 0.0 && a <= 90.0 => Some(a.to_radians()),
-        Some(a) => {
-            return Err(field_error(
-                src,
+    if let Some(a) = t.max_incidence {
+        if !(a > 0.0 && a.to_degrees() <= 90.0) {
+            return Err(invalid(
                 "tracker.max_incidence_deg",
                 format!(
                     "{} given: expected an angle in (0, 90] deg",
-                    limits::number(a)
+                    limits::number(a.to_degrees())
                 ),
-            ))
+            ));
         }
-    };
-    let measuring_normals = normals(f.measuring_normals, measuring_points, src)?;
-    Ok(Tracker {
-        position,
-        max_incidence,
-        measuring_normals,
-        base_from_tracker,
-    })
+    }
+    t.measuring_normals = normals(&t.measuring_normals, measuring_points)?;
+    Ok(t)
 }
 
-/// The tracker position, mm: `position_mm`, or the translation of `base_from_tracker`; both given
-/// must agree to 1 mm.
-fn position_mm(f: &TrackerFile, src: &str) -> Result<[f64; 3]> {
-    let from_transform = f.base_from_tracker.map(|t| t.xyz_mm);
-    let position = match (f.position_mm, from_transform) {
-        (Some(p), Some(t)) if (0..3).any(|i| (p[i] - t[i]).abs() > 1.0) => {
-            return Err(field_error(
-                src,
-                "tracker.position_mm",
-                format!(
-                    "{} given: expected the translation of base_from_tracker, {} (or leave one out)",
-                    shown(&p),
-                    shown(&t)
-                ),
-            ))
-        }
-        (Some(p), _) | (None, Some(p)) => p,
-        (None, None) => {
-            return Err(field_error(
-                src,
-                "tracker",
-                "expected position_mm or base_from_tracker",
-            ))
-        }
-    };
-    finite(src, "tracker.position_mm", &position)?;
-    Ok(position)
-}
-
-fn normals(given: Option<Vec<[f64; 3]>>, count: usize, src: &str) -> Result<Vec<Vector3<f64>>> {
-    let Some(given) = given else {
+fn normals(given: &[Vector3<f64>], count: usize) -> Result<Vec<Vector3<f64>>> {
+    if given.is_empty() {
         return Ok(vec![Vector3::z(); count]);
-    };
+    }
     if given.len() != count {
-        return Err(field_error(
-            src,
+        return Err(invalid(
             "tracker.measuring_normals",
             format!(
                 "{} given: expected one per measuring point ({count})",
@@ -331,16 +333,16 @@ fn normals(given: Option<Vec<[f64; 3]>>, count: usize, src: &str) -> Result<Vec<
         .enumerate()
         .map(|(i, n)| {
             let field = format!("tracker.measuring_normals[{}]", i + 1);
-            finite(src, &field, n)?;
-            Vector3::from_column_slice(n)
-                .try_normalize(1e-12)
-                .ok_or_else(|| {
-                    field_error(
-                        src,
-                        &field,
-                        format!("{} given: expected a non-zero direction", shown(n)),
-                    )
-                })
+            finite(&field, n.as_slice())?;
+            n.try_normalize(1e-12).ok_or_else(|| {
+                invalid(
+                    &field,
+                    format!(
+                        "{} given: expected a non-zero direction",
+                        shown(n.as_slice())
+                    ),
+                )
+            })
         })
         .collect()
 }

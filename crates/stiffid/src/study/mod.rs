@@ -215,11 +215,11 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
         },
     )?;
     progress.end();
-    let validation_level = nearest_level(&setup.noise.levels, 1.0);
+    let validation_level = nearest_level(&setup.noise().levels, 1.0);
     let test_deflection: Vec<Vec<Vector3<f64>>> = setup
-        .test_postures
+        .test_postures()
         .iter()
-        .map(|q| rope_displacements(setup, &setup.robot.frames(q), &setup.nominal_stiffness))
+        .map(|q| rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness()))
         .collect();
     let groups = found
         .into_iter()
@@ -305,11 +305,11 @@ fn nearest_level(levels: &[f64], m: f64) -> usize {
 
 fn validation_error(setup: &Setup, truth: &[Vec<Vector3<f64>>], k: &Vector6<f64>) -> Vec<Vec<f64>> {
     setup
-        .test_postures
+        .test_postures()
         .iter()
         .zip(truth)
         .map(|(q, t)| {
-            let d = rope_displacements(setup, &setup.robot.frames(q), k);
+            let d = rope_displacements(setup, &setup.robot().frames(q), k);
             d.iter().zip(t).map(|(a, b)| (a - b).norm()).collect()
         })
         .collect()

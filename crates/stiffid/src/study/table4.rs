@@ -20,5 +20,5 @@ const PAPER_SETUP: &str = "zhang2021-comau-nj165";
 /// (`zhang2021-comau-nj165`) and validates at the paper's level 2; `None` otherwise. Only orders
 /// of magnitude compare: the paper's table is one run, the study's numbers are means over runs.
 pub fn paper_table4(study: &Study) -> Option<&'static [[f64; 3]; 6]> {
-    (study.setup.name == PAPER_SETUP && study.validation_level == 1).then_some(&TABLE4)
+    (study.setup.name() == PAPER_SETUP && study.validation_level == 1).then_some(&TABLE4)
 }

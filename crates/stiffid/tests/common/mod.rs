@@ -47,9 +47,9 @@ pub fn synthetic(
 ) -> Vec<Measurement> {
     let mut out = Vec::new();
     for (i, q) in postures.iter().enumerate() {
-        let frames = setup.robot.frames(q);
+        let frames = setup.robot().frames(q);
         let w = wrench(i, q);
-        let d = stiffness::deflection(setup, &frames, &w, &setup.nominal_stiffness);
+        let d = stiffness::deflection(setup, &frames, &w, setup.nominal_stiffness());
         for (point, disp) in d.displacements.iter().enumerate() {
             out.push(Measurement {
                 posture: i,
@@ -66,7 +66,9 @@ pub fn synthetic(
 /// The six postures under the setup's rope-mass load: 24 measurements (72 rows) on the paper setup.
 pub fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
     let qs: Vec<_> = PAPER_POSTURES_DEG.iter().map(deg).collect();
-    synthetic(setup, &qs, |_, q| setup.rope_wrench(&setup.robot.frames(q)))
+    synthetic(setup, &qs, |_, q| {
+        setup.rope_wrench(&setup.robot().frames(q))
+    })
 }
 
 /// `data` with independent Gaussian noise of standard deviation `sigma` (m) on every displacement
@@ -79,4 +81,19 @@ pub fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec
             ..m.clone()
         })
         .collect()
+}
+
+/// `setup` on another robot with springs at `springs`, its bounds the robot's joint limits.
+pub fn on_robot(setup: &Setup, robot: stiffid::Robot, springs: stiffid::Coordinates) -> Setup {
+    let bounds = stiffid::setup::Bounds {
+        lower: robot.lower,
+        upper: robot.upper,
+    };
+    setup
+        .to_builder()
+        .with_robot(robot)
+        .with_springs(springs)
+        .with_bounds(bounds)
+        .build()
+        .unwrap()
 }

@@ -98,7 +98,7 @@ pub fn unit_warning(run: &Run, unit: &UnitCheck) -> String {
 /// The text report.
 pub fn human(run: &Run) -> String {
     let id = &run.id;
-    let springs = match run.setup.springs {
+    let springs = match run.setup.springs() {
         Coordinates::Axis => "axes (drives)",
         Coordinates::Kinematic => "kinematic joints",
     };

@@ -60,7 +60,7 @@ impl<'a> Input<'a> {
     /// Reads the pool file (an input: no output is written over it); postures that fail a check
     /// of the cell are skipped.
     pub fn read(path: &Path, setup: &'a Setup) -> Result<Self> {
-        let postures = load::postures(path, &setup.robot, None)?;
+        let postures = load::postures(path, setup.robot(), None)?;
         if postures.len() > MAX_POOL {
             bail!(
                 "{}: {} postures: a pool holds at most {MAX_POOL}",

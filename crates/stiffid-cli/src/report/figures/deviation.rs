@@ -18,16 +18,16 @@ pub fn figure(study: &Study) -> Result<Figure> {
              (levels 1-{} are the variance multiples {} of sigma^2 = {:.3e} mm^2, the paper's \
              Table 3), {} Monte Carlo runs per point; solid: simulated mean, dashed: first-order \
              prediction (the paper's Fig. 8).",
-            study.setup.noise.levels.len(),
+            study.setup.noise().levels.len(),
             study
                 .setup
-                .noise
+                .noise()
                 .levels
                 .iter()
                 .map(|m| m.to_string())
                 .collect::<Vec<_>>()
                 .join(", "),
-            study.setup.noise.variance * 1e6,
+            study.setup.noise().variance * 1e6,
             study.runs
         ),
         &Deviation(study),
@@ -76,7 +76,7 @@ fn joint_panel<DB: DrawingBackend>(
     study: &Study,
     j: usize,
 ) -> Result<()> {
-    let levels = study.setup.noise.levels.len();
+    let levels = study.setup.noise().levels.len();
     let values = study.groups.iter().flat_map(|g| {
         let s = &g.simulation;
         s.mean_deviation_pct

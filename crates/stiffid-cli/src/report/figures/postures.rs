@@ -22,14 +22,14 @@ pub struct Stick {
 }
 
 pub fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
-    let frames = setup.robot.frames(q);
-    let mut chain = vec![setup.robot.base.translation.vector];
+    let frames = setup.robot().frames(q);
+    let mut chain = vec![setup.robot().base.translation.vector];
     chain.extend(frames.axis_points.iter().copied());
     chain.push(frames.flange.translation.vector);
-    chain.push(frames.point(&setup.tool.tcp));
+    chain.push(frames.point(&setup.tool().tcp));
     Stick {
         chain,
-        loading_point: frames.point(&setup.tool.loading_point),
+        loading_point: frames.point(&setup.tool().loading_point),
     }
 }
 
@@ -135,21 +135,21 @@ pub fn data_range<'p>(
 ) -> [(f64, f64); 3] {
     let mut range = [(f64::INFINITY, f64::NEG_INFINITY); 3];
     let obstacles = setup
-        .cell
-        .iter()
+        .cell()
+        .into_iter()
         .flat_map(|c| c.obstacles.iter().flat_map(|o| [o.min, o.max]));
     let points = postures
         .map(|q| stick(setup, q))
         .flat_map(|s| s.chain.into_iter().chain([s.loading_point]))
-        .chain([setup.load.anchor, Vector3::zeros()])
+        .chain([setup.load().anchor, Vector3::zeros()])
         .chain(obstacles)
-        .chain(setup.tracker.iter().map(|t| t.position));
+        .chain(setup.tracker().into_iter().map(|t| t.position));
     for p in points {
         for (a, r) in range.iter_mut().enumerate() {
             *r = (r.0.min(p[a]), r.1.max(p[a]));
         }
     }
-    let g = &setup.geometry;
+    let g = &setup.geometry();
     let margin = 0.2 + g.link_radii.iter().fold(g.tool_radius, |a, &b| a.max(b));
     range.map(|(lo, hi)| (lo - margin, hi + margin))
 }
@@ -282,7 +282,7 @@ impl Postures<'_> {
             self.posture(&mut chart, v, *number, q)?;
         }
         let setup = self.setup;
-        let anchor = (setup.load.anchor.x, setup.load.anchor[v]);
+        let anchor = (setup.load().anchor.x, setup.load().anchor[v]);
         chart
             .draw_series([EmptyElement::at(anchor) + Text::new("*", (-6, -12), ("sans-serif", 28))])
             .map_err(failed)?;
@@ -297,8 +297,8 @@ impl Postures<'_> {
         v: usize,
         xr: (f64, f64),
     ) -> Result<()> {
-        let cell = self.setup.cell.as_ref();
-        let base_frames = self.setup.robot.frames(&Vector6::zeros());
+        let cell = self.setup.cell();
+        let base_frames = self.setup.robot().frames(&Vector6::zeros());
         let base = capsules(self.setup, &base_frames)
             .into_iter()
             .filter(|b| b.part == Part::Base);
@@ -342,7 +342,7 @@ impl Postures<'_> {
                     + Text::new(o.name.clone(), (3, 3), ("sans-serif", 13))])
                 .map_err(failed)?;
         }
-        if let Some(t) = &self.setup.tracker {
+        if let Some(t) = &self.setup.tracker() {
             let at = (t.position.x, t.position[v]);
             chart
                 .draw_series([EmptyElement::at(at)
@@ -363,7 +363,7 @@ impl Postures<'_> {
         q: &Vector6<f64>,
     ) -> Result<()> {
         let setup = self.setup;
-        let frames = setup.robot.frames(q);
+        let frames = setup.robot().frames(q);
         let c = colour(number);
         let project = |p: &Vector3<f64>| (p.x, p[v]);
         let moving = capsules(setup, &frames)
@@ -377,15 +377,15 @@ impl Postures<'_> {
         }
         let s = stick(setup, q);
         let lp = project(&s.loading_point);
-        let anchor = project(&setup.load.anchor);
+        let anchor = project(&setup.load().anchor);
         chart
             .draw_series(LineSeries::new(
                 [lp, anchor],
                 ShapeStyle::from(BLACK.mix(0.35)),
             ))
             .map_err(failed)?;
-        if let Some(t) = &setup.tracker {
-            for p in &setup.tool.measuring_points {
+        if let Some(t) = &setup.tracker() {
+            for p in &setup.tool().measuring_points {
                 chart
                     .draw_series(DashedLineSeries::new(
                         [project(&t.position), project(&frames.point(p))],

@@ -21,7 +21,7 @@ pub fn figure(study: &Study) -> Result<Figure> {
              Shaded: the best group of each joint.",
             study.runs,
             l + 1,
-            study.setup.noise.levels[l]
+            study.setup.noise().levels[l]
         ),
         &Table(study),
     )

@@ -95,10 +95,14 @@ impl Evaluator<'_> {
         }
         let setup = self.setup;
         let frames = &terms[active].frames;
-        let jacobian = frames.jacobian(&setup.tool.tcp, setup.springs);
-        if let Some(w) = dexterity_log_gradient(&jacobian, setup.characteristic_length) {
-            gradient[active] +=
-                frames.jacobian_gradient(&setup.tool.tcp, setup.springs, &w, &Default::default());
+        let jacobian = frames.jacobian(&setup.tool().tcp, setup.springs());
+        if let Some(w) = dexterity_log_gradient(&jacobian, setup.characteristic_length()) {
+            gradient[active] += frames.jacobian_gradient(
+                &setup.tool().tcp,
+                setup.springs(),
+                &w,
+                &Default::default(),
+            );
         }
     }
 

@@ -101,7 +101,7 @@ pub(super) fn check_start(
     check_count(setup, criterion, start.len())?;
     for (i, q) in start.iter().enumerate() {
         for a in 0..6 {
-            let (l, u) = (setup.bounds.lower[a], setup.bounds.upper[a]);
+            let (l, u) = (setup.bounds().lower[a], setup.bounds().upper[a]);
             if !(q[a].is_finite() && q[a] >= l && q[a] <= u) {
                 return Err(Error::InvalidField {
                     field: format!("start posture {}, axis {}", i + 1, a + 1),
@@ -126,7 +126,7 @@ pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usi
             message: format!("{n} given: a search needs at least 2 postures"),
         });
     }
-    if criterion == Criterion::TestPose && setup.test_postures.is_empty() {
+    if criterion == Criterion::TestPose && setup.test_postures().is_empty() {
         return Err(Error::InvalidField {
             field: "test.postures_deg".into(),
             message: "the test-pose criterion needs test postures in the setup".into(),
@@ -182,7 +182,7 @@ impl<'a> Problem<'a> {
         options: &'a SearchOptions,
     ) -> Self {
         let setup = checker.setup();
-        let b = &setup.bounds;
+        let b = &setup.bounds();
         Self {
             evaluator: Evaluator::new(setup),
             checker,

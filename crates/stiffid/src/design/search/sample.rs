@@ -37,7 +37,7 @@ pub(super) fn group_from_stream(
     let setup = checker.setup();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(stream);
-    let (lower, upper) = (&setup.bounds.lower, &setup.bounds.upper);
+    let (lower, upper) = (&setup.bounds().lower, &setup.bounds().upper);
     let strata: Vec<Vec<usize>> = (0..6)
         .map(|_| {
             let mut s: Vec<usize> = (0..n).collect();
@@ -69,7 +69,7 @@ fn make_feasible(checker: &Checker, q: &mut Vector6<f64>, rng: &mut ChaCha8Rng) 
             return;
         }
         let candidate = Vector6::from_fn(|a, _| {
-            rng.random_range(setup.bounds.lower[a]..=setup.bounds.upper[a])
+            rng.random_range(setup.bounds().lower[a]..=setup.bounds().upper[a])
         });
         let v = violation(checker, &candidate);
         if v < worst {

@@ -1,0 +1,217 @@
+//! The setup TOML file (format in [`super`]): read, converted to SI and built through
+//! [`SetupBuilder`], which checks every field.
+
+use super::{cell, Bounds, CellConstraints, Noise, RopeLoad, Setup, SetupBuilder};
+use crate::kinematics::Coordinates;
+use crate::robot::file::{transform, TransformFile};
+use crate::{limits, Error, Result, Robot};
+use nalgebra::{Vector3, Vector6};
+use serde::Deserialize;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SetupFile {
+    name: String,
+    #[serde(default)]
+    description: String,
+    robot: String,
+    robot_tip: Option<String>,
+    robot_base: Option<TransformFile>,
+    robot_flange: Option<TransformFile>,
+    #[serde(default)]
+    springs: Coordinates,
+    characteristic_length_mm: f64,
+    nominal_stiffness_nm_per_rad: [f64; 6],
+    tool: ToolFile,
+    loading: LoadingFile,
+    noise: NoiseFile,
+    bounds: BoundsFile,
+    test: Option<TestFile>,
+    constraints: Option<ConstraintsFile>,
+    cell: Option<cell::CellFile>,
+    robot_geometry: Option<cell::GeometryFile>,
+    tracker: Option<cell::TrackerFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ToolFile {
+    loading_point_mm: [f64; 3],
+    measuring_points_mm: Vec<[f64; 3]>,
+    tcp_mm: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoadingFile {
+    load_n: f64,
+    anchor_mm: [f64; 3],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NoiseFile {
+    variance_mm2: f64,
+    level_multiples: Vec<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoundsFile {
+    lower_deg: [f64; 6],
+    upper_deg: [f64; 6],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TestFile {
+    postures_deg: Vec<[f64; 6]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConstraintsFile {
+    loading_point_min_z_mm: Option<f64>,
+    #[serde(default)]
+    anchor_below_loading_point: bool,
+}
+
+/// The built-in setups: `(name, TOML)`.
+const BUILTIN: &crate::builtin::Table = &[
+    (
+        "zhang2021-comau-nj165",
+        include_str!("../../setups/zhang2021-comau-nj165.toml"),
+    ),
+    (
+        "fanuc-r2000ic-165f",
+        include_str!("../../setups/fanuc-r2000ic-165f.toml"),
+    ),
+];
+
+/// Names of the built-in setups.
+pub fn builtin_names() -> impl Iterator<Item = &'static str> {
+    crate::builtin::names(BUILTIN)
+}
+
+/// The TOML text of a built-in setup.
+///
+/// # Errors
+/// [`Error::Unknown`] if no built-in setup has this name.
+pub fn builtin_text(name: &str) -> Result<&'static str> {
+    crate::builtin::text(BUILTIN, "setup", name)
+}
+
+/// A built-in setup, its robot taken from the presets.
+///
+/// # Errors
+/// [`Error::Unknown`] if no built-in setup has this name.
+pub fn builtin(name: &str) -> Result<Setup> {
+    parse(builtin_text(name)?, &format!("setup {name}"), |r, _| {
+        crate::robot::presets::get(r)
+    })
+}
+
+/// Parses a setup TOML. `source_name` (the file name) is used in errors; `resolve_robot` turns the
+/// `robot` field (and the optional `robot_tip`) into a [`Robot`] (a preset, or a file the caller
+/// reads).
+///
+/// # Errors
+/// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
+/// [`Error::InvalidField`] naming the file, the field and the value for everything
+/// [`SetupBuilder::build`] checks (for example a stiffness outside
+/// [`limits::STIFFNESS_NM_PER_RAD`], bounds outside the robot's limits) and for bad
+/// `[robot_base]`/`[robot_flange]` offsets; whatever `resolve_robot` returns.
+pub fn parse<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
+where
+    F: FnOnce(&str, Option<&str>) -> Result<Robot>,
+{
+    let file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: limits::one_line(&e.to_string()),
+    })?;
+    let robot = resolve_robot(&file.robot, file.robot_tip.as_deref())?;
+    let robot = mounted(robot, &file, source_name)?;
+    builder(file, robot)
+        .and_then(SetupBuilder::build)
+        .map_err(|e| in_file(e, source_name))
+}
+
+/// A field error placed in the file `source_name` (`"cell.toml: bounds.lower_deg[2]"`).
+fn in_file(e: Error, source_name: &str) -> Error {
+    match e {
+        Error::InvalidField { field, message } => Error::InvalidField {
+            field: format!("{source_name}: {field}"),
+            message,
+        },
+        other => other,
+    }
+}
+
+/// The robot with the setup's offsets: `[robot_base]` places the robot's base frame in the cell
+/// (a pedestal: results are then in the cell frame), before the robot's own base transform;
+/// `[robot_flange]` adds an adapter plate after its flange. Either is `xyz_mm` and `rpy_deg`
+/// (fixed-axis roll, pitch, yaw as URDF), the same as a robot TOML's `[base]` and `[flange]`.
+fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+    if f.robot_base.is_some() {
+        robot.base = transform(f.robot_base, "robot_base", src)? * robot.base;
+    }
+    if f.robot_flange.is_some() {
+        robot.flange *= transform(f.robot_flange, "robot_flange", src)?;
+    }
+    Ok(robot)
+}
+
+pub(super) fn mm(v: &[f64; 3]) -> Vector3<f64> {
+    Vector3::new(v[0], v[1], v[2]) * 1e-3
+}
+
+fn deg6(v: &[f64; 6]) -> Vector6<f64> {
+    Vector6::from_iterator(v.iter().map(|d| d.to_radians()))
+}
+
+/// The file's fields in SI units, for [`SetupBuilder::build`] to check.
+fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
+    let measuring_points = f.tool.measuring_points_mm.iter().map(mm).collect();
+    let mut b = Setup::builder(f.name, robot)
+        .with_description(f.description)
+        .with_robot_ref(f.robot)
+        .with_springs(f.springs)
+        .with_characteristic_length(f.characteristic_length_mm * 1e-3)
+        .with_nominal_stiffness(Vector6::from_column_slice(&f.nominal_stiffness_nm_per_rad))
+        .with_loading_point(mm(&f.tool.loading_point_mm))
+        .with_measuring_points(measuring_points)
+        .with_load(RopeLoad {
+            load: f.loading.load_n,
+            anchor: mm(&f.loading.anchor_mm),
+        })
+        .with_noise(Noise {
+            variance: f.noise.variance_mm2 * 1e-6,
+            levels: f.noise.level_multiples,
+        })
+        .with_bounds(Bounds {
+            lower: deg6(&f.bounds.lower_deg),
+            upper: deg6(&f.bounds.upper_deg),
+        });
+    if let Some(tcp) = &f.tool.tcp_mm {
+        b = b.with_tcp(mm(tcp));
+    }
+    if let Some(t) = f.test {
+        b = b.with_test_postures(t.postures_deg.iter().map(deg6).collect());
+    }
+    if let Some(c) = f.constraints {
+        b = b.with_constraints(CellConstraints {
+            loading_point_min_z: c.loading_point_min_z_mm.map(|z| z * 1e-3),
+            anchor_below_loading_point: c.anchor_below_loading_point,
+        });
+    }
+    if let Some(c) = f.cell {
+        b = b.with_cell(cell::cell(c));
+    }
+    if let Some(g) = f.robot_geometry {
+        b = cell::geometry(g, b);
+    }
+    if let Some(t) = f.tracker {
+        b = b.with_tracker(cell::tracker(t)?);
+    }
+    Ok(b)
+}

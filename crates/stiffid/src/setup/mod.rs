@@ -1,0 +1,667 @@
+//! The experimental cell: robot, tool, spring placement, loading, noise, bounds, nominal stiffness.
+//!
+//! A setup is written in TOML with units in the field names; unknown keys are rejected:
+//! ```toml
+//! name = "zhang2021-comau-nj165"
+//! description = "what this cell is"
+//! robot = "comau-smart5-nj165-3.0"       # a preset name, or a robot .toml / .urdf file
+//! # robot_tip = "tool0"                  # URDF only: the tip link
+//! # [robot_base]                         # optional: the robot on a pedestal, in the cell frame
+//! # xyz_mm = [0, 0, 500]                 # (before the robot's own base transform)
+//! # rpy_deg = [0, 0, 0]                  # fixed-axis roll, pitch, yaw as URDF
+//! # [robot_flange]                       # optional: an adapter plate after the flange
+//! # xyz_mm = [0, 0, 20]
+//! springs = "axis"                       # or "kinematic": where the joint springs sit
+//! characteristic_length_mm = 1200.0      # L of the dexterity index (Eq. 20)
+//! nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]
+//! [tool]                                 # points in the flange frame
+//! loading_point_mm = [150, 0, 200]
+//! measuring_points_mm = [[80, 80, 260], [-80, 80, 260]]
+//! # tcp_mm = [80, 80, 260]               # for the dexterity index; default measuring point 1
+//! [loading]                              # rope and mass over a pulley
+//! load_n = 500.0
+//! anchor_mm = [1500, 1500, 0]            # base frame
+//! [noise]
+//! variance_mm2 = 9.23e-5                 # per measured coordinate
+//! level_multiples = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]
+//! [bounds]                               # experiment bounds, axis coordinates
+//! lower_deg = [-90, -60, -180, -180, -90, -180]
+//! upper_deg = [90, 40, -40, 180, 90, 180]
+//! [test]                                 # optional: postures to validate and design for
+//! postures_deg = [[12.81, 33.07, -126.36, 72.81, -67.88, 24.27]]
+//! [constraints]                          # optional, for posture search
+//! loading_point_min_z_mm = 300.0
+//! anchor_below_loading_point = true
+//! ```
+//! and optionally the physical cell, `[cell]`, `[robot_geometry]` and `[tracker]` (see [`Cell`]).
+//!
+//! In code, [`Setup::builder`] takes the same fields in SI units and checks them as the file's
+//! ([`SetupBuilder::build`]); [`parse`] reads the file through it.
+
+mod cell;
+mod file;
+
+pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
+pub use file::{builtin, builtin_names, builtin_text, parse};
+
+use crate::kinematics::{Coordinates, Frames};
+use crate::limits;
+use crate::{Error, Result, Robot};
+use nalgebra::{Vector3, Vector6};
+
+/// Points of the tool, in the flange frame, m.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tool {
+    /// Where the load is applied.
+    pub loading_point: Vector3<f64>,
+    /// Where the displacements are measured (at least one).
+    pub measuring_points: Vec<Vector3<f64>>,
+    /// The tool centre point whose Jacobian gives the dexterity index.
+    pub tcp: Vector3<f64>,
+}
+
+/// Rope-and-mass loading: a force of magnitude `load` (N) pulling the loading point toward the rope
+/// anchor (pulley), `F = G (P2 - P1) / |P2 - P1|` (Zhang et al. 2021, Section IV-A), no moment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RopeLoad {
+    /// `G`, N.
+    pub load: f64,
+    /// `P2`, base frame, m.
+    pub anchor: Vector3<f64>,
+}
+
+impl RopeLoad {
+    /// The wrench `[f; m]` (N, Nm, base frame) at a loading point `p1` (base frame, m). A loading
+    /// point at the anchor gets a zero wrench.
+    pub fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
+        let d = self.anchor - p1;
+        let n = d.norm();
+        let f = if n > 0.0 {
+            d * (self.load / n)
+        } else {
+            Vector3::zeros()
+        };
+        Vector6::new(f.x, f.y, f.z, 0.0, 0.0, 0.0)
+    }
+
+    /// The gradient with respect to the loading point `p1` (base frame, m) of `e . f(p1)`, f the
+    /// force of [`RopeLoad::wrench`] and `e` a weight on it (per N): with `d = P2 - p1`,
+    /// `u = d / |d|`, `df = -(G / |d|) (I - u u^T) dp1`, so the gradient is
+    /// `-(G / |d|) (e - (u . e) u)` (per m). Zero at the anchor, where the wrench is zero.
+    pub fn force_gradient(&self, p1: &Vector3<f64>, e: &Vector3<f64>) -> Vector3<f64> {
+        let d = self.anchor - p1;
+        let n = d.norm();
+        if n == 0.0 {
+            return Vector3::zeros();
+        }
+        let u = d / n;
+        (e - u * u.dot(e)) * (-self.load / n)
+    }
+}
+
+/// Laser-tracker noise: white Gaussian on every measured coordinate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Noise {
+    /// Variance `sigma^2` of one coordinate at multiple 1, m^2.
+    pub variance: f64,
+    /// The noise levels, as multiples of the variance (Table 3: 0.5 .. 3.0).
+    pub levels: Vec<f64>,
+}
+
+impl Noise {
+    /// Standard deviation `sigma` at multiple 1, m.
+    pub fn sigma(&self) -> f64 {
+        self.variance.sqrt()
+    }
+}
+
+/// Box bounds on the axis angles of the experiment postures, rad (Table 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bounds {
+    /// Lower bounds, rad.
+    pub lower: Vector6<f64>,
+    /// Upper bounds, rad.
+    pub upper: Vector6<f64>,
+}
+
+impl Bounds {
+    /// Whether every angle of `q` (rad) lies within the bounds (inclusive).
+    pub fn contains(&self, q: &Vector6<f64>) -> bool {
+        (0..6).all(|i| q[i] >= self.lower[i] && q[i] <= self.upper[i])
+    }
+}
+
+/// Constraints of a real cell on the postures a search may choose.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CellConstraints {
+    /// The loading point stays at or above this height (base z), m.
+    pub loading_point_min_z: Option<f64>,
+    /// The rope anchor stays below the loading point (a hanging mass pulls down).
+    pub anchor_below_loading_point: bool,
+}
+
+/// A resolved experimental setup, SI units throughout, its fields checked ([`SetupBuilder::build`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    name: String,
+    description: String,
+    robot_ref: String,
+    robot: Robot,
+    tool: Tool,
+    springs: Coordinates,
+    load: RopeLoad,
+    noise: Noise,
+    bounds: Bounds,
+    nominal_stiffness: Vector6<f64>,
+    characteristic_length: f64,
+    test_postures: Vec<Vector6<f64>>,
+    constraints: CellConstraints,
+    cell: Option<Cell>,
+    geometry: RobotGeometry,
+    tracker: Option<Tracker>,
+}
+
+impl Setup {
+    /// A builder of a setup named `name` on `robot`, SI units; see [`SetupBuilder`].
+    pub fn builder(name: impl Into<String>, robot: Robot) -> SetupBuilder {
+        SetupBuilder {
+            name: name.into(),
+            description: String::new(),
+            robot_ref: robot.name.clone(),
+            robot,
+            springs: Coordinates::default(),
+            loading_point: None,
+            measuring_points: Vec::new(),
+            tcp: None,
+            load: None,
+            noise: None,
+            bounds: None,
+            nominal_stiffness: None,
+            characteristic_length: None,
+            test_postures: Vec::new(),
+            constraints: CellConstraints::default(),
+            cell: None,
+            link_radii: None,
+            tool_radius: None,
+            tracker: None,
+        }
+    }
+
+    /// A builder holding every field of this setup, to change some and build again.
+    pub fn to_builder(&self) -> SetupBuilder {
+        SetupBuilder {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            robot_ref: self.robot_ref.clone(),
+            robot: self.robot.clone(),
+            springs: self.springs,
+            loading_point: Some(self.tool.loading_point),
+            measuring_points: self.tool.measuring_points.clone(),
+            tcp: Some(self.tool.tcp),
+            load: Some(self.load.clone()),
+            noise: Some(self.noise.clone()),
+            bounds: Some(self.bounds.clone()),
+            nominal_stiffness: Some(self.nominal_stiffness),
+            characteristic_length: Some(self.characteristic_length),
+            test_postures: self.test_postures.clone(),
+            constraints: self.constraints.clone(),
+            cell: self.cell.clone(),
+            link_radii: Some(self.geometry.link_radii),
+            tool_radius: Some(self.geometry.tool_radius),
+            tracker: self.tracker.clone(),
+        }
+    }
+
+    /// Short name, e.g. `zhang2021-comau-nj165`.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// What this cell is, free text.
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
+    /// The robot reference as written (preset name or file).
+    pub fn robot_ref(&self) -> &str {
+        &self.robot_ref
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+
+    /// Tool points.
+    pub fn tool(&self) -> &Tool {
+        &self.tool
+    }
+
+    /// Where the springs sit: in the drives (axis coordinates) or on the kinematic joints.
+    pub fn springs(&self) -> Coordinates {
+        self.springs
+    }
+
+    /// The loading of the simulation and of the posture search.
+    pub fn load(&self) -> &RopeLoad {
+        &self.load
+    }
+
+    /// Measurement noise.
+    pub fn noise(&self) -> &Noise {
+        &self.noise
+    }
+
+    /// Experiment bounds, axis coordinates.
+    pub fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+
+    /// Nominal (or true, in simulation) joint stiffness, Nm/rad.
+    pub fn nominal_stiffness(&self) -> &Vector6<f64> {
+        &self.nominal_stiffness
+    }
+
+    /// Characteristic length `L` of the dexterity index (Eq. 20), m.
+    pub fn characteristic_length(&self) -> f64 {
+        self.characteristic_length
+    }
+
+    /// Test (validation) postures, axis angles, rad.
+    pub fn test_postures(&self) -> &[Vector6<f64>] {
+        &self.test_postures
+    }
+
+    /// Optional cell constraints for posture search.
+    pub fn constraints(&self) -> &CellConstraints {
+        &self.constraints
+    }
+
+    /// The floor, clearance and obstacles; `None`: no body checks (the paper's study).
+    pub fn cell(&self) -> Option<&Cell> {
+        self.cell.as_ref()
+    }
+
+    /// Capsule radii of the robot and tool bodies (defaults scaled to the robot's size).
+    pub fn geometry(&self) -> &RobotGeometry {
+        &self.geometry
+    }
+
+    /// The laser tracker, for the line-of-sight and incidence checks.
+    pub fn tracker(&self) -> Option<&Tracker> {
+        self.tracker.as_ref()
+    }
+
+    /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm.
+    pub fn nominal_compliance(&self) -> Vector6<f64> {
+        self.nominal_stiffness.map(|k| 1.0 / k)
+    }
+
+    /// The same setup without the cell's checks (no `[cell]`, `[tracker]` or `[constraints]`):
+    /// what the unconstrained optimum is searched on, to show what feasibility costs.
+    pub fn without_cell(&self) -> Setup {
+        Setup {
+            cell: None,
+            tracker: None,
+            constraints: CellConstraints::default(),
+            ..self.clone()
+        }
+    }
+
+    /// The rope-mass wrench on the loading point of a posture, base frame.
+    pub fn rope_wrench(&self, frames: &Frames) -> Vector6<f64> {
+        self.load.wrench(&frames.point(&self.tool.loading_point))
+    }
+}
+
+/// Builds a [`Setup`] from SI values (m, rad, N, Nm/rad, m^2), argmin-style: `with_*` setters,
+/// then [`SetupBuilder::build`] checks every field as a setup file's are checked.
+///
+/// ```
+/// use nalgebra::{Vector3, Vector6};
+/// use stiffid::setup::{Noise, RopeLoad, Setup};
+///
+/// let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+/// let setup = Setup::builder("my-cell", robot)
+///     .with_loading_point(Vector3::new(0.15, 0.0, 0.2))
+///     .with_measuring_points(vec![Vector3::new(0.08, 0.08, 0.26)])
+///     .with_load(RopeLoad { load: 500.0, anchor: Vector3::new(1.5, 1.5, 0.0) })
+///     .with_noise(Noise { variance: 9.23e-11, levels: vec![1.0] })
+///     .with_nominal_stiffness(Vector6::repeat(1e6))
+///     .with_characteristic_length(1.2)
+///     .build()
+///     .unwrap();
+/// assert_eq!(setup.tool().tcp, setup.tool().measuring_points[0]);
+/// ```
+#[derive(Debug, Clone)]
+pub struct SetupBuilder {
+    name: String,
+    description: String,
+    robot_ref: String,
+    robot: Robot,
+    springs: Coordinates,
+    loading_point: Option<Vector3<f64>>,
+    measuring_points: Vec<Vector3<f64>>,
+    tcp: Option<Vector3<f64>>,
+    load: Option<RopeLoad>,
+    noise: Option<Noise>,
+    bounds: Option<Bounds>,
+    nominal_stiffness: Option<Vector6<f64>>,
+    characteristic_length: Option<f64>,
+    test_postures: Vec<Vector6<f64>>,
+    constraints: CellConstraints,
+    cell: Option<Cell>,
+    link_radii: Option<[f64; 7]>,
+    tool_radius: Option<f64>,
+    tracker: Option<Tracker>,
+}
+
+impl SetupBuilder {
+    /// Free-text description (default empty).
+    pub fn with_description(mut self, description: impl Into<String>) -> Self {
+        self.description = description.into();
+        self
+    }
+
+    /// The robot reference as written (default the robot's name).
+    pub fn with_robot_ref(mut self, robot_ref: impl Into<String>) -> Self {
+        self.robot_ref = robot_ref.into();
+        self
+    }
+
+    /// The robot (the setup's other fields are kept).
+    pub fn with_robot(mut self, robot: Robot) -> Self {
+        self.robot = robot;
+        self
+    }
+
+    /// Where the springs sit (default [`Coordinates::Axis`]).
+    pub fn with_springs(mut self, springs: Coordinates) -> Self {
+        self.springs = springs;
+        self
+    }
+
+    /// The loading point, flange frame, m (required).
+    pub fn with_loading_point(mut self, point: Vector3<f64>) -> Self {
+        self.loading_point = Some(point);
+        self
+    }
+
+    /// The measuring points, flange frame, m (1 to [`limits::MAX_MEASURING_POINTS`]).
+    pub fn with_measuring_points(mut self, points: Vec<Vector3<f64>>) -> Self {
+        self.measuring_points = points;
+        self
+    }
+
+    /// The tool centre point, flange frame, m (default the first measuring point).
+    pub fn with_tcp(mut self, tcp: Vector3<f64>) -> Self {
+        self.tcp = Some(tcp);
+        self
+    }
+
+    /// The rope load (required).
+    pub fn with_load(mut self, load: RopeLoad) -> Self {
+        self.load = Some(load);
+        self
+    }
+
+    /// The measurement noise (required).
+    pub fn with_noise(mut self, noise: Noise) -> Self {
+        self.noise = Some(noise);
+        self
+    }
+
+    /// The experiment bounds, rad (default the robot's joint limits).
+    pub fn with_bounds(mut self, bounds: Bounds) -> Self {
+        self.bounds = Some(bounds);
+        self
+    }
+
+    /// The nominal joint stiffness, Nm/rad (required).
+    pub fn with_nominal_stiffness(mut self, stiffness: Vector6<f64>) -> Self {
+        self.nominal_stiffness = Some(stiffness);
+        self
+    }
+
+    /// The characteristic length `L` of the dexterity index (Eq. 20), m (required).
+    pub fn with_characteristic_length(mut self, length: f64) -> Self {
+        self.characteristic_length = Some(length);
+        self
+    }
+
+    /// Test postures, axis angles, rad (default none).
+    pub fn with_test_postures(mut self, postures: Vec<Vector6<f64>>) -> Self {
+        self.test_postures = postures;
+        self
+    }
+
+    /// Cell constraints for posture search (default none).
+    pub fn with_constraints(mut self, constraints: CellConstraints) -> Self {
+        self.constraints = constraints;
+        self
+    }
+
+    /// The cell's floor, clearance and obstacles (default none).
+    pub fn with_cell(mut self, cell: Cell) -> Self {
+        self.cell = Some(cell);
+        self
+    }
+
+    /// Capsule radii of the bodies, m (default [`crate::cell::default_geometry`]).
+    pub fn with_geometry(self, geometry: RobotGeometry) -> Self {
+        self.with_link_radii(geometry.link_radii)
+            .with_tool_radius(geometry.tool_radius)
+    }
+
+    /// Capsule radii of the base and links 1-6, m (default scaled to the robot's size).
+    pub fn with_link_radii(mut self, radii: [f64; 7]) -> Self {
+        self.link_radii = Some(radii);
+        self
+    }
+
+    /// Capsule radius of the tool, m (default: holding every tool point).
+    pub fn with_tool_radius(mut self, radius: f64) -> Self {
+        self.tool_radius = Some(radius);
+        self
+    }
+
+    /// The laser tracker (default none).
+    pub fn with_tracker(mut self, tracker: Tracker) -> Self {
+        self.tracker = Some(tracker);
+        self
+    }
+
+    /// The setup, every field checked against [`crate::limits`] and the others.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field as a setup file names it (unit in the name, the
+    /// value given in that unit) for a missing required field, an empty name, a number that is not
+    /// finite or outside its documented range, no measuring point or no noise level (or more than
+    /// their limits), bounds not below each other or outside the robot's limits, test postures
+    /// outside the robot's limits, and an inconsistent cell or tracker ([`Cell`], [`Tracker`]).
+    pub fn build(self) -> Result<Setup> {
+        if self.name.trim().is_empty() {
+            return Err(invalid("name", "expected a non-empty name"));
+        }
+        let loading_point = required(self.loading_point, "tool.loading_point_mm")?;
+        let load = required(self.load, "loading")?;
+        let noise = required(self.noise, "noise")?;
+        let nominal_stiffness = required(self.nominal_stiffness, "nominal_stiffness_nm_per_rad")?;
+        let characteristic_length =
+            required(self.characteristic_length, "characteristic_length_mm")?;
+        check_scaled(
+            "characteristic_length_mm",
+            &[characteristic_length],
+            1e3,
+            &limits::CHARACTERISTIC_LENGTH_MM,
+        )?;
+        limits::check(
+            "nominal_stiffness_nm_per_rad",
+            nominal_stiffness.as_slice(),
+            &limits::STIFFNESS_NM_PER_RAD,
+        )?;
+        let tcp = self.tcp.or(self.measuring_points.first().copied());
+        check_tool(&loading_point, &self.measuring_points, tcp)?;
+        check_load(&load)?;
+        check_noise(&noise)?;
+        let bounds = self.bounds.unwrap_or(Bounds {
+            lower: self.robot.lower,
+            upper: self.robot.upper,
+        });
+        check_bounds(&bounds, &self.robot)?;
+        check_test_postures(&self.test_postures, &self.robot)?;
+        if let Some(z) = self.constraints.loading_point_min_z {
+            check_scaled(
+                "constraints.loading_point_min_z_mm",
+                &[z],
+                1e3,
+                &limits::LENGTH_MM,
+            )?;
+        }
+        if let Some(c) = &self.cell {
+            cell::check_cell(c)?;
+        }
+        let tool = Tool {
+            loading_point,
+            measuring_points: self.measuring_points,
+            tcp: tcp.unwrap_or_default(),
+        };
+        let defaults = crate::cell::default_geometry(&self.robot, &tool);
+        let geometry = RobotGeometry {
+            link_radii: self.link_radii.unwrap_or(defaults.link_radii),
+            tool_radius: self.tool_radius.unwrap_or(defaults.tool_radius),
+        };
+        cell::check_geometry(&geometry)?;
+        let tracker = self
+            .tracker
+            .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))
+            .transpose()?;
+        Ok(Setup {
+            name: self.name,
+            description: self.description,
+            robot_ref: self.robot_ref,
+            robot: self.robot,
+            tool,
+            springs: self.springs,
+            load,
+            noise,
+            bounds,
+            nominal_stiffness,
+            characteristic_length,
+            test_postures: self.test_postures,
+            constraints: self.constraints,
+            cell: self.cell,
+            geometry,
+            tracker,
+        })
+    }
+}
+
+fn invalid(field: &str, message: impl Into<String>) -> Error {
+    Error::InvalidField {
+        field: field.to_string(),
+        message: message.into(),
+    }
+}
+
+fn required<T>(value: Option<T>, field: &str) -> Result<T> {
+    value.ok_or_else(|| invalid(field, "expected a value: the setup has none"))
+}
+
+/// [`limits::check`] of SI `values` against a `range` in the file's unit (`scale` per SI unit),
+/// the values shown in that unit.
+fn check_scaled(field: &str, values: &[f64], scale: f64, range: &limits::Range) -> Result<()> {
+    let scaled: Vec<f64> = values.iter().map(|v| v * scale).collect();
+    limits::check(field, &scaled, range)
+}
+
+fn check_points(field: &str, points: &[Vector3<f64>]) -> Result<()> {
+    let values: Vec<f64> = points.iter().flat_map(|p| p.iter().copied()).collect();
+    check_scaled(field, &values, 1e3, &limits::LENGTH_MM)
+}
+
+fn check_tool(
+    loading_point: &Vector3<f64>,
+    measuring_points: &[Vector3<f64>],
+    tcp: Option<Vector3<f64>>,
+) -> Result<()> {
+    check_points("tool.loading_point_mm", std::slice::from_ref(loading_point))?;
+    let n = measuring_points.len();
+    limits::check_count(
+        "tool.measuring_points_mm",
+        n,
+        1,
+        limits::MAX_MEASURING_POINTS,
+    )?;
+    check_points("tool.measuring_points_mm", measuring_points)?;
+    check_points("tool.tcp_mm", tcp.as_slice())
+}
+
+fn check_load(load: &RopeLoad) -> Result<()> {
+    limits::check("loading.load_n", &[load.load], &limits::LOAD_N)?;
+    check_points("loading.anchor_mm", std::slice::from_ref(&load.anchor))
+}
+
+fn check_noise(noise: &Noise) -> Result<()> {
+    check_scaled(
+        "noise.variance_mm2",
+        &[noise.variance],
+        1e6,
+        &limits::VARIANCE_MM2,
+    )?;
+    let levels = &noise.levels;
+    limits::check_count("noise.level_multiples", levels.len(), 1, limits::MAX_LEVELS)?;
+    limits::check("noise.level_multiples", levels, &limits::LEVEL_MULTIPLE)
+}
+
+fn degrees(q: &Vector6<f64>) -> Vec<f64> {
+    q.iter().map(|v| v.to_degrees()).collect()
+}
+
+fn check_bounds(bounds: &Bounds, robot: &Robot) -> Result<()> {
+    limits::check(
+        "bounds.lower_deg",
+        &degrees(&bounds.lower),
+        &limits::ANGLE_DEG,
+    )?;
+    limits::check(
+        "bounds.upper_deg",
+        &degrees(&bounds.upper),
+        &limits::ANGLE_DEG,
+    )?;
+    for i in 0..6 {
+        if bounds.lower[i] >= bounds.upper[i] {
+            return Err(invalid(
+                &format!("bounds.lower_deg[{}]", i + 1),
+                "expected lower_deg < upper_deg",
+            ));
+        }
+        if bounds.lower[i] < robot.lower[i] - 1e-12 || bounds.upper[i] > robot.upper[i] + 1e-12 {
+            return Err(invalid(
+                &format!("bounds, axis {}", i + 1),
+                format!(
+                    "expected within the robot's limits [{:.2}, {:.2}] deg",
+                    robot.lower[i].to_degrees(),
+                    robot.upper[i].to_degrees()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn check_test_postures(postures: &[Vector6<f64>], robot: &Robot) -> Result<()> {
+    let n = postures.len();
+    limits::check_count("test.postures_deg", n, 0, limits::MAX_TEST_POSTURES)?;
+    for (i, q) in postures.iter().enumerate() {
+        let field = format!("test.postures_deg[{}]", i + 1);
+        limits::check(&field, &degrees(q), &limits::ANGLE_DEG)?;
+        if let Some(axis) = robot.first_out_of_limits(q) {
+            return Err(invalid(
+                &field,
+                format!("axis {} is outside the robot's limits", axis + 1),
+            ));
+        }
+    }
+    Ok(())
+}

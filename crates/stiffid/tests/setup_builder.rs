@@ -1,0 +1,168 @@
+//! A setup built in code is checked as a setup file is: a bad value is an error naming the field,
+//! never a panic later, and the builder and the TOML path give the same setup.
+
+use nalgebra::{Vector3, Vector6};
+use stiffid::robot::presets;
+use stiffid::setup::{self, Bounds, Noise, RopeLoad, Setup, SetupBuilder, Tracker};
+use stiffid::Error;
+
+fn mm(x: f64, y: f64, z: f64) -> Vector3<f64> {
+    Vector3::new(x, y, z) * 1e-3
+}
+
+fn deg(q: [f64; 6]) -> Vector6<f64> {
+    Vector6::from_iterator(q.iter().map(|d| d.to_radians()))
+}
+
+/// The paper's cell (setups/zhang2021-comau-nj165.toml) written in code, SI units.
+fn paper_in_code() -> SetupBuilder {
+    let robot = presets::get("comau-smart5-nj165-3.0").unwrap();
+    Setup::builder("zhang2021-comau-nj165", robot)
+        .with_description(
+            "Zhang et al. (IEEE Access 2021) simulation cell: COMAU SMART5 NJ 165-3.0, 500 N \
+             rope-mass load, 4 measuring points",
+        )
+        .with_robot_ref("comau-smart5-nj165-3.0")
+        .with_characteristic_length(1200.0 * 1e-3)
+        .with_nominal_stiffness(Vector6::new(
+            950000.0, 3000000.0, 900000.0, 250000.0, 200000.0, 150000.0,
+        ))
+        .with_loading_point(mm(150.0, 0.0, 200.0))
+        .with_measuring_points(vec![
+            mm(80.0, 80.0, 260.0),
+            mm(-80.0, 80.0, 260.0),
+            mm(-80.0, -80.0, 260.0),
+            mm(80.0, -80.0, 260.0),
+        ])
+        .with_load(RopeLoad {
+            load: 500.0,
+            anchor: mm(2000.0, 1500.0, 0.0),
+        })
+        .with_noise(Noise {
+            variance: 9.23e-5 * 1e-6,
+            levels: vec![0.5, 1.0, 1.5, 2.0, 2.5, 3.0],
+        })
+        .with_bounds(Bounds {
+            lower: deg([-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]),
+            upper: deg([90.0, 40.0, -40.0, 180.0, 90.0, 180.0]),
+        })
+        .with_test_postures(vec![
+            deg([12.81, 33.07, -126.36, 72.81, -67.88, 24.27]),
+            deg([-22.25, -34.46, -109.53, -94.38, 49.16, 186.07]),
+            deg([-61.35, -10.10, -119.99, -272.36, -55.71, -110.56]),
+        ])
+}
+
+#[test]
+fn the_builder_and_the_file_give_the_same_paper_setup() {
+    let from_file = setup::builtin("zhang2021-comau-nj165").unwrap();
+    assert_eq!(paper_in_code().build().unwrap(), from_file);
+    assert_eq!(from_file.to_builder().build().unwrap(), from_file);
+}
+
+/// The field named by an [`Error::InvalidField`], or a panic naming what came instead.
+fn field_of(result: Result<Setup, Error>) -> String {
+    match result {
+        Err(Error::InvalidField { field, message }) => {
+            assert!(!message.is_empty());
+            field
+        }
+        other => panic!("expected a field error, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_values_in_code_name_the_field() {
+    let nan = f64::NAN;
+    let cases: Vec<(SetupBuilder, &str)> = vec![
+        (
+            paper_in_code().with_measuring_points(vec![]),
+            "tool.measuring_points_mm",
+        ),
+        (
+            paper_in_code().with_measuring_points(vec![mm(0.0, nan, 0.0)]),
+            "tool.measuring_points_mm[2]",
+        ),
+        (
+            paper_in_code().with_loading_point(mm(1e9, 0.0, 0.0)),
+            "tool.loading_point_mm[1]",
+        ),
+        (
+            paper_in_code().with_nominal_stiffness(Vector6::repeat(0.0)),
+            "nominal_stiffness_nm_per_rad[1]",
+        ),
+        (
+            paper_in_code().with_characteristic_length(nan),
+            "characteristic_length_mm",
+        ),
+        (
+            paper_in_code().with_noise(Noise {
+                variance: 1e-10,
+                levels: vec![1.0, 0.0],
+            }),
+            "noise.level_multiples[2]",
+        ),
+        (
+            paper_in_code().with_noise(Noise {
+                variance: -1.0,
+                levels: vec![1.0],
+            }),
+            "noise.variance_mm2",
+        ),
+        (
+            paper_in_code().with_bounds(Bounds {
+                lower: Vector6::repeat(-10.0),
+                upper: Vector6::repeat(10.0),
+            }),
+            "bounds, axis 1",
+        ),
+        (
+            paper_in_code().with_bounds(Bounds {
+                lower: Vector6::repeat(0.1),
+                upper: Vector6::repeat(0.0),
+            }),
+            "bounds.lower_deg[1]",
+        ),
+        (
+            paper_in_code().with_test_postures(vec![Vector6::repeat(100.0)]),
+            "test.postures_deg[1]",
+        ),
+        (
+            paper_in_code().with_tracker(Tracker {
+                position: mm(3000.0, 0.0, 1000.0),
+                max_incidence: None,
+                measuring_normals: vec![Vector3::z()],
+                base_from_tracker: None,
+            }),
+            "tracker.measuring_normals",
+        ),
+        (
+            paper_in_code().with_tool_radius(0.0),
+            "robot_geometry.tool_radius_mm",
+        ),
+        (paper_in_code().with_description("x"), ""),
+    ];
+    for (builder, field) in cases {
+        match field {
+            "" => assert!(builder.build().is_ok()),
+            _ => assert_eq!(field_of(builder.build()), field),
+        }
+    }
+    let robot = presets::get("comau-smart5-nj165-3.0").unwrap();
+    let e = field_of(Setup::builder(" ", robot.clone()).build());
+    assert_eq!(e, "name");
+    let e = field_of(Setup::builder("cell", robot).build());
+    assert_eq!(e, "tool.loading_point_mm");
+}
+
+#[test]
+fn the_file_names_itself_before_the_field() {
+    let text = setup::builtin_text("zhang2021-comau-nj165")
+        .unwrap()
+        .replace("[80.0, 80.0, 260.0]", "[80.0, nan, 260.0]");
+    let e = setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "cell.toml: tool.measuring_points_mm[2]: NaN is outside [-100000, 100000] mm"
+    );
+}
