@@ -7,6 +7,7 @@
 //! found nothing feasible), with the library's message. Long calls release the GIL.
 
 mod arrays;
+mod compensate;
 mod deflection;
 mod design;
 mod error;
@@ -30,5 +31,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
+    m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;
     Ok(())
 }

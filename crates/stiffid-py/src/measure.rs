@@ -5,7 +5,7 @@
 use crate::arrays::{self, rows};
 use crate::error::{self, raise, value};
 use crate::setup::Setup;
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
@@ -321,13 +321,22 @@ pub fn identify(
 /// Six stiffness values (Nm/rad), or the stiffness of a stiffness JSON file (`stiffid identify
 /// --out`) at a path.
 fn stiffness(obj: &Bound<'_, PyAny>) -> PyResult<Vector6<f64>> {
+    Ok(stiffness_and_covariance(obj)?.0)
+}
+
+/// [`stiffness`] and, from a stiffness JSON file that has it, the covariance of the compliance
+/// (`compliance_covariance_rad2_per_nm2`, (rad/Nm)^2).
+pub fn stiffness_and_covariance(
+    obj: &Bound<'_, PyAny>,
+) -> PyResult<(Vector6<f64>, Option<Matrix6<f64>>)> {
     if let Ok(path) = obj.extract::<PathBuf>() {
         let name = path.display().to_string();
         let file = stiffness::parse(&error::read(&path)?).map_err(|e| error::raise_in(&name, e))?;
-        return Ok(file.stiffness());
+        return Ok((file.stiffness(), file.covariance()));
     }
     let range = &limits::STIFFNESS_NM_PER_RAD;
-    Ok(arrays::vector::<6>(obj, "stiffness_nm_per_rad", range)?.into())
+    let k = arrays::vector::<6>(obj, "stiffness_nm_per_rad", range)?;
+    Ok((k.into(), None))
 }
 
 /// Validates a joint stiffness (``stiffness_nm_per_rad``: shape ``(6,)``, Nm/rad, or the path of a

@@ -36,6 +36,7 @@ use crate::deflection::{base_wrench, Frame, Points};
 use crate::error::ColumnProblem;
 use crate::ik::{self, pose_error, tool_pose};
 use crate::kinematics::{Coordinates, Frames};
+use crate::limits::number;
 use crate::{Error, Result, Setup};
 use nalgebra::{Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
@@ -92,6 +93,30 @@ pub struct FreeToolAxis {
 }
 
 impl FreeToolAxis {
+    /// Largest accepted `max_step`, deg.
+    pub const MAX_STEP_DEG: f64 = 90.0;
+    /// Largest accepted `range`, deg.
+    pub const MAX_RANGE_DEG: f64 = 180.0;
+
+    /// The free tool axis from its step and range in degrees (the units of the command line and
+    /// the Python package): `max_step_deg` in (0, 90], `range_deg` in (0, 180].
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (field `max_step_deg` or `range_deg`) with the value given.
+    pub fn try_from_degrees(max_step_deg: f64, range_deg: f64) -> Result<Self> {
+        let check = |v: f64, max: f64, field: &str| match v > 0.0 && v <= max {
+            true => Ok(v.to_radians()),
+            false => Err(Error::InvalidField {
+                field: field.into(),
+                message: format!("{}: expected a number > 0 and <= {max}", number(v)),
+            }),
+        };
+        Ok(Self {
+            max_step: check(max_step_deg, Self::MAX_STEP_DEG, "max_step_deg")?,
+            range: check(range_deg, Self::MAX_RANGE_DEG, "range_deg")?,
+        })
+    }
+
     /// The grid spacing: `max_step` divided into whole cells of at most 5 deg, and the number of
     /// cells one step may move.
     fn grid(&self) -> (f64, usize) {
@@ -109,6 +134,23 @@ pub struct Options {
     pub ik: ik::Options,
     /// Optimise the rotation about the tool z axis.
     pub free_tool_axis: Option<FreeToolAxis>,
+}
+
+impl Options {
+    /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
+    /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis.
+    pub fn for_setup(setup: &Setup) -> Self {
+        let bounds = setup.bounds();
+        Self {
+            q0: setup
+                .test_postures()
+                .first()
+                .copied()
+                .unwrap_or((bounds.lower + bounds.upper) / 2.0),
+            ik: ik::Options::default(),
+            free_tool_axis: None,
+        }
+    }
 }
 
 /// One compensated path point, SI units, base frame.

@@ -14,7 +14,7 @@ use std::borrow::Cow;
 use std::path::PathBuf;
 use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
 use stiffid::formats::path;
-use stiffid::{ik, Coordinates, Setup};
+use stiffid::{Coordinates, Setup};
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -216,35 +216,16 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
-    let q0 = match &args.q0_deg {
-        Some(text) => load::posture(text, setup.robot())?.1,
-        None => setup
-            .test_postures()
-            .first()
-            .copied()
-            .unwrap_or((setup.bounds().lower + setup.bounds().upper) / 2.0),
-    };
-    let free_tool_axis = match args.free_tool_axis {
-        false => None,
-        true => {
-            let check = |v: f64, max: f64, what: &str| match v > 0.0 && v <= max {
-                true => Ok(v.to_radians()),
-                false => Err(anyhow::anyhow!(
-                    "{what}: {}: expected a number > 0 and <= {max}",
-                    stiffid::limits::number(v)
-                )),
-            };
-            Some(FreeToolAxis {
-                max_step: check(args.max_step_deg, 90.0, "--max-step-deg")?,
-                range: check(args.tool_axis_range_deg, 180.0, "--tool-axis-range-deg")?,
-            })
-        }
-    };
-    Ok(Options {
-        q0,
-        ik: ik::Options::default(),
-        free_tool_axis,
-    })
+    let mut options = Options::for_setup(setup);
+    if let Some(text) = &args.q0_deg {
+        options.q0 = load::posture(text, setup.robot())?.1;
+    }
+    if args.free_tool_axis {
+        let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)
+            .context("--max-step-deg / --tool-axis-range-deg")?;
+        options.free_tool_axis = Some(free);
+    }
+    Ok(options)
 }
 
 /// The per-point results as named columns, units in the names; `None` for an empty cell.

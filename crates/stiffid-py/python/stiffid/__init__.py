@@ -3,7 +3,7 @@
 A thin Python layer over the stiffid Rust library (the same code as the ``stiffid`` command):
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
 identification and validation from measurements (``identify``, ``validate``), the deflection
-under a wrench (``deflection``), the Monte Carlo
+under a wrench (``deflection``), the compensation of a machining path (``compensate``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
 
 Units: postures in degrees (controller axis angles), points in mm, forces in N, moments in Nm,
@@ -21,6 +21,7 @@ from ._stiffid import (
     Setup,
     Study,
     __version__,
+    compensate,
     deflection,
     identify,
     reproduce,
@@ -34,6 +35,7 @@ __all__ = [
     "Setup",
     "Study",
     "__version__",
+    "compensate",
     "deflection",
     "identify",
     "reproduce",

@@ -230,6 +230,19 @@ def simulate(setup: Setup, groups: Sequence[ArrayLike], runs: int = 200, seed: i
 def reproduce(
     setup: Optional[Setup] = None, runs: int = 200, seed: int = 1, starts: int = 16, trials: int = 20
 ) -> Study: ...
+def compensate(
+    setup: Setup,
+    path: Union[str, os.PathLike[str]],
+    stiffness: Union[ArrayLike, str, os.PathLike[str]],
+    *,
+    frame: Literal["base", "tool"] = "base",
+    q0_deg: Optional[ArrayLike] = None,
+    free_tool_axis: bool = False,
+    max_step_deg: float = 2.0,
+    tool_axis_range_deg: float = 90.0,
+) -> dict[str, _Array]:
+    """line, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad (n, 3), residual_um, residual_urad, iterations, tool_rotation_deg (n,); deflection_std_mm with a covariance."""
+
 def deflection(
     setup: Setup,
     q_deg: ArrayLike,

@@ -1,0 +1,53 @@
+"""stiffid.compensate against `stiffid compensate` on the milling example (real identified stiffness)."""
+
+import numpy as np
+import pytest
+
+import stiffid
+from conftest import REPO
+
+PATH = REPO / "examples" / "milling" / "path.csv"
+STIFFNESS = REPO / "examples" / "milling" / "stiffness.json"
+
+
+def command(cli, tmp_path, *extra):
+    out = tmp_path / "compensated.csv"
+    args = ["compensate", "--setup", "fanuc-r2000ic-165f", "--stiffness", STIFFNESS, "--path", PATH]
+    return cli(*args, "--out", out, "--json", *extra)["points"]
+
+
+def column(points, *keys):
+    return np.array([[p[k] for k in keys] for p in points])
+
+
+@pytest.mark.parametrize("free", [False, True])
+def test_compensate_equals_the_command(fanuc, cli, tmp_path, free):
+    extra = ["--free-tool-axis"] if free else []
+    theirs = command(cli, tmp_path, *extra)
+    mine = stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=free)
+    assert mine["line"].tolist() == [p["line"] for p in theirs]
+    qc = column(theirs, *[f"qc{i}_deg" for i in range(1, 7)])
+    np.testing.assert_allclose(mine["q_compensated_deg"], qc, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(mine["q_deg"], column(theirs, *[f"q{i}_deg" for i in range(1, 7)]), atol=1e-12)
+    np.testing.assert_allclose(mine["deflection_mm"], column(theirs, "dx_mm", "dy_mm", "dz_mm"), rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(mine["deflection_std_mm"], column(theirs, "dx_std_mm", "dy_std_mm", "dz_std_mm"), rtol=1e-12)
+    np.testing.assert_allclose(mine["tool_rotation_deg"], [p["tool_rotation_deg"] for p in theirs], atol=1e-12)
+    # Compensation is real: the compensated angles differ from the nominal, and the residual is tiny.
+    assert np.abs(mine["q_compensated_deg"] - mine["q_deg"]).max() > 1e-3
+    assert mine["residual_um"].max() < 0.1
+
+
+def test_stiffness_as_numbers_has_no_std(fanuc):
+    numbers = [860896.0, 2719582.5, 1959759.6, 270828.3, 424693.0, 206019.8]
+    out = stiffid.compensate(fanuc, PATH, numbers)
+    assert "deflection_std_mm" not in out
+    assert out["q_compensated_deg"].shape == (len(out["line"]), 6)
+
+
+def test_bad_free_axis_and_start_are_refused(fanuc):
+    with pytest.raises(ValueError, match=r"max_step_deg: 0: expected a number > 0 and <= 90"):
+        stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=0.0)
+    with pytest.raises(ValueError, match=r"q0_deg"):
+        stiffid.compensate(fanuc, PATH, STIFFNESS, q0_deg=[0, 0, 0, 0, 0, 0, 0])
+    with pytest.raises(FileNotFoundError, match=r"nope.csv"):
+        stiffid.compensate(fanuc, REPO / "nope.csv", STIFFNESS)
