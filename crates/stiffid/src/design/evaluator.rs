@@ -10,10 +10,11 @@
 //! - `cond_2(Psi)`, `cond_2(S)`: singular values of `R`, `R diag(h) / sigma` (one-sided Jacobi);
 //! - `d-optimal`: `prod_k |R_kk h_k / sigma|^(-1/6)`;
 //! - `relative-a`, relative standard deviations: row norms of `(R diag(h) / sigma)^-1`;
-//! - `test-pose`: `sigma |A R^-1|_F / sqrt(T)`, A the `T` test postures' rows.
+//! - `test-pose`: `sigma |A R^-1|_F / sqrt(T)`, A the `T` test postures' rows, as
+//!   `sigma |R_A R^-1|_F / sqrt(T)` with `A = Q_A R_A` factored once (`Q_A` keeps the norm).
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
-use crate::linalg::cond;
+use crate::linalg::{cond, householder_qr, upper_triangle};
 use crate::lsq::Factor;
 use crate::observation::{posture_block, rope_observation_matrix, rope_observation_matrix_with};
 use crate::setup::Setup;
@@ -29,10 +30,9 @@ pub struct Evaluator<'a> {
     setup: &'a Setup,
     /// `h / sigma` (rad/Nm per m): the column scaling of `S`.
     scaling: Vector6<f64>,
-    /// Observation rows of every test posture under its rope-mass load, stacked (`3pT x 6`).
-    test_rows: DMatrix<f64>,
-    /// `A^T A` of the test rows `A` (6x6), for the gradient of `test-pose`.
-    test_gram: Matrix6<f64>,
+    /// `R_A` (6x6, upper triangular) of the Householder QR `A = Q_A R_A` of the test postures'
+    /// observation rows `A` (`3pT x 6`, under their rope-mass load): `A^T A = R_A^T R_A`.
+    test_factor: Matrix6<f64>,
 }
 
 /// What one posture contributes to a group: its `3p x 6` block of `Psi` and its TCP dexterity.
@@ -47,14 +47,10 @@ pub struct PostureTerms {
 impl<'a> Evaluator<'a> {
     /// An evaluator for `setup`.
     pub fn new(setup: &'a Setup) -> Self {
-        let test_rows = rope_observation_matrix(setup, setup.test_postures());
         Self {
             setup,
             scaling: setup.nominal_compliance() / setup.noise().sigma(),
-            test_gram: (test_rows.transpose() * &test_rows)
-                .fixed_view::<6, 6>(0, 0)
-                .into_owned(),
-            test_rows,
+            test_factor: triangular_factor(rope_observation_matrix(setup, setup.test_postures())),
         }
     }
 
@@ -240,16 +236,13 @@ impl<'a> Evaluator<'a> {
         if t == 0 {
             return 0.0;
         }
-        // Row i of A R^-1: a_i R^-1, R^-1 upper triangular.
-        let a = &self.test_rows;
-        let mut sum = 0.0;
-        for i in 0..a.nrows() {
-            for j in 0..6 {
-                let x: f64 = (0..=j).map(|k| a[(i, k)] * group.r_inv[(k, j)]).sum();
-                sum += x * x;
-            }
-        }
+        let sum = self.test_weight(group).norm_squared();
         finite(self.setup.noise().sigma() * (sum / t as f64).sqrt())
+    }
+
+    /// `Z = R_A R^-1`: `|Z|_F = |A R^-1|_F` and `Z^T Z = R^-T A^T A R^-1`.
+    fn test_weight(&self, group: &Group) -> Matrix6<f64> {
+        self.test_factor * group.r_inv
     }
 }
 
@@ -289,6 +282,15 @@ impl Group {
     fn relative_a(&self) -> f64 {
         finite(self.rs_inv.norm() / 6f64.sqrt())
     }
+}
+
+/// `R_A` of the Householder QR `A = Q_A R_A` (6x6, upper triangular, `A^T A = R_A^T R_A`) of an
+/// `m x 6` matrix; zero rows are appended to a matrix of fewer than 6 rows (they change neither).
+fn triangular_factor(a: DMatrix<f64>) -> Matrix6<f64> {
+    let m = a.nrows().max(6);
+    let mut a = a.resize_vertically(m, 0.0);
+    householder_qr(a.as_mut_slice(), m);
+    upper_triangle(a.as_slice(), m)
 }
 
 /// `v`, or `+infinity` if it is not finite.

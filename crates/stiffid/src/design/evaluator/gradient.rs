@@ -10,7 +10,8 @@
 //! - `relative-a`, `ln F = (1/2) ln tr C + const`, `d tr C = -tr(C d(S^T S) C) = -2 <Psi D C^2 D, dPsi>`:
 //!   `Y = -D C^2 D / tr C`;
 //! - `test-pose`, `ln F = (1/2) ln tr(B M^-1) + const` with `B = A^T A` of the test rows A,
-//!   `d tr(B M^-1) = -tr(M^-1 B M^-1 dM)`: `Y = -M^-1 B M^-1 / tr(B M^-1)`;
+//!   `d tr(B M^-1) = -tr(M^-1 B M^-1 dM)`: `Y = -M^-1 B M^-1 / tr(B M^-1)`, computed from
+//!   `Z = R_A R^-1` (`B = R_A^T R_A`): `tr(B M^-1) = |Z|_F^2`, `M^-1 B M^-1 = X^T X`, `X = Z R^-T`;
 //! - `cond_2` of `Psi D` (`D = I` for `zhang2021`, `diag(h) / sigma` for `scaled-cond`): a simple
 //!   singular value s with right singular vector v moves by `ds = u^T dPsi D v`, `u = Psi D v / s`,
 //!   so `d ln cond = d ln s_max - d ln s_min` gives `Y = D (v_max v_max^T / s_max^2 - v_min v_min^T / s_min^2) D`
@@ -121,12 +122,13 @@ impl Evaluator<'_> {
                 -(d * c * c * d) / c.trace()
             }
             Criterion::TestPose => {
-                let b = m_inv * self.test_gram;
-                let trace = b.trace();
+                let z = self.test_weight(group);
+                let trace = z.norm_squared();
                 if trace <= 0.0 {
                     return None;
                 }
-                -(b * m_inv) / trace
+                let x = z * group.r_inv.transpose();
+                -(x.transpose() * x) / trace
             }
         })
     }
