@@ -164,28 +164,34 @@ pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
 /// or for non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
 /// `|J_N|_F |J_N^-1|_F / 6` without forming `A`.
 pub fn dexterity(jacobian: &Matrix6<f64>, characteristic_length: f64) -> f64 {
-    normalised(jacobian, characteristic_length).map_or(f64::INFINITY, |n| n.dexterity)
+    index(&normalise(jacobian, characteristic_length)).map_or(f64::INFINITY, |(k, _)| k)
 }
 
-/// The normalised Jacobian `J_N`, its inverse and `k(J_N)`, where the dexterity is finite.
-struct Normalised {
-    jn: Matrix6<f64>,
-    inverse: Matrix6<f64>,
-    dexterity: f64,
-}
-
-fn normalised(jacobian: &Matrix6<f64>, characteristic_length: f64) -> Option<Normalised> {
+/// `J_N = diag(I/L, I) J`.
+fn normalise(jacobian: &Matrix6<f64>, characteristic_length: f64) -> Matrix6<f64> {
     let mut jn = *jacobian;
     jn.fixed_rows_mut::<3>(0)
         .scale_mut(1.0 / characteristic_length);
-    if !jn.iter().all(|v| v.is_finite()) {
+    jn
+}
+
+/// `k(J_N) = |J_N|_F |J_N^-1|_F / 6` and `J_N^-1`, where the index is finite and below
+/// [`NUMERICALLY_SINGULAR`] (a non-finite entry makes `|J_N|_F` non-finite: no inverse is tried).
+fn index(jn: &Matrix6<f64>) -> Option<(f64, Matrix6<f64>)> {
+    let norm = jn.norm();
+    if !norm.is_finite() {
         return None;
     }
-    let inverse = crate::linalg::inverse(&jn)?;
-    let dexterity = jn.norm() * inverse.norm() / 6.0;
-    (dexterity < NUMERICALLY_SINGULAR).then_some(Normalised {
-        jn,
-        inverse,
-        dexterity,
-    })
+    let inverse = crate::linalg::inverse(jn)?;
+    let dexterity = norm * inverse.norm() / 6.0;
+    (dexterity < NUMERICALLY_SINGULAR).then_some((dexterity, inverse))
+}
+
+/// The normalised Jacobian `J_N` and its inverse, where the dexterity is finite.
+fn normalised(
+    jacobian: &Matrix6<f64>,
+    characteristic_length: f64,
+) -> Option<(Matrix6<f64>, Matrix6<f64>)> {
+    let jn = normalise(jacobian, characteristic_length);
+    index(&jn).map(|(_, inverse)| (jn, inverse))
 }

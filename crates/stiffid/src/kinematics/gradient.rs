@@ -93,8 +93,7 @@ pub fn dexterity_log_gradient(
     jacobian: &Matrix6<f64>,
     characteristic_length: f64,
 ) -> Option<Matrix6<f64>> {
-    let super::Normalised { jn, inverse: x, .. } =
-        super::normalised(jacobian, characteristic_length)?;
+    let (jn, x) = super::normalised(jacobian, characteristic_length)?;
     let mut g = jn / jn.norm_squared() - x.transpose() * x * x.transpose() / x.norm_squared();
     g.fixed_rows_mut::<3>(0)
         .scale_mut(1.0 / characteristic_length);
