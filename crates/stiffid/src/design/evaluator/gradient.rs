@@ -111,12 +111,11 @@ impl Evaluator<'_> {
     /// depend on `Psi`, and for `test-pose` without test postures (constant 0).
     fn psi_weight(&self, criterion: Criterion, group: &Group) -> Option<Matrix6<f64>> {
         let d = Matrix6::from_diagonal(&self.scaling);
-        let m_inv = group.r_inv * group.r_inv.transpose();
         Some(match criterion {
             Criterion::Classical => return None,
             Criterion::Zhang2021 => cond_weight(&group.r),
             Criterion::ScaledCond => d * cond_weight(&group.rs) * d,
-            Criterion::DOptimal => m_inv / -6.0,
+            Criterion::DOptimal => group.r_inv * group.r_inv.transpose() / -6.0,
             Criterion::RelativeA => {
                 let c = group.rs_inv * group.rs_inv.transpose();
                 -(d * c * c * d) / c.trace()
