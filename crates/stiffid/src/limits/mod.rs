@@ -144,6 +144,54 @@ pub const MAX_SEARCH_POSTURES: u64 = 100;
 /// Most criterion evaluations of one local search (`--max-evals`).
 pub const MAX_EVALS: u64 = 10_000_000;
 
+/// The stopping tolerance of a local search on the change of `ln(criterion)` per SQP step
+/// ([`crate::design::SearchOptions::ftol`]): 0 (stop on the budget or the step alone) to 1 (a
+/// change of the criterion by a factor of e).
+pub const FTOL: Range = Range {
+    min: 0.0,
+    max: 1.0,
+    unit: "",
+};
+
+/// The stopping tolerance of a local search on the step of every angle
+/// ([`crate::design::SearchOptions::xtol`]): 0 (stop on the budget or `ftol` alone) to 1 rad.
+pub const XTOL_RAD: Range = Range {
+    min: 0.0,
+    max: 1.0,
+    unit: "rad",
+};
+
+/// The forward finite-difference step of a local search
+/// ([`crate::design::SearchOptions::fd_step`]): from 1e-12 rad (about 1e4 ulps of an angle of
+/// order 1; below it rounding is the whole difference) to 0.01 rad (0.6 deg; beyond it the
+/// difference no longer approximates the derivative).
+pub const FD_STEP_RAD: Range = Range {
+    min: 1e-12,
+    max: 1e-2,
+    unit: "rad",
+};
+
+/// Most exchange runs of a choice from a pool (`--restarts`, [`crate::design::PoolOptions`]).
+pub const MAX_POOL_RESTARTS: u64 = 1000;
+
+/// Most groups a choice from a pool enumerates
+/// ([`crate::design::PoolOptions::enumeration_limit`]; about a minute of evaluations).
+pub const MAX_ENUMERATION: u64 = 100_000_000;
+
+/// The tolerances of inverse kinematics ([`crate::ik::Options`]): of the position, m, and of the
+/// rotation, rad; from 1e-15 (the rounding of a pose near 1 m) to 0.01.
+pub const IK_TOLERANCE: Range = Range {
+    min: 1e-15,
+    max: 1e-2,
+    unit: "m or rad",
+};
+
+/// Most steps per start of inverse kinematics ([`crate::ik::Options::max_iterations`]).
+pub const MAX_IK_ITERATIONS: u64 = 100_000;
+
+/// Most seeded restarts of inverse kinematics ([`crate::ik::Options::restarts`]).
+pub const MAX_IK_RESTARTS: u64 = 10_000;
+
 /// Most postures in one postures file.
 pub const MAX_GROUP_POSTURES: usize = 10_000;
 
@@ -252,6 +300,20 @@ pub fn check_count(field: &str, count: usize, min: usize, max: usize) -> Result<
     Err(Error::InvalidField {
         field: field.to_string(),
         message: format!("{count} entries: expected {min} to {max}"),
+    })
+}
+
+/// Checks that the setting `field` (a count or a budget) lies within `[min, max]`.
+///
+/// # Errors
+/// [`Error::InvalidField`] naming `field`, the value and the range.
+pub fn check_integer(field: &str, value: u64, min: u64, max: u64) -> Result<()> {
+    if (min..=max).contains(&value) {
+        return Ok(());
+    }
+    Err(Error::InvalidField {
+        field: field.to_string(),
+        message: format!("{value} is outside [{min}, {max}]"),
     })
 }
 
