@@ -53,7 +53,7 @@ pub struct Args {
     #[arg(long, conflicts_with_all = ["start", "start_random", "global"])]
     pool: Option<PathBuf>,
     /// Exchange runs of a --pool choice, 1 to 1000 [default: 8].
-    #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=1000))]
+    #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
     /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
