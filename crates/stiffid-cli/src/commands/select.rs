@@ -284,11 +284,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The accepted `--target-pct`.
-const TARGET_PCT: Range = Range {
-    min: 1e-6,
-    max: 1e4,
-    unit: "%",
-};
+const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 
 /// With cell checks: the group of the same search of `n` postures without them, and its
 /// criteria (evaluated on the setup: the criteria do not depend on the cell).
