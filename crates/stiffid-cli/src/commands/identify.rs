@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid::formats::measurements::MeasurementFile;
+use stiffid::formats::measurements::{Labels, MeasurementFile};
 use stiffid::identify::streamed::Rows;
 use stiffid::identify::{
     cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
@@ -329,7 +329,7 @@ fn rows_of(file: MeasurementFile) -> Rows {
         postures: file.measurements.iter().map(|m| m.posture).collect(),
         points: file.measurements.iter().map(|m| m.point).collect(),
         lines: file.lines,
-        labels: file.labels,
+        labels: Labels::from_iter(&file.labels),
         layout: file.layout,
     }
 }

@@ -38,7 +38,8 @@ use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
 use columns::{expected_header, Columns};
 use rayon::prelude::*;
-use std::collections::HashMap;
+use std::collections::hash_map::{Entry, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
 use std::io::BufRead;
 
 /// Bytes of text parsed by one task: a chunk's text is cut into pieces of about this size, each
@@ -97,7 +98,7 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
     let layout = reader.layout().clone();
     Ok(MeasurementFile {
         measurements,
-        labels: reader.into_labels(),
+        labels: reader.into_labels().iter().map(str::to_string).collect(),
         lines,
         wrench_frame: layout.wrench_frame(),
         displacement_frame: layout.displacement_frame(),
@@ -165,7 +166,8 @@ pub struct Reader<R> {
     line: u64,
     /// Measurements read so far.
     rows: usize,
-    labels: Labels,
+    /// `None` when the rows' postures are not numbered ([`Reader::unlabelled`]).
+    labels: Option<Labels>,
 }
 
 impl<R: BufRead> Reader<R> {
@@ -212,7 +214,7 @@ impl<R: BufRead> Reader<R> {
             header_line: line,
             line,
             rows: 0,
-            labels: Labels::default(),
+            labels: Some(Labels::default()),
         })
     }
 
@@ -251,7 +253,9 @@ impl<R: BufRead> Reader<R> {
         for piece in parsed {
             let mut start = 0;
             for (mut measurement, line, end) in piece.rows {
-                measurement.posture = self.labels.number(&piece.labels[start..end]);
+                if let Some(labels) = &mut self.labels {
+                    measurement.posture = labels.number(&piece.labels[start..end]);
+                }
                 start = end;
                 chunk.measurements.push(measurement);
                 chunk.lines.push(line);
@@ -274,14 +278,17 @@ impl<R: BufRead> Reader<R> {
         }
     }
 
-    /// The posture labels of the rows read so far; `labels[m.posture]` is the label of
-    /// measurement `m`.
-    pub fn into_labels(self) -> Vec<String> {
-        let mut labels = vec![String::new(); self.labels.index.len()];
-        for (label, i) in self.labels.index {
-            labels[i] = label.into();
-        }
-        labels
+    /// Reads without numbering the postures: every measurement's posture is 0 (for a second
+    /// reading that needs only the quantities; saves the label bookkeeping).
+    pub fn unlabelled(mut self) -> Self {
+        self.labels = None;
+        self
+    }
+
+    /// The posture labels of the rows read so far; [`Labels::get`]`(m.posture)` is the label of
+    /// measurement `m` (none when [`Reader::unlabelled`]).
+    pub fn into_labels(self) -> Labels {
+        self.labels.map(Labels::into_list).unwrap_or_default()
     }
 }
 
@@ -378,26 +385,125 @@ impl Parsed {
     }
 }
 
-/// The posture labels seen so far and their numbers, in order of first appearance.
-#[derive(Default)]
-struct Labels {
-    index: HashMap<Box<str>, usize>,
-    /// The previous row's label and number (rows of one posture usually follow each other).
-    last: (String, usize),
+/// Posture labels numbered in order of first appearance, stored one after the other (no
+/// allocation per label), with an index from a 64-bit hash of a label to its number.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Labels {
+    text: String,
+    /// The end of each label in `text`.
+    ends: Vec<usize>,
+    index: HashMap<u64, usize, BuildHasherDefault<Prehashed>>,
+    /// Labels whose hash an earlier label has (compared in full).
+    collided: HashMap<Box<str>, usize>,
+    /// The previous row's number (rows of one posture usually follow each other).
+    last: Option<usize>,
 }
 
 impl Labels {
-    /// The number of `label`, a new one if it was not seen before (one hash per row whose
-    /// label differs from the previous row's).
-    fn number(&mut self, label: &str) -> usize {
-        if self.last.0 != label {
-            let next = self.index.len();
-            self.last.1 = *self.index.entry(label.into()).or_insert(next);
-            self.last.0.clear();
-            self.last.0.push_str(label);
-        }
-        self.last.1
+    /// The number of labels.
+    pub fn len(&self) -> usize {
+        self.ends.len()
     }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.ends.is_empty()
+    }
+
+    /// Label `i` (numbered from 0).
+    ///
+    /// # Panics
+    /// If `i >= len()`.
+    pub fn get(&self, i: usize) -> &str {
+        &self.text[span(&self.ends, i)]
+    }
+
+    /// The labels, in order of their numbers.
+    pub fn iter(&self) -> impl Iterator<Item = &str> {
+        (0..self.len()).map(|i| self.get(i))
+    }
+
+    /// Frees the index: the labels can be read, no longer numbered.
+    fn into_list(mut self) -> Self {
+        self.index = HashMap::default();
+        self.collided = HashMap::new();
+        self.text.shrink_to_fit();
+        self.ends.shrink_to_fit();
+        self
+    }
+
+    /// The number of `label`, a new one if it was not seen before.
+    fn number(&mut self, label: &str) -> usize {
+        if let Some(last) = self.last.filter(|l| self.get(*l) == label) {
+            return last;
+        }
+        let next = self.len();
+        let (text, ends) = (&self.text, &self.ends);
+        let same = |i: usize| text[span(ends, i)] == *label;
+        let n = match self.index.entry(fx_hash(label.as_bytes())) {
+            Entry::Vacant(e) => *e.insert(next),
+            Entry::Occupied(e) if same(*e.get()) => *e.get(),
+            Entry::Occupied(_) => *self.collided.entry(label.into()).or_insert(next),
+        };
+        if n == next {
+            self.text.push_str(label);
+            self.ends.push(self.text.len());
+        }
+        self.last = Some(n);
+        n
+    }
+}
+
+/// Where label `i` is in the text of [`Labels`].
+fn span(ends: &[usize], i: usize) -> std::ops::Range<usize> {
+    i.checked_sub(1).map_or(0, |p| ends[p])..ends[i]
+}
+
+/// Labels numbered in order of first appearance (a repeated one keeps its first number).
+impl<S: AsRef<str>> FromIterator<S> for Labels {
+    fn from_iter<I: IntoIterator<Item = S>>(labels: I) -> Self {
+        let mut all = Labels::default();
+        for label in labels {
+            all.number(label.as_ref());
+        }
+        all.into_list()
+    }
+}
+
+/// A hasher for keys that are hashes already ([`fx_hash`]): passes a `u64` through.
+#[derive(Default)]
+struct Prehashed(u64);
+
+impl Hasher for Prehashed {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        self.0 = fx_hash(bytes);
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = n;
+    }
+}
+
+/// The Fx hash (rustc's, Firefox's) of some bytes, 8 at a time, finished by MurmurHash3's
+/// `fmix64` (so that the low bits, which pick the bucket, depend on every byte): fast for short
+/// keys; collisions are resolved by comparing labels ([`Labels`]).
+fn fx_hash(bytes: &[u8]) -> u64 {
+    const K: u64 = 0x517c_c1b7_2722_0a95;
+    let mut h = bytes.len() as u64;
+    for word in bytes.chunks(8) {
+        let mut w = [0u8; 8];
+        w[..word.len()].copy_from_slice(word);
+        h = (h.rotate_left(5) ^ u64::from_le_bytes(w)).wrapping_mul(K);
+    }
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+    h ^ (h >> 33)
 }
 
 fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {

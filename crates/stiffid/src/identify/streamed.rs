@@ -14,7 +14,7 @@
 
 use super::{residuals, Identification, InBlocks};
 use crate::error::ColumnProblem;
-use crate::formats::measurements::{Chunk, Layout, Reader};
+use crate::formats::measurements::{Chunk, Labels, Layout, Reader};
 use crate::identify::frames;
 use crate::{Error, Result, Setup};
 use rayon::prelude::*;
@@ -23,8 +23,8 @@ use std::io::BufRead;
 /// Where each measurement of a file came from: what a report names a row by.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rows {
-    /// The posture labels; `labels[postures[i]]` is the label of measurement `i`.
-    pub labels: Vec<String>,
+    /// The posture labels; `labels.get(postures[i])` is the label of measurement `i`.
+    pub labels: Labels,
     /// The posture of each measurement, numbered in order of first appearance.
     pub postures: Vec<usize>,
     /// The line of each measurement (1-based).
@@ -38,7 +38,7 @@ pub struct Rows {
 impl Rows {
     /// The label of measurement `i`'s posture.
     pub fn label(&self, i: usize) -> &str {
-        &self.labels[self.postures[i]]
+        self.labels.get(self.postures[i])
     }
 }
 
@@ -57,7 +57,7 @@ pub fn least_squares<R: BufRead>(
     let mut reader = Reader::new(open().map_err(unreadable)?)?;
     let mut blocks = InBlocks::new(setup);
     let mut rows = Rows {
-        labels: Vec::new(),
+        labels: Labels::default(),
         postures: Vec::new(),
         lines: Vec::new(),
         points: Vec::new(),
@@ -75,7 +75,7 @@ pub fn least_squares<R: BufRead>(
     rows.labels = reader.into_labels();
     let solved = blocks.solve()?;
     let h = solved.solution.h;
-    let mut again = Reader::new(open().map_err(unreadable)?)?;
+    let mut again = Reader::new(open().map_err(unreadable)?)?.unlabelled();
     let mut all = Vec::with_capacity(3 * rows.lines.len());
     while let Some(chunk) = base_frame_chunk(setup, &mut again)? {
         all.extend(residuals(setup, &h, &chunk.measurements));
