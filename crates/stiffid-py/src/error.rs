@@ -2,6 +2,8 @@
 
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::{PyErr, Python};
+use std::fs::File;
+use std::io::Read;
 use std::path::Path;
 use stiffid::Error;
 
@@ -53,16 +55,26 @@ pub fn value(message: impl Into<String>) -> PyErr {
 /// a file that is not UTF-8 text).
 pub fn read(path: &Path) -> Result<String, PyErr> {
     let name = path.display();
-    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => {
-            PyFileNotFoundError::new_err(format!("{name}: no such file"))
-        }
-        _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
-    })?;
+    let mut bytes = Vec::new();
+    open(path)?
+        .read_to_end(&mut bytes)
+        .map_err(|e| PyOSError::new_err(format!("{name}: cannot read: {e}")))?;
     String::from_utf8(bytes).map_err(|e| {
         value(format!(
             "{name}: not UTF-8 text (invalid byte at offset {})",
             e.utf8_error().valid_up_to()
         ))
+    })
+}
+
+/// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or
+/// `OSError`).
+pub fn open(path: &Path) -> Result<File, PyErr> {
+    let name = path.display();
+    File::open(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => {
+            PyFileNotFoundError::new_err(format!("{name}: no such file"))
+        }
+        _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
     })
 }
