@@ -212,11 +212,15 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
     Ok(file)
 }
 
-/// The least-squares identification of a measurement file of any size, read twice in chunks
-/// (`stiffid::identify::streamed`), and where each row came from; errors start with the file
-/// name, then the line and column.
-pub fn identify_streamed(path: &Path, setup: &Setup) -> Result<(Identification, Rows)> {
-    let mut first = Some(open(path)?);
+/// The least-squares identification of the measurement file at `path` (`data`: the file opened
+/// by [`open`]), of any size, read twice in chunks (`stiffid::identify::streamed`), and where each
+/// row came from; errors start with the file name, then the line and column.
+pub fn identify_streamed(
+    path: &Path,
+    data: Capped,
+    setup: &Setup,
+) -> Result<(Identification, Rows)> {
+    let mut first = Some(data);
     let mut open = || match first.take() {
         Some(file) => Ok(BufReader::with_capacity(1 << 20, file)),
         None => File::open(path)

@@ -214,7 +214,7 @@ def test_a_file_of_many_chunks_equals_the_arrays_and_the_command(fanuc, cli, tmp
         f.write(header + "\n")
         for i in range(n):
             src = rows[i % len(rows)]
-            f.write(",".join([f"p{i}", src[1], *(repr(v) for v in q[i]), *src[8:]]) + "\n")
+            f.write(",".join([f"p{i}", src[1], *(repr(float(v)) for v in q[i]), *src[8:]]) + "\n")
     assert path.stat().st_size > 5 * 2**20
     from_file = stiffid.identify(fanuc, path)
     from_arrays = stiffid.identify(fanuc, q_deg=q, wrench=wrench, displacement_mm=d)

@@ -268,6 +268,8 @@ struct InfluentialJson {
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
+    // Opened (and so known as an input, never written over) before --out is prepared.
+    let data = load::open(&args.data)?;
     let out = args
         .out
         .as_deref()
@@ -281,7 +283,7 @@ pub fn run(args: &Args) -> Result<()> {
     {
         // Plain least squares: the file read in chunks, Psi in blocks (bounded memory, parallel).
         false => {
-            let (id, rows) = load::identify_streamed(&args.data, &setup)?;
+            let (id, rows) = load::identify_streamed(&args.data, data, &setup)?;
             (id, rows, None, Vec::new())
         }
         true => {
