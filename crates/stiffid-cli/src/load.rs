@@ -218,8 +218,9 @@ pub fn identify_streamed(
     let mut first = Some(data);
     let mut open = || match first.take() {
         Some(file) => Ok(BufReader::with_capacity(1 << 20, file)),
-        None => File::open(path)
-            .map(|file| BufReader::with_capacity(1 << 20, Capped { file, read: 0 })),
+        None => {
+            File::open(path).map(|file| BufReader::with_capacity(1 << 20, Capped { file, read: 0 }))
+        }
     };
     streamed::least_squares(setup, &mut open).with_context(|| path.display().to_string())
 }

@@ -297,7 +297,8 @@ pub fn identify(
         return Err(value("robust and nonnegative: choose one"));
     }
     let arrays = [q_deg, wrench, displacement_mm];
-    if let (Some(path), None, false, [None, None, None]) = (measurements, loss, nonnegative, arrays) {
+    if let (Some(path), None, false, [None, None, None]) = (measurements, loss, nonnegative, arrays)
+    {
         return identify_file(py, s, &path.extract::<PathBuf>()?);
     }
     let data = data(s, measurements, arrays)?;
@@ -332,7 +333,12 @@ fn identify_file(py: Python<'_>, s: &stiffid::Setup, path: &Path) -> PyResult<Id
         .detach(|| stiffid::identify::streamed::least_squares(s, &mut open))
         .map_err(|e| error::raise_in(&name, e))?;
     let labels = rows.labels.iter().map(str::to_string).collect();
-    Ok(Identification::new(py, &fit, Some(labels), s.noise().variance))
+    Ok(Identification::new(
+        py,
+        &fit,
+        Some(labels),
+        s.noise().variance,
+    ))
 }
 
 /// Six stiffness values (Nm/rad), or the stiffness of a stiffness JSON file (`stiffid identify

@@ -38,9 +38,10 @@ fn bench(c: &mut Criterion) {
     let text = large_file(100_000);
     let mut group = c.benchmark_group("identify_large");
     group.sample_size(10);
-    group.bench_function("1e5 rows, 1e5 postures: read twice, Psi in blocks, identify", |b| {
-        b.iter(|| streamed::least_squares(&setup, || Ok(black_box(text.as_bytes()))).unwrap())
-    });
+    group.bench_function(
+        "1e5 rows, 1e5 postures: read twice, Psi in blocks, identify",
+        |b| b.iter(|| streamed::least_squares(&setup, || Ok(black_box(text.as_bytes()))).unwrap()),
+    );
     group.finish();
 }
 

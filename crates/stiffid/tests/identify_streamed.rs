@@ -46,12 +46,19 @@ fn assert_close(a: &Identification, b: &Identification) {
     assert!(close(a.residual_rms, b.residual_rms, b.residual_rms));
     assert!(close(a.cond_psi, b.cond_psi, b.cond_psi));
     assert_eq!((a.rows, a.postures), (b.rows, b.postures));
-    let (ua, ub) = (a.uncertainty.as_ref().unwrap(), b.uncertainty.as_ref().unwrap());
+    let (ua, ub) = (
+        a.uncertainty.as_ref().unwrap(),
+        b.uncertainty.as_ref().unwrap(),
+    );
     assert_eq!(ua.dof, ub.dof);
     for j in 0..6 {
         let se = ub.stiffness_std_error[j];
         assert!(close(ua.stiffness_std_error[j], se, se));
-        assert!(close(ua.stiffness_ci95[j][1], ub.stiffness_ci95[j][1], b.stiffness[j]));
+        assert!(close(
+            ua.stiffness_ci95[j][1],
+            ub.stiffness_ci95[j][1],
+            b.stiffness[j]
+        ));
     }
 }
 
@@ -59,7 +66,7 @@ fn assert_close(a: &Identification, b: &Identification) {
 /// noisy, with moments; labels `pose {i}`.
 fn synthetic_file(setup: &Setup, n: usize, seed: u64) -> String {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lo, hi) = (setup.robot().lower, setup.robot().upper);
+    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
     let postures: Vec<Vector6<f64>> = (0..n)
         .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
         .collect();
@@ -71,14 +78,13 @@ fn synthetic_file(setup: &Setup, n: usize, seed: u64) -> String {
     let mut text = String::from("# generated\nposture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,dx_mm,dy_mm,dz_mm\n");
     for m in &data {
         let d = m.displacement.map(|v| (v + noise.sample(&mut rng)) * 1e3);
-        let numbers: Vec<String> = m
-            .q
-            .map(f64::to_degrees)
-            .iter()
-            .chain(m.wrench.iter())
-            .chain(d.iter())
-            .map(|v| format!("{v:e}"))
-            .collect();
+        let numbers: Vec<String> =
+            m.q.map(f64::to_degrees)
+                .iter()
+                .chain(m.wrench.iter())
+                .chain(d.iter())
+                .map(|v| format!("{v:e}"))
+                .collect();
         text += &format!("pose {},{},{}\n", m.posture, m.point + 1, numbers.join(","));
     }
     text
@@ -91,7 +97,10 @@ fn the_fanuc_file_streamed_equals_the_in_memory_fits() {
     assert_close(&id, &whole(&setup, FANUC));
     let mut file = measurements::parse(FANUC).unwrap();
     file.to_base_frame(&setup).unwrap();
-    assert_eq!(id, identify::least_squares(&setup, &file.measurements).unwrap());
+    assert_eq!(
+        id,
+        identify::least_squares(&setup, &file.measurements).unwrap()
+    );
     assert_eq!(rows.lines, file.lines);
     let labels: Vec<&str> = rows.labels.iter().collect();
     assert_eq!(labels, file.labels);
@@ -179,5 +188,8 @@ fn labels_are_numbered_in_order_of_first_appearance() {
                 b,2,0,0,0,0,-90,0,0,0,-100,0,0,-0.1\n";
     let file = measurements::parse(text).unwrap();
     let postures: Vec<usize> = file.measurements.iter().map(|m| m.posture).collect();
-    assert_eq!((postures, file.labels), (vec![0, 1, 0], vec!["b".to_string(), "a".into()]));
+    assert_eq!(
+        (postures, file.labels),
+        (vec![0, 1, 0], vec!["b".to_string(), "a".into()])
+    );
 }

@@ -354,7 +354,9 @@ impl Parsed {
         if let Some((line, e)) = commented.filter(|c| error.as_ref().is_none_or(|e| c.0 < e.0)) {
             let after = parsed.rows.iter().position(|r| r.1 > line);
             parsed.rows.truncate(after.unwrap_or(parsed.rows.len()));
-            parsed.labels.truncate(parsed.rows.last().map_or(0, |r| r.2));
+            parsed
+                .labels
+                .truncate(parsed.rows.last().map_or(0, |r| r.2));
             error = Some((line, e));
         }
         parsed.error = error.map(|e| e.1);

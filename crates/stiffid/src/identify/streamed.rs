@@ -69,7 +69,8 @@ pub fn least_squares<R: BufRead>(
             .map_err(|e| reader.layout().explain(e, |n| chunk.line_of(n)))?;
         rows.postures
             .extend(chunk.measurements.iter().map(|m| m.posture));
-        rows.points.extend(chunk.measurements.iter().map(|m| m.point));
+        rows.points
+            .extend(chunk.measurements.iter().map(|m| m.point));
         rows.lines.extend(chunk.lines);
     }
     rows.labels = reader.into_labels();

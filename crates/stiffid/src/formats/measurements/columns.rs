@@ -1,11 +1,11 @@
 //! Where each quantity sits in a measurement file's rows: the header's columns, and one row turned
 //! into a [`Measurement`].
 
+use super::problem;
 use crate::deflection::Frame;
 use crate::error::{ColumnProblem, MeasurementField};
 use crate::identify::frames::DisplacementFrame;
 use crate::observation::Measurement;
-use super::problem;
 use crate::{Error, Result};
 use nalgebra::{Vector3, Vector6};
 
@@ -30,7 +30,6 @@ const UNLOADED_TRACKER: [&str; 3] = [
     "y_unloaded_tracker_mm",
     "z_unloaded_tracker_mm",
 ];
-
 
 pub(super) fn expected_header() -> String {
     let mut names = vec![POSTURE, POINT];
