@@ -5,14 +5,10 @@
 
 mod common;
 
-use common::synthetic;
-use nalgebra::Vector6;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
+use common::noisy;
 use stiffid::formats::measurements::{self, Labels};
 use stiffid::identify::{self, streamed, Identification};
-use stiffid::observation::{Measurement, Observations};
+use stiffid::observation::Observations;
 use stiffid::{setup, ColumnProblem, Error, Setup};
 
 const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
@@ -65,19 +61,10 @@ fn assert_close(a: &Identification, b: &Identification) {
 /// A measurement file of `n` random postures x 4 points under random wrenches (paper setup),
 /// noisy, with moments; labels `pose {i}`.
 fn synthetic_file(setup: &Setup, n: usize, seed: u64) -> String {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
-    let postures: Vec<Vector6<f64>> = (0..n)
-        .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
-        .collect();
-    let wrenches: Vec<Vector6<f64>> = (0..n)
-        .map(|_| Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [800.0, 150.0][i / 3]))
-        .collect();
-    let noise = Normal::new(0.0, setup.noise().sigma()).unwrap();
-    let data: Vec<Measurement> = synthetic(setup, &postures, |i, _| wrenches[i]);
+    let data = noisy(setup, n, seed);
     let mut text = String::from("# generated\nposture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,dx_mm,dy_mm,dz_mm\n");
     for m in &data {
-        let d = m.displacement.map(|v| (v + noise.sample(&mut rng)) * 1e3);
+        let d = m.displacement * 1e3;
         let numbers: Vec<String> =
             m.q.map(f64::to_degrees)
                 .iter()
@@ -192,4 +179,32 @@ fn labels_are_numbered_in_order_of_first_appearance() {
         (postures, file.labels),
         (vec![0, 1, 0], vec!["b".to_string(), "a".into()])
     );
+    // A quoted label with a line break: an error at its line, not a silent join.
+    let broken = text.replacen("a,1", "\"a\nx\",1", 1);
+    match measurements::parse(&broken).unwrap_err() {
+        Error::Column {
+            line: 3,
+            column: Some(1),
+            problem: ColumnProblem::Unreadable { message },
+            ..
+        } => assert!(message.contains("line break"), "{message}"),
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
+fn a_chunk_of_nothing_but_comments_does_not_end_the_file() {
+    let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    // More than a chunk (8 pieces) of comment lines between rows 10 and 11.
+    let comments = "# a comment\n".repeat(10 * measurements::PIECE_BYTES / 12);
+    let mut lines: Vec<&str> = FANUC.lines().collect();
+    lines.insert(11, comments.trim_end());
+    let text = lines.join("\n") + "\n";
+    let file = measurements::parse(&text).unwrap();
+    assert_eq!(file.measurements.len(), 43);
+    let extra = comments.lines().count() as u64;
+    assert_eq!((file.lines[9], file.lines[10]), (11, 12 + extra));
+    let (id, rows) = streamed(&setup, &text).unwrap();
+    assert_eq!(rows.lines, file.lines);
+    assert_close(&id, &whole(&setup, FANUC));
 }

@@ -229,6 +229,29 @@ impl<R: BufRead> Reader<R> {
     /// As [`parse`], for the first bad row of the chunk (in file order); [`ColumnProblem::NoRows`]
     /// at the end of a source without rows; [`ColumnProblem::Unreadable`] when the source fails.
     pub fn next_chunk(&mut self) -> Result<Option<Chunk>> {
+        loop {
+            let pieces = self.read_pieces()?;
+            let chunk = self.parse_pieces(&pieces)?;
+            match (chunk.measurements.is_empty(), pieces.is_empty(), self.rows) {
+                (true, true, 0) => {
+                    return Err(problem(
+                        self.header_line,
+                        None,
+                        ColumnProblem::NoRows {
+                            what: "measurement row",
+                        },
+                    ))
+                }
+                (true, true, _) => return Ok(None),
+                // Only comments and blank lines: read on.
+                (true, false, _) => {}
+                (false, _, _) => return Ok(Some(chunk)),
+            }
+        }
+    }
+
+    /// Up to [`PIECES`] pieces of text and the line each starts at; none at the end.
+    fn read_pieces(&mut self) -> Result<Vec<(u64, Vec<u8>)>> {
         let mut pieces = Vec::new();
         for _ in 0..PIECES {
             let mut piece = Vec::with_capacity(PIECE_BYTES + 256);
@@ -241,6 +264,11 @@ impl<R: BufRead> Reader<R> {
             self.line += piece.iter().filter(|b| **b == b'\n').count() as u64;
             pieces.push((line + 1, piece));
         }
+        Ok(pieces)
+    }
+
+    /// The rows of some pieces, parsed in parallel, postures numbered in file order.
+    fn parse_pieces(&mut self, pieces: &[(u64, Vec<u8>)]) -> Result<Chunk> {
         let parsed: Vec<Parsed> = pieces
             .par_iter()
             .map(|(line, text)| Parsed::new(&self.layout, text, *line))
@@ -265,17 +293,7 @@ impl<R: BufRead> Reader<R> {
             }
         }
         self.rows += chunk.measurements.len();
-        match (chunk.measurements.is_empty(), self.rows) {
-            (true, 0) => Err(problem(
-                self.header_line,
-                None,
-                ColumnProblem::NoRows {
-                    what: "measurement row",
-                },
-            )),
-            (true, _) => Ok(None),
-            (false, _) => Ok(Some(chunk)),
-        }
+        Ok(chunk)
     }
 
     /// Reads without numbering the postures: every measurement's posture is 0 (for a second
@@ -376,8 +394,12 @@ impl Parsed {
         }
         let posture = layout.columns.posture;
         let label = record[posture].trim();
-        if label.is_empty() || label.contains(['\n', '\r']) {
+        if label.is_empty() {
             return Err(layout.at(line, posture, ColumnProblem::EmptyLabel));
+        }
+        if label.contains(['\n', '\r']) {
+            let message = "a quoted label spans lines: a field may not hold a line break".into();
+            return Err(layout.at(line, posture, ColumnProblem::Unreadable { message }));
         }
         let columns: &Columns = &layout.columns;
         let measurement = columns.measurement(record, 0, |c, p| layout.at(line, c, p))?;

@@ -2,6 +2,7 @@
 #![allow(dead_code)] // each user takes its own subset
 
 use nalgebra::{Vector3, Vector6};
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::observation::Measurement;
@@ -93,4 +94,23 @@ pub fn on_robot(setup: &Setup, robot: stiffid::Robot, springs: stiffid::Coordina
         .with_bounds(bounds)
         .build()
         .unwrap()
+}
+
+/// Noisy measurements of `n` random postures under random wrenches (4 points each on the paper
+/// setup), seeded.
+pub fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
+    let postures: Vec<Vector6<f64>> = (0..n)
+        .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
+        .collect();
+    let wrenches: Vec<Vector6<f64>> = (0..n)
+        .map(|_| Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [800.0, 150.0][i / 3]))
+        .collect();
+    let noise = Normal::new(0.0, setup.noise().sigma()).unwrap();
+    let mut data = synthetic(setup, &postures, |i, _| wrenches[i]);
+    for m in &mut data {
+        m.displacement += Vector6::from_fn(|_, _| noise.sample(&mut rng)).fixed_rows::<3>(0);
+    }
+    data
 }
