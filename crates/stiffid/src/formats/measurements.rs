@@ -345,19 +345,29 @@ impl Parsed {
             labels: String::new(),
             error: None,
         };
+        // Comment lines are dropped here, not by `csv` (whose line count drifts over many of
+        // them); `kept[i]` is the line in `text` (1-based) of line i + 1 of what is parsed.
+        let filtered = without_comments(text);
+        let (body, kept) = match &filtered {
+            Some((body, kept)) => (body.as_slice(), Some(kept)),
+            None => (text, None),
+        };
+        let at = |csv_line: u64| {
+            let line = kept.map_or(Some(csv_line), |k| k.get(csv_line as usize - 1).copied());
+            first - 1 + line.unwrap_or_else(|| text.split(|b| *b == b'\n').count() as u64)
+        };
         let mut reader = csv::ReaderBuilder::new()
             .has_headers(false)
             .flexible(true)
-            .comment(Some(b'#'))
-            .from_reader(text);
+            .from_reader(body);
         let mut record = csv::StringRecord::new();
         let mut error = None;
         loop {
-            let line = first + reader.position().line() - 1;
+            let line = at(reader.position().line());
             let row = match reader.read_record(&mut record) {
                 Ok(false) => break,
                 Ok(true) => {
-                    let line = record.position().map_or(line, |p| first + p.line() - 1);
+                    let line = record.position().map_or(line, |p| at(p.line()));
                     parsed.row(layout, &record, line).map_err(|e| (line, e))
                 }
                 Err(e) => Err((line, unreadable(line, &e.to_string()))),
@@ -547,6 +557,22 @@ fn unreadable(line: u64, message: &str) -> Error {
             message: message.into(),
         },
     )
+}
+
+/// `text` without its comment lines (`#` first) and the line (1-based) of each line kept; `None`
+/// when it has none.
+fn without_comments(text: &[u8]) -> Option<(Vec<u8>, Vec<u64>)> {
+    if !(text.first() == Some(&b'#') || text.windows(2).any(|w| w == b"\n#")) {
+        return None;
+    }
+    let (mut body, mut kept) = (Vec::with_capacity(text.len()), Vec::new());
+    for (i, line) in text.split_inclusive(|b| *b == b'\n').enumerate() {
+        if line.first() != Some(&b'#') {
+            body.extend_from_slice(line);
+            kept.push(i as u64 + 1);
+        }
+    }
+    Some((body, kept))
 }
 
 /// The first comment line (`#` first) of `text` (whose first line is line `first`) that holds as
