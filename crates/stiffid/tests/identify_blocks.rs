@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{noisy, synthetic};
+use common::{assert_close, noisy, synthetic};
 use stiffid::formats::measurements;
 use stiffid::identify::{self, BLOCK};
 use stiffid::observation::Observations;
@@ -22,45 +22,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
         .unwrap()
         .least_squares()
         .unwrap();
-    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
-    let h = whole.compliance.amax();
-    for j in 0..6 {
-        assert!(
-            close(blocks.compliance[j], whole.compliance[j], h),
-            "joint {}",
-            j + 1
-        );
-        assert!(close(
-            blocks.stiffness[j],
-            whole.stiffness[j],
-            whole.stiffness[j].abs()
-        ));
-    }
-    let c = whole.unit_covariance.amax();
-    assert!((blocks.unit_covariance - whole.unit_covariance).amax() <= 1e-12 * c);
-    let d = data
-        .iter()
-        .map(|m| m.displacement.amax())
-        .fold(0.0, f64::max);
-    assert!((&blocks.residuals - &whole.residuals).amax() <= 1e-12 * d);
-    assert!(close(
-        blocks.residual_rms,
-        whole.residual_rms,
-        whole.residual_rms
-    ));
-    assert!(close(blocks.cond_psi, whole.cond_psi, whole.cond_psi));
-    assert_eq!((blocks.rows, blocks.postures), (whole.rows, whole.postures));
-    let (ub, uw) = (blocks.uncertainty.unwrap(), whole.uncertainty.unwrap());
-    assert_eq!(ub.dof, uw.dof);
-    for j in 0..6 {
-        let se = uw.stiffness_std_error[j];
-        assert!(close(ub.stiffness_std_error[j], se, se));
-        assert!(close(
-            ub.stiffness_ci95[j][0],
-            uw.stiffness_ci95[j][0],
-            whole.stiffness[j]
-        ));
-    }
+    assert_close(&blocks, &whole);
     // The noise is the tracker's: the fit is near the truth (a sanity check, not rounding).
     let k = setup.nominal_stiffness();
     assert!((blocks.stiffness - k).component_div(k).amax() < 0.05);
