@@ -2,7 +2,11 @@
 
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::{PyErr, Python};
+use std::fs::File;
+use std::io::Read;
 use std::path::Path;
+use stiffid::formats;
+use stiffid::limits::MAX_INPUT_BYTES;
 use stiffid::Error;
 
 /// `RuntimeError` for a computation that found no answer (no feasible group, a pose out of
@@ -50,19 +54,23 @@ pub fn value(message: impl Into<String>) -> PyErr {
 }
 
 /// The text of a file, the path in the error (`FileNotFoundError` or `OSError`; `ValueError` for
-/// a file that is not UTF-8 text).
+/// a directory, a file larger than the input limit or not UTF-8 text: [`stiffid::formats::text`],
+/// the command's checks).
 pub fn read(path: &Path) -> Result<String, PyErr> {
     let name = path.display();
-    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+    let os_error = |e: std::io::Error| match e.kind() {
         std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(format!("{name}: no such file"))
         }
         _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
-    })?;
-    String::from_utf8(bytes).map_err(|e| {
-        value(format!(
-            "{name}: not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        ))
-    })
+    };
+    let file = File::open(path).map_err(os_error)?;
+    if file.metadata().map_err(os_error)?.is_dir() {
+        return Err(value(format!("{name}: is a directory, expected a file")));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(os_error)?;
+    formats::text(&name.to_string(), bytes).map_err(raise)
 }

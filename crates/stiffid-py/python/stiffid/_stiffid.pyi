@@ -16,6 +16,7 @@ _CriterionName = Literal[
 ]
 _PathLike = Union[str, "os.PathLike[str]"]
 _Array = NDArray[np.float64]
+_Ints = NDArray[np.int64]
 
 @final
 class Robot:
@@ -240,8 +241,8 @@ def compensate(
     free_tool_axis: bool = False,
     max_step_deg: float = 2.0,
     tool_axis_range_deg: float = 90.0,
-) -> dict[str, _Array]:
-    """line, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad (n, 3), residual_um, residual_urad, iterations, tool_rotation_deg (n,); deflection_std_mm with a covariance."""
+) -> dict[str, Union[_Array, _Ints]]:
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance."""
 
 def deflection(
     setup: Setup,
