@@ -11,8 +11,7 @@ use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
 use stiffid::formats::{self, postures, reference};
-use stiffid::limits::{self, short, Range, MAX_INPUT_BYTES};
-use stiffid::setup::Bounds;
+use stiffid::limits::{self, short, JointBox, Range, MAX_INPUT_BYTES};
 use stiffid::{Robot, Setup};
 
 /// Every file read so far (resolved path, device and inode), so no output is written over one.
@@ -86,16 +85,8 @@ pub fn input_at(target: &Path) -> Option<PathBuf> {
 pub fn posture(text: &str, robot: &Robot) -> Result<(Vector6<f64>, Vector6<f64>)> {
     let q_deg = vector::<6>(text, "--q-deg", &limits::ANGLE_DEG)?;
     let q = q_deg.map(f64::to_radians);
-    if let Some(i) = robot.first_out_of_limits(&q) {
-        bail!(
-            "--q-deg: axis {} = {} deg is outside the joint limits [{:.2}, {:.2}] deg of {}",
-            i + 1,
-            limits::number(q_deg[i]),
-            robot.lower[i].to_degrees(),
-            robot.upper[i].to_degrees(),
-            short(&robot.name)
-        );
-    }
+    let field = |a: usize| format!("--q-deg[{}]", a + 1);
+    robot.limits.check(&q, "the robot's limits", field)?;
     Ok((q_deg, q))
 }
 
@@ -140,7 +131,11 @@ pub fn stiffness(path: &Path) -> Result<StiffnessFile> {
 /// A postures file (`stiffid::formats::postures`), every posture within the robot's joint limits
 /// and, if given, the `bounds` (a setup's); angles in rad. Errors start with the file name, then
 /// the line and column.
-pub fn postures(path: &Path, robot: &Robot, bounds: Option<&Bounds>) -> Result<Vec<Vector6<f64>>> {
+pub fn postures(
+    path: &Path,
+    robot: &Robot,
+    bounds: Option<&JointBox>,
+) -> Result<Vec<Vector6<f64>>> {
     let text = read(path)?;
     postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())
 }

@@ -418,7 +418,7 @@ fn bad_stiffness_files_and_arguments_are_errors() {
                 "--wrench",
                 "0,0,-500",
             ],
-            "axis 1 = 400 deg is outside",
+            "--q-deg[1] = 400.00 deg: expected within the robot's limits [-185.00, 185.00] deg",
         ),
     ];
     for (args, expected) in cases {

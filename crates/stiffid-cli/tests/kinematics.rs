@@ -225,7 +225,7 @@ fn posture_outside_the_joint_limits() {
     // COMAU axis 3 (absolute forearm angle) runs from -256 to -10 deg.
     assert_usage_error(
         &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,0,0,0,0"]),
-        &["--q-deg", "axis 3 = 0 deg", "[-256.00, -10.00] deg"],
+        &["--q-deg[3] = 0.00 deg: expected within the robot's limits [-256.00, -10.00] deg"],
     );
 }
 

@@ -6,7 +6,7 @@ use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayLikeDyn};
 use pyo3::prelude::*;
-use stiffid::limits::{self, short};
+use stiffid::limits::{self, number, short, JointBox};
 
 /// Rows of `N` numbers from an array-like of shape `(N,)` (one row, `single`) or `(n, N)`.
 pub struct Rows<const N: usize> {
@@ -66,12 +66,12 @@ pub fn vector<const N: usize>(
     Ok(r.rows[0])
 }
 
-/// Postures in degrees (rows of six axis angles) as radians, each axis within `[lower, upper]`
-/// (rad; `within` names them, e.g. "the setup's bounds"), at most `max` postures.
+/// Postures in degrees (rows of six axis angles) as radians, each within the box `limits`
+/// (`within` names it, e.g. "the setup's bounds"), at most `max` postures.
 pub fn postures(
     obj: &Bound<'_, PyAny>,
     what: &str,
-    (lower, upper, within): (&Vector6<f64>, &Vector6<f64>, &str),
+    (limits, within): (&JointBox, &str),
     max: usize,
 ) -> PyResult<(Vec<Vector6<f64>>, bool)> {
     let r = rows::<6>(obj, what)?;
@@ -84,13 +84,13 @@ pub fn postures(
     let mut out = Vec::with_capacity(r.rows.len());
     for (i, row) in r.rows.iter().enumerate() {
         let q = Vector6::from_iterator(row.iter().map(|d| d.to_radians()));
-        if let Some(a) = (0..6).find(|&a| !(q[a] >= lower[a] && q[a] <= upper[a])) {
+        if let Some(v) = limits.first_violation(&q) {
             return Err(value(format!(
                 "{what}: posture {i}, q{}_deg = {} is outside {within} [{:.1}, {:.1}]",
-                a + 1,
-                limits::number(row[a]),
-                lower[a].to_degrees(),
-                upper[a].to_degrees()
+                v.axis + 1,
+                number(row[v.axis]),
+                v.lower.to_degrees(),
+                v.upper.to_degrees()
             )));
         }
         out.push(q);

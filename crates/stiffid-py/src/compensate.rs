@@ -59,7 +59,7 @@ pub fn compensate<'py>(
     let mut options = Options::for_setup(s);
     if let Some(q) = q0_deg {
         let r = s.robot();
-        let within = (&r.lower, &r.upper, "the joint limits");
+        let within = (&r.limits, "the joint limits");
         options.q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
     }
     if free_tool_axis {

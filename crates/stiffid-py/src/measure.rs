@@ -74,12 +74,7 @@ fn from_arrays(
     d: &Bound<'_, PyAny>,
 ) -> PyResult<Data> {
     let r = &setup.robot();
-    let (q, _) = arrays::postures(
-        q,
-        "q_deg",
-        (&r.lower, &r.upper, "the joint limits"),
-        usize::MAX,
-    )?;
+    let (q, _) = arrays::postures(q, "q_deg", (&r.limits, "the joint limits"), usize::MAX)?;
     let n = q.len();
     let wrench = wrenches(w, n)?;
     let d = rows::<3>(d, "displacement_mm")?.rows;

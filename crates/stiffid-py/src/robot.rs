@@ -69,13 +69,13 @@ impl Robot {
     /// Lower joint limits, axis coordinates, deg, shape ``(6,)``.
     #[getter]
     fn lower_limit_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.lower.iter().map(|v| v.to_degrees()))
+        arrays::vec1(py, self.inner.limits.lower.iter().map(|v| v.to_degrees()))
     }
 
     /// Upper joint limits, axis coordinates, deg, shape ``(6,)``.
     #[getter]
     fn upper_limit_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.upper.iter().map(|v| v.to_degrees()))
+        arrays::vec1(py, self.inner.limits.upper.iter().map(|v| v.to_degrees()))
     }
 
     /// The flange pose in the base frame as a homogeneous transform, translation in mm:
@@ -168,7 +168,7 @@ impl Robot {
 impl Robot {
     /// Postures within the joint limits, and whether one posture of shape (6,) was given.
     fn postures(&self, q_deg: &Bound<'_, PyAny>) -> PyResult<(Vec<nalgebra::Vector6<f64>>, bool)> {
-        let limits = (&self.inner.lower, &self.inner.upper, "the joint limits");
+        let limits = (&self.inner.limits, "the joint limits");
         arrays::postures(q_deg, "q_deg", limits, MAX_POSTURES)
     }
 

@@ -266,8 +266,7 @@ impl Setup {
         obj: &Bound<'_, PyAny>,
         what: &str,
     ) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
-        let b = &self.inner.bounds();
-        let within = (&b.lower, &b.upper, "the setup's bounds");
+        let within = (self.inner.bounds(), "the setup's bounds");
         Ok(postures(obj, what, within, stiffid::limits::MAX_GROUP_POSTURES)?.0)
     }
 
@@ -275,7 +274,7 @@ impl Setup {
     /// which are usable).
     fn pool(&self, obj: &Bound<'_, PyAny>) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
         let r = &self.inner.robot();
-        let within = (&r.lower, &r.upper, "the joint limits");
+        let within = (&r.limits, "the joint limits");
         Ok(postures(obj, "pool", within, stiffid::design::pool::MAX_POOL)?.0)
     }
 }

@@ -423,16 +423,16 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
 
 fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
     let robot = &setup.robot();
-    if let Some(i) = robot.first_out_of_limits(qc) {
+    if let Some(v) = robot.limits.first_violation(qc) {
         return Err(uncompensated(
             line,
             "q_compensated",
             format!(
                 "cannot be compensated within the joint limits: axis {} would need {:.4} deg, limits [{:.2}, {:.2}] deg",
-                i + 1,
-                qc[i].to_degrees(),
-                robot.lower[i].to_degrees(),
-                robot.upper[i].to_degrees()
+                v.axis + 1,
+                v.value.to_degrees(),
+                v.lower.to_degrees(),
+                v.upper.to_degrees()
             ),
         ));
     }
@@ -463,20 +463,13 @@ fn nominal_postures(
     for p in points {
         let q = match &p.target {
             Target::Posture(q) => {
-                if let Some(i) = robot.first_out_of_limits(q) {
-                    let name = format!("q{}_deg", i + 1);
-                    let outside = ColumnProblem::Outside {
-                        name: name.clone(),
-                        value: q[i].to_degrees(),
-                        within: "the joint limits",
-                        lower: robot.lower[i].to_degrees(),
-                        upper: robot.upper[i].to_degrees(),
-                    };
+                if let Some(v) = robot.limits.first_violation(q) {
+                    let name = format!("q{}_deg", v.axis + 1);
                     return Err(Error::Column {
                         line: p.line,
                         column: None,
+                        problem: v.outside(name.clone(), "the joint limits"),
                         name,
-                        problem: outside,
                     });
                 }
                 *q

@@ -125,6 +125,24 @@ pub enum Error {
         /// The remaining rotation of the tool frame, deg.
         rotation_error_deg: f64,
     },
+    /// An axis angle outside a box of axis angles ([`crate::limits::JointBox::check`]): the
+    /// robot's joint limits or the setup's bounds.
+    #[error(
+        "{field} = {} deg: expected within {within} [{lower_deg:.2}, {upper_deg:.2}] deg",
+        crate::limits::joint_box::distinct(*value_deg, *lower_deg, *upper_deg)
+    )]
+    OutsideBox {
+        /// The angle as the user gave it, e.g. `bounds.upper_deg[3]` or `--q-deg[2]`.
+        field: String,
+        /// The value given, deg.
+        value_deg: f64,
+        /// The box, e.g. "the robot's limits" or "the setup's bounds".
+        within: &'static str,
+        /// The lower end of the axis' range, deg.
+        lower_deg: f64,
+        /// The upper end of the axis' range, deg.
+        upper_deg: f64,
+    },
     /// A number was NaN or infinite where a finite number is needed.
     #[error("{what} is not finite")]
     NotFinite {

@@ -89,8 +89,8 @@ pub fn characteristic_length(
 pub fn reach(robot: &Robot, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let (lower, upper) = (
-        robot.lower.map(|l| l.max(-PI)),
-        robot.upper.map(|u| u.min(PI)),
+        robot.limits.lower.map(|l| l.max(-PI)),
+        robot.limits.upper.map(|u| u.min(PI)),
     );
     (0..LENGTH_SAMPLES)
         .map(|_| {

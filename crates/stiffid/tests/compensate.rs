@@ -11,7 +11,6 @@ use stiffid::deflection::{base_wrench, Frame, Points};
 use stiffid::ik::{self, pose_error, tool_pose};
 use stiffid::kinematics::Coordinates;
 use stiffid::robot::presets;
-use stiffid::setup::Bounds;
 use stiffid::{cartesian, setup, stiffness, Error, Setup};
 
 /// The TCP pose of the robot at axis angles `q` whose springs deflect by `dq` (springs'
@@ -168,19 +167,22 @@ fn inverse_kinematics_round_trips_for_every_preset() {
         let mut iterations = 0;
         for _ in 0..40 {
             let q = Vector6::from_fn(|i, _| {
-                let (lo, hi) = (robot.lower[i].max(-3.0), robot.upper[i].min(3.0));
+                let (lo, hi) = (
+                    robot.limits.lower[i].max(-3.0),
+                    robot.limits.upper[i].min(3.0),
+                );
                 lo + (hi - lo) * rng.random::<f64>()
             });
             let target = tool_pose(&robot.frames(&q), &tcp);
-            let start = Vector6::from_fn(|i, _| {
-                (q[i] + rng.random_range(-0.3..0.3)).clamp(robot.lower[i], robot.upper[i])
-            });
+            let start = robot
+                .limits
+                .clamp(&q.map(|v| v + rng.random_range(-0.3..0.3)));
             let sol = ik::solve(&robot, &tcp, &target, &start, &ik::Options::default())
                 .unwrap_or_else(|e| panic!("{name}, q = {q:?}: {e}"));
             let reached = pose_error(&target, &tool_pose(&robot.frames(&sol.q), &tcp));
             assert!(reached.fixed_rows::<3>(0).norm() < 1e-9, "{name}");
             assert!(reached.fixed_rows::<3>(3).norm() < 1e-9, "{name}");
-            assert!(robot.within_limits(&sol.q), "{name}");
+            assert!(robot.limits.contains(&sol.q), "{name}");
             iterations += sol.iterations;
         }
         assert!(
@@ -278,7 +280,7 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     for (i, (p, c)) in path.iter().zip(&out).enumerate() {
         let d0 = norm(c.deflection_before.as_ref().unwrap());
         assert!(norm(&c.deflection) <= d0 * (1.0 + 1e-12), "point {i}");
-        assert!(s.robot().within_limits(&c.q), "point {i}");
+        assert!(s.robot().limits.contains(&c.q), "point {i}");
         assert!(c.tool_rotation.abs() <= free.range + 1e-12);
         if i > 0 {
             let step = (c.tool_rotation - out[i - 1].tool_rotation).abs();
@@ -336,16 +338,12 @@ fn every_point_that_cannot_be_compensated_is_named() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let q = s.test_postures()[0];
     let mut robot = s.robot().clone();
-    robot.upper[1] = q[1] + 1e-12;
-    robot.lower[1] = q[1] - 1e-12;
-    let bounds = Bounds {
-        lower: robot.lower,
-        upper: robot.upper,
-    };
+    robot.limits.upper[1] = q[1] + 1e-12;
+    robot.limits.lower[1] = q[1] - 1e-12;
     let s = s
         .to_builder()
+        .with_bounds(robot.limits)
         .with_robot(robot)
-        .with_bounds(bounds)
         .with_test_postures(vec![q])
         .build()
         .unwrap();

@@ -2,8 +2,9 @@
 
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use stiffid::design::{self, criteria, Criterion, Evaluator};
+use stiffid::limits::JointBox;
 use stiffid::observation::{posture_block, rope_observation_matrix};
-use stiffid::setup::{self, Bounds, Noise, RopeLoad, Setup};
+use stiffid::setup::{self, Noise, RopeLoad, Setup};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -104,13 +105,13 @@ fn hand_case_predicted_deviation_rate() {
 fn in_other_joint_units(setup: &Setup, d: &Vector6<f64>) -> Setup {
     let mut robot = setup.robot().clone();
     robot.axis_map.matrix = setup.robot().axis_map.matrix * Matrix6::from_diagonal(d);
-    robot.lower = robot.lower.component_div(d);
-    robot.upper = robot.upper.component_div(d);
+    robot.limits.lower = robot.limits.lower.component_div(d);
+    robot.limits.upper = robot.limits.upper.component_div(d);
     let b = setup.bounds();
     setup
         .to_builder()
         .with_robot(robot)
-        .with_bounds(Bounds {
+        .with_bounds(JointBox {
             lower: b.lower.component_div(d),
             upper: b.upper.component_div(d),
         })

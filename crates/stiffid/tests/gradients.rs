@@ -37,7 +37,9 @@ fn setups() -> Vec<Setup> {
 /// A posture drawn uniformly within the joint limits (at most +-180 deg per axis).
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     let limit = std::f64::consts::PI;
-    Vector6::from_fn(|i, _| rng.random_range(robot.lower[i].max(-limit)..robot.upper[i].min(limit)))
+    Vector6::from_fn(|i, _| {
+        rng.random_range(robot.limits.lower[i].max(-limit)..robot.limits.upper[i].min(limit))
+    })
 }
 
 /// Fourth-order central differences of `f` at `q`, one axis at a time:

@@ -19,7 +19,7 @@ use stiffid::{setup, Setup};
 /// setup), seeded.
 fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lo, hi) = (setup.robot().lower, setup.robot().upper);
+    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
     let postures: Vec<Vector6<f64>> = (0..n)
         .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
         .collect();

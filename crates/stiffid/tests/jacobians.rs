@@ -16,7 +16,9 @@ const POINTS: [[f64; 3]; 3] = [[0.0, 0.0, 0.0], [0.15, 0.0, 0.2], [-0.08, 0.08, 
 /// A posture drawn uniformly within the joint limits (at most +-360 deg per axis).
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     let limit = 2.0 * std::f64::consts::PI;
-    Vector6::from_fn(|i, _| rng.random_range(robot.lower[i].max(-limit)..robot.upper[i].min(limit)))
+    Vector6::from_fn(|i, _| {
+        rng.random_range(robot.limits.lower[i].max(-limit)..robot.limits.upper[i].min(limit))
+    })
 }
 
 /// The same chain with the identity axis map: its axis angles are the kinematic angles.

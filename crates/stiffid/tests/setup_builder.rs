@@ -2,8 +2,9 @@
 //! never a panic later, and the builder and the TOML path give the same setup.
 
 use nalgebra::{Vector3, Vector6};
+use stiffid::limits::JointBox;
 use stiffid::robot::presets;
-use stiffid::setup::{self, Bounds, Noise, RopeLoad, Setup, SetupBuilder, Tracker};
+use stiffid::setup::{self, Noise, RopeLoad, Setup, SetupBuilder, Tracker};
 use stiffid::Error;
 
 fn mm(x: f64, y: f64, z: f64) -> Vector3<f64> {
@@ -42,7 +43,7 @@ fn paper_in_code() -> SetupBuilder {
             variance: 9.23e-5 * 1e-6,
             levels: vec![0.5, 1.0, 1.5, 2.0, 2.5, 3.0],
         })
-        .with_bounds(Bounds {
+        .with_bounds(JointBox {
             lower: deg([-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]),
             upper: deg([90.0, 40.0, -40.0, 180.0, 90.0, 180.0]),
         })
@@ -67,6 +68,7 @@ fn field_of(result: Result<Setup, Error>) -> String {
             assert!(!message.is_empty());
             field
         }
+        Err(Error::OutsideBox { field, .. }) => field,
         other => panic!("expected a field error, got {other:?}"),
     }
 }
@@ -110,14 +112,14 @@ fn bad_values_in_code_name_the_field() {
             "noise.variance_mm2",
         ),
         (
-            paper_in_code().with_bounds(Bounds {
+            paper_in_code().with_bounds(JointBox {
                 lower: Vector6::repeat(-10.0),
                 upper: Vector6::repeat(10.0),
             }),
-            "bounds, axis 1",
+            "bounds.lower_deg[1]",
         ),
         (
-            paper_in_code().with_bounds(Bounds {
+            paper_in_code().with_bounds(JointBox {
                 lower: Vector6::repeat(0.1),
                 upper: Vector6::repeat(0.0),
             }),
@@ -125,7 +127,7 @@ fn bad_values_in_code_name_the_field() {
         ),
         (
             paper_in_code().with_test_postures(vec![Vector6::repeat(100.0)]),
-            "test.postures_deg[1]",
+            "test.postures_deg[1][1]",
         ),
         (
             paper_in_code().with_tracker(Tracker {
@@ -164,5 +166,46 @@ fn the_file_names_itself_before_the_field() {
     assert_eq!(
         e.to_string(),
         "cell.toml: tool.measuring_points_mm[2]: NaN is outside [-100000, 100000] mm"
+    );
+}
+
+#[test]
+fn box_errors_show_the_value_beside_the_range() {
+    let mut upper = deg([90.0, 40.0, -40.0, 180.0, 90.0, 180.0]);
+    upper[1] = 100f64.to_radians();
+    let lower = deg([-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]);
+    let e = paper_in_code()
+        .with_bounds(JointBox::new(lower, upper))
+        .build()
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "bounds.upper_deg[2] = 100.00 deg: expected within the robot's limits [-75.00, 95.00] deg"
+    );
+    let mut q = deg([12.81, 33.07, -126.36, 72.81, -67.88, 24.27]);
+    q[2] = (-5f64).to_radians();
+    let e = paper_in_code()
+        .with_test_postures(vec![q])
+        .build()
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "test.postures_deg[1][3] = -5.00 deg: expected within the robot's limits [-256.00, -10.00] deg"
+    );
+    let e = paper_in_code()
+        .with_bounds(JointBox::new(upper, lower))
+        .build()
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "bounds.lower_deg[1]: 90.00 deg is not below bounds.upper_deg[1] = -90.00 deg"
+    );
+    let text = setup::builtin_text("zhang2021-comau-nj165")
+        .unwrap()
+        .replace("upper_deg = [90.0, 40.0,", "upper_deg = [90.0, 95.001,");
+    let e = setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "cell.toml: bounds.upper_deg[2] = 95.001 deg: expected within the robot's limits [-75.00, 95.00] deg"
     );
 }

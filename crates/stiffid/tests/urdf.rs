@@ -14,7 +14,9 @@ fn data(name: &str) -> String {
 
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     let limit = 2.0 * std::f64::consts::PI;
-    Vector6::from_fn(|i, _| rng.random_range(robot.lower[i].max(-limit)..robot.upper[i].min(limit)))
+    Vector6::from_fn(|i, _| {
+        rng.random_range(robot.limits.lower[i].max(-limit)..robot.limits.upper[i].min(limit))
+    })
 }
 
 fn assert_close(a: &[f64], b: &[f64], tolerance: f64, what: &str) {
@@ -93,14 +95,14 @@ fn kuka_preset_matches_its_source_urdf() {
     let from_urdf = urdf::parse(&data("kuka-kr210-robond.urdf"), "kr210", None).unwrap();
     let preset = presets::get("kuka-kr210-robond").unwrap();
     assert_close(
-        preset.lower.as_slice(),
-        from_urdf.lower.as_slice(),
+        preset.limits.lower.as_slice(),
+        from_urdf.limits.lower.as_slice(),
         1e-12,
         "lower limits",
     );
     assert_close(
-        preset.upper.as_slice(),
-        from_urdf.upper.as_slice(),
+        preset.limits.upper.as_slice(),
+        from_urdf.limits.upper.as_slice(),
         1e-12,
         "upper limits",
     );
@@ -192,10 +194,12 @@ fn revolute_joint_without_limit_is_unlimited_and_the_others_keep_theirs() {
         1,
     );
     let robot = urdf::parse(&text, "no-limit.urdf", None).unwrap();
-    assert_eq!(robot.lower[0], f64::NEG_INFINITY);
-    assert_eq!(robot.upper[0], f64::INFINITY);
-    assert_eq!((robot.lower[1], robot.upper[1]), (-3.2, 3.2));
-    assert!(robot.within_limits(&Vector6::new(10.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
+    assert_eq!(robot.limits.lower[0], f64::NEG_INFINITY);
+    assert_eq!(robot.limits.upper[0], f64::INFINITY);
+    assert_eq!((robot.limits.lower[1], robot.limits.upper[1]), (-3.2, 3.2));
+    assert!(robot
+        .limits
+        .contains(&Vector6::new(10.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
 }
 
 /// The two-leaves test URDF with a third leaf `sensor` fixed to link_6 (so two leaves end the chain

@@ -111,20 +111,22 @@ fn check_loads(text: &str, source_name: &str, args: &NewArgs) -> Result<()> {
 /// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], within +-180 deg, degrees.
 fn bounds_deg(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
     let lower = robot
+        .limits
         .lower
         .map(|l| (l.to_degrees() + LIMIT_MARGIN_DEG).max(-180.0));
     let upper = robot
+        .limits
         .upper
         .map(|u| (u.to_degrees() - LIMIT_MARGIN_DEG).min(180.0));
     // A joint narrower than twice the margin keeps its full range.
     let narrow = |a: usize| lower[a] > upper[a];
     (
         Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.lower[a].to_degrees().max(-180.0),
+            true => robot.limits.lower[a].to_degrees().max(-180.0),
             false => lower[a],
         }),
         Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.upper[a].to_degrees().min(180.0),
+            true => robot.limits.upper[a].to_degrees().min(180.0),
             false => upper[a],
         }),
     )

@@ -214,8 +214,8 @@ impl<'a> SetupJson<'a> {
                         offset_deg: j.offset.to_degrees(),
                     })
                     .collect(),
-                lower_limit_deg: deg(&r.lower),
-                upper_limit_deg: deg(&r.upper),
+                lower_limit_deg: deg(&r.limits.lower),
+                upper_limit_deg: deg(&r.limits.upper),
                 base: FrameJson::from(&r.base),
                 flange: FrameJson::from(&r.flange),
             },

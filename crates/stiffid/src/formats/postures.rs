@@ -4,8 +4,7 @@
 //! from 1. [`to_csv`] writes them.
 
 use crate::error::ColumnProblem;
-use crate::limits::{short, MAX_GROUP_POSTURES};
-use crate::setup::Bounds;
+use crate::limits::{short, JointBox, MAX_GROUP_POSTURES};
 use crate::{Error, Result, Robot};
 use nalgebra::Vector6;
 
@@ -32,7 +31,7 @@ pub const HEADER: [&str; 7] = [
 /// assert!((group[0][2] - (-90f64).to_radians()).abs() < 1e-12);
 /// assert!(postures::to_csv(&group).starts_with(&postures::HEADER.join(",")));
 /// ```
-pub fn parse(text: &str, robot: &Robot, bounds: Option<&Bounds>) -> Result<Vec<Vector6<f64>>> {
+pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec<Vector6<f64>>> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -71,7 +70,7 @@ fn row(
     record: &csv::StringRecord,
     line: u64,
     robot: &Robot,
-    bounds: Option<&Bounds>,
+    bounds: Option<&JointBox>,
 ) -> Result<Vector6<f64>> {
     if record.len() != HEADER.len() {
         let count = ColumnProblem::FieldCount {
@@ -92,21 +91,15 @@ fn row(
             })?;
         q[i] = deg.to_radians();
     }
-    let (lower, upper, within) = match bounds {
-        Some(b) => (&b.lower, &b.upper, "the setup's bounds"),
-        None => (&robot.lower, &robot.upper, "the robot's limits"),
+    let (limits, within) = match bounds {
+        Some(b) => (b, "the setup's bounds"),
+        None => (&robot.limits, "the robot's limits"),
     };
-    match (0..6).find(|&i| !(q[i] >= lower[i] && q[i] <= upper[i])) {
+    match limits.first_violation(&q) {
         None => Ok(q),
-        Some(i) => {
-            let outside = ColumnProblem::Outside {
-                name: HEADER[i + 1].into(),
-                value: q[i].to_degrees(),
-                within,
-                lower: lower[i].to_degrees(),
-                upper: upper[i].to_degrees(),
-            };
-            Err(problem(line, Some(i + 1), outside))
+        Some(v) => {
+            let outside = v.outside(HEADER[v.axis + 1].into(), within);
+            Err(problem(line, Some(v.axis + 1), outside))
         }
     }
 }

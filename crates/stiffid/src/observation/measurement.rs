@@ -148,17 +148,17 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
         ));
     }
     let robot = &setup.robot();
-    if let Some(axis) = robot.first_out_of_limits(&meas.q) {
-        let message = match meas.q[axis].is_finite() {
+    if let Some(v) = robot.limits.first_violation(&meas.q) {
+        let message = match v.value.is_finite() {
             false => "the axis angle is not finite".to_string(),
             true => format!(
                 "{:.3} deg is outside the robot's limits [{:.2}, {:.2}] deg",
-                meas.q[axis].to_degrees(),
-                robot.lower[axis].to_degrees(),
-                robot.upper[axis].to_degrees()
+                v.value.to_degrees(),
+                v.lower.to_degrees(),
+                v.upper.to_degrees()
             ),
         };
-        return Err(error(MeasurementField::Axis(axis), message));
+        return Err(error(MeasurementField::Axis(v.axis), message));
     }
     let force: Vector3<f64> = meas.wrench.fixed_rows::<3>(0).into();
     let moment: Vector3<f64> = meas.wrench.fixed_rows::<3>(3).into();

@@ -26,7 +26,7 @@
 
 use super::dh::{self, Convention, Row};
 use super::{AxisMap, Robot};
-use crate::limits::{self, check_in};
+use crate::limits::{self, check_in, JointBox};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
 use serde::Deserialize;
@@ -162,8 +162,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         source: file.source,
         joints: rows.try_into().expect("six joints checked above"),
         axis_map,
-        lower,
-        upper,
+        limits: JointBox::new(lower, upper),
         base: transform(file.base, "base", source_name)?,
         flange: transform(file.flange, "flange", source_name)?,
     })

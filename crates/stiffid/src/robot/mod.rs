@@ -11,7 +11,9 @@ pub mod urdf;
 mod axis_map;
 pub use axis_map::AxisMap;
 
-use nalgebra::{Isometry3, Unit, Vector3, Vector6};
+use nalgebra::{Isometry3, Unit, Vector3};
+
+use crate::limits::JointBox;
 
 /// One revolute joint of the chain, in the frame of the previous joint's child link.
 ///
@@ -46,24 +48,10 @@ pub struct Robot {
     pub joints: [Joint; 6],
     /// Controller axis angles to kinematic angles.
     pub axis_map: AxisMap,
-    /// Lower joint limits, axis coordinates, rad.
-    pub lower: Vector6<f64>,
-    /// Upper joint limits, axis coordinates, rad.
-    pub upper: Vector6<f64>,
+    /// Joint limits, axis coordinates, rad.
+    pub limits: JointBox,
     /// Base transform: world (robot base frame of all results) to the chain's first frame.
     pub base: Isometry3<f64>,
     /// Flange transform: last joint frame to the flange frame.
     pub flange: Isometry3<f64>,
-}
-
-impl Robot {
-    /// Whether every axis angle of `q` (rad) lies within the joint limits (inclusive).
-    pub fn within_limits(&self, q: &Vector6<f64>) -> bool {
-        (0..6).all(|i| q[i] >= self.lower[i] && q[i] <= self.upper[i])
-    }
-
-    /// The first axis (0-based) of `q` outside the joint limits, if any.
-    pub fn first_out_of_limits(&self, q: &Vector6<f64>) -> Option<usize> {
-        (0..6).find(|&i| !(q[i] >= self.lower[i] && q[i] <= self.upper[i]))
-    }
 }

@@ -17,7 +17,8 @@
 //! ([`crate::limits::LENGTH_M`], [`crate::limits::ANGLE_RAD`]).
 
 use super::{AxisMap, Joint, Robot};
-use crate::{limits, Error, Result};
+use crate::limits::{self, JointBox};
+use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
 use std::collections::{HashMap, HashSet};
 use urdf_rs::JointType;
@@ -302,8 +303,10 @@ fn fold(
         source: source_name.to_string(),
         joints,
         axis_map: AxisMap::default(),
-        lower: Vector6::from_column_slice(&lower),
-        upper: Vector6::from_column_slice(&upper),
+        limits: JointBox::new(
+            Vector6::from_column_slice(&lower),
+            Vector6::from_column_slice(&upper),
+        ),
         base: Isometry3::identity(),
         flange: acc,
     })

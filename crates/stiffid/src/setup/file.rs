@@ -1,10 +1,11 @@
 //! The setup TOML file (format in [`super`]): read, converted to SI and built through
 //! [`SetupBuilder`], which checks every field.
 
-use super::{cell, Bounds, CellConstraints, Noise, RopeLoad, Setup, SetupBuilder};
+use super::{cell, CellConstraints, Noise, RopeLoad, Setup, SetupBuilder};
 use crate::kinematics::Coordinates;
+use crate::limits::{self, JointBox};
 use crate::robot::file::{transform, TransformFile};
-use crate::{limits, Error, Result, Robot};
+use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
 
@@ -119,8 +120,10 @@ pub fn builtin(name: &str) -> Result<Setup> {
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
 /// [`Error::InvalidField`] naming the file, the field and the value for everything
 /// [`SetupBuilder::build`] checks (for example a stiffness outside
-/// [`limits::STIFFNESS_NM_PER_RAD`], bounds outside the robot's limits) and for bad
-/// `[robot_base]`/`[robot_flange]` offsets; whatever `resolve_robot` returns.
+/// [`limits::STIFFNESS_NM_PER_RAD`]) and for bad
+/// `[robot_base]`/`[robot_flange]` offsets; [`Error::OutsideBox`] naming the file, the field and
+/// the value for bounds or test postures outside the robot's limits; whatever `resolve_robot`
+/// returns.
 pub fn parse<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
 where
     F: FnOnce(&str, Option<&str>) -> Result<Robot>,
@@ -142,6 +145,19 @@ fn in_file(e: Error, source_name: &str) -> Error {
         Error::InvalidField { field, message } => Error::InvalidField {
             field: format!("{source_name}: {field}"),
             message,
+        },
+        Error::OutsideBox {
+            field,
+            value_deg,
+            within,
+            lower_deg,
+            upper_deg,
+        } => Error::OutsideBox {
+            field: format!("{source_name}: {field}"),
+            value_deg,
+            within,
+            lower_deg,
+            upper_deg,
         },
         other => other,
     }
@@ -188,10 +204,10 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
             variance: f.noise.variance_mm2 * 1e-6,
             levels: f.noise.level_multiples,
         })
-        .with_bounds(Bounds {
-            lower: deg6(&f.bounds.lower_deg),
-            upper: deg6(&f.bounds.upper_deg),
-        });
+        .with_bounds(JointBox::new(
+            deg6(&f.bounds.lower_deg),
+            deg6(&f.bounds.upper_deg),
+        ));
     if let Some(tcp) = &f.tool.tcp_mm {
         b = b.with_tcp(mm(tcp));
     }

@@ -45,7 +45,8 @@ pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTAC
 pub use file::{builtin, builtin_names, builtin_text, parse};
 
 use crate::kinematics::{Coordinates, Frames};
-use crate::limits;
+use crate::limits::joint_box::distinct;
+use crate::limits::{self, JointBox};
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 
@@ -115,22 +116,6 @@ impl Noise {
     }
 }
 
-/// Box bounds on the axis angles of the experiment postures, rad (Table 1).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Bounds {
-    /// Lower bounds, rad.
-    pub lower: Vector6<f64>,
-    /// Upper bounds, rad.
-    pub upper: Vector6<f64>,
-}
-
-impl Bounds {
-    /// Whether every angle of `q` (rad) lies within the bounds (inclusive).
-    pub fn contains(&self, q: &Vector6<f64>) -> bool {
-        (0..6).all(|i| q[i] >= self.lower[i] && q[i] <= self.upper[i])
-    }
-}
-
 /// Constraints of a real cell on the postures a search may choose.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CellConstraints {
@@ -151,7 +136,7 @@ pub struct Setup {
     springs: Coordinates,
     load: RopeLoad,
     noise: Noise,
-    bounds: Bounds,
+    bounds: JointBox,
     nominal_stiffness: Vector6<f64>,
     characteristic_length: f64,
     test_postures: Vec<Vector6<f64>>,
@@ -200,7 +185,7 @@ impl Setup {
             tcp: Some(self.tool.tcp),
             load: Some(self.load.clone()),
             noise: Some(self.noise.clone()),
-            bounds: Some(self.bounds.clone()),
+            bounds: Some(self.bounds),
             nominal_stiffness: Some(self.nominal_stiffness),
             characteristic_length: Some(self.characteristic_length),
             test_postures: self.test_postures.clone(),
@@ -253,7 +238,7 @@ impl Setup {
     }
 
     /// Experiment bounds, axis coordinates.
-    pub fn bounds(&self) -> &Bounds {
+    pub fn bounds(&self) -> &JointBox {
         &self.bounds
     }
 
@@ -345,7 +330,7 @@ pub struct SetupBuilder {
     tcp: Option<Vector3<f64>>,
     load: Option<RopeLoad>,
     noise: Option<Noise>,
-    bounds: Option<Bounds>,
+    bounds: Option<JointBox>,
     nominal_stiffness: Option<Vector6<f64>>,
     characteristic_length: Option<f64>,
     test_postures: Vec<Vector6<f64>>,
@@ -412,7 +397,7 @@ impl SetupBuilder {
     }
 
     /// The experiment bounds, rad (default the robot's joint limits).
-    pub fn with_bounds(mut self, bounds: Bounds) -> Self {
+    pub fn with_bounds(mut self, bounds: JointBox) -> Self {
         self.bounds = Some(bounds);
         self
     }
@@ -477,8 +462,9 @@ impl SetupBuilder {
     /// [`Error::InvalidField`] naming the field as a setup file names it (unit in the name, the
     /// value given in that unit) for a missing required field, an empty name, a number that is not
     /// finite or outside its documented range, no measuring point or no noise level (or more than
-    /// their limits), bounds not below each other or outside the robot's limits, test postures
-    /// outside the robot's limits, and an inconsistent cell or tracker ([`Cell`], [`Tracker`]).
+    /// their limits), bounds not below each other, and an inconsistent cell or tracker ([`Cell`],
+    /// [`Tracker`]); [`Error::OutsideBox`] with the field, the value and the range for bounds or
+    /// test postures outside the robot's limits.
     pub fn build(self) -> Result<Setup> {
         if self.name.trim().is_empty() {
             return Err(invalid("name", "expected a non-empty name"));
@@ -504,10 +490,7 @@ impl SetupBuilder {
         check_tool(&loading_point, &self.measuring_points, tcp)?;
         check_load(&load)?;
         check_noise(&noise)?;
-        let bounds = self.bounds.unwrap_or(Bounds {
-            lower: self.robot.lower,
-            upper: self.robot.upper,
-        });
+        let bounds = self.bounds.unwrap_or(self.robot.limits);
         check_bounds(&bounds, &self.robot)?;
         check_test_postures(&self.test_postures, &self.robot)?;
         if let Some(z) = self.constraints.loading_point_min_z {
@@ -618,34 +601,30 @@ fn degrees(q: &Vector6<f64>) -> Vec<f64> {
     q.iter().map(|v| v.to_degrees()).collect()
 }
 
-fn check_bounds(bounds: &Bounds, robot: &Robot) -> Result<()> {
-    limits::check(
-        "bounds.lower_deg",
-        &degrees(&bounds.lower),
-        &limits::ANGLE_DEG,
-    )?;
-    limits::check(
-        "bounds.upper_deg",
-        &degrees(&bounds.upper),
-        &limits::ANGLE_DEG,
-    )?;
-    for i in 0..6 {
-        if bounds.lower[i] >= bounds.upper[i] {
-            return Err(invalid(
-                &format!("bounds.lower_deg[{}]", i + 1),
-                "expected lower_deg < upper_deg",
-            ));
-        }
-        if bounds.lower[i] < robot.lower[i] - 1e-12 || bounds.upper[i] > robot.upper[i] + 1e-12 {
-            return Err(invalid(
-                &format!("bounds, axis {}", i + 1),
-                format!(
-                    "expected within the robot's limits [{:.2}, {:.2}] deg",
-                    robot.lower[i].to_degrees(),
-                    robot.upper[i].to_degrees()
-                ),
-            ));
-        }
+/// Bounds may leave the robot's limits by this, rad: the rounding of degrees to radians.
+const BOUNDS_TOLERANCE: f64 = 1e-12;
+
+fn check_bounds(bounds: &JointBox, robot: &Robot) -> Result<()> {
+    let sides = [("lower_deg", &bounds.lower), ("upper_deg", &bounds.upper)];
+    for (side, q) in sides {
+        limits::check(&format!("bounds.{side}"), &degrees(q), &limits::ANGLE_DEG)?;
+    }
+    if let Some(i) = (0..6).find(|&i| bounds.lower[i] >= bounds.upper[i]) {
+        let (l, u) = (bounds.lower[i].to_degrees(), bounds.upper[i].to_degrees());
+        return Err(invalid(
+            &format!("bounds.lower_deg[{}]", i + 1),
+            format!(
+                "{} deg is not below bounds.upper_deg[{}] = {u:.2} deg",
+                distinct(l, u, u),
+                i + 1
+            ),
+        ));
+    }
+    let within = robot.limits.widened(BOUNDS_TOLERANCE);
+    for (side, q) in sides {
+        within.check(q, "the robot's limits", |a| {
+            format!("bounds.{side}[{}]", a + 1)
+        })?;
     }
     Ok(())
 }
@@ -656,12 +635,8 @@ fn check_test_postures(postures: &[Vector6<f64>], robot: &Robot) -> Result<()> {
     for (i, q) in postures.iter().enumerate() {
         let field = format!("test.postures_deg[{}]", i + 1);
         limits::check(&field, &degrees(q), &limits::ANGLE_DEG)?;
-        if let Some(axis) = robot.first_out_of_limits(q) {
-            return Err(invalid(
-                &field,
-                format!("axis {} is outside the robot's limits", axis + 1),
-            ));
-        }
+        let axis = |a: usize| format!("{field}[{}]", a + 1);
+        robot.limits.check(q, "the robot's limits", axis)?;
     }
     Ok(())
 }

@@ -85,10 +85,7 @@ pub fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec
 
 /// `setup` on another robot with springs at `springs`, its bounds the robot's joint limits.
 pub fn on_robot(setup: &Setup, robot: stiffid::Robot, springs: stiffid::Coordinates) -> Setup {
-    let bounds = stiffid::setup::Bounds {
-        lower: robot.lower,
-        upper: robot.upper,
-    };
+    let bounds = robot.limits;
     setup
         .to_builder()
         .with_robot(robot)

@@ -100,20 +100,8 @@ pub(super) fn check_start(
 ) -> Result<()> {
     check_count(setup, criterion, start.len())?;
     for (i, q) in start.iter().enumerate() {
-        for a in 0..6 {
-            let (l, u) = (setup.bounds().lower[a], setup.bounds().upper[a]);
-            if !(q[a].is_finite() && q[a] >= l && q[a] <= u) {
-                return Err(Error::InvalidField {
-                    field: format!("start posture {}, axis {}", i + 1, a + 1),
-                    message: format!(
-                        "{:.3} deg: expected within the bounds [{:.2}, {:.2}] deg",
-                        q[a].to_degrees(),
-                        l.to_degrees(),
-                        u.to_degrees()
-                    ),
-                });
-            }
-        }
+        let field = |a: usize| format!("start posture {}, q{}_deg", i + 1, a + 1);
+        setup.bounds().check(q, "the setup's bounds", field)?;
     }
     Ok(())
 }

@@ -1,11 +1,15 @@
 //! The documented limits of every input (counts and physically meaningful ranges, in the units of
-//! the files), the checks that apply them, and the short forms of values in error messages.
+//! the files), the checks that apply them, the one box of axis angles ([`JointBox`]: joint limits
+//! and posture bounds), and the short forms of values in error messages.
 //!
 //! Every number read from a robot, URDF or setup file is checked against one of these ranges when
 //! the file is parsed, so an accepted file gives finite results: a stiffness of `1e-320` Nm/rad or
 //! a link of `1e308` mm is an error naming the field and the value, not a NaN later on.
 
 use crate::{Error, Result};
+
+pub(crate) mod joint_box;
+pub use joint_box::{JointBox, Violation};
 
 /// A closed interval `[min, max]` of accepted values, in the unit named by `unit`.
 #[derive(Debug, Clone, Copy, PartialEq)]
