@@ -50,7 +50,9 @@ pub fn deflection<'py>(
     let loaded = point(loaded_mm, s.tool().loading_point, "loaded_mm")?;
     let observed = point(observed_mm, loaded, "observed_mm")?;
     let k = match stiffness_nm_per_rad {
-        None => *s.nominal_stiffness(),
+        None => *s
+            .try_nominal_stiffness("deflection without stiffness_nm_per_rad")
+            .map_err(raise)?,
         Some(k) => {
             let range = &limits::STIFFNESS_NM_PER_RAD;
             Vector6::from(arrays::vector::<6>(k, "stiffness_nm_per_rad", range)?)

@@ -155,7 +155,8 @@ impl<'a> Pool<'a> {
     /// # Errors
     /// [`Error::InvalidField`]: `n` below 2, above [`MAX_GROUP`] or above the usable postures;
     /// the `test-pose` criterion without test postures; no restart with exchange; no group of `n`
-    /// usable postures that identifies all six compliances (field `pool`).
+    /// usable postures that identifies all six compliances (field `pool`). [`Error::MissingField`]
+    /// for a criterion the setup lacks a field for ([`Criterion::check`]).
     pub fn best(
         &self,
         criterion: Criterion,

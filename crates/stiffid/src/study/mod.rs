@@ -159,7 +159,8 @@ pub struct Study {
 /// group), the Monte Carlo identification.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `runs` or `starts` 0; the errors of the searches and of
+/// [`Error::InvalidField`] for `runs` or `starts` 0; [`Error::MissingField`] for a setup without
+/// a nominal stiffness or a characteristic length; the errors of the searches and of
 /// [`crate::simulate::monte_carlo`] (for example [`Error::Unidentifiable`] for a group that cannot
 /// identify every joint).
 ///
@@ -178,6 +179,8 @@ pub struct Study {
 /// ```
 pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<Study> {
     let started = std::time::Instant::now();
+    let k_true = setup.try_nominal_stiffness("the study (the true stiffness it simulates)")?;
+    setup.try_characteristic_length("the study (criteria classical and zhang2021)")?;
     for (field, value) in [("runs", options.runs), ("starts", options.starts)] {
         if value == 0 {
             return Err(Error::InvalidField {
@@ -219,7 +222,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     let test_deflection: Vec<Vec<Vector3<f64>>> = setup
         .test_postures()
         .iter()
-        .map(|q| rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness()))
+        .map(|q| rope_displacements(setup, &setup.robot().frames(q), k_true))
         .collect();
     let groups = found
         .into_iter()

@@ -38,6 +38,7 @@ const PENALTY: f64 = 1e3;
 /// # Errors
 /// [`Error::InvalidField`] for fewer than 2 postures, a non-finite angle or one outside the bounds
 /// (naming the posture and axis), or the `test-pose` criterion on a setup without test postures;
+/// [`Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
 /// [`Error::Infeasible`] naming the check failed by the most postures when no point seen passes
 /// every check.
 pub fn local(
@@ -106,8 +107,9 @@ pub(super) fn check_start(
     Ok(())
 }
 
-/// Checks a group size and that the setup can evaluate the criterion.
+/// Checks a group size and that the setup can evaluate the criterion ([`Criterion::check`]).
 pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usize) -> Result<()> {
+    criterion.check(setup)?;
     if n < 2 {
         return Err(Error::InvalidField {
             field: "postures".into(),
