@@ -20,14 +20,24 @@ fn paper_without(dir: &Path, field: &str) -> String {
     path.to_str().unwrap().to_string()
 }
 
-/// Asserts that `doc` is valid under the shipped `stiffid evaluate --json` schema.
-fn valid_evaluate_json(doc: &serde_json::Value) {
+/// `stiffid evaluate --json` of `postures` on `setup`, checked against its shipped schema.
+fn evaluated(setup: &str, postures: &str) -> serde_json::Value {
+    let args = [
+        "evaluate",
+        "--setup",
+        setup,
+        "--postures",
+        postures,
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
     let path =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/schemas/evaluate.schema.json");
     let schema = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let validator = jsonschema::validator_for(&schema).unwrap();
-    let errors: Vec<String> = validator.iter_errors(doc).map(|e| e.to_string()).collect();
+    let errors: Vec<String> = validator.iter_errors(&doc).map(|e| e.to_string()).collect();
     assert!(errors.is_empty(), "{errors:#?}");
+    doc
 }
 
 /// A group of six postures selected on `setup` by `criterion`, written to `dir`.
@@ -51,16 +61,8 @@ fn without_a_characteristic_length_classical_and_zhang2021_are_not_computed() {
     let setup = paper_without(&dir, "characteristic_length_mm");
     // The default criterion (relative-a) needs no characteristic length.
     let postures = selected(&dir, &setup, "relative-a");
-    let e = json(&stiffid(&[
-        "evaluate",
-        "--setup",
-        &setup,
-        "--postures",
-        &postures,
-        "--json",
-    ]));
+    let e = evaluated(&setup, &postures);
     assert!(e["classical"].is_null() && e["zhang2021"].is_null(), "{e}");
-    valid_evaluate_json(&e);
     for key in ["relative_a", "d_optimal", "scaled_cond", "cond_psi"] {
         assert!(e[key].as_f64().is_some_and(|v| v > 0.0), "{key}");
     }
@@ -106,14 +108,7 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_simulations_say_so() {
     let dir = temp_dir("no-stiffness");
     let setup = paper_without(&dir, "nominal_stiffness_nm_per_rad");
     let postures = selected(&dir, &setup, "zhang2021");
-    let e = json(&stiffid(&[
-        "evaluate",
-        "--setup",
-        &setup,
-        "--postures",
-        &postures,
-        "--json",
-    ]));
+    let e = evaluated(&setup, &postures);
     for key in [
         "relative_a",
         "d_optimal",
@@ -122,7 +117,6 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_simulations_say_so() {
     ] {
         assert!(e[key].is_null(), "{key}: {e}");
     }
-    valid_evaluate_json(&e);
     for key in ["classical", "zhang2021", "cond_psi"] {
         assert!(e[key].as_f64().is_some_and(|v| v > 0.0), "{key}");
     }
