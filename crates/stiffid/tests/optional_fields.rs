@@ -130,7 +130,7 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_the_simulation_are_missin
     assert_eq!(without.postures, with.postures);
     let options = simulate::Options { runs: 5, seed: 1 };
     let (field, by) =
-        missing(simulate::monte_carlo(&setup, &[group.clone()], &options).unwrap_err());
+        missing(simulate::monte_carlo(&setup, std::slice::from_ref(&group), &options).unwrap_err());
     assert_eq!(
         (field, by.as_str()),
         (
