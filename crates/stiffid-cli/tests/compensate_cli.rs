@@ -3,7 +3,10 @@
 
 mod common;
 
-use common::{assert_success, assert_usage_error, json, numbers, stiffid, temp_dir, write_file};
+use common::{
+    assert_success, assert_usage_error, identify_fanuc, json, numbers, stiffid, temp_dir,
+    write_file,
+};
 use std::path::Path;
 
 const FANUC_Q: &str = "--q-deg=-59.991,-16.693,-28.93,3.788,-62.93,144.919";
@@ -81,17 +84,7 @@ fn a_tool_frame_wrench_predicts_what_the_rotated_base_wrench_does() {
 fn identified_covariance_gives_standard_deviations() {
     let dir = temp_dir("covariance");
     let out = dir.join("k.json");
-    let data = example("data/fanuc-r2000ic-165f/measurements.csv");
-    let id = json(&stiffid(&[
-        "identify",
-        "--setup",
-        "fanuc-r2000ic-165f",
-        "--data",
-        &data,
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]));
+    let id = json(&identify_fanuc(&["--out", out.to_str().unwrap()]));
     let cov = &id["compliance_covariance_rad2_per_nm2"];
     let se = numbers(&id["compliance_std_error_rad_per_nm"]);
     for j in 0..6 {

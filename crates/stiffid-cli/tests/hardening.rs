@@ -240,132 +240,38 @@ fn an_unwritable_report_directory_is_refused_before_computing() {
 #[test]
 fn every_count_has_a_limit_named_in_the_message() {
     let dir = scratch("counts");
-    for (args, option, value) in [
+    let simulate = ["simulate", "--setup", SETUP, "--postures", "{dir}/g.csv"];
+    let reproduce = ["reproduce", "--out", "{dir}/r"];
+    let select = ["select", "--setup", SETUP, "--criterion", "classical"];
+    let global = [&select[..], &["--global", "--out", "{dir}/x.csv"]].concat();
+    let random = [&select[..], &["--start-random", "--out", "{dir}/x.csv"]].concat();
+    // (command, option, value given, what the message must show)
+    let cases: [(&[&str], &str, &str, &str); 10] = [
         (
-            vec![
-                "simulate",
-                "--setup",
-                SETUP,
-                "--postures",
-                "{dir}/g.csv",
-                "--runs",
-                "3074457345618258603",
-            ],
+            &simulate,
             "--runs",
+            "3074457345618258603",
             "3074457345618258603",
         ),
         (
-            vec![
-                "simulate",
-                "--setup",
-                SETUP,
-                "--postures",
-                "{dir}/g.csv",
-                "--runs",
-                "9223372036854775808",
-            ],
+            &simulate,
             "--runs",
             "9223372036854775808",
+            "9223372036854775808",
         ),
-        (
-            vec![
-                "simulate",
-                "--setup",
-                SETUP,
-                "--postures",
-                "{dir}/g.csv",
-                "--runs",
-                "1000000000",
-            ],
-            "--runs",
-            "1000000000",
-        ),
-        (
-            vec![
-                "reproduce",
-                "--out",
-                "{dir}/r",
-                "--runs",
-                "4611686018427387904",
-            ],
-            "--runs",
-            "1..=100000",
-        ),
-        (
-            vec!["reproduce", "--out", "{dir}/r", "--trials", "1000000000"],
-            "--trials",
-            "0..=10000",
-        ),
-        (
-            vec!["reproduce", "--out", "{dir}/r", "--starts", "1000000000"],
-            "--starts",
-            "1..=10000",
-        ),
-        (
-            vec![
-                "select",
-                "--setup",
-                SETUP,
-                "--criterion",
-                "classical",
-                "--global",
-                "--starts",
-                "1000000000",
-                "--out",
-                "{dir}/x.csv",
-            ],
-            "--starts",
-            "1000000000",
-        ),
-        (
-            vec![
-                "select",
-                "--setup",
-                SETUP,
-                "--criterion",
-                "classical",
-                "--start-random",
-                "--postures",
-                "1000000000",
-                "--out",
-                "{dir}/x.csv",
-            ],
-            "--postures",
-            "2..=100",
-        ),
-        (
-            vec![
-                "select",
-                "--setup",
-                SETUP,
-                "--criterion",
-                "classical",
-                "--start-random",
-                "--max-evals",
-                "99999999999",
-                "--out",
-                "{dir}/x.csv",
-            ],
-            "--max-evals",
-            "99999999999",
-        ),
-        (
-            vec![
-                "select",
-                "--setup",
-                SETUP,
-                "--criterion",
-                "classical",
-                "--start-random",
-                "--seed=-1",
-                "--out",
-                "{dir}/x.csv",
-            ],
-            "--seed",
-            "-1",
-        ),
-    ] {
-        refused(&dir, &args, &[option, value]);
+        (&simulate, "--runs", "1000000000", "1000000000"),
+        (&reproduce, "--runs", "4611686018427387904", "1..=100000"),
+        (&reproduce, "--trials", "1000000000", "0..=10000"),
+        (&reproduce, "--starts", "1000000000", "1..=10000"),
+        (&global, "--starts", "1000000000", "1000000000"),
+        (&random, "--postures", "1000000000", "2..=100"),
+        (&random, "--max-evals", "99999999999", "99999999999"),
+        (&random, "--seed", "-1", "-1"),
+    ];
+    for (command, option, value, shown) in cases {
+        let given = format!("{option}={value}");
+        let args = [command, &[given.as_str()]].concat();
+        refused(&dir, &args, &[option, shown]);
     }
 }
 
@@ -416,19 +322,7 @@ fn every_setup_field_is_checked_at_load_time() {
             &["evaluate", "--setup", p, "--postures", "{dir}/g.csv"],
             &["bad.toml", mention],
         );
-        refused(
-            &dir,
-            &[
-                "simulate",
-                "--setup",
-                p,
-                "--postures",
-                "{dir}/g.csv",
-                "--runs",
-                "2",
-            ],
-            &[mention],
-        );
+        simulate_refused(&dir, p, &[mention]);
     }
 }
 
@@ -441,15 +335,10 @@ fn a_deeply_nested_urdf_is_refused_before_parsing() {
         "</a>".repeat(20_000)
     );
     write_file(&dir, "deep.urdf", &deep);
-    refused(
+    kinematics_refused(
         &dir,
-        &[
-            "kinematics",
-            "--robot",
-            "{dir}/deep.urdf",
-            "--q-deg",
-            "0,0,0,0,0,0",
-        ],
+        "{dir}/deep.urdf",
+        "0,0,0,0,0,0",
         &["deep.urdf", "nest deeper than 64"],
     );
     // Quoted '>' and '/>' do not hide elements.
@@ -458,17 +347,7 @@ fn a_deeply_nested_urdf_is_refused_before_parsing() {
         "<a x=\"/>\">".repeat(20_000)
     );
     write_file(&dir, "hidden.urdf", &hidden);
-    refused(
-        &dir,
-        &[
-            "kinematics",
-            "--robot",
-            "{dir}/hidden.urdf",
-            "--q-deg",
-            "0,0,0,0,0,0",
-        ],
-        &["nest deeper"],
-    );
+    kinematics_refused(&dir, "{dir}/hidden.urdf", "0,0,0,0,0,0", &["nest deeper"]);
 }
 
 #[test]
@@ -536,17 +415,7 @@ fn non_finite_or_absurd_robot_geometry_is_refused() {
     ] {
         assert!(urdf.contains(from), "{from}");
         write_file(&dir, "r.urdf", &urdf.replacen(from, to, 1));
-        refused(
-            &dir,
-            &[
-                "kinematics",
-                "--robot",
-                "{dir}/r.urdf",
-                "--q-deg",
-                "0,0,0,0,0,0",
-            ],
-            &["r.urdf", mention],
-        );
+        kinematics_refused(&dir, "{dir}/r.urdf", "0,0,0,0,0,0", &["r.urdf", mention]);
     }
     let preset = stiffid::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
     for (extra, mention) in [
@@ -557,32 +426,17 @@ fn non_finite_or_absurd_robot_geometry_is_refused() {
         ),
     ] {
         write_file(&dir, "r.toml", &format!("{preset}{extra}"));
-        refused(
-            &dir,
-            &[
-                "kinematics",
-                "--robot",
-                "{dir}/r.toml",
-                "--q-deg",
-                "0,0,-90,0,0,0",
-            ],
-            &["r.toml", mention],
-        );
+        kinematics_refused(&dir, "{dir}/r.toml", "0,0,-90,0,0,0", &["r.toml", mention]);
     }
     write_file(
         &dir,
         "r.toml",
         &preset.replacen("d_mm = 830.0", "d_mm = 1e308", 1),
     );
-    refused(
+    kinematics_refused(
         &dir,
-        &[
-            "kinematics",
-            "--robot",
-            "{dir}/r.toml",
-            "--q-deg",
-            "0,0,-90,0,0,0",
-        ],
+        "{dir}/r.toml",
+        "0,0,-90,0,0,0",
         &["joint[1].d_mm: 1e308 is outside [-100000, 100000] mm"],
     );
 }
@@ -590,6 +444,14 @@ fn non_finite_or_absurd_robot_geometry_is_refused() {
 #[test]
 fn a_stiffness_outside_the_physical_range_is_refused() {
     let dir = scratch("stiffness");
+    let predict = [
+        "predict",
+        "--setup",
+        SETUP,
+        "--q-deg",
+        "0,0,-90,0,0,0",
+        "--wrench",
+    ];
     for (k, mention) in [
         ("1e-320", "[1]: 1e-320 is outside [1, 1e10] Nm/rad"),
         ("1e300", "[1]: 1e300 is outside"),
@@ -599,33 +461,12 @@ fn a_stiffness_outside_the_physical_range_is_refused() {
             "k.json",
             &format!("{{\"stiffness_nm_per_rad\": [{k}, 1e6, 1e6, 1e6, 1e6, 1e6]}}"),
         );
-        refused(
-            &dir,
-            &[
-                "predict",
-                "--setup",
-                SETUP,
-                "--q-deg",
-                "0,0,-90,0,0,0",
-                "--wrench",
-                "0,0,100",
-                "--stiffness",
-                "{dir}/k.json",
-            ],
-            &["k.json", mention],
-        );
+        let args = [&predict[..], &["0,0,100", "--stiffness", "{dir}/k.json"]].concat();
+        refused(&dir, &args, &["k.json", mention]);
     }
     refused(
         &dir,
-        &[
-            "predict",
-            "--setup",
-            SETUP,
-            "--q-deg",
-            "0,0,-90,0,0,0",
-            "--wrench",
-            "0,0,1e300",
-        ],
+        &[&predict[..], &["0,0,1e300"]].concat(),
         &["--wrench[3]: 1e300 is outside"],
     );
 }
@@ -636,13 +477,17 @@ fn infinite_values_say_why() {
     // A full-rank group with one wrist-singular posture (q5 = 0).
     let wrist = GROUP.replacen("1,10,-20,-100,30,40,-60", "1,10,-20,-100,30,0,-60", 1);
     let path = write_file(&dir, "wrist.csv", &wrist);
-    let out = stiffid(&[
-        "evaluate",
-        "--setup",
-        SETUP,
-        "--postures",
-        path.to_str().unwrap(),
-    ]);
+    let evaluate = |extra: &[&str]| {
+        let args = [
+            "evaluate",
+            "--setup",
+            SETUP,
+            "--postures",
+            path.to_str().unwrap(),
+        ];
+        stiffid(&[&args[..], extra].concat())
+    };
+    let out = evaluate(&[]);
     assert_success(&out);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(
@@ -650,27 +495,12 @@ fn infinite_values_say_why() {
         "{text}"
     );
     assert!(!text.contains("rank deficient"), "{text}");
-    let doc = json(&stiffid(&[
-        "evaluate",
-        "--setup",
-        SETUP,
-        "--postures",
-        path.to_str().unwrap(),
-        "--json",
-    ]));
+    let doc = json(&evaluate(&["--json"]));
     assert!(doc["classical"].is_null() && doc["zhang2021"].is_null());
     assert!(doc["relative_a"]
         .as_f64()
         .is_some_and(|v| v.is_finite() && v > 0.0));
-    let k = json(&stiffid(&[
-        "kinematics",
-        "--robot",
-        "comau-smart5-nj165-3.0",
-        "--q-deg",
-        "0,0,-90,0,0,0",
-        "--json",
-    ]));
-    assert!(k["dexterity"].is_null(), "{}", k["dexterity"]);
+    // A wrist-singular posture in `kinematics`: tests/schemas.rs (dexterity null).
 }
 
 #[test]
@@ -705,19 +535,7 @@ fn select_and_evaluate_name_the_joint_that_cannot_be_identified() {
         ],
         &["joint 6 cannot be identified"],
     );
-    refused(
-        &dir,
-        &[
-            "simulate",
-            "--setup",
-            p,
-            "--postures",
-            "{dir}/g.csv",
-            "--runs",
-            "2",
-        ],
-        &["joint 6 cannot be identified"],
-    );
+    simulate_refused(&dir, p, &["joint 6 cannot be identified"]);
 }
 
 #[test]
@@ -816,17 +634,7 @@ fn urdf_diagnostics_name_the_problem() {
     for (from, to, mention) in cases {
         assert!(urdf.contains(from), "{from}");
         write_file(&dir, "r.urdf", &urdf.replacen(from, to, 1));
-        refused(
-            &dir,
-            &[
-                "kinematics",
-                "--robot",
-                "{dir}/r.urdf",
-                "--q-deg",
-                "0,0,0,0,0,0",
-            ],
-            &["r.urdf", mention],
-        );
+        kinematics_refused(&dir, "{dir}/r.urdf", "0,0,0,0,0,0", &["r.urdf", mention]);
     }
     // A well-conditioned axis map of determinant 1e-18 is accepted; a singular one is not.
     let preset = stiffid::robot::presets::text("kuka-kr210-robond").unwrap();
@@ -846,15 +654,10 @@ fn urdf_diagnostics_name_the_problem() {
         "r.toml",
         &format!("{preset}{}", scaled.replace("0.001]]", "0]]")),
     );
-    refused(
+    kinematics_refused(
         &dir,
-        &[
-            "kinematics",
-            "--robot",
-            "{dir}/r.toml",
-            "--q-deg",
-            "0,0,0,0,0,0",
-        ],
+        "{dir}/r.toml",
+        "0,0,0,0,0,0",
         &["axis_map.matrix", "condition number is inf"],
     );
 }
@@ -868,15 +671,10 @@ fn long_values_are_cut_and_numbers_are_short() {
         "long.toml",
         &format!("name = \"r\"\nconvention = \"{field}\"\n"),
     );
-    let line = refused(
+    let line = kinematics_refused(
         &dir,
-        &[
-            "kinematics",
-            "--robot",
-            "{dir}/long.toml",
-            "--q-deg",
-            "0,0,0,0,0,0",
-        ],
+        "{dir}/long.toml",
+        "0,0,0,0,0,0",
         &["long.toml", "..."],
     );
     assert!(line.len() < 1000, "{} bytes", line.len());
@@ -900,15 +698,10 @@ fn long_values_are_cut_and_numbers_are_short() {
         &["--q-deg", "value 3"],
     );
     assert!(line.len() < 300, "{} bytes", line.len());
-    refused(
+    kinematics_refused(
         &dir,
-        &[
-            "kinematics",
-            "--robot",
-            "comau-smart5-nj165-3.0",
-            "--q-deg",
-            "0,0,1e308,0,0,0",
-        ],
+        "comau-smart5-nj165-3.0",
+        "0,0,1e308,0,0,0",
         &["--q-deg[3]: 1e308 is outside"],
     );
 }
@@ -1012,4 +805,28 @@ fn a_measurement_row_labelled_with_a_hash_is_not_dropped_as_a_comment() {
         ],
         &["hash.csv", "line 4", "may not start with '#'"],
     );
+}
+
+/// `stiffid kinematics --robot ROBOT --q-deg Q` refused in `dir`, the message mentioning `mention`.
+fn kinematics_refused(dir: &Path, robot: &str, q: &str, mention: &[&str]) -> String {
+    refused(
+        dir,
+        &["kinematics", "--robot", robot, "--q-deg", q],
+        mention,
+    )
+}
+
+/// `stiffid simulate --setup SETUP --postures {dir}/g.csv --runs 2` refused in `dir`, the message
+/// mentioning `mention`.
+fn simulate_refused(dir: &Path, setup: &str, mention: &[&str]) {
+    let args = [
+        "simulate",
+        "--setup",
+        setup,
+        "--postures",
+        "{dir}/g.csv",
+        "--runs",
+        "2",
+    ];
+    refused(dir, &args, mention);
 }

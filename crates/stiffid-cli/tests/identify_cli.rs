@@ -3,20 +3,15 @@
 
 mod common;
 
-use common::{assert_usage_error, fanuc_csv, json, numbers, stiffid, temp_dir, write_file};
+use common::{
+    assert_usage_error, fanuc_csv, identify_fanuc, json, numbers, stiffid, temp_dir,
+    validate_fanuc, write_file,
+};
 use serde_json::Value;
 
 #[test]
 fn fanuc_data_agree_with_the_numpy_least_squares_fit() {
-    let out = stiffid(&[
-        "identify",
-        "--setup",
-        "fanuc-r2000ic-165f",
-        "--data",
-        fanuc_csv().to_str().unwrap(),
-        "--json",
-    ]);
-    let r = json(&out);
+    let r = json(&identify_fanuc(&[]));
     // Printed by examples/data/fanuc-r2000ic-165f/numpy_reference.py (numpy.linalg.lstsq on the
     // original rad/N/m files, its own kinematics from the data's README).
     let numpy = [
@@ -61,29 +56,11 @@ fn out_file_feeds_validate_and_predict() {
     let dir = temp_dir("identify-out");
     let result = dir.join("result.json");
     let data = fanuc_csv();
-    let id = json(&stiffid(&[
-        "identify",
-        "--setup",
-        "fanuc-r2000ic-165f",
-        "--data",
-        data.to_str().unwrap(),
-        "--json",
-        "--out",
-        result.to_str().unwrap(),
-    ]));
+    let id = json(&identify_fanuc(&["--out", result.to_str().unwrap()]));
     let written: Value = serde_json::from_slice(&std::fs::read(&result).unwrap()).unwrap();
     assert_eq!(written, id);
     // Validating on the fitted data: delta_b of each measurement is the norm of its residual.
-    let v = json(&stiffid(&[
-        "validate",
-        "--setup",
-        "fanuc-r2000ic-165f",
-        "--stiffness",
-        result.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-        "--json",
-    ]));
+    let v = json(&validate_fanuc(&result, &["--json"]));
     let checks = v["checks"].as_array().unwrap();
     for (c, res) in checks.iter().zip(id["residuals"].as_array().unwrap()) {
         let norm = numbers(&res["residual_mm"])
@@ -429,19 +406,9 @@ fn bad_stiffness_files_and_arguments_are_errors() {
 
 #[test]
 fn robust_flag_alone_is_the_huber_fit_and_lists_down_weighted_rows() {
-    let data = fanuc_csv();
-    let data = data.to_str().unwrap();
-    let base = [
-        "identify",
-        "--setup",
-        "fanuc-r2000ic-165f",
-        "--data",
-        data,
-        "--json",
-    ];
-    let alone = json(&stiffid(&[&base[..], &["--robust"]].concat()));
-    let huber = json(&stiffid(&[&base[..], &["--robust", "huber"]].concat()));
-    let plain = json(&stiffid(&base));
+    let alone = json(&identify_fanuc(&["--robust"]));
+    let huber = json(&identify_fanuc(&["--robust", "huber"]));
+    let plain = json(&identify_fanuc(&[]));
     assert_eq!(alone, huber);
     assert_ne!(
         numbers(&alone["stiffness_nm_per_rad"]),

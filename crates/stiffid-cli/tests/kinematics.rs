@@ -201,32 +201,22 @@ fn urdf_with_a_prismatic_joint() {
 }
 
 #[test]
-fn wrong_number_of_angles() {
-    assert_usage_error(
-        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90"]),
-        &["--q-deg", "expected 6", "got 3"],
-    );
-}
-
-#[test]
-fn nan_or_text_in_the_angles() {
-    assert_usage_error(
-        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,NaN,0,0,0"]),
-        &["--q-deg", "--q-deg[3]: NaN is outside"],
-    );
-    assert_usage_error(
-        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,ten,-90,0,0,0"]),
-        &["--q-deg", "value 2 'ten'", "not a number"],
-    );
-}
-
-#[test]
-fn posture_outside_the_joint_limits() {
+fn bad_angles_are_named_with_the_value() {
     // COMAU axis 3 (absolute forearm angle) runs from -256 to -10 deg.
-    assert_usage_error(
-        &stiffid(&["kinematics", "--robot", COMAU, "--q-deg", "0,0,0,0,0,0"]),
-        &["--q-deg[3] = 0.00 deg: expected within the robot's limits [-256.00, -10.00] deg"],
-    );
+    let limits = "--q-deg[3] = 0.00 deg: expected within the robot's limits [-256.00, -10.00] deg";
+    let cases: [(&str, &[&str]); 4] = [
+        ("0,0,-90", &["--q-deg", "expected 6", "got 3"]),
+        ("0,0,NaN,0,0,0", &["--q-deg[3]: NaN is outside"]),
+        (
+            "0,ten,-90,0,0,0",
+            &["--q-deg", "value 2 'ten'", "not a number"],
+        ),
+        ("0,0,0,0,0,0", &[limits]),
+    ];
+    for (q, expected) in cases {
+        let args = ["kinematics", "--robot", COMAU, "--q-deg", q];
+        assert_usage_error(&stiffid(&args), expected);
+    }
 }
 
 #[test]

@@ -183,18 +183,7 @@ fn identify_validate_and_compensate_outputs_match_their_schemas() {
     let dir = temp_dir("schemas-identify");
     let data = common::fanuc_csv();
     let data = data.to_str().unwrap();
-    let identify = |extra: &[&str]| {
-        let mut args = vec![
-            "identify",
-            "--setup",
-            "fanuc-r2000ic-165f",
-            "--data",
-            data,
-            "--json",
-        ];
-        args.extend_from_slice(extra);
-        json(&stiffid(&args))
-    };
+    let identify = |extra: &[&str]| json(&common::identify_fanuc(extra));
     let stiffness = dir.join("stiffness.json");
     let plain = identify(&["--folds", "4", "--out", stiffness.to_str().unwrap()]);
     assert!(plain["cross_validation"].is_object());

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{assert_usage_error, fanuc_csv, json, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, fanuc_csv, json, stiffid, temp_dir, validate_fanuc, write_file};
 use std::process::Output;
 
 const FANUC: &str = "fanuc-r2000ic-165f";
@@ -294,24 +294,14 @@ fn validate_prints_the_measured_deflection_and_the_share_explained() {
         "k.json",
         r#"{"stiffness_nm_per_rad": [860896, 2719583, 1959760, 270828, 424693, 206020]}"#,
     );
-    let data = fanuc_csv();
-    let args = [
-        "validate",
-        "--setup",
-        FANUC,
-        "--stiffness",
-        k.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-    ];
-    let r = json(&stiffid(&[&args[..], &["--json"]].concat()));
+    let r = json(&validate_fanuc(&k, &["--json"]));
     let (rms, measured) = (
         r["rms_delta_b_mm"].as_f64().unwrap(),
         r["rms_measured_mm"].as_f64().unwrap(),
     );
     assert!((r["explained"].as_f64().unwrap() - (1.0 - rms / measured)).abs() < 1e-12);
     assert!(measured > 1.0 && measured < 3.0, "{measured}");
-    let text = stiffid(&args);
+    let text = validate_fanuc(&k, &[]);
     assert!(String::from_utf8_lossy(&text.stdout)
         .contains("share of the measured deflection the model explains"));
     std::fs::remove_dir_all(&dir).unwrap();

@@ -37,7 +37,7 @@ use crate::error::ColumnProblem;
 use crate::ik::{self, pose_error, tool_pose};
 use crate::kinematics::{Coordinates, Frames};
 use crate::limits::number;
-use crate::{Error, Result, Setup};
+use crate::{limits, Error, Result, Setup};
 use nalgebra::{Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
 
@@ -143,6 +143,40 @@ pub struct Options {
 }
 
 impl Options {
+    /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
+    /// ([`ik::Options::validate`]), and a free tool axis' `max_step` in (0, 90] deg and `range` in
+    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them. [`path`] calls it.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field, the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        limits::check(
+            "compensate::Options.q0",
+            self.q0.as_slice(),
+            &limits::ANGLE_RAD,
+        )?;
+        self.ik.validate()?;
+        let Some(free) = &self.free_tool_axis else {
+            return Ok(());
+        };
+        let fields = [
+            ("max_step", free.max_step, FreeToolAxis::MAX_STEP_DEG),
+            ("range", free.range, FreeToolAxis::MAX_RANGE_DEG),
+        ];
+        for (field, value, most) in fields {
+            if !(value > 0.0 && value <= most.to_radians()) {
+                return Err(Error::InvalidField {
+                    field: format!("FreeToolAxis.{field}"),
+                    message: format!(
+                        "{} rad: expected a number > 0 and <= {most} deg",
+                        number(value)
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
     /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis.
     pub fn for_setup(setup: &Setup) -> Self {
@@ -312,6 +346,7 @@ impl<'a> Model<'a> {
 /// depend on the number of threads.
 ///
 /// # Errors
+/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
 /// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
 /// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
@@ -324,6 +359,7 @@ pub fn path(
     points: &[PathPoint],
     options: &Options,
 ) -> Result<Vec<Compensated>> {
+    options.validate()?;
     let model = Model::new(setup, compliance)?;
     let nominal = nominal_postures(setup, points, options)?;
     let wrenches: Vec<Vector6<f64>> = points

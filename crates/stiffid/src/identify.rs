@@ -92,6 +92,29 @@ impl Identification {
 /// (the same QR, in another order). The other fits ([`Observations::robust`],
 /// [`Observations::nonnegative`]) and cross-validation need the whole [`Observations`].
 ///
+/// # Examples
+/// Measurements simulated without noise on the paper's setup (8 seeded postures, the setup's
+/// nominal stiffness) give that stiffness back.
+/// ```
+/// use stiffid::design::random_group;
+/// use stiffid::observation::Measurement;
+/// use stiffid::stiffness::rope_displacements;
+/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// let k = setup.try_nominal_stiffness("this example")?;
+/// let mut measurements = Vec::new();
+/// for (posture, q) in random_group(&setup, 8, 1).into_iter().enumerate() {
+///     let frames = setup.robot().frames(&q);
+///     let wrench = setup.rope_wrench(&frames);
+///     for (point, d) in rope_displacements(&setup, &frames, k).into_iter().enumerate() {
+///         let displacement = d;
+///         measurements.push(Measurement { posture, point, q, wrench, displacement });
+///     }
+/// }
+/// let id = stiffid::identify::least_squares(&setup, &measurements)?;
+/// assert!((0..6).all(|j| (id.stiffness[j] / k[j] - 1.0).abs() < 1e-9));
+/// # Ok::<(), stiffid::Error>(())
+/// ```
+///
 /// # Errors
 /// Those of [`check`] and [`Observations::least_squares`].
 pub fn least_squares(setup: &Setup, measurements: &[Measurement]) -> Result<Identification> {

@@ -15,7 +15,7 @@
 //! solutions; if that fails, from [`Options::restarts`] seeded random postures within the limits.
 
 use crate::kinematics::{Coordinates, Frames};
-use crate::{Error, Result, Robot};
+use crate::{limits, Error, Result, Robot};
 use nalgebra::{Isometry3, Matrix6, Translation3, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -56,6 +56,32 @@ pub struct Options {
     pub seed: u64,
 }
 
+impl Options {
+    /// Checks every field against its documented limit: both tolerances within
+    /// [`limits::IK_TOLERANCE`], `max_iterations` 1 to [`limits::MAX_IK_ITERATIONS`], `restarts`
+    /// at most [`limits::MAX_IK_RESTARTS`]. [`solve`] calls it.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field (`ik::Options.restarts`), the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        let tolerances = [
+            ("position_tolerance", self.position_tolerance),
+            ("rotation_tolerance", self.rotation_tolerance),
+        ];
+        for (field, value) in tolerances {
+            limits::check(
+                &format!("ik::Options.{field}"),
+                &[value],
+                &limits::IK_TOLERANCE,
+            )?;
+        }
+        let (iterations, restarts) = (self.max_iterations as u64, self.restarts as u64);
+        let most = limits::MAX_IK_ITERATIONS;
+        limits::check_integer("ik::Options.max_iterations", iterations, 1, most)?;
+        limits::check_integer("ik::Options.restarts", restarts, 0, limits::MAX_IK_RESTARTS)
+    }
+}
+
 impl Default for Options {
     /// 1e-10 m and 1e-10 rad, 100 steps, 8 restarts, seed 1.
     fn default() -> Self {
@@ -86,6 +112,7 @@ pub struct Solution {
 /// the pose `target` (base frame, m), starting from `q0` (rad).
 ///
 /// # Errors
+/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]);
 /// [`Error::NotFinite`] for a non-finite target or start; [`Error::Unreachable`] with the smallest
 /// remaining distance and rotation when no start converges (the pose is outside the workspace or
 /// only reachable beyond a joint limit).
@@ -96,6 +123,7 @@ pub fn solve(
     q0: &Vector6<f64>,
     options: &Options,
 ) -> Result<Solution> {
+    options.validate()?;
     let finite = target.translation.vector.iter().all(|v| v.is_finite())
         && target.rotation.coords.iter().all(|v| v.is_finite());
     if !finite || !q0.iter().all(|v| v.is_finite()) {

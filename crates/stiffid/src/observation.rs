@@ -26,15 +26,16 @@ use crate::setup::Setup;
 use crate::stiffness::joint_torques;
 use nalgebra::{DMatrix, Matrix3x6, Matrix6, MatrixXx6, Vector3, Vector6};
 
-/// The three translation rows of one measuring point (index into the setup's measuring points)
-/// under joint torques `tau` (Nm): `J_m[0..3, j] * tau_j`.
+/// The three translation rows of the measuring point `point` (flange frame, m; any point, so no
+/// index can be out of range) under joint torques `tau` (Nm): `J_m[0..3, j] * tau_j`, the
+/// Jacobian in the setup's spring coordinates.
 pub fn point_rows(
     setup: &Setup,
     frames: &Frames,
-    point: usize,
+    point: &Vector3<f64>,
     tau: &Vector6<f64>,
 ) -> Matrix3x6<f64> {
-    let jm = frames.jacobian(&setup.tool().measuring_points[point], setup.springs());
+    let jm = frames.jacobian(point, setup.springs());
     let mut rows = jm.fixed_rows::<3>(0).into_owned();
     for (j, mut col) in rows.column_iter_mut().enumerate() {
         col *= tau[j];
@@ -59,9 +60,9 @@ pub(crate) fn write_posture_block(
     first: usize,
 ) {
     let tau = joint_torques(setup, frames, wrench);
-    for k in 0..setup.tool().measuring_points.len() {
+    for (k, point) in setup.tool().measuring_points.iter().enumerate() {
         psi.fixed_view_mut::<3, 6>(first + 3 * k, 0)
-            .copy_from(&point_rows(setup, frames, k, &tau));
+            .copy_from(&point_rows(setup, frames, point, &tau));
     }
 }
 
@@ -99,6 +100,9 @@ pub(crate) fn rope_observation_matrix_with(
 /// `d<G, B> = sum_m <G_m diag(tau), dJ_m> + c . dtau`, `c_j = sum_m G_m[:, j] . J_m[:, j]`, and
 /// `c . dtau = <W c^T, dJ_f> + (J_f c) . dW`, the last through [`crate::setup::RopeLoad::force_gradient`].
 /// Each term is a [`Frames::jacobian_gradient`].
+///
+/// # Panics
+/// If `weight` has fewer than the block's `3p` rows (`p` measuring points), as nalgebra's views.
 pub fn rope_block_gradient(
     setup: &Setup,
     frames: &Frames,

@@ -17,7 +17,7 @@ use crate::lsq::Factor;
 use crate::observation::rope_observation_matrix;
 use crate::setup::Setup;
 use crate::stiffness::rope_displacements;
-use crate::{Error, Result};
+use crate::{limits, Error, Result};
 use nalgebra::{DVector, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -27,7 +27,7 @@ use rayon::prelude::*;
 /// How many runs, and the seed of the noise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Options {
-    /// Monte Carlo runs per group and noise level (the paper: 200). At least 1.
+    /// Monte Carlo runs per group and noise level (the paper: 200). 1 to [`limits::MAX_RUNS`].
     pub runs: usize,
     /// Seed of the noise; the result depends on nothing else.
     pub seed: u64,
@@ -66,10 +66,10 @@ struct Prepared {
 /// ([`evaluate`]).
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `runs == 0`; [`Error::MissingField`] for a setup without a nominal
-/// stiffness (the true stiffness of the simulation); the errors of [`Factor::try_new`] (for
-/// example [`Error::Unidentifiable`]) for a group whose observation matrix cannot identify every
-/// joint.
+/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`]; [`Error::MissingField`]
+/// for a setup without a nominal stiffness (the true stiffness of the simulation); the errors of
+/// [`Factor::try_new`] (for example [`Error::Unidentifiable`]) for a group whose observation
+/// matrix cannot identify every joint.
 pub fn monte_carlo(
     setup: &Setup,
     groups: &[Vec<Vector6<f64>>],
@@ -140,13 +140,7 @@ fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> V
 }
 
 fn check_runs(options: &Options) -> Result<()> {
-    match options.runs {
-        0 => Err(Error::InvalidField {
-            field: "runs".into(),
-            message: "expected at least one Monte Carlo run".into(),
-        }),
-        _ => Ok(()),
-    }
+    limits::check_integer("runs", options.runs as u64, 1, limits::MAX_RUNS)
 }
 
 fn prepare(setup: &Setup, postures: &[Vector6<f64>], k_true: &Vector6<f64>) -> Result<Prepared> {

@@ -53,7 +53,7 @@ pub struct Args {
     #[arg(long, conflicts_with_all = ["start", "start_random", "global"])]
     pool: Option<PathBuf>,
     /// Exchange runs of a --pool choice, 1 to 1000 [default: 8].
-    #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=1000))]
+    #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
     /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
@@ -284,11 +284,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The accepted `--target-pct`.
-const TARGET_PCT: Range = Range {
-    min: 1e-6,
-    max: 1e4,
-    unit: "%",
-};
+const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 
 /// With cell checks: the group of the same search of `n` postures without them, and its
 /// criteria (evaluated on the setup: the criteria do not depend on the cell).

@@ -135,6 +135,28 @@ pub fn fanuc_csv() -> PathBuf {
         .join("../../examples/data/fanuc-r2000ic-165f/measurements.csv")
 }
 
+/// `stiffid identify --setup fanuc-r2000ic-165f --data <the FANUC file> --json`, then `extra`.
+pub fn identify_fanuc(extra: &[&str]) -> Output {
+    let data = fanuc_csv();
+    let base = ["identify", "--setup", "fanuc-r2000ic-165f", "--data"];
+    stiffid(&[&base[..], &[data.to_str().unwrap(), "--json"], extra].concat())
+}
+
+/// `stiffid validate --setup fanuc-r2000ic-165f --stiffness STIFFNESS --data <the FANUC file>`,
+/// then `extra`.
+pub fn validate_fanuc(stiffness: &Path, extra: &[&str]) -> Output {
+    let (k, data) = (stiffness.to_str().unwrap(), fanuc_csv());
+    let base = [
+        "validate",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--stiffness",
+        k,
+        "--data",
+    ];
+    stiffid(&[&base[..], &[data.to_str().unwrap()], extra].concat())
+}
+
 /// The numbers of a JSON array.
 pub fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()

@@ -23,7 +23,7 @@
 use super::search::check_count;
 use super::{Criterion, Evaluator};
 use crate::setup::Setup;
-use crate::{Error, Result};
+use crate::{limits, Error, Result};
 use nalgebra::{Matrix6, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -50,6 +50,31 @@ pub struct PoolOptions {
     /// Enumerate every group when there are at most this many (default 100 000); 0 always uses
     /// the exchange algorithm.
     pub enumeration_limit: u64,
+}
+
+impl PoolOptions {
+    /// Checks every field against its documented limit: `restarts` 1 to
+    /// [`limits::MAX_POOL_RESTARTS`], `enumeration_limit` at most [`limits::MAX_ENUMERATION`].
+    /// [`Pool::best`] calls it.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field (`PoolOptions.restarts`), the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        let restarts = self.restarts as u64;
+        limits::check_integer(
+            "PoolOptions.restarts",
+            restarts,
+            1,
+            limits::MAX_POOL_RESTARTS,
+        )?;
+        let limit = self.enumeration_limit;
+        limits::check_integer(
+            "PoolOptions.enumeration_limit",
+            limit,
+            0,
+            limits::MAX_ENUMERATION,
+        )
+    }
 }
 
 impl Default for PoolOptions {
@@ -153,16 +178,18 @@ impl<'a> Pool<'a> {
     /// how). The same options give the same group whatever the thread count.
     ///
     /// # Errors
-    /// [`Error::InvalidField`]: `n` below 2, above [`MAX_GROUP`] or above the usable postures;
-    /// the `test-pose` criterion without test postures; no restart with exchange; no group of `n`
-    /// usable postures that identifies all six compliances (field `pool`). [`Error::MissingField`]
-    /// for a criterion the setup lacks a field for ([`Criterion::check`]).
+    /// [`Error::InvalidField`]: `options` outside their limits ([`PoolOptions::validate`]); `n`
+    /// below 2, above [`MAX_GROUP`] or above the usable postures; the `test-pose` criterion
+    /// without test postures; no group of `n` usable postures that identifies all six compliances
+    /// (field `pool`). [`Error::MissingField`] for a criterion the setup lacks a field for
+    /// ([`Criterion::check`]).
     pub fn best(
         &self,
         criterion: Criterion,
         n: usize,
         options: &PoolOptions,
     ) -> Result<PoolChoice> {
+        options.validate()?;
         check_count(self.evaluator.setup(), criterion, n)?;
         if n > MAX_GROUP.min(self.usable.len()) {
             return Err(Error::InvalidField {
@@ -229,12 +256,6 @@ impl<'a> Pool<'a> {
         n: usize,
         options: &PoolOptions,
     ) -> Result<(Vec<usize>, usize)> {
-        if options.restarts == 0 {
-            return Err(Error::InvalidField {
-                field: "restarts".into(),
-                message: "the exchange algorithm needs at least 1 restart".into(),
-            });
-        }
         let runs: Vec<(Vec<usize>, f64, usize)> = (0..options.restarts)
             .into_par_iter()
             .map(|r| {

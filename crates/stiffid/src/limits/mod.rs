@@ -23,6 +23,11 @@ pub struct Range {
 }
 
 impl Range {
+    /// The range `[min, max]` in `unit`.
+    pub const fn new(min: f64, max: f64, unit: &'static str) -> Self {
+        Self { min, max, unit }
+    }
+
     /// Whether `v` is finite and within `[min, max]`.
     pub fn contains(&self, v: f64) -> bool {
         v.is_finite() && v >= self.min && v <= self.max
@@ -41,84 +46,40 @@ impl std::fmt::Display for Range {
 
 /// Any length or position in a robot or setup file (link lengths, offsets, tool points, anchor):
 /// at most 100 m from the origin.
-pub const LENGTH_MM: Range = Range {
-    min: -1e5,
-    max: 1e5,
-    unit: "mm",
-};
+pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");
 
 /// [`LENGTH_MM`] in metres (URDF files).
-pub const LENGTH_M: Range = Range {
-    min: -100.0,
-    max: 100.0,
-    unit: "m",
-};
+pub const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
 
 /// Any angle in a robot or setup file (DH angles, joint limits, bounds, postures, roll-pitch-yaw).
-pub const ANGLE_DEG: Range = Range {
-    min: -1e4,
-    max: 1e4,
-    unit: "deg",
-};
+pub const ANGLE_DEG: Range = Range::new(-1e4, 1e4, "deg");
 
 /// [`ANGLE_DEG`] in radians (URDF files).
-pub const ANGLE_RAD: Range = Range {
-    min: -175.0,
-    max: 175.0,
-    unit: "rad",
-};
+pub const ANGLE_RAD: Range = Range::new(-175.0, 175.0, "rad");
 
 /// Joint stiffness: from a soft hobby arm (1 Nm/rad) to far beyond the stiffest industrial joint
 /// (about 1e7 Nm/rad). Outside it, compliances and deflections leave the range where the
 /// identification's numbers mean anything.
-pub const STIFFNESS_NM_PER_RAD: Range = Range {
-    min: 1.0,
-    max: 1e10,
-    unit: "Nm/rad",
-};
+pub const STIFFNESS_NM_PER_RAD: Range = Range::new(1.0, 1e10, "Nm/rad");
 
 /// The rope load of a setup.
-pub const LOAD_N: Range = Range {
-    min: 1e-3,
-    max: 1e7,
-    unit: "N",
-};
+pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 
 /// Forces and moments on the command line, per component (measurement files: the magnitude
 /// limits of [`crate::observation::MAX_FORCE`] and [`crate::observation::MAX_MOMENT`]).
-pub const WRENCH: Range = Range {
-    min: -1e7,
-    max: 1e7,
-    unit: "N or Nm",
-};
+pub const WRENCH: Range = Range::new(-1e7, 1e7, "N or Nm");
 
 /// The measurement noise variance of one coordinate.
-pub const VARIANCE_MM2: Range = Range {
-    min: 1e-12,
-    max: 1e4,
-    unit: "mm^2",
-};
+pub const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
 
 /// A noise level, as a multiple of the variance.
-pub const LEVEL_MULTIPLE: Range = Range {
-    min: 1e-6,
-    max: 1e6,
-    unit: "",
-};
+pub const LEVEL_MULTIPLE: Range = Range::new(1e-6, 1e6, "");
 
 /// The characteristic length `L` of the dexterity index (Eq. 20).
-pub const CHARACTERISTIC_LENGTH_MM: Range = Range {
-    min: 1.0,
-    max: 1e5,
-    unit: "mm",
-};
+pub const CHARACTERISTIC_LENGTH_MM: Range = Range::new(1.0, 1e5, "mm");
 
 /// An entry of a robot's axis map matrix.
-pub const AXIS_MAP_ENTRY: Range = Range {
-    min: -1e3,
-    max: 1e3,
-    unit: "",
-};
+pub const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
 
 /// The largest 2-norm condition number of an axis map matrix: beyond it the map between axis and
 /// kinematic angles loses more than half the digits.
@@ -148,6 +109,38 @@ pub const MAX_SEARCH_POSTURES: u64 = 100;
 
 /// Most criterion evaluations of one local search (`--max-evals`).
 pub const MAX_EVALS: u64 = 10_000_000;
+
+/// The stopping tolerance of a local search on the change of `ln(criterion)` per SQP step
+/// ([`crate::design::SearchOptions::ftol`]): 0 (stop on the budget or the step alone) to 1 (a
+/// change of the criterion by a factor of e).
+pub const FTOL: Range = Range::new(0.0, 1.0, "");
+
+/// The stopping tolerance of a local search on the step of every angle
+/// ([`crate::design::SearchOptions::xtol`]): 0 (stop on the budget or `ftol` alone) to 1 rad.
+pub const XTOL_RAD: Range = Range::new(0.0, 1.0, "rad");
+
+/// The forward finite-difference step of a local search
+/// ([`crate::design::SearchOptions::fd_step`]): from 1e-12 rad (about 1e4 ulps of an angle of
+/// order 1; below it rounding is the whole difference) to 0.01 rad (0.6 deg; beyond it the
+/// difference no longer approximates the derivative).
+pub const FD_STEP_RAD: Range = Range::new(1e-12, 1e-2, "rad");
+
+/// Most exchange runs of a choice from a pool (`--restarts`, [`crate::design::PoolOptions`]).
+pub const MAX_POOL_RESTARTS: u64 = 1000;
+
+/// Most groups a choice from a pool enumerates
+/// ([`crate::design::PoolOptions::enumeration_limit`]; about a minute of evaluations).
+pub const MAX_ENUMERATION: u64 = 100_000_000;
+
+/// The tolerances of inverse kinematics ([`crate::ik::Options`]): of the position, m, and of the
+/// rotation, rad; from 1e-15 (the rounding of a pose near 1 m) to 0.01.
+pub const IK_TOLERANCE: Range = Range::new(1e-15, 1e-2, "m or rad");
+
+/// Most steps per start of inverse kinematics ([`crate::ik::Options::max_iterations`]).
+pub const MAX_IK_ITERATIONS: u64 = 100_000;
+
+/// Most seeded restarts of inverse kinematics ([`crate::ik::Options::restarts`]).
+pub const MAX_IK_RESTARTS: u64 = 10_000;
 
 /// Most postures in one postures file.
 pub const MAX_GROUP_POSTURES: usize = 10_000;
@@ -257,6 +250,20 @@ pub fn check_count(field: &str, count: usize, min: usize, max: usize) -> Result<
     Err(Error::InvalidField {
         field: field.to_string(),
         message: format!("{count} entries: expected {min} to {max}"),
+    })
+}
+
+/// Checks that the setting `field` (a count or a budget) lies within `[min, max]`.
+///
+/// # Errors
+/// [`Error::InvalidField`] naming `field`, the value and the range.
+pub fn check_integer(field: &str, value: u64, min: u64, max: u64) -> Result<()> {
+    if (min..=max).contains(&value) {
+        return Ok(());
+    }
+    Err(Error::InvalidField {
+        field: field.to_string(),
+        message: format!("{value} is outside [{min}, {max}]"),
     })
 }
 

@@ -123,8 +123,12 @@ pub fn assemble(
             *tau = joint_torques(setup, frames, &meas.wrench);
         }
         *j = i;
-        psi.fixed_view_mut::<3, 6>(3 * i, 0)
-            .copy_from(&point_rows(setup, frames, meas.point, tau));
+        psi.fixed_view_mut::<3, 6>(3 * i, 0).copy_from(&point_rows(
+            setup,
+            frames,
+            &setup.tool().measuring_points[meas.point],
+            tau,
+        ));
         delta
             .fixed_rows_mut::<3>(3 * i)
             .copy_from(&meas.displacement);

@@ -24,7 +24,7 @@ use crate::simulate::{
     monte_carlo_with_predictions, GroupSimulation, Options as SimulationOptions,
 };
 use crate::stiffness::rope_displacements;
-use crate::{Error, Result};
+use crate::{limits, Result};
 use nalgebra::{Vector3, Vector6};
 
 /// Postures per group (the paper's 6).
@@ -159,10 +159,11 @@ pub struct Study {
 /// group), the Monte Carlo identification.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `runs` or `starts` 0; [`Error::MissingField`] for a setup without
-/// a nominal stiffness or a characteristic length; the errors of the searches and of
-/// [`crate::simulate::monte_carlo`] (for example [`Error::Unidentifiable`] for a group that cannot
-/// identify every joint).
+/// [`crate::Error::InvalidField`] for `runs`, `starts` or `trials` outside their limits
+/// ([`limits::MAX_RUNS`], [`limits::MAX_STARTS`], [`limits::MAX_TRIALS`]; `trials` may be 0);
+/// [`crate::Error::MissingField`] for a setup without a nominal stiffness or a characteristic
+/// length; the errors of the searches and of [`crate::simulate::monte_carlo`] (for example
+/// [`crate::Error::Unidentifiable`] for a group that cannot identify every joint).
 ///
 /// # Examples
 /// A small study on the paper's setup: 5 runs, 1 start per global search, no start-group check.
@@ -181,13 +182,13 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     let started = std::time::Instant::now();
     let k_true = setup.try_nominal_stiffness("the study (the true stiffness it simulates)")?;
     setup.try_characteristic_length("the study (criteria classical and zhang2021)")?;
-    for (field, value) in [("runs", options.runs), ("starts", options.starts)] {
-        if value == 0 {
-            return Err(Error::InvalidField {
-                field: field.into(),
-                message: "expected at least 1".into(),
-            });
-        }
+    let counts = [
+        ("runs", options.runs, 1, limits::MAX_RUNS),
+        ("starts", options.starts, 1, limits::MAX_STARTS),
+        ("trials", options.trials, 0, limits::MAX_TRIALS),
+    ];
+    for (field, value, min, max) in counts {
+        limits::check_integer(field, value as u64, min, max)?;
     }
     let search = SearchOptions {
         starts: options.starts,

@@ -9,7 +9,7 @@ use crate::cell::Checker;
 use crate::design::Criterion;
 use crate::progress::Progress;
 use crate::setup::Setup;
-use crate::{Error, Result};
+use crate::Result;
 use rayon::prelude::*;
 use std::cmp::Ordering as Order;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -33,10 +33,25 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// worker threads); the caller begins and ends the stage.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for fewer than 2 postures, no start, or the `test-pose` criterion on a
-/// setup without test postures; [`Error::MissingField`] for a criterion the setup lacks a field
-/// for ([`Criterion::check`]); [`Error::Infeasible`] naming the check failed by the most postures
+/// [`Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
+/// than 2 postures, or the `test-pose` criterion on a setup without test postures;
+/// [`Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
+/// [`Error::Infeasible`] naming the check failed by the most postures
 /// of the starts' results when none of them passes every check.
+///
+/// # Examples
+/// Two starts on the paper's setup: the same group with the same seed, and the evaluations of
+/// both starts counted.
+/// ```
+/// use stiffid::design::{global, Criterion, SearchOptions};
+/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// let options = SearchOptions { starts: 2, polished: 1, max_evals: 150, ..SearchOptions::quick() };
+/// let a = global(&setup, Criterion::DOptimal, 8, &options, &())?;
+/// assert_eq!(a.postures.len(), 8);
+/// assert!(a.value < a.start_value);
+/// assert_eq!(a, global(&setup, Criterion::DOptimal, 8, &options, &())?);
+/// # Ok::<(), stiffid::Error>(())
+/// ```
 pub fn global(
     setup: &Setup,
     criterion: Criterion,
@@ -44,13 +59,8 @@ pub fn global(
     options: &SearchOptions,
     progress: &dyn Progress,
 ) -> Result<SearchOutcome> {
+    options.validate()?;
     check_count(setup, criterion, postures)?;
-    if options.starts == 0 {
-        return Err(Error::InvalidField {
-            field: "starts".into(),
-            message: "a global search needs at least 1 start".into(),
-        });
-    }
     let checker = Checker::new(setup);
     let screening = match options.screen_steps {
         0 => options.clone(),

@@ -36,17 +36,34 @@ const PENALTY: f64 = 1e3;
 ///   [`SearchOptions::max_evals`] criterion evaluations (finite differences included).
 ///
 /// # Errors
-/// [`Error::InvalidField`] for fewer than 2 postures, a non-finite angle or one outside the bounds
-/// (naming the posture and axis), or the `test-pose` criterion on a setup without test postures;
-/// [`Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
+/// [`Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
+/// than 2 postures, or the `test-pose` criterion on a setup without test postures;
+/// [`Error::OutsideBox`] for a start angle outside the bounds or not finite (naming the posture,
+/// the axis and the value); [`Error::MissingField`] for a criterion the setup lacks a field for
+/// ([`Criterion::check`]);
 /// [`Error::Infeasible`] naming the check failed by the most postures when no point seen passes
 /// every check.
+///
+/// # Examples
+/// From a seeded start group of 8 postures on the paper's setup, SQP on `relative-a` ends lower,
+/// within the bounds.
+/// ```
+/// use stiffid::design::{local, random_group, Criterion, SearchOptions};
+/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// let start = random_group(&setup, 8, 1);
+/// let options = SearchOptions { max_evals: 200, ..SearchOptions::default() };
+/// let out = local(&setup, Criterion::RelativeA, &start, &options)?;
+/// assert!(out.value < out.start_value);
+/// assert!(out.postures.iter().all(|q| setup.bounds().contains(q)));
+/// # Ok::<(), stiffid::Error>(())
+/// ```
 pub fn local(
     setup: &Setup,
     criterion: Criterion,
     start: &[Vector6<f64>],
     options: &SearchOptions,
 ) -> Result<SearchOutcome> {
+    options.validate()?;
     check_start(setup, criterion, start)?;
     let checker = Checker::new(setup);
     let outcome = local_in(&checker, criterion, start, options);

@@ -20,6 +20,7 @@ pub(super) use local::check_count;
 pub use local::local;
 pub use sample::{random_group, CONSTRAINT_TRIES};
 
+use crate::{limits, Result};
 use nalgebra::Vector6;
 use std::fmt;
 use std::str::FromStr;
@@ -53,7 +54,7 @@ impl fmt::Display for Gradient {
 
 impl FromStr for Gradient {
     type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
         [Gradient::Exact, Gradient::FiniteDifference]
             .into_iter()
             .find(|g| g.name() == s)
@@ -108,6 +109,35 @@ impl Default for SearchOptions {
 }
 
 impl SearchOptions {
+    /// Checks every field against its documented limit, as argmin's `with_*` setters do:
+    /// `max_evals` 1 to [`limits::MAX_EVALS`], `starts` and `polished` 1 to
+    /// [`limits::MAX_STARTS`], `screen_steps` 0 to [`limits::MAX_EVALS`], `ftol` within
+    /// [`limits::FTOL`], `xtol` within [`limits::XTOL_RAD`], `fd_step` within
+    /// [`limits::FD_STEP_RAD`] (NaN and infinities never). [`local`] and [`global`] call it.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidField`] naming the field (`SearchOptions.fd_step`), the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        let counts = [
+            ("max_evals", self.max_evals, 1, limits::MAX_EVALS),
+            ("starts", self.starts, 1, limits::MAX_STARTS),
+            ("screen_steps", self.screen_steps, 0, limits::MAX_EVALS),
+            ("polished", self.polished, 1, limits::MAX_STARTS),
+        ];
+        for (field, value, min, max) in counts {
+            limits::check_integer(&format!("SearchOptions.{field}"), value as u64, min, max)?;
+        }
+        let tolerances = [
+            ("ftol", self.ftol, &limits::FTOL),
+            ("xtol", self.xtol, &limits::XTOL_RAD),
+            ("fd_step", self.fd_step, &limits::FD_STEP_RAD),
+        ];
+        for (field, value, range) in tolerances {
+            limits::check(&format!("SearchOptions.{field}"), &[value], range)?;
+        }
+        Ok(())
+    }
+
     /// A cheaper budget (8 starts screened, the best 2 polished with at most 3000 evaluations,
     /// seed 1): a global search about 4 times cheaper than the default, within 1% of its value on
     /// the paper setup.

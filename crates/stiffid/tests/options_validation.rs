@@ -1,0 +1,246 @@
+//! Options set in code are checked against their documented limits at the entry points, as
+//! argmin's `with_*` setters do: any f64 (NaN, infinite, negative, 0, huge) or count (0, huge) is
+//! an error naming the field with the value and the range, never a panic or a hang.
+
+use nalgebra::{Isometry3, Vector3};
+use stiffid::compensate::{self, FreeToolAxis};
+use stiffid::design::{self, Criterion, Pool, PoolOptions, SearchOptions};
+use stiffid::observation::{point_rows, posture_block};
+use stiffid::stiffness::joint_torques;
+use stiffid::{ik, setup, simulate, study, Error, Setup};
+
+fn paper() -> Setup {
+    setup::builtin("zhang2021-comau-nj165").unwrap()
+}
+
+/// The field and message of an [`Error::InvalidField`]; the message must hold `value`.
+fn rejected(result: Result<impl std::fmt::Debug, Error>, field: &str, value: &str) {
+    match result {
+        Err(Error::InvalidField { field: f, message }) => {
+            assert_eq!(f, field);
+            assert!(message.contains(value), "{field}: {message}");
+            assert!(
+                message.contains("outside") || message.contains("expected"),
+                "{message}"
+            );
+        }
+        other => panic!("{field} = {value}: expected a field error, got {other:?}"),
+    }
+}
+
+#[test]
+fn search_options_out_of_range_are_refused_by_local_and_global() {
+    let setup = paper();
+    let start = design::random_group(&setup, 6, 1);
+    let bad_floats = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -1.0, 1e300];
+    for v in bad_floats {
+        let cases = [
+            (
+                "ftol",
+                SearchOptions {
+                    ftol: v,
+                    ..Default::default()
+                },
+            ),
+            (
+                "xtol",
+                SearchOptions {
+                    xtol: v,
+                    ..Default::default()
+                },
+            ),
+            (
+                "fd_step",
+                SearchOptions {
+                    fd_step: v,
+                    ..Default::default()
+                },
+            ),
+        ];
+        for (field, o) in cases {
+            let field = format!("SearchOptions.{field}");
+            let shown = stiffid::limits::number(v);
+            rejected(
+                design::local(&setup, Criterion::DOptimal, &start, &o),
+                &field,
+                &shown,
+            );
+            let found = design::global(&setup, Criterion::DOptimal, 6, &o, &());
+            rejected(found, &field, &shown);
+        }
+    }
+    let zero_step = SearchOptions {
+        fd_step: 0.0,
+        ..Default::default()
+    };
+    let e = design::local(&setup, Criterion::DOptimal, &start, &zero_step);
+    rejected(e, "SearchOptions.fd_step", "0 is outside [1e-12, 0.01] rad");
+    for v in [0, usize::MAX] {
+        let cases = [
+            (
+                "max_evals",
+                SearchOptions {
+                    max_evals: v,
+                    ..Default::default()
+                },
+            ),
+            (
+                "starts",
+                SearchOptions {
+                    starts: v,
+                    ..Default::default()
+                },
+            ),
+            (
+                "polished",
+                SearchOptions {
+                    polished: v,
+                    ..Default::default()
+                },
+            ),
+        ];
+        for (field, o) in cases {
+            let found = design::global(&setup, Criterion::DOptimal, 6, &o, &());
+            rejected(found, &format!("SearchOptions.{field}"), &v.to_string());
+        }
+    }
+    let o = SearchOptions {
+        screen_steps: usize::MAX,
+        ..Default::default()
+    };
+    let e = design::local(&setup, Criterion::DOptimal, &start, &o);
+    rejected(
+        e,
+        "SearchOptions.screen_steps",
+        "18446744073709551615 is outside [0, 10000000]",
+    );
+    // The limits themselves are accepted.
+    let edge = SearchOptions {
+        ftol: 0.0,
+        xtol: 1.0,
+        fd_step: 1e-2,
+        max_evals: 1,
+        ..Default::default()
+    };
+    assert!(design::local(&setup, Criterion::DOptimal, &start, &edge).is_ok());
+}
+
+#[test]
+fn pool_options_out_of_range_are_refused() {
+    let setup = paper();
+    let postures = design::random_group(&setup, 8, 2);
+    let pool = Pool::new(&setup, &postures, &[]).unwrap();
+    let best = |o: PoolOptions| pool.best(Criterion::DOptimal, 6, &o);
+    for v in [0, usize::MAX] {
+        let o = PoolOptions {
+            restarts: v,
+            ..Default::default()
+        };
+        rejected(best(o), "PoolOptions.restarts", &v.to_string());
+    }
+    let o = PoolOptions {
+        enumeration_limit: u64::MAX,
+        ..Default::default()
+    };
+    rejected(
+        best(o),
+        "PoolOptions.enumeration_limit",
+        "18446744073709551615",
+    );
+}
+
+#[test]
+fn ik_and_compensate_options_out_of_range_are_refused() {
+    let setup = paper();
+    let robot = setup.robot();
+    let q = setup.test_postures()[0];
+    let target: Isometry3<f64> = ik::tool_pose(&robot.frames(&q), &setup.tool().tcp);
+    let solve = |o: ik::Options| ik::solve(robot, &setup.tool().tcp, &target, &q, &o);
+    for v in [f64::NAN, -1e-3, 0.0, f64::INFINITY] {
+        let o = ik::Options {
+            position_tolerance: v,
+            ..Default::default()
+        };
+        rejected(
+            solve(o),
+            "ik::Options.position_tolerance",
+            &stiffid::limits::number(v),
+        );
+        let o = ik::Options {
+            rotation_tolerance: v,
+            ..Default::default()
+        };
+        rejected(
+            solve(o),
+            "ik::Options.rotation_tolerance",
+            &stiffid::limits::number(v),
+        );
+    }
+    let o = ik::Options {
+        max_iterations: 0,
+        ..Default::default()
+    };
+    rejected(
+        solve(o),
+        "ik::Options.max_iterations",
+        "0 is outside [1, 100000]",
+    );
+    let o = ik::Options {
+        restarts: usize::MAX,
+        ..Default::default()
+    };
+    rejected(solve(o), "ik::Options.restarts", "18446744073709551615");
+    assert!(solve(ik::Options::default()).is_ok());
+
+    let mut options = compensate::Options::for_setup(&setup);
+    options.q0[3] = f64::NAN;
+    rejected(options.validate(), "compensate::Options.q0[4]", "NaN");
+    let mut options = compensate::Options::for_setup(&setup);
+    options.free_tool_axis = Some(FreeToolAxis {
+        max_step: 0.0,
+        range: 1.0,
+    });
+    rejected(options.validate(), "FreeToolAxis.max_step", "0 rad");
+    let free = FreeToolAxis::try_from_degrees(90.0, 180.0).unwrap();
+    options.free_tool_axis = Some(free);
+    assert!(options.validate().is_ok());
+}
+
+#[test]
+fn simulation_and_study_counts_out_of_range_are_refused() {
+    let setup = paper();
+    let group = vec![design::random_group(&setup, 6, 1)];
+    for runs in [0, usize::MAX] {
+        let o = simulate::Options { runs, seed: 1 };
+        rejected(
+            simulate::monte_carlo(&setup, &group, &o),
+            "runs",
+            &runs.to_string(),
+        );
+    }
+    let o = study::Options {
+        trials: usize::MAX,
+        ..Default::default()
+    };
+    rejected(
+        study::run(&setup, &o, &()),
+        "trials",
+        "18446744073709551615",
+    );
+}
+
+#[test]
+fn point_rows_take_the_point_and_match_the_posture_block() {
+    let setup = paper();
+    let frames = setup.robot().frames(&setup.test_postures()[1]);
+    let wrench = setup.rope_wrench(&frames);
+    let block = posture_block(&setup, &frames, &wrench);
+    let tau = joint_torques(&setup, &frames, &wrench);
+    for (k, p) in setup.tool().measuring_points.iter().enumerate() {
+        let rows = point_rows(&setup, &frames, p, &tau);
+        assert_eq!(rows, block.fixed_view::<3, 6>(3 * k, 0));
+    }
+    // Any point, not only the setup's: no index to get out of range.
+    let far = point_rows(&setup, &frames, &Vector3::new(0.0, 0.0, 1.0), &tau);
+    assert!(far.iter().all(|v| v.is_finite()));
+}
