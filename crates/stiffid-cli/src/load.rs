@@ -1,6 +1,6 @@
 //! Turning command-line arguments into robots, setups and angle lists.
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{bail, Context, Result};
 use nalgebra::{SVector, Vector6};
 use std::fs::File;
 use std::io::{BufReader, Read};
@@ -10,15 +10,10 @@ use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
-use stiffid::formats::{postures, reference};
+use stiffid::formats::{self, postures, reference};
 use stiffid::identify::{streamed, streamed::Rows, Identification};
-use stiffid::limits::{self, short, JointBox, Range};
+use stiffid::limits::{self, short, JointBox, Range, MAX_INPUT_BYTES};
 use stiffid::{Robot, Setup};
-
-/// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
-/// (the 1e6-row files of the README take 119 MB), and a bound on the memory a file (or
-/// `/dev/zero`) can take.
-pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Every file read so far (resolved path, device and inode), so no output is written over one.
 static INPUTS: Mutex<Vec<(PathBuf, u64, u64)>> = Mutex::new(Vec::new());
@@ -47,20 +42,17 @@ fn existing(path: &Path) -> Option<Result<String>> {
     path.exists().then(|| read(path))
 }
 
-/// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8. The file is
-/// remembered as an input ([`input_at`]).
+/// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8
+/// ([`formats::text`]). The file is remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
     let name = path.display();
     let mut bytes = Vec::new();
     open(path)?
+        .file
+        .take(MAX_INPUT_BYTES + 1)
         .read_to_end(&mut bytes)
         .with_context(|| format!("{name}: cannot read"))?;
-    String::from_utf8(bytes).map_err(|e| {
-        anyhow!(
-            "{name}: not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        )
-    })
+    Ok(formats::text(&name.to_string(), bytes)?)
 }
 
 /// The file at `path` opened for reading, not a directory, remembered as an input

@@ -100,7 +100,7 @@ impl Identification {
 /// use stiffid::observation::Measurement;
 /// use stiffid::stiffness::rope_displacements;
 /// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
-/// let k = setup.nominal_stiffness();
+/// let k = setup.try_nominal_stiffness("this example")?;
 /// let mut measurements = Vec::new();
 /// for (posture, q) in random_group(&setup, 8, 1).into_iter().enumerate() {
 ///     let frames = setup.robot().frames(&q);

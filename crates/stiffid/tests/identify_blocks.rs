@@ -24,7 +24,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
         .unwrap();
     assert_close(&blocks, &whole);
     // The noise is the tracker's: the fit is near the truth (a sanity check, not rounding).
-    let k = setup.nominal_stiffness();
+    let k = setup.nominal_stiffness().unwrap();
     assert!((blocks.stiffness - k).component_div(k).amax() < 0.05);
 }
 
@@ -76,7 +76,7 @@ fn a_generated_file_of_many_postures_gives_back_the_known_stiffness() {
     file.to_base_frame(&setup).unwrap();
     let id = identify::least_squares(&setup, &file.measurements).unwrap();
     assert_eq!((id.rows, id.postures), (60_000, 5000));
-    let k = setup.nominal_stiffness();
+    let k = setup.nominal_stiffness().unwrap();
     let error = (id.stiffness - k).component_div(k).amax();
     assert!(error < 1e-9, "relative error {error:e}");
 }

@@ -305,7 +305,7 @@ pub fn run(args: &Args) -> Result<()> {
         setup: &setup,
         rows,
         adequacy: id.adequacy(setup.noise().variance),
-        unit: id.unit_check(setup.nominal_stiffness()),
+        unit: setup.nominal_stiffness().and_then(|k| id.unit_check(k)),
         id,
         cross_validation,
         first_of_posture,

@@ -201,7 +201,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = args
         .report
         .as_deref()
-        .map(|dir| plan::open(dir, args.force))
+        .map(|dir| plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)))
         .transpose()?;
     let started = Instant::now();
     let (selection, target) = match args.target_pct {
@@ -272,7 +272,7 @@ pub fn run(args: &Args) -> Result<()> {
         text += &target::text(t);
     }
     text += &outcome_text(args, &setup, &selection, elapsed);
-    text += &criteria_text(&e);
+    text += &criteria_text(&e, &setup);
     if let Some((s, free_e)) = &free {
         text += &cost_text(args.criterion, &selection, &e, s, free_e);
     }
@@ -306,15 +306,22 @@ fn cost_text(
     free_e: &Evaluation,
 ) -> String {
     let mean = Evaluation::predicted_average_pct;
-    format!(
-        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+    let mut text = format!(
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
         number(feasible.value),
         number(free.value),
         100.0 * (feasible.value / free.value - 1.0),
-        mean(e),
-        mean(free_e),
-        100.0 * (mean(e) / mean(free_e) - 1.0)
-    )
+    );
+    // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
+    if !mean(e).is_nan() {
+        text += &format!(
+            "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+            mean(e),
+            mean(free_e),
+            100.0 * (mean(e) / mean(free_e) - 1.0)
+        );
+    }
+    text
 }
 
 /// The group of `n` postures by the search the arguments ask for.
