@@ -13,7 +13,7 @@ use crate::report::plan;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector6;
-use schemars::JsonSchema;
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -97,12 +97,19 @@ pub struct Args {
     force: bool,
 }
 
+/// The schema of a criterion's name: a string, one of the names of [`Criterion::ALL`].
+fn criterion_name(_: &mut SchemaGenerator) -> Schema {
+    let names: Vec<&str> = Criterion::ALL.iter().map(|c| c.name()).collect();
+    json_schema!({ "type": "string", "enum": names })
+}
+
 /// `stiffid select --json`: the group found, how, and its criteria.
 #[derive(Serialize, JsonSchema)]
 pub struct SelectJson<'a> {
     /// The setup's name.
     setup: &'a str,
     /// The criterion minimised (`relative-a`, ...).
+    #[schemars(schema_with = "criterion_name")]
     criterion: &'a str,
     /// `local`, `global` or `pool`.
     search: &'a str,
