@@ -1,23 +1,19 @@
 //! Turning command-line arguments into robots, setups and angle lists.
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{bail, Context, Result};
 use nalgebra::{SVector, Vector6};
 use std::fs::File;
-use std::io::Read;
+use std::io::{BufReader, Read};
 use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
-use stiffid::formats::{postures, reference};
-use stiffid::limits::{self, short, JointBox, Range};
+use stiffid::formats::{self, postures, reference};
+use stiffid::identify::{streamed, streamed::Rows, Identification};
+use stiffid::limits::{self, short, JointBox, Range, MAX_INPUT_BYTES};
 use stiffid::{Robot, Setup};
-
-/// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
-/// (the 1e6-row files of the README take 119 MB), and a bound on the memory a file (or
-/// `/dev/zero`) can take.
-pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Every file read so far (resolved path, device and inode), so no output is written over one.
 static INPUTS: Mutex<Vec<(PathBuf, u64, u64)>> = Mutex::new(Vec::new());
@@ -46,9 +42,22 @@ fn existing(path: &Path) -> Option<Result<String>> {
     path.exists().then(|| read(path))
 }
 
-/// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8. The file is
-/// remembered as an input ([`input_at`]).
+/// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8
+/// ([`formats::text`]). The file is remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
+    let name = path.display();
+    let mut bytes = Vec::new();
+    open(path)?
+        .file
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("{name}: cannot read"))?;
+    Ok(formats::text(&name.to_string(), bytes)?)
+}
+
+/// The file at `path` opened for reading, not a directory, remembered as an input
+/// ([`input_at`]); reading more than [`MAX_INPUT_BYTES`] from it fails.
+pub fn open(path: &Path) -> Result<Capped> {
     let name = path.display();
     let file = File::open(path).with_context(|| format!("{name}: cannot read"))?;
     let meta = file
@@ -57,27 +66,32 @@ pub fn read(path: &Path) -> Result<String> {
     if meta.is_dir() {
         bail!("{name}: is a directory, expected a file");
     }
-    let mut bytes = Vec::new();
-    file.take(MAX_INPUT_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .with_context(|| format!("{name}: cannot read"))?;
-    if bytes.len() as u64 > MAX_INPUT_BYTES {
-        bail!(
-            "{name}: larger than the input limit of {} MiB",
-            MAX_INPUT_BYTES >> 20
-        );
-    }
-    let text = String::from_utf8(bytes).map_err(|e| {
-        anyhow!(
-            "{name}: not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        )
-    })?;
     if let Ok(resolved) = path.canonicalize() {
         let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
         inputs.push((resolved, meta.dev(), meta.ino()));
     }
-    Ok(text)
+    Ok(Capped { file, read: 0 })
+}
+
+/// A file that fails with "larger than the input limit" once more than [`MAX_INPUT_BYTES`] have
+/// been read from it.
+pub struct Capped {
+    file: File,
+    read: u64,
+}
+
+impl Read for Capped {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.file.read(buf)?;
+        self.read += n as u64;
+        if self.read > MAX_INPUT_BYTES {
+            return Err(std::io::Error::other(format!(
+                "larger than the input limit of {} MiB",
+                MAX_INPUT_BYTES >> 20
+            )));
+        }
+        Ok(n)
+    }
 }
 
 /// The input file (as read) that `target` (a resolved path) is, if any: the same path, or the
@@ -183,4 +197,22 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
     let mut file = measurements::parse(&read(path)?).with_context(name)?;
     file.to_base_frame(setup).with_context(name)?;
     Ok(file)
+}
+
+/// The least-squares identification of the measurement file at `path` (`data`: the file opened
+/// by [`open`]), of any size, read twice in chunks (`stiffid::identify::streamed`), and where each
+/// row came from; errors start with the file name, then the line and column.
+pub fn identify_streamed(
+    path: &Path,
+    data: Capped,
+    setup: &Setup,
+) -> Result<(Identification, Rows)> {
+    let mut first = Some(data);
+    let mut open = || match first.take() {
+        Some(file) => Ok(BufReader::with_capacity(1 << 20, file)),
+        None => {
+            File::open(path).map(|file| BufReader::with_capacity(1 << 20, Capped { file, read: 0 }))
+        }
+    };
+    streamed::least_squares(setup, &mut open).with_context(|| path.display().to_string())
 }

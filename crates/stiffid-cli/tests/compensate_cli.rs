@@ -240,3 +240,21 @@ fn bad_path_files_exit_2_naming_line_and_column_without_output() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
+    let dir = temp_dir("freeaxis");
+    let out = dir.join("out.csv");
+    let path = example("milling/path.csv");
+    for (option, value, other) in [
+        ("--max-step-deg", "0", "--tool-axis-range-deg"),
+        ("--max-step-deg", "NaN", "--tool-axis-range-deg"),
+        ("--tool-axis-range-deg", "1e308", "--max-step-deg"),
+    ] {
+        let o = compensate(&path, &out, &["--free-tool-axis", option, value]);
+        let line = assert_usage_error(&o, &[&format!("{option}: {value}: expected a number > 0")]);
+        assert!(!line.contains(other), "{line}");
+        assert!(!out.exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

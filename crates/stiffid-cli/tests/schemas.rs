@@ -154,6 +154,11 @@ fn evaluate_and_select_outputs_match_their_schemas() {
     ]));
     assert!(local["unconstrained"].is_object());
     assert_valid("select", &local, true);
+    // The criterion is one of the names `--criterion` takes.
+    let validator = jsonschema::validator_for(&read_json(&schema_path("select"))).unwrap();
+    let mut misspelt = local.clone();
+    misspelt["criterion"] = Value::from("relative_a");
+    assert!(!validator.is_valid(&misspelt));
 
     // A pool of the six postures, two more and one out of the bounds (skipped).
     let pool =

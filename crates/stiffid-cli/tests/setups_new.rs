@@ -55,6 +55,7 @@ fn new_setup_is_accepted_unchanged(name: &str, robot: &str, extra: &[&str]) {
     ] {
         assert!(evaluated[key].as_f64().is_some_and(f64::is_finite), "{key}");
     }
+    every_optional_section_loads(&text, &setup.with_file_name("all.toml"), p);
     let report = dir.join("report");
     let r = report.to_str().unwrap();
     let quick = ["--runs", "5", "--starts", "2", "--trials", "1"];
@@ -67,6 +68,48 @@ fn new_setup_is_accepted_unchanged(name: &str, robot: &str, extra: &[&str]) {
         text,
         "setup changed"
     );
+}
+
+/// The commented-out fields of a new setup (`# key = ...` and `# [table]` lines) uncommented.
+fn uncommented(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().map(|l| field(l).unwrap_or(l)).collect();
+    lines.join("\n") + "\n"
+}
+
+/// The field in a commented-out line `# key = ...` or `# [table]`, if it is one.
+fn field(line: &str) -> Option<&str> {
+    let rest = line.strip_prefix("# ")?;
+    let key = rest.split_once(" = ").map_or("", |(k, _)| k);
+    let is_key = !key.is_empty() && key.chars().all(|c| c.is_ascii_lowercase() || c == '_');
+    (rest.starts_with('[') || is_key).then_some(rest)
+}
+
+/// The setup `text` with every optional field and section uncommented, written to `all`, loads,
+/// and `evaluate` checks `postures` against every check of the cell, the tracker and the
+/// constraints.
+fn every_optional_section_loads(text: &str, all: &Path, postures: &str) {
+    let uncommented = uncommented(text);
+    for section in [
+        "\n[test]",
+        "\n[constraints]",
+        "\n[cell]",
+        "\n[[cell.obstacle]]",
+        "\n[robot_geometry]",
+        "\n[tracker]",
+        "\nrobot_base = {",
+        "\nrobot_flange = {",
+        "\ntcp_mm = [",
+        "\nbase_from_tracker = {",
+    ] {
+        assert!(uncommented.contains(section), "{section} missing");
+    }
+    std::fs::write(all, &uncommented).unwrap();
+    let a = all.to_str().unwrap();
+    let out = stiffid(&["evaluate", "--setup", a, "--postures", postures]);
+    assert_success(&out);
+    let checks = "checks: bounds, floor, obstacles, self-collision, rope, line-of-sight, incidence, loading-point-min-z, anchor-below-loading-point";
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains(checks), "{stdout}");
 }
 
 #[test]

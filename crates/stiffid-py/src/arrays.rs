@@ -119,6 +119,15 @@ pub fn vec1<'py>(py: Python<'py>, v: impl IntoIterator<Item = f64>) -> Bound<'py
     v.into_iter().collect::<Vec<f64>>().into_pyarray(py)
 }
 
+/// Counts or line numbers as a 1-D integer array (`int64`, NumPy's default integer).
+pub fn integers<'py>(
+    py: Python<'py>,
+    v: impl IntoIterator<Item = u64>,
+) -> Bound<'py, PyArray1<i64>> {
+    let saturated = v.into_iter().map(|n| i64::try_from(n).unwrap_or(i64::MAX));
+    saturated.collect::<Vec<i64>>().into_pyarray(py)
+}
+
 /// Rows of `N` as an `(n, N)` array.
 pub fn table<'py, const N: usize>(py: Python<'py>, rows: &[[f64; N]]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((rows.len(), N), |(r, c)| rows[r][c]).into_pyarray(py)

@@ -23,10 +23,11 @@ use stiffid::formats::path;
 /// ``(6,)``, deg; default the setup's first test posture); ``free_tool_axis=True`` turns each pose
 /// about its tool z within ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to
 /// the least deflection. Returns a dict of arrays with one row per path point, in path order:
-/// ``line`` (the file's lines), ``q_deg`` and ``q_compensated_deg`` (``(n, 6)``, deg),
-/// ``deflection_mm`` and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP under the wrench),
-/// ``residual_um`` and ``residual_urad`` (``(n,)``), ``iterations`` (``(n,)``),
-/// ``tool_rotation_deg`` (``(n,)``) and, with a covariance, ``deflection_std_mm`` (``(n, 3)``).
+/// ``line`` (the file's line numbers, ``int64``), ``q_deg`` and ``q_compensated_deg``
+/// (``(n, 6)``, deg), ``deflection_mm`` and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP
+/// under the wrench), ``residual_um`` and ``residual_urad`` (``(n,)``), ``iterations`` (``(n,)``,
+/// ``int64``: the Newton steps of the compensation), ``tool_rotation_deg`` (``(n,)``) and, with a
+/// covariance, ``deflection_std_mm`` (``(n, 3)``).
 /// The values equal ``stiffid compensate``'s.
 #[pyfunction]
 #[pyo3(signature = (setup, path, stiffness, *, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0))]
@@ -86,8 +87,8 @@ fn table<'py>(
             .collect();
         arrays::table(py, &rows)
     };
-    let lines = points.iter().map(|p| p.line as f64);
-    out.set_item("line", arrays::vec1(py, lines))?;
+    let lines = points.iter().map(|p| p.line);
+    out.set_item("line", arrays::integers(py, lines))?;
     let q: Vec<_> = results.iter().map(|c| c.q).collect();
     let qc: Vec<_> = results.iter().map(|c| c.q_compensated).collect();
     out.set_item("q_deg", arrays::degrees(py, &q))?;
@@ -96,7 +97,8 @@ fn table<'py>(
     out.set_item("deflection_mrad", part(&|c| c.deflection, 3, 1e3))?;
     out.set_item("residual_um", column(&|c| c.residual_position * 1e6))?;
     out.set_item("residual_urad", column(&|c| c.residual_rotation * 1e6))?;
-    out.set_item("iterations", column(&|c| c.iterations as f64))?;
+    let iterations = results.iter().map(|c| c.iterations as u64);
+    out.set_item("iterations", arrays::integers(py, iterations))?;
     out.set_item(
         "tool_rotation_deg",
         column(&|c| c.tool_rotation.to_degrees()),

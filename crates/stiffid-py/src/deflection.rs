@@ -9,6 +9,7 @@ use numpy::{AllowTypeChange, PyArrayLike2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use stiffid::deflection::{base_wrench, Frame, Points};
+use stiffid::formats::stiffness::check_covariance;
 use stiffid::limits;
 
 /// The deflection of a tool point in each posture ``q_deg`` (shape ``(6,)`` or ``(n, 6)``, deg,
@@ -49,7 +50,9 @@ pub fn deflection<'py>(
     let loaded = point(loaded_mm, s.tool().loading_point, "loaded_mm")?;
     let observed = point(observed_mm, loaded, "observed_mm")?;
     let k = match stiffness_nm_per_rad {
-        None => *s.nominal_stiffness(),
+        None => *s
+            .try_nominal_stiffness("deflection without stiffness_nm_per_rad")
+            .map_err(raise)?,
         Some(k) => {
             let range = &limits::STIFFNESS_NM_PER_RAD;
             Vector6::from(arrays::vector::<6>(k, "stiffness_nm_per_rad", range)?)
@@ -130,7 +133,8 @@ fn per_posture(wrench: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<Vector6<f64>
     }
 }
 
-/// A 6x6 covariance of the compliance: finite, symmetric, non-negative diagonal.
+/// A 6x6 covariance of the compliance: finite, symmetric, non-negative diagonal
+/// ([`check_covariance`]).
 fn covariance(obj: &Bound<'_, PyAny>) -> PyResult<Matrix6<f64>> {
     let what = "compliance_covariance_rad2_per_nm2";
     let a: PyArrayLike2<'_, f64, AllowTypeChange> = obj
@@ -144,14 +148,6 @@ fn covariance(obj: &Bound<'_, PyAny>) -> PyResult<Matrix6<f64>> {
         )));
     }
     let c = Matrix6::from_fn(|r, col| view[[r, col]]);
-    let scale = c.diagonal().amax();
-    let valid = c.iter().all(|v| v.is_finite())
-        && c.diagonal().iter().all(|v| *v >= 0.0)
-        && (c - c.transpose()).amax() <= 1e-9 * scale;
-    match valid {
-        true => Ok(c),
-        false => Err(value(format!(
-            "{what}: expected a symmetric 6x6 matrix of finite numbers with a non-negative diagonal"
-        ))),
-    }
+    check_covariance(&c).map_err(raise)?;
+    Ok(c)
 }

@@ -34,23 +34,26 @@ fn identifiable(setup: &Setup, group: &[Vector6<f64>]) -> stiffid::Result<()> {
     Factor::try_new(rope_observation_matrix(setup, group)).map(|_| ())
 }
 
-/// An evaluation under the keys of `stiffid evaluate --json`, plus `relative_std`.
+/// An evaluation under the keys of `stiffid evaluate --json`, plus `relative_std`; `None` for
+/// what the setup lacks a field for (NaN in [`Evaluation`], nowhere else).
 pub fn criteria<'py>(py: Python<'py>, e: &Evaluation) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("classical", e.classical)?;
-    d.set_item("zhang2021", e.zhang2021)?;
-    d.set_item("scaled_cond", e.scaled_cond)?;
-    d.set_item("d_optimal", e.d_optimal)?;
-    d.set_item("relative_a", e.relative_a)?;
+    let given = |v: f64| (!v.is_nan()).then_some(v);
+    d.set_item("classical", given(e.classical))?;
+    d.set_item("zhang2021", given(e.zhang2021))?;
+    d.set_item("scaled_cond", given(e.scaled_cond))?;
+    d.set_item("d_optimal", given(e.d_optimal))?;
+    d.set_item("relative_a", given(e.relative_a))?;
     d.set_item("test_pose_mm", e.test_pose * 1e3)?;
     d.set_item("cond_psi", e.cond_psi)?;
+    let scaled = !e.relative_std.iter().any(|v| v.is_nan());
     d.set_item(
         "relative_std",
-        arrays::vec1(py, e.relative_std.iter().copied()),
+        scaled.then(|| arrays::vec1(py, e.relative_std.iter().copied())),
     )?;
     d.set_item(
         "predicted_deviation_pct",
-        arrays::table(py, &e.predicted_deviation_pct),
+        scaled.then(|| arrays::table(py, &e.predicted_deviation_pct)),
     )?;
     Ok(d)
 }

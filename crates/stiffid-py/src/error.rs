@@ -2,7 +2,11 @@
 
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::{PyErr, Python};
+use std::fs::File;
+use std::io::Read;
 use std::path::Path;
+use stiffid::formats;
+use stiffid::limits::MAX_INPUT_BYTES;
 use stiffid::Error;
 
 /// `RuntimeError` for a computation that found no answer (no feasible group, a pose out of
@@ -50,19 +54,34 @@ pub fn value(message: impl Into<String>) -> PyErr {
 }
 
 /// The text of a file, the path in the error (`FileNotFoundError` or `OSError`; `ValueError` for
-/// a file that is not UTF-8 text).
+/// a directory, a file larger than the input limit or not UTF-8 text: [`stiffid::formats::text`],
+/// the command's checks).
 pub fn read(path: &Path) -> Result<String, PyErr> {
     let name = path.display();
-    let bytes = std::fs::read(path).map_err(|e| match e.kind() {
+    let file = open(path)?;
+    if file.metadata().map_err(|e| os_error(path, e))?.is_dir() {
+        return Err(value(format!("{name}: is a directory, expected a file")));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| os_error(path, e))?;
+    formats::text(&name.to_string(), bytes).map_err(raise)
+}
+
+/// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or
+/// `OSError`).
+pub fn open(path: &Path) -> Result<File, PyErr> {
+    File::open(path).map_err(|e| os_error(path, e))
+}
+
+/// `FileNotFoundError` or `OSError` for a failure to read the file at `path`.
+fn os_error(path: &Path, e: std::io::Error) -> PyErr {
+    let name = path.display();
+    match e.kind() {
         std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(format!("{name}: no such file"))
         }
         _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
-    })?;
-    String::from_utf8(bytes).map_err(|e| {
-        value(format!(
-            "{name}: not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        ))
-    })
+    }
 }

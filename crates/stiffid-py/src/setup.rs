@@ -84,16 +84,22 @@ impl Setup {
         coordinates_name(self.inner.springs())
     }
 
-    /// Nominal (in simulation: true) joint stiffness, Nm/rad, shape ``(6,)`` (Table 2).
+    /// Nominal (in simulation: true) joint stiffness, Nm/rad, shape ``(6,)`` (Table 2); ``None``
+    /// if the setup has none (the criteria scaled by it, simulation and study need it).
     #[getter]
-    fn nominal_stiffness_nm_per_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.nominal_stiffness().iter().copied())
+    fn nominal_stiffness_nm_per_rad<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> Option<Bound<'py, PyArray1<f64>>> {
+        let k = self.inner.nominal_stiffness()?;
+        Some(arrays::vec1(py, k.iter().copied()))
     }
 
-    /// Characteristic length ``L`` of the dexterity index (Eq. 20), mm.
+    /// Characteristic length ``L`` of the dexterity index (Eq. 20), mm; ``None`` if the setup has
+    /// none (the classical and zhang2021 criteria need it).
     #[getter]
-    fn characteristic_length_mm(&self) -> f64 {
-        self.inner.characteristic_length() * 1e3
+    fn characteristic_length_mm(&self) -> Option<f64> {
+        self.inner.characteristic_length().map(|l| l * 1e3)
     }
 
     /// Loading point, flange frame, mm, shape ``(3,)``.
@@ -162,7 +168,10 @@ impl Setup {
     /// ``relative_a``, ``test_pose_mm``, ``cond_psi`` (floats, ``inf`` for a singular posture),
     /// ``relative_std`` (shape ``(6,)``) and ``predicted_deviation_pct`` (shape ``(levels, 6)``,
     /// percent: ``100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)``). Sources: Zhang et al. 2021,
-    /// Eq. 19-21; DESIGN.md section 5. ``ValueError`` for a group that cannot identify every joint.
+    /// Eq. 19-21; DESIGN.md section 5. ``None`` for what the setup lacks a field for: ``classical``
+    /// and ``zhang2021`` without ``characteristic_length_mm``; ``scaled_cond``, ``d_optimal``,
+    /// ``relative_a``, ``relative_std`` and ``predicted_deviation_pct`` without
+    /// ``nominal_stiffness_nm_per_rad``. ``ValueError`` for a group that cannot identify every joint.
     fn evaluate<'py>(
         &self,
         py: Python<'py>,

@@ -25,7 +25,9 @@ def test_compensate_equals_the_command(fanuc, cli, tmp_path, free):
     extra = ["--free-tool-axis"] if free else []
     theirs = command(cli, tmp_path, *extra)
     mine = stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=free)
+    assert mine["line"].dtype == np.int64 and mine["iterations"].dtype == np.int64
     assert mine["line"].tolist() == [p["line"] for p in theirs]
+    assert mine["iterations"].tolist() == [p["iterations"] for p in theirs]
     qc = column(theirs, *[f"qc{i}_deg" for i in range(1, 7)])
     np.testing.assert_allclose(mine["q_compensated_deg"], qc, rtol=0, atol=1e-12)
     np.testing.assert_allclose(mine["q_deg"], column(theirs, *[f"q{i}_deg" for i in range(1, 7)]), atol=1e-12)
@@ -47,6 +49,8 @@ def test_stiffness_as_numbers_has_no_std(fanuc):
 def test_bad_free_axis_and_start_are_refused(fanuc):
     with pytest.raises(ValueError, match=r"max_step_deg: 0: expected a number > 0 and <= 90"):
         stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=0.0)
+    with pytest.raises(ValueError, match=r"^tool_axis_range_deg: 1e308: expected a number > 0 and <= 180$"):
+        stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=True, tool_axis_range_deg=1e308)
     with pytest.raises(ValueError, match=r"q0_deg"):
         stiffid.compensate(fanuc, PATH, STIFFNESS, q0_deg=[0, 0, 0, 0, 0, 0, 0])
     with pytest.raises(FileNotFoundError, match=r"nope.csv"):

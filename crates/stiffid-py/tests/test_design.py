@@ -152,3 +152,31 @@ def test_setup_from_toml_and_file(tmp_path, paper):
         one_point.evaluate(one_point.random_group(2, 1)[:1])
     with pytest.raises(ValueError, match=r"unknown setup 'nope' \(known: "):
         stiffid.Setup.builtin("nope")
+
+
+def test_fields_only_some_criteria_use_may_be_left_out(paper, cli, tmp_path):
+    text = cli("setups", "show", "zhang2021-comau-nj165", parse=False)
+    without = {
+        field: stiffid.Setup.from_toml("\n".join(l for l in text.splitlines() if not l.startswith(field)))
+        for field in ["characteristic_length_mm", "nominal_stiffness_nm_per_rad"]
+    }
+    no_length, no_stiffness = without["characteristic_length_mm"], without["nominal_stiffness_nm_per_rad"]
+    assert no_length.characteristic_length_mm is None and no_stiffness.nominal_stiffness_nm_per_rad is None
+    assert no_length.nominal_stiffness_nm_per_rad.tolist() == paper.nominal_stiffness_nm_per_rad.tolist()
+    group = paper.random_group(6, 1)
+    full, e_length, e_stiffness = paper.evaluate(group), no_length.evaluate(group), no_stiffness.evaluate(group)
+    assert e_length["classical"] is None and e_length["zhang2021"] is None
+    assert e_length["relative_a"] == full["relative_a"]
+    np.testing.assert_array_equal(e_length["predicted_deviation_pct"], full["predicted_deviation_pct"])
+    for key in ["scaled_cond", "d_optimal", "relative_a", "relative_std", "predicted_deviation_pct"]:
+        assert e_stiffness[key] is None, key
+    assert e_stiffness["zhang2021"] == full["zhang2021"]
+    with pytest.raises(ValueError, match=r"^the setup has no characteristic_length_mm: criterion classical needs it"):
+        no_length.select("classical", method="local", start=group, max_evals=50)
+    with pytest.raises(ValueError, match=r"^the setup has no nominal_stiffness_nm_per_rad: criterion relative-a needs it \(a rough prior"):
+        no_stiffness.select(method="local", start=group, max_evals=50)
+    assert no_stiffness.select("zhang2021", method="local", start=group, max_evals=50)["value"] > 0
+    with pytest.raises(ValueError, match=r"nominal_stiffness_nm_per_rad: the simulation"):
+        stiffid.simulate(no_stiffness, [group], runs=5)
+    with pytest.raises(ValueError, match=r"nominal_stiffness_nm_per_rad: deflection without stiffness_nm_per_rad"):
+        stiffid.deflection(no_stiffness, group[0], [0, 0, -500, 0, 0, 0])

@@ -143,6 +143,16 @@ def test_robot_file_errors(tmp_path):
         stiffid.Robot.from_file(bad)
 
 
+def test_input_files_have_the_commands_limits(robot, tmp_path):
+    with pytest.raises(ValueError, match=r"^/dev/zero: larger than the input limit of 256 MiB$"):
+        robot.read_postures("/dev/zero")
+    with pytest.raises(ValueError, match=r"is a directory, expected a file"):
+        stiffid.Setup.from_file(tmp_path)
+    (tmp_path / "bin.csv").write_bytes(b"posture\xff\xfe")
+    with pytest.raises(ValueError, match=r"bin.csv: not UTF-8 text \(invalid byte at offset 7\)"):
+        robot.read_postures(tmp_path / "bin.csv")
+
+
 def test_postures_file_round_trip(robot, tmp_path):
     from conftest import write_postures
 

@@ -39,7 +39,7 @@ fn compare(c: &mut Criterion) {
     let start = start_group();
     let mut group = c.benchmark_group("compare");
     let psi = rope_observation_matrix(&setup, &start);
-    let delta: DVector<f64> = &psi * setup.nominal_compliance();
+    let delta: DVector<f64> = &psi * setup.nominal_compliance().unwrap();
     group.bench_function("lstsq", |b| {
         b.iter(|| {
             Factor::try_new(black_box(&psi).clone())

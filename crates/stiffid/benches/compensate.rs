@@ -15,7 +15,12 @@ fn benches(c: &mut Criterion) {
     c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
         b.iter(|| {
             let frames = s.robot().frames(black_box(&q));
-            cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), s.nominal_stiffness())
+            cartesian::stiffness(
+                &frames,
+                &s.tool().tcp,
+                s.springs(),
+                s.nominal_stiffness().unwrap(),
+            )
         })
     });
     let frames = s.robot().frames(&q);
@@ -25,11 +30,11 @@ fn benches(c: &mut Criterion) {
                 black_box(&frames),
                 &s.tool().tcp,
                 s.springs(),
-                s.nominal_stiffness(),
+                s.nominal_stiffness().unwrap(),
             )
         })
     });
-    let h = s.nominal_compliance();
+    let h = s.nominal_compliance().unwrap();
     c.bench_function("Cartesian compliance, frames given (J, C_x)", |b| {
         b.iter(|| cartesian::compliance(black_box(&frames), &s.tool().tcp, s.springs(), &h))
     });
@@ -45,7 +50,7 @@ fn benches(c: &mut Criterion) {
         })
         .collect();
     let compliance = Compliance {
-        h: s.nominal_compliance(),
+        h: s.nominal_compliance().unwrap(),
         covariance: None,
     };
     let options = Options {

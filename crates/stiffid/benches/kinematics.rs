@@ -35,7 +35,7 @@ fn kinematics(c: &mut Criterion) {
     // `try_inverse` (the former kernel), on the same normalised TCP Jacobian.
     let frames = setup.robot().frames(&q);
     let tcp = frames.jacobian(&setup.tool().tcp, Coordinates::Axis);
-    let l = setup.characteristic_length();
+    let l = setup.characteristic_length().unwrap();
     c.bench_function("dexterity (fixed-size inverse)", |b| {
         b.iter(|| dexterity(black_box(&tcp), l))
     });

@@ -45,7 +45,7 @@ fn identification(c: &mut Criterion) {
     let mut group = c.benchmark_group("scaling-identify");
     for n in POSTURES {
         let psi = rope_observation_matrix(&setup, &postures(&setup, n));
-        let delta: DVector<f64> = &psi * setup.nominal_compliance();
+        let delta: DVector<f64> = &psi * setup.nominal_compliance().unwrap();
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(
             BenchmarkId::from_parameter(n),

@@ -99,11 +99,13 @@ impl FreeToolAxis {
     pub const MAX_RANGE_DEG: f64 = 180.0;
 
     /// The free tool axis from its step and range in degrees (the units of the command line and
-    /// the Python package): `max_step_deg` in (0, 90], `range_deg` in (0, 180].
+    /// the Python package): `max_step_deg` in (0, 90], `tool_axis_range_deg` in (0, 180].
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (field `max_step_deg` or `range_deg`) with the value given.
-    pub fn try_from_degrees(max_step_deg: f64, range_deg: f64) -> Result<Self> {
+    /// [`Error::InvalidField`] naming the one argument that is wrong (field `max_step_deg` or
+    /// `tool_axis_range_deg`, as the Python arguments and, with `--` and hyphens, the command's
+    /// options) with the value given.
+    pub fn try_from_degrees(max_step_deg: f64, tool_axis_range_deg: f64) -> Result<Self> {
         let check = |v: f64, max: f64, field: &str| match v > 0.0 && v <= max {
             true => Ok(v.to_radians()),
             false => Err(Error::InvalidField {
@@ -113,7 +115,11 @@ impl FreeToolAxis {
         };
         Ok(Self {
             max_step: check(max_step_deg, Self::MAX_STEP_DEG, "max_step_deg")?,
-            range: check(range_deg, Self::MAX_RANGE_DEG, "range_deg")?,
+            range: check(
+                tool_axis_range_deg,
+                Self::MAX_RANGE_DEG,
+                "tool_axis_range_deg",
+            )?,
         })
     }
 

@@ -143,6 +143,20 @@ pub enum Error {
         /// The upper end of the axis' range, deg.
         upper_deg: f64,
     },
+    /// A setup field that only some criteria and computations use is not given, and this one
+    /// needs it ([`crate::Setup::try_nominal_stiffness`],
+    /// [`crate::Setup::try_characteristic_length`], [`crate::design::Criterion::check`]).
+    #[error(
+        "the setup has no {field}: {needed_by} needs it ({})",
+        missing_hint(field)
+    )]
+    MissingField {
+        /// The field as setup files name it: `nominal_stiffness_nm_per_rad` or
+        /// `characteristic_length_mm`.
+        field: &'static str,
+        /// What needs it: a criterion (`criterion relative-a`) or a computation.
+        needed_by: String,
+    },
     /// A number was NaN or infinite where a finite number is needed.
     #[error("{what} is not finite")]
     NotFinite {
@@ -316,6 +330,20 @@ pub enum ColumnProblem {
         /// What was expected.
         message: String,
     },
+}
+
+/// Where a value for a missing setup field comes from ([`Error::MissingField`]).
+fn missing_hint(field: &str) -> &'static str {
+    match field {
+        "nominal_stiffness_nm_per_rad" => {
+            "a rough prior will do: `stiffid setups new --robot R` writes one scaled from the \
+             robot's payload, with its source"
+        }
+        _ => {
+            "`stiffid setups new --robot R` writes the length that minimises the robot's median \
+             dexterity"
+        }
+    }
 }
 
 fn column_name(column: Option<usize>, name: &str) -> String {

@@ -66,8 +66,10 @@ struct Prepared {
 /// ([`evaluate`]).
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`]; the errors of [`Factor::try_new`] (for example
-/// [`Error::Unidentifiable`]) for a group whose observation matrix cannot identify every joint.
+/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`]; [`Error::MissingField`]
+/// for a setup without a nominal stiffness (the true stiffness of the simulation); the errors of
+/// [`Factor::try_new`] (for example [`Error::Unidentifiable`]) for a group whose observation
+/// matrix cannot identify every joint.
 pub fn monte_carlo(
     setup: &Setup,
     groups: &[Vec<Vector6<f64>>],
@@ -95,6 +97,7 @@ pub fn monte_carlo_with_predictions(
     options: &Options,
 ) -> Result<Vec<GroupSimulation>> {
     check_runs(options)?;
+    let k_true = setup.try_nominal_stiffness("the simulation (the true stiffness)")?;
     if predicted.len() != groups.len() {
         return Err(Error::InvalidField {
             field: "predicted".into(),
@@ -107,7 +110,7 @@ pub fn monte_carlo_with_predictions(
     }
     let prepared = groups
         .iter()
-        .map(|g| prepare(setup, g))
+        .map(|g| prepare(setup, g, k_true))
         .collect::<Result<Vec<_>>>()?;
     let runs = options.runs;
     Ok(prepared
@@ -116,7 +119,7 @@ pub fn monte_carlo_with_predictions(
         .enumerate()
         .map(|(g, (group, predicted))| {
             let rates = group_runs(setup, group, g, options);
-            summarise(setup, &rates, runs, predicted.clone())
+            summarise(k_true, &rates, runs, predicted.clone())
         })
         .collect())
 }
@@ -140,13 +143,11 @@ fn check_runs(options: &Options) -> Result<()> {
     limits::check_integer("runs", options.runs as u64, 1, limits::MAX_RUNS)
 }
 
-fn prepare(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Prepared> {
+fn prepare(setup: &Setup, postures: &[Vector6<f64>], k_true: &Vector6<f64>) -> Result<Prepared> {
     let factor = Factor::try_new(rope_observation_matrix(setup, postures))?;
     let exact: Vec<f64> = postures
         .iter()
-        .flat_map(|q| {
-            rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness())
-        })
+        .flat_map(|q| rope_displacements(setup, &setup.robot().frames(q), k_true))
         .flat_map(|d| [d.x, d.y, d.z])
         .collect();
     Ok(Prepared {
@@ -183,12 +184,11 @@ fn splitmix64(x: u64) -> u64 {
 /// Mean and standard deviation of the deviation rates, and the mean stiffness, per level, from the
 /// identified stiffness of every run of one group (level-major, `runs` per level).
 fn summarise(
-    setup: &Setup,
+    k_true: &Vector6<f64>,
     stiffness: &[[f64; 6]],
     runs: usize,
     predicted: Vec<[f64; 6]>,
 ) -> GroupSimulation {
-    let k_true = &setup.nominal_stiffness();
     let mut out = GroupSimulation {
         mean_deviation_pct: Vec::new(),
         std_deviation_pct: Vec::new(),

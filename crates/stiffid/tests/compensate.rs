@@ -37,7 +37,7 @@ fn loaded_at_tcp(name: &str) -> Setup {
 fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
     for name in ["zhang2021-comau-nj165", "fanuc-r2000ic-165f"] {
         let s = loaded_at_tcp(name);
-        let h = s.nominal_compliance();
+        let h = s.nominal_compliance().unwrap();
         for q in s.test_postures() {
             let frames = s.robot().frames(q);
             let c = cartesian::compliance(&frames, &s.tool().tcp, s.springs(), &h);
@@ -46,7 +46,7 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
                 let eps = if k < 3 { 50.0 } else { 20.0 };
                 let at = |sign: f64| {
                     let w = Vector6::from_fn(|i, _| if i == k { sign * eps } else { 0.0 });
-                    let dq = stiffness::deflection(&s, &frames, &w, s.nominal_stiffness())
+                    let dq = stiffness::deflection(&s, &frames, &w, s.nominal_stiffness().unwrap())
                         .joint_deflections;
                     -pose_error(&unloaded, &deflected_pose(&s, q, &dq))
                 };
@@ -61,9 +61,13 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
                     );
                 }
             }
-            let kx =
-                cartesian::stiffness(&frames, &s.tool().tcp, s.springs(), s.nominal_stiffness())
-                    .unwrap();
+            let kx = cartesian::stiffness(
+                &frames,
+                &s.tool().tcp,
+                s.springs(),
+                s.nominal_stiffness().unwrap(),
+            )
+            .unwrap();
             assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-8);
         }
     }
@@ -103,16 +107,17 @@ fn a_tool_frame_wrench_is_the_base_wrench_rotated_by_the_flange() {
         loaded: &s.tool().loading_point,
         observed: &s.tool().tcp,
     };
-    let d = points.deflection(&rotated, &s.nominal_compliance());
+    let d = points.deflection(&rotated, &s.nominal_compliance().unwrap());
     let expected = frames.jacobian(&s.tool().tcp, s.springs())
-        * stiffness::deflection(&s, &frames, &rotated, s.nominal_stiffness()).joint_deflections;
+        * stiffness::deflection(&s, &frames, &rotated, s.nominal_stiffness().unwrap())
+            .joint_deflections;
     assert_relative_eq!(d.displacement, expected, max_relative = 1e-12);
 }
 
 #[test]
 fn covariance_propagation_agrees_with_monte_carlo() {
     let s = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let h = s.nominal_compliance();
+    let h = s.nominal_compliance().unwrap();
     // A correlated covariance with relative standard deviations of 2% to 12%.
     let rel = Vector6::new(0.02, 0.05, 0.03, 0.08, 0.12, 0.06);
     let sd = h.component_mul(&rel);
@@ -235,7 +240,7 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
     for name in ["zhang2021-comau-nj165", "fanuc-r2000ic-165f"] {
         let s = loaded_at_tcp(name);
         let compliance = Compliance {
-            h: s.nominal_compliance(),
+            h: s.nominal_compliance().unwrap(),
             covariance: None,
         };
         let path = line_path(&s, 25);
@@ -245,7 +250,7 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
                 unreachable!()
             };
             let frames = s.robot().frames(&c.q_compensated);
-            let dq = stiffness::deflection(&s, &frames, &c.wrench, s.nominal_stiffness())
+            let dq = stiffness::deflection(&s, &frames, &c.wrench, s.nominal_stiffness().unwrap())
                 .joint_deflections;
             let e = pose_error(nominal, &deflected_pose(&s, &c.q_compensated, &dq));
             assert!(e.fixed_rows::<3>(0).norm() < 1e-7, "{name}: {e}");
@@ -266,7 +271,7 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
 fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let compliance = Compliance {
-        h: s.nominal_compliance(),
+        h: s.nominal_compliance().unwrap(),
         covariance: None,
     };
     let path = line_path(&s, 30);
@@ -308,7 +313,7 @@ fn the_complementary_stiffness_is_about_a_thousandth_of_the_deflection() {
     let s = setup::builtin("zhang2021-comau-nj165").unwrap();
     let q = s.test_postures()[0];
     let w = Vector6::new(300.0, -200.0, -400.0, 0.0, 0.0, 0.0);
-    let h = s.nominal_compliance();
+    let h = s.nominal_compliance().unwrap();
     let torques_at = |dq: &Vector6<f64>| {
         s.robot()
             .frames(&(q + dq))
@@ -348,7 +353,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         .build()
         .unwrap();
     let compliance = Compliance {
-        h: s.nominal_compliance(),
+        h: s.nominal_compliance().unwrap(),
         covariance: None,
     };
     let point = |line: u64, fz: f64| PathPoint {

@@ -23,7 +23,7 @@ fn cond(m: &DMatrix<f64>) -> f64 {
 /// singular values by SVD and `(S^T S)^-1` by explicit inversion.
 fn reference(setup: &Setup, group: &[Vector6<f64>]) -> (Vec<f64>, Vector6<f64>) {
     let psi = rope_observation_matrix(setup, group);
-    let h = setup.nominal_compliance();
+    let h = setup.nominal_compliance().unwrap();
     let sigma = setup.noise().sigma();
     let s =
         &psi * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(h.as_slice())) / sigma;
@@ -115,7 +115,12 @@ fn in_other_joint_units(setup: &Setup, d: &Vector6<f64>) -> Setup {
             lower: b.lower.component_div(d),
             upper: b.upper.component_div(d),
         })
-        .with_nominal_stiffness(setup.nominal_stiffness().component_mul(&d.component_mul(d)))
+        .with_nominal_stiffness(
+            setup
+                .nominal_stiffness()
+                .unwrap()
+                .component_mul(&d.component_mul(d)),
+        )
         .with_test_postures(
             setup
                 .test_postures()
@@ -150,12 +155,12 @@ fn in_other_length_unit(setup: &Setup, c: f64) -> Setup {
             anchor: load.anchor * c,
             ..load.clone()
         })
-        .with_characteristic_length(setup.characteristic_length() * c)
+        .with_characteristic_length(setup.characteristic_length().unwrap() * c)
         .with_noise(Noise {
             variance: noise.variance * c * c,
             ..noise.clone()
         })
-        .with_nominal_stiffness(setup.nominal_stiffness() * c)
+        .with_nominal_stiffness(setup.nominal_stiffness().unwrap() * c)
         .build()
         .unwrap()
 }

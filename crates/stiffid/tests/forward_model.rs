@@ -27,13 +27,13 @@ fn observation_matrix_times_compliance_is_the_forward_displacement() {
             .iter()
             .flat_map(|q| {
                 let frames = setup.robot().frames(q);
-                stiffness::rope_displacements(&setup, &frames, setup.nominal_stiffness())
+                stiffness::rope_displacements(&setup, &frames, setup.nominal_stiffness().unwrap())
                     .into_iter()
                     .flat_map(|d| [d.x, d.y, d.z])
             })
             .collect();
         let delta = DVector::from_vec(delta);
-        let h = setup.nominal_compliance();
+        let h = setup.nominal_compliance().unwrap();
         assert!((&psi * h - &delta).amax() < 1e-12 * delta.amax(), "{name}");
         let recovered = Factor::try_new(psi.clone()).unwrap().solve(&delta);
         let rel = (recovered - h).component_div(&h).amax();

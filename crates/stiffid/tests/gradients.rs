@@ -94,7 +94,7 @@ fn point_jacobian_gradient_matches_central_differences() {
 fn dexterity_gradient_matches_central_differences() {
     let mut rng = ChaCha8Rng::seed_from_u64(15);
     for setup in setups() {
-        let (tcp, l) = (setup.tool().tcp, setup.characteristic_length());
+        let (tcp, l) = (setup.tool().tcp, setup.characteristic_length().unwrap());
         let ln_k = |f: &Frames| dexterity(&f.jacobian(&tcp, setup.springs()), l).ln();
         for _ in 0..5 {
             let q = random_posture(setup.robot(), &mut rng);

@@ -39,7 +39,7 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
                 .collect();
             let data = synthetic(&setup, &postures, |i, _| wrenches[i]);
             let id = least_squares(&setup, &data).unwrap();
-            let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
+            let err = max_relative_error(&id.stiffness, setup.nominal_stiffness().unwrap());
             assert!(err < 1e-9, "{name}, {springs:?}: relative error {err:e}");
             assert_eq!((id.rows, id.postures), (96, 8));
             assert!(id.residual_rms < 1e-12 * data[0].displacement.norm().max(1e-6));
@@ -74,8 +74,8 @@ fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
 fn confidence_intervals_cover_the_truth_at_about_95_percent() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let clean = paper_measurements(&setup);
-    let truth_h = setup.nominal_compliance();
-    let truth_k = setup.nominal_stiffness();
+    let truth_h = setup.nominal_compliance().unwrap();
+    let truth_k = setup.nominal_stiffness().unwrap();
     // Ten times the paper's noise, so that the intervals are wide enough to matter.
     let sigma = 10.0 * setup.noise().sigma();
     let sets = 300;
@@ -113,7 +113,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
     let plain = least_squares(&setup, &data).unwrap();
-    let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness());
+    let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness().unwrap());
     for loss in [Loss::Huber, Loss::Tukey] {
         let id = Observations::from_measurements(&setup, &data)
             .unwrap()
@@ -130,7 +130,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
         // The MAD scale estimates the noise, not the outlier.
         let ratio = fit.scale / setup.noise().sigma();
         assert!((0.6..1.6).contains(&ratio), "{loss:?}: scale/sigma {ratio}");
-        let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
+        let err = max_relative_error(&id.stiffness, setup.nominal_stiffness().unwrap());
         assert!(
             err < plain_err / 2.0,
             "{loss:?}: {err} vs least squares {plain_err}"
@@ -147,11 +147,12 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact = validate::compare(&setup, setup.nominal_stiffness(), &data).unwrap();
+    let exact = validate::compare(&setup, setup.nominal_stiffness().unwrap(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
-    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
+    let stiffer =
+        validate::compare(&setup, &(setup.nominal_stiffness().unwrap() * 2.0), &data).unwrap();
     for (c, m) in stiffer.checks.iter().zip(&data) {
         assert!((c.predicted - m.displacement / 2.0).norm() < 1e-15);
         assert!((c.delta_b - m.displacement.norm() / 2.0).abs() < 1e-15);
@@ -236,6 +237,6 @@ fn one_posture_may_carry_several_wrenches() {
         .collect();
     let id = least_squares(&setup, &data).unwrap();
     assert_eq!((id.rows, id.postures), (144, 6));
-    let err = max_relative_error(&id.stiffness, setup.nominal_stiffness());
+    let err = max_relative_error(&id.stiffness, setup.nominal_stiffness().unwrap());
     assert!(err < 1e-9, "relative error {err:e}");
 }

@@ -65,6 +65,7 @@ fn assert_setup_usable(setup: &Setup) {
     assert_robot_usable(setup.robot());
     assert!(setup
         .nominal_compliance()
+        .unwrap()
         .iter()
         .all(|h| h.is_finite() && *h > 0.0));
     assert!(setup.noise().sigma().is_finite() && setup.noise().sigma() > 0.0);

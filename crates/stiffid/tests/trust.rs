@@ -327,7 +327,7 @@ fn the_unit_check_fires_on_displacements_in_metres_and_forces_in_kilonewtons() {
             .collect();
         least_squares(&setup, &scaled)
             .unwrap()
-            .unit_check(setup.nominal_stiffness())
+            .unit_check(setup.nominal_stiffness().unwrap())
     };
     assert_eq!(fit(1.0, 1.0), None);
     let metres = fit(1e-3, 1.0).unwrap();
@@ -376,9 +376,10 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let data = synthetic(&setup, &qs, |_, q| {
         setup.rope_wrench(&setup.robot().frames(q))
     });
-    let exact = validate::compare(&setup, setup.nominal_stiffness(), &data).unwrap();
+    let exact = validate::compare(&setup, setup.nominal_stiffness().unwrap(), &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
-    let stiffer = validate::compare(&setup, &(setup.nominal_stiffness() * 2.0), &data).unwrap();
+    let stiffer =
+        validate::compare(&setup, &(setup.nominal_stiffness().unwrap() * 2.0), &data).unwrap();
     assert!(
         (stiffer.explained - 0.5).abs() < 1e-12,
         "{}",

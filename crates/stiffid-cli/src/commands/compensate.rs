@@ -5,7 +5,7 @@ use crate::commands::common::{Common, Stiffness};
 use crate::load::{self, WrenchFrame};
 use crate::output::{print_json_or, OutFile};
 use crate::report::{self, compensation};
-use anyhow::{Context, Result};
+use anyhow::{anyhow, Context, Result};
 use nalgebra::Vector6;
 use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::Serialize;
@@ -14,7 +14,7 @@ use std::borrow::Cow;
 use std::path::PathBuf;
 use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
 use stiffid::formats::path;
-use stiffid::{Coordinates, Setup};
+use stiffid::{Coordinates, Error, Setup};
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -222,7 +222,12 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     }
     if args.free_tool_axis {
         let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)
-            .context("--max-step-deg / --tool-axis-range-deg")?;
+            .map_err(|e| match e {
+                Error::InvalidField { field, message } => {
+                    anyhow!("--{}: {message}", field.replace('_', "-"))
+                }
+                e => e.into(),
+            })?;
         options.free_tool_axis = Some(free);
     }
     Ok(options)

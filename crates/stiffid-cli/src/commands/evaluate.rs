@@ -13,7 +13,7 @@ use stiffid::design::{evaluate, Criterion, Evaluation};
 use stiffid::limits::short;
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
-use stiffid::Setup;
+use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid evaluate`.
 #[derive(clap::Args)]
@@ -31,12 +31,15 @@ pub struct Args {
 pub struct CriteriaJson {
     #[serde(flatten)]
     values: CriteriaValuesJson,
-    /// Predicted mean deviation rate, percent, [levels][6].
-    predicted_deviation_pct: Vec<[f64; 6]>,
+    /// Predicted mean deviation rate, percent, [levels][6]; `null` for a setup without a nominal
+    /// stiffness.
+    predicted_deviation_pct: Option<Vec<[f64; 6]>>,
 }
 
 /// The design criteria of a group (smaller is better; `null` for `+infinity`: a singular posture
-/// for `classical` and `zhang2021`, else a value beyond the floating-point range).
+/// for `classical` and `zhang2021`, else a value beyond the floating-point range; `null` also for
+/// a criterion the setup lacks a field for: `characteristic_length_mm` for `classical` and
+/// `zhang2021`, `nominal_stiffness_nm_per_rad` for `scaled_cond`, `d_optimal` and `relative_a`).
 #[derive(Debug, Serialize, JsonSchema)]
 pub struct CriteriaValuesJson {
     /// `max_i k(J_N)_i`.
@@ -80,7 +83,13 @@ impl From<&Evaluation> for CriteriaJson {
     fn from(e: &Evaluation) -> Self {
         Self {
             values: CriteriaValuesJson::from(e),
-            predicted_deviation_pct: e.predicted_deviation_pct.clone(),
+            // NaN only without a nominal stiffness (stiffid::design::Evaluation).
+            predicted_deviation_pct: (!e
+                .predicted_deviation_pct
+                .iter()
+                .flatten()
+                .any(|v| v.is_nan()))
+            .then(|| e.predicted_deviation_pct.clone()),
         }
     }
 }
@@ -114,8 +123,13 @@ pub fn run(args: &Args) -> Result<()> {
         args.postures.display(),
         short(setup.name())
     );
-    s += &criteria_text(&e);
+    s += &criteria_text(&e, &setup);
     s += "\npredicted mean deviation rate, % (first order)\n";
+    if let Err(e) = setup.try_nominal_stiffness("the prediction") {
+        s += &format!("  not computed: {e}\n");
+        s += &feasibility::text(&checks);
+        return output::print(&s);
+    }
     s += &format!("{:>5} {:>6}  {}\n", "level", "x var", joints_header());
     for (l, (m, row)) in setup
         .noise()
@@ -138,11 +152,19 @@ pub fn identifiable(setup: &Setup, postures: &[Vector6<f64>]) -> Result<()> {
     Ok(())
 }
 
-/// Every criterion of an evaluation, one per line (smaller is better), for a group that can
-/// identify every joint ([`identifiable`]): an infinite value says why.
-pub fn criteria_text(e: &Evaluation) -> String {
+/// Every criterion of an evaluation on `setup`, one per line (smaller is better), for a group
+/// that can identify every joint ([`identifiable`]): an infinite value says why, and so does a
+/// criterion the setup lacks a field for.
+pub fn criteria_text(e: &Evaluation, setup: &Setup) -> String {
     let mut s = String::new();
     for c in Criterion::ALL {
+        if let Err(Error::MissingField { field, .. }) = c.check(setup) {
+            s += &format!(
+                "  {:<12} not computed: the setup has no {field}\n",
+                c.name()
+            );
+            continue;
+        }
         let (value, unit) = match c {
             Criterion::TestPose => (e.test_pose * 1e3, " mm"),
             _ => (e.value(c), ""),

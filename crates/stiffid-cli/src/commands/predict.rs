@@ -149,7 +149,10 @@ pub fn run(args: &Args) -> Result<()> {
             let file = load::stiffness(path)?;
             (file.stiffness(), file.covariance())
         }
-        None => (*setup.nominal_stiffness(), None),
+        None => (
+            *setup.try_nominal_stiffness("predict without --stiffness FILE")?,
+            None,
+        ),
     };
     let h = stiffness.map(|k| 1.0 / k);
     let frames = setup.robot().frames(&q);

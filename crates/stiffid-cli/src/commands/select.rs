@@ -13,7 +13,7 @@ use crate::report::plan;
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector6;
-use schemars::JsonSchema;
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -97,12 +97,19 @@ pub struct Args {
     force: bool,
 }
 
+/// The schema of a criterion's name: a string, one of the names of [`Criterion::ALL`].
+fn criterion_name(_: &mut SchemaGenerator) -> Schema {
+    let names: Vec<&str> = Criterion::ALL.iter().map(|c| c.name()).collect();
+    json_schema!({ "type": "string", "enum": names })
+}
+
 /// `stiffid select --json`: the group found, how, and its criteria.
 #[derive(Serialize, JsonSchema)]
 pub struct SelectJson<'a> {
     /// The setup's name.
     setup: &'a str,
     /// The criterion minimised (`relative-a`, ...).
+    #[schemars(schema_with = "criterion_name")]
     criterion: &'a str,
     /// `local`, `global` or `pool`.
     search: &'a str,
@@ -201,7 +208,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = args
         .report
         .as_deref()
-        .map(|dir| plan::open(dir, args.force))
+        .map(|dir| plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)))
         .transpose()?;
     let started = Instant::now();
     let (selection, target) = match args.target_pct {
@@ -272,7 +279,7 @@ pub fn run(args: &Args) -> Result<()> {
         text += &target::text(t);
     }
     text += &outcome_text(args, &setup, &selection, elapsed);
-    text += &criteria_text(&e);
+    text += &criteria_text(&e, &setup);
     if let Some((s, free_e)) = &free {
         text += &cost_text(args.criterion, &selection, &e, s, free_e);
     }
@@ -306,15 +313,22 @@ fn cost_text(
     free_e: &Evaluation,
 ) -> String {
     let mean = Evaluation::predicted_average_pct;
-    format!(
-        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+    let mut text = format!(
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
         number(feasible.value),
         number(free.value),
         100.0 * (feasible.value / free.value - 1.0),
-        mean(e),
-        mean(free_e),
-        100.0 * (mean(e) / mean(free_e) - 1.0)
-    )
+    );
+    // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
+    if !mean(e).is_nan() {
+        text += &format!(
+            "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+            mean(e),
+            mean(free_e),
+            100.0 * (mean(e) / mean(free_e) - 1.0)
+        );
+    }
+    text
 }
 
 /// The group of `n` postures by the search the arguments ask for.

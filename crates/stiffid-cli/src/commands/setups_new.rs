@@ -6,7 +6,8 @@ use crate::{load, output};
 use anyhow::{bail, Context, Result};
 use nalgebra::{Vector3, Vector6};
 use std::path::{Path, PathBuf};
-use stiffid::{prior, robot::presets, Robot};
+use stiffid::setup::Tool;
+use stiffid::{cell, prior, robot::presets, Robot};
 
 /// Arguments of `stiffid setups new`.
 #[derive(clap::Args)]
@@ -148,17 +149,28 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
     };
     let stiffness = prior::nominal_stiffness(payload).context("--payload-kg")?;
     // The paper's tool (a 160 mm plate 260 mm out, a loading arm 150 mm off axis 6), scaled down
-    // for robots smaller than the paper's.
+    // for robots smaller than the paper's; mm.
     let scale = (reach / reference_reach).min(1.0);
     let tool = |x: f64, y: f64, z: f64| Vector3::new(x, y, z) * scale;
     let (lower, upper) = bounds_deg(robot);
     let to_rad = |v: &Vector6<f64>| v.map(f64::to_radians);
-    let tcp = tool(80.0, 80.0, 260.0) * 1e-3;
-    let l = prior::characteristic_length(robot, &to_rad(&lower), &to_rad(&upper), &tcp, SEED)?;
     let corners = [(80.0, 80.0), (-80.0, 80.0), (-80.0, -80.0), (80.0, -80.0)];
-    let points: Vec<String> = corners
+    let tool_mm = Tool {
+        loading_point: tool(150.0, 0.0, 200.0),
+        measuring_points: corners.iter().map(|&(x, y)| tool(x, y, 260.0)).collect(),
+        tcp: tool(80.0, 80.0, 260.0),
+    };
+    let l = prior::characteristic_length(
+        robot,
+        &to_rad(&lower),
+        &to_rad(&upper),
+        &(tool_mm.tcp * 1e-3),
+        SEED,
+    )?;
+    let points: Vec<String> = tool_mm
+        .measuring_points
         .iter()
-        .map(|&(x, y)| list(tool(x, y, 260.0).iter(), 1))
+        .map(|p| list(p.iter(), 1))
         .collect();
     let stem = match presets::get(robot_ref) {
         Ok(_) => robot_ref.into(),
@@ -171,7 +183,7 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
         None => "# robot_tip = \"tool0\"".into(),
     };
     let reach_mm = reach * 1e3;
-    fill(&[
+    let mut values = vec![
         ("ROBOT_NAME", robot.name.clone()),
         ("ROBOT_REF", robot_ref.to_string()),
         ("NAME", quoted(&format!("{stem}-cell"))),
@@ -188,7 +200,7 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
         ("LENGTH_MM", format!("{:.1}", l * 1e3)),
         ("PAYLOAD_NOTE", payload_note),
         ("STIFFNESS", list(stiffness.iter(), 0)),
-        ("LOADING_POINT", list(tool(150.0, 0.0, 200.0).iter(), 1)),
+        ("LOADING_POINT", list(tool_mm.loading_point.iter(), 1)),
         (
             "MEASURING_POINTS",
             format!("[\n  {},\n]", points.join(",\n  ")),
@@ -205,7 +217,36 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
         ("MARGIN_DEG", format!("{LIMIT_MARGIN_DEG}")),
         ("LOWER", list(lower.iter(), 1)),
         ("UPPER", list(upper.iter(), 1)),
-    ])
+        ("TEST_POSTURE", list(((lower + upper) / 2.0).iter(), 1)),
+    ];
+    values.extend(cell_values(robot, &tool_mm, reach_mm));
+    fill(&values)
+}
+
+/// The values of the commented-out `[cell]`, `[robot_geometry]` and `[tracker]` sections for a
+/// robot of reach `reach_mm` with the tool `tool_mm` (mm): a table behind the robot, the default
+/// body radii, a tracker in front of it to the side (the paper's cell at (3000, -2000, 1500) mm for
+/// a reach of about 3 m), the flange z axis as every measuring point's normal.
+fn cell_values(robot: &Robot, tool_mm: &Tool, reach_mm: f64) -> Vec<(&'static str, String)> {
+    let r = |x: f64, y: f64, z: f64| Vector3::new(x, y, z) * reach_mm;
+    let si = Tool {
+        loading_point: tool_mm.loading_point * 1e-3,
+        measuring_points: tool_mm.measuring_points.iter().map(|p| p * 1e-3).collect(),
+        tcp: tool_mm.tcp * 1e-3,
+    };
+    let geometry = cell::default_geometry(robot, &si);
+    let normals = vec!["[0.0, 0.0, 1.0]"; si.measuring_points.len()];
+    vec![
+        ("OBSTACLE_MIN", list(r(-0.7, -0.15, 0.0).iter(), 0)),
+        ("OBSTACLE_MAX", list(r(-0.45, 0.15, 0.25).iter(), 0)),
+        (
+            "LINK_RADII",
+            list(geometry.link_radii.map(|v| v * 1e3).iter(), 1),
+        ),
+        ("TOOL_RADIUS", format!("{:.1}", geometry.tool_radius * 1e3)),
+        ("TRACKER_POSITION", list(r(1.0, -0.7, 0.5).iter(), 0)),
+        ("NORMALS", format!("[{}]", normals.join(", "))),
+    ]
 }
 
 /// [`TEMPLATE`] with every `@KEY@` replaced by its value.

@@ -65,6 +65,7 @@ struct Plan<'a> {
 impl<'a> Plan<'a> {
     fn new(
         setup: &'a Setup,
+        k: &Vector6<f64>,
         criterion: Criterion,
         postures: &[Vector6<f64>],
         target: Option<&'a TargetOutcome>,
@@ -87,7 +88,7 @@ impl<'a> Plan<'a> {
                     rope_direction: rope.normalize(),
                     rope_length: rope.norm(),
                     loading_point_z: lp.z,
-                    displacements: rope_displacements(setup, &frames, setup.nominal_stiffness()),
+                    displacements: rope_displacements(setup, &frames, k),
                     without_pct: predicted_deviation_pct(&without, 1.0),
                     clearance: feasibility.min_clearance(),
                     failed: feasibility.violations().map(describe).collect(),
@@ -114,6 +115,11 @@ impl<'a> Plan<'a> {
     }
 }
 
+/// The setup's nominal stiffness, which the plan's expected displacements need.
+pub fn stiffness(setup: &Setup) -> Result<&Vector6<f64>> {
+    Ok(setup.try_nominal_stiffness("select --report (the plan's expected displacements)")?)
+}
+
 /// Writes `plan.html`, `plan.csv` and `figures/` of `postures` (axis angles, rad) into `dir`,
 /// each file whole.
 pub fn write(
@@ -123,7 +129,7 @@ pub fn write(
     postures: &[Vector6<f64>],
     target: Option<&TargetOutcome>,
 ) -> Result<()> {
-    let plan = Plan::new(setup, criterion, postures, target);
+    let plan = Plan::new(setup, stiffness(setup)?, criterion, postures, target);
     let figures = plan.figures()?;
     let title = format!(
         "Measurement plan: {} postures, {}",

@@ -104,10 +104,10 @@ struct SetupJson<'a> {
     noise: NoiseJson,
     /// The posture bounds of the search.
     bounds: BoundsJson,
-    /// The nominal joint stiffness, Nm/rad.
-    stiffness_nm_per_rad: [f64; 6],
-    /// The characteristic length of the dexterity index, mm.
-    characteristic_length_mm: f64,
+    /// The nominal joint stiffness, Nm/rad (the study's true stiffness; a study needs it).
+    stiffness_nm_per_rad: Option<[f64; 6]>,
+    /// The characteristic length of the dexterity index, mm (a study needs it).
+    characteristic_length_mm: Option<f64>,
     /// The test postures, axis angles q1..q6, deg.
     test_postures_deg: Vec<[f64; 6]>,
 }
@@ -241,8 +241,8 @@ impl<'a> SetupJson<'a> {
                 lower_deg: deg(&s.bounds().lower),
                 upper_deg: deg(&s.bounds().upper),
             },
-            stiffness_nm_per_rad: (*s.nominal_stiffness()).into(),
-            characteristic_length_mm: s.characteristic_length() * 1e3,
+            stiffness_nm_per_rad: s.nominal_stiffness().map(|k| (*k).into()),
+            characteristic_length_mm: s.characteristic_length().map(|l| l * 1e3),
             test_postures_deg: s.test_postures().iter().map(deg).collect(),
         }
     }

@@ -204,7 +204,11 @@ pub fn setup(study: &Study) -> Table {
             "springs in",
             format!("{:?} coordinates", s.springs()).to_lowercase(),
         ),
-        ("true stiffness, Nm/rad", six(s.nominal_stiffness(), 1.0)),
+        (
+            "true stiffness, Nm/rad",
+            s.nominal_stiffness()
+                .map_or(NOT_GIVEN.into(), |k| six(k, 1.0)),
+        ),
         (
             "loading point (flange frame), mm",
             mm3(&s.tool().loading_point),
@@ -245,7 +249,8 @@ pub fn setup(study: &Study) -> Table {
         ),
         (
             "characteristic length L, mm",
-            format!("{:.0}", s.characteristic_length() * 1e3),
+            s.characteristic_length()
+                .map_or(NOT_GIVEN.into(), |l| format!("{:.0}", l * 1e3)),
         ),
         (
             "Monte Carlo runs per group and level / seed",
@@ -318,3 +323,6 @@ pub fn paper_table4(study: &Study, paper: &[[f64; 3]; 6]) -> Table {
             .collect(),
     }
 }
+
+/// The value shown for a setup field that is not given.
+const NOT_GIVEN: &str = "not given";

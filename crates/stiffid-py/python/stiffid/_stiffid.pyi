@@ -16,6 +16,7 @@ _CriterionName = Literal[
 ]
 _PathLike = Union[str, "os.PathLike[str]"]
 _Array = NDArray[np.float64]
+_Ints = NDArray[np.int64]
 
 @final
 class Robot:
@@ -83,9 +84,9 @@ class Setup:
     @property
     def springs(self) -> _Coordinates: ...
     @property
-    def nominal_stiffness_nm_per_rad(self) -> _Array: ...
+    def nominal_stiffness_nm_per_rad(self) -> Optional[_Array]: ...
     @property
-    def characteristic_length_mm(self) -> float: ...
+    def characteristic_length_mm(self) -> Optional[float]: ...
     @property
     def loading_point_mm(self) -> _Array: ...
     @property
@@ -107,7 +108,7 @@ class Setup:
     @property
     def test_postures_deg(self) -> _Array: ...
     def evaluate(self, postures_deg: ArrayLike) -> dict[str, Any]:
-        """Criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6)."""
+        """Criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6); None where the setup lacks the field (characteristic_length_mm, nominal_stiffness_nm_per_rad)."""
     def select(
         self,
         criterion: _CriterionName = "relative-a",
@@ -240,8 +241,8 @@ def compensate(
     free_tool_axis: bool = False,
     max_step_deg: float = 2.0,
     tool_axis_range_deg: float = 90.0,
-) -> dict[str, _Array]:
-    """line, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad (n, 3), residual_um, residual_urad, iterations, tool_rotation_deg (n,); deflection_std_mm with a covariance."""
+) -> dict[str, Union[_Array, _Ints]]:
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance."""
 
 def deflection(
     setup: Setup,

@@ -61,6 +61,37 @@ impl Criterion {
         }
     }
 
+    /// Checks that `setup` has the field this criterion needs beyond the robot, tool, load and
+    /// noise: the characteristic length for classical and zhang2021 (the dexterity index, Eq. 20),
+    /// the nominal stiffness for scaled-cond, d-optimal and relative-a (the scaling
+    /// `S = Psi diag(h_nominal) / sigma`); test-pose needs neither.
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] naming the field and the criterion.
+    pub fn check(self, setup: &Setup) -> Result<(), Error> {
+        let needed_by = || format!("criterion {}", self.name());
+        match self {
+            Criterion::Classical | Criterion::Zhang2021 => {
+                setup.try_characteristic_length(&needed_by()).map(drop)
+            }
+            Criterion::ScaledCond | Criterion::DOptimal | Criterion::RelativeA => {
+                setup.try_nominal_stiffness(&needed_by()).map(drop)
+            }
+            Criterion::TestPose => Ok(()),
+        }
+    }
+
+    /// Whether `setup` has what this criterion needs ([`Criterion::check`]).
+    pub fn serves(self, setup: &Setup) -> bool {
+        match self {
+            Criterion::Classical | Criterion::Zhang2021 => setup.characteristic_length().is_some(),
+            Criterion::ScaledCond | Criterion::DOptimal | Criterion::RelativeA => {
+                setup.nominal_stiffness().is_some()
+            }
+            Criterion::TestPose => true,
+        }
+    }
+
     /// The key of the criterion in JSON documents (`stiffid evaluate --json`): the name with
     /// underscores, and the unit for `test_pose_mm`.
     pub fn key(self) -> &'static str {
@@ -101,7 +132,9 @@ impl FromStr for Criterion {
     }
 }
 
-/// Every criterion of one group of postures, and the predicted deviation rates.
+/// Every criterion of one group of postures, and the predicted deviation rates. A criterion the
+/// setup lacks a field for ([`Criterion::check`]) is NaN, and so are `relative_std` and
+/// `predicted_deviation_pct` without a nominal stiffness; every other value is NaN-free.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluation {
     /// [`Criterion::Classical`], dimensionless.
@@ -139,6 +172,30 @@ impl Evaluation {
         }
     }
 
+    /// This evaluation with NaN for what `setup` lacks a field for: the criteria
+    /// ([`Criterion::serves`]) and, without a nominal stiffness, the relative standard deviations
+    /// and the predicted deviation rates.
+    pub(crate) fn without_missing(mut self, setup: &Setup) -> Self {
+        let nan = f64::NAN;
+        for c in Criterion::ALL.into_iter().filter(|c| !c.serves(setup)) {
+            *match c {
+                Criterion::Classical => &mut self.classical,
+                Criterion::Zhang2021 => &mut self.zhang2021,
+                Criterion::ScaledCond => &mut self.scaled_cond,
+                Criterion::DOptimal => &mut self.d_optimal,
+                Criterion::RelativeA => &mut self.relative_a,
+                Criterion::TestPose => &mut self.test_pose,
+            } = nan;
+        }
+        if setup.nominal_stiffness().is_none() {
+            self.relative_std.fill(nan);
+            self.predicted_deviation_pct
+                .iter_mut()
+                .for_each(|p| p.fill(nan));
+        }
+        self
+    }
+
     /// The predicted average deviation rate, %: the mean of
     /// [`Evaluation::predicted_deviation_pct`] over noise levels and joints (0 without levels).
     pub fn predicted_average_pct(&self) -> f64 {
@@ -147,8 +204,12 @@ impl Evaluation {
     }
 }
 
-/// `max_i k(J_N)_i` over the postures (axis angles, rad): the classical index.
+/// `max_i k(J_N)_i` over the postures (axis angles, rad): the classical index; NaN without a
+/// characteristic length.
 pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
+    if setup.characteristic_length().is_none() {
+        return f64::NAN;
+    }
     postures
         .iter()
         .map(|q| tcp_dexterity(setup, &setup.robot().frames(q)))
@@ -156,11 +217,18 @@ pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
 }
 
 /// `k(J_N)` (Eq. 20-21) of the setup's TCP in one posture, its Jacobian in the springs' coordinates
-/// and normalised by the setup's characteristic length; `+infinity` at a singularity.
+/// and normalised by the setup's characteristic length; `+infinity` at a singularity. Without a
+/// characteristic length it is normalised by 1 m, so that no NaN reaches a decomposition (the
+/// criteria that need one are NaN then: [`Evaluation`], [`Evaluator::value`]).
 pub fn tcp_dexterity(setup: &Setup, frames: &Frames) -> f64 {
     let j = frames.jacobian(&setup.tool().tcp, setup.springs());
-    dexterity(&j, setup.characteristic_length())
+    let l = setup.characteristic_length().unwrap_or(PLACEHOLDER_LENGTH);
+    dexterity(&j, l)
 }
+
+/// The length (m) the dexterity is normalised by when a setup has no characteristic length;
+/// nothing computed with it is reported.
+pub(crate) const PLACEHOLDER_LENGTH: f64 = 1.0;
 
 /// Predicted mean deviation rate (%) of each joint at noise multiple `m` from relative standard
 /// deviations at multiple 1: `100 sqrt(2/pi) sqrt(m) s_j`.

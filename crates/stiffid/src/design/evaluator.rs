@@ -49,7 +49,9 @@ impl<'a> Evaluator<'a> {
     pub fn new(setup: &'a Setup) -> Self {
         Self {
             setup,
-            scaling: setup.nominal_compliance() / setup.noise().sigma(),
+            // Without a nominal stiffness, 1 rad/Nm: the criteria that need it are NaN then.
+            scaling: setup.nominal_compliance().unwrap_or(Vector6::repeat(1.0))
+                / setup.noise().sigma(),
             test_factor: triangular_factor(rope_observation_matrix(setup, setup.test_postures())),
         }
     }
@@ -61,8 +63,12 @@ impl<'a> Evaluator<'a> {
 
     /// The value of `criterion` for `postures` (axis angles, rad), equal to
     /// [`Evaluation::value`] of [`Evaluator::evaluation`]: `+infinity` for a group whose observation
-    /// matrix is rank deficient, never NaN.
+    /// matrix is rank deficient; NaN only for a criterion the setup lacks a field for
+    /// ([`Criterion::check`]).
     pub fn value(&self, criterion: Criterion, postures: &[Vector6<f64>]) -> f64 {
+        if !criterion.serves(self.setup) {
+            return f64::NAN;
+        }
         if criterion == Criterion::Classical {
             return postures
                 .iter()
@@ -97,6 +103,9 @@ impl<'a> Evaluator<'a> {
     /// The value of `criterion` for the group of postures whose terms are given: the same as
     /// [`Evaluator::value`] of those postures.
     pub fn value_of(&self, criterion: Criterion, terms: &[&PostureTerms]) -> f64 {
+        if !criterion.serves(self.setup) {
+            return f64::NAN;
+        }
         if criterion == Criterion::Classical {
             return self.classical(terms);
         }
@@ -157,7 +166,8 @@ impl<'a> Evaluator<'a> {
         })
     }
 
-    /// Every criterion and the predicted deviation rates of `postures` (axis angles, rad).
+    /// Every criterion and the predicted deviation rates of `postures` (axis angles, rad); NaN for
+    /// what the setup lacks a field for ([`Evaluation`]).
     pub fn evaluation(&self, postures: &[Vector6<f64>]) -> Evaluation {
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.posture(q)).collect();
         let refs: Vec<&PostureTerms> = terms.iter().collect();
@@ -175,7 +185,8 @@ impl<'a> Evaluator<'a> {
                 cond_psi: inf,
                 relative_std: Vector6::repeat(inf),
                 predicted_deviation_pct: vec![[inf; 6]; levels.len()],
-            };
+            }
+            .without_missing(self.setup);
         };
         let cond_psi = finite(cond(&group.r));
         let relative_std = group.relative_std();
@@ -193,6 +204,7 @@ impl<'a> Evaluator<'a> {
                 .map(|&m| predicted_deviation_pct(&relative_std, m))
                 .collect(),
         }
+        .without_missing(self.setup)
     }
 
     /// The classical index `max_i k(J_N)_i` of the postures' terms.

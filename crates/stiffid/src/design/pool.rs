@@ -181,7 +181,8 @@ impl<'a> Pool<'a> {
     /// [`Error::InvalidField`]: `options` outside their limits ([`PoolOptions::validate`]); `n`
     /// below 2, above [`MAX_GROUP`] or above the usable postures; the `test-pose` criterion
     /// without test postures; no group of `n` usable postures that identifies all six compliances
-    /// (field `pool`).
+    /// (field `pool`). [`Error::MissingField`] for a criterion the setup lacks a field for
+    /// ([`Criterion::check`]).
     pub fn best(
         &self,
         criterion: Criterion,

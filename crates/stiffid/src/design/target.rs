@@ -64,7 +64,8 @@ impl TargetOutcome {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`target_pct`) for a target that is not a finite number > 0,
-/// (`postures`) for `max_postures` below [`MIN_POSTURES`]; whatever `choose` returns.
+/// (`postures`) for `max_postures` below [`MIN_POSTURES`]; [`Error::MissingField`] for a setup
+/// without a nominal stiffness (the predicted deviation rates need it); whatever `choose` returns.
 pub fn smallest_group<E: From<Error>>(
     setup: &Setup,
     target_pct: f64,
@@ -78,6 +79,7 @@ pub fn smallest_group<E: From<Error>>(
         }
         .into());
     }
+    setup.try_nominal_stiffness("a target deviation rate (the predicted deviation rates)")?;
     let max = max_postures.min(MAX_POSTURES);
     if max < MIN_POSTURES {
         return Err(Error::InvalidField {

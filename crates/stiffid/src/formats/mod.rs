@@ -1,5 +1,6 @@
 //! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here): the
-//! caller reads the file and adds its name to errors.
+//! caller reads the file and adds its name to errors. [`text`] turns the bytes a caller read into
+//! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`).
 //!
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
@@ -14,8 +15,41 @@ pub mod reference;
 pub mod stiffness;
 
 use crate::error::ColumnProblem;
-use crate::limits::short;
+use crate::limits::{short, MAX_INPUT_BYTES};
 use crate::{Error, Result};
+
+/// The text of an input file from its bytes as read: the reader stops after
+/// [`MAX_INPUT_BYTES`] + 1 bytes (`Read::take`), so more than the limit means the file is larger.
+///
+/// # Errors
+/// [`Error::Parse`] naming `source_name`: larger than the input limit, or not UTF-8 text (with
+/// the offset of the first invalid byte).
+///
+/// # Examples
+/// ```
+/// let text = stiffid::formats::text("group.csv", b"q1_deg,q2_deg".to_vec()).unwrap();
+/// assert_eq!(text, "q1_deg,q2_deg");
+/// let e = stiffid::formats::text("bin.csv", vec![0xff, 0xfe]).unwrap_err();
+/// assert_eq!(e.to_string(), "bin.csv: not UTF-8 text (invalid byte at offset 0)");
+/// ```
+pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
+    let error = |message: String| Error::Parse {
+        source_name: source_name.to_string(),
+        message,
+    };
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(error(format!(
+            "larger than the input limit of {} MiB",
+            MAX_INPUT_BYTES >> 20
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        error(format!(
+            "not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
 
 /// The error for a column `name` missing from the header at `line`.
 fn missing(line: u64, name: &str) -> Error {

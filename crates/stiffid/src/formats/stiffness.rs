@@ -40,7 +40,7 @@ const EXPECTED: &str = "JSON with the key stiffness_nm_per_rad (six numbers, Nm/
 /// [`Error::Json`] (line, column) for text that is not JSON with these keys and shapes;
 /// [`Error::InvalidField`] naming the key (and index) for a stiffness outside
 /// [`limits::STIFFNESS_NM_PER_RAD`] or a covariance that is not finite, symmetric with a
-/// non-negative diagonal.
+/// non-negative diagonal ([`check_covariance`]).
 ///
 /// # Examples
 /// ```
@@ -63,20 +63,39 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
     let k = &file.stiffness_nm_per_rad;
     limits::check("stiffness_nm_per_rad", k, &STIFFNESS_NM_PER_RAD)?;
     if let Some(c) = file.covariance() {
-        let scale = c.diagonal().amax();
-        let valid = c.iter().all(|v| v.is_finite())
-            && c.diagonal().iter().all(|v| *v >= 0.0)
-            && (c - c.transpose()).amax() <= 1e-9 * scale;
-        if !valid {
-            return Err(Error::InvalidField {
-                field: "compliance_covariance_rad2_per_nm2".into(),
-                message:
-                    "expected a symmetric 6x6 matrix of finite numbers with a non-negative diagonal"
-                        .into(),
-            });
-        }
+        check_covariance(&c)?;
     }
     Ok(file)
+}
+
+/// Checks a covariance `Cov(h)` of the compliance, (rad/Nm)^2 (the key
+/// `compliance_covariance_rad2_per_nm2`; paper eq. 12): finite, symmetric to 1e-9 of the largest
+/// diagonal entry, non-negative diagonal.
+///
+/// # Errors
+/// [`Error::InvalidField`] naming `compliance_covariance_rad2_per_nm2`.
+///
+/// # Examples
+/// ```
+/// use nalgebra::Matrix6;
+/// use stiffid::formats::stiffness::check_covariance;
+/// assert!(check_covariance(&Matrix6::from_diagonal_element(1e-14)).is_ok());
+/// assert!(check_covariance(&Matrix6::from_diagonal_element(-1e-14)).is_err());
+/// ```
+pub fn check_covariance(c: &Matrix6<f64>) -> Result<()> {
+    let scale = c.diagonal().amax();
+    let valid = c.iter().all(|v| v.is_finite())
+        && c.diagonal().iter().all(|v| *v >= 0.0)
+        && (c - c.transpose()).amax() <= 1e-9 * scale;
+    match valid {
+        true => Ok(()),
+        false => Err(Error::InvalidField {
+            field: "compliance_covariance_rad2_per_nm2".into(),
+            message:
+                "expected a symmetric 6x6 matrix of finite numbers with a non-negative diagonal"
+                    .into(),
+        }),
+    }
 }
 
 impl StiffnessFile {

@@ -85,6 +85,11 @@ pub const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
 /// kinematic angles loses more than half the digits.
 pub const MAX_AXIS_MAP_COND: f64 = 1e8;
 
+/// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
+/// (1e6 rows take about 119 MB), and a bound on the memory one file (or `/dev/zero`) can take.
+/// Both front ends read at most one byte more and hand the bytes to [`crate::formats::text`].
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
+
 /// Most noise levels of a setup (with [`MAX_RUNS`], a bound on a simulation's memory: levels x
 /// runs results of one group at a time).
 pub const MAX_LEVELS: usize = 20;

@@ -21,8 +21,8 @@ struct SetupFile {
     robot_flange: Option<TransformFile>,
     #[serde(default)]
     springs: Coordinates,
-    characteristic_length_mm: f64,
-    nominal_stiffness_nm_per_rad: [f64; 6],
+    characteristic_length_mm: Option<f64>,
+    nominal_stiffness_nm_per_rad: Option<[f64; 6]>,
     tool: ToolFile,
     loading: LoadingFile,
     noise: NoiseFile,
@@ -205,8 +205,6 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
         .with_description(f.description)
         .with_robot_ref(f.robot)
         .with_springs(f.springs)
-        .with_characteristic_length(f.characteristic_length_mm * 1e-3)
-        .with_nominal_stiffness(Vector6::from_column_slice(&f.nominal_stiffness_nm_per_rad))
         .with_loading_point(mm(&f.tool.loading_point_mm))
         .with_measuring_points(measuring_points)
         .with_load(RopeLoad {
@@ -221,6 +219,12 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
             deg6(&f.bounds.lower_deg),
             deg6(&f.bounds.upper_deg),
         ));
+    if let Some(l) = f.characteristic_length_mm {
+        b = b.with_characteristic_length(l * 1e-3);
+    }
+    if let Some(k) = f.nominal_stiffness_nm_per_rad {
+        b = b.with_nominal_stiffness(Vector6::from(k));
+    }
     if let Some(tcp) = &f.tool.tcp_mm {
         b = b.with_tcp(mm(tcp));
     }

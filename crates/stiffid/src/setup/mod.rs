@@ -12,8 +12,8 @@
 //! # [robot_flange]                       # optional: an adapter plate after the flange
 //! # xyz_mm = [0, 0, 20]
 //! springs = "axis"                       # or "kinematic": where the joint springs sit
-//! characteristic_length_mm = 1200.0      # L of the dexterity index (Eq. 20)
-//! nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]
+//! characteristic_length_mm = 1200.0      # L of the dexterity index (Eq. 20); optional
+//! nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]   # optional
 //! [tool]                                 # points in the flange frame
 //! loading_point_mm = [150, 0, 200]
 //! measuring_points_mm = [[80, 80, 260], [-80, 80, 260]]
@@ -137,8 +137,8 @@ pub struct Setup {
     load: RopeLoad,
     noise: Noise,
     bounds: JointBox,
-    nominal_stiffness: Vector6<f64>,
-    characteristic_length: f64,
+    nominal_stiffness: Option<Vector6<f64>>,
+    characteristic_length: Option<f64>,
     test_postures: Vec<Vector6<f64>>,
     constraints: CellConstraints,
     cell: Option<Cell>,
@@ -186,8 +186,8 @@ impl Setup {
             load: Some(self.load.clone()),
             noise: Some(self.noise.clone()),
             bounds: Some(self.bounds),
-            nominal_stiffness: Some(self.nominal_stiffness),
-            characteristic_length: Some(self.characteristic_length),
+            nominal_stiffness: self.nominal_stiffness,
+            characteristic_length: self.characteristic_length,
             test_postures: self.test_postures.clone(),
             constraints: self.constraints.clone(),
             cell: self.cell.clone(),
@@ -242,14 +242,44 @@ impl Setup {
         &self.bounds
     }
 
-    /// Nominal (or true, in simulation) joint stiffness, Nm/rad.
-    pub fn nominal_stiffness(&self) -> &Vector6<f64> {
-        &self.nominal_stiffness
+    /// Nominal (or true, in simulation) joint stiffness, Nm/rad, if the setup gives one. The
+    /// criteria scaled by it (relative-a, d-optimal, scaled-cond), the predicted deviation rates,
+    /// simulation and the study need it; [`Setup::try_nominal_stiffness`] says so when it is
+    /// missing.
+    pub fn nominal_stiffness(&self) -> Option<&Vector6<f64>> {
+        self.nominal_stiffness.as_ref()
     }
 
-    /// Characteristic length `L` of the dexterity index (Eq. 20), m.
-    pub fn characteristic_length(&self) -> f64 {
+    /// The nominal joint stiffness, Nm/rad, for `needed_by` (a criterion or computation, named
+    /// in the error).
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] (`nominal_stiffness_nm_per_rad`) naming `needed_by`, with where a
+    /// value comes from.
+    pub fn try_nominal_stiffness(&self, needed_by: &str) -> Result<&Vector6<f64>> {
+        self.nominal_stiffness().ok_or_else(|| Error::MissingField {
+            field: "nominal_stiffness_nm_per_rad",
+            needed_by: needed_by.to_string(),
+        })
+    }
+
+    /// Characteristic length `L` of the dexterity index (Eq. 20), m, if the setup gives one (the
+    /// classical and zhang2021 criteria need it).
+    pub fn characteristic_length(&self) -> Option<f64> {
         self.characteristic_length
+    }
+
+    /// The characteristic length, m, for `needed_by` (named in the error).
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] (`characteristic_length_mm`) naming `needed_by`, with where a value
+    /// comes from.
+    pub fn try_characteristic_length(&self, needed_by: &str) -> Result<f64> {
+        self.characteristic_length
+            .ok_or_else(|| Error::MissingField {
+                field: "characteristic_length_mm",
+                needed_by: needed_by.to_string(),
+            })
     }
 
     /// Test (validation) postures, axis angles, rad.
@@ -277,9 +307,10 @@ impl Setup {
         self.tracker.as_ref()
     }
 
-    /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm.
-    pub fn nominal_compliance(&self) -> Vector6<f64> {
-        self.nominal_stiffness.map(|k| 1.0 / k)
+    /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm, if the setup gives a nominal
+    /// stiffness.
+    pub fn nominal_compliance(&self) -> Option<Vector6<f64>> {
+        self.nominal_stiffness.map(|k| k.map(|k| 1.0 / k))
     }
 
     /// The same setup without the cell's checks (no `[cell]`, `[tracker]` or `[constraints]`):
@@ -402,13 +433,14 @@ impl SetupBuilder {
         self
     }
 
-    /// The nominal joint stiffness, Nm/rad (required).
+    /// The nominal joint stiffness, Nm/rad (default none: [`Setup::nominal_stiffness`]).
     pub fn with_nominal_stiffness(mut self, stiffness: Vector6<f64>) -> Self {
         self.nominal_stiffness = Some(stiffness);
         self
     }
 
-    /// The characteristic length `L` of the dexterity index (Eq. 20), m (required).
+    /// The characteristic length `L` of the dexterity index (Eq. 20), m (default none:
+    /// [`Setup::characteristic_length`]).
     pub fn with_characteristic_length(mut self, length: f64) -> Self {
         self.characteristic_length = Some(length);
         self
@@ -472,20 +504,21 @@ impl SetupBuilder {
         let loading_point = required(self.loading_point, "tool.loading_point_mm")?;
         let load = required(self.load, "loading")?;
         let noise = required(self.noise, "noise")?;
-        let nominal_stiffness = required(self.nominal_stiffness, "nominal_stiffness_nm_per_rad")?;
-        let characteristic_length =
-            required(self.characteristic_length, "characteristic_length_mm")?;
-        check_scaled(
-            "characteristic_length_mm",
-            &[characteristic_length],
-            1e3,
-            &limits::CHARACTERISTIC_LENGTH_MM,
-        )?;
-        limits::check(
-            "nominal_stiffness_nm_per_rad",
-            nominal_stiffness.as_slice(),
-            &limits::STIFFNESS_NM_PER_RAD,
-        )?;
+        if let Some(l) = self.characteristic_length {
+            check_scaled(
+                "characteristic_length_mm",
+                &[l],
+                1e3,
+                &limits::CHARACTERISTIC_LENGTH_MM,
+            )?;
+        }
+        if let Some(k) = &self.nominal_stiffness {
+            limits::check(
+                "nominal_stiffness_nm_per_rad",
+                k.as_slice(),
+                &limits::STIFFNESS_NM_PER_RAD,
+            )?;
+        }
         let tcp = self.tcp.or(self.measuring_points.first().copied());
         check_tool(&loading_point, &self.measuring_points, tcp)?;
         check_load(&load)?;
@@ -529,8 +562,8 @@ impl SetupBuilder {
             load,
             noise,
             bounds,
-            nominal_stiffness,
-            characteristic_length,
+            nominal_stiffness: self.nominal_stiffness,
+            characteristic_length: self.characteristic_length,
             test_postures: self.test_postures,
             constraints: self.constraints,
             cell: self.cell,

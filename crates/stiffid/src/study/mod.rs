@@ -161,7 +161,8 @@ pub struct Study {
 /// # Errors
 /// [`crate::Error::InvalidField`] for `runs`, `starts` or `trials` outside their limits
 /// ([`limits::MAX_RUNS`], [`limits::MAX_STARTS`], [`limits::MAX_TRIALS`]; `trials` may be 0);
-/// the errors of the searches and of [`crate::simulate::monte_carlo`] (for example
+/// [`crate::Error::MissingField`] for a setup without a nominal stiffness or a characteristic
+/// length; the errors of the searches and of [`crate::simulate::monte_carlo`] (for example
 /// [`crate::Error::Unidentifiable`] for a group that cannot identify every joint).
 ///
 /// # Examples
@@ -179,6 +180,8 @@ pub struct Study {
 /// ```
 pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<Study> {
     let started = std::time::Instant::now();
+    let k_true = setup.try_nominal_stiffness("the study (the true stiffness it simulates)")?;
+    setup.try_characteristic_length("the study (criteria classical and zhang2021)")?;
     let counts = [
         ("runs", options.runs, 1, limits::MAX_RUNS),
         ("starts", options.starts, 1, limits::MAX_STARTS),
@@ -220,7 +223,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     let test_deflection: Vec<Vec<Vector3<f64>>> = setup
         .test_postures()
         .iter()
-        .map(|q| rope_displacements(setup, &setup.robot().frames(q), setup.nominal_stiffness()))
+        .map(|q| rope_displacements(setup, &setup.robot().frames(q), k_true))
         .collect();
     let groups = found
         .into_iter()

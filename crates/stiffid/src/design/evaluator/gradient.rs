@@ -25,6 +25,7 @@
 //! `cond_2` except where its extreme singular values are repeated.
 
 use super::{Evaluator, Group, PostureTerms};
+use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
 use crate::kinematics::dexterity_log_gradient;
 use crate::linalg::singular_values_and_vectors;
@@ -97,7 +98,8 @@ impl Evaluator<'_> {
         let setup = self.setup;
         let frames = &terms[active].frames;
         let jacobian = frames.jacobian(&setup.tool().tcp, setup.springs());
-        if let Some(w) = dexterity_log_gradient(&jacobian, setup.characteristic_length()) {
+        let l = setup.characteristic_length().unwrap_or(PLACEHOLDER_LENGTH);
+        if let Some(w) = dexterity_log_gradient(&jacobian, l) {
             gradient[active] += frames.jacobian_gradient(
                 &setup.tool().tcp,
                 setup.springs(),

@@ -34,7 +34,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
-/// than 2 postures, or the `test-pose` criterion on a setup without test postures; [`Error::Infeasible`] naming the check failed by the most postures
+/// than 2 postures, or the `test-pose` criterion on a setup without test postures;
+/// [`Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
+/// [`Error::Infeasible`] naming the check failed by the most postures
 /// of the starts' results when none of them passes every check.
 ///
 /// # Examples

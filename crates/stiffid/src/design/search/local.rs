@@ -39,7 +39,8 @@ const PENALTY: f64 = 1e3;
 /// [`Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
 /// than 2 postures, or the `test-pose` criterion on a setup without test postures;
 /// [`Error::OutsideBox`] for a start angle outside the bounds or not finite (naming the posture,
-/// the axis and the value);
+/// the axis and the value); [`Error::MissingField`] for a criterion the setup lacks a field for
+/// ([`Criterion::check`]);
 /// [`Error::Infeasible`] naming the check failed by the most postures when no point seen passes
 /// every check.
 ///
@@ -123,8 +124,9 @@ pub(super) fn check_start(
     Ok(())
 }
 
-/// Checks a group size and that the setup can evaluate the criterion.
+/// Checks a group size and that the setup can evaluate the criterion ([`Criterion::check`]).
 pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usize) -> Result<()> {
+    criterion.check(setup)?;
     if n < 2 {
         return Err(Error::InvalidField {
             field: "postures".into(),
