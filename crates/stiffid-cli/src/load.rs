@@ -3,7 +3,7 @@
 use anyhow::{bail, Context, Result};
 use nalgebra::{SVector, Vector6};
 use std::fs::File;
-use std::io::Read;
+use std::io::{BufReader, Read};
 use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -11,6 +11,7 @@ use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
 use stiffid::formats::{self, postures, reference};
+use stiffid::identify::{streamed, streamed::Rows, Identification};
 use stiffid::limits::{self, short, JointBox, Range, MAX_INPUT_BYTES};
 use stiffid::{Robot, Setup};
 
@@ -45,6 +46,19 @@ fn existing(path: &Path) -> Option<Result<String>> {
 /// ([`formats::text`]). The file is remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
     let name = path.display();
+    let mut bytes = Vec::new();
+    open(path)?
+        .file
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("{name}: cannot read"))?;
+    Ok(formats::text(&name.to_string(), bytes)?)
+}
+
+/// The file at `path` opened for reading, not a directory, remembered as an input
+/// ([`input_at`]); reading more than [`MAX_INPUT_BYTES`] from it fails.
+pub fn open(path: &Path) -> Result<Capped> {
+    let name = path.display();
     let file = File::open(path).with_context(|| format!("{name}: cannot read"))?;
     let meta = file
         .metadata()
@@ -52,16 +66,32 @@ pub fn read(path: &Path) -> Result<String> {
     if meta.is_dir() {
         bail!("{name}: is a directory, expected a file");
     }
-    let mut bytes = Vec::new();
-    file.take(MAX_INPUT_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .with_context(|| format!("{name}: cannot read"))?;
-    let text = formats::text(&name.to_string(), bytes)?;
     if let Ok(resolved) = path.canonicalize() {
         let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
         inputs.push((resolved, meta.dev(), meta.ino()));
     }
-    Ok(text)
+    Ok(Capped { file, read: 0 })
+}
+
+/// A file that fails with "larger than the input limit" once more than [`MAX_INPUT_BYTES`] have
+/// been read from it.
+pub struct Capped {
+    file: File,
+    read: u64,
+}
+
+impl Read for Capped {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.file.read(buf)?;
+        self.read += n as u64;
+        if self.read > MAX_INPUT_BYTES {
+            return Err(std::io::Error::other(format!(
+                "larger than the input limit of {} MiB",
+                MAX_INPUT_BYTES >> 20
+            )));
+        }
+        Ok(n)
+    }
 }
 
 /// The input file (as read) that `target` (a resolved path) is, if any: the same path, or the
@@ -167,4 +197,22 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
     let mut file = measurements::parse(&read(path)?).with_context(name)?;
     file.to_base_frame(setup).with_context(name)?;
     Ok(file)
+}
+
+/// The least-squares identification of the measurement file at `path` (`data`: the file opened
+/// by [`open`]), of any size, read twice in chunks (`stiffid::identify::streamed`), and where each
+/// row came from; errors start with the file name, then the line and column.
+pub fn identify_streamed(
+    path: &Path,
+    data: Capped,
+    setup: &Setup,
+) -> Result<(Identification, Rows)> {
+    let mut first = Some(data);
+    let mut open = || match first.take() {
+        Some(file) => Ok(BufReader::with_capacity(1 << 20, file)),
+        None => {
+            File::open(path).map(|file| BufReader::with_capacity(1 << 20, Capped { file, read: 0 }))
+        }
+    };
+    streamed::least_squares(setup, &mut open).with_context(|| path.display().to_string())
 }

@@ -58,19 +58,30 @@ pub fn value(message: impl Into<String>) -> PyErr {
 /// the command's checks).
 pub fn read(path: &Path) -> Result<String, PyErr> {
     let name = path.display();
-    let os_error = |e: std::io::Error| match e.kind() {
-        std::io::ErrorKind::NotFound => {
-            PyFileNotFoundError::new_err(format!("{name}: no such file"))
-        }
-        _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
-    };
-    let file = File::open(path).map_err(os_error)?;
-    if file.metadata().map_err(os_error)?.is_dir() {
+    let file = open(path)?;
+    if file.metadata().map_err(|e| os_error(path, e))?.is_dir() {
         return Err(value(format!("{name}: is a directory, expected a file")));
     }
     let mut bytes = Vec::new();
     file.take(MAX_INPUT_BYTES + 1)
         .read_to_end(&mut bytes)
-        .map_err(os_error)?;
+        .map_err(|e| os_error(path, e))?;
     formats::text(&name.to_string(), bytes).map_err(raise)
+}
+
+/// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or
+/// `OSError`).
+pub fn open(path: &Path) -> Result<File, PyErr> {
+    File::open(path).map_err(|e| os_error(path, e))
+}
+
+/// `FileNotFoundError` or `OSError` for a failure to read the file at `path`.
+fn os_error(path: &Path, e: std::io::Error) -> PyErr {
+    let name = path.display();
+    match e.kind() {
+        std::io::ErrorKind::NotFound => {
+            PyFileNotFoundError::new_err(format!("{name}: no such file"))
+        }
+        _ => PyOSError::new_err(format!("{name}: cannot read: {e}")),
+    }
 }

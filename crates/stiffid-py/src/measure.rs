@@ -9,7 +9,9 @@ use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use std::path::PathBuf;
+use std::fs::File;
+use std::io::BufReader;
+use std::path::{Path, PathBuf};
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness;
 use stiffid::identify::{Identification as Fit, Loss};
@@ -294,7 +296,12 @@ pub fn identify(
     if loss.is_some() && nonnegative {
         return Err(value("robust and nonnegative: choose one"));
     }
-    let data = data(s, measurements, [q_deg, wrench, displacement_mm])?;
+    let arrays = [q_deg, wrench, displacement_mm];
+    if let (Some(path), None, false, [None, None, None]) = (measurements, loss, nonnegative, arrays)
+    {
+        return identify_file(py, s, &path.extract::<PathBuf>()?);
+    }
+    let data = data(s, measurements, arrays)?;
     let fit = py.detach(|| {
         let obs = || Observations::from_measurements(s, &data.measurements);
         match (loss, nonnegative) {
@@ -309,6 +316,27 @@ pub fn identify(
         py,
         &fit,
         data.labels(),
+        s.noise().variance,
+    ))
+}
+
+/// Plain least squares from the measurement file at `path`, of any size: read twice in chunks,
+/// `Psi` reduced in blocks (as `stiffid identify`, [`stiffid::identify::streamed`]).
+fn identify_file(py: Python<'_>, s: &stiffid::Setup, path: &Path) -> PyResult<Identification> {
+    let name = path.display().to_string();
+    let mut first = Some(error::open(path)?);
+    let mut open = || match first.take() {
+        Some(file) => Ok(BufReader::new(file)),
+        None => File::open(path).map(BufReader::new),
+    };
+    let (fit, rows) = py
+        .detach(|| stiffid::identify::streamed::least_squares(s, &mut open))
+        .map_err(|e| error::raise_in(&name, e))?;
+    let labels = rows.labels.iter().map(str::to_string).collect();
+    Ok(Identification::new(
+        py,
+        &fit,
+        Some(labels),
         s.noise().variance,
     ))
 }

@@ -196,3 +196,32 @@ def test_deflection_uncertainty(fanuc):
         stiffid.deflection(fanuc, q, [0, 0, -1000, 0, 0, 0], compliance_covariance_rad2_per_nm2=-np.eye(6))
     with pytest.raises(ValueError, match=r"wrench: expected shape \(6,\) or \(3, 6\)"):
         stiffid.deflection(fanuc, q, np.zeros((2, 6)))
+
+
+def test_a_file_of_many_chunks_equals_the_arrays_and_the_command(fanuc, cli, tmp_path):
+    """A file of 50 000 rows (the FANUC rows cycled, each its own posture: several chunks of the
+    streamed reader) identified from its path (read twice in chunks) equals the same rows given
+    as arrays (in memory) to 1e-12 and the command's JSON."""
+    lines = [l for l in FANUC_DATA.read_text().splitlines() if l and not l.startswith("#")]
+    header, rows = lines[0], [l.split(",") for l in lines[1:]]
+    assert header.startswith("posture,point,q1_deg") and header.endswith("fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm")
+    n = 50_000
+    q = np.array([[float(v) + 1e-4 * (i // len(rows)) for v in rows[i % len(rows)][2:8]] for i in range(n)])
+    wrench = np.array([[float(v) for v in rows[i % len(rows)][8:11]] for i in range(n)])
+    d = np.array([[float(v) for v in rows[i % len(rows)][11:14]] for i in range(n)])
+    path = tmp_path / "large.csv"
+    with path.open("w") as f:
+        f.write(header + "\n")
+        for i in range(n):
+            src = rows[i % len(rows)]
+            f.write(",".join([f"p{i}", src[1], *(repr(float(v)) for v in q[i]), *src[8:]]) + "\n")
+    assert path.stat().st_size > 5 * 2**20
+    from_file = stiffid.identify(fanuc, path)
+    from_arrays = stiffid.identify(fanuc, q_deg=q, wrench=wrench, displacement_mm=d)
+    assert (from_file.rows, from_file.postures) == (3 * n, n)
+    np.testing.assert_allclose(from_file.stiffness_nm_per_rad, from_arrays.stiffness_nm_per_rad, rtol=1e-12)
+    np.testing.assert_allclose(from_file.residuals_mm, from_arrays.residuals_mm, rtol=0, atol=1e-12)
+    assert from_file.labels[n - 1] == f"p{n - 1}" and len(from_file.labels) == n
+    theirs = cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", path, "--json")
+    np.testing.assert_array_equal(from_file.stiffness_nm_per_rad, theirs["stiffness_nm_per_rad"])
+    assert theirs["residuals"][n - 1]["line"] == n + 1

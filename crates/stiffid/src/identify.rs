@@ -31,6 +31,7 @@ pub mod cross_validation;
 pub mod frames;
 pub mod nonnegative;
 pub mod robust;
+pub mod streamed;
 mod uncertainty;
 
 pub use adequacy::{Adequacy, UnitCheck};
@@ -38,8 +39,8 @@ pub use cross_validation::{cross_validate, CrossValidation, Fold};
 pub use robust::{Loss, RobustFit};
 pub use uncertainty::Uncertainty;
 
-use crate::lsq::{Factor, Reduced};
-use crate::observation::{assemble, check, Measurement, Observations};
+use crate::lsq::{Factor, Reduced, Solution};
+use crate::observation::{assemble, Check, Measurement, Observations};
 use crate::{Error, Result, Setup};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use rayon::prelude::*;
@@ -85,9 +86,8 @@ impl Identification {
 }
 
 /// Identifies the joint compliance and stiffness by linear least squares (Eq. 13-14), with
-/// standard errors and 95% confidence intervals (module docs), in bounded memory: the rows of
-/// `Psi` are made and reduced by QR in blocks of [`BLOCK`] measurements ([`Reduced`]), in
-/// parallel, merged in block order, then made again for the residuals. The result is the same
+/// standard errors and 95% confidence intervals (module docs), in bounded memory: [`InBlocks`]
+/// over all the measurements, then their residuals ([`residuals`]). The result is the same
 /// whatever the number of threads, and equal to [`Observations::least_squares`] to rounding
 /// (the same QR, in another order). The other fits ([`Observations::robust`],
 /// [`Observations::nonnegative`]) and cross-validation need the whole [`Observations`].
@@ -116,44 +116,149 @@ impl Identification {
 /// ```
 ///
 /// # Errors
-/// Those of [`check`] and [`Observations::least_squares`].
+/// Those of [`InBlocks::push`] and [`InBlocks::solve`].
 pub fn least_squares(setup: &Setup, measurements: &[Measurement]) -> Result<Identification> {
-    let (postures, _) = check(setup, measurements)?;
-    check_deflection(measurements.iter().flat_map(|m| m.displacement.iter()))?;
-    let blocks: Vec<Reduced> = measurements
-        .par_chunks(BLOCK)
-        .map(|block| {
-            let (psi, delta) = rows(setup, block);
-            let mut reduced = Reduced::default();
-            reduced.push(&psi, &delta);
-            reduced
+    let mut blocks = InBlocks::new(setup);
+    blocks.push(measurements)?;
+    let solved = blocks.solve()?;
+    let residuals = residuals(setup, &solved.solution.h, measurements);
+    Ok(solved.finish(residuals))
+}
+
+/// Measurements per block of [`InBlocks`]: 3072 rows of `Psi`, 147 kB.
+pub const BLOCK: usize = 1024;
+
+/// Least squares over measurements given a part at a time (a file read in chunks), in bounded
+/// memory: the rows of `Psi` are made and reduced by QR in blocks of [`BLOCK`] measurements
+/// ([`Reduced`]), in parallel, and merged in block order. Blocks are the measurements
+/// `BLOCK k .. BLOCK (k + 1)` whatever the parts, so the result does not depend on how the
+/// measurements are cut into parts, nor on the number of threads. Memory: one block, and what
+/// [`Check`] keeps per posture.
+pub struct InBlocks<'a> {
+    setup: &'a Setup,
+    check: Check,
+    /// The measurements of the block being filled.
+    pending: Vec<Measurement>,
+    reduced: Reduced,
+    deflected: bool,
+}
+
+/// The solution of [`InBlocks`], before the residuals.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solved {
+    /// The compliance, `(Psi^T Psi)^-1` and `cond_2(Psi)`.
+    pub solution: Solution,
+    /// The number of distinct postures.
+    pub postures: usize,
+    /// The number of measurements.
+    pub measurements: usize,
+}
+
+impl<'a> InBlocks<'a> {
+    /// No measurements yet.
+    pub fn new(setup: &'a Setup) -> Self {
+        Self {
+            setup,
+            check: Check::default(),
+            pending: Vec::with_capacity(BLOCK),
+            reduced: Reduced::default(),
+            deflected: false,
+        }
+    }
+
+    /// Checks the next measurements ([`Check::push`]) and reduces every block they complete.
+    ///
+    /// # Errors
+    /// Those of [`crate::observation::check`], numbering measurements over all parts.
+    pub fn push(&mut self, measurements: &[Measurement]) -> Result<()> {
+        self.check.push(self.setup, measurements, None)?;
+        self.deflected |= measurements
+            .iter()
+            .any(|m| m.displacement.iter().any(|d| *d != 0.0));
+        let mut rest = measurements;
+        if !self.pending.is_empty() {
+            let n = (BLOCK - self.pending.len()).min(rest.len());
+            self.pending.extend_from_slice(&rest[..n]);
+            rest = &rest[n..];
+            if self.pending.len() == BLOCK {
+                let pending = std::mem::take(&mut self.pending);
+                self.reduce(&pending);
+                self.pending = pending;
+                self.pending.clear();
+            }
+        }
+        let whole = rest.len() / BLOCK * BLOCK;
+        self.reduce(&rest[..whole]);
+        self.pending.extend_from_slice(&rest[whole..]);
+        Ok(())
+    }
+
+    /// Reduces whole blocks (the last one may be partial), in parallel, merged in order.
+    fn reduce(&mut self, measurements: &[Measurement]) {
+        let blocks: Vec<Reduced> = measurements
+            .par_chunks(BLOCK)
+            .map(|block| {
+                let (psi, delta) = rows(self.setup, block);
+                let mut reduced = Reduced::default();
+                reduced.push(&psi, &delta);
+                reduced
+            })
+            .collect();
+        for b in &blocks {
+            self.reduced.merge(b);
+        }
+    }
+
+    /// The least-squares solution of all the measurements pushed.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] when every displacement is zero; those of [`Reduced::try_solve`]
+    /// ([`Error::TooFewRows`], [`Error::Unidentifiable`], [`Error::NotFinite`]).
+    pub fn solve(mut self) -> Result<Solved> {
+        let pending = std::mem::take(&mut self.pending);
+        self.reduce(&pending);
+        if !self.deflected {
+            check_deflection(std::iter::empty())?;
+        }
+        Ok(Solved {
+            solution: self.reduced.try_solve()?,
+            postures: self.check.postures(),
+            measurements: self.reduced.rows() / 3,
         })
-        .collect();
-    let whole = blocks.iter().fold(Reduced::default(), |mut all, b| {
-        all.merge(b);
-        all
-    });
-    let solution = whole.try_solve()?;
-    let residuals: Vec<f64> = measurements
+    }
+}
+
+impl Solved {
+    /// The identification with `residuals` (`delta - Psi h` of every measurement, [`residuals`]).
+    ///
+    /// # Panics
+    /// Unless there are three residuals per measurement.
+    pub fn finish(self, residuals: Vec<f64>) -> Identification {
+        assert_eq!(residuals.len(), 3 * self.measurements);
+        finish(
+            self.postures,
+            self.solution.h,
+            DVector::from_vec(residuals),
+            self.solution.unit_covariance,
+            6,
+            self.solution.cond,
+            None,
+        )
+    }
+}
+
+/// `delta - Psi h` of some measurements (checked), three per measurement in the row order of
+/// [`crate::observation`], computed in parallel blocks of [`BLOCK`] (the same values whatever
+/// the blocks).
+pub fn residuals(setup: &Setup, h: &Vector6<f64>, measurements: &[Measurement]) -> Vec<f64> {
+    measurements
         .par_chunks(BLOCK)
         .flat_map_iter(|block| {
             let (psi, delta) = rows(setup, block);
-            (delta - psi * solution.h).as_slice().to_vec()
+            (delta - psi * h).as_slice().to_vec()
         })
-        .collect();
-    Ok(finish(
-        postures,
-        solution.h,
-        DVector::from_vec(residuals),
-        solution.unit_covariance,
-        6,
-        solution.cond,
-        None,
-    ))
+        .collect()
 }
-
-/// Measurements per block of [`least_squares`]: 3072 rows of `Psi`, 147 kB.
-pub const BLOCK: usize = 1024;
 
 /// `Psi` and `delta` of some measurements ([`assemble`]).
 fn rows(setup: &Setup, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f64>) {

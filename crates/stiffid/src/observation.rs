@@ -18,7 +18,7 @@
 mod measurement;
 
 pub use measurement::{
-    assemble, check, Measurement, Observations, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT,
+    assemble, check, Check, Measurement, Observations, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT,
 };
 
 use crate::kinematics::Frames;

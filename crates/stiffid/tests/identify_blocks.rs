@@ -5,34 +5,11 @@
 
 mod common;
 
-use common::synthetic;
-use nalgebra::Vector6;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
+use common::{assert_close, noisy, synthetic};
 use stiffid::formats::measurements;
 use stiffid::identify::{self, BLOCK};
-use stiffid::observation::{Measurement, Observations};
-use stiffid::{setup, Setup};
-
-/// Noisy measurements of `n` random postures under random wrenches (4 points each on the paper
-/// setup), seeded.
-fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
-    let postures: Vec<Vector6<f64>> = (0..n)
-        .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
-        .collect();
-    let wrenches: Vec<Vector6<f64>> = (0..n)
-        .map(|_| Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [800.0, 150.0][i / 3]))
-        .collect();
-    let noise = Normal::new(0.0, setup.noise().sigma()).unwrap();
-    let mut data = synthetic(setup, &postures, |i, _| wrenches[i]);
-    for m in &mut data {
-        m.displacement += Vector6::from_fn(|_, _| noise.sample(&mut rng)).fixed_rows::<3>(0);
-    }
-    data
-}
+use stiffid::observation::Observations;
+use stiffid::setup;
 
 #[test]
 fn blocks_equal_the_one_shot_qr_to_rounding() {
@@ -45,45 +22,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
         .unwrap()
         .least_squares()
         .unwrap();
-    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
-    let h = whole.compliance.amax();
-    for j in 0..6 {
-        assert!(
-            close(blocks.compliance[j], whole.compliance[j], h),
-            "joint {}",
-            j + 1
-        );
-        assert!(close(
-            blocks.stiffness[j],
-            whole.stiffness[j],
-            whole.stiffness[j].abs()
-        ));
-    }
-    let c = whole.unit_covariance.amax();
-    assert!((blocks.unit_covariance - whole.unit_covariance).amax() <= 1e-12 * c);
-    let d = data
-        .iter()
-        .map(|m| m.displacement.amax())
-        .fold(0.0, f64::max);
-    assert!((&blocks.residuals - &whole.residuals).amax() <= 1e-12 * d);
-    assert!(close(
-        blocks.residual_rms,
-        whole.residual_rms,
-        whole.residual_rms
-    ));
-    assert!(close(blocks.cond_psi, whole.cond_psi, whole.cond_psi));
-    assert_eq!((blocks.rows, blocks.postures), (whole.rows, whole.postures));
-    let (ub, uw) = (blocks.uncertainty.unwrap(), whole.uncertainty.unwrap());
-    assert_eq!(ub.dof, uw.dof);
-    for j in 0..6 {
-        let se = uw.stiffness_std_error[j];
-        assert!(close(ub.stiffness_std_error[j], se, se));
-        assert!(close(
-            ub.stiffness_ci95[j][0],
-            uw.stiffness_ci95[j][0],
-            whole.stiffness[j]
-        ));
-    }
+    assert_close(&blocks, &whole);
     // The noise is the tracker's: the fit is near the truth (a sanity check, not rounding).
     let k = setup.nominal_stiffness().unwrap();
     assert!((blocks.stiffness - k).component_div(k).amax() < 0.05);

@@ -9,9 +9,10 @@ use anyhow::{Context, Result};
 use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid::formats::measurements::MeasurementFile;
+use stiffid::formats::measurements::{Labels, MeasurementFile};
+use stiffid::identify::streamed::Rows;
 use stiffid::identify::{
-    self, cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
+    cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
 };
 use stiffid::kinematics::Coordinates;
 use stiffid::observation::Observations;
@@ -59,7 +60,8 @@ pub struct Run<'a> {
     setup_name: &'a str,
     data_name: String,
     setup: &'a Setup,
-    file: &'a MeasurementFile,
+    /// Where each measurement came from.
+    rows: Rows,
     id: Identification,
     adequacy: Option<Adequacy>,
     unit: Option<UnitCheck>,
@@ -266,26 +268,26 @@ struct InfluentialJson {
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let file = load::measurements(&args.data, &setup)?;
+    // Opened (and so known as an input, never written over) before --out is prepared.
+    let data = load::open(&args.data)?;
     let out = args
         .out
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
     let name = args.data.display().to_string();
-    let (id, cross_validation, first_of_posture) = match args.robust.is_some()
+    let (id, rows, cross_validation, first_of_posture) = match args.robust.is_some()
         || args.nonnegative
         || args.cross_validate
         || args.folds.is_some()
     {
-        // Plain least squares: in blocks, without the whole Psi (bounded memory, parallel).
+        // Plain least squares: the file read in chunks, Psi in blocks (bounded memory, parallel).
         false => {
-            let id = identify::least_squares(&setup, &file.measurements)
-                .map_err(|e| file.explain(e))
-                .with_context(|| name.clone())?;
-            (id, None, Vec::new())
+            let (id, rows) = load::identify_streamed(&args.data, data, &setup)?;
+            (id, rows, None, Vec::new())
         }
         true => {
+            let file = load::measurements(&args.data, &setup)?;
             let obs = Observations::from_measurements(&setup, &file.measurements)
                 .map_err(|e| file.explain(e))
                 .with_context(|| name.clone())?;
@@ -294,14 +296,14 @@ pub fn run(args: &Args) -> Result<()> {
                 first_of_posture[p] = i;
             }
             let (id, cv) = fit(args, &obs).with_context(|| name.clone())?;
-            (id, cv, first_of_posture)
+            (id, rows_of(file), cv, first_of_posture)
         }
     };
     let run = Run {
         setup_name: &args.common.setup,
         data_name: name,
         setup: &setup,
-        file: &file,
+        rows,
         adequacy: id.adequacy(setup.noise().variance),
         unit: setup.nominal_stiffness().and_then(|k| id.unit_check(k)),
         id,
@@ -321,6 +323,17 @@ pub fn run(args: &Args) -> Result<()> {
         }
     }
     output::print(&text::human(&run))
+}
+
+/// Where each measurement of a parsed file came from.
+fn rows_of(file: MeasurementFile) -> Rows {
+    Rows {
+        postures: file.measurements.iter().map(|m| m.posture).collect(),
+        points: file.measurements.iter().map(|m| m.point).collect(),
+        lines: file.lines,
+        labels: Labels::from_iter(&file.labels),
+        layout: file.layout,
+    }
 }
 
 /// The fit the arguments ask for (robust, bounded or, for cross-validation, least squares on the
@@ -348,7 +361,7 @@ fn mm(v: f64) -> f64 {
 impl Run<'_> {
     /// The label of measurement `i`'s posture.
     fn label(&self, i: usize) -> &str {
-        &self.file.labels[self.file.measurements[i].posture]
+        self.rows.label(i)
     }
 
     /// The labels of dense posture numbers.
@@ -390,17 +403,14 @@ fn intervals(u: &Uncertainty) -> IntervalsJson {
 }
 
 fn to_json(run: &Run) -> IdentifyJson {
-    let (id, file) = (&run.id, run.file);
+    let (id, rows) = (&run.id, &run.rows);
     let u = id.uncertainty.as_ref();
     let residual = |i: usize| id.residuals.fixed_rows::<3>(3 * i).map(mm).into();
-    let residuals = file
-        .measurements
-        .iter()
-        .enumerate()
-        .map(|(i, m)| ResidualJson {
+    let residuals = (0..rows.lines.len())
+        .map(|i| ResidualJson {
             posture: run.label(i).to_string(),
-            point: m.point + 1,
-            line: file.lines[i],
+            point: rows.points[i] + 1,
+            line: rows.lines[i],
             residual_mm: residual(i),
         })
         .collect();
@@ -415,8 +425,8 @@ fn to_json(run: &Run) -> IdentifyJson {
             .into_iter()
             .map(|row| RowJson {
                 posture: run.label(row / 3).to_string(),
-                point: file.measurements[row / 3].point + 1,
-                line: file.lines[row / 3],
+                point: rows.points[row / 3] + 1,
+                line: rows.lines[row / 3],
                 coordinate: ['x', 'y', 'z'][row % 3],
                 weight: fit.weights[row],
                 residual_mm: mm(id.residuals[row]),

@@ -17,40 +17,37 @@
 //!   x_unloaded_mm,y_unloaded_mm,z_unloaded_mm` (or `x_loaded_tracker_mm`, ...), which are
 //!   subtracted.
 //!
-//! Columns may come in any order; lines starting with `#` are comments. [`parse`] keeps the
-//! quantities in the file's frames ([`MeasurementFile::wrench_frame`],
-//! [`MeasurementFile::displacement_frame`]); [`MeasurementFile::to_base_frame`] turns them into the
-//! base frame ([`crate::identify::frames`]).
+//! Columns may come in any order; lines starting with `#` are comments; a field may be quoted but
+//! may not span lines. [`parse`] keeps the quantities in the file's frames
+//! ([`MeasurementFile::wrench_frame`], [`MeasurementFile::displacement_frame`]);
+//! [`MeasurementFile::to_base_frame`] turns them into the base frame ([`crate::identify::frames`]).
+//!
+//! [`Reader`] reads a file of any size from a [`BufRead`] chunk by chunk ([`Reader::next_chunk`]):
+//! the text is never whole, and the lines of a chunk are parsed in parallel (pieces of
+//! [`PIECE_BYTES`] at line boundaries, results in file order: the same whatever the number of
+//! threads). [`parse`] is the reader over a `&str`.
+
+mod columns;
+
+pub use columns::Layout;
 
 use crate::deflection::Frame;
-use crate::error::{ColumnProblem, MeasurementField};
+use crate::error::ColumnProblem;
 use crate::identify::frames::{self, DisplacementFrame};
 use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
-use nalgebra::{Vector3, Vector6};
-use std::collections::HashMap;
+use columns::{expected_header, Columns};
+use rayon::prelude::*;
+use std::collections::hash_map::{Entry, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
+use std::io::BufRead;
 
-const POSTURE: &str = "posture";
-const POINT: &str = "point";
-const Q: [&str; 6] = ["q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg"];
-const FORCE: [&str; 3] = ["fx_n", "fy_n", "fz_n"];
-const FORCE_TOOL: [&str; 3] = ["fx_tool_n", "fy_tool_n", "fz_tool_n"];
-const MOMENT: [&str; 3] = ["mx_nm", "my_nm", "mz_nm"];
-const MOMENT_TOOL: [&str; 3] = ["mx_tool_nm", "my_tool_nm", "mz_tool_nm"];
-const DISPLACEMENT: [&str; 3] = ["dx_mm", "dy_mm", "dz_mm"];
-const DISPLACEMENT_TRACKER: [&str; 3] = ["dx_tracker_mm", "dy_tracker_mm", "dz_tracker_mm"];
-const LOADED: [&str; 3] = ["x_loaded_mm", "y_loaded_mm", "z_loaded_mm"];
-const UNLOADED: [&str; 3] = ["x_unloaded_mm", "y_unloaded_mm", "z_unloaded_mm"];
-const LOADED_TRACKER: [&str; 3] = [
-    "x_loaded_tracker_mm",
-    "y_loaded_tracker_mm",
-    "z_loaded_tracker_mm",
-];
-const UNLOADED_TRACKER: [&str; 3] = [
-    "x_unloaded_tracker_mm",
-    "y_unloaded_tracker_mm",
-    "z_unloaded_tracker_mm",
-];
+/// Bytes of text parsed by one task: a chunk's text is cut into pieces of about this size, each
+/// ending at a line end, parsed in parallel.
+pub const PIECE_BYTES: usize = 1 << 19;
+
+/// Pieces per chunk ([`Reader::next_chunk`]): a chunk holds about 4 MiB of text.
+const PIECES: usize = 8;
 
 /// The measurements of a file and where each came from.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,14 +62,12 @@ pub struct MeasurementFile {
     pub wrench_frame: Frame,
     /// The frame of the displacement columns.
     pub displacement_frame: DisplacementFrame,
-    /// The header, to name columns in errors.
-    header: Vec<String>,
-    /// Where each quantity is in a row.
-    columns: Columns,
+    /// The header and its columns, to name columns in errors.
+    pub layout: Layout,
 }
 
-/// Parses the text of a measurement file (see the module docs). Rows are parsed into one reused
-/// record; a label is stored once however many rows carry it.
+/// Parses the text of a measurement file (see the module docs): a [`Reader`] over the text, its
+/// chunks collected. A label is stored once however many rows carry it.
 ///
 /// # Errors
 /// [`Error::Column`] naming the line, the column and the [`ColumnProblem`]: an empty file, no rows,
@@ -94,104 +89,24 @@ pub struct MeasurementFile {
 /// # Ok::<(), stiffid::Error>(())
 /// ```
 pub fn parse(text: &str) -> Result<MeasurementFile> {
-    let mut reader = csv::ReaderBuilder::new()
-        // Fields are trimmed where they are read: cheaper than trimming whole records.
-        .trim(csv::Trim::Headers)
-        .flexible(true)
-        .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
-    let header_record = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
-    let line_of_header = header_record.position().map_or(1, |p| p.line());
-    let header: Vec<String> = header_record.iter().map(str::to_string).collect();
-    if header.iter().all(|h| h.is_empty()) {
-        return Err(problem(
-            line_of_header,
-            None,
-            ColumnProblem::Empty {
-                expected: expected_header(),
-            },
-        ));
+    let mut reader = Reader::new(text.as_bytes())?;
+    let (mut measurements, mut lines) = (Vec::new(), Vec::new());
+    while let Some(chunk) = reader.next_chunk()? {
+        measurements.extend(chunk.measurements);
+        lines.extend(chunk.lines);
     }
-    let columns = Columns::new(&header, line_of_header)?;
-    commented_rows(text, header.len())?;
-    // At most one row per line: reserved once, no reallocation of a large vector.
-    let rows = text.bytes().filter(|b| *b == b'\n').count() + 1;
-    let mut file = MeasurementFile {
-        measurements: Vec::with_capacity(rows),
-        labels: Vec::new(),
-        lines: Vec::with_capacity(rows),
-        wrench_frame: columns.wrench_frame,
-        displacement_frame: columns.displacement_frame,
-        header,
-        columns,
-    };
-    // Sized for a label per row (the worst case): no rehashing of a growing map.
-    let mut labels = Labels {
-        index: HashMap::with_capacity(rows),
-        last: (String::new(), 0),
-    };
-    let mut record = csv::StringRecord::new();
-    loop {
-        let line = reader.position().line();
-        match reader.read_record(&mut record) {
-            Ok(false) => break,
-            Ok(true) => {}
-            Err(e) => return Err(unreadable(line, &e)),
-        }
-        let line = record.position().map_or(line, |p| p.line());
-        file.push(&record, line, &mut labels)?;
-    }
-    if file.measurements.is_empty() {
-        return Err(problem(
-            line_of_header,
-            None,
-            ColumnProblem::NoRows {
-                what: "measurement row",
-            },
-        ));
-    }
-    file.labels = vec![String::new(); labels.index.len()];
-    for (label, i) in labels.index {
-        file.labels[i] = label.into();
-    }
-    Ok(file)
+    let layout = reader.layout().clone();
+    Ok(MeasurementFile {
+        measurements,
+        labels: reader.into_labels().iter().map(str::to_string).collect(),
+        lines,
+        wrench_frame: layout.wrench_frame(),
+        displacement_frame: layout.displacement_frame(),
+        layout,
+    })
 }
 
 impl MeasurementFile {
-    fn push(&mut self, record: &csv::StringRecord, line: u64, labels: &mut Labels) -> Result<()> {
-        if record.len() != self.header.len() {
-            return Err(problem(
-                line,
-                None,
-                ColumnProblem::FieldCount {
-                    expected: self.header.len(),
-                    got: record.len(),
-                },
-            ));
-        }
-        let label = record[self.columns.posture].trim();
-        if label.is_empty() {
-            return Err(self.at(line, self.columns.posture, ColumnProblem::EmptyLabel));
-        }
-        let posture = labels.number(label);
-        let measurement = self
-            .columns
-            .measurement(record, posture, |c, p| self.at(line, c, p))?;
-        self.measurements.push(measurement);
-        self.lines.push(line);
-        Ok(())
-    }
-
-    /// The error at `line`, 0-based `column`.
-    fn at(&self, line: u64, column: usize, problem: ColumnProblem) -> Error {
-        Error::Column {
-            line,
-            column: Some(column + 1),
-            name: self.header[column].clone(),
-            problem,
-        }
-    }
-
     /// Turns the measurements into the robot base frame, in place: wrenches rotated with each
     /// posture's flange orientation, displacements with the setup's tracker transform
     /// ([`frames::to_base`]); afterwards both frames are [`Frame::Base`] and
@@ -211,71 +126,418 @@ impl MeasurementFile {
         Ok(())
     }
 
-    /// The names of the force columns in this file's header, comma-separated.
-    pub fn force_columns(&self) -> String {
-        self.names(&self.columns.force)
-    }
-
-    /// The names of the displacement columns in this file's header, comma-separated.
-    pub fn displacement_columns(&self) -> String {
-        match self.columns.displacement {
-            Displacement::Relative(d) => self.names(&d),
-            Displacement::Positions(l, u) => self.names(&[l, u].concat()),
-        }
-    }
-
-    fn names(&self, columns: &[usize]) -> String {
-        let names: Vec<&str> = columns.iter().map(|&c| self.header[c].as_str()).collect();
-        names.join(",")
-    }
-
     /// Turns an [`Error::Measurement`] about one of these measurements into an [`Error::Column`]
-    /// naming its line and column; other errors pass through.
+    /// naming its line and column ([`Layout::explain`]); other errors pass through.
     pub fn explain(&self, error: Error) -> Error {
-        let Error::Measurement {
-            number,
-            field,
-            message,
-        } = error
-        else {
-            return error;
-        };
-        let c = &self.columns;
-        let column = match field {
-            MeasurementField::Posture => c.posture,
-            MeasurementField::Point => c.point,
-            MeasurementField::Axis(a) => c.q[a.min(5)],
-            MeasurementField::Force => c.force[0],
-            MeasurementField::Moment => c.moment.map_or(c.force[0], |m| m[0]),
-            MeasurementField::Displacement => match c.displacement {
-                Displacement::Relative(d) => d[0],
-                Displacement::Positions(l, _) => l[0],
-            },
-        };
-        let line = self.lines.get(number.wrapping_sub(1)).copied().unwrap_or(0);
-        self.at(line, column, ColumnProblem::Measurement { message })
+        self.layout
+            .explain(error, |n| self.lines.get(n.wrapping_sub(1)).copied())
     }
 }
 
-/// The posture labels seen so far and their numbers, in order of first appearance.
-struct Labels {
-    index: HashMap<Box<str>, usize>,
-    /// The previous row's label and number (rows of one posture usually follow each other).
-    last: (String, usize),
+/// Some consecutive rows of a measurement file ([`Reader::next_chunk`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chunk {
+    /// One per row, SI units, point 0-based, in the file's frames; postures numbered over the
+    /// whole file in order of first appearance.
+    pub measurements: Vec<Measurement>,
+    /// The line of each measurement (1-based).
+    pub lines: Vec<u64>,
+    /// The number of measurements in the chunks before this one.
+    pub first: usize,
+}
+
+impl Chunk {
+    /// The line of measurement `number` (1-based, counted over the whole file) if it is in this
+    /// chunk: for [`Layout::explain`].
+    pub fn line_of(&self, number: usize) -> Option<u64> {
+        let i = number.checked_sub(self.first + 1)?;
+        self.lines.get(i).copied()
+    }
+}
+
+/// Reads a measurement file chunk by chunk from any [`BufRead`] (module docs): the memory is that
+/// of one chunk (about `PIECES x PIECE_BYTES` of text and its rows) and of the posture labels.
+pub struct Reader<R> {
+    source: R,
+    layout: Layout,
+    /// The line of the header.
+    header_line: u64,
+    /// Lines read so far.
+    line: u64,
+    /// Measurements read so far.
+    rows: usize,
+    /// `None` when the rows' postures are not numbered ([`Reader::unlabelled`]).
+    labels: Option<Labels>,
+}
+
+impl<R: BufRead> Reader<R> {
+    /// Reads the header (the first line that is neither empty nor a `#` comment).
+    ///
+    /// # Errors
+    /// As [`parse`] for the header: an empty file, unknown, repeated, missing or conflicting
+    /// columns; [`ColumnProblem::Unreadable`] when the source fails.
+    pub fn new(mut source: R) -> Result<Self> {
+        let mut text = Vec::new();
+        let mut line = 0;
+        loop {
+            text.clear();
+            let read = source
+                .read_until(b'\n', &mut text)
+                .map_err(|e| unreadable(line + 1, &e.to_string()))?;
+            line += 1;
+            let blank = text.iter().all(|b| matches!(b, b'\n' | b'\r'));
+            if read == 0 || !(blank || text.first() == Some(&b'#')) {
+                break;
+            }
+        }
+        let header: Vec<String> = csv::ReaderBuilder::new()
+            .trim(csv::Trim::Headers)
+            .flexible(true)
+            .from_reader(text.as_slice())
+            .headers()
+            .map_err(|e| unreadable(line, &e.to_string()))?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        if header.iter().all(|h| h.is_empty()) {
+            return Err(problem(
+                line,
+                None,
+                ColumnProblem::Empty {
+                    expected: expected_header(),
+                },
+            ));
+        }
+        Ok(Self {
+            source,
+            layout: Layout::new(header, line)?,
+            header_line: line,
+            line,
+            rows: 0,
+            labels: Some(Labels::default()),
+        })
+    }
+
+    /// The header and its columns.
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// The next rows, `None` at the end of the source.
+    ///
+    /// # Errors
+    /// As [`parse`], for the first bad row of the chunk (in file order); [`ColumnProblem::NoRows`]
+    /// at the end of a source without rows; [`ColumnProblem::Unreadable`] when the source fails.
+    pub fn next_chunk(&mut self) -> Result<Option<Chunk>> {
+        loop {
+            let pieces = self.read_pieces()?;
+            let chunk = self.parse_pieces(&pieces)?;
+            match (chunk.measurements.is_empty(), pieces.is_empty(), self.rows) {
+                (true, true, 0) => {
+                    return Err(problem(
+                        self.header_line,
+                        None,
+                        ColumnProblem::NoRows {
+                            what: "measurement row",
+                        },
+                    ))
+                }
+                (true, true, _) => return Ok(None),
+                // Only comments and blank lines: read on.
+                (true, false, _) => {}
+                (false, _, _) => return Ok(Some(chunk)),
+            }
+        }
+    }
+
+    /// Up to [`PIECES`] pieces of text and the line each starts at; none at the end.
+    fn read_pieces(&mut self) -> Result<Vec<(u64, Vec<u8>)>> {
+        let mut pieces = Vec::new();
+        for _ in 0..PIECES {
+            let mut piece = Vec::with_capacity(PIECE_BYTES + 256);
+            let line = self.line;
+            read_piece(&mut self.source, &mut piece)
+                .map_err(|e| unreadable(line + 1, &e.to_string()))?;
+            if piece.is_empty() {
+                break;
+            }
+            self.line += piece.iter().filter(|b| **b == b'\n').count() as u64;
+            pieces.push((line + 1, piece));
+        }
+        Ok(pieces)
+    }
+
+    /// The rows of some pieces, parsed in parallel, postures numbered in file order.
+    fn parse_pieces(&mut self, pieces: &[(u64, Vec<u8>)]) -> Result<Chunk> {
+        let parsed: Vec<Parsed> = pieces
+            .par_iter()
+            .map(|(line, text)| Parsed::new(&self.layout, text, *line))
+            .collect();
+        let mut chunk = Chunk {
+            measurements: Vec::with_capacity(parsed.iter().map(|p| p.rows.len()).sum()),
+            lines: Vec::new(),
+            first: self.rows,
+        };
+        for piece in parsed {
+            let mut start = 0;
+            for (mut measurement, line, end) in piece.rows {
+                if let Some(labels) = &mut self.labels {
+                    measurement.posture = labels.number(&piece.labels[start..end]);
+                }
+                start = end;
+                chunk.measurements.push(measurement);
+                chunk.lines.push(line);
+            }
+            if let Some(e) = piece.error {
+                return Err(e);
+            }
+        }
+        self.rows += chunk.measurements.len();
+        Ok(chunk)
+    }
+
+    /// Reads without numbering the postures: every measurement's posture is 0 (for a second
+    /// reading that needs only the quantities; saves the label bookkeeping).
+    pub fn unlabelled(mut self) -> Self {
+        self.labels = None;
+        self
+    }
+
+    /// The posture labels of the rows read so far; [`Labels::get`]`(m.posture)` is the label of
+    /// measurement `m` (none when [`Reader::unlabelled`]).
+    pub fn into_labels(self) -> Labels {
+        self.labels.map(Labels::into_list).unwrap_or_default()
+    }
+}
+
+/// Appends about [`PIECE_BYTES`] of `source` to `piece`, up to and including a line end (or the
+/// end of the source).
+fn read_piece(source: &mut impl BufRead, piece: &mut Vec<u8>) -> std::io::Result<()> {
+    loop {
+        let available = source.fill_buf()?;
+        if available.is_empty() {
+            return Ok(());
+        }
+        let take = available.len().min(PIECE_BYTES - piece.len());
+        piece.extend_from_slice(&available[..take]);
+        source.consume(take);
+        if piece.len() >= PIECE_BYTES {
+            source.read_until(b'\n', piece)?;
+            return Ok(());
+        }
+    }
+}
+
+/// The rows of one piece of text, parsed (postures not numbered yet), until its first error.
+struct Parsed {
+    /// The measurement, its line and the end of its label in `labels`.
+    rows: Vec<(Measurement, u64, usize)>,
+    /// The rows' labels, one after the other.
+    labels: String,
+    error: Option<Error>,
+}
+
+impl Parsed {
+    /// Parses `text`, whose first line is line `first` of the file.
+    fn new(layout: &Layout, text: &[u8], first: u64) -> Self {
+        let mut parsed = Self {
+            rows: Vec::with_capacity(text.len() / 64),
+            labels: String::new(),
+            error: None,
+        };
+        // Comment lines are dropped here, not by `csv` (whose line count drifts over many of
+        // them); `kept[i]` is the line in `text` (1-based) of line i + 1 of what is parsed.
+        let filtered = without_comments(text);
+        let (body, kept) = match &filtered {
+            Some((body, kept)) => (body.as_slice(), Some(kept)),
+            None => (text, None),
+        };
+        let at = |csv_line: u64| {
+            let line = kept.map_or(Some(csv_line), |k| k.get(csv_line as usize - 1).copied());
+            first - 1 + line.unwrap_or_else(|| text.split(|b| *b == b'\n').count() as u64)
+        };
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .from_reader(body);
+        let mut record = csv::StringRecord::new();
+        let mut error = None;
+        loop {
+            let line = at(reader.position().line());
+            let row = match reader.read_record(&mut record) {
+                Ok(false) => break,
+                Ok(true) => {
+                    let line = record.position().map_or(line, |p| at(p.line()));
+                    parsed.row(layout, &record, line).map_err(|e| (line, e))
+                }
+                Err(e) => Err((line, unreadable(line, &e.to_string()))),
+            };
+            if let Err(e) = row {
+                error = Some(e);
+                break;
+            }
+        }
+        // A commented row before the first bad row (or with none) is the first error.
+        let commented = commented_row(text, layout.fields(), first);
+        if let Some((line, e)) = commented.filter(|c| error.as_ref().is_none_or(|e| c.0 < e.0)) {
+            let after = parsed.rows.iter().position(|r| r.1 > line);
+            parsed.rows.truncate(after.unwrap_or(parsed.rows.len()));
+            parsed
+                .labels
+                .truncate(parsed.rows.last().map_or(0, |r| r.2));
+            error = Some((line, e));
+        }
+        parsed.error = error.map(|e| e.1);
+        parsed
+    }
+
+    fn row(&mut self, layout: &Layout, record: &csv::StringRecord, line: u64) -> Result<()> {
+        if record.len() != layout.fields() {
+            return Err(problem(
+                line,
+                None,
+                ColumnProblem::FieldCount {
+                    expected: layout.fields(),
+                    got: record.len(),
+                },
+            ));
+        }
+        let posture = layout.columns.posture;
+        let label = record[posture].trim();
+        if label.is_empty() {
+            return Err(layout.at(line, posture, ColumnProblem::EmptyLabel));
+        }
+        if label.contains(['\n', '\r']) {
+            let message = "a quoted label spans lines: a field may not hold a line break".into();
+            return Err(layout.at(line, posture, ColumnProblem::Unreadable { message }));
+        }
+        let columns: &Columns = &layout.columns;
+        let measurement = columns.measurement(record, 0, |c, p| layout.at(line, c, p))?;
+        self.labels.push_str(label);
+        self.rows.push((measurement, line, self.labels.len()));
+        Ok(())
+    }
+}
+
+/// Posture labels numbered in order of first appearance, stored one after the other (no
+/// allocation per label), with an index from a 64-bit hash of a label to its number.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Labels {
+    text: String,
+    /// The end of each label in `text`.
+    ends: Vec<usize>,
+    index: HashMap<u64, usize, BuildHasherDefault<Prehashed>>,
+    /// Labels whose hash an earlier label has (compared in full).
+    collided: HashMap<Box<str>, usize>,
+    /// The previous row's number (rows of one posture usually follow each other).
+    last: Option<usize>,
 }
 
 impl Labels {
-    /// The number of `label`, a new one if it was not seen before (one hash per row whose
-    /// label differs from the previous row's).
-    fn number(&mut self, label: &str) -> usize {
-        if self.last.0 != label {
-            let next = self.index.len();
-            self.last.1 = *self.index.entry(label.into()).or_insert(next);
-            self.last.0.clear();
-            self.last.0.push_str(label);
-        }
-        self.last.1
+    /// The number of labels.
+    pub fn len(&self) -> usize {
+        self.ends.len()
     }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.ends.is_empty()
+    }
+
+    /// Label `i` (numbered from 0).
+    ///
+    /// # Panics
+    /// If `i >= len()`.
+    pub fn get(&self, i: usize) -> &str {
+        &self.text[span(&self.ends, i)]
+    }
+
+    /// The labels, in order of their numbers.
+    pub fn iter(&self) -> impl Iterator<Item = &str> {
+        (0..self.len()).map(|i| self.get(i))
+    }
+
+    /// Frees the index: the labels can be read, no longer numbered.
+    fn into_list(mut self) -> Self {
+        self.index = HashMap::default();
+        self.collided = HashMap::new();
+        self.text.shrink_to_fit();
+        self.ends.shrink_to_fit();
+        self
+    }
+
+    /// The number of `label`, a new one if it was not seen before.
+    fn number(&mut self, label: &str) -> usize {
+        if let Some(last) = self.last.filter(|l| self.get(*l) == label) {
+            return last;
+        }
+        let next = self.len();
+        let (text, ends) = (&self.text, &self.ends);
+        let same = |i: usize| text[span(ends, i)] == *label;
+        let n = match self.index.entry(fx_hash(label.as_bytes())) {
+            Entry::Vacant(e) => *e.insert(next),
+            Entry::Occupied(e) if same(*e.get()) => *e.get(),
+            Entry::Occupied(_) => *self.collided.entry(label.into()).or_insert(next),
+        };
+        if n == next {
+            self.text.push_str(label);
+            self.ends.push(self.text.len());
+        }
+        self.last = Some(n);
+        n
+    }
+}
+
+/// Where label `i` is in the text of [`Labels`].
+fn span(ends: &[usize], i: usize) -> std::ops::Range<usize> {
+    i.checked_sub(1).map_or(0, |p| ends[p])..ends[i]
+}
+
+/// Labels numbered in order of first appearance (a repeated one keeps its first number).
+impl<S: AsRef<str>> FromIterator<S> for Labels {
+    fn from_iter<I: IntoIterator<Item = S>>(labels: I) -> Self {
+        let mut all = Labels::default();
+        for label in labels {
+            all.number(label.as_ref());
+        }
+        all.into_list()
+    }
+}
+
+/// A hasher for keys that are hashes already ([`fx_hash`]): passes a `u64` through.
+#[derive(Default)]
+struct Prehashed(u64);
+
+impl Hasher for Prehashed {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        self.0 = fx_hash(bytes);
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = n;
+    }
+}
+
+/// The Fx hash (rustc's, Firefox's) of some bytes, 8 at a time, finished by MurmurHash3's
+/// `fmix64` (so that the low bits, which pick the bucket, depend on every byte): fast for short
+/// keys; collisions are resolved by comparing labels ([`Labels`]).
+fn fx_hash(bytes: &[u8]) -> u64 {
+    const K: u64 = 0x517c_c1b7_2722_0a95;
+    let mut h = bytes.len() as u64;
+    for word in bytes.chunks(8) {
+        let mut w = [0u8; 8];
+        w[..word.len()].copy_from_slice(word);
+        h = (h.rotate_left(5) ^ u64::from_le_bytes(w)).wrapping_mul(K);
+    }
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+    h ^ (h >> 33)
 }
 
 fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {
@@ -287,263 +549,43 @@ fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {
     }
 }
 
-fn unreadable(line: u64, e: &csv::Error) -> Error {
+fn unreadable(line: u64, message: &str) -> Error {
     problem(
         line,
         None,
         ColumnProblem::Unreadable {
-            message: e.to_string(),
+            message: message.into(),
         },
     )
 }
 
-/// Fails on a comment line (`#` first) that holds as many fields as the header: a measurement
-/// row whose posture label starts with `#` would otherwise be dropped without a word.
-fn commented_rows(text: &str, fields: usize) -> Result<()> {
-    let row = text.lines().enumerate().find(|(_, l)| {
-        l.trim_start().starts_with('#') && l.split(',').count() == fields && fields > 1
-    });
-    match row {
-        None => Ok(()),
-        Some((i, _)) => Err(problem(
-            i as u64 + 1,
-            None,
-            ColumnProblem::Unreadable {
-                message: format!(
-                    "a comment line ('#' first) with the {fields} fields of a measurement row: a posture label may not start with '#'"
-                ),
-            },
-        )),
+/// `text` without its comment lines (`#` first) and the line (1-based) of each line kept; `None`
+/// when it has none.
+fn without_comments(text: &[u8]) -> Option<(Vec<u8>, Vec<u64>)> {
+    if !(text.first() == Some(&b'#') || text.windows(2).any(|w| w == b"\n#")) {
+        return None;
     }
-}
-
-fn expected_header() -> String {
-    let mut names = vec![POSTURE, POINT];
-    names.extend(Q);
-    names.extend(FORCE);
-    names.extend(DISPLACEMENT);
-    names.join(",")
-}
-
-fn expected_columns() -> String {
-    format!(
-        "{} (moments {} optional; {} and {} in the tool frame; {} in the tracker frame; or {} and {} instead of the d columns)",
-        expected_header(),
-        MOMENT.join(","),
-        FORCE_TOOL.join(","),
-        MOMENT_TOOL.join(","),
-        DISPLACEMENT_TRACKER.join(","),
-        LOADED.join(","),
-        UNLOADED.join(",")
-    )
-}
-
-/// Where each quantity sits in a row (0-based field indices).
-#[derive(Debug, Clone, PartialEq)]
-struct Columns {
-    posture: usize,
-    point: usize,
-    q: [usize; 6],
-    force: [usize; 3],
-    moment: Option<[usize; 3]>,
-    displacement: Displacement,
-    wrench_frame: Frame,
-    displacement_frame: DisplacementFrame,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Displacement {
-    Relative([usize; 3]),
-    Positions([usize; 3], [usize; 3]),
-}
-
-/// Finds columns in a header, with errors at the header's line.
-struct Header<'a> {
-    names: &'a [String],
-    line: u64,
-}
-
-impl Header<'_> {
-    fn find(&self, name: &str) -> Option<usize> {
-        self.names.iter().position(|h| h == name)
-    }
-
-    fn any(&self, names: &[&str]) -> bool {
-        names.iter().any(|n| self.find(n).is_some())
-    }
-
-    fn need(&self, name: &str) -> Result<usize> {
-        self.find(name)
-            .ok_or_else(|| super::missing(self.line, name))
-    }
-
-    fn need3(&self, names: [&str; 3]) -> Result<[usize; 3]> {
-        Ok([
-            self.need(names[0])?,
-            self.need(names[1])?,
-            self.need(names[2])?,
-        ])
-    }
-
-    /// The columns of one quantity given in one of two frames (`None` if neither is there).
-    fn one_of<F: Copy>(&self, first: (&[&str], F), second: (&[&str], F)) -> Result<Option<F>> {
-        match (self.any(first.0), self.any(second.0)) {
-            (true, true) => Err(problem(
-                self.line,
-                None,
-                ColumnProblem::Conflict {
-                    first: first.0.join(","),
-                    second: second.0.join(","),
-                },
-            )),
-            (true, false) => Ok(Some(first.1)),
-            (false, true) => Ok(Some(second.1)),
-            (false, false) => Ok(None),
+    let (mut body, mut kept) = (Vec::with_capacity(text.len()), Vec::new());
+    for (i, line) in text.split_inclusive(|b| *b == b'\n').enumerate() {
+        if line.first() != Some(&b'#') {
+            body.extend_from_slice(line);
+            kept.push(i as u64 + 1);
         }
     }
+    Some((body, kept))
 }
 
-impl Columns {
-    fn new(names: &[String], line: u64) -> Result<Self> {
-        super::known_names(names, line, known(), expected_columns)?;
-        let h = Header { names, line };
-        let posture = h.need(POSTURE)?;
-        let point = h.need(POINT)?;
-        let mut q = [0; 6];
-        for (a, name) in Q.iter().enumerate() {
-            q[a] = h.need(name)?;
-        }
-        let wrench_frame = h
-            .one_of((&FORCE, Frame::Base), (&FORCE_TOOL, Frame::Tool))?
-            .unwrap_or(Frame::Base);
-        let (force_names, moment_names) = match wrench_frame {
-            Frame::Base => (FORCE, MOMENT),
-            Frame::Tool => (FORCE_TOOL, MOMENT_TOOL),
-        };
-        let other_moment = match wrench_frame {
-            Frame::Base => MOMENT_TOOL,
-            Frame::Tool => MOMENT,
-        };
-        h.one_of((&force_names, ()), (&other_moment, ()))?;
-        let force = h.need3(force_names)?;
-        let moment = match h.any(&moment_names) {
-            true => Some(h.need3(moment_names)?),
-            false => None,
-        };
-        let (displacement, displacement_frame) = displacement(&h)?;
-        Ok(Self {
-            posture,
-            point,
-            q,
-            force,
-            moment,
-            displacement,
-            wrench_frame,
-            displacement_frame,
-        })
-    }
-
-    /// The measurement of one row; `error(column, problem)` places a problem in the row.
-    fn measurement(
-        &self,
-        record: &csv::StringRecord,
-        posture: usize,
-        error: impl Fn(usize, ColumnProblem) -> Error,
-    ) -> Result<Measurement> {
-        let number = |i: usize| -> Result<f64> {
-            let field = record[i].trim();
-            field
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| {
-                    error(
-                        i,
-                        ColumnProblem::NotANumber {
-                            value: crate::limits::short(field),
-                        },
-                    )
-                })
-        };
-        let vector3 = |c: [usize; 3]| -> Result<Vector3<f64>> {
-            Ok(Vector3::new(number(c[0])?, number(c[1])?, number(c[2])?))
-        };
-        let point_field = record[self.point].trim();
-        let point = point_field
-            .parse::<usize>()
-            .ok()
-            .filter(|p| *p >= 1)
-            .ok_or_else(|| {
-                error(
-                    self.point,
-                    ColumnProblem::NotAPoint {
-                        value: crate::limits::short(point_field),
-                    },
-                )
-            })?;
-        let mut q = Vector6::zeros();
-        for (a, &c) in self.q.iter().enumerate() {
-            q[a] = number(c)?.to_radians();
-        }
-        let force = vector3(self.force)?;
-        let moment = self.moment.map_or(Ok(Vector3::zeros()), vector3)?;
-        let displacement_mm = match self.displacement {
-            Displacement::Relative(d) => vector3(d)?,
-            Displacement::Positions(l, u) => vector3(l)? - vector3(u)?,
-        };
-        Ok(Measurement {
-            posture,
-            point: point - 1,
-            q,
-            wrench: Vector6::new(force.x, force.y, force.z, moment.x, moment.y, moment.z),
-            displacement: displacement_mm * 1e-3,
-        })
-    }
-}
-
-/// The displacement columns and their frame.
-fn displacement(h: &Header) -> Result<(Displacement, DisplacementFrame)> {
-    use DisplacementFrame::{Base, Tracker};
-    let relative = h.one_of((&DISPLACEMENT, Base), (&DISPLACEMENT_TRACKER, Tracker))?;
-    let base_positions = [LOADED, UNLOADED].concat();
-    let tracker_positions = [LOADED_TRACKER, UNLOADED_TRACKER].concat();
-    let positions = h.one_of((&base_positions, Base), (&tracker_positions, Tracker))?;
-    match (relative, positions) {
-        (Some(_), Some(_)) => Err(problem(
-            h.line,
-            None,
-            ColumnProblem::Conflict {
-                first: DISPLACEMENT.join(","),
-                second: "the loaded and unloaded positions".into(),
-            },
-        )),
-        (None, Some(frame)) => {
-            let (l, u) = match frame {
-                Base => (LOADED, UNLOADED),
-                Tracker => (LOADED_TRACKER, UNLOADED_TRACKER),
-            };
-            Ok((Displacement::Positions(h.need3(l)?, h.need3(u)?), frame))
-        }
-        (Some(Tracker), None) => Ok((
-            Displacement::Relative(h.need3(DISPLACEMENT_TRACKER)?),
-            Tracker,
-        )),
-        _ => Ok((Displacement::Relative(h.need3(DISPLACEMENT)?), Base)),
-    }
-}
-
-fn known() -> impl Iterator<Item = &'static str> + Clone {
-    [POSTURE, POINT]
-        .into_iter()
-        .chain(Q)
-        .chain(FORCE)
-        .chain(MOMENT)
-        .chain(FORCE_TOOL)
-        .chain(MOMENT_TOOL)
-        .chain(DISPLACEMENT)
-        .chain(DISPLACEMENT_TRACKER)
-        .chain(LOADED)
-        .chain(UNLOADED)
-        .chain(LOADED_TRACKER)
-        .chain(UNLOADED_TRACKER)
+/// The first comment line (`#` first) of `text` (whose first line is line `first`) that holds as
+/// many fields as the header: a measurement row whose posture label starts with `#` would
+/// otherwise be dropped without a word.
+fn commented_row(text: &[u8], fields: usize, first: u64) -> Option<(u64, Error)> {
+    let (i, _) = text.split(|b| *b == b'\n').enumerate().find(|(_, l)| {
+        let l = l.trim_ascii_start();
+        l.first() == Some(&b'#') && l.split(|b| *b == b',').count() == fields && fields > 1
+    })?;
+    let line = first + i as u64;
+    let message = format!(
+        "a comment line ('#' first) with the {fields} fields of a measurement row: a posture label may not start with '#'"
+    );
+    Some((line, unreadable(line, &message)))
 }

@@ -81,13 +81,64 @@ impl Observations {
 /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
 /// angles (`posture`).
 pub fn check(setup: &Setup, measurements: &[Measurement]) -> Result<(usize, Vec<usize>)> {
-    let mut labels = Postures::new(measurements);
+    let mut check = Check::default();
     let mut posture_index = Vec::with_capacity(measurements.len());
-    for (i, meas) in measurements.iter().enumerate() {
-        check_one(setup, i + 1, meas)?;
-        posture_index.push(check_label(&mut labels, measurements, i)?);
+    check.push(setup, measurements, Some(&mut posture_index))?;
+    Ok((check.postures(), posture_index))
+}
+
+/// The checks of [`check`] over measurements given a part at a time (a file read in chunks):
+/// measurements are numbered over all parts, and a posture is compared with its first
+/// measurement in any earlier part. Memory: a table entry and the axis angles per posture.
+#[derive(Debug, Default)]
+pub struct Check {
+    table: Table,
+    /// The axis angles of each posture's first measurement, by dense number.
+    angles: Vec<Vector6<f64>>,
+    /// Measurements checked so far.
+    measurements: usize,
+}
+
+impl Check {
+    /// Checks the next measurements (those of [`check`]); pushes the dense posture number of each
+    /// onto `posture_index` if given.
+    ///
+    /// # Errors
+    /// Those of [`check`], numbering measurements over all parts.
+    pub fn push(
+        &mut self,
+        setup: &Setup,
+        measurements: &[Measurement],
+        mut posture_index: Option<&mut Vec<usize>>,
+    ) -> Result<()> {
+        for meas in measurements {
+            self.measurements += 1;
+            let number = self.measurements;
+            check_one(setup, number, meas)?;
+            let next = (self.angles.len(), number);
+            let (index, first) = self.table.entry(meas.posture, next);
+            if index == self.angles.len() {
+                self.angles.push(meas.q);
+            } else if self.angles[index] != meas.q {
+                return Err(Error::Measurement {
+                    number,
+                    field: MeasurementField::Posture,
+                    message: format!(
+                        "this posture was measured before at other axis angles (measurement {first}): give each posture its own label"
+                    ),
+                });
+            }
+            if let Some(v) = posture_index.as_deref_mut() {
+                v.push(index);
+            }
+        }
+        Ok(())
     }
-    Ok((labels.count, posture_index))
+
+    /// The number of distinct postures so far.
+    pub fn postures(&self) -> usize {
+        self.angles.len()
+    }
 }
 
 /// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x 6`) and `delta`
@@ -197,59 +248,49 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
     Ok(())
 }
 
-/// The postures seen so far: posture -> (its dense number, its first measurement). A table
-/// indexed by the posture number when the numbers are small (as a file's are), else a hash map.
-struct Postures {
-    table: Table,
-    count: usize,
-}
-
+/// Posture -> (its dense number, its first measurement, 1-based): a table indexed by the
+/// posture number while the numbers are small (as a file's are), else a hash map.
+#[derive(Debug)]
 enum Table {
-    /// `usize::MAX` before the posture is seen.
+    /// `(usize::MAX, 0)` before the posture is seen.
     Dense(Vec<(usize, usize)>),
     Sparse(HashMap<usize, (usize, usize)>),
 }
 
-impl Postures {
-    fn new(measurements: &[Measurement]) -> Self {
-        let n = measurements.len();
-        let table = match measurements.iter().all(|m| m.posture < n) {
-            true => Table::Dense(vec![(usize::MAX, usize::MAX); n]),
-            false => Table::Sparse(HashMap::new()),
-        };
-        Self { table, count: 0 }
-    }
-
-    /// The dense number and the first measurement of `posture`, first seen at measurement `i`
-    /// if new.
-    fn entry(&mut self, posture: usize, i: usize) -> (usize, usize) {
-        let next = (self.count, i);
-        let slot = match &mut self.table {
-            Table::Dense(v) => &mut v[posture],
-            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, usize::MAX)),
-        };
-        if slot.0 == usize::MAX {
-            *slot = next;
-            self.count += 1;
-        }
-        *slot
+impl Default for Table {
+    fn default() -> Self {
+        Table::Dense(Vec::new())
     }
 }
 
-/// The dense number of measurement `i`'s posture; an error if it was measured before at other
-/// axis angles.
-fn check_label(labels: &mut Postures, measurements: &[Measurement], i: usize) -> Result<usize> {
-    let meas = &measurements[i];
-    let (index, first) = labels.entry(meas.posture, i);
-    if measurements[first].q != meas.q {
-        return Err(Error::Measurement {
-            number: i + 1,
-            field: MeasurementField::Posture,
-            message: format!(
-                "this posture was measured before at other axis angles (measurement {}): give each posture its own label",
-                first + 1
-            ),
-        });
+/// Postures numbered above this many times the postures seen (plus a margin) go to a hash map.
+const DENSE_GROWTH: usize = 2;
+
+impl Table {
+    /// The entry of `posture`, `next` if it is new.
+    fn entry(&mut self, posture: usize, next: (usize, usize)) -> (usize, usize) {
+        if let Table::Dense(v) = self {
+            if posture >= v.len() {
+                if posture <= DENSE_GROWTH * v.len() + 4096 {
+                    v.resize(posture + 1, (usize::MAX, 0));
+                } else {
+                    let map = v
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, e)| e.0 != usize::MAX)
+                        .map(|(p, e)| (p, *e))
+                        .collect();
+                    *self = Table::Sparse(map);
+                }
+            }
+        }
+        let slot = match self {
+            Table::Dense(v) => &mut v[posture],
+            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, 0)),
+        };
+        if slot.0 == usize::MAX {
+            *slot = next;
+        }
+        *slot
     }
-    Ok(index)
 }

@@ -2,8 +2,10 @@
 #![allow(dead_code)] // each user takes its own subset
 
 use nalgebra::{Vector3, Vector6};
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
+use stiffid::identify::Identification;
 use stiffid::observation::Measurement;
 use stiffid::{stiffness, Setup};
 
@@ -93,4 +95,55 @@ pub fn on_robot(setup: &Setup, robot: stiffid::Robot, springs: stiffid::Coordina
         .with_bounds(bounds)
         .build()
         .unwrap()
+}
+
+/// Noisy measurements of `n` random postures under random wrenches (4 points each on the paper
+/// setup), seeded.
+pub fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
+    let postures: Vec<Vector6<f64>> = (0..n)
+        .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
+        .collect();
+    let wrenches: Vec<Vector6<f64>> = (0..n)
+        .map(|_| Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [800.0, 150.0][i / 3]))
+        .collect();
+    let noise = Normal::new(0.0, setup.noise().sigma()).unwrap();
+    let mut data = synthetic(setup, &postures, |i, _| wrenches[i]);
+    for m in &mut data {
+        m.displacement += Vector6::from_fn(|_, _| noise.sample(&mut rng)).fixed_rows::<3>(0);
+    }
+    data
+}
+
+/// Asserts that identification `a` equals `b` to 1e-12 relative (of the largest entry of each
+/// quantity): compliance, stiffness, covariance, residuals, RMS, cond, counts, standard errors and
+/// intervals.
+pub fn assert_close(a: &Identification, b: &Identification) {
+    let close = |x: f64, y: f64, scale: f64| (x - y).abs() <= 1e-12 * scale.abs();
+    for j in 0..6 {
+        assert!(close(a.compliance[j], b.compliance[j], b.compliance.amax()));
+        assert!(close(a.stiffness[j], b.stiffness[j], b.stiffness[j]));
+    }
+    let c = b.unit_covariance.amax();
+    assert!((a.unit_covariance - b.unit_covariance).amax() <= 1e-12 * c);
+    let r = b.residuals.amax();
+    assert!((&a.residuals - &b.residuals).amax() <= 1e-12 * r);
+    assert!(close(a.residual_rms, b.residual_rms, b.residual_rms));
+    assert!(close(a.cond_psi, b.cond_psi, b.cond_psi));
+    assert_eq!((a.rows, a.postures), (b.rows, b.postures));
+    let (ua, ub) = (
+        a.uncertainty.as_ref().unwrap(),
+        b.uncertainty.as_ref().unwrap(),
+    );
+    assert_eq!(ua.dof, ub.dof);
+    for j in 0..6 {
+        let se = ub.stiffness_std_error[j];
+        assert!(close(ua.stiffness_std_error[j], se, se));
+        assert!(close(
+            ua.stiffness_ci95[j][1],
+            ub.stiffness_ci95[j][1],
+            b.stiffness[j]
+        ));
+    }
 }

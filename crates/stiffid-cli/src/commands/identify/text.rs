@@ -76,7 +76,10 @@ pub fn warnings(run: &Run) -> Vec<String> {
 
 /// The unit warning, naming the columns.
 pub fn unit_warning(run: &Run, unit: &UnitCheck) -> String {
-    let (forces, displacements) = (run.file.force_columns(), run.file.displacement_columns());
+    let (forces, displacements) = (
+        run.rows.layout.force_columns(),
+        run.rows.layout.displacement_columns(),
+    );
     let cause = match unit.stiffer {
         true => format!(
             "displacements ({displacements}) in m instead of mm, or forces ({forces}) in mN instead of N"
@@ -263,9 +266,9 @@ fn largest_residuals(run: &Run) -> String {
         let r = id.residuals.fixed_rows::<3>(3 * i).map(mm);
         s += &format!(
             "  line {:>4}  posture {:>4}  point {}  ({:+.4}, {:+.4}, {:+.4})  |{:.4}|\n",
-            run.file.lines[i],
+            run.rows.lines[i],
             run.label(i),
-            run.file.measurements[i].point + 1,
+            run.rows.points[i] + 1,
             r.x,
             r.y,
             r.z,
@@ -292,9 +295,9 @@ fn down_weighted(run: &Run, fit: &stiffid::identify::RobustFit) -> String {
         let i = row / 3;
         s += &format!(
             "  line {:>4}  posture {:>4}  point {}  {}: weight {:.3}, residual {:+.4} mm\n",
-            run.file.lines[i],
+            run.rows.lines[i],
             run.label(i),
-            run.file.measurements[i].point + 1,
+            run.rows.points[i] + 1,
             ['x', 'y', 'z'][row % 3],
             fit.weights[row],
             mm(run.id.residuals[row])
