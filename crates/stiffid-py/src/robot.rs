@@ -100,7 +100,7 @@ impl Robot {
     /// flange origin), base frame, rows ``[vx, vy, vz, wx, wy, wz]`` in m/rad and rad/rad, column
     /// j joint j in ``coordinates`` ``"axis"`` (controller angles q: ``J_q = J_theta M``) or
     /// ``"kinematic"`` (the DH/URDF angles theta). Shape ``(6, 6)`` or ``(n, 6, 6)``.
-    /// Source: Zhang et al. 2021, Eq. 4-7; DESIGN.md section 2.
+    /// Source: Zhang et al. 2021, Eq. 4-7; docs/model.md section 2.
     #[pyo3(signature = (q_deg, point_mm=None, coordinates="axis"))]
     fn jacobian<'py>(
         &self,

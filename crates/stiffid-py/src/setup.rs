@@ -168,7 +168,7 @@ impl Setup {
     /// ``relative_a``, ``test_pose_mm``, ``cond_psi`` (floats, ``inf`` for a singular posture),
     /// ``relative_std`` (shape ``(6,)``) and ``predicted_deviation_pct`` (shape ``(levels, 6)``,
     /// percent: ``100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)``). Sources: Zhang et al. 2021,
-    /// Eq. 19-21; DESIGN.md section 5. ``None`` for what the setup lacks a field for: ``classical``
+    /// Eq. 19-21; docs/model.md section 5. ``None`` for what the setup lacks a field for: ``classical``
     /// and ``zhang2021`` without ``characteristic_length_mm``; ``scaled_cond``, ``d_optimal``,
     /// ``relative_a``, ``relative_std`` and ``predicted_deviation_pct`` without
     /// ``nominal_stiffness_nm_per_rad``. ``ValueError`` for a group that cannot identify every joint.

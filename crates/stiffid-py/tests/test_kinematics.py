@@ -13,7 +13,7 @@ def robot():
     return stiffid.Robot.preset(COMAU)
 
 
-# DESIGN.md section 4: flange positions (mm) of the COMAU SMART5 NJ 165-3.0, checked against
+# docs/model.md section 4: flange positions (mm) of the COMAU SMART5 NJ 165-3.0, checked against
 # independent public kinematics.
 KNOWN = [
     ([0, 0, -90, 0, 0, 0], [2074.0, 0.0, 2255.0]),

@@ -244,3 +244,32 @@ fn the_tip_defaults_to_the_leaf_ending_six_revolute_joints_else_tool0() {
     }
     assert!(!message.contains("camera"), "{message}");
 }
+
+#[test]
+fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
+    use stiffid::formats::reference;
+    let urdf_text = data("comau-nj165-two-leaves.urdf");
+    let read = |p: &std::path::Path| match p.to_str() {
+        Some("cell/robot.urdf") => Some(Ok::<_, Error>(urdf_text.clone())),
+        Some("cell/robot.toml") => Some(Ok(String::new())),
+        _ => None,
+    };
+    // A URDF takes it; a preset or a robot TOML has no tip to choose, and the error says which
+    // field the user wrote.
+    let robot = reference::robot("cell/robot.urdf", Some("tool0"), read).unwrap();
+    assert!(
+        robot.source.ends_with("tip link 'tool0'"),
+        "{}",
+        robot.source
+    );
+    for reference in ["comau-smart5-nj165-3.0", "cell/robot.toml"] {
+        let e = reference::robot(reference, Some("tool0"), read).unwrap_err();
+        let message = e.to_string();
+        assert!(message.starts_with("tip link: 'tool0' given"), "{message}");
+        assert!(message.contains(reference), "{message}");
+    }
+    let paper = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let setup = paper.replacen("\n[tool]", "\nrobot_tip = \"tool0\"\n[tool]", 1);
+    let e = reference::setup_text(&setup, "s.toml", std::path::Path::new(""), read).unwrap_err();
+    assert!(e.to_string().contains("robot_tip: 'tool0' given"), "{e}");
+}

@@ -178,9 +178,13 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
             .file_stem()
             .map_or(robot_ref.into(), |s| s.to_string_lossy()),
     };
+    let urdf = Path::new(robot_ref)
+        .extension()
+        .is_some_and(|e| e == "urdf");
     let tip_line = match &args.tip {
         Some(tip) => format!("robot_tip = {}", quoted(tip)),
-        None => "# robot_tip = \"tool0\"".into(),
+        None if urdf => "# robot_tip = \"tool0\"".into(),
+        None => "# (this robot is a preset or a robot TOML: it has no tip link to choose)".into(),
     };
     let reach_mm = reach * 1e3;
     let mut values = vec![

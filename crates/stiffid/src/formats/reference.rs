@@ -19,7 +19,8 @@ use std::path::Path;
 /// # Errors
 /// The error of `read`; those of the parser (named after the file); [`Error::Parse`] for a file
 /// with another extension; [`Error::Unknown`] for a name that is no preset, [`Error::NotFound`]
-/// for a path that is neither a file nor a preset.
+/// for a path that is neither a file nor a preset; [`Error::InvalidField`] (`tip link`) for a
+/// `tip` given with a preset or a robot TOML, whose chain has no choice of tip.
 ///
 /// # Examples
 /// ```
@@ -35,22 +36,43 @@ where
     E: From<Error>,
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
-    robot_in(Path::new(""), reference, tip, &read)
+    robot_in(Path::new(""), reference, tip, "tip link", &read)
 }
 
-/// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`.
-fn robot_in<E, F>(dir: &Path, reference: &str, tip: Option<&str>, read: &F) -> Result<Robot, E>
+/// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`;
+/// `tip_field` names `tip` as the user gave it (`robot_tip` in a setup).
+fn robot_in<E, F>(
+    dir: &Path,
+    reference: &str,
+    tip: Option<&str>,
+    tip_field: &str,
+    read: &F,
+) -> Result<Robot, E>
 where
     E: From<Error>,
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
     let path = dir.join(reference);
     let name = path.display().to_string();
-    let Some(text) = read(&path) else {
+    let extension = path.extension().and_then(|e| e.to_str());
+    let text = read(&path);
+    if let (Some(tip), false) = (tip, text.is_some() && extension == Some("urdf")) {
+        return Err(Error::InvalidField {
+            field: tip_field.into(),
+            message: format!(
+                "'{}' given, but only a URDF robot has a tip link to choose ('{}' is a preset or \
+                 a robot TOML); leave it out",
+                crate::limits::short(tip),
+                crate::limits::short(reference)
+            ),
+        }
+        .into());
+    }
+    let Some(text) = text else {
         let e = presets::get(reference);
         return e.map_err(|e| not_found(e, "robot", "preset", reference, &path).into());
     };
-    Ok(match path.extension().and_then(|e| e.to_str()) {
+    Ok(match extension {
         Some("toml") => file::parse(&text?, &name)?,
         Some("urdf") => urdf::parse(&text?, &name, tip)?,
         _ => Err(Error::Parse {
@@ -104,7 +126,7 @@ where
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
     Ok(setup::parse(text, source_name, |r, tip| {
-        robot_in(dir, r, tip, &read).map_err(|e| Error::Parse {
+        robot_in(dir, r, tip, "robot_tip", &read).map_err(|e| Error::Parse {
             source_name: format!("{source_name}: robot"),
             message: e.to_string(),
         })
