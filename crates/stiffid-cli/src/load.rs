@@ -10,7 +10,7 @@ use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
-use stiffid::formats::{self, postures, reference};
+use stiffid::formats::{self, postures, reference, Capped};
 use stiffid::identify::{streamed, streamed::Rows, Identification};
 use stiffid::limits::{self, short, JointBox, Range, MAX_INPUT_BYTES};
 use stiffid::{Robot, Setup};
@@ -48,7 +48,7 @@ pub fn read(path: &Path) -> Result<String> {
     let name = path.display();
     let mut bytes = Vec::new();
     open(path)?
-        .file
+        .into_inner()
         .take(MAX_INPUT_BYTES + 1)
         .read_to_end(&mut bytes)
         .with_context(|| format!("{name}: cannot read"))?;
@@ -57,7 +57,7 @@ pub fn read(path: &Path) -> Result<String> {
 
 /// The file at `path` opened for reading, not a directory, remembered as an input
 /// ([`input_at`]); reading more than [`MAX_INPUT_BYTES`] from it fails.
-pub fn open(path: &Path) -> Result<Capped> {
+pub fn open(path: &Path) -> Result<Capped<File>> {
     let name = path.display();
     let file = File::open(path).with_context(|| format!("{name}: cannot read"))?;
     let meta = file
@@ -70,28 +70,7 @@ pub fn open(path: &Path) -> Result<Capped> {
         let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
         inputs.push((resolved, meta.dev(), meta.ino()));
     }
-    Ok(Capped { file, read: 0 })
-}
-
-/// A file that fails with "larger than the input limit" once more than [`MAX_INPUT_BYTES`] have
-/// been read from it.
-pub struct Capped {
-    file: File,
-    read: u64,
-}
-
-impl Read for Capped {
-    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-        let n = self.file.read(buf)?;
-        self.read += n as u64;
-        if self.read > MAX_INPUT_BYTES {
-            return Err(std::io::Error::other(format!(
-                "larger than the input limit of {} MiB",
-                MAX_INPUT_BYTES >> 20
-            )));
-        }
-        Ok(n)
-    }
+    Ok(Capped::new(file))
 }
 
 /// The input file (as read) that `target` (a resolved path) is, if any: the same path, or the
@@ -204,15 +183,13 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
 /// row came from; errors start with the file name, then the line and column.
 pub fn identify_streamed(
     path: &Path,
-    data: Capped,
+    data: Capped<File>,
     setup: &Setup,
 ) -> Result<(Identification, Rows)> {
     let mut first = Some(data);
     let mut open = || match first.take() {
         Some(file) => Ok(BufReader::with_capacity(1 << 20, file)),
-        None => {
-            File::open(path).map(|file| BufReader::with_capacity(1 << 20, Capped { file, read: 0 }))
-        }
+        None => File::open(path).map(|file| BufReader::with_capacity(1 << 20, Capped::new(file))),
     };
     streamed::least_squares(setup, &mut open).with_context(|| path.display().to_string())
 }

@@ -5,7 +5,7 @@ use pyo3::{PyErr, Python};
 use std::fs::File;
 use std::io::Read;
 use std::path::Path;
-use stiffid::formats;
+use stiffid::formats::{self, Capped};
 use stiffid::limits::MAX_INPUT_BYTES;
 use stiffid::Error;
 
@@ -58,21 +58,25 @@ pub fn value(message: impl Into<String>) -> PyErr {
 /// the command's checks).
 pub fn read(path: &Path) -> Result<String, PyErr> {
     let name = path.display();
-    let file = open(path)?;
-    if file.metadata().map_err(|e| os_error(path, e))?.is_dir() {
-        return Err(value(format!("{name}: is a directory, expected a file")));
-    }
     let mut bytes = Vec::new();
-    file.take(MAX_INPUT_BYTES + 1)
+    open(path)?
+        .into_inner()
+        .take(MAX_INPUT_BYTES + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| os_error(path, e))?;
     formats::text(&name.to_string(), bytes).map_err(raise)
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or
-/// `OSError`).
-pub fn open(path: &Path) -> Result<File, PyErr> {
-    File::open(path).map_err(|e| os_error(path, e))
+/// `OSError`; `ValueError` for a directory); reading more than the input limit from it fails
+/// ([`Capped`]).
+pub fn open(path: &Path) -> Result<Capped<File>, PyErr> {
+    let file = File::open(path).map_err(|e| os_error(path, e))?;
+    if file.metadata().map_err(|e| os_error(path, e))?.is_dir() {
+        let name = path.display();
+        return Err(value(format!("{name}: is a directory, expected a file")));
+    }
+    Ok(Capped::new(file))
 }
 
 /// `FileNotFoundError` or `OSError` for a failure to read the file at `path`.

@@ -14,6 +14,7 @@ use std::io::BufReader;
 use std::path::{Path, PathBuf};
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness;
+use stiffid::formats::Capped;
 use stiffid::identify::{Identification as Fit, Loss};
 use stiffid::limits;
 use stiffid::observation::{Measurement, Observations};
@@ -327,7 +328,7 @@ fn identify_file(py: Python<'_>, s: &stiffid::Setup, path: &Path) -> PyResult<Id
     let mut first = Some(error::open(path)?);
     let mut open = || match first.take() {
         Some(file) => Ok(BufReader::new(file)),
-        None => File::open(path).map(BufReader::new),
+        None => File::open(path).map(|file| BufReader::new(Capped::new(file))),
     };
     let (fit, rows) = py
         .detach(|| stiffid::identify::streamed::least_squares(s, &mut open))

@@ -124,6 +124,11 @@ def test_measurement_outside_the_limits_names_its_line(fanuc, tmp_path):
 def test_missing_file(fanuc, tmp_path):
     with pytest.raises(FileNotFoundError, match="none.csv: no such file"):
         stiffid.identify(fanuc, tmp_path / "none.csv")
+    with pytest.raises(ValueError, match="is a directory, expected a file"):
+        stiffid.identify(fanuc, tmp_path)
+    for robust in [None, "huber"]:  # read whole, or in pieces: the same input limit
+        with pytest.raises(ValueError, match="larger than the input limit of 256 MiB"):
+            stiffid.identify(fanuc, "/dev/zero", robust=robust)
 
 
 def test_wrong_shapes_are_refused(paper):

@@ -227,6 +227,13 @@ fn simulation_and_study_counts_out_of_range_are_refused() {
         "trials",
         "18446744073709551615",
     );
+    // The trials' seeds follow the seed: they may not pass u64::MAX (no silent wrap-around).
+    let o = study::Options {
+        seed: u64::MAX - 1,
+        trials: 2,
+        ..Default::default()
+    };
+    rejected(study::run(&setup, &o, &()), "seed", "18446744073709551614");
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here): the
 //! caller reads the file and adds its name to errors. [`text`] turns the bytes a caller read into
-//! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`).
+//! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`); [`Capped`]
+//! holds a reader of an input read in pieces to the same limit.
 //!
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
@@ -38,10 +39,7 @@ pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
         message,
     };
     if bytes.len() as u64 > MAX_INPUT_BYTES {
-        return Err(error(format!(
-            "larger than the input limit of {} MiB",
-            MAX_INPUT_BYTES >> 20
-        )));
+        return Err(error(too_large()));
     }
     String::from_utf8(bytes).map_err(|e| {
         error(format!(
@@ -49,6 +47,55 @@ pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
             e.utf8_error().valid_up_to()
         ))
     })
+}
+
+/// "larger than the input limit of 256 MiB": the one wording of [`text`] and [`Capped`].
+fn too_large() -> String {
+    format!(
+        "larger than the input limit of {} MiB",
+        MAX_INPUT_BYTES >> 20
+    )
+}
+
+/// A reader of an input (a file the caller opened) that fails with "larger than the input limit"
+/// once more than [`MAX_INPUT_BYTES`] have been read from it: the limit of [`text`] for inputs
+/// read in pieces (`identify::streamed`).
+///
+/// # Examples
+/// ```
+/// use std::io::Read;
+/// let mut small = stiffid::formats::Capped::new(&b"q1_deg"[..]);
+/// let mut text = String::new();
+/// small.read_to_string(&mut text).unwrap();
+/// assert_eq!(text, "q1_deg");
+/// ```
+#[derive(Debug)]
+pub struct Capped<R> {
+    inner: R,
+    read: u64,
+}
+
+impl<R> Capped<R> {
+    /// `inner`, nothing read yet.
+    pub fn new(inner: R) -> Self {
+        Capped { inner, read: 0 }
+    }
+
+    /// The reader inside, without the limit.
+    pub fn into_inner(self) -> R {
+        self.inner
+    }
+}
+
+impl<R: std::io::Read> std::io::Read for Capped<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.read += n as u64;
+        if self.read > MAX_INPUT_BYTES {
+            return Err(std::io::Error::other(too_large()));
+        }
+        Ok(n)
+    }
 }
 
 /// The error for a column `name` missing from the header at `line`.

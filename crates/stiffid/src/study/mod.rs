@@ -160,7 +160,8 @@ pub struct Study {
 ///
 /// # Errors
 /// [`crate::Error::InvalidField`] for `runs`, `starts` or `trials` outside their limits
-/// ([`limits::MAX_RUNS`], [`limits::MAX_STARTS`], [`limits::MAX_TRIALS`]; `trials` may be 0);
+/// ([`limits::MAX_RUNS`], [`limits::MAX_STARTS`], [`limits::MAX_TRIALS`]; `trials` may be 0),
+/// and for a `seed` so large that the trials' seeds (`seed + 1`, ...) would pass `u64::MAX`;
 /// [`crate::Error::MissingField`] for a setup without a nominal stiffness or a characteristic
 /// length; the errors of the searches and of [`crate::simulate::monte_carlo`] (for example
 /// [`crate::Error::Unidentifiable`] for a group that cannot identify every joint).
@@ -190,6 +191,16 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     for (field, value, min, max) in counts {
         limits::check_integer(field, value as u64, min, max)?;
     }
+    let end = options.seed.checked_add(options.trials as u64);
+    let seeds = options.seed..end.ok_or_else(|| crate::Error::InvalidField {
+        field: "seed".into(),
+        message: format!(
+            "{}: expected at most {} (u64::MAX less the {} trials, whose seeds follow it)",
+            options.seed,
+            u64::MAX - options.trials as u64,
+            options.trials
+        ),
+    })?;
     let search = SearchOptions {
         starts: options.starts,
         seed: options.seed,
@@ -199,7 +210,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     // The first start group of the check is Group 1: its local searches are Groups 2 and 3.
     let trials = trials(
         setup,
-        options.seed..options.seed + options.trials as u64,
+        seeds,
         &search,
         progress,
         Some([&found[1].1, &found[2].1]),
