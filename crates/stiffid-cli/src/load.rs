@@ -3,7 +3,7 @@
 use anyhow::{bail, Context, Result};
 use nalgebra::{SVector, Vector6};
 use std::fs::File;
-use std::io::{BufReader, Read};
+use std::io::BufReader;
 use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -12,7 +12,7 @@ use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
 use stiffid::formats::{self, postures, reference, Capped};
 use stiffid::identify::{streamed, streamed::Rows, Identification};
-use stiffid::limits::{self, short, JointBox, Range, MAX_INPUT_BYTES};
+use stiffid::limits::{self, short, JointBox, Range};
 use stiffid::{Robot, Setup};
 
 /// Every file read so far (resolved path, device and inode), so no output is written over one.
@@ -42,21 +42,15 @@ fn existing(path: &Path) -> Option<Result<String>> {
     path.exists().then(|| read(path))
 }
 
-/// The text of a file, with its name in the error: at most [`MAX_INPUT_BYTES`], UTF-8
-/// ([`formats::text`]). The file is remembered as an input ([`input_at`]).
+/// The text of a file, with its name in the error: at most [`limits::MAX_INPUT_BYTES`], UTF-8
+/// ([`formats::read_text`]). The file is remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
-    let name = path.display();
-    let mut bytes = Vec::new();
-    open(path)?
-        .into_inner()
-        .take(MAX_INPUT_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .with_context(|| format!("{name}: cannot read"))?;
-    Ok(formats::text(&name.to_string(), bytes)?)
+    let name = path.display().to_string();
+    Ok(formats::read_text(&name, open(path)?.into_inner())?)
 }
 
 /// The file at `path` opened for reading, not a directory, remembered as an input
-/// ([`input_at`]); reading more than [`MAX_INPUT_BYTES`] from it fails.
+/// ([`input_at`]); reading more than [`limits::MAX_INPUT_BYTES`] from it fails.
 pub fn open(path: &Path) -> Result<Capped<File>> {
     let name = path.display();
     let file = File::open(path).with_context(|| format!("{name}: cannot read"))?;

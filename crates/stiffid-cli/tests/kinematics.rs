@@ -163,32 +163,35 @@ fn unknown_key_in_a_robot_toml() {
 
 #[test]
 fn urdf_without_the_tip_link() {
-    let urdf = data("comau-nj165.urdf");
-    assert_usage_error(
-        &stiffid(&[
-            "kinematics",
-            "--robot",
-            &urdf,
-            "--tip",
+    // A tip link missing, one ending a short chain, and one given for a preset (no tip to choose).
+    for (robot, tip, message) in [
+        (
+            data("comau-nj165.urdf"),
             "gripper",
-            "--q-deg",
-            "0,0,0,0,0,0",
-        ]),
-        &[&urdf, "no link named 'gripper'"],
-    );
-    let urdf = data("comau-nj165-two-leaves.urdf");
-    assert_usage_error(
-        &stiffid(&[
+            "no link named 'gripper'",
+        ),
+        (
+            data("comau-nj165-two-leaves.urdf"),
+            "camera",
+            "3 revolute joints; expected 6",
+        ),
+        (
+            "comau-smart5-nj165-3.0".to_string(),
+            "tool0",
+            "tip link: 'tool0' given, but only a URDF robot has a tip link to choose",
+        ),
+    ] {
+        let args = [
             "kinematics",
             "--robot",
-            &urdf,
+            &robot,
             "--tip",
-            "camera",
+            tip,
             "--q-deg",
             "0,0,0,0,0,0",
-        ]),
-        &[&urdf, "3 revolute joints; expected 6"],
-    );
+        ];
+        assert_usage_error(&stiffid(&args), &[&robot, message]);
+    }
 }
 
 #[test]

@@ -3,10 +3,8 @@
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::{PyErr, Python};
 use std::fs::File;
-use std::io::Read;
 use std::path::Path;
 use stiffid::formats::{self, Capped};
-use stiffid::limits::MAX_INPUT_BYTES;
 use stiffid::Error;
 
 /// `RuntimeError` for a computation that found no answer (no feasible group, a pose out of
@@ -54,17 +52,11 @@ pub fn value(message: impl Into<String>) -> PyErr {
 }
 
 /// The text of a file, the path in the error (`FileNotFoundError` or `OSError`; `ValueError` for
-/// a directory, a file larger than the input limit or not UTF-8 text: [`stiffid::formats::text`],
+/// a directory, a file larger than the input limit or not UTF-8 text: [`stiffid::formats::read_text`],
 /// the command's checks).
 pub fn read(path: &Path) -> Result<String, PyErr> {
-    let name = path.display();
-    let mut bytes = Vec::new();
-    open(path)?
-        .into_inner()
-        .take(MAX_INPUT_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| os_error(path, e))?;
-    formats::text(&name.to_string(), bytes).map_err(raise)
+    let name = path.display().to_string();
+    formats::read_text(&name, open(path)?.into_inner()).map_err(raise)
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{assert_close, noisy, synthetic};
+use common::{assert_close, measurement_csv, noisy, synthetic};
 use stiffid::formats::measurements;
 use stiffid::identify::{self, BLOCK};
 use stiffid::observation::Observations;
@@ -60,18 +60,7 @@ fn a_generated_file_of_many_postures_gives_back_the_known_stiffness() {
     for (m, e) in data.iter_mut().zip(&exact) {
         m.displacement = e.displacement;
     }
-    let mut text = String::from("posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,dx_mm,dy_mm,dz_mm\n");
-    for m in &data {
-        let q = m.q.map(f64::to_degrees);
-        let d = m.displacement * 1e3;
-        let numbers: Vec<String> = q
-            .iter()
-            .chain(m.wrench.iter())
-            .chain(d.iter())
-            .map(|v| format!("{v:e}"))
-            .collect();
-        text += &format!("pose {},{},{}\n", m.posture, m.point + 1, numbers.join(","));
-    }
+    let text = measurement_csv(&data);
     let mut file = measurements::parse(&text).unwrap();
     file.to_base_frame(&setup).unwrap();
     let id = identify::least_squares(&setup, &file.measurements).unwrap();

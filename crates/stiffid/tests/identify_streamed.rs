@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{assert_close, noisy};
+use common::{assert_close, measurement_csv, noisy};
 use stiffid::formats::measurements::{self, Labels};
 use stiffid::identify::{self, streamed, Identification};
 use stiffid::observation::Observations;
@@ -31,20 +31,7 @@ fn whole(setup: &Setup, text: &str) -> Identification {
 /// A measurement file of `n` random postures x 4 points under random wrenches (paper setup),
 /// noisy, with moments; labels `pose {i}`.
 fn synthetic_file(setup: &Setup, n: usize, seed: u64) -> String {
-    let data = noisy(setup, n, seed);
-    let mut text = String::from("# generated\nposture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,dx_mm,dy_mm,dz_mm\n");
-    for m in &data {
-        let d = m.displacement * 1e3;
-        let numbers: Vec<String> =
-            m.q.map(f64::to_degrees)
-                .iter()
-                .chain(m.wrench.iter())
-                .chain(d.iter())
-                .map(|v| format!("{v:e}"))
-                .collect();
-        text += &format!("pose {},{},{}\n", m.posture, m.point + 1, numbers.join(","));
-    }
-    text
+    "# generated\n".to_string() + &measurement_csv(&noisy(setup, n, seed))
 }
 
 #[test]

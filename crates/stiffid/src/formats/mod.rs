@@ -18,6 +18,7 @@ pub mod stiffness;
 use crate::error::ColumnProblem;
 use crate::limits::{short, MAX_INPUT_BYTES};
 use crate::{Error, Result};
+use std::io::Read;
 
 /// The text of an input file from its bytes as read: the reader stops after
 /// [`MAX_INPUT_BYTES`] + 1 bytes (`Read::take`), so more than the limit means the file is larger.
@@ -47,6 +48,29 @@ pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
             e.utf8_error().valid_up_to()
         ))
     })
+}
+
+/// The text of an input read from `reader` (a file the caller opened): at most
+/// [`MAX_INPUT_BYTES`] + 1 bytes are read, then [`text`].
+///
+/// # Errors
+/// [`Error::Parse`] naming `source_name`: a read error (`cannot read: ...`), and those of [`text`].
+///
+/// # Examples
+/// ```
+/// let text = stiffid::formats::read_text("group.csv", &b"q1_deg"[..]).unwrap();
+/// assert_eq!(text, "q1_deg");
+/// ```
+pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
+    let mut bytes = Vec::new();
+    reader
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::Parse {
+            source_name: source_name.to_string(),
+            message: format!("cannot read: {e}"),
+        })?;
+    text(source_name, bytes)
 }
 
 /// "larger than the input limit of 256 MiB": the one wording of [`text`] and [`Capped`].
@@ -87,7 +111,7 @@ impl<R> Capped<R> {
     }
 }
 
-impl<R: std::io::Read> std::io::Read for Capped<R> {
+impl<R: Read> Read for Capped<R> {
     fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
         let n = self.inner.read(buf)?;
         self.read += n as u64;

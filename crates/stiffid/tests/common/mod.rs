@@ -147,3 +147,20 @@ pub fn assert_close(a: &Identification, b: &Identification) {
         ));
     }
 }
+
+/// `data` as a measurement CSV (the command's columns, full precision), labels `pose {posture}`.
+pub fn measurement_csv(data: &[Measurement]) -> String {
+    let mut text = String::from("posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,dx_mm,dy_mm,dz_mm\n");
+    for m in data {
+        let d = m.displacement * 1e3;
+        let numbers: Vec<String> =
+            m.q.map(f64::to_degrees)
+                .iter()
+                .chain(m.wrench.iter())
+                .chain(d.iter())
+                .map(|v| format!("{v:e}"))
+                .collect();
+        text += &format!("pose {},{},{}\n", m.posture, m.point + 1, numbers.join(","));
+    }
+    text
+}
