@@ -249,9 +249,14 @@ fn the_tip_defaults_to_the_leaf_ending_six_revolute_joints_else_tool0() {
 fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
     use stiffid::formats::reference;
     let urdf_text = data("comau-nj165-two-leaves.urdf");
+    let presets = format!(
+        "{}/presets/comau-smart5-nj165-3.0.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let robot_toml = std::fs::read_to_string(presets).unwrap();
     let read = |p: &std::path::Path| match p.to_str() {
         Some("cell/robot.urdf") => Some(Ok::<_, Error>(urdf_text.clone())),
-        Some("cell/robot.toml") => Some(Ok(String::new())),
+        Some("cell/robot.toml") => Some(Ok(robot_toml.clone())),
         _ => None,
     };
     // A URDF takes it; a preset or a robot TOML has no tip to choose, and the error says which
@@ -268,6 +273,9 @@ fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
         assert!(message.starts_with("tip link: 'tool0' given"), "{message}");
         assert!(message.contains(reference), "{message}");
     }
+    // A URDF that is not there is not found, tip or not.
+    let e = reference::robot("cell/none.urdf", Some("tool0"), read).unwrap_err();
+    assert!(matches!(e, Error::NotFound { .. }), "{e}");
     let paper = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let setup = paper.replacen("\n[tool]", "\nrobot_tip = \"tool0\"\n[tool]", 1);
     let e = reference::setup_text(&setup, "s.toml", std::path::Path::new(""), read).unwrap_err();

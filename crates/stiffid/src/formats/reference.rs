@@ -55,9 +55,21 @@ where
     let path = dir.join(reference);
     let name = path.display().to_string();
     let extension = path.extension().and_then(|e| e.to_str());
-    let text = read(&path);
-    if let (Some(tip), false) = (tip, text.is_some() && extension == Some("urdf")) {
-        return Err(Error::InvalidField {
+    let robot = match read(&path) {
+        None => presets::get(reference)
+            .map_err(|e| not_found(e, "robot", "preset", reference, &path))?,
+        Some(text) => match extension {
+            Some("toml") => file::parse(&text?, &name)?,
+            Some("urdf") => return Ok(urdf::parse(&text?, &name, tip)?),
+            _ => Err(Error::Parse {
+                source_name: name,
+                message: "a robot file must end in .toml or .urdf".into(),
+            })?,
+        },
+    };
+    match tip {
+        None => Ok(robot),
+        Some(tip) => Err(Error::InvalidField {
             field: tip_field.into(),
             message: format!(
                 "'{}' given, but only a URDF robot has a tip link to choose ('{}' is a preset or \
@@ -66,20 +78,8 @@ where
                 crate::limits::short(reference)
             ),
         }
-        .into());
+        .into()),
     }
-    let Some(text) = text else {
-        let e = presets::get(reference);
-        return e.map_err(|e| not_found(e, "robot", "preset", reference, &path).into());
-    };
-    Ok(match extension {
-        Some("toml") => file::parse(&text?, &name)?,
-        Some("urdf") => urdf::parse(&text?, &name, tip)?,
-        _ => Err(Error::Parse {
-            source_name: name,
-            message: "a robot file must end in .toml or .urdf".into(),
-        })?,
-    })
 }
 
 /// A setup: the setup TOML file at `reference` if `read` finds one (a robot file it names is
