@@ -14,7 +14,7 @@
 //!   `sigma |R_A R^-1|_F / sqrt(T)` with `A = Q_A R_A` factored once (`Q_A` keeps the norm).
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
-use crate::linalg::{cond, householder_qr, upper_triangle};
+use crate::linalg::{cond, gram, householder_qr, upper_triangle};
 use crate::lsq::Factor;
 use crate::observation::{posture_block, rope_observation_matrix, rope_observation_matrix_with};
 use crate::setup::Setup;
@@ -119,9 +119,8 @@ impl<'a> Evaluator<'a> {
     /// terms: a group's `S^T S` is the sum over its postures. For exchange algorithms
     /// ([`super::pool`]).
     pub(crate) fn information(&self, terms: &PostureTerms) -> Matrix6<f64> {
-        let s = &terms.block * Matrix6::from_diagonal(&self.scaling);
-        let m = s.transpose() * s;
-        Matrix6::from_fn(|i, j| m[(i, j)])
+        let d = Matrix6::from_diagonal(&self.scaling);
+        d * gram(terms.block.as_slice(), terms.block.nrows()) * d
     }
 
     /// The TCP dexterity `k(J_N)` of one posture's terms (Eq. 21).

@@ -28,9 +28,9 @@ use super::{Evaluator, Group, PostureTerms};
 use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
 use crate::kinematics::dexterity_log_gradient;
-use crate::linalg::singular_values_and_vectors;
+use crate::linalg::{singular_values_and_vectors, times_6x6};
 use crate::observation::rope_block_gradient;
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::{Matrix6, MatrixXx6, Vector6};
 
 impl Evaluator<'_> {
     /// The value of `criterion` for `postures` (axis angles, rad), as [`Evaluator::value`], and its
@@ -79,7 +79,9 @@ impl Evaluator<'_> {
         }
         if let Some(y) = group.and_then(|g| self.psi_weight(criterion, &g)) {
             for (t, g) in terms.iter().zip(gradient.iter_mut()) {
-                *g += rope_block_gradient(self.setup, &t.frames, &(&t.block * y));
+                let m = t.block.nrows();
+                let weight = MatrixXx6::from_vec(times_6x6(t.block.as_slice(), m, &y));
+                *g += rope_block_gradient(self.setup, &t.frames, &weight);
             }
         }
         (value, gradient)
