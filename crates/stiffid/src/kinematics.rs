@@ -162,18 +162,9 @@ pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
 /// one: a value of [`NUMERICALLY_SINGULAR`] or more, where the computed inverse is mostly rounding
 /// noise: at an exactly singular posture rounding leaves values near `1 / f64::EPSILON`, 4.5e15)
 /// or for non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
-/// `|J_N|_F |J_N^-1|_F / 6` without forming `A`, and `|J_N^-1|_F = |R^-1|_F` from the Householder
-/// QR `J_N = Q R` (an orthogonal `Q` keeps the Frobenius norm) without forming the inverse.
+/// `|J_N|_F |J_N^-1|_F / 6` without forming `A`.
 pub fn dexterity(jacobian: &Matrix6<f64>, characteristic_length: f64) -> f64 {
-    let jn = normalise(jacobian, characteristic_length);
-    let norm = jn.norm();
-    if !norm.is_finite() {
-        return f64::INFINITY;
-    }
-    crate::linalg::inverse_norm(&jn)
-        .map(|inverse_norm| norm * inverse_norm / 6.0)
-        .filter(|&k| k < NUMERICALLY_SINGULAR)
-        .unwrap_or(f64::INFINITY)
+    index(&normalise(jacobian, characteristic_length)).map_or(f64::INFINITY, |(k, _)| k)
 }
 
 /// `J_N = diag(I/L, I) J`.
@@ -184,14 +175,23 @@ fn normalise(jacobian: &Matrix6<f64>, characteristic_length: f64) -> Matrix6<f64
     jn
 }
 
+/// `k(J_N) = |J_N|_F |J_N^-1|_F / 6` and `J_N^-1`, where the index is finite and below
+/// [`NUMERICALLY_SINGULAR`] (a non-finite entry makes `|J_N|_F` non-finite: no inverse is tried).
+fn index(jn: &Matrix6<f64>) -> Option<(f64, Matrix6<f64>)> {
+    let norm = jn.norm();
+    if !norm.is_finite() {
+        return None;
+    }
+    let inverse = crate::linalg::inverse(jn)?;
+    let dexterity = norm * inverse.norm() / 6.0;
+    (dexterity < NUMERICALLY_SINGULAR).then_some((dexterity, inverse))
+}
+
 /// The normalised Jacobian `J_N` and its inverse, where the dexterity is finite.
 fn normalised(
     jacobian: &Matrix6<f64>,
     characteristic_length: f64,
 ) -> Option<(Matrix6<f64>, Matrix6<f64>)> {
-    if !dexterity(jacobian, characteristic_length).is_finite() {
-        return None;
-    }
     let jn = normalise(jacobian, characteristic_length);
-    Some((jn, crate::linalg::inverse(&jn)?))
+    index(&jn).map(|(_, inverse)| (jn, inverse))
 }
