@@ -5,7 +5,7 @@
 //! bookkeeping; these kernels keep [`crate::lsq::Factor`] and the design evaluator
 //! ([`crate::design::Evaluator`]) within their microsecond budgets. Everything else uses nalgebra.
 
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::{DMatrix, Matrix6, Vector6};
 
 /// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
 /// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below
@@ -192,17 +192,13 @@ pub(crate) fn times_6x6(a: &[f64], m: usize, y: &Matrix6<f64>) -> Vec<f64> {
     out
 }
 
-/// `a^T a` (6x6) of the column-major `m x 6` matrix `a` (m rows), each entry a [`dot`] of two
-/// columns: a fixed order, as [`times_6x6`].
-pub(crate) fn gram(a: &[f64], m: usize) -> Matrix6<f64> {
-    let mut g = Matrix6::zeros();
-    for i in 0..6 {
-        for j in i..6 {
-            g[(i, j)] = dot(&a[i * m..(i + 1) * m], &a[j * m..(j + 1) * m]);
-            g[(j, i)] = g[(i, j)];
-        }
-    }
-    g
+/// `R_A` of the Householder QR `A = Q_A R_A` (6x6, upper triangular, `A^T A = R_A^T R_A`) of an
+/// `m x 6` matrix; zero rows are appended to a matrix of fewer than 6 rows (they change neither).
+pub(crate) fn triangular_factor(a: DMatrix<f64>) -> Matrix6<f64> {
+    let m = a.nrows().max(6);
+    let mut a = a.resize_vertically(m, 0.0);
+    householder_qr(a.as_mut_slice(), m);
+    upper_triangle(a.as_slice(), m)
 }
 
 /// The upper triangle `R` (6x6) of the in-place result of [`householder_qr`] on `a` with `m` rows.

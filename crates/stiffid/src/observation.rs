@@ -69,25 +69,62 @@ pub(crate) fn write_posture_block(
 /// The `3pn x 6` observation matrix of postures `q` (axis angles, rad) under the setup's rope-mass
 /// load (the design matrix of Section III and of the simulation of Section IV-A).
 pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMatrix<f64> {
-    rope_observation_matrix_with(setup, postures, |_| {})
-}
-
-/// [`rope_observation_matrix`], showing `each` the forward kinematics of every posture in turn
-/// (for what else a caller needs of them).
-pub(crate) fn rope_observation_matrix_with(
-    setup: &Setup,
-    postures: &[Vector6<f64>],
-    mut each: impl FnMut(&Frames),
-) -> DMatrix<f64> {
     let p3 = 3 * setup.tool().measuring_points.len();
     let mut psi = DMatrix::zeros(p3 * postures.len(), 6);
     for (i, q) in postures.iter().enumerate() {
         let frames = setup.robot().frames(q);
         let wrench = setup.rope_wrench(&frames);
         write_posture_block(setup, &frames, &wrench, &mut psi, p3 * i);
-        each(&frames);
     }
     psi
+}
+
+/// The measuring points' factor `R_P` (6x6, upper triangular): the triangular factor of the
+/// Householder QR `P = Q_P R_P` of the `3p x 6` matrix `P` whose rows `3k..3k + 3` are
+/// `[I_3, -[p_k]x]`, `p_k` measuring point k (flange frame, m) and `[p]x` the cross-product matrix.
+/// Rows `min(3p, 6)..6` are zero.
+///
+/// The translation rows of point k's Jacobian are `R_f [I_3, -[p_k]x] J_b` (the velocity
+/// `v + omega x (p - t)` of a body point), `J_b` the flange-frame Jacobian of the flange origin t and
+/// `R_f` the flange's rotation. A posture's block is therefore `B = (I_p (x) R_f) Q_P C` with
+/// `C = R_P J_b diag(tau)` ([`compact_posture_block`]): `(I_p (x) R_f) Q_P` has orthonormal columns,
+/// so `B^T B = C^T C`, and the stacked `C` of a group have the triangular factor, column norms and
+/// singular values of `Psi` (an orthogonal change of rows, no normal equations) on `min(3p, 6)`
+/// rows per posture instead of `3p`.
+pub(crate) fn points_factor(setup: &Setup) -> Matrix6<f64> {
+    let points = &setup.tool().measuring_points;
+    let rows = DMatrix::from_fn(3 * points.len(), 6, |r, c| {
+        let p = points[r / 3];
+        match c {
+            0..3 => f64::from(u8::from(c == r % 3)),
+            _ => -p.cross_matrix()[(r % 3, c - 3)],
+        }
+    });
+    crate::linalg::triangular_factor(rows)
+}
+
+/// The compact block `C = R_P J_b diag(tau)` of one posture under the setup's rope-mass load
+/// ([`points_factor`]: `B^T B = C^T C` for its block B of [`rope_observation_matrix`]); rows
+/// `min(3p, 6)..6` are zero. `J_b`: the Jacobian of the flange origin in the springs' coordinates,
+/// rows rotated into the flange frame; `tau = J_f^T W` (Eq. 4).
+pub(crate) fn compact_posture_block(
+    setup: &Setup,
+    frames: &Frames,
+    points_factor: &Matrix6<f64>,
+) -> Matrix6<f64> {
+    let tau = joint_torques(setup, frames, &setup.rope_wrench(frames));
+    let j = frames.jacobian(&Vector3::zeros(), setup.springs());
+    let rt = frames.flange.rotation.to_rotation_matrix().transpose();
+    let mut body = Matrix6::zeros();
+    body.fixed_rows_mut::<3>(0)
+        .copy_from(&(rt * j.fixed_rows::<3>(0)));
+    body.fixed_rows_mut::<3>(3)
+        .copy_from(&(rt * j.fixed_rows::<3>(3)));
+    let mut c = points_factor * body;
+    for (j, mut col) in c.column_iter_mut().enumerate() {
+        col *= tau[j];
+    }
+    c
 }
 
 /// The gradient with respect to the axis angles q (per rad) of `<G, B(q)>` (Frobenius product),

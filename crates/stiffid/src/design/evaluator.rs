@@ -1,12 +1,15 @@
 //! Fast evaluation of the design criteria, for the posture search.
 //!
 //! [`Evaluator::new`] precomputes what does not depend on the postures (the scaling `h / sigma`,
-//! the observation rows of the test postures). Each posture's forward kinematics is computed once
-//! ([`Evaluator::posture`]) and gives its block of `Psi` and, only when a criterion needs it, the TCP
-//! dexterity; the search reuses the terms of postures a finite-difference step did not move. The
-//! group's `Psi` is factored by [`Factor::try_new`] (Householder, with its rank rule:
-//! `+infinity` for a rank-deficient group), and only what the chosen criterion needs is computed
-//! from `R`:
+//! the measuring points' factor `R_P`, the observation rows of the test postures). Each posture's
+//! forward kinematics is computed once ([`Evaluator::posture`]) and gives its compact block
+//! `C = R_P J_b diag(tau)` (`min(3p, 6) x 6`, with `B^T B = C^T C` for its `3p x 6` block B of
+//! `Psi`: an orthogonal change of rows, see `observation::points_factor`) and, only when a criterion
+//! needs it, the TCP dexterity; the search reuses the terms of postures a finite-difference step did
+//! not move. The stacked compact blocks have the triangular factor `R` of `Psi` (up to the signs of
+//! its rows, which no criterion sees); they are factored by [`Factor::try_new`] (Householder, with
+//! its rank rule: `+infinity` for a rank-deficient group), and only what the chosen criterion needs
+//! is computed from `R`:
 //! - `cond_2(Psi)`, `cond_2(S)`: singular values of `R`, `R diag(h) / sigma` (one-sided Jacobi);
 //! - `d-optimal`: `prod_k |R_kk h_k / sigma|^(-1/6)`;
 //! - `relative-a`, relative standard deviations: row norms of `(R diag(h) / sigma)^-1`;
@@ -14,9 +17,9 @@
 //!   `sigma |R_A R^-1|_F / sqrt(T)` with `A = Q_A R_A` factored once (`Q_A` keeps the norm).
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
-use crate::linalg::{cond, gram, householder_qr, upper_triangle};
+use crate::linalg::{cond, triangular_factor};
 use crate::lsq::Factor;
-use crate::observation::{posture_block, rope_observation_matrix, rope_observation_matrix_with};
+use crate::observation::{compact_posture_block, points_factor, rope_observation_matrix};
 use crate::setup::Setup;
 use crate::Frames;
 use nalgebra::{DMatrix, Matrix6, Vector6};
@@ -30,16 +33,21 @@ pub struct Evaluator<'a> {
     setup: &'a Setup,
     /// `h / sigma` (rad/Nm per m): the column scaling of `S`.
     scaling: Vector6<f64>,
+    /// `R_P` of the measuring points (`observation::points_factor`) and the number of its rows
+    /// that can be non-zero, `min(3p, 6)`: the rows of a posture's compact block.
+    points_factor: Matrix6<f64>,
+    compact_rows: usize,
     /// `R_A` (6x6, upper triangular) of the Householder QR `A = Q_A R_A` of the test postures'
     /// observation rows `A` (`3pT x 6`, under their rope-mass load): `A^T A = R_A^T R_A`.
     test_factor: Matrix6<f64>,
 }
 
-/// What one posture contributes to a group: its `3p x 6` block of `Psi` and its TCP dexterity.
+/// What one posture contributes to a group: its compact block of `Psi` (module docs) and its TCP
+/// dexterity.
 #[derive(Debug, Clone)]
 pub struct PostureTerms {
     frames: Frames,
-    block: DMatrix<f64>,
+    compact: Matrix6<f64>,
     /// `k(J_N)` of the TCP (Eq. 21), computed on first use.
     dexterity: OnceCell<f64>,
 }
@@ -52,6 +60,8 @@ impl<'a> Evaluator<'a> {
             // Without a nominal stiffness, 1 rad/Nm: the criteria that need it are NaN then.
             scaling: setup.nominal_compliance().unwrap_or(Vector6::repeat(1.0))
                 / setup.noise().sigma(),
+            points_factor: points_factor(setup),
+            compact_rows: (3 * setup.tool().measuring_points.len()).min(6),
             test_factor: triangular_factor(rope_observation_matrix(setup, setup.test_postures())),
         }
     }
@@ -75,14 +85,17 @@ impl<'a> Evaluator<'a> {
                 .map(|q| tcp_dexterity(self.setup, &self.setup.robot().frames(q)))
                 .fold(0.0, f64::max);
         }
-        // Each posture's rows straight into Psi; its dexterity only for zhang2021.
+        // Each posture's compact rows straight into the stack; its dexterity only for zhang2021.
         let mut classical = 0.0;
-        let psi = rope_observation_matrix_with(self.setup, postures, |frames| {
+        let mut stack = DMatrix::zeros(self.compact_rows * postures.len(), 6);
+        for (i, q) in postures.iter().enumerate() {
+            let frames = self.setup.robot().frames(q);
+            self.write_compact(&frames, &mut stack, i);
             if criterion == Criterion::Zhang2021 {
-                classical = f64::max(classical, tcp_dexterity(self.setup, frames));
+                classical = f64::max(classical, tcp_dexterity(self.setup, &frames));
             }
-        });
-        match self.factor(psi) {
+        }
+        match self.factor(stack) {
             Some(group) => self.score(criterion, &group, || classical),
             None => f64::INFINITY,
         }
@@ -92,10 +105,10 @@ impl<'a> Evaluator<'a> {
     /// differences change one posture at a time).
     pub fn posture(&self, q: &Vector6<f64>) -> PostureTerms {
         let frames = self.setup.robot().frames(q);
-        let block = posture_block(self.setup, &frames, &self.setup.rope_wrench(&frames));
+        let compact = compact_posture_block(self.setup, &frames, &self.points_factor);
         PostureTerms {
             frames,
-            block,
+            compact,
             dexterity: OnceCell::new(),
         }
     }
@@ -120,7 +133,7 @@ impl<'a> Evaluator<'a> {
     /// ([`super::pool`]).
     pub(crate) fn information(&self, terms: &PostureTerms) -> Matrix6<f64> {
         let d = Matrix6::from_diagonal(&self.scaling);
-        d * gram(terms.block.as_slice(), terms.block.nrows()) * d
+        d * terms.compact.tr_mul(&terms.compact) * d
     }
 
     /// The TCP dexterity `k(J_N)` of one posture's terms (Eq. 21).
@@ -211,17 +224,27 @@ impl<'a> Evaluator<'a> {
         terms.iter().map(|t| self.dexterity(t)).fold(0.0, f64::max)
     }
 
-    /// The factor of the group's `Psi` (the blocks stacked), `None` if rank deficient.
+    /// The factor of the group's `Psi` (the compact blocks stacked), `None` if rank deficient.
     fn group(&self, terms: &[&PostureTerms]) -> Option<Group> {
-        let p3 = 3 * self.setup.tool().measuring_points.len();
-        let mut psi = DMatrix::zeros(p3 * terms.len(), 6);
+        let r = self.compact_rows;
+        let mut stack = DMatrix::zeros(r * terms.len(), 6);
         for (i, t) in terms.iter().enumerate() {
-            psi.view_mut((p3 * i, 0), (p3, 6)).copy_from(&t.block);
+            stack
+                .view_mut((r * i, 0), (r, 6))
+                .copy_from(&t.compact.rows(0, r));
         }
-        self.factor(psi)
+        self.factor(stack)
     }
 
-    /// The factor of a group's `Psi`, `None` if rank deficient.
+    /// Writes the compact block of the posture `frames` into rows `r i..r (i + 1)` of `stack`.
+    fn write_compact(&self, frames: &Frames, stack: &mut DMatrix<f64>, i: usize) {
+        let r = self.compact_rows;
+        let c = compact_posture_block(self.setup, frames, &self.points_factor);
+        stack.view_mut((r * i, 0), (r, 6)).copy_from(&c.rows(0, r));
+    }
+
+    /// The factor of a group's `Psi` from its stacked compact blocks (same `R` up to the signs of its
+    /// rows, same column norms), `None` if rank deficient.
     fn factor(&self, psi: DMatrix<f64>) -> Option<Group> {
         let factor = Factor::try_new(psi).ok()?;
         let (r, r_inv) = (*factor.r(), *factor.r_inv());
@@ -293,15 +316,6 @@ impl Group {
     fn relative_a(&self) -> f64 {
         finite(self.rs_inv.norm() / 6f64.sqrt())
     }
-}
-
-/// `R_A` of the Householder QR `A = Q_A R_A` (6x6, upper triangular, `A^T A = R_A^T R_A`) of an
-/// `m x 6` matrix; zero rows are appended to a matrix of fewer than 6 rows (they change neither).
-fn triangular_factor(a: DMatrix<f64>) -> Matrix6<f64> {
-    let m = a.nrows().max(6);
-    let mut a = a.resize_vertically(m, 0.0);
-    householder_qr(a.as_mut_slice(), m);
-    upper_triangle(a.as_slice(), m)
 }
 
 /// `v`, or `+infinity` if it is not finite.

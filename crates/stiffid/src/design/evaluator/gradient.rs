@@ -29,7 +29,7 @@ use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
 use crate::kinematics::dexterity_log_gradient;
 use crate::linalg::{singular_values_and_vectors, times_6x6};
-use crate::observation::rope_block_gradient;
+use crate::observation::{posture_block, rope_block_gradient};
 use nalgebra::{Matrix6, MatrixXx6, Vector6};
 
 impl Evaluator<'_> {
@@ -79,8 +79,8 @@ impl Evaluator<'_> {
         }
         if let Some(y) = group.and_then(|g| self.psi_weight(criterion, &g)) {
             for (t, g) in terms.iter().zip(gradient.iter_mut()) {
-                let m = t.block.nrows();
-                let weight = MatrixXx6::from_vec(times_6x6(t.block.as_slice(), m, &y));
+                let block = posture_block(self.setup, &t.frames, &self.setup.rope_wrench(&t.frames));
+                let weight = MatrixXx6::from_vec(times_6x6(block.as_slice(), block.nrows(), &y));
                 *g += rope_block_gradient(self.setup, &t.frames, &weight);
             }
         }
