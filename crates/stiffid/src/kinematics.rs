@@ -52,9 +52,6 @@ struct Screws {
 impl Robot {
     /// Forward kinematics at axis angles `q` (rad).
     pub fn frames(&self, q: &Vector6<f64>) -> Frames {
-        let theta = self.axis_map.kinematic(q);
-        // Filled in place (no large temporaries to copy into the result); `flange` carries the
-        // running transform, base to the current joint, until it reaches the flange.
         let mut f = Frames {
             joints: [Isometry3::identity(); 6],
             axis_points: [Vector3::zeros(); 6],
@@ -63,6 +60,19 @@ impl Robot {
             screws: [Screws::zeros(), Screws::zeros()],
             axis_map: self.axis_map.matrix,
         };
+        self.update_frames(q, &mut f);
+        f
+    }
+
+    /// [`Robot::frames`] at `q` written over `f` (every field), so that a loop over postures reuses
+    /// one `Frames` instead of copying a new one out of each call.
+    pub(crate) fn update_frames(&self, q: &Vector6<f64>, f: &mut Frames) {
+        let theta = self.axis_map.kinematic(q);
+        // `flange` carries the running transform, base to the current joint, until it reaches the
+        // flange.
+        f.flange = self.base;
+        f.screws[1] = Screws::zeros();
+        f.axis_map = self.axis_map.matrix;
         let t = &mut f.flange;
         let [kinematic, axis] = &mut f.screws;
         for (i, joint) in self.joints.iter().enumerate() {
@@ -78,7 +88,6 @@ impl Robot {
         }
         compose(t, &self.flange);
         kinematic.times(&self.axis_map.matrix, axis);
-        f
     }
 }
 
@@ -143,6 +152,26 @@ impl Frames {
             let v = d.cross(&p) - screws.moments.column(c);
             j.fixed_view_mut::<3, 1>(0, c).copy_from(&v);
             j.fixed_view_mut::<3, 1>(3, c).copy_from(&d);
+        }
+        j
+    }
+
+    /// The body Jacobian (6x6, flange frame, rows `[v; omega]`, m/rad and rad/rad) of the flange
+    /// origin, columns in the chosen joint coordinates: [`Frames::jacobian`] of the origin with both
+    /// 3-row blocks rotated by `R_f^T`, `R_f` the flange's rotation.
+    pub(crate) fn body_jacobian(&self, coordinates: Coordinates) -> Matrix6<f64> {
+        let rt = self.flange.rotation.to_rotation_matrix().into_inner().transpose();
+        let t = self.flange.translation.vector;
+        let screws = match coordinates {
+            Coordinates::Kinematic => &self.screws[0],
+            Coordinates::Axis => &self.screws[1],
+        };
+        let mut j = Matrix6::zeros();
+        for c in 0..6 {
+            let d = screws.directions.column(c);
+            let v = d.cross(&t) - screws.moments.column(c);
+            j.fixed_view_mut::<3, 1>(0, c).copy_from(&(rt * v));
+            j.fixed_view_mut::<3, 1>(3, c).copy_from(&(rt * d));
         }
         j
     }

@@ -105,26 +105,22 @@ pub(crate) fn points_factor(setup: &Setup) -> Matrix6<f64> {
 
 /// The compact block `C = R_P J_b diag(tau)` of one posture under the setup's rope-mass load
 /// ([`points_factor`]: `B^T B = C^T C` for its block B of [`rope_observation_matrix`]); rows
-/// `min(3p, 6)..6` are zero. `J_b`: the Jacobian of the flange origin in the springs' coordinates,
-/// rows rotated into the flange frame; `tau = J_f^T W` (Eq. 4).
+/// `min(3p, 6)..6` are zero. `J_b`: the body Jacobian of the flange origin in the springs'
+/// coordinates ([`Frames::body_jacobian`]); `tau = J_f^T W` (Eq. 4).
 pub(crate) fn compact_posture_block(
     setup: &Setup,
     frames: &Frames,
     points_factor: &Matrix6<f64>,
 ) -> Matrix6<f64> {
     let tau = joint_torques(setup, frames, &setup.rope_wrench(frames));
-    let j = frames.jacobian(&Vector3::zeros(), setup.springs());
-    let rt = frames.flange.rotation.to_rotation_matrix().transpose();
-    let mut body = Matrix6::zeros();
-    body.fixed_rows_mut::<3>(0)
-        .copy_from(&(rt * j.fixed_rows::<3>(0)));
-    body.fixed_rows_mut::<3>(3)
-        .copy_from(&(rt * j.fixed_rows::<3>(3)));
-    let mut c = points_factor * body;
-    for (j, mut col) in c.column_iter_mut().enumerate() {
-        col *= tau[j];
-    }
-    c
+    let body = frames.body_jacobian(setup.springs());
+    // R_P is upper triangular: row i of R_P J_b starts at column i of R_P.
+    Matrix6::from_fn(|i, j| {
+        tau[j]
+            * (i..6)
+                .map(|k| points_factor[(i, k)] * body[(k, j)])
+                .sum::<f64>()
+    })
 }
 
 /// The gradient with respect to the axis angles q (per rad) of `<G, B(q)>` (Frobenius product),

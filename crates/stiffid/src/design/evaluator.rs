@@ -80,24 +80,39 @@ impl<'a> Evaluator<'a> {
             return f64::NAN;
         }
         if criterion == Criterion::Classical {
-            return postures
-                .iter()
-                .map(|q| tcp_dexterity(self.setup, &self.setup.robot().frames(q)))
-                .fold(0.0, f64::max);
+            let mut classical = 0.0;
+            self.for_each_frames(postures, |_, frames| {
+                classical = f64::max(classical, tcp_dexterity(self.setup, frames));
+            });
+            return classical;
         }
         // Each posture's compact rows straight into the stack; its dexterity only for zhang2021.
         let mut classical = 0.0;
         let mut stack = DMatrix::zeros(self.compact_rows * postures.len(), 6);
-        for (i, q) in postures.iter().enumerate() {
-            let frames = self.setup.robot().frames(q);
-            self.write_compact(&frames, &mut stack, i);
+        self.for_each_frames(postures, |i, frames| {
+            self.write_compact(frames, &mut stack, i);
             if criterion == Criterion::Zhang2021 {
-                classical = f64::max(classical, tcp_dexterity(self.setup, &frames));
+                classical = f64::max(classical, tcp_dexterity(self.setup, frames));
             }
-        }
+        });
         match self.factor(stack) {
             Some(group) => self.score(criterion, &group, || classical),
             None => f64::INFINITY,
+        }
+    }
+
+    /// Shows `each` the index and forward kinematics of every posture in turn (one `Frames`
+    /// updated in place).
+    fn for_each_frames(&self, postures: &[Vector6<f64>], mut each: impl FnMut(usize, &Frames)) {
+        let robot = self.setup.robot();
+        let Some(first) = postures.first() else {
+            return;
+        };
+        let mut frames = robot.frames(first);
+        each(0, &frames);
+        for (i, q) in postures.iter().enumerate().skip(1) {
+            robot.update_frames(q, &mut frames);
+            each(i, &frames);
         }
     }
 
