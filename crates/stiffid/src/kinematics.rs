@@ -3,7 +3,7 @@
 //! All results are in the robot base frame (the world frame of [`Robot::base`]), SI units.
 
 use crate::Robot;
-use nalgebra::{Isometry3, Matrix3x6, Matrix6, Point3, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Isometry3, Matrix3x6, Matrix6, Point3, Quaternion, UnitQuaternion, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
 mod gradient;
@@ -77,12 +77,21 @@ impl Robot {
         let [kinematic, axis] = &mut f.screws;
         for (i, joint) in self.joints.iter().enumerate() {
             compose(t, &joint.pre);
-            let (o, z) = (t.translation.vector, t.rotation * joint.axis.into_inner());
+            let about_z = joint.axis == Vector3::z_axis();
+            let z = match about_z {
+                true => z_column(&t.rotation),
+                false => t.rotation * joint.axis.into_inner(),
+            };
+            let o = t.translation.vector;
             f.axis_points[i] = o;
             f.axis_directions[i] = z;
             kinematic.directions.set_column(i, &z);
             kinematic.moments.set_column(i, &z.cross(&o));
-            *t *= UnitQuaternion::from_axis_angle(&joint.axis, theta[i] + joint.offset);
+            let angle = theta[i] + joint.offset;
+            match about_z {
+                true => turn_about_z(&mut t.rotation, angle),
+                false => *t *= UnitQuaternion::from_axis_angle(&joint.axis, angle),
+            }
             compose(t, &joint.post);
             f.joints[i] = *t;
         }
@@ -115,6 +124,32 @@ impl Screws {
             }
         }
     }
+}
+
+/// The third column of the rotation matrix of the unit quaternion `r` (the image of the z axis):
+/// `(2(xz + wy), 2(yz - wx), 1 - 2(x^2 + y^2))`, a third of the work of `r * z`.
+#[inline(always)]
+fn z_column(r: &UnitQuaternion<f64>) -> Vector3<f64> {
+    let (w, x, y, z) = (r.w, r.i, r.j, r.k);
+    Vector3::new(
+        2.0 * (x * z + w * y),
+        2.0 * (y * z - w * x),
+        1.0 - 2.0 * (x * x + y * y),
+    )
+}
+
+/// `r <- r (cos(a/2) + sin(a/2) k)`: the rotation by `a` (rad) about the z axis composed on the
+/// right, a product with a quaternion of two non-zero components.
+#[inline(always)]
+fn turn_about_z(r: &mut UnitQuaternion<f64>, a: f64) {
+    let (s, c) = (0.5 * a).sin_cos();
+    let (w, x, y, z) = (r.w, r.i, r.j, r.k);
+    *r = UnitQuaternion::new_unchecked(Quaternion::new(
+        w * c - z * s,
+        x * c + y * s,
+        y * c - x * s,
+        z * c + w * s,
+    ));
 }
 
 /// `t *= a`, skipping the rotation product when `a` is a pure translation (exactly: most DH
