@@ -103,7 +103,7 @@ pub struct Group {
     /// The Monte Carlo identification.
     pub simulation: GroupSimulation,
     /// `|delta(k_mean) - delta(k_true)|` (m) of every measuring point at every test posture, with the
-    /// group's mean identified stiffness at [`Study::validation_level`]: [test posture][point].
+    /// group's mean identified stiffness at [`Study::validation_level`]: \[test posture\]\[point\].
     pub validation_error: Vec<Vec<f64>>,
 }
 
@@ -139,7 +139,7 @@ pub struct Study {
     /// The noise level (index) whose mean identified stiffness is validated: the one nearest
     /// multiple 1 (the paper's level 2).
     pub validation_level: usize,
-    /// True displacement (m) of every measuring point at every test posture: [test posture][point].
+    /// True displacement (m) of every measuring point at every test posture: \[test posture\]\[point\].
     pub test_deflection: Vec<Vec<Vector3<f64>>>,
     /// The start-group check: the paper's local searches from `trials` start groups.
     pub trials: Vec<StartTrial>,
