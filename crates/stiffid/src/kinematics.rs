@@ -3,7 +3,9 @@
 //! All results are in the robot base frame (the world frame of [`Robot::base`]), SI units.
 
 use crate::Robot;
-use nalgebra::{Isometry3, Matrix3x6, Matrix6, Point3, Quaternion, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{
+    Isometry3, Matrix3x6, Matrix6, Point3, Quaternion, UnitQuaternion, Vector3, Vector6,
+};
 use serde::{Deserialize, Serialize};
 
 mod gradient;
@@ -195,7 +197,12 @@ impl Frames {
     /// origin, columns in the chosen joint coordinates: [`Frames::jacobian`] of the origin with both
     /// 3-row blocks rotated by `R_f^T`, `R_f` the flange's rotation.
     pub(crate) fn body_jacobian(&self, coordinates: Coordinates) -> Matrix6<f64> {
-        let rt = self.flange.rotation.to_rotation_matrix().into_inner().transpose();
+        let rt = self
+            .flange
+            .rotation
+            .to_rotation_matrix()
+            .into_inner()
+            .transpose();
         let t = self.flange.translation.vector;
         let screws = match coordinates {
             Coordinates::Kinematic => &self.screws[0],

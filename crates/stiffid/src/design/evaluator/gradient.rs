@@ -79,7 +79,8 @@ impl Evaluator<'_> {
         }
         if let Some(y) = group.and_then(|g| self.psi_weight(criterion, &g)) {
             for (t, g) in terms.iter().zip(gradient.iter_mut()) {
-                let block = posture_block(self.setup, &t.frames, &self.setup.rope_wrench(&t.frames));
+                let block =
+                    posture_block(self.setup, &t.frames, &self.setup.rope_wrench(&t.frames));
                 let weight = MatrixXx6::from_vec(times_6x6(block.as_slice(), block.nrows(), &y));
                 *g += rope_block_gradient(self.setup, &t.frames, &weight);
             }
