@@ -178,42 +178,37 @@ impl Frames {
     /// a point on it; in axis coordinates the matrix is multiplied by `M` (`J_q = J_theta M`).
     /// Both are computed from the joint screws of [`Robot::frames`]: `[d_j x p - m_j; d_j]`.
     pub fn jacobian(&self, in_flange: &Vector3<f64>, coordinates: Coordinates) -> Matrix6<f64> {
-        let p = self.point(in_flange);
-        let screws = match coordinates {
-            Coordinates::Kinematic => &self.screws[0],
-            Coordinates::Axis => &self.screws[1],
-        };
-        let mut j = Matrix6::zeros();
-        for c in 0..6 {
-            let d = screws.directions.column(c);
-            let v = d.cross(&p) - screws.moments.column(c);
-            j.fixed_view_mut::<3, 1>(0, c).copy_from(&v);
-            j.fixed_view_mut::<3, 1>(3, c).copy_from(&d);
-        }
-        j
+        self.columns(&self.point(in_flange), coordinates, |x| x)
     }
 
     /// The body Jacobian (6x6, flange frame, rows `[v; omega]`, m/rad and rad/rad) of the flange
     /// origin, columns in the chosen joint coordinates: [`Frames::jacobian`] of the origin with both
     /// 3-row blocks rotated by `R_f^T`, `R_f` the flange's rotation.
     pub(crate) fn body_jacobian(&self, coordinates: Coordinates) -> Matrix6<f64> {
-        let rt = self
-            .flange
-            .rotation
-            .to_rotation_matrix()
-            .into_inner()
-            .transpose();
-        let t = self.flange.translation.vector;
+        let rt = self.flange.rotation.to_rotation_matrix().into_inner();
+        let rt = rt.transpose();
+        self.columns(&self.flange.translation.vector, coordinates, |x| rt * x)
+    }
+
+    /// The Jacobian columns `[d_j x p - m_j; d_j]` of the base-frame point `p`, both 3-row blocks
+    /// passed through `frame` (the identity for the base frame).
+    #[inline(always)]
+    fn columns(
+        &self,
+        p: &Vector3<f64>,
+        coordinates: Coordinates,
+        frame: impl Fn(Vector3<f64>) -> Vector3<f64>,
+    ) -> Matrix6<f64> {
         let screws = match coordinates {
             Coordinates::Kinematic => &self.screws[0],
             Coordinates::Axis => &self.screws[1],
         };
         let mut j = Matrix6::zeros();
         for c in 0..6 {
-            let d = screws.directions.column(c);
-            let v = d.cross(&t) - screws.moments.column(c);
-            j.fixed_view_mut::<3, 1>(0, c).copy_from(&(rt * v));
-            j.fixed_view_mut::<3, 1>(3, c).copy_from(&(rt * d));
+            let d = screws.directions.column(c).into_owned();
+            let v = d.cross(p) - screws.moments.column(c);
+            j.fixed_view_mut::<3, 1>(0, c).copy_from(&frame(v));
+            j.fixed_view_mut::<3, 1>(3, c).copy_from(&frame(d));
         }
         j
     }

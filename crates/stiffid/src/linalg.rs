@@ -376,7 +376,10 @@ mod tests {
             }
             let c = cond(&r);
             let c_want = want[0] / want[5];
-            assert!((c - c_want).abs() < 1e-13 * c_want * c_want, "case {case}: {c} vs {c_want}");
+            assert!(
+                (c - c_want).abs() < 1e-13 * c_want * c_want,
+                "case {case}: {c} vs {c_want}"
+            );
         }
     }
 
