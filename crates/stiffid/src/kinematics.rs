@@ -73,7 +73,6 @@ impl Robot {
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
         f.flange = self.base;
-        f.screws[1] = Screws::zeros();
         f.axis_map = self.axis_map.matrix;
         let t = &mut f.flange;
         let [kinematic, axis] = &mut f.screws;
@@ -110,20 +109,21 @@ impl Screws {
         }
     }
 
-    /// Writes into `out` (zeros) the screws of the columns of `J M`: column c is
+    /// Writes into `out` the screws of the columns of `J M`: column c is
     /// `sum_k M[k, c]` times column k. Skips the zeros of `M` (most axis maps are a signed
     /// permutation plus the J2/J3 coupling).
     fn times(&self, m: &Matrix6<f64>, out: &mut Screws) {
         for c in 0..6 {
+            let (mut d, mut w) = (Vector3::zeros(), Vector3::zeros());
             for k in 0..6 {
                 let f = m[(k, c)];
                 if f != 0.0 {
-                    let mut d = out.directions.column_mut(c);
-                    d.axpy(f, &self.directions.column(k), 1.0);
-                    let mut w = out.moments.column_mut(c);
-                    w.axpy(f, &self.moments.column(k), 1.0);
+                    d += self.directions.column(k) * f;
+                    w += self.moments.column(k) * f;
                 }
             }
+            out.directions.set_column(c, &d);
+            out.moments.set_column(c, &w);
         }
     }
 }
@@ -155,13 +155,19 @@ fn turn_about_z(r: &mut UnitQuaternion<f64>, a: f64) {
 }
 
 /// `t *= a`, skipping the rotation product when `a` is a pure translation (exactly: most DH
-/// `pre`/`post` transforms) and everything when `a` is the identity.
+/// `pre`/`post` transforms) and everything when `a` is the identity. A translation along z alone
+/// (a DH `d`) is `d` times the third column of `t`'s rotation.
 #[inline(always)]
 fn compose(t: &mut Isometry3<f64>, a: &Isometry3<f64>) {
+    let v = a.translation.vector;
     if a.rotation.as_ref().imag() != Vector3::zeros() {
         *t *= a;
-    } else if a.translation.vector != Vector3::zeros() {
-        t.translation.vector += t.rotation * a.translation.vector;
+    } else if v.x == 0.0 && v.y == 0.0 {
+        if v.z != 0.0 {
+            t.translation.vector += z_column(&t.rotation) * v.z;
+        }
+    } else {
+        t.translation.vector += t.rotation * v;
     }
 }
 
