@@ -28,6 +28,7 @@
 //! threads). [`parse`] is the reader over a `&str`.
 
 mod columns;
+mod plain;
 
 pub use columns::Layout;
 
@@ -338,8 +339,14 @@ struct Parsed {
 }
 
 impl Parsed {
-    /// Parses `text`, whose first line is line `first` of the file.
+    /// Parses `text`, whose first line is line `first` of the file: split directly when its lines
+    /// are plain ([`plain`]), else by the `csv` crate.
     fn new(layout: &Layout, text: &[u8], first: u64) -> Self {
+        plain::parse(layout, text, first).unwrap_or_else(|| Self::by_csv(layout, text, first))
+    }
+
+    /// Parses `text` with the `csv` crate (quoted fields, errors).
+    fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
         let mut parsed = Self {
             rows: Vec::with_capacity(text.len() / 64),
             labels: String::new(),
@@ -412,7 +419,7 @@ impl Parsed {
             return Err(layout.at(line, posture, ColumnProblem::Unreadable { message }));
         }
         let columns: &Columns = &layout.columns;
-        let measurement = columns.measurement(record, 0, |c, p| layout.at(line, c, p))?;
+        let measurement = columns.measurement(|i| &record[i], 0, |c, p| layout.at(line, c, p))?;
         self.labels.push_str(label);
         self.rows.push((measurement, line, self.labels.len()));
         Ok(())
