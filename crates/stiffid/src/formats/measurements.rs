@@ -311,6 +311,25 @@ impl<R: BufRead> Reader<R> {
     }
 }
 
+impl<R: BufRead + Send> Reader<R> {
+    /// Calls `each` with every chunk ([`Reader::next_chunk`]), in file order; the next chunk is
+    /// read and parsed while `each` works on the current one (in parallel, with rayon), so at most
+    /// two chunks are held.
+    ///
+    /// # Errors
+    /// The first of `each`'s, then those of [`Reader::next_chunk`], in file order: `each`'s error
+    /// for a chunk comes before a reading error in the next one.
+    pub fn for_each_chunk(&mut self, mut each: impl FnMut(Chunk) -> Result<()> + Send) -> Result<()> {
+        let mut current = self.next_chunk()?;
+        while let Some(chunk) = current {
+            let (next, done) = rayon::join(|| self.next_chunk(), || each(chunk));
+            done?;
+            current = next?;
+        }
+        Ok(())
+    }
+}
+
 /// Appends about [`PIECE_BYTES`] of `source` to `piece`, up to and including a line end (or the
 /// end of the source).
 fn read_piece(source: &mut impl BufRead, piece: &mut Vec<u8>) -> std::io::Result<()> {
@@ -433,8 +452,10 @@ pub struct Labels {
     text: String,
     /// The end of each label in `text`.
     ends: Vec<usize>,
-    index: HashMap<u64, usize, BuildHasherDefault<Prehashed>>,
-    /// Labels whose hash an earlier label has (compared in full).
+    /// The number of the first label with each 32-bit hash ([`fx_hash`]; 8 bytes per entry).
+    index: HashMap<u32, u32, BuildHasherDefault<Prehashed>>,
+    /// Labels whose hash an earlier label has (compared in full), and those numbered beyond
+    /// `u32::MAX`.
     collided: HashMap<Box<str>, usize>,
     /// The previous row's number (rows of one posture usually follow each other).
     last: Option<usize>,
@@ -481,10 +502,13 @@ impl Labels {
         let next = self.len();
         let (text, ends) = (&self.text, &self.ends);
         let same = |i: usize| text[span(ends, i)] == *label;
-        let n = match self.index.entry(fx_hash(label.as_bytes())) {
-            Entry::Vacant(e) => *e.insert(next),
-            Entry::Occupied(e) if same(*e.get()) => *e.get(),
-            Entry::Occupied(_) => *self.collided.entry(label.into()).or_insert(next),
+        let n = match self.index.entry(fx_hash(label.as_bytes()) as u32) {
+            Entry::Vacant(e) if next <= u32::MAX as usize => {
+                e.insert(next as u32);
+                next
+            }
+            Entry::Occupied(e) if same(*e.get() as usize) => *e.get() as usize,
+            _ => *self.collided.entry(label.into()).or_insert(next),
         };
         if n == next {
             self.text.push_str(label);
@@ -511,7 +535,7 @@ impl<S: AsRef<str>> FromIterator<S> for Labels {
     }
 }
 
-/// A hasher for keys that are hashes already ([`fx_hash`]): passes a `u64` through.
+/// A hasher for keys that are hashes already ([`fx_hash`]): passes a `u32` through.
 #[derive(Default)]
 struct Prehashed(u64);
 
@@ -524,8 +548,9 @@ impl Hasher for Prehashed {
         self.0 = fx_hash(bytes);
     }
 
-    fn write_u64(&mut self, n: u64) {
-        self.0 = n;
+    fn write_u32(&mut self, n: u32) {
+        // Both halves: the table takes its bucket from the low bits, its tag from the top ones.
+        self.0 = u64::from(n) << 32 | u64::from(n);
     }
 }
 

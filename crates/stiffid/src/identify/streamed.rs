@@ -50,37 +50,42 @@ impl Rows {
 /// Those of [`Reader::new`] and [`Reader::next_chunk`], and those of [`InBlocks`] explained as
 /// [`Error::Column`] (line and column of the measurement); [`ColumnProblem::Unreadable`] when
 /// `open` fails or the file changed between the two readings.
-pub fn least_squares<R: BufRead>(
+pub fn least_squares<R: BufRead + Send>(
     setup: &Setup,
     mut open: impl FnMut() -> std::io::Result<R>,
 ) -> Result<(Identification, Rows)> {
     let mut reader = Reader::new(open().map_err(unreadable)?)?;
+    let layout = reader.layout().clone();
     let mut blocks = InBlocks::new(setup);
     let mut rows = Rows {
         labels: Labels::default(),
         postures: Vec::new(),
         lines: Vec::new(),
         points: Vec::new(),
-        layout: reader.layout().clone(),
+        layout: layout.clone(),
     };
-    while let Some(chunk) = base_frame_chunk(setup, &mut reader)? {
+    reader.for_each_chunk(|mut chunk| {
+        to_base_frame(setup, &layout, &mut chunk)?;
         blocks
             .push(&chunk.measurements)
-            .map_err(|e| reader.layout().explain(e, |n| chunk.line_of(n)))?;
+            .map_err(|e| layout.explain(e, |n| chunk.line_of(n)))?;
         rows.postures
             .extend(chunk.measurements.iter().map(|m| m.posture));
         rows.points
             .extend(chunk.measurements.iter().map(|m| m.point));
         rows.lines.extend(chunk.lines);
-    }
+        Ok(())
+    })?;
     rows.labels = reader.into_labels();
     let solved = blocks.solve()?;
     let h = solved.solution.h;
     let mut again = Reader::new(open().map_err(unreadable)?)?.unlabelled();
     let mut all = Vec::with_capacity(3 * rows.lines.len());
-    while let Some(chunk) = base_frame_chunk(setup, &mut again)? {
+    again.for_each_chunk(|mut chunk| {
+        to_base_frame(setup, &layout, &mut chunk)?;
         all.extend(residuals(setup, &h, &chunk.measurements));
-    }
+        Ok(())
+    })?;
     if all.len() != 3 * rows.lines.len() {
         return Err(unreadable(std::io::Error::other(
             "the file changed while it was read",
@@ -89,18 +94,13 @@ pub fn least_squares<R: BufRead>(
     Ok((solved.finish(all), rows))
 }
 
-/// The next chunk of `reader`, turned into the base frame ([`frames::to_base`]).
-fn base_frame_chunk<R: BufRead>(setup: &Setup, reader: &mut Reader<R>) -> Result<Option<Chunk>> {
-    let Some(mut chunk) = reader.next_chunk()? else {
-        return Ok(None);
-    };
-    let layout = reader.layout();
+/// Turns the measurements of `chunk` into the base frame ([`frames::to_base`]).
+fn to_base_frame(setup: &Setup, layout: &Layout, chunk: &mut Chunk) -> Result<()> {
     let (wrench, displacement) = (layout.wrench_frame(), layout.displacement_frame());
     chunk
         .measurements
         .par_chunks_mut(super::BLOCK)
-        .try_for_each(|part| frames::to_base(setup, part, wrench, displacement))?;
-    Ok(Some(chunk))
+        .try_for_each(|part| frames::to_base(setup, part, wrench, displacement))
 }
 
 fn unreadable(e: std::io::Error) -> Error {
