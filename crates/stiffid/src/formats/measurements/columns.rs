@@ -167,9 +167,7 @@ impl Columns {
     ) -> Result<Measurement> {
         let number = |i: usize| -> Result<f64> {
             let field = trim(field(i));
-            field
-                .parse::<f64>()
-                .ok()
+            super::decimal::parse(field)
                 .filter(|v| v.is_finite())
                 .ok_or_else(|| {
                     error(
