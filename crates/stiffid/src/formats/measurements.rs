@@ -137,7 +137,7 @@ impl MeasurementFile {
 }
 
 /// Some consecutive rows of a measurement file ([`Reader::next_chunk`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Chunk {
     /// One per row, SI units, point 0-based, in the file's frames; postures numbered over the
     /// whole file in order of first appearance.
@@ -170,6 +170,10 @@ pub struct Reader<R> {
     rows: usize,
     /// `None` when the rows' postures are not numbered ([`Reader::unlabelled`]).
     labels: Option<Labels>,
+    /// The pieces of text of the chunk being read, each with the line it starts at, and their
+    /// rows (buffers kept from chunk to chunk).
+    pieces: Vec<(u64, Vec<u8>)>,
+    parsed: Vec<Parsed>,
 }
 
 impl<R: BufRead> Reader<R> {
@@ -217,6 +221,8 @@ impl<R: BufRead> Reader<R> {
             line,
             rows: 0,
             labels: Some(Labels::default()),
+            pieces: Vec::new(),
+            parsed: Vec::new(),
         })
     }
 
@@ -231,10 +237,16 @@ impl<R: BufRead> Reader<R> {
     /// As [`parse`], for the first bad row of the chunk (in file order); [`ColumnProblem::NoRows`]
     /// at the end of a source without rows; [`ColumnProblem::Unreadable`] when the source fails.
     pub fn next_chunk(&mut self) -> Result<Option<Chunk>> {
+        let mut chunk = Chunk::default();
+        Ok(self.read_chunk(&mut chunk)?.then_some(chunk))
+    }
+
+    /// Reads the next rows into `chunk` (its buffers reused); `false` at the end of the source.
+    fn read_chunk(&mut self, chunk: &mut Chunk) -> Result<bool> {
         loop {
             let pieces = self.read_pieces()?;
-            let chunk = self.parse_pieces(&pieces)?;
-            match (chunk.measurements.is_empty(), pieces.is_empty(), self.rows) {
+            self.parse_pieces(pieces, chunk)?;
+            match (chunk.measurements.is_empty(), pieces == 0, self.rows) {
                 (true, true, 0) => {
                     return Err(problem(
                         self.header_line,
@@ -244,45 +256,49 @@ impl<R: BufRead> Reader<R> {
                         },
                     ))
                 }
-                (true, true, _) => return Ok(None),
+                (true, true, _) => return Ok(false),
                 // Only comments and blank lines: read on.
                 (true, false, _) => {}
-                (false, _, _) => return Ok(Some(chunk)),
+                (false, _, _) => return Ok(true),
             }
         }
     }
 
-    /// Up to [`PIECES`] pieces of text and the line each starts at; none at the end.
-    fn read_pieces(&mut self) -> Result<Vec<(u64, Vec<u8>)>> {
-        let mut pieces = Vec::new();
-        for _ in 0..PIECES {
-            let mut piece = Vec::with_capacity(PIECE_BYTES + 256);
+    /// Reads up to [`PIECES`] pieces of text into `self.pieces`, each with the line it starts
+    /// at; returns how many (none at the end).
+    fn read_pieces(&mut self) -> Result<usize> {
+        for n in 0..PIECES {
+            if self.pieces.len() == n {
+                self.pieces.push((0, Vec::with_capacity(PIECE_BYTES + 256)));
+            }
+            let (start, piece) = &mut self.pieces[n];
+            piece.clear();
             let line = self.line;
-            read_piece(&mut self.source, &mut piece)
-                .map_err(|e| unreadable(line + 1, &e.to_string()))?;
+            read_piece(&mut self.source, piece).map_err(|e| unreadable(line + 1, &e.to_string()))?;
             if piece.is_empty() {
-                break;
+                return Ok(n);
             }
             self.line += piece.iter().filter(|b| **b == b'\n').count() as u64;
-            pieces.push((line + 1, piece));
+            *start = line + 1;
         }
-        Ok(pieces)
+        Ok(PIECES)
     }
 
-    /// The rows of some pieces, parsed in parallel, postures numbered in file order.
-    fn parse_pieces(&mut self, pieces: &[(u64, Vec<u8>)]) -> Result<Chunk> {
-        let parsed: Vec<Parsed> = pieces
+    /// The rows of the first `n` pieces, parsed in parallel, postures numbered in file order,
+    /// into `chunk` (cleared first).
+    fn parse_pieces(&mut self, n: usize, chunk: &mut Chunk) -> Result<()> {
+        self.parsed.resize_with(n.max(self.parsed.len()), Parsed::default);
+        let layout = &self.layout;
+        self.pieces[..n]
             .par_iter()
-            .map(|(line, text)| Parsed::new(&self.layout, text, *line))
-            .collect();
-        let mut chunk = Chunk {
-            measurements: Vec::with_capacity(parsed.iter().map(|p| p.rows.len()).sum()),
-            lines: Vec::new(),
-            first: self.rows,
-        };
-        for piece in parsed {
+            .zip(self.parsed[..n].par_iter_mut())
+            .for_each(|((line, text), parsed)| parsed.fill(layout, text, *line));
+        chunk.measurements.clear();
+        chunk.lines.clear();
+        chunk.first = self.rows;
+        for piece in &mut self.parsed[..n] {
             let mut start = 0;
-            for (mut measurement, line, end) in piece.rows {
+            for (mut measurement, line, end) in piece.rows.drain(..) {
                 if let Some(labels) = &mut self.labels {
                     measurement.posture = labels.number(&piece.labels[start..end]);
                 }
@@ -290,12 +306,12 @@ impl<R: BufRead> Reader<R> {
                 chunk.measurements.push(measurement);
                 chunk.lines.push(line);
             }
-            if let Some(e) = piece.error {
+            if let Some(e) = piece.error.take() {
                 return Err(e);
             }
         }
         self.rows += chunk.measurements.len();
-        Ok(chunk)
+        Ok(())
     }
 
     /// Reads without numbering the postures: every measurement's posture is 0 (for a second
@@ -320,12 +336,17 @@ impl<R: BufRead + Send> Reader<R> {
     /// # Errors
     /// The first of `each`'s, then those of [`Reader::next_chunk`], in file order: `each`'s error
     /// for a chunk comes before a reading error in the next one.
-    pub fn for_each_chunk(&mut self, mut each: impl FnMut(Chunk) -> Result<()> + Send) -> Result<()> {
-        let mut current = self.next_chunk()?;
-        while let Some(chunk) = current {
-            let (next, done) = rayon::join(|| self.next_chunk(), || each(chunk));
+    pub fn for_each_chunk(
+        &mut self,
+        mut each: impl FnMut(&mut Chunk) -> Result<()> + Send,
+    ) -> Result<()> {
+        let (mut current, mut next) = (Chunk::default(), Chunk::default());
+        let mut more = self.read_chunk(&mut current)?;
+        while more {
+            let (read, done) = rayon::join(|| self.read_chunk(&mut next), || each(&mut current));
             done?;
-            current = next?;
+            more = read?;
+            std::mem::swap(&mut current, &mut next);
         }
         Ok(())
     }
@@ -350,6 +371,7 @@ fn read_piece(source: &mut impl BufRead, piece: &mut Vec<u8>) -> std::io::Result
 }
 
 /// The rows of one piece of text, parsed (postures not numbered yet), until its first error.
+#[derive(Default)]
 struct Parsed {
     /// The measurement, its line and the end of its label in `labels`.
     rows: Vec<(Measurement, u64, usize)>,
@@ -359,10 +381,12 @@ struct Parsed {
 }
 
 impl Parsed {
-    /// Parses `text`, whose first line is line `first` of the file: split directly when its lines
-    /// are plain ([`plain`]), else by the `csv` crate.
-    fn new(layout: &Layout, text: &[u8], first: u64) -> Self {
-        plain::parse(layout, text, first).unwrap_or_else(|| Self::by_csv(layout, text, first))
+    /// Parses `text`, whose first line is line `first` of the file, into `self` (its buffers
+    /// reused): split directly when its lines are plain ([`plain`]), else by the `csv` crate.
+    fn fill(&mut self, layout: &Layout, text: &[u8], first: u64) {
+        if !plain::parse(layout, text, first, self) {
+            *self = Self::by_csv(layout, text, first);
+        }
     }
 
     /// Parses `text` with the `csv` crate (quoted fields, errors).

@@ -64,8 +64,8 @@ pub fn least_squares<R: BufRead + Send>(
         points: Vec::new(),
         layout: layout.clone(),
     };
-    reader.for_each_chunk(|mut chunk| {
-        to_base_frame(setup, &layout, &mut chunk)?;
+    reader.for_each_chunk(|chunk| {
+        to_base_frame(setup, &layout, chunk)?;
         blocks
             .push(&chunk.measurements)
             .map_err(|e| layout.explain(e, |n| chunk.line_of(n)))?;
@@ -73,7 +73,7 @@ pub fn least_squares<R: BufRead + Send>(
             .extend(chunk.measurements.iter().map(|m| m.posture));
         rows.points
             .extend(chunk.measurements.iter().map(|m| m.point));
-        rows.lines.extend(chunk.lines);
+        rows.lines.extend_from_slice(&chunk.lines);
         Ok(())
     })?;
     rows.labels = reader.into_labels();
@@ -81,8 +81,8 @@ pub fn least_squares<R: BufRead + Send>(
     let h = solved.solution.h;
     let mut again = Reader::new(open().map_err(unreadable)?)?.unlabelled();
     let mut all = Vec::with_capacity(3 * rows.lines.len());
-    again.for_each_chunk(|mut chunk| {
-        to_base_frame(setup, &layout, &mut chunk)?;
+    again.for_each_chunk(|chunk| {
+        to_base_frame(setup, &layout, chunk)?;
         all.extend(residuals(setup, &h, &chunk.measurements));
         Ok(())
     })?;

@@ -6,20 +6,23 @@
 
 use super::{Layout, Parsed};
 
-/// The rows of `text` (whose first line is line `first` of the file), as [`Parsed::new`] gives
-/// them; `None` unless every line is plain and every row valid.
-pub(super) fn parse(layout: &Layout, text: &[u8], first: u64) -> Option<Parsed> {
+/// Puts the rows of `text` (whose first line is line `first` of the file) into `parsed` (cleared
+/// first), as the `csv` path would; `false` (and `parsed` unusable) unless every line is plain and
+/// every row valid.
+pub(super) fn parse(layout: &Layout, text: &[u8], first: u64, parsed: &mut Parsed) -> bool {
+    parse_plain(layout, text, first, parsed).is_some()
+}
+
+fn parse_plain(layout: &Layout, text: &[u8], first: u64, parsed: &mut Parsed) -> Option<()> {
     let text = std::str::from_utf8(text).ok()?;
     if text.contains('"') {
         return None;
     }
     let carriage_returns = text.contains('\r');
     let expected = layout.fields();
-    let mut parsed = Parsed {
-        rows: Vec::with_capacity(text.len() / 64),
-        labels: String::with_capacity(text.len() / 8),
-        error: None,
-    };
+    parsed.rows.clear();
+    parsed.labels.clear();
+    parsed.error = None;
     let mut fields: Vec<&str> = Vec::with_capacity(expected);
     for (i, line) in text.split('\n').enumerate() {
         let line = line.strip_suffix('\r').unwrap_or(line);
@@ -50,7 +53,7 @@ pub(super) fn parse(layout: &Layout, text: &[u8], first: u64) -> Option<Parsed> 
         let end = parsed.labels.len();
         parsed.rows.push((measurement, first + i as u64, end));
     }
-    Some(parsed)
+    Some(())
 }
 
 /// The comma-separated fields of `line`, into `fields` (cleared first).
