@@ -1,7 +1,6 @@
 //! The observation matrix of measured data: [`Measurement`]s checked and stacked into
 //! [`Observations`] (`Psi` and `delta`, Eq. 10-11), row order as in [`crate::observation`].
 
-use crate::kinematics::Frames;
 use crate::observation::point_rows;
 use crate::stiffness::joint_torques;
 use crate::{Error, MeasurementField, Result, Setup};
@@ -156,33 +155,30 @@ pub fn assemble(
     delta: &mut DVector<f64>,
 ) {
     assert!(psi.nrows() == 3 * measurements.len() && delta.len() == psi.nrows());
-    // The measurement the frames and torques were computed for, the frames and the torques.
-    let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
-    for (i, meas) in measurements.iter().enumerate() {
-        if state
-            .as_ref()
-            .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
-        {
-            state = None;
+    let mut i = 0;
+    while i < measurements.len() {
+        // One run of measurements with the same axis angles: its frames (computed in place, not
+        // moved: they are large), and the torques of the previous measurement's wrench.
+        let first = &measurements[i];
+        let frames = setup.robot().frames(&first.q);
+        let mut tau = joint_torques(setup, &frames, &first.wrench);
+        let mut previous = first;
+        while let Some(meas) = measurements.get(i).filter(|m| m.q == first.q) {
+            if previous.wrench != meas.wrench {
+                tau = joint_torques(setup, &frames, &meas.wrench);
+            }
+            previous = meas;
+            psi.fixed_view_mut::<3, 6>(3 * i, 0).copy_from(&point_rows(
+                setup,
+                &frames,
+                &setup.tool().measuring_points[meas.point],
+                &tau,
+            ));
+            delta
+                .fixed_rows_mut::<3>(3 * i)
+                .copy_from(&meas.displacement);
+            i += 1;
         }
-        let (j, frames, tau) = state.get_or_insert_with(|| {
-            let frames = setup.robot().frames(&meas.q);
-            let tau = joint_torques(setup, &frames, &meas.wrench);
-            (i, frames, tau)
-        });
-        if measurements[*j].wrench != meas.wrench {
-            *tau = joint_torques(setup, frames, &meas.wrench);
-        }
-        *j = i;
-        psi.fixed_view_mut::<3, 6>(3 * i, 0).copy_from(&point_rows(
-            setup,
-            frames,
-            &setup.tool().measuring_points[meas.point],
-            tau,
-        ));
-        delta
-            .fixed_rows_mut::<3>(3 * i)
-            .copy_from(&meas.displacement);
     }
 }
 
