@@ -274,7 +274,8 @@ impl<R: BufRead> Reader<R> {
             let (start, piece) = &mut self.pieces[n];
             piece.clear();
             let line = self.line;
-            read_piece(&mut self.source, piece).map_err(|e| unreadable(line + 1, &e.to_string()))?;
+            read_piece(&mut self.source, piece)
+                .map_err(|e| unreadable(line + 1, &e.to_string()))?;
             if piece.is_empty() {
                 return Ok(n);
             }
@@ -287,7 +288,8 @@ impl<R: BufRead> Reader<R> {
     /// The rows of the first `n` pieces, parsed in parallel, postures numbered in file order,
     /// into `chunk` (cleared first).
     fn parse_pieces(&mut self, n: usize, chunk: &mut Chunk) -> Result<()> {
-        self.parsed.resize_with(n.max(self.parsed.len()), Parsed::default);
+        self.parsed
+            .resize_with(n.max(self.parsed.len()), Parsed::default);
         let layout = &self.layout;
         self.pieces[..n]
             .par_iter()
@@ -413,12 +415,17 @@ impl Parsed {
             .from_reader(body);
         let mut record = csv::StringRecord::new();
         let mut error = None;
+        let mut lines = LineCount {
+            body,
+            byte: 0,
+            line: 1,
+        };
         loop {
-            let line = at(reader.position().line());
+            let line = at(lines.at(reader.position().byte()));
             let row = match reader.read_record(&mut record) {
                 Ok(false) => break,
                 Ok(true) => {
-                    let line = record.position().map_or(line, |p| at(p.line()));
+                    let line = record.position().map_or(line, |p| at(lines.at(p.byte())));
                     parsed.row(layout, &record, line).map_err(|e| (line, e))
                 }
                 Err(e) => Err((line, unreadable(line, &e.to_string()))),
@@ -467,6 +474,32 @@ impl Parsed {
         self.labels.push_str(label);
         self.rows.push((measurement, line, self.labels.len()));
         Ok(())
+    }
+}
+
+/// The line (1-based) of the record that starts at or after a byte of `body` (its line ends
+/// skipped), counted on from the previous byte asked for (bytes asked for never decrease). Not
+/// `csv`'s own line count, which is one too low after a `\r\n` line end (the `\n` is counted when
+/// the next record is read, after its position was taken).
+struct LineCount<'a> {
+    body: &'a [u8],
+    byte: usize,
+    line: u64,
+}
+
+impl LineCount<'_> {
+    fn at(&mut self, byte: u64) -> u64 {
+        let mut end = usize::try_from(byte).map_or(self.body.len(), |b| b.min(self.body.len()));
+        while matches!(self.body.get(end), Some(b'\r' | b'\n')) {
+            end += 1;
+        }
+        let end = end.max(self.byte);
+        self.line += self.body[self.byte..end]
+            .iter()
+            .filter(|b| **b == b'\n')
+            .count() as u64;
+        self.byte = end;
+        self.line
     }
 }
 
