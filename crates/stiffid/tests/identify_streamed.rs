@@ -165,3 +165,28 @@ fn a_chunk_of_nothing_but_comments_does_not_end_the_file() {
     assert_eq!(rows.lines, file.lines);
     assert_close(&id, &whole(&setup, FANUC));
 }
+
+#[test]
+fn lines_are_right_in_a_file_with_crlf_line_ends_on_either_parsing_path() {
+    let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let crlf = FANUC.replace('\n', "\r\n");
+    // A quoted label sends its piece to the csv path; plain text takes the fast one.
+    let quoted = crlf.replacen("\r\n9,1,", "\r\n\"9\",1,", 1);
+    let (lf, lf_rows) = streamed(&setup, FANUC).unwrap();
+    for text in [&crlf, &quoted] {
+        let (id, rows) = streamed(&setup, text).unwrap();
+        assert_eq!(id, lf);
+        assert_eq!(rows.lines, lf_rows.lines);
+        // A bad measuring point on line 10 (posture 9) is named on line 10.
+        let bad = text.replacen(",1,-51.547", ",1x,-51.547", 1);
+        assert_ne!(&bad, text);
+        match streamed(&setup, &bad).unwrap_err() {
+            Error::Column {
+                line: 10,
+                column: Some(2),
+                ..
+            } => {}
+            e => panic!("{e}"),
+        }
+    }
+}
