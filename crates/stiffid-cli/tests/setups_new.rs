@@ -169,9 +169,11 @@ fn setups_new_never_replaces_a_file_and_refuses_bad_payloads() {
         std::fs::read_to_string(&existing).unwrap(),
         "name = \"mine\"\n"
     );
-    for bad in ["0", "-5", "nan", "1e9"] {
+    for (bad, shown) in [("0", "0"), ("-5", "-5"), ("nan", "NaN"), ("1e308", "1e308")] {
         let payload = format!("--payload-kg={bad}");
         let out = stiffid(&["setups", "new", "--robot", "kuka-kr210-robond", &payload]);
-        assert_usage_error(&out, &["payload"]);
+        let message =
+            format!("error: --payload-kg: expected a payload in (0, 2500] kg, got {shown}\n");
+        assert_usage_error(&out, &[&message]);
     }
 }

@@ -5,7 +5,7 @@
 //! At commanded axis angles q a wrench `W` (base frame) at the tool centre point (TCP) deflects the
 //! joint springs by `dq = h .* (J^T W)` (Zhang et al. 2021, Eq. 4-5, the torques of the unloaded
 //! posture: the complementary stiffness is neglected, see [`crate::cartesian`]), and the rigid links
-//! then put the tool at the forward kinematics of the deflected joints, [`loaded_pose`]. (Eq. 6's
+//! then put the tool at the forward kinematics of the deflected joints, [`Model::loaded_pose`]. (Eq. 6's
 //! `J dq` is its first-order approximation; the two differ by about `|dq|^2` times the reach,
 //! a micrometre, which matters at the 0.1 micrometre this module solves to.)
 //!

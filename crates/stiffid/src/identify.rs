@@ -1,7 +1,7 @@
 //! Joint stiffness identification from measured displacements (Zhang et al. 2021, Eq. 10-14), with
 //! its uncertainty.
 //!
-//! Each [`Measurement`](crate::observation::Measurement) is one measuring point in one posture: the axis angles, the wrench at the
+//! Each [`Measurement`] is one measuring point in one posture: the axis angles, the wrench at the
 //! loading point and the measured translation of the point (loaded minus unloaded). It gives three
 //! rows of the observation matrix, `Psi[r, j] = J_m[r, j] * tau_j` with `tau = J_f^T W` (Eq. 4, 11,
 //! [`crate::observation::point_rows`]), and `Psi h = delta` (Eq. 10) is solved for the compliance

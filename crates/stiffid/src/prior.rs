@@ -119,7 +119,10 @@ pub fn nominal_stiffness(payload_kg: f64) -> Result<Vector6<f64>> {
     if !(payload_kg > 0.0 && payload_kg <= MAX_PAYLOAD_KG) {
         return Err(Error::InvalidField {
             field: "payload_kg".into(),
-            message: format!("expected a payload in (0, {MAX_PAYLOAD_KG}] kg, got {payload_kg}"),
+            message: format!(
+                "expected a payload in (0, {MAX_PAYLOAD_KG}] kg, got {}",
+                crate::limits::number(payload_kg)
+            ),
         });
     }
     let scale = payload_kg / REFERENCE_PAYLOAD_KG;

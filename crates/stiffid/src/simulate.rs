@@ -85,7 +85,7 @@ pub fn monte_carlo(
 
 /// [`monte_carlo`] with the first-order predictions already at hand (for example from the groups'
 /// [`crate::design::Evaluation`]s): `predicted[g]` is group `g`'s
-/// [`crate::design::Evaluation::predicted_deviation_pct`], percent, [levels][6], copied into its
+/// [`crate::design::Evaluation::predicted_deviation_pct`], percent, \[levels\]\[6\], copied into its
 /// result as is.
 ///
 /// # Errors

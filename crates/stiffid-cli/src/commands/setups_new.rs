@@ -147,7 +147,14 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
             (kg, note + " (give --payload-kg)")
         }
     };
-    let stiffness = prior::nominal_stiffness(payload).context("--payload-kg")?;
+    let stiffness = prior::nominal_stiffness(payload).map_err(|e| match e {
+        // The library names its argument `payload_kg`; the user wrote the option.
+        stiffid::Error::InvalidField { message, .. } => stiffid::Error::InvalidField {
+            field: "--payload-kg".into(),
+            message,
+        },
+        e => e,
+    })?;
     // The paper's tool (a 160 mm plate 260 mm out, a loading arm 150 mm off axis 6), scaled down
     // for robots smaller than the paper's; mm.
     let scale = (reach / reference_reach).min(1.0);

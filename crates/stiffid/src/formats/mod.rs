@@ -6,7 +6,7 @@
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
 //! - [`postures`]: the postures CSV of a group of postures.
-//! - [`reference`]: a robot or setup named by a file path or a built-in name.
+//! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
 pub mod measurements;

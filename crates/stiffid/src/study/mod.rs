@@ -14,11 +14,11 @@ mod trials;
 pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
 pub use spearman::spearman;
 pub use table4::{paper_table4, TABLE4};
-use trials::trials;
+use trials::{judge, paper_searches};
 pub use trials::{start_trials, StartTrial};
 
-use crate::design::{evaluate, global, local, random_group, Criterion, Evaluation, SearchOptions};
-use crate::progress::Progress;
+use crate::design::{evaluate, global, Criterion, Evaluation, SearchOptions};
+use crate::progress::{Progress, Tally};
 use crate::setup::Setup;
 use crate::simulate::{
     monte_carlo_with_predictions, GroupSimulation, Options as SimulationOptions,
@@ -26,6 +26,7 @@ use crate::simulate::{
 use crate::stiffness::rope_displacements;
 use crate::{limits, Result};
 use nalgebra::{Vector3, Vector6};
+use rayon::prelude::*;
 
 /// Postures per group (the paper's 6).
 pub const POSTURES: usize = 6;
@@ -102,7 +103,7 @@ pub struct Group {
     /// The Monte Carlo identification.
     pub simulation: GroupSimulation,
     /// `|delta(k_mean) - delta(k_true)|` (m) of every measuring point at every test posture, with the
-    /// group's mean identified stiffness at [`Study::validation_level`]: [test posture][point].
+    /// group's mean identified stiffness at [`Study::validation_level`]: \[test posture\]\[point\].
     pub validation_error: Vec<Vec<f64>>,
 }
 
@@ -138,7 +139,7 @@ pub struct Study {
     /// The noise level (index) whose mean identified stiffness is validated: the one nearest
     /// multiple 1 (the paper's level 2).
     pub validation_level: usize,
-    /// True displacement (m) of every measuring point at every test posture: [test posture][point].
+    /// True displacement (m) of every measuring point at every test posture: \[test posture\]\[point\].
     pub test_deflection: Vec<Vec<Vector3<f64>>>,
     /// The start-group check: the paper's local searches from `trials` start groups.
     pub trials: Vec<StartTrial>,
@@ -147,16 +148,16 @@ pub struct Study {
 }
 
 /// Runs the study on a setup (its nominal stiffness is the true one): Group 1 a seeded random
-/// start group ([`random_group`]); Groups 2 and 3 the paper's local searches on `classical` and
-/// `zhang2021` from it; Groups 4 and 5 global searches on `relative-a` and `d-optimal`
-/// ([`global`], `options.starts` starts); then the start-group check ([`start_trials`]; its first
-/// start group is Group 1, whose local searches it reuses), the
-/// Monte Carlo identification of every group at every noise level ([`crate::simulate`]) and
-/// the validation-posture deflections with each group's mean identified stiffness. Parallel
-/// (rayon); the same options give the same study whatever the thread count.
+/// start group ([`crate::design::random_group`]); Groups 2 and 3 the paper's local searches on
+/// `classical` and `zhang2021` from it; Groups 4 and 5 global searches on `relative-a` and
+/// `d-optimal` ([`global`], `options.starts` starts); the start-group check ([`start_trials`];
+/// its first start group is Group 1); then the Monte Carlo identification of every group at every
+/// noise level ([`crate::simulate`]) and the validation-posture deflections with each group's mean
+/// identified stiffness. Parallel (rayon): every search runs in one pool, so the two cores stay
+/// busy; the same options give the same study whatever the thread count.
 ///
-/// `progress` hears of every stage: each search, the start-group check (one unit per start
-/// group), the Monte Carlo identification.
+/// `progress` hears two stages: `searches` (one unit per local search and per global search's
+/// start) and the Monte Carlo identification.
 ///
 /// # Errors
 /// [`crate::Error::InvalidField`] for `runs`, `starts` or `trials` outside their limits
@@ -192,7 +193,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
         limits::check_integer(field, value as u64, min, max)?;
     }
     let end = options.seed.checked_add(options.trials as u64);
-    let seeds = options.seed..end.ok_or_else(|| crate::Error::InvalidField {
+    end.ok_or_else(|| crate::Error::InvalidField {
         field: "seed".into(),
         message: format!(
             "{}: expected at most {} (u64::MAX less the {} trials, whose seeds follow it)",
@@ -206,15 +207,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
         seed: options.seed,
         ..SearchOptions::default()
     };
-    let found = search_groups(setup, options, &search, progress)?;
-    // The first start group of the check is Group 1: its local searches are Groups 2 and 3.
-    let trials = trials(
-        setup,
-        seeds,
-        &search,
-        progress,
-        Some([&found[1].1, &found[2].1]),
-    )?;
+    let (found, trials) = search_all(setup, options, &search, progress)?;
     let evaluations: Vec<Evaluation> = found.iter().map(|(_, p, _)| evaluate(setup, p)).collect();
     progress.begin("Monte Carlo identification", 1);
     let sims = monte_carlo_with_predictions(
@@ -272,28 +265,55 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
 type Found = (Origin, Vec<Vector6<f64>>, usize);
 
 /// The start group, the paper's two local searches from it and the two global searches.
-fn search_groups(
+/// Every search of the study in one parallel pool, so that both cores stay busy to the end: the
+/// paper's two local searches from the start group of each trial's seed (the first is Group 1,
+/// its searches Groups 2 and 3; with no trials, Group 1's alone) and the two global searches
+/// (Groups 4 and 5). Each search is deterministic, so the result does not depend on the schedule.
+/// `progress` hears one stage, one unit per local search and per global search's start.
+fn search_all(
     setup: &Setup,
     options: &Options,
     search: &SearchOptions,
     progress: &dyn Progress,
-) -> Result<Vec<Found>> {
-    let start = random_group(setup, POSTURES, options.seed);
-    let mut found = vec![(Origin::Start, start.clone(), 0)];
-    for criterion in [Criterion::Classical, Criterion::Zhang2021] {
-        progress.begin(&format!("local search on {criterion}"), 1);
-        let o = local(setup, criterion, &start, search)?;
-        progress.end();
+) -> Result<(Vec<Found>, Vec<StartTrial>)> {
+    // The caller checked that `seed + trials` does not overflow.
+    let seeds: Vec<u64> = (0..options.trials.max(1) as u64)
+        .map(|i| options.seed + i)
+        .collect();
+    let global_criteria = [Criterion::RelativeA, Criterion::DOptimal];
+    progress.begin(
+        "searches",
+        2 * seeds.len() + global_criteria.len() * options.starts,
+    );
+    let tally = Tally::new(progress);
+    let (paper, globals) = rayon::join(
+        || paper_searches(setup, &seeds, search, &tally),
+        || {
+            global_criteria
+                .into_par_iter()
+                .map(|c| global(setup, c, POSTURES, search, &tally.part()))
+                .collect::<Result<Vec<_>>>()
+        },
+    );
+    progress.end();
+    let (paper, globals) = (paper?, globals?);
+    let trials = match options.trials {
+        0 => Vec::new(),
+        _ => judge(setup, &seeds, &paper),
+    };
+    let (start, [classical, zhang]) = paper.into_iter().next().expect("at least one seed");
+    let mut found = vec![(Origin::Start, start, 0)];
+    for (criterion, o) in [Criterion::Classical, Criterion::Zhang2021]
+        .into_iter()
+        .zip([classical, zhang])
+    {
         found.push((Origin::Local(criterion), o.postures, o.evaluations));
     }
-    for criterion in [Criterion::RelativeA, Criterion::DOptimal] {
-        progress.begin(&format!("global search on {criterion}"), options.starts);
-        let o = global(setup, criterion, POSTURES, search, progress)?;
-        progress.end();
+    for (criterion, o) in global_criteria.into_iter().zip(globals) {
         let origin = Origin::Global(criterion, options.starts);
         found.push((origin, o.postures, o.evaluations));
     }
-    Ok(found)
+    Ok((found, trials))
 }
 
 fn group_name(i: usize, origin: &Origin) -> String {

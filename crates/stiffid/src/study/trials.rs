@@ -2,13 +2,12 @@
 //! searches from many seeded start groups, each group judged by its first-order prediction.
 
 use super::POSTURES;
-use crate::design::{evaluate, local, random_group, Criterion, SearchOptions};
-use crate::progress::Progress;
+use crate::design::{evaluate, local, random_group, Criterion, SearchOptions, SearchOutcome};
+use crate::progress::{Progress, Tally};
 use crate::setup::Setup;
 use crate::Result;
 use nalgebra::Vector6;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The paper's two local searches from one seeded start group, judged by the first-order
 /// predicted average deviation rate (mean over levels and joints, %; on the paper setup within a
@@ -35,8 +34,9 @@ fn predicted_average_pct(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
 
 /// Runs the start-group check: for each seed, a start group of [`POSTURES`] postures
 /// ([`random_group`]), the `classical` and `zhang2021` local searches from it ([`local`] with
-/// `search`), and their predicted average deviation rates. Parallel over the seeds, same result
-/// whatever the thread count; `progress` hears one stage, one unit per seed.
+/// `search`), and their predicted average deviation rates. All searches run as one parallel pool,
+/// same result whatever the thread count; `progress` hears one stage, one unit per search (two
+/// per seed).
 ///
 /// # Errors
 /// The errors of [`local`].
@@ -46,42 +46,57 @@ pub fn start_trials(
     search: &SearchOptions,
     progress: &dyn Progress,
 ) -> Result<Vec<StartTrial>> {
-    trials(setup, seeds, search, progress, None)
+    let seeds: Vec<u64> = seeds.collect();
+    progress.begin("start-group check", 2 * seeds.len());
+    let searches = paper_searches(setup, &seeds, search, &Tally::new(progress));
+    progress.end();
+    Ok(judge(setup, &seeds, &searches?))
 }
 
-/// [`start_trials`], the local searches from the first seed's start group given as `first`
-/// (`classical`, `zhang2021`) if already done.
-pub(super) fn trials(
+/// The paper's two local searches, in the order of [`PaperSearches`].
+const PAPER: [Criterion; 2] = [Criterion::Classical, Criterion::Zhang2021];
+
+/// The start group of a seed and the outcomes of the paper's `classical` and `zhang2021` local
+/// searches from it.
+pub(super) type PaperSearches = (Vec<Vector6<f64>>, [SearchOutcome; 2]);
+
+/// The paper's two local searches from the start group of every seed ([`random_group`]), all in
+/// one parallel pool of searches (each is deterministic, so the result does not depend on the
+/// schedule or the thread count); `tally` hears one unit per search.
+pub(super) fn paper_searches(
     setup: &Setup,
-    seeds: std::ops::Range<u64>,
+    seeds: &[u64],
     search: &SearchOptions,
-    progress: &dyn Progress,
-    first: Option<[&[Vector6<f64>]; 2]>,
-) -> Result<Vec<StartTrial>> {
-    let done = AtomicUsize::new(0);
-    let first_seed = seeds.start;
-    progress.begin("start-group check", seeds.clone().count());
-    let trials = seeds
+    tally: &Tally,
+) -> Result<Vec<PaperSearches>> {
+    let mut outcomes = (0..PAPER.len() * seeds.len())
         .into_par_iter()
-        .map(|seed| {
-            let start = random_group(setup, POSTURES, seed);
-            let mut avg = [predicted_average_pct(setup, &start); 3];
-            for (i, c) in [Criterion::Classical, Criterion::Zhang2021]
-                .into_iter()
-                .enumerate()
-            {
-                avg[i + 1] = match first {
-                    Some(found) if seed == first_seed => predicted_average_pct(setup, found[i]),
-                    _ => predicted_average_pct(setup, &local(setup, c, &start, search)?.postures),
-                };
-            }
-            progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
-            Ok(StartTrial {
-                seed,
-                predicted_average_pct: avg,
-            })
+        .map(|i| {
+            let start = random_group(setup, POSTURES, seeds[i / PAPER.len()]);
+            let outcome = local(setup, PAPER[i % PAPER.len()], &start, search);
+            tally.add(1);
+            outcome
         })
-        .collect::<Result<Vec<_>>>();
-    progress.end();
-    trials
+        .collect::<Result<Vec<_>>>()?
+        .into_iter();
+    Ok(seeds
+        .iter()
+        .map(|&seed| {
+            let pair = [(); 2].map(|()| outcomes.next().expect("two searches per seed"));
+            (random_group(setup, POSTURES, seed), pair)
+        })
+        .collect())
+}
+
+/// The trials of `seeds` from their [`paper_searches`].
+pub(super) fn judge(setup: &Setup, seeds: &[u64], searches: &[PaperSearches]) -> Vec<StartTrial> {
+    seeds
+        .par_iter()
+        .zip(searches)
+        .map(|(&seed, (start, [classical, zhang]))| StartTrial {
+            seed,
+            predicted_average_pct: [start, &classical.postures, &zhang.postures]
+                .map(|group| predicted_average_pct(setup, group)),
+        })
+        .collect()
 }

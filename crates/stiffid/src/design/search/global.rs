@@ -33,10 +33,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// worker threads); the caller begins and ends the stage.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
+/// [`crate::Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
 /// than 2 postures, or the `test-pose` criterion on a setup without test postures;
-/// [`Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
-/// [`Error::Infeasible`] naming the check failed by the most postures
+/// [`crate::Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
+/// [`crate::Error::Infeasible`] naming the check failed by the most postures
 /// of the starts' results when none of them passes every check.
 ///
 /// # Examples
