@@ -190,3 +190,20 @@ fn lines_are_right_in_a_file_with_crlf_line_ends_on_either_parsing_path() {
         }
     }
 }
+
+#[test]
+fn a_row_after_blank_lines_is_named_by_its_own_line_on_either_parsing_path() {
+    let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    // Three blank lines before posture 9 (line 10, now 13); csv's own count said 10.
+    let blank = FANUC.replacen("\n9,1,", "\n\n\n\n9,1,", 1);
+    let quoted = blank.replacen("\n2,1,", "\n\"2\",1,", 1);
+    for text in [&blank, &quoted] {
+        let (_, rows) = streamed(&setup, text).unwrap();
+        assert_eq!(rows.lines[7..9], [9, 13]);
+        let bad = text.replacen(",1,-51.547", ",1x,-51.547", 1);
+        match streamed(&setup, &bad).unwrap_err() {
+            Error::Column { line: 13, .. } => {}
+            e => panic!("{e}"),
+        }
+    }
+}
