@@ -321,17 +321,13 @@ pub fn identify(
     ))
 }
 
-/// Plain least squares from the measurement file at `path`, of any size: read twice in chunks,
+/// Plain least squares from the measurement file at `path`, of any size: read once in chunks,
 /// `Psi` reduced in blocks (as `stiffid identify`, [`stiffid::identify::streamed`]).
 fn identify_file(py: Python<'_>, s: &stiffid::Setup, path: &Path) -> PyResult<Identification> {
     let name = path.display().to_string();
-    let mut first = Some(error::open(path)?);
-    let mut open = || match first.take() {
-        Some(file) => Ok(BufReader::new(file)),
-        None => File::open(path).map(|file| BufReader::new(Capped::new(file))),
-    };
+    let source = BufReader::new(error::open(path)?);
     let (fit, rows) = py
-        .detach(|| stiffid::identify::streamed::least_squares(s, &mut open))
+        .detach(|| stiffid::identify::streamed::least_squares(s, source))
         .map_err(|e| error::raise_in(&name, e))?;
     let labels = rows.labels.iter().map(str::to_string).collect();
     Ok(Identification::new(

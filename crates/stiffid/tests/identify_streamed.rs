@@ -1,4 +1,4 @@
-//! Identification from a measurement file read in chunks, twice (`identify::streamed`), against
+//! Identification from a measurement file read in chunks, once (`identify::streamed`), against
 //! the in-memory paths: the parsed file's `identify::least_squares` (the same bits) and the
 //! one-shot QR of the whole `Psi` (`Observations::least_squares`, to 1e-12 relative); the same
 //! bits with 1 and 2 threads; errors that name the line and column of a row far into the file.
@@ -15,7 +15,7 @@ const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/meas
 
 /// The streamed identification of `text`.
 fn streamed(setup: &Setup, text: &str) -> stiffid::Result<(Identification, streamed::Rows)> {
-    streamed::least_squares(setup, || Ok(text.as_bytes()))
+    streamed::least_squares(setup, text.as_bytes())
 }
 
 /// The one-shot QR of the whole `Psi` of the parsed `text`.
@@ -111,15 +111,6 @@ fn errors_far_into_a_streamed_file_name_their_line_and_column() {
         } => assert!(message.contains("measurement 1"), "{message}"),
         e => panic!("{e}"),
     }
-}
-
-#[test]
-fn a_file_that_changes_between_the_readings_is_an_error() {
-    let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let shorter = &FANUC[..FANUC.trim_end().rfind('\n').unwrap() + 1];
-    let mut texts = [FANUC, shorter].into_iter();
-    let e = streamed::least_squares(&setup, || Ok(texts.next().unwrap().as_bytes())).unwrap_err();
-    assert!(e.to_string().contains("changed while it was read"), "{e}");
 }
 
 #[test]

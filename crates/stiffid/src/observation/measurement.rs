@@ -138,6 +138,11 @@ impl Check {
     pub fn postures(&self) -> usize {
         self.angles.len()
     }
+
+    /// The axis angles of `posture` (those of its first measurement), if it was checked.
+    pub fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
+        self.table.get(posture).map(|(index, _)| &self.angles[index])
+    }
 }
 
 /// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x 6`) and `delta`
@@ -263,6 +268,14 @@ impl Default for Table {
 const DENSE_GROWTH: usize = 2;
 
 impl Table {
+    /// The entry of `posture`, if it was seen.
+    fn get(&self, posture: usize) -> Option<(usize, usize)> {
+        match self {
+            Table::Dense(v) => v.get(posture).copied().filter(|e| e.0 != usize::MAX),
+            Table::Sparse(m) => m.get(&posture).copied(),
+        }
+    }
+
     /// The entry of `posture`, `next` if it is new.
     fn entry(&mut self, posture: usize, next: (usize, usize)) -> (usize, usize) {
         if let Table::Dense(v) = self {

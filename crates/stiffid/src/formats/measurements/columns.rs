@@ -310,6 +310,11 @@ impl Layout {
         }
     }
 
+    /// Whether the file has moment columns (else the moments are zero).
+    pub fn has_moments(&self) -> bool {
+        self.columns.moment.is_some()
+    }
+
     /// The names of the force columns in the header, comma-separated.
     pub fn force_columns(&self) -> String {
         self.names(&self.columns.force)
