@@ -49,7 +49,7 @@ use std::io::BufRead;
 pub const PIECE_BYTES: usize = 1 << 19;
 
 /// Pieces per chunk ([`Reader::next_chunk`]): a chunk holds about 4 MiB of text.
-const PIECES: usize = 8;
+const PIECES: usize = 4;
 
 /// The measurements of a file and where each came from.
 #[derive(Debug, Clone, PartialEq)]

@@ -141,7 +141,9 @@ impl Check {
 
     /// The axis angles of `posture` (those of its first measurement), if it was checked.
     pub fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
-        self.table.get(posture).map(|(index, _)| &self.angles[index])
+        self.table
+            .get(posture)
+            .map(|(index, _)| &self.angles[index])
     }
 }
 
@@ -250,13 +252,17 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
 }
 
 /// Posture -> (its dense number, its first measurement, 1-based): a table indexed by the
-/// posture number while the numbers are small (as a file's are), else a hash map.
+/// posture number while the numbers are small (as a file's are) and fit in 32 bits (8 bytes per
+/// posture), else a hash map.
 #[derive(Debug)]
 enum Table {
-    /// `(usize::MAX, 0)` before the posture is seen.
-    Dense(Vec<(usize, usize)>),
+    /// `UNSEEN` before the posture is seen.
+    Dense(Vec<(u32, u32)>),
     Sparse(HashMap<usize, (usize, usize)>),
 }
+
+/// The entry of a posture not seen yet in [`Table::Dense`].
+const UNSEEN: (u32, u32) = (u32::MAX, 0);
 
 impl Default for Table {
     fn default() -> Self {
@@ -271,7 +277,7 @@ impl Table {
     /// The entry of `posture`, if it was seen.
     fn get(&self, posture: usize) -> Option<(usize, usize)> {
         match self {
-            Table::Dense(v) => v.get(posture).copied().filter(|e| e.0 != usize::MAX),
+            Table::Dense(v) => v.get(posture).filter(|e| **e != UNSEEN).map(|e| widen(*e)),
             Table::Sparse(m) => m.get(&posture).copied(),
         }
     }
@@ -279,27 +285,33 @@ impl Table {
     /// The entry of `posture`, `next` if it is new.
     fn entry(&mut self, posture: usize, next: (usize, usize)) -> (usize, usize) {
         if let Table::Dense(v) = self {
-            if posture >= v.len() {
-                if posture <= DENSE_GROWTH * v.len() + 4096 {
-                    v.resize(posture + 1, (usize::MAX, 0));
-                } else {
-                    let map = v
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, e)| e.0 != usize::MAX)
-                        .map(|(p, e)| (p, *e))
-                        .collect();
-                    *self = Table::Sparse(map);
-                }
+            let fits = next.0 < u32::MAX as usize && next.1 < u32::MAX as usize;
+            let near = posture <= DENSE_GROWTH * v.len() + 4096;
+            if !fits || (posture >= v.len() && !near) {
+                let map = v
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, e)| **e != UNSEEN)
+                    .map(|(p, e)| (p, widen(*e)))
+                    .collect();
+                *self = Table::Sparse(map);
+            } else if posture >= v.len() {
+                v.resize(posture + 1, UNSEEN);
             }
         }
-        let slot = match self {
-            Table::Dense(v) => &mut v[posture],
-            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, 0)),
-        };
-        if slot.0 == usize::MAX {
-            *slot = next;
+        match self {
+            Table::Dense(v) => {
+                let slot = &mut v[posture];
+                if *slot == UNSEEN {
+                    *slot = (next.0 as u32, next.1 as u32);
+                }
+                widen(*slot)
+            }
+            Table::Sparse(m) => *m.entry(posture).or_insert(next),
         }
-        *slot
     }
+}
+
+fn widen((index, first): (u32, u32)) -> (usize, usize) {
+    (index as usize, first as usize)
 }
