@@ -34,21 +34,34 @@ fn synthetic_file(setup: &Setup, n: usize, seed: u64) -> String {
     "# generated\n".to_string() + &measurement_csv(&noisy(setup, n, seed))
 }
 
+/// `identify::least_squares` of the parsed `text` in the base frame.
+fn parsed(setup: &Setup, text: &str) -> (Identification, measurements::MeasurementFile) {
+    let mut file = measurements::parse(text).unwrap();
+    file.to_base_frame(setup).unwrap();
+    let id = identify::least_squares(setup, &file.measurements).unwrap();
+    (id, file)
+}
+
 #[test]
 fn the_fanuc_file_streamed_equals_the_in_memory_fits() {
     let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let (id, rows) = streamed(&setup, FANUC).unwrap();
-    assert_close(&id, &whole(&setup, FANUC));
-    let mut file = measurements::parse(FANUC).unwrap();
-    file.to_base_frame(&setup).unwrap();
-    assert_eq!(
-        id,
-        identify::least_squares(&setup, &file.measurements).unwrap()
-    );
-    assert_eq!(rows.lines, file.lines);
-    let labels: Vec<&str> = rows.labels.iter().collect();
-    assert_eq!(labels, file.labels);
-    assert_eq!(rows.label(0), file.labels[file.measurements[0].posture]);
+    // The forces in the base frame (their moments zero are not kept), and as if in the tool
+    // frame (the whole wrench kept).
+    let tool = FANUC.replacen("fx_n,fy_n,fz_n", "fx_tool_n,fy_tool_n,fz_tool_n", 1);
+    for text in [FANUC, &tool] {
+        let (id, rows) = streamed(&setup, text).unwrap();
+        assert_close(&id, &whole(&setup, text));
+        let (exact, file) = parsed(&setup, text);
+        assert_eq!(id, exact);
+        assert_eq!(
+            id.residuals.map(f64::to_bits),
+            exact.residuals.map(f64::to_bits)
+        );
+        assert_eq!(rows.lines, file.lines);
+        let labels: Vec<&str> = rows.labels.iter().collect();
+        assert_eq!(labels, file.labels);
+        assert_eq!(rows.label(0), file.labels[file.measurements[0].posture]);
+    }
 }
 
 #[test]
@@ -74,6 +87,11 @@ fn a_file_of_many_chunks_streamed_equals_the_one_shot_qr_with_one_and_two_thread
     assert_eq!(one.1.lines[0], 3);
     assert_eq!(one.1.label(23_999), "pose 5999");
     assert_close(&one.0, &whole(&setup, &text));
+    let exact = parsed(&setup, &text).0;
+    assert_eq!(
+        one.0.residuals.map(f64::to_bits),
+        exact.residuals.map(f64::to_bits)
+    );
 }
 
 #[test]
