@@ -23,26 +23,38 @@ fn fast(bytes: &[u8]) -> Option<f64> {
         b'+' => (false, &bytes[1..]),
         _ => (false, bytes),
     };
-    let (mut w, mut digits, mut fraction, mut point) = (0u64, 0usize, 0usize, false);
-    for &b in rest {
-        match b {
-            b'0'..=b'9' => {
-                w = 10 * w + u64::from(b - b'0');
-                digits += 1;
-                fraction += usize::from(point);
-            }
-            b'.' if !point => point = true,
-            _ => return None,
-        }
-        if digits > 15 {
+    let (mut w, integer) = digits(rest, 0);
+    let (mut digits_total, mut fraction) = (integer, 0);
+    if let Some(after) = rest[integer..].strip_prefix(b".") {
+        let (v, n) = digits(after, w);
+        (w, fraction) = (v, n);
+        digits_total += n;
+        if n + 1 != rest.len() - integer {
             return None;
         }
+    } else if integer != rest.len() {
+        return None;
     }
-    if digits == 0 {
+    if digits_total == 0 || digits_total > 15 {
         return None;
     }
     let value = w as f64 / POWERS[fraction];
     Some(if negative { -value } else { value })
+}
+
+/// `w` followed by the leading decimal digits of `bytes` (wrapping beyond `u64`: the caller
+/// refuses more than 15 digits), and how many there are.
+fn digits(bytes: &[u8], mut w: u64) -> (u64, usize) {
+    let mut n = 0;
+    for &b in bytes {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        w = w.wrapping_mul(10).wrapping_add(u64::from(d));
+        n += 1;
+    }
+    (w, n)
 }
 
 #[cfg(test)]
