@@ -160,20 +160,28 @@ impl Chunk {
 /// Reads a measurement file chunk by chunk from any [`BufRead`] (module docs): the memory is that
 /// of one chunk (about `PIECES x PIECE_BYTES` of text and its rows) and of the posture labels.
 pub struct Reader<R> {
-    source: R,
+    text: Text<R>,
     layout: Layout,
     /// The line of the header.
     header_line: u64,
-    /// Lines read so far.
-    line: u64,
-    /// Measurements read so far.
-    rows: usize,
-    /// `None` when the rows' postures are not numbered ([`Reader::unlabelled`]).
-    labels: Option<Labels>,
-    /// The pieces of text of the chunk being read, each with the line it starts at, and their
-    /// rows (buffers kept from chunk to chunk).
-    pieces: Vec<(u64, Vec<u8>)>,
+    numbering: Numbering,
+    /// The rows of the pieces of text being read (buffers kept from chunk to chunk).
     parsed: Vec<Parsed>,
+}
+
+/// The source, the lines read so far and the pieces of text of the chunk being read, each with
+/// the line it starts at (buffers kept from chunk to chunk): what reading and parsing needs.
+struct Text<R> {
+    source: R,
+    line: u64,
+    pieces: Vec<(u64, Vec<u8>)>,
+}
+
+/// The measurements collected into chunks so far and their posture labels.
+#[derive(Default)]
+struct Numbering {
+    rows: usize,
+    labels: Labels,
 }
 
 impl<R: BufRead> Reader<R> {
@@ -215,13 +223,14 @@ impl<R: BufRead> Reader<R> {
             ));
         }
         Ok(Self {
-            source,
+            text: Text {
+                source,
+                line,
+                pieces: Vec::new(),
+            },
             layout: Layout::new(header, line)?,
             header_line: line,
-            line,
-            rows: 0,
-            labels: Some(Labels::default()),
-            pieces: Vec::new(),
+            numbering: Numbering::default(),
             parsed: Vec::new(),
         })
     }
@@ -244,24 +253,90 @@ impl<R: BufRead> Reader<R> {
     /// Reads the next rows into `chunk` (its buffers reused); `false` at the end of the source.
     fn read_chunk(&mut self, chunk: &mut Chunk) -> Result<bool> {
         loop {
-            let pieces = self.read_pieces()?;
-            self.parse_pieces(pieces, chunk)?;
-            match (chunk.measurements.is_empty(), pieces == 0, self.rows) {
-                (true, true, 0) => {
-                    return Err(problem(
-                        self.header_line,
-                        None,
-                        ColumnProblem::NoRows {
-                            what: "measurement row",
-                        },
-                    ))
-                }
-                (true, true, _) => return Ok(false),
+            let pieces = self.text.parse(&self.layout, &mut self.parsed)?;
+            self.numbering
+                .collect(&mut self.parsed[..pieces], chunk)?;
+            match (chunk.measurements.is_empty(), pieces == 0) {
+                (true, true) => return self.end().map(|()| false),
                 // Only comments and blank lines: read on.
-                (true, false, _) => {}
-                (false, _, _) => return Ok(true),
+                (true, false) => {}
+                (false, _) => return Ok(true),
             }
         }
+    }
+
+    /// At the end of the source: [`ColumnProblem::NoRows`] if there were no rows.
+    fn end(&self) -> Result<()> {
+        match self.numbering.rows {
+            0 => Err(problem(
+                self.header_line,
+                None,
+                ColumnProblem::NoRows {
+                    what: "measurement row",
+                },
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The posture labels of the rows read so far; [`Labels::get`]`(m.posture)` is the label of
+    /// measurement `m`.
+    pub fn into_labels(self) -> Labels {
+        self.numbering.labels.into_list()
+    }
+}
+
+impl<R: BufRead + Send> Reader<R> {
+    /// Calls `each` with every chunk ([`Reader::next_chunk`]), in file order; the next chunk's
+    /// text is read and parsed while the current one's postures are numbered and `each` works on
+    /// it (in parallel, with rayon), so at most two chunks are held.
+    ///
+    /// # Errors
+    /// The first of `each`'s, then those of [`Reader::next_chunk`], in file order: an error in a
+    /// chunk comes before a reading error in the next one.
+    pub fn for_each_chunk(
+        &mut self,
+        mut each: impl FnMut(&mut Chunk) -> Result<()> + Send,
+    ) -> Result<()> {
+        let (mut chunk, mut ahead) = (Chunk::default(), Vec::new());
+        let mut pieces = self.text.parse(&self.layout, &mut self.parsed)?;
+        while pieces > 0 {
+            let Self {
+                text,
+                layout,
+                numbering,
+                parsed,
+                ..
+            } = self;
+            let (read, done) = rayon::join(
+                || text.parse(layout, &mut ahead),
+                || {
+                    numbering.collect(&mut parsed[..pieces], &mut chunk)?;
+                    match chunk.measurements.is_empty() {
+                        true => Ok(()),
+                        false => each(&mut chunk),
+                    }
+                },
+            );
+            done?;
+            pieces = read?;
+            std::mem::swap(&mut self.parsed, &mut ahead);
+        }
+        self.end()
+    }
+}
+
+impl<R: BufRead> Text<R> {
+    /// Reads up to [`PIECES`] pieces of text and parses them in parallel into `parsed`; returns
+    /// how many (none at the end of the source).
+    fn parse(&mut self, layout: &Layout, parsed: &mut Vec<Parsed>) -> Result<usize> {
+        let n = self.read_pieces()?;
+        parsed.resize_with(n.max(parsed.len()), Parsed::default);
+        self.pieces[..n]
+            .par_iter()
+            .zip(parsed[..n].par_iter_mut())
+            .for_each(|((line, text), parsed)| parsed.fill(layout, text, *line));
+        Ok(n)
     }
 
     /// Reads up to [`PIECES`] pieces of text into `self.pieces`, each with the line it starts
@@ -284,26 +359,19 @@ impl<R: BufRead> Reader<R> {
         }
         Ok(PIECES)
     }
+}
 
-    /// The rows of the first `n` pieces, parsed in parallel, postures numbered in file order,
-    /// into `chunk` (cleared first).
-    fn parse_pieces(&mut self, n: usize, chunk: &mut Chunk) -> Result<()> {
-        self.parsed
-            .resize_with(n.max(self.parsed.len()), Parsed::default);
-        let layout = &self.layout;
-        self.pieces[..n]
-            .par_iter()
-            .zip(self.parsed[..n].par_iter_mut())
-            .for_each(|((line, text), parsed)| parsed.fill(layout, text, *line));
+impl Numbering {
+    /// The rows of some parsed pieces, in file order, into `chunk` (cleared first), postures
+    /// numbered in order of first appearance; the first error of a piece.
+    fn collect(&mut self, parsed: &mut [Parsed], chunk: &mut Chunk) -> Result<()> {
         chunk.measurements.clear();
         chunk.lines.clear();
         chunk.first = self.rows;
-        for piece in &mut self.parsed[..n] {
+        for piece in parsed {
             let mut start = 0;
             for (mut measurement, line, end) in piece.rows.drain(..) {
-                if let Some(labels) = &mut self.labels {
-                    measurement.posture = labels.number(&piece.labels[start..end]);
-                }
+                measurement.posture = self.labels.number(&piece.labels[start..end]);
                 start = end;
                 chunk.measurements.push(measurement);
                 chunk.lines.push(line);
@@ -313,43 +381,6 @@ impl<R: BufRead> Reader<R> {
             }
         }
         self.rows += chunk.measurements.len();
-        Ok(())
-    }
-
-    /// Reads without numbering the postures: every measurement's posture is 0 (for a second
-    /// reading that needs only the quantities; saves the label bookkeeping).
-    pub fn unlabelled(mut self) -> Self {
-        self.labels = None;
-        self
-    }
-
-    /// The posture labels of the rows read so far; [`Labels::get`]`(m.posture)` is the label of
-    /// measurement `m` (none when [`Reader::unlabelled`]).
-    pub fn into_labels(self) -> Labels {
-        self.labels.map(Labels::into_list).unwrap_or_default()
-    }
-}
-
-impl<R: BufRead + Send> Reader<R> {
-    /// Calls `each` with every chunk ([`Reader::next_chunk`]), in file order; the next chunk is
-    /// read and parsed while `each` works on the current one (in parallel, with rayon), so at most
-    /// two chunks are held.
-    ///
-    /// # Errors
-    /// The first of `each`'s, then those of [`Reader::next_chunk`], in file order: `each`'s error
-    /// for a chunk comes before a reading error in the next one.
-    pub fn for_each_chunk(
-        &mut self,
-        mut each: impl FnMut(&mut Chunk) -> Result<()> + Send,
-    ) -> Result<()> {
-        let (mut current, mut next) = (Chunk::default(), Chunk::default());
-        let mut more = self.read_chunk(&mut current)?;
-        while more {
-            let (read, done) = rayon::join(|| self.read_chunk(&mut next), || each(&mut current));
-            done?;
-            more = read?;
-            std::mem::swap(&mut current, &mut next);
-        }
         Ok(())
     }
 }
