@@ -254,8 +254,7 @@ impl<R: BufRead> Reader<R> {
     fn read_chunk(&mut self, chunk: &mut Chunk) -> Result<bool> {
         loop {
             let pieces = self.text.parse(&self.layout, &mut self.parsed)?;
-            self.numbering
-                .collect(&mut self.parsed[..pieces], chunk)?;
+            self.numbering.collect(&mut self.parsed[..pieces], chunk)?;
             match (chunk.measurements.is_empty(), pieces == 0) {
                 (true, true) => return self.end().map(|()| false),
                 // Only comments and blank lines: read on.
