@@ -173,17 +173,13 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
 }
 
 /// The least-squares identification of the measurement file at `path` (`data`: the file opened
-/// by [`open`]), of any size, read twice in chunks (`stiffid::identify::streamed`), and where each
+/// by [`open`]), of any size, read once in chunks (`stiffid::identify::streamed`), and where each
 /// row came from; errors start with the file name, then the line and column.
 pub fn identify_streamed(
     path: &Path,
     data: Capped<File>,
     setup: &Setup,
 ) -> Result<(Identification, Rows)> {
-    let mut first = Some(data);
-    let mut open = || match first.take() {
-        Some(file) => Ok(BufReader::with_capacity(1 << 20, file)),
-        None => File::open(path).map(|file| BufReader::with_capacity(1 << 20, Capped::new(file))),
-    };
-    streamed::least_squares(setup, &mut open).with_context(|| path.display().to_string())
+    let source = BufReader::with_capacity(1 << 20, data);
+    streamed::least_squares(setup, source).with_context(|| path.display().to_string())
 }

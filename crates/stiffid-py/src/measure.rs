@@ -9,12 +9,10 @@ use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness;
-use stiffid::formats::Capped;
 use stiffid::identify::{Identification as Fit, Loss};
 use stiffid::limits;
 use stiffid::observation::{Measurement, Observations};
@@ -321,17 +319,13 @@ pub fn identify(
     ))
 }
 
-/// Plain least squares from the measurement file at `path`, of any size: read twice in chunks,
+/// Plain least squares from the measurement file at `path`, of any size: read once in chunks,
 /// `Psi` reduced in blocks (as `stiffid identify`, [`stiffid::identify::streamed`]).
 fn identify_file(py: Python<'_>, s: &stiffid::Setup, path: &Path) -> PyResult<Identification> {
     let name = path.display().to_string();
-    let mut first = Some(error::open(path)?);
-    let mut open = || match first.take() {
-        Some(file) => Ok(BufReader::new(file)),
-        None => File::open(path).map(|file| BufReader::new(Capped::new(file))),
-    };
+    let source = BufReader::new(error::open(path)?);
     let (fit, rows) = py
-        .detach(|| stiffid::identify::streamed::least_squares(s, &mut open))
+        .detach(|| stiffid::identify::streamed::least_squares(s, source))
         .map_err(|e| error::raise_in(&name, e))?;
     let labels = rows.labels.iter().map(str::to_string).collect();
     Ok(Identification::new(

@@ -205,7 +205,7 @@ def test_deflection_uncertainty(fanuc):
 
 def test_a_file_of_many_chunks_equals_the_arrays_and_the_command(fanuc, cli, tmp_path):
     """A file of 50 000 rows (the FANUC rows cycled, each its own posture: several chunks of the
-    streamed reader) identified from its path (read twice in chunks) equals the same rows given
+    streamed reader) identified from its path (read once in chunks) equals the same rows given
     as arrays (in memory) to 1e-12 and the command's JSON."""
     lines = [l for l in FANUC_DATA.read_text().splitlines() if l and not l.startswith("#")]
     header, rows = lines[0], [l.split(",") for l in lines[1:]]

@@ -214,7 +214,7 @@ impl<'a> InBlocks<'a> {
     /// # Errors
     /// [`Error::InvalidField`] when every displacement is zero; those of [`Reduced::try_solve`]
     /// ([`Error::TooFewRows`], [`Error::Unidentifiable`], [`Error::NotFinite`]).
-    pub fn solve(mut self) -> Result<Solved> {
+    pub fn solve(&mut self) -> Result<Solved> {
         let pending = std::mem::take(&mut self.pending);
         self.reduce(&pending);
         if !self.deflected {
@@ -225,6 +225,11 @@ impl<'a> InBlocks<'a> {
             postures: self.check.postures(),
             measurements: self.reduced.rows() / 3,
         })
+    }
+
+    /// The axis angles of `posture` (those of its first measurement), if it was pushed.
+    pub fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
+        self.check.angles(posture)
     }
 }
 

@@ -28,6 +28,8 @@
 //! threads). [`parse`] is the reader over a `&str`.
 
 mod columns;
+mod decimal;
+mod plain;
 
 pub use columns::Layout;
 
@@ -47,7 +49,7 @@ use std::io::BufRead;
 pub const PIECE_BYTES: usize = 1 << 19;
 
 /// Pieces per chunk ([`Reader::next_chunk`]): a chunk holds about 4 MiB of text.
-const PIECES: usize = 8;
+const PIECES: usize = 4;
 
 /// The measurements of a file and where each came from.
 #[derive(Debug, Clone, PartialEq)]
@@ -135,7 +137,7 @@ impl MeasurementFile {
 }
 
 /// Some consecutive rows of a measurement file ([`Reader::next_chunk`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Chunk {
     /// One per row, SI units, point 0-based, in the file's frames; postures numbered over the
     /// whole file in order of first appearance.
@@ -158,16 +160,28 @@ impl Chunk {
 /// Reads a measurement file chunk by chunk from any [`BufRead`] (module docs): the memory is that
 /// of one chunk (about `PIECES x PIECE_BYTES` of text and its rows) and of the posture labels.
 pub struct Reader<R> {
-    source: R,
+    text: Text<R>,
     layout: Layout,
     /// The line of the header.
     header_line: u64,
-    /// Lines read so far.
+    numbering: Numbering,
+    /// The rows of the pieces of text being read (buffers kept from chunk to chunk).
+    parsed: Vec<Parsed>,
+}
+
+/// The source, the lines read so far and the pieces of text of the chunk being read, each with
+/// the line it starts at (buffers kept from chunk to chunk): what reading and parsing needs.
+struct Text<R> {
+    source: R,
     line: u64,
-    /// Measurements read so far.
+    pieces: Vec<(u64, Vec<u8>)>,
+}
+
+/// The measurements collected into chunks so far and their posture labels.
+#[derive(Default)]
+struct Numbering {
     rows: usize,
-    /// `None` when the rows' postures are not numbered ([`Reader::unlabelled`]).
-    labels: Option<Labels>,
+    labels: Labels,
 }
 
 impl<R: BufRead> Reader<R> {
@@ -209,12 +223,15 @@ impl<R: BufRead> Reader<R> {
             ));
         }
         Ok(Self {
-            source,
+            text: Text {
+                source,
+                line,
+                pieces: Vec::new(),
+            },
             layout: Layout::new(header, line)?,
             header_line: line,
-            line,
-            rows: 0,
-            labels: Some(Labels::default()),
+            numbering: Numbering::default(),
+            parsed: Vec::new(),
         })
     }
 
@@ -229,84 +246,141 @@ impl<R: BufRead> Reader<R> {
     /// As [`parse`], for the first bad row of the chunk (in file order); [`ColumnProblem::NoRows`]
     /// at the end of a source without rows; [`ColumnProblem::Unreadable`] when the source fails.
     pub fn next_chunk(&mut self) -> Result<Option<Chunk>> {
+        let mut chunk = Chunk::default();
+        Ok(self.read_chunk(&mut chunk)?.then_some(chunk))
+    }
+
+    /// Reads the next rows into `chunk` (its buffers reused); `false` at the end of the source.
+    fn read_chunk(&mut self, chunk: &mut Chunk) -> Result<bool> {
         loop {
-            let pieces = self.read_pieces()?;
-            let chunk = self.parse_pieces(&pieces)?;
-            match (chunk.measurements.is_empty(), pieces.is_empty(), self.rows) {
-                (true, true, 0) => {
-                    return Err(problem(
-                        self.header_line,
-                        None,
-                        ColumnProblem::NoRows {
-                            what: "measurement row",
-                        },
-                    ))
-                }
-                (true, true, _) => return Ok(None),
+            let pieces = self.text.parse(&self.layout, &mut self.parsed)?;
+            self.numbering.collect(&mut self.parsed[..pieces], chunk)?;
+            match (chunk.measurements.is_empty(), pieces == 0) {
+                (true, true) => return self.end().map(|()| false),
                 // Only comments and blank lines: read on.
-                (true, false, _) => {}
-                (false, _, _) => return Ok(Some(chunk)),
+                (true, false) => {}
+                (false, _) => return Ok(true),
             }
         }
     }
 
-    /// Up to [`PIECES`] pieces of text and the line each starts at; none at the end.
-    fn read_pieces(&mut self) -> Result<Vec<(u64, Vec<u8>)>> {
-        let mut pieces = Vec::new();
-        for _ in 0..PIECES {
-            let mut piece = Vec::with_capacity(PIECE_BYTES + 256);
+    /// At the end of the source: [`ColumnProblem::NoRows`] if there were no rows.
+    fn end(&self) -> Result<()> {
+        match self.numbering.rows {
+            0 => Err(problem(
+                self.header_line,
+                None,
+                ColumnProblem::NoRows {
+                    what: "measurement row",
+                },
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The posture labels of the rows read so far; [`Labels::get`]`(m.posture)` is the label of
+    /// measurement `m`.
+    pub fn into_labels(self) -> Labels {
+        self.numbering.labels.into_list()
+    }
+}
+
+impl<R: BufRead + Send> Reader<R> {
+    /// Calls `each` with every chunk ([`Reader::next_chunk`]), in file order; the next chunk's
+    /// text is read and parsed while the current one's postures are numbered and `each` works on
+    /// it (in parallel, with rayon), so at most two chunks are held.
+    ///
+    /// # Errors
+    /// The first of `each`'s, then those of [`Reader::next_chunk`], in file order: an error in a
+    /// chunk comes before a reading error in the next one.
+    pub fn for_each_chunk(
+        &mut self,
+        mut each: impl FnMut(&mut Chunk) -> Result<()> + Send,
+    ) -> Result<()> {
+        let (mut chunk, mut ahead) = (Chunk::default(), Vec::new());
+        let mut pieces = self.text.parse(&self.layout, &mut self.parsed)?;
+        while pieces > 0 {
+            let Self {
+                text,
+                layout,
+                numbering,
+                parsed,
+                ..
+            } = self;
+            let (read, done) = rayon::join(
+                || text.parse(layout, &mut ahead),
+                || {
+                    numbering.collect(&mut parsed[..pieces], &mut chunk)?;
+                    match chunk.measurements.is_empty() {
+                        true => Ok(()),
+                        false => each(&mut chunk),
+                    }
+                },
+            );
+            done?;
+            pieces = read?;
+            std::mem::swap(&mut self.parsed, &mut ahead);
+        }
+        self.end()
+    }
+}
+
+impl<R: BufRead> Text<R> {
+    /// Reads up to [`PIECES`] pieces of text and parses them in parallel into `parsed`; returns
+    /// how many (none at the end of the source).
+    fn parse(&mut self, layout: &Layout, parsed: &mut Vec<Parsed>) -> Result<usize> {
+        let n = self.read_pieces()?;
+        parsed.resize_with(n.max(parsed.len()), Parsed::default);
+        self.pieces[..n]
+            .par_iter()
+            .zip(parsed[..n].par_iter_mut())
+            .for_each(|((line, text), parsed)| parsed.fill(layout, text, *line));
+        Ok(n)
+    }
+
+    /// Reads up to [`PIECES`] pieces of text into `self.pieces`, each with the line it starts
+    /// at; returns how many (none at the end).
+    fn read_pieces(&mut self) -> Result<usize> {
+        for n in 0..PIECES {
+            if self.pieces.len() == n {
+                self.pieces.push((0, Vec::with_capacity(PIECE_BYTES + 256)));
+            }
+            let (start, piece) = &mut self.pieces[n];
+            piece.clear();
             let line = self.line;
-            read_piece(&mut self.source, &mut piece)
+            read_piece(&mut self.source, piece)
                 .map_err(|e| unreadable(line + 1, &e.to_string()))?;
             if piece.is_empty() {
-                break;
+                return Ok(n);
             }
             self.line += piece.iter().filter(|b| **b == b'\n').count() as u64;
-            pieces.push((line + 1, piece));
+            *start = line + 1;
         }
-        Ok(pieces)
+        Ok(PIECES)
     }
+}
 
-    /// The rows of some pieces, parsed in parallel, postures numbered in file order.
-    fn parse_pieces(&mut self, pieces: &[(u64, Vec<u8>)]) -> Result<Chunk> {
-        let parsed: Vec<Parsed> = pieces
-            .par_iter()
-            .map(|(line, text)| Parsed::new(&self.layout, text, *line))
-            .collect();
-        let mut chunk = Chunk {
-            measurements: Vec::with_capacity(parsed.iter().map(|p| p.rows.len()).sum()),
-            lines: Vec::new(),
-            first: self.rows,
-        };
+impl Numbering {
+    /// The rows of some parsed pieces, in file order, into `chunk` (cleared first), postures
+    /// numbered in order of first appearance; the first error of a piece.
+    fn collect(&mut self, parsed: &mut [Parsed], chunk: &mut Chunk) -> Result<()> {
+        chunk.measurements.clear();
+        chunk.lines.clear();
+        chunk.first = self.rows;
         for piece in parsed {
             let mut start = 0;
-            for (mut measurement, line, end) in piece.rows {
-                if let Some(labels) = &mut self.labels {
-                    measurement.posture = labels.number(&piece.labels[start..end]);
-                }
+            for (mut measurement, line, end) in piece.rows.drain(..) {
+                measurement.posture = self.labels.number(&piece.labels[start..end]);
                 start = end;
                 chunk.measurements.push(measurement);
                 chunk.lines.push(line);
             }
-            if let Some(e) = piece.error {
+            if let Some(e) = piece.error.take() {
                 return Err(e);
             }
         }
         self.rows += chunk.measurements.len();
-        Ok(chunk)
-    }
-
-    /// Reads without numbering the postures: every measurement's posture is 0 (for a second
-    /// reading that needs only the quantities; saves the label bookkeeping).
-    pub fn unlabelled(mut self) -> Self {
-        self.labels = None;
-        self
-    }
-
-    /// The posture labels of the rows read so far; [`Labels::get`]`(m.posture)` is the label of
-    /// measurement `m` (none when [`Reader::unlabelled`]).
-    pub fn into_labels(self) -> Labels {
-        self.labels.map(Labels::into_list).unwrap_or_default()
+        Ok(())
     }
 }
 
@@ -329,6 +403,7 @@ fn read_piece(source: &mut impl BufRead, piece: &mut Vec<u8>) -> std::io::Result
 }
 
 /// The rows of one piece of text, parsed (postures not numbered yet), until its first error.
+#[derive(Default)]
 struct Parsed {
     /// The measurement, its line and the end of its label in `labels`.
     rows: Vec<(Measurement, u64, usize)>,
@@ -338,8 +413,16 @@ struct Parsed {
 }
 
 impl Parsed {
-    /// Parses `text`, whose first line is line `first` of the file.
-    fn new(layout: &Layout, text: &[u8], first: u64) -> Self {
+    /// Parses `text`, whose first line is line `first` of the file, into `self` (its buffers
+    /// reused): split directly when its lines are plain ([`plain`]), else by the `csv` crate.
+    fn fill(&mut self, layout: &Layout, text: &[u8], first: u64) {
+        if !plain::parse(layout, text, first, self) {
+            *self = Self::by_csv(layout, text, first);
+        }
+    }
+
+    /// Parses `text` with the `csv` crate (quoted fields, errors).
+    fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
         let mut parsed = Self {
             rows: Vec::with_capacity(text.len() / 64),
             labels: String::new(),
@@ -362,12 +445,17 @@ impl Parsed {
             .from_reader(body);
         let mut record = csv::StringRecord::new();
         let mut error = None;
+        let mut lines = LineCount {
+            body,
+            byte: 0,
+            line: 1,
+        };
         loop {
-            let line = at(reader.position().line());
+            let line = at(lines.at(reader.position().byte()));
             let row = match reader.read_record(&mut record) {
                 Ok(false) => break,
                 Ok(true) => {
-                    let line = record.position().map_or(line, |p| at(p.line()));
+                    let line = record.position().map_or(line, |p| at(lines.at(p.byte())));
                     parsed.row(layout, &record, line).map_err(|e| (line, e))
                 }
                 Err(e) => Err((line, unreadable(line, &e.to_string()))),
@@ -412,10 +500,36 @@ impl Parsed {
             return Err(layout.at(line, posture, ColumnProblem::Unreadable { message }));
         }
         let columns: &Columns = &layout.columns;
-        let measurement = columns.measurement(record, 0, |c, p| layout.at(line, c, p))?;
+        let measurement = columns.measurement(|i| &record[i], 0, |c, p| layout.at(line, c, p))?;
         self.labels.push_str(label);
         self.rows.push((measurement, line, self.labels.len()));
         Ok(())
+    }
+}
+
+/// The line (1-based) of the record that starts at or after a byte of `body` (its line ends
+/// skipped), counted on from the previous byte asked for (bytes asked for never decrease). Not
+/// `csv`'s own line count, which is one too low after a `\r\n` line end (the `\n` is counted when
+/// the next record is read, after its position was taken).
+struct LineCount<'a> {
+    body: &'a [u8],
+    byte: usize,
+    line: u64,
+}
+
+impl LineCount<'_> {
+    fn at(&mut self, byte: u64) -> u64 {
+        let mut end = usize::try_from(byte).map_or(self.body.len(), |b| b.min(self.body.len()));
+        while matches!(self.body.get(end), Some(b'\r' | b'\n')) {
+            end += 1;
+        }
+        let end = end.max(self.byte);
+        self.line += self.body[self.byte..end]
+            .iter()
+            .filter(|b| **b == b'\n')
+            .count() as u64;
+        self.byte = end;
+        self.line
     }
 }
 
@@ -426,8 +540,10 @@ pub struct Labels {
     text: String,
     /// The end of each label in `text`.
     ends: Vec<usize>,
-    index: HashMap<u64, usize, BuildHasherDefault<Prehashed>>,
-    /// Labels whose hash an earlier label has (compared in full).
+    /// The number of the first label with each 32-bit hash ([`fx_hash`]; 8 bytes per entry).
+    index: HashMap<u32, u32, BuildHasherDefault<Prehashed>>,
+    /// Labels whose hash an earlier label has (compared in full), and those numbered beyond
+    /// `u32::MAX`.
     collided: HashMap<Box<str>, usize>,
     /// The previous row's number (rows of one posture usually follow each other).
     last: Option<usize>,
@@ -474,10 +590,13 @@ impl Labels {
         let next = self.len();
         let (text, ends) = (&self.text, &self.ends);
         let same = |i: usize| text[span(ends, i)] == *label;
-        let n = match self.index.entry(fx_hash(label.as_bytes())) {
-            Entry::Vacant(e) => *e.insert(next),
-            Entry::Occupied(e) if same(*e.get()) => *e.get(),
-            Entry::Occupied(_) => *self.collided.entry(label.into()).or_insert(next),
+        let n = match self.index.entry(fx_hash(label.as_bytes()) as u32) {
+            Entry::Vacant(e) if next <= u32::MAX as usize => {
+                e.insert(next as u32);
+                next
+            }
+            Entry::Occupied(e) if same(*e.get() as usize) => *e.get() as usize,
+            _ => *self.collided.entry(label.into()).or_insert(next),
         };
         if n == next {
             self.text.push_str(label);
@@ -504,7 +623,7 @@ impl<S: AsRef<str>> FromIterator<S> for Labels {
     }
 }
 
-/// A hasher for keys that are hashes already ([`fx_hash`]): passes a `u64` through.
+/// A hasher for keys that are hashes already ([`fx_hash`]): passes a `u32` through.
 #[derive(Default)]
 struct Prehashed(u64);
 
@@ -517,8 +636,9 @@ impl Hasher for Prehashed {
         self.0 = fx_hash(bytes);
     }
 
-    fn write_u64(&mut self, n: u64) {
-        self.0 = n;
+    fn write_u32(&mut self, n: u32) {
+        // Both halves: the table takes its bucket from the low bits, its tag from the top ones.
+        self.0 = u64::from(n) << 32 | u64::from(n);
     }
 }
 

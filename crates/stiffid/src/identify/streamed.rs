@@ -1,22 +1,28 @@
-//! Least-squares identification from a measurement file of any size: the file is read twice,
-//! chunk by chunk ([`Reader`]), and never held whole.
+//! Least-squares identification from a measurement file of any size, read once, chunk by chunk
+//! ([`Reader`]), and never held whole.
 //!
 //! 1. Every chunk is turned into the base frame, checked and reduced by QR in blocks
-//!    ([`InBlocks`]); what each row reports (label, line, measuring point) is kept.
-//! 2. After the solve, the file is read again and the residuals `delta - Psi h` of every row are
-//!    computed ([`residuals`]).
+//!    ([`InBlocks`]); what each row reports (label, line, measuring point) is kept, and what its
+//!    residual needs besides its posture's axis angles (which [`InBlocks`] keeps): its wrench
+//!    (the forces alone when the file has no moment columns and gives the wrench in the base
+//!    frame: the moments are then zero) and its displacement.
+//! 2. After the solve, the residuals `delta - Psi h` of every row are computed from what was
+//!    kept ([`residuals`]), in place of the displacements.
 //!
 //! The result equals [`least_squares`](super::least_squares) on the whole parsed file to the
-//! bit (the same blocks, merged in the same order), whatever the number of threads. Memory
-//! (about 50 MB per million rows, plus 80-140 bytes per distinct posture): one chunk of text and
-//! its rows, the labels, the axis angles of each posture (for [`crate::observation::Check`]) and
-//! per row its line, posture, measuring point and three residuals.
+//! bit (the same blocks, merged in the same order; the same residual of each row), whatever the
+//! number of threads. Memory (about 100 MB per million rows with forces alone, 125 MB with
+//! moments, plus 80-140 bytes per distinct posture): two chunks of text and their rows, the
+//! labels, the axis angles of each posture (for [`crate::observation::Check`]) and per row its
+//! line, posture, measuring point, wrench and displacement.
 
-use super::{residuals, Identification, InBlocks};
-use crate::error::ColumnProblem;
+use super::{residuals, Identification, InBlocks, BLOCK};
+use crate::deflection::Frame;
 use crate::formats::measurements::{Chunk, Labels, Layout, Reader};
 use crate::identify::frames;
-use crate::{Error, Result, Setup};
+use crate::observation::Measurement;
+use crate::{Result, Setup};
+use nalgebra::{Vector3, Vector6};
 use rayon::prelude::*;
 use std::io::BufRead;
 
@@ -42,74 +48,107 @@ impl Rows {
     }
 }
 
-/// Identifies the joint stiffness from the measurement file that `open` gives (each call a new
-/// reader from the start of the same file; it is called twice), as
+/// Identifies the joint stiffness from the measurement file that `source` reads, as
 /// [`least_squares`](super::least_squares) on the parsed file in the base frame.
 ///
 /// # Errors
-/// Those of [`Reader::new`] and [`Reader::next_chunk`], and those of [`InBlocks`] explained as
-/// [`Error::Column`] (line and column of the measurement); [`ColumnProblem::Unreadable`] when
-/// `open` fails or the file changed between the two readings.
-pub fn least_squares<R: BufRead>(
+/// Those of [`Reader::new`] and [`Reader::for_each_chunk`], and those of [`InBlocks`] explained
+/// as [`crate::Error::Column`] (line and column of the measurement).
+pub fn least_squares<R: BufRead + Send>(
     setup: &Setup,
-    mut open: impl FnMut() -> std::io::Result<R>,
+    source: R,
 ) -> Result<(Identification, Rows)> {
-    let mut reader = Reader::new(open().map_err(unreadable)?)?;
+    let mut reader = Reader::new(source)?;
+    let layout = reader.layout().clone();
     let mut blocks = InBlocks::new(setup);
     let mut rows = Rows {
         labels: Labels::default(),
         postures: Vec::new(),
         lines: Vec::new(),
         points: Vec::new(),
-        layout: reader.layout().clone(),
+        layout: layout.clone(),
     };
-    while let Some(chunk) = base_frame_chunk(setup, &mut reader)? {
+    let mut kept = Kept::new(&layout);
+    reader.for_each_chunk(|chunk| {
+        to_base_frame(setup, &layout, chunk)?;
         blocks
             .push(&chunk.measurements)
-            .map_err(|e| reader.layout().explain(e, |n| chunk.line_of(n)))?;
+            .map_err(|e| layout.explain(e, |n| chunk.line_of(n)))?;
         rows.postures
             .extend(chunk.measurements.iter().map(|m| m.posture));
         rows.points
             .extend(chunk.measurements.iter().map(|m| m.point));
-        rows.lines.extend(chunk.lines);
-    }
+        rows.lines.extend_from_slice(&chunk.lines);
+        kept.push(&chunk.measurements);
+        Ok(())
+    })?;
     rows.labels = reader.into_labels();
     let solved = blocks.solve()?;
     let h = solved.solution.h;
-    let mut again = Reader::new(open().map_err(unreadable)?)?.unlabelled();
-    let mut all = Vec::with_capacity(3 * rows.lines.len());
-    while let Some(chunk) = base_frame_chunk(setup, &mut again)? {
-        all.extend(residuals(setup, &h, &chunk.measurements));
-    }
-    if all.len() != 3 * rows.lines.len() {
-        return Err(unreadable(std::io::Error::other(
-            "the file changed while it was read",
-        )));
-    }
+    let mut all = std::mem::take(&mut kept.displacements);
+    all.par_chunks_mut(3 * BLOCK)
+        .enumerate()
+        .for_each(|(b, block)| {
+            let first = b * BLOCK;
+            let measurements: Vec<Measurement> = (first..first + block.len() / 3)
+                .map(|i| {
+                    let posture = rows.postures[i];
+                    Measurement {
+                        posture,
+                        point: rows.points[i],
+                        q: *blocks.angles(posture).expect("every posture was checked"),
+                        wrench: kept.wrench(i),
+                        displacement: Vector3::from_column_slice(&block[3 * (i - first)..][..3]),
+                    }
+                })
+                .collect();
+            block.copy_from_slice(&residuals(setup, &h, &measurements));
+        });
     Ok((solved.finish(all), rows))
 }
 
-/// The next chunk of `reader`, turned into the base frame ([`frames::to_base`]).
-fn base_frame_chunk<R: BufRead>(setup: &Setup, reader: &mut Reader<R>) -> Result<Option<Chunk>> {
-    let Some(mut chunk) = reader.next_chunk()? else {
-        return Ok(None);
-    };
-    let layout = reader.layout();
+/// What the residual of each row needs besides its posture's axis angles and measuring point:
+/// the wrench (base frame; its forces alone when the moments are zero) and the displacement.
+struct Kept {
+    /// Numbers of the wrench kept per row: 3 (forces, zero moments) or 6.
+    width: usize,
+    wrenches: Vec<f64>,
+    displacements: Vec<f64>,
+}
+
+impl Kept {
+    fn new(layout: &Layout) -> Self {
+        let zero_moments = !layout.has_moments() && layout.wrench_frame() == Frame::Base;
+        Self {
+            width: if zero_moments { 3 } else { 6 },
+            wrenches: Vec::new(),
+            displacements: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, measurements: &[Measurement]) {
+        for m in measurements {
+            self.wrenches
+                .extend_from_slice(&m.wrench.as_slice()[..self.width]);
+            self.displacements
+                .extend_from_slice(m.displacement.as_slice());
+        }
+    }
+
+    /// The wrench of row `i`.
+    fn wrench(&self, i: usize) -> Vector6<f64> {
+        let mut w = Vector6::zeros();
+        w.as_mut_slice()[..self.width]
+            .copy_from_slice(&self.wrenches[self.width * i..][..self.width]);
+        w
+    }
+}
+
+/// Turns the measurements of `chunk` into the base frame ([`frames::to_base`]).
+fn to_base_frame(setup: &Setup, layout: &Layout, chunk: &mut Chunk) -> Result<()> {
     let (wrench, displacement) = (layout.wrench_frame(), layout.displacement_frame());
     chunk
         .measurements
-        .par_chunks_mut(super::BLOCK)
-        .try_for_each(|part| frames::to_base(setup, part, wrench, displacement))?;
-    Ok(Some(chunk))
-}
-
-fn unreadable(e: std::io::Error) -> Error {
-    Error::Column {
-        line: 1,
-        column: None,
-        name: String::new(),
-        problem: ColumnProblem::Unreadable {
-            message: e.to_string(),
-        },
-    }
+        .par_chunks_mut(BLOCK)
+        .try_for_each(|part| frames::to_base(setup, part, wrench, displacement))
 }

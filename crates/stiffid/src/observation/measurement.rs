@@ -1,7 +1,6 @@
 //! The observation matrix of measured data: [`Measurement`]s checked and stacked into
 //! [`Observations`] (`Psi` and `delta`, Eq. 10-11), row order as in [`crate::observation`].
 
-use crate::kinematics::Frames;
 use crate::observation::point_rows;
 use crate::stiffness::joint_torques;
 use crate::{Error, MeasurementField, Result, Setup};
@@ -139,6 +138,13 @@ impl Check {
     pub fn postures(&self) -> usize {
         self.angles.len()
     }
+
+    /// The axis angles of `posture` (those of its first measurement), if it was checked.
+    pub fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
+        self.table
+            .get(posture)
+            .map(|(index, _)| &self.angles[index])
+    }
 }
 
 /// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x 6`) and `delta`
@@ -156,33 +162,30 @@ pub fn assemble(
     delta: &mut DVector<f64>,
 ) {
     assert!(psi.nrows() == 3 * measurements.len() && delta.len() == psi.nrows());
-    // The measurement the frames and torques were computed for, the frames and the torques.
-    let mut state: Option<(usize, Frames, Vector6<f64>)> = None;
-    for (i, meas) in measurements.iter().enumerate() {
-        if state
-            .as_ref()
-            .is_some_and(|(j, _, _)| measurements[*j].q != meas.q)
-        {
-            state = None;
+    let mut i = 0;
+    while i < measurements.len() {
+        // One run of measurements with the same axis angles: its frames (computed in place, not
+        // moved: they are large), and the torques of the previous measurement's wrench.
+        let first = &measurements[i];
+        let frames = setup.robot().frames(&first.q);
+        let mut tau = joint_torques(setup, &frames, &first.wrench);
+        let mut previous = first;
+        while let Some(meas) = measurements.get(i).filter(|m| m.q == first.q) {
+            if previous.wrench != meas.wrench {
+                tau = joint_torques(setup, &frames, &meas.wrench);
+            }
+            previous = meas;
+            psi.fixed_view_mut::<3, 6>(3 * i, 0).copy_from(&point_rows(
+                setup,
+                &frames,
+                &setup.tool().measuring_points[meas.point],
+                &tau,
+            ));
+            delta
+                .fixed_rows_mut::<3>(3 * i)
+                .copy_from(&meas.displacement);
+            i += 1;
         }
-        let (j, frames, tau) = state.get_or_insert_with(|| {
-            let frames = setup.robot().frames(&meas.q);
-            let tau = joint_torques(setup, &frames, &meas.wrench);
-            (i, frames, tau)
-        });
-        if measurements[*j].wrench != meas.wrench {
-            *tau = joint_torques(setup, frames, &meas.wrench);
-        }
-        *j = i;
-        psi.fixed_view_mut::<3, 6>(3 * i, 0).copy_from(&point_rows(
-            setup,
-            frames,
-            &setup.tool().measuring_points[meas.point],
-            tau,
-        ));
-        delta
-            .fixed_rows_mut::<3>(3 * i)
-            .copy_from(&meas.displacement);
     }
 }
 
@@ -249,13 +252,17 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
 }
 
 /// Posture -> (its dense number, its first measurement, 1-based): a table indexed by the
-/// posture number while the numbers are small (as a file's are), else a hash map.
+/// posture number while the numbers are small (as a file's are) and fit in 32 bits (8 bytes per
+/// posture), else a hash map.
 #[derive(Debug)]
 enum Table {
-    /// `(usize::MAX, 0)` before the posture is seen.
-    Dense(Vec<(usize, usize)>),
+    /// `UNSEEN` before the posture is seen.
+    Dense(Vec<(u32, u32)>),
     Sparse(HashMap<usize, (usize, usize)>),
 }
+
+/// The entry of a posture not seen yet in [`Table::Dense`].
+const UNSEEN: (u32, u32) = (u32::MAX, 0);
 
 impl Default for Table {
     fn default() -> Self {
@@ -267,30 +274,44 @@ impl Default for Table {
 const DENSE_GROWTH: usize = 2;
 
 impl Table {
+    /// The entry of `posture`, if it was seen.
+    fn get(&self, posture: usize) -> Option<(usize, usize)> {
+        match self {
+            Table::Dense(v) => v.get(posture).filter(|e| **e != UNSEEN).map(|e| widen(*e)),
+            Table::Sparse(m) => m.get(&posture).copied(),
+        }
+    }
+
     /// The entry of `posture`, `next` if it is new.
     fn entry(&mut self, posture: usize, next: (usize, usize)) -> (usize, usize) {
         if let Table::Dense(v) = self {
-            if posture >= v.len() {
-                if posture <= DENSE_GROWTH * v.len() + 4096 {
-                    v.resize(posture + 1, (usize::MAX, 0));
-                } else {
-                    let map = v
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, e)| e.0 != usize::MAX)
-                        .map(|(p, e)| (p, *e))
-                        .collect();
-                    *self = Table::Sparse(map);
-                }
+            let fits = next.0 < u32::MAX as usize && next.1 < u32::MAX as usize;
+            let near = posture <= DENSE_GROWTH * v.len() + 4096;
+            if !fits || (posture >= v.len() && !near) {
+                let map = v
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, e)| **e != UNSEEN)
+                    .map(|(p, e)| (p, widen(*e)))
+                    .collect();
+                *self = Table::Sparse(map);
+            } else if posture >= v.len() {
+                v.resize(posture + 1, UNSEEN);
             }
         }
-        let slot = match self {
-            Table::Dense(v) => &mut v[posture],
-            Table::Sparse(m) => m.entry(posture).or_insert((usize::MAX, 0)),
-        };
-        if slot.0 == usize::MAX {
-            *slot = next;
+        match self {
+            Table::Dense(v) => {
+                let slot = &mut v[posture];
+                if *slot == UNSEEN {
+                    *slot = (next.0 as u32, next.1 as u32);
+                }
+                widen(*slot)
+            }
+            Table::Sparse(m) => *m.entry(posture).or_insert(next),
         }
-        *slot
     }
+}
+
+fn widen((index, first): (u32, u32)) -> (usize, usize) {
+    (index as usize, first as usize)
 }

@@ -157,18 +157,17 @@ impl Columns {
         })
     }
 
-    /// The measurement of one row; `error(column, problem)` places a problem in the row.
-    pub(super) fn measurement(
+    /// The measurement of one row, whose field `i` is `field(i)`; `error(column, problem)`
+    /// places a problem in the row.
+    pub(super) fn measurement<'a>(
         &self,
-        record: &csv::StringRecord,
+        field: impl Fn(usize) -> &'a str,
         posture: usize,
         error: impl Fn(usize, ColumnProblem) -> Error,
     ) -> Result<Measurement> {
         let number = |i: usize| -> Result<f64> {
-            let field = record[i].trim();
-            field
-                .parse::<f64>()
-                .ok()
+            let field = trim(field(i));
+            super::decimal::parse(field)
                 .filter(|v| v.is_finite())
                 .ok_or_else(|| {
                     error(
@@ -182,7 +181,7 @@ impl Columns {
         let vector3 = |c: [usize; 3]| -> Result<Vector3<f64>> {
             Ok(Vector3::new(number(c[0])?, number(c[1])?, number(c[2])?))
         };
-        let point_field = record[self.point].trim();
+        let point_field = trim(field(self.point));
         let point = point_field
             .parse::<usize>()
             .ok()
@@ -212,6 +211,16 @@ impl Columns {
             wrench: Vector6::new(force.x, force.y, force.z, moment.x, moment.y, moment.z),
             displacement: displacement_mm * 1e-3,
         })
+    }
+}
+
+/// `field.trim()`, without its search when the field starts and ends with ASCII that is not
+/// whitespace (the usual number).
+fn trim(field: &str) -> &str {
+    let visible = |b: Option<&u8>| b.is_some_and(|b| b.is_ascii_graphic());
+    match visible(field.as_bytes().first()) && visible(field.as_bytes().last()) {
+        true => field,
+        false => field.trim(),
     }
 }
 
@@ -299,6 +308,11 @@ impl Layout {
             name: self.header[column].clone(),
             problem,
         }
+    }
+
+    /// Whether the file has moment columns (else the moments are zero).
+    pub fn has_moments(&self) -> bool {
+        self.columns.moment.is_some()
     }
 
     /// The names of the force columns in the header, comma-separated.
