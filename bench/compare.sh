@@ -46,7 +46,7 @@ if has reproduce; then
   t0=$(date +%s.%N)
   "$stiffid" reproduce --out "$out/report" --force >/dev/null
   t1=$(date +%s.%N)
-  echo "{\"elapsed_s\": $(echo "$t1 - $t0" | bc -l)}" >"$out/rs-reproduce-time.json"
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "{\"elapsed_s\": %.6f}\n", b - a }' >"$out/rs-reproduce-time.json"
 fi
 
 echo "== stiffid criterion benches" >&2

@@ -28,7 +28,6 @@
 //! threads). [`parse`] is the reader over a `&str`.
 
 mod columns;
-mod decimal;
 mod plain;
 
 pub use columns::Layout;

@@ -167,7 +167,9 @@ impl Columns {
     ) -> Result<Measurement> {
         let number = |i: usize| -> Result<f64> {
             let field = trim(field(i));
-            super::decimal::parse(field)
+            field
+                .parse::<f64>()
+                .ok()
                 .filter(|v| v.is_finite())
                 .ok_or_else(|| {
                     error(
