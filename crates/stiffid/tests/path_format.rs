@@ -111,3 +111,29 @@ fn bad_files_name_the_line_and_column() {
         assert!(m.contains(message), "{text}: {m}");
     }
 }
+
+/// Lines are counted from the text, whatever the line ends: the csv crate's own count is one too
+/// low after a `\r\n` (it counts the `\n` when it reads the next record).
+#[test]
+fn lines_are_right_after_crlf_blank_and_comment_lines() {
+    let header = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n";
+    let good = "0,0,-90,0,30,0,0,0,-500";
+    let bad = "0,0,-90,0,30,0,0,0,x";
+    for end in ["\n", "\r\n"] {
+        let text = ["# c", header, good, "", "# d", good, bad].join(end) + end;
+        let points = parse(&text.replace(bad, good), Frame::Base).unwrap();
+        let lines: Vec<u64> = points.iter().map(|p| p.line).collect();
+        assert_eq!(lines, [3, 6, 7], "{end:?}");
+        assert_eq!(row_error(&text).0, 7, "{end:?}");
+    }
+}
+
+#[test]
+fn a_posture_file_names_the_line_of_a_crlf_row() {
+    let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+    let text = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\r\n1,0,0,-90,0,30,0\r\n\r\n2,0,0,-90,0,30,x\r\n";
+    match stiffid::formats::postures::parse(text, &robot, None) {
+        Err(Error::Column { line, name, .. }) => assert_eq!((line, name.as_str()), (4, "q6_deg")),
+        other => panic!("{other:?}"),
+    }
+}

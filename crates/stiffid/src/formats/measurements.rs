@@ -444,11 +444,7 @@ impl Parsed {
             .from_reader(body);
         let mut record = csv::StringRecord::new();
         let mut error = None;
-        let mut lines = LineCount {
-            body,
-            byte: 0,
-            line: 1,
-        };
+        let mut lines = super::LineCount::new(body);
         loop {
             let line = at(lines.at(reader.position().byte()));
             let row = match reader.read_record(&mut record) {
@@ -457,7 +453,7 @@ impl Parsed {
                     let line = record.position().map_or(line, |p| at(lines.at(p.byte())));
                     parsed.row(layout, &record, line).map_err(|e| (line, e))
                 }
-                Err(e) => Err((line, unreadable(line, &e.to_string()))),
+                Err(e) => Err((line, unreadable(line, &super::csv_message(&e)))),
             };
             if let Err(e) = row {
                 error = Some(e);
@@ -503,32 +499,6 @@ impl Parsed {
         self.labels.push_str(label);
         self.rows.push((measurement, line, self.labels.len()));
         Ok(())
-    }
-}
-
-/// The line (1-based) of the record that starts at or after a byte of `body` (its line ends
-/// skipped), counted on from the previous byte asked for (bytes asked for never decrease). Not
-/// `csv`'s own line count, which is one too low after a `\r\n` line end (the `\n` is counted when
-/// the next record is read, after its position was taken).
-struct LineCount<'a> {
-    body: &'a [u8],
-    byte: usize,
-    line: u64,
-}
-
-impl LineCount<'_> {
-    fn at(&mut self, byte: u64) -> u64 {
-        let mut end = usize::try_from(byte).map_or(self.body.len(), |b| b.min(self.body.len()));
-        while matches!(self.body.get(end), Some(b'\r' | b'\n')) {
-            end += 1;
-        }
-        let end = end.max(self.byte);
-        self.line += self.body[self.byte..end]
-            .iter()
-            .filter(|b| **b == b'\n')
-            .count() as u64;
-        self.byte = end;
-        self.line
     }
 }
 

@@ -202,3 +202,69 @@ fn edit_distance(a: &str, b: &str) -> usize {
     }
     row[b.len()]
 }
+
+/// The line (1-based) of the record that starts at or after a byte of `body` (its line ends
+/// skipped), counted on from the previous byte asked for (bytes asked for never decrease). Not
+/// `csv`'s own line count, which is one too low after a `\r\n` line end (the `\n` is counted when
+/// the next record is read, after its position was taken).
+pub(crate) struct LineCount<'a> {
+    body: &'a [u8],
+    byte: usize,
+    line: u64,
+    comments: bool,
+}
+
+impl<'a> LineCount<'a> {
+    /// Lines of `body`, counted from its start (line 1).
+    pub(crate) fn new(body: &'a [u8]) -> Self {
+        Self {
+            body,
+            byte: 0,
+            line: 1,
+            comments: false,
+        }
+    }
+
+    /// [`LineCount::new`] for a reader that skips comment lines (`#` first), which it reports at
+    /// the comment's start.
+    pub(crate) fn with_comments(body: &'a [u8]) -> Self {
+        Self {
+            comments: true,
+            ..Self::new(body)
+        }
+    }
+
+    /// The line of the record at `byte`.
+    pub(crate) fn at(&mut self, byte: u64) -> u64 {
+        let mut end = usize::try_from(byte).map_or(self.body.len(), |b| b.min(self.body.len()));
+        loop {
+            while matches!(self.body.get(end), Some(b'\r' | b'\n')) {
+                end += 1;
+            }
+            if !(self.comments && self.body.get(end) == Some(&b'#')) {
+                break;
+            }
+            end = self.body[end..]
+                .iter()
+                .position(|b| *b == b'\n')
+                .map_or(self.body.len(), |n| end + n);
+        }
+        let end = end.max(self.byte);
+        self.line += self.body[self.byte..end]
+            .iter()
+            .filter(|b| **b == b'\n')
+            .count() as u64;
+        self.byte = end;
+        self.line
+    }
+}
+
+/// A `csv` reader's error without its own position (the caller names the line, counted by
+/// [`LineCount`]): `invalid UTF-8 in field 3`, or the reader's message.
+pub(crate) fn csv_message(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::Utf8 { err, .. } => format!("invalid UTF-8 in field {}", err.field() + 1),
+        csv::ErrorKind::Io(io) => io.to_string(),
+        _ => e.to_string(),
+    }
+}

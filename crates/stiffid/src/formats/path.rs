@@ -73,13 +73,18 @@ pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
     let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
-    let header_line = header.position().map_or(1, |p| p.line());
+    // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
+    let mut lines = super::LineCount::with_comments(text.as_bytes());
+    let header_line = header.position().map_or(1, |p| lines.at(p.byte()));
     let names: Vec<&str> = header.iter().collect();
     let columns = columns(&names, header_line)?;
     let mut points = Vec::new();
     for record in reader.records() {
-        let record = record.map_err(|e| unreadable(e.position().map_or(0, |p| p.line()), &e))?;
-        let line = record.position().map_or(0, |p| p.line());
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| lines.at(p.byte()));
+            unreadable(line, &e)
+        })?;
+        let line = record.position().map_or(0, |p| lines.at(p.byte()));
         if record.len() != names.len() {
             let count = ColumnProblem::FieldCount {
                 expected: names.len(),
@@ -104,7 +109,7 @@ pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
 }
 
 fn unreadable(line: u64, e: &csv::Error) -> Error {
-    let message = e.to_string();
+    let message = super::csv_message(e);
     problem(line, ColumnProblem::Unreadable { message })
 }
 

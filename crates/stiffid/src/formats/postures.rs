@@ -47,9 +47,14 @@ pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec
         ));
     }
     let mut postures = Vec::new();
+    // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
+    let mut lines = super::LineCount::new(text.as_bytes());
     for record in reader.records() {
-        let record = record.map_err(|e| unreadable(e.position().map_or(0, |p| p.line()), &e))?;
-        let line = record.position().map_or(0, |p| p.line());
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| lines.at(p.byte()));
+            unreadable(line, &e)
+        })?;
+        let line = record.position().map_or(0, |p| lines.at(p.byte()));
         if postures.len() == MAX_GROUP_POSTURES {
             let too_many = ColumnProblem::TooMany {
                 limit: MAX_GROUP_POSTURES,
@@ -115,7 +120,7 @@ fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {
 }
 
 fn unreadable(line: u64, e: &csv::Error) -> Error {
-    let message = e.to_string();
+    let message = super::csv_message(e);
     problem(line, None, ColumnProblem::Unreadable { message })
 }
 
