@@ -88,14 +88,16 @@ impl FromStr for Termination {
     }
 }
 
+/// What `slsqp::minimize` returns: its status, the point and the value.
+pub(super) type SlsqpOutcome =
+    Result<(slsqp::SuccessStatus, Vec<f64>, f64), (slsqp::FailStatus, Vec<f64>, f64)>;
+
 /// The stop reason of an `slsqp` run (NLopt's statuses): `ftol` and `xtol` are tested only at
 /// feasible points, so both mean convergence; NLopt reports a failed line search (positive
 /// directional derivative, mode 8) and a singular least-squares subproblem (modes 5-7) both as
 /// "roundoff limited", and incompatible linearised constraints (mode 4) together with the
 /// subproblem's iteration limits (modes 3, 9) as "failure".
-pub(super) fn from_slsqp(
-    outcome: &Result<(slsqp::SuccessStatus, Vec<f64>, f64), (slsqp::FailStatus, Vec<f64>, f64)>,
-) -> Termination {
+pub(super) fn from_slsqp(outcome: &SlsqpOutcome) -> Termination {
     use slsqp::{FailStatus as F, SuccessStatus as S};
     match outcome {
         Ok((S::FtolReached | S::Success | S::StopValReached, ..)) => Termination::Converged,
