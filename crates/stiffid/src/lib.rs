@@ -31,6 +31,7 @@ pub mod ik;
 pub mod kinematics;
 pub mod limits;
 mod linalg;
+pub mod model;
 pub mod robot;
 
 pub use error::{ColumnProblem, Error, MeasurementField, Result};
