@@ -95,7 +95,7 @@ impl Operation {
 pub fn feed_frame(feed: &Vector3<f64>, tool_z: &Vector3<f64>) -> Option<Rotation3<f64>> {
     let z = -tool_z.normalize();
     let across = feed - z * feed.dot(&z);
-    if !(across.norm() > 1e-9 * feed.norm()) {
+    if across.norm() <= 1e-9 * feed.norm() || !across.norm().is_finite() {
         return None;
     }
     let x = across.normalize();
