@@ -2,7 +2,7 @@
 //! code 2, one `error: ` line naming the file, field or option and the value given (shortened),
 //! no panic, nothing written and every input unchanged byte for byte.
 
-mod common;
+use crate::common;
 
 use common::{assert_success, json, refused, stiffid, temp_dir, write_file, GROUP};
 use std::path::{Path, PathBuf};

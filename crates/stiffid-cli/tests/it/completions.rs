@@ -1,7 +1,7 @@
 //! `stiffid completions` and `stiffid man`: generated from the command's definition, complete,
 //! and write errors are an error exit.
 
-mod common;
+use crate::common;
 use common::{assert_success, assert_usage_error, stiffid};
 
 const SUBCOMMANDS: [&str; 5] = ["reproduce", "select", "identify", "evaluate", "simulate"];

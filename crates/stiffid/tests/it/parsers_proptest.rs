@@ -5,7 +5,7 @@
 //! Generated cases per run: 128 arbitrary texts (each given to all three parsers) + 3 x 192
 //! mutated files + 3 x 192 files with a hostile number = 1280.
 
-mod mutate;
+use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Edit};
 use nalgebra::Vector6;

@@ -1,7 +1,7 @@
 //! The cell in the CLI: `evaluate` reports each posture's feasibility, `select` returns feasible
 //! postures beside the unconstrained optimum, impossible constraints exit 2 naming the check.
 
-mod common;
+use crate::common;
 
 use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
 use std::path::PathBuf;

@@ -2,7 +2,7 @@
 //! do not use the field work, the others exit 2 naming the field, what needs it and where a value
 //! comes from.
 
-mod common;
+use crate::common;
 use common::{assert_success, assert_usage_error, json, stiffid, temp_dir, write_file};
 use std::path::Path;
 

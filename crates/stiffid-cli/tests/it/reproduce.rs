@@ -5,7 +5,7 @@ use serde_json::Value;
 use std::path::Path;
 use std::process::Output;
 
-mod common;
+use crate::common;
 
 use common::{
     assert_criteria_positive, assert_success, assert_usage_error, fresh_dir, stiffid, temp_dir,

@@ -1,7 +1,7 @@
 //! `stiffid select --pool / --target-pct / --report` and `stiffid plot`: what is chosen, files
 //! written (figures that decode), one-line errors (exit 2).
 
-mod common;
+use crate::common;
 
 use common::{assert_usage_error, json, stiffid, temp_dir, write_file, GROUP};
 use std::path::Path;

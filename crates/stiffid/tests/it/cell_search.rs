@@ -6,7 +6,7 @@ use stiffid::cell::Checker;
 use stiffid::design::{self, Criterion, SearchOptions};
 use stiffid::{Error, Setup};
 
-mod common;
+use crate::common;
 use common::{paper_with, PAPER_CELL};
 
 /// The README's cell with a table beside the robot and a 60 deg acceptance half-angle.

@@ -6,7 +6,7 @@ use stiffid::cell::{self, Capsule, CheckKind, Checker, Part};
 use stiffid::setup::Obstacle;
 use stiffid::Error;
 
-mod common;
+use crate::common;
 use common::{deg, paper_with};
 
 fn capsule(a: [f64; 3], b: [f64; 3], radius: f64) -> Capsule {

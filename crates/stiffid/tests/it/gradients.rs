@@ -2,7 +2,7 @@
 //! and kinematic spring coordinates: the point-Jacobian kernel, the dexterity index, the rope block
 //! of the observation matrix, and every design criterion.
 
-mod common;
+use crate::common;
 
 use nalgebra::{DMatrix, Matrix6, MatrixXx6, Vector3, Vector6};
 use rand::{Rng, SeedableRng};

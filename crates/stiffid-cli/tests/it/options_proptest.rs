@@ -3,9 +3,8 @@
 //!
 //! Generated cases per run: 4 x 48 = 192 (each runs the binary once).
 
-mod common;
-#[path = "../../stiffid/tests/mutate/mod.rs"]
-mod mutate;
+use crate::common;
+use crate::mutate;
 
 use common::stiffid;
 use proptest::prelude::*;

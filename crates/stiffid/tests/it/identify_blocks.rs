@@ -3,7 +3,7 @@
 //! covariance, residuals and intervals to rounding; the same bits with 1 and 2 threads; noise-free
 //! recovery of the stiffness from a generated measurement file of many postures.
 
-mod common;
+use crate::common;
 
 use common::{assert_close, measurement_csv, noisy, synthetic};
 use stiffid::formats::measurements;

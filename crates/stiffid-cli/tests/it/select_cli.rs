@@ -1,6 +1,6 @@
 //! `stiffid select` and `stiffid evaluate`: files written, JSON keys, one-line errors (exit 2).
 
-mod common;
+use crate::common;
 
 use common::{
     assert_criteria_positive, assert_usage_error, json, stiffid, temp_dir, write_file, GROUP,

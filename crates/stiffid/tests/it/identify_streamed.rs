@@ -3,7 +3,7 @@
 //! one-shot QR of the whole `Psi` (`Observations::least_squares`, to 1e-12 relative); the same
 //! bits with 1 and 2 threads; errors that name the line and column of a row far into the file.
 
-mod common;
+use crate::common;
 
 use common::{assert_close, measurement_csv, noisy};
 use stiffid::formats::measurements::{self, Labels};
@@ -11,7 +11,7 @@ use stiffid::identify::{self, streamed, Identification};
 use stiffid::observation::Observations;
 use stiffid::{setup, ColumnProblem, Error, Setup};
 
-const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
+const FANUC: &str = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 
 /// The streamed identification of `text`.
 fn streamed(setup: &Setup, text: &str) -> stiffid::Result<(Identification, streamed::Rows)> {

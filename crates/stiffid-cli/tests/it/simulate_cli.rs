@@ -1,6 +1,6 @@
 //! `stiffid simulate` from files: JSON shape, written files, one-line errors with exit code 2.
 
-mod common;
+use crate::common;
 
 use common::{assert_usage_error, json, stiffid, temp_dir, write_file, GROUP};
 

@@ -1,7 +1,7 @@
 //! `stiffid setups new`: a commented setup for the user's own robot that the other commands accept
 //! as written.
 
-mod common;
+use crate::common;
 use common::{assert_success, assert_usage_error, stiffid, temp_dir};
 use std::path::Path;
 

@@ -1,7 +1,7 @@
 //! `stiffid kinematics` end to end: real values through `--json` and the text output, and bad
 //! input giving one line on stderr that names what was wrong, exit code 2, no panic.
 
-mod common;
+use crate::common;
 
 use common::{assert_success, assert_usage_error, json, stiffid, write_file};
 use std::path::Path;
@@ -151,7 +151,7 @@ fn malformed_robot_toml() {
 
 #[test]
 fn unknown_key_in_a_robot_toml() {
-    let preset = include_str!("../../stiffid/presets/comau-smart5-nj165-3.0.toml");
+    let preset = include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml");
     let text = preset.replacen("d_mm = 830.0", "d_mm = 830.0\nlength_mm = 1.0", 1);
     assert_ne!(text, preset);
     let file = scratch("unknown-key-robot.toml", &text);

@@ -2,7 +2,7 @@
 //! against an enumeration of active sets, cross-validation against leave-one-out by hand, the
 //! measurement frames, the unit check and the share of the deflection explained.
 
-mod common;
+use crate::common;
 
 use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
@@ -14,7 +14,8 @@ use stiffid::observation::{Measurement, Observations};
 use stiffid::validate;
 use stiffid::{setup, Error, Setup};
 
-const FANUC_CSV: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
+const FANUC_CSV: &str =
+    include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()

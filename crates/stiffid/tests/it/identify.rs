@@ -2,7 +2,7 @@
 //! noise, confidence intervals that cover the truth at their nominal rate, robust mode, validation
 //! (Eq. 22) and the errors.
 
-mod common;
+use crate::common;
 
 use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{Vector3, Vector6};

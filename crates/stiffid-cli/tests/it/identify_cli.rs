@@ -1,7 +1,7 @@
 //! `stiffid identify`, `validate` and `predict` from the command line: the real FANUC data against
 //! an independent NumPy fit, noise-free round trips through `predict`, and bad input.
 
-mod common;
+use crate::common;
 
 use common::{
     assert_usage_error, fanuc_csv, identify_fanuc, json, numbers, stiffid, temp_dir,

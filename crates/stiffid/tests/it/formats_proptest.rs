@@ -6,7 +6,7 @@
 //! Generated cases per run: 128 arbitrary texts (each given to all three parsers) + 3 x 128
 //! mutated files + 3 x 128 files with a hostile number = 896.
 
-mod mutate;
+use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Edit};
 use proptest::prelude::*;
@@ -25,7 +25,7 @@ fn fanuc() -> Setup {
 }
 
 fn measurements_text() -> &'static str {
-    include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+    include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv")
 }
 
 const POSTURES: &str = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg

@@ -1,7 +1,7 @@
 //! `stiffid predict --at-mm/--frame`, the covariance of `identify --out`, and `stiffid compensate`
 //! on the milling example: results, report, and bad path files refused whole.
 
-mod common;
+use crate::common;
 
 use common::{
     assert_success, assert_usage_error, identify_fanuc, json, numbers, stiffid, temp_dir,

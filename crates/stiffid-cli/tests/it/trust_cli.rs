@@ -2,7 +2,7 @@
 //! not physical or a likely unit mix-up, `--nonnegative`, `--cross-validate`, `validate`'s share
 //! explained, and bad cases that end in one clear error line (exit 2) without a NaN printed.
 
-mod common;
+use crate::common;
 
 use common::{assert_usage_error, fanuc_csv, json, stiffid, temp_dir, validate_fanuc, write_file};
 use std::process::Output;

@@ -1,7 +1,7 @@
 //! The forward model and the observation matrix agree: `Psi h = delta` (Eq. 10) for the nominal
 //! compliance, and noise-free identification recovers it.
 
-mod common;
+use crate::common;
 
 use nalgebra::{DVector, Vector6};
 use stiffid::{lsq::Factor, observation::rope_observation_matrix, setup, stiffness};
