@@ -34,6 +34,7 @@ pub mod jobs;
 pub mod kinematics;
 pub mod limits;
 mod linalg;
+pub mod model;
 pub mod robot;
 
 pub use error::{ColumnProblem, Error, MeasurementField, Result};
@@ -43,6 +44,7 @@ pub mod identify;
 pub mod lsq;
 pub mod observation;
 pub mod prior;
+pub mod process;
 pub mod progress;
 pub mod setup;
 pub mod simulate;
@@ -57,3 +59,8 @@ pub use setup::Setup;
 #[doc = include_str!("../../../README.md")]
 #[cfg(doctest)]
 pub struct ReadmeDoctests;
+
+/// The Rust examples of the user guide (`docs/guide.md`), run as doctests.
+#[doc = include_str!("../../../docs/guide.md")]
+#[cfg(doctest)]
+pub struct GuideDoctests;
