@@ -76,7 +76,7 @@ fn array<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>> {
     let mut flat = Vec::new();
     flatten(value, &mut flat);
     let flat = PyArray1::from_vec(py, flat);
-    Ok(flat.call_method1("reshape", (shape,))?)
+    flat.call_method1("reshape", (shape,))
 }
 
 fn flatten(value: &Value, out: &mut Vec<f64>) {
