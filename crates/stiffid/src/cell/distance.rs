@@ -140,9 +140,5 @@ fn refine_segment_box(c: &Capsule, b: &Obstacle, near: Vector3<f64>) -> Witness 
     }
     let d = x - s;
     let normal = d.try_normalize(0.0).unwrap_or_else(Vector3::zeros);
-    Witness {
-        a: s,
-        b: x,
-        normal,
-    }
+    Witness { a: s, b: x, normal }
 }

@@ -20,7 +20,11 @@ fn cell(robot: &str) -> Setup {
     let robot = presets::get(robot).unwrap();
     let geometry = crate::cell::default_geometry(&robot, setup.tool());
     let builder = setup.to_builder().with_bounds(robot.limits);
-    builder.with_geometry(geometry).with_robot(robot).build().unwrap()
+    builder
+        .with_geometry(geometry)
+        .with_robot(robot)
+        .build()
+        .unwrap()
 }
 
 /// Postures drawn uniformly within the bounds that pass every check.
