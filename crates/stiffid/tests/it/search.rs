@@ -298,7 +298,7 @@ fn searches_say_why_they_stopped() {
 
 #[test]
 fn exact_constraint_gradients_end_no_worse_than_finite_differences_in_a_cell() {
-    let text = include_str!("../../../examples/cell/zhang2021-tracker.toml");
+    let text = include_str!("../../../../examples/cell/zhang2021-tracker.toml");
     let setup = setup::parse(text, "zhang2021-tracker.toml", |r, _| {
         stiffid::robot::presets::get(r)
     })
