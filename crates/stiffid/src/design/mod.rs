@@ -16,4 +16,6 @@ pub use criteria::{evaluate, Criterion, Evaluation};
 pub use evaluator::{Evaluator, PostureTerms};
 pub use identifiability::Identifiability;
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
-pub use search::{global, local, random_group, Gradient, SearchOptions, SearchOutcome};
+pub use search::{
+    global, local, random_group, Gradient, SearchOptions, SearchOutcome, Termination,
+};
