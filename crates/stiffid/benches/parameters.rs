@@ -35,10 +35,7 @@ fn setup(model: &str) -> stiffid::setup::Setup {
         .unwrap()
         .to_string()
         + model;
-    stiffid::setup::parse(&text, "model.toml", |r, _| {
-        stiffid::robot::presets::get(r)
-    })
-    .unwrap()
+    stiffid::setup::parse(&text, "model.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
 }
 
 fn parameters(c: &mut Bench) {
@@ -48,9 +45,10 @@ fn parameters(c: &mut Bench) {
         let group = design::random_group(&setup, 6, 1);
         let evaluator = Evaluator::new(&setup);
         for criterion in [Criterion::RelativeA, Criterion::Zhang2021] {
-            c.bench_function(&format!("design/parameters/{n}/evaluate/{criterion}"), |b| {
-                b.iter(|| evaluator.value(criterion, black_box(&group)))
-            });
+            c.bench_function(
+                &format!("design/parameters/{n}/evaluate/{criterion}"),
+                |b| b.iter(|| evaluator.value(criterion, black_box(&group))),
+            );
         }
         c.bench_function(&format!("design/parameters/{n}/gradient/relative-a"), |b| {
             b.iter(|| evaluator.value_and_gradient(Criterion::RelativeA, black_box(&group)))

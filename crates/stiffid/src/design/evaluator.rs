@@ -127,7 +127,12 @@ impl<'a> Evaluator<'a> {
         self.for_each_frames(postures, |i, frames| {
             self.write_compact(frames, &mut stack, i);
             if !springs.is_empty() {
-                springs::write_compact_columns(self.setup, frames, &self.points_factor, &mut springs);
+                springs::write_compact_columns(
+                    self.setup,
+                    frames,
+                    &self.points_factor,
+                    &mut springs,
+                );
                 self.write_springs(&springs, &mut stack, i);
             }
             if criterion == Criterion::Zhang2021 {
@@ -403,7 +408,10 @@ impl<'a> Evaluator<'a> {
 
     /// [`Evaluator::test_weight`] over the `n` parameters of a model with virtual springs.
     fn wide_test_weight(&self, group: &WideGroup) -> DMatrix<f64> {
-        let wide = self.wide.as_ref().expect("a wide group has a wide evaluator");
+        let wide = self
+            .wide
+            .as_ref()
+            .expect("a wide group has a wide evaluator");
         wide::product(&wide.test_factor, &group.r_inv)
     }
 }
@@ -429,6 +437,8 @@ impl Wide {
 }
 
 /// The information matrix `S_i^T S_i` of a posture or a group ([`Evaluator::information`]).
+// The six-drive variant stays inline: it is the fast path of the search and the pool.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Information {
     /// The six drives alone.
@@ -442,12 +452,12 @@ impl Information {
     pub(crate) fn sum<'a>(mut terms: impl Iterator<Item = &'a Information>) -> Option<Self> {
         let first = terms.next()?;
         Some(match first {
-            Information::Six(m) => Information::Six(terms.fold(Matrix6::zeros() + m, |acc, t| {
-                match t {
+            Information::Six(m) => {
+                Information::Six(terms.fold(Matrix6::zeros() + m, |acc, t| match t {
                     Information::Six(t) => acc + t,
                     Information::Wide(_) => acc,
-                }
-            })),
+                }))
+            }
             Information::Wide(m) => Information::Wide(terms.fold(m.clone(), |acc, t| match t {
                 Information::Wide(t) => acc + t,
                 Information::Six(_) => acc,
@@ -457,6 +467,8 @@ impl Information {
 }
 
 /// A full-rank group's factor: six columns (the drives alone) or `n` ([`WideGroup`]).
+// The six-drive variant stays inline: it is the fast path of the search.
+#[allow(clippy::large_enum_variant)]
 enum Factored {
     Six(Group),
     Wide(WideGroup),

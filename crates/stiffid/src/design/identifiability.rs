@@ -72,7 +72,9 @@ impl Identifiability {
         householder_qr_columns(a.as_mut_slice(), m, &mut taus);
         let r = DMatrix::from_fn(k, k, |i, j| if i <= j { a[(i, j)] } else { 0.0 });
         let (s, v) = super::evaluator::singular_values_and_vectors(&r);
-        let null: Vec<usize> = (0..k).filter(|&i| s[i] <= s.max() * RANK_TOLERANCE).collect();
+        let null: Vec<usize> = (0..k)
+            .filter(|&i| s[i] <= s.max() * RANK_TOLERANCE)
+            .collect();
         let mut combinations: Vec<Vec<usize>> = zero.iter().map(|&j| vec![j]).collect();
         for &i in &null {
             combinations.push(

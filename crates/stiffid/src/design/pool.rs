@@ -20,8 +20,8 @@
 //!
 //! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to [`MAX_GROUP`] postures.
 
-use super::search::check_count;
 use super::evaluator::Information;
+use super::search::check_count;
 use super::{Criterion, Evaluator};
 use crate::setup::Setup;
 use crate::{limits, Error, Result};

@@ -136,9 +136,7 @@ impl Evaluator<'_> {
             Criterion::Classical => return None,
             Criterion::Zhang2021 => wide::cond_weight(&group.r),
             Criterion::ScaledCond => scaled(wide::cond_weight(&group.rs)),
-            Criterion::DOptimal => {
-                wide::product(&group.r_inv, &group.r_inv.transpose()) / -n
-            }
+            Criterion::DOptimal => wide::product(&group.r_inv, &group.r_inv.transpose()) / -n,
             Criterion::RelativeA => {
                 let c = wide::product(&group.rs_inv, &group.rs_inv.transpose());
                 let trace = c.trace();

@@ -85,7 +85,11 @@ pub(super) fn spring_gradient(
         let placed = spring.placed(setup.robot(), frames);
         let g: Vec<Vector3<f64>> = (0..points.len()).map(|m| weights(s, m)).collect();
         let motion = spring_motion(setup, &placed, &f, &pf, &points, &g);
-        for (x, gx) in points.iter().zip(&motion.points).chain([(&pf, &motion.loading)]) {
+        for (x, gx) in points
+            .iter()
+            .zip(&motion.points)
+            .chain([(&pf, &motion.loading)])
+        {
             a_all += x.cross(gx);
             b_all += gx;
         }

@@ -101,7 +101,11 @@ fn wide_criteria_equal_their_definitions() {
         assert!(rel(e.relative_a, (cov.trace() / n as f64).sqrt()) < 1e-8);
         for j in 0..n {
             let want = cov[(j, j)].sqrt();
-            let got = if j < 6 { e.relative_std[j] } else { e.spring_relative_std[j - 6] };
+            let got = if j < 6 {
+                e.relative_std[j]
+            } else {
+                e.spring_relative_std[j - 6]
+            };
             assert!(rel(got, want) < 1e-8, "parameter {j}: {got} vs {want}");
         }
         let a = rope_observation_matrix(&setup, setup.test_postures());
@@ -117,8 +121,14 @@ fn wide_criteria_equal_their_definitions() {
             let terms: Vec<PostureTerms> = group.iter().map(|q| evaluator.posture(q)).collect();
             let refs: Vec<&PostureTerms> = terms.iter().collect();
             assert_eq!(evaluator.value_of(criterion, &refs), e.value(criterion));
-            let info = Information::sum(terms.iter().map(|t| evaluator.information(t))
-                .collect::<Vec<_>>().iter()).unwrap();
+            let info = Information::sum(
+                terms
+                    .iter()
+                    .map(|t| evaluator.information(t))
+                    .collect::<Vec<_>>()
+                    .iter(),
+            )
+            .unwrap();
             let classical = evaluator.classical(&refs);
             let from_info = evaluator.value_from_information(criterion, &info, classical);
             assert!(rel(from_info, e.value(criterion)) < 1e-7, "{criterion}");
@@ -196,5 +206,12 @@ nominal_stiffness_nm_per_rad = 1e6
     assert_eq!(id.combinations, vec![vec![5, 6]]);
     let drives = crate::setup::builtin("zhang2021-comau-nj165").unwrap();
     let d = Evaluator::new(&drives).evaluation(&group).identifiability;
-    assert_eq!(d, Identifiability { rank: 6, unidentified: vec![], combinations: vec![] });
+    assert_eq!(
+        d,
+        Identifiability {
+            rank: 6,
+            unidentified: vec![],
+            combinations: vec![]
+        }
+    );
 }

@@ -55,11 +55,7 @@ impl WideGroup {
     }
 
     /// The group of `R` and `R^-1` with the column scaling `h / sigma`.
-    pub(super) fn from_parts(
-        r: DMatrix<f64>,
-        r_inv: DMatrix<f64>,
-        scaling: &DVector<f64>,
-    ) -> Self {
+    pub(super) fn from_parts(r: DMatrix<f64>, r_inv: DMatrix<f64>, scaling: &DVector<f64>) -> Self {
         let mut rs = r.clone();
         let mut rs_inv = r_inv.clone();
         for (j, s) in scaling.iter().enumerate() {
@@ -176,7 +172,7 @@ pub(super) fn cholesky_upper(a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
                 s -= u[(k, i)] * u[(k, j)];
             }
             if i == j {
-                if !(s > 0.0) {
+                if s.is_nan() || s <= 0.0 {
                     return None;
                 }
                 u[(j, j)] = s.sqrt();
@@ -199,7 +195,10 @@ pub(super) fn cond(a: &DMatrix<f64>) -> f64 {
 /// [`crate::linalg::singular_values_and_vectors`] for six columns.
 pub(crate) fn singular_values_and_vectors(a: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
     let (s, v) = jacobi(a, true);
-    (s, v.unwrap_or_else(|| DMatrix::identity(a.ncols(), a.ncols())))
+    (
+        s,
+        v.unwrap_or_else(|| DMatrix::identity(a.ncols(), a.ncols())),
+    )
 }
 
 fn jacobi(a: &DMatrix<f64>, vectors: bool) -> (DVector<f64>, Option<DMatrix<f64>>) {
@@ -259,7 +258,8 @@ pub(super) fn cond_weight(r: &DMatrix<f64>) -> DMatrix<f64> {
     let (max, min) = (s.imax(), s.imin());
     let n = r.ncols();
     DMatrix::from_fn(n, n, |i, j| {
-        v[(i, max)] * v[(j, max)] / (s[max] * s[max]) - v[(i, min)] * v[(j, min)] / (s[min] * s[min])
+        v[(i, max)] * v[(j, max)] / (s[max] * s[max])
+            - v[(i, min)] * v[(j, min)] / (s[min] * s[min])
     })
 }
 
