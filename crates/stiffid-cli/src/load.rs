@@ -5,7 +5,6 @@ use nalgebra::{SVector, Vector6};
 use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
 use stiffid::formats::{self, postures, reference, Capped};
@@ -152,25 +151,6 @@ pub fn postures(
 ) -> Result<Vec<Vector6<f64>>> {
     let text = read(path)?;
     postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())
-}
-
-/// The frame of a wrench, as a command-line value.
-#[derive(Clone, Copy, Default, clap::ValueEnum)]
-pub enum WrenchFrame {
-    /// The robot base frame.
-    #[default]
-    Base,
-    /// The tool (flange) frame, moving with the tool.
-    Tool,
-}
-
-impl From<WrenchFrame> for Frame {
-    fn from(f: WrenchFrame) -> Self {
-        match f {
-            WrenchFrame::Base => Frame::Base,
-            WrenchFrame::Tool => Frame::Tool,
-        }
-    }
 }
 
 /// A measurement file (`stiffid::formats::measurements`), its measurements turned into the robot

@@ -2,7 +2,7 @@
 //! [`stiffid::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
 //! steps; the free tool axis after Caro et al., ICRA 2013, and Xiong et al., RCIM 2019).
 
-use crate::arrays::{self, choice};
+use crate::arrays;
 use crate::error::{self, raise, raise_in};
 use crate::measure::stiffness_and_covariance;
 use crate::setup::Setup;
@@ -49,11 +49,7 @@ pub fn compensate<'py>(
         h: k.map(|v| 1.0 / v),
         covariance,
     };
-    let frame = choice(
-        "frame",
-        frame,
-        &[("base", Frame::Base), ("tool", Frame::Tool)],
-    )?;
+    let frame = frame.parse::<Frame>().map_err(raise)?;
     let name = path.display().to_string();
     let points = path::parse(&error::read(&path)?, frame).map_err(|e| raise_in(&name, e))?;
     let mut options = Options::for_setup(s);

@@ -1,7 +1,7 @@
 //! `stiffid.deflection`: the deflection of a tool point under a wrench, and its uncertainty
 //! (Zhang et al. 2021, Eq. 4-6), over [`stiffid::deflection`].
 
-use crate::arrays::{self, choice, rows};
+use crate::arrays::{self, rows};
 use crate::error::{raise, value};
 use crate::setup::Setup;
 use nalgebra::{Matrix6, Vector3, Vector6};
@@ -59,11 +59,7 @@ pub fn deflection<'py>(
         }
     };
     let h = k.map(|v| 1.0 / v);
-    let frame = choice(
-        "frame",
-        frame,
-        &[("base", Frame::Base), ("tool", Frame::Tool)],
-    )?;
+    let frame = frame.parse::<Frame>().map_err(raise)?;
     let covariance = compliance_covariance_rad2_per_nm2
         .map(covariance)
         .transpose()?;

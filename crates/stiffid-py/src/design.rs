@@ -195,7 +195,7 @@ fn method(r: &Request) -> PyResult<Method> {
 fn search_options(r: &Request) -> PyResult<SearchOptions> {
     let mut o = SearchOptions {
         seed: r.seed,
-        gradient: r.gradient.parse::<Gradient>().map_err(value)?,
+        gradient: r.gradient.parse::<Gradient>().map_err(raise)?,
         ..SearchOptions::default()
     };
     let (starts, evals) = (limits::MAX_STARTS, limits::MAX_EVALS);

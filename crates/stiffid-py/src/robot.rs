@@ -1,7 +1,7 @@
 //! `stiffid.Robot`: an immutable 6-axis robot, its forward kinematics, point Jacobians and the
 //! dexterity index.
 
-use crate::arrays::{self, choice};
+use crate::arrays;
 use crate::error::{self, raise, Failure};
 use nalgebra::{Matrix4, Matrix6, Vector3};
 use numpy::{PyArray1, PyArray2};
@@ -200,22 +200,7 @@ impl Robot {
 
 /// `"axis"` or `"kinematic"`.
 pub fn coordinates_arg(given: &str) -> PyResult<Coordinates> {
-    choice(
-        "coordinates",
-        given,
-        &[
-            ("axis", Coordinates::Axis),
-            ("kinematic", Coordinates::Kinematic),
-        ],
-    )
-}
-
-/// The name of joint coordinates, as in the files.
-pub fn coordinates_name(c: Coordinates) -> &'static str {
-    match c {
-        Coordinates::Axis => "axis",
-        Coordinates::Kinematic => "kinematic",
-    }
+    given.parse().map_err(raise)
 }
 
 /// The first of a stack for one posture, else the stack.

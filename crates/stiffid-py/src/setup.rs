@@ -4,7 +4,7 @@
 use crate::arrays::{self, postures};
 use crate::design;
 use crate::error::{self, raise, Failure};
-use crate::robot::{coordinates_name, Robot};
+use crate::robot::Robot;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
@@ -81,7 +81,7 @@ impl Setup {
     /// Where the springs sit: ``"axis"`` (in the drives) or ``"kinematic"``.
     #[getter]
     fn springs(&self) -> &'static str {
-        coordinates_name(self.inner.springs())
+        self.inner.springs().name()
     }
 
     /// Nominal (in simulation: true) joint stiffness, Nm/rad, shape ``(6,)`` (Table 2); ``None``

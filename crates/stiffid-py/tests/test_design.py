@@ -111,7 +111,7 @@ def test_same_seed_same_group(paper):
         (dict(n=1), "n"),
         (dict(n=101), "n"),
         (dict(starts=0), "starts"),
-        (dict(gradient="numeric"), "unknown gradient 'numeric'"),
+        (dict(gradient="numeric"), "gradient: unknown value 'numeric'"),
         (dict(method="global", start=np.zeros((6, 6))), "start"),
         (dict(method="pool"), "pool"),
         (dict(restarts=3), "restarts: only with pool"),

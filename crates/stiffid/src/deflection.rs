@@ -26,6 +26,35 @@ pub enum Frame {
     Tool,
 }
 
+impl Frame {
+    /// Both, base first.
+    pub const ALL: [Frame; 2] = [Frame::Base, Frame::Tool];
+
+    /// The name in files, options and documents: `base` or `tool`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Frame::Base => "base",
+            Frame::Tool => "tool",
+        }
+    }
+}
+
+impl crate::choice::Choice for Frame {
+    const FIELD: &'static str = "frame";
+    const ALL: &'static [Self] = &Frame::ALL;
+    fn name(self) -> &'static str {
+        Frame::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Frame::Base => "The robot base frame",
+            Frame::Tool => "The tool (flange) frame, moving with the tool",
+        }
+    }
+}
+
+crate::choice::by_name!(Frame);
+
 /// A wrench `[f; m]` (N, Nm) in `frame` rotated into the base frame of the posture `frames`:
 /// `[R f; R m]`, `R` the flange orientation (the identity for [`Frame::Base`]).
 pub fn base_wrench(frames: &Frames, wrench: &Vector6<f64>, frame: Frame) -> Vector6<f64> {

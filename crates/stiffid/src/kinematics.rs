@@ -23,6 +23,35 @@ pub enum Coordinates {
     Kinematic,
 }
 
+impl Coordinates {
+    /// Both, axis first.
+    pub const ALL: [Coordinates; 2] = [Coordinates::Axis, Coordinates::Kinematic];
+
+    /// The name in files, options and documents: `axis` or `kinematic`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Coordinates::Axis => "axis",
+            Coordinates::Kinematic => "kinematic",
+        }
+    }
+}
+
+impl crate::choice::Choice for Coordinates {
+    const FIELD: &'static str = "coordinates";
+    const ALL: &'static [Self] = &Coordinates::ALL;
+    fn name(self) -> &'static str {
+        Coordinates::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Coordinates::Axis => "Controller axis angles q: J_q = J_theta M",
+            Coordinates::Kinematic => "Kinematic angles theta of the DH table or URDF",
+        }
+    }
+}
+
+crate::choice::by_name!(Coordinates);
+
 /// The forward kinematics of one posture: every joint frame, every joint axis and the flange.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frames {

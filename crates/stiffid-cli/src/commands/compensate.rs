@@ -1,8 +1,9 @@
 //! `stiffid compensate`: the deflection of every point of a machining path under its process
 //! wrench, and the compensated axis angles that cancel it ([`stiffid::compensate`]).
 
+use crate::commands::common::choice;
 use crate::commands::common::{Common, Stiffness};
-use crate::load::{self, WrenchFrame};
+use crate::load;
 use crate::output::{print_json_or, OutFile};
 use crate::report::{self, compensation};
 use anyhow::{anyhow, Context, Result};
@@ -13,6 +14,7 @@ use serde_json::{Map, Value};
 use std::borrow::Cow;
 use std::path::PathBuf;
 use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
+use stiffid::deflection::Frame;
 use stiffid::formats::path;
 use stiffid::{Coordinates, Error, Setup};
 
@@ -39,8 +41,8 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     q0_deg: Option<String>,
     /// The frame of the wrench in rows without a `frame` column value.
-    #[arg(long, value_enum, default_value = "base")]
-    frame: WrenchFrame,
+    #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
+    frame: Frame,
     /// Choose the rotation about the tool z axis of every point to minimise the TCP deflection.
     #[arg(long)]
     free_tool_axis: bool,
@@ -174,7 +176,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let options = options(args, &setup)?;
     let name = args.path.display().to_string();
-    let points = path::parse(&load::read(&args.path)?, args.frame.into()).context(name.clone())?;
+    let points = path::parse(&load::read(&args.path)?, args.frame).context(name.clone())?;
     let out = OutFile::prepare(&args.out, "--out")?;
     let report = args
         .report

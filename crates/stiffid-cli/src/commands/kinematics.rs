@@ -1,5 +1,6 @@
 //! `stiffid kinematics`: forward kinematics, point Jacobian and dexterity of one posture.
 
+use crate::commands::common::choice;
 use crate::{load, output};
 use anyhow::Result;
 use schemars::JsonSchema;
@@ -27,29 +28,11 @@ pub struct Args {
     #[arg(long, default_value_t = 1200.0)]
     characteristic_length_mm: f64,
     /// The joint coordinates of the Jacobian's columns.
-    #[arg(long, value_enum, default_value_t = CoordinatesArg::Axis)]
-    coordinates: CoordinatesArg,
+    #[arg(long, value_parser = choice::<Coordinates>(), default_value = "axis")]
+    coordinates: Coordinates,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-}
-
-/// `--coordinates`: axis (controller) or kinematic (DH/URDF) angles.
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum CoordinatesArg {
-    /// Controller axis angles q: J_q = J_theta M.
-    Axis,
-    /// Kinematic angles theta of the DH table or URDF.
-    Kinematic,
-}
-
-impl From<CoordinatesArg> for Coordinates {
-    fn from(c: CoordinatesArg) -> Self {
-        match c {
-            CoordinatesArg::Axis => Coordinates::Axis,
-            CoordinatesArg::Kinematic => Coordinates::Kinematic,
-        }
-    }
 }
 
 /// `stiffid kinematics --json`: mm and degrees for positions and angles, SI (m/rad, rad/rad) for
@@ -92,7 +75,7 @@ pub fn run(args: &Args) -> Result<()> {
     let length_mm = args.characteristic_length_mm;
     let range = &limits::CHARACTERISTIC_LENGTH_MM;
     limits::check("--characteristic-length-mm", &[length_mm], range)?;
-    let coordinates = Coordinates::from(args.coordinates);
+    let coordinates = args.coordinates;
     let frames = robot.frames(&q);
     let point = point_mm * 1e-3;
     let jacobian = frames.jacobian(&point, coordinates);

@@ -1,8 +1,9 @@
 //! `stiffid predict`: the forward model (Zhang et al. 2021, Eq. 3-7) for one posture and wrench,
 //! with the TCP deflection and the Cartesian compliance and stiffness of the loaded point.
 
+use crate::commands::common::choice;
 use crate::commands::common::Common;
-use crate::load::{self, WrenchFrame};
+use crate::load;
 use crate::output::print_json_or;
 use anyhow::{bail, Result};
 use nalgebra::{Matrix6, Vector3, Vector6};
@@ -10,6 +11,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::cartesian;
+use stiffid::deflection::Frame;
 use stiffid::deflection::{base_wrench, Points};
 use stiffid::limits;
 
@@ -30,8 +32,8 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     at_mm: Option<String>,
     /// The frame of the wrench: base, or tool (the flange frame, moving with the tool).
-    #[arg(long, value_enum, default_value = "base")]
-    frame: WrenchFrame,
+    #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
+    frame: Frame,
     /// JSON file with `stiffness_nm_per_rad` (e.g. from `stiffid identify --out`); default: the
     /// setup's nominal stiffness. With `compliance_covariance_rad2_per_nm2` in it, every
     /// displacement also gets its standard deviation.
@@ -156,7 +158,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let h = stiffness.map(|k| 1.0 / k);
     let frames = setup.robot().frames(&q);
-    let base = base_wrench(&frames, &wrench, args.frame.into());
+    let base = base_wrench(&frames, &wrench, args.frame);
     let at_point = |observed| Points {
         frames: &frames,
         springs: setup.springs(),
@@ -172,10 +174,7 @@ pub fn run(args: &Args) -> Result<()> {
         setup: args.common.setup.clone(),
         q_deg: q_deg.into(),
         wrench: wrench.into(),
-        wrench_frame: match args.frame {
-            WrenchFrame::Base => "base",
-            WrenchFrame::Tool => "tool",
-        },
+        wrench_frame: args.frame.name(),
         wrench_point_mm: (at * 1e3).into(),
         wrench_base_frame: base.into(),
         stiffness_nm_per_rad: stiffness.into(),

@@ -120,6 +120,26 @@ impl Criterion {
     }
 }
 
+impl crate::choice::Choice for Criterion {
+    const FIELD: &'static str = "criterion";
+    const ALL: &'static [Self] = &Criterion::ALL;
+    fn name(self) -> &'static str {
+        Criterion::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Criterion::Classical => {
+                "The worst dexterity of the postures (Eq. 21, the classical index)"
+            }
+            Criterion::Zhang2021 => "The classical index times cond(Psi): the paper's index",
+            Criterion::ScaledCond => "The condition number of the scaled observation matrix",
+            Criterion::DOptimal => "The geometric mean of the relative standard deviations",
+            Criterion::RelativeA => "The RMS predicted relative standard deviation",
+            Criterion::TestPose => "The RMS error of the deflection predicted at the test postures",
+        }
+    }
+}
+
 impl fmt::Display for Criterion {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())

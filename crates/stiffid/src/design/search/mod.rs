@@ -24,8 +24,6 @@ pub use termination::Termination;
 
 use crate::{limits, Result};
 use nalgebra::Vector6;
-use std::fmt;
-use std::str::FromStr;
 
 /// How a local search gets the gradient of its objective `ln(criterion)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
@@ -41,6 +39,9 @@ pub enum Gradient {
 }
 
 impl Gradient {
+    /// Both, exact first.
+    pub const ALL: [Gradient; 2] = [Gradient::Exact, Gradient::FiniteDifference];
+
     /// The name used on the command line and in files: `exact` or `fd`.
     pub fn name(self) -> &'static str {
         match self {
@@ -50,21 +51,21 @@ impl Gradient {
     }
 }
 
-impl fmt::Display for Gradient {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+impl crate::choice::Choice for Gradient {
+    const FIELD: &'static str = "gradient";
+    const ALL: &'static [Self] = &Gradient::ALL;
+    fn name(self) -> &'static str {
+        Gradient::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Gradient::Exact => "Closed form",
+            Gradient::FiniteDifference => "Forward finite differences (for comparison)",
+        }
     }
 }
 
-impl FromStr for Gradient {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
-        [Gradient::Exact, Gradient::FiniteDifference]
-            .into_iter()
-            .find(|g| g.name() == s)
-            .ok_or_else(|| format!("unknown gradient '{s}' (known: exact, fd)"))
-    }
-}
+crate::choice::by_name!(Gradient);
 
 /// Budget and tolerances of a search.
 #[derive(Debug, Clone, PartialEq)]
