@@ -1,14 +1,53 @@
 //! The library's errors as Python exceptions.
 
-use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
+use pyo3::prelude::*;
 use pyo3::{PyErr, Python};
 use std::fs::File;
 use std::path::Path;
 use stiffid::formats::{self, Capped};
 use stiffid::Error;
 
-/// `RuntimeError` for a computation that found no answer (no feasible group, a pose out of
-/// reach), `ValueError` for everything else (the input is wrong), with the library's message.
+create_exception!(
+    stiffid,
+    StiffidError,
+    PyValueError,
+    "Every error of stiffid's computations (a ValueError): the library's message, naming the file, line, field or argument."
+);
+create_exception!(
+    stiffid,
+    InputError,
+    StiffidError,
+    "Bad input: a file, field or argument that is malformed, out of its limits or inconsistent."
+);
+create_exception!(
+    stiffid,
+    InfeasibleError,
+    StiffidError,
+    "A search or a pose with no feasible answer: no group of postures within the bounds and the cell, a pose out of reach."
+);
+create_exception!(
+    stiffid,
+    UnidentifiableError,
+    StiffidError,
+    "Data or a design that cannot identify every parameter (the message names them)."
+);
+
+/// Adds the exception classes to the module: `Error` (a `ValueError`) and its subclasses.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("Error", py.get_type::<StiffidError>())?;
+    m.add("InputError", py.get_type::<InputError>())?;
+    m.add("InfeasibleError", py.get_type::<InfeasibleError>())?;
+    m.add("UnidentifiableError", py.get_type::<UnidentifiableError>())?;
+    Ok(())
+}
+
+/// The library's error as `stiffid.Error`'s subclass for its kind ([`Error::root`]):
+/// `InfeasibleError` for a computation that found no answer (no feasible group, a pose out of
+/// reach), `UnidentifiableError` for data that cannot identify every parameter, `InputError` for
+/// everything else (the input is wrong), with the library's message.
 pub fn raise(e: Error) -> PyErr {
     exception(&e, e.to_string())
 }
@@ -20,8 +59,11 @@ pub fn raise_in(name: &str, e: Error) -> PyErr {
 
 fn exception(e: &Error, message: String) -> PyErr {
     match e.root() {
-        Error::Infeasible { .. } | Error::Unreachable { .. } => PyRuntimeError::new_err(message),
-        _ => PyValueError::new_err(message),
+        Error::Infeasible { .. } | Error::Unreachable { .. } => InfeasibleError::new_err(message),
+        Error::Unidentifiable { .. } | Error::TooFewRows { .. } => {
+            UnidentifiableError::new_err(message)
+        }
+        _ => InputError::new_err(message),
     }
 }
 
@@ -46,9 +88,9 @@ pub fn read_if_exists(path: &Path) -> Option<Result<String, Failure>> {
     path.exists().then(|| read(path).map_err(Failure))
 }
 
-/// A `ValueError` with this message.
+/// An `InputError` (a `ValueError`) with this message.
 pub fn value(message: impl Into<String>) -> PyErr {
-    PyValueError::new_err(message.into())
+    InputError::new_err(message.into())
 }
 
 /// The text of a file, the path in the error (`FileNotFoundError` or `OSError`; `ValueError` for

@@ -3,8 +3,9 @@
 //! files and on the command line; Jacobians, compliances and stiffness in SI units, as the library
 //! computes them. Every key and attribute carries its unit in its name.
 //!
-//! Errors: [`stiffid::Error`] becomes `ValueError` (bad input) or `RuntimeError` (a search that
-//! found nothing feasible), with the library's message. Long calls release the GIL.
+//! Errors: [`stiffid::Error`] becomes `stiffid.Error` (a `ValueError`), as its subclass
+//! `InputError` (bad input), `InfeasibleError` (a search that found nothing feasible, a pose out
+//! of reach) or `UnidentifiableError`, with the library's message. Long calls release the GIL.
 
 mod arrays;
 mod compensate;
@@ -23,6 +24,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    error::register(m)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<setup::Setup>()?;
     m.add_class::<measure::Identification>()?;

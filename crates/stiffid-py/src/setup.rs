@@ -199,7 +199,7 @@ impl Setup {
     /// ``criterion``, ``postures_deg`` (shape ``(n, 6)``), ``value``, ``start_value`` (None for a
     /// pool), ``evaluations``, ``criteria`` (the dict of ``evaluate``) and, for a pool,
     /// ``pool_indices`` (0-based rows of ``pool``) and ``pool_skipped`` (rows skipped and the
-    /// checks they fail). ``RuntimeError`` when no feasible group is found.
+    /// checks they fail). ``stiffid.InfeasibleError`` when no feasible group is found.
     #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", pool=None, restarts=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(

@@ -261,3 +261,15 @@ def test_a_file_of_many_chunks_equals_the_arrays_and_the_command(fanuc, cli, tmp
     theirs = cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", path, "--json")
     np.testing.assert_array_equal(from_file.stiffness_nm_per_rad, theirs["stiffness_nm_per_rad"])
     assert theirs["residuals"][n - 1]["line"] == n + 1
+
+
+def test_errors_are_stiffid_errors_by_kind(paper):
+    assert issubclass(stiffid.Error, ValueError)
+    for kind in (stiffid.InputError, stiffid.InfeasibleError, stiffid.UnidentifiableError):
+        assert issubclass(kind, stiffid.Error)
+    q, wrench, d = synthetic(paper, paper.nominal_stiffness_nm_per_rad)
+    with pytest.raises(stiffid.InputError, match="robust: unknown value"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d, robust="cauchy")
+    one = np.zeros((1, 6))  # one posture, all axes at 0: joints 1, 4 and 6 share an axis
+    with pytest.raises(stiffid.UnidentifiableError, match="cannot be identified"):
+        stiffid.identify(paper, q_deg=one, wrench=wrench[:1], displacement_mm=d[:4])

@@ -11,15 +11,23 @@ stiffness in Nm/rad; Jacobians in SI (m/rad, rad/rad). Method: Zhang, Guo, Sun a
 Postures Selection for Industrial Robot Joint Stiffness Identification", IEEE Access 9 (2021),
 doi:10.1109/ACCESS.2021.3073671 (equation numbers in the docstrings are that paper's).
 
-Bad input raises ``ValueError`` with the library's message; a search that finds no feasible group
-raises ``RuntimeError``.
+Errors are ``stiffid.Error`` (a ``ValueError``) with the library's message, as one of its
+subclasses: ``InputError`` (bad input), ``InfeasibleError`` (a search that finds no feasible group,
+a pose out of reach) or ``UnidentifiableError`` (data that cannot identify every parameter).
+Missing files raise ``FileNotFoundError``. Results to look at before trusting them (a stiffness
+that is not physical, a likely unit mistake) raise ``UserWarning``, as the command prints
+``warning: ...``.
 """
 
 from ._stiffid import (
+    Error,
     Identification,
+    InfeasibleError,
+    InputError,
     Robot,
     Setup,
     Study,
+    UnidentifiableError,
     __version__,
     compensate,
     deflection,
@@ -30,10 +38,14 @@ from ._stiffid import (
 )
 
 __all__ = [
+    "Error",
     "Identification",
+    "InfeasibleError",
+    "InputError",
     "Robot",
     "Setup",
     "Study",
+    "UnidentifiableError",
     "__version__",
     "compensate",
     "deflection",
