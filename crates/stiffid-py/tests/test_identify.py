@@ -270,6 +270,7 @@ def test_errors_are_stiffid_errors_by_kind(paper):
     q, wrench, d = synthetic(paper, paper.nominal_stiffness_nm_per_rad)
     with pytest.raises(stiffid.InputError, match="robust: unknown value"):
         stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d, robust="cauchy")
-    one = np.zeros((1, 6))  # one posture, all axes at 0: joints 1, 4 and 6 share an axis
-    with pytest.raises(stiffid.UnidentifiableError, match="cannot be identified"):
-        stiffid.identify(paper, q_deg=one, wrench=wrench[:1], displacement_mm=d[:4])
+    vertical = np.zeros_like(wrench)
+    vertical[:, 2] = -500.0  # a vertical force alone has no moment about joint 1's vertical axis
+    with pytest.raises(stiffid.UnidentifiableError, match="arrays: joint 1 cannot be identified"):
+        stiffid.identify(paper, q_deg=q, wrench=vertical, displacement_mm=d)
