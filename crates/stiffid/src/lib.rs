@@ -41,6 +41,7 @@ pub mod lsq;
 pub mod observation;
 pub mod prior;
 pub mod progress;
+pub mod register;
 pub mod setup;
 pub mod simulate;
 pub mod stiffness;
