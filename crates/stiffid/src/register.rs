@@ -193,7 +193,7 @@ pub fn unit_covariance(rotated: &[Vector3<f64>]) -> Result<Matrix6<f64>> {
     let v_t = svd.v_t.ok_or(not_converged())?;
     let s = &svd.singular_values;
     let largest = s.max();
-    if s.iter().any(|&v| !(v > largest * 1e-12)) {
+    if s.iter().any(|&v| v.is_nan() || v <= largest * 1e-12) {
         return Err(collinear());
     }
     let mut out = Matrix6::zeros();
@@ -258,7 +258,7 @@ fn collinear_cloud(points: &[Vector3<f64>]) -> bool {
     };
     let mut s = svd.singular_values.map(f64::sqrt);
     s.as_mut_slice().sort_by(|a, b| b.total_cmp(a));
-    !(s[1] > COLLINEAR_RATIO * s[0] && s[1] > COLLINEAR_M)
+    s[1] <= COLLINEAR_RATIO * s[0] || s[1] <= COLLINEAR_M
 }
 
 fn collinear() -> Error {
