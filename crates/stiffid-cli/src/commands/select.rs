@@ -6,7 +6,7 @@ mod pool;
 mod target;
 
 use super::evaluate::{criteria_text, identifiable, number, CriteriaJson};
-use crate::commands::common::{choice, Common};
+use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use crate::report::plan;
@@ -83,7 +83,7 @@ pub struct Args {
     max_evals: Option<u64>,
     /// Gradient of the SQP objective: exact (closed form) or fd (forward finite differences, for
     /// comparison).
-    #[arg(long, value_parser = choice::<Gradient>(), default_value = "exact")]
+    #[arg(long, default_value_t = Gradient::Exact)]
     gradient: Gradient,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
