@@ -31,6 +31,7 @@ pub mod ik;
 pub mod kinematics;
 pub mod limits;
 mod linalg;
+pub mod machining;
 pub mod model;
 pub mod robot;
 
