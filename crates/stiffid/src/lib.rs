@@ -22,12 +22,15 @@
 mod builtin;
 pub mod cartesian;
 pub mod cell;
+pub mod choice;
 pub mod compensate;
 pub mod deflection;
 pub mod design;
+pub mod documents;
 mod error;
 pub mod formats;
 pub mod ik;
+pub mod jobs;
 pub mod kinematics;
 pub mod limits;
 mod linalg;
