@@ -9,7 +9,7 @@ use stiffid::{Error, Setup};
 use crate::common;
 use common::{paper_with, PAPER_CELL};
 
-/// The README's cell with a table beside the robot and a 60 deg acceptance half-angle.
+/// The guide's cell with a table beside the robot and a 60 deg acceptance half-angle.
 fn cell_with_table() -> Setup {
     paper_with(&format!(
         "{PAPER_CELL}max_incidence_deg = 60.0
