@@ -46,6 +46,7 @@ pub mod observation;
 pub mod prior;
 pub mod process;
 pub mod progress;
+pub mod register;
 pub mod setup;
 pub mod simulate;
 pub mod stiffness;
