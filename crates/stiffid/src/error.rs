@@ -166,6 +166,14 @@ pub enum Error {
         /// What needs it: a criterion (`criterion relative-a`) or a computation.
         needed_by: String,
     },
+    /// A machining or robot program cannot be read, or its compensation cannot be written.
+    #[error("line {line}: {message}")]
+    Program {
+        /// The 1-based line of the program.
+        line: u64,
+        /// What is wrong and what was expected.
+        message: String,
+    },
     /// A number was NaN or infinite where a finite number is needed.
     #[error("{what} is not finite")]
     NotFinite {

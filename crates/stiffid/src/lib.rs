@@ -34,6 +34,7 @@ pub mod jobs;
 pub mod kinematics;
 pub mod limits;
 mod linalg;
+pub mod machining;
 pub mod model;
 pub mod robot;
 

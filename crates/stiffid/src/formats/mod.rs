@@ -6,13 +6,16 @@
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
 //! - [`postures`]: the postures CSV of a group of postures.
+//! - [`program`]: the joint targets of robot programs (KUKA KRL, ABB RAPID, FANUC LS).
 //! - [`readings`]: the registration readings CSV (axis angles and tracker readings).
 //! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
+pub mod gcode;
 pub mod measurements;
 pub mod path;
 pub mod postures;
+pub mod program;
 pub mod readings;
 pub mod reference;
 pub mod stiffness;

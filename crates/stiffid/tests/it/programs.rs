@@ -1,0 +1,356 @@
+//! Programs in and out: G-code arcs against their circle, KRL/RAPID/LS joint targets read and
+//! written back byte for byte, malformed programs refused naming the line, and a compensated
+//! program whose targets equal the CSV route's.
+
+use approx::assert_relative_eq;
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3, Vector6};
+use stiffid::compensate::{self, Compliance, Options};
+use stiffid::deflection::Frame;
+use stiffid::formats::gcode;
+use stiffid::formats::program::{self, Dialect};
+use stiffid::ik::{self, tool_pose};
+use stiffid::machining::{self, Language, Program};
+use stiffid::process::file;
+use stiffid::{formats, setup, Error};
+
+const KRL: &str = "&ACCESS RVP\nDEF pocket( )\n; a comment {A1 99}\nPTP {A1 10.5, A2 -80, A3 95.25, A4 0, A5 30, A6 -5.0, E1 0}\r\nLIN {E6AXIS: A1 11, A2 -79.5, A3 95, A4 0.0, A5 31, A6 -5}  ; cut\nDECL E6AXIS XP3={A1 12,A2 -79,A3 94.5,A4 1E-1,A5 32,A6 -5}\nPTP XP3\nEND\n";
+
+const RAPID: &str = "MODULE Pocket\n  ! joint targets\n  CONST jointtarget j1:=[[10.5,-20,30,0,45.125,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n  PROC main()\n    MoveAbsJ j1, v100, fine, tool0;\n    MoveAbsJ [[11, -19.5, 30, 0, 44, 0.5],[9E9,9E9,9E9,9E9,9E9,9E9]]\\NoEOffs, v100, z10, tool0;\n  ENDPROC\nENDMODULE\n";
+
+const LS: &str = "/PROG  POCKET\n/ATTR\nOWNER\t\t= MNEDITOR;\n/MN\n   1:J P[1] 100% FINE    ;\n   2:L P[2] 50mm/sec CNT100    ;\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1=    10.000 deg,\tJ2=   -20.500 deg,\tJ3=    30.000 deg,\n\tJ4=     0.000 deg,\tJ5=   -45.000 deg,\tJ6=     5.000 deg\n};\nP[2:\"cut\"]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1=    11.000 deg,\tJ2=   -20.000 deg,\tJ3=    30.250 deg,\n\tJ4=     0.000 deg,\tJ5=   -44.000 deg,\tJ6=     5.000 deg\n};\n/END\n";
+
+#[test]
+fn robot_programs_round_trip_byte_for_byte_and_read_their_joint_targets() {
+    for (text, dialect, first, count, line) in [
+        (
+            KRL,
+            Dialect::Krl,
+            [10.5, -80.0, 95.25, 0.0, 30.0, -5.0],
+            3,
+            4,
+        ),
+        (
+            RAPID,
+            Dialect::Rapid,
+            [10.5, -20.0, 30.0, 0.0, 45.125, 0.0],
+            2,
+            3,
+        ),
+        (
+            LS,
+            Dialect::FanucLs,
+            [10.0, -20.5, 30.0, 0.0, -45.0, 5.0],
+            2,
+            8,
+        ),
+    ] {
+        let p = program::parse(text, dialect).unwrap();
+        assert_eq!(p.targets.len(), count, "{dialect:?}");
+        assert_eq!(p.targets[0].q_deg, first, "{dialect:?}");
+        assert_eq!(p.targets[0].line, line, "{dialect:?}");
+        let same: Vec<[f64; 6]> = p.targets.iter().map(|t| t.q_deg).collect();
+        assert_eq!(p.write(&same).unwrap(), text, "{dialect:?}");
+        // A changed value replaces that number only.
+        let mut changed = same.clone();
+        changed[1][2] += 0.0123456789;
+        let out = p.write(&changed).unwrap();
+        let again = program::parse(&out, dialect).unwrap();
+        assert_relative_eq!(again.targets[1].q_deg[2], changed[1][2], epsilon = 1e-9);
+        assert_eq!(again.targets[0].q_deg, first);
+        assert_eq!(out.lines().count(), text.lines().count());
+    }
+    assert_eq!(
+        program::parse(KRL, Dialect::Krl).unwrap().targets[2].q_deg[3],
+        0.1
+    );
+}
+
+#[test]
+fn malformed_programs_are_refused_naming_the_line() {
+    let cases = [
+        (KRL.replace("A3 95.25", "A3 abc"), Dialect::Krl, 4, "A3"),
+        (
+            KRL.replace("LIN {E6AXIS: A1 11,", "LIN {X 11,"),
+            Dialect::Krl,
+            5,
+            "Cartesian",
+        ),
+        (
+            KRL.replace(", A6 -5}  ; cut", "}  ; cut"),
+            Dialect::Krl,
+            5,
+            "axis 6",
+        ),
+        (
+            KRL.replace("PTP XP3", "LIN_REL {A1 1}"),
+            Dialect::Krl,
+            7,
+            "relative",
+        ),
+        (
+            RAPID.replace("MoveAbsJ j1", "MoveL p1"),
+            Dialect::Rapid,
+            5,
+            "Cartesian",
+        ),
+        (
+            RAPID.replace("[[10.5,-20,30,0,45.125,0]", "[[10.5,-20,30,0,45.125]"),
+            Dialect::Rapid,
+            3,
+            "expected ','",
+        ),
+        (
+            LS.replace(
+                "\tUF : 0, UT : 1,\n\tJ1=    11.000",
+                "\tUF : 0, UT : 1, CONFIG : 'N U T, 0, 0, 0',\n\tJ1=    11.000",
+            ),
+            Dialect::FanucLs,
+            14,
+            "Cartesian",
+        ),
+        (
+            LS.replace(
+                "J4=     0.000 deg,\tJ5=   -44.000",
+                "J4=     0.000 mm,\tJ5=   -44.000",
+            ),
+            Dialect::FanucLs,
+            18,
+            "deg",
+        ),
+        (
+            "MODULE M\nENDMODULE\n".to_string(),
+            Dialect::Rapid,
+            1,
+            "no joint target",
+        ),
+    ];
+    for (text, dialect, line, word) in cases {
+        match program::parse(&text, dialect) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{message}");
+                assert!(message.contains(word), "{message}");
+            }
+            other => panic!("{dialect:?} {word}: {other:?}"),
+        }
+    }
+}
+
+const HEADER: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
+
+#[test]
+fn gcode_arcs_lie_on_their_analytic_circle_within_the_chord_tolerance() {
+    let tolerance = 0.01e-3;
+    // A counter-clockwise half circle of radius 20 mm about (50, 0) by IJK, a clockwise quarter
+    // by R in the ZX plane, a full helical circle by IJK, inches for the last block.
+    let text = format!(
+        "{HEADER}G21 G90 G17\nG0 X30 Y0 Z5\nG1 Z0 F500\nG3 X70 Y0 I20 J0\nG18 G2 X90 Z-20 R20\n\
+         G17 G91 G2 I-20 J0 Z-2\nG20 G90 G1 X1\n"
+    );
+    let g = gcode::parse(&text, tolerance).unwrap();
+    let on_circle = |line: u64, centre: Vector3<f64>, normal: usize| {
+        let pts: Vec<_> = g.points.iter().filter(|p| p.line == line).collect();
+        assert!(pts.len() > 10, "line {line}: {}", pts.len());
+        for p in &pts {
+            let mut d = p.position - centre;
+            d[normal] = 0.0;
+            assert_relative_eq!(d.norm(), 20e-3, epsilon = 1e-12);
+        }
+        pts.len()
+    };
+    let n = on_circle(5, Vector3::new(50e-3, 0.0, 0.0), 2);
+    // Chords: the sagitta of the largest step within the tolerance, and no more chords than
+    // needed plus one.
+    let step = 2.0 * (1.0 - tolerance / 20e-3).acos();
+    assert_eq!(n, (std::f64::consts::PI / step).ceil() as usize);
+    let low = g
+        .points
+        .iter()
+        .filter(|p| p.line == 5)
+        .map(|p| p.position.y)
+        .fold(f64::MAX, f64::min);
+    assert!(
+        low < -19.99e-3,
+        "the CCW half circle from (30,0) to (70,0) goes through -y: {low}"
+    );
+    // G18 G2 R20 from (70, 0, 0) to (90, 0, -20): centre (70, 0, -20) or (90, 0, 0); clockwise
+    // seen from +Y in the ZX plane (Z to X is counter-clockwise) over 90 deg: centre (90, 0, 0)
+    // (about (70, 0, -20) the clockwise way is 270 deg).
+    on_circle(6, Vector3::new(90e-3, 0.0, 0.0), 1);
+    // The full circle: back at its start, 2 mm lower, about (70, 0).
+    let full: Vec<_> = g.points.iter().filter(|p| p.line == 7).collect();
+    on_circle(7, Vector3::new(70e-3, 0.0, -20e-3), 2);
+    assert_relative_eq!(
+        full.last().unwrap().position,
+        Vector3::new(90e-3, 0.0, -22e-3),
+        epsilon = 1e-15
+    );
+    let last = g.points.last().unwrap();
+    assert_relative_eq!(last.position.x, 25.4e-3, epsilon = 1e-15);
+    assert_relative_eq!(
+        g.points[0].orientation * Vector3::z(),
+        -Vector3::z(),
+        epsilon = 1e-15
+    );
+}
+
+#[test]
+fn malformed_gcode_is_refused_naming_the_line() {
+    let cases = [
+        (format!("{HEADER}G1 X10\nG41 X20\n"), 3, "G41"),
+        (
+            format!("{HEADER}G1 X10\nG2 X20 Y0 I3 J0\n"),
+            3,
+            "off its circle",
+        ),
+        ("G1 X10\n".to_string(), 1, "no tool orientation"),
+        (format!("{HEADER}G1 X10 A30\n"), 2, "rotary"),
+        (format!("{HEADER}G1 X1Q\n"), 2, "Q: expected a number"),
+        (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),
+        (format!("{HEADER}G2 X10 Y0 R2\n"), 2, "shorter than half"),
+        (format!("{HEADER}M3 S1000\n"), 1, "no motion"),
+    ];
+    for (text, line, word) in cases {
+        match gcode::parse(&text, 1e-5) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{message}");
+                assert!(message.contains(word), "{word}: {message}");
+            }
+            other => panic!("{word}: {other:?}"),
+        }
+    }
+    assert!(matches!(
+        gcode::parse(&format!("{HEADER}G1 X1\n"), 0.0),
+        Err(Error::InvalidField { .. })
+    ));
+}
+
+const PROCESS: &str = "[workpiece]\nbase_from_part = { xyz_mm = [1300, -700, 400], rpy_deg = [0, 0, 0] }\n\
+    [tool]\ndiameter_mm = 20\nflutes = 3\nhelix_deg = 30\n[cut]\nfeed_per_tooth_mm = 0.1\n\
+    axial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n[coefficients]\npreset = \"al7075-t6\"\n";
+
+fn fanuc() -> (stiffid::Setup, Compliance) {
+    let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let h = s.nominal_compliance().unwrap();
+    (
+        s,
+        Compliance {
+            h,
+            covariance: None,
+        },
+    )
+}
+
+/// An LS program whose targets reach a square in the plane z = 400 mm.
+fn ls_program(s: &stiffid::Setup) -> String {
+    let tcp = s.tool().tcp;
+    let mut q = Options::for_setup(s).q0;
+    let mut text = String::from("/PROG  SQUARE\n/MN\n/POS\n");
+    let corners = [
+        (0.0, 0.0),
+        (60.0, 0.0),
+        (60.0, 40.0),
+        (0.0, 40.0),
+        (0.0, 0.0),
+    ];
+    for (i, (x, y)) in corners.iter().enumerate() {
+        let pose = Isometry3::from_parts(
+            Vector3::new(1.3 + x * 1e-3, -0.7 + y * 1e-3, 0.4).into(),
+            UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0),
+        );
+        q = ik::solve(s.robot(), &tcp, &pose, &q, &ik::Options::default())
+            .unwrap()
+            .q;
+        let d = q.map(f64::to_degrees);
+        text += &format!(
+            "P[{}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {:.6} deg,\tJ2= {:.6} deg,\tJ3= {:.6} deg,\n\tJ4= {:.6} deg,\tJ5= {:.6} deg,\tJ6= {:.6} deg\n}};\n",
+            i + 1, d[0], d[1], d[2], d[3], d[4], d[5]
+        );
+    }
+    text + "/END\n"
+}
+
+#[test]
+fn a_compensated_program_has_the_csv_routes_targets() {
+    let (s, compliance) = fanuc();
+    let process = file::parse(PROCESS, "p.toml").unwrap();
+    let text = ls_program(&s);
+    let program = machining::read(&text, Language::Robot(Dialect::FanucLs), 1e-5).unwrap();
+    let options = Options::for_setup(&s);
+    let report = machining::compensate(&s, &compliance, &program, &process, &options).unwrap();
+    // Every point cuts: the down-milling force, about 300 N, against the feed.
+    for p in &report.points {
+        let f = p.wrench.fixed_rows::<3>(0).norm();
+        assert!(f > 100.0 && f < 1000.0, "{f}");
+    }
+    // The CSV route: the same postures and base-frame wrenches through the path file.
+    let mut csv = String::from(
+        "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm\n",
+    );
+    let Program::Robot(r) = &program else {
+        panic!()
+    };
+    for (t, p) in r.targets.iter().zip(&report.points) {
+        let cells: Vec<String> = t
+            .q_deg
+            .iter()
+            .chain(p.wrench.iter())
+            .map(|v| format!("{v:e}"))
+            .collect();
+        csv += &(cells.join(",") + "\n");
+    }
+    let points = formats::path::parse(&csv, Frame::Base).unwrap();
+    let by_csv = compensate::path(&s, &compliance, &points, &options).unwrap();
+    let written = program::parse(&report.program, Dialect::FanucLs).unwrap();
+    for ((a, b), t) in report.results.iter().zip(&by_csv).zip(&written.targets) {
+        let qa = a.q_compensated.map(f64::to_degrees);
+        let qb = b.q_compensated.map(f64::to_degrees);
+        assert!((qa - qb).amax() <= 1e-9, "{qa} {qb}");
+        assert!((qa - Vector6::from(t.q_deg)).amax() <= 1e-9);
+        assert!(
+            (qa - a.q.map(f64::to_degrees)).amax() > 1e-3,
+            "the compensation moved the target"
+        );
+    }
+    // Untouched lines stay.
+    assert!(report
+        .program
+        .starts_with("/PROG  SQUARE\n/MN\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n"));
+}
+
+#[test]
+fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_programmed_path() {
+    let (s, compliance) = fanuc();
+    let process = file::parse(PROCESS, "p.toml").unwrap();
+    let text = format!("{HEADER}G0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40\nG3 X60 Y20 I0 J20\nG1 Y40\n");
+    let program = machining::read(&text, Language::GCode, 0.05e-3).unwrap();
+    let report =
+        machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s))
+            .unwrap();
+    assert!(
+        report.warnings.iter().any(|w| w.contains("plunge")),
+        "{:?}",
+        report.warnings
+    );
+    let again = gcode::parse(&report.program, 0.05e-3).unwrap();
+    let Program::GCode(g) = &program else {
+        panic!()
+    };
+    assert_eq!(again.points.len(), g.points.len());
+    let part = process.base_from_part.unwrap();
+    for (r, p) in report.results.iter().zip(&again.points) {
+        let sent = tool_pose(&s.robot().frames(&r.q_compensated), &s.tool().tcp);
+        let expected = part.inverse() * Point3::from(sent.translation.vector);
+        assert!(
+            (expected.coords - p.position).amax() < 1e-9,
+            "{} {}",
+            expected,
+            p.position
+        );
+    }
+    let moved = report
+        .results
+        .iter()
+        .map(|r| (r.q_compensated - r.q).amax())
+        .fold(0.0, f64::max);
+    assert!(moved > 1e-5);
+}
