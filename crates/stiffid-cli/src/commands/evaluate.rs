@@ -101,19 +101,90 @@ pub struct EvaluateJson {
     criteria: CriteriaJson,
     /// Every posture's checks in the cell, in the order of the postures file.
     feasibility: Vec<feasibility::PostureJson>,
+    /// Every parameter of the setup's model, drives first: whether the group identifies it and
+    /// how well.
+    parameters: Vec<ParameterJson>,
+    /// The combinations of parameters the group cannot separate (e.g. `0.71 k6 - 0.71 twin6`);
+    /// empty when it identifies every parameter.
+    unidentifiable: Vec<String>,
+}
+
+/// How well the group identifies one parameter.
+#[derive(Serialize, JsonSchema)]
+pub struct ParameterJson {
+    /// `k1` .. `k6`, or the virtual spring's name.
+    name: String,
+    /// The unit of its stiffness: `Nm/rad` or `N/mm`.
+    unit: &'static str,
+    /// Whether the group identifies it (column-scaled rank of `Psi`).
+    identified: bool,
+    /// Predicted mean deviation rate of its stiffness at noise multiple 1, percent; `null` when
+    /// the group's `Psi` is rank deficient or the setup has no nominal stiffness.
+    predicted_deviation_pct: Option<f64>,
+}
+
+/// The parameters' rows and the unidentifiable combinations of an evaluation.
+fn parameters(e: &Evaluation, setup: &Setup) -> (Vec<ParameterJson>, Vec<String>) {
+    let names = setup.model().parameters();
+    let rows = e
+        .parameters(setup)
+        .into_iter()
+        .map(|p| ParameterJson {
+            name: p.parameter.name,
+            unit: p.parameter.unit.symbol(),
+            identified: p.identified,
+            predicted_deviation_pct: Some(p.predicted_deviation_pct).filter(|v| v.is_finite()),
+        })
+        .collect();
+    let combinations = e
+        .identifiability
+        .unidentifiable
+        .iter()
+        .map(|c| c.describe(&names))
+        .collect();
+    (rows, combinations)
+}
+
+/// The parameters' lines of `stiffid evaluate`: identified or not, and the predicted deviation
+/// rate at noise multiple 1; the combinations the group cannot separate.
+pub fn parameters_text(e: &Evaluation, setup: &Setup) -> String {
+    let (rows, combinations) = parameters(e, setup);
+    let mut s =
+        "\nparameters: identified by the group, predicted deviation rate at noise level 1\n"
+            .to_string();
+    for p in rows {
+        let pct = p
+            .predicted_deviation_pct
+            .map_or("-".to_string(), |v| format!("{v:.4} %"));
+        let id = if p.identified {
+            "identified"
+        } else {
+            "NOT identified"
+        };
+        s += &format!("  {:<12} {:<7} {:<15} {pct}\n", p.name, p.unit, id);
+    }
+    for c in combinations {
+        s += &format!("  cannot separate: {c}\n");
+    }
+    s
 }
 
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
     let group = load::postures(&args.postures, setup.robot(), Some(setup.bounds()))?;
-    identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
+    if setup.model().is_drives_only() {
+        identifiable(&setup, &group).with_context(|| args.postures.display().to_string())?;
+    }
     let e = evaluate(&setup, &group);
     let checks = feasibility::of_group(&setup, &group);
     if args.common.json {
+        let (parameters, unidentifiable) = parameters(&e, &setup);
         let doc = EvaluateJson {
             criteria: CriteriaJson::from(&e),
             feasibility: feasibility::json(&checks),
+            parameters,
+            unidentifiable,
         };
         return output::print(&json(&doc)?);
     }
@@ -124,6 +195,9 @@ pub fn run(args: &Args) -> Result<()> {
         short(setup.name())
     );
     s += &criteria_text(&e, &setup);
+    if !setup.model().is_drives_only() {
+        s += &parameters_text(&e, &setup);
+    }
     s += "\npredicted mean deviation rate, % (first order)\n";
     if let Err(e) = setup.try_nominal_stiffness("the prediction") {
         s += &format!("  not computed: {e}\n");
@@ -146,10 +220,21 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// Fails, naming the joints, when the group's observation matrix cannot identify every joint
-/// (the same error as `stiffid simulate`).
+/// (the same error as `stiffid simulate`); for a model with virtual springs, naming the
+/// combinations of parameters it cannot separate.
 pub fn identifiable(setup: &Setup, postures: &[Vector6<f64>]) -> Result<()> {
-    Factor::try_new(rope_observation_matrix(setup, postures))?;
-    Ok(())
+    if setup.model().is_drives_only() {
+        Factor::try_new(rope_observation_matrix(setup, postures))?;
+        return Ok(());
+    }
+    let (_, combinations) = parameters(&evaluate(setup, postures), setup);
+    match combinations.is_empty() {
+        true => Ok(()),
+        false => anyhow::bail!(
+            "the group cannot separate {}: choose postures that load these parameters differently",
+            combinations.join("; ")
+        ),
+    }
 }
 
 /// Every criterion of an evaluation on `setup`, one per line (smaller is better), for a group

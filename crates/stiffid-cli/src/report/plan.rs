@@ -216,6 +216,10 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(2, "Predicted accuracy");
     w.paragraph("The predicted mean deviation rate |k_identified - k_true| / k_true of each joint (first order, `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)`) at the setup's noise levels, if every posture is measured as planned.");
     w.table(&accuracy(plan));
+    if !s.model().is_drives_only() {
+        w.paragraph("Every parameter of the setup's model: whether the group identifies it (the column-scaled rank of the observation matrix) and its predicted deviation rate at noise level multiple 1. A parameter the group does not identify cannot be fitted from these measurements, whatever the noise: add postures that load it differently.");
+        w.table(&parameters_table(plan));
+    }
     if let Some(t) = plan.target {
         w.paragraph(&format!(
             "{n} postures are the fewest whose group predicts at most {} % on every joint at noise level multiple 1.",
@@ -257,6 +261,42 @@ fn accuracy(plan: &Plan) -> Table {
             row
         })
         .collect();
+    Table { header, rows }
+}
+
+/// Per parameter of the model: identified or not, predicted deviation rate at noise multiple 1;
+/// then the combinations the group cannot separate.
+fn parameters_table(plan: &Plan) -> Table {
+    let header = [
+        "parameter",
+        "unit",
+        "identified",
+        "deviation rate at level 1, %",
+    ]
+    .map(String::from)
+    .to_vec();
+    let mut rows: Vec<Vec<String>> = plan
+        .evaluation
+        .parameters(plan.setup)
+        .into_iter()
+        .map(|p| {
+            vec![
+                p.parameter.name,
+                p.parameter.unit.symbol().to_string(),
+                if p.identified { "yes" } else { "NO" }.to_string(),
+                num(p.predicted_deviation_pct),
+            ]
+        })
+        .collect();
+    let names = plan.setup.model().parameters();
+    for c in &plan.evaluation.identifiability.unidentifiable {
+        rows.push(vec![
+            "cannot separate".into(),
+            String::new(),
+            "NO".into(),
+            c.describe(&names),
+        ]);
+    }
     Table { header, rows }
 }
 

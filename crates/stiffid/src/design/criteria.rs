@@ -10,7 +10,8 @@
 //! (the rule of [`crate::lsq::Factor::try_new`]) gets `+infinity` for every criterion that depends
 //! on `Psi`, never NaN.
 
-use super::{Evaluator, Identifiability};
+use super::Evaluator;
+use crate::identify::model::Identifiability;
 use crate::setup::Setup;
 use crate::{dexterity, Error, Frames};
 use nalgebra::Vector6;
@@ -196,8 +197,9 @@ pub struct Evaluation {
     /// Predicted mean deviation rate (%) per noise level of the setup and joint, first order:
     /// `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)` (the mean of |N(0, s^2)| is `sqrt(2/pi) s`).
     pub predicted_deviation_pct: Vec<[f64; 6]>,
-    /// Which parameters (drives, then virtual springs) the group identifies, from the
-    /// column-scaled rank of `Psi`; needs no nominal stiffness.
+    /// Which parameters (drives, then virtual springs) the group identifies, and the combinations
+    /// it cannot separate: the column-scaled rank of its `Psi`, by the rule of identification
+    /// ([`crate::identify::model::identifiability`]); needs no nominal stiffness.
     pub identifiability: Identifiability,
 }
 
@@ -244,6 +246,47 @@ impl Evaluation {
     pub fn predicted_average_pct(&self) -> f64 {
         let p = &self.predicted_deviation_pct;
         p.iter().flatten().sum::<f64>() / (6 * p.len()).max(1) as f64
+    }
+}
+
+/// How well a group of postures identifies one parameter of the model
+/// ([`Evaluation::parameters`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParameterQuality {
+    /// The parameter's name (`k1` .. `k6`, or the virtual spring's) and unit.
+    pub parameter: crate::model::Parameter,
+    /// Whether the group identifies it ([`Evaluation::identifiability`]).
+    pub identified: bool,
+    /// Relative standard deviation of its compliance at noise level 1 (`+infinity` for a group
+    /// whose `Psi` is rank deficient, NaN without a nominal stiffness).
+    pub relative_std: f64,
+    /// Its predicted mean deviation rate at noise multiple 1, %: `100 sqrt(2/pi) relative_std`.
+    pub predicted_deviation_pct: f64,
+}
+
+impl Evaluation {
+    /// Every parameter of `setup`'s model (the setup evaluated), drives first: whether the group
+    /// identifies it and how well.
+    pub fn parameters(&self, setup: &Setup) -> Vec<ParameterQuality> {
+        let std = self.relative_std.iter().chain(&self.spring_relative_std);
+        setup
+            .model()
+            .parameters()
+            .into_iter()
+            .zip(std)
+            .enumerate()
+            .map(|(j, (parameter, &relative_std))| ParameterQuality {
+                parameter,
+                identified: self
+                    .identifiability
+                    .identified
+                    .get(j)
+                    .copied()
+                    .unwrap_or(false),
+                relative_std,
+                predicted_deviation_pct: 100.0 * (2.0 / PI).sqrt() * relative_std,
+            })
+            .collect()
     }
 }
 

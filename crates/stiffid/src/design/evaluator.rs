@@ -21,7 +21,7 @@
 //! `wide` (the same formulas over n columns). The six drives alone keep the fixed-size path above.
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
-use super::identifiability::Identifiability;
+use crate::identify::model::{identifiability, Identifiability};
 use crate::linalg::{cond, householder_qr_columns, triangular_factor};
 use crate::lsq::Factor;
 use crate::observation::{compact_posture_block, points_factor, rope_observation_matrix};
@@ -34,8 +34,6 @@ use wide::WideGroup;
 mod gradient;
 mod springs;
 mod wide;
-
-pub(crate) use wide::singular_values_and_vectors;
 
 /// Evaluates design criteria of groups of postures for one setup.
 #[derive(Debug, Clone)]
@@ -325,10 +323,19 @@ impl<'a> Evaluator<'a> {
         stack
     }
 
-    /// Which parameters the postures' terms identify ([`Identifiability::of`] of their stacked
-    /// compact blocks, which have the column norms and the triangular factor of `Psi`).
+    /// Which parameters the postures' terms identify: [`identifiability`] of their stacked
+    /// compact blocks (the column norms and Gram matrix of `Psi`), padded with zero rows to at
+    /// least one per parameter; nothing for non-finite blocks.
     fn identifiability(&self, terms: &[&PostureTerms]) -> Identifiability {
-        Identifiability::of(&self.stack(terms))
+        let stack = self.stack(terms);
+        let n = stack.ncols();
+        let rows = stack.nrows().max(n);
+        identifiability(&stack.resize_vertically(rows, 0.0)).unwrap_or_else(|_| Identifiability {
+            rank: 0,
+            scaled_cond: f64::INFINITY,
+            unidentifiable: Vec::new(),
+            identified: vec![false; n],
+        })
     }
 
     /// The factor of the group's `Psi` (the compact blocks stacked), `None` if rank deficient.

@@ -1,5 +1,6 @@
 //! How many postures an experiment needs: the smallest group size whose chosen group predicts a
-//! deviation rate of at most a target on every joint, at noise level multiple 1.
+//! deviation rate of at most a target on every joint (and every virtual spring of the setup's
+//! model), at noise level multiple 1.
 //!
 //! The prediction is the first-order one of [`super::Evaluation::predicted_deviation_pct`]:
 //! `100 sqrt(2/pi) sqrt([(S^T S)^-1]_jj)` percent for joint j at multiple 1.
@@ -24,9 +25,18 @@ pub struct TargetStep {
     /// Predicted mean deviation rate of each joint at noise multiple 1, % (`+infinity` for a
     /// rank-deficient group).
     pub deviation_pct: [f64; 6],
+    /// The same for each virtual spring of the setup's model, in its order (empty for the drives
+    /// alone).
+    pub spring_deviation_pct: Vec<f64>,
 }
 
 impl TargetStep {
+    /// The worst parameter's predicted deviation rate, %: of the joints and virtual springs.
+    pub fn worst_pct(&self) -> f64 {
+        let springs = self.spring_deviation_pct.iter().copied();
+        springs.fold(self.worst_joint().1, f64::max)
+    }
+
     /// The worst joint (0-based) and its predicted deviation rate, %.
     pub fn worst_joint(&self) -> (usize, f64) {
         (0..6).fold((0, f64::NEG_INFINITY), |(jw, w), j| {
@@ -59,8 +69,8 @@ impl TargetOutcome {
 
 /// Tries group sizes `n` = [`MIN_POSTURES`], 3, ... up to `max_postures` (at most
 /// [`MAX_POSTURES`]), choosing each group with `choose(n)` (a search or a pool choice by some
-/// criterion), and stops at the first whose worst-joint predicted deviation rate at noise
-/// multiple 1 is at most `target_pct` (%).
+/// criterion), and stops at the first whose worst predicted deviation rate at noise multiple 1
+/// (of the joints and the model's virtual springs) is at most `target_pct` (%).
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`target_pct`) for a target that is not a finite number > 0,
@@ -96,8 +106,12 @@ pub fn smallest_group<E: From<Error>>(
         let step = TargetStep {
             postures,
             deviation_pct: predicted_deviation_pct(&e.relative_std, 1.0),
+            spring_deviation_pct: e.parameters(setup)[6..]
+                .iter()
+                .map(|p| p.predicted_deviation_pct)
+                .collect(),
         };
-        let reached = step.worst_joint().1 <= target_pct;
+        let reached = step.worst_pct() <= target_pct;
         steps.push(step);
         if reached {
             return Ok(TargetOutcome {

@@ -262,6 +262,17 @@ impl Scaled {
     }
 }
 
+/// What an observation matrix `psi` (`m x n`, one column per parameter; or any matrix with its
+/// column norms and Gram matrix `psi^T psi`, such as a planned group's compact blocks) identifies,
+/// by the rule of the module docs; the design side's answer to which springs a group of postures
+/// identifies ([`crate::design::Evaluation::identifiability`]).
+///
+/// # Errors
+/// [`Error::NotFinite`] for non-finite entries, [`Error::TooFewRows`] for fewer rows than columns.
+pub fn identifiability(psi: &DMatrix<f64>) -> Result<Identifiability> {
+    Ok(Scaled::new(psi)?.identifiability())
+}
+
 /// The least-squares fit of `obs` (one column per entry of `parameters`) with its identifiability
 /// and intervals (module docs).
 ///

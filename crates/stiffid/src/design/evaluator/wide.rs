@@ -193,7 +193,7 @@ pub(super) fn cond(a: &DMatrix<f64>) -> f64 {
 /// The singular values (no particular order) and right singular vectors (columns) of a square
 /// matrix by one-sided (Hestenes) Jacobi, cyclic by rows, to working precision, as
 /// [`crate::linalg::singular_values_and_vectors`] for six columns.
-pub(crate) fn singular_values_and_vectors(a: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
+pub(super) fn singular_values_and_vectors(a: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
     let (s, v) = jacobi(a, true);
     (
         s,

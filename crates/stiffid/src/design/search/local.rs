@@ -134,6 +134,18 @@ pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usi
             message: format!("{n} given: a search needs at least 2 postures"),
         });
     }
+    // A posture gives at most min(3p, 6) independent rows of Psi.
+    let rows = (3 * setup.tool().measuring_points.len()).min(6);
+    let parameters = setup.model().len();
+    if n * rows < parameters {
+        return Err(Error::InvalidField {
+            field: "postures".into(),
+            message: format!(
+                "{n} given: the model's {parameters} parameters need at least {} postures ({rows} independent rows each)",
+                parameters.div_ceil(rows)
+            ),
+        });
+    }
     if criterion == Criterion::TestPose && setup.test_postures().is_empty() {
         return Err(Error::InvalidField {
             field: "test.postures_deg".into(),
