@@ -83,12 +83,17 @@ pub fn input_at(target: &Path) -> Option<PathBuf> {
         .map(|(p, _, _)| p.clone())
 }
 
-/// A `--q-deg` posture: six comma-separated axis angles in degrees, within the robot's joint
-/// limits. Returns the angles in degrees and in radians; the error names the axis and the limits.
-pub fn posture(text: &str, robot: &Robot) -> Result<(Vector6<f64>, Vector6<f64>)> {
-    let q_deg = vector::<6>(text, "--q-deg", &limits::ANGLE_DEG)?;
+/// A posture given with `option` (e.g. `--q-deg`): six comma-separated axis angles in degrees,
+/// within the robot's joint limits. Returns the angles in degrees and in radians; the error names
+/// the option, the axis and the limits.
+pub fn posture(
+    text: &str,
+    option: &str,
+    robot: &Robot,
+) -> Result<(Vector6<f64>, Vector6<f64>)> {
+    let q_deg = vector::<6>(text, option, &limits::ANGLE_DEG)?;
     let q = q_deg.map(f64::to_radians);
-    let field = |a: usize| format!("--q-deg[{}]", a + 1);
+    let field = |a: usize| format!("{option}[{}]", a + 1);
     robot.limits.check(&q, "the robot's limits", field)?;
     Ok((q_deg, q))
 }

@@ -123,11 +123,42 @@ impl FreeToolAxis {
         })
     }
 
+    /// The most grid cells (angles x path points) the optimisation may visit: each is one
+    /// inverse kinematics solution kept in memory (about 70 bytes), so at most about 0.4 GB.
+    pub const MAX_GRID_CELLS: f64 = 5e6;
+
     /// The grid spacing: `max_step` divided into whole cells of at most 5 deg, and the number of
     /// cells one step may move.
     fn grid(&self) -> (f64, usize) {
         let cells = (self.max_step / 5f64.to_radians()).ceil().max(1.0);
         (self.max_step / cells, cells as usize)
+    }
+
+    /// The number of angles of the grid: `2 floor(range / spacing) + 1`, as a float (it may be
+    /// astronomically large for a tiny `max_step`).
+    fn angle_count(&self) -> f64 {
+        2.0 * (self.range / self.grid().0 + 1e-9).floor() + 1.0
+    }
+
+    /// Checks that the grid of a path of `points` points stays within [`Self::MAX_GRID_CELLS`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (field `max_step_deg`) with the grid's size and what to change.
+    pub fn check_grid(&self, points: usize) -> Result<()> {
+        let angles = self.angle_count();
+        let cells = angles * points as f64;
+        if cells <= Self::MAX_GRID_CELLS {
+            return Ok(());
+        }
+        Err(Error::InvalidField {
+            field: "max_step_deg".into(),
+            message: format!(
+                "{} deg with a range of +-{} deg makes a grid of {angles:.3e} angles x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range or a shorter path)",
+                number(self.max_step.to_degrees()),
+                number(self.range.to_degrees()),
+                Self::MAX_GRID_CELLS
+            ),
+        })
     }
 }
 
@@ -346,7 +377,8 @@ impl<'a> Model<'a> {
 /// depend on the number of threads.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]);
+/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
+/// tool axis grid beyond [`FreeToolAxis::MAX_GRID_CELLS`] ([`FreeToolAxis::check_grid`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
 /// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
 /// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
@@ -360,6 +392,9 @@ pub fn path(
     options: &Options,
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
+    if let Some(free) = &options.free_tool_axis {
+        free.check_grid(points.len())?;
+    }
     let model = Model::new(setup, compliance)?;
     let nominal = nominal_postures(setup, points, options)?;
     let wrenches: Vec<Vector6<f64>> = points

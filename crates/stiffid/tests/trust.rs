@@ -9,6 +9,7 @@ use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternio
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiffid::formats::measurements;
+use stiffid::identify::cross_validation::Method;
 use stiffid::identify::{cross_validate, least_squares, nonnegative};
 use stiffid::observation::{Measurement, Observations};
 use stiffid::validate;
@@ -163,7 +164,7 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
     let data = noisy_paper_data(&setup, 1, 5);
     let obs = Observations::from_measurements(&setup, &data).unwrap();
     let full = obs.least_squares().unwrap();
-    let cv = cross_validate(&obs, &full, 6).unwrap();
+    let cv = cross_validate(&obs, &full, 6, Method::LeastSquares).unwrap();
     assert_eq!(cv.folds.len(), 6);
     let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;
     for (p, fold) in cv.folds.iter().enumerate() {
@@ -203,15 +204,15 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
         (6, &obs.posture_index)
     );
     // Two folds: postures 0, 2, 4 and 1, 3, 5, every measurement held out once.
-    let two = cross_validate(&obs, &full, 2).unwrap();
+    let two = cross_validate(&obs, &full, 2, Method::LeastSquares).unwrap();
     assert_eq!(two.folds[0].postures, vec![0, 2, 4]);
     assert_eq!(two.folds[1].postures, vec![1, 3, 5]);
     assert_eq!(
         two.folds[0].measurements.len() + two.folds[1].measurements.len(),
         24
     );
-    assert!(cross_validate(&obs, &full, 7).is_err());
-    assert!(cross_validate(&obs, &full, 1).is_err());
+    assert!(cross_validate(&obs, &full, 7, Method::LeastSquares).is_err());
+    assert!(cross_validate(&obs, &full, 1, Method::LeastSquares).is_err());
 }
 
 /// The FANUC file with forces in the tool frame and displacements in a tracker frame.

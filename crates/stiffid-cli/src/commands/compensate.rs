@@ -172,9 +172,9 @@ pub fn run(args: &Args) -> Result<()> {
         h: file.stiffness().map(|k| 1.0 / k),
         covariance: file.covariance(),
     };
-    let options = options(args, &setup)?;
     let name = args.path.display().to_string();
     let points = path::parse(&load::read(&args.path)?, args.frame.into()).context(name.clone())?;
+    let options = options(args, &setup, points.len())?;
     let out = OutFile::prepare(&args.out, "--out")?;
     let report = args
         .report
@@ -215,13 +215,14 @@ pub fn run(args: &Args) -> Result<()> {
     })
 }
 
-fn options(args: &Args, setup: &Setup) -> Result<Options> {
+fn options(args: &Args, setup: &Setup, points: usize) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     if let Some(text) = &args.q0_deg {
-        options.q0 = load::posture(text, setup.robot())?.1;
+        options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
     if args.free_tool_axis {
         let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)
+            .and_then(|f| f.check_grid(points).map(|()| f))
             .map_err(|e| match e {
                 Error::InvalidField { field, message } => {
                     anyhow!("--{}: {message}", field.replace('_', "-"))

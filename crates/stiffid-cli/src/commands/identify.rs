@@ -10,6 +10,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::formats::measurements::{Labels, MeasurementFile};
+use stiffid::identify::cross_validation::Method;
 use stiffid::identify::streamed::Rows;
 use stiffid::identify::{
     cross_validate, Adequacy, CrossValidation, Identification, Loss, Uncertainty, UnitCheck,
@@ -336,20 +337,22 @@ fn rows_of(file: MeasurementFile) -> Rows {
     }
 }
 
-/// The fit the arguments ask for (robust, bounded or, for cross-validation, least squares on the
-/// whole `Psi`), and the cross-validation if asked.
+/// The fit the arguments ask for (least squares, robust or bounded), and the cross-validation if
+/// asked, every fold fitted the same way.
 fn fit(args: &Args, obs: &Observations) -> Result<(Identification, Option<CrossValidation>)> {
-    let id = match (args.robust, args.nonnegative) {
-        (Some(Robust::Huber), _) => obs.robust(Loss::Huber)?,
-        (Some(Robust::Tukey), _) => obs.robust(Loss::Tukey)?,
-        (None, true) => obs.nonnegative()?,
-        (None, false) => obs.least_squares()?,
+    let method = match (args.robust, args.nonnegative) {
+        (Some(Robust::Huber), _) => Method::Robust(Loss::Huber),
+        (Some(Robust::Tukey), _) => Method::Robust(Loss::Tukey),
+        (None, true) => Method::Nonnegative,
+        (None, false) => Method::LeastSquares,
     };
+    let id = method.fit(obs)?;
     let cross_validation = match args.cross_validate || args.folds.is_some() {
         false => None,
-        true => {
-            Some(cross_validate(obs, &id, args.folds.unwrap_or(obs.postures)).context("--folds")?)
-        }
+        true => Some(
+            cross_validate(obs, &id, args.folds.unwrap_or(obs.postures), method)
+                .context("--folds")?,
+        ),
     };
     Ok((id, cross_validation))
 }

@@ -3,7 +3,7 @@
 //! commented out. The text is loaded back before it is written, so it always loads as written.
 
 use crate::{load, output};
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use nalgebra::{Vector3, Vector6};
 use std::path::{Path, PathBuf};
 use stiffid::setup::Tool;
@@ -36,19 +36,11 @@ const SEED: u64 = 1;
 
 /// Writes (or prints) the setup.
 pub fn run(args: &NewArgs) -> Result<()> {
-    if let Some(out) = &args.out {
-        if out.symlink_metadata().is_ok() {
-            bail!(
-                "--out {}: exists; setups new writes a new file only",
-                out.display()
-            );
-        }
-    }
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
     let out = args
         .out
         .as_deref()
-        .map(|p| output::OutFile::prepare(p, "--out"))
+        .map(|p| output::OutFile::prepare_new(p, "--out"))
         .transpose()?;
     let robot_ref = reference_from(&args.robot, args.out.as_deref())?;
     let text = template(&robot, &robot_ref, args)?;

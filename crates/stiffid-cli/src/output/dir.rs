@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 
 /// The hidden directory inside a report directory that holds the temporary files while they are
 /// written. A run killed mid-write (SIGKILL) leaves it behind; the next run into the same
-/// directory removes it.
+/// directory removes it. One run at a time writes into a directory (an exclusive lock on it,
+/// held to the end of the run): a second one is refused.
 pub const TEMP_DIR: &str = ".stiffid-tmp";
 
 /// A directory being filled with a report, checked when the command starts (before computing).
@@ -22,6 +23,9 @@ pub struct ReportDir {
     tmp: PathBuf,
     /// The top-most directory this run created, if any.
     created: Option<PathBuf>,
+    /// The files of an earlier report the report would write (resolved); those this run does
+    /// not write again are removed when it succeeds.
+    earlier: std::sync::Mutex<Vec<PathBuf>>,
     done: bool,
 }
 
@@ -53,11 +57,17 @@ impl ReportDir {
             Err(e) => return Err(e).with_context(|| format!("{option} {name}: cannot inspect")),
         }
         let created = create(dir).with_context(|| format!("{option} {name}: cannot create"))?;
+        if let Some(top) = &created {
+            super::staged::created(top.clone());
+        }
         let resolved = dir.canonicalize()?;
+        super::staged::claim(&resolved, option)?;
+        lock(&resolved).with_context(|| format!("{option} {name}"))?;
         let report = Self {
             tmp: resolved.join(TEMP_DIR),
             dir: resolved,
             created,
+            earlier: Default::default(),
             done: false,
         };
         report.check_existing(&report.dir, Path::new(""), holds, option)?;
@@ -87,6 +97,7 @@ impl ReportDir {
                 self.check_existing(&entry.path(), &rel, holds, option)?;
             } else if holds(&rel) {
                 resolve(&entry.path(), option)?;
+                self.earlier.lock().unwrap_or_else(|e| e.into_inner()).push(entry.path());
             }
         }
         Ok(())
@@ -103,17 +114,23 @@ impl ReportDir {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("{}: cannot create", parent.display()))?;
         }
-        replace(&resolve(&path, "report file")?, &self.tmp, bytes)
+        self.earlier.lock().unwrap_or_else(|e| e.into_inner()).retain(|p| *p != path);
+        replace(&resolve(&path, "report file")?, &self.tmp, bytes, false)
     }
 
-    /// Ends the report: removes the temporary directory.
+    /// Ends the report: when the run succeeds ([`super::staged::commit`]) its files are put in
+    /// place, the files of an earlier report it did not write again (a larger group's
+    /// `posture_NN` figures) are removed, and so is the temporary directory.
     ///
     /// # Errors
-    /// When it cannot be removed.
+    /// None today; kept for the callers' `?`.
     pub fn finish(mut self) -> Result<()> {
         self.done = true;
-        std::fs::remove_dir_all(&self.tmp)
-            .with_context(|| format!("{}: cannot remove", self.tmp.display()))
+        for path in std::mem::take(&mut *self.earlier.lock().unwrap_or_else(|e| e.into_inner())) {
+            super::staged::stale(path);
+        }
+        super::staged::temp_dir(self.tmp.clone());
+        Ok(())
     }
 }
 
@@ -127,6 +144,24 @@ impl Drop for ReportDir {
             let _ = std::fs::remove_dir_all(created);
         }
     }
+}
+
+/// Takes an exclusive lock on the directory `dir` for the rest of the process (released when it
+/// ends), refusing when another process holds it.
+fn lock(dir: &Path) -> Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::io::AsRawFd;
+        let handle = std::fs::File::open(dir).context("cannot open")?;
+        // SAFETY: flock on a descriptor we own; LOCK_NB never blocks.
+        let locked = unsafe { libc::flock(handle.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+        if locked != 0 {
+            bail!("another stiffid run is writing into this directory; wait for it to end");
+        }
+        // Held until the process ends: the lock lives as long as the descriptor.
+        std::mem::forget(handle);
+    }
+    Ok(())
 }
 
 /// Whether `dir` holds nothing but a stale [`TEMP_DIR`].

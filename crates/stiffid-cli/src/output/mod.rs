@@ -4,11 +4,13 @@
 //! - files through [`OutFile`] and report directories through [`ReportDir`] ([`target`]): checked
 //!   before any computation, never over an input, a device, a directory or any other non-regular
 //!   file, through an existing symlink to its target, whole (a short temporary name, then a
-//!   rename), nothing left behind on failure;
+//!   rename when the run has succeeded, [`staged`]), nothing left behind on failure, stdout
+//!   included; one run at a time into a report directory;
 //! - errors on one line ([`one_line_chain`]), long values cut.
 
 mod dir;
 mod file;
+pub mod staged;
 mod target;
 
 pub use dir::ReportDir;

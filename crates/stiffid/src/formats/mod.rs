@@ -9,6 +9,7 @@
 //! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
+pub(crate) mod exact;
 pub mod measurements;
 pub mod path;
 pub mod postures;
