@@ -215,6 +215,9 @@ impl<'a> InBlocks<'a> {
     /// [`Error::InvalidField`] when every displacement is zero; those of [`Reduced::try_solve`]
     /// ([`Error::TooFewRows`], [`Error::Unidentifiable`], [`Error::NotFinite`]).
     pub fn solve(&mut self) -> Result<Solved> {
+        if !self.setup.model().is_drives_only() {
+            return Err(six_parameters_only());
+        }
         let pending = std::mem::take(&mut self.pending);
         self.reduce(&pending);
         if !self.deflected {
@@ -273,6 +276,14 @@ fn rows(setup: &Setup, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f
     (psi, delta)
 }
 
+/// The error of a six-parameter fit asked for a model with virtual springs.
+fn six_parameters_only() -> Error {
+    Error::InvalidField {
+        field: "model".into(),
+        message: "this fit takes the six drive springs alone; fit a model with virtual springs with identify::model".into(),
+    }
+}
+
 /// [`Error::InvalidField`] when every measured displacement is zero: nothing deflected.
 fn check_deflection<'a>(mut displacements: impl Iterator<Item = &'a f64>) -> Result<()> {
     match displacements.any(|d| *d != 0.0) {
@@ -295,6 +306,9 @@ impl Observations {
     /// the data cannot identify and why (no measurement loads them, or their columns of `Psi` are
     /// dependent); [`Error::NotFinite`] for non-finite entries.
     pub fn least_squares(&self) -> Result<Identification> {
+        if self.psi.ncols() != 6 {
+            return Err(six_parameters_only());
+        }
         check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let h = factor.solve(&self.delta);
@@ -321,6 +335,9 @@ impl Observations {
     /// # Errors
     /// Those of [`Observations::least_squares`].
     pub fn nonnegative(&self) -> Result<Identification> {
+        if self.psi.ncols() != 6 {
+            return Err(six_parameters_only());
+        }
         check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let fit = nonnegative::solve(factor.r(), &factor.project(&self.delta));
@@ -347,6 +364,9 @@ impl Observations {
     /// Those of [`Observations::least_squares`]; [`Error::Unidentifiable`] also when the rows left with
     /// weight make `Psi` rank deficient.
     pub fn robust(&self, loss: Loss) -> Result<Identification> {
+        if self.psi.ncols() != 6 {
+            return Err(six_parameters_only());
+        }
         check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let start = factor.solve(&self.delta);

@@ -31,6 +31,7 @@ pub mod ik;
 pub mod kinematics;
 pub mod limits;
 mod linalg;
+pub mod model;
 pub mod robot;
 
 pub use error::{ColumnProblem, Error, MeasurementField, Result};
@@ -54,3 +55,8 @@ pub use setup::Setup;
 #[doc = include_str!("../../../README.md")]
 #[cfg(doctest)]
 pub struct ReadmeDoctests;
+
+/// The Rust examples of the user guide (`docs/guide.md`), run as doctests.
+#[doc = include_str!("../../../docs/guide.md")]
+#[cfg(doctest)]
+pub struct GuideDoctests;

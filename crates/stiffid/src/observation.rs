@@ -22,6 +22,7 @@ pub use measurement::{
 };
 
 use crate::kinematics::Frames;
+use crate::model::Placed;
 use crate::setup::Setup;
 use crate::stiffness::joint_torques;
 use nalgebra::{DMatrix, Matrix3x6, Matrix6, MatrixXx6, Vector3, Vector6};
@@ -43,16 +44,24 @@ pub fn point_rows(
     rows
 }
 
-/// The `3p x 6` block of one posture under a wrench `[f; m]` (N, Nm, base frame) at the loading point.
+/// The `3p x n` block of one posture under a wrench `[f; m]` (N, Nm, base frame) at the loading
+/// point, `n` the parameters of the setup's model ([`Setup::model`]: the six drives, then the
+/// virtual springs).
 pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> DMatrix<f64> {
-    let mut block = DMatrix::zeros(3 * setup.tool().measuring_points.len(), 6);
+    let n = setup.model().len();
+    let mut block = DMatrix::zeros(3 * setup.tool().measuring_points.len(), n);
     write_posture_block(setup, frames, wrench, &mut block, 0);
     block
 }
 
 /// Writes the block of one posture ([`posture_block`]) into rows `first..first + 3p` of `psi`
-/// (no temporary matrix).
-pub(crate) fn write_posture_block(
+/// (no temporary matrix): the drive columns `0..6` (Eq. 11) and, when `psi` has them, the
+/// virtual springs' columns `6..n` ([`write_spring_rows`]).
+///
+/// # Panics
+/// If `psi` has fewer than `first + 3p` rows or fewer than six columns, or more columns than
+/// the model has parameters.
+pub fn write_posture_block(
     setup: &Setup,
     frames: &Frames,
     wrench: &Vector6<f64>,
@@ -60,17 +69,79 @@ pub(crate) fn write_posture_block(
     first: usize,
 ) {
     let tau = joint_torques(setup, frames, wrench);
+    let springs = SpringLoads::new(setup, frames, wrench, psi.ncols() - 6);
     for (k, point) in setup.tool().measuring_points.iter().enumerate() {
         psi.fixed_view_mut::<3, 6>(first + 3 * k, 0)
             .copy_from(&point_rows(setup, frames, point, &tau));
+        springs.write_rows(frames, point, psi, first + 3 * k);
     }
 }
 
-/// The `3pn x 6` observation matrix of postures `q` (axis angles, rad) under the setup's rope-mass
-/// load (the design matrix of Section III and of the simulation of Section IV-A).
+/// The virtual springs of a model placed at a posture with their generalised loads
+/// `J_f,s^T W` (Nm or N) under one wrench: what their columns of `Psi` need beside the
+/// measuring point. Empty (no allocation) for the drives alone.
+#[derive(Debug, Clone, Default)]
+pub struct SpringLoads {
+    placed: Vec<Placed>,
+    loads: Vec<f64>,
+}
+
+impl SpringLoads {
+    /// The first `count` virtual springs of the setup's model at the posture `frames`, loaded by
+    /// the wrench `[f; m]` (N, Nm, base frame) at the loading point.
+    ///
+    /// # Panics
+    /// If the model has fewer than `count` virtual springs.
+    pub fn new(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>, count: usize) -> Self {
+        if count == 0 {
+            return Self::default();
+        }
+        let springs = &setup.model().springs()[..count];
+        let loading = frames.point(&setup.tool().loading_point);
+        let placed: Vec<Placed> = springs
+            .iter()
+            .map(|s| s.placed(setup.robot(), frames))
+            .collect();
+        let loads = placed.iter().map(|s| s.load(&loading, wrench)).collect();
+        Self { placed, loads }
+    }
+
+    /// The placed springs (base frame).
+    pub fn placed(&self) -> &[Placed] {
+        &self.placed
+    }
+
+    /// `J_f,s^T W` of each spring, Nm (rotation) or N (translation).
+    pub fn loads(&self) -> &[f64] {
+        &self.loads
+    }
+
+    /// Writes the three rows of the measuring point `point` (flange frame, m) into columns
+    /// `6..6 + count` of `psi` from row `row`: `J_m,s[0..3] (J_f,s^T W)` per spring.
+    pub fn write_rows(
+        &self,
+        frames: &Frames,
+        point: &Vector3<f64>,
+        psi: &mut DMatrix<f64>,
+        row: usize,
+    ) {
+        if self.placed.is_empty() {
+            return;
+        }
+        let p = frames.point(point);
+        for (s, (spring, load)) in self.placed.iter().zip(&self.loads).enumerate() {
+            psi.fixed_view_mut::<3, 1>(row, 6 + s)
+                .copy_from(&(spring.velocity(&p) * *load));
+        }
+    }
+}
+
+/// The `3pn x n` observation matrix of postures `q` (axis angles, rad) under the setup's rope-mass
+/// load (the design matrix of Section III and of the simulation of Section IV-A), one column per
+/// parameter of the setup's model.
 pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMatrix<f64> {
     let p3 = 3 * setup.tool().measuring_points.len();
-    let mut psi = DMatrix::zeros(p3 * postures.len(), 6);
+    let mut psi = DMatrix::zeros(p3 * postures.len(), setup.model().len());
     for (i, q) in postures.iter().enumerate() {
         let frames = setup.robot().frames(q);
         let wrench = setup.rope_wrench(&frames);

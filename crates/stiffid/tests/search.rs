@@ -256,3 +256,42 @@ fn screened_global_search_matches_running_every_start_for_fewer_evaluations() {
         assert!(screened.evaluations < full.evaluations, "{criterion}");
     }
 }
+
+#[test]
+fn searches_say_why_they_stopped() {
+    use design::Termination;
+    let setup = paper();
+    let start = design::random_group(&setup, 6, 1);
+    let run = |max_evals| {
+        let options = SearchOptions {
+            max_evals,
+            ..SearchOptions::default()
+        };
+        design::local(&setup, Criterion::RelativeA, &start, &options).unwrap()
+    };
+    let full = run(6000);
+    assert!(full.termination.is_converged(), "{}", full.termination);
+    assert!(full.evaluations < 6000);
+    assert_eq!(full.terminations, [full.termination]);
+    for max_evals in [1, 5] {
+        let cut = run(max_evals);
+        assert_eq!(cut.termination, Termination::EvaluationLimit, "{max_evals}");
+        assert!(cut.value > full.value);
+    }
+    let options = SearchOptions {
+        starts: 4,
+        polished: 1,
+        screen_steps: 3,
+        ..SearchOptions::default()
+    };
+    let global = design::global(&setup, Criterion::RelativeA, 6, &options, &()).unwrap();
+    assert_eq!(global.terminations.len(), 4);
+    assert!(global.termination.is_converged(), "{}", global.termination);
+    // Three starts screened out after 3 steps, one polished to convergence.
+    assert_eq!(Termination::EvaluationLimit.count(&global.terminations), 3);
+    let counted: usize = Termination::ALL
+        .iter()
+        .map(|t| t.count(&global.terminations))
+        .sum();
+    assert_eq!(counted, 4);
+}

@@ -14,4 +14,6 @@ pub mod target;
 pub use criteria::{evaluate, Criterion, Evaluation};
 pub use evaluator::{Evaluator, PostureTerms};
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
-pub use search::{global, local, random_group, Gradient, SearchOptions, SearchOutcome};
+pub use search::{
+    global, local, random_group, Gradient, SearchOptions, SearchOutcome, Termination,
+};

@@ -62,6 +62,12 @@ pub const ANGLE_RAD: Range = Range::new(-175.0, 175.0, "rad");
 /// identification's numbers mean anything.
 pub const STIFFNESS_NM_PER_RAD: Range = Range::new(1.0, 1e10, "Nm/rad");
 
+/// Translational stiffness of a virtual spring (a setup's `[model]`), N/mm.
+pub const STIFFNESS_N_PER_MM: Range = Range::new(1e-3, 1e10, "N/mm");
+
+/// Components of a spring's axis (any length; it is normalised), dimensionless.
+pub const AXIS: Range = Range::new(-1e6, 1e6, "");
+
 /// The rope load of a setup.
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 

@@ -1,7 +1,7 @@
 //! The observation matrix of measured data: [`Measurement`]s checked and stacked into
 //! [`Observations`] (`Psi` and `delta`, Eq. 10-11), row order as in [`crate::observation`].
 
-use crate::observation::point_rows;
+use crate::observation::{point_rows, SpringLoads};
 use crate::stiffness::joint_torques;
 use crate::{Error, MeasurementField, Result, Setup};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
@@ -37,7 +37,8 @@ pub struct Measurement {
 /// The observation matrix and measured displacements of a list of measurements.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Observations {
-    /// `Psi`, `3n x 6` for n measurements, m per (rad/Nm) (Eq. 11), rows in the order of the
+    /// `Psi`, `3n x c` for n measurements and the `c` parameters of the setup's model (six drives,
+    /// then the virtual springs), m per (rad/Nm) or per (m/N) (Eq. 11), rows in the order of the
     /// [module docs](crate::observation).
     pub psi: DMatrix<f64>,
     /// `delta`, `3n`, m.
@@ -57,7 +58,7 @@ impl Observations {
     pub fn from_measurements(setup: &Setup, measurements: &[Measurement]) -> Result<Self> {
         let (postures, posture_index) = check(setup, measurements)?;
         let n = measurements.len();
-        let mut psi = DMatrix::zeros(3 * n, 6);
+        let mut psi = DMatrix::zeros(3 * n, setup.model().len());
         let mut delta = DVector::zeros(3 * n);
         assemble(setup, measurements, &mut psi, &mut delta);
         Ok(Observations {
@@ -147,14 +148,15 @@ impl Check {
     }
 }
 
-/// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x 6`) and `delta`
-/// (`3n`), in the row order of the [module docs](crate::observation). Frames are computed once per
-/// run of measurements with the same axis angles, torques once per run with the same angles and
-/// wrench.
+/// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x c`) and `delta`
+/// (`3n`), in the row order of the [module docs](crate::observation): the six drive columns and
+/// the first `c - 6` virtual springs of the setup's model ([`crate::model`]). Frames are computed
+/// once per run of measurements with the same axis angles, torques once per run with the same
+/// angles and wrench.
 ///
 /// # Panics
-/// If `psi` or `delta` do not have three rows per measurement, or a measuring point is not the
-/// setup's.
+/// If `psi` or `delta` do not have three rows per measurement, `psi` has fewer than six columns or
+/// more than the model's parameters, or a measuring point is not the setup's.
 pub fn assemble(
     setup: &Setup,
     measurements: &[Measurement],
@@ -168,19 +170,20 @@ pub fn assemble(
         // moved: they are large), and the torques of the previous measurement's wrench.
         let first = &measurements[i];
         let frames = setup.robot().frames(&first.q);
+        let springs = psi.ncols() - 6;
         let mut tau = joint_torques(setup, &frames, &first.wrench);
+        let mut loads = SpringLoads::new(setup, &frames, &first.wrench, springs);
         let mut previous = first;
         while let Some(meas) = measurements.get(i).filter(|m| m.q == first.q) {
             if previous.wrench != meas.wrench {
                 tau = joint_torques(setup, &frames, &meas.wrench);
+                loads = SpringLoads::new(setup, &frames, &meas.wrench, springs);
             }
             previous = meas;
-            psi.fixed_view_mut::<3, 6>(3 * i, 0).copy_from(&point_rows(
-                setup,
-                &frames,
-                &setup.tool().measuring_points[meas.point],
-                &tau,
-            ));
+            let point = &setup.tool().measuring_points[meas.point];
+            psi.fixed_view_mut::<3, 6>(3 * i, 0)
+                .copy_from(&point_rows(setup, &frames, point, &tau));
+            loads.write_rows(&frames, point, psi, 3 * i);
             delta
                 .fixed_rows_mut::<3>(3 * i)
                 .copy_from(&meas.displacement);

@@ -4,6 +4,7 @@
 use super::{cell, CellConstraints, Noise, RopeLoad, Setup, SetupBuilder};
 use crate::kinematics::Coordinates;
 use crate::limits::{self, JointBox};
+use crate::model::file::ModelFile;
 use crate::robot::file::{transform, TransformFile};
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
@@ -33,6 +34,7 @@ struct SetupFile {
     cell: Option<cell::CellFile>,
     robot_geometry: Option<cell::GeometryFile>,
     tracker: Option<cell::TrackerFile>,
+    model: Option<ModelFile>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -209,7 +211,12 @@ fn deg6(v: &[f64; 6]) -> Vector6<f64> {
 /// The file's fields in SI units, for [`SetupBuilder::build`] to check.
 fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
     let measuring_points = f.tool.measuring_points_mm.iter().map(mm).collect();
+    let virtual_springs = match &f.model {
+        Some(m) => m.springs(&robot)?,
+        None => Vec::new(),
+    };
     let mut b = Setup::builder(f.name, robot)
+        .with_virtual_springs(virtual_springs)
         .with_description(f.description)
         .with_robot_ref(f.robot)
         .with_springs(f.springs)

@@ -47,6 +47,7 @@ pub use file::{builtin, builtin_names, builtin_text, parse};
 use crate::kinematics::{Coordinates, Frames};
 use crate::limits::joint_box::distinct;
 use crate::limits::{self, JointBox};
+use crate::model::{Model, Spring};
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 
@@ -133,7 +134,7 @@ pub struct Setup {
     robot_ref: String,
     robot: Robot,
     tool: Tool,
-    springs: Coordinates,
+    model: Model,
     load: RopeLoad,
     noise: Noise,
     bounds: JointBox,
@@ -155,6 +156,7 @@ impl Setup {
             robot_ref: robot.name.clone(),
             robot,
             springs: Coordinates::default(),
+            virtual_springs: Vec::new(),
             loading_point: None,
             measuring_points: Vec::new(),
             tcp: None,
@@ -179,7 +181,8 @@ impl Setup {
             description: self.description.clone(),
             robot_ref: self.robot_ref.clone(),
             robot: self.robot.clone(),
-            springs: self.springs,
+            springs: self.model.coordinates(),
+            virtual_springs: self.model.springs().to_vec(),
             loading_point: Some(self.tool.loading_point),
             measuring_points: self.tool.measuring_points.clone(),
             tcp: Some(self.tool.tcp),
@@ -224,7 +227,20 @@ impl Setup {
 
     /// Where the springs sit: in the drives (axis coordinates) or on the kinematic joints.
     pub fn springs(&self) -> Coordinates {
-        self.springs
+        self.model.coordinates()
+    }
+
+    /// The elastostatic model: the drive springs and the virtual springs ([`crate::model`]);
+    /// the drives alone unless the setup has a `[model]`.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The nominal compliance of every parameter of the model (rad/Nm, m/N), when the setup has a
+    /// nominal drive stiffness and every virtual spring one.
+    pub fn model_nominal_compliance(&self) -> Option<nalgebra::DVector<f64>> {
+        self.model
+            .nominal_compliance(self.nominal_stiffness.as_ref()?)
     }
 
     /// The loading of the simulation and of the posture search.
@@ -356,6 +372,7 @@ pub struct SetupBuilder {
     robot_ref: String,
     robot: Robot,
     springs: Coordinates,
+    virtual_springs: Vec<Spring>,
     loading_point: Option<Vector3<f64>>,
     measuring_points: Vec<Vector3<f64>>,
     tcp: Option<Vector3<f64>>,
@@ -394,6 +411,12 @@ impl SetupBuilder {
     /// Where the springs sit (default [`Coordinates::Axis`]).
     pub fn with_springs(mut self, springs: Coordinates) -> Self {
         self.springs = springs;
+        self
+    }
+
+    /// The virtual springs of the model after the drives (default none: [`Setup::model`]).
+    pub fn with_virtual_springs(mut self, springs: Vec<Spring>) -> Self {
+        self.virtual_springs = springs;
         self
     }
 
@@ -495,7 +518,7 @@ impl SetupBuilder {
     /// value given in that unit) for a missing required field, an empty name, a number that is not
     /// finite or outside its documented range, no measuring point or no noise level (or more than
     /// their limits), bounds not below each other, and an inconsistent cell or tracker ([`Cell`],
-    /// [`Tracker`]); [`Error::OutsideBox`] with the field, the value and the range for bounds or
+    /// [`Tracker`]) or virtual springs ([`crate::model::check_springs`]); [`Error::OutsideBox`] with the field, the value and the range for bounds or
     /// test postures outside the robot's limits.
     pub fn build(self) -> Result<Setup> {
         if self.name.trim().is_empty() {
@@ -537,6 +560,7 @@ impl SetupBuilder {
         if let Some(c) = &self.cell {
             cell::check_cell(c)?;
         }
+        let model = Model::new(self.springs, self.virtual_springs)?;
         let tool = Tool {
             loading_point,
             measuring_points: self.measuring_points,
@@ -558,7 +582,7 @@ impl SetupBuilder {
             robot_ref: self.robot_ref,
             robot: self.robot,
             tool,
-            springs: self.springs,
+            model,
             load,
             noise,
             bounds,

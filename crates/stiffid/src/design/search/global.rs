@@ -84,11 +84,13 @@ pub fn global(
     }
     infeasible(&checker, outcomes.iter())?;
     let evaluations = outcomes.iter().map(|o| o.evaluations).sum();
+    let terminations = outcomes.iter().map(|o| o.termination).collect();
     let best = (0..outcomes.len())
         .min_by(|&a, &b| rank(&checker, &outcomes, a, b))
         .expect("at least one start");
     Ok(SearchOutcome {
         evaluations,
+        terminations,
         ..outcomes.swap_remove(best)
     })
 }
@@ -113,6 +115,7 @@ fn polish(
         o.evaluations += p.evaluations;
         o.value = p.value;
         o.postures = p.postures;
+        o.termination = p.termination;
     }
 }
 

@@ -1,6 +1,7 @@
 //! Local search: SLSQP from a start group, with exact gradients or forward finite differences.
 
 use super::constraints::{inequalities, kinds, most_failed, violation};
+use super::termination::{from_slsqp, Termination};
 use super::{Gradient, SearchOptions, SearchOutcome};
 use crate::cell::{CheckKind, Checker};
 use crate::design::PostureTerms;
@@ -215,20 +216,28 @@ impl<'a> Problem<'a> {
         let start_value = self.value(&x0);
         let iterations =
             self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
-        if iterations > 0 {
-            self.minimise(&x0, iterations);
-        }
+        let stop = match iterations {
+            0 => Termination::EvaluationLimit,
+            _ => self.minimise(&x0, iterations),
+        };
         let state = self.state.into_inner();
-        let (_, value, x) = state.best.expect("the start was evaluated");
+        let (violation, value, x) = state.best.expect("the start was evaluated");
+        let termination = match violation > 0.0 {
+            true => Termination::Infeasible,
+            false => stop,
+        };
         SearchOutcome {
             postures: postures(&x),
             start_value,
             value,
             evaluations: state.evaluations,
+            termination,
+            terminations: vec![termination],
         }
     }
 
-    fn minimise(&self, x0: &[f64], iterations: usize) {
+    /// Runs SLSQP from `x0` for at most `iterations` calls; why it stopped.
+    fn minimise(&self, x0: &[f64], iterations: usize) -> Termination {
         let bounds: Vec<(f64, f64)> = self
             .lower
             .iter()
@@ -253,9 +262,8 @@ impl<'a> Problem<'a> {
             xtol_abs: vec![self.options.xtol; x0.len()],
             ..Default::default()
         };
-        // The best point is tracked in `state`; slsqp's own outcome (success or failure status)
-        // adds nothing to it.
-        let _ = slsqp::minimize(
+        // The best point is tracked in `state`; slsqp's outcome gives the stop reason.
+        let outcome = slsqp::minimize(
             objective,
             x0,
             &bounds,
@@ -264,6 +272,7 @@ impl<'a> Problem<'a> {
             iterations,
             Some(tolerances),
         );
+        from_slsqp(&outcome)
     }
 
     fn clamp(&self, x: &[f64]) -> Vec<f64> {

@@ -14,11 +14,13 @@ mod constraints;
 mod global;
 mod local;
 mod sample;
+mod termination;
 
 pub use global::global;
 pub(super) use local::check_count;
 pub use local::local;
 pub use sample::{random_group, CONSTRAINT_TRIES};
+pub use termination::Termination;
 
 use crate::{limits, Result};
 use nalgebra::Vector6;
@@ -163,4 +165,12 @@ pub struct SearchOutcome {
     pub value: f64,
     /// Criterion evaluations spent, finite differences included (for [`global`], over all starts).
     pub evaluations: usize,
+    /// Why the local search that found [`SearchOutcome::postures`] stopped (for [`global`], the
+    /// best start's last search: its polishing, if it was polished).
+    pub termination: Termination,
+    /// Why every local search stopped, in start order: one for [`local`]; for [`global`], each
+    /// start's last search (the polishing for the polished starts, the screening for the others,
+    /// which then mostly end at [`Termination::EvaluationLimit`]). Count them with
+    /// [`Termination::count`].
+    pub terminations: Vec<Termination>,
 }

@@ -1,0 +1,148 @@
+//! Named families of virtual springs, so that a setup need not write axes.
+//!
+//! - `tilt` at joint k (1..6): two rotational springs about the x and y axes of link k's frame
+//!   through its origin, named `tilt<k>_x`, `tilt<k>_y`: the tilt of joint k's bearing and the
+//!   bending of the links next to it, lumped at the joint (z is the drive's own axis for a DH
+//!   table, whose frame k has its z axis on joint k).
+//! - `tool`: three translational springs along the flange's x, y and z axes (fixed in link 6),
+//!   named `tool_x`, `tool_y`, `tool_z`: the compliance of the tool and its mount at the tool
+//!   centre point.
+//! - `base`: six springs of the base mount in the robot's base frame, translations `base_x`,
+//!   `base_y`, `base_z` and rotations `base_rx`, `base_ry`, `base_rz` about its axes through its
+//!   origin: a pedestal or floor anchoring that is not rigid.
+
+use super::{Kind, Spring};
+use crate::{Error, Result, Robot};
+use nalgebra::{Unit, Vector3};
+
+/// A named family of virtual springs (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// Rotations about x and y of joint k's frame.
+    Tilt,
+    /// Translations along the flange's x, y, z.
+    Tool,
+    /// The six springs of the base mount.
+    Base,
+}
+
+/// The families and their names in files.
+pub const FAMILIES: [(&str, Family); 3] = [
+    ("tilt", Family::Tilt),
+    ("tool", Family::Tool),
+    ("base", Family::Base),
+];
+
+impl Family {
+    /// The family named `name` (`tilt`, `tool`, `base`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming `field` for another name.
+    pub fn parse(name: &str, field: &str) -> Result<Self> {
+        FAMILIES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, f)| *f)
+            .ok_or_else(|| Error::InvalidField {
+                field: field.to_string(),
+                message: format!(
+                    "'{}' is not a family: expected tilt, tool or base",
+                    crate::limits::short(name)
+                ),
+            })
+    }
+
+    /// The family's springs on `robot` at the joints `links` (`tilt` only: 1 to 6, each at most
+    /// once; empty for `tool` and `base`), with the nominal stiffness `rotation` (Nm/rad) of its
+    /// rotational and `translation` (N/m) of its translational springs.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming `field` (`model.family[1].links`) for `tilt` without links,
+    /// a link outside 1..6 or repeated, and for links given to `tool` or `base`.
+    pub fn springs(
+        self,
+        robot: &Robot,
+        links: &[usize],
+        rotation: Option<f64>,
+        translation: Option<f64>,
+        field: &str,
+    ) -> Result<Vec<Spring>> {
+        let invalid = |message: String| Error::InvalidField {
+            field: field.to_string(),
+            message,
+        };
+        let spring = |name: String, kind, link, axis: Vector3<f64>| Spring {
+            name,
+            kind,
+            link,
+            axis: Unit::new_normalize(axis),
+            point: Vector3::zeros(),
+            nominal_stiffness: match kind {
+                Kind::Rotation => rotation,
+                Kind::Translation => translation,
+            },
+        };
+        match self {
+            Family::Tilt => {
+                if links.is_empty() {
+                    return Err(invalid(
+                        "tilt needs its joints: expected links = [1 to 6, ...]".into(),
+                    ));
+                }
+                let mut out = Vec::new();
+                for (i, &k) in links.iter().enumerate() {
+                    if !(1..=6).contains(&k) || links[..i].contains(&k) {
+                        return Err(invalid(format!("{k}: expected distinct joints 1 to 6")));
+                    }
+                    out.push(spring(
+                        format!("tilt{k}_x"),
+                        Kind::Rotation,
+                        k,
+                        Vector3::x(),
+                    ));
+                    out.push(spring(
+                        format!("tilt{k}_y"),
+                        Kind::Rotation,
+                        k,
+                        Vector3::y(),
+                    ));
+                }
+                Ok(out)
+            }
+            Family::Tool | Family::Base if !links.is_empty() => Err(invalid(
+                "only tilt takes links (tool is fixed in link 6, base in link 0)".into(),
+            )),
+            Family::Tool => {
+                let r = robot.flange.rotation;
+                Ok(["x", "y", "z"]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, a)| {
+                        let e = Vector3::ith(i, 1.0);
+                        spring(format!("tool_{a}"), Kind::Translation, 6, r * e)
+                    })
+                    .collect())
+            }
+            Family::Base => {
+                let axes = ["x", "y", "z"].iter().enumerate();
+                let t = axes.clone().map(|(i, a)| {
+                    spring(
+                        format!("base_{a}"),
+                        Kind::Translation,
+                        0,
+                        Vector3::ith(i, 1.0),
+                    )
+                });
+                let r = axes.map(|(i, a)| {
+                    spring(
+                        format!("base_r{a}"),
+                        Kind::Rotation,
+                        0,
+                        Vector3::ith(i, 1.0),
+                    )
+                });
+                Ok(t.chain(r).collect())
+            }
+        }
+    }
+}

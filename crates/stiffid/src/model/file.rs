@@ -1,0 +1,157 @@
+//! The setup file's `[model]` table: virtual springs by axis or by family, and the fragment
+//! written back for a chosen model.
+//!
+//! ```toml
+//! [[model.spring]]
+//! name = "elbow_bend"
+//! kind = "rotation"                 # or "translation"
+//! link = 3                          # 0 the base, 1..6 the link after joint k
+//! axis = [1, 0, 0]                  # in link k's frame (normalised)
+//! point_mm = [0, 0, 0]              # rotation only: a point of the axis, link frame (default origin)
+//! nominal_stiffness_nm_per_rad = 5e6   # rotation; a translation takes nominal_stiffness_n_per_mm
+//!
+//! [[model.family]]
+//! family = "tilt"                   # tilt, tool or base (crate::model::Family)
+//! links = [2, 3]                    # tilt only: its joints
+//! nominal_stiffness_nm_per_rad = 5e6   # of its rotational springs
+//! nominal_stiffness_n_per_mm = 1e4     # of its translational springs
+//! ```
+//! Springs come first, in file order, then the families'.
+
+use super::{unit_axis, Family, Kind, Spring};
+use crate::{Error, Result, Robot};
+use nalgebra::Vector3;
+use serde::Deserialize;
+use std::fmt::Write;
+
+/// The `[model]` table as written.
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ModelFile {
+    #[serde(default)]
+    spring: Vec<SpringFile>,
+    #[serde(default)]
+    family: Vec<FamilyFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpringFile {
+    name: String,
+    kind: Kind,
+    link: usize,
+    axis: [f64; 3],
+    point_mm: Option<[f64; 3]>,
+    nominal_stiffness_nm_per_rad: Option<f64>,
+    nominal_stiffness_n_per_mm: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FamilyFile {
+    family: String,
+    #[serde(default)]
+    links: Vec<usize>,
+    nominal_stiffness_nm_per_rad: Option<f64>,
+    nominal_stiffness_n_per_mm: Option<f64>,
+}
+
+fn invalid(field: String, message: &str) -> Error {
+    Error::InvalidField {
+        field,
+        message: message.to_string(),
+    }
+}
+
+impl ModelFile {
+    /// The virtual springs on `robot`, SI units (checked in full by [`super::check_springs`]
+    /// when the setup is built).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field: a zero or non-finite axis, a point or a stiffness
+    /// in the other kind's unit, an unknown family or bad family links.
+    pub(crate) fn springs(&self, robot: &Robot) -> Result<Vec<Spring>> {
+        let mut out = Vec::new();
+        for (i, s) in self.spring.iter().enumerate() {
+            let field = |f: &str| format!("model.spring[{}].{f}", i + 1);
+            let axis = unit_axis(Vector3::from(s.axis), &field("axis"))?;
+            let (stiffness, other) = match s.kind {
+                Kind::Rotation => (
+                    s.nominal_stiffness_nm_per_rad,
+                    ("nominal_stiffness_n_per_mm", s.nominal_stiffness_n_per_mm),
+                ),
+                Kind::Translation => (
+                    s.nominal_stiffness_n_per_mm.map(|k| k * 1e3),
+                    (
+                        "nominal_stiffness_nm_per_rad",
+                        s.nominal_stiffness_nm_per_rad,
+                    ),
+                ),
+            };
+            if other.1.is_some() {
+                return Err(invalid(field(other.0), "not for this kind of spring: a rotation takes nominal_stiffness_nm_per_rad, a translation nominal_stiffness_n_per_mm"));
+            }
+            if s.kind == Kind::Translation && s.point_mm.is_some() {
+                return Err(invalid(
+                    field("point_mm"),
+                    "a translation has no point: give only its direction (axis)",
+                ));
+            }
+            out.push(Spring {
+                name: s.name.clone(),
+                kind: s.kind,
+                link: s.link,
+                axis,
+                point: s
+                    .point_mm
+                    .map_or(Vector3::zeros(), |p| Vector3::from(p) * 1e-3),
+                nominal_stiffness: stiffness,
+            });
+        }
+        for (i, f) in self.family.iter().enumerate() {
+            let field = |n: &str| format!("model.family[{}].{n}", i + 1);
+            let family = Family::parse(&f.family, &field("family"))?;
+            out.extend(family.springs(
+                robot,
+                &f.links,
+                f.nominal_stiffness_nm_per_rad,
+                f.nominal_stiffness_n_per_mm.map(|k| k * 1e3),
+                &field("links"),
+            )?);
+        }
+        Ok(out)
+    }
+}
+
+/// The `[model]` fragment of a setup file that gives `springs` (every spring written with its axis,
+/// so the fragment does not depend on the families' definitions; nominal stiffness as given).
+pub fn fragment(springs: &[Spring]) -> String {
+    let mut s = String::new();
+    for spring in springs {
+        let a = spring.axis;
+        let kind = match spring.kind {
+            Kind::Rotation => "rotation",
+            Kind::Translation => "translation",
+        };
+        let _ = writeln!(s, "[[model.spring]]");
+        let _ = writeln!(s, "name = \"{}\"", spring.name);
+        let _ = writeln!(s, "kind = \"{kind}\"");
+        let _ = writeln!(s, "link = {}", spring.link);
+        let _ = writeln!(s, "axis = [{:?}, {:?}, {:?}]", a.x, a.y, a.z);
+        if spring.kind == Kind::Rotation {
+            let p = spring.point * 1e3;
+            let _ = writeln!(s, "point_mm = [{:?}, {:?}, {:?}]", p.x, p.y, p.z);
+        }
+        if let Some(k) = spring.nominal_stiffness {
+            let unit = spring.unit();
+            let _ = writeln!(
+                s,
+                "nominal_stiffness_{} = {:?}",
+                unit.suffix(),
+                k * unit.per_si()
+            );
+        }
+        s.push('\n');
+    }
+    s
+}

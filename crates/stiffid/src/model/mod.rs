@@ -1,0 +1,382 @@
+//! The elastostatic model: the six drive springs plus any number of virtual springs.
+//!
+//! The Virtual Joint Method with link springs (Deblaise, Hernot, Maurine, "A systematic analytical
+//! method for PKM stiffness matrix calculation", ICRA 2006; Klimchik, Caro, Furet, Pashkevich,
+//! "Complete stiffness model for a serial robot", ICINCO 2014): besides one torsional spring per
+//! drive (Zhang et al. 2021, Eq. 3-8), a **virtual spring** is the compliance `c >= 0` of a
+//! one-degree-of-freedom virtual joint fixed in one body of the chain, link k (k = 0 the base,
+//! k = 1..6 the body after joint k, 6 carrying the flange and the tool):
+//! - a rotation about the axis `u` through the point `o`, both fixed in link k's frame;
+//! - a translation along the direction `u`, fixed in link k's frame.
+//!
+//! Link k's frame is the robot file's own frame k (for a DH table the DH frame k, for a URDF the
+//! child link of joint k: [`crate::Frames::joints`]); link 0's is the robot's base frame.
+//!
+//! At a posture, with `u` and `o` in the base frame, the spring's Jacobian column at a point `p`
+//! (base frame) is `[u x (p - o); u]` (rotation) or `[u; 0]` (translation), as a drive's column
+//! `[z_j x (p - o_j); z_j]`. Under the wrench `W` at the loading point it deflects by
+//! `c (J_f,s^T W)` and moves a measuring point by `c J_m,s (J_f,s^T W)`: one more column of the
+//! observation matrix, built as Eq. 11 builds the drive columns ([`crate::observation`]).
+//!
+//! Parameters are numbered drives first (`k1` .. `k6`), then the virtual springs in the order of
+//! the setup. SI inside: compliances in rad/Nm (drives, rotations) and m/N (translations);
+//! files and reports speak Nm/rad and N/mm ([`Unit`]).
+
+mod family;
+pub(crate) mod file;
+
+pub use family::{Family, FAMILIES};
+pub use file::fragment;
+
+use crate::kinematics::{Coordinates, Frames};
+use crate::{Error, Result, Robot};
+use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6};
+
+/// Most virtual springs a model may have.
+pub const MAX_VIRTUAL_SPRINGS: usize = 64;
+
+/// Longest spring name, characters.
+pub const MAX_NAME_CHARS: usize = 40;
+
+/// What a virtual joint does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "kebab-case")]
+pub enum Kind {
+    /// A rotation about an axis through a point (compliance rad/Nm).
+    Rotation,
+    /// A translation along a direction (compliance m/N).
+    Translation,
+}
+
+/// The unit of a parameter's stiffness in files and reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unit {
+    /// Nm/rad (drives and rotational springs); SI inside, the same number.
+    NmPerRad,
+    /// N/mm (translational springs); N/m inside, 1000 times the number.
+    NPerMm,
+}
+
+impl Unit {
+    /// Stiffness in this unit per SI stiffness (Nm/rad or N/m).
+    pub fn per_si(self) -> f64 {
+        match self {
+            Unit::NmPerRad => 1.0,
+            Unit::NPerMm => 1e-3,
+        }
+    }
+
+    /// The unit as written after a number (`Nm/rad`, `N/mm`).
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Unit::NmPerRad => "Nm/rad",
+            Unit::NPerMm => "N/mm",
+        }
+    }
+
+    /// The unit as a field-name suffix (`nm_per_rad`, `n_per_mm`).
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Unit::NmPerRad => "nm_per_rad",
+            Unit::NPerMm => "n_per_mm",
+        }
+    }
+}
+
+/// A virtual spring: the compliance of a 1-DoF virtual joint fixed in link `link` (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spring {
+    /// Its name in reports and files (letters, digits, `_` and `-`; not `k1` .. `k6`).
+    pub name: String,
+    /// Rotation or translation.
+    pub kind: Kind,
+    /// The body it is fixed in: 0 the base, 1..6 the link after joint k.
+    pub link: usize,
+    /// The axis (rotation) or direction (translation), unit, in link `link`'s frame.
+    pub axis: UnitVector<Vector3<f64>>,
+    /// A point of the rotation axis, link frame, m (unused by a translation).
+    pub point: Vector3<f64>,
+    /// Nominal stiffness for the design criteria: Nm/rad (rotation) or N/m (translation), SI.
+    pub nominal_stiffness: Option<f64>,
+}
+
+/// A spring at a posture: its axis and point in the base frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placed {
+    /// Rotation or translation.
+    pub kind: Kind,
+    /// Unit axis or direction, base frame.
+    pub u: Vector3<f64>,
+    /// A point of the axis, base frame, m.
+    pub o: Vector3<f64>,
+}
+
+impl Placed {
+    /// The translation part of the Jacobian column at the base-frame point `p`:
+    /// `u x (p - o)` (rotation, m/rad) or `u` (translation, m/m).
+    #[inline(always)]
+    pub fn velocity(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        match self.kind {
+            Kind::Rotation => self.u.cross(&(p - self.o)),
+            Kind::Translation => self.u,
+        }
+    }
+
+    /// The Jacobian column `[u x (p - o); u]` or `[u; 0]` at the base-frame point `p`.
+    pub fn column(&self, p: &Vector3<f64>) -> Vector6<f64> {
+        let v = self.velocity(p);
+        let w = match self.kind {
+            Kind::Rotation => self.u,
+            Kind::Translation => Vector3::zeros(),
+        };
+        Vector6::new(v.x, v.y, v.z, w.x, w.y, w.z)
+    }
+
+    /// The generalised force `J_s^T W` of the wrench `[f; m]` (N, Nm, base frame) at the
+    /// base-frame point `p`: Nm (rotation) or N (translation).
+    #[inline(always)]
+    pub fn load(&self, p: &Vector3<f64>, wrench: &Vector6<f64>) -> f64 {
+        let f = wrench.fixed_rows::<3>(0);
+        match self.kind {
+            Kind::Rotation => self.velocity(p).dot(&f) + self.u.dot(&wrench.fixed_rows::<3>(3)),
+            Kind::Translation => self.u.dot(&f),
+        }
+    }
+}
+
+impl Spring {
+    /// The unit of its stiffness in files and reports.
+    pub fn unit(&self) -> Unit {
+        match self.kind {
+            Kind::Rotation => Unit::NmPerRad,
+            Kind::Translation => Unit::NPerMm,
+        }
+    }
+
+    /// Its axis and point in the base frame at the posture `frames` of `robot`.
+    pub fn placed(&self, robot: &Robot, frames: &Frames) -> Placed {
+        let frame = link_frame(robot, frames, self.link);
+        Placed {
+            kind: self.kind,
+            u: frame.rotation * self.axis.into_inner(),
+            o: (frame * Point3::from(self.point)).coords,
+        }
+    }
+}
+
+/// The frame of link `link` (0 the base, 1..6 [`Frames::joints`]) at a posture, base frame.
+///
+/// # Panics
+/// If `link > 6`.
+pub fn link_frame<'a>(robot: &'a Robot, frames: &'a Frames, link: usize) -> &'a Isometry3<f64> {
+    match link {
+        0 => &robot.base,
+        k => &frames.joints[k - 1],
+    }
+}
+
+/// One parameter of a model: its name and unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Parameter {
+    /// `k1` .. `k6` for the drives, the spring's name otherwise.
+    pub name: String,
+    /// The unit of its stiffness.
+    pub unit: Unit,
+}
+
+/// The elastostatic model (module docs): the six drive springs in `coordinates` and the virtual
+/// springs. The default is the drives alone in axis coordinates.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Model {
+    coordinates: Coordinates,
+    springs: Vec<Spring>,
+}
+
+/// The names of the drive parameters.
+pub const DRIVE_NAMES: [&str; 6] = ["k1", "k2", "k3", "k4", "k5", "k6"];
+
+impl Model {
+    /// The six drive springs alone, in `coordinates`.
+    pub fn drives(coordinates: Coordinates) -> Self {
+        Self {
+            coordinates,
+            springs: Vec::new(),
+        }
+    }
+
+    /// The drives in `coordinates` and the virtual springs `springs`, checked ([`check_springs`]).
+    ///
+    /// # Errors
+    /// As [`check_springs`].
+    pub fn new(coordinates: Coordinates, springs: Vec<Spring>) -> Result<Self> {
+        check_springs(&springs)?;
+        Ok(Self {
+            coordinates,
+            springs,
+        })
+    }
+
+    /// Where the drive springs sit.
+    pub fn coordinates(&self) -> Coordinates {
+        self.coordinates
+    }
+
+    /// The virtual springs, in parameter order after the drives.
+    pub fn springs(&self) -> &[Spring] {
+        &self.springs
+    }
+
+    /// The number of parameters: 6 plus the virtual springs.
+    pub fn len(&self) -> usize {
+        6 + self.springs.len()
+    }
+
+    /// Never: a model has at least the six drives.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Whether the model is the six drives alone (the paper's).
+    pub fn is_drives_only(&self) -> bool {
+        self.springs.is_empty()
+    }
+
+    /// The parameters, drives first.
+    pub fn parameters(&self) -> Vec<Parameter> {
+        let drives = DRIVE_NAMES.iter().map(|n| Parameter {
+            name: (*n).to_string(),
+            unit: Unit::NmPerRad,
+        });
+        let springs = self.springs.iter().map(|s| Parameter {
+            name: s.name.clone(),
+            unit: s.unit(),
+        });
+        drives.chain(springs).collect()
+    }
+
+    /// The nominal compliance of every parameter (rad/Nm, m/N), drives from `drives` (Nm/rad),
+    /// when every spring has a nominal stiffness.
+    pub fn nominal_compliance(&self, drives: &Vector6<f64>) -> Option<DVector<f64>> {
+        let springs: Option<Vec<f64>> = self
+            .springs
+            .iter()
+            .map(|s| s.nominal_stiffness.map(|k| 1.0 / k))
+            .collect();
+        let springs = springs?;
+        Some(DVector::from_iterator(
+            self.len(),
+            drives.iter().map(|k| 1.0 / k).chain(springs),
+        ))
+    }
+
+    /// The same model with the springs `more` added after its own.
+    ///
+    /// # Errors
+    /// As [`check_springs`] for the combined list.
+    pub fn with(&self, more: &[Spring]) -> Result<Self> {
+        let mut springs = self.springs.clone();
+        springs.extend_from_slice(more);
+        Self::new(self.coordinates, springs)
+    }
+
+    /// The virtual springs placed at the posture `frames` of `robot`.
+    pub fn placed(&self, robot: &Robot, frames: &Frames) -> Vec<Placed> {
+        self.springs
+            .iter()
+            .map(|s| s.placed(robot, frames))
+            .collect()
+    }
+}
+
+/// Checks a list of virtual springs: at most [`MAX_VIRTUAL_SPRINGS`]; each name non-empty, at
+/// most [`MAX_NAME_CHARS`] letters, digits, `_` or `-`, unique and not a drive's (`k1` .. `k6`);
+/// `link` 0 to 6; `axis` finite and non-zero; `point` finite within
+/// [`crate::limits::LENGTH_MM`]; a nominal stiffness within
+/// [`crate::limits::STIFFNESS_NM_PER_RAD`] (rotation) or [`crate::limits::STIFFNESS_N_PER_MM`]
+/// (translation). Fields are named as in a setup file (`model.spring[2].link`).
+///
+/// # Errors
+/// [`Error::InvalidField`] for the first problem.
+pub fn check_springs(springs: &[Spring]) -> Result<()> {
+    crate::limits::check_count("model.spring", springs.len(), 0, MAX_VIRTUAL_SPRINGS)?;
+    for (i, s) in springs.iter().enumerate() {
+        let field = |f: &str| format!("model.spring[{}].{f}", i + 1);
+        check_name(&s.name, &field("name"))?;
+        if springs[..i].iter().any(|t| t.name == s.name) {
+            return Err(invalid(
+                &field("name"),
+                format!("'{}' names two springs: names must be unique", s.name),
+            ));
+        }
+        if s.link > 6 {
+            return Err(invalid(
+                &field("link"),
+                format!("{} is not a link: expected 0 (base) to 6", s.link),
+            ));
+        }
+        let axis = s.axis.into_inner();
+        crate::limits::check(&field("axis"), axis.as_slice(), &crate::limits::AXIS)?;
+        let mm: Vec<f64> = s.point.iter().map(|v| v * 1e3).collect();
+        crate::limits::check(&field("point_mm"), &mm, &crate::limits::LENGTH_MM)?;
+        if let Some(k) = s.nominal_stiffness {
+            let (name, range) = match s.kind {
+                Kind::Rotation => (
+                    "nominal_stiffness_nm_per_rad",
+                    crate::limits::STIFFNESS_NM_PER_RAD,
+                ),
+                Kind::Translation => (
+                    "nominal_stiffness_n_per_mm",
+                    crate::limits::STIFFNESS_N_PER_MM,
+                ),
+            };
+            let value = k * s.unit().per_si();
+            crate::limits::check(&field(name), &[value], &range)?;
+        }
+    }
+    Ok(())
+}
+
+fn check_name(name: &str, field: &str) -> Result<()> {
+    let allowed = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
+    if name.is_empty() || name.chars().count() > MAX_NAME_CHARS || !name.chars().all(allowed) {
+        return Err(invalid(
+            field,
+            format!(
+                "'{}' is not a spring name: expected 1 to {MAX_NAME_CHARS} letters, digits, '_' or '-'",
+                crate::limits::short(name)
+            ),
+        ));
+    }
+    if DRIVE_NAMES.contains(&name) {
+        return Err(invalid(
+            field,
+            format!("'{name}' is a drive's name: choose another"),
+        ));
+    }
+    Ok(())
+}
+
+fn invalid(field: &str, message: String) -> Error {
+    Error::InvalidField {
+        field: field.to_string(),
+        message,
+    }
+}
+
+/// A unit axis from a finite, non-zero vector (any length), or the error naming `field`.
+///
+/// # Errors
+/// [`Error::InvalidField`] for a non-finite or zero vector.
+pub fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vector3<f64>>> {
+    crate::limits::check(field, v.as_slice(), &crate::limits::AXIS)?;
+    UnitVector::try_new(v, 1e-12).ok_or_else(|| {
+        invalid(
+            field,
+            "the zero vector has no direction: expected a non-zero axis".into(),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests;
