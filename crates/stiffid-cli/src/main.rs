@@ -112,10 +112,14 @@ fn command() -> clap::Command {
     fn numeric(arg: clap::Arg) -> clap::Arg {
         use std::any::TypeId;
         let id = arg.get_value_parser().type_id();
-        let number = [TypeId::of::<f64>(), TypeId::of::<i64>(), TypeId::of::<u64>()]
-            .iter()
-            .chain(&[TypeId::of::<usize>(), TypeId::of::<u32>()])
-            .any(|t| id == *t);
+        let number = [
+            TypeId::of::<f64>(),
+            TypeId::of::<i64>(),
+            TypeId::of::<u64>(),
+        ]
+        .iter()
+        .chain(&[TypeId::of::<usize>(), TypeId::of::<u32>()])
+        .any(|t| id == *t);
         let unit = arg.get_long().is_some_and(|l| {
             ["-deg", "-mm", "-n", "-nm", "-pct"]
                 .iter()
@@ -138,7 +142,11 @@ fn command() -> clap::Command {
 fn usage_error(e: &clap::Error) -> ExitCode {
     use std::io::Write;
     let text = e.render().to_string();
-    let _ = write!(std::io::stderr().lock(), "{}", text.trim_end().to_owned() + "\n");
+    let _ = write!(
+        std::io::stderr().lock(),
+        "{}",
+        text.trim_end().to_owned() + "\n"
+    );
     ExitCode::from(2)
 }
 

@@ -390,3 +390,37 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let rms = (norms.iter().map(|v| v * v).sum::<f64>() / norms.len() as f64).sqrt();
     assert!((stiffer.measured[2] - rms).abs() < 1e-15);
 }
+
+/// Every fold is fitted as the full fit: a bounded or robust cross-validation's folds equal the
+/// same method refitted by hand without the fold's measurements.
+#[test]
+fn bounded_and_robust_folds_are_refits_with_the_full_fits_method() {
+    use stiffid::identify::Loss;
+    let setup = paper();
+    let data = noisy_paper_data(&setup, 1, 5);
+    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    for method in [
+        Method::Nonnegative,
+        Method::Robust(Loss::Tukey),
+        Method::Robust(Loss::Huber),
+    ] {
+        let full = method.fit(&obs).unwrap();
+        let cv = cross_validate(&obs, &full, 3, method).unwrap();
+        for fold in &cv.folds {
+            let rest: Vec<Measurement> = (0..data.len())
+                .filter(|i| !fold.measurements.contains(i))
+                .map(|i| data[i].clone())
+                .collect();
+            let by_hand = method
+                .fit(&Observations::from_measurements(&setup, &rest).unwrap())
+                .unwrap();
+            for j in 0..6 {
+                let (a, b) = (fold.stiffness[j], by_hand.stiffness[j]);
+                assert!(
+                    a == b || ((a - b) / b).abs() < 1e-9,
+                    "{method:?} joint {j}: {a} vs {b}"
+                );
+            }
+        }
+    }
+}

@@ -187,8 +187,8 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
     };
     let reach_mm = reach * 1e3;
     let mut values = vec![
-        ("ROBOT_NAME", robot.name.clone()),
-        ("ROBOT_REF", robot_ref.to_string()),
+        ("ROBOT_NAME", in_comment(&robot.name)),
+        ("ROBOT_REF", in_comment(robot_ref)),
         ("NAME", quoted(&format!("{stem}-cell"))),
         (
             "DESCRIPTION",
@@ -268,6 +268,17 @@ fn list<'a>(values: impl Iterator<Item = &'a f64>, decimals: usize) -> String {
 }
 
 /// A TOML basic string.
+/// `s` for a TOML comment: line breaks and other control characters escaped (`\n`), so a
+/// robot name cannot end the comment.
+fn in_comment(s: &str) -> String {
+    s.chars()
+        .map(|c| match c.is_control() {
+            true => c.escape_default().to_string(),
+            false => c.to_string(),
+        })
+        .collect()
+}
+
 fn quoted(s: &str) -> String {
     toml::Value::String(s.to_string()).to_string()
 }

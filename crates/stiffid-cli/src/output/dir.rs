@@ -2,7 +2,7 @@
 
 use super::target::{replace, resolve};
 use anyhow::{bail, Context, Result};
-use std::io::ErrorKind;
+use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 
 /// The hidden directory inside a report directory that holds the temporary files while they are
@@ -53,6 +53,9 @@ impl ReportDir {
                 if force.is_some() { " or pass --force" } else { "" }
             ),
             Ok(_) => {}
+            Err(e) if e.kind() == ErrorKind::NotFound && dir.symlink_metadata().is_ok() => {
+                bail!("{option} {name}: a symlink to nothing; refusing to write through it")
+            }
             Err(e) if e.kind() == ErrorKind::NotFound => {}
             Err(e) => return Err(e).with_context(|| format!("{option} {name}: cannot inspect")),
         }
@@ -97,7 +100,10 @@ impl ReportDir {
                 self.check_existing(&entry.path(), &rel, holds, option)?;
             } else if holds(&rel) {
                 resolve(&entry.path(), option)?;
-                self.earlier.lock().unwrap_or_else(|e| e.into_inner()).push(entry.path());
+                self.earlier
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .push(entry.path());
             }
         }
         Ok(())
@@ -114,8 +120,45 @@ impl ReportDir {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("{}: cannot create", parent.display()))?;
         }
-        self.earlier.lock().unwrap_or_else(|e| e.into_inner()).retain(|p| *p != path);
+        self.earlier
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|p| *p != path);
         replace(&resolve(&path, "report file")?, &self.tmp, bytes, false)
+    }
+
+    /// Writes the file `rel` (as [`ReportDir::write`]) from `parts` in turn: byte strings and
+    /// files (a large result that never sits in memory whole).
+    ///
+    /// # Errors
+    /// As [`ReportDir::write`]; a part that cannot be read.
+    pub fn write_parts(&self, rel: &str, parts: &[Part]) -> Result<()> {
+        let path = self.dir.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("{}: cannot create", parent.display()))?;
+        }
+        let target = resolve(&path, "report file")?;
+        self.earlier
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|p| *p != path);
+        let (tmp, file) = super::target::temporary(&self.tmp)?;
+        let mut out = std::io::BufWriter::new(file);
+        let written = parts
+            .iter()
+            .try_for_each(|part| match part {
+                Part::Bytes(b) => out.write_all(b),
+                Part::File(f) => std::io::copy(&mut std::fs::File::open(f)?, &mut out).map(drop),
+            })
+            .and_then(|()| out.flush())
+            .and_then(|()| out.get_ref().sync_all());
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(e).with_context(|| format!("{}: cannot write", target.display()));
+        }
+        super::staged::replace(tmp, target);
+        Ok(())
     }
 
     /// Ends the report: when the run succeeds ([`super::staged::commit`]) its files are put in
@@ -144,6 +187,14 @@ impl Drop for ReportDir {
             let _ = std::fs::remove_dir_all(created);
         }
     }
+}
+
+/// A piece of a file written by [`ReportDir::write_parts`].
+pub enum Part<'a> {
+    /// These bytes.
+    Bytes(&'a [u8]),
+    /// The contents of this file.
+    File(&'a Path),
 }
 
 /// Takes an exclusive lock on the directory `dir` for the rest of the process (released when it

@@ -1,7 +1,9 @@
 //! One output file (`--out FILE`).
 
 use super::target::{replace, resolve, temporary};
-use anyhow::Result;
+use anyhow::{Context, Result};
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 /// An output file, checked when the command starts (after reading its inputs, before computing):
@@ -56,6 +58,86 @@ impl OutFile {
     /// When the file cannot be written (nothing is left behind then).
     pub fn write(&self, bytes: &[u8]) -> Result<()> {
         replace(&self.target, dir_of(&self.target), bytes, self.new_only)
+    }
+}
+
+impl OutFile {
+    /// A writer for the file written piece by piece (a large result that never sits in memory
+    /// whole): a temporary file beside the target, staged by [`Writer::finish`] like
+    /// [`OutFile::write`]; removed if dropped unfinished.
+    ///
+    /// # Errors
+    /// When the temporary file cannot be created.
+    pub fn writer(&self) -> Result<Writer> {
+        let (tmp, file) = temporary(dir_of(&self.target))?;
+        Ok(Writer {
+            file: BufWriter::with_capacity(1 << 16, file),
+            tmp,
+            target: self.target.clone(),
+            new_only: self.new_only,
+            done: false,
+        })
+    }
+}
+
+/// An [`OutFile`] being written piece by piece ([`OutFile::writer`]).
+#[derive(Debug)]
+pub struct Writer {
+    file: BufWriter<File>,
+    tmp: PathBuf,
+    target: PathBuf,
+    new_only: bool,
+    done: bool,
+}
+
+impl Writer {
+    /// The temporary file being written (to read it back once finished writing).
+    pub fn path(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Flushes and syncs what was written; the file stays a temporary one until [`Writer::finish`].
+    ///
+    /// # Errors
+    /// When the bytes cannot be written (a full device).
+    pub fn sync(&mut self) -> Result<()> {
+        self.file
+            .flush()
+            .and_then(|_| self.file.get_ref().sync_all())
+            .with_context(|| format!("{}: cannot write", self.target.display()))
+    }
+
+    /// Ends the file: synced, and staged to be put in place when the run succeeds.
+    ///
+    /// # Errors
+    /// As [`Writer::sync`].
+    pub fn finish(mut self) -> Result<()> {
+        self.sync()?;
+        self.done = true;
+        let (tmp, target) = (self.tmp.clone(), self.target.clone());
+        match self.new_only {
+            true => super::staged::create(tmp, target),
+            false => super::staged::replace(tmp, target),
+        }
+        Ok(())
+    }
+}
+
+impl Write for Writer {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.file.write(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.flush()
+    }
+}
+
+impl Drop for Writer {
+    fn drop(&mut self) {
+        if !self.done {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
     }
 }
 

@@ -13,7 +13,7 @@ mod file;
 pub mod staged;
 mod target;
 
-pub use dir::ReportDir;
+pub use dir::{Part, ReportDir};
 pub use file::OutFile;
 
 use anyhow::{Context, Result};
@@ -36,6 +36,25 @@ pub fn write_stdout(bytes: &[u8]) -> Result<()> {
     out.write_all(bytes)
         .and_then(|_| out.flush())
         .context("stdout: cannot write")
+}
+
+/// Writes `parts` (bytes and files, [`Part`]) to stdout in turn, never whole in memory.
+///
+/// # Errors
+/// When stdout cannot take them or a file cannot be read.
+pub fn write_stdout_parts(parts: &[Part]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    for part in parts {
+        match part {
+            Part::Bytes(b) => out.write_all(b).context("stdout: cannot write")?,
+            Part::File(f) => {
+                let mut file = std::fs::File::open(f)
+                    .with_context(|| format!("{}: cannot read", f.display()))?;
+                std::io::copy(&mut file, &mut out).context("stdout: cannot write")?;
+            }
+        }
+    }
+    out.flush().context("stdout: cannot write")
 }
 
 /// Prints `warning: {text}` on stderr; a stderr that cannot be written is ignored (the result
