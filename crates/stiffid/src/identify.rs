@@ -27,8 +27,10 @@
 //! With exactly six rows the fit is exact and there is no uncertainty estimate (`None`).
 
 pub mod adequacy;
+pub mod compare;
 pub mod cross_validation;
 pub mod frames;
+pub mod model;
 pub mod nonnegative;
 pub mod robust;
 pub mod streamed;

@@ -41,6 +41,7 @@ pub mod identify;
 pub mod lsq;
 pub mod observation;
 pub mod prior;
+pub mod process;
 pub mod progress;
 pub mod setup;
 pub mod simulate;

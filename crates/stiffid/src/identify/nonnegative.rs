@@ -22,34 +22,53 @@ pub struct Bounded {
     pub active: [bool; 6],
 }
 
-/// Iteration limit of the outer loop (Lawson and Hanson use 3n).
-const MAX_ITERATIONS: usize = 3 * 6 * 10;
+/// The bounded fit of any number of unknowns ([`solve_general`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoundedGeneral {
+    /// The minimiser, every entry `>= 0`.
+    pub h: DVector<f64>,
+    /// Which entries are held at the bound 0 (the active constraints).
+    pub active: Vec<bool>,
+}
 
 /// `min |a x - b|` subject to `x >= 0` (module docs). `a` must have full rank (a [`crate::lsq::Factor`]'s `R`).
 pub fn solve(a: &Matrix6<f64>, b: &Vector6<f64>) -> Bounded {
-    let tolerance = 10.0 * f64::EPSILON * a.abs().column_sum().max() * 6.0 * b.norm().max(1e-300);
-    let mut x = Vector6::zeros();
-    let mut free = [false; 6];
-    for _ in 0..MAX_ITERATIONS {
-        let w = a.tr_mul(&(b - a * x));
-        let entering = (0..6)
+    let a = DMatrix::from_column_slice(6, 6, a.as_slice());
+    let fit = solve_general(&a, &DVector::from_column_slice(b.as_slice()));
+    Bounded {
+        h: Vector6::from_column_slice(fit.h.as_slice()),
+        active: std::array::from_fn(|j| fit.active[j]),
+    }
+}
+
+/// `min |a x - b|` subject to `x >= 0` for an `m x n` matrix `a` of full column rank (module docs;
+/// any `m >= n`: the triangular factor or the whole observation matrix).
+pub fn solve_general(a: &DMatrix<f64>, b: &DVector<f64>) -> BoundedGeneral {
+    let n = a.ncols();
+    let tolerance =
+        10.0 * f64::EPSILON * a.abs().column_sum().max() * n as f64 * b.norm().max(1e-300);
+    let mut x = DVector::zeros(n);
+    let mut free = vec![false; n];
+    for _ in 0..30 * n {
+        let w = a.tr_mul(&(b - a * &x));
+        let entering = (0..n)
             .filter(|&j| !free[j] && w[j] > tolerance)
             .max_by(|&i, &j| w[i].total_cmp(&w[j]));
         let Some(t) = entering else { break };
         free[t] = true;
         loop {
             let z = free_solution(a, b, &free);
-            if (0..6).all(|j| !free[j] || z[j] > 0.0) {
+            if (0..n).all(|j| !free[j] || z[j] > 0.0) {
                 x = z;
                 break;
             }
             // Step from x toward z until the first free variable reaches 0.
-            let alpha = (0..6)
+            let alpha = (0..n)
                 .filter(|&j| free[j] && z[j] <= 0.0)
                 .map(|j| x[j] / (x[j] - z[j]))
                 .fold(f64::INFINITY, f64::min);
-            x += (z - x) * alpha;
-            for j in 0..6 {
+            x += (z - &x) * alpha;
+            for j in 0..n {
                 if free[j] && x[j] <= 0.0 {
                     free[j] = false;
                     x[j] = 0.0;
@@ -60,31 +79,32 @@ pub fn solve(a: &Matrix6<f64>, b: &Vector6<f64>) -> Bounded {
             }
         }
     }
-    Bounded {
+    BoundedGeneral {
         h: x,
-        active: free.map(|f| !f),
+        active: free.iter().map(|f| !f).collect(),
     }
+}
+
+/// The least-squares solution over the free variables (by QR), zero elsewhere.
+fn free_solution(a: &DMatrix<f64>, b: &DVector<f64>, free: &[bool]) -> DVector<f64> {
+    let index: Vec<usize> = (0..free.len()).filter(|&j| free[j]).collect();
+    let qr = a.select_columns(&index).qr();
+    let qtb = qr.q().tr_mul(b);
+    let z = qr
+        .r()
+        .solve_upper_triangular(&qtb)
+        .unwrap_or_else(|| DVector::zeros(qtb.len()));
+    let mut x = DVector::zeros(free.len());
+    for (value, j) in z.iter().zip(index) {
+        x[j] = *value;
+    }
+    x
 }
 
 /// The columns of `a` that are free, as a 6 x k matrix.
 fn free_columns(a: &Matrix6<f64>, free: &[bool; 6]) -> DMatrix<f64> {
     let index: Vec<usize> = (0..6).filter(|&j| free[j]).collect();
     DMatrix::from_fn(6, index.len(), |i, k| a[(i, index[k])])
-}
-
-/// The least-squares solution over the free variables (by QR), zero elsewhere.
-fn free_solution(a: &Matrix6<f64>, b: &Vector6<f64>, free: &[bool; 6]) -> Vector6<f64> {
-    let qr = free_columns(a, free).qr();
-    let qtb = qr.q().tr_mul(&DVector::from_column_slice(b.as_slice()));
-    let z = qr
-        .r()
-        .solve_upper_triangular(&qtb)
-        .unwrap_or_else(|| DVector::zeros(qtb.len()));
-    let mut x = Vector6::zeros();
-    for (value, j) in z.iter().zip((0..6).filter(|&j| free[j])) {
-        x[j] = *value;
-    }
-    x
 }
 
 /// `(A_F^T A_F)^-1` of the free columns `F` (those not `active`), embedded in a 6x6 matrix with

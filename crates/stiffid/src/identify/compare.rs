@@ -1,0 +1,355 @@
+//! Model choice by the data: forward selection of virtual springs on the leave-one-posture-out
+//! error, nested in an outer cross-validation for an honest estimate of the chosen model's error.
+//!
+//! From the setup's model, each step fits the model with every remaining candidate spring added
+//! ([`super::model::fit`]) and its leave-one-posture-out error ([`super::model::held_out`]), and
+//! adds the candidate with the smallest held-out mean square `delta_b` among those whose fit is
+//! physical (every compliance `> 0`) and identified. It stops when no candidate lowers the
+//! held-out error. The recommended model is the smallest on that path whose held-out mean square
+//! is within one standard error of the best one (the one-standard-error rule; Hastie, Tibshirani,
+//! Friedman, "The Elements of Statistical Learning", 2nd ed., 2009, Section 7.10): a spring must
+//! pay for itself beyond the noise of the estimate.
+//!
+//! The held-out error of the chosen model is optimistic (the choice saw every posture). The
+//! nested estimate repeats the whole selection without each posture in turn and predicts that
+//! posture with the model it chose (outer leave-one-posture-out): the error to expect from
+//! choosing by the data.
+
+use super::model::{fit, held_out, Fit, HeldOut};
+use crate::model::{Family, Model, Spring};
+use crate::observation::{Measurement, Observations};
+use crate::{Result, Setup};
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+/// The default candidates: the `tilt` springs of joints 1-6 and the `tool` translations, minus
+/// those the setup's model already has (by name).
+pub fn default_candidates(setup: &Setup) -> Vec<Spring> {
+    let robot = setup.robot();
+    let mut out = Family::Tilt
+        .springs(robot, &[1, 2, 3, 4, 5, 6], None, None, "candidates")
+        .unwrap_or_default();
+    out.extend(
+        Family::Tool
+            .springs(robot, &[], None, None, "candidates")
+            .unwrap_or_default(),
+    );
+    let have = setup.model().springs();
+    out.retain(|c| have.iter().all(|s| s.name != c.name));
+    out
+}
+
+/// One model of the comparison.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// The candidate added to the previous model (`None` for the setup's model).
+    pub added: Option<String>,
+    /// The virtual springs of the model (the setup's, then those added), by name.
+    pub springs: Vec<String>,
+    /// The number of parameters.
+    pub parameters: usize,
+    /// `1 - RMS(|r|) / RMS(|delta|)` of the fit to every posture.
+    pub in_sample_explained: f64,
+    /// `1 - RMS(delta_b) / RMS(|delta|)` with each posture left out; `None` when some posture is
+    /// needed to identify the model.
+    pub held_out_explained: Option<f64>,
+    /// `RMS(delta_b)` held out, m.
+    pub held_out_rms_delta_b: Option<f64>,
+    /// The held-out mean square `delta_b` over postures and its standard error, m^2.
+    pub held_out_mse: Option<(f64, f64)>,
+    /// AIC and BIC of the Gaussian fit.
+    pub aic: f64,
+    /// The Bayesian information criterion.
+    pub bic: f64,
+    /// `s / sigma` against the setup's tracker noise.
+    pub noise_ratio: Option<f64>,
+    /// Every compliance `> 0`.
+    pub physical: bool,
+    /// The data identify every parameter.
+    pub identified: bool,
+    /// The stiffness of every parameter, SI (Nm/rad, N/m), drives first.
+    pub stiffness: Vec<f64>,
+}
+
+/// One step of the forward selection: every candidate tried, and the one added.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// The current model plus each remaining candidate.
+    pub candidates: Vec<Row>,
+    /// The index in `candidates` of the one added (`None`: the selection stopped here).
+    pub chosen: Option<usize>,
+}
+
+/// The nested (outer leave-one-posture-out) estimate of choosing by the data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nested {
+    /// `1 - RMS(delta_b) / RMS(|delta|)` over every posture predicted by the model chosen without it.
+    pub held_out_explained: f64,
+    /// That `RMS(delta_b)`, m.
+    pub rms_delta_b: f64,
+    /// The number of parameters chosen in each outer fold.
+    pub parameters: Vec<usize>,
+    /// How many outer folds chose each candidate, by name, in candidate order.
+    pub chosen: Vec<(String, usize)>,
+}
+
+/// The result of [`compare`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// The selection path: the setup's model, then the model after each step.
+    pub models: Vec<Row>,
+    /// Every step with every candidate.
+    pub steps: Vec<Step>,
+    /// The index in `models` of the recommended model.
+    pub recommended: usize,
+    /// The recommended model's virtual springs (the setup's and those added).
+    pub recommended_springs: Vec<Spring>,
+    /// The recommended model's fit to every posture.
+    pub recommended_fit: Fit,
+    /// The nested estimate (with at least three postures).
+    pub nested: Option<Nested>,
+    /// The setup's model passes the model check against the tracker noise (p >= 0.01): no
+    /// extension is needed.
+    pub model_fits: bool,
+}
+
+/// Column sets over the observations of the setup's model plus every candidate.
+struct Problem<'a> {
+    obs: &'a Observations,
+    base: usize,
+    candidates: usize,
+    noise_variance: f64,
+    model: &'a Model,
+}
+
+/// Compares models by forward selection of `candidates` (module docs) on `measurements`,
+/// starting from `setup`'s model; `nested` runs the outer cross-validation.
+///
+/// # Errors
+/// Those of [`Observations::from_measurements`] and of [`super::model::fit`] for the setup's
+/// model; [`crate::Error::InvalidField`] for candidates that clash with the model's springs.
+pub fn compare(
+    setup: &Setup,
+    measurements: &[Measurement],
+    candidates: &[Spring],
+    nested: bool,
+) -> Result<Comparison> {
+    let model = setup.model().with(candidates)?;
+    let all = setup
+        .to_builder()
+        .with_virtual_springs(model.springs().to_vec())
+        .build()?;
+    let obs = Observations::from_measurements(&all, measurements)?;
+    let p = Problem {
+        obs: &obs,
+        base: setup.model().len(),
+        candidates: candidates.len(),
+        noise_variance: setup.noise().variance,
+        model: &model,
+    };
+    let base_fit = fit(
+        &p.sub(&(0..p.base).collect::<Vec<_>>()),
+        &p.parameters(&(0..p.base).collect::<Vec<_>>()),
+    )?;
+    let model_fits = base_fit
+        .adequacy_p_value(p.noise_variance)
+        .is_some_and(|pv| pv >= crate::identify::adequacy::SIGNIFICANCE);
+    let (models, steps, path) = p.select(&obs);
+    let recommended = recommend(&models);
+    let columns = &path[recommended];
+    let recommended_fit = fit(&p.sub(columns), &p.parameters(columns))?;
+    let recommended_springs = columns[6..]
+        .iter()
+        .map(|&c| model.springs()[c - 6].clone())
+        .collect();
+    let nested = (nested && obs.postures >= 3).then(|| p.nested(candidates));
+    Ok(Comparison {
+        models,
+        steps,
+        recommended,
+        recommended_springs,
+        recommended_fit,
+        nested,
+        model_fits,
+    })
+}
+
+/// The smallest model on the path within one standard error of the best held-out mean square
+/// (physical and identified), else the setup's model.
+fn recommend(models: &[Row]) -> usize {
+    let ok = |r: &Row| r.physical && r.identified;
+    let best = models
+        .iter()
+        .filter(|r| ok(r))
+        .filter_map(|r| r.held_out_mse)
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let Some((mse, se)) = best else { return 0 };
+    models
+        .iter()
+        .position(|r| ok(r) && r.held_out_mse.is_some_and(|m| m.0 <= mse + se))
+        .unwrap_or(0)
+}
+
+impl Problem<'_> {
+    fn parameters(&self, columns: &[usize]) -> Vec<crate::model::Parameter> {
+        let all = self.model.parameters();
+        columns.iter().map(|&c| all[c].clone()).collect()
+    }
+
+    fn sub(&self, columns: &[usize]) -> Observations {
+        Observations {
+            psi: self.obs.psi.select_columns(columns),
+            ..self.obs.clone()
+        }
+    }
+
+    /// The row of the model with `columns` on `obs` (rows of some postures).
+    fn row(&self, obs: &Observations, columns: &[usize], added: Option<usize>) -> Option<Row> {
+        let sub = Observations {
+            psi: obs.psi.select_columns(columns),
+            ..obs.clone()
+        };
+        let f = fit(&sub, &self.parameters(columns)).ok()?;
+        let held = held_out(&sub);
+        let names = self.model.parameters();
+        Some(Row {
+            added: added.map(|c| names[c].name.clone()),
+            springs: columns[6..]
+                .iter()
+                .map(|&c| names[c].name.clone())
+                .collect(),
+            parameters: columns.len(),
+            in_sample_explained: explained(&f.residuals, &sub.delta),
+            held_out_explained: held.as_ref().map(HeldOut::explained),
+            held_out_rms_delta_b: held.as_ref().map(|h| h.rms_delta_b),
+            held_out_mse: held.as_ref().map(HeldOut::mse_and_se),
+            aic: f.aic(),
+            bic: f.bic(),
+            noise_ratio: f.noise_ratio(self.noise_variance),
+            physical: f.physical(),
+            identified: f.identifiability.unidentifiable.is_empty(),
+            stiffness: f.stiffness.iter().copied().collect(),
+        })
+    }
+
+    /// Forward selection on `obs`: the path's rows, the steps, and the path's column sets.
+    fn select(&self, obs: &Observations) -> (Vec<Row>, Vec<Step>, Vec<Vec<usize>>) {
+        let mut columns: Vec<usize> = (0..self.base).collect();
+        let mut remaining: Vec<usize> = (self.base..self.base + self.candidates).collect();
+        let Some(first) = self.row(obs, &columns, None) else {
+            return (Vec::new(), Vec::new(), vec![columns]);
+        };
+        let mut models = vec![first];
+        let mut path = vec![columns.clone()];
+        let mut steps = Vec::new();
+        while !remaining.is_empty() {
+            let rows: Vec<Option<Row>> = remaining
+                .iter()
+                .map(|&c| {
+                    let mut with = columns.clone();
+                    with.push(c);
+                    self.row(obs, &with, Some(c))
+                })
+                .collect();
+            let current = models
+                .last()
+                .and_then(|r| r.held_out_mse)
+                .map_or(f64::INFINITY, |m| m.0);
+            let best = rows
+                .iter()
+                .enumerate()
+                .filter_map(|(i, r)| Some((i, r.as_ref()?)))
+                .filter(|(_, r)| r.physical && r.identified)
+                .filter_map(|(i, r)| Some((i, r.held_out_mse?.0)))
+                .filter(|(_, m)| *m < current)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(i, _)| i);
+            let candidates: Vec<Row> = rows.iter().flatten().cloned().collect();
+            let chosen_row = best.map(|i| rows[i].clone().expect("a chosen row exists"));
+            let chosen = chosen_row
+                .as_ref()
+                .and_then(|c| candidates.iter().position(|r| r == c));
+            steps.push(Step { candidates, chosen });
+            let (Some(i), Some(row)) = (best, chosen_row) else {
+                break;
+            };
+            columns.push(remaining.remove(i));
+            models.push(row);
+            path.push(columns.clone());
+        }
+        (models, steps, path)
+    }
+
+    /// The outer leave-one-posture-out estimate (module docs), folds in parallel, the same result
+    /// whatever the threads.
+    fn nested(&self, candidates: &[Spring]) -> Nested {
+        let obs = self.obs;
+        let folds: Vec<(Vec<usize>, Vec<f64>)> = (0..obs.postures)
+            .into_par_iter()
+            .map(|p| {
+                let (train, test) = split(obs, p);
+                let (models, _, path) = self.select(&train);
+                let columns = &path[recommend(&models).min(path.len() - 1)];
+                let sub = Observations {
+                    psi: train.psi.select_columns(columns),
+                    ..train.clone()
+                };
+                let delta_b = match fit(&sub, &self.parameters(columns)) {
+                    Ok(f) => {
+                        let r = &test.delta - test.psi.select_columns(columns) * &f.compliance;
+                        (0..r.len() / 3).map(|k| r.rows(3 * k, 3).norm()).collect()
+                    }
+                    Err(_) => vec![f64::NAN; test.delta.len() / 3],
+                };
+                (columns.clone(), delta_b)
+            })
+            .collect();
+        let all: Vec<f64> = folds.iter().flat_map(|f| f.1.iter().copied()).collect();
+        let rms = (all.iter().map(|d| d * d).sum::<f64>() / all.len() as f64).sqrt();
+        let measured = (obs.delta.norm_squared() / all.len() as f64).sqrt();
+        let names = self.model.parameters();
+        Nested {
+            held_out_explained: 1.0 - rms / measured,
+            rms_delta_b: rms,
+            parameters: folds.iter().map(|f| f.0.len()).collect(),
+            chosen: (0..candidates.len())
+                .map(|c| {
+                    let col = self.base + c;
+                    let n = folds.iter().filter(|f| f.0.contains(&col)).count();
+                    (names[col].name.clone(), n)
+                })
+                .collect(),
+        }
+    }
+}
+
+/// `1 - RMS(|r_i|) / RMS(|delta_i|)` over the measurements (three rows each).
+fn explained(residuals: &DVector<f64>, delta: &DVector<f64>) -> f64 {
+    1.0 - (residuals.norm_squared() / delta.norm_squared()).sqrt()
+}
+
+/// The observations without posture `p` (postures renumbered) and those of `p` alone.
+fn split(obs: &Observations, p: usize) -> (Observations, Observations) {
+    let part = |keep: &dyn Fn(usize) -> bool| {
+        let ids: Vec<usize> = (0..obs.posture_index.len())
+            .filter(|&i| keep(obs.posture_index[i]))
+            .collect();
+        let rows: Vec<usize> = ids.iter().flat_map(|&i| 3 * i..3 * i + 3).collect();
+        let psi: DMatrix<f64> = obs.psi.select_rows(&rows);
+        let delta = DVector::from_iterator(rows.len(), rows.iter().map(|&r| obs.delta[r]));
+        let mut index: Vec<usize> = ids.iter().map(|&i| obs.posture_index[i]).collect();
+        let mut distinct = index.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        for x in &mut index {
+            *x = distinct.binary_search(x).expect("present");
+        }
+        Observations {
+            psi,
+            delta,
+            postures: distinct.len(),
+            posture_index: index,
+        }
+    };
+    (part(&|q| q != p), part(&|q| q == p))
+}
