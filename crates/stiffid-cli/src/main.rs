@@ -63,7 +63,6 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    restore_sigpipe();
     if let Err(message) = standard_streams() {
         return fail(&message);
     }
@@ -140,17 +139,18 @@ fn command() -> clap::Command {
     each(Cli::command())
 }
 
-/// A usage error of the command line, printed whole as clap words it (the missing arguments, the
-/// similar option, the usage line), exit code 2.
+/// A usage error of the command line, whole as clap words it (the missing arguments, the similar
+/// option, the usage line), on the one `error: ` line every error gets; exit code 2.
 fn usage_error(e: &clap::Error) -> ExitCode {
-    use std::io::Write;
     let text = e.render().to_string();
-    let _ = write!(
-        std::io::stderr().lock(),
-        "{}",
-        text.trim_end().to_owned() + "\n"
-    );
-    ExitCode::from(2)
+    let mut line = String::new();
+    for part in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if !line.is_empty() {
+            line += if line.ends_with(':') { " " } else { "; " };
+        }
+        line += part;
+    }
+    fail(&line)
 }
 
 /// Prints `message` as one `error: ` line on stderr (long words cut) and returns exit code 2. A
@@ -181,14 +181,4 @@ fn standard_streams() -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// Restores the default SIGPIPE action (Rust ignores it), so `stiffid ... | head` ends quietly
-/// like other Unix tools instead of panicking on a closed stdout.
-fn restore_sigpipe() {
-    #[cfg(unix)]
-    // SAFETY: called first thing in main, before any other thread exists; SIG_DFL is a valid action.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
 }

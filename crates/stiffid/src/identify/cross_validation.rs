@@ -260,7 +260,12 @@ pub fn without_rows(
     let m = a.nrows();
     let i_minus_h = DMatrix::identity(m, m) - &a * a.transpose();
     let chol = i_minus_h.cholesky()?;
-    if chol.l_dirty().diagonal().iter().any(|d| d.is_nan() || *d < MIN_PIVOT) {
+    if chol
+        .l_dirty()
+        .diagonal()
+        .iter()
+        .any(|d| d.is_nan() || *d < MIN_PIVOT)
+    {
         return None;
     }
     let x = chol.solve(e_o);
