@@ -46,6 +46,9 @@ enum Command {
     Validate(commands::validate::Args),
     /// Deflection of a machining path under its process wrench, and the compensated axis angles.
     Compensate(commands::compensate::Args),
+    /// The laser tracker's transform to the robot base from measuring points it read at known
+    /// axis angles, with residuals, standard deviation and the setup's `[tracker]` fragment.
+    Register(commands::register::Args),
     /// The mean cutting force of every operation of a process file (milling, drilling), feed frame.
     Force(commands::force::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
@@ -93,6 +96,7 @@ fn main() -> ExitCode {
         Command::Identify(args) => commands::identify::run(&args),
         Command::Validate(args) => commands::validate::run(&args),
         Command::Compensate(args) => commands::compensate::run(&args),
+        Command::Register(args) => commands::register::run(&args),
         Command::Force(args) => commands::force::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, command()),
         Command::Man(args) => commands::completions::man(&args, command()),

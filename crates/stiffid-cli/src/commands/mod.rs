@@ -9,6 +9,7 @@ pub mod identify;
 pub mod kinematics;
 pub mod plot;
 pub mod predict;
+pub mod register;
 pub mod reproduce;
 pub mod robots;
 pub mod schema;

@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{compensate, evaluate, identify, kinematics, predict, select, simulate, validate};
+use super::{compensate, evaluate, kinematics, predict, register, select, simulate, validate};
 use crate::output::{self, json};
 use crate::report::summary;
 use anyhow::{bail, Result};
@@ -19,7 +19,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 10] = [
+const DOCUMENTS: [(&str, &str); 11] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
@@ -36,6 +36,7 @@ const DOCUMENTS: [(&str, &str); 10] = [
         "stiffid simulate --json (and --out DIR/simulation.json)",
     ),
     ("reproduce", "stiffid reproduce: summary.json"),
+    ("register", "stiffid register --json"),
 ];
 
 /// Prints the schema of the named document, or without a name the names, one per line.
@@ -64,11 +65,12 @@ pub fn schema(name: &str) -> Result<Schema> {
         "evaluate" => closed::<evaluate::EvaluateJson>(),
         "select" => closed::<select::SelectJson<'static>>(),
         "predict" => closed::<predict::PredictJson>(),
-        "identify" => closed::<identify::IdentifyJson>(),
+        "identify" => closed::<stiffid::documents::identify::Document>(),
         "validate" => closed::<validate::ValidationJson>(),
         "compensate" => closed::<compensate::Document<'static>>(),
         "simulate" => closed::<simulate::SimulationJson<'static>>(),
         "reproduce" => closed::<summary::Summary<'static>>(),
+        "register" => closed::<register::RegisterJson>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

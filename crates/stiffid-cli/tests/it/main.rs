@@ -14,6 +14,7 @@ mod mutate;
 mod optional_fields_cli;
 mod options_proptest;
 mod pool_cli;
+mod register_cli;
 mod reproduce;
 mod schemas;
 mod select_cli;

@@ -6,6 +6,7 @@
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`path`]: the path (pose list) CSV of compensation.
 //! - [`postures`]: the postures CSV of a group of postures.
+//! - [`readings`]: the registration readings CSV (axis angles and tracker readings).
 //! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
@@ -13,6 +14,7 @@ pub(crate) mod exact;
 pub mod measurements;
 pub mod path;
 pub mod postures;
+pub mod readings;
 pub mod reference;
 pub mod stiffness;
 

@@ -18,7 +18,8 @@ use std::path::Path;
 ///
 /// # Errors
 /// The error of `read`; those of the parser (named after the file); [`Error::Parse`] for a file
-/// with another extension; [`Error::Unknown`] for a name that is no preset, [`Error::NotFound`]
+/// with another extension, or for a xacro file (`.xacro`, or xacro elements) with the command that
+/// expands it; [`Error::Unknown`] for a name that is no preset, [`Error::NotFound`]
 /// for a path that is neither a file nor a preset; [`Error::InvalidField`] (`tip link`) for a
 /// `tip` given with a preset or a robot TOML, whose chain has no choice of tip.
 ///
@@ -58,14 +59,18 @@ where
     let robot = match read(&path) {
         None => presets::get(reference)
             .map_err(|e| not_found(e, "robot", "preset", reference, &path))?,
-        Some(text) => match extension {
-            Some("toml") => file::parse(&text?, &name)?,
-            Some("urdf") => return Ok(urdf::parse(&text?, &name, tip)?),
-            _ => Err(Error::Parse {
-                source_name: name,
-                message: "a robot file must end in .toml or .urdf".into(),
-            })?,
-        },
+        Some(text) => {
+            let text = text?;
+            match extension {
+                _ if is_xacro(extension, &text) => Err(xacro(&name))?,
+                Some("toml") => file::parse(&text, &name)?,
+                Some("urdf") => return Ok(urdf::parse(&text, &name, tip)?),
+                _ => Err(Error::Parse {
+                    source_name: name,
+                    message: "a robot file must end in .toml or .urdf".into(),
+                })?,
+            }
+        }
     };
     match tip {
         None => Ok(robot),
@@ -79,6 +84,30 @@ where
             ),
         }
         .into()),
+    }
+}
+
+/// Whether a robot file is a xacro macro file: its extension is `.xacro`, or it declares the
+/// xacro namespace or uses a `<xacro:` element.
+fn is_xacro(extension: Option<&str>, text: &str) -> bool {
+    extension == Some("xacro") || text.contains("xmlns:xacro") || text.contains("<xacro:")
+}
+
+/// The error for a xacro file: it must be expanded into a URDF first, by ROS's `xacro` tool.
+fn xacro(name: &str) -> Error {
+    let urdf = match name.strip_suffix(".xacro") {
+        Some(stem) if stem.ends_with(".urdf") => stem.to_string(),
+        Some(stem) => format!("{stem}.urdf"),
+        None => format!("{}.expanded.urdf", name.trim_end_matches(".urdf")),
+    };
+    Error::Parse {
+        source_name: name.to_string(),
+        message: format!(
+            "a xacro file (macros, not a URDF): expand it first with ROS's xacro, e.g. \
+             `xacro {} > {}`, and give the URDF",
+            crate::limits::short(name),
+            crate::limits::short(&urdf)
+        ),
     }
 }
 
@@ -153,5 +182,38 @@ fn not_found(
             known,
         },
         e => e,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read_as(text: &'static str) -> impl Fn(&Path) -> Option<crate::Result<String>> {
+        move |_| Some(Ok(text.to_string()))
+    }
+
+    #[test]
+    fn a_xacro_file_gets_the_command_that_expands_it() {
+        let macro_text = "<robot xmlns:xacro=\"http://www.ros.org/wiki/xacro\" name=\"r\"/>";
+        let e = robot("cell/robot.urdf.xacro", None, read_as(macro_text))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`xacro cell/robot.urdf.xacro > cell/robot.urdf`"),
+            "{e}"
+        );
+        let e = robot(
+            "robot.urdf",
+            None,
+            read_as("<robot name=\"r\"><xacro:arm/></robot>"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("robot.urdf: a xacro file"), "{e}");
+        assert!(
+            e.contains("`xacro robot.urdf > robot.expanded.urdf`"),
+            "{e}"
+        );
     }
 }

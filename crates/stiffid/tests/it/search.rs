@@ -295,3 +295,45 @@ fn searches_say_why_they_stopped() {
         .sum();
     assert_eq!(counted, 4);
 }
+
+#[test]
+fn exact_constraint_gradients_end_no_worse_than_finite_differences_in_a_cell() {
+    let text = include_str!("../../../../examples/cell/zhang2021-tracker.toml");
+    let setup = setup::parse(text, "zhang2021-tracker.toml", |r, _| {
+        stiffid::robot::presets::get(r)
+    })
+    .unwrap();
+    let fd = SearchOptions {
+        gradient: design::Gradient::FiniteDifference,
+        ..SearchOptions::default()
+    };
+    for seed in 1..=2 {
+        let start = design::random_group(&setup, 6, seed);
+        let exact = design::local(
+            &setup,
+            Criterion::RelativeA,
+            &start,
+            &SearchOptions::default(),
+        )
+        .unwrap();
+        let finite = design::local(&setup, Criterion::RelativeA, &start, &fd).unwrap();
+        println!(
+            "start {seed}: exact {:.8} ({} evaluations, {}), fd {:.8} ({} evaluations, {})",
+            exact.value,
+            exact.evaluations,
+            exact.termination,
+            finite.value,
+            finite.evaluations,
+            finite.termination
+        );
+        for q in &exact.postures {
+            assert!(
+                stiffid::cell::feasibility(&setup, q).feasible(),
+                "start {seed}"
+            );
+        }
+        assert!(exact.termination.is_converged(), "start {seed}");
+        assert!(exact.value <= finite.value * (1.0 + 1e-6), "start {seed}");
+        assert!(exact.evaluations < finite.evaluations, "start {seed}");
+    }
+}

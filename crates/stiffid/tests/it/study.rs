@@ -45,7 +45,9 @@ fn group(origin: Origin, rates: [f64; 6], classical: f64, levels: usize) -> Grou
             test_pose: 0.0,
             cond_psi: classical,
             relative_std: Vector6::zeros(),
+            spring_relative_std: Vec::new(),
             predicted_deviation_pct: predicted.clone(),
+            identifiability: Default::default(),
         },
         evaluations: 0,
         simulation: GroupSimulation {

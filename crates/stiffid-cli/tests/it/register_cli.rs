@@ -1,0 +1,101 @@
+//! `stiffid register`: readings of a known tracker transform give it back, with the fragment the
+//! setup reads; bad readings exit 2 naming the file, line and column.
+
+use crate::common;
+
+use common::{json, stiffid, temp_dir, write_file};
+use nalgebra::{Isometry3, Point3, Vector3, Vector6};
+
+/// Readings of the paper setup's four measuring points in three postures, seen by a tracker at
+/// `truth` (base_from_tracker).
+fn readings(truth: &Isometry3<f64>) -> String {
+    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let mut text = stiffid::formats::readings::header() + "\n";
+    let postures = [
+        [0.0, 0.0, -90.0, 0.0, 30.0, 0.0],
+        [35.0, -20.0, -110.0, 40.0, -30.0, 60.0],
+        [-40.0, 15.0, -70.0, -60.0, 45.0, -90.0],
+    ];
+    for (i, q_deg) in postures.iter().enumerate() {
+        let q = Vector6::from_iterator(q_deg.iter().map(|d: &f64| d.to_radians()));
+        let frames = setup.robot().frames(&q);
+        for (k, p) in setup.tool().measuring_points.iter().enumerate() {
+            let t = truth.inverse() * Point3::from(frames.point(p));
+            let q: Vec<String> = q_deg.iter().map(|v| v.to_string()).collect();
+            text += &format!(
+                "P{},{},{},{:.9},{:.9},{:.9}\n",
+                i + 1,
+                k + 1,
+                q.join(","),
+                t.x * 1e3,
+                t.y * 1e3,
+                t.z * 1e3
+            );
+        }
+    }
+    text
+}
+
+#[test]
+fn register_gives_the_transform_back_and_writes_the_fragment() {
+    let d = temp_dir("register");
+    let truth = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let data = write_file(&d, "readings.csv", &readings(&truth));
+    let out = d.join("tracker.toml");
+    let args = [
+        "register",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    let xyz: Vec<f64> = serde_json::from_value(doc["xyz_mm"].clone()).unwrap();
+    for (got, want) in xyz.iter().zip([3000.0, -2000.0, 1500.0]) {
+        assert!((got - want).abs() < 1e-5, "{got} {want}");
+    }
+    assert!(doc["residual_rms_mm"].as_f64().unwrap() < 1e-5);
+    assert_eq!(doc["points"].as_array().unwrap().len(), 12);
+    let fragment = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(fragment, doc["fragment"].as_str().unwrap());
+    let setup = String::from_utf8(stiffid(&["setups", "show", "zhang2021-comau-nj165"]).stdout)
+        .unwrap()
+        + "\n"
+        + &fragment;
+    let s =
+        stiffid::setup::parse(&setup, "s.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
+    let back = s.tracker().unwrap().base_from_tracker.unwrap();
+    assert!(back.rotation.angle_to(&truth.rotation) < 1e-8);
+}
+
+#[test]
+fn bad_readings_exit_2_naming_file_line_and_column() {
+    let d = temp_dir("register-bad");
+    let truth = Isometry3::identity();
+    let text = readings(&truth).replacen("P2,1,35", "P2,1,x", 1);
+    let data = write_file(&d, "readings.csv", &text);
+    let args = ["register", "--setup", "zhang2021-comau-nj165", "--data"];
+    let out = stiffid(&[&args[..], &[data.to_str().unwrap()]].concat());
+    assert_eq!(out.status.code(), Some(2));
+    let e = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        e.contains("readings.csv: line 6, column 3 (q1_deg): 'x' is not a finite number"),
+        "{e}"
+    );
+    let line = readings(&truth)
+        .lines()
+        .take(3)
+        .collect::<Vec<_>>()
+        .join("\n");
+    let data = write_file(&d, "two.csv", &line);
+    let out = stiffid(&[&args[..], &[data.to_str().unwrap()]].concat());
+    assert_eq!(out.status.code(), Some(2));
+    let e = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        e.contains("two.csv: points: 2 given: a registration needs at least 3"),
+        "{e}"
+    );
+}
