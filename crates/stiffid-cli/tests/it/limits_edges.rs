@@ -141,7 +141,7 @@ fn every_fold_is_fitted_as_the_full_fit() {
         }
         // The folds differ from the least-squares folds: the option reached them.
         assert_ne!(
-            cv["folds"], plain["cross_validation"]["folds"],
+            cv["per_fold"], plain["cross_validation"]["per_fold"],
             "{method:?}"
         );
     }
