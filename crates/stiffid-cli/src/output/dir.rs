@@ -179,6 +179,7 @@ impl ReportDir {
 
 impl Drop for ReportDir {
     fn drop(&mut self) {
+        super::staged::unclaim(&self.dir);
         if self.done {
             return;
         }

@@ -56,6 +56,14 @@ fn take() -> Vec<Step> {
     std::mem::take(&mut *STEPS.lock().unwrap_or_else(|e| e.into_inner()))
 }
 
+/// Forgets the claim on `path` ([`claim`]): its writer is done with it.
+pub fn unclaim(path: &Path) {
+    CLAIMS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .retain(|(p, _)| p != path);
+}
+
 /// Stages the written temporary file `tmp` to replace `target` at [`commit`].
 pub fn replace(tmp: PathBuf, target: PathBuf) {
     push(Step::Replace { tmp, target });
