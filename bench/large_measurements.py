@@ -1,4 +1,4 @@
-"""Writes a large measurement CSV for the identification scaling measurement (README, Performance).
+"""Writes a large measurement CSV for the identification scaling measurement (docs/performance.md).
 
 Each row is one posture of the FANUC R-2000iC/165F data set (examples/data/fanuc-r2000ic-165f),
 cycled, with its axis angles shifted by a small deterministic amount so that every row is its own

@@ -16,7 +16,7 @@ use std::process::ExitCode;
     name = "stiffid",
     version,
     about,
-    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; the README's 'Limits and safety' lists them all."
+    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; docs/reference.md, 'Limits and safety', lists them all."
 )]
 struct Cli {
     #[command(subcommand)]

@@ -80,7 +80,7 @@ def test_cross_validation_from_arrays(paper):
 
 def test_fanuc_stiffness_is_the_numpy_reference(fanuc):
     """The independent NumPy fit of examples/data/fanuc-r2000ic-165f/numpy_reference.py (also the
-    reference of crates/stiffid-cli/tests/identify_cli.rs): k1 of about 8.6e5 Nm/rad."""
+    reference of crates/stiffid-cli/tests/it/identify_cli.rs): k1 of about 8.6e5 Nm/rad."""
     k = stiffid.identify(fanuc, FANUC_DATA).stiffness_nm_per_rad
     assert k.shape == (6,)
     assert k[0] == pytest.approx(8.609e5, rel=1e-3)

@@ -7,7 +7,7 @@ use std::hint::black_box;
 use stiffid::cell::Checker;
 use stiffid::design::{self, Criterion, SearchOptions};
 
-/// The paper setup in the README's cell.
+/// The paper setup in the guide's cell (docs/guide.md, "The cell").
 fn paper_cell() -> stiffid::Setup {
     let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";

@@ -51,6 +51,14 @@ fn search(c: &mut Bench) {
     g.bench_function("global-fd/relative-a/default", |b| {
         b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &fd, &()).unwrap())
     });
+    // Every start run to convergence (no screening): what the screening saves.
+    let every_start = SearchOptions {
+        screen_steps: 0,
+        ..options.clone()
+    };
+    g.bench_function("global-every-start/relative-a/default", |b| {
+        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &every_start, &()).unwrap())
+    });
     g.finish();
 }
 

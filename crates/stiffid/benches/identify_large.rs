@@ -3,7 +3,7 @@
 //! writes them), identified with statistics by `identify::streamed::least_squares`: read once in
 //! chunks (parsed in parallel), `Psi` (3e5 x 6) reduced by QR in blocks, never whole. Linear in
 //! the rows: the 1e6-row target (under 1 s on 2 cores, issue 14) is 10x this. Peak memory is
-//! measured on the command line (`/usr/bin/time -v`, README).
+//! measured on the command line (`/usr/bin/time -v`, docs/performance.md).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;

@@ -20,7 +20,7 @@
 //! (Chen and Kao, "Conservative congruence transformation for joint and Cartesian stiffness
 //! matrices", Int. J. Robotics Research 19(7), 2000). The torques are those of the unloaded
 //! posture. On the paper's setup we measured its effect at about 2 micrometres (1.9 um) of a 2 mm
-//! deflection (0.1%, the README's `predict` example; test
+//! deflection (0.1%, the `predict` example of docs/guide.md; test
 //! `the_complementary_stiffness_is_about_a_thousandth_of_the_deflection`).
 
 use crate::kinematics::{Coordinates, Frames};

@@ -7,7 +7,7 @@ authors did: tau = J_theta^T [F; 0], Psi[r, j] = J_theta[r, j] * tau_j (r = x, y
 h = argmin |Psi h - delta| by numpy.linalg.lstsq (SVD), k = 1 / h.
 
 The kinematics are written here from the data README (modified DH, axis map, TCP), not taken from
-stiffid. The printed stiffness values are the reference in crates/stiffid-cli/tests/identify_cli.rs.
+stiffid. The printed stiffness values are the reference in crates/stiffid-cli/tests/it/identify_cli.rs.
 
 Usage: python3 numpy_reference.py [DIR]   (DIR defaults to original/ beside this script)
 """

@@ -34,7 +34,7 @@ pub struct Args {
     /// test-pose (or their JSON keys: relative_a, test_pose_mm, ...). The default, relative-a,
     /// ranks groups of postures as their measured accuracy does (in `stiffid reproduce`,
     /// Spearman's rho +1.00 against the simulated deviation rates); the paper's zhang2021 does not
-    /// (rho -0.10): see the README's "The paper's study".
+    /// (rho -0.10): see docs/guide.md, "The paper's study".
     #[arg(long, default_value = "relative-a")]
     criterion: Criterion,
     /// Start group (posture,q1_deg,...,q6_deg) of a local search.

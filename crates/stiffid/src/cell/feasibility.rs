@@ -3,8 +3,7 @@
 use super::bodies::{capsules, Capsule, Part};
 use super::distance::capsule_floor_witness;
 use super::distance::{capsule_box_witness, capsule_capsule, capsule_capsule_witness};
-use super::motion::{part_carrier, Carrier, Margins};
-use crate::kinematics::Frames;
+use super::motion::{part_carrier, Carrier, Deferred, MarginGradients, Margins};
 use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
@@ -305,24 +304,21 @@ impl<'a> Checker<'a> {
     /// The signed margin of every pair every active check tests at posture `q` (axis angles,
     /// rad), in [`Checker::kinds`] order; the same pairs in every posture.
     pub fn margins(&self, q: &Vector6<f64>) -> Vec<Margin> {
-        let mut out = Margins::new(None);
+        let mut out = Margins::new(false);
         self.collect(q, &mut out);
         out.margins
     }
 
-    /// [`Checker::margins`] and the gradient of each margin with respect to the six axis angles
-    /// (m/rad, or rad/rad for angles), in the same order: exact, from the witness points of each
-    /// distance (its witness points: the normal times the difference of the witness points' velocities)
-    /// and the derivatives of the incidence angle and the heights. Where the closest points of a
-    /// pair are not unique (a tie) the gradient is one of the one-sided ones.
-    pub(crate) fn margins_and_gradients(
-        &self,
-        q: &Vector6<f64>,
-    ) -> (Vec<Margin>, Vec<Vector6<f64>>) {
-        let mut out = Margins::new(Some(Vec::with_capacity(64)));
+    /// [`Checker::margins`] and what their gradients with respect to the six axis angles (m/rad,
+    /// or rad/rad for angles) are worked out from, on demand ([`MarginGradients::gradient`]), so
+    /// that a caller pays only for the gradients it uses: exact, from the witness points of each
+    /// distance (the normal times the difference of the witness points' velocities) and the
+    /// derivatives of the incidence angle and the heights. Where the closest points of a pair are
+    /// not unique (a tie) the gradient is one of the one-sided ones.
+    pub(crate) fn margins_and_gradients(&self, q: &Vector6<f64>) -> (Vec<Margin>, MarginGradients) {
+        let mut out = Margins::new(true);
         self.collect(q, &mut out);
-        let gradients = out.gradients.unwrap_or_default();
-        (out.margins, gradients)
+        out.finish()
     }
 
     fn collect(&self, q: &Vector6<f64>, out: &mut Margins) {
@@ -333,10 +329,8 @@ impl<'a> Checker<'a> {
             let m = if m.is_nan() { f64::NEG_INFINITY } else { m };
             let sign = if low <= high { 1.0 } else { -1.0 };
             let axis = Thing::Axis(a);
-            out.push_value(
-                margin(CheckKind::Bounds, m, 0.0, axis, axis),
-                Vector6::ith(a, sign),
-            );
+            let m = margin(CheckKind::Bounds, m, 0.0, axis, axis);
+            out.push(m, Deferred::Value(Vector6::ith(a, sign)));
         }
         if !self.constrains() {
             return;
@@ -364,18 +358,14 @@ impl<'a> Checker<'a> {
                     let normal = frames.flange.rotation * t.measuring_normals[i];
                     let angle = normal.angle(&(t.position - p));
                     let m = Thing::MeasuringPoint(i);
-                    out.push(margin(CheckKind::Incidence, max - angle, 0.0, m, m), |f| {
-                        -super::motion::angle_gradient(f, &normal, &(t.position - p), &p)
-                    });
+                    let sight = t.position - p;
+                    let m = margin(CheckKind::Incidence, max - angle, 0.0, m, m);
+                    out.push(m, Deferred::Angle { normal, sight, p });
                 }
             }
         }
         let c = &s.constraints();
-        let height = |f: &Frames| {
-            super::motion::velocity(f, Carrier::Link(6), &loading)
-                .row(2)
-                .transpose()
-        };
+        let height = Deferred::Height(loading);
         if let Some(z) = c.loading_point_min_z {
             let (l, f) = (Thing::LoadingPoint, Thing::Floor);
             let m = margin(CheckKind::LoadingPointHeight, loading.z - z, 0.0, l, f);
@@ -412,7 +402,7 @@ impl<'a> Checker<'a> {
                     Thing::Part(b.part),
                     Thing::Floor,
                 );
-                out.push_witness(m, part_carrier(b.part), Carrier::Fixed, Some(w));
+                out.witness(m, part_carrier(b.part), Carrier::Fixed, Some(w));
             }
         }
         for b in bodies {
@@ -420,7 +410,7 @@ impl<'a> Checker<'a> {
                 let (d, w) = capsule_box_witness(b, o);
                 let (pb, oi) = (Thing::Part(b.part), Thing::Obstacle(i));
                 let m = margin(CheckKind::Obstacles, d - c, c, pb, oi);
-                out.push_witness(m, part_carrier(b.part), Carrier::Fixed, w);
+                out.witness(m, part_carrier(b.part), Carrier::Fixed, w);
             }
         }
         for &(i, j) in &self.pairs {
@@ -433,7 +423,7 @@ impl<'a> Checker<'a> {
                 Thing::Part(pi),
                 Thing::Part(pj),
             );
-            out.push_witness(m, part_carrier(pi), part_carrier(pj), Some(w));
+            out.witness(m, part_carrier(pi), part_carrier(pj), Some(w));
         }
         let exempt = self.setup.geometry().tool_radius + c;
         let rope = line(&self.setup.load().anchor, loading, exempt);
@@ -463,7 +453,7 @@ impl<'a> Checker<'a> {
                 None => (f64::INFINITY, None),
             };
             let m = margin(kind, m, required, thing, Thing::Part(b.part));
-            out.push_witness(m, carrier, part_carrier(b.part), w);
+            out.witness(m, carrier, part_carrier(b.part), w);
         }
         let obstacles = self
             .setup
@@ -473,7 +463,7 @@ impl<'a> Checker<'a> {
         for (i, o) in obstacles.enumerate() {
             let (d, w) = capsule_box_witness(&line.full, o);
             let m = margin(kind, d - required, required, thing, Thing::Obstacle(i));
-            out.push_witness(m, line.full_carrier, Carrier::Fixed, w);
+            out.witness(m, line.full_carrier, Carrier::Fixed, w);
         }
     }
 

@@ -113,19 +113,66 @@ pub(super) fn angle_gradient(
     rotation.transpose() * normal.cross(&g_a) - v_p.transpose() * g_b
 }
 
-/// The margins of one posture as they are worked out, and their gradients when asked for.
+/// What the gradient of one margin is worked out from.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Deferred {
+    /// The gradient itself.
+    Value(Vector6<f64>),
+    /// A distance: its witness points, carried by the first and the second carrier (zero
+    /// without a witness).
+    Witness(Carrier, Carrier, Option<Witness>),
+    /// The incidence angle between `normal` and `sight` at the measuring point `p`, as a margin
+    /// `max - angle` ([`angle_gradient`]).
+    Angle {
+        normal: Vector3<f64>,
+        sight: Vector3<f64>,
+        p: Vector3<f64>,
+    },
+    /// The height of a point of the flange (base frame, m).
+    Height(Vector3<f64>),
+}
+
+/// The margins of one posture as they are worked out, and what their gradients come from when
+/// asked for.
 pub(super) struct Margins {
     pub(super) margins: Vec<Margin>,
-    pub(super) gradients: Option<Vec<Vector6<f64>>>,
+    deferred: Option<Vec<Deferred>>,
     frames: Option<Frames>,
 }
 
+/// The gradients of the margins of one posture, each worked out when asked for.
+pub(crate) struct MarginGradients {
+    frames: Option<Frames>,
+    deferred: Vec<Deferred>,
+}
+
+impl MarginGradients {
+    /// The gradient of margin `i` with respect to the six axis angles (m/rad, or rad/rad).
+    pub(crate) fn gradient(&self, i: usize) -> Vector6<f64> {
+        let frames = || {
+            self.frames
+                .as_ref()
+                .expect("frames of a constrained posture")
+        };
+        match self.deferred[i] {
+            Deferred::Value(g) => g,
+            Deferred::Witness(_, _, None) => Vector6::zeros(),
+            Deferred::Witness(a, b, Some(w)) => {
+                let f = frames();
+                (velocity(f, b, &w.b) - velocity(f, a, &w.a)).transpose() * w.normal
+            }
+            Deferred::Angle { normal, sight, p } => -angle_gradient(frames(), &normal, &sight, &p),
+            Deferred::Height(p) => frames().link_point_jacobian(&p, 6).row(2).transpose(),
+        }
+    }
+}
+
 impl Margins {
-    /// Margins only (`gradients` `None`), or margins and gradients (`Some` of an empty vector).
-    pub(super) fn new(gradients: Option<Vec<Vector6<f64>>>) -> Self {
+    /// Margins only, or margins and what their gradients come from.
+    pub(super) fn new(gradients: bool) -> Self {
         Self {
             margins: Vec::with_capacity(64),
-            gradients,
+            deferred: gradients.then(|| Vec::with_capacity(64)),
             frames: None,
         }
     }
@@ -133,35 +180,31 @@ impl Margins {
     /// The posture's frames, for the gradients that follow (kept only when gradients are asked
     /// for).
     pub(super) fn frames(&mut self, frames: &Frames) {
-        if self.gradients.is_some() {
+        if self.deferred.is_some() {
             self.frames = Some(frames.clone());
         }
     }
 
-    /// Adds a margin whose gradient is `gradient`.
-    pub(super) fn push_value(&mut self, m: Margin, gradient: Vector6<f64>) {
+    /// Adds a margin and what its gradient comes from.
+    pub(super) fn push(&mut self, m: Margin, gradient: Deferred) {
         self.margins.push(m);
-        if let Some(g) = &mut self.gradients {
-            g.push(gradient);
+        if let Some(d) = &mut self.deferred {
+            d.push(gradient);
         }
     }
 
-    /// Adds a margin and, if asked for, its gradient `gradient(frames)`.
-    pub(super) fn push(&mut self, m: Margin, gradient: impl FnOnce(&Frames) -> Vector6<f64>) {
-        self.margins.push(m);
-        if let Some(g) = &mut self.gradients {
-            let frames = self.frames.as_ref().expect("frames set before gradients");
-            g.push(gradient(frames));
-        }
+    /// Adds a distance margin whose witness points `w.a`, `w.b` are carried by `a` and `b`.
+    pub(super) fn witness(&mut self, m: Margin, a: Carrier, b: Carrier, w: Option<Witness>) {
+        self.push(m, Deferred::Witness(a, b, w));
     }
 
-    /// Adds a distance margin whose witness points `w.a`, `w.b` are carried by `a` and `b`:
-    /// gradient `(V_b - V_a)^T normal` (zero without a witness).
-    pub(super) fn push_witness(&mut self, m: Margin, a: Carrier, b: Carrier, w: Option<Witness>) {
-        self.push(m, |f| match w {
-            Some(w) => (velocity(f, b, &w.b) - velocity(f, a, &w.a)).transpose() * w.normal,
-            None => Vector6::zeros(),
-        });
+    /// The margins and their gradients.
+    pub(super) fn finish(self) -> (Vec<Margin>, MarginGradients) {
+        let gradients = MarginGradients {
+            frames: self.frames,
+            deferred: self.deferred.unwrap_or_default(),
+        };
+        (self.margins, gradients)
     }
 }
 

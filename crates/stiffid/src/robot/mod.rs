@@ -3,6 +3,7 @@
 //! A [`Robot`] is built from a DH table ([`dh`]), a URDF file ([`urdf`]), a robot TOML file
 //! ([`mod@file`]) or a built-in preset ([`presets`]). Its kinematics are in [`crate::kinematics`].
 
+pub mod collision;
 pub mod dh;
 pub mod file;
 pub mod presets;

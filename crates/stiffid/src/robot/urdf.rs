@@ -149,7 +149,9 @@ fn tag_end(b: &[u8], from: usize) -> (usize, bool) {
 
 /// Checks the links and joints form one tree (every joint between declared links, no link the
 /// child of two joints, one root) and returns each joint by its child link.
-fn tree(urdf: &urdf_rs::Robot) -> std::result::Result<HashMap<&str, &urdf_rs::Joint>, String> {
+pub(super) fn tree(
+    urdf: &urdf_rs::Robot,
+) -> std::result::Result<HashMap<&str, &urdf_rs::Joint>, String> {
     let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
     let mut by_child = HashMap::new();
     for j in &urdf.joints {
@@ -218,7 +220,7 @@ fn cycle(by_child: &HashMap<&str, &urdf_rs::Joint>) -> Option<String> {
 /// The tip link when none is named: the only leaf link; else the only leaf at the end of a chain
 /// of six revolute joints; else, among several such leaves, `tool0` (the ROS-Industrial
 /// convention, whose URDFs also have a `base` leaf).
-fn default_tip(
+pub(super) fn default_tip(
     urdf: &urdf_rs::Robot,
     by_child: &HashMap<&str, &urdf_rs::Joint>,
 ) -> std::result::Result<String, String> {

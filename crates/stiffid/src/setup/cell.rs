@@ -33,7 +33,7 @@ pub const MAX_OBSTACLES: usize = 100;
 /// Largest clearance, link radius or tool radius accepted, mm (10 m: beyond any industrial cell).
 pub const MAX_LENGTH_MM: f64 = 10_000.0;
 
-/// The cell around the robot (Section "The cell model" of the README), base frame, m.
+/// The cell around the robot (docs/guide.md, "The cell"), base frame, m.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
     /// Height of the floor (base z), m; `None`: no floor check.

@@ -9,7 +9,7 @@ use stiffid::{Error, Setup};
 use crate::common;
 use common::{paper_with, PAPER_CELL};
 
-/// The README's cell with a table beside the robot and a 60 deg acceptance half-angle.
+/// The guide's cell with a table beside the robot and a 60 deg acceptance half-angle.
 fn cell_with_table() -> Setup {
     paper_with(&format!(
         "{PAPER_CELL}max_incidence_deg = 60.0
@@ -73,22 +73,12 @@ fn global_search_in_a_cell_is_feasible_and_thread_independent() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| design::global(&setup, Criterion::RelativeA, 6, &small(800, 3), &|_| {}))
+        pool.install(|| design::global(&setup, Criterion::RelativeA, 6, &small(300, 2), &|_| {}))
             .unwrap()
     };
     let (one, two) = (run(1), run(2));
     assert_eq!(one.postures, two.postures);
     assert_all_feasible(&setup, &one.postures);
-    // Feasibility costs something: the unconstrained search of the same budget is no worse.
-    let free = paper_with("").unwrap();
-    let unconstrained =
-        design::global(&free, Criterion::RelativeA, 6, &small(800, 3), &|_| {}).unwrap();
-    assert!(
-        unconstrained.value <= one.value * 1.05,
-        "{} vs {}",
-        unconstrained.value,
-        one.value
-    );
 }
 
 #[test]

@@ -19,7 +19,7 @@ pub const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [
     [0.0, 0.0, -90.0, 45.0, -45.0, 90.0],
 ];
 
-/// The README's cell around the paper setup: floor at z = 0, 50 mm clearance, default radii,
+/// The guide's cell around the paper setup: floor at z = 0, 50 mm clearance, default radii,
 /// tracker at (3000, -2000, 1500) mm.
 pub const PAPER_CELL: &str = "
 [cell]

@@ -334,7 +334,7 @@ fn the_free_tool_axis_keeps_the_path_angle_when_every_angle_ties() {
     }
 }
 
-/// The documented size of the neglected complementary stiffness: on the paper's setup, the README's
+/// The documented size of the neglected complementary stiffness: on the paper's setup, the guide's
 /// `predict` example (2 mm at measuring point 1) moves by about 2 micrometres when the torques are
 /// those of the deflected posture (a fixed point `dq = h .* J_f(q + dq)^T W`) instead of the
 /// unloaded one.

@@ -27,6 +27,7 @@ mod parsers_proptest;
 mod path_format;
 mod pool;
 mod prior;
+mod process_forces;
 mod search;
 mod setup_builder;
 mod simulate;

@@ -9,6 +9,10 @@ use nalgebra::Vector6;
 /// still pass the exact checks.
 const SLACK: f64 = 1e-4;
 
+/// Weight below which a pair's gradient is left out of a smooth minimum's: `2^-60`, under the
+/// rounding of a weighted sum of terms of weight up to 1.
+const NEGLIGIBLE: f64 = 8.673617379884035e-19;
+
 /// Scale of the smooth minimum of a check's margins over its pairs, for lengths (m).
 const SMOOTHING_M: f64 = 2e-3;
 /// The same for angles (rad).
@@ -54,7 +58,9 @@ pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
 
 /// [`inequalities`] and their exact gradients in the six angles of `q`: the gradient of the
 /// smooth minimum is the average of the pairs' margin gradients
-/// ([`Checker::margins_and_gradients`]) weighted by `exp(-(m_i - m_min) / tau) / sum`.
+/// ([`Checker::margins_and_gradients`]) weighted by `exp(-(m_i - m_min) / tau) / sum`. A pair
+/// whose weight is below [`NEGLIGIBLE`] (its margin more than about 42 tau, 8 cm or 0.2 rad, above the
+/// check's smallest) is skipped: its term is below the rounding of the sum.
 pub(super) fn inequalities_and_gradients(
     checker: &Checker,
     kinds: &[CheckKind],
@@ -65,7 +71,11 @@ pub(super) fn inequalities_and_gradients(
         .iter()
         .map(|&k| {
             let mut g = Vector6::zeros();
-            let v = smooth_min_with(&margins, k, |i, w| g += gradients[i] * w);
+            let v = smooth_min_with(&margins, k, |i, w| {
+                if w >= NEGLIGIBLE {
+                    g += gradients.gradient(i) * w;
+                }
+            });
             (SLACK - v, -g)
         })
         .unzip()

@@ -1,0 +1,551 @@
+//! The robot's own collision geometry from a URDF's `<collision>` elements: boxes, cylinders,
+//! spheres, capsules and meshes (STL, binary or ASCII, read by `stl_io`), each a convex shape
+//! (a mesh by its convex hull, parry's `ConvexPolyhedron`) with its origin in the frame of the
+//! body that carries it.
+//!
+//! Bodies are numbered as the chain moves them: 0 the base (every link before the first revolute
+//! joint, in the robot's base frame), `i = 1..=6` the links after revolute joint `i` (in its frame,
+//! [`crate::Frames::joints`]`[i - 1]`). Links hung from a chain link by fixed joints (a flange,
+//! `tool0`, the `base` leaf of ROS-Industrial URDFs) belong to that body, their fixed transforms
+//! folded into the origins; links under other joints off the chain (a counterbalance driven by
+//! `<mimic>` joints) are left out and named in [`CollisionGeometry::skipped`].
+//!
+//! Mesh files are found relative to the URDF's directory; `package://NAME/PATH` is looked for as
+//! `DIR/NAME/PATH` in each package directory in turn (the ROS convention); `file://PATH` is a path.
+//! The caller reads files: `read(path)` returns `None` when nothing exists there.
+
+use crate::limits::{self, short};
+use crate::{Error, Result};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use parry3d_f64::query;
+use parry3d_f64::shape::{self, Ball, ConvexPolyhedron, Cuboid, Cylinder};
+use std::collections::HashMap;
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use urdf_rs::{Geometry, JointType};
+
+/// Most triangles read from one mesh file.
+pub const MAX_MESH_TRIANGLES: usize = 2_000_000;
+
+/// A convex shape in its own frame, m.
+#[derive(Debug, Clone)]
+pub enum Shape {
+    /// A box centred on the origin, half extents.
+    Cuboid(Cuboid),
+    /// A cylinder about the z axis centred on the origin (URDF's convention).
+    Cylinder(Cylinder),
+    /// A sphere at the origin.
+    Ball(Ball),
+    /// A capsule about the z axis centred on the origin.
+    Capsule(shape::Capsule),
+    /// The convex hull of a mesh.
+    Convex(Arc<ConvexPolyhedron>),
+}
+
+/// parry's cylinders and capsules turn about y; URDF's about z.
+fn y_to_z() -> Isometry3<f64> {
+    Isometry3::rotation(Vector3::x() * std::f64::consts::FRAC_PI_2)
+}
+
+impl Shape {
+    /// The shape as parry queries take it, and the transform from parry's frame of it to ours.
+    fn parry(&self) -> (&dyn shape::Shape, Isometry3<f64>) {
+        match self {
+            Shape::Cuboid(s) => (s, Isometry3::identity()),
+            Shape::Cylinder(s) => (s, y_to_z()),
+            Shape::Ball(s) => (s, Isometry3::identity()),
+            Shape::Capsule(s) => (s, y_to_z()),
+            Shape::Convex(s) => (s.as_ref(), Isometry3::identity()),
+        }
+    }
+}
+
+/// One collision shape of the robot.
+#[derive(Debug, Clone)]
+pub struct LinkShape {
+    /// The body that carries it: 0 the base, 1..=6 the link after revolute joint `i`.
+    pub body: usize,
+    /// The URDF link it comes from.
+    pub link: String,
+    /// Its pose in the body's frame, m.
+    pub origin: Isometry3<f64>,
+    /// The shape.
+    pub shape: Shape,
+}
+
+/// Every collision shape of the chain's links.
+#[derive(Debug, Clone, Default)]
+pub struct CollisionGeometry {
+    /// The shapes, base first, in URDF order within a body.
+    pub shapes: Vec<LinkShape>,
+    /// Links with collision elements that hang off the chain under a non-fixed joint.
+    pub skipped: Vec<String>,
+}
+
+/// The signed distance between two posed shapes, m: the gap, or minus the penetration depth
+/// (parry's GJK, EPA inside).
+pub fn distance(a: &Shape, pose_a: &Isometry3<f64>, b: &Shape, pose_b: &Isometry3<f64>) -> f64 {
+    let ((sa, fa), (sb, fb)) = (a.parry(), b.parry());
+    let (pa, pb) = (pose_a * fa, pose_b * fb);
+    match query::contact(&pa, sa, &pb, sb, 0.0) {
+        Ok(Some(c)) if c.dist < 0.0 => c.dist,
+        _ => query::distance(&pa, sa, &pb, sb).unwrap_or(f64::INFINITY),
+    }
+}
+
+/// The collision geometry of the URDF `text` (read from `source_name`, in `dir`) along the chain
+/// to `tip` (as [`super::urdf::parse`] chooses it); meshes read by `read`, `package://` URLs
+/// resolved in `package_paths`.
+///
+/// # Errors
+/// Those of [`super::urdf::parse`] for the text; [`Error::Parse`] naming the URDF, the link and
+/// the mesh: a `package://` URL whose package is in none of the package paths (naming the package
+/// and the paths), a mesh file that does not exist, cannot be read or is no STL, more than
+/// [`MAX_MESH_TRIANGLES`] triangles, a mesh format other than STL, points that span no volume,
+/// non-finite or out-of-range sizes.
+pub fn parse(
+    text: &str,
+    source_name: &str,
+    dir: &Path,
+    tip: Option<&str>,
+    package_paths: &[PathBuf],
+    read: &dyn Fn(&Path) -> Option<Result<Vec<u8>>>,
+) -> Result<CollisionGeometry> {
+    super::urdf::parse(text, source_name, tip)?;
+    let urdf = urdf_rs::read_from_string(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: limits::one_line(&e.to_string()),
+    })?;
+    let chain_error = |message: String| Error::Chain {
+        source_name: source_name.to_string(),
+        message,
+    };
+    let tip = match tip {
+        Some(t) => t.to_string(),
+        None => {
+            let by_child = super::urdf::tree(&urdf).map_err(chain_error)?;
+            super::urdf::default_tip(&urdf, &by_child).map_err(chain_error)?
+        }
+    };
+    let bodies = link_bodies(&urdf, &tip);
+    let context = Context {
+        source_name,
+        dir,
+        package_paths,
+        read,
+    };
+    let mut out = CollisionGeometry::default();
+    for link in &urdf.links {
+        let Some((body, pose)) = bodies.get(link.name.as_str()) else {
+            if !link.collision.is_empty() {
+                out.skipped.push(link.name.clone());
+            }
+            continue;
+        };
+        for c in &link.collision {
+            out.shapes.push(LinkShape {
+                body: *body,
+                link: link.name.clone(),
+                origin: pose * origin(&c.origin, &link.name, source_name)?,
+                shape: context.shape(&c.geometry, &link.name)?,
+            });
+        }
+    }
+    out.shapes.sort_by_key(|s| s.body);
+    Ok(out)
+}
+
+/// Every link moved with the chain: its body and its pose in the body's frame.
+fn link_bodies<'a>(
+    urdf: &'a urdf_rs::Robot,
+    tip: &'a str,
+) -> HashMap<&'a str, (usize, Isometry3<f64>)> {
+    let by_child: HashMap<&str, &urdf_rs::Joint> = urdf
+        .joints
+        .iter()
+        .map(|j| (j.child.link.as_str(), j))
+        .collect();
+    let mut chain = vec![tip];
+    while let Some(j) = by_child.get(chain.last().copied().unwrap_or("")) {
+        chain.push(j.parent.link.as_str());
+    }
+    chain.reverse();
+    let mut out = HashMap::new();
+    let (mut body, mut pose) = (0, Isometry3::identity());
+    for (k, link) in chain.iter().enumerate() {
+        if k > 0 {
+            let j = by_child[link];
+            match j.joint_type {
+                JointType::Fixed => pose *= pose_of(&j.origin),
+                _ => (body, pose) = (body + 1, Isometry3::identity()),
+            }
+        }
+        out.insert(*link, (body, pose));
+    }
+    // Links hung by fixed joints from a chain link (repeat until nothing is added).
+    loop {
+        let added: Vec<(&str, (usize, Isometry3<f64>))> = urdf
+            .joints
+            .iter()
+            .filter(|j| {
+                j.joint_type == JointType::Fixed && !out.contains_key(j.child.link.as_str())
+            })
+            .filter_map(|j| {
+                let (b, p) = out.get(j.parent.link.as_str())?;
+                Some((j.child.link.as_str(), (*b, p * pose_of(&j.origin))))
+            })
+            .collect();
+        if added.is_empty() {
+            return out;
+        }
+        out.extend(added);
+    }
+}
+
+fn pose_of(p: &urdf_rs::Pose) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(p.xyz[0], p.xyz[1], p.xyz[2]),
+        UnitQuaternion::from_euler_angles(p.rpy[0], p.rpy[1], p.rpy[2]),
+    )
+}
+
+fn origin(p: &urdf_rs::Pose, link: &str, source_name: &str) -> Result<Isometry3<f64>> {
+    let field = |f: &str| {
+        format!(
+            "{source_name}: link '{}': collision origin {f}",
+            short(link)
+        )
+    };
+    limits::check(&field("xyz"), &p.xyz[..], &limits::LENGTH_M)?;
+    limits::check(&field("rpy"), &p.rpy[..], &limits::ANGLE_RAD)?;
+    Ok(pose_of(p))
+}
+
+/// Where meshes are looked for, and how files are read.
+struct Context<'a> {
+    source_name: &'a str,
+    dir: &'a Path,
+    package_paths: &'a [PathBuf],
+    read: &'a dyn Fn(&Path) -> Option<Result<Vec<u8>>>,
+}
+
+impl Context<'_> {
+    fn error(&self, link: &str, message: String) -> Error {
+        Error::Parse {
+            source_name: self.source_name.to_string(),
+            message: format!("link '{}': {message}", short(link)),
+        }
+    }
+
+    fn shape(&self, g: &Geometry, link: &str) -> Result<Shape> {
+        let size = |name: &str, v: &[f64]| -> Result<()> {
+            match v
+                .iter()
+                .all(|x| x.is_finite() && *x > 0.0 && *x <= limits::LENGTH_M.max)
+            {
+                true => Ok(()),
+                false => Err(self.error(
+                    link,
+                    format!("collision {name} {v:?}: expected lengths > 0 and <= 100 m"),
+                )),
+            }
+        };
+        Ok(match g {
+            Geometry::Box { size: s } => {
+                size("box size", &s[..])?;
+                Shape::Cuboid(Cuboid::new(Vector3::new(s[0], s[1], s[2]) / 2.0))
+            }
+            Geometry::Cylinder { radius, length } => {
+                size("cylinder radius, length", &[*radius, *length])?;
+                Shape::Cylinder(Cylinder::new(length / 2.0, *radius))
+            }
+            Geometry::Capsule { radius, length } => {
+                size("capsule radius, length", &[*radius, *length])?;
+                Shape::Capsule(shape::Capsule::new_y(length / 2.0, *radius))
+            }
+            Geometry::Sphere { radius } => {
+                size("sphere radius", &[*radius])?;
+                Shape::Ball(Ball::new(*radius))
+            }
+            Geometry::Mesh { filename, scale } => {
+                let scale = scale.map_or([1.0; 3], |s| [s[0], s[1], s[2]]);
+                size("mesh scale", &scale)?;
+                self.mesh(filename, scale, link)?
+            }
+        })
+    }
+
+    fn mesh(&self, filename: &str, scale: [f64; 3], link: &str) -> Result<Shape> {
+        let name = short(filename);
+        if !filename.to_ascii_lowercase().ends_with(".stl") {
+            return Err(self.error(
+                link,
+                format!("mesh '{name}': only STL meshes are read (convert it to STL)"),
+            ));
+        }
+        let (path, bytes) = self.find(filename, link)?;
+        let shown = short(&path.display().to_string());
+        let bad = |m: String| self.error(link, format!("mesh {shown}: {m}"));
+        let mut cursor = Cursor::new(bytes);
+        let reader = stl_io::create_stl_reader(&mut cursor)
+            .map_err(|e| bad(format!("not an STL file ({e})")))?;
+        let mut points = Vec::new();
+        for (k, triangle) in reader.enumerate() {
+            if k == MAX_MESH_TRIANGLES {
+                return Err(bad(format!("more than {MAX_MESH_TRIANGLES} triangles")));
+            }
+            let t = triangle.map_err(|e| bad(format!("not an STL file ({e})")))?;
+            for v in t.vertices {
+                let p = Point3::new(
+                    f64::from(v[0]) * scale[0],
+                    f64::from(v[1]) * scale[1],
+                    f64::from(v[2]) * scale[2],
+                );
+                if !p.iter().all(|c| limits::LENGTH_M.contains(*c)) {
+                    return Err(bad(format!(
+                        "a vertex {:?} outside +-100 m",
+                        p.coords.as_slice()
+                    )));
+                }
+                points.push(p);
+            }
+        }
+        ConvexPolyhedron::from_convex_hull(&points)
+            .map(|c| Shape::Convex(Arc::new(c)))
+            .ok_or_else(|| bad("its points span no volume (empty or flat)".into()))
+    }
+
+    /// The mesh file named by `filename` and its bytes.
+    fn find(&self, filename: &str, link: &str) -> Result<(PathBuf, Vec<u8>)> {
+        let candidates: Vec<PathBuf> = if let Some(rest) = filename.strip_prefix("package://") {
+            let package = rest.split('/').next().unwrap_or("");
+            if self.package_paths.is_empty() {
+                return Err(self.error(
+                    link,
+                    format!(
+                        "mesh '{}' is in package '{}': give the directory that holds the \
+                         package as a package path",
+                        short(filename),
+                        short(package)
+                    ),
+                ));
+            }
+            self.package_paths.iter().map(|p| p.join(rest)).collect()
+        } else if let Some(path) = filename.strip_prefix("file://") {
+            vec![PathBuf::from(path)]
+        } else {
+            vec![self.dir.join(filename)]
+        };
+        for path in &candidates {
+            if let Some(bytes) = (self.read)(path) {
+                return Ok((path.clone(), bytes?));
+            }
+        }
+        let tried: Vec<String> = candidates.iter().map(|p| p.display().to_string()).collect();
+        let message = match filename.strip_prefix("package://") {
+            Some(rest) => format!(
+                "mesh '{}': package '{}' not found in the package paths (no {})",
+                short(filename),
+                short(rest.split('/').next().unwrap_or("")),
+                short(&tried.join(", "))
+            ),
+            None => format!(
+                "mesh '{}': no file {}",
+                short(filename),
+                short(&tried.join(", "))
+            ),
+        };
+        Err(self.error(link, message))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector6;
+
+    /// The 12 triangles of an axis-aligned cube of side `side` centred on the origin.
+    fn cube(side: f32) -> Vec<[[f32; 3]; 3]> {
+        let h = side / 2.0;
+        let c = |i: usize| {
+            [
+                if i & 1 == 0 { -h } else { h },
+                if i & 2 == 0 { -h } else { h },
+                if i & 4 == 0 { -h } else { h },
+            ]
+        };
+        let faces = [
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+        ];
+        faces
+            .iter()
+            .flat_map(|f| [[c(f[0]), c(f[1]), c(f[2])], [c(f[0]), c(f[2]), c(f[3])]])
+            .collect()
+    }
+
+    fn ascii_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+        let mut s = String::from("solid cube\n");
+        for t in triangles {
+            s += "  facet normal 0 0 0\n    outer loop\n";
+            for v in t {
+                s += &format!("      vertex {} {} {}\n", v[0], v[1], v[2]);
+            }
+            s += "    endloop\n  endfacet\n";
+        }
+        (s + "endsolid cube\n").into_bytes()
+    }
+
+    fn binary_stl(triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+        let mut b = vec![0u8; 80];
+        b.extend((triangles.len() as u32).to_le_bytes());
+        for t in triangles {
+            b.extend([0f32; 3].iter().flat_map(|v| v.to_le_bytes()));
+            b.extend(t.iter().flatten().flat_map(|v| v.to_le_bytes()));
+            b.extend([0u8; 2]);
+        }
+        b
+    }
+
+    const URDF: &str = r#"<robot name="shapes">
+  <link name="base_link"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.4 0.4 0.2"/></geometry></collision></link>
+  <link name="link_1"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <link name="link_2"><collision><origin xyz="0 0 0.3"/><geometry><cylinder radius="0.05" length="0.6"/></geometry></collision></link>
+  <link name="link_3"><collision><geometry><mesh filename="package://testpkg/meshes/cube.stl"/></geometry></collision></link>
+  <link name="link_4"><collision><geometry><mesh filename="meshes/cube_bin.stl" scale="2 2 2"/></geometry></collision></link>
+  <link name="link_5"/>
+  <link name="link_6"/>
+  <link name="tool0"><collision><geometry><box size="0.02 0.02 0.02"/></geometry></collision></link>
+  <link name="piston"><collision><geometry><sphere radius="0.01"/></geometry></collision></link>
+  <joint name="joint_1" type="revolute"><parent link="base_link"/><child link="link_1"/><origin xyz="0 0 0.5"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="joint_2" type="revolute"><parent link="link_1"/><child link="link_2"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="joint_3" type="revolute"><parent link="link_2"/><child link="link_3"/><origin xyz="0 0 0.6"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="joint_4" type="revolute"><parent link="link_3"/><child link="link_4"/><origin xyz="0.3 0 0"/><axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="joint_5" type="revolute"><parent link="link_4"/><child link="link_5"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="joint_6" type="revolute"><parent link="link_5"/><child link="link_6"/><axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="flange" type="fixed"><parent link="link_6"/><child link="tool0"/><origin xyz="0.1 0 0"/></joint>
+  <joint name="piston_joint" type="revolute"><parent link="link_1"/><child link="piston"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/><mimic joint="joint_2" multiplier="-0.25"/></joint>
+</robot>"#;
+
+    fn files() -> HashMap<PathBuf, Vec<u8>> {
+        HashMap::from([
+            (
+                PathBuf::from("pkgs/testpkg/meshes/cube.stl"),
+                ascii_stl(&cube(0.125)),
+            ),
+            (
+                PathBuf::from("robots/meshes/cube_bin.stl"),
+                binary_stl(&cube(0.125)),
+            ),
+        ])
+    }
+
+    fn geometry(package_paths: &[PathBuf]) -> Result<CollisionGeometry> {
+        let files = files();
+        let read = move |p: &Path| files.get(p).cloned().map(Ok);
+        parse(
+            URDF,
+            "shapes.urdf",
+            Path::new("robots"),
+            None,
+            package_paths,
+            &read,
+        )
+    }
+
+    /// The posed shape of `link` at posture `q` (rad).
+    fn posed(g: &CollisionGeometry, link: &str, q: &Vector6<f64>) -> (Shape, Isometry3<f64>) {
+        let robot = super::super::urdf::parse(URDF, "shapes.urdf", None).unwrap();
+        let frames = robot.frames(q);
+        let s = g.shapes.iter().find(|s| s.link == link).unwrap();
+        let body = match s.body {
+            0 => robot.base,
+            i => frames.joints[i - 1],
+        };
+        (s.shape.clone(), body * s.origin)
+    }
+
+    fn gap(g: &CollisionGeometry, a: &str, b: &str, q: &Vector6<f64>) -> f64 {
+        let ((sa, pa), (sb, pb)) = (posed(g, a, q), posed(g, b, q));
+        distance(&sa, &pa, &sb, &pb)
+    }
+
+    #[test]
+    fn primitives_and_meshes_give_hand_computed_distances() {
+        let g = geometry(&[PathBuf::from("pkgs")]).unwrap();
+        assert_eq!(g.skipped, ["piston"]);
+        let bodies: Vec<(usize, &str)> =
+            g.shapes.iter().map(|s| (s.body, s.link.as_str())).collect();
+        assert_eq!(
+            bodies,
+            [
+                (0, "base_link"),
+                (1, "link_1"),
+                (2, "link_2"),
+                (3, "link_3"),
+                (4, "link_4"),
+                (6, "tool0")
+            ]
+        );
+        let zero = Vector6::zeros();
+        let close = |got: f64, want: f64| assert!((got - want).abs() < 1e-9, "{got} vs {want}");
+        // Box top at z = 0.2, sphere centre at z = 0.5, radius 0.1.
+        close(gap(&g, "base_link", "link_1", &zero), 0.2);
+        // The cylinder spans z 0.5..1.1 along z, radius 0.05.
+        close(gap(&g, "base_link", "link_2", &zero), 0.3);
+        // The ASCII cube (side 0.125, exact in f32) at z = 1.1; the binary one scaled to side 0.25
+        // at x = 0.3.
+        close(gap(&g, "base_link", "link_3", &zero), 1.1 - 0.0625 - 0.2);
+        close(gap(&g, "link_1", "link_3", &zero), 1.1 - 0.0625 - 0.6);
+        close(gap(&g, "link_3", "link_4", &zero), 0.3 - 0.125 - 0.0625);
+        // tool0 at (0.4, 0, 1.1) through the fixed flange joint.
+        let tool0 = posed(&g, "tool0", &zero).1.translation.vector;
+        assert!((tool0 - Vector3::new(0.4, 0.0, 1.1)).norm() < 1e-12);
+        // Joint 2 at 90 deg lays the cylinder along x at z = 0.5: 0.45 - 0.2 above the box.
+        let bent = Vector6::new(0.0, std::f64::consts::FRAC_PI_2, 0.0, 0.0, 0.0, 0.0);
+        close(gap(&g, "base_link", "link_2", &bent), 0.25);
+        // Overlap is negative: the sphere sits on the cylinder's end, 0.1 deep.
+        assert!(gap(&g, "link_1", "link_2", &zero) < -0.05);
+    }
+
+    #[test]
+    fn package_urls_resolve_in_the_package_paths_or_name_the_package() {
+        let e = geometry(&[]).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "link 'link_3': mesh 'package://testpkg/meshes/cube.stl' is in package 'testpkg'"
+            ),
+            "{e}"
+        );
+        let e = geometry(&[PathBuf::from("elsewhere")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("package 'testpkg' not found in the package paths (no elsewhere/testpkg/meshes/cube.stl)"),
+            "{e}"
+        );
+        let g = geometry(&[PathBuf::from("elsewhere"), PathBuf::from("pkgs")]).unwrap();
+        assert_eq!(g.shapes.len(), 6);
+        let flat = URDF.replace(
+            "cube_bin.stl\" scale=\"2 2 2\"",
+            "cube_bin.stl\" scale=\"2 2 0\"",
+        );
+        let read = |p: &Path| files().get(p).cloned().map(Ok);
+        let e = parse(
+            &flat,
+            "s.urdf",
+            Path::new("robots"),
+            None,
+            &[PathBuf::from("pkgs")],
+            &read,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("link 'link_4': collision mesh scale"), "{e}");
+    }
+}
