@@ -26,6 +26,8 @@ pub struct ReportDir {
     /// The files of an earlier report the report would write (resolved); those this run does
     /// not write again are removed when it succeeds.
     earlier: std::sync::Mutex<Vec<PathBuf>>,
+    /// The directory's lock: released when dropped unfinished, else held to the end of the run.
+    lock: Option<std::fs::File>,
     done: bool,
 }
 
@@ -65,12 +67,13 @@ impl ReportDir {
         }
         let resolved = dir.canonicalize()?;
         super::staged::claim(&resolved, option)?;
-        lock(&resolved).with_context(|| format!("{option} {name}"))?;
+        let lock = lock(&resolved).with_context(|| format!("{option} {name}"))?;
         let report = Self {
             tmp: resolved.join(TEMP_DIR),
             dir: resolved,
             created,
             earlier: Default::default(),
+            lock,
             done: false,
         };
         report.check_existing(&report.dir, Path::new(""), holds, option)?;
@@ -173,6 +176,9 @@ impl ReportDir {
             super::staged::stale(path);
         }
         super::staged::temp_dir(self.tmp.clone());
+        if let Some(lock) = self.lock.take() {
+            super::staged::hold(lock);
+        }
         Ok(())
     }
 }
@@ -198,9 +204,9 @@ pub enum Part<'a> {
     File(&'a Path),
 }
 
-/// Takes an exclusive lock on the directory `dir` for the rest of the process (released when it
-/// ends), refusing when another process holds it.
-fn lock(dir: &Path) -> Result<()> {
+/// Takes an exclusive lock on the directory `dir` (held as long as the returned handle), refusing
+/// when another process (or another open of it) holds it.
+fn lock(dir: &Path) -> Result<Option<std::fs::File>> {
     #[cfg(unix)]
     {
         use std::os::unix::io::AsRawFd;
@@ -210,10 +216,10 @@ fn lock(dir: &Path) -> Result<()> {
         if locked != 0 {
             bail!("another stiffid run is writing into this directory; wait for it to end");
         }
-        // Held until the process ends: the lock lives as long as the descriptor.
-        std::mem::forget(handle);
+        return Ok(Some(handle));
     }
-    Ok(())
+    #[allow(unreachable_code)]
+    Ok(None)
 }
 
 /// Whether `dir` holds nothing but a stale [`TEMP_DIR`].

@@ -24,6 +24,18 @@ enum Step {
 
 static STEPS: Mutex<Vec<Step>> = Mutex::new(Vec::new());
 
+/// Handles held to the end of the run (report directories' locks).
+static HELD: Mutex<Vec<std::fs::File>> = Mutex::new(Vec::new());
+
+/// Holds `file` (a directory lock) until the run's files are committed or discarded.
+pub fn hold(file: std::fs::File) {
+    HELD.lock().unwrap_or_else(|e| e.into_inner()).push(file);
+}
+
+fn release() {
+    HELD.lock().unwrap_or_else(|e| e.into_inner()).clear();
+}
+
 /// The outputs of the run so far (resolved paths) and the options that named them.
 static CLAIMS: Mutex<Vec<(PathBuf, String)>> = Mutex::new(Vec::new());
 
@@ -118,6 +130,7 @@ pub fn commit() -> Result<()> {
             first.get_or_insert(e);
         }
     }
+    release();
     first.map_or(Ok(()), Err)
 }
 
@@ -134,6 +147,7 @@ pub fn discard() {
             Step::Stale(_) => {}
         }
     }
+    release();
 }
 
 /// Renames `tmp` over `target` after checking once more that `target` is a regular file or
