@@ -43,13 +43,21 @@ pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
 /// `arg` (`stiffid::formats::reference::setup`). A robot file named in a setup file is looked for
 /// relative to the setup file.
 pub fn setup(arg: &str) -> Result<Setup> {
-    reference::setup(arg, existing)
+    reference::setup(arg, existing).map(plausible)
+}
+
+/// `setup`, its plausibility warnings ([`stiffid::setup::plausibility`]) printed on stderr.
+fn plausible(setup: Setup) -> Setup {
+    for w in stiffid::setup::plausibility::warnings(&setup) {
+        crate::output::warn(&w);
+    }
+    setup
 }
 
 /// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
 /// file it names is looked for).
 pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
-    reference::setup_text(text, source_name, dir, existing)
+    reference::setup_text(text, source_name, dir, existing).map(plausible)
 }
 
 /// The text of the file at `path` ([`read`]), `None` if nothing exists there.
@@ -93,12 +101,13 @@ pub fn input_at(target: &Path) -> Option<PathBuf> {
         .map(|(p, _)| p.clone())
 }
 
-/// A `--q-deg` posture: six comma-separated axis angles in degrees, within the robot's joint
-/// limits. Returns the angles in degrees and in radians; the error names the axis and the limits.
-pub fn posture(text: &str, robot: &Robot) -> Result<(Vector6<f64>, Vector6<f64>)> {
-    let q_deg = vector::<6>(text, "--q-deg", &limits::ANGLE_DEG)?;
+/// A posture given with `option` (e.g. `--q-deg`): six comma-separated axis angles in degrees,
+/// within the robot's joint limits. Returns the angles in degrees and in radians; the error names
+/// the option, the axis and the limits.
+pub fn posture(text: &str, option: &str, robot: &Robot) -> Result<(Vector6<f64>, Vector6<f64>)> {
+    let q_deg = vector::<6>(text, option, &limits::ANGLE_DEG)?;
     let q = q_deg.map(f64::to_radians);
-    let field = |a: usize| format!("--q-deg[{}]", a + 1);
+    let field = |a: usize| format!("{option}[{}]", a + 1);
     robot.limits.check(&q, "the robot's limits", field)?;
     Ok((q_deg, q))
 }
@@ -160,5 +169,9 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
     let name = || path.display().to_string();
     let mut file = measurements::parse(&read(path)?).with_context(name)?;
     file.to_base_frame(setup).with_context(name)?;
+    let angles = file.measurements.iter().map(|m| &m.q);
+    if let Some(w) = stiffid::setup::plausibility::radians_as_degrees(angles) {
+        crate::output::warn(&format!("{}: {w}", name()));
+    }
     Ok(file)
 }

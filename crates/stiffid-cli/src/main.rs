@@ -7,7 +7,7 @@ mod load;
 mod output;
 mod report;
 
-use clap::{CommandFactory, Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// Joint stiffness identification of industrial robots, and which postures to measure in.
@@ -66,10 +66,15 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    restore_sigpipe();
-    let cli = match Cli::try_parse() {
+    if let Err(message) = standard_streams() {
+        return fail(&message);
+    }
+    let cli = match command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
         Ok(cli) => cli,
-        Err(e) if e.use_stderr() => return fail(&e.to_string()),
+        Err(e) if e.use_stderr() => return usage_error(&e),
         Err(e) => {
             // --help, --version: their text on stdout.
             return match output::print(&e.render().to_string()) {
@@ -93,34 +98,91 @@ fn main() -> ExitCode {
         Command::Compensate(args) => commands::compensate::run(&args),
         Command::Register(args) => commands::register::run(&args),
         Command::Force(args) => commands::force::run(&args),
-        Command::Completions(args) => commands::completions::completions(&args, Cli::command()),
-        Command::Man(args) => commands::completions::man(&args, Cli::command()),
+        Command::Completions(args) => commands::completions::completions(&args, command()),
+        Command::Man(args) => commands::completions::man(&args, command()),
         Command::Schema(args) => commands::schema::run(&args),
     };
-    match result {
+    match result.and_then(|()| output::staged::commit()) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => fail(&output::one_line_chain(&e)),
+        Err(e) => {
+            output::staged::discard();
+            fail(&output::one_line_chain(&e))
+        }
     }
 }
 
-/// Prints `message` as one `error: ` line on stderr (its first line for a clap error, long words
-/// cut) and returns exit code 2. A stderr that cannot be written is ignored: the exit code still
-/// says it.
+/// The command line: [`Cli`], with every numeric option (a number, or comma-separated numbers
+/// in a unit such as `--q-deg`) taking values that start with `-` (`--target-pct -inf`,
+/// `--q0-deg -10,20,...`), in every subcommand.
+fn command() -> clap::Command {
+    fn numeric(arg: clap::Arg) -> clap::Arg {
+        use std::any::TypeId;
+        let id = arg.get_value_parser().type_id();
+        let number = [
+            TypeId::of::<f64>(),
+            TypeId::of::<i64>(),
+            TypeId::of::<u64>(),
+        ]
+        .iter()
+        .chain(&[TypeId::of::<usize>(), TypeId::of::<u32>()])
+        .any(|t| id == *t);
+        let unit = arg.get_long().is_some_and(|l| {
+            ["-deg", "-mm", "-n", "-nm", "-pct"]
+                .iter()
+                .any(|u| l.ends_with(u))
+        });
+        let takes_value = arg.get_num_args().is_none_or(|n| n.takes_values());
+        match (number || unit) && takes_value && arg.get_long().is_some() {
+            true => arg.allow_hyphen_values(true),
+            false => arg,
+        }
+    }
+    fn each(cmd: clap::Command) -> clap::Command {
+        cmd.mut_args(numeric).mut_subcommands(each)
+    }
+    each(Cli::command())
+}
+
+/// A usage error of the command line, whole as clap words it (the missing arguments, the similar
+/// option, the usage line), on the one `error: ` line every error gets; exit code 2.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    let text = e.render().to_string();
+    let mut line = String::new();
+    for part in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if !line.is_empty() {
+            line += if line.ends_with(':') { " " } else { "; " };
+        }
+        line += part;
+    }
+    fail(&line)
+}
+
+/// Prints `message` as one `error: ` line on stderr (long words cut) and returns exit code 2. A
+/// stderr that cannot be written is ignored: the exit code still says it.
 fn fail(message: &str) -> ExitCode {
     use std::io::Write;
-    let first = message.lines().next().unwrap_or_default();
-    let first = first.strip_prefix("error: ").unwrap_or(first);
-    let line = output::one_line(first);
+    let message = message.strip_prefix("error: ").unwrap_or(message);
+    let line = output::one_line(message);
     let _ = writeln!(std::io::stderr().lock(), "error: {line}");
     ExitCode::from(2)
 }
 
-/// Restores the default SIGPIPE action (Rust ignores it), so `stiffid ... | head` ends quietly
-/// like other Unix tools instead of panicking on a closed stdout.
-fn restore_sigpipe() {
+/// Checks that stdout is open. Rust's runtime reopens a closed standard stream on `/dev/null`
+/// (read-write) before `main`, so a closed stdout (`>&-`) shows as a read-write `/dev/null`
+/// (a shell's `>/dev/null` opens it write-only): an error, since the results would go nowhere.
+fn standard_streams() -> Result<(), String> {
     #[cfg(unix)]
-    // SAFETY: called first thing in main, before any other thread exists; SIG_DFL is a valid action.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    {
+        use std::os::unix::fs::MetadataExt;
+        let rdev = |m: std::io::Result<std::fs::Metadata>| m.ok().map(|m| (m.dev(), m.rdev()));
+        // SAFETY: fcntl(F_GETFL) only queries the descriptor's flags.
+        let flags = unsafe { libc::fcntl(1, libc::F_GETFL) };
+        let null = rdev(std::fs::metadata("/dev/null")).map(|(_, r)| r);
+        let stdout = rdev(std::fs::metadata("/proc/self/fd/1")).map(|(_, r)| r);
+        if flags >= 0 && flags & libc::O_ACCMODE == libc::O_RDWR && null.is_some() && stdout == null
+        {
+            return Err("stdout is closed: stiffid writes its results there (redirect it to a file or to /dev/null)".into());
+        }
     }
+    Ok(())
 }

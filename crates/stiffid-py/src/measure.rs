@@ -44,10 +44,16 @@ fn data(
     setup: &stiffid::Setup,
     measurements: Option<&Bound<'_, PyAny>>,
     arrays: [Option<&Bound<'_, PyAny>>; 3],
+    point: Option<Vec<i64>>,
 ) -> PyResult<Data> {
+    if point.is_some() && measurements.is_some() {
+        return Err(value(
+            "point: only with q_deg, wrench and displacement_mm (a measurements file has its own point column)",
+        ));
+    }
     match (measurements, arrays) {
         (Some(m), [None, None, None]) => from_file(setup, m.extract::<PathBuf>()?),
-        (None, [Some(q), Some(w), Some(d)]) => from_arrays(setup, q, w, d),
+        (None, [Some(q), Some(w), Some(d)]) => from_arrays(setup, q, w, d, point),
         _ => Err(value(
             "give either a measurements CSV path, or q_deg, wrench and displacement_mm",
         )),
@@ -71,26 +77,32 @@ fn from_arrays(
     q: &Bound<'_, PyAny>,
     w: &Bound<'_, PyAny>,
     d: &Bound<'_, PyAny>,
+    point: Option<Vec<i64>>,
 ) -> PyResult<Data> {
     let r = &setup.robot();
     let (q, _) = arrays::postures(q, "q_deg", (&r.limits, "the joint limits"), usize::MAX)?;
     let n = q.len();
     let wrench = wrenches(w, n)?;
     let d = rows::<3>(d, "displacement_mm")?.rows;
-    let points = setup.tool().measuring_points.len();
-    if d.len() % n != 0 || d.len() / n > points || d.is_empty() {
+    let points = measured_points(setup, point)?;
+    let m = points.len();
+    if d.len() != n * m {
         return Err(value(format!(
-            "displacement_mm: expected n * m rows for the n = {n} postures and m = 1 to {points} measuring points, got {}",
+            "displacement_mm: expected {} rows, one per posture and measuring point in that order ({n} postures x {m} points{}), got {}",
+            n * m,
+            match m == setup.tool().measuring_points.len() {
+                true => ", all of the setup's; give point=[...] for fewer",
+                false => " of point",
+            },
             d.len()
         )));
     }
-    let m = d.len() / n;
     let measurements = d
         .iter()
         .enumerate()
         .map(|(i, dm)| Measurement {
             posture: i / m,
-            point: i % m,
+            point: points[i % m],
             q: q[i / m],
             wrench: wrench[i / m],
             displacement: Vector3::from(*dm) * 1e-3,
@@ -100,6 +112,38 @@ fn from_arrays(
         measurements,
         file: None,
     })
+}
+
+/// The measuring points (0-based) each posture's rows are, in row order: `point` (1-based, as
+/// the setup's `measuring_points_mm` and the measurement files number them, each once), else
+/// every point of the setup.
+fn measured_points(setup: &stiffid::Setup, point: Option<Vec<i64>>) -> PyResult<Vec<usize>> {
+    let count = setup.tool().measuring_points.len();
+    let Some(given) = point else {
+        return Ok((0..count).collect());
+    };
+    let mut seen = vec![false; count];
+    let mut out = Vec::with_capacity(given.len());
+    for (i, &p) in given.iter().enumerate() {
+        let k = usize::try_from(p)
+            .ok()
+            .filter(|k| (1..=count).contains(k))
+            .ok_or_else(|| {
+                value(format!(
+                    "point[{i}]: {p} is not a measuring point of the setup (1 to {count})"
+                ))
+            })?;
+        if std::mem::replace(&mut seen[k - 1], true) {
+            return Err(value(format!(
+                "point[{i}]: measuring point {p} given twice"
+            )));
+        }
+        out.push(k - 1);
+    }
+    match out.is_empty() {
+        true => Err(value("point: expected at least one measuring point")),
+        false => Ok(out),
+    }
 }
 
 /// Wrenches `(n, 3)` (force only) or `(n, 6)` (force and moment), N and Nm.
@@ -210,8 +254,10 @@ impl Identification {
 /// (``posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm],dx_mm,dy_mm,dz_mm``), or
 /// from the arrays ``q_deg`` (shape ``(n, 6)``, axis angles, deg), ``wrench`` (``(n, 3)`` or
 /// ``(n, 6)``: force N and moment Nm at the loading point, base frame) and ``displacement_mm``
-/// (``(n * m, 3)``: loaded minus unloaded, base frame, mm; posture by posture, measuring points
-/// 1..m of the setup's tool). ``robust="huber"`` or ``"tukey"`` down-weights outliers (IRLS);
+/// (``(n * m, 3)``: loaded minus unloaded, base frame, mm; posture by posture, in each posture
+/// the setup's m measuring points in order, or the points ``point`` lists: 1-based numbers as in
+/// the setup's ``measuring_points_mm``, e.g. ``point=[1, 2, 4]``; any other row count is a
+/// ``ValueError`` naming ``displacement_mm``). ``robust="huber"`` or ``"tukey"`` down-weights outliers (IRLS);
 /// ``nonnegative=True`` bounds every compliance at >= 0 (Lawson-Hanson); ``cross_validate=True``
 /// leaves one posture out at a time (or ``folds=K`` folds), refits and predicts it (key
 /// ``cross_validation``). The same job as ``stiffid identify``: a stiffness that is not physical
@@ -220,7 +266,7 @@ impl Identification {
 /// ``ValueError`` naming the file, line and column (or the measurement) for bad data, and for
 /// data that cannot identify every joint.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, robust=None, nonnegative=false, cross_validate=false, folds=None))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify(
     py: Python<'_>,
@@ -229,6 +275,7 @@ pub fn identify(
     q_deg: Option<&Bound<'_, PyAny>>,
     wrench: Option<&Bound<'_, PyAny>>,
     displacement_mm: Option<&Bound<'_, PyAny>>,
+    point: Option<Vec<i64>>,
     robust: Option<&str>,
     nonnegative: bool,
     cross_validate: bool,
@@ -248,13 +295,13 @@ pub fn identify(
     };
     let arrays = [q_deg, wrench, displacement_mm];
     let data = match (measurements, arrays) {
-        (Some(m), [None, None, None]) => {
+        (Some(m), [None, None, None]) if point.is_none() => {
             let path = m.extract::<PathBuf>()?;
             let reader = error::open(&path)?;
             let name = path.display().to_string();
             job::Data::File { name, reader }
         }
-        _ => job::Data::Measurements(data(s, measurements, arrays)?.measurements),
+        _ => job::Data::Measurements(data(s, measurements, arrays, point)?.measurements),
     };
     let report = py
         .detach(|| {
@@ -299,7 +346,8 @@ pub fn stiffness_and_covariance(
 /// ``max_delta_b_mm``, ``rms_delta_b_mm``, ``mean_measured_mm``, ``max_measured_mm``,
 /// ``rms_measured_mm`` and ``explained`` (``1 - RMS(delta_b) / RMS(|delta_m|)``).
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None))]
+#[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn validate<'py>(
     py: Python<'py>,
     setup: &Setup,
@@ -308,10 +356,11 @@ pub fn validate<'py>(
     q_deg: Option<&Bound<'py, PyAny>>,
     wrench: Option<&Bound<'py, PyAny>>,
     displacement_mm: Option<&Bound<'py, PyAny>>,
+    point: Option<Vec<i64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let k = stiffness(stiffness_nm_per_rad)?;
-    let data = data(s, measurements, [q_deg, wrench, displacement_mm])?;
+    let data = data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let v = py
         .detach(|| stiffid::validate::compare(s, &k, &data.measurements))
         .map_err(|e| data.error(e))?;

@@ -274,3 +274,20 @@ def test_errors_are_stiffid_errors_by_kind(paper):
     vertical[:, 2] = -500.0  # a vertical force alone has no moment about joint 1's vertical axis
     with pytest.raises(stiffid.UnidentifiableError, match="arrays: joint 1 cannot be identified"):
         stiffid.identify(paper, q_deg=q, wrench=vertical, displacement_mm=d)
+
+
+def test_rows_are_postures_times_the_measuring_points_or_point_says_which(paper):
+    k = paper.nominal_stiffness_nm_per_rad
+    q, wrench, d = synthetic(paper, k)
+    per_posture = d.reshape(len(q), 4, 3)
+    three = per_posture[:, [0, 1, 3]].reshape(-1, 3)
+    # Three rows per posture for a four-point setup: refused, not read as points 1-3.
+    with pytest.raises(ValueError, match="displacement_mm"):
+        stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=three)
+    with pytest.raises(ValueError, match="displacement_mm"):
+        stiffid.validate(paper, k, q_deg=q, wrench=wrench, displacement_mm=three)
+    fit = stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=three, point=[1, 2, 4])
+    np.testing.assert_allclose(fit.stiffness_nm_per_rad, k, rtol=1e-9)
+    for bad in ([1, 2, 5], [1, 1, 2], [0, 1, 2], []):
+        with pytest.raises(ValueError, match="point"):
+            stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=three, point=bad)

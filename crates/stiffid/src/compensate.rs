@@ -24,7 +24,12 @@
 //! [`FreeToolAxis::max_step`] between consecutive points: dynamic programming over a grid of
 //! angles, each angle's postures continued along the path by inverse kinematics; a point only takes
 //! an angle whose deflection is no larger than at the nominal angle (so the nominal path is always
-//! feasible and no point's deflection rises); the sum of the deflections is minimised. The wrench
+//! feasible and no point's deflection rises); the sum of the deflections is minimised, plus a
+//! tie-breaking cost of [`TIE_BREAK`] times each point's nominal deflection per full range away
+//! from the path's own angle and per full step between points: where the angles tie (a TCP on
+//! the spindle axis turns nothing) the path keeps its own angle, and a rotation is smooth along
+//! the path, never a zig-zag between equal angles; a gain below about 1e-6 of the deflection is
+//! not worth a turn. The wrench
 //! stays fixed in the base frame (the process force does not turn with the spindle). This is the
 //! redundancy resolution of stiffness-oriented posture optimisation for robotic machining: Caro,
 //! Dumas, Garnier and Furet, "Workpiece placement optimization for machining operations with a
@@ -51,6 +56,8 @@ pub const REQUIRED_M: f64 = 1e-7;
 pub const REQUIRED_RAD: f64 = 1e-6;
 /// Newton steps at most.
 pub const MAX_ITERATIONS: usize = 30;
+/// The relative weight of the free tool axis' tie-breaking cost (module docs).
+pub const TIE_BREAK: f64 = 1e-6;
 
 /// Where a path point is: axis angles, or a TCP pose reached by inverse kinematics.
 #[derive(Debug, Clone, PartialEq)]
@@ -123,11 +130,42 @@ impl FreeToolAxis {
         })
     }
 
+    /// The most grid cells (angles x path points) the optimisation may visit: each is one
+    /// inverse kinematics solution kept in memory (about 70 bytes), so at most about 0.4 GB.
+    pub const MAX_GRID_CELLS: f64 = 5e6;
+
     /// The grid spacing: `max_step` divided into whole cells of at most 5 deg, and the number of
     /// cells one step may move.
     fn grid(&self) -> (f64, usize) {
         let cells = (self.max_step / 5f64.to_radians()).ceil().max(1.0);
         (self.max_step / cells, cells as usize)
+    }
+
+    /// The number of angles of the grid: `2 floor(range / spacing) + 1`, as a float (it may be
+    /// astronomically large for a tiny `max_step`).
+    fn angle_count(&self) -> f64 {
+        2.0 * (self.range / self.grid().0 + 1e-9).floor() + 1.0
+    }
+
+    /// Checks that the grid of a path of `points` points stays within [`Self::MAX_GRID_CELLS`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (field `max_step_deg`) with the grid's size and what to change.
+    pub fn check_grid(&self, points: usize) -> Result<()> {
+        let angles = self.angle_count();
+        let cells = angles * points as f64;
+        if cells <= Self::MAX_GRID_CELLS {
+            return Ok(());
+        }
+        Err(Error::InvalidField {
+            field: "max_step_deg".into(),
+            message: format!(
+                "{} deg with a range of +-{} deg makes a grid of {angles:.3e} angles x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range or a shorter path)",
+                number(self.max_step.to_degrees()),
+                number(self.range.to_degrees()),
+                Self::MAX_GRID_CELLS
+            ),
+        })
     }
 }
 
@@ -346,7 +384,8 @@ impl<'a> Model<'a> {
 /// depend on the number of threads.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]);
+/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
+/// tool axis grid beyond [`FreeToolAxis::MAX_GRID_CELLS`] ([`FreeToolAxis::check_grid`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
 /// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
 /// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
@@ -360,8 +399,11 @@ pub fn path(
     options: &Options,
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
+    if let Some(free) = &options.free_tool_axis {
+        free.check_grid(points.len())?;
+    }
     let model = Model::new(setup, compliance)?;
-    let nominal = nominal_postures(setup, points, options)?;
+    let nominal = nominal_postures(setup, points, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = points
         .par_iter()
         .zip(&nominal)
@@ -371,25 +413,126 @@ pub fn path(
         None => (nominal.clone(), vec![0.0; points.len()]),
         Some(free) => optimise_tool_axis(&model, &nominal, &wrenches, free, &options.ik),
     };
+    let chosen = Chosen {
+        nominal: &nominal,
+        postures: &postures,
+        rotations: &rotations,
+        wrenches: &wrenches,
+    };
+    compensate_chosen(&model, points, &chosen, options.free_tool_axis.is_some())
+}
+
+/// Path points per chunk of [`stream`].
+pub const CHUNK: usize = 4096;
+
+/// [`path`] for a path of any length in bounded memory: the points come from `points` (an
+/// iterator, e.g. a file's rows as they are parsed) and are compensated [`CHUNK`] at a time (in
+/// parallel within a chunk, inverse kinematics continued from the previous chunk's last
+/// posture); `sink` gets each chunk's points and results, in path order, before the next chunk is
+/// read. With [`FreeToolAxis`] the whole path is one problem (dynamic programming over the
+/// path): its points are collected (at most [`FreeToolAxis::MAX_GRID_CELLS`] grid cells) and
+/// compensated by [`path`], then given to `sink` chunk by chunk. The results equal [`path`]'s.
+/// Returns the number of points.
+///
+/// # Errors
+/// Those of [`path`] (an uncompensated point names the other failing lines of its chunk, not of
+/// the whole path), the first error `points` yields, [`Error::InvalidField`] (`path`) for a path
+/// without points (all as `E`), and those of `sink`.
+pub fn stream<I, F, E>(
+    setup: &Setup,
+    compliance: &Compliance,
+    points: I,
+    options: &Options,
+    mut sink: F,
+) -> std::result::Result<usize, E>
+where
+    I: IntoIterator<Item = Result<PathPoint>>,
+    F: FnMut(&[PathPoint], &[Compensated]) -> std::result::Result<(), E>,
+    E: From<Error>,
+{
+    options.validate()?;
+    let mut points = points.into_iter();
+    if let Some(free) = &options.free_tool_axis {
+        let mut all = Vec::new();
+        for p in points {
+            all.push(p?);
+            free.check_grid(all.len())?;
+        }
+        let results = path(setup, compliance, &all, options)?;
+        for (p, r) in all.chunks(CHUNK).zip(results.chunks(CHUNK)) {
+            sink(p, r)?;
+        }
+        return Ok(all.len());
+    }
+    let model = Model::new(setup, compliance)?;
+    let (mut previous, mut count) = (options.q0, 0);
+    loop {
+        let chunk: Vec<PathPoint> = points.by_ref().take(CHUNK).collect::<Result<_>>()?;
+        if chunk.is_empty() {
+            break;
+        }
+        let nominal = nominal_postures(setup, &chunk, previous, options)?;
+        previous = nominal[nominal.len() - 1];
+        let wrenches: Vec<Vector6<f64>> = chunk
+            .par_iter()
+            .zip(&nominal)
+            .map(|(p, q)| base_wrench(&setup.robot().frames(q), &p.wrench, p.frame))
+            .collect();
+        let rotations = vec![0.0; chunk.len()];
+        let chosen = Chosen {
+            nominal: &nominal,
+            postures: &nominal,
+            rotations: &rotations,
+            wrenches: &wrenches,
+        };
+        sink(&chunk, &compensate_chosen(&model, &chunk, &chosen, false)?)?;
+        count += chunk.len();
+    }
+    match count {
+        0 => Err(Error::InvalidField {
+            field: "path".into(),
+            message: "no path points".into(),
+        }
+        .into()),
+        n => Ok(n),
+    }
+}
+
+/// The postures chosen for a run of path points: nominal, after the tool-axis rotation (equal
+/// without one), the rotations and the base-frame wrenches.
+struct Chosen<'a> {
+    nominal: &'a [Vector6<f64>],
+    postures: &'a [Vector6<f64>],
+    rotations: &'a [f64],
+    wrenches: &'a [Vector6<f64>],
+}
+
+/// Compensates every point at its chosen posture, in parallel; the first error in path order.
+fn compensate_chosen(
+    model: &Model,
+    points: &[PathPoint],
+    c: &Chosen,
+    free: bool,
+) -> Result<Vec<Compensated>> {
+    let setup = model.setup;
     let results: Vec<Result<Compensated>> = (0..points.len())
         .into_par_iter()
         .map(|i| {
-            let q = &postures[i];
+            let q = &c.postures[i];
             let frames = setup.robot().frames(q);
-            let (qc, ep, eo, iterations) =
-                model
-                    .compensate_from(q, frames.clone(), &wrenches[i])
-                    .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
+            let (qc, ep, eo, iterations) = model
+                .compensate_from(q, frames.clone(), &c.wrenches[i])
+                .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
             check_compensated(setup, points[i].line, &qc, ep, eo)?;
-            let (deflection, deflection_std) = model.deflection(&frames, &wrenches[i]);
-            let deflection_before = options.free_tool_axis.map(|_| {
-                let frames = setup.robot().frames(&nominal[i]);
-                model.deflection(&frames, &wrenches[i]).0
+            let (deflection, deflection_std) = model.deflection(&frames, &c.wrenches[i]);
+            let deflection_before = free.then(|| {
+                let frames = setup.robot().frames(&c.nominal[i]);
+                model.deflection(&frames, &c.wrenches[i]).0
             });
             Ok(Compensated {
                 q: *q,
                 pose: tool_pose(&frames, &setup.tool().tcp),
-                wrench: wrenches[i],
+                wrench: c.wrenches[i],
                 deflection,
                 deflection_std: deflection_std.map(|s| s.0),
                 translation_norm_std: deflection_std.map(|s| s.1),
@@ -397,7 +540,7 @@ pub fn path(
                 residual_position: ep,
                 residual_rotation: eo,
                 iterations,
-                tool_rotation: rotations[i],
+                tool_rotation: c.rotations[i],
                 deflection_before,
             })
         })
@@ -487,14 +630,15 @@ fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f
 }
 
 /// The nominal axis angles of every point: given, or by inverse kinematics continued from the
-/// previous point (the first from `options.q0`).
+/// previous point (the first from `start`).
 fn nominal_postures(
     setup: &Setup,
     points: &[PathPoint],
+    start: Vector6<f64>,
     options: &Options,
 ) -> Result<Vec<Vector6<f64>>> {
     let robot = &setup.robot();
-    let mut previous = options.q0;
+    let mut previous = start;
     let mut out = Vec::with_capacity(points.len());
     for p in points {
         let q = match &p.target {
@@ -547,20 +691,26 @@ fn optimise_tool_axis(
             .filter(|(_, d)| *d <= columns[zero][i].as_ref().map_or(0.0, |z| z.1))
             .map(|(_, d)| *d)
     };
+    // The tie-breaking cost (module docs): TIE_BREAK of the nominal deflection per full range
+    // away from the path's angle and per full step between points.
+    let weight = |i: usize| TIE_BREAK * columns[zero][i].as_ref().map_or(0.0, |z| z.1);
     let mut cost = vec![vec![f64::INFINITY; g_count]; n];
     let mut from = vec![vec![0usize; g_count]; n];
     for i in 0..n {
+        let w = weight(i);
         for g in 0..g_count {
             let Some(d) = feasible(i, g) else { continue };
+            let own = d + w * angles[g].abs() / free.range;
             if i == 0 {
-                cost[0][g] = d;
+                cost[0][g] = own;
                 continue;
             }
             let lo = g.saturating_sub(reach);
             let hi = (g + reach).min(g_count - 1);
-            if let Some(best) = (lo..=hi).min_by(|&a, &b| cost[i - 1][a].total_cmp(&cost[i - 1][b]))
-            {
-                cost[i][g] = cost[i - 1][best] + d;
+            let turn =
+                |a: usize| cost[i - 1][a] + w * (angles[g] - angles[a]).abs() / free.max_step;
+            if let Some(best) = (lo..=hi).min_by(|&a, &b| turn(a).total_cmp(&turn(b))) {
+                cost[i][g] = turn(best) + own;
                 from[i][g] = best;
             }
         }

@@ -356,6 +356,10 @@ fn missing_hint(field: &str) -> &'static str {
             "a rough prior will do: `stiffid setups new --robot R` writes one scaled from the \
              robot's payload, with its source"
         }
+        "test.postures_deg" => {
+            "the postures where the deflection matters to you, axis angles in degrees, under \
+             [test]"
+        }
         _ => {
             "`stiffid setups new --robot R` writes the length that minimises the robot's median \
              dexterity"

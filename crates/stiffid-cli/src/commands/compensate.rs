@@ -4,7 +4,7 @@
 use crate::commands::common::choice;
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
-use crate::output::{print_json_or, OutFile};
+use crate::output::{json, print, write_stdout_parts, OutFile, Part};
 use crate::report::{self, compensation};
 use anyhow::{anyhow, Context, Result};
 use nalgebra::Vector6;
@@ -12,6 +12,7 @@ use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::Serialize;
 use serde_json::{Map, Value};
 use std::borrow::Cow;
+use std::io::Write;
 use std::path::PathBuf;
 use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
 use stiffid::deflection::Frame;
@@ -166,7 +167,21 @@ fn may_be_empty(name: &str) -> bool {
     name.contains("_std_") || name == "d_norm_before_mm"
 }
 
-/// Compensates, writes the CSV (and the report), prints.
+/// A failure of the streamed run: the library's (placed in the path file), or writing.
+enum Failure {
+    Library(Error),
+    Output(anyhow::Error),
+}
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Self {
+        Failure::Library(e)
+    }
+}
+
+/// Compensates the path as it is read, chunk by chunk ([`compensate::stream`]): the CSV (and the
+/// rows of the JSON document) written as the results come, the summary accumulated, a sample of
+/// the points kept for the report's figures; memory bounded whatever the path's length.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
     let file = args.stiffness.load()?;
@@ -176,7 +191,8 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let options = options(args, &setup)?;
     let name = args.path.display().to_string();
-    let points = path::parse(&load::read(&args.path)?, args.frame).context(name.clone())?;
+    let text = load::read(&args.path)?;
+    let points = path::points(&text, args.frame).context(name.clone())?;
     let out = OutFile::prepare(&args.out, "--out")?;
     let report = args
         .report
@@ -186,11 +202,40 @@ pub fn run(args: &Args) -> Result<()> {
             report::open(dir, "--report", None, compensation::GENERATOR, &holds)
         })
         .transpose()?;
-    let results = compensate::path(&setup, &compliance, &points, &options).context(name)?;
-    let lines: Vec<u64> = points.iter().map(|p| p.line).collect();
-    let table = table(&results, &lines);
-    out.write(table.csv().as_bytes())?;
-    let summary = Summary::of(&results, &lines);
+    let columns = header();
+    let mut csv = out.writer()?;
+    writeln!(csv, "{}", columns.join(","))?;
+    let mut rows = (args.common.json || report.is_some())
+        .then(|| out.writer())
+        .transpose()?;
+    let mut summary = Summary::new(options.free_tool_axis.is_some());
+    let mut index = 0usize;
+    let streamed = compensate::stream(&setup, &compliance, points, &options, |chunk, results| {
+        for (p, r) in chunk.iter().zip(results) {
+            let values = row(index, p.line, r);
+            let mut write = || -> Result<()> {
+                writeln!(csv, "{}", csv_line(&values))?;
+                if let Some(rows) = rows.as_mut() {
+                    let sep = if index == 0 { "" } else { ",\n" };
+                    write!(rows, "{sep}{}", json_row(&columns, &values)?)?;
+                }
+                Ok(())
+            };
+            write().map_err(Failure::Output)?;
+            summary.add(index, p.line, r);
+            index += 1;
+        }
+        Ok(())
+    });
+    match streamed {
+        Ok(_) => {}
+        Err(Failure::Output(e)) => return Err(e),
+        Err(Failure::Library(e)) => return Err(option_error(e)).context(name),
+    }
+    csv.sync()?;
+    if let Some(rows) = rows.as_mut() {
+        rows.sync()?;
+    }
     let document = Document {
         generator: compensation::GENERATOR,
         setup: &args.common.setup,
@@ -205,22 +250,90 @@ pub fn run(args: &Args) -> Result<()> {
             range_deg: f.range.to_degrees(),
         }),
         summary: summary.json(),
-        points: table.json(),
+        points: Vec::new(),
     };
-    // Through a `Value`: its keys in alphabetical order, as the output has always had them.
+    // Through a `Value`: its keys in alphabetical order, as the output has always had them; the
+    // points spliced in from the rows written.
     let document = serde_json::to_value(&document)?;
-    if let Some(dir) = report {
-        compensation::write(dir, &setup, &results, &table, &document)?;
+    let (before, after) = split_at_points(&json(&document)?)?;
+    let rows_path = rows.as_ref().map(|r| r.path().to_path_buf());
+    fn parts<'a>(before: &'a str, rows: &'a std::path::Path, after: &'a str) -> [Part<'a>; 3] {
+        [
+            Part::Bytes(before.as_bytes()),
+            Part::File(rows),
+            Part::Bytes(after.as_bytes()),
+        ]
     }
-    print_json_or(args.common.json, &document, |_| {
-        summary.human(args, &setup, compliance.covariance.is_some())
-    })
+    if let Some(dir) = report {
+        let rows = rows_path.as_deref().unwrap_or(std::path::Path::new(""));
+        let view = compensation::View {
+            sample: &summary.sample,
+            largest: &summary.largest,
+            points: summary.points,
+            csv: csv.path(),
+            summary: &parts(&before, rows, &after),
+            document: &document,
+        };
+        compensation::write(dir, &setup, &view)?;
+    }
+    csv.finish()?;
+    match (args.common.json, &rows_path) {
+        (true, Some(rows)) => write_stdout_parts(&parts(&before, rows, &after)),
+        _ => print(&summary.human(args, &setup, compliance.covariance.is_some())),
+    }
+}
+
+/// The library's error of the run: a free tool axis' grid as the option names it.
+fn option_error(e: Error) -> anyhow::Error {
+    match e {
+        Error::InvalidField { field, message } if field == "max_step_deg" => {
+            anyhow!("--max-step-deg: {message}")
+        }
+        e => e.into(),
+    }
+}
+
+/// The pretty JSON document split where its (empty) `points` array goes: the text before the
+/// array's first row and after its last.
+fn split_at_points(text: &str) -> Result<(String, String)> {
+    let key = "\"points\": []";
+    let at = text
+        .find(key)
+        .ok_or_else(|| anyhow!("the document has no points key"))?;
+    let before = format!("{}\"points\": [\n", &text[..at]);
+    let after = format!("\n  ]{}", &text[at + key.len()..]);
+    Ok((before, after))
+}
+
+/// One point as a pretty JSON object at the indentation of the document's `points` array, keys
+/// in alphabetical order.
+fn json_row(columns: &[String], values: &[Option<f64>]) -> Result<String> {
+    let map: std::collections::BTreeMap<&str, Option<f64>> = columns
+        .iter()
+        .map(String::as_str)
+        .zip(values.iter().copied())
+        .collect();
+    let text = serde_json::to_string_pretty(&map)?;
+    Ok(text
+        .lines()
+        .map(|l| format!("    {l}"))
+        .collect::<Vec<_>>()
+        .join("\n"))
+}
+
+/// One CSV line of a point's values: empty cells for missing values.
+fn csv_line(values: &[Option<f64>]) -> String {
+    let cells: Vec<String> = values
+        .iter()
+        .map(|v| v.map_or(String::new(), cell))
+        .collect();
+    cells.join(",")
 }
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     if let Some(text) = &args.q0_deg {
-        options.q0 = load::posture(text, setup.robot())?.1;
+        options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
     if args.free_tool_axis {
         let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)
@@ -233,14 +346,6 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
         options.free_tool_axis = Some(free);
     }
     Ok(options)
-}
-
-/// The per-point results as named columns, units in the names; `None` for an empty cell.
-pub struct Table {
-    /// Column names.
-    pub header: Vec<String>,
-    /// One row per path point.
-    pub rows: Vec<Vec<Option<f64>>>,
 }
 
 fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
@@ -276,19 +381,6 @@ fn header() -> Vec<String> {
     header
 }
 
-fn table(results: &[Compensated], lines: &[u64]) -> Table {
-    let rows = results
-        .iter()
-        .zip(lines)
-        .enumerate()
-        .map(|(i, (r, line))| row(i, *line, r))
-        .collect();
-    Table {
-        header: header(),
-        rows,
-    }
-}
-
 fn row(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
     let deg = |q: &Vector6<f64>| q.iter().map(|v| Some(v.to_degrees())).collect::<Vec<_>>();
     let (rx, ry, rz) = r.pose.rotation.euler_angles();
@@ -315,34 +407,6 @@ fn row(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
     v
 }
 
-impl Table {
-    /// The CSV text: header, then one line per point; empty cells for missing values.
-    pub fn csv(&self) -> String {
-        let mut s = self.header.join(",") + "\n";
-        for row in &self.rows {
-            let cells: Vec<String> = row.iter().map(|v| v.map_or(String::new(), cell)).collect();
-            s += &(cells.join(",") + "\n");
-        }
-        s
-    }
-
-    /// One JSON object per point, keyed by the column names (`null` for a missing value).
-    pub fn json(&self) -> Vec<Row> {
-        self.rows
-            .iter()
-            .map(|row| {
-                let map = self
-                    .header
-                    .iter()
-                    .zip(row)
-                    .map(|(h, v)| (h.clone(), serde_json::json!(v)))
-                    .collect();
-                Row(map)
-            })
-            .collect()
-    }
-}
-
 /// A number with 9 decimals (1 nm in mm, 2e-11 rad in deg), trailing zeros dropped.
 fn cell(x: f64) -> String {
     let s = format!("{x:.9}");
@@ -352,54 +416,82 @@ fn cell(x: f64) -> String {
     }
 }
 
-/// The largest and mean values along the path.
+/// Points of the path kept for the report's figures, at most (every k-th point, k a power of 2).
+const SAMPLE: usize = 20_000;
+
+/// The largest and mean values along the path, accumulated point by point, with the sample and
+/// the ten largest deflections the report shows.
 pub struct Summary {
     points: usize,
     max_deflection_mm: (f64, u64),
-    mean_deflection_mm: f64,
+    sum_deflection_mm: f64,
     max_rotation_mrad: f64,
     max_residual_um: f64,
     max_residual_urad: f64,
     max_iterations: usize,
     /// Sum of |d| before and after the tool-axis optimisation, and the rotation range, deg.
     free: Option<(f64, f64, f64, f64)>,
+    /// Every `stride`-th point (0-based index and result).
+    sample: Vec<(usize, Compensated)>,
+    stride: usize,
+    /// The ten largest deflections (0-based index and result), largest first.
+    largest: Vec<(usize, Compensated)>,
 }
 
 impl Summary {
-    fn of(results: &[Compensated], lines: &[u64]) -> Self {
+    fn new(free: bool) -> Self {
+        Self {
+            points: 0,
+            max_deflection_mm: (0.0, 0),
+            sum_deflection_mm: 0.0,
+            max_rotation_mrad: 0.0,
+            max_residual_um: 0.0,
+            max_residual_urad: 0.0,
+            max_iterations: 0,
+            free: free.then_some((0.0, 0.0, 0.0, 0.0)),
+            sample: Vec::new(),
+            stride: 1,
+            largest: Vec::new(),
+        }
+    }
+
+    /// Adds point `i` (0-based) of the path, from `line` of the path file.
+    fn add(&mut self, i: usize, line: u64, r: &Compensated) {
         let norm = |d: &Vector6<f64>| d.fixed_rows::<3>(0).norm() * 1e3;
-        let max = |f: &dyn Fn(&Compensated) -> f64| results.iter().map(f).fold(0.0, f64::max);
-        let (mut worst, mut worst_line) = (0.0, lines[0]);
-        for (r, line) in results.iter().zip(lines) {
-            if norm(&r.deflection) > worst {
-                (worst, worst_line) = (norm(&r.deflection), *line);
+        let d = norm(&r.deflection);
+        if d > self.max_deflection_mm.0 || self.points == 0 {
+            self.max_deflection_mm = (d, line);
+        }
+        self.points += 1;
+        self.sum_deflection_mm += d;
+        let rotation = r.deflection.fixed_rows::<3>(3).norm() * 1e3;
+        self.max_rotation_mrad = self.max_rotation_mrad.max(rotation);
+        self.max_residual_um = self.max_residual_um.max(r.residual_position * 1e6);
+        self.max_residual_urad = self.max_residual_urad.max(r.residual_rotation * 1e6);
+        self.max_iterations = self.max_iterations.max(r.iterations);
+        if let (Some((before, after, lo, hi)), Some(b)) = (&mut self.free, &r.deflection_before) {
+            *before += norm(b);
+            *after += d;
+            *lo = lo.min(r.tool_rotation.to_degrees());
+            *hi = hi.max(r.tool_rotation.to_degrees());
+        }
+        if i % self.stride == 0 {
+            self.sample.push((i, r.clone()));
+            if self.sample.len() > SAMPLE {
+                self.stride *= 2;
+                let stride = self.stride;
+                self.sample.retain(|(k, _)| k % stride == 0);
             }
         }
-        let free = results[0].deflection_before.map(|_| {
-            let before: f64 = results
-                .iter()
-                .filter_map(|r| r.deflection_before.as_ref().map(norm))
-                .sum();
-            let after: f64 = results.iter().map(|r| norm(&r.deflection)).sum();
-            let (lo, hi) = results.iter().fold((0f64, 0f64), |(lo, hi), r| {
-                (
-                    lo.min(r.tool_rotation.to_degrees()),
-                    hi.max(r.tool_rotation.to_degrees()),
-                )
-            });
-            (before, after, lo, hi)
-        });
-        Self {
-            points: results.len(),
-            max_deflection_mm: (worst, worst_line),
-            mean_deflection_mm: results.iter().map(|r| norm(&r.deflection)).sum::<f64>()
-                / results.len() as f64,
-            max_rotation_mrad: max(&|r| r.deflection.fixed_rows::<3>(3).norm() * 1e3),
-            max_residual_um: max(&|r| r.residual_position * 1e6),
-            max_residual_urad: max(&|r| r.residual_rotation * 1e6),
-            max_iterations: results.iter().map(|r| r.iterations).max().unwrap_or(0),
-            free,
+        let place = self
+            .largest
+            .iter()
+            .position(|(_, c)| norm(&c.deflection) < d);
+        match place {
+            Some(k) => self.largest.insert(k, (i, r.clone())),
+            None => self.largest.push((i, r.clone())),
         }
+        self.largest.truncate(10);
     }
 
     fn json(&self) -> SummaryJson {
@@ -407,7 +499,7 @@ impl Summary {
             points: self.points,
             max_deflection_mm: self.max_deflection_mm.0,
             max_deflection_line: self.max_deflection_mm.1,
-            mean_deflection_mm: self.mean_deflection_mm,
+            mean_deflection_mm: self.sum_deflection_mm / self.points.max(1) as f64,
             max_rotation_mrad: self.max_rotation_mrad,
             max_residual_um: self.max_residual_um,
             max_residual_urad: self.max_residual_urad,
@@ -432,7 +524,7 @@ impl Summary {
             if covariance { ", with its covariance: standard deviations in the CSV" } else { "" },
             self.max_deflection_mm.0,
             self.max_deflection_mm.1,
-            self.mean_deflection_mm,
+            self.sum_deflection_mm / self.points.max(1) as f64,
             self.max_rotation_mrad,
             self.max_residual_um,
             self.max_residual_urad,

@@ -70,7 +70,7 @@ pub struct Report {
 /// Prints the kinematics of one posture.
 pub fn run(args: &Args) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
-    let (q_deg, q) = load::posture(&args.q_deg, &robot)?;
+    let (q_deg, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
     let point_mm = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)?;
     let length_mm = args.characteristic_length_mm;
     let range = &limits::CHARACTERISTIC_LENGTH_MM;

@@ -132,7 +132,7 @@ fn xyz(v: &Vector6<f64>, from: usize, scale: f64) -> [f64; 3] {
 /// Predicts and prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let (q_deg, q) = load::posture(&args.q_deg, setup.robot())?;
+    let (q_deg, q) = load::posture(&args.q_deg, "--q-deg", setup.robot())?;
     let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;
     if w.len() != 3 && w.len() != 6 {
         bail!(

@@ -3,7 +3,7 @@
 //! commented out. The text is loaded back before it is written, so it always loads as written.
 
 use crate::{load, output};
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use nalgebra::{Vector3, Vector6};
 use std::path::{Path, PathBuf};
 use stiffid::setup::Tool;
@@ -36,19 +36,11 @@ const SEED: u64 = 1;
 
 /// Writes (or prints) the setup.
 pub fn run(args: &NewArgs) -> Result<()> {
-    if let Some(out) = &args.out {
-        if out.symlink_metadata().is_ok() {
-            bail!(
-                "--out {}: exists; setups new writes a new file only",
-                out.display()
-            );
-        }
-    }
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
     let out = args
         .out
         .as_deref()
-        .map(|p| output::OutFile::prepare(p, "--out"))
+        .map(|p| output::OutFile::prepare_new(p, "--out"))
         .transpose()?;
     let robot_ref = reference_from(&args.robot, args.out.as_deref())?;
     let text = template(&robot, &robot_ref, args)?;
@@ -195,8 +187,8 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
     };
     let reach_mm = reach * 1e3;
     let mut values = vec![
-        ("ROBOT_NAME", robot.name.clone()),
-        ("ROBOT_REF", robot_ref.to_string()),
+        ("ROBOT_NAME", in_comment(&robot.name)),
+        ("ROBOT_REF", in_comment(robot_ref)),
         ("NAME", quoted(&format!("{stem}-cell"))),
         (
             "DESCRIPTION",
@@ -276,6 +268,17 @@ fn list<'a>(values: impl Iterator<Item = &'a f64>, decimals: usize) -> String {
 }
 
 /// A TOML basic string.
+/// `s` for a TOML comment: line breaks and other control characters escaped (`\n`), so a
+/// robot name cannot end the comment.
+fn in_comment(s: &str) -> String {
+    s.chars()
+        .map(|c| match c.is_control() {
+            true => c.escape_default().to_string(),
+            false => c.to_string(),
+        })
+        .collect()
+}
+
 fn quoted(s: &str) -> String {
     toml::Value::String(s.to_string()).to_string()
 }

@@ -2,12 +2,13 @@
 
 use super::target::{replace, resolve};
 use anyhow::{bail, Context, Result};
-use std::io::ErrorKind;
+use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 
 /// The hidden directory inside a report directory that holds the temporary files while they are
 /// written. A run killed mid-write (SIGKILL) leaves it behind; the next run into the same
-/// directory removes it.
+/// directory removes it. One run at a time writes into a directory (an exclusive lock on it,
+/// held to the end of the run): a second one is refused.
 pub const TEMP_DIR: &str = ".stiffid-tmp";
 
 /// A directory being filled with a report, checked when the command starts (before computing).
@@ -22,6 +23,11 @@ pub struct ReportDir {
     tmp: PathBuf,
     /// The top-most directory this run created, if any.
     created: Option<PathBuf>,
+    /// The files of an earlier report the report would write (resolved); those this run does
+    /// not write again are removed when it succeeds.
+    earlier: std::sync::Mutex<Vec<PathBuf>>,
+    /// The directory's lock: released when dropped unfinished, else held to the end of the run.
+    lock: Option<std::fs::File>,
     done: bool,
 }
 
@@ -49,15 +55,25 @@ impl ReportDir {
                 if force.is_some() { " or pass --force" } else { "" }
             ),
             Ok(_) => {}
+            Err(e) if e.kind() == ErrorKind::NotFound && dir.symlink_metadata().is_ok() => {
+                bail!("{option} {name}: a symlink to nothing; refusing to write through it")
+            }
             Err(e) if e.kind() == ErrorKind::NotFound => {}
             Err(e) => return Err(e).with_context(|| format!("{option} {name}: cannot inspect")),
         }
         let created = create(dir).with_context(|| format!("{option} {name}: cannot create"))?;
+        if let Some(top) = &created {
+            super::staged::created(top.clone());
+        }
         let resolved = dir.canonicalize()?;
+        super::staged::claim(&resolved, option)?;
+        let lock = lock(&resolved).with_context(|| format!("{option} {name}"))?;
         let report = Self {
             tmp: resolved.join(TEMP_DIR),
             dir: resolved,
             created,
+            earlier: Default::default(),
+            lock,
             done: false,
         };
         report.check_existing(&report.dir, Path::new(""), holds, option)?;
@@ -87,6 +103,10 @@ impl ReportDir {
                 self.check_existing(&entry.path(), &rel, holds, option)?;
             } else if holds(&rel) {
                 resolve(&entry.path(), option)?;
+                self.earlier
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .push(entry.path());
             }
         }
         Ok(())
@@ -103,22 +123,69 @@ impl ReportDir {
             std::fs::create_dir_all(parent)
                 .with_context(|| format!("{}: cannot create", parent.display()))?;
         }
-        replace(&resolve(&path, "report file")?, &self.tmp, bytes)
+        self.earlier
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|p| *p != path);
+        replace(&resolve(&path, "report file")?, &self.tmp, bytes, false)
     }
 
-    /// Ends the report: removes the temporary directory.
+    /// Writes the file `rel` (as [`ReportDir::write`]) from `parts` in turn: byte strings and
+    /// files (a large result that never sits in memory whole).
     ///
     /// # Errors
-    /// When it cannot be removed.
+    /// As [`ReportDir::write`]; a part that cannot be read.
+    pub fn write_parts(&self, rel: &str, parts: &[Part]) -> Result<()> {
+        let path = self.dir.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("{}: cannot create", parent.display()))?;
+        }
+        let target = resolve(&path, "report file")?;
+        self.earlier
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|p| *p != path);
+        let (tmp, file) = super::target::temporary(&self.tmp)?;
+        let mut out = std::io::BufWriter::new(file);
+        let written = parts
+            .iter()
+            .try_for_each(|part| match part {
+                Part::Bytes(b) => out.write_all(b),
+                Part::File(f) => std::io::copy(&mut std::fs::File::open(f)?, &mut out).map(drop),
+            })
+            .and_then(|()| out.flush())
+            .and_then(|()| out.get_ref().sync_all());
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(e).with_context(|| format!("{}: cannot write", target.display()));
+        }
+        super::staged::replace(tmp, target);
+        Ok(())
+    }
+
+    /// Ends the report: when the run succeeds ([`super::staged::commit`]) its files are put in
+    /// place, the files of an earlier report it did not write again (a larger group's
+    /// `posture_NN` figures) are removed, and so is the temporary directory.
+    ///
+    /// # Errors
+    /// None today; kept for the callers' `?`.
     pub fn finish(mut self) -> Result<()> {
         self.done = true;
-        std::fs::remove_dir_all(&self.tmp)
-            .with_context(|| format!("{}: cannot remove", self.tmp.display()))
+        for path in std::mem::take(&mut *self.earlier.lock().unwrap_or_else(|e| e.into_inner())) {
+            super::staged::stale(path);
+        }
+        super::staged::temp_dir(self.tmp.clone());
+        if let Some(lock) = self.lock.take() {
+            super::staged::hold(lock);
+        }
+        Ok(())
     }
 }
 
 impl Drop for ReportDir {
     fn drop(&mut self) {
+        super::staged::unclaim(&self.dir);
         if self.done {
             return;
         }
@@ -127,6 +194,32 @@ impl Drop for ReportDir {
             let _ = std::fs::remove_dir_all(created);
         }
     }
+}
+
+/// A piece of a file written by [`ReportDir::write_parts`].
+pub enum Part<'a> {
+    /// These bytes.
+    Bytes(&'a [u8]),
+    /// The contents of this file.
+    File(&'a Path),
+}
+
+/// Takes an exclusive lock on the directory `dir` (held as long as the returned handle), refusing
+/// when another process (or another open of it) holds it.
+fn lock(dir: &Path) -> Result<Option<std::fs::File>> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::io::AsRawFd;
+        let handle = std::fs::File::open(dir).context("cannot open")?;
+        // SAFETY: flock on a descriptor we own; LOCK_NB never blocks.
+        let locked = unsafe { libc::flock(handle.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+        if locked != 0 {
+            bail!("another stiffid run is writing into this directory; wait for it to end");
+        }
+        return Ok(Some(handle));
+    }
+    #[allow(unreachable_code)]
+    Ok(None)
 }
 
 /// Whether `dir` holds nothing but a stale [`TEMP_DIR`].

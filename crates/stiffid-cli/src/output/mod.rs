@@ -1,17 +1,19 @@
 //! Everything the command writes, through one module so every command gets the same guarantees:
 //! - results on stdout through [`print`] (a write error such as a full device is an error exit,
-//!   never a panic; a closed pipe ends the process quietly);
+//!   never a panic; a closed pipe ends the output quietly);
 //! - files through [`OutFile`] and report directories through [`ReportDir`] ([`target`]): checked
 //!   before any computation, never over an input, a device, a directory or any other non-regular
 //!   file, through an existing symlink to its target, whole (a short temporary name, then a
-//!   rename), nothing left behind on failure;
+//!   rename when the run has succeeded, [`staged`]), nothing left behind on failure, stdout
+//!   included; one run at a time into a report directory;
 //! - errors on one line ([`one_line_chain`]), long values cut.
 
 mod dir;
 mod file;
+pub mod staged;
 mod target;
 
-pub use dir::ReportDir;
+pub use dir::{Part, ReportDir};
 pub use file::OutFile;
 
 use anyhow::{Context, Result};
@@ -31,9 +33,39 @@ pub fn print(text: &str) -> Result<()> {
 /// When stdout cannot take them (for example `> /dev/full`).
 pub fn write_stdout(bytes: &[u8]) -> Result<()> {
     let mut out = std::io::stdout().lock();
-    out.write_all(bytes)
-        .and_then(|_| out.flush())
-        .context("stdout: cannot write")
+    quiet_pipe(out.write_all(bytes).and_then(|_| out.flush()))
+}
+
+/// A closed pipe (`stiffid ... | head`) ends the output quietly, as other Unix tools do (the
+/// run's files are still written); any other write error is an error.
+fn quiet_pipe(written: std::io::Result<()>) -> Result<()> {
+    match written {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other.context("stdout: cannot write"),
+    }
+}
+
+/// Writes `parts` (bytes and files, [`Part`]) to stdout in turn, never whole in memory.
+///
+/// # Errors
+/// When stdout cannot take them or a file cannot be read.
+pub fn write_stdout_parts(parts: &[Part]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    let mut written = Ok(());
+    for part in parts {
+        written = match part {
+            Part::Bytes(b) => out.write_all(b),
+            Part::File(f) => {
+                let mut file = std::fs::File::open(f)
+                    .with_context(|| format!("{}: cannot read", f.display()))?;
+                std::io::copy(&mut file, &mut out).map(drop)
+            }
+        };
+        if written.is_err() {
+            break;
+        }
+    }
+    quiet_pipe(written.and_then(|()| out.flush()))
 }
 
 /// Prints `warning: {text}` on stderr; a stderr that cannot be written is ignored (the result

@@ -56,7 +56,7 @@ pub fn resolve(path: &Path, option: &str) -> Result<PathBuf> {
 
 /// What a non-regular file is, in words.
 #[cfg(unix)]
-fn kind(path: &Path) -> &'static str {
+pub fn kind(path: &Path) -> &'static str {
     use std::os::unix::fs::FileTypeExt;
     match std::fs::metadata(path).map(|m| m.file_type()) {
         Ok(t) if t.is_dir() => "a directory",
@@ -90,22 +90,21 @@ pub fn temporary(dir: &Path) -> Result<(PathBuf, File)> {
     Ok((path, file))
 }
 
-/// Writes `bytes` whole to the resolved `target` (see [`resolve`]): into a temporary file in
-/// `tmp_dir` (same file system), synced, then renamed over `target` after checking once more that
-/// `target` is a regular file or missing. The temporary file is removed on any failure.
-pub fn replace(target: &Path, tmp_dir: &Path, bytes: &[u8]) -> Result<()> {
+/// Writes `bytes` whole to a temporary file in `tmp_dir` (same file system as the resolved
+/// `target`, see [`resolve`]), synced, and stages it to be renamed over `target` when the run
+/// succeeds ([`super::staged`]; `new_only`: only if `target` does not exist by then). The
+/// temporary file is removed on any failure.
+pub fn replace(target: &Path, tmp_dir: &Path, bytes: &[u8], new_only: bool) -> Result<()> {
     use std::io::Write;
     let (tmp, mut file) = temporary(tmp_dir)?;
-    let written = file
-        .write_all(bytes)
-        .and_then(|_| file.sync_all())
-        .map_err(anyhow::Error::from)
-        .and_then(|_| match std::fs::symlink_metadata(target) {
-            Ok(m) if !m.is_file() => bail!("became {}", kind(target)),
-            _ => Ok(std::fs::rename(&tmp, target)?),
-        });
+    let written = file.write_all(bytes).and_then(|_| file.sync_all());
     if written.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
-    written.with_context(|| format!("{}: cannot write", target.display()))
+    written.with_context(|| format!("{}: cannot write", target.display()))?;
+    match new_only {
+        true => super::staged::create(tmp, target.to_path_buf()),
+        false => super::staged::replace(tmp, target.to_path_buf()),
+    }
+    Ok(())
 }

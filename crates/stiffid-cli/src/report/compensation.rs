@@ -5,8 +5,7 @@
 use super::figures::{self, Figure};
 use super::html::{page, Writer};
 use super::tables::{num, Table};
-use crate::commands::compensate::Table as Columns;
-use crate::output::{json, ReportDir};
+use crate::output::{Part, ReportDir};
 use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
@@ -24,21 +23,34 @@ pub fn holds(rel: &Path) -> bool {
     FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures")
 }
 
+/// What the report shows of a streamed compensation: a sample of the points (index, result) for
+/// the figures, the ten largest deflections, the number of points, the CSV written (`--out`),
+/// the parts of the JSON document (`--json`) and the document without its points.
+pub struct View<'a> {
+    /// Every k-th point.
+    pub sample: &'a [(usize, Compensated)],
+    /// The ten largest deflections, largest first.
+    pub largest: &'a [(usize, Compensated)],
+    /// Points of the path.
+    pub points: usize,
+    /// The CSV of every point.
+    pub csv: &'a Path,
+    /// The parts of `summary.json`.
+    pub summary: &'a [Part<'a>],
+    /// The document without its points.
+    pub document: &'a Value,
+}
+
 /// Writes every file of the report into `dir`, each whole; `summary.json` first, so the
 /// directory is recognisably ours from then on.
-pub fn write(
-    dir: ReportDir,
-    setup: &Setup,
-    results: &[Compensated],
-    columns: &Columns,
-    document: &Value,
-) -> Result<()> {
+pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
+    let sample: Vec<Compensated> = view.sample.iter().map(|(_, c)| c.clone()).collect();
     let figures = [
-        figures::path::deflection(results)?,
-        figures::path::path(setup, results)?,
+        figures::path::deflection(&sample)?,
+        figures::path::path(setup, &sample)?,
     ];
-    dir.write(FILES[0], json(document)?.as_bytes())?;
-    dir.write(FILES[1], columns.csv().as_bytes())?;
+    dir.write_parts(FILES[0], view.summary)?;
+    dir.write_parts(FILES[1], &[Part::File(view.csv)])?;
     for f in &figures {
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;
@@ -46,26 +58,21 @@ pub fn write(
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),
         GENERATOR,
-        |w| compose(w, setup, results, document, &figures),
+        |w| compose(w, setup, view, &figures),
     );
     dir.write(FILES[2], html.as_bytes())?;
     dir.finish()
 }
 
-fn compose(
-    w: &mut dyn Writer,
-    setup: &Setup,
-    results: &[Compensated],
-    document: &Value,
-    figures: &[Figure],
-) {
+fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
+    let document = view.document;
     let s = &document["summary"];
     let f = |key: &str| s[key].as_f64().unwrap_or(f64::NAN);
     w.heading(1, "Deflection compensation of a machining path");
     w.paragraph(&format!(
         "Path `{}` ({} points) on the setup `{}` ({}), joint stiffness from `{}`. Each point's TCP deflection under its wrench (Zhang et al. 2021, Eq. 4-6) and the compensated axis angles that put the loaded TCP where the unloaded robot puts it at the nominal posture.",
         document["path"].as_str().unwrap_or(""),
-        results.len(),
+        view.points,
         setup.name(),
         setup.robot().name,
         document["stiffness"].as_str().unwrap_or(""),
@@ -101,14 +108,19 @@ fn compose(
         w.figure(fig);
     }
     w.heading(2, "The ten largest deflections");
-    w.table(&largest(results));
+    if view.sample.len() < view.points {
+        w.paragraph(&format!(
+            "The figures show every {}th of the {} points.",
+            view.sample.get(1).map_or(1, |s| s.0),
+            view.points
+        ));
+    }
+    w.table(&largest(view.largest));
     w.paragraph("Every point, every column: `compensation.csv` (the same as `--out`) and `summary.json` (the same as `--json`).");
 }
 
-fn largest(results: &[Compensated]) -> Table {
+fn largest(largest: &[(usize, Compensated)]) -> Table {
     let norm = |c: &Compensated| c.deflection.fixed_rows::<3>(0).norm() * 1e3;
-    let mut order: Vec<usize> = (0..results.len()).collect();
-    order.sort_by(|&a, &b| norm(&results[b]).total_cmp(&norm(&results[a])));
     Table {
         header: [
             "point",
@@ -120,11 +132,9 @@ fn largest(results: &[Compensated]) -> Table {
         ]
         .map(String::from)
         .to_vec(),
-        rows: order
+        rows: largest
             .iter()
-            .take(10)
-            .map(|&i| {
-                let c = &results[i];
+            .map(|(i, c)| {
                 let dq = (c.q_compensated - c.q).map(f64::to_degrees);
                 vec![
                     (i + 1).to_string(),

@@ -310,8 +310,8 @@ fn every_setup_field_is_checked_at_load_time() {
             "loading.load_n: 1e308 is outside",
         ),
         (
-            "anchor_mm = [",
-            "anchor_mm = [inf, ",
+            "anchor_mm = [2000.0,",
+            "anchor_mm = [inf,",
             "loading.anchor_mm[1]: inf",
         ),
     ] {

@@ -8,6 +8,7 @@ mod completions;
 mod hardening;
 mod identify_cli;
 mod kinematics;
+mod limits_edges;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
 mod optional_fields_cli;

@@ -203,7 +203,8 @@ impl<'a> Checker<'a> {
     /// tool against the base and links 1-3, except pairs closer than the clearance in every one
     /// of 64 seeded postures spread over the bounds: those overlap by construction (the upper
     /// arm and the forearm at an offset elbow), as a collision checker's "always in contact"
-    /// list.
+    /// list. When no pair is left (bodies as large as the robot), self-collision is not among
+    /// [`Checker::kinds`].
     pub fn new(setup: &'a Setup) -> Self {
         let mut kinds = vec![CheckKind::Bounds];
         if let Some(cell) = &setup.cell() {
@@ -234,6 +235,11 @@ impl<'a> Checker<'a> {
         };
         if setup.cell().is_some() {
             checker.pairs = checker.self_pairs();
+            if checker.pairs.is_empty() {
+                // Every pair overlaps in every sampled posture (bodies as large as the robot):
+                // nothing is left to test.
+                checker.kinds.retain(|&k| k != CheckKind::SelfCollision);
+            }
         }
         checker
     }
@@ -259,12 +265,11 @@ impl<'a> Checker<'a> {
         let checks = self
             .kinds
             .iter()
-            .map(|&kind| {
+            .filter_map(|&kind| {
                 let tightest = margins
                     .iter()
                     .filter(|m| m.kind == kind)
-                    .min_by(|a, b| a.margin.total_cmp(&b.margin))
-                    .expect("every active check has a pair");
+                    .min_by(|a, b| a.margin.total_cmp(&b.margin))?;
                 let body = matches!(
                     kind,
                     CheckKind::Floor
@@ -272,7 +277,7 @@ impl<'a> Checker<'a> {
                         | CheckKind::SelfCollision
                         | CheckKind::Rope
                 );
-                Check {
+                Some(Check {
                     kind,
                     ok: tightest.margin >= 0.0,
                     margin: tightest.margin,
@@ -281,7 +286,7 @@ impl<'a> Checker<'a> {
                         tightest.between.0.name(self.setup),
                         tightest.between.1.name(self.setup),
                     ),
-                }
+                })
             })
             .collect();
         Feasibility { checks }

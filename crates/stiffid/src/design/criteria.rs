@@ -68,7 +68,7 @@ impl Criterion {
     /// noise: the characteristic length for classical and zhang2021 (the dexterity index, Eq. 20),
     /// the nominal stiffness for scaled-cond, d-optimal and relative-a (the scaling
     /// `S = Psi diag(h_nominal) / sigma`: of the drives and of every virtual spring of the model);
-    /// test-pose needs neither.
+    /// test-pose needs test postures (`[test] postures_deg`).
     ///
     /// # Errors
     /// [`Error::MissingField`] naming the field and the criterion (and the spring without one).
@@ -92,7 +92,13 @@ impl Criterion {
                     }),
                 }
             }
-            Criterion::TestPose => Ok(()),
+            Criterion::TestPose => match setup.test_postures().is_empty() {
+                false => Ok(()),
+                true => Err(Error::MissingField {
+                    field: "test.postures_deg",
+                    needed_by: needed_by(),
+                }),
+            },
         }
     }
 
@@ -103,7 +109,7 @@ impl Criterion {
             Criterion::ScaledCond | Criterion::DOptimal | Criterion::RelativeA => {
                 setup.model_nominal_compliance().is_some()
             }
-            Criterion::TestPose => true,
+            Criterion::TestPose => !setup.test_postures().is_empty(),
         }
     }
 
@@ -184,7 +190,7 @@ pub struct Evaluation {
     pub d_optimal: f64,
     /// [`Criterion::RelativeA`], dimensionless (relative standard deviation at noise level 1).
     pub relative_a: f64,
-    /// [`Criterion::TestPose`], m; `NaN`-free: 0 when the setup has no test postures.
+    /// [`Criterion::TestPose`], m; NaN (not computed) when the setup has no test postures.
     pub test_pose: f64,
     /// `cond_2(Psi)` in SI units.
     pub cond_psi: f64,

@@ -12,6 +12,7 @@
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
 pub mod gcode;
+pub(crate) mod exact;
 pub mod measurements;
 pub mod path;
 pub mod postures;

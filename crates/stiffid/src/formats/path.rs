@@ -18,7 +18,7 @@
 use crate::compensate::{PathPoint, Target};
 use crate::deflection::Frame;
 use crate::error::ColumnProblem;
-use crate::limits::short;
+use crate::limits::{self, short};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
 
@@ -67,6 +67,19 @@ struct Columns {
 /// assert_eq!((points.len(), points[0].line, points[0].wrench[2]), (1, 2, -500.0));
 /// ```
 pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
+    points(text, default_frame)?.collect()
+}
+
+/// The points of a path file one by one, parsed as they are asked for: [`parse`] without the
+/// whole path in memory (for [`crate::compensate::stream`]). The header is checked at once.
+///
+/// # Errors
+/// The header's at once; each row's, and the row limit and the empty file, as an item (as
+/// [`parse`]).
+pub fn points(
+    text: &str,
+    default_frame: Frame,
+) -> Result<impl Iterator<Item = Result<PathPoint>> + '_> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -76,36 +89,69 @@ pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
     // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
     let mut lines = super::LineCount::with_comments(text.as_bytes());
     let header_line = header.position().map_or(1, |p| lines.at(p.byte()));
-    let names: Vec<&str> = header.iter().collect();
-    let columns = columns(&names, header_line)?;
-    let mut points = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map_or(0, |p| lines.at(p.byte()));
-            unreadable(line, &e)
-        })?;
-        let line = record.position().map_or(0, |p| lines.at(p.byte()));
-        if record.len() != names.len() {
-            let count = ColumnProblem::FieldCount {
-                expected: names.len(),
-                got: record.len(),
-            };
-            return Err(problem(line, count));
+    let names: Vec<String> = header.iter().map(str::to_string).collect();
+    let columns = {
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        columns(&names, header_line)?
+    };
+    let mut records = reader.into_records();
+    let mut count = 0usize;
+    let mut done = false;
+    Ok(std::iter::from_fn(move || {
+        if done {
+            return None;
         }
-        if points.len() == MAX_POINTS {
-            let too_many = ColumnProblem::TooMany {
-                limit: MAX_POINTS,
-                what: "path points",
-            };
-            return Err(problem(line, too_many));
-        }
-        points.push(point(&columns, &names, &record, line, default_frame)?);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let next = match records.next() {
+            None if count == 0 => Some(Err(problem(
+                header_line,
+                ColumnProblem::NoRows { what: "path point" },
+            ))),
+            None => None,
+            Some(record) => Some(row(
+                record,
+                &mut lines,
+                &names,
+                &columns,
+                count,
+                default_frame,
+            )),
+        };
+        count += 1;
+        done = !matches!(next, Some(Ok(_)));
+        next
+    }))
+}
+
+/// One row: its point, or the error naming its line.
+fn row(
+    record: csv::Result<csv::StringRecord>,
+    lines: &mut super::LineCount,
+    names: &[&str],
+    columns: &Columns,
+    before: usize,
+    default_frame: Frame,
+) -> Result<PathPoint> {
+    let record = record.map_err(|e| {
+        let line = e.position().map_or(0, |p| lines.at(p.byte()));
+        unreadable(line, &e)
+    })?;
+    let line = record.position().map_or(0, |p| lines.at(p.byte()));
+    if record.len() != names.len() {
+        let count = ColumnProblem::FieldCount {
+            expected: names.len(),
+            got: record.len(),
+        };
+        return Err(problem(line, count));
     }
-    if points.is_empty() {
-        let what = "path point";
-        return Err(problem(header_line, ColumnProblem::NoRows { what }));
+    if before == MAX_POINTS {
+        let too_many = ColumnProblem::TooMany {
+            limit: MAX_POINTS,
+            what: "path points",
+        };
+        return Err(problem(line, too_many));
     }
-    Ok(points)
+    point(columns, names, &record, line, default_frame)
 }
 
 fn unreadable(line: u64, e: &csv::Error) -> Error {
@@ -194,7 +240,35 @@ fn point(
     default_frame: Frame,
 ) -> Result<PathPoint> {
     let get = |i: usize| number(record, names, i, line);
-    let t: Vec<f64> = c.target.iter().map(|&i| get(i)).collect::<Result<_>>()?;
+    // Each value within its range ([`limits`]): positions within LENGTH_MM, angles within
+    // ANGLE_DEG, forces and moments within WRENCH.
+    let within = |i: usize, range: &limits::Range| -> Result<f64> {
+        let v = get(i)?;
+        match range.contains(v) {
+            true => Ok(v),
+            false => Err(at(
+                names,
+                line,
+                i,
+                ColumnProblem::Outside {
+                    name: names[i].into(),
+                    value: v,
+                    within: "the accepted range (stiffid::limits)",
+                    lower: range.min,
+                    upper: range.max,
+                },
+            )),
+        }
+    };
+    let t: Vec<f64> = c
+        .target
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| match (c.pose, k < 3) {
+            (true, true) => within(i, &limits::LENGTH_MM),
+            _ => within(i, &limits::ANGLE_DEG),
+        })
+        .collect::<Result<_>>()?;
     let target = match c.pose {
         false => Target::Posture(Vector6::from_iterator(t.iter().map(|v| v.to_radians()))),
         true => Target::Pose(Isometry3::from_parts(
@@ -208,11 +282,11 @@ fn point(
     };
     let mut wrench = Vector6::zeros();
     for (k, &i) in c.force.iter().enumerate() {
-        wrench[k] = get(i)?;
+        wrench[k] = within(i, &limits::WRENCH)?;
     }
     if let Some(m) = &c.moment {
         for (k, &i) in m.iter().enumerate() {
-            wrench[3 + k] = get(i)?;
+            wrench[3 + k] = within(i, &limits::WRENCH)?;
         }
     }
     let frame = match c.frame.map(|i| &record[i]) {

@@ -24,11 +24,27 @@ pub struct StiffnessFile {
             inner(range(min = STIFFNESS_NM_PER_RAD.min, max = STIFFNESS_NM_PER_RAD.max))
         )
     )]
+    #[serde(deserialize_with = "stiffness")]
     pub stiffness_nm_per_rad: [f64; 6],
     /// Optional: the covariance `Cov(h)` of the compliance `h_i = 1/k_i`, (rad/Nm)^2, row-major
     /// 6x6 (paper eq. 12); finite, symmetric, non-negative diagonal.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(deserialize_with = "crate::formats::exact::option_matrix")]
     pub compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
+}
+
+/// Six stiffness values, exactly; a `null` (an infinitely stiff joint, as `identify
+/// --nonnegative` writes a compliance at its bound) refused with what to do.
+fn stiffness<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 6], D::Error> {
+    let k: [Option<f64>; 6] = crate::formats::exact::array(d)?;
+    match k.iter().position(Option::is_none) {
+        None => Ok(k.map(|v| v.unwrap_or_default())),
+        Some(j) => Err(serde::de::Error::custom(format!(
+            "stiffness_nm_per_rad[{}] is null: an infinitely stiff joint (a non-negative fit with its compliance at the bound 0), which no prediction can use; write a finite stiffness there (a large one for a stiff joint, within {} Nm/rad)",
+            j + 1,
+            STIFFNESS_NM_PER_RAD.max
+        ))),
+    }
 }
 
 /// What [`parse`] expects, for errors.
@@ -159,7 +175,8 @@ mod tests {
             "{e}"
         );
         let e = parse("{\n \"stiffness_nm_per_rad\": [1, 2]\n}").unwrap_err();
-        assert!(matches!(e, Error::Json { line: 2, .. }), "{e:?}");
+        // The length is known once the array is read: the position is at or just after it.
+        assert!(matches!(e, Error::Json { line: 2..=3, .. }), "{e:?}");
         assert!(e.to_string().contains("expected JSON with the key"), "{e}");
         let mut c = Matrix6::identity() * 1e-12;
         c[(0, 1)] = 1e-13;

@@ -9,7 +9,9 @@
 //! (rigid links, one spring per joint, exact kinematics and wrench) limits the fit, not the
 //! tracker, and intervals computed from `sigma^2` would be too narrow. The intervals from `s^2`
 //! (the usual ones of [`crate::identify::Uncertainty`]) then hold as far as the model error
-//! behaves like noise; both are given. `noise_ratio = s / sigma`.
+//! behaves like noise; both are given. `noise_ratio = s / sigma`. A small lower-tail p-value says
+//! the opposite: residuals far below the tracker noise (noise-free or simulated data, or a noise
+//! variance set too large).
 //!
 //! ## Unit check
 //! A displacement column in m instead of mm, or a force in kN instead of N, scales every
@@ -55,6 +57,18 @@ impl Adequacy {
     /// Whether the model error dominates: `p_value <` [`SIGNIFICANCE`].
     pub fn model_error_dominates(&self) -> bool {
         self.p_value < SIGNIFICANCE
+    }
+
+    /// `P(X <= chi2)` for `X ~ chi2(dof)`: small when the residuals are far below the noise.
+    pub fn lower_p_value(&self) -> f64 {
+        ChiSquared::new(self.dof as f64).map_or(f64::NAN, |c| c.cdf(self.chi2))
+    }
+
+    /// Whether the residuals are far below the tracker noise: [`Adequacy::lower_p_value`] `<`
+    /// [`SIGNIFICANCE`] (noise-free or simulated data, or a `variance_mm2` too large: the
+    /// intervals from the tracker noise are then too wide).
+    pub fn below_noise(&self) -> bool {
+        self.lower_p_value() < SIGNIFICANCE
     }
 }
 

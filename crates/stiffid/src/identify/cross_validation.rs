@@ -2,17 +2,68 @@
 //!
 //! With `K` folds, posture `p` (numbered `0..n` in order of first appearance,
 //! [`Observations::posture_index`]) is held out in fold `p mod K`; `K = n` is leave-one-posture-out.
-//! Each fold identifies the compliance by least squares (QR) from the other postures' rows and
-//! predicts the held-out measurements: `delta_b = |delta_m - Psi_i h|` per measurement. The spread
-//! of a joint's stiffness across folds says how much it depends on which postures were measured; a
-//! fold whose removal moves a stiffness by more than its standard error in the full fit is
-//! influential for that joint.
+//! Each fold identifies the compliance from the other postures' rows with the full fit's
+//! [`Method`] (least squares, bounded or robust) and predicts the held-out measurements:
+//! `delta_b = |delta_m - Psi_i h|` per measurement. The spread of a joint's stiffness across folds
+//! says how much it depends on which postures were measured; a fold whose removal moves a
+//! stiffness by more than its standard error in the full fit is influential for that joint (with
+//! a standard error of zero, a noise-free fit, nothing is: influence is not computed).
+//!
+//! ## Least squares: every fold from the full fit, linear in the postures
+//! With `Psi = Q R` (QR of the full `Psi`, `p` columns), `e = delta - Psi h` the full residuals and
+//! `o` the held-out rows, the block hat matrix is `H_oo = A A^T` with `A = Psi_o R^-1`. Removing
+//! the rows `o` (the block form of the leave-one-out identities, Belsley, Kuh & Welsch,
+//! *Regression Diagnostics*, 1980, ch. 2; Cook & Weisberg, *Residuals and Influence in
+//! Regression*, 1982, sec. 3.6) gives exactly
+//! - the held-out residual `delta_o - Psi_o h_(-o) = (I - H_oo)^-1 e_o`,
+//! - the fold's compliance `h_(-o) = h - R^-1 A^T (I - H_oo)^-1 e_o`,
+//!
+//! so a fold costs `O(m_o p^2 + m_o^3)` for its `m_o` held-out rows and the whole
+//! cross-validation one QR of `Psi` plus time linear in the rows. A fold is refused as
+//! unidentifiable when `I - H_oo` is singular to working precision (its Cholesky factor has a
+//! pivot below [`MIN_PIVOT`]): the other postures cannot identify every joint.
+//!
+//! ## Bounded and robust fits: refitted
+//! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its
+//! rows. That costs `O(K m p^2)`: `folds x measurements` is at most [`MAX_REFIT_WORK`].
 
-use crate::identify::Identification;
+use crate::identify::{Identification, Loss};
 use crate::lsq::Factor;
 use crate::observation::Observations;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Vector6};
+use rayon::prelude::*;
+
+/// The fit of the full data, which every fold repeats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Least squares ([`Observations::least_squares`]).
+    LeastSquares,
+    /// Non-negative least squares ([`Observations::nonnegative`]).
+    Nonnegative,
+    /// Robust, with this loss ([`Observations::robust`]).
+    Robust(Loss),
+}
+
+impl Method {
+    /// Fits `obs` with this method.
+    ///
+    /// # Errors
+    /// Those of the fit.
+    pub fn fit(self, obs: &Observations) -> Result<Identification> {
+        match self {
+            Method::LeastSquares => obs.least_squares(),
+            Method::Nonnegative => obs.nonnegative(),
+            Method::Robust(loss) => obs.robust(loss),
+        }
+    }
+}
+
+/// The smallest Cholesky pivot of `I - H_oo` (module docs) for a fold to count as identifiable.
+pub const MIN_PIVOT: f64 = 1e-7;
+
+/// The most `folds x measurements` of a refitted (bounded or robust) cross-validation.
+pub const MAX_REFIT_WORK: usize = 50_000_000;
 
 /// One fold: the fit without some postures and its predictions of them.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,16 +99,19 @@ pub struct CrossValidation {
     pub rms_measured: f64,
 }
 
-/// Cross-validates with `folds` folds (module docs); `full` is the identification of all of
-/// `obs` (its standard errors decide influence; without them nothing is influential).
+/// Cross-validates with `folds` folds (module docs), each fitted with `method`; `full` is the
+/// identification of all of `obs` by `method` (its standard errors decide influence; without
+/// them, or with a zero standard error, nothing is influential).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`folds`) unless `2 <= folds <= postures`; (`cross-validation fold
-/// N`) when the postures left in a fold cannot identify every joint (the message says why).
+/// [`Error::InvalidField`] (`folds`) unless `2 <= folds <= postures`, or for a bounded or robust
+/// `method` when `folds x measurements` exceeds [`MAX_REFIT_WORK`]; (`cross-validation fold N`)
+/// when the postures left in a fold cannot identify every joint (the message says why).
 pub fn cross_validate(
     obs: &Observations,
     full: &Identification,
     folds: usize,
+    method: Method,
 ) -> Result<CrossValidation> {
     if folds < 2 || folds > obs.postures {
         return Err(Error::InvalidField {
@@ -68,10 +122,41 @@ pub fn cross_validate(
             ),
         });
     }
-    let se = full.uncertainty.as_ref().map(|u| u.stiffness_std_error);
-    let folds: Vec<Fold> = (0..folds)
-        .map(|f| fold(obs, f, folds, &full.stiffness, se.as_ref()))
-        .collect::<Result<_>>()?;
+    let measurements = obs.posture_index.len();
+    if method != Method::LeastSquares && folds.saturating_mul(measurements) > MAX_REFIT_WORK {
+        return Err(Error::InvalidField {
+            field: "folds".into(),
+            message: format!(
+                "{folds} folds of {measurements} measurements: a bounded or robust fit refits every fold, and folds x measurements is at most {MAX_REFIT_WORK} (at most {} folds here)",
+                (MAX_REFIT_WORK / measurements.max(1)).max(2)
+            ),
+        });
+    }
+    let se = full
+        .uncertainty
+        .as_ref()
+        .map(|u| u.stiffness_std_error)
+        .filter(|se| se.iter().all(|s| *s > 0.0 && s.is_finite()));
+    let held: Vec<Vec<usize>> = {
+        let mut held = vec![Vec::new(); folds];
+        for (i, p) in obs.posture_index.iter().enumerate() {
+            held[p % folds].push(i);
+        }
+        held
+    };
+    let fitted: Vec<(Vector6<f64>, Vec<f64>)> = match method {
+        Method::LeastSquares => linear_folds(obs, full, &held)?,
+        _ => held
+            .par_iter()
+            .enumerate()
+            .map(|(f, out)| refit(obs, f, out, method))
+            .collect::<Result<_>>()?,
+    };
+    let folds: Vec<Fold> = held
+        .into_iter()
+        .zip(fitted)
+        .map(|(out, (h, delta_b))| fold(obs, out, h, delta_b, &full.stiffness, se.as_ref()))
+        .collect();
     let n = folds.len() as f64;
     let mean = folds.iter().map(|f| f.stiffness).sum::<Vector6<f64>>() / n;
     let var = folds
@@ -108,45 +193,135 @@ fn rms(values: &[f64]) -> f64 {
     (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt()
 }
 
-fn fold(
+/// The error of fold `f` (0-based) whose other postures cannot identify the stiffness.
+fn unidentifiable(f: usize, why: &str) -> Error {
+    Error::InvalidField {
+        field: format!("cross-validation fold {}", f + 1),
+        message: format!("the other postures cannot identify the stiffness: {why}"),
+    }
+}
+
+/// The three rows of each measurement of `ids`: `Psi` and `delta`.
+fn rows(obs: &Observations, ids: &[usize]) -> (DMatrix<f64>, DVector<f64>) {
+    let p = obs.psi.ncols();
+    let mut psi = DMatrix::zeros(3 * ids.len(), p);
+    let mut delta = DVector::zeros(3 * ids.len());
+    for (k, &i) in ids.iter().enumerate() {
+        psi.rows_mut(3 * k, 3).copy_from(&obs.psi.rows(3 * i, 3));
+        delta
+            .rows_mut(3 * k, 3)
+            .copy_from(&obs.delta.rows(3 * i, 3));
+    }
+    (psi, delta)
+}
+
+/// `delta_b` of each held-out measurement from the held-out residual rows.
+fn delta_b(residual: &DVector<f64>) -> Vec<f64> {
+    (0..residual.len() / 3)
+        .map(|k| residual.rows(3 * k, 3).norm())
+        .collect()
+}
+
+/// Every least-squares fold from the full fit (module docs): the compliance without the fold's
+/// rows and `delta_b` of each of its measurements.
+fn linear_folds(
+    obs: &Observations,
+    full: &Identification,
+    held: &[Vec<usize>],
+) -> Result<Vec<(Vector6<f64>, Vec<f64>)>> {
+    let factor = Factor::try_new(obs.psi.clone())?;
+    let r_inv = DMatrix::from_column_slice(6, 6, factor.r_inv().as_slice());
+    let h = DVector::from_column_slice(full.compliance.as_slice());
+    let residual = &obs.delta - &obs.psi * &h;
+    held.par_iter()
+        .enumerate()
+        .map(|(f, out)| {
+            let ids: Vec<usize> = out.iter().flat_map(|&i| 3 * i..3 * i + 3).collect();
+            let psi_o = obs.psi.select_rows(&ids);
+            let e_o = residual.select_rows(&ids);
+            let (dh, e_loo) = without_rows(&psi_o, &r_inv, &e_o)
+                .ok_or_else(|| unidentifiable(f, "removing them leaves Psi rank deficient"))?;
+            let h_f = &h - dh;
+            Ok((Vector6::from_column_slice(h_f.as_slice()), delta_b(&e_loo)))
+        })
+        .collect()
+}
+
+/// Removing the rows `Psi_o` (residuals `e_o` of the full least-squares fit, `R^-1` of the full
+/// QR factor, any number of columns `p`) from a least-squares problem: the change of the solution
+/// `h - h_(-o) = R^-1 A^T x` and the held-out residuals `x = (I - A A^T)^-1 e_o`, `A = Psi_o
+/// R^-1` (module docs); `None` when `I - A A^T` is singular to working precision.
+pub fn without_rows(
+    psi_o: &DMatrix<f64>,
+    r_inv: &DMatrix<f64>,
+    e_o: &DVector<f64>,
+) -> Option<(DVector<f64>, DVector<f64>)> {
+    let a = psi_o * r_inv;
+    let m = a.nrows();
+    let i_minus_h = DMatrix::identity(m, m) - &a * a.transpose();
+    let chol = i_minus_h.cholesky()?;
+    if chol
+        .l_dirty()
+        .diagonal()
+        .iter()
+        .any(|d| d.is_nan() || *d < MIN_PIVOT)
+    {
+        return None;
+    }
+    let x = chol.solve(e_o);
+    Some((r_inv * (a.transpose() * &x), x))
+}
+
+/// Fold `f` (held-out measurements `out`) refitted with `method` from the other postures' rows.
+fn refit(
     obs: &Observations,
     f: usize,
-    folds: usize,
+    out: &[usize],
+    method: Method,
+) -> Result<(Vector6<f64>, Vec<f64>)> {
+    let mut is_out = vec![false; obs.posture_index.len()];
+    out.iter().for_each(|&i| is_out[i] = true);
+    let train: Vec<usize> = (0..is_out.len()).filter(|&i| !is_out[i]).collect();
+    let (psi, delta) = rows(obs, &train);
+    let mut index: Vec<usize> = train.iter().map(|&i| obs.posture_index[i]).collect();
+    let postures = renumber(&mut index);
+    let rest = Observations {
+        psi,
+        delta,
+        postures,
+        posture_index: index,
+    };
+    let h = method
+        .fit(&rest)
+        .map_err(|e| unidentifiable(f, &e.to_string()))?
+        .compliance;
+    let (psi, delta) = rows(obs, out);
+    Ok((h, delta_b(&(delta - psi * h))))
+}
+
+/// Renumbers posture numbers densely in order of first appearance; returns how many there are.
+fn renumber(index: &mut [usize]) -> usize {
+    let mut map = std::collections::HashMap::new();
+    for p in index.iter_mut() {
+        let next = map.len();
+        *p = *map.entry(*p).or_insert(next);
+    }
+    map.len()
+}
+
+fn fold(
+    obs: &Observations,
+    out: Vec<usize>,
+    h: Vector6<f64>,
+    delta_b: Vec<f64>,
     full: &Vector6<f64>,
     se: Option<&Vector6<f64>>,
-) -> Result<Fold> {
-    let held = |i: &usize| obs.posture_index[*i] % folds == f;
-    let n = obs.posture_index.len();
-    let (out, train): (Vec<usize>, Vec<usize>) = (0..n).partition(held);
-    let rows = |ids: &[usize]| -> (DMatrix<f64>, DVector<f64>) {
-        let mut psi = DMatrix::zeros(3 * ids.len(), 6);
-        let mut delta = DVector::zeros(3 * ids.len());
-        for (k, &i) in ids.iter().enumerate() {
-            psi.fixed_view_mut::<3, 6>(3 * k, 0)
-                .copy_from(&obs.psi.fixed_view::<3, 6>(3 * i, 0));
-            delta
-                .fixed_rows_mut::<3>(3 * k)
-                .copy_from(&obs.delta.fixed_rows::<3>(3 * i));
-        }
-        (psi, delta)
-    };
-    let (psi, delta) = rows(&train);
-    let h = Factor::try_new(psi)
-        .map_err(|e| Error::InvalidField {
-            field: format!("cross-validation fold {}", f + 1),
-            message: format!("the other postures cannot identify the stiffness: {e}"),
-        })?
-        .solve(&delta);
+) -> Fold {
     let stiffness = h.map(|v| 1.0 / v);
-    let (psi, delta) = rows(&out);
-    let residual = delta - psi * h;
-    let delta_b: Vec<f64> = (0..out.len())
-        .map(|k| residual.fixed_rows::<3>(3 * k).norm())
-        .collect();
     let mut postures: Vec<usize> = out.iter().map(|&i| obs.posture_index[i]).collect();
     postures.sort_unstable();
     postures.dedup();
-    Ok(Fold {
+    Fold {
         postures,
         rms_delta_b: rms(&delta_b),
         influential: std::array::from_fn(|j| {
@@ -155,5 +330,5 @@ fn fold(
         stiffness,
         measurements: out,
         delta_b,
-    })
+    }
 }

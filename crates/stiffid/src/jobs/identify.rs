@@ -11,6 +11,7 @@ use super::{joint_list, Warning, WarningKind};
 use crate::formats::measurements::{self, Labels};
 use crate::formats::read_text;
 use crate::identify::adequacy::UNIT_FACTOR;
+use crate::identify::cross_validation::Method;
 use crate::identify::{
     cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, Loss,
     UnitCheck,
@@ -268,15 +269,17 @@ fn fit(
         return Ok((least_squares(setup, measurements)?, None));
     }
     let obs = Observations::from_measurements(setup, measurements)?;
-    let id = match how {
-        Fit::Robust(loss) => obs.robust(loss)?,
-        Fit::Nonnegative => obs.nonnegative()?,
-        Fit::LeastSquares => obs.least_squares()?,
+    // Every fold is fitted as the full fit.
+    let method = match how {
+        Fit::Robust(loss) => Method::Robust(loss),
+        Fit::Nonnegative => Method::Nonnegative,
+        Fit::LeastSquares => Method::LeastSquares,
     };
+    let id = method.fit(&obs)?;
     let cross_validation = match folds {
         None => None,
-        Some(Folds::LeaveOneOut) => Some(cross_validate(&obs, &id, obs.postures)?),
-        Some(Folds::Count(k)) => Some(cross_validate(&obs, &id, k)?),
+        Some(Folds::LeaveOneOut) => Some(cross_validate(&obs, &id, obs.postures, method)?),
+        Some(Folds::Count(k)) => Some(cross_validate(&obs, &id, k, method)?),
     };
     Ok((id, cross_validation))
 }

@@ -59,7 +59,9 @@ struct JointRow {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct AxisMapFile {
+    #[serde(deserialize_with = "crate::formats::exact::matrix")]
     matrix: [[f64; 6]; 6],
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     offset_deg: [f64; 6],
 }
 
@@ -68,10 +70,10 @@ struct AxisMapFile {
 #[serde(deny_unknown_fields)]
 pub(crate) struct TransformFile {
     /// Translation, mm.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::formats::exact::array")]
     pub xyz_mm: [f64; 3],
     /// Fixed-axis roll, pitch, yaw (`R = Rz(yaw) Ry(pitch) Rx(roll)`), degrees.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::formats::exact::array")]
     pub rpy_deg: [f64; 3],
 }
 

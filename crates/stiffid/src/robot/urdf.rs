@@ -40,6 +40,7 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
         message,
     };
     check_depth(text).map_err(parse_error)?;
+    check_text(text).map_err(parse_error)?;
     let urdf = urdf_rs::read_from_string(text)
         .map_err(|e| parse_error(limits::one_line(&e.to_string())))?;
     let chain_error = |message: String| Error::Chain {
@@ -58,6 +59,18 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     let path = chain_to(&tip, &by_child, urdf.joints.len()).map_err(chain_error)?;
     let source = format!("{source_name}, tip link '{}'", limits::short(&tip));
     fold(&path, &urdf.name, &source).map_err(chain_error)
+}
+
+/// Fails for what the XML reader would misname: an empty file, and a document type definition
+/// (`<!DOCTYPE`, `<!ENTITY`), which the reader does not expand.
+fn check_text(text: &str) -> std::result::Result<(), String> {
+    if text.trim().is_empty() {
+        return Err("the file is empty: expected a URDF document (<robot name=\"...\">)".into());
+    }
+    if text.contains("<!DOCTYPE") || text.contains("<!ENTITY") {
+        return Err("DTDs are not supported (<!DOCTYPE> or <!ENTITY>): expand the entities first (for example `xmllint --noent robot.urdf`)".into());
+    }
+    Ok(())
 }
 
 /// The joints from the root to `tip`, root first.
@@ -160,6 +173,9 @@ pub(super) fn tree(
             ));
         }
     }
+    if let Some(cycle) = cycle(&by_child) {
+        return Err(format!("the joints form a loop: {}", limits::short(&cycle)));
+    }
     let roots: Vec<&str> = urdf
         .links
         .iter()
@@ -174,6 +190,31 @@ pub(super) fn tree(
             limits::short(&roots.join(", "))
         )),
     }
+}
+
+/// A loop of parent links, as `a -> b -> a`, if any.
+fn cycle(by_child: &HashMap<&str, &urdf_rs::Joint>) -> Option<String> {
+    let mut done: HashSet<&str> = HashSet::new();
+    let mut starts: Vec<&str> = by_child.keys().copied().collect();
+    starts.sort_unstable();
+    for start in starts {
+        let mut seen: Vec<&str> = Vec::new();
+        let mut link = start;
+        while let Some(joint) = by_child.get(link) {
+            if done.contains(link) {
+                break;
+            }
+            if let Some(at) = seen.iter().position(|l| *l == link) {
+                let mut names: Vec<&str> = seen[at..].to_vec();
+                names.push(link);
+                return Some(names.join(" -> "));
+            }
+            seen.push(link);
+            link = joint.parent.link.as_str();
+        }
+        done.extend(seen);
+    }
+    None
 }
 
 /// The tip link when none is named: the only leaf link; else the only leaf at the end of a chain
@@ -200,7 +241,8 @@ pub(super) fn default_tip(
         })
     };
     let ends: Vec<&str> = leaves.iter().copied().filter(six_revolute).collect();
-    let name_it = "name the tip link";
+    let name_it =
+        "name the tip link (the tip: `--tip` on the command line, `robot_tip` in a setup file)";
     match (leaves.as_slice(), ends.as_slice()) {
         ([one], _) | (_, [one]) => Ok(one.to_string()),
         (_, many) if many.contains(&"tool0") => Ok("tool0".into()),
@@ -274,6 +316,14 @@ fn fold(
     for j in path {
         match j.joint_type {
             JointType::Fixed => acc *= pose(j)?,
+            JointType::Revolute | JointType::Continuous if j.mimic.is_some() => {
+                let master = j.mimic.as_ref().map_or("", |m| m.joint.as_str());
+                return Err(format!(
+                    "joint '{}' mimics joint '{}': a mimic joint follows its master and is no independent sprung axis; stiffid needs six independent revolute joints in the chain (a robot TOML with an axis_map describes coupled axes)",
+                    limits::short(&j.name),
+                    limits::short(master)
+                ));
+            }
             JointType::Revolute | JointType::Continuous => {
                 joints.push(Joint {
                     pre: acc * pose(j)?,

@@ -100,13 +100,16 @@ pub(super) struct CellFile {
 #[serde(deny_unknown_fields)]
 struct ObstacleFile {
     name: String,
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     min_mm: [f64; 3],
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     max_mm: [f64; 3],
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct GeometryFile {
+    #[serde(default, deserialize_with = "crate::formats::exact::option")]
     link_radius_mm: Option<[f64; 7]>,
     tool_radius_mm: Option<f64>,
 }
@@ -114,8 +117,10 @@ pub(super) struct GeometryFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct TrackerFile {
+    #[serde(default, deserialize_with = "crate::formats::exact::option")]
     position_mm: Option<[f64; 3]>,
     max_incidence_deg: Option<f64>,
+    #[serde(default, deserialize_with = "crate::formats::exact::option_arrays")]
     measuring_normals: Option<Vec<[f64; 3]>>,
     base_from_tracker: Option<TransformFile>,
 }
@@ -132,14 +137,10 @@ fn in_mm(v: &Vector3<f64>) -> [f64; 3] {
     [v.x * 1e3, v.y * 1e3, v.z * 1e3]
 }
 
-fn finite(field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().all(|v| v.is_finite()) {
-        true => Ok(()),
-        false => Err(invalid(
-            field,
-            format!("{} given: expected finite numbers", shown(values)),
-        )),
-    }
+/// A position (mm) within the cell's reach: [`limits::LENGTH_MM`] (100 m), the range of every
+/// length of a robot file.
+fn position(field: &str, values_mm: &[f64]) -> Result<()> {
+    limits::check(field, values_mm, &limits::LENGTH_MM)
 }
 
 /// A length `v` (m) in `[0, MAX_LENGTH_MM]` mm (0 excluded when `open`).
@@ -176,11 +177,12 @@ pub(super) fn cell(f: CellFile) -> Cell {
     }
 }
 
-/// Checks a cell: finite floor, clearance within [`MAX_LENGTH_MM`], at most [`MAX_OBSTACLES`]
-/// named boxes, each with every min below its max.
+/// Checks a cell: floor height within [`limits::LENGTH_MM`], clearance within [`MAX_LENGTH_MM`],
+/// at most [`MAX_OBSTACLES`] named boxes, each with corners within [`limits::LENGTH_MM`] and
+/// every min below its max.
 pub(super) fn check_cell(c: &Cell) -> Result<()> {
     if let Some(z) = c.floor_z {
-        finite("cell.floor_z_mm", &[z * 1e3])?;
+        position("cell.floor_z_mm", &[z * 1e3])?;
     }
     length("cell.clearance_mm", c.clearance, false)?;
     if c.obstacles.len() > MAX_OBSTACLES {
@@ -200,8 +202,8 @@ fn check_obstacle(o: &Obstacle, field: &str) -> Result<()> {
         return Err(invalid(&format!("{field}.name"), "expected a name"));
     }
     let (min, max) = (in_mm(&o.min), in_mm(&o.max));
-    finite(&format!("{field}.min_mm"), &min)?;
-    finite(&format!("{field}.max_mm"), &max)?;
+    position(&format!("{field}.min_mm"), &min)?;
+    position(&format!("{field}.max_mm"), &max)?;
     if (0..3).any(|i| min[i] >= max[i]) {
         return Err(invalid(
             field,
@@ -241,6 +243,11 @@ pub(super) fn check_geometry(g: &RobotGeometry) -> Result<()> {
 /// The `[tracker]` table in SI units: the position is `position_mm`, or the translation of
 /// `base_from_tracker` (checked by [`checked_tracker`] when the setup is built).
 pub(super) fn tracker(f: TrackerFile) -> Result<Tracker> {
+    if let Some(t) = &f.base_from_tracker {
+        position("tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
+        let rpy = &limits::ANGLE_DEG;
+        limits::check("tracker.base_from_tracker.rpy_deg", &t.rpy_deg, rpy)?;
+    }
     let base_from_tracker = f.base_from_tracker.map(|t| t.isometry());
     let position = match (f.position_mm, &base_from_tracker) {
         (Some(p), _) => mm(&p),
@@ -263,8 +270,8 @@ pub(super) fn tracker(f: TrackerFile) -> Result<Tracker> {
 }
 
 /// The tracker checked, its normals made unit (the flange z axis for each of the
-/// `measuring_points` if none are given): a finite `base_from_tracker` whose translation is the
-/// position (to 1 mm), a finite position outside every obstacle of the cell, an incidence in
+/// `measuring_points` if none are given): a `base_from_tracker` whose translation is the
+/// position (to 1 mm), a position within [`limits::LENGTH_MM`] outside every obstacle of the cell, an incidence in
 /// `(0, 90]` deg, one finite non-zero normal per measuring point.
 pub(super) fn checked_tracker(
     mut t: Tracker,
@@ -274,10 +281,7 @@ pub(super) fn checked_tracker(
     let position_mm = in_mm(&t.position);
     if let Some(b) = &t.base_from_tracker {
         let xyz = in_mm(&b.translation.vector);
-        finite("tracker.base_from_tracker.xyz_mm", &xyz)?;
-        let (r, p, w) = b.rotation.euler_angles();
-        let rpy = [r, p, w].map(f64::to_degrees);
-        finite("tracker.base_from_tracker.rpy_deg", &rpy)?;
+        position("tracker.base_from_tracker.xyz_mm", &xyz)?;
         if (0..3).any(|i| (position_mm[i] - xyz[i]).abs() > 1.0) {
             return Err(invalid(
                 "tracker.position_mm",
@@ -289,7 +293,7 @@ pub(super) fn checked_tracker(
             ));
         }
     }
-    finite("tracker.position_mm", &position_mm)?;
+    position("tracker.position_mm", &position_mm)?;
     if let Some(o) = cell.and_then(|c| c.obstacles.iter().find(|o| o.contains(&t.position))) {
         return Err(invalid(
             "tracker.position_mm",
@@ -333,7 +337,7 @@ fn normals(given: &[Vector3<f64>], count: usize) -> Result<Vec<Vector3<f64>>> {
         .enumerate()
         .map(|(i, n)| {
             let field = format!("tracker.measuring_normals[{}]", i + 1);
-            finite(&field, n.as_slice())?;
+            position(&field, n.as_slice())?;
             n.try_normalize(1e-12).ok_or_else(|| {
                 invalid(
                     &field,

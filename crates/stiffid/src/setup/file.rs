@@ -23,6 +23,7 @@ struct SetupFile {
     #[serde(default)]
     springs: Coordinates,
     characteristic_length_mm: Option<f64>,
+    #[serde(default, deserialize_with = "crate::formats::exact::option")]
     nominal_stiffness_nm_per_rad: Option<[f64; 6]>,
     tool: ToolFile,
     loading: LoadingFile,
@@ -39,8 +40,11 @@ struct SetupFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ToolFile {
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     loading_point_mm: [f64; 3],
+    #[serde(deserialize_with = "crate::formats::exact::arrays")]
     measuring_points_mm: Vec<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::formats::exact::option")]
     tcp_mm: Option<[f64; 3]>,
 }
 
@@ -48,6 +52,7 @@ struct ToolFile {
 #[serde(deny_unknown_fields)]
 struct LoadingFile {
     load_n: f64,
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     anchor_mm: [f64; 3],
 }
 
@@ -61,13 +66,16 @@ struct NoiseFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BoundsFile {
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     lower_deg: [f64; 6],
+    #[serde(deserialize_with = "crate::formats::exact::array")]
     upper_deg: [f64; 6],
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TestFile {
+    #[serde(deserialize_with = "crate::formats::exact::arrays")]
     postures_deg: Vec<[f64; 6]>,
 }
 

@@ -40,6 +40,7 @@
 
 mod cell;
 mod file;
+pub mod plausibility;
 
 pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
 pub use file::{builtin, builtin_names, builtin_text, parse};

@@ -304,6 +304,36 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     assert!(after < 0.95 * before, "{after} vs {before}");
 }
 
+/// With the TCP on the spindle (tool z) axis every angle ties: the tie-breaking cost keeps the
+/// path's own angle at every point instead of turning the tool for nothing; and the grid of a tiny
+/// step is refused, not allocated.
+#[test]
+fn the_free_tool_axis_keeps_the_path_angle_when_every_angle_ties() {
+    let base = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let on_axis = Vector3::new(0.0, 0.0, 0.25);
+    let s = base
+        .to_builder()
+        .with_tcp(on_axis)
+        .with_loading_point(on_axis)
+        .build()
+        .unwrap();
+    let compliance = Compliance {
+        h: s.nominal_compliance().unwrap(),
+        covariance: None,
+    };
+    let path = line_path(&s, 12);
+    let free = FreeToolAxis::try_from_degrees(2.0, 90.0).unwrap();
+    let out = compensate::path(&s, &compliance, &path, &options(&s, Some(free))).unwrap();
+    for (i, c) in out.iter().enumerate() {
+        assert_eq!(c.tool_rotation, 0.0, "point {i}");
+    }
+    for step in [1e-300, 1e-9, 1e-4] {
+        let tiny = FreeToolAxis::try_from_degrees(step, 90.0).unwrap();
+        let e = compensate::path(&s, &compliance, &path, &options(&s, Some(tiny))).unwrap_err();
+        assert!(e.to_string().contains("max_step_deg"), "{e}");
+    }
+}
+
 /// The documented size of the neglected complementary stiffness: on the paper's setup, the guide's
 /// `predict` example (2 mm at measuring point 1) moves by about 2 micrometres when the torques are
 /// those of the deflected posture (a fixed point `dq = h .* J_f(q + dq)^T W`) instead of the

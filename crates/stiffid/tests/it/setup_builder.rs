@@ -209,3 +209,27 @@ fn box_errors_show_the_value_beside_the_range() {
         "cell.toml: bounds.upper_deg[2] = 95.001 deg: expected within the robot's limits [-75.00, 95.00] deg"
     );
 }
+
+/// Tool points in metres read as mm and angles in radians under `_deg` names are warned about;
+/// the paper's setup and its postures are not.
+#[test]
+fn unit_slips_get_a_plausibility_warning() {
+    use stiffid::setup::plausibility::{radians_as_degrees, warnings};
+    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    assert!(warnings(&paper).is_empty(), "{:?}", warnings(&paper));
+    let tool = paper.tool();
+    let metres: Vec<_> = tool.measuring_points.iter().map(|p| p * 1e-3).collect();
+    let slipped = paper
+        .to_builder()
+        .with_measuring_points(metres)
+        .with_loading_point(tool.loading_point * 1e-3)
+        .build()
+        .unwrap();
+    let w = warnings(&slipped);
+    assert!(w.len() == 1 && w[0].contains("metres"), "{w:?}");
+    let postures = paper.test_postures();
+    assert!(radians_as_degrees(postures).is_none());
+    let radians: Vec<_> = postures.iter().map(|q| q.map(f64::to_radians)).collect();
+    let w = radians_as_degrees(&radians).unwrap();
+    assert!(w.contains("radians"), "{w}");
+}

@@ -9,6 +9,7 @@ use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternio
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiffid::formats::measurements;
+use stiffid::identify::cross_validation::Method;
 use stiffid::identify::{cross_validate, least_squares, nonnegative};
 use stiffid::observation::{Measurement, Observations};
 use stiffid::validate;
@@ -164,7 +165,7 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
     let data = noisy_paper_data(&setup, 1, 5);
     let obs = Observations::from_measurements(&setup, &data).unwrap();
     let full = obs.least_squares().unwrap();
-    let cv = cross_validate(&obs, &full, 6).unwrap();
+    let cv = cross_validate(&obs, &full, 6, Method::LeastSquares).unwrap();
     assert_eq!(cv.folds.len(), 6);
     let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;
     for (p, fold) in cv.folds.iter().enumerate() {
@@ -204,15 +205,15 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
         (6, &obs.posture_index)
     );
     // Two folds: postures 0, 2, 4 and 1, 3, 5, every measurement held out once.
-    let two = cross_validate(&obs, &full, 2).unwrap();
+    let two = cross_validate(&obs, &full, 2, Method::LeastSquares).unwrap();
     assert_eq!(two.folds[0].postures, vec![0, 2, 4]);
     assert_eq!(two.folds[1].postures, vec![1, 3, 5]);
     assert_eq!(
         two.folds[0].measurements.len() + two.folds[1].measurements.len(),
         24
     );
-    assert!(cross_validate(&obs, &full, 7).is_err());
-    assert!(cross_validate(&obs, &full, 1).is_err());
+    assert!(cross_validate(&obs, &full, 7, Method::LeastSquares).is_err());
+    assert!(cross_validate(&obs, &full, 1, Method::LeastSquares).is_err());
 }
 
 /// The FANUC file with forces in the tool frame and displacements in a tracker frame.
@@ -389,4 +390,38 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let norms: Vec<f64> = data.iter().map(|m| m.displacement.norm()).collect();
     let rms = (norms.iter().map(|v| v * v).sum::<f64>() / norms.len() as f64).sqrt();
     assert!((stiffer.measured[2] - rms).abs() < 1e-15);
+}
+
+/// Every fold is fitted as the full fit: a bounded or robust cross-validation's folds equal the
+/// same method refitted by hand without the fold's measurements.
+#[test]
+fn bounded_and_robust_folds_are_refits_with_the_full_fits_method() {
+    use stiffid::identify::Loss;
+    let setup = paper();
+    let data = noisy_paper_data(&setup, 1, 5);
+    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    for method in [
+        Method::Nonnegative,
+        Method::Robust(Loss::Tukey),
+        Method::Robust(Loss::Huber),
+    ] {
+        let full = method.fit(&obs).unwrap();
+        let cv = cross_validate(&obs, &full, 3, method).unwrap();
+        for fold in &cv.folds {
+            let rest: Vec<Measurement> = (0..data.len())
+                .filter(|i| !fold.measurements.contains(i))
+                .map(|i| data[i].clone())
+                .collect();
+            let by_hand = method
+                .fit(&Observations::from_measurements(&setup, &rest).unwrap())
+                .unwrap();
+            for j in 0..6 {
+                let (a, b) = (fold.stiffness[j], by_hand.stiffness[j]);
+                assert!(
+                    a == b || ((a - b) / b).abs() < 1e-9,
+                    "{method:?} joint {j}: {a} vs {b}"
+                );
+            }
+        }
+    }
 }

@@ -281,3 +281,50 @@ fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
     let e = reference::setup_text(&setup, "s.toml", std::path::Path::new(""), read).unwrap_err();
     assert!(e.to_string().contains("robot_tip: 'tool0' given"), "{e}");
 }
+
+/// Each mutation of the test URDF gives an error naming the cause (and, for a parse error, the
+/// file): an empty file, a DTD, a loop of joints beside the chain, a mimic joint in the chain.
+#[test]
+fn broken_urdfs_name_their_cause() {
+    let text = data("comau-nj165.urdf");
+    let loop_links = "<link name=\"a\"/><link name=\"b\"/>\
+        <joint name=\"ab\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/></joint>\
+        <joint name=\"ba\" type=\"fixed\"><parent link=\"b\"/><child link=\"a\"/></joint></robot>";
+    let looped = text.replacen("</robot>", loop_links, 1);
+    let doctype = format!(
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE robot [<!ENTITY l \"1\">]>\n{}",
+        text.replacen("<?xml version=\"1.0\"?>", "", 1)
+    );
+    let mimic = text.replacen(
+        "<joint name=\"joint_3\" type=\"revolute\">",
+        "<joint name=\"joint_3\" type=\"revolute\"><mimic joint=\"joint_2\" multiplier=\"-1\"/>",
+        1,
+    );
+    assert_ne!(mimic, text, "the mutation must apply");
+    let cases: [(&str, &str, &[&str]); 5] = [
+        ("", "empty.urdf", &["empty.urdf", "the file is empty"]),
+        ("  \n", "blank.urdf", &["blank.urdf", "the file is empty"]),
+        (
+            &doctype,
+            "dtd.urdf",
+            &["dtd.urdf", "DTDs are not supported"],
+        ),
+        (&looped, "loop.urdf", &["loop.urdf", "loop", "a -> b -> a"]),
+        (
+            &mimic,
+            "mimic.urdf",
+            &["mimic.urdf", "joint_3", "mimics joint 'joint_2'"],
+        ),
+    ];
+    for (text, name, parts) in cases {
+        let message = urdf::parse(text, name, None).unwrap_err().to_string();
+        for part in parts {
+            assert!(
+                message.contains(part),
+                "{name}: '{part}' missing from {message}"
+            );
+        }
+    }
+    let message = chain_error("comau-nj165-two-leaves.urdf", Some("nothing"));
+    assert!(message.contains("no link named"), "{message}");
+}

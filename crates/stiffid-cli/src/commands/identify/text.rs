@@ -121,11 +121,15 @@ fn model_check(run: &Report) -> String {
         num(a.chi2, 1),
         a.dof
     );
-    match a.model_error_dominates() {
-        true => format!(
+    match (a.model_error_dominates(), a.below_noise()) {
+        (true, _) => format!(
             "{head}:\n  the model error dominates (p < {SIGNIFICANCE}), not the tracker: trust the intervals from the residual variance; those from the tracker noise assume an exact model and are too narrow\n"
         ),
-        false => format!("{head}: the residuals are consistent with the tracker noise\n"),
+        (false, true) => format!(
+            "{head}:\n  the residuals are far below the tracker noise (lower tail p = {:.3e} < {SIGNIFICANCE}): noise-free or simulated data, or the setup's variance_mm2 is too large; the intervals from the tracker noise are then too wide\n",
+            a.lower_p_value()
+        ),
+        (false, false) => format!("{head}: the residuals are consistent with the tracker noise\n"),
     }
 }
 

@@ -1,0 +1,202 @@
+//! Every file of a run is staged (written whole to a temporary file) and put in place only when
+//! the run has succeeded, its results printed: a run that fails at any point, writing stdout
+//! included, leaves no output behind ([`commit`], [`discard`]).
+
+use anyhow::{Context, Result};
+use std::io::ErrorKind;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// What the end of the run does.
+#[derive(Debug)]
+enum Step {
+    /// Success: rename `tmp` over `target`; failure: remove `tmp`.
+    Replace { tmp: PathBuf, target: PathBuf },
+    /// As `Replace`, but `target` must not exist (an atomic no-replace create).
+    Create { tmp: PathBuf, target: PathBuf },
+    /// Success: remove this file of an earlier report that this run did not write again.
+    Stale(PathBuf),
+    /// Success and failure: remove this temporary directory.
+    TempDir(PathBuf),
+    /// Failure: remove this directory the run created.
+    Created(PathBuf),
+}
+
+static STEPS: Mutex<Vec<Step>> = Mutex::new(Vec::new());
+
+/// Handles held to the end of the run (report directories' locks).
+static HELD: Mutex<Vec<std::fs::File>> = Mutex::new(Vec::new());
+
+/// Holds `file` (a directory lock) until the run's files are committed or discarded.
+pub fn hold(file: std::fs::File) {
+    HELD.lock().unwrap_or_else(|e| e.into_inner()).push(file);
+}
+
+fn release() {
+    HELD.lock().unwrap_or_else(|e| e.into_inner()).clear();
+}
+
+/// The outputs of the run so far (resolved paths) and the options that named them.
+static CLAIMS: Mutex<Vec<(PathBuf, String)>> = Mutex::new(Vec::new());
+
+/// Records that `option` writes `path` (resolved: a file, or a report directory), refusing a path
+/// another output of the same run writes, contains or lies in (`--out X --report X`), before
+/// anything is computed.
+///
+/// # Errors
+/// Naming both options and the path.
+pub fn claim(path: &Path, option: &str) -> Result<()> {
+    let mut claims = CLAIMS.lock().unwrap_or_else(|e| e.into_inner());
+    for (other, by) in claims.iter() {
+        if path.starts_with(other) || other.starts_with(path) {
+            anyhow::bail!(
+                "{option} {}: the same place as {by} {} of this run; give them different paths",
+                path.display(),
+                other.display()
+            );
+        }
+    }
+    claims.push((path.to_path_buf(), option.to_string()));
+    Ok(())
+}
+
+fn push(step: Step) {
+    STEPS.lock().unwrap_or_else(|e| e.into_inner()).push(step);
+}
+
+fn take() -> Vec<Step> {
+    std::mem::take(&mut *STEPS.lock().unwrap_or_else(|e| e.into_inner()))
+}
+
+/// Forgets the claim on `path` ([`claim`]): its writer is done with it.
+pub fn unclaim(path: &Path) {
+    CLAIMS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .retain(|(p, _)| p != path);
+}
+
+/// Stages the written temporary file `tmp` to replace `target` at [`commit`].
+pub fn replace(tmp: PathBuf, target: PathBuf) {
+    push(Step::Replace { tmp, target });
+}
+
+/// Stages the written temporary file `tmp` to become the new file `target` at [`commit`],
+/// refusing (and removing `tmp`) if `target` exists by then.
+pub fn create(tmp: PathBuf, target: PathBuf) {
+    push(Step::Create { tmp, target });
+}
+
+/// Stages the removal of `path`, an earlier report's file this run did not write, at [`commit`].
+pub fn stale(path: PathBuf) {
+    push(Step::Stale(path));
+}
+
+/// Stages the removal of the temporary directory `dir` at the end of the run.
+pub fn temp_dir(dir: PathBuf) {
+    push(Step::TempDir(dir));
+}
+
+/// Stages the removal of `dir`, created by this run, if the run fails.
+pub fn created(dir: PathBuf) {
+    push(Step::Created(dir));
+}
+
+/// Puts every staged file in place, in the order written, and removes the stale files and the
+/// temporary directories.
+///
+/// # Errors
+/// The first file that cannot be put in place (the others are still tried; temporary files of
+/// the failed ones are removed).
+pub fn commit() -> Result<()> {
+    let mut first: Option<anyhow::Error> = None;
+    for step in take() {
+        let done = match &step {
+            Step::Replace { tmp, target } => rename(tmp, target),
+            Step::Create { tmp, target } => create_new(tmp, target),
+            Step::Stale(path) => match std::fs::remove_file(path) {
+                Err(e) if e.kind() != ErrorKind::NotFound => {
+                    Err(e).with_context(|| format!("{}: cannot remove", path.display()))
+                }
+                _ => Ok(()),
+            },
+            Step::TempDir(dir) => {
+                let _ = std::fs::remove_dir_all(dir);
+                Ok(())
+            }
+            Step::Created(_) => Ok(()),
+        };
+        if let Err(e) = done {
+            first.get_or_insert(e);
+        }
+    }
+    release();
+    first.map_or(Ok(()), Err)
+}
+
+/// Removes every staged temporary file and directory, and the directories the run created.
+pub fn discard() {
+    for step in take() {
+        match step {
+            Step::Replace { tmp, .. } | Step::Create { tmp, .. } => {
+                let _ = std::fs::remove_file(tmp);
+            }
+            Step::TempDir(dir) | Step::Created(dir) => {
+                let _ = std::fs::remove_dir_all(dir);
+            }
+            Step::Stale(_) => {}
+        }
+    }
+    release();
+}
+
+/// Renames `tmp` over `target` after checking once more that `target` is a regular file or
+/// missing; removes `tmp` on failure.
+fn rename(tmp: &Path, target: &Path) -> Result<()> {
+    let done = match std::fs::symlink_metadata(target) {
+        Ok(m) if !m.is_file() => Err(anyhow::anyhow!(
+            "became {} while this run computed; not replaced",
+            super::target::kind(target)
+        )),
+        _ => std::fs::rename(tmp, target).map_err(anyhow::Error::from),
+    };
+    if done.is_err() {
+        let _ = std::fs::remove_file(tmp);
+    }
+    done.with_context(|| format!("{}: cannot write", target.display()))
+}
+
+/// Makes `tmp` the new file `target` without ever replacing an existing one: a hard link (atomic:
+/// it fails if `target` exists), then `tmp` removed; where the file system has no hard links, a
+/// `create_new` open (also atomic) and a copy.
+fn create_new(tmp: &Path, target: &Path) -> Result<()> {
+    let exists = || {
+        anyhow::anyhow!(
+            "{}: exists (created meanwhile by another program); not replaced",
+            target.display()
+        )
+    };
+    let done = match std::fs::hard_link(tmp, target) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == ErrorKind::AlreadyExists => Err(exists()),
+        Err(_) => match std::fs::File::options()
+            .write(true)
+            .create_new(true)
+            .open(target)
+        {
+            Ok(mut file) => {
+                let copied = std::fs::File::open(tmp)
+                    .and_then(|mut from| std::io::copy(&mut from, &mut file))
+                    .and_then(|_| file.sync_all());
+                if copied.is_err() {
+                    let _ = std::fs::remove_file(target);
+                }
+                copied.with_context(|| format!("{}: cannot write", target.display()))
+            }
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => Err(exists()),
+            Err(e) => Err(e).with_context(|| format!("{}: cannot create", target.display())),
+        },
+    };
+    let _ = std::fs::remove_file(tmp);
+    done
+}

@@ -1,0 +1,357 @@
+//! The documented limits at their edges, options that keep their meaning in every mode, outputs
+//! that are never left behind: one test per cause, each over several variants.
+
+use crate::common;
+
+use common::{assert_success, identify_fanuc, json, refused, stiffid, temp_dir, write_file, GROUP};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const CELL: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/cell/zhang2021-tracker.toml"
+);
+const MILLING: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/milling");
+
+/// The example cell's TOML with `from` replaced by `to` (which must occur), written as `name`.
+fn cell_with(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(CELL).unwrap();
+    assert!(text.contains(from), "{from}");
+    write_file(dir, name, &text.replacen(from, to, 1))
+}
+
+/// `sh -c script` with `$0` the stiffid binary.
+fn shell(script: &str) -> Output {
+    Command::new("sh")
+        .args(["-c", script, env!("CARGO_BIN_EXE_stiffid")])
+        .output()
+        .unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn bodies_as_large_as_the_robot_never_panic() {
+    let dir = temp_dir("edge-radii");
+    write_file(&dir, "g.csv", GROUP);
+    for radius in ["10000", "5000", "2500"] {
+        let radii = format!("[robot_geometry]\nlink_radius_mm = [{radius}, {radius}, {radius}, {radius}, {radius}, {radius}, {radius}]\n\n[cell]");
+        let setup = cell_with(&dir, "big.toml", "[cell]", &radii);
+        let s = setup.to_str().unwrap();
+        let g = dir.join("g.csv");
+        let out = stiffid(&["evaluate", "--setup", s, "--postures", g.to_str().unwrap()]);
+        assert_success(&out);
+        for method in [&["--start-random"][..], &["--global", "--starts", "2"]] {
+            let args = [
+                &[
+                    "select",
+                    "--setup",
+                    s,
+                    "--max-evals",
+                    "50",
+                    "--out",
+                    "{dir}/o.csv",
+                ][..],
+                method,
+            ]
+            .concat();
+            let line = refused(&dir, &args, &["no feasible group"]);
+            assert!(!line.contains("panicked"), "{line}");
+        }
+    }
+}
+
+#[test]
+fn a_tiny_tool_axis_step_is_refused_naming_the_option() {
+    let dir = temp_dir("edge-step");
+    for step in ["1e-300", "1e-9", "1e-4"] {
+        refused(
+            &dir,
+            &[
+                "compensate",
+                "--setup",
+                "zhang2021-comau-nj165",
+                "--stiffness",
+                &format!("{MILLING}/stiffness.json"),
+                "--path",
+                &format!("{MILLING}/path.csv"),
+                "--out",
+                "{dir}/o.csv",
+                "--free-tool-axis",
+                "--max-step-deg",
+                step,
+            ],
+            &["--max-step-deg", "cells", "at most"],
+        );
+    }
+}
+
+#[test]
+fn cell_positions_and_array_lengths_are_range_checked() {
+    let dir = temp_dir("edge-cell");
+    let cases = [
+        ("floor_z_mm = 0.0", "floor_z_mm = 1e308", "cell.floor_z_mm"),
+        ("floor_z_mm = 0.0", "floor_z_mm = -2e5", "cell.floor_z_mm"),
+        ("position_mm = [3000.0, -2000.0, 1500.0]", "position_mm = [1e308, -2000.0, 1500.0]", "tracker.position_mm"),
+        ("position_mm = [3000.0, -2000.0, 1500.0]", "position_mm = [3000.0, -2000.0, 1500.0, 4.0]", "invalid length 4"),
+        ("position_mm = [3000.0, -2000.0, 1500.0]", "base_from_tracker = { xyz_mm = [3000.0, -2000.0, 1500.0], rpy_deg = [0, 0, 1e308] }", "rpy_deg"),
+        ("anchor_mm = [2000.0, 1500.0, 0.0]", "anchor_mm = [2000.0, 1500.0, 0.0, 7.0]", "invalid length 4"),
+        ("[cell]", "[robot_geometry]\nlink_radius_mm = [350, 260, 195, 175, 130, 110, 90, 80]\n\n[cell]", "invalid length 8"),
+        ("clearance_mm = 50.0", "clearance_mm = 50.0\n[[cell.obstacle]]\nname = \"t\"\nmin_mm = [-1e308, 0, 0]\nmax_mm = [1, 1, 1]", "min_mm"),
+    ];
+    write_file(&dir, "g.csv", GROUP);
+    for (from, to, named) in cases {
+        let setup = cell_with(&dir, "c.toml", from, to);
+        let (s, g) = (setup.to_str().unwrap(), dir.join("g.csv"));
+        refused(
+            &dir,
+            &["evaluate", "--setup", s, "--postures", g.to_str().unwrap()],
+            &[named],
+        );
+    }
+}
+
+#[test]
+fn every_fold_is_fitted_as_the_full_fit() {
+    for (method, folds) in [
+        (&["--nonnegative"][..], "5"),
+        (&["--robust", "tukey"], "5"),
+        (&["--robust", "huber"], "3"),
+    ] {
+        let doc = json(&identify_fanuc(&[method, &["--folds", folds]].concat()));
+        let plain = json(&identify_fanuc(&["--folds", folds]));
+        let cv = &doc["cross_validation"];
+        let folds_k: Vec<Vec<f64>> = cv["per_fold"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| {
+                f["stiffness_nm_per_rad"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|k| k.as_f64().unwrap_or(f64::INFINITY))
+                    .collect()
+            })
+            .collect();
+        if method[0] == "--nonnegative" {
+            assert!(folds_k.iter().flatten().all(|k| *k > 0.0), "{folds_k:?}");
+        }
+        // The folds differ from the least-squares folds: the option reached them.
+        assert_ne!(
+            cv["per_fold"], plain["cross_validation"]["per_fold"],
+            "{method:?}"
+        );
+    }
+}
+
+#[test]
+fn stdout_that_cannot_be_written_is_an_error_and_leaves_no_file() {
+    let dir = temp_dir("edge-stdout");
+    let closed = shell("\"$0\" robots >&-");
+    assert_eq!(closed.status.code(), Some(2), "{}", stderr(&closed));
+    assert!(stderr(&closed).contains("stdout is closed"));
+    let out = dir.join("k.json");
+    let data = common::fanuc_csv();
+    let script = format!(
+        "\"$0\" identify --setup fanuc-r2000ic-165f --data {} --out {} --json > /dev/full",
+        data.display(),
+        out.display()
+    );
+    let full = shell(&script);
+    assert_eq!(full.status.code(), Some(2), "{}", stderr(&full));
+    assert!(!out.exists(), "--out left behind after stdout failed");
+    let script = format!(
+        "\"$0\" plot --setup zhang2021-comau-nj165 --postures {} --out {} > /dev/full",
+        write_file(&dir, "g.csv", GROUP).display(),
+        dir.join("figs").display()
+    );
+    assert_eq!(shell(&script).status.code(), Some(2));
+    assert!(!dir.join("figs").exists(), "plot left its directory behind");
+}
+
+#[test]
+fn one_path_for_two_outputs_is_refused_before_computing() {
+    let dir = temp_dir("edge-same");
+    for (out, report) in [("{dir}/x", "{dir}/x"), ("{dir}/r/summary.json", "{dir}/r")] {
+        if out.contains("/r/") {
+            std::fs::create_dir_all(dir.join("r")).unwrap();
+        }
+        refused(
+            &dir,
+            &[
+                "compensate",
+                "--setup",
+                "zhang2021-comau-nj165",
+                "--stiffness",
+                &format!("{MILLING}/stiffness.json"),
+                "--path",
+                &format!("{MILLING}/path.csv"),
+                "--out",
+                out,
+                "--report",
+                report,
+            ],
+            &["--report", "same place as --out"],
+        );
+        let _ = std::fs::remove_dir_all(dir.join("r"));
+    }
+}
+
+#[test]
+fn an_earlier_larger_group_leaves_no_stale_figures() {
+    let dir = temp_dir("edge-stale");
+    let six = write_file(&dir, "six.csv", GROUP);
+    let three: String = GROUP.lines().take(4).map(|l| format!("{l}\n")).collect();
+    let three = write_file(&dir, "three.csv", &three);
+    let figs = dir.join("figs");
+    for postures in [&six, &three] {
+        assert_success(&stiffid(&[
+            "plot",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--postures",
+            postures.to_str().unwrap(),
+            "--out",
+            figs.to_str().unwrap(),
+        ]));
+    }
+    let names: Vec<String> = std::fs::read_dir(&figs)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().any(|n| n.contains("03")), "{names:?}");
+    assert!(
+        !names.iter().any(|n| n.contains("04") || n.contains("06")),
+        "{names:?}"
+    );
+}
+
+#[test]
+fn concurrent_setups_new_to_one_file_leave_exactly_one_winner() {
+    let dir = temp_dir("edge-race");
+    let target = dir.join("cell.toml");
+    for _ in 0..3 {
+        let _ = std::fs::remove_file(&target);
+        let children: Vec<_> = (0..4)
+            .map(|_| {
+                Command::new(env!("CARGO_BIN_EXE_stiffid"))
+                    .args(["setups", "new", "--robot", "fanuc-r2000ic-165f", "--out"])
+                    .arg(&target)
+                    .output()
+            })
+            .collect();
+        let wins = children
+            .into_iter()
+            .filter(|c| c.as_ref().unwrap().status.success())
+            .count();
+        assert!(wins >= 1 && target.exists());
+        assert_eq!(
+            wins,
+            1,
+            "several runs claimed to have created {}",
+            target.display()
+        );
+    }
+}
+
+#[test]
+fn usage_errors_are_whole_and_negative_values_reach_their_option() {
+    let out = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--target-pct",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let text = stderr(&out);
+    assert!(
+        text.starts_with("error: ") && text.contains("--out"),
+        "{text}"
+    );
+    for value in ["-inf", "-1", "-0.5"] {
+        let out = stiffid(&[
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--target-pct",
+            value,
+            "--out",
+            "x.csv",
+        ]);
+        assert_eq!(out.status.code(), Some(2));
+        let text = stderr(&out);
+        assert!(text.contains("target"), "{value}: {text}");
+        assert!(!text.contains("unexpected argument"), "{value}: {text}");
+    }
+    let dir = temp_dir("edge-q0");
+    refused(
+        &dir,
+        &[
+            "compensate",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--stiffness",
+            &format!("{MILLING}/stiffness.json"),
+            "--path",
+            &format!("{MILLING}/path.csv"),
+            "--out",
+            "{dir}/o.csv",
+            "--q0-deg=nan,0,-90,0,0,0",
+        ],
+        &["--q0-deg[1]"],
+    );
+}
+
+#[test]
+fn a_null_stiffness_is_named_with_what_to_do() {
+    let dir = temp_dir("edge-null");
+    let k = write_file(
+        &dir,
+        "k.json",
+        r#"{"stiffness_nm_per_rad": [9.5e5, 3e6, null, 2.5e5, 2e5, 1.5e5]}"#,
+    );
+    refused(
+        &dir,
+        &[
+            "predict",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--stiffness",
+            k.to_str().unwrap(),
+            "--q-deg",
+            "0,0,-90,0,0,0",
+            "--wrench",
+            "0,0,-500,0,0,0",
+        ],
+        &["stiffness_nm_per_rad[3] is null", "finite stiffness"],
+    );
+}
+
+#[test]
+fn test_pose_without_test_postures_is_not_computed() {
+    let dir = temp_dir("edge-testpose");
+    let text = std::fs::read_to_string(CELL).unwrap();
+    let start = text.find("[test]").unwrap();
+    let end = start + text[start..].find("\n]\n").unwrap() + 3;
+    let setup = write_file(
+        &dir,
+        "c.toml",
+        &format!("{}{}", &text[..start], &text[end..]),
+    );
+    let g = write_file(&dir, "g.csv", GROUP);
+    let args = [
+        "evaluate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--postures",
+        g.to_str().unwrap(),
+    ];
+    let doc = json(&stiffid(&[&args[..], &["--json"]].concat()));
+    assert!(doc["test_pose_mm"].is_null(), "{}", doc["test_pose_mm"]);
+    let text = String::from_utf8(stiffid(&args).stdout).unwrap();
+    assert!(text.contains("test-pose    not computed"), "{text}");
+}

@@ -1,0 +1,73 @@
+//! Plausibility warnings: values that pass every range check but look like a unit slip (a robot
+//! file or tool points in metres where millimetres are meant, a URDF scaled down, angles in
+//! radians under `_deg` names). Each warning names the likely cause; nothing is refused.
+
+use super::Setup;
+use nalgebra::Vector6;
+
+/// Below this reach (m) at the middle of the bounds, the robot's lengths look like a unit slip.
+pub const MIN_REACH_M: f64 = 0.1;
+
+/// Above this reach (m), the robot's lengths look like millimetres read as metres.
+pub const MAX_REACH_M: f64 = 20.0;
+
+/// Below this distance (m) from the flange, every tool point looks like metres read as mm.
+pub const MIN_TOOL_M: f64 = 1e-3;
+
+/// The warnings of `setup` (module docs), each one sentence naming the field and the likely
+/// cause; empty when nothing looks wrong.
+pub fn warnings(setup: &Setup) -> Vec<String> {
+    let mut out = Vec::new();
+    let bounds = setup.bounds();
+    let frames = setup.robot().frames(&((bounds.lower + bounds.upper) / 2.0));
+    let reach = (frames.flange.translation.vector - frames.joints[0].translation.vector)
+        .norm()
+        .max(frames.flange.translation.vector.norm());
+    if reach < MIN_REACH_M {
+        out.push(format!(
+            "robot '{}' reaches only {:.3} mm from its base at the middle of the bounds: a robot TOML in metres (its lengths are mm) or a URDF scaled down?",
+            setup.robot().name,
+            reach * 1e3
+        ));
+    } else if reach > MAX_REACH_M {
+        out.push(format!(
+            "robot '{}' reaches {:.1} m from its base: lengths in mm read as metres (a URDF's lengths are m)?",
+            setup.robot().name,
+            reach
+        ));
+    }
+    let tool = setup.tool();
+    let farthest = tool
+        .measuring_points
+        .iter()
+        .chain([&tool.loading_point])
+        .map(|p| p.norm())
+        .fold(0.0, f64::max);
+    if farthest < MIN_TOOL_M {
+        out.push(format!(
+            "every tool point (loading_point_mm, measuring_points_mm) lies within {:.4} mm of the flange: given in metres instead of mm?",
+            farthest * 1e3
+        ));
+    }
+    out
+}
+
+/// The warning for postures (axis angles, rad, as read from `_deg` columns) whose every angle lies
+/// within +-2 pi degrees as read (a turn, in radians): angles in radians under `_deg` names.
+/// `None` for fewer than three postures, all-zero postures, or anything else.
+pub fn radians_as_degrees<'a>(
+    postures: impl IntoIterator<Item = &'a Vector6<f64>>,
+) -> Option<String> {
+    let (mut count, mut largest) = (0usize, 0.0f64);
+    for q in postures {
+        count += 1;
+        largest = largest.max(q.amax());
+    }
+    let limit = std::f64::consts::TAU.to_radians() * (1.0 + 1e-9);
+    (count >= 3 && largest > 0.0 && largest <= limit).then(|| {
+        format!(
+            "every axis angle of the {count} postures lies within +-{:.3} deg: angles in radians under _deg names?",
+            largest.to_degrees()
+        )
+    })
+}
