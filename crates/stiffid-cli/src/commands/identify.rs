@@ -18,6 +18,7 @@ use stiffid::kinematics::Coordinates;
 use stiffid::observation::Observations;
 use stiffid::Setup;
 
+mod models;
 mod text;
 
 /// Arguments of `stiffid identify`.
@@ -41,9 +42,20 @@ pub struct Args {
     /// Number of cross-validation folds, 2 to the number of postures (implies --cross-validate).
     #[arg(long)]
     folds: Option<usize>,
-    /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`).
+    /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`);
+    /// with `--compare-models`, the recommended model's `[model]` fragment for the setup.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Compare models: add candidate virtual springs to the setup's model by forward selection on
+    /// the leave-one-posture-out error, nested in an outer cross-validation; recommend the
+    /// smallest model within one standard error of the best.
+    #[arg(long)]
+    compare_models: bool,
+    /// The candidates of `--compare-models`, comma-separated: family springs (`tilt3_x`,
+    /// `tool_y`, `base_rz`) or families (`tilt`, `tool`, `base`); default the tilt springs of
+    /// joints 1-6 and the tool translations.
+    #[arg(long, value_delimiter = ',', requires = "compare_models")]
+    candidates: Option<Vec<String>>,
 }
 
 /// The robust weight functions.
@@ -268,6 +280,12 @@ struct InfluentialJson {
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
+    if args.compare_models {
+        return models::compare_models(args, &setup);
+    }
+    if !setup.model().is_drives_only() {
+        return models::identify_model(args, &setup);
+    }
     // Opened (and so known as an input, never written over) before --out is prepared.
     let data = load::open(&args.data)?;
     let out = args
