@@ -3,20 +3,36 @@
 use anyhow::{bail, Context, Result};
 use nalgebra::{SVector, Vector6};
 use std::fs::File;
-use std::io::BufReader;
-use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use stiffid::deflection::Frame;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness::{self, StiffnessFile};
 use stiffid::formats::{self, postures, reference, Capped};
-use stiffid::identify::{streamed, streamed::Rows, Identification};
 use stiffid::limits::{self, short, JointBox, Range};
 use stiffid::{Robot, Setup};
 
-/// Every file read so far (resolved path, device and inode), so no output is written over one.
-static INPUTS: Mutex<Vec<(PathBuf, u64, u64)>> = Mutex::new(Vec::new());
+/// Every file read so far (resolved path, and its device and inode where the system has them), so
+/// no output is written over one.
+static INPUTS: Mutex<Vec<(PathBuf, Option<FileId>)>> = Mutex::new(Vec::new());
+
+/// A file's identity on its device, the same under every name (hard links): device and inode.
+type FileId = (u64, u64);
+
+/// The identity of the file of `meta`: device and inode on Unix; `None` elsewhere (there the
+/// resolved path alone tells an input).
+#[cfg(unix)]
+fn file_id(meta: &std::fs::Metadata) -> Option<FileId> {
+    use std::os::unix::fs::MetadataExt;
+    Some((meta.dev(), meta.ino()))
+}
+
+/// The identity of the file of `meta`: device and inode on Unix; `None` elsewhere (there the
+/// resolved path alone tells an input).
+#[cfg(not(unix))]
+fn file_id(_meta: &std::fs::Metadata) -> Option<FileId> {
+    None
+}
 
 /// A robot: a robot `.toml` or `.urdf` file if one exists at `arg`, else the preset named `arg`
 /// (`tip`: URDF tip link; `stiffid::formats::reference::robot`). The error names what was tried.
@@ -62,7 +78,7 @@ pub fn open(path: &Path) -> Result<Capped<File>> {
     }
     if let Ok(resolved) = path.canonicalize() {
         let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
-        inputs.push((resolved, meta.dev(), meta.ino()));
+        inputs.push((resolved, file_id(&meta)));
     }
     Ok(Capped::new(file))
 }
@@ -70,17 +86,12 @@ pub fn open(path: &Path) -> Result<Capped<File>> {
 /// The input file (as read) that `target` (a resolved path) is, if any: the same path, or the
 /// same file under another name (a hard link).
 pub fn input_at(target: &Path) -> Option<PathBuf> {
-    let meta = std::fs::metadata(target).ok();
+    let id = std::fs::metadata(target).ok().and_then(|m| file_id(&m));
     let inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
     inputs
         .iter()
-        .find(|(p, dev, ino)| {
-            p == target
-                || meta
-                    .as_ref()
-                    .is_some_and(|m| m.dev() == *dev && m.ino() == *ino)
-        })
-        .map(|(p, _, _)| p.clone())
+        .find(|(p, input)| p == target || (id.is_some() && *input == id))
+        .map(|(p, _)| p.clone())
 }
 
 /// A `--q-deg` posture: six comma-separated axis angles in degrees, within the robot's joint
@@ -170,16 +181,4 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
     let mut file = measurements::parse(&read(path)?).with_context(name)?;
     file.to_base_frame(setup).with_context(name)?;
     Ok(file)
-}
-
-/// The least-squares identification of the measurement file at `path` (`data`: the file opened
-/// by [`open`]), of any size, read once in chunks (`stiffid::identify::streamed`), and where each
-/// row came from; errors start with the file name, then the line and column.
-pub fn identify_streamed(
-    path: &Path,
-    data: Capped<File>,
-    setup: &Setup,
-) -> Result<(Identification, Rows)> {
-    let source = BufReader::with_capacity(1 << 20, data);
-    streamed::least_squares(setup, source).with_context(|| path.display().to_string())
 }

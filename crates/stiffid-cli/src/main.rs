@@ -46,6 +46,8 @@ enum Command {
     Validate(commands::validate::Args),
     /// Deflection of a machining path under its process wrench, and the compensated axis angles.
     Compensate(commands::compensate::Args),
+    /// The mean cutting force of every operation of a process file (milling, drilling), feed frame.
+    Force(commands::force::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
@@ -86,6 +88,7 @@ fn main() -> ExitCode {
         Command::Identify(args) => commands::identify::run(&args),
         Command::Validate(args) => commands::validate::run(&args),
         Command::Compensate(args) => commands::compensate::run(&args),
+        Command::Force(args) => commands::force::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, Cli::command()),
         Command::Man(args) => commands::completions::man(&args, Cli::command()),
         Command::Schema(args) => commands::schema::run(&args),

@@ -2,7 +2,7 @@
 //! millimetres at the boundary.
 
 use crate::error::value;
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::{Vector3, Vector6};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayLikeDyn};
 use pyo3::prelude::*;
@@ -142,11 +142,6 @@ pub fn degrees<'py>(py: Python<'py>, postures: &[Vector6<f64>]) -> Bound<'py, Py
 /// Points (m) as an `(n, 3)` array of millimetres.
 pub fn millimetres<'py>(py: Python<'py>, points: &[Vector3<f64>]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((points.len(), 3), |(r, c)| points[r][c] * 1e3).into_pyarray(py)
-}
-
-/// A 6x6 matrix as a `(6, 6)` array (row-major as printed).
-pub fn matrix6<'py>(py: Python<'py>, m: &Matrix6<f64>) -> Bound<'py, PyArray2<f64>> {
-    Array2::from_shape_fn((6, 6), |(r, c)| m[(r, c)]).into_pyarray(py)
 }
 
 /// Square matrices of size `N` (given by a function of the index, row, column) as an `(n, N, N)`

@@ -19,7 +19,7 @@ pub fn raise_in(name: &str, e: Error) -> PyErr {
 }
 
 fn exception(e: &Error, message: String) -> PyErr {
-    match e {
+    match e.root() {
         Error::Infeasible { .. } | Error::Unreachable { .. } => PyRuntimeError::new_err(message),
         _ => PyValueError::new_err(message),
     }

@@ -10,6 +10,7 @@ mod arrays;
 mod compensate;
 mod deflection;
 mod design;
+mod documents;
 mod error;
 mod measure;
 mod robot;

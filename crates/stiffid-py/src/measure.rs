@@ -3,19 +3,21 @@
 //! [`stiffid::identify`] and [`stiffid::validate`].
 
 use crate::arrays::{self, rows};
+use crate::documents;
 use crate::error::{self, raise, value};
 use crate::setup::Setup;
 use nalgebra::{Matrix6, Vector3, Vector6};
-use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use std::io::BufReader;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use stiffid::documents::identify::Document;
 use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness;
-use stiffid::identify::{Identification as Fit, Loss};
+use stiffid::identify::Loss;
+use stiffid::jobs::identify::{self as job, Fit, Folds, Request};
 use stiffid::limits;
-use stiffid::observation::{Measurement, Observations};
+use stiffid::observation::Measurement;
 
 /// Measurements and, when read from a file, the file (to name its lines and columns in errors).
 struct Data {
@@ -31,10 +33,6 @@ impl Data {
             None => raise(e),
             Some((name, file)) => error::raise_in(name, file.explain(e)),
         }
-    }
-
-    fn labels(&self) -> Option<Vec<String>> {
-        self.file.as_ref().map(|(_, f)| f.labels.clone())
     }
 }
 
@@ -129,133 +127,81 @@ fn wrenches(w: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<Vector6<f64>>> {
     }
 }
 
-/// The result of `stiffid.identify`: the joint stiffness and compliance with standard errors and
-/// 95% confidence intervals (Student's t with ``degrees_of_freedom``; ``None`` with exactly six
-/// rows), the covariance of the compliance, the residuals and the chi-square check of the
-/// residuals against the setup's tracker noise. Keys as ``stiffid identify --json``.
+/// The result of `stiffid.identify`: the identify document (``stiffid identify --json``, the
+/// same keys and values) as attributes, NumPy arrays for the stiffness, compliance, their standard
+/// errors, intervals and covariance (``None`` without degrees of freedom), plus ``residuals_mm``
+/// (shape ``(n, 3)``) and ``labels`` (a file's posture labels; ``None`` for arrays).
+/// ``to_dict()`` is the whole document as JSON types.
 #[pyclass(frozen, module = "stiffid", name = "Identification")]
 pub struct Identification {
-    /// ``"least-squares"``, ``"nonnegative-least-squares"``, ``"huber"`` or ``"tukey"``.
-    #[pyo3(get)]
-    method: &'static str,
-    /// Identified joint stiffness ``k = 1/h``, Nm/rad, shape ``(6,)``.
-    #[pyo3(get)]
-    stiffness_nm_per_rad: Py<PyArray1<f64>>,
-    /// Identified compliance ``h`` (Eq. 8, 14), rad/Nm, shape ``(6,)``.
-    #[pyo3(get)]
-    compliance_rad_per_nm: Py<PyArray1<f64>>,
-    /// Whether each joint's result is physical (finite, positive), shape ``(6,)``.
-    #[pyo3(get)]
-    physical: Vec<bool>,
-    /// Standard error of the stiffness (delta method), Nm/rad, shape ``(6,)``.
-    #[pyo3(get)]
-    std_error_nm_per_rad: Option<Py<PyArray1<f64>>>,
-    /// 95% intervals ``k +- t se(k)``, Nm/rad, shape ``(6, 2)``.
-    #[pyo3(get)]
-    ci95_nm_per_rad: Option<Py<PyArray2<f64>>>,
-    /// 95% intervals mapped from the compliance's, ``[1/h_upper, 1/h_lower]``, Nm/rad, ``(6, 2)``.
-    #[pyo3(get)]
-    ci95_from_compliance_nm_per_rad: Option<Py<PyArray2<f64>>>,
-    /// Standard error of the compliance, rad/Nm, shape ``(6,)``.
-    #[pyo3(get)]
-    compliance_std_error_rad_per_nm: Option<Py<PyArray1<f64>>>,
-    /// 95% intervals of the compliance, rad/Nm, shape ``(6, 2)``.
-    #[pyo3(get)]
-    compliance_ci95_rad_per_nm: Option<Py<PyArray2<f64>>>,
-    /// ``Cov(h) = s^2 (Psi^T Psi)^-1``, (rad/Nm)^2, shape ``(6, 6)``.
-    #[pyo3(get)]
-    compliance_covariance_rad2_per_nm2: Option<Py<PyArray2<f64>>>,
-    /// ``m - 6`` for ``m`` rows.
-    #[pyo3(get)]
-    degrees_of_freedom: Option<usize>,
-    /// The quantile of the 95% intervals.
-    #[pyo3(get)]
-    t_quantile: Option<f64>,
-    /// ``delta - Psi h`` per measurement, mm, shape ``(n, 3)`` (x, y, z, base frame).
-    #[pyo3(get)]
-    residuals_mm: Py<PyArray2<f64>>,
-    /// ``sqrt(|r|^2 / m)``, mm.
-    #[pyo3(get)]
-    residual_rms_mm: f64,
-    /// ``cond_2(Psi)``, SI units.
-    #[pyo3(get)]
-    cond_psi: f64,
-    /// Rows of ``Psi`` (three per measurement).
-    #[pyo3(get)]
-    rows: usize,
-    /// Distinct postures.
-    #[pyo3(get)]
-    postures: usize,
-    /// A file's posture labels, in order of first appearance (None for arrays).
-    #[pyo3(get)]
-    labels: Option<Vec<String>>,
-    /// The residual standard deviation in units of the setup's tracker noise ``s / sigma`` (about 1
-    /// for an adequate model).
-    #[pyo3(get)]
-    noise_ratio: Option<f64>,
-    /// ``dof s^2 / sigma^2``, chi-square with ``dof`` degrees of freedom for an adequate model.
-    #[pyo3(get)]
-    chi2_statistic: Option<f64>,
-    /// ``P(X >= chi2_statistic)``: small when the residuals exceed the tracker noise.
-    #[pyo3(get)]
-    chi2_p_value: Option<f64>,
-    /// Whether ``chi2_p_value < 0.01``: the model error dominates the tracker noise.
-    #[pyo3(get)]
-    model_error_dominates: Option<bool>,
+    /// The document with arrays, and the extra attributes.
+    attributes: Py<PyDict>,
+    /// The document as JSON types.
+    document: Py<PyDict>,
 }
+
+/// The keys of the identify document that Python returns as arrays.
+const ARRAYS: [&str; 8] = [
+    "stiffness_nm_per_rad",
+    "compliance_rad_per_nm",
+    "std_error_nm_per_rad",
+    "ci95_nm_per_rad",
+    "ci95_from_compliance_nm_per_rad",
+    "compliance_std_error_rad_per_nm",
+    "compliance_ci95_rad_per_nm",
+    "compliance_covariance_rad2_per_nm2",
+];
 
 #[pymethods]
 impl Identification {
-    fn __repr__(&self, py: Python<'_>) -> String {
-        format!(
-            "Identification(method={:?}, stiffness_nm_per_rad={})",
-            self.method,
-            self.stiffness_nm_per_rad.bind(py)
-        )
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        self.attributes.bind(py).get_item(name)?.ok_or_else(|| {
+            PyAttributeError::new_err(format!("Identification has no attribute '{name}'"))
+        })
+    }
+
+    fn __dir__(&self, py: Python<'_>) -> Vec<String> {
+        let keys = self.attributes.bind(py).keys();
+        keys.iter().map(|k| k.to_string()).collect()
+    }
+
+    /// The identify document, as ``stiffid identify --json`` writes it (dicts, lists, numbers).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.document.bind(py).copy()
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let a = self.attributes.bind(py);
+        Ok(format!(
+            "Identification(method={}, stiffness_nm_per_rad={})",
+            a.get_item("method")?.map_or("None".into(), |m| m
+                .repr()
+                .map_or(String::new(), |r| r.to_string())),
+            a.get_item("stiffness_nm_per_rad")?
+                .map_or("None".into(), |k| k.to_string())
+        ))
     }
 }
 
 impl Identification {
-    fn new(py: Python<'_>, id: &Fit, labels: Option<Vec<String>>, noise_variance: f64) -> Self {
-        let u = id.uncertainty.as_ref();
-        let a = id.adequacy(noise_variance);
-        let v = |x: &Vector6<f64>| arrays::vec1(py, x.iter().copied()).unbind();
-        let t = |x: &[[f64; 2]; 6]| arrays::table(py, x).unbind();
-        let residuals: Vec<[f64; 3]> = id
-            .residuals
-            .as_slice()
-            .chunks_exact(3)
-            .map(|r| [r[0] * 1e3, r[1] * 1e3, r[2] * 1e3])
-            .collect();
-        Self {
-            method: match (&id.robust, id.active_bounds) {
-                (Some(fit), _) => fit.loss.name(),
-                (None, Some(_)) => "nonnegative-least-squares",
-                (None, None) => "least-squares",
-            },
-            stiffness_nm_per_rad: v(&id.stiffness),
-            compliance_rad_per_nm: v(&id.compliance),
-            physical: id.physical().to_vec(),
-            std_error_nm_per_rad: u.map(|u| v(&u.stiffness_std_error)),
-            ci95_nm_per_rad: u.map(|u| t(&u.stiffness_ci95)),
-            ci95_from_compliance_nm_per_rad: u.map(|u| t(&u.stiffness_ci95_from_compliance)),
-            compliance_std_error_rad_per_nm: u.map(|u| v(&u.compliance_std_error)),
-            compliance_ci95_rad_per_nm: u.map(|u| t(&u.compliance_ci95)),
-            compliance_covariance_rad2_per_nm2: u
-                .map(|u| arrays::matrix6(py, &u.compliance_covariance).unbind()),
-            degrees_of_freedom: u.map(|u| u.dof),
-            t_quantile: u.map(|u| u.t_quantile),
-            residuals_mm: arrays::table(py, &residuals).unbind(),
-            residual_rms_mm: id.residual_rms * 1e3,
-            cond_psi: id.cond_psi,
-            rows: id.rows,
-            postures: id.postures,
-            labels,
-            noise_ratio: a.as_ref().map(|a| a.noise_ratio),
-            chi2_statistic: a.as_ref().map(|a| a.chi2),
-            chi2_p_value: a.as_ref().map(|a| a.p_value),
-            model_error_dominates: a.as_ref().map(|a| a.model_error_dominates()),
-        }
+    fn new(py: Python<'_>, report: &job::Report, setup: &Setup) -> PyResult<Self> {
+        let document = Document::new(report, setup.inner.name(), &setup.inner);
+        let attributes = documents::to_python(py, &document, &ARRAYS)?;
+        let residuals: Vec<[f64; 3]> = document.residuals.iter().map(|r| r.residual_mm).collect();
+        attributes.set_item("residuals_mm", arrays::table(py, &residuals))?;
+        let labels = report.origin.lines.as_ref().map(|_| {
+            report
+                .origin
+                .labels
+                .iter()
+                .map(str::to_string)
+                .collect::<Vec<_>>()
+        });
+        attributes.set_item("labels", labels)?;
+        Ok(Identification {
+            attributes: attributes.unbind(),
+            document: documents::to_python(py, &document, &[])?.unbind(),
+        })
     }
 }
 
@@ -266,11 +212,15 @@ impl Identification {
 /// ``(n, 6)``: force N and moment Nm at the loading point, base frame) and ``displacement_mm``
 /// (``(n * m, 3)``: loaded minus unloaded, base frame, mm; posture by posture, measuring points
 /// 1..m of the setup's tool). ``robust="huber"`` or ``"tukey"`` down-weights outliers (IRLS);
-/// ``nonnegative=True`` bounds every compliance at >= 0 (Lawson-Hanson). Returns an
-/// ``Identification``. ``ValueError`` naming the file, line and column (or the measurement) for
-/// bad data, and for data that cannot identify every joint.
+/// ``nonnegative=True`` bounds every compliance at >= 0 (Lawson-Hanson); ``cross_validate=True``
+/// leaves one posture out at a time (or ``folds=K`` folds), refits and predicts it (key
+/// ``cross_validation``). The same job as ``stiffid identify``: a stiffness that is not physical
+/// or far off the setup's nominal (a likely unit mistake: displacements in m, forces in kN)
+/// raises a ``UserWarning`` with the command's message. Returns an ``Identification``.
+/// ``ValueError`` naming the file, line and column (or the measurement) for bad data, and for
+/// data that cannot identify every joint.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, robust=None, nonnegative=false))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, robust=None, nonnegative=false, cross_validate=false, folds=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify(
     py: Python<'_>,
@@ -281,59 +231,43 @@ pub fn identify(
     displacement_mm: Option<&Bound<'_, PyAny>>,
     robust: Option<&str>,
     nonnegative: bool,
+    cross_validate: bool,
+    folds: Option<usize>,
 ) -> PyResult<Identification> {
     let s = &setup.inner;
-    let loss = robust
-        .map(|r| {
-            arrays::choice(
-                "robust",
-                r,
-                &[("huber", Loss::Huber), ("tukey", Loss::Tukey)],
-            )
-        })
-        .transpose()?;
-    if loss.is_some() && nonnegative {
-        return Err(value("robust and nonnegative: choose one"));
-    }
+    let fit = match (robust, nonnegative) {
+        (Some(_), true) => return Err(value("robust and nonnegative: choose one")),
+        (Some(r), false) => Fit::Robust(r.parse::<Loss>().map_err(raise)?),
+        (None, true) => Fit::Nonnegative,
+        (None, false) => Fit::LeastSquares,
+    };
+    let folds = match (folds, cross_validate) {
+        (Some(k), _) => Some(Folds::Count(k)),
+        (None, true) => Some(Folds::LeaveOneOut),
+        (None, false) => None,
+    };
     let arrays = [q_deg, wrench, displacement_mm];
-    if let (Some(path), None, false, [None, None, None]) = (measurements, loss, nonnegative, arrays)
-    {
-        return identify_file(py, s, &path.extract::<PathBuf>()?);
-    }
-    let data = data(s, measurements, arrays)?;
-    let fit = py.detach(|| {
-        let obs = || Observations::from_measurements(s, &data.measurements);
-        match (loss, nonnegative) {
-            (Some(l), _) => obs()?.robust(l),
-            (None, true) => obs()?.nonnegative(),
-            // As the command: in blocks, without the whole Psi.
-            (None, false) => stiffid::identify::least_squares(s, &data.measurements),
+    let data = match (measurements, arrays) {
+        (Some(m), [None, None, None]) => {
+            let path = m.extract::<PathBuf>()?;
+            let reader = error::open(&path)?;
+            let name = path.display().to_string();
+            job::Data::File { name, reader }
         }
-    });
-    let fit = fit.map_err(|e| data.error(e))?;
-    Ok(Identification::new(
-        py,
-        &fit,
-        data.labels(),
-        s.noise().variance,
-    ))
-}
-
-/// Plain least squares from the measurement file at `path`, of any size: read once in chunks,
-/// `Psi` reduced in blocks (as `stiffid identify`, [`stiffid::identify::streamed`]).
-fn identify_file(py: Python<'_>, s: &stiffid::Setup, path: &Path) -> PyResult<Identification> {
-    let name = path.display().to_string();
-    let source = BufReader::new(error::open(path)?);
-    let (fit, rows) = py
-        .detach(|| stiffid::identify::streamed::least_squares(s, source))
-        .map_err(|e| error::raise_in(&name, e))?;
-    let labels = rows.labels.iter().map(str::to_string).collect();
-    Ok(Identification::new(
-        py,
-        &fit,
-        Some(labels),
-        s.noise().variance,
-    ))
+        _ => job::Data::Measurements(data(s, measurements, arrays)?.measurements),
+    };
+    let report = py
+        .detach(|| {
+            job::run(Request {
+                setup: s,
+                data,
+                fit,
+                folds,
+            })
+        })
+        .map_err(raise)?;
+    documents::warn(py, &report.warnings)?;
+    Identification::new(py, &report, setup)
 }
 
 /// Six stiffness values (Nm/rad), or the stiffness of a stiffness JSON file (`stiffid identify

@@ -3,7 +3,7 @@
 //! confidence intervals). Target: < 5 microseconds median. Also the kinematics that build `Psi` from
 //! the 24 measurements, and the whole path, for reference.
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/it/common.rs"]
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -4,7 +4,16 @@ use thiserror::Error;
 
 /// Everything that can go wrong in stiffid, each variant naming what was wrong and where.
 #[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Error {
+    /// An error about one input (a file, the arrays of a call), named first.
+    #[error("{source_name}: {error}")]
+    Input {
+        /// The input: a file's name, or `arrays`.
+        source_name: String,
+        /// What was wrong in it.
+        error: Box<Error>,
+    },
     /// A file or text could not be parsed. `source_name` is the file (or preset) name.
     #[error("{source_name}: {message}")]
     Parse {
@@ -378,5 +387,16 @@ fn joint_list(joints: &[usize]) -> String {
     match names.len() {
         1 => format!("joint {}", names[0]),
         _ => format!("joints {}", names.join(", ")),
+    }
+}
+
+impl Error {
+    /// The error itself, past the [`Error::Input`] that name where it happened: what kind of
+    /// failure it is.
+    pub fn root(&self) -> &Error {
+        match self {
+            Error::Input { error, .. } => error.root(),
+            other => other,
+        }
     }
 }

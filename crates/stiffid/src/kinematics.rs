@@ -187,6 +187,26 @@ impl Frames {
         self.columns(&self.point(in_flange), coordinates, |x| x)
     }
 
+    /// The translational Jacobian (3x6, base frame, m/rad, columns in axis coordinates) of the
+    /// base-frame point `p` carried by link `link` (0 the base, which nothing moves; i turns with
+    /// joints 1..=i): column c is `sum_{j <= link} M[j, c] (z_j x (p - o_j))`, the velocity of a point
+    /// fixed in that link per unit speed of axis c.
+    pub(crate) fn link_point_jacobian(&self, p: &Vector3<f64>, link: usize) -> Matrix3x6<f64> {
+        let k = &self.screws[0];
+        let mut kinematic = Matrix3x6::zeros();
+        for j in 0..link.min(6) {
+            let v = k.directions.column(j).cross(p) - k.moments.column(j);
+            kinematic.set_column(j, &v);
+        }
+        kinematic * self.axis_map
+    }
+
+    /// The rotational Jacobian (3x6, base frame, rad/rad, columns in axis coordinates) of the
+    /// flange: the joint axes times `M`.
+    pub(crate) fn flange_rotation_jacobian(&self) -> Matrix3x6<f64> {
+        self.screws[1].directions
+    }
+
     /// The body Jacobian (6x6, flange frame, rows `[v; omega]`, m/rad and rad/rad) of the flange
     /// origin, columns in the chosen joint coordinates: [`Frames::jacobian`] of the origin with both
     /// 3-row blocks rotated by `R_f^T`, `R_f` the flange's rotation.

@@ -12,7 +12,15 @@ use nalgebra::{DMatrix, Matrix6, Vector6};
 /// it. Returns the `tau_k`.
 pub(crate) fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
     let mut taus = Vector6::zeros();
-    for k in 0..6 {
+    householder_qr_columns(a, m, taus.as_mut_slice());
+    taus
+}
+
+/// [`householder_qr`] of the column-major `m x n` matrix `a`, `n = taus.len() <= m` columns (the
+/// same operations in the same order for six): the `tau_k` are written to `taus`.
+#[inline(always)]
+pub(crate) fn householder_qr_columns(a: &mut [f64], m: usize, taus: &mut [f64]) {
+    for k in 0..taus.len() {
         let (left, right) = a.split_at_mut((k + 1) * m);
         let col = &mut left[k * m + k..];
         let alpha = col[0];
@@ -34,7 +42,6 @@ pub(crate) fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
             axpy(-w, v, &mut c[1..]);
         }
     }
-    taus
 }
 
 /// The 15 column pairs of a 6-column matrix in five rounds of three disjoint pairs (round-robin

@@ -2,7 +2,11 @@
 
 use crate::load;
 use anyhow::Result;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use std::ffi::OsStr;
+use std::marker::PhantomData;
 use std::path::PathBuf;
+use stiffid::choice::Choice;
 use stiffid::formats::stiffness::StiffnessFile;
 use stiffid::Setup;
 
@@ -37,5 +41,44 @@ impl Stiffness {
     /// The stiffness file named by `--stiffness` ([`load::stiffness`]).
     pub fn load(&self) -> Result<StiffnessFile> {
         load::stiffness(&self.stiffness)
+    }
+}
+
+/// The clap value parser of a library choice ([`Choice`]): its names as the possible values (with
+/// their help), clap's own error for any other value. `#[arg(value_parser = choice::<T>())]`.
+pub fn choice<T: Choice + Send + Sync>() -> ChoiceParser<T> {
+    ChoiceParser(PhantomData)
+}
+
+/// See [`choice`].
+#[derive(Clone)]
+pub struct ChoiceParser<T>(PhantomData<T>);
+
+impl<T: Choice + Send + Sync> ChoiceParser<T> {
+    fn values() -> impl Iterator<Item = PossibleValue> {
+        T::ALL
+            .iter()
+            .map(|v| PossibleValue::new(v.name()).help(v.help()))
+    }
+}
+
+impl<T: Choice + Send + Sync> TypedValueParser for ChoiceParser<T> {
+    type Value = T;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &OsStr,
+    ) -> std::result::Result<T, clap::Error> {
+        let name = PossibleValuesParser::new(Self::values()).parse_ref(cmd, arg, value)?;
+        Ok(*T::ALL
+            .iter()
+            .find(|v| v.name() == name)
+            .expect("a possible value"))
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(Self::values()))
     }
 }

@@ -4,6 +4,7 @@ pub mod common;
 pub mod compensate;
 pub mod completions;
 pub mod evaluate;
+pub mod force;
 pub mod identify;
 pub mod kinematics;
 pub mod plot;

@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{compensate, evaluate, identify, kinematics, predict, select, simulate, validate};
+use super::{compensate, evaluate, kinematics, predict, select, simulate, validate};
 use crate::output::{self, json};
 use crate::report::summary;
 use anyhow::{bail, Result};
@@ -65,7 +65,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "evaluate" => closed::<evaluate::EvaluateJson>(),
         "select" => closed::<select::SelectJson<'static>>(),
         "predict" => closed::<predict::PredictJson>(),
-        "identify" => closed::<identify::IdentifyJson>(),
+        "identify" => closed::<stiffid::documents::identify::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),
         "validate" => closed::<validate::ValidationJson>(),
         "compensate" => closed::<compensate::Document<'static>>(),

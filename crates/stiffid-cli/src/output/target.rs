@@ -55,6 +55,7 @@ pub fn resolve(path: &Path, option: &str) -> Result<PathBuf> {
 }
 
 /// What a non-regular file is, in words.
+#[cfg(unix)]
 fn kind(path: &Path) -> &'static str {
     use std::os::unix::fs::FileTypeExt;
     match std::fs::metadata(path).map(|m| m.file_type()) {
@@ -62,6 +63,15 @@ fn kind(path: &Path) -> &'static str {
         Ok(t) if t.is_char_device() || t.is_block_device() => "a device",
         Ok(t) if t.is_fifo() => "a FIFO",
         Ok(t) if t.is_socket() => "a socket",
+        _ => "not a regular file",
+    }
+}
+
+/// What a non-regular file is, in words.
+#[cfg(not(unix))]
+fn kind(path: &Path) -> &'static str {
+    match std::fs::metadata(path).map(|m| m.file_type()) {
+        Ok(t) if t.is_dir() => "a directory",
         _ => "not a regular file",
     }
 }

@@ -1,7 +1,10 @@
 //! The checks a posture must pass in the cell, with the signed margin of every pair they test.
 
 use super::bodies::{capsules, Capsule, Part};
-use super::distance::{capsule_box, capsule_capsule, capsule_floor};
+use super::distance::capsule_floor_witness;
+use super::distance::{capsule_box_witness, capsule_capsule, capsule_capsule_witness};
+use super::motion::{part_carrier, Carrier, Margins};
+use crate::kinematics::Frames;
 use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
@@ -297,27 +300,48 @@ impl<'a> Checker<'a> {
     /// The signed margin of every pair every active check tests at posture `q` (axis angles,
     /// rad), in [`Checker::kinds`] order; the same pairs in every posture.
     pub fn margins(&self, q: &Vector6<f64>) -> Vec<Margin> {
+        let mut out = Margins::new(None);
+        self.collect(q, &mut out);
+        out.margins
+    }
+
+    /// [`Checker::margins`] and the gradient of each margin with respect to the six axis angles
+    /// (m/rad, or rad/rad for angles), in the same order: exact, from the witness points of each
+    /// distance (its witness points: the normal times the difference of the witness points' velocities)
+    /// and the derivatives of the incidence angle and the heights. Where the closest points of a
+    /// pair are not unique (a tie) the gradient is one of the one-sided ones.
+    pub(crate) fn margins_and_gradients(
+        &self,
+        q: &Vector6<f64>,
+    ) -> (Vec<Margin>, Vec<Vector6<f64>>) {
+        let mut out = Margins::new(Some(Vec::with_capacity(64)));
+        self.collect(q, &mut out);
+        let gradients = out.gradients.unwrap_or_default();
+        (out.margins, gradients)
+    }
+
+    fn collect(&self, q: &Vector6<f64>, out: &mut Margins) {
         let s = self.setup;
-        let mut out = Vec::with_capacity(64);
         for a in 0..6 {
-            let m = (q[a] - s.bounds().lower[a]).min(s.bounds().upper[a] - q[a]);
+            let (low, high) = (q[a] - s.bounds().lower[a], s.bounds().upper[a] - q[a]);
+            let m = low.min(high);
             let m = if m.is_nan() { f64::NEG_INFINITY } else { m };
-            out.push(margin(
-                CheckKind::Bounds,
-                m,
-                0.0,
-                Thing::Axis(a),
-                Thing::Axis(a),
-            ));
+            let sign = if low <= high { 1.0 } else { -1.0 };
+            let axis = Thing::Axis(a);
+            out.push_value(
+                margin(CheckKind::Bounds, m, 0.0, axis, axis),
+                Vector6::ith(a, sign),
+            );
         }
         if !self.constrains() {
-            return out;
+            return;
         }
         let frames = s.robot().frames(q);
         let bodies = capsules(s, &frames);
         let loading = frames.point(&s.tool().loading_point);
+        out.frames(&frames);
         if let Some(cell) = &s.cell() {
-            self.body_margins(&bodies, &loading, cell, &mut out);
+            self.body_margins(&bodies, &loading, cell, out);
         }
         if let Some(t) = &s.tracker() {
             for (i, p) in s.tool().measuring_points.iter().enumerate() {
@@ -329,38 +353,40 @@ impl<'a> Checker<'a> {
                     Thing::Sight(i),
                     &bodies,
                     0.0,
-                    &mut out,
+                    out,
                 );
                 if let Some(max) = t.max_incidence {
                     let normal = frames.flange.rotation * t.measuring_normals[i];
                     let angle = normal.angle(&(t.position - p));
                     let m = Thing::MeasuringPoint(i);
-                    out.push(margin(CheckKind::Incidence, max - angle, 0.0, m, m));
+                    out.push(margin(CheckKind::Incidence, max - angle, 0.0, m, m), |f| {
+                        -super::motion::angle_gradient(f, &normal, &(t.position - p), &p)
+                    });
                 }
             }
         }
         let c = &s.constraints();
+        let height = |f: &Frames| {
+            super::motion::velocity(f, Carrier::Link(6), &loading)
+                .row(2)
+                .transpose()
+        };
         if let Some(z) = c.loading_point_min_z {
             let (l, f) = (Thing::LoadingPoint, Thing::Floor);
-            out.push(margin(
-                CheckKind::LoadingPointHeight,
-                loading.z - z,
-                0.0,
-                l,
-                f,
-            ));
+            let m = margin(CheckKind::LoadingPointHeight, loading.z - z, 0.0, l, f);
+            out.push(m, height);
         }
         if c.anchor_below_loading_point {
             let (l, a) = (Thing::LoadingPoint, Thing::Anchor);
-            out.push(margin(
+            let m = margin(
                 CheckKind::AnchorBelow,
                 loading.z - s.load().anchor.z,
                 0.0,
                 l,
                 a,
-            ));
+            );
+            out.push(m, height);
         }
-        out
     }
 
     fn body_margins(
@@ -368,37 +394,41 @@ impl<'a> Checker<'a> {
         bodies: &[Capsule],
         loading: &Vector3<f64>,
         cell: &crate::setup::Cell,
-        out: &mut Vec<Margin>,
+        out: &mut Margins,
     ) {
         let c = cell.clearance;
         if let Some(z) = cell.floor_z {
             for b in bodies.iter().filter(|b| b.part != Part::Base) {
-                let m = capsule_floor(b, z) - c;
-                out.push(margin(
+                let (d, w) = capsule_floor_witness(b, z);
+                let m = margin(
                     CheckKind::Floor,
-                    m,
+                    d - c,
                     c,
                     Thing::Part(b.part),
                     Thing::Floor,
-                ));
+                );
+                out.push_witness(m, part_carrier(b.part), Carrier::Fixed, Some(w));
             }
         }
         for b in bodies {
             for (i, o) in cell.obstacles.iter().enumerate() {
-                let m = capsule_box(b, o) - c;
-                out.push(margin(
-                    CheckKind::Obstacles,
-                    m,
-                    c,
-                    Thing::Part(b.part),
-                    Thing::Obstacle(i),
-                ));
+                let (d, w) = capsule_box_witness(b, o);
+                let (pb, oi) = (Thing::Part(b.part), Thing::Obstacle(i));
+                let m = margin(CheckKind::Obstacles, d - c, c, pb, oi);
+                out.push_witness(m, part_carrier(b.part), Carrier::Fixed, w);
             }
         }
         for &(i, j) in &self.pairs {
-            let m = capsule_capsule(&bodies[i], &bodies[j]) - c;
-            let (a, b) = (Thing::Part(bodies[i].part), Thing::Part(bodies[j].part));
-            out.push(margin(CheckKind::SelfCollision, m, c, a, b));
+            let (d, w) = capsule_capsule_witness(&bodies[i], &bodies[j]);
+            let (pi, pj) = (bodies[i].part, bodies[j].part);
+            let m = margin(
+                CheckKind::SelfCollision,
+                d - c,
+                c,
+                Thing::Part(pi),
+                Thing::Part(pj),
+            );
+            out.push_witness(m, part_carrier(pi), part_carrier(pj), Some(w));
         }
         let exempt = self.setup.geometry().tool_radius + c;
         let rope = line(&self.setup.load().anchor, loading, exempt);
@@ -413,15 +443,22 @@ impl<'a> Checker<'a> {
         thing: Thing,
         bodies: &[Capsule],
         required: f64,
-        out: &mut Vec<Margin>,
+        out: &mut Margins,
     ) {
         for b in bodies {
-            let segment = match b.part {
-                Part::Tool => line.short.as_ref(),
-                _ => Some(&line.full),
+            let (segment, carrier) = match b.part {
+                Part::Tool => (line.short.as_ref(), line.short_carrier),
+                _ => (Some(&line.full), line.full_carrier),
             };
-            let m = segment.map_or(f64::INFINITY, |s| capsule_capsule(s, b) - required);
-            out.push(margin(kind, m, required, thing, Thing::Part(b.part)));
+            let (m, w) = match segment {
+                Some(s) => {
+                    let (d, w) = capsule_capsule_witness(s, b);
+                    (d - required, Some(w))
+                }
+                None => (f64::INFINITY, None),
+            };
+            let m = margin(kind, m, required, thing, Thing::Part(b.part));
+            out.push_witness(m, carrier, part_carrier(b.part), w);
         }
         let obstacles = self
             .setup
@@ -429,8 +466,9 @@ impl<'a> Checker<'a> {
             .into_iter()
             .flat_map(|c| c.obstacles.iter());
         for (i, o) in obstacles.enumerate() {
-            let m = capsule_box(&line.full, o) - required;
-            out.push(margin(kind, m, required, thing, Thing::Obstacle(i)));
+            let (d, w) = capsule_box_witness(&line.full, o);
+            let m = margin(kind, d - required, required, thing, Thing::Obstacle(i));
+            out.push_witness(m, line.full_carrier, Carrier::Fixed, w);
         }
     }
 
@@ -480,13 +518,16 @@ fn adjacent(bodies: &[Capsule], p: Part, q: Part) -> bool {
 }
 
 /// A rope or line of sight as capsules of radius 0: the whole segment, and the part the tool must
-/// clear (`None` when too short).
+/// clear (`None` when too short), with how their points move.
 struct Line {
     full: Capsule,
     short: Option<Capsule>,
+    full_carrier: Carrier,
+    short_carrier: Carrier,
 }
 
-/// The line from `from` to `to` (on the tool), and its part beyond `exempt` (m) of `to`.
+/// The line from the fixed point `from` to `to` (on the tool), and its part beyond `exempt` (m)
+/// of `to`.
 fn line(from: &Vector3<f64>, to: &Vector3<f64>, exempt: f64) -> Line {
     let d = from - to;
     let length = d.norm();
@@ -496,9 +537,12 @@ fn line(from: &Vector3<f64>, to: &Vector3<f64>, exempt: f64) -> Line {
         b,
         radius: 0.0,
     };
+    let short = (length > exempt).then(|| capsule(to + d * (exempt / length)));
     Line {
         full: capsule(*to),
-        short: (length > exempt).then(|| capsule(to + d * (exempt / length))),
+        full_carrier: Carrier::line(from, to, to, 0.0),
+        short_carrier: Carrier::line(from, to, &short.map_or(*to, |s| s.b), exempt),
+        short,
     }
 }
 

@@ -24,6 +24,7 @@
 mod bodies;
 mod distance;
 mod feasibility;
+mod motion;
 
 pub use bodies::{capsules, default_geometry, Capsule, Part, DEFAULT_RADIUS_FRACTIONS};
 pub use distance::{capsule_box, capsule_capsule, capsule_floor};

@@ -1,7 +1,8 @@
 //! Design criteria: how good a group of postures is for identification. All smaller-is-better.
 //!
-//! For a group of n postures under the setup's rope-mass load, `Psi` is the `3pn x 6` observation
-//! matrix ([`crate::observation::rope_observation_matrix`]) and
+//! For a group of n postures under the setup's rope-mass load, `Psi` is the `3pn x N` observation
+//! matrix ([`crate::observation::rope_observation_matrix`]), one column per parameter of the setup's
+//! model (`N = 6` for the six drive springs, more with virtual springs: [`crate::model`]), and
 //! `S = Psi diag(h_nominal) / sigma` its unitless scaling (`sigma` the noise standard deviation at
 //! multiple 1, m): `(S^T S)^-1` is the covariance of the *relative* compliance errors at noise
 //! level 1. Everything is computed from the triangular factor `Psi = Q R` ([`Evaluator`]):
@@ -9,7 +10,7 @@
 //! (the rule of [`crate::lsq::Factor::try_new`]) gets `+infinity` for every criterion that depends
 //! on `Psi`, never NaN.
 
-use super::Evaluator;
+use super::{Evaluator, Identifiability};
 use crate::setup::Setup;
 use crate::{dexterity, Error, Frames};
 use nalgebra::Vector6;
@@ -27,10 +28,11 @@ pub enum Criterion {
     Zhang2021,
     /// `cond_2(S)`: the condition number of the scaled observation matrix (scale-free).
     ScaledCond,
-    /// `det((S^T S)^-1)^(1/12)`: the geometric mean of the relative standard deviations (D-optimal).
+    /// `det((S^T S)^-1)^(1/(2N))` (`N` parameters; `1/12` for the six drives): the geometric mean
+    /// of the relative standard deviations (D-optimal).
     DOptimal,
-    /// `sqrt(mean_j [(S^T S)^-1]_jj)`: the RMS predicted relative standard deviation (A-optimal on
-    /// relative compliance).
+    /// `sqrt(mean_j [(S^T S)^-1]_jj)` over the `N` parameters: the RMS predicted relative standard
+    /// deviation (A-optimal on relative compliance).
     RelativeA,
     /// `sigma sqrt(mean_t tr(A_t (Psi^T Psi)^-1 A_t^T))`: the RMS error (m) of the deflection predicted
     /// at the setup's test postures under their rope-mass load, `A_t` their observation rows
@@ -64,10 +66,11 @@ impl Criterion {
     /// Checks that `setup` has the field this criterion needs beyond the robot, tool, load and
     /// noise: the characteristic length for classical and zhang2021 (the dexterity index, Eq. 20),
     /// the nominal stiffness for scaled-cond, d-optimal and relative-a (the scaling
-    /// `S = Psi diag(h_nominal) / sigma`); test-pose needs neither.
+    /// `S = Psi diag(h_nominal) / sigma`: of the drives and of every virtual spring of the model);
+    /// test-pose needs neither.
     ///
     /// # Errors
-    /// [`Error::MissingField`] naming the field and the criterion.
+    /// [`Error::MissingField`] naming the field and the criterion (and the spring without one).
     pub fn check(self, setup: &Setup) -> Result<(), Error> {
         let needed_by = || format!("criterion {}", self.name());
         match self {
@@ -75,7 +78,18 @@ impl Criterion {
                 setup.try_characteristic_length(&needed_by()).map(drop)
             }
             Criterion::ScaledCond | Criterion::DOptimal | Criterion::RelativeA => {
-                setup.try_nominal_stiffness(&needed_by()).map(drop)
+                setup.try_nominal_stiffness(&needed_by())?;
+                let springs = setup.model().springs();
+                match springs.iter().find(|s| s.nominal_stiffness.is_none()) {
+                    None => Ok(()),
+                    Some(s) => Err(Error::MissingField {
+                        field: match s.kind {
+                            crate::model::Kind::Rotation => "nominal_stiffness_nm_per_rad",
+                            crate::model::Kind::Translation => "nominal_stiffness_n_per_mm",
+                        },
+                        needed_by: format!("{} (virtual spring {})", needed_by(), s.name),
+                    }),
+                }
             }
             Criterion::TestPose => Ok(()),
         }
@@ -86,7 +100,7 @@ impl Criterion {
         match self {
             Criterion::Classical | Criterion::Zhang2021 => setup.characteristic_length().is_some(),
             Criterion::ScaledCond | Criterion::DOptimal | Criterion::RelativeA => {
-                setup.nominal_stiffness().is_some()
+                setup.model_nominal_compliance().is_some()
             }
             Criterion::TestPose => true,
         }
@@ -132,9 +146,11 @@ impl FromStr for Criterion {
     }
 }
 
-/// Every criterion of one group of postures, and the predicted deviation rates. A criterion the
-/// setup lacks a field for ([`Criterion::check`]) is NaN, and so are `relative_std` and
-/// `predicted_deviation_pct` without a nominal stiffness; every other value is NaN-free.
+/// Every criterion of one group of postures, the predicted deviation rates and which parameters
+/// of the model the group identifies. A criterion the setup lacks a field for
+/// ([`Criterion::check`]) is NaN, and so are `relative_std`, `spring_relative_std` and
+/// `predicted_deviation_pct` without a nominal stiffness (of the drives and every virtual
+/// spring); every other value is NaN-free.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluation {
     /// [`Criterion::Classical`], dimensionless.
@@ -151,12 +167,18 @@ pub struct Evaluation {
     pub test_pose: f64,
     /// `cond_2(Psi)` in SI units.
     pub cond_psi: f64,
-    /// Relative standard deviation of each compliance at noise level 1:
+    /// Relative standard deviation of each drive's compliance at noise level 1:
     /// `sqrt([(S^T S)^-1]_jj)`.
     pub relative_std: Vector6<f64>,
+    /// Relative standard deviation of each virtual spring's compliance at noise level 1, in the
+    /// model's order (empty for the drives alone): how well the group identifies it.
+    pub spring_relative_std: Vec<f64>,
     /// Predicted mean deviation rate (%) per noise level of the setup and joint, first order:
     /// `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)` (the mean of |N(0, s^2)| is `sqrt(2/pi) s`).
     pub predicted_deviation_pct: Vec<[f64; 6]>,
+    /// Which parameters (drives, then virtual springs) the group identifies, from the
+    /// column-scaled rank of `Psi`; needs no nominal stiffness.
+    pub identifiability: Identifiability,
 }
 
 impl Evaluation {
@@ -187,8 +209,9 @@ impl Evaluation {
                 Criterion::TestPose => &mut self.test_pose,
             } = nan;
         }
-        if setup.nominal_stiffness().is_none() {
+        if setup.model_nominal_compliance().is_none() {
             self.relative_std.fill(nan);
+            self.spring_relative_std.fill(nan);
             self.predicted_deviation_pct
                 .iter_mut()
                 .for_each(|p| p.fill(nan));

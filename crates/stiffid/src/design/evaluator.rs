@@ -15,17 +15,27 @@
 //! - `relative-a`, relative standard deviations: row norms of `(R diag(h) / sigma)^-1`;
 //! - `test-pose`: `sigma |A R^-1|_F / sqrt(T)`, A the `T` test postures' rows, as
 //!   `sigma |R_A R^-1|_F / sqrt(T)` with `A = Q_A R_A` factored once (`Q_A` keeps the norm).
+//!
+//! A model with virtual springs ([`crate::model`]) has `n > 6` parameters: each posture's compact
+//! block gains one column per spring (`springs`), `R` is `n x n` and the criteria are those of
+//! `wide` (the same formulas over n columns). The six drives alone keep the fixed-size path above.
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
-use crate::linalg::{cond, triangular_factor};
+use super::identifiability::Identifiability;
+use crate::linalg::{cond, householder_qr_columns, triangular_factor};
 use crate::lsq::Factor;
 use crate::observation::{compact_posture_block, points_factor, rope_observation_matrix};
 use crate::setup::Setup;
 use crate::Frames;
-use nalgebra::{DMatrix, Matrix6, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use std::cell::OnceCell;
+use wide::WideGroup;
 
 mod gradient;
+mod springs;
+mod wide;
+
+pub(crate) use wide::singular_values_and_vectors;
 
 /// Evaluates design criteria of groups of postures for one setup.
 #[derive(Debug, Clone)]
@@ -40,6 +50,18 @@ pub struct Evaluator<'a> {
     /// `R_A` (6x6, upper triangular) of the Householder QR `A = Q_A R_A` of the test postures'
     /// observation rows `A` (`3pT x 6`, under their rope-mass load): `A^T A = R_A^T R_A`.
     test_factor: Matrix6<f64>,
+    /// For a model with virtual springs, what its `n` parameters need; `None` for the drives alone.
+    wide: Option<Wide>,
+}
+
+/// The scaling and the test postures' factor over all `n` parameters of a model with virtual
+/// springs.
+#[derive(Debug, Clone)]
+struct Wide {
+    /// `h / sigma` of every parameter (drives, then springs).
+    scaling: DVector<f64>,
+    /// `R_A` (`n x n`, upper triangular) of the test postures' observation rows.
+    test_factor: DMatrix<f64>,
 }
 
 /// What one posture contributes to a group: its compact block of `Psi` (module docs) and its TCP
@@ -48,6 +70,9 @@ pub struct Evaluator<'a> {
 pub struct PostureTerms {
     frames: Frames,
     compact: Matrix6<f64>,
+    /// The compact columns of the model's virtual springs (column-major, six rows each; empty for
+    /// the drives alone).
+    springs: Vec<f64>,
     /// `k(J_N)` of the TCP (Eq. 21), computed on first use.
     dexterity: OnceCell<f64>,
 }
@@ -62,8 +87,17 @@ impl<'a> Evaluator<'a> {
                 / setup.noise().sigma(),
             points_factor: points_factor(setup),
             compact_rows: (3 * setup.tool().measuring_points.len()).min(6),
-            test_factor: triangular_factor(rope_observation_matrix(setup, setup.test_postures())),
+            test_factor: match setup.model().is_drives_only() {
+                true => triangular_factor(rope_observation_matrix(setup, setup.test_postures())),
+                false => Matrix6::zeros(),
+            },
+            wide: (!setup.model().is_drives_only()).then(|| Wide::new(setup)),
         }
+    }
+
+    /// The number of parameters of the setup's model (6 for the drives alone).
+    pub fn parameters(&self) -> usize {
+        self.wide.as_ref().map_or(6, |w| w.scaling.len())
     }
 
     /// The setup evaluated.
@@ -88,9 +122,19 @@ impl<'a> Evaluator<'a> {
         }
         // Each posture's compact rows straight into the stack; its dexterity only for zhang2021.
         let mut classical = 0.0;
-        let mut stack = DMatrix::zeros(self.compact_rows * postures.len(), 6);
+        let mut stack = DMatrix::zeros(self.compact_rows * postures.len(), self.parameters());
+        let mut springs = vec![0.0; 6 * (self.parameters() - 6)];
         self.for_each_frames(postures, |i, frames| {
             self.write_compact(frames, &mut stack, i);
+            if !springs.is_empty() {
+                springs::write_compact_columns(
+                    self.setup,
+                    frames,
+                    &self.points_factor,
+                    &mut springs,
+                );
+                self.write_springs(&springs, &mut stack, i);
+            }
             if criterion == Criterion::Zhang2021 {
                 classical = f64::max(classical, tcp_dexterity(self.setup, frames));
             }
@@ -121,9 +165,14 @@ impl<'a> Evaluator<'a> {
     pub fn posture(&self, q: &Vector6<f64>) -> PostureTerms {
         let frames = self.setup.robot().frames(q);
         let compact = compact_posture_block(self.setup, &frames, &self.points_factor);
+        let mut springs = vec![0.0; 6 * (self.parameters() - 6)];
+        if !springs.is_empty() {
+            springs::write_compact_columns(self.setup, &frames, &self.points_factor, &mut springs);
+        }
         PostureTerms {
             frames,
             compact,
+            springs,
             dexterity: OnceCell::new(),
         }
     }
@@ -143,12 +192,23 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// The information matrix `S_i^T S_i` (6 x 6, unitless at noise level 1) of one posture's
+    /// The information matrix `S_i^T S_i` (`n x n`, unitless at noise level 1) of one posture's
     /// terms: a group's `S^T S` is the sum over its postures. For exchange algorithms
     /// ([`super::pool`]).
-    pub(crate) fn information(&self, terms: &PostureTerms) -> Matrix6<f64> {
-        let d = Matrix6::from_diagonal(&self.scaling);
-        d * terms.compact.tr_mul(&terms.compact) * d
+    pub(crate) fn information(&self, terms: &PostureTerms) -> Information {
+        match &self.wide {
+            None => {
+                let d = Matrix6::from_diagonal(&self.scaling);
+                Information::Six(d * terms.compact.tr_mul(&terms.compact) * d)
+            }
+            Some(wide) => {
+                let mut c = self.wide_compact(terms);
+                for (j, s) in wide.scaling.iter().enumerate() {
+                    c.column_mut(j).scale_mut(*s);
+                }
+                Information::Wide(wide::gram(&c))
+            }
+        }
     }
 
     /// The TCP dexterity `k(J_N)` of one posture's terms (Eq. 21).
@@ -167,14 +227,20 @@ impl<'a> Evaluator<'a> {
     pub(crate) fn value_from_information(
         &self,
         criterion: Criterion,
-        information: &Matrix6<f64>,
+        information: &Information,
         classical: f64,
     ) -> f64 {
-        let Some(cholesky) = information.cholesky() else {
-            return f64::INFINITY;
+        let group = match (information, &self.wide) {
+            (Information::Six(information), _) => information
+                .cholesky()
+                .and_then(|c| Group::from_scaled(c.l().transpose(), &self.scaling))
+                .map(Factored::Six),
+            (Information::Wide(information), Some(wide)) => wide::cholesky_upper(information)
+                .and_then(|rs| WideGroup::from_scaled(rs, &wide.scaling))
+                .map(Factored::Wide),
+            (Information::Wide(_), None) => None,
         };
-        let rs = cholesky.l().transpose();
-        match Group::from_scaled(rs, &self.scaling) {
+        match group {
             Some(group) => self.score(criterion, &group, || classical),
             None => f64::INFINITY,
         }
@@ -182,11 +248,11 @@ impl<'a> Evaluator<'a> {
 
     /// The value of `criterion` (not [`Criterion::Classical`] alone) from a full-rank group's
     /// factor; `classical` gives the classical index when the criterion needs it.
-    fn score(&self, criterion: Criterion, group: &Group, classical: impl Fn() -> f64) -> f64 {
+    fn score(&self, criterion: Criterion, group: &Factored, classical: impl Fn() -> f64) -> f64 {
         finite(match criterion {
             Criterion::Classical => classical(),
-            Criterion::Zhang2021 => classical() * cond(&group.r),
-            Criterion::ScaledCond => cond(&group.rs),
+            Criterion::Zhang2021 => classical() * group.cond_psi(),
+            Criterion::ScaledCond => group.cond_scaled(),
             Criterion::DOptimal => group.d_optimal(),
             Criterion::RelativeA => group.relative_a(),
             Criterion::TestPose => self.test_pose(group),
@@ -200,6 +266,7 @@ impl<'a> Evaluator<'a> {
         let refs: Vec<&PostureTerms> = terms.iter().collect();
         let classical = self.classical(&refs);
         let levels = &self.setup.noise().levels;
+        let identifiability = self.identifiability(&refs);
         let Some(group) = self.group(&refs) else {
             let inf = f64::INFINITY;
             return Evaluation {
@@ -211,25 +278,30 @@ impl<'a> Evaluator<'a> {
                 test_pose: inf,
                 cond_psi: inf,
                 relative_std: Vector6::repeat(inf),
+                spring_relative_std: vec![inf; self.parameters() - 6],
                 predicted_deviation_pct: vec![[inf; 6]; levels.len()],
+                identifiability,
             }
             .without_missing(self.setup);
         };
-        let cond_psi = finite(cond(&group.r));
-        let relative_std = group.relative_std();
+        let cond_psi = finite(group.cond_psi());
+        let all_std = group.relative_std();
+        let relative_std = Vector6::from_column_slice(&all_std[..6]);
         Evaluation {
             classical,
             zhang2021: finite(classical * cond_psi),
-            scaled_cond: finite(cond(&group.rs)),
+            scaled_cond: finite(group.cond_scaled()),
             d_optimal: group.d_optimal(),
             relative_a: group.relative_a(),
             test_pose: self.test_pose(&group),
             cond_psi,
             relative_std,
+            spring_relative_std: all_std[6..].to_vec(),
             predicted_deviation_pct: levels
                 .iter()
                 .map(|&m| predicted_deviation_pct(&relative_std, m))
                 .collect(),
+            identifiability,
         }
         .without_missing(self.setup)
     }
@@ -239,16 +311,38 @@ impl<'a> Evaluator<'a> {
         terms.iter().map(|t| self.dexterity(t)).fold(0.0, f64::max)
     }
 
-    /// The factor of the group's `Psi` (the compact blocks stacked), `None` if rank deficient.
-    fn group(&self, terms: &[&PostureTerms]) -> Option<Group> {
+    /// The stacked compact blocks of the postures' terms (`min(3p, 6)` rows per posture, one
+    /// column per parameter).
+    fn stack(&self, terms: &[&PostureTerms]) -> DMatrix<f64> {
         let r = self.compact_rows;
-        let mut stack = DMatrix::zeros(r * terms.len(), 6);
+        let mut stack = DMatrix::zeros(r * terms.len(), self.parameters());
         for (i, t) in terms.iter().enumerate() {
             stack
                 .view_mut((r * i, 0), (r, 6))
                 .copy_from(&t.compact.rows(0, r));
+            self.write_springs(&t.springs, &mut stack, i);
         }
-        self.factor(stack)
+        stack
+    }
+
+    /// Which parameters the postures' terms identify ([`Identifiability::of`] of their stacked
+    /// compact blocks, which have the column norms and the triangular factor of `Psi`).
+    fn identifiability(&self, terms: &[&PostureTerms]) -> Identifiability {
+        Identifiability::of(&self.stack(terms))
+    }
+
+    /// The factor of the group's `Psi` (the compact blocks stacked), `None` if rank deficient.
+    fn group(&self, terms: &[&PostureTerms]) -> Option<Factored> {
+        self.factor(self.stack(terms))
+    }
+
+    /// The compact block (`6 x n`, drives then springs) of one posture's terms.
+    fn wide_compact(&self, terms: &PostureTerms) -> DMatrix<f64> {
+        let springs = terms.springs.len() / 6;
+        DMatrix::from_fn(6, 6 + springs, |i, j| match j {
+            0..6 => terms.compact[(i, j)],
+            _ => terms.springs[6 * (j - 6) + i],
+        })
     }
 
     /// Writes the compact block of the posture `frames` into rows `r i..r (i + 1)` of `stack`.
@@ -258,9 +352,24 @@ impl<'a> Evaluator<'a> {
         stack.view_mut((r * i, 0), (r, 6)).copy_from(&c.rows(0, r));
     }
 
+    /// Writes the springs' compact columns (`springs`, column-major, six rows each) into rows
+    /// `r i..r (i + 1)` of columns `6..` of `stack`.
+    fn write_springs(&self, springs: &[f64], stack: &mut DMatrix<f64>, i: usize) {
+        let r = self.compact_rows;
+        for (s, column) in springs.chunks_exact(6).enumerate() {
+            for (k, v) in column[..r].iter().enumerate() {
+                stack[(r * i + k, 6 + s)] = *v;
+            }
+        }
+    }
+
     /// The factor of a group's `Psi` from its stacked compact blocks (same `R` up to the signs of its
     /// rows, same column norms), `None` if rank deficient.
-    fn factor(&self, psi: DMatrix<f64>) -> Option<Group> {
+    fn factor(&self, psi: DMatrix<f64>) -> Option<Factored> {
+        if let Some(wide) = &self.wide {
+            let m = psi.nrows();
+            return WideGroup::factor(Vec::from(psi.data), m, &wide.scaling).map(Factored::Wide);
+        }
         let factor = Factor::try_new(psi).ok()?;
         let (r, r_inv) = (*factor.r(), *factor.r_inv());
         // R diag(h / sigma) and its inverse diag(sigma / h) R^-1: column and row scalings.
@@ -270,28 +379,138 @@ impl<'a> Evaluator<'a> {
             rs.column_mut(j).scale_mut(self.scaling[j]);
             rs_inv.row_mut(j).scale_mut(1.0 / self.scaling[j]);
         }
-        Some(Group {
+        Some(Factored::Six(Group {
             r,
             rs,
             rs_inv,
             r_inv,
-        })
+        }))
     }
 
     /// `sigma sqrt(mean_t tr(A_t (Psi^T Psi)^-1 A_t^T)) = sigma |A R^-1|_F / sqrt(T)`, m; 0 without
     /// test postures.
-    fn test_pose(&self, group: &Group) -> f64 {
+    fn test_pose(&self, group: &Factored) -> f64 {
         let t = self.setup.test_postures().len();
         if t == 0 {
             return 0.0;
         }
-        let sum = self.test_weight(group).norm_squared();
+        let sum = match group {
+            Factored::Six(g) => self.test_weight(g).norm_squared(),
+            Factored::Wide(g) => self.wide_test_weight(g).norm_squared(),
+        };
         finite(self.setup.noise().sigma() * (sum / t as f64).sqrt())
     }
 
     /// `Z = R_A R^-1`: `|Z|_F = |A R^-1|_F` and `Z^T Z = R^-T A^T A R^-1`.
     fn test_weight(&self, group: &Group) -> Matrix6<f64> {
         self.test_factor * group.r_inv
+    }
+
+    /// [`Evaluator::test_weight`] over the `n` parameters of a model with virtual springs.
+    fn wide_test_weight(&self, group: &WideGroup) -> DMatrix<f64> {
+        let wide = self
+            .wide
+            .as_ref()
+            .expect("a wide group has a wide evaluator");
+        wide::product(&wide.test_factor, &group.r_inv)
+    }
+}
+
+impl Wide {
+    fn new(setup: &Setup) -> Self {
+        let n = setup.model().len();
+        let scaling = setup
+            .model_nominal_compliance()
+            .unwrap_or_else(|| DVector::repeat(n, 1.0))
+            / setup.noise().sigma();
+        let a = rope_observation_matrix(setup, setup.test_postures());
+        let m = a.nrows().max(n);
+        let mut a = a.resize_vertically(m, 0.0);
+        let mut taus = vec![0.0; n];
+        householder_qr_columns(a.as_mut_slice(), m, &mut taus);
+        let test_factor = DMatrix::from_fn(n, n, |i, j| if i <= j { a[(i, j)] } else { 0.0 });
+        Self {
+            scaling,
+            test_factor,
+        }
+    }
+}
+
+/// The information matrix `S_i^T S_i` of a posture or a group ([`Evaluator::information`]).
+// The six-drive variant stays inline: it is the fast path of the search and the pool.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Information {
+    /// The six drives alone.
+    Six(Matrix6<f64>),
+    /// A model with virtual springs (`n x n`).
+    Wide(DMatrix<f64>),
+}
+
+impl Information {
+    /// The sum of `terms` (in order, from zero); `None` without terms.
+    pub(crate) fn sum<'a>(mut terms: impl Iterator<Item = &'a Information>) -> Option<Self> {
+        let first = terms.next()?;
+        Some(match first {
+            Information::Six(m) => {
+                Information::Six(terms.fold(Matrix6::zeros() + m, |acc, t| match t {
+                    Information::Six(t) => acc + t,
+                    Information::Wide(_) => acc,
+                }))
+            }
+            Information::Wide(m) => Information::Wide(terms.fold(m.clone(), |acc, t| match t {
+                Information::Wide(t) => acc + t,
+                Information::Six(_) => acc,
+            })),
+        })
+    }
+}
+
+/// A full-rank group's factor: six columns (the drives alone) or `n` ([`WideGroup`]).
+// The six-drive variant stays inline: it is the fast path of the search.
+#[allow(clippy::large_enum_variant)]
+enum Factored {
+    Six(Group),
+    Wide(WideGroup),
+}
+
+impl Factored {
+    /// `cond_2(Psi)`.
+    fn cond_psi(&self) -> f64 {
+        match self {
+            Factored::Six(g) => cond(&g.r),
+            Factored::Wide(g) => wide::cond(&g.r),
+        }
+    }
+
+    /// `cond_2(S)`.
+    fn cond_scaled(&self) -> f64 {
+        match self {
+            Factored::Six(g) => cond(&g.rs),
+            Factored::Wide(g) => wide::cond(&g.rs),
+        }
+    }
+
+    fn d_optimal(&self) -> f64 {
+        match self {
+            Factored::Six(g) => g.d_optimal(),
+            Factored::Wide(g) => g.d_optimal(),
+        }
+    }
+
+    fn relative_a(&self) -> f64 {
+        match self {
+            Factored::Six(g) => g.relative_a(),
+            Factored::Wide(g) => g.relative_a(),
+        }
+    }
+
+    /// The relative standard deviation of every parameter.
+    fn relative_std(&self) -> Vec<f64> {
+        match self {
+            Factored::Six(g) => g.relative_std().as_slice().to_vec(),
+            Factored::Wide(g) => g.relative_std(),
+        }
     }
 }
 
@@ -341,3 +560,6 @@ fn finite(v: f64) -> f64 {
         f64::INFINITY
     }
 }
+
+#[cfg(test)]
+pub(crate) mod tests;

@@ -2,17 +2,19 @@
 //!
 //! [`criteria`] scores a group of postures, [`Evaluator`] scores it fast for the search,
 //! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
-//! chooses them from a list of candidate postures, and [`target`] finds how many postures reach a
-//! predicted accuracy.
+//! chooses them from a list of candidate postures, [`target`] finds how many postures reach a
+//! predicted accuracy, and [`identifiability`] says which parameters of the model a group identifies.
 
 pub mod criteria;
 mod evaluator;
+pub mod identifiability;
 pub mod pool;
 pub mod search;
 pub mod target;
 
 pub use criteria::{evaluate, Criterion, Evaluation};
 pub use evaluator::{Evaluator, PostureTerms};
+pub use identifiability::Identifiability;
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
 pub use search::{
     global, local, random_group, Gradient, SearchOptions, SearchOutcome, Termination,

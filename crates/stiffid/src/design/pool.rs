@@ -20,11 +20,12 @@
 //!
 //! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to [`MAX_GROUP`] postures.
 
+use super::evaluator::Information;
 use super::search::check_count;
 use super::{Criterion, Evaluator};
 use crate::setup::Setup;
 use crate::{limits, Error, Result};
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::Vector6;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -118,7 +119,7 @@ pub struct Pool<'a> {
     /// Pool indices of the usable postures, ascending.
     usable: Vec<usize>,
     /// `M_i = S_i^T S_i` of each usable posture.
-    information: Vec<Matrix6<f64>>,
+    information: Vec<Information>,
     /// TCP dexterity `k(J_N)` of each usable posture (for the classical index).
     dexterity: Vec<f64>,
 }
@@ -228,7 +229,10 @@ impl<'a> Pool<'a> {
     /// The criterion of a group of usable postures (positions in [`Pool::usable`]) from its
     /// information matrix.
     fn value(&self, criterion: Criterion, group: &[usize]) -> f64 {
-        let information = group.iter().map(|&k| self.information[k]).sum();
+        let Some(information) = Information::sum(group.iter().map(|&k| &self.information[k]))
+        else {
+            return f64::INFINITY;
+        };
         let classical = group.iter().map(|&k| self.dexterity[k]).fold(0.0, f64::max);
         self.evaluator
             .value_from_information(criterion, &information, classical)
@@ -351,6 +355,7 @@ fn pool_error(message: String) -> Error {
 mod tests {
     use super::*;
     use crate::design::random_group;
+    use nalgebra::Matrix6;
 
     #[test]
     fn criteria_from_the_information_matrix_equal_those_from_qr() {
@@ -366,7 +371,11 @@ mod tests {
                 "{criterion}: {cholesky} vs {qr}"
             );
         }
-        let none = evaluator.value_from_information(Criterion::RelativeA, &Matrix6::zeros(), 1.0);
+        let none = evaluator.value_from_information(
+            Criterion::RelativeA,
+            &Information::Six(Matrix6::zeros()),
+            1.0,
+        );
         assert_eq!(none, f64::INFINITY, "no information");
     }
 

@@ -79,6 +79,22 @@ impl Loss {
     }
 }
 
+impl crate::choice::Choice for Loss {
+    const FIELD: &'static str = "robust";
+    const ALL: &'static [Self] = &[Loss::Huber, Loss::Tukey];
+    fn name(self) -> &'static str {
+        Loss::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Loss::Huber => "Huber weights (c = 1.345 MAD scales): outliers keep a small weight",
+            Loss::Tukey => "Tukey's biweight (c = 4.685 MAD scales): far outliers get weight 0",
+        }
+    }
+}
+
+crate::choice::by_name!(Loss);
+
 /// What the robust fit did.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobustFit {

@@ -67,6 +67,14 @@ impl Frames {
     }
 }
 
+impl Frames {
+    /// A gradient with respect to the kinematic angles theta turned into one with respect to the
+    /// axis angles q: `d / dq = M^T d / d theta` (`theta = M q + c`).
+    pub(crate) fn kinematic_to_axis(&self, gradient: &Vector6<f64>) -> Vector6<f64> {
+        self.axis_map.tr_mul(gradient)
+    }
+}
+
 /// `W M^T`, skipping the zeros of `M` (most axis maps are a signed permutation plus a coupling).
 fn times_transpose(w: &Matrix6<f64>, m: &Matrix6<f64>) -> Matrix6<f64> {
     let mut out = Matrix6::zeros();

@@ -1,22 +1,15 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
-use super::{mm, Run};
-use stiffid::identify::adequacy::{SIGNIFICANCE, UNIT_FACTOR};
-use stiffid::identify::{Identification, Uncertainty, UnitCheck};
+use stiffid::documents::mm;
+use stiffid::identify::adequacy::SIGNIFICANCE;
+use stiffid::identify::{Identification, Uncertainty};
+use stiffid::jobs::identify::{Fit, Report};
 use stiffid::kinematics::Coordinates;
+use stiffid::Setup;
 
 /// Relative standard error above which a joint is called poorly determined.
 const POOR: f64 = 0.25;
-
-/// The `method` key of the JSON.
-pub fn method_key(id: &Identification) -> &'static str {
-    match (&id.robust, id.active_bounds) {
-        (Some(fit), _) => fit.loss.name(),
-        (None, Some(_)) => "nonnegative-least-squares",
-        (None, None) => "least-squares",
-    }
-}
 
 /// `v` with `decimals` decimals, or `n/a` if it is not finite.
 fn num(v: f64, decimals: usize) -> String {
@@ -42,81 +35,28 @@ fn joint_list(joints: impl IntoIterator<Item = usize>) -> String {
     }
 }
 
-/// The stderr warnings: results that are not physical, a likely unit mix-up.
-pub fn warnings(run: &Run) -> Vec<String> {
-    let id = &run.id;
-    let physical = id.physical();
-    let mut out = Vec::new();
-    let negative: Vec<usize> = (0..6).filter(|&j| id.compliance[j] < 0.0).collect();
-    let other: Vec<usize> = (0..6)
-        .filter(|&j| !physical[j] && id.compliance[j] >= 0.0)
-        .collect();
-    match negative.len() {
-        0 => {}
-        6 => out.push(
-            "every compliance is negative (not physical): the displacements or the forces probably have the wrong sign (the wrench is the force on the robot; the displacement is loaded minus unloaded)"
-                .into(),
-        ),
-        _ => out.push(format!(
-            "{}: negative compliance, not physical: the model or the data are wrong there; --nonnegative bounds the compliances at 0",
-            joint_list(negative)
-        )),
-    }
-    if !other.is_empty() {
-        out.push(format!(
-            "{}: zero or non-finite compliance (infinitely stiff), not physical: the data cannot tell the joint from a rigid one",
-            joint_list(other)
-        ));
-    }
-    if let Some(unit) = &run.unit {
-        out.push(unit_warning(run, unit));
-    }
-    out
-}
-
-/// The unit warning, naming the columns.
-pub fn unit_warning(run: &Run, unit: &UnitCheck) -> String {
-    let (forces, displacements) = (
-        run.rows.layout.force_columns(),
-        run.rows.layout.displacement_columns(),
-    );
-    let cause = match unit.stiffer {
-        true => format!(
-            "displacements ({displacements}) in m instead of mm, or forces ({forces}) in mN instead of N"
-        ),
-        false => format!(
-            "forces ({forces}) in kN instead of N, or displacements ({displacements}) in um instead of mm"
-        ),
-    };
-    format!(
-        "the identified stiffness is {} times the setup's nominal on {} (more than {UNIT_FACTOR}x off): a unit is the likely cause: {cause}; the axis angles must be in degrees (q1_deg..q6_deg)",
-        match unit.typical_ratio >= 1.0 {
-            true => format!("about {:.3e}", unit.typical_ratio),
-            false => format!("about 1/{:.3e}", 1.0 / unit.typical_ratio),
-        },
-        joint_list(unit.joints.iter().copied())
-    )
-}
-
-/// The text report.
-pub fn human(run: &Run) -> String {
-    let id = &run.id;
-    let springs = match run.setup.springs() {
+/// The text report of `report`, identified on `setup` (named `setup_name`).
+pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
+    let id = &run.identification;
+    let springs = match setup.springs() {
         Coordinates::Axis => "axes (drives)",
         Coordinates::Kinematic => "kinematic joints",
     };
-    let method = match method_key(id) {
-        "least-squares" => "least squares (QR)".to_string(),
-        "nonnegative-least-squares" => {
+    let method = match run.fit {
+        Fit::LeastSquares => "least squares (QR)".to_string(),
+        Fit::Nonnegative => {
             "least squares with compliances >= 0 (Lawson-Hanson active set on the QR-reduced problem)"
                 .to_string()
         }
-        loss => format!("robust: iteratively reweighted least squares, {loss} weights"),
+        Fit::Robust(loss) => format!(
+            "robust: iteratively reweighted least squares, {} weights",
+            loss.name()
+        ),
     };
     let mut s = format!(
         "setup {}, data {}\nsprings on the {springs}; {} rows of Psi from {} postures; {method}\n\
          cond(Psi) {}, residual RMS {} mm",
-        run.setup_name,
+        setup_name,
         run.data_name,
         id.rows,
         id.postures,
@@ -166,7 +106,7 @@ pub fn human(run: &Run) -> String {
     s
 }
 
-fn model_check(run: &Run) -> String {
+fn model_check(run: &Report) -> String {
     let Some(a) = &run.adequacy else {
         return String::new();
     };
@@ -250,8 +190,8 @@ fn bounds_and_physics(id: &Identification) -> String {
     }
 }
 
-fn largest_residuals(run: &Run) -> String {
-    let id = &run.id;
+fn largest_residuals(run: &Report) -> String {
+    let id = &run.identification;
     let n = id.residuals.len() / 3;
     let norm = |i: usize| id.residuals.fixed_rows::<3>(3 * i).norm();
     let mut order: Vec<usize> = (0..n).collect();
@@ -266,9 +206,9 @@ fn largest_residuals(run: &Run) -> String {
         let r = id.residuals.fixed_rows::<3>(3 * i).map(mm);
         s += &format!(
             "  line {:>4}  posture {:>4}  point {}  ({:+.4}, {:+.4}, {:+.4})  |{:.4}|\n",
-            run.rows.lines[i],
-            run.label(i),
-            run.rows.points[i] + 1,
+            line(run, i),
+            run.origin.label(i),
+            run.origin.points[i] + 1,
             r.x,
             r.y,
             r.z,
@@ -278,7 +218,7 @@ fn largest_residuals(run: &Run) -> String {
     s
 }
 
-fn down_weighted(run: &Run, fit: &stiffid::identify::RobustFit) -> String {
+fn down_weighted(run: &Report, fit: &stiffid::identify::RobustFit) -> String {
     let shown = 10;
     let rows = fit.down_weighted();
     let mut s = format!(
@@ -295,12 +235,12 @@ fn down_weighted(run: &Run, fit: &stiffid::identify::RobustFit) -> String {
         let i = row / 3;
         s += &format!(
             "  line {:>4}  posture {:>4}  point {}  {}: weight {:.3}, residual {:+.4} mm\n",
-            run.rows.lines[i],
-            run.label(i),
-            run.rows.points[i] + 1,
+            line(run, i),
+            run.origin.label(i),
+            run.origin.points[i] + 1,
             ['x', 'y', 'z'][row % 3],
             fit.weights[row],
-            mm(run.id.residuals[row])
+            mm(run.identification.residuals[row])
         );
     }
     match rows.len() {
@@ -311,11 +251,11 @@ fn down_weighted(run: &Run, fit: &stiffid::identify::RobustFit) -> String {
     s
 }
 
-fn cross_validation(run: &Run) -> String {
+fn cross_validation(run: &Report) -> String {
     let Some(cv) = &run.cross_validation else {
         return String::new();
     };
-    let postures = run.id.postures;
+    let postures = run.identification.postures;
     let mut s = format!(
         "\ncross-validation: {} folds{}, each refitted without its postures and validated on them (Eq. 22)\n\
          fold  held-out postures      stiffness Nm/rad (joints 1-6)                                        held-out RMS delta_b mm\n",
@@ -326,7 +266,7 @@ fn cross_validation(run: &Run) -> String {
         }
     );
     for (f, fold) in cv.folds.iter().enumerate() {
-        let labels = run.labels(&fold.postures);
+        let labels = run.origin.labels_of(&fold.postures);
         let shown = match labels.len() {
             n if n > 3 => format!("{} ... ({n})", labels[..3].join(",")),
             _ => labels.join(","),
@@ -346,7 +286,7 @@ fn cross_validation(run: &Run) -> String {
     }
     s += "\nspread across folds:\njoint  full fit Nm/rad  fold mean   fold std  std/full        min         max\n";
     for j in 0..6 {
-        let full = run.id.stiffness[j];
+        let full = run.identification.stiffness[j];
         s += &format!(
             "{:>5}  {:>15}  {:>9}  {:>9}  {:>7}%  {:>10}  {:>10}\n",
             j + 1,
@@ -364,20 +304,28 @@ fn cross_validation(run: &Run) -> String {
         mm(cv.rms_measured),
         100.0 * (1.0 - cv.rms_delta_b / cv.rms_measured)
     );
-    let influential = run.influential();
+    let influential = &run.influential;
     s += "influential (removal moves a stiffness by more than its standard error): ";
     match influential.is_empty() {
         true => s += "none\n",
         false => {
             let items: Vec<String> = influential
                 .iter()
-                .map(|i| {
-                    let joints = joint_list(i.joints.iter().map(|j| j - 1));
-                    format!("{} ({joints})", i.postures.join(","))
+                .map(|(postures, joints)| {
+                    let joints = joint_list(joints.iter().copied());
+                    format!("{} ({joints})", postures.join(","))
                 })
                 .collect();
             s += &format!("postures {}\n", items.join("; "));
         }
     }
     s
+}
+
+/// The line of measurement `i` in its file (`-` for arrays).
+fn line(run: &Report, i: usize) -> String {
+    run.origin
+        .lines
+        .as_ref()
+        .map_or("-".into(), |l| l[i].to_string())
 }

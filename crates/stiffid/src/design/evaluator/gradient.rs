@@ -19,18 +19,21 @@
 //!
 //! Each posture's block `B_i` of `Psi` then carries the weight `B_i Y`, and
 //! [`crate::observation::rope_block_gradient`] takes it through the Jacobians and the rope wrench to
-//! the six axis angles of the posture. The `classical` index (a maximum over the postures) adds
+//! the six axis angles of the posture; with virtual springs (`n > 6` parameters, `Y` is `n x n`
+//! and `d-optimal`'s is `-M^-1 / n`), their columns of the weight reach the axis angles through
+//! `springs::spring_gradient`. The `classical` index (a maximum over the postures) adds
 //! `d ln k(J_N)` of the active posture (the first with the largest dexterity) through
 //! [`crate::kinematics::dexterity_log_gradient`]; it is smooth except where two postures tie, and
 //! `cond_2` except where its extreme singular values are repeated.
 
-use super::{Evaluator, Group, PostureTerms};
+use super::wide::{self, WideGroup};
+use super::{springs, Evaluator, Factored, Group, PostureTerms};
 use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
 use crate::kinematics::dexterity_log_gradient;
 use crate::linalg::{singular_values_and_vectors, times_6x6};
 use crate::observation::{posture_block, rope_block_gradient};
-use nalgebra::{Matrix6, MatrixXx6, Vector6};
+use nalgebra::{DMatrix, Matrix6, MatrixXx6, Vector3, Vector6};
 
 impl Evaluator<'_> {
     /// The value of `criterion` for `postures` (axis angles, rad), as [`Evaluator::value`], and its
@@ -77,15 +80,78 @@ impl Evaluator<'_> {
         if matches!(criterion, Criterion::Classical | Criterion::Zhang2021) {
             self.add_classical_log_gradient(terms, &mut gradient);
         }
-        if let Some(y) = group.and_then(|g| self.psi_weight(criterion, &g)) {
-            for (t, g) in terms.iter().zip(gradient.iter_mut()) {
-                let block =
-                    posture_block(self.setup, &t.frames, &self.setup.rope_wrench(&t.frames));
-                let weight = MatrixXx6::from_vec(times_6x6(block.as_slice(), block.nrows(), &y));
-                *g += rope_block_gradient(self.setup, &t.frames, &weight);
+        match group {
+            Some(Factored::Six(group)) => {
+                if let Some(y) = self.psi_weight(criterion, &group) {
+                    for (t, g) in terms.iter().zip(gradient.iter_mut()) {
+                        let block = posture_block(
+                            self.setup,
+                            &t.frames,
+                            &self.setup.rope_wrench(&t.frames),
+                        );
+                        let weight =
+                            MatrixXx6::from_vec(times_6x6(block.as_slice(), block.nrows(), &y));
+                        *g += rope_block_gradient(self.setup, &t.frames, &weight);
+                    }
+                }
             }
+            Some(Factored::Wide(group)) => {
+                if let Some(y) = self.wide_psi_weight(criterion, &group) {
+                    for (t, g) in terms.iter().zip(gradient.iter_mut()) {
+                        *g += self.wide_block_gradient(&t.frames, &y);
+                    }
+                }
+            }
+            None => {}
         }
         (value, gradient)
+    }
+
+    /// The gradient of `<B Y, dB>` for the `3p x n` block B of the posture `frames`: the drive
+    /// columns through [`rope_block_gradient`], the virtual springs' through
+    /// [`springs::spring_gradient`].
+    fn wide_block_gradient(&self, frames: &crate::Frames, y: &DMatrix<f64>) -> Vector6<f64> {
+        let block = posture_block(self.setup, frames, &self.setup.rope_wrench(frames));
+        let weight = wide::product(&block, y);
+        let drives = MatrixXx6::from_column_slice(&weight.as_slice()[..6 * weight.nrows()]);
+        rope_block_gradient(self.setup, frames, &drives)
+            + springs::spring_gradient(self.setup, frames, |s, m| {
+                Vector3::from(weight.fixed_view::<3, 1>(3 * m, 6 + s))
+            })
+    }
+
+    /// [`Evaluator::psi_weight`] over the `n` parameters of a model with virtual springs.
+    fn wide_psi_weight(&self, criterion: Criterion, group: &WideGroup) -> Option<DMatrix<f64>> {
+        let d = &self.wide.as_ref()?.scaling;
+        let scaled = |mut y: DMatrix<f64>| {
+            for i in 0..y.nrows() {
+                for j in 0..y.ncols() {
+                    y[(i, j)] *= d[i] * d[j];
+                }
+            }
+            y
+        };
+        let n = group.n() as f64;
+        Some(match criterion {
+            Criterion::Classical => return None,
+            Criterion::Zhang2021 => wide::cond_weight(&group.r),
+            Criterion::ScaledCond => scaled(wide::cond_weight(&group.rs)),
+            Criterion::DOptimal => wide::product(&group.r_inv, &group.r_inv.transpose()) / -n,
+            Criterion::RelativeA => {
+                let c = wide::product(&group.rs_inv, &group.rs_inv.transpose());
+                let trace = c.trace();
+                scaled(wide::product(&c, &c)) / -trace
+            }
+            Criterion::TestPose => {
+                let z = self.wide_test_weight(group);
+                let trace = z.norm_squared();
+                if trace <= 0.0 {
+                    return None;
+                }
+                let x = wide::product(&z, &group.r_inv.transpose());
+                wide::product(&x.transpose(), &x) / -trace
+            }
+        })
     }
 
     /// `d ln k(J_N)` of the posture with the largest dexterity (the first of equals), added to its

@@ -52,17 +52,51 @@ pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
         .sum()
 }
 
+/// [`inequalities`] and their exact gradients in the six angles of `q`: the gradient of the
+/// smooth minimum is the average of the pairs' margin gradients
+/// ([`Checker::margins_and_gradients`]) weighted by `exp(-(m_i - m_min) / tau) / sum`.
+pub(super) fn inequalities_and_gradients(
+    checker: &Checker,
+    kinds: &[CheckKind],
+    q: &Vector6<f64>,
+) -> (Vec<f64>, Vec<Vector6<f64>>) {
+    let (margins, gradients) = checker.margins_and_gradients(q);
+    kinds
+        .iter()
+        .map(|&k| {
+            let mut g = Vector6::zeros();
+            let v = smooth_min_with(&margins, k, |i, w| g += gradients[i] * w);
+            (SLACK - v, -g)
+        })
+        .unzip()
+}
+
 fn smooth_min(margins: &[Margin], kind: CheckKind) -> f64 {
+    smooth_min_with(margins, kind, |_, _| ())
+}
+
+/// The smooth minimum of the margins of check `kind`; `weight(i, w)` receives the weight of
+/// margin i in its gradient (weights summing to 1), where the minimum is finite.
+fn smooth_min_with(margins: &[Margin], kind: CheckKind, mut weight: impl FnMut(usize, f64)) -> f64 {
     let tau = match kind.is_angle() {
         true => SMOOTHING_RAD,
         false => SMOOTHING_M,
     };
-    let values = || margins.iter().filter(|m| m.kind == kind).map(|m| m.margin);
-    let min = values().fold(f64::INFINITY, f64::min);
+    let values = || {
+        margins
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.kind == kind)
+            .map(|(i, m)| (i, m.margin))
+    };
+    let min = values().map(|(_, m)| m).fold(f64::INFINITY, f64::min);
     if !min.is_finite() {
         return min;
     }
-    let sum: f64 = values().map(|m| (-(m - min) / tau).exp()).sum();
+    let sum: f64 = values().map(|(_, m)| (-(m - min) / tau).exp()).sum();
+    for (i, m) in values() {
+        weight(i, (-(m - min) / tau).exp() / sum);
+    }
     min - tau * sum.ln()
 }
 

@@ -1,6 +1,6 @@
 //! Local search: SLSQP from a start group, with exact gradients or forward finite differences.
 
-use super::constraints::{inequalities, kinds, most_failed, violation};
+use super::constraints::{inequalities, inequalities_and_gradients, kinds, most_failed, violation};
 use super::termination::{from_slsqp, Termination};
 use super::{Gradient, SearchOptions, SearchOutcome};
 use crate::cell::{CheckKind, Checker};
@@ -407,7 +407,7 @@ impl<'a> Problem<'a> {
     }
 
     /// Constraint `k` (of [`Problem::kinds`]) of posture `i` at `x`: `c <= 0` (m, or rad for
-    /// angles), with its forward-difference gradient (nonzero on the six angles of posture i
+    /// angles), with its gradient (nonzero on the six angles of posture i
     /// only). The constraints of a posture are worked out together and reused.
     fn constraint(&self, i: usize, k: usize, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
         let x = self.clamp(x);
@@ -425,8 +425,17 @@ impl<'a> Problem<'a> {
         c.values[k]
     }
 
-    /// Every constraint of posture `i` at `q`, and their gradients in `q`.
+    /// Every constraint of posture `i` at `q`, and their gradients in `q`: exact
+    /// ([`inequalities_and_gradients`]) with [`Gradient::Exact`], else by forward differences.
     fn constraints_at(&self, i: usize, q: &Vector6<f64>) -> PostureConstraints {
+        if self.options.gradient == Gradient::Exact {
+            let (values, gradients) = inequalities_and_gradients(self.checker, &self.kinds, q);
+            return PostureConstraints {
+                at: *q,
+                values,
+                gradients,
+            };
+        }
         let values = inequalities(self.checker, &self.kinds, q);
         let mut gradients = vec![Vector6::zeros(); values.len()];
         let h = self.options.fd_step;

@@ -30,11 +30,13 @@ use std::str::FromStr;
 /// How a local search gets the gradient of its objective `ln(criterion)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Gradient {
-    /// Closed form ([`crate::design::Evaluator::value_and_gradient`]): one evaluation per SQP call.
+    /// Closed form ([`crate::design::Evaluator::value_and_gradient`]): one evaluation per SQP call;
+    /// the cell constraints' gradients from the witness points of their distances.
     #[default]
     Exact,
-    /// Forward differences of step [`SearchOptions::fd_step`]: `6n + 1` evaluations per SQP call
-    /// (for comparison; the search before exact gradients).
+    /// Forward differences of step [`SearchOptions::fd_step`]: `6n + 1` evaluations per SQP call,
+    /// and six more feasibility checks per posture for the cell constraints (for comparison; the
+    /// search before exact gradients).
     FiniteDifference,
 }
 
@@ -88,7 +90,7 @@ pub struct SearchOptions {
     pub xtol: f64,
     /// Forward finite-difference step of the gradient, rad (default 1e-7, about `sqrt(eps)`
     /// relative to angles of order 1; taken backwards at an upper bound so the probe stays inside).
-    /// Used with [`Gradient::FiniteDifference`] and for the cell constraints.
+    /// Used with [`Gradient::FiniteDifference`], for the objective and the cell constraints.
     pub fd_step: f64,
     /// How the objective's gradient is computed (default [`Gradient::Exact`]).
     pub gradient: Gradient,

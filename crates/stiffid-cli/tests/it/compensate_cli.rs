@@ -1,0 +1,260 @@
+//! `stiffid predict --at-mm/--frame`, the covariance of `identify --out`, and `stiffid compensate`
+//! on the milling example: results, report, and bad path files refused whole.
+
+use crate::common;
+
+use common::{
+    assert_success, assert_usage_error, identify_fanuc, json, numbers, stiffid, temp_dir,
+    write_file,
+};
+use std::path::Path;
+
+const FANUC_Q: &str = "--q-deg=-59.991,-16.693,-28.93,3.788,-62.93,144.919";
+
+fn example(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+#[test]
+fn a_tool_frame_wrench_predicts_what_the_rotated_base_wrench_does() {
+    let tool = json(&stiffid(&[
+        "predict",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        FANUC_Q,
+        "--wrench",
+        "10,-20,-200,1,2,3",
+        "--frame",
+        "tool",
+        "--at-mm",
+        "0,0,300",
+        "--json",
+    ]));
+    let base: Vec<String> = numbers(&tool["wrench_base_frame"])
+        .iter()
+        .map(|v| format!("{v:.12}"))
+        .collect();
+    let rotated = json(&stiffid(&[
+        "predict",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        FANUC_Q,
+        "--wrench",
+        &base.join(","),
+        "--at-mm",
+        "0,0,300",
+        "--json",
+    ]));
+    for key in ["tcp_deflection_mm", "tcp_rotation_mrad", "torques_nm"] {
+        let (a, b) = (numbers(&tool[key]), numbers(&rotated[key]));
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (x - y).abs() <= 1e-9 * (1.0 + x.abs()),
+                "{key}: {a:?} vs {b:?}"
+            );
+        }
+    }
+    assert_eq!(numbers(&tool["wrench_point_mm"]), [0.0, 0.0, 300.0]);
+    // C_x K_x = I, and C_x is symmetric with positive translation compliance.
+    let c = &tool["cartesian_compliance"]["matrix_si"];
+    let k = &tool["cartesian_stiffness"]["matrix_si"];
+    for i in 0..6 {
+        for j in 0..6 {
+            let ij: f64 = (0..6)
+                .map(|m| c[i][m].as_f64().unwrap() * k[m][j].as_f64().unwrap())
+                .sum();
+            assert!(
+                (ij - if i == j { 1.0 } else { 0.0 }).abs() < 1e-8,
+                "{i},{j}: {ij}"
+            );
+            assert_eq!(c[i][j], c[j][i]);
+        }
+    }
+    assert!(
+        tool["cartesian_compliance"]["translation_per_force_m_per_n"][0][0].as_f64() > Some(0.0)
+    );
+    assert!(tool["tcp_deflection_std_mm"].is_null());
+}
+
+#[test]
+fn identified_covariance_gives_standard_deviations() {
+    let dir = temp_dir("covariance");
+    let out = dir.join("k.json");
+    let id = json(&identify_fanuc(&["--out", out.to_str().unwrap()]));
+    let cov = &id["compliance_covariance_rad2_per_nm2"];
+    let se = numbers(&id["compliance_std_error_rad_per_nm"]);
+    for j in 0..6 {
+        let var = cov[j][j].as_f64().unwrap();
+        assert!((var.sqrt() / se[j] - 1.0).abs() < 1e-9, "joint {}", j + 1);
+        for m in 0..6 {
+            assert_eq!(cov[j][m], cov[m][j]);
+        }
+    }
+    let p = json(&stiffid(&[
+        "predict",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        FANUC_Q,
+        "--wrench",
+        "0,0,-200",
+        "--stiffness",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let std = numbers(&p["tcp_deflection_std_mm"]);
+    let d = numbers(&p["tcp_deflection_mm"]);
+    for (s, v) in std.iter().zip(&d) {
+        assert!(*s > 0.0 && *s < v.abs().max(1e-3), "std {s} of {v}");
+    }
+    assert_eq!(
+        numbers(&p["measuring_points"][0]["displacement_std_mm"]),
+        std
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn compensate(path: &str, out: &Path, extra: &[&str]) -> std::process::Output {
+    let stiffness = example("milling/stiffness.json");
+    let mut args = vec![
+        "compensate",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--stiffness",
+        &stiffness,
+        "--path",
+        path,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    stiffid(&args)
+}
+
+#[test]
+fn the_milling_example_is_compensated_with_a_report() {
+    let dir = temp_dir("milling");
+    let out = dir.join("out.csv");
+    let report = dir.join("report");
+    let path = example("milling/path.csv");
+    let r = json(&compensate(
+        &path,
+        &out,
+        &["--json", "--report", report.to_str().unwrap()],
+    ));
+    let rows = std::fs::read_to_string(&path).unwrap().lines().count() - 1;
+    assert_eq!(r["points"].as_array().unwrap().len(), rows);
+    assert_eq!(r["summary"]["points"], rows);
+    assert!(r["summary"]["max_residual_um"].as_f64().unwrap() < 0.1);
+    assert!(r["summary"]["max_residual_urad"].as_f64().unwrap() < 1.0);
+    let max = r["summary"]["max_deflection_mm"].as_f64().unwrap();
+    assert!(max > 0.1 && max < 5.0, "{max}");
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    for column in [
+        "q1_deg",
+        "x_mm",
+        "fx_base_n",
+        "dx_mm",
+        "dx_std_mm",
+        "qc6_deg",
+        "residual_um",
+    ] {
+        assert!(header.contains(&column), "{column}");
+    }
+    assert_eq!(csv.lines().count(), rows + 1);
+    for file in [
+        "report.html",
+        "summary.json",
+        "compensation.csv",
+        "figures/deflection.svg",
+        "figures/path.png",
+    ] {
+        assert!(report.join(file).is_file(), "{file}");
+    }
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    assert!(html.contains("<svg") && !html.contains("src=\"http"));
+    // Again into the same report directory: it is ours, so it may be rewritten.
+    assert_success(&compensate(
+        &path,
+        &out,
+        &["--report", report.to_str().unwrap()],
+    ));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_path_files_exit_2_naming_line_and_column_without_output() {
+    let dir = temp_dir("badpath");
+    let out = dir.join("out.csv");
+    let report = dir.join("report");
+    let pose = "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n";
+    let cases = [
+        (
+            "missing.csv",
+            "x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n\n".to_string(),
+            vec!["missing.csv", "line 1", "column fz_n"],
+        ),
+        (
+            "nan.csv",
+            format!("{pose}\n1300,-800,400,180,0,0,1,2,3\n1300,-800,NaN,180,0,0,1,2,3\n"),
+            vec!["line 3", "column 3 (z_mm)", "NaN"],
+        ),
+        (
+            "far.csv",
+            format!("{pose}\n1300,-800,400,180,0,0,1,2,3\n9000,0,400,180,0,0,1,2,3\n"),
+            vec!["line 3", "column x_mm..rz_deg", "not reached"],
+        ),
+    ];
+    for (name, text, mentions) in cases {
+        let path = write_file(&dir, name, &text);
+        let o = compensate(
+            path.to_str().unwrap(),
+            &out,
+            &["--report", report.to_str().unwrap()],
+        );
+        assert_usage_error(&o, &mentions);
+        assert!(!out.exists(), "{name}: wrote {}", out.display());
+        assert!(!report.exists(), "{name}: wrote the report");
+    }
+    // The output is never one of the inputs, and a foreign directory is not written into.
+    let path = write_file(
+        &dir,
+        "ok.csv",
+        &format!("{pose}\n1300,-800,400,180,0,0,1,2,3\n"),
+    );
+    let o = compensate(path.to_str().unwrap(), &path, &[]);
+    assert_usage_error(&o, &["refusing"]);
+    let foreign = dir.join("foreign");
+    std::fs::create_dir_all(&foreign).unwrap();
+    write_file(&foreign, "notes.txt", "mine");
+    let o = compensate(
+        path.to_str().unwrap(),
+        &out,
+        &["--report", foreign.to_str().unwrap()],
+    );
+    assert_usage_error(&o, &["not a previous report", "--report"]);
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
+    let dir = temp_dir("freeaxis");
+    let out = dir.join("out.csv");
+    let path = example("milling/path.csv");
+    for (option, value, other) in [
+        ("--max-step-deg", "0", "--tool-axis-range-deg"),
+        ("--max-step-deg", "NaN", "--tool-axis-range-deg"),
+        ("--tool-axis-range-deg", "1e308", "--max-step-deg"),
+    ] {
+        let o = compensate(&path, &out, &["--free-tool-axis", option, value]);
+        let line = assert_usage_error(&o, &[&format!("{option}: {value}: expected a number > 0")]);
+        assert!(!line.contains(other), "{line}");
+        assert!(!out.exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

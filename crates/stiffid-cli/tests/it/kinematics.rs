@@ -1,0 +1,235 @@
+//! `stiffid kinematics` end to end: real values through `--json` and the text output, and bad
+//! input giving one line on stderr that names what was wrong, exit code 2, no panic.
+
+use crate::common;
+
+use common::{assert_success, assert_usage_error, json, stiffid, write_file};
+use std::path::Path;
+
+const COMAU: &str = "comau-smart5-nj165-3.0";
+
+/// A file of the library's test data.
+fn data(name: &str) -> String {
+    format!(
+        "{}/../stiffid/tests/data/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+/// Writes `text` to a file in the test scratch directory; returns its path.
+fn scratch(name: &str, text: &str) -> String {
+    let path = write_file(Path::new(env!("CARGO_TARGET_TMPDIR")), name, text);
+    path.to_string_lossy().into_owned()
+}
+
+#[test]
+fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
+    let out = stiffid(&[
+        "kinematics",
+        "--robot",
+        COMAU,
+        "--q-deg",
+        "10,20,-90,30,20,10",
+        "--json",
+    ]);
+    let v = json(&out);
+    let numbers = |key: &str| -> Vec<f64> {
+        v[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{key} missing"))
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let flange = numbers("flange_position_mm");
+    for (got, want) in flange.iter().zip([2417.77, -466.26, 2116.01]) {
+        assert!((got - want).abs() < 0.01, "flange {flange:?}");
+    }
+    assert_eq!(numbers("point_position_mm"), flange);
+    // Column of axis 1: theta_1 = -q_1, so [v; omega] = [(p_y, -p_x, 0) m/rad; (0, 0, -1)].
+    let jacobian = v["jacobian"].as_array().unwrap();
+    assert_eq!(jacobian.len(), 6);
+    let column_1: Vec<f64> = jacobian
+        .iter()
+        .map(|row| row[0].as_f64().unwrap())
+        .collect();
+    let expected = [flange[1] * 1e-3, -flange[0] * 1e-3, 0.0, 0.0, 0.0, -1.0];
+    for (got, want) in column_1.iter().zip(expected) {
+        assert!(
+            (got - want).abs() < 1e-9,
+            "column 1 {column_1:?}, expected {expected:?}"
+        );
+    }
+    let rotation = v["flange_rotation"].as_array().unwrap();
+    assert_eq!(rotation.len(), 3);
+    let k = v["dexterity"].as_f64().unwrap();
+    assert!(k > 1.0 && k.is_finite());
+    assert_eq!(v["joint_positions_mm"].as_array().unwrap().len(), 6);
+}
+
+#[test]
+fn text_output_names_units_and_shows_the_point() {
+    let out = stiffid(&[
+        "kinematics",
+        "--robot",
+        COMAU,
+        "--q-deg",
+        "0,0,-90,0,0,0",
+        "--point-mm",
+        "0,0,100",
+        "--coordinates",
+        "kinematic",
+    ]);
+    assert_success(&out);
+    let text = String::from_utf8(out.stdout).unwrap();
+    // At this posture the flange z axis points along the base x axis, and axes 4 and 6 align.
+    for part in [
+        "flange position_mm: 2074.000, 0.000, 2255.000",
+        "point position_mm: 2174.000, 0.000, 2255.000",
+        "kinematic angles",
+        "m/rad",
+        "theta6",
+        "dexterity k(J_N) (L = 1200 mm): infinite (singular posture)",
+    ] {
+        assert!(text.contains(part), "'{part}' missing from: {text}");
+    }
+}
+
+#[test]
+fn a_urdf_robot_works_with_its_tip() {
+    assert_success(&stiffid(&[
+        "kinematics",
+        "--robot",
+        &data("comau-nj165-two-leaves.urdf"),
+        "--tip",
+        "tool0",
+        "--q-deg",
+        "0,-90,0,0,0,180",
+        "--json",
+    ]));
+}
+
+#[test]
+fn unknown_preset() {
+    assert_usage_error(
+        &stiffid(&[
+            "kinematics",
+            "--robot",
+            "kuka-kr9000",
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ]),
+        &["unknown robot preset 'kuka-kr9000'", COMAU],
+    );
+}
+
+#[test]
+fn missing_robot_file() {
+    assert_usage_error(
+        &stiffid(&[
+            "kinematics",
+            "--robot",
+            "no/such/robot.toml",
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ]),
+        &["no/such/robot.toml", "no file", "no preset"],
+    );
+}
+
+#[test]
+fn malformed_robot_toml() {
+    let file = scratch(
+        "malformed-robot.toml",
+        "name = \"x\"\nconvention = \"modified-dh\n",
+    );
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &file, "--q-deg", "0,0,0,0,0,0"]),
+        &[&file, "line 2"],
+    );
+}
+
+#[test]
+fn unknown_key_in_a_robot_toml() {
+    let preset = include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml");
+    let text = preset.replacen("d_mm = 830.0", "d_mm = 830.0\nlength_mm = 1.0", 1);
+    assert_ne!(text, preset);
+    let file = scratch("unknown-key-robot.toml", &text);
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &file, "--q-deg", "0,0,-90,0,0,0"]),
+        &[&file, "unknown field `length_mm`", "a_mm"],
+    );
+}
+
+#[test]
+fn urdf_without_the_tip_link() {
+    // A tip link missing, one ending a short chain, and one given for a preset (no tip to choose).
+    for (robot, tip, message) in [
+        (
+            data("comau-nj165.urdf"),
+            "gripper",
+            "no link named 'gripper'",
+        ),
+        (
+            data("comau-nj165-two-leaves.urdf"),
+            "camera",
+            "3 revolute joints; expected 6",
+        ),
+        (
+            "comau-smart5-nj165-3.0".to_string(),
+            "tool0",
+            "tip link: 'tool0' given, but only a URDF robot has a tip link to choose",
+        ),
+    ] {
+        let args = [
+            "kinematics",
+            "--robot",
+            &robot,
+            "--tip",
+            tip,
+            "--q-deg",
+            "0,0,0,0,0,0",
+        ];
+        assert_usage_error(&stiffid(&args), &[&robot, message]);
+    }
+}
+
+#[test]
+fn urdf_with_a_prismatic_joint() {
+    let urdf = data("comau-nj165-prismatic.urdf");
+    assert_usage_error(
+        &stiffid(&["kinematics", "--robot", &urdf, "--q-deg", "0,0,0,0,0,0"]),
+        &[&urdf, "joint_3", "Prismatic", "revolute"],
+    );
+}
+
+#[test]
+fn bad_angles_are_named_with_the_value() {
+    // COMAU axis 3 (absolute forearm angle) runs from -256 to -10 deg.
+    let limits = "--q-deg[3] = 0.00 deg: expected within the robot's limits [-256.00, -10.00] deg";
+    let cases: [(&str, &[&str]); 4] = [
+        ("0,0,-90", &["--q-deg", "expected 6", "got 3"]),
+        ("0,0,NaN,0,0,0", &["--q-deg[3]: NaN is outside"]),
+        (
+            "0,ten,-90,0,0,0",
+            &["--q-deg", "value 2 'ten'", "not a number"],
+        ),
+        ("0,0,0,0,0,0", &[limits]),
+    ];
+    for (q, expected) in cases {
+        let args = ["kinematics", "--robot", COMAU, "--q-deg", q];
+        assert_usage_error(&stiffid(&args), expected);
+    }
+}
+
+#[test]
+fn bad_point_and_characteristic_length() {
+    let args = ["kinematics", "--robot", COMAU, "--q-deg", "0,0,-90,0,0,0"];
+    let e = stiffid(&[&args[..], &["--point-mm", "1,2"]].concat());
+    assert_usage_error(&e, &["--point-mm", "expected 3"]);
+    let e = stiffid(&[&args[..], &["--characteristic-length-mm", "0"]].concat());
+    assert_usage_error(
+        &e,
+        &["--characteristic-length-mm", "0 is outside [1, 100000] mm"],
+    );
+}

@@ -1,0 +1,21 @@
+//! The command's integration tests, one test binary: each former test file is a module here. A new
+//! test file `tests/it/NAME.rs` is added as `mod NAME;` below; `common` holds the shared helpers.
+
+mod cell_cli;
+mod common;
+mod compensate_cli;
+mod completions;
+mod hardening;
+mod identify_cli;
+mod kinematics;
+#[path = "../../../stiffid/tests/it/mutate.rs"]
+mod mutate;
+mod optional_fields_cli;
+mod options_proptest;
+mod pool_cli;
+mod reproduce;
+mod schemas;
+mod select_cli;
+mod setups_new;
+mod simulate_cli;
+mod trust_cli;

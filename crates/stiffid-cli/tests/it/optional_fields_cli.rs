@@ -1,0 +1,202 @@
+//! Setups without a nominal stiffness or a characteristic length: the commands and criteria that
+//! do not use the field work, the others exit 2 naming the field, what needs it and where a value
+//! comes from.
+
+use crate::common;
+use common::{assert_success, assert_usage_error, json, stiffid, temp_dir, write_file};
+use std::path::Path;
+
+/// The paper setup without the line of `field`, written to `dir`.
+fn paper_without(dir: &Path, field: &str) -> String {
+    let out = stiffid(&["setups", "show", "zhang2021-comau-nj165"]);
+    let text: String = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with(field))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(text.contains("[bounds]"));
+    let path = write_file(dir, &format!("without-{field}.toml"), &text);
+    path.to_str().unwrap().to_string()
+}
+
+/// `stiffid evaluate --json` of `postures` on `setup`, checked against its shipped schema.
+fn evaluated(setup: &str, postures: &str) -> serde_json::Value {
+    let args = [
+        "evaluate",
+        "--setup",
+        setup,
+        "--postures",
+        postures,
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/schemas/evaluate.schema.json");
+    let schema = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let validator = jsonschema::validator_for(&schema).unwrap();
+    let errors: Vec<String> = validator.iter_errors(&doc).map(|e| e.to_string()).collect();
+    assert!(errors.is_empty(), "{errors:#?}");
+    doc
+}
+
+/// A group of six postures selected on `setup` by `criterion`, written to `dir`.
+fn selected(dir: &Path, setup: &str, criterion: &str) -> String {
+    let out = dir.join(format!("{criterion}.csv"));
+    let o = out.to_str().unwrap();
+    let args = ["select", "--setup", setup, "--criterion", criterion];
+    assert_success(&stiffid(
+        &[
+            &args[..],
+            &["--start-random", "--max-evals", "100", "--out", o],
+        ]
+        .concat(),
+    ));
+    o.to_string()
+}
+
+#[test]
+fn without_a_characteristic_length_classical_and_zhang2021_are_not_computed() {
+    let dir = temp_dir("no-length");
+    let setup = paper_without(&dir, "characteristic_length_mm");
+    // The default criterion (relative-a) needs no characteristic length.
+    let postures = selected(&dir, &setup, "relative-a");
+    let e = evaluated(&setup, &postures);
+    assert!(e["classical"].is_null() && e["zhang2021"].is_null(), "{e}");
+    for key in ["relative_a", "d_optimal", "scaled_cond", "cond_psi"] {
+        assert!(e[key].as_f64().is_some_and(|v| v > 0.0), "{key}");
+    }
+    assert_eq!(e["predicted_deviation_pct"].as_array().unwrap().len(), 6);
+    let text = stiffid(&["evaluate", "--setup", &setup, "--postures", &postures]);
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(
+        text.contains("classical    not computed: the setup has no characteristic_length_mm"),
+        "{text}"
+    );
+    for criterion in ["classical", "zhang2021"] {
+        let args = [
+            "select",
+            "--setup",
+            &setup,
+            "--criterion",
+            criterion,
+            "--global",
+        ];
+        let out = dir.join("never.csv");
+        let o = stiffid(&[&args[..], &["--out", out.to_str().unwrap()]].concat());
+        let needs =
+            format!("the setup has no characteristic_length_mm: criterion {criterion} needs it");
+        assert_usage_error(&o, &[&needs, "stiffid setups new"]);
+        assert!(!out.exists());
+    }
+    let report = dir.join("report");
+    let o = stiffid(&[
+        "reproduce",
+        "--setup",
+        &setup,
+        "--runs",
+        "5",
+        "--out",
+        report.to_str().unwrap(),
+    ]);
+    assert_usage_error(&o, &["characteristic_length_mm", "the study"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn without_a_nominal_stiffness_the_scaled_criteria_and_simulations_say_so() {
+    let dir = temp_dir("no-stiffness");
+    let setup = paper_without(&dir, "nominal_stiffness_nm_per_rad");
+    let postures = selected(&dir, &setup, "zhang2021");
+    let e = evaluated(&setup, &postures);
+    for key in [
+        "relative_a",
+        "d_optimal",
+        "scaled_cond",
+        "predicted_deviation_pct",
+    ] {
+        assert!(e[key].is_null(), "{key}: {e}");
+    }
+    for key in ["classical", "zhang2021", "cond_psi"] {
+        assert!(e[key].as_f64().is_some_and(|v| v > 0.0), "{key}");
+    }
+    // The default criterion is relative-a, which needs it.
+    let out = dir.join("never.csv");
+    let o = stiffid(&[
+        "select",
+        "--setup",
+        &setup,
+        "--global",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let needs = "the setup has no nominal_stiffness_nm_per_rad: criterion relative-a needs it";
+    assert_usage_error(
+        &o,
+        &[
+            needs,
+            "a rough prior will do: `stiffid setups new --robot R`",
+        ],
+    );
+    let q = ["--q-deg", "10,20,-90,30,20,10", "--wrench", "0,0,-500"];
+    let o = stiffid(&[&["predict", "--setup", &setup][..], &q].concat());
+    assert_usage_error(
+        &o,
+        &[
+            "nominal_stiffness_nm_per_rad",
+            "predict without --stiffness FILE",
+        ],
+    );
+    let k = dir.join("k.json");
+    std::fs::write(
+        &k,
+        r#"{"stiffness_nm_per_rad": [950000, 3000000, 900000, 250000, 200000, 150000]}"#,
+    )
+    .unwrap();
+    let args = [
+        "predict",
+        "--setup",
+        &setup,
+        "--stiffness",
+        k.to_str().unwrap(),
+        "--json",
+    ];
+    let predicted = json(&stiffid(&[&args[..], &q].concat()));
+    let paper = json(&stiffid(
+        &[
+            &["predict", "--setup", "zhang2021-comau-nj165", "--json"][..],
+            &q,
+        ]
+        .concat(),
+    ));
+    assert_eq!(predicted["measuring_points"], paper["measuring_points"]);
+    let o = stiffid(&[
+        "simulate",
+        "--setup",
+        &setup,
+        "--postures",
+        &postures,
+        "--runs",
+        "5",
+    ]);
+    assert_usage_error(&o, &["nominal_stiffness_nm_per_rad", "the simulation"]);
+    let report = dir.join("report");
+    let args = [
+        "select",
+        "--setup",
+        &setup,
+        "--criterion",
+        "classical",
+        "--report",
+    ];
+    let o = stiffid(
+        &[
+            &args[..],
+            &[report.to_str().unwrap(), "--out", out.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    assert_usage_error(&o, &["nominal_stiffness_nm_per_rad", "select --report"]);
+    assert!(!out.exists() && !report.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,213 @@
+//! `stiffid select` and `stiffid evaluate`: files written, JSON keys, one-line errors (exit 2).
+
+use crate::common;
+
+use common::{
+    assert_criteria_positive, assert_usage_error, json, stiffid, temp_dir, write_file, GROUP,
+};
+
+#[test]
+fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
+    let d = temp_dir("select");
+    let start = write_file(&d, "start.csv", GROUP);
+    let out = d.join("best.csv");
+    let setup = "zhang2021-comau-nj165";
+    let doc = json(&stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--criterion",
+        "zhang2021",
+        "--start",
+        start.to_str().unwrap(),
+        "--max-evals",
+        "800",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let (before, after) = (
+        doc["start_value"].as_f64().unwrap(),
+        doc["value"].as_f64().unwrap(),
+    );
+    assert!(after < before, "{after} vs {before}");
+    assert!(doc["evaluations"].as_u64().unwrap() <= 800);
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n"));
+    assert_eq!(text.lines().count(), 7);
+
+    let eval = json(&stiffid(&[
+        "evaluate",
+        "--setup",
+        setup,
+        "--postures",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_criteria_positive(&eval);
+    let z = eval["zhang2021"].as_f64().unwrap();
+    assert!(
+        (z - after).abs() < 1e-5 * after,
+        "file round trip: {z} vs {after}"
+    );
+    let rates = eval["predicted_deviation_pct"].as_array().unwrap();
+    assert_eq!(rates.len(), 6);
+    assert!(rates.iter().all(|r| r.as_array().unwrap().len() == 6));
+
+    // The start file is never the output.
+    let refused = stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--criterion",
+        "d-optimal",
+        "--start",
+        start.to_str().unwrap(),
+        "--out",
+        start.to_str().unwrap(),
+    ]);
+    assert_usage_error(&refused, &["refusing to write over the input file"]);
+    assert_eq!(std::fs::read_to_string(&start).unwrap(), GROUP);
+}
+
+#[test]
+fn select_random_and_global_write_postures_within_bounds() {
+    let d = temp_dir("select-global");
+    for extra in [
+        &["--start-random", "--postures", "4"][..],
+        &["--global", "--starts", "2", "--max-evals", "300"][..],
+    ] {
+        let out = d.join("g.csv");
+        let mut args = vec![
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--criterion",
+            "relative-a",
+            "--seed",
+            "3",
+        ];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap(), "--json"]);
+        let doc = json(&stiffid(&args));
+        let postures = doc["postures_deg"].as_array().unwrap();
+        let (lower, upper) = (
+            [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0],
+            [90.0, 40.0, -40.0, 180.0, 90.0, 180.0],
+        );
+        for q in postures {
+            for (a, v) in q.as_array().unwrap().iter().enumerate() {
+                let v = v.as_f64().unwrap();
+                assert!(v >= lower[a] && v <= upper[a], "axis {}: {v}", a + 1);
+            }
+        }
+        assert!(doc["value"].as_f64().unwrap() <= doc["start_value"].as_f64().unwrap());
+    }
+}
+
+#[test]
+fn select_gradient_exact_or_fd_from_the_same_start() {
+    let d = temp_dir("select-gradient");
+    let start = write_file(&d, "start.csv", GROUP);
+    let run = |gradient: &str| {
+        let out = d.join(format!("{gradient}.csv"));
+        json(&stiffid(&[
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--criterion",
+            "d-optimal",
+            "--start",
+            start.to_str().unwrap(),
+            "--gradient",
+            gradient,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]))
+    };
+    let (exact, fd) = (run("exact"), run("fd"));
+    assert_eq!(exact["gradient"], "exact");
+    assert_eq!(fd["gradient"], "fd");
+    let value = |doc: &serde_json::Value| doc["value"].as_f64().unwrap();
+    assert!(
+        value(&exact) <= value(&fd) * (1.0 + 1e-6),
+        "{exact} vs {fd}"
+    );
+    assert!(value(&fd) < fd["start_value"].as_f64().unwrap());
+    let evaluations = |doc: &serde_json::Value| doc["evaluations"].as_u64().unwrap();
+    assert!(evaluations(&exact) * 10 < evaluations(&fd));
+
+    let unknown = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "d-optimal",
+        "--start-random",
+        "--gradient",
+        "numeric",
+        "--out",
+        d.join("never.csv").to_str().unwrap(),
+    ]);
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("exact, fd"));
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_place() {
+    let d = temp_dir("select-bad");
+    let out = d.join("never.csv");
+    let outside = write_file(
+        &d,
+        "outside.csv",
+        &GROUP.replace("3,60,-40,-130", "3,60,-40,-20"),
+    );
+    let e = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "relative-a",
+        "--start",
+        outside.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_usage_error(&e, &["outside.csv", "line 4", "q3_deg"]);
+    assert!(!out.exists());
+
+    let unknown = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "best",
+        "--start-random",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("relative-a"));
+
+    let no_start = stiffid(&[
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--criterion",
+        "relative-a",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_usage_error(&no_start, &["--start-random"]);
+
+    let broken = write_file(&d, "broken.csv", &GROUP.replace("2,-45,10", "2,-45,ten"));
+    let e = stiffid(&[
+        "evaluate",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--postures",
+        broken.to_str().unwrap(),
+    ]);
+    assert_usage_error(&e, &["broken.csv", "line 3", "q2_deg"]);
+}

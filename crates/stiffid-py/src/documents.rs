@@ -1,0 +1,98 @@
+//! The library's documents ([`stiffid::documents`]) as Python objects, and the jobs' warnings as
+//! `UserWarning`s: the one way Python results are built, so they equal the command's JSON.
+
+use numpy::PyArray1;
+use pyo3::exceptions::PyUserWarning;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use serde::Serialize;
+use serde_json::Value;
+use std::ffi::CString;
+use stiffid::jobs::Warning;
+
+/// `document` as Python objects (JSON's: dict, list, str, int, float, bool, None), with the keys
+/// of `arrays` (at the top level) as NumPy float arrays (`null` as NaN).
+pub fn to_python<'py>(
+    py: Python<'py>,
+    document: &impl Serialize,
+    arrays: &[&str],
+) -> PyResult<Bound<'py, PyDict>> {
+    let value = serde_json::to_value(document)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    let Value::Object(map) = value else {
+        unreachable!("every document is a JSON object")
+    };
+    let dict = PyDict::new(py);
+    for (key, value) in &map {
+        let item = match arrays.contains(&key.as_str()) && !value.is_null() {
+            true => array(py, value)?,
+            false => object(py, value)?,
+        };
+        dict.set_item(key, item)?;
+    }
+    Ok(dict)
+}
+
+/// A JSON value as the Python object of the same type.
+pub fn object<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
+        Value::Number(n) => match (n.as_u64(), n.as_i64()) {
+            (Some(u), _) => u.into_pyobject(py)?.into_any(),
+            (None, Some(i)) => i.into_pyobject(py)?.into_any(),
+            _ => n.as_f64().unwrap_or(f64::NAN).into_pyobject(py)?.into_any(),
+        },
+        Value::String(s) => s.into_pyobject(py)?.into_any(),
+        Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(object(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (key, value) in map {
+                dict.set_item(key, object(py, value)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
+/// A JSON array of numbers (nested, rectangular) as a NumPy float array of its shape, `null` as
+/// NaN.
+fn array<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>> {
+    let mut shape = Vec::new();
+    let mut v = value;
+    while let Value::Array(items) = v {
+        shape.push(items.len());
+        match items.first() {
+            Some(first) => v = first,
+            None => break,
+        }
+    }
+    let mut flat = Vec::new();
+    flatten(value, &mut flat);
+    let flat = PyArray1::from_vec(py, flat);
+    flat.call_method1("reshape", (shape,))
+}
+
+fn flatten(value: &Value, out: &mut Vec<f64>) {
+    match value {
+        Value::Array(items) => items.iter().for_each(|v| flatten(v, out)),
+        other => out.push(other.as_f64().unwrap_or(f64::NAN)),
+    }
+}
+
+/// Raises each warning as a `UserWarning` with its message (an exception if the warnings are
+/// turned into errors).
+pub fn warn(py: Python<'_>, warnings: &[Warning]) -> PyResult<()> {
+    let category = py.get_type::<PyUserWarning>();
+    for w in warnings {
+        let message = CString::new(w.message.replace('\0', " ")).expect("no NUL");
+        PyErr::warn(py, category.as_any(), &message, 1)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,60 @@
+//! The cost of a design evaluation against the number of parameters of the model: the paper
+//! setup's six drives, with an elbow tilt spring and a tool translation (8), and with the tilt
+//! springs of joints 1, 2, 3 and 5 (14); one evaluation of `relative-a` and of `zhang2021` (with
+//! the singular values), and `relative-a` with its exact gradient, 6 postures x 4 measuring points.
+
+use criterion::{criterion_group, criterion_main, Criterion as Bench};
+use std::hint::black_box;
+use stiffid::design::{self, Criterion, Evaluator};
+
+const EIGHT: &str = r#"
+[[model.spring]]
+name = "elbow_x"
+kind = "rotation"
+link = 3
+axis = [1, 0, 0]
+nominal_stiffness_nm_per_rad = 4e6
+
+[[model.spring]]
+name = "tool_y"
+kind = "translation"
+link = 6
+axis = [0, 1, 0]
+nominal_stiffness_n_per_mm = 2e4
+"#;
+
+const FOURTEEN: &str = r#"
+[[model.family]]
+family = "tilt"
+links = [1, 2, 3, 5]
+nominal_stiffness_nm_per_rad = 4e6
+"#;
+
+fn setup(model: &str) -> stiffid::setup::Setup {
+    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+        .unwrap()
+        .to_string()
+        + model;
+    stiffid::setup::parse(&text, "model.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+}
+
+fn parameters(c: &mut Bench) {
+    for model in ["", EIGHT, FOURTEEN] {
+        let setup = setup(model);
+        let n = setup.model().len();
+        let group = design::random_group(&setup, 6, 1);
+        let evaluator = Evaluator::new(&setup);
+        for criterion in [Criterion::RelativeA, Criterion::Zhang2021] {
+            c.bench_function(
+                &format!("design/parameters/{n}/evaluate/{criterion}"),
+                |b| b.iter(|| evaluator.value(criterion, black_box(&group))),
+            );
+        }
+        c.bench_function(&format!("design/parameters/{n}/gradient/relative-a"), |b| {
+            b.iter(|| evaluator.value_and_gradient(Criterion::RelativeA, black_box(&group)))
+        });
+    }
+}
+
+criterion_group!(benches, parameters);
+criterion_main!(benches);

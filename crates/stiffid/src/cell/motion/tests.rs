@@ -1,0 +1,94 @@
+//! The exact margin gradients against central differences, at random feasible postures of every
+//! robot preset in a cell with every check.
+
+use crate::cell::{CheckKind, Checker};
+use crate::robot::presets;
+use crate::setup::Setup;
+use nalgebra::Vector6;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// The paper setup on `robot`, within its joint limits, in a cell with a floor, a table, a
+/// tracker with an incidence limit and both `[constraints]`.
+fn cell(robot: &str) -> Setup {
+    let text = crate::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+        + "\n[cell]\nfloor_z_mm = -100.0\nclearance_mm = 50.0\n\
+           [[cell.obstacle]]\nname = \"table\"\nmin_mm = [1200.0, -2000.0, -100.0]\nmax_mm = [2200.0, -600.0, 700.0]\n\
+           [tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\nmax_incidence_deg = 70.0\n\
+           [constraints]\nloading_point_min_z_mm = 200.0\nanchor_below_loading_point = true\n";
+    let setup = crate::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
+    let robot = presets::get(robot).unwrap();
+    let geometry = crate::cell::default_geometry(&robot, setup.tool());
+    let builder = setup.to_builder().with_bounds(robot.limits);
+    builder
+        .with_geometry(geometry)
+        .with_robot(robot)
+        .build()
+        .unwrap()
+}
+
+/// Postures drawn uniformly within the bounds that pass every check.
+fn feasible(setup: &Setup, checker: &Checker, count: usize) -> Vec<Vector6<f64>> {
+    let b = setup.bounds();
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut out = Vec::new();
+    for _ in 0..200_000 {
+        let q = Vector6::from_fn(|a, _| rng.random_range(b.lower[a]..=b.upper[a]));
+        if checker.violation(&q) == 0.0 {
+            out.push(q);
+            if out.len() == count {
+                break;
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn margin_gradients_match_central_differences() {
+    let h = 1e-5;
+    for robot in presets::names() {
+        let setup = cell(robot);
+        let checker = Checker::new(&setup);
+        let postures = feasible(&setup, &checker, 8);
+        assert_eq!(postures.len(), 8, "{robot}");
+        let (mut compared, mut kinds) = (0, std::collections::BTreeSet::new());
+        for q in &postures {
+            let (margins, gradients) = checker.margins_and_gradients(q);
+            let mut probes = [[0.0; 2]; 6].map(|_| Vec::new());
+            for a in 0..6 {
+                for (side, s) in [(0, h), (1, -h)] {
+                    let mut p = *q;
+                    p[a] += s;
+                    probes[a].push((side, checker.margins(&p)));
+                }
+            }
+            for (k, (m, g)) in margins.iter().zip(&gradients).enumerate() {
+                if !m.margin.is_finite() || m.kind == CheckKind::Bounds {
+                    continue;
+                }
+                for a in 0..6 {
+                    let (plus, minus) = (probes[a][0].1[k].margin, probes[a][1].1[k].margin);
+                    let (forward, backward) = ((plus - m.margin) / h, (m.margin - minus) / h);
+                    // A tie (two closest pairs of points) is a kink: the one-sided slopes differ.
+                    if (forward - backward).abs() > 1e-4 * (1.0 + forward.abs()) {
+                        continue;
+                    }
+                    let central = (plus - minus) / (2.0 * h);
+                    assert!(
+                        (g[a] - central).abs() <= 1e-5 * (1.0 + central.abs()),
+                        "{robot}, {} {:?}, axis {}: exact {} vs central {central} at {q:?}",
+                        m.kind,
+                        m.between,
+                        a + 1,
+                        g[a]
+                    );
+                    compared += 1;
+                }
+                kinds.insert(m.kind);
+            }
+        }
+        assert!(compared > 1000, "{robot}: {compared}");
+        assert_eq!(kinds.len(), CheckKind::ALL.len() - 1, "{robot}: {kinds:?}");
+    }
+}

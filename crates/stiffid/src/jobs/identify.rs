@@ -1,0 +1,376 @@
+//! The identify job: joint stiffness from measurements (Zhang et al. 2021, Eq. 10-14), with its
+//! uncertainty, the model check against the tracker noise ([`Adequacy`]), the unit check against
+//! the setup's nominal stiffness ([`UnitCheck`]), the physical-sign warnings and, if asked, the
+//! cross-validation over postures ([`cross_validate`]).
+//!
+//! Plain least squares on a file is streamed: the file is read once in chunks and `Psi` reduced in
+//! blocks ([`streamed`]), in bounded memory. Every other fit (robust, non-negative) and
+//! cross-validation need the whole observation matrix ([`Observations`]).
+
+use super::{joint_list, Warning, WarningKind};
+use crate::formats::measurements::{self, Labels};
+use crate::formats::read_text;
+use crate::identify::adequacy::UNIT_FACTOR;
+use crate::identify::{
+    cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, Loss,
+    UnitCheck,
+};
+use crate::observation::{Measurement, Observations};
+use crate::{Error, Result, Setup};
+use std::io::{BufReader, Read};
+
+/// The fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Fit {
+    /// Linear least squares by QR (Eq. 13-14).
+    #[default]
+    LeastSquares,
+    /// Iteratively reweighted least squares with this loss ([`Observations::robust`]).
+    Robust(Loss),
+    /// Least squares with every compliance `>= 0` ([`Observations::nonnegative`]).
+    Nonnegative,
+}
+
+impl Fit {
+    /// The fit's name in documents: `least-squares`, `nonnegative-least-squares`, `huber` or
+    /// `tukey`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Fit::LeastSquares => "least-squares",
+            Fit::Nonnegative => "nonnegative-least-squares",
+            Fit::Robust(loss) => loss.name(),
+        }
+    }
+}
+
+/// The measurements to identify from.
+pub enum Data<R> {
+    /// A measurement file ([`crate::formats::measurements`]) that `reader` reads (the caller
+    /// opened it: a file, a buffer), named `name` in the report and in errors.
+    File {
+        /// The file's name, e.g. its path.
+        name: String,
+        /// Its reader.
+        reader: R,
+    },
+    /// Measurements in the robot base frame, SI units (from arrays).
+    Measurements(Vec<Measurement>),
+}
+
+/// What to identify and how.
+pub struct Request<'a, R> {
+    /// The setup: robot, tool, tracker noise, nominal stiffness.
+    pub setup: &'a Setup,
+    /// The measurements.
+    pub data: Data<R>,
+    /// The fit.
+    pub fit: Fit,
+    /// Cross-validation over postures: `Some(folds)` (2 to the number of postures; the number of
+    /// postures leaves one posture out), `None` for none.
+    pub folds: Option<Folds>,
+}
+
+/// The folds of a cross-validation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Folds {
+    /// One fold per posture.
+    LeaveOneOut,
+    /// This many folds (2 to the number of postures).
+    Count(usize),
+}
+
+/// Where each measurement came from: what a report names a measurement by.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Origin {
+    /// The posture labels (a file's; for arrays `1`, `2`, ... in order).
+    pub labels: Labels,
+    /// The posture of each measurement, numbered in order of first appearance.
+    pub postures: Vec<usize>,
+    /// The measuring point of each measurement, 0-based.
+    pub points: Vec<usize>,
+    /// The line of each measurement in its file (1-based); `None` for arrays.
+    pub lines: Option<Vec<u64>>,
+    /// The first measurement of each posture (dense number).
+    pub first_of_posture: Vec<usize>,
+    /// The names of the force and of the displacement columns (a file's header, or the arrays'
+    /// argument names), comma-separated.
+    pub columns: [String; 2],
+}
+
+impl Origin {
+    /// The label of measurement `i`'s posture.
+    pub fn label(&self, i: usize) -> &str {
+        self.labels.get(self.postures[i])
+    }
+
+    /// The labels of dense posture numbers.
+    pub fn labels_of(&self, postures: &[usize]) -> Vec<String> {
+        postures
+            .iter()
+            .map(|&p| self.label(self.first_of_posture[p]).to_string())
+            .collect()
+    }
+
+    fn new(
+        labels: Labels,
+        postures: Vec<usize>,
+        points: Vec<usize>,
+        lines: Option<Vec<u64>>,
+        columns: [String; 2],
+    ) -> Self {
+        let mut first_of_posture = vec![usize::MAX; labels.len()];
+        for (i, &p) in postures.iter().enumerate().rev() {
+            first_of_posture[p] = i;
+        }
+        Origin {
+            labels,
+            postures,
+            points,
+            lines,
+            first_of_posture,
+            columns,
+        }
+    }
+}
+
+/// What the identify job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The data's name (a file's, or `arrays`).
+    pub data_name: String,
+    /// The fit asked for.
+    pub fit: Fit,
+    /// The identification.
+    pub identification: Identification,
+    /// Where each measurement came from.
+    pub origin: Origin,
+    /// The residuals against the setup's tracker noise; `None` without degrees of freedom.
+    pub adequacy: Option<Adequacy>,
+    /// The unit check against the setup's nominal stiffness, when it fails; `None` when the
+    /// stiffness is plausible or the setup has no nominal stiffness.
+    pub unit: Option<UnitCheck>,
+    /// The cross-validation, if asked.
+    pub cross_validation: Option<CrossValidation>,
+    /// Fold by fold: the postures left out and the joints (0-based) whose stiffness the removal
+    /// moves by more than its standard error in the full fit (influential folds only).
+    pub influential: Vec<(Vec<String>, Vec<usize>)>,
+    /// Results to look at before trusting them (signs, units).
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs the identify job.
+///
+/// # Errors
+/// Errors about the data are [`Error::Input`] naming the data (a file's line and column, or the
+/// measurement's number): those of [`streamed::least_squares`], [`measurements::parse`],
+/// [`Observations::from_measurements`] and of the fits; [`Error::InvalidField`] (`folds`) and
+/// those of [`cross_validate`].
+pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
+    let Request {
+        setup,
+        data,
+        fit: how,
+        folds,
+    } = request;
+    let (data_name, identification, origin, cross_validation) = match data {
+        Data::File { name, reader } => {
+            let (id, origin, cv) = from_file(setup, how, folds, &name, reader)?;
+            (name, id, origin, cv)
+        }
+        Data::Measurements(measurements) => {
+            let (id, cv) =
+                fit(setup, how, folds, &measurements).map_err(|e| in_data("arrays", e))?;
+            let origin = arrays_origin(&measurements);
+            ("arrays".to_string(), id, origin, cv)
+        }
+    };
+    let unit = setup
+        .nominal_stiffness()
+        .and_then(|k| identification.unit_check(k));
+    let mut report = Report {
+        data_name,
+        fit: how,
+        adequacy: identification.adequacy(setup.noise().variance),
+        unit,
+        influential: Vec::new(),
+        identification,
+        origin,
+        cross_validation,
+        warnings: Vec::new(),
+    };
+    report.influential = influential(&report);
+    report.warnings = warnings(&report);
+    Ok(report)
+}
+
+/// `error` about the data named `name`.
+fn in_data(name: &str, error: Error) -> Error {
+    Error::Input {
+        source_name: name.to_string(),
+        error: Box::new(error),
+    }
+}
+
+/// The identification of a measurement file: streamed for plain least squares without
+/// cross-validation, else parsed whole.
+fn from_file<R: Read + Send>(
+    setup: &Setup,
+    how: Fit,
+    folds: Option<Folds>,
+    name: &str,
+    reader: R,
+) -> Result<(Identification, Origin, Option<CrossValidation>)> {
+    if how == Fit::LeastSquares && folds.is_none() {
+        let source = BufReader::with_capacity(1 << 20, reader);
+        let (id, rows) = streamed::least_squares(setup, source).map_err(|e| in_data(name, e))?;
+        let columns = [
+            rows.layout.force_columns(),
+            rows.layout.displacement_columns(),
+        ];
+        let origin = Origin::new(
+            rows.labels,
+            rows.postures,
+            rows.points,
+            Some(rows.lines),
+            columns,
+        );
+        return Ok((id, origin, None));
+    }
+    let text = read_text(name, reader)?;
+    let mut file = measurements::parse(&text).map_err(|e| in_data(name, e))?;
+    drop(text);
+    file.to_base_frame(setup).map_err(|e| in_data(name, e))?;
+    let (id, cv) =
+        fit(setup, how, folds, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
+    let columns = [
+        file.layout.force_columns(),
+        file.layout.displacement_columns(),
+    ];
+    let origin = Origin::new(
+        Labels::from_iter(&file.labels),
+        file.measurements.iter().map(|m| m.posture).collect(),
+        file.measurements.iter().map(|m| m.point).collect(),
+        Some(file.lines),
+        columns,
+    );
+    Ok((id, origin, cv))
+}
+
+/// The fit of measurements in the base frame, and the cross-validation if asked. Plain least
+/// squares without cross-validation runs in blocks ([`least_squares`]), without the whole `Psi`.
+fn fit(
+    setup: &Setup,
+    how: Fit,
+    folds: Option<Folds>,
+    measurements: &[Measurement],
+) -> Result<(Identification, Option<CrossValidation>)> {
+    if how == Fit::LeastSquares && folds.is_none() {
+        return Ok((least_squares(setup, measurements)?, None));
+    }
+    let obs = Observations::from_measurements(setup, measurements)?;
+    let id = match how {
+        Fit::Robust(loss) => obs.robust(loss)?,
+        Fit::Nonnegative => obs.nonnegative()?,
+        Fit::LeastSquares => obs.least_squares()?,
+    };
+    let cross_validation = match folds {
+        None => None,
+        Some(Folds::LeaveOneOut) => Some(cross_validate(&obs, &id, obs.postures)?),
+        Some(Folds::Count(k)) => Some(cross_validate(&obs, &id, k)?),
+    };
+    Ok((id, cross_validation))
+}
+
+/// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
+fn arrays_origin(measurements: &[Measurement]) -> Origin {
+    let postures = measurements.iter().map(|m| m.posture).collect::<Vec<_>>();
+    let count = postures.iter().max().map_or(0, |p| p + 1);
+    Origin::new(
+        Labels::from_iter((1..=count).map(|p| p.to_string())),
+        postures,
+        measurements.iter().map(|m| m.point).collect(),
+        None,
+        ["wrench".into(), "displacement_mm".into()],
+    )
+}
+
+/// The postures of each influential fold and the joints (0-based) it moves.
+fn influential(report: &Report) -> Vec<(Vec<String>, Vec<usize>)> {
+    let Some(cv) = &report.cross_validation else {
+        return Vec::new();
+    };
+    cv.folds
+        .iter()
+        .filter(|f| f.influential.iter().any(|i| *i))
+        .map(|f| {
+            let joints = (0..f.influential.len())
+                .filter(|&j| f.influential[j])
+                .collect();
+            (report.origin.labels_of(&f.postures), joints)
+        })
+        .collect()
+}
+
+/// The warnings: results that are not physical, a likely unit mix-up.
+fn warnings(report: &Report) -> Vec<Warning> {
+    let id = &report.identification;
+    let physical = id.physical();
+    let mut out = Vec::new();
+    let n = id.compliance.len();
+    let negative: Vec<usize> = (0..n).filter(|&j| id.compliance[j] < 0.0).collect();
+    let rigid: Vec<usize> = (0..n)
+        .filter(|&j| !physical[j] && id.compliance[j] >= 0.0)
+        .collect();
+    match negative.len() {
+        0 => {}
+        k if k == n => out.push(Warning::new(
+            WarningKind::AllNegative,
+            "every compliance is negative (not physical): the displacements or the forces probably have the wrong sign (the wrench is the force on the robot; the displacement is loaded minus unloaded)",
+        )),
+        _ => out.push(Warning::new(
+            WarningKind::Negative,
+            format!(
+                "{}: negative compliance, not physical: the model or the data are wrong there; a non-negative fit bounds the compliances at 0",
+                joint_list(negative)
+            ),
+        )),
+    }
+    if !rigid.is_empty() {
+        out.push(Warning::new(
+            WarningKind::Rigid,
+            format!(
+                "{}: zero or non-finite compliance (infinitely stiff), not physical: the data cannot tell the joint from a rigid one",
+                joint_list(rigid)
+            ),
+        ));
+    }
+    if let Some(unit) = &report.unit {
+        out.push(Warning::new(WarningKind::Units, unit_message(report, unit)));
+    }
+    out
+}
+
+/// The unit warning, naming the columns.
+fn unit_message(report: &Report, unit: &UnitCheck) -> String {
+    let [forces, displacements] = &report.origin.columns;
+    let cause = match unit.stiffer {
+        true => format!(
+            "displacements ({displacements}) in m instead of mm, or forces ({forces}) in mN instead of N"
+        ),
+        false => format!(
+            "forces ({forces}) in kN instead of N, or displacements ({displacements}) in um instead of mm"
+        ),
+    };
+    let angles = match report.origin.lines {
+        Some(_) => "q1_deg..q6_deg",
+        None => "q_deg",
+    };
+    format!(
+        "the identified stiffness is {} times the setup's nominal on {} (more than {UNIT_FACTOR}x off): a unit is the likely cause: {cause}; the axis angles must be in degrees ({angles})",
+        match unit.typical_ratio >= 1.0 {
+            true => format!("about {:.3e}", unit.typical_ratio),
+            false => format!("about 1/{:.3e}", 1.0 / unit.typical_ratio),
+        },
+        joint_list(unit.joints.iter().copied())
+    )
+}

@@ -1,0 +1,132 @@
+//! Property tests of the file formats' parsers (measurement CSV, postures CSV, stiffness JSON):
+//! arbitrary text, mutated real files and hostile numbers never panic, and whatever is accepted
+//! gives finite results (angles within the setup's bounds, stiffness within its range, an
+//! identification that is finite or a clear error).
+//!
+//! Generated cases per run: 128 arbitrary texts (each given to all three parsers) + 3 x 128
+//! mutated files + 3 x 128 files with a hostile number = 896.
+
+use crate::mutate;
+
+use mutate::{apply, edit, hostile_number, Edit};
+use proptest::prelude::*;
+use stiffid::formats::{measurements, postures, stiffness};
+use stiffid::limits::STIFFNESS_NM_PER_RAD;
+use stiffid::Setup;
+
+const CASES: u32 = 128;
+
+fn comau() -> Setup {
+    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+}
+
+fn fanuc() -> Setup {
+    stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap()
+}
+
+fn measurements_text() -> &'static str {
+    include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+}
+
+const POSTURES: &str = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg
+1,10,-20,-100,30,40,-60
+2,-45,10,-70,-90,-30,120
+3,60,-40,-130,150,60,10
+";
+
+const STIFFNESS: &str = r#"{"setup": "x", "stiffness_nm_per_rad": [950000.0, 3000000.0, 900000.0, 250000.0, 200000.0, 150000.0]}"#;
+
+/// Accepted measurements identify finite stiffness, or fail with an error (never NaN).
+fn check_measurements(text: &str, setup: &Setup) {
+    let Ok(d) = measurements::parse(text) else {
+        return;
+    };
+    for m in &d.measurements {
+        assert!(m
+            .q
+            .iter()
+            .chain(&m.wrench)
+            .chain(&m.displacement)
+            .all(|v| v.is_finite()));
+    }
+    if let Ok(id) = stiffid::identify::least_squares(setup, &d.measurements) {
+        assert!(
+            id.compliance.iter().all(|h| h.is_finite()),
+            "{:?}",
+            id.compliance
+        );
+        assert!(!id.residual_rms.is_nan());
+    }
+}
+
+fn check_postures(text: &str, setup: &Setup) {
+    if let Ok(group) = postures::parse(text, setup.robot(), Some(setup.bounds())) {
+        assert!(!group.is_empty());
+        assert!(group.iter().all(|q| setup.bounds().contains(q)));
+    }
+}
+
+fn check_stiffness(text: &str) {
+    if let Ok(k) = stiffness::parse(text) {
+        assert!(k
+            .stiffness()
+            .iter()
+            .all(|v| STIFFNESS_NM_PER_RAD.contains(*v)));
+        assert!(k
+            .covariance()
+            .is_none_or(|c| c.iter().all(|v| v.is_finite())));
+    }
+}
+
+#[test]
+fn the_real_files_are_accepted() {
+    assert!(measurements::parse(measurements_text()).is_ok());
+    assert_eq!(
+        postures::parse(POSTURES, comau().robot(), Some(comau().bounds()))
+            .unwrap()
+            .len(),
+        3
+    );
+    assert!(stiffness::parse(STIFFNESS).is_ok());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(CASES))]
+
+    #[test]
+    fn arbitrary_text_never_panics(text in "\\PC{0,300}") {
+        check_measurements(&text, &fanuc());
+        check_postures(&text, &comau());
+        check_stiffness(&text);
+    }
+
+    #[test]
+    fn mutated_measurements(edits in prop::collection::vec(edit(), 1..4)) {
+        check_measurements(&apply(measurements_text(), &edits), &fanuc());
+    }
+
+    #[test]
+    fn mutated_postures(edits in prop::collection::vec(edit(), 1..4)) {
+        check_postures(&apply(POSTURES, &edits), &comau());
+    }
+
+    #[test]
+    fn mutated_stiffness(edits in prop::collection::vec(edit(), 1..4)) {
+        check_stiffness(&apply(STIFFNESS, &edits));
+    }
+
+    #[test]
+    fn hostile_numbers_in_measurements(k in any::<usize>(), n in hostile_number()) {
+        check_measurements(&apply(measurements_text(), &[Edit::Number(k, n)]), &fanuc());
+    }
+
+    #[test]
+    fn hostile_numbers_in_postures(k in any::<usize>(), n in hostile_number()) {
+        check_postures(&apply(POSTURES, &[Edit::Number(k, n)]), &comau());
+    }
+
+    #[test]
+    fn hostile_numbers_in_stiffness(k in any::<usize>(), n in hostile_number()) {
+        check_stiffness(&apply(STIFFNESS, &[Edit::Number(k, n)]));
+    }
+}

@@ -1,0 +1,321 @@
+//! Process forces: the closed-form mean milling force against a numerical integration of the
+//! instantaneous chip-thickness model, the slot-milling relations of the mechanistic model, the
+//! drilling model, the feed frame and the process file's errors.
+
+use approx::assert_relative_eq;
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+use stiffid::process::milling::{Coefficients, Milling, Mode};
+use stiffid::process::{feed_frame, file, Kind};
+use stiffid::Error;
+
+fn coefficients() -> Coefficients {
+    Coefficients {
+        k_tc: 796e6,
+        k_rc: 168.8e6,
+        k_ac: 222e6,
+        k_te: 27.7e3,
+        k_re: 30.8e3,
+        k_ae: 1.8e3,
+    }
+}
+
+fn cut(radial_mm: f64, mode: Mode, helix_deg: f64, flutes: u32) -> Milling {
+    Milling {
+        diameter: 20e-3,
+        flutes,
+        helix: helix_deg.to_radians(),
+        feed_per_tooth: 0.1e-3,
+        axial_depth: 5e-3,
+        radial_depth: radial_mm * 1e-3,
+        mode,
+        coefficients: coefficients(),
+    }
+}
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre polynomial).
+fn gauss(n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            loop {
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    (p0, p1) = (p1, p2);
+                }
+                let dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let dx = p1 / dp;
+                x -= dx;
+                if dx.abs() < 1e-15 {
+                    let (mut p0, mut p1) = (1.0, x);
+                    for k in 2..=n {
+                        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                        (p0, p1) = (p1, p2);
+                    }
+                    let dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                    return (x, 2.0 / ((1.0 - x * x) * dp * dp));
+                }
+            }
+        })
+        .collect()
+}
+
+/// `integral of f over [a, b]`, the interval split at `breaks`, 20-point Gauss-Legendre on each
+/// piece (the integrand is smooth between the breaks).
+fn integrate(f: &dyn Fn(f64) -> Vector3<f64>, a: f64, b: f64, breaks: &[f64]) -> Vector3<f64> {
+    let rule = gauss(20);
+    let mut points: Vec<f64> = breaks
+        .iter()
+        .copied()
+        .filter(|x| *x > a && *x < b)
+        .collect();
+    points.push(a);
+    points.push(b);
+    points.sort_by(f64::total_cmp);
+    let mut sum = Vector3::zeros();
+    for w in points.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        let (mid, half) = ((lo + hi) / 2.0, (hi - lo) / 2.0);
+        for &(x, wt) in &rule {
+            sum += f(mid + half * x) * (wt * half);
+        }
+    }
+    sum
+}
+
+/// The mean force over one revolution, integrated numerically from the instantaneous
+/// chip-thickness model written out here from the textbook (not the library's antiderivative):
+/// every flute, every height of the edge (Gauss-Legendre over the axial depth), and the spindle
+/// angle split where a flute's point enters or leaves the immersion.
+fn numerical_mean(m: &Milling) -> Vector3<f64> {
+    let k = &m.coefficients;
+    let (st, ex) = m.immersion();
+    let n = m.flutes as usize;
+    let pitch = 2.0 * PI / n as f64;
+    let kb = 2.0 * m.helix.tan() / m.diameter;
+    let sign = if m.helix < 0.0 { -1.0 } else { 1.0 };
+    let per_length = |psi: f64| {
+        let h = m.feed_per_tooth * psi.sin();
+        let (t, r, a) = (
+            k.k_tc * h + k.k_te,
+            k.k_rc * h + k.k_re,
+            k.k_ac * h + k.k_ae,
+        );
+        Vector3::new(
+            -t * psi.cos() - r * psi.sin(),
+            t * psi.sin() - r * psi.cos(),
+            sign * a,
+        )
+    };
+    let at_height = |z: f64| {
+        let lag = kb.abs() * z;
+        let mut breaks = Vec::new();
+        for j in 0..n {
+            for edge in [st, ex] {
+                breaks.push((edge - j as f64 * pitch + lag).rem_euclid(2.0 * PI));
+            }
+        }
+        let force = |phi: f64| {
+            let mut f = Vector3::zeros();
+            for j in 0..n {
+                let psi = (phi + j as f64 * pitch - lag).rem_euclid(2.0 * PI);
+                if psi >= st && psi <= ex {
+                    f += per_length(psi);
+                }
+            }
+            f
+        };
+        integrate(&force, 0.0, 2.0 * PI, &breaks) / (2.0 * PI)
+    };
+    let rule = gauss(20);
+    let (half, mid) = (m.axial_depth / 2.0, m.axial_depth / 2.0);
+    rule.iter()
+        .map(|&(x, w)| at_height(mid + half * x) * (w * half))
+        .sum()
+}
+
+#[test]
+fn closed_form_mean_equals_the_integrated_instantaneous_model() {
+    for (radial, mode, helix, flutes) in [
+        (20.0, Mode::Up, 0.0, 3),
+        (20.0, Mode::Down, 30.0, 4),
+        (5.0, Mode::Up, 0.0, 2),
+        (5.0, Mode::Down, 0.0, 3),
+        (8.0, Mode::Up, 30.0, 3),
+        (3.0, Mode::Down, 45.0, 4),
+        (12.0, Mode::Up, -30.0, 1),
+    ] {
+        let m = cut(radial, mode, helix, flutes);
+        let closed = m.mean_force();
+        let numeric = numerical_mean(&m);
+        let scale = closed.norm();
+        assert!(scale > 10.0, "{closed}");
+        for i in 0..3 {
+            assert!(
+                (closed[i] - numeric[i]).abs() <= 1e-9 * scale,
+                "{radial} mm {mode:?} {helix} deg {flutes} flutes, component {i}: {} vs {}",
+                closed[i],
+                numeric[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn slot_milling_mean_force_is_linear_in_the_feed_as_the_mechanistic_relations_say() {
+    // Full immersion: F_x = -N a (K_rc c / 4 + K_re / pi), F_y = N a (K_tc c / 4 + K_te / pi),
+    // F_z = N a (K_ac c / pi + K_ae / 2) (the relations slot tests identify the coefficients by).
+    let m = cut(20.0, Mode::Up, 30.0, 3);
+    let k = coefficients();
+    let (n, a, c) = (3.0, 5e-3, 0.1e-3);
+    let expected = Vector3::new(
+        -n * a * (k.k_rc * c / 4.0 + k.k_re / PI),
+        n * a * (k.k_tc * c / 4.0 + k.k_te / PI),
+        n * a * (k.k_ac * c / PI + k.k_ae / 2.0),
+    );
+    assert_relative_eq!(m.mean_force(), expected, max_relative = 1e-12);
+    // By hand: 0.015 m * (19 900 + 8 817) N/m = 430.76 N normal, -210.4 N along the feed, 119.5 N
+    // axial for this 20 mm, 3-flute, 5 mm deep slot at 0.1 mm per tooth.
+    assert_relative_eq!(
+        expected,
+        Vector3::new(-210.36, 430.76, 119.50),
+        max_relative = 1e-4
+    );
+}
+
+#[test]
+fn instantaneous_force_without_helix_is_the_sum_over_flutes_and_its_peak_is_found() {
+    let m = cut(20.0, Mode::Up, 0.0, 2);
+    // One flute at psi = 90 deg (the other at 270 deg, outside the slot's [0, 180]).
+    let f = m.force_at(PI / 2.0);
+    assert_relative_eq!(f, m.per_length(PI / 2.0) * 5e-3, max_relative = 1e-12);
+    // The peak of a two-flute slot without helix is at psi = 90 deg +- the edge terms' shift:
+    // no grid point beats the fine search, and it is at least the force at 90 deg.
+    let peak = m.peak_force(0.1f64.to_radians());
+    assert!(peak.norm() >= f.norm() - 1e-9);
+    let coarse = m.peak_force(5f64.to_radians());
+    assert!(coarse.norm() <= peak.norm() + 1e-9);
+    // With helix the force is smoothed: the peak is below the straight flute's.
+    let helical = cut(20.0, Mode::Up, 30.0, 2).peak_force(0.1f64.to_radians());
+    assert!(helical.norm() < peak.norm());
+}
+
+#[test]
+fn drilling_torque_and_thrust_follow_the_specific_energy_model() {
+    let text = "kind = \"drilling\"\n[tool]\ndiameter_mm = 10\n[cut]\nfeed_per_rev_mm = 0.2\n\
+                [coefficients]\nspecific_energy_n_per_mm2 = 800\nspecific_thrust_n_per_mm2 = 1000\n";
+    let process = file::parse(text, "drill.toml").unwrap();
+    let Kind::Drilling(d) = &process.operations[0].kind else {
+        panic!("drilling expected")
+    };
+    // T = k_c f D^2 / 8 = 800 * 0.2 * 100 / 8 N mm = 2.0 Nm; F = k_f f D / 2 = 1000 N.
+    assert_relative_eq!(d.torque(), 2.0, max_relative = 1e-12);
+    assert_relative_eq!(d.thrust(), 1000.0, max_relative = 1e-12);
+}
+
+#[test]
+fn feed_frame_follows_the_feed_and_the_tool_axis() {
+    let down = Vector3::new(0.0, 0.0, -1.0);
+    let r = feed_frame(&Vector3::new(3.0, 0.0, 0.5), &down).unwrap();
+    assert_relative_eq!(r * Vector3::x(), Vector3::x(), epsilon = 1e-15);
+    assert_relative_eq!(r * Vector3::y(), Vector3::y(), epsilon = 1e-15);
+    assert_relative_eq!(r * Vector3::z(), Vector3::z(), epsilon = 1e-15);
+    let r = feed_frame(&Vector3::new(0.0, -2.0, 0.0), &down).unwrap();
+    assert_relative_eq!(r * Vector3::y(), Vector3::x(), epsilon = 1e-15);
+    assert!(feed_frame(&Vector3::new(0.0, 0.0, 1.0), &down).is_none());
+}
+
+const MILLING: &str = "[tool]\ndiameter_mm = 20\nflutes = 3\nhelix_deg = 30\n[cut]\n\
+    feed_per_tooth_mm = 0.1\naxial_depth_mm = 5\nradial_depth_mm = 20\nmode = \"up\"\n\
+    [coefficients]\npreset = \"al7075-t6\"\n";
+
+#[test]
+fn a_preset_gives_its_published_coefficients_and_fields_override_them() {
+    let process = file::parse(MILLING, "p.toml").unwrap();
+    let Kind::Milling(m) = &process.operations[0].kind else {
+        panic!("milling expected")
+    };
+    assert_relative_eq!(m.coefficients.k_tc, 767.01e6, max_relative = 1e-12);
+    assert_relative_eq!(m.coefficients.k_ae, 0.7e3, max_relative = 1e-12);
+    let text = MILLING.replace(
+        "preset = \"al7075-t6\"",
+        "preset = \"al7075-t6\"\nk_tc_n_per_mm2 = 800",
+    );
+    let process = file::parse(&text, "p.toml").unwrap();
+    let Kind::Milling(m) = &process.operations[0].kind else {
+        panic!("milling expected")
+    };
+    assert_relative_eq!(m.coefficients.k_tc, 800e6, max_relative = 1e-12);
+}
+
+#[test]
+fn process_file_errors_name_the_field() {
+    let cases = [
+        (
+            "axial_depth_mm = 5",
+            "axial_depth_mm = 0",
+            "p.toml: cut.axial_depth_mm",
+        ),
+        (
+            "radial_depth_mm = 20",
+            "radial_depth_mm = 21",
+            "p.toml: cut.radial_depth_mm",
+        ),
+        ("flutes = 3", "flutes = 13", "p.toml: tool.flutes"),
+        ("helix_deg = 30", "helix_deg = 61", "p.toml: tool.helix_deg"),
+        ("mode = \"up\"", "mode = \"sideways\"", "p.toml: cut.mode"),
+        (
+            "preset = \"al7075-t6\"",
+            "preset = \"unobtainium\"",
+            "p.toml: coefficients.preset",
+        ),
+        (
+            "preset = \"al7075-t6\"",
+            "k_tc_n_per_mm2 = 700",
+            "p.toml: coefficients.k_rc_n_per_mm2",
+        ),
+        (
+            "diameter_mm = 20",
+            "diameter_mm = nan",
+            "p.toml: tool.diameter_mm",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let text = MILLING.replace(from, to);
+        match file::parse(&text, "p.toml") {
+            Err(Error::InvalidField { field: f, .. }) => assert_eq!(f, field, "{to}"),
+            other => panic!("{to}: {other:?}"),
+        }
+    }
+    let e = file::parse(&MILLING.replace("flutes", "flute"), "p.toml").unwrap_err();
+    assert!(e.to_string().starts_with("p.toml: "), "{e}");
+    assert!(e.to_string().contains("flute"), "{e}");
+}
+
+#[test]
+fn several_operations_are_selected_by_tool_number_or_lines() {
+    let text = format!(
+        "[workpiece]\nbase_from_part = {{ xyz_mm = [1000, 0, 400], rpy_deg = [0, 0, 90] }}\n\
+         [[operation]]\nname = \"rough\"\ntool_number = 1\n{}\n\
+         [[operation]]\nname = \"drill\"\nkind = \"drilling\"\nlines = [10, 20]\n[operation.tool]\n\
+         diameter_mm = 8\n[operation.cut]\nfeed_per_rev_mm = 0.15\n[operation.coefficients]\n\
+         specific_energy_n_per_mm2 = 700\nspecific_thrust_n_per_mm2 = 900\n",
+        MILLING
+            .replace("[tool]", "[operation.tool]")
+            .replace("[cut]", "[operation.cut]")
+            .replace("[coefficients]", "[operation.coefficients]")
+    );
+    let process = file::parse(&text, "p.toml").unwrap();
+    assert_eq!(process.operations.len(), 2);
+    assert_eq!(process.operations[0].selector.tool_number, Some(1));
+    assert_eq!(process.operations[1].selector.lines, Some((10, 20)));
+    let t = process.base_from_part.unwrap();
+    assert_relative_eq!(
+        t.translation.vector,
+        Vector3::new(1.0, 0.0, 0.4),
+        epsilon = 1e-15
+    );
+    let e = file::parse(&text.replace("[10, 20]", "[20, 10]"), "p.toml").unwrap_err();
+    assert!(e.to_string().contains("operation[2].lines"), "{e}");
+}
