@@ -12,6 +12,7 @@ use stiffid::documents::identify::Document;
 use stiffid::identify::Loss;
 use stiffid::jobs::identify::{self as job, Data, Fit, Folds, Request};
 
+mod models;
 mod text;
 
 /// Arguments of `stiffid identify`.
@@ -35,14 +36,31 @@ pub struct Args {
     /// Number of cross-validation folds, 2 to the number of postures (implies --cross-validate).
     #[arg(long)]
     folds: Option<usize>,
-    /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`).
+    /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`);
+    /// with `--compare-models`, the recommended model's `[model]` fragment for the setup.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Compare models: add candidate virtual springs to the setup's model by forward selection on
+    /// the leave-one-posture-out error, nested in an outer cross-validation; recommend the
+    /// smallest model within one standard error of the best.
+    #[arg(long)]
+    compare_models: bool,
+    /// The candidates of `--compare-models`, comma-separated: family springs (`tilt3_x`,
+    /// `tool_y`, `base_rz`) or families (`tilt`, `tool`, `base`); default the tilt springs of
+    /// joints 1-6 and the tool translations.
+    #[arg(long, value_delimiter = ',', requires = "compare_models")]
+    candidates: Option<Vec<String>>,
 }
 
 /// Identifies, prints, and writes `--out`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
+    if args.compare_models {
+        return models::compare_models(args, &setup);
+    }
+    if !setup.model().is_drives_only() {
+        return models::identify_model(args, &setup);
+    }
     // Opened (and so known as an input, never written over) before --out is prepared.
     let reader = load::open(&args.data)?;
     let out = args

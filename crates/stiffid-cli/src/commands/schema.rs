@@ -19,13 +19,14 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 11] = [
+const DOCUMENTS: [(&str, &str); 12] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
     ("predict", "stiffid predict --json"),
     ("identify", "stiffid identify --json (and --out)"),
     ("stiffness", "the stiffness file --stiffness reads"),
+    ("compare-models", "stiffid identify --compare-models --json"),
     ("validate", "stiffid validate --json"),
     (
         "compensate",
@@ -66,6 +67,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "select" => closed::<select::SelectJson<'static>>(),
         "predict" => closed::<predict::PredictJson>(),
         "identify" => closed::<stiffid::documents::identify::Document>(),
+        "compare-models" => closed::<stiffid::identify::compare::Document>(),
         "validate" => closed::<validate::ValidationJson>(),
         "compensate" => closed::<compensate::Document<'static>>(),
         "simulate" => closed::<simulate::SimulationJson<'static>>(),

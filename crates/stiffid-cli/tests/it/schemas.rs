@@ -234,6 +234,38 @@ fn identify_validate_and_compensate_outputs_match_their_schemas() {
     ]));
     assert!(c["points"][0]["dx_std_mm"].is_number());
     assert_valid("compensate", &c, true);
+
+    // --compare-models: the document, and the [model] fragment of --out read back by a setup.
+    let fragment = dir.join("model.toml");
+    let m = identify(&["--compare-models", "--out", fragment.to_str().unwrap()]);
+    assert_valid("compare-models", &m, true);
+    let models = m["models"].as_array().unwrap();
+    let drives = models[0]["held_out_explained"].as_f64().unwrap();
+    assert!((drives - 0.765).abs() < 5e-4, "{drives}");
+    let rec = models.iter().find(|r| r["recommended"] == true).unwrap();
+    assert!(rec["held_out_explained"].as_f64().unwrap() >= 0.81 && rec["physical"] == true);
+    let setup = dir.join("with-model.toml");
+    let text = stiffid::setup::builtin_text("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_string()
+        + &std::fs::read_to_string(&fragment).unwrap();
+    std::fs::write(&setup, text).unwrap();
+    let fit = json(&stiffid(&[
+        "identify",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--data",
+        data,
+        "--json",
+    ]));
+    let names: Vec<&str> = fit["fit"]["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names.len(), rec["parameters"].as_u64().unwrap() as usize);
+    assert_eq!(&names[..6], ["k1", "k2", "k3", "k4", "k5", "k6"]);
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -15,6 +15,10 @@
 //! posture with the model it chose (outer leave-one-posture-out): the error to expect from
 //! choosing by the data.
 
+pub mod document;
+
+pub use document::{parameter_docs, Document};
+
 use super::model::{fit, held_out, Fit, HeldOut};
 use crate::model::{Family, Model, Spring};
 use crate::observation::{Measurement, Observations};
@@ -39,6 +43,62 @@ pub fn default_candidates(setup: &Setup) -> Vec<Spring> {
     out
 }
 
+/// Every spring of the families on the setup's robot: `tilt` at joints 1-6, `tool`, `base`.
+fn family_springs(setup: &Setup) -> Vec<Spring> {
+    let robot = setup.robot();
+    let mut out = Family::Tilt
+        .springs(robot, &[1, 2, 3, 4, 5, 6], None, None, "candidates")
+        .unwrap_or_default();
+    for f in [Family::Tool, Family::Base] {
+        out.extend(
+            f.springs(robot, &[], None, None, "candidates")
+                .unwrap_or_default(),
+        );
+    }
+    out
+}
+
+/// The candidates named in `names`: family springs by name (`tilt3_x`, `tool_y`, `base_rz`) or
+/// whole families (`tilt`: joints 1-6, `tool`, `base`), in the order given, without repeats and
+/// without those the setup's model already has.
+///
+/// # Errors
+/// [`crate::Error::InvalidField`] (`candidates`) for a name that is neither, or no candidate left.
+pub fn candidates_by_name(setup: &Setup, names: &[String]) -> Result<Vec<Spring>> {
+    let pool = family_springs(setup);
+    let mut out: Vec<Spring> = Vec::new();
+    for name in names {
+        let family = crate::model::FAMILIES.iter().any(|(f, _)| f == name);
+        let matched: Vec<&Spring> = pool
+            .iter()
+            .filter(|s| s.name == *name || (family && s.name.starts_with(name.as_str())))
+            .collect();
+        if matched.is_empty() {
+            return Err(crate::Error::InvalidField {
+                field: "candidates".into(),
+                message: format!(
+                    "'{}' is not a candidate: expected a family (tilt, tool, base) or one of its springs (tilt1_x .. tilt6_y, tool_x, tool_y, tool_z, base_x .. base_rz)",
+                    crate::limits::short(name)
+                ),
+            });
+        }
+        for s in matched {
+            if out.iter().all(|o| o.name != s.name) {
+                out.push(s.clone());
+            }
+        }
+    }
+    let have = setup.model().springs();
+    out.retain(|c| have.iter().all(|s| s.name != c.name));
+    if out.is_empty() {
+        return Err(crate::Error::InvalidField {
+            field: "candidates".into(),
+            message: "every candidate is already in the setup's model: nothing to compare".into(),
+        });
+    }
+    Ok(out)
+}
+
 /// One model of the comparison.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
@@ -48,6 +108,8 @@ pub struct Row {
     pub springs: Vec<String>,
     /// The number of parameters.
     pub parameters: usize,
+    /// The parameters' indices among the setup's model's and the candidates' ([`Comparison::parameters`]).
+    pub parameter_indices: Vec<usize>,
     /// `1 - RMS(|r|) / RMS(|delta|)` of the fit to every posture.
     pub in_sample_explained: f64,
     /// `1 - RMS(delta_b) / RMS(|delta|)` with each posture left out; `None` when some posture is
@@ -111,6 +173,8 @@ pub struct Comparison {
     /// The setup's model passes the model check against the tracker noise (p >= 0.01): no
     /// extension is needed.
     pub model_fits: bool,
+    /// The parameters of the setup's model followed by the candidates.
+    pub parameters: Vec<crate::model::Parameter>,
 }
 
 /// Column sets over the observations of the setup's model plus every candidate.
@@ -171,6 +235,7 @@ pub fn compare(
         recommended_fit,
         nested,
         model_fits,
+        parameters: model.parameters(),
     })
 }
 
@@ -219,6 +284,7 @@ impl Problem<'_> {
                 .map(|&c| names[c].name.clone())
                 .collect(),
             parameters: columns.len(),
+            parameter_indices: columns.to_vec(),
             in_sample_explained: explained(&f.residuals, &sub.delta),
             held_out_explained: held.as_ref().map(HeldOut::explained),
             held_out_rms_delta_b: held.as_ref().map(|h| h.rms_delta_b),
