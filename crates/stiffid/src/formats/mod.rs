@@ -11,8 +11,8 @@
 //! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
-pub mod gcode;
 pub(crate) mod exact;
+pub mod gcode;
 pub mod measurements;
 pub mod path;
 pub mod postures;
