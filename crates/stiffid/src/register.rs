@@ -128,8 +128,7 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Vec<Correspondence
 /// let tracker = [Vector3::zeros(), Vector3::x(), Vector3::y(), Vector3::new(0.3, 0.2, 1.0)];
 /// let points: Vec<_> = tracker
 ///     .iter()
-///     .map(|t| Correspondence { base: truth * nalgebra::Point3::from(*t), tracker: *t })
-///     .map(|c| Correspondence { base: c.base.coords, tracker: c.tracker })
+///     .map(|t| Correspondence { base: (truth * nalgebra::Point3::from(*t)).coords, tracker: *t })
 ///     .collect();
 /// let r = fit(&points).unwrap();
 /// assert!((r.base_from_tracker.translation.vector - truth.translation.vector).norm() < 1e-12);
