@@ -60,7 +60,8 @@ fn assert_robot_usable(robot: &Robot) {
 }
 
 /// A setup that was accepted: a usable robot, finite SI numbers, and criteria of a seeded group
-/// that are finite or +infinity, never NaN.
+/// that are finite or +infinity, never NaN (but the dexterity criteria, which are not computed
+/// without a characteristic length).
 fn assert_setup_usable(setup: &Setup) {
     assert_robot_usable(setup.robot());
     assert!(setup
@@ -79,9 +80,13 @@ fn assert_setup_usable(setup: &Setup) {
             .all(|v| v.is_finite()));
     }
     let e = evaluate(setup, &group);
+    // The dexterity criteria need the characteristic length: without it they are not computed (NaN).
+    if setup.characteristic_length().is_none() {
+        assert!(e.classical.is_nan() && e.zhang2021.is_nan(), "{e:?}");
+    } else {
+        assert!(!e.classical.is_nan() && !e.zhang2021.is_nan(), "{e:?}");
+    }
     for v in [
-        e.classical,
-        e.zhang2021,
         e.scaled_cond,
         e.d_optimal,
         e.relative_a,
