@@ -49,7 +49,7 @@ pub fn setup(arg: &str) -> Result<Setup> {
 /// `setup`, its plausibility warnings ([`stiffid::setup::plausibility`]) printed on stderr.
 fn plausible(setup: Setup) -> Setup {
     for w in stiffid::setup::plausibility::warnings(&setup) {
-        crate::output::warn(&w);
+        crate::output::warn(&w.message);
     }
     setup
 }
@@ -171,7 +171,7 @@ pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
     file.to_base_frame(setup).with_context(name)?;
     let angles = file.measurements.iter().map(|m| &m.q);
     if let Some(w) = stiffid::setup::plausibility::radians_as_degrees(angles) {
-        crate::output::warn(&format!("{}: {w}", name()));
+        crate::output::warn(&format!("{}: {}", name(), w.message));
     }
     Ok(file)
 }

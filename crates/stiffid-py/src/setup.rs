@@ -38,18 +38,23 @@ impl Setup {
     /// A setup from a setup ``.toml`` file; a robot file it names is looked for relative to the
     /// file (a preset name wins over a path that does not exist).
     #[staticmethod]
-    fn from_file(path: PathBuf) -> PyResult<Self> {
+    fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let text = error::read(&path)?;
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-        Self::parse(&text, &path.display().to_string(), &dir)
+        Self::parse(py, &text, &path.display().to_string(), &dir)
     }
 
     /// A setup from the text of a setup TOML (``source_name`` names it in errors; robot files are
     /// looked for in ``base_dir``, default the current directory).
     #[staticmethod]
     #[pyo3(signature = (text, source_name="<string>", base_dir=None))]
-    fn from_toml(text: &str, source_name: &str, base_dir: Option<PathBuf>) -> PyResult<Self> {
-        Self::parse(text, source_name, &base_dir.unwrap_or_default())
+    fn from_toml(
+        py: Python<'_>,
+        text: &str,
+        source_name: &str,
+        base_dir: Option<PathBuf>,
+    ) -> PyResult<Self> {
+        Self::parse(py, text, source_name, &base_dir.unwrap_or_default())
     }
 
     /// Short name, e.g. ``"zhang2021-comau-nj165"``.
@@ -262,11 +267,13 @@ impl Setup {
 }
 
 impl Setup {
-    fn parse(text: &str, source_name: &str, dir: &Path) -> PyResult<Self> {
-        let inner = reference::setup_text(text, source_name, dir, error::read_if_exists);
-        Ok(Self {
-            inner: inner.map_err(|e: Failure| e.0)?,
-        })
+    /// The setup of `text`, its plausibility warnings ([`setup::plausibility`]) raised as
+    /// `UserWarning`s, as the command prints them.
+    fn parse(py: Python<'_>, text: &str, source_name: &str, dir: &Path) -> PyResult<Self> {
+        let inner = reference::setup_text(text, source_name, dir, error::read_if_exists)
+            .map_err(|e: Failure| e.0)?;
+        crate::documents::warn(py, &setup::plausibility::warnings(&inner))?;
+        Ok(Self { inner })
     }
 
     /// A group of postures within the setup's bounds (at most 10000).

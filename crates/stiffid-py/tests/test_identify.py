@@ -1,6 +1,7 @@
 """identify and validate: the FANUC data equal to the command's, noise-free recovery, bad data."""
 
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -291,3 +292,31 @@ def test_rows_are_postures_times_the_measuring_points_or_point_says_which(paper)
     for bad in ([1, 2, 5], [1, 1, 2], [0, 1, 2], []):
         with pytest.raises(ValueError, match="point"):
             stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=three, point=bad)
+
+
+def test_unit_slips_in_setups_and_angles_warn_as_the_command(fanuc, tmp_path):
+    """Tool points in metres and axis angles in radians pass every range check; Python raises the
+    command's plausibility warnings for both."""
+    cell = (Path(__file__).parents[3] / "examples" / "cell" / "zhang2021-tracker.toml").read_text()
+    metres = cell.replace("[150.0, 0.0, 200.0]", "[0.15, 0.0, 0.2]")
+    for x, y in [("80.0", "80.0"), ("-80.0", "80.0"), ("-80.0", "-80.0"), ("80.0", "-80.0")]:
+        metres = metres.replace(f"[{x}, {y}, 260.0]", f"[{float(x) / 1e3}, {float(y) / 1e3}, 0.26]")
+    assert metres.count("0.26]") == 4
+    with pytest.warns(UserWarning, match="given in metres instead of mm"):
+        stiffid.Setup.from_toml(metres)
+    lines = FANUC_DATA.read_text().splitlines()
+    header = lines[0].split(",")
+    q = [header.index(f"q{a}_deg") for a in range(1, 7)]
+    out = [lines[0]]
+    for line in lines[1:]:
+        fields = line.split(",")
+        for i in q:
+            fields[i] = repr(float(np.radians(float(fields[i]))))
+        out.append(",".join(fields))
+    radians = tmp_path / "radians.csv"
+    radians.write_text("\n".join(out) + "\n")
+    with pytest.warns(UserWarning, match="radians under _deg names") as caught:
+        stiffid.identify(fanuc, radians)
+    run = subprocess.run([str(cli_path()), "identify", "--setup", "fanuc-r2000ic-165f", "--data", str(radians)],
+                         capture_output=True, text=True, check=True)
+    assert [l.removeprefix("warning: ") for l in run.stderr.splitlines()] == [str(w.message) for w in caught]

@@ -113,7 +113,8 @@ impl FreeToolAxis {
     /// `tool_axis_range_deg`, as the Python arguments and, with `--` and hyphens, the command's
     /// options) with the value given.
     pub fn try_from_degrees(max_step_deg: f64, tool_axis_range_deg: f64) -> Result<Self> {
-        let check = |v: f64, max: f64, field: &str| match v > 0.0 && v <= max {
+        // A subnormal angle in rad (5e-324 deg) is zero in every computation: refused as <= 0.
+        let check = |v: f64, max: f64, field: &str| match v.to_radians().is_normal() && v <= max {
             true => Ok(v.to_radians()),
             false => Err(Error::InvalidField {
                 field: field.into(),

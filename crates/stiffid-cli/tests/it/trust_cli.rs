@@ -140,6 +140,30 @@ fn unit_warning_fires_on_metres_and_kilonewtons_not_on_the_original() {
     );
 }
 
+/// Angles in radians under `_deg` names: the identify job warns, naming the file; positions far
+/// beyond any tracker's range are refused, naming the line and column.
+#[test]
+fn radians_are_warned_about_and_absurd_positions_refused() {
+    let radians = fanuc_edited(|_| true, |_, f| scaled(f, 2..8, 1f64.to_radians()));
+    let out = identify("rad", &radians, &[]);
+    assert!(out.status.success());
+    let warning = stderr(&out);
+    assert!(
+        warning.contains("data.csv: every axis angle of the 43 postures lies within")
+            && warning.contains("radians under _deg names"),
+        "{warning}"
+    );
+    let header = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,\
+x_loaded_mm,y_loaded_mm,z_loaded_mm,x_unloaded_mm,y_unloaded_mm,z_unloaded_mm\n";
+    let row = |p: usize, x: &str| format!("{p},1,{p},10,-10,0,20,0,0,0,-1000,{x},0,0,1e15,0,0\n");
+    let text = format!("{header}{}{}", row(1, "1e15"), row(2, "1000000000000000.1"));
+    let out = identify("far", &text, &[]);
+    assert_usage_error(
+        &out,
+        &["line 2, column 12 (x_loaded_mm): x_loaded_mm = 1e15 is outside"],
+    );
+}
+
 #[test]
 fn sign_flipped_displacements_are_not_physical_and_nonnegative_holds_them_at_zero() {
     let flipped = fanuc_edited(|_| true, |_, f| scaled(f, 11..14, -1.0));

@@ -37,7 +37,7 @@ use crate::error::ColumnProblem;
 use crate::identify::frames::{self, DisplacementFrame};
 use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
-use columns::{expected_header, Columns};
+use columns::expected_header;
 use rayon::prelude::*;
 use std::collections::hash_map::{Entry, HashMap};
 use std::hash::{BuildHasherDefault, Hasher};
@@ -494,8 +494,7 @@ impl Parsed {
             let message = "a quoted label spans lines: a field may not hold a line break".into();
             return Err(layout.at(line, posture, ColumnProblem::Unreadable { message }));
         }
-        let columns: &Columns = &layout.columns;
-        let measurement = columns.measurement(|i| &record[i], 0, |c, p| layout.at(line, c, p))?;
+        let measurement = layout.measurement(|i| &record[i], 0, |c, p| layout.at(line, c, p))?;
         self.labels.push_str(label);
         self.rows.push((measurement, line, self.labels.len()));
         Ok(())

@@ -246,18 +246,7 @@ fn point(
         let v = get(i)?;
         match range.contains(v) {
             true => Ok(v),
-            false => Err(at(
-                names,
-                line,
-                i,
-                ColumnProblem::Outside {
-                    name: names[i].into(),
-                    value: v,
-                    within: "the accepted range (stiffid::limits)",
-                    lower: range.min,
-                    upper: range.max,
-                },
-            )),
+            false => Err(at(names, line, i, range.outside(names[i], v))),
         }
     };
     let t: Vec<f64> = c

@@ -239,14 +239,7 @@ impl Columns {
         for (k, &c) in self.tracker.iter().enumerate() {
             let v = row.number(c)?;
             if !limits::LENGTH_MM.contains(v) {
-                let outside = ColumnProblem::Outside {
-                    name: TRACKER[k].into(),
-                    value: v,
-                    within: "the length limits",
-                    lower: limits::LENGTH_MM.min,
-                    upper: limits::LENGTH_MM.max,
-                };
-                return Err(row.error(c, outside));
+                return Err(row.error(c, limits::LENGTH_MM.outside(TRACKER[k], v)));
             }
             tracker[k] = v * 1e-3;
         }
@@ -387,8 +380,9 @@ mod tests {
         );
         let e = error("a,1,0,0,-90,0,0,0,1,2,1e9\n");
         assert!(
-            e.contains("z_tracker_mm = 1e9 is outside the length limits")
-                || e.contains("z_tracker_mm = 1000000000"),
+            e.contains(
+                "column 11 (z_tracker_mm): z_tracker_mm = 1e9 is outside the accepted range"
+            ),
             "{e}"
         );
         let e = error("a,1,0,999,-90,0,0,0,1,2,3\n");

@@ -37,6 +37,8 @@ pub struct Rows {
     pub lines: Vec<u64>,
     /// The measuring point of each measurement, 0-based.
     pub points: Vec<usize>,
+    /// The axis angles of each posture (rad), by posture number.
+    pub angles: Vec<Vector6<f64>>,
     /// The file's header and columns.
     pub layout: Layout,
 }
@@ -66,6 +68,7 @@ pub fn least_squares<R: BufRead + Send>(
         postures: Vec::new(),
         lines: Vec::new(),
         points: Vec::new(),
+        angles: Vec::new(),
         layout: layout.clone(),
     };
     let mut kept = Kept::new(&layout);
@@ -83,6 +86,9 @@ pub fn least_squares<R: BufRead + Send>(
         Ok(())
     })?;
     rows.labels = reader.into_labels();
+    rows.angles = (0..rows.labels.len())
+        .map(|p| *blocks.angles(p).expect("every posture was checked"))
+        .collect();
     let solved = blocks.solve()?;
     let h = solved.solution.h;
     let mut all = std::mem::take(&mut kept.displacements);

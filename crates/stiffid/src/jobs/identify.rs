@@ -17,7 +17,9 @@ use crate::identify::{
     UnitCheck,
 };
 use crate::observation::{Measurement, Observations};
+use crate::setup::plausibility;
 use crate::{Error, Result, Setup};
+use nalgebra::Vector6;
 use std::io::{BufReader, Read};
 
 /// The fit.
@@ -89,6 +91,8 @@ pub struct Origin {
     pub postures: Vec<usize>,
     /// The measuring point of each measurement, 0-based.
     pub points: Vec<usize>,
+    /// The axis angles of each posture (rad), by posture number.
+    pub angles: Vec<Vector6<f64>>,
     /// The line of each measurement in its file (1-based); `None` for arrays.
     pub lines: Option<Vec<u64>>,
     /// The first measurement of each posture (dense number).
@@ -116,6 +120,7 @@ impl Origin {
         labels: Labels,
         postures: Vec<usize>,
         points: Vec<usize>,
+        angles: Vec<Vector6<f64>>,
         lines: Option<Vec<u64>>,
         columns: [String; 2],
     ) -> Self {
@@ -127,6 +132,7 @@ impl Origin {
             labels,
             postures,
             points,
+            angles,
             lines,
             first_of_posture,
             columns,
@@ -232,6 +238,7 @@ fn from_file<R: Read + Send>(
             rows.labels,
             rows.postures,
             rows.points,
+            rows.angles,
             Some(rows.lines),
             columns,
         );
@@ -251,6 +258,7 @@ fn from_file<R: Read + Send>(
         Labels::from_iter(&file.labels),
         file.measurements.iter().map(|m| m.posture).collect(),
         file.measurements.iter().map(|m| m.point).collect(),
+        posture_angles(&file.measurements),
         Some(file.lines),
         columns,
     );
@@ -292,9 +300,24 @@ fn arrays_origin(measurements: &[Measurement]) -> Origin {
         Labels::from_iter((1..=count).map(|p| p.to_string())),
         postures,
         measurements.iter().map(|m| m.point).collect(),
+        posture_angles(measurements),
         None,
         ["wrench".into(), "displacement_mm".into()],
     )
+}
+
+/// The axis angles of each posture of `measurements` (numbered from 0, each with a measurement).
+fn posture_angles(measurements: &[Measurement]) -> Vec<Vector6<f64>> {
+    let count = measurements
+        .iter()
+        .map(|m| m.posture + 1)
+        .max()
+        .unwrap_or(0);
+    let mut angles = vec![Vector6::zeros(); count];
+    for m in measurements {
+        angles[m.posture] = m.q;
+    }
+    angles
 }
 
 /// The postures of each influential fold and the joints (0-based) it moves.
@@ -349,6 +372,10 @@ fn warnings(report: &Report) -> Vec<Warning> {
     }
     if let Some(unit) = &report.unit {
         out.push(Warning::new(WarningKind::Units, unit_message(report, unit)));
+    }
+    if let Some(mut w) = plausibility::radians_as_degrees(&report.origin.angles) {
+        w.message = format!("{}: {}", report.data_name, w.message);
+        out.push(w);
     }
     out
 }

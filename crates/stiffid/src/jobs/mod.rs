@@ -41,6 +41,10 @@ pub enum WarningKind {
     /// The identified stiffness is far off the setup's nominal the same way on most joints: a
     /// unit mistake is likely.
     Units,
+    /// An input passes every range check but looks like a unit slip (lengths in metres where
+    /// millimetres are meant, angles in radians under `_deg` names):
+    /// [`crate::setup::plausibility`].
+    Plausibility,
 }
 
 impl WarningKind {
@@ -51,6 +55,7 @@ impl WarningKind {
             WarningKind::Negative => "negative",
             WarningKind::Rigid => "rigid",
             WarningKind::Units => "units",
+            WarningKind::Plausibility => "plausibility",
         }
     }
 }

@@ -32,6 +32,17 @@ impl Range {
     pub fn contains(&self, v: f64) -> bool {
         v.is_finite() && v >= self.min && v <= self.max
     }
+
+    /// The problem of a column `name` whose `value` lies outside this range.
+    pub fn outside(&self, name: &str, value: f64) -> crate::error::ColumnProblem {
+        crate::error::ColumnProblem::Outside {
+            name: name.into(),
+            value,
+            within: "the accepted range (stiffid::limits)",
+            lower: self.min,
+            upper: self.max,
+        }
+    }
 }
 
 impl std::fmt::Display for Range {

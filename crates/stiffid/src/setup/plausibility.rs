@@ -1,8 +1,12 @@
 //! Plausibility warnings: values that pass every range check but look like a unit slip (a robot
 //! file or tool points in metres where millimetres are meant, a URDF scaled down, angles in
-//! radians under `_deg` names). Each warning names the likely cause; nothing is refused.
+//! radians under `_deg` names). Each warning ([`WarningKind::Plausibility`]) names the likely
+//! cause; nothing is refused. The command line prints them when it loads a setup or reads postures,
+//! Python raises them as `UserWarning`s, and the identify job reports the radians warning of its
+//! data ([`crate::jobs::identify`]).
 
 use super::Setup;
+use crate::jobs::{Warning, WarningKind};
 use nalgebra::Vector6;
 
 /// Below this reach (m) at the middle of the bounds, the robot's lengths look like a unit slip.
@@ -16,7 +20,7 @@ pub const MIN_TOOL_M: f64 = 1e-3;
 
 /// The warnings of `setup` (module docs), each one sentence naming the field and the likely
 /// cause; empty when nothing looks wrong.
-pub fn warnings(setup: &Setup) -> Vec<String> {
+pub fn warnings(setup: &Setup) -> Vec<Warning> {
     let mut out = Vec::new();
     let bounds = setup.bounds();
     let frames = setup.robot().frames(&((bounds.lower + bounds.upper) / 2.0));
@@ -24,17 +28,17 @@ pub fn warnings(setup: &Setup) -> Vec<String> {
         .norm()
         .max(frames.flange.translation.vector.norm());
     if reach < MIN_REACH_M {
-        out.push(format!(
+        out.push(plausibility(format!(
             "robot '{}' reaches only {:.3} mm from its base at the middle of the bounds: a robot TOML in metres (its lengths are mm) or a URDF scaled down?",
             setup.robot().name,
             reach * 1e3
-        ));
+        )));
     } else if reach > MAX_REACH_M {
-        out.push(format!(
+        out.push(plausibility(format!(
             "robot '{}' reaches {:.1} m from its base: lengths in mm read as metres (a URDF's lengths are m)?",
             setup.robot().name,
             reach
-        ));
+        )));
     }
     let tool = setup.tool();
     let farthest = tool
@@ -44,10 +48,10 @@ pub fn warnings(setup: &Setup) -> Vec<String> {
         .map(|p| p.norm())
         .fold(0.0, f64::max);
     if farthest < MIN_TOOL_M {
-        out.push(format!(
+        out.push(plausibility(format!(
             "every tool point (loading_point_mm, measuring_points_mm) lies within {:.4} mm of the flange: given in metres instead of mm?",
             farthest * 1e3
-        ));
+        )));
     }
     out
 }
@@ -57,7 +61,7 @@ pub fn warnings(setup: &Setup) -> Vec<String> {
 /// `None` for fewer than three postures, all-zero postures, or anything else.
 pub fn radians_as_degrees<'a>(
     postures: impl IntoIterator<Item = &'a Vector6<f64>>,
-) -> Option<String> {
+) -> Option<Warning> {
     let (mut count, mut largest) = (0usize, 0.0f64);
     for q in postures {
         count += 1;
@@ -65,9 +69,13 @@ pub fn radians_as_degrees<'a>(
     }
     let limit = std::f64::consts::TAU.to_radians() * (1.0 + 1e-9);
     (count >= 3 && largest > 0.0 && largest <= limit).then(|| {
-        format!(
+        plausibility(format!(
             "every axis angle of the {count} postures lies within +-{:.3} deg: angles in radians under _deg names?",
             largest.to_degrees()
-        )
+        ))
     })
+}
+
+fn plausibility(message: String) -> Warning {
+    Warning::new(WarningKind::Plausibility, message)
 }

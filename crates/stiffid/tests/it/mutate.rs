@@ -102,3 +102,47 @@ pub fn apply(text: &str, edits: &[Edit]) -> String {
     }
     s
 }
+
+/// The generated inputs of one property test and how many of them were accepted: a property
+/// test whose generator no longer reaches the parser (every input refused at its first line)
+/// would pass without testing anything, so each test states the least it must see accepted.
+pub struct Tally {
+    name: &'static str,
+    cases: u32,
+    least: u32,
+    seen: std::sync::atomic::AtomicU32,
+    accepted: std::sync::atomic::AtomicU32,
+}
+
+impl Tally {
+    /// A tally of `cases` inputs of which at least `least` must be accepted.
+    pub const fn new(name: &'static str, cases: u32, least: u32) -> Self {
+        Self {
+            name,
+            cases,
+            least,
+            seen: std::sync::atomic::AtomicU32::new(0),
+            accepted: std::sync::atomic::AtomicU32::new(0),
+        }
+    }
+
+    /// Counts one input. At the `cases`-th it prints `NAME: A of N generated inputs accepted`
+    /// (shown by `cargo test -- --nocapture`) and checks that at least `least` were.
+    pub fn count(&self, accepted: bool) {
+        use std::sync::atomic::Ordering::SeqCst;
+        let a = self.accepted.fetch_add(accepted as u32, SeqCst) + accepted as u32;
+        if self.seen.fetch_add(1, SeqCst) + 1 == self.cases {
+            eprintln!(
+                "{}: {a} of {} generated inputs accepted",
+                self.name, self.cases
+            );
+            assert!(
+                a >= self.least,
+                "{}: only {a} of {} generated inputs accepted (at least {} expected): the generator no longer exercises the parser",
+                self.name,
+                self.cases,
+                self.least
+            );
+        }
+    }
+}

@@ -226,10 +226,10 @@ fn unit_slips_get_a_plausibility_warning() {
         .build()
         .unwrap();
     let w = warnings(&slipped);
-    assert!(w.len() == 1 && w[0].contains("metres"), "{w:?}");
+    assert!(w.len() == 1 && w[0].message.contains("metres"), "{w:?}");
     let postures = paper.test_postures();
     assert!(radians_as_degrees(postures).is_none());
     let radians: Vec<_> = postures.iter().map(|q| q.map(f64::to_radians)).collect();
     let w = radians_as_degrees(&radians).unwrap();
-    assert!(w.contains("radians"), "{w}");
+    assert!(w.message.contains("radians"), "{w}");
 }

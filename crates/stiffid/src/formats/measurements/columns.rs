@@ -5,6 +5,7 @@ use super::problem;
 use crate::deflection::Frame;
 use crate::error::{ColumnProblem, MeasurementField};
 use crate::identify::frames::DisplacementFrame;
+use crate::limits;
 use crate::observation::Measurement;
 use crate::{Error, Result};
 use nalgebra::{Vector3, Vector6};
@@ -159,15 +160,19 @@ impl Columns {
 
     /// The measurement of one row, whose field `i` is `field(i)`; `error(column, problem)`
     /// places a problem in the row.
-    pub(super) fn measurement<'a>(
+    /// Every number is finite; axis angles lie within [`limits::ANGLE_DEG`] and positions within
+    /// [`limits::LENGTH_MM`] (a position of `1e15` mm, say, would leave no digit of the
+    /// displacement: a unit slip).
+    fn measurement<'a>(
         &self,
+        header: &[String],
         field: impl Fn(usize) -> &'a str,
         posture: usize,
         error: impl Fn(usize, ColumnProblem) -> Error,
     ) -> Result<Measurement> {
-        let number = |i: usize| -> Result<f64> {
+        let within = |i: usize, range: &limits::Range| -> Result<f64> {
             let field = trim(field(i));
-            field
+            let v = field
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
@@ -175,13 +180,21 @@ impl Columns {
                     error(
                         i,
                         ColumnProblem::NotANumber {
-                            value: crate::limits::short(field),
+                            value: limits::short(field),
                         },
                     )
-                })
+                })?;
+            match range.contains(v) {
+                true => Ok(v),
+                false => Err(error(i, range.outside(&header[i], v))),
+            }
         };
-        let vector3 = |c: [usize; 3]| -> Result<Vector3<f64>> {
-            Ok(Vector3::new(number(c[0])?, number(c[1])?, number(c[2])?))
+        let vector3 = |c: [usize; 3], range: &limits::Range| -> Result<Vector3<f64>> {
+            Ok(Vector3::new(
+                within(c[0], range)?,
+                within(c[1], range)?,
+                within(c[2], range)?,
+            ))
         };
         let point_field = trim(field(self.point));
         let point = point_field
@@ -192,19 +205,25 @@ impl Columns {
                 error(
                     self.point,
                     ColumnProblem::NotAPoint {
-                        value: crate::limits::short(point_field),
+                        value: limits::short(point_field),
                     },
                 )
             })?;
         let mut q = Vector6::zeros();
         for (a, &c) in self.q.iter().enumerate() {
-            q[a] = number(c)?.to_radians();
+            q[a] = within(c, &limits::ANGLE_DEG)?.to_radians();
         }
-        let force = vector3(self.force)?;
-        let moment = self.moment.map_or(Ok(Vector3::zeros()), vector3)?;
+        // Forces, moments and displacements have tighter limits, checked with the measurement
+        // ([`crate::observation::Measurement`]); any finite number passes here.
+        let any = &limits::Range::new(f64::MIN, f64::MAX, "");
+        let force = vector3(self.force, any)?;
+        let moment = self
+            .moment
+            .map_or(Ok(Vector3::zeros()), |m| vector3(m, any))?;
+        let length = &limits::LENGTH_MM;
         let displacement_mm = match self.displacement {
-            Displacement::Relative(d) => vector3(d)?,
-            Displacement::Positions(l, u) => vector3(l)? - vector3(u)?,
+            Displacement::Relative(d) => vector3(d, any)?,
+            Displacement::Positions(l, u) => vector3(l, length)? - vector3(u, length)?,
         };
         Ok(Measurement {
             posture,
@@ -285,6 +304,18 @@ impl Layout {
     pub(super) fn new(header: Vec<String>, line: u64) -> Result<Self> {
         let columns = Columns::new(&header, line)?;
         Ok(Self { header, columns })
+    }
+
+    /// The measurement of one row, whose field `i` is `field(i)`, numbered `posture`;
+    /// `error(column, problem)` places a problem in the row.
+    pub(super) fn measurement<'a>(
+        &self,
+        field: impl Fn(usize) -> &'a str,
+        posture: usize,
+        error: impl Fn(usize, ColumnProblem) -> Error,
+    ) -> Result<Measurement> {
+        self.columns
+            .measurement(&self.header, field, posture, error)
     }
 
     /// The number of fields of a row.

@@ -48,7 +48,7 @@ fn parse_plain(layout: &Layout, text: &[u8], first: u64, parsed: &mut Parsed) ->
             return None;
         }
         let at = |c, p| layout.at(0, c, p);
-        let measurement = layout.columns.measurement(|f| fields[f], 0, at).ok()?;
+        let measurement = layout.measurement(|f| fields[f], 0, at).ok()?;
         parsed.labels.push_str(label);
         let end = parsed.labels.len();
         parsed.rows.push((measurement, first + i as u64, end));
