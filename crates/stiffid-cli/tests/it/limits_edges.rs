@@ -172,6 +172,43 @@ fn stdout_that_cannot_be_written_is_an_error_and_leaves_no_file() {
     assert!(!dir.join("figs").exists(), "plot left its directory behind");
 }
 
+/// A disk that fills during a run, as a file-size limit (`ulimit -f`, with `SIGXFSZ` ignored so
+/// that a write beyond it fails with `EFBIG` as on a full disk): the small CSV fits, the report or
+/// the figure does not; the run fails and leaves none of its files.
+#[test]
+fn a_disk_that_fills_during_the_run_leaves_no_file() {
+    let dir = temp_dir("edge-full-disk");
+    let (out, report) = (dir.join("x.csv"), dir.join("rep"));
+    let search = "select --setup zhang2021-comau-nj165 --criterion classical";
+    for (args, fails) in [
+        (
+            format!(
+                "--start-random --max-evals 20 --report {}",
+                report.display()
+            ),
+            "plan.html",
+        ),
+        (
+            "--global --starts 2 --max-evals 200 --target-pct 10".to_string(),
+            "x.target.png",
+        ),
+    ] {
+        let script = format!(
+            "trap '' XFSZ; ulimit -f 40; \"$0\" {search} {args} --out {}",
+            out.display()
+        );
+        let run = shell(&script);
+        assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+        assert!(
+            stderr(&run).contains(fails) && stderr(&run).contains("File too large"),
+            "{}",
+            stderr(&run)
+        );
+        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert!(left.is_empty(), "{args}: left behind {left:?}");
+    }
+}
+
 #[test]
 fn one_path_for_two_outputs_is_refused_before_computing() {
     let dir = temp_dir("edge-same");
