@@ -18,6 +18,7 @@
 //! - Postures are *axis* angles q (what the controller shows), `theta = M q + c` maps them to the
 //!   kinematic angles of the DH table or URDF (see [`AxisMap`]).
 #![deny(missing_docs)]
+#![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
 mod builtin;
 pub mod cartesian;

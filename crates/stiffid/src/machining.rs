@@ -3,7 +3,7 @@
 //!
 //! 1. The program gives the path: G-code points (part frame, placed in the base frame by the
 //!    process file's `[workpiece] base_from_part`) as TCP poses, or a robot program's joint targets
-//!    ([`formats::program`]) as axis angles.
+//!    ([`crate::formats::program`]) as axis angles.
 //! 2. The process gives each point its wrench: the operation that covers it
 //!    ([`Operation`]: G-code `(operation: NAME)` comments, then `T` tool numbers, then an operation
 //!    without a selector; robot programs: the operation whose `lines` hold the target's line, then

@@ -56,7 +56,7 @@ pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> D
 
 /// Writes the block of one posture ([`posture_block`]) into rows `first..first + 3p` of `psi`
 /// (no temporary matrix): the drive columns `0..6` (Eq. 11) and, when `psi` has them, the
-/// virtual springs' columns `6..n` ([`write_spring_rows`]).
+/// virtual springs' columns `6..n` ([`SpringLoads::write_rows`]).
 ///
 /// # Panics
 /// If `psi` has fewer than `first + 3p` rows or fewer than six columns, or more columns than

@@ -20,7 +20,7 @@ mod text;
 pub struct Args {
     #[command(flatten)]
     common: Common,
-    /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm],dx_mm,dy_mm,dz_mm.
+    /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n\[,mx_nm,my_nm,mz_nm\],dx_mm,dy_mm,dz_mm.
     #[arg(long)]
     data: PathBuf,
     /// Down-weight outliers by iteratively reweighted least squares (`--robust` alone: huber).

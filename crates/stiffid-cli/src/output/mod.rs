@@ -1,5 +1,5 @@
 //! Everything the command writes, through one module so every command gets the same guarantees:
-//! - results on stdout through [`print`] (a write error such as a full device is an error exit,
+//! - results on stdout through [`print()`] (a write error such as a full device is an error exit,
 //!   never a panic; a closed pipe ends the output quietly);
 //! - files through [`OutFile`] and report directories through [`ReportDir`] ([`target`]): checked
 //!   before any computation, never over an input, a device, a directory or any other non-regular

@@ -6,7 +6,7 @@
 //!   instantaneous force and its peak.
 //! - [`drilling`]: thrust and torque from a specific-energy model.
 //! - [`presets`]: cutting coefficients of common materials, each with its published source.
-//! - [`file`]: the process file (TOML) that names the operations of a job.
+//! - [`mod@file`]: the process file (TOML) that names the operations of a job.
 //!
 //! ## The feed frame
 //! Forces are computed in the feed frame of the cut: `x` along the feed, `z` along the tool axis
