@@ -5,6 +5,7 @@ mod commands;
 mod feasibility;
 mod load;
 mod output;
+mod progress;
 mod report;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};

@@ -98,22 +98,6 @@ pub fn postures(
     Ok((out, r.single))
 }
 
-/// A string option among `choices`, e.g. `coordinates="axis"`.
-pub fn choice<T: Copy>(name: &str, given: &str, choices: &[(&str, T)]) -> PyResult<T> {
-    choices
-        .iter()
-        .find(|(n, _)| *n == given)
-        .map(|(_, v)| *v)
-        .ok_or_else(|| {
-            let known: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
-            value(format!(
-                "{name}: unknown value '{}' (known: {})",
-                short(given),
-                known.join(", ")
-            ))
-        })
-}
-
 /// A vector as a 1-D array.
 pub fn vec1<'py>(py: Python<'py>, v: impl IntoIterator<Item = f64>) -> Bound<'py, PyArray1<f64>> {
     v.into_iter().collect::<Vec<f64>>().into_pyarray(py)

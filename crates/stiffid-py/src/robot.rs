@@ -118,31 +118,51 @@ impl Robot {
     /// The dexterity index ``k(J_N) = (1/6) sqrt(tr(J_N J_N^T) tr((J_N J_N^T)^-1))``,
     /// ``J_N = diag(I/L, I) J`` (Zhang et al. 2021, Eq. 20-21) of the point ``point_mm``
     /// (flange frame, mm; default the flange origin), ``L`` = ``characteristic_length_mm``
-    /// (1 to 100000 mm). 1 is isotropic, larger is worse, ``inf`` at a singularity. A float for
-    /// ``q_deg`` of shape ``(6,)``, shape ``(n,)`` for ``(n, 6)``.
-    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=1200.0, coordinates="axis"))]
+    /// (1 to 100000 mm; a setup's ``characteristic_length_mm`` is the one to give; ``None``: the
+    /// robot's own, ``Robot.characteristic_length_mm(point_mm)``). 1 is isotropic, larger is
+    /// worse, ``inf`` at a singularity. A float for ``q_deg`` of shape ``(6,)``, shape ``(n,)``
+    /// for ``(n, 6)``.
+    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis"))]
     fn dexterity<'py>(
         &self,
         py: Python<'py>,
         q_deg: &Bound<'py, PyAny>,
         point_mm: Option<&Bound<'py, PyAny>>,
-        characteristic_length_mm: f64,
+        characteristic_length_mm: Option<f64>,
         coordinates: &str,
     ) -> PyResult<Py<PyAny>> {
-        let range = &limits::CHARACTERISTIC_LENGTH_MM;
-        limits::check(
-            "characteristic_length_mm",
-            &[characteristic_length_mm],
-            range,
-        )
-        .map_err(raise)?;
+        let length = match characteristic_length_mm {
+            Some(l) => {
+                let range = &limits::CHARACTERISTIC_LENGTH_MM;
+                limits::check("characteristic_length_mm", &[l], range).map_err(raise)?;
+                l * 1e-3
+            }
+            None => self.characteristic_length_mm(py, point_mm)? * 1e-3,
+        };
         let (js, single) = self.jacobians(py, q_deg, point_mm, coordinates)?;
-        let length = characteristic_length_mm * 1e-3;
         let k: Vec<f64> = js.iter().map(|j| dexterity(j, length)).collect();
         match single {
             true => Ok(k[0].into_pyobject(py)?.into_any().unbind()),
             false => Ok(arrays::vec1(py, k).into_any().unbind()),
         }
+    }
+
+    /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;
+    /// default the flange origin): the length that minimises the point's median dexterity over
+    /// 512 seeded postures within the joint limits (``stiffid::prior``; about 1200 mm for the
+    /// paper's COMAU and tool). What ``dexterity`` uses when no length is given; a setup's
+    /// ``characteristic_length_mm`` is the one to give where there is a setup. ``ValueError`` for
+    /// a robot singular at most postures.
+    #[pyo3(signature = (point_mm=None))]
+    fn characteristic_length_mm(
+        &self,
+        py: Python<'_>,
+        point_mm: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<f64> {
+        let point = point(point_mm)?;
+        let robot = &self.inner;
+        let l = py.detach(|| stiffid::prior::robot_characteristic_length(robot, &point));
+        Ok(l.map_err(raise)? * 1e3)
     }
 
     /// The postures of a postures CSV file (``posture,q1_deg,...,q6_deg``, as ``stiffid select``
@@ -181,12 +201,7 @@ impl Robot {
         coordinates: &str,
     ) -> PyResult<(Vec<Matrix6<f64>>, bool)> {
         let (qs, single) = self.postures(q_deg)?;
-        let point = match point_mm {
-            None => Vector3::zeros(),
-            Some(p) => {
-                Vector3::from(arrays::vector::<3>(p, "point_mm", &limits::LENGTH_MM)?) * 1e-3
-            }
-        };
+        let point = point(point_mm)?;
         let coordinates = coordinates_arg(coordinates)?;
         let robot = &self.inner;
         let js = py.detach(|| {
@@ -196,6 +211,14 @@ impl Robot {
         });
         Ok((js, single))
     }
+}
+
+/// A point in the flange frame given in mm (default the flange origin), m.
+fn point(point_mm: Option<&Bound<'_, PyAny>>) -> PyResult<Vector3<f64>> {
+    Ok(match point_mm {
+        None => Vector3::zeros(),
+        Some(p) => Vector3::from(arrays::vector::<3>(p, "point_mm", &limits::LENGTH_MM)?) * 1e-3,
+    })
 }
 
 /// `"axis"` or `"kinematic"`.

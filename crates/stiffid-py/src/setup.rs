@@ -168,15 +168,19 @@ impl Setup {
     }
 
     /// Every design criterion of a group of postures (``postures_deg``, shape ``(n, 6)``, axis
-    /// angles within the setup's bounds) and the first-order predicted deviation rates, as
-    /// ``stiffid evaluate --json``: ``classical``, ``zhang2021``, ``scaled_cond``, ``d_optimal``,
-    /// ``relative_a``, ``test_pose_mm``, ``cond_psi`` (floats, ``inf`` for a singular posture),
-    /// ``relative_std`` (shape ``(6,)``) and ``predicted_deviation_pct`` (shape ``(levels, 6)``,
-    /// percent: ``100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)``). Sources: Zhang et al. 2021,
-    /// Eq. 19-21; docs/model.md section 5. ``None`` for what the setup lacks a field for: ``classical``
-    /// and ``zhang2021`` without ``characteristic_length_mm``; ``scaled_cond``, ``d_optimal``,
-    /// ``relative_a``, ``relative_std`` and ``predicted_deviation_pct`` without
-    /// ``nominal_stiffness_nm_per_rad``. ``ValueError`` for a group that cannot identify every joint.
+    /// angles within the setup's bounds), its predicted deviation rates, each posture's
+    /// feasibility in the cell and how well the group identifies each parameter of the setup's
+    /// model: the evaluate job of ``stiffid evaluate``, its document
+    /// (docs/schemas/evaluate.schema.json) as a dict: ``classical``, ``zhang2021``,
+    /// ``scaled_cond``, ``d_optimal``, ``relative_a``, ``test_pose_mm``, ``cond_psi`` (floats),
+    /// ``relative_std`` (an array of shape ``(6,)``), ``predicted_deviation_pct`` (shape
+    /// ``(levels, 6)``, percent: ``100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)``),
+    /// ``feasibility``, ``parameters`` and ``unidentifiable``. Sources: Zhang et al. 2021, Eq.
+    /// 19-21; docs/model.md section 5. ``None`` for an infinite value and for what the setup
+    /// lacks a field for: ``classical`` and ``zhang2021`` without ``characteristic_length_mm``;
+    /// ``scaled_cond``, ``d_optimal``, ``relative_a``, ``relative_std`` and
+    /// ``predicted_deviation_pct`` without ``nominal_stiffness_nm_per_rad``; ``test_pose_mm``
+    /// without test postures. ``ValueError`` for a group that cannot identify every joint.
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
@@ -186,9 +190,10 @@ impl Setup {
         design::evaluate(py, &self.inner, &group)
     }
 
-    /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises ``criterion`` (``"classical"``,
-    /// ``"zhang2021"``, ``"scaled-cond"``, ``"d-optimal"``, ``"relative-a"``, ``"test-pose"``)
-    /// within the setup's bounds and cell checks, as ``stiffid select``:
+    /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises
+    /// ``criterion`` (``"classical"``, ``"zhang2021"``, ``"scaled-cond"``, ``"d-optimal"``,
+    /// ``"relative-a"``, ``"test-pose"``) within the setup's bounds and cell checks: the select
+    /// job of ``stiffid select``, run the same way.
     ///
     /// - ``method="global"`` (default): ``starts`` local searches from seeded Latin-hypercube
     ///   groups (default 32; ``screen_steps`` SQP steps each, default 60, then the best
@@ -199,13 +204,16 @@ impl Setup {
     ///   (shape ``(m, 6)``, deg, at most 10000; postures failing a cell check are skipped), exact
     ///   by enumeration up to 100000 groups, else the best of ``restarts`` exchange runs.
     ///
+    /// ``target_pct`` (global or pool): the smallest group whose predicted mean deviation rate at
+    /// noise level multiple 1 is at most this many percent on every parameter, instead of ``n``.
     /// ``max_evals`` bounds the evaluations of one local search (default 6000); ``gradient`` is
-    /// ``"exact"`` or ``"fd"``. Deterministic for a ``seed``. Returns a dict: ``method``,
-    /// ``criterion``, ``postures_deg`` (shape ``(n, 6)``), ``value``, ``start_value`` (None for a
-    /// pool), ``evaluations``, ``criteria`` (the dict of ``evaluate``) and, for a pool,
-    /// ``pool_indices`` (0-based rows of ``pool``) and ``pool_skipped`` (rows skipped and the
-    /// checks they fail). ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", pool=None, restarts=None))]
+    /// ``"exact"`` or ``"fd"``. Deterministic for a ``seed``. Returns the document of
+    /// ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
+    /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
+    /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
+    /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
+    /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", pool=None, restarts=None, target_pct=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -215,13 +223,14 @@ impl Setup {
         start: Option<&Bound<'py, PyAny>>,
         n: Option<usize>,
         seed: u64,
-        starts: Option<u64>,
-        screen_steps: Option<u64>,
-        polished: Option<u64>,
-        max_evals: Option<u64>,
+        starts: Option<usize>,
+        screen_steps: Option<usize>,
+        polished: Option<usize>,
+        max_evals: Option<usize>,
         gradient: &str,
         pool: Option<&Bound<'py, PyAny>>,
-        restarts: Option<u64>,
+        restarts: Option<usize>,
+        target_pct: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {
@@ -241,6 +250,7 @@ impl Setup {
             gradient,
             pool,
             restarts,
+            target_pct,
         };
         design::select(py, &self.inner, request)
     }

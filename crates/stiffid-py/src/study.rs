@@ -2,16 +2,20 @@
 //! postures and the paper's simulation study, over [`stiffid::simulate`] and [`stiffid::study`].
 
 use crate::arrays;
-use crate::design::criteria;
+use crate::documents::{to_python, warn};
 use crate::error::{raise, value};
 use crate::setup::Setup;
-use numpy::ndarray::{Array2, Array3};
+use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray1, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
+use stiffid::documents::reproduce::Summary;
+use stiffid::documents::simulate::Document;
+use stiffid::jobs::reproduce;
+use stiffid::jobs::simulate as job;
 use stiffid::limits::{self, check_count};
 use stiffid::simulate::{self as monte_carlo, GroupSimulation};
-use stiffid::study::{self, findings, Options};
+use stiffid::study::{self, Options};
 
 /// A count within `[min, max]` (`field` names it in errors).
 fn count(field: &str, v: u64, min: u64, max: u64) -> PyResult<usize> {
@@ -19,27 +23,14 @@ fn count(field: &str, v: u64, min: u64, max: u64) -> PyResult<usize> {
     Ok(v as usize)
 }
 
-/// A group's simulation as a dict of `(levels, 6)` arrays.
-fn simulation<'py>(py: Python<'py>, s: &GroupSimulation, d: &Bound<'py, PyDict>) -> PyResult<()> {
-    d.set_item(
-        "mean_deviation_pct",
-        arrays::table(py, &s.mean_deviation_pct),
-    )?;
-    d.set_item("std_deviation_pct", arrays::table(py, &s.std_deviation_pct))?;
-    let predicted = &s.predicted_deviation_pct;
-    d.set_item("predicted_deviation_pct", arrays::table(py, predicted))?;
-    let k: Vec<[f64; 6]> = s.mean_stiffness.iter().map(|k| (*k).into()).collect();
-    d.set_item("mean_stiffness_nm_per_rad", arrays::table(py, &k))?;
-    Ok(())
-}
-
 /// Simulates the identification with each group of postures (``groups``: a list of arrays of
 /// shape ``(n_i, 6)``, axis angles in deg within the setup's bounds; at most 100 groups) at every
 /// noise level of the setup, ``runs`` times (1 to 100000; the paper: 200), the noise seeded by
-/// ``seed`` (Zhang et al. 2021, Section IV-A, Fig. 8). Returns one dict per group:
+/// ``seed`` (Zhang et al. 2021, Section IV-A, Fig. 8): the simulate job of ``stiffid simulate``.
+/// Returns one dict per group, the groups of its document: ``name`` (``groups[i]``),
 /// ``mean_deviation_pct``, ``std_deviation_pct``, ``predicted_deviation_pct`` (first order) and
-/// ``mean_stiffness_nm_per_rad``, each of shape ``(levels, 6)``. The same seed gives the same
-/// numbers whatever the thread count.
+/// ``mean_stiffness_nm_per_rad``, each an array of shape ``(levels, 6)``. The same seed gives the
+/// same numbers whatever the thread count.
 #[pyfunction]
 #[pyo3(signature = (setup, groups, runs=200, seed=1))]
 pub fn simulate<'py>(
@@ -49,7 +40,6 @@ pub fn simulate<'py>(
     runs: u64,
     seed: u64,
 ) -> PyResult<Bound<'py, PyList>> {
-    let runs = count("runs", runs, 1, limits::MAX_RUNS)?;
     let items: Vec<Bound<'py, PyAny>> = groups
         .try_iter()
         .map_err(|_| value("groups: expected a list of (n, 6) arrays"))?
@@ -58,20 +48,36 @@ pub fn simulate<'py>(
     let groups = items
         .iter()
         .enumerate()
-        .map(|(i, g)| setup.group(g, &format!("groups[{i}]")))
+        .map(|(i, g)| {
+            let name = format!("groups[{i}]");
+            let postures = setup.group(g, &name)?;
+            Ok(job::Group { name, postures })
+        })
         .collect::<PyResult<Vec<_>>>()?;
-    let options = monte_carlo::Options { runs, seed };
-    let sims = py
-        .detach(|| monte_carlo::monte_carlo(&setup.inner, &groups, &options))
-        .map_err(raise)?;
+    let request = job::Request {
+        setup: &setup.inner,
+        groups,
+        options: monte_carlo::Options {
+            runs: count("runs", runs, 1, limits::MAX_RUNS)?,
+            seed,
+        },
+    };
+    let report = py.detach(|| job::run(&request)).map_err(raise)?;
+    warn(py, &report.warnings)?;
     let out = PyList::empty(py);
-    for s in &sims {
-        let d = PyDict::new(py);
-        simulation(py, s, &d)?;
-        out.append(d)?;
+    for g in Document::new(&report, &setup.inner).groups {
+        out.append(to_python(py, &g, &RATES)?)?;
     }
     Ok(out)
 }
+
+/// The keys of a group's simulation returned as NumPy arrays.
+const RATES: [&str; 4] = [
+    "mean_deviation_pct",
+    "std_deviation_pct",
+    "predicted_deviation_pct",
+    "mean_stiffness_nm_per_rad",
+];
 
 /// The paper's simulation study (``stiffid reproduce``): Group 1 a seeded random start group,
 /// Groups 2 and 3 the paper's local searches on ``classical`` and ``zhang2021`` from it, Groups 4
@@ -103,17 +109,21 @@ pub fn reproduce(
             &paper
         }
     };
-    let study = py
-        .detach(|| study::run(setup, &options, &()))
-        .map_err(raise)?;
-    Ok(Study { inner: study })
+    let request = reproduce::Request {
+        setup,
+        options,
+        progress: &(),
+    };
+    let report = py.detach(|| reproduce::run(&request)).map_err(raise)?;
+    warn(py, &report.warnings)?;
+    Ok(Study { report })
 }
 
 /// The result of ``stiffid.reproduce``: every group's postures, criteria and deviation rates,
 /// and the findings. Deviation rates in percent; arrays over groups in the groups' order.
 #[pyclass(frozen, module = "stiffid", name = "Study")]
 pub struct Study {
-    inner: study::Study,
+    report: reproduce::Report,
 }
 
 #[pymethods]
@@ -121,43 +131,47 @@ impl Study {
     /// Seed of everything random.
     #[getter]
     fn seed(&self) -> u64 {
-        self.inner.seed
+        self.study().seed
     }
 
     /// Monte Carlo runs per group and noise level.
     #[getter]
     fn runs(&self) -> usize {
-        self.inner.runs
+        self.study().runs
     }
 
     /// Wall time of the study, s.
     #[getter]
     fn elapsed_s(&self) -> f64 {
-        self.inner.elapsed_s
+        self.study().elapsed_s
     }
 
     /// The noise levels, multiples of the variance, shape ``(levels,)``.
     #[getter]
     fn level_multiples<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.setup.noise().levels.iter().copied())
+        arrays::vec1(py, self.study().setup.noise().levels.iter().copied())
     }
 
     /// The noise level (0-based) whose mean stiffness is validated: the one nearest multiple 1.
     #[getter]
     fn validation_level(&self) -> usize {
-        self.inner.validation_level
+        self.study().validation_level
     }
 
     /// The groups' names, e.g. ``"group3-zhang2021"``.
     #[getter]
     fn names(&self) -> Vec<String> {
-        self.inner.groups.iter().map(|g| g.name.clone()).collect()
+        self.study().groups.iter().map(|g| g.name.clone()).collect()
     }
 
     /// The groups' titles, e.g. ``"Group 3 (zhang2021, local)"`` (the legend of Fig. 8).
     #[getter]
     fn titles(&self) -> Vec<String> {
-        self.inner.groups.iter().map(|g| g.title.clone()).collect()
+        self.study()
+            .groups
+            .iter()
+            .map(|g| g.title.clone())
+            .collect()
     }
 
     /// Mean deviation rate ``|k_id - k_true| / k_true`` over the runs, %, shape
@@ -183,35 +197,31 @@ impl Study {
     /// ``(groups,)``.
     #[getter]
     fn average_deviation_pct<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let g = &self.inner.groups;
+        let g = &self.study().groups;
         arrays::vec1(py, g.iter().map(|g| g.average_deviation_pct()))
     }
 
-    /// One dict per group, the keys of ``summary.json``'s groups: ``name``, ``title``,
-    /// ``criterion`` (None for the start group), ``search_evaluations``, ``postures_deg``
-    /// (``(n, 6)``), the criteria of ``Setup.evaluate`` (``classical`` ... ``cond_psi``),
-    /// ``mean_deviation_pct``, ``std_deviation_pct``, ``predicted_deviation_pct``,
-    /// ``mean_stiffness_nm_per_rad`` (``(levels, 6)``), ``average_deviation_pct`` and
-    /// ``validation_error_mm`` (``(test postures, measuring points)``).
+    /// One dict per group, the groups of ``summary.json`` (``to_dict()["groups"]``): ``name``,
+    /// ``title``, ``criterion`` (None for the start group), ``search`` (how it was found, in
+    /// words), ``search_evaluations``, ``postures_deg``, the criteria of ``Setup.evaluate``
+    /// (``classical`` ... ``cond_psi``), ``mean_deviation_pct``, ``std_deviation_pct``,
+    /// ``predicted_deviation_pct``, ``mean_stiffness_nm_per_rad`` (``(levels, 6)``),
+    /// ``average_deviation_pct`` and ``validation_error_mm`` (``(test postures, measuring
+    /// points)``); the arrays as NumPy arrays.
     #[getter]
     fn groups<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        for g in &self.inner.groups {
-            let d = criteria(py, &g.evaluation)?;
-            d.set_item("name", &g.name)?;
-            d.set_item("title", &g.title)?;
-            d.set_item("criterion", g.origin.criterion().map(|c| c.name()))?;
-            d.set_item("search_evaluations", g.evaluations)?;
-            d.set_item("postures_deg", arrays::degrees(py, &g.postures))?;
-            simulation(py, &g.simulation, &d)?;
-            d.set_item("average_deviation_pct", g.average_deviation_pct())?;
-            let e = &g.validation_error;
-            let points = e.first().map_or(0, Vec::len);
-            let mm = Array2::from_shape_fn((e.len(), points), |(t, p)| e[t][p] * 1e3);
-            d.set_item("validation_error_mm", mm.into_pyarray(py))?;
-            out.append(d)?;
+        let arrays: Vec<&str> = RATES.into_iter().chain(GROUP_ARRAYS).collect();
+        for g in Summary::new(&self.report).groups {
+            out.append(to_python(py, &g, &arrays)?)?;
         }
         Ok(out)
+    }
+
+    /// The document of ``stiffid reproduce``'s ``summary.json``, as dicts and lists: the
+    /// resolved setup, the options, every group and the findings (in numbers and in words).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        to_python(py, &Summary::new(&self.report), &[])
     }
 
     /// What the study found (``stiffid::study::findings``), keys as ``summary.json``'s
@@ -225,7 +235,7 @@ impl Study {
     /// criteria and ``cond_psi``).
     #[getter]
     fn findings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let f = findings(&self.inner);
+        let f = &self.report.findings;
         let d = PyDict::new(py);
         d.set_item("group3_beats_groups_1_and_2", f.paper_claim_holds)?;
         d.set_item(
@@ -248,22 +258,29 @@ impl Study {
     fn __repr__(&self) -> String {
         format!(
             "Study(groups={}, runs={}, seed={})",
-            self.inner.groups.len(),
-            self.inner.runs,
-            self.inner.seed
+            self.study().groups.len(),
+            self.study().runs,
+            self.study().seed
         )
     }
 }
 
+/// The keys of a study's group returned as NumPy arrays, besides [`RATES`].
+const GROUP_ARRAYS: [&str; 2] = ["postures_deg", "validation_error_mm"];
+
 impl Study {
+    fn study(&self) -> &study::Study {
+        &self.report.study
+    }
+
     /// A rate of every group's simulation as a `(groups, levels, 6)` array.
     fn rates<'py>(
         &self,
         py: Python<'py>,
         rate: impl Fn(&GroupSimulation) -> &Vec<[f64; 6]>,
     ) -> Bound<'py, PyArray3<f64>> {
-        let g = &self.inner.groups;
-        let levels = self.inner.setup.noise().levels.len();
+        let g = &self.study().groups;
+        let levels = self.study().setup.noise().levels.len();
         Array3::from_shape_fn((g.len(), levels, 6), |(i, l, j)| {
             rate(&g[i].simulation)[l][j]
         })

@@ -5,6 +5,7 @@ import os
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import stiffid
@@ -50,3 +51,16 @@ def write_postures(path: Path, postures) -> Path:
     lines += [f"{i + 1}," + ",".join(repr(float(v)) for v in q) for i, q in enumerate(postures)]
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+def plain(document):
+    """A document as its JSON holds it: arrays as lists, NaN as None."""
+    if isinstance(document, dict):
+        return {key: plain(value) for key, value in document.items()}
+    if isinstance(document, (list, tuple)):
+        return [plain(value) for value in document]
+    if isinstance(document, np.ndarray):
+        return plain(document.tolist())
+    if isinstance(document, float) and document != document:
+        return None
+    return document

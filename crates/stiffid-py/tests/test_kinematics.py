@@ -94,6 +94,19 @@ def test_dexterity_is_equation_21(robot):
     assert k >= 1
 
 
+def test_without_a_length_the_robots_own_is_used(robot):
+    q, point = [10, 20, -90, 30, 20, 10], [80, 80, 260]
+    length = robot.characteristic_length_mm(point_mm=point)
+    # The paper's COMAU and tool: about the paper's 1.2 m, and not a copy of it.
+    assert 1000 < length < 1400 and length != 1200
+    assert robot.dexterity(q, point_mm=point) == robot.dexterity(
+        q, point_mm=point, characteristic_length_mm=length
+    )
+    assert robot.dexterity(q, point_mm=point) != robot.dexterity(
+        q, point_mm=point, characteristic_length_mm=1200
+    )
+
+
 def test_wrist_singularity_is_infinite(robot):
     assert robot.dexterity([0, 0, -90, 0, 0, 0]) == float("inf")
 

@@ -83,15 +83,36 @@ pub fn characteristic_length(
     Ok(golden_section(median, LENGTH_RANGE_M.0.ln(), LENGTH_RANGE_M.1.ln(), 1e-3).exp())
 }
 
+/// The seed of [`robot_characteristic_length`].
+pub const ROBOT_LENGTH_SEED: u64 = 1;
+
+/// The characteristic length L (m) of `robot` for the point `point` (flange frame, m) when no
+/// length is given: [`characteristic_length`] over the robot's joint limits (an unlimited axis
+/// within +-180 deg), seeded with [`ROBOT_LENGTH_SEED`]. A setup's own length
+/// (`characteristic_length_mm`) is the one to use where there is a setup; this is for a robot
+/// alone (`stiffid kinematics`, Python `Robot.dexterity`).
+///
+/// # Errors
+/// As [`characteristic_length`]: a robot singular at most sampled postures.
+pub fn robot_characteristic_length(robot: &Robot, point: &Vector3<f64>) -> Result<f64> {
+    let (lower, upper) = within_a_turn(robot);
+    characteristic_length(robot, &lower, &upper, point, ROBOT_LENGTH_SEED)
+}
+
+/// The robot's joint limits (rad), an unlimited axis within +-180 deg.
+fn within_a_turn(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
+    (
+        robot.limits.lower.map(|l| l.max(-PI)),
+        robot.limits.upper.map(|u| u.min(PI)),
+    )
+}
+
 /// The reach (m): the largest distance of the flange origin from the base origin over
 /// [`LENGTH_SAMPLES`] postures drawn uniformly within the joint limits (an unlimited axis within
 /// +-180 deg; ChaCha8 seeded with `seed`).
 pub fn reach(robot: &Robot, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lower, upper) = (
-        robot.limits.lower.map(|l| l.max(-PI)),
-        robot.limits.upper.map(|u| u.min(PI)),
-    );
+    let (lower, upper) = within_a_turn(robot);
     (0..LENGTH_SAMPLES)
         .map(|_| {
             let q = Vector6::from_fn(|a, _| lower[a] + rng.random::<f64>() * (upper[a] - lower[a]));

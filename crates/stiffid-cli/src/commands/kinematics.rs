@@ -2,10 +2,10 @@
 
 use crate::commands::common::choice;
 use crate::{load, output};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use schemars::JsonSchema;
 use serde::Serialize;
-use stiffid::{dexterity, limits, Coordinates};
+use stiffid::{dexterity, limits, prior, Coordinates};
 
 /// Arguments of `stiffid kinematics`.
 #[derive(clap::Args)]
@@ -24,9 +24,11 @@ pub struct Args {
     /// coordinate within +-100000 mm.
     #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
     point_mm: String,
-    /// The characteristic length L of the dexterity index k(J_N) (Eq. 20), mm [1 to 100000].
-    #[arg(long, default_value_t = 1200.0)]
-    characteristic_length_mm: f64,
+    /// The characteristic length L of the dexterity index k(J_N) (Eq. 20), mm [1 to 100000]
+    /// (default: derived from the robot, the length that minimises the point's median dexterity
+    /// over its joint limits; a setup's `characteristic_length_mm` is the one to give).
+    #[arg(long)]
+    characteristic_length_mm: Option<f64>,
     /// The joint coordinates of the Jacobian's columns.
     #[arg(long, value_parser = choice::<Coordinates>(), default_value = "axis")]
     coordinates: Coordinates,
@@ -49,6 +51,10 @@ pub struct Report {
     coordinates: Coordinates,
     /// The characteristic length of the dexterity index, mm.
     characteristic_length_mm: f64,
+    /// Where it comes from: `given` (`--characteristic-length-mm`) or `derived` from the robot
+    /// (the length minimising the point's median dexterity over the joint limits,
+    /// `stiffid::prior::robot_characteristic_length`).
+    characteristic_length_source: &'static str,
     /// The point of the Jacobian, flange frame, mm.
     point_mm: [f64; 3],
     /// The flange's origin, mm.
@@ -72,12 +78,21 @@ pub fn run(args: &Args) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
     let (q_deg, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
     let point_mm = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)?;
-    let length_mm = args.characteristic_length_mm;
-    let range = &limits::CHARACTERISTIC_LENGTH_MM;
-    limits::check("--characteristic-length-mm", &[length_mm], range)?;
+    let point = point_mm * 1e-3;
+    let (length_mm, source) = match args.characteristic_length_mm {
+        Some(l) => {
+            let range = &limits::CHARACTERISTIC_LENGTH_MM;
+            limits::check("--characteristic-length-mm", &[l], range)?;
+            (l, "given")
+        }
+        None => {
+            let l = prior::robot_characteristic_length(&robot, &point)
+                .context("give --characteristic-length-mm")?;
+            (l * 1e3, "derived")
+        }
+    };
     let coordinates = args.coordinates;
     let frames = robot.frames(&q);
-    let point = point_mm * 1e-3;
     let jacobian = frames.jacobian(&point, coordinates);
     let report = Report {
         robot: robot.name.clone(),
@@ -85,6 +100,7 @@ pub fn run(args: &Args) -> Result<()> {
         q_deg: q_deg.into(),
         coordinates,
         characteristic_length_mm: length_mm,
+        characteristic_length_source: source,
         point_mm: point_mm.into(),
         flange_position_mm: (frames.flange.translation.vector * 1e3).into(),
         flange_rotation: rows(&frames.flange.rotation.to_rotation_matrix().into_inner()),
@@ -137,9 +153,13 @@ fn text(r: &Report) -> String {
         k if k.is_finite() => fixed(k, 4),
         _ => "infinite (singular posture)".into(),
     };
+    let source = match r.characteristic_length_source {
+        "given" => "given",
+        _ => "derived from the robot: minimises the point's median dexterity",
+    };
     s += &format!(
-        "dexterity k(J_N) (L = {} mm): {k}\n",
-        r.characteristic_length_mm
+        "dexterity k(J_N) (L = {} mm, {source}): {k}\n",
+        fixed(r.characteristic_length_mm, 1)
     );
     s
 }

@@ -1,14 +1,15 @@
 //! `stiffid reproduce`: the paper's simulation study end to end, with a report.
 
-use crate::report::{self, figures, findings::sentences};
+use crate::progress::Bars;
+use crate::report::{self, figures};
 use crate::{load, output};
 use anyhow::Result;
-use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use std::sync::Mutex;
 use std::time::Instant;
+use stiffid::documents::reproduce::{sentences, GENERATOR};
+use stiffid::jobs::reproduce::{self as job, Report, Request};
 use stiffid::limits;
-use stiffid::study::{self, findings, Options, DEFAULT_STARTS, DEFAULT_TRIALS};
+use stiffid::study::{Options, DEFAULT_STARTS, DEFAULT_TRIALS};
 use stiffid::Progress;
 
 /// Arguments of `stiffid reproduce`.
@@ -39,35 +40,6 @@ pub struct Args {
     force: bool,
 }
 
-/// Progress bars on stderr (hidden when stderr is not a terminal), one line per finished step.
-struct Bars {
-    lines: MultiProgress,
-    current: Mutex<Option<ProgressBar>>,
-}
-
-impl Progress for Bars {
-    fn begin(&self, what: &str, total: usize) {
-        let bar = self
-            .lines
-            .add(ProgressBar::new(total as u64).with_message(what.to_string()));
-        let style = ProgressStyle::with_template("{msg:32} [{bar:30}] {pos}/{len} {elapsed}")
-            .expect("valid template")
-            .progress_chars("=> ");
-        bar.set_style(style);
-        *self.current.lock().expect("progress lock") = Some(bar);
-    }
-    fn advance(&self, done: usize) {
-        if let Some(bar) = self.current.lock().expect("progress lock").as_ref() {
-            bar.set_position(done as u64);
-        }
-    }
-    fn end(&self) {
-        if let Some(bar) = self.current.lock().expect("progress lock").take() {
-            bar.finish();
-        }
-    }
-}
-
 /// Runs the study, writes the report, prints the summary.
 pub fn run(args: &Args) -> Result<()> {
     let started = Instant::now();
@@ -76,7 +48,7 @@ pub fn run(args: &Args) -> Result<()> {
         &args.out,
         "--out",
         Some(args.force),
-        report::summary::GENERATOR,
+        GENERATOR,
         &report::holds,
     )?;
     let options = Options {
@@ -85,21 +57,24 @@ pub fn run(args: &Args) -> Result<()> {
         starts: args.starts as usize,
         trials: args.trials as usize,
     };
-    let bars = Bars {
-        lines: MultiProgress::new(),
-        current: Mutex::new(None),
+    let bars = Bars::new(true);
+    let request = Request {
+        setup: &setup,
+        options,
+        progress: &bars,
     };
-    let mut study = study::run(&setup, &options, &bars)?;
+    let mut report = job::run(&request)?;
     bars.begin("figures", 1);
-    let figures = figures::all(&study)?;
+    let figures = figures::all(&report.study)?;
     bars.end();
-    study.elapsed_s = started.elapsed().as_secs_f64();
-    report::write(out, &study, &figures)?;
-    let report = args.out.join("report.html");
-    output::print(&(summary(&study) + &format!("\nreport: {}\n", report.display())))
+    report.study.elapsed_s = started.elapsed().as_secs_f64();
+    report::write(out, &report, &figures)?;
+    let html = args.out.join("report.html");
+    output::print(&(summary(&report) + &format!("\nreport: {}\n", html.display())))
 }
 
-fn summary(study: &study::Study) -> String {
+fn summary(report: &Report) -> String {
+    let study = &report.study;
     let l = study.validation_level;
     let mut s = format!(
         "\n{} runs per group and level, seed {}, {:.1} s\n\n",
@@ -131,7 +106,7 @@ fn summary(study: &study::Study) -> String {
         );
     }
     s += "\n";
-    for sentence in sentences(&findings(study), study) {
+    for sentence in sentences(&report.findings, study) {
         s += &format!("- {sentence}\n");
     }
     s

@@ -2,9 +2,8 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{compensate, evaluate, kinematics, predict, register, select, simulate, validate};
+use super::{compensate, kinematics, predict, register, validate};
 use crate::output::{self, json};
-use crate::report::summary;
 use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
 use schemars::transform::RecursiveTransform;
@@ -63,15 +62,15 @@ pub fn schema(name: &str) -> Result<Schema> {
     };
     let mut schema = match name {
         "kinematics" => closed::<kinematics::Report>(),
-        "evaluate" => closed::<evaluate::EvaluateJson>(),
-        "select" => closed::<select::SelectJson<'static>>(),
+        "evaluate" => closed::<stiffid::documents::evaluate::Document>(),
+        "select" => closed::<stiffid::documents::select::Document>(),
         "predict" => closed::<predict::PredictJson>(),
         "identify" => closed::<stiffid::documents::identify::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),
         "validate" => closed::<validate::ValidationJson>(),
         "compensate" => closed::<compensate::Document<'static>>(),
-        "simulate" => closed::<simulate::SimulationJson<'static>>(),
-        "reproduce" => closed::<summary::Summary<'static>>(),
+        "simulate" => closed::<stiffid::documents::simulate::Document>(),
+        "reproduce" => closed::<stiffid::documents::reproduce::Summary<'static>>(),
         "register" => closed::<register::RegisterJson>(),
         _ => open::<StiffnessFile>(),
     };

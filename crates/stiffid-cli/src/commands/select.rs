@@ -1,29 +1,23 @@
 //! `stiffid select`: the group of postures that minimises a design criterion (local SQP from a
 //! start group, global multistart, or the best of a pool of postures), optionally the smallest
-//! group for a target accuracy ([`target`]) and a measurement plan (`--report`).
+//! group for a target accuracy and a measurement plan (`--report`): the arguments made into a
+//! [`stiffid::jobs::select::Request`], the job run, its report rendered.
 
-mod pool;
 mod target;
 
-use super::evaluate::{criteria_text, identifiable, number, CriteriaJson};
+use super::evaluate::{criteria_text, number};
 use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
+use crate::progress::Bars;
 use crate::report::plan;
-use anyhow::{bail, Context, Result};
-use indicatif::{ProgressBar, ProgressStyle};
-use nalgebra::Vector6;
-use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
-use serde::Serialize;
+use anyhow::{bail, Result};
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
-use stiffid::cell::Checker;
-use stiffid::design::{
-    self, evaluate, Criterion, Evaluation, Gradient, SearchOptions, SearchOutcome,
-};
-use stiffid::formats::postures;
-use stiffid::limits::{self, short, Range};
-use stiffid::Setup;
+use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions};
+use stiffid::documents::select::{Document, Pool};
+use stiffid::jobs::select::{self as job, Method, PoolInput, Report, Request};
+use stiffid::limits::{self, short};
+use stiffid::{formats::postures, Error, Setup};
 
 /// Arguments of `stiffid select`.
 #[derive(clap::Args)]
@@ -97,245 +91,84 @@ pub struct Args {
     force: bool,
 }
 
-/// The schema of a criterion's name: a string, one of the names of [`Criterion::ALL`].
-fn criterion_name(_: &mut SchemaGenerator) -> Schema {
-    let names: Vec<&str> = Criterion::ALL.iter().map(|c| c.name()).collect();
-    json_schema!({ "type": "string", "enum": names })
-}
-
-/// `stiffid select --json`: the group found, how, and its criteria.
-#[derive(Serialize, JsonSchema)]
-pub struct SelectJson<'a> {
-    /// The setup's name.
-    setup: &'a str,
-    /// The criterion minimised (`relative-a`, ...).
-    #[schemars(schema_with = "criterion_name")]
-    criterion: &'a str,
-    /// `local`, `global` or `pool`.
-    search: &'a str,
-    /// The SQP objective's gradient (`exact` or `fd`); absent for a pool choice.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    gradient: Option<&'a str>,
-    /// The seed of the random start group, the global starts or the pool's exchange runs.
-    seed: u64,
-    /// The criterion of the start group; `null` for a pool choice (no start group) or an
-    /// infinite value.
-    start_value: Option<f64>,
-    /// The criterion of the group found (`null` if infinite).
-    #[schemars(with = "Option<f64>")]
-    value: f64,
-    /// Criterion evaluations of the search.
-    evaluations: usize,
-    /// Wall-clock time of the search, s.
-    elapsed_s: f64,
-    /// The group found, axis angles q1..q6, deg, one row per posture.
-    postures_deg: Vec<[f64; 6]>,
-    /// Every criterion of the group found.
-    criteria: CriteriaJson,
-    /// With `--pool`: the pool and the postures chosen from it.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pool: Option<pool::PoolJson>,
-    /// With `--target-pct`: every group size tried.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    target: Option<target::TargetJson>,
-    /// With cell checks, for a local or global search: the same search without them.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    unconstrained: Option<UnconstrainedJson>,
-    /// The postures file written (`--out`).
-    out: String,
-    /// The measurement plan's directory (`--report`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    report: Option<String>,
-}
-
-/// The unconstrained optimum beside the feasible one: what feasibility costs.
-#[derive(Serialize, JsonSchema)]
-struct UnconstrainedJson {
-    /// Its criterion (`null` if infinite).
-    #[schemars(with = "Option<f64>")]
-    value: f64,
-    /// Axis angles q1..q6, deg, one row per posture.
-    postures_deg: Vec<[f64; 6]>,
-    /// Every criterion of the unconstrained group.
-    criteria: CriteriaJson,
-}
-
-/// The group a search or a pool choice found.
-pub struct Selection {
-    /// `local`, `global` or `pool`.
-    search: &'static str,
-    /// Axis angles, rad.
-    postures: Vec<Vector6<f64>>,
-    /// The criterion of the start group (none for a pool choice).
-    start_value: Option<f64>,
-    value: f64,
-    evaluations: usize,
-    /// For a pool choice: the chosen postures' numbers in the pool file (1-based) and how.
-    pool: Option<pool::Chosen>,
-}
-
-impl Selection {
-    fn from_search(search: &'static str, o: SearchOutcome) -> Self {
-        Self {
-            search,
-            postures: o.postures,
-            start_value: Some(o.start_value),
-            value: o.value,
-            evaluations: o.evaluations,
-            pool: None,
-        }
-    }
-}
-
-/// Runs the search, writes the postures (and the plan) and prints the result.
+/// Runs the selection, writes the postures (and the plan) and prints the result.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
     let pool = match &args.pool {
-        Some(path) => Some(pool::Input::read(path, &setup)?),
+        Some(path) => Some(PoolInput {
+            name: path.display().to_string(),
+            postures: load::postures(path, setup.robot(), None)?,
+        }),
         None => None,
     };
-    if args.start.is_some() {
-        start_group(args, &setup, 0)?; // read (an input from now on) and checked before searching
-    }
+    // Read (an input from now on, which --out cannot overwrite) and checked before searching.
+    let start = match &args.start {
+        Some(path) => Some(load::postures(path, setup.robot(), Some(setup.bounds()))?),
+        None => None,
+    };
     if let Some(pct) = args.target_pct {
-        limits::check("--target-pct", &[pct], &TARGET_PCT)?;
+        limits::check("--target-pct", &[pct], &job::TARGET_PCT)?;
+        if pool.is_none() && !args.global {
+            bail!("--target-pct needs --pool FILE.csv or --global to choose each group");
+        }
     }
     let out = OutFile::prepare(&args.out, "--out")?;
     let target_files = match (args.target_pct, &args.report) {
         (Some(_), None) => Some(target::files(&args.out)?),
         _ => None,
     };
-    let report = args
+    let report_dir = args
         .report
         .as_deref()
         .map(|dir| plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)))
         .transpose()?;
-    let started = Instant::now();
-    let (selection, target) = match args.target_pct {
-        None => {
-            let n = args.postures.unwrap_or(6) as usize;
-            (choose(args, &setup, pool.as_ref(), n)?, None)
-        }
-        Some(pct) => {
-            let (s, t) = target::smallest(args, &setup, pool.as_ref(), pct)?;
-            (s, Some(t))
-        }
+    let bars = Bars::new(false);
+    let request = Request {
+        setup: &setup,
+        criterion: args.criterion,
+        method: method(args, pool.is_some())?,
+        start,
+        pool,
+        postures: args.postures.unwrap_or(6) as usize,
+        target_pct: args.target_pct,
+        options: options(args),
+        restarts: args
+            .restarts
+            .map_or(PoolOptions::default().restarts, |r| r as usize),
+        progress: &bars,
     };
-    let elapsed = started.elapsed().as_secs_f64();
-    identifiable(&setup, &selection.postures).with_context(|| {
-        format!(
-            "setup {}: the best group the search found",
-            short(setup.name())
-        )
-    })?;
-    out.write(postures::to_csv(&selection.postures).as_bytes())?;
-    if let (Some(files), Some(t)) = (&target_files, &target) {
+    let report = job::run(&request).map_err(option_names)?;
+    out.write(postures::to_csv(&report.postures).as_bytes())?;
+    if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;
     }
-    if let Some(dir) = report {
-        plan::write(
-            dir,
-            &setup,
-            args.criterion,
-            &selection.postures,
-            target.as_ref(),
-        )?;
+    if let Some(dir) = report_dir {
+        let t = report.target.as_ref();
+        plan::write(dir, &setup, args.criterion, &report.postures, t)?;
     }
-    let e = evaluate(&setup, &selection.postures);
-    let free = match pool.is_none() && target.is_none() {
-        true => unconstrained(args, &setup, selection.postures.len())?,
-        false => None,
-    };
-    if args.common.json {
-        let doc = SelectJson {
-            setup: setup.name(),
-            criterion: args.criterion.name(),
-            search: selection.search,
-            gradient: (selection.search != "pool").then(|| args.gradient.name()),
-            seed: args.seed,
-            start_value: selection.start_value,
-            value: selection.value,
-            evaluations: selection.evaluations,
-            elapsed_s: elapsed,
-            postures_deg: degrees(&selection.postures),
-            criteria: CriteriaJson::from(&e),
-            pool: pool.as_ref().map(|p| p.json(selection.pool.as_ref())),
-            target: target.as_ref().map(target::TargetJson::from),
-            unconstrained: free.as_ref().map(|(s, e)| UnconstrainedJson {
-                value: s.value,
-                postures_deg: degrees(&s.postures),
-                criteria: CriteriaJson::from(e),
-            }),
-            out: args.out.display().to_string(),
-            report: args.report.as_ref().map(|d| d.display().to_string()),
-        };
-        return output::print(&json(&doc)?);
+    let mut doc = Document::new(&report, &setup);
+    doc.out = Some(args.out.display().to_string());
+    doc.report = args.report.as_ref().map(|d| d.display().to_string());
+    match args.common.json {
+        true => output::print(&json(&doc)?),
+        false => output::print(&text(args, &setup, &report, &doc)),
     }
-    let mut text = String::new();
-    if let Some(p) = &pool {
-        text += &p.text(selection.pool.as_ref());
-    }
-    if let Some(t) = &target {
-        text += &target::text(t);
-    }
-    text += &outcome_text(args, &setup, &selection, elapsed);
-    text += &criteria_text(&e, &setup);
-    if let Some((s, free_e)) = &free {
-        text += &cost_text(args.criterion, &selection, &e, s, free_e);
-    }
-    text += &format!("postures written to {}\n", args.out.display());
-    if let Some(dir) = &args.report {
-        text += &format!("plan: {}\n", dir.join("plan.html").display());
-    }
-    output::print(&text)
 }
 
-/// The accepted `--target-pct`.
-const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
-
-/// With cell checks: the group of the same search of `n` postures without them, and its
-/// criteria (evaluated on the setup: the criteria do not depend on the cell).
-fn unconstrained(args: &Args, setup: &Setup, n: usize) -> Result<Option<(Selection, Evaluation)>> {
-    if !Checker::new(setup).constrains() {
-        return Ok(None);
-    }
-    let free = choose(args, &setup.without_cell(), None, n)?;
-    let e = evaluate(setup, &free.postures);
-    Ok(Some((free, e)))
+/// The method the arguments ask for.
+fn method(args: &Args, pool: bool) -> Result<Method> {
+    Ok(
+        match (args.global, pool, args.start.is_some() || args.start_random) {
+            (true, _, _) => Method::Global,
+            (_, true, _) => Method::Pool,
+            (_, _, true) => Method::Local,
+            _ => bail!("give --start FILE.csv, --start-random, --global or --pool FILE.csv"),
+        },
+    )
 }
 
-/// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
-fn cost_text(
-    criterion: Criterion,
-    feasible: &Selection,
-    e: &Evaluation,
-    free: &Selection,
-    free_e: &Evaluation,
-) -> String {
-    let mean = Evaluation::predicted_average_pct;
-    let mut text = format!(
-        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
-        number(feasible.value),
-        number(free.value),
-        100.0 * (feasible.value / free.value - 1.0),
-    );
-    // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
-    if !mean(e).is_nan() {
-        text += &format!(
-            "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
-            mean(e),
-            mean(free_e),
-            100.0 * (mean(e) / mean(free_e) - 1.0)
-        );
-    }
-    text
-}
-
-/// The group of `n` postures by the search the arguments ask for.
-fn choose(args: &Args, setup: &Setup, pool: Option<&pool::Input>, n: usize) -> Result<Selection> {
-    if let Some(p) = pool {
-        return p.choose(args, n);
-    }
+/// The search options: the library's defaults, overridden by the arguments.
+fn options(args: &Args) -> SearchOptions {
     let mut options = SearchOptions {
         seed: args.seed,
         gradient: args.gradient,
@@ -353,96 +186,128 @@ fn choose(args: &Args, setup: &Setup, pool: Option<&pool::Input>, n: usize) -> R
     if let Some(m) = args.max_evals {
         options.max_evals = m as usize;
     }
-    if args.global {
-        return Ok(Selection::from_search(
-            "global",
-            global(setup, args.criterion, n, &options)?,
-        ));
-    }
-    let start = start_group(args, setup, n)?;
-    let bar = spinner(&format!("local search ({})", args.criterion));
-    let outcome = design::local(setup, args.criterion, &start, &options);
-    bar.finish_and_clear();
-    Ok(Selection::from_search("local", outcome?))
+    options
 }
 
-fn global(
-    setup: &Setup,
-    criterion: Criterion,
-    n: usize,
-    options: &SearchOptions,
-) -> Result<SearchOutcome> {
-    let bar = ProgressBar::new(options.starts as u64).with_style(
-        ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} starts, {elapsed}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(format!("global search ({criterion})"));
-    let outcome = design::global(setup, criterion, n, options, &|done: usize| {
-        bar.set_position(done as u64)
-    });
-    bar.finish_and_clear();
-    Ok(outcome?)
-}
-
-/// The start group of a local search: the --start file (read as an input, so --out cannot
-/// overwrite it; within the setup's bounds) or a seeded random group.
-fn start_group(args: &Args, setup: &Setup, n: usize) -> Result<Vec<Vector6<f64>>> {
-    let Some(path) = &args.start else {
-        if !args.start_random {
-            bail!("give --start FILE.csv, --start-random, --global or --pool FILE.csv");
+/// The job's field names as the command's options.
+fn option_names(e: Error) -> Error {
+    match e {
+        Error::InvalidField { field, message } if field == "target_pct" || field == "start" => {
+            Error::InvalidField {
+                field: format!("--{}", field.replace('_', "-")),
+                message,
+            }
         }
-        return Ok(design::random_group(setup, n, args.seed));
+        e => e,
+    }
+}
+
+fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
+    let mut text = String::new();
+    if let Some(p) = &doc.pool {
+        text += &pool_text(p);
+    }
+    if let Some(t) = &r.target {
+        text += &target::text(t);
+    }
+    text += &outcome_text(setup, r);
+    text += &criteria_text(&r.evaluation, setup);
+    if let Some(free) = &r.unconstrained {
+        text += &cost_text(args.criterion, r, &free.evaluation, free.value);
+    }
+    text += &format!("postures written to {}\n", args.out.display());
+    if let Some(dir) = &args.report {
+        text += &format!("plan: {}\n", dir.join("plan.html").display());
+    }
+    text
+}
+
+/// What the pool held and what was chosen, in words.
+fn pool_text(p: &Pool) -> String {
+    let mut s = format!(
+        "pool {}: {} postures, {} usable\n",
+        p.file, p.postures, p.usable
+    );
+    for k in &p.skipped {
+        s += &format!("  skipped posture {}: {}\n", k.posture, k.reason);
+    }
+    let numbers: Vec<String> = p.chosen.iter().map(|n| n.to_string()).collect();
+    let how = match p.method {
+        "enumeration" => "exact, every group enumerated",
+        _ => "exchange algorithm, best of the restarts",
     };
-    let start = load::postures(path, setup.robot(), Some(setup.bounds()))?;
-    let most = limits::MAX_SEARCH_POSTURES as usize;
-    if start.len() < 2 || start.len() > most {
-        bail!(
-            "{}: a search needs 2 to {most} postures, the file holds {}",
-            path.display(),
-            start.len()
+    s + &format!(
+        "chosen ({how}): postures {} of the pool\n",
+        numbers.join(", ")
+    )
+}
+
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
+fn cost_text(criterion: Criterion, r: &Report, free_e: &Evaluation, free_value: f64) -> String {
+    let mean = Evaluation::predicted_average_pct;
+    let e = &r.evaluation;
+    let mut text = format!(
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
+        number(r.value),
+        number(free_value),
+        100.0 * (r.value / free_value - 1.0),
+    );
+    // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
+    if !mean(e).is_nan() {
+        text += &format!(
+            "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+            mean(e),
+            mean(free_e),
+            100.0 * (mean(e) / mean(free_e) - 1.0)
         );
     }
-    Ok(start)
+    text
 }
 
-fn spinner(message: &str) -> ProgressBar {
-    let bar = ProgressBar::new_spinner().with_message(message.to_string());
-    bar.enable_steady_tick(Duration::from_millis(100));
-    bar
-}
-
-fn degrees(postures: &[Vector6<f64>]) -> Vec<[f64; 6]> {
-    postures
-        .iter()
-        .map(|q| std::array::from_fn(|a| q[a].to_degrees()))
-        .collect()
-}
-
-fn outcome_text(args: &Args, setup: &Setup, s: &Selection, elapsed: f64) -> String {
+fn outcome_text(setup: &Setup, r: &Report) -> String {
     let mut text = format!(
         "{} search of {} postures on setup {} (seed {})\n",
-        s.search,
-        s.postures.len(),
+        r.method,
+        r.postures.len(),
         short(setup.name()),
-        args.seed
+        r.seed
     );
-    text += &match s.start_value {
+    text += &match r.start_value {
         Some(start) => {
-            let factor = start / s.value;
+            let factor = start / r.value;
             format!(
                 "{}: {} -> {} ({})\n",
-                args.criterion,
+                r.criterion,
                 number(start),
-                number(s.value),
+                number(r.value),
                 match factor.is_finite() {
                     true => format!("{factor:.3}x lower"),
                     false => "the start's criterion was infinite".into(),
                 }
             )
         }
-        None => format!("{}: {}\n", args.criterion, number(s.value)),
+        None => format!("{}: {}\n", r.criterion, number(r.value)),
     };
-    text += &format!("{} evaluations in {elapsed:.2} s\n", s.evaluations);
+    text += &format!("{} evaluations in {:.2} s\n", r.evaluations, r.elapsed_s);
+    if let Some(t) = r.termination {
+        text += &format!("stopped: {}\n", termination_text(t, &r.terminations));
+    }
     text + "criteria of the result (smaller is better):\n"
+}
+
+/// Why the search stopped: the reason of the search that found the group, and for several
+/// searches how many stopped for each reason.
+fn termination_text(
+    t: stiffid::design::Termination,
+    all: &[stiffid::design::Termination],
+) -> String {
+    let mut s = t.name().to_string();
+    if all.len() > 1 {
+        let counts: Vec<String> = (stiffid::design::Termination::ALL.iter())
+            .filter(|r| r.count(all) > 0)
+            .map(|r| format!("{} {r}", r.count(all)))
+            .collect();
+        s += &format!(" (the {} starts: {})", all.len(), counts.join(", "));
+    }
+    s
 }

@@ -1,15 +1,16 @@
 //! `stiffid simulate`: Monte Carlo identification with groups of postures from files
-//! (Zhang et al. 2021, Section IV-A).
+//! (Zhang et al. 2021, Section IV-A): the files read into a [`stiffid::jobs::simulate::Request`],
+//! the job run, its report rendered.
 
 use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, ReportDir};
 use anyhow::Result;
-use schemars::JsonSchema;
-use serde::Serialize;
 use std::path::{Path, PathBuf};
+use stiffid::documents::simulate::{deviation_csv, Document};
+use stiffid::jobs::simulate::{self as job, Group, Request};
 use stiffid::limits;
-use stiffid::simulate::{monte_carlo, GroupSimulation, Options};
+use stiffid::simulate::{GroupSimulation, Options};
 
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]
@@ -34,49 +35,6 @@ pub struct Args {
     force: bool,
 }
 
-/// One group's simulation in files: deviation rates in percent, per level then joint.
-#[derive(Serialize, JsonSchema)]
-pub struct GroupJson<'a> {
-    /// Name of the group.
-    pub name: &'a str,
-    /// Mean deviation rate, percent, [levels][6].
-    pub mean_deviation_pct: &'a [[f64; 6]],
-    /// Standard deviation of the deviation rate, percent, [levels][6].
-    pub std_deviation_pct: &'a [[f64; 6]],
-    /// First-order predicted mean deviation rate, percent, [levels][6].
-    pub predicted_deviation_pct: &'a [[f64; 6]],
-    /// Mean identified stiffness, Nm/rad, [levels][6].
-    pub mean_stiffness_nm_per_rad: Vec<[f64; 6]>,
-}
-
-impl<'a> GroupJson<'a> {
-    /// The JSON view of a group's simulation.
-    pub fn new(name: &'a str, sim: &'a GroupSimulation) -> Self {
-        Self {
-            name,
-            mean_deviation_pct: &sim.mean_deviation_pct,
-            std_deviation_pct: &sim.std_deviation_pct,
-            predicted_deviation_pct: &sim.predicted_deviation_pct,
-            mean_stiffness_nm_per_rad: sim.mean_stiffness.iter().map(|k| (*k).into()).collect(),
-        }
-    }
-}
-
-/// `stiffid simulate --json` (and `--out DIR/simulation.json`).
-#[derive(Serialize, JsonSchema)]
-pub struct SimulationJson<'a> {
-    /// The setup's name.
-    setup: &'a str,
-    /// The seed of the measurement noise.
-    seed: u64,
-    /// Monte Carlo runs per group and noise level.
-    runs: usize,
-    /// The noise level multiples of the setup's variance.
-    levels: &'a [f64],
-    /// One per postures file, in the order given.
-    groups: Vec<GroupJson<'a>>,
-}
-
 /// Runs the simulation and prints or writes the deviation rates.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
@@ -96,31 +54,32 @@ pub fn run(args: &Args) -> Result<()> {
             &|_| false,
         )?),
     };
-    let options = Options {
-        runs: args.runs as usize,
-        seed: args.seed,
-    };
-    let sims = monte_carlo(&setup, &groups, &options)?;
-    let doc = SimulationJson {
-        setup: setup.name(),
-        seed: args.seed,
-        runs: options.runs,
-        levels: &setup.noise().levels,
+    let request = Request {
+        setup: &setup,
         groups: names
             .iter()
-            .zip(&sims)
-            .map(|(n, s)| GroupJson::new(n, s))
+            .zip(groups)
+            .map(|(name, postures)| Group {
+                name: name.clone(),
+                postures,
+            })
             .collect(),
+        options: Options {
+            runs: args.runs as usize,
+            seed: args.seed,
+        },
     };
+    let report = job::run(&request)?;
+    let doc = Document::new(&report, &setup);
+    let (sims, levels) = (&report.simulations, &setup.noise().levels);
     if let Some(dir) = out {
-        let csv = deviation_csv(&names, &sims, &setup.noise().levels);
-        dir.write(FILES[0], csv.as_bytes())?;
+        dir.write(FILES[0], deviation_csv(&names, sims, levels).as_bytes())?;
         dir.write(FILES[1], json(&doc)?.as_bytes())?;
         dir.finish()?;
     }
     match args.common.json {
         true => output::print(&json(&doc)?),
-        false => output::print(&tables(&names, &sims, &setup.noise().levels, options.runs)),
+        false => output::print(&tables(&names, sims, levels, report.runs)),
     }
 }
 
@@ -148,30 +107,6 @@ fn group_names(paths: &[PathBuf]) -> Vec<String> {
         });
     }
     names
-}
-
-/// `deviation_rates.csv`: one row per group, noise level and joint.
-pub fn deviation_csv(names: &[String], sims: &[GroupSimulation], levels: &[f64]) -> String {
-    let mut text = String::from(
-        "group,level,variance_multiple,joint,mean_deviation_pct,std_deviation_pct,predicted_deviation_pct,mean_stiffness_nm_per_rad\n",
-    );
-    for (name, sim) in names.iter().zip(sims) {
-        for (l, m) in levels.iter().enumerate() {
-            for j in 0..6 {
-                text += &format!(
-                    "{},{},{m},{},{:.6},{:.6},{:.6},{:.1}\n",
-                    output::csv_field(name),
-                    l + 1,
-                    j + 1,
-                    sim.mean_deviation_pct[l][j],
-                    sim.std_deviation_pct[l][j],
-                    sim.predicted_deviation_pct[l][j],
-                    sim.mean_stiffness[l][j]
-                );
-            }
-        }
-    }
-    text
 }
 
 fn tables(names: &[String], sims: &[GroupSimulation], levels: &[f64], runs: usize) -> String {

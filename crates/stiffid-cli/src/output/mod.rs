@@ -91,14 +91,6 @@ pub fn print_json_or<T: serde::Serialize>(
     }
 }
 
-/// `text` as one CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
-pub fn csv_field(text: &str) -> String {
-    match text.contains([',', '"', '\n', '\r']) {
-        true => format!("\"{}\"", text.replace('"', "\"\"")),
-        false => text.to_string(),
-    }
-}
-
 /// Longest word of an error line: a path may be this long; values quoted in messages are cut
 /// shorter where they are quoted ([`stiffid::limits::short`]).
 const MAX_ERROR_WORD: usize = 4096;

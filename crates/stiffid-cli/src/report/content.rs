@@ -2,10 +2,10 @@
 //! [`super::markdown`] implement [`Writer`].
 
 use super::figures::Figure;
-use super::findings::sentences;
-use super::search_words;
 use super::tables::{self, Table};
-use stiffid::study::{findings, paper_table4, Study};
+use stiffid::documents::reproduce::Summary;
+use stiffid::jobs::reproduce::Report;
+use stiffid::study::paper_table4;
 
 /// A report format.
 pub trait Writer {
@@ -25,9 +25,9 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
     figures.iter().find(|f| f.name == name)
 }
 
-/// Writes the whole report.
-pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
-    let f = findings(study);
+/// Writes the whole report of `report`, whose document is `summary`.
+pub fn compose(report: &Report, summary: &Summary, figures: &[Figure], w: &mut dyn Writer) {
+    let (study, f) = (&report.study, &report.findings);
     let s = &study.setup;
     w.heading(1, "Posture selection for joint stiffness identification: the simulation study of Zhang et al. (2021)");
     w.paragraph(&format!(
@@ -35,7 +35,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
         s.name(), s.robot().name, study.groups.len(), stiffid::study::POSTURES, study.runs, study.seed, study.elapsed_s
     ));
     w.heading(2, "Findings");
-    w.list(&sentences(&f, study));
+    w.list(&summary.findings.sentences);
     w.table(&tables::groups(study));
     w.heading(
         2,
@@ -62,7 +62,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
     }
     w.heading(2, "Does the criterion predict accuracy?");
     w.paragraph("Every design criterion of every group (smaller is better) beside the group's measured average deviation rate. rho is Spearman's rank correlation between the criterion and the measured average deviation rate over the groups: +1 means the criterion ranks the groups exactly as their accuracy does.");
-    w.table(&tables::criteria(study, &f));
+    w.table(&tables::criteria(study, f));
     if let Some(fig) = find(figures, "criteria_vs_deviation") {
         w.figure(fig);
     }
@@ -71,8 +71,7 @@ pub fn compose(study: &Study, figures: &[Figure], w: &mut dyn Writer) {
         w.heading(3, &group.title);
         w.paragraph(&format!(
             "{}. Postures in `{}.csv`.",
-            search_words(&group.origin, study.seed),
-            group.name
+            summary.groups[g].search, group.name
         ));
         w.table(&tables::postures(study, g));
         if let Some(fig) = find(figures, &format!("postures_{}", group.name)) {

@@ -4,7 +4,8 @@ use super::content::compose;
 pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::study::Study;
+use stiffid::documents::reproduce::{Summary, GENERATOR};
+use stiffid::jobs::reproduce::Report;
 
 /// Text with `&`, `<`, `>` and `"` escaped.
 fn escape(text: &str) -> String {
@@ -95,10 +96,10 @@ pub fn page(title: &str, generator: &str, body: impl FnOnce(&mut dyn Writer)) ->
 }
 
 /// The text of `report.html`.
-pub fn report(study: &Study, figures: &[Figure]) -> String {
+pub fn report(report: &Report, summary: &Summary, figures: &[Figure]) -> String {
     page(
-        &format!("stiffid report: {}", study.setup.name()),
-        super::summary::GENERATOR,
-        |w| compose(study, figures, w),
+        &format!("stiffid report: {}", report.study.setup.name()),
+        GENERATOR,
+        |w| compose(report, summary, figures, w),
     )
 }

@@ -3,7 +3,8 @@
 use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::study::Study;
+use stiffid::documents::reproduce::Summary;
+use stiffid::jobs::reproduce::Report;
 
 struct Markdown(String);
 
@@ -68,9 +69,9 @@ impl Writer for Markdown {
 }
 
 /// The text of `report.md`.
-pub fn report(study: &Study, figures: &[Figure]) -> String {
+pub fn report(report: &Report, summary: &Summary, figures: &[Figure]) -> String {
     let mut w = Markdown(String::new());
-    compose(study, figures, &mut w);
+    compose(report, summary, figures, &mut w);
     w.0
 }
 

@@ -5,22 +5,23 @@
 pub mod compensation;
 mod content;
 pub mod figures;
-pub mod findings;
 pub mod html;
 mod markdown;
 pub mod plan;
 pub mod summary;
 pub mod tables;
 
-use crate::commands::simulate::deviation_csv;
 use crate::output::ReportDir;
 use anyhow::Result;
 use figures::Figure;
 use rayon::prelude::*;
 use std::path::Path;
 use stiffid::design::Evaluation;
+use stiffid::documents::reproduce::Summary;
+use stiffid::documents::simulate::deviation_csv;
 use stiffid::formats::postures;
-use stiffid::study::{criterion_values, Origin, Study};
+use stiffid::jobs::reproduce::Report;
+use stiffid::study::criterion_values;
 
 /// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.
 pub const CRITERIA: [(&str, &str); 7] = [
@@ -54,19 +55,6 @@ pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
     let mut v = criterion_values(e);
     v[5] *= 1e3;
     std::array::from_fn(|i| (CRITERIA[i].0, v[i]))
-}
-
-/// How a group was obtained, in words.
-pub fn search_words(origin: &Origin, seed: u64) -> String {
-    match origin {
-        Origin::Start => format!(
-            "seeded random start group: a Latin hypercube in the bounds (seed {seed}; each axis range cut into 6 equal strata, one posture per stratum of every axis, uniform within it)"
-        ),
-        Origin::Local(c) => format!("`{c}` minimised by SQP from Group 1 (as the paper)"),
-        Origin::Global(c, n) => format!(
-            "`{c}` minimised globally: best of {n} SQP searches from seeded Latin-hypercube starts (beyond the paper)"
-        ),
-    }
 }
 
 /// Opens the report directory `dir` (given with `option`) before the computation (see
@@ -103,8 +91,10 @@ const FILES: [&str; 4] = [
 
 /// Writes every file of the report into `dir`, each file whole; `summary.json` first, so the
 /// directory is recognisably ours from then on.
-pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
-    dir.write(FILES[0], summary::json(study)?.as_bytes())?;
+pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> {
+    let study = &report.study;
+    let doc = Summary::new(report);
+    dir.write(FILES[0], summary::json(&doc)?.as_bytes())?;
     let names: Vec<String> = study.groups.iter().map(|g| g.name.clone()).collect();
     let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
     let mut texts: Vec<(String, String)> = study
@@ -116,8 +106,8 @@ pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
         FILES[1].into(),
         deviation_csv(&names, &sims, &study.setup.noise().levels),
     ));
-    texts.push((FILES[2].into(), markdown::report(study, figures)));
-    texts.push((FILES[3].into(), html::report(study, figures)));
+    texts.push((FILES[2].into(), markdown::report(report, &doc, figures)));
+    texts.push((FILES[3].into(), html::report(report, &doc, figures)));
     let mut files: Vec<(String, &[u8])> = Vec::new();
     for f in figures {
         files.push((format!("figures/{}.svg", f.name), f.svg.as_bytes()));
@@ -137,11 +127,12 @@ pub fn write(dir: ReportDir, study: &Study, figures: &[Figure]) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::{holds, summary};
+    use super::holds;
     use std::path::Path;
+    use stiffid::documents::reproduce::GENERATOR;
 
     fn open(dir: &Path, force: bool) -> anyhow::Result<crate::output::ReportDir> {
-        super::open(dir, "--out", Some(force), summary::GENERATOR, &holds)
+        super::open(dir, "--out", Some(force), GENERATOR, &holds)
     }
 
     #[test]

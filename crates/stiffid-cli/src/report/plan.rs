@@ -10,10 +10,11 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use nalgebra::{Vector3, Vector6};
 use std::path::Path;
-use stiffid::cell::{Check, Checker};
+use stiffid::cell::Checker;
 use stiffid::design::criteria::predicted_deviation_pct;
 use stiffid::design::target::TargetOutcome;
 use stiffid::design::{Criterion, Evaluation, Evaluator};
+use stiffid::documents::feasibility::describe;
 use stiffid::stiffness::rope_displacements;
 use stiffid::Setup;
 
@@ -363,19 +364,4 @@ fn displacements_table(plan: &Plan) -> Table {
         })
         .collect();
     Table { header, rows }
-}
-
-/// A failed check of the cell in words: its kind, the tightest pair and by how much it fails (mm
-/// or deg).
-pub fn describe(c: &Check) -> String {
-    let by = match c.kind.is_angle() {
-        true => format!("{:.1} deg", -c.margin.to_degrees()),
-        false => format!("{:.0} mm", -c.margin * 1e3),
-    };
-    let (a, b) = &c.between;
-    let pair = match a == b {
-        true => a.clone(),
-        false => format!("{a} - {b}"),
-    };
-    format!("{} ({pair}) fails by {by}", c.kind)
 }

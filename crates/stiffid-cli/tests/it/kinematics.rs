@@ -64,6 +64,12 @@ fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
     assert_eq!(rotation.len(), 3);
     let k = v["dexterity"].as_f64().unwrap();
     assert!(k > 1.0 && k.is_finite());
+    // No length given: the robot's own, the one that minimises the median dexterity of the point.
+    let robot = stiffid::robot::presets::get(COMAU).unwrap();
+    let l =
+        stiffid::prior::robot_characteristic_length(&robot, &nalgebra::Vector3::zeros()).unwrap();
+    assert_eq!(v["characteristic_length_source"], "derived");
+    assert_eq!(v["characteristic_length_mm"].as_f64().unwrap(), l * 1e3);
     assert_eq!(v["joint_positions_mm"].as_array().unwrap().len(), 6);
 }
 
@@ -89,7 +95,8 @@ fn text_output_names_units_and_shows_the_point() {
         "kinematic angles",
         "m/rad",
         "theta6",
-        "dexterity k(J_N) (L = 1200 mm): infinite (singular posture)",
+        "dexterity k(J_N) (L = ",
+        " mm, derived from the robot: minimises the point's median dexterity): infinite (singular posture)",
     ] {
         assert!(text.contains(part), "'{part}' missing from: {text}");
     }
@@ -232,4 +239,29 @@ fn bad_point_and_characteristic_length() {
         &e,
         &["--characteristic-length-mm", "0 is outside [1, 100000] mm"],
     );
+}
+
+#[test]
+fn a_given_characteristic_length_is_used_and_named_given() {
+    let args = [
+        "kinematics",
+        "--robot",
+        COMAU,
+        "--q-deg",
+        "10,20,-90,30,20,10",
+    ];
+    let given = json(&stiffid(
+        &[&args[..], &["--json", "--characteristic-length-mm", "1200"]].concat(),
+    ));
+    assert_eq!(given["characteristic_length_mm"], 1200.0);
+    assert_eq!(given["characteristic_length_source"], "given");
+    let derived = json(&stiffid(&[&args[..], &["--json"]].concat()));
+    // The same Jacobian, normalised by another length: another dexterity.
+    assert_eq!(given["jacobian"], derived["jacobian"]);
+    assert_ne!(given["dexterity"], derived["dexterity"]);
+    let text = String::from_utf8(
+        stiffid(&[&args[..], &["--characteristic-length-mm", "1200"]].concat()).stdout,
+    )
+    .unwrap();
+    assert!(text.contains("(L = 1200.0 mm, given)"), "{text}");
 }

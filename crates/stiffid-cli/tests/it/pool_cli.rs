@@ -249,7 +249,15 @@ fn target_pct_gives_the_smallest_group_and_fails_when_out_of_reach() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_usage_error(&e, &["--target-pct 0.1", "not reachable", "12 usable"]);
+    assert_usage_error(
+        &e,
+        &[
+            "--target-pct 0.1",
+            "not reachable",
+            "best reachable with the pool's 12 usable postures",
+            "stopped after 2 group sizes",
+        ],
+    );
     assert!(!out.exists());
     let e = select(&["--target-pct", "2", "--start-random", "--out", "y.csv"]);
     assert_eq!(e.status.code(), Some(2));

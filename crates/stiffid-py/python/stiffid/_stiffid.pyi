@@ -44,12 +44,14 @@ class Robot:
         """(6, 6) or (n, 6, 6), rows [v; omega] in m/rad and rad/rad, base frame."""
     def read_postures(self, path: _PathLike) -> _Array:
         """(n, 6) deg from a postures CSV (posture,q1_deg,...,q6_deg)."""
+    def characteristic_length_mm(self, point_mm: Optional[ArrayLike] = None) -> float:
+        """The robot's own characteristic length, mm: minimises the point's median dexterity."""
     @overload
     def dexterity(
         self,
         q_deg: Sequence[float],
         point_mm: Optional[ArrayLike] = None,
-        characteristic_length_mm: float = 1200.0,
+        characteristic_length_mm: Optional[float] = None,
         coordinates: _Coordinates = "axis",
     ) -> float: ...
     @overload
@@ -57,7 +59,7 @@ class Robot:
         self,
         q_deg: ArrayLike,
         point_mm: Optional[ArrayLike] = None,
-        characteristic_length_mm: float = 1200.0,
+        characteristic_length_mm: Optional[float] = None,
         coordinates: _Coordinates = "axis",
     ) -> Union[float, _Array]: ...
 
@@ -108,7 +110,7 @@ class Setup:
     @property
     def test_postures_deg(self) -> _Array: ...
     def evaluate(self, postures_deg: ArrayLike) -> dict[str, Any]:
-        """Criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6); None where the setup lacks the field (characteristic_length_mm, nominal_stiffness_nm_per_rad)."""
+        """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable; None where the setup lacks the field."""
     def select(
         self,
         criterion: _CriterionName = "relative-a",
@@ -124,8 +126,9 @@ class Setup:
         gradient: Literal["exact", "fd"] = "exact",
         pool: Optional[ArrayLike] = None,
         restarts: Optional[int] = None,
+        target_pct: Optional[float] = None,
     ) -> dict[str, Any]:
-        """postures_deg (n, 6), value, start_value, evaluations, criteria, pool_* for a pool."""
+        """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained where they apply."""
     def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...
 
 @final
@@ -207,6 +210,8 @@ class Study:
     def groups(self) -> list[dict[str, Any]]: ...
     @property
     def findings(self) -> dict[str, Any]: ...
+    def to_dict(self) -> dict[str, Any]:
+        """The document of summary.json."""
 
 def identify(
     setup: Setup,

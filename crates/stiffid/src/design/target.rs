@@ -4,6 +4,13 @@
 //!
 //! The prediction is the first-order one of [`super::Evaluation::predicted_deviation_pct`]:
 //! `100 sqrt(2/pi) sqrt([(S^T S)^-1]_jj)` percent for joint j at multiple 1.
+//!
+//! A target out of reach is seen early: the information of a well-chosen group grows about in
+//! proportion to its size N, so its predicted rate falls about as `1/sqrt(N)` (on the paper's
+//! setup `rate * sqrt(N)` stays within 5% from 2 to 60 postures). The search stops as soon as
+//! [`STOP_STEPS`] sizes in a row extrapolate, by that law, to a rate at the largest size allowed
+//! above [`STOP_MARGIN`] times the target ([`TargetOutcome::extrapolated_pct`]), instead of trying
+//! every size up to [`MAX_POSTURES`].
 
 use super::criteria::predicted_deviation_pct;
 use super::Evaluator;
@@ -16,6 +23,15 @@ pub const MIN_POSTURES: usize = 2;
 
 /// The largest group size tried.
 pub const MAX_POSTURES: usize = 60;
+
+/// How far above the target the `1/sqrt(N)` extrapolation to the largest size must be before the
+/// search stops early: 1.25 (the law is approximate; a target within 25% of the extrapolation is
+/// still searched for size by size).
+pub const STOP_MARGIN: f64 = 1.25;
+
+/// Consecutive sizes whose extrapolation must say "out of reach" before the search stops early (one
+/// poorly chosen group must not end it).
+pub const STOP_STEPS: usize = 2;
 
 /// One group size tried.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,6 +74,13 @@ pub struct TargetOutcome {
     pub steps: Vec<TargetStep>,
     /// Whether the last step's worst joint is at most the target.
     pub reached: bool,
+    /// The largest group size allowed.
+    pub max_postures: usize,
+    /// When the search stopped early: the worst rate (%) the last step extrapolates to at
+    /// [`TargetOutcome::max_postures`] by the `1/sqrt(N)` law ([`extrapolate`]), above
+    /// [`STOP_MARGIN`] times the target. `None` when every size up to the largest was tried or
+    /// the target was reached.
+    pub extrapolated_pct: Option<f64>,
 }
 
 impl TargetOutcome {
@@ -99,7 +122,14 @@ pub fn smallest_group<E: From<Error>>(
         .into());
     }
     let evaluator = Evaluator::new(setup);
-    let mut steps = Vec::new();
+    let mut steps: Vec<TargetStep> = Vec::new();
+    let outcome = |steps, reached, extrapolated_pct| TargetOutcome {
+        target_pct,
+        steps,
+        reached,
+        max_postures: max,
+        extrapolated_pct,
+    };
     for n in MIN_POSTURES..=max {
         let postures = choose(n)?;
         let e = evaluator.evaluation(&postures);
@@ -114,16 +144,30 @@ pub fn smallest_group<E: From<Error>>(
         let reached = step.worst_pct() <= target_pct;
         steps.push(step);
         if reached {
-            return Ok(TargetOutcome {
-                target_pct,
-                steps,
-                reached,
-            });
+            return Ok(outcome(steps, true, None));
+        }
+        if let Some(pct) = out_of_reach(&steps, target_pct, max) {
+            return Ok(outcome(steps, false, Some(pct)));
         }
     }
-    Ok(TargetOutcome {
-        target_pct,
-        steps,
-        reached: false,
-    })
+    Ok(outcome(steps, false, None))
+}
+
+/// The worst rate (%) at `n` postures extrapolated from `step` by the `1/sqrt(N)` law:
+/// `worst_pct * sqrt(len / n)`; `+infinity` for a rank-deficient step.
+pub fn extrapolate(step: &TargetStep, n: usize) -> f64 {
+    step.worst_pct() * (step.postures.len() as f64 / n as f64).sqrt()
+}
+
+/// The last step's extrapolation to `max` postures when each of the last [`STOP_STEPS`] steps
+/// extrapolates above [`STOP_MARGIN`] times the target (finite values only), else `None`.
+fn out_of_reach(steps: &[TargetStep], target_pct: f64, max: usize) -> Option<f64> {
+    let last = steps.len().checked_sub(STOP_STEPS).map(|i| &steps[i..])?;
+    let beyond = |s: &TargetStep| {
+        let pct = extrapolate(s, max);
+        pct.is_finite() && pct > STOP_MARGIN * target_pct
+    };
+    last.iter()
+        .all(beyond)
+        .then(|| extrapolate(&steps[steps.len() - 1], max))
 }

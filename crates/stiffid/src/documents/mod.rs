@@ -11,7 +11,12 @@
 //! turns the same documents into dicts (and arrays where its API promises arrays), so the two
 //! front ends give the same document for the same call.
 
+pub mod evaluate;
+pub mod feasibility;
 pub mod identify;
+pub mod reproduce;
+pub mod select;
+pub mod simulate;
 
 /// `v` if finite, else `None`.
 pub fn finite(v: f64) -> Option<f64> {
@@ -26,4 +31,18 @@ pub fn finite_each<const N: usize>(values: impl Into<[f64; N]>) -> [Option<f64>;
 /// A length in m, in mm.
 pub fn mm(v: f64) -> f64 {
     v * 1e3
+}
+
+/// Axis angles (rad) of a group as rows of degrees, q1..q6.
+pub fn degrees(postures: &[nalgebra::Vector6<f64>]) -> Vec<[f64; 6]> {
+    let row = |q: &nalgebra::Vector6<f64>| std::array::from_fn(|a| q[a].to_degrees());
+    postures.iter().map(row).collect()
+}
+
+/// `text` as one CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
+pub fn csv_field(text: &str) -> String {
+    match text.contains([',', '"', '\n', '\r']) {
+        true => format!("\"{}\"", text.replace('"', "\"\"")),
+        false => text.to_string(),
+    }
 }

@@ -21,7 +21,11 @@
 //! Errors are [`crate::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
 //! never of one front end's options; each front end adds its own hints.
 
+pub mod evaluate;
 pub mod identify;
+pub mod reproduce;
+pub mod select;
+pub mod simulate;
 
 use serde::Serialize;
 

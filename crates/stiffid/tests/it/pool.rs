@@ -2,7 +2,7 @@
 //! and the smallest group size for a target accuracy.
 
 use nalgebra::Vector6;
-use stiffid::design::target::smallest_group;
+use stiffid::design::target::{self, smallest_group};
 use stiffid::design::{random_group, Criterion, Evaluator, Pool, PoolMethod, PoolOptions};
 use stiffid::Setup;
 
@@ -164,7 +164,53 @@ fn the_smallest_group_for_a_target_is_monotone_and_fails_when_out_of_reach() {
     let out_of_reach = smallest_group(&setup, 0.01, 12, choose).unwrap();
     assert!(!out_of_reach.reached);
     assert!(out_of_reach.chosen().is_none());
-    assert_eq!(out_of_reach.steps.len(), 11, "2..=12 postures tried");
+    // Far out of reach: seen after two sizes (2 and 3 postures), not after all eleven.
+    assert_eq!(out_of_reach.steps.len(), 2, "stopped early");
+    let last = &out_of_reach.steps[1];
+    let extrapolated = out_of_reach.extrapolated_pct.unwrap();
+    assert_eq!(extrapolated, last.worst_pct() * (3.0f64 / 12.0).sqrt());
+    assert!(extrapolated > 0.01 * target::STOP_MARGIN);
     let e = smallest_group(&setup, f64::NAN, 12, choose).unwrap_err();
     assert!(e.to_string().contains("target_pct"), "{e}");
+}
+
+#[test]
+fn stopping_early_keeps_the_smallest_size_of_a_reachable_target() {
+    let setup = paper();
+    let postures = random_group(&setup, 40, 2);
+    let pool = Pool::new(&setup, &postures, &[]).unwrap();
+    let choose = |n| -> stiffid::Result<_> {
+        let c = pool.best(Criterion::RelativeA, n, &PoolOptions::default())?;
+        Ok(pool.postures(&c.indices))
+    };
+    // Every size's worst rate, without any stopping rule.
+    let evaluator = Evaluator::new(&setup);
+    let worst: Vec<f64> = (2..=40)
+        .map(|n| {
+            let e = evaluator.evaluation(&choose(n).unwrap());
+            let rates = stiffid::design::criteria::predicted_deviation_pct(&e.relative_std, 1.0);
+            rates.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        })
+        .collect();
+    // Targets reached late (near the largest size) are still found at the first size that
+    // reaches them.
+    for n in [30, 36, 40] {
+        let target = worst[n - 2];
+        let first = 2 + worst.iter().position(|&w| w <= target).unwrap();
+        let outcome = smallest_group(&setup, target, 40, choose).unwrap();
+        assert!(outcome.reached, "{target}%");
+        assert_eq!(outcome.chosen().unwrap().postures.len(), first, "{target}%");
+    }
+    // Just out of reach (below the best rate of 40 postures): every size is tried; far out of
+    // reach: stopped after two sizes.
+    let best = worst.iter().copied().fold(f64::INFINITY, f64::min);
+    let near = smallest_group(&setup, 0.95 * best, 40, choose).unwrap();
+    assert!(
+        !near.reached && near.steps.len() > 20,
+        "{}",
+        near.steps.len()
+    );
+    let far = smallest_group(&setup, 0.3 * best, 40, choose).unwrap();
+    assert!(!far.reached);
+    assert_eq!(far.steps.len(), 2);
 }

@@ -1,8 +1,19 @@
-//! What the study found, in sentences: the [`Findings`] of the library put into words for the
-//! terminal and the reports.
+//! What the study found, in sentences: the [`Findings`] put into words for the summary, the
+//! terminal and the reports; how each group was obtained, in words.
 
-use super::CRITERIA;
-use stiffid::study::{Findings, Study};
+use crate::study::{Findings, Origin, Study};
+
+/// The keys of the design criteria in documents, in the order of
+/// [`crate::study::criterion_values`] and [`Findings::rank_correlation`].
+pub const CRITERION_KEYS: [&str; 7] = [
+    "classical",
+    "zhang2021",
+    "scaled_cond",
+    "d_optimal",
+    "relative_a",
+    "test_pose_mm",
+    "cond_psi",
+];
 
 /// The findings as sentences for the terminal and the reports.
 pub fn sentences(f: &Findings, study: &Study) -> Vec<String> {
@@ -61,7 +72,7 @@ pub fn sentences(f: &Findings, study: &Study) -> Vec<String> {
         study.runs,
         if f.prediction_error < 0.1 { "" } else { "; it holds for small errors only, and some groups here identify a joint with errors of tens of percent" }
     ));
-    let best = (0..CRITERIA.len()).max_by(|&a, &b| {
+    let best = (0..CRITERION_KEYS.len()).max_by(|&a, &b| {
         f.rank_correlation[a]
             .unwrap_or(-2.0)
             .total_cmp(&f.rank_correlation[b].unwrap_or(-2.0))
@@ -71,7 +82,7 @@ pub fn sentences(f: &Findings, study: &Study) -> Vec<String> {
         out.push(format!(
             "Which criterion predicts accuracy (Spearman's rho between criterion and average deviation rate over the {} groups): best {} (rho {}); the paper's zhang2021 {}, classical {}.",
             study.groups.len(),
-            CRITERIA[b].0,
+            CRITERION_KEYS[b],
             rho(b),
             rho(1),
             rho(0)
@@ -97,5 +108,18 @@ fn ratio_words(factor: f64) -> String {
     match factor >= 1.0 {
         true => format!("{factor:.2}x lower"),
         false => format!("{:.2}x higher", 1.0 / factor),
+    }
+}
+
+/// How a group was obtained, in words.
+pub fn search_words(origin: &Origin, seed: u64) -> String {
+    match origin {
+        Origin::Start => format!(
+            "seeded random start group: a Latin hypercube in the bounds (seed {seed}; each axis range cut into 6 equal strata, one posture per stratum of every axis, uniform within it)"
+        ),
+        Origin::Local(c) => format!("`{c}` minimised by SQP from Group 1 (as the paper)"),
+        Origin::Global(c, n) => format!(
+            "`{c}` minimised globally: best of {n} SQP searches from seeded Latin-hypercube starts (beyond the paper)"
+        ),
     }
 }
