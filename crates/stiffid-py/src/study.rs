@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::documents::reproduce::Summary;
 use stiffid::documents::simulate::Document;
-use stiffid::jobs::reproduce;
+use stiffid::jobs::reproduce as job_reproduce;
 use stiffid::jobs::simulate as job;
 use stiffid::limits::{self, check_count};
 use stiffid::simulate::{self as monte_carlo, GroupSimulation};
@@ -109,12 +109,12 @@ pub fn reproduce(
             &paper
         }
     };
-    let request = reproduce::Request {
+    let request = job_reproduce::Request {
         setup,
         options,
         progress: &(),
     };
-    let report = py.detach(|| reproduce::run(&request)).map_err(raise)?;
+    let report = py.detach(|| job_reproduce::run(&request)).map_err(raise)?;
     warn(py, &report.warnings)?;
     Ok(Study { report })
 }
@@ -123,7 +123,7 @@ pub fn reproduce(
 /// and the findings. Deviation rates in percent; arrays over groups in the groups' order.
 #[pyclass(frozen, module = "stiffid", name = "Study")]
 pub struct Study {
-    report: reproduce::Report,
+    report: job_reproduce::Report,
 }
 
 #[pymethods]
@@ -251,7 +251,7 @@ impl Study {
         let range = f.start_check.zhang_range_pct.map(|(lo, hi)| vec![lo, hi]);
         d.set_item("zhang2021_range_pct", range)?;
         d.set_item("prediction_mean_abs_relative_error", f.prediction_error)?;
-        d.set_item("rank_correlation", f.rank_correlation)?;
+        d.set_item("rank_correlation", f.rank_correlation.clone())?;
         Ok(d)
     }
 

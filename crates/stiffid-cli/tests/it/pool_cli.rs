@@ -252,8 +252,7 @@ fn target_pct_gives_the_smallest_group_and_fails_when_out_of_reach() {
     assert_usage_error(
         &e,
         &[
-            "--target-pct 0.1",
-            "not reachable",
+            "--target-pct: 0.1 % is not reachable",
             "best reachable with the pool's 12 usable postures",
             "stopped after 2 group sizes",
         ],

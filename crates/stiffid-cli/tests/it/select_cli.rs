@@ -102,6 +102,17 @@ fn select_random_and_global_write_postures_within_bounds() {
             }
         }
         assert!(doc["value"].as_f64().unwrap() <= doc["start_value"].as_f64().unwrap());
+        // Why the search stopped: one reason per local search (one, or one per global start),
+        // every reason listed, the found group's among them.
+        let counts = doc["terminations"].as_array().unwrap();
+        assert_eq!(counts.len(), 6);
+        let total: u64 = counts.iter().map(|c| c["searches"].as_u64().unwrap()).sum();
+        let searches = if extra[0] == "--global" { 2 } else { 1 };
+        assert_eq!(total, searches, "{counts:?}");
+        let found = counts
+            .iter()
+            .find(|c| c["termination"] == doc["termination"]);
+        assert!(found.unwrap()["searches"].as_u64().unwrap() >= 1);
     }
 }
 
