@@ -72,6 +72,8 @@ pub struct LinkShape {
     pub origin: Isometry3<f64>,
     /// The shape.
     pub shape: Shape,
+    /// A sphere holding the shape, in the body's frame: centre and radius, m.
+    pub bound: (Vector3<f64>, f64),
 }
 
 /// Every collision shape of the chain's links.
@@ -150,11 +152,16 @@ pub fn parse(
             continue;
         };
         for c in &link.collision {
+            let origin = pose * origin(&c.origin, &link.name, source_name)?;
+            let shape = context.shape(&c.geometry, &link.name)?;
+            let (parry, fix) = shape.parry();
+            let sphere = parry.compute_bounding_sphere(&(origin * fix));
             out.shapes.push(LinkShape {
                 body: *body,
                 link: link.name.clone(),
-                origin: pose * origin(&c.origin, &link.name, source_name)?,
-                shape: context.shape(&c.geometry, &link.name)?,
+                origin,
+                shape,
+                bound: (sphere.center.coords, sphere.radius),
             });
         }
     }
