@@ -37,15 +37,25 @@ fn feasibility(c: &mut Bench) {
 fn mesh_cell() -> stiffid::Setup {
     use std::path::Path;
     let files = mesh_robot::files(48);
-    let text = |p: &Path| Some(Ok::<_, stiffid::Error>(String::from_utf8(files.get(p)?.clone()).unwrap()));
+    let text = |p: &Path| {
+        Some(Ok::<_, stiffid::Error>(
+            String::from_utf8(files.get(p)?.clone()).unwrap(),
+        ))
+    };
     let bytes = |p: &Path| files.get(p).cloned().map(Ok);
     let meshes = stiffid::formats::reference::Meshes {
         read: &bytes,
         package_paths: &[],
     };
     let toml = mesh_robot::setup_toml();
-    stiffid::formats::reference::setup_text_with_meshes(&toml, "cell.toml", Path::new(""), text, &meshes)
-        .unwrap()
+    stiffid::formats::reference::setup_text_with_meshes(
+        &toml,
+        "cell.toml",
+        Path::new(""),
+        text,
+        &meshes,
+    )
+    .unwrap()
 }
 
 /// One posture's margins (what a constrained search evaluates: the broad phase on) and its exact
@@ -58,11 +68,24 @@ fn bodies(c: &mut Bench) {
     for (name, setup) in [("capsules", &capsules), ("hulls", &hulls)] {
         let checker = Checker::new(setup);
         c.bench_function(&format!("cell/bodies/margins/{name}/16-postures"), |b| {
-            b.iter(|| postures.iter().map(|q| checker.margins(black_box(q)).len()).sum::<usize>())
+            b.iter(|| {
+                postures
+                    .iter()
+                    .map(|q| checker.margins(black_box(q)).len())
+                    .sum::<usize>()
+            })
         });
-        c.bench_function(&format!("cell/bodies/feasibility/{name}/16-postures"), |b| {
-            b.iter(|| postures.iter().filter(|q| checker.feasibility(black_box(q)).feasible()).count())
-        });
+        c.bench_function(
+            &format!("cell/bodies/feasibility/{name}/16-postures"),
+            |b| {
+                b.iter(|| {
+                    postures
+                        .iter()
+                        .filter(|q| checker.feasibility(black_box(q)).feasible())
+                        .count()
+                })
+            },
+        );
     }
 }
 

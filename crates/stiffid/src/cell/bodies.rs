@@ -100,9 +100,7 @@ impl Body {
     /// a drawing fills, true to scale.
     pub fn outline(&self, u: &Vector3<f64>, v: &Vector3<f64>, n: usize) -> Vec<(f64, f64)> {
         super::distance::with_parry(self, |shape, pose| {
-            let support = shape
-                .as_support_map()
-                .expect("every body is convex");
+            let support = shape.as_support_map().expect("every body is convex");
             (0..n)
                 .map(|k| {
                     let t = std::f64::consts::TAU * k as f64 / n as f64;
@@ -125,7 +123,10 @@ impl Body {
 /// bodies in the same order in every posture. What the cell's checks and the drawings use.
 pub fn bodies(setup: &Setup, frames: &Frames) -> Vec<Body> {
     let Some(g) = setup.shapes() else {
-        return capsules(setup, frames).into_iter().map(Body::Capsule).collect();
+        return capsules(setup, frames)
+            .into_iter()
+            .map(Body::Capsule)
+            .collect();
     };
     let base = setup.robot().base;
     let mut out: Vec<Body> = g
@@ -140,7 +141,10 @@ pub fn bodies(setup: &Setup, frames: &Frames) -> Vec<Body> {
                 part,
                 shape: s.shape.clone(),
                 pose: frame * s.origin,
-                bound: ((frame * nalgebra::Point3::from(s.bound.0)).coords, s.bound.1),
+                bound: (
+                    (frame * nalgebra::Point3::from(s.bound.0)).coords,
+                    s.bound.1,
+                ),
             })
         })
         .collect();

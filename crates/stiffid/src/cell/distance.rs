@@ -210,7 +210,10 @@ pub(crate) fn body_box_witness(b: &Body, o: &Obstacle) -> (f64, Option<Witness>)
 }
 
 /// Calls `f` with the body as parry takes it: a shape and its pose, base frame.
-pub(super) fn with_parry<R>(b: &Body, f: impl FnOnce(&dyn shape::Shape, &Isometry3<f64>) -> R) -> R {
+pub(super) fn with_parry<R>(
+    b: &Body,
+    f: impl FnOnce(&dyn shape::Shape, &Isometry3<f64>) -> R,
+) -> R {
     match b {
         Body::Capsule(c) => {
             let capsule = shape::Capsule::new(Point3::from(c.a), Point3::from(c.b), c.radius);

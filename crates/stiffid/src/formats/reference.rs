@@ -68,7 +68,14 @@ where
     E: From<Error>,
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
-    robot_in(Path::new(""), reference, tip, "tip link", &read, Some(meshes))
+    robot_in(
+        Path::new(""),
+        reference,
+        tip,
+        "tip link",
+        &read,
+        Some(meshes),
+    )
 }
 
 /// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`;

@@ -572,7 +572,11 @@ mod tests {
         for k in 0..64 {
             let t = f64::from(k);
             let pose = Isometry3::new(
-                Vector3::new((t * 0.37).sin() * 1.5, (t * 0.71).cos() * 1.2, (t * 0.13).sin()),
+                Vector3::new(
+                    (t * 0.37).sin() * 1.5,
+                    (t * 0.71).cos() * 1.2,
+                    (t * 0.13).sin(),
+                ),
                 Vector3::new((t * 1.1).sin(), (t * 0.3).cos(), (t * 0.9).sin()),
             );
             let (mut x, mut y) = (Vector3::zeros(), pose.translation.vector);
@@ -583,12 +587,19 @@ mod tests {
             }
             let (a_, b_) = (Shape::Cuboid(a), Shape::Cuboid(b));
             let d = distance(&a_, &Isometry3::identity(), &b_, &pose);
-            assert!((d - (x - y).norm()).abs() < 1e-9, "{d} vs {}", (x - y).norm());
+            assert!(
+                (d - (x - y).norm()).abs() < 1e-9,
+                "{d} vs {}",
+                (x - y).norm()
+            );
         }
         // By hand: a cube of side 1 turned 45 deg about z, 2 m along x from another: its edge
         // at 2 - sqrt(1/2) faces the first's face at 0.5.
         let cube = Shape::Cuboid(Cuboid::new(Vector3::repeat(0.5)));
-        let turned = Isometry3::new(Vector3::x() * 2.0, Vector3::z() * std::f64::consts::FRAC_PI_4);
+        let turned = Isometry3::new(
+            Vector3::x() * 2.0,
+            Vector3::z() * std::f64::consts::FRAC_PI_4,
+        );
         let d = distance(&cube, &Isometry3::identity(), &cube, &turned);
         assert!((d - (1.5 - 0.5f64.sqrt())).abs() < 1e-12, "{d}");
         // Corner to corner: sqrt(3) along the diagonal.

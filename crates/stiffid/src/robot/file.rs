@@ -189,7 +189,12 @@ fn bodies(g: Option<GeometryFile>, source_name: &str) -> Result<super::Bodies> {
         return Ok(super::Bodies::Scaled);
     };
     let field = "robot_geometry.link_radius_mm";
-    check_in(source_name, field, &g.link_radius_mm, &limits::BODY_RADIUS_MM)?;
+    check_in(
+        source_name,
+        field,
+        &g.link_radius_mm,
+        &limits::BODY_RADIUS_MM,
+    )?;
     Ok(super::Bodies::Capsules(g.link_radius_mm.map(|r| r * 1e-3)))
 }
 

@@ -25,7 +25,11 @@ fn files() -> HashMap<PathBuf, Vec<u8>> {
 /// The setup `toml` read as `pkg/cell.toml`, meshes looked for in `package_paths` first.
 fn setup_from(toml: &str, package_paths: &[PathBuf]) -> stiffid::Result<Setup> {
     let files = files();
-    let text = |p: &Path| Some(Ok::<_, stiffid::Error>(String::from_utf8(files.get(p)?.clone()).unwrap()));
+    let text = |p: &Path| {
+        Some(Ok::<_, stiffid::Error>(
+            String::from_utf8(files.get(p)?.clone()).unwrap(),
+        ))
+    };
     let bytes = |p: &Path| files.get(p).cloned().map(Ok);
     let meshes = Meshes {
         read: &bytes,
@@ -60,7 +64,11 @@ fn hull_distances_equal_hand_computed_ones() {
     // The prisms' vertices are f32: 1e-7 m.
     let tol = 1e-6;
     // The turret's lowest face at z = 0.15, above the floor at -0.1.
-    close(body_floor(&body(&setup, &zero, Part::Link(1)), -0.1), 0.25, tol);
+    close(
+        body_floor(&body(&setup, &zero, Part::Link(1)), -0.1),
+        0.25,
+        tol,
+    );
     // The forearm (link 4) along x at z = 0.78 + 1.28 + 0.2 = 2.26, radius 0.14 (a vertex of the
     // 48-gon straight up): a box 2.6 m high over it is 0.2 m away.
     let lid = Obstacle {
@@ -68,7 +76,11 @@ fn hull_distances_equal_hand_computed_ones() {
         min: Vector3::new(0.6, -0.5, 2.6),
         max: Vector3::new(1.0, 0.5, 3.0),
     };
-    close(body_box(&body(&setup, &zero, Part::Link(4)), &lid), 0.2, tol);
+    close(
+        body_box(&body(&setup, &zero, Part::Link(4)), &lid),
+        0.2,
+        tol,
+    );
     // The upper arm's top rim (x = 0.32 + 0.17, z = 2.06) and the forearm's first face's lowest
     // vertex (x = 0.32 + 0.2, z = 2.26 - 0.14): sqrt(0.03^2 + 0.06^2).
     let (arm, forearm) = (
@@ -85,7 +97,11 @@ fn feasibility_uses_the_hulls_and_the_broad_phase_keeps_every_smallest_margin() 
     let setup = mesh_setup();
     let checker = Checker::new(&setup);
     let f = checker.feasibility(&Vector6::zeros());
-    let floor = f.checks.iter().find(|c| c.kind == CheckKind::Floor).unwrap();
+    let floor = f
+        .checks
+        .iter()
+        .find(|c| c.kind == CheckKind::Floor)
+        .unwrap();
     // The turret, 0.25 m above the floor, less the 30 mm clearance.
     close(floor.margin, 0.22, 1e-6);
     assert_eq!(floor.between, ("link 1".to_string(), "floor".to_string()));
@@ -112,7 +128,12 @@ fn feasibility_uses_the_hulls_and_the_broad_phase_keeps_every_smallest_margin() 
                 .filter(|m| m.kind == c.kind)
                 .map(|m| m.margin)
                 .fold(f64::INFINITY, f64::min);
-            assert!(smallest <= c.margin + 1e-12, "{}: {smallest} > {}", c.kind, c.margin);
+            assert!(
+                smallest <= c.margin + 1e-12,
+                "{}: {smallest} > {}",
+                c.kind,
+                c.margin
+            );
             if c.margin < cell::FAR_MARGIN {
                 assert_eq!(smallest, c.margin, "{} at {q:?}", c.kind);
                 exact_checks += 1;
@@ -138,7 +159,11 @@ fn package_urls_resolve_in_the_setups_and_the_given_package_paths_or_name_the_pa
         "{e}"
     );
     // Given on the command line instead of in the setup.
-    let setup = setup_from(&without, &[PathBuf::from("elsewhere"), PathBuf::from("pkg")]).unwrap();
+    let setup = setup_from(
+        &without,
+        &[PathBuf::from("elsewhere"), PathBuf::from("pkg")],
+    )
+    .unwrap();
     assert_eq!(setup.shapes().unwrap().shapes.len(), 7);
     let e = setup_from(
         &mesh_robot::setup_toml().replace("package_paths = [\".\"]", "package_paths = [\" \"]"),
@@ -161,10 +186,18 @@ fn capsules_are_the_fallback_and_the_users_override() {
         .all(|b| matches!(b, Body::Capsule(_))));
     // Without a mesh reader, a URDF robot has capsules.
     let files = files();
-    let text = |p: &Path| Some(Ok::<_, stiffid::Error>(String::from_utf8(files.get(p)?.clone()).unwrap()));
-    let plain =
-        reference::setup_text(&mesh_robot::setup_toml(), "pkg/cell.toml", Path::new("pkg"), text)
-            .unwrap();
+    let text = |p: &Path| {
+        Some(Ok::<_, stiffid::Error>(
+            String::from_utf8(files.get(p)?.clone()).unwrap(),
+        ))
+    };
+    let plain = reference::setup_text(
+        &mesh_robot::setup_toml(),
+        "pkg/cell.toml",
+        Path::new("pkg"),
+        text,
+    )
+    .unwrap();
     assert!(plain.shapes().is_none());
     // Rebuilt, a setup keeps its shapes.
     let rebuilt = mesh_setup().to_builder().build().unwrap();
@@ -190,7 +223,9 @@ fn robot_files_accept_robot_geometry() {
     let setup = reference::setup_text(&setup_text, "s.toml", Path::new(""), read).unwrap();
     close(setup.geometry().link_radii[2], 0.195, 1e-12);
     let bad = text.replace("[350, 260", "[0, 260");
-    let e = stiffid::robot::file::parse(&bad, "r.toml").unwrap_err().to_string();
+    let e = stiffid::robot::file::parse(&bad, "r.toml")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("r.toml: robot_geometry.link_radius_mm"), "{e}");
     let e = stiffid::robot::file::parse(&format!("{text}tool_radius_mm = 5\n"), "r.toml")
         .unwrap_err()

@@ -12,7 +12,14 @@ pub const URDF: &str = "mesh_robot/urdf/robot.urdf";
 /// A convex prism: a regular `sides`-gon of circumradius `radius` about the axis `axis` (0 x,
 /// 1 y, 2 z), from `from` to `to` along it, centred at `(c1, c2)` in the other two coordinates
 /// (in increasing order), as triangles.
-fn prism(axis: usize, radius: f64, from: f64, to: f64, centre: [f64; 2], sides: usize) -> Vec<[[f32; 3]; 3]> {
+fn prism(
+    axis: usize,
+    radius: f64,
+    from: f64,
+    to: f64,
+    centre: [f64; 2],
+    sides: usize,
+) -> Vec<[[f32; 3]; 3]> {
     let (u, v) = match axis {
         0 => (1, 2),
         1 => (0, 2),
@@ -88,7 +95,15 @@ fn urdf() -> String {
         )
     };
     let mut text = String::from("<robot name=\"mesh_robot\">\n");
-    for name in ["base_link", "link_1", "link_2", "link_3", "link_4", "link_5", "link_6"] {
+    for name in [
+        "base_link",
+        "link_1",
+        "link_2",
+        "link_3",
+        "link_4",
+        "link_5",
+        "link_6",
+    ] {
         text += &link(name);
     }
     text += "  <link name=\"flange\"/>\n  <link name=\"tool0\"/>\n";

@@ -72,11 +72,16 @@ pub(crate) fn mesh_setup() -> Setup {
         read: &bytes,
         package_paths: &[],
     };
-    let toml = mesh_robot::setup_toml()
-        + "[constraints]\nloading_point_min_z_mm = 200.0\n";
+    let toml = mesh_robot::setup_toml() + "[constraints]\nloading_point_min_z_mm = 200.0\n";
     let toml = toml.replace("[tracker]\n", "[tracker]\nmax_incidence_deg = 70.0\n");
-    crate::formats::reference::setup_text_with_meshes(&toml, "pkg/cell.toml", Path::new("pkg"), text, &meshes)
-        .unwrap()
+    crate::formats::reference::setup_text_with_meshes(
+        &toml,
+        "pkg/cell.toml",
+        Path::new("pkg"),
+        text,
+        &meshes,
+    )
+    .unwrap()
 }
 
 /// The same with the robot's collision hulls (convex polyhedra, GJK's witness points).
