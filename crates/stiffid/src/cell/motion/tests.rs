@@ -103,47 +103,45 @@ fn compare(
     count: usize,
 ) -> (usize, std::collections::BTreeSet<CheckKind>) {
     let h = 1e-5;
-    {
-        let checker = Checker::new(setup);
-        let postures = feasible(setup, &checker, count);
-        assert_eq!(postures.len(), count, "{robot}");
-        let (mut compared, mut kinds) = (0, std::collections::BTreeSet::new());
-        for q in &postures {
-            let (margins, gradients) = checker.margins_and_gradients(q);
-            let mut probes = [[0.0; 2]; 6].map(|_| Vec::new());
-            for a in 0..6 {
-                for (side, s) in [(0, h), (1, -h)] {
-                    let mut p = *q;
-                    p[a] += s;
-                    probes[a].push((side, checker.margins(&p)));
-                }
-            }
-            for (k, m) in margins.iter().enumerate() {
-                let g = gradients.gradient(k);
-                if !m.margin.is_finite() || m.kind == CheckKind::Bounds {
-                    continue;
-                }
-                for a in 0..6 {
-                    let (plus, minus) = (probes[a][0].1[k].margin, probes[a][1].1[k].margin);
-                    let (forward, backward) = ((plus - m.margin) / h, (m.margin - minus) / h);
-                    // A tie (two closest pairs of points) is a kink: the one-sided slopes differ.
-                    if (forward - backward).abs() > 1e-4 * (1.0 + forward.abs()) {
-                        continue;
-                    }
-                    let central = (plus - minus) / (2.0 * h);
-                    assert!(
-                        (g[a] - central).abs() <= 1e-5 * (1.0 + central.abs()),
-                        "{robot}, {} {:?}, axis {}: exact {} vs central {central} at {q:?}",
-                        m.kind,
-                        m.between,
-                        a + 1,
-                        g[a]
-                    );
-                    compared += 1;
-                }
-                kinds.insert(m.kind);
+    let checker = Checker::new(setup);
+    let postures = feasible(setup, &checker, count);
+    assert_eq!(postures.len(), count, "{robot}");
+    let (mut compared, mut kinds) = (0, std::collections::BTreeSet::new());
+    for q in &postures {
+        let (margins, gradients) = checker.margins_and_gradients(q);
+        let mut probes = [[0.0; 2]; 6].map(|_| Vec::new());
+        for a in 0..6 {
+            for (side, s) in [(0, h), (1, -h)] {
+                let mut p = *q;
+                p[a] += s;
+                probes[a].push((side, checker.margins(&p)));
             }
         }
-        (compared, kinds)
+        for (k, m) in margins.iter().enumerate() {
+            let g = gradients.gradient(k);
+            if !m.margin.is_finite() || m.kind == CheckKind::Bounds {
+                continue;
+            }
+            for a in 0..6 {
+                let (plus, minus) = (probes[a][0].1[k].margin, probes[a][1].1[k].margin);
+                let (forward, backward) = ((plus - m.margin) / h, (m.margin - minus) / h);
+                // A tie (two closest pairs of points) is a kink: the one-sided slopes differ.
+                if (forward - backward).abs() > 1e-4 * (1.0 + forward.abs()) {
+                    continue;
+                }
+                let central = (plus - minus) / (2.0 * h);
+                assert!(
+                    (g[a] - central).abs() <= 1e-5 * (1.0 + central.abs()),
+                    "{robot}, {} {:?}, axis {}: exact {} vs central {central} at {q:?}",
+                    m.kind,
+                    m.between,
+                    a + 1,
+                    g[a]
+                );
+                compared += 1;
+            }
+            kinds.insert(m.kind);
+        }
     }
+    (compared, kinds)
 }
