@@ -62,7 +62,10 @@ fn a_plan_in_the_cell_is_drawn_with_the_robots_own_meshes() {
     let v = crate::common::json(&evaluated);
     let feasibility = v["feasibility"].as_array().unwrap();
     assert_eq!(feasibility.len(), 6);
-    assert!(feasibility.iter().all(|f| f["feasible"] == true), "{feasibility:?}");
+    assert!(
+        feasibility.iter().all(|f| f["feasible"] == true),
+        "{feasibility:?}"
+    );
 }
 
 #[test]
@@ -70,7 +73,11 @@ fn package_path_finds_the_package_or_the_error_names_it() {
     let dir = package("bodies-package");
     let text = mesh_robot::setup_toml().replace("package_paths = [\".\"]\n", "");
     let setup = write_file(&dir, "bare.toml", &text);
-    let postures = write_file(&dir, "p.csv", "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,0,0,0,0\n");
+    let postures = write_file(
+        &dir,
+        "p.csv",
+        "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,0,0,0,0\n",
+    );
     let figures = dir.join("figures");
     let plot = |extra: &[&str]| {
         let mut args = vec![
