@@ -31,6 +31,7 @@ pub(crate) mod qp;
 mod tests;
 
 use super::termination::Termination;
+use crate::linalg::dot;
 use qp::{Qp, QpError, Row};
 
 /// The constraint gradients' nonzeros: `(index, coefficient)` pairs, one list per constraint.
@@ -342,8 +343,4 @@ fn penalty(c: &[f64], mu: &[f64]) -> f64 {
 /// The L1 merit function.
 fn merit(v: &Values, mu: &[f64]) -> f64 {
     v.f + penalty(&v.c, mu)
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

@@ -23,6 +23,8 @@
 //!
 //! Deterministic: the same data give the same bits (fixed-order loops, ties to the lowest index).
 
+use crate::linalg::{axpy, dot};
+
 /// A sparse inequality row `a^T d <= b`: `(index, coefficient)` pairs, indices below `n`.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Row {
@@ -374,14 +376,6 @@ fn inverse_cholesky(b: &[f64], n: usize) -> Result<Vec<f64>, QpError> {
         }
     }
     Ok(j)
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-fn axpy(c: f64, x: &[f64], y: &mut [f64]) {
-    y.iter_mut().zip(x).for_each(|(y, x)| *y += c * x);
 }
 
 fn norm(v: &[f64]) -> f64 {
