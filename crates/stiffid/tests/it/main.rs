@@ -3,6 +3,7 @@
 //! `mod NAME;` below; `common` holds the shared helpers, `mutate` the property tests' mutations.
 
 mod active_set;
+mod bodies;
 mod cell;
 mod cell_search;
 mod comau_checks;
