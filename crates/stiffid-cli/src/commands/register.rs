@@ -77,7 +77,8 @@ pub fn run(args: &Args) -> Result<()> {
         .as_ref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
-    let fit = register::fit(&register::correspondences(&setup, &data)).with_context(|| name)?;
+    let points = register::correspondences(&setup, &data).with_context(|| name.clone())?;
+    let fit = register::fit(&points).with_context(|| name)?;
     let doc = document(&args.common.setup, &data, &fit);
     if let Some(out) = &out {
         out.write(doc.fragment.as_bytes())?;

@@ -2,6 +2,7 @@
 //! generics): each former test file is a module here. A new test file `tests/it/NAME.rs` is added as
 //! `mod NAME;` below; `common` holds the shared helpers, `mutate` the property tests' mutations.
 
+mod calibrate_cell;
 mod cell;
 mod cell_search;
 mod comau_checks;
@@ -17,6 +18,7 @@ mod identify_blocks;
 mod identify_streamed;
 mod jacobians;
 mod joint_box;
+mod load_steps;
 mod lsq;
 mod models;
 mod mounting;
