@@ -132,7 +132,15 @@ pub fn fit(observations: &[Observation], points: &[Vector3<f64>]) -> Result<Cali
             break;
         }
     }
-    Ok(finish(observations, transform, estimate, points, &read, svd, iterations))
+    Ok(finish(
+        observations,
+        transform,
+        estimate,
+        points,
+        &read,
+        svd,
+        iterations,
+    ))
 }
 
 /// The first column of each measuring point's unknowns, `None` for a point never read.
@@ -207,8 +215,13 @@ fn solve(
             what: "the calibration's Jacobian".into(),
         });
     }
-    let svd = j.try_svd(true, true, f64::EPSILON, 0).ok_or(not_converged())?;
-    let (u, v_t) = (svd.u.ok_or(not_converged())?, svd.v_t.ok_or(not_converged())?);
+    let svd = j
+        .try_svd(true, true, f64::EPSILON, 0)
+        .ok_or(not_converged())?;
+    let (u, v_t) = (
+        svd.u.ok_or(not_converged())?,
+        svd.v_t.ok_or(not_converged())?,
+    );
     let s = &svd.singular_values;
     let rank = s.iter().filter(|&&v| v > s.max() * 1e-10).count();
     if rank < s.len() {
@@ -278,5 +291,8 @@ fn not_converged() -> Error {
 /// # Errors
 /// Those of [`observations`] and [`fit`].
 pub fn calibrate(setup: &Setup, readings: &Readings) -> Result<Calibration> {
-    fit(&observations(setup, readings)?, &setup.tool().measuring_points)
+    fit(
+        &observations(setup, readings)?,
+        &setup.tool().measuring_points,
+    )
 }

@@ -216,7 +216,7 @@ impl Line {
         let mean_f = points.iter().map(|p| p.0).sum::<f64>() / m;
         let mean_d = points.iter().map(|p| p.1).sum::<Vector3<f64>>() / m;
         let sff: f64 = points.iter().map(|p| (p.0 - mean_f).powi(2)).sum();
-        if !(sff > 0.0) {
+        if sff.is_nan() || sff <= 0.0 {
             return None;
         }
         let sfd: Vector3<f64> = points.iter().map(|p| (p.1 - mean_d) * (p.0 - mean_f)).sum();
@@ -313,7 +313,8 @@ fn posture_linearity(
     let fitted: Vec<&Line> = lines.iter().flatten().collect();
     let complete = fitted.len() == lines.len() && !fitted.is_empty();
     let p = fitted.len() as f64;
-    let slope = complete.then(|| (fitted.iter().map(|l| l.slope.norm_squared()).sum::<f64>() / p).sqrt());
+    let slope =
+        complete.then(|| (fitted.iter().map(|l| l.slope.norm_squared()).sum::<f64>() / p).sqrt());
     let offset2: f64 = fitted.iter().map(|l| l.intercept.norm_squared()).sum();
     let offset_chi2: f64 = fitted
         .iter()

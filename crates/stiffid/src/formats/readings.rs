@@ -453,7 +453,10 @@ impl Columns {
             return Err(row.error(self.q[v.axis], outside));
         }
         let position = row.vector3(self.position, &limits::LENGTH_MM)? * 1e-3;
-        let load = self.load.map(|(c, step)| self.load(row, c, step)).transpose()?;
+        let load = self
+            .load
+            .map(|(c, step)| self.load(row, c, step))
+            .transpose()?;
         let wrench = self.wrench(row)?;
         let posture = self.posture_index(row, label, &q, point, so_far, numbers)?;
         Ok(Reading {
@@ -488,8 +491,12 @@ impl Columns {
 
     fn wrench(&self, row: &Row) -> Result<Vector6<f64>> {
         let range = &limits::WRENCH;
-        let force = self.force.map_or(Ok(Vector3::zeros()), |c| row.vector3(c, range))?;
-        let moment = self.moment.map_or(Ok(Vector3::zeros()), |c| row.vector3(c, range))?;
+        let force = self
+            .force
+            .map_or(Ok(Vector3::zeros()), |c| row.vector3(c, range))?;
+        let moment = self
+            .moment
+            .map_or(Ok(Vector3::zeros()), |c| row.vector3(c, range))?;
         Ok(Vector6::new(
             force.x, force.y, force.z, moment.x, moment.y, moment.z,
         ))

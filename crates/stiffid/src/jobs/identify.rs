@@ -11,16 +11,16 @@ use super::{joint_list, Warning, WarningKind};
 use crate::formats::measurements::{self, Labels};
 use crate::formats::read_text;
 use crate::formats::readings::{self, has_load_column};
-use crate::identify::offsets::{self, Offset};
-use crate::steps::{linearity, Linearity, LoadSteps};
 use crate::identify::adequacy::UNIT_FACTOR;
 use crate::identify::cross_validation::Method;
+use crate::identify::offsets::{self, Offset};
 use crate::identify::{
     cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, Loss,
     UnitCheck,
 };
 use crate::observation::{Measurement, Observations};
 use crate::setup::plausibility;
+use crate::steps::{linearity, Linearity, LoadSteps};
 use crate::{Error, Result, Setup};
 use nalgebra::Vector6;
 use std::io::{BufRead, BufReader, Read};
@@ -359,9 +359,9 @@ fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Foun
     let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
     steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
     let loaded = steps.loaded();
-    if let Some(p) = (0..steps.labels.len()).find(|&p| {
-        !loaded.iter().any(|&i| steps.measurements[i].posture == p)
-    }) {
+    if let Some(p) = (0..steps.labels.len())
+        .find(|&p| !loaded.iter().any(|&i| steps.measurements[i].posture == p))
+    {
         return Err(in_data(
             name,
             Error::InvalidField {
@@ -373,13 +373,19 @@ fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Foun
             },
         ));
     }
-    let measurements: Vec<Measurement> = loaded.iter().map(|&i| steps.measurements[i].clone()).collect();
+    let measurements: Vec<Measurement> = loaded
+        .iter()
+        .map(|&i| steps.measurements[i].clone())
+        .collect();
     let lines: Vec<u64> = loaded.iter().map(|&i| steps.lines[i]).collect();
     let (id, cv, offsets) = fit(setup, how, &measurements).map_err(|e| {
         let e = match e {
             Error::Measurement { number, .. } => Error::InvalidField {
                 field: "readings".into(),
-                message: format!("line {}: {e}", lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)),
+                message: format!(
+                    "line {}: {e}",
+                    lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)
+                ),
             },
             e => e,
         };
@@ -533,7 +539,8 @@ fn load_step_warnings(report: &Report) -> Vec<Warning> {
         Some(_) => "fitted beside the compliances",
         None => "backlash or friction; fit it with offsets beside the compliances",
     };
-    let checks: [(fn(&Linearity) -> bool, String); 3] = [
+    type Flag = fn(&Linearity) -> bool;
+    let checks: [(Flag, String); 3] = [
         (
             Linearity::offset_flagged,
             format!("a zero-load offset beyond the tracker noise ({offset_hint})"),
@@ -554,7 +561,12 @@ fn load_step_warnings(report: &Report) -> Vec<Warning> {
             let labels: Vec<String> = steps
                 .iter()
                 .filter(|l| flagged(l))
-                .map(|l| format!("'{}'", crate::limits::short(report.origin.labels.get(l.posture))))
+                .map(|l| {
+                    format!(
+                        "'{}'",
+                        crate::limits::short(report.origin.labels.get(l.posture))
+                    )
+                })
                 .collect();
             (!labels.is_empty()).then(|| {
                 let noun = match labels.len() {

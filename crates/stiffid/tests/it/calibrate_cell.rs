@@ -19,7 +19,12 @@ fn truth() -> Isometry3<f64> {
 
 /// The unloaded readings of the six paper postures with every measuring point shifted by
 /// `shift(k)` from the setup's, noise of `noise_m` per coordinate.
-fn readings(setup: &Setup, shift: impl Fn(usize) -> Vector3<f64>, noise_m: f64, seed: u64) -> Vec<Observation> {
+fn readings(
+    setup: &Setup,
+    shift: impl Fn(usize) -> Vector3<f64>,
+    noise_m: f64,
+    seed: u64,
+) -> Vec<Observation> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, noise_m.max(1e-300)).unwrap();
     let mut out = Vec::new();
@@ -31,7 +36,11 @@ fn readings(setup: &Setup, shift: impl Fn(usize) -> Vector3<f64>, noise_m: f64, 
             if noise_m > 0.0 {
                 tracker += Vector3::from_fn(|_, _| normal.sample(&mut rng));
             }
-            out.push(Observation { point: k, flange, tracker });
+            out.push(Observation {
+                point: k,
+                flange,
+                tracker,
+            });
         }
     }
     out
@@ -39,7 +48,12 @@ fn readings(setup: &Setup, shift: impl Fn(usize) -> Vector3<f64>, noise_m: f64, 
 
 fn shift(k: usize) -> Vector3<f64> {
     // 2 mm in a different direction for each point.
-    let d = [Vector3::x(), Vector3::y(), Vector3::z(), Vector3::new(1.0, -1.0, 1.0).normalize()];
+    let d = [
+        Vector3::x(),
+        Vector3::y(),
+        Vector3::z(),
+        Vector3::new(1.0, -1.0, 1.0).normalize(),
+    ];
     d[k % 4] * 2e-3
 }
 
@@ -78,22 +92,31 @@ fn tool_points_shifted_by_2_mm_are_corrected() {
     let points = &setup.tool().measuring_points;
     let exact = calibrate::fit(&readings(&setup, shift, 0.0, 1), points).unwrap();
     for k in 0..4 {
-        assert!((exact.shifts[k] - shift(k)).amax() < 1e-9, "{}", exact.shifts[k]);
+        assert!(
+            (exact.shifts[k] - shift(k)).amax() < 1e-9,
+            "{}",
+            exact.shifts[k]
+        );
     }
     assert!(exact.rms < 1e-9);
-    assert!((exact.base_from_tracker.translation.vector - truth().translation.vector).amax() < 1e-9);
+    assert!(
+        (exact.base_from_tracker.translation.vector - truth().translation.vector).amax() < 1e-9
+    );
     // With the paper's tracker noise: each shift within 4 standard deviations of the truth, and
     // the standard deviations close to a Monte Carlo's.
     let sigma = setup.noise().sigma();
     let runs = 200;
-    let mut errors = vec![Vector3::zeros(); 4];
-    let mut predicted = vec![Vector3::zeros(); 4];
+    let mut errors = [Vector3::zeros(); 4];
+    let mut predicted = [Vector3::zeros(); 4];
     for seed in 0..runs {
         let fit = calibrate::fit(&readings(&setup, shift, sigma, seed), points).unwrap();
         for k in 0..4 {
             let e = fit.shifts[k] - shift(k);
             let s = fit.point_std[k].unwrap();
-            assert!(e.iter().zip(s.iter()).all(|(e, s)| e.abs() < 5.0 * s), "{e} {s}");
+            assert!(
+                e.iter().zip(s.iter()).all(|(e, s)| e.abs() < 5.0 * s),
+                "{e} {s}"
+            );
             errors[k] += e.component_mul(&e) / runs as f64;
             predicted[k] += s / runs as f64;
         }
@@ -101,7 +124,11 @@ fn tool_points_shifted_by_2_mm_are_corrected() {
     for k in 0..4 {
         for a in 0..3 {
             let ratio = errors[k][a].sqrt() / predicted[k][a];
-            assert!((ratio - 1.0).abs() < 0.15, "point {} axis {a}: {ratio}", k + 1);
+            assert!(
+                (ratio - 1.0).abs() < 0.15,
+                "point {} axis {a}: {ratio}",
+                k + 1
+            );
         }
     }
 }
@@ -117,6 +144,8 @@ fn one_flange_orientation_is_refused() {
             first.rotation,
         );
     }
-    let e = calibrate::fit(&obs, &setup.tool().measuring_points).unwrap_err().to_string();
+    let e = calibrate::fit(&obs, &setup.tool().measuring_points)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("postures that turn the flange"), "{e}");
 }

@@ -98,7 +98,9 @@ fn paper() -> Setup {
     stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
-const RISING_FALLING: [f64; 9] = [100.0, 200.0, 300.0, 400.0, 500.0, 400.0, 300.0, 200.0, 100.0];
+const RISING_FALLING: [f64; 9] = [
+    100.0, 200.0, 300.0, 400.0, 500.0, 400.0, 300.0, 200.0, 100.0,
+];
 
 #[test]
 fn a_known_offset_and_hysteresis_come_back() {
@@ -116,8 +118,14 @@ fn a_known_offset_and_hysteresis_come_back() {
         assert_eq!(steps.len(), 6);
         for l in &steps {
             assert_eq!((l.levels, l.readings), (5, 4 * 9));
-            assert!((l.offset_m.unwrap() - offset_mm * 1e-3).abs() < 1e-12, "{l:?}");
-            assert!((l.hysteresis_m.unwrap() - hysteresis_mm * 1e-3).abs() < 1e-12, "{l:?}");
+            assert!(
+                (l.offset_m.unwrap() - offset_mm * 1e-3).abs() < 1e-12,
+                "{l:?}"
+            );
+            assert!(
+                (l.hysteresis_m.unwrap() - hysteresis_mm * 1e-3).abs() < 1e-12,
+                "{l:?}"
+            );
             assert!((l.r_squared.unwrap() - 1.0).abs() < 1e-9, "{l:?}");
             assert!(l.slope_m_per_n.unwrap() > 1e-7 && !l.nonlinear(), "{l:?}");
         }
@@ -126,11 +134,18 @@ fn a_known_offset_and_hysteresis_come_back() {
     // 0.02 mm and 0.01 mm: about the tracker noise (0.0096 mm), within what it explains in one
     // posture (the unloaded reference's error shifts the offset too).
     let (report, steps) = back(0.02, 0.01);
-    assert!(steps.iter().all(|l| !l.offset_flagged() && !l.hysteresis_flagged()));
-    assert!(report.warnings.iter().all(|w| w.kind.code() != "load-steps"));
+    assert!(steps
+        .iter()
+        .all(|l| !l.offset_flagged() && !l.hysteresis_flagged()));
+    assert!(report
+        .warnings
+        .iter()
+        .all(|w| w.kind.code() != "load-steps"));
     // Five times larger: beyond the noise, flagged, one warning each.
     let (report, steps) = back(0.1, 0.05);
-    assert!(steps.iter().all(|l| l.offset_flagged() && l.hysteresis_flagged()));
+    assert!(steps
+        .iter()
+        .all(|l| l.offset_flagged() && l.hysteresis_flagged()));
     let messages: Vec<&str> = report
         .warnings
         .iter()
@@ -138,7 +153,10 @@ fn a_known_offset_and_hysteresis_come_back() {
         .map(|w| w.message.as_str())
         .collect();
     assert_eq!(messages.len(), 2, "{messages:?}");
-    assert!(messages[0].contains("readings.csv: postures 'P0', 'P1'") && messages[0].contains("zero-load offset"));
+    assert!(
+        messages[0].contains("readings.csv: postures 'P0', 'P1'")
+            && messages[0].contains("zero-load offset")
+    );
     assert!(messages[1].contains("hysteresis"));
 }
 
@@ -158,7 +176,12 @@ fn offsets_beside_the_compliances_recover_the_stiffness() {
     let without = identify(&setup, &text, false).unwrap();
     let relative = |r: &Report, j: usize| (r.identification.stiffness[j] / truth[j] - 1.0).abs();
     for j in 0..6 {
-        assert!(relative(&with, j) < 1e-9, "joint {}: {}", j + 1, relative(&with, j));
+        assert!(
+            relative(&with, j) < 1e-9,
+            "joint {}: {}",
+            j + 1,
+            relative(&with, j)
+        );
     }
     assert!((0..6).any(|j| relative(&without, j) > 1e-3));
     let offsets = with.offsets.as_ref().unwrap();
@@ -169,7 +192,12 @@ fn offsets_beside_the_compliances_recover_the_stiffness() {
     // 6 postures x 4 points x 9 loaded readings x 3 rows, minus 6 compliances and 72 offsets.
     let u = with.identification.uncertainty.as_ref().unwrap();
     assert_eq!(u.dof, 6 * 4 * 9 * 3 - 6 - 72);
-    assert!(with.load_steps.as_ref().unwrap().iter().all(|l| !l.nonlinear()));
+    assert!(with
+        .load_steps
+        .as_ref()
+        .unwrap()
+        .iter()
+        .all(|l| !l.nonlinear()));
 }
 
 #[test]
@@ -191,14 +219,27 @@ fn the_standard_errors_with_offsets_match_a_monte_carlo() {
         let report = identify(&setup, &campaign.readings(&setup), true).unwrap();
         let id = &report.identification;
         compliances.push(id.compliance);
-        predicted += report.adequacy.as_ref().unwrap().from_noise.compliance_std_error / runs as f64;
+        predicted += report
+            .adequacy
+            .as_ref()
+            .unwrap()
+            .from_noise
+            .compliance_std_error
+            / runs as f64;
     }
     let mean = compliances.iter().sum::<Vector6<f64>>() / runs as f64;
     for j in 0..6 {
-        let var = compliances.iter().map(|h| (h[j] - mean[j]).powi(2)).sum::<f64>()
+        let var = compliances
+            .iter()
+            .map(|h| (h[j] - mean[j]).powi(2))
+            .sum::<f64>()
             / (runs - 1) as f64;
         let ratio = var.sqrt() / predicted[j];
-        assert!((ratio - 1.0).abs() < 0.15, "joint {}: Monte Carlo / analytic {ratio}", j + 1);
+        assert!(
+            (ratio - 1.0).abs() < 0.15,
+            "joint {}: Monte Carlo / analytic {ratio}",
+            j + 1
+        );
     }
 }
 
@@ -226,9 +267,13 @@ fn noise_alone_is_not_flagged() {
 fn bad_load_step_files_are_named() {
     let setup = paper();
     let loaded_first = format!("{HEADER}\nA,1,0,0,-90,0,0,0,100,0,0,-100,2000,0,2000\n");
-    let e = identify(&setup, &loaded_first, false).unwrap_err().to_string();
+    let e = identify(&setup, &loaded_first, false)
+        .unwrap_err()
+        .to_string();
     assert!(
-        e.contains("readings.csv") && e.contains("line 2") && e.contains("start with the unloaded one"),
+        e.contains("readings.csv")
+            && e.contains("line 2")
+            && e.contains("start with the unloaded one"),
         "{e}"
     );
     let one_load = format!(
@@ -240,11 +285,15 @@ fn bad_load_step_files_are_named() {
     let step = format!("{HEADER}\n").replace("load_n", "load_step")
         + "A,1,0,0,-90,0,0,0,1.5,0,0,0,2000,0,2000\n";
     let e = identify(&setup, &step, false).unwrap_err().to_string();
-    assert!(e.contains("column 9 (load_step)") && e.contains("not a load step"), "{e}");
+    assert!(
+        e.contains("column 9 (load_step)") && e.contains("not a load step"),
+        "{e}"
+    );
     let negative = format!("{HEADER}\nA,1,0,0,-90,0,0,0,-5,0,0,0,2000,0,2000\n");
     let e = identify(&setup, &negative, false).unwrap_err().to_string();
     assert!(e.contains("column 9 (load_n)"), "{e}");
-    let no_forces = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,load_n,x_mm,y_mm,z_mm\n";
+    let no_forces =
+        "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,load_n,x_mm,y_mm,z_mm\n";
     let e = identify(&setup, no_forces, false).unwrap_err().to_string();
     assert!(e.contains("missing column 'fx_n'"), "{e}");
 }
@@ -270,7 +319,12 @@ fn worked_example_with_and_without_the_offset_term() {
     let mut worst = [0.0f64; 2];
     for j in 0..6 {
         let error = |r: &Report| 100.0 * (r.identification.stiffness[j] / truth[j] - 1.0);
-        let ci = with.identification.uncertainty.as_ref().unwrap().stiffness_ci95[j];
+        let ci = with
+            .identification
+            .uncertainty
+            .as_ref()
+            .unwrap()
+            .stiffness_ci95[j];
         println!(
             "{}  {:>10.0}  {:>10.0} ({:+.2} %, {:.0}..{:.0})  {:>10.0} ({:+.2} %)",
             j + 1,
@@ -282,11 +336,24 @@ fn worked_example_with_and_without_the_offset_term() {
             without.identification.stiffness[j],
             error(&without)
         );
-        worst = [worst[0].max(error(&with).abs()), worst[1].max(error(&without).abs())];
-        let se = with.identification.uncertainty.as_ref().unwrap().stiffness_std_error[j];
+        worst = [
+            worst[0].max(error(&with).abs()),
+            worst[1].max(error(&without).abs()),
+        ];
+        let se = with
+            .identification
+            .uncertainty
+            .as_ref()
+            .unwrap()
+            .stiffness_std_error[j];
         assert!((with.identification.stiffness[j] - truth[j]).abs() < 4.0 * se);
     }
-    let flagged = without.load_steps.as_ref().unwrap().iter().filter(|l| l.offset_flagged());
+    let flagged = without
+        .load_steps
+        .as_ref()
+        .unwrap()
+        .iter()
+        .filter(|l| l.offset_flagged());
     println!(
         "worst error {:.2} % with offsets, {:.2} % without; offset flagged in {} of 6 postures; noise ratio {:.2} with, {:.2} without",
         worst[0],

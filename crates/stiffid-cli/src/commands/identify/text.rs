@@ -121,7 +121,7 @@ fn load_steps(run: &Report) -> String {
 load steps (* beyond the tracker noise, p < 0.01):
                  posture           loads  slope mm/kN  offset mm  R^2        hysteresis mm
 "
-        .to_string();
+    .to_string();
     for l in steps {
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
@@ -149,7 +149,7 @@ fn offsets(run: &Report) -> String {
 offsets fitted beside the compliances (base frame):
                  posture           point  offset x mm  y mm      z mm
 "
-        .to_string();
+    .to_string();
     for o in offsets {
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
