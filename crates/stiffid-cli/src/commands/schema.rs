@@ -2,7 +2,9 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{compensate, evaluate, kinematics, predict, register, select, simulate, validate};
+use super::{
+    calibrate_cell, compensate, evaluate, kinematics, predict, register, select, simulate, validate,
+};
 use crate::output::{self, json};
 use crate::report::summary;
 use anyhow::{bail, Result};
@@ -38,6 +40,7 @@ const DOCUMENTS: [(&str, &str); 12] = [
     ),
     ("reproduce", "stiffid reproduce: summary.json"),
     ("register", "stiffid register --json"),
+    ("calibrate-cell", "stiffid calibrate-cell --json"),
 ];
 
 /// Prints the schema of the named document, or without a name the names, one per line.
@@ -73,6 +76,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "simulate" => closed::<simulate::SimulationJson<'static>>(),
         "reproduce" => closed::<summary::Summary<'static>>(),
         "register" => closed::<register::RegisterJson>(),
+        "calibrate-cell" => closed::<calibrate_cell::CalibrateJson>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());
