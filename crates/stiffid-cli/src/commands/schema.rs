@@ -21,7 +21,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 12] = [
+const DOCUMENTS: [(&str, &str); 13] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
