@@ -64,9 +64,9 @@ impl LoadSteps {
     /// The readings relative to their references (module docs).
     ///
     /// # Errors
-    /// [`Error::Column`]-like [`Error::InvalidField`] (`load_step`) when the readings have no load
-    /// steps, or when a point's first reading in a posture is loaded (naming its line and the
-    /// posture): each point's readings start with the unloaded one.
+    /// [`Error::InvalidField`] (`load_step`) when the readings have no load steps, or when a
+    /// point's first reading in a posture is loaded (naming its line and the posture): each
+    /// point's readings start with the unloaded one.
     pub fn new(readings: &Readings) -> Result<Self> {
         if !readings.has_loads {
             return Err(Error::InvalidField {
@@ -162,7 +162,7 @@ pub struct Linearity {
     pub levels: usize,
     /// Readings of the posture, references excepted.
     pub readings: usize,
-    /// `sqrt(mean_p |a_p|^2)`, m/N; `None` with fewer than two loads (zero included).
+    /// `sqrt(mean_p |a_p|^2)`, m/N; `None` with fewer than two non-zero loads at a point.
     pub slope_m_per_n: Option<f64>,
     /// `sqrt(mean_p |b_p|^2)`, m: the zero-load offset; `None` with fewer than two non-zero loads.
     pub offset_m: Option<f64>,

@@ -356,6 +356,16 @@ impl Columns {
                 },
             )
         };
+        let posture = need(POSTURE)?;
+        let point = need(POINT)?;
+        let q = [
+            need(Q[0])?,
+            need(Q[1])?,
+            need(Q[2])?,
+            need(Q[3])?,
+            need(Q[4])?,
+            need(Q[5])?,
+        ];
         let (position, frame) = match (any(&TRACKER), any(&BASE)) {
             (true, true) => return Err(conflict(&TRACKER, &BASE)),
             (false, true) => (need3(BASE)?, DisplacementFrame::Base),
@@ -392,16 +402,9 @@ impl Columns {
             ),
         };
         Ok(Self {
-            posture: need(POSTURE)?,
-            point: need(POINT)?,
-            q: [
-                need(Q[0])?,
-                need(Q[1])?,
-                need(Q[2])?,
-                need(Q[3])?,
-                need(Q[4])?,
-                need(Q[5])?,
-            ],
+            posture,
+            point,
+            q,
             position,
             frame,
             load,
