@@ -26,8 +26,8 @@ def readings(setup, path, offset_mm):
                 delta_mm = 1e3 * jm[:3] @ (h * (jf.T @ wrench))
                 shift = direction * offset_mm if f > 0 else np.zeros(3)
                 x = rest + delta_mm + shift
-                fields = [f"P{i}", k + 1, *q, f, *wrench[:3], *x]
-                lines.append(",".join(repr(float(v)) if not isinstance(v, str) else v for v in fields))
+                numbers = ",".join(repr(float(v)) for v in [*q, f, *wrench[:3], *x])
+                lines.append(f"P{i},{k + 1},{numbers}")
     path.write_text("\n".join(lines) + "\n")
     return path
 
