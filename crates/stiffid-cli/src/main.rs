@@ -55,6 +55,10 @@ enum Command {
     /// The laser tracker's transform to the robot base from measuring points it read at known
     /// axis angles, with residuals, standard deviation and the setup's `[tracker]` fragment.
     Register(commands::register::Args),
+    /// The tracker's transform and the measuring points in the flange frame fitted together from
+    /// unloaded readings: each point's shift with its standard deviation, the robot's unloaded
+    /// absolute error, the corrected fragment.
+    CalibrateCell(commands::calibrate_cell::Args),
     /// The mean cutting force of every operation of a process file (milling, drilling), feed frame.
     Force(commands::force::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
@@ -111,6 +115,7 @@ fn main() -> ExitCode {
         Command::Validate(args) => commands::validate::run(&args),
         Command::Compensate(args) => commands::compensate::run(&args),
         Command::Register(args) => commands::register::run(&args),
+        Command::CalibrateCell(args) => commands::calibrate_cell::run(&args),
         Command::Force(args) => commands::force::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, command()),
         Command::Man(args) => commands::completions::man(&args, command()),

@@ -260,13 +260,18 @@ impl Identification {
 /// ``ValueError`` naming ``displacement_mm``). ``robust="huber"`` or ``"tukey"`` down-weights outliers (IRLS);
 /// ``nonnegative=True`` bounds every compliance at >= 0 (Lawson-Hanson); ``cross_validate=True``
 /// leaves one posture out at a time (or ``folds=K`` folds), refits and predicts it (key
-/// ``cross_validation``). The same job as ``stiffid identify``: a stiffness that is not physical
+/// ``cross_validation``). ``measurements`` may also be raw tracker readings under load steps
+/// (``posture,point,q1_deg..q6_deg,load_step,fx_n,fy_n,fz_n,x_tracker_mm,y_tracker_mm,z_tracker_mm``,
+/// or ``load_n``, or ``x_mm,y_mm,z_mm``): each loaded reading is taken from its point's unloaded
+/// one, and the document's ``load_steps`` gives each posture's linearity, zero-load offset and
+/// hysteresis; ``offsets=True`` fits an offset per posture and measuring point beside the
+/// compliances (key ``offsets``). The same job as ``stiffid identify``: a stiffness that is not physical
 /// or far off the setup's nominal (a likely unit mistake: displacements in m, forces in kN)
 /// raises a ``UserWarning`` with the command's message. Returns an ``Identification``.
 /// ``ValueError`` naming the file, line and column (or the measurement) for bad data, and for
 /// data that cannot identify every joint.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify(
     py: Python<'_>,
@@ -280,6 +285,7 @@ pub fn identify(
     nonnegative: bool,
     cross_validate: bool,
     folds: Option<usize>,
+    offsets: bool,
 ) -> PyResult<Identification> {
     let s = &setup.inner;
     let fit = match (robust, nonnegative) {
@@ -310,6 +316,7 @@ pub fn identify(
                 data,
                 fit,
                 folds,
+                offsets,
             })
         })
         .map_err(raise)?;

@@ -32,6 +32,7 @@ pub mod cross_validation;
 pub mod frames;
 pub mod model;
 pub mod nonnegative;
+pub mod offsets;
 pub mod robust;
 pub mod streamed;
 mod uncertainty;

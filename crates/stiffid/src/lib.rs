@@ -21,6 +21,7 @@
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
 mod builtin;
+pub mod calibrate;
 pub mod cartesian;
 pub mod cell;
 pub mod choice;
@@ -51,6 +52,7 @@ pub mod progress;
 pub mod register;
 pub mod setup;
 pub mod simulate;
+pub mod steps;
 pub mod stiffness;
 pub mod study;
 pub mod validate;

@@ -20,6 +20,7 @@
 //! ([`rotation_std_per_noise`]).
 
 use crate::formats::readings::Readings;
+use crate::identify::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
 use nalgebra::{
     DMatrix, Isometry3, Matrix3, Matrix6, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6,
@@ -99,18 +100,29 @@ impl Registration {
     }
 }
 
-/// The points of registration readings: every reading's measuring point through the setup's robot
-/// model (base frame) beside the tracker's reading.
-pub fn correspondences(setup: &Setup, readings: &Readings) -> Vec<Correspondence> {
+/// The points of registration readings: every unloaded reading's measuring point through the
+/// setup's robot model (base frame) beside the tracker's reading (loaded readings are left out).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) when the readings are in the base frame (`x_mm`), not
+/// the tracker's.
+pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Correspondence>> {
+    if readings.frame != DisplacementFrame::Tracker {
+        return Err(Error::InvalidField {
+            field: "readings".into(),
+            message: "the readings are in the base frame (x_mm, y_mm, z_mm): a registration needs the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
+        });
+    }
     let points = &setup.tool().measuring_points;
-    readings
+    Ok(readings
         .readings
         .iter()
+        .filter(|r| r.unloaded())
         .map(|r| Correspondence {
             base: setup.robot().frames(&r.q).point(&points[r.point]),
-            tracker: r.tracker,
+            tracker: r.position,
         })
-        .collect()
+        .collect())
 }
 
 /// The least-squares rigid transform of `points` (module docs), its residuals and covariance.

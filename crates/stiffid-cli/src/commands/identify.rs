@@ -20,9 +20,17 @@ mod text;
 pub struct Args {
     #[command(flatten)]
     common: Common,
-    /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n\[,mx_nm,my_nm,mz_nm\],dx_mm,dy_mm,dz_mm.
+    /// Measurements CSV: posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n\[,mx_nm,my_nm,mz_nm\],dx_mm,dy_mm,dz_mm;
+    /// or raw readings under load steps:
+    /// posture,point,q1_deg..q6_deg,load_step,fx_n,fy_n,fz_n,x_tracker_mm,y_tracker_mm,z_tracker_mm
+    /// (`load_n` instead of `load_step`; `x_mm,y_mm,z_mm` in the base frame).
     #[arg(long)]
     data: PathBuf,
+    /// Fit an offset per posture and measuring point beside the compliances (backlash,
+    /// friction): needs at least two different loads of every point in every posture; least
+    /// squares only.
+    #[arg(long, conflicts_with_all = ["robust", "nonnegative", "cross_validate", "folds"])]
+    offsets: bool,
     /// Down-weight outliers by iteratively reweighted least squares (`--robust` alone: huber).
     #[arg(long, value_parser = choice::<Loss>(), num_args = 0..=1, default_missing_value = "huber", conflicts_with = "nonnegative")]
     robust: Option<Loss>,
@@ -86,6 +94,7 @@ pub fn run(args: &Args) -> Result<()> {
         },
         fit,
         folds,
+        offsets: args.offsets,
     })?;
     for warning in &report.warnings {
         output::warn(&warning.message);

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod calibrate_cell;
 pub mod common;
 pub mod compensate;
 pub mod completions;

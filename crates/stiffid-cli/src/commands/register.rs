@@ -18,7 +18,8 @@ pub struct Args {
     #[command(flatten)]
     common: Common,
     /// Readings CSV: posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm, one row
-    /// per posture and measuring point (at least 3 points not on one line; at most 10000 rows).
+    /// per posture and measuring point (at least 3 points not on one line; at most 100000 rows;
+    /// with load steps, the unloaded readings).
     #[arg(long)]
     data: PathBuf,
     /// Write the `[tracker] base_from_tracker` fragment of the setup file here (TOML; never over
@@ -77,7 +78,8 @@ pub fn run(args: &Args) -> Result<()> {
         .as_ref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
-    let fit = register::fit(&register::correspondences(&setup, &data)).with_context(|| name)?;
+    let points = register::correspondences(&setup, &data).with_context(|| name.clone())?;
+    let fit = register::fit(&points).with_context(|| name)?;
     let doc = document(&args.common.setup, &data, &fit);
     if let Some(out) = &out {
         out.write(doc.fragment.as_bytes())?;

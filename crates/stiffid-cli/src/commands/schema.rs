@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{compensate, kinematics, predict, register, validate};
+use super::{calibrate_cell, compensate, kinematics, predict, register, validate};
 use crate::output::{self, json};
 use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
@@ -18,7 +18,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 12] = [
+const DOCUMENTS: [(&str, &str); 13] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
@@ -37,6 +37,7 @@ const DOCUMENTS: [(&str, &str); 12] = [
     ),
     ("reproduce", "stiffid reproduce: summary.json"),
     ("register", "stiffid register --json"),
+    ("calibrate-cell", "stiffid calibrate-cell --json"),
 ];
 
 /// Prints the schema of the named document, or without a name the names, one per line.
@@ -72,6 +73,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "simulate" => closed::<stiffid::documents::simulate::Document>(),
         "reproduce" => closed::<stiffid::documents::reproduce::Summary<'static>>(),
         "register" => closed::<register::RegisterJson>(),
+        "calibrate-cell" => closed::<calibrate_cell::CalibrateJson>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

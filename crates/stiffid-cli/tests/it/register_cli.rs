@@ -9,18 +9,24 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 /// Readings of the paper setup's four measuring points in three postures, seen by a tracker at
 /// `truth` (base_from_tracker).
 fn readings(truth: &Isometry3<f64>) -> String {
+    shifted_readings(truth, Vector3::zeros())
+}
+
+/// As [`readings`] with every measuring point shifted by `shift` (flange frame, m).
+fn shifted_readings(truth: &Isometry3<f64>, shift: Vector3<f64>) -> String {
     let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut text = stiffid::formats::readings::header() + "\n";
     let postures = [
         [0.0, 0.0, -90.0, 0.0, 30.0, 0.0],
         [35.0, -20.0, -110.0, 40.0, -30.0, 60.0],
         [-40.0, 15.0, -70.0, -60.0, 45.0, -90.0],
+        [10.0, -30.0, -120.0, 90.0, 60.0, 30.0],
     ];
     for (i, q_deg) in postures.iter().enumerate() {
         let q = Vector6::from_iterator(q_deg.iter().map(|d: &f64| d.to_radians()));
         let frames = setup.robot().frames(&q);
         for (k, p) in setup.tool().measuring_points.iter().enumerate() {
-            let t = truth.inverse() * Point3::from(frames.point(p));
+            let t = truth.inverse() * Point3::from(frames.point(&(p + shift)));
             let q: Vec<String> = q_deg.iter().map(|v| v.to_string()).collect();
             text += &format!(
                 "P{},{},{},{:.9},{:.9},{:.9}\n",
@@ -58,7 +64,7 @@ fn register_gives_the_transform_back_and_writes_the_fragment() {
         assert!((got - want).abs() < 1e-5, "{got} {want}");
     }
     assert!(doc["residual_rms_mm"].as_f64().unwrap() < 1e-5);
-    assert_eq!(doc["points"].as_array().unwrap().len(), 12);
+    assert_eq!(doc["points"].as_array().unwrap().len(), 16);
     let fragment = std::fs::read_to_string(&out).unwrap();
     assert_eq!(fragment, doc["fragment"].as_str().unwrap());
     let setup = String::from_utf8(stiffid(&["setups", "show", "zhang2021-comau-nj165"]).stdout)
@@ -98,4 +104,37 @@ fn bad_readings_exit_2_naming_file_line_and_column() {
         e.contains("two.csv: points: 2 given: a registration needs at least 3"),
         "{e}"
     );
+}
+
+#[test]
+fn calibrate_cell_finds_tool_points_shifted_by_2_mm() {
+    let d = temp_dir("calibrate-cell");
+    let truth = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let shift = Vector3::new(2e-3, 0.0, 0.0);
+    let data = write_file(&d, "readings.csv", &shifted_readings(&truth, shift));
+    let out = d.join("cell.toml");
+    let args = [
+        "calibrate-cell",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    for p in doc["points"].as_array().unwrap() {
+        let s: Vec<f64> = serde_json::from_value(p["shift_mm"].clone()).unwrap();
+        assert!(
+            (s[0] - 2.0).abs() < 1e-5 && s[1].abs() < 1e-5 && s[2].abs() < 1e-5,
+            "{s:?}"
+        );
+    }
+    assert!(doc["absolute_error_rms_mm"].as_f64().unwrap() < 1e-5);
+    let fragment = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(fragment, doc["fragment"].as_str().unwrap());
+    assert!(fragment.contains("[tracker]") && fragment.contains("measuring_points_mm"));
+    let text = String::from_utf8(stiffid(&args[..5]).stdout).unwrap();
+    assert!(text.contains("robot's unloaded absolute error"), "{text}");
 }

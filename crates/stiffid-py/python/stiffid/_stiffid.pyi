@@ -222,6 +222,7 @@ def identify(
     displacement_mm: Optional[ArrayLike] = None,
     robust: Optional[Literal["huber", "tukey"]] = None,
     nonnegative: bool = False,
+    offsets: bool = False,
 ) -> Identification: ...
 def validate(
     setup: Setup,

@@ -79,6 +79,58 @@ pub struct Document {
     pub robust: Option<Robust>,
     /// With cross-validation: the cross-validation over postures.
     pub cross_validation: Option<CrossValidation>,
+    /// With raw readings under load steps: each posture's linearity, zero-load offset and
+    /// hysteresis (`stiffid::steps`).
+    pub load_steps: Option<Vec<LoadStep>>,
+    /// With offsets fitted beside the compliances: one per posture and measuring point.
+    pub offsets: Option<Vec<PointOffset>>,
+}
+
+/// How one posture's deflection follows the load steps. P-values test each effect against the
+/// setup's tracker noise; a flag is a p-value below 0.01.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct LoadStep {
+    /// The posture's label.
+    pub posture: String,
+    /// Distinct non-zero loads on the rising branch.
+    pub levels: usize,
+    /// Readings of the posture, the unloaded references excepted.
+    pub readings: usize,
+    /// Deflection per load (RMS over the measuring points of the slopes' lengths), mm/N;
+    /// `null` with fewer than two non-zero loads.
+    pub slope_mm_per_n: Option<f64>,
+    /// The straight lines' deflection at zero load (RMS over the measuring points), mm.
+    pub zero_load_offset_mm: Option<f64>,
+    /// `R^2` of the straight lines.
+    pub r_squared: Option<f64>,
+    /// RMS length of falling minus rising readings at the same step, mm; `null` without falling
+    /// readings.
+    pub hysteresis_mm: Option<f64>,
+    /// P-value of the zero-load offset.
+    pub offset_p_value: Option<f64>,
+    /// P-value of the residuals about the straight lines.
+    pub linearity_p_value: Option<f64>,
+    /// P-value of the hysteresis.
+    pub hysteresis_p_value: Option<f64>,
+    /// Whether the zero-load offset exceeds the tracker noise.
+    pub offset_flagged: bool,
+    /// Whether the deflection departs from a straight line beyond the tracker noise.
+    pub nonlinear: bool,
+    /// Whether the hysteresis exceeds the tracker noise.
+    pub hysteresis_flagged: bool,
+}
+
+/// The offset of one measuring point in one posture, fitted beside the compliances.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PointOffset {
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// The offset, base frame, mm.
+    pub offset_mm: [f64; 3],
 }
 
 /// Standard errors and intervals computed from a known variance.
@@ -265,8 +317,39 @@ impl Document {
             residuals: residuals(report),
             robust: robust(report),
             cross_validation: cross_validation(report),
+            load_steps: load_steps(report),
+            offsets: offsets(report),
         }
     }
+}
+
+fn load_steps(report: &Report) -> Option<Vec<LoadStep>> {
+    let rows = report.load_steps.as_ref()?.iter().map(|l| LoadStep {
+        posture: report.origin.labels.get(l.posture).to_string(),
+        levels: l.levels,
+        readings: l.readings,
+        slope_mm_per_n: l.slope_m_per_n.map(mm),
+        zero_load_offset_mm: l.offset_m.map(mm),
+        r_squared: l.r_squared,
+        hysteresis_mm: l.hysteresis_m.map(mm),
+        offset_p_value: l.offset_p_value,
+        linearity_p_value: l.linearity_p_value,
+        hysteresis_p_value: l.hysteresis_p_value,
+        offset_flagged: l.offset_flagged(),
+        nonlinear: l.nonlinear(),
+        hysteresis_flagged: l.hysteresis_flagged(),
+    });
+    Some(rows.collect())
+}
+
+fn offsets(report: &Report) -> Option<Vec<PointOffset>> {
+    let origin = &report.origin;
+    let rows = report.offsets.as_ref()?.iter().map(|o| PointOffset {
+        posture: origin.labels.get(o.posture).to_string(),
+        point: o.point + 1,
+        offset_mm: o.offset.map(mm).into(),
+    });
+    Some(rows.collect())
 }
 
 fn line(report: &Report, i: usize) -> Option<u64> {

@@ -10,17 +10,20 @@
 use super::{joint_list, Warning, WarningKind};
 use crate::formats::measurements::{self, Labels};
 use crate::formats::read_text;
+use crate::formats::readings::{self, has_load_column};
 use crate::identify::adequacy::UNIT_FACTOR;
 use crate::identify::cross_validation::Method;
+use crate::identify::offsets::{self, Offset};
 use crate::identify::{
     cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, Loss,
     UnitCheck,
 };
 use crate::observation::{Measurement, Observations};
 use crate::setup::plausibility;
+use crate::steps::{linearity, Linearity, LoadSteps};
 use crate::{Error, Result, Setup};
 use nalgebra::Vector6;
-use std::io::{BufReader, Read};
+use std::io::{BufRead, BufReader, Read};
 
 /// The fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -71,6 +74,10 @@ pub struct Request<'a, R> {
     /// Cross-validation over postures: `Some(folds)` (2 to the number of postures; the number of
     /// postures leaves one posture out), `None` for none.
     pub folds: Option<Folds>,
+    /// Fit an offset per posture and measuring point beside the compliances
+    /// ([`crate::identify::offsets`]; least squares only, without cross-validation; every point
+    /// of every posture under at least two different loads).
+    pub offsets: bool,
 }
 
 /// The folds of a cross-validation.
@@ -161,8 +168,22 @@ pub struct Report {
     /// Fold by fold: the postures left out and the joints (0-based) whose stiffness the removal
     /// moves by more than its standard error in the full fit (influential folds only).
     pub influential: Vec<(Vec<String>, Vec<usize>)>,
+    /// With raw readings under load steps ([`crate::steps`]): each posture's linearity, offset
+    /// and hysteresis; `None` for displacements.
+    pub load_steps: Option<Vec<Linearity>>,
+    /// The offsets fitted beside the compliances, when asked ([`Request::offsets`]).
+    pub offsets: Option<Vec<Offset>>,
     /// Results to look at before trusting them (signs, units).
     pub warnings: Vec<Warning>,
+}
+
+/// What identification from a file found besides the compliances.
+struct Found {
+    identification: Identification,
+    origin: Origin,
+    cross_validation: Option<CrossValidation>,
+    load_steps: Option<Vec<Linearity>>,
+    offsets: Option<Vec<Offset>>,
 }
 
 /// Runs the identify job.
@@ -178,19 +199,44 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         data,
         fit: how,
         folds,
+        offsets,
     } = request;
-    let (data_name, identification, origin, cross_validation) = match data {
+    if offsets && (how != Fit::LeastSquares || folds.is_some()) {
+        return Err(Error::InvalidField {
+            field: "offsets".into(),
+            message: "offsets are fitted by plain least squares, without cross-validation".into(),
+        });
+    }
+    let how_fit = How {
+        fit: how,
+        folds,
+        offsets,
+    };
+    let (data_name, found) = match data {
         Data::File { name, reader } => {
-            let (id, origin, cv) = from_file(setup, how, folds, &name, reader)?;
-            (name, id, origin, cv)
+            let found = from_file(setup, how_fit, &name, reader)?;
+            (name, found)
         }
         Data::Measurements(measurements) => {
-            let (id, cv) =
-                fit(setup, how, folds, &measurements).map_err(|e| in_data("arrays", e))?;
-            let origin = arrays_origin(&measurements);
-            ("arrays".to_string(), id, origin, cv)
+            let (id, cv, offsets) =
+                fit(setup, how_fit, &measurements).map_err(|e| in_data("arrays", e))?;
+            let found = Found {
+                identification: id,
+                origin: arrays_origin(&measurements),
+                cross_validation: cv,
+                load_steps: None,
+                offsets,
+            };
+            ("arrays".to_string(), found)
         }
     };
+    let Found {
+        identification,
+        origin,
+        cross_validation,
+        load_steps,
+        offsets,
+    } = found;
     let unit = setup
         .nominal_stiffness()
         .and_then(|k| identification.unit_check(k));
@@ -203,11 +249,28 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         identification,
         origin,
         cross_validation,
+        load_steps,
+        offsets,
         warnings: Vec::new(),
     };
     report.influential = influential(&report);
     report.warnings = warnings(&report);
     Ok(report)
+}
+
+/// How to fit: the fit, the folds, the offsets.
+#[derive(Clone, Copy)]
+struct How {
+    fit: Fit,
+    folds: Option<Folds>,
+    offsets: bool,
+}
+
+impl How {
+    /// Whether the fit runs in blocks, without the whole `Psi`.
+    fn in_blocks(self) -> bool {
+        self.fit == Fit::LeastSquares && self.folds.is_none() && !self.offsets
+    }
 }
 
 /// `error` about the data named `name`.
@@ -219,16 +282,15 @@ fn in_data(name: &str, error: Error) -> Error {
 }
 
 /// The identification of a measurement file: streamed for plain least squares without
-/// cross-validation, else parsed whole.
-fn from_file<R: Read + Send>(
-    setup: &Setup,
-    how: Fit,
-    folds: Option<Folds>,
-    name: &str,
-    reader: R,
-) -> Result<(Identification, Origin, Option<CrossValidation>)> {
-    if how == Fit::LeastSquares && folds.is_none() {
-        let source = BufReader::with_capacity(1 << 20, reader);
+/// cross-validation nor offsets, else parsed whole; a readings file with load steps
+/// ([`has_load_column`]) through [`from_readings`].
+fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> Result<Found> {
+    let mut source = BufReader::with_capacity(1 << 20, reader);
+    if header_has_loads(&mut source) {
+        let text = read_text(name, source)?;
+        return from_readings(setup, how, name, &text);
+    }
+    if how.in_blocks() {
         let (id, rows) = streamed::least_squares(setup, source).map_err(|e| in_data(name, e))?;
         let columns = [
             rows.layout.force_columns(),
@@ -242,14 +304,20 @@ fn from_file<R: Read + Send>(
             Some(rows.lines),
             columns,
         );
-        return Ok((id, origin, None));
+        return Ok(Found {
+            identification: id,
+            origin,
+            cross_validation: None,
+            load_steps: None,
+            offsets: None,
+        });
     }
-    let text = read_text(name, reader)?;
+    let text = read_text(name, source)?;
     let mut file = measurements::parse(&text).map_err(|e| in_data(name, e))?;
     drop(text);
     file.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let (id, cv) =
-        fit(setup, how, folds, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
+    let (id, cv, offsets) =
+        fit(setup, how, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
     let columns = [
         file.layout.force_columns(),
         file.layout.displacement_columns(),
@@ -262,34 +330,114 @@ fn from_file<R: Read + Send>(
         Some(file.lines),
         columns,
     );
-    Ok((id, origin, cv))
+    Ok(Found {
+        identification: id,
+        origin,
+        cross_validation: cv,
+        load_steps: None,
+        offsets,
+    })
 }
 
-/// The fit of measurements in the base frame, and the cross-validation if asked. Plain least
-/// squares without cross-validation runs in blocks ([`least_squares`]), without the whole `Psi`.
+/// Whether the header of the text `source` starts with (its first line that is neither blank nor
+/// a `#` comment, within the buffer) names a load column: raw readings under load steps.
+fn header_has_loads<R: Read>(source: &mut BufReader<R>) -> bool {
+    let Ok(buffer) = source.fill_buf() else {
+        return false;
+    };
+    let text = String::from_utf8_lossy(buffer);
+    text.lines()
+        .find(|l| !(l.trim().is_empty() || l.starts_with('#')))
+        .is_some_and(has_load_column)
+}
+
+/// The identification of raw readings under load steps ([`crate::steps`]): every loaded reading
+/// relative to its point's unloaded one, and each posture's linearity.
+fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
+    let points = setup.tool().measuring_points.len();
+    let readings = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
+    let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
+    steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
+    let loaded = steps.loaded();
+    if let Some(p) = (0..steps.labels.len())
+        .find(|&p| !loaded.iter().any(|&i| steps.measurements[i].posture == p))
+    {
+        return Err(in_data(
+            name,
+            Error::InvalidField {
+                field: "load_step".into(),
+                message: format!(
+                    "posture '{}' has no loaded reading: nothing to identify from it",
+                    crate::limits::short(&steps.labels[p])
+                ),
+            },
+        ));
+    }
+    let measurements: Vec<Measurement> = loaded
+        .iter()
+        .map(|&i| steps.measurements[i].clone())
+        .collect();
+    let lines: Vec<u64> = loaded.iter().map(|&i| steps.lines[i]).collect();
+    let (id, cv, offsets) = fit(setup, how, &measurements).map_err(|e| {
+        let e = match e {
+            Error::Measurement { number, .. } => Error::InvalidField {
+                field: "readings".into(),
+                message: format!(
+                    "line {}: {e}",
+                    lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)
+                ),
+            },
+            e => e,
+        };
+        in_data(name, e)
+    })?;
+    let origin = Origin::new(
+        Labels::from_iter(&steps.labels),
+        measurements.iter().map(|m| m.posture).collect(),
+        measurements.iter().map(|m| m.point).collect(),
+        posture_angles(&measurements),
+        Some(lines),
+        readings.columns.clone(),
+    );
+    Ok(Found {
+        identification: id,
+        origin,
+        cross_validation: cv,
+        load_steps: Some(linearity(&steps, setup.noise().variance)),
+        offsets,
+    })
+}
+
+/// The fit of measurements in the base frame, the cross-validation and the offsets if asked.
+/// Plain least squares without cross-validation nor offsets runs in blocks ([`least_squares`]),
+/// without the whole `Psi`.
+#[allow(clippy::type_complexity)]
 fn fit(
     setup: &Setup,
-    how: Fit,
-    folds: Option<Folds>,
+    how: How,
     measurements: &[Measurement],
-) -> Result<(Identification, Option<CrossValidation>)> {
-    if how == Fit::LeastSquares && folds.is_none() {
-        return Ok((least_squares(setup, measurements)?, None));
+) -> Result<(Identification, Option<CrossValidation>, Option<Vec<Offset>>)> {
+    if how.offsets {
+        let (id, offsets) = offsets::least_squares(setup, measurements)?;
+        return Ok((id, None, Some(offsets)));
+    }
+    if how.in_blocks() {
+        return Ok((least_squares(setup, measurements)?, None, None));
     }
     let obs = Observations::from_measurements(setup, measurements)?;
     // Every fold is fitted as the full fit.
-    let method = match how {
+    let method = match how.fit {
         Fit::Robust(loss) => Method::Robust(loss),
         Fit::Nonnegative => Method::Nonnegative,
         Fit::LeastSquares => Method::LeastSquares,
     };
     let id = method.fit(&obs)?;
-    let cross_validation = match folds {
+    let cross_validation = match how.folds {
         None => None,
         Some(Folds::LeaveOneOut) => Some(cross_validate(&obs, &id, obs.postures, method)?),
         Some(Folds::Count(k)) => Some(cross_validate(&obs, &id, k, method)?),
     };
-    Ok((id, cross_validation))
+    Ok((id, cross_validation, None))
 }
 
 /// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
@@ -373,11 +521,65 @@ fn warnings(report: &Report) -> Vec<Warning> {
     if let Some(unit) = &report.unit {
         out.push(Warning::new(WarningKind::Units, unit_message(report, unit)));
     }
+    out.extend(load_step_warnings(report));
     if let Some(mut w) = plausibility::radians_as_degrees(&report.origin.angles) {
         w.message = format!("{}: {}", report.data_name, w.message);
         out.push(w);
     }
     out
+}
+
+/// The warnings of load steps: postures whose offset, linearity or hysteresis exceeds the
+/// tracker noise.
+fn load_step_warnings(report: &Report) -> Vec<Warning> {
+    let Some(steps) = &report.load_steps else {
+        return Vec::new();
+    };
+    let offset_hint = match report.offsets {
+        Some(_) => "fitted beside the compliances",
+        None => "backlash or friction; fit it with offsets beside the compliances",
+    };
+    type Flag = fn(&Linearity) -> bool;
+    let checks: [(Flag, String); 3] = [
+        (
+            Linearity::offset_flagged,
+            format!("a zero-load offset beyond the tracker noise ({offset_hint})"),
+        ),
+        (
+            Linearity::nonlinear,
+            "a deflection that departs from a straight line in the load beyond the tracker noise"
+                .into(),
+        ),
+        (
+            Linearity::hysteresis_flagged,
+            "a hysteresis between rising and falling loads beyond the tracker noise".into(),
+        ),
+    ];
+    checks
+        .into_iter()
+        .filter_map(|(flagged, what)| {
+            let labels: Vec<String> = steps
+                .iter()
+                .filter(|l| flagged(l))
+                .map(|l| {
+                    format!(
+                        "'{}'",
+                        crate::limits::short(report.origin.labels.get(l.posture))
+                    )
+                })
+                .collect();
+            (!labels.is_empty()).then(|| {
+                let noun = match labels.len() {
+                    1 => "posture",
+                    _ => "postures",
+                };
+                Warning::new(
+                    WarningKind::LoadSteps,
+                    format!("{}: {noun} {}: {what}", report.data_name, labels.join(", ")),
+                )
+            })
+        })
+        .collect()
 }
 
 /// The unit warning, naming the columns.

@@ -49,6 +49,9 @@ pub enum WarningKind {
     /// millimetres are meant, angles in radians under `_deg` names):
     /// [`crate::setup::plausibility`].
     Plausibility,
+    /// Under load steps, some postures' zero-load offset, departure from a straight line or
+    /// hysteresis exceeds what the tracker noise explains ([`crate::steps`]).
+    LoadSteps,
 }
 
 impl WarningKind {
@@ -60,6 +63,7 @@ impl WarningKind {
             WarningKind::Rigid => "rigid",
             WarningKind::Units => "units",
             WarningKind::Plausibility => "plausibility",
+            WarningKind::LoadSteps => "load-steps",
         }
     }
 }

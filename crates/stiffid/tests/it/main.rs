@@ -4,6 +4,7 @@
 
 mod active_set;
 mod bodies;
+mod calibrate_cell;
 mod cell;
 mod cell_search;
 mod comau_checks;
@@ -19,6 +20,7 @@ mod identify_blocks;
 mod identify_streamed;
 mod jacobians;
 mod joint_box;
+mod load_steps;
 mod lsq;
 mod models;
 mod mounting;

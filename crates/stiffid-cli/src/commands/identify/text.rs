@@ -103,6 +103,64 @@ pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
     if run.cross_validation.is_some() {
         s += &cross_validation(run);
     }
+    s += &load_steps(run);
+    s += &offsets(run);
+    s
+}
+
+/// Each posture's linearity, zero-load offset and hysteresis under the load steps.
+fn load_steps(run: &Report) -> String {
+    let Some(steps) = &run.load_steps else {
+        return String::new();
+    };
+    let opt = |v: Option<f64>, scale: f64, decimals: usize| {
+        v.map_or("-".to_string(), |v| num(v * scale, decimals))
+    };
+    let mark = |flag: bool| if flag { "*" } else { " " };
+    let mut s = "
+load steps (* beyond the tracker noise, p < 0.01):
+                 posture           loads  slope mm/kN  offset mm  R^2        hysteresis mm
+"
+    .to_string();
+    for l in steps {
+        s += &format!(
+            "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
+",
+            stiffid::limits::short(run.origin.labels.get(l.posture)),
+            l.levels,
+            opt(l.slope_m_per_n, 1e6, 4),
+            opt(l.offset_m, 1e3, 4),
+            mark(l.offset_flagged()),
+            opt(l.r_squared, 1.0, 6),
+            mark(l.nonlinear()),
+            opt(l.hysteresis_m, 1e3, 4),
+            mark(l.hysteresis_flagged()),
+        );
+    }
+    s
+}
+
+/// The offsets fitted beside the compliances.
+fn offsets(run: &Report) -> String {
+    let Some(offsets) = &run.offsets else {
+        return String::new();
+    };
+    let mut s = "
+offsets fitted beside the compliances (base frame):
+                 posture           point  offset x mm  y mm      z mm
+"
+    .to_string();
+    for o in offsets {
+        s += &format!(
+            "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
+",
+            stiffid::limits::short(run.origin.labels.get(o.posture)),
+            o.point + 1,
+            num(o.offset.x * 1e3, 4),
+            num(o.offset.y * 1e3, 4),
+            num(o.offset.z * 1e3, 4),
+        );
+    }
     s
 }
 
