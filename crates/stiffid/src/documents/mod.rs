@@ -11,6 +11,8 @@
 //! turns the same documents into dicts (and arrays where its API promises arrays), so the two
 //! front ends give the same document for the same call.
 
+pub mod compensate;
+pub mod force;
 pub mod identify;
 
 /// `v` if finite, else `None`.

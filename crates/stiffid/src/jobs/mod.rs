@@ -21,6 +21,8 @@
 //! Errors are [`crate::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
 //! never of one front end's options; each front end adds its own hints.
 
+pub mod compensate;
+pub mod force;
 pub mod identify;
 
 use serde::Serialize;
@@ -45,6 +47,9 @@ pub enum WarningKind {
     /// millimetres are meant, angles in radians under `_deg` names):
     /// [`crate::setup::plausibility`].
     Plausibility,
+    /// Points of a machining program get no process force (plunges, rapid moves, blocks no
+    /// operation covers).
+    NoForce,
 }
 
 impl WarningKind {
@@ -56,6 +61,7 @@ impl WarningKind {
             WarningKind::Rigid => "rigid",
             WarningKind::Units => "units",
             WarningKind::Plausibility => "plausibility",
+            WarningKind::NoForce => "no-force",
         }
     }
 }
