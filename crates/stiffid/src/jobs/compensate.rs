@@ -176,7 +176,7 @@ where
             chord_tolerance,
             output,
         } => {
-            check_output(language, output)?;
+            check_output(language, output).map_err(|e| in_input(&name, e))?;
             let compensated = (|| {
                 let program = machining::read(text, language, chord_tolerance)?;
                 machining::compensate(setup, &compliance, &program, &process, &options)
@@ -249,7 +249,7 @@ fn check_output(language: Language, output: Language) -> Result<()> {
         _ => Err(Error::InvalidField {
             field: "out".into(),
             message: format!(
-                "a {} program is written back in its own language, not as {}",
+                "a program in {} is written back in its own language, not as {}",
                 language.name(),
                 output.name()
             ),
