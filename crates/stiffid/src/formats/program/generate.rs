@@ -126,8 +126,8 @@ mod tests {
             let read = super::super::parse(&text, d).unwrap();
             assert_eq!(read.targets.len(), 2, "{d:?}");
             for (t, e) in read.targets.iter().zip(&q) {
-                for k in 0..6 {
-                    assert!((t.q_deg[k] - e[k]).abs() <= 1e-9, "{d:?}: {:?}", t.q_deg);
+                for (a, b) in t.q_deg.iter().zip(e) {
+                    assert!((a - b).abs() <= 1e-9, "{d:?}: {:?}", t.q_deg);
                 }
             }
         }
