@@ -3,7 +3,8 @@
 //! steps; the free tool axis after Caro et al., ICRA 2013, and Xiong et al., RCIM 2019).
 
 use crate::arrays;
-use crate::error::{self, raise, raise_in};
+use crate::documents::{to_python, warn};
+use crate::error::{self, raise};
 use crate::measure::stiffness_and_covariance;
 use crate::setup::Setup;
 use nalgebra::Vector6;
@@ -12,31 +13,46 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::compensate::{Compensated, Compliance, FreeToolAxis, Options, PathPoint};
 use stiffid::deflection::Frame;
-use stiffid::formats::path;
+use stiffid::documents::compensate::{values, Document, Names, Row};
+use stiffid::jobs::compensate::{self as job, Input, Request};
+use stiffid::machining::Language;
+use stiffid::process::file;
 
-/// Compensates the machining path in the CSV file ``path`` (the format of ``stiffid compensate
-/// --path``: axis angles ``q1_deg..q6_deg`` or a TCP pose ``x_mm..rz_deg`` per line, and the
-/// wrench ``fx_n..mz_nm`` at the TCP, in ``frame`` ``"base"`` or ``"tool"`` unless the file says)
-/// with the joint stiffness ``stiffness``: six numbers (Nm/rad) or the path of a stiffness JSON
-/// file as ``stiffid identify --out`` writes it (its ``compliance_covariance_rad2_per_nm2``, when
-/// present, gives the standard deviations). Inverse kinematics starts at ``q0_deg`` (shape
-/// ``(6,)``, deg; default the setup's first test posture); ``free_tool_axis=True`` turns each pose
-/// about its tool z within ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to
-/// the least deflection. Returns a dict of arrays with one row per path point, in path order:
-/// ``line`` (the file's line numbers, ``int64``), ``q_deg`` and ``q_compensated_deg``
-/// (``(n, 6)``, deg), ``deflection_mm`` and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP
-/// under the wrench), ``residual_um`` and ``residual_urad`` (``(n,)``), ``iterations`` (``(n,)``,
-/// ``int64``: the Newton steps of the compensation), ``tool_rotation_deg`` (``(n,)``) and, with a
-/// covariance, ``deflection_std_mm`` (``(n, 3)``).
-/// The values equal ``stiffid compensate``'s.
+/// Compensates a machining path with the joint stiffness ``stiffness``: six numbers (Nm/rad) or
+/// the path of a stiffness JSON file as ``stiffid identify --out`` writes it (its
+/// ``compliance_covariance_rad2_per_nm2``, when present, gives the standard deviations); the same
+/// job as ``stiffid compensate``. The path is either the CSV file ``path`` (the format of
+/// ``stiffid compensate --path``: axis angles ``q1_deg..q6_deg`` or a TCP pose ``x_mm..rz_deg``
+/// per line, and the wrench ``fx_n..mz_nm`` at the TCP, in ``frame`` ``"base"`` or ``"tool"``
+/// unless the file says), or the machining program ``program`` (G-code, KUKA KRL ``.src``, ABB
+/// RAPID ``.mod``, FANUC LS ``.ls``; G-code arcs split to ``chord_tolerance_mm``, its part frame
+/// the setup's ``[workpiece]``) with the process file ``process`` that gives each point its
+/// cutting force. Inverse kinematics starts at ``q0_deg`` (shape ``(6,)``, deg; default the
+/// setup's first test posture); ``free_tool_axis=True`` turns each pose about its tool z within
+/// ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to the least deflection.
+/// Returns a dict of arrays with one row per path point, in path order: ``line`` (the file's line
+/// numbers, ``int64``), ``q_deg`` and ``q_compensated_deg`` (``(n, 6)``, deg), ``deflection_mm``
+/// and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP under the wrench), ``force_n``
+/// (``(n, 3)``, base frame), ``residual_um`` and ``residual_urad`` (``(n,)``), ``iterations``
+/// (``(n,)``, ``int64``: the Newton steps of the compensation), ``tool_rotation_deg`` (``(n,)``)
+/// and, with a covariance, ``deflection_std_mm`` (``(n, 3)``); ``document``: the document of
+/// ``stiffid compensate --json`` (its ``program`` with the segments' force and deflection before
+/// and after, for a program); with a program, ``program``: the compensated program's text, in
+/// the program's own language or, for G-code with ``output="krl"``, ``"rapid"`` or ``"ls"``, a
+/// robot program of the compensated axis angles. Points without a process force are warned about
+/// (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path, stiffness, *, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
     setup: &Setup,
-    path: PathBuf,
-    stiffness: &Bound<'py, PyAny>,
+    path: Option<PathBuf>,
+    stiffness: Option<&Bound<'py, PyAny>>,
+    program: Option<PathBuf>,
+    process: Option<PathBuf>,
+    output: Option<&str>,
+    chord_tolerance_mm: f64,
     frame: &str,
     q0_deg: Option<&Bound<'py, PyAny>>,
     free_tool_axis: bool,
@@ -44,14 +60,117 @@ pub fn compensate<'py>(
     tool_axis_range_deg: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
+    let stiffness = stiffness.ok_or_else(|| {
+        error::value("stiffness: expected six numbers (Nm/rad) or a stiffness file")
+    })?;
     let (k, covariance) = stiffness_and_covariance(stiffness)?;
     let compliance = Compliance {
         h: k.map(|v| 1.0 / v),
         covariance,
     };
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let name = path.display().to_string();
-    let points = path::parse(&error::read(&path)?, frame).map_err(|e| raise_in(&name, e))?;
+    let options = options(s, q0_deg, free_tool_axis, max_step_deg, tool_axis_range_deg)?;
+    let (name, file_path) = match (&path, &program) {
+        (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
+        _ => {
+            return Err(error::value(
+                "expected path= (a path CSV) or program= (a machining program), not both",
+            ))
+        }
+    };
+    let text = error::read(&file_path)?;
+    let input = match (&program, &process) {
+        (None, None) => Input::Path {
+            name: name.clone(),
+            text: &text,
+            frame,
+        },
+        (Some(_), Some(process)) => {
+            let language = Language::of_file(&name).map_err(raise)?;
+            let output = match output {
+                None => language,
+                Some(o) => output_language(o)?,
+            };
+            let process_name = process.display().to_string();
+            let parsed = file::parse(&error::read(process)?, &process_name).map_err(raise)?;
+            Input::Program {
+                name: name.clone(),
+                text: &text,
+                language,
+                process_name,
+                process: parsed,
+                chord_tolerance: chord_tolerance_mm * 1e-3,
+                output,
+            }
+        }
+        (None, Some(_)) => return Err(error::value("process: only with program=")),
+        (Some(_), None) => return Err(error::value("program: needs process= (the process file)")),
+    };
+    let request = Request {
+        setup: s,
+        compliance,
+        input,
+        options,
+    };
+    let mut points: Vec<PathPoint> = Vec::new();
+    let mut results: Vec<Compensated> = Vec::new();
+    let mut rows: Vec<Row> = Vec::new();
+    let report = py
+        .detach(|| {
+            job::run(request, |first, p: &[PathPoint], r: &[Compensated]| {
+                for (k, (p, r)) in p.iter().zip(r).enumerate() {
+                    rows.push(Row::new(&values(first + k, p.line, r)));
+                }
+                points.extend_from_slice(p);
+                results.extend_from_slice(r);
+                Ok::<(), stiffid::Error>(())
+            })
+        })
+        .map_err(raise)?;
+    warn(py, &report.warnings)?;
+    let names = Names {
+        setup: s.name().to_string(),
+        stiffness: stiffness
+            .extract::<PathBuf>()
+            .map_or("arrays".into(), |p| p.display().to_string()),
+        out: String::new(),
+        program_out: String::new(),
+    };
+    let out = table(py, &results, &points)?;
+    out.set_item(
+        "document",
+        to_python(py, &Document::new(&report, &names, rows), &[])?,
+    )?;
+    if let Some(p) = &report.program {
+        out.set_item("program", &p.text)?;
+    }
+    Ok(out)
+}
+
+/// The language named by ``output``: `krl`, `rapid`, `ls` or `gcode`.
+fn output_language(name: &str) -> PyResult<Language> {
+    let extension = match name {
+        "krl" => "src",
+        "rapid" => "mod",
+        "ls" => "ls",
+        "gcode" => "nc",
+        _ => "",
+    };
+    Language::from_extension(extension).ok_or_else(|| {
+        error::value(format!(
+            "output: {name:?}: expected \"krl\", \"rapid\", \"ls\" or \"gcode\", or None for the program's own language"
+        ))
+    })
+}
+
+/// The compensation's options from the arguments.
+fn options(
+    s: &stiffid::Setup,
+    q0_deg: Option<&Bound<'_, PyAny>>,
+    free_tool_axis: bool,
+    max_step_deg: f64,
+    tool_axis_range_deg: f64,
+) -> PyResult<Options> {
     let mut options = Options::for_setup(s);
     if let Some(q) = q0_deg {
         let r = s.robot();
@@ -62,10 +181,7 @@ pub fn compensate<'py>(
         let free = FreeToolAxis::try_from_degrees(max_step_deg, tool_axis_range_deg);
         options.free_tool_axis = Some(free.map_err(raise)?);
     }
-    let results = py
-        .detach(|| stiffid::compensate::path(s, &compliance, &points, &options))
-        .map_err(|e| raise_in(&name, e))?;
-    table(py, &results, &points)
+    Ok(options)
 }
 
 /// The per-point results as arrays (see [`compensate`]).
@@ -91,6 +207,7 @@ fn table<'py>(
     out.set_item("q_compensated_deg", arrays::degrees(py, &qc))?;
     out.set_item("deflection_mm", part(&|c| c.deflection, 0, 1e3))?;
     out.set_item("deflection_mrad", part(&|c| c.deflection, 3, 1e3))?;
+    out.set_item("force_n", part(&|c| c.wrench, 0, 1.0))?;
     out.set_item("residual_um", column(&|c| c.residual_position * 1e6))?;
     out.set_item("residual_urad", column(&|c| c.residual_rotation * 1e6))?;
     let iterations = results.iter().map(|c| c.iterations as u64);

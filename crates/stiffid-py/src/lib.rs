@@ -13,6 +13,7 @@ mod deflection;
 mod design;
 mod documents;
 mod error;
+mod machining;
 mod measure;
 mod robot;
 mod setup;
@@ -35,5 +36,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
     m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;
+    m.add_function(wrap_pyfunction!(machining::process_force, m)?)?;
+    m.add_function(wrap_pyfunction!(machining::read_program, m)?)?;
     Ok(())
 }

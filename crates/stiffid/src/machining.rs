@@ -2,7 +2,7 @@
 //! same program with compensated targets out.
 //!
 //! 1. The program gives the path: G-code points (part frame, placed in the base frame by the
-//!    process file's `[workpiece] base_from_part`) as TCP poses, or a robot program's joint targets
+//!    setup's `[workpiece] base_from_part`) as TCP poses, or a robot program's joint targets
 //!    ([`crate::formats::program`]) as axis angles.
 //! 2. The process gives each point its wrench: the operation that covers it
 //!    ([`Operation`]: G-code `(operation: NAME)` comments, then `T` tool numbers, then an operation
@@ -61,6 +61,42 @@ impl Language {
             other => Dialect::from_extension(other).map(Language::Robot),
         }
     }
+
+    /// The language of a file name's extension, or [`Error::InvalidField`] naming the file and
+    /// the extensions known.
+    ///
+    /// # Errors
+    /// An extension that is none of [`Language::from_extension`]'s.
+    pub fn of_file(name: &str) -> Result<Self> {
+        let extension = std::path::Path::new(name)
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("");
+        Self::from_extension(extension).ok_or_else(|| Error::InvalidField {
+            field: name.into(),
+            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS)".into(),
+        })
+    }
+
+    /// The language's name in documents: `gcode`, `krl`, `rapid` or `ls`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Language::GCode => "gcode",
+            Language::Robot(Dialect::Krl) => "krl",
+            Language::Robot(Dialect::Rapid) => "rapid",
+            Language::Robot(Dialect::FanucLs) => "ls",
+        }
+    }
+}
+
+impl Program {
+    /// The program's language.
+    pub fn language(&self) -> Language {
+        match self {
+            Program::GCode(_) => Language::GCode,
+            Program::Robot(p) => Language::Robot(p.dialect),
+        }
+    }
 }
 
 /// Reads a program; `chord_tolerance` (m) splits G-code arcs.
@@ -93,7 +129,7 @@ pub struct Report {
 ///
 /// # Errors
 /// [`Error::InvalidField`] for a G-code program without `[workpiece] base_from_part` in the
-/// process; [`Error::Program`] naming the line of a point whose `(operation: NAME)` names no
+/// setup; [`Error::Program`] naming the line of a point whose `(operation: NAME)` names no
 /// operation, or whose compensation changes the configuration; those of [`compensate::path`]
 /// (joint limits, unreachable poses, naming the line).
 pub fn compensate(
@@ -103,7 +139,7 @@ pub fn compensate(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
-    let poses = poses(setup, program, process)?;
+    let poses = poses(setup, program)?;
     let operations = operations(program, process)?;
     let (points, warnings) = path_points(&poses, &operations);
     let results = compensate::path(setup, compliance, &points, options)?;
@@ -117,7 +153,7 @@ pub fn compensate(
             p.write(&q)?
         }
         Program::GCode(g) => {
-            let part = workpiece(process)?.inverse();
+            let part = workpiece(setup)?.inverse();
             let tcp = &setup.tool().tcp;
             let positions: Vec<Vector3<f64>> = results
                 .iter()
@@ -139,22 +175,18 @@ pub fn compensate(
     })
 }
 
-fn workpiece(process: &Process) -> Result<Isometry3<f64>> {
-    process.base_from_part.ok_or_else(|| Error::InvalidField {
+fn workpiece(setup: &Setup) -> Result<Isometry3<f64>> {
+    setup.workpiece().copied().ok_or_else(|| Error::InvalidField {
         field: "workpiece.base_from_part".into(),
-        message: "missing: a G-code program needs the part frame in the robot base frame ([workpiece] base_from_part = { xyz_mm = [..], rpy_deg = [..] } in the process file)".into(),
+        message: "missing: a G-code program needs the part frame in the robot base frame ([workpiece] base_from_part = { xyz_mm = [..], rpy_deg = [..] } in the setup file)".into(),
     })
 }
 
 /// Each point's line, target and nominal TCP pose (base frame).
-fn poses(
-    setup: &Setup,
-    program: &Program,
-    process: &Process,
-) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
+fn poses(setup: &Setup, program: &Program) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
     match program {
         Program::GCode(g) => {
-            let base = workpiece(process)?;
+            let base = workpiece(setup)?;
             Ok(g.points
                 .iter()
                 .map(|p| {

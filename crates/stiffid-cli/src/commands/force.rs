@@ -3,10 +3,11 @@
 
 use crate::load;
 use crate::output::print_json_or;
-use anyhow::{bail, Result};
-use serde::Serialize;
+use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::process::{self, file, milling::MIN_RESOLUTION_DEG, OperationForce};
+use stiffid::documents::force::Document;
+use stiffid::jobs::force::{self, Request};
+use stiffid::process::file;
 
 /// Arguments of `stiffid force`.
 #[derive(clap::Args)]
@@ -25,35 +26,22 @@ pub struct Args {
     json: bool,
 }
 
-/// `stiffid force --json`.
-#[derive(Serialize)]
-struct Document {
-    /// The process file.
-    process: String,
-    /// The peak's angular resolution, deg, or `null`.
-    peak_resolution_deg: Option<f64>,
-    /// One entry per operation, in file order.
-    operations: Vec<OperationForce>,
-}
-
-/// Parses, computes, prints.
+/// Parses, runs the force job, prints.
 pub fn run(args: &Args) -> Result<()> {
-    if let Some(r) = args.peak_resolution_deg {
-        if !(MIN_RESOLUTION_DEG..=10.0).contains(&r) {
-            bail!(
-                "--peak-resolution-deg: {r}: expected a number >= {MIN_RESOLUTION_DEG} and <= 10"
-            );
-        }
-    }
     let name = args.process.display().to_string();
     let parsed = file::parse(&load::read(&args.process)?, &name)?;
-    let operations = process::forces(&parsed, args.peak_resolution_deg.map(f64::to_radians));
-    let document = Document {
-        process: name,
+    let request = Request {
+        name,
+        process: &parsed,
         peak_resolution_deg: args.peak_resolution_deg,
-        operations,
     };
-    print_json_or(args.json, &document, human)
+    let report = force::run(&request).map_err(|e| match e {
+        stiffid::Error::InvalidField { field, message } => {
+            anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
+        }
+        e => e.into(),
+    })?;
+    print_json_or(args.json, &Document::new(&report), human)
 }
 
 fn human(d: &Document) -> String {

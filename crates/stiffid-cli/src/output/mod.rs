@@ -14,7 +14,7 @@ pub mod staged;
 mod target;
 
 pub use dir::{Part, ReportDir};
-pub use file::OutFile;
+pub use file::{OutFile, Writer};
 
 use anyhow::{Context, Result};
 use std::io::Write;

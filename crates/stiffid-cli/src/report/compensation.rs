@@ -1,19 +1,19 @@
 //! The report of `stiffid compensate --report DIR`: `report.html` (self-contained, figures inline
-//! as SVG), `summary.json` (what `--json` prints), `compensation.csv` (what `--out` holds) and
-//! `figures/` (SVG and PNG).
+//! as SVG), `summary.json` (what `--json` prints), `compensation.csv` (the CSV of every point) and
+//! `figures/` (SVG and PNG). It reads the job's document ([`Document`]) and, for the figures, the
+//! sample of points the job kept ([`Report::summary`]).
 
 use super::figures::{self, Figure};
 use super::html::{page, Writer};
 use super::tables::{num, Table};
 use crate::output::{Part, ReportDir};
 use anyhow::Result;
-use serde_json::Value;
 use std::path::Path;
 use stiffid::compensate::Compensated;
+use stiffid::documents::compensate::GENERATOR;
+use stiffid::documents::compensate::{Document, SegmentDocument};
+use stiffid::jobs::compensate::Report;
 use stiffid::Setup;
-
-/// The value of the `generator` key of `summary.json` that marks a compensation report.
-pub const GENERATOR: &str = "stiffid compensate";
 
 /// The fixed files of the report (besides `figures/`).
 const FILES: [&str; 3] = ["summary.json", "compensation.csv", "report.html"];
@@ -23,32 +23,33 @@ pub fn holds(rel: &Path) -> bool {
     FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures")
 }
 
-/// What the report shows of a streamed compensation: a sample of the points (index, result) for
-/// the figures, the ten largest deflections, the number of points, the CSV written (`--out`),
-/// the parts of the JSON document (`--json`) and the document without its points.
+/// What the report shows of a streamed compensation: the job's report (its sample of the points
+/// for the figures, the ten largest deflections), the CSV written, the parts of the JSON document
+/// (`--json`) and the document without its points.
 pub struct View<'a> {
-    /// Every k-th point.
-    pub sample: &'a [(usize, Compensated)],
-    /// The ten largest deflections, largest first.
-    pub largest: &'a [(usize, Compensated)],
-    /// Points of the path.
-    pub points: usize,
+    /// The job's report.
+    pub report: &'a Report,
     /// The CSV of every point.
     pub csv: &'a Path,
     /// The parts of `summary.json`.
     pub summary: &'a [Part<'a>],
     /// The document without its points.
-    pub document: &'a Value,
+    pub document: &'a Document,
 }
 
 /// Writes every file of the report into `dir`, each whole; `summary.json` first, so the
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
-    let sample: Vec<Compensated> = view.sample.iter().map(|(_, c)| c.clone()).collect();
-    let figures = [
+    let summary = &view.report.summary;
+    let sample: Vec<Compensated> = summary.sample.iter().map(|(_, c)| c.clone()).collect();
+    let mut figures = vec![
         figures::path::deflection(&sample)?,
         figures::path::path(setup, &sample)?,
     ];
+    if let Some(p) = &view.document.program {
+        figures.push(figures::machining::force(&summary.sample)?);
+        figures.push(figures::machining::segments(&p.segments)?);
+    }
     dir.write_parts(FILES[0], view.summary)?;
     dir.write_parts(FILES[1], &[Part::File(view.csv)])?;
     for f in &figures {
@@ -66,57 +67,110 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
 
 fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
     let document = view.document;
-    let s = &document["summary"];
-    let f = |key: &str| s[key].as_f64().unwrap_or(f64::NAN);
+    let s = &document.summary;
+    let points = view.report.summary.points;
     w.heading(1, "Deflection compensation of a machining path");
     w.paragraph(&format!(
         "Path `{}` ({} points) on the setup `{}` ({}), joint stiffness from `{}`. Each point's TCP deflection under its wrench (Zhang et al. 2021, Eq. 4-6) and the compensated axis angles that put the loaded TCP where the unloaded robot puts it at the nominal posture.",
-        document["path"].as_str().unwrap_or(""),
-        view.points,
+        document.path,
+        points,
         setup.name(),
         setup.robot().name,
-        document["stiffness"].as_str().unwrap_or(""),
+        document.stiffness,
     ));
     let mut items = vec![
         format!(
             "Largest TCP deflection {} mm (line {}), mean {} mm; largest tool rotation {} mrad.",
-            num(f("max_deflection_mm")),
-            s["max_deflection_line"],
-            num(f("mean_deflection_mm")),
-            num(f("max_rotation_mrad"))
+            num(s.max_deflection_mm),
+            s.max_deflection_line,
+            num(s.mean_deflection_mm),
+            num(s.max_rotation_mrad)
         ),
         format!(
             "After compensation: residual at most {:.2e} um and {:.2e} urad (required 0.1 um and 1 urad), at most {} Newton steps per point.",
-            f("max_residual_um"),
-            f("max_residual_urad"),
-            s["max_iterations"]
+            s.max_residual_um,
+            s.max_residual_urad,
+            s.max_iterations
         ),
     ];
-    if let Some(free) = s["free_tool_axis"].as_object() {
-        let g = |k: &str| free[k].as_f64().unwrap_or(f64::NAN);
+    if let Some(free) = &s.free_tool_axis {
         items.push(format!(
             "Free tool axis: sum of the TCP deflections {} mm before, {} mm after the optimisation of the rotation about tool z.",
-            num(g("sum_deflection_before_mm")),
-            num(g("sum_deflection_after_mm"))
+            num(free.sum_deflection_before_mm),
+            num(free.sum_deflection_after_mm)
         ));
     }
-    if document["has_covariance"] != true {
+    if let Some(p) = &document.program {
+        items.push(format!(
+            "Program in {} with the process `{}`: {} segments; compensated program `{}`.",
+            p.language,
+            p.process,
+            p.segments.len(),
+            p.out
+        ));
+    }
+    if !document.has_covariance {
         items.push("The stiffness file has no compliance covariance: no uncertainty band (run `stiffid identify --out` to get one).".into());
     }
+    items.extend(
+        document
+            .warnings
+            .iter()
+            .map(|w| format!("Warning: {}", w.message)),
+    );
     w.list(&items);
     for fig in figures {
         w.figure(fig);
     }
+    if let Some(p) = &document.program {
+        w.heading(2, "Force and deflection per segment");
+        w.table(&segments(&p.segments));
+    }
     w.heading(2, "The ten largest deflections");
-    if view.sample.len() < view.points {
+    let sample = &view.report.summary.sample;
+    if sample.len() < points {
         w.paragraph(&format!(
             "The figures show every {}th of the {} points.",
-            view.sample.get(1).map_or(1, |s| s.0),
-            view.points
+            sample.get(1).map_or(1, |s| s.0),
+            points
         ));
     }
-    w.table(&largest(view.largest));
-    w.paragraph("Every point, every column: `compensation.csv` (the same as `--out`) and `summary.json` (the same as `--json`).");
+    w.table(&largest(&view.report.summary.largest));
+    w.paragraph(
+        "Every point, every column: `compensation.csv` and `summary.json` (the same as `--json`).",
+    );
+}
+
+/// The segments' table (at most the first 200 rows; the JSON has them all).
+fn segments(segments: &[SegmentDocument]) -> Table {
+    Table {
+        header: [
+            "line",
+            "operation",
+            "points",
+            "force N",
+            "|d| before mm",
+            "|d| after mm",
+            "std of |d| mm",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: segments
+            .iter()
+            .take(200)
+            .map(|s| {
+                vec![
+                    s.line.to_string(),
+                    s.operation.clone().unwrap_or_else(|| "-".into()),
+                    s.points.to_string(),
+                    num(s.force_n),
+                    num(s.deflection_before_mm),
+                    format!("{:.2e}", s.deflection_after_mm),
+                    s.deflection_std_mm.map_or("-".into(), num),
+                ]
+            })
+            .collect(),
+    }
 }
 
 fn largest(largest: &[(usize, Compensated)]) -> Table {

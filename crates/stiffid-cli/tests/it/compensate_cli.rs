@@ -258,3 +258,142 @@ fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `stiffid compensate --program` on the milling example's G-code pocket and process file.
+fn program(setup: &str, stiffness: &str, out: &Path, extra: &[&str]) -> std::process::Output {
+    let (nc, process) = (
+        example("milling/pocket.nc"),
+        example("milling/aluminium.toml"),
+    );
+    let mut args = vec![
+        "compensate",
+        "--setup",
+        setup,
+        "--stiffness",
+        stiffness,
+        "--program",
+        &nc,
+        "--process",
+        &process,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    stiffid(&args)
+}
+
+#[test]
+fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
+    let dir = temp_dir("pocket");
+    let (ls, csv, report) = (dir.join("POCKET.ls"), dir.join("p.csv"), dir.join("r"));
+    let setup = example("milling/fanuc-milling.toml");
+    let r = json(&program(
+        &setup,
+        &example("milling/stiffness.json"),
+        &ls,
+        &[
+            "--csv",
+            csv.to_str().unwrap(),
+            "--json",
+            "--report",
+            report.to_str().unwrap(),
+        ],
+    ));
+    // The LS program's targets are the compensated axis angles of the CSV, to 1e-9 deg.
+    let text = std::fs::read_to_string(&ls).unwrap();
+    let targets =
+        stiffid::formats::program::parse(&text, stiffid::formats::program::Dialect::FanucLs)
+            .unwrap()
+            .targets;
+    let points = r["points"].as_array().unwrap();
+    assert_eq!(targets.len(), points.len());
+    for (t, p) in targets.iter().zip(points) {
+        for k in 0..6 {
+            let qc = p[format!("qc{}_deg", k + 1)].as_f64().unwrap();
+            assert!((t.q_deg[k] - qc).abs() <= 1e-9, "{} {qc}", t.q_deg[k]);
+        }
+    }
+    // The process force: about 240 N where the wall is cut, none on the rapid moves and plunges.
+    let force = |p: &serde_json::Value| {
+        ["fx_base_n", "fy_base_n", "fz_base_n"]
+            .iter()
+            .map(|k| p[*k].as_f64().unwrap().powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let cutting = points.iter().filter(|p| force(p) > 100.0).count();
+    assert!(cutting >= points.len() - 4, "{cutting} of {}", points.len());
+    let segments = r["program"]["segments"].as_array().unwrap();
+    assert_eq!(r["program"]["language"], "gcode");
+    assert_eq!(r["program"]["output_language"], "ls");
+    for s in segments {
+        let before = s["deflection_before_mm"].as_f64().unwrap();
+        assert!(s["deflection_after_mm"].as_f64().unwrap() < 1e-4 * before.max(1e-3));
+    }
+    assert!(r["warnings"][0]["message"]
+        .as_str()
+        .unwrap()
+        .contains("plunge"));
+    assert_eq!(
+        std::fs::read_to_string(&csv).unwrap().lines().count(),
+        points.len() + 1
+    );
+    for f in ["figures/force.svg", "figures/segments.png", "report.html"] {
+        assert!(report.join(f).is_file(), "{f}");
+    }
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    assert!(html.contains("Force and deflection per segment"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_programs_exit_2_naming_the_line_or_the_field() {
+    let dir = temp_dir("badprogram");
+    let stiffness = example("milling/stiffness.json");
+    let fanuc = example("milling/fanuc-milling.toml");
+    // The built-in setup has no [workpiece]: a G-code program cannot be placed.
+    let o = program("fanuc-r2000ic-165f", &stiffness, &dir.join("o.nc"), &[]);
+    assert_usage_error(&o, &["workpiece.base_from_part", "setup file"]);
+    // An output a program cannot become, and an unknown extension.
+    let o = program(&fanuc, &stiffness, &dir.join("o.txt"), &[]);
+    assert_usage_error(&o, &["--out", "o.txt", "expected a program ending in"]);
+    let process = example("milling/aluminium.toml");
+    let ls = write_file(
+        &dir,
+        "far.ls",
+        "/PROG FAR\n/MN\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -60 deg,\tJ2= -17 deg,\tJ3= -29 deg,\n\tJ4= 4 deg,\tJ5= -63 deg,\tJ6= 145 deg\n};\nP[2]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -60 deg,\tJ2= 170 deg,\tJ3= -29 deg,\n\tJ4= 4 deg,\tJ5= -63 deg,\tJ6= 145 deg\n};\n/END\n",
+    );
+    let run = |program: &Path, out: &Path| {
+        stiffid(&[
+            "compensate",
+            "--setup",
+            &fanuc,
+            "--stiffness",
+            &stiffness,
+            "--program",
+            program.to_str().unwrap(),
+            "--process",
+            &process,
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    assert_usage_error(
+        &run(&ls, &dir.join("o.nc")),
+        &["far.ls", "written back in its own language"],
+    );
+    assert_usage_error(
+        &run(&ls, &dir.join("o.ls")),
+        &["far.ls", "line 10", "q2_deg"],
+    );
+    let nc = write_file(
+        &dir,
+        "bad.nc",
+        "(stiffid: tool_rpy_deg = 180 0 0)\nG0 X0 Y0 Z5\nG1 X10 Q3\n",
+    );
+    assert_usage_error(&run(&nc, &dir.join("o.nc")), &["bad.nc", "line 3"]);
+    for o in ["o.nc", "o.ls"] {
+        assert!(!dir.join(o).exists(), "{o}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -3,7 +3,8 @@
 A thin Python layer over the stiffid Rust library (the same code as the ``stiffid`` command):
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
 identification and validation from measurements (``identify``, ``validate``), the deflection
-under a wrench (``deflection``), the compensation of a machining path (``compensate``), the Monte Carlo
+under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
+with ``process_force`` and ``read_program``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
 
 Units: postures in degrees (controller axis angles), points in mm, forces in N, moments in Nm,
@@ -32,6 +33,8 @@ from ._stiffid import (
     compensate,
     deflection,
     identify,
+    process_force,
+    read_program,
     reproduce,
     simulate,
     validate,
@@ -50,6 +53,8 @@ __all__ = [
     "compensate",
     "deflection",
     "identify",
+    "process_force",
+    "read_program",
     "reproduce",
     "simulate",
     "validate",

@@ -239,16 +239,34 @@ def reproduce(
 ) -> Study: ...
 def compensate(
     setup: Setup,
-    path: Union[str, os.PathLike[str]],
-    stiffness: Union[ArrayLike, str, os.PathLike[str]],
+    path: Optional[Union[str, os.PathLike[str]]] = None,
+    stiffness: Optional[Union[ArrayLike, str, os.PathLike[str]]] = None,
     *,
+    program: Optional[Union[str, os.PathLike[str]]] = None,
+    process: Optional[Union[str, os.PathLike[str]]] = None,
+    output: Optional[Literal["gcode", "krl", "rapid", "ls"]] = None,
+    chord_tolerance_mm: float = 0.01,
     frame: Literal["base", "tool"] = "base",
     q0_deg: Optional[ArrayLike] = None,
     free_tool_axis: bool = False,
     max_step_deg: float = 2.0,
     tool_axis_range_deg: float = 90.0,
-) -> dict[str, Union[_Array, _Ints]]:
-    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance."""
+) -> dict[str, Any]:
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance; document (the command's JSON); program (text) with program=."""
+
+def process_force(
+    process: Union[str, os.PathLike[str]],
+    *,
+    peak_resolution_deg: Optional[float] = None,
+) -> dict[str, Any]:
+    """The document of `stiffid force --json`: process, peak_resolution_deg, operations (name, kind, mean_force_n, mean_moment_nm, peak_force_n)."""
+
+def read_program(
+    program: Union[str, os.PathLike[str]],
+    *,
+    chord_tolerance_mm: float = 0.01,
+) -> dict[str, Any]:
+    """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6)."""
 
 def deflection(
     setup: Setup,

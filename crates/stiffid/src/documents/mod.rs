@@ -11,8 +11,10 @@
 //! turns the same documents into dicts (and arrays where its API promises arrays), so the two
 //! front ends give the same document for the same call.
 
+pub mod compensate;
 pub mod evaluate;
 pub mod feasibility;
+pub mod force;
 pub mod identify;
 pub mod reproduce;
 pub mod select;

@@ -21,7 +21,9 @@
 //! Errors are [`crate::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
 //! never of one front end's options; each front end adds its own hints.
 
+pub mod compensate;
 pub mod evaluate;
+pub mod force;
 pub mod identify;
 pub mod reproduce;
 pub mod select;
@@ -52,6 +54,9 @@ pub enum WarningKind {
     /// Under load steps, some postures' zero-load offset, departure from a straight line or
     /// hysteresis exceeds what the tracker noise explains ([`crate::steps`]).
     LoadSteps,
+    /// Points of a machining program get no process force (plunges, rapid moves, blocks no
+    /// operation covers).
+    NoForce,
 }
 
 impl WarningKind {
@@ -64,6 +69,7 @@ impl WarningKind {
             WarningKind::Units => "units",
             WarningKind::Plausibility => "plausibility",
             WarningKind::LoadSteps => "load-steps",
+            WarningKind::NoForce => "no-force",
         }
     }
 }

@@ -1,5 +1,4 @@
-//! The process file (TOML): the operations of a machining job and, for G-code, where the workpiece
-//! is. Every field carries its unit in its name and is range-checked ([`limits`](self#limits)).
+//! The process file (TOML): the operations of a machining job. Every field carries its unit in its name and is range-checked ([`limits`](self#limits)).
 //!
 //! One operation at the top level:
 //! ```toml
@@ -21,22 +20,20 @@
 //! program by `tool_number = 2` (the G-code `T2` word), or `lines = [first, last]` (the lines of a
 //! robot program it covers). A drilling operation has `[tool] diameter_mm`, `[cut]
 //! feed_per_rev_mm` and `[coefficients] specific_energy_n_per_mm2, specific_thrust_n_per_mm2`.
-//! `[workpiece] base_from_part = { xyz_mm = [..], rpy_deg = [..] }` places the G-code's part frame
-//! in the robot base frame (fixed-axis roll-pitch-yaw as URDF).
+//! Where the workpiece sits is the cell's, not the process's: `[workpiece] base_from_part` is a
+//! field of the setup ([`crate::setup`]); a process file that has one is refused, saying so.
 //!
 //! # Limits
 //! `diameter_mm` (0, 200]; `flutes` 1..=12; `helix_deg` [-60, 60]; `feed_per_tooth_mm` and
 //! `feed_per_rev_mm` (0, 5]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
 //! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
 //! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most [`MAX_OPERATIONS`] operations;
-//! `lines` 1-based, first <= last; the workpiece within [`limits::LENGTH_MM`] and
-//! [`limits::ANGLE_DEG`].
+//! `lines` 1-based, first <= last.
 
 use super::drilling::Drilling;
 use super::milling::{Coefficients, Milling, Mode};
 use super::{presets, Operation, Process, Selector};
 use crate::limits::{self, Range};
-use crate::robot::file::TransformFile;
 use crate::{Error, Result};
 use serde::Deserialize;
 
@@ -56,7 +53,7 @@ const EDGE_SIGNED: Range = Range::new(-1e3, 1e3, "N/mm");
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileToml {
-    workpiece: Option<WorkpieceToml>,
+    workpiece: Option<toml::Value>,
     name: Option<String>,
     kind: Option<String>,
     tool_number: Option<u32>,
@@ -65,12 +62,6 @@ struct FileToml {
     cut: Option<CutToml>,
     coefficients: Option<CoefficientsToml>,
     operation: Option<Vec<OperationToml>>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct WorkpieceToml {
-    base_from_part: TransformFile,
 }
 
 #[derive(Deserialize)]
@@ -139,23 +130,12 @@ pub fn parse(text: &str, source_name: &str) -> Result<Process> {
 }
 
 fn process(file: FileToml) -> Result<Process> {
-    let base_from_part = match &file.workpiece {
-        None => None,
-        Some(w) => {
-            let t = &w.base_from_part;
-            limits::check(
-                "workpiece.base_from_part.xyz_mm",
-                &t.xyz_mm,
-                &limits::LENGTH_MM,
-            )?;
-            limits::check(
-                "workpiece.base_from_part.rpy_deg",
-                &t.rpy_deg,
-                &limits::ANGLE_DEG,
-            )?;
-            Some(t.isometry())
-        }
-    };
+    if file.workpiece.is_some() {
+        return Err(invalid(
+            "workpiece",
+            "the part frame belongs to the setup: move [workpiece] base_from_part into the setup file",
+        ));
+    }
     let tables = match (file.operation, file.tool, file.cut) {
         (Some(list), None, None) if file.coefficients.is_none() => list
             .into_iter()
@@ -191,10 +171,7 @@ fn process(file: FileToml) -> Result<Process> {
         .enumerate()
         .map(|(i, (prefix, t))| operation(i, &prefix, t))
         .collect::<Result<Vec<_>>>()?;
-    Ok(Process {
-        operations,
-        base_from_part,
-    })
+    Ok(Process { operations })
 }
 
 fn invalid(field: &str, message: &str) -> Error {

@@ -25,13 +25,11 @@ pub mod presets;
 use nalgebra::{Matrix3, Rotation3, Vector3, Vector6};
 use serde::Serialize;
 
-/// The operations of a machining job and the workpiece placement (a parsed process file).
+/// The operations of a machining job (a parsed process file).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Process {
     /// The operations, in file order.
     pub operations: Vec<Operation>,
-    /// The G-code part frame in the robot base frame (`[workpiece] base_from_part`), m.
-    pub base_from_part: Option<nalgebra::Isometry3<f64>>,
 }
 
 /// Which blocks of a program an operation covers.

@@ -37,6 +37,14 @@ struct SetupFile {
     robot_geometry: Option<cell::GeometryFile>,
     tracker: Option<cell::TrackerFile>,
     model: Option<ModelFile>,
+    workpiece: Option<WorkpieceFile>,
+}
+
+/// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WorkpieceFile {
+    base_from_part: TransformFile,
 }
 
 #[derive(Debug, Deserialize)]
@@ -308,6 +316,13 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
     }
     if let Some(t) = f.tracker {
         b = b.with_tracker(cell::tracker(t)?);
+    }
+    if let Some(w) = f.workpiece {
+        let t = &w.base_from_part;
+        let field = "workpiece.base_from_part";
+        limits::check(&format!("{field}.xyz_mm"), &t.xyz_mm, &limits::LENGTH_MM)?;
+        limits::check(&format!("{field}.rpy_deg"), &t.rpy_deg, &limits::ANGLE_DEG)?;
+        b = b.with_workpiece(t.isometry());
     }
     Ok(b)
 }

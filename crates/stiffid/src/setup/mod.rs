@@ -34,7 +34,13 @@
 //! loading_point_min_z_mm = 300.0
 //! anchor_below_loading_point = true
 //! ```
-//! and optionally the physical cell, `[cell]`, `[robot_geometry]` and `[tracker]` (see [`Cell`]).
+//! and optionally the physical cell, `[cell]`, `[robot_geometry]` and `[tracker]` (see [`Cell`]),
+//! and where a G-code program's part frame sits in the robot base frame (for
+//! [`crate::machining`]):
+//! ```toml
+//! [workpiece]
+//! base_from_part = { xyz_mm = [1300, -300, 400], rpy_deg = [0, 0, 0] }
+//! ```
 //!
 //! In code, [`Setup::builder`] takes the same fields in SI units and checks them as the file's
 //! ([`SetupBuilder::build`]); [`parse`] reads the file through it.
@@ -55,7 +61,7 @@ use crate::model::{Model, Spring};
 use crate::robot::collision::CollisionGeometry;
 use crate::robot::Bodies;
 use crate::{Error, Result, Robot};
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 
 /// Points of the tool, in the flange frame, m.
 #[derive(Debug, Clone, PartialEq)]
@@ -153,6 +159,7 @@ pub struct Setup {
     /// The robot's shapes ([`Bodies::Shapes`]) if the cell uses them, else [`Bodies::Scaled`].
     shapes: Bodies,
     tracker: Option<Tracker>,
+    workpiece: Option<Isometry3<f64>>,
 }
 
 impl Setup {
@@ -179,6 +186,7 @@ impl Setup {
             link_radii: None,
             tool_radius: None,
             tracker: None,
+            workpiece: None,
         }
     }
 
@@ -205,6 +213,7 @@ impl Setup {
             link_radii: self.shapes().is_none().then_some(self.geometry.link_radii),
             tool_radius: Some(self.geometry.tool_radius),
             tracker: self.tracker.clone(),
+            workpiece: self.workpiece,
         }
     }
 
@@ -344,6 +353,11 @@ impl Setup {
         self.tracker.as_ref()
     }
 
+    /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
+    pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
+        self.workpiece.as_ref()
+    }
+
     /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm, if the setup gives a nominal
     /// stiffness.
     pub fn nominal_compliance(&self) -> Option<Vector6<f64>> {
@@ -408,6 +422,7 @@ pub struct SetupBuilder {
     link_radii: Option<[f64; 7]>,
     tool_radius: Option<f64>,
     tracker: Option<Tracker>,
+    workpiece: Option<Isometry3<f64>>,
 }
 
 impl SetupBuilder {
@@ -533,6 +548,13 @@ impl SetupBuilder {
         self
     }
 
+    /// A G-code program's part frame in the robot base frame, m (default none; its translation
+    /// within [`limits::LENGTH_MM`]).
+    pub fn with_workpiece(mut self, base_from_part: Isometry3<f64>) -> Self {
+        self.workpiece = Some(base_from_part);
+        self
+    }
+
     /// The setup, every field checked against [`crate::limits`] and the others.
     ///
     /// # Errors
@@ -605,6 +627,11 @@ impl SetupBuilder {
             tool_radius: self.tool_radius.unwrap_or(defaults.tool_radius),
         };
         cell::check_geometry(&geometry)?;
+        if let Some(w) = &self.workpiece {
+            let xyz = w.translation.vector;
+            let field = "workpiece.base_from_part.xyz_mm";
+            check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
+        }
         let tracker = self
             .tracker
             .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))
@@ -627,6 +654,7 @@ impl SetupBuilder {
             geometry,
             shapes,
             tracker,
+            workpiece: self.workpiece,
         })
     }
 }

@@ -296,8 +296,7 @@ fn process_file_errors_name_the_field() {
 #[test]
 fn several_operations_are_selected_by_tool_number_or_lines() {
     let text = format!(
-        "[workpiece]\nbase_from_part = {{ xyz_mm = [1000, 0, 400], rpy_deg = [0, 0, 90] }}\n\
-         [[operation]]\nname = \"rough\"\ntool_number = 1\n{}\n\
+        "[[operation]]\nname = \"rough\"\ntool_number = 1\n{}\n\
          [[operation]]\nname = \"drill\"\nkind = \"drilling\"\nlines = [10, 20]\n[operation.tool]\n\
          diameter_mm = 8\n[operation.cut]\nfeed_per_rev_mm = 0.15\n[operation.coefficients]\n\
          specific_energy_n_per_mm2 = 700\nspecific_thrust_n_per_mm2 = 900\n",
@@ -310,11 +309,11 @@ fn several_operations_are_selected_by_tool_number_or_lines() {
     assert_eq!(process.operations.len(), 2);
     assert_eq!(process.operations[0].selector.tool_number, Some(1));
     assert_eq!(process.operations[1].selector.lines, Some((10, 20)));
-    let t = process.base_from_part.unwrap();
-    assert_relative_eq!(
-        t.translation.vector,
-        Vector3::new(1.0, 0.0, 0.4),
-        epsilon = 1e-15
+    let moved = format!("[workpiece]\nbase_from_part = {{ xyz_mm = [1000, 0, 400] }}\n{text}");
+    let e = file::parse(&moved, "p.toml").unwrap_err().to_string();
+    assert!(
+        e.contains("p.toml: workpiece") && e.contains("setup"),
+        "{e}"
     );
     let e = file::parse(&text.replace("[10, 20]", "[20, 10]"), "p.toml").unwrap_err();
     assert!(e.to_string().contains("operation[2].lines"), "{e}");

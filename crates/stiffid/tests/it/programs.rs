@@ -224,12 +224,18 @@ fn malformed_gcode_is_refused_naming_the_line() {
     ));
 }
 
-const PROCESS: &str = "[workpiece]\nbase_from_part = { xyz_mm = [1300, -700, 400], rpy_deg = [0, 0, 0] }\n\
-    [tool]\ndiameter_mm = 20\nflutes = 3\nhelix_deg = 30\n[cut]\nfeed_per_tooth_mm = 0.1\n\
+const PROCESS: &str = "[tool]\ndiameter_mm = 20\nflutes = 3\nhelix_deg = 30\n[cut]\nfeed_per_tooth_mm = 0.1\n\
     axial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n[coefficients]\npreset = \"al7075-t6\"\n";
 
+/// The FANUC example setup with the part frame at (1300, -700, 400) mm in the base frame.
 fn fanuc() -> (stiffid::Setup, Compliance) {
-    let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let part = Isometry3::translation(1.3, -0.7, 0.4);
+    let s = setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_builder()
+        .with_workpiece(part)
+        .build()
+        .unwrap();
     let h = s.nominal_compliance().unwrap();
     (
         s,
@@ -336,7 +342,7 @@ fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_progra
         panic!()
     };
     assert_eq!(again.points.len(), g.points.len());
-    let part = process.base_from_part.unwrap();
+    let part = *s.workpiece().unwrap();
     for (r, p) in report.results.iter().zip(&again.points) {
         let sent = tool_pose(&s.robot().frames(&r.q_compensated), &s.tool().tcp);
         let expected = part.inverse() * Point3::from(sent.translation.vector);

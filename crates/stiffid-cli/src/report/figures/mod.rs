@@ -2,6 +2,7 @@
 
 pub mod criteria;
 pub mod deviation;
+pub mod machining;
 pub mod path;
 pub mod postures;
 pub mod table;

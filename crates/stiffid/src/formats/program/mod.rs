@@ -19,6 +19,7 @@
 //! [`JointProgram::write`] replaces the six numbers of each target whose value changed (with
 //! [`DECIMALS`] decimals) and nothing else.
 
+pub mod generate;
 pub mod krl;
 pub mod ls;
 pub mod rapid;

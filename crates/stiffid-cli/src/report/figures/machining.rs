@@ -1,0 +1,173 @@
+//! The figures of `stiffid compensate --program --report`: the process force along the path and
+//! each program segment's deflection before and after compensation.
+
+use super::{colour, failed, render, short, Figure, Plot};
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use stiffid::compensate::Compensated;
+use stiffid::documents::compensate::SegmentDocument;
+
+struct Force<'a>(&'a [(usize, Compensated)]);
+
+/// The figure `force`: the process force on the tool at the points of `sample` (0-based index,
+/// result).
+pub fn force(sample: &[(usize, Compensated)]) -> Result<Figure> {
+    render(
+        "force",
+        "The process force on the tool along the path, base frame, N: its length (black) and its \
+         x, y, z components (colours), from the process file's operations turned along the path's \
+         own feed direction. Zero where nothing cuts (rapid moves, plunges, blocks no operation \
+         covers).",
+        &Force(sample),
+    )
+}
+
+impl Plot for Force<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1100, 460)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let r = self.0;
+        let f = |c: &Compensated| c.wrench.fixed_rows::<3>(0).into_owned();
+        let hi = r
+            .iter()
+            .map(|(_, c)| f(c).norm())
+            .fold(0.0, f64::max)
+            .max(1.0)
+            * 1.1;
+        let n = r.last().map_or(1, |(i, _)| i + 1) as f64;
+        let mut chart = ChartBuilder::on(root)
+            .caption("Process force along the path", ("sans-serif", 22))
+            .margin(14)
+            .x_label_area_size(40)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0.5..n + 0.5, -hi..hi)
+            .map_err(failed)?;
+        chart
+            .configure_mesh()
+            .x_desc("path point")
+            .y_desc("force, N")
+            .y_label_formatter(&|y| short(*y))
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .label_style(("sans-serif", 14))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(failed)?;
+        let line = |g: &dyn Fn(&Compensated) -> f64| -> Vec<(f64, f64)> {
+            r.iter().map(|(i, c)| (*i as f64 + 1.0, g(c))).collect()
+        };
+        for (k, name) in ["fx", "fy", "fz"].iter().enumerate() {
+            let style = ShapeStyle::from(colour(k + 1)).stroke_width(1);
+            chart
+                .draw_series(LineSeries::new(line(&|c| f(c)[k]), style))
+                .map_err(failed)?
+                .label(*name)
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
+        }
+        let style = ShapeStyle::from(BLACK).stroke_width(2);
+        chart
+            .draw_series(LineSeries::new(line(&|c| f(c).norm()), style))
+            .map_err(failed)?
+            .label("|f|")
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(failed)?;
+        Ok(())
+    }
+}
+
+struct Segments<'a>(&'a [SegmentDocument]);
+
+/// The figure `segments`: each program segment's largest deflection before and after
+/// compensation.
+pub fn segments(segments: &[SegmentDocument]) -> Result<Figure> {
+    render(
+        "segments",
+        "The largest TCP deflection of each program segment (a program line: a G-code block with \
+         its arc points, a robot program's target), mm. Black: before compensation, under the \
+         process force. Blue: after, the residual of the compensated targets (at zero on this \
+         scale). Grey: 2 standard deviations of the deflection from the compliance covariance \
+         (what the stiffness's uncertainty leaves after compensation), where the stiffness file \
+         has one.",
+        &Segments(segments),
+    )
+}
+
+impl Plot for Segments<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1100, 460)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let s = self.0;
+        let std = |g: &SegmentDocument| g.deflection_std_mm.map_or(0.0, |v| 2.0 * v);
+        let hi = s
+            .iter()
+            .map(|g| g.deflection_before_mm.max(std(g)))
+            .fold(0.0, f64::max)
+            .max(1e-6)
+            * 1.1;
+        let n = s.len() as f64;
+        let mut chart = ChartBuilder::on(root)
+            .caption("Deflection per program segment", ("sans-serif", 22))
+            .margin(14)
+            .x_label_area_size(40)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0.5..n + 0.5, 0.0..hi)
+            .map_err(failed)?;
+        let lines: Vec<u64> = s.iter().map(|g| g.line).collect();
+        chart
+            .configure_mesh()
+            .x_desc("segment (program line)")
+            .y_desc("largest |d|, mm")
+            .y_label_formatter(&|y| short(*y))
+            .x_label_formatter(&|x| {
+                let k = x.round() as usize;
+                lines
+                    .get(k.wrapping_sub(1))
+                    .map_or(String::new(), u64::to_string)
+            })
+            .label_style(("sans-serif", 14))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(failed)?;
+        let points = |g: &dyn Fn(&SegmentDocument) -> f64| -> Vec<(f64, f64)> {
+            s.iter()
+                .enumerate()
+                .map(|(k, v)| (k as f64 + 1.0, g(v)))
+                .collect()
+        };
+        if s.iter().any(|g| g.deflection_std_mm.is_some()) {
+            let style = ShapeStyle::from(BLACK.mix(0.4)).stroke_width(1);
+            chart
+                .draw_series(DashedLineSeries::new(points(&std), 5, 4, style))
+                .map_err(failed)?;
+        }
+        for (g, c) in [
+            (
+                &(|v: &SegmentDocument| v.deflection_before_mm) as &dyn Fn(&SegmentDocument) -> f64,
+                BLACK,
+            ),
+            (&|v: &SegmentDocument| v.deflection_after_mm, colour(2)),
+        ] {
+            let style = ShapeStyle::from(c).stroke_width(2);
+            chart
+                .draw_series(LineSeries::new(points(g), style))
+                .map_err(failed)?;
+            chart
+                .draw_series(
+                    points(g)
+                        .into_iter()
+                        .map(|p| Circle::new(p, 3, style.filled())),
+                )
+                .map_err(failed)?;
+        }
+        Ok(())
+    }
+}

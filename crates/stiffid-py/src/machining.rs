@@ -1,0 +1,94 @@
+//! `stiffid.process_force` and `stiffid.read_program`: the process forces of a process file
+//! ([`stiffid::jobs::force`]) and the path of a machining program
+//! ([`stiffid::jobs::compensate::read_program`]), as the command reads them.
+
+use crate::arrays;
+use crate::documents::to_python;
+use crate::error::{self, raise};
+use nalgebra::Vector6;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use stiffid::documents::force::Document;
+use stiffid::formats::gcode::Motion;
+use stiffid::jobs::{compensate, force};
+use stiffid::machining::{Language, Program};
+use stiffid::process::file;
+
+/// The mean cutting force of every operation of the process file ``process`` (TOML, the format
+/// of ``stiffid force --process``), over one revolution, in the feed frame ``[feed, normal,
+/// axial]`` (Altintas's linear edge-force model for milling, a specific-energy model for
+/// drilling); with ``peak_resolution_deg`` (0.01 to 10) also the milling peak over a revolution
+/// on a grid of spindle angles that far apart. Returns the document of ``stiffid force --json``:
+/// ``process``, ``peak_resolution_deg`` and ``operations``, each with ``name``, ``kind``,
+/// ``mean_force_n``, ``mean_moment_nm`` and, when asked, ``peak_force_n``.
+#[pyfunction]
+#[pyo3(signature = (process, *, peak_resolution_deg=None))]
+pub fn process_force<'py>(
+    py: Python<'py>,
+    process: PathBuf,
+    peak_resolution_deg: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let name = process.display().to_string();
+    let parsed = file::parse(&error::read(&process)?, &name).map_err(raise)?;
+    let request = force::Request {
+        name,
+        process: &parsed,
+        peak_resolution_deg,
+    };
+    let report = force::run(&request).map_err(raise)?;
+    to_python(py, &Document::new(&report), &[])
+}
+
+/// The path of the machining program ``program`` as ``stiffid compensate --program`` reads it:
+/// G-code (``.nc .ngc .gcode .tap .cnc .g``; arcs split into chords of at most
+/// ``chord_tolerance_mm`` sagitta), KUKA KRL (``.src .dat``), ABB RAPID (``.mod .modx .prg``) or
+/// FANUC LS (``.ls``) joint targets. Returns a dict: ``language`` (``"gcode"``, ``"krl"``,
+/// ``"rapid"`` or ``"ls"``), ``line`` (``(n,)``, ``int64``: each point's line); for G-code
+/// ``position_mm`` (``(n, 3)``, part frame), ``rapid`` (``(n,)`` bool: a ``G0`` move),
+/// ``tool_number`` and ``operation`` (lists, ``None`` where none is in force); for a robot
+/// program ``q_deg`` (``(n, 6)``, the joint targets' axis angles).
+#[pyfunction]
+#[pyo3(signature = (program, *, chord_tolerance_mm=0.01))]
+pub fn read_program<'py>(
+    py: Python<'py>,
+    program: PathBuf,
+    chord_tolerance_mm: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let name = program.display().to_string();
+    let language = Language::of_file(&name).map_err(raise)?;
+    let text = error::read(&program)?;
+    let read = compensate::read_program(&name, &text, language, chord_tolerance_mm * 1e-3)
+        .map_err(raise)?;
+    let out = PyDict::new(py);
+    out.set_item("language", language.name())?;
+    match &read {
+        Program::GCode(g) => {
+            out.set_item(
+                "line",
+                arrays::integers(py, g.points.iter().map(|p| p.line)),
+            )?;
+            let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+            out.set_item("position_mm", arrays::millimetres(py, &positions))?;
+            let rapid: Vec<bool> = g.points.iter().map(|p| p.motion == Motion::Rapid).collect();
+            out.set_item("rapid", numpy::PyArray1::from_vec(py, rapid))?;
+            let tools: Vec<Option<u32>> = g.points.iter().map(|p| p.tool_number).collect();
+            out.set_item("tool_number", tools)?;
+            let ops: Vec<Option<String>> = g.points.iter().map(|p| p.operation.clone()).collect();
+            out.set_item("operation", ops)?;
+        }
+        Program::Robot(r) => {
+            out.set_item(
+                "line",
+                arrays::integers(py, r.targets.iter().map(|t| t.line)),
+            )?;
+            let q: Vec<Vector6<f64>> = r
+                .targets
+                .iter()
+                .map(|t| Vector6::from(t.q_deg).map(f64::to_radians))
+                .collect();
+            out.set_item("q_deg", arrays::degrees(py, &q))?;
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,61 @@
+"""process_force, read_program and compensate(program=..., process=...) against the command: the
+same jobs, so the same documents and the same compensated program."""
+
+import numpy as np
+import pytest
+
+import stiffid
+from conftest import REPO
+
+MILLING = REPO / "examples" / "milling"
+POCKET = MILLING / "pocket.nc"
+PROCESS = MILLING / "aluminium.toml"
+SETUP = MILLING / "fanuc-milling.toml"
+STIFFNESS = MILLING / "stiffness.json"
+
+
+def test_process_force_is_the_commands_document(cli):
+    mine = stiffid.process_force(PROCESS, peak_resolution_deg=1.0)
+    theirs = cli("force", "--process", PROCESS, "--peak-resolution-deg", "1", "--json")
+    assert mine == theirs
+    (op,) = mine["operations"]
+    # Down milling: the normal force dominates, the feed force is smaller and positive.
+    assert op["mean_force_n"][1] > 200 and 0 < op["mean_force_n"][0] < op["mean_force_n"][1]
+    with pytest.raises(stiffid.InputError, match=r"peak_resolution_deg: 20: expected"):
+        stiffid.process_force(PROCESS, peak_resolution_deg=20.0)
+
+
+def test_read_program_reads_the_pocket_as_the_command_does(cli, tmp_path):
+    read = stiffid.read_program(POCKET)
+    assert read["language"] == "gcode"
+    theirs = cli("compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--program", POCKET,
+                 "--process", PROCESS, "--out", tmp_path / "p.nc", "--json")["points"]
+    assert read["line"].tolist() == [p["line"] for p in theirs]
+    # The corner arcs lie on their circles: the first corner's centre is (130, -80), radius 20.
+    corner = read["position_mm"][(read["position_mm"][:, 0] > 130) & (read["position_mm"][:, 1] < -80)]
+    radii = np.hypot(corner[:, 0] - 130, corner[:, 1] + 80)
+    np.testing.assert_allclose(radii, 20, atol=1e-9)
+    assert read["rapid"][0] and not read["rapid"][1:-1].any()
+    with pytest.raises(stiffid.InputError, match=r"expected a program ending in"):
+        stiffid.read_program(PROCESS)
+
+
+@pytest.mark.parametrize("output", [None, "ls"])
+def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
+    setup = stiffid.Setup.from_file(SETUP)
+    out = tmp_path / ("POCKET.ls" if output else "pocket.nc")
+    theirs = cli("compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--program", POCKET,
+                 "--process", PROCESS, "--out", out, "--json")
+    with pytest.warns(UserWarning, match="plunge"):
+        mine = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output=output)
+    assert mine["program"] == out.read_text()
+    document = mine["document"]
+    for key in ["setup", "stiffness", "path", "out"]:
+        document.pop(key), theirs.pop(key)
+    document["program"].pop("out"), theirs["program"].pop("out")
+    document["program"].pop("process"), theirs["program"].pop("process")
+    assert document == theirs
+    force = np.linalg.norm(mine["force_n"], axis=1)
+    assert (force > 200).sum() >= len(force) - 4
+    with pytest.raises(stiffid.InputError, match=r"process"):
+        stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET)
