@@ -4,24 +4,24 @@
 
 use crate::arrays;
 use crate::documents::{to_python, warn};
-use crate::error::{self, raise};
-use crate::measure::stiffness_and_covariance;
+use crate::error::{self, raise, raise_in};
 use crate::setup::Setup;
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
-use stiffid::compensate::{Compensated, Compliance, FreeToolAxis, Options, PathPoint};
+use stiffid::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
 use stiffid::deflection::Frame;
 use stiffid::documents::compensate::{values, Document, Names, Row};
 use stiffid::jobs::compensate::{self as job, Input, Request};
 use stiffid::machining::Language;
 use stiffid::process::file;
 
-/// Compensates a machining path with the joint stiffness ``stiffness``: six numbers (Nm/rad) or
-/// the path of a stiffness JSON file as ``stiffid identify --out`` writes it (its
-/// ``compliance_covariance_rad2_per_nm2``, when present, gives the standard deviations); the same
-/// job as ``stiffid compensate``. The path is either the CSV file ``path`` (the format of
+/// Compensates a machining path with the stiffness ``stiffness`` of every parameter of the setup's
+/// model: one number per parameter (the six drives, Nm/rad, then the virtual springs, Nm/rad or
+/// N/mm) or the path of a stiffness JSON file as ``stiffid identify --out`` writes it (its
+/// covariance, when present, gives the standard deviations); the same job as ``stiffid
+/// compensate``. The path is either the CSV file ``path`` (the format of
 /// ``stiffid compensate --path``: axis angles ``q1_deg..q6_deg`` or a TCP pose ``x_mm..rz_deg``
 /// per line, and the wrench ``fx_n..mz_nm`` at the TCP, in ``frame`` ``"base"`` or ``"tool"``
 /// unless the file says), or the machining program ``program`` (G-code, KUKA KRL ``.src``, ABB
@@ -61,13 +61,9 @@ pub fn compensate<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let stiffness = stiffness.ok_or_else(|| {
-        error::value("stiffness: expected six numbers (Nm/rad) or a stiffness file")
+        error::value("stiffness: expected one stiffness per parameter of the setup's model or a stiffness file")
     })?;
-    let (k, covariance) = stiffness_and_covariance(stiffness)?;
-    let compliance = Compliance {
-        h: k.map(|v| 1.0 / v),
-        covariance,
-    };
+    let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
     let options = options(s, q0_deg, free_tool_axis, max_step_deg, tool_axis_range_deg)?;
     let (name, file_path) = match (&path, &program) {

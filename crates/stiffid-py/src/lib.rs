@@ -17,6 +17,7 @@ mod machining;
 mod measure;
 mod robot;
 mod setup;
+mod stiffness;
 mod study;
 
 use pyo3::prelude::*;

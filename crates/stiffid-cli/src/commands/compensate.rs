@@ -112,11 +112,7 @@ impl Sinks {
 /// program, the report, and the text or JSON.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let file = args.stiffness.load()?;
-    let compliance = Compliance {
-        h: file.stiffness().map(|k| 1.0 / k),
-        covariance: file.covariance(),
-    };
+    let compliance = args.stiffness.load(&setup)?;
     let options = options(args, &setup)?;
     let (name, input_path) = match (&args.path, &args.program) {
         (Some(p), _) | (None, Some(p)) => (p.display().to_string(), p.clone()),

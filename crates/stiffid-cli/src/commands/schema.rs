@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{calibrate_cell, kinematics, predict, register, validate};
+use super::{calibrate_cell, kinematics, predict, register};
 use crate::output::{self, json};
 use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
@@ -68,7 +68,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "predict" => closed::<predict::PredictJson>(),
         "identify" => closed::<stiffid::documents::identify::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),
-        "validate" => closed::<validate::ValidationJson>(),
+        "validate" => closed::<stiffid::documents::validate::Document>(),
         "compensate" => closed::<stiffid::documents::compensate::Document>(),
         "simulate" => closed::<stiffid::documents::simulate::Document>(),
         "reproduce" => closed::<stiffid::documents::reproduce::Summary<'static>>(),

@@ -16,9 +16,11 @@ pub mod evaluate;
 pub mod feasibility;
 pub mod force;
 pub mod identify;
+pub mod parameters;
 pub mod reproduce;
 pub mod select;
 pub mod simulate;
+pub mod validate;
 
 /// `v` if finite, else `None`.
 pub fn finite(v: f64) -> Option<f64> {

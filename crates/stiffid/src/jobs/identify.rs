@@ -274,7 +274,7 @@ impl How {
 }
 
 /// `error` about the data named `name`.
-fn in_data(name: &str, error: Error) -> Error {
+pub(crate) fn in_data(name: &str, error: Error) -> Error {
     Error::Input {
         source_name: name.to_string(),
         error: Box::new(error),
@@ -312,12 +312,29 @@ fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> 
             offsets: None,
         });
     }
-    let text = read_text(name, source)?;
+    let (file, origin) = read_file(setup, name, source)?;
+    let (id, cv, offsets) =
+        fit(setup, how, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
+    Ok(Found {
+        identification: id,
+        origin,
+        cross_validation: cv,
+        load_steps: None,
+        offsets,
+    })
+}
+
+/// A whole measurement file read, parsed and turned into the base frame, and where each
+/// measurement came from.
+pub(crate) fn read_file<R: Read>(
+    setup: &Setup,
+    name: &str,
+    reader: R,
+) -> Result<(measurements::MeasurementFile, Origin)> {
+    let text = read_text(name, reader)?;
     let mut file = measurements::parse(&text).map_err(|e| in_data(name, e))?;
     drop(text);
     file.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let (id, cv, offsets) =
-        fit(setup, how, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
     let columns = [
         file.layout.force_columns(),
         file.layout.displacement_columns(),
@@ -327,16 +344,10 @@ fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> 
         file.measurements.iter().map(|m| m.posture).collect(),
         file.measurements.iter().map(|m| m.point).collect(),
         posture_angles(&file.measurements),
-        Some(file.lines),
+        Some(file.lines.clone()),
         columns,
     );
-    Ok(Found {
-        identification: id,
-        origin,
-        cross_validation: cv,
-        load_steps: None,
-        offsets,
-    })
+    Ok((file, origin))
 }
 
 /// Whether the header of the text `source` starts with (its first line that is neither blank nor
@@ -441,7 +452,7 @@ fn fit(
 }
 
 /// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
-fn arrays_origin(measurements: &[Measurement]) -> Origin {
+pub(crate) fn arrays_origin(measurements: &[Measurement]) -> Origin {
     let postures = measurements.iter().map(|m| m.posture).collect::<Vec<_>>();
     let count = postures.iter().max().map_or(0, |p| p + 1);
     Origin::new(

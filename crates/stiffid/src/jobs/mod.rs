@@ -28,6 +28,7 @@ pub mod identify;
 pub mod reproduce;
 pub mod select;
 pub mod simulate;
+pub mod validate;
 
 use serde::Serialize;
 

@@ -236,14 +236,8 @@ fn fanuc() -> (stiffid::Setup, Compliance) {
         .with_workpiece(part)
         .build()
         .unwrap();
-    let h = s.nominal_compliance().unwrap();
-    (
-        s,
-        Compliance {
-            h,
-            covariance: None,
-        },
-    )
+    let c = Compliance::nominal(&s, "test").unwrap();
+    (s, c)
 }
 
 /// An LS program whose targets reach a square in the plane z = 400 mm.
