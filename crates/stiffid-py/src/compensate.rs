@@ -4,7 +4,7 @@
 
 use crate::arrays;
 use crate::documents::{to_python, warn};
-use crate::error::{self, raise, raise_in};
+use crate::error::{self, raise};
 use crate::setup::Setup;
 use nalgebra::Vector6;
 use pyo3::prelude::*;

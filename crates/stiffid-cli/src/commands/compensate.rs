@@ -10,7 +10,7 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid::compensate::{Compensated, Compliance, FreeToolAxis, Options, PathPoint};
+use stiffid::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
 use stiffid::deflection::Frame;
 use stiffid::documents::compensate::{csv_line, header, values, Document, Names, GENERATOR};
 use stiffid::jobs::compensate::{self as job, Input, Report, Request};

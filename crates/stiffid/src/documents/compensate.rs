@@ -212,7 +212,7 @@ impl Document {
             path: report.input.clone(),
             out: names.out.clone(),
             springs: report.springs,
-            stiffness_nm_per_rad: report.compliance.h.map(|h| 1.0 / h).into(),
+            stiffness_nm_per_rad: report.compliance.drives_h().map(|h| 1.0 / h).into(),
             has_covariance: report.compliance.covariance.is_some(),
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
                 max_step_deg: f.max_step.to_degrees(),
