@@ -33,17 +33,40 @@ fn file_id(_meta: &std::fs::Metadata) -> Option<FileId> {
     None
 }
 
+/// The directories of `--package-path`, where a URDF's `package://` meshes are looked for before
+/// a setup's `package_paths`.
+static PACKAGE_PATHS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Sets the directories of `--package-path` (once, from the command line).
+pub fn set_package_paths(paths: Vec<PathBuf>) {
+    *PACKAGE_PATHS.lock().unwrap_or_else(|e| e.into_inner()) = paths;
+}
+
+/// Calls `f` with how a URDF's meshes are read: [`bytes`], `--package-path`.
+fn with_meshes<T>(f: impl FnOnce(&reference::Meshes) -> T) -> T {
+    let paths = PACKAGE_PATHS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .clone();
+    f(&reference::Meshes {
+        read: &bytes,
+        package_paths: &paths,
+    })
+}
+
 /// A robot: a robot `.toml` or `.urdf` file if one exists at `arg`, else the preset named `arg`
-/// (`tip`: URDF tip link; `stiffid::formats::reference::robot`). The error names what was tried.
+/// (`tip`: URDF tip link; `stiffid::formats::reference::robot_with_meshes`, a URDF's collision
+/// meshes read). The error names what was tried.
 pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
-    reference::robot(arg, tip, existing)
+    with_meshes(|m| reference::robot_with_meshes(arg, tip, existing, m))
 }
 
 /// A setup from a setup `.toml` file if one exists at `arg`, else the built-in setup named
-/// `arg` (`stiffid::formats::reference::setup`). A robot file named in a setup file is looked for
-/// relative to the setup file.
+/// `arg` (`stiffid::formats::reference::setup_with_meshes`). A robot file named in a setup file
+/// is looked for relative to the setup file, a URDF's meshes relative to the URDF or in the
+/// package paths.
 pub fn setup(arg: &str) -> Result<Setup> {
-    reference::setup(arg, existing).map(plausible)
+    with_meshes(|m| reference::setup_with_meshes(arg, existing, m)).map(plausible)
 }
 
 /// `setup`, its plausibility warnings ([`stiffid::setup::plausibility`]) printed on stderr.
@@ -57,7 +80,26 @@ fn plausible(setup: Setup) -> Setup {
 /// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
 /// file it names is looked for).
 pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
-    reference::setup_text(text, source_name, dir, existing).map(plausible)
+    with_meshes(|m| reference::setup_text_with_meshes(text, source_name, dir, existing, m))
+        .map(plausible)
+}
+
+/// The bytes of the file at `path` (a URDF's mesh), `None` if nothing exists there: at most
+/// [`limits::MAX_INPUT_BYTES`], remembered as an input; the error names the file.
+fn bytes(path: &Path) -> Option<stiffid::Result<Vec<u8>>> {
+    use std::io::Read;
+    if !path.exists() {
+        return None;
+    }
+    let failed = |e: String| stiffid::Error::Parse {
+        source_name: path.display().to_string(),
+        message: e,
+    };
+    let mut data = Vec::new();
+    let read = open(path)
+        .map_err(|e| failed(format!("{e:#}")))
+        .and_then(|mut f| f.read_to_end(&mut data).map_err(|e| failed(e.to_string())));
+    Some(read.map(|_| data))
 }
 
 /// The text of the file at `path` ([`read`]), `None` if nothing exists there.

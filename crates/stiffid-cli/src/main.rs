@@ -21,6 +21,11 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// A directory holding ROS packages: a URDF's `package://NAME/PATH` meshes are looked for as
+    /// DIR/NAME/PATH, in these directories (repeat the option, at most 64) before a setup's
+    /// `package_paths`.
+    #[arg(long = "package-path", global = true, value_name = "DIR")]
+    package_path: Vec<std::path::PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -83,6 +88,14 @@ fn main() -> ExitCode {
             };
         }
     };
+    if cli.package_path.len() > stiffid::setup::MAX_PACKAGE_PATHS {
+        return fail(&format!(
+            "--package-path: {} given, at most {}",
+            cli.package_path.len(),
+            stiffid::setup::MAX_PACKAGE_PATHS
+        ));
+    }
+    load::set_package_paths(cli.package_path);
     let result = match cli.command {
         Command::Robots => commands::robots::run(),
         Command::Kinematics(args) => commands::kinematics::run(&args),

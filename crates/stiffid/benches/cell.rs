@@ -1,6 +1,10 @@
 //! The cell: the exact feasibility check of one posture, and the default constrained global
 //! search (`relative-a`, 6 postures), on the paper setup with a floor at z = 0, 50 mm clearance,
-//! default radii and a tracker at (3000, -2000, 1500) mm.
+//! default radii and a tracker at (3000, -2000, 1500) mm; capsule against mesh bodies per
+//! evaluation on a generated robot with collision meshes (`tests/support/mesh_robot.rs`).
+
+#[path = "../tests/support/mesh_robot.rs"]
+mod mesh_robot;
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
@@ -29,6 +33,62 @@ fn feasibility(c: &mut Bench) {
     });
 }
 
+/// The mesh robot's cell setup with its hulls (48-sided prisms: 96 hull vertices a link).
+fn mesh_cell() -> stiffid::Setup {
+    use std::path::Path;
+    let files = mesh_robot::files(48);
+    let text = |p: &Path| {
+        Some(Ok::<_, stiffid::Error>(
+            String::from_utf8(files.get(p)?.clone()).unwrap(),
+        ))
+    };
+    let bytes = |p: &Path| files.get(p).cloned().map(Ok);
+    let meshes = stiffid::formats::reference::Meshes {
+        read: &bytes,
+        package_paths: &[],
+    };
+    let toml = mesh_robot::setup_toml();
+    stiffid::formats::reference::setup_text_with_meshes(
+        &toml,
+        "cell.toml",
+        Path::new(""),
+        text,
+        &meshes,
+    )
+    .unwrap()
+}
+
+/// One posture's margins (what a constrained search evaluates: the broad phase on) and its exact
+/// feasibility, with the robot's hulls and with its default capsules, at 16 postures.
+fn bodies(c: &mut Bench) {
+    let hulls = mesh_cell();
+    let radii = hulls.geometry().link_radii;
+    let capsules = hulls.to_builder().with_link_radii(radii).build().unwrap();
+    let postures = design::random_group(&hulls, 16, 3);
+    for (name, setup) in [("capsules", &capsules), ("hulls", &hulls)] {
+        let checker = Checker::new(setup);
+        c.bench_function(&format!("cell/bodies/margins/{name}/16-postures"), |b| {
+            b.iter(|| {
+                postures
+                    .iter()
+                    .map(|q| checker.margins(black_box(q)).len())
+                    .sum::<usize>()
+            })
+        });
+        c.bench_function(
+            &format!("cell/bodies/feasibility/{name}/16-postures"),
+            |b| {
+                b.iter(|| {
+                    postures
+                        .iter()
+                        .filter(|q| checker.feasibility(black_box(q)).feasible())
+                        .count()
+                })
+            },
+        );
+    }
+}
+
 fn search(c: &mut Bench) {
     let setup = paper_cell();
     let options = SearchOptions::default();
@@ -40,5 +100,5 @@ fn search(c: &mut Bench) {
     g.finish();
 }
 
-criterion_group!(benches, feasibility, search);
+criterion_group!(benches, feasibility, bodies, search);
 criterion_main!(benches);

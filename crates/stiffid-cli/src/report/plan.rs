@@ -197,6 +197,29 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
     figures.iter().find(|f| f.name == name)
 }
 
+/// What the cell's checks and the drawings take the robot's bodies to be.
+fn bodies_sentence(s: &stiffid::Setup) -> String {
+    let tool = s.geometry().tool_radius * 1e3;
+    match s.shapes() {
+        Some(g) => format!(
+            "The cell's checks and the drawings use the robot's own {} collision shapes (its URDF's, meshes as convex hulls) and a tool capsule of radius {tool:.0} mm.",
+            g.shapes.len()
+        ),
+        None => {
+            let radii: Vec<String> = s
+                .geometry()
+                .link_radii
+                .iter()
+                .map(|r| format!("{:.0}", r * 1e3))
+                .collect();
+            format!(
+                "The cell's checks and the drawings use capsules for the robot's bodies (radii {} mm for the base and links 1-6) and the tool (radius {tool:.0} mm).",
+                radii.join(", ")
+            )
+        }
+    }
+}
+
 /// The body of `plan.html`.
 fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     let s = plan.setup;
@@ -213,6 +236,9 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
         mm3(&s.load().anchor).join(", "),
         plan.criterion
     ));
+    if s.cell().is_some() || s.tracker().is_some() {
+        w.paragraph(&bodies_sentence(s));
+    }
     w.heading(2, "Predicted accuracy");
     w.paragraph("The predicted mean deviation rate |k_identified - k_true| / k_true of each joint (first order, `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)`) at the setup's noise levels, if every posture is measured as planned.");
     w.table(&accuracy(plan));

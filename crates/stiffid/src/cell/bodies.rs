@@ -1,9 +1,11 @@
-//! The robot and tool as capsules: segments with a radius.
+//! The robot and tool bodies of a posture: capsules (segments with a radius) along the chain, or
+//! the robot's own collision shapes ([`Setup::shapes`]) with the tool's capsule.
 
 use crate::kinematics::Frames;
+use crate::robot::collision::Shape;
 use crate::setup::{RobotGeometry, Setup, Tool};
 use crate::Robot;
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use std::fmt;
 
 /// A part of the robot that carries capsules.
@@ -53,6 +55,103 @@ pub struct Capsule {
     pub radius: f64,
 }
 
+/// A collision shape of the robot posed in the base frame (a URDF `<collision>` element).
+#[derive(Debug, Clone)]
+pub struct Solid {
+    /// The part it belongs to (the URDF link's body).
+    pub part: Part,
+    /// The shape, in its own frame.
+    pub shape: Shape,
+    /// Its pose, base frame, m.
+    pub pose: Isometry3<f64>,
+    /// A sphere holding it, base frame: centre and radius, m.
+    pub bound: (Vector3<f64>, f64),
+}
+
+/// One body of the robot or tool in a posture, base frame.
+#[derive(Debug, Clone)]
+pub enum Body {
+    /// A capsule (the tool's always; the robot's without collision shapes).
+    Capsule(Capsule),
+    /// A convex collision shape of the robot.
+    Solid(Solid),
+}
+
+impl Body {
+    /// The part it belongs to.
+    pub fn part(&self) -> Part {
+        match self {
+            Body::Capsule(c) => c.part,
+            Body::Solid(s) => s.part,
+        }
+    }
+
+    /// A sphere holding it, base frame: centre and radius, m (for the broad phase).
+    pub fn bound(&self) -> (Vector3<f64>, f64) {
+        match self {
+            Body::Capsule(c) => ((c.a + c.b) / 2.0, (c.b - c.a).norm() / 2.0 + c.radius),
+            Body::Solid(s) => s.bound,
+        }
+    }
+
+    /// The outline of its projection on the plane of the unit vectors `u` and `v` (base frame):
+    /// `n` points `(p . u, p . v)`, m, counter-clockwise, each the body's farthest point in a
+    /// direction `cos t u + sin t v` (its support point), `t = 2 pi k / n`: the convex outline
+    /// a drawing fills, true to scale.
+    pub fn outline(&self, u: &Vector3<f64>, v: &Vector3<f64>, n: usize) -> Vec<(f64, f64)> {
+        super::distance::with_parry(self, |shape, pose| {
+            let support = shape.as_support_map().expect("every body is convex");
+            (0..n)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / n as f64;
+                    let p = support.support_point(pose, &(u * t.cos() + v * t.sin()));
+                    (p.coords.dot(u), p.coords.dot(v))
+                })
+                .collect()
+        })
+    }
+
+    /// Whether it spans nothing along the chain: a capsule whose segment is a point.
+    pub(super) fn degenerate(&self) -> bool {
+        matches!(self, Body::Capsule(c) if c.a == c.b)
+    }
+}
+
+/// The bodies of the posture whose forward kinematics are `frames`, base frame, m: with the
+/// robot's collision shapes ([`Setup::shapes`]), each shape posed by its body's frame (the base,
+/// or joint frame i for link i) then the tool's capsule ([`capsules`]); else [`capsules`]. The same
+/// bodies in the same order in every posture. What the cell's checks and the drawings use.
+pub fn bodies(setup: &Setup, frames: &Frames) -> Vec<Body> {
+    let Some(g) = setup.shapes() else {
+        return capsules(setup, frames)
+            .into_iter()
+            .map(Body::Capsule)
+            .collect();
+    };
+    let base = setup.robot().base;
+    let mut out: Vec<Body> = g
+        .shapes
+        .iter()
+        .map(|s| {
+            let (part, frame) = match s.body {
+                0 => (Part::Base, base),
+                i => (Part::Link(i), frames.joints[i - 1]),
+            };
+            Body::Solid(Solid {
+                part,
+                shape: s.shape.clone(),
+                pose: frame * s.origin,
+                bound: (
+                    (frame * nalgebra::Point3::from(s.bound.0)).coords,
+                    s.bound.1,
+                ),
+            })
+        })
+        .collect();
+    out.push(Body::Capsule(tool_capsule(setup, frames)));
+    out
+}
+
 /// Points closer than this (m) are one point of a part's polyline.
 const SAME_POINT: f64 = 1e-9;
 
@@ -74,14 +173,20 @@ pub fn capsules(setup: &Setup, frames: &Frames) -> Vec<Capsule> {
     for (part, points) in polylines(frames) {
         push_polyline(&mut out, part, &points, g.link_radii[part.index()]);
     }
+    out.push(tool_capsule(setup, frames));
+    out
+}
+
+/// The tool's capsule: from the flange origin along the flange z axis to the tool point farthest
+/// along it, radius [`RobotGeometry::tool_radius`].
+fn tool_capsule(setup: &Setup, frames: &Frames) -> Capsule {
     let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(setup.tool())));
-    out.push(Capsule {
+    Capsule {
         part: Part::Tool,
         a: frames.flange.translation.vector,
         b: tip,
-        radius: g.tool_radius,
-    });
-    out
+        radius: setup.geometry().tool_radius,
+    }
 }
 
 /// The polyline of every robot part, base then links 1-6.

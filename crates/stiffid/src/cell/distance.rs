@@ -2,7 +2,8 @@
 //! dimforge's parry (segment-segment closest points; GJK/EPA for a capsule against a box), with
 //! their witness points for the distance's gradient.
 
-use super::bodies::Capsule;
+use super::bodies::{Body, Capsule};
+use crate::robot::collision::FAR;
 use crate::setup::Obstacle;
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::query;
@@ -77,9 +78,6 @@ pub(crate) fn capsule_floor_witness(c: &Capsule, floor_z: f64) -> (f64, Witness)
     (low.z - c.radius - floor_z, witness)
 }
 
-/// Distances beyond this (m) are not worked out: nothing in a robot cell is that far.
-const FAR: f64 = 1e4;
-
 /// Signed distance between a capsule and an axis-aligned box, m (parry's contact query, GJK
 /// outside and EPA for the penetration depth inside); at most 10 km.
 pub fn capsule_box(c: &Capsule, b: &Obstacle) -> f64 {
@@ -120,12 +118,7 @@ pub(crate) fn capsule_box_witness(c: &Capsule, b: &Obstacle) -> (f64, Option<Wit
 /// alternating projections (the segment point closest to the box point, the box point closest to
 /// the segment point: the box clamps exactly), which converge from there in a few rounds.
 fn refine_segment_box(c: &Capsule, b: &Obstacle, near: Vector3<f64>) -> Witness {
-    let axis = c.b - c.a;
-    let length2 = axis.norm_squared();
-    let on_segment = |p: &Vector3<f64>| match length2 > 0.0 {
-        true => c.a + axis * ((p - c.a).dot(&axis) / length2).clamp(0.0, 1.0),
-        false => c.a,
-    };
+    let on_segment = |p: &Vector3<f64>| closest_on_segment(c, p);
     let in_box = |p: &Vector3<f64>| p.zip_zip_map(&b.min, &b.max, |v, lo, hi| v.clamp(lo, hi));
     let mut s = on_segment(&near);
     let mut x = in_box(&s);
@@ -141,4 +134,115 @@ fn refine_segment_box(c: &Capsule, b: &Obstacle, near: Vector3<f64>) -> Witness 
     let d = x - s;
     let normal = d.try_normalize(0.0).unwrap_or_else(Vector3::zeros);
     Witness { a: s, b: x, normal }
+}
+
+/// The point of the segment of `c` closest to `p`.
+pub(crate) fn closest_on_segment(c: &Capsule, p: &Vector3<f64>) -> Vector3<f64> {
+    let axis = c.b - c.a;
+    let length2 = axis.norm_squared();
+    match length2 > 0.0 {
+        true => c.a + axis * ((p - c.a).dot(&axis) / length2).clamp(0.0, 1.0),
+        false => c.a,
+    }
+}
+
+/// Signed distance between two bodies, m (capsules by their segments, any other pair by parry's
+/// GJK, EPA inside); at most 10 km.
+pub fn body_body(a: &Body, b: &Body) -> f64 {
+    body_body_witness(a, b).0
+}
+
+/// [`body_body`] and its witness; `None` beyond 10 km.
+pub(crate) fn body_body_witness(a: &Body, b: &Body) -> (f64, Option<Witness>) {
+    if let (Body::Capsule(x), Body::Capsule(y)) = (a, b) {
+        let (d, w) = capsule_capsule_witness(x, y);
+        return (d, Some(w));
+    }
+    with_parry(a, |sa, pa| with_parry(b, |sb, pb| contact(pa, sa, pb, sb)))
+}
+
+/// Signed distance of a body above the floor plane `z = floor_z`, m.
+pub fn body_floor(b: &Body, floor_z: f64) -> f64 {
+    body_floor_witness(b, floor_z).0
+}
+
+/// [`body_floor`] and its witness: the body's lowest point (its support point downward), its
+/// foot on the floor, the normal pointing down.
+pub(crate) fn body_floor_witness(b: &Body, floor_z: f64) -> (f64, Witness) {
+    let s = match b {
+        Body::Capsule(c) => return capsule_floor_witness(c, floor_z),
+        Body::Solid(s) => s,
+    };
+    let (shape, fix) = s.shape.parry();
+    let down = -Vector3::z();
+    let low = shape
+        .as_support_map()
+        .expect("every collision shape is convex")
+        .support_point(&(s.pose * fix), &down)
+        .coords;
+    let witness = Witness {
+        a: low,
+        b: Vector3::new(low.x, low.y, floor_z),
+        normal: down,
+    };
+    (low.z - floor_z, witness)
+}
+
+/// Signed distance between a body and an axis-aligned box, m; at most 10 km.
+pub fn body_box(b: &Body, o: &Obstacle) -> f64 {
+    body_box_witness(b, o).0
+}
+
+/// [`body_box`] and its witness; `None` beyond 10 km.
+pub(crate) fn body_box_witness(b: &Body, o: &Obstacle) -> (f64, Option<Witness>) {
+    match b {
+        Body::Capsule(c) => capsule_box_witness(c, o),
+        Body::Solid(_) => {
+            let centre = Isometry3::translation(
+                (o.min.x + o.max.x) / 2.0,
+                (o.min.y + o.max.y) / 2.0,
+                (o.min.z + o.max.z) / 2.0,
+            );
+            let cuboid = shape::Cuboid::new((o.max - o.min) / 2.0);
+            with_parry(b, |s, p| contact(p, s, &centre, &cuboid))
+        }
+    }
+}
+
+/// Calls `f` with the body as parry takes it: a shape and its pose, base frame.
+pub(super) fn with_parry<R>(
+    b: &Body,
+    f: impl FnOnce(&dyn shape::Shape, &Isometry3<f64>) -> R,
+) -> R {
+    match b {
+        Body::Capsule(c) => {
+            let capsule = shape::Capsule::new(Point3::from(c.a), Point3::from(c.b), c.radius);
+            f(&capsule, &Isometry3::identity())
+        }
+        Body::Solid(s) => {
+            let (shape, fix) = s.shape.parry();
+            f(shape, &(s.pose * fix))
+        }
+    }
+}
+
+/// parry's contact query of two convex shapes (GJK apart, EPA inside; never its box-to-box
+/// shortcut, [`crate::robot::collision::distance`]): the signed distance and the witness.
+fn contact(
+    pa: &Isometry3<f64>,
+    sa: &dyn shape::Shape,
+    pb: &Isometry3<f64>,
+    sb: &dyn shape::Shape,
+) -> (f64, Option<Witness>) {
+    match query::contact(pa, sa, pb, sb, FAR) {
+        Ok(Some(c)) => {
+            let witness = Witness {
+                a: c.point1.coords,
+                b: c.point2.coords,
+                normal: c.normal1.into_inner(),
+            };
+            (c.dist, Some(witness))
+        }
+        _ => (FAR, None),
+    }
 }

@@ -1,8 +1,8 @@
 //! The checks a posture must pass in the cell, with the signed margin of every pair they test.
 
-use super::bodies::{capsules, Capsule, Part};
-use super::distance::capsule_floor_witness;
-use super::distance::{capsule_box_witness, capsule_capsule, capsule_capsule_witness};
+use super::bodies::{bodies, Body, Capsule, Part};
+use super::distance::{body_body, body_body_witness, body_box_witness, body_floor_witness};
+use super::distance::{capsule_box_witness, closest_on_segment, Witness};
 use super::motion::{part_carrier, Carrier, Deferred, MarginGradients, Margins};
 use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
@@ -261,7 +261,9 @@ impl<'a> Checker<'a> {
 
     /// The feasibility of posture `q` (axis angles, rad).
     pub fn feasibility(&self, q: &Vector6<f64>) -> Feasibility {
-        let margins = self.margins(q);
+        let mut exact = Margins::new(false, false);
+        self.collect(q, &mut exact);
+        let margins = exact.margins;
         let checks = self
             .kinds
             .iter()
@@ -302,21 +304,26 @@ impl<'a> Checker<'a> {
     }
 
     /// The signed margin of every pair every active check tests at posture `q` (axis angles,
-    /// rad), in [`Checker::kinds`] order; the same pairs in every posture.
+    /// rad), in [`Checker::kinds`] order; the same pairs in every posture. The broad phase: a
+    /// pair of bodies (or a body and an obstacle, the floor, the rope or a line of sight) whose
+    /// bounding spheres are more than [`FAR_MARGIN`] beyond what the check requires apart gets
+    /// the spheres' gap as its margin (a lower bound of its distance, never failing) instead of
+    /// the exact distance ([`Checker::feasibility`] works every distance out).
     pub fn margins(&self, q: &Vector6<f64>) -> Vec<Margin> {
-        let mut out = Margins::new(false);
+        let mut out = Margins::new(false, true);
         self.collect(q, &mut out);
         out.margins
     }
 
-    /// [`Checker::margins`] and what their gradients with respect to the six axis angles (m/rad,
+    /// [`Checker::margins`] (with its broad phase: a far pair's gradient is its spheres' gap's)
+    /// and what their gradients with respect to the six axis angles (m/rad,
     /// or rad/rad for angles) are worked out from, on demand ([`MarginGradients::gradient`]), so
     /// that a caller pays only for the gradients it uses: exact, from the witness points of each
     /// distance (the normal times the difference of the witness points' velocities) and the
     /// derivatives of the incidence angle and the heights. Where the closest points of a pair are
     /// not unique (a tie) the gradient is one of the one-sided ones.
     pub(crate) fn margins_and_gradients(&self, q: &Vector6<f64>) -> (Vec<Margin>, MarginGradients) {
-        let mut out = Margins::new(true);
+        let mut out = Margins::new(true, true);
         self.collect(q, &mut out);
         out.finish()
     }
@@ -336,7 +343,7 @@ impl<'a> Checker<'a> {
             return;
         }
         let frames = s.robot().frames(q);
-        let bodies = capsules(s, &frames);
+        let bodies = bodies(s, &frames);
         let loading = frames.point(&s.tool().loading_point);
         out.frames(&frames);
         if let Some(cell) = &s.cell() {
@@ -386,36 +393,45 @@ impl<'a> Checker<'a> {
 
     fn body_margins(
         &self,
-        bodies: &[Capsule],
+        bodies: &[Body],
         loading: &Vector3<f64>,
         cell: &crate::setup::Cell,
         out: &mut Margins,
     ) {
         let c = cell.clearance;
         if let Some(z) = cell.floor_z {
-            for b in bodies.iter().filter(|b| b.part != Part::Base) {
-                let (d, w) = capsule_floor_witness(b, z);
-                let m = margin(
-                    CheckKind::Floor,
-                    d - c,
-                    c,
-                    Thing::Part(b.part),
-                    Thing::Floor,
-                );
-                out.witness(m, part_carrier(b.part), Carrier::Fixed, Some(w));
+            for b in bodies.iter().filter(|b| b.part() != Part::Base) {
+                let (centre, r) = b.bound();
+                let foot = Vector3::new(centre.x, centre.y, z);
+                let (d, w) = match far_gap(out, &centre, &foot, r, c) {
+                    Some((d, w)) => (d, w),
+                    None => body_floor_witness(b, z),
+                };
+                let (pb, f) = (Thing::Part(b.part()), Thing::Floor);
+                let m = margin(CheckKind::Floor, d - c, c, pb, f);
+                out.witness(m, part_carrier(b.part()), Carrier::Fixed, Some(w));
             }
         }
         for b in bodies {
+            let (centre, r) = b.bound();
             for (i, o) in cell.obstacles.iter().enumerate() {
-                let (d, w) = capsule_box_witness(b, o);
-                let (pb, oi) = (Thing::Part(b.part), Thing::Obstacle(i));
+                let inside = centre.zip_zip_map(&o.min, &o.max, |v, lo, hi| v.clamp(lo, hi));
+                let (d, w) = match far_gap(out, &centre, &inside, r, c) {
+                    Some((d, w)) => (d, Some(w)),
+                    None => body_box_witness(b, o),
+                };
+                let (pb, oi) = (Thing::Part(b.part()), Thing::Obstacle(i));
                 let m = margin(CheckKind::Obstacles, d - c, c, pb, oi);
-                out.witness(m, part_carrier(b.part), Carrier::Fixed, w);
+                out.witness(m, part_carrier(b.part()), Carrier::Fixed, w);
             }
         }
         for &(i, j) in &self.pairs {
-            let (d, w) = capsule_capsule_witness(&bodies[i], &bodies[j]);
-            let (pi, pj) = (bodies[i].part, bodies[j].part);
+            let ((ci, ri), (cj, rj)) = (bodies[i].bound(), bodies[j].bound());
+            let (d, w) = match far_gap(out, &ci, &cj, ri + rj, c) {
+                Some((d, w)) => (d, Some(w)),
+                None => body_body_witness(&bodies[i], &bodies[j]),
+            };
+            let (pi, pj) = (bodies[i].part(), bodies[j].part());
             let m = margin(
                 CheckKind::SelfCollision,
                 d - c,
@@ -423,7 +439,7 @@ impl<'a> Checker<'a> {
                 Thing::Part(pi),
                 Thing::Part(pj),
             );
-            out.witness(m, part_carrier(pi), part_carrier(pj), Some(w));
+            out.witness(m, part_carrier(pi), part_carrier(pj), w);
         }
         let exempt = self.setup.geometry().tool_radius + c;
         let rope = line(&self.setup.load().anchor, loading, exempt);
@@ -436,24 +452,29 @@ impl<'a> Checker<'a> {
         kind: CheckKind,
         line: &Line,
         thing: Thing,
-        bodies: &[Capsule],
+        bodies: &[Body],
         required: f64,
         out: &mut Margins,
     ) {
         for b in bodies {
-            let (segment, carrier) = match b.part {
+            let (segment, carrier) = match b.part() {
                 Part::Tool => (line.short.as_ref(), line.short_carrier),
                 _ => (Some(&line.full), line.full_carrier),
             };
             let (m, w) = match segment {
                 Some(s) => {
-                    let (d, w) = capsule_capsule_witness(s, b);
-                    (d - required, Some(w))
+                    let (centre, r) = b.bound();
+                    let near = closest_on_segment(s, &centre);
+                    let (d, w) = match far_gap(out, &near, &centre, r, required) {
+                        Some((d, w)) => (d, Some(w)),
+                        None => body_body_witness(&Body::Capsule(*s), b),
+                    };
+                    (d - required, w)
                 }
                 None => (f64::INFINITY, None),
             };
-            let m = margin(kind, m, required, thing, Thing::Part(b.part));
-            out.witness(m, carrier, part_carrier(b.part), w);
+            let m = margin(kind, m, required, thing, Thing::Part(b.part()));
+            out.witness(m, carrier, part_carrier(b.part()), w);
         }
         let obstacles = self
             .setup
@@ -470,10 +491,10 @@ impl<'a> Checker<'a> {
     /// The self-collision pairs: non-adjacent parts, not in contact in every sampled posture.
     fn self_pairs(&self) -> Vec<(usize, usize)> {
         let s = self.setup;
-        let rest = capsules(s, &s.robot().frames(&s.bounds().lower));
+        let rest = bodies(s, &s.robot().frames(&s.bounds().lower));
         let candidates: Vec<(usize, usize)> = (0..rest.len())
             .flat_map(|i| (i + 1..rest.len()).map(move |j| (i, j)))
-            .filter(|&(i, j)| !adjacent(&rest, rest[i].part, rest[j].part))
+            .filter(|&(i, j)| !adjacent(&rest, rest[i].part(), rest[j].part()))
             .collect();
         let clearance = s.cell().map_or(0.0, |c| c.clearance);
         let mut free = vec![false; candidates.len()];
@@ -482,9 +503,12 @@ impl<'a> Checker<'a> {
             let q = Vector6::from_fn(|a, _| {
                 rng.random_range(s.bounds().lower[a]..=s.bounds().upper[a])
             });
-            let bodies = capsules(s, &s.robot().frames(&q));
+            let bodies = bodies(s, &s.robot().frames(&q));
             for (k, &(i, j)) in candidates.iter().enumerate() {
-                free[k] |= capsule_capsule(&bodies[i], &bodies[j]) >= clearance;
+                let ((ci, ri), (cj, rj)) = (bodies[i].bound(), bodies[j].bound());
+                free[k] = free[k]
+                    || (ci - cj).norm() - ri - rj >= clearance
+                    || body_body(&bodies[i], &bodies[j]) >= clearance;
             }
         }
         candidates
@@ -498,7 +522,7 @@ impl<'a> Checker<'a> {
 /// Whether two parts need no self-collision test: the same part, neighbours in the chain (with
 /// zero-length parts between them skipped), or the tool and a part other than the base and links
 /// 1-3.
-fn adjacent(bodies: &[Capsule], p: Part, q: Part) -> bool {
+fn adjacent(bodies: &[Body], p: Part, q: Part) -> bool {
     let (lo, hi) = (p.index().min(q.index()), p.index().max(q.index()));
     if hi == Part::Tool.index() {
         return lo > 3;
@@ -506,10 +530,39 @@ fn adjacent(bodies: &[Capsule], p: Part, q: Part) -> bool {
     let zero_length = |k: usize| {
         bodies
             .iter()
-            .filter(|b| b.part.index() == k)
-            .all(|b| (b.a - b.b).norm() == 0.0)
+            .filter(|b| b.part().index() == k)
+            .all(Body::degenerate)
     };
     (lo + 1..hi).all(zero_length)
+}
+
+/// How far beyond what a check requires (m) a pair's bounding spheres must be apart for the
+/// broad phase to take their gap as its margin ([`Checker::margins`]): 0.1 m, 50 times the
+/// smoothing of the searches' constraints, so that where a check's smallest margin is within
+/// 17 mm of failing such a pair weighs less than `2^-60` in its smooth minimum (and the
+/// constraint's value and gradient are those of the exact distances, to the rounding).
+pub const FAR_MARGIN: f64 = 0.1;
+
+/// The gap `|b - a| - radii` between two spheres (centres `a`, `b`) and its witness, when the
+/// broad phase is on and it exceeds `required` by more than [`FAR_MARGIN`].
+fn far_gap(
+    out: &Margins,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    radii: f64,
+    required: f64,
+) -> Option<(f64, Witness)> {
+    let d = b - a;
+    let n = d.norm();
+    let gap = n - radii;
+    (out.broad && gap - required > FAR_MARGIN && n > 0.0).then(|| {
+        let witness = Witness {
+            a: *a,
+            b: *b,
+            normal: d / n,
+        };
+        (gap, witness)
+    })
 }
 
 /// A rope or line of sight as capsules of radius 0: the whole segment, and the part the tool must

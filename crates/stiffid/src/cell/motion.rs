@@ -136,6 +136,8 @@ pub(super) enum Deferred {
 /// asked for.
 pub(super) struct Margins {
     pub(super) margins: Vec<Margin>,
+    /// Whether far pairs get their bounding spheres' gap ([`super::feasibility::FAR_MARGIN`]).
+    pub(super) broad: bool,
     deferred: Option<Vec<Deferred>>,
     frames: Option<Frames>,
 }
@@ -168,10 +170,12 @@ impl MarginGradients {
 }
 
 impl Margins {
-    /// Margins only, or margins and what their gradients come from.
-    pub(super) fn new(gradients: bool) -> Self {
+    /// Margins only, or margins and what their gradients come from; with the broad phase or
+    /// every distance exact.
+    pub(super) fn new(gradients: bool, broad: bool) -> Self {
         Self {
             margins: Vec::with_capacity(64),
+            broad,
             deferred: gradients.then(|| Vec::with_capacity(64)),
             frames: None,
         }

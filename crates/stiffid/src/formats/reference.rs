@@ -7,10 +7,21 @@
 //! file; a reference that looks like a path (an extension or a directory) and names neither is
 //! [`Error::NotFound`].
 
-use crate::robot::{file, presets, urdf};
+use crate::robot::{collision, file, presets, urdf, Bodies};
 use crate::{setup, Error, Robot, Setup};
 use std::fmt::Display;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Where a URDF's collision meshes come from ([`collision::parse`]): how a file's bytes are read
+/// (`None` if nothing exists at the path) and the directories that hold ROS packages
+/// (`package://NAME/...` is `DIR/NAME/...`), searched in order.
+pub struct Meshes<'a> {
+    /// Reads the bytes of a mesh file; `None` if nothing exists at the path.
+    pub read: &'a dyn Fn(&Path) -> Option<crate::Result<Vec<u8>>>,
+    /// Directories holding ROS packages.
+    pub package_paths: &'a [PathBuf],
+}
 
 /// A robot: the robot TOML (`.toml`, [`file::parse`]) or URDF (`.urdf`, [`urdf::parse`] with the
 /// tip link `tip`) file at `reference` if `read` finds one, else the preset named `reference`
@@ -37,7 +48,34 @@ where
     E: From<Error>,
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
-    robot_in(Path::new(""), reference, tip, "tip link", &read)
+    robot_in(Path::new(""), reference, tip, "tip link", &read, None)
+}
+
+/// [`robot`] with a URDF's collision geometry: its `<collision>` shapes, meshes read through
+/// `meshes`, become the robot's [`Bodies::Shapes`] (a URDF without any keeps the scaled
+/// capsules). [`robot`] reads no mesh and gives every URDF robot capsules.
+///
+/// # Errors
+/// Those of [`robot`] and of [`collision::parse`] (a mesh missing or unreadable, a `package://`
+/// package in none of the package paths, named).
+pub fn robot_with_meshes<E, F>(
+    reference: &str,
+    tip: Option<&str>,
+    read: F,
+    meshes: &Meshes,
+) -> Result<Robot, E>
+where
+    E: From<Error>,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    robot_in(
+        Path::new(""),
+        reference,
+        tip,
+        "tip link",
+        &read,
+        Some(meshes),
+    )
 }
 
 /// [`robot`] for a reference written in a file in `dir`: a file path is relative to `dir`;
@@ -48,6 +86,7 @@ fn robot_in<E, F>(
     tip: Option<&str>,
     tip_field: &str,
     read: &F,
+    meshes: Option<&Meshes>,
 ) -> Result<Robot, E>
 where
     E: From<Error>,
@@ -64,7 +103,7 @@ where
             match extension {
                 _ if is_xacro(extension, &text) => Err(xacro(&name))?,
                 Some("toml") => file::parse(&text, &name)?,
-                Some("urdf") => return Ok(urdf::parse(&text, &name, tip)?),
+                Some("urdf") => return Ok(urdf_robot(&text, &name, &path, tip, meshes)?),
                 _ => Err(Error::Parse {
                     source_name: name,
                     message: "a robot file must end in .toml or .urdf".into(),
@@ -85,6 +124,26 @@ where
         }
         .into()),
     }
+}
+
+/// The URDF robot of `text` (read from `path`, shown as `name`), with its collision shapes when
+/// `meshes` says how to read them.
+fn urdf_robot(
+    text: &str,
+    name: &str,
+    path: &Path,
+    tip: Option<&str>,
+    meshes: Option<&Meshes>,
+) -> crate::Result<Robot> {
+    let mut robot = urdf::parse(text, name, tip)?;
+    if let Some(m) = meshes {
+        let dir = path.parent().unwrap_or(Path::new(""));
+        let g = collision::parse(text, name, dir, tip, m.package_paths, m.read)?;
+        if !g.shapes.is_empty() {
+            robot.bodies = Bodies::Shapes(Arc::new(g));
+        }
+    }
+    Ok(robot)
 }
 
 /// Whether a robot file is a xacro macro file: its extension is `.xacro`, or it declares the
@@ -132,13 +191,34 @@ where
     E: From<Error> + Display,
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
+    setup_in(reference, read, None)
+}
+
+/// [`setup`] with a URDF robot's collision geometry ([`robot_with_meshes`]); the setup's
+/// `package_paths` (relative to the setup file) are searched after `meshes.package_paths`.
+///
+/// # Errors
+/// Those of [`setup`] and [`robot_with_meshes`].
+pub fn setup_with_meshes<E, F>(reference: &str, read: F, meshes: &Meshes) -> Result<Setup, E>
+where
+    E: From<Error> + Display,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    setup_in(reference, read, Some(meshes))
+}
+
+fn setup_in<E, F>(reference: &str, read: F, meshes: Option<&Meshes>) -> Result<Setup, E>
+where
+    E: From<Error> + Display,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
     let path = Path::new(reference);
     match read(path) {
         None => setup::builtin(reference)
             .map_err(|e| not_found(e, "setup", "built-in setup", reference, path).into()),
         Some(text) => {
             let dir = path.parent().unwrap_or(Path::new(""));
-            setup_text(&text?, reference, dir, read)
+            setup_text_in(&text?, reference, dir, read, meshes)
         }
     }
 }
@@ -154,10 +234,53 @@ where
     E: From<Error> + Display,
     F: Fn(&Path) -> Option<Result<String, E>>,
 {
-    Ok(setup::parse(text, source_name, |r, tip| {
-        robot_in(dir, r, tip, "robot_tip", &read).map_err(|e| Error::Parse {
-            source_name: format!("{source_name}: robot"),
-            message: e.to_string(),
+    setup_text_in(text, source_name, dir, read, None)
+}
+
+/// [`setup_text`] with a URDF robot's collision geometry, as [`setup_with_meshes`].
+///
+/// # Errors
+/// Those of [`setup_text`] and [`robot_with_meshes`].
+pub fn setup_text_with_meshes<E, F>(
+    text: &str,
+    source_name: &str,
+    dir: &Path,
+    read: F,
+    meshes: &Meshes,
+) -> Result<Setup, E>
+where
+    E: From<Error> + Display,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    setup_text_in(text, source_name, dir, read, Some(meshes))
+}
+
+fn setup_text_in<E, F>(
+    text: &str,
+    source_name: &str,
+    dir: &Path,
+    read: F,
+    meshes: Option<&Meshes>,
+) -> Result<Setup, E>
+where
+    E: From<Error> + Display,
+    F: Fn(&Path) -> Option<Result<String, E>>,
+{
+    Ok(setup::parse_with(text, source_name, |r| {
+        let paths: Vec<PathBuf> = meshes
+            .iter()
+            .flat_map(|m| m.package_paths.iter().cloned())
+            .chain(r.package_paths.iter().map(|p| dir.join(p)))
+            .collect();
+        let meshes = meshes.map(|m| Meshes {
+            read: m.read,
+            package_paths: &paths,
+        });
+        robot_in(dir, r.reference, r.tip, "robot_tip", &read, meshes.as_ref()).map_err(|e| {
+            Error::Parse {
+                source_name: format!("{source_name}: robot"),
+                message: e.to_string(),
+            }
         })
     })?)
 }

@@ -55,6 +55,9 @@ impl std::fmt::Display for Range {
     }
 }
 
+/// A capsule radius of a robot file's `[robot_geometry]`: 1 um to 10 m.
+pub const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
+
 /// Any length or position in a robot or setup file (link lengths, offsets, tool points, anchor):
 /// at most 100 m from the origin.
 pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");

@@ -21,6 +21,8 @@
 //! [flange]                              # optional: last DH frame to the flange frame
 //! xyz_mm = [0, 0, 0]
 //! rpy_deg = [0, 0, 0]
+//! [robot_geometry]                      # optional: capsule radii of the base and links 1-6
+//! link_radius_mm = [350, 260, 195, 175, 130, 110, 90]   # default scaled to the robot's size
 //! ```
 //! Unknown keys are rejected.
 
@@ -42,6 +44,15 @@ struct RobotFile {
     axis_map: Option<AxisMapFile>,
     base: Option<TransformFile>,
     flange: Option<TransformFile>,
+    robot_geometry: Option<GeometryFile>,
+}
+
+/// A robot's `[robot_geometry]`: the capsule radii of its bodies (the tool's is the setup's).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GeometryFile {
+    #[serde(deserialize_with = "crate::formats::exact::array")]
+    link_radius_mm: [f64; 7],
 }
 
 #[derive(Debug, Deserialize)]
@@ -167,7 +178,24 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         limits: JointBox::new(lower, upper),
         base: transform(file.base, "base", source_name)?,
         flange: transform(file.flange, "flange", source_name)?,
+        bodies: bodies(file.robot_geometry, source_name)?,
     })
+}
+
+/// The bodies of `[robot_geometry]`: capsules of the radii given, each within
+/// [`limits::BODY_RADIUS_MM`]; scaled capsules without it.
+fn bodies(g: Option<GeometryFile>, source_name: &str) -> Result<super::Bodies> {
+    let Some(g) = g else {
+        return Ok(super::Bodies::Scaled);
+    };
+    let field = "robot_geometry.link_radius_mm";
+    check_in(
+        source_name,
+        field,
+        &g.link_radius_mm,
+        &limits::BODY_RADIUS_MM,
+    )?;
+    Ok(super::Bodies::Capsules(g.link_radius_mm.map(|r| r * 1e-3)))
 }
 
 /// The optional `[base]` or `[flange]` transform (or a setup's `[robot_base]` / `[robot_flange]`),

@@ -13,6 +13,7 @@ mod axis_map;
 pub use axis_map::AxisMap;
 
 use nalgebra::{Isometry3, Unit, Vector3};
+use std::sync::Arc;
 
 use crate::limits::JointBox;
 
@@ -55,4 +56,32 @@ pub struct Robot {
     pub base: Isometry3<f64>,
     /// Flange transform: last joint frame to the flange frame.
     pub flange: Isometry3<f64>,
+    /// The robot's own bodies, for the cell's checks and drawings ([`crate::cell::bodies`]).
+    pub bodies: Bodies,
+}
+
+/// The bodies of a robot as its description gives them.
+#[derive(Debug, Clone, Default)]
+pub enum Bodies {
+    /// None given: capsules along the chain, radii scaled to the robot's size
+    /// ([`crate::cell::DEFAULT_RADIUS_FRACTIONS`]).
+    #[default]
+    Scaled,
+    /// Capsules along the chain with these radii of the base and links 1-6, m (a robot TOML
+    /// file's `[robot_geometry] link_radius_mm`).
+    Capsules([f64; 7]),
+    /// Convex collision shapes: a URDF's `<collision>` elements ([`collision::parse`]).
+    Shapes(Arc<collision::CollisionGeometry>),
+}
+
+/// Shapes are equal when they are the same read (the same `Arc`).
+impl PartialEq for Bodies {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Bodies::Scaled, Bodies::Scaled) => true,
+            (Bodies::Capsules(a), Bodies::Capsules(b)) => a == b,
+            (Bodies::Shapes(a), Bodies::Shapes(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
 }

@@ -361,5 +361,6 @@ fn fold(
         ),
         base: Isometry3::identity(),
         flange: acc,
+        bodies: super::Bodies::Scaled,
     })
 }

@@ -18,6 +18,8 @@ struct SetupFile {
     description: String,
     robot: String,
     robot_tip: Option<String>,
+    #[serde(default)]
+    package_paths: Vec<String>,
     robot_base: Option<TransformFile>,
     robot_flange: Option<TransformFile>,
     #[serde(default)]
@@ -137,7 +139,7 @@ pub fn builtin(name: &str) -> Result<Setup> {
 
 /// Parses a setup TOML. `source_name` (the file name) is used in errors; `resolve_robot` turns the
 /// `robot` field (and the optional `robot_tip`) into a [`Robot`] (a preset, or a file the caller
-/// reads).
+/// reads). [`parse_with`] also hands over the setup's `package_paths`.
 ///
 /// # Errors
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
@@ -151,15 +153,61 @@ pub fn parse<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup
 where
     F: FnOnce(&str, Option<&str>) -> Result<Robot>,
 {
+    parse_with(text, source_name, |r: &RobotRequest| {
+        resolve_robot(r.reference, r.tip)
+    })
+}
+
+/// What a setup file asks of its robot: the `robot` reference, the `robot_tip` link and the
+/// `package_paths` (as written, relative to the setup file) where a URDF's `package://` meshes
+/// are looked for ([`crate::robot::collision`]).
+#[derive(Debug, Clone, Copy)]
+pub struct RobotRequest<'a> {
+    /// The `robot` field: a preset name or a robot file.
+    pub reference: &'a str,
+    /// The `robot_tip` field (URDF only).
+    pub tip: Option<&'a str>,
+    /// The `package_paths` field: at most [`MAX_PACKAGE_PATHS`] directories.
+    pub package_paths: &'a [String],
+}
+
+/// Most `package_paths` a setup may list.
+pub const MAX_PACKAGE_PATHS: usize = 64;
+
+/// [`parse`] with the whole [`RobotRequest`] handed to `resolve_robot`.
+///
+/// # Errors
+/// Those of [`parse`]; [`Error::InvalidField`] (`package_paths`) for more than
+/// [`MAX_PACKAGE_PATHS`] paths or an empty one.
+pub fn parse_with<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
+where
+    F: FnOnce(&RobotRequest) -> Result<Robot>,
+{
     let file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
         message: limits::one_line(&e.to_string()),
     })?;
-    let robot = resolve_robot(&file.robot, file.robot_tip.as_deref())?;
+    check_package_paths(&file.package_paths).map_err(|e| in_file(e, source_name))?;
+    let robot = resolve_robot(&RobotRequest {
+        reference: &file.robot,
+        tip: file.robot_tip.as_deref(),
+        package_paths: &file.package_paths,
+    })?;
     let robot = mounted(robot, &file, source_name)?;
     builder(file, robot)
         .and_then(SetupBuilder::build)
         .map_err(|e| in_file(e, source_name))
+}
+
+fn check_package_paths(paths: &[String]) -> Result<()> {
+    limits::check_count("package_paths", paths.len(), 0, MAX_PACKAGE_PATHS)?;
+    match paths.iter().position(|p| p.trim().is_empty()) {
+        Some(i) => Err(Error::InvalidField {
+            field: format!("package_paths[{}]", i + 1),
+            message: "expected a directory, got an empty path".into(),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// A field error placed in the file `source_name` (`"cell.toml: bounds.lower_deg[2]"`).

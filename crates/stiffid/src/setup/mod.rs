@@ -6,6 +6,7 @@
 //! description = "what this cell is"
 //! robot = "comau-smart5-nj165-3.0"       # a preset name, or a robot .toml / .urdf file
 //! # robot_tip = "tool0"                  # URDF only: the tip link
+//! # package_paths = ["../ros"]          # URDF only: where package:// meshes are (ROS convention)
 //! # [robot_base]                         # optional: the robot on a pedestal, in the cell frame
 //! # xyz_mm = [0, 0, 500]                 # (before the robot's own base transform)
 //! # rpy_deg = [0, 0, 0]                  # fixed-axis roll, pitch, yaw as URDF
@@ -43,12 +44,16 @@ mod file;
 pub mod plausibility;
 
 pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
-pub use file::{builtin, builtin_names, builtin_text, parse};
+pub use file::{
+    builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
+};
 
 use crate::kinematics::{Coordinates, Frames};
 use crate::limits::joint_box::distinct;
 use crate::limits::{self, JointBox};
 use crate::model::{Model, Spring};
+use crate::robot::collision::CollisionGeometry;
+use crate::robot::Bodies;
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 
@@ -145,6 +150,8 @@ pub struct Setup {
     constraints: CellConstraints,
     cell: Option<Cell>,
     geometry: RobotGeometry,
+    /// The robot's shapes ([`Bodies::Shapes`]) if the cell uses them, else [`Bodies::Scaled`].
+    shapes: Bodies,
     tracker: Option<Tracker>,
 }
 
@@ -195,7 +202,7 @@ impl Setup {
             test_postures: self.test_postures.clone(),
             constraints: self.constraints.clone(),
             cell: self.cell.clone(),
-            link_radii: Some(self.geometry.link_radii),
+            link_radii: self.shapes().is_none().then_some(self.geometry.link_radii),
             tool_radius: Some(self.geometry.tool_radius),
             tracker: self.tracker.clone(),
         }
@@ -314,9 +321,22 @@ impl Setup {
         self.cell.as_ref()
     }
 
-    /// Capsule radii of the robot and tool bodies (defaults scaled to the robot's size).
+    /// Capsule radii of the robot and tool bodies: the setup's `[robot_geometry]`, else the
+    /// robot's ([`Bodies::Capsules`]), else scaled to the robot's size. The robot's capsules are
+    /// its bodies in the cell unless [`Setup::shapes`] has its own; the tool's always are.
     pub fn geometry(&self) -> &RobotGeometry {
         &self.geometry
+    }
+
+    /// The robot's collision shapes (a URDF's `<collision>` elements, [`Bodies::Shapes`]) that
+    /// the cell's checks and drawings use for the base and links 1-6; `None`: capsules
+    /// ([`Setup::geometry`]), also when the setup gives `[robot_geometry] link_radius_mm`, the
+    /// user's override.
+    pub fn shapes(&self) -> Option<&CollisionGeometry> {
+        match &self.shapes {
+            Bodies::Shapes(s) => Some(s),
+            _ => None,
+        }
     }
 
     /// The laser tracker, for the line-of-sight and incidence checks.
@@ -494,7 +514,8 @@ impl SetupBuilder {
             .with_tool_radius(geometry.tool_radius)
     }
 
-    /// Capsule radii of the base and links 1-6, m (default scaled to the robot's size).
+    /// Capsule radii of the base and links 1-6, m (default the robot's: its capsule radii, or
+    /// its collision shapes, else scaled to its size); given, they replace the robot's shapes.
     pub fn with_link_radii(mut self, radii: [f64; 7]) -> Self {
         self.link_radii = Some(radii);
         self
@@ -568,8 +589,19 @@ impl SetupBuilder {
             tcp: tcp.unwrap_or_default(),
         };
         let defaults = crate::cell::default_geometry(&self.robot, &tool);
+        let shapes = match (&self.robot.bodies, self.link_radii) {
+            (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
+            _ => Bodies::Scaled,
+        };
+        let robot_radii = match &self.robot.bodies {
+            Bodies::Capsules(r) => Some(*r),
+            _ => None,
+        };
         let geometry = RobotGeometry {
-            link_radii: self.link_radii.unwrap_or(defaults.link_radii),
+            link_radii: self
+                .link_radii
+                .or(robot_radii)
+                .unwrap_or(defaults.link_radii),
             tool_radius: self.tool_radius.unwrap_or(defaults.tool_radius),
         };
         cell::check_geometry(&geometry)?;
@@ -593,6 +625,7 @@ impl SetupBuilder {
             constraints: self.constraints,
             cell: self.cell,
             geometry,
+            shapes,
             tracker,
         })
     }

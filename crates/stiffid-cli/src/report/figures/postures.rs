@@ -9,7 +9,7 @@ use nalgebra::{Vector3, Vector6};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::cell::{capsules, Part};
+use stiffid::cell::{bodies, Body, Part};
 use stiffid::study::Study;
 use stiffid::Setup;
 
@@ -100,7 +100,7 @@ pub fn each(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Vec<Figure>> {
         .map(|(i, q)| (i + 1, q))
         .collect();
     let legend = "side view (x-z) and top view (x-y), base frame, m, to scale. Shaded: the robot \
-                  and tool bodies (capsules); lines: base, joint origins, flange, tool centre point \
+                  and tool bodies (capsules, or the robot's own collision shapes); lines: base, joint origins, flange, tool centre point \
                   (numbered); squares: loading point; grey: the rope to the anchor (star); dashed: \
                   the tracker's lines of sight (triangle); boxes: obstacles; the floor (or the \
                   base plane z = 0).";
@@ -150,7 +150,17 @@ pub fn data_range<'p>(
         }
     }
     let g = &setup.geometry();
-    let margin = 0.2 + g.link_radii.iter().fold(g.tool_radius, |a, &b| a.max(b));
+    let mut margin = 0.2 + g.link_radii.iter().fold(g.tool_radius, |a, &b| a.max(b));
+    if let Some(shapes) = setup.shapes() {
+        // A shape reaches its bounding sphere's radius beyond its centre, and the centre lies
+        // within its origin's offset of the chain.
+        let reach = shapes
+            .shapes
+            .iter()
+            .map(|s| s.bound.0.norm() + s.bound.1)
+            .fold(0.0, f64::max);
+        margin = margin.max(0.2 + reach);
+    }
     range.map(|(lo, hi)| (lo - margin, hi + margin))
 }
 
@@ -169,22 +179,9 @@ fn distinct(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
     out
 }
 
-/// The outline of a capsule's projection (a stadium: the segment `a`-`b` widened by `r` with round
-/// ends), as a polygon in the plane of the view, m; a circle when `a == b`.
-fn stadium(a: (f64, f64), b: (f64, f64), r: f64) -> Vec<(f64, f64)> {
-    const HALF: usize = 12;
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let theta = dy.atan2(dx);
-    let arc = |c: (f64, f64), from: f64| {
-        (0..=HALF).map(move |k| {
-            let t = from + std::f64::consts::PI * k as f64 / HALF as f64;
-            (c.0 + r * t.cos(), c.1 + r * t.sin())
-        })
-    };
-    let half_pi = std::f64::consts::FRAC_PI_2;
-    arc(b, theta - half_pi)
-        .chain(arc(a, theta + half_pi))
-        .collect()
+/// The outline of a body's projection on the view's plane (x against axis `v`), m.
+fn outline(body: &Body, v: usize) -> Vec<(f64, f64)> {
+    body.outline(&Vector3::x(), &Vector3::ith(v, 1.0), 48)
 }
 
 /// Ranges of two axes widened so one metre has the same length on both in a `w x h` pixel area.
@@ -299,11 +296,11 @@ impl Postures<'_> {
     ) -> Result<()> {
         let cell = self.setup.cell();
         let base_frames = self.setup.robot().frames(&Vector6::zeros());
-        let base = capsules(self.setup, &base_frames)
+        let base = bodies(self.setup, &base_frames)
             .into_iter()
-            .filter(|b| b.part == Part::Base);
+            .filter(|b| b.part() == Part::Base);
         for body in base {
-            let outline = stadium((body.a.x, body.a[v]), (body.b.x, body.b[v]), body.radius);
+            let outline = outline(&body, v);
             chart
                 .draw_series([Polygon::new(outline, BLACK.mix(0.15).filled())])
                 .map_err(failed)?;
@@ -353,7 +350,8 @@ impl Postures<'_> {
         Ok(())
     }
 
-    /// One posture: body capsules (their projections, true to scale), the chain of joint origins,
+    /// One posture: its bodies (their projections, true to scale: capsules or the robot's own
+    /// collision shapes), the chain of joint origins,
     /// the loading point and rope, the lines of sight, the number.
     fn posture<DB: DrawingBackend>(
         &self,
@@ -366,11 +364,11 @@ impl Postures<'_> {
         let frames = setup.robot().frames(q);
         let c = colour(number);
         let project = |p: &Vector3<f64>| (p.x, p[v]);
-        let moving = capsules(setup, &frames)
+        let moving = bodies(setup, &frames)
             .into_iter()
-            .filter(|b| b.part != Part::Base);
+            .filter(|b| b.part() != Part::Base);
         for body in moving {
-            let outline = stadium(project(&body.a), project(&body.b), body.radius);
+            let outline = outline(&body, v);
             chart
                 .draw_series([Polygon::new(outline, c.mix(0.2).filled())])
                 .map_err(failed)?;

@@ -46,50 +46,102 @@ fn feasible(setup: &Setup, checker: &Checker, count: usize) -> Vec<Vector6<f64>>
 
 #[test]
 fn margin_gradients_match_central_differences() {
-    let h = 1e-5;
     for robot in presets::names() {
-        let setup = cell(robot);
-        let checker = Checker::new(&setup);
-        let postures = feasible(&setup, &checker, 8);
-        assert_eq!(postures.len(), 8, "{robot}");
-        let (mut compared, mut kinds) = (0, std::collections::BTreeSet::new());
-        for q in &postures {
-            let (margins, gradients) = checker.margins_and_gradients(q);
-            let mut probes = [[0.0; 2]; 6].map(|_| Vec::new());
-            for a in 0..6 {
-                for (side, s) in [(0, h), (1, -h)] {
-                    let mut p = *q;
-                    p[a] += s;
-                    probes[a].push((side, checker.margins(&p)));
-                }
-            }
-            for (k, m) in margins.iter().enumerate() {
-                let g = gradients.gradient(k);
-                if !m.margin.is_finite() || m.kind == CheckKind::Bounds {
-                    continue;
-                }
-                for a in 0..6 {
-                    let (plus, minus) = (probes[a][0].1[k].margin, probes[a][1].1[k].margin);
-                    let (forward, backward) = ((plus - m.margin) / h, (m.margin - minus) / h);
-                    // A tie (two closest pairs of points) is a kink: the one-sided slopes differ.
-                    if (forward - backward).abs() > 1e-4 * (1.0 + forward.abs()) {
-                        continue;
-                    }
-                    let central = (plus - minus) / (2.0 * h);
-                    assert!(
-                        (g[a] - central).abs() <= 1e-5 * (1.0 + central.abs()),
-                        "{robot}, {} {:?}, axis {}: exact {} vs central {central} at {q:?}",
-                        m.kind,
-                        m.between,
-                        a + 1,
-                        g[a]
-                    );
-                    compared += 1;
-                }
-                kinds.insert(m.kind);
-            }
-        }
+        let (compared, kinds) = compare(&cell(robot), robot, 8);
         assert!(compared > 1000, "{robot}: {compared}");
         assert_eq!(kinds.len(), CheckKind::ALL.len() - 1, "{robot}: {kinds:?}");
     }
+}
+
+#[path = "../../../tests/support/mesh_robot.rs"]
+mod mesh_robot;
+
+/// The mesh robot's setup ([`mesh_robot::setup_toml`]) read from memory, its hulls as bodies.
+pub(crate) fn mesh_setup() -> Setup {
+    use std::path::{Path, PathBuf};
+    let files: std::collections::HashMap<PathBuf, Vec<u8>> = mesh_robot::files(48)
+        .into_iter()
+        .map(|(p, b)| (Path::new("pkg").join(p), b))
+        .collect();
+    let text = |p: &Path| {
+        let b = files.get(p)?;
+        Some(Ok::<_, crate::Error>(String::from_utf8(b.clone()).unwrap()))
+    };
+    let bytes = |p: &Path| files.get(p).cloned().map(Ok);
+    let meshes = crate::formats::reference::Meshes {
+        read: &bytes,
+        package_paths: &[],
+    };
+    let toml = mesh_robot::setup_toml() + "[constraints]\nloading_point_min_z_mm = 200.0\n";
+    let toml = toml.replace("[tracker]\n", "[tracker]\nmax_incidence_deg = 70.0\n");
+    crate::formats::reference::setup_text_with_meshes(
+        &toml,
+        "pkg/cell.toml",
+        Path::new("pkg"),
+        text,
+        &meshes,
+    )
+    .unwrap()
+}
+
+/// The same with the robot's collision hulls (convex polyhedra, GJK's witness points).
+#[test]
+fn hull_margin_gradients_match_central_differences() {
+    let setup = mesh_setup();
+    assert!(setup.shapes().is_some());
+    let (compared, kinds) = compare(&setup, "mesh robot", 8);
+    assert!(compared > 500, "{compared}");
+    assert!(kinds.contains(&CheckKind::SelfCollision), "{kinds:?}");
+    assert!(kinds.contains(&CheckKind::Floor), "{kinds:?}");
+}
+
+/// Compares every margin's exact gradient with central differences at `count` feasible postures
+/// of `setup`: how many derivatives were compared and of which checks.
+fn compare(
+    setup: &Setup,
+    robot: &str,
+    count: usize,
+) -> (usize, std::collections::BTreeSet<CheckKind>) {
+    let h = 1e-5;
+    let checker = Checker::new(setup);
+    let postures = feasible(setup, &checker, count);
+    assert_eq!(postures.len(), count, "{robot}");
+    let (mut compared, mut kinds) = (0, std::collections::BTreeSet::new());
+    for q in &postures {
+        let (margins, gradients) = checker.margins_and_gradients(q);
+        let mut probes = [[0.0; 2]; 6].map(|_| Vec::new());
+        for a in 0..6 {
+            for (side, s) in [(0, h), (1, -h)] {
+                let mut p = *q;
+                p[a] += s;
+                probes[a].push((side, checker.margins(&p)));
+            }
+        }
+        for (k, m) in margins.iter().enumerate() {
+            let g = gradients.gradient(k);
+            if !m.margin.is_finite() || m.kind == CheckKind::Bounds {
+                continue;
+            }
+            for a in 0..6 {
+                let (plus, minus) = (probes[a][0].1[k].margin, probes[a][1].1[k].margin);
+                let (forward, backward) = ((plus - m.margin) / h, (m.margin - minus) / h);
+                // A tie (two closest pairs of points) is a kink: the one-sided slopes differ.
+                if (forward - backward).abs() > 1e-4 * (1.0 + forward.abs()) {
+                    continue;
+                }
+                let central = (plus - minus) / (2.0 * h);
+                assert!(
+                    (g[a] - central).abs() <= 1e-5 * (1.0 + central.abs()),
+                    "{robot}, {} {:?}, axis {}: exact {} vs central {central} at {q:?}",
+                    m.kind,
+                    m.between,
+                    a + 1,
+                    g[a]
+                );
+                compared += 1;
+            }
+            kinds.insert(m.kind);
+        }
+    }
+    (compared, kinds)
 }
