@@ -36,7 +36,10 @@ fn feasibility(c: &mut Bench) {
 /// The mesh robot's cell setup with its hulls (48-sided prisms: 96 hull vertices a link).
 fn mesh_cell() -> stiffid::Setup {
     use std::path::Path;
-    let files = mesh_robot::files(48);
+    let files: std::collections::HashMap<_, _> = mesh_robot::files(48)
+        .into_iter()
+        .map(|(p, b)| (Path::new("pkg").join(p), b))
+        .collect();
     let text = |p: &Path| {
         Some(Ok::<_, stiffid::Error>(
             String::from_utf8(files.get(p)?.clone()).unwrap(),
@@ -50,8 +53,8 @@ fn mesh_cell() -> stiffid::Setup {
     let toml = mesh_robot::setup_toml();
     stiffid::formats::reference::setup_text_with_meshes(
         &toml,
-        "cell.toml",
-        Path::new(""),
+        "pkg/cell.toml",
+        Path::new("pkg"),
         text,
         &meshes,
     )

@@ -15,5 +15,5 @@ pub use criteria::{evaluate, Criterion, Evaluation, ParameterQuality};
 pub use evaluator::{Evaluator, PostureTerms};
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
 pub use search::{
-    global, local, random_group, Gradient, SearchOptions, SearchOutcome, Termination,
+    global, local, random_group, Gradient, SearchOptions, SearchOutcome, Solver, Termination,
 };

@@ -2,6 +2,7 @@
 //! generics): each former test file is a module here. A new test file `tests/it/NAME.rs` is added as
 //! `mod NAME;` below; `common` holds the shared helpers, `mutate` the property tests' mutations.
 
+mod active_set;
 mod bodies;
 mod cell;
 mod cell_search;

@@ -1,5 +1,5 @@
 //! The cell's feasibility checks ([`crate::cell`]) as smooth inequality constraints `c(q) <= 0` on
-//! one posture, for SLSQP.
+//! one posture, for the SQP.
 
 use crate::cell::{CheckKind, Checker, Margin};
 use nalgebra::Vector6;

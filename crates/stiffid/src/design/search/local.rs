@@ -1,8 +1,10 @@
-//! Local search: SLSQP from a start group, with exact gradients or forward finite differences.
+//! Local search: SQP ([`super::sqp`]) from a start group, with exact gradients or forward finite
+//! differences.
 
 use super::constraints::{inequalities, inequalities_and_gradients, kinds, most_failed, violation};
+use super::sqp::{self, Gradients, Nlp, SparseRows, Values};
 use super::termination::{from_slsqp, Termination};
-use super::{Gradient, SearchOptions, SearchOutcome};
+use super::{Gradient, SearchOptions, SearchOutcome, Solver};
 use crate::cell::{CheckKind, Checker};
 use crate::design::PostureTerms;
 use crate::design::{Criterion, Evaluator};
@@ -16,9 +18,10 @@ use std::collections::HashMap;
 /// (rank-deficient groups), above `ln f64::MAX ~ 709.8` so any finite value is better.
 const PENALTY: f64 = 1e3;
 
-/// Minimises `criterion` by SQP (SLSQP through the `slsqp` crate, the counterpart of the MATLAB
-/// `fmincon` of Zhang et al. 2021, Section III-B step 5) over the `6n` axis angles of the `n`
-/// postures of `start` (rad), within the setup's bounds.
+/// Minimises `criterion` by SQP (our own: a dense Goldfarb-Idnani QP per step, damped BFGS, an L1
+/// merit line search; the counterpart of the MATLAB `fmincon` of Zhang et al. 2021, Section III-B
+/// step 5) over the `6n` axis angles of the `n` postures of `start` (rad), within the setup's
+/// bounds.
 ///
 /// - The objective is `ln(criterion)` (scale-free steps; a rank-deficient group, `+infinity`,
 ///   counts as a large finite penalty, never NaN, with a zero gradient). Its gradient is exact
@@ -33,8 +36,9 @@ const PENALTY: f64 = 1e3;
 ///   check and posture (the smooth minimum of the check's pair margins, never above the exact
 ///   minimum); a point that violates the exact checks less always beats one that violates them
 ///   more, so the best exactly feasible point seen is returned.
-/// - Stops at [`SearchOptions::ftol`] / [`SearchOptions::xtol`] or after at most
-///   [`SearchOptions::max_evals`] criterion evaluations (finite differences included).
+/// - Stops at [`SearchOptions::ftol`] / [`SearchOptions::xtol`] (confirmed once from a fresh
+///   Hessian approximation) or after at most [`SearchOptions::max_evals`] criterion evaluations
+///   (finite differences included); [`SearchOutcome::termination`] says which.
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
@@ -167,11 +171,14 @@ struct Problem<'a> {
     options: &'a SearchOptions,
     state: RefCell<State>,
     cache: RefCell<Cache>,
+    /// The point of the last exact objective evaluation and its gradient.
+    gradient: RefCell<Option<(Vec<f64>, Vec<f64>)>>,
 }
 
 /// The best point seen and the evaluations spent.
 struct State {
     evaluations: usize,
+    start: Option<f64>,
     best: Option<(f64, f64, Vec<f64>)>,
 }
 
@@ -214,8 +221,10 @@ impl<'a> Problem<'a> {
             options,
             state: RefCell::new(State {
                 evaluations: 0,
+                start: None,
                 best: None,
             }),
+            gradient: RefCell::new(None),
             cache: RefCell::new(Cache {
                 constraints: vec![None; n],
                 ..Cache::default()
@@ -225,14 +234,24 @@ impl<'a> Problem<'a> {
 
     fn run(self, start: &[Vector6<f64>]) -> SearchOutcome {
         let x0: Vec<f64> = start.iter().flat_map(|q| q.iter().copied()).collect();
-        let start_value = self.value(&x0);
-        let iterations =
-            self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
-        let stop = match iterations {
-            0 => Termination::EvaluationLimit,
-            _ => self.minimise(&x0, iterations),
+        let stop = match self.options.solver {
+            Solver::Slsqp => {
+                self.value(&x0);
+                let iterations =
+                    self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
+                match iterations {
+                    0 => Termination::EvaluationLimit,
+                    _ => self.slsqp(&x0, iterations),
+                }
+            }
+            Solver::ActiveSet if self.can_evaluate() => self.active_set(&self.clamp(&x0)),
+            Solver::ActiveSet => {
+                self.value(&x0);
+                Termination::EvaluationLimit
+            }
         };
         let state = self.state.into_inner();
+        let start_value = state.start.expect("the start was evaluated");
         let (violation, value, x) = state.best.expect("the start was evaluated");
         let termination = match violation > 0.0 {
             true => Termination::Infeasible,
@@ -248,20 +267,30 @@ impl<'a> Problem<'a> {
         }
     }
 
+    /// Runs our SQP ([`sqp::minimise`]) from `x0`; why it stopped.
+    fn active_set(&self, x0: &[f64]) -> Termination {
+        let tolerances = sqp::Tolerances {
+            ftol: self.options.ftol,
+            xtol: self.options.xtol,
+        };
+        sqp::minimise(self, x0, tolerances)
+    }
+
     /// Runs SLSQP from `x0` for at most `iterations` calls; why it stopped.
-    fn minimise(&self, x0: &[f64], iterations: usize) -> Termination {
+    fn slsqp(&self, x0: &[f64], iterations: usize) -> Termination {
         let bounds: Vec<(f64, f64)> = self
             .lower
             .iter()
             .copied()
             .zip(self.upper.iter().copied())
             .collect();
-        let objective = |x: &[f64], grad: Option<&mut [f64]>, _: &mut ()| self.objective(x, grad);
+        let objective =
+            |x: &[f64], grad: Option<&mut [f64]>, _: &mut ()| self.slsqp_objective(x, grad);
         let constraints: Vec<_> = (0..self.n)
             .flat_map(|i| (0..self.kinds.len()).map(move |k| (i, k)))
             .map(|(i, k)| {
                 move |x: &[f64], grad: Option<&mut [f64]>, _: &mut ()| {
-                    self.constraint(i, k, x, grad)
+                    self.slsqp_constraint(i, k, x, grad)
                 }
             })
             .collect();
@@ -287,6 +316,33 @@ impl<'a> Problem<'a> {
         from_slsqp(&outcome)
     }
 
+    /// `ln(criterion)` at `x` (clamped) for SLSQP, and its gradient if asked for.
+    fn slsqp_objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
+        let x = self.clamp(x);
+        let f = self.objective(&x);
+        if let Some(g) = grad {
+            let kept = self.gradient.borrow_mut().take();
+            match kept {
+                Some((at, kept)) if at == x => g.copy_from_slice(&kept),
+                _ => g.copy_from_slice(&self.fd_objective_gradient(&x, f)),
+            }
+        }
+        f
+    }
+
+    /// Constraint `k` (of [`Problem::kinds`]) of posture `i` at `x` for SLSQP: `c <= 0` (m, or
+    /// rad for angles), with its gradient (nonzero on the six angles of posture i only).
+    fn slsqp_constraint(&self, i: usize, k: usize, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
+        let x = self.clamp(x);
+        self.posture_constraints(i, posture(&x, i), |c| {
+            if let Some(g) = grad {
+                g.fill(0.0);
+                g[6 * i..6 * i + 6].copy_from_slice(c.gradients[k].as_slice());
+            }
+            c.values[k]
+        })
+    }
+
     fn clamp(&self, x: &[f64]) -> Vec<f64> {
         x.iter()
             .enumerate()
@@ -308,6 +364,7 @@ impl<'a> Problem<'a> {
         let violation = self.violation(postures);
         let mut state = self.state.borrow_mut();
         state.evaluations += 1;
+        state.start.get_or_insert(value);
         let replace = match &state.best {
             None => true,
             Some((v, f, _)) => violation < *v || (violation == *v && value < *f),
@@ -338,46 +395,35 @@ impl<'a> Problem<'a> {
             .sum()
     }
 
-    /// `ln(criterion)` at `x`, and its gradient if asked for ([`SearchOptions::gradient`]).
-    fn objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
-        match (grad, self.options.gradient) {
-            (Some(g), Gradient::Exact) => self.exact_objective(x, g),
-            (grad, _) => self.fd_objective(x, grad),
+    /// `ln(criterion)` at `x` (clamped): with its exact gradient, kept for [`sqp::Nlp::gradients`],
+    /// under [`Gradient::Exact`]; alone (from [`Evaluator::value`], which keeps no terms) under
+    /// [`Gradient::FiniteDifference`].
+    fn objective(&self, x: &[f64]) -> f64 {
+        let postures = postures(x);
+        if self.options.gradient == Gradient::FiniteDifference {
+            let value = self.evaluator.value(self.criterion, &postures);
+            return log_value(self.record(x.to_vec(), &postures, value));
         }
-    }
-
-    /// `ln(criterion)` at `x` and its exact gradient into `g` (zeros at the penalty).
-    fn exact_objective(&self, x: &[f64], g: &mut [f64]) -> f64 {
-        let x = self.clamp(x);
-        let postures = postures(&x);
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
         let refs: Vec<&PostureTerms> = terms.iter().collect();
         let (value, gradient) = self.evaluator.value_and_log_gradient(self.criterion, &refs);
-        let f = log_value(self.record(x, &postures, value));
-        for (gi, d) in g.chunks_mut(6).zip(&gradient) {
-            gi.copy_from_slice(d.as_slice());
-        }
-        if f >= PENALTY {
-            g.fill(0.0);
-        }
+        let f = log_value(self.record(x.to_vec(), &postures, value));
+        let g = match f >= PENALTY {
+            true => vec![0.0; x.len()],
+            false => gradient.iter().flat_map(|d| d.iter().copied()).collect(),
+        };
+        *self.gradient.borrow_mut() = Some((x.to_vec(), g));
         f
     }
 
-    /// `ln(criterion)` at `x`, and its forward-difference gradient if asked for. A probe changes
-    /// one posture, so the other postures' terms are reused; without a gradient the value comes
-    /// from [`Evaluator::value`], which keeps no terms.
-    fn fd_objective(&self, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
-        let x = self.clamp(x);
-        let postures = postures(&x);
-        let Some(g) = grad else {
-            let value = self.evaluator.value(self.criterion, &postures);
-            return log_value(self.record(x, &postures, value));
-        };
+    /// The forward-difference gradient of `ln(criterion)` at `x`, where it is `f`. A probe changes
+    /// one posture, so the other postures' terms are reused.
+    fn fd_objective_gradient(&self, x: &[f64], f: f64) -> Vec<f64> {
+        let postures = postures(x);
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
         let refs: Vec<&PostureTerms> = terms.iter().collect();
-        let value = self.evaluator.value_of(self.criterion, &refs);
-        let f = log_value(self.record(x.clone(), &postures, value));
-        self.gradient(&x, f, g, |k, probe| {
+        let mut g = vec![0.0; x.len()];
+        self.fd_gradient(x, f, &mut g, |k, probe| {
             let i = k / 6;
             let mut probed = postures.clone();
             probed[i] = Vector6::from_column_slice(&probe[6 * i..6 * i + 6]);
@@ -387,13 +433,19 @@ impl<'a> Problem<'a> {
             let value = self.evaluator.value_of(self.criterion, &refs);
             log_value(self.record(probe.to_vec(), &probed, value))
         });
-        f
+        g
     }
 
     /// Forward differences of `f` at `x` (where it is `fx`), backwards at an upper bound or where
     /// the forward probe hits the penalty; 0 where both do. `f` gets the index changed and the
     /// probe.
-    fn gradient(&self, x: &[f64], fx: f64, g: &mut [f64], mut f: impl FnMut(usize, &[f64]) -> f64) {
+    fn fd_gradient(
+        &self,
+        x: &[f64],
+        fx: f64,
+        g: &mut [f64],
+        mut f: impl FnMut(usize, &[f64]) -> f64,
+    ) {
         let h = self.options.fd_step;
         let mut probe = x.to_vec();
         for k in 0..x.len() {
@@ -418,23 +470,19 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// Constraint `k` (of [`Problem::kinds`]) of posture `i` at `x`: `c <= 0` (m, or rad for
-    /// angles), with its gradient (nonzero on the six angles of posture i
-    /// only). The constraints of a posture are worked out together and reused.
-    fn constraint(&self, i: usize, k: usize, x: &[f64], grad: Option<&mut [f64]>) -> f64 {
-        let x = self.clamp(x);
-        let q = Vector6::from_column_slice(&x[6 * i..6 * i + 6]);
+    /// `f` of the constraints of posture `i` at `q` (worked out together and reused).
+    fn posture_constraints<R>(
+        &self,
+        i: usize,
+        q: Vector6<f64>,
+        f: impl FnOnce(&PostureConstraints) -> R,
+    ) -> R {
         let mut cache = self.cache.borrow_mut();
         let entry = &mut cache.constraints[i];
         if entry.as_ref().is_none_or(|c| c.at != q) {
             *entry = Some(self.constraints_at(i, &q));
         }
-        let c = entry.as_ref().expect("just filled");
-        if let Some(g) = grad {
-            g.fill(0.0);
-            g[6 * i..6 * i + 6].copy_from_slice(c.gradients[k].as_slice());
-        }
-        c.values[k]
+        f(entry.as_ref().expect("just filled"))
     }
 
     /// Every constraint of posture `i` at `q`, and their gradients in `q`: exact
@@ -470,6 +518,57 @@ impl<'a> Problem<'a> {
             gradients,
         }
     }
+}
+
+impl Nlp for Problem<'_> {
+    fn bounds(&self) -> (&[f64], &[f64]) {
+        (&self.lower, &self.upper)
+    }
+
+    /// `ln(criterion)` and the constraints of every posture, posture-major.
+    fn values(&self, x: &[f64]) -> Values {
+        let f = self.objective(x);
+        let c = match self.options.gradient {
+            Gradient::Exact => (0..self.n)
+                .flat_map(|i| self.posture_constraints(i, posture(x, i), |c| c.values.clone()))
+                .collect(),
+            Gradient::FiniteDifference => (0..self.n)
+                .flat_map(|i| inequalities(self.checker, &self.kinds, &posture(x, i)))
+                .collect(),
+        };
+        Values { f, c }
+    }
+
+    fn gradients(&self, x: &[f64], values: &Values) -> Gradients {
+        let kept = self.gradient.borrow_mut().take();
+        let f = match kept {
+            Some((at, g)) if at == x => g,
+            _ => self.fd_objective_gradient(x, values.f),
+        };
+        let mut c: SparseRows = Vec::with_capacity(values.c.len());
+        for i in 0..self.n {
+            self.posture_constraints(i, posture(x, i), |constraints| {
+                c.extend(
+                    constraints
+                        .gradients
+                        .iter()
+                        .map(|g| g.iter().enumerate().map(|(a, v)| (6 * i + a, *v)).collect()),
+                )
+            });
+        }
+        Gradients { f, c }
+    }
+
+    /// Whether a point and its gradient fit in the budget ([`evals_per_step`]).
+    fn can_evaluate(&self) -> bool {
+        let spent = self.state.borrow().evaluations;
+        spent + evals_per_step(self.options, self.n) <= self.options.max_evals
+    }
+}
+
+/// Posture `i` of the variables `x`.
+fn posture(x: &[f64], i: usize) -> Vector6<f64> {
+    Vector6::from_column_slice(&x[6 * i..6 * i + 6])
 }
 
 /// The postures of the variables `x` (6 angles each).
