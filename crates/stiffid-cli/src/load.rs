@@ -6,9 +6,10 @@ use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use stiffid::formats::measurements::{self, MeasurementFile};
-use stiffid::formats::stiffness::{self, StiffnessFile};
+use stiffid::formats::stiffness;
 use stiffid::formats::{self, postures, reference, Capped};
 use stiffid::limits::{self, short, JointBox, Range};
+use stiffid::model::Compliance;
 use stiffid::{Robot, Setup};
 
 /// Every file read so far (resolved path, and its device and inode where the system has them), so
@@ -185,11 +186,14 @@ pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
     Ok(values)
 }
 
-/// A stiffness file (`stiffid::formats::stiffness`), e.g. the result of `stiffid identify --out`;
-/// errors start with the file name.
-pub fn stiffness(path: &Path) -> Result<StiffnessFile> {
+/// The compliance of every parameter of `setup`'s model from a stiffness file
+/// (`stiffid::formats::stiffness`), e.g. the result of `stiffid identify --out`, checked against
+/// the model; errors start with the file name.
+pub fn stiffness(path: &Path, setup: &Setup) -> Result<Compliance> {
     let text = read(path)?;
-    stiffness::parse(&text).with_context(|| path.display().to_string())
+    let name = || path.display().to_string();
+    let file = stiffness::parse(&text).with_context(name)?;
+    file.compliance(setup.model()).with_context(name)
 }
 
 /// A postures file (`stiffid::formats::postures`), every posture within the robot's joint limits

@@ -66,6 +66,45 @@ pub fn vector<const N: usize>(
     Ok(r.rows[0])
 }
 
+/// Exactly `n` finite numbers (shape `(n,)`); `what` names the argument in errors.
+pub fn values(obj: &Bound<'_, PyAny>, what: &str, n: usize) -> PyResult<Vec<f64>> {
+    let array: PyArrayLikeDyn<'_, f64, AllowTypeChange> = obj.extract().map_err(|_| {
+        value(format!(
+            "{what}: expected an array of shape ({n},) of numbers"
+        ))
+    })?;
+    let view = array.as_array();
+    if view.shape() != [n] {
+        return Err(value(format!(
+            "{what}: expected an array of shape ({n},), got shape {:?}",
+            view.shape()
+        )));
+    }
+    let v: Vec<f64> = view.iter().copied().collect();
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return Err(value(format!(
+            "{what}[{i}] = {} is not a finite number",
+            v[i]
+        )));
+    }
+    Ok(v)
+}
+
+/// An `n x n` matrix of numbers (shape `(n, n)`); `what` names the argument in errors.
+pub fn square(obj: &Bound<'_, PyAny>, what: &str, n: usize) -> PyResult<nalgebra::DMatrix<f64>> {
+    let array: PyArrayLikeDyn<'_, f64, AllowTypeChange> = obj
+        .extract()
+        .map_err(|_| value(format!("{what}: expected a ({n}, {n}) array of numbers")))?;
+    let view = array.as_array();
+    if view.shape() != [n, n] {
+        return Err(value(format!(
+            "{what}: expected a ({n}, {n}) array, got shape {:?}",
+            view.shape()
+        )));
+    }
+    Ok(nalgebra::DMatrix::from_fn(n, n, |r, c| view[[r, c]]))
+}
+
 /// Postures in degrees (rows of six axis angles) as radians, each within the box `limits`
 /// (`within` names it, e.g. "the setup's bounds"), at most `max` postures.
 pub fn postures(
@@ -131,6 +170,11 @@ pub fn integers<'py>(
 /// Rows of `N` as an `(n, N)` array.
 pub fn table<'py, const N: usize>(py: Python<'py>, rows: &[[f64; N]]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((rows.len(), N), |(r, c)| rows[r][c]).into_pyarray(py)
+}
+
+/// Rows of `n` numbers as an `(rows, n)` array.
+pub fn table_n<'py>(py: Python<'py>, rows: &[Vec<f64>], n: usize) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((rows.len(), n), |(r, c)| rows[r][c]).into_pyarray(py)
 }
 
 /// Postures (rad) as an `(n, 6)` array of degrees.

@@ -4,22 +4,22 @@
 
 use crate::arrays;
 use crate::error::{self, raise, raise_in};
-use crate::measure::stiffness_and_covariance;
 use crate::setup::Setup;
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
-use stiffid::compensate::{Compensated, Compliance, FreeToolAxis, Options, PathPoint};
+use stiffid::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
 use stiffid::deflection::Frame;
 use stiffid::formats::path;
 
 /// Compensates the machining path in the CSV file ``path`` (the format of ``stiffid compensate
 /// --path``: axis angles ``q1_deg..q6_deg`` or a TCP pose ``x_mm..rz_deg`` per line, and the
 /// wrench ``fx_n..mz_nm`` at the TCP, in ``frame`` ``"base"`` or ``"tool"`` unless the file says)
-/// with the joint stiffness ``stiffness``: six numbers (Nm/rad) or the path of a stiffness JSON
-/// file as ``stiffid identify --out`` writes it (its ``compliance_covariance_rad2_per_nm2``, when
-/// present, gives the standard deviations). Inverse kinematics starts at ``q0_deg`` (shape
+/// with the stiffness ``stiffness`` of every parameter of the setup's model: one number per
+/// parameter (the six drives, Nm/rad, then the virtual springs, Nm/rad or N/mm) or the path of a
+/// stiffness JSON file as ``stiffid identify --out`` writes it (its covariance, when present,
+/// gives the standard deviations). Inverse kinematics starts at ``q0_deg`` (shape
 /// ``(6,)``, deg; default the setup's first test posture); ``free_tool_axis=True`` turns each pose
 /// about its tool z within ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to
 /// the least deflection. Returns a dict of arrays with one row per path point, in path order:
@@ -44,11 +44,7 @@ pub fn compensate<'py>(
     tool_axis_range_deg: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
-    let (k, covariance) = stiffness_and_covariance(stiffness)?;
-    let compliance = Compliance {
-        h: k.map(|v| 1.0 / v),
-        covariance,
-    };
+    let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
     let name = path.display().to_string();
     let points = path::parse(&error::read(&path)?, frame).map_err(|e| raise_in(&name, e))?;

@@ -4,24 +4,28 @@
 use crate::arrays::{self, rows};
 use crate::error::{raise, value};
 use crate::setup::Setup;
-use nalgebra::{Matrix6, Vector3, Vector6};
-use numpy::{AllowTypeChange, PyArrayLike2};
+use crate::stiffness;
+use nalgebra::{DVector, Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use stiffid::deflection::{base_wrench, Frame, Points};
-use stiffid::formats::stiffness::check_covariance;
 use stiffid::limits;
+use stiffid::model::Compliance;
 
 /// The deflection of a tool point in each posture ``q_deg`` (shape ``(6,)`` or ``(n, 6)``, deg,
 /// within the joint limits) under ``wrench`` (``[fx, fy, fz, mx, my, mz]``, N and Nm, shape
 /// ``(6,)`` for every posture or ``(n, 6)``; in ``frame`` ``"base"`` or ``"tool"``) acting at
 /// ``loaded_mm`` (flange frame, mm; default the setup's loading point), observed at
-/// ``observed_mm`` (default the loaded point), with the joint stiffness ``stiffness_nm_per_rad``
-/// (default the setup's nominal). ``tau = J_a^T W`` (Eq. 4), ``dq = h .* tau`` (Eq. 5),
-/// ``[dp; dphi] = J_b dq`` (Eq. 6). Returns a dict of arrays with one row per posture:
-/// ``displacement_mm`` (``(n, 3)``, base frame), ``rotation_rad`` (``(n, 3)``),
-/// ``torques_nm`` and ``joint_deflections_rad`` (``(n, 6)``, the springs' coordinates) and, given
-/// ``compliance_covariance_rad2_per_nm2`` (``(6, 6)``, as ``Identification`` has it),
+/// ``observed_mm`` (default the loaded point), with the stiffness ``stiffness_nm_per_rad`` of
+/// every parameter of the setup's model (shape ``(p,)``: the six drives, Nm/rad, then the virtual
+/// springs, Nm/rad or N/mm; or the path of a stiffness JSON file; default the setup's nominal).
+/// ``tau = J_a^T W`` (Eq. 4), ``dq = h .* tau`` (Eq. 5), ``[dp; dphi] = J_b dq`` (Eq. 6), the
+/// Jacobians augmented by the virtual springs' columns. Returns a dict of arrays with one row per
+/// posture: ``displacement_mm`` (``(n, 3)``, base frame), ``rotation_rad`` (``(n, 3)``),
+/// ``torques_nm`` and ``joint_deflections_rad`` (``(n, p)``: the drives in the springs'
+/// coordinates, then each virtual spring's load, Nm or N, and deflection, rad or m) and, given
+/// ``compliance_covariance_rad2_per_nm2`` (``(p, p)``, SI, as ``Identification`` has it, or in the
+/// stiffness file),
 /// ``displacement_std_mm`` and ``rotation_std_rad`` (``(n, 3)``: exact first-order propagation).
 #[pyfunction]
 #[pyo3(signature = (setup, q_deg, wrench, *, loaded_mm=None, observed_mm=None, stiffness_nm_per_rad=None, frame="base", compliance_covariance_rad2_per_nm2=None))]
@@ -49,32 +53,37 @@ pub fn deflection<'py>(
     };
     let loaded = point(loaded_mm, s.tool().loading_point, "loaded_mm")?;
     let observed = point(observed_mm, loaded, "observed_mm")?;
-    let k = match stiffness_nm_per_rad {
-        None => *s
-            .try_nominal_stiffness("deflection without stiffness_nm_per_rad")
-            .map_err(raise)?,
-        Some(k) => {
-            let range = &limits::STIFFNESS_NM_PER_RAD;
-            Vector6::from(arrays::vector::<6>(k, "stiffness_nm_per_rad", range)?)
+    let compliance = match stiffness_nm_per_rad {
+        None => {
+            let mut c =
+                Compliance::nominal(s, "deflection without stiffness_nm_per_rad").map_err(raise)?;
+            if let Some(cov) = compliance_covariance_rad2_per_nm2 {
+                c.covariance = Some(stiffness::covariance_of(cov, c.len())?);
+            }
+            c
         }
+        Some(k) => stiffness::compliance(
+            s,
+            k,
+            compliance_covariance_rad2_per_nm2,
+            "stiffness_nm_per_rad",
+        )?,
     };
-    let h = k.map(|v| 1.0 / v);
+    let h = &compliance.h;
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let covariance = compliance_covariance_rad2_per_nm2
-        .map(covariance)
-        .transpose()?;
+    let covariance = &compliance.covariance;
     let results: Vec<_> = py.detach(|| {
         qs.iter()
             .zip(&wrenches)
             .map(|(q, w)| {
                 let frames = r.frames(q);
                 let points = Points {
+                    setup: s,
                     frames: &frames,
-                    springs: s.springs(),
                     loaded: &loaded,
                     observed: &observed,
                 };
-                let d = points.deflection(&base_wrench(&frames, w, frame), &h);
+                let d = points.deflection(&base_wrench(&frames, w, frame), h);
                 let std = covariance.as_ref().map(|c| d.std(c));
                 (d, std)
             })
@@ -88,9 +97,11 @@ pub fn deflection<'py>(
         let t: Vec<[f64; 3]> = (0..results.len()).map(f).collect();
         arrays::table(py, &t)
     };
-    let table6 = |f: &dyn Fn(usize) -> Vector6<f64>| {
-        let t: Vec<[f64; 6]> = (0..results.len()).map(|i| f(i).into()).collect();
-        arrays::table(py, &t)
+    let table = |f: &dyn Fn(usize) -> DVector<f64>| {
+        let t: Vec<Vec<f64>> = (0..results.len())
+            .map(|i| f(i).as_slice().to_vec())
+            .collect();
+        arrays::table_n(py, &t, compliance.len())
     };
     out.set_item(
         "displacement_mm",
@@ -100,10 +111,10 @@ pub fn deflection<'py>(
         "rotation_rad",
         table3(&|i| part(&results[i].0.displacement, 3, 1.0)),
     )?;
-    out.set_item("torques_nm", table6(&|i| results[i].0.torques))?;
+    out.set_item("torques_nm", table(&|i| results[i].0.torques.clone()))?;
     out.set_item(
         "joint_deflections_rad",
-        table6(&|i| results[i].0.joint_deflections),
+        table(&|i| results[i].0.joint_deflections.clone()),
     )?;
     if covariance.is_some() {
         let std = |i: usize| results[i].1.unwrap_or_default();
@@ -127,23 +138,4 @@ fn per_posture(wrench: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<Vector6<f64>
             w.rows.len()
         ))),
     }
-}
-
-/// A 6x6 covariance of the compliance: finite, symmetric, non-negative diagonal
-/// ([`check_covariance`]).
-fn covariance(obj: &Bound<'_, PyAny>) -> PyResult<Matrix6<f64>> {
-    let what = "compliance_covariance_rad2_per_nm2";
-    let a: PyArrayLike2<'_, f64, AllowTypeChange> = obj
-        .extract()
-        .map_err(|_| value(format!("{what}: expected a (6, 6) array")))?;
-    let view = a.as_array();
-    if view.shape() != [6, 6] {
-        return Err(value(format!(
-            "{what}: expected a (6, 6) array, got shape {:?}",
-            view.shape()
-        )));
-    }
-    let c = Matrix6::from_fn(|r, col| view[[r, col]]);
-    check_covariance(&c).map_err(raise)?;
-    Ok(c)
 }

@@ -16,6 +16,7 @@ mod error;
 mod measure;
 mod robot;
 mod setup;
+mod stiffness;
 mod study;
 
 use pyo3::prelude::*;

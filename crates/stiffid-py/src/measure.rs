@@ -6,17 +6,15 @@ use crate::arrays::{self, rows};
 use crate::documents;
 use crate::error::{self, raise, value};
 use crate::setup::Setup;
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::{Vector3, Vector6};
 use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::documents::identify::Document;
 use stiffid::formats::measurements::{self, MeasurementFile};
-use stiffid::formats::stiffness;
 use stiffid::identify::Loss;
 use stiffid::jobs::identify::{self as job, Fit, Folds, Request};
-use stiffid::limits;
 use stiffid::observation::Measurement;
 
 /// Measurements and, when read from a file, the file (to name its lines and columns in errors).
@@ -317,28 +315,8 @@ pub fn identify(
     Identification::new(py, &report, setup)
 }
 
-/// Six stiffness values (Nm/rad), or the stiffness of a stiffness JSON file (`stiffid identify
-/// --out`) at a path.
-fn stiffness(obj: &Bound<'_, PyAny>) -> PyResult<Vector6<f64>> {
-    Ok(stiffness_and_covariance(obj)?.0)
-}
-
-/// [`stiffness`] and, from a stiffness JSON file that has it, the covariance of the compliance
-/// (`compliance_covariance_rad2_per_nm2`, (rad/Nm)^2).
-pub fn stiffness_and_covariance(
-    obj: &Bound<'_, PyAny>,
-) -> PyResult<(Vector6<f64>, Option<Matrix6<f64>>)> {
-    if let Ok(path) = obj.extract::<PathBuf>() {
-        let name = path.display().to_string();
-        let file = stiffness::parse(&error::read(&path)?).map_err(|e| error::raise_in(&name, e))?;
-        return Ok((file.stiffness(), file.covariance()));
-    }
-    let range = &limits::STIFFNESS_NM_PER_RAD;
-    let k = arrays::vector::<6>(obj, "stiffness_nm_per_rad", range)?;
-    Ok((k.into(), None))
-}
-
-/// Validates a joint stiffness (``stiffness_nm_per_rad``: shape ``(6,)``, Nm/rad, or the path of a
+/// Validates the stiffness of every parameter of the setup's model (``stiffness_nm_per_rad``: shape
+/// ``(p,)``, the six drives in Nm/rad then the virtual springs in Nm/rad or N/mm, or the path of a
 /// stiffness JSON file as ``stiffid identify --out`` writes it) on measurements
 /// it was not fitted to (Zhang et al. 2021, Eq. 22, Table 7): the measurements as for
 /// ``identify``. Returns a dict: ``delta_b_mm`` (shape ``(n,)``: ``|delta_m - delta_c|`` per
@@ -359,10 +337,10 @@ pub fn validate<'py>(
     point: Option<Vec<i64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
-    let k = stiffness(stiffness_nm_per_rad)?;
+    let c = crate::stiffness::compliance(s, stiffness_nm_per_rad, None, "stiffness_nm_per_rad")?;
     let data = data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let v = py
-        .detach(|| stiffid::validate::compare(s, &k, &data.measurements))
+        .detach(|| stiffid::validate::compare(s, &c, &data.measurements))
         .map_err(|e| data.error(e))?;
     let mm = |x: &Vector3<f64>| [x.x * 1e3, x.y * 1e3, x.z * 1e3];
     let d = PyDict::new(py);

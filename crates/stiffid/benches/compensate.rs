@@ -12,31 +12,19 @@ use stiffid::{cartesian, setup};
 fn benches(c: &mut Criterion) {
     let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
     let q = s.test_postures()[0];
+    let h = Compliance::nominal(&s, "the bench").unwrap().h;
     c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
         b.iter(|| {
             let frames = s.robot().frames(black_box(&q));
-            cartesian::stiffness(
-                &frames,
-                &s.tool().tcp,
-                s.springs(),
-                s.nominal_stiffness().unwrap(),
-            )
+            cartesian::stiffness(&s, &frames, &s.tool().tcp, &h)
         })
     });
     let frames = s.robot().frames(&q);
     c.bench_function("Cartesian stiffness, frames given (J, K_x)", |b| {
-        b.iter(|| {
-            cartesian::stiffness(
-                black_box(&frames),
-                &s.tool().tcp,
-                s.springs(),
-                s.nominal_stiffness().unwrap(),
-            )
-        })
+        b.iter(|| cartesian::stiffness(&s, black_box(&frames), &s.tool().tcp, &h))
     });
-    let h = s.nominal_compliance().unwrap();
     c.bench_function("Cartesian compliance, frames given (J, C_x)", |b| {
-        b.iter(|| cartesian::compliance(black_box(&frames), &s.tool().tcp, s.springs(), &h))
+        b.iter(|| cartesian::compliance(&s, black_box(&frames), &s.tool().tcp, &h))
     });
     let start = tool_pose(&frames, &s.tool().tcp);
     let n = 10_000;
@@ -49,10 +37,7 @@ fn benches(c: &mut Criterion) {
             frame: Frame::Tool,
         })
         .collect();
-    let compliance = Compliance {
-        h: s.nominal_compliance().unwrap(),
-        covariance: None,
-    };
+    let compliance = Compliance::nominal(&s, "the bench").unwrap();
     let options = Options {
         q0: q,
         ik: ik::Options::default(),

@@ -12,6 +12,9 @@
 //! IEEE CDC 1980). `J_p` is the geometric Jacobian of p in the springs' coordinates (base frame,
 //! rows `[v; omega]`), `K = diag(k)` the joint stiffness (Nm/rad).
 //!
+//! Over the model ([`crate::model`]), `J_p` is augmented by one column per virtual spring and
+//! `K^-1` by its compliance: `C_x = J_q K^-1 J_q^T + sum_s c_s J_s J_s^T`.
+//!
 //! Blocks of `C_x` (base frame): translation per force m/N, translation per moment m/(N m),
 //! rotation per force rad/N, rotation per moment rad/(N m); `K_x` holds their inverses (N/m, N/rad,
 //! N m/m, N m/rad).
@@ -23,24 +26,32 @@
 //! deflection (0.1%, the `predict` example of docs/guide.md; test
 //! `the_complementary_stiffness_is_about_a_thousandth_of_the_deflection`).
 
-use crate::kinematics::{Coordinates, Frames};
-use nalgebra::{Matrix6, Vector3, Vector6};
+use crate::kinematics::Frames;
+use crate::Setup;
+use nalgebra::{DVector, Matrix6, Vector3};
 
-/// `C_x = J_p diag(h) J_p^T` (6x6, symmetric, base frame, SI blocks as in the module docs) of the tool point
-/// `point` (flange frame, m) in the posture `frames`, with joint compliance `h` (rad/Nm) in the
-/// coordinates `springs`.
+/// `C_x = J_p diag(h) J_p^T` (6x6, symmetric, base frame, SI blocks as in the module docs) of the
+/// tool point `point` (flange frame, m) in the posture `frames`, with the compliance `h` of every
+/// parameter of the setup's model (rad/Nm, m/N; drives first): `J_p` the augmented Jacobian
+/// ([`crate::model::Model::jacobian`]), so that with virtual springs
+/// `C_x = J_q K^-1 J_q^T + sum_s c_s J_s J_s^T`.
+///
+/// # Panics
+/// If `h` does not have one value per parameter.
 pub fn compliance(
+    setup: &Setup,
     frames: &Frames,
     point: &Vector3<f64>,
-    springs: Coordinates,
-    h: &Vector6<f64>,
+    h: &DVector<f64>,
 ) -> Matrix6<f64> {
-    let j = frames.jacobian(point, springs);
-    let mut jh = j;
+    assert_eq!(h.len(), setup.model().len(), "one compliance per parameter");
+    let j = setup.model().jacobian(setup.robot(), frames, point);
+    let mut jh = j.clone();
     for (c, mut col) in jh.column_iter_mut().enumerate() {
         col *= h[c];
     }
-    symmetric(jh * j.transpose())
+    let full = jh * j.transpose();
+    symmetric(Matrix6::from_fn(|r, c| full[(r, c)]))
 }
 
 /// `(A + A^T) / 2`: exactly symmetric, as `C_x` and `K_x` are in exact arithmetic.
@@ -48,21 +59,32 @@ fn symmetric(a: Matrix6<f64>) -> Matrix6<f64> {
     (a + a.transpose()) * 0.5
 }
 
-/// `K_x = J_p^-T diag(k) J_p^-1 = C_x^-1` (6x6, symmetric, base frame, SI blocks as in the module docs) of
-/// the tool point `point` (flange frame, m), with joint stiffness `k` (Nm/rad); computed from the
-/// inverse Jacobian, not by inverting `C_x` (whose condition number is the square of `J_p`'s).
-/// `None` where `J_p` is singular (numerically: not invertible or non-finite).
+/// `K_x = C_x^-1` (6x6, symmetric, base frame, SI blocks as in the module docs) of the tool point
+/// `point` (flange frame, m), with the compliance `h` of every parameter of the setup's model.
+/// For the drives alone it is computed from the inverse Jacobian, `J_p^-T diag(1/h) J_p^-1`, not
+/// by inverting `C_x` (whose condition number is the square of `J_p`'s); with virtual springs
+/// (`J_p` is 6 x n) by inverting `C_x`. `None` where it is singular (numerically: not invertible
+/// or non-finite).
+///
+/// # Panics
+/// If `h` does not have one value per parameter.
 pub fn stiffness(
+    setup: &Setup,
     frames: &Frames,
     point: &Vector3<f64>,
-    springs: Coordinates,
-    k: &Vector6<f64>,
+    h: &DVector<f64>,
 ) -> Option<Matrix6<f64>> {
-    let inv = frames.jacobian(point, springs).try_inverse()?;
-    let mut kj = inv;
-    for (r, mut row) in kj.row_iter_mut().enumerate() {
-        row *= k[r];
-    }
-    let kx = symmetric(inv.transpose() * kj);
+    assert_eq!(h.len(), setup.model().len(), "one compliance per parameter");
+    let kx = match setup.model().is_drives_only() {
+        true => {
+            let inv = frames.jacobian(point, setup.springs()).try_inverse()?;
+            let mut kj = inv;
+            for (r, mut row) in kj.row_iter_mut().enumerate() {
+                row *= 1.0 / h[r];
+            }
+            symmetric(inv.transpose() * kj)
+        }
+        false => symmetric(compliance(setup, frames, point, h).try_inverse()?),
+    };
     kx.iter().all(|v| v.is_finite()).then_some(kx)
 }

@@ -81,14 +81,9 @@ pub struct PathPoint {
     pub frame: Frame,
 }
 
-/// The joint compliance and, from an identification, its covariance.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Compliance {
-    /// `h`, rad/Nm, springs' coordinates.
-    pub h: Vector6<f64>,
-    /// `Cov(h)`, (rad/Nm)^2.
-    pub covariance: Option<Matrix6<f64>>,
-}
+/// The compliance of every parameter of the setup's model and, from an identification, its
+/// covariance ([`crate::model::Compliance`]).
+pub use crate::model::Compliance;
 
 /// The stiffness-optimal rotation about the tool z axis (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -272,11 +267,14 @@ pub struct Model<'a> {
 }
 
 impl<'a> Model<'a> {
-    /// The model of `setup` (its TCP and springs) with the compliance `compliance`.
+    /// The model of `setup` (its TCP, drive springs and virtual springs) with the compliance
+    /// `compliance` of every parameter of the setup's model.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] when the springs are kinematic and the robot's axis map is singular.
+    /// Those of [`Compliance::check`]; [`Error::InvalidField`] when the springs are kinematic and
+    /// the robot's axis map is singular.
     pub fn new(setup: &'a Setup, compliance: &'a Compliance) -> Result<Self> {
+        compliance.check(setup.model())?;
         let to_axis =
             match setup.springs() {
                 Coordinates::Axis => Matrix6::identity(),
@@ -303,12 +301,32 @@ impl<'a> Model<'a> {
         self.loaded(&self.setup.robot().frames(q), q, wrench)
     }
 
-    /// [`Model::loaded_pose`] with the frames of `q` given.
+    /// [`Model::loaded_pose`] with the frames of `q` given. The virtual springs' deflection (a
+    /// twist of the tool, `sum_s c_s (J_s^T W) J_s`) is applied to first order after the drives'
+    /// (their second-order terms are about `|dq|^2` times the reach, far below the tolerance).
     fn loaded(&self, frames: &Frames, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
         let tcp = &self.setup.tool().tcp;
+        let h = &self.compliance.h;
         let j = frames.jacobian(tcp, self.setup.springs());
-        let dq = self.to_axis * j.tr_mul(wrench).component_mul(&self.compliance.h);
-        tool_pose(&self.setup.robot().frames(&(q + dq)), tcp)
+        let drives = Vector6::from_fn(|r, _| h[r]);
+        let dq = self.to_axis * j.tr_mul(wrench).component_mul(&drives);
+        let pose = tool_pose(&self.setup.robot().frames(&(q + dq)), tcp);
+        let model = self.setup.model();
+        if model.is_drives_only() {
+            return pose;
+        }
+        let p = frames.point(tcp);
+        let twist: Vector6<f64> = model
+            .placed(self.setup.robot(), frames)
+            .iter()
+            .enumerate()
+            .map(|(s, spring)| spring.column(&p) * (h[6 + s] * spring.load(&p, wrench)))
+            .sum();
+        let rotation = UnitQuaternion::from_scaled_axis(twist.fixed_rows::<3>(3).into_owned());
+        Isometry3::from_parts(
+            (pose.translation.vector + twist.fixed_rows::<3>(0)).into(),
+            rotation * pose.rotation,
+        )
     }
 
     /// The TCP deflection (Eq. 6) in the posture `frames` under `wrench` (base frame) and its
@@ -320,8 +338,8 @@ impl<'a> Model<'a> {
     ) -> (Vector6<f64>, Option<(Vector6<f64>, f64)>) {
         let tcp = &self.setup.tool().tcp;
         let points = Points {
+            setup: self.setup,
             frames,
-            springs: self.setup.springs(),
             loaded: tcp,
             observed: tcp,
         };

@@ -6,13 +6,19 @@
 //! of the tool point b `[dp; dphi] = J_b dq` (Eq. 6): translation of b (m) and rotation of the tool
 //! (rad), base frame. With a = b this is [`crate::cartesian::compliance`] times `W`.
 //!
+//! **Over the model** ([`crate::model`]): the Jacobians are augmented by one column per virtual
+//! spring (`[J_q | J_s]`, [`crate::model::Model::jacobian`]), `tau` holds every parameter's load
+//! (Nm or N) and `h` every parameter's compliance, so the same three lines give the deflection
+//! `J_b diag(h) J_a^T W = (J_q,b K^-1 J_q,a^T + sum_s c_s J_s,b J_s,a^T) W`.
+//!
 //! **Uncertainty**: the displacement is linear in the compliance, `J_b diag(tau) h`, so with the
-//! covariance `Cov(h)` of an identification ([`crate::identify::Uncertainty`]) its covariance is
+//! covariance `Cov(h)` of an identification ([`crate::model::Compliance`]) its covariance is
 //! exactly `J_b diag(tau) Cov(h) diag(tau) J_b^T` (first-order propagation, exact here because the
 //! map is linear in h).
 
-use crate::kinematics::{Coordinates, Frames};
-use nalgebra::{Matrix6, Vector3, Vector6};
+use crate::kinematics::Frames;
+use crate::Setup;
+use nalgebra::{DMatrix, DVector, Matrix6, Matrix6xX, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// The frame a wrench is given in.
@@ -69,13 +75,14 @@ pub fn base_wrench(frames: &Frames, wrench: &Vector6<f64>, frame: Frame) -> Vect
     }
 }
 
-/// Where a wrench acts and where the deflection is wanted, in one posture.
+/// Where a wrench acts and where the deflection is wanted, in one posture of a setup's robot,
+/// over the setup's model ([`crate::model`]: the drives and the virtual springs).
 #[derive(Debug, Clone, Copy)]
 pub struct Points<'a> {
+    /// The setup: robot, model (drive coordinates, virtual springs).
+    pub setup: &'a Setup,
     /// The posture's kinematics.
     pub frames: &'a Frames,
-    /// The coordinates of the joint springs.
-    pub springs: Coordinates,
     /// Where the wrench acts, flange frame, m.
     pub loaded: &'a Vector3<f64>,
     /// Whose deflection is wanted, flange frame, m.
@@ -85,33 +92,39 @@ pub struct Points<'a> {
 /// A tool point's deflection under a wrench.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PointDeflection {
-    /// `tau = J_a^T W` (Eq. 4), Nm, springs' coordinates.
-    pub torques: Vector6<f64>,
-    /// `dq = h .* tau` (Eq. 5), rad, springs' coordinates.
-    pub joint_deflections: Vector6<f64>,
+    /// `tau = J_a^T W` (Eq. 4) of every parameter, drives first: Nm (drives in the springs'
+    /// coordinates, rotational springs) or N (translational springs).
+    pub torques: DVector<f64>,
+    /// `dq = h .* tau` (Eq. 5) of every parameter: rad or m.
+    pub joint_deflections: DVector<f64>,
     /// `J_b dq` (Eq. 6): translation of the point (m) then rotation of the tool (rad), base frame.
     pub displacement: Vector6<f64>,
-    /// The Jacobian `J_b` of the observed point, for [`PointDeflection::covariance`].
-    jacobian: Matrix6<f64>,
+    /// The augmented Jacobian `J_b` of the observed point, for [`PointDeflection::covariance`].
+    jacobian: Matrix6xX<f64>,
 }
 
 impl Points<'_> {
     /// The deflection under `wrench` (`[f; m]`, N and Nm, base frame, at the loaded point) with
-    /// joint compliance `h` (rad/Nm).
-    pub fn deflection(&self, wrench: &Vector6<f64>, h: &Vector6<f64>) -> PointDeflection {
-        let jb = self.frames.jacobian(self.observed, self.springs);
+    /// the compliance `h` of every parameter of the setup's model (rad/Nm, m/N; drives first),
+    /// by the augmented Jacobians ([`crate::model::Model::jacobian`]).
+    ///
+    /// # Panics
+    /// If `h` does not have one value per parameter ([`crate::model::Compliance::check`]).
+    pub fn deflection(&self, wrench: &Vector6<f64>, h: &DVector<f64>) -> PointDeflection {
+        let (model, robot) = (self.setup.model(), self.setup.robot());
+        assert_eq!(h.len(), model.len(), "one compliance per parameter");
+        let jb = model.jacobian(robot, self.frames, self.observed);
         let torques = match self.loaded == self.observed {
             true => jb.tr_mul(wrench),
-            false => self
-                .frames
-                .jacobian(self.loaded, self.springs)
+            false => model
+                .jacobian(robot, self.frames, self.loaded)
                 .tr_mul(wrench),
         };
         let joint_deflections = torques.component_mul(h);
         PointDeflection {
+            displacement: &jb * &joint_deflections,
             torques,
             joint_deflections,
-            displacement: jb * joint_deflections,
             jacobian: jb,
         }
     }
@@ -119,17 +132,21 @@ impl Points<'_> {
 
 impl PointDeflection {
     /// The covariance (6x6, m^2, m rad, rad^2, base frame) of the displacement given the
-    /// covariance of the compliance `Cov(h)` ((rad/Nm)^2): `J_b diag(tau) Cov(h) diag(tau) J_b^T`.
-    pub fn covariance(&self, compliance_covariance: &Matrix6<f64>) -> Matrix6<f64> {
-        let mut a = self.jacobian;
+    /// covariance `Cov(h)` of the compliance (n x n, SI): `J_b diag(tau) Cov(h) diag(tau) J_b^T`.
+    ///
+    /// # Panics
+    /// If `compliance_covariance` is not n x n.
+    pub fn covariance(&self, compliance_covariance: &DMatrix<f64>) -> Matrix6<f64> {
+        let mut a = self.jacobian.clone();
         for (c, mut col) in a.column_iter_mut().enumerate() {
             col *= self.torques[c];
         }
-        a * compliance_covariance * a.transpose()
+        let full = &a * compliance_covariance * a.transpose();
+        Matrix6::from_fn(|r, c| full[(r, c)])
     }
 
     /// The standard deviation of each coordinate of the displacement (m, m, m, rad, rad, rad).
-    pub fn std(&self, compliance_covariance: &Matrix6<f64>) -> Vector6<f64> {
+    pub fn std(&self, compliance_covariance: &DMatrix<f64>) -> Vector6<f64> {
         self.covariance(compliance_covariance)
             .diagonal()
             .map(|v| v.max(0.0).sqrt())

@@ -2,15 +2,17 @@
 //! Section IV-B, Eq. 22, Table 7).
 //!
 //! For each measurement the forward model predicts the translation of its measuring point,
-//! `delta_c = J_m (h .* tau)` (Eq. 4-7; computed as the measurement's rows of `Psi` times `h`), and
+//! `delta_c = J_m (h .* tau)` (Eq. 4-7; computed as the measurement's rows of `Psi` times `h`, over
+//! every parameter of the setup's model: the drives and the virtual springs), and
 //! `delta_b = |delta_m - delta_c|` (Eq. 22) is how far the prediction is off. Beside it, the size of
 //! the measured deflections `|delta_m|` and the share of them the model explains,
 //! `1 - RMS(delta_b) / RMS(|delta_m|)` (1: perfect prediction; 0: no better than predicting no
 //! deflection; negative: worse).
 
+use crate::model::Compliance;
 use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};
-use nalgebra::{Vector3, Vector6};
+use nalgebra::Vector3;
 
 /// The check of one measurement.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,20 +46,23 @@ pub struct Validation {
     pub explained: f64,
 }
 
-/// Predicts every measurement with joint stiffness `stiffness` (Nm/rad) and compares (Eq. 22).
+/// Predicts every measurement with the compliance `compliance` of every parameter of the setup's
+/// model ([`crate::model`]; rad/Nm, m/N) and compares (Eq. 22).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`stiffness`) unless all six values are finite and positive, or
-/// (`measurements`) for an empty list; those of [`Observations::from_measurements`].
+/// Those of [`Compliance::check`]; [`Error::InvalidField`] (`stiffness`) unless every compliance
+/// is positive, or (`measurements`) for an empty list; those of
+/// [`Observations::from_measurements`].
 pub fn compare(
     setup: &Setup,
-    stiffness: &Vector6<f64>,
+    compliance: &Compliance,
     measurements: &[Measurement],
 ) -> Result<Validation> {
-    if !stiffness.iter().all(|k| k.is_finite() && *k > 0.0) {
+    compliance.check(setup.model())?;
+    if !compliance.h.iter().all(|h| *h > 0.0) {
         return Err(Error::InvalidField {
             field: "stiffness".into(),
-            message: "expected six finite numbers > 0 Nm/rad".into(),
+            message: "expected finite numbers > 0 (Nm/rad, N/mm)".into(),
         });
     }
     if measurements.is_empty() {
@@ -67,7 +72,7 @@ pub fn compare(
         });
     }
     let obs = Observations::from_measurements(setup, measurements)?;
-    let predicted = &obs.psi * stiffness.map(|k| 1.0 / k);
+    let predicted = &obs.psi * &compliance.h;
     let checks: Vec<PointCheck> = measurements
         .iter()
         .enumerate()

@@ -7,7 +7,7 @@ use std::ffi::OsStr;
 use std::marker::PhantomData;
 use std::path::PathBuf;
 use stiffid::choice::Choice;
-use stiffid::formats::stiffness::StiffnessFile;
+use stiffid::model::Compliance;
 use stiffid::Setup;
 
 /// `--setup` and `--json`, of every command that works with a setup and prints a result.
@@ -31,16 +31,18 @@ impl Common {
 /// `--stiffness`, of the commands that use an identified stiffness.
 #[derive(clap::Args)]
 pub struct Stiffness {
-    /// Stiffness file: JSON with `stiffness_nm_per_rad` (six values, Nm/rad) and optionally
-    /// `compliance_covariance_rad2_per_nm2`, e.g. from `stiffid identify --out`.
+    /// Stiffness file: JSON with every parameter of the setup's model (`parameters`) and
+    /// optionally its covariance, as `stiffid identify --out` writes it; or, for the six drives
+    /// alone, `stiffness_nm_per_rad` (Nm/rad) and optionally `compliance_covariance_rad2_per_nm2`.
     #[arg(long)]
     pub stiffness: PathBuf,
 }
 
 impl Stiffness {
-    /// The stiffness file named by `--stiffness` ([`load::stiffness`]).
-    pub fn load(&self) -> Result<StiffnessFile> {
-        load::stiffness(&self.stiffness)
+    /// The compliance of every parameter of `setup`'s model from the file named by `--stiffness`
+    /// ([`load::stiffness`]).
+    pub fn load(&self, setup: &Setup) -> Result<Compliance> {
+        load::stiffness(&self.stiffness, setup)
     }
 }
 

@@ -14,7 +14,7 @@ use serde_json::{Map, Value};
 use std::borrow::Cow;
 use std::io::Write;
 use std::path::PathBuf;
-use stiffid::compensate::{self, Compensated, Compliance, FreeToolAxis, Options};
+use stiffid::compensate::{self, Compensated, FreeToolAxis, Options};
 use stiffid::deflection::Frame;
 use stiffid::formats::path;
 use stiffid::{Coordinates, Error, Setup};
@@ -184,11 +184,7 @@ impl From<Error> for Failure {
 /// the points kept for the report's figures; memory bounded whatever the path's length.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let file = args.stiffness.load()?;
-    let compliance = Compliance {
-        h: file.stiffness().map(|k| 1.0 / k),
-        covariance: file.covariance(),
-    };
+    let compliance = args.stiffness.load(&setup)?;
     let options = options(args, &setup)?;
     let name = args.path.display().to_string();
     let text = load::read(&args.path)?;
@@ -243,7 +239,7 @@ pub fn run(args: &Args) -> Result<()> {
         path: args.path.display().to_string(),
         out: args.out.display().to_string(),
         springs: setup.springs(),
-        stiffness_nm_per_rad: file.stiffness_nm_per_rad,
+        stiffness_nm_per_rad: compliance.drives_h().map(|h| 1.0 / h).into(),
         has_covariance: compliance.covariance.is_some(),
         free_tool_axis: options.free_tool_axis.map(|f| FreeToolAxisJson {
             max_step_deg: f.max_step.to_degrees(),

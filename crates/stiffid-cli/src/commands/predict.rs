@@ -14,6 +14,7 @@ use stiffid::cartesian;
 use stiffid::deflection::Frame;
 use stiffid::deflection::{base_wrench, Points};
 use stiffid::limits;
+use stiffid::model::Compliance;
 
 /// Arguments of `stiffid predict`.
 #[derive(clap::Args)]
@@ -146,30 +147,26 @@ pub fn run(args: &Args) -> Result<()> {
         Some(text) => load::vector::<3>(text, "--at-mm", &limits::LENGTH_MM)? * 1e-3,
         None => setup.tool().loading_point,
     };
-    let (stiffness, covariance) = match &args.stiffness {
-        Some(path) => {
-            let file = load::stiffness(path)?;
-            (file.stiffness(), file.covariance())
-        }
-        None => (
-            *setup.try_nominal_stiffness("predict without --stiffness FILE")?,
-            None,
-        ),
+    let compliance = match &args.stiffness {
+        Some(path) => load::stiffness(path, &setup)?,
+        None => Compliance::nominal(&setup, "predict without --stiffness FILE")?,
     };
-    let h = stiffness.map(|k| 1.0 / k);
+    let h = &compliance.h;
+    let covariance = &compliance.covariance;
+    let stiffness = compliance.drives_h().map(|h| 1.0 / h);
     let frames = setup.robot().frames(&q);
     let base = base_wrench(&frames, &wrench, args.frame);
     let at_point = |observed| Points {
+        setup: &setup,
         frames: &frames,
-        springs: setup.springs(),
         loaded: &at,
         observed,
     };
     let std = |d: &stiffid::deflection::PointDeflection| covariance.as_ref().map(|c| d.std(c));
-    let tcp = at_point(&setup.tool().tcp).deflection(&base, &h);
+    let tcp = at_point(&setup.tool().tcp).deflection(&base, h);
     let tcp_std = std(&tcp);
-    let c = cartesian::compliance(&frames, &at, setup.springs(), &h);
-    let k = cartesian::stiffness(&frames, &at, setup.springs(), &stiffness);
+    let c = cartesian::compliance(&setup, &frames, &at, h);
+    let k = cartesian::stiffness(&setup, &frames, &at, h);
     let result = PredictJson {
         setup: args.common.setup.clone(),
         q_deg: q_deg.into(),
@@ -178,8 +175,8 @@ pub fn run(args: &Args) -> Result<()> {
         wrench_point_mm: (at * 1e3).into(),
         wrench_base_frame: base.into(),
         stiffness_nm_per_rad: stiffness.into(),
-        torques_nm: tcp.torques.into(),
-        joint_deflections_mrad: (tcp.joint_deflections * 1e3).into(),
+        torques_nm: std::array::from_fn(|j| tcp.torques[j]),
+        joint_deflections_mrad: std::array::from_fn(|j| tcp.joint_deflections[j] * 1e3),
         flange_rotation_mrad: xyz(&tcp.displacement, 3, 1e3),
         flange_rotation_std_mrad: tcp_std.map(|s| xyz(&s, 3, 1e3)),
         measuring_points: setup
@@ -188,7 +185,7 @@ pub fn run(args: &Args) -> Result<()> {
             .iter()
             .enumerate()
             .map(|(i, p)| {
-                let d = at_point(p).deflection(&base, &h);
+                let d = at_point(p).deflection(&base, h);
                 let t = d.displacement.fixed_rows::<3>(0) * 1e3;
                 PointJson {
                     point: i + 1,

@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{compensate, evaluate, kinematics, predict, register, select, simulate, validate};
+use super::{compensate, evaluate, kinematics, predict, register, select, simulate};
 use crate::output::{self, json};
 use crate::report::summary;
 use anyhow::{bail, Result};
@@ -68,7 +68,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "predict" => closed::<predict::PredictJson>(),
         "identify" => closed::<stiffid::documents::identify::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),
-        "validate" => closed::<validate::ValidationJson>(),
+        "validate" => closed::<stiffid::documents::validate::Document>(),
         "compensate" => closed::<compensate::Document<'static>>(),
         "simulate" => closed::<simulate::SimulationJson<'static>>(),
         "reproduce" => closed::<summary::Summary<'static>>(),

@@ -1,14 +1,15 @@
 //! `stiffid validate`: predicted against measured displacements for an identified stiffness
-//! (Zhang et al. 2021, Eq. 22, Table 7).
+//! (Zhang et al. 2021, Eq. 22, Table 7), over every parameter of the setup's model: the arguments
+//! turned into a [`stiffid::jobs::validate::Request`], the job run, its document rendered.
 
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
-use crate::output::print_json_or;
-use anyhow::{Context, Result};
-use schemars::JsonSchema;
-use serde::Serialize;
+use crate::output::{self, print_json_or};
+use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::validate;
+use stiffid::documents::validate::Document;
+use stiffid::jobs::identify::Data;
+use stiffid::jobs::validate::{self as job, Request};
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
@@ -22,95 +23,37 @@ pub struct Args {
     data: PathBuf,
 }
 
-/// `stiffid validate --json`: measured against predicted displacements (Eq. 22).
-#[derive(Serialize, JsonSchema)]
-pub struct ValidationJson {
-    /// The setup as given (`--setup`).
-    setup: String,
-    /// The measurements file (`--data`).
-    data: String,
-    /// The stiffness validated (`--stiffness`), Nm/rad.
-    stiffness_nm_per_rad: [f64; 6],
-    /// Every measurement, file order.
-    checks: Vec<CheckJson>,
-    /// Mean of `delta_b` over the measurements, mm.
-    mean_delta_b_mm: f64,
-    /// Largest `delta_b`, mm.
-    max_delta_b_mm: f64,
-    /// RMS of `delta_b`, mm.
-    rms_delta_b_mm: f64,
-    /// Mean length of the measured displacements, mm.
-    mean_measured_mm: f64,
-    /// Largest measured displacement, mm.
-    max_measured_mm: f64,
-    /// RMS of the measured displacements, mm.
-    rms_measured_mm: f64,
-    /// `1 - rms_delta_b_mm / rms_measured_mm`.
-    explained: f64,
-}
-
-/// One measurement against its prediction.
-#[derive(Serialize, JsonSchema)]
-struct CheckJson {
-    /// The posture's label in the file.
-    posture: String,
-    /// The measuring point (1-based).
-    point: usize,
-    /// The line in the file.
-    line: u64,
-    /// Measured displacement x, y, z, base frame, mm.
-    measured_mm: [f64; 3],
-    /// Predicted displacement x, y, z, base frame, mm.
-    predicted_mm: [f64; 3],
-    /// `|measured - predicted|` (Eq. 22), mm.
-    delta_b_mm: f64,
-}
-
 /// Validates and prints.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
-    let stiffness = args.stiffness.load()?.stiffness();
-    let data = load::measurements(&args.data, &setup)?;
-    let name = args.data.display().to_string();
-    let v = validate::compare(&setup, &stiffness, &data.measurements)
-        .map_err(|e| data.explain(e))
-        .with_context(|| name.clone())?;
-    let result = ValidationJson {
-        setup: args.common.setup.clone(),
-        data: name,
-        stiffness_nm_per_rad: stiffness.into(),
-        checks: v
-            .checks
-            .iter()
-            .enumerate()
-            .map(|(i, c)| CheckJson {
-                posture: data.labels[c.posture].clone(),
-                point: c.point + 1,
-                line: data.lines[i],
-                measured_mm: (c.measured * 1e3).into(),
-                predicted_mm: (c.predicted * 1e3).into(),
-                delta_b_mm: c.delta_b * 1e3,
-            })
-            .collect(),
-        mean_delta_b_mm: v.mean * 1e3,
-        max_delta_b_mm: v.max * 1e3,
-        rms_delta_b_mm: v.rms * 1e3,
-        mean_measured_mm: v.measured[0] * 1e3,
-        max_measured_mm: v.measured[1] * 1e3,
-        rms_measured_mm: v.measured[2] * 1e3,
-        explained: v.explained,
-    };
-    print_json_or(args.common.json, &result, human)
+    let compliance = args.stiffness.load(&setup)?;
+    let reader = load::open(&args.data)?;
+    let report = job::run(Request {
+        setup: &setup,
+        compliance: &compliance,
+        data: Data::File {
+            name: args.data.display().to_string(),
+            reader,
+        },
+    })?;
+    for warning in &report.warnings {
+        output::warn(&warning.message);
+    }
+    let doc = Document::new(&report, &args.common.setup, &setup);
+    print_json_or(args.common.json, &doc, human)
 }
 
-fn human(r: &ValidationJson) -> String {
+fn human(r: &Document) -> String {
     let k: Vec<String> = r
-        .stiffness_nm_per_rad
+        .parameters
         .iter()
-        .map(|k| format!("{k:.0}"))
+        .map(|p| {
+            let v = p.stiffness.map_or("inf".into(), |k| format!("{k:.0}"));
+            format!("{} {v} {}", p.name, p.unit)
+        })
         .collect();
     let mut s = format!(
-        "setup {}, data {}\nstiffness Nm/rad: {}\n\n\
+        "setup {}, data {}\nstiffness: {}\n\n\
          posture  point   measured mm (x, y, z)           predicted mm (x, y, z)          delta_b mm\n",
         r.setup,
         r.data,

@@ -1,11 +1,14 @@
 //! The document of the identify job ([`crate::jobs::identify`]): `stiffid identify --json`, the
 //! stiffness file of `--out`, Python's `identify(...).to_dict()`.
 
+use super::parameters::{stiffness, ParameterStiffness};
 use super::{finite, finite_each, mm};
 use crate::identify::{Adequacy, Uncertainty};
 use crate::jobs::identify::Report;
 use crate::jobs::WarningKind;
+use crate::model::Model;
 use crate::{Coordinates, Setup};
+use nalgebra::DVector;
 use serde::Serialize;
 
 /// The identify document. Units in the key names; intervals `[lower, upper]`; `null` for a number
@@ -26,6 +29,13 @@ pub struct Document {
     pub rows: usize,
     /// Distinct postures in the data.
     pub postures: usize,
+    /// Every parameter of the model (the six drives) with its name, kind, unit and stiffness:
+    /// with `compliance_covariance_si`, what a stiffness file holds
+    /// ([`crate::formats::stiffness`]).
+    pub parameters: Vec<ParameterStiffness>,
+    /// `Cov(h)` of the compliance of every parameter, SI, row-major (here the six drives, equal
+    /// to `compliance_covariance_rad2_per_nm2`); `null` without degrees of freedom.
+    pub compliance_covariance_si: Option<Vec<Vec<f64>>>,
     /// The identified joint stiffness, Nm/rad.
     pub stiffness_nm_per_rad: [Option<f64>; 6],
     /// The identified joint compliance (the unknowns of Eq. 14), rad/Nm.
@@ -232,6 +242,16 @@ impl Document {
             method: report.fit.name(),
             rows: id.rows,
             postures: id.postures,
+            parameters: stiffness(
+                &Model::drives(setup.springs()).parameters(),
+                &DVector::from_column_slice(id.compliance.as_slice()),
+            ),
+            compliance_covariance_si: u.map(|u| {
+                u.compliance_covariance
+                    .row_iter()
+                    .map(|r| r.iter().copied().collect())
+                    .collect()
+            }),
             stiffness_nm_per_rad: finite_each(id.stiffness),
             compliance_rad_per_nm: id.compliance.into(),
             physical: id.physical(),

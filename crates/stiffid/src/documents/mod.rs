@@ -12,6 +12,8 @@
 //! front ends give the same document for the same call.
 
 pub mod identify;
+pub mod parameters;
+pub mod validate;
 
 /// `v` if finite, else `None`.
 pub fn finite(v: f64) -> Option<f64> {

@@ -104,6 +104,10 @@ pub struct Fit {
     pub intervals: Vec<Option<Interval>>,
     /// What the data identify.
     pub identifiability: Identifiability,
+    /// `Cov(h) = s^2 S V diag(1/s^2) V^T S` over the identifiable directions (n x n, SI; for a
+    /// bounded fit, that of the free compliances with the others' rows and columns zero); `None`
+    /// without degrees of freedom.
+    pub covariance: Option<DMatrix<f64>>,
     /// `delta - Psi h`, m, rows in the order of [`crate::observation`].
     pub residuals: DVector<f64>,
     /// `|delta - Psi h|^2`, m^2.
@@ -252,13 +256,17 @@ impl Scaled {
         (self.v.columns(0, r) * c).component_mul(&self.scale)
     }
 
-    /// `(Psi^T Psi)^+`'s diagonal over the identifiable directions: `S V diag(1/s^2) V^T S`.
-    fn unit_variances(&self) -> DVector<f64> {
+    /// `(Psi^T Psi)^+` over the identifiable directions: `S V diag(1/s^2) V^T S`.
+    fn unit_covariance(&self) -> DMatrix<f64> {
         let r = self.rank;
-        DVector::from_fn(self.v.nrows(), |j, _| {
-            let row = self.v.row(j);
-            (0..r).map(|k| (row[k] / self.s[k]).powi(2)).sum::<f64>() * self.scale[j].powi(2)
-        })
+        let mut a = self.v.columns(0, r).into_owned();
+        for (k, mut col) in a.column_iter_mut().enumerate() {
+            col /= self.s[k];
+        }
+        for (j, mut row) in a.row_iter_mut().enumerate() {
+            row *= self.scale[j];
+        }
+        &a * a.transpose()
     }
 }
 
@@ -319,6 +327,15 @@ pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<F
     for (k, &j) in free.iter().enumerate() {
         out.intervals[j] = sub_fit.intervals[k];
     }
+    out.covariance = sub_fit.covariance.map(|sub| {
+        let mut c = DMatrix::zeros(h.len(), h.len());
+        for (a, &i) in free.iter().enumerate() {
+            for (b, &j) in free.iter().enumerate() {
+                c[(i, j)] = sub[(a, b)];
+            }
+        }
+        c
+    });
     out.dof = sub_fit.dof;
     Ok(out)
 }
@@ -359,7 +376,8 @@ fn finish(
         .then(|| StudentsT::new(0.0, 1.0, dof as f64).ok())
         .flatten()
         .map(|d| d.inverse_cdf(0.975));
-    let variances = scaled.unit_variances() * (rss / dof.max(1) as f64);
+    let covariance = scaled.unit_covariance() * (rss / dof.max(1) as f64);
+    let variances = covariance.diagonal();
     let intervals = (0..h.len())
         .map(|j| {
             let t = t.filter(|_| identifiability.identified[j])?;
@@ -378,6 +396,7 @@ fn finish(
         compliance: h,
         intervals,
         identifiability,
+        covariance: (dof > 0).then_some(covariance),
         residuals,
         rss,
         rows,

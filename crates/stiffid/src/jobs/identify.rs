@@ -211,7 +211,7 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
 }
 
 /// `error` about the data named `name`.
-fn in_data(name: &str, error: Error) -> Error {
+pub(crate) fn in_data(name: &str, error: Error) -> Error {
     Error::Input {
         source_name: name.to_string(),
         error: Box::new(error),
@@ -244,12 +244,23 @@ fn from_file<R: Read + Send>(
         );
         return Ok((id, origin, None));
     }
+    let (file, origin) = read_file(setup, name, reader)?;
+    let (id, cv) =
+        fit(setup, how, folds, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
+    Ok((id, origin, cv))
+}
+
+/// A whole measurement file read, parsed and turned into the base frame, and where each
+/// measurement came from.
+pub(crate) fn read_file<R: Read>(
+    setup: &Setup,
+    name: &str,
+    reader: R,
+) -> Result<(measurements::MeasurementFile, Origin)> {
     let text = read_text(name, reader)?;
     let mut file = measurements::parse(&text).map_err(|e| in_data(name, e))?;
     drop(text);
     file.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let (id, cv) =
-        fit(setup, how, folds, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
     let columns = [
         file.layout.force_columns(),
         file.layout.displacement_columns(),
@@ -259,10 +270,10 @@ fn from_file<R: Read + Send>(
         file.measurements.iter().map(|m| m.posture).collect(),
         file.measurements.iter().map(|m| m.point).collect(),
         posture_angles(&file.measurements),
-        Some(file.lines),
+        Some(file.lines.clone()),
         columns,
     );
-    Ok((id, origin, cv))
+    Ok((file, origin))
 }
 
 /// The fit of measurements in the base frame, and the cross-validation if asked. Plain least
@@ -293,7 +304,7 @@ fn fit(
 }
 
 /// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
-fn arrays_origin(measurements: &[Measurement]) -> Origin {
+pub(crate) fn arrays_origin(measurements: &[Measurement]) -> Origin {
     let postures = measurements.iter().map(|m| m.posture).collect::<Vec<_>>();
     let count = postures.iter().max().map_or(0, |p| p + 1);
     Origin::new(

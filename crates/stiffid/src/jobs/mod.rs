@@ -22,6 +22,7 @@
 //! never of one front end's options; each front end adds its own hints.
 
 pub mod identify;
+pub mod validate;
 
 use serde::Serialize;
 

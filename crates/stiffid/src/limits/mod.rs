@@ -171,6 +171,10 @@ pub const MAX_GROUPS: usize = 100;
 /// Most measuring points of a setup.
 pub const MAX_MEASURING_POINTS: usize = 100;
 
+/// Most parameters of a model in a stiffness file: the six drives and
+/// [`crate::model::MAX_VIRTUAL_SPRINGS`] virtual springs.
+pub const MAX_PARAMETERS: usize = 6 + crate::model::MAX_VIRTUAL_SPRINGS;
+
 /// Most test postures of a setup.
 pub const MAX_TEST_POSTURES: usize = 10_000;
 

@@ -22,9 +22,11 @@
 //! the setup. SI inside: compliances in rad/Nm (drives, rotations) and m/N (translations);
 //! files and reports speak Nm/rad and N/mm ([`Unit`]).
 
+mod compliance;
 mod family;
 pub(crate) mod file;
 
+pub use compliance::Compliance;
 pub use family::{Family, FAMILIES};
 pub use file::fragment;
 
@@ -176,11 +178,37 @@ pub fn link_frame<'a>(robot: &'a Robot, frames: &'a Frames, link: usize) -> &'a 
     }
 }
 
-/// One parameter of a model: its name and unit.
+/// What a parameter of a model is: a drive spring or a virtual spring of either kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "kebab-case")]
+pub enum ParameterKind {
+    /// One of the six drive springs (Nm/rad).
+    Drive,
+    /// A rotational virtual spring (Nm/rad).
+    Rotation,
+    /// A translational virtual spring (N/mm).
+    Translation,
+}
+
+impl ParameterKind {
+    /// The name in files: `drive`, `rotation` or `translation`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParameterKind::Drive => "drive",
+            ParameterKind::Rotation => "rotation",
+            ParameterKind::Translation => "translation",
+        }
+    }
+}
+
+/// One parameter of a model: its name, kind and unit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Parameter {
     /// `k1` .. `k6` for the drives, the spring's name otherwise.
     pub name: String,
+    /// A drive, a rotational or a translational spring.
+    pub kind: ParameterKind,
     /// The unit of its stiffness.
     pub unit: Unit,
 }
@@ -246,10 +274,15 @@ impl Model {
     pub fn parameters(&self) -> Vec<Parameter> {
         let drives = DRIVE_NAMES.iter().map(|n| Parameter {
             name: (*n).to_string(),
+            kind: ParameterKind::Drive,
             unit: Unit::NmPerRad,
         });
         let springs = self.springs.iter().map(|s| Parameter {
             name: s.name.clone(),
+            kind: match s.kind {
+                Kind::Rotation => ParameterKind::Rotation,
+                Kind::Translation => ParameterKind::Translation,
+            },
             unit: s.unit(),
         });
         drives.chain(springs).collect()
@@ -286,6 +319,29 @@ impl Model {
             .iter()
             .map(|s| s.placed(robot, frames))
             .collect()
+    }
+
+    /// The augmented Jacobian `[J_q | J_s1 .. J_sv]` (6 x n, base frame, rows `[v; omega]`) of
+    /// the tool point `point` (flange frame, m) at the posture `frames` of `robot`: the drive
+    /// columns in the model's coordinates ([`Frames::jacobian`]), then each virtual spring's
+    /// column `[u x (p - o); u]` or `[u; 0]` ([`Placed::column`]). A tool point sits beyond every
+    /// link, so every spring moves it. With it, `tau = J_a^T W` are the loads of every parameter
+    /// (Nm or N), `J_b diag(h) J_a^T W` a tool point's deflection and `J diag(h) J^T` the
+    /// Cartesian compliance ([`crate::cartesian`]).
+    pub fn jacobian(
+        &self,
+        robot: &Robot,
+        frames: &Frames,
+        point: &Vector3<f64>,
+    ) -> nalgebra::Matrix6xX<f64> {
+        let mut j = nalgebra::Matrix6xX::zeros(self.len());
+        j.fixed_columns_mut::<6>(0)
+            .copy_from(&frames.jacobian(point, self.coordinates));
+        let p = frames.point(point);
+        for (s, spring) in self.springs.iter().enumerate() {
+            j.set_column(6 + s, &spring.placed(robot, frames).column(&p));
+        }
+        j
     }
 }
 

@@ -2,7 +2,9 @@
 //! compensation, checked against the forward model, finite differences and Monte Carlo.
 
 use approx::assert_relative_eq;
-use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{
+    DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternion, Vector3, Vector6,
+};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -12,6 +14,11 @@ use stiffid::ik::{self, pose_error, tool_pose};
 use stiffid::kinematics::Coordinates;
 use stiffid::robot::presets;
 use stiffid::{cartesian, setup, stiffness, Error, Setup};
+
+/// Six values as a vector of any length (the compliance of the drives alone).
+fn dv(h: &Vector6<f64>) -> DVector<f64> {
+    DVector::from_column_slice(h.as_slice())
+}
 
 /// The TCP pose of the robot at axis angles `q` whose springs deflect by `dq` (springs'
 /// coordinates): forward kinematics of the deflected joints.
@@ -40,7 +47,7 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
         let h = s.nominal_compliance().unwrap();
         for q in s.test_postures() {
             let frames = s.robot().frames(q);
-            let c = cartesian::compliance(&frames, &s.tool().tcp, s.springs(), &h);
+            let c = cartesian::compliance(&s, &frames, &s.tool().tcp, &dv(&h));
             let unloaded = tool_pose(&frames, &s.tool().tcp);
             for k in 0..6 {
                 let eps = if k < 3 { 50.0 } else { 20.0 };
@@ -61,13 +68,7 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
                     );
                 }
             }
-            let kx = cartesian::stiffness(
-                &frames,
-                &s.tool().tcp,
-                s.springs(),
-                s.nominal_stiffness().unwrap(),
-            )
-            .unwrap();
+            let kx = cartesian::stiffness(&s, &frames, &s.tool().tcp, &dv(&h)).unwrap();
             assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-8);
         }
     }
@@ -102,12 +103,12 @@ fn a_tool_frame_wrench_is_the_base_wrench_rotated_by_the_flange() {
     );
     // A wrench at another tool point: the deflection of the TCP equals J_tcp h .* J_a^T W.
     let points = Points {
+        setup: &s,
         frames: &frames,
-        springs: s.springs(),
         loaded: &s.tool().loading_point,
         observed: &s.tool().tcp,
     };
-    let d = points.deflection(&rotated, &s.nominal_compliance().unwrap());
+    let d = points.deflection(&rotated, &dv(&s.nominal_compliance().unwrap()));
     let expected = frames.jacobian(&s.tool().tcp, s.springs())
         * stiffness::deflection(&s, &frames, &rotated, s.nominal_stiffness().unwrap())
             .joint_deflections;
@@ -131,19 +132,21 @@ fn covariance_propagation_agrees_with_monte_carlo() {
     let q = s.test_postures()[0];
     let frames = s.robot().frames(&q);
     let points = Points {
+        setup: &s,
         frames: &frames,
-        springs: s.springs(),
         loaded: &s.tool().loading_point,
         observed: &s.tool().tcp,
     };
     let w = Vector6::new(150.0, -80.0, -200.0, 10.0, 5.0, 0.0);
-    let analytic = points.deflection(&w, &h).std(&cov);
+    let analytic = points
+        .deflection(&w, &dv(&h))
+        .std(&DMatrix::from_column_slice(6, 6, cov.as_slice()));
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let runs = 2000;
     let samples: Vec<Vector6<f64>> = (0..runs)
         .map(|_| {
             let z = Vector6::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal));
-            points.deflection(&w, &(h + chol * z)).displacement
+            points.deflection(&w, &dv(&(h + chol * z))).displacement
         })
         .collect();
     let mean = samples.iter().sum::<Vector6<f64>>() / runs as f64;
@@ -239,10 +242,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
 fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
     for name in ["zhang2021-comau-nj165", "fanuc-r2000ic-165f"] {
         let s = loaded_at_tcp(name);
-        let compliance = Compliance {
-            h: s.nominal_compliance().unwrap(),
-            covariance: None,
-        };
+        let compliance = Compliance::nominal(&s, "test").unwrap();
         let path = line_path(&s, 25);
         let out = compensate::path(&s, &compliance, &path, &options(&s, None)).unwrap();
         for (p, c) in path.iter().zip(&out) {
@@ -270,10 +270,7 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
 #[test]
 fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
-    let compliance = Compliance {
-        h: s.nominal_compliance().unwrap(),
-        covariance: None,
-    };
+    let compliance = Compliance::nominal(&s, "test").unwrap();
     let path = line_path(&s, 30);
     let free = FreeToolAxis {
         max_step: 3f64.to_radians(),
@@ -317,10 +314,7 @@ fn the_free_tool_axis_keeps_the_path_angle_when_every_angle_ties() {
         .with_loading_point(on_axis)
         .build()
         .unwrap();
-    let compliance = Compliance {
-        h: s.nominal_compliance().unwrap(),
-        covariance: None,
-    };
+    let compliance = Compliance::nominal(&s, "test").unwrap();
     let path = line_path(&s, 12);
     let free = FreeToolAxis::try_from_degrees(2.0, 90.0).unwrap();
     let out = compensate::path(&s, &compliance, &path, &options(&s, Some(free))).unwrap();
@@ -382,10 +376,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         .with_test_postures(vec![q])
         .build()
         .unwrap();
-    let compliance = Compliance {
-        h: s.nominal_compliance().unwrap(),
-        covariance: None,
-    };
+    let compliance = Compliance::nominal(&s, "test").unwrap();
     let point = |line: u64, fz: f64| PathPoint {
         line,
         target: Target::Posture(q),

@@ -3,6 +3,7 @@
 //! (Eq. 22) and the errors.
 
 use crate::common;
+use stiffid::model::Compliance;
 
 use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{Vector3, Vector6};
@@ -147,12 +148,17 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact = validate::compare(&setup, setup.nominal_stiffness().unwrap(), &data).unwrap();
+    let exact =
+        validate::compare(&setup, &Compliance::nominal(&setup, "test").unwrap(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
-    let stiffer =
-        validate::compare(&setup, &(setup.nominal_stiffness().unwrap() * 2.0), &data).unwrap();
+    let stiffer = validate::compare(
+        &setup,
+        &Compliance::drives(setup.nominal_compliance().unwrap() / 2.0, None),
+        &data,
+    )
+    .unwrap();
     for (c, m) in stiffer.checks.iter().zip(&data) {
         assert!((c.predicted - m.displacement / 2.0).norm() < 1e-15);
         assert!((c.delta_b - m.displacement.norm() / 2.0).abs() < 1e-15);
@@ -161,7 +167,12 @@ fn validation_compares_measured_and_predicted_displacements() {
     let mean = halves.iter().sum::<f64>() / 24.0;
     assert!((stiffer.mean - mean).abs() < 1e-15);
     assert!((stiffer.max - halves.iter().cloned().fold(0.0, f64::max)).abs() < 1e-15);
-    assert!(validate::compare(&setup, &Vector6::repeat(-1.0), &data).is_err());
+    assert!(validate::compare(
+        &setup,
+        &Compliance::drives(Vector6::repeat(-1.0), None),
+        &data
+    )
+    .is_err());
 }
 
 #[test]

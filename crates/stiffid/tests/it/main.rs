@@ -20,6 +20,7 @@ mod identify_streamed;
 mod jacobians;
 mod joint_box;
 mod lsq;
+mod model_prediction;
 mod models;
 mod mounting;
 mod mutate;

@@ -230,14 +230,8 @@ const PROCESS: &str = "[workpiece]\nbase_from_part = { xyz_mm = [1300, -700, 400
 
 fn fanuc() -> (stiffid::Setup, Compliance) {
     let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let h = s.nominal_compliance().unwrap();
-    (
-        s,
-        Compliance {
-            h,
-            covariance: None,
-        },
-    )
+    let c = Compliance::nominal(&s, "test").unwrap();
+    (s, c)
 }
 
 /// An LS program whose targets reach a square in the plane z = 400 mm.

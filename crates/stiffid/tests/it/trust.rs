@@ -3,6 +3,7 @@
 //! measurement frames, the unit check and the share of the deflection explained.
 
 use crate::common;
+use stiffid::model::Compliance;
 
 use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
@@ -177,7 +178,8 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
             .component_div(&by_hand.stiffness)
             .amax();
         assert!(rel < 1e-9, "fold {p}: {rel:e}");
-        let check = validate::compare(&setup, &by_hand.stiffness, &held).unwrap();
+        let check = validate::compare(&setup, &Compliance::drives(by_hand.compliance, None), &held)
+            .unwrap();
         for (a, c) in fold.delta_b.iter().zip(&check.checks) {
             assert!((a - c.delta_b).abs() < 1e-12, "{a} vs {}", c.delta_b);
         }
@@ -378,10 +380,15 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let data = synthetic(&setup, &qs, |_, q| {
         setup.rope_wrench(&setup.robot().frames(q))
     });
-    let exact = validate::compare(&setup, setup.nominal_stiffness().unwrap(), &data).unwrap();
+    let exact =
+        validate::compare(&setup, &Compliance::nominal(&setup, "test").unwrap(), &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
-    let stiffer =
-        validate::compare(&setup, &(setup.nominal_stiffness().unwrap() * 2.0), &data).unwrap();
+    let stiffer = validate::compare(
+        &setup,
+        &Compliance::drives(setup.nominal_compliance().unwrap() / 2.0, None),
+        &data,
+    )
+    .unwrap();
     assert!(
         (stiffer.explained - 0.5).abs() < 1e-12,
         "{}",

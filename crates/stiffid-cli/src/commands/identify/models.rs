@@ -148,20 +148,24 @@ struct ModelFitJson {
     method: &'static str,
     rows: usize,
     postures: usize,
+    #[serde(flatten)]
     fit: stiffid::identify::compare::document::FitDoc,
     chi2_p_value: Option<f64>,
 }
 
 /// `stiffid identify` with a setup whose model has virtual springs: least squares or
-/// `--nonnegative`, every parameter with its unit and interval, what is not identifiable.
+/// `--nonnegative`, every parameter with its unit and interval, what is not identifiable;
+/// `--out` the stiffness file of every parameter (what `--stiffness` reads).
 pub fn identify_model(args: &Args, setup: &Setup) -> Result<()> {
     if args.robust.is_some() || args.cross_validate || args.folds.is_some() {
         bail!("a model with virtual springs is identified by least squares or --nonnegative; --robust, --cross-validate and --folds take the six drives alone (use --compare-models for the held-out error)");
     }
-    if args.out.is_some() {
-        bail!("--out writes a six-drive stiffness file; with virtual springs use --json (predict and compensate take the six drives)");
-    }
     let file = load::measurements(&args.data, setup)?;
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| OutFile::prepare(p, "--out"))
+        .transpose()?;
     let name = args.data.display().to_string();
     let obs = Observations::from_measurements(setup, &file.measurements)
         .map_err(|e| file.explain(e))
@@ -182,8 +186,8 @@ pub fn identify_model(args: &Args, setup: &Setup) -> Result<()> {
     if !f.physical() {
         output::warn("not every compliance is positive (not physical): try --nonnegative or fewer springs (--compare-models)");
     }
-    if args.common.json {
-        return output::print(&json(&ModelFitJson {
+    if args.common.json || out.is_some() {
+        let text = json(&ModelFitJson {
             setup: args.common.setup.clone(),
             data: name,
             method: if args.nonnegative {
@@ -195,7 +199,13 @@ pub fn identify_model(args: &Args, setup: &Setup) -> Result<()> {
             postures: f.postures,
             fit: stiffid::identify::compare::document::fit_doc(&f, variance),
             chi2_p_value: f.adequacy_p_value(variance),
-        })?);
+        })?;
+        if let Some(out) = &out {
+            out.write(text.as_bytes())?;
+        }
+        if args.common.json {
+            return output::print(&text);
+        }
     }
     let mut s = format!(
         "Stiffness of a {}-parameter model from {} postures ({} rows)\n",

@@ -80,6 +80,8 @@ pub struct StepDoc {
 pub struct ParameterDoc {
     /// `k1` .. `k6` or the spring's name.
     pub name: String,
+    /// `drive`, `rotation` or `translation`.
+    pub kind: crate::model::ParameterKind,
     /// `Nm/rad` or `N/mm`.
     pub unit: &'static str,
     /// The stiffness in `unit` (`null` if not finite).
@@ -105,6 +107,10 @@ pub struct FitDoc {
     pub unidentifiable: Vec<String>,
     /// Residual standard deviation over the tracker noise.
     pub noise_ratio: Option<f64>,
+    /// `Cov(h)` of the compliance of every parameter, SI (rad/Nm, m/N), row-major n x n (for a
+    /// bounded fit, that of the free parameters, zero for those at the bound); `null` without
+    /// degrees of freedom. With `parameters`, what a stiffness file holds.
+    pub compliance_covariance_si: Option<Vec<Vec<f64>>>,
     /// Rows minus rank.
     pub degrees_of_freedom: usize,
     /// RMS of the residuals, mm.
@@ -148,6 +154,7 @@ pub fn parameter_docs(fit: &Fit) -> Vec<ParameterDoc> {
             let unit = p.unit.per_si();
             ParameterDoc {
                 name: p.name.clone(),
+                kind: p.kind,
                 unit: p.unit.symbol(),
                 stiffness: finite(fit.stiffness[j] * unit),
                 ci95: fit.intervals[j].map(|i| i.stiffness_ci95.map(|v| finite(v * unit))),
@@ -170,6 +177,10 @@ pub fn fit_doc(fit: &Fit, noise_variance: f64) -> FitDoc {
             .map(|c| c.describe(&fit.parameters))
             .collect(),
         noise_ratio: fit.noise_ratio(noise_variance),
+        compliance_covariance_si: fit
+            .covariance
+            .as_ref()
+            .map(|c| c.row_iter().map(|r| r.iter().copied().collect()).collect()),
         degrees_of_freedom: fit.dof,
         residual_rms_mm: fit.residual_rms() * 1e3,
     }
@@ -182,6 +193,7 @@ fn model_doc(row: &Row, all: &[Parameter], recommended: bool) -> ModelDoc {
         .zip(row.parameter_indices.iter().map(|&j| &all[j]))
         .map(|(k, p)| ParameterDoc {
             name: p.name.clone(),
+            kind: p.kind,
             unit: p.unit.symbol(),
             stiffness: finite(k * p.unit.per_si()),
             ci95: None,

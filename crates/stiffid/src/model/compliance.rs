@@ -1,0 +1,105 @@
+//! The compliance of every parameter of a model and its covariance: what an identification gives
+//! and what prediction, validation and compensation use.
+
+use super::{Kind, Model};
+use crate::{Error, Result, Setup};
+use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
+
+/// The compliance `h` of every parameter of a model (drives first, then the virtual springs, as
+/// [`Model::parameters`]) and, from an identification, its covariance `Cov(h)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compliance {
+    /// `h`, n values: rad/Nm (drives, rotational springs) or m/N (translational springs).
+    pub h: DVector<f64>,
+    /// `Cov(h)`, n x n, SI (the products of the parameters' compliance units).
+    pub covariance: Option<DMatrix<f64>>,
+}
+
+impl Compliance {
+    /// The six drive compliances (rad/Nm) and their covariance ((rad/Nm)^2): the model of the
+    /// drives alone.
+    pub fn drives(h: Vector6<f64>, covariance: Option<Matrix6<f64>>) -> Self {
+        Self {
+            h: DVector::from_column_slice(h.as_slice()),
+            covariance: covariance.map(|c| DMatrix::from_column_slice(6, 6, c.as_slice())),
+        }
+    }
+
+    /// The setup's nominal compliance of every parameter of its model, for `needed_by` (named in
+    /// the error).
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] (`nominal_stiffness_nm_per_rad`) without a nominal drive
+    /// stiffness; [`Error::InvalidField`] naming the first virtual spring without a nominal
+    /// stiffness.
+    pub fn nominal(setup: &Setup, needed_by: &str) -> Result<Self> {
+        let k = setup.try_nominal_stiffness(needed_by)?;
+        let model = setup.model();
+        if let Some(i) = model
+            .springs()
+            .iter()
+            .position(|s| s.nominal_stiffness.is_none())
+        {
+            let key = match model.springs()[i].kind {
+                Kind::Rotation => "nominal_stiffness_nm_per_rad",
+                Kind::Translation => "nominal_stiffness_n_per_mm",
+            };
+            return Err(Error::InvalidField {
+                field: format!("model.spring[{}].{key}", i + 1),
+                message: format!(
+                    "missing: {needed_by} needs a nominal stiffness of every spring ('{}' has none)",
+                    model.springs()[i].name
+                ),
+            });
+        }
+        let h = model.nominal_compliance(k).expect("every spring has one");
+        Ok(Self {
+            h,
+            covariance: None,
+        })
+    }
+
+    /// The number of parameters.
+    pub fn len(&self) -> usize {
+        self.h.len()
+    }
+
+    /// Never: a model has at least the six drives.
+    pub fn is_empty(&self) -> bool {
+        self.h.is_empty()
+    }
+
+    /// The six drive compliances, rad/Nm.
+    pub fn drives_h(&self) -> Vector6<f64> {
+        Vector6::from_fn(|j, _| self.h[j])
+    }
+
+    /// `1 / h` of every parameter, SI (Nm/rad, N/m).
+    pub fn stiffness(&self) -> DVector<f64> {
+        self.h.map(|v| 1.0 / v)
+    }
+
+    /// Checks that it is a compliance of `model`: one finite value per parameter, and an n x n
+    /// covariance if any.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`stiffness`) naming the count expected and the model's parameters.
+    pub fn check(&self, model: &Model) -> Result<()> {
+        let n = model.len();
+        let wrong_cov = self
+            .covariance
+            .as_ref()
+            .is_some_and(|c| c.nrows() != n || c.ncols() != n);
+        if self.h.len() != n || wrong_cov || self.h.iter().any(|v| !v.is_finite()) {
+            let names: Vec<String> = model.parameters().into_iter().map(|p| p.name).collect();
+            return Err(Error::InvalidField {
+                field: "stiffness".into(),
+                message: format!(
+                    "expected {n} finite values (and an {n}x{n} covariance), one per parameter of the model: {}",
+                    names.join(", ")
+                ),
+            });
+        }
+        Ok(())
+    }
+}
