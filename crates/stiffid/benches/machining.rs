@@ -43,10 +43,7 @@ fn benches(c: &mut Criterion) {
     )
     .unwrap();
     let text = raster();
-    let compliance = Compliance {
-        h: s.nominal_compliance().unwrap(),
-        covariance: None,
-    };
+    let compliance = Compliance::nominal(&s, "bench").unwrap();
     let mut group = c.benchmark_group("compensate a G-code program");
     group.sample_size(10);
     group.bench_function("100 000 blocks, end to end", |b| {
