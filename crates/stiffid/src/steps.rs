@@ -118,20 +118,17 @@ impl LoadSteps {
         Ok(out)
     }
 
-    /// Turns the wrenches and displacements into the base frame ([`frames::to_base`]).
+    /// Turns the wrenches and displacements into the base frame ([`frames::file_to_base`]).
     ///
     /// # Errors
-    /// Those of [`frames::to_base`].
+    /// Those of [`frames::file_to_base`].
     pub fn to_base_frame(&mut self, setup: &Setup) -> Result<()> {
-        frames::to_base(
+        frames::file_to_base(
             setup,
             &mut self.measurements,
-            self.wrench_frame,
-            self.displacement_frame,
-        )?;
-        self.wrench_frame = Frame::Base;
-        self.displacement_frame = DisplacementFrame::Base;
-        Ok(())
+            &mut self.wrench_frame,
+            &mut self.displacement_frame,
+        )
     }
 
     /// The indices of the loaded measurements (step not zero): what identification uses.

@@ -110,21 +110,18 @@ pub fn parse(text: &str) -> Result<MeasurementFile> {
 impl MeasurementFile {
     /// Turns the measurements into the robot base frame, in place: wrenches rotated with each
     /// posture's flange orientation, displacements with the setup's tracker transform
-    /// ([`frames::to_base`]); afterwards both frames are [`Frame::Base`] and
+    /// ([`frames::file_to_base`]); afterwards both frames are [`Frame::Base`] and
     /// [`DisplacementFrame::Base`].
     ///
     /// # Errors
-    /// Those of [`frames::to_base`].
+    /// Those of [`frames::file_to_base`].
     pub fn to_base_frame(&mut self, setup: &Setup) -> Result<()> {
-        frames::to_base(
+        frames::file_to_base(
             setup,
             &mut self.measurements,
-            self.wrench_frame,
-            self.displacement_frame,
-        )?;
-        self.wrench_frame = Frame::Base;
-        self.displacement_frame = DisplacementFrame::Base;
-        Ok(())
+            &mut self.wrench_frame,
+            &mut self.displacement_frame,
+        )
     }
 
     /// Turns an [`Error::Measurement`] about one of these measurements into an [`Error::Column`]

@@ -28,6 +28,23 @@ pub enum DisplacementFrame {
     Tracker,
 }
 
+/// [`to_base`] for measurements whose frames a file named: `wrench` and `displacement` are the
+/// frames they are in, and are set to the base frame once the measurements are turned.
+///
+/// # Errors
+/// Those of [`to_base`]; the measurements and frames are then unchanged or partly turned.
+pub fn file_to_base(
+    setup: &Setup,
+    measurements: &mut [Measurement],
+    wrench: &mut Frame,
+    displacement: &mut DisplacementFrame,
+) -> Result<()> {
+    to_base(setup, measurements, *wrench, *displacement)?;
+    *wrench = Frame::Base;
+    *displacement = DisplacementFrame::Base;
+    Ok(())
+}
+
 /// Rotates the wrenches and displacements of `measurements` from the given frames into the base
 /// frame (module docs). Flange orientations are computed once per run of measurements with the same
 /// axis angles.
