@@ -90,8 +90,9 @@ pub enum Error {
     },
     /// No group of postures that passes every feasibility check of the cell was found.
     #[error(
-        "no feasible group found: the {check} check failed in {failed} of the {postures} postures \
-         of the groups searched (`stiffid evaluate` shows every posture's checks)"
+        "no feasible group found: the {check} check failed in {failed} of the {} \
+         of the groups searched (`stiffid evaluate` shows every posture's checks)",
+        crate::words::count(*.postures, "posture")
     )]
     Infeasible {
         /// The check failed by the most postures, e.g. `self-collision`.

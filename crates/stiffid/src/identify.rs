@@ -372,8 +372,13 @@ impl Observations {
         }
         check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
-        let start = factor.solve(&self.delta);
-        let (h, weighted, fit) = robust::fit(&self.psi, &self.delta, start, loss)?;
+        let start = DVector::from_column_slice(factor.solve(&self.delta).as_slice());
+        let solve = |a: DMatrix<f64>, b: &DVector<f64>| {
+            let f = Factor::try_new(a)?;
+            Ok((DVector::from_column_slice(f.solve(b).as_slice()), f))
+        };
+        let (h, weighted, fit) = robust::fit(&self.psi, &self.delta, start, loss, &solve)?;
+        let h = Vector6::from_column_slice(h.as_slice());
         let residuals = &self.delta - &self.psi * h;
         Ok(finish(
             self.postures,

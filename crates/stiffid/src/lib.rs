@@ -56,6 +56,7 @@ pub mod steps;
 pub mod stiffness;
 pub mod study;
 pub mod validate;
+pub mod words;
 
 pub use progress::Progress;
 pub use setup::Setup;

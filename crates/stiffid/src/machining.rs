@@ -28,6 +28,7 @@ use crate::formats::gcode::{self, GCode, Motion};
 use crate::formats::program::{self, Dialect, JointProgram};
 use crate::ik::tool_pose;
 use crate::process::{Operation, Process};
+use crate::words::{count, is_are};
 use crate::{Error, Result, Setup};
 use nalgebra::{Isometry3, Vector3, Vector6};
 
@@ -307,14 +308,19 @@ fn path_points(
     if !plunges.is_empty() {
         let first: Vec<String> = plunges.iter().take(5).map(u64::to_string).collect();
         warnings.push(format!(
-            "{} points are fed along the tool axis (a plunge) in a milling operation and get no force (lines {}{})",
-            plunges.len(),
+            "{} {} fed along the tool axis (a plunge) in a milling operation: no process force there (lines {}{})",
+            count(plunges.len(), "point"),
+            is_are(plunges.len()),
             first.join(", "),
             if plunges.len() > 5 { ", ..." } else { "" }
         ));
     }
     if uncovered > 0 {
-        warnings.push(format!("{uncovered} of {} points are rapid moves or covered by no operation: no process force there", poses.len()));
+        warnings.push(format!(
+            "{uncovered} of {} {} in a rapid move or in no operation: no process force there",
+            count(poses.len(), "point"),
+            is_are(uncovered)
+        ));
     }
     (points, warnings)
 }

@@ -16,6 +16,7 @@ use stiffid::documents::compensate::{csv_line, header, values, Document, Names, 
 use stiffid::jobs::compensate::{self as job, Input, Report, Request};
 use stiffid::machining::Language;
 use stiffid::process::file;
+use stiffid::words::count;
 use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid compensate`.
@@ -345,10 +346,10 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     if let Some(p) = &report.program {
         let force = p.segments.iter().map(|s| s.force).fold(0.0, f64::max);
         text += &format!(
-            "program ({}, process {}): {} segments, process force up to {force:.1} N\n",
+            "program ({}, process {}): {}, process force up to {force:.1} N\n",
             p.language.name(),
             p.process,
-            p.segments.len()
+            count(p.segments.len(), "segment")
         );
     }
     for written in [&names.program_out, &names.out] {

@@ -10,6 +10,7 @@ use stiffid::design::{Criterion, Evaluation};
 use stiffid::documents::evaluate::Document;
 use stiffid::jobs::evaluate::{self as job, Request};
 use stiffid::limits::short;
+use stiffid::words::count;
 use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid evaluate`.
@@ -60,8 +61,8 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let e = &report.evaluation;
     let mut s = format!(
-        "{} postures of {} on setup {}\n",
-        group.len(),
+        "{} of {} on setup {}\n",
+        count(group.len(), "posture"),
         args.postures.display(),
         short(setup.name())
     );

@@ -66,16 +66,8 @@ pub fn run(args: &Args) -> Result<()> {
     if args.compare_models {
         return models::compare_models(args, &setup);
     }
-    if !setup.model().is_drives_only() {
-        return models::identify_model(args, &setup);
-    }
     // Opened (and so known as an input, never written over) before --out is prepared.
     let reader = load::open(&args.data)?;
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| OutFile::prepare(p, "--out"))
-        .transpose()?;
     let fit = match (args.robust, args.nonnegative) {
         (Some(loss), _) => Fit::Robust(loss),
         (None, true) => Fit::Nonnegative,
@@ -86,7 +78,7 @@ pub fn run(args: &Args) -> Result<()> {
         (None, true) => Some(Folds::LeaveOneOut),
         (None, false) => None,
     };
-    let report = job::run(Request {
+    let request = Request {
         setup: &setup,
         data: Data::File {
             name: args.data.display().to_string(),
@@ -95,7 +87,16 @@ pub fn run(args: &Args) -> Result<()> {
         fit,
         folds,
         offsets: args.offsets,
-    })?;
+    };
+    if !setup.model().is_drives_only() {
+        return models::identify_model(args, &setup, request);
+    }
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| OutFile::prepare(p, "--out"))
+        .transpose()?;
+    let report = job::run(request)?;
     for warning in &report.warnings {
         output::warn(&warning.message);
     }

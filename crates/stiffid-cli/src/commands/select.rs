@@ -17,6 +17,7 @@ use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOption
 use stiffid::documents::select::{Document, Pool};
 use stiffid::jobs::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::limits::{self, short};
+use stiffid::words::count;
 use stiffid::{formats::postures, Error, Setup};
 
 /// Arguments of `stiffid select`.
@@ -225,8 +226,10 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
 /// What the pool held and what was chosen, in words.
 fn pool_text(p: &Pool) -> String {
     let mut s = format!(
-        "pool {}: {} postures, {} usable\n",
-        p.file, p.postures, p.usable
+        "pool {}: {}, {} usable\n",
+        p.file,
+        count(p.postures, "posture"),
+        p.usable
     );
     for k in &p.skipped {
         s += &format!("  skipped posture {}: {}\n", k.posture, k.reason);

@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use stiffid::documents::validate::Document;
 use stiffid::jobs::identify::Data;
 use stiffid::jobs::validate::{self as job, Request};
+use stiffid::words::count;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
@@ -71,8 +72,8 @@ fn human(r: &Document) -> String {
         );
     }
     s += &format!(
-        "\ndelta_b (Eq. 22) over {} measurements: mean {:.4} mm, max {:.4} mm, RMS {:.4} mm\n",
-        r.checks.len(),
+        "\ndelta_b (Eq. 22) over {}: mean {:.4} mm, max {:.4} mm, RMS {:.4} mm\n",
+        count(r.checks.len(), "measurement"),
         r.mean_delta_b_mm,
         r.max_delta_b_mm,
         r.rms_delta_b_mm

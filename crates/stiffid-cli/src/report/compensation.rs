@@ -13,6 +13,7 @@ use stiffid::compensate::Compensated;
 use stiffid::documents::compensate::GENERATOR;
 use stiffid::documents::compensate::{Document, SegmentDocument};
 use stiffid::jobs::compensate::Report;
+use stiffid::words::count;
 use stiffid::Setup;
 
 /// The fixed files of the report (besides `figures/`).
@@ -102,10 +103,10 @@ fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
     }
     if let Some(p) = &document.program {
         items.push(format!(
-            "Program in {} with the process `{}`: {} segments; compensated program `{}`.",
+            "Program in {} with the process `{}`: {}; compensated program `{}`.",
             p.language,
             p.process,
-            p.segments.len(),
+            count(p.segments.len(), "segment"),
             p.out
         ));
     }

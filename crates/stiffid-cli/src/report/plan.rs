@@ -16,6 +16,7 @@ use stiffid::design::target::TargetOutcome;
 use stiffid::design::{Criterion, Evaluation, Evaluator};
 use stiffid::documents::feasibility::describe;
 use stiffid::stiffness::rope_displacements;
+use stiffid::words::{count, is_are};
 use stiffid::Setup;
 
 /// The generator mark of `plan.html`, by which a plan directory is recognised as ours.
@@ -249,7 +250,9 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     }
     if let Some(t) = plan.target {
         w.paragraph(&format!(
-            "{n} postures are the fewest whose group predicts at most {} % on every joint at noise level multiple 1.",
+            "{} {} the fewest whose group predicts at most {} % on every joint at noise level multiple 1.",
+            count(n, "posture"),
+            is_are(n),
             t.target_pct
         ));
         if let Some(f) = find(figures, "target") {

@@ -4,6 +4,7 @@
 //! accumulated point by point so that a path of any length is summarised in bounded memory).
 
 use super::mm;
+use super::parameters::{stiffness, ParameterStiffness};
 use crate::compensate::Compensated;
 use crate::jobs::compensate::{Report, Segment};
 use crate::jobs::Warning;
@@ -33,6 +34,10 @@ pub struct Document {
     pub springs: Coordinates,
     /// The joint stiffness used, Nm/rad.
     pub stiffness_nm_per_rad: [f64; 6],
+    /// Every parameter of the model (drives first, then the virtual springs) with its name,
+    /// kind, unit and the stiffness used, as the stiffness file has them
+    /// ([`crate::formats::stiffness`]).
+    pub parameters: Vec<ParameterStiffness>,
     /// Whether the stiffness file has the compliance covariance (then the `*_std_*` columns
     /// have values).
     pub has_covariance: bool,
@@ -213,6 +218,7 @@ impl Document {
             out: names.out.clone(),
             springs: report.springs,
             stiffness_nm_per_rad: report.compliance.drives_h().map(|h| 1.0 / h).into(),
+            parameters: stiffness(&report.parameters, &report.compliance.h),
             has_covariance: report.compliance.covariance.is_some(),
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
                 max_step_deg: f.max_step.to_degrees(),

@@ -3,8 +3,8 @@
 
 use super::parameters::{stiffness, ParameterStiffness};
 use super::{finite, finite_each, mm};
-use crate::identify::{Adequacy, Uncertainty};
-use crate::jobs::identify::Report;
+use crate::identify::{Adequacy, RobustFit, Uncertainty};
+use crate::jobs::identify::{Origin, Report};
 use crate::jobs::WarningKind;
 use crate::model::Model;
 use crate::{Coordinates, Setup};
@@ -389,37 +389,53 @@ fn residuals(report: &Report) -> Vec<Residual> {
 }
 
 fn robust(report: &Report) -> Option<Robust> {
-    let (id, origin) = (&report.identification, &report.origin);
-    let fit = id.robust.as_ref()?;
-    Some(Robust {
-        loss: fit.loss.name(),
-        tuning_constant: fit.loss.tuning_constant(),
-        scale_mm: mm(fit.scale),
-        iterations: fit.iterations,
-        converged: fit.converged,
-        down_weighted: fit
-            .down_weighted()
-            .into_iter()
-            .map(|row| Row {
-                posture: origin.label(row / 3).to_string(),
-                point: origin.points[row / 3] + 1,
-                line: line(report, row / 3),
-                coordinate: ['x', 'y', 'z'][row % 3],
-                weight: fit.weights[row],
-                residual_mm: mm(id.residuals[row]),
-            })
-            .collect(),
-    })
+    let id = &report.identification;
+    Some(Robust::new(
+        id.robust.as_ref()?,
+        &report.origin,
+        &id.residuals,
+    ))
+}
+
+impl Robust {
+    /// The reweighting `fit` of the measurements of `origin`, with the unweighted `residuals`
+    /// (m, three per measurement).
+    pub fn new(fit: &RobustFit, origin: &Origin, residuals: &DVector<f64>) -> Self {
+        Robust {
+            loss: fit.loss.name(),
+            tuning_constant: fit.loss.tuning_constant(),
+            scale_mm: mm(fit.scale),
+            iterations: fit.iterations,
+            converged: fit.converged,
+            down_weighted: fit
+                .down_weighted()
+                .into_iter()
+                .map(|row| Row {
+                    posture: origin.label(row / 3).to_string(),
+                    point: origin.points[row / 3] + 1,
+                    line: origin.lines.as_ref().map(|l| l[row / 3]),
+                    coordinate: ['x', 'y', 'z'][row % 3],
+                    weight: fit.weights[row],
+                    residual_mm: mm(residuals[row]),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The first six values (the drives), each `null` unless finite.
+fn six(values: &[f64]) -> [Option<f64>; 6] {
+    std::array::from_fn(|j| finite(values[j]))
 }
 
 fn cross_validation(report: &Report) -> Option<CrossValidation> {
     let cv = report.cross_validation.as_ref()?;
     Some(CrossValidation {
         folds: cv.folds.len(),
-        stiffness_mean_nm_per_rad: finite_each(cv.stiffness_mean),
-        stiffness_std_nm_per_rad: finite_each(cv.stiffness_std),
-        stiffness_min_nm_per_rad: finite_each(cv.stiffness_range[0]),
-        stiffness_max_nm_per_rad: finite_each(cv.stiffness_range[1]),
+        stiffness_mean_nm_per_rad: six(cv.stiffness_mean.as_slice()),
+        stiffness_std_nm_per_rad: six(cv.stiffness_std.as_slice()),
+        stiffness_min_nm_per_rad: six(cv.stiffness_range[0].as_slice()),
+        stiffness_max_nm_per_rad: six(cv.stiffness_range[1].as_slice()),
         rms_delta_b_mm: mm(cv.rms_delta_b),
         rms_measured_mm: mm(cv.rms_measured),
         explained: 1.0 - cv.rms_delta_b / cv.rms_measured,
@@ -436,7 +452,7 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
             .iter()
             .map(|f| Fold {
                 postures: report.origin.labels_of(&f.postures),
-                stiffness_nm_per_rad: finite_each(f.stiffness),
+                stiffness_nm_per_rad: six(f.stiffness.as_slice()),
                 rms_delta_b_mm: mm(f.rms_delta_b),
                 delta_b_mm: f.delta_b.iter().map(|d| mm(*d)).collect(),
             })

@@ -16,6 +16,7 @@ pub mod evaluate;
 pub mod feasibility;
 pub mod force;
 pub mod identify;
+pub mod identify_model;
 pub mod parameters;
 pub mod reproduce;
 pub mod select;

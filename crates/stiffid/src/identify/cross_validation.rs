@@ -27,7 +27,7 @@
 //! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its
 //! rows. That costs `O(K m p^2)`: `folds x measurements` is at most [`MAX_REFIT_WORK`].
 
-use crate::identify::{Identification, Loss};
+use crate::identify::{model, Identification, Loss};
 use crate::lsq::Factor;
 use crate::observation::Observations;
 use crate::{Error, Result};
@@ -72,36 +72,53 @@ pub struct Fold {
     pub postures: Vec<usize>,
     /// The held-out measurements (indices into the measurements).
     pub measurements: Vec<usize>,
-    /// The stiffness fitted without them, Nm/rad.
-    pub stiffness: Vector6<f64>,
+    /// The stiffness of every parameter fitted without them, SI (Nm/rad, N/m), in the order of
+    /// the columns of `Psi`.
+    pub stiffness: DVector<f64>,
     /// `delta_b` (Eq. 22) of each held-out measurement, m.
     pub delta_b: Vec<f64>,
     /// Root mean square of `delta_b`, m.
     pub rms_delta_b: f64,
-    /// Joints whose stiffness moved by more than its full-fit standard error.
-    pub influential: [bool; 6],
+    /// Per parameter: whether its stiffness moved by more than its full-fit standard error.
+    pub influential: Vec<bool>,
 }
 
-/// The result of a cross-validation.
+/// The result of a cross-validation. Stiffness vectors have one entry per parameter (column of
+/// `Psi`), SI.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CrossValidation {
     /// One per fold, in fold order.
     pub folds: Vec<Fold>,
-    /// Mean stiffness across folds, Nm/rad.
-    pub stiffness_mean: Vector6<f64>,
-    /// Sample standard deviation of the stiffness across folds, Nm/rad.
-    pub stiffness_std: Vector6<f64>,
-    /// Smallest and largest stiffness across folds, Nm/rad.
-    pub stiffness_range: [Vector6<f64>; 2],
+    /// Mean stiffness across folds.
+    pub stiffness_mean: DVector<f64>,
+    /// Sample standard deviation of the stiffness across folds.
+    pub stiffness_std: DVector<f64>,
+    /// Smallest and largest stiffness across folds.
+    pub stiffness_range: [DVector<f64>; 2],
     /// Root mean square of `delta_b` over every held-out measurement, m.
     pub rms_delta_b: f64,
     /// Root mean square of the measured displacement magnitudes, m.
     pub rms_measured: f64,
 }
 
-/// Cross-validates with `folds` folds (module docs), each fitted with `method`; `full` is the
-/// identification of all of `obs` by `method` (its standard errors decide influence; without
-/// them, or with a zero standard error, nothing is influential).
+impl CrossValidation {
+    /// The held-out explained share `1 - rms_delta_b / rms_measured`.
+    pub fn explained(&self) -> f64 {
+        1.0 - self.rms_delta_b / self.rms_measured
+    }
+}
+
+/// The full fit that every fold repeats: its compliance and its stiffness standard errors.
+struct Full {
+    /// `h`, SI, one per column of `Psi`.
+    h: DVector<f64>,
+    /// The stiffness standard errors (all positive and finite), or `None`: nothing influential.
+    se: Option<DVector<f64>>,
+}
+
+/// Cross-validates the six drives with `folds` folds (module docs), each fitted with `method`;
+/// `full` is the identification of all of `obs` by `method` (its standard errors decide
+/// influence; without them, or with a zero standard error, nothing is influential).
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`folds`) unless `2 <= folds <= postures`, or for a bounded or robust
@@ -113,6 +130,105 @@ pub fn cross_validate(
     folds: usize,
     method: Method,
 ) -> Result<CrossValidation> {
+    let dvec = |v: &Vector6<f64>| DVector::from_column_slice(v.as_slice());
+    let full_fit = Full {
+        h: dvec(&full.compliance),
+        se: full
+            .uncertainty
+            .as_ref()
+            .map(|u| dvec(&u.stiffness_std_error)),
+    };
+    let inverse = || {
+        let factor = Factor::try_new(obs.psi.clone())?;
+        Ok(DMatrix::from_column_slice(6, 6, factor.r_inv().as_slice()))
+    };
+    let refit = |rest: &Observations| Ok(dvec(&method.fit(rest)?.compliance));
+    run(obs, &full_fit, folds, method, inverse, refit)
+}
+
+/// Cross-validates a model of any number of parameters ([`super::model`]) as
+/// [`cross_validate`]: `full` is the fit of all of `obs` by `method` ([`model::fit_by`]);
+/// least-squares folds come from its column-scaled SVD ([`model::inverse_factor`]), bounded and
+/// robust folds are refitted. A fold whose other postures do not identify every parameter is
+/// refused.
+///
+/// # Errors
+/// As [`cross_validate`].
+pub fn cross_validate_model(
+    obs: &Observations,
+    full: &model::Fit,
+    folds: usize,
+    method: Method,
+) -> Result<CrossValidation> {
+    let se = full
+        .intervals
+        .iter()
+        .zip(full.compliance.iter())
+        .map(|(i, h)| i.map(|i| i.compliance_std_error / (h * h)))
+        .collect::<Option<Vec<f64>>>();
+    let full_fit = Full {
+        h: full.compliance.clone(),
+        se: se.map(DVector::from_vec),
+    };
+    let n = full.parameters.len();
+    let inverse = || model::inverse_factor(&obs.psi);
+    let refit = |rest: &Observations| {
+        let f = model::fit_by(rest, &full.parameters, method)?;
+        match f.identifiability.rank == n {
+            true => Ok(f.compliance),
+            false => Err(Error::InvalidField {
+                field: "model".into(),
+                message: format!(
+                    "the data cannot separate {}",
+                    f.identifiability.unidentifiable[0].describe(&full.parameters)
+                ),
+            }),
+        }
+    };
+    run(obs, &full_fit, folds, method, inverse, refit)
+}
+
+/// The cross-validation of `obs` against `full`: least-squares folds from `inverse()` (the
+/// full fit's `R^-1` or its equivalent), other folds by `refit` of the rest's rows.
+fn run(
+    obs: &Observations,
+    full: &Full,
+    folds: usize,
+    method: Method,
+    inverse: impl FnOnce() -> Result<DMatrix<f64>>,
+    refit: impl Fn(&Observations) -> Result<DVector<f64>> + Sync,
+) -> Result<CrossValidation> {
+    check_folds(obs, folds, method)?;
+    let se = full
+        .se
+        .as_ref()
+        .filter(|se| se.iter().all(|s| *s > 0.0 && s.is_finite()));
+    let held: Vec<Vec<usize>> = {
+        let mut held = vec![Vec::new(); folds];
+        for (i, p) in obs.posture_index.iter().enumerate() {
+            held[p % folds].push(i);
+        }
+        held
+    };
+    let fitted: Vec<(DVector<f64>, Vec<f64>)> = match method {
+        Method::LeastSquares => linear_folds(obs, &full.h, &inverse()?, &held)?,
+        _ => held
+            .par_iter()
+            .enumerate()
+            .map(|(f, out)| refit_fold(obs, f, out, &refit))
+            .collect::<Result<_>>()?,
+    };
+    let full_k = full.h.map(|v| 1.0 / v);
+    let folds: Vec<Fold> = held
+        .into_iter()
+        .zip(fitted)
+        .map(|(out, (h, delta_b))| fold(obs, out, h, delta_b, &full_k, se))
+        .collect();
+    Ok(summarise(obs, folds))
+}
+
+/// Refuses fewer than two folds, more than the postures, and too much refitting work.
+fn check_folds(obs: &Observations, folds: usize, method: Method) -> Result<()> {
     if folds < 2 || folds > obs.postures {
         return Err(Error::InvalidField {
             field: "folds".into(),
@@ -132,45 +248,29 @@ pub fn cross_validate(
             ),
         });
     }
-    let se = full
-        .uncertainty
-        .as_ref()
-        .map(|u| u.stiffness_std_error)
-        .filter(|se| se.iter().all(|s| *s > 0.0 && s.is_finite()));
-    let held: Vec<Vec<usize>> = {
-        let mut held = vec![Vec::new(); folds];
-        for (i, p) in obs.posture_index.iter().enumerate() {
-            held[p % folds].push(i);
-        }
-        held
-    };
-    let fitted: Vec<(Vector6<f64>, Vec<f64>)> = match method {
-        Method::LeastSquares => linear_folds(obs, full, &held)?,
-        _ => held
-            .par_iter()
-            .enumerate()
-            .map(|(f, out)| refit(obs, f, out, method))
-            .collect::<Result<_>>()?,
-    };
-    let folds: Vec<Fold> = held
-        .into_iter()
-        .zip(fitted)
-        .map(|(out, (h, delta_b))| fold(obs, out, h, delta_b, &full.stiffness, se.as_ref()))
-        .collect();
+    Ok(())
+}
+
+/// The spread of the stiffness across `folds` and the held-out error.
+fn summarise(obs: &Observations, folds: Vec<Fold>) -> CrossValidation {
     let n = folds.len() as f64;
-    let mean = folds.iter().map(|f| f.stiffness).sum::<Vector6<f64>>() / n;
-    let var = folds
+    let p = obs.psi.ncols();
+    let mean = folds
         .iter()
-        .map(|f| (f.stiffness - mean).map(|d| d * d))
-        .sum::<Vector6<f64>>()
-        / (n - 1.0);
+        .fold(DVector::zeros(p), |a, f| a + &f.stiffness)
+        / n;
+    let var = folds.iter().fold(DVector::zeros(p), |a, f| {
+        a + (&f.stiffness - &mean).map(|d| d * d)
+    }) / (n - 1.0);
     let range = [
         folds
             .iter()
-            .fold(Vector6::repeat(f64::INFINITY), |a, f| a.inf(&f.stiffness)),
+            .fold(DVector::repeat(p, f64::INFINITY), |a, f| {
+                a.inf(&f.stiffness)
+            }),
         folds
             .iter()
-            .fold(Vector6::repeat(f64::NEG_INFINITY), |a, f| {
+            .fold(DVector::repeat(p, f64::NEG_INFINITY), |a, f| {
                 a.sup(&f.stiffness)
             }),
     ];
@@ -179,14 +279,14 @@ pub fn cross_validate(
         .flat_map(|f| f.delta_b.iter().copied())
         .collect();
     let measured = obs.delta.norm_squared() / (obs.delta.len() / 3) as f64;
-    Ok(CrossValidation {
+    CrossValidation {
         stiffness_mean: mean,
         stiffness_std: var.map(f64::sqrt),
         stiffness_range: range,
         rms_delta_b: rms(&held_out),
         rms_measured: measured.sqrt(),
         folds,
-    })
+    }
 }
 
 fn rms(values: &[f64]) -> f64 {
@@ -222,27 +322,24 @@ fn delta_b(residual: &DVector<f64>) -> Vec<f64> {
         .collect()
 }
 
-/// Every least-squares fold from the full fit (module docs): the compliance without the fold's
-/// rows and `delta_b` of each of its measurements.
+/// Every least-squares fold from the full fit `h` and `r_inv` (module docs): the compliance
+/// without the fold's rows and `delta_b` of each of its measurements.
 fn linear_folds(
     obs: &Observations,
-    full: &Identification,
+    h: &DVector<f64>,
+    r_inv: &DMatrix<f64>,
     held: &[Vec<usize>],
-) -> Result<Vec<(Vector6<f64>, Vec<f64>)>> {
-    let factor = Factor::try_new(obs.psi.clone())?;
-    let r_inv = DMatrix::from_column_slice(6, 6, factor.r_inv().as_slice());
-    let h = DVector::from_column_slice(full.compliance.as_slice());
-    let residual = &obs.delta - &obs.psi * &h;
+) -> Result<Vec<(DVector<f64>, Vec<f64>)>> {
+    let residual = &obs.delta - &obs.psi * h;
     held.par_iter()
         .enumerate()
         .map(|(f, out)| {
             let ids: Vec<usize> = out.iter().flat_map(|&i| 3 * i..3 * i + 3).collect();
             let psi_o = obs.psi.select_rows(&ids);
             let e_o = residual.select_rows(&ids);
-            let (dh, e_loo) = without_rows(&psi_o, &r_inv, &e_o)
+            let (dh, e_loo) = without_rows(&psi_o, r_inv, &e_o)
                 .ok_or_else(|| unidentifiable(f, "removing them leaves Psi rank deficient"))?;
-            let h_f = &h - dh;
-            Ok((Vector6::from_column_slice(h_f.as_slice()), delta_b(&e_loo)))
+            Ok((h - dh, delta_b(&e_loo)))
         })
         .collect()
 }
@@ -272,13 +369,13 @@ pub fn without_rows(
     Some((r_inv * (a.transpose() * &x), x))
 }
 
-/// Fold `f` (held-out measurements `out`) refitted with `method` from the other postures' rows.
-fn refit(
+/// Fold `f` (held-out measurements `out`) refitted by `refit` from the other postures' rows.
+fn refit_fold(
     obs: &Observations,
     f: usize,
     out: &[usize],
-    method: Method,
-) -> Result<(Vector6<f64>, Vec<f64>)> {
+    refit: &impl Fn(&Observations) -> Result<DVector<f64>>,
+) -> Result<(DVector<f64>, Vec<f64>)> {
     let mut is_out = vec![false; obs.posture_index.len()];
     out.iter().for_each(|&i| is_out[i] = true);
     let train: Vec<usize> = (0..is_out.len()).filter(|&i| !is_out[i]).collect();
@@ -291,12 +388,10 @@ fn refit(
         postures,
         posture_index: index,
     };
-    let h = method
-        .fit(&rest)
-        .map_err(|e| unidentifiable(f, &e.to_string()))?
-        .compliance;
+    let h = refit(&rest).map_err(|e| unidentifiable(f, &e.to_string()))?;
     let (psi, delta) = rows(obs, out);
-    Ok((h, delta_b(&(delta - psi * h))))
+    let residual = delta - psi * &h;
+    Ok((h, delta_b(&residual)))
 }
 
 /// Renumbers posture numbers densely in order of first appearance; returns how many there are.
@@ -312,10 +407,10 @@ fn renumber(index: &mut [usize]) -> usize {
 fn fold(
     obs: &Observations,
     out: Vec<usize>,
-    h: Vector6<f64>,
+    h: DVector<f64>,
     delta_b: Vec<f64>,
-    full: &Vector6<f64>,
-    se: Option<&Vector6<f64>>,
+    full: &DVector<f64>,
+    se: Option<&DVector<f64>>,
 ) -> Fold {
     let stiffness = h.map(|v| 1.0 / v);
     let mut postures: Vec<usize> = out.iter().map(|&i| obs.posture_index[i]).collect();
@@ -324,9 +419,9 @@ fn fold(
     Fold {
         postures,
         rms_delta_b: rms(&delta_b),
-        influential: std::array::from_fn(|j| {
-            se.is_some_and(|se| (stiffness[j] - full[j]).abs() > se[j])
-        }),
+        influential: (0..stiffness.len())
+            .map(|j| se.is_some_and(|se| (stiffness[j] - full[j]).abs() > se[j]))
+            .collect(),
         stiffness,
         measurements: out,
         delta_b,

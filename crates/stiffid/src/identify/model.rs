@@ -28,6 +28,8 @@
 //! Diagnostics", 1980, ch. 2). `delta_b` is the norm of each measurement's three residuals
 //! (Eq. 22); the explained share is `1 - RMS(delta_b) / RMS(|delta|)`.
 
+use super::cross_validation::Method;
+use super::robust::{self, Loss, RobustFit};
 use crate::model::Parameter;
 use crate::observation::Observations;
 use crate::{Error, Result};
@@ -120,6 +122,8 @@ pub struct Fit {
     pub dof: usize,
     /// Which compliances are held at 0, for a bounded fit ([`fit_nonnegative`]).
     pub active_bounds: Option<Vec<bool>>,
+    /// The iteratively reweighted fit, for a robust fit ([`fit_robust`]).
+    pub robust: Option<RobustFit>,
 }
 
 impl Fit {
@@ -292,7 +296,59 @@ pub fn fit(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
     check_shape(obs, parameters)?;
     let scaled = Scaled::new(&obs.psi)?;
     let h = scaled.solve(&obs.delta);
-    Ok(finish(obs, parameters, &scaled, h, None))
+    Ok(finish(obs, parameters, &scaled, h, None, None))
+}
+
+/// The robust fit of `obs`: iteratively reweighted least squares with `loss`
+/// ([`super::robust`]) from the least-squares fit, each step solved over the identifiable
+/// directions of the weighted, column-scaled `Psi` (module docs). The intervals treat the final
+/// weights `w` as known: `Cov(h) = s^2 (Psi^T W Psi)^+` with `s^2 = sum w_i r_i^2 / (m_w - r)`,
+/// `m_w` the rows of non-zero weight ([`Fit::dof`] is `m_w - r`); the residuals and
+/// [`Fit::rss`] are unweighted.
+///
+/// # Errors
+/// As [`fit`].
+pub fn fit_robust(obs: &Observations, parameters: &[Parameter], loss: Loss) -> Result<Fit> {
+    check_shape(obs, parameters)?;
+    let start = Scaled::new(&obs.psi)?.solve(&obs.delta);
+    let solve = |a: DMatrix<f64>, b: &DVector<f64>| {
+        let scaled = Scaled::new(&a)?;
+        Ok((scaled.solve(b), scaled))
+    };
+    let (h, scaled, fit) = robust::fit(&obs.psi, &obs.delta, start, loss, &solve)?;
+    Ok(finish(obs, parameters, &scaled, h, None, Some(fit)))
+}
+
+/// The fit of `obs` by `method`: [`fit`], [`fit_nonnegative`] or [`fit_robust`].
+///
+/// # Errors
+/// Those of the fit.
+pub fn fit_by(obs: &Observations, parameters: &[Parameter], method: Method) -> Result<Fit> {
+    match method {
+        Method::LeastSquares => fit(obs, parameters),
+        Method::Nonnegative => fit_nonnegative(obs, parameters),
+        Method::Robust(loss) => fit_robust(obs, parameters, loss),
+    }
+}
+
+/// `S V_r diag(1 / s_r)` of the column-scaled SVD of `psi` over its `r` identifiable directions
+/// (n x r): `psi` times it is `U_r`, with orthonormal columns. It plays the part of `R^-1` in the
+/// fold identities of [`super::cross_validation::without_rows`] (the least-squares solution is
+/// this times `U_r^T delta`).
+///
+/// # Errors
+/// Those of [`fit`] for a non-finite or short `psi`.
+pub fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    let scaled = Scaled::new(psi)?;
+    let r = scaled.rank;
+    let mut a = scaled.v.columns(0, r).into_owned();
+    for (k, mut col) in a.column_iter_mut().enumerate() {
+        col /= scaled.s[k];
+    }
+    for (j, mut row) in a.row_iter_mut().enumerate() {
+        row *= scaled.scale[j];
+    }
+    Ok(a)
 }
 
 /// The least-squares fit with every compliance `>= 0` (Lawson-Hanson, [`super::nonnegative`])
@@ -306,7 +362,7 @@ pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<F
     let scaled = Scaled::new(&obs.psi)?;
     let h = scaled.solve(&obs.delta);
     if h.iter().all(|v| *v >= 0.0) {
-        return Ok(finish(obs, parameters, &scaled, h, None));
+        return Ok(finish(obs, parameters, &scaled, h, None, None));
     }
     let bounded = super::nonnegative::solve_general(&obs.psi, &obs.delta);
     let free: Vec<usize> = (0..h.len()).filter(|&j| !bounded.active[j]).collect();
@@ -322,6 +378,7 @@ pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<F
         &scaled,
         bounded.h,
         Some(bounded.active.clone()),
+        None,
     );
     out.intervals = vec![None; parameters.len()];
     for (k, &j) in free.iter().enumerate() {
@@ -366,17 +423,26 @@ fn finish(
     scaled: &Scaled,
     h: DVector<f64>,
     active_bounds: Option<Vec<bool>>,
+    robust: Option<RobustFit>,
 ) -> Fit {
     let identifiability = scaled.identifiability();
     let residuals = &obs.delta - &obs.psi * &h;
     let rss = residuals.norm_squared();
     let rows = obs.psi.nrows();
-    let dof = rows.saturating_sub(scaled.rank);
+    // A robust fit's variance: the weighted residuals over the rows of non-zero weight.
+    let (weighted_rss, weighted_rows) = match &robust {
+        None => (rss, rows),
+        Some(fit) => (
+            residuals.component_mul(&residuals).dot(&fit.weights),
+            fit.weights.iter().filter(|w| **w > 0.0).count(),
+        ),
+    };
+    let dof = weighted_rows.saturating_sub(scaled.rank);
     let t = (dof > 0)
         .then(|| StudentsT::new(0.0, 1.0, dof as f64).ok())
         .flatten()
         .map(|d| d.inverse_cdf(0.975));
-    let covariance = scaled.unit_covariance() * (rss / dof.max(1) as f64);
+    let covariance = scaled.unit_covariance() * (weighted_rss / dof.max(1) as f64);
     let variances = covariance.diagonal();
     let intervals = (0..h.len())
         .map(|j| {
@@ -403,6 +469,7 @@ fn finish(
         postures: obs.postures,
         dof,
         active_bounds,
+        robust,
     }
 }
 

@@ -20,9 +20,8 @@
 //! Tuning constants (Huber 1.345, Tukey 4.685) give 95% of the efficiency of least squares when
 //! the errors are Gaussian (Holland & Welsch 1977).
 
-use crate::lsq::Factor;
 use crate::Result;
-use nalgebra::{DMatrix, DVector, Vector6};
+use nalgebra::{DMatrix, DVector};
 
 /// `1 / Phi^-1(3/4)`: turns the median absolute deviation of Gaussian errors into their standard
 /// deviation.
@@ -121,34 +120,40 @@ impl RobustFit {
     }
 }
 
-/// Runs IRLS with `loss` from the least-squares solution `start`. Returns the compliance, the QR
-/// factor of the weighted observation matrix (for its covariance) and the fit.
+/// Runs IRLS with `loss` from the least-squares solution `start` (any number of parameters),
+/// each step solved by `solve(sqrt(w) Psi, sqrt(w) delta)`, which returns the solution and its
+/// factor (a QR [`crate::lsq::Factor`] for the six drives, the column-scaled SVD for a model).
+/// Returns the compliance, the factor of the last weighted observation matrix (for its
+/// covariance) and the fit.
 ///
 /// # Errors
-/// [`crate::Error::Unidentifiable`] if the rows left with weight make `Psi` rank deficient.
-pub(crate) fn fit(
+/// Those of `solve`, e.g. [`crate::Error::Unidentifiable`] if the rows left with weight make
+/// `Psi` rank deficient.
+pub(crate) fn fit<S>(
     psi: &DMatrix<f64>,
     delta: &DVector<f64>,
-    start: Vector6<f64>,
+    start: DVector<f64>,
     loss: Loss,
-) -> Result<(Vector6<f64>, Factor, RobustFit)> {
+    solve: &impl Fn(DMatrix<f64>, &DVector<f64>) -> Result<(DVector<f64>, S)>,
+) -> Result<(DVector<f64>, S, RobustFit)> {
     let start = match loss {
         Loss::Huber => start,
-        Loss::Tukey => iterate(psi, delta, start, Loss::Huber)?.0,
+        Loss::Tukey => iterate(psi, delta, start, Loss::Huber, solve)?.0,
     };
-    iterate(psi, delta, start, loss)
+    iterate(psi, delta, start, loss, solve)
 }
 
-fn iterate(
+fn iterate<S>(
     psi: &DMatrix<f64>,
     delta: &DVector<f64>,
-    mut h: Vector6<f64>,
+    mut h: DVector<f64>,
     loss: Loss,
-) -> Result<(Vector6<f64>, Factor, RobustFit)> {
+    solve: &impl Fn(DMatrix<f64>, &DVector<f64>) -> Result<(DVector<f64>, S)>,
+) -> Result<(DVector<f64>, S, RobustFit)> {
     let mut iterations = 0;
     loop {
         iterations += 1;
-        let residuals = delta - psi * h;
+        let residuals = delta - psi * &h;
         let scale = mad_scale(&residuals, delta.amax());
         let weights = residuals.map(|r| loss.weight(r / scale));
         let roots = weights.map(f64::sqrt);
@@ -156,9 +161,8 @@ fn iterate(
         for (mut row, w) in weighted.row_iter_mut().zip(roots.iter()) {
             row *= *w;
         }
-        let factor = Factor::try_new(weighted)?;
-        let next = factor.solve(&delta.component_mul(&roots));
-        let change = (next - h).amax();
+        let (next, factor) = solve(weighted, &delta.component_mul(&roots))?;
+        let change = (&next - &h).amax();
         h = next;
         let converged = change <= TOLERANCE * h.amax();
         if converged || iterations == MAX_ITERATIONS {

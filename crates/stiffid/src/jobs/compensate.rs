@@ -23,6 +23,7 @@ use crate::documents::compensate::Summary;
 use crate::formats::path;
 use crate::formats::program::generate::generate;
 use crate::machining::{self, Language, Program};
+use crate::model::Parameter;
 use crate::process::Process;
 use crate::{Coordinates, Error, Result, Setup};
 
@@ -115,6 +116,8 @@ pub struct Report {
     pub input: String,
     /// Where the springs sit.
     pub springs: Coordinates,
+    /// The parameters of the setup's model (drives first), in the order of `compliance`.
+    pub parameters: Vec<Parameter>,
     /// The compliance used.
     pub compliance: Compliance,
     /// The free tool axis, if asked.
@@ -220,6 +223,7 @@ where
         input: name,
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
+        parameters: setup.model().parameters(),
         compliance,
         summary,
         program,

@@ -38,6 +38,15 @@ pub enum Fit {
 }
 
 impl Fit {
+    /// The fit as the method of every cross-validation fold.
+    pub fn method(self) -> Method {
+        match self {
+            Fit::Robust(loss) => Method::Robust(loss),
+            Fit::Nonnegative => Method::Nonnegative,
+            Fit::LeastSquares => Method::LeastSquares,
+        }
+    }
+
     /// The fit's name in documents: `least-squares`, `nonnegative-least-squares`, `huber` or
     /// `tukey`.
     pub fn name(self) -> &'static str {
@@ -437,11 +446,7 @@ fn fit(
     }
     let obs = Observations::from_measurements(setup, measurements)?;
     // Every fold is fitted as the full fit.
-    let method = match how.fit {
-        Fit::Robust(loss) => Method::Robust(loss),
-        Fit::Nonnegative => Method::Nonnegative,
-        Fit::LeastSquares => Method::LeastSquares,
-    };
+    let method = how.fit.method();
     let id = method.fit(&obs)?;
     let cross_validation = match how.folds {
         None => None,

@@ -25,6 +25,7 @@ pub mod compensate;
 pub mod evaluate;
 pub mod force;
 pub mod identify;
+pub mod identify_model;
 pub mod reproduce;
 pub mod select;
 pub mod simulate;
@@ -58,6 +59,9 @@ pub enum WarningKind {
     /// Points of a machining program get no process force (plunges, rapid moves, blocks no
     /// operation covers).
     NoForce,
+    /// The data cannot separate some parameters of the model: they get no interval
+    /// ([`crate::identify::model::Identifiability`]).
+    Unidentifiable,
 }
 
 impl WarningKind {
@@ -71,6 +75,7 @@ impl WarningKind {
             WarningKind::Plausibility => "plausibility",
             WarningKind::LoadSteps => "load-steps",
             WarningKind::NoForce => "no-force",
+            WarningKind::Unidentifiable => "unidentifiable",
         }
     }
 }

@@ -22,6 +22,7 @@ mod jacobians;
 mod joint_box;
 mod load_steps;
 mod lsq;
+mod model_fits;
 mod model_prediction;
 mod models;
 mod mounting;

@@ -254,3 +254,62 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
         "{e}"
     );
 }
+
+/// The compensate document names every parameter of the model with its kind, unit and the
+/// stiffness used, as the stiffness file does: 1/h in Nm/rad for the drives and the rotational
+/// spring, in N/mm for the translational one.
+#[test]
+fn the_compensate_document_lists_every_parameter_of_the_model() {
+    use stiffid::documents::compensate::{Document, Names};
+    use stiffid::jobs::compensate::{run, Input, Request};
+    let s = extended();
+    let compliance = Compliance::nominal(&s, "test").unwrap();
+    let h = compliance.h.clone();
+    let text =
+        "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n10,20,-80,5,30,0,100,0,-500\n";
+    let request = Request {
+        setup: &s,
+        compliance,
+        input: Input::Path {
+            name: "path.csv".into(),
+            text,
+            frame: stiffid::deflection::Frame::Base,
+        },
+        options: compensate::Options::for_setup(&s),
+    };
+    let report = run(request, |_, _, _| Ok::<(), stiffid::Error>(())).unwrap();
+    let doc = Document::new(&report, &Names::default(), Vec::new());
+    let json = serde_json::to_value(&doc).unwrap();
+    let parameters = json["parameters"].as_array().unwrap();
+    let names: Vec<&str> = parameters
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["k1", "k2", "k3", "k4", "k5", "k6", "tilt3_x", "tool_y"]
+    );
+    for (j, p) in parameters.iter().enumerate() {
+        let (kind, unit, per_si) = match j {
+            0..6 => ("drive", "Nm/rad", 1.0),
+            6 => ("rotation", "Nm/rad", 1.0),
+            _ => ("translation", "N/mm", 1e-3),
+        };
+        assert_eq!(
+            (p["kind"].as_str(), p["unit"].as_str()),
+            (Some(kind), Some(unit))
+        );
+        let k = p["stiffness"].as_f64().unwrap();
+        assert_relative_eq!(k, per_si / h[j], max_relative = 1e-12);
+    }
+    assert_relative_eq!(
+        parameters[6]["stiffness"].as_f64().unwrap(),
+        4e6,
+        max_relative = 1e-12
+    );
+    assert_relative_eq!(
+        parameters[7]["stiffness"].as_f64().unwrap(),
+        2e4,
+        max_relative = 1e-12
+    );
+}

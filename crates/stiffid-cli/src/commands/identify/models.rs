@@ -5,12 +5,16 @@ use super::Args;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::{bail, Context, Result};
-use serde::Serialize;
+use std::io::Read;
+use stiffid::documents::identify_model::Document;
 use stiffid::identify::compare::{
     candidates_by_name, compare, default_candidates, parameter_docs, Comparison, Row,
 };
-use stiffid::identify::model::{fit, fit_nonnegative, Fit};
-use stiffid::observation::Observations;
+use stiffid::identify::cross_validation::CrossValidation;
+use stiffid::identify::model::Fit;
+use stiffid::jobs::identify::Request;
+use stiffid::jobs::identify_model::{self, Report};
+use stiffid::words::count;
 use stiffid::Setup;
 
 /// `--compare-models`: the table, the recommendation, `--out` the recommended `[model]`.
@@ -140,66 +144,26 @@ pub fn fit_table(f: &Fit) -> String {
     s
 }
 
-/// The fit of a setup whose model has virtual springs.
-#[derive(Serialize)]
-struct ModelFitJson {
-    setup: String,
-    data: String,
-    method: &'static str,
-    rows: usize,
-    postures: usize,
-    #[serde(flatten)]
-    fit: stiffid::identify::compare::document::FitDoc,
-    chi2_p_value: Option<f64>,
-}
-
-/// `stiffid identify` with a setup whose model has virtual springs: least squares or
-/// `--nonnegative`, every parameter with its unit and interval, what is not identifiable;
-/// `--out` the stiffness file of every parameter (what `--stiffness` reads).
-pub fn identify_model(args: &Args, setup: &Setup) -> Result<()> {
-    if args.robust.is_some() || args.cross_validate || args.folds.is_some() {
-        bail!("a model with virtual springs is identified by least squares or --nonnegative; --robust, --cross-validate and --folds take the six drives alone (use --compare-models for the held-out error)");
-    }
-    let file = load::measurements(&args.data, setup)?;
+/// `stiffid identify` with a setup whose model has virtual springs: the library's job
+/// ([`stiffid::jobs::identify_model`]) with least squares, `--nonnegative` or `--robust`, and
+/// `--cross-validate`/`--folds`; every parameter with its unit and interval, what is not
+/// identifiable; `--out` the stiffness file of every parameter (what `--stiffness` reads).
+pub fn identify_model<R: Read + Send>(
+    args: &Args,
+    setup: &Setup,
+    request: Request<'_, R>,
+) -> Result<()> {
     let out = args
         .out
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
-    let name = args.data.display().to_string();
-    let obs = Observations::from_measurements(setup, &file.measurements)
-        .map_err(|e| file.explain(e))
-        .with_context(|| name.clone())?;
-    let parameters = setup.model().parameters();
-    let f = match args.nonnegative {
-        true => fit_nonnegative(&obs, &parameters),
-        false => fit(&obs, &parameters),
-    }
-    .with_context(|| name.clone())?;
-    let variance = setup.noise().variance;
-    if !f.identifiability.unidentifiable.is_empty() {
-        output::warn(&format!(
-            "the data cannot identify every parameter ({} combinations): no intervals for those",
-            f.identifiability.unidentifiable.len()
-        ));
-    }
-    if !f.physical() {
-        output::warn("not every compliance is positive (not physical): try --nonnegative or fewer springs (--compare-models)");
+    let report = identify_model::run(request)?;
+    for warning in &report.warnings {
+        output::warn(&warning.message);
     }
     if args.common.json || out.is_some() {
-        let text = json(&ModelFitJson {
-            setup: args.common.setup.clone(),
-            data: name,
-            method: if args.nonnegative {
-                "nonnegative-least-squares"
-            } else {
-                "least-squares"
-            },
-            rows: f.rows,
-            postures: f.postures,
-            fit: stiffid::identify::compare::document::fit_doc(&f, variance),
-            chi2_p_value: f.adequacy_p_value(variance),
-        })?;
+        let text = json(&Document::new(&report, &args.common.setup, setup))?;
         if let Some(out) = &out {
             out.write(text.as_bytes())?;
         }
@@ -207,15 +171,71 @@ pub fn identify_model(args: &Args, setup: &Setup) -> Result<()> {
             return output::print(&text);
         }
     }
+    output::print(&model_text(&report, setup))
+}
+
+/// The text report of a model's identification.
+fn model_text(report: &Report, setup: &Setup) -> String {
+    let f = &report.fit;
     let mut s = format!(
-        "Stiffness of a {}-parameter model from {} postures ({} rows)\n",
+        "Stiffness of a {}-parameter model from {} ({} rows), {}\n",
         f.parameters.len(),
-        f.postures,
-        f.rows
+        count(f.postures, "posture"),
+        f.rows,
+        report.method.name()
     );
-    s += &fit_table(&f);
-    if let Some(r) = f.noise_ratio(variance) {
+    s += &fit_table(f);
+    if let Some(r) = f.noise_ratio(setup.noise().variance) {
         s += &format!("residual std / tracker noise: {r:.2}\n");
     }
-    output::print(&s)
+    if let Some(robust) = &f.robust {
+        s += &format!(
+            "{} reweighting: scale {:.4} mm, {} iterations{}, {} below weight 0.5\n",
+            robust.loss.name(),
+            robust.scale * 1e3,
+            robust.iterations,
+            if robust.converged {
+                ""
+            } else {
+                " (not converged)"
+            },
+            count(robust.down_weighted().len(), "row")
+        );
+    }
+    if let Some(cv) = &report.cross_validation {
+        s += &cross_validation_text(f, cv);
+    }
+    s
+}
+
+/// The spread of every parameter over the folds and the held-out explained share.
+fn cross_validation_text(f: &Fit, cv: &CrossValidation) -> String {
+    let mut s = format!(
+        "\ncross-validation: {}, each fitted without its postures and validated on them (Eq. 22)\n  {:<12} {:>14} {:>12} {:>14} {:>14}  unit\n",
+        count(cv.folds.len(), "fold"),
+        "parameter",
+        "mean",
+        "std",
+        "min",
+        "max"
+    );
+    for (j, p) in f.parameters.iter().enumerate() {
+        let u = p.unit.per_si();
+        s += &format!(
+            "  {:<12} {:>14.0} {:>12.0} {:>14.0} {:>14.0}  {}\n",
+            p.name,
+            cv.stiffness_mean[j] * u,
+            cv.stiffness_std[j] * u,
+            cv.stiffness_range[0][j] * u,
+            cv.stiffness_range[1][j] * u,
+            p.unit.symbol()
+        );
+    }
+    s += &format!(
+        "held out: RMS delta_b {:.4} mm of RMS {:.4} mm measured: {:.1}% explained\n",
+        cv.rms_delta_b * 1e3,
+        cv.rms_measured * 1e3,
+        100.0 * cv.explained()
+    );
+    s
 }

@@ -54,12 +54,12 @@ pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
         ),
     };
     let mut s = format!(
-        "setup {}, data {}\nsprings on the {springs}; {} rows of Psi from {} postures; {method}\n\
+        "setup {}, data {}\nsprings on the {springs}; {} rows of Psi from {}; {method}\n\
          cond(Psi) {}, residual RMS {} mm",
         setup_name,
         run.data_name,
         id.rows,
-        id.postures,
+        stiffid::words::count(id.postures, "posture"),
         num(id.cond_psi, 4),
         num(mm(id.residual_rms), 4)
     );
