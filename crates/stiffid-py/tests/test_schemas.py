@@ -148,6 +148,16 @@ def test_compare_models(cli, tmp_path):
     names = [p["name"] for p in fit["parameters"]]
     assert len(names) == rec["parameters"]
     assert names[:6] == ["k1", "k2", "k3", "k4", "k5", "k6"]
+    assert_valid("identify-model", fit)
+    assert_valid("stiffness", fit, closed=False)
+    # Robust and cross-validated over every parameter of the model.
+    robust = cli("identify", "--setup", setup, "--data", FANUC_DATA, "--json", "--robust", "tukey", "--folds", "5")
+    assert isinstance(robust["robust"], dict) and isinstance(robust["cross_validation"], dict)
+    assert [s["name"] for s in robust["cross_validation"]["spread"]] == names
+    assert_valid("identify-model", robust)
+    loo = cli("identify", "--setup", setup, "--data", FANUC_DATA, "--json", "--cross-validate")
+    assert loo["cross_validation"]["explained"] == pytest.approx(rec["held_out_explained"], rel=1e-9)
+    assert_valid("identify-model", loo)
 
 
 def test_simulate_and_reproduce(cli, tmp_path, group):

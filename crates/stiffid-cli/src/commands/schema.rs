@@ -18,12 +18,16 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 13] = [
+const DOCUMENTS: [(&str, &str); 14] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
     ("predict", "stiffid predict --json"),
     ("identify", "stiffid identify --json (and --out)"),
+    (
+        "identify-model",
+        "stiffid identify --json (and --out) with virtual springs in the setup's model",
+    ),
     ("stiffness", "the stiffness file --stiffness reads"),
     ("compare-models", "stiffid identify --compare-models --json"),
     ("validate", "stiffid validate --json"),
@@ -67,6 +71,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "select" => closed::<stiffid::documents::select::Document>(),
         "predict" => closed::<predict::PredictJson>(),
         "identify" => closed::<stiffid::documents::identify::Document>(),
+        "identify-model" => closed::<stiffid::documents::identify_model::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),
         "validate" => closed::<stiffid::documents::validate::Document>(),
         "compensate" => closed::<stiffid::documents::compensate::Document>(),

@@ -178,8 +178,8 @@ pub fn identify_model<R: Read + Send>(
 fn model_text(report: &Report, setup: &Setup) -> String {
     let f = &report.fit;
     let mut s = format!(
-        "Stiffness of a {}-parameter model from {} ({} rows), {}\n",
-        f.parameters.len(),
+        "Stiffness of the model's {} from {} ({} rows), {}\n",
+        count(f.parameters.len(), "parameter"),
         count(f.postures, "posture"),
         f.rows,
         report.method.name()
