@@ -83,20 +83,26 @@ pub fn solve<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let options = effort.options()?;
     let (targets, single) = poses(pose_mm)?;
-    let solutions = py.detach(|| {
+    let (solutions, failure) = py.detach(|| {
         let mut start = q0;
         let mut out = Vec::with_capacity(targets.len());
         for (i, t) in targets.iter().enumerate() {
-            let s = ik::solve(robot, &point, t, &start, &options).map_err(|e| (i, e))?;
-            start = s.q;
-            out.push(s);
+            match ik::solve(robot, &point, t, &start, &options) {
+                Ok(s) => {
+                    start = s.q;
+                    out.push(s);
+                }
+                Err(e) => return (out, Some((i, e))),
+            }
         }
-        Ok(out)
+        (out, None)
     });
-    let solutions = solutions.map_err(|(i, e)| match single {
-        true => raise(e),
-        false => crate::error::raise_in(&format!("pose_mm[{i}]"), e),
-    })?;
+    if let Some((i, e)) = failure {
+        return Err(match single {
+            true => raise(e),
+            false => crate::error::raise_in(&format!("pose_mm[{i}]"), e),
+        });
+    }
     let q: Vec<Vector6<f64>> = solutions.iter().map(|s| s.q).collect();
     let iterations = solutions.iter().map(|s| s.iterations as u64);
     let position = solutions.iter().map(|s| s.position_error * 1e3);
