@@ -15,6 +15,7 @@ mod documents;
 mod error;
 mod machining;
 mod measure;
+mod register;
 mod robot;
 mod setup;
 mod stiffness;
@@ -39,5 +40,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;
     m.add_function(wrap_pyfunction!(machining::process_force, m)?)?;
     m.add_function(wrap_pyfunction!(machining::read_program, m)?)?;
+    m.add_function(wrap_pyfunction!(register::register, m)?)?;
+    m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     Ok(())
 }

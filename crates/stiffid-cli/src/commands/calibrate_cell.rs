@@ -11,6 +11,7 @@ use stiffid::jobs::calibrate as job;
 /// that turn the flange (more coordinates than 6 + 3 per point read); `--out` gets the corrected
 /// `[tracker]` fragment and measuring points.
 #[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("readings").required(true).args(["data"])))]
 pub struct Args {
     #[command(flatten)]
     readings: cell_readings::Args,

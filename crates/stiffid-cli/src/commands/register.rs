@@ -11,6 +11,7 @@ use stiffid::jobs::register as job;
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
 /// gets the `[tracker] base_from_tracker` fragment.
 #[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("readings").required(true).args(["data"])))]
 pub struct Args {
     #[command(flatten)]
     readings: cell_readings::Args,

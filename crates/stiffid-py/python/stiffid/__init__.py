@@ -4,7 +4,8 @@ A thin Python layer over the stiffid Rust library (the same code as the ``stiffi
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
 identification and validation from measurements (``identify``, ``validate``), the deflection
 under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
-with ``process_force`` and ``read_program``), the Monte Carlo
+with ``process_force`` and ``read_program``), the tracker's registration and the cell's
+calibration from raw readings (``register``, ``calibrate_cell``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
 
 Units: postures in degrees (controller axis angles), points in mm, forces in N, moments in Nm,
@@ -30,11 +31,13 @@ from ._stiffid import (
     Study,
     UnidentifiableError,
     __version__,
+    calibrate_cell,
     compensate,
     deflection,
     identify,
     process_force,
     read_program,
+    register,
     reproduce,
     simulate,
     validate,
@@ -50,11 +53,13 @@ __all__ = [
     "Study",
     "UnidentifiableError",
     "__version__",
+    "calibrate_cell",
     "compensate",
     "deflection",
     "identify",
     "process_force",
     "read_program",
+    "register",
     "reproduce",
     "simulate",
     "validate",
