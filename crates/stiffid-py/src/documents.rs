@@ -33,6 +33,13 @@ pub fn to_python<'py>(
     Ok(dict)
 }
 
+/// `document` (any value: a list of records, a number) as Python objects, as [`to_python`].
+pub fn to_object<'py>(py: Python<'py>, document: &impl Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let value = serde_json::to_value(document)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    object(py, &value)
+}
+
 /// A JSON value as the Python object of the same type.
 pub fn object<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyAny>> {
     Ok(match value {

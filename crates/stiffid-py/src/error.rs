@@ -88,6 +88,25 @@ pub fn read_if_exists(path: &Path) -> Option<Result<String, Failure>> {
     path.exists().then(|| read(path).map_err(Failure))
 }
 
+/// The bytes of the file at `path` (a URDF's mesh) for the library's mesh lookups
+/// ([`stiffid::formats::reference::Meshes`]), `None` if nothing exists there: at most the input
+/// limit ([`Capped`]); the error names the file.
+pub fn bytes(path: &Path) -> Option<stiffid::Result<Vec<u8>>> {
+    use std::io::Read;
+    if !path.exists() {
+        return None;
+    }
+    let failed = |message: String| Error::Parse {
+        source_name: path.display().to_string(),
+        message,
+    };
+    let mut data = Vec::new();
+    let read = open(path)
+        .map_err(|e| failed(Python::attach(|py| e.value(py).to_string())))
+        .and_then(|mut f| f.read_to_end(&mut data).map_err(|e| failed(e.to_string())));
+    Some(read.map(|_| data))
+}
+
 /// An `InputError` (a `ValueError`) with this message.
 pub fn value(message: impl Into<String>) -> PyErr {
     InputError::new_err(message.into())

@@ -8,13 +8,16 @@
 //! of reach) or `UnidentifiableError`, with the library's message. Long calls release the GIL.
 
 mod arrays;
+mod cartesian;
 mod compensate;
 mod deflection;
 mod design;
 mod documents;
 mod error;
+mod ik;
 mod machining;
 mod measure;
+mod model;
 mod register;
 mod robot;
 mod setup;
@@ -37,6 +40,8 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
+    m.add_function(wrap_pyfunction!(cartesian::cartesian_compliance, m)?)?;
+    m.add_function(wrap_pyfunction!(cartesian::cartesian_stiffness, m)?)?;
     m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;
     m.add_function(wrap_pyfunction!(machining::process_force, m)?)?;
     m.add_function(wrap_pyfunction!(machining::read_program, m)?)?;

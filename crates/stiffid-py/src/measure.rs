@@ -10,64 +10,45 @@ use nalgebra::{Vector3, Vector6};
 use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
+use std::fs::File;
 use std::path::PathBuf;
 use stiffid::documents::identify::Document;
-use stiffid::formats::measurements::{self, MeasurementFile};
+use stiffid::documents::validate::Document as Checked;
+use stiffid::formats::Capped;
 use stiffid::identify::Loss;
 use stiffid::jobs::identify::{self as job, Fit, Folds, Request};
+use stiffid::jobs::validate as validation;
 use stiffid::observation::Measurement;
 
-/// Measurements and, when read from a file, the file (to name its lines and columns in errors).
-struct Data {
-    measurements: Vec<Measurement>,
-    /// The file's name and what else it holds (its measurements moved out).
-    file: Option<(String, MeasurementFile)>,
-}
-
-impl Data {
-    /// A library error about these measurements, in the file's terms (line, column) for a file.
-    fn error(&self, e: stiffid::Error) -> PyErr {
-        match &self.file {
-            None => raise(e),
-            Some((name, file)) => error::raise_in(name, file.explain(e)),
-        }
-    }
-}
-
-/// Reads the measurements: a CSV path (the `stiffid identify --data` format, turned into the base
-/// frame) or the arrays `q_deg` (n, 6), `wrench` (n, 3 | 6: N, Nm, base frame) and
-/// `displacement_mm` (n * m, 3: loaded minus unloaded, base frame; posture-major, then measuring
-/// points 1..m).
-fn data(
+/// The job's measurements: a CSV path (the `stiffid identify --data` format, read by the job
+/// and turned into the base frame) or the arrays `q_deg` (n, 6), `wrench` (n, 3 | 6: N, Nm, base
+/// frame) and `displacement_mm` (n * m, 3: loaded minus unloaded, base frame; posture-major, then
+/// measuring points 1..m).
+fn job_data(
     setup: &stiffid::Setup,
     measurements: Option<&Bound<'_, PyAny>>,
     arrays: [Option<&Bound<'_, PyAny>>; 3],
     point: Option<Vec<i64>>,
-) -> PyResult<Data> {
+) -> PyResult<job::Data<Capped<File>>> {
     if point.is_some() && measurements.is_some() {
         return Err(value(
             "point: only with q_deg, wrench and displacement_mm (a measurements file has its own point column)",
         ));
     }
     match (measurements, arrays) {
-        (Some(m), [None, None, None]) => from_file(setup, m.extract::<PathBuf>()?),
-        (None, [Some(q), Some(w), Some(d)]) => from_arrays(setup, q, w, d, point),
+        (Some(m), [None, None, None]) => {
+            let path = m.extract::<PathBuf>()?;
+            let reader = error::open(&path)?;
+            let name = path.display().to_string();
+            Ok(job::Data::File { name, reader })
+        }
+        (None, [Some(q), Some(w), Some(d)]) => {
+            Ok(job::Data::Measurements(from_arrays(setup, q, w, d, point)?))
+        }
         _ => Err(value(
             "give either a measurements CSV path, or q_deg, wrench and displacement_mm",
         )),
     }
-}
-
-fn from_file(setup: &stiffid::Setup, path: PathBuf) -> PyResult<Data> {
-    let name = path.display().to_string();
-    let text = error::read(&path)?;
-    let mut file = measurements::parse(&text).map_err(|e| error::raise_in(&name, e))?;
-    file.to_base_frame(setup)
-        .map_err(|e| error::raise_in(&name, e))?;
-    Ok(Data {
-        measurements: std::mem::take(&mut file.measurements),
-        file: Some((name, file)),
-    })
 }
 
 fn from_arrays(
@@ -76,7 +57,7 @@ fn from_arrays(
     w: &Bound<'_, PyAny>,
     d: &Bound<'_, PyAny>,
     point: Option<Vec<i64>>,
-) -> PyResult<Data> {
+) -> PyResult<Vec<Measurement>> {
     let r = &setup.robot();
     let (q, _) = arrays::postures(q, "q_deg", (&r.limits, "the joint limits"), usize::MAX)?;
     let n = q.len();
@@ -106,10 +87,7 @@ fn from_arrays(
             displacement: Vector3::from(*dm) * 1e-3,
         })
         .collect();
-    Ok(Data {
-        measurements,
-        file: None,
-    })
+    Ok(measurements)
 }
 
 /// The measuring points (0-based) each posture's rows are, in row order: `point` (1-based, as
@@ -297,16 +275,7 @@ pub fn identify(
         (None, true) => Some(Folds::LeaveOneOut),
         (None, false) => None,
     };
-    let arrays = [q_deg, wrench, displacement_mm];
-    let data = match (measurements, arrays) {
-        (Some(m), [None, None, None]) if point.is_none() => {
-            let path = m.extract::<PathBuf>()?;
-            let reader = error::open(&path)?;
-            let name = path.display().to_string();
-            job::Data::File { name, reader }
-        }
-        _ => job::Data::Measurements(data(s, measurements, arrays, point)?.measurements),
-    };
+    let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let report = py
         .detach(|| {
             job::run(Request {
@@ -326,10 +295,15 @@ pub fn identify(
 /// ``(p,)``, the six drives in Nm/rad then the virtual springs in Nm/rad or N/mm, or the path of a
 /// stiffness JSON file as ``stiffid identify --out`` writes it) on measurements
 /// it was not fitted to (Zhang et al. 2021, Eq. 22, Table 7): the measurements as for
-/// ``identify``. Returns a dict: ``delta_b_mm`` (shape ``(n,)``: ``|delta_m - delta_c|`` per
-/// measurement), ``measured_mm`` and ``predicted_mm`` (``(n, 3)``), ``mean_delta_b_mm``,
-/// ``max_delta_b_mm``, ``rms_delta_b_mm``, ``mean_measured_mm``, ``max_measured_mm``,
-/// ``rms_measured_mm`` and ``explained`` (``1 - RMS(delta_b) / RMS(|delta_m|)``).
+/// ``identify``. The validate job of ``stiffid validate``: returns its document
+/// (docs/schemas/validate.schema.json) as a dict, ``setup``, ``data`` (the file's name or
+/// ``"arrays"``), ``parameters`` (the stiffness validated), ``checks`` (per measurement:
+/// ``posture``, ``point``, ``line`` for a file, ``measured_mm``, ``predicted_mm``, base frame,
+/// and ``delta_b_mm``, ``|delta_m - delta_c|``), ``mean_delta_b_mm``, ``max_delta_b_mm``,
+/// ``rms_delta_b_mm``, ``mean_measured_mm``, ``max_measured_mm``, ``rms_measured_mm`` and
+/// ``explained`` (``1 - RMS(delta_b) / RMS(|delta_m|)``); plus the checks as arrays,
+/// ``delta_b_mm`` (shape ``(n,)``), ``measured_mm`` and ``predicted_mm`` (``(n, 3)``). The job's
+/// warnings (angles that look like radians) are raised as ``UserWarning``.
 #[pyfunction]
 #[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None))]
 #[allow(clippy::too_many_arguments)]
@@ -344,25 +318,24 @@ pub fn validate<'py>(
     point: Option<Vec<i64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
-    let c = crate::stiffness::compliance(s, stiffness_nm_per_rad, None, "stiffness_nm_per_rad")?;
-    let data = data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
-    let v = py
-        .detach(|| stiffid::validate::compare(s, &c, &data.measurements))
-        .map_err(|e| data.error(e))?;
-    let mm = |x: &Vector3<f64>| [x.x * 1e3, x.y * 1e3, x.z * 1e3];
-    let d = PyDict::new(py);
-    let delta_b = v.checks.iter().map(|c| c.delta_b * 1e3);
+    let compliance =
+        crate::stiffness::compliance(s, stiffness_nm_per_rad, None, "stiffness_nm_per_rad")?;
+    let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
+    let request = validation::Request {
+        setup: s,
+        compliance: &compliance,
+        data,
+    };
+    let report = py.detach(|| validation::run(request)).map_err(raise)?;
+    documents::warn(py, &report.warnings)?;
+    let document = Checked::new(&report, s.name(), s);
+    let d = documents::to_python(py, &document, &[])?;
+    let checks = &document.checks;
+    let delta_b = checks.iter().map(|c| c.delta_b_mm);
     d.set_item("delta_b_mm", arrays::vec1(py, delta_b))?;
-    let measured: Vec<[f64; 3]> = v.checks.iter().map(|c| mm(&c.measured)).collect();
-    let predicted: Vec<[f64; 3]> = v.checks.iter().map(|c| mm(&c.predicted)).collect();
+    let measured: Vec<[f64; 3]> = checks.iter().map(|c| c.measured_mm).collect();
+    let predicted: Vec<[f64; 3]> = checks.iter().map(|c| c.predicted_mm).collect();
     d.set_item("measured_mm", arrays::table(py, &measured))?;
     d.set_item("predicted_mm", arrays::table(py, &predicted))?;
-    d.set_item("mean_delta_b_mm", v.mean * 1e3)?;
-    d.set_item("max_delta_b_mm", v.max * 1e3)?;
-    d.set_item("rms_delta_b_mm", v.rms * 1e3)?;
-    d.set_item("mean_measured_mm", v.measured[0] * 1e3)?;
-    d.set_item("max_measured_mm", v.measured[1] * 1e3)?;
-    d.set_item("rms_measured_mm", v.measured[2] * 1e3)?;
-    d.set_item("explained", v.explained)?;
     Ok(d)
 }

@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use std::path::{Path, PathBuf};
 use stiffid::formats::postures;
-use stiffid::formats::reference;
+use stiffid::formats::reference::{self, Meshes};
 use stiffid::limits;
 use stiffid::robot::presets;
 use stiffid::{dexterity, Coordinates};
@@ -43,14 +43,18 @@ impl Robot {
     }
 
     /// A robot from a robot ``.toml`` file or a ``.urdf`` file (``tip``: the URDF tip link; by
-    /// default the only leaf, else the leaf ending six revolute joints, else ``tool0``).
-    /// Raises ``FileNotFoundError``/``OSError`` for a file that cannot be read, ``ValueError`` for
-    /// its content (the library's message names the file and field).
+    /// default the only leaf, else the leaf ending six revolute joints, else ``tool0``). A URDF's
+    /// ``<collision>`` shapes become the robot's bodies (the cell's checks use them): its meshes
+    /// (STL, OBJ) are read relative to the URDF, and ``package://NAME/PATH`` as
+    /// ``DIR/NAME/PATH`` for the first directory ``DIR`` of ``package_paths`` (at most 64) that
+    /// holds it. Raises ``FileNotFoundError``/``OSError`` for a file that cannot be read,
+    /// ``stiffid.InputError`` (a ``ValueError``) for its content or a mesh that cannot be found
+    /// (the library's message names the file, field, package and the paths tried).
     #[staticmethod]
-    #[pyo3(signature = (path, tip=None))]
-    fn from_file(path: PathBuf, tip: Option<&str>) -> PyResult<Self> {
+    #[pyo3(signature = (path, tip=None, *, package_paths=Vec::new()))]
+    fn from_file(path: PathBuf, tip: Option<&str>, package_paths: Vec<PathBuf>) -> PyResult<Self> {
         Ok(Self {
-            inner: from_path(&path, tip)?,
+            inner: from_path(&path, tip, &package_paths)?,
         })
     }
 
@@ -165,6 +169,49 @@ impl Robot {
         Ok(l.map_err(raise)? * 1e3)
     }
 
+    /// The axis angles (deg) that put the tool point ``point_mm`` (flange frame, mm, shape
+    /// ``(3,)``; default the flange origin) at the pose ``pose_mm``: a homogeneous transform in
+    /// the base frame, translation in mm (the point's position) and the rotation of the flange,
+    /// as ``flange_pose`` returns it for the flange origin; shape ``(4, 4)``, or ``(n, 4, 4)`` for
+    /// a path. Damped least squares on the point's Jacobian within the joint limits
+    /// (``stiffid::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
+    /// next pose from the previous solution (one branch along a path); if a start fails,
+    /// ``restarts`` seeded random postures (default 8, ``seed``). Converged when the point is
+    /// within ``position_tolerance_mm`` (default 1e-7 mm) and the rotation within
+    /// ``rotation_tolerance_deg`` (default 5.7e-9 deg, 1e-10 rad), at most ``max_iterations``
+    /// steps per start (default 100). Returns a dict: ``q_deg`` (shape ``(6,)`` or ``(n, 6)``),
+    /// ``iterations``, ``position_error_mm`` and ``rotation_error_deg`` (what remains; a number
+    /// or shape ``(n,)``). ``stiffid.InfeasibleError`` naming the smallest remaining distance
+    /// and rotation for a pose out of reach (outside the workspace or beyond a joint limit).
+    #[pyo3(signature = (pose_mm, q0_deg, *, point_mm=None, position_tolerance_mm=None, rotation_tolerance_deg=None, max_iterations=None, restarts=None, seed=1))]
+    #[allow(clippy::too_many_arguments)]
+    fn inverse_kinematics<'py>(
+        &self,
+        py: Python<'py>,
+        pose_mm: &Bound<'py, PyAny>,
+        q0_deg: &Bound<'py, PyAny>,
+        point_mm: Option<&Bound<'py, PyAny>>,
+        position_tolerance_mm: Option<f64>,
+        rotation_tolerance_deg: Option<f64>,
+        max_iterations: Option<usize>,
+        restarts: Option<usize>,
+        seed: u64,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let limits = (&self.inner.limits, "the joint limits");
+        let (q0, single) = arrays::postures(q0_deg, "q0_deg", limits, 1)?;
+        if !single {
+            return Err(error::value("q0_deg: expected an array of shape (6,)"));
+        }
+        let effort = crate::ik::Effort {
+            position_tolerance_mm,
+            rotation_tolerance_deg,
+            max_iterations,
+            restarts,
+            seed,
+        };
+        crate::ik::solve(py, &self.inner, pose_mm, q0[0], point(point_mm)?, &effort)
+    }
+
     /// The postures of a postures CSV file (``posture,q1_deg,...,q6_deg``, as ``stiffid select``
     /// writes them), axis angles in deg, shape ``(n, 6)``, each within the joint limits.
     /// ``ValueError`` naming the file, line and column.
@@ -215,8 +262,16 @@ impl Robot {
 
 /// A point in the flange frame given in mm (default the flange origin), m.
 fn point(point_mm: Option<&Bound<'_, PyAny>>) -> PyResult<Vector3<f64>> {
+    point_or(point_mm, Vector3::zeros())
+}
+
+/// The point `point_mm` (flange frame, mm, the argument `point_mm`), m; `default` (m) if `None`.
+pub fn point_or(
+    point_mm: Option<&Bound<'_, PyAny>>,
+    default: Vector3<f64>,
+) -> PyResult<Vector3<f64>> {
     Ok(match point_mm {
-        None => Vector3::zeros(),
+        None => default,
         Some(p) => Vector3::from(arrays::vector::<3>(p, "point_mm", &limits::LENGTH_MM)?) * 1e-3,
     })
 }
@@ -227,7 +282,7 @@ pub fn coordinates_arg(given: &str) -> PyResult<Coordinates> {
 }
 
 /// The first of a stack for one posture, else the stack.
-fn shaped<'py>(out: Bound<'py, numpy::PyArray3<f64>>, single: bool) -> PyResult<Py<PyAny>> {
+pub fn shaped<'py>(out: Bound<'py, numpy::PyArray3<f64>>, single: bool) -> PyResult<Py<PyAny>> {
     match single {
         true => Ok(out.get_item(0)?.unbind()),
         false => Ok(out.into_any().unbind()),
@@ -235,9 +290,24 @@ fn shaped<'py>(out: Bound<'py, numpy::PyArray3<f64>>, single: bool) -> PyResult<
 }
 
 /// A robot from a `.toml` or `.urdf` file (never a preset: a missing file is
-/// `FileNotFoundError`).
-fn from_path(path: &Path, tip: Option<&str>) -> PyResult<stiffid::Robot> {
+/// `FileNotFoundError`), a URDF's meshes read, `package://` in `package_paths`.
+fn from_path(
+    path: &Path,
+    tip: Option<&str>,
+    package_paths: &[PathBuf],
+) -> PyResult<stiffid::Robot> {
+    check_package_paths(package_paths)?;
     let read = |p: &Path| Some(error::read(p).map_err(Failure));
     let reference = path.to_string_lossy();
-    reference::robot(&reference, tip, read).map_err(|e: Failure| e.0)
+    let meshes = Meshes {
+        read: &error::bytes,
+        package_paths,
+    };
+    reference::robot_with_meshes(&reference, tip, read, &meshes).map_err(|e: Failure| e.0)
+}
+
+/// At most [`stiffid::setup::MAX_PACKAGE_PATHS`] package paths.
+pub fn check_package_paths(paths: &[PathBuf]) -> PyResult<()> {
+    let most = stiffid::setup::MAX_PACKAGE_PATHS;
+    limits::check_count("package_paths", paths.len(), 0, most).map_err(raise)
 }

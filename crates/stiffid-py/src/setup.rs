@@ -7,9 +7,9 @@ use crate::error::{self, raise, Failure};
 use crate::robot::Robot;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use pyo3::types::{PyAny, PyDict};
+use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
-use stiffid::formats::reference;
+use stiffid::formats::reference::{self, Meshes};
 use stiffid::setup;
 
 /// An experimental setup (read-only). Lengths in mm, angles in deg, stiffness in Nm/rad.
@@ -36,25 +36,88 @@ impl Setup {
     }
 
     /// A setup from a setup ``.toml`` file; a robot file it names is looked for relative to the
-    /// file (a preset name wins over a path that does not exist).
+    /// file (a preset name wins over a path that does not exist). A URDF robot's meshes are read
+    /// as ``Robot.from_file`` reads them: ``package://`` in ``package_paths`` first, then in the
+    /// setup's own ``package_paths`` (relative to the setup file).
     #[staticmethod]
-    fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+    #[pyo3(signature = (path, *, package_paths=Vec::new()))]
+    fn from_file(py: Python<'_>, path: PathBuf, package_paths: Vec<PathBuf>) -> PyResult<Self> {
         let text = error::read(&path)?;
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-        Self::parse(py, &text, &path.display().to_string(), &dir)
+        Self::parse(py, &text, &path.display().to_string(), &dir, &package_paths)
     }
 
     /// A setup from the text of a setup TOML (``source_name`` names it in errors; robot files are
-    /// looked for in ``base_dir``, default the current directory).
+    /// looked for in ``base_dir``, default the current directory; ``package_paths`` as in
+    /// ``Setup.from_file``).
     #[staticmethod]
-    #[pyo3(signature = (text, source_name="<string>", base_dir=None))]
+    #[pyo3(signature = (text, source_name="<string>", base_dir=None, *, package_paths=Vec::new()))]
     fn from_toml(
         py: Python<'_>,
         text: &str,
         source_name: &str,
         base_dir: Option<PathBuf>,
+        package_paths: Vec<PathBuf>,
     ) -> PyResult<Self> {
-        Self::parse(py, text, source_name, &base_dir.unwrap_or_default())
+        let dir = base_dir.unwrap_or_default();
+        Self::parse(py, text, source_name, &dir, &package_paths)
+    }
+
+    /// The parameters of the setup's elastostatic model, drives first (``k1`` .. ``k6``), then
+    /// the virtual springs in the setup's order: one dict each, ``name``, ``kind`` (``"drive"``,
+    /// ``"rotation"`` or ``"translation"``), ``unit`` (``"Nm/rad"`` or ``"N/mm"``) and
+    /// ``stiffness``, the nominal stiffness in ``unit`` (``None`` where the setup has none), as
+    /// the stiffness file and the documents list them.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        crate::model::parameters(py, &self.inner)
+    }
+
+    /// The ``[model]`` table of the setup's virtual springs as setup TOML (``[[model.spring]]``
+    /// tables, each spring with its axis; empty for the six drives alone), what
+    /// ``Setup.with_model`` reads back.
+    #[getter]
+    fn model_toml(&self) -> String {
+        stiffid::model::fragment(self.inner.model().springs())
+    }
+
+    /// The same setup with the model's virtual springs those of ``toml``: a setup file's
+    /// ``[model]`` table alone (``[[model.spring]]`` and ``[[model.family]]`` tables, e.g.
+    /// ``Setup.model_toml`` or the fragment ``stiffid identify --compare-models --out`` writes;
+    /// an empty text leaves the six drives alone). ``source_name`` names it in errors.
+    /// ``stiffid.InputError`` naming the field (e.g. ``model.spring[1].axis``).
+    #[pyo3(signature = (toml, source_name="<model>"))]
+    fn with_model(&self, py: Python<'_>, toml: &str, source_name: &str) -> PyResult<Self> {
+        let inner = crate::model::with_model(&self.inner, toml, source_name)?;
+        crate::documents::warn(py, &setup::plausibility::warnings(&inner))?;
+        Ok(Self { inner })
+    }
+
+    /// Each posture's checks in the cell (the setup's bounds, floor, obstacles, self-collision,
+    /// rope, line of sight, incidence, ``[constraints]``), as ``Setup.evaluate``'s and ``stiffid
+    /// evaluate --json``'s ``feasibility``: ``postures_deg`` (axis angles, deg, shape ``(6,)`` or
+    /// ``(n, 6)``, within the joint limits; at most 10000) gives a list of one dict per posture,
+    /// ``posture`` (1-based), ``feasible``, ``min_clearance_mm`` (the smallest distance between
+    /// bodies and lines that must not touch; ``None`` without ``[cell]`` or ``[tracker]``) and
+    /// ``violations`` (the failing checks: ``check``, e.g. ``"floor"``, ``margin_mm`` or
+    /// ``margin_deg``, negative, and ``between``, the tightest pair, e.g. ``["link 3",
+    /// "floor"]``). Source: ``stiffid::cell``, docs/model.md.
+    fn feasibility<'py>(
+        &self,
+        py: Python<'py>,
+        postures_deg: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let r = self.inner.robot();
+        let within = (&r.limits, "the joint limits");
+        let most = stiffid::limits::MAX_GROUP_POSTURES;
+        let (group, _) = postures(postures_deg, "postures_deg", within, most)?;
+        let setup = &self.inner;
+        let checks: Vec<_> = py.detach(|| {
+            let checker = stiffid::cell::Checker::new(setup);
+            group.iter().map(|q| checker.feasibility(q)).collect()
+        });
+        let document = stiffid::documents::feasibility::postures(&checks);
+        crate::documents::to_object(py, &document)
     }
 
     /// Short name, e.g. ``"zhang2021-comau-nj165"``.
@@ -279,8 +342,20 @@ impl Setup {
 impl Setup {
     /// The setup of `text`, its plausibility warnings ([`setup::plausibility`]) raised as
     /// `UserWarning`s, as the command prints them.
-    fn parse(py: Python<'_>, text: &str, source_name: &str, dir: &Path) -> PyResult<Self> {
-        let inner = reference::setup_text(text, source_name, dir, error::read_if_exists)
+    fn parse(
+        py: Python<'_>,
+        text: &str,
+        source_name: &str,
+        dir: &Path,
+        package_paths: &[PathBuf],
+    ) -> PyResult<Self> {
+        crate::robot::check_package_paths(package_paths)?;
+        let meshes = Meshes {
+            read: &error::bytes,
+            package_paths,
+        };
+        let read = error::read_if_exists;
+        let inner = reference::setup_text_with_meshes(text, source_name, dir, read, &meshes)
             .map_err(|e: Failure| e.0)?;
         crate::documents::warn(py, &setup::plausibility::warnings(&inner))?;
         Ok(Self { inner })

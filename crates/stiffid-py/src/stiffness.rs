@@ -55,3 +55,17 @@ pub fn covariance_of(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<nalgebra::DMa
     stiffness::check_covariance_of(&m, name).map_err(raise)?;
     Ok(m)
 }
+
+/// [`compliance`] of `obj` (no covariance), or the setup's nominal compliance of every parameter
+/// when `obj` is `None` (`needed_by` says what needs it in the error for a setup without one).
+pub fn given_or_nominal(
+    setup: &Setup,
+    obj: Option<&Bound<'_, PyAny>>,
+    what: &str,
+    needed_by: &str,
+) -> PyResult<Compliance> {
+    match obj {
+        Some(k) => compliance(setup, k, None, what),
+        None => Compliance::nominal(setup, needed_by).map_err(raise),
+    }
+}

@@ -224,35 +224,15 @@ impl Study {
         to_python(py, &Summary::new(&self.report), &[])
     }
 
-    /// What the study found (``stiffid::study::findings``), keys as ``summary.json``'s
-    /// ``findings`` (without the sentences, which the command writes): ``group3_beats_groups_1_and_2``,
-    /// ``group3_factor_vs_group1``, ``group3_factor_vs_group2``, ``relative_a_factor_vs_group3``
-    /// (factors of average deviation rates, > 1: the first group better),
+    /// What the study found: the ``findings`` of ``summary.json`` (``to_dict()["findings"]``),
+    /// ``group3_beats_groups_1_and_2``, ``group3_factor_vs_group1``,
+    /// ``group3_factor_vs_group2``, ``relative_a_factor_vs_group3`` (factors of average deviation
+    /// rates, > 1: Group 3 better; ``None`` where a group is missing),
     /// ``start_groups_where_zhang2021_beats_both``, ``start_groups``,
-    /// ``zhang2021_range_pct`` (its predicted average over the start groups, min and max),
-    /// ``prediction_mean_abs_relative_error`` and ``rank_correlation`` (Spearman's rho of each
-    /// criterion against the average deviation rate, in the order of ``Setup.evaluate``'s
-    /// criteria and ``cond_psi``).
+    /// ``prediction_mean_abs_relative_error`` and ``sentences`` (the findings in words).
     #[getter]
     fn findings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let f = &self.report.findings;
-        let d = PyDict::new(py);
-        d.set_item("group3_beats_groups_1_and_2", f.paper_claim_holds)?;
-        d.set_item(
-            "group3_factor_vs_group1",
-            f.group3.first().map(|v| v.factor),
-        )?;
-        d.set_item("group3_factor_vs_group2", f.group3.get(1).map(|v| v.factor))?;
-        let relative_a = f.relative_a.as_ref().map(|v| v.factor);
-        d.set_item("relative_a_factor_vs_group3", relative_a)?;
-        let wins = f.start_check.wins;
-        d.set_item("start_groups_where_zhang2021_beats_both", wins)?;
-        d.set_item("start_groups", f.start_check.trials)?;
-        let range = f.start_check.zhang_range_pct.map(|(lo, hi)| vec![lo, hi]);
-        d.set_item("zhang2021_range_pct", range)?;
-        d.set_item("prediction_mean_abs_relative_error", f.prediction_error)?;
-        d.set_item("rank_correlation", f.rank_correlation.clone())?;
-        Ok(d)
+        to_python(py, &Summary::new(&self.report).findings, &[])
     }
 
     fn __repr__(&self) -> String {

@@ -64,3 +64,16 @@ def plain(document):
     if isinstance(document, float) and document != document:
         return None
     return document
+
+
+@pytest.fixture(scope="session")
+def mesh_robot(tmp_path_factory):
+    """The generated 6R robot with STL collision meshes (crates/stiffid/tests/support/mesh_robot.rs)
+    and its cell setup, written by the library's `mesh_robot` example (which `cargo test --release`
+    builds beside the command): the package directory (`mesh_robot/urdf/robot.urdf`,
+    `mesh_robot/meshes/*.stl`, `cell.toml`)."""
+    example = cli_path().parent / "examples" / "mesh_robot"
+    assert example.exists(), f"{example}: build it first (cargo build --release -p stiffid --example mesh_robot)"
+    out = tmp_path_factory.mktemp("mesh")
+    subprocess.run([str(example), str(out)], check=True, capture_output=True)
+    return out

@@ -175,3 +175,54 @@ def test_postures_file_round_trip(robot, tmp_path):
     bad.write_text("posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,-90,0,0,x\n")
     with pytest.raises(ValueError, match="bad.csv: line 2"):
         robot.read_postures(bad)
+
+
+def tool_pose(robot, q, point_mm):
+    """The pose inverse_kinematics reaches: the point's position (mm) and the flange's rotation."""
+    pose = robot.flange_pose(q).copy()
+    pose[:3, 3] += pose[:3, :3] @ np.asarray(point_mm, float)
+    return pose
+
+
+@pytest.mark.parametrize("point", [None, [150, 0, 200]])
+def test_inverse_kinematics_round_trip(robot, point):
+    """flange_pose of the solution is the target, from a start 5 deg away on every axis."""
+    q = np.array([10, 20, -90, 30, 20, 10], float)
+    target = tool_pose(robot, q, point or [0, 0, 0])
+    kwargs = {} if point is None else dict(point_mm=point)
+    s = robot.inverse_kinematics(target, q + 5, **kwargs)
+    assert s["q_deg"].shape == (6,) and s["iterations"] >= 1
+    np.testing.assert_allclose(s["q_deg"], q, atol=1e-8)
+    np.testing.assert_allclose(tool_pose(robot, s["q_deg"], point or [0, 0, 0]), target, atol=1e-7)
+    assert s["position_error_mm"] <= 1e-7 and s["rotation_error_deg"] <= np.degrees(1e-10)
+
+
+def test_inverse_kinematics_along_a_path_stays_on_one_branch(robot):
+    qs = np.array([[10, 20, -90, 30, 20, 10 + i] for i in range(5)], float)
+    s = robot.inverse_kinematics(robot.flange_pose(qs), qs[0], restarts=0)
+    assert s["q_deg"].shape == (5, 6) and s["iterations"].shape == (5,)
+    np.testing.assert_allclose(s["q_deg"], qs, atol=1e-8)
+
+
+def test_inverse_kinematics_of_an_unreachable_pose(robot):
+    target = robot.flange_pose([0, 0, -90, 0, 30, 0]).copy()
+    target[:3, 3] = [9000, 0, 0]
+    with pytest.raises(stiffid.InfeasibleError, match="mm"):
+        robot.inverse_kinematics(target, [0, 0, -90, 0, 30, 0], restarts=2)
+
+
+def test_inverse_kinematics_arguments(robot):
+    q0 = [0, 0, -90, 0, 30, 0]
+    pose = robot.flange_pose(q0)
+    bent = pose.copy()
+    bent[0, 0] = 2
+    with pytest.raises(stiffid.InputError, match=r"pose_mm: the upper-left 3x3 block is not a rotation"):
+        robot.inverse_kinematics(bent, q0)
+    with pytest.raises(stiffid.InputError, match=r"pose_mm: expected an array of shape \(4, 4\)"):
+        robot.inverse_kinematics(pose[:3], q0)
+    with pytest.raises(stiffid.InputError, match=r"position_tolerance_mm"):
+        robot.inverse_kinematics(pose, q0, position_tolerance_mm=0)
+    with pytest.raises(stiffid.InputError, match=r"restarts"):
+        robot.inverse_kinematics(pose, q0, restarts=10**6)
+    with pytest.raises(stiffid.InputError, match=r"q0_deg: posture 0, q5_deg = 130"):
+        robot.inverse_kinematics(pose, [0, 0, -90, 0, 130, 0])

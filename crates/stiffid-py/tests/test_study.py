@@ -33,20 +33,8 @@ def test_the_reproduce_document_equals_summary_json(study, summary):
     assert (study.seed, study.runs) == (summary["seed"], summary["runs"])
     assert study.validation_level + 1 == summary["validation_level"]
     np.testing.assert_array_equal(study.level_multiples, summary["levels"])
-    f, g = study.findings, summary["findings"]
-    for key in [
-        "group3_beats_groups_1_and_2",
-        "group3_factor_vs_group1",
-        "group3_factor_vs_group2",
-        "relative_a_factor_vs_group3",
-        "start_groups_where_zhang2021_beats_both",
-        "start_groups",
-        "prediction_mean_abs_relative_error",
-    ]:
-        assert f[key] == pytest.approx(g[key], rel=1e-12), key
-    lo, hi = f["zhang2021_range_pct"]
-    trials = [t["zhang2021_predicted_average_pct"] for t in summary["start_trials"]]
-    assert (lo, hi) == pytest.approx((min(trials), max(trials)), rel=1e-12)
+    assert study.findings == summary["findings"]
+    assert study.findings["sentences"] and study.findings["start_groups"] == 20
 
 
 def test_study_arrays(study):

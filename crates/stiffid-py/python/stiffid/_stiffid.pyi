@@ -27,7 +27,9 @@ class Robot:
     @staticmethod
     def presets() -> list[str]: ...
     @staticmethod
-    def from_file(path: _PathLike, tip: Optional[str] = None) -> "Robot": ...
+    def from_file(
+        path: _PathLike, tip: Optional[str] = None, *, package_paths: Sequence[_PathLike] = ()
+    ) -> "Robot": ...
     @property
     def name(self) -> str: ...
     @property
@@ -44,6 +46,19 @@ class Robot:
         """(6, 6) or (n, 6, 6), rows [v; omega] in m/rad and rad/rad, base frame."""
     def read_postures(self, path: _PathLike) -> _Array:
         """(n, 6) deg from a postures CSV (posture,q1_deg,...,q6_deg)."""
+    def inverse_kinematics(
+        self,
+        pose_mm: ArrayLike,
+        q0_deg: ArrayLike,
+        *,
+        point_mm: Optional[ArrayLike] = None,
+        position_tolerance_mm: Optional[float] = None,
+        rotation_tolerance_deg: Optional[float] = None,
+        max_iterations: Optional[int] = None,
+        restarts: Optional[int] = None,
+        seed: int = 1,
+    ) -> dict[str, Any]:
+        """pose_mm (4, 4) or (n, 4, 4), base frame, translation mm: q_deg (6,) or (n, 6), iterations, position_error_mm, rotation_error_deg."""
     def characteristic_length_mm(self, point_mm: Optional[ArrayLike] = None) -> float:
         """The robot's own characteristic length, mm: minimises the point's median dexterity."""
     @overload
@@ -72,9 +87,23 @@ class Setup:
     @staticmethod
     def builtins() -> list[str]: ...
     @staticmethod
-    def from_file(path: _PathLike) -> "Setup": ...
+    def from_file(path: _PathLike, *, package_paths: Sequence[_PathLike] = ()) -> "Setup": ...
     @staticmethod
-    def from_toml(text: str, source_name: str = "<string>", base_dir: Optional[_PathLike] = None) -> "Setup": ...
+    def from_toml(
+        text: str,
+        source_name: str = "<string>",
+        base_dir: Optional[_PathLike] = None,
+        *,
+        package_paths: Sequence[_PathLike] = (),
+    ) -> "Setup": ...
+    @property
+    def parameters(self) -> list[dict[str, Any]]:
+        """name, kind (drive, rotation, translation), unit (Nm/rad, N/mm), stiffness (nominal, or None)."""
+    @property
+    def model_toml(self) -> str: ...
+    def with_model(self, toml: str, source_name: str = "<model>") -> "Setup": ...
+    def feasibility(self, postures_deg: ArrayLike) -> list[dict[str, Any]]:
+        """One dict per posture: posture (1-based), feasible, min_clearance_mm, violations."""
     @property
     def name(self) -> str: ...
     @property
@@ -267,6 +296,24 @@ def read_program(
     chord_tolerance_mm: float = 0.01,
 ) -> dict[str, Any]:
     """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6)."""
+
+def cartesian_compliance(
+    setup: Setup,
+    q_deg: ArrayLike,
+    *,
+    point_mm: Optional[ArrayLike] = None,
+    stiffness_nm_per_rad: Optional[Union[ArrayLike, str, os.PathLike[str]]] = None,
+) -> _Array:
+    """C_x (6, 6) or (n, 6, 6), SI, base frame: [dp; dphi] = C_x [f; m]."""
+
+def cartesian_stiffness(
+    setup: Setup,
+    q_deg: ArrayLike,
+    *,
+    point_mm: Optional[ArrayLike] = None,
+    stiffness_nm_per_rad: Optional[Union[ArrayLike, str, os.PathLike[str]]] = None,
+) -> _Array:
+    """K_x = C_x^-1 (6, 6) or (n, 6, 6), SI, base frame; NaN where singular."""
 
 def deflection(
     setup: Setup,

@@ -123,6 +123,28 @@ impl ModelFile {
     }
 }
 
+/// The virtual springs of a setup file's `[model]` table given alone (`[[model.spring]]` and
+/// `[[model.family]]` tables, e.g. what [`fragment`] writes), on `robot`, SI units; an empty
+/// text is no spring.
+///
+/// # Errors
+/// [`Error::Parse`] naming `source_name` for TOML that is not a `[model]` table alone; those of
+/// the setup file's `[model]` table ([`Error::InvalidField`] naming the field, e.g.
+/// `model.spring[1].axis`). The springs are checked together when a setup is built with them.
+pub fn parse(text: &str, source_name: &str, robot: &Robot) -> Result<Vec<Spring>> {
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Fragment {
+        #[serde(default)]
+        model: ModelFile,
+    }
+    let f: Fragment = toml::from_str(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: crate::limits::one_line(&e.to_string()),
+    })?;
+    f.model.springs(robot)
+}
+
 /// The `[model]` fragment of a setup file that gives `springs` (every spring written with its axis,
 /// so the fragment does not depend on the families' definitions; nominal stiffness as given).
 pub fn fragment(springs: &[Spring]) -> String {

@@ -28,7 +28,7 @@ pub(crate) mod file;
 
 pub use compliance::Compliance;
 pub use family::{Family, FAMILIES};
-pub use file::fragment;
+pub use file::{fragment, parse as parse_fragment};
 
 use crate::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Robot};

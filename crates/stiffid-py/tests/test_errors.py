@@ -1,0 +1,46 @@
+"""stiffid.Error (a ValueError) and its subclasses, one per kind of failure."""
+
+import numpy as np
+import pytest
+
+import stiffid
+
+
+def test_the_hierarchy():
+    assert issubclass(stiffid.Error, ValueError)
+    for kind in (stiffid.InputError, stiffid.InfeasibleError, stiffid.UnidentifiableError):
+        assert issubclass(kind, stiffid.Error)
+    assert not issubclass(stiffid.InfeasibleError, stiffid.InputError)
+
+
+def test_bad_input_is_an_input_error(paper):
+    with pytest.raises(stiffid.InputError, match=r"unknown setup 'nope'"):
+        stiffid.Setup.builtin("nope")
+    with pytest.raises(stiffid.InputError, match=r"criterion"):
+        paper.select(criterion="nope")
+    with pytest.raises(stiffid.InputError, match=r"q_deg\[0, 2\] = NaN"):
+        paper.robot.flange_pose([0, 0, np.nan, 0, 0, 0])
+
+
+def test_an_impossible_design_is_infeasible(paper):
+    """A floor at the height of the robot's shoulder (700 mm): no posture within the bounds is
+    feasible."""
+    from test_cell import PAPER_TOML
+
+    cell = stiffid.Setup.from_toml(PAPER_TOML + "\n[cell]\nfloor_z_mm = 700.0\nclearance_mm = 50.0\n", "cell.toml")
+    with pytest.raises(stiffid.InfeasibleError, match="no feasible group found: the floor check failed"):
+        cell.select(n=6, starts=2, screen_steps=5, polished=1)
+
+
+def test_an_unreachable_pose_is_infeasible(paper):
+    pose = np.eye(4)
+    pose[:3, 3] = [10000, 0, 0]
+    with pytest.raises(stiffid.InfeasibleError, match="mm"):
+        paper.robot.inverse_kinematics(pose, [0, 0, -90, 0, 30, 0], restarts=1)
+
+
+def test_data_that_cannot_identify_is_unidentifiable(paper):
+    """One posture under a vertical force: no torque about joint 1's vertical axis."""
+    q = np.array([[10, 20, -90, 30, 20, 10]])
+    with pytest.raises(stiffid.UnidentifiableError, match="joint 1 cannot be identified"):
+        stiffid.identify(paper, q_deg=q, wrench=[[0, 0, -500.0]], displacement_mm=np.ones((4, 3)))
