@@ -60,7 +60,7 @@ pub fn raise_in(name: &str, e: Error) -> PyErr {
 fn exception(e: &Error, message: String) -> PyErr {
     match e.root() {
         Error::Infeasible { .. } | Error::Unreachable { .. } => InfeasibleError::new_err(message),
-        Error::Unidentifiable { .. } | Error::TooFewRows { .. } => {
+        Error::Unidentifiable { .. } | Error::TooFewRows { .. } | Error::Inseparable { .. } => {
             UnidentifiableError::new_err(message)
         }
         _ => InputError::new_err(message),

@@ -44,3 +44,16 @@ def test_data_that_cannot_identify_is_unidentifiable(paper):
     q = np.array([[10, 20, -90, 30, 20, 10]])
     with pytest.raises(stiffid.UnidentifiableError, match="joint 1 cannot be identified"):
         stiffid.identify(paper, q_deg=q, wrench=[[0, 0, -500.0]], displacement_mm=np.ones((4, 3)))
+
+
+def test_a_model_no_group_can_separate_is_unidentifiable(paper):
+    """A rotation spring about the base z axis through the origin is joint 1's own axis: no
+    group of postures separates the two; the search's group is refused as unidentifiable."""
+    setup = paper.with_model(
+        '[[model.spring]]\nname = "base_rz"\nkind = "rotation"\nlink = 0\naxis = [0, 0, 1]\n'
+        "nominal_stiffness_nm_per_rad = 5e6\n"
+    )
+    group = paper.random_group(6, 1)
+    assert setup.evaluate(group)["unidentifiable"] == ["0.71 base_rz - 0.71 k1"]
+    with pytest.raises(stiffid.UnidentifiableError, match=r"the group cannot separate 0.71 base_rz - 0.71 k1"):
+        setup.select(method="local", start=group, max_evals=20)

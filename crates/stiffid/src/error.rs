@@ -78,6 +78,16 @@ pub enum Error {
         /// The number of rows given.
         rows: usize,
     },
+    /// A group of postures cannot separate these combinations of the model's parameters (a model
+    /// with virtual springs; for the drives alone, [`Error::Unidentifiable`]).
+    #[error(
+        "the group cannot separate {}: choose postures that load these parameters differently",
+        combinations.join("; ")
+    )]
+    Inseparable {
+        /// The combinations, written out, e.g. `0.71 k6 - 0.71 flange_rz`.
+        combinations: Vec<String>,
+    },
     /// One measurement of a data set cannot be used.
     #[error("measurement {number}, {field}: {message}")]
     Measurement {

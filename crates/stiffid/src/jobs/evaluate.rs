@@ -63,7 +63,7 @@ pub fn unidentifiable(e: &Evaluation, setup: &Setup) -> Vec<String> {
 
 /// Fails when the group cannot identify every parameter of the setup's model: for the drives
 /// alone, [`Error::Unidentifiable`] naming the joints; with virtual springs,
-/// [`Error::InvalidField`] (`postures`) naming the combinations it cannot separate.
+/// [`Error::Inseparable`] naming the combinations it cannot separate.
 pub fn identifiable(setup: &Setup, postures: &[Vector6<f64>]) -> Result<()> {
     if setup.model().is_drives_only() {
         return Factor::try_new(rope_observation_matrix(setup, postures)).map(|_| ());
@@ -71,12 +71,6 @@ pub fn identifiable(setup: &Setup, postures: &[Vector6<f64>]) -> Result<()> {
     let combinations = unidentifiable(&evaluate(setup, postures), setup);
     match combinations.is_empty() {
         true => Ok(()),
-        false => Err(Error::InvalidField {
-            field: "postures".into(),
-            message: format!(
-                "the group cannot separate {}: choose postures that load these parameters differently",
-                combinations.join("; ")
-            ),
-        }),
+        false => Err(Error::Inseparable { combinations }),
     }
 }

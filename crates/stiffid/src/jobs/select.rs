@@ -204,9 +204,9 @@ pub fn run(request: &Request) -> Result<Report> {
         }
     };
     let elapsed_s = started.elapsed().as_secs_f64();
-    identifiable(request.setup, &found.postures).map_err(|e| Error::InvalidField {
-        field: "postures".into(),
-        message: format!("the best group the search found: {e}"),
+    identifiable(request.setup, &found.postures).map_err(|e| Error::Input {
+        source_name: "postures: the best group the search found".into(),
+        error: Box::new(e),
     })?;
     let unconstrained = match pool.is_none() && target.is_none() {
         true => unconstrained(request, found.postures.len())?,
