@@ -17,6 +17,7 @@ pub mod feasibility;
 pub mod force;
 pub mod identify;
 pub mod parameters;
+pub mod register;
 pub mod reproduce;
 pub mod select;
 pub mod simulate;
