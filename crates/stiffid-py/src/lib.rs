@@ -18,6 +18,7 @@ mod ik;
 mod machining;
 mod measure;
 mod model;
+mod register;
 mod robot;
 mod setup;
 mod stiffness;
@@ -44,5 +45,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;
     m.add_function(wrap_pyfunction!(machining::process_force, m)?)?;
     m.add_function(wrap_pyfunction!(machining::read_program, m)?)?;
+    m.add_function(wrap_pyfunction!(register::register, m)?)?;
+    m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod calibrate_cell;
+pub mod cell_readings;
 pub mod common;
 pub mod compensate;
 pub mod completions;

@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{calibrate_cell, kinematics, predict, register};
+use super::{kinematics, predict};
 use crate::output::{self, json};
 use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
@@ -77,8 +77,8 @@ pub fn schema(name: &str) -> Result<Schema> {
         "compensate" => closed::<stiffid::documents::compensate::Document>(),
         "simulate" => closed::<stiffid::documents::simulate::Document>(),
         "reproduce" => closed::<stiffid::documents::reproduce::Summary<'static>>(),
-        "register" => closed::<register::RegisterJson>(),
-        "calibrate-cell" => closed::<calibrate_cell::CalibrateJson>(),
+        "register" => closed::<stiffid::documents::register::Document>(),
+        "calibrate-cell" => closed::<stiffid::documents::register::Calibration>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

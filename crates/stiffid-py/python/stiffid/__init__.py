@@ -4,7 +4,8 @@ A thin Python layer over the stiffid Rust library (the same code as the ``stiffi
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
 identification and validation from measurements (``identify``, ``validate``), the deflection
 under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
-with ``process_force`` and ``read_program``), the Monte Carlo
+with ``process_force`` and ``read_program``), the tracker's registration and the cell's
+calibration from raw readings (``register``, ``calibrate_cell``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
 
 Units: postures in degrees (controller axis angles), points in mm, forces in N, moments in Nm,
@@ -30,6 +31,7 @@ from ._stiffid import (
     Study,
     UnidentifiableError,
     __version__,
+    calibrate_cell,
     cartesian_compliance,
     cartesian_stiffness,
     compensate,
@@ -37,6 +39,7 @@ from ._stiffid import (
     identify,
     process_force,
     read_program,
+    register,
     reproduce,
     simulate,
     validate,
@@ -52,6 +55,7 @@ __all__ = [
     "Study",
     "UnidentifiableError",
     "__version__",
+    "calibrate_cell",
     "cartesian_compliance",
     "cartesian_stiffness",
     "compensate",
@@ -59,6 +63,7 @@ __all__ = [
     "identify",
     "process_force",
     "read_program",
+    "register",
     "reproduce",
     "simulate",
     "validate",

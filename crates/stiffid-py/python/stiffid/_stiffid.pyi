@@ -327,3 +327,9 @@ def deflection(
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
 ) -> dict[str, _Array]:
     """displacement_mm, rotation_rad (n, 3); torques_nm, joint_deflections_rad (n, 6); std with a covariance."""
+
+def register(setup: Setup, readings: Union[str, os.PathLike[str]]) -> dict[str, Any]:
+    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment."""
+
+def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]]) -> dict[str, Any]:
+    """The document of `stiffid calibrate-cell --json`: the transform as for register, points (setup_mm, fitted_mm, shift_mm, std_mm), absolute_error_rms_mm, noise_std_mm, readings, iterations, fragment."""

@@ -403,7 +403,9 @@ impl<'a> Checker<'a> {
             for b in bodies.iter().filter(|b| b.part() != Part::Base) {
                 let (centre, r) = b.bound();
                 let foot = Vector3::new(centre.x, centre.y, z);
-                let (d, w) = match far_gap(out, &centre, &foot, r, c) {
+                // Only a sphere above the floor is far from it: one below is in it.
+                let far = (centre.z > z).then(|| far_gap(out, &centre, &foot, r, c));
+                let (d, w) = match far.flatten() {
                     Some((d, w)) => (d, w),
                     None => body_floor_witness(b, z),
                 };

@@ -21,11 +21,13 @@
 //! Errors are [`crate::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
 //! never of one front end's options; each front end adds its own hints.
 
+pub mod calibrate;
 pub mod compensate;
 pub mod evaluate;
 pub mod force;
 pub mod identify;
 pub mod identify_model;
+pub mod register;
 pub mod reproduce;
 pub mod select;
 pub mod simulate;

@@ -144,6 +144,35 @@ fn feasibility_uses_the_hulls_and_the_broad_phase_keeps_every_smallest_margin() 
 }
 
 #[test]
+fn a_body_wholly_below_the_floor_fails_the_broad_phase_too() {
+    // A floor 3 m up: every link's bounding sphere lies below it, most far more than
+    // FAR_MARGIN beyond their radius. The broad phase must not take them for far above it.
+    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+        .unwrap()
+        .to_string()
+        + "\n[cell]\nfloor_z_mm = 3000.0\nclearance_mm = 50.0\n";
+    let setup =
+        stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
+    let checker = Checker::new(&setup);
+    let q = Vector6::new(0.0, 0.0, -90f64.to_radians(), 0.0, 30f64.to_radians(), 0.0);
+    let f = checker.feasibility(&q);
+    let floor = f
+        .checks
+        .iter()
+        .find(|c| c.kind == CheckKind::Floor)
+        .unwrap();
+    assert!(floor.margin < -2.0, "{}", floor.margin);
+    let smallest = checker
+        .margins(&q)
+        .iter()
+        .filter(|m| m.kind == CheckKind::Floor)
+        .map(|m| m.margin)
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(smallest, floor.margin);
+    assert!(checker.violation(&q) > 2.0);
+}
+
+#[test]
 fn package_urls_resolve_in_the_setups_and_the_given_package_paths_or_name_the_package() {
     let without = mesh_robot::setup_toml().replace("package_paths = [\".\"]\n", "");
     let e = setup_from(&without, &[]).unwrap_err().to_string();

@@ -1,0 +1,60 @@
+"""register and calibrate_cell: a known tracker transform and shifted tool points come back, the same documents as the command."""
+
+import numpy as np
+import pytest
+
+import stiffid
+from test_schemas import assert_valid
+
+HEADER = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm"
+POSTURES = [
+    [0.0, 0.0, -90.0, 0.0, 30.0, 0.0],
+    [35.0, -20.0, -110.0, 40.0, -30.0, 60.0],
+    [-40.0, 15.0, -70.0, -60.0, 45.0, -90.0],
+    [10.0, -30.0, -120.0, 90.0, 60.0, 30.0],
+]
+# base_from_tracker: a turn of 90 deg about z and a translation, mm.
+ROTATION = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+TRANSLATION_MM = np.array([3000.0, -2000.0, 1500.0])
+
+
+def readings(setup, path, shift_mm=(0.0, 0.0, 0.0)):
+    """Every measuring point (shifted in the flange frame) in every posture, as the tracker reads it."""
+    lines = [HEADER]
+    for i, q in enumerate(POSTURES):
+        pose = setup.robot.flange_pose(q)
+        for k, point in enumerate(setup.measuring_points_mm):
+            base = (pose @ np.append(point + np.asarray(shift_mm), 1.0))[:3]
+            tracker = ROTATION.T @ (base - TRANSLATION_MM)
+            numbers = ",".join(repr(float(v)) for v in [*q, *tracker])
+            lines.append(f"P{i + 1},{k + 1},{numbers}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_register_gives_the_transform_back_and_equals_the_command(paper, cli, tmp_path):
+    path = readings(paper, tmp_path / "readings.csv")
+    doc = stiffid.register(paper, path)
+    np.testing.assert_allclose(doc["xyz_mm"], TRANSLATION_MM, atol=1e-6)
+    np.testing.assert_allclose(doc["rpy_deg"], [0.0, 0.0, 90.0], atol=1e-9)
+    assert doc["residual_rms_mm"] < 1e-6 and len(doc["points"]) == 16
+    assert doc == cli("register", "--setup", "zhang2021-comau-nj165", "--data", path, "--json")
+    assert_valid("register", doc)
+
+
+def test_calibrate_cell_finds_the_shift_and_equals_the_command(paper, cli, tmp_path):
+    path = readings(paper, tmp_path / "shifted.csv", shift_mm=(2.0, 0.0, 0.0))
+    doc = stiffid.calibrate_cell(paper, path)
+    for p in doc["points"]:
+        np.testing.assert_allclose(p["shift_mm"], [2.0, 0.0, 0.0], atol=1e-6)
+    assert doc["absolute_error_rms_mm"] < 1e-6
+    assert doc == cli("calibrate-cell", "--setup", "zhang2021-comau-nj165", "--data", path, "--json")
+    assert_valid("calibrate-cell", doc)
+
+
+def test_collinear_points_are_refused_naming_the_file(paper, tmp_path):
+    path = tmp_path / "line.csv"
+    rows = [f"P{i},1,0,0,-90,0,30,0,{100.0 * i},0,0" for i in range(1, 5)]
+    path.write_text("\n".join([HEADER, *rows]) + "\n")
+    with pytest.raises(stiffid.InputError, match=r"line.csv.*lie on one line"):
+        stiffid.register(paper, path)

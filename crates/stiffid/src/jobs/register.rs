@@ -1,0 +1,73 @@
+//! The register job: the laser tracker's transform to the robot base from measuring points read
+//! by the tracker at known axis angles ([`crate::register`]: Umeyama's least-squares rigid
+//! transform), its residuals and standard deviation. The readings the register and calibrate
+//! jobs share ([`Request`], [`read`]) live here.
+
+use super::identify::in_data;
+use super::Warning;
+use crate::formats::readings::{self, Readings};
+use crate::register::{self, Registration};
+use crate::setup::plausibility;
+use crate::{Result, Setup};
+
+/// Readings of a cell: what the register and calibrate jobs read.
+pub struct Request<'a> {
+    /// The setup: robot, tool (its measuring points), tracker.
+    pub setup: &'a Setup,
+    /// The readings file's name (for errors and the document).
+    pub name: String,
+    /// Its text: `posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm`
+    /// ([`crate::formats::readings`]; with load steps, only the unloaded readings are used), at
+    /// most [`readings::MAX_READINGS`] rows.
+    pub text: &'a str,
+}
+
+/// What the register job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The readings file's name.
+    pub data_name: String,
+    /// The readings (their labels and lines name the residuals).
+    pub readings: Readings,
+    /// The transform, its residuals (one per unloaded reading, in file order) and covariance.
+    pub registration: Registration,
+    /// Inputs to look at before trusting the result (angles that look like radians).
+    pub warnings: Vec<Warning>,
+}
+
+/// The readings of `request`, and the warnings about them.
+///
+/// # Errors
+/// Those of [`readings::parse`], as [`crate::Error::Input`] naming the file.
+pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
+    let Request { setup, name, text } = request;
+    let points = setup.tool().measuring_points.len();
+    let data = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
+    let warnings = plausibility::radians_as_degrees(data.readings.iter().map(|r| &r.q))
+        .map(|mut w| {
+            w.message = format!("{name}: {}", w.message);
+            w
+        })
+        .into_iter()
+        .collect();
+    Ok((data, warnings))
+}
+
+/// Runs the register job.
+///
+/// # Errors
+/// Those of [`read`]; of [`register::correspondences`] and [`register::fit`] (readings in the
+/// base frame, fewer than [`register::MIN_POINTS`] unloaded readings, collinear points), as
+/// [`crate::Error::Input`] naming the file.
+pub fn run(request: &Request<'_>) -> Result<Report> {
+    let (data, warnings) = read(request)?;
+    let name = &request.name;
+    let points = register::correspondences(request.setup, &data).map_err(|e| in_data(name, e))?;
+    let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
+    Ok(Report {
+        data_name: name.clone(),
+        readings: data,
+        registration,
+        warnings,
+    })
+}
