@@ -9,16 +9,24 @@
 //! `|k_identified - k_true| / k_true` of every joint. Mean and standard deviation over the runs per
 //! group, level and joint, beside the first-order prediction of [`crate::design::criteria`].
 //!
+//! With virtual springs in the setup's model ([`crate::model`]) the truth is the nominal compliance
+//! of every parameter, the exact displacements are `Psi h_true` (one column per parameter,
+//! [`rope_observation_matrix`]), every run identifies every parameter by the Householder QR of that
+//! `Psi`, and each virtual spring gets its deviation rates and first-order prediction beside the
+//! drives' ([`GroupSimulation`]'s `spring_*` fields).
+//!
 //! Every run draws its noise from its own generator, seeded from `(seed, group, level, run)`, and the
 //! sums are taken in run order, so the result is the same whatever the number of threads.
 
 use crate::design::criteria::evaluate;
+use crate::identify::model::identifiability;
 use crate::lsq::Factor;
+use crate::model::Compliance;
 use crate::observation::rope_observation_matrix;
 use crate::setup::Setup;
 use crate::stiffness::rope_displacements;
 use crate::{limits, Error, Result};
-use nalgebra::{DVector, Vector6};
+use nalgebra::{DMatrix, DVector, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -53,12 +61,39 @@ pub struct GroupSimulation {
     pub predicted_deviation_pct: Vec<[f64; 6]>,
     /// Mean identified stiffness over the runs, Nm/rad.
     pub mean_stiffness: Vec<Vector6<f64>>,
+    /// Per level, the mean deviation rate of each virtual spring of the model, percent, in the
+    /// model's order (empty rows for the drives alone).
+    pub spring_mean_deviation_pct: Vec<Vec<f64>>,
+    /// Per level, the sample standard deviation of each virtual spring's deviation rate, percent.
+    pub spring_std_deviation_pct: Vec<Vec<f64>>,
+    /// Per level, each virtual spring's first-order predicted mean deviation rate, percent:
+    /// `100 sqrt(2/pi) sqrt(m) s_j`, `s_j` its [`crate::design::Evaluation::spring_relative_std`].
+    pub spring_predicted_deviation_pct: Vec<Vec<f64>>,
+    /// Per level, each virtual spring's mean identified stiffness, SI (Nm/rad for a rotation, N/m
+    /// for a translation).
+    pub spring_mean_stiffness: Vec<Vec<f64>>,
+}
+
+/// How a group's runs are solved: the QR factor of the drives' `Psi`, or of a model's.
+enum Solver {
+    /// The six drives ([`Factor`], boxed: it is large beside the model's two handles).
+    Drives(Box<Factor>),
+    /// Any number of parameters: `Q` (m x n) and `R` (n x n) of the Householder QR of `Psi`.
+    Model(DMatrix<f64>, DMatrix<f64>),
 }
 
 /// One group made ready for the runs: its factor and exact displacements.
 struct Prepared {
-    factor: Factor,
+    solver: Solver,
     exact: DVector<f64>,
+}
+
+/// The truth of the simulation: the setup's nominal stiffness of every parameter.
+struct Truth {
+    /// The drives', Nm/rad.
+    drives: Vector6<f64>,
+    /// Every parameter's compliance (drives, then virtual springs), SI.
+    h: DVector<f64>,
 }
 
 /// Simulates the identification with every group of postures (axis angles, rad) at every noise level
@@ -97,7 +132,11 @@ pub fn monte_carlo_with_predictions(
     options: &Options,
 ) -> Result<Vec<GroupSimulation>> {
     check_runs(options)?;
-    let k_true = setup.try_nominal_stiffness("the simulation (the true stiffness)")?;
+    let needed_by = "the simulation (the true stiffness)";
+    let truth = Truth {
+        drives: *setup.try_nominal_stiffness(needed_by)?,
+        h: Compliance::nominal(setup, needed_by)?.h,
+    };
     if predicted.len() != groups.len() {
         return Err(Error::InvalidField {
             field: "predicted".into(),
@@ -110,23 +149,70 @@ pub fn monte_carlo_with_predictions(
     }
     let prepared = groups
         .iter()
-        .map(|g| prepare(setup, g, k_true))
+        .map(|g| prepare(setup, g, &truth))
         .collect::<Result<Vec<_>>>()?;
     let runs = options.runs;
     Ok(prepared
         .iter()
         .zip(predicted)
+        .zip(groups)
         .enumerate()
-        .map(|(g, (group, predicted))| {
-            let rates = group_runs(setup, group, g, options);
-            summarise(k_true, &rates, runs, predicted.clone())
+        .map(|(g, ((group, predicted), postures))| {
+            let stiffness = group_runs(setup, group, g, options);
+            let mut sim = summarise(&truth.drives, &stiffness, runs, predicted.clone());
+            if !setup.model().is_drives_only() {
+                add_springs(&mut sim, setup, postures, &truth, &stiffness, runs);
+            }
+            sim
         })
         .collect())
 }
 
+/// The virtual springs' deviation rates, mean stiffness and first-order predictions of one
+/// group from the identified stiffness of every run (level-major, `runs` per level).
+fn add_springs(
+    sim: &mut GroupSimulation,
+    setup: &Setup,
+    postures: &[Vector6<f64>],
+    truth: &Truth,
+    stiffness: &[Vec<f64>],
+    runs: usize,
+) {
+    let k_true: Vec<f64> = truth.h.iter().skip(6).map(|h| 1.0 / h).collect();
+    let spread: Vec<f64> = evaluate(setup, postures).spring_relative_std;
+    for (level, multiple) in stiffness.chunks(runs).zip(&setup.noise().levels) {
+        let n = level.len() as f64;
+        let rate = |k: &[f64], s: usize| 100.0 * (k[6 + s] - k_true[s]).abs() / k_true[s];
+        let mean: Vec<f64> = (0..k_true.len())
+            .map(|s| level.iter().map(|k| rate(k, s)).sum::<f64>() / n)
+            .collect();
+        let std = (0..k_true.len())
+            .map(|s| match level.len() {
+                1 => 0.0,
+                _ => (level
+                    .iter()
+                    .map(|k| (rate(k, s) - mean[s]).powi(2))
+                    .sum::<f64>()
+                    / (n - 1.0))
+                    .sqrt(),
+            })
+            .collect();
+        let factor = 100.0 * (2.0 / std::f64::consts::PI).sqrt() * multiple.sqrt();
+        sim.spring_predicted_deviation_pct
+            .push(spread.iter().map(|s| factor * s).collect());
+        sim.spring_mean_stiffness.push(
+            (0..k_true.len())
+                .map(|s| level.iter().map(|k| k[6 + s]).sum::<f64>() / n)
+                .collect(),
+        );
+        sim.spring_mean_deviation_pct.push(mean);
+        sim.spring_std_deviation_pct.push(std);
+    }
+}
+
 /// The identified stiffness of every run of group `g`, level-major: one group at a time, so the
 /// memory held is `levels x runs` results whatever the number of groups.
-fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> Vec<[f64; 6]> {
+fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> Vec<Vec<f64>> {
     let runs = options.runs;
     (0..setup.noise().levels.len() * runs)
         .into_par_iter()
@@ -143,27 +229,64 @@ fn check_runs(options: &Options) -> Result<()> {
     limits::check_integer("runs", options.runs as u64, 1, limits::MAX_RUNS)
 }
 
-fn prepare(setup: &Setup, postures: &[Vector6<f64>], k_true: &Vector6<f64>) -> Result<Prepared> {
-    let factor = Factor::try_new(rope_observation_matrix(setup, postures))?;
+fn prepare(setup: &Setup, postures: &[Vector6<f64>], truth: &Truth) -> Result<Prepared> {
+    let psi = rope_observation_matrix(setup, postures);
+    if !setup.model().is_drives_only() {
+        return prepare_model(setup, psi, &truth.h);
+    }
+    let factor = Factor::try_new(psi)?;
     let exact: Vec<f64> = postures
         .iter()
-        .flat_map(|q| rope_displacements(setup, &setup.robot().frames(q), k_true))
+        .flat_map(|q| rope_displacements(setup, &setup.robot().frames(q), &truth.drives))
         .flat_map(|d| [d.x, d.y, d.z])
         .collect();
     Ok(Prepared {
-        factor,
+        solver: Solver::Drives(Box::new(factor)),
         exact: DVector::from_vec(exact),
     })
 }
 
-/// Identified stiffness (Nm/rad) of one run: the exact displacements plus noise of standard
-/// deviation `sigma` (m) on every coordinate, solved with the group's factor.
-fn identify_once(group: &Prepared, sigma: f64, rng: &mut ChaCha8Rng) -> [f64; 6] {
+/// A group of a model with virtual springs: the QR factor of its `Psi` (one column per
+/// parameter) and the exact displacements `Psi h`.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`model`) naming the parameters the group cannot separate.
+fn prepare_model(setup: &Setup, psi: DMatrix<f64>, h: &DVector<f64>) -> Result<Prepared> {
+    let parameters = setup.model().parameters();
+    let ident = identifiability(&psi)?;
+    if let Some(c) = ident.unidentifiable.first() {
+        return Err(Error::InvalidField {
+            field: "model".into(),
+            message: format!(
+                "the group's postures cannot separate {}: the simulation needs every parameter identified",
+                c.describe(&parameters)
+            ),
+        });
+    }
+    let exact = &psi * h;
+    let qr = psi.qr();
+    Ok(Prepared {
+        solver: Solver::Model(qr.q(), qr.r()),
+        exact,
+    })
+}
+
+/// Identified stiffness (SI, every parameter) of one run: the exact displacements plus noise of
+/// standard deviation `sigma` (m) on every coordinate, solved with the group's factor.
+fn identify_once(group: &Prepared, sigma: f64, rng: &mut ChaCha8Rng) -> Vec<f64> {
     let noisy = group
         .exact
         .map(|d| d + sigma * rng.sample::<f64, _>(StandardNormal));
-    let h = group.factor.solve(&noisy);
-    std::array::from_fn(|j| 1.0 / h[j])
+    match &group.solver {
+        Solver::Drives(factor) => factor.solve(&noisy).iter().map(|h| 1.0 / h).collect(),
+        Solver::Model(q, r) => {
+            let c = q.tr_mul(&noisy);
+            let h = r
+                .solve_upper_triangular(&c)
+                .expect("a full-rank R (checked in prepare_model)");
+            h.iter().map(|h| 1.0 / h).collect()
+        }
+    }
 }
 
 /// The seed of run `run` at level `level` of group `group`: the four numbers mixed by SplitMix64
@@ -185,7 +308,7 @@ fn splitmix64(x: u64) -> u64 {
 /// identified stiffness of every run of one group (level-major, `runs` per level).
 fn summarise(
     k_true: &Vector6<f64>,
-    stiffness: &[[f64; 6]],
+    stiffness: &[Vec<f64>],
     runs: usize,
     predicted: Vec<[f64; 6]>,
 ) -> GroupSimulation {
@@ -194,10 +317,14 @@ fn summarise(
         std_deviation_pct: Vec::new(),
         predicted_deviation_pct: predicted,
         mean_stiffness: Vec::new(),
+        spring_mean_deviation_pct: Vec::new(),
+        spring_std_deviation_pct: Vec::new(),
+        spring_predicted_deviation_pct: Vec::new(),
+        spring_mean_stiffness: Vec::new(),
     };
     for level in stiffness.chunks(runs) {
         let n = level.len() as f64;
-        let rate = |k: &[f64; 6], j: usize| 100.0 * (k[j] - k_true[j]).abs() / k_true[j];
+        let rate = |k: &[f64], j: usize| 100.0 * (k[j] - k_true[j]).abs() / k_true[j];
         let mean: [f64; 6] =
             std::array::from_fn(|j| level.iter().map(|k| rate(k, j)).sum::<f64>() / n);
         let std = std::array::from_fn(|j| match level.len() {

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use stiffid::documents::simulate::{deviation_csv, Document};
 use stiffid::jobs::simulate::{self as job, Group, Request};
 use stiffid::limits;
-use stiffid::simulate::{GroupSimulation, Options};
+use stiffid::simulate::Options;
 
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]
@@ -79,7 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     match args.common.json {
         true => output::print(&json(&doc)?),
-        false => output::print(&tables(&names, sims, levels, report.runs)),
+        false => output::print(&tables(&doc)),
     }
 }
 
@@ -109,20 +109,28 @@ fn group_names(paths: &[PathBuf]) -> Vec<String> {
     names
 }
 
-fn tables(names: &[String], sims: &[GroupSimulation], levels: &[f64], runs: usize) -> String {
-    let mut s =
-        format!("mean deviation rate % (+- std over {runs} runs) [first-order prediction]\n");
-    for (name, sim) in names.iter().zip(sims) {
-        s += &format!("\n{name}\n");
-        s += &format!("{:>5} {:>5}  {}\n", "level", "x var", joint_header());
-        for (l, m) in levels.iter().enumerate() {
-            let cells: Vec<String> = (0..6)
+/// Every group's rates per level and parameter (drives, then virtual springs).
+fn tables(doc: &Document) -> String {
+    let mut s = format!(
+        "mean deviation rate % (+- std over {} runs) [first-order prediction]\n",
+        doc.runs
+    );
+    let header: Vec<String> = doc
+        .parameters
+        .iter()
+        .map(|p| format!("{:<23}", p.name))
+        .collect();
+    for group in &doc.groups {
+        s += &format!("\n{}\n", group.name);
+        s += &format!("{:>5} {:>5}  {}\n", "level", "x var", header.join(" "));
+        for (l, m) in doc.levels.iter().enumerate() {
+            let cells: Vec<String> = (0..doc.parameters.len())
                 .map(|j| {
                     format!(
                         "{:>7.3} +-{:<6.3}[{:.3}]",
-                        sim.mean_deviation_pct[l][j],
-                        sim.std_deviation_pct[l][j],
-                        sim.predicted_deviation_pct[l][j]
+                        group.mean_deviation_pct[l][j],
+                        group.std_deviation_pct[l][j],
+                        group.predicted_deviation_pct[l][j]
                     )
                 })
                 .collect();
@@ -130,11 +138,4 @@ fn tables(names: &[String], sims: &[GroupSimulation], levels: &[f64], runs: usiz
         }
     }
     s
-}
-
-fn joint_header() -> String {
-    (1..=6)
-        .map(|j| format!("{:<23}", format!("joint {j}")))
-        .collect::<Vec<_>>()
-        .join(" ")
 }

@@ -1,11 +1,12 @@
 //! The simulate job: Monte Carlo identification with groups of postures at every noise level of
 //! the setup, beside the first-order prediction (Zhang et al. 2021, Section IV-A;
-//! [`crate::simulate`]).
+//! [`crate::simulate`]), over every parameter of the setup's model (the drives and its virtual
+//! springs, each with its nominal stiffness as the truth).
 
 use super::Warning;
 use crate::model::Parameter;
 use crate::simulate::{monte_carlo, GroupSimulation, Options};
-use crate::{limits, Error, Result, Setup};
+use crate::{limits, Result, Setup};
 use nalgebra::Vector6;
 
 /// A group of postures to simulate.
@@ -34,7 +35,8 @@ pub struct Report {
     pub names: Vec<String>,
     /// Each group's simulation, in order.
     pub simulations: Vec<GroupSimulation>,
-    /// The parameters simulated (the six drives), in the order of the rates' columns.
+    /// The parameters simulated (the six drives, then the model's virtual springs), in the order
+    /// of the rates' columns.
     pub parameters: Vec<Parameter>,
     /// Runs per group and level.
     pub runs: usize,
@@ -47,21 +49,12 @@ pub struct Report {
 /// Simulates every group.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`groups`) for no group or more than [`limits::MAX_GROUPS`], and
-/// (`model`) for a setup whose model has virtual springs (the simulation covers the six drive
-/// springs); the errors of [`monte_carlo`].
+/// [`crate::Error::InvalidField`] (`groups`) for no group or more than [`limits::MAX_GROUPS`]; the
+/// errors of [`monte_carlo`] (among them a virtual spring without a nominal stiffness, the
+/// truth of the simulation, and a group that cannot identify every parameter of the model).
 pub fn run(request: &Request) -> Result<Report> {
     let setup = request.setup;
     limits::check_count("groups", request.groups.len(), 1, limits::MAX_GROUPS)?;
-    if !setup.model().is_drives_only() {
-        return Err(Error::InvalidField {
-            field: "model".into(),
-            message: format!(
-                "the simulation identifies the six drive springs; the model of setup {} has virtual springs",
-                limits::short(setup.name())
-            ),
-        });
-    }
     let groups: Vec<Vec<Vector6<f64>>> =
         request.groups.iter().map(|g| g.postures.clone()).collect();
     Ok(Report {

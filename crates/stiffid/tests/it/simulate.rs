@@ -135,3 +135,96 @@ fn predictions_given_are_kept_and_must_match_the_groups() {
         "{e}"
     );
 }
+
+/// The paper's cell with an elbow tilt spring (about x of joint 3's frame, 5e6 Nm/rad): seven
+/// parameters. At 2000 runs the simulated mean deviation rate of every parameter, the virtual
+/// spring included, agrees with the first-order prediction within 15% at every level, and the
+/// job names the seventh parameter with its unit.
+#[test]
+fn a_seven_parameter_model_agrees_with_the_prediction_at_2000_runs() {
+    let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let mut tilt = stiffid::model::Family::Tilt
+        .springs(paper.robot(), &[3], Some(5e6), None, "test")
+        .unwrap();
+    tilt.truncate(1);
+    let model = paper
+        .to_builder()
+        .with_virtual_springs(tilt)
+        .build()
+        .unwrap();
+    let group = stiffid::design::random_group(&model, 12, 3);
+    let options = Options {
+        runs: 2000,
+        seed: 11,
+    };
+    let sim = &monte_carlo(&model, std::slice::from_ref(&group), &options).unwrap()[0];
+    let levels = model.noise().levels.len();
+    assert_eq!(sim.spring_mean_deviation_pct.len(), levels);
+    for l in 0..levels {
+        let mean = sim.mean_deviation_pct[l]
+            .iter()
+            .chain(&sim.spring_mean_deviation_pct[l]);
+        let predicted = sim.predicted_deviation_pct[l]
+            .iter()
+            .chain(&sim.spring_predicted_deviation_pct[l]);
+        let pairs: Vec<(f64, f64)> = mean.copied().zip(predicted.copied()).collect();
+        assert_eq!(pairs.len(), 7);
+        for (j, (m, p)) in pairs.into_iter().enumerate() {
+            assert!(
+                (m / p - 1.0).abs() < 0.15,
+                "level {} parameter {}: simulated {m:.4}% predicted {p:.4}%",
+                l + 1,
+                j + 1
+            );
+        }
+        // The mean identified spring stiffness is near the truth.
+        assert!((sim.spring_mean_stiffness[l][0] / 5e6 - 1.0).abs() < 0.05);
+    }
+    // The job and its document over the model: seven named parameters, rates of seven columns.
+    let report = stiffid::jobs::simulate::run(&stiffid::jobs::simulate::Request {
+        setup: &model,
+        groups: vec![stiffid::jobs::simulate::Group {
+            name: "g".into(),
+            postures: group,
+        }],
+        options: Options { runs: 20, seed: 1 },
+    })
+    .unwrap();
+    let doc = stiffid::documents::simulate::Document::new(&report, &model);
+    let names: Vec<&str> = doc.parameters.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["k1", "k2", "k3", "k4", "k5", "k6", "tilt3_x"]);
+    assert_eq!(doc.parameters[6].unit, "Nm/rad");
+    assert!(doc.groups[0]
+        .mean_deviation_pct
+        .iter()
+        .all(|r| r.len() == 7));
+    assert_eq!(doc.groups[0].mean_spring_stiffness[0].len(), 1);
+}
+
+/// Noise-free in effect (the smallest noise a setup accepts): a model's virtual spring is
+/// recovered to 1e-7 like the drives.
+#[test]
+fn at_the_smallest_noise_a_virtual_spring_is_recovered() {
+    let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let mut tilt = stiffid::model::Family::Tilt
+        .springs(paper.robot(), &[3], Some(5e6), None, "test")
+        .unwrap();
+    tilt.truncate(1);
+    let model = paper
+        .to_builder()
+        .with_virtual_springs(tilt)
+        .with_noise(Noise {
+            variance: limits::VARIANCE_MM2.min * 1e-6,
+            levels: vec![limits::LEVEL_MULTIPLE.min],
+        })
+        .build()
+        .unwrap();
+    let group = stiffid::design::random_group(&model, 10, 2);
+    let sim = &monte_carlo(&model, &[group], &Options { runs: 3, seed: 1 }).unwrap()[0];
+    assert!(
+        sim.spring_mean_deviation_pct[0][0] < 1e-6,
+        "{:?}",
+        sim.spring_mean_deviation_pct
+    );
+    assert!(sim.mean_deviation_pct[0].iter().all(|r| *r < 1e-6));
+}

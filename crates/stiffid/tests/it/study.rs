@@ -60,6 +60,10 @@ fn group(origin: Origin, rates: [f64; 6], classical: f64, levels: usize) -> Grou
             std_deviation_pct: vec![[0.0; 6]; levels],
             predicted_deviation_pct: predicted,
             mean_stiffness: vec![Vector6::zeros(); levels],
+            spring_mean_deviation_pct: Vec::new(),
+            spring_std_deviation_pct: Vec::new(),
+            spring_predicted_deviation_pct: Vec::new(),
+            spring_mean_stiffness: Vec::new(),
         },
         validation_error: Vec::new(),
     }

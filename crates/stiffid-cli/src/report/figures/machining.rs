@@ -1,7 +1,8 @@
 //! The figures of `stiffid compensate --program --report`: the process force along the path and
 //! each program segment's deflection before and after compensation.
 
-use super::{colour, failed, render, short, Figure, Plot};
+use super::chart::{line_chart, whole, Axes};
+use super::{colour, failed, render, Figure, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -38,23 +39,15 @@ impl Plot for Force<'_> {
             .max(1.0)
             * 1.1;
         let n = r.last().map_or(1, |(i, _)| i + 1) as f64;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Process force along the path", ("sans-serif", 22))
-            .margin(14)
-            .x_label_area_size(40)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.5..n + 0.5, -hi..hi)
-            .map_err(failed)?;
-        chart
-            .configure_mesh()
-            .x_desc("path point")
-            .y_desc("force, N")
-            .y_label_formatter(&|y| short(*y))
-            .x_label_formatter(&|x| format!("{x:.0}"))
-            .label_style(("sans-serif", 14))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(failed)?;
+        let axes = Axes {
+            caption: "Process force along the path",
+            x: 0.5..n + 0.5,
+            y: -hi..hi,
+            x_desc: "path point",
+            y_desc: "force, N",
+            x_label: &whole,
+        };
+        let mut chart = line_chart(root, &axes)?;
         let line = |g: &dyn Fn(&Compensated) -> f64| -> Vec<(f64, f64)> {
             r.iter().map(|(i, c)| (*i as f64 + 1.0, g(c))).collect()
         };
@@ -114,29 +107,22 @@ impl Plot for Segments<'_> {
             .max(1e-6)
             * 1.1;
         let n = s.len() as f64;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Deflection per program segment", ("sans-serif", 22))
-            .margin(14)
-            .x_label_area_size(40)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.5..n + 0.5, 0.0..hi)
-            .map_err(failed)?;
         let lines: Vec<u64> = s.iter().map(|g| g.line).collect();
-        chart
-            .configure_mesh()
-            .x_desc("segment (program line)")
-            .y_desc("largest |d|, mm")
-            .y_label_formatter(&|y| short(*y))
-            .x_label_formatter(&|x| {
-                let k = x.round() as usize;
-                lines
-                    .get(k.wrapping_sub(1))
-                    .map_or(String::new(), u64::to_string)
-            })
-            .label_style(("sans-serif", 14))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(failed)?;
+        let line_of = |x: &f64| {
+            let k = x.round() as usize;
+            lines
+                .get(k.wrapping_sub(1))
+                .map_or(String::new(), u64::to_string)
+        };
+        let axes = Axes {
+            caption: "Deflection per program segment",
+            x: 0.5..n + 0.5,
+            y: 0.0..hi,
+            x_desc: "segment (program line)",
+            y_desc: "largest |d|, mm",
+            x_label: &line_of,
+        };
+        let mut chart = line_chart(root, &axes)?;
         let points = |g: &dyn Fn(&SegmentDocument) -> f64| -> Vec<(f64, f64)> {
             s.iter()
                 .enumerate()

@@ -1,5 +1,6 @@
 //! The report's figures, each drawn once through plotters into SVG (inline in the HTML) and PNG.
 
+pub mod chart;
 pub mod criteria;
 pub mod deviation;
 pub mod machining;

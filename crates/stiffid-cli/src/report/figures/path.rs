@@ -1,8 +1,9 @@
 //! The figures of `stiffid compensate --report`: the TCP deflection along the path before and
 //! after compensation with its uncertainty band, and the path drawn over the robot.
 
+use super::chart::{line_chart, whole, Axes};
 use super::postures::{draw_stick, projection, stick};
-use super::{colour, failed, render, short, Figure, Plot};
+use super::{colour, failed, render, Figure, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -43,23 +44,15 @@ impl Plot for Deflection<'_> {
             .fold(0.0, f64::max)
             * 1.1;
         let n = r.len() as f64;
-        let mut chart = ChartBuilder::on(root)
-            .caption("TCP deflection along the path", ("sans-serif", 22))
-            .margin(14)
-            .x_label_area_size(40)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.5..n + 0.5, 0.0..hi.max(1e-6))
-            .map_err(failed)?;
-        chart
-            .configure_mesh()
-            .x_desc("path point")
-            .y_desc("|d|, mm")
-            .y_label_formatter(&|y| short(*y))
-            .x_label_formatter(&|x| format!("{x:.0}"))
-            .label_style(("sans-serif", 14))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(failed)?;
+        let axes = Axes {
+            caption: "TCP deflection along the path",
+            x: 0.5..n + 0.5,
+            y: 0.0..hi.max(1e-6),
+            x_desc: "path point",
+            y_desc: "|d|, mm",
+            x_label: &whole,
+        };
+        let mut chart = line_chart(root, &axes)?;
         let x = |i: usize| i as f64 + 1.0;
         let band = |lo: &dyn Fn(&Compensated) -> f64, hi: &dyn Fn(&Compensated) -> f64| {
             let mut outline: Vec<(f64, f64)> =

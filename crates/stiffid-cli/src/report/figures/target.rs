@@ -1,7 +1,8 @@
 //! Group size against the predicted worst-joint deviation rate (`select --target-pct`), with the
 //! target as a dashed line.
 
-use super::{colour, failed, render, short, Figure, Plot};
+use super::chart::{line_chart, whole, Axes};
+use super::{colour, failed, render, Figure, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -44,23 +45,15 @@ impl Plot for Target<'_> {
         let target = self.0.target_pct;
         let hi = points.iter().map(|p| p.1).fold(target, f64::max) * 1.1;
         let last = self.0.steps.last().map_or(2, |s| s.postures.len()) as f64;
-        let mut chart = ChartBuilder::on(root)
-            .caption("postures needed", ("sans-serif", 22))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(65)
-            .build_cartesian_2d(1.5..last + 0.5, 0.0..hi)
-            .map_err(failed)?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&|x| format!("{x:.0}"))
-            .y_label_formatter(&|y| short(*y))
-            .x_desc("postures in the group")
-            .y_desc("worst joint's deviation rate, %")
-            .label_style(("sans-serif", 15))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(failed)?;
+        let axes = Axes {
+            caption: "postures needed",
+            x: 1.5..last + 0.5,
+            y: 0.0..hi,
+            x_desc: "postures in the group",
+            y_desc: "worst joint's deviation rate, %",
+            x_label: &whole,
+        };
+        let mut chart = line_chart(root, &axes)?;
         let c = colour(2);
         chart
             .draw_series(LineSeries::new(

@@ -92,7 +92,11 @@ impl<'a> GroupSummary<'a> {
     fn new(study: &'a Study, g: usize) -> Self {
         let group = &study.groups[g];
         Self {
-            simulation: Group::new(&group.name, &group.simulation),
+            simulation: Group::new(
+                &group.name,
+                &group.simulation,
+                &study.setup.model().parameters(),
+            ),
             title: &group.title,
             criterion: group.origin.criterion().map(|c| c.name()),
             search: search_words(&group.origin, study.seed),
