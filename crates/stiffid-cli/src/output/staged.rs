@@ -109,8 +109,14 @@ pub fn created(dir: PathBuf) {
 /// The first file that cannot be put in place (the others are still tried; temporary files of
 /// the failed ones are removed).
 pub fn commit() -> Result<()> {
+    let steps = take();
+    if let Some(e) = over_an_input(&steps) {
+        put_back(steps);
+        discard();
+        return Err(e);
+    }
     let mut first: Option<anyhow::Error> = None;
-    for step in take() {
+    for step in steps {
         let done = match &step {
             Step::Replace { tmp, target } => rename(tmp, target),
             Step::Create { tmp, target } => create_new(tmp, target),
@@ -132,6 +138,29 @@ pub fn commit() -> Result<()> {
     }
     release();
     first.map_or(Ok(()), Err)
+}
+
+/// The last guard of "never write over an input": a staged file whose target is a file the run
+/// read (whatever the order in which the command read its inputs and prepared its outputs).
+fn over_an_input(steps: &[Step]) -> Option<anyhow::Error> {
+    steps.iter().find_map(|step| match step {
+        Step::Replace { target, .. } | Step::Create { target, .. } => crate::load::input_at(target)
+            .map(|input| {
+                anyhow::anyhow!(
+                    "{}: refusing to write over the input file {}; nothing written",
+                    target.display(),
+                    input.display()
+                )
+            }),
+        _ => None,
+    })
+}
+
+fn put_back(steps: Vec<Step>) {
+    STEPS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .extend(steps);
 }
 
 /// Removes every staged temporary file and directory, and the directories the run created.
@@ -199,4 +228,28 @@ fn create_new(tmp: &Path, target: &Path) -> Result<()> {
     };
     let _ = std::fs::remove_file(tmp);
     done
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A staged replacement of a file the run read is refused at commit, even when the output was
+    /// prepared before the input was read, and the input keeps its bytes.
+    #[test]
+    fn commit_never_replaces_an_input() {
+        let dir = std::env::temp_dir().join(format!("stiffid-staged-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let input = dir.join("data.csv");
+        std::fs::write(&input, "kept").unwrap();
+        let (tmp, _file) = super::super::target::temporary(&dir).unwrap();
+        std::fs::write(&tmp, "new").unwrap();
+        replace(tmp.clone(), input.canonicalize().unwrap());
+        crate::load::open(&input).unwrap();
+        let error = commit().unwrap_err().to_string();
+        assert!(error.contains("input file"), "{error}");
+        assert_eq!(std::fs::read_to_string(&input).unwrap(), "kept");
+        assert!(!tmp.exists(), "the staged file is removed");
+        std::fs::remove_dir_all(dir).unwrap();
+    }
 }

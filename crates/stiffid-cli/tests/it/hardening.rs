@@ -830,3 +830,28 @@ fn simulate_refused(dir: &Path, setup: &str, mention: &[&str]) {
     ];
     refused(dir, &args, mention);
 }
+
+/// `--out` naming the data file the command reads is refused, whatever the order in which the
+/// command reads its inputs and prepares its outputs, and the data are left byte for byte.
+#[test]
+fn out_on_the_data_file_is_refused_for_every_fit() {
+    let dir = scratch("out-on-data");
+    std::fs::copy(common::fanuc_csv(), dir.join("data.csv")).unwrap();
+    let identify = |extra: &[&'static str]| -> Vec<&'static str> {
+        let base = ["identify", "--setup", "fanuc-r2000ic-165f"];
+        [
+            &base[..],
+            &["--data", "{dir}/data.csv", "--out", "{dir}/data.csv"],
+            extra,
+        ]
+        .concat()
+    };
+    for extra in [
+        &[][..],
+        &["--compare-models"],
+        &["--robust", "huber"],
+        &["--folds", "3"],
+    ] {
+        refused(&dir, &identify(extra), &["input file", "data.csv"]);
+    }
+}

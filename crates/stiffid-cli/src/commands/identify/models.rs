@@ -22,12 +22,13 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
     if args.robust.is_some() || args.nonnegative || args.cross_validate || args.folds.is_some() {
         bail!("--compare-models compares least-squares fits held out posture by posture: leave out --robust, --nonnegative, --cross-validate and --folds");
     }
+    // Read (and so known as an input, never written over) before --out is prepared.
+    let file = load::measurements(&args.data, setup)?;
     let out = args
         .out
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
-    let file = load::measurements(&args.data, setup)?;
     let candidates = match &args.candidates {
         Some(names) => candidates_by_name(setup, names).context("--candidates")?,
         None => default_candidates(setup),
