@@ -18,8 +18,10 @@
 //! - Arcs are split into chords whose sagitta is at most the chord tolerance.
 //!
 //! Any other G code or letter is refused naming its line, as are an arc whose end is not on its
-//! circle (more than 1 um or 1e-6 of the radius off), an arc of radius below 1 um, and more than
-//! [`MAX_POINTS`] points.
+//! circle (more than 1 um or 1e-6 of the radius off), an arc of radius below 1 um, a letter given
+//! twice in one block (but `G` and `M`), a feed rate `F` outside `(0, MAX_FEED]`, a subprogram
+//! call or return (`M97`, `M98`, `M99`), a motion after the program's end (`M2`, `M30`), and more
+//! than [`MAX_POINTS`] points.
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
@@ -96,6 +98,8 @@ struct State {
     operation: Option<String>,
     tool: Option<UnitQuaternion<f64>>,
     rotary: bool,
+    /// The line of the `M2`/`M30` that ended the program.
+    ended: Option<u64>,
 }
 
 fn at(line: u64, message: String) -> Error {
@@ -133,6 +137,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         operation: None,
         tool: None,
         rotary: false,
+        ended: None,
     };
     let mut out = GCode {
         points: Vec::new(),
@@ -275,6 +280,7 @@ fn block(
     let mut motion_given = None;
     let mut drop = Vec::new();
     let mut abc_given = false;
+    check_words(line, words, s)?;
     for w in words {
         let v = w.value;
         match w.letter {
@@ -334,6 +340,12 @@ fn block(
         }
         return Ok(());
     }
+    if let Some(end) = s.ended {
+        return Err(at(
+            line,
+            format!("a motion after the end of the program (M2/M30 on line {end})"),
+        ));
+    }
     let tool = s.tool.ok_or_else(|| at(line, "no tool orientation: state it in a header comment before the first motion, e.g. (stiffid: tool_rpy_deg = 180 0 0)".into()))?;
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
     let mut end = s.position;
@@ -387,6 +399,42 @@ fn block(
         inch: s.inch,
         incremental: s.incremental,
     });
+    Ok(())
+}
+
+/// The largest feed rate `F` accepted (mm/min, or inch/min after `G20`).
+pub const MAX_FEED: f64 = 1e6;
+
+/// What the subset refuses in the words of one block, before any is applied: a letter given twice
+/// (`G` and `M` aside: several modal groups may share a block), a feed rate outside
+/// `(0, MAX_FEED]`, a subprogram call or return (`M97`, `M98`, `M99`: the path would go where
+/// this file does not say). `M2`/`M30` end the program: a motion after them is refused.
+fn check_words(line: u64, words: &[Word], s: &mut State) -> Result<()> {
+    for (i, w) in words.iter().enumerate() {
+        let again = words[..i].iter().any(|o| o.letter == w.letter);
+        if again && !matches!(w.letter, 'G' | 'M') {
+            return Err(at(line, format!("{} given twice in one block", w.letter)));
+        }
+        match w.letter {
+            'F' if !(w.value > 0.0 && w.value <= MAX_FEED) => {
+                return Err(at(
+                    line,
+                    format!(
+                        "F{}: expected a feed rate in (0, {MAX_FEED}] (mm/min, inch/min after G20)",
+                        w.value
+                    ),
+                ));
+            }
+            'M' if [97.0, 98.0, 99.0].contains(&w.value) => {
+                return Err(at(
+                    line,
+                    format!("M{}: subprogram calls and returns are not followed; expand the program into one file first", w.value),
+                ));
+            }
+            'M' if w.value == 2.0 || w.value == 30.0 => s.ended = Some(line),
+            _ => {}
+        }
+    }
     Ok(())
 }
 

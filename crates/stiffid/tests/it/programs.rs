@@ -208,6 +208,19 @@ fn malformed_gcode_is_refused_naming_the_line() {
         (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),
         (format!("{HEADER}G2 X10 Y0 R2\n"), 2, "shorter than half"),
         (format!("{HEADER}M3 S1000\n"), 1, "no motion"),
+        (format!("{HEADER}G1 X10 X20\n"), 2, "X given twice"),
+        (
+            format!("{HEADER}G1 X10 F0\n"),
+            2,
+            "F0: expected a feed rate",
+        ),
+        (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
+        (format!("{HEADER}G1 X10\nM98 P100\n"), 3, "M98: subprogram"),
+        (
+            format!("{HEADER}G1 X10\nM30\nG1 X20\n"),
+            4,
+            "end of the program (M2/M30 on line 3)",
+        ),
     ];
     for (text, line, word) in cases {
         match gcode::parse(&text, 1e-5) {
