@@ -43,6 +43,7 @@ pub struct Request<'a> {
     pub polished: Option<usize>,
     pub max_evals: Option<usize>,
     pub gradient: &'a str,
+    pub solver: &'a str,
     /// Checked against the robot's joint limits.
     pub pool: Option<Vec<Vector6<f64>>>,
     pub restarts: Option<usize>,
@@ -74,6 +75,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     let mut options = SearchOptions {
         seed: r.seed,
         gradient: r.gradient.parse().map_err(raise)?,
+        solver: r.solver.parse().map_err(raise)?,
         ..SearchOptions::default()
     };
     let defaults = [&mut options.starts, &mut options.screen_steps];

@@ -270,13 +270,13 @@ impl Setup {
     /// ``target_pct`` (global or pool): the smallest group whose predicted mean deviation rate at
     /// noise level multiple 1 is at most this many percent on every parameter, instead of ``n``.
     /// ``max_evals`` bounds the evaluations of one local search (default 6000); ``gradient`` is
-    /// ``"exact"`` or ``"fd"``. Deterministic for a ``seed``. Returns the document of
+    /// ``"exact"`` or ``"fd"``; ``solver`` the SQP, ``"slsqp"`` or ``"active-set"`` (ours). Deterministic for a ``seed``. Returns the document of
     /// ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", pool=None, restarts=None, target_pct=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="slsqp", pool=None, restarts=None, target_pct=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -291,6 +291,7 @@ impl Setup {
         polished: Option<usize>,
         max_evals: Option<usize>,
         gradient: &str,
+        solver: &str,
         pool: Option<&Bound<'py, PyAny>>,
         restarts: Option<usize>,
         target_pct: Option<f64>,
@@ -311,6 +312,7 @@ impl Setup {
             polished,
             max_evals,
             gradient,
+            solver,
             pool,
             restarts,
             target_pct,

@@ -83,10 +83,11 @@ const RATES: [&str; 4] = [
 /// Groups 2 and 3 the paper's local searches on ``classical`` and ``zhang2021`` from it, Groups 4
 /// and 5 global searches on ``relative-a`` and ``d-optimal`` (``starts`` starts each), the
 /// start-group check over ``trials`` start groups, and the Monte Carlo identification of every
-/// group at every noise level (``runs`` runs). ``setup`` defaults to the paper's
+/// group at every noise level (``runs`` runs); ``solver`` is the SQP of every search,
+/// ``"slsqp"`` or ``"active-set"`` (ours). ``setup`` defaults to the paper's
 /// (``"zhang2021-comau-nj165"``). Deterministic for a ``seed``; returns a ``Study``.
 #[pyfunction]
-#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20))]
+#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20, solver="slsqp"))]
 pub fn reproduce(
     py: Python<'_>,
     setup: Option<&Setup>,
@@ -94,12 +95,14 @@ pub fn reproduce(
     seed: u64,
     starts: u64,
     trials: u64,
+    solver: &str,
 ) -> PyResult<Study> {
     let options = Options {
         runs: count("runs", runs, 1, limits::MAX_RUNS)?,
         seed,
         starts: count("starts", starts, 1, limits::MAX_STARTS)?,
         trials: count("trials", trials, 0, limits::MAX_TRIALS)?,
+        solver: solver.parse().map_err(raise)?,
     };
     let paper;
     let setup = match setup {

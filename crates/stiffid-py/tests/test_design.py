@@ -61,6 +61,8 @@ def test_the_select_documents_equal_the_command(paper, cli, tmp_path):
         (["--criterion", "zhang2021", "--start-random", "--seed", 1], dict(criterion="zhang2021", method="local", n=6)),
         (["--global", "--seed", 3, "--starts", 4, "--polished", 2, "--max-evals", 1000],
          dict(method="global", seed=3, starts=4, polished=2, max_evals=1000)),
+        (["--global", "--seed", 3, "--starts", 4, "--polished", 2, "--max-evals", 1000, "--solver", "active-set"],
+         dict(method="global", seed=3, starts=4, polished=2, max_evals=1000, solver="active-set")),
         (["--pool", pool_csv, "--postures", 6], dict(pool=pool, n=6)),
         (["--pool", pool_csv, "--target-pct", 6], dict(pool=pool, target_pct=6)),
     ]:
@@ -68,6 +70,7 @@ def test_the_select_documents_equal_the_command(paper, cli, tmp_path):
         theirs = cli("select", *setup, *flags)
         assert timeless(plain(mine)) == timeless(theirs), flags
     assert mine["search"] == "pool" and mine["target"]["postures"] == len(mine["postures_deg"])
+    assert "solver" not in mine and "gradient" not in mine
 
 
 def test_local_select_from_a_start(paper):
@@ -106,6 +109,7 @@ def test_same_seed_same_group(paper):
         (dict(n=101), "n"),
         (dict(starts=0), "starts"),
         (dict(gradient="numeric"), "gradient: unknown value 'numeric'"),
+        (dict(solver="newton"), "solver: unknown value 'newton' \\(known: slsqp, active-set\\)"),
         (dict(method="global", start=np.zeros((6, 6))), "start"),
         (dict(method="pool"), "pool"),
         (dict(restarts=3), "restarts: only with pool"),

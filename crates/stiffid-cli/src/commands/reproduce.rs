@@ -6,6 +6,7 @@ use crate::{load, output};
 use anyhow::Result;
 use std::path::PathBuf;
 use std::time::Instant;
+use stiffid::design::Solver;
 use stiffid::documents::reproduce::{sentences, GENERATOR};
 use stiffid::jobs::reproduce::{self as job, Report, Request};
 use stiffid::limits;
@@ -35,6 +36,10 @@ pub struct Args {
     /// groups; 0 skips it) [0 to 10000].
     #[arg(long, default_value_t = DEFAULT_TRIALS as u64, value_parser = clap::value_parser!(u64).range(0..=limits::MAX_TRIALS))]
     trials: u64,
+    /// SQP of every search: slsqp (SLSQP, the slsqp crate) or active-set (ours: a Goldfarb-Idnani
+    /// QP per step, damped BFGS).
+    #[arg(long, default_value_t = Solver::default())]
+    solver: Solver,
     /// Write into --out even if it holds other files.
     #[arg(long)]
     force: bool,
@@ -56,6 +61,7 @@ pub fn run(args: &Args) -> Result<()> {
         seed: args.seed,
         starts: args.starts as usize,
         trials: args.trials as usize,
+        solver: args.solver,
     };
     let bars = Bars::new(true);
     let request = Request {

@@ -13,7 +13,7 @@ use crate::progress::Bars;
 use crate::report::plan;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions};
+use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions, Solver};
 use stiffid::documents::select::{Document, Pool};
 use stiffid::jobs::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::limits::{self, short};
@@ -80,6 +80,10 @@ pub struct Args {
     /// comparison).
     #[arg(long, default_value_t = Gradient::Exact)]
     gradient: Gradient,
+    /// SQP of the local searches: slsqp (SLSQP, the slsqp crate) or active-set (ours: a
+    /// Goldfarb-Idnani QP per step, damped BFGS).
+    #[arg(long, default_value_t = Solver::default())]
+    solver: Solver,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     out: PathBuf,
@@ -173,6 +177,7 @@ fn options(args: &Args) -> SearchOptions {
     let mut options = SearchOptions {
         seed: args.seed,
         gradient: args.gradient,
+        solver: args.solver,
         ..SearchOptions::default()
     };
     if let Some(s) = args.starts {
@@ -291,7 +296,11 @@ fn outcome_text(setup: &Setup, r: &Report) -> String {
         }
         None => format!("{}: {}\n", r.criterion, number(r.value)),
     };
-    text += &format!("{} evaluations in {:.2} s\n", r.evaluations, r.elapsed_s);
+    text += &format!("{} evaluations in {:.2} s", r.evaluations, r.elapsed_s);
+    text += &match r.solver {
+        Some(solver) => format!(" ({solver})\n"),
+        None => "\n".into(),
+    };
     if let Some(t) = r.termination {
         text += &format!("stopped: {}\n", termination_text(t, &r.terminations));
     }

@@ -165,6 +165,44 @@ fn select_gradient_exact_or_fd_from_the_same_start() {
     assert!(String::from_utf8_lossy(&unknown.stderr).contains("exact, fd"));
 }
 
+/// Both SQPs from the same start on a smooth criterion: the document names the one that ran, ours
+/// ends no worse than SLSQP (to 1e-6), an unknown name is refused with the known ones.
+#[test]
+fn select_solver_slsqp_or_active_set_from_the_same_start() {
+    let d = temp_dir("select-solver");
+    let start = write_file(&d, "start.csv", GROUP);
+    let run = |solver: &str| {
+        let out = d.join(format!("{solver}.csv"));
+        stiffid(&[
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--criterion",
+            "d-optimal",
+            "--start",
+            start.to_str().unwrap(),
+            "--solver",
+            solver,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ])
+    };
+    let (slsqp, ours) = (json(&run("slsqp")), json(&run("active-set")));
+    assert_eq!(slsqp["solver"], "slsqp");
+    assert_eq!(ours["solver"], "active-set");
+    let value = |doc: &serde_json::Value| doc["value"].as_f64().unwrap();
+    assert!(
+        value(&ours) <= value(&slsqp) * (1.0 + 1e-6),
+        "{ours} vs {slsqp}"
+    );
+    assert!(value(&ours) < ours["start_value"].as_f64().unwrap());
+
+    let unknown = run("newton");
+    assert_eq!(unknown.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("slsqp, active-set"));
+}
+
 #[test]
 fn bad_input_is_one_line_naming_the_place() {
     let d = temp_dir("select-bad");

@@ -153,6 +153,7 @@ class Setup:
         polished: Optional[int] = None,
         max_evals: Optional[int] = None,
         gradient: Literal["exact", "fd"] = "exact",
+        solver: Literal["slsqp", "active-set"] = "slsqp",
         pool: Optional[ArrayLike] = None,
         restarts: Optional[int] = None,
         target_pct: Optional[float] = None,
@@ -264,7 +265,12 @@ def validate(
 ) -> dict[str, Any]: ...
 def simulate(setup: Setup, groups: Sequence[ArrayLike], runs: int = 200, seed: int = 1) -> list[dict[str, _Array]]: ...
 def reproduce(
-    setup: Optional[Setup] = None, runs: int = 200, seed: int = 1, starts: int = 16, trials: int = 20
+    setup: Optional[Setup] = None,
+    runs: int = 200,
+    seed: int = 1,
+    starts: int = 16,
+    trials: int = 20,
+    solver: Literal["slsqp", "active-set"] = "slsqp",
 ) -> Study: ...
 def compensate(
     setup: Setup,

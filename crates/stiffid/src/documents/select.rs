@@ -26,6 +26,10 @@ pub struct Document {
     /// The SQP objective's gradient (`exact` or `fd`); absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gradient: Option<&'static str>,
+    /// The SQP of the searches (`slsqp` or `active-set`); absent for a pool choice.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::solver"))]
+    pub solver: Option<&'static str>,
     /// The seed of the random start group, the global starts or the pool's exchange runs.
     pub seed: u64,
     /// The criterion of the start group; `null` for a pool choice (no start group) or an
@@ -159,6 +163,7 @@ impl Document {
             criterion: r.criterion.name(),
             search: r.method.name(),
             gradient: r.gradient.map(|g| g.name()),
+            solver: r.solver.map(|s| s.name()),
             seed: r.seed,
             start_value: r.start_value.and_then(finite),
             value: finite(r.value),
@@ -245,7 +250,7 @@ impl From<&Unconstrained> for Free {
 #[cfg(feature = "schema")]
 mod schema {
     use crate::choice::{names, Choice};
-    use crate::design::{Criterion, Termination};
+    use crate::design::{Criterion, Solver, Termination};
     use crate::jobs::select::Method;
     use schemars::{json_schema, Schema, SchemaGenerator};
 
@@ -259,6 +264,10 @@ mod schema {
 
     pub fn method(_: &mut SchemaGenerator) -> Schema {
         one_of::<Method>()
+    }
+
+    pub fn solver(_: &mut SchemaGenerator) -> Schema {
+        one_of::<Solver>()
     }
 
     pub fn termination(_: &mut SchemaGenerator) -> Schema {

@@ -10,7 +10,7 @@ use crate::design::pool::MAX_POOL;
 use crate::design::target::{smallest_group, TargetOutcome};
 use crate::design::{
     self, evaluate, Criterion, Evaluation, Gradient, PoolMethod, PoolOptions, SearchOptions,
-    SearchOutcome, Termination,
+    SearchOutcome, Solver, Termination,
 };
 use crate::limits::{self, check_count, Range};
 use crate::progress::Progress;
@@ -110,6 +110,8 @@ pub struct Report {
     pub seed: u64,
     /// The gradient of the searches; `None` for a pool choice.
     pub gradient: Option<Gradient>,
+    /// The SQP of the searches; `None` for a pool choice.
+    pub solver: Option<Solver>,
     /// The group chosen (axis angles, rad).
     pub postures: Vec<Vector6<f64>>,
     /// The criterion of the start group (`None` for a pool choice).
@@ -217,6 +219,7 @@ pub fn run(request: &Request) -> Result<Report> {
         criterion: request.criterion,
         seed: request.options.seed,
         gradient: (request.method != Method::Pool).then_some(request.options.gradient),
+        solver: (request.method != Method::Pool).then_some(request.options.solver),
         evaluation: evaluate(request.setup, &found.postures),
         postures: found.postures,
         start_value: found.start_value,

@@ -17,7 +17,7 @@ pub use table4::{paper_table4, TABLE4};
 use trials::{judge, paper_searches};
 pub use trials::{start_trials, StartTrial};
 
-use crate::design::{evaluate, global, Criterion, Evaluation, SearchOptions};
+use crate::design::{evaluate, global, Criterion, Evaluation, SearchOptions, Solver};
 use crate::progress::{Progress, Tally};
 use crate::setup::Setup;
 use crate::simulate::{
@@ -49,16 +49,20 @@ pub struct Options {
     pub starts: usize,
     /// Start groups of the start-group check (seeds `seed`, `seed + 1`, ...); 0 skips it.
     pub trials: usize,
+    /// The SQP of every search (default [`Solver::default`]).
+    pub solver: Solver,
 }
 
 impl Default for Options {
-    /// 200 runs, seed 1, [`DEFAULT_STARTS`] starts, [`DEFAULT_TRIALS`] trials.
+    /// 200 runs, seed 1, [`DEFAULT_STARTS`] starts, [`DEFAULT_TRIALS`] trials, the default
+    /// solver.
     fn default() -> Self {
         Self {
             runs: 200,
             seed: 1,
             starts: DEFAULT_STARTS,
             trials: DEFAULT_TRIALS,
+            solver: Solver::default(),
         }
     }
 }
@@ -172,7 +176,7 @@ pub struct Study {
 /// ```
 /// use stiffid::study::{self, Options};
 /// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
-/// let options = Options { runs: 5, seed: 1, starts: 1, trials: 0 };
+/// let options = Options { runs: 5, seed: 1, starts: 1, trials: 0, ..Options::default() };
 /// let s = study::run(&setup, &options, &())?;
 /// assert_eq!(s.groups.len(), 5);
 /// assert_eq!(s.groups[2].name, "group3-zhang2021");
@@ -205,6 +209,7 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     let search = SearchOptions {
         starts: options.starts,
         seed: options.seed,
+        solver: options.solver,
         ..SearchOptions::default()
     };
     let (found, trials) = search_all(setup, options, &search, progress)?;

@@ -72,6 +72,7 @@ fn without_a_characteristic_length_only_classical_and_zhang2021_are_missing() {
         seed: 1,
         starts: 1,
         trials: 0,
+        ..Default::default()
     };
     let (field, by) = missing(study::run(&setup, &options, &()).unwrap_err());
     assert_eq!(

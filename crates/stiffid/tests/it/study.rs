@@ -164,6 +164,7 @@ fn a_small_study_on_the_paper_setup_reports_its_stages_and_repeats_itself() {
         seed: 3,
         starts: 2,
         trials: 2,
+        ..Options::default()
     };
     let progress = Recorder::default();
     let s = study::run(&setup, &options, &progress).unwrap();
