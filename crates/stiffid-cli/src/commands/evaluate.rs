@@ -67,12 +67,17 @@ pub fn run(args: &Args) -> Result<()> {
         short(setup.name())
     );
     s += &criteria_text(e, &setup);
-    if !setup.model().is_drives_only() {
+    if !setup.model().is_drives_only() || !separable(e) {
         s += &parameters_text(&doc);
     }
     s += "\npredicted mean deviation rate, % (first order)\n";
-    if let Err(e) = setup.try_nominal_stiffness("the prediction") {
-        s += &format!("  not computed: {e}\n");
+    let not_computed = match setup.try_nominal_stiffness("the prediction") {
+        Err(e) => Some(e.to_string()),
+        Ok(_) if !separable(e) => Some(NOT_SEPARABLE.to_string()),
+        Ok(_) => None,
+    };
+    if let Some(why) = not_computed {
+        s += &format!("  not computed: {why}\n");
         s += &feasibility::text(&report.feasibility);
         return output::print(&s);
     }
@@ -91,10 +96,9 @@ pub fn run(args: &Args) -> Result<()> {
     output::print(&s)
 }
 
-/// Every criterion of an evaluation on `setup`, one per line (smaller is better), for a group
-/// that can identify every joint ([`stiffid::jobs::evaluate::identifiable`]): an infinite value
-/// says why, and so does a
-/// criterion the setup lacks a field for.
+/// Every criterion of an evaluation on `setup`, one per line (smaller is better): an infinite
+/// value says why (a singular posture, parameters the group cannot separate, or a number beyond
+/// the range of f64), and so does a criterion the setup lacks a field for.
 pub fn criteria_text(e: &Evaluation, setup: &Setup) -> String {
     let mut s = String::new();
     for c in Criterion::ALL {
@@ -114,13 +118,13 @@ pub fn criteria_text(e: &Evaluation, setup: &Setup) -> String {
         let text = match (value.is_finite(), singular) {
             (true, _) => format!("{}{unit}", number(value)),
             (false, true) => SINGULAR.to_string(),
-            (false, false) => OVERFLOW.to_string(),
+            (false, false) => infinite(e),
         };
         s += &format!("  {:<12} {text}\n", c.name());
     }
     let cond = match e.cond_psi.is_finite() {
         true => number(e.cond_psi),
-        false => OVERFLOW.to_string(),
+        false => infinite(e),
     };
     s + &format!("  {:<12} {cond}\n", "cond(Psi)")
 }
@@ -130,6 +134,23 @@ const SINGULAR: &str = "infinite (a posture is singular: its TCP Jacobian has no
 
 /// Any other infinite criterion of a full-rank group: a number beyond the range of f64.
 const OVERFLOW: &str = "infinite (beyond the floating-point range: loads or variances too extreme)";
+
+/// An infinite criterion or prediction of a group that cannot separate the model's parameters.
+const NOT_SEPARABLE: &str =
+    "the group cannot separate every parameter of the model (the combinations are named below)";
+
+/// Whether the group separates every parameter of the setup's model.
+fn separable(e: &Evaluation) -> bool {
+    e.identifiability.unidentifiable.is_empty()
+}
+
+/// Why a criterion of `e` is infinite, in words.
+fn infinite(e: &Evaluation) -> String {
+    match separable(e) {
+        true => OVERFLOW.to_string(),
+        false => format!("infinite: {NOT_SEPARABLE}"),
+    }
+}
 
 /// A criterion value for people: 6 significant digits, `infinite` for `+infinity`.
 pub fn number(v: f64) -> String {

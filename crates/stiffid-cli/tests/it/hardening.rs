@@ -855,3 +855,32 @@ fn out_on_the_data_file_is_refused_for_every_fit() {
         refused(&dir, &identify(extra), &["input file", "data.csv"]);
     }
 }
+
+/// A model the group cannot separate (the base mount's `base_rz` turns about joint 1's axis):
+/// `evaluate` says so for every infinite criterion and for the prediction, names the
+/// combinations, and never blames the floating-point range.
+#[test]
+fn evaluate_names_a_model_the_group_cannot_separate() {
+    let dir = scratch("inseparable");
+    let text = std::fs::read_to_string(dir.join("my.toml")).unwrap();
+    let model = "\n[[model.family]]\nfamily = \"base\"\nnominal_stiffness_nm_per_rad = 1e6\nnominal_stiffness_n_per_mm = 1e4\n";
+    write_file(&dir, "base.toml", &(text + model));
+    let d = dir.to_str().unwrap();
+    let (setup, group) = (format!("{d}/base.toml"), format!("{d}/g.csv"));
+    let out = stiffid(&["evaluate", "--setup", &setup, "--postures", &group]);
+    assert_success(&out);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!stdout.contains("floating-point"), "{stdout}");
+    assert!(
+        stdout.contains("relative-a   infinite: the group cannot separate"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("not computed: the group cannot separate"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("cannot separate: ") && stdout.contains("base_rz"),
+        "{stdout}"
+    );
+}
