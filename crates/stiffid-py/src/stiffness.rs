@@ -48,7 +48,7 @@ pub fn compliance(
 }
 
 /// The `(n, n)` covariance of the compliance (SI) given as `compliance_covariance_rad2_per_nm2`:
-/// finite, symmetric, non-negative diagonal.
+/// finite, symmetric, positive semi-definite.
 pub fn covariance_of(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<nalgebra::DMatrix<f64>> {
     let name = "compliance_covariance_rad2_per_nm2";
     let m = arrays::square(obj, name, n)?;

@@ -231,7 +231,7 @@ def test_deflection_uncertainty(fanuc):
     out = stiffid.deflection(fanuc, q, [0, 0, -1000, 0, 0, 0], stiffness_nm_per_rad=result.stiffness_nm_per_rad,
                              compliance_covariance_rad2_per_nm2=result.compliance_covariance_rad2_per_nm2)
     assert out["displacement_std_mm"].shape == (3, 3) and np.all(out["displacement_std_mm"] > 0)
-    with pytest.raises(ValueError, match="compliance_covariance_rad2_per_nm2: expected a symmetric"):
+    with pytest.raises(ValueError, match="compliance_covariance_rad2_per_nm2: expected a covariance"):
         stiffid.deflection(fanuc, q, [0, 0, -1000, 0, 0, 0], compliance_covariance_rad2_per_nm2=-np.eye(6))
     with pytest.raises(ValueError, match=r"wrench: expected shape \(6,\) or \(3, 6\)"):
         stiffid.deflection(fanuc, q, np.zeros((2, 6)))

@@ -198,7 +198,8 @@ fn check_parameters(parameters: &[ParameterStiffness], cov: &Option<Vec<Vec<f64>
 
 /// Checks a covariance `Cov(h)` of the compliance, (rad/Nm)^2 (the key
 /// `compliance_covariance_rad2_per_nm2`; paper eq. 12): finite, symmetric to 1e-9 of the largest
-/// diagonal entry, non-negative diagonal.
+/// diagonal entry, non-negative diagonal, positive semi-definite (no eigenvalue below -1e-9 of the
+/// largest diagonal entry).
 ///
 /// # Errors
 /// [`Error::InvalidField`] naming `compliance_covariance_rad2_per_nm2`.
@@ -223,17 +224,27 @@ pub fn check_covariance_of(c: &DMatrix<f64>, field: &str) -> Result<()> {
     let scale = c.diagonal().amax();
     let valid = c.iter().all(|v| v.is_finite())
         && c.diagonal().iter().all(|v| *v >= 0.0)
-        && (c - c.transpose()).amax() <= 1e-9 * scale;
+        && (c - c.transpose()).amax() <= 1e-9 * scale
+        && semi_definite(c, scale);
     match valid {
         true => Ok(()),
         false => Err(invalid(
             field.into(),
             format!(
-                "expected a symmetric {0}x{0} matrix of finite numbers with a non-negative diagonal",
+                "expected a covariance: a symmetric positive semi-definite {0}x{0} matrix of finite numbers",
                 c.nrows()
             ),
         )),
     }
+}
+
+/// Whether the symmetric part of `c` (finite, largest diagonal entry `scale`) has no eigenvalue
+/// below `-1e-9 scale`: a covariance gives every combination of the parameters a variance >= 0,
+/// so the standard deviations propagated from it are real.
+fn semi_definite(c: &DMatrix<f64>, scale: f64) -> bool {
+    let symmetric = (c + c.transpose()) * 0.5;
+    nalgebra::SymmetricEigen::try_new(symmetric, f64::EPSILON, 10_000)
+        .is_some_and(|e| e.eigenvalues.min() >= -1e-9 * scale)
 }
 
 impl StiffnessFile {
@@ -478,8 +489,16 @@ mod tests {
         );
         let e = parse(&text).unwrap_err().to_string();
         assert!(
-            e.starts_with("compliance_covariance_rad2_per_nm2: expected a symmetric"),
+            e.starts_with("compliance_covariance_rad2_per_nm2: expected a covariance"),
             "{e}"
         );
+        // Symmetric with a positive diagonal, but var(h1 - h2) = 2e-12 - 2 * 3e-12 < 0.
+        let mut c = Matrix6::identity() * 1e-12;
+        c[(0, 1)] = 3e-12;
+        c[(1, 0)] = 3e-12;
+        assert!(check_covariance(&c).is_err());
+        c[(0, 1)] = 0.5e-12;
+        c[(1, 0)] = 0.5e-12;
+        assert!(check_covariance(&c).is_ok());
     }
 }
