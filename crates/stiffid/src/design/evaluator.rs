@@ -32,6 +32,7 @@ use std::cell::OnceCell;
 use wide::WideGroup;
 
 mod gradient;
+pub(crate) use gradient::MaxSplit;
 mod springs;
 mod wide;
 

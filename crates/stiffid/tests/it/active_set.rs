@@ -1,5 +1,6 @@
 //! Our SQP ([`Solver::ActiveSet`]) against SLSQP from the same starts: no worse on the smooth
-//! `relative-a` (paper setup and tracker cell), the exact-gradient search no worse than finite
+//! `relative-a` (paper setup and tracker cell) and on the maximum-type `classical` and `zhang2021`
+//! from the study's start groups, the exact-gradient search no worse than finite
 //! differences in the cell, and the same bits whatever the thread count.
 
 use stiffid::design::{self, Criterion, Gradient, SearchOptions, Solver};
@@ -53,6 +54,35 @@ fn no_worse_than_slsqp_on_relative_a_from_the_same_starts() {
             assert!(ours.termination.is_converged(), "{name}, start {seed}");
             let feasible = |q| stiffid::cell::feasibility(&setup, q).feasible();
             assert!(ours.postures.iter().all(feasible), "{name}, start {seed}");
+        }
+    }
+}
+
+/// The maximum-type criteria (searched in epigraph form by ours) from the paper setup's first
+/// seeded start groups: no worse than SLSQP (to 1e-6), and strictly better on `zhang2021` from the
+/// study's start group (seed 1: SLSQP stops at a kink near 131.5). Not from every start: over
+/// seeds 1-20 ours ends lower on `zhang2021` from 15 and higher from 5 (docs/performance.md).
+#[test]
+fn maximum_criteria_no_worse_than_slsqp_from_the_studys_starts() {
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    for criterion in [Criterion::Classical, Criterion::Zhang2021] {
+        for seed in 1..=3 {
+            let start = design::random_group(&setup, 6, seed);
+            let ours = design::local(&setup, criterion, &start, &active_set()).unwrap();
+            let slsqp =
+                design::local(&setup, criterion, &start, &SearchOptions::default()).unwrap();
+            println!(
+                "{criterion}, start {seed}: active-set {:.8} ({} evaluations, {}), slsqp {:.8} ({} evaluations, {})",
+                ours.value, ours.evaluations, ours.termination, slsqp.value, slsqp.evaluations, slsqp.termination
+            );
+            assert!(
+                ours.value <= slsqp.value * (1.0 + 1e-6),
+                "{criterion}, start {seed}"
+            );
+            assert!(ours.value < ours.start_value, "{criterion}, start {seed}");
+            if criterion == Criterion::Zhang2021 && seed == 1 {
+                assert!(ours.value < 0.9 * slsqp.value, "{}", ours.value);
+            }
         }
     }
 }

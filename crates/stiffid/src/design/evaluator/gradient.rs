@@ -28,6 +28,17 @@
 
 use super::wide::{self, WideGroup};
 use super::{springs, Evaluator, Factored, Group, PostureTerms};
+
+/// A maximum-type criterion split for an epigraph search ([`Evaluator::max_split`]).
+#[derive(Debug, Clone)]
+pub(crate) struct MaxSplit {
+    /// The criterion.
+    pub value: f64,
+    /// `ln rest` and its gradient (per rad), one vector per posture.
+    pub rest: (f64, Vec<Vector6<f64>>),
+    /// Each posture's `ln k(J_N)` and its gradient in the posture's six angles (per rad).
+    pub dexterities: Vec<(f64, Vector6<f64>)>,
+}
 use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
 use crate::kinematics::dexterity_log_gradient;
@@ -78,11 +89,65 @@ impl Evaluator<'_> {
             return (value, zeros());
         }
         if matches!(criterion, Criterion::Classical | Criterion::Zhang2021) {
-            self.add_classical_log_gradient(terms, &mut gradient);
+            let dexterity = |t: &PostureTerms| self.classical(&[t]);
+            let mut active = 0;
+            for (i, t) in terms.iter().enumerate() {
+                if dexterity(t) > dexterity(terms[active]) {
+                    active = i;
+                }
+            }
+            gradient[active] += self.dexterity_log_gradient(terms[active]);
         }
+        if let Some(group) = group {
+            self.add_psi_log_gradient(criterion, &group, terms, &mut gradient);
+        }
+        (value, gradient)
+    }
+
+    /// A criterion that is a maximum over the postures ([`Criterion::Classical`],
+    /// [`Criterion::Zhang2021`]) split for a search that keeps the maximum as constraints (an
+    /// epigraph): `F = max_i k(J_N)_i * rest`, with `rest = cond_2(Psi)` for `zhang2021` and 1 for
+    /// `classical`. `None` for the other criteria and where `F` is not finite.
+    pub(crate) fn max_split(
+        &self,
+        criterion: Criterion,
+        terms: &[&PostureTerms],
+    ) -> Option<MaxSplit> {
+        let mut rest = vec![Vector6::zeros(); terms.len()];
+        let (value, ln_rest) = match criterion {
+            Criterion::Classical => (self.classical(terms), 0.0),
+            Criterion::Zhang2021 => {
+                let group = self.group(terms)?;
+                let cond = group.cond_psi();
+                self.add_psi_log_gradient(criterion, &group, terms, &mut rest);
+                (self.classical(terms) * cond, cond.ln())
+            }
+            _ => return None,
+        };
+        let dexterities = terms
+            .iter()
+            .map(|t| (self.dexterity(t).ln(), self.dexterity_log_gradient(t)))
+            .collect::<Vec<_>>();
+        let finite = dexterities.iter().all(|(d, _)| d.is_finite());
+        (value.is_finite() && ln_rest.is_finite() && finite).then_some(MaxSplit {
+            value,
+            rest: (ln_rest, rest),
+            dexterities,
+        })
+    }
+
+    /// Adds `d ln F` through `Psi` (`<Psi Y, dPsi>`, module docs) of a full-rank group to each
+    /// posture's gradient.
+    fn add_psi_log_gradient(
+        &self,
+        criterion: Criterion,
+        group: &Factored,
+        terms: &[&PostureTerms],
+        gradient: &mut [Vector6<f64>],
+    ) {
         match group {
-            Some(Factored::Six(group)) => {
-                if let Some(y) = self.psi_weight(criterion, &group) {
+            Factored::Six(group) => {
+                if let Some(y) = self.psi_weight(criterion, group) {
                     for (t, g) in terms.iter().zip(gradient.iter_mut()) {
                         let block = posture_block(
                             self.setup,
@@ -95,16 +160,14 @@ impl Evaluator<'_> {
                     }
                 }
             }
-            Some(Factored::Wide(group)) => {
-                if let Some(y) = self.wide_psi_weight(criterion, &group) {
+            Factored::Wide(group) => {
+                if let Some(y) = self.wide_psi_weight(criterion, group) {
                     for (t, g) in terms.iter().zip(gradient.iter_mut()) {
                         *g += self.wide_block_gradient(&t.frames, &y);
                     }
                 }
             }
-            None => {}
         }
-        (value, gradient)
     }
 
     /// The gradient of `<B Y, dB>` for the `3p x n` block B of the posture `frames`: the drive
@@ -154,27 +217,19 @@ impl Evaluator<'_> {
         })
     }
 
-    /// `d ln k(J_N)` of the posture with the largest dexterity (the first of equals), added to its
-    /// gradient.
-    fn add_classical_log_gradient(&self, terms: &[&PostureTerms], gradient: &mut [Vector6<f64>]) {
-        let dexterity = |t: &PostureTerms| self.classical(&[t]);
-        let mut active = 0;
-        for (i, t) in terms.iter().enumerate() {
-            if dexterity(t) > dexterity(terms[active]) {
-                active = i;
-            }
-        }
+    /// `d ln k(J_N)` of one posture (zeros where the dexterity has no gradient).
+    fn dexterity_log_gradient(&self, t: &PostureTerms) -> Vector6<f64> {
         let setup = self.setup;
-        let frames = &terms[active].frames;
-        let jacobian = frames.jacobian(&setup.tool().tcp, setup.springs());
+        let jacobian = t.frames.jacobian(&setup.tool().tcp, setup.springs());
         let l = setup.characteristic_length().unwrap_or(PLACEHOLDER_LENGTH);
-        if let Some(w) = dexterity_log_gradient(&jacobian, l) {
-            gradient[active] += frames.jacobian_gradient(
+        match dexterity_log_gradient(&jacobian, l) {
+            Some(w) => t.frames.jacobian_gradient(
                 &setup.tool().tcp,
                 setup.springs(),
                 &w,
                 &Default::default(),
-            );
+            ),
+            None => Vector6::zeros(),
         }
     }
 

@@ -1,6 +1,8 @@
 //! Local search: SQP ([`super::sqp`]) from a start group, with exact gradients or forward finite
 //! differences.
 
+mod epigraph;
+
 use super::constraints::{inequalities, inequalities_and_gradients, kinds, most_failed, violation};
 use super::sqp::{self, Gradients, Nlp, SparseRows, Values};
 use super::termination::{from_slsqp, Termination};
@@ -10,6 +12,7 @@ use crate::design::PostureTerms;
 use crate::design::{Criterion, Evaluator};
 use crate::setup::Setup;
 use crate::{Error, Result};
+use epigraph::Epigraph;
 use nalgebra::Vector6;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -244,7 +247,10 @@ impl<'a> Problem<'a> {
                     _ => self.slsqp(&x0, iterations),
                 }
             }
-            Solver::ActiveSet if self.can_evaluate() => self.active_set(&self.clamp(&x0)),
+            Solver::ActiveSet if self.can_evaluate() => match Epigraph::applies(&self) {
+                true => Epigraph::new(&self, &self.clamp(&x0)).minimise(self.tolerances()),
+                false => sqp::minimise(&self, &self.clamp(&x0), self.tolerances()),
+            },
             Solver::ActiveSet => {
                 self.value(&x0);
                 Termination::EvaluationLimit
@@ -267,13 +273,12 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// Runs our SQP ([`sqp::minimise`]) from `x0`; why it stopped.
-    fn active_set(&self, x0: &[f64]) -> Termination {
-        let tolerances = sqp::Tolerances {
+    /// The stops of our SQP.
+    fn tolerances(&self) -> sqp::Tolerances {
+        sqp::Tolerances {
             ftol: self.options.ftol,
             xtol: self.options.xtol,
-        };
-        sqp::minimise(self, x0, tolerances)
+        }
     }
 
     /// Runs SLSQP from `x0` for at most `iterations` calls; why it stopped.
@@ -470,6 +475,35 @@ impl<'a> Problem<'a> {
         }
     }
 
+    /// The cell's constraints of every posture of the angles `x` (the first `6n` entries),
+    /// posture-major.
+    fn constraint_values(&self, x: &[f64]) -> Vec<f64> {
+        match self.options.gradient {
+            Gradient::Exact => (0..self.n)
+                .flat_map(|i| self.posture_constraints(i, posture(x, i), |c| c.values.clone()))
+                .collect(),
+            Gradient::FiniteDifference => (0..self.n)
+                .flat_map(|i| inequalities(self.checker, &self.kinds, &posture(x, i)))
+                .collect(),
+        }
+    }
+
+    /// The gradients of [`Problem::constraint_values`], each on its posture's six angles.
+    fn constraint_rows(&self, x: &[f64]) -> SparseRows {
+        let mut c: SparseRows = Vec::with_capacity(self.n * self.kinds.len());
+        for i in 0..self.n {
+            self.posture_constraints(i, posture(x, i), |constraints| {
+                c.extend(
+                    constraints
+                        .gradients
+                        .iter()
+                        .map(|g| g.iter().enumerate().map(|(a, v)| (6 * i + a, *v)).collect()),
+                )
+            });
+        }
+        c
+    }
+
     /// `f` of the constraints of posture `i` at `q` (worked out together and reused).
     fn posture_constraints<R>(
         &self,
@@ -528,15 +562,10 @@ impl Nlp for Problem<'_> {
     /// `ln(criterion)` and the constraints of every posture, posture-major.
     fn values(&self, x: &[f64]) -> Values {
         let f = self.objective(x);
-        let c = match self.options.gradient {
-            Gradient::Exact => (0..self.n)
-                .flat_map(|i| self.posture_constraints(i, posture(x, i), |c| c.values.clone()))
-                .collect(),
-            Gradient::FiniteDifference => (0..self.n)
-                .flat_map(|i| inequalities(self.checker, &self.kinds, &posture(x, i)))
-                .collect(),
-        };
-        Values { f, c }
+        Values {
+            f,
+            c: self.constraint_values(x),
+        }
     }
 
     fn gradients(&self, x: &[f64], values: &Values) -> Gradients {
@@ -545,18 +574,10 @@ impl Nlp for Problem<'_> {
             Some((at, g)) if at == x => g,
             _ => self.fd_objective_gradient(x, values.f),
         };
-        let mut c: SparseRows = Vec::with_capacity(values.c.len());
-        for i in 0..self.n {
-            self.posture_constraints(i, posture(x, i), |constraints| {
-                c.extend(
-                    constraints
-                        .gradients
-                        .iter()
-                        .map(|g| g.iter().enumerate().map(|(a, v)| (6 * i + a, *v)).collect()),
-                )
-            });
+        Gradients {
+            f,
+            c: self.constraint_rows(x),
         }
-        Gradients { f, c }
     }
 
     /// Whether a point and its gradient fit in the budget ([`evals_per_step`]).

@@ -9,8 +9,8 @@
 //!   relaxed as in Kraft's SLSQP (1988): `c_j (1 - xi) + a_j^T d <= 0` for the violated `c_j`,
 //!   `0 <= xi <= 1`, with `xi` weighted [`RELAXATION`] times `B`'s largest diagonal.
 //! - **Hessian**: `B` starts as the identity and is updated by damped BFGS on the Lagrangian's
-//!   gradient (Powell's damping: `y` is moved towards `B s` until `s^T y >= 0.2 s^T B s`, so `B`
-//!   stays positive definite); the first update scales `B` to `y^T y / s^T y` (Nocedal-Wright 6.20).
+//!   gradient ([`hessian`]: Powell's damping keeps `B` positive definite; `B` and its inverse are
+//!   both updated in `O(n^2)`, so a step factors no matrix).
 //! - **Line search**: backtracking on the L1 merit function `f + sum_j mu_j max(0, c_j)`
 //!   (Han 1977), `mu_j = max(lambda_j, (mu_j + lambda_j) / 2)` from the QP's multipliers
 //!   `lambda_j` (Powell 1978); Armijo's condition with 0.1, quadratic interpolation clamped to
@@ -26,12 +26,14 @@
 //!   problem maps a failed evaluation to a large finite value).
 //! - **Deterministic**: one thread, fixed-order arithmetic: the same problem gives the same bits.
 
+mod hessian;
 pub(crate) mod qp;
 #[cfg(test)]
 mod tests;
 
 use super::termination::Termination;
 use crate::linalg::dot;
+use hessian::Hessian;
 use qp::{Qp, QpError, Row};
 
 /// The constraint gradients' nonzeros: `(index, coefficient)` pairs, one list per constraint.
@@ -53,7 +55,7 @@ pub(crate) struct Gradients {
 
 /// A problem for [`minimise`]: its bounds, values and gradients, and its evaluation budget.
 pub(crate) trait Nlp {
-    /// The bounds on the variables (finite, `lower <= upper`).
+    /// The bounds on the variables (`lower <= upper`; infinite for a free variable).
     fn bounds(&self) -> (&[f64], &[f64]);
     /// The values at `x` (within the bounds).
     fn values(&self, x: &[f64]) -> Values;
@@ -188,7 +190,7 @@ impl<'p, P: Nlp> Search<'p, P> {
             })
             .collect();
         let qp = Qp {
-            hessian: &self.hessian.b,
+            inverse: self.hessian.inverse(),
             gradient: &self.gradients.f,
             lower: &lower,
             upper: &upper,
@@ -210,14 +212,12 @@ impl<'p, P: Nlp> Search<'p, P> {
     ) -> Option<(Vec<f64>, Vec<f64>)> {
         let n = self.x.len();
         let m = n + 1;
-        let mut b = vec![0.0; m * m];
+        let (h, mut inverse) = (self.hessian.inverse(), vec![0.0; m * m]);
         for k in 0..n {
-            b[m * k..m * k + n].copy_from_slice(&self.hessian.b[n * k..n * k + n]);
+            inverse[m * k..m * k + n].copy_from_slice(&h[n * k..n * k + n]);
         }
-        let largest = (0..n)
-            .map(|k| self.hessian.b[k + n * k])
-            .fold(1.0, f64::max);
-        b[m * m - 1] = RELAXATION * largest;
+        let largest = self.hessian.largest_diagonal().max(1.0);
+        inverse[m * m - 1] = 1.0 / (RELAXATION * largest);
         for (row, &c) in rows.iter_mut().zip(&self.values.c) {
             if c > 0.0 {
                 row.a.push((n, -c));
@@ -227,7 +227,7 @@ impl<'p, P: Nlp> Search<'p, P> {
         let lower: Vec<f64> = lower.iter().copied().chain([0.0]).collect();
         let upper: Vec<f64> = upper.iter().copied().chain([1.0]).collect();
         let qp = Qp {
-            hessian: &b,
+            inverse: &inverse,
             gradient: &gradient,
             lower: &lower,
             upper: &upper,
@@ -264,58 +264,6 @@ impl<'p, P: Nlp> Search<'p, P> {
             alpha *= quadratic.clamp(0.1, 0.5);
         }
         None
-    }
-}
-
-/// A damped-BFGS approximation of the Lagrangian's Hessian (column-major).
-struct Hessian {
-    n: usize,
-    b: Vec<f64>,
-    /// Still the identity: the first update scales it.
-    fresh: bool,
-}
-
-impl Hessian {
-    fn identity(n: usize) -> Self {
-        let mut b = vec![0.0; n * n];
-        (0..n).for_each(|k| b[k + n * k] = 1.0);
-        Self { n, b, fresh: true }
-    }
-
-    /// Powell's damped BFGS update with the step `s` and the gradient change `y` (module docs).
-    fn update(&mut self, s: &[f64], y: &[f64]) {
-        let n = self.n;
-        let sy0 = dot(s, y);
-        if self.fresh && sy0 > 0.0 {
-            let scale = dot(y, y) / sy0;
-            (0..n).for_each(|k| self.b[k + n * k] = scale);
-        }
-        self.fresh = false;
-        let bs: Vec<f64> = (0..n)
-            .map(|i| (0..n).map(|k| self.b[i + n * k] * s[k]).sum())
-            .collect();
-        let sbs = dot(s, &bs);
-        let positive = sbs > 0.0;
-        if !positive || !sbs.is_finite() {
-            return;
-        }
-        let mut y = y.to_vec();
-        if sy0 < 0.2 * sbs {
-            let theta = 0.8 * sbs / (sbs - sy0);
-            y.iter_mut()
-                .zip(&bs)
-                .for_each(|(y, b)| *y = theta * *y + (1.0 - theta) * b);
-        }
-        let sy = dot(s, &y);
-        let positive = sy > 0.0;
-        if !positive || !sy.is_finite() {
-            return;
-        }
-        for k in 0..n {
-            for i in 0..n {
-                self.b[i + n * k] += y[i] * y[k] / sy - bs[i] * bs[k] / sbs;
-            }
-        }
     }
 }
 

@@ -1,25 +1,27 @@
 //! Dense strictly convex quadratic programs with bounds and sparse inequality rows, by the dual
-//! active-set method of Goldfarb and Idnani.
+//! active-set method of Goldfarb and Idnani, in range-space form.
 //!
 //! Minimises `g^T d + 1/2 d^T B d` subject to `lower <= d <= upper` and `a_j^T d <= b_j`, with `B`
-//! symmetric positive definite (`n x n`, dense, column-major).
+//! symmetric positive definite (`n x n`, dense), given by its inverse `H = B^-1` (column-major):
+//! the SQP keeps it up to date ([`super::hessian`]); [`inverse`] makes it from `B`.
 //!
 //! - **Method**: D. Goldfarb, A. Idnani, "A numerically stable dual method for solving strictly
-//!   convex quadratic programs", Math. Programming 27 (1983) 1-33, in the form of Powell's and
-//!   Turlach's `quadprog`: start at the unconstrained minimum `-B^-1 g`, add the most violated
-//!   constraint (bounds and rows alike, each measured in its normal's length), take full or partial
-//!   steps and drop constraints whose multiplier would turn negative. The factor `J = L^-T Q`
-//!   (`B = L L^T`) and the triangular `R` of the active normals are updated by Givens rotations, so
-//!   adding or dropping a constraint costs `O(n^2)`; a bound's normal is a unit vector, so its
-//!   `J^T e_i` is a row of `J`.
-//! - **Cost**: one Cholesky factor and triangular inverse, `n^3 / 2` multiply-adds, then `O(n^2)` per
-//!   active-set change.
-//! - **Requirements**: `B` positive definite (a damped BFGS matrix is); finite data.
+//!   convex quadratic programs", Math. Programming 27 (1983) 1-33: start at the unconstrained
+//!   minimum `-H g`, add the most violated constraint (bounds and rows alike, each measured in
+//!   its normal's length), take full or partial steps and drop constraints whose multiplier would
+//!   turn negative. The step directions are those of the paper, `z = H n_p - H N r` in the primal
+//!   space and `r = (N^T H N)^-1 N^T H n_p` for the active multipliers (`N` the active normals,
+//!   `n_p` the added one), from the Cholesky factor of `N^T H N`, which grows by one row when a
+//!   constraint is added and is restored by Givens rotations when one is dropped (the range-space
+//!   form; the paper keeps a factor of `B^-1` rotated instead, `O(n^2)` per change).
+//! - **Cost**: `H g` once, `O(n^2)`; then `O(n q + q^2)` per active-set change with `q` active
+//!   constraints: a bound's `H n` is a column of `H`, a row's a combination of as many columns as
+//!   its nonzeros. Most of the searches' bounds are inactive, so `q` stays far below `n`.
+//! - **Requirements**: `H` symmetric positive definite; finite data.
 //! - **Result**: the minimiser, the multipliers of the rows (`>= 0`, 0 for inactive rows), or
 //!   [`QpError::Infeasible`] when no `d` satisfies the constraints (a step of the dual that finds no
-//!   primal direction), [`QpError::NotPositiveDefinite`], or [`QpError::IterationLimit`] (more
-//!   than `10 (n + rows) + 100` active-set changes, which only cycling on degenerate constraints
-//!   reaches).
+//!   primal direction), or [`QpError::IterationLimit`] (more than `10 (n + rows) + 100`
+//!   active-set changes, which only cycling on degenerate constraints reaches).
 //!
 //! Deterministic: the same data give the same bits (fixed-order loops, ties to the lowest index).
 
@@ -37,7 +39,7 @@ pub(crate) struct Row {
 pub(crate) enum QpError {
     /// No point satisfies the constraints.
     Infeasible,
-    /// `B` is not (numerically) positive definite.
+    /// `B` is not (numerically) positive definite ([`inverse`]).
     NotPositiveDefinite,
     /// The active set changed more than the limit.
     IterationLimit,
@@ -60,9 +62,9 @@ enum Constraint {
     Row(usize),
 }
 
-/// The data of a QP: `B` (column-major `n x n`), `g`, the bounds on `d` and the rows.
+/// The data of a QP: `H = B^-1` (column-major `n x n`), `g`, the bounds on `d` and the rows.
 pub(crate) struct Qp<'a> {
-    pub hessian: &'a [f64],
+    pub inverse: &'a [f64],
     pub gradient: &'a [f64],
     pub lower: &'a [f64],
     pub upper: &'a [f64],
@@ -72,26 +74,36 @@ pub(crate) struct Qp<'a> {
 /// Relative tolerance under which a constraint counts as satisfied, and a direction as zero.
 const EPS: f64 = 1e-12;
 
+/// `|z|` below this fraction of `|H n_p|`: `n_p` lies in the span of the active normals (up to
+/// the rounding of the projection), there is no primal step.
+const DEPENDENT: f64 = 1e-10;
+
 impl Qp<'_> {
     /// Solves the QP (module docs).
     pub(crate) fn solve(&self) -> Result<Solution, QpError> {
         let n = self.gradient.len();
-        let mut s = State::new(self, inverse_cholesky(self.hessian, n)?);
+        let mut s = State::new(self);
         let limit = 10 * (2 * n + self.rows.len()) + 100;
         let mut changes = 0;
         while let Some(p) = self.most_violated(&s) {
             s.u.push(0.0);
+            let hn = self.h_times(p);
             loop {
                 changes += 1;
                 if changes > limit {
                     return Err(QpError::IterationLimit);
                 }
-                let d = self.j_transpose(&s.j, n, p);
-                let z = s.primal_direction(&d);
-                let r = s.dual_direction(&d);
+                let nhn: Vec<f64> = s.hn.iter().map(|h| self.dot(p, h)).collect();
+                let w = s.forward(&nhn);
+                let r = s.backward(&w);
+                let mut z = hn.clone();
+                for (h, rk) in s.hn.iter().zip(&r) {
+                    axpy(-rk, h, &mut z);
+                }
                 let (t1, k) = s.partial_step(&r);
                 let nz = self.dot(p, &z);
-                let t2 = match nz > EPS * self.norm(p) * norm(&z) && norm(&z) > 0.0 {
+                let primal = norm(&z) > DEPENDENT * norm(&hn);
+                let t2 = match nz > EPS * self.norm(p) * norm(&z) && primal {
                     true => -self.slack(p, &s.x) / nz,
                     false => f64::INFINITY,
                 };
@@ -101,10 +113,10 @@ impl Qp<'_> {
                 }
                 s.step_dual(t, &r);
                 if t2.is_finite() {
-                    s.x.iter_mut().zip(&z).for_each(|(x, z)| *x += t * z);
+                    axpy(t, &z, &mut s.x);
                 }
                 if t == t2 {
-                    s.add(p, d);
+                    s.add(p, hn, w, nz.sqrt());
                     break;
                 }
                 s.drop(k.expect("a partial step has an index"));
@@ -138,7 +150,7 @@ impl Qp<'_> {
             .chain((0..self.rows.len()).map(Constraint::Row));
         for c in candidates {
             let norm = self.norm(c);
-            if norm == 0.0 || s.active.contains(&c) {
+            if norm == 0.0 || s.is_active(c) {
                 continue;
             }
             let violation = -self.slack(c, &s.x) / norm;
@@ -182,78 +194,85 @@ impl Qp<'_> {
         }
     }
 
-    /// `J^T n_c`.
-    fn j_transpose(&self, j: &[f64], n: usize, c: Constraint) -> Vec<f64> {
-        let row = |i: usize, sign: f64| (0..n).map(|k| sign * j[i + n * k]).collect::<Vec<f64>>();
+    /// `H n_c`: a column of `H` for a bound, a combination of columns for a row.
+    fn h_times(&self, c: Constraint) -> Vec<f64> {
+        let n = self.gradient.len();
+        let column = |i: usize| &self.inverse[n * i..n * i + n];
         match c {
-            Constraint::Lower(i) => row(i, 1.0),
-            Constraint::Upper(i) => row(i, -1.0),
+            Constraint::Lower(i) => column(i).to_vec(),
+            Constraint::Upper(i) => column(i).iter().map(|v| -v).collect(),
             Constraint::Row(r) => {
-                let mut d = vec![0.0; n];
+                let mut out = vec![0.0; n];
                 for &(i, a) in &self.rows[r].a {
-                    for (k, dk) in d.iter_mut().enumerate() {
-                        *dk -= a * j[i + n * k];
-                    }
+                    axpy(-a, column(i), &mut out);
                 }
-                d
+                out
             }
         }
     }
 }
 
-/// The iterate of the dual method: the point, `J` (column-major `n x n`), `R` (column-major, its
-/// leading `q x q` block upper triangular), the active constraints and their multipliers.
+/// The iterate of the dual method: the point, the active constraints with their multipliers and
+/// their `H n_k`, and the lower Cholesky factor `L` of `N^T H N` (row `k` holds `k + 1` entries).
 struct State {
-    n: usize,
     x: Vec<f64>,
-    j: Vec<f64>,
-    r: Vec<f64>,
     active: Vec<Constraint>,
     u: Vec<f64>,
+    hn: Vec<Vec<f64>>,
+    l: Vec<Vec<f64>>,
+    /// Whether each bound (lower, upper: `2i`, `2i + 1`) and row is active.
+    flags: Vec<bool>,
 }
 
 impl State {
-    /// The unconstrained minimum `-J J^T g` with `J = L^-T`.
-    fn new(qp: &Qp, j: Vec<f64>) -> Self {
+    /// The unconstrained minimum `-H g`, nothing active.
+    fn new(qp: &Qp) -> Self {
         let n = qp.gradient.len();
-        let jtg: Vec<f64> = (0..n)
-            .map(|k| dot(&j[n * k..n * k + n], qp.gradient))
-            .collect();
         let mut x = vec![0.0; n];
-        for (k, c) in jtg.iter().enumerate() {
-            axpy(-c, &j[n * k..n * k + n], &mut x);
+        for (k, gk) in qp.gradient.iter().enumerate() {
+            axpy(-gk, &qp.inverse[n * k..n * k + n], &mut x);
         }
         Self {
-            n,
             x,
-            j,
-            r: vec![0.0; n * n],
             active: Vec::new(),
             u: Vec::new(),
+            hn: Vec::new(),
+            l: Vec::new(),
+            flags: vec![false; 2 * n + qp.rows.len()],
         }
     }
 
-    fn q(&self) -> usize {
-        self.active.len()
-    }
-
-    /// `z = J_2 d_2`: the step in the primal space (the columns of `J` past the active ones).
-    fn primal_direction(&self, d: &[f64]) -> Vec<f64> {
-        let (n, q) = (self.n, self.q());
-        let mut z = vec![0.0; n];
-        for (k, dk) in d.iter().enumerate().skip(q) {
-            axpy(*dk, &self.j[n * k..n * k + n], &mut z);
+    /// The index of `c` in [`State::flags`].
+    fn flag(&self, c: Constraint) -> usize {
+        let bounds = self.x.len();
+        match c {
+            Constraint::Lower(i) => 2 * i,
+            Constraint::Upper(i) => 2 * i + 1,
+            Constraint::Row(j) => 2 * bounds + j,
         }
-        z
     }
 
-    /// `r = R^-1 d_1`: the change of the active multipliers per unit step.
-    fn dual_direction(&self, d: &[f64]) -> Vec<f64> {
-        let (n, q) = (self.n, self.q());
-        let mut r = d[..q].to_vec();
-        for i in (0..q).rev() {
-            let v = (i + 1..q).fold(r[i], |v, k| v - self.r[i + n * k] * r[k]);
-            r[i] = v / self.r[i + n * i];
+    fn is_active(&self, c: Constraint) -> bool {
+        self.flags[self.flag(c)]
+    }
+
+    /// `L^-1 v`.
+    fn forward(&self, v: &[f64]) -> Vec<f64> {
+        let mut w = v.to_vec();
+        for i in 0..w.len() {
+            let row = &self.l[i];
+            let v = (0..i).fold(w[i], |v, k| v - row[k] * w[k]);
+            w[i] = v / row[i];
+        }
+        w
+    }
+
+    /// `L^-T w`.
+    fn backward(&self, w: &[f64]) -> Vec<f64> {
+        let mut r = w.to_vec();
+        for i in (0..r.len()).rev() {
+            let v = (i + 1..r.len()).fold(r[i], |v, k| v - self.l[k][i] * r[k]);
+            r[i] = v / self.l[i][i];
         }
         r
     }
@@ -272,70 +291,67 @@ impl State {
 
     /// `u+ <- u+ + t (-r, 1)`.
     fn step_dual(&mut self, t: f64, r: &[f64]) {
-        let q = self.q();
+        let q = self.active.len();
         for (u, r) in self.u[..q].iter_mut().zip(r) {
             *u -= t * r;
         }
         self.u[q] += t;
     }
 
-    /// Makes `c` active: rotates `d = J^T n_c` so that its entries past `q` vanish (the same
-    /// rotations on `J`'s columns), and appends `d_1` as `R`'s new column.
-    fn add(&mut self, c: Constraint, mut d: Vec<f64>) {
-        let (n, q) = (self.n, self.q());
-        for k in (q + 1..n).rev() {
-            if d[k] == 0.0 {
-                continue;
-            }
-            let h = d[k - 1].hypot(d[k]);
-            let (cos, sin) = (d[k - 1] / h, d[k] / h);
-            d[k - 1] = h;
-            d[k] = 0.0;
-            rotate_columns(&mut self.j, n, k - 1, cos, sin);
-        }
-        self.r[n * q..n * q + q + 1].copy_from_slice(&d[..=q]);
+    /// Makes `c` active: `L` gains the row `(w, pivot)` with `w = L^-1 N^T H n_c` and
+    /// `pivot^2 = n_c^T H n_c - |w|^2 = n_c^T z`.
+    fn add(&mut self, c: Constraint, hn: Vec<f64>, mut w: Vec<f64>, pivot: f64) {
+        w.push(pivot);
+        self.l.push(w);
+        self.hn.push(hn);
+        let f = self.flag(c);
+        self.flags[f] = true;
         self.active.push(c);
     }
 
-    /// Drops active constraint `k`: removes its column of `R`, restores `R`'s triangle by Givens
-    /// rotations of its rows (the same on `J`'s columns) and drops its multiplier.
+    /// Drops active constraint `k`: removes its row of `L` and its column by Givens rotations of
+    /// the columns `k, k + 1, ...` of the rows below (which keep `L L^T`), and its multiplier.
     fn drop(&mut self, k: usize) {
-        let (n, q) = (self.n, self.q());
-        for col in k..q - 1 {
-            self.r
-                .copy_within(n * (col + 1)..n * (col + 1) + q, n * col);
-        }
-        for i in k..q - 1 {
-            let (a, b) = (self.r[i + n * i], self.r[i + 1 + n * i]);
+        self.l.remove(k);
+        for j in k..self.l.len() {
+            let (a, b) = (self.l[j][j], self.l[j][j + 1]);
             if b == 0.0 {
+                self.l[j].pop();
                 continue;
             }
             let h = a.hypot(b);
             let (cos, sin) = (a / h, b / h);
-            for col in i..q - 1 {
-                let (x, y) = (self.r[i + n * col], self.r[i + 1 + n * col]);
-                self.r[i + n * col] = cos * x + sin * y;
-                self.r[i + 1 + n * col] = -sin * x + cos * y;
+            for row in &mut self.l[j..] {
+                let (x, y) = (row[j], row[j + 1]);
+                row[j] = cos * x + sin * y;
+                row[j + 1] = -sin * x + cos * y;
             }
-            rotate_columns(&mut self.j, n, i, cos, sin);
+            self.l[j].pop();
         }
-        self.r[n * (q - 1)..n * q].fill(0.0);
-        self.active.remove(k);
+        let c = self.active.remove(k);
+        let f = self.flag(c);
+        self.flags[f] = false;
+        self.hn.remove(k);
         self.u.remove(k);
     }
 }
 
-/// Columns `k` and `k + 1` of the column-major `n x n` matrix `j` replaced by `c j_k + s j_k+1`
-/// and `-s j_k + c j_k+1`.
-fn rotate_columns(j: &mut [f64], n: usize, k: usize, c: f64, s: f64) {
-    let (left, right) = j.split_at_mut(n * (k + 1));
-    let a = &mut left[n * k..];
-    let b = &mut right[..n];
-    for (x, y) in a.iter_mut().zip(b.iter_mut()) {
-        let (u, v) = (*x, *y);
-        *x = c * u + s * v;
-        *y = -s * u + c * v;
+/// `H = B^-1` of a symmetric positive definite `B` (column-major `n x n`), from its Cholesky
+/// factor.
+///
+/// # Errors
+/// [`QpError::NotPositiveDefinite`] when a pivot is not positive (relative to `B`'s diagonal).
+pub(crate) fn inverse(b: &[f64], n: usize) -> Result<Vec<f64>, QpError> {
+    let j = inverse_cholesky(b, n)?;
+    // H = J J^T with J = L^-T upper triangular.
+    let mut h = vec![0.0; n * n];
+    for k in 0..n {
+        let column = &j[n * k..n * k + n];
+        for i in 0..=k {
+            axpy(column[i], &column[..=k], &mut h[n * i..n * i + k + 1]);
+        }
     }
+    Ok(h)
 }
 
 /// `J = L^-T` (column-major, upper triangular) for `B = L L^T`.

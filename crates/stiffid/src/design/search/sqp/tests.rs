@@ -1,7 +1,8 @@
 //! The QP against known solutions and the KKT conditions; the SQP on small problems with known
 //! minimisers, active constraints and an infeasible start.
 
-use super::qp::{Qp, QpError, Row};
+use super::hessian::Hessian;
+use super::qp::{inverse, Qp, QpError, Row};
 use super::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -14,8 +15,9 @@ fn identity(n: usize) -> Vec<f64> {
 }
 
 fn solve(b: &[f64], g: &[f64], lower: &[f64], upper: &[f64], rows: &[Row]) -> qp::Solution {
+    let h = inverse(b, g.len()).unwrap();
     Qp {
-        hessian: b,
+        inverse: &h,
         gradient: g,
         lower,
         upper,
@@ -76,7 +78,7 @@ fn incompatible_constraints_are_infeasible() {
         b: -1.0,
     }];
     let qp = Qp {
-        hessian: &identity(2),
+        inverse: &identity(2),
         gradient: &[0.0, 0.0],
         lower: &[0.0; 2],
         upper: &[1.0; 2],
@@ -135,6 +137,74 @@ fn random_problems_satisfy_the_kkt_conditions() {
                 (_, true) => assert!(r[i] <= 1e-9, "{}", r[i]),
                 _ => assert!(r[i].abs() <= 1e-9, "stationarity {}", r[i]),
             }
+        }
+    }
+}
+
+/// The damped BFGS pair against the textbook update of the matrix itself, over more steps than
+/// its re-inversion interval: `B` equals it and `H` stays its inverse (`H B = I`).
+#[test]
+fn bfgs_pair_is_the_bfgs_update_and_keeps_its_inverse() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let n = 9;
+    let mut pair = Hessian::identity(n);
+    let mut b = identity(n);
+    for step in 0..150 {
+        let s: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+        // Curvature from a fixed positive definite matrix, sometimes negative (damped).
+        let mut y: Vec<f64> = (0..n)
+            .map(|i| (1.0 + i as f64) * s[i] + 0.3 * s[(i + 1) % n])
+            .collect();
+        if step % 7 == 3 {
+            y.iter_mut().for_each(|v| *v = -*v);
+        }
+        textbook(&mut b, &s, &y, step == 0);
+        pair.update(&s, &y);
+        let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (x, y) in pair.matrix().iter().zip(&b) {
+            assert!(
+                (x - y).abs() <= 1e-9 * scale,
+                "step {step}: {x} against {y}"
+            );
+        }
+        let h = pair.inverse();
+        for p in 0..n {
+            for q in 0..n {
+                let hb: f64 = (0..n).map(|k| h[p + n * k] * b[k + n * q]).sum();
+                let expected = if p == q { 1.0 } else { 0.0 };
+                assert!(
+                    (hb - expected).abs() < 1e-8,
+                    "step {step}: (H B)_{p}{q} = {hb}"
+                );
+            }
+        }
+    }
+}
+
+/// Powell's damped BFGS update of the explicit matrix `b` (the first scaled).
+fn textbook(b: &mut [f64], s: &[f64], y: &[f64], first: bool) {
+    let n = s.len();
+    let sy0: f64 = s.iter().zip(y).map(|(a, b)| a * b).sum();
+    if first && sy0 > 0.0 {
+        let scale = y.iter().map(|v| v * v).sum::<f64>() / sy0;
+        b.fill(0.0);
+        (0..n).for_each(|k| b[k + n * k] = scale);
+    }
+    let bs: Vec<f64> = (0..n)
+        .map(|i| (0..n).map(|k| b[i + n * k] * s[k]).sum())
+        .collect();
+    let sbs: f64 = s.iter().zip(&bs).map(|(a, b)| a * b).sum();
+    let mut y = y.to_vec();
+    if sy0 < 0.2 * sbs {
+        let theta = 0.8 * sbs / (sbs - sy0);
+        y.iter_mut()
+            .zip(&bs)
+            .for_each(|(y, b)| *y = theta * *y + (1.0 - theta) * b);
+    }
+    let sy: f64 = s.iter().zip(&y).map(|(a, b)| a * b).sum();
+    for k in 0..n {
+        for i in 0..n {
+            b[i + n * k] += y[i] * y[k] / sy - bs[i] * bs[k] / sbs;
         }
     }
 }
