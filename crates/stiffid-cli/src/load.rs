@@ -151,7 +151,7 @@ pub fn posture(text: &str, option: &str, robot: &Robot) -> Result<(Vector6<f64>,
     let q_deg = vector::<6>(text, option, &limits::ANGLE_DEG)?;
     let q = q_deg.map(f64::to_radians);
     let field = |a: usize| format!("{option}[{}]", a + 1);
-    robot.limits.check(&q, "the robot's limits", field)?;
+    robot.limits().check(&q, "the robot's limits", field)?;
     Ok((q_deg, q))
 }
 

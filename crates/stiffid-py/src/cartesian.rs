@@ -85,7 +85,7 @@ fn matrices<'py>(
     of: &Of,
 ) -> PyResult<Py<PyAny>> {
     let s = &setup.inner;
-    let within = (&s.robot().limits, "the joint limits");
+    let within = (s.robot().limits(), "the joint limits");
     let (qs, single) = arrays::postures(q_deg, "q_deg", within, MAX_POSTURES)?;
     let point = point_or(point_mm, s.tool().loading_point)?;
     let what = "stiffness_nm_per_rad";

@@ -170,7 +170,7 @@ fn options(
     let mut options = Options::for_setup(s);
     if let Some(q) = q0_deg {
         let r = s.robot();
-        let within = (&r.limits, "the joint limits");
+        let within = (r.limits(), "the joint limits");
         options.q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
     }
     if free_tool_axis {

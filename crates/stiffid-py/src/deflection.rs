@@ -43,7 +43,7 @@ pub fn deflection<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let r = &s.robot();
-    let within = (&r.limits, "the joint limits");
+    let within = (r.limits(), "the joint limits");
     let (qs, _) = arrays::postures(q_deg, "q_deg", within, crate::robot::MAX_POSTURES)?;
     let wrenches = per_posture(wrench, qs.len())?;
     let point = |p: Option<&Bound<'py, PyAny>>, default: Vector3<f64>, what: &str| {

@@ -59,7 +59,7 @@ fn from_arrays(
     point: Option<Vec<i64>>,
 ) -> PyResult<Vec<Measurement>> {
     let r = &setup.robot();
-    let (q, _) = arrays::postures(q, "q_deg", (&r.limits, "the joint limits"), usize::MAX)?;
+    let (q, _) = arrays::postures(q, "q_deg", (r.limits(), "the joint limits"), usize::MAX)?;
     let n = q.len();
     let wrench = wrenches(w, n)?;
     let d = rows::<3>(d, "displacement_mm")?.rows;

@@ -61,25 +61,25 @@ impl Robot {
     /// Human-readable name, e.g. ``"COMAU SMART5 NJ 165-3.0"``.
     #[getter]
     fn name(&self) -> &str {
-        &self.inner.name
+        self.inner.name()
     }
 
     /// Where the numbers come from (datasheet, paper, file and tip link).
     #[getter]
     fn source(&self) -> &str {
-        &self.inner.source
+        self.inner.source()
     }
 
     /// Lower joint limits, axis coordinates, deg, shape ``(6,)``.
     #[getter]
     fn lower_limit_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.limits.lower.iter().map(|v| v.to_degrees()))
+        arrays::vec1(py, self.inner.limits().lower.iter().map(|v| v.to_degrees()))
     }
 
     /// Upper joint limits, axis coordinates, deg, shape ``(6,)``.
     #[getter]
     fn upper_limit_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        arrays::vec1(py, self.inner.limits.upper.iter().map(|v| v.to_degrees()))
+        arrays::vec1(py, self.inner.limits().upper.iter().map(|v| v.to_degrees()))
     }
 
     /// The flange pose in the base frame as a homogeneous transform, translation in mm:
@@ -197,7 +197,7 @@ impl Robot {
         restarts: Option<usize>,
         seed: u64,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
-        let limits = (&self.inner.limits, "the joint limits");
+        let limits = (self.inner.limits(), "the joint limits");
         let (q0, single) = arrays::postures(q0_deg, "q0_deg", limits, 1)?;
         if !single {
             return Err(error::value("q0_deg: expected an array of shape (6,)"));
@@ -228,14 +228,14 @@ impl Robot {
     }
 
     fn __repr__(&self) -> String {
-        format!("Robot({:?})", self.inner.name)
+        format!("Robot({:?})", self.inner.name())
     }
 }
 
 impl Robot {
     /// Postures within the joint limits, and whether one posture of shape (6,) was given.
     fn postures(&self, q_deg: &Bound<'_, PyAny>) -> PyResult<(Vec<nalgebra::Vector6<f64>>, bool)> {
-        let limits = (&self.inner.limits, "the joint limits");
+        let limits = (self.inner.limits(), "the joint limits");
         arrays::postures(q_deg, "q_deg", limits, MAX_POSTURES)
     }
 

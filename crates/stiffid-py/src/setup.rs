@@ -108,7 +108,7 @@ impl Setup {
         postures_deg: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let r = self.inner.robot();
-        let within = (&r.limits, "the joint limits");
+        let within = (r.limits(), "the joint limits");
         let most = stiffid::limits::MAX_GROUP_POSTURES;
         let (group, _) = postures(postures_deg, "postures_deg", within, most)?;
         let setup = &self.inner;
@@ -377,7 +377,7 @@ impl Setup {
     /// which are usable).
     fn pool(&self, obj: &Bound<'_, PyAny>) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
         let r = &self.inner.robot();
-        let within = (&r.limits, "the joint limits");
+        let within = (r.limits(), "the joint limits");
         Ok(postures(obj, "pool", within, stiffid::design::pool::MAX_POOL)?.0)
     }
 }

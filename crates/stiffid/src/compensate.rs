@@ -278,15 +278,16 @@ impl<'a> Model<'a> {
         let to_axis =
             match setup.springs() {
                 Coordinates::Axis => Matrix6::identity(),
-                Coordinates::Kinematic => {
-                    setup.robot().axis_map.matrix.try_inverse().ok_or_else(|| {
-                        Error::InvalidField {
-                            field: "axis_map".into(),
-                            message: "singular: kinematic spring deflections have no axis angles"
-                                .into(),
-                        }
-                    })?
-                }
+                Coordinates::Kinematic => setup
+                    .robot()
+                    .axis_map()
+                    .matrix
+                    .try_inverse()
+                    .ok_or_else(|| Error::InvalidField {
+                        field: "axis_map".into(),
+                        message: "singular: kinematic spring deflections have no axis angles"
+                            .into(),
+                    })?,
             };
         Ok(Self {
             setup,
@@ -621,7 +622,7 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
 
 fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
     let robot = &setup.robot();
-    if let Some(v) = robot.limits.first_violation(qc) {
+    if let Some(v) = robot.limits().first_violation(qc) {
         return Err(uncompensated(
             line,
             "q_compensated",
@@ -662,7 +663,7 @@ fn nominal_postures(
     for p in points {
         let q = match &p.target {
             Target::Posture(q) => {
-                if let Some(v) = robot.limits.first_violation(q) {
+                if let Some(v) = robot.limits().first_violation(q) {
                     let name = format!("q{}_deg", v.axis + 1);
                     return Err(Error::Column {
                         line: p.line,

@@ -162,8 +162,8 @@ fn converged(s: &Solution, options: &Options) -> bool {
 /// A uniform random posture within the joint limits (within +-pi on an unlimited axis).
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     Vector6::from_fn(|i, _| {
-        let lo = robot.limits.lower[i].max(-std::f64::consts::PI);
-        let hi = robot.limits.upper[i].min(std::f64::consts::PI);
+        let lo = robot.limits().lower[i].max(-std::f64::consts::PI);
+        let hi = robot.limits().upper[i].min(std::f64::consts::PI);
         lo + (hi - lo) * rng.random::<f64>()
     })
 }
@@ -189,7 +189,7 @@ fn descend(
     start: &Vector6<f64>,
     options: &Options,
 ) -> Solution {
-    let mut q = robot.limits.clamp(start);
+    let mut q = robot.limits().clamp(start);
     let (mut frames, mut e) = weighted_error(robot, point, target, &q);
     let mut lambda = 1e-4;
     let mut iterations = 0;
@@ -211,7 +211,7 @@ fn descend(
         if largest > 0.5 {
             dq *= 0.5 / largest;
         }
-        let q_new = robot.limits.clamp(&(q + dq));
+        let q_new = robot.limits().clamp(&(q + dq));
         let (frames_new, e_new) = weighted_error(robot, point, target, &q_new);
         if e_new.norm_squared() < e.norm_squared() {
             (q, frames, e) = (q_new, frames_new, e_new);

@@ -87,9 +87,9 @@ impl Robot {
             joints: [Isometry3::identity(); 6],
             axis_points: [Vector3::zeros(); 6],
             axis_directions: [Vector3::zeros(); 6],
-            flange: self.base,
+            flange: *self.base(),
             screws: [Screws::zeros(), Screws::zeros()],
-            axis_map: self.axis_map.matrix,
+            axis_map: self.axis_map().matrix,
         };
         self.update_frames(q, &mut f);
         f
@@ -98,14 +98,14 @@ impl Robot {
     /// [`Robot::frames`] at `q` written over `f` (every field), so that a loop over postures reuses
     /// one `Frames` instead of copying a new one out of each call.
     pub(crate) fn update_frames(&self, q: &Vector6<f64>, f: &mut Frames) {
-        let theta = self.axis_map.kinematic(q);
+        let theta = self.axis_map().kinematic(q);
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
-        f.flange = self.base;
-        f.axis_map = self.axis_map.matrix;
+        f.flange = *self.base();
+        f.axis_map = self.axis_map().matrix;
         let t = &mut f.flange;
         let [kinematic, axis] = &mut f.screws;
-        for (i, joint) in self.joints.iter().enumerate() {
+        for (i, joint) in self.joints().iter().enumerate() {
             compose(t, &joint.pre);
             let about_z = joint.axis == Vector3::z_axis();
             let z = match about_z {
@@ -125,8 +125,8 @@ impl Robot {
             compose(t, &joint.post);
             f.joints[i] = *t;
         }
-        compose(t, &self.flange);
-        kinematic.times(&self.axis_map.matrix, axis);
+        compose(t, self.flange());
+        kinematic.times(&self.axis_map().matrix, axis);
     }
 }
 

@@ -102,8 +102,8 @@ pub fn robot_characteristic_length(robot: &Robot, point: &Vector3<f64>) -> Resul
 /// The robot's joint limits (rad), an unlimited axis within +-180 deg.
 fn within_a_turn(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
     (
-        robot.limits.lower.map(|l| l.max(-PI)),
-        robot.limits.upper.map(|u| u.min(PI)),
+        robot.limits().lower.map(|l| l.max(-PI)),
+        robot.limits().upper.map(|u| u.min(PI)),
     )
 }
 

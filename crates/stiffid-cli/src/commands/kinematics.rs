@@ -95,8 +95,8 @@ pub fn run(args: &Args) -> Result<()> {
     let frames = robot.frames(&q);
     let jacobian = frames.jacobian(&point, coordinates);
     let report = Report {
-        robot: robot.name.clone(),
-        robot_source: robot.source.clone(),
+        robot: robot.name().to_string(),
+        robot_source: robot.source().to_string(),
         q_deg: q_deg.into(),
         coordinates,
         characteristic_length_mm: length_mm,

@@ -9,7 +9,7 @@ pub fn run() -> Result<()> {
     let mut text = String::new();
     for name in presets::names() {
         let robot = presets::get(name)?;
-        text += &format!("{name}\n  {}\n  source: {}\n", robot.name, robot.source);
+        text += &format!("{name}\n  {}\n  source: {}\n", robot.name(), robot.source());
     }
     output::print(&text)
 }

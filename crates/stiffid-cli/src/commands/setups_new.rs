@@ -54,7 +54,7 @@ pub fn run(args: &NewArgs) -> Result<()> {
             file.write(text.as_bytes())?;
             output::print(&format!(
                 "setup for {} written to {}: edit the values under EDIT (tool, rope, pulley)\n",
-                robot.name,
+                robot.name(),
                 path.display()
             ))
         }
@@ -103,22 +103,22 @@ fn check_loads(text: &str, source_name: &str, args: &NewArgs) -> Result<()> {
 /// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], within +-180 deg, degrees.
 fn bounds_deg(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
     let lower = robot
-        .limits
+        .limits()
         .lower
         .map(|l| (l.to_degrees() + LIMIT_MARGIN_DEG).max(-180.0));
     let upper = robot
-        .limits
+        .limits()
         .upper
         .map(|u| (u.to_degrees() - LIMIT_MARGIN_DEG).min(180.0));
     // A joint narrower than twice the margin keeps its full range.
     let narrow = |a: usize| lower[a] > upper[a];
     (
         Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.limits.lower[a].to_degrees().max(-180.0),
+            true => robot.limits().lower[a].to_degrees().max(-180.0),
             false => lower[a],
         }),
         Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.limits.upper[a].to_degrees().min(180.0),
+            true => robot.limits().upper[a].to_degrees().min(180.0),
             false => upper[a],
         }),
     )
@@ -187,14 +187,14 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
     };
     let reach_mm = reach * 1e3;
     let mut values = vec![
-        ("ROBOT_NAME", in_comment(&robot.name)),
+        ("ROBOT_NAME", in_comment(robot.name())),
         ("ROBOT_REF", in_comment(robot_ref)),
         ("NAME", quoted(&format!("{stem}-cell"))),
         (
             "DESCRIPTION",
             quoted(&format!(
                 "Stiffness identification cell of the {}",
-                robot.name
+                robot.name()
             )),
         ),
         ("ROBOT", quoted(robot_ref)),

@@ -76,7 +76,7 @@ fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
         document.path,
         points,
         setup.name(),
-        setup.robot().name,
+        setup.robot().name(),
         document.stiffness,
     ));
     let mut items = vec![

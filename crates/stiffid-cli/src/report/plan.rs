@@ -232,7 +232,7 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     );
     w.paragraph(&format!(
         "Robot {}, {} measuring point(s), a load of {} N hung from the loading point by a rope over the anchor (pulley) at ({}) mm, base frame. Postures chosen by the design criterion `{}`.",
-        s.robot().name,
+        s.robot().name(),
         s.tool().measuring_points.len(),
         s.load().load,
         mm3(&s.load().anchor).join(", "),

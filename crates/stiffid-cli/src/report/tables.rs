@@ -199,7 +199,7 @@ pub fn setup(study: &Study) -> Table {
     };
     let rows = vec![
         ("setup", s.name().to_string()),
-        ("robot", format!("{} ({})", s.robot().name, s.robot_ref())),
+        ("robot", format!("{} ({})", s.robot().name(), s.robot_ref())),
         (
             "springs in",
             format!("{:?} coordinates", s.springs()).to_lowercase(),

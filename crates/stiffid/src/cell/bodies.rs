@@ -128,7 +128,7 @@ pub fn bodies(setup: &Setup, frames: &Frames) -> Vec<Body> {
             .map(Body::Capsule)
             .collect();
     };
-    let base = setup.robot().base;
+    let base = *setup.robot().base();
     let mut out: Vec<Body> = g
         .shapes
         .iter()

@@ -98,7 +98,7 @@ fn row(
     }
     let (limits, within) = match bounds {
         Some(b) => (b, "the setup's bounds"),
-        None => (&robot.limits, "the robot's limits"),
+        None => (robot.limits(), "the robot's limits"),
     };
     match limits.first_violation(&q) {
         None => Ok(q),

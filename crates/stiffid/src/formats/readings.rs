@@ -451,7 +451,7 @@ impl Columns {
         for (a, &c) in self.q.iter().enumerate() {
             q[a] = row.number(c)?.to_radians();
         }
-        if let Some(v) = robot.limits.first_violation(&q) {
+        if let Some(v) = robot.limits().first_violation(&q) {
             let outside = v.outside(Q[v.axis].into(), "the robot's limits");
             return Err(row.error(self.q[v.axis], outside));
         }

@@ -39,7 +39,7 @@ pub struct Meshes<'a> {
 /// use stiffid::formats::reference;
 /// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
 /// let robot = reference::robot("fanuc-r2000ic-165f", None, no_files).unwrap();
-/// assert_eq!(robot.name, "FANUC R-2000iC/165F");
+/// assert_eq!(robot.name(), "FANUC R-2000iC/165F");
 /// let e = reference::robot("robots/mine.toml", None, no_files).unwrap_err();
 /// assert!(e.to_string().contains("no file robots/mine.toml and no preset"), "{e}");
 /// ```
@@ -140,7 +140,7 @@ fn urdf_robot(
         let dir = path.parent().unwrap_or(Path::new(""));
         let g = collision::parse(text, name, dir, tip, m.package_paths, m.read)?;
         if !g.shapes.is_empty() {
-            robot.bodies = Bodies::Shapes(Arc::new(g));
+            robot = robot.with_bodies(Bodies::Shapes(Arc::new(g)));
         }
     }
     Ok(robot)
@@ -184,7 +184,7 @@ fn xacro(name: &str) -> Error {
 /// use stiffid::formats::reference;
 /// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
 /// let setup = reference::setup("zhang2021-comau-nj165", no_files).unwrap();
-/// assert_eq!(setup.robot().name, "COMAU SMART5 NJ 165-3.0");
+/// assert_eq!(setup.robot().name(), "COMAU SMART5 NJ 165-3.0");
 /// ```
 pub fn setup<E, F>(reference: &str, read: F) -> Result<Setup, E>
 where

@@ -113,7 +113,7 @@ impl Family {
                 "only tilt takes links (tool is fixed in link 6, base in link 0)".into(),
             )),
             Family::Tool => {
-                let r = robot.flange.rotation;
+                let r = robot.flange().rotation;
                 Ok(["x", "y", "z"]
                     .iter()
                     .enumerate()

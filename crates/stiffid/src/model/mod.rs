@@ -173,7 +173,7 @@ impl Spring {
 /// If `link > 6`.
 pub fn link_frame<'a>(robot: &'a Robot, frames: &'a Frames, link: usize) -> &'a Isometry3<f64> {
     match link {
-        0 => &robot.base,
+        0 => robot.base(),
         k => &frames.joints[k - 1],
     }
 }

@@ -209,7 +209,7 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
         ));
     }
     let robot = &setup.robot();
-    if let Some(v) = robot.limits.first_violation(&meas.q) {
+    if let Some(v) = robot.limits().first_violation(&meas.q) {
         let message = match v.value.is_finite() {
             false => "the axis angle is not finite".to_string(),
             true => format!(

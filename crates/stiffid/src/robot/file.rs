@@ -166,20 +166,23 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
             },
         ));
     }
+    let joints = rows.try_into().expect("six joints checked above");
+    let base = transform(file.base, "base", source_name)?;
+    let flange = transform(file.flange, "flange", source_name)?;
+    let bodies = bodies(file.robot_geometry, source_name)?;
     let axis_map = match file.axis_map {
         None => AxisMap::default(),
         Some(m) => axis_map(&m, source_name)?,
     };
-    Ok(Robot {
-        name: file.name,
-        source: file.source,
-        joints: rows.try_into().expect("six joints checked above"),
-        axis_map,
-        limits: JointBox::new(lower, upper),
-        base: transform(file.base, "base", source_name)?,
-        flange: transform(file.flange, "flange", source_name)?,
-        bodies: bodies(file.robot_geometry, source_name)?,
-    })
+    Robot::new(file.name, file.source, joints, JointBox::new(lower, upper))
+        .and_then(|r| r.with_axis_map(axis_map))
+        .and_then(|r| r.with_base(base))
+        .and_then(|r| r.with_flange(flange))
+        .map(|r| r.with_bodies(bodies))
+        .map_err(|e| match e {
+            Error::InvalidField { field, message } => invalid(source_name, field, &message),
+            other => other,
+        })
 }
 
 /// The bodies of `[robot_geometry]`: capsules of the radii given, each within
@@ -234,17 +237,5 @@ fn axis_map(m: &AxisMapFile, source_name: &str) -> Result<AxisMap> {
     )?;
     let matrix = Matrix6::from_fn(|r, c| m.matrix[r][c]);
     let offset = Vector6::from_iterator(m.offset_deg.iter().map(|d| d.to_radians()));
-    let cond = crate::linalg::cond(&matrix);
-    if cond.is_nan() || cond > limits::MAX_AXIS_MAP_COND {
-        return Err(invalid(
-            source_name,
-            "axis_map.matrix".into(),
-            &format!(
-                "expected an invertible 6x6 matrix; its condition number is {} (at most {})",
-                limits::number(cond),
-                limits::number(limits::MAX_AXIS_MAP_COND)
-            ),
-        ));
-    }
     Ok(AxisMap { matrix, offset })
 }

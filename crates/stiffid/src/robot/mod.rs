@@ -15,7 +15,8 @@ pub use axis_map::AxisMap;
 use nalgebra::{Isometry3, Unit, Vector3};
 use std::sync::Arc;
 
-use crate::limits::JointBox;
+use crate::limits::{self, JointBox};
+use crate::{Error, Result};
 
 /// One revolute joint of the chain, in the frame of the previous joint's child link.
 ///
@@ -39,25 +40,196 @@ pub struct Joint {
 /// An immutable 6-axis serial robot with revolute joints.
 ///
 /// Postures are axis angles `q` (rad, controller convention); [`AxisMap`] turns them into the
-/// kinematic angles `theta` of the chain. Joint limits are in axis coordinates.
+/// kinematic angles `theta` of the chain. Joint limits are in axis coordinates. Built by
+/// [`Robot::new`] and the `with_*` methods, which check what they are given, or read from a file
+/// ([`mod@file`], [`urdf`]) or a preset ([`presets`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Robot {
+    name: String,
+    source: String,
+    joints: [Joint; 6],
+    axis_map: AxisMap,
+    limits: JointBox,
+    base: Isometry3<f64>,
+    flange: Isometry3<f64>,
+    bodies: Bodies,
+}
+
+impl Robot {
+    /// The robot of six joints (base to flange, lengths in m) within `limits` (axis coordinates,
+    /// rad; an infinite end is an unbounded axis), with the identity axis map, base and flange and
+    /// [`Bodies::Scaled`]. `name` is human-readable ("COMAU SMART5 NJ 165-3.0"), `source` says
+    /// where the numbers come from (datasheet, paper, repository).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] when a joint's transforms, axis or offset are not finite, or as
+    /// [`Robot::with_limits`].
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::Vector6;
+    /// use stiffid::{limits::JointBox, robot::dh, Robot};
+    /// let row = dh::Row { a: 0.5, alpha: 0.0, d: 0.1, theta_offset: 0.0 };
+    /// let joints = std::array::from_fn(|_| dh::joint(dh::Convention::StandardDh, &row));
+    /// let limits = JointBox::new(Vector6::repeat(-3.0), Vector6::repeat(3.0));
+    /// let robot = Robot::new("planar", "example", joints.clone(), limits)?;
+    /// assert_eq!(robot.limits().upper[0], 3.0);
+    /// let reversed = JointBox::new(Vector6::repeat(3.0), Vector6::repeat(-3.0));
+    /// assert!(Robot::new("planar", "example", joints, reversed).is_err());
+    /// # Ok::<(), stiffid::Error>(())
+    /// ```
+    pub fn new(
+        name: impl Into<String>,
+        source: impl Into<String>,
+        joints: [Joint; 6],
+        limits: JointBox,
+    ) -> Result<Self> {
+        for (i, j) in joints.iter().enumerate() {
+            let finite = finite(&j.pre)
+                && finite(&j.post)
+                && j.axis.iter().all(|v| v.is_finite())
+                && j.offset.is_finite();
+            if !finite {
+                return Err(invalid(
+                    format!("joint[{}]", i + 1),
+                    "expected finite numbers",
+                ));
+            }
+        }
+        Self {
+            name: name.into(),
+            source: source.into(),
+            joints,
+            axis_map: AxisMap::default(),
+            limits,
+            base: Isometry3::identity(),
+            flange: Isometry3::identity(),
+            bodies: Bodies::Scaled,
+        }
+        .with_limits(limits)
+    }
+
+    /// The robot with these joint limits (axis coordinates, rad; an infinite end is an unbounded
+    /// axis).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`joint[i] limits`) when an end is NaN or a lower end is not below
+    /// its upper end.
+    pub fn with_limits(self, limits: JointBox) -> Result<Self> {
+        for i in 0..6 {
+            let (lower, upper) = (limits.lower[i], limits.upper[i]);
+            if lower.is_nan() || upper.is_nan() || lower >= upper {
+                return Err(invalid(
+                    format!("joint[{}] limits", i + 1),
+                    "expected a lower end below the upper end",
+                ));
+            }
+        }
+        Ok(Self { limits, ..self })
+    }
+
+    /// The robot with this map from axis angles to kinematic angles.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`axis_map.matrix`) when the matrix is not invertible: its
+    /// condition number is NaN or above [`limits::MAX_AXIS_MAP_COND`], or `axis_map.offset` when
+    /// an offset is not finite.
+    pub fn with_axis_map(self, axis_map: AxisMap) -> Result<Self> {
+        let cond = crate::linalg::cond(&axis_map.matrix);
+        if cond.is_nan() || cond > limits::MAX_AXIS_MAP_COND {
+            return Err(invalid(
+                "axis_map.matrix".into(),
+                &format!(
+                    "expected an invertible 6x6 matrix; its condition number is {} (at most {})",
+                    limits::number(cond),
+                    limits::number(limits::MAX_AXIS_MAP_COND)
+                ),
+            ));
+        }
+        if !axis_map.offset.iter().all(|v| v.is_finite()) {
+            return Err(invalid("axis_map.offset".into(), "expected finite numbers"));
+        }
+        Ok(Self { axis_map, ..self })
+    }
+
+    /// The robot with this base transform (world to the chain's first frame, m).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`base`) when it is not finite.
+    pub fn with_base(self, base: Isometry3<f64>) -> Result<Self> {
+        if !finite(&base) {
+            return Err(invalid("base".into(), "expected finite numbers"));
+        }
+        Ok(Self { base, ..self })
+    }
+
+    /// The robot with this flange transform (last joint frame to the flange, m).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`flange`) when it is not finite.
+    pub fn with_flange(self, flange: Isometry3<f64>) -> Result<Self> {
+        if !finite(&flange) {
+            return Err(invalid("flange".into(), "expected finite numbers"));
+        }
+        Ok(Self { flange, ..self })
+    }
+
+    /// The robot with these bodies (for the cell's checks and drawings).
+    pub fn with_bodies(self, bodies: Bodies) -> Self {
+        Self { bodies, ..self }
+    }
+
     /// Human-readable name, e.g. "COMAU SMART5 NJ 165-3.0".
-    pub name: String,
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
     /// Where the numbers come from (datasheet, paper, repository).
-    pub source: String,
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
     /// The six joints, base to flange.
-    pub joints: [Joint; 6],
+    pub fn joints(&self) -> &[Joint; 6] {
+        &self.joints
+    }
+
     /// Controller axis angles to kinematic angles.
-    pub axis_map: AxisMap,
+    pub fn axis_map(&self) -> &AxisMap {
+        &self.axis_map
+    }
+
     /// Joint limits, axis coordinates, rad.
-    pub limits: JointBox,
-    /// Base transform: world (robot base frame of all results) to the chain's first frame.
-    pub base: Isometry3<f64>,
-    /// Flange transform: last joint frame to the flange frame.
-    pub flange: Isometry3<f64>,
+    pub fn limits(&self) -> &JointBox {
+        &self.limits
+    }
+
+    /// Base transform: world (robot base frame of all results) to the chain's first frame, m.
+    pub fn base(&self) -> &Isometry3<f64> {
+        &self.base
+    }
+
+    /// Flange transform: last joint frame to the flange frame, m.
+    pub fn flange(&self) -> &Isometry3<f64> {
+        &self.flange
+    }
+
     /// The robot's own bodies, for the cell's checks and drawings ([`crate::cell::bodies`]).
-    pub bodies: Bodies,
+    pub fn bodies(&self) -> &Bodies {
+        &self.bodies
+    }
+}
+
+fn finite(t: &Isometry3<f64>) -> bool {
+    t.translation.vector.iter().all(|v| v.is_finite())
+        && t.rotation.coords.iter().all(|v| v.is_finite())
+}
+
+fn invalid(field: String, message: &str) -> Error {
+    Error::InvalidField {
+        field,
+        message: message.to_string(),
+    }
 }
 
 /// The bodies of a robot as its description gives them.

@@ -44,7 +44,7 @@ pub fn text(name: &str) -> Result<&'static str> {
 /// use stiffid::{robot::presets, Coordinates};
 /// let robot = presets::get("comau-smart5-nj165-3.0")?;
 /// let q = Vector6::new(0.0, 0.0, -90.0, 0.0, 30.0, 0.0).map(f64::to_radians);
-/// assert!(robot.limits.contains(&q));
+/// assert!(robot.limits().contains(&q));
 /// let frames = robot.frames(&q); // base frame, m
 /// let j = frames.jacobian(&Vector3::zeros(), Coordinates::Axis); // rows [v; omega]
 /// assert_eq!(j.shape(), (6, 6));

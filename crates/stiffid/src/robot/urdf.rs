@@ -16,7 +16,7 @@
 //! one root, and every number of an origin, axis or limit must be finite and within the limits
 //! ([`crate::limits::LENGTH_M`], [`crate::limits::ANGLE_RAD`]).
 
-use super::{AxisMap, Joint, Robot};
+use super::{Joint, Robot};
 use crate::limits::{self, JointBox};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
@@ -350,17 +350,11 @@ fn fold(
             v.len()
         )
     })?;
-    Ok(Robot {
-        name: name.to_string(),
-        source: source_name.to_string(),
-        joints,
-        axis_map: AxisMap::default(),
-        limits: JointBox::new(
-            Vector6::from_column_slice(&lower),
-            Vector6::from_column_slice(&upper),
-        ),
-        base: Isometry3::identity(),
-        flange: acc,
-        bodies: super::Bodies::Scaled,
-    })
+    let limits = JointBox::new(
+        Vector6::from_column_slice(&lower),
+        Vector6::from_column_slice(&upper),
+    );
+    Robot::new(name, source_name, joints, limits)
+        .and_then(|r| r.with_flange(acc))
+        .map_err(|e| e.to_string())
 }

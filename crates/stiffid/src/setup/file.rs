@@ -132,7 +132,7 @@ pub fn builtin_text(name: &str) -> Result<&'static str> {
 /// assert_eq!(setup.tool().measuring_points.len(), 4);
 /// assert_eq!(setup.noise().levels, [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]);
 /// assert!((setup.bounds().upper[1].to_degrees() - 40.0).abs() < 1e-12);
-/// assert!(setup.robot().limits.contains(&setup.bounds().upper));
+/// assert!(setup.robot().limits().contains(&setup.bounds().upper));
 /// assert!(stiffid::setup::builtin("no-such-setup").is_err());
 /// # Ok::<(), stiffid::Error>(())
 /// ```
@@ -248,10 +248,12 @@ fn in_file(e: Error, source_name: &str) -> Error {
 /// (fixed-axis roll, pitch, yaw as URDF), the same as a robot TOML's `[base]` and `[flange]`.
 fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
     if f.robot_base.is_some() {
-        robot.base = transform(f.robot_base, "robot_base", src)? * robot.base;
+        let base = transform(f.robot_base, "robot_base", src)? * robot.base();
+        robot = robot.with_base(base)?;
     }
     if f.robot_flange.is_some() {
-        robot.flange *= transform(f.robot_flange, "robot_flange", src)?;
+        let flange = robot.flange() * transform(f.robot_flange, "robot_flange", src)?;
+        robot = robot.with_flange(flange)?;
     }
     Ok(robot)
 }

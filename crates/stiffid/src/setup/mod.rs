@@ -168,7 +168,7 @@ impl Setup {
         SetupBuilder {
             name: name.into(),
             description: String::new(),
-            robot_ref: robot.name.clone(),
+            robot_ref: robot.name().to_string(),
             robot,
             springs: Coordinates::default(),
             virtual_springs: Vec::new(),
@@ -590,7 +590,7 @@ impl SetupBuilder {
         check_tool(&loading_point, &self.measuring_points, tcp)?;
         check_load(&load)?;
         check_noise(&noise)?;
-        let bounds = self.bounds.unwrap_or(self.robot.limits);
+        let bounds = self.bounds.unwrap_or(*self.robot.limits());
         check_bounds(&bounds, &self.robot)?;
         check_test_postures(&self.test_postures, &self.robot)?;
         if let Some(z) = self.constraints.loading_point_min_z {
@@ -611,11 +611,11 @@ impl SetupBuilder {
             tcp: tcp.unwrap_or_default(),
         };
         let defaults = crate::cell::default_geometry(&self.robot, &tool);
-        let shapes = match (&self.robot.bodies, self.link_radii) {
+        let shapes = match (&self.robot.bodies(), self.link_radii) {
             (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
             _ => Bodies::Scaled,
         };
-        let robot_radii = match &self.robot.bodies {
+        let robot_radii = match &self.robot.bodies() {
             Bodies::Capsules(r) => Some(*r),
             _ => None,
         };
@@ -739,7 +739,7 @@ fn check_bounds(bounds: &JointBox, robot: &Robot) -> Result<()> {
             ),
         ));
     }
-    let within = robot.limits.widened(BOUNDS_TOLERANCE);
+    let within = robot.limits().widened(BOUNDS_TOLERANCE);
     for (side, q) in sides {
         within.check(q, "the robot's limits", |a| {
             format!("bounds.{side}[{}]", a + 1)
@@ -755,7 +755,7 @@ fn check_test_postures(postures: &[Vector6<f64>], robot: &Robot) -> Result<()> {
         let field = format!("test.postures_deg[{}]", i + 1);
         limits::check(&field, &degrees(q), &limits::ANGLE_DEG)?;
         let axis = |a: usize| format!("{field}[{}]", a + 1);
-        robot.limits.check(q, "the robot's limits", axis)?;
+        robot.limits().check(q, "the robot's limits", axis)?;
     }
     Ok(())
 }

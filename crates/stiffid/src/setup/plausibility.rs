@@ -30,13 +30,13 @@ pub fn warnings(setup: &Setup) -> Vec<Warning> {
     if reach < MIN_REACH_M {
         out.push(plausibility(format!(
             "robot '{}' reaches only {:.3} mm from its base at the middle of the bounds: a robot TOML in metres (its lengths are mm) or a URDF scaled down?",
-            setup.robot().name,
+            setup.robot().name(),
             reach * 1e3
         )));
     } else if reach > MAX_REACH_M {
         out.push(plausibility(format!(
             "robot '{}' reaches {:.1} m from its base: lengths in mm read as metres (a URDF's lengths are m)?",
-            setup.robot().name,
+            setup.robot().name(),
             reach
         )));
     }

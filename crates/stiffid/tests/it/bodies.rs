@@ -240,7 +240,7 @@ fn robot_files_accept_robot_geometry() {
         "{preset}\n[robot_geometry]\nlink_radius_mm = [350, 260, 195, 175, 130, 110, 90]\n"
     );
     let robot = stiffid::robot::file::parse(&text, "r.toml").unwrap();
-    match &robot.bodies {
+    match &robot.bodies() {
         Bodies::Capsules(r) => close(r[2], 0.195, 1e-12),
         other => panic!("{other:?}"),
     }

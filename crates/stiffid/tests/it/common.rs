@@ -87,7 +87,7 @@ pub fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec
 
 /// `setup` on another robot with springs at `springs`, its bounds the robot's joint limits.
 pub fn on_robot(setup: &Setup, robot: stiffid::Robot, springs: stiffid::Coordinates) -> Setup {
-    let bounds = robot.limits;
+    let bounds = *robot.limits();
     setup
         .to_builder()
         .with_robot(robot)
@@ -101,7 +101,7 @@ pub fn on_robot(setup: &Setup, robot: stiffid::Robot, springs: stiffid::Coordina
 /// setup), seeded.
 pub fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
+    let (lo, hi) = (setup.robot().limits().lower, setup.robot().limits().upper);
     let postures: Vec<Vector6<f64>> = (0..n)
         .map(|_| Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i])))
         .collect();

@@ -26,7 +26,7 @@ fn deflected_pose(s: &Setup, q: &Vector6<f64>, dq: &Vector6<f64>) -> Isometry3<f
     let q_loaded = match s.springs() {
         Coordinates::Axis => q + dq,
         Coordinates::Kinematic => {
-            let map = &s.robot().axis_map;
+            let map = &s.robot().axis_map();
             map.axis(&(map.kinematic(q) + dq)).unwrap()
         }
     };
@@ -176,21 +176,21 @@ fn inverse_kinematics_round_trips_for_every_preset() {
         for _ in 0..40 {
             let q = Vector6::from_fn(|i, _| {
                 let (lo, hi) = (
-                    robot.limits.lower[i].max(-3.0),
-                    robot.limits.upper[i].min(3.0),
+                    robot.limits().lower[i].max(-3.0),
+                    robot.limits().upper[i].min(3.0),
                 );
                 lo + (hi - lo) * rng.random::<f64>()
             });
             let target = tool_pose(&robot.frames(&q), &tcp);
             let start = robot
-                .limits
+                .limits()
                 .clamp(&q.map(|v| v + rng.random_range(-0.3..0.3)));
             let sol = ik::solve(&robot, &tcp, &target, &start, &ik::Options::default())
                 .unwrap_or_else(|e| panic!("{name}, q = {q:?}: {e}"));
             let reached = pose_error(&target, &tool_pose(&robot.frames(&sol.q), &tcp));
             assert!(reached.fixed_rows::<3>(0).norm() < 1e-9, "{name}");
             assert!(reached.fixed_rows::<3>(3).norm() < 1e-9, "{name}");
-            assert!(robot.limits.contains(&sol.q), "{name}");
+            assert!(robot.limits().contains(&sol.q), "{name}");
             iterations += sol.iterations;
         }
         assert!(
@@ -282,7 +282,7 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     for (i, (p, c)) in path.iter().zip(&out).enumerate() {
         let d0 = norm(c.deflection_before.as_ref().unwrap());
         assert!(norm(&c.deflection) <= d0 * (1.0 + 1e-12), "point {i}");
-        assert!(s.robot().limits.contains(&c.q), "point {i}");
+        assert!(s.robot().limits().contains(&c.q), "point {i}");
         assert!(c.tool_rotation.abs() <= free.range + 1e-12);
         if i > 0 {
             let step = (c.tool_rotation - out[i - 1].tool_rotation).abs();
@@ -366,12 +366,13 @@ fn the_complementary_stiffness_is_about_a_thousandth_of_the_deflection() {
 fn every_point_that_cannot_be_compensated_is_named() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let q = s.test_postures()[0];
-    let mut robot = s.robot().clone();
-    robot.limits.upper[1] = q[1] + 1e-12;
-    robot.limits.lower[1] = q[1] - 1e-12;
+    let mut limits = *s.robot().limits();
+    limits.upper[1] = q[1] + 1e-12;
+    limits.lower[1] = q[1] - 1e-12;
+    let robot = s.robot().clone().with_limits(limits).unwrap();
     let s = s
         .to_builder()
-        .with_bounds(robot.limits)
+        .with_bounds(limits)
         .with_robot(robot)
         .with_test_postures(vec![q])
         .build()

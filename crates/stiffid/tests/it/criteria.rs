@@ -4,7 +4,9 @@ use nalgebra::{DMatrix, Matrix6, Vector6};
 use stiffid::design::{self, criteria, Criterion, Evaluator};
 use stiffid::limits::JointBox;
 use stiffid::observation::{posture_block, rope_observation_matrix};
+use stiffid::robot::AxisMap;
 use stiffid::setup::{self, Noise, RopeLoad, Setup};
+use stiffid::Robot;
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -103,10 +105,21 @@ fn hand_case_predicted_deviation_rate() {
 /// limits, bounds and test postures `D^-1`, stiffness `k' = k d^2` (same spring energy). Psi's columns scale by
 /// `d^2`, the compliances by `1/d^2`: the identification problem is the same, in other units.
 fn in_other_joint_units(setup: &Setup, d: &Vector6<f64>) -> Setup {
-    let mut robot = setup.robot().clone();
-    robot.axis_map.matrix = setup.robot().axis_map.matrix * Matrix6::from_diagonal(d);
-    robot.limits.lower = robot.limits.lower.component_div(d);
-    robot.limits.upper = robot.limits.upper.component_div(d);
+    let r = setup.robot();
+    let (map, limits) = (r.axis_map(), r.limits());
+    let robot = r
+        .clone()
+        .with_axis_map(AxisMap {
+            matrix: map.matrix * Matrix6::from_diagonal(d),
+            offset: map.offset,
+        })
+        .and_then(|r| {
+            r.with_limits(JointBox {
+                lower: limits.lower.component_div(d),
+                upper: limits.upper.component_div(d),
+            })
+        })
+        .unwrap();
     let b = setup.bounds();
     setup
         .to_builder()
@@ -136,14 +149,23 @@ fn in_other_joint_units(setup: &Setup, d: &Vector6<f64>) -> Setup {
 /// and torques and stiffness in the matching unit (`k c`): e.g. metres to kilometres with
 /// `c = 1e-3` (the setup's ranges hold the paper's cell in km, not in mm).
 fn in_other_length_unit(setup: &Setup, c: f64) -> Setup {
-    let mut robot = setup.robot().clone();
-    let scale = |iso: &mut nalgebra::Isometry3<f64>| iso.translation.vector *= c;
-    for j in robot.joints.iter_mut() {
-        scale(&mut j.pre);
-        scale(&mut j.post);
+    let r = setup.robot();
+    let scale = |iso: &nalgebra::Isometry3<f64>| {
+        let mut iso = *iso;
+        iso.translation.vector *= c;
+        iso
+    };
+    let mut joints = r.joints().clone();
+    for j in &mut joints {
+        j.pre = scale(&j.pre);
+        j.post = scale(&j.post);
     }
-    scale(&mut robot.base);
-    scale(&mut robot.flange);
+    let robot = Robot::new(r.name(), r.source(), joints, *r.limits())
+        .and_then(|x| x.with_axis_map(r.axis_map().clone()))
+        .and_then(|x| x.with_base(scale(r.base())))
+        .and_then(|x| x.with_flange(scale(r.flange())))
+        .unwrap()
+        .with_bodies(r.bodies().clone());
     let (tool, load, noise) = (setup.tool(), setup.load(), setup.noise());
     setup
         .to_builder()

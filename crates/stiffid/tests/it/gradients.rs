@@ -38,7 +38,7 @@ fn setups() -> Vec<Setup> {
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     let limit = std::f64::consts::PI;
     Vector6::from_fn(|i, _| {
-        rng.random_range(robot.limits.lower[i].max(-limit)..robot.limits.upper[i].min(limit))
+        rng.random_range(robot.limits().lower[i].max(-limit)..robot.limits().upper[i].min(limit))
     })
 }
 
@@ -85,7 +85,7 @@ fn point_jacobian_gradient_matches_central_differences() {
                 .frames(&q)
                 .jacobian_gradient(&p, setup.springs(), &w, &g);
             let err = relative_error(exact.as_slice(), central(&q, phi).as_slice());
-            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name);
+            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name());
         }
     }
 }
@@ -104,7 +104,7 @@ fn dexterity_gradient_matches_central_differences() {
             let exact = frames.jacobian_gradient(&tcp, setup.springs(), &w, &Vector3::zeros());
             let approx = central(&q, |q| ln_k(&setup.robot().frames(q)));
             let err = relative_error(exact.as_slice(), approx.as_slice());
-            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name);
+            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name());
         }
     }
 }
@@ -124,7 +124,7 @@ fn rope_block_gradient_matches_central_differences() {
             };
             let exact = rope_block_gradient(&setup, &setup.robot().frames(&q), &g);
             let err = relative_error(exact.as_slice(), central(&q, phi).as_slice());
-            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name);
+            assert!(err < 1e-6, "{}: {err:e}", setup.robot().name());
         }
     }
 }
@@ -141,7 +141,7 @@ fn every_criterion_gradient_matches_central_differences() {
             for criterion in Criterion::ALL {
                 let (value, exact) = evaluator.value_and_gradient(criterion, &group);
                 assert_eq!(value, evaluator.value(criterion, &group), "{criterion}");
-                assert!(value.is_finite(), "{criterion} on {}", setup.robot().name);
+                assert!(value.is_finite(), "{criterion} on {}", setup.robot().name());
                 let mut approx = Vec::new();
                 for i in 0..group.len() {
                     approx.extend(
@@ -158,7 +158,7 @@ fn every_criterion_gradient_matches_central_differences() {
                 assert!(
                     err < 1e-6,
                     "{criterion} on {} ({:?} springs): {err:e}",
-                    setup.robot().name,
+                    setup.robot().name(),
                     setup.springs()
                 );
             }

@@ -27,7 +27,7 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
         for springs in [Coordinates::Axis, Coordinates::Kinematic] {
             let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
             let setup = on_robot(&paper, presets::get(name).unwrap(), springs);
-            let (lo, hi) = (setup.robot().limits.lower, setup.robot().limits.upper);
+            let (lo, hi) = (setup.robot().limits().lower, setup.robot().limits().upper);
             let postures: Vec<Vector6<f64>> = (0..8)
                 .map(|_| {
                     Vector6::from_fn(|i, _| lo[i] + rng.random_range(0.1..0.9) * (hi[i] - lo[i]))
@@ -190,7 +190,7 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
         (5, MeasurementField::Point)
     );
     let mut bad = data.clone();
-    bad[6].q[2] = setup.robot().limits.upper[2] + 0.1;
+    bad[6].q[2] = setup.robot().limits().upper[2] + 0.1;
     assert_eq!(
         field(least_squares(&setup, &bad).unwrap_err()),
         (7, MeasurementField::Axis(2))

@@ -17,16 +17,13 @@ const POINTS: [[f64; 3]; 3] = [[0.0, 0.0, 0.0], [0.15, 0.0, 0.2], [-0.08, 0.08, 
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     let limit = 2.0 * std::f64::consts::PI;
     Vector6::from_fn(|i, _| {
-        rng.random_range(robot.limits.lower[i].max(-limit)..robot.limits.upper[i].min(limit))
+        rng.random_range(robot.limits().lower[i].max(-limit)..robot.limits().upper[i].min(limit))
     })
 }
 
 /// The same chain with the identity axis map: its axis angles are the kinematic angles.
 fn kinematic_robot(robot: &Robot) -> Robot {
-    Robot {
-        axis_map: AxisMap::default(),
-        ..robot.clone()
-    }
+    robot.clone().with_axis_map(AxisMap::default()).unwrap()
 }
 
 /// Central differences of `robot`'s kinematics at joint values `x`: translation rows from the
@@ -71,7 +68,7 @@ fn every_preset_jacobian_matches_finite_differences_in_both_coordinates() {
         let mut rng = ChaCha8Rng::seed_from_u64(0x5eed ^ index as u64);
         for _ in 0..20 {
             let q = random_posture(&robot, &mut rng);
-            let theta = robot.axis_map.kinematic(&q);
+            let theta = robot.axis_map().kinematic(&q);
             let frames = robot.frames(&q);
             for p in POINTS.map(Vector3::from) {
                 let j_axis = frames.jacobian(&p, Coordinates::Axis);

@@ -107,13 +107,13 @@ fn an_elbow_spring_is_recovered_and_the_drives_alone_fail_the_check() {
 #[test]
 fn a_flange_compliance_from_one_point_and_forces_is_named_unidentifiable() {
     let fanuc = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let r = fanuc.robot().flange.rotation;
+    let r = fanuc.robot().flange().rotation;
     let flange = |name: &str, kind, i: usize| Spring {
         name: name.into(),
         kind,
         link: 6,
         axis: nalgebra::Unit::new_normalize(r * Vector3::ith(i, 1.0)),
-        point: fanuc.robot().flange.translation.vector,
+        point: fanuc.robot().flange().translation.vector,
         nominal_stiffness: Some(1e7),
     };
     let springs = vec![

@@ -45,14 +45,14 @@ fn setup_text() -> &'static str {
 /// its limits, a dexterity that is a number >= 1 or +infinity.
 fn assert_robot_usable(robot: &Robot) {
     for i in 0..6 {
-        assert!(!robot.limits.lower[i].is_nan() && !robot.limits.upper[i].is_nan());
-        assert!(robot.limits.lower[i] < robot.limits.upper[i]);
+        assert!(!robot.limits().lower[i].is_nan() && !robot.limits().upper[i].is_nan());
+        assert!(robot.limits().lower[i] < robot.limits().upper[i]);
     }
     for t in [0.1, 0.5, 0.9] {
         let q = Vector6::from_fn(|i, _| {
             let (lo, hi) = (
-                robot.limits.lower[i].max(-7.0),
-                robot.limits.upper[i].min(7.0),
+                robot.limits().lower[i].max(-7.0),
+                robot.limits().upper[i].min(7.0),
             );
             lo + t * (hi - lo)
         });

@@ -15,7 +15,7 @@ fn data(name: &str) -> String {
 fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     let limit = 2.0 * std::f64::consts::PI;
     Vector6::from_fn(|i, _| {
-        rng.random_range(robot.limits.lower[i].max(-limit)..robot.limits.upper[i].min(limit))
+        rng.random_range(robot.limits().lower[i].max(-limit)..robot.limits().upper[i].min(limit))
     })
 }
 
@@ -38,23 +38,27 @@ fn comau_as_urdf_has_the_kinematics_of_its_dh_table() {
     // the identity axis map (URDF joint positions are the kinematic angles).
     let from_urdf = urdf::parse(&data("comau-nj165.urdf"), "comau-nj165.urdf", None).unwrap();
     let preset = presets::get("comau-smart5-nj165-3.0").unwrap();
-    let from_dh = Robot {
-        axis_map: AxisMap::default(),
-        base: Isometry3::from_parts(
-            Translation3::new(0.1, -0.2, 0.5),
-            UnitQuaternion::from_euler_angles(0.0, 0.0, 0.7),
-        ),
-        flange: Isometry3::from_parts(
-            Translation3::new(0.01, 0.02, 0.03),
-            UnitQuaternion::from_euler_angles(0.1, 0.2, 0.3),
-        ),
-        ..preset.clone()
-    };
-    assert_ne!(from_urdf.joints[2].axis, Vector3::z_axis());
+    let from_dh = preset
+        .clone()
+        .with_axis_map(AxisMap::default())
+        .and_then(|r| {
+            r.with_base(Isometry3::from_parts(
+                Translation3::new(0.1, -0.2, 0.5),
+                UnitQuaternion::from_euler_angles(0.0, 0.0, 0.7),
+            ))
+        })
+        .and_then(|r| {
+            r.with_flange(Isometry3::from_parts(
+                Translation3::new(0.01, 0.02, 0.03),
+                UnitQuaternion::from_euler_angles(0.1, 0.2, 0.3),
+            ))
+        })
+        .unwrap();
+    assert_ne!(from_urdf.joints()[2].axis, Vector3::z_axis());
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     for _ in 0..50 {
         let theta = preset
-            .axis_map
+            .axis_map()
             .kinematic(&random_posture(&preset, &mut rng));
         let (a, b) = (from_dh.frames(&theta), from_urdf.frames(&theta));
         let (ra, rb) = (
@@ -95,14 +99,14 @@ fn kuka_preset_matches_its_source_urdf() {
     let from_urdf = urdf::parse(&data("kuka-kr210-robond.urdf"), "kr210", None).unwrap();
     let preset = presets::get("kuka-kr210-robond").unwrap();
     assert_close(
-        preset.limits.lower.as_slice(),
-        from_urdf.limits.lower.as_slice(),
+        preset.limits().lower.as_slice(),
+        from_urdf.limits().lower.as_slice(),
         1e-12,
         "lower limits",
     );
     assert_close(
-        preset.limits.upper.as_slice(),
-        from_urdf.limits.upper.as_slice(),
+        preset.limits().upper.as_slice(),
+        from_urdf.limits().upper.as_slice(),
         1e-12,
         "upper limits",
     );
@@ -194,11 +198,14 @@ fn revolute_joint_without_limit_is_unlimited_and_the_others_keep_theirs() {
         1,
     );
     let robot = urdf::parse(&text, "no-limit.urdf", None).unwrap();
-    assert_eq!(robot.limits.lower[0], f64::NEG_INFINITY);
-    assert_eq!(robot.limits.upper[0], f64::INFINITY);
-    assert_eq!((robot.limits.lower[1], robot.limits.upper[1]), (-3.2, 3.2));
+    assert_eq!(robot.limits().lower[0], f64::NEG_INFINITY);
+    assert_eq!(robot.limits().upper[0], f64::INFINITY);
+    assert_eq!(
+        (robot.limits().lower[1], robot.limits().upper[1]),
+        (-3.2, 3.2)
+    );
     assert!(robot
-        .limits
+        .limits()
         .contains(&Vector6::new(10.0, 0.0, 0.0, 0.0, 0.0, 0.0)));
 }
 
@@ -224,13 +231,13 @@ fn the_tip_defaults_to_the_leaf_ending_six_revolute_joints_else_tool0() {
     let two = data("comau-nj165-two-leaves.urdf");
     let named = urdf::parse(&two, "two.urdf", Some("tool0")).unwrap();
     let chosen = urdf::parse(&two, "two.urdf", None).unwrap();
-    assert_eq!(chosen.joints, named.joints);
-    assert_eq!(chosen.flange, named.flange);
-    assert_eq!(chosen.source, "two.urdf, tip link 'tool0'");
+    assert_eq!(chosen.joints(), named.joints());
+    assert_eq!(chosen.flange(), named.flange());
+    assert_eq!(chosen.source(), "two.urdf, tip link 'tool0'");
     // Two leaves after six revolute joints (tool0 and sensor) and a short one: tool0 wins.
     let chosen = urdf::parse(&three_leaves(None), "three.urdf", None).unwrap();
-    assert_eq!(chosen.flange, named.flange);
-    assert!(chosen.source.ends_with("tip link 'tool0'"));
+    assert_eq!(chosen.flange(), named.flange());
+    assert!(chosen.source().ends_with("tip link 'tool0'"));
     // Without a tool0 the choice is left to the user, with both names.
     let e = urdf::parse(&three_leaves(Some("tcp")), "three.urdf", None).unwrap_err();
     let message = e.to_string();
@@ -263,9 +270,9 @@ fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
     // field the user wrote.
     let robot = reference::robot("cell/robot.urdf", Some("tool0"), read).unwrap();
     assert!(
-        robot.source.ends_with("tip link 'tool0'"),
+        robot.source().ends_with("tip link 'tool0'"),
         "{}",
-        robot.source
+        robot.source()
     );
     for reference in ["comau-smart5-nj165-3.0", "cell/robot.toml"] {
         let e = reference::robot(reference, Some("tool0"), read).unwrap_err();

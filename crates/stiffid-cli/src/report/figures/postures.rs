@@ -23,7 +23,7 @@ pub struct Stick {
 
 pub fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
     let frames = setup.robot().frames(q);
-    let mut chain = vec![setup.robot().base.translation.vector];
+    let mut chain = vec![setup.robot().base().translation.vector];
     chain.extend(frames.axis_points.iter().copied());
     chain.push(frames.flange.translation.vector);
     chain.push(frames.point(&setup.tool().tcp));

@@ -19,7 +19,7 @@ fn cell(robot: &str) -> Setup {
     let setup = crate::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
     let robot = presets::get(robot).unwrap();
     let geometry = crate::cell::default_geometry(&robot, setup.tool());
-    let builder = setup.to_builder().with_bounds(robot.limits);
+    let builder = setup.to_builder().with_bounds(*robot.limits());
     builder
         .with_geometry(geometry)
         .with_robot(robot)

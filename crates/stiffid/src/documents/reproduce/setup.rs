@@ -147,16 +147,16 @@ impl<'a> SetupJson<'a> {
     /// The resolved `s`.
     pub fn new(s: &'a Setup) -> Self {
         let r = &s.robot();
-        let m = &r.axis_map.matrix;
+        let m = &r.axis_map().matrix;
         Self {
             name: s.name(),
             description: s.description(),
             robot: RobotJson {
                 reference: s.robot_ref(),
-                name: &r.name,
-                source: &r.source,
+                name: r.name(),
+                source: r.source(),
                 joints: r
-                    .joints
+                    .joints()
                     .iter()
                     .map(|j| JointJson {
                         pre: FrameJson::from(&j.pre),
@@ -165,14 +165,14 @@ impl<'a> SetupJson<'a> {
                         offset_deg: j.offset.to_degrees(),
                     })
                     .collect(),
-                lower_limit_deg: deg(&r.limits.lower),
-                upper_limit_deg: deg(&r.limits.upper),
-                base: FrameJson::from(&r.base),
-                flange: FrameJson::from(&r.flange),
+                lower_limit_deg: deg(&r.limits().lower),
+                upper_limit_deg: deg(&r.limits().upper),
+                base: FrameJson::from(r.base()),
+                flange: FrameJson::from(r.flange()),
             },
             axis_map: AxisMapJson {
                 matrix: std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)])),
-                offset_deg: deg(&r.axis_map.offset),
+                offset_deg: deg(&r.axis_map().offset),
             },
             springs: s.springs(),
             tool: ToolJson {
