@@ -1,5 +1,6 @@
-//! The cell: the exact feasibility check of one posture, and the default constrained global
-//! search (`relative-a`, 6 postures), on the paper setup with a floor at z = 0, 50 mm clearance,
+//! The cell: the exact feasibility check of one posture, one point of a constrained search, and
+//! the default constrained global search (`relative-a`, 6 postures, with each SQP), on the paper
+//! setup with a floor at z = 0, 50 mm clearance,
 //! default radii and a tracker at (3000, -2000, 1500) mm; capsule against mesh bodies per
 //! evaluation on a generated robot with collision meshes (`tests/support/mesh_robot.rs`).
 
@@ -9,7 +10,7 @@ mod mesh_robot;
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
 use stiffid::cell::Checker;
-use stiffid::design::{self, Criterion, SearchOptions};
+use stiffid::design::{self, Criterion, SearchOptions, Solver};
 
 /// The paper setup in the guide's cell (docs/guide.md, "The cell").
 fn paper_cell() -> stiffid::Setup {
@@ -30,6 +31,27 @@ fn feasibility(c: &mut Bench) {
     });
     c.bench_function("cell/capsules/one-posture", |b| {
         b.iter(|| stiffid::cell::capsules(&setup, &setup.robot().frames(black_box(&q))))
+    });
+    // What one point of a constrained search costs: the criterion with its exact gradient and the
+    // margins of every posture (their gradients, worked out from the witness points when the
+    // search asks, not included); and a local search stopped after its first point (that point
+    // with every gradient, plus building the checker and the final exact check).
+    let group = design::random_group(&setup, 6, 1);
+    let evaluator = design::Evaluator::new(&setup);
+    c.bench_function("cell/evaluate/relative-a-gradient-and-margins/6", |b| {
+        b.iter(|| {
+            let g = evaluator.value_and_gradient(Criterion::RelativeA, black_box(&group));
+            let m: Vec<_> = group.iter().map(|q| checker.margins(q)).collect();
+            (g, m)
+        })
+    });
+    let first = SearchOptions {
+        max_evals: 1,
+        solver: Solver::ActiveSet,
+        ..SearchOptions::default()
+    };
+    c.bench_function("cell/evaluate/search-first-point/6", |b| {
+        b.iter(|| design::local(&setup, Criterion::RelativeA, black_box(&group), &first).unwrap())
     });
 }
 
@@ -92,14 +114,21 @@ fn bodies(c: &mut Bench) {
     }
 }
 
+/// The default constrained global search in the guide's cell (`examples/cell/zhang2021-tracker.toml`)
+/// with each SQP.
 fn search(c: &mut Bench) {
     let setup = paper_cell();
-    let options = SearchOptions::default();
     let mut g = c.benchmark_group("cell/search");
     g.sample_size(10);
-    g.bench_function("global/relative-a/default", |b| {
-        b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
-    });
+    for solver in Solver::ALL {
+        let options = SearchOptions {
+            solver,
+            ..SearchOptions::default()
+        };
+        g.bench_function(format!("global/relative-a/{solver}"), |b| {
+            b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
+        });
+    }
     g.finish();
 }
 

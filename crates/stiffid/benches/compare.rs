@@ -6,11 +6,12 @@
 //! - `compare/identify`: identification from the 24 measurements of `bench/inputs/measurements.csv`
 //!   (observation matrix, least squares and statistics, as `stiffid identify` without file I/O);
 //! - `compare/local-search`: SLSQP on `zhang2021` from the start group, default options (exact
-//!   gradient); `compare/local-search-fd`: the same with finite-difference gradients.
+//!   gradient); `compare/local-search-fd`: the same with finite-difference gradients;
+//!   `compare/local-search-active-set`: the same with our SQP.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
-use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions};
+use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions, Solver};
 use stiffid::identify;
 use stiffid::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
@@ -61,6 +62,13 @@ fn compare(c: &mut Criterion) {
     };
     group.bench_function("local-search-fd", |b| {
         b.iter(|| local(&setup, Design::Zhang2021, black_box(&start), &fd).unwrap())
+    });
+    let ours = SearchOptions {
+        solver: Solver::ActiveSet,
+        ..options.clone()
+    };
+    group.bench_function("local-search-active-set", |b| {
+        b.iter(|| local(&setup, Design::Zhang2021, black_box(&start), &ours).unwrap())
     });
     group.finish();
 }

@@ -1,11 +1,14 @@
 //! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one
 //! evaluation with its exact gradient, local searches from a fixed seeded start group (exact and
-//! finite-difference gradients), the default global search, and the best 6 of a pool of 1000
+//! finite-difference gradients), the default global search (and with our SQP against the group
+//! size: 6, 12, 24, 60 postures), and the best 6 of a pool of 1000
 //! postures (`select --pool`: building the pool and the exchange), on the paper setup.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::design::{self, Criterion, Evaluator, Gradient, Pool, PoolOptions, SearchOptions};
+use stiffid::design::{
+    self, Criterion, Evaluator, Gradient, Pool, PoolOptions, SearchOptions, Solver,
+};
 
 fn evaluation(c: &mut Bench) {
     let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -59,6 +62,17 @@ fn search(c: &mut Bench) {
     g.bench_function("global-every-start/relative-a/default", |b| {
         b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &every_start, &()).unwrap())
     });
+    // The default global search against the group size with our SQP (SLSQP's cost grows about
+    // 10-fold per doubling: docs/performance.md, "Large groups").
+    let ours = SearchOptions {
+        solver: Solver::ActiveSet,
+        ..options.clone()
+    };
+    for n in [6, 12, 24, 60] {
+        g.bench_function(format!("global/relative-a/active-set/{n}"), |b| {
+            b.iter(|| design::global(&setup, Criterion::RelativeA, n, &ours, &()).unwrap())
+        });
+    }
     g.finish();
 }
 
