@@ -107,22 +107,28 @@ fn exact_gradients_end_no_worse_than_finite_differences_in_a_cell() {
     }
 }
 
+/// The same bits with one thread or two: in the cell, and for the epigraph form of `zhang2021`.
 #[test]
 fn global_search_is_thread_independent() {
-    let setup = tracker_cell();
     let options = SearchOptions {
         starts: 4,
         polished: 2,
         ..active_set()
     };
-    let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| design::global(&setup, Criterion::RelativeA, 6, &options, &()).unwrap())
-    };
-    let (one, two) = (run(1), run(2));
-    assert_eq!(one, two);
-    assert!(one.value < one.start_value);
+    let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
+    for (setup, criterion) in [
+        (tracker_cell(), Criterion::RelativeA),
+        (paper, Criterion::Zhang2021),
+    ] {
+        let run = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| design::global(&setup, criterion, 6, &options, &()).unwrap())
+        };
+        let (one, two) = (run(1), run(2));
+        assert_eq!(one, two, "{criterion}");
+        assert!(one.value < one.start_value, "{criterion}");
+    }
 }

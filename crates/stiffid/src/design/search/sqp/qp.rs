@@ -103,7 +103,7 @@ impl Qp<'_> {
                 let (t1, k) = s.partial_step(&r);
                 let nz = self.dot(p, &z);
                 let primal = norm(&z) > DEPENDENT * norm(&hn);
-                let t2 = match nz > EPS * self.norm(p) * norm(&z) && primal {
+                let t2 = match nz > EPS * s.norms[s.flag(p)] * norm(&z) && primal {
                     true => -self.slack(p, &s.x) / nz,
                     false => f64::INFINITY,
                 };
@@ -149,7 +149,7 @@ impl Qp<'_> {
             .flat_map(|i| [Constraint::Lower(i), Constraint::Upper(i)])
             .chain((0..self.rows.len()).map(Constraint::Row));
         for c in candidates {
-            let norm = self.norm(c);
+            let norm = s.norms[s.flag(c)];
             if norm == 0.0 || s.is_active(c) {
                 continue;
             }
@@ -222,6 +222,8 @@ struct State {
     l: Vec<Vec<f64>>,
     /// Whether each bound (lower, upper: `2i`, `2i + 1`) and row is active.
     flags: Vec<bool>,
+    /// The length of each one's normal, in the same order ([`Qp::norm`]).
+    norms: Vec<f64>,
 }
 
 impl State {
@@ -239,6 +241,11 @@ impl State {
             hn: Vec::new(),
             l: Vec::new(),
             flags: vec![false; 2 * n + qp.rows.len()],
+            norms: (0..n)
+                .flat_map(|i| [Constraint::Lower(i), Constraint::Upper(i)])
+                .chain((0..qp.rows.len()).map(Constraint::Row))
+                .map(|c| qp.norm(c))
+                .collect(),
         }
     }
 
