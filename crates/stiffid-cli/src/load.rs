@@ -5,7 +5,6 @@ use nalgebra::{SVector, Vector6};
 use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use stiffid::formats::measurements::{self, MeasurementFile};
 use stiffid::formats::stiffness;
 use stiffid::formats::{self, postures, reference, Capped};
 use stiffid::limits::{self, short, JointBox, Range};
@@ -206,18 +205,4 @@ pub fn postures(
 ) -> Result<Vec<Vector6<f64>>> {
     let text = read(path)?;
     postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())
-}
-
-/// A measurement file (`stiffid::formats::measurements`), its measurements turned into the robot
-/// base frame; errors start with the file name, then the line and column. The text is dropped
-/// once parsed.
-pub fn measurements(path: &Path, setup: &Setup) -> Result<MeasurementFile> {
-    let name = || path.display().to_string();
-    let mut file = measurements::parse(&read(path)?).with_context(name)?;
-    file.to_base_frame(setup).with_context(name)?;
-    let angles = file.measurements.iter().map(|m| &m.q);
-    if let Some(w) = stiffid::setup::plausibility::radians_as_degrees(angles) {
-        crate::output::warn(&format!("{}: {}", name(), w.message));
-    }
-    Ok(file)
 }

@@ -9,6 +9,7 @@
 
 mod arrays;
 mod cartesian;
+mod compare;
 mod compensate;
 mod deflection;
 mod design;

@@ -3,6 +3,7 @@
 //! [`stiffid::identify`] and [`stiffid::validate`].
 
 use crate::arrays::{self, rows};
+use crate::compare;
 use crate::documents;
 use crate::error::{self, raise, value};
 use crate::setup::Setup;
@@ -13,10 +14,12 @@ use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
 use std::path::PathBuf;
 use stiffid::documents::identify::Document;
+use stiffid::documents::identify_model::Document as ModelDocument;
 use stiffid::documents::validate::Document as Checked;
 use stiffid::formats::Capped;
 use stiffid::identify::Loss;
-use stiffid::jobs::identify::{self as job, Fit, Folds, Request};
+use stiffid::jobs::identify::{self as job, Fit, Folds, Origin, Request};
+use stiffid::jobs::identify_model as over_model;
 use stiffid::jobs::validate as validation;
 use stiffid::observation::Measurement;
 
@@ -204,25 +207,54 @@ impl Identification {
 }
 
 impl Identification {
-    fn new(py: Python<'_>, report: &job::Report, setup: &Setup) -> PyResult<Self> {
-        let document = Document::new(report, setup.inner.name(), &setup.inner);
-        let attributes = documents::to_python(py, &document, &ARRAYS)?;
-        let residuals: Vec<[f64; 3]> = document.residuals.iter().map(|r| r.residual_mm).collect();
-        attributes.set_item("residuals_mm", arrays::table(py, &residuals))?;
-        let labels = report.origin.lines.as_ref().map(|_| {
-            report
-                .origin
-                .labels
-                .iter()
-                .map(str::to_string)
-                .collect::<Vec<_>>()
-        });
-        attributes.set_item("labels", labels)?;
+    /// Over a model with virtual springs: the identify-model document, and as arrays `names`,
+    /// `units`, `stiffness` (each parameter in its unit: Nm/rad or N/mm, what ``validate`` and
+    /// ``compensate`` take), `ci95` (`(p, 2)`, NaN where unbounded or not identifiable),
+    /// `compliance_covariance_si`, and `labels`.
+    fn over_model(py: Python<'_>, report: &over_model::Report, setup: &Setup) -> PyResult<Self> {
+        let document = ModelDocument::new(report, setup.inner.name(), &setup.inner);
+        let attributes = documents::to_python(py, &document, &["compliance_covariance_si"])?;
+        let parameters = &document.fit.parameters;
+        let names: Vec<&str> = parameters.iter().map(|p| p.name.as_str()).collect();
+        let units: Vec<&str> = parameters.iter().map(|p| p.unit).collect();
+        attributes.set_item("names", names)?;
+        attributes.set_item("units", units)?;
+        let stiffness = parameters.iter().map(|p| p.stiffness.unwrap_or(f64::NAN));
+        attributes.set_item("stiffness", arrays::vec1(py, stiffness))?;
+        let ci: Vec<[f64; 2]> = parameters
+            .iter()
+            .map(|p| {
+                let [lo, hi] = p.ci95.unwrap_or([None, None]);
+                [lo.unwrap_or(f64::NAN), hi.unwrap_or(f64::NAN)]
+            })
+            .collect();
+        attributes.set_item("ci95", arrays::table(py, &ci))?;
+        attributes.set_item("labels", labels(&report.origin))?;
         Ok(Identification {
             attributes: attributes.unbind(),
             document: documents::to_python(py, &document, &[])?.unbind(),
         })
     }
+
+    fn new(py: Python<'_>, report: &job::Report, setup: &Setup) -> PyResult<Self> {
+        let document = Document::new(report, setup.inner.name(), &setup.inner);
+        let attributes = documents::to_python(py, &document, &ARRAYS)?;
+        let residuals: Vec<[f64; 3]> = document.residuals.iter().map(|r| r.residual_mm).collect();
+        attributes.set_item("residuals_mm", arrays::table(py, &residuals))?;
+        attributes.set_item("labels", labels(&report.origin))?;
+        Ok(Identification {
+            attributes: attributes.unbind(),
+            document: documents::to_python(py, &document, &[])?.unbind(),
+        })
+    }
+}
+
+/// A file's posture labels, `None` for arrays.
+fn labels(origin: &Origin) -> Option<Vec<String>> {
+    origin
+        .lines
+        .as_ref()
+        .map(|_| origin.labels.iter().map(str::to_string).collect())
 }
 
 /// Identifies the joint stiffness of ``setup``'s robot (Zhang et al. 2021, Eq. 10-14: least
@@ -246,24 +278,57 @@ impl Identification {
 /// raises a ``UserWarning`` with the command's message. Returns an ``Identification``.
 /// ``ValueError`` naming the file, line and column (or the measurement) for bad data, and for
 /// data that cannot identify every joint.
+///
+/// Over a setup whose model has virtual springs (``Setup.with_model``, a ``[model]`` table) every
+/// parameter is identified (the document of ``stiffid identify --json`` for such a setup:
+/// ``parameters`` with name, kind, unit, stiffness and interval, ``unidentifiable``, ...), with
+/// the arrays ``names``, ``units``, ``stiffness`` (each parameter in its unit, Nm/rad or N/mm:
+/// what ``validate`` and ``compensate`` take), ``ci95`` (``(p, 2)``, NaN where unbounded or not
+/// identifiable) and ``compliance_covariance_si``; a combination of parameters the data cannot
+/// separate raises a ``UserWarning``.
+///
+/// ``compare_models=True`` chooses the model by the data instead (``stiffid identify
+/// --compare-models``): from the setup's model, forward selection of ``candidates`` (names such
+/// as ``"tilt3_x"``, ``"tool_y"``, or families ``"tilt"``, ``"tool"``, ``"base"``; default the
+/// ``tilt`` springs of joints 1-6 and the ``tool`` translations) on the leave-one-posture-out
+/// error, nested in an outer cross-validation. Returns a dict: the command's ``--json`` document
+/// (``models``, ``steps``, ``recommended_fit``, ``nested``, ``conclusion``, ...; the same keys
+/// and values), plus ``table`` (the selection path as arrays and names, one entry per model:
+/// ``added``, ``springs``, ``parameters``, ``in_sample_explained``, ``held_out_explained``,
+/// ``held_out_rms_delta_b_mm``, ``aic``, ``bic``, ``noise_ratio``, ``physical``, ``identified``,
+/// ``recommended``; NaN where the document has ``null``) and ``fragment`` (the recommended
+/// model as a ``[model]`` fragment for ``Setup.with_model``). Not with ``robust``,
+/// ``nonnegative``, ``cross_validate``, ``folds`` or ``offsets``.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None))]
 #[allow(clippy::too_many_arguments)]
-pub fn identify(
-    py: Python<'_>,
+pub fn identify<'py>(
+    py: Python<'py>,
     setup: &Setup,
-    measurements: Option<&Bound<'_, PyAny>>,
-    q_deg: Option<&Bound<'_, PyAny>>,
-    wrench: Option<&Bound<'_, PyAny>>,
-    displacement_mm: Option<&Bound<'_, PyAny>>,
+    measurements: Option<&Bound<'py, PyAny>>,
+    q_deg: Option<&Bound<'py, PyAny>>,
+    wrench: Option<&Bound<'py, PyAny>>,
+    displacement_mm: Option<&Bound<'py, PyAny>>,
     point: Option<Vec<i64>>,
     robust: Option<&str>,
     nonnegative: bool,
     cross_validate: bool,
     folds: Option<usize>,
     offsets: bool,
-) -> PyResult<Identification> {
+    compare_models: bool,
+    candidates: Option<Vec<String>>,
+) -> PyResult<Bound<'py, PyAny>> {
     let s = &setup.inner;
+    if compare_models {
+        if robust.is_some() || nonnegative || cross_validate || folds.is_some() || offsets {
+            return Err(value("compare_models compares least-squares fits held out posture by posture: leave out robust, nonnegative, cross_validate, folds and offsets"));
+        }
+        let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
+        return Ok(compare::compare_models(py, setup, data, candidates)?.into_any());
+    }
+    if candidates.is_some() {
+        return Err(value("candidates: only with compare_models=True"));
+    }
     let fit = match (robust, nonnegative) {
         (Some(_), true) => return Err(value("robust and nonnegative: choose one")),
         (Some(r), false) => Fit::Robust(r.parse::<Loss>().map_err(raise)?),
@@ -276,19 +341,26 @@ pub fn identify(
         (None, false) => None,
     };
     let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
-    let report = py
-        .detach(|| {
-            job::run(Request {
-                setup: s,
-                data,
-                fit,
-                folds,
-                offsets,
-            })
-        })
-        .map_err(raise)?;
-    documents::warn(py, &report.warnings)?;
-    Identification::new(py, &report, setup)
+    let request = Request {
+        setup: s,
+        data,
+        fit,
+        folds,
+        offsets,
+    };
+    let identification = match s.model().is_drives_only() {
+        true => {
+            let report = py.detach(|| job::run(request)).map_err(raise)?;
+            documents::warn(py, &report.warnings)?;
+            Identification::new(py, &report, setup)?
+        }
+        false => {
+            let report = py.detach(|| over_model::run(request)).map_err(raise)?;
+            documents::warn(py, &report.warnings)?;
+            Identification::over_model(py, &report, setup)?
+        }
+    };
+    Ok(Bound::new(py, identification)?.into_any())
 }
 
 /// Validates the stiffness of every parameter of the setup's model (``stiffness_nm_per_rad``: shape

@@ -160,6 +160,20 @@ def test_compare_models(cli, tmp_path):
     assert_valid("identify-model", loo)
 
 
+def test_python_model_documents():
+    # Python's compare_models=True: the command's document plus `table` and `fragment`; identify
+    # over a model with virtual springs: the identify-model document plus its arrays.
+    import stiffid
+    from conftest import plain
+
+    fanuc = stiffid.Setup.builtin("fanuc-r2000ic-165f")
+    compared = stiffid.identify(fanuc, FANUC_DATA, compare_models=True, candidates=["tilt3_x", "tool_y"])
+    assert_valid("compare-models", {k: v for k, v in compared.items() if k not in ("table", "fragment")})
+    fit = stiffid.identify(fanuc.with_model(compared["fragment"]), FANUC_DATA, folds=5)
+    assert_valid("identify-model", plain(fit.to_dict()))
+    assert_valid("stiffness", plain(fit.to_dict()), closed=False)
+
+
 def test_simulate_and_reproduce(cli, tmp_path, group):
     s = cli("simulate", "--setup", "zhang2021-comau-nj165", "--postures", group, "--runs", "5", "--json")
     assert_valid("simulate", s)

@@ -1,7 +1,9 @@
 //! The cost of a design evaluation against the number of parameters of the model: the paper
 //! setup's six drives, with an elbow tilt spring and a tool translation (8), and with the tilt
 //! springs of joints 1, 2, 3 and 5 (14); one evaluation of `relative-a` and of `zhang2021` (with
-//! the singular values), and `relative-a` with its exact gradient, 6 postures x 4 measuring points.
+//! the singular values), and `relative-a` with its exact gradient, 6 postures x 4 measuring points;
+//! and the model comparison of `stiffid identify --compare-models` on the FANUC data (43 postures,
+//! 15 candidates, with the nested estimate), the job from the file's text.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
@@ -56,5 +58,27 @@ fn parameters(c: &mut Bench) {
     }
 }
 
-criterion_group!(benches, parameters);
+fn compare_models(c: &mut Bench) {
+    use stiffid::jobs::compare_models::{run, Request};
+    use stiffid::jobs::identify::Data;
+    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
+    c.benchmark_group("models")
+        .sample_size(10)
+        .bench_function("compare-models/fanuc", |b| {
+            b.iter(|| {
+                run(Request {
+                    setup: &setup,
+                    data: Data::File {
+                        name: "measurements.csv".into(),
+                        reader: black_box(text.as_bytes()),
+                    },
+                    candidates: None,
+                })
+                .unwrap()
+            })
+        });
+}
+
+criterion_group!(benches, parameters, compare_models);
 criterion_main!(benches);

@@ -313,6 +313,18 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
             assert!((t.q_deg[k] - qc).abs() <= 1e-9, "{} {qc}", t.q_deg[k]);
         }
     }
+    // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
+    // first point and the rapid moves are joint motions.
+    assert!(text.contains("   2:J P[1] 20% CNT100 ;\n   3:L P[2] 5mm/sec CNT100 ;\n"));
+    let linear = text.lines().filter(|l| l.contains("mm/sec CNT100")).count();
+    let at_feed = text
+        .lines()
+        .filter(|l| l.contains(" 30mm/sec CNT100 ;"))
+        .count();
+    assert!(
+        at_feed > 300 && linear == targets.len() - 2,
+        "{at_feed} {linear}"
+    );
     // The process force: about 240 N where the wall is cut, none on the rapid moves and plunges.
     let force = |p: &serde_json::Value| {
         ["fx_base_n", "fy_base_n", "fz_base_n"]

@@ -209,6 +209,17 @@ class Identification:
     def chi2_p_value(self) -> Optional[float]: ...
     @property
     def model_error_dominates(self) -> Optional[bool]: ...
+    # Over a setup with virtual springs (the identify-model document's keys besides these).
+    @property
+    def names(self) -> list[str]: ...
+    @property
+    def units(self) -> list[str]: ...
+    @property
+    def stiffness(self) -> _Array: ...
+    @property
+    def ci95(self) -> _Array: ...
+    def __getattr__(self, name: str) -> Any: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 @final
 class Study:
@@ -243,6 +254,7 @@ class Study:
     def to_dict(self) -> dict[str, Any]:
         """The document of summary.json."""
 
+@overload
 def identify(
     setup: Setup,
     measurements: Optional[_PathLike] = None,
@@ -250,10 +262,25 @@ def identify(
     q_deg: Optional[ArrayLike] = None,
     wrench: Optional[ArrayLike] = None,
     displacement_mm: Optional[ArrayLike] = None,
+    point: Optional[Sequence[int]] = None,
     robust: Optional[Literal["huber", "tukey"]] = None,
     nonnegative: bool = False,
+    cross_validate: bool = False,
+    folds: Optional[int] = None,
     offsets: bool = False,
 ) -> Identification: ...
+@overload
+def identify(
+    setup: Setup,
+    measurements: Optional[_PathLike] = None,
+    *,
+    q_deg: Optional[ArrayLike] = None,
+    wrench: Optional[ArrayLike] = None,
+    displacement_mm: Optional[ArrayLike] = None,
+    point: Optional[Sequence[int]] = None,
+    compare_models: Literal[True],
+    candidates: Optional[Sequence[str]] = None,
+) -> dict[str, Any]: ...
 def validate(
     setup: Setup,
     stiffness_nm_per_rad: Union[ArrayLike, _PathLike],

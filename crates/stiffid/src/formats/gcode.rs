@@ -7,7 +7,9 @@
 //!   from the start, in every distance mode) or the radius `R` (negative: the arc over 180 deg);
 //!   a helix moves linearly along the normal. `G17`/`G18`/`G19` choose the XY, ZX, YZ plane.
 //! - Modes: `G90`/`G91` absolute / incremental, `G20`/`G21` inch / mm; `G4` dwell, `G40`, `G49`,
-//!   `G80`, `G94` are accepted and change nothing here. `F`, `S`, `M`, `N`, `O`, `P` words are kept
+//!   `G80`, `G94` are accepted and change nothing here. `F` is the feed rate (modal, per minute:
+//!   mm/min under `G21`, inch/min under `G20`), kept with every point for the robot programs
+//!   written from the path; `S`, `M`, `N`, `O`, `P` words are kept
 //!   and not interpreted; `T` sets the tool number (which selects the process operation).
 //! - Comments `( ... )` and `; ...`. A comment `(operation: NAME)` selects the process operation
 //!   named `NAME` from there on. Header comments state the tool orientation:
@@ -64,6 +66,9 @@ pub struct Point {
     pub tool_number: Option<u32>,
     /// The operation named in force (`(operation: NAME)`).
     pub operation: Option<String>,
+    /// The feed rate in force (the last `F` word, per minute in the units of its block), m/s;
+    /// `None` before the first `F`.
+    pub feed: Option<f64>,
 }
 
 /// A motion block: where its line is and which points it made.
@@ -100,6 +105,7 @@ struct State {
     rotary: bool,
     /// The line of the `M2`/`M30` that ended the program.
     ended: Option<u64>,
+    feed: Option<f64>,
 }
 
 fn at(line: u64, message: String) -> Error {
@@ -138,6 +144,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         tool: None,
         rotary: false,
         ended: None,
+        feed: None,
     };
     let mut out = GCode {
         points: Vec::new(),
@@ -281,6 +288,7 @@ fn block(
     let mut drop = Vec::new();
     let mut abc_given = false;
     check_words(line, words, s)?;
+    let mut feed_given = None;
     for w in words {
         let v = w.value;
         match w.letter {
@@ -325,12 +333,16 @@ fn block(
                 }
                 s.tool_number = Some(v as u32);
             }
-            'F' | 'S' | 'M' | 'N' | 'O' | 'P' | 'H' | 'D' => {}
+            'F' => feed_given = Some(v),
+            'S' | 'M' | 'N' | 'O' | 'P' | 'H' | 'D' => {}
             other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P X Y Z I J K R, A B C with rotary = abc)"))),
         }
     }
     if let Some((g, _)) = &motion_given {
         s.motion = *g;
+    }
+    if let Some(f) = feed_given {
+        s.feed = Some(f * if s.inch { 25.4e-3 } else { 1e-3 } / 60.0);
     }
     let arc_only = s.motion >= 2 && (centre.iter().any(Option::is_some) || radius.is_some());
     let moves = target.iter().any(Option::is_some) || abc_given || arc_only;
@@ -387,6 +399,7 @@ fn block(
             },
             tool_number: s.tool_number,
             operation: s.operation.clone(),
+            feed: s.feed,
         });
     }
     s.position = end;

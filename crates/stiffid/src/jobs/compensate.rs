@@ -21,7 +21,7 @@ use crate::compensate::{self, Compensated, Compliance, FreeToolAxis, Options, Pa
 use crate::deflection::Frame;
 use crate::documents::compensate::Summary;
 use crate::formats::path;
-use crate::formats::program::generate::generate;
+use crate::formats::program::generate::{generate, moves};
 use crate::machining::{self, Language, Program};
 use crate::model::Parameter;
 use crate::process::Process;
@@ -180,9 +180,11 @@ where
             output,
         } => {
             check_output(language, output).map_err(|e| in_input(&name, e))?;
-            let compensated = (|| {
+            let (program, compensated) = (|| {
                 let program = machining::read(text, language, chord_tolerance)?;
-                machining::compensate(setup, &compliance, &program, &process, &options)
+                let compensated =
+                    machining::compensate(setup, &compliance, &program, &process, &options)?;
+                Ok::<_, Error>((program, compensated))
             })()
             .map_err(|e| in_input(&name, e))?;
             for (k, (p, r)) in compensated
@@ -198,14 +200,15 @@ where
                 .iter()
                 .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
                 .collect();
-            let text = match output {
-                Language::Robot(d) if output != language => {
+            let text = match (output, &program) {
+                (Language::Robot(d), Program::GCode(g)) => {
                     let q: Vec<[f64; 6]> = compensated
                         .results
                         .iter()
                         .map(|r| r.q_compensated.map(f64::to_degrees).into())
                         .collect();
-                    generate(d, &program_name(&name), &q)?
+                    let moves = moves(&g.points).map_err(|e| in_input(&name, e))?;
+                    generate(d, &program_name(&name), &q, &moves)?
                 }
                 _ => compensated.program.clone(),
             };

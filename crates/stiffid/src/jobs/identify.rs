@@ -456,6 +456,42 @@ fn fit(
     Ok((id, cross_validation, None))
 }
 
+/// `f` on the measurements of `data` (a file read and turned into the base frame, or arrays):
+/// the data's name, where each measurement came from and `f`'s result; `f`'s errors as
+/// [`Error::Input`] naming the data (a file's line and column).
+///
+/// # Errors
+/// Those of [`read_file`] and of `f`.
+pub(crate) fn on_measurements<R: Read, T>(
+    setup: &Setup,
+    data: Data<R>,
+    f: impl FnOnce(&[Measurement]) -> Result<T>,
+) -> Result<(String, Origin, T)> {
+    match data {
+        Data::File { name, reader } => {
+            let (file, origin) = read_file(setup, &name, reader)?;
+            let found = f(&file.measurements).map_err(|e| in_data(&name, file.explain(e)))?;
+            Ok((name, origin, found))
+        }
+        Data::Measurements(measurements) => {
+            let found = f(&measurements).map_err(|e| in_data("arrays", e))?;
+            Ok(("arrays".to_string(), arrays_origin(&measurements), found))
+        }
+    }
+}
+
+/// The warning that the data's angles look like radians under `_deg` names, if they do
+/// ([`plausibility::radians_as_degrees`]), naming the data.
+pub(crate) fn angle_warnings(data_name: &str, origin: &Origin) -> Vec<Warning> {
+    plausibility::radians_as_degrees(&origin.angles)
+        .map(|mut w| {
+            w.message = format!("{data_name}: {}", w.message);
+            w
+        })
+        .into_iter()
+        .collect()
+}
+
 /// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
 pub(crate) fn arrays_origin(measurements: &[Measurement]) -> Origin {
     let postures = measurements.iter().map(|m| m.posture).collect::<Vec<_>>();

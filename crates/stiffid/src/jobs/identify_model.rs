@@ -7,12 +7,11 @@
 //! The request is [`identify::Request`]; offsets beside the compliances take the six drives
 //! alone ([`identify::run`]).
 
-use super::identify::{self, arrays_origin, in_data, read_file, Data, Folds, Origin, Request};
+use super::identify::{self, angle_warnings, on_measurements, Folds, Origin, Request};
 use super::{Warning, WarningKind};
 use crate::identify::cross_validation::{cross_validate_model, CrossValidation};
 use crate::identify::model::{fit_by, Fit};
 use crate::observation::{Measurement, Observations};
-use crate::setup::plausibility;
 use crate::words::count;
 use crate::{Error, Result, Setup};
 use std::io::Read;
@@ -59,24 +58,10 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
                     .into(),
         });
     }
-    let (data_name, origin, (fit, cross_validation)) = match data {
-        Data::File { name, reader } => {
-            let (file, origin) = read_file(setup, &name, reader)?;
-            let found = fit_all(setup, method, folds, &file.measurements)
-                .map_err(|e| in_data(&name, file.explain(e)))?;
-            (name, origin, found)
-        }
-        Data::Measurements(measurements) => {
-            let found =
-                fit_all(setup, method, folds, &measurements).map_err(|e| in_data("arrays", e))?;
-            ("arrays".to_string(), arrays_origin(&measurements), found)
-        }
-    };
+    let (data_name, origin, (fit, cross_validation)) =
+        on_measurements(setup, data, |m| fit_all(setup, method, folds, m))?;
     let mut warnings = warnings(&fit);
-    if let Some(mut w) = plausibility::radians_as_degrees(&origin.angles) {
-        w.message = format!("{data_name}: {}", w.message);
-        warnings.push(w);
-    }
+    warnings.extend(angle_warnings(&data_name, &origin));
     Ok(Report {
         data_name,
         method,

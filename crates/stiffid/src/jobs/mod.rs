@@ -22,6 +22,7 @@
 //! never of one front end's options; each front end adds its own hints.
 
 pub mod calibrate;
+pub mod compare_models;
 pub mod compensate;
 pub mod evaluate;
 pub mod force;

@@ -1,10 +1,9 @@
 //! The validate job: an identified stiffness of every parameter of the setup's model against
 //! measurements it was not fitted to (Zhang et al. 2021, Eq. 22, Table 7; [`crate::validate`]).
 
-use super::identify::{arrays_origin, in_data, read_file, Data, Origin};
+use super::identify::{angle_warnings, on_measurements, Data, Origin};
 use super::Warning;
 use crate::model::Compliance;
-use crate::setup::plausibility;
 use crate::validate::{compare, Validation};
 use crate::{Result, Setup};
 use std::io::Read;
@@ -47,23 +46,9 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         compliance,
         data,
     } = request;
-    let (data_name, validation, origin) = match data {
-        Data::File { name, reader } => {
-            let (file, origin) = read_file(setup, &name, reader)?;
-            let v = compare(setup, compliance, &file.measurements)
-                .map_err(|e| in_data(&name, file.explain(e)))?;
-            (name, v, origin)
-        }
-        Data::Measurements(measurements) => {
-            let v = compare(setup, compliance, &measurements).map_err(|e| in_data("arrays", e))?;
-            ("arrays".to_string(), v, arrays_origin(&measurements))
-        }
-    };
-    let mut warnings = Vec::new();
-    if let Some(mut w) = plausibility::radians_as_degrees(&origin.angles) {
-        w.message = format!("{data_name}: {}", w.message);
-        warnings.push(w);
-    }
+    let (data_name, origin, validation) =
+        on_measurements(setup, data, |m| compare(setup, compliance, m))?;
+    let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
         data_name,
         compliance: compliance.clone(),

@@ -318,3 +318,73 @@ fn several_operations_are_selected_by_tool_number_or_lines() {
     let e = file::parse(&text.replace("[10, 20]", "[20, 10]"), "p.toml").unwrap_err();
     assert!(e.to_string().contains("operation[2].lines"), "{e}");
 }
+
+/// A textbook example with its published figures: H. El-Hofy, *Fundamentals of Machining
+/// Processes*, 2nd ed., CRC Press 2013, section 6.3 (cutting flat surfaces), the worked slot-milling
+/// example on p. 189: a cutter of d = 30 mm with Z = 8 teeth cuts a slot t = 4 mm deep at
+/// S_z = 0.1 mm per tooth and f = 120 mm/min in a material of specific cutting force
+/// k_s = 1000 N/mm^2; the book finds n = 150 rpm, a mean tangential cutting force F_mt = 1019 N,
+/// a cutting speed of 14.13 m/min and a mean cutting power of 0.24 kW. With K_tc = k_s and every
+/// other coefficient zero the linear edge-force model is the book's (chip thickness
+/// `S_z sin(psi)`, force `k_s b h`): one flute's instantaneous force (the library's
+/// [`Milling::force_at`]) is then purely tangential, so eight times its mean magnitude over a
+/// revolution is F_mt; and for a slot the closed-form mean force across the feed is `pi / 4` of
+/// it (`N a K_tc c / 4` against `N a K_tc c / pi`).
+#[test]
+fn el_hofy_slot_milling_example_gives_the_published_mean_force_and_power() {
+    let teeth = 8.0;
+    let one_flute = Milling {
+        diameter: 30e-3,
+        flutes: 1,
+        helix: 0.0,
+        feed_per_tooth: 0.1e-3,
+        axial_depth: 4e-3,
+        radial_depth: 30e-3,
+        mode: Mode::Up,
+        coefficients: Coefficients {
+            k_tc: 1000e6,
+            k_rc: 0.0,
+            k_ac: 0.0,
+            k_te: 0.0,
+            k_re: 0.0,
+            k_ae: 0.0,
+        },
+    };
+    // The spindle speed from the table feed: f / (Z S_z) = 120 / 0.8 = 150 rpm (published).
+    let rpm = 120.0 / (teeth * 0.1);
+    assert_eq!(rpm, 150.0);
+    // Mean over one revolution of the flute's force magnitude: 20-point Gauss-Legendre on the
+    // immersion [0, pi] (outside it the flute does not cut).
+    let mean_one = integrate(
+        &|phi| Vector3::new(one_flute.force_at(phi).norm(), 0.0, 0.0),
+        0.0,
+        PI,
+        &[],
+    )
+    .x / (2.0 * PI);
+    let f_mt = teeth * mean_one;
+    assert!(
+        (f_mt - 1019.0).abs() < 0.5,
+        "F_mt {f_mt} N, published 1019 N"
+    );
+    let speed_m_per_min = PI * 0.030 * rpm;
+    // pi 0.030 m 150 rpm = 14.137 m/min, which the book writes 14.13.
+    assert!((speed_m_per_min - 14.13).abs() < 0.01, "{speed_m_per_min}");
+    let power_kw = f_mt * speed_m_per_min / 60.0 / 1e3;
+    assert!(
+        (power_kw - 0.24).abs() < 0.005,
+        "N_c {power_kw} kW, published 0.24 kW"
+    );
+    // The closed-form mean force of the eight-tooth cutter: pi / 4 of F_mt across the feed, none
+    // along it (no radial coefficient) or along the axis.
+    let cutter = Milling {
+        flutes: 8,
+        ..one_flute
+    };
+    let mean = cutter.mean_force();
+    assert_relative_eq!(mean.y, f_mt * PI / 4.0, max_relative = 1e-9);
+    assert!(
+        mean.x.abs() < 1e-9 * mean.y && mean.z.abs() < 1e-9 * mean.y,
+        "{mean}"
+    );
+}

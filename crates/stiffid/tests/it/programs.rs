@@ -367,3 +367,39 @@ fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_progra
         .fold(0.0, f64::max);
     assert!(moved > 1e-5);
 }
+
+/// A G-code path written as a robot program moves at its own feed: `F` read per minute in the
+/// block's units, rapid moves and the first point as joint motions; a cutting move without a feed
+/// in force is refused naming its line, as is a feed that is not positive.
+#[test]
+fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
+    use stiffid::formats::program::generate::{generate, moves, Move};
+    let text = format!("{HEADER}G21 G0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40\nG20 G1 X2 F12\nG0 Z1\n");
+    let g = gcode::parse(&text, 1e-5).unwrap();
+    let m = moves(&g.points).unwrap();
+    assert_eq!(m.len(), 5);
+    assert_eq!(m[0], Move::Rapid);
+    assert_relative_eq!(g.points[1].feed.unwrap(), 0.01, max_relative = 1e-15);
+    assert_eq!(m[1..3], [Move::Feed(0.01), Move::Feed(0.01)]);
+    let Move::Feed(inch) = m[3] else {
+        panic!("{m:?}")
+    };
+    assert_relative_eq!(inch, 12.0 * 25.4e-3 / 60.0, max_relative = 1e-15);
+    assert_eq!(m[4], Move::Rapid);
+    let q = vec![[0.0, -90.0, 10.0, 0.0, 30.0, 0.0]; 5];
+    let ls = generate(Dialect::FanucLs, "P", &q, &m).unwrap();
+    assert!(ls.contains("   3:L P[2] 10mm/sec CNT100 ;\n"), "{ls}");
+    assert!(
+        ls.contains("   5:L P[4] 5mm/sec CNT100 ;\n   6:J P[5] 20% CNT100 ;\n"),
+        "{ls}"
+    );
+    let without = format!("{HEADER}G0 X0 Y0 Z5\nG1 Z0\n");
+    match moves(&gcode::parse(&without, 1e-5).unwrap().points) {
+        Err(Error::Program { line: 3, message }) => assert!(message.contains("feed"), "{message}"),
+        other => panic!("{other:?}"),
+    }
+    match gcode::parse(&format!("{HEADER}G1 X1 F-5\n"), 1e-5) {
+        Err(Error::Program { line: 2, message }) => assert!(message.contains("F-5"), "{message}"),
+        other => panic!("{other:?}"),
+    }
+}

@@ -4,50 +4,54 @@
 use super::Args;
 use crate::load;
 use crate::output::{self, json, OutFile};
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use std::io::Read;
 use stiffid::documents::identify_model::Document;
-use stiffid::identify::compare::{
-    candidates_by_name, compare, default_candidates, parameter_docs, Comparison, Row,
-};
+use stiffid::identify::compare::{parameter_docs, Comparison, Row};
 use stiffid::identify::cross_validation::CrossValidation;
 use stiffid::identify::model::Fit;
-use stiffid::jobs::identify::Request;
+use stiffid::jobs::compare_models;
+use stiffid::jobs::identify::{Data, Request};
 use stiffid::jobs::identify_model::{self, Report};
 use stiffid::words::count;
 use stiffid::Setup;
 
-/// `--compare-models`: the table, the recommendation, `--out` the recommended `[model]`.
+/// `--compare-models`: the library's job ([`stiffid::jobs::compare_models`]) rendered as the
+/// table and the recommendation, `--out` the recommended `[model]`.
 pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
     if args.robust.is_some() || args.nonnegative || args.cross_validate || args.folds.is_some() {
         bail!("--compare-models compares least-squares fits held out posture by posture: leave out --robust, --nonnegative, --cross-validate and --folds");
     }
-    // Read (and so known as an input, never written over) before --out is prepared.
-    let file = load::measurements(&args.data, setup)?;
+    // Opened (and so known as an input, never written over) before --out is prepared.
+    let reader = load::open(&args.data)?;
     let out = args
         .out
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
-    let candidates = match &args.candidates {
-        Some(names) => candidates_by_name(setup, names).context("--candidates")?,
-        None => default_candidates(setup),
-    };
-    let name = args.data.display().to_string();
-    let c = compare(setup, &file.measurements, &candidates, true)
-        .map_err(|e| file.explain(e))
-        .with_context(|| name.clone())?;
-    if let Some(out) = &out {
-        let text = format!(
-            "# The model `stiffid identify --compare-models` recommends for {name}: paste into the setup.\n{}",
-            stiffid::model::fragment(&c.recommended_springs)
-        );
-        out.write(text.as_bytes())?;
+    let report = compare_models::run(compare_models::Request {
+        setup,
+        data: Data::File {
+            name: args.data.display().to_string(),
+            reader,
+        },
+        candidates: args.candidates.as_deref(),
+    })
+    .map_err(|e| match e {
+        stiffid::Error::InvalidField { ref field, .. } if field == "candidates" => {
+            anyhow::Error::new(e).context("--candidates")
+        }
+        e => e.into(),
+    })?;
+    for warning in &report.warnings {
+        output::warn(&warning.message);
     }
-    let doc = c.document(&args.common.setup, &name, setup.noise().variance);
+    if let Some(out) = &out {
+        out.write(report.fragment().as_bytes())?;
+    }
     match args.common.json {
-        true => output::print(&json(&doc)?),
-        false => output::print(&text(&c)),
+        true => output::print(&json(&report.document(&args.common.setup))?),
+        false => output::print(&text(&report.comparison)),
     }
 }
 
