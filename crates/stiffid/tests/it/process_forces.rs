@@ -320,8 +320,8 @@ fn several_operations_are_selected_by_tool_number_or_lines() {
 }
 
 /// A textbook example with its published figures: H. El-Hofy, *Fundamentals of Machining
-/// Processes*, 2nd ed., CRC Press 2013, section 6.3 (cutting flat surfaces), the worked slot-milling
-/// example on p. 189: a cutter of d = 30 mm with Z = 8 teeth cuts a slot t = 4 mm deep at
+/// Processes*, 2nd ed., CRC Press 2013 (ISBN 978-1-4665-7702-2), chapter 6 (cutting flat
+/// surfaces), the worked slot-milling example on p. 189: a cutter of d = 30 mm with Z = 8 teeth cuts a slot t = 4 mm deep at
 /// S_z = 0.1 mm per tooth and f = 120 mm/min in a material of specific cutting force
 /// k_s = 1000 N/mm^2; the book finds n = 150 rpm, a mean tangential cutting force F_mt = 1019 N,
 /// a cutting speed of 14.13 m/min and a mean cutting power of 0.24 kW. With K_tc = k_s and every
