@@ -37,6 +37,20 @@ def test_the_reproduce_document_equals_summary_json(study, summary):
     assert study.findings["sentences"] and study.findings["start_groups"] == 20
 
 
+def test_reproduce_with_our_solver_equals_the_command(cli, tmp_path):
+    """The solver reaches the study from both front ends: the same small study with our SQP gives
+    the command's summary.json, and its paper searches differ from SLSQP's."""
+    small = dict(runs=5, starts=1, trials=2)
+    flags = ["--runs", 5, "--starts", 1, "--trials", 2, "--solver", "active-set"]
+    cli("reproduce", "--out", tmp_path / "report", *flags, parse=False)
+    summary = json.loads((tmp_path / "report" / "summary.json").read_text())
+    ours = stiffid.reproduce(solver="active-set", **small)
+    drop = lambda d: {key: value for key, value in d.items() if key != "elapsed_s"}
+    assert drop(ours.to_dict()) == drop(summary)
+    slsqp = stiffid.reproduce(**small).to_dict()
+    assert ours.to_dict()["groups"][2]["postures_deg"] != slsqp["groups"][2]["postures_deg"]
+
+
 def test_study_arrays(study):
     g = len(study.groups)
     levels = len(study.level_multiples)
@@ -83,7 +97,12 @@ def test_simulate_is_deterministic_and_seeded(paper):
 
 @pytest.mark.parametrize(
     "kwargs, message",
-    [(dict(runs=0), "runs"), (dict(starts=0), "starts"), (dict(runs=100001), "runs")],
+    [
+        (dict(runs=0), "runs"),
+        (dict(starts=0), "starts"),
+        (dict(runs=100001), "runs"),
+        (dict(solver="newton"), "solver: unknown value 'newton'"),
+    ],
 )
 def test_bad_reproduce_arguments(kwargs, message):
     with pytest.raises(ValueError, match=message):
