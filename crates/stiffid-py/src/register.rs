@@ -1,6 +1,7 @@
 //! `stiffid.register` and `stiffid.calibrate_cell`: the tracker's transform from raw readings
 //! ([`stiffid::jobs::register`]) and the transform with the measuring points fitted together
-//! ([`stiffid::jobs::calibrate`]), as the command computes them.
+//! ([`stiffid::jobs::calibrate`]), as the command computes them; the postures to register in
+//! ([`stiffid::jobs::register::propose`]).
 
 use crate::documents::{to_python, warn};
 use crate::error::{self, raise};
@@ -8,9 +9,10 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::documents::register::{Calibration, Document};
+use stiffid::documents::register::{Calibration, Document, Proposal};
 use stiffid::jobs::calibrate as calibrate_job;
 use stiffid::jobs::register as register_job;
+use stiffid::register::design;
 
 /// The readings of `path` as a job's request runs on them.
 fn with_request<T>(
@@ -37,12 +39,55 @@ fn with_request<T>(
 /// ``points`` (each unloaded reading's residual) and ``fragment`` (the ``[tracker]`` text of the
 /// setup file). ``InputError`` naming the file, line and column for bad readings, fewer than 3
 /// points or points on one line; angles that look like radians raise a ``UserWarning``.
+///
+/// With ``postures=N`` instead of ``readings``: proposes the N registration postures (1 to 60)
+/// inside the setup's bounds that pass the cell's checks without the load and minimise the
+/// predicted standard deviation of the transform's rotation, from ``candidates`` postures drawn
+/// with ``seed`` (default 20000) and ``restarts`` exchange runs (default 8). Returns the document
+/// of ``stiffid register --postures N --json``: ``postures`` (``posture``, ``q_deg``), the
+/// predicted ``translation_std_mm``, ``rotation_std_deg`` and ``rotation_std_total_deg``, the
+/// ``random_median_rotation_std_total_deg`` of random feasible groups, ``readings_template``
+/// (the readings CSV to fill in), ``candidates``, ``feasible``, ``checks``, ``method``,
+/// ``evaluations``. ``InputError`` when both or neither of ``readings`` and ``postures`` are
+/// given, or too few candidates pass the cell's checks.
 #[pyfunction]
+#[pyo3(signature = (setup, readings=None, *, postures=None, seed=1, candidates=None, restarts=None))]
 pub fn register<'py>(
     py: Python<'py>,
     setup: &Setup,
-    readings: PathBuf,
+    readings: Option<PathBuf>,
+    postures: Option<usize>,
+    seed: u64,
+    candidates: Option<usize>,
+    restarts: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let readings = match (readings, postures) {
+        (Some(readings), None) => readings,
+        (None, Some(n)) => {
+            let defaults = design::Options::default();
+            let request = register_job::DesignRequest {
+                setup: &setup.inner,
+                postures: n,
+                options: design::Options {
+                    seed,
+                    candidates: candidates.unwrap_or(defaults.candidates),
+                    restarts: restarts.unwrap_or(defaults.restarts),
+                },
+            };
+            let report = py
+                .detach(|| register_job::propose(&request))
+                .map_err(raise)?;
+            warn(py, &report.warnings)?;
+            return to_python(py, &Proposal::new(&report, setup.inner.name()), &[]);
+        }
+        _ => {
+            return Err(raise(stiffid::Error::InvalidField {
+                field: "readings".into(),
+                message: "give the readings to register from, or postures=N to propose, not both"
+                    .into(),
+            }))
+        }
+    };
     let report = with_request(setup, readings, |r| py.detach(|| register_job::run(r)))?;
     warn(py, &report.warnings)?;
     to_python(py, &Document::new(&report, setup.inner.name()), &[])

@@ -1,9 +1,10 @@
-"""register and calibrate_cell: a known tracker transform and shifted tool points come back, the same documents as the command."""
+"""register and calibrate_cell: a known tracker transform and shifted tool points come back, proposed registration postures read back register the tracker, the same documents as the command."""
 
 import numpy as np
 import pytest
 
 import stiffid
+from conftest import REPO
 from test_schemas import assert_valid
 
 HEADER = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm"
@@ -58,3 +59,30 @@ def test_collinear_points_are_refused_naming_the_file(paper, tmp_path):
     path.write_text("\n".join([HEADER, *rows]) + "\n")
     with pytest.raises(stiffid.InputError, match=r"line.csv.*lie on one line"):
         stiffid.register(paper, path)
+
+
+def test_proposed_postures_equal_the_command_and_register_when_read(cli, tmp_path):
+    cell = stiffid.Setup.from_file(REPO / "examples" / "cell" / "zhang2021-tracker.toml")
+    doc = stiffid.register(cell, postures=3, candidates=500)
+    assert len(doc["postures"]) == 3
+    assert doc["rotation_std_total_deg"] < doc["random_median_rotation_std_total_deg"]
+    command = cli("register", "--setup", REPO / "examples" / "cell" / "zhang2021-tracker.toml",
+                  "--postures", "3", "--candidates", "500", "--json")
+    assert {k: v for k, v in doc.items() if k != "setup"} == {k: v for k, v in command.items() if k != "setup"}
+    assert_valid("register-postures", doc)
+    # The template filled with what a tracker at the cell's position, turned by 90 deg, reads.
+    lines = doc["readings_template"].splitlines()
+    rows = [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        q = [float(v) for v in cells[2:8]]
+        point = np.asarray(cell.measuring_points_mm[int(cells[1]) - 1])
+        base = (cell.robot.flange_pose(q) @ np.append(point, 1.0))[:3]
+        tracker = ROTATION.T @ (base - TRANSLATION_MM)
+        rows.append(",".join(cells[:8] + [repr(float(v)) for v in tracker]))
+    path = tmp_path / "filled.csv"
+    path.write_text("\n".join(rows) + "\n")
+    fit = stiffid.register(cell, path)
+    np.testing.assert_allclose(fit["xyz_mm"], TRANSLATION_MM, atol=1e-6)
+    with pytest.raises(stiffid.InputError, match="not both"):
+        stiffid.register(cell, path, postures=3)

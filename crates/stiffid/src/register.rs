@@ -17,7 +17,9 @@
 //!
 //! Only the rotation turns a displacement measured in the tracker frame into the base frame, so
 //! the rotation's standard deviation is what a registration design minimises
-//! ([`rotation_std_per_noise`]).
+//! ([`rotation_std_per_noise`], [`design`]).
+
+pub mod design;
 
 use crate::formats::readings::Readings;
 use crate::identify::frames::DisplacementFrame;

@@ -46,8 +46,8 @@ fn text_of(d: &Calibration) -> String {
         d.iterations,
         three(t.xyz_mm, 4),
         three(t.rpy_deg, 5),
-        three(t.translation_std_mm, 4),
-        three(t.rotation_std_deg, 5),
+        three(t.std.translation_std_mm, 4),
+        three(t.std.rotation_std_deg, 5),
         d.absolute_error_rms_mm,
         d.noise_std_mm,
     );

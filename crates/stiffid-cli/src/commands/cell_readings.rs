@@ -22,7 +22,8 @@ pub struct Args {
     /// readings are used).
     #[arg(long)]
     pub data: Option<PathBuf>,
-    /// Write the fragment of the setup file here (TOML; never over an input).
+    /// Write the fragment of the setup file here (TOML; never over an input); with `register
+    /// --postures`, the readings CSV to fill in.
     #[arg(long)]
     pub out: Option<PathBuf>,
 }

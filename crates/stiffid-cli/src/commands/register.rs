@@ -1,26 +1,48 @@
 //! `stiffid register`: the laser tracker's transform to the robot base from measuring points read
 //! by the tracker at known axis angles ([`stiffid::jobs::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation, and the `[tracker]` fragment of the setup
-//! file.
+//! file; or, with `--postures N`, the registration postures to read
+//! ([`stiffid::jobs::register::propose`]).
 
 use crate::commands::cell_readings::{self, three, Outcome};
+use crate::output::print_json_or;
 use anyhow::Result;
-use stiffid::documents::register::Document;
+use stiffid::documents::register::{Document, Proposal};
 use stiffid::jobs::register as job;
+use stiffid::register::design;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
-/// gets the `[tracker] base_from_tracker` fragment.
+/// gets the `[tracker] base_from_tracker` fragment. Or `--postures N` proposes the postures to
+/// read, and `--out` gets the readings CSV to fill in.
 #[derive(clap::Args)]
-#[command(group(clap::ArgGroup::new("readings").required(true).args(["data"])))]
+#[command(group(clap::ArgGroup::new("readings").required(true).args(["data", "postures"])))]
 pub struct Args {
     #[command(flatten)]
     readings: cell_readings::Args,
+    /// Propose this many registration postures (1 to 60) inside the setup's bounds that pass the
+    /// cell's checks without the load (floor, obstacles, self-collision, line of sight) and
+    /// minimise the predicted standard deviation of the transform's rotation (the root of its
+    /// three variances at the setup's tracker noise), chosen from --candidates seeded postures.
+    #[arg(long, conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=design::MAX_POSTURES as u64))]
+    postures: Option<u64>,
+    /// Seed of --postures' candidates and exchange runs.
+    #[arg(long, default_value_t = 1, requires = "postures")]
+    seed: u64,
+    /// Candidate postures drawn in the bounds for --postures [default: 20000; 1 to 100000].
+    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
+    candidates: Option<u64>,
+    /// Exchange runs of --postures, 1 to 1000 [default: 8].
+    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid::limits::MAX_POOL_RESTARTS))]
+    restarts: Option<u64>,
 }
 
 /// Runs `stiffid register`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.readings.setup()?;
     let name = &args.readings.common.setup;
+    if let Some(n) = args.postures {
+        return propose(args, &setup, n as usize);
+    }
     let job = |request: &job::Request<'_>| {
         let report = job::run(request)?;
         let document = Document::new(&report, name);
@@ -31,6 +53,58 @@ pub fn run(args: &Args) -> Result<()> {
         })
     };
     args.readings.run(&setup, job, text_of)
+}
+
+/// `--postures N`: the proposal, and the readings template written with `--out`.
+fn propose(args: &Args, setup: &stiffid::Setup, n: usize) -> Result<()> {
+    let out = args.readings.prepare_out()?;
+    let defaults = design::Options::default();
+    let request = job::DesignRequest {
+        setup,
+        postures: n,
+        options: design::Options {
+            seed: args.seed,
+            candidates: args.candidates.map_or(defaults.candidates, |c| c as usize),
+            restarts: args.restarts.map_or(defaults.restarts, |r| r as usize),
+        },
+    };
+    let report = job::propose(&request)?;
+    let document = Proposal::new(&report, &args.readings.common.setup);
+    if let Some(out) = &out {
+        out.write(document.readings_template.as_bytes())?;
+    }
+    print_json_or(args.readings.common.json, &document, proposal_text)
+}
+
+fn proposal_text(d: &Proposal) -> String {
+    let mut text = format!(
+        "{} registration postures (setup {}, seed {}): {} measuring points each\n\
+         chosen from the {} of {} candidates that pass the checks {} ({}, {} groups evaluated)\n\
+         \nposture  q1_deg..q6_deg\n",
+        d.postures.len(),
+        d.setup,
+        d.seed,
+        d.measuring_points,
+        d.feasible,
+        d.candidates,
+        d.checks.join(", "),
+        d.method,
+        d.evaluations,
+    );
+    for p in &d.postures {
+        let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:9.3}")).collect();
+        text += &format!("{:<8} {}\n", p.posture, q.join(" "));
+    }
+    text + &format!(
+        "\npredicted at the tracker noise {:.4} mm per coordinate:\n\
+         standard deviation: translation [{}] mm, rotation [{}] deg\n\
+         rotation, root of the summed variances: {:.6} deg (median of 101 random feasible groups: {:.6} deg)\n",
+        d.noise_std_mm,
+        three(d.std.translation_std_mm, 4),
+        three(d.std.rotation_std_deg, 6),
+        d.rotation_std_total_deg,
+        d.random_median_rotation_std_total_deg,
+    )
 }
 
 fn text_of(d: &Document) -> String {
@@ -45,8 +119,8 @@ fn text_of(d: &Document) -> String {
         d.setup,
         three(t.xyz_mm, 4),
         three(t.rpy_deg, 5),
-        three(t.translation_std_mm, 4),
-        three(t.rotation_std_deg, 5),
+        three(t.std.translation_std_mm, 4),
+        three(t.std.rotation_std_deg, 5),
         d.residual_rms_mm,
         d.noise_std_mm,
     );

@@ -18,7 +18,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 14] = [
+const DOCUMENTS: [(&str, &str); 15] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
@@ -41,6 +41,7 @@ const DOCUMENTS: [(&str, &str); 14] = [
     ),
     ("reproduce", "stiffid reproduce: summary.json"),
     ("register", "stiffid register --json"),
+    ("register-postures", "stiffid register --postures N --json"),
     ("calibrate-cell", "stiffid calibrate-cell --json"),
 ];
 
@@ -78,6 +79,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "simulate" => closed::<stiffid::documents::simulate::Document>(),
         "reproduce" => closed::<stiffid::documents::reproduce::Summary<'static>>(),
         "register" => closed::<stiffid::documents::register::Document>(),
+        "register-postures" => closed::<stiffid::documents::register::Proposal>(),
         "calibrate-cell" => closed::<stiffid::documents::register::Calibration>(),
         _ => open::<StiffnessFile>(),
     };

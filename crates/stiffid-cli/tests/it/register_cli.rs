@@ -138,3 +138,83 @@ fn calibrate_cell_finds_tool_points_shifted_by_2_mm() {
     let text = String::from_utf8(stiffid(&args[..5]).stdout).unwrap();
     assert!(text.contains("robot's unloaded absolute error"), "{text}");
 }
+
+#[test]
+fn proposed_postures_filled_in_register_the_tracker() {
+    let d = temp_dir("register-postures");
+    let template = d.join("template.csv");
+    let cell = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/cell/zhang2021-tracker.toml");
+    let args = [
+        "register",
+        "--setup",
+        cell.to_str().unwrap(),
+        "--postures",
+        "3",
+        "--candidates",
+        "500",
+        "--out",
+        template.to_str().unwrap(),
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    assert_eq!(doc["postures"].as_array().unwrap().len(), 3);
+    let total = doc["rotation_std_total_deg"].as_f64().unwrap();
+    assert!(
+        total
+            < doc["random_median_rotation_std_total_deg"]
+                .as_f64()
+                .unwrap()
+    );
+    let text = std::fs::read_to_string(&template).unwrap();
+    assert_eq!(text, doc["readings_template"].as_str().unwrap());
+    // The operator's readings: the tracker at its place in the cell, turned by 180 deg.
+    let truth = Isometry3::new(
+        Vector3::new(3.0, -2.0, 1.5),
+        Vector3::new(0.0, 0.0, std::f64::consts::PI),
+    );
+    let setup = stiffid::setup::parse(
+        &std::fs::read_to_string(&cell).unwrap(),
+        "cell.toml",
+        |r, _| stiffid::robot::presets::get(r),
+    )
+    .unwrap();
+    let mut filled = String::new();
+    for line in text.lines() {
+        let cells: Vec<&str> = line.split(',').collect();
+        let Ok(point) = cells[1].parse::<usize>() else {
+            filled += &format!("{line}\n");
+            continue;
+        };
+        let q = Vector6::from_iterator(cells[2..8].iter().map(|v| {
+            let deg: f64 = v.parse().unwrap();
+            deg.to_radians()
+        }));
+        let p = setup.tool().measuring_points[point - 1];
+        let t = truth.inverse() * Point3::from(setup.robot().frames(&q).point(&p));
+        let head = cells[..8].join(",");
+        filled += &format!("{head},{},{},{}\n", t.x * 1e3, t.y * 1e3, t.z * 1e3);
+    }
+    let data = write_file(&d, "filled.csv", &filled);
+    let args = [
+        "register",
+        "--setup",
+        cell.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--json",
+    ];
+    let fit = json(&stiffid(&args));
+    let xyz: Vec<f64> = serde_json::from_value(fit["xyz_mm"].clone()).unwrap();
+    for (got, want) in xyz.iter().zip([3000.0, -2000.0, 1500.0]) {
+        assert!((got - want).abs() < 1e-3, "{got} {want}");
+    }
+    let out = stiffid(&[
+        "register",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--postures",
+        "0",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -361,8 +361,16 @@ def deflection(
 ) -> dict[str, _Array]:
     """displacement_mm, rotation_rad (n, 3); torques_nm, joint_deflections_rad (n, 6); std with a covariance."""
 
-def register(setup: Setup, readings: Union[str, os.PathLike[str]]) -> dict[str, Any]:
-    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment."""
+def register(
+    setup: Setup,
+    readings: Optional[Union[str, os.PathLike[str]]] = None,
+    *,
+    postures: Optional[int] = None,
+    seed: int = 1,
+    candidates: Optional[int] = None,
+    restarts: Optional[int] = None,
+) -> dict[str, Any]:
+    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment. With postures=N instead of readings, that of `stiffid register --postures N --json`: setup, seed, postures (posture, q_deg), measuring_points, noise_std_mm, translation_std_mm, rotation_std_deg, rotation_std_total_deg, random_median_rotation_std_total_deg, candidates, feasible, checks, method, evaluations, readings_template."""
 
 def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]]) -> dict[str, Any]:
     """The document of `stiffid calibrate-cell --json`: the transform as for register, points (setup_mm, fitted_mm, shift_mm, std_mm), absolute_error_rms_mm, noise_std_mm, readings, iterations, fragment."""

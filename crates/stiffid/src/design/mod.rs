@@ -7,6 +7,7 @@
 
 pub mod criteria;
 mod evaluator;
+pub(crate) mod exchange;
 pub mod pool;
 pub mod search;
 pub mod target;

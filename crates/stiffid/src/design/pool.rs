@@ -7,7 +7,7 @@
 //! - otherwise by the modified Fedorov exchange algorithm (Cook & Nachtsheim 1980, Technometrics
 //!   22(3)): from a seeded random group, each posture of the group in turn is exchanged for the
 //!   pool posture that lowers the criterion most, until a whole pass exchanges none; from
-//!   [`PoolOptions::restarts`] seeded groups, the best kept.
+//!   [`PoolOptions::restarts`] seeded groups, the best kept ([`super::exchange`]).
 //!
 //! Updates: the information matrix of a group is `S^T S = sum_i M_i` (6 x 6, `S` the scaled
 //! observation matrix of [`super::criteria`]) with `M_i = S_i^T S_i` of each pool posture, its
@@ -21,14 +21,12 @@
 //! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to [`MAX_GROUP`] postures.
 
 use super::evaluator::Information;
+use super::exchange;
 use super::search::check_count;
 use super::{Criterion, Evaluator};
 use crate::setup::Setup;
 use crate::{limits, Error, Result};
 use nalgebra::Vector6;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use rayon::prelude::*;
 
 /// Most postures in a pool (each costs one forward kinematics and a 6 x 6 matrix; an exchange
 /// pass costs `n x pool` Cholesky factorisations).
@@ -36,10 +34,6 @@ pub const MAX_POOL: usize = 10_000;
 
 /// Most postures in a group chosen from a pool.
 pub const MAX_GROUP: usize = 60;
-
-/// Most passes of one exchange run (each pass that exchanges nothing ends the run; the criterion
-/// falls strictly at every exchange, so the limit is a guard, not reached in practice).
-const MAX_PASSES: usize = 100;
 
 /// How a pool is searched.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,6 +89,16 @@ pub enum PoolMethod {
     Enumeration,
     /// The exchange algorithm: the best of its restarts, a local optimum.
     Exchange,
+}
+
+impl PoolMethod {
+    /// Its name in documents: `enumeration` or `exchange`.
+    pub fn name(self) -> &'static str {
+        match self {
+            PoolMethod::Enumeration => "enumeration",
+            PoolMethod::Exchange => "exchange",
+        }
+    }
 }
 
 /// The group chosen from a pool.
@@ -201,14 +205,9 @@ impl<'a> Pool<'a> {
                 ),
             });
         }
-        let groups = binomial(self.usable.len(), n);
-        let (group, evaluations, method) = if groups <= options.enumeration_limit as u128 {
-            let (group, _) = self.enumerate(criterion, n);
-            (group, groups as usize, PoolMethod::Enumeration)
-        } else {
-            let (group, evaluations) = self.exchange_restarts(criterion, n, options)?;
-            (group, evaluations, PoolMethod::Exchange)
-        };
+        let value = |group: &[usize]| self.value(criterion, group);
+        let chosen = exchange::best(self.usable.len(), n, options, &value);
+        let (group, evaluations, method) = (chosen.group, chosen.evaluations, chosen.method);
         let mut indices: Vec<usize> = group.iter().map(|&k| self.usable[k]).collect();
         indices.sort_unstable();
         let value = self.evaluator.value(criterion, &self.postures(&indices));
@@ -237,111 +236,6 @@ impl<'a> Pool<'a> {
         self.evaluator
             .value_from_information(criterion, &information, classical)
     }
-
-    /// The best group of every group of `n` usable postures (lexicographic order, the first on
-    /// ties), and its value.
-    fn enumerate(&self, criterion: Criterion, n: usize) -> (Vec<usize>, f64) {
-        let u = self.usable.len();
-        let mut group: Vec<usize> = (0..n).collect();
-        let mut best = (group.clone(), self.value(criterion, &group));
-        while next_combination(&mut group, u) {
-            let v = self.value(criterion, &group);
-            if v < best.1 {
-                best = (group.clone(), v);
-            }
-        }
-        best
-    }
-
-    /// The best of the exchange runs (the lowest run index on ties) and the evaluations of all.
-    fn exchange_restarts(
-        &self,
-        criterion: Criterion,
-        n: usize,
-        options: &PoolOptions,
-    ) -> Result<(Vec<usize>, usize)> {
-        let runs: Vec<(Vec<usize>, f64, usize)> = (0..options.restarts)
-            .into_par_iter()
-            .map(|r| {
-                let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
-                rng.set_stream(r as u64);
-                let start = rand::seq::index::sample(&mut rng, self.usable.len(), n).into_vec();
-                self.exchange(criterion, start)
-            })
-            .collect();
-        let evaluations = runs.iter().map(|r| r.2).sum();
-        let best = runs
-            .into_iter()
-            .reduce(|best, run| if run.1 < best.1 { run } else { best })
-            .expect("at least one restart");
-        Ok((best.0, evaluations))
-    }
-
-    /// One modified Fedorov run from `group`: its end group, value and evaluations.
-    fn exchange(&self, criterion: Criterion, mut group: Vec<usize>) -> (Vec<usize>, f64, usize) {
-        let mut in_group = vec![false; self.usable.len()];
-        group.iter().for_each(|&k| in_group[k] = true);
-        let mut value = self.value(criterion, &group);
-        let mut evaluations = 1;
-        for _ in 0..MAX_PASSES {
-            let mut exchanged = false;
-            for slot in 0..group.len() {
-                let out = group[slot];
-                let mut best: Option<(usize, f64)> = None;
-                for candidate in (0..self.usable.len()).filter(|&j| !in_group[j]) {
-                    group[slot] = candidate;
-                    let v = self.value(criterion, &group);
-                    evaluations += 1;
-                    if improves(v, best.map_or(value, |b| b.1)) {
-                        best = Some((candidate, v));
-                    }
-                }
-                group[slot] = out;
-                if let Some((candidate, v)) = best {
-                    in_group[out] = false;
-                    in_group[candidate] = true;
-                    group[slot] = candidate;
-                    value = v;
-                    exchanged = true;
-                }
-            }
-            if !exchanged {
-                break;
-            }
-        }
-        (group, value, evaluations)
-    }
-}
-
-/// Whether `v` is lower than `than` by more than rounding (so an exchange loop cannot cycle).
-fn improves(v: f64, than: f64) -> bool {
-    v < than && (than.is_infinite() || than - v > 1e-12 * than.abs())
-}
-
-/// The next combination of `group.len()` of `0..u` in lexicographic order; false after the last.
-fn next_combination(group: &mut [usize], u: usize) -> bool {
-    let n = group.len();
-    let Some(i) = (0..n).rev().find(|&i| group[i] < u - n + i) else {
-        return false;
-    };
-    group[i] += 1;
-    for k in i + 1..n {
-        group[k] = group[k - 1] + 1;
-    }
-    true
-}
-
-/// `C(u, n)`, `u128::MAX` when larger.
-fn binomial(u: usize, n: usize) -> u128 {
-    if n > u {
-        return 0;
-    }
-    // C(u, k + 1) = C(u, k) (u - k) / (k + 1), exact in integers.
-    (0..n.min(u - n))
-        .try_fold(1u128, |c, k| {
-            c.checked_mul((u - k) as u128).map(|p| p / (k as u128 + 1))
-        })
-        .unwrap_or(u128::MAX)
 }
 
 fn pool_error(message: String) -> Error {
@@ -377,23 +271,5 @@ mod tests {
             1.0,
         );
         assert_eq!(none, f64::INFINITY, "no information");
-    }
-
-    #[test]
-    fn combinations_are_all_visited_once_in_order() {
-        let mut g = vec![0, 1, 2];
-        let mut count = 1;
-        let mut last = g.clone();
-        while next_combination(&mut g, 6) {
-            assert!(g > last && g.windows(2).all(|w| w[0] < w[1]) && g[2] < 6);
-            last = g.clone();
-            count += 1;
-        }
-        assert_eq!(count, binomial(6, 3));
-        assert_eq!(count, 20);
-        assert_eq!(binomial(1000, 6), 1_368_173_298_991_500);
-        assert_eq!(binomial(12, 6), 924);
-        assert_eq!(binomial(5, 6), 0);
-        assert_eq!(binomial(10_000, 60), u128::MAX);
     }
 }

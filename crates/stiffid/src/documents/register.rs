@@ -1,8 +1,8 @@
 //! The documents of the register and calibrate jobs ([`crate::jobs::register`],
-//! [`crate::jobs::calibrate`]): `stiffid register --json`, `stiffid calibrate-cell --json`,
-//! Python's `register(...)` and `calibrate_cell(...)`.
+//! [`crate::jobs::calibrate`]): `stiffid register --json`, `stiffid register --postures N
+//! --json`, `stiffid calibrate-cell --json`, Python's `register(...)` and `calibrate_cell(...)`.
 
-use super::mm;
+use super::{degrees, mm};
 use crate::jobs::{calibrate, register};
 use nalgebra::{Isometry3, Vector3};
 use serde::Serialize;
@@ -21,10 +21,9 @@ pub struct Transform {
     pub xyz_mm: [f64; 3],
     /// Fixed-axis roll, pitch, yaw, deg (as the setup's `base_from_tracker`).
     pub rpy_deg: [f64; 3],
-    /// Standard deviation of the translation, base frame, mm (linearised, from the residuals).
-    pub translation_std_mm: [f64; 3],
-    /// Standard deviation of the rotation about the base x, y, z axes, deg.
-    pub rotation_std_deg: [f64; 3],
+    /// Standard deviations (linearised, from the residuals).
+    #[serde(flatten)]
+    pub std: TransformStd,
 }
 
 impl Transform {
@@ -34,8 +33,7 @@ impl Transform {
         Transform {
             xyz_mm: mm3(&base_from_tracker.translation.vector),
             rpy_deg: [r, p, y].map(f64::to_degrees),
-            translation_std_mm: [mm(std[0]), mm(std[1]), mm(std[2])],
-            rotation_std_deg: [std[3], std[4], std[5]].map(f64::to_degrees),
+            std: TransformStd::new(std),
         }
     }
 }
@@ -187,6 +185,112 @@ impl Calibration {
             readings: report.readings,
             iterations: fit.iterations,
             fragment,
+        }
+    }
+}
+
+/// The registration postures proposed (`stiffid register --postures N --json`, Python's
+/// `register(setup, postures=N)`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Proposal {
+    /// The setup as given.
+    pub setup: String,
+    /// The seed of the candidates, the exchange runs and the random groups.
+    pub seed: u64,
+    /// The postures, `R1`, `R2`, ...: axis angles, deg.
+    pub postures: Vec<ProposedPosture>,
+    /// Measuring points read per posture.
+    pub measuring_points: usize,
+    /// The tracker noise per coordinate of one reading (the setup's, level multiple 1), mm.
+    pub noise_std_mm: f64,
+    /// Predicted standard deviations of the transform at that noise (linearised).
+    #[serde(flatten)]
+    pub std: TransformStd,
+    /// The criterion minimised: the root of the summed variances of the three rotation angles,
+    /// deg.
+    pub rotation_std_total_deg: f64,
+    /// The same, median over 101 groups of as many feasible candidates drawn at random, deg.
+    pub random_median_rotation_std_total_deg: f64,
+    /// Candidate postures drawn in the bounds.
+    pub candidates: usize,
+    /// Candidates that pass the cell's checks.
+    pub feasible: usize,
+    /// The cell's checks the postures pass (those that apply without the load).
+    pub checks: Vec<&'static str>,
+    /// How the group was chosen (`enumeration` or `exchange`).
+    pub method: &'static str,
+    /// Groups evaluated.
+    pub evaluations: usize,
+    /// The readings CSV to fill in: one row per posture and measuring point, the tracker's
+    /// columns empty.
+    pub readings_template: String,
+}
+
+/// A posture proposed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ProposedPosture {
+    /// Its label, `R1`, `R2`, ...
+    pub posture: String,
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+}
+
+/// Standard deviations of a transform's translation and rotation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct TransformStd {
+    /// Standard deviation of the translation, base frame, mm (linearised: from the residuals
+    /// of a fit, from the tracker noise for proposed postures).
+    pub translation_std_mm: [f64; 3],
+    /// Standard deviation of the rotation about the base x, y, z axes, deg.
+    pub rotation_std_deg: [f64; 3],
+}
+
+impl TransformStd {
+    /// Of the standard deviations `std` (m, then rad).
+    pub fn new(std: [f64; 6]) -> Self {
+        TransformStd {
+            translation_std_mm: [mm(std[0]), mm(std[1]), mm(std[2])],
+            rotation_std_deg: [std[3], std[4], std[5]].map(f64::to_degrees),
+        }
+    }
+}
+
+impl Proposal {
+    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
+    pub fn new(report: &register::DesignReport, setup_name: &str) -> Self {
+        let d = &report.design;
+        let postures: Vec<ProposedPosture> = (degrees(&d.postures).into_iter().enumerate())
+            .map(|(i, q_deg)| ProposedPosture {
+                posture: format!("R{}", i + 1),
+                q_deg,
+            })
+            .collect();
+        let points = report.measuring_points;
+        let mut template = crate::formats::readings::header() + "\n";
+        for p in &postures {
+            let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:.6}")).collect();
+            for point in 1..=points {
+                template += &format!("{},{point},{},,,\n", p.posture, q.join(","));
+            }
+        }
+        Proposal {
+            setup: setup_name.to_string(),
+            seed: report.seed,
+            postures,
+            measuring_points: points,
+            noise_std_mm: mm(d.noise_std),
+            std: TransformStd::new(d.std().into()),
+            rotation_std_total_deg: d.rotation_std.to_degrees(),
+            random_median_rotation_std_total_deg: d.random_median_rotation_std.to_degrees(),
+            candidates: d.candidates,
+            feasible: d.feasible,
+            checks: report.checks.iter().map(|k| k.key()).collect(),
+            method: d.method.name(),
+            evaluations: d.evaluations,
+            readings_template: template,
         }
     }
 }

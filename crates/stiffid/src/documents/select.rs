@@ -6,7 +6,7 @@ use super::feasibility::describe;
 use super::{degrees, finite};
 use crate::choice::Choice;
 use crate::design::target::{TargetOutcome, TargetStep};
-use crate::design::{PoolMethod, Termination};
+use crate::design::Termination;
 use crate::jobs::select::{PoolReport, Report, Unconstrained};
 use crate::Setup;
 use serde::Serialize;
@@ -205,10 +205,7 @@ impl From<&PoolReport> for Pool {
                     reason: s.checks.iter().map(describe).collect::<Vec<_>>().join("; "),
                 })
                 .collect(),
-            method: match p.method {
-                PoolMethod::Enumeration => "enumeration",
-                PoolMethod::Exchange => "exchange",
-            },
+            method: p.method.name(),
             chosen: p.chosen.clone(),
         }
     }

@@ -1,11 +1,14 @@
 //! The register job: the laser tracker's transform to the robot base from measuring points read
 //! by the tracker at known axis angles ([`crate::register`]: Umeyama's least-squares rigid
-//! transform), its residuals and standard deviation. The readings the register and calibrate
+//! transform), its residuals and standard deviation; or the postures to register in
+//! ([`propose`], [`crate::register::design`]). The readings the register and calibrate
 //! jobs share ([`Request`], [`read`]) live here.
 
 use super::identify::in_data;
 use super::Warning;
+use crate::cell::{CheckKind, Checker};
 use crate::formats::readings::{self, Readings};
+use crate::register::design::{self, Design};
 use crate::register::{self, Registration};
 use crate::setup::plausibility;
 use crate::{Result, Setup};
@@ -69,5 +72,51 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         readings: data,
         registration,
         warnings,
+    })
+}
+
+/// Registration postures to propose: `stiffid register --postures N`.
+pub struct DesignRequest<'a> {
+    /// The setup: robot, tool (its measuring points), bounds, cell, tracker, noise.
+    pub setup: &'a Setup,
+    /// How many postures (1 to [`design::MAX_POSTURES`]).
+    pub postures: usize,
+    /// The seed, the candidates and the exchange runs.
+    pub options: design::Options,
+}
+
+/// The registration postures proposed.
+#[derive(Debug, Clone)]
+pub struct DesignReport {
+    /// The postures and their predicted covariance ([`design::design`]).
+    pub design: Design,
+    /// The cell's checks the postures pass (those that apply without the load).
+    pub checks: Vec<CheckKind>,
+    /// Measuring points read per posture.
+    pub measuring_points: usize,
+    /// The seed.
+    pub seed: u64,
+    /// None today: the job's warnings, for the pattern ([`crate::jobs`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// Proposes the registration postures that minimise the rotation's standard deviation
+/// ([`design::design`]).
+///
+/// # Errors
+/// Those of [`design::design`].
+pub fn propose(request: &DesignRequest<'_>) -> Result<DesignReport> {
+    let design = design::design(request.setup, request.postures, &request.options)?;
+    let checker = Checker::new(request.setup);
+    let checks = (checker.kinds().iter())
+        .filter(|k| !design::LOAD_CHECKS.contains(k))
+        .copied()
+        .collect();
+    Ok(DesignReport {
+        design,
+        checks,
+        measuring_points: request.setup.tool().measuring_points.len(),
+        seed: request.options.seed,
+        warnings: Vec::new(),
     })
 }

@@ -35,6 +35,7 @@ mod pool;
 mod prior;
 mod process_forces;
 mod programs;
+mod register_postures;
 mod search;
 mod setup_builder;
 mod simulate;
