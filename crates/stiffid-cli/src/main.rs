@@ -59,7 +59,7 @@ enum Command {
     /// unloaded readings: each point's shift with its standard deviation, the robot's unloaded
     /// absolute error, the corrected fragment.
     CalibrateCell(commands::calibrate_cell::Args),
-    /// The mean cutting force of every operation of a process file (milling, drilling), feed frame.
+    /// The mean cutting force and moment (about the tool tip) of every operation of a process file (milling, drilling), feed frame.
     Force(commands::force::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),

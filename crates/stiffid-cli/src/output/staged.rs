@@ -234,22 +234,28 @@ fn create_new(tmp: &Path, target: &Path) -> Result<()> {
 mod tests {
     use super::*;
 
-    /// A staged replacement of a file the run read is refused at commit, even when the output was
-    /// prepared before the input was read, and the input keeps its bytes.
+    /// A staged replacement of a file the run read is caught by the commit's guard, even when the
+    /// output was staged before the input was read. (The guard is tested on its own: `commit`
+    /// works on the process's staged steps, which other tests of this binary use in parallel.)
     #[test]
-    fn commit_never_replaces_an_input() {
-        let dir = std::env::temp_dir().join(format!("stiffid-staged-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let input = dir.join("data.csv");
-        std::fs::write(&input, "kept").unwrap();
-        let (tmp, _file) = super::super::target::temporary(&dir).unwrap();
-        std::fs::write(&tmp, "new").unwrap();
-        replace(tmp.clone(), input.canonicalize().unwrap());
+    fn the_commit_guard_catches_a_staged_input() {
+        // A file that outlives the test (a removed one's inode could be taken by another test's
+        // directory, which would then look like this input).
+        let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
+        let input = input.canonicalize().unwrap();
+        let other = std::env::temp_dir().join("stiffid-no-such-output.csv");
+        let step = |target: &Path| Step::Replace {
+            tmp: other.with_extension("tmp"),
+            target: target.to_path_buf(),
+        };
+        let steps = [step(&other), step(&input)];
+        assert!(over_an_input(&steps).is_none(), "not read yet");
         crate::load::open(&input).unwrap();
-        let error = commit().unwrap_err().to_string();
-        assert!(error.contains("input file"), "{error}");
-        assert_eq!(std::fs::read_to_string(&input).unwrap(), "kept");
-        assert!(!tmp.exists(), "the staged file is removed");
-        std::fs::remove_dir_all(dir).unwrap();
+        let error = over_an_input(&steps).unwrap().to_string();
+        assert!(
+            error.contains("input file") && error.contains("Cargo.toml"),
+            "{error}"
+        );
+        assert!(over_an_input(&steps[..1]).is_none(), "another file");
     }
 }

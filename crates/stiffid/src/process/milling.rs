@@ -20,6 +20,19 @@
 //! - `G_y = c/4 [K_tc (2psi - sin 2psi) + K_rc cos 2psi] - K_te cos psi - K_re sin psi`
 //! - `G_z = -K_ac c cos psi + K_ae psi`
 //!
+//! ## The mean moment about the tool tip (closed form)
+//! The flute's point at immersion `psi` lies at `R (sin psi, cos psi)` (`R = D / 2`) in the feed
+//! frame's `x`-`y` plane, at height `z` above the tip. Its force's moment about the tip is
+//! `r x dF`: about the axis `R dF_t` (the radial force passes through the axis), across it
+//! `R cos(psi) dF_a - z dF_y` and `-R sin(psi) dF_a + z dF_x`. Every height sweeps the immersion
+//! once per revolution, so the mean is `N a_p / (2 pi) R [H(psi_ex) - H(psi_st)]` plus
+//! `a_p / 2 (z x F_mean)`, with
+//! - `H_x = K_ac c sin^2(psi) / 2 + K_ae sin psi`,
+//! - `H_y = -(K_ac c (psi / 2 - sin 2psi / 4) - K_ae cos psi)`,
+//! - `H_z = -K_tc c cos psi + K_te psi` (the cutting torque `T = R N a_p / (2 pi) [H_z]`),
+//!
+//! the axial terms turned around for a left-hand helix.
+//!
 //! ## The instantaneous force and its peak
 //! At the spindle angle `phi` flute `j` spans `psi` from `phi + 2 pi j / N - k_b a_p` to
 //! `phi + 2 pi j / N` along the axial depth, so its force is `[G]` over the part of that span inside
@@ -130,6 +143,34 @@ impl Milling {
         let (st, ex) = self.immersion();
         let g = self.antiderivative(ex) - self.antiderivative(st);
         g * (self.flutes as f64 * self.axial_depth / (2.0 * PI))
+    }
+
+    /// The mean moment on the tool over one revolution about the tool tip (the TCP: on the tool
+    /// axis at the bottom of the cut), feed frame, Nm (closed form, module docs): the cutting
+    /// torque about the spindle axis, and the moments of the lateral forces acting up the flutes
+    /// (on average at `a_p / 2` above the tip) and of the axial forces acting at the radius.
+    pub fn mean_moment(&self) -> Vector3<f64> {
+        let (st, ex) = self.immersion();
+        let h = self.moment_antiderivative(ex) - self.moment_antiderivative(st);
+        let per_revolution = self.flutes as f64 * self.axial_depth / (2.0 * PI);
+        let f = self.mean_force();
+        let lever = Vector3::new(-f.y, f.x, 0.0) * (self.axial_depth / 2.0);
+        h * (per_revolution * self.diameter / 2.0) + lever
+    }
+
+    /// `H(psi)`: the antiderivative over the immersion angle of the moment per unit edge length
+    /// and unit radius of the forces at the flute's point `R (sin psi, cos psi)` of the tip
+    /// plane: `[cos(psi) dF_a, -sin(psi) dF_a, dF_t]` (module docs), N.
+    fn moment_antiderivative(&self, psi: f64) -> Vector3<f64> {
+        let k = &self.coefficients;
+        let c = self.feed_per_tooth;
+        let (s, co) = psi.sin_cos();
+        let sign = self.axial_sign();
+        Vector3::new(
+            sign * (k.k_ac * c * s * s / 2.0 + k.k_ae * s),
+            -sign * (k.k_ac * c * (psi / 2.0 - (2.0 * psi).sin() / 4.0) - k.k_ae * co),
+            -k.k_tc * c * co + k.k_te * psi,
+        )
     }
 
     /// The force on the tool at spindle angle `phi` (rad), feed frame, N (module docs).

@@ -65,7 +65,7 @@ impl Operation {
     /// The mean force (N) and moment (Nm) on the tool, feed frame.
     pub fn mean_wrench(&self) -> (Vector3<f64>, Vector3<f64>) {
         match &self.kind {
-            Kind::Milling(m) => (m.mean_force(), Vector3::zeros()),
+            Kind::Milling(m) => (m.mean_force(), m.mean_moment()),
             Kind::Drilling(d) => (d.force(), d.moment()),
         }
     }
@@ -112,7 +112,8 @@ pub struct OperationForce {
     pub kind: &'static str,
     /// The mean force on the tool over one revolution, feed frame `[feed, normal, axial]`, N.
     pub mean_force_n: [f64; 3],
-    /// The mean moment on the tool, feed frame, Nm (drilling's torque about the axis).
+    /// The mean moment on the tool about the tool tip, feed frame, Nm (milling: the cutting
+    /// torque and the moments of the forces up the flutes; drilling: the torque about the axis).
     pub mean_moment_nm: [f64; 3],
     /// Milling, when asked: the force of largest magnitude over one revolution at the stated
     /// resolution, feed frame, N.

@@ -89,6 +89,16 @@ fn integrate(f: &dyn Fn(f64) -> Vector3<f64>, a: f64, b: f64, breaks: &[f64]) ->
 /// every flute, every height of the edge (Gauss-Legendre over the axial depth), and the spindle
 /// angle split where a flute's point enters or leaves the immersion.
 fn numerical_mean(m: &Milling) -> Vector3<f64> {
+    numerical(m, false)
+}
+
+/// [`numerical_mean`] of the moment about the tool tip: each edge element's force `dF` at its
+/// point `r = (R sin psi, R cos psi, z)` of the feed frame gives `r x dF`.
+fn numerical_mean_moment(m: &Milling) -> Vector3<f64> {
+    numerical(m, true)
+}
+
+fn numerical(m: &Milling, moment: bool) -> Vector3<f64> {
     let k = &m.coefficients;
     let (st, ex) = m.immersion();
     let n = m.flutes as usize;
@@ -121,7 +131,12 @@ fn numerical_mean(m: &Milling) -> Vector3<f64> {
             for j in 0..n {
                 let psi = (phi + j as f64 * pitch - lag).rem_euclid(2.0 * PI);
                 if psi >= st && psi <= ex {
-                    f += per_length(psi);
+                    let r = m.diameter / 2.0;
+                    let point = Vector3::new(r * psi.sin(), r * psi.cos(), z);
+                    f += match moment {
+                        true => point.cross(&per_length(psi)),
+                        false => per_length(psi),
+                    };
                 }
             }
             f
@@ -147,17 +162,20 @@ fn closed_form_mean_equals_the_integrated_instantaneous_model() {
         (12.0, Mode::Up, -30.0, 1),
     ] {
         let m = cut(radial, mode, helix, flutes);
-        let closed = m.mean_force();
-        let numeric = numerical_mean(&m);
-        let scale = closed.norm();
-        assert!(scale > 10.0, "{closed}");
-        for i in 0..3 {
-            assert!(
-                (closed[i] - numeric[i]).abs() <= 1e-9 * scale,
-                "{radial} mm {mode:?} {helix} deg {flutes} flutes, component {i}: {} vs {}",
-                closed[i],
-                numeric[i]
-            );
+        for (closed, numeric) in [
+            (m.mean_force(), numerical_mean(&m)),
+            (m.mean_moment(), numerical_mean_moment(&m)),
+        ] {
+            let scale = closed.norm();
+            assert!(scale > 0.1, "{closed}");
+            for i in 0..3 {
+                assert!(
+                    (closed[i] - numeric[i]).abs() <= 1e-9 * scale,
+                    "{radial} mm {mode:?} {helix} deg {flutes} flutes, component {i}: {} vs {}",
+                    closed[i],
+                    numeric[i]
+                );
+            }
         }
     }
 }
@@ -383,6 +401,13 @@ fn el_hofy_slot_milling_example_gives_the_published_mean_force_and_power() {
     };
     let mean = cutter.mean_force();
     assert_relative_eq!(mean.y, f_mt * PI / 4.0, max_relative = 1e-9);
+    // The closed-form mean torque about the spindle turns at 150 rpm with the published power.
+    let torque = cutter.mean_moment().z;
+    let torque_power_kw = torque * rpm * 2.0 * PI / 60.0 / 1e3;
+    assert!(
+        (torque_power_kw - 0.24).abs() < 0.005,
+        "T {torque} Nm: {torque_power_kw} kW, published 0.24 kW"
+    );
     assert!(
         mean.x.abs() < 1e-9 * mean.y && mean.z.abs() < 1e-9 * mean.y,
         "{mean}"
