@@ -19,6 +19,7 @@ mod ik;
 mod machining;
 mod measure;
 mod model;
+mod predict;
 mod register;
 mod robot;
 mod setup;
@@ -41,6 +42,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
+    m.add_function(wrap_pyfunction!(predict::predict, m)?)?;
     m.add_function(wrap_pyfunction!(cartesian::cartesian_compliance, m)?)?;
     m.add_function(wrap_pyfunction!(cartesian::cartesian_stiffness, m)?)?;
     m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;

@@ -11,6 +11,8 @@ import json
 import jsonschema
 import pytest
 
+import stiffid
+
 from conftest import FANUC_DATA, REPO
 
 SCHEMAS = REPO / "docs" / "schemas"
@@ -67,6 +69,9 @@ def test_kinematics_and_predict(cli):
             "--wrench", "100,-50,200,1,2,3", "--stiffness", example("milling/stiffness.json"), "--json")
     assert isinstance(p["tcp_deflection_std_mm"], list)
     assert_valid("predict", p)
+    mine = stiffid.predict(stiffid.Setup.builtin("fanuc-r2000ic-165f"), [0, 10, -20, 0, 30, 0],
+                           [100, -50, 200, 1, 2, 3], stiffness_nm_per_rad=example("milling/stiffness.json"))
+    assert_valid("predict", mine)
 
 
 def test_evaluate_and_select(cli, tmp_path, group):

@@ -2,7 +2,7 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::{kinematics, predict};
+use super::kinematics;
 use crate::output::{self, json};
 use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
@@ -70,7 +70,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "kinematics" => closed::<kinematics::Report>(),
         "evaluate" => closed::<stiffid::documents::evaluate::Document>(),
         "select" => closed::<stiffid::documents::select::Document>(),
-        "predict" => closed::<predict::PredictJson>(),
+        "predict" => closed::<stiffid::documents::predict::Document>(),
         "identify" => closed::<stiffid::documents::identify::Document>(),
         "identify-model" => closed::<stiffid::documents::identify_model::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),

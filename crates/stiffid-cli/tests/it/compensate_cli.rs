@@ -34,7 +34,7 @@ fn a_tool_frame_wrench_predicts_what_the_rotated_base_wrench_does() {
         "0,0,300",
         "--json",
     ]));
-    let base: Vec<String> = numbers(&tool["wrench_base_frame"])
+    let base: Vec<String> = numbers(&tool["wrench_base_frame_n_nm"])
         .iter()
         .map(|v| format!("{v:.12}"))
         .collect();

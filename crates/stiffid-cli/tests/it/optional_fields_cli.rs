@@ -138,7 +138,7 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_simulations_say_so() {
         &o,
         &[
             "nominal_stiffness_nm_per_rad",
-            "predict without --stiffness FILE",
+            "predict without a stiffness",
         ],
     );
     let k = dir.join("k.json");

@@ -335,7 +335,7 @@ def cartesian_compliance(
     q_deg: ArrayLike,
     *,
     point_mm: Optional[ArrayLike] = None,
-    stiffness_nm_per_rad: Optional[Union[ArrayLike, str, os.PathLike[str]]] = None,
+    stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
 ) -> _Array:
     """C_x (6, 6) or (n, 6, 6), SI, base frame: [dp; dphi] = C_x [f; m]."""
 
@@ -344,9 +344,21 @@ def cartesian_stiffness(
     q_deg: ArrayLike,
     *,
     point_mm: Optional[ArrayLike] = None,
-    stiffness_nm_per_rad: Optional[Union[ArrayLike, str, os.PathLike[str]]] = None,
+    stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
 ) -> _Array:
     """K_x = C_x^-1 (6, 6) or (n, 6, 6), SI, base frame; NaN where singular."""
+
+def predict(
+    setup: Setup,
+    q_deg: ArrayLike,
+    wrench: ArrayLike,
+    *,
+    at_mm: Optional[ArrayLike] = None,
+    frame: Literal["base", "tool"] = "base",
+    stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
+    compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
+) -> dict[str, Any]:
+    """The predict document (docs/schemas/predict.schema.json), equal to `stiffid predict --json`."""
 
 def deflection(
     setup: Setup,

@@ -18,6 +18,7 @@ pub mod force;
 pub mod identify;
 pub mod identify_model;
 pub mod parameters;
+pub mod predict;
 pub mod register;
 pub mod reproduce;
 pub mod select;
