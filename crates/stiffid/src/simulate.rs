@@ -9,6 +9,10 @@
 //! `|k_identified - k_true| / k_true` of every joint. Mean and standard deviation over the runs per
 //! group, level and joint, beside the first-order prediction of [`crate::design::criteria`].
 //!
+//! With load steps (`[loading] steps_n`), every run draws each coordinate's unloaded reading and
+//! its reading at every step with the noise, and solves the least squares over every step's rows
+//! through the displacement at the rope load they reduce to exactly ([`crate::steps::design`]).
+//!
 //! With virtual springs in the setup's model ([`crate::model`]) the truth is the nominal compliance
 //! of every parameter, the exact displacements are `Psi h_true` (one column per parameter,
 //! [`rope_observation_matrix`]), every run identifies every parameter by the Householder QR of that
@@ -24,6 +28,7 @@ use crate::lsq::Factor;
 use crate::model::Compliance;
 use crate::observation::rope_observation_matrix;
 use crate::setup::Setup;
+use crate::steps::design::StepWeights;
 use crate::stiffness::rope_displacements;
 use crate::{limits, Error, Result};
 use nalgebra::{DMatrix, DVector, Vector6};
@@ -214,13 +219,14 @@ fn add_springs(
 /// memory held is `levels x runs` results whatever the number of groups.
 fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> Vec<Vec<f64>> {
     let runs = options.runs;
+    let weights = StepWeights::new(setup.load().load, setup.load_steps());
     (0..setup.noise().levels.len() * runs)
         .into_par_iter()
         .map(|i| {
             let (l, r) = (i / runs, i % runs);
             let sigma = (setup.noise().variance * setup.noise().levels[l]).sqrt();
             let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
-            identify_once(group, sigma, &mut rng)
+            identify_once(group, sigma, weights.as_ref(), &mut rng)
         })
         .collect()
 }
@@ -271,12 +277,25 @@ fn prepare_model(setup: &Setup, psi: DMatrix<f64>, h: &DVector<f64>) -> Result<P
     })
 }
 
-/// Identified stiffness (SI, every parameter) of one run: the exact displacements plus noise of
-/// standard deviation `sigma` (m) on every coordinate, solved with the group's factor.
-fn identify_once(group: &Prepared, sigma: f64, rng: &mut ChaCha8Rng) -> Vec<f64> {
-    let noisy = group
-        .exact
-        .map(|d| d + sigma * rng.sample::<f64, _>(StandardNormal));
+/// Identified stiffness (SI, every parameter) of one run, solved with the group's factor: the
+/// exact displacements plus noise of standard deviation `sigma` (m) on every coordinate; with load
+/// steps, each coordinate's unloaded and step readings drawn with that noise and combined into
+/// the least squares' displacement at the rope load ([`StepWeights`]).
+fn identify_once(
+    group: &Prepared,
+    sigma: f64,
+    weights: Option<&StepWeights>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<f64> {
+    let mut normal = || rng.sample::<f64, _>(StandardNormal);
+    let noisy = match weights {
+        None => group.exact.map(|d| d + sigma * normal()),
+        Some(w) => group.exact.map(|d| {
+            let reference = w.reference * normal();
+            let steps: f64 = w.steps.iter().map(|w| w * normal()).sum();
+            d + sigma * (reference + steps)
+        }),
+    };
     match &group.solver {
         Solver::Drives(factor) => factor.solve(&noisy).iter().map(|h| 1.0 / h).collect(),
         Solver::Model(q, r) => {

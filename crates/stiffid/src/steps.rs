@@ -26,6 +26,11 @@
 //! reference's error); `sum |d_fall - d_rise|^2 / (2 sigma^2) ~ chi2(3 pairs)`. A p-value below
 //! [`crate::identify::adequacy::SIGNIFICANCE`] flags the posture: the effect exceeds what the
 //! tracker noise explains.
+//!
+//! The design side of the steps (`[loading] steps_n`: what they are worth in the criteria and
+//! the Monte Carlo) is [`design`].
+
+pub mod design;
 
 use crate::deflection::Frame;
 use crate::formats::readings::{Load, Readings};

@@ -243,6 +243,13 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     }
     w.heading(2, "Predicted accuracy");
     w.paragraph("The predicted mean deviation rate |k_identified - k_true| / k_true of each joint (first order, `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)`) at the setup's noise levels, if every posture is measured as planned.");
+    if !s.load_steps().is_empty() {
+        w.paragraph(&format!(
+            "With the load steps, every reading carries the tracker noise and each posture's unloaded reading is shared by its steps: the least squares over every step is worth one load of {} N with {} times the variance of one reading per displacement coordinate (docs/model.md, load steps in the design).",
+            s.load().load,
+            num(s.displacement_variance() / s.noise().variance)
+        ));
+    }
     w.table(&accuracy(plan));
     if !s.model().is_drives_only() {
         w.paragraph("Every parameter of the setup's model: whether the group identifies it (the column-scaled rank of the observation matrix) and its predicted deviation rate at noise level multiple 1. A parameter the group does not identify cannot be fitted from these measurements, whatever the noise: add postures that load it differently.");
@@ -262,7 +269,7 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(2, "Steps, for each posture");
     w.list(&[
         "Move the robot to the posture's axis angles (the controller's, degrees) and check the rope runs freely from the loading point to the pulley (direction and length below).".into(),
-        "Measure every measuring point with the tracker unloaded, hang the load, measure again: the difference is the displacement.".into(),
+        measure_item(s),
         "Compare with the expected displacement below (nominal stiffness): a measured value several times larger or smaller points at a wrong point, a slipping rope or a wrong load.".into(),
         "If a posture cannot be measured, the last column says what the group predicts without it.".into(),
     ]);
@@ -273,6 +280,22 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
         w.figure(f);
     }
     w.paragraph("Files: plan.csv (the postures table, one row per posture, machine-readable), figures/ (SVG and PNG).");
+}
+
+/// What to read in each posture: unloaded and loaded, or unloaded and at every load step of the
+/// setup (`[loading] steps_n`).
+fn measure_item(s: &stiffid::Setup) -> String {
+    let steps = s.load_steps();
+    if steps.is_empty() {
+        return "Measure every measuring point with the tracker unloaded, hang the load, measure again: the difference is the displacement.".into();
+    }
+    let levels: Vec<String> = steps.iter().map(f64::to_string).collect();
+    format!(
+        "Measure every measuring point with the tracker unloaded, then at each load step, rising: {} N ({} steps; the rope pulls the same way at every step). Write every reading, the unloaded ones with load 0, into a readings CSV with a `load_n` column (docs/reference.md, Readings CSV): each step's displacement is its reading minus the unloaded one, and at step f it is f / {} of the displacement below.",
+        levels.join(", "),
+        steps.len(),
+        s.load().load
+    )
 }
 
 /// The group's predicted deviation rate per joint at each noise level of the setup.

@@ -324,3 +324,55 @@ fn report_and_plot_write_figures_that_decode() {
     ]);
     assert_usage_error(&e, &["--force"]);
 }
+
+#[test]
+fn a_plan_with_load_steps_lists_them_and_predicts_with_them() {
+    let d = temp_dir("pool-steps");
+    let pool = write_file(&d, "pool.csv", &pool_text());
+    let text = String::from_utf8(stiffid(&["setups", "show", "zhang2021-comau-nj165"]).stdout)
+        .unwrap()
+        .replace(
+            "[loading]\n",
+            "[loading]\nsteps_n = [100, 200, 300, 400, 500]\n",
+        );
+    let setup = write_file(&d, "steps.toml", &text);
+    let plan = d.join("plan");
+    let run = |setup: &str, report: Option<&Path>| {
+        let mut args = vec![
+            "select",
+            "--setup",
+            setup,
+            "--pool",
+            pool.to_str().unwrap(),
+            "--postures",
+            "4",
+            "--json",
+        ];
+        let out = d.join(format!("best-{}.csv", report.is_some()));
+        args.extend(["--out", out.to_str().unwrap()]);
+        if let Some(r) = report {
+            args.extend(["--report", r.to_str().unwrap()]);
+        }
+        json(&stiffid(&args))
+    };
+    let stepped = run(setup.to_str().unwrap(), Some(&plan));
+    let plain = run("zhang2021-comau-nj165", None);
+    assert_eq!(
+        stepped["postures_deg"], plain["postures_deg"],
+        "the same group"
+    );
+    // F^2 (S2 + S1^2) / S2^2 with S1 = 1500 N, S2 = 550 000 N^2.
+    let factor: f64 = 250_000.0 * (550_000.0 + 2_250_000.0) / 550_000.0f64.powi(2);
+    let rates = |doc: &serde_json::Value| -> Vec<f64> {
+        crate::common::numbers(&doc["criteria"]["predicted_deviation_pct"][1])
+    };
+    for (s, p) in rates(&stepped).iter().zip(rates(&plain)) {
+        assert!((s / p - factor.sqrt()).abs() < 1e-9, "{s} {p}");
+    }
+    let html = std::fs::read_to_string(plan.join("plan.html")).unwrap();
+    assert!(
+        html.contains("at each load step, rising: 100, 200, 300, 400, 500 N (5 steps"),
+        "{}",
+        &html[..html.len().min(3000)]
+    );
+}

@@ -83,7 +83,7 @@ impl<'a> Evaluator<'a> {
             setup,
             // Without a nominal stiffness, 1 rad/Nm: the criteria that need it are NaN then.
             scaling: setup.nominal_compliance().unwrap_or(Vector6::repeat(1.0))
-                / setup.noise().sigma(),
+                / setup.displacement_variance().sqrt(),
             points_factor: points_factor(setup),
             compact_rows: (3 * setup.tool().measuring_points.len()).min(6),
             test_factor: match setup.model().is_drives_only() {
@@ -406,7 +406,7 @@ impl<'a> Evaluator<'a> {
             Factored::Six(g) => self.test_weight(g).norm_squared(),
             Factored::Wide(g) => self.wide_test_weight(g).norm_squared(),
         };
-        finite(self.setup.noise().sigma() * (sum / t as f64).sqrt())
+        finite(self.setup.displacement_variance().sqrt() * (sum / t as f64).sqrt())
     }
 
     /// `Z = R_A R^-1`: `|Z|_F = |A R^-1|_F` and `Z^T Z = R^-T A^T A R^-1`.
@@ -430,7 +430,7 @@ impl Wide {
         let scaling = setup
             .model_nominal_compliance()
             .unwrap_or_else(|| DVector::repeat(n, 1.0))
-            / setup.noise().sigma();
+            / setup.displacement_variance().sqrt();
         let a = rope_observation_matrix(setup, setup.test_postures());
         let m = a.nrows().max(n);
         let mut a = a.resize_vertically(m, 0.0);

@@ -64,6 +64,8 @@ struct LoadingFile {
     load_n: f64,
     #[serde(deserialize_with = "crate::formats::exact::array")]
     anchor_mm: [f64; 3],
+    #[serde(default)]
+    steps_n: Vec<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -284,6 +286,7 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
             load: f.loading.load_n,
             anchor: mm(&f.loading.anchor_mm),
         })
+        .with_load_steps(f.loading.steps_n)
         .with_noise(Noise {
             variance: f.noise.variance_mm2 * 1e-6,
             levels: f.noise.level_multiples,

@@ -60,6 +60,7 @@ use crate::limits::{self, JointBox};
 use crate::model::{Model, Spring};
 use crate::robot::collision::CollisionGeometry;
 use crate::robot::Bodies;
+use crate::steps::design::StepWeights;
 use crate::{Error, Result, Robot};
 use nalgebra::{Isometry3, Vector3, Vector6};
 
@@ -148,6 +149,7 @@ pub struct Setup {
     tool: Tool,
     model: Model,
     load: RopeLoad,
+    load_steps: Vec<f64>,
     noise: Noise,
     bounds: JointBox,
     nominal_stiffness: Option<Vector6<f64>>,
@@ -176,6 +178,7 @@ impl Setup {
             measuring_points: Vec::new(),
             tcp: None,
             load: None,
+            load_steps: Vec::new(),
             noise: None,
             bounds: None,
             nominal_stiffness: None,
@@ -203,6 +206,7 @@ impl Setup {
             measuring_points: self.tool.measuring_points.clone(),
             tcp: Some(self.tool.tcp),
             load: Some(self.load.clone()),
+            load_steps: self.load_steps.clone(),
             noise: Some(self.noise.clone()),
             bounds: Some(self.bounds),
             nominal_stiffness: self.nominal_stiffness,
@@ -268,6 +272,23 @@ impl Setup {
     /// Measurement noise.
     pub fn noise(&self) -> &Noise {
         &self.noise
+    }
+
+    /// The load levels applied in each posture, N, rising (`[loading] steps_n`); empty for one
+    /// load per posture, the rope load ([`crate::steps::design`]).
+    pub fn load_steps(&self) -> &[f64] {
+        &self.load_steps
+    }
+
+    /// The variance of one displacement coordinate at the rope load, at noise level multiple 1,
+    /// m^2, that gives the compliances' covariance of the design: the noise variance without
+    /// load steps; with them, that of the displacement their readings are worth
+    /// ([`crate::steps::design::StepWeights::variance_factor`] times the reading variance).
+    pub fn displacement_variance(&self) -> f64 {
+        match StepWeights::new(self.load.load, &self.load_steps) {
+            None => self.noise.variance,
+            Some(w) => self.noise.variance * w.variance_factor(),
+        }
     }
 
     /// Experiment bounds, axis coordinates.
@@ -412,6 +433,7 @@ pub struct SetupBuilder {
     measuring_points: Vec<Vector3<f64>>,
     tcp: Option<Vector3<f64>>,
     load: Option<RopeLoad>,
+    load_steps: Vec<f64>,
     noise: Option<Noise>,
     bounds: Option<JointBox>,
     nominal_stiffness: Option<Vector6<f64>>,
@@ -471,6 +493,13 @@ impl SetupBuilder {
     /// The tool centre point, flange frame, m (default the first measuring point).
     pub fn with_tcp(mut self, tcp: Vector3<f64>) -> Self {
         self.tcp = Some(tcp);
+        self
+    }
+
+    /// The load levels applied in each posture, N (positive, rising, at most
+    /// [`crate::steps::design::MAX_STEPS`]; empty: one load, the rope load).
+    pub fn with_load_steps(mut self, steps: Vec<f64>) -> Self {
+        self.load_steps = steps;
         self
     }
 
@@ -589,6 +618,7 @@ impl SetupBuilder {
         let tcp = self.tcp.or(self.measuring_points.first().copied());
         check_tool(&loading_point, &self.measuring_points, tcp)?;
         check_load(&load)?;
+        check_load_steps(&self.load_steps)?;
         check_noise(&noise)?;
         let bounds = self.bounds.unwrap_or(*self.robot.limits());
         check_bounds(&bounds, &self.robot)?;
@@ -644,6 +674,7 @@ impl SetupBuilder {
             tool,
             model,
             load,
+            load_steps: self.load_steps,
             noise,
             bounds,
             nominal_stiffness: self.nominal_stiffness,
@@ -702,6 +733,23 @@ fn check_tool(
 fn check_load(load: &RopeLoad) -> Result<()> {
     limits::check("loading.load_n", &[load.load], &limits::LOAD_N)?;
     check_points("loading.anchor_mm", std::slice::from_ref(&load.anchor))
+}
+
+fn check_load_steps(steps: &[f64]) -> Result<()> {
+    let field = "loading.steps_n";
+    limits::check_count(field, steps.len(), 0, crate::steps::design::MAX_STEPS)?;
+    limits::check(field, steps, &limits::LOAD_N)?;
+    match steps.windows(2).position(|w| w[1] <= w[0]) {
+        Some(i) => Err(invalid(
+            &format!("{field}[{}]", i + 2),
+            format!(
+                "{} after {}: expected rising load levels",
+                steps[i + 1],
+                steps[i]
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 fn check_noise(noise: &Noise) -> Result<()> {

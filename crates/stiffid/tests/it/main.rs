@@ -21,6 +21,7 @@ mod identify_streamed;
 mod jacobians;
 mod joint_box;
 mod load_steps;
+mod load_steps_design;
 mod lsq;
 mod model_fits;
 mod model_prediction;
