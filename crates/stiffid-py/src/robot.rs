@@ -3,13 +3,15 @@
 
 use crate::arrays;
 use crate::error::{self, raise, Failure};
-use nalgebra::{Matrix4, Matrix6, Vector3};
+use nalgebra::{Matrix4, Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyAny;
+use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
+use stiffid::documents::kinematics::Document;
 use stiffid::formats::postures;
 use stiffid::formats::reference::{self, Meshes};
+use stiffid::jobs::kinematics as job;
 use stiffid::limits;
 use stiffid::robot::presets;
 use stiffid::{dexterity, Coordinates};
@@ -149,6 +151,33 @@ impl Robot {
             true => Ok(k[0].into_pyobject(py)?.into_any().unbind()),
             false => Ok(arrays::vec1(py, k).into_any().unbind()),
         }
+    }
+
+    /// The kinematics job of ``stiffid kinematics`` for one posture ``q_deg`` (shape ``(6,)``,
+    /// deg, within the joint limits): returns its document (docs/schemas/kinematics.schema.json)
+    /// as a dict, equal to ``stiffid kinematics --json``: the flange pose, the point
+    /// ``point_mm``'s position (flange frame, mm; default the flange origin) and Jacobian
+    /// (``coordinates``), every joint frame's origin, and the dexterity with the characteristic
+    /// length ``characteristic_length_mm`` (``None``: the robot's own, named ``derived``).
+    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis"))]
+    fn kinematics<'py>(
+        &self,
+        py: Python<'py>,
+        q_deg: &Bound<'py, PyAny>,
+        point_mm: Option<&Bound<'py, PyAny>>,
+        characteristic_length_mm: Option<f64>,
+        coordinates: &str,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let q = Vector6::from(arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?);
+        let request = job::Request {
+            robot: &self.inner,
+            q: q.map(f64::to_radians),
+            point: point(point_mm)?,
+            characteristic_length: characteristic_length_mm.map(|l| l * 1e-3),
+            coordinates: coordinates_arg(coordinates)?,
+        };
+        let report = py.detach(|| job::run(request)).map_err(raise)?;
+        crate::documents::to_python(py, &Document::new(&report, &self.inner), &[])
     }
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;

@@ -226,3 +226,26 @@ def test_inverse_kinematics_arguments(robot):
         robot.inverse_kinematics(pose, q0, restarts=10**6)
     with pytest.raises(stiffid.InputError, match=r"q0_deg: posture 0, q5_deg = 130"):
         robot.inverse_kinematics(pose, [0, 0, -90, 0, 130, 0])
+
+
+@pytest.mark.parametrize(
+    "flags, kwargs",
+    [
+        (["--characteristic-length-mm", "1234.5", "--point-mm", "100,-50,300"],
+         dict(characteristic_length_mm=1234.5, point_mm=[100, -50, 300])),
+        (["--coordinates", "kinematic"], dict(coordinates="kinematic")),
+        # A wrist singularity: the dexterity is null in both.
+        (["--characteristic-length-mm", "1200"], dict(characteristic_length_mm=1200)),
+    ],
+)
+def test_the_kinematics_document_equals_the_command(robot, cli, flags, kwargs):
+    q = [0, 0, -90, 0, 0, 0] if kwargs.get("characteristic_length_mm") == 1200 else [10, 20, -100, 30, 40, 50]
+    theirs = cli("kinematics", "--robot", COMAU, "--q-deg", ",".join(map(str, q)), *flags, "--json")
+    mine = robot.kinematics(q, **kwargs)
+    assert mine == theirs
+    assert mine["characteristic_length_source"] == ("derived" if "characteristic_length_mm" not in kwargs else "given")
+    point, coordinates = kwargs.get("point_mm"), kwargs.get("coordinates", "axis")
+    np.testing.assert_allclose(mine["jacobian"], robot.jacobian(q, point_mm=point, coordinates=coordinates), rtol=1e-12)
+    length = kwargs.get("characteristic_length_mm")
+    k = robot.dexterity(q, point_mm=point, characteristic_length_mm=length, coordinates=coordinates)
+    assert mine["dexterity"] == (None if np.isinf(k) else pytest.approx(k, rel=1e-12))

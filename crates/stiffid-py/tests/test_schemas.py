@@ -64,6 +64,7 @@ def test_kinematics_and_predict(cli):
             "--characteristic-length-mm", "1200", "--json")
     assert k["dexterity"] is None
     assert_valid("kinematics", k)
+    assert_valid("kinematics", stiffid.Robot.preset("comau-smart5-nj165-3.0").kinematics([10, 20, -100, 30, 40, 50]))
     # A stiffness file with the compliance covariance: every standard deviation is there.
     p = cli("predict", "--setup", "fanuc-r2000ic-165f", "--q-deg", "0,10,-20,0,30,0",
             "--wrench", "100,-50,200,1,2,3", "--stiffness", example("milling/stiffness.json"), "--json")

@@ -3,9 +3,9 @@
 use crate::commands::common::choice;
 use crate::{load, output};
 use anyhow::{Context, Result};
-use schemars::JsonSchema;
-use serde::Serialize;
-use stiffid::{dexterity, limits, prior, Coordinates};
+use stiffid::documents::kinematics::Document;
+use stiffid::jobs::kinematics as job;
+use stiffid::{limits, Coordinates};
 
 /// Arguments of `stiffid kinematics`.
 #[derive(clap::Args)]
@@ -37,87 +37,26 @@ pub struct Args {
     json: bool,
 }
 
-/// `stiffid kinematics --json`: mm and degrees for positions and angles, SI (m/rad, rad/rad) for
-/// the Jacobian, rows `[v; omega]`; base frame.
-#[derive(Serialize, JsonSchema)]
-pub struct Report {
-    /// The robot's name.
-    robot: String,
-    /// Where the robot comes from (for a URDF: the file and the tip link used).
-    robot_source: String,
-    /// Axis angles q1..q6, deg.
-    q_deg: [f64; 6],
-    /// The joint coordinates of the Jacobian's columns.
-    coordinates: Coordinates,
-    /// The characteristic length of the dexterity index, mm.
-    characteristic_length_mm: f64,
-    /// Where it comes from: `given` (`--characteristic-length-mm`) or `derived` from the robot
-    /// (the length minimising the point's median dexterity over the joint limits,
-    /// `stiffid::prior::robot_characteristic_length`).
-    characteristic_length_source: &'static str,
-    /// The point of the Jacobian, flange frame, mm.
-    point_mm: [f64; 3],
-    /// The flange's origin, mm.
-    flange_position_mm: [f64; 3],
-    /// Rotation matrix of the flange frame in the base frame, row-major.
-    flange_rotation: [[f64; 3]; 3],
-    /// The point's position, mm.
-    point_position_mm: [f64; 3],
-    /// Row-major, rows vx, vy, vz (m/rad), wx, wy, wz (rad/rad); column j is joint j.
-    jacobian: [[f64; 6]; 6],
-    /// The dexterity index k(J_N) (Eq. 20): 1 for an isotropic Jacobian, larger is worse; `null`
-    /// at a singularity.
-    #[schemars(with = "Option<f64>")]
-    dexterity: f64,
-    /// Origin of each joint frame (after the joint), base frame.
-    joint_positions_mm: [[f64; 3]; 6],
-}
-
 /// Prints the kinematics of one posture.
 pub fn run(args: &Args) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
-    let (q_deg, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
-    let point_mm = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)?;
-    let point = point_mm * 1e-3;
-    let (length_mm, source) = match args.characteristic_length_mm {
-        Some(l) => {
-            let range = &limits::CHARACTERISTIC_LENGTH_MM;
-            limits::check("--characteristic-length-mm", &[l], range)?;
-            (l, "given")
-        }
-        None => {
-            let l = prior::robot_characteristic_length(&robot, &point)
-                .context("give --characteristic-length-mm")?;
-            (l * 1e3, "derived")
-        }
+    let (_, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
+    let point = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)? * 1e-3;
+    let request = job::Request {
+        robot: &robot,
+        q,
+        point,
+        characteristic_length: args.characteristic_length_mm.map(|l| l * 1e-3),
+        coordinates: args.coordinates,
     };
-    let coordinates = args.coordinates;
-    let frames = robot.frames(&q);
-    let jacobian = frames.jacobian(&point, coordinates);
-    let report = Report {
-        robot: robot.name().to_string(),
-        robot_source: robot.source().to_string(),
-        q_deg: q_deg.into(),
-        coordinates,
-        characteristic_length_mm: length_mm,
-        characteristic_length_source: source,
-        point_mm: point_mm.into(),
-        flange_position_mm: (frames.flange.translation.vector * 1e3).into(),
-        flange_rotation: rows(&frames.flange.rotation.to_rotation_matrix().into_inner()),
-        point_position_mm: (frames.point(&point) * 1e3).into(),
-        jacobian: rows(&jacobian),
-        dexterity: dexterity(&jacobian, length_mm * 1e-3),
-        joint_positions_mm: frames.joints.map(|f| (f.translation.vector * 1e3).into()),
-    };
-    output::print_json_or(args.json, &report, text)
+    let report = job::run(request).with_context(|| match args.characteristic_length_mm {
+        Some(_) => "--characteristic-length-mm",
+        None => "give --characteristic-length-mm",
+    })?;
+    output::print_json_or(args.json, &Document::new(&report, &robot), text)
 }
 
-/// A matrix as an array of rows.
-fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
-    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
-}
-
-fn text(r: &Report) -> String {
+fn text(r: &Document) -> String {
     let (unit, var) = match r.coordinates {
         Coordinates::Axis => ("axis angles", "q"),
         Coordinates::Kinematic => ("kinematic angles", "theta"),
@@ -150,8 +89,8 @@ fn text(r: &Report) -> String {
         s += "\n";
     }
     let k = match r.dexterity {
-        k if k.is_finite() => fixed(k, 4),
-        _ => "infinite (singular posture)".into(),
+        Some(k) => fixed(k, 4),
+        None => "infinite (singular posture)".into(),
     };
     let source = match r.characteristic_length_source {
         "given" => "given",
@@ -183,12 +122,6 @@ fn list<const N: usize>(values: &[f64; N], decimals: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rows_are_row_major() {
-        let m = nalgebra::Matrix2x3::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
-        assert_eq!(rows(&m), [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
-    }
 
     #[test]
     fn fixed_drops_the_sign_of_zero() {

@@ -2,7 +2,6 @@
 //! writes, generated from the types that write them; the repository ships them in
 //! `docs/schemas/NAME.schema.json` and a test keeps those equal to this command's output.
 
-use super::kinematics;
 use crate::output::{self, json};
 use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
@@ -67,7 +66,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         bail!("{name:?}: expected one of {}", names.join(", "));
     };
     let mut schema = match name {
-        "kinematics" => closed::<kinematics::Report>(),
+        "kinematics" => closed::<stiffid::documents::kinematics::Document>(),
         "evaluate" => closed::<stiffid::documents::evaluate::Document>(),
         "select" => closed::<stiffid::documents::select::Document>(),
         "predict" => closed::<stiffid::documents::predict::Document>(),

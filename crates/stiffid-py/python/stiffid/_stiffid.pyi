@@ -61,6 +61,14 @@ class Robot:
         """pose_mm (4, 4) or (n, 4, 4), base frame, translation mm: q_deg (6,) or (n, 6), iterations, position_error_mm, rotation_error_deg."""
     def characteristic_length_mm(self, point_mm: Optional[ArrayLike] = None) -> float:
         """The robot's own characteristic length, mm: minimises the point's median dexterity."""
+    def kinematics(
+        self,
+        q_deg: ArrayLike,
+        point_mm: Optional[ArrayLike] = None,
+        characteristic_length_mm: Optional[float] = None,
+        coordinates: _Coordinates = "axis",
+    ) -> dict[str, Any]:
+        """The kinematics document (docs/schemas/kinematics.schema.json), equal to `stiffid kinematics --json`."""
     @overload
     def dexterity(
         self,

@@ -17,6 +17,7 @@ pub mod feasibility;
 pub mod force;
 pub mod identify;
 pub mod identify_model;
+pub mod kinematics;
 pub mod parameters;
 pub mod predict;
 pub mod register;

@@ -28,6 +28,7 @@ pub mod evaluate;
 pub mod force;
 pub mod identify;
 pub mod identify_model;
+pub mod kinematics;
 pub mod predict;
 pub mod register;
 pub mod reproduce;
