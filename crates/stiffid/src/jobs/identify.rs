@@ -210,11 +210,8 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         folds,
         offsets,
     } = request;
-    if offsets && (how != Fit::LeastSquares || folds.is_some()) {
-        return Err(Error::InvalidField {
-            field: "offsets".into(),
-            message: "offsets are fitted by plain least squares, without cross-validation".into(),
-        });
+    if offsets {
+        check_offsets(how, folds)?;
     }
     let how_fit = How {
         fit: how,
@@ -265,6 +262,30 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     report.influential = influential(&report);
     report.warnings = warnings(&report);
     Ok(report)
+}
+
+/// Offsets are fitted by plain least squares without cross-validation: why each other choice is
+/// refused.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`offsets`) naming the choice and the reason.
+fn check_offsets(how: Fit, folds: Option<Folds>) -> Result<()> {
+    let reason = match (how, folds) {
+        (Fit::Robust(_), _) => {
+            "not with a robust fit: the offsets are eliminated by centring each posture's and point's rows on their mean, which is exact for equal weights only (the weights of a robust fit would need a weighted centring at every iteration); fit without --robust, or drop --offsets"
+        }
+        (Fit::Nonnegative, _) => {
+            "not with the non-negative fit: its standard errors and degrees of freedom would not count the offsets (3 unknowns per posture and point); fit by least squares with --offsets, or drop --offsets"
+        }
+        (_, Some(_)) => {
+            "not with cross-validation: a held-out posture's offsets are unknowns of that posture, so its deflection cannot be predicted; cross-validate without --offsets"
+        }
+        (Fit::LeastSquares, None) => return Ok(()),
+    };
+    Err(Error::InvalidField {
+        field: "offsets".into(),
+        message: reason.into(),
+    })
 }
 
 /// How to fit: the fit, the folds, the offsets.

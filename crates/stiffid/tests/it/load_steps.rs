@@ -7,7 +7,7 @@ use nalgebra::{Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::jobs::identify::{self as job, Data, Fit, Report, Request};
+use stiffid::jobs::identify::{self as job, Data, Fit, Folds, Report, Request};
 use stiffid::stiffness::rope_displacements;
 use stiffid::Setup;
 
@@ -366,4 +366,45 @@ fn worked_example_with_and_without_the_offset_term() {
     // with it they do not.
     assert!(without.adequacy.as_ref().unwrap().model_error_dominates());
     assert!(!with.adequacy.as_ref().unwrap().model_error_dominates());
+}
+
+#[test]
+fn offsets_with_a_robust_nonnegative_or_cross_validated_fit_are_refused_saying_why() {
+    let setup = paper();
+    let campaign = Campaign {
+        loads: &RISING_FALLING,
+        offset_mm: 0.02,
+        hysteresis_mm: 0.0,
+        noise_mm: 0.0,
+        seed: 1,
+    };
+    let text = campaign.readings(&setup);
+    let run = |fit: Fit, folds: Option<Folds>| {
+        job::run(Request {
+            setup: &setup,
+            data: Data::File {
+                name: "readings.csv".into(),
+                reader: text.as_bytes(),
+            },
+            fit,
+            folds,
+            offsets: true,
+        })
+        .unwrap_err()
+        .to_string()
+    };
+    let huber = run(Fit::Robust(stiffid::identify::robust::Loss::Huber), None);
+    assert!(
+        huber.starts_with("offsets: not with a robust fit"),
+        "{huber}"
+    );
+    let nnls = run(Fit::Nonnegative, None);
+    assert!(
+        nnls.starts_with("offsets: not with the non-negative fit"),
+        "{nnls}"
+    );
+    for folds in [Folds::LeaveOneOut, Folds::Count(3)] {
+        let cv = run(Fit::LeastSquares, Some(folds));
+        assert!(cv.starts_with("offsets: not with cross-validation"), "{cv}");
+    }
 }
