@@ -7,7 +7,7 @@
 //! - otherwise by the modified Fedorov exchange algorithm (Cook & Nachtsheim 1980, Technometrics
 //!   22(3)): from a seeded random group, each posture of the group in turn is exchanged for the
 //!   pool posture that lowers the criterion most, until a whole pass exchanges none; from
-//!   [`PoolOptions::restarts`] seeded groups, the best kept ([`super::exchange`]).
+//!   [`PoolOptions::restarts`] seeded groups, the best kept (`design::exchange`).
 //!
 //! Updates: the information matrix of a group is `S^T S = sum_i M_i` (6 x 6, `S` the scaled
 //! observation matrix of [`super::criteria`]) with `M_i = S_i^T S_i` of each pool posture, its

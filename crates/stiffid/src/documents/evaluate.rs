@@ -19,7 +19,7 @@ pub struct Criteria {
     /// Relative standard deviation of each drive's compliance at noise level 1,
     /// `sqrt([(S^T S)^-1]_jj)`; `null` for a setup without a nominal stiffness.
     pub relative_std: Option<[Option<f64>; 6]>,
-    /// Predicted mean deviation rate, percent, [levels][6] (`null` inside for a joint the group
+    /// Predicted mean deviation rate, percent, `[levels][6]` (`null` inside for a joint the group
     /// cannot identify); `null` for a setup without a nominal stiffness.
     pub predicted_deviation_pct: Option<Vec<[Option<f64>; 6]>>,
 }

@@ -16,16 +16,16 @@ use serde::Serialize;
 pub struct Group {
     /// Name of the group.
     pub name: String,
-    /// Mean deviation rate, percent, [levels][parameters].
+    /// Mean deviation rate, percent, `[levels][parameters]`.
     pub mean_deviation_pct: Vec<Vec<f64>>,
-    /// Standard deviation of the deviation rate, percent, [levels][parameters].
+    /// Standard deviation of the deviation rate, percent, `[levels][parameters]`.
     pub std_deviation_pct: Vec<Vec<f64>>,
-    /// First-order predicted mean deviation rate, percent, [levels][parameters].
+    /// First-order predicted mean deviation rate, percent, `[levels][parameters]`.
     pub predicted_deviation_pct: Vec<Vec<f64>>,
-    /// Mean identified stiffness of the drives, Nm/rad, [levels][6].
+    /// Mean identified stiffness of the drives, Nm/rad, `[levels][6]`.
     pub mean_stiffness_nm_per_rad: Vec<[f64; 6]>,
     /// Mean identified stiffness of each virtual spring, in its parameter's unit (Nm/rad for a
-    /// rotation, N/mm for a translation), [levels][springs]; left out for the drives alone.
+    /// rotation, N/mm for a translation), `[levels][springs]`; left out for the drives alone.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     #[cfg_attr(feature = "schema", schemars(default))]
     pub mean_spring_stiffness: Vec<Vec<f64>>,

@@ -194,11 +194,11 @@ where
     setup_in(reference, read, None)
 }
 
-/// [`setup`] with a URDF robot's collision geometry ([`robot_with_meshes`]); the setup's
+/// [`setup()`] with a URDF robot's collision geometry ([`robot_with_meshes`]); the setup's
 /// `package_paths` (relative to the setup file) are searched after `meshes.package_paths`.
 ///
 /// # Errors
-/// Those of [`setup`] and [`robot_with_meshes`].
+/// Those of [`setup()`] and [`robot_with_meshes`].
 pub fn setup_with_meshes<E, F>(reference: &str, read: F, meshes: &Meshes) -> Result<Setup, E>
 where
     E: From<Error> + Display,

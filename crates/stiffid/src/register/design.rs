@@ -19,7 +19,7 @@
 //! the seed) and kept when they pass the cell's checks that apply without the load: floor,
 //! obstacles, self-collision, line of sight and incidence (the rope and the load's constraints do
 //! not, the load is not hung while registering). The best group of `n` of them is chosen like a
-//! pool's ([`crate::design::exchange`]: enumeration when there are few groups, else the modified
+//! pool's (`design::exchange`: enumeration when there are few groups, else the modified
 //! Fedorov exchange from seeded groups), each posture contributing the point count, the sum and
 //! the inertia about the base origin of its points, so a group's `C_rr` is one 3 x 3 Cholesky.
 //! A coordinate search then moves each chosen posture's axis angles while the criterion falls

@@ -51,7 +51,7 @@ pub struct Summary<'a> {
     /// Wall-clock time of the study, s.
     pub elapsed_s: f64,
     /// The true displacement of every measuring point at every test posture, base frame, mm:
-    /// [test posture][point].
+    /// `[test posture][point]`.
     pub test_deflection_mm: Vec<Vec<[f64; 3]>>,
     /// Every group of postures, in the order of the report.
     pub groups: Vec<GroupSummary<'a>>,
@@ -84,7 +84,7 @@ pub struct GroupSummary<'a> {
     /// Mean over noise levels and joints of `mean_deviation_pct`, percent.
     pub average_deviation_pct: f64,
     /// `|delta(k_mean) - delta(k_true)|` of every measuring point at every test posture at the
-    /// validation level, mm: [test posture][point].
+    /// validation level, mm: `[test posture][point]`.
     pub validation_error_mm: Vec<Vec<f64>>,
 }
 
