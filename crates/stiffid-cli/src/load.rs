@@ -71,9 +71,7 @@ pub fn setup(arg: &str) -> Result<Setup> {
 
 /// `setup`, its plausibility warnings ([`stiffid::setup::plausibility`]) printed on stderr.
 fn plausible(setup: Setup) -> Setup {
-    for w in stiffid::setup::plausibility::warnings(&setup) {
-        crate::output::warn(&w.message);
-    }
+    crate::output::warnings(&stiffid::setup::plausibility::warnings(&setup));
     setup
 }
 

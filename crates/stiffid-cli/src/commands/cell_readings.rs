@@ -65,9 +65,7 @@ impl Args {
             text: &content,
         };
         let outcome = job(&request)?;
-        for warning in &outcome.warnings {
-            output::warn(&warning.message);
-        }
+        output::warnings(&outcome.warnings);
         if let Some(out) = &out {
             out.write(outcome.fragment.as_bytes())?;
         }

@@ -152,9 +152,7 @@ pub fn run(args: &Args) -> Result<()> {
         Err(Failure::Output(e)) => return Err(e),
         Err(Failure::Library(e)) => return Err(option_error(e)),
     };
-    for w in &report.warnings {
-        output::warn(&w.message);
-    }
+    output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
     csv.sync()?;
     let names = names(args);

@@ -55,6 +55,7 @@ pub fn run(args: &Args) -> Result<()> {
         postures: &group,
     };
     let report = job::run(&request).with_context(|| args.postures.display().to_string())?;
+    output::warnings(&report.warnings);
     let doc = Document::new(&report, &setup);
     if args.common.json {
         return output::print(&json(&doc)?);

@@ -97,9 +97,7 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
     let report = job::run(request)?;
-    for warning in &report.warnings {
-        output::warn(&warning.message);
-    }
+    output::warnings(&report.warnings);
     if args.common.json || out.is_some() {
         let text = json(&Document::new(&report, &args.common.setup, &setup))?;
         if let Some(out) = &out {

@@ -70,6 +70,7 @@ pub fn run(args: &Args) -> Result<()> {
         progress: &bars,
     };
     let mut report = job::run(&request)?;
+    output::warnings(&report.warnings);
     bars.begin("figures", 1);
     let figures = figures::all(&report.study)?;
     bars.end();

@@ -143,6 +143,7 @@ pub fn run(args: &Args) -> Result<()> {
         progress: &bars,
     };
     let report = job::run(&request).map_err(option_names)?;
+    output::warnings(&report.warnings);
     out.write(postures::to_csv(&report.postures).as_bytes())?;
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;

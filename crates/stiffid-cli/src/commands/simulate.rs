@@ -70,6 +70,7 @@ pub fn run(args: &Args) -> Result<()> {
         },
     };
     let report = job::run(&request)?;
+    output::warnings(&report.warnings);
     let doc = Document::new(&report, &setup);
     let (sims, levels) = (&report.simulations, &setup.noise().levels);
     if let Some(dir) = out {

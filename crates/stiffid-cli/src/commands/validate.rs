@@ -37,9 +37,7 @@ pub fn run(args: &Args) -> Result<()> {
             reader,
         },
     })?;
-    for warning in &report.warnings {
-        output::warn(&warning.message);
-    }
+    output::warnings(&report.warnings);
     let doc = Document::new(&report, &args.common.setup, &setup);
     print_json_or(args.common.json, &doc, human)
 }

@@ -74,6 +74,13 @@ pub fn warn(text: &str) {
     let _ = writeln!(std::io::stderr().lock(), "warning: {text}");
 }
 
+/// Every warning of a job's report on stderr ([`warn`]), as Python raises them.
+pub fn warnings(list: &[stiffid::jobs::Warning]) {
+    for w in list {
+        warn(&w.message);
+    }
+}
+
 /// Pretty JSON of `value`, with a final newline.
 pub fn json<T: serde::Serialize>(value: &T) -> Result<String> {
     Ok(serde_json::to_string_pretty(value)? + "\n")

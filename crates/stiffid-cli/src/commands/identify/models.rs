@@ -43,9 +43,7 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
         }
         e => e.into(),
     })?;
-    for warning in &report.warnings {
-        output::warn(&warning.message);
-    }
+    output::warnings(&report.warnings);
     if let Some(out) = &out {
         out.write(report.fragment().as_bytes())?;
     }
@@ -164,9 +162,7 @@ pub fn identify_model<R: Read + Send>(
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
     let report = identify_model::run(request)?;
-    for warning in &report.warnings {
-        output::warn(&warning.message);
-    }
+    output::warnings(&report.warnings);
     if args.common.json || out.is_some() {
         let text = json(&Document::new(&report, &args.common.setup, setup))?;
         if let Some(out) = &out {
