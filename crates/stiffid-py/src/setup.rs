@@ -194,6 +194,13 @@ impl Setup {
         self.inner.load().load
     }
 
+    /// The load steps read in each posture (``[loading] steps_n``), N, rising; empty for one load
+    /// per posture.
+    #[getter]
+    fn load_steps_n(&self) -> Vec<f64> {
+        self.inner.load_steps().to_vec()
+    }
+
     /// Rope anchor (pulley) ``P2``, base frame, mm, shape ``(3,)``.
     #[getter]
     fn anchor_mm<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {

@@ -1,9 +1,10 @@
-"""identify on raw tracker readings under load steps: noise-free recovery with offsets, the same document as the command."""
+"""identify on raw tracker readings under load steps: noise-free recovery with offsets, the same document as the command; load steps in the setup scale the predicted rates."""
 
 import numpy as np
 import pytest
 
 import stiffid
+from conftest import REPO
 
 LOADS = [0.0, 100.0, 200.0, 300.0, 400.0, 500.0, 300.0, 100.0]
 HEADER = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,load_n,fx_n,fy_n,fz_n,x_mm,y_mm,z_mm"
@@ -54,3 +55,15 @@ def test_a_loaded_first_reading_is_named(paper, tmp_path):
     path.write_text(HEADER + "\nA,1,0,0,-90,0,0,0,100,0,0,-100,2000,0,2000\n")
     with pytest.raises(stiffid.InputError, match=r"bad.csv.*line 2.*start with the unloaded one"):
         stiffid.identify(paper, path)
+
+
+
+def test_load_steps_in_the_setup_scale_the_predicted_rates(paper):
+    text = (REPO / "crates" / "stiffid" / "setups" / "zhang2021-comau-nj165.toml").read_text()
+    stepped = stiffid.Setup.from_toml(text.replace("[loading]\n", "[loading]\nsteps_n = [100, 200, 300, 400, 500]\n"))
+    assert paper.load_steps_n == [] and stepped.load_steps_n == [100.0, 200.0, 300.0, 400.0, 500.0]
+    group = paper.random_group(6, 1)
+    # F^2 (S2 + S1^2) / S2^2: the least squares over every step, the unloaded reading shared.
+    factor = 500.0**2 * (550_000.0 + 1500.0**2) / 550_000.0**2
+    np.testing.assert_allclose(stepped.evaluate(group)["predicted_deviation_pct"],
+                               np.sqrt(factor) * paper.evaluate(group)["predicted_deviation_pct"], rtol=1e-9)
