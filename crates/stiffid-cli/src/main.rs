@@ -125,7 +125,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             output::staged::discard();
-            fail(&output::one_line_chain(&e))
+            fail(&(output::one_line_chain(&e) + hint(&e)))
         }
     }
 }
@@ -178,6 +178,21 @@ fn usage_error(e: &clap::Error) -> ExitCode {
 
 /// Prints `message` as one `error: ` line on stderr (long words cut) and returns exit code 2. A
 /// stderr that cannot be written is ignored: the exit code still says it.
+/// The command's own hint for a library error that a command can mend: which command writes a
+/// missing setup field, which shows why postures are infeasible.
+fn hint(e: &anyhow::Error) -> &'static str {
+    let error = e.chain().find_map(|c| c.downcast_ref::<stiffid::Error>());
+    match error {
+        Some(stiffid::Error::MissingField { field, .. }) if !field.starts_with("test.") => {
+            "; `stiffid setups new --robot R` writes it"
+        }
+        Some(stiffid::Error::Infeasible { .. }) => {
+            "; `stiffid evaluate --postures FILE` shows every posture's checks"
+        }
+        _ => "",
+    }
+}
+
 fn fail(message: &str) -> ExitCode {
     use std::io::Write;
     let message = message.strip_prefix("error: ").unwrap_or(message);

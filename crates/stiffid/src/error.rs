@@ -101,7 +101,7 @@ pub enum Error {
     /// No group of postures that passes every feasibility check of the cell was found.
     #[error(
         "no feasible group found: the {check} check failed in {failed} of the {} \
-         of the groups searched (`stiffid evaluate` shows every posture's checks)",
+         of the groups searched (evaluating a group shows every posture's checks)",
         crate::words::count(*.postures, "posture")
     )]
     Infeasible {
@@ -364,16 +364,16 @@ pub enum ColumnProblem {
 fn missing_hint(field: &str) -> &'static str {
     match field {
         "nominal_stiffness_nm_per_rad" => {
-            "a rough prior will do: `stiffid setups new --robot R` writes one scaled from the \
-             robot's payload, with its source"
+            "a rough prior will do: one scaled from the robot's payload class \
+             (stiffid::prior::nominal_stiffness, with its source)"
         }
         "test.postures_deg" => {
             "the postures where the deflection matters to you, axis angles in degrees, under \
              [test]"
         }
         _ => {
-            "`stiffid setups new --robot R` writes the length that minimises the robot's median \
-             dexterity"
+            "the length that minimises the robot's median dexterity will do (the robot's own \
+             characteristic length, stiffid::prior::robot_characteristic_length)"
         }
     }
 }

@@ -129,7 +129,8 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_simulations_say_so() {
         &o,
         &[
             needs,
-            "a rough prior will do: `stiffid setups new --robot R`",
+            "a rough prior will do: one scaled from the robot's payload class",
+            "; `stiffid setups new --robot R` writes it",
         ],
     );
     let q = ["--q-deg", "10,20,-90,30,20,10", "--wrench", "0,0,-500"];
