@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use stiffid::documents::kinematics::Document;
 use stiffid::formats::postures;
 use stiffid::formats::reference::{self, Meshes};
-use stiffid::jobs::kinematics as job;
+use stiffid::jobs::kinematics::{self as job, characteristic_length_or_derived};
 use stiffid::limits;
 use stiffid::robot::presets;
 use stiffid::{dexterity, Coordinates};
@@ -137,14 +137,11 @@ impl Robot {
         characteristic_length_mm: Option<f64>,
         coordinates: &str,
     ) -> PyResult<Py<PyAny>> {
-        let length = match characteristic_length_mm {
-            Some(l) => {
-                let range = &limits::CHARACTERISTIC_LENGTH_MM;
-                limits::check("characteristic_length_mm", &[l], range).map_err(raise)?;
-                l * 1e-3
-            }
-            None => self.characteristic_length_mm(py, point_mm)? * 1e-3,
-        };
+        let (robot, at) = (&self.inner, point(point_mm)?);
+        let given = characteristic_length_mm.map(|l| l * 1e-3);
+        let length = py
+            .detach(|| characteristic_length_or_derived(robot, &at, given))
+            .map_err(raise)?;
         let (js, single) = self.jacobians(py, q_deg, point_mm, coordinates)?;
         let k: Vec<f64> = js.iter().map(|j| dexterity(j, length)).collect();
         match single {

@@ -42,6 +42,28 @@ pub struct Report {
     pub dexterity: f64,
 }
 
+/// The characteristic length `L` (m) of the dexterity index at `point` (flange frame, m): the
+/// `given` one, checked against [`limits::CHARACTERISTIC_LENGTH_MM`], or without one the robot's
+/// own ([`prior::robot_characteristic_length`]).
+///
+/// # Errors
+/// [`crate::Error::InvalidField`] (`characteristic_length_mm`) for a given length out of range;
+/// without one, those of [`prior::robot_characteristic_length`].
+pub fn characteristic_length_or_derived(
+    robot: &Robot,
+    point: &Vector3<f64>,
+    given: Option<f64>,
+) -> Result<f64> {
+    match given {
+        Some(l) => {
+            let range = &limits::CHARACTERISTIC_LENGTH_MM;
+            limits::check("characteristic_length_mm", &[l * 1e3], range)?;
+            Ok(l)
+        }
+        None => prior::robot_characteristic_length(robot, point),
+    }
+}
+
 /// Runs the kinematics job.
 ///
 /// # Errors
@@ -59,14 +81,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
     } = request;
     let field = |a: usize| format!("q_deg[{}]", a + 1);
     robot.limits().check(&q, "the robot's limits", field)?;
-    let length = match characteristic_length {
-        Some(l) => {
-            let range = &limits::CHARACTERISTIC_LENGTH_MM;
-            limits::check("characteristic_length_mm", &[l * 1e3], range)?;
-            l
-        }
-        None => prior::robot_characteristic_length(robot, &point)?,
-    };
+    let length = characteristic_length_or_derived(robot, &point, characteristic_length)?;
     let frames = robot.frames(&q);
     let jacobian = frames.jacobian(&point, coordinates);
     Ok(Report {
