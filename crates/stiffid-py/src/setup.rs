@@ -268,7 +268,7 @@ impl Setup {
     /// - ``method="global"`` (default): ``starts`` local searches from seeded Latin-hypercube
     ///   groups (default 32; ``screen_steps`` SQP steps each, default 60, then the best
     ///   ``polished``, default 8, continue), the best kept;
-    /// - ``method="local"``: SQP (SLSQP) from ``start`` (shape ``(n, 6)``, deg), or from the
+    /// - ``method="local"``: SQP from ``start`` (shape ``(n, 6)``, deg), or from the
     ///   seeded random group of ``n`` postures when ``start`` is None (the paper's procedure);
     /// - ``method="pool"`` (or ``pool`` given): the best ``n`` of the postures ``pool``
     ///   (shape ``(m, 6)``, deg, at most 10000; postures failing a cell check are skipped), exact
@@ -277,13 +277,15 @@ impl Setup {
     /// ``target_pct`` (global or pool): the smallest group whose predicted mean deviation rate at
     /// noise level multiple 1 is at most this many percent on every parameter, instead of ``n``.
     /// ``max_evals`` bounds the evaluations of one local search (default 6000); ``gradient`` is
-    /// ``"exact"`` or ``"fd"``; ``solver`` the SQP, ``"slsqp"`` or ``"active-set"`` (ours). Deterministic for a ``seed``. Returns the document of
-    /// ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
+    /// ``"exact"`` or ``"fd"``; ``solver`` the SQP: ``"auto"`` (per criterion: ``"active-set"``
+    /// on ``relative-a``, ``d-optimal`` and ``test-pose``, ``"slsqp"`` on the others),
+    /// ``"slsqp"`` or ``"active-set"`` (ours); the document's ``solver`` names the one that ran.
+    /// Deterministic for a ``seed``. Returns the document of ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="slsqp", pool=None, restarts=None, target_pct=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,

@@ -84,10 +84,11 @@ const RATES: [&str; 4] = [
 /// and 5 global searches on ``relative-a`` and ``d-optimal`` (``starts`` starts each), the
 /// start-group check over ``trials`` start groups, and the Monte Carlo identification of every
 /// group at every noise level (``runs`` runs); ``solver`` is the SQP of every search,
-/// ``"slsqp"`` or ``"active-set"`` (ours). ``setup`` defaults to the paper's
+/// ``"auto"`` (per criterion: ``"active-set"`` on the global searches, ``"slsqp"`` on the
+/// paper's ``classical`` and ``zhang2021`` searches), ``"slsqp"`` or ``"active-set"`` (ours). ``setup`` defaults to the paper's
 /// (``"zhang2021-comau-nj165"``). Deterministic for a ``seed``; returns a ``Study``.
 #[pyfunction]
-#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20, solver="slsqp"))]
+#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20, solver="auto"))]
 pub fn reproduce(
     py: Python<'_>,
     setup: Option<&Setup>,

@@ -53,22 +53,25 @@ def test_evaluate_prediction_is_the_formula(paper):
 
 
 def test_the_select_documents_equal_the_command(paper, cli, tmp_path):
-    """One job, two front ends: local, global, pool and target choices give the same document."""
+    """One job, two front ends: local, global, pool and target choices give the same document,
+    with the same solver named (the default, auto, names the one it ran for the criterion)."""
     pool = paper.random_group(12, 5)
     pool_csv = write_postures(tmp_path / "pool.csv", pool)
     setup = ["--setup", "zhang2021-comau-nj165", "--out", tmp_path / "out.csv", "--json"]
-    for flags, kwargs in [
-        (["--criterion", "zhang2021", "--start-random", "--seed", 1], dict(criterion="zhang2021", method="local", n=6)),
+    for flags, kwargs, solver in [
+        (["--criterion", "zhang2021", "--start-random", "--seed", 1], dict(criterion="zhang2021", method="local", n=6),
+         "slsqp"),
         (["--global", "--seed", 3, "--starts", 4, "--polished", 2, "--max-evals", 1000],
-         dict(method="global", seed=3, starts=4, polished=2, max_evals=1000)),
-        (["--global", "--seed", 3, "--starts", 4, "--polished", 2, "--max-evals", 1000, "--solver", "active-set"],
-         dict(method="global", seed=3, starts=4, polished=2, max_evals=1000, solver="active-set")),
-        (["--pool", pool_csv, "--postures", 6], dict(pool=pool, n=6)),
-        (["--pool", pool_csv, "--target-pct", 6], dict(pool=pool, target_pct=6)),
+         dict(method="global", seed=3, starts=4, polished=2, max_evals=1000), "active-set"),
+        (["--global", "--seed", 3, "--starts", 4, "--polished", 2, "--max-evals", 1000, "--solver", "slsqp"],
+         dict(method="global", seed=3, starts=4, polished=2, max_evals=1000, solver="slsqp"), "slsqp"),
+        (["--pool", pool_csv, "--postures", 6], dict(pool=pool, n=6), None),
+        (["--pool", pool_csv, "--target-pct", 6], dict(pool=pool, target_pct=6), None),
     ]:
         mine = paper.select(**kwargs)
         theirs = cli("select", *setup, *flags)
         assert timeless(plain(mine)) == timeless(theirs), flags
+        assert mine.get("solver") == solver, flags
     assert mine["search"] == "pool" and mine["target"]["postures"] == len(mine["postures_deg"])
     assert "solver" not in mine and "gradient" not in mine
 
@@ -109,7 +112,7 @@ def test_same_seed_same_group(paper):
         (dict(n=101), "n"),
         (dict(starts=0), "starts"),
         (dict(gradient="numeric"), "gradient: unknown value 'numeric'"),
-        (dict(solver="newton"), "solver: unknown value 'newton' \\(known: slsqp, active-set\\)"),
+        (dict(solver="newton"), "solver: unknown value 'newton' \\(known: auto, slsqp, active-set\\)"),
         (dict(method="global", start=np.zeros((6, 6))), "start"),
         (dict(method="pool"), "pool"),
         (dict(restarts=3), "restarts: only with pool"),

@@ -39,7 +39,8 @@ def test_the_reproduce_document_equals_summary_json(study, summary):
 
 def test_reproduce_with_our_solver_equals_the_command(cli, tmp_path):
     """The solver reaches the study from both front ends: the same small study with our SQP gives
-    the command's summary.json, and its paper searches differ from SLSQP's."""
+    the command's summary.json, and its paper searches differ from SLSQP's; the default (auto)
+    takes the paper searches from SLSQP and the global ones from ours."""
     small = dict(runs=5, starts=1, trials=2)
     flags = ["--runs", 5, "--starts", 1, "--trials", 2, "--solver", "active-set"]
     cli("reproduce", "--out", tmp_path / "report", *flags, parse=False)
@@ -47,8 +48,11 @@ def test_reproduce_with_our_solver_equals_the_command(cli, tmp_path):
     ours = stiffid.reproduce(solver="active-set", **small)
     drop = lambda d: {key: value for key, value in d.items() if key != "elapsed_s"}
     assert drop(ours.to_dict()) == drop(summary)
-    slsqp = stiffid.reproduce(**small).to_dict()
+    slsqp = stiffid.reproduce(solver="slsqp", **small).to_dict()
     assert ours.to_dict()["groups"][2]["postures_deg"] != slsqp["groups"][2]["postures_deg"]
+    auto = stiffid.reproduce(**small).to_dict()
+    assert auto["groups"][2]["postures_deg"] == slsqp["groups"][2]["postures_deg"]
+    assert auto["groups"][3]["postures_deg"] == ours.to_dict()["groups"][3]["postures_deg"]
 
 
 def test_study_arrays(study):

@@ -120,7 +120,7 @@ fn search(c: &mut Bench) {
     let setup = paper_cell();
     let mut g = c.benchmark_group("cell/search");
     g.sample_size(10);
-    for solver in Solver::ALL {
+    for solver in Solver::CONCRETE {
         let options = SearchOptions {
             solver,
             ..SearchOptions::default()

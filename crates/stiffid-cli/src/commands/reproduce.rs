@@ -36,8 +36,9 @@ pub struct Args {
     /// groups; 0 skips it) [0 to 10000].
     #[arg(long, default_value_t = DEFAULT_TRIALS as u64, value_parser = clap::value_parser!(u64).range(0..=limits::MAX_TRIALS))]
     trials: u64,
-    /// SQP of every search: slsqp (SLSQP, the slsqp crate) or active-set (ours: a Goldfarb-Idnani
-    /// QP per step, damped BFGS).
+    /// SQP of every search: auto (per criterion: active-set on the global relative-a and d-optimal
+    /// searches, slsqp on the paper's classical and zhang2021 searches), slsqp (SLSQP, the slsqp
+    /// crate) or active-set (ours: a Goldfarb-Idnani QP per step, damped BFGS).
     #[arg(long, default_value_t = Solver::default())]
     solver: Solver,
     /// Write into --out even if it holds other files.

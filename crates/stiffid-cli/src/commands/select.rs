@@ -80,8 +80,10 @@ pub struct Args {
     /// comparison).
     #[arg(long, default_value_t = Gradient::Exact)]
     gradient: Gradient,
-    /// SQP of the local searches: slsqp (SLSQP, the slsqp crate) or active-set (ours: a
-    /// Goldfarb-Idnani QP per step, damped BFGS; much faster in a cell and for large groups).
+    /// SQP of the local searches: auto (per criterion: active-set on relative-a, d-optimal and
+    /// test-pose, slsqp on classical, zhang2021 and scaled-cond), slsqp (SLSQP, the slsqp crate)
+    /// or active-set (ours: a Goldfarb-Idnani QP per step, damped BFGS; much faster in a cell and
+    /// for large groups).
     #[arg(long, default_value_t = Solver::default())]
     solver: Solver,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).

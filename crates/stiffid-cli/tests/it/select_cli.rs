@@ -166,29 +166,35 @@ fn select_gradient_exact_or_fd_from_the_same_start() {
 }
 
 /// Both SQPs from the same start on a smooth criterion: the document names the one that ran, ours
-/// ends no worse than SLSQP (to 1e-6), an unknown name is refused with the known ones.
+/// ends no worse than SLSQP (to 1e-6); the default `auto` runs ours there and SLSQP on
+/// `zhang2021`, with the very result of the solver it names; an unknown name is refused with the
+/// known ones.
 #[test]
-fn select_solver_slsqp_or_active_set_from_the_same_start() {
+fn select_solver_auto_slsqp_or_active_set_from_the_same_start() {
     let d = temp_dir("select-solver");
     let start = write_file(&d, "start.csv", GROUP);
-    let run = |solver: &str| {
-        let out = d.join(format!("{solver}.csv"));
-        stiffid(&[
+    let run = |criterion: &str, solver: Option<&str>| {
+        let out = d.join(format!("{criterion}-{}.csv", solver.unwrap_or("default")));
+        let mut args = vec![
             "select",
             "--setup",
             "zhang2021-comau-nj165",
             "--criterion",
-            "d-optimal",
+            criterion,
             "--start",
             start.to_str().unwrap(),
-            "--solver",
-            solver,
             "--out",
             out.to_str().unwrap(),
             "--json",
-        ])
+        ];
+        args.extend(solver.map(|s| ["--solver", s]).into_iter().flatten());
+        stiffid(&args)
     };
-    let (slsqp, ours) = (json(&run("slsqp")), json(&run("active-set")));
+    let doc = |criterion, solver| json(&run(criterion, solver));
+    let (slsqp, ours) = (
+        doc("d-optimal", Some("slsqp")),
+        doc("d-optimal", Some("active-set")),
+    );
     assert_eq!(slsqp["solver"], "slsqp");
     assert_eq!(ours["solver"], "active-set");
     let value = |doc: &serde_json::Value| doc["value"].as_f64().unwrap();
@@ -198,9 +204,19 @@ fn select_solver_slsqp_or_active_set_from_the_same_start() {
     );
     assert!(value(&ours) < ours["start_value"].as_f64().unwrap());
 
-    let unknown = run("newton");
+    let the_search = |d: &serde_json::Value| (d["postures_deg"].clone(), d["value"].clone());
+    for (criterion, ran) in [("d-optimal", "active-set"), ("zhang2021", "slsqp")] {
+        let (default, auto) = (doc(criterion, None), doc(criterion, Some("auto")));
+        let named = doc(criterion, Some(ran));
+        assert_eq!(default["solver"], ran, "{criterion}");
+        assert_eq!(auto["solver"], ran, "{criterion}");
+        assert_eq!(the_search(&default), the_search(&named), "{criterion}");
+        assert_eq!(the_search(&auto), the_search(&named), "{criterion}");
+    }
+
+    let unknown = run("d-optimal", Some("newton"));
     assert_eq!(unknown.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&unknown.stderr).contains("slsqp, active-set"));
+    assert!(String::from_utf8_lossy(&unknown.stderr).contains("auto, slsqp, active-set"));
 }
 
 #[test]

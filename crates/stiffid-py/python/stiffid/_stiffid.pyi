@@ -163,7 +163,7 @@ class Setup:
         polished: Optional[int] = None,
         max_evals: Optional[int] = None,
         gradient: Literal["exact", "fd"] = "exact",
-        solver: Literal["slsqp", "active-set"] = "slsqp",
+        solver: Literal["auto", "slsqp", "active-set"] = "auto",
         pool: Optional[ArrayLike] = None,
         restarts: Optional[int] = None,
         target_pct: Optional[float] = None,
@@ -307,7 +307,7 @@ def reproduce(
     seed: int = 1,
     starts: int = 16,
     trials: int = 20,
-    solver: Literal["slsqp", "active-set"] = "slsqp",
+    solver: Literal["auto", "slsqp", "active-set"] = "auto",
 ) -> Study: ...
 def compensate(
     setup: Setup,

@@ -26,7 +26,8 @@ pub struct Document {
     /// The SQP objective's gradient (`exact` or `fd`); absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gradient: Option<&'static str>,
-    /// The SQP of the searches (`slsqp` or `active-set`); absent for a pool choice.
+    /// The SQP the searches ran (`slsqp` or `active-set`: the default `auto` resolved for the
+    /// criterion); absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(feature = "schema", schemars(schema_with = "schema::solver"))]
     pub solver: Option<&'static str>,
@@ -263,8 +264,10 @@ mod schema {
         one_of::<Method>()
     }
 
+    /// The solvers a search runs (never `auto`).
     pub fn solver(_: &mut SchemaGenerator) -> Schema {
-        one_of::<Solver>()
+        let names: Vec<&str> = Solver::CONCRETE.iter().map(|s| s.name()).collect();
+        json_schema!({ "type": "string", "enum": names })
     }
 
     pub fn termination(_: &mut SchemaGenerator) -> Schema {

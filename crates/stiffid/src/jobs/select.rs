@@ -110,7 +110,8 @@ pub struct Report {
     pub seed: u64,
     /// The gradient of the searches; `None` for a pool choice.
     pub gradient: Option<Gradient>,
-    /// The SQP of the searches; `None` for a pool choice.
+    /// The SQP the searches ran ([`Solver::resolve`]d for the criterion: never
+    /// [`Solver::Auto`]); `None` for a pool choice.
     pub solver: Option<Solver>,
     /// The group chosen (axis angles, rad).
     pub postures: Vec<Vector6<f64>>,
@@ -219,7 +220,8 @@ pub fn run(request: &Request) -> Result<Report> {
         criterion: request.criterion,
         seed: request.options.seed,
         gradient: (request.method != Method::Pool).then_some(request.options.gradient),
-        solver: (request.method != Method::Pool).then_some(request.options.solver),
+        solver: (request.method != Method::Pool)
+            .then(|| request.options.solver.resolve(request.criterion)),
         evaluation: evaluate(request.setup, &found.postures),
         postures: found.postures,
         start_value: found.start_value,

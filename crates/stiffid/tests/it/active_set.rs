@@ -21,6 +21,13 @@ fn active_set() -> SearchOptions {
     }
 }
 
+fn slsqp() -> SearchOptions {
+    SearchOptions {
+        solver: Solver::Slsqp,
+        ..SearchOptions::default()
+    }
+}
+
 /// Same local minimum as SLSQP or a better one, within 1e-4 relative, from the same starts, in
 /// at most as many evaluations.
 #[test]
@@ -32,13 +39,7 @@ fn no_worse_than_slsqp_on_relative_a_from_the_same_starts() {
         for seed in 1..=2 {
             let start = design::random_group(&setup, 6, seed);
             let ours = design::local(&setup, Criterion::RelativeA, &start, &active_set()).unwrap();
-            let slsqp = design::local(
-                &setup,
-                Criterion::RelativeA,
-                &start,
-                &SearchOptions::default(),
-            )
-            .unwrap();
+            let slsqp = design::local(&setup, Criterion::RelativeA, &start, &slsqp()).unwrap();
             println!(
                 "{name}, start {seed}: active-set {:.8} ({} evaluations, {}), slsqp {:.8} ({} evaluations, {})",
                 ours.value, ours.evaluations, ours.termination, slsqp.value, slsqp.evaluations, slsqp.termination
@@ -69,8 +70,7 @@ fn maximum_criteria_no_worse_than_slsqp_from_the_studys_starts() {
         for seed in 1..=3 {
             let start = design::random_group(&setup, 6, seed);
             let ours = design::local(&setup, criterion, &start, &active_set()).unwrap();
-            let slsqp =
-                design::local(&setup, criterion, &start, &SearchOptions::default()).unwrap();
+            let slsqp = design::local(&setup, criterion, &start, &slsqp()).unwrap();
             println!(
                 "{criterion}, start {seed}: active-set {:.8} ({} evaluations, {}), slsqp {:.8} ({} evaluations, {})",
                 ours.value, ours.evaluations, ours.termination, slsqp.value, slsqp.evaluations, slsqp.termination

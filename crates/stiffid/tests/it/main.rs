@@ -40,6 +40,7 @@ mod register_postures;
 mod search;
 mod setup_builder;
 mod simulate;
+mod solver_auto;
 mod study;
 mod trust;
 mod urdf;

@@ -21,9 +21,9 @@ use std::collections::HashMap;
 /// (rank-deficient groups), above `ln f64::MAX ~ 709.8` so any finite value is better.
 const PENALTY: f64 = 1e3;
 
-/// Minimises `criterion` by SQP (our own: a dense Goldfarb-Idnani QP per step, damped BFGS, an L1
-/// merit line search; the counterpart of the MATLAB `fmincon` of Zhang et al. 2021, Section III-B
-/// step 5) over the `6n` axis angles of the `n` postures of `start` (rad), within the setup's
+/// Minimises `criterion` by SQP (the counterpart of the MATLAB `fmincon` of Zhang et al. 2021,
+/// Section III-B step 5: [`SearchOptions::solver`], by default chosen per criterion by
+/// [`Solver::resolve`]) over the `6n` axis angles of the `n` postures of `start` (rad), within the setup's
 /// bounds.
 ///
 /// - The objective is `ln(criterion)` (scale-free steps; a rank-deficient group, `+infinity`,
@@ -237,16 +237,7 @@ impl<'a> Problem<'a> {
 
     fn run(self, start: &[Vector6<f64>]) -> SearchOutcome {
         let x0: Vec<f64> = start.iter().flat_map(|q| q.iter().copied()).collect();
-        let stop = match self.options.solver {
-            Solver::Slsqp => {
-                self.value(&x0);
-                let iterations =
-                    self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
-                match iterations {
-                    0 => Termination::EvaluationLimit,
-                    _ => self.slsqp(&x0, iterations),
-                }
-            }
+        let stop = match self.options.solver.resolve(self.criterion) {
             Solver::ActiveSet if self.can_evaluate() => match Epigraph::applies(&self) {
                 true => Epigraph::new(&self, &self.clamp(&x0)).minimise(self.tolerances()),
                 false => sqp::minimise(&self, &self.clamp(&x0), self.tolerances()),
@@ -254,6 +245,16 @@ impl<'a> Problem<'a> {
             Solver::ActiveSet => {
                 self.value(&x0);
                 Termination::EvaluationLimit
+            }
+            // `resolve` never returns `Auto`.
+            Solver::Slsqp | Solver::Auto => {
+                self.value(&x0);
+                let iterations =
+                    self.options.max_evals.saturating_sub(1) / evals_per_step(self.options, self.n);
+                match iterations {
+                    0 => Termination::EvaluationLimit,
+                    _ => self.slsqp(&x0, iterations),
+                }
             }
         };
         let state = self.state.into_inner();
