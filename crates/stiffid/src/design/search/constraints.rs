@@ -35,6 +35,9 @@ pub(super) fn kinds(checker: &Checker) -> Vec<CheckKind> {
 /// exact check passes (at most `tau ln(pairs)` conservative), and unlike the minimum it has a
 /// continuous gradient.
 pub(super) fn inequalities(checker: &Checker, kinds: &[CheckKind], q: &Vector6<f64>) -> Vec<f64> {
+    if kinds.is_empty() {
+        return Vec::new();
+    }
     let margins = checker.margins(q);
     kinds
         .iter()
@@ -66,6 +69,9 @@ pub(super) fn inequalities_and_gradients(
     kinds: &[CheckKind],
     q: &Vector6<f64>,
 ) -> (Vec<f64>, Vec<Vector6<f64>>) {
+    if kinds.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
     let (margins, gradients) = checker.margins_and_gradients(q);
     kinds
         .iter()

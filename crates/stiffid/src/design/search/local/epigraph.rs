@@ -12,7 +12,7 @@
 
 use super::{log_value, postures, Problem, PENALTY};
 use crate::design::evaluator::MaxSplit;
-use crate::design::search::sqp::{self, Gradients, Nlp, Tolerances, Values};
+use crate::design::search::sqp::{self, violation, Gradients, Nlp, Tolerances, Values, FEASIBLE};
 use crate::design::search::termination::Termination;
 use crate::design::search::Gradient;
 use crate::design::{Criterion, PostureTerms};
@@ -129,5 +129,14 @@ impl Nlp for Epigraph<'_, '_> {
 
     fn can_evaluate(&self) -> bool {
         self.problem.can_evaluate()
+    }
+
+    /// The cell's constraints to [`FEASIBLE`]; the postures' `ln k(J_N)_i - t <= 0`, in the
+    /// objective's units, to [`crate::design::SearchOptions::ftol`] (the QP keeps the maximum's
+    /// postures active, and a step meets them to second order only: an exact test would never
+    /// let the search stop).
+    fn feasible(&self, c: &[f64]) -> bool {
+        let cell = c.len() - self.problem.n;
+        violation(&c[..cell]) <= FEASIBLE && violation(&c[cell..]) <= self.problem.options.ftol
     }
 }

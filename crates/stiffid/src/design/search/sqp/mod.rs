@@ -15,13 +15,16 @@
 //!   (Han 1977), `mu_j = max(lambda_j, (mu_j + lambda_j) / 2)` from the QP's multipliers
 //!   `lambda_j` (Powell 1978); Armijo's condition with 0.1, quadratic interpolation clamped to
 //!   `[0.1, 0.5]` of the last step, at most [`BACKTRACKS`] trials.
-//! - **Stops** ([`Termination`]): at a point whose constraints hold (their violations summed at
-//!   most [`FEASIBLE`]) when a step changes `f` by less than `ftol` or the QP's predicted change
-//!   `|g^T d| + sum lambda_j |c_j|` is below `ftol` ([`Termination::Converged`]), or every
-//!   variable moves by less than `xtol` ([`Termination::StepTolerance`]); when the problem's
-//!   budget is spent ([`Termination::EvaluationLimit`]); when the line search fails twice, the
-//!   second time from `B = I` ([`Termination::LineSearchFailed`]); when the QP fails from `B = I`
-//!   ([`Termination::SubproblemFailed`]).
+//! - **Stops** ([`Termination`]): at a point whose constraints hold ([`Nlp::feasible`]: their
+//!   violations summed at most [`FEASIBLE`] unless the problem says otherwise) when a step
+//!   changes `f` by less than `ftol` or the QP's predicted change `|g^T d| + sum lambda_j |c_j|` is below `ftol`
+//!   ([`Termination::Converged`]), or every variable moves by less than `xtol`
+//!   ([`Termination::StepTolerance`]); when the problem's budget is spent
+//!   ([`Termination::EvaluationLimit`]); when the line search fails twice, the second time from
+//!   `B = I` ([`Termination::LineSearchFailed`]); when the QP fails from `B = I`
+//!   ([`Termination::SubproblemFailed`]). A stop with `B` other than the identity is confirmed
+//!   from `B = I`: the search stops when that step fails or meets a stop too, for the reason
+//!   being confirmed, and goes on otherwise.
 //! - **Requirements**: `x0` within the bounds (finite); `f` and `c_j` finite where evaluated (a
 //!   problem maps a failed evaluation to a large finite value).
 //! - **Deterministic**: one thread, fixed-order arithmetic: the same problem gives the same bits.
@@ -34,7 +37,7 @@ mod tests;
 use super::termination::Termination;
 use crate::linalg::dot;
 use hessian::Hessian;
-use qp::{Qp, QpError, Row};
+use qp::{Active, Qp, QpError, Row};
 
 /// The constraint gradients' nonzeros: `(index, coefficient)` pairs, one list per constraint.
 pub(crate) type SparseRows = Vec<Vec<(usize, f64)>>;
@@ -63,6 +66,13 @@ pub(crate) trait Nlp {
     fn gradients(&self, x: &[f64], values: &Values) -> Gradients;
     /// Whether the budget allows one more point: its values and, if accepted, its gradients.
     fn can_evaluate(&self) -> bool;
+    /// Whether the constraint values `c` count as met for the stops: by default their violations
+    /// summed are at most [`FEASIBLE`]. A problem whose constraints are in the objective's units
+    /// may allow the objective's tolerance (a nonlinear constraint the QP keeps active is met to
+    /// second order in the step, not exactly).
+    fn feasible(&self, c: &[f64]) -> bool {
+        violation(c) <= FEASIBLE
+    }
 }
 
 /// Tolerances of [`minimise`].
@@ -74,7 +84,8 @@ pub(crate) struct Tolerances {
     pub xtol: f64,
 }
 
-/// Largest summed constraint violation of a point that counts as feasible for the stops.
+/// Largest summed constraint violation of a point that counts as feasible for the stops, unless
+/// the problem says otherwise ([`Nlp::feasible`]).
 pub(crate) const FEASIBLE: f64 = 1e-10;
 /// Weight of the relaxation variable of an incompatible QP, relative to `B`'s largest diagonal.
 const RELAXATION: f64 = 1e4;
@@ -102,6 +113,10 @@ struct Search<'p, P: Nlp> {
     gradients: Gradients,
     hessian: Hessian,
     penalties: Vec<f64>,
+    /// The stop being confirmed from `B = I`, if any ([`Search::restart`]).
+    confirming: Option<Termination>,
+    /// The active set of the last QP, where the next one starts ([`Qp::solve_from`]).
+    active: Active,
 }
 
 impl<'p, P: Nlp> Search<'p, P> {
@@ -115,6 +130,8 @@ impl<'p, P: Nlp> Search<'p, P> {
             values,
             gradients,
             hessian: Hessian::identity(x0.len()),
+            confirming: None,
+            active: Active::default(),
         }
     }
 
@@ -123,10 +140,11 @@ impl<'p, P: Nlp> Search<'p, P> {
         if !self.nlp.can_evaluate() {
             return Some(Termination::EvaluationLimit);
         }
-        let Some((d, lambda)) = self.direction() else {
+        let Some((d, lambda, active)) = self.direction() else {
             return self.restart(Termination::SubproblemFailed);
         };
-        let feasible = violation(&self.values.c) <= FEASIBLE;
+        self.active = active;
+        let feasible = self.nlp.feasible(&self.values.c);
         let predicted = dot(&self.gradients.f, &d).abs()
             + lambda
                 .iter()
@@ -152,30 +170,43 @@ impl<'p, P: Nlp> Search<'p, P> {
             .zip(lagrangian(&self.gradients, &lambda))
             .map(|(a, b)| a - b)
             .collect();
+        let from_identity = self.hessian.fresh;
         self.hessian.update(&s, &y);
         let change = (values.f - self.values.f).abs();
         let moved = s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         (self.x, self.values, self.gradients) = (x, values, gradients);
-        let feasible = violation(&self.values.c) <= FEASIBLE;
-        match (feasible, change < tol.ftol, moved < tol.xtol) {
-            (true, true, _) => self.restart(Termination::Converged),
-            (true, false, true) => self.restart(Termination::StepTolerance),
-            _ => None,
-        }
+        let feasible = self.nlp.feasible(&self.values.c);
+        let stop = match (feasible, change < tol.ftol, moved < tol.xtol) {
+            (true, true, _) => Termination::Converged,
+            (true, false, true) => Termination::StepTolerance,
+            _ => {
+                self.confirming = None;
+                return None;
+            }
+        };
+        self.restart_after(stop, from_identity)
     }
 
-    /// After a failure or a stop: stop with `reason` if `B` is the identity, else start `B` again
-    /// (a stop of a search through a kink, where BFGS has stalled, is confirmed from `B = I`).
+    /// After a failure or a stop before a step: [`Search::restart_after`] from the current `B`.
     fn restart(&mut self, reason: Termination) -> Option<Termination> {
-        if self.hessian.fresh {
-            return Some(reason);
+        self.restart_after(reason, self.hessian.fresh)
+    }
+
+    /// After a failure or a stop: stop if the step was taken from `B = I` (`from_identity`), else
+    /// start `B` again (a stop of a search through a kink, where BFGS has stalled, is confirmed
+    /// from `B = I`). The reason is the stop being confirmed, if any, else `reason`.
+    fn restart_after(&mut self, reason: Termination, from_identity: bool) -> Option<Termination> {
+        if from_identity {
+            return Some(self.confirming.take().unwrap_or(reason));
         }
         self.hessian = Hessian::identity(self.x.len());
+        self.confirming = Some(reason);
         None
     }
 
-    /// The QP's step and the multipliers of the constraints, relaxed if incompatible.
-    fn direction(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+    /// The QP's step, the multipliers of the constraints and the active set, relaxed if
+    /// incompatible (a relaxed QP's active set is not kept: it has one more variable).
+    fn direction(&self) -> Option<(Vec<f64>, Vec<f64>, Active)> {
         let (lower, upper) = self.nlp.bounds();
         let lower: Vec<f64> = lower.iter().zip(&self.x).map(|(l, x)| l - x).collect();
         let upper: Vec<f64> = upper.iter().zip(&self.x).map(|(u, x)| u - x).collect();
@@ -196,9 +227,11 @@ impl<'p, P: Nlp> Search<'p, P> {
             upper: &upper,
             rows: &rows,
         };
-        match qp.solve() {
-            Ok(s) => Some((s.d, s.multipliers)),
-            Err(QpError::Infeasible) => self.relaxed(&lower, &upper, rows),
+        match qp.solve_from(&self.active) {
+            Ok(s) => Some((s.d, s.multipliers, s.active)),
+            Err(QpError::Infeasible) => self
+                .relaxed(&lower, &upper, rows)
+                .map(|(d, m)| (d, m, Active::default())),
             Err(_) => None,
         }
     }
@@ -279,7 +312,7 @@ fn lagrangian(g: &Gradients, lambda: &[f64]) -> Vec<f64> {
 }
 
 /// The summed violation `sum_j max(0, c_j)`.
-fn violation(c: &[f64]) -> f64 {
+pub(crate) fn violation(c: &[f64]) -> f64 {
     c.iter().map(|c| c.max(0.0)).sum()
 }
 

@@ -52,7 +52,14 @@ pub(crate) struct Solution {
     pub d: Vec<f64>,
     /// The multiplier of every row (`>= 0`; 0 if inactive).
     pub multipliers: Vec<f64>,
+    /// The constraints active at the minimiser, to start the next QP of the same shape from
+    /// ([`Qp::solve_from`]).
+    pub active: Active,
 }
+
+/// The active constraints of a QP's solution (bounds and rows), in the order they were added.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub(crate) struct Active(Vec<Constraint>);
 
 /// A constraint: bound `i` below (`Lower`) or above, or row `j`; in the `n^T d >= c` form.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,6 +81,10 @@ pub(crate) struct Qp<'a> {
 /// Relative tolerance under which a constraint counts as satisfied, and a direction as zero.
 const EPS: f64 = 1e-12;
 
+/// A warm-start constraint whose pivot `n^T H n - |w|^2` is below this fraction of `n^T H n`
+/// depends on those before it (to rounding) and is left out.
+const WARM_INDEPENDENT: f64 = 1e-8;
+
 /// `|z|` below this fraction of `|H n_p|`: `n_p` lies in the span of the active normals (up to
 /// the rounding of the projection), there is no primal step.
 const DEPENDENT: f64 = 1e-10;
@@ -81,8 +92,18 @@ const DEPENDENT: f64 = 1e-10;
 impl Qp<'_> {
     /// Solves the QP (module docs).
     pub(crate) fn solve(&self) -> Result<Solution, QpError> {
+        self.solve_from(&Active::default())
+    }
+
+    /// Solves the QP from the active set `warm` of a QP of the same shape (the last SQP step's):
+    /// the dual method starts at the minimiser with those constraints held as equalities
+    /// ([`Qp::warm_start`]) instead of the unconstrained minimum, so that an active set that
+    /// changes little between steps costs few changes. The minimiser is the same (the QP is
+    /// strictly convex); only the path to it is shorter.
+    pub(crate) fn solve_from(&self, warm: &Active) -> Result<Solution, QpError> {
         let n = self.gradient.len();
         let mut s = State::new(self);
+        self.warm_start(&mut s, &warm.0);
         let limit = 10 * (2 * n + self.rows.len()) + 100;
         let mut changes = 0;
         while let Some(p) = self.most_violated(&s) {
@@ -136,6 +157,52 @@ impl Qp<'_> {
         Solution {
             d: s.x,
             multipliers,
+            active: Active(s.active),
+        }
+    }
+
+    /// Makes the constraints of `warm` active (those of this QP's shape with a finite bound or a
+    /// nonzero row, each independent of the ones before it), then drops the one with the most
+    /// negative multiplier until none is negative: the equality-constrained minimiser
+    /// `x = -H g + H N u`, `N^T H N u = -(N^T (-H g) - c)`, with `u >= 0` is a starting pair of
+    /// the dual method (Goldfarb and Idnani 1983, Section 3).
+    fn warm_start(&self, s: &mut State, warm: &[Constraint]) {
+        let (n, rows) = (self.gradient.len(), self.rows.len());
+        let x0 = s.x.clone();
+        for &c in warm {
+            let fits = match c {
+                Constraint::Lower(i) | Constraint::Upper(i) => i < n,
+                Constraint::Row(j) => j < rows,
+            };
+            if !fits || s.norms[s.flag(c)] == 0.0 || s.is_active(c) {
+                continue;
+            }
+            let hn = self.h_times(c);
+            let nhn: Vec<f64> = s.hn.iter().map(|h| self.dot(c, h)).collect();
+            let w = s.forward(&nhn);
+            let whole = self.dot(c, &hn);
+            let pivot = whole - dot(&w, &w);
+            if pivot > WARM_INDEPENDENT * whole && pivot.is_finite() {
+                s.u.push(0.0);
+                s.add(c, hn, w, pivot.sqrt());
+            }
+        }
+        loop {
+            let slack: Vec<f64> = s.active.iter().map(|&c| -self.slack(c, &x0)).collect();
+            s.u = s.backward(&s.forward(&slack));
+            let negative =
+                s.u.iter()
+                    .enumerate()
+                    .filter(|(_, u)| **u < 0.0 || !u.is_finite())
+                    .min_by(|a, b| a.1.total_cmp(b.1));
+            match negative {
+                Some((k, _)) => s.drop(k),
+                None => break,
+            }
+        }
+        s.x = x0;
+        for (h, u) in s.hn.iter().zip(&s.u) {
+            axpy(*u, h, &mut s.x);
         }
     }
 

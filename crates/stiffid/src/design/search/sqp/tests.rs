@@ -90,29 +90,56 @@ fn incompatible_constraints_are_infeasible() {
 /// Random strictly convex QPs with bounds and sparse rows (feasible at 0): the solution satisfies
 /// the KKT conditions, `B d + g + sum lambda_j a_j` non-negative at a lower bound, non-positive at
 /// an upper one and zero between, with complementary slackness and `lambda >= 0`.
+/// A random strictly convex QP with bounds and sparse rows, feasible at 0.
+struct RandomQp {
+    b: Vec<f64>,
+    g: Vec<f64>,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    rows: Vec<Row>,
+}
+
+fn random_qp(rng: &mut ChaCha8Rng) -> RandomQp {
+    let n = rng.random_range(2..14);
+    let m: Vec<f64> = (0..n * n).map(|_| rng.random_range(-1.0..1.0)).collect();
+    let mut b = identity(n);
+    for i in 0..n {
+        for j in 0..n {
+            b[i + n * j] += (0..n).map(|k| m[i + n * k] * m[j + n * k]).sum::<f64>();
+        }
+    }
+    let g: Vec<f64> = (0..n).map(|_| rng.random_range(-5.0..5.0)).collect();
+    let lower: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..0.0)).collect();
+    let upper: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..1.0)).collect();
+    let rows: Vec<Row> = (0..rng.random_range(0..2 * n))
+        .map(|_| Row {
+            a: (0..3)
+                .map(|_| (rng.random_range(0..n), rng.random_range(-1.0..1.0)))
+                .collect(),
+            b: rng.random_range(0.0..0.5),
+        })
+        .collect();
+    RandomQp {
+        b,
+        g,
+        lower,
+        upper,
+        rows,
+    }
+}
+
 #[test]
 fn random_problems_satisfy_the_kkt_conditions() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     for _ in 0..200 {
-        let n = rng.random_range(2..14);
-        let m: Vec<f64> = (0..n * n).map(|_| rng.random_range(-1.0..1.0)).collect();
-        let mut b = identity(n);
-        for i in 0..n {
-            for j in 0..n {
-                b[i + n * j] += (0..n).map(|k| m[i + n * k] * m[j + n * k]).sum::<f64>();
-            }
-        }
-        let g: Vec<f64> = (0..n).map(|_| rng.random_range(-5.0..5.0)).collect();
-        let lower: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..0.0)).collect();
-        let upper: Vec<f64> = (0..n).map(|_| rng.random_range(0.0..1.0)).collect();
-        let rows: Vec<Row> = (0..rng.random_range(0..2 * n))
-            .map(|_| Row {
-                a: (0..3)
-                    .map(|_| (rng.random_range(0..n), rng.random_range(-1.0..1.0)))
-                    .collect(),
-                b: rng.random_range(0.0..0.5),
-            })
-            .collect();
+        let RandomQp {
+            b,
+            g,
+            lower,
+            upper,
+            rows,
+        } = random_qp(&mut rng);
+        let n = g.len();
         let s = solve(&b, &g, &lower, &upper, &rows);
         let mut r: Vec<f64> = (0..n)
             .map(|i| g[i] + (0..n).map(|k| b[i + n * k] * s.d[k]).sum::<f64>())
@@ -351,5 +378,51 @@ impl<P: Nlp> Nlp for Recording<'_, P> {
     }
     fn can_evaluate(&self) -> bool {
         self.inner.can_evaluate()
+    }
+}
+
+/// A QP started from an active set (its own, or that of a QP with another gradient) ends at the
+/// same minimiser and multipliers as from nothing (the QP is strictly convex).
+#[test]
+fn warm_starts_end_at_the_cold_solution() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    for _ in 0..200 {
+        let RandomQp {
+            b,
+            g,
+            lower,
+            upper,
+            rows,
+        } = random_qp(&mut rng);
+        let h = inverse(&b, g.len()).unwrap();
+        let qp = |g: &[f64]| {
+            Qp {
+                inverse: &h,
+                gradient: g,
+                lower: &lower,
+                upper: &upper,
+                rows: &rows,
+            }
+            .solve()
+            .unwrap()
+        };
+        let cold = qp(&g);
+        let shifted: Vec<f64> = g.iter().map(|v| v + rng.random_range(-1.0..1.0)).collect();
+        let other = qp(&shifted).active;
+        let warm = |active: &qp::Active| {
+            Qp {
+                inverse: &h,
+                gradient: &g,
+                lower: &lower,
+                upper: &upper,
+                rows: &rows,
+            }
+            .solve_from(active)
+            .unwrap()
+        };
+        for s in [warm(&cold.active), warm(&other)] {
+            close(&s.d, &cold.d, 1e-10);
+            close(&s.multipliers, &cold.multipliers, 1e-8);
+        }
     }
 }
