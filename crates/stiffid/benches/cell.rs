@@ -1,5 +1,6 @@
-//! The cell: the exact feasibility check of one posture, one point of a constrained search, and
-//! the default constrained global search (`relative-a`, 6 postures, with each SQP), on the paper
+//! The cell: the exact feasibility check of one posture, one point of a constrained search, a
+//! local search and the default constrained global search (`relative-a`, 6 postures, with each
+//! SQP), on the paper
 //! setup with a floor at z = 0, 50 mm clearance,
 //! default radii and a tracker at (3000, -2000, 1500) mm; capsule against mesh bodies per
 //! evaluation on a generated robot with collision meshes (`tests/support/mesh_robot.rs`).
@@ -45,6 +46,26 @@ fn feasibility(c: &mut Bench) {
             (g, m)
         })
     });
+    // The same with every margin's exact gradient (an upper bound of a search point's cost: the
+    // search asks only for the gradients of the pairs that weigh in its smooth minima).
+    c.bench_function(
+        "cell/evaluate/relative-a-and-margins-with-gradients/6",
+        |b| {
+            b.iter(|| {
+                let g = evaluator.value_and_gradient(Criterion::RelativeA, black_box(&group));
+                let m: Vec<_> = group
+                    .iter()
+                    .map(|q| {
+                        let (margins, gradients) = checker.margins_and_gradients(q);
+                        (0..margins.len())
+                            .map(|i| gradients.gradient(i))
+                            .sum::<nalgebra::Vector6<f64>>()
+                    })
+                    .collect();
+                (g, m)
+            })
+        },
+    );
     let first = SearchOptions {
         max_evals: 1,
         solver: Solver::ActiveSet,
@@ -128,6 +149,16 @@ fn search(c: &mut Bench) {
         g.bench_function(format!("global/relative-a/{solver}"), |b| {
             b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
         });
+        // A local search from a seeded group: its time over its evaluations is what one point
+        // of a constrained search costs, everything included (the criterion and the constraints
+        // with their exact gradients, the QP, the line search).
+        let start = design::random_group(&setup, 6, 1);
+        let run = || design::local(&setup, Criterion::RelativeA, &start, &options).unwrap();
+        let evaluations = run().evaluations;
+        g.bench_function(
+            format!("local/relative-a/{solver}/{evaluations}-evaluations"),
+            |b| b.iter(run),
+        );
     }
     g.finish();
 }

@@ -322,7 +322,29 @@ impl<'a> Checker<'a> {
     /// distance (the normal times the difference of the witness points' velocities) and the
     /// derivatives of the incidence angle and the heights. Where the closest points of a pair are
     /// not unique (a tie) the gradient is one of the one-sided ones.
-    pub(crate) fn margins_and_gradients(&self, q: &Vector6<f64>) -> (Vec<Margin>, MarginGradients) {
+    ///
+    /// # Examples
+    /// The gradient of the floor margin of a posture against central differences.
+    /// ```
+    /// use stiffid::cell::{CheckKind, Checker};
+    /// let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string()
+    ///     + "[cell]\nfloor_z_mm = 0.0\n";
+    /// let setup = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))?;
+    /// let checker = Checker::new(&setup);
+    /// let q = stiffid::design::random_group(&setup, 1, 3)[0];
+    /// let (margins, gradients) = checker.margins_and_gradients(&q);
+    /// let i = margins.iter().position(|m| m.kind == CheckKind::Floor).unwrap();
+    /// let h = 1e-6;
+    /// for a in 0..6 {
+    ///     let (mut up, mut down) = (q, q);
+    ///     up[a] += h;
+    ///     down[a] -= h;
+    ///     let fd = (checker.margins(&up)[i].margin - checker.margins(&down)[i].margin) / (2.0 * h);
+    ///     assert!((gradients.gradient(i)[a] - fd).abs() < 1e-6);
+    /// }
+    /// # Ok::<(), stiffid::Error>(())
+    /// ```
+    pub fn margins_and_gradients(&self, q: &Vector6<f64>) -> (Vec<Margin>, MarginGradients) {
         let mut out = Margins::new(true, true);
         self.collect(q, &mut out);
         out.finish()

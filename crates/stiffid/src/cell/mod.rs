@@ -33,3 +33,4 @@ pub use distance::{body_body, body_box, body_floor, capsule_box, capsule_capsule
 pub use feasibility::{
     feasibility, Check, CheckKind, Checker, Feasibility, Margin, Thing, FAR_MARGIN,
 };
+pub use motion::MarginGradients;

@@ -142,15 +142,22 @@ pub(super) struct Margins {
     frames: Option<Frames>,
 }
 
-/// The gradients of the margins of one posture, each worked out when asked for.
-pub(crate) struct MarginGradients {
+/// The gradients of the margins of one posture ([`super::Checker::margins_and_gradients`]), each
+/// worked out when asked for: a distance's from its witness points (the contact normal times the
+/// difference of the witness points' velocities, `n^T (J_b(p_b) - J_a(p_a))`), an incidence
+/// angle's and a height's from their closed forms, a bound's constant.
+pub struct MarginGradients {
     frames: Option<Frames>,
     deferred: Vec<Deferred>,
 }
 
 impl MarginGradients {
-    /// The gradient of margin `i` with respect to the six axis angles (m/rad, or rad/rad).
-    pub(crate) fn gradient(&self, i: usize) -> Vector6<f64> {
+    /// The gradient of margin `i` (its index in the margins returned with these) with respect to
+    /// the six axis angles (m/rad, or rad/rad for angles).
+    ///
+    /// # Panics
+    /// If `i` is not the index of one of those margins.
+    pub fn gradient(&self, i: usize) -> Vector6<f64> {
         let frames = || {
             self.frames
                 .as_ref()

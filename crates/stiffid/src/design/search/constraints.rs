@@ -13,6 +13,10 @@ const SLACK: f64 = 1e-4;
 /// rounding of a weighted sum of terms of weight up to 1.
 const NEGLIGIBLE: f64 = 8.673617379884035e-19;
 
+/// `(m_i - m_min) / tau` beyond which a margin's term `exp(-(m_i - m_min) / tau)` of the smooth
+/// minimum is left out (below `exp(-40) ~ 4e-18`).
+const FAR_EXPONENT: f64 = 40.0;
+
 /// Scale of the smooth minimum of a check's margins over its pairs, for lengths (m).
 const SMOOTHING_M: f64 = 2e-3;
 /// The same for angles (rad).
@@ -38,11 +42,8 @@ pub(super) fn inequalities(checker: &Checker, kinds: &[CheckKind], q: &Vector6<f
     if kinds.is_empty() {
         return Vec::new();
     }
-    let margins = checker.margins(q);
-    kinds
-        .iter()
-        .map(|&k| SLACK - smooth_min(&margins, k))
-        .collect()
+    let (minima, _) = smooth_minima(&checker.margins(q));
+    kinds.iter().map(|&k| SLACK - minima[k as usize]).collect()
 }
 
 /// How much posture `q` misses the checks by, the search's [`SLACK`] included (m and rad
@@ -51,69 +52,107 @@ pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
     if !checker.constrains() {
         return 0.0;
     }
+    margins_violation(&checker.margins(q))
+}
+
+/// [`violation`] from the margins of [`Checker::margins`] (or those of
+/// [`Checker::margins_and_gradients`], the same).
+fn margins_violation(margins: &[Margin]) -> f64 {
     let slack = |k: CheckKind| if k == CheckKind::Bounds { 0.0 } else { SLACK };
-    checker
-        .margins(q)
+    margins
         .iter()
         .map(|m| (slack(m.kind) - m.margin).max(0.0))
         .sum()
 }
 
-/// [`inequalities`] and their exact gradients in the six angles of `q`: the gradient of the
-/// smooth minimum is the average of the pairs' margin gradients
-/// ([`Checker::margins_and_gradients`]) weighted by `exp(-(m_i - m_min) / tau) / sum`. A pair
-/// whose weight is below [`NEGLIGIBLE`] (its margin more than about 42 tau, 8 cm or 0.2 rad, above the
-/// check's smallest) is skipped: its term is below the rounding of the sum.
+/// The inequalities of a posture with their gradients, and its exact violation.
+pub(super) struct Inequalities {
+    /// [`inequalities`].
+    pub values: Vec<f64>,
+    /// Their exact gradients in the six angles.
+    pub gradients: Vec<Vector6<f64>>,
+    /// [`violation`], from the same margins.
+    pub violation: f64,
+}
+
+/// [`inequalities`] and their exact gradients in the six angles of `q`, and the posture's
+/// [`violation`] (the margins worked out once): the gradient of the smooth minimum is the
+/// average of the pairs' margin gradients ([`Checker::margins_and_gradients`]) weighted by
+/// `exp(-(m_i - m_min) / tau) / sum`. A pair whose weight is below [`NEGLIGIBLE`] (its margin
+/// more than about 42 tau, 8 cm or 0.2 rad, above the check's smallest) is skipped: its term is
+/// below the rounding of the sum.
 pub(super) fn inequalities_and_gradients(
     checker: &Checker,
     kinds: &[CheckKind],
     q: &Vector6<f64>,
-) -> (Vec<f64>, Vec<Vector6<f64>>) {
+) -> Inequalities {
     if kinds.is_empty() {
-        return (Vec::new(), Vec::new());
+        let violation = violation(checker, q);
+        return Inequalities {
+            values: Vec::new(),
+            gradients: Vec::new(),
+            violation,
+        };
     }
     let (margins, gradients) = checker.margins_and_gradients(q);
-    kinds
+    let (minima, weights) = smooth_minima(&margins);
+    let mut sums = [Vector6::zeros(); CheckKind::ALL.len()];
+    for (i, (m, &w)) in margins.iter().zip(&weights).enumerate() {
+        if w >= NEGLIGIBLE {
+            sums[m.kind as usize] += gradients.gradient(i) * w;
+        }
+    }
+    Inequalities {
+        values: kinds.iter().map(|&k| SLACK - minima[k as usize]).collect(),
+        gradients: kinds.iter().map(|&k| -sums[k as usize]).collect(),
+        violation: margins_violation(&margins),
+    }
+}
+
+/// The smooth minimum of each check's margins, indexed by `CheckKind as usize` (`+infinity` for
+/// a check without margins, the exact minimum where it is not finite), and each margin's weight
+/// in its check's gradient (a check's weights sum to 1; 0 where its minimum is not finite): every
+/// check in the same passes over the margins, one `exp` per margin, none for a margin more than
+/// [`FAR_EXPONENT`] `tau` above its check's minimum (its term, below `4e-18`, is under the
+/// rounding of the sum, which is at least 1).
+fn smooth_minima(margins: &[Margin]) -> ([f64; CheckKind::ALL.len()], Vec<f64>) {
+    let mut min = [f64::INFINITY; CheckKind::ALL.len()];
+    for m in margins {
+        let k = m.kind as usize;
+        min[k] = min[k].min(m.margin);
+    }
+    let mut sum = [0.0; CheckKind::ALL.len()];
+    let mut weights: Vec<f64> = margins
         .iter()
-        .map(|&k| {
-            let mut g = Vector6::zeros();
-            let v = smooth_min_with(&margins, k, |i, w| {
-                if w >= NEGLIGIBLE {
-                    g += gradients.gradient(i) * w;
-                }
-            });
-            (SLACK - v, -g)
+        .map(|m| {
+            let k = m.kind as usize;
+            let x = (m.margin - min[k]) / smoothing(m.kind);
+            if !min[k].is_finite() || x > FAR_EXPONENT {
+                return 0.0;
+            }
+            let e = (-x).exp();
+            sum[k] += e;
+            e
         })
-        .unzip()
+        .collect();
+    for (w, m) in weights.iter_mut().zip(margins) {
+        *w /= sum[m.kind as usize].max(f64::MIN_POSITIVE);
+    }
+    let mut soft = min;
+    for (k, kind) in CheckKind::ALL.iter().enumerate() {
+        if min[k].is_finite() {
+            soft[k] = min[k] - smoothing(*kind) * sum[k].ln();
+        }
+    }
+    (soft, weights)
 }
 
-fn smooth_min(margins: &[Margin], kind: CheckKind) -> f64 {
-    smooth_min_with(margins, kind, |_, _| ())
-}
-
-/// The smooth minimum of the margins of check `kind`; `weight(i, w)` receives the weight of
-/// margin i in its gradient (weights summing to 1), where the minimum is finite.
-fn smooth_min_with(margins: &[Margin], kind: CheckKind, mut weight: impl FnMut(usize, f64)) -> f64 {
-    let tau = match kind.is_angle() {
+/// The smooth minimum's scale of a check: [`SMOOTHING_RAD`] for angles, else [`SMOOTHING_M`].
+fn smoothing(kind: CheckKind) -> f64 {
+    match kind.is_angle() {
         true => SMOOTHING_RAD,
         false => SMOOTHING_M,
-    };
-    let values = || {
-        margins
-            .iter()
-            .enumerate()
-            .filter(|(_, m)| m.kind == kind)
-            .map(|(i, m)| (i, m.margin))
-    };
-    let min = values().map(|(_, m)| m).fold(f64::INFINITY, f64::min);
-    if !min.is_finite() {
-        return min;
     }
-    let sum: f64 = values().map(|(_, m)| (-(m - min) / tau).exp()).sum();
-    for (i, m) in values() {
-        weight(i, (-(m - min) / tau).exp() / sum);
-    }
-    min - tau * sum.ln()
 }
 
 /// The check that fails in the most postures of `groups`, with that count and the number of

@@ -3,7 +3,9 @@
 
 mod epigraph;
 
-use super::constraints::{inequalities, inequalities_and_gradients, kinds, most_failed, violation};
+use super::constraints::{
+    inequalities, inequalities_and_gradients, kinds, most_failed, violation, Inequalities,
+};
 use super::sqp::{self, Gradients, Nlp, SparseRows, Values};
 use super::termination::{from_slsqp, Termination};
 use super::{Gradient, SearchOptions, SearchOutcome, Solver};
@@ -196,12 +198,14 @@ struct Cache {
     constraints: Vec<Option<PostureConstraints>>,
 }
 
-/// The constraints of one posture and their gradients in its six angles.
+/// The constraints of one posture and their gradients in its six angles, and its exact violation
+/// when worked out from the same margins.
 #[derive(Clone)]
 struct PostureConstraints {
     at: Vector6<f64>,
     values: Vec<f64>,
     gradients: Vec<Vector6<f64>>,
+    violation: Option<f64>,
 }
 
 impl<'a> Problem<'a> {
@@ -367,6 +371,13 @@ impl<'a> Problem<'a> {
     /// Counts an evaluation and keeps `x` if it is the best so far (least constraint violation,
     /// then lowest value). Returns `value`.
     fn record(&self, x: Vec<f64>, postures: &[Vector6<f64>], value: f64) -> f64 {
+        if self.options.gradient == Gradient::Exact {
+            // The constraints with their gradients, needed at this point too, bring the exact
+            // violation from the same margins.
+            for (i, q) in postures.iter().enumerate() {
+                self.posture_constraints(i, *q, |_| ());
+            }
+        }
         let violation = self.violation(postures);
         let mut state = self.state.borrow_mut();
         state.evaluations += 1;
@@ -387,16 +398,11 @@ impl<'a> Problem<'a> {
             return 0.0;
         }
         let mut cache = self.cache.borrow_mut();
-        if cache.violations.len() > REMEMBERED {
-            cache.violations.clear();
-        }
         postures
             .iter()
-            .map(|q| {
-                *cache
-                    .violations
-                    .entry(q.map(f64::to_bits).into())
-                    .or_insert_with(|| violation(self.checker, q))
+            .map(|q| match cache.violations.get(&key(q)) {
+                Some(&v) => v,
+                None => cache.remember(q, violation(self.checker, q)),
             })
             .sum()
     }
@@ -513,22 +519,30 @@ impl<'a> Problem<'a> {
         f: impl FnOnce(&PostureConstraints) -> R,
     ) -> R {
         let mut cache = self.cache.borrow_mut();
-        let entry = &mut cache.constraints[i];
-        if entry.as_ref().is_none_or(|c| c.at != q) {
-            *entry = Some(self.constraints_at(i, &q));
+        if cache.constraints[i].as_ref().is_none_or(|c| c.at != q) {
+            let constraints = self.constraints_at(i, &q);
+            if let Some(v) = constraints.violation {
+                cache.remember(&q, v);
+            }
+            cache.constraints[i] = Some(constraints);
         }
-        f(entry.as_ref().expect("just filled"))
+        f(cache.constraints[i].as_ref().expect("just filled"))
     }
 
     /// Every constraint of posture `i` at `q`, and their gradients in `q`: exact
     /// ([`inequalities_and_gradients`]) with [`Gradient::Exact`], else by forward differences.
     fn constraints_at(&self, i: usize, q: &Vector6<f64>) -> PostureConstraints {
         if self.options.gradient == Gradient::Exact {
-            let (values, gradients) = inequalities_and_gradients(self.checker, &self.kinds, q);
+            let Inequalities {
+                values,
+                gradients,
+                violation,
+            } = inequalities_and_gradients(self.checker, &self.kinds, q);
             return PostureConstraints {
                 at: *q,
                 values,
                 gradients,
+                violation: Some(violation),
             };
         }
         let values = inequalities(self.checker, &self.kinds, q);
@@ -551,6 +565,7 @@ impl<'a> Problem<'a> {
             at: *q,
             values,
             gradients,
+            violation: None,
         }
     }
 }
@@ -586,6 +601,22 @@ impl Nlp for Problem<'_> {
         let spent = self.state.borrow().evaluations;
         spent + evals_per_step(self.options, self.n) <= self.options.max_evals
     }
+}
+
+impl Cache {
+    /// Remembers the exact violation `v` of posture `q` (forgetting all when full); returns `v`.
+    fn remember(&mut self, q: &Vector6<f64>, v: f64) -> f64 {
+        if self.violations.len() >= REMEMBERED {
+            self.violations.clear();
+        }
+        self.violations.insert(key(q), v);
+        v
+    }
+}
+
+/// The bits of a posture's angles, the key of [`Cache::violations`].
+fn key(q: &Vector6<f64>) -> [u64; 6] {
+    q.map(f64::to_bits).into()
 }
 
 /// Posture `i` of the variables `x`.
