@@ -120,7 +120,7 @@ impl Solver {
     ///   start group it reaches a group that predicts a worse accuracy than SLSQP's (and than the
     ///   start group), which would reverse the study's findings (`stiffid reproduce`); and on
     ///   `scaled-cond` (a condition number, with kinks where the extreme singular values repeat),
-    ///   where ours ends higher than SLSQP from 7 of those 10 start groups (at most 1.3%).
+    ///   where ours ends higher than SLSQP from 7 of those 10 start groups (by up to 3.6%).
     ///
     /// Measured on the paper setup with default options (docs/performance.md, "The SQP").
     pub fn resolve(self, criterion: Criterion) -> Solver {
