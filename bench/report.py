@@ -27,6 +27,7 @@ ROWS = [
     ("identification 72 x 6 with statistics (bench identify)", "identify_72x6 least squares and statistics", None, 5e-6, None),
     ("identification from the 24 measurement rows", "compare/identify", ("identify", "identify"), None, None),
     ("local search, zhang2021, SLSQP from the start group, exact gradient", "compare/local-search", ("select", "local_search"), 10e-3, 2000),
+    ("local search, zhang2021, our SQP (--solver active-set) from the start group, exact gradient", "compare/local-search-active-set", ("select", "local_search"), 10e-3, 2000),
     ("local search, zhang2021, from the start group, finite differences", "compare/local-search-fd", ("select", "local_search"), None, None),
     ("default global search, relative-a (bench design)", "design_search/global_relative-a_default", None, 0.3, None),
     ("default global search, relative-a, finite differences", "design_search/global-fd_relative-a_default", None, None, None),

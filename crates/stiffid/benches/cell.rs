@@ -33,36 +33,22 @@ fn feasibility(c: &mut Bench) {
     c.bench_function("cell/capsules/one-posture", |b| {
         b.iter(|| stiffid::cell::capsules(&setup, &setup.robot().frames(black_box(&q))))
     });
-    // What one point of a constrained search costs: the criterion with its exact gradient and the
-    // margins of every posture (their gradients, worked out from the witness points when the
-    // search asks, not included); and a local search stopped after its first point (that point
-    // with every gradient, plus building the checker and the final exact check).
     let group = design::random_group(&setup, 6, 1);
     let evaluator = design::Evaluator::new(&setup);
-    c.bench_function("cell/evaluate/relative-a-gradient-and-margins/6", |b| {
-        b.iter(|| {
-            let g = evaluator.value_and_gradient(Criterion::RelativeA, black_box(&group));
-            let m: Vec<_> = group.iter().map(|q| checker.margins(q)).collect();
-            (g, m)
-        })
-    });
-    // The same with every margin's exact gradient (an upper bound of a search point's cost: the
-    // search asks only for the gradients of the pairs that weigh in its smooth minima).
+    // One constrained evaluation with its exact gradient, as a search point needs it: the
+    // criterion with its gradient, and the cell's constraints of every posture with theirs; and a
+    // local search stopped after its first point (that point, plus building the checker and the
+    // final exact check).
     c.bench_function(
-        "cell/evaluate/relative-a-and-margins-with-gradients/6",
+        "cell/evaluate/relative-a-and-constraints-with-gradients/6",
         |b| {
             b.iter(|| {
                 let g = evaluator.value_and_gradient(Criterion::RelativeA, black_box(&group));
-                let m: Vec<_> = group
+                let c: Vec<_> = group
                     .iter()
-                    .map(|q| {
-                        let (margins, gradients) = checker.margins_and_gradients(q);
-                        (0..margins.len())
-                            .map(|i| gradients.gradient(i))
-                            .sum::<nalgebra::Vector6<f64>>()
-                    })
+                    .map(|q| design::search::cell_constraints(&checker, q))
                     .collect();
-                (g, m)
+                (g, c)
             })
         },
     );

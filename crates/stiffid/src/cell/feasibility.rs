@@ -367,7 +367,6 @@ impl<'a> Checker<'a> {
         let frames = s.robot().frames(q);
         let bodies = bodies(s, &frames);
         let loading = frames.point(&s.tool().loading_point);
-        out.frames(&frames);
         if let Some(cell) = &s.cell() {
             self.body_margins(&bodies, &loading, cell, out);
         }
@@ -411,6 +410,7 @@ impl<'a> Checker<'a> {
             );
             out.push(m, height);
         }
+        out.frames(frames);
     }
 
     fn body_margins(

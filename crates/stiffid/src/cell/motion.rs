@@ -132,6 +132,10 @@ pub(super) enum Deferred {
     Height(Vector3<f64>),
 }
 
+/// Margins of a posture allocated for at first: the bounds, a robot's bodies against the floor,
+/// each other, the rope and four lines of sight come to about 70 (more with obstacles).
+const CAPACITY: usize = 128;
+
 /// The margins of one posture as they are worked out, and what their gradients come from when
 /// asked for.
 pub(super) struct Margins {
@@ -181,18 +185,18 @@ impl Margins {
     /// every distance exact.
     pub(super) fn new(gradients: bool, broad: bool) -> Self {
         Self {
-            margins: Vec::with_capacity(64),
+            margins: Vec::with_capacity(CAPACITY),
             broad,
-            deferred: gradients.then(|| Vec::with_capacity(64)),
+            deferred: gradients.then(|| Vec::with_capacity(CAPACITY)),
             frames: None,
         }
     }
 
     /// The posture's frames, for the gradients that follow (kept only when gradients are asked
     /// for).
-    pub(super) fn frames(&mut self, frames: &Frames) {
+    pub(super) fn frames(&mut self, frames: Frames) {
         if self.deferred.is_some() {
-            self.frames = Some(frames.clone());
+            self.frames = Some(frames);
         }
     }
 

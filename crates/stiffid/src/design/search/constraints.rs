@@ -65,14 +65,52 @@ fn margins_violation(margins: &[Margin]) -> f64 {
         .sum()
 }
 
-/// The inequalities of a posture with their gradients, and its exact violation.
-pub(super) struct Inequalities {
-    /// [`inequalities`].
+/// The cell's checks of one posture as the searches constrain them ([`cell_constraints`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellConstraints {
+    /// One smooth inequality `c_k(q) <= 0` per check `k` of [`Checker::kinds`] but the bounds, in
+    /// that order: `c_k = 0.1 mm - softmin_k` (m, or rad for the incidence angle), the smooth
+    /// minimum of the check's pair margins `softmin = m_min - tau ln sum_i exp(-(m_i - m_min) /
+    /// tau)`, tau 2 mm (0.005 rad), never above the exact minimum: `c_k <= 0` implies that the
+    /// exact check passes.
     pub values: Vec<f64>,
-    /// Their exact gradients in the six angles.
+    /// The exact gradient of each value in the six axis angles (m/rad, or rad/rad).
     pub gradients: Vec<Vector6<f64>>,
-    /// [`violation`], from the same margins.
+    /// How much the posture misses the checks by, the 0.1 mm kept on top included (m and rad
+    /// summed over the failing pairs, from the exact margins): 0 when it passes them all.
     pub violation: f64,
+}
+
+/// The cell's checks of `checker` (floor, obstacles, self-collision, rope, line of sight,
+/// incidence, `[constraints]`; the bounds excepted, which an optimiser keeps as bounds) as the
+/// posture searches constrain posture `q` (axis angles, rad): smooth inequalities with their exact
+/// gradients and the posture's exact violation ([`CellConstraints`]), for an optimiser of one's
+/// own. Without a cell or a tracker there are no values and the violation is 0.
+///
+/// # Examples
+/// A posture whose constraints all hold passes the exact checks.
+/// ```
+/// use stiffid::cell::Checker;
+/// use stiffid::design::search::cell_constraints;
+/// let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string()
+///     + "[cell]\nfloor_z_mm = 0.0\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
+/// let setup = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))?;
+/// let checker = Checker::new(&setup);
+/// let mut held = 0;
+/// for q in stiffid::design::random_group(&setup, 20, 1) {
+///     let c = cell_constraints(&checker, &q);
+///     assert_eq!(c.values.len(), checker.kinds().len() - 1);
+///     if c.values.iter().all(|v| *v <= 0.0) {
+///         assert!(checker.feasibility(&q).feasible());
+///         assert_eq!(c.violation, 0.0);
+///         held += 1;
+///     }
+/// }
+/// assert!(held > 0);
+/// # Ok::<(), stiffid::Error>(())
+/// ```
+pub fn cell_constraints(checker: &Checker, q: &Vector6<f64>) -> CellConstraints {
+    inequalities_and_gradients(checker, &kinds(checker), q)
 }
 
 /// [`inequalities`] and their exact gradients in the six angles of `q`, and the posture's
@@ -85,10 +123,10 @@ pub(super) fn inequalities_and_gradients(
     checker: &Checker,
     kinds: &[CheckKind],
     q: &Vector6<f64>,
-) -> Inequalities {
+) -> CellConstraints {
     if kinds.is_empty() {
         let violation = violation(checker, q);
-        return Inequalities {
+        return CellConstraints {
             values: Vec::new(),
             gradients: Vec::new(),
             violation,
@@ -102,7 +140,7 @@ pub(super) fn inequalities_and_gradients(
             sums[m.kind as usize] += gradients.gradient(i) * w;
         }
     }
-    Inequalities {
+    CellConstraints {
         values: kinds.iter().map(|&k| SLACK - minima[k as usize]).collect(),
         gradients: kinds.iter().map(|&k| -sums[k as usize]).collect(),
         violation: margins_violation(&margins),

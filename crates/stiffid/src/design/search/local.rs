@@ -4,7 +4,7 @@
 mod epigraph;
 
 use super::constraints::{
-    inequalities, inequalities_and_gradients, kinds, most_failed, violation, Inequalities,
+    inequalities, inequalities_and_gradients, kinds, most_failed, violation, CellConstraints,
 };
 use super::sqp::{self, Gradients, Nlp, SparseRows, Values};
 use super::termination::{from_slsqp, Termination};
@@ -533,7 +533,7 @@ impl<'a> Problem<'a> {
     /// ([`inequalities_and_gradients`]) with [`Gradient::Exact`], else by forward differences.
     fn constraints_at(&self, i: usize, q: &Vector6<f64>) -> PostureConstraints {
         if self.options.gradient == Gradient::Exact {
-            let Inequalities {
+            let CellConstraints {
                 values,
                 gradients,
                 violation,

@@ -20,6 +20,7 @@ mod sample;
 mod sqp;
 mod termination;
 
+pub use constraints::{cell_constraints, CellConstraints};
 pub use global::global;
 pub(super) use local::check_count;
 pub use local::local;
