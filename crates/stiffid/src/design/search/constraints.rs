@@ -85,7 +85,9 @@ pub struct CellConstraints {
 /// incidence, `[constraints]`; the bounds excepted, which an optimiser keeps as bounds) as the
 /// posture searches constrain posture `q` (axis angles, rad): smooth inequalities with their exact
 /// gradients and the posture's exact violation ([`CellConstraints`]), for an optimiser of one's
-/// own. Without a cell or a tracker there are no values and the violation is 0.
+/// own. Without a cell or a tracker there are no values and the violation is 0. A posture with
+/// an angle that is not finite violates every constraint: each value and the violation are
+/// `+infinity`, the gradients zero.
 ///
 /// # Examples
 /// A posture whose constraints all hold passes the exact checks.
@@ -107,10 +109,20 @@ pub struct CellConstraints {
 ///     }
 /// }
 /// assert!(held > 0);
+/// let lost = cell_constraints(&checker, &nalgebra::Vector6::repeat(f64::NAN));
+/// assert!(lost.values.iter().all(|v| *v == f64::INFINITY));
 /// # Ok::<(), stiffid::Error>(())
 /// ```
 pub fn cell_constraints(checker: &Checker, q: &Vector6<f64>) -> CellConstraints {
-    inequalities_and_gradients(checker, &kinds(checker), q)
+    let kinds = kinds(checker);
+    if !q.iter().all(|a| a.is_finite()) {
+        return CellConstraints {
+            values: vec![f64::INFINITY; kinds.len()],
+            gradients: vec![Vector6::zeros(); kinds.len()],
+            violation: f64::INFINITY,
+        };
+    }
+    inequalities_and_gradients(checker, &kinds, q)
 }
 
 /// [`inequalities`] and their exact gradients in the six angles of `q`, and the posture's
