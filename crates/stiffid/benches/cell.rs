@@ -135,16 +135,13 @@ fn search(c: &mut Bench) {
         g.bench_function(format!("global/relative-a/{solver}"), |b| {
             b.iter(|| design::global(&setup, Criterion::RelativeA, 6, &options, &|_| {}).unwrap())
         });
-        // A local search from a seeded group: its time over its evaluations is what one point
-        // of a constrained search costs, everything included (the criterion and the constraints
-        // with their exact gradients, the QP, the line search).
+        // A local search from a seeded group: its time over its evaluations (135 with ours,
+        // 1161 with SLSQP) is what one point of a constrained search costs, everything included
+        // (the criterion and the constraints with their exact gradients, the QP, the line search).
         let start = design::random_group(&setup, 6, 1);
-        let run = || design::local(&setup, Criterion::RelativeA, &start, &options).unwrap();
-        let evaluations = run().evaluations;
-        g.bench_function(
-            format!("local/relative-a/{solver}/{evaluations}-evaluations"),
-            |b| b.iter(run),
-        );
+        g.bench_function(format!("local/relative-a/{solver}"), |b| {
+            b.iter(|| design::local(&setup, Criterion::RelativeA, &start, &options).unwrap())
+        });
     }
     g.finish();
 }

@@ -1,6 +1,6 @@
 //! Exact gradients against central differences, at random postures of every preset robot, in axis
 //! and kinematic spring coordinates: the point-Jacobian kernel, the dexterity index, the rope block
-//! of the observation matrix, and every design criterion.
+//! of the observation matrix, every design criterion, and the cell's constraints of the searches.
 
 use crate::common;
 
@@ -190,4 +190,49 @@ fn gradient_of_a_rank_deficient_group_is_zero_not_nan() {
             "{criterion}"
         );
     }
+}
+
+/// The cell's constraints as the searches see them (`design::search::cell_constraints`: smooth
+/// minima of the pair margins of floor, obstacle, self-collision, rope, lines of sight, incidence
+/// and loading-point height) against two-sided differences, at seeded postures of the paper setup
+/// in a cell: every value's gradient, wherever the differences of steps h and h / 2 agree (no
+/// broad-phase switch or witness tie within the step).
+#[test]
+fn cell_constraint_gradients_match_central_differences() {
+    use stiffid::cell::Checker;
+    use stiffid::design::search::cell_constraints;
+    let text = setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+        + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n[[cell.obstacle]]\nname = \"table\"\nmin_mm = [1800, -500, 0]\nmax_mm = [2600, 500, 900]\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\nmax_incidence_deg = 60.0\n[constraints]\nloading_point_min_z_mm = 300.0\n";
+    let setup = setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
+    let checker = Checker::new(&setup);
+    let postures = stiffid::design::random_group(&setup, 40, 5);
+    let mut checked = vec![0; checker.kinds().len() - 1];
+    for q in &postures {
+        let c = cell_constraints(&checker, q);
+        for (k, count) in checked.iter_mut().enumerate() {
+            let f = |q: &Vector6<f64>| cell_constraints(&checker, q).values[k];
+            let two_sided = |h: f64| {
+                Vector6::from_fn(|a, _| {
+                    let step = Vector6::ith(a, h);
+                    (f(&(q + step)) - f(&(q - step))) / (2.0 * h)
+                })
+            };
+            let (d, half) = (two_sided(1e-6), two_sided(5e-7));
+            if (d - half).norm() > 1e-6 * (1.0 + d.norm()) {
+                continue;
+            }
+            let err = (c.gradients[k] - d).norm() / d.norm().max(1e-3);
+            assert!(
+                err < 1e-5,
+                "check {k}: {:?} against {:?}",
+                c.gradients[k],
+                d
+            );
+            *count += 1;
+        }
+    }
+    assert!(
+        checked.iter().all(|&n| n >= 20),
+        "postures checked per check: {checked:?}"
+    );
 }

@@ -47,7 +47,8 @@ pub(super) fn inequalities(checker: &Checker, kinds: &[CheckKind], q: &Vector6<f
 }
 
 /// How much posture `q` misses the checks by, the search's [`SLACK`] included (m and rad
-/// summed over the failing pairs): 0 when it passes them all with the slack.
+/// summed over the failing pairs; the bounds excepted, which the searches keep exactly): 0 when
+/// it passes them all with the slack.
 pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
     if !checker.constrains() {
         return 0.0;
@@ -56,12 +57,13 @@ pub(super) fn violation(checker: &Checker, q: &Vector6<f64>) -> f64 {
 }
 
 /// [`violation`] from the margins of [`Checker::margins`] (or those of
-/// [`Checker::margins_and_gradients`], the same).
+/// [`Checker::margins_and_gradients`], the same): the bounds excepted, which the searches keep
+/// exactly.
 fn margins_violation(margins: &[Margin]) -> f64 {
-    let slack = |k: CheckKind| if k == CheckKind::Bounds { 0.0 } else { SLACK };
     margins
         .iter()
-        .map(|m| (slack(m.kind) - m.margin).max(0.0))
+        .filter(|m| m.kind != CheckKind::Bounds)
+        .map(|m| (SLACK - m.margin).max(0.0))
         .sum()
 }
 
@@ -69,15 +71,17 @@ fn margins_violation(margins: &[Margin]) -> f64 {
 #[derive(Debug, Clone, PartialEq)]
 pub struct CellConstraints {
     /// One smooth inequality `c_k(q) <= 0` per check `k` of [`Checker::kinds`] but the bounds, in
-    /// that order: `c_k = 0.1 mm - softmin_k` (m, or rad for the incidence angle), the smooth
+    /// that order: `c_k = 1e-4 - softmin_k` (m: 0.1 mm kept on top; rad for the incidence angle:
+    /// 0.1 mrad), the smooth
     /// minimum of the check's pair margins `softmin = m_min - tau ln sum_i exp(-(m_i - m_min) /
     /// tau)`, tau 2 mm (0.005 rad), never above the exact minimum: `c_k <= 0` implies that the
     /// exact check passes.
     pub values: Vec<f64>,
     /// The exact gradient of each value in the six axis angles (m/rad, or rad/rad).
     pub gradients: Vec<Vector6<f64>>,
-    /// How much the posture misses the checks by, the 0.1 mm kept on top included (m and rad
-    /// summed over the failing pairs, from the exact margins): 0 when it passes them all.
+    /// How much the posture misses the checks of the values by, the `1e-4` kept on top included
+    /// (m and rad summed over the failing pairs, from the exact margins; the bounds excepted): 0
+    /// when it passes them all.
     pub violation: f64,
 }
 
@@ -129,8 +133,8 @@ pub fn cell_constraints(checker: &Checker, q: &Vector6<f64>) -> CellConstraints 
 /// [`violation`] (the margins worked out once): the gradient of the smooth minimum is the
 /// average of the pairs' margin gradients ([`Checker::margins_and_gradients`]) weighted by
 /// `exp(-(m_i - m_min) / tau) / sum`. A pair whose weight is below [`NEGLIGIBLE`] (its margin
-/// more than about 42 tau, 8 cm or 0.2 rad, above the check's smallest) is skipped: its term is
-/// below the rounding of the sum.
+/// more than [`FAR_EXPONENT`] tau, 8 cm or 0.2 rad, above the check's smallest) is left out: its
+/// term is below the rounding of the sum.
 pub(super) fn inequalities_and_gradients(
     checker: &Checker,
     kinds: &[CheckKind],
@@ -186,7 +190,9 @@ fn smooth_minima(margins: &[Margin]) -> ([f64; CheckKind::ALL.len()], Vec<f64>) 
         })
         .collect();
     for (w, m) in weights.iter_mut().zip(margins) {
-        *w /= sum[m.kind as usize].max(f64::MIN_POSITIVE);
+        // A check with a NaN margin has a NaN sum: its weights are 0 (no gradient).
+        let s = sum[m.kind as usize];
+        *w = if s > 0.0 { *w / s } else { 0.0 };
     }
     let mut soft = min;
     for (k, kind) in CheckKind::ALL.iter().enumerate() {

@@ -141,6 +141,8 @@ impl<'p, P: Nlp> Search<'p, P> {
             return Some(Termination::EvaluationLimit);
         }
         let Some((d, lambda, active)) = self.direction() else {
+            // The retry from B = I starts its QP cold.
+            self.active = Active::default();
             return self.restart(Termination::SubproblemFailed);
         };
         self.active = active;

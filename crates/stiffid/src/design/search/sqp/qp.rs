@@ -55,6 +55,8 @@ pub(crate) struct Solution {
     /// The constraints active at the minimiser, to start the next QP of the same shape from
     /// ([`Qp::solve_from`]).
     pub active: Active,
+    /// The active-set changes the dual method took (a warm start's additions not counted).
+    pub changes: usize,
 }
 
 /// The active constraints of a QP's solution (bounds and rows), in the order they were added.
@@ -143,11 +145,11 @@ impl Qp<'_> {
                 s.drop(k.expect("a partial step has an index"));
             }
         }
-        Ok(self.solution(s))
+        Ok(self.solution(s, changes))
     }
 
     /// The solution from the final state: the point and the rows' multipliers.
-    fn solution(&self, s: State) -> Solution {
+    fn solution(&self, s: State, changes: usize) -> Solution {
         let mut multipliers = vec![0.0; self.rows.len()];
         for (c, u) in s.active.iter().zip(&s.u) {
             if let Constraint::Row(j) = *c {
@@ -158,6 +160,7 @@ impl Qp<'_> {
             d: s.x,
             multipliers,
             active: Active(s.active),
+            changes,
         }
     }
 
