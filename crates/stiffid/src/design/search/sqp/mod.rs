@@ -20,11 +20,12 @@
 //!   changes `f` by less than `ftol` or the QP's predicted change `|g^T d| + sum lambda_j |c_j|` is below `ftol`
 //!   ([`Termination::Converged`]), or every variable moves by less than `xtol`
 //!   ([`Termination::StepTolerance`]); when the problem's budget is spent
-//!   ([`Termination::EvaluationLimit`]); when the line search fails twice, the second time from
+//!   ([`Termination::EvaluationLimit`], tested where a step needs an evaluation, after the stops
+//!   that need none); when the line search fails twice, the second time from
 //!   `B = I` ([`Termination::LineSearchFailed`]); when the QP fails from `B = I`
 //!   ([`Termination::SubproblemFailed`]). A stop with `B` other than the identity is confirmed
-//!   from `B = I`: the search stops when that step fails or meets a stop too, for the reason
-//!   being confirmed, and goes on otherwise.
+//!   from `B = I`: the search stops when that step fails or meets a stop too, or when the budget
+//!   runs out first, for the reason being confirmed, and goes on otherwise.
 //! - **Requirements**: `x0` within the bounds (finite); `f` and `c_j` finite where evaluated (a
 //!   problem maps a failed evaluation to a large finite value).
 //! - **Deterministic**: one thread, fixed-order arithmetic: the same problem gives the same bits.
@@ -137,9 +138,6 @@ impl<'p, P: Nlp> Search<'p, P> {
 
     /// One SQP step; `Some` reason when the search stops.
     fn step(&mut self, tol: Tolerances) -> Option<Termination> {
-        if !self.nlp.can_evaluate() {
-            return Some(Termination::EvaluationLimit);
-        }
         let Some((d, lambda, active)) = self.direction() else {
             // The retry from B = I starts its QP cold.
             self.active = Active::default();
@@ -162,7 +160,7 @@ impl<'p, P: Nlp> Search<'p, P> {
         let Some((x, values)) = self.line_search(&d) else {
             return match self.nlp.can_evaluate() {
                 true => self.restart(Termination::LineSearchFailed),
-                false => Some(Termination::EvaluationLimit),
+                false => Some(self.out_of_budget()),
             };
         };
         let gradients = self.nlp.gradients(&x, &values);
@@ -187,6 +185,13 @@ impl<'p, P: Nlp> Search<'p, P> {
             }
         };
         self.restart_after(stop, from_identity)
+    }
+
+    /// Why the search stops when the budget is spent: the stop being confirmed, if any (the
+    /// search had stopped; only its confirmation was cut short), else
+    /// [`Termination::EvaluationLimit`].
+    fn out_of_budget(&self) -> Termination {
+        self.confirming.unwrap_or(Termination::EvaluationLimit)
     }
 
     /// After a failure or a stop before a step: [`Search::restart_after`] from the current `B`.

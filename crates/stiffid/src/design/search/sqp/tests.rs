@@ -306,6 +306,36 @@ fn rosenbrock_in_the_unit_disc_from_an_infeasible_start() {
     assert!((g[1] + lambda * 2.0 * x[1]).abs() < 1e-5);
 }
 
+/// The budget is tested where a step needs an evaluation, after the stops that need none: on
+/// Rosenbrock's problem in the unit disc, a budget of exactly the evaluations the converged run
+/// spent ends converged too (its last stop and the confirmation from `B = I` are the QP's
+/// predicted change, no evaluation), where a budget test at the start of every step said
+/// `evaluation-limit`.
+#[test]
+fn a_stop_cut_short_by_the_budget_is_still_a_stop() {
+    let problem = |budget| Small {
+        f: |x: &[f64]| {
+            let (a, b) = (1.0 - x[0], x[1] - x[0] * x[0]);
+            (
+                a * a + 100.0 * b * b,
+                [-2.0 * a - 400.0 * x[0] * b, 200.0 * b],
+            )
+        },
+        c: |x: &[f64]| vec![(x[0] * x[0] + x[1] * x[1] - 1.0, [2.0 * x[0], 2.0 * x[1]])],
+        lower: [-2.0; 2],
+        upper: [2.0; 2],
+        evaluations: Cell::new(0),
+        budget,
+    };
+    let full = problem(500);
+    assert!(minimise(&full, &[1.5, -1.5], TIGHT).is_converged());
+    let spent = full.evaluations.get();
+    let exact = problem(spent);
+    let stop = minimise(&exact, &[1.5, -1.5], TIGHT);
+    assert_eq!(stop, Termination::Converged, "budget {spent}");
+    assert_eq!(exact.evaluations.get(), spent);
+}
+
 /// A linear objective over the unit disc and a box: `min x + y` at `(-1/sqrt 2, -1/sqrt 2)`; with
 /// the box `x >= -0.5` the bound is active too, at `(-0.5, -sqrt 0.75)`.
 #[test]
