@@ -1,7 +1,7 @@
 //! Posture design: one evaluation of each criterion (6 postures x 4 measuring points), one
 //! evaluation with its exact gradient, local searches from a fixed seeded start group (exact and
-//! finite-difference gradients), the default global search (and with our SQP against the group
-//! size: 6, 12, 24, 60 postures), and the best 6 of a pool of 1000
+//! finite-difference gradients), the default global search (and against the group size: 6, 12,
+//! 24, 60 postures), and the best 6 of a pool of 1000
 //! postures (`select --pool`: building the pool and the exchange), on the paper setup.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
