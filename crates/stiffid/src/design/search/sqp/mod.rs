@@ -17,12 +17,12 @@
 //!   `[0.1, 0.5]` of the last step, at most [`BACKTRACKS`] trials.
 //! - **Stops** ([`Termination`]): at a point whose constraints hold ([`Nlp::feasible`]: their
 //!   violations summed at most [`FEASIBLE`] unless the problem says otherwise) when a step
-//!   changes `f` by less than `ftol` or the QP's predicted change `|g^T d| + sum lambda_j |c_j|` is below `ftol`
-//!   ([`Termination::Converged`]), or every variable moves by less than `xtol`
+//!   changes `f` by less than `ftol` or the QP's predicted change `|g^T d| + sum lambda_j |c_j|`
+//!   is below `ftol` ([`Termination::Converged`]), or every variable moves by less than `xtol`
 //!   ([`Termination::StepTolerance`]); when the problem's budget is spent
 //!   ([`Termination::EvaluationLimit`], tested where a step needs an evaluation, after the stops
-//!   that need none); when the line search fails twice, the second time from
-//!   `B = I` ([`Termination::LineSearchFailed`]); when the QP fails from `B = I`
+//!   that need none); when the line search fails twice, the second time from `B = I`
+//!   ([`Termination::LineSearchFailed`]); when the QP fails from `B = I`
 //!   ([`Termination::SubproblemFailed`]). A stop with `B` other than the identity is confirmed
 //!   from `B = I`: the search stops when that step fails or meets a stop too, or when the budget
 //!   runs out first, for the reason being confirmed, and goes on otherwise.
