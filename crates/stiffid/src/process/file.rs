@@ -28,7 +28,13 @@
 //! `feed_per_rev_mm` (0, 5]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
 //! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
 //! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most [`MAX_OPERATIONS`] operations;
-//! `lines` 1-based, first <= last.
+//! `lines` two 1-based line numbers, first <= last.
+//!
+//! # Ambiguity
+//! Two operations with the same name, the same `tool_number`, overlapping `lines`, or both
+//! without a selector are refused naming both: a program could not tell which one covers a point.
+//! Every key is checked: a key the operation's kind does not take (a drilling operation's
+//! `flutes`) or a single operation's key beside `[[operation]]` tables is refused.
 
 use super::drilling::Drilling;
 use super::milling::{Coefficients, Milling, Mode};
@@ -57,7 +63,7 @@ struct FileToml {
     name: Option<String>,
     kind: Option<String>,
     tool_number: Option<u32>,
-    lines: Option<[u64; 2]>,
+    lines: Option<Vec<u64>>,
     tool: Option<ToolToml>,
     cut: Option<CutToml>,
     coefficients: Option<CoefficientsToml>,
@@ -70,7 +76,7 @@ struct OperationToml {
     name: Option<String>,
     kind: Option<String>,
     tool_number: Option<u32>,
-    lines: Option<[u64; 2]>,
+    lines: Option<Vec<u64>>,
     tool: ToolToml,
     cut: CutToml,
     coefficients: CoefficientsToml,
@@ -136,8 +142,15 @@ fn process(file: FileToml) -> Result<Process> {
             "the part frame belongs to the setup: move [workpiece] base_from_part into the setup file",
         ));
     }
+    let top_level = [
+        ("name", file.name.is_some()),
+        ("kind", file.kind.is_some()),
+        ("tool_number", file.tool_number.is_some()),
+        ("lines", file.lines.is_some()),
+        ("coefficients", file.coefficients.is_some()),
+    ];
     let tables = match (file.operation, file.tool, file.cut) {
-        (Some(list), None, None) if file.coefficients.is_none() => list
+        (Some(list), None, None) if !top_level.iter().any(|(_, given)| *given) => list
             .into_iter()
             .enumerate()
             .map(|(i, o)| (format!("operation[{}].", i + 1), o))
@@ -154,8 +167,23 @@ fn process(file: FileToml) -> Result<Process> {
             };
             vec![(String::new(), single)]
         }
-        (Some(_), _, _) => return Err(invalid("operation", "give either [[operation]] tables or one [tool], [cut] and [coefficients] at the top level, not both")),
-        _ => return Err(invalid("tool", "missing: expected [tool] and [cut] (one operation) or [[operation]] tables")),
+        (Some(_), tool, cut) => {
+            let field = match (tool, cut) {
+                (Some(_), _) => "tool",
+                (_, Some(_)) => "cut",
+                _ => top_level
+                    .iter()
+                    .find(|(_, given)| *given)
+                    .map_or("operation", |(f, _)| f),
+            };
+            return Err(invalid(field, "a key of a single operation beside [[operation]] tables: give either [[operation]] tables (each with its own name, kind, selector, tool, cut and coefficients) or one operation at the top level, not both"));
+        }
+        _ => {
+            return Err(invalid(
+                "tool",
+                "missing: expected [tool] and [cut] (one operation) or [[operation]] tables",
+            ))
+        }
     };
     if tables.is_empty() || tables.len() > MAX_OPERATIONS {
         return Err(invalid(
@@ -171,7 +199,49 @@ fn process(file: FileToml) -> Result<Process> {
         .enumerate()
         .map(|(i, (prefix, t))| operation(i, &prefix, t))
         .collect::<Result<Vec<_>>>()?;
+    unambiguous(&operations)?;
     Ok(Process { operations })
+}
+
+/// Refuses two operations a program could not tell apart: the same name, the same
+/// `tool_number`, overlapping `lines`, or both without a selector (the first would silently win).
+fn unambiguous(operations: &[Operation]) -> Result<()> {
+    let label = |i: usize| match operations.len() {
+        1 => String::new(),
+        _ => format!("operation[{}]", i + 1),
+    };
+    for (j, b) in operations.iter().enumerate() {
+        for (i, a) in operations[..j].iter().enumerate() {
+            let (sa, sb) = (&a.selector, &b.selector);
+            let clash = if a.name == b.name {
+                Some(format!("the name '{}'", limits::short(&a.name)))
+            } else if sa.tool_number.is_some() && sa.tool_number == sb.tool_number {
+                Some(format!("tool_number = {}", sa.tool_number.unwrap_or(0)))
+            } else if let (Some((a0, a1)), Some((b0, b1))) = (sa.lines, sb.lines) {
+                (a0 <= b1 && b0 <= a1)
+                    .then(|| format!("overlapping lines [{a0}, {a1}] and [{b0}, {b1}]"))
+            } else if sa.tool_number.is_none()
+                && sa.lines.is_none()
+                && sb.tool_number.is_none()
+                && sb.lines.is_none()
+            {
+                Some("no selector (tool_number or lines) in either".to_string())
+            } else {
+                None
+            };
+            if let Some(clash) = clash {
+                return Err(invalid(
+                    &label(j),
+                    &format!(
+                        "{} and {} share {clash}: a program could not tell which covers a point; give each its own name and selector (at most one operation without one)",
+                        label(i),
+                        label(j)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn invalid(field: &str, message: &str) -> Error {
@@ -194,17 +264,21 @@ fn required(prefix: &str, field: &str, value: Option<f64>, range: &Range) -> Res
 
 fn operation(i: usize, prefix: &str, t: OperationToml) -> Result<Operation> {
     let name = t.name.clone().unwrap_or_else(|| (i + 1).to_string());
-    if let Some([first, last]) = t.lines {
-        if first == 0 || first > last {
+    let lines = match t.lines.as_deref() {
+        None => None,
+        Some(&[first, last]) if first >= 1 && first <= last => Some((first, last)),
+        Some(other) => {
             return Err(invalid(
                 &format!("{prefix}lines"),
-                &format!("[{first}, {last}]: expected [first, last] with 1 <= first <= last"),
-            ));
+                &format!(
+                    "{other:?}: expected [first, last] (two line numbers) with 1 <= first <= last"
+                ),
+            ))
         }
-    }
+    };
     let selector = Selector {
         tool_number: t.tool_number,
-        lines: t.lines.map(|[a, b]| (a, b)),
+        lines,
     };
     let diameter = ranged(prefix, "tool.diameter_mm", t.tool.diameter_mm, &DIAMETER)?;
     let kind = match t.kind.as_deref().unwrap_or("milling") {
@@ -365,13 +439,20 @@ fn drilling(prefix: &str, diameter: f64, t: &OperationToml) -> Result<Drilling> 
         ("cut.axial_depth_mm", c.axial_depth_mm.is_some()),
         ("cut.radial_depth_mm", c.radial_depth_mm.is_some()),
         ("cut.mode", c.mode.is_some()),
+        ("tool.flutes", t.tool.flutes.is_some()),
+        ("tool.helix_deg", t.tool.helix_deg.is_some()),
         ("coefficients.preset", k.preset.is_some()),
         ("coefficients.k_tc_n_per_mm2", k.k_tc_n_per_mm2.is_some()),
+        ("coefficients.k_rc_n_per_mm2", k.k_rc_n_per_mm2.is_some()),
+        ("coefficients.k_ac_n_per_mm2", k.k_ac_n_per_mm2.is_some()),
+        ("coefficients.k_te_n_per_mm", k.k_te_n_per_mm.is_some()),
+        ("coefficients.k_re_n_per_mm", k.k_re_n_per_mm.is_some()),
+        ("coefficients.k_ae_n_per_mm", k.k_ae_n_per_mm.is_some()),
     ];
     if let Some((field, _)) = milling_only.iter().find(|(_, given)| *given) {
         return Err(invalid(
             &format!("{prefix}{field}"),
-            "a milling field: drilling takes cut.feed_per_rev_mm and coefficients.specific_energy_n_per_mm2, specific_thrust_n_per_mm2",
+            "a milling field: drilling takes tool.diameter_mm, cut.feed_per_rev_mm and coefficients.specific_energy_n_per_mm2, specific_thrust_n_per_mm2",
         ));
     }
     Ok(Drilling {

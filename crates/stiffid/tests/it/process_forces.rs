@@ -413,3 +413,63 @@ fn el_hofy_slot_milling_example_gives_the_published_mean_force_and_power() {
         "{mean}"
     );
 }
+
+/// Two operations a program could not tell apart are refused naming both; a drilling operation's
+/// milling keys, a single operation's keys beside `[[operation]]` tables and a `lines` of another
+/// length than two are refused naming the field.
+#[test]
+fn ambiguous_operations_and_misplaced_keys_are_refused_naming_them() {
+    let milling = MILLING
+        .replace("[tool]", "[operation.tool]")
+        .replace("[cut]", "[operation.cut]")
+        .replace("[coefficients]", "[operation.coefficients]");
+    let two =
+        |a: &str, b: &str| format!("[[operation]]\n{a}\n{milling}\n[[operation]]\n{b}\n{milling}");
+    let cases = [
+        (two("name = \"a\"\ntool_number = 1", "name = \"a\"\ntool_number = 2"), "p.toml: operation[2]", "name 'a'"),
+        (two("name = \"a\"\ntool_number = 1", "name = \"b\"\ntool_number = 1"), "p.toml: operation[2]", "tool_number = 1"),
+        (two("name = \"a\"\nlines = [1, 10]", "name = \"b\"\nlines = [10, 20]"), "p.toml: operation[2]", "overlapping lines [1, 10] and [10, 20]"),
+        (two("name = \"a\"", "name = \"b\""), "p.toml: operation[2]", "no selector"),
+        (two("name = \"a\"\nlines = [1, 2, 3]", "name = \"b\""), "p.toml: operation[1].lines", "[1, 2, 3]"),
+        (two("name = \"a\"\nlines = [4]", "name = \"b\""), "p.toml: operation[1].lines", "two line numbers"),
+        (format!("tool_number = 3\n{}", two("name = \"a\"", "name = \"b\"\ntool_number = 1")), "p.toml: tool_number", "beside [[operation]]"),
+        (
+            "kind = \"drilling\"\n[tool]\ndiameter_mm = 10\nflutes = 2\n[cut]\nfeed_per_rev_mm = 0.2\n\
+             [coefficients]\nspecific_energy_n_per_mm2 = 800\nspecific_thrust_n_per_mm2 = 1000\n".to_string(),
+            "p.toml: tool.flutes",
+            "a milling field",
+        ),
+        (
+            "kind = \"drilling\"\n[tool]\ndiameter_mm = 10\n[cut]\nfeed_per_rev_mm = 0.2\n\
+             [coefficients]\nspecific_energy_n_per_mm2 = 800\nspecific_thrust_n_per_mm2 = 1000\nk_ae_n_per_mm = 1\n".to_string(),
+            "p.toml: coefficients.k_ae_n_per_mm",
+            "a milling field",
+        ),
+    ];
+    for (text, field, word) in cases {
+        match file::parse(&text, "p.toml") {
+            Err(Error::InvalidField { field: f, message }) => {
+                assert_eq!(f, field, "{message}");
+                assert!(message.contains(word), "{word}: {message}");
+            }
+            other => panic!("{word}: {other:?}"),
+        }
+    }
+    // Both named in the message; distinct selectors pass.
+    let e = file::parse(
+        &two("name = \"a\"", "name = \"a\"\ntool_number = 2"),
+        "p.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("operation[1] and operation[2]"),
+        "{e}"
+    );
+    let ok = two(
+        "name = \"a\"\nlines = [1, 9]",
+        "name = \"b\"\nlines = [10, 20]",
+    );
+    assert_eq!(file::parse(&ok, "p.toml").unwrap().operations.len(), 2);
+    let ok = two("name = \"a\"", "name = \"b\"\ntool_number = 2");
+    assert_eq!(file::parse(&ok, "p.toml").unwrap().operations.len(), 2);
+}
