@@ -22,6 +22,7 @@
 
 mod builtin;
 pub mod calibrate;
+pub mod calibration;
 pub mod cartesian;
 pub mod cell;
 pub mod choice;

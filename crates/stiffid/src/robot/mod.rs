@@ -152,6 +152,20 @@ impl Robot {
         Ok(Self { axis_map, ..self })
     }
 
+    /// The robot with these joints (base to flange, lengths in m), everything else kept: a
+    /// calibrated chain ([`crate::calibration`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`joint[i]`) when a joint's transforms, axis or offset are not
+    /// finite.
+    pub fn with_joints(self, joints: [Joint; 6]) -> Result<Self> {
+        let checked = Robot::new("", "", joints, self.limits)?;
+        Ok(Self {
+            joints: checked.joints,
+            ..self
+        })
+    }
+
     /// The robot with this base transform (world to the chain's first frame, m).
     ///
     /// # Errors

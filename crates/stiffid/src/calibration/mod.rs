@@ -1,0 +1,32 @@
+//! Geometric and elastostatic calibration of the robot from one tracker campaign.
+//!
+//! The unloaded position of a measuring point differs from the nominal model's by the robot's
+//! geometric errors (link lengths, twists, joint offsets, base and tool) and by its deflection
+//! under its own weight. This module models both as one parameter vector and fits it to the
+//! tracker's readings:
+//!
+//! - [`error_model`]: the parameters ([`Parameter`]: name, kind, unit, nominal) of a complete
+//!   error model of every chain stiffid reads (DH, modified DH, URDF, with its axis map), the
+//!   predicted reflector positions and their identification Jacobian (analytic, from the joint
+//!   screws), with the column scaling.
+//! - [`identifiability`]: which parameters the readings determine, by QR with column pivoting on
+//!   the column-scaled Jacobian: the rank, the condition number, the parameters merged and into
+//!   which, the correlations above [`identifiability::CORRELATION_REPORTED`].
+//! - [`gravity`]: the joint deflection under the robot's own weight, with known masses (the
+//!   compliances unknown) or lumped (compliance times mass moment).
+//! - [`fit`]: Levenberg-Marquardt over the identifiable parameters, standard deviations, the
+//!   noise-ratio model check.
+//! - [`validation`]: the held-out position error of readings not fitted.
+//!
+//! Equations and sources: docs/model.md, section "Calibration".
+
+pub mod error_model;
+pub mod fit;
+pub mod gravity;
+pub mod identifiability;
+pub mod validation;
+
+pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter, Target};
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,289 @@
+use super::error_model::{MeasuredIn, Observation};
+use super::fit::{self, Options};
+use super::gravity::{self, LinkMass};
+use super::*;
+use crate::robot::{presets, urdf};
+use crate::Robot;
+use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// `n` postures drawn in the middle 60% of the robot's joint ranges (at most +-150 deg).
+pub(super) fn postures(robot: &Robot, n: usize, seed: u64) -> Vec<Vector6<f64>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let l = robot.limits();
+    (0..n)
+        .map(|_| {
+            Vector6::from_fn(|i, _| {
+                let (lo, hi) = (l.lower[i].max(-2.6), l.upper[i].min(2.6));
+                let mid = 0.5 * (lo + hi);
+                mid + 0.6 * (hi - lo) * (rng.random::<f64>() - 0.5)
+            })
+        })
+        .collect()
+}
+
+pub(super) fn points() -> Vec<Vector3<f64>> {
+    vec![
+        Vector3::new(0.15, 0.0, 0.25),
+        Vector3::new(-0.1, 0.12, 0.3),
+        Vector3::new(0.0, -0.14, 0.2),
+    ]
+}
+
+fn tracker() -> Isometry3<f64> {
+    Isometry3::new(Vector3::new(3.2, -1.1, 0.4), Vector3::new(0.1, -0.05, 2.4))
+}
+
+/// Every point read at every posture: the readings of `truth` (tracker frame), noise-free.
+pub(super) fn readings(
+    model: &ErrorModel,
+    truth: &Estimate,
+    qs: &[Vector6<f64>],
+) -> Vec<Observation> {
+    let at: Vec<_> = (qs.iter().enumerate())
+        .flat_map(|(i, q)| (0..model.points()).map(move |k| (i, *q, k)))
+        .collect();
+    let pairs: Vec<_> = at.iter().map(|(_, q, k)| (*q, *k)).collect();
+    let b = model.positions(&truth.values, &pairs).unwrap();
+    (at.iter().zip(b))
+        .map(|((i, q, k), b)| Observation {
+            posture: *i,
+            point: *k,
+            q: *q,
+            measured: (truth.frame.inverse() * Point3::from(b)).coords,
+        })
+        .collect()
+}
+
+/// A typical error of parameter `p` (SI): 1 mm, 1 mrad, gravity terms as given.
+fn typical(model: &ErrorModel, c: usize, gravity: f64) -> f64 {
+    match model.parameters()[c].target {
+        Target::Frame(a) if a >= 3 => 1e-3,
+        Target::Joint { component, .. } if component.is_angle() => 1e-3,
+        Target::Gravity(_) => gravity,
+        _ => 1e-3,
+    }
+}
+
+fn perturbed(model: &ErrorModel, seed: u64, only: Option<&[usize]>, gravity: f64) -> DVector<f64> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut x = model.nominal();
+    for c in 0..x.len() {
+        let draw = typical(model, c, gravity) * (2.0 * rng.random::<f64>() - 1.0);
+        if only.is_none_or(|o| o.contains(&c)) {
+            x[c] += draw;
+        }
+    }
+    x
+}
+
+fn fanuc() -> Robot {
+    presets::get("fanuc-r2000ic-165f").unwrap()
+}
+
+fn masses() -> [LinkMass; 6] {
+    let m = |mass: f64, x: f64, y: f64, z: f64| LinkMass {
+        mass,
+        centre: Vector3::new(x, y, z),
+    };
+    [
+        m(300.0, 0.1, 0.0, -0.2),
+        m(120.0, 0.5, 0.0, 0.1),
+        m(90.0, 0.1, 0.05, 0.3),
+        m(40.0, 0.0, 0.02, -0.4),
+        m(15.0, 0.0, 0.0, 0.05),
+        m(60.0, 0.02, 0.01, 0.15),
+    ]
+}
+
+#[test]
+fn identification_jacobian_matches_central_differences() {
+    let robot = fanuc();
+    for g in [
+        gravity::Model::lumped(&robot, crate::Coordinates::Axis),
+        gravity::Model::masses(
+            &robot,
+            masses(),
+            crate::Coordinates::Kinematic,
+            Vector6::zeros(),
+        )
+        .unwrap(),
+    ] {
+        let model =
+            ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap();
+        let mut x = perturbed(&model, 3, None, 2e-6);
+        x.rows_mut(0, 6).fill(0.0);
+        let at: Vec<_> = postures(&robot, 4, 9)
+            .into_iter()
+            .enumerate()
+            .map(|(i, q)| (q, i % 3))
+            .collect();
+        let j = model.jacobian(&x, &at).unwrap();
+        for c in 0..x.len() {
+            let h = 1e-6 / j.column(c).amax().max(1e-3);
+            let (mut plus, mut minus) = (x.clone(), x.clone());
+            plus[c] += h;
+            minus[c] -= h;
+            let (bp, bm) = (
+                model.positions(&plus, &at).unwrap(),
+                model.positions(&minus, &at).unwrap(),
+            );
+            for (r, (p, m)) in bp.iter().zip(&bm).enumerate() {
+                let fd = (p - m) / (2.0 * h);
+                let analytic = j.fixed_view::<3, 1>(3 * r, c).into_owned();
+                let scale = analytic.norm().max(fd.norm()).max(1e-3);
+                assert!(
+                    (fd - analytic).norm() < 1e-7 * scale,
+                    "{} row {r}: {fd:?} vs {analytic:?}",
+                    model.parameters()[c].name
+                );
+            }
+        }
+    }
+}
+
+/// Fits noise-free readings of errors in every identifiable parameter and checks each against
+/// its true value; returns the model's identifiability for the caller's checks of the merged.
+fn recovers(
+    model: &ErrorModel,
+    qs: &[Vector6<f64>],
+    gravity: f64,
+) -> identifiability::Identifiability {
+    let nominal = Estimate {
+        frame: Isometry3::identity(),
+        values: model.nominal(),
+    };
+    let probe = readings(model, &nominal, qs);
+    let start0 = fit::start(model, &probe).unwrap();
+    let options = Options {
+        length: 1.0,
+        priors: None,
+    };
+    let found = fit::fit(model, &probe, &start0, &options).unwrap();
+    let identified = found.identifiability.identified.clone();
+    let truth = Estimate {
+        frame: tracker(),
+        values: {
+            let mut x = perturbed(model, 5, Some(&identified), gravity);
+            x.rows_mut(0, 6).fill(0.0);
+            x
+        },
+    };
+    let data = readings(model, &truth, qs);
+    let start = fit::start(model, &data).unwrap();
+    let result = fit::fit(model, &data, &start, &options).unwrap();
+    assert!(result.rms < 1e-11, "rms {}", result.rms);
+    for &c in &identified {
+        let p = &model.parameters()[c];
+        if matches!(p.target, Target::Frame(_)) {
+            continue;
+        }
+        let (got, want) = (result.estimate.values[c], truth.values[c]);
+        let size = (want - p.nominal)
+            .abs()
+            .max(typical(model, c, gravity) * 1e-3);
+        assert!(
+            (got - want).abs() <= 1e-9 * size.max(want.abs()),
+            "{}: {got:e} vs {want:e}",
+            p.name
+        );
+    }
+    let frame = result.estimate.frame;
+    assert!((frame.translation.vector - tracker().translation.vector).norm() < 1e-12);
+    assert!(frame.rotation.angle_to(&tracker().rotation) < 1e-12);
+    result.identifiability
+}
+
+fn merged_names(model: &ErrorModel, id: &identifiability::Identifiability) -> Vec<String> {
+    (id.merged.iter())
+        .map(|m| model.parameters()[m.parameter].name.clone())
+        .collect()
+}
+
+#[test]
+fn fanuc_geometry_recovered_and_merged_named() {
+    let robot = fanuc();
+    let model = ErrorModel::new(
+        &robot,
+        &points(),
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        gravity::Model::none(&robot),
+    )
+    .unwrap();
+    let id = recovers(&model, &postures(&robot, 30, 1), 0.0);
+    // A complete minimal model of a 6R arm read at 3 points: 4 * 6 + 3 * 3 (tracker 6, joints
+    // 2-5 four each, joint 6 two, the points).
+    assert_eq!(id.rank, 33);
+    let merged = merged_names(&model, &id);
+    for name in [
+        "joint1.theta",
+        "joint1.d",
+        "joint1.a",
+        "joint1.alpha",
+        "joint1.beta",
+        "joint1.b",
+        "joint6.theta",
+        "joint6.d",
+    ] {
+        assert!(merged.contains(&name.to_string()), "{name} in {merged:?}");
+    }
+    // Joints 2 and 3 are parallel: one of their d errors merges, joint 3's beta is kept.
+    assert!(merged.contains(&"joint2.d".into()) != merged.contains(&"joint3.d".into()));
+    let beta3 = model
+        .parameters()
+        .iter()
+        .position(|p| p.name == "joint3.beta");
+    assert!(id.identified.contains(&beta3.unwrap()));
+    // joint1.theta merges into the tracker's rotation about z.
+    let theta1 = id
+        .merged
+        .iter()
+        .find(|m| model.parameters()[m.parameter].name == "joint1.theta");
+    let into = &theta1.unwrap().into;
+    assert_eq!(model.parameters()[into[0].0].name, "tracker.rz");
+}
+
+#[test]
+fn urdf_geometry_recovered() {
+    let text = include_str!("../../tests/data/comau-nj165.urdf");
+    let robot = urdf::parse(text, "comau-nj165.urdf", None).unwrap();
+    let model = ErrorModel::new(
+        &robot,
+        &points()[..2],
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        gravity::Model::none(&robot),
+    )
+    .unwrap();
+    let id = recovers(&model, &postures(&robot, 30, 2), 0.0);
+    assert_eq!(id.rank, 24 + 6);
+    let merged = merged_names(&model, &id);
+    assert!(merged.contains(&"joint1.theta".to_string()));
+}
+
+#[test]
+fn gravity_compliances_recovered_with_known_masses() {
+    let robot = fanuc();
+    let g = gravity::Model::masses(&robot, masses(), crate::Coordinates::Axis, Vector6::zeros())
+        .unwrap();
+    let model = ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap();
+    let id = recovers(&model, &postures(&robot, 40, 3), 5e-6);
+    let merged = merged_names(&model, &id);
+    // Joint 1 is vertical: gravity exerts no torque about it.
+    assert!(merged.contains(&"gravity.c1".to_string()), "{merged:?}");
+    for c in 2..=5 {
+        assert!(!merged.contains(&format!("gravity.c{c}")), "{merged:?}");
+    }
+}
+
+#[test]
+fn gravity_lumped_recovered() {
+    let robot = fanuc();
+    let g = gravity::Model::lumped(&robot, crate::Coordinates::Axis);
+    let model =
+        ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Offsets, g).unwrap();
+    let id = recovers(&model, &postures(&robot, 60, 4), 5e-5);
+    assert!(id.rank > 6 + 9 + 6);
+}
