@@ -42,12 +42,17 @@ pub fn set_package_paths(paths: Vec<PathBuf>) {
     *PACKAGE_PATHS.lock().unwrap_or_else(|e| e.into_inner()) = paths;
 }
 
-/// Calls `f` with how a URDF's meshes are read: [`bytes`], `--package-path`.
-fn with_meshes<T>(f: impl FnOnce(&reference::Meshes) -> T) -> T {
-    let paths = PACKAGE_PATHS
+/// The directories of `--package-path`.
+pub fn package_paths() -> Vec<PathBuf> {
+    PACKAGE_PATHS
         .lock()
         .unwrap_or_else(|e| e.into_inner())
-        .clone();
+        .clone()
+}
+
+/// Calls `f` with how a URDF's meshes are read: [`bytes`], `--package-path`.
+fn with_meshes<T>(f: impl FnOnce(&reference::Meshes) -> T) -> T {
+    let paths = package_paths();
     f(&reference::Meshes {
         read: &bytes,
         package_paths: &paths,
@@ -58,7 +63,10 @@ fn with_meshes<T>(f: impl FnOnce(&reference::Meshes) -> T) -> T {
 /// (`tip`: URDF tip link; `stiffid::formats::reference::robot_with_meshes`, a URDF's collision
 /// meshes read). The error names what was tried.
 pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
-    with_meshes(|m| reference::robot_with_meshes(arg, tip, existing, m))
+    let robot = with_meshes(|m| reference::robot_with_meshes(arg, tip, existing, m))?;
+    let warning = stiffid::setup::plausibility::meshes(&robot);
+    crate::output::warnings(&Vec::from_iter(warning));
+    Ok(robot)
 }
 
 /// A setup from a setup `.toml` file if one exists at `arg`, else the built-in setup named
@@ -76,10 +84,14 @@ fn plausible(setup: Setup) -> Setup {
 }
 
 /// A setup from its TOML `text`, read from `source_name` in the directory `dir` (where a robot
-/// file it names is looked for).
-pub fn setup_text(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
-    with_meshes(|m| reference::setup_text_with_meshes(text, source_name, dir, existing, m))
-        .map(plausible)
+/// file it names is looked for), with its own `package_paths` only, not `--package-path`; no
+/// warnings.
+pub fn setup_text_as_written(text: &str, source_name: &str, dir: &Path) -> Result<Setup> {
+    let meshes = reference::Meshes {
+        read: &bytes,
+        package_paths: &[],
+    };
+    reference::setup_text_with_meshes(text, source_name, dir, existing, &meshes)
 }
 
 /// The bytes of the file at `path` (a URDF's mesh), `None` if nothing exists there: at most

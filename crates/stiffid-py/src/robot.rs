@@ -51,13 +51,20 @@ impl Robot {
     /// ``DIR/NAME/PATH`` for the first directory ``DIR`` of ``package_paths`` (at most 64) that
     /// holds it. Raises ``FileNotFoundError``/``OSError`` for a file that cannot be read,
     /// ``stiffid.InputError`` (a ``ValueError``) for its content or a mesh that cannot be found
-    /// (the library's message names the file, field, package and the paths tried).
+    /// (the library's message names the file, field, package and the paths tried); a mesh not
+    /// found only warns (``UserWarning``): the robot serves everything but the cell's body checks.
     #[staticmethod]
     #[pyo3(signature = (path, tip=None, *, package_paths=Vec::new()))]
-    fn from_file(path: PathBuf, tip: Option<&str>, package_paths: Vec<PathBuf>) -> PyResult<Self> {
-        Ok(Self {
-            inner: from_path(&path, tip, &package_paths)?,
-        })
+    fn from_file(
+        py: Python<'_>,
+        path: PathBuf,
+        tip: Option<&str>,
+        package_paths: Vec<PathBuf>,
+    ) -> PyResult<Self> {
+        let inner = from_path(&path, tip, &package_paths)?;
+        let warning = stiffid::setup::plausibility::meshes(&inner);
+        crate::documents::warn(py, &Vec::from_iter(warning))?;
+        Ok(Self { inner })
     }
 
     /// Human-readable name, e.g. ``"COMAU SMART5 NJ 165-3.0"``.

@@ -112,6 +112,7 @@ impl Setup {
         let most = stiffid::limits::MAX_GROUP_POSTURES;
         let (group, _) = postures(postures_deg, "postures_deg", within, most)?;
         let setup = &self.inner;
+        setup.check_bodies().map_err(crate::error::raise)?;
         let checks: Vec<_> = py.detach(|| {
             let checker = stiffid::cell::Checker::new(setup);
             group.iter().map(|q| checker.feasibility(q)).collect()

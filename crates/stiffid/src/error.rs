@@ -30,6 +30,16 @@ pub enum Error {
         /// What was expected.
         message: String,
     },
+    /// A URDF's collision mesh was not found (no file, or a `package://` package in none of the
+    /// package paths). Only the cell's body checks need meshes: the robot still loads for
+    /// kinematics and identification ([`crate::robot::Bodies::Missing`]).
+    #[error("{source_name}: {message}")]
+    MeshNotFound {
+        /// The URDF being read.
+        source_name: String,
+        /// The link, the mesh and where it was looked for.
+        message: String,
+    },
     /// The robot is not a 6-axis serial chain of revolute joints as required.
     #[error("{source_name}: {message}")]
     Chain {

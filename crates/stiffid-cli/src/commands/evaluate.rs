@@ -49,6 +49,7 @@ fn parameters_text(doc: &Document) -> String {
 /// Evaluates the postures file and prints the criteria and the feasibility of every posture.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
+    setup.check_bodies()?;
     let group = load::postures(&args.postures, setup.robot(), Some(setup.bounds()))?;
     let request = Request {
         setup: &setup,

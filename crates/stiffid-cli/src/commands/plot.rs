@@ -48,6 +48,7 @@ fn is_our_figure(name: &str) -> bool {
 /// Draws the postures and writes `postures.svg/.png` and `posture_NN.svg/.png`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
+    setup.check_bodies()?;
     let group = load::postures(&args.postures, setup.robot(), None)?;
     let holds = |rel: &Path| is_our_figure(&rel.to_string_lossy());
     let dir = ReportDir::prepare(

@@ -43,12 +43,16 @@ pub fn run(args: &NewArgs) -> Result<()> {
         .map(|p| output::OutFile::prepare_new(p, "--out"))
         .transpose()?;
     let robot_ref = reference_from(&args.robot, args.out.as_deref())?;
-    let text = template(&robot, &robot_ref, args)?;
+    let package_paths = load::package_paths()
+        .iter()
+        .map(|p| from_out(p, args.out.as_deref(), "--package-path"))
+        .collect::<Result<Vec<_>>>()?;
+    let text = template(&robot, &robot_ref, &package_paths, args)?;
     let source_name = args
         .out
         .as_ref()
         .map_or("setups new".into(), |p| p.display().to_string());
-    check_loads(&text, &source_name, args)?;
+    check_loads(&text, &source_name, args, &robot)?;
     match (&out, &args.out) {
         (Some(file), Some(path)) => {
             file.write(text.as_bytes())?;
@@ -68,7 +72,14 @@ fn reference_from(robot: &str, out: Option<&Path>) -> Result<String> {
     if presets::get(robot).is_ok() {
         return Ok(robot.to_string());
     }
-    let file = std::fs::canonicalize(robot).with_context(|| format!("--robot {robot}"))?;
+    from_out(Path::new(robot), out, "--robot")
+}
+
+/// The file or directory `path` (given as `option`) relative to the directory of `--out` (or to
+/// the current directory), as a setup file must hold it.
+fn from_out(path: &Path, out: Option<&Path>, option: &str) -> Result<String> {
+    let file =
+        std::fs::canonicalize(path).with_context(|| format!("{option} {}", path.display()))?;
     let dir = match out
         .and_then(Path::parent)
         .filter(|d| !d.as_os_str().is_empty())
@@ -88,16 +99,23 @@ fn relative(path: &Path, dir: &Path) -> PathBuf {
     rel
 }
 
-/// Parses the generated text as `--setup` would read it from `--out`.
-fn check_loads(text: &str, source_name: &str, args: &NewArgs) -> Result<()> {
+/// Parses the generated text as `--setup` would read it from `--out`, with its own
+/// `package_paths` only (not `--package-path`): it loads as written.
+fn check_loads(text: &str, source_name: &str, args: &NewArgs, robot: &Robot) -> Result<()> {
     let dir = args
         .out
         .as_deref()
         .and_then(Path::parent)
         .unwrap_or(Path::new(""));
-    load::setup_text(text, source_name, dir)
-        .map(|_| ())
-        .context("setups new: the generated setup does not load (please report this)")
+    let setup = load::setup_text_as_written(text, source_name, dir)
+        .context("setups new: the generated setup does not load (please report this)")?;
+    let missing = |r: &Robot| matches!(r.bodies(), stiffid::robot::Bodies::Missing(_));
+    if missing(setup.robot()) && !missing(robot) {
+        anyhow::bail!(
+            "setups new: the generated setup does not find the robot's meshes (please report this)"
+        );
+    }
+    Ok(())
 }
 
 /// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], within +-180 deg, degrees.
@@ -128,7 +146,12 @@ fn bounds_deg(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
 const TEMPLATE: &str = include_str!("../../assets/setup-template.toml");
 
 /// The commented TOML of the new setup.
-fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
+fn template(
+    robot: &Robot,
+    robot_ref: &str,
+    package_paths: &[String],
+    args: &NewArgs,
+) -> Result<String> {
     let reach = prior::reach(robot, SEED);
     let reference_reach = prior::reach(&presets::get(REFERENCE_ROBOT)?, SEED);
     let (payload, payload_note) = match args.payload_kg {
@@ -185,6 +208,18 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
         None if urdf => "# robot_tip = \"tool0\"".into(),
         None => "# (this robot is a preset or a robot TOML: it has no tip link to choose)".into(),
     };
+    let package_line = match package_paths {
+        [] if urdf => "# package_paths = [\"../ros_ws/src\"]".into(),
+        [] => "# (a preset or a robot TOML has no meshes to find)".into(),
+        paths => format!(
+            "package_paths = [{}]",
+            paths
+                .iter()
+                .map(|p| quoted(p))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
     let reach_mm = reach * 1e3;
     let mut values = vec![
         ("ROBOT_NAME", in_comment(robot.name())),
@@ -199,6 +234,7 @@ fn template(robot: &Robot, robot_ref: &str, args: &NewArgs) -> Result<String> {
         ),
         ("ROBOT", quoted(robot_ref)),
         ("TIP_LINE", tip_line),
+        ("PACKAGE_PATHS_LINE", package_line),
         ("REACH_MM", format!("{reach_mm:.0}")),
         ("LENGTH_MM", format!("{:.1}", l * 1e3)),
         ("PAYLOAD_NOTE", payload_note),
@@ -296,7 +332,7 @@ mod tests {
             payload_kg: None,
             out: None,
         };
-        let text = template(&robot, REFERENCE_ROBOT, &args).unwrap();
+        let text = template(&robot, REFERENCE_ROBOT, &[], &args).unwrap();
         assert!(!text.contains('@'), "{text}");
     }
 

@@ -5,7 +5,7 @@
 #[path = "../../../stiffid/tests/support/mesh_robot.rs"]
 mod mesh_robot;
 
-use crate::common::{assert_success, assert_usage_error, stiffid, temp_dir, write_file};
+use crate::common::{assert_success, stiffid, temp_dir, write_file};
 use std::path::Path;
 
 /// The mesh robot's package under a new directory `name`, with its cell setup as `cell.toml`.
@@ -19,6 +19,11 @@ fn package(name: &str) -> std::path::PathBuf {
     write_file(&dir, "cell.toml", &mesh_robot::setup_toml());
     dir
 }
+
+/// Six postures of the mesh robot, within its setup's bounds.
+const SIX: &str = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,-90,0,30,0\n\
+    2,20,30,-60,40,-50,60\n3,-40,-20,-100,-90,60,-30\n4,60,40,-30,120,-80,90\n\
+    5,-70,10,-120,60,20,-150\n6,30,-40,-40,-150,90,150\n";
 
 fn arg(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -92,16 +97,137 @@ fn package_path_finds_the_package_or_the_error_names_it() {
         args.extend_from_slice(extra);
         stiffid(&args)
     };
-    assert_usage_error(
-        &plot(&[]),
-        &["package 'mesh_robot'", "package path", "base_link"],
+    // The warning that the meshes were not found, then the error of the cell's checks.
+    let refused = plot(&[]);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.starts_with("warning: ") && stderr.lines().count() == 2,
+        "{stderr}"
     );
+    let error = stderr.lines().last().unwrap();
+    for part in [
+        "error: [cell]: ",
+        "package 'mesh_robot'",
+        "--package-path",
+        "base_link",
+    ] {
+        assert!(error.contains(part), "{part}: {stderr}");
+    }
     assert!(!figures.exists());
-    assert_usage_error(
-        &plot(&["--package-path", arg(&dir.join("elsewhere"))]),
-        &["package 'mesh_robot' not found in the package paths"],
+    let refused = plot(&["--package-path", arg(&dir.join("elsewhere"))]);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("package 'mesh_robot' not found in the package paths"),
+        "{stderr}"
     );
     let drawn = plot(&["--package-path", arg(&dir)]);
     assert_success(&drawn);
     assert!(figures.join("posture_01.svg").exists());
+}
+
+#[test]
+fn kinematics_needs_no_meshes_only_the_cells_checks_do() {
+    let dir = package("bodies-no-meshes");
+    let urdf = dir.join(mesh_robot::URDF);
+    let q = ["--q-deg", "0,10,-80,0,30,0"];
+    let with = stiffid(&[
+        "kinematics",
+        "--robot",
+        arg(&urdf),
+        "--package-path",
+        arg(&dir),
+        q[0],
+        q[1],
+    ]);
+    assert_success(&with);
+    assert!(
+        with.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&with.stderr)
+    );
+    let without = stiffid(&["kinematics", "--robot", arg(&urdf), q[0], q[1]]);
+    assert_success(&without);
+    assert_eq!(without.stdout, with.stdout);
+    let stderr = String::from_utf8_lossy(&without.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("package 'mesh_robot'") && stderr.contains("--package-path"),
+        "{stderr}"
+    );
+    // A setup without a cell: everything goes on; with one, the body checks name --package-path.
+    let text = mesh_robot::setup_toml().replace("package_paths = [\".\"]\n", "");
+    let cell_at = text.find("[cell]").unwrap();
+    let bare = write_file(&dir, "bare.toml", &text[..cell_at]);
+    let cell = write_file(&dir, "bare-cell.toml", &text);
+    let postures = write_file(&dir, "p.csv", SIX);
+    let evaluate = |setup: &Path| {
+        stiffid(&[
+            "evaluate",
+            "--setup",
+            arg(setup),
+            "--postures",
+            arg(&postures),
+        ])
+    };
+    let evaluated = evaluate(&bare);
+    assert_success(&evaluated);
+    let stderr = String::from_utf8_lossy(&evaluated.stderr);
+    assert_eq!(stderr.matches("--package-path").count(), 1, "{stderr}");
+    let refused = evaluate(&cell);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    let error = stderr.lines().last().unwrap();
+    assert!(error.starts_with("error: [cell]: "), "{stderr}");
+    for part in ["collision meshes", "--package-path DIR", "base_link"] {
+        assert!(error.contains(part), "{part}: {stderr}");
+    }
+}
+
+#[test]
+fn setups_new_writes_the_package_paths_it_was_given() {
+    let dir = package("bodies-setups-new");
+    let urdf = dir.join(mesh_robot::URDF);
+    std::fs::create_dir_all(dir.join("cells/a")).unwrap();
+    let out = dir.join("cells/a/new.toml");
+    let new = [
+        "setups",
+        "new",
+        "--robot",
+        arg(&urdf),
+        "--package-path",
+        arg(&dir),
+        "--out",
+        arg(&out),
+    ];
+    let written = stiffid(&new);
+    assert_success(&written);
+    assert!(
+        written.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&written.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("\npackage_paths = [\"../..\"]\n"), "{text}");
+    // As written, with its cell: the meshes are found (no warning), the body checks run.
+    let with_cell = text
+        .replace("# [cell]", "[cell]")
+        .replace("# floor_z_mm", "floor_z_mm");
+    let cell = write_file(&dir, "cells/a/with-cell.toml", &with_cell);
+    let postures = write_file(&dir, "p.csv", SIX);
+    let evaluated = stiffid(&[
+        "evaluate",
+        "--setup",
+        arg(&cell),
+        "--postures",
+        arg(&postures),
+    ]);
+    assert_success(&evaluated);
+    assert!(
+        evaluated.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&evaluated.stderr)
+    );
+    assert!(String::from_utf8_lossy(&evaluated.stdout).contains("self-collision"));
 }

@@ -53,11 +53,13 @@ where
 
 /// [`robot`] with a URDF's collision geometry: its `<collision>` shapes, meshes read through
 /// `meshes`, become the robot's [`Bodies::Shapes`] (a URDF without any keeps the scaled
-/// capsules). [`robot`] reads no mesh and gives every URDF robot capsules.
+/// capsules). A mesh not found (no file, a `package://` package in none of the package paths)
+/// gives [`Bodies::Missing`]: the robot loads for kinematics and identification, and only the
+/// cell's body checks refuse it. [`robot`] reads no mesh and gives every URDF robot capsules.
 ///
 /// # Errors
-/// Those of [`robot`] and of [`collision::parse`] (a mesh missing or unreadable, a `package://`
-/// package in none of the package paths, named).
+/// Those of [`robot`] and of [`collision::parse`] but [`Error::MeshNotFound`] (a mesh unreadable
+/// or no STL, named).
 pub fn robot_with_meshes<E, F>(
     reference: &str,
     tip: Option<&str>,
@@ -138,21 +140,41 @@ fn urdf_robot(
     let mut robot = urdf::parse(text, name, tip)?;
     if let Some(m) = meshes {
         let dir = path.parent().unwrap_or(Path::new(""));
-        let g = collision::parse(text, name, dir, tip, m.package_paths, m.read)?;
-        if !g.shapes.is_empty() {
-            robot = robot.with_bodies(Bodies::Shapes(Arc::new(g)));
+        match collision::parse(text, name, dir, tip, m.package_paths, m.read) {
+            Ok(g) if !g.shapes.is_empty() => robot = robot.with_bodies(Bodies::Shapes(Arc::new(g))),
+            Ok(_) => {}
+            Err(e @ Error::MeshNotFound { .. }) => {
+                robot = robot.with_bodies(Bodies::Missing(e.to_string().into()))
+            }
+            Err(e) => return Err(e),
         }
     }
     Ok(robot)
 }
 
-/// Whether a robot file is a xacro macro file: its extension is `.xacro`, or it declares the
-/// xacro namespace or uses a `<xacro:` element.
+/// Whether a robot file is a xacro macro file: its extension is `.xacro`, or, outside XML comments,
+/// it uses a `<xacro:` element or a `${...}` / `$(...)` substitution. The `xmlns:xacro` namespace
+/// alone is no sign: ROS's xacro keeps it on the `<robot>` of the URDF it writes.
 fn is_xacro(extension: Option<&str>, text: &str) -> bool {
-    extension == Some("xacro") || text.contains("xmlns:xacro") || text.contains("<xacro:")
+    if extension == Some("xacro") {
+        return true;
+    }
+    let mut rest = text;
+    while !rest.is_empty() {
+        let (code, after) = match rest.split_once("<!--") {
+            Some((code, comment)) => (code, comment.split_once("-->").map_or("", |(_, a)| a)),
+            None => (rest, ""),
+        };
+        if code.contains("<xacro:") || code.contains("${") || code.contains("$(") {
+            return true;
+        }
+        rest = after;
+    }
+    false
 }
 
-/// The error for a xacro file: it must be expanded into a URDF first, by ROS's `xacro` tool.
+/// The error for a xacro file: it must be expanded into a URDF first, by ROS's `xacro` or PyPI's
+/// (which finds the packages of `$(find PKG)` through `AMENT_PREFIX_PATH`, as the guide shows).
 fn xacro(name: &str) -> Error {
     let urdf = match name.strip_suffix(".xacro") {
         Some(stem) if stem.ends_with(".urdf") => stem.to_string(),
@@ -162,8 +184,11 @@ fn xacro(name: &str) -> Error {
     Error::Parse {
         source_name: name.to_string(),
         message: format!(
-            "a xacro file (macros, not a URDF): expand it first with ROS's xacro, e.g. \
-             `xacro {} > {}`, and give the URDF",
+            "a xacro file (macros, not a URDF): expand it first with xacro (ROS's, or without ROS \
+             `pip install xacro ros-ament-index-python`), e.g. `xacro {} > {}`, and give the URDF; \
+             without ROS, `$(find PKG)` needs AMENT_PREFIX_PATH=DIR where DIR/share/PKG is the \
+             package and DIR/share/ament_index/resource_index/packages/PKG an empty file \
+             (the guide's \"Robots from ROS\")",
             crate::limits::short(name),
             crate::limits::short(&urdf)
         ),
@@ -338,5 +363,34 @@ mod tests {
             e.contains("`xacro robot.urdf > robot.expanded.urdf`"),
             "{e}"
         );
+        assert!(e.contains("AMENT_PREFIX_PATH"), "{e}");
+        for substitution in [
+            "${arm_length}",
+            "$(find abb_resources)/urdf/materials.xacro",
+        ] {
+            let text = format!("<robot name=\"r\"><link name=\"{substitution}\"/></robot>");
+            let e = robot("r.urdf", None, |_: &Path| {
+                Some(Ok::<_, Error>(text.clone()))
+            })
+            .unwrap_err();
+            assert!(e.to_string().contains("a xacro file"), "{e}");
+        }
+    }
+
+    #[test]
+    fn an_expanded_urdf_keeping_the_xacro_namespace_is_a_urdf() {
+        // What ROS's xacro writes: the namespace stays on <robot>, a comment names the source.
+        let urdf = include_str!("../../tests/data/comau-nj165.urdf").replacen(
+            "<robot ",
+            "<!-- generated by xacro from $(find pkg)/r.xacro -->\n\
+             <robot xmlns:xacro=\"http://www.ros.org/wiki/xacro\" ",
+            1,
+        );
+        assert!(urdf.contains("xmlns:xacro"));
+        let robot = robot("r.urdf", None, |_: &Path| {
+            Some(Ok::<_, Error>(urdf.clone()))
+        })
+        .unwrap();
+        assert_eq!(robot.name(), "comau_nj165_test");
     }
 }

@@ -41,6 +41,7 @@ pub struct Report {
 /// separate in [`Report::unidentifiable`] instead).
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
+    setup.check_bodies()?;
     if setup.model().is_drives_only() {
         Factor::try_new(rope_observation_matrix(setup, postures))?;
     }

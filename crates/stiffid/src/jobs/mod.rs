@@ -67,6 +67,9 @@ pub enum WarningKind {
     /// The data cannot separate some parameters of the model: they get no interval
     /// ([`crate::identify::model::Identifiability`]).
     Unidentifiable,
+    /// A URDF's collision meshes were not found: the robot serves kinematics and identification,
+    /// the cell's body checks refuse it ([`crate::robot::Bodies::Missing`]).
+    Meshes,
 }
 
 impl WarningKind {
@@ -81,6 +84,7 @@ impl WarningKind {
             WarningKind::LoadSteps => "load-steps",
             WarningKind::NoForce => "no-force",
             WarningKind::Unidentifiable => "unidentifiable",
+            WarningKind::Meshes => "meshes",
         }
     }
 }

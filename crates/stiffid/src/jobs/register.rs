@@ -106,6 +106,7 @@ pub struct DesignReport {
 /// # Errors
 /// Those of [`design::design`].
 pub fn propose(request: &DesignRequest<'_>) -> Result<DesignReport> {
+    request.setup.check_bodies()?;
     let design = design::design(request.setup, request.postures, &request.options)?;
     let checker = Checker::new(request.setup);
     let checks = (checker.kinds().iter())

@@ -244,6 +244,7 @@ fn size(request: &Request) -> usize {
 
 /// The request's parts fit its method, and its counts are in range.
 fn check(r: &Request) -> Result<()> {
+    r.setup.check_bodies()?;
     let invalid = |field: &str, message: &str| {
         Err(Error::InvalidField {
             field: field.into(),

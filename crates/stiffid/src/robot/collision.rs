@@ -107,9 +107,10 @@ pub(crate) const FAR: f64 = 1e4;
 /// resolved in `package_paths`.
 ///
 /// # Errors
-/// Those of [`super::urdf::parse`] for the text; [`Error::Parse`] naming the URDF, the link and
-/// the mesh: a `package://` URL whose package is in none of the package paths (naming the package
-/// and the paths), a mesh file that does not exist, cannot be read or is no STL, more than
+/// Those of [`super::urdf::parse`] for the text; [`Error::MeshNotFound`] naming the URDF, the
+/// link and the mesh for a `package://` URL whose package is in none of the package paths (naming
+/// the package and the paths) or a mesh file that does not exist; [`Error::Parse`] naming the
+/// URDF, the link and the mesh: a mesh file that cannot be read or is no STL, more than
 /// [`MAX_MESH_TRIANGLES`] triangles, a mesh format other than STL, points that span no volume,
 /// non-finite or out-of-range sizes.
 pub fn parse(
@@ -334,7 +335,7 @@ impl Context<'_> {
         let candidates: Vec<PathBuf> = if let Some(rest) = filename.strip_prefix("package://") {
             let package = rest.split('/').next().unwrap_or("");
             if self.package_paths.is_empty() {
-                return Err(self.error(
+                return Err(self.not_found(
                     link,
                     format!(
                         "mesh '{}' is in package '{}': give the directory that holds the \
@@ -369,7 +370,21 @@ impl Context<'_> {
                 short(&tried.join(", "))
             ),
         };
-        Err(self.error(link, message))
+        Err(self.not_found(link, message))
+    }
+
+    /// [`Error::MeshNotFound`] for the mesh of `link`.
+    fn not_found(&self, link: &str, message: String) -> Error {
+        match self.error(link, message) {
+            Error::Parse {
+                source_name,
+                message,
+            } => Error::MeshNotFound {
+                source_name,
+                message,
+            },
+            e => e,
+        }
     }
 }
 

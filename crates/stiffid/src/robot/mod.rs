@@ -258,6 +258,10 @@ pub enum Bodies {
     Capsules([f64; 7]),
     /// Convex collision shapes: a URDF's `<collision>` elements ([`collision::parse`]).
     Shapes(Arc<collision::CollisionGeometry>),
+    /// A URDF whose collision meshes were not found ([`Error::MeshNotFound`], its message): the
+    /// robot serves kinematics and identification; the cell's body checks refuse it
+    /// ([`crate::Setup::check_bodies`]).
+    Missing(Arc<str>),
 }
 
 /// Shapes are equal when they are the same read (the same `Arc`).
@@ -267,6 +271,7 @@ impl PartialEq for Bodies {
             (Bodies::Scaled, Bodies::Scaled) => true,
             (Bodies::Capsules(a), Bodies::Capsules(b)) => a == b,
             (Bodies::Shapes(a), Bodies::Shapes(b)) => Arc::ptr_eq(a, b),
+            (Bodies::Missing(a), Bodies::Missing(b)) => a == b,
             _ => false,
         }
     }

@@ -369,6 +369,34 @@ impl Setup {
         }
     }
 
+    /// Whether the cell's body checks (a `[cell]`, a `[tracker]`'s line of sight) have the robot's
+    /// bodies: a URDF whose collision meshes were not found ([`Bodies::Missing`]) serves
+    /// everything else, not these checks.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`[cell]` or `[tracker]`) naming the mesh not found and how to give
+    /// it (`--package-path`, the setup's `package_paths`) or to do without it
+    /// (`[robot_geometry] link_radius_mm`).
+    pub fn check_bodies(&self) -> Result<()> {
+        let Bodies::Missing(why) = &self.shapes else {
+            return Ok(());
+        };
+        let field = match (&self.cell, &self.tracker) {
+            (Some(_), _) => "[cell]",
+            (None, Some(_)) => "[tracker]",
+            (None, None) => return Ok(()),
+        };
+        Err(Error::InvalidField {
+            field: field.into(),
+            message: format!(
+                "the cell's body checks need the robot's collision meshes ({why}); give the \
+                 directory that holds the ROS packages with --package-path DIR (Python: \
+                 package_paths) or the setup's package_paths, or capsule radii as \
+                 [robot_geometry] link_radius_mm"
+            ),
+        })
+    }
+
     /// The laser tracker, for the line-of-sight and incidence checks.
     pub fn tracker(&self) -> Option<&Tracker> {
         self.tracker.as_ref()
@@ -643,6 +671,7 @@ impl SetupBuilder {
         let defaults = crate::cell::default_geometry(&self.robot, &tool);
         let shapes = match (&self.robot.bodies(), self.link_radii) {
             (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
+            (Bodies::Missing(m), None) => Bodies::Missing(m.clone()),
             _ => Bodies::Scaled,
         };
         let robot_radii = match &self.robot.bodies() {

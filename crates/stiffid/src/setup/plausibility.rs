@@ -7,6 +7,8 @@
 
 use super::Setup;
 use crate::jobs::{Warning, WarningKind};
+use crate::robot::Bodies;
+use crate::Robot;
 use nalgebra::Vector6;
 
 /// Below this reach (m) at the middle of the bounds, the robot's lengths look like a unit slip.
@@ -21,7 +23,7 @@ pub const MIN_TOOL_M: f64 = 1e-3;
 /// The warnings of `setup` (module docs), each one sentence naming the field and the likely
 /// cause; empty when nothing looks wrong.
 pub fn warnings(setup: &Setup) -> Vec<Warning> {
-    let mut out = Vec::new();
+    let mut out: Vec<Warning> = meshes(setup.robot()).into_iter().collect();
     let bounds = setup.bounds();
     let frames = setup.robot().frames(&((bounds.lower + bounds.upper) / 2.0));
     let reach = (frames.flange.translation.vector - frames.joints[0].translation.vector)
@@ -54,6 +56,21 @@ pub fn warnings(setup: &Setup) -> Vec<Warning> {
         )));
     }
     out
+}
+
+/// The warning for a URDF robot whose collision meshes were not found ([`Bodies::Missing`]):
+/// everything but the cell's body checks goes on ([`Setup::check_bodies`]). `None` otherwise.
+pub fn meshes(robot: &Robot) -> Option<Warning> {
+    let Bodies::Missing(why) = robot.bodies() else {
+        return None;
+    };
+    Some(Warning::new(
+        WarningKind::Meshes,
+        format!(
+            "{why}: the robot is loaded for kinematics and identification without its collision \
+             meshes; the cell's body checks need them (--package-path DIR, Python: package_paths)"
+        ),
+    ))
 }
 
 /// The warning for postures (axis angles, rad, as read from `_deg` columns) whose every angle lies

@@ -175,12 +175,24 @@ fn a_body_wholly_below_the_floor_fails_the_broad_phase_too() {
 #[test]
 fn package_urls_resolve_in_the_setups_and_the_given_package_paths_or_name_the_package() {
     let without = mesh_robot::setup_toml().replace("package_paths = [\".\"]\n", "");
-    let e = setup_from(&without, &[]).unwrap_err().to_string();
+    // Meshes not found: the setup loads (kinematics needs none), the cell's checks refuse it.
+    let bare = setup_from(&without, &[]).unwrap();
+    assert!(bare.shapes().is_none());
+    let warning = stiffid::setup::plausibility::warnings(&bare);
+    assert_eq!(warning.len(), 1, "{warning:?}");
+    assert!(warning[0].message.contains("--package-path"), "{warning:?}");
+    let e = bare.check_bodies().unwrap_err().to_string();
+    assert!(
+        e.starts_with("[cell]: ") && e.contains("--package-path DIR"),
+        "{e}"
+    );
     assert!(
         e.contains("mesh 'package://mesh_robot/meshes/base_link.stl' is in package 'mesh_robot'"),
         "{e}"
     );
     let e = setup_from(&without, &[PathBuf::from("elsewhere")])
+        .unwrap()
+        .check_bodies()
         .unwrap_err()
         .to_string();
     assert!(
