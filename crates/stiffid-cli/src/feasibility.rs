@@ -1,5 +1,5 @@
 //! The cell's feasibility checks of a group of postures, as text (their document:
-//! [`stiffid::documents::feasibility`]).
+//! [`stiffid::app::document::feasibility`]).
 
 use stiffid::cell::{Check, Feasibility};
 

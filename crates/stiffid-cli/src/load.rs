@@ -5,10 +5,11 @@ use nalgebra::{SVector, Vector6};
 use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use stiffid::formats::stiffness;
-use stiffid::formats::{self, postures, reference, Capped};
-use stiffid::limits::{self, short, JointBox, Range};
+use stiffid::common::limits::{self, short, JointBox, Range};
+use stiffid::io::stiffness;
+use stiffid::io::{self, postures, Capped};
 use stiffid::model::Compliance;
+use stiffid::setup::reference;
 use stiffid::{Robot, Setup};
 
 /// Every file read so far (resolved path, and its device and inode where the system has them), so
@@ -60,7 +61,7 @@ fn with_meshes<T>(f: impl FnOnce(&reference::Meshes) -> T) -> T {
 }
 
 /// A robot: a robot `.toml` or `.urdf` file if one exists at `arg`, else the preset named `arg`
-/// (`tip`: URDF tip link; `stiffid::formats::reference::robot_with_meshes`, a URDF's collision
+/// (`tip`: URDF tip link; `stiffid::setup::reference::robot_with_meshes`, a URDF's collision
 /// meshes read). The error names what was tried.
 pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
     let robot = with_meshes(|m| reference::robot_with_meshes(arg, tip, existing, m))?;
@@ -70,7 +71,7 @@ pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
 }
 
 /// A setup from a setup `.toml` file if one exists at `arg`, else the built-in setup named
-/// `arg` (`stiffid::formats::reference::setup_with_meshes`). A robot file named in a setup file
+/// `arg` (`stiffid::setup::reference::setup_with_meshes`). A robot file named in a setup file
 /// is looked for relative to the setup file, a URDF's meshes relative to the URDF or in the
 /// package paths.
 pub fn setup(arg: &str) -> Result<Setup> {
@@ -118,10 +119,10 @@ fn existing(path: &Path) -> Option<Result<String>> {
 }
 
 /// The text of a file, with its name in the error: at most [`limits::MAX_INPUT_BYTES`], UTF-8
-/// ([`formats::read_text`]). The file is remembered as an input ([`input_at`]).
+/// ([`io::read_text`]). The file is remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
     let name = path.display().to_string();
-    Ok(formats::read_text(&name, open(path)?.into_inner())?)
+    Ok(io::read_text(&name, open(path)?.into_inner())?)
 }
 
 /// The file at `path` opened for reading, not a directory, remembered as an input
@@ -196,7 +197,7 @@ pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
 }
 
 /// The compliance of every parameter of `setup`'s model from a stiffness file
-/// (`stiffid::formats::stiffness`), e.g. the result of `stiffid identify --out`, checked against
+/// (`stiffid::io::stiffness`), e.g. the result of `stiffid identify --out`, checked against
 /// the model; errors start with the file name.
 pub fn stiffness(path: &Path, setup: &Setup) -> Result<Compliance> {
     let text = read(path)?;
@@ -205,7 +206,7 @@ pub fn stiffness(path: &Path, setup: &Setup) -> Result<Compliance> {
     file.compliance(setup.model()).with_context(name)
 }
 
-/// A postures file (`stiffid::formats::postures`), every posture within the robot's joint limits
+/// A postures file (`stiffid::io::postures`), every posture within the robot's joint limits
 /// and, if given, the `bounds` (a setup's); angles in rad. Errors start with the file name, then
 /// the line and column.
 pub fn postures(

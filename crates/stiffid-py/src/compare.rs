@@ -1,5 +1,5 @@
 //! `stiffid.identify(..., compare_models=True)`: the model-comparison job
-//! ([`stiffid::jobs::compare_models`]), its document as `stiffid identify --compare-models --json`
+//! ([`stiffid::app::compare_models`]), its document as `stiffid identify --compare-models --json`
 //! writes it, plus the selection path as arrays and names.
 
 use crate::documents;
@@ -9,10 +9,10 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::fs::File;
-use stiffid::formats::Capped;
+use stiffid::app::compare_models::{run, Request};
+use stiffid::app::identify::Data;
 use stiffid::identify::compare::document::{Document, ModelDoc};
-use stiffid::jobs::compare_models::{run, Request};
-use stiffid::jobs::identify::Data;
+use stiffid::io::Capped;
 
 /// Runs the comparison on `data` from `setup`'s model over `candidates` (names; `None`: the
 /// default ones) and returns the document with the table of the selection path (key `table`) and

@@ -1,5 +1,5 @@
 //! `stiffid.compensate`: deflection compensation of a machining path, over
-//! [`stiffid::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
+//! [`stiffid::machining::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
 //! steps; the free tool axis after Caro et al., ICRA 2013, and Xiong et al., RCIM 2019).
 
 use crate::arrays;
@@ -10,12 +10,12 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
-use stiffid::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
-use stiffid::deflection::Frame;
-use stiffid::documents::compensate::{values, Document, Names, Row};
-use stiffid::jobs::compensate::{self as job, Input, Request};
+use stiffid::app::compensate::document::{values, Document, Names, Row};
+use stiffid::app::compensate::{self as job, Input, Request};
+use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::process::file;
 use stiffid::machining::Language;
-use stiffid::process::file;
+use stiffid::observation::deflection::Frame;
 
 /// Compensates a machining path with the stiffness ``stiffness`` of every parameter of the setup's
 /// model: one number per parameter (the six drives, Nm/rad, then the virtual springs, Nm/rad or

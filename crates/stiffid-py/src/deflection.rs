@@ -1,5 +1,5 @@
 //! `stiffid.deflection`: the deflection of a tool point under a wrench, and its uncertainty
-//! (Zhang et al. 2021, Eq. 4-6), over [`stiffid::deflection`].
+//! (Zhang et al. 2021, Eq. 4-6), over [`stiffid::observation::deflection`].
 
 use crate::arrays::{self, rows};
 use crate::error::{raise, value};
@@ -8,9 +8,8 @@ use crate::stiffness;
 use nalgebra::{DVector, Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use stiffid::deflection::{base_wrench, Frame, Points};
-use stiffid::limits;
-use stiffid::model::Compliance;
+use stiffid::common::limits;
+use stiffid::observation::deflection::{base_wrench, Frame, Points};
 
 /// The deflection of a tool point in each posture ``q_deg`` (shape ``(6,)`` or ``(n, 6)``, deg,
 /// within the joint limits) under ``wrench`` (``[fx, fy, fz, mx, my, mz]``, N and Nm, shape
@@ -55,8 +54,9 @@ pub fn deflection<'py>(
     let observed = point(observed_mm, loaded, "observed_mm")?;
     let compliance = match stiffness_nm_per_rad {
         None => {
-            let mut c =
-                Compliance::nominal(s, "deflection without stiffness_nm_per_rad").map_err(raise)?;
+            let mut c = s
+                .model_compliance("deflection without stiffness_nm_per_rad")
+                .map_err(raise)?;
             if let Some(cov) = compliance_covariance_rad2_per_nm2 {
                 c.covariance = Some(stiffness::covariance_of(cov, c.len())?);
             }

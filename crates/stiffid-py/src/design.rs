@@ -1,15 +1,17 @@
 //! `Setup.evaluate` and `Setup.select`: the library's evaluate and select jobs
-//! ([`stiffid::jobs::evaluate`], [`stiffid::jobs::select`]), their documents as dicts.
+//! ([`stiffid::app::evaluate`], [`stiffid::app::select`]), their documents as dicts.
 
 use crate::documents::{to_python, warn};
 use crate::error::{raise, value};
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use stiffid::app::{evaluate, select};
+use stiffid::app::{
+    evaluate::document::Document as Evaluated, select::document::Document as Selected,
+};
+use stiffid::common::limits::{self, check_count};
 use stiffid::design::{PoolOptions, SearchOptions};
-use stiffid::documents::{evaluate::Document as Evaluated, select::Document as Selected};
-use stiffid::jobs::{evaluate, select};
-use stiffid::limits::{self, check_count};
 use stiffid::Setup;
 
 /// The keys of the evaluate document returned as NumPy arrays.

@@ -1,4 +1,4 @@
-//! The library's documents ([`stiffid::documents`]) as Python objects, and the jobs' warnings as
+//! The library's documents ([`stiffid::app::document`]) as Python objects, and the jobs' warnings as
 //! `UserWarning`s: the one way Python results are built, so they equal the command's JSON.
 
 use numpy::PyArray1;
@@ -8,7 +8,7 @@ use pyo3::types::{PyDict, PyList};
 use serde::Serialize;
 use serde_json::Value;
 use std::ffi::CString;
-use stiffid::jobs::Warning;
+use stiffid::common::warning::Warning;
 
 /// `document` as Python objects (JSON's: dict, list, str, int, float, bool, None), with the keys
 /// of `arrays` (at the top level) as NumPy float arrays (`null` as NaN).

@@ -1,6 +1,6 @@
 //! `stiffid.process_force` and `stiffid.read_program`: the process forces of a process file
-//! ([`stiffid::jobs::force`]) and the path of a machining program
-//! ([`stiffid::jobs::compensate::read_program`]), as the command reads them.
+//! ([`stiffid::app::force`]) and the path of a machining program
+//! ([`stiffid::app::compensate::read_program`]), as the command reads them.
 
 use crate::arrays;
 use crate::documents::to_python;
@@ -9,11 +9,11 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::documents::force::Document;
-use stiffid::formats::gcode::Motion;
-use stiffid::jobs::{compensate, force};
+use stiffid::app::force::document::Document;
+use stiffid::app::{compensate, force};
+use stiffid::machining::gcode::Motion;
+use stiffid::machining::process::file;
 use stiffid::machining::{Language, Program};
-use stiffid::process::file;
 
 /// The mean cutting force of every operation of the process file ``process`` (TOML, the format
 /// of ``stiffid force --process``), over one revolution, in the feed frame ``[feed, normal,

@@ -1,6 +1,6 @@
 //! `stiffid.identify` and `stiffid.validate`: joint stiffness from measured displacements
 //! (Zhang et al. 2021, Eq. 10-14) and its check on other measurements (Eq. 22), over
-//! [`stiffid::identify`] and [`stiffid::validate`].
+//! [`stiffid::identify`] and [`stiffid::identify::validate`].
 
 use crate::arrays::{self, rows};
 use crate::compare;
@@ -13,14 +13,14 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
 use std::path::PathBuf;
-use stiffid::documents::identify::Document;
-use stiffid::documents::identify_model::Document as ModelDocument;
-use stiffid::documents::validate::Document as Checked;
-use stiffid::formats::Capped;
+use stiffid::app::identify::document::Document;
+use stiffid::app::identify::{self as job, Fit, Folds, Origin, Request};
+use stiffid::app::identify_model as over_model;
+use stiffid::app::identify_model::document::Document as ModelDocument;
+use stiffid::app::validate as validation;
+use stiffid::app::validate::document::Document as Checked;
 use stiffid::identify::Loss;
-use stiffid::jobs::identify::{self as job, Fit, Folds, Origin, Request};
-use stiffid::jobs::identify_model as over_model;
-use stiffid::jobs::validate as validation;
+use stiffid::io::Capped;
 use stiffid::observation::Measurement;
 
 /// The job's measurements: a CSV path (the `stiffid identify --data` format, read by the job

@@ -1,12 +1,12 @@
 //! The setup's elastostatic model in Python: its parameters with their nominal stiffness
-//! ([`stiffid::documents::parameters`]) and a setup with another `[model]` table
+//! ([`stiffid::app::document::parameters`]) and a setup with another `[model]` table
 //! ([`stiffid::model::parse_fragment`]).
 
 use crate::error::raise;
 use nalgebra::DVector;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
-use stiffid::documents::parameters;
+use stiffid::app::document::parameters;
 use stiffid::Setup;
 
 /// The parameters of `setup`'s model with their nominal stiffness (`None` where the setup has

@@ -1,4 +1,4 @@
-//! `stiffid.predict`: the predict job of `stiffid predict` ([`stiffid::jobs::predict`]).
+//! `stiffid.predict`: the predict job of `stiffid predict` ([`stiffid::app::predict`]).
 
 use crate::arrays;
 use crate::documents;
@@ -7,10 +7,10 @@ use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use stiffid::deflection::Frame;
-use stiffid::documents::predict::Document;
-use stiffid::jobs::predict as job;
-use stiffid::limits;
+use stiffid::app::predict as job;
+use stiffid::app::predict::document::Document;
+use stiffid::common::limits;
+use stiffid::observation::deflection::Frame;
 
 /// The forward model (Zhang et al. 2021, Eq. 3-7) of one posture ``q_deg`` (shape ``(6,)``, deg,
 /// within the joint limits) under ``wrench`` (``[fx, fy, fz, mx, my, mz]``, N and Nm, in

@@ -1,7 +1,7 @@
 //! `stiffid.register` and `stiffid.calibrate_cell`: the tracker's transform from raw readings
-//! ([`stiffid::jobs::register`]) and the transform with the measuring points fitted together
-//! ([`stiffid::jobs::calibrate`]), as the command computes them; the postures to register in
-//! ([`stiffid::jobs::register::propose`]).
+//! ([`stiffid::app::register`]) and the transform with the measuring points fitted together
+//! ([`stiffid::app::calibrate`]), as the command computes them; the postures to register in
+//! ([`stiffid::app::register::propose`]).
 
 use crate::documents::{to_python, warn};
 use crate::error::{self, raise};
@@ -9,10 +9,10 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::documents::register::{Calibration, Document, Proposal};
-use stiffid::jobs::calibrate as calibrate_job;
-use stiffid::jobs::register as register_job;
-use stiffid::register::design;
+use stiffid::app::calibrate as calibrate_job;
+use stiffid::app::register as register_job;
+use stiffid::app::register::document::{Calibration, Document, Proposal};
+use stiffid::metrology::register::design;
 
 /// The readings of `path` as a job's request runs on them.
 fn with_request<T>(

@@ -8,12 +8,12 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::documents::kinematics::Document;
-use stiffid::formats::postures;
-use stiffid::formats::reference::{self, Meshes};
-use stiffid::jobs::kinematics::{self as job, characteristic_length_or_derived};
-use stiffid::limits;
+use stiffid::app::kinematics::document::Document;
+use stiffid::app::kinematics::{self as job, characteristic_length_or_derived};
+use stiffid::common::limits;
+use stiffid::io::postures;
 use stiffid::robot::presets;
+use stiffid::setup::reference::{self, Meshes};
 use stiffid::{dexterity, Coordinates};
 
 /// Most postures of one vectorised call (an `(n, 6)` array): 1 000 000.
@@ -186,7 +186,7 @@ impl Robot {
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;
     /// default the flange origin): the length that minimises the point's median dexterity over
-    /// 512 seeded postures within the joint limits (``stiffid::prior``; about 1200 mm for the
+    /// 512 seeded postures within the joint limits (``stiffid::setup::prior``; about 1200 mm for the
     /// paper's COMAU and tool). What ``dexterity`` uses when no length is given; a setup's
     /// ``characteristic_length_mm`` is the one to give where there is a setup. ``ValueError`` for
     /// a robot singular at most postures.
@@ -198,7 +198,7 @@ impl Robot {
     ) -> PyResult<f64> {
         let point = point(point_mm)?;
         let robot = &self.inner;
-        let l = py.detach(|| stiffid::prior::robot_characteristic_length(robot, &point));
+        let l = py.detach(|| stiffid::setup::prior::robot_characteristic_length(robot, &point));
         Ok(l.map_err(raise)? * 1e3)
     }
 
@@ -207,7 +207,7 @@ impl Robot {
     /// the base frame, translation in mm (the point's position) and the rotation of the flange,
     /// as ``flange_pose`` returns it for the flange origin; shape ``(4, 4)``, or ``(n, 4, 4)`` for
     /// a path. Damped least squares on the point's Jacobian within the joint limits
-    /// (``stiffid::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
+    /// (``stiffid::robot::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
     /// next pose from the previous solution (one branch along a path); if a start fails,
     /// ``restarts`` seeded random postures (default 8, ``seed``). Converged when the point is
     /// within ``position_tolerance_mm`` (default 1e-7 mm) and the rotation within

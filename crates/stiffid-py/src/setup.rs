@@ -9,8 +9,8 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
-use stiffid::formats::reference::{self, Meshes};
 use stiffid::setup;
+use stiffid::setup::reference::{self, Meshes};
 
 /// An experimental setup (read-only). Lengths in mm, angles in deg, stiffness in Nm/rad.
 #[pyclass(frozen, module = "stiffid", name = "Setup")]
@@ -109,7 +109,7 @@ impl Setup {
     ) -> PyResult<Bound<'py, PyAny>> {
         let r = self.inner.robot();
         let within = (r.limits(), "the joint limits");
-        let most = stiffid::limits::MAX_GROUP_POSTURES;
+        let most = stiffid::common::limits::MAX_GROUP_POSTURES;
         let (group, _) = postures(postures_deg, "postures_deg", within, most)?;
         let setup = &self.inner;
         setup.check_bodies().map_err(crate::error::raise)?;
@@ -117,7 +117,7 @@ impl Setup {
             let checker = stiffid::cell::Checker::new(setup);
             group.iter().map(|q| checker.feasibility(q)).collect()
         });
-        let document = stiffid::documents::feasibility::postures(&checks);
+        let document = stiffid::app::document::feasibility::postures(&checks);
         crate::documents::to_object(py, &document)
     }
 
@@ -380,7 +380,13 @@ impl Setup {
         what: &str,
     ) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
         let within = (self.inner.bounds(), "the setup's bounds");
-        Ok(postures(obj, what, within, stiffid::limits::MAX_GROUP_POSTURES)?.0)
+        Ok(postures(
+            obj,
+            what,
+            within,
+            stiffid::common::limits::MAX_GROUP_POSTURES,
+        )?
+        .0)
     }
 
     /// Pool postures: within the robot's joint limits (the cell's checks, bounds included, decide

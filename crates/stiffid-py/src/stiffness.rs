@@ -7,8 +7,8 @@ use crate::error::{self, raise};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use std::path::PathBuf;
-use stiffid::formats::stiffness;
-use stiffid::limits;
+use stiffid::common::limits;
+use stiffid::io::stiffness;
 use stiffid::model::{Compliance, ParameterKind};
 use stiffid::Setup;
 
@@ -66,6 +66,6 @@ pub fn given_or_nominal(
 ) -> PyResult<Compliance> {
     match obj {
         Some(k) => compliance(setup, k, None, what),
-        None => Compliance::nominal(setup, needed_by).map_err(raise),
+        None => setup.model_compliance(needed_by).map_err(raise),
     }
 }

@@ -1,5 +1,5 @@
 //! `stiffid.simulate` and `stiffid.reproduce`: the Monte Carlo identification of groups of
-//! postures and the paper's simulation study, over [`stiffid::simulate`] and [`stiffid::study`].
+//! postures and the paper's simulation study, over [`stiffid::study::simulate`] and [`stiffid::study`].
 
 use crate::arrays;
 use crate::documents::{to_python, warn};
@@ -9,12 +9,12 @@ use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray1, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
-use stiffid::documents::reproduce::Summary;
-use stiffid::documents::simulate::Document;
-use stiffid::jobs::reproduce as job_reproduce;
-use stiffid::jobs::simulate as job;
-use stiffid::limits::{self, check_count};
-use stiffid::simulate::{self as monte_carlo, GroupSimulation};
+use stiffid::app::reproduce as job_reproduce;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::simulate as job;
+use stiffid::app::simulate::document::Document;
+use stiffid::common::limits::{self, check_count};
+use stiffid::study::simulate::{self as monte_carlo, GroupSimulation};
 use stiffid::study::{self, Options};
 
 /// A count within `[min, max]` (`field` names it in errors).

@@ -75,12 +75,12 @@ fn mesh_cell() -> stiffid::Setup {
         ))
     };
     let bytes = |p: &Path| files.get(p).cloned().map(Ok);
-    let meshes = stiffid::formats::reference::Meshes {
+    let meshes = stiffid::setup::reference::Meshes {
         read: &bytes,
         package_paths: &[],
     };
     let toml = mesh_robot::setup_toml();
-    stiffid::formats::reference::setup_text_with_meshes(
+    stiffid::setup::reference::setup_text_with_meshes(
         &toml,
         "pkg/cell.toml",
         Path::new("pkg"),

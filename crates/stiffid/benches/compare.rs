@@ -13,7 +13,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
 use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions, Solver};
 use stiffid::identify;
-use stiffid::lsq::Factor;
+use stiffid::math::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
 use stiffid::observation::Measurement;
 use stiffid::setup;
@@ -24,13 +24,13 @@ const MEASUREMENTS: &str = include_str!("../../../bench/inputs/measurements.csv"
 /// The start group (axis angles, rad), read by the library's parser.
 fn start_group() -> Vec<Vector6<f64>> {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    stiffid::formats::postures::parse(START, setup.robot(), None).unwrap()
+    stiffid::io::postures::parse(START, setup.robot(), None).unwrap()
 }
 
 /// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm`, read by the
 /// library's parser.
 fn measurements() -> Vec<Measurement> {
-    stiffid::formats::measurements::parse(MEASUREMENTS)
+    stiffid::io::measurements::parse(MEASUREMENTS)
         .unwrap()
         .measurements
 }

@@ -4,15 +4,15 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Translation3, Vector6};
-use stiffid::compensate::{self, Compliance, Options, PathPoint, Target};
-use stiffid::deflection::Frame;
-use stiffid::ik::{self, tool_pose};
-use stiffid::{cartesian, setup};
+use stiffid::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::observation::deflection::Frame;
+use stiffid::robot::ik::{self, tool_pose};
+use stiffid::{observation::cartesian, setup};
 
 fn benches(c: &mut Criterion) {
     let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
     let q = s.test_postures()[0];
-    let h = Compliance::nominal(&s, "the bench").unwrap().h;
+    let h = s.model_compliance("the bench").unwrap().h;
     c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
         b.iter(|| {
             let frames = s.robot().frames(black_box(&q));
@@ -37,7 +37,7 @@ fn benches(c: &mut Criterion) {
             frame: Frame::Tool,
         })
         .collect();
-    let compliance = Compliance::nominal(&s, "the bench").unwrap();
+    let compliance = s.model_compliance("the bench").unwrap();
     let options = Options {
         q0: q,
         ik: ik::Options::default(),

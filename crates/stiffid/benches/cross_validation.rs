@@ -6,9 +6,9 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector6;
 use std::hint::black_box;
-use stiffid::formats::measurements;
 use stiffid::identify::cross_validation::Method;
 use stiffid::identify::{cross_validate, Loss};
+use stiffid::io::measurements;
 use stiffid::observation::{Measurement, Observations};
 use stiffid::setup;
 

@@ -5,7 +5,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Matrix6, Vector3};
-use stiffid::lsq::Factor;
+use stiffid::math::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
 use stiffid::{dexterity, setup, Coordinates};
 

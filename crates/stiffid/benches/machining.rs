@@ -4,10 +4,10 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Isometry3;
-use stiffid::compensate::{Compliance, Options};
-use stiffid::jobs::compensate::{self, Input, Request};
+use stiffid::app::compensate::{self, Input, Request};
+use stiffid::machining::compensate::Options;
+use stiffid::machining::process::file;
 use stiffid::machining::Language;
-use stiffid::process::file;
 use stiffid::setup;
 
 /// A raster over 300 mm x 200 mm: 100 rows of 1000 blocks of 0.3 mm, 2 mm apart.
@@ -43,7 +43,7 @@ fn benches(c: &mut Criterion) {
     )
     .unwrap();
     let text = raster();
-    let compliance = Compliance::nominal(&s, "bench").unwrap();
+    let compliance = s.model_compliance("bench").unwrap();
     let mut group = c.benchmark_group("compensate a G-code program");
     group.sample_size(10);
     group.bench_function("100 000 blocks, end to end", |b| {

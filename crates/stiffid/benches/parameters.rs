@@ -66,8 +66,8 @@ fn parameters(c: &mut Bench) {
 }
 
 fn compare_models(c: &mut Bench) {
-    use stiffid::jobs::compare_models::{run, Request};
-    use stiffid::jobs::identify::Data;
+    use stiffid::app::compare_models::{run, Request};
+    use stiffid::app::identify::Data;
     let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     c.benchmark_group("models")

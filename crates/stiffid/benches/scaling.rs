@@ -12,9 +12,9 @@ use nalgebra::{DVector, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiffid::design::evaluate;
-use stiffid::lsq::Factor;
+use stiffid::math::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
-use stiffid::simulate::{self, Options};
+use stiffid::study::simulate::{self, Options};
 use stiffid::{setup, Setup};
 
 const POSTURES: [usize; 4] = [6, 24, 96, 384];

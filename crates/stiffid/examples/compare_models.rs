@@ -3,8 +3,8 @@
 //!
 //! `cargo run --release -p stiffid --example compare_models`
 
-use stiffid::formats::measurements;
 use stiffid::identify::compare::{compare, default_candidates};
+use stiffid::io::measurements;
 
 fn main() -> stiffid::Result<()> {
     let setup = stiffid::setup::builtin("fanuc-r2000ic-165f")?;

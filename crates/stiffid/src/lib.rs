@@ -20,46 +20,25 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-mod builtin;
-pub mod calibrate;
-pub mod calibration;
-pub mod cartesian;
+pub mod app;
 pub mod cell;
-pub mod choice;
-pub mod compensate;
-pub mod deflection;
+pub mod common;
 pub mod design;
-pub mod documents;
-mod error;
-pub mod formats;
-pub mod ik;
-pub mod jobs;
-pub mod kinematics;
-pub mod limits;
-mod linalg;
-pub mod machining;
-pub mod model;
-pub mod robot;
-
-pub use error::{ColumnProblem, Error, MeasurementField, Result};
-pub use kinematics::{dexterity, Coordinates, Frames};
-pub use robot::{AxisMap, Joint, Robot};
 pub mod identify;
-pub mod lsq;
+pub mod io;
+pub mod machining;
+pub mod math;
+pub mod metrology;
+pub mod model;
 pub mod observation;
-pub mod prior;
-pub mod process;
-pub mod progress;
-pub mod register;
+pub mod robot;
 pub mod setup;
-pub mod simulate;
-pub mod steps;
-pub mod stiffness;
 pub mod study;
-pub mod validate;
-pub mod words;
 
-pub use progress::Progress;
+pub use common::error::{ColumnProblem, Error, MeasurementField, Result};
+pub use common::progress::Progress;
+pub use robot::kinematics::{dexterity, Coordinates, Frames};
+pub use robot::{AxisMap, Joint, Robot};
 pub use setup::Setup;
 
 /// The Rust examples of the README, run as doctests.

@@ -8,8 +8,8 @@ use crate::output::{self, print_json_or, OutFile};
 use anyhow::{bail, Result};
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid::jobs::register::Request;
-use stiffid::jobs::Warning;
+use stiffid::app::register::Request;
+use stiffid::common::warning::Warning;
 use stiffid::Setup;
 
 /// `--setup`, `--json`, `--data` and `--out`.

@@ -6,7 +6,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use std::ffi::OsStr;
 use std::marker::PhantomData;
 use std::path::PathBuf;
-use stiffid::choice::Choice;
+use stiffid::common::choice::Choice;
 use stiffid::model::Compliance;
 use stiffid::Setup;
 

@@ -1,5 +1,5 @@
-//! `stiffid compensate`: arguments to a request of [`stiffid::jobs::compensate`], the rows of its
-//! CSV and JSON document ([`stiffid::documents::compensate`]) written as the job computes them,
+//! `stiffid compensate`: arguments to a request of [`stiffid::app::compensate`], the rows of its
+//! CSV and JSON document ([`stiffid::app::compensate::document`]) written as the job computes them,
 //! then the compensated program, the text or JSON, and the report.
 
 use crate::commands::common::choice;
@@ -10,13 +10,13 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
-use stiffid::deflection::Frame;
-use stiffid::documents::compensate::{csv_line, header, values, Document, Names, GENERATOR};
-use stiffid::jobs::compensate::{self as job, Input, Report, Request};
+use stiffid::app::compensate::document::{csv_line, header, values, Document, Names, GENERATOR};
+use stiffid::app::compensate::{self as job, Input, Report, Request};
+use stiffid::common::words::count;
+use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::process::file;
 use stiffid::machining::Language;
-use stiffid::process::file;
-use stiffid::words::count;
+use stiffid::observation::deflection::Frame;
 use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid compensate`.

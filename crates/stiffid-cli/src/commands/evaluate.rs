@@ -6,11 +6,11 @@ use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
+use stiffid::app::evaluate::document::Document;
+use stiffid::app::evaluate::{self as job, Request};
+use stiffid::common::limits::short;
+use stiffid::common::words::count;
 use stiffid::design::{Criterion, Evaluation};
-use stiffid::documents::evaluate::Document;
-use stiffid::jobs::evaluate::{self as job, Request};
-use stiffid::limits::short;
-use stiffid::words::count;
 use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid evaluate`.

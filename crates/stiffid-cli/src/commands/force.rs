@@ -1,13 +1,13 @@
 //! `stiffid force`: the mean cutting force of every operation of a process file, feed frame
-//! ([`stiffid::process`]).
+//! ([`stiffid::machining::process`]).
 
 use crate::load;
 use crate::output::print_json_or;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::documents::force::Document;
-use stiffid::jobs::force::{self, Request};
-use stiffid::process::file;
+use stiffid::app::force::document::Document;
+use stiffid::app::force::{self, Request};
+use stiffid::machining::process::file;
 
 /// Arguments of `stiffid force`.
 #[derive(clap::Args)]

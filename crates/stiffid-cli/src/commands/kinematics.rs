@@ -3,9 +3,9 @@
 use crate::commands::common::choice;
 use crate::{load, output};
 use anyhow::{Context, Result};
-use stiffid::documents::kinematics::Document;
-use stiffid::jobs::kinematics as job;
-use stiffid::{limits, Coordinates};
+use stiffid::app::kinematics as job;
+use stiffid::app::kinematics::document::Document;
+use stiffid::{common::limits, Coordinates};
 
 /// Arguments of `stiffid kinematics`.
 #[derive(clap::Args)]

@@ -8,10 +8,10 @@ use crate::output::print_json_or;
 use anyhow::{bail, Result};
 use nalgebra::Vector6;
 use std::path::PathBuf;
-use stiffid::deflection::Frame;
-use stiffid::documents::predict::Document;
-use stiffid::jobs::predict;
-use stiffid::limits;
+use stiffid::app::predict;
+use stiffid::app::predict::document::Document;
+use stiffid::common::limits;
+use stiffid::observation::deflection::Frame;
 
 /// Arguments of `stiffid predict`.
 #[derive(clap::Args)]

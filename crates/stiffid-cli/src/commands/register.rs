@@ -1,15 +1,15 @@
 //! `stiffid register`: the laser tracker's transform to the robot base from measuring points read
-//! by the tracker at known axis angles ([`stiffid::jobs::register`]: Umeyama's least-squares rigid
+//! by the tracker at known axis angles ([`stiffid::app::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation, and the `[tracker]` fragment of the setup
 //! file; or, with `--postures N`, the registration postures to read
-//! ([`stiffid::jobs::register::propose`]).
+//! ([`stiffid::app::register::propose`]).
 
 use crate::commands::cell_readings::{self, three, Outcome};
 use crate::output::print_json_or;
 use anyhow::Result;
-use stiffid::documents::register::{Document, Proposal};
-use stiffid::jobs::register as job;
-use stiffid::register::design;
+use stiffid::app::register as job;
+use stiffid::app::register::document::{Document, Proposal};
+use stiffid::metrology::register::design;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
 /// gets the `[tracker] base_from_tracker` fragment. Or `--postures N` proposes the postures to
@@ -32,7 +32,7 @@ pub struct Args {
     #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
     /// Exchange runs of --postures, 1 to 1000 [default: 8].
-    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid::limits::MAX_POOL_RESTARTS))]
+    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }
 
@@ -127,7 +127,7 @@ fn text_of(d: &Document) -> String {
     for p in &d.points {
         text += &format!(
             "{:<8} {:>5} {:>5}  {:.4} [{}]\n",
-            stiffid::limits::short(&p.posture),
+            stiffid::common::limits::short(&p.posture),
             p.point,
             p.line,
             p.residual_norm_mm,

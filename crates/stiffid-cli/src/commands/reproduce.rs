@@ -6,10 +6,10 @@ use crate::{load, output};
 use anyhow::Result;
 use std::path::PathBuf;
 use std::time::Instant;
+use stiffid::app::reproduce::document::{sentences, GENERATOR};
+use stiffid::app::reproduce::{self as job, Report, Request};
+use stiffid::common::limits;
 use stiffid::design::Solver;
-use stiffid::documents::reproduce::{sentences, GENERATOR};
-use stiffid::jobs::reproduce::{self as job, Report, Request};
-use stiffid::limits;
 use stiffid::study::{Options, DEFAULT_STARTS, DEFAULT_TRIALS};
 use stiffid::Progress;
 

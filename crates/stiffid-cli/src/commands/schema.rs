@@ -7,7 +7,7 @@ use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
 use schemars::transform::RecursiveTransform;
 use schemars::{JsonSchema, Schema};
-use stiffid::formats::stiffness::StiffnessFile;
+use stiffid::io::stiffness::StiffnessFile;
 
 /// Arguments of `stiffid schema`.
 #[derive(clap::Args)]
@@ -66,20 +66,20 @@ pub fn schema(name: &str) -> Result<Schema> {
         bail!("{name:?}: expected one of {}", names.join(", "));
     };
     let mut schema = match name {
-        "kinematics" => closed::<stiffid::documents::kinematics::Document>(),
-        "evaluate" => closed::<stiffid::documents::evaluate::Document>(),
-        "select" => closed::<stiffid::documents::select::Document>(),
-        "predict" => closed::<stiffid::documents::predict::Document>(),
-        "identify" => closed::<stiffid::documents::identify::Document>(),
-        "identify-model" => closed::<stiffid::documents::identify_model::Document>(),
+        "kinematics" => closed::<stiffid::app::kinematics::document::Document>(),
+        "evaluate" => closed::<stiffid::app::evaluate::document::Document>(),
+        "select" => closed::<stiffid::app::select::document::Document>(),
+        "predict" => closed::<stiffid::app::predict::document::Document>(),
+        "identify" => closed::<stiffid::app::identify::document::Document>(),
+        "identify-model" => closed::<stiffid::app::identify_model::document::Document>(),
         "compare-models" => closed::<stiffid::identify::compare::Document>(),
-        "validate" => closed::<stiffid::documents::validate::Document>(),
-        "compensate" => closed::<stiffid::documents::compensate::Document>(),
-        "simulate" => closed::<stiffid::documents::simulate::Document>(),
-        "reproduce" => closed::<stiffid::documents::reproduce::Summary<'static>>(),
-        "register" => closed::<stiffid::documents::register::Document>(),
-        "register-postures" => closed::<stiffid::documents::register::Proposal>(),
-        "calibrate-cell" => closed::<stiffid::documents::register::Calibration>(),
+        "validate" => closed::<stiffid::app::validate::document::Document>(),
+        "compensate" => closed::<stiffid::app::compensate::document::Document>(),
+        "simulate" => closed::<stiffid::app::simulate::document::Document>(),
+        "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
+        "register" => closed::<stiffid::app::register::document::Document>(),
+        "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
+        "calibrate-cell" => closed::<stiffid::app::register::document::Calibration>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use nalgebra::{Vector3, Vector6};
 use std::path::{Path, PathBuf};
 use stiffid::setup::Tool;
-use stiffid::{cell, prior, robot::presets, Robot};
+use stiffid::{robot::presets, setup::prior, Robot};
 
 /// Arguments of `stiffid setups new`.
 #[derive(clap::Args)]
@@ -273,7 +273,7 @@ fn cell_values(robot: &Robot, tool_mm: &Tool, reach_mm: f64) -> Vec<(&'static st
         measuring_points: tool_mm.measuring_points.iter().map(|p| p * 1e-3).collect(),
         tcp: tool_mm.tcp * 1e-3,
     };
-    let geometry = cell::default_geometry(robot, &si);
+    let geometry = stiffid::setup::default_geometry(robot, &si);
     let normals = vec!["[0.0, 0.0, 1.0]"; si.measuring_points.len()];
     vec![
         ("OBSTACLE_MIN", list(r(-0.7, -0.15, 0.0).iter(), 0)),

@@ -1,5 +1,5 @@
 //! `stiffid simulate`: Monte Carlo identification with groups of postures from files
-//! (Zhang et al. 2021, Section IV-A): the files read into a [`stiffid::jobs::simulate::Request`],
+//! (Zhang et al. 2021, Section IV-A): the files read into a [`stiffid::app::simulate::Request`],
 //! the job run, its report rendered.
 
 use crate::commands::common::Common;
@@ -7,10 +7,10 @@ use crate::load;
 use crate::output::{self, json, ReportDir};
 use anyhow::Result;
 use std::path::{Path, PathBuf};
-use stiffid::documents::simulate::{deviation_csv, Document};
-use stiffid::jobs::simulate::{self as job, Group, Request};
-use stiffid::limits;
-use stiffid::simulate::Options;
+use stiffid::app::simulate::document::{deviation_csv, Document};
+use stiffid::app::simulate::{self as job, Group, Request};
+use stiffid::common::limits;
+use stiffid::study::simulate::Options;
 
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]

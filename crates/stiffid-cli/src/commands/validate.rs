@@ -1,16 +1,16 @@
 //! `stiffid validate`: predicted against measured displacements for an identified stiffness
 //! (Zhang et al. 2021, Eq. 22, Table 7), over every parameter of the setup's model: the arguments
-//! turned into a [`stiffid::jobs::validate::Request`], the job run, its document rendered.
+//! turned into a [`stiffid::app::validate::Request`], the job run, its document rendered.
 
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
 use crate::output::{self, print_json_or};
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::documents::validate::Document;
-use stiffid::jobs::identify::Data;
-use stiffid::jobs::validate::{self as job, Request};
-use stiffid::words::count;
+use stiffid::app::identify::Data;
+use stiffid::app::validate::document::Document;
+use stiffid::app::validate::{self as job, Request};
+use stiffid::common::words::count;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]

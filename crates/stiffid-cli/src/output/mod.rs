@@ -75,7 +75,7 @@ pub fn warn(text: &str) {
 }
 
 /// Every warning of a job's report on stderr ([`warn`]), as Python raises them.
-pub fn warnings(list: &[stiffid::jobs::Warning]) {
+pub fn warnings(list: &[stiffid::common::warning::Warning]) {
     for w in list {
         warn(&w.message);
     }
@@ -99,7 +99,7 @@ pub fn print_json_or<T: serde::Serialize>(
 }
 
 /// Longest word of an error line: a path may be this long; values quoted in messages are cut
-/// shorter where they are quoted ([`stiffid::limits::short`]).
+/// shorter where they are quoted ([`stiffid::common::limits::short`]).
 const MAX_ERROR_WORD: usize = 4096;
 
 /// Longest error line.
@@ -108,7 +108,7 @@ const MAX_ERROR_CHARS: usize = 3 * MAX_ERROR_WORD;
 /// An error and its causes on one line, outermost first, as a safety net every word cut at
 /// [`MAX_ERROR_WORD`] characters and the whole at [`MAX_ERROR_CHARS`].
 pub fn one_line(message: &str) -> String {
-    stiffid::limits::one_line_within(message, MAX_ERROR_WORD, MAX_ERROR_CHARS)
+    stiffid::common::limits::one_line_within(message, MAX_ERROR_WORD, MAX_ERROR_CHARS)
 }
 
 /// [`one_line`] of an error and its causes, outermost first.

@@ -9,11 +9,11 @@ use super::tables::{num, Table};
 use crate::output::{Part, ReportDir};
 use anyhow::Result;
 use std::path::Path;
-use stiffid::compensate::Compensated;
-use stiffid::documents::compensate::GENERATOR;
-use stiffid::documents::compensate::{Document, SegmentDocument};
-use stiffid::jobs::compensate::Report;
-use stiffid::words::count;
+use stiffid::app::compensate::document::GENERATOR;
+use stiffid::app::compensate::document::{Document, SegmentDocument};
+use stiffid::app::compensate::Report;
+use stiffid::common::words::count;
+use stiffid::machining::compensate::Compensated;
 use stiffid::Setup;
 
 /// The fixed files of the report (besides `figures/`).

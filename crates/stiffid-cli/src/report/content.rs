@@ -3,8 +3,8 @@
 
 use super::figures::Figure;
 use super::tables::{self, Table};
-use stiffid::documents::reproduce::Summary;
-use stiffid::jobs::reproduce::Report;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
 use stiffid::study::paper_table4;
 
 /// A report format.

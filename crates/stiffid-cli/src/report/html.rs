@@ -4,8 +4,8 @@ use super::content::compose;
 pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::documents::reproduce::{Summary, GENERATOR};
-use stiffid::jobs::reproduce::Report;
+use stiffid::app::reproduce::document::{Summary, GENERATOR};
+use stiffid::app::reproduce::Report;
 
 /// Text with `&`, `<`, `>` and `"` escaped.
 fn escape(text: &str) -> String {

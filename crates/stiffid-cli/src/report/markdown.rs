@@ -3,8 +3,8 @@
 use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::documents::reproduce::Summary;
-use stiffid::jobs::reproduce::Report;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
 
 struct Markdown(String);
 

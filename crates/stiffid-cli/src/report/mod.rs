@@ -16,11 +16,11 @@ use anyhow::Result;
 use figures::Figure;
 use rayon::prelude::*;
 use std::path::Path;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
+use stiffid::app::simulate::document::deviation_csv;
 use stiffid::design::Evaluation;
-use stiffid::documents::reproduce::Summary;
-use stiffid::documents::simulate::deviation_csv;
-use stiffid::formats::postures;
-use stiffid::jobs::reproduce::Report;
+use stiffid::io::postures;
 use stiffid::study::criterion_values;
 
 /// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.
@@ -129,7 +129,7 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
 mod tests {
     use super::holds;
     use std::path::Path;
-    use stiffid::documents::reproduce::GENERATOR;
+    use stiffid::app::reproduce::document::GENERATOR;
 
     fn open(dir: &Path, force: bool) -> anyhow::Result<crate::output::ReportDir> {
         super::open(dir, "--out", Some(force), GENERATOR, &holds)

@@ -10,13 +10,13 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use nalgebra::{Vector3, Vector6};
 use std::path::Path;
+use stiffid::app::document::feasibility::describe;
 use stiffid::cell::Checker;
+use stiffid::common::words::{count, is_are};
 use stiffid::design::criteria::predicted_deviation_pct;
 use stiffid::design::target::TargetOutcome;
 use stiffid::design::{Criterion, Evaluation, Evaluator};
-use stiffid::documents::feasibility::describe;
-use stiffid::stiffness::rope_displacements;
-use stiffid::words::{count, is_are};
+use stiffid::observation::stiffness::rope_displacements;
 use stiffid::Setup;
 
 /// The generator mark of `plan.html`, by which a plan directory is recognised as ours.

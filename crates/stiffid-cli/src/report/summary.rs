@@ -1,13 +1,13 @@
-//! `summary.json` of `stiffid reproduce`: its document ([`stiffid::documents::reproduce`]) as
+//! `summary.json` of `stiffid reproduce`: its document ([`stiffid::app::reproduce::document`]) as
 //! text, and how a report directory is recognised as ours.
 
 use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
-use stiffid::documents::reproduce::Summary;
+use stiffid::app::reproduce::document::Summary;
 
 /// Whether `path` is a `summary.json` whose `generator` is `generator` (e.g.
-/// [`stiffid::documents::reproduce::GENERATOR`]).
+/// [`stiffid::app::reproduce::document::GENERATOR`]).
 pub fn is_ours(path: &Path, generator: &str) -> bool {
     std::fs::read_to_string(path)
         .ok()

@@ -302,7 +302,7 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
     // The LS program's targets are the compensated axis angles of the CSV, to 1e-9 deg.
     let text = std::fs::read_to_string(&ls).unwrap();
     let targets =
-        stiffid::formats::program::parse(&text, stiffid::formats::program::Dialect::FanucLs)
+        stiffid::machining::program::parse(&text, stiffid::machining::program::Dialect::FanucLs)
             .unwrap()
             .targets;
     let points = r["points"].as_array().unwrap();

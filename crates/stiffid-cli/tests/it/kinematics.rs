@@ -66,8 +66,8 @@ fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
     assert!(k > 1.0 && k.is_finite());
     // No length given: the robot's own, the one that minimises the median dexterity of the point.
     let robot = stiffid::robot::presets::get(COMAU).unwrap();
-    let l =
-        stiffid::prior::robot_characteristic_length(&robot, &nalgebra::Vector3::zeros()).unwrap();
+    let l = stiffid::setup::prior::robot_characteristic_length(&robot, &nalgebra::Vector3::zeros())
+        .unwrap();
     assert_eq!(v["characteristic_length_source"], "derived");
     assert_eq!(v["characteristic_length_mm"].as_f64().unwrap(), l * 1e3);
     assert_eq!(v["joint_positions_mm"].as_array().unwrap().len(), 6);

@@ -15,7 +15,7 @@ fn readings(truth: &Isometry3<f64>) -> String {
 /// As [`readings`] with every measuring point shifted by `shift` (flange frame, m).
 fn shifted_readings(truth: &Isometry3<f64>, shift: Vector3<f64>) -> String {
     let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
-    let mut text = stiffid::formats::readings::header() + "\n";
+    let mut text = stiffid::io::readings::header() + "\n";
     let postures = [
         [0.0, 0.0, -90.0, 0.0, 30.0, 0.0],
         [35.0, -20.0, -110.0, 40.0, -30.0, 60.0],

@@ -1,45 +1,12 @@
 //! The robot and tool bodies of a posture: capsules (segments with a radius) along the chain, or
 //! the robot's own collision shapes ([`Setup::shapes`]) with the tool's capsule.
 
-use crate::kinematics::Frames;
 use crate::robot::collision::Shape;
-use crate::setup::{RobotGeometry, Setup, Tool};
-use crate::Robot;
-use nalgebra::{Isometry3, Vector3, Vector6};
-use std::fmt;
-
-/// A part of the robot that carries capsules.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Part {
-    /// The fixed base: the column along axis 1 from the base origin's foot on axis 1 up to the
-    /// height of joint 2.
-    Base,
-    /// Moving link 1..=6 (link i turns with axis i).
-    Link(usize),
-    /// The tool on the flange.
-    Tool,
-}
-
-impl Part {
-    /// Index of the part's radius: 0 the base, i link i, 7 the tool.
-    pub fn index(self) -> usize {
-        match self {
-            Part::Base => 0,
-            Part::Link(i) => i,
-            Part::Tool => 7,
-        }
-    }
-}
-
-impl fmt::Display for Part {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Part::Base => write!(f, "base"),
-            Part::Link(i) => write!(f, "link {i}"),
-            Part::Tool => write!(f, "tool"),
-        }
-    }
-}
+use crate::robot::kinematics::Frames;
+use crate::robot::parts::polylines;
+pub use crate::robot::parts::Part;
+use crate::setup::{Setup, Tool};
+use nalgebra::{Isometry3, Vector3};
 
 /// A capsule of a robot part: the points within `radius` of the segment `a`-`b`, base frame, m.
 /// A capsule with `a == b` is a ball.
@@ -189,33 +156,6 @@ fn tool_capsule(setup: &Setup, frames: &Frames) -> Capsule {
     }
 }
 
-/// The polyline of every robot part, base then links 1-6.
-fn polylines(f: &Frames) -> Vec<(Part, Vec<Vector3<f64>>)> {
-    let foot = |p: &Vector3<f64>| {
-        let (o, d) = (f.axis_points[0], f.axis_directions[0]);
-        o + d * d.dot(&(p - o))
-    };
-    let shoulder = f.axis_points[1];
-    let column_top = foot(&shoulder);
-    let mut lines = vec![
-        (Part::Base, vec![foot(&Vector3::zeros()), column_top]),
-        (Part::Link(1), vec![column_top, shoulder]),
-    ];
-    for i in 2..=6 {
-        let next = match i {
-            6 => f.flange.translation.vector,
-            _ => f.axis_points[i],
-        };
-        let points = vec![
-            f.axis_points[i - 1],
-            f.joints[i - 1].translation.vector,
-            next,
-        ];
-        lines.push((Part::Link(i), points));
-    }
-    lines
-}
-
 /// Adds the segments of a polyline, merging repeated points; a polyline of one point is a ball.
 fn push_polyline(out: &mut Vec<Capsule>, part: Part, points: &[Vector3<f64>], radius: f64) {
     let mut distinct: Vec<Vector3<f64>> = Vec::with_capacity(points.len());
@@ -239,37 +179,7 @@ fn push_polyline(out: &mut Vec<Capsule>, part: Part, points: &[Vector3<f64>], ra
 
 /// The tool capsule's length along the flange z axis: the largest `|z|` of a tool point, signed, m.
 fn tool_length(tool: &Tool) -> f64 {
-    tool_points(tool)
+    tool.points()
         .map(|p| p.z)
         .fold(0.0, |best, z| if z.abs() > best.abs() { z } else { best })
-}
-
-fn tool_points(tool: &Tool) -> impl Iterator<Item = &Vector3<f64>> {
-    std::iter::once(&tool.loading_point)
-        .chain(&tool.measuring_points)
-        .chain(std::iter::once(&tool.tcp))
-}
-
-/// Default radius of the base and links 1-6 as a fraction of the robot's size (the total length
-/// of its capsule segments): 8, 6, 4.5, 4, 3, 2.5 and 2 %.
-pub const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
-
-/// The default [`RobotGeometry`] of a robot and tool: link radii
-/// [`DEFAULT_RADIUS_FRACTIONS`] of the robot's size (the summed length of its base and link
-/// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
-/// the COMAU NJ 165), and a tool radius that holds every tool point: the largest distance of a
-/// tool point from the flange z axis, at least 10 mm.
-pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
-    let frames = robot.frames(&Vector6::zeros());
-    let size: f64 = polylines(&frames)
-        .iter()
-        .flat_map(|(_, p)| p.windows(2).map(|w| (w[1] - w[0]).norm()))
-        .sum();
-    let radial = tool_points(tool)
-        .map(|p| p.xy().norm())
-        .fold(0.01, f64::max);
-    RobotGeometry {
-        link_radii: DEFAULT_RADIUS_FRACTIONS.map(|f| f * size),
-        tool_radius: radial,
-    }
 }

@@ -26,9 +26,7 @@ mod distance;
 mod feasibility;
 mod motion;
 
-pub use bodies::{
-    bodies, capsules, default_geometry, Body, Capsule, Part, Solid, DEFAULT_RADIUS_FRACTIONS,
-};
+pub use bodies::{bodies, capsules, Body, Capsule, Part, Solid};
 pub use distance::{body_body, body_box, body_floor, capsule_box, capsule_capsule, capsule_floor};
 pub use feasibility::{
     feasibility, Check, CheckKind, Checker, Feasibility, Margin, Thing, FAR_MARGIN,

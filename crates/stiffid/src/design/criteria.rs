@@ -7,7 +7,7 @@
 //! multiple 1, m): `(S^T S)^-1` is the covariance of the *relative* compliance errors at noise
 //! level 1. Everything is computed from the triangular factor `Psi = Q R` ([`Evaluator`]):
 //! `S = Q (R diag(h) / sigma)`, so `S` never needs forming. A group whose `Psi` is rank deficient
-//! (the rule of [`crate::lsq::Factor::try_new`]) gets `+infinity` for every criterion that depends
+//! (the rule of [`crate::math::lsq::Factor::try_new`]) gets `+infinity` for every criterion that depends
 //! on `Psi`, never NaN.
 
 use super::Evaluator;
@@ -127,7 +127,7 @@ impl Criterion {
     }
 }
 
-impl crate::choice::Choice for Criterion {
+impl crate::common::choice::Choice for Criterion {
     const FIELD: &'static str = "criterion";
     const ALL: &'static [Self] = &Criterion::ALL;
     fn name(self) -> &'static str {

@@ -8,12 +8,14 @@
 pub mod criteria;
 mod evaluator;
 pub(crate) mod exchange;
+mod identifiable;
 pub mod pool;
 pub mod search;
 pub mod target;
 
 pub use criteria::{evaluate, Criterion, Evaluation, ParameterQuality};
 pub use evaluator::{Evaluator, PostureTerms};
+pub use identifiable::{identifiable, unidentifiable};
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
 pub use search::{
     global, local, random_group, Gradient, SearchOptions, SearchOutcome, Solver, Termination,

@@ -25,7 +25,7 @@ use super::exchange;
 use super::search::check_count;
 use super::{Criterion, Evaluator};
 use crate::setup::Setup;
-use crate::{limits, Error, Result};
+use crate::{common::limits, Error, Result};
 use nalgebra::Vector6;
 
 /// Most postures in a pool (each costs one forward kinematics and a 6 x 6 matrix; an exchange

@@ -28,7 +28,7 @@
 //! rows. That costs `O(K m p^2)`: `folds x measurements` is at most [`MAX_REFIT_WORK`].
 
 use crate::identify::{model, Identification, Loss};
-use crate::lsq::Factor;
+use crate::math::lsq::Factor;
 use crate::observation::Observations;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Vector6};

@@ -31,7 +31,7 @@ pub struct BoundedGeneral {
     pub active: Vec<bool>,
 }
 
-/// `min |a x - b|` subject to `x >= 0` (module docs). `a` must have full rank (a [`crate::lsq::Factor`]'s `R`).
+/// `min |a x - b|` subject to `x >= 0` (module docs). `a` must have full rank (a [`crate::math::lsq::Factor`]'s `R`).
 pub fn solve(a: &Matrix6<f64>, b: &Vector6<f64>) -> Bounded {
     let a = DMatrix::from_column_slice(6, 6, a.as_slice());
     let fit = solve_general(&a, &DVector::from_column_slice(b.as_slice()));

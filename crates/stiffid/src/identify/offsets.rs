@@ -1,5 +1,5 @@
 //! Least squares with an offset per posture and measuring point beside the compliances: backlash
-//! and friction show as a displacement that does not grow with the load ([`crate::steps`]).
+//! and friction show as a displacement that does not grow with the load ([`crate::identify::steps`]).
 //!
 //! The model of a reading of point `p` in posture `i` under a load step is
 //! `delta = Psi h + o_ip`, `o_ip` a constant translation (base frame, m) of that point in that
@@ -13,7 +13,7 @@
 //! apart.
 
 use super::{check_deflection, finish, six_parameters_only, Identification};
-use crate::lsq::Factor;
+use crate::math::lsq::Factor;
 use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};
 use nalgebra::{DVector, RowVector6, Vector3};

@@ -78,7 +78,7 @@ impl Loss {
     }
 }
 
-impl crate::choice::Choice for Loss {
+impl crate::common::choice::Choice for Loss {
     const FIELD: &'static str = "robust";
     const ALL: &'static [Self] = &[Loss::Huber, Loss::Tukey];
     fn name(self) -> &'static str {
@@ -92,7 +92,7 @@ impl crate::choice::Choice for Loss {
     }
 }
 
-crate::choice::by_name!(Loss);
+crate::common::choice::by_name!(Loss);
 
 /// What the robust fit did.
 #[derive(Debug, Clone, PartialEq)]
@@ -122,7 +122,7 @@ impl RobustFit {
 
 /// Runs IRLS with `loss` from the least-squares solution `start` (any number of parameters),
 /// each step solved by `solve(sqrt(w) Psi, sqrt(w) delta)`, which returns the solution and its
-/// factor (a QR [`crate::lsq::Factor`] for the six drives, the column-scaled SVD for a model).
+/// factor (a QR [`crate::math::lsq::Factor`] for the six drives, the column-scaled SVD for a model).
 /// Returns the compliance, the factor of the last weighted observation matrix (for its
 /// covariance) and the fit.
 ///

@@ -17,9 +17,9 @@
 //! line, posture, measuring point, wrench and displacement.
 
 use super::{residuals, Identification, InBlocks, BLOCK};
-use crate::deflection::Frame;
-use crate::formats::measurements::{Chunk, Labels, Layout, Reader};
-use crate::identify::frames;
+use crate::io::measurements::{Chunk, Labels, Layout, Reader};
+use crate::observation::deflection::Frame;
+use crate::observation::frames;
 use crate::observation::Measurement;
 use crate::{Result, Setup};
 use nalgebra::{Vector3, Vector6};

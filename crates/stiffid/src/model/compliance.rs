@@ -1,8 +1,8 @@
 //! The compliance of every parameter of a model and its covariance: what an identification gives
 //! and what prediction, validation and compensation use.
 
-use super::{Kind, Model};
-use crate::{Error, Result, Setup};
+use super::Model;
+use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
 /// The compliance `h` of every parameter of a model (drives first, then the virtual springs, as
@@ -23,40 +23,6 @@ impl Compliance {
             h: DVector::from_column_slice(h.as_slice()),
             covariance: covariance.map(|c| DMatrix::from_column_slice(6, 6, c.as_slice())),
         }
-    }
-
-    /// The setup's nominal compliance of every parameter of its model, for `needed_by` (named in
-    /// the error).
-    ///
-    /// # Errors
-    /// [`Error::MissingField`] (`nominal_stiffness_nm_per_rad`) without a nominal drive
-    /// stiffness; [`Error::InvalidField`] naming the first virtual spring without a nominal
-    /// stiffness.
-    pub fn nominal(setup: &Setup, needed_by: &str) -> Result<Self> {
-        let k = setup.try_nominal_stiffness(needed_by)?;
-        let model = setup.model();
-        if let Some(i) = model
-            .springs()
-            .iter()
-            .position(|s| s.nominal_stiffness.is_none())
-        {
-            let key = match model.springs()[i].kind {
-                Kind::Rotation => "nominal_stiffness_nm_per_rad",
-                Kind::Translation => "nominal_stiffness_n_per_mm",
-            };
-            return Err(Error::InvalidField {
-                field: format!("model.spring[{}].{key}", i + 1),
-                message: format!(
-                    "missing: {needed_by} needs a nominal stiffness of every spring ('{}' has none)",
-                    model.springs()[i].name
-                ),
-            });
-        }
-        let h = model.nominal_compliance(k).expect("every spring has one");
-        Ok(Self {
-            h,
-            covariance: None,
-        })
     }
 
     /// The number of parameters.

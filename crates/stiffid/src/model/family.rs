@@ -47,7 +47,7 @@ impl Family {
                 field: field.to_string(),
                 message: format!(
                     "'{}' is not a family: expected tilt, tool or base",
-                    crate::limits::short(name)
+                    crate::common::limits::short(name)
                 ),
             })
     }

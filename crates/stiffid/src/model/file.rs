@@ -140,7 +140,7 @@ pub fn parse(text: &str, source_name: &str, robot: &Robot) -> Result<Vec<Spring>
     }
     let f: Fragment = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
-        message: crate::limits::one_line(&e.to_string()),
+        message: crate::common::limits::one_line(&e.to_string()),
     })?;
     f.model.springs(robot)
 }

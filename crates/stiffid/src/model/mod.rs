@@ -30,12 +30,11 @@ pub use compliance::Compliance;
 pub use family::{Family, FAMILIES};
 pub use file::{fragment, parse as parse_fragment};
 
-use crate::kinematics::{Coordinates, Frames};
+use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Robot};
 use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6};
 
-/// Most virtual springs a model may have.
-pub const MAX_VIRTUAL_SPRINGS: usize = 64;
+pub use crate::common::limits::MAX_VIRTUAL_SPRINGS;
 
 /// Longest spring name, characters.
 pub const MAX_NAME_CHARS: usize = 40;
@@ -327,7 +326,7 @@ impl Model {
     /// column `[u x (p - o); u]` or `[u; 0]` ([`Placed::column`]). A tool point sits beyond every
     /// link, so every spring moves it. With it, `tau = J_a^T W` are the loads of every parameter
     /// (Nm or N), `J_b diag(h) J_a^T W` a tool point's deflection and `J diag(h) J^T` the
-    /// Cartesian compliance ([`crate::cartesian`]).
+    /// Cartesian compliance ([`crate::observation::cartesian`]).
     pub fn jacobian(
         &self,
         robot: &Robot,
@@ -348,14 +347,14 @@ impl Model {
 /// Checks a list of virtual springs: at most [`MAX_VIRTUAL_SPRINGS`]; each name non-empty, at
 /// most [`MAX_NAME_CHARS`] letters, digits, `_` or `-`, unique and not a drive's (`k1` .. `k6`);
 /// `link` 0 to 6; `axis` finite and non-zero; `point` finite within
-/// [`crate::limits::LENGTH_MM`]; a nominal stiffness within
-/// [`crate::limits::STIFFNESS_NM_PER_RAD`] (rotation) or [`crate::limits::STIFFNESS_N_PER_MM`]
+/// [`crate::common::limits::LENGTH_MM`]; a nominal stiffness within
+/// [`crate::common::limits::STIFFNESS_NM_PER_RAD`] (rotation) or [`crate::common::limits::STIFFNESS_N_PER_MM`]
 /// (translation). Fields are named as in a setup file (`model.spring[2].link`).
 ///
 /// # Errors
 /// [`Error::InvalidField`] for the first problem.
 pub fn check_springs(springs: &[Spring]) -> Result<()> {
-    crate::limits::check_count("model.spring", springs.len(), 0, MAX_VIRTUAL_SPRINGS)?;
+    crate::common::limits::check_count("model.spring", springs.len(), 0, MAX_VIRTUAL_SPRINGS)?;
     for (i, s) in springs.iter().enumerate() {
         let field = |f: &str| format!("model.spring[{}].{f}", i + 1);
         check_name(&s.name, &field("name"))?;
@@ -372,22 +371,26 @@ pub fn check_springs(springs: &[Spring]) -> Result<()> {
             ));
         }
         let axis = s.axis.into_inner();
-        crate::limits::check(&field("axis"), axis.as_slice(), &crate::limits::AXIS)?;
+        crate::common::limits::check(
+            &field("axis"),
+            axis.as_slice(),
+            &crate::common::limits::AXIS,
+        )?;
         let mm: Vec<f64> = s.point.iter().map(|v| v * 1e3).collect();
-        crate::limits::check(&field("point_mm"), &mm, &crate::limits::LENGTH_MM)?;
+        crate::common::limits::check(&field("point_mm"), &mm, &crate::common::limits::LENGTH_MM)?;
         if let Some(k) = s.nominal_stiffness {
             let (name, range) = match s.kind {
                 Kind::Rotation => (
                     "nominal_stiffness_nm_per_rad",
-                    crate::limits::STIFFNESS_NM_PER_RAD,
+                    crate::common::limits::STIFFNESS_NM_PER_RAD,
                 ),
                 Kind::Translation => (
                     "nominal_stiffness_n_per_mm",
-                    crate::limits::STIFFNESS_N_PER_MM,
+                    crate::common::limits::STIFFNESS_N_PER_MM,
                 ),
             };
             let value = k * s.unit().per_si();
-            crate::limits::check(&field(name), &[value], &range)?;
+            crate::common::limits::check(&field(name), &[value], &range)?;
         }
     }
     Ok(())
@@ -400,7 +403,7 @@ fn check_name(name: &str, field: &str) -> Result<()> {
             field,
             format!(
                 "'{}' is not a spring name: expected 1 to {MAX_NAME_CHARS} letters, digits, '_' or '-'",
-                crate::limits::short(name)
+                crate::common::limits::short(name)
             ),
         ));
     }
@@ -425,7 +428,7 @@ fn invalid(field: &str, message: String) -> Error {
 /// # Errors
 /// [`Error::InvalidField`] for a non-finite or zero vector.
 pub fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vector3<f64>>> {
-    crate::limits::check(field, v.as_slice(), &crate::limits::AXIS)?;
+    crate::common::limits::check(field, v.as_slice(), &crate::common::limits::AXIS)?;
     UnitVector::try_new(v, 1e-12).ok_or_else(|| {
         invalid(
             field,
@@ -433,6 +436,3 @@ pub fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vector3<f64>
         )
     })
 }
-
-#[cfg(test)]
-mod tests;

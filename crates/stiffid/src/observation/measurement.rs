@@ -1,8 +1,8 @@
 //! The observation matrix of measured data: [`Measurement`]s checked and stacked into
 //! [`Observations`] (`Psi` and `delta`, Eq. 10-11), row order as in [`crate::observation`].
 
+use crate::observation::stiffness::joint_torques;
 use crate::observation::{point_rows, SpringLoads};
-use crate::stiffness::joint_torques;
 use crate::{Error, MeasurementField, Result, Setup};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
 use std::collections::HashMap;

@@ -14,7 +14,7 @@
 //! `DIR/NAME/PATH` in each package directory in turn (the ROS convention); `file://PATH` is a path.
 //! The caller reads files: `read(path)` returns `None` when nothing exists there.
 
-use crate::limits::{self, short};
+use crate::common::limits::{self, short};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;

@@ -28,7 +28,7 @@
 
 use super::dh::{self, Convention, Row};
 use super::{AxisMap, Robot};
-use crate::limits::{self, check_in, JointBox};
+use crate::common::limits::{self, check_in, JointBox};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
 use serde::Deserialize;
@@ -51,7 +51,7 @@ struct RobotFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct GeometryFile {
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     link_radius_mm: [f64; 7],
 }
 
@@ -70,9 +70,9 @@ struct JointRow {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct AxisMapFile {
-    #[serde(deserialize_with = "crate::formats::exact::matrix")]
+    #[serde(deserialize_with = "crate::common::exact::matrix")]
     matrix: [[f64; 6]; 6],
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     offset_deg: [f64; 6],
 }
 
@@ -81,10 +81,10 @@ struct AxisMapFile {
 #[serde(deny_unknown_fields)]
 pub(crate) struct TransformFile {
     /// Translation, mm.
-    #[serde(default, deserialize_with = "crate::formats::exact::array")]
+    #[serde(default, deserialize_with = "crate::common::exact::array")]
     pub xyz_mm: [f64; 3],
     /// Fixed-axis roll, pitch, yaw (`R = Rz(yaw) Ry(pitch) Rx(roll)`), degrees.
-    #[serde(default, deserialize_with = "crate::formats::exact::array")]
+    #[serde(default, deserialize_with = "crate::common::exact::array")]
     pub rpy_deg: [f64; 3],
 }
 
@@ -105,7 +105,7 @@ impl TransformFile {
 /// # Errors
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types (the message names
 /// the key, line and column), [`Error::InvalidField`] for a joint count other than six, a number
-/// that is not finite or outside its range ([`crate::limits`]: lengths [`limits::LENGTH_MM`],
+/// that is not finite or outside its range ([`crate::common::limits`]: lengths [`limits::LENGTH_MM`],
 /// angles [`limits::ANGLE_DEG`]), `lower_deg >= upper_deg` or an axis map whose condition number
 /// exceeds [`limits::MAX_AXIS_MAP_COND`].
 pub fn parse(text: &str, source_name: &str) -> Result<Robot> {

@@ -1,11 +1,15 @@
 //! The robot model: an immutable 6-axis serial chain of revolute joints.
 //!
 //! A [`Robot`] is built from a DH table ([`dh`]), a URDF file ([`urdf`]), a robot TOML file
-//! ([`mod@file`]) or a built-in preset ([`presets`]). Its kinematics are in [`crate::kinematics`].
+//! ([`mod@file`]) or a built-in preset ([`presets`]). Its kinematics are in [`crate::robot::kinematics`].
 
+pub(crate) mod builtin;
 pub mod collision;
 pub mod dh;
 pub mod file;
+pub mod ik;
+pub mod kinematics;
+pub mod parts;
 pub mod presets;
 pub mod urdf;
 
@@ -15,7 +19,7 @@ pub use axis_map::AxisMap;
 use nalgebra::{Isometry3, Unit, Vector3};
 use std::sync::Arc;
 
-use crate::limits::{self, JointBox};
+use crate::common::limits::{self, JointBox};
 use crate::{Error, Result};
 
 /// One revolute joint of the chain, in the frame of the previous joint's child link.
@@ -68,7 +72,7 @@ impl Robot {
     /// # Examples
     /// ```
     /// use nalgebra::Vector6;
-    /// use stiffid::{limits::JointBox, robot::dh, Robot};
+    /// use stiffid::{common::limits::JointBox, robot::dh, Robot};
     /// let row = dh::Row { a: 0.5, alpha: 0.0, d: 0.1, theta_offset: 0.0 };
     /// let joints = std::array::from_fn(|_| dh::joint(dh::Convention::StandardDh, &row));
     /// let limits = JointBox::new(Vector6::repeat(-3.0), Vector6::repeat(3.0));
@@ -135,7 +139,7 @@ impl Robot {
     /// condition number is NaN or above [`limits::MAX_AXIS_MAP_COND`], or `axis_map.offset` when
     /// an offset is not finite.
     pub fn with_axis_map(self, axis_map: AxisMap) -> Result<Self> {
-        let cond = crate::linalg::cond(&axis_map.matrix);
+        let cond = crate::math::linalg::cond(&axis_map.matrix);
         if cond.is_nan() || cond > limits::MAX_AXIS_MAP_COND {
             return Err(invalid(
                 "axis_map.matrix".into(),
@@ -153,7 +157,7 @@ impl Robot {
     }
 
     /// The robot with these joints (base to flange, lengths in m), everything else kept: a
-    /// calibrated chain ([`crate::calibration`]).
+    /// calibrated chain ([`crate::metrology::calibration`]).
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`joint[i]`) when a joint's transforms, axis or offset are not
@@ -250,7 +254,7 @@ fn invalid(field: String, message: &str) -> Error {
 #[derive(Debug, Clone, Default)]
 pub enum Bodies {
     /// None given: capsules along the chain, radii scaled to the robot's size
-    /// ([`crate::cell::DEFAULT_RADIUS_FRACTIONS`]).
+    /// ([`crate::setup::DEFAULT_RADIUS_FRACTIONS`]).
     #[default]
     Scaled,
     /// Capsules along the chain with these radii of the base and links 1-6, m (a robot TOML

@@ -1,7 +1,7 @@
 //! Built-in robot presets, embedded in the library. Each file cites its source.
 
 use super::{file, Robot};
-use crate::{builtin, Result};
+use crate::{robot::builtin, Result};
 
 /// `(name, robot TOML)` of every preset.
 const PRESETS: &builtin::Table = &[

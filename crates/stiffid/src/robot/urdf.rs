@@ -11,13 +11,13 @@
 //! limit is an error.
 //!
 //! Before the XML parser sees the text, its element nesting is bounded
-//! ([`crate::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
+//! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
 //! must name declared links, no link may be the child of two joints, every link must hang from
 //! one root, and every number of an origin, axis or limit must be finite and within the limits
-//! ([`crate::limits::LENGTH_M`], [`crate::limits::ANGLE_RAD`]).
+//! ([`crate::common::limits::LENGTH_M`], [`crate::common::limits::ANGLE_RAD`]).
 
 use super::{Joint, Robot};
-use crate::limits::{self, JointBox};
+use crate::common::limits::{self, JointBox};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
 use std::collections::{HashMap, HashSet};

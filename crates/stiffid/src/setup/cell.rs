@@ -21,10 +21,12 @@
 //! ```
 
 use super::file::mm;
-use super::{invalid, SetupBuilder};
+use super::{invalid, SetupBuilder, Tool};
 use crate::robot::file::TransformFile;
-use crate::{limits, Result};
-use nalgebra::{Isometry3, Vector3};
+use crate::robot::parts::polylines;
+use crate::Robot;
+use crate::{common::limits, Result};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use serde::Deserialize;
 
 /// Most obstacles a cell may list.
@@ -83,7 +85,7 @@ pub struct Tracker {
     /// none for the flange z axis at every point (normalised when the setup is built).
     pub measuring_normals: Vec<Vector3<f64>>,
     /// The tracker frame in the robot base frame (m), to turn displacements measured in the
-    /// tracker frame into the base frame ([`crate::identify::frames`]); `None` if not given.
+    /// tracker frame into the base frame ([`crate::observation::frames`]); `None` if not given.
     pub base_from_tracker: Option<Isometry3<f64>>,
 }
 
@@ -100,16 +102,16 @@ pub(super) struct CellFile {
 #[serde(deny_unknown_fields)]
 struct ObstacleFile {
     name: String,
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     min_mm: [f64; 3],
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     max_mm: [f64; 3],
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct GeometryFile {
-    #[serde(default, deserialize_with = "crate::formats::exact::option")]
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
     link_radius_mm: Option<[f64; 7]>,
     tool_radius_mm: Option<f64>,
 }
@@ -117,10 +119,10 @@ pub(super) struct GeometryFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct TrackerFile {
-    #[serde(default, deserialize_with = "crate::formats::exact::option")]
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
     position_mm: Option<[f64; 3]>,
     max_incidence_deg: Option<f64>,
-    #[serde(default, deserialize_with = "crate::formats::exact::option_arrays")]
+    #[serde(default, deserialize_with = "crate::common::exact::option_arrays")]
     measuring_normals: Option<Vec<[f64; 3]>>,
     base_from_tracker: Option<TransformFile>,
 }
@@ -349,4 +351,26 @@ fn normals(given: &[Vector3<f64>], count: usize) -> Result<Vec<Vector3<f64>>> {
             })
         })
         .collect()
+}
+
+/// Default radius of the base and links 1-6 as a fraction of the robot's size (the total length
+/// of its capsule segments): 8, 6, 4.5, 4, 3, 2.5 and 2 %.
+pub const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
+
+/// The default [`RobotGeometry`] of a robot and tool: link radii
+/// [`DEFAULT_RADIUS_FRACTIONS`] of the robot's size (the summed length of its base and link
+/// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
+/// the COMAU NJ 165), and a tool radius that holds every tool point: the largest distance of a
+/// tool point from the flange z axis, at least 10 mm.
+pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
+    let frames = robot.frames(&Vector6::zeros());
+    let size: f64 = polylines(&frames)
+        .iter()
+        .flat_map(|(_, p)| p.windows(2).map(|w| (w[1] - w[0]).norm()))
+        .sum();
+    let radial = tool.points().map(|p| p.xy().norm()).fold(0.01, f64::max);
+    RobotGeometry {
+        link_radii: DEFAULT_RADIUS_FRACTIONS.map(|f| f * size),
+        tool_radius: radial,
+    }
 }

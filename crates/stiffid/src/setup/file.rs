@@ -2,10 +2,10 @@
 //! [`SetupBuilder`], which checks every field.
 
 use super::{cell, CellConstraints, Noise, RopeLoad, Setup, SetupBuilder};
-use crate::kinematics::Coordinates;
-use crate::limits::{self, JointBox};
+use crate::common::limits::{self, JointBox};
 use crate::model::file::ModelFile;
 use crate::robot::file::{transform, TransformFile};
+use crate::robot::kinematics::Coordinates;
 use crate::{Error, Result, Robot};
 use nalgebra::{Vector3, Vector6};
 use serde::Deserialize;
@@ -25,7 +25,7 @@ struct SetupFile {
     #[serde(default)]
     springs: Coordinates,
     characteristic_length_mm: Option<f64>,
-    #[serde(default, deserialize_with = "crate::formats::exact::option")]
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
     nominal_stiffness_nm_per_rad: Option<[f64; 6]>,
     tool: ToolFile,
     loading: LoadingFile,
@@ -50,11 +50,11 @@ struct WorkpieceFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ToolFile {
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     loading_point_mm: [f64; 3],
-    #[serde(deserialize_with = "crate::formats::exact::arrays")]
+    #[serde(deserialize_with = "crate::common::exact::arrays")]
     measuring_points_mm: Vec<[f64; 3]>,
-    #[serde(default, deserialize_with = "crate::formats::exact::option")]
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
     tcp_mm: Option<[f64; 3]>,
 }
 
@@ -62,7 +62,7 @@ struct ToolFile {
 #[serde(deny_unknown_fields)]
 struct LoadingFile {
     load_n: f64,
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     anchor_mm: [f64; 3],
     #[serde(default)]
     steps_n: Vec<f64>,
@@ -78,16 +78,16 @@ struct NoiseFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BoundsFile {
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     lower_deg: [f64; 6],
-    #[serde(deserialize_with = "crate::formats::exact::array")]
+    #[serde(deserialize_with = "crate::common::exact::array")]
     upper_deg: [f64; 6],
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TestFile {
-    #[serde(deserialize_with = "crate::formats::exact::arrays")]
+    #[serde(deserialize_with = "crate::common::exact::arrays")]
     postures_deg: Vec<[f64; 6]>,
 }
 
@@ -100,7 +100,7 @@ struct ConstraintsFile {
 }
 
 /// The built-in setups: `(name, TOML)`.
-const BUILTIN: &crate::builtin::Table = &[
+const BUILTIN: &crate::robot::builtin::Table = &[
     (
         "zhang2021-comau-nj165",
         include_str!("../../setups/zhang2021-comau-nj165.toml"),
@@ -113,7 +113,7 @@ const BUILTIN: &crate::builtin::Table = &[
 
 /// Names of the built-in setups.
 pub fn builtin_names() -> impl Iterator<Item = &'static str> {
-    crate::builtin::names(BUILTIN)
+    crate::robot::builtin::names(BUILTIN)
 }
 
 /// The TOML text of a built-in setup.
@@ -121,7 +121,7 @@ pub fn builtin_names() -> impl Iterator<Item = &'static str> {
 /// # Errors
 /// [`Error::Unknown`] if no built-in setup has this name.
 pub fn builtin_text(name: &str) -> Result<&'static str> {
-    crate::builtin::text(BUILTIN, "setup", name)
+    crate::robot::builtin::text(BUILTIN, "setup", name)
 }
 
 /// A built-in setup, its robot taken from the presets.

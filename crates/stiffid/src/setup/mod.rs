@@ -47,20 +47,26 @@
 
 mod cell;
 mod file;
+pub mod load_steps;
 pub mod plausibility;
+pub mod prior;
+pub mod reference;
 
-pub use cell::{Cell, Obstacle, RobotGeometry, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
+pub use cell::{
+    default_geometry, Cell, Obstacle, RobotGeometry, Tracker, DEFAULT_RADIUS_FRACTIONS,
+    MAX_LENGTH_MM, MAX_OBSTACLES,
+};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
 
-use crate::kinematics::{Coordinates, Frames};
-use crate::limits::joint_box::distinct;
-use crate::limits::{self, JointBox};
-use crate::model::{Model, Spring};
+use crate::common::limits::joint_box::distinct;
+use crate::common::limits::{self, JointBox};
+use crate::model::{Compliance, Model, Spring};
 use crate::robot::collision::CollisionGeometry;
+use crate::robot::kinematics::{Coordinates, Frames};
 use crate::robot::Bodies;
-use crate::steps::design::StepWeights;
+use crate::setup::load_steps::StepWeights;
 use crate::{Error, Result, Robot};
 use nalgebra::{Isometry3, Vector3, Vector6};
 
@@ -73,6 +79,16 @@ pub struct Tool {
     pub measuring_points: Vec<Vector3<f64>>,
     /// The tool centre point whose Jacobian gives the dexterity index.
     pub tcp: Vector3<f64>,
+}
+
+impl Tool {
+    /// Every point of the tool, flange frame, m: the loading point, the measuring points, the
+    /// tool centre point.
+    pub fn points(&self) -> impl Iterator<Item = &Vector3<f64>> {
+        std::iter::once(&self.loading_point)
+            .chain(&self.measuring_points)
+            .chain(std::iter::once(&self.tcp))
+    }
 }
 
 /// Rope-and-mass loading: a force of magnitude `load` (N) pulling the loading point toward the rope
@@ -275,7 +291,7 @@ impl Setup {
     }
 
     /// The load levels applied in each posture, N, rising (`[loading] steps_n`); empty for one
-    /// load per posture, the rope load ([`crate::steps::design`]).
+    /// load per posture, the rope load ([`crate::setup::load_steps`]).
     pub fn load_steps(&self) -> &[f64] {
         &self.load_steps
     }
@@ -283,7 +299,7 @@ impl Setup {
     /// The variance of one displacement coordinate at the rope load, at noise level multiple 1,
     /// m^2, that gives the compliances' covariance of the design: the noise variance without
     /// load steps; with them, that of the displacement their readings are worth
-    /// ([`crate::steps::design::StepWeights::variance_factor`] times the reading variance).
+    /// ([`crate::setup::load_steps::StepWeights::variance_factor`] times the reading variance).
     pub fn displacement_variance(&self) -> f64 {
         match StepWeights::new(self.load.load, &self.load_steps) {
             None => self.noise.variance,
@@ -294,6 +310,18 @@ impl Setup {
     /// Experiment bounds, axis coordinates.
     pub fn bounds(&self) -> &JointBox {
         &self.bounds
+    }
+
+    /// `n` postures drawn uniformly within the bounds from `seed` (ChaCha8), for the unit tests
+    /// of the stages below the design (which draws its groups with [`crate::design::random_group`]).
+    #[cfg(test)]
+    pub(crate) fn random_postures(&self, n: usize, seed: u64) -> Vec<Vector6<f64>> {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let (lower, upper) = (&self.bounds.lower, &self.bounds.upper);
+        (0..n)
+            .map(|_| Vector6::from_fn(|j, _| rng.random_range(lower[j]..=upper[j])))
+            .collect()
     }
 
     /// Nominal (or true, in simulation) joint stiffness, Nm/rad, if the setup gives one. The
@@ -394,6 +422,40 @@ impl Setup {
                  package_paths) or the setup's package_paths, or capsule radii as \
                  [robot_geometry] link_radius_mm"
             ),
+        })
+    }
+
+    /// The nominal compliance of every parameter of its model, for `needed_by` (named in
+    /// the error).
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] (`nominal_stiffness_nm_per_rad`) without a nominal drive
+    /// stiffness; [`Error::InvalidField`] naming the first virtual spring without a nominal
+    /// stiffness.
+    pub fn model_compliance(&self, needed_by: &str) -> Result<Compliance> {
+        let k = self.try_nominal_stiffness(needed_by)?;
+        let model = self.model();
+        if let Some(i) = model
+            .springs()
+            .iter()
+            .position(|s| s.nominal_stiffness.is_none())
+        {
+            let key = match model.springs()[i].kind {
+                crate::model::Kind::Rotation => "nominal_stiffness_nm_per_rad",
+                crate::model::Kind::Translation => "nominal_stiffness_n_per_mm",
+            };
+            return Err(Error::InvalidField {
+                field: format!("model.spring[{}].{key}", i + 1),
+                message: format!(
+                    "missing: {needed_by} needs a nominal stiffness of every spring ('{}' has none)",
+                    model.springs()[i].name
+                ),
+            });
+        }
+        let h = model.nominal_compliance(k).expect("every spring has one");
+        Ok(Compliance {
+            h,
+            covariance: None,
         })
     }
 
@@ -525,7 +587,7 @@ impl SetupBuilder {
     }
 
     /// The load levels applied in each posture, N (positive, rising, at most
-    /// [`crate::steps::design::MAX_STEPS`]; empty: one load, the rope load).
+    /// [`crate::setup::load_steps::MAX_STEPS`]; empty: one load, the rope load).
     pub fn with_load_steps(mut self, steps: Vec<f64>) -> Self {
         self.load_steps = steps;
         self
@@ -580,7 +642,7 @@ impl SetupBuilder {
         self
     }
 
-    /// Capsule radii of the bodies, m (default [`crate::cell::default_geometry`]).
+    /// Capsule radii of the bodies, m (default [`default_geometry`]).
     pub fn with_geometry(self, geometry: RobotGeometry) -> Self {
         self.with_link_radii(geometry.link_radii)
             .with_tool_radius(geometry.tool_radius)
@@ -612,7 +674,7 @@ impl SetupBuilder {
         self
     }
 
-    /// The setup, every field checked against [`crate::limits`] and the others.
+    /// The setup, every field checked against [`crate::common::limits`] and the others.
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field as a setup file names it (unit in the name, the
@@ -668,7 +730,7 @@ impl SetupBuilder {
             measuring_points: self.measuring_points,
             tcp: tcp.unwrap_or_default(),
         };
-        let defaults = crate::cell::default_geometry(&self.robot, &tool);
+        let defaults = cell::default_geometry(&self.robot, &tool);
         let shapes = match (&self.robot.bodies(), self.link_radii) {
             (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
             (Bodies::Missing(m), None) => Bodies::Missing(m.clone()),
@@ -766,7 +828,7 @@ fn check_load(load: &RopeLoad) -> Result<()> {
 
 fn check_load_steps(steps: &[f64]) -> Result<()> {
     let field = "loading.steps_n";
-    limits::check_count(field, steps.len(), 0, crate::steps::design::MAX_STEPS)?;
+    limits::check_count(field, steps.len(), 0, crate::setup::load_steps::MAX_STEPS)?;
     limits::check(field, steps, &limits::LOAD_N)?;
     match steps.windows(2).position(|w| w[1] <= w[0]) {
         Some(i) => Err(invalid(

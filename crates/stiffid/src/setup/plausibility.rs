@@ -3,10 +3,10 @@
 //! radians under `_deg` names). Each warning ([`WarningKind::Plausibility`]) names the likely
 //! cause; nothing is refused. The command line prints them when it loads a setup or reads postures,
 //! Python raises them as `UserWarning`s, and the identify job reports the radians warning of its
-//! data ([`crate::jobs::identify`]).
+//! data ([`crate::app::identify`]).
 
 use super::Setup;
-use crate::jobs::{Warning, WarningKind};
+use crate::app::{Warning, WarningKind};
 use crate::robot::Bodies;
 use crate::Robot;
 use nalgebra::Vector6;

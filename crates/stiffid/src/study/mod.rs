@@ -7,6 +7,7 @@
 //! check alone.
 
 mod findings;
+pub mod simulate;
 mod spearman;
 mod table4;
 mod trials;
@@ -17,14 +18,14 @@ pub use table4::{paper_table4, TABLE4};
 use trials::{judge, paper_searches};
 pub use trials::{start_trials, StartTrial};
 
+use crate::common::progress::{Progress, Tally};
 use crate::design::{evaluate, global, Criterion, Evaluation, SearchOptions, Solver};
-use crate::progress::{Progress, Tally};
+use crate::observation::stiffness::rope_displacements;
 use crate::setup::Setup;
-use crate::simulate::{
+use crate::study::simulate::{
     monte_carlo_with_predictions, GroupSimulation, Options as SimulationOptions,
 };
-use crate::stiffness::rope_displacements;
-use crate::{limits, Result};
+use crate::{common::limits, Result};
 use nalgebra::{Vector3, Vector6};
 use rayon::prelude::*;
 
@@ -156,7 +157,7 @@ pub struct Study {
 /// `classical` and `zhang2021` from it; Groups 4 and 5 global searches on `relative-a` and
 /// `d-optimal` ([`global`], `options.starts` starts); the start-group check ([`start_trials`];
 /// its first start group is Group 1); then the Monte Carlo identification of every group at every
-/// noise level ([`crate::simulate`]) and the validation-posture deflections with each group's mean
+/// noise level ([`crate::study::simulate`]) and the validation-posture deflections with each group's mean
 /// identified stiffness. Parallel (rayon): every search runs in one pool, so the two cores stay
 /// busy; the same options give the same study whatever the thread count.
 ///
@@ -168,7 +169,7 @@ pub struct Study {
 /// ([`limits::MAX_RUNS`], [`limits::MAX_STARTS`], [`limits::MAX_TRIALS`]; `trials` may be 0),
 /// and for a `seed` so large that the trials' seeds (`seed + 1`, ...) would pass `u64::MAX`;
 /// [`crate::Error::MissingField`] for a setup without a nominal stiffness or a characteristic
-/// length; the errors of the searches and of [`crate::simulate::monte_carlo`] (for example
+/// length; the errors of the searches and of [`crate::study::simulate::monte_carlo`] (for example
 /// [`crate::Error::Unidentifiable`] for a group that cannot identify every joint).
 ///
 /// # Examples

@@ -2,8 +2,8 @@
 //! searches from many seeded start groups, each group judged by its first-order prediction.
 
 use super::POSTURES;
+use crate::common::progress::{Progress, Tally};
 use crate::design::{evaluate, local, random_group, Criterion, SearchOptions, SearchOutcome};
-use crate::progress::{Progress, Tally};
 use crate::setup::Setup;
 use crate::Result;
 use nalgebra::Vector6;

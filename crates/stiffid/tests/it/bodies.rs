@@ -9,8 +9,8 @@ use nalgebra::{Vector3, Vector6};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use stiffid::cell::{self, body_body, body_box, body_floor, Body, CheckKind, Checker, Part};
-use stiffid::formats::reference::{self, Meshes};
 use stiffid::robot::Bodies;
+use stiffid::setup::reference::{self, Meshes};
 use stiffid::setup::Obstacle;
 use stiffid::Setup;
 

@@ -6,7 +6,7 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::calibrate::{self, Observation};
+use stiffid::metrology::calibrate::{self, Observation};
 use stiffid::Setup;
 
 fn paper() -> Setup {

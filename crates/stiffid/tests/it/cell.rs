@@ -153,7 +153,7 @@ fn an_obstacle_and_a_tracker_block_and_name() {
 
 #[test]
 fn impossible_constraints_are_reported() {
-    // 100 m: the highest the limits accept (stiffid::limits::LENGTH_MM), far out of reach.
+    // 100 m: the highest the limits accept (stiffid::common::limits::LENGTH_MM), far out of reach.
     let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e5\n").unwrap();
     let checker = Checker::new(&setup);
     let f = checker.feasibility(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));

@@ -83,7 +83,7 @@ fn global_search_in_a_cell_is_feasible_and_thread_independent() {
 
 #[test]
 fn impossible_constraints_are_an_error_naming_the_check() {
-    // 100 m: the highest the limits accept (stiffid::limits::LENGTH_MM), far out of reach.
+    // 100 m: the highest the limits accept (stiffid::common::limits::LENGTH_MM), far out of reach.
     let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e5\n").unwrap();
     let start = design::random_group(&setup, 6, 1);
     for result in [

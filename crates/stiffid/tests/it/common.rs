@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::identify::Identification;
 use stiffid::observation::Measurement;
-use stiffid::{stiffness, Setup};
+use stiffid::{observation::stiffness, Setup};
 
 /// Six spread postures (deg) inside the paper setup's Table 1 bounds.
 pub const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [

@@ -8,12 +8,12 @@ use nalgebra::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use stiffid::compensate::{self, Compliance, FreeToolAxis, Options, PathPoint, Target};
-use stiffid::deflection::{base_wrench, Frame, Points};
-use stiffid::ik::{self, pose_error, tool_pose};
-use stiffid::kinematics::Coordinates;
+use stiffid::machining::compensate::{self, FreeToolAxis, Options, PathPoint, Target};
+use stiffid::observation::deflection::{base_wrench, Frame, Points};
+use stiffid::robot::ik::{self, pose_error, tool_pose};
+use stiffid::robot::kinematics::Coordinates;
 use stiffid::robot::presets;
-use stiffid::{cartesian, setup, stiffness, Error, Setup};
+use stiffid::{observation::cartesian, observation::stiffness, setup, Error, Setup};
 
 /// Six values as a vector of any length (the compliance of the drives alone).
 fn dv(h: &Vector6<f64>) -> DVector<f64> {
@@ -242,7 +242,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
 fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
     for name in ["zhang2021-comau-nj165", "fanuc-r2000ic-165f"] {
         let s = loaded_at_tcp(name);
-        let compliance = Compliance::nominal(&s, "test").unwrap();
+        let compliance = s.model_compliance("test").unwrap();
         let path = line_path(&s, 25);
         let out = compensate::path(&s, &compliance, &path, &options(&s, None)).unwrap();
         for (p, c) in path.iter().zip(&out) {
@@ -270,7 +270,7 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
 #[test]
 fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
-    let compliance = Compliance::nominal(&s, "test").unwrap();
+    let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 30);
     let free = FreeToolAxis {
         max_step: 3f64.to_radians(),
@@ -314,7 +314,7 @@ fn the_free_tool_axis_keeps_the_path_angle_when_every_angle_ties() {
         .with_loading_point(on_axis)
         .build()
         .unwrap();
-    let compliance = Compliance::nominal(&s, "test").unwrap();
+    let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 12);
     let free = FreeToolAxis::try_from_degrees(2.0, 90.0).unwrap();
     let out = compensate::path(&s, &compliance, &path, &options(&s, Some(free))).unwrap();
@@ -377,7 +377,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         .with_test_postures(vec![q])
         .build()
         .unwrap();
-    let compliance = Compliance::nominal(&s, "test").unwrap();
+    let compliance = s.model_compliance("test").unwrap();
     let point = |line: u64, fz: f64| PathPoint {
         line,
         target: Target::Posture(q),

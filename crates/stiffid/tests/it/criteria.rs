@@ -1,8 +1,8 @@
 //! The design criteria against independent formulas, their units, and rank deficiency.
 
 use nalgebra::{DMatrix, Matrix6, Vector6};
+use stiffid::common::limits::JointBox;
 use stiffid::design::{self, criteria, Criterion, Evaluator};
-use stiffid::limits::JointBox;
 use stiffid::observation::{posture_block, rope_observation_matrix};
 use stiffid::robot::AxisMap;
 use stiffid::setup::{self, Noise, RopeLoad, Setup};

@@ -13,8 +13,8 @@ use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Edit, Tally};
 use proptest::prelude::*;
-use stiffid::formats::{measurements, postures, stiffness};
-use stiffid::limits::STIFFNESS_NM_PER_RAD;
+use stiffid::common::limits::STIFFNESS_NM_PER_RAD;
+use stiffid::io::{measurements, postures, stiffness};
 use stiffid::Setup;
 
 const CASES: u32 = 128;

@@ -4,7 +4,9 @@
 use crate::common;
 
 use nalgebra::{DVector, Vector6};
-use stiffid::{lsq::Factor, observation::rope_observation_matrix, setup, stiffness};
+use stiffid::{
+    math::lsq::Factor, observation::rope_observation_matrix, observation::stiffness, setup,
+};
 
 fn postures() -> Vec<Vector6<f64>> {
     common::PAPER_POSTURES_DEG.iter().map(common::deg).collect()

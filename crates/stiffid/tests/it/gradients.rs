@@ -11,7 +11,7 @@ use stiffid::design::{Criterion, Evaluator};
 use stiffid::observation::{posture_block, rope_block_gradient};
 use stiffid::robot::presets;
 use stiffid::setup::{self, Setup};
-use stiffid::{dexterity, kinematics, Coordinates, Frames, Robot};
+use stiffid::{dexterity, robot::kinematics, Coordinates, Frames, Robot};
 
 /// Step of the fourth-order central differences, rad: truncation ~ h^4, round-off ~ 1e-16 / h,
 /// both far below 1e-6 relative for the smooth functions tested.

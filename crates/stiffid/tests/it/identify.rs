@@ -9,10 +9,10 @@ use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POS
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use stiffid::identify::validate;
 use stiffid::identify::{least_squares, Loss};
-use stiffid::kinematics::Coordinates;
 use stiffid::observation::{Measurement, Observations};
-use stiffid::validate;
+use stiffid::robot::kinematics::Coordinates;
 use stiffid::MeasurementField;
 use stiffid::{robot::presets, setup, Error};
 
@@ -148,8 +148,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact =
-        validate::compare(&setup, &Compliance::nominal(&setup, "test").unwrap(), &data).unwrap();
+    let exact = validate::compare(&setup, &setup.model_compliance("test").unwrap(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.

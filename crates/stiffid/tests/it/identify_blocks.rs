@@ -6,8 +6,8 @@
 use crate::common;
 
 use common::{assert_close, measurement_csv, noisy, synthetic};
-use stiffid::formats::measurements;
 use stiffid::identify::{self, BLOCK};
+use stiffid::io::measurements;
 use stiffid::observation::Observations;
 use stiffid::setup;
 

@@ -6,8 +6,8 @@
 use crate::common;
 
 use common::{assert_close, measurement_csv, noisy};
-use stiffid::formats::measurements::{self, Labels};
 use stiffid::identify::{self, streamed, Identification};
+use stiffid::io::measurements::{self, Labels};
 use stiffid::observation::Observations;
 use stiffid::{setup, ColumnProblem, Error, Setup};
 

@@ -3,9 +3,9 @@
 
 use nalgebra::Vector6;
 use proptest::prelude::*;
+use stiffid::common::limits::JointBox;
 use stiffid::design::{self, Criterion, SearchOptions};
-use stiffid::formats::postures;
-use stiffid::limits::JointBox;
+use stiffid::io::postures;
 use stiffid::{setup, Error};
 
 fn unit_box() -> JointBox {

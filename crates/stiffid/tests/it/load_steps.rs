@@ -7,8 +7,8 @@ use nalgebra::{Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::jobs::identify::{self as job, Data, Fit, Folds, Report, Request};
-use stiffid::stiffness::rope_displacements;
+use stiffid::app::identify::{self as job, Data, Fit, Folds, Report, Request};
+use stiffid::observation::stiffness::rope_displacements;
 use stiffid::Setup;
 
 /// A simulated campaign: loads (N) applied in order at every posture after the unloaded

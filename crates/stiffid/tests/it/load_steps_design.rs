@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::design::evaluate;
 use stiffid::observation::rope_observation_matrix;
-use stiffid::simulate::{monte_carlo, Options};
+use stiffid::study::simulate::{monte_carlo, Options};
 use stiffid::Setup;
 
 const STEPS_N: [f64; 5] = [100.0, 200.0, 300.0, 400.0, 500.0];

@@ -3,12 +3,12 @@
 //! cross_validate_model, crate::jobs::identify_model).
 
 use nalgebra::DVector;
+use stiffid::app::identify::{Data, Fit, Folds, Request};
+use stiffid::app::identify_model;
 use stiffid::design::random_group;
 use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, Method};
 use stiffid::identify::model::{fit_by, held_out};
 use stiffid::identify::Loss;
-use stiffid::jobs::identify::{Data, Fit, Folds, Request};
-use stiffid::jobs::identify_model;
 use stiffid::model::Family;
 use stiffid::observation::{posture_block, Measurement, Observations};
 use stiffid::setup::Setup;
@@ -194,7 +194,7 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
     let cv = report.cross_validation.as_ref().unwrap();
     assert_eq!(cv.folds.len(), 43);
     assert!((cv.explained() - 0.843).abs() < 5e-4, "{}", cv.explained());
-    let mut file = stiffid::formats::measurements::parse(text).unwrap();
+    let mut file = stiffid::io::measurements::parse(text).unwrap();
     file.to_base_frame(&model).unwrap();
     let obs = Observations::from_measurements(&model, &file.measurements).unwrap();
     let press = held_out(&obs).unwrap();

@@ -5,17 +5,17 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
-use stiffid::compensate;
-use stiffid::deflection::Points;
 use stiffid::design::random_group;
-use stiffid::formats::stiffness;
 use stiffid::identify::compare::document::fit_doc;
 use stiffid::identify::model::fit;
-use stiffid::ik::tool_pose;
+use stiffid::io::stiffness;
+use stiffid::machining::compensate;
 use stiffid::model::{link_frame, Compliance, Family, Kind};
+use stiffid::observation::deflection::Points;
 use stiffid::observation::{posture_block, Measurement, Observations};
+use stiffid::robot::ik::tool_pose;
 use stiffid::setup::Setup;
-use stiffid::{cartesian, validate};
+use stiffid::{identify::validate, observation::cartesian};
 
 /// The paper's cell with an elbow tilt spring (about x of joint 3's frame, 4e6 Nm/rad) and a
 /// tool translation along the flange y axis (2e4 N/mm).
@@ -64,7 +64,7 @@ fn jacobian_by_hand(s: &Setup, q: &Vector6<f64>, point: &Vector3<f64>) -> DMatri
 #[test]
 fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
     let s = extended();
-    let h = Compliance::nominal(&s, "test").unwrap().h;
+    let h = s.model_compliance("test").unwrap().h;
     assert_eq!(h.len(), 8);
     let tcp = s.tool().tcp;
     for q in s.test_postures() {
@@ -104,7 +104,7 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
 #[test]
 fn a_tool_point_deflection_and_its_covariance_over_the_model_match_the_hand_built_jacobians() {
     let s = extended();
-    let h = Compliance::nominal(&s, "test").unwrap().h;
+    let h = s.model_compliance("test").unwrap().h;
     let q = s.test_postures()[1];
     let frames = s.robot().frames(&q);
     let (a, b) = (s.tool().loading_point, s.tool().tcp);
@@ -154,7 +154,7 @@ fn compensation_uses_the_virtual_springs() {
         .with_loading_point(s.tool().tcp)
         .build()
         .unwrap();
-    let compliance = Compliance::nominal(&s, "test").unwrap();
+    let compliance = s.model_compliance("test").unwrap();
     let model = compensate::Model::new(&s, &compliance).unwrap();
     let q = s.test_postures()[0];
     let frames = s.robot().frames(&q);
@@ -213,7 +213,7 @@ fn noise_free(s: &Setup, h: &DVector<f64>, postures: usize, seed: u64) -> Vec<Me
 #[test]
 fn the_stiffness_file_carries_every_parameter_of_the_model() {
     let s = extended();
-    let truth = Compliance::nominal(&s, "test").unwrap().h;
+    let truth = s.model_compliance("test").unwrap().h;
     let mut data = noise_free(&s, &truth, 10, 3);
     // A little structure in the residuals so that the covariance is not zero.
     for (i, m) in data.iter_mut().enumerate() {
@@ -241,7 +241,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
             h: truth,
             covariance: None,
         },
-        &noise_free(&s, &Compliance::nominal(&s, "t").unwrap().h, 4, 9),
+        &noise_free(&s, &s.model_compliance("t").unwrap().h, 4, 9),
     )
     .unwrap();
     assert!(exact.rms < 1e-12, "{}", exact.rms);
@@ -260,10 +260,10 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
 /// spring, in N/mm for the translational one.
 #[test]
 fn the_compensate_document_lists_every_parameter_of_the_model() {
-    use stiffid::documents::compensate::{Document, Names};
-    use stiffid::jobs::compensate::{run, Input, Request};
+    use stiffid::app::compensate::document::{Document, Names};
+    use stiffid::app::compensate::{run, Input, Request};
     let s = extended();
-    let compliance = Compliance::nominal(&s, "test").unwrap();
+    let compliance = s.model_compliance("test").unwrap();
     let h = compliance.h.clone();
     let text =
         "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n10,20,-80,5,30,0,100,0,-500\n";
@@ -273,7 +273,7 @@ fn the_compensate_document_lists_every_parameter_of_the_model() {
         input: Input::Path {
             name: "path.csv".into(),
             text,
-            frame: stiffid::deflection::Frame::Base,
+            frame: stiffid::observation::deflection::Frame::Base,
         },
         options: compensate::Options::for_setup(&s),
     };

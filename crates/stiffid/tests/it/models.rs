@@ -234,7 +234,7 @@ fn on_data_the_model_fits_no_extension_is_needed() {
 fn fanuc_data_choose_a_larger_model() {
     let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
-    let mut file = stiffid::formats::measurements::parse(text).unwrap();
+    let mut file = stiffid::io::measurements::parse(text).unwrap();
     file.to_base_frame(&setup).unwrap();
     let candidates = stiffid::identify::compare::default_candidates(&setup);
     assert_eq!(candidates.len(), 15);

@@ -3,7 +3,7 @@
 //! needs it.
 
 use stiffid::design::{self, target, Criterion, Evaluator, SearchOptions};
-use stiffid::{simulate, study, Error, Setup};
+use stiffid::{study, study::simulate, Error, Setup};
 
 /// The paper setup without the line of `field`.
 fn paper_without(field: &str) -> Setup {
@@ -60,7 +60,7 @@ fn without_a_characteristic_length_only_classical_and_zhang2021_are_missing() {
         .is_nan());
     for c in [Criterion::Classical, Criterion::Zhang2021] {
         let err = design::local(&setup, c, &group, &small()).unwrap_err();
-        assert_eq!(err.to_string(), format!("the setup has no characteristic_length_mm: criterion {c} needs it (the length that minimises the robot's median dexterity will do (the robot's own characteristic length, stiffid::prior::robot_characteristic_length))"));
+        assert_eq!(err.to_string(), format!("the setup has no characteristic_length_mm: criterion {c} needs it (the length that minimises the robot's median dexterity will do (the robot's own characteristic length, stiffid::setup::prior::robot_characteristic_length))"));
     }
     // relative-a needs no characteristic length: the same search, the same group.
     let without = design::local(&setup, Criterion::RelativeA, &group, &small()).unwrap();

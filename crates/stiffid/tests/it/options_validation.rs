@@ -3,11 +3,11 @@
 //! an error naming the field with the value and the range, never a panic or a hang.
 
 use nalgebra::{Isometry3, Vector3};
-use stiffid::compensate::{self, FreeToolAxis};
 use stiffid::design::{self, Criterion, Pool, PoolOptions, SearchOptions};
+use stiffid::machining::compensate::{self, FreeToolAxis};
+use stiffid::observation::stiffness::joint_torques;
 use stiffid::observation::{point_rows, posture_block};
-use stiffid::stiffness::joint_torques;
-use stiffid::{ik, setup, simulate, study, Error, Setup};
+use stiffid::{robot::ik, setup, study, study::simulate, Error, Setup};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -59,7 +59,7 @@ fn search_options_out_of_range_are_refused_by_local_and_global() {
         ];
         for (field, o) in cases {
             let field = format!("SearchOptions.{field}");
-            let shown = stiffid::limits::number(v);
+            let shown = stiffid::common::limits::number(v);
             rejected(
                 design::local(&setup, Criterion::DOptimal, &start, &o),
                 &field,
@@ -164,7 +164,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         rejected(
             solve(o),
             "ik::Options.position_tolerance",
-            &stiffid::limits::number(v),
+            &stiffid::common::limits::number(v),
         );
         let o = ik::Options {
             rotation_tolerance: v,
@@ -173,7 +173,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         rejected(
             solve(o),
             "ik::Options.rotation_tolerance",
-            &stiffid::limits::number(v),
+            &stiffid::common::limits::number(v),
         );
     }
     let o = ik::Options {

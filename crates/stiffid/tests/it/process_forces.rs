@@ -5,8 +5,8 @@
 use approx::assert_relative_eq;
 use nalgebra::Vector3;
 use std::f64::consts::PI;
-use stiffid::process::milling::{Coefficients, Milling, Mode};
-use stiffid::process::{feed_frame, file, Kind};
+use stiffid::machining::process::milling::{Coefficients, Milling, Mode};
+use stiffid::machining::process::{feed_frame, file, Kind};
 use stiffid::Error;
 
 fn coefficients() -> Coefficients {

@@ -4,14 +4,14 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3, Vector6};
-use stiffid::compensate::{self, Compliance, Options};
-use stiffid::deflection::Frame;
-use stiffid::formats::gcode;
-use stiffid::formats::program::{self, Dialect};
-use stiffid::ik::{self, tool_pose};
+use stiffid::machining::compensate::{self, Compliance, Options};
+use stiffid::machining::gcode;
+use stiffid::machining::process::file;
+use stiffid::machining::program::{self, Dialect};
 use stiffid::machining::{self, Language, Program};
-use stiffid::process::file;
-use stiffid::{formats, setup, Error};
+use stiffid::observation::deflection::Frame;
+use stiffid::robot::ik::{self, tool_pose};
+use stiffid::{setup, Error};
 
 const KRL: &str = "&ACCESS RVP\nDEF pocket( )\n; a comment {A1 99}\nPTP {A1 10.5, A2 -80, A3 95.25, A4 0, A5 30, A6 -5.0, E1 0}\r\nLIN {E6AXIS: A1 11, A2 -79.5, A3 95, A4 0.0, A5 31, A6 -5}  ; cut\nDECL E6AXIS XP3={A1 12,A2 -79,A3 94.5,A4 1E-1,A5 32,A6 -5}\nPTP XP3\nEND\n";
 
@@ -249,7 +249,7 @@ fn fanuc() -> (stiffid::Setup, Compliance) {
         .with_workpiece(part)
         .build()
         .unwrap();
-    let c = Compliance::nominal(&s, "test").unwrap();
+    let c = s.model_compliance("test").unwrap();
     (s, c)
 }
 
@@ -311,7 +311,7 @@ fn a_compensated_program_has_the_csv_routes_targets() {
             .collect();
         csv += &(cells.join(",") + "\n");
     }
-    let points = formats::path::parse(&csv, Frame::Base).unwrap();
+    let points = machining::path::parse(&csv, Frame::Base).unwrap();
     let by_csv = compensate::path(&s, &compliance, &points, &options).unwrap();
     let written = program::parse(&report.program, Dialect::FanucLs).unwrap();
     for ((a, b), t) in report.results.iter().zip(&by_csv).zip(&written.targets) {
@@ -373,7 +373,7 @@ fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_progra
 /// in force is refused naming its line, as is a feed that is not positive.
 #[test]
 fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
-    use stiffid::formats::program::generate::{generate, moves, Move};
+    use stiffid::machining::program::generate::{generate, moves, Move};
     let text = format!("{HEADER}G21 G0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40\nG20 G1 X2 F12\nG0 Z1\n");
     let g = gcode::parse(&text, 1e-5).unwrap();
     let m = moves(&g.points).unwrap();

@@ -2,7 +2,7 @@
 //! never a panic later, and the builder and the TOML path give the same setup.
 
 use nalgebra::{Vector3, Vector6};
-use stiffid::limits::JointBox;
+use stiffid::common::limits::JointBox;
 use stiffid::robot::presets;
 use stiffid::setup::{self, Noise, RopeLoad, Setup, SetupBuilder, Tracker};
 use stiffid::Error;

@@ -2,9 +2,9 @@
 //! independence of the thread count.
 
 use nalgebra::Vector6;
-use stiffid::limits;
+use stiffid::common::limits;
 use stiffid::setup::{self, Noise};
-use stiffid::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
+use stiffid::study::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
 
 /// Six spread postures within the paper's Table 1 bounds, deg.
 fn group() -> Vec<Vector6<f64>> {
@@ -181,16 +181,16 @@ fn a_seven_parameter_model_agrees_with_the_prediction_at_2000_runs() {
         assert!((sim.spring_mean_stiffness[l][0] / 5e6 - 1.0).abs() < 0.05);
     }
     // The job and its document over the model: seven named parameters, rates of seven columns.
-    let report = stiffid::jobs::simulate::run(&stiffid::jobs::simulate::Request {
+    let report = stiffid::app::simulate::run(&stiffid::app::simulate::Request {
         setup: &model,
-        groups: vec![stiffid::jobs::simulate::Group {
+        groups: vec![stiffid::app::simulate::Group {
             name: "g".into(),
             postures: group,
         }],
         options: Options { runs: 20, seed: 1 },
     })
     .unwrap();
-    let doc = stiffid::documents::simulate::Document::new(&report, &model);
+    let doc = stiffid::app::simulate::document::Document::new(&report, &model);
     let names: Vec<&str> = doc.parameters.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(names, ["k1", "k2", "k3", "k4", "k5", "k6", "tilt3_x"]);
     assert_eq!(doc.parameters[6].unit, "Nm/rad");

@@ -4,7 +4,7 @@
 use nalgebra::Vector6;
 use std::sync::Mutex;
 use stiffid::design::{Criterion, Evaluation};
-use stiffid::simulate::GroupSimulation;
+use stiffid::study::simulate::GroupSimulation;
 use stiffid::study::{self, Group, Options, Origin, StartTrial, Study};
 use stiffid::{setup, Error, Progress, Setup};
 

@@ -9,11 +9,11 @@ use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG}
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::formats::measurements;
 use stiffid::identify::cross_validation::Method;
+use stiffid::identify::validate;
 use stiffid::identify::{cross_validate, least_squares, nonnegative};
+use stiffid::io::measurements;
 use stiffid::observation::{Measurement, Observations};
-use stiffid::validate;
 use stiffid::{setup, Error, Setup};
 
 const FANUC_CSV: &str =
@@ -380,8 +380,7 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let data = synthetic(&setup, &qs, |_, q| {
         setup.rope_wrench(&setup.robot().frames(q))
     });
-    let exact =
-        validate::compare(&setup, &Compliance::nominal(&setup, "test").unwrap(), &data).unwrap();
+    let exact = validate::compare(&setup, &setup.model_compliance("test").unwrap(), &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
     let stiffer = validate::compare(
         &setup,

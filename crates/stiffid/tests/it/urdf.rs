@@ -254,7 +254,7 @@ fn the_tip_defaults_to_the_leaf_ending_six_revolute_joints_else_tool0() {
 
 #[test]
 fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
-    use stiffid::formats::reference;
+    use stiffid::setup::reference;
     let urdf_text = data("comau-nj165-two-leaves.urdf");
     let presets = format!(
         "{}/presets/comau-smart5-nj165-3.0.toml",

@@ -6,17 +6,17 @@ use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::{bail, Result};
 use std::io::Read;
-use stiffid::documents::identify_model::Document;
+use stiffid::app::compare_models;
+use stiffid::app::identify::{Data, Request};
+use stiffid::app::identify_model::document::Document;
+use stiffid::app::identify_model::{self, Report};
+use stiffid::common::words::count;
 use stiffid::identify::compare::{parameter_docs, Comparison, Row};
 use stiffid::identify::cross_validation::CrossValidation;
 use stiffid::identify::model::Fit;
-use stiffid::jobs::compare_models;
-use stiffid::jobs::identify::{Data, Request};
-use stiffid::jobs::identify_model::{self, Report};
-use stiffid::words::count;
 use stiffid::Setup;
 
-/// `--compare-models`: the library's job ([`stiffid::jobs::compare_models`]) rendered as the
+/// `--compare-models`: the library's job ([`stiffid::app::compare_models`]) rendered as the
 /// table and the recommendation, `--out` the recommended `[model]`.
 pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
     if args.robust.is_some() || args.nonnegative || args.cross_validate || args.folds.is_some() {
@@ -148,7 +148,7 @@ pub fn fit_table(f: &Fit) -> String {
 }
 
 /// `stiffid identify` with a setup whose model has virtual springs: the library's job
-/// ([`stiffid::jobs::identify_model`]) with least squares, `--nonnegative` or `--robust`, and
+/// ([`stiffid::app::identify_model`]) with least squares, `--nonnegative` or `--robust`, and
 /// `--cross-validate`/`--folds`; every parameter with its unit and interval, what is not
 /// identifiable; `--out` the stiffness file of every parameter (what `--stiffness` reads).
 pub fn identify_model<R: Read + Send>(

@@ -1,11 +1,11 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
-use stiffid::documents::mm;
+use stiffid::app::document::mm;
+use stiffid::app::identify::{Fit, Report};
 use stiffid::identify::adequacy::SIGNIFICANCE;
 use stiffid::identify::{Identification, Uncertainty};
-use stiffid::jobs::identify::{Fit, Report};
-use stiffid::kinematics::Coordinates;
+use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
 /// Relative standard error above which a joint is called poorly determined.
@@ -59,7 +59,7 @@ pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
         setup_name,
         run.data_name,
         id.rows,
-        stiffid::words::count(id.postures, "posture"),
+        stiffid::common::words::count(id.postures, "posture"),
         num(id.cond_psi, 4),
         num(mm(id.residual_rms), 4)
     );
@@ -126,7 +126,7 @@ load steps (* beyond the tracker noise, p < 0.01):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
 ",
-            stiffid::limits::short(run.origin.labels.get(l.posture)),
+            stiffid::common::limits::short(run.origin.labels.get(l.posture)),
             l.levels,
             opt(l.slope_m_per_n, 1e6, 4),
             opt(l.offset_m, 1e3, 4),
@@ -154,7 +154,7 @@ offsets fitted beside the compliances (base frame):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
 ",
-            stiffid::limits::short(run.origin.labels.get(o.posture)),
+            stiffid::common::limits::short(run.origin.labels.get(o.posture)),
             o.point + 1,
             num(o.offset.x * 1e3, 4),
             num(o.offset.y * 1e3, 4),

@@ -6,8 +6,8 @@ use super::{colour, failed, render, Figure, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::compensate::Compensated;
-use stiffid::documents::compensate::SegmentDocument;
+use stiffid::app::compensate::document::SegmentDocument;
+use stiffid::machining::compensate::Compensated;
 
 struct Force<'a>(&'a [(usize, Compensated)]);
 

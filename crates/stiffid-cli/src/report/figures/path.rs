@@ -7,7 +7,7 @@ use super::{colour, failed, render, Figure, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::compensate::Compensated;
+use stiffid::machining::compensate::Compensated;
 use stiffid::Setup;
 
 struct Deflection<'a>(&'a [Compensated]);

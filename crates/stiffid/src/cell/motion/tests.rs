@@ -18,7 +18,7 @@ fn cell(robot: &str) -> Setup {
            [constraints]\nloading_point_min_z_mm = 200.0\nanchor_below_loading_point = true\n";
     let setup = crate::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
     let robot = presets::get(robot).unwrap();
-    let geometry = crate::cell::default_geometry(&robot, setup.tool());
+    let geometry = crate::setup::default_geometry(&robot, setup.tool());
     let builder = setup.to_builder().with_bounds(*robot.limits());
     builder
         .with_geometry(geometry)
@@ -68,13 +68,13 @@ pub(crate) fn mesh_setup() -> Setup {
         Some(Ok::<_, crate::Error>(String::from_utf8(b.clone()).unwrap()))
     };
     let bytes = |p: &Path| files.get(p).cloned().map(Ok);
-    let meshes = crate::formats::reference::Meshes {
+    let meshes = crate::setup::reference::Meshes {
         read: &bytes,
         package_paths: &[],
     };
     let toml = mesh_robot::setup_toml() + "[constraints]\nloading_point_min_z_mm = 200.0\n";
     let toml = toml.replace("[tracker]\n", "[tracker]\nmax_incidence_deg = 70.0\n");
-    crate::formats::reference::setup_text_with_meshes(
+    crate::setup::reference::setup_text_with_meshes(
         &toml,
         "pkg/cell.toml",
         Path::new("pkg"),

@@ -23,7 +23,7 @@
 //! and `d-optimal`'s is `-M^-1 / n`), their columns of the weight reach the axis angles through
 //! `springs::spring_gradient`. The `classical` index (a maximum over the postures) adds
 //! `d ln k(J_N)` of the active posture (the first with the largest dexterity) through
-//! [`crate::kinematics::dexterity_log_gradient`]; it is smooth except where two postures tie, and
+//! [`crate::robot::kinematics::dexterity_log_gradient`]; it is smooth except where two postures tie, and
 //! `cond_2` except where its extreme singular values are repeated.
 
 use super::wide::{self, WideGroup};
@@ -41,9 +41,9 @@ pub(crate) struct MaxSplit {
 }
 use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
-use crate::kinematics::dexterity_log_gradient;
-use crate::linalg::{singular_values_and_vectors, times_6x6};
+use crate::math::linalg::{singular_values_and_vectors, times_6x6};
 use crate::observation::{posture_block, rope_block_gradient};
+use crate::robot::kinematics::dexterity_log_gradient;
 use nalgebra::{DMatrix, Matrix6, MatrixXx6, Vector3, Vector6};
 
 impl Evaluator<'_> {

@@ -28,8 +28,8 @@
 //! `b = sum_x g_x + [j <= k] g_o`: two running sums over the links. Axis angles by the chain rule
 //! `d / dq = M^T d / d theta` ([`Frames::kinematic_to_axis`]).
 
-use crate::kinematics::Frames;
 use crate::model::{Kind, Placed};
+use crate::robot::kinematics::Frames;
 use crate::setup::Setup;
 use nalgebra::{Matrix6, Vector3, Vector6};
 

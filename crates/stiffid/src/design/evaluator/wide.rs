@@ -6,10 +6,10 @@
 //! `d-optimal = det((S^T S)^-1)^(1/(2n)) = prod_k |R_s,kk|^(-1/n)`;
 //! `relative-a = |R_s^-1|_F / sqrt(n)`; the relative standard deviations as the row norms of
 //! `R_s^-1`. Every product is a loop in a fixed order (the same bits on every processor, like
-//! [`crate::linalg::times_6x6`]); no general matrix product that picks its kernel at run time.
+//! [`crate::math::linalg::times_6x6`]); no general matrix product that picks its kernel at run time.
 
-use crate::linalg::householder_qr_columns;
-use crate::lsq::RANK_TOLERANCE;
+use crate::math::linalg::householder_qr_columns;
+use crate::math::lsq::RANK_TOLERANCE;
 use nalgebra::{DMatrix, DVector};
 
 /// The factor of a full-rank group with `n > 6` parameters: `Psi = Q R`, `S = Q R_s`,
@@ -24,7 +24,7 @@ pub(super) struct WideGroup {
 
 impl WideGroup {
     /// The factor of the column-major `m x n` matrix `psi` (consumed) with the column scaling
-    /// `h / sigma`; `None` when it is rank deficient by the rule of [`crate::lsq::Factor::try_new`]
+    /// `h / sigma`; `None` when it is rank deficient by the rule of [`crate::math::lsq::Factor::try_new`]
     /// (a column norm at most [`RANK_TOLERANCE`] times the largest, `cond_2 >= 1 / RANK_TOLERANCE`,
     /// fewer rows than columns) or not finite.
     pub(super) fn factor(mut psi: Vec<f64>, m: usize, scaling: &DVector<f64>) -> Option<Self> {
@@ -192,7 +192,7 @@ pub(super) fn cond(a: &DMatrix<f64>) -> f64 {
 
 /// The singular values (no particular order) and right singular vectors (columns) of a square
 /// matrix by one-sided (Hestenes) Jacobi, cyclic by rows, to working precision, as
-/// [`crate::linalg::singular_values_and_vectors`] for six columns.
+/// [`crate::math::linalg::singular_values_and_vectors`] for six columns.
 pub(super) fn singular_values_and_vectors(a: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
     let (s, v) = jacobi(a, true);
     (
@@ -264,7 +264,7 @@ pub(super) fn cond_weight(r: &DMatrix<f64>) -> DMatrix<f64> {
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    crate::linalg::dot(a, b)
+    crate::math::linalg::dot(a, b)
 }
 
 /// `v`, or `+infinity` if it is not finite.

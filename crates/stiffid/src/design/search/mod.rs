@@ -28,7 +28,7 @@ pub use sample::{random_group, CONSTRAINT_TRIES};
 pub use termination::Termination;
 
 use crate::design::Criterion;
-use crate::{limits, Result};
+use crate::{common::limits, Result};
 use nalgebra::Vector6;
 
 /// How a local search gets the gradient of its objective `ln(criterion)`.
@@ -57,7 +57,7 @@ impl Gradient {
     }
 }
 
-impl crate::choice::Choice for Gradient {
+impl crate::common::choice::Choice for Gradient {
     const FIELD: &'static str = "gradient";
     const ALL: &'static [Self] = &Gradient::ALL;
     fn name(self) -> &'static str {
@@ -71,7 +71,7 @@ impl crate::choice::Choice for Gradient {
     }
 }
 
-crate::choice::by_name!(Gradient);
+crate::common::choice::by_name!(Gradient);
 
 /// The SQP of a local search.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
@@ -139,7 +139,7 @@ impl Solver {
     }
 }
 
-impl crate::choice::Choice for Solver {
+impl crate::common::choice::Choice for Solver {
     const FIELD: &'static str = "solver";
     const ALL: &'static [Self] = &Solver::ALL;
     fn name(self) -> &'static str {
@@ -154,7 +154,7 @@ impl crate::choice::Choice for Solver {
     }
 }
 
-crate::choice::by_name!(Solver);
+crate::common::choice::by_name!(Solver);
 
 /// Budget and tolerances of a search.
 #[derive(Debug, Clone, PartialEq)]

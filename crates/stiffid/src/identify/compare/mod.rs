@@ -78,7 +78,7 @@ pub fn candidates_by_name(setup: &Setup, names: &[String]) -> Result<Vec<Spring>
                 field: "candidates".into(),
                 message: format!(
                     "'{}' is not a candidate: expected a family (tilt, tool, base) or one of its springs (tilt1_x .. tilt6_y, tool_x, tool_y, tool_z, base_x .. base_rz)",
-                    crate::limits::short(name)
+                    crate::common::limits::short(name)
                 ),
             });
         }

@@ -11,7 +11,7 @@
 //!   (Cholesky factor), so the rounding of the two recurrences never accumulates.
 
 use super::qp::inverse;
-use crate::linalg::{axpy, dot};
+use crate::math::linalg::{axpy, dot};
 
 /// Fewest updates between two inversions of `B` (and at least `n`).
 const REFACTOR: usize = 64;

@@ -36,7 +36,7 @@ pub(crate) mod qp;
 mod tests;
 
 use super::termination::Termination;
-use crate::linalg::dot;
+use crate::math::linalg::dot;
 use hessian::Hessian;
 use qp::{Active, Qp, QpError, Row};
 

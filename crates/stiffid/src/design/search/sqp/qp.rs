@@ -25,7 +25,7 @@
 //!
 //! Deterministic: the same data give the same bits (fixed-order loops, ties to the lowest index).
 
-use crate::linalg::{axpy, dot};
+use crate::math::linalg::{axpy, dot};
 
 /// A sparse inequality row `a^T d <= b`: `(index, coefficient)` pairs, indices below `n`.
 #[derive(Debug, Clone, PartialEq)]

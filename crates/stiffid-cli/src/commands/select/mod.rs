@@ -1,0 +1,328 @@
+//! `stiffid select`: the group of postures that minimises a design criterion (local SQP from a
+//! start group, global multistart, or the best of a pool of postures), optionally the smallest
+//! group for a target accuracy and a measurement plan (`--report`): the arguments made into a
+//! [`stiffid::app::select::Request`], the job run, its report rendered.
+
+mod target;
+
+use super::evaluate::{criteria_text, number};
+use crate::commands::common::Common;
+use crate::load;
+use crate::output::{self, json, OutFile};
+use crate::progress::Bars;
+use crate::report::plan;
+use anyhow::{bail, Result};
+use std::path::PathBuf;
+use stiffid::app::select::document::{Document, Pool};
+use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
+use stiffid::common::limits::{self, short};
+use stiffid::common::words::count;
+use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions, Solver};
+use stiffid::{io::postures, Error, Setup};
+
+/// Arguments of `stiffid select`.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    common: Common,
+    /// Design criterion to minimise: classical, zhang2021, scaled-cond, d-optimal, relative-a,
+    /// test-pose (or their JSON keys: relative_a, test_pose_mm, ...). The default, relative-a,
+    /// ranks groups of postures as their measured accuracy does (in `stiffid reproduce`,
+    /// Spearman's rho +1.00 against the simulated deviation rates); the paper's zhang2021 does not
+    /// (rho -0.10): see docs/guide.md, "The paper's study".
+    #[arg(long, default_value = "relative-a")]
+    criterion: Criterion,
+    /// Start group (posture,q1_deg,...,q6_deg) of a local search.
+    #[arg(long, conflicts_with_all = ["start_random", "global", "target_pct"])]
+    start: Option<PathBuf>,
+    /// Start a local search from a seeded Latin-hypercube group within the bounds.
+    #[arg(long, conflicts_with_all = ["global", "target_pct"])]
+    start_random: bool,
+    /// Global search: local searches from --starts seeded start groups, the best kept.
+    #[arg(long)]
+    global: bool,
+    /// Choose the best --postures of the postures in this file (posture,q1_deg,...,q6_deg; at
+    /// most 10000), e.g. postures taught on the pendant: exact by enumeration when there are at
+    /// most 100000 groups, else the best of --restarts seeded exchange runs. Postures outside the
+    /// setup's bounds are reported and skipped.
+    #[arg(long, conflicts_with_all = ["start", "start_random", "global"])]
+    pool: Option<PathBuf>,
+    /// Exchange runs of a --pool choice, 1 to 1000 [default: 8].
+    #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_POOL_RESTARTS))]
+    restarts: Option<u64>,
+    /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
+    /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
+    /// prints the group size against the worst joint's rate and plots it (into --report, else
+    /// beside --out as OUT.target.svg and .png).
+    #[arg(long, conflicts_with = "postures")]
+    target_pct: Option<f64>,
+    /// Number of postures (random or global starts, pool) [default: 6; 2 to 100].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(2..=limits::MAX_SEARCH_POSTURES), conflicts_with = "start")]
+    postures: Option<u64>,
+    /// Seed of the random start group, of the global starts or of the pool's exchange runs.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Local searches of a global search [default: 32; 1 to 10000].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
+    starts: Option<u64>,
+    /// SQP steps of every global start before the best --polished continue; 0 runs every start
+    /// to convergence [default: 60; 0 to 10000000].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
+    screen_steps: Option<u64>,
+    /// Global starts that continue after the screening [default: 8; 1 to 10000].
+    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
+    polished: Option<u64>,
+    /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
+    /// each finite-difference probe as one) [default: 6000; 1 to 10000000].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_EVALS))]
+    max_evals: Option<u64>,
+    /// Gradient of the SQP objective: exact (closed form) or fd (forward finite differences, for
+    /// comparison).
+    #[arg(long, default_value_t = Gradient::Exact)]
+    gradient: Gradient,
+    /// SQP of the local searches: auto (per criterion: active-set on relative-a, d-optimal and
+    /// test-pose, slsqp on classical, zhang2021 and scaled-cond), slsqp (SLSQP, the slsqp crate)
+    /// or active-set (ours: a Goldfarb-Idnani QP per step, damped BFGS; much faster in a cell and
+    /// for large groups).
+    #[arg(long, default_value_t = Solver::default())]
+    solver: Solver,
+    /// Where to write the postures found (posture,q1_deg,...,q6_deg).
+    #[arg(long)]
+    out: PathBuf,
+    /// Also write a measurement plan into this directory: plan.html, plan.csv and figures/ (side
+    /// and top view of every posture; with --target-pct, the group size against accuracy).
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Write the --report into a directory that holds other files.
+    #[arg(long, requires = "report")]
+    force: bool,
+}
+
+/// Runs the selection, writes the postures (and the plan) and prints the result.
+pub fn run(args: &Args) -> Result<()> {
+    let setup = args.common.load_setup()?;
+    let pool = match &args.pool {
+        Some(path) => Some(PoolInput {
+            name: path.display().to_string(),
+            postures: load::postures(path, setup.robot(), None)?,
+        }),
+        None => None,
+    };
+    // Read (an input from now on, which --out cannot overwrite) and checked before searching.
+    let start = match &args.start {
+        Some(path) => Some(load::postures(path, setup.robot(), Some(setup.bounds()))?),
+        None => None,
+    };
+    if let Some(pct) = args.target_pct {
+        limits::check("--target-pct", &[pct], &job::TARGET_PCT)?;
+        if pool.is_none() && !args.global {
+            bail!("--target-pct needs --pool FILE.csv or --global to choose each group");
+        }
+    }
+    let out = OutFile::prepare(&args.out, "--out")?;
+    let target_files = match (args.target_pct, &args.report) {
+        (Some(_), None) => Some(target::files(&args.out)?),
+        _ => None,
+    };
+    let report_dir = args
+        .report
+        .as_deref()
+        .map(|dir| plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)))
+        .transpose()?;
+    let bars = Bars::new(false);
+    let request = Request {
+        setup: &setup,
+        criterion: args.criterion,
+        method: method(args, pool.is_some())?,
+        start,
+        pool,
+        postures: args.postures.unwrap_or(6) as usize,
+        target_pct: args.target_pct,
+        options: options(args),
+        restarts: args
+            .restarts
+            .map_or(PoolOptions::default().restarts, |r| r as usize),
+        progress: &bars,
+    };
+    let report = job::run(&request).map_err(option_names)?;
+    output::warnings(&report.warnings);
+    out.write(postures::to_csv(&report.postures).as_bytes())?;
+    if let (Some(files), Some(t)) = (&target_files, &report.target) {
+        target::write_figure(files, t)?;
+    }
+    if let Some(dir) = report_dir {
+        let t = report.target.as_ref();
+        plan::write(dir, &setup, args.criterion, &report.postures, t)?;
+    }
+    let mut doc = Document::new(&report, &setup);
+    doc.out = Some(args.out.display().to_string());
+    doc.report = args.report.as_ref().map(|d| d.display().to_string());
+    match args.common.json {
+        true => output::print(&json(&doc)?),
+        false => output::print(&text(args, &setup, &report, &doc)),
+    }
+}
+
+/// The method the arguments ask for.
+fn method(args: &Args, pool: bool) -> Result<Method> {
+    Ok(
+        match (args.global, pool, args.start.is_some() || args.start_random) {
+            (true, _, _) => Method::Global,
+            (_, true, _) => Method::Pool,
+            (_, _, true) => Method::Local,
+            _ => bail!("give --start FILE.csv, --start-random, --global or --pool FILE.csv"),
+        },
+    )
+}
+
+/// The search options: the library's defaults, overridden by the arguments.
+fn options(args: &Args) -> SearchOptions {
+    let mut options = SearchOptions {
+        seed: args.seed,
+        gradient: args.gradient,
+        solver: args.solver,
+        ..SearchOptions::default()
+    };
+    if let Some(s) = args.starts {
+        options.starts = s as usize;
+    }
+    if let Some(s) = args.screen_steps {
+        options.screen_steps = s as usize;
+    }
+    if let Some(p) = args.polished {
+        options.polished = p as usize;
+    }
+    if let Some(m) = args.max_evals {
+        options.max_evals = m as usize;
+    }
+    options
+}
+
+/// The job's field names as the command's options.
+fn option_names(e: Error) -> Error {
+    match e {
+        Error::InvalidField { field, message } if field == "target_pct" || field == "start" => {
+            Error::InvalidField {
+                field: format!("--{}", field.replace('_', "-")),
+                message,
+            }
+        }
+        e => e,
+    }
+}
+
+fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
+    let mut text = String::new();
+    if let Some(p) = &doc.pool {
+        text += &pool_text(p);
+    }
+    if let Some(t) = &r.target {
+        text += &target::text(t);
+    }
+    text += &outcome_text(setup, r);
+    text += &criteria_text(&r.evaluation, setup);
+    if let Some(free) = &r.unconstrained {
+        text += &cost_text(args.criterion, r, &free.evaluation, free.value);
+    }
+    text += &format!("postures written to {}\n", args.out.display());
+    if let Some(dir) = &args.report {
+        text += &format!("plan: {}\n", dir.join("plan.html").display());
+    }
+    text
+}
+
+/// What the pool held and what was chosen, in words.
+fn pool_text(p: &Pool) -> String {
+    let mut s = format!(
+        "pool {}: {}, {} usable\n",
+        p.file,
+        count(p.postures, "posture"),
+        p.usable
+    );
+    for k in &p.skipped {
+        s += &format!("  skipped posture {}: {}\n", k.posture, k.reason);
+    }
+    let numbers: Vec<String> = p.chosen.iter().map(|n| n.to_string()).collect();
+    let how = match p.method {
+        "enumeration" => "exact, every group enumerated",
+        _ => "exchange algorithm, best of the restarts",
+    };
+    s + &format!(
+        "chosen ({how}): postures {} of the pool\n",
+        numbers.join(", ")
+    )
+}
+
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
+fn cost_text(criterion: Criterion, r: &Report, free_e: &Evaluation, free_value: f64) -> String {
+    let mean = Evaluation::predicted_average_pct;
+    let e = &r.evaluation;
+    let mut text = format!(
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
+        number(r.value),
+        number(free_value),
+        100.0 * (r.value / free_value - 1.0),
+    );
+    // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
+    if !mean(e).is_nan() {
+        text += &format!(
+            "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
+            mean(e),
+            mean(free_e),
+            100.0 * (mean(e) / mean(free_e) - 1.0)
+        );
+    }
+    text
+}
+
+fn outcome_text(setup: &Setup, r: &Report) -> String {
+    let mut text = format!(
+        "{} search of {} postures on setup {} (seed {})\n",
+        r.method,
+        r.postures.len(),
+        short(setup.name()),
+        r.seed
+    );
+    text += &match r.start_value {
+        Some(start) => {
+            let factor = start / r.value;
+            format!(
+                "{}: {} -> {} ({})\n",
+                r.criterion,
+                number(start),
+                number(r.value),
+                match factor.is_finite() {
+                    true => format!("{factor:.3}x lower"),
+                    false => "the start's criterion was infinite".into(),
+                }
+            )
+        }
+        None => format!("{}: {}\n", r.criterion, number(r.value)),
+    };
+    text += &format!("{} evaluations in {:.2} s", r.evaluations, r.elapsed_s);
+    text += &match r.solver {
+        Some(solver) => format!(" ({solver})\n"),
+        None => "\n".into(),
+    };
+    if let Some(t) = r.termination {
+        text += &format!("stopped: {}\n", termination_text(t, &r.terminations));
+    }
+    text + "criteria of the result (smaller is better):\n"
+}
+
+/// Why the search stopped: the reason of the search that found the group, and for several
+/// searches how many stopped for each reason.
+fn termination_text(
+    t: stiffid::design::Termination,
+    all: &[stiffid::design::Termination],
+) -> String {
+    let mut s = t.name().to_string();
+    if all.len() > 1 {
+        let counts: Vec<String> = (stiffid::design::Termination::ALL.iter())
+            .filter(|r| r.count(all) > 0)
+            .map(|r| format!("{} {r}", r.count(all)))
+            .collect();
+        s += &format!(" (the {} starts: {})", all.len(), counts.join(", "));
+    }
+    s
+}

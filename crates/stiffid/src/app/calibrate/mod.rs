@@ -1,0 +1,48 @@
+//! The calibrate job (`stiffid calibrate-cell`): the tracker's transform and the measuring points
+//! in the flange frame fitted together from unloaded readings ([`crate::metrology::calibrate`], Gauss-Newton
+//! over 6 + 3p unknowns), each point's shift from the setup's value with its standard deviation.
+
+use super::in_data;
+use super::readings::read;
+pub use super::readings::Request;
+use super::Warning;
+use crate::metrology::calibrate::{self, Calibration};
+use crate::Result;
+use nalgebra::Vector3;
+
+/// What the calibrate job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The readings file's name.
+    pub data_name: String,
+    /// The setup's measuring points, flange frame, m (the fit's start).
+    pub setup_points: Vec<Vector3<f64>>,
+    /// Unloaded readings used.
+    pub readings: usize,
+    /// The calibrated cell.
+    pub calibration: Calibration,
+    /// Inputs to look at before trusting the result (angles that look like radians).
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs the calibrate job.
+///
+/// # Errors
+/// Those of [`read`]; of [`calibrate::observations`] and [`calibrate::fit`] (readings in the base
+/// frame, too few readings for the unknowns, one flange orientation), as
+/// [`crate::Error::Input`] naming the file.
+pub fn run(request: &Request<'_>) -> Result<Report> {
+    let (data, warnings) = read(request)?;
+    let name = &request.name;
+    let setup_points = request.setup.tool().measuring_points.clone();
+    let observations =
+        calibrate::observations(request.setup, &data).map_err(|e| in_data(name, e))?;
+    let calibration = calibrate::fit(&observations, &setup_points).map_err(|e| in_data(name, e))?;
+    Ok(Report {
+        data_name: name.clone(),
+        setup_points,
+        readings: observations.len(),
+        calibration,
+        warnings,
+    })
+}

@@ -1,0 +1,457 @@
+//! The documents of the compensate job ([`crate::app::compensate`]): the CSV of every path point
+//! (`stiffid compensate`'s CSV, [`header`] and [`csv_line`]), the JSON document ([`Document`]:
+//! `stiffid compensate --json`, the report's `summary.json`) and its summary ([`Summary`],
+//! accumulated point by point so that a path of any length is summarised in bounded memory).
+
+use crate::app::compensate::{Report, Segment};
+use crate::app::document::mm;
+use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use crate::common::warning::Warning;
+use crate::machining::compensate::Compensated;
+use crate::Coordinates;
+use nalgebra::Vector6;
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+/// The value of the document's `generator` key: it marks a compensation report directory.
+pub const GENERATOR: &str = "stiffid compensate";
+
+/// The compensate document. Units in the key names.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// `stiffid compensate`: marks a report directory as ours.
+    pub generator: &'static str,
+    /// The setup as given.
+    pub setup: String,
+    /// The stiffness file (or `arrays`).
+    pub stiffness: String,
+    /// The path file, or the program file.
+    pub path: String,
+    /// The CSV written (the front end's name for it; empty when none is written).
+    pub out: String,
+    /// Where the springs sit.
+    pub springs: Coordinates,
+    /// The joint stiffness used, Nm/rad.
+    pub stiffness_nm_per_rad: [f64; 6],
+    /// Every parameter of the model (drives first, then the virtual springs) with its name,
+    /// kind, unit and the stiffness used, as the stiffness file has them
+    /// ([`crate::io::stiffness`]).
+    pub parameters: Vec<ParameterStiffness>,
+    /// Whether the stiffness file has the compliance covariance (then the `*_std_*` columns
+    /// have values).
+    pub has_covariance: bool,
+    /// With `--free-tool-axis`: its options; else `null`.
+    pub free_tool_axis: Option<FreeToolAxis>,
+    /// With a program: the program, its process and each segment's force and deflection; else
+    /// `null`.
+    pub program: Option<Program>,
+    /// The largest and mean values along the path.
+    pub summary: SummaryDocument,
+    /// Results to look at before trusting them (points without a force).
+    pub warnings: Vec<Warning>,
+    /// One object per path point: the columns of the CSV by name.
+    pub points: Vec<Row>,
+}
+
+/// The names the front end gives the inputs and outputs of a compensation.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Names {
+    /// The setup as given.
+    pub setup: String,
+    /// The stiffness file (or `arrays`).
+    pub stiffness: String,
+    /// The CSV written (empty when none is).
+    pub out: String,
+    /// With a program: the compensated program written (empty when none is).
+    pub program_out: String,
+}
+
+/// The options of the free tool axis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FreeToolAxis {
+    /// The largest change of the rotation about tool z between consecutive points, deg.
+    pub max_step_deg: f64,
+    /// The rotation stays within +- this of the path's, deg.
+    pub range_deg: f64,
+}
+
+/// A compensated program: what was read, and each segment's force and deflection.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Program {
+    /// The program's language: `gcode`, `krl`, `rapid` or `ls`.
+    pub language: &'static str,
+    /// The compensated program's language (the program's own, or a robot program's for G-code).
+    pub output_language: &'static str,
+    /// The process file.
+    pub process: String,
+    /// The compensated program written (empty when none is).
+    pub out: String,
+    /// One entry per segment (a program line with at least one point), in program order.
+    pub segments: Vec<SegmentDocument>,
+}
+
+/// One segment of a program: the points of one line (a G-code block's arc points, a robot
+/// program's target).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct SegmentDocument {
+    /// The program line, 1-based.
+    pub line: u64,
+    /// The operation that cuts there (its name), `null` for a rapid move or a block no operation
+    /// covers.
+    pub operation: Option<String>,
+    /// Path points of the segment.
+    pub points: usize,
+    /// The largest process force on the tool over the segment, N.
+    pub force_n: f64,
+    /// The largest TCP deflection under the force, uncompensated, mm.
+    pub deflection_before_mm: f64,
+    /// The largest TCP deflection left after compensation (the residual), mm.
+    pub deflection_after_mm: f64,
+    /// With a compliance covariance: the largest standard deviation of the uncompensated
+    /// deflection's length (what compensation cannot remove), mm; else `null`.
+    pub deflection_std_mm: Option<f64>,
+}
+
+/// The largest and mean values along the path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct SummaryDocument {
+    /// Path points.
+    pub points: usize,
+    /// The largest TCP deflection, mm.
+    pub max_deflection_mm: f64,
+    /// Its line in the path file.
+    pub max_deflection_line: u64,
+    /// The mean TCP deflection, mm.
+    pub mean_deflection_mm: f64,
+    /// The largest tool rotation, mrad.
+    pub max_rotation_mrad: f64,
+    /// The largest position residual of the compensated axis angles, um.
+    pub max_residual_um: f64,
+    /// The largest rotation residual, urad.
+    pub max_residual_urad: f64,
+    /// The most Newton steps of a point.
+    pub max_iterations: usize,
+    /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
+    pub free_tool_axis: Option<FreeSummary>,
+}
+
+/// What the free tool axis gained.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FreeSummary {
+    /// Sum of the TCP deflections with the path's rotation, mm.
+    pub sum_deflection_before_mm: f64,
+    /// Sum of the TCP deflections with the rotations chosen, mm.
+    pub sum_deflection_after_mm: f64,
+    /// The smallest and largest rotation chosen, deg.
+    pub tool_rotation_range_deg: [f64; 2],
+}
+
+/// One path point: the columns of [`header`] by name, `null` for an empty cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row(pub Map<String, Value>);
+
+impl Row {
+    /// The row of `values` (one per column of [`header`]).
+    pub fn new(values: &[Option<f64>]) -> Self {
+        let map = header()
+            .into_iter()
+            .zip(values.iter().map(|v| serde_json::json!(v)))
+            .collect();
+        Row(map)
+    }
+}
+
+impl Serialize for Row {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.0.serialize(serializer)
+    }
+}
+
+#[cfg(feature = "schema")]
+impl schemars::JsonSchema for Row {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Row".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let columns = header();
+        let properties: Map<String, Value> = columns
+            .iter()
+            .map(|name| {
+                let kind = match may_be_empty(name) {
+                    true => serde_json::json!(["number", "null"]),
+                    false => serde_json::json!("number"),
+                };
+                (name.clone(), serde_json::json!({ "type": kind }))
+            })
+            .collect();
+        schemars::json_schema!({
+            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis).",
+            "type": "object",
+            "properties": properties,
+            "required": columns,
+        })
+    }
+}
+
+/// Whether the column `name` may be empty (see [`Row`]'s schema).
+#[cfg(feature = "schema")]
+fn may_be_empty(name: &str) -> bool {
+    name.contains("_std_") || name == "d_norm_before_mm"
+}
+
+impl Document {
+    /// The document of `report`, named by `names`, with `points` (the rows; empty when the front
+    /// end streams them itself).
+    pub fn new(report: &Report, names: &Names, points: Vec<Row>) -> Self {
+        Document {
+            generator: GENERATOR,
+            setup: names.setup.clone(),
+            stiffness: names.stiffness.clone(),
+            path: report.input.clone(),
+            out: names.out.clone(),
+            springs: report.springs,
+            stiffness_nm_per_rad: report.compliance.drives_h().map(|h| 1.0 / h).into(),
+            parameters: stiffness(&report.parameters, &report.compliance.h),
+            has_covariance: report.compliance.covariance.is_some(),
+            free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
+                max_step_deg: f.max_step.to_degrees(),
+                range_deg: f.range.to_degrees(),
+            }),
+            program: report.program.as_ref().map(|p| Program {
+                language: p.language.name(),
+                output_language: p.output.name(),
+                process: p.process.clone(),
+                out: names.program_out.clone(),
+                segments: p.segments.iter().map(segment).collect(),
+            }),
+            summary: report.summary.document(),
+            warnings: report.warnings.clone(),
+            points,
+        }
+    }
+}
+
+fn segment(s: &Segment) -> SegmentDocument {
+    SegmentDocument {
+        line: s.line,
+        operation: s.operation.clone(),
+        points: s.points,
+        force_n: s.force,
+        deflection_before_mm: mm(s.deflection_before),
+        deflection_after_mm: mm(s.deflection_after),
+        deflection_std_mm: s.deflection_std.map(mm),
+    }
+}
+
+fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
+    items.iter().map(|i| format!("{prefix}{i}{unit}")).collect()
+}
+
+/// The column names of the CSV (and the keys of a [`Row`]).
+pub fn header() -> Vec<String> {
+    let axes = ["1", "2", "3", "4", "5", "6"];
+    let xyz = ["x", "y", "z"];
+    let mut header = vec!["point".to_string(), "line".to_string()];
+    header.extend(names("q", &axes, "_deg"));
+    header.extend(names("", &xyz, "_mm"));
+    header.extend(names("r", &xyz, "_deg"));
+    header.extend(names("f", &xyz, "_base_n"));
+    header.extend(names("m", &xyz, "_base_nm"));
+    header.extend(names("d", &xyz, "_mm"));
+    header.push("d_norm_mm".into());
+    header.extend(names("dr", &xyz, "_mrad"));
+    header.extend(names("d", &xyz, "_std_mm"));
+    header.extend(names("dr", &xyz, "_std_mrad"));
+    header.extend(names("qc", &axes, "_deg"));
+    for name in [
+        "residual_um",
+        "residual_urad",
+        "iterations",
+        "tool_rotation_deg",
+        "d_norm_before_mm",
+    ] {
+        header.push(name.into());
+    }
+    header
+}
+
+/// The values of point `i` (0-based) from `line` of its file, one per column of [`header`]
+/// (mm, deg, N, Nm, mrad, um, urad); `None` for an empty cell.
+pub fn values(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
+    let deg = |q: &Vector6<f64>| q.iter().map(|v| Some(v.to_degrees())).collect::<Vec<_>>();
+    let (rx, ry, rz) = r.pose.rotation.euler_angles();
+    let p = r.pose.translation.vector * 1e3;
+    let d = &r.deflection;
+    let mut v = vec![Some(i as f64 + 1.0), Some(line as f64)];
+    v.extend(deg(&r.q));
+    v.extend([p.x, p.y, p.z].map(Some));
+    v.extend([rx, ry, rz].map(|a| Some(a.to_degrees())));
+    v.extend(r.wrench.iter().map(|w| Some(*w)));
+    v.extend((0..3).map(|k| Some(d[k] * 1e3)));
+    v.push(Some(d.fixed_rows::<3>(0).norm() * 1e3));
+    v.extend((3..6).map(|k| Some(d[k] * 1e3)));
+    v.extend((0..6).map(|k| r.deflection_std.map(|s| s[k] * 1e3)));
+    v.extend(deg(&r.q_compensated));
+    v.extend([
+        Some(r.residual_position * 1e6),
+        Some(r.residual_rotation * 1e6),
+        Some(r.iterations as f64),
+        Some(r.tool_rotation.to_degrees()),
+        r.deflection_before
+            .map(|b| b.fixed_rows::<3>(0).norm() * 1e3),
+    ]);
+    v
+}
+
+/// One CSV line of a point's values: 9 decimals (1 nm in mm, 2e-11 rad in deg), trailing zeros
+/// dropped, empty cells for missing values.
+pub fn csv_line(values: &[Option<f64>]) -> String {
+    let cells: Vec<String> = values
+        .iter()
+        .map(|v| v.map_or(String::new(), cell))
+        .collect();
+    cells.join(",")
+}
+
+/// A number with 9 decimals, trailing zeros dropped.
+fn cell(x: f64) -> String {
+    let s = format!("{x:.9}");
+    match s.trim_end_matches('0').trim_end_matches('.') {
+        "-0" => "0".into(),
+        t => t.into(),
+    }
+}
+
+/// Points kept for the report's figures, at most (every k-th point, k a power of 2).
+pub const SAMPLE: usize = 20_000;
+
+/// The largest and mean values along a path, accumulated point by point ([`Summary::add`]),
+/// with the sample and the ten largest deflections a report shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    /// Points added.
+    pub points: usize,
+    max_deflection: (f64, u64),
+    sum_deflection: f64,
+    max_rotation: f64,
+    max_residual_position: f64,
+    max_residual_rotation: f64,
+    max_iterations: usize,
+    /// Sum of |d| before and after the tool-axis optimisation, and the rotation range, rad.
+    free: Option<(f64, f64, f64, f64)>,
+    /// Every `stride`-th point (0-based index and result), at most [`SAMPLE`] + 1.
+    pub sample: Vec<(usize, Compensated)>,
+    stride: usize,
+    /// The ten largest deflections (0-based index and result), largest first.
+    pub largest: Vec<(usize, Compensated)>,
+}
+
+fn norm(d: &Vector6<f64>) -> f64 {
+    d.fixed_rows::<3>(0).norm()
+}
+
+impl Summary {
+    /// An empty summary; `free`: the free tool axis was asked for.
+    pub fn new(free: bool) -> Self {
+        Self {
+            points: 0,
+            max_deflection: (0.0, 0),
+            sum_deflection: 0.0,
+            max_rotation: 0.0,
+            max_residual_position: 0.0,
+            max_residual_rotation: 0.0,
+            max_iterations: 0,
+            free: free.then_some((0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY)),
+            sample: Vec::new(),
+            stride: 1,
+            largest: Vec::new(),
+        }
+    }
+
+    /// Adds point `i` (0-based) of the path, from `line` of its file.
+    pub fn add(&mut self, i: usize, line: u64, r: &Compensated) {
+        let d = norm(&r.deflection);
+        if d > self.max_deflection.0 || self.points == 0 {
+            self.max_deflection = (d, line);
+        }
+        self.points += 1;
+        self.sum_deflection += d;
+        let rotation = r.deflection.fixed_rows::<3>(3).norm();
+        self.max_rotation = self.max_rotation.max(rotation);
+        self.max_residual_position = self.max_residual_position.max(r.residual_position);
+        self.max_residual_rotation = self.max_residual_rotation.max(r.residual_rotation);
+        self.max_iterations = self.max_iterations.max(r.iterations);
+        if let (Some((before, after, lo, hi)), Some(b)) = (&mut self.free, &r.deflection_before) {
+            *before += norm(b);
+            *after += d;
+            *lo = lo.min(r.tool_rotation);
+            *hi = hi.max(r.tool_rotation);
+        }
+        self.keep(i, r, d);
+    }
+
+    /// Keeps point `i` in the sample and among the largest, if it belongs there.
+    fn keep(&mut self, i: usize, r: &Compensated, d: f64) {
+        if i % self.stride == 0 {
+            self.sample.push((i, r.clone()));
+            if self.sample.len() > SAMPLE {
+                self.stride *= 2;
+                let stride = self.stride;
+                self.sample.retain(|(k, _)| k % stride == 0);
+            }
+        }
+        let place = self
+            .largest
+            .iter()
+            .position(|(_, c)| norm(&c.deflection) < d);
+        match place {
+            Some(k) => self.largest.insert(k, (i, r.clone())),
+            None => self.largest.push((i, r.clone())),
+        }
+        self.largest.truncate(10);
+    }
+
+    /// The mean TCP deflection, m.
+    pub fn mean_deflection(&self) -> f64 {
+        self.sum_deflection / self.points.max(1) as f64
+    }
+
+    /// The largest TCP deflection (m) and its line.
+    pub fn max_deflection(&self) -> (f64, u64) {
+        self.max_deflection
+    }
+
+    /// With the free tool axis: the mean deflection before and after (m) and the range of the
+    /// rotations chosen (rad).
+    pub fn free_tool_axis(&self) -> Option<(f64, f64, [f64; 2])> {
+        let n = self.points.max(1) as f64;
+        self.free
+            .map(|(before, after, lo, hi)| (before / n, after / n, [lo.min(hi), hi.max(lo)]))
+    }
+
+    /// The summary in document units.
+    pub fn document(&self) -> SummaryDocument {
+        SummaryDocument {
+            points: self.points,
+            max_deflection_mm: mm(self.max_deflection.0),
+            max_deflection_line: self.max_deflection.1,
+            mean_deflection_mm: mm(self.mean_deflection()),
+            max_rotation_mrad: self.max_rotation * 1e3,
+            max_residual_um: self.max_residual_position * 1e6,
+            max_residual_urad: self.max_residual_rotation * 1e6,
+            max_iterations: self.max_iterations,
+            free_tool_axis: self.free.map(|(before, after, lo, hi)| FreeSummary {
+                sum_deflection_before_mm: mm(before),
+                sum_deflection_after_mm: mm(after),
+                tool_rotation_range_deg: [lo.to_degrees(), hi.to_degrees()],
+            }),
+        }
+    }
+}

@@ -1,0 +1,355 @@
+//! The compensate job: the deflection of every point of a machining path under its process
+//! wrench, and the compensated axis angles that cancel it ([`crate::machining::compensate`], Zhang et al.
+//! 2021, Eq. 4-6).
+//!
+//! The path comes from
+//! - a path CSV ([`crate::machining::path`]: axis angles or TCP poses, each with its wrench),
+//!   compensated as it is read, [`CHUNK`] points at a time, in bounded memory whatever its
+//!   length ([`compensate::stream`]); or
+//! - a machining program (G-code, KUKA KRL, ABB RAPID, FANUC LS) and a process file: the wrench of
+//!   every point from the process, the program written back in its own format with the
+//!   compensated targets ([`crate::machining`]).
+//!
+//! Either way the front end's `sink` gets every point's result in path order, chunk by chunk, as
+//! it is computed (to write the CSV rows as they come), and the report holds the summary
+//! ([`Summary`]: the largest and mean values, a sample of the points and the ten largest
+//! deflections) and, for a program, the compensated program and each segment's force and
+//! deflection before and after.
+
+pub mod document;
+
+use super::{Warning, WarningKind};
+use crate::app::compensate::document::Summary;
+use crate::machining::compensate::{
+    self, Compensated, Compliance, FreeToolAxis, Options, PathPoint, CHUNK,
+};
+use crate::machining::path;
+use crate::machining::process::Process;
+use crate::machining::program::generate::{generate, moves};
+use crate::machining::{self, Language, Program};
+use crate::model::Parameter;
+use crate::observation::deflection::Frame;
+use crate::{Coordinates, Error, Result, Setup};
+
+/// The path to compensate.
+pub enum Input<'t> {
+    /// A path CSV's text, named `name` (a file's name) in the report and in errors; `frame` is the
+    /// wrench's frame in rows without a `frame` value.
+    Path {
+        /// The file's name.
+        name: String,
+        /// Its text.
+        text: &'t str,
+        /// The default frame of the wrenches.
+        frame: Frame,
+    },
+    /// A machining program and the process that cuts it.
+    Program {
+        /// The program file's name.
+        name: String,
+        /// Its text.
+        text: &'t str,
+        /// Its language.
+        language: Language,
+        /// The process file's name.
+        process_name: String,
+        /// The process.
+        process: Process,
+        /// G-code arcs are split into chords of at most this sagitta, m.
+        chord_tolerance: f64,
+        /// The language of the compensated program: the program's own, or for G-code a robot
+        /// program of the compensated axis angles ([`generate`]).
+        output: Language,
+    },
+}
+
+/// What to compensate and how.
+pub struct Request<'a> {
+    /// The setup: robot, TCP, springs, joint limits, `[workpiece]` for G-code.
+    pub setup: &'a Setup,
+    /// The joint compliance (and its covariance, for the standard deviations).
+    pub compliance: Compliance,
+    /// The path.
+    pub input: Input<'a>,
+    /// Where inverse kinematics starts, its options, the free tool axis.
+    pub options: Options,
+}
+
+/// A compensated program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProgramReport {
+    /// Its language.
+    pub language: Language,
+    /// The language of the compensated program.
+    pub output: Language,
+    /// The process file's name.
+    pub process: String,
+    /// The program, compensated, in its own format (robot programs with the compensated axis
+    /// angles and every other byte as read, G-code with the compensated positions), or a G-code
+    /// path as a new robot program of the compensated axis angles.
+    pub text: String,
+    /// Each segment's force and deflection, in program order.
+    pub segments: Vec<Segment>,
+}
+
+/// The points of one program line (a G-code block's arc points, a robot program's target).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segment {
+    /// The program line, 1-based.
+    pub line: u64,
+    /// The name of the operation that cuts there; `None` for a rapid move or a block no
+    /// operation covers.
+    pub operation: Option<String>,
+    /// Path points of the segment.
+    pub points: usize,
+    /// The largest process force on the tool, N.
+    pub force: f64,
+    /// The largest TCP deflection, uncompensated, m.
+    pub deflection_before: f64,
+    /// The largest TCP deflection left after compensation (the residual), m.
+    pub deflection_after: f64,
+    /// With a compliance covariance: the largest standard deviation of the deflection's length,
+    /// m.
+    pub deflection_std: Option<f64>,
+}
+
+/// What the compensate job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The path's (or program's) name.
+    pub input: String,
+    /// Where the springs sit.
+    pub springs: Coordinates,
+    /// The parameters of the setup's model (drives first), in the order of `compliance`.
+    pub parameters: Vec<Parameter>,
+    /// The compliance used.
+    pub compliance: Compliance,
+    /// The free tool axis, if asked.
+    pub free_tool_axis: Option<FreeToolAxis>,
+    /// The largest and mean values along the path, a sample, the ten largest deflections.
+    pub summary: Summary,
+    /// With a program: the compensated program and its segments.
+    pub program: Option<ProgramReport>,
+    /// Points without a process force (plunges, rapid moves, blocks no operation covers).
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs the compensate job; `sink(first, points, results)` gets every chunk of points (the
+/// 0-based index of its first point, the points, their results) in path order as it is computed.
+///
+/// # Errors
+/// [`Error::InvalidField`] for options outside their limits ([`Options::validate`]); errors about
+/// the path as [`Error::Input`] naming the path or program file: those of
+/// [`path::points`], [`compensate::stream`], [`machining::read`] and [`machining::compensate`]
+/// (a malformed program, a point outside the joint limits or whose compensation changes the
+/// configuration, naming the line); and those of `sink`.
+pub fn run<E, F>(request: Request<'_>, mut sink: F) -> std::result::Result<Report, E>
+where
+    E: From<Error>,
+    F: FnMut(usize, &[PathPoint], &[Compensated]) -> std::result::Result<(), E>,
+{
+    let Request {
+        setup,
+        compliance,
+        input,
+        options,
+    } = request;
+    options.validate()?;
+    let mut summary = Summary::new(options.free_tool_axis.is_some());
+    let mut add = |first: usize, points: &[PathPoint], results: &[Compensated]| {
+        for (k, (p, r)) in points.iter().zip(results).enumerate() {
+            summary.add(first + k, p.line, r);
+        }
+        sink(first, points, results)
+    };
+    let (name, program, warnings) = match input {
+        Input::Path { name, text, frame } => {
+            let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
+            let mut first = 0;
+            compensate::stream(setup, &compliance, points, &options, |p, r| {
+                add(first, p, r).map_err(Failure::Sink)?;
+                first += p.len();
+                Ok(())
+            })
+            .map_err(|f: Failure<E>| f.into_error(&name))?;
+            (name, None, Vec::new())
+        }
+        Input::Program {
+            name,
+            text,
+            language,
+            process_name,
+            process,
+            chord_tolerance,
+            output,
+        } => {
+            check_output(language, output).map_err(|e| in_input(&name, e))?;
+            let (program, compensated) = (|| {
+                let program = machining::read(text, language, chord_tolerance)?;
+                let compensated =
+                    machining::compensate(setup, &compliance, &program, &process, &options)?;
+                Ok::<_, Error>((program, compensated))
+            })()
+            .map_err(|e| in_input(&name, e))?;
+            for (k, (p, r)) in compensated
+                .points
+                .chunks(CHUNK)
+                .zip(compensated.results.chunks(CHUNK))
+                .enumerate()
+            {
+                add(k * CHUNK, p, r)?;
+            }
+            let warnings = compensated
+                .warnings
+                .iter()
+                .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
+                .collect();
+            let text = match (output, &program) {
+                (Language::Robot(d), Program::GCode(g)) => {
+                    let q: Vec<[f64; 6]> = compensated
+                        .results
+                        .iter()
+                        .map(|r| r.q_compensated.map(f64::to_degrees).into())
+                        .collect();
+                    let moves = moves(&g.points).map_err(|e| in_input(&name, e))?;
+                    generate(d, &program_name(&name), &q, &moves)?
+                }
+                _ => compensated.program.clone(),
+            };
+            let report = ProgramReport {
+                language,
+                output,
+                process: process_name,
+                segments: segments(&compensated, &process),
+                text,
+            };
+            (name, Some(report), warnings)
+        }
+    };
+    Ok(Report {
+        input: name,
+        springs: setup.springs(),
+        free_tool_axis: options.free_tool_axis,
+        parameters: setup.model().parameters(),
+        compliance,
+        summary,
+        program,
+        warnings,
+    })
+}
+
+/// Reads a program file's text in `language` (G-code arcs split to `chord_tolerance`, m), its
+/// errors placed in the file `name`.
+///
+/// # Errors
+/// Those of [`machining::read`], as [`Error::Input`].
+pub fn read_program(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+) -> Result<Program> {
+    machining::read(text, language, chord_tolerance).map_err(|e| in_input(name, e))
+}
+
+/// Refuses an output language a program cannot be written in: a robot program stays in its own.
+fn check_output(language: Language, output: Language) -> Result<()> {
+    match (language, output) {
+        (a, b) if a == b => Ok(()),
+        (Language::GCode, Language::Robot(_)) => Ok(()),
+        _ => Err(Error::InvalidField {
+            field: "out".into(),
+            message: format!(
+                "a program in {} is written back in its own language, not as {}",
+                language.name(),
+                output.name()
+            ),
+        }),
+    }
+}
+
+/// The program name of a generated robot program: the input file's stem, upper case, letters,
+/// digits and `_` (others as `_`), starting with a letter, at most 24 characters.
+fn program_name(input: &str) -> String {
+    let stem = std::path::Path::new(input)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("");
+    let mut name: String = stem
+        .chars()
+        .map(|c| match c.is_ascii_alphanumeric() {
+            true => c.to_ascii_uppercase(),
+            false => '_',
+        })
+        .collect();
+    if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        name.insert(0, 'P');
+    }
+    name.truncate(24);
+    name
+}
+
+/// A failure of the streamed path: the library's, or the sink's.
+enum Failure<E> {
+    Library(Error),
+    Sink(E),
+}
+
+impl<E> From<Error> for Failure<E> {
+    fn from(e: Error) -> Self {
+        Failure::Library(e)
+    }
+}
+
+impl<E: From<Error>> Failure<E> {
+    fn into_error(self, name: &str) -> E {
+        match self {
+            Failure::Library(e) => in_input(name, e).into(),
+            Failure::Sink(e) => e,
+        }
+    }
+}
+
+/// `error` placed in the input `name`; an option's error (the free tool axis' grid) as it is.
+fn in_input(name: &str, error: Error) -> Error {
+    match error {
+        e @ Error::InvalidField { .. } if is_option(&e) => e,
+        e => Error::Input {
+            source_name: name.to_string(),
+            error: Box::new(e),
+        },
+    }
+}
+
+fn is_option(e: &Error) -> bool {
+    matches!(e, Error::InvalidField { field, .. } if ["max_step_deg", "tool_axis_range_deg", "chord_tolerance_mm"].contains(&field.as_str()))
+}
+
+/// The segments of a compensated program: its points grouped by line, in order.
+fn segments(c: &machining::Report, process: &Process) -> Vec<Segment> {
+    let mut out: Vec<Segment> = Vec::new();
+    for ((p, r), op) in c.points.iter().zip(&c.results).zip(&c.operations) {
+        let force = r.wrench.fixed_rows::<3>(0).norm();
+        let before = r.deflection.fixed_rows::<3>(0).norm();
+        let std = r.translation_norm_std;
+        match out.last_mut() {
+            Some(s) if s.line == p.line => {
+                s.points += 1;
+                s.force = s.force.max(force);
+                s.deflection_before = s.deflection_before.max(before);
+                s.deflection_after = s.deflection_after.max(r.residual_position);
+                s.deflection_std = s.deflection_std.zip(std).map(|(a, b)| a.max(b));
+            }
+            _ => out.push(Segment {
+                line: p.line,
+                operation: op.map(|i| process.operations[i].name.clone()),
+                points: 1,
+                force,
+                deflection_before: before,
+                deflection_after: r.residual_position,
+                deflection_std: std,
+            }),
+        }
+    }
+    out
+}

@@ -1,0 +1,136 @@
+//! The document of the evaluate job ([`crate::app::evaluate`]): `stiffid evaluate --json`,
+//! Python's `Setup.evaluate`; its criteria part ([`Criteria`]) is also the `criteria` of the
+//! select document and its values ([`CriteriaValues`]) those of the study's summary.
+
+use crate::app::document::feasibility::{self, Posture};
+use crate::app::document::{finite, mm};
+use crate::app::evaluate::Report;
+use crate::design::Evaluation;
+use crate::Setup;
+use serde::Serialize;
+
+/// Every criterion of a group, and its predicted deviation rates.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Criteria {
+    /// The criteria.
+    #[serde(flatten)]
+    pub values: CriteriaValues,
+    /// Relative standard deviation of each drive's compliance at noise level 1,
+    /// `sqrt([(S^T S)^-1]_jj)`; `null` for a setup without a nominal stiffness.
+    pub relative_std: Option<[Option<f64>; 6]>,
+    /// Predicted mean deviation rate, percent, `[levels][6]` (`null` inside for a joint the group
+    /// cannot identify); `null` for a setup without a nominal stiffness.
+    pub predicted_deviation_pct: Option<Vec<[Option<f64>; 6]>>,
+}
+
+/// The design criteria of a group (smaller is better; `null` for `+infinity`: a singular posture
+/// for `classical` and `zhang2021`, else a value beyond the floating-point range; `null` also for
+/// a criterion the setup lacks a field for: `characteristic_length_mm` for `classical` and
+/// `zhang2021`, `nominal_stiffness_nm_per_rad` for `scaled_cond`, `d_optimal` and `relative_a`,
+/// test postures for `test_pose_mm`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct CriteriaValues {
+    /// `max_i k(J_N)_i` (Eq. 20-21).
+    pub classical: Option<f64>,
+    /// `classical * cond(Psi)`: the paper's index.
+    pub zhang2021: Option<f64>,
+    /// `cond(S)`.
+    pub scaled_cond: Option<f64>,
+    /// `det((S^T S)^-1)^(1/12)`.
+    pub d_optimal: Option<f64>,
+    /// `sqrt(mean_j [(S^T S)^-1]_jj)`.
+    pub relative_a: Option<f64>,
+    /// RMS predicted deflection error at the test postures, mm.
+    pub test_pose_mm: Option<f64>,
+    /// `cond_2(Psi)`, SI units.
+    pub cond_psi: Option<f64>,
+}
+
+impl From<&Evaluation> for CriteriaValues {
+    fn from(e: &Evaluation) -> Self {
+        Self {
+            classical: finite(e.classical),
+            zhang2021: finite(e.zhang2021),
+            scaled_cond: finite(e.scaled_cond),
+            d_optimal: finite(e.d_optimal),
+            relative_a: finite(e.relative_a),
+            test_pose_mm: finite(mm(e.test_pose)),
+            cond_psi: finite(e.cond_psi),
+        }
+    }
+}
+
+impl From<&Evaluation> for Criteria {
+    fn from(e: &Evaluation) -> Self {
+        // NaN only without a nominal stiffness (crate::design::Evaluation).
+        let scaled = !e.relative_std.iter().any(|v| v.is_nan());
+        Self {
+            values: CriteriaValues::from(e),
+            relative_std: scaled.then(|| e.relative_std.map(finite).into()),
+            predicted_deviation_pct: scaled.then(|| {
+                let rows = e.predicted_deviation_pct.iter();
+                rows.map(|row| row.map(finite)).collect()
+            }),
+        }
+    }
+}
+
+/// How well a group identifies one parameter of the setup's model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Parameter {
+    /// `k1` .. `k6`, or the virtual spring's name.
+    pub name: String,
+    /// The unit of its stiffness: `Nm/rad` or `N/mm`.
+    pub unit: &'static str,
+    /// Whether the group identifies it (column-scaled rank of `Psi`).
+    pub identified: bool,
+    /// Predicted mean deviation rate of its stiffness at noise multiple 1, percent; `null` when
+    /// the group's `Psi` is rank deficient or the setup has no nominal stiffness.
+    pub predicted_deviation_pct: Option<f64>,
+}
+
+/// Every parameter of `setup`'s model, drives first, as the group of `e` identifies it.
+pub fn parameters(e: &Evaluation, setup: &Setup) -> Vec<Parameter> {
+    e.parameters(setup)
+        .into_iter()
+        .map(|p| Parameter {
+            name: p.parameter.name,
+            unit: p.parameter.unit.symbol(),
+            identified: p.identified,
+            predicted_deviation_pct: finite(p.predicted_deviation_pct),
+        })
+        .collect()
+}
+
+/// The evaluate document: the criteria, every posture's feasibility in the cell, and how well the
+/// group identifies each parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The criteria.
+    #[serde(flatten)]
+    pub criteria: Criteria,
+    /// Every posture's checks in the cell, in the order of the group.
+    pub feasibility: Vec<Posture>,
+    /// Every parameter of the setup's model, drives first: whether the group identifies it and
+    /// how well.
+    pub parameters: Vec<Parameter>,
+    /// The combinations of parameters the group cannot separate (e.g. `0.71 k6 - 0.71 twin6`);
+    /// empty when it identifies every parameter.
+    pub unidentifiable: Vec<String>,
+}
+
+impl Document {
+    /// The document of an evaluate report on `setup`.
+    pub fn new(report: &Report, setup: &Setup) -> Self {
+        Self {
+            criteria: Criteria::from(&report.evaluation),
+            feasibility: feasibility::postures(&report.feasibility),
+            parameters: parameters(&report.evaluation, setup),
+            unidentifiable: report.unidentifiable.clone(),
+        }
+    }
+}

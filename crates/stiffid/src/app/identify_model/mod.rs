@@ -1,0 +1,132 @@
+//! The identify job over a model with virtual springs ([`crate::model`]): every parameter of the
+//! setup's model identified by least squares, the bounded non-negative fit or a robust fit
+//! ([`crate::identify::model::fit_by`]), with its identifiability and intervals, and if asked the
+//! cross-validation over postures ([`cross_validate_model`]): leave one posture out, or `K`
+//! folds, each fold fitted as the full fit.
+//!
+//! The request is [`identify::Request`]; offsets beside the compliances take the six drives
+//! alone ([`identify::run`]).
+
+pub mod document;
+
+use super::identify::{self, angle_warnings, on_measurements, Folds, Origin, Request};
+use super::{Warning, WarningKind};
+use crate::common::words::count;
+use crate::identify::cross_validation::{cross_validate_model, CrossValidation};
+use crate::identify::model::{fit_by, Fit};
+use crate::observation::{Measurement, Observations};
+use crate::{Error, Result, Setup};
+use std::io::Read;
+
+/// What the identify job found over a model.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The data's name (a file's, or `arrays`).
+    pub data_name: String,
+    /// The fit asked for.
+    pub method: identify::Fit,
+    /// The fit of every parameter of the setup's model.
+    pub fit: Fit,
+    /// Where each measurement came from.
+    pub origin: Origin,
+    /// The cross-validation, if asked: stiffness in the order of [`Fit::parameters`], SI.
+    pub cross_validation: Option<CrossValidation>,
+    /// Results to look at before trusting them (parameters the data cannot separate,
+    /// compliances that are not positive).
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs the identify job over the setup's model (any number of parameters; the six drives alone
+/// give the same compliance as [`identify::run`] to rounding).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`offsets`) when offsets are asked; errors about the data as
+/// [`Error::Input`] naming the data (a file's line and column): those of
+/// the measurement file's parser, [`Observations::from_measurements`], [`fit_by`] and
+/// [`cross_validate_model`] (a fold whose other postures cannot identify every parameter).
+pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
+    let Request {
+        setup,
+        data,
+        fit: method,
+        folds,
+        offsets,
+    } = request;
+    if offsets {
+        return Err(Error::InvalidField {
+            field: "offsets".into(),
+            message:
+                "offsets are fitted beside the six drive springs alone, not beside virtual springs"
+                    .into(),
+        });
+    }
+    let (data_name, origin, (fit, cross_validation)) =
+        on_measurements(setup, data, |m| fit_all(setup, method, folds, m))?;
+    let mut warnings = warnings(&fit);
+    warnings.extend(angle_warnings(&data_name, &origin));
+    Ok(Report {
+        data_name,
+        method,
+        fit,
+        origin,
+        cross_validation,
+        warnings,
+    })
+}
+
+/// The fit of every parameter and the cross-validation if asked.
+fn fit_all(
+    setup: &Setup,
+    method: identify::Fit,
+    folds: Option<Folds>,
+    measurements: &[Measurement],
+) -> Result<(Fit, Option<CrossValidation>)> {
+    let obs = Observations::from_measurements(setup, measurements)?;
+    let method = method.method();
+    let fit = fit_by(&obs, &setup.model().parameters(), method)?;
+    let folds = folds.map(|f| match f {
+        Folds::LeaveOneOut => obs.postures,
+        Folds::Count(k) => k,
+    });
+    let cv = folds
+        .map(|k| cross_validate_model(&obs, &fit, k, method))
+        .transpose()?;
+    Ok((fit, cv))
+}
+
+/// Parameters the data cannot separate; compliances that are not positive.
+fn warnings(fit: &Fit) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let combinations = &fit.identifiability.unidentifiable;
+    if !combinations.is_empty() {
+        let written: Vec<String> = combinations
+            .iter()
+            .map(|c| c.describe(&fit.parameters))
+            .collect();
+        out.push(Warning::new(
+            WarningKind::Unidentifiable,
+            format!(
+                "the data cannot separate every parameter ({}: {}): no intervals for those; measure more postures or drop springs",
+                count(combinations.len(), "combination"),
+                written.join("; ")
+            ),
+        ));
+    }
+    let negative: Vec<&str> = fit
+        .parameters
+        .iter()
+        .zip(fit.compliance.iter())
+        .filter(|(_, h)| !(h.is_finite() && **h > 0.0))
+        .map(|(p, _)| p.name.as_str())
+        .collect();
+    if !negative.is_empty() {
+        out.push(Warning::new(
+            WarningKind::Negative,
+            format!(
+                "{}: compliance not positive, not physical: a non-negative fit bounds the compliances at 0, or compare models with fewer springs",
+                negative.join(", ")
+            ),
+        ));
+    }
+    out
+}

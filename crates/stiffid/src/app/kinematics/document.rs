@@ -1,0 +1,75 @@
+//! The document of the kinematics job ([`crate::app::kinematics`]): `stiffid kinematics --json`,
+//! Python's `Robot.kinematics(...)`. Millimetres and degrees for positions and angles, SI (m/rad,
+//! rad/rad) for the Jacobian, rows `[v; omega]`; base frame.
+
+use crate::app::document::{finite, mm};
+use crate::app::kinematics::Report;
+use crate::robot::kinematics::Coordinates;
+use crate::Robot;
+use serde::Serialize;
+
+/// The kinematics of one posture: mm and degrees for positions and angles, SI (m/rad, rad/rad)
+/// for the Jacobian, rows `[v; omega]`; base frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The robot's name.
+    pub robot: String,
+    /// Where the robot comes from (for a URDF: the file and the tip link used).
+    pub robot_source: String,
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+    /// The joint coordinates of the Jacobian's columns.
+    pub coordinates: Coordinates,
+    /// The characteristic length of the dexterity index, mm.
+    pub characteristic_length_mm: f64,
+    /// Where it comes from: `given`, or `derived` from the robot (the length minimising the
+    /// point's median dexterity over the joint limits,
+    /// `stiffid::setup::prior::robot_characteristic_length`).
+    pub characteristic_length_source: &'static str,
+    /// The point of the Jacobian, flange frame, mm.
+    pub point_mm: [f64; 3],
+    /// The flange's origin, mm.
+    pub flange_position_mm: [f64; 3],
+    /// Rotation matrix of the flange frame in the base frame, row-major.
+    pub flange_rotation: [[f64; 3]; 3],
+    /// The point's position, mm.
+    pub point_position_mm: [f64; 3],
+    /// Row-major, rows vx, vy, vz (m/rad), wx, wy, wz (rad/rad); column j is joint j.
+    pub jacobian: [[f64; 6]; 6],
+    /// The dexterity index k(J_N) (Eq. 20): 1 for an isotropic Jacobian, larger is worse; `null`
+    /// at a singularity.
+    pub dexterity: Option<f64>,
+    /// Origin of each joint frame (after the joint), base frame, mm.
+    pub joint_positions_mm: [[f64; 3]; 6],
+}
+
+impl Document {
+    /// The document of `report` on `robot`.
+    pub fn new(report: &Report, robot: &Robot) -> Self {
+        let f = &report.frames;
+        Document {
+            robot: robot.name().to_string(),
+            robot_source: robot.source().to_string(),
+            q_deg: report.q.map(f64::to_degrees).into(),
+            coordinates: report.coordinates,
+            characteristic_length_mm: mm(report.characteristic_length),
+            characteristic_length_source: match report.derived {
+                true => "derived",
+                false => "given",
+            },
+            point_mm: report.point.map(mm).into(),
+            flange_position_mm: f.flange.translation.vector.map(mm).into(),
+            flange_rotation: rows(&f.flange.rotation.to_rotation_matrix().into_inner()),
+            point_position_mm: f.point(&report.point).map(mm).into(),
+            jacobian: rows(&report.jacobian),
+            dexterity: finite(report.dexterity),
+            joint_positions_mm: f.joints.map(|j| j.translation.vector.map(mm).into()),
+        }
+    }
+}
+
+/// A matrix as an array of rows.
+fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
+}

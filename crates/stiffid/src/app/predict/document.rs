@@ -1,0 +1,172 @@
+//! The document of the predict job ([`crate::app::predict`]): `stiffid predict --json`, Python's
+//! `predict(...)`. `*_std_*` keys are standard deviations from the compliance covariance, `null`
+//! without one.
+
+use crate::app::document::mm;
+use crate::app::predict::{Point, Report};
+use nalgebra::{Matrix6, Vector6};
+use serde::Serialize;
+
+/// The forward model of one posture under one wrench.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The setup as given.
+    pub setup: String,
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+    /// The wrench as given, fx, fy, fz (N), mx, my, mz (Nm), in `wrench_frame`.
+    pub wrench_n_nm: [f64; 6],
+    /// `base` or `tool`.
+    pub wrench_frame: &'static str,
+    /// Where the wrench acts: a tool point in the flange frame, mm.
+    pub wrench_point_mm: [f64; 3],
+    /// The wrench in the base frame, N and Nm.
+    pub wrench_base_frame_n_nm: [f64; 6],
+    /// The drive stiffness used, Nm/rad.
+    pub stiffness_nm_per_rad: [f64; 6],
+    /// Drive torques, Nm.
+    pub torques_nm: [f64; 6],
+    /// Drive deflections, mrad.
+    pub joint_deflections_mrad: [f64; 6],
+    /// Rotation of the flange, base frame, mrad.
+    pub flange_rotation_mrad: [f64; 3],
+    /// Its standard deviation, mrad.
+    pub flange_rotation_std_mrad: Option<[f64; 3]>,
+    /// Every measuring point of the setup's tool.
+    pub measuring_points: Vec<PointDocument>,
+    /// The TCP's position, base frame, mm.
+    pub tcp_mm: [f64; 3],
+    /// The TCP's displacement, base frame, mm.
+    pub tcp_deflection_mm: [f64; 3],
+    /// Its standard deviation, mm.
+    pub tcp_deflection_std_mm: Option<[f64; 3]>,
+    /// The tool's rotation, base frame, mrad.
+    pub tcp_rotation_mrad: [f64; 3],
+    /// Its standard deviation, mrad.
+    pub tcp_rotation_std_mrad: Option<[f64; 3]>,
+    /// `C_x` of the loaded point.
+    pub cartesian_compliance: ComplianceDocument,
+    /// `K_x` of the loaded point; `null` where `C_x` is singular.
+    pub cartesian_stiffness: Option<StiffnessDocument>,
+}
+
+/// One measuring point's displacement.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PointDocument {
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// Its position, base frame, mm.
+    pub position_mm: [f64; 3],
+    /// Its displacement, base frame, mm.
+    pub displacement_mm: [f64; 3],
+    /// Its standard deviation, mm.
+    pub displacement_std_mm: Option<[f64; 3]>,
+    /// The displacement's length, mm.
+    pub displacement_norm_mm: f64,
+}
+
+/// `C_x` of the loaded point, base frame, by blocks and whole (rows and columns `[f; m]` and
+/// `[translation; rotation]`, SI).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ComplianceDocument {
+    /// Translation per force, m/N.
+    pub translation_per_force_m_per_n: [[f64; 3]; 3],
+    /// Translation per moment, m/Nm.
+    pub translation_per_moment_m_per_nm: [[f64; 3]; 3],
+    /// Rotation per force, rad/N.
+    pub rotation_per_force_rad_per_n: [[f64; 3]; 3],
+    /// Rotation per moment, rad/Nm.
+    pub rotation_per_moment_rad_per_nm: [[f64; 3]; 3],
+    /// The whole 6x6 matrix, SI.
+    pub matrix_si: [[f64; 6]; 6],
+}
+
+/// `K_x = C_x^-1` of the loaded point, base frame, by blocks and whole (SI).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct StiffnessDocument {
+    /// Force per translation, N/m.
+    pub force_per_translation_n_per_m: [[f64; 3]; 3],
+    /// Force per rotation, N/rad.
+    pub force_per_rotation_n_per_rad: [[f64; 3]; 3],
+    /// Moment per translation, Nm/m.
+    pub moment_per_translation_nm_per_m: [[f64; 3]; 3],
+    /// Moment per rotation, Nm/rad.
+    pub moment_per_rotation_nm_per_rad: [[f64; 3]; 3],
+    /// The whole 6x6 matrix, SI.
+    pub matrix_si: [[f64; 6]; 6],
+}
+
+impl Document {
+    /// The document of `report`, on the setup named `setup_name` (as the user gave it).
+    pub fn new(report: &Report, setup_name: &str) -> Self {
+        let tcp = &report.tcp;
+        let d = &tcp.deflection;
+        let (c, k) = (&report.cartesian_compliance, &report.cartesian_stiffness);
+        Document {
+            setup: setup_name.to_string(),
+            q_deg: report.q.map(f64::to_degrees).into(),
+            wrench_n_nm: report.wrench.into(),
+            wrench_frame: report.frame.name(),
+            wrench_point_mm: report.at.map(mm).into(),
+            wrench_base_frame_n_nm: report.base_wrench.into(),
+            stiffness_nm_per_rad: report.compliance.drives_h().map(|h| 1.0 / h).into(),
+            torques_nm: std::array::from_fn(|j| d.torques[j]),
+            joint_deflections_mrad: std::array::from_fn(|j| d.joint_deflections[j] * 1e3),
+            flange_rotation_mrad: xyz(&d.displacement, 3, 1e3),
+            flange_rotation_std_mrad: tcp.std.map(|s| xyz(&s, 3, 1e3)),
+            measuring_points: report
+                .measuring_points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| PointDocument::new(i, p))
+                .collect(),
+            tcp_mm: tcp.position.map(mm).into(),
+            tcp_deflection_mm: xyz(&d.displacement, 0, 1e3),
+            tcp_deflection_std_mm: tcp.std.map(|s| xyz(&s, 0, 1e3)),
+            tcp_rotation_mrad: xyz(&d.displacement, 3, 1e3),
+            tcp_rotation_std_mrad: tcp.std.map(|s| xyz(&s, 3, 1e3)),
+            cartesian_compliance: ComplianceDocument {
+                translation_per_force_m_per_n: block(c, 0, 0),
+                translation_per_moment_m_per_nm: block(c, 0, 3),
+                rotation_per_force_rad_per_n: block(c, 3, 0),
+                rotation_per_moment_rad_per_nm: block(c, 3, 3),
+                matrix_si: block(c, 0, 0),
+            },
+            cartesian_stiffness: k.as_ref().map(|k| StiffnessDocument {
+                force_per_translation_n_per_m: block(k, 0, 0),
+                force_per_rotation_n_per_rad: block(k, 0, 3),
+                moment_per_translation_nm_per_m: block(k, 3, 0),
+                moment_per_rotation_nm_per_rad: block(k, 3, 3),
+                matrix_si: block(k, 0, 0),
+            }),
+        }
+    }
+}
+
+impl PointDocument {
+    /// Measuring point `i` (0-based).
+    fn new(i: usize, p: &Point) -> Self {
+        let t = p.deflection.displacement.fixed_rows::<3>(0) * 1e3;
+        PointDocument {
+            point: i + 1,
+            position_mm: p.position.map(mm).into(),
+            displacement_mm: t.into(),
+            displacement_std_mm: p.std.map(|s| xyz(&s, 0, 1e3)),
+            displacement_norm_mm: t.norm(),
+        }
+    }
+}
+
+/// The `N x N` block of `m` from row `r0`, column `c0`.
+fn block<const N: usize>(m: &Matrix6<f64>, r0: usize, c0: usize) -> [[f64; N]; N] {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r0 + r, c0 + c)]))
+}
+
+/// Three entries of `v` from `from`, times `scale`.
+fn xyz(v: &Vector6<f64>, from: usize, scale: f64) -> [f64; 3] {
+    std::array::from_fn(|i| v[from + i] * scale)
+}

@@ -1,0 +1,137 @@
+//! The predict job: the forward model (Zhang et al. 2021, Eq. 3-7) of one posture under one
+//! wrench: joint torques and deflections, the displacement of every measuring point and of the
+//! TCP (with standard deviations from a compliance covariance), and the Cartesian compliance and
+//! stiffness of the loaded point ([`crate::observation::deflection`], [`crate::observation::cartesian`]).
+
+pub mod document;
+
+use crate::model::Compliance;
+use crate::observation::cartesian;
+use crate::observation::deflection::{base_wrench, Frame, PointDeflection, Points};
+use crate::robot::kinematics::Frames;
+use crate::{Result, Setup};
+use nalgebra::{Matrix6, Vector3, Vector6};
+
+/// What to predict.
+#[derive(Debug, Clone)]
+pub struct Request<'a> {
+    /// The setup: robot, tool, model.
+    pub setup: &'a Setup,
+    /// Axis angles q1..q6, rad, within the robot's limits.
+    pub q: Vector6<f64>,
+    /// The wrench `[f; m]`, N and Nm, in `frame`.
+    pub wrench: Vector6<f64>,
+    /// The frame of the wrench.
+    pub frame: Frame,
+    /// Where the wrench acts, flange frame, m; `None`: the setup's loading point.
+    pub at: Option<Vector3<f64>>,
+    /// The compliance of every parameter of the setup's model (with its covariance, for the
+    /// standard deviations); `None`: the setup's nominal.
+    pub compliance: Option<Compliance>,
+}
+
+/// One tool point's deflection, and its standard deviation when the compliance has a covariance.
+#[derive(Debug, Clone)]
+pub struct Point {
+    /// Its position, base frame, m.
+    pub position: Vector3<f64>,
+    /// Its deflection under the wrench.
+    pub deflection: PointDeflection,
+    /// The standard deviation of `deflection.displacement` (m, rad).
+    pub std: Option<Vector6<f64>>,
+}
+
+/// What the predict job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// Axis angles, rad.
+    pub q: Vector6<f64>,
+    /// The wrench as given, N and Nm, in `frame`.
+    pub wrench: Vector6<f64>,
+    /// The frame of `wrench`.
+    pub frame: Frame,
+    /// Where the wrench acts, flange frame, m.
+    pub at: Vector3<f64>,
+    /// The wrench in the base frame, N and Nm.
+    pub base_wrench: Vector6<f64>,
+    /// The compliance used.
+    pub compliance: Compliance,
+    /// Every measuring point of the setup's tool, in its order.
+    pub measuring_points: Vec<Point>,
+    /// The TCP.
+    pub tcp: Point,
+    /// `C_x` of the loaded point, base frame, SI ([`cartesian::compliance`]).
+    pub cartesian_compliance: Matrix6<f64>,
+    /// `K_x = C_x^-1` of the loaded point; `None` where `C_x` is singular
+    /// ([`cartesian::stiffness`]).
+    pub cartesian_stiffness: Option<Matrix6<f64>>,
+}
+
+/// Runs the predict job.
+///
+/// # Errors
+/// [`crate::Error::OutsideBox`] (field `q_deg[i]`) for an axis angle outside the robot's limits;
+/// without a compliance, those of [`crate::Setup::model_compliance`] (no nominal stiffness); with one, those
+/// of [`Compliance::check`] (not one value per parameter of the setup's model).
+pub fn run(request: Request<'_>) -> Result<Report> {
+    let Request {
+        setup,
+        q,
+        wrench,
+        frame,
+        at,
+        compliance,
+    } = request;
+    let field = |a: usize| format!("q_deg[{}]", a + 1);
+    setup
+        .robot()
+        .limits()
+        .check(&q, "the robot's limits", field)?;
+    let compliance = match compliance {
+        Some(c) => {
+            c.check(setup.model())?;
+            c
+        }
+        None => setup.model_compliance("predict without a stiffness")?,
+    };
+    let at = at.unwrap_or(setup.tool().loading_point);
+    let frames = setup.robot().frames(&q);
+    let base = base_wrench(&frames, &wrench, frame);
+    let point = |observed: &Vector3<f64>| point(setup, &frames, &at, observed, &base, &compliance);
+    Ok(Report {
+        measuring_points: setup.tool().measuring_points.iter().map(point).collect(),
+        tcp: point(&setup.tool().tcp),
+        cartesian_compliance: cartesian::compliance(setup, &frames, &at, &compliance.h),
+        cartesian_stiffness: cartesian::stiffness(setup, &frames, &at, &compliance.h),
+        q,
+        wrench,
+        frame,
+        at,
+        base_wrench: base,
+        compliance,
+    })
+}
+
+/// The deflection of `observed` (flange frame, m) under the base-frame wrench `base` at `at`.
+fn point(
+    setup: &Setup,
+    frames: &Frames,
+    at: &Vector3<f64>,
+    observed: &Vector3<f64>,
+    base: &Vector6<f64>,
+    compliance: &Compliance,
+) -> Point {
+    let points = Points {
+        setup,
+        frames,
+        loaded: at,
+        observed,
+    };
+    let deflection = points.deflection(base, &compliance.h);
+    let std = compliance.covariance.as_ref().map(|c| deflection.std(c));
+    Point {
+        position: frames.point(observed),
+        deflection,
+        std,
+    }
+}

@@ -1,0 +1,296 @@
+//! The documents of the register and calibrate jobs ([`crate::app::register`],
+//! [`crate::app::calibrate`]): `stiffid register --json`, `stiffid register --postures N
+//! --json`, `stiffid calibrate-cell --json`, Python's `register(...)` and `calibrate_cell(...)`.
+
+use crate::app::document::{degrees, mm};
+use crate::app::{calibrate, register};
+use nalgebra::{Isometry3, Vector3};
+use serde::Serialize;
+
+/// A vector in m, in mm.
+fn mm3(v: &Vector3<f64>) -> [f64; 3] {
+    [mm(v.x), mm(v.y), mm(v.z)]
+}
+
+/// The tracker frame in the robot base frame, as a setup file writes it, with its standard
+/// deviation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Transform {
+    /// Translation, mm.
+    pub xyz_mm: [f64; 3],
+    /// Fixed-axis roll, pitch, yaw, deg (as the setup's `base_from_tracker`).
+    pub rpy_deg: [f64; 3],
+    /// Standard deviations (linearised, from the residuals).
+    #[serde(flatten)]
+    pub std: TransformStd,
+}
+
+impl Transform {
+    /// `base_from_tracker` (SI) with the standard deviations `std` (m, then rad).
+    pub fn new(base_from_tracker: &Isometry3<f64>, std: [f64; 6]) -> Self {
+        let (r, p, y) = base_from_tracker.rotation.euler_angles();
+        Transform {
+            xyz_mm: mm3(&base_from_tracker.translation.vector),
+            rpy_deg: [r, p, y].map(f64::to_degrees),
+            std: TransformStd::new(std),
+        }
+    }
+}
+
+/// The register document: the tracker's transform, its quality and uncertainty.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The setup as given.
+    pub setup: String,
+    /// The readings file.
+    pub data: String,
+    /// The tracker frame in the robot base frame.
+    #[serde(flatten)]
+    pub transform: Transform,
+    /// RMS of the residual lengths, mm.
+    pub residual_rms_mm: f64,
+    /// Noise per coordinate estimated from the residuals, mm.
+    pub noise_std_mm: f64,
+    /// Every unloaded reading's residual, in file order.
+    pub points: Vec<Residual>,
+    /// The `[tracker]` fragment of the setup file.
+    pub fragment: String,
+}
+
+/// One reading's residual.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Residual {
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// The line of the readings file.
+    pub line: u64,
+    /// Base-frame point minus the transformed tracker reading, mm.
+    pub residual_mm: [f64; 3],
+    /// Its length, mm.
+    pub residual_norm_mm: f64,
+}
+
+impl Document {
+    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
+    pub fn new(report: &register::Report, setup_name: &str) -> Self {
+        let (data, fit) = (&report.readings, &report.registration);
+        let unloaded = data
+            .readings
+            .iter()
+            .zip(&data.lines)
+            .filter(|(r, _)| r.unloaded());
+        let points = unloaded
+            .zip(&fit.residuals)
+            .map(|((r, line), residual)| Residual {
+                posture: data.labels[r.posture].clone(),
+                point: r.point + 1,
+                line: *line,
+                residual_mm: mm3(residual),
+                residual_norm_mm: mm(residual.norm()),
+            })
+            .collect();
+        Document {
+            setup: setup_name.to_string(),
+            data: report.data_name.clone(),
+            transform: Transform::new(&fit.base_from_tracker, fit.std().into()),
+            residual_rms_mm: mm(fit.rms),
+            noise_std_mm: mm(fit.sigma),
+            points,
+            fragment: fit.fragment(),
+        }
+    }
+}
+
+/// The calibrate-cell document: the transform, the measuring points and the robot's unloaded
+/// absolute error.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Calibration {
+    /// The setup as given.
+    pub setup: String,
+    /// The readings file.
+    pub data: String,
+    /// The tracker frame in the robot base frame.
+    #[serde(flatten)]
+    pub transform: Transform,
+    /// Every measuring point of the setup.
+    pub points: Vec<ToolPoint>,
+    /// RMS of the residual lengths, mm: the robot's unloaded absolute positioning error at these
+    /// postures (with the tracker noise).
+    pub absolute_error_rms_mm: f64,
+    /// Noise per coordinate estimated from the residuals, mm.
+    pub noise_std_mm: f64,
+    /// Unloaded readings used.
+    pub readings: usize,
+    /// Gauss-Newton iterations.
+    pub iterations: usize,
+    /// The corrected fragment of the setup file.
+    pub fragment: String,
+}
+
+/// One measuring point: the setup's, the fitted, the shift and its standard deviation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ToolPoint {
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// The setup's value, flange frame, mm.
+    pub setup_mm: [f64; 3],
+    /// The fitted value, flange frame, mm.
+    pub fitted_mm: [f64; 3],
+    /// Fitted minus setup, mm.
+    pub shift_mm: [f64; 3],
+    /// Standard deviation of the fitted coordinates, mm; `null` for a point never read.
+    pub std_mm: Option<[f64; 3]>,
+}
+
+impl Calibration {
+    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
+    pub fn new(report: &calibrate::Report, setup_name: &str) -> Self {
+        let fit = &report.calibration;
+        let points: Vec<ToolPoint> = (0..report.setup_points.len())
+            .map(|k| ToolPoint {
+                point: k + 1,
+                setup_mm: mm3(&report.setup_points[k]),
+                fitted_mm: mm3(&fit.points[k]),
+                shift_mm: mm3(&fit.shifts[k]),
+                std_mm: fit.point_std[k].as_ref().map(mm3),
+            })
+            .collect();
+        let transform = Transform::new(&fit.base_from_tracker, fit.transform_std);
+        let list = |v: [f64; 3]| format!("[{:.6}, {:.6}, {:.6}]", v[0], v[1], v[2]);
+        let measuring: Vec<String> = points.iter().map(|p| list(p.fitted_mm)).collect();
+        let fragment = format!(
+            "# cell calibration from {} unloaded readings: unloaded absolute error RMS {:.4} mm\n\
+             [tracker]\nbase_from_tracker = {{ xyz_mm = {}, rpy_deg = {} }}\n\
+             # in [tool]:\n# measuring_points_mm = [{}]\n",
+            report.readings,
+            mm(fit.rms),
+            list(transform.xyz_mm),
+            list(transform.rpy_deg),
+            measuring.join(", ")
+        );
+        Calibration {
+            setup: setup_name.to_string(),
+            data: report.data_name.clone(),
+            transform,
+            points,
+            absolute_error_rms_mm: mm(fit.rms),
+            noise_std_mm: mm(fit.sigma),
+            readings: report.readings,
+            iterations: fit.iterations,
+            fragment,
+        }
+    }
+}
+
+/// The registration postures proposed (`stiffid register --postures N --json`, Python's
+/// `register(setup, postures=N)`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Proposal {
+    /// The setup as given.
+    pub setup: String,
+    /// The seed of the candidates, the exchange runs and the random groups.
+    pub seed: u64,
+    /// The postures, `R1`, `R2`, ...: axis angles, deg.
+    pub postures: Vec<ProposedPosture>,
+    /// Measuring points read per posture.
+    pub measuring_points: usize,
+    /// The tracker noise per coordinate of one reading (the setup's, level multiple 1), mm.
+    pub noise_std_mm: f64,
+    /// Predicted standard deviations of the transform at that noise (linearised).
+    #[serde(flatten)]
+    pub std: TransformStd,
+    /// The criterion minimised: the root of the summed variances of the three rotation angles,
+    /// deg.
+    pub rotation_std_total_deg: f64,
+    /// The same, median over 101 groups of as many feasible candidates drawn at random, deg.
+    pub random_median_rotation_std_total_deg: f64,
+    /// Candidate postures drawn in the bounds.
+    pub candidates: usize,
+    /// Candidates that pass the cell's checks.
+    pub feasible: usize,
+    /// The cell's checks the postures pass (those that apply without the load).
+    pub checks: Vec<&'static str>,
+    /// How the group was chosen (`enumeration` or `exchange`).
+    pub method: &'static str,
+    /// Groups evaluated.
+    pub evaluations: usize,
+    /// The readings CSV to fill in: one row per posture and measuring point, the tracker's
+    /// columns empty.
+    pub readings_template: String,
+}
+
+/// A posture proposed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ProposedPosture {
+    /// Its label, `R1`, `R2`, ...
+    pub posture: String,
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+}
+
+/// Standard deviations of a transform's translation and rotation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct TransformStd {
+    /// Standard deviation of the translation, base frame, mm (linearised: from the residuals
+    /// of a fit, from the tracker noise for proposed postures).
+    pub translation_std_mm: [f64; 3],
+    /// Standard deviation of the rotation about the base x, y, z axes, deg.
+    pub rotation_std_deg: [f64; 3],
+}
+
+impl TransformStd {
+    /// Of the standard deviations `std` (m, then rad).
+    pub fn new(std: [f64; 6]) -> Self {
+        TransformStd {
+            translation_std_mm: [mm(std[0]), mm(std[1]), mm(std[2])],
+            rotation_std_deg: [std[3], std[4], std[5]].map(f64::to_degrees),
+        }
+    }
+}
+
+impl Proposal {
+    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
+    pub fn new(report: &register::DesignReport, setup_name: &str) -> Self {
+        let d = &report.design;
+        let postures: Vec<ProposedPosture> = (degrees(&d.postures).into_iter().enumerate())
+            .map(|(i, q_deg)| ProposedPosture {
+                posture: format!("R{}", i + 1),
+                q_deg,
+            })
+            .collect();
+        let points = report.measuring_points;
+        let mut template = crate::io::readings::header() + "\n";
+        for p in &postures {
+            let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:.6}")).collect();
+            for point in 1..=points {
+                template += &format!("{},{point},{},,,\n", p.posture, q.join(","));
+            }
+        }
+        Proposal {
+            setup: setup_name.to_string(),
+            seed: report.seed,
+            postures,
+            measuring_points: points,
+            noise_std_mm: mm(d.noise_std),
+            std: TransformStd::new(d.std().into()),
+            rotation_std_total_deg: d.rotation_std.to_degrees(),
+            random_median_rotation_std_total_deg: d.random_median_rotation_std.to_degrees(),
+            candidates: d.candidates,
+            feasible: d.feasible,
+            checks: report.checks.iter().map(|k| k.key()).collect(),
+            method: d.method.name(),
+            evaluations: d.evaluations,
+            readings_template: template,
+        }
+    }
+}

@@ -1,0 +1,94 @@
+//! The register job: the laser tracker's transform to the robot base from measuring points read
+//! by the tracker at known axis angles ([`crate::metrology::register`]: Umeyama's least-squares rigid
+//! transform), its residuals and standard deviation; or the postures to register in
+//! ([`propose`], [`crate::metrology::register::design`]).
+
+pub mod document;
+
+use super::in_data;
+pub use super::readings::{read, Request};
+use super::Warning;
+use crate::cell::{CheckKind, Checker};
+use crate::io::readings::Readings;
+use crate::metrology::register::design::{self, Design};
+use crate::metrology::register::{self, Registration};
+use crate::{Result, Setup};
+
+/// What the register job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The readings file's name.
+    pub data_name: String,
+    /// The readings (their labels and lines name the residuals).
+    pub readings: Readings,
+    /// The transform, its residuals (one per unloaded reading, in file order) and covariance.
+    pub registration: Registration,
+    /// Inputs to look at before trusting the result (angles that look like radians).
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs the register job.
+///
+/// # Errors
+/// Those of [`read`]; of [`register::correspondences`] and [`register::fit`] (readings in the
+/// base frame, fewer than [`register::MIN_POINTS`] unloaded readings, collinear points), as
+/// [`crate::Error::Input`] naming the file.
+pub fn run(request: &Request<'_>) -> Result<Report> {
+    let (data, warnings) = read(request)?;
+    let name = &request.name;
+    let points = register::correspondences(request.setup, &data).map_err(|e| in_data(name, e))?;
+    let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
+    Ok(Report {
+        data_name: name.clone(),
+        readings: data,
+        registration,
+        warnings,
+    })
+}
+
+/// Registration postures to propose: `stiffid register --postures N`.
+pub struct DesignRequest<'a> {
+    /// The setup: robot, tool (its measuring points), bounds, cell, tracker, noise.
+    pub setup: &'a Setup,
+    /// How many postures (1 to [`design::MAX_POSTURES`]).
+    pub postures: usize,
+    /// The seed, the candidates and the exchange runs.
+    pub options: design::Options,
+}
+
+/// The registration postures proposed.
+#[derive(Debug, Clone)]
+pub struct DesignReport {
+    /// The postures and their predicted covariance ([`design::design`]).
+    pub design: Design,
+    /// The cell's checks the postures pass (those that apply without the load).
+    pub checks: Vec<CheckKind>,
+    /// Measuring points read per posture.
+    pub measuring_points: usize,
+    /// The seed.
+    pub seed: u64,
+    /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// Proposes the registration postures that minimise the rotation's standard deviation
+/// ([`design::design`]).
+///
+/// # Errors
+/// Those of [`design::design`].
+pub fn propose(request: &DesignRequest<'_>) -> Result<DesignReport> {
+    request.setup.check_bodies()?;
+    let design = design::design(request.setup, request.postures, &request.options)?;
+    let checker = Checker::new(request.setup);
+    let checks = (checker.kinds().iter())
+        .filter(|k| !design::LOAD_CHECKS.contains(k))
+        .copied()
+        .collect();
+    Ok(DesignReport {
+        design,
+        checks,
+        measuring_points: request.setup.tool().measuring_points.len(),
+        seed: request.options.seed,
+        warnings: Vec::new(),
+    })
+}

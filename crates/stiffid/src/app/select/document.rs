@@ -1,0 +1,277 @@
+//! The document of the select job ([`crate::app::select`]): `stiffid select --json`, Python's
+//! `Setup.select`.
+
+use crate::app::document::feasibility::describe;
+use crate::app::document::{degrees, finite};
+use crate::app::evaluate::document::Criteria;
+use crate::app::select::{PoolReport, Report, Unconstrained};
+use crate::common::choice::Choice;
+use crate::design::target::{TargetOutcome, TargetStep};
+use crate::design::Termination;
+use crate::Setup;
+use serde::Serialize;
+
+/// The select document: the group found, how, why the search stopped, and its criteria.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The setup's name.
+    pub setup: String,
+    /// The criterion minimised (`relative-a`, ...).
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::criterion"))]
+    pub criterion: &'static str,
+    /// `local`, `global` or `pool`.
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::method"))]
+    pub search: &'static str,
+    /// The SQP objective's gradient (`exact` or `fd`); absent for a pool choice.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gradient: Option<&'static str>,
+    /// The SQP the searches ran (`slsqp` or `active-set`: the default `auto` resolved for the
+    /// criterion); absent for a pool choice.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::solver"))]
+    pub solver: Option<&'static str>,
+    /// The seed of the random start group, the global starts or the pool's exchange runs.
+    pub seed: u64,
+    /// The criterion of the start group; `null` for a pool choice (no start group) or an
+    /// infinite value.
+    pub start_value: Option<f64>,
+    /// The criterion of the group found (`null` if infinite).
+    pub value: Option<f64>,
+    /// Criterion evaluations of the search (of every group size tried, with a target).
+    pub evaluations: usize,
+    /// Wall-clock time of the search, s.
+    pub elapsed_s: f64,
+    /// Why the local search that found the group stopped (`converged`, `step-tolerance`,
+    /// `evaluation-limit`, `line-search-failed`, `infeasible`, `subproblem-failed`; only the
+    /// first two say that the SQP found a local optimum); absent for a pool choice.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::termination"))]
+    pub termination: Option<&'static str>,
+    /// How many local searches (the global search's starts; one for a local search) stopped for
+    /// each reason, every reason listed; absent for a pool choice.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub terminations: Option<Vec<TerminationCount>>,
+    /// The group found, axis angles q1..q6, deg, one row per posture.
+    pub postures_deg: Vec<[f64; 6]>,
+    /// Every criterion of the group found.
+    pub criteria: Criteria,
+    /// With a pool: the pool and the postures chosen from it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pool: Option<Pool>,
+    /// With a target: every group size tried.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target: Option<Target>,
+    /// With cell checks, for a local or global search: the same search without them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unconstrained: Option<Free>,
+    /// The postures file written (the command's `--out`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub out: Option<String>,
+    /// The measurement plan's directory (the command's `--report`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub report: Option<String>,
+}
+
+/// How many local searches stopped for one reason.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct TerminationCount {
+    /// The reason.
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::termination"))]
+    pub termination: &'static str,
+    /// Local searches that stopped for it.
+    pub searches: usize,
+}
+
+/// The pool and what was chosen from it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Pool {
+    /// The pool file (`arrays` for a pool given as arrays).
+    pub file: String,
+    /// Postures in the pool.
+    pub postures: usize,
+    /// Postures that pass every check of the cell.
+    pub usable: usize,
+    /// The postures skipped, and why.
+    pub skipped: Vec<Skipped>,
+    /// How the group was chosen (`enumeration` or `exchange`).
+    pub method: &'static str,
+    /// The chosen postures' numbers in the pool (1-based).
+    pub chosen: Vec<usize>,
+}
+
+/// A pool posture that cannot be measured, and why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Skipped {
+    /// Its number in the pool (1-based).
+    pub posture: usize,
+    /// The checks it fails (`floor`, `rope`, ...).
+    pub checks: Vec<&'static str>,
+    /// Every failing check in words, `; `-separated.
+    pub reason: String,
+}
+
+/// The group sizes tried for a target.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Target {
+    /// The target: predicted mean deviation rate at noise level multiple 1, percent.
+    pub target_pct: f64,
+    /// The size of the group chosen.
+    pub postures: usize,
+    /// Every group size tried, smallest first.
+    pub steps: Vec<Step>,
+}
+
+/// One group size tried.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Step {
+    /// Postures in the group.
+    pub postures: usize,
+    /// The joint (1-based) with the largest predicted rate.
+    pub worst_joint: usize,
+    /// Its predicted mean deviation rate, percent (`null`: the group cannot identify it).
+    pub worst_joint_pct: Option<f64>,
+    /// Predicted mean deviation rate of each joint, percent.
+    pub deviation_pct: [Option<f64>; 6],
+}
+
+/// The unconstrained optimum beside the feasible one: what feasibility costs.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Free {
+    /// Its criterion (`null` if infinite).
+    pub value: Option<f64>,
+    /// Why its search stopped.
+    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::termination"))]
+    pub termination: &'static str,
+    /// Axis angles q1..q6, deg, one row per posture.
+    pub postures_deg: Vec<[f64; 6]>,
+    /// Every criterion of the unconstrained group.
+    pub criteria: Criteria,
+}
+
+impl Document {
+    /// The document of a select report on `setup` (`out` and `report` left out: the command
+    /// fills them in).
+    pub fn new(r: &Report, setup: &Setup) -> Self {
+        Self {
+            setup: setup.name().into(),
+            criterion: r.criterion.name(),
+            search: r.method.name(),
+            gradient: r.gradient.map(|g| g.name()),
+            solver: r.solver.map(|s| s.name()),
+            seed: r.seed,
+            start_value: r.start_value.and_then(finite),
+            value: finite(r.value),
+            evaluations: r.evaluations,
+            elapsed_s: r.elapsed_s,
+            termination: r.termination.map(Termination::name),
+            terminations: r.termination.map(|_| counts(&r.terminations)),
+            postures_deg: degrees(&r.postures),
+            criteria: Criteria::from(&r.evaluation),
+            pool: r.pool.as_ref().map(Pool::from),
+            target: r.target.as_ref().map(Target::from),
+            unconstrained: r.unconstrained.as_ref().map(Free::from),
+            out: None,
+            report: None,
+        }
+    }
+}
+
+/// How many of `terminations` are of each reason, every reason listed.
+fn counts(terminations: &[Termination]) -> Vec<TerminationCount> {
+    let all = Termination::ALL.iter();
+    all.map(|t| TerminationCount {
+        termination: t.name(),
+        searches: t.count(terminations),
+    })
+    .collect()
+}
+
+impl From<&PoolReport> for Pool {
+    fn from(p: &PoolReport) -> Self {
+        Self {
+            file: p.name.clone(),
+            postures: p.total,
+            usable: p.usable,
+            skipped: (p.skipped.iter())
+                .map(|s| Skipped {
+                    posture: s.posture,
+                    checks: s.checks.iter().map(|c| c.kind.key()).collect(),
+                    reason: s.checks.iter().map(describe).collect::<Vec<_>>().join("; "),
+                })
+                .collect(),
+            method: p.method.name(),
+            chosen: p.chosen.clone(),
+        }
+    }
+}
+
+impl From<&TargetOutcome> for Target {
+    fn from(t: &TargetOutcome) -> Self {
+        Self {
+            target_pct: t.target_pct,
+            postures: t.steps.last().map_or(0, |s| s.postures.len()),
+            steps: t.steps.iter().map(Step::from).collect(),
+        }
+    }
+}
+
+impl From<&TargetStep> for Step {
+    fn from(s: &TargetStep) -> Self {
+        let (j, worst) = s.worst_joint();
+        Self {
+            postures: s.postures.len(),
+            worst_joint: j + 1,
+            worst_joint_pct: finite(worst),
+            deviation_pct: s.deviation_pct.map(finite),
+        }
+    }
+}
+
+impl From<&Unconstrained> for Free {
+    fn from(u: &Unconstrained) -> Self {
+        Self {
+            value: finite(u.value),
+            termination: u.termination.name(),
+            postures_deg: degrees(&u.postures),
+            criteria: Criteria::from(&u.evaluation),
+        }
+    }
+}
+
+#[cfg(feature = "schema")]
+mod schema {
+    use crate::app::select::Method;
+    use crate::common::choice::{names, Choice};
+    use crate::design::{Criterion, Solver, Termination};
+    use schemars::{json_schema, Schema, SchemaGenerator};
+
+    fn one_of<T: Choice>() -> Schema {
+        json_schema!({ "type": "string", "enum": names::<T>() })
+    }
+
+    pub fn criterion(_: &mut SchemaGenerator) -> Schema {
+        one_of::<Criterion>()
+    }
+
+    pub fn method(_: &mut SchemaGenerator) -> Schema {
+        one_of::<Method>()
+    }
+
+    /// The solvers a search runs (never `auto`).
+    pub fn solver(_: &mut SchemaGenerator) -> Schema {
+        let names: Vec<&str> = Solver::CONCRETE.iter().map(|s| s.name()).collect();
+        json_schema!({ "type": "string", "enum": names })
+    }
+
+    pub fn termination(_: &mut SchemaGenerator) -> Schema {
+        let names: Vec<&str> = Termination::ALL.iter().map(|t| t.name()).collect();
+        json_schema!({ "type": "string", "enum": names })
+    }
+}

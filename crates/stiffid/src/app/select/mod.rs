@@ -1,0 +1,515 @@
+//! The select job: the group of postures that minimises a design criterion (Zhang et al. 2021,
+//! Section III), by a local SQP search from a start group, a global multistart search, or the
+//! best group of a pool of postures; optionally the smallest group for a target accuracy
+//! ([`crate::design::target`]), and the same search without the cell's checks (what they cost).
+
+pub mod document;
+
+use super::Warning;
+use crate::cell::{Check, Checker};
+use crate::common::limits::{self, check_count, Range};
+use crate::common::progress::Progress;
+use crate::design::identifiable;
+use crate::design::pool::MAX_POOL;
+use crate::design::target::{smallest_group, TargetOutcome};
+use crate::design::{
+    self, evaluate, Criterion, Evaluation, Gradient, PoolMethod, PoolOptions, SearchOptions,
+    SearchOutcome, Solver, Termination,
+};
+use crate::{Error, Result, Setup};
+use nalgebra::Vector6;
+use std::time::Instant;
+
+/// How the group is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// One SQP search from a start group ([`design::local`]).
+    Local,
+    /// Local searches from seeded start groups, the best kept ([`design::global`]).
+    Global,
+    /// The best group of a pool of postures ([`design::Pool::best`]).
+    Pool,
+}
+
+impl Method {
+    /// Every method.
+    pub const ALL: [Method; 3] = [Method::Local, Method::Global, Method::Pool];
+}
+
+impl crate::common::choice::Choice for Method {
+    const FIELD: &'static str = "method";
+    const ALL: &'static [Self] = &Method::ALL;
+    fn name(self) -> &'static str {
+        match self {
+            Method::Local => "local",
+            Method::Global => "global",
+            Method::Pool => "pool",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Method::Local => "One SQP search from a start group",
+            Method::Global => "Local searches from seeded start groups, the best kept",
+            Method::Pool => "The best group of a pool of postures",
+        }
+    }
+}
+
+crate::common::choice::by_name!(Method);
+
+/// A pool of candidate postures.
+#[derive(Debug, Clone)]
+pub struct PoolInput {
+    /// Its name in the report and in errors: a file's name, or `arrays`.
+    pub name: String,
+    /// The postures (axis angles, rad, within the robot's joint limits), at most
+    /// [`MAX_POOL`]; those that fail a check of the cell are reported and skipped.
+    pub postures: Vec<Vector6<f64>>,
+}
+
+/// What to select and how.
+pub struct Request<'a> {
+    /// The setup: robot, tool, load, noise, nominal stiffness, bounds, cell, model.
+    pub setup: &'a Setup,
+    /// The criterion to minimise.
+    pub criterion: Criterion,
+    /// How.
+    pub method: Method,
+    /// [`Method::Local`] only: the start group (axis angles, rad, within the setup's bounds;
+    /// 2 to [`limits::MAX_SEARCH_POSTURES`] postures); `None` for a seeded random group
+    /// ([`design::random_group`]).
+    pub start: Option<Vec<Vector6<f64>>>,
+    /// [`Method::Pool`] only, and then required: the pool.
+    pub pool: Option<PoolInput>,
+    /// The group size (2 to [`limits::MAX_SEARCH_POSTURES`]); the start group's size with a
+    /// start group; unused with a target.
+    pub postures: usize,
+    /// The smallest group whose predicted mean deviation rate at noise level multiple 1 is at
+    /// most this many percent on every parameter ([`TARGET_PCT`]; [`Method::Global`] or
+    /// [`Method::Pool`]).
+    pub target_pct: Option<f64>,
+    /// The budget and tolerances of the searches; its seed seeds the random start group, the
+    /// global starts and the pool's exchange runs.
+    pub options: SearchOptions,
+    /// Exchange runs of a pool choice (1 to [`limits::MAX_POOL_RESTARTS`]).
+    pub restarts: usize,
+    /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
+    /// (`global search (relative-a)` with its starts as the total; a local search with total 0).
+    pub progress: &'a dyn Progress,
+}
+
+/// The accepted target, %.
+pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
+
+/// What the selection found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// How it was chosen.
+    pub method: Method,
+    /// The criterion minimised.
+    pub criterion: Criterion,
+    /// The seed.
+    pub seed: u64,
+    /// The gradient of the searches; `None` for a pool choice.
+    pub gradient: Option<Gradient>,
+    /// The SQP the searches ran ([`Solver::resolve`]d for the criterion: never
+    /// [`Solver::Auto`]); `None` for a pool choice.
+    pub solver: Option<Solver>,
+    /// The group chosen (axis angles, rad).
+    pub postures: Vec<Vector6<f64>>,
+    /// The criterion of the start group (`None` for a pool choice).
+    pub start_value: Option<f64>,
+    /// The criterion of the group chosen.
+    pub value: f64,
+    /// Criterion evaluations, over every group size tried with a target.
+    pub evaluations: usize,
+    /// Why every local search of the last search stopped ([`SearchOutcome::terminations`]); empty
+    /// for a pool choice.
+    pub terminations: Vec<Termination>,
+    /// Why the search that found the group stopped; `None` for a pool choice.
+    pub termination: Option<Termination>,
+    /// Wall-clock time of the selection, s.
+    pub elapsed_s: f64,
+    /// Every criterion of the group chosen.
+    pub evaluation: Evaluation,
+    /// With a pool: what it held and what was chosen.
+    pub pool: Option<PoolReport>,
+    /// With a target: every group size tried.
+    pub target: Option<TargetOutcome>,
+    /// With cell checks, for a local or global search without a target: the same search without
+    /// them.
+    pub unconstrained: Option<Unconstrained>,
+    /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// A pool, and what was chosen from it.
+#[derive(Debug, Clone)]
+pub struct PoolReport {
+    /// Its name.
+    pub name: String,
+    /// Postures in the pool.
+    pub total: usize,
+    /// Postures that pass every check of the cell.
+    pub usable: usize,
+    /// The postures skipped, and why.
+    pub skipped: Vec<Skipped>,
+    /// How the group was chosen.
+    pub method: PoolMethod,
+    /// The chosen postures' numbers in the pool (1-based), ascending.
+    pub chosen: Vec<usize>,
+}
+
+/// A pool posture that cannot be measured.
+#[derive(Debug, Clone)]
+pub struct Skipped {
+    /// Its number in the pool (1-based).
+    pub posture: usize,
+    /// The checks it fails.
+    pub checks: Vec<Check>,
+}
+
+/// The same search without the cell's checks.
+#[derive(Debug, Clone)]
+pub struct Unconstrained {
+    /// Its group (axis angles, rad).
+    pub postures: Vec<Vector6<f64>>,
+    /// Its criterion.
+    pub value: f64,
+    /// Why its search stopped.
+    pub termination: Termination,
+    /// Every criterion of its group (on the setup: the criteria do not depend on the cell).
+    pub evaluation: Evaluation,
+}
+
+/// Selects the group.
+///
+/// # Errors
+/// [`Error::InvalidField`] for a request whose parts do not fit its method (`start`, `pool`,
+/// `target_pct`) or a count out of range (`postures`, `restarts`, the search options); the
+/// pool's errors named by it (more postures asked for than pass the cell's checks, naming the
+/// checks failed most often); a target that no group size reaches (`target_pct`, naming the best
+/// rate reachable); the searches' errors; a group that cannot identify every parameter.
+pub fn run(request: &Request) -> Result<Report> {
+    check(request)?;
+    let pool = request
+        .pool
+        .as_ref()
+        .map(|p| Candidates::new(request.setup, p))
+        .transpose()?;
+    let started = Instant::now();
+    let (found, target) = match request.target_pct {
+        None => (
+            choose(request, request.setup, pool.as_ref(), size(request))?,
+            None,
+        ),
+        Some(pct) => {
+            let (found, outcome) = smallest(request, pool.as_ref(), pct)?;
+            (found, Some(outcome))
+        }
+    };
+    let elapsed_s = started.elapsed().as_secs_f64();
+    identifiable(request.setup, &found.postures).map_err(|e| Error::Input {
+        source_name: "postures: the best group the search found".into(),
+        error: Box::new(e),
+    })?;
+    let unconstrained = match pool.is_none() && target.is_none() {
+        true => unconstrained(request, found.postures.len())?,
+        false => None,
+    };
+    Ok(Report {
+        method: request.method,
+        criterion: request.criterion,
+        seed: request.options.seed,
+        gradient: (request.method != Method::Pool).then_some(request.options.gradient),
+        solver: (request.method != Method::Pool)
+            .then(|| request.options.solver.resolve(request.criterion)),
+        evaluation: evaluate(request.setup, &found.postures),
+        postures: found.postures,
+        start_value: found.start_value,
+        value: found.value,
+        evaluations: found.evaluations,
+        termination: found.terminations.first().map(|_| found.termination),
+        terminations: found.terminations,
+        elapsed_s,
+        pool: pool.map(|p| p.report(found.chosen)),
+        target,
+        unconstrained,
+        warnings: Vec::new(),
+    })
+}
+
+/// The group size of a request without a target.
+fn size(request: &Request) -> usize {
+    request.start.as_ref().map_or(request.postures, Vec::len)
+}
+
+/// The request's parts fit its method, and its counts are in range.
+fn check(r: &Request) -> Result<()> {
+    r.setup.check_bodies()?;
+    let invalid = |field: &str, message: &str| {
+        Err(Error::InvalidField {
+            field: field.into(),
+            message: message.into(),
+        })
+    };
+    if r.start.is_some() && r.method != Method::Local {
+        return invalid("start", "only for a local search");
+    }
+    if r.pool.is_some() != (r.method == Method::Pool) {
+        return invalid("pool", "a pool choice needs the pool postures, and only it");
+    }
+    let most = limits::MAX_SEARCH_POSTURES as usize;
+    match &r.start {
+        Some(start) => check_count("start", start.len(), 2, most)?,
+        None if r.target_pct.is_none() => check_count("postures", r.postures, 2, most)?,
+        None => {}
+    }
+    limits::check_integer("restarts", r.restarts as u64, 1, limits::MAX_POOL_RESTARTS)?;
+    if let Some(pct) = r.target_pct {
+        limits::check("target_pct", &[pct], &TARGET_PCT)?;
+        if r.method == Method::Local {
+            return invalid(
+                "target_pct",
+                "needs a pool or the global search to choose each group",
+            );
+        }
+    }
+    if let Some(p) = &r.pool {
+        if p.postures.len() > MAX_POOL {
+            let message = format!(
+                "{} postures: a pool holds at most {MAX_POOL}",
+                p.postures.len()
+            );
+            return Err(in_pool(&p.name, "pool", message));
+        }
+    }
+    Ok(())
+}
+
+/// An error `field: message` about the pool `name`.
+fn in_pool(name: &str, field: &str, message: String) -> Error {
+    Error::Input {
+        source_name: name.into(),
+        error: Box::new(Error::InvalidField {
+            field: field.into(),
+            message,
+        }),
+    }
+}
+
+/// The pool with its unusable postures marked.
+struct Candidates<'a> {
+    name: &'a str,
+    pool: design::Pool<'a>,
+    total: usize,
+    skipped: Vec<Skipped>,
+}
+
+impl<'a> Candidates<'a> {
+    fn new(setup: &'a Setup, input: &'a PoolInput) -> Result<Self> {
+        let checker = Checker::new(setup);
+        let skipped: Vec<Skipped> = (input.postures.iter().enumerate())
+            .filter_map(|(i, q)| {
+                let f = checker.feasibility(q);
+                let checks: Vec<Check> = f.violations().cloned().collect();
+                (!checks.is_empty()).then_some(Skipped {
+                    posture: i + 1,
+                    checks,
+                })
+            })
+            .collect();
+        let usable: Vec<bool> = (1..=input.postures.len())
+            .map(|number| skipped.iter().all(|s| s.posture != number))
+            .collect();
+        let pool =
+            design::Pool::new(setup, &input.postures, &usable).map_err(|e| Error::Input {
+                source_name: input.name.clone(),
+                error: Box::new(e),
+            })?;
+        Ok(Self {
+            name: &input.name,
+            pool,
+            total: input.postures.len(),
+            skipped,
+        })
+    }
+
+    fn usable(&self) -> usize {
+        self.pool.usable().len()
+    }
+
+    /// The best group of `n` usable postures.
+    fn choose(&self, r: &Request, n: usize) -> Result<Found> {
+        if n > self.usable() && !self.skipped.is_empty() {
+            let message = format!(
+                "{n} asked for, but only {} of the {} pass the cell's checks (failed most often: {})",
+                self.usable(),
+                self.total,
+                self.most_failed()
+            );
+            return Err(in_pool(self.name, "postures", message));
+        }
+        let options = PoolOptions {
+            seed: r.options.seed,
+            restarts: r.restarts,
+            ..PoolOptions::default()
+        };
+        let c = (self.pool.best(r.criterion, n, &options)).map_err(|e| Error::Input {
+            source_name: self.name.into(),
+            error: Box::new(e),
+        })?;
+        Ok(Found {
+            postures: self.pool.postures(&c.indices),
+            start_value: None,
+            value: c.value,
+            evaluations: c.evaluations,
+            termination: Termination::Converged,
+            terminations: Vec::new(),
+            chosen: Some((c.indices.iter().map(|i| i + 1).collect(), c.method)),
+        })
+    }
+
+    /// The checks the skipped postures fail, most often first, with their counts.
+    fn most_failed(&self) -> String {
+        let mut counts: Vec<(&str, usize)> = Vec::new();
+        let kinds = self
+            .skipped
+            .iter()
+            .flat_map(|s| &s.checks)
+            .map(|c| c.kind.key());
+        for kind in kinds {
+            match counts.iter_mut().find(|(k, _)| *k == kind) {
+                Some(c) => c.1 += 1,
+                None => counts.push((kind, 1)),
+            }
+        }
+        counts.sort_by_key(|c| std::cmp::Reverse(c.1));
+        let parts: Vec<String> = counts.iter().map(|(k, c)| format!("{k} {c}")).collect();
+        parts.join(", ")
+    }
+
+    fn report(self, chosen: Option<(Vec<usize>, PoolMethod)>) -> PoolReport {
+        let (chosen, method) = chosen.expect("a pool choice");
+        PoolReport {
+            name: self.name.into(),
+            total: self.total,
+            usable: self.usable(),
+            skipped: self.skipped,
+            method,
+            chosen,
+        }
+    }
+}
+
+/// What one search or pool choice found.
+struct Found {
+    postures: Vec<Vector6<f64>>,
+    start_value: Option<f64>,
+    value: f64,
+    evaluations: usize,
+    termination: Termination,
+    terminations: Vec<Termination>,
+    /// A pool choice's postures (1-based) and how they were chosen.
+    chosen: Option<(Vec<usize>, PoolMethod)>,
+}
+
+impl From<SearchOutcome> for Found {
+    fn from(o: SearchOutcome) -> Self {
+        Found {
+            postures: o.postures,
+            start_value: Some(o.start_value),
+            value: o.value,
+            evaluations: o.evaluations,
+            termination: o.termination,
+            terminations: o.terminations,
+            chosen: None,
+        }
+    }
+}
+
+/// The group of `n` postures on `setup` by the request's method.
+fn choose(r: &Request, setup: &Setup, pool: Option<&Candidates>, n: usize) -> Result<Found> {
+    if let Some(p) = pool {
+        return p.choose(r, n);
+    }
+    let outcome = match r.method {
+        Method::Global => {
+            r.progress.begin(
+                &format!("global search ({})", r.criterion),
+                r.options.starts,
+            );
+            design::global(setup, r.criterion, n, &r.options, r.progress)
+        }
+        _ => {
+            r.progress
+                .begin(&format!("local search ({})", r.criterion), 0);
+            let start = match &r.start {
+                Some(s) => s.clone(),
+                None => design::random_group(setup, n, r.options.seed),
+            };
+            design::local(setup, r.criterion, &start, &r.options)
+        }
+    };
+    r.progress.end();
+    Ok(outcome?.into())
+}
+
+/// The smallest group that reaches `pct` (its evaluations those of every group size tried), and
+/// every group size tried.
+fn smallest(r: &Request, pool: Option<&Candidates>, pct: f64) -> Result<(Found, TargetOutcome)> {
+    let max = pool.map_or(design::target::MAX_POSTURES, Candidates::usable);
+    let (mut last, mut evaluations) = (None, 0);
+    let outcome = smallest_group(r.setup, pct, max, |n| -> Result<_> {
+        let found = choose(r, r.setup, pool, n)?;
+        let postures = found.postures.clone();
+        evaluations += found.evaluations;
+        last = Some(found);
+        Ok(postures)
+    })?;
+    let (Some(mut found), Some(step)) = (last, outcome.steps.last()) else {
+        unreachable!("smallest_group tries at least one size or fails");
+    };
+    found.evaluations = evaluations;
+    if outcome.reached {
+        return Ok((found, outcome));
+    }
+    let (j, worst) = step.worst_joint();
+    let max = outcome.max_postures;
+    let tried = match pool {
+        Some(_) => format!("the pool's {max} usable postures"),
+        None => format!("{max} postures"),
+    };
+    let found = match outcome.extrapolated_pct {
+        None => format!(
+            "with {tried} the predicted mean deviation rate of joint {} is still {worst:.3} %",
+            j + 1
+        ),
+        Some(best) => format!(
+            "with {} postures the predicted mean deviation rate of joint {} is {worst:.3} %; it falls about as 1/sqrt(N), so the best reachable with {tried} is about {best:.3} % (stopped after {} group sizes)",
+            step.postures.len(),
+            j + 1,
+            outcome.steps.len()
+        ),
+    };
+    Err(Error::InvalidField {
+        field: "target_pct".into(),
+        message: format!(
+            "{pct} % is not reachable: {found} at noise level multiple 1 (add postures to the pool, lower the noise or raise the target)"
+        ),
+    })
+}
+
+/// With cell checks: the same search of `n` postures without them.
+fn unconstrained(r: &Request, n: usize) -> Result<Option<Unconstrained>> {
+    if !Checker::new(r.setup).constrains() {
+        return Ok(None);
+    }
+    let free = choose(r, &r.setup.without_cell(), None, n)?;
+    Ok(Some(Unconstrained {
+        evaluation: evaluate(r.setup, &free.postures),
+        postures: free.postures,
+        value: free.value,
+        termination: free.termination,
+    }))
+}

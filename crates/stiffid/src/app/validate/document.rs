@@ -1,0 +1,89 @@
+//! The document of the validate job ([`crate::app::validate`]): `stiffid validate --json`,
+//! Python's `validate(...)`.
+
+use crate::app::document::mm;
+use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use crate::app::validate::Report;
+use crate::Setup;
+use serde::Serialize;
+
+/// Measured against predicted displacements (Eq. 22), mm.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The setup as given.
+    pub setup: String,
+    /// The measurements (a file's name, or `arrays`).
+    pub data: String,
+    /// The stiffness validated: every parameter of the setup's model, in its unit.
+    pub parameters: Vec<ParameterStiffness>,
+    /// Every measurement, in the data's order.
+    pub checks: Vec<Check>,
+    /// Mean of `delta_b` over the measurements, mm.
+    pub mean_delta_b_mm: f64,
+    /// Largest `delta_b`, mm.
+    pub max_delta_b_mm: f64,
+    /// RMS of `delta_b`, mm.
+    pub rms_delta_b_mm: f64,
+    /// Mean length of the measured displacements, mm.
+    pub mean_measured_mm: f64,
+    /// Largest measured displacement, mm.
+    pub max_measured_mm: f64,
+    /// RMS of the measured displacements, mm.
+    pub rms_measured_mm: f64,
+    /// `1 - rms_delta_b_mm / rms_measured_mm`.
+    pub explained: f64,
+}
+
+/// One measurement against its prediction.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Check {
+    /// The posture's label (a file's; for arrays its number, 1-based).
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// The line in the file (left out for arrays).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "schema", schemars(with = "u64"))]
+    pub line: Option<u64>,
+    /// Measured displacement x, y, z, base frame, mm.
+    pub measured_mm: [f64; 3],
+    /// Predicted displacement x, y, z, base frame, mm.
+    pub predicted_mm: [f64; 3],
+    /// `|measured - predicted|` (Eq. 22), mm.
+    pub delta_b_mm: f64,
+}
+
+impl Document {
+    /// The document of `report`, validated on `setup` (named `setup_name`, as the user gave it).
+    pub fn new(report: &Report, setup_name: &str, setup: &Setup) -> Self {
+        let v = &report.validation;
+        let origin = &report.origin;
+        Document {
+            setup: setup_name.to_string(),
+            data: report.data_name.clone(),
+            parameters: stiffness(&setup.model().parameters(), &report.compliance.h),
+            checks: v
+                .checks
+                .iter()
+                .enumerate()
+                .map(|(i, c)| Check {
+                    posture: origin.label(i).to_string(),
+                    point: c.point + 1,
+                    line: origin.lines.as_ref().map(|l| l[i]),
+                    measured_mm: c.measured.map(mm).into(),
+                    predicted_mm: c.predicted.map(mm).into(),
+                    delta_b_mm: mm(c.delta_b),
+                })
+                .collect(),
+            mean_delta_b_mm: mm(v.mean),
+            max_delta_b_mm: mm(v.max),
+            rms_delta_b_mm: mm(v.rms),
+            mean_measured_mm: mm(v.measured[0]),
+            max_measured_mm: mm(v.measured[1]),
+            rms_measured_mm: mm(v.measured[2]),
+            explained: v.explained,
+        }
+    }
+}

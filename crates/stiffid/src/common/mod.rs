@@ -1,0 +1,10 @@
+//! What every stage stands on: the library's errors and warnings, the documented limits of every
+//! count and size a user gives, the user's choices as enums, progress reports and counted words.
+
+pub mod choice;
+pub mod error;
+pub(crate) mod exact;
+pub mod limits;
+pub mod progress;
+pub mod warning;
+pub mod words;

@@ -1,0 +1,91 @@
+//! Warnings: results the user must look at before trusting them, raised by every stage and
+//! shown by every front end the same way.
+
+use serde::Serialize;
+
+/// What a [`Warning`] is about: a stable code for programs (`kind.code()`), independent of the
+/// message's wording.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum WarningKind {
+    /// Every identified compliance is negative: a sign convention is probably wrong.
+    AllNegative,
+    /// Some identified compliances are negative: not physical.
+    Negative,
+    /// Some identified compliances are zero or not finite: the joint looks rigid.
+    Rigid,
+    /// The identified stiffness is far off the setup's nominal the same way on most joints: a
+    /// unit mistake is likely.
+    Units,
+    /// An input passes every range check but looks like a unit slip (lengths in metres where
+    /// millimetres are meant, angles in radians under `_deg` names):
+    /// [`crate::setup::plausibility`].
+    Plausibility,
+    /// Under load steps, some postures' zero-load offset, departure from a straight line or
+    /// hysteresis exceeds what the tracker noise explains ([`crate::identify::steps`]).
+    LoadSteps,
+    /// Points of a machining program get no process force (plunges, rapid moves, blocks no
+    /// operation covers).
+    NoForce,
+    /// The data cannot separate some parameters of the model: they get no interval
+    /// ([`crate::identify::model::Identifiability`]).
+    Unidentifiable,
+    /// A URDF's collision meshes were not found: the robot serves kinematics and identification,
+    /// the cell's body checks refuse it ([`crate::robot::Bodies::Missing`]).
+    Meshes,
+}
+
+impl WarningKind {
+    /// The stable code, e.g. `units`.
+    pub fn code(self) -> &'static str {
+        match self {
+            WarningKind::AllNegative => "all-negative",
+            WarningKind::Negative => "negative",
+            WarningKind::Rigid => "rigid",
+            WarningKind::Units => "units",
+            WarningKind::Plausibility => "plausibility",
+            WarningKind::LoadSteps => "load-steps",
+            WarningKind::NoForce => "no-force",
+            WarningKind::Unidentifiable => "unidentifiable",
+            WarningKind::Meshes => "meshes",
+        }
+    }
+}
+
+/// A result the user must look at before trusting it: what the command line prints as
+/// `warning: MESSAGE` and Python raises as `UserWarning(MESSAGE)`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Warning {
+    /// What it is about.
+    pub kind: WarningKind,
+    /// One sentence for the user: what was found and its likely cause.
+    pub message: String,
+}
+
+impl Warning {
+    /// A warning of `kind` saying `message`.
+    pub fn new(kind: WarningKind, message: impl Into<String>) -> Self {
+        Warning {
+            kind,
+            message: message.into(),
+        }
+    }
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// `joint 3` or `joints 1, 2` for 0-based joint indices.
+pub(crate) fn joint_list(joints: impl IntoIterator<Item = usize>) -> String {
+    let names: Vec<String> = joints.into_iter().map(|j| (j + 1).to_string()).collect();
+    match names.len() {
+        1 => format!("joint {}", names[0]),
+        _ => format!("joints {}", names.join(", ")),
+    }
+}

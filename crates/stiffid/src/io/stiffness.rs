@@ -1,0 +1,504 @@
+//! Stiffness files: JSON with the stiffness of every parameter of a model and, optionally, the
+//! covariance of the compliance, as `stiffid identify --out` writes them (other keys are ignored).
+//!
+//! Every parameter named, with its kind and unit (the drives and rotational springs in Nm/rad,
+//! translational springs in N/mm; [`crate::model`]), and the covariance `Cov(h)` of the
+//! compliance over all of them in SI units (rad/Nm, m/N):
+//!
+//! ```json
+//! {"parameters": [{"name": "k1", "kind": "drive", "unit": "Nm/rad", "stiffness": 950000}, ...,
+//!                 {"name": "tool_y", "kind": "translation", "unit": "N/mm", "stiffness": 42000}],
+//!  "compliance_covariance_si": [[...n numbers...], ...n rows...]}
+//! ```
+//!
+//! The six drives alone, as files written before models had virtual springs, are still read:
+//!
+//! ```json
+//! {"stiffness_nm_per_rad": [950000, 3000000, 900000, 250000, 200000, 150000],
+//!  "compliance_covariance_rad2_per_nm2": [[...6 numbers...], ...6 rows...]}
+//! ```
+//!
+//! With `parameters`, `stiffness_nm_per_rad` and its covariance are ignored. A file is used with a
+//! setup whose model has the same parameters in the same order ([`StiffnessFile::compliance`]).
+
+use crate::common::limits::{self, MAX_PARAMETERS, STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
+use crate::model::{Compliance, Model, ParameterKind};
+use crate::{Error, Result};
+use nalgebra::{DMatrix, Matrix6, Vector6};
+use serde::{Deserialize, Serialize};
+
+/// What a stiffness file holds, as its JSON keys (other keys of the file are ignored).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct StiffnessFile {
+    /// Every parameter of the model, drives first (`k1` .. `k6`), then the virtual springs in the
+    /// order of the setup's `[model]`; required unless `stiffness_nm_per_rad` is given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parameters: Option<Vec<ParameterStiffness>>,
+    /// Optional, with `parameters`: the covariance `Cov(h)` of the compliance `h = 1/k` of every
+    /// parameter, SI (rad/Nm, m/N), row-major n x n; finite, symmetric, non-negative diagonal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compliance_covariance_si: Option<Vec<Vec<f64>>>,
+    /// The six drives alone (without `parameters`): the joint stiffness `k_i`, Nm/rad, joints
+    /// 1..6; each within [`limits::STIFFNESS_NM_PER_RAD`].
+    #[cfg_attr(
+        feature = "schema",
+        schemars(
+            description = "The six drives alone (without `parameters`): the joint stiffness `k_i`, Nm/rad, joints 1..6.",
+            inner(range(min = STIFFNESS_NM_PER_RAD.min, max = STIFFNESS_NM_PER_RAD.max))
+        )
+    )]
+    #[serde(
+        default,
+        deserialize_with = "stiffness",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub stiffness_nm_per_rad: Option<[f64; 6]>,
+    /// Optional, with `stiffness_nm_per_rad`: the covariance `Cov(h)` of the compliance
+    /// `h_i = 1/k_i`, (rad/Nm)^2, row-major 6x6 (paper eq. 12); finite, symmetric, non-negative
+    /// diagonal.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(deserialize_with = "crate::common::exact::option_matrix")]
+    pub compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
+}
+
+/// One parameter's stiffness in a stiffness file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ParameterStiffness {
+    /// `k1` .. `k6` for the drives, the virtual spring's name otherwise.
+    pub name: String,
+    /// `drive`, `rotation` or `translation`.
+    pub kind: ParameterKind,
+    /// `Nm/rad` (drives, rotations) or `N/mm` (translations).
+    pub unit: String,
+    /// The stiffness in `unit`; `null` (infinitely stiff, as a non-negative fit writes a
+    /// compliance at its bound) is refused by the readers.
+    pub stiffness: Option<f64>,
+}
+
+/// Six stiffness values, exactly; a `null` (an infinitely stiff joint, as `identify
+/// --nonnegative` writes a compliance at its bound) refused with what to do.
+fn stiffness<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[f64; 6]>, D::Error> {
+    let Some(k): Option<[Option<f64>; 6]> = crate::common::exact::option(d)? else {
+        return Ok(None);
+    };
+    match k.iter().position(Option::is_none) {
+        None => Ok(Some(k.map(|v| v.unwrap_or_default()))),
+        Some(j) => Err(serde::de::Error::custom(null_message(
+            &format!("stiffness_nm_per_rad[{}]", j + 1),
+            "Nm/rad",
+        ))),
+    }
+}
+
+fn null_message(field: &str, unit: &str) -> String {
+    format!(
+        "{field} is null: an infinitely stiff spring (a non-negative fit with its compliance at the bound 0), which no prediction can use; write a finite stiffness there (a large one for a stiff spring, within the limit in {unit})"
+    )
+}
+
+/// What [`parse`] expects, for errors.
+const EXPECTED: &str = "JSON with the key parameters (name, kind, unit, stiffness of each) and optionally compliance_covariance_si (n x n), or stiffness_nm_per_rad (six numbers, Nm/rad) and optionally compliance_covariance_rad2_per_nm2 (6x6)";
+
+/// Parses and checks the text of a stiffness file.
+///
+/// # Errors
+/// [`Error::Json`] (line, column) for text that is not JSON with these keys and shapes;
+/// [`Error::InvalidField`] naming the key (and index) for: neither `parameters` nor
+/// `stiffness_nm_per_rad`, more than [`MAX_PARAMETERS`] parameters, a parameter whose unit is not
+/// its kind's or whose stiffness is null or outside [`limits::STIFFNESS_NM_PER_RAD`] /
+/// [`limits::STIFFNESS_N_PER_MM`], a covariance of the wrong shape or that is not finite,
+/// symmetric with a non-negative diagonal ([`check_covariance`]).
+///
+/// # Examples
+/// ```
+/// let text = r#"{"setup": "any", "stiffness_nm_per_rad": [9.5e5, 3e6, 9e5, 2.5e5, 2e5, 1.5e5]}"#;
+/// let file = stiffid::io::stiffness::parse(text).unwrap();
+/// let model = stiffid::model::Model::default();
+/// let c = file.compliance(&model).unwrap();
+/// assert_eq!(c.h[1], 1.0 / 3e6);
+/// assert!(c.covariance.is_none());
+/// ```
+pub fn parse(text: &str) -> Result<StiffnessFile> {
+    let file: StiffnessFile = serde_json::from_str(text).map_err(|e| {
+        let message = e.to_string();
+        let position = format!(" at line {} column {}", e.line(), e.column());
+        Error::Json {
+            line: e.line(),
+            column: e.column(),
+            message: message.strip_suffix(&position).unwrap_or(&message).into(),
+            expected: EXPECTED,
+        }
+    })?;
+    match &file.parameters {
+        Some(parameters) => check_parameters(parameters, &file.compliance_covariance_si)?,
+        None => {
+            let k = file
+                .stiffness_nm_per_rad
+                .ok_or_else(|| Error::InvalidField {
+                    field: "parameters".into(),
+                    message: format!("missing: expected {EXPECTED}"),
+                })?;
+            limits::check("stiffness_nm_per_rad", &k, &STIFFNESS_NM_PER_RAD)?;
+            if let Some(rows) = file.compliance_covariance_rad2_per_nm2 {
+                check_covariance(&Matrix6::from_fn(|r, c| rows[r][c]))?;
+            }
+        }
+    }
+    Ok(file)
+}
+
+fn invalid(field: String, message: String) -> Error {
+    Error::InvalidField { field, message }
+}
+
+fn check_parameters(parameters: &[ParameterStiffness], cov: &Option<Vec<Vec<f64>>>) -> Result<()> {
+    limits::check_count("parameters", parameters.len(), 6, MAX_PARAMETERS)?;
+    for (i, p) in parameters.iter().enumerate() {
+        let field = format!("parameters[{}]", i + 1);
+        let (unit, range) = match p.kind {
+            ParameterKind::Translation => ("N/mm", &STIFFNESS_N_PER_MM),
+            _ => ("Nm/rad", &STIFFNESS_NM_PER_RAD),
+        };
+        if p.unit != unit {
+            return Err(invalid(
+                format!("{field}.unit"),
+                format!(
+                    "'{}' for the {} '{}': expected '{unit}'",
+                    limits::short(&p.unit),
+                    p.kind.name(),
+                    limits::short(&p.name)
+                ),
+            ));
+        }
+        let Some(k) = p.stiffness else {
+            return Err(invalid(
+                format!("{field}.stiffness"),
+                null_message(&format!("the stiffness of '{}'", p.name), unit),
+            ));
+        };
+        limits::check(&format!("{field}.stiffness"), &[k], range)?;
+    }
+    let Some(rows) = cov else { return Ok(()) };
+    let n = parameters.len();
+    if rows.len() != n || rows.iter().any(|r| r.len() != n) {
+        return Err(invalid(
+            "compliance_covariance_si".into(),
+            format!("expected {n} rows of {n} numbers, one per parameter"),
+        ));
+    }
+    check_covariance_of(
+        &DMatrix::from_fn(n, n, |r, c| rows[r][c]),
+        "compliance_covariance_si",
+    )
+}
+
+/// Checks a covariance `Cov(h)` of the compliance, (rad/Nm)^2 (the key
+/// `compliance_covariance_rad2_per_nm2`; paper eq. 12): finite, symmetric to 1e-9 of the largest
+/// diagonal entry, non-negative diagonal, positive semi-definite (no eigenvalue below -1e-9 of the
+/// largest diagonal entry).
+///
+/// # Errors
+/// [`Error::InvalidField`] naming `compliance_covariance_rad2_per_nm2`.
+///
+/// # Examples
+/// ```
+/// use nalgebra::Matrix6;
+/// use stiffid::io::stiffness::check_covariance;
+/// assert!(check_covariance(&Matrix6::from_diagonal_element(1e-14)).is_ok());
+/// assert!(check_covariance(&Matrix6::from_diagonal_element(-1e-14)).is_err());
+/// ```
+pub fn check_covariance(c: &Matrix6<f64>) -> Result<()> {
+    let c = DMatrix::from_column_slice(6, 6, c.as_slice());
+    check_covariance_of(&c, "compliance_covariance_rad2_per_nm2")
+}
+
+/// [`check_covariance`] of a square matrix of any size (n x n, SI), the error naming `field`.
+///
+/// # Errors
+/// [`Error::InvalidField`] naming `field`.
+pub fn check_covariance_of(c: &DMatrix<f64>, field: &str) -> Result<()> {
+    let scale = c.diagonal().amax();
+    let valid = c.iter().all(|v| v.is_finite())
+        && c.diagonal().iter().all(|v| *v >= 0.0)
+        && (c - c.transpose()).amax() <= 1e-9 * scale
+        && semi_definite(c, scale);
+    match valid {
+        true => Ok(()),
+        false => Err(invalid(
+            field.into(),
+            format!(
+                "expected a covariance: a symmetric positive semi-definite {0}x{0} matrix of finite numbers",
+                c.nrows()
+            ),
+        )),
+    }
+}
+
+/// Whether the symmetric part of `c` (finite, largest diagonal entry `scale`) has no eigenvalue
+/// below `-1e-9 scale`: a covariance gives every combination of the parameters a variance >= 0,
+/// so the standard deviations propagated from it are real.
+fn semi_definite(c: &DMatrix<f64>, scale: f64) -> bool {
+    let symmetric = (c + c.transpose()) * 0.5;
+    nalgebra::SymmetricEigen::try_new(symmetric, f64::EPSILON, 10_000)
+        .is_some_and(|e| e.eigenvalues.min() >= -1e-9 * scale)
+}
+
+impl StiffnessFile {
+    /// The compliance of every parameter (SI) and its covariance, checked against `model`: the
+    /// file's parameters must be the model's, in order (name and kind); a file of the six drives
+    /// alone fits only a model of the drives alone.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the first parameter that differs (`parameters[7]`), or
+    /// `parameters` when the counts differ or the file has the drives alone.
+    pub fn compliance(&self, model: &Model) -> Result<Compliance> {
+        let Some(parameters) = &self.parameters else {
+            return self.drives_compliance(model);
+        };
+        let expected = model.parameters();
+        let names = |v: Vec<String>| v.join(", ");
+        if parameters.len() != expected.len() {
+            return Err(invalid(
+                "parameters".into(),
+                format!(
+                    "the file has {} parameters ({}) but the setup's model has {} ({}): use the setup the file was identified with, or identify again with this one",
+                    parameters.len(),
+                    names(parameters.iter().map(|p| limits::short(&p.name)).collect()),
+                    expected.len(),
+                    names(expected.into_iter().map(|p| p.name).collect())
+                ),
+            ));
+        }
+        for (i, (p, e)) in parameters.iter().zip(&expected).enumerate() {
+            if p.name != e.name || p.kind != e.kind {
+                return Err(invalid(
+                    format!("parameters[{}]", i + 1),
+                    format!(
+                        "'{}' ({}) where the setup's model has '{}' ({}): use the setup the file was identified with, or identify again with this one",
+                        limits::short(&p.name),
+                        p.kind.name(),
+                        e.name,
+                        e.kind.name()
+                    ),
+                ));
+            }
+        }
+        let h = parameters
+            .iter()
+            .zip(&expected)
+            .map(|(p, e)| e.unit.per_si() / p.stiffness.unwrap_or(f64::NAN));
+        let n = parameters.len();
+        Ok(Compliance {
+            h: nalgebra::DVector::from_iterator(n, h),
+            covariance: self
+                .compliance_covariance_si
+                .as_ref()
+                .map(|rows| DMatrix::from_fn(n, n, |r, c| rows[r][c])),
+        })
+    }
+
+    /// The compliance of a file of the six drives alone.
+    fn drives_compliance(&self, model: &Model) -> Result<Compliance> {
+        if !model.is_drives_only() {
+            let springs: Vec<&str> = model.springs().iter().map(|s| s.name.as_str()).collect();
+            return Err(invalid(
+                "parameters".into(),
+                format!(
+                    "missing: the file holds the six drives alone (stiffness_nm_per_rad) but the setup's model also has the virtual springs {}: identify with this setup (its stiffness file names every parameter)",
+                    springs.join(", ")
+                ),
+            ));
+        }
+        let k = Vector6::from(self.stiffness_nm_per_rad.unwrap_or([f64::NAN; 6]));
+        let cov = self
+            .compliance_covariance_rad2_per_nm2
+            .map(|rows| Matrix6::from_fn(|r, c| rows[r][c]));
+        Ok(Compliance::drives(k.map(|v| 1.0 / v), cov))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const K: &str = "[950000, 3000000, 900000, 250000, 200000, 150000]";
+
+    fn covariance(c: &Matrix6<f64>) -> String {
+        let rows: Vec<String> = c
+            .row_iter()
+            .map(|r| {
+                format!(
+                    "[{}]",
+                    r.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
+                )
+            })
+            .collect();
+        format!("[{}]", rows.join(","))
+    }
+
+    #[test]
+    fn reads_stiffness_and_covariance() {
+        let c = Matrix6::from_fn(|r, col| {
+            if r == col {
+                1e-12 * (r + 1) as f64
+            } else {
+                1e-14
+            }
+        });
+        let text = format!(
+            r#"{{"stiffness_nm_per_rad": {K}, "compliance_covariance_rad2_per_nm2": {}}}"#,
+            covariance(&c)
+        );
+        let file = parse(&text).unwrap();
+        let got = file.compliance(&Model::default()).unwrap();
+        assert_eq!(got.h[5], 1.0 / 150000.0);
+        assert_eq!(
+            got.covariance.unwrap(),
+            DMatrix::from_column_slice(6, 6, c.as_slice())
+        );
+        let back = parse(&serde_json::to_string(&file).unwrap()).unwrap();
+        assert_eq!(back, file);
+    }
+
+    fn model_file(names: &[(&str, &str, &str, f64)], cov: Option<&str>) -> String {
+        let params: Vec<String> = names
+            .iter()
+            .map(|(n, k, u, v)| {
+                format!(r#"{{"name": "{n}", "kind": "{k}", "unit": "{u}", "stiffness": {v}}}"#)
+            })
+            .collect();
+        let cov = cov.map_or(String::new(), |c| {
+            format!(r#", "compliance_covariance_si": {c}"#)
+        });
+        format!(r#"{{"parameters": [{}]{cov}}}"#, params.join(", "))
+    }
+
+    const DRIVES: [(&str, &str, &str, f64); 6] = [
+        ("k1", "drive", "Nm/rad", 1e6),
+        ("k2", "drive", "Nm/rad", 2e6),
+        ("k3", "drive", "Nm/rad", 1e6),
+        ("k4", "drive", "Nm/rad", 3e5),
+        ("k5", "drive", "Nm/rad", 2e5),
+        ("k6", "drive", "Nm/rad", 1e5),
+    ];
+
+    fn model_with_tool_y() -> Model {
+        let robot =
+            crate::robot::presets::get(crate::robot::presets::names().next().unwrap()).unwrap();
+        let springs = crate::model::Family::Tool
+            .springs(&robot, &[], None, None, "test")
+            .unwrap();
+        let y: Vec<_> = springs.into_iter().filter(|s| s.name == "tool_y").collect();
+        Model::new(crate::Coordinates::Axis, y).unwrap()
+    }
+
+    #[test]
+    fn reads_every_parameter_in_its_unit_and_checks_them_against_the_model() {
+        let mut names = DRIVES.to_vec();
+        names.push(("tool_y", "translation", "N/mm", 5e4));
+        let diag: Vec<String> = (0..7)
+            .map(|r| {
+                let row: Vec<&str> = (0..7).map(|c| if r == c { "1e-14" } else { "0" }).collect();
+                format!("[{}]", row.join(","))
+            })
+            .collect();
+        let cov = format!("[{}]", diag.join(","));
+        let file = parse(&model_file(&names, Some(&cov))).unwrap();
+        let c = file.compliance(&model_with_tool_y()).unwrap();
+        // 5e4 N/mm is 5e7 N/m.
+        assert!((c.h[6] * 5e7 - 1.0).abs() < 1e-15, "{}", c.h[6]);
+        assert_eq!(c.h[1], 0.5e-6);
+        assert_eq!(c.covariance.unwrap()[(6, 6)], 1e-14);
+        // The drives-only model refuses the file, naming the count and both lists.
+        let e = file.compliance(&Model::default()).unwrap_err().to_string();
+        assert!(
+            e.starts_with("parameters: the file has 7 parameters"),
+            "{e}"
+        );
+        assert!(e.contains("tool_y") && e.contains("has 6"), "{e}");
+        // Another spring at the same place is named.
+        names[6] = ("tool_x", "translation", "N/mm", 5e4);
+        let e = parse(&model_file(&names, None))
+            .unwrap()
+            .compliance(&model_with_tool_y())
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("parameters[7]: 'tool_x' (translation) where the setup's model has 'tool_y' (translation)"), "{e}");
+        // A six-drive file does not fit a model with springs.
+        let six = parse(&format!(r#"{{"stiffness_nm_per_rad": {K}}}"#)).unwrap();
+        let e = six
+            .compliance(&model_with_tool_y())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("virtual springs tool_y"), "{e}");
+    }
+
+    #[test]
+    fn a_parameter_in_the_wrong_unit_or_null_or_a_covariance_of_the_wrong_size_is_named() {
+        let mut names = DRIVES.to_vec();
+        names.push(("tool_y", "translation", "Nm/rad", 5e4));
+        let e = parse(&model_file(&names, None)).unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "parameters[7].unit: 'Nm/rad' for the translation 'tool_y': expected 'N/mm'"
+            ),
+            "{e}"
+        );
+        let text = model_file(&DRIVES, None).replace("1000000}", "null}");
+        let e = parse(&text).unwrap_err().to_string();
+        assert!(
+            e.starts_with("parameters[1].stiffness: the stiffness of 'k1' is null"),
+            "{e}"
+        );
+        let e = parse(&model_file(&DRIVES, Some("[[1]]")))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("compliance_covariance_si: expected 6 rows of 6 numbers"),
+            "{e}"
+        );
+        let e = parse(&model_file(&DRIVES[..5], None))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("parameters: 5 entries: expected 6 to"), "{e}");
+        let e = parse("{}").unwrap_err().to_string();
+        assert!(e.starts_with("parameters: missing: expected JSON"), "{e}");
+    }
+
+    #[test]
+    fn errors_name_the_key_and_position() {
+        let e = parse(r#"{"stiffness_nm_per_rad": [1, 2, 3, 4, 5, -6]}"#).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("stiffness_nm_per_rad[6]: -6 is outside"),
+            "{e}"
+        );
+        let e = parse("{\n \"stiffness_nm_per_rad\": [1, 2]\n}").unwrap_err();
+        // The length is known once the array is read: the position is at or just after it.
+        assert!(matches!(e, Error::Json { line: 2..=3, .. }), "{e:?}");
+        assert!(e.to_string().contains("expected JSON with the key"), "{e}");
+        let mut c = Matrix6::identity() * 1e-12;
+        c[(0, 1)] = 1e-13;
+        let text = format!(
+            r#"{{"stiffness_nm_per_rad": {K}, "compliance_covariance_rad2_per_nm2": {}}}"#,
+            covariance(&c)
+        );
+        let e = parse(&text).unwrap_err().to_string();
+        assert!(
+            e.starts_with("compliance_covariance_rad2_per_nm2: expected a covariance"),
+            "{e}"
+        );
+        // Symmetric with a positive diagonal, but var(h1 - h2) = 2e-12 - 2 * 3e-12 < 0.
+        let mut c = Matrix6::identity() * 1e-12;
+        c[(0, 1)] = 3e-12;
+        c[(1, 0)] = 3e-12;
+        assert!(check_covariance(&c).is_err());
+        c[(0, 1)] = 0.5e-12;
+        c[(1, 0)] = 0.5e-12;
+        assert!(check_covariance(&c).is_ok());
+    }
+}

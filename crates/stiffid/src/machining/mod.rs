@@ -1,0 +1,352 @@
+//! Compensation of a machining program: a G-code or robot program and a process file in, the
+//! same program with compensated targets out.
+//!
+//! 1. The program gives the path: G-code points (part frame, placed in the base frame by the
+//!    setup's `[workpiece] base_from_part`) as TCP poses, or a robot program's joint targets
+//!    ([`crate::machining::program`]) as axis angles.
+//! 2. The process gives each point its wrench: the operation that covers it
+//!    ([`Operation`]: G-code `(operation: NAME)` comments, then `T` tool numbers, then an operation
+//!    without a selector; robot programs: the operation whose `lines` hold the target's line, then
+//!    one without a selector), its mean force and moment over a revolution, turned from the feed
+//!    frame into the base frame along the path's own feed direction (the TCP's motion from the
+//!    previous point; the first point takes the second's) and the tool axis
+//!    ([`Operation::base_wrench`]). Rapid moves (`G0`) and points no operation covers cut nothing;
+//!    a milling point fed along the tool axis (a plunge) gets no force and is counted.
+//! 3. [`compensate::path`] compensates every point, refusing any whose compensated axis angles
+//!    leave the joint limits (naming its line).
+//! 4. Compensated targets that move more than [`MAX_CORRECTION_DEG`] from the nominal ones, or
+//!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
+//!    the line.
+//! 5. The program is written back in its own format: robot programs with the compensated axis
+//!    angles and every other byte as read; G-code with the compensated TCP positions in the part
+//!    frame (the nominal position of the compensated posture: where the controller must be sent
+//!    so that the loaded tool lands on the programmed one).
+
+pub mod compensate;
+pub mod gcode;
+pub mod path;
+pub mod process;
+pub mod program;
+
+use crate::common::words::{count, is_are};
+use crate::machining::compensate::{Compensated, Compliance, PathPoint, Target};
+use crate::machining::gcode::{GCode, Motion};
+use crate::machining::process::{Operation, Process};
+use crate::machining::program::{Dialect, JointProgram};
+use crate::observation::deflection::Frame;
+use crate::robot::ik::tool_pose;
+use crate::{Error, Result, Setup};
+use nalgebra::{Isometry3, Vector3, Vector6};
+
+/// The largest change of an axis angle compensation may make, deg; more means another
+/// configuration (or a point next to a singularity).
+pub const MAX_CORRECTION_DEG: f64 = 1.0;
+
+/// A machining program as read.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Program {
+    /// A G-code program (part frame).
+    GCode(GCode),
+    /// A robot program's joint targets.
+    Robot(JointProgram),
+}
+
+/// What a program file is written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Language {
+    /// G-code (`.nc`, `.ngc`, `.gcode`, `.tap`, `.cnc`).
+    GCode,
+    /// A robot program.
+    Robot(Dialect),
+}
+
+impl Language {
+    /// The language of a file name's extension (case-insensitive).
+    pub fn from_extension(extension: &str) -> Option<Self> {
+        match extension.to_ascii_lowercase().as_str() {
+            "nc" | "ngc" | "gcode" | "tap" | "cnc" | "g" => Some(Language::GCode),
+            other => Dialect::from_extension(other).map(Language::Robot),
+        }
+    }
+
+    /// The language of a file name's extension, or [`Error::InvalidField`] naming the file and
+    /// the extensions known.
+    ///
+    /// # Errors
+    /// An extension that is none of [`Language::from_extension`]'s.
+    pub fn of_file(name: &str) -> Result<Self> {
+        let extension = std::path::Path::new(name)
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("");
+        Self::from_extension(extension).ok_or_else(|| Error::InvalidField {
+            field: name.into(),
+            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS)".into(),
+        })
+    }
+
+    /// The language's name in documents: `gcode`, `krl`, `rapid` or `ls`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Language::GCode => "gcode",
+            Language::Robot(Dialect::Krl) => "krl",
+            Language::Robot(Dialect::Rapid) => "rapid",
+            Language::Robot(Dialect::FanucLs) => "ls",
+        }
+    }
+}
+
+impl Program {
+    /// The program's language.
+    pub fn language(&self) -> Language {
+        match self {
+            Program::GCode(_) => Language::GCode,
+            Program::Robot(p) => Language::Robot(p.dialect),
+        }
+    }
+}
+
+/// Reads a program; `chord_tolerance` (m) splits G-code arcs.
+///
+/// # Errors
+/// Those of [`gcode::parse`] and [`program::parse`].
+pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Program> {
+    match language {
+        Language::GCode => gcode::parse(text, chord_tolerance).map(Program::GCode),
+        Language::Robot(d) => program::parse(text, d).map(Program::Robot),
+    }
+}
+
+/// The compensation of a program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// The path points with their base-frame wrenches, as [`compensate::path`] took them.
+    pub points: Vec<PathPoint>,
+    /// One per point.
+    pub results: Vec<Compensated>,
+    /// The operation (index into the process) of each point, `None` where nothing cuts.
+    pub operations: Vec<Option<usize>>,
+    /// The program, compensated, in its own format.
+    pub program: String,
+    /// What the user should know: plunges without a milling force, points no operation covers.
+    pub warnings: Vec<String>,
+}
+
+/// Compensates `program` under `process` (module docs).
+///
+/// # Errors
+/// [`Error::InvalidField`] for a G-code program without `[workpiece] base_from_part` in the
+/// setup; [`Error::Program`] naming the line of a point whose `(operation: NAME)` names no
+/// operation, or whose compensation changes the configuration; those of [`compensate::path`]
+/// (joint limits, unreachable poses, naming the line).
+pub fn compensate(
+    setup: &Setup,
+    compliance: &Compliance,
+    program: &Program,
+    process: &Process,
+    options: &compensate::Options,
+) -> Result<Report> {
+    let poses = poses(setup, program)?;
+    let operations = operations(program, process)?;
+    let (points, warnings) = path_points(&poses, &operations);
+    let results = compensate::path(setup, compliance, &points, options)?;
+    check_configuration(&points, &results)?;
+    let program = match program {
+        Program::Robot(p) => {
+            let q: Vec<[f64; 6]> = results
+                .iter()
+                .map(|r| r.q_compensated.map(f64::to_degrees).into())
+                .collect();
+            p.write(&q)?
+        }
+        Program::GCode(g) => {
+            let part = workpiece(setup)?.inverse();
+            let tcp = &setup.tool().tcp;
+            let positions: Vec<Vector3<f64>> = results
+                .iter()
+                .map(|r| {
+                    let pose = tool_pose(&setup.robot().frames(&r.q_compensated), tcp);
+                    part * nalgebra::Point3::from(pose.translation.vector)
+                })
+                .map(|p| p.coords)
+                .collect();
+            g.write(&positions)?
+        }
+    };
+    Ok(Report {
+        points,
+        results,
+        operations: operations.into_iter().map(|o| o.map(|(i, _)| i)).collect(),
+        program,
+        warnings,
+    })
+}
+
+fn workpiece(setup: &Setup) -> Result<Isometry3<f64>> {
+    setup.workpiece().copied().ok_or_else(|| Error::InvalidField {
+        field: "workpiece.base_from_part".into(),
+        message: "missing: a G-code program needs the part frame in the robot base frame ([workpiece] base_from_part = { xyz_mm = [..], rpy_deg = [..] } in the setup file)".into(),
+    })
+}
+
+/// Each point's line, target and nominal TCP pose (base frame).
+fn poses(setup: &Setup, program: &Program) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
+    match program {
+        Program::GCode(g) => {
+            let base = workpiece(setup)?;
+            Ok(g.points
+                .iter()
+                .map(|p| {
+                    let pose = base * Isometry3::from_parts(p.position.into(), p.orientation);
+                    (p.line, Target::Pose(pose), pose)
+                })
+                .collect())
+        }
+        Program::Robot(r) => Ok(r
+            .targets
+            .iter()
+            .map(|t| {
+                let q = nalgebra::Vector6::from(t.q_deg).map(f64::to_radians);
+                let pose = tool_pose(&setup.robot().frames(&q), &setup.tool().tcp);
+                (t.line, Target::Posture(q), pose)
+            })
+            .collect()),
+    }
+}
+
+/// The operation of each point (module docs), `None` where nothing cuts.
+fn operations<'a>(
+    program: &Program,
+    process: &'a Process,
+) -> Result<Vec<Option<(usize, &'a Operation)>>> {
+    let ops = &process.operations;
+    let fallback = ops
+        .iter()
+        .enumerate()
+        .find(|(_, o)| o.selector.tool_number.is_none() && o.selector.lines.is_none());
+    match program {
+        Program::GCode(g) => g
+            .points
+            .iter()
+            .map(|p| {
+                if p.motion == Motion::Rapid {
+                    return Ok(None);
+                }
+                if let Some(name) = &p.operation {
+                    return ops
+                        .iter()
+                        .enumerate()
+                        .find(|(_, o)| &o.name == name)
+                        .map(Some)
+                        .ok_or_else(|| Error::Program {
+                            line: p.line,
+                            message: format!(
+                                "(operation: {name}): the process has no operation of that name"
+                            ),
+                        });
+                }
+                let by_tool = p.tool_number.and_then(|t| {
+                    ops.iter()
+                        .enumerate()
+                        .find(|(_, o)| o.selector.tool_number == Some(t))
+                });
+                Ok(by_tool.or(fallback))
+            })
+            .collect(),
+        Program::Robot(r) => Ok(r
+            .targets
+            .iter()
+            .map(|t| {
+                let by_line = ops.iter().enumerate().find(|(_, o)| {
+                    o.selector
+                        .lines
+                        .is_some_and(|(a, b)| (a..=b).contains(&t.line))
+                });
+                by_line.or(fallback)
+            })
+            .collect()),
+    }
+}
+
+/// The path points with their base-frame wrenches, and the warnings.
+fn path_points(
+    poses: &[(u64, Target, Isometry3<f64>)],
+    operations: &[Option<(usize, &Operation)>],
+) -> (Vec<PathPoint>, Vec<String>) {
+    let mut plunges = Vec::new();
+    let mut uncovered = 0;
+    let mut previous_feed: Option<Vector3<f64>> = None;
+    let points = poses
+        .iter()
+        .enumerate()
+        .map(|(i, (line, target, pose))| {
+            let here = pose.translation.vector;
+            let feed = match i {
+                0 => poses.get(1).map(|p| p.2.translation.vector - here),
+                _ => Some(here - poses[i - 1].2.translation.vector),
+            }
+            .filter(|f| f.norm() > 1e-12)
+            .or(previous_feed);
+            previous_feed = feed;
+            let tool_z = pose.rotation * Vector3::z();
+            let wrench = match operations[i] {
+                None => {
+                    uncovered += 1;
+                    Vector6::zeros()
+                }
+                Some((_, op)) => match feed.and_then(|f| op.base_wrench(&f, &tool_z)) {
+                    Some(w) => w,
+                    None => {
+                        plunges.push(*line);
+                        Vector6::zeros()
+                    }
+                },
+            };
+            PathPoint {
+                line: *line,
+                target: target.clone(),
+                wrench,
+                frame: Frame::Base,
+            }
+        })
+        .collect();
+    let mut warnings = Vec::new();
+    if !plunges.is_empty() {
+        let first: Vec<String> = plunges.iter().take(5).map(u64::to_string).collect();
+        warnings.push(format!(
+            "{} {} fed along the tool axis (a plunge) in a milling operation: no process force there (lines {}{})",
+            count(plunges.len(), "point"),
+            is_are(plunges.len()),
+            first.join(", "),
+            if plunges.len() > 5 { ", ..." } else { "" }
+        ));
+    }
+    if uncovered > 0 {
+        warnings.push(format!(
+            "{uncovered} of {} {} in a rapid move or in no operation: no process force there",
+            count(poses.len(), "point"),
+            is_are(uncovered)
+        ));
+    }
+    (points, warnings)
+}
+
+/// Refuses a compensated target that changes the configuration (module docs).
+fn check_configuration(points: &[PathPoint], results: &[Compensated]) -> Result<()> {
+    for (p, r) in points.iter().zip(results) {
+        let dq = (r.q_compensated - r.q).map(f64::to_degrees);
+        let (axis, worst) = dq.iamax_full();
+        let worst = dq[(axis, worst)];
+        let flip = r.q[4].abs() > 1e-9 && r.q_compensated[4].signum() != r.q[4].signum();
+        if worst.abs() > MAX_CORRECTION_DEG || flip {
+            return Err(Error::Program {
+                line: p.line,
+                message: match flip {
+                    true => "the compensated target flips the wrist (axis 5 changes sign): another configuration; refused".into(),
+                    false => format!("the compensated target moves axis {} by {worst:.3} deg (more than {MAX_CORRECTION_DEG} deg): another configuration or a singularity; refused", axis + 1),
+                },
+            });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,299 @@
+//! Machining path files: CSV, one row per path point, units in the header.
+//!
+//! ```text
+//! q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm][,frame]
+//! x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm][,frame]
+//! ```
+//! - Either the axis angles `q1_deg..q6_deg` (deg) of each point, or its TCP pose: position
+//!   `x_mm,y_mm,z_mm` (base frame, mm) and orientation `rx_deg,ry_deg,rz_deg`, fixed-axis
+//!   roll-pitch-yaw as in URDF (`R = Rz(rz) Ry(ry) Rx(rx)`), reached by inverse kinematics.
+//! - The wrench at the TCP: `fx_n,fy_n,fz_n` (N) and optionally `mx_nm,my_nm,mz_nm` (Nm; all
+//!   three or none, none means zero).
+//! - `frame` (optional): `base` or `tool`, the frame of the wrench; an empty cell or no column
+//!   takes the default the caller gives.
+//!
+//! Columns may come in any order; lines starting with `#` are comments. At most [`MAX_POINTS`]
+//! rows. Errors name the line and column ([`Error::Column`]).
+
+use crate::common::error::ColumnProblem;
+use crate::common::limits::{self, short};
+use crate::machining::compensate::{PathPoint, Target};
+use crate::observation::deflection::Frame;
+use crate::{Error, Result};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
+
+/// The most path points a file may hold.
+pub const MAX_POINTS: usize = 1_000_000;
+
+const Q: [&str; 6] = ["q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg"];
+const POSE: [&str; 6] = ["x_mm", "y_mm", "z_mm", "rx_deg", "ry_deg", "rz_deg"];
+const FORCE: [&str; 3] = ["fx_n", "fy_n", "fz_n"];
+const MOMENT: [&str; 3] = ["mx_nm", "my_nm", "mz_nm"];
+const FRAME: &str = "frame";
+
+/// The error at `line`, in no column.
+fn problem(line: u64, problem: ColumnProblem) -> Error {
+    Error::Column {
+        line,
+        column: None,
+        name: String::new(),
+        problem,
+    }
+}
+
+/// Where each quantity sits in a row (0-based field indices).
+struct Columns {
+    target: [usize; 6],
+    pose: bool,
+    force: [usize; 3],
+    moment: Option<[usize; 3]>,
+    frame: Option<usize>,
+}
+
+/// Parses a path file (module docs); `default_frame` is the wrench frame of rows without one.
+///
+/// # Errors
+/// [`Error::Column`] naming the line, the column and the [`ColumnProblem`]: an unknown (with a
+/// suggestion), repeated or missing column, both or neither of the axis-angle and pose columns, a
+/// row with another number of fields than the header, a value that is not a finite number (the
+/// value shown, shortened), a frame other than `base` or `tool`, no rows, or more than
+/// [`MAX_POINTS`].
+///
+/// # Examples
+/// ```
+/// use stiffid::observation::deflection::Frame;
+/// let text = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n0,0,-90,0,30,0,0,0,-500\n";
+/// let points = stiffid::machining::path::parse(text, Frame::Base).unwrap();
+/// assert_eq!((points.len(), points[0].line, points[0].wrench[2]), (1, 2, -500.0));
+/// ```
+pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
+    points(text, default_frame)?.collect()
+}
+
+/// The points of a path file one by one, parsed as they are asked for: [`parse`] without the
+/// whole path in memory (for [`crate::machining::compensate::stream`]). The header is checked at once.
+///
+/// # Errors
+/// The header's at once; each row's, and the row limit and the empty file, as an item (as
+/// [`parse`]).
+pub fn points(
+    text: &str,
+    default_frame: Frame,
+) -> Result<impl Iterator<Item = Result<PathPoint>> + '_> {
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
+    // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
+    let mut lines = crate::io::LineCount::with_comments(text.as_bytes());
+    let header_line = header.position().map_or(1, |p| lines.at(p.byte()));
+    let names: Vec<String> = header.iter().map(str::to_string).collect();
+    let columns = {
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        columns(&names, header_line)?
+    };
+    let mut records = reader.into_records();
+    let mut count = 0usize;
+    let mut done = false;
+    Ok(std::iter::from_fn(move || {
+        if done {
+            return None;
+        }
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let next = match records.next() {
+            None if count == 0 => Some(Err(problem(
+                header_line,
+                ColumnProblem::NoRows { what: "path point" },
+            ))),
+            None => None,
+            Some(record) => Some(row(
+                record,
+                &mut lines,
+                &names,
+                &columns,
+                count,
+                default_frame,
+            )),
+        };
+        count += 1;
+        done = !matches!(next, Some(Ok(_)));
+        next
+    }))
+}
+
+/// One row: its point, or the error naming its line.
+fn row(
+    record: csv::Result<csv::StringRecord>,
+    lines: &mut crate::io::LineCount,
+    names: &[&str],
+    columns: &Columns,
+    before: usize,
+    default_frame: Frame,
+) -> Result<PathPoint> {
+    let record = record.map_err(|e| {
+        let line = e.position().map_or(0, |p| lines.at(p.byte()));
+        unreadable(line, &e)
+    })?;
+    let line = record.position().map_or(0, |p| lines.at(p.byte()));
+    if record.len() != names.len() {
+        let count = ColumnProblem::FieldCount {
+            expected: names.len(),
+            got: record.len(),
+        };
+        return Err(problem(line, count));
+    }
+    if before == MAX_POINTS {
+        let too_many = ColumnProblem::TooMany {
+            limit: MAX_POINTS,
+            what: "path points",
+        };
+        return Err(problem(line, too_many));
+    }
+    point(columns, names, &record, line, default_frame)
+}
+
+fn unreadable(line: u64, e: &csv::Error) -> Error {
+    let message = crate::io::csv_message(e);
+    problem(line, ColumnProblem::Unreadable { message })
+}
+
+fn expected_columns() -> String {
+    format!(
+        "{} or {}, {}, optional {} and {FRAME}",
+        Q.join(","),
+        POSE.join(","),
+        FORCE.join(","),
+        MOMENT.join(",")
+    )
+}
+
+fn columns(names: &[&str], line: u64) -> Result<Columns> {
+    let known = Q.iter().chain(&POSE).chain(&FORCE).chain(&MOMENT);
+    let known = known.copied().chain([FRAME]);
+    crate::io::known_names(names, line, known, expected_columns)?;
+    let find = |n: &str| names.iter().position(|h| *h == n);
+    let all = |set: &[&str]| -> Result<Option<Vec<usize>>> {
+        let found: Vec<Option<usize>> = set.iter().map(|n| find(n)).collect();
+        match found.iter().position(Option::is_none) {
+            None => Ok(Some(found.into_iter().flatten().collect())),
+            Some(_) if found.iter().all(Option::is_none) => Ok(None),
+            Some(i) => Err(crate::io::missing(line, set[i])),
+        }
+    };
+    let (target, is_pose) = match (all(&Q)?, all(&POSE)?) {
+        (Some(q), None) => (q, false),
+        (None, Some(p)) => (p, true),
+        (q, _) => {
+            let (first, second) = (Q.join(","), POSE.join(","));
+            return Err(problem(
+                line,
+                match q {
+                    Some(_) => ColumnProblem::Conflict { first, second },
+                    None => ColumnProblem::Neither { first, second },
+                },
+            ));
+        }
+    };
+    let force = all(&FORCE)?.ok_or_else(|| crate::io::missing(line, FORCE[0]))?;
+    let as3 = |v: Vec<usize>| [v[0], v[1], v[2]];
+    Ok(Columns {
+        target: [
+            target[0], target[1], target[2], target[3], target[4], target[5],
+        ],
+        pose: is_pose,
+        force: as3(force),
+        moment: all(&MOMENT)?.map(as3),
+        frame: find(FRAME),
+    })
+}
+
+/// The error in field `i` (0-based) of a row at `line`.
+fn at(names: &[&str], line: u64, i: usize, problem: ColumnProblem) -> Error {
+    Error::Column {
+        line,
+        column: Some(i + 1),
+        name: names[i].into(),
+        problem,
+    }
+}
+
+fn number(record: &csv::StringRecord, names: &[&str], i: usize, line: u64) -> Result<f64> {
+    let text = &record[i];
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(at(
+            names,
+            line,
+            i,
+            ColumnProblem::NotANumber { value: short(text) },
+        )),
+    }
+}
+
+fn point(
+    c: &Columns,
+    names: &[&str],
+    record: &csv::StringRecord,
+    line: u64,
+    default_frame: Frame,
+) -> Result<PathPoint> {
+    let get = |i: usize| number(record, names, i, line);
+    // Each value within its range ([`limits`]): positions within LENGTH_MM, angles within
+    // ANGLE_DEG, forces and moments within WRENCH.
+    let within = |i: usize, range: &limits::Range| -> Result<f64> {
+        let v = get(i)?;
+        match range.contains(v) {
+            true => Ok(v),
+            false => Err(at(names, line, i, range.outside(names[i], v))),
+        }
+    };
+    let t: Vec<f64> = c
+        .target
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| match (c.pose, k < 3) {
+            (true, true) => within(i, &limits::LENGTH_MM),
+            _ => within(i, &limits::ANGLE_DEG),
+        })
+        .collect::<Result<_>>()?;
+    let target = match c.pose {
+        false => Target::Posture(Vector6::from_iterator(t.iter().map(|v| v.to_radians()))),
+        true => Target::Pose(Isometry3::from_parts(
+            Translation3::new(t[0] * 1e-3, t[1] * 1e-3, t[2] * 1e-3),
+            UnitQuaternion::from_euler_angles(
+                t[3].to_radians(),
+                t[4].to_radians(),
+                t[5].to_radians(),
+            ),
+        )),
+    };
+    let mut wrench = Vector6::zeros();
+    for (k, &i) in c.force.iter().enumerate() {
+        wrench[k] = within(i, &limits::WRENCH)?;
+    }
+    if let Some(m) = &c.moment {
+        for (k, &i) in m.iter().enumerate() {
+            wrench[3 + k] = within(i, &limits::WRENCH)?;
+        }
+    }
+    let frame = match c.frame.map(|i| &record[i]) {
+        None | Some("") => default_frame,
+        Some("base") => Frame::Base,
+        Some("tool") => Frame::Tool,
+        Some(other) => {
+            let choice = ColumnProblem::Choice {
+                value: short(other),
+                expected: "base or tool",
+            };
+            return Err(at(names, line, c.frame.unwrap_or(0), choice));
+        }
+    };
+    Ok(PathPoint {
+        line,
+        target,
+        wrench,
+        frame,
+    })
+}

@@ -1,0 +1,398 @@
+//! The calibration fit: Levenberg-Marquardt over the identifiable parameters, with standard
+//! deviations.
+//!
+//! The parameters kept by [`crate::metrology::calibration::identifiability`] at the start (the merged stay
+//! nominal) minimise `|r(x)|^2`, `r` the residuals of [`ErrorModel::residuals`], by
+//! Levenberg-Marquardt (Marquardt 1963) in the scaled parameters `x_s = x / s`
+//! ([`ErrorModel::column_scales`]): each iteration factors `[J_s | r]` by Householder QR once
+//! (`J_s` the scaled Jacobian), then solves `[R; sqrt(lambda) I] dx_s = -[Q^T r; 0]` by SVD of that small matrix (never
+//! the normal equations), accepts the step when the cost falls (and divides `lambda` by 10) or
+//! multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
+//! after every step ([`Estimate::recentre`]).
+//!
+//! Standard deviations: the covariance of the fitted parameters is `sigma^2 (J^T J)^-1` at the
+//! solution, `sigma^2 = |r|^2 / (3n - p)` the noise variance per coordinate estimated from the
+//! residuals (`n` readings, `p` parameters fitted). With priors ([`Priors`]: the nominal
+//! tolerances), every joint error is fitted, each with the prior row `(x - x_0) sigma_t /
+//! sigma_p` (`sigma_t` the tracker noise per coordinate, `sigma_p` the tolerance), a weakly
+//! determined combination gets a value pulled towards nominal, and the covariance is
+//! `sigma_t^2 (J_a^T J_a)^-1` of the augmented Jacobian: the posterior of a Gaussian prior and
+//! noise (Tikhonov regularisation as Bayesian estimation).
+
+use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
+use super::identifiability::{self, Identifiability};
+use crate::metrology::register::Correspondence;
+use crate::{Error, Result};
+use nalgebra::{DMatrix, DVector, Vector6};
+
+/// Most Levenberg-Marquardt iterations.
+pub const MAX_ITERATIONS: usize = 100;
+
+/// Most readings a calibration fits.
+pub const MAX_READINGS: usize = 100_000;
+
+/// The scaled step length below which the fit has converged.
+pub const STEP_TOLERANCE: f64 = 1e-13;
+
+/// Nominal tolerances of the joint errors, as Gaussian priors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Priors {
+    /// Standard deviation of a length error, m.
+    pub length: f64,
+    /// Standard deviation of an angle error, rad.
+    pub angle: f64,
+    /// The tracker's noise per coordinate, m (the priors' weight against the readings).
+    pub noise: f64,
+}
+
+/// What the fit needs besides the model and the readings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// The characteristic length of the column scaling, m.
+    pub length: f64,
+    /// Priors on the joint errors, if any.
+    pub priors: Option<Priors>,
+}
+
+/// The fitted calibration.
+#[derive(Debug, Clone)]
+pub struct Fit {
+    /// The estimate (re-centred: the frame's six values are zero, the frame holds them).
+    pub estimate: Estimate,
+    /// What the readings determine, at the start.
+    pub identifiability: Identifiability,
+    /// The fitted parameters' indices, ascending: the identified, or with priors every joint
+    /// error too.
+    pub fitted: Vec<usize>,
+    /// The standard deviation of each parameter (SI); `None` for a parameter not fitted. The
+    /// frame's are those of its base-frame perturbation.
+    pub sd: Vec<Option<f64>>,
+    /// The covariance of the fitted parameters (SI, `fitted` order).
+    pub covariance: DMatrix<f64>,
+    /// The residuals at the solution, 3 per reading, base frame, m.
+    pub residuals: DVector<f64>,
+    /// RMS of the residuals' lengths, m.
+    pub rms: f64,
+    /// The noise per coordinate estimated from the residuals, m.
+    pub sigma: f64,
+    /// Iterations taken.
+    pub iterations: usize,
+}
+
+/// Fits `model` to `observations` from `start` (module docs).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with no reading, more than [`MAX_READINGS`], a
+/// non-finite reading, or fewer coordinates than fitted parameters plus one;
+/// [`Error::InvalidField`] (`options`) for a non-positive length or prior; those of
+/// [`ErrorModel::jacobian`] and [`identifiability::analyse`]; [`Error::NotFinite`] when the fit
+/// diverges.
+pub fn fit(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+) -> Result<Fit> {
+    check(observations, options)?;
+    let at: Vec<(Vector6<f64>, usize)> = observations.iter().map(|o| (o.q, o.point)).collect();
+    let qs: Vec<Vector6<f64>> = at.iter().map(|(q, _)| *q).collect();
+    let scales = model.column_scales(options.length, &qs);
+    let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
+    let j = model.jacobian(&start.values, &at)?;
+    let identifiability = identifiability::analyse(&j, &scales, &priorities)?;
+    let fitted: Vec<usize> = match options.priors {
+        None => identifiability.identified.clone(),
+        Some(_) => (0..model.parameters().len())
+            .filter(|&c| {
+                identifiability.identified.contains(&c) || model.parameters()[c].kind == Kind::Joint
+            })
+            .collect(),
+    };
+    let coordinates = 3 * observations.len();
+    if options.priors.is_none() && coordinates <= fitted.len() {
+        return Err(Error::InvalidField {
+            field: "readings".into(),
+            message: format!(
+                "{} readings give {coordinates} coordinates for {} identifiable parameters: read more postures",
+                observations.len(),
+                fitted.len()
+            ),
+        });
+    }
+    let problem = Problem {
+        model,
+        observations,
+        at: &at,
+        fitted: &fitted,
+        scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
+        priors: options.priors.map(|p| prior_weights(model, &fitted, &p)),
+        noise: options.priors.map(|p| p.noise),
+        nominal: model.nominal(),
+    };
+    let (estimate, iterations) = problem.minimise(start.recentre())?;
+    problem.finish(estimate, identifiability, iterations)
+}
+
+/// The start of a fit: the nominal values, and the frame registered on the nominal positions
+/// ([`crate::metrology::register::fit`], Umeyama) for tracker readings, the identity for base-frame ones.
+///
+/// # Errors
+/// Those of [`ErrorModel::positions`] and [`crate::metrology::register::fit`] (fewer than 3 readings,
+/// collinear points).
+pub fn start(model: &ErrorModel, observations: &[Observation]) -> Result<Estimate> {
+    let values = model.nominal();
+    let frame = match model.measured_in() {
+        MeasuredIn::Base => nalgebra::Isometry3::identity(),
+        MeasuredIn::Tracker => {
+            let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
+            let b = model.positions(&values, &at)?;
+            let pairs: Vec<Correspondence> = (observations.iter().zip(b))
+                .map(|(o, base)| Correspondence {
+                    base,
+                    tracker: o.measured,
+                })
+                .collect();
+            crate::metrology::register::fit(&pairs)?.base_from_tracker
+        }
+    };
+    Ok(Estimate { frame, values })
+}
+
+fn check(observations: &[Observation], options: &Options) -> Result<()> {
+    let invalid = |field: &str, message: String| Error::InvalidField {
+        field: field.into(),
+        message,
+    };
+    if observations.is_empty() || observations.len() > MAX_READINGS {
+        return Err(invalid(
+            "readings",
+            format!(
+                "expected 1 to {MAX_READINGS} unloaded readings, got {}",
+                observations.len()
+            ),
+        ));
+    }
+    if let Some(o) = observations
+        .iter()
+        .find(|o| !(o.q.iter().chain(o.measured.iter()).all(|v| v.is_finite())))
+    {
+        return Err(invalid(
+            "readings",
+            format!("posture {}: expected finite numbers", o.posture + 1),
+        ));
+    }
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    if !positive(options.length) {
+        return Err(invalid(
+            "options",
+            "expected a positive characteristic length".into(),
+        ));
+    }
+    if let Some(p) = options.priors {
+        if !(positive(p.length) && positive(p.angle) && positive(p.noise)) {
+            return Err(invalid(
+                "options",
+                "expected positive prior tolerances and noise".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The weight of each fitted parameter's prior row (`sigma_t / sigma_p`, per SI unit), 0 for a
+/// parameter without a prior.
+fn prior_weights(model: &ErrorModel, fitted: &[usize], p: &Priors) -> DVector<f64> {
+    DVector::from_iterator(
+        fitted.len(),
+        fitted.iter().map(|&c| match model.parameters()[c].target {
+            Target::Joint { component, .. } if component.is_angle() => p.noise / p.angle,
+            Target::Joint { .. } => p.noise / p.length,
+            _ => 0.0,
+        }),
+    )
+}
+
+struct Problem<'a> {
+    model: &'a ErrorModel,
+    observations: &'a [Observation],
+    at: &'a [(Vector6<f64>, usize)],
+    fitted: &'a [usize],
+    scales: DVector<f64>,
+    priors: Option<DVector<f64>>,
+    /// The priors' tracker noise, m.
+    noise: Option<f64>,
+    nominal: DVector<f64>,
+}
+
+impl Problem<'_> {
+    /// The residuals with the prior rows.
+    fn residuals(&self, e: &Estimate) -> Result<DVector<f64>> {
+        let r = self.model.residuals(e, self.observations)?;
+        Ok(match &self.priors {
+            None => r,
+            Some(w) => {
+                let n = r.len();
+                let mut all = r.resize_vertically(n + w.len(), 0.0);
+                for (i, &c) in self.fitted.iter().enumerate() {
+                    all[n + i] = w[i] * (e.values[c] - self.nominal[c]);
+                }
+                all
+            }
+        })
+    }
+
+    /// The scaled Jacobian of the fitted parameters with the prior rows.
+    fn jacobian(&self, e: &Estimate) -> Result<DMatrix<f64>> {
+        let full = self.model.jacobian(&e.values, self.at)?;
+        let mut j = full.select_columns(self.fitted.iter());
+        for (c, s) in self.scales.iter().enumerate() {
+            j.column_mut(c).scale_mut(*s);
+        }
+        Ok(match &self.priors {
+            None => j,
+            Some(w) => {
+                let (m, n) = j.shape();
+                let mut all = j.resize_vertically(m + n, 0.0);
+                for i in 0..n {
+                    all[(m + i, i)] = w[i] * self.scales[i];
+                }
+                all
+            }
+        })
+    }
+
+    fn step(&self, e: &Estimate, dx_scaled: &DVector<f64>) -> Estimate {
+        let mut values = e.values.clone();
+        for (i, &c) in self.fitted.iter().enumerate() {
+            values[c] += dx_scaled[i] * self.scales[i];
+        }
+        Estimate {
+            frame: e.frame,
+            values,
+        }
+        .recentre()
+    }
+
+    fn minimise(&self, mut e: Estimate) -> Result<(Estimate, usize)> {
+        let mut r = self.residuals(&e)?;
+        let mut cost = r.norm_squared();
+        let mut lambda = 1e-9;
+        let n = self.fitted.len();
+        for iteration in 1..=MAX_ITERATIONS {
+            let j = self.jacobian(&e)?;
+            let (rt, qtr) = factor(&j, &r);
+            let mut accepted = false;
+            for _ in 0..30 {
+                let dx = damped_step(&rt, &qtr, lambda)?;
+                let trial = self.step(&e, &dx);
+                let r_trial = self.residuals(&trial)?;
+                let c = r_trial.norm_squared();
+                if !c.is_finite() {
+                    return Err(Error::NotFinite {
+                        what: "the calibration's residuals".into(),
+                    });
+                }
+                if c <= cost {
+                    let small = dx.norm() < STEP_TOLERANCE * (1.0 + n as f64);
+                    let stalled = cost - c <= 1e-15 * cost;
+                    e = trial;
+                    r = r_trial;
+                    cost = c;
+                    lambda = (lambda / 10.0).max(1e-12);
+                    accepted = true;
+                    if small || stalled {
+                        return Ok((e, iteration));
+                    }
+                    break;
+                }
+                lambda *= 10.0;
+            }
+            if !accepted {
+                return Ok((e, iteration));
+            }
+        }
+        Ok((e, MAX_ITERATIONS))
+    }
+
+    fn finish(
+        &self,
+        estimate: Estimate,
+        identifiability: Identifiability,
+        iterations: usize,
+    ) -> Result<Fit> {
+        let r_all = self.residuals(&estimate)?;
+        let data = 3 * self.observations.len();
+        let residuals = r_all.rows(0, data).into_owned();
+        let ssr = residuals.norm_squared();
+        let n = self.fitted.len();
+        let sigma = match self.priors {
+            None => (ssr / (data - n).max(1) as f64).sqrt(),
+            Some(_) => (ssr / data.saturating_sub(identifiability.rank).max(1) as f64).sqrt(),
+        };
+        let j = self.jacobian(&estimate)?;
+        let (rt, _) = factor(&j, &DVector::zeros(j.nrows()));
+        let svd = rt
+            .try_svd(false, true, f64::EPSILON, 0)
+            .ok_or_else(not_converged)?;
+        let v_t = svd.v_t.ok_or_else(not_converged)?;
+        let s = &svd.singular_values;
+        let inverse = DMatrix::from_diagonal(&s.map(|v| 1.0 / (v * v)));
+        let unit = v_t.transpose() * inverse * &v_t;
+        let noise2 = self.noise.map_or(sigma * sigma, |t| t * t);
+        let covariance = DMatrix::from_fn(n, n, |a, b| {
+            unit[(a, b)] * self.scales[a] * self.scales[b] * noise2
+        });
+        let mut sd = vec![None; self.model.parameters().len()];
+        for (i, &c) in self.fitted.iter().enumerate() {
+            sd[c] = Some(covariance[(i, i)].sqrt());
+        }
+        let readings = self.observations.len();
+        let rms = (ssr / readings as f64).sqrt();
+        Ok(Fit {
+            estimate,
+            identifiability,
+            fitted: self.fitted.to_vec(),
+            sd,
+            covariance,
+            residuals,
+            rms,
+            sigma,
+            iterations,
+        })
+    }
+}
+
+/// `R` (`n x n`) and `Q^T r` (`n`) of the QR factorisation of `j` (`m x n`, `m >= n`), from one
+/// Householder pass over `[j | r]`.
+fn factor(j: &DMatrix<f64>, r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
+    let (m, n) = j.shape();
+    let mut a = j.clone().insert_column(n, 0.0);
+    a.column_mut(n).copy_from(r);
+    let mut taus = vec![0.0; n.min(m)];
+    crate::math::linalg::householder_qr_columns(a.as_mut_slice(), m, &mut taus);
+    let k = n.min(m);
+    let rt = DMatrix::from_fn(k, n, |i, c| if i <= c { a[(i, c)] } else { 0.0 });
+    (rt, a.column(n).rows(0, k).into_owned())
+}
+
+/// The step of `[R; sqrt(lambda) I] dx = -[Q^T r; 0]`, by SVD.
+fn damped_step(rt: &DMatrix<f64>, qtr: &DVector<f64>, lambda: f64) -> Result<DVector<f64>> {
+    let (k, n) = rt.shape();
+    let mut a = DMatrix::zeros(k + n, n);
+    a.rows_mut(0, k).copy_from(rt);
+    for i in 0..n {
+        a[(k + i, i)] = lambda.sqrt();
+    }
+    let mut b = DVector::zeros(k + n);
+    b.rows_mut(0, k).copy_from(&(-qtr));
+    let svd = a
+        .try_svd(true, true, f64::EPSILON, 0)
+        .ok_or_else(not_converged)?;
+    svd.solve(&b, 0.0).map_err(|_| not_converged())
+}
+
+fn not_converged() -> Error {
+    Error::NotFinite {
+        what: "the calibration's SVD did not converge".into(),
+    }
+}

@@ -1,0 +1,104 @@
+//! The held-out position error: readings the fit did not see, predicted by the calibrated model.
+//!
+//! The error of a held-out reading is `b(x, q) - T t` (base frame, m), the predicted position
+//! of its measuring point minus the tracker's reading mapped by the calibrated registration
+//! ([`crate::metrology::calibration::ErrorModel::residuals`]). [`cross_validate`] holds out one posture at a
+//! time (all its points), fits the rest and predicts it: the leave-one-posture-out error, the
+//! prediction error of the model on postures like the campaign's.
+
+use super::error_model::{ErrorModel, Estimate, Observation};
+use super::fit::{self, Options};
+use crate::{Error, Result};
+use nalgebra::Vector3;
+
+/// The error of one held-out reading.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointError {
+    /// The posture (0-based, in its readings).
+    pub posture: usize,
+    /// The measuring point, 0-based.
+    pub point: usize,
+    /// Predicted minus read, base frame, m.
+    pub error: Vector3<f64>,
+}
+
+/// The held-out errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Validation {
+    /// One per held-out reading.
+    pub errors: Vec<PointError>,
+    /// RMS of the errors' lengths, m.
+    pub rms: f64,
+    /// The largest error's length, m.
+    pub max: f64,
+}
+
+impl Validation {
+    /// The summary of `errors`.
+    pub fn new(errors: Vec<PointError>) -> Self {
+        let n = errors.len().max(1) as f64;
+        let rms = (errors.iter().map(|e| e.error.norm_squared()).sum::<f64>() / n).sqrt();
+        let max = errors.iter().map(|e| e.error.norm()).fold(0.0, f64::max);
+        Validation { errors, rms, max }
+    }
+}
+
+/// The errors of `observations` at `estimate`.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with no reading; those of
+/// [`ErrorModel::residuals`].
+pub fn validate(
+    model: &ErrorModel,
+    estimate: &Estimate,
+    observations: &[Observation],
+) -> Result<Validation> {
+    if observations.is_empty() {
+        return Err(Error::InvalidField {
+            field: "readings".into(),
+            message: "expected held-out unloaded readings, got none".into(),
+        });
+    }
+    let r = model.residuals(estimate, observations)?;
+    Ok(Validation::new(
+        observations
+            .iter()
+            .enumerate()
+            .map(|(i, o)| PointError {
+                posture: o.posture,
+                point: o.point,
+                error: r.fixed_rows::<3>(3 * i).into_owned(),
+            })
+            .collect(),
+    ))
+}
+
+/// Leave-one-posture-out: each posture predicted by the fit of the others from `start`.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with fewer than 2 postures; those of [`fit::fit`] on
+/// each subset.
+pub fn cross_validate(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+) -> Result<Validation> {
+    let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
+    postures.sort_unstable();
+    postures.dedup();
+    if postures.len() < 2 {
+        return Err(Error::InvalidField {
+            field: "readings".into(),
+            message: "cross-validation needs 2 postures or more".into(),
+        });
+    }
+    let mut errors = Vec::new();
+    for p in postures {
+        let (out, kept): (Vec<Observation>, Vec<Observation>) =
+            observations.iter().cloned().partition(|o| o.posture == p);
+        let fitted = fit::fit(model, &kept, start, options)?;
+        errors.extend(validate(model, &fitted.estimate, &out)?.errors);
+    }
+    Ok(Validation::new(errors))
+}
