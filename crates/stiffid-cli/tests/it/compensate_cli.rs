@@ -373,7 +373,7 @@ fn bad_programs_exit_2_naming_the_line_or_the_field() {
     let ls = write_file(
         &dir,
         "far.ls",
-        "/PROG FAR\n/MN\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -60 deg,\tJ2= -17 deg,\tJ3= -29 deg,\n\tJ4= 4 deg,\tJ5= -63 deg,\tJ6= 145 deg\n};\nP[2]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -60 deg,\tJ2= 170 deg,\tJ3= -29 deg,\n\tJ4= 4 deg,\tJ5= -63 deg,\tJ6= 145 deg\n};\n/END\n",
+        "/PROG FAR\n/MN\n   1:J P[1] 10% FINE ;\n   2:J P[2] 10% FINE ;\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -60 deg,\tJ2= -17 deg,\tJ3= -29 deg,\n\tJ4= 4 deg,\tJ5= -63 deg,\tJ6= 145 deg\n};\nP[2]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -60 deg,\tJ2= 170 deg,\tJ3= -29 deg,\n\tJ4= 4 deg,\tJ5= -63 deg,\tJ6= 145 deg\n};\n/END\n",
     );
     let run = |program: &Path, out: &Path| {
         stiffid(&[
@@ -396,7 +396,7 @@ fn bad_programs_exit_2_naming_the_line_or_the_field() {
     );
     assert_usage_error(
         &run(&ls, &dir.join("o.ls")),
-        &["far.ls", "line 10", "q2_deg"],
+        &["far.ls", "line 4", "q2_deg"],
     );
     let nc = write_file(
         &dir,

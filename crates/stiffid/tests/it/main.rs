@@ -35,6 +35,7 @@ mod path_format;
 mod pool;
 mod prior;
 mod process_forces;
+mod program_forms;
 mod programs;
 mod register_postures;
 mod search;

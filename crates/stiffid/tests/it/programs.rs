@@ -34,14 +34,14 @@ fn robot_programs_round_trip_byte_for_byte_and_read_their_joint_targets() {
             Dialect::Rapid,
             [10.5, -20.0, 30.0, 0.0, 45.125, 0.0],
             2,
-            3,
+            5,
         ),
         (
             LS,
             Dialect::FanucLs,
             [10.0, -20.5, 30.0, 0.0, -45.0, 5.0],
             2,
-            8,
+            5,
         ),
     ] {
         let p = program::parse(text, dialect).unwrap();
@@ -121,7 +121,7 @@ fn malformed_programs_are_refused_naming_the_line() {
             "MODULE M\nENDMODULE\n".to_string(),
             Dialect::Rapid,
             1,
-            "no joint target",
+            "no motion to a joint target",
         ),
     ];
     for (text, dialect, line, word) in cases {
@@ -255,9 +255,18 @@ fn fanuc() -> (stiffid::Setup, Compliance) {
 
 /// An LS program whose targets reach a square in the plane z = 400 mm.
 fn ls_program(s: &stiffid::Setup) -> String {
+    ls_square(s, false)
+}
+
+/// The square's LS program, its `/POS` table in the motions' order or reversed.
+fn ls_square(s: &stiffid::Setup, reversed: bool) -> String {
     let tcp = s.tool().tcp;
     let mut q = Options::for_setup(s).q0;
-    let mut text = String::from("/PROG  SQUARE\n/MN\n/POS\n");
+    let mut text = String::from("/PROG  SQUARE\n/MN\n");
+    for i in 1..=5 {
+        text += &format!("{i:>4}:L P[{i}] 10mm/sec FINE ;\n");
+    }
+    text += "/POS\n";
     let corners = [
         (0.0, 0.0),
         (60.0, 0.0),
@@ -265,6 +274,7 @@ fn ls_program(s: &stiffid::Setup) -> String {
         (0.0, 40.0),
         (0.0, 0.0),
     ];
+    let mut positions = Vec::new();
     for (i, (x, y)) in corners.iter().enumerate() {
         let pose = Isometry3::from_parts(
             Vector3::new(1.3 + x * 1e-3, -0.7 + y * 1e-3, 0.4).into(),
@@ -274,12 +284,50 @@ fn ls_program(s: &stiffid::Setup) -> String {
             .unwrap()
             .q;
         let d = q.map(f64::to_degrees);
-        text += &format!(
+        positions.push(format!(
             "P[{}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {:.6} deg,\tJ2= {:.6} deg,\tJ3= {:.6} deg,\n\tJ4= {:.6} deg,\tJ5= {:.6} deg,\tJ6= {:.6} deg\n}};\n",
             i + 1, d[0], d[1], d[2], d[3], d[4], d[5]
+        ));
+    }
+    if reversed {
+        positions.reverse();
+    }
+    text + &positions.concat() + "/END\n"
+}
+
+/// The path follows the motions, not the `/POS` table: the square with its table reversed is
+/// compensated exactly as with the table in order (the process force along the same feed).
+#[test]
+fn the_path_order_is_the_motions_not_the_position_table() {
+    let (s, compliance) = fanuc();
+    let process = file::parse(PROCESS, "p.toml").unwrap();
+    let options = Options::for_setup(&s);
+    let run = |reversed: bool| {
+        let text = ls_square(&s, reversed);
+        let program = machining::read(&text, Language::Robot(Dialect::FanucLs), 1e-5).unwrap();
+        machining::compensate(&s, &compliance, &program, &process, &options).unwrap()
+    };
+    let (forward, backward) = (run(false), run(true));
+    for (a, b) in forward.results.iter().zip(&backward.results) {
+        assert_eq!(a.q, b.q);
+        assert!((a.q_compensated - b.q_compensated).amax() <= 1e-12);
+    }
+    for (a, b) in forward.points.iter().zip(&backward.points) {
+        assert_eq!(a.line, b.line);
+        assert!(
+            (a.wrench - b.wrench).amax() <= 1e-9,
+            "{} {}",
+            a.wrench,
+            b.wrench
         );
     }
-    text + "/END\n"
+    // The feed along +x first: the down-milling feed force (x of the feed frame) on the tool
+    // points along the feed, so the base-frame force of the second point has +x.
+    assert!(
+        forward.points[1].wrench[0] > 0.0,
+        "{}",
+        forward.points[1].wrench
+    );
 }
 
 #[test]
@@ -327,7 +375,7 @@ fn a_compensated_program_has_the_csv_routes_targets() {
     // Untouched lines stay.
     assert!(report
         .program
-        .starts_with("/PROG  SQUARE\n/MN\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n"));
+        .starts_with("/PROG  SQUARE\n/MN\n   1:L P[1] 10mm/sec FINE ;\n"));
 }
 
 #[test]

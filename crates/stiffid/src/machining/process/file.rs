@@ -17,9 +17,10 @@
 //! k_tc_n_per_mm2 = 767.01
 //! ```
 //! or several as `[[operation]]` tables with the same keys and a `name`, each selected in a
-//! program by `tool_number = 2` (the G-code `T2` word), or `lines = [first, last]` (the lines of a
-//! robot program it covers). A drilling operation has `[tool] diameter_mm`, `[cut]
-//! feed_per_rev_mm` and `[coefficients] specific_energy_n_per_mm2, specific_thrust_n_per_mm2`.
+//! program by `tool_number = 2` (the G-code `T2` word), or `lines = [first, last]` (the lines of
+//! the motion instructions of a robot program it covers). A drilling operation has
+//! `[tool] diameter_mm`, `[cut] feed_per_rev_mm` and `[coefficients] specific_energy_n_per_mm2,
+//! specific_thrust_n_per_mm2`.
 //! Where the workpiece sits is the cell's, not the process's: `[workpiece] base_from_part` is a
 //! field of the setup ([`crate::setup`]); a process file that has one is refused, saying so.
 //!

@@ -1,60 +1,192 @@
-//! KUKA KRL: `PTP {A1 0, A2 -90, ...}`, `LIN {...}` and `DECL E6AXIS XP1={A1 0,...}` (or
-//! `AXIS`) aggregates; `;` starts a comment.
+//! KUKA KRL: `PTP {A1 0, A2 -90, ...}`, `LIN {...}` (also `SPTP`, `SLIN`, an optional type
+//! `{E6AXIS: ...}` and an approximation `C_PTP`, `C_DIS`, `C_VEL`, `C_ORI`, `C_SPL`), or the same
+//! to a point declared in the file: `DECL E6AXIS XP1={A1 0,...}` (or `AXIS`, with or without
+//! `DECL`, `GLOBAL`, `CONST`); `;` starts a comment. KRL is line based and case-insensitive.
 
 use super::{at, number_at, six, JointTarget};
-use crate::Result;
+use crate::{Error, Result};
+use std::collections::HashMap;
 
-/// Every joint target of `text` (module docs).
+/// A point declared in the file: its line and its joint target, or why it is none.
+type Declared = HashMap<String, (u64, std::result::Result<JointTarget, String>)>;
+
+/// Every joint target of `text`, in the order of its motions (module docs).
 pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
+    let (declared, assigned) = declarations(text)?;
     let mut out = Vec::new();
+    // The routine of the first motion, and the first jump, loop or branch.
+    let mut routine: Option<(String, u64)> = None;
+    let mut current: Option<(String, u64)> = None;
+    let mut control: Option<(u64, String)> = None;
     for (line, start, l) in super::lines(text) {
         let code = l.split(';').next().unwrap_or("");
-        let words: Vec<String> = code
-            .split(|c: char| c.is_whitespace() || c == '=' || c == '{')
-            .filter(|w| !w.is_empty())
-            .map(str::to_ascii_uppercase)
-            .collect();
+        let words = words(code);
         let first = words.first().map(String::as_str).unwrap_or("");
-        let motion = matches!(first, "PTP" | "LIN" | "CIRC" | "SPTP" | "SLIN" | "SCIRC");
-        let relative = matches!(first, "PTP_REL" | "LIN_REL" | "CIRC_REL");
-        let declared = words.iter().take(4).any(|w| w == "E6AXIS" || w == "AXIS")
-            && words.iter().any(|w| w == "DECL")
-            || matches!(first, "E6AXIS" | "AXIS");
-        let Some(open) = code.find('{') else {
-            if relative {
-                return Err(at(
-                    line,
-                    format!(
-                        "{first}: a relative motion; stiffid compensates absolute joint targets"
-                    ),
-                ));
-            }
+        if let Some(name) = routine_name(&words) {
+            current = Some((name, line));
+            continue;
+        }
+        if matches!(
+            first,
+            "FOR" | "WHILE" | "LOOP" | "REPEAT" | "GOTO" | "IF" | "SWITCH"
+        ) && control.is_none()
+        {
+            control = Some((line, first.to_string()));
+        }
+        let Some(target) = motion(line, start, code, first, &declared, &assigned)? else {
             continue;
         };
-        if relative {
-            return Err(at(
-                line,
-                format!("{first}: a relative motion; stiffid compensates absolute joint targets"),
-            ));
+        match (&routine, &current) {
+            (Some((a, a_line)), Some((b, b_line))) if a != b => {
+                return Err(at(line, format!("motions in DEF {a} (line {a_line}) and DEF {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one DEF")));
+            }
+            (None, _) => routine = current.clone(),
+            _ => {}
         }
-        if (motion && first.starts_with('C')) || first.starts_with("SC") {
-            return Err(at(
-                line,
-                format!(
-                    "{first}: only PTP and LIN motions to absolute joint targets are compensated"
-                ),
-            ));
+        out.push(target);
+    }
+    if let (Some((line, word)), false) = (control, out.is_empty()) {
+        return Err(at(line, format!("{word}: a jump, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
+    }
+    Ok(out)
+}
+
+/// The upper-case words of a line's code.
+fn words(code: &str) -> Vec<String> {
+    code.split(|c: char| c.is_whitespace() || c == '=' || c == '{' || c == '(')
+        .filter(|w| !w.is_empty())
+        .map(str::to_ascii_uppercase)
+        .collect()
+}
+
+/// The name of the routine a `DEF`/`DEFFCT` line opens (`GLOBAL DEF name( )`).
+fn routine_name(words: &[String]) -> Option<String> {
+    let w: Vec<&str> = words
+        .iter()
+        .map(String::as_str)
+        .skip_while(|w| *w == "GLOBAL")
+        .collect();
+    match w.as_slice() {
+        ["DEF", name, ..] => Some(name.to_string()),
+        ["DEFFCT", _, name, ..] => Some(name.to_string()),
+        _ => None,
+    }
+}
+
+/// The points declared in the file (`E6AXIS`, `AXIS` with their targets; `E6POS`, `POS`,
+/// `FRAME` as Cartesian) and the lines that assign a declared point at run time.
+fn declarations(text: &str) -> Result<(Declared, HashMap<String, u64>)> {
+    let mut declared = Declared::new();
+    let mut assignments = Vec::new();
+    for (line, start, l) in super::lines(text) {
+        let code = l.split(';').next().unwrap_or("");
+        let words = words(code);
+        let w: Vec<&str> = words
+            .iter()
+            .map(String::as_str)
+            .skip_while(|w| matches!(*w, "DECL" | "GLOBAL" | "CONST"))
+            .collect();
+        let declares = words.first().is_some_and(|f| f == "DECL") || w.len() < words.len();
+        match w.as_slice() {
+            [kind @ ("E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME"), name, ..] => {
+                let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
+                let value = match (*kind, code.find('{')) {
+                    (_, None) => Err(format!("{name} is declared on line {line} without a value (set at run time)")),
+                    ("E6AXIS" | "AXIS", Some(open)) => Ok(aggregate_at(line, start, code, open)?),
+                    _ => Err(format!("{name} is a Cartesian point ({kind}, line {line}); stiffid compensates joint targets (E6AXIS, AXIS): write the path with joint targets")),
+                };
+                declared.insert(name, (line, value));
+            }
+            [name, ..] if !declares && code.contains('=') => {
+                let name = name.split(['.', '[']).next().unwrap_or(name).to_string();
+                assignments.push((name, line));
+            }
+            _ => {}
         }
-        if !motion && !declared {
-            continue;
+    }
+    let assigned = assignments
+        .into_iter()
+        .filter(|(name, _)| declared.contains_key(name))
+        .rev()
+        .collect();
+    Ok((declared, assigned))
+}
+
+/// The target of a motion line, `None` for a line that is no motion; every motion outside the
+/// subset refused naming the line.
+fn motion(
+    line: u64,
+    start: usize,
+    code: &str,
+    first: &str,
+    declared: &Declared,
+    assigned: &HashMap<String, u64>,
+) -> Result<Option<JointTarget>> {
+    let refuse = |what: &str| Err(at(line, format!("{first}: {what}")));
+    match first {
+        "PTP" | "LIN" | "SPTP" | "SLIN" => {}
+        "PTP_REL" | "LIN_REL" | "SPTP_REL" | "SLIN_REL" | "CIRC_REL" | "SCIRC_REL" => {
+            return refuse("a relative motion; stiffid compensates absolute joint targets: write the absolute target")
         }
+        "CIRC" | "SCIRC" => {
+            return refuse("a circular motion; the arc between compensated points is not the compensated arc: split it into LIN motions")
+        }
+        "SPL" | "SPLINE" | "PTP_SPLINE" | "ENDSPLINE" => {
+            return refuse("a spline; its path bends through all its points, not along the compensated ones: write it as LIN or PTP motions")
+        }
+        "ASYPTP" | "ASYCONT" => {
+            return refuse("an asynchronous motion of external axes; not compensated: remove it")
+        }
+        _ => return Ok(None),
+    }
+    let rest = code.trim_start()[first.len()..].trim_start();
+    let (target, after) = if rest.starts_with('{') {
+        let open = code.len() - rest.len();
         let close = code[open..]
             .find('}')
             .map(|c| open + c)
             .ok_or_else(|| at(line, "aggregate without its closing '}' on the line".into()))?;
-        out.push(aggregate(line, start, code, open + 1, close)?);
+        (aggregate_at(line, start, code, open)?, &code[close + 1..])
+    } else {
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '$' | '[' | ']'))
+            .collect();
+        let upper = name.to_ascii_uppercase();
+        if let Some(assigned_on) = assigned.get(&upper) {
+            return Err(at(line, format!("{first} {name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point")));
+        }
+        let target = match declared.get(&upper) {
+            Some((_, Ok(t))) => t.moved_to(line, false),
+            Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),
+            None => return Err(at(line, format!("{first} {name}: not a point declared in this file (a .dat, $config.dat or system variable holds it); stiffid compensates one file: declare the point in it as E6AXIS or write the target as {{A1 .., A6 ..}}"))),
+        };
+        (target, &rest[name.len()..])
+    };
+    let extra = after
+        .split(|c: char| c.is_whitespace() || c == ',')
+        .find(|w| !w.is_empty())
+        .filter(|w| {
+            let w = w.to_ascii_uppercase();
+            !matches!(
+                w.as_str(),
+                "C_PTP" | "C_DIS" | "C_VEL" | "C_ORI" | "C_SPL" | "WITH"
+            )
+        });
+    if let Some(word) = extra {
+        return Err(at(line, format!("{first}: '{}' after the target is not followed (a geometric operator, an offset or an option): write the motion to its absolute target", crate::common::limits::short(word))));
     }
-    Ok(out)
+    Ok(Some(target))
+}
+
+/// The joint target of the aggregate opening at byte `open` of `code` (which starts at byte
+/// `start` of the text).
+fn aggregate_at(line: u64, start: usize, code: &str, open: usize) -> Result<JointTarget> {
+    let close = code[open..]
+        .find('}')
+        .map(|c| open + c)
+        .ok_or_else(|| at(line, "aggregate without its closing '}' on the line".into()))?;
+    aggregate(line, start, code, open + 1, close)
 }
 
 /// The target of the aggregate between `from` and `to` of `code` (which starts at byte `start`).
@@ -76,7 +208,7 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
             upper.as_str(),
             "X" | "Y" | "Z" | "A" | "B" | "C" | "S" | "T"
         ) {
-            return Err(at(line, format!("a Cartesian target ({upper}); stiffid compensates joint targets (E6AXIS, AXIS)")));
+            return Err(at(line, format!("a Cartesian target ({upper}); stiffid compensates joint targets (E6AXIS, AXIS): write the path with joint targets")));
         }
         if let Some(k) = upper
             .strip_prefix('A')
@@ -93,5 +225,11 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
         }
         at_byte += item.len() + 1;
     }
-    six(line, found, "A")
+    six(line, found, "A").map_err(|e| match e {
+        Error::Program { line, message } => Error::Program {
+            line,
+            message: format!("{message}: KRL keeps the axes a partial aggregate leaves out where the robot is, which the file does not say; give all six"),
+        },
+        other => other,
+    })
 }

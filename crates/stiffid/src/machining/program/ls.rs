@@ -1,16 +1,167 @@
-//! FANUC LS: the `/POS` section's positions in joint representation,
+//! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;` and `L P[i] 50mm/sec CNT100 ;`
+//! (any speed, a termination `FINE`, `CNTn`, `CRn` or `CDn`, the options `ACCn` and `INC`) to the
+//! `/POS` section's positions in joint representation,
 //! `P[1]{ GP1: UF : 0, UT : 1, J1= 0.000 deg, J2= ... J6= ... deg };` over one or more lines.
-//! Only group 1 (`GP1`) is read.
+//! Only group 1 (`GP1`) is read. An `INC` motion after one that ends `FINE` goes to the previous
+//! target plus the position's increments.
 
 use super::{at, number_at, six, Found, JointTarget};
 use crate::Result;
+use std::collections::HashMap;
 
-/// Every joint target of `text` (module docs).
+/// Every joint target of `text`, in the order of the `/MN` motions (module docs).
 pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
-    let mut out = Vec::new();
+    let positions = positions(text)?;
+    let mut out: Vec<JointTarget> = Vec::new();
+    // Whether the previous motion ended FINE; the first jump, call, loop or branch.
+    let mut previous_fine = false;
+    let mut control: Option<(u64, String)> = None;
+    for (line, instruction) in instructions(text) {
+        let t = instruction.trim();
+        let first = t
+            .split(|c: char| c.is_whitespace() || c == '[' || c == '(')
+            .next()
+            .unwrap_or("")
+            .to_ascii_uppercase();
+        if matches!(
+            first.as_str(),
+            "JMP" | "IF" | "FOR" | "SELECT" | "CALL" | "RUN"
+        ) && control.is_none()
+        {
+            control = Some((line, first.clone()));
+        }
+        let Some(rest) = motion_rest(t) else {
+            continue;
+        };
+        let letter = &t[..1];
+        if matches!(letter, "C" | "A") {
+            return Err(at(line, format!("{letter}: a circular motion; the arc between compensated points is not the compensated arc: split it into L motions")));
+        }
+        let (index, after) = target(line, letter, rest)?;
+        let words: Vec<String> = after
+            .split_whitespace()
+            .map(str::to_ascii_uppercase)
+            .collect();
+        let termination = words.get(1).map(String::as_str).unwrap_or("");
+        if !(termination == "FINE"
+            || ["CNT", "CR", "CD"]
+                .iter()
+                .any(|p| termination.starts_with(p)))
+        {
+            return Err(at(line, format!("{letter} P[{index}]: expected a speed and a termination (FINE, CNTn, CRn, CDn)")));
+        }
+        let mut incremental = false;
+        for w in &words[2..] {
+            match w.as_str() {
+                "INC" => incremental = true,
+                a if a.starts_with("ACC") => {}
+                o if o.starts_with("OFFSET")
+                    || o.starts_with("TOOL_OFFSET")
+                    || o.starts_with("VOFFSET") =>
+                {
+                    return Err(at(line, format!("{letter} P[{index}] {}: the offset is held on the controller (a position register or vision offset), not in this program; apply it to the positions and remove it", crate::common::limits::short(w))));
+                }
+                other => {
+                    return Err(at(line, format!("{letter} P[{index}] {}: an option stiffid does not follow (the path or its end would not be the program's); remove it or compensate the program without it", crate::common::limits::short(other))));
+                }
+            }
+        }
+        let position = positions.get(&index).ok_or_else(|| {
+            at(
+                line,
+                format!("{letter} P[{index}]: no position P[{index}] in /POS"),
+            )
+        })?;
+        let mut target = position.moved_to(line, incremental);
+        if incremental {
+            let Some(previous) = out.last().filter(|_| previous_fine) else {
+                return Err(at(line, format!("{letter} P[{index}] INC: an increment from where the robot is, which only a previous motion ending FINE in this program fixes; end the previous motion FINE or write P[{index}] absolute")));
+            };
+            for (q, p) in target.q_deg.iter_mut().zip(previous.q_deg) {
+                *q += p;
+            }
+        }
+        previous_fine = termination == "FINE";
+        out.push(target);
+    }
+    if let (Some((line, word)), false) = (control, out.is_empty()) {
+        return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
+    }
+    Ok(out)
+}
+
+/// After `J ` or `L ` (or another motion letter), the rest of a motion instruction.
+fn motion_rest(t: &str) -> Option<&str> {
+    let mut chars = t.chars();
+    let letter = chars.next()?;
+    let rest = chars.as_str();
+    let next = rest.trim_start();
+    (matches!(letter, 'J' | 'L' | 'C' | 'A') && next.len() < rest.len() && next.starts_with('P'))
+        .then_some(next)
+}
+
+/// The position index of a motion's target `P[i]` or `P[i:comment]` and the text after it;
+/// position registers and indirect indices refused.
+fn target<'a>(line: u64, letter: &str, rest: &'a str) -> Result<(u64, &'a str)> {
+    if rest.starts_with("PR[") {
+        return Err(at(line, format!("{letter} PR[..]: a position register holds its value on the controller, not in this program; copy it into a P[] position")));
+    }
+    let inner = rest
+        .strip_prefix("P[")
+        .ok_or_else(|| at(line, format!("{letter}: expected a target P[i]")))?;
+    let close = inner
+        .find(']')
+        .ok_or_else(|| at(line, format!("{letter} P[: expected ']'")))?;
+    let index = inner[..close].split(':').next().unwrap_or("").trim();
+    let index: u64 = index.parse().map_err(|_| {
+        at(line, format!("{letter} P[{}]: the index is computed on the controller (a register); stiffid follows positions by number", crate::common::limits::short(index)))
+    })?;
+    Ok((index, &inner[close + 1..]))
+}
+
+/// The `/MN` instructions: the line of each and its text (continuation lines `   :` joined),
+/// without the line number and the closing `;`; comments (`!`, `//`) dropped.
+fn instructions(text: &str) -> Vec<(u64, String)> {
+    let mut out: Vec<(u64, String)> = Vec::new();
+    let mut in_mn = false;
+    for (line, _, l) in super::lines(text) {
+        let t = l.trim();
+        if t.starts_with('/') {
+            in_mn = t.starts_with("/MN");
+            continue;
+        }
+        if !in_mn {
+            continue;
+        }
+        let Some((number, body)) = t.split_once(':') else {
+            continue;
+        };
+        let body = body.trim_end().trim_end_matches(';');
+        match number.trim() {
+            "" => {
+                if let Some(last) = out.last_mut() {
+                    last.1.push(' ');
+                    last.1.push_str(body);
+                }
+            }
+            n if n.chars().all(|c| c.is_ascii_digit()) => {
+                let b = body.trim_start();
+                if !(b.starts_with('!') || b.starts_with("//")) {
+                    out.push((line, body.to_string()));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The `/POS` section's positions by index (module docs).
+fn positions(text: &str) -> Result<HashMap<u64, JointTarget>> {
+    let mut out = HashMap::new();
     let mut in_pos = false;
-    // The open position: its line, the values found, whether in group 1.
-    let mut open: Option<(u64, Found, bool)> = None;
+    // The open position: its index, line, the values found, whether in group 1.
+    let mut open: Option<(u64, u64, Found, bool)> = None;
     for (line, start, l) in super::lines(text) {
         let t = l.trim();
         if t.starts_with('/') {
@@ -20,13 +171,21 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
         if !in_pos {
             continue;
         }
-        if t.starts_with("P[") {
-            if let Some((first, ..)) = open {
+        if let Some(inner) = t.strip_prefix("P[") {
+            if let Some((_, first, ..)) = open {
                 return Err(at(first, "position without its closing '};'".into()));
             }
-            open = Some((line, Default::default(), false));
+            let index = inner
+                .split([':', ']'])
+                .next()
+                .and_then(|i| i.trim().parse::<u64>().ok())
+                .ok_or_else(|| at(line, "P[: expected a position number".into()))?;
+            if out.contains_key(&index) {
+                return Err(at(line, format!("P[{index}] defined twice in /POS")));
+            }
+            open = Some((index, line, Default::default(), false));
         }
-        let Some((first, found, group1)) = open.as_mut() else {
+        let Some((_, first, found, group1)) = open.as_mut() else {
             continue;
         };
         for piece in split_keeping_offsets(l) {
@@ -40,7 +199,7 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
             }
             if item_t.starts_with("X ") || item_t.starts_with("X=") || item_t.starts_with("CONFIG")
             {
-                return Err(at(*first, "a Cartesian position (CONFIG, X, Y, Z ...); stiffid compensates positions in joint representation (J1= .. deg)".into()));
+                return Err(at(*first, "a Cartesian position (CONFIG, X, Y, Z ...); stiffid compensates positions in joint representation (J1= .. deg): write the path with positions in joint representation".into()));
             }
             let Some(eq) = item.find('=') else { continue };
             let name = item[..eq].trim();
@@ -59,12 +218,12 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
             found[k - 1] = Some((v, start + span.start..start + span.end));
         }
         if t.ends_with("};") {
-            if let Some((first, found, _)) = open.take() {
-                out.push(six(first, found, "J")?);
+            if let Some((index, first, found, _)) = open.take() {
+                out.insert(index, six(first, found, "J")?);
             }
         }
     }
-    if let Some((first, ..)) = open {
+    if let Some((_, first, ..)) = open {
         return Err(at(first, "position without its closing '};'".into()));
     }
     Ok(out)

@@ -1,23 +1,35 @@
-//! Robot programs: the joint targets of KUKA KRL, ABB RAPID and FANUC LS programs, read and
-//! written back with everything else byte for byte.
+//! Robot programs: the joint targets of KUKA KRL, ABB RAPID and FANUC LS programs, read in the
+//! order the controller moves to them and written back with everything else byte for byte.
 //!
-//! - [`krl`]: `PTP`/`LIN` motions and `E6AXIS`/`AXIS` declarations with an aggregate
-//!   `{A1 .., A2 .., ..., A6 ..}` (further members such as `E1` are kept as they are).
-//! - [`rapid`]: `jointtarget` declarations and `MoveAbsJ` with a literal `[[j1,..,j6],[e1,..,e6]]`.
-//! - [`ls`]: the `/POS` section's positions in joint representation, `J1= .. deg` to `J6`.
+//! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
+//!   a point declared in the same file as `E6AXIS`/`AXIS` (further members such as `E1` are kept
+//!   as they are).
+//! - [`rapid`]: `MoveAbsJ` (also `\Conc`) to a literal `[[j1,..,j6],[e1,..,e6]]` or to a
+//!   `jointtarget` declared in the same module (over one line or several).
+//! - [`ls`]: `J`/`L` motions in `/MN` to `P[i]` positions of `/POS` in joint representation
+//!   (`J1= .. deg` to `J6`); `INC` after a motion that ends `FINE` is resolved (the increment from
+//!   the previous target, written back as the increment between the compensated targets).
 //!
-//! Only joint targets are read. A Cartesian target (KRL `E6POS`/`POS`/`FRAME` aggregates in a
-//! motion, RAPID `MoveL`/`MoveJ`/`MoveC`, LS positions with `X = .. mm`) is refused naming its
-//! line: turning it into axis angles needs the controller's configuration flags (KUKA `S`/`T`,
-//! ABB `confdata`, FANUC `CONFIG : 'N U T, ...'`) and its own kinematic conventions to pick the
-//! one of up to eight inverse-kinematics solutions the controller would take, and a compensated
-//! target would have to be written back with flags the controller agrees with. Joint targets are
-//! unambiguous in both directions.
+//! Only joint targets are read. A Cartesian target (KRL `E6POS`/`POS`/`FRAME`, RAPID
+//! `MoveL`/`MoveJ`/`MoveC`, LS positions with `X = .. mm`) is refused naming its line: turning it
+//! into axis angles needs the controller's configuration flags (KUKA `S`/`T`, ABB `confdata`,
+//! FANUC `CONFIG : 'N U T, ...'`) and its own kinematic conventions to pick the one of up to eight
+//! inverse-kinematics solutions the controller would take, and a compensated target would have to
+//! be written back with flags the controller agrees with. Joint targets are unambiguous in both
+//! directions.
 //!
-//! The targets come in the order they appear in the file (KRL, RAPID: declarations and literal
-//! motions as they come; LS: the `/POS` table), which is the order the path follows.
-//! [`JointProgram::write`] replaces the six numbers of each target whose value changed (with
-//! [`DECIMALS`] decimals) and nothing else.
+//! Every other motion instruction is refused naming its line and what to do, never skipped: a
+//! circular or spline motion (the path between the points is not the compensated one), a relative
+//! motion the file cannot resolve exactly, an offset or target held in a register on the
+//! controller (LS `Offset,PR[]`, `Tool_Offset`, `PR[]`), a point declared outside the file or
+//! assigned at run time, a search or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`),
+//! motions in more than one routine, and jumps, loops, branches and calls in a program with
+//! motions (the order the controller runs would not be the file's).
+//!
+//! The targets come in the order of the motion instructions, which is the order the path follows;
+//! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
+//! six numbers of each target whose value changed (with [`DECIMALS`] decimals) and nothing else;
+//! a point visited twice takes one value, so the two visits' compensations must agree.
 
 pub mod generate;
 pub mod krl;
@@ -57,15 +69,31 @@ impl Dialect {
     }
 }
 
-/// One joint target of a program.
+/// One joint target of a program: one motion instruction's destination.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointTarget {
-    /// Its line, 1-based.
+    /// The line of its motion instruction, 1-based.
     pub line: u64,
-    /// Axis angles q1..q6, deg, as written.
+    /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles).
     pub q_deg: [f64; 6],
-    /// Where each of the six numbers sits in the text (bytes).
+    /// Where each of the six numbers sits in the text (bytes): in the motion or in the point's
+    /// declaration.
     spans: [Range<usize>; 6],
+    /// The line of the six numbers (the declaration's for a named point).
+    origin: u64,
+    /// The numbers hold the increment from the previous target (LS `INC`).
+    incremental: bool,
+}
+
+impl JointTarget {
+    /// The same point as the target of the motion on `line`; `incremental` as it says.
+    pub(crate) fn moved_to(&self, line: u64, incremental: bool) -> Self {
+        JointTarget {
+            line,
+            incremental,
+            ..self.clone()
+        }
+    }
 }
 
 /// A robot program and its joint targets.
@@ -73,7 +101,7 @@ pub struct JointTarget {
 pub struct JointProgram {
     /// The language.
     pub dialect: Dialect,
-    /// The targets, in file order.
+    /// The targets, in the order of the motion instructions.
     pub targets: Vec<JointTarget>,
     text: String,
 }
@@ -81,9 +109,9 @@ pub struct JointProgram {
 /// Parses the joint targets of `text` in `dialect`.
 ///
 /// # Errors
-/// [`Error::Program`] naming the line: a Cartesian or relative motion, a joint target with a
-/// missing, repeated or non-numeric axis value, no joint target at all, or more than
-/// [`MAX_TARGETS`].
+/// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
+/// a joint target with a missing, repeated or non-numeric axis value, no motion to a joint target
+/// at all, or more than [`MAX_TARGETS`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     let targets = match dialect {
         Dialect::Krl => krl::targets(text)?,
@@ -91,7 +119,15 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
         Dialect::FanucLs => ls::targets(text)?,
     };
     if targets.is_empty() {
-        return Err(at(1, "no joint target found".into()));
+        let hint = match dialect {
+            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or to an E6AXIS declared in the file; a .dat holds declarations only: give the .src",
+            Dialect::Rapid => "MoveAbsJ to a jointtarget",
+            Dialect::FanucLs => "J or L to a P[i] of /POS in joint representation",
+        };
+        return Err(at(
+            1,
+            format!("no motion to a joint target found (expected {hint})"),
+        ));
     }
     if targets.len() > MAX_TARGETS {
         return Err(at(
@@ -123,15 +159,43 @@ impl JointProgram {
                 ),
             });
         }
+        // Each number to write: its span, the target, the value, whether it changed.
+        let mut edits: Vec<(Range<usize>, usize, f64, bool)> =
+            Vec::with_capacity(6 * self.targets.len());
+        for (i, (t, q)) in self.targets.iter().zip(q_deg).enumerate() {
+            for k in 0..6 {
+                let (value, changed) = match (t.incremental, i.checked_sub(1)) {
+                    (true, Some(p)) => (
+                        q[k] - q_deg[p][k],
+                        q[k] != t.q_deg[k] || q_deg[p][k] != self.targets[p].q_deg[k],
+                    ),
+                    _ => (q[k], q[k] != t.q_deg[k]),
+                };
+                edits.push((t.spans[k].clone(), i, value, changed));
+            }
+        }
+        edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
-        for (t, q) in self.targets.iter().zip(q_deg) {
-            for ((new, old), span) in q.iter().zip(&t.q_deg).zip(&t.spans) {
-                if new == old {
-                    continue;
+        for (j, (span, i, value, changed)) in edits.iter().enumerate() {
+            let text = format!("{value:.DECIMALS$}");
+            if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
+                if format!("{other:.DECIMALS$}") != text {
+                    let (a, b) = (&self.targets[*first], &self.targets[*i]);
+                    return Err(Error::Program {
+                        line: b.line,
+                        message: format!(
+                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other:.DECIMALS$} and {text} deg): give each visit its own point",
+                            a.line, b.line, b.origin
+                        ),
+                    });
                 }
+                continue;
+            }
+            let shared_change = edits[j..].iter().take_while(|e| e.0 == *span).any(|e| e.3);
+            if *changed || shared_change {
                 out.push_str(&self.text[at..span.start]);
-                out.push_str(&format!("{new:.DECIMALS$}"));
+                out.push_str(&text);
                 at = span.end;
             }
         }
@@ -145,11 +209,12 @@ pub(crate) fn at(line: u64, message: String) -> Error {
     Error::Program { line, message }
 }
 
-/// The number at the start of `text[from..]` after blanks: its value and byte span.
+/// The number at the start of `text[from..]` after blanks (line ends included): its value and
+/// byte span.
 pub(crate) fn number_at(text: &str, from: usize) -> Option<(f64, Range<usize>)> {
     let bytes = text.as_bytes();
     let mut start = from;
-    while start < bytes.len() && matches!(bytes[start], b' ' | b'\t') {
+    while start < bytes.len() && matches!(bytes[start], b' ' | b'\t' | b'\n' | b'\r') {
         start += 1;
     }
     let mut end = start;
@@ -215,5 +280,11 @@ pub(crate) fn six(
         q_deg[k] = v;
         spans[k] = s;
     }
-    Ok(JointTarget { line, q_deg, spans })
+    Ok(JointTarget {
+        line,
+        q_deg,
+        spans,
+        origin: line,
+        incremental: false,
+    })
 }

@@ -1,54 +1,325 @@
-//! ABB RAPID: `CONST jointtarget j1 := [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]];` (also `VAR`,
-//! `PERS`) and `MoveAbsJ [[..],[..]], v100, z10, tool0;`; `!` starts a comment.
+//! ABB RAPID: `MoveAbsJ [[..],[..]], v100, z10, tool0;` (also `MoveAbsJ \Conc, ..`, and the
+//! switches `\ID`, `\NoEOffs`, `\V`, `\T`, `\Z`, `\Inpos`, `\WObj`, `\TLoad`) to a literal or to a
+//! `jointtarget` declared in the module: `CONST jointtarget j1 := [[0,0,0,0,30,0],[9E9,..]];`
+//! (also `VAR`, `PERS`, `LOCAL`, `TASK`), over one line or several. RAPID is statement based
+//! (`;` ends one) and case-insensitive; `!` starts a comment.
 
 use super::{at, number_at, six, JointTarget};
 use crate::Result;
+use std::collections::HashMap;
 
-/// Every joint target of `text` (module docs).
+/// A `jointtarget` declared in the module: its joint target, or why it is none.
+type Declared = HashMap<String, std::result::Result<JointTarget, String>>;
+
+/// One statement: its line, and its bytes in the text.
+struct Statement {
+    line: u64,
+    span: std::ops::Range<usize>,
+}
+
+/// Every joint target of `text`, in the order of its motions (module docs).
 pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
+    let code = without_comments(text);
+    let statements = statements(&code);
+    let (declared, assigned) = declarations(&code, &statements)?;
     let mut out = Vec::new();
-    for (line, start, l) in super::lines(text) {
-        let code = l.split('!').next().unwrap_or("");
-        let lower = code.to_ascii_lowercase();
-        let first = lower.split_whitespace().next().unwrap_or("");
-        if matches!(
-            first,
-            "movel" | "movej" | "movec" | "movelsync" | "movejsync"
-        ) {
-            return Err(at(line, format!("{first}: a Cartesian motion (robtarget); stiffid compensates joint targets (MoveAbsJ with jointtarget)")));
-        }
-        let declared = lower.contains("jointtarget");
-        let moving = first.starts_with("moveabsj");
-        if !(declared || moving) {
+    let mut routine: Option<(String, u64)> = None;
+    let mut current: Option<(String, u64)> = None;
+    let mut control: Option<(u64, String)> = None;
+    for s in &statements {
+        let body = &code[s.span.clone()];
+        let first = first_word(body);
+        let words: Vec<String> = body
+            .split_whitespace()
+            .take(3)
+            .map(str::to_ascii_lowercase)
+            .collect();
+        let w: Vec<&str> = words
+            .iter()
+            .map(String::as_str)
+            .skip_while(|w| matches!(*w, "local" | "task"))
+            .collect();
+        if let ["proc" | "trap", name, ..] | ["func", _, name, ..] = w.as_slice() {
+            let name = name.split('(').next().unwrap_or(name).to_string();
+            current = Some((name, s.line));
             continue;
         }
-        let Some(open) = code.find("[[") else {
-            continue; // MoveAbsJ to a named jointtarget: its declaration holds the numbers.
-        };
-        let mut found: [Option<(f64, std::ops::Range<usize>)>; 6] = Default::default();
-        let mut from = open + 2;
-        for (k, slot) in found.iter_mut().enumerate() {
-            let (v, span) = number_at(code, from).ok_or_else(|| {
-                at(
-                    line,
-                    format!(
-                        "jointtarget: expected 6 numbers in its first bracket, axis {} is not one",
-                        k + 1
-                    ),
-                )
-            })?;
-            let rest = code[span.end..].trim_start();
-            let sep = if k < 5 { ',' } else { ']' };
-            if !rest.starts_with(sep) {
-                return Err(at(
-                    line,
-                    format!("jointtarget: expected '{sep}' after axis {}", k + 1),
-                ));
-            }
-            from = code.len() - rest.len() + 1;
-            *slot = Some((v, start + span.start..start + span.end));
+        if matches!(
+            first.as_str(),
+            "if" | "for" | "while" | "test" | "goto" | "retry" | "trynext"
+        ) && control.is_none()
+        {
+            control = Some((s.line, first.to_uppercase()));
         }
-        out.push(six(line, found, "rax_")?);
+        let Some(target) = motion(s, &code, &first, &declared, &assigned)? else {
+            continue;
+        };
+        match (&routine, &current) {
+            (Some((a, a_line)), Some((b, b_line))) if a != b => {
+                return Err(at(s.line, format!("motions in PROC {a} (line {a_line}) and PROC {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one PROC")));
+            }
+            (None, _) => routine = current.clone(),
+            _ => {}
+        }
+        out.push(target);
+    }
+    if let (Some((line, word)), false) = (control, out.is_empty()) {
+        return Err(at(line, format!("{word}: a jump, loop or branch in a module with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
     }
     Ok(out)
+}
+
+/// The instruction's name: the statement's first word, lower case, up to a switch or argument.
+fn first_word(body: &str) -> String {
+    body.trim_start()
+        .split(|c: char| c.is_whitespace() || matches!(c, '\\' | ',' | ';' | '(' | ':'))
+        .next()
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// `text` with every comment (`!` outside a string, to the line's end) blanked, byte for byte.
+fn without_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let (mut in_string, mut in_comment) = (false, false);
+    for c in text.chars() {
+        match c {
+            '\n' => (in_string, in_comment) = (false, false),
+            '"' if !in_comment => in_string = !in_string,
+            '!' if !in_string => in_comment = true,
+            _ => {}
+        }
+        match in_comment {
+            true => out.extend(std::iter::repeat_n(' ', c.len_utf8())),
+            false => out.push(c),
+        }
+    }
+    out
+}
+
+/// Lines that are statements of their own, without a `;`: the module's structure.
+fn is_header(line: &str) -> bool {
+    let t = line.trim();
+    let w: Vec<String> = t
+        .split_whitespace()
+        .take(3)
+        .map(str::to_ascii_lowercase)
+        .collect();
+    let w: Vec<&str> = w
+        .iter()
+        .map(String::as_str)
+        .skip_while(|w| matches!(*w, "local" | "task"))
+        .collect();
+    let first = w.first().map_or("", |f| f.split('(').next().unwrap_or(f));
+    t.starts_with('%')
+        || t.to_ascii_uppercase().ends_with("THEN")
+        || matches!(
+            first,
+            "module"
+                | "endmodule"
+                | "proc"
+                | "endproc"
+                | "func"
+                | "endfunc"
+                | "trap"
+                | "endtrap"
+                | "record"
+                | "endrecord"
+                | "elseif"
+                | "else"
+                | "endif"
+                | "for"
+                | "endfor"
+                | "while"
+                | "endwhile"
+                | "test"
+                | "case"
+                | "default"
+                | "endtest"
+                | "error"
+                | "undo"
+                | "backward"
+        )
+        || t.starts_with("VERSION:")
+        || t.starts_with("LANGUAGE:")
+}
+
+/// The statements of `code` (comments blanked): each ends at a `;` outside a string, or is a
+/// header line.
+fn statements(code: &str) -> Vec<Statement> {
+    let mut out = Vec::new();
+    let mut open: Option<(u64, usize)> = None;
+    for (line, start, l) in super::lines(code) {
+        let mut in_string = false;
+        for (i, c) in l.char_indices() {
+            if open.is_none() {
+                if c.is_whitespace() {
+                    continue;
+                }
+                if is_header(&l[i..]) {
+                    out.push(Statement {
+                        line,
+                        span: start + i..start + l.len(),
+                    });
+                    break;
+                }
+                open = Some((line, start + i));
+            }
+            match c {
+                '"' => in_string = !in_string,
+                ';' if !in_string => {
+                    let (first, from) = open.take().unwrap_or((line, start + i));
+                    out.push(Statement {
+                        line: first,
+                        span: from..start + i + 1,
+                    });
+                }
+                _ => {}
+            }
+        }
+    }
+    if let Some((line, from)) = open {
+        out.push(Statement {
+            line,
+            span: from..code.len(),
+        });
+    }
+    out
+}
+
+/// The `jointtarget`s declared in the module, and the statements that assign one at run time.
+fn declarations(code: &str, statements: &[Statement]) -> Result<(Declared, HashMap<String, u64>)> {
+    let mut declared = Declared::new();
+    let mut assignments = Vec::new();
+    for s in statements {
+        let body = &code[s.span.clone()];
+        let lower = body.to_ascii_lowercase();
+        let words: Vec<&str> = lower
+            .split(|c: char| c.is_whitespace() || c == ':' || c == '=')
+            .filter(|w| !w.is_empty())
+            .skip_while(|w| matches!(*w, "local" | "task"))
+            .collect();
+        match words.as_slice() {
+            ["const" | "var" | "pers", "jointtarget", name, ..] => {
+                let name = name.trim_end_matches(';');
+                let (name, array) = match name.split_once('{') {
+                    Some((n, _)) => (n, true),
+                    None => (name, false),
+                };
+                let value = match (array, body.find(":=")) {
+                    (true, _) => Err(format!("{name} is an array of jointtargets (line {}): declare each target on its own or write it as a literal", s.line)),
+                    (false, None) => Err(format!("{name} is declared on line {} without a value (set at run time)", s.line)),
+                    (false, Some(eq)) => Ok(literal(s.line, code, s.span.start + eq + 2)?),
+                };
+                declared.insert(name.to_string(), value);
+            }
+            [first, ..] if body.contains(":=") && !matches!(*first, "const" | "var" | "pers") => {
+                let name = first.split(['.', '{']).next().unwrap_or(first);
+                assignments.push((name.to_string(), s.line));
+            }
+            _ => {}
+        }
+    }
+    let assigned = assignments
+        .into_iter()
+        .filter(|(name, _)| declared.contains_key(name))
+        .rev()
+        .collect();
+    Ok((declared, assigned))
+}
+
+/// The joint target of the literal `[[j1,..,j6],[..]]` at or after byte `from` of `code`.
+fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
+    let rest = &code[from..];
+    let open = from + rest.len() - rest.trim_start().len();
+    if !code[open..].starts_with("[[") {
+        return Err(at(
+            line,
+            "jointtarget: expected a literal [[j1,..,j6],[e1,..,e6]]".into(),
+        ));
+    }
+    let mut found: [Option<(f64, std::ops::Range<usize>)>; 6] = Default::default();
+    let mut from = open + 2;
+    for (k, slot) in found.iter_mut().enumerate() {
+        let (v, span) = number_at(code, from).ok_or_else(|| {
+            at(
+                line,
+                format!(
+                    "jointtarget: expected 6 numbers in its first bracket, axis {} is not one",
+                    k + 1
+                ),
+            )
+        })?;
+        let rest = code[span.end..].trim_start();
+        let sep = if k < 5 { ',' } else { ']' };
+        if !rest.starts_with(sep) {
+            return Err(at(
+                line,
+                format!("jointtarget: expected '{sep}' after axis {}", k + 1),
+            ));
+        }
+        from = code.len() - rest.len() + 1;
+        *slot = Some((v, span));
+    }
+    six(line, found, "rax_")
+}
+
+/// The target of a motion statement, `None` for a statement that is no motion; every motion
+/// outside the subset refused naming the line.
+fn motion(
+    s: &Statement,
+    code: &str,
+    first: &str,
+    declared: &Declared,
+    assigned: &HashMap<String, u64>,
+) -> Result<Option<JointTarget>> {
+    let line = s.line;
+    let name = &code[s.span.clone()].trim_start()[..first.len()];
+    if first != "moveabsj" {
+        let why = match first {
+            "movel" | "movej" | "movec" | "movelsync" | "movejsync" | "movecsync" | "moveldo"
+            | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
+            | "movejao" | "movecao" => "a Cartesian motion (robtarget); stiffid compensates joint targets: write the path as MoveAbsJ to jointtargets",
+            "moveextj" => "a motion of external axes only; not compensated: remove it",
+            f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveAbsJ and set the events apart",
+            f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
+            f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveAbsJ to jointtargets",
+            _ => return Ok(None),
+        };
+        return Err(at(line, format!("{name}: {why}")));
+    }
+    // Past the name: an optional switch such as `\Conc`, then the target.
+    let mut from = s.span.start + code[s.span.clone()].len()
+        - code[s.span.clone()].trim_start().len()
+        + first.len();
+    let after_name = code[from..s.span.end].trim_start();
+    if after_name.starts_with('\\') {
+        let comma = after_name
+            .find(',')
+            .ok_or_else(|| at(line, format!("{name}: expected ',' after its switch")))?;
+        from = s.span.end - after_name.len() + comma + 1;
+    } else if let Some(rest) = after_name.strip_prefix(',') {
+        from = s.span.end - rest.len();
+    }
+    let target_text = code[from..s.span.end].trim_start();
+    if target_text.starts_with("[[") {
+        return literal(line, code, from).map(Some);
+    }
+    let ident: String = target_text
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    let next = target_text[ident.len()..].trim_start();
+    if ident.is_empty() || next.starts_with(['{', '(', '.']) {
+        return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
+    }
+    let key = ident.to_ascii_lowercase();
+    if let Some(assigned_on) = assigned.get(&key) {
+        return Err(at(line, format!("{name} {ident}: {ident} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared jointtarget")));
+    }
+    match declared.get(&key) {
+        Some(Ok(t)) => Ok(Some(t.moved_to(line, false))),
+        Some(Err(why)) => Err(at(line, format!("{name} {ident}: {why}"))),
+        None => Err(at(line, format!("{name} {ident}: not a jointtarget declared in this module; stiffid compensates one file: declare it in the module or write the target as a literal [[..],[..]]"))),
+    }
 }
