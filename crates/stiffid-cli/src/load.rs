@@ -162,6 +162,8 @@ pub fn posture(text: &str, option: &str, robot: &Robot) -> Result<(Vector6<f64>,
     let q = q_deg.map(f64::to_radians);
     let field = |a: usize| format!("{option}[{}]", a + 1);
     robot.limits().check(&q, "the robot's limits", field)?;
+    let warning = stiffid::setup::plausibility::radians_in_option(option, &q);
+    crate::output::warnings(&Vec::from_iter(warning));
     Ok((q_deg, q))
 }
 

@@ -76,7 +76,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    if let Err(message) = standard_streams() {
+    if let Err(message) = standard_streams().and_then(|()| thread_pool()) {
         return fail(&message);
     }
     let cli = match command()
@@ -201,22 +201,61 @@ fn fail(message: &str) -> ExitCode {
     ExitCode::from(2)
 }
 
-/// Checks that stdout is open. Rust's runtime reopens a closed standard stream on `/dev/null`
-/// (read-write) before `main`, so a closed stdout (`>&-`) shows as a read-write `/dev/null`
-/// (a shell's `>/dev/null` opens it write-only): an error, since the results would go nowhere.
+/// Whether descriptor 1 was closed when the process started, before Rust's runtime reopened it
+/// on `/dev/null` (read-write, as Python's `subprocess.DEVNULL` opens it too, so the two cannot
+/// be told apart later): recorded by [`STDOUT_AT_START`].
+#[cfg(target_os = "linux")]
+static STDOUT_CLOSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Runs from `.init_array`, before `main` and before Rust's runtime touches the standard streams.
+#[cfg(target_os = "linux")]
+#[used]
+#[link_section = ".init_array"]
+static STDOUT_AT_START: extern "C" fn() = {
+    extern "C" fn record() {
+        // SAFETY: fcntl(F_GETFD) only queries the descriptor; -1 (EBADF) means it is closed.
+        let closed = unsafe { libc::fcntl(1, libc::F_GETFD) } == -1;
+        STDOUT_CLOSED.store(closed, std::sync::atomic::Ordering::Relaxed);
+    }
+    record
+};
+
+/// Most worker threads `RAYON_NUM_THREADS` may ask for: more only cost memory (each thread its
+/// stack), and 5000 of them under a 4 GB memory cap could not start.
+const MAX_THREADS: usize = 256;
+
+/// The worker threads of `RAYON_NUM_THREADS` (0 or unset: one per core), at most [`MAX_THREADS`],
+/// started now, so a count the machine cannot start is an error naming the setting, not a panic.
+fn thread_pool() -> Result<(), String> {
+    let Some(value) = std::env::var_os("RAYON_NUM_THREADS") else {
+        return Ok(());
+    };
+    let text = value.to_string_lossy();
+    let n = text
+        .trim()
+        .parse::<usize>()
+        .ok()
+        .filter(|&n| n <= MAX_THREADS)
+        .ok_or_else(|| {
+            format!(
+                "RAYON_NUM_THREADS = '{}': expected a number of threads from 0 (one per core) to {MAX_THREADS}",
+                stiffid::common::limits::short(&text)
+            )
+        })?;
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build_global()
+        .map_err(|e| {
+            format!("RAYON_NUM_THREADS = {n}: the threads could not start ({e}); give fewer")
+        })
+}
+
+/// Checks that stdout is open: a closed descriptor (`>&-`) is an error, since the results would go
+/// nowhere; `/dev/null`, however opened, is the user's choice.
 fn standard_streams() -> Result<(), String> {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        let rdev = |m: std::io::Result<std::fs::Metadata>| m.ok().map(|m| (m.dev(), m.rdev()));
-        // SAFETY: fcntl(F_GETFL) only queries the descriptor's flags.
-        let flags = unsafe { libc::fcntl(1, libc::F_GETFL) };
-        let null = rdev(std::fs::metadata("/dev/null")).map(|(_, r)| r);
-        let stdout = rdev(std::fs::metadata("/proc/self/fd/1")).map(|(_, r)| r);
-        if flags >= 0 && flags & libc::O_ACCMODE == libc::O_RDWR && null.is_some() && stdout == null
-        {
-            return Err("stdout is closed: stiffid writes its results there (redirect it to a file or to /dev/null)".into());
-        }
+    #[cfg(target_os = "linux")]
+    if STDOUT_CLOSED.load(std::sync::atomic::Ordering::Relaxed) {
+        return Err("stdout is closed: stiffid writes its results there (redirect it to a file or to /dev/null)".into());
     }
     Ok(())
 }

@@ -265,3 +265,52 @@ fn a_given_characteristic_length_is_used_and_named_given() {
     .unwrap();
     assert!(text.contains("(L = 1200.0 mm, given)"), "{text}");
 }
+
+#[test]
+fn radians_given_to_q_deg_get_the_radians_warning() {
+    let radians = "0,0.5,-1.571,0,1.2,0";
+    for args in [
+        vec![
+            "kinematics",
+            "--robot",
+            "fanuc-r2000ic-165f",
+            "--q-deg",
+            radians,
+        ],
+        vec![
+            "predict",
+            "--setup",
+            "fanuc-r2000ic-165f",
+            "--q-deg",
+            radians,
+            "--wrench",
+            "0,0,-200,0,0,0",
+        ],
+    ] {
+        let out = stiffid(&args);
+        assert_success(&out);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr
+                .starts_with("warning: --q-deg: every axis angle lies within +-1.571 deg: radians"),
+            "{stderr}"
+        );
+    }
+    // Degrees, small whole ones included, get none.
+    for degrees in ["0,30,-90,0,45,0", "0,5,-5,0,0,0", "0,0,0,0,0,0"] {
+        let out = stiffid(&[
+            "kinematics",
+            "--robot",
+            "fanuc-r2000ic-165f",
+            "--q-deg",
+            degrees,
+        ]);
+        assert_success(&out);
+        assert!(
+            out.stderr.is_empty(),
+            "{degrees}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}

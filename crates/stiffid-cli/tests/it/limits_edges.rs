@@ -148,11 +148,34 @@ fn every_fold_is_fitted_as_the_full_fit() {
 }
 
 #[test]
+fn thread_counts_beyond_the_limit_are_refused_naming_the_setting() {
+    for bad in ["5000", "257", "many", "-1"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_stiffid"))
+            .arg("robots")
+            .env("RAYON_NUM_THREADS", bad)
+            .output()
+            .unwrap();
+        let line =
+            common::assert_usage_error(&out, &["RAYON_NUM_THREADS", "0 (one per core) to 256"]);
+        assert!(line.contains(bad), "{line}");
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_stiffid"))
+        .arg("robots")
+        .env("RAYON_NUM_THREADS", "3")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+#[test]
 fn stdout_that_cannot_be_written_is_an_error_and_leaves_no_file() {
     let dir = temp_dir("edge-stdout");
     let closed = shell("\"$0\" robots >&-");
     assert_eq!(closed.status.code(), Some(2), "{}", stderr(&closed));
     assert!(stderr(&closed).contains("stdout is closed"));
+    // Open read-write on /dev/null (Python's subprocess.DEVNULL, a daemon's stdout) is open.
+    let devnull = shell("\"$0\" robots 1<>/dev/null");
+    assert_eq!(devnull.status.code(), Some(0), "{}", stderr(&devnull));
     let out = dir.join("k.json");
     let data = common::fanuc_csv();
     let script = format!(

@@ -276,3 +276,28 @@ fn bad_input_is_one_line_naming_the_place() {
     ]);
     assert_usage_error(&e, &["broken.csv", "line 3", "q2_deg"]);
 }
+
+#[test]
+fn select_force_without_report_replaces_the_postures_file() {
+    let d = temp_dir("select-force");
+    let out = write_file(&d, "g.csv", "old");
+    let o = out.to_str().unwrap();
+    let args = [
+        "select",
+        "--setup",
+        "zhang2021-comau-nj165",
+        "--start-random",
+        "--max-evals",
+        "20",
+    ];
+    let forced = stiffid(&[&args[..], &["--out", o, "--force"]].concat());
+    common::assert_success(&forced);
+    let written = std::fs::read_to_string(&out).unwrap();
+    assert!(written.starts_with("posture,q1_deg"), "{written}");
+    // The same postures as without --force: the option changed nothing else.
+    let plain = d.join("plain.csv");
+    common::assert_success(&stiffid(
+        &[&args[..], &["--out", plain.to_str().unwrap()]].concat(),
+    ));
+    assert_eq!(std::fs::read_to_string(plain).unwrap(), written);
+}

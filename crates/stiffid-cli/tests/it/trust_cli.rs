@@ -153,6 +153,10 @@ fn radians_are_warned_about_and_absurd_positions_refused() {
             && warning.contains("radians under _deg names"),
         "{warning}"
     );
+    // The likely cause comes first, before what it causes (negative or far-off compliances).
+    let lines: Vec<&str> = warning.lines().collect();
+    assert!(lines.len() > 1, "{warning}");
+    assert!(lines[0].contains("radians under _deg names"), "{warning}");
     let header = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,\
 x_loaded_mm,y_loaded_mm,z_loaded_mm,x_unloaded_mm,y_unloaded_mm,z_unloaded_mm\n";
     let row = |p: usize, x: &str| format!("{p},1,{p},10,-10,0,20,0,0,0,-1000,{x},0,0,1e15,0,0\n");

@@ -243,10 +243,12 @@ pub enum ColumnProblem {
         expected: String,
     },
     /// A header other than the one the format has.
-    #[error("expected the header '{expected}'")]
+    #[error("expected the header '{expected}'{hint}")]
     Header {
         /// The header of the format.
         expected: String,
+        /// Why the header may look wrong (a `;` separator), with a leading space; else empty.
+        hint: String,
     },
     /// A header without rows.
     #[error("expected at least one {what} after the header")]

@@ -135,6 +135,18 @@ pub(crate) fn missing(line: u64, name: &str) -> Error {
     }
 }
 
+/// The hint for a header read as one column holding `;`: a spreadsheet that writes `;` between
+/// columns (as in locales whose decimal mark is a comma); empty otherwise.
+fn separator_hint<S: AsRef<str>>(names: &[S]) -> &'static str {
+    match names {
+        [only] if only.as_ref().contains(';') => {
+            " (this header separates its columns with ';', as spreadsheets in some locales save \
+             CSV: save it with ',' as the field separator and '.' as the decimal mark)"
+        }
+        _ => "",
+    }
+}
+
 /// Checks that every name of a header (at `line`) is one of `known`, and none comes twice.
 ///
 /// # Errors
@@ -155,7 +167,7 @@ where
             ColumnProblem::Unknown {
                 given: short(name),
                 suggestion: suggestion(name, known.clone()).map(str::to_string),
-                expected: expected(),
+                expected: expected() + separator_hint(names),
             }
         } else if names[..i].iter().any(|n| n.as_ref() == name) {
             ColumnProblem::Duplicate { given: short(name) }

@@ -43,6 +43,7 @@ pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec
             None,
             ColumnProblem::Header {
                 expected: HEADER.join(","),
+                hint: super::separator_hint(&header.iter().collect::<Vec<_>>()).into(),
             },
         ));
     }
@@ -186,6 +187,25 @@ mod tests {
             e.contains("column 7 (q6_deg): q6_deg = 9000 is outside the setup's bounds"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_semicolon_separated_file_gets_the_separator_hint() {
+        let text = HEADER.join(";") + "\n1;0;0;-90;0;0;0\n";
+        let e = parse_in_bounds(&text).unwrap_err().to_string();
+        assert!(
+            e.contains("' (this header separates its columns with ';'"),
+            "{e}"
+        );
+        // A header merely wrong gets none.
+        let e = parse_in_bounds("posture,a\n").unwrap_err().to_string();
+        assert!(!e.contains("';'"), "{e}");
+        // A measurement file (whose columns are named, in any order) gets it too.
+        let measurements = "posture;point;q1_deg;q2_deg;q3_deg;q4_deg;q5_deg;q6_deg;fx_n;fy_n;fz_n;dx_mm;dy_mm;dz_mm\n";
+        let e = crate::io::measurements::parse(measurements)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("columns with ';'"), "{e}");
     }
 
     #[test]

@@ -93,6 +93,22 @@ pub fn radians_as_degrees<'a>(
     })
 }
 
+/// The warning for one posture given as an option (`option`, e.g. `--q-deg`; axis angles, rad, as
+/// read from degrees) whose every angle lies within +-2 pi degrees as read and one of them is not a
+/// whole number of degrees (`-1.571`): radians given as degrees. `None` otherwise (an all-zero
+/// posture, or small whole degrees such as `0,5,-5,0,0,0`).
+pub fn radians_in_option(option: &str, q: &Vector6<f64>) -> Option<Warning> {
+    let deg = q.map(f64::to_degrees);
+    let limit = std::f64::consts::TAU * (1.0 + 1e-9);
+    let fractional = deg.iter().any(|d| (d - d.round()).abs() > 1e-6);
+    (deg.amax() <= limit && fractional).then(|| {
+        plausibility(format!(
+            "{option}: every axis angle lies within +-{:.3} deg: radians given as degrees?",
+            deg.amax()
+        ))
+    })
+}
+
 fn plausibility(message: String) -> Warning {
     Warning::new(WarningKind::Plausibility, message)
 }

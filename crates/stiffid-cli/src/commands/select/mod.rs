@@ -93,8 +93,9 @@ pub struct Args {
     /// and top view of every posture; with --target-pct, the group size against accuracy).
     #[arg(long)]
     report: Option<PathBuf>,
-    /// Write the --report into a directory that holds other files.
-    #[arg(long, requires = "report")]
+    /// Write the --report into a directory that holds other files (without --report it has
+    /// nothing to do: --out, a file, is replaced whole anyway).
+    #[arg(long)]
     force: bool,
 }
 

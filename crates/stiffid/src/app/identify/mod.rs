@@ -558,7 +558,8 @@ fn influential(report: &Report) -> Vec<(Vec<String>, Vec<usize>)> {
 fn warnings(report: &Report) -> Vec<Warning> {
     let id = &report.identification;
     let physical = id.physical();
-    let mut out = Vec::new();
+    // The likely cause first: radians under `_deg` names make every other result nonsense.
+    let mut out = angle_warnings(&report.data_name, &report.origin);
     let n = id.compliance.len();
     let negative: Vec<usize> = (0..n).filter(|&j| id.compliance[j] < 0.0).collect();
     let rigid: Vec<usize> = (0..n)
@@ -591,10 +592,6 @@ fn warnings(report: &Report) -> Vec<Warning> {
         out.push(Warning::new(WarningKind::Units, unit_message(report, unit)));
     }
     out.extend(load_step_warnings(report));
-    if let Some(mut w) = plausibility::radians_as_degrees(&report.origin.angles) {
-        w.message = format!("{}: {}", report.data_name, w.message);
-        out.push(w);
-    }
     out
 }
 
