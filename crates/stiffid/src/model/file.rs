@@ -9,6 +9,7 @@
 //! axis = [1, 0, 0]                  # in link k's frame (normalised)
 //! point_mm = [0, 0, 0]              # rotation only: a point of the axis, link frame (default origin)
 //! nominal_stiffness_nm_per_rad = 5e6   # rotation; a translation takes nominal_stiffness_n_per_mm
+//! candidate = false                 # true: not in the model, a candidate of --compare-models
 //!
 //! [[model.family]]
 //! family = "tilt"                   # tilt, tool or base (crate::model::Family)
@@ -16,7 +17,9 @@
 //! nominal_stiffness_nm_per_rad = 5e6   # of its rotational springs
 //! nominal_stiffness_n_per_mm = 1e4     # of its translational springs
 //! ```
-//! Springs come first, in file order, then the families'.
+//! Springs come first, in file order, then the families'. A spring with `candidate = true` is not
+//! part of the model: it joins the candidates of `stiffid identify --compare-models`
+//! ([`crate::identify::compare`]), by default and by name.
 
 use super::{unit_axis, Family, Kind, Spring};
 use crate::{Error, Result, Robot};
@@ -44,6 +47,8 @@ struct SpringFile {
     point_mm: Option<[f64; 3]>,
     nominal_stiffness_nm_per_rad: Option<f64>,
     nominal_stiffness_n_per_mm: Option<f64>,
+    #[serde(default)]
+    candidate: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -63,14 +68,25 @@ fn invalid(field: String, message: &str) -> Error {
     }
 }
 
+/// The springs of a `[model]` table: those of the model and the declared candidates.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Springs {
+    /// The model's virtual springs, in file order, then the families'.
+    pub model: Vec<Spring>,
+    /// The springs with `candidate = true`, in file order.
+    pub candidates: Vec<Spring>,
+}
+
 impl ModelFile {
-    /// The virtual springs on `robot`, SI units (checked in full by [`super::check_springs`]
-    /// when the setup is built).
+    /// The virtual springs on `robot`, SI units, checked together in file order (the candidates
+    /// among them: names unique over both) by [`super::check_springs`], so that an error names
+    /// the file's `model.spring[i]`.
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field: a zero or non-finite axis, a point or a stiffness
-    /// in the other kind's unit, an unknown family or bad family links.
-    pub(crate) fn springs(&self, robot: &Robot) -> Result<Vec<Spring>> {
+    /// in the other kind's unit, an unknown family or bad family links, and those of
+    /// [`super::check_springs`].
+    pub(crate) fn springs(&self, robot: &Robot) -> Result<Springs> {
         let mut out = Vec::new();
         for (i, s) in self.spring.iter().enumerate() {
             let field = |f: &str| format!("model.spring[{}].{f}", i + 1);
@@ -119,7 +135,17 @@ impl ModelFile {
                 &field("links"),
             )?);
         }
-        Ok(out)
+        super::check_springs(&out)?;
+        let declared = self.spring.len();
+        let is_candidate = |i: usize| i < declared && self.spring[i].candidate;
+        let (candidates, model): (Vec<_>, Vec<_>) = out
+            .into_iter()
+            .enumerate()
+            .partition(|(i, _)| is_candidate(*i));
+        Ok(Springs {
+            model: model.into_iter().map(|(_, s)| s).collect(),
+            candidates: candidates.into_iter().map(|(_, s)| s).collect(),
+        })
     }
 }
 
@@ -130,7 +156,8 @@ impl ModelFile {
 /// # Errors
 /// [`Error::Parse`] naming `source_name` for TOML that is not a `[model]` table alone; those of
 /// the setup file's `[model]` table ([`Error::InvalidField`] naming the field, e.g.
-/// `model.spring[1].axis`). The springs are checked together when a setup is built with them.
+/// `model.spring[1].axis`), and a spring with `candidate = true` (candidates belong in the setup
+/// file). The springs are checked together when a setup is built with them.
 pub fn parse(text: &str, source_name: &str, robot: &Robot) -> Result<Vec<Spring>> {
     #[derive(Deserialize)]
     #[serde(deny_unknown_fields)]
@@ -142,7 +169,13 @@ pub fn parse(text: &str, source_name: &str, robot: &Robot) -> Result<Vec<Spring>
         source_name: source_name.to_string(),
         message: crate::common::limits::one_line(&e.to_string()),
     })?;
-    f.model.springs(robot)
+    if let Some(i) = f.model.spring.iter().position(|s| s.candidate) {
+        return Err(invalid(
+            format!("model.spring[{}].candidate", i + 1),
+            "a model fragment gives the model's springs: declare candidates in the setup file",
+        ));
+    }
+    Ok(f.model.springs(robot)?.model)
 }
 
 /// The `[model]` fragment of a setup file that gives `springs` (every spring written with its axis,

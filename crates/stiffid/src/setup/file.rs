@@ -271,12 +271,13 @@ fn deg6(v: &[f64; 6]) -> Vector6<f64> {
 /// The file's fields in SI units, for [`SetupBuilder::build`] to check.
 fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
     let measuring_points = f.tool.measuring_points_mm.iter().map(mm).collect();
-    let virtual_springs = match &f.model {
+    let springs = match &f.model {
         Some(m) => m.springs(&robot)?,
-        None => Vec::new(),
+        None => Default::default(),
     };
     let mut b = Setup::builder(f.name, robot)
-        .with_virtual_springs(virtual_springs)
+        .with_virtual_springs(springs.model)
+        .with_candidate_springs(springs.candidates)
         .with_description(f.description)
         .with_robot_ref(f.robot)
         .with_springs(f.springs)

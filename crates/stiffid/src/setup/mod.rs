@@ -164,6 +164,7 @@ pub struct Setup {
     robot: Robot,
     tool: Tool,
     model: Model,
+    candidate_springs: Vec<Spring>,
     load: RopeLoad,
     load_steps: Vec<f64>,
     noise: Noise,
@@ -190,6 +191,7 @@ impl Setup {
             robot,
             springs: Coordinates::default(),
             virtual_springs: Vec::new(),
+            candidate_springs: Vec::new(),
             loading_point: None,
             measuring_points: Vec::new(),
             tcp: None,
@@ -218,6 +220,7 @@ impl Setup {
             robot: self.robot.clone(),
             springs: self.model.coordinates(),
             virtual_springs: self.model.springs().to_vec(),
+            candidate_springs: self.candidate_springs.clone(),
             loading_point: Some(self.tool.loading_point),
             measuring_points: self.tool.measuring_points.clone(),
             tcp: Some(self.tool.tcp),
@@ -271,6 +274,12 @@ impl Setup {
     /// the drives alone unless the setup has a `[model]`.
     pub fn model(&self) -> &Model {
         &self.model
+    }
+
+    /// The declared candidate springs (`[[model.spring]]` with `candidate = true`): not in the
+    /// model, candidates of the model comparison ([`crate::identify::compare`]).
+    pub fn candidate_springs(&self) -> &[Spring] {
+        &self.candidate_springs
     }
 
     /// The nominal compliance of every parameter of the model (rad/Nm, m/N), when the setup has a
@@ -519,6 +528,7 @@ pub struct SetupBuilder {
     robot: Robot,
     springs: Coordinates,
     virtual_springs: Vec<Spring>,
+    candidate_springs: Vec<Spring>,
     loading_point: Option<Vector3<f64>>,
     measuring_points: Vec<Vector3<f64>>,
     tcp: Option<Vector3<f64>>,
@@ -565,6 +575,13 @@ impl SetupBuilder {
     /// The virtual springs of the model after the drives (default none: [`Setup::model`]).
     pub fn with_virtual_springs(mut self, springs: Vec<Spring>) -> Self {
         self.virtual_springs = springs;
+        self
+    }
+
+    /// The declared candidate springs of the model comparison (default none:
+    /// [`Setup::candidate_springs`]); their names must differ from the model's springs'.
+    pub fn with_candidate_springs(mut self, springs: Vec<Spring>) -> Self {
+        self.candidate_springs = springs;
         self
     }
 
@@ -725,6 +742,7 @@ impl SetupBuilder {
             cell::check_cell(c)?;
         }
         let model = Model::new(self.springs, self.virtual_springs)?;
+        model.with(&self.candidate_springs)?;
         let tool = Tool {
             loading_point,
             measuring_points: self.measuring_points,
@@ -764,6 +782,7 @@ impl SetupBuilder {
             robot: self.robot,
             tool,
             model,
+            candidate_springs: self.candidate_springs,
             load,
             load_steps: self.load_steps,
             noise,

@@ -5,6 +5,7 @@
 mod active_set;
 mod bodies;
 mod calibrate_cell;
+mod candidates;
 mod cell;
 mod cell_search;
 mod comau_checks;

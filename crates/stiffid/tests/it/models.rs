@@ -236,8 +236,10 @@ fn fanuc_data_choose_a_larger_model() {
     let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     let mut file = stiffid::io::measurements::parse(text).unwrap();
     file.to_base_frame(&setup).unwrap();
-    let candidates = stiffid::identify::compare::default_candidates(&setup);
-    assert_eq!(candidates.len(), 15);
+    let pool = stiffid::identify::compare::default_pool(&setup);
+    // 18 tilt, 12 bend (links 1, 2, 3 and 5), 6 base, 3 tool; 12 dropped.
+    assert_eq!((pool.candidates.len(), pool.dropped.len()), (27, 12));
+    let candidates = pool.candidates;
     let c = compare(&setup, &file.measurements, &candidates, true).unwrap();
     let drives = c.models[0].held_out_explained.unwrap();
     assert!((drives - 0.765).abs() < 5e-4, "{drives}");
@@ -248,12 +250,8 @@ fn fanuc_data_choose_a_larger_model() {
     let nested = c.nested.as_ref().unwrap();
     assert_eq!(nested.parameters.len(), 43);
     assert!(nested.held_out_explained > drives);
-    // The springs that are the drives' own columns (tilt4_y: joint 5's axis through the wrist
-    // centre) are named unidentifiable in the first step.
-    let tilt4_y = c.steps[0]
-        .candidates
-        .iter()
-        .find(|r| r.added.as_deref() == Some("tilt4_y"))
-        .unwrap();
-    assert!(!tilt4_y.identified);
+    // No candidate of the pool is a drive's own column: every one is identified in the first
+    // step (tilt4_y, joint 5's axis through the wrist centre, is dropped from the pool).
+    assert!(c.steps[0].candidates.iter().all(|r| r.identified));
+    assert!(pool.dropped.iter().any(|d| d.name == "tilt4_y"));
 }

@@ -53,9 +53,10 @@ pub struct Args {
     /// smallest model within one standard error of the best.
     #[arg(long)]
     compare_models: bool,
-    /// The candidates of `--compare-models`, comma-separated: family springs (`tilt3_x`,
-    /// `tool_y`, `base_rz`) or families (`tilt`, `tool`, `base`); default the tilt springs of
-    /// joints 1-6 and the tool translations.
+    /// The candidates of `--compare-models`, comma-separated: single candidates (`tilt3_z`,
+    /// `bend2_y`, `tool_y`, `base_rz`, a declared spring's name) or families (`tilt`, `bend`,
+    /// `base`, `tool`, `declared`); default all of them. Those along a joint's own axis or
+    /// duplicating another are left out, with the reason.
     #[arg(long, value_delimiter = ',', requires = "compare_models")]
     candidates: Option<Vec<String>>,
 }

@@ -11,7 +11,7 @@ use stiffid::app::identify::{Data, Request};
 use stiffid::app::identify_model::document::Document;
 use stiffid::app::identify_model::{self, Report};
 use stiffid::common::words::count;
-use stiffid::identify::compare::{parameter_docs, Comparison, Row};
+use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Row};
 use stiffid::identify::cross_validation::CrossValidation;
 use stiffid::identify::model::Fit;
 use stiffid::Setup;
@@ -49,7 +49,7 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
     }
     match args.common.json {
         true => output::print(&json(&report.document(&args.common.setup))?),
-        false => output::print(&text(&report.comparison)),
+        false => output::print(&text(&report.comparison, &report.dropped)),
     }
 }
 
@@ -80,10 +80,17 @@ fn row_line(r: &Row, mark: &str) -> String {
 const HEADER: &str =
     "  added            par in-sample  held out  dB RMS mm       AIC       BIC   noise  all k>0\n";
 
-/// The text report of a comparison.
-fn text(c: &Comparison) -> String {
+/// The text report of a comparison and of the candidates dropped from its pool.
+fn text(c: &Comparison, dropped: &[Dropped]) -> String {
     let mut s =
         String::from("Model comparison: forward selection on the leave-one-posture-out error\n\n");
+    if !dropped.is_empty() {
+        s += "Candidates left out (the data could never identify them):\n";
+        for d in dropped {
+            s += &format!("  {:<16} {}\n", d.name, d.reason);
+        }
+        s += "\n";
+    }
     s += "Selected path (* recommended):\n";
     s += HEADER;
     for (i, r) in c.models.iter().enumerate() {

@@ -6,7 +6,7 @@
 use super::identify::{angle_warnings, on_measurements, Data};
 use super::Warning;
 use crate::identify::compare::{
-    candidates_by_name, compare, default_candidates, Comparison, Document,
+    compare, default_pool, pool_by_name, Comparison, Document, Dropped,
 };
 use crate::model::fragment;
 use crate::{Result, Setup};
@@ -18,9 +18,10 @@ pub struct Request<'a, R> {
     pub setup: &'a Setup,
     /// The measurements.
     pub data: Data<R>,
-    /// The candidates by name ([`candidates_by_name`]: family springs such as `tilt3_x`, or
-    /// whole families `tilt`, `tool`, `base`); `None` for the default, the `tilt` springs of
-    /// joints 1-6 and the `tool` translations ([`default_candidates`]).
+    /// The candidates by name ([`pool_by_name`]: single candidates such as `tilt3_z`, `bend2_y`
+    /// or a declared spring's name, or whole families `tilt`, `bend`, `base`, `tool`,
+    /// `declared`); `None` for the default, every family and the setup's declared candidates
+    /// ([`default_pool`]).
     pub candidates: Option<&'a [String]>,
 }
 
@@ -31,6 +32,8 @@ pub struct Report {
     pub data_name: String,
     /// The selection path, every step, the recommendation and the nested estimate.
     pub comparison: Comparison,
+    /// The candidates left out because the data could never identify them, with the reason.
+    pub dropped: Vec<Dropped>,
     /// The setup's tracker noise variance, m^2 (what the noise ratios are against).
     pub noise_variance: f64,
     /// Results to look at before trusting them (angles that look like radians).
@@ -41,7 +44,7 @@ impl Report {
     /// The document (`stiffid identify --compare-models --json`), `setup` named as given.
     pub fn document(&self, setup: &str) -> Document {
         self.comparison
-            .document(setup, &self.data_name, self.noise_variance)
+            .document(setup, &self.data_name, self.noise_variance, &self.dropped)
     }
 
     /// The recommended model as a `[model]` fragment to paste into the setup, with a comment
@@ -67,16 +70,17 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         data,
         candidates,
     } = request;
-    let candidates = match candidates {
-        Some(names) => candidates_by_name(setup, names)?,
-        None => default_candidates(setup),
+    let pool = match candidates {
+        Some(names) => pool_by_name(setup, names)?,
+        None => default_pool(setup),
     };
     let (data_name, origin, comparison) =
-        on_measurements(setup, data, |m| compare(setup, m, &candidates, true))?;
+        on_measurements(setup, data, |m| compare(setup, m, &pool.candidates, true))?;
     let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
         data_name,
         comparison,
+        dropped: pool.dropped,
         noise_variance: setup.noise().variance,
         warnings,
     })

@@ -28,6 +28,18 @@ pub struct Document {
     pub recommended_fit: FitDoc,
     /// The nested estimate (outer leave-one-posture-out over the whole selection).
     pub nested: Option<NestedDoc>,
+    /// The candidates left out of the pool because the data could never identify them.
+    pub dropped: Vec<DroppedDoc>,
+}
+
+/// A candidate left out of the pool.
+#[derive(Debug, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct DroppedDoc {
+    /// The candidate's name.
+    pub name: String,
+    /// Why: its axis is a joint's own, or it gives the same column as another spring.
+    pub reason: String,
 }
 
 /// One model.
@@ -248,8 +260,15 @@ impl Comparison {
         )
     }
 
-    /// The document, `setup` and `data` as given, `noise_variance` the setup's (m^2).
-    pub fn document(&self, setup: &str, data: &str, noise_variance: f64) -> Document {
+    /// The document, `setup` and `data` as given, `noise_variance` the setup's (m^2), `dropped`
+    /// the candidates left out of the pool ([`super::Pool::dropped`]).
+    pub fn document(
+        &self,
+        setup: &str,
+        data: &str,
+        noise_variance: f64,
+        dropped: &[super::Dropped],
+    ) -> Document {
         let all = &self.parameters;
         Document {
             setup: setup.into(),
@@ -288,6 +307,13 @@ impl Comparison {
                     })
                     .collect(),
             }),
+            dropped: dropped
+                .iter()
+                .map(|d| DroppedDoc {
+                    name: d.name.clone(),
+                    reason: d.reason.clone(),
+                })
+                .collect(),
         }
     }
 }

@@ -16,87 +16,22 @@
 //! choosing by the data.
 
 pub mod document;
+pub mod pool;
 
 pub use document::{parameter_docs, Document};
+pub use pool::{default_pool, pool_by_name, Dropped, Pool};
 
 use super::model::{fit, held_out, Fit, HeldOut};
-use crate::model::{Family, Model, Spring};
+use crate::model::{Model, Spring};
 use crate::observation::{Measurement, Observations};
 use crate::{Result, Setup};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
-/// The default candidates: the `tilt` springs of joints 1-6 and the `tool` translations, minus
-/// those the setup's model already has (by name).
+/// The default candidates ([`pool::default_pool`]): every family's springs on the setup's robot
+/// and the setup's declared candidates, minus those dropped and those in the setup's model.
 pub fn default_candidates(setup: &Setup) -> Vec<Spring> {
-    let robot = setup.robot();
-    let mut out = Family::Tilt
-        .springs(robot, &[1, 2, 3, 4, 5, 6], None, None, "candidates")
-        .unwrap_or_default();
-    out.extend(
-        Family::Tool
-            .springs(robot, &[], None, None, "candidates")
-            .unwrap_or_default(),
-    );
-    let have = setup.model().springs();
-    out.retain(|c| have.iter().all(|s| s.name != c.name));
-    out
-}
-
-/// Every spring of the families on the setup's robot: `tilt` at joints 1-6, `tool`, `base`.
-fn family_springs(setup: &Setup) -> Vec<Spring> {
-    let robot = setup.robot();
-    let mut out = Family::Tilt
-        .springs(robot, &[1, 2, 3, 4, 5, 6], None, None, "candidates")
-        .unwrap_or_default();
-    for f in [Family::Tool, Family::Base] {
-        out.extend(
-            f.springs(robot, &[], None, None, "candidates")
-                .unwrap_or_default(),
-        );
-    }
-    out
-}
-
-/// The candidates named in `names`: family springs by name (`tilt3_x`, `tool_y`, `base_rz`) or
-/// whole families (`tilt`: joints 1-6, `tool`, `base`), in the order given, without repeats and
-/// without those the setup's model already has.
-///
-/// # Errors
-/// [`crate::Error::InvalidField`] (`candidates`) for a name that is neither, or no candidate left.
-pub fn candidates_by_name(setup: &Setup, names: &[String]) -> Result<Vec<Spring>> {
-    let pool = family_springs(setup);
-    let mut out: Vec<Spring> = Vec::new();
-    for name in names {
-        let family = crate::model::FAMILIES.iter().any(|(f, _)| f == name);
-        let matched: Vec<&Spring> = pool
-            .iter()
-            .filter(|s| s.name == *name || (family && s.name.starts_with(name.as_str())))
-            .collect();
-        if matched.is_empty() {
-            return Err(crate::Error::InvalidField {
-                field: "candidates".into(),
-                message: format!(
-                    "'{}' is not a candidate: expected a family (tilt, tool, base) or one of its springs (tilt1_x .. tilt6_y, tool_x, tool_y, tool_z, base_x .. base_rz)",
-                    crate::common::limits::short(name)
-                ),
-            });
-        }
-        for s in matched {
-            if out.iter().all(|o| o.name != s.name) {
-                out.push(s.clone());
-            }
-        }
-    }
-    let have = setup.model().springs();
-    out.retain(|c| have.iter().all(|s| s.name != c.name));
-    if out.is_empty() {
-        return Err(crate::Error::InvalidField {
-            field: "candidates".into(),
-            message: "every candidate is already in the setup's model: nothing to compare".into(),
-        });
-    }
-    Ok(out)
+    pool::default_pool(setup).candidates
 }
 
 /// One model of the comparison.
@@ -202,6 +137,7 @@ pub fn compare(
     let all = setup
         .to_builder()
         .with_virtual_springs(model.springs().to_vec())
+        .with_candidate_springs(Vec::new())
         .build()?;
     let obs = Observations::from_measurements(&all, measurements)?;
     let p = Problem {
