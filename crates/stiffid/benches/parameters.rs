@@ -5,7 +5,7 @@
 //! rank test only); one evaluation of `relative-a` and of `zhang2021` (with
 //! the singular values), and `relative-a` with its exact gradient, 6 postures x 4 measuring points;
 //! and the model comparison of `stiffid identify --compare-models` on the FANUC data (43 postures,
-//! 15 candidates, with the nested estimate), the job from the file's text.
+//! the default candidate pool, 39 candidates, with the nested estimate), the job from the file's text.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;

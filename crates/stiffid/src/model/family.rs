@@ -81,6 +81,7 @@ impl Family {
                 Kind::Rotation => rotation,
                 Kind::Translation => translation,
             },
+            law: super::Law::Linear,
         };
         match self {
             Family::Tilt => {

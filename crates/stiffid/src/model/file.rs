@@ -10,6 +10,7 @@
 //! point_mm = [0, 0, 0]              # rotation only: a point of the axis, link frame (default origin)
 //! nominal_stiffness_nm_per_rad = 5e6   # rotation; a translation takes nominal_stiffness_n_per_mm
 //! candidate = false                 # true: not in the model, a candidate of --compare-models
+//! law = "linear"                    # candidates only: "lost-motion" or "load-dependent" (super::Law)
 //!
 //! [[model.family]]
 //! family = "tilt"                   # tilt, tool or base (crate::model::Family)
@@ -49,6 +50,18 @@ struct SpringFile {
     nominal_stiffness_n_per_mm: Option<f64>,
     #[serde(default)]
     candidate: bool,
+    #[serde(default)]
+    law: LawFile,
+}
+
+/// A spring's `law` as written.
+#[derive(Debug, Deserialize, Default, Clone, Copy, PartialEq)]
+#[serde(rename_all = "kebab-case")]
+enum LawFile {
+    #[default]
+    Linear,
+    LostMotion,
+    LoadDependent,
 }
 
 #[derive(Debug, Deserialize)]
@@ -113,6 +126,16 @@ impl ModelFile {
                     "a translation has no point: give only its direction (axis)",
                 ));
             }
+            let law = match s.law {
+                LawFile::Linear => super::Law::Linear,
+                LawFile::LostMotion => super::Law::LostMotion {
+                    smoothing: super::DEFAULT_SMOOTHING,
+                },
+                LawFile::LoadDependent => super::Law::LoadDependent,
+            };
+            if !law.is_linear() && !s.candidate {
+                return Err(invalid(field("law"), "a lost-motion or load-dependent joint can only be a candidate (candidate = true): prediction, compensation and the design criteria take every spring as linear"));
+            }
             out.push(Spring {
                 name: s.name.clone(),
                 kind: s.kind,
@@ -122,6 +145,7 @@ impl ModelFile {
                     .point_mm
                     .map_or(Vector3::zeros(), |p| Vector3::from(p) * 1e-3),
                 nominal_stiffness: stiffness,
+                law,
             });
         }
         for (i, f) in self.family.iter().enumerate() {
@@ -179,10 +203,22 @@ pub fn parse(text: &str, source_name: &str, robot: &Robot) -> Result<Vec<Spring>
 }
 
 /// The `[model]` fragment of a setup file that gives `springs` (every spring written with its axis,
-/// so the fragment does not depend on the families' definitions; nominal stiffness as given).
+/// so the fragment does not depend on the families' definitions; nominal stiffness as given). A
+/// joint of a nonlinear law ([`super::Law`]) is written as a comment: a model holds springs only.
 pub fn fragment(springs: &[Spring]) -> String {
     let mut s = String::new();
-    for spring in springs {
+    for spring in springs.iter().filter(|s| !s.law.is_linear()) {
+        let _ = writeln!(
+            s,
+            "# '{}' ({}) is chosen too: a model holds linear springs only, so it is left out here.\n",
+            spring.name,
+            match spring.law {
+                super::Law::LostMotion { .. } => "a lost motion",
+                _ => "a load-dependent compliance",
+            }
+        );
+    }
+    for spring in springs.iter().filter(|s| s.law.is_linear()) {
         let a = spring.axis;
         let kind = match spring.kind {
             Kind::Rotation => "rotation",

@@ -25,10 +25,12 @@
 mod compliance;
 mod family;
 pub(crate) mod file;
+mod law;
 
 pub use compliance::Compliance;
 pub use family::{Family, FAMILIES};
 pub use file::{fragment, parse as parse_fragment};
+pub use law::{Law, DEFAULT_SMOOTHING};
 
 use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Robot};
@@ -50,37 +52,63 @@ pub enum Kind {
     Translation,
 }
 
-/// The unit of a parameter's stiffness in files and reports.
+/// The unit of a parameter's stiffness in files and reports; for a nonlinear law's parameter
+/// ([`Law`]), which has no stiffness, the unit of the parameter itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Unit {
     /// Nm/rad (drives and rotational springs); SI inside, the same number.
     NmPerRad,
     /// N/mm (translational springs); N/m inside, 1000 times the number.
     NPerMm,
+    /// urad: a lost motion `b` (rad inside).
+    Urad,
+    /// urad/kNm^2: a load-dependent compliance `c1` (rad/Nm^2 inside, 1e12 times the number).
+    UradPerKnm2,
 }
 
 impl Unit {
-    /// Stiffness in this unit per SI stiffness (Nm/rad or N/m).
+    /// Stiffness in this unit per SI stiffness (Nm/rad or N/m); for [`Unit::Urad`] and
+    /// [`Unit::UradPerKnm2`] the parameter in this unit per SI parameter.
     pub fn per_si(self) -> f64 {
         match self {
             Unit::NmPerRad => 1.0,
             Unit::NPerMm => 1e-3,
+            Unit::Urad => 1e6,
+            Unit::UradPerKnm2 => 1e12,
         }
     }
 
-    /// The unit as written after a number (`Nm/rad`, `N/mm`).
+    /// Whether the unit is a stiffness's (reported as `1 / h`), not a parameter's own.
+    pub fn is_stiffness(self) -> bool {
+        matches!(self, Unit::NmPerRad | Unit::NPerMm)
+    }
+
+    /// What a report shows of the SI compliance-side parameter `h`: the stiffness `1 / h` or,
+    /// for a nonlinear law's parameter, `h` itself, in this unit.
+    pub fn reported(self, h: f64) -> f64 {
+        match self.is_stiffness() {
+            true => self.per_si() / h,
+            false => self.per_si() * h,
+        }
+    }
+
+    /// The unit as written after a number (`Nm/rad`, `N/mm`, `urad`, `urad/kNm^2`).
     pub fn symbol(self) -> &'static str {
         match self {
             Unit::NmPerRad => "Nm/rad",
             Unit::NPerMm => "N/mm",
+            Unit::Urad => "urad",
+            Unit::UradPerKnm2 => "urad/kNm^2",
         }
     }
 
-    /// The unit as a field-name suffix (`nm_per_rad`, `n_per_mm`).
+    /// The unit as a field-name suffix (`nm_per_rad`, `n_per_mm`, `urad`, `urad_per_knm2`).
     pub fn suffix(self) -> &'static str {
         match self {
             Unit::NmPerRad => "nm_per_rad",
             Unit::NPerMm => "n_per_mm",
+            Unit::Urad => "urad",
+            Unit::UradPerKnm2 => "urad_per_knm2",
         }
     }
 }
@@ -100,6 +128,11 @@ pub struct Spring {
     pub point: Vector3<f64>,
     /// Nominal stiffness for the design criteria: Nm/rad (rotation) or N/m (translation), SI.
     pub nominal_stiffness: Option<f64>,
+    /// How it deflects under its load ([`Law`]; a spring's is linear). Only the observation
+    /// matrix (identification and the model comparison) applies a nonlinear law: a setup file
+    /// declares such joints only as candidates, and prediction, compensation and the design
+    /// criteria take every virtual spring as linear.
+    pub law: Law,
 }
 
 /// A spring at a posture: its axis and point in the base frame.
@@ -147,12 +180,21 @@ impl Placed {
 }
 
 impl Spring {
-    /// The unit of its stiffness in files and reports.
+    /// The unit of its stiffness in files and reports (of its parameter for a nonlinear law).
     pub fn unit(&self) -> Unit {
-        match self.kind {
-            Kind::Rotation => Unit::NmPerRad,
-            Kind::Translation => Unit::NPerMm,
+        match (self.law, self.kind) {
+            (Law::LostMotion { .. }, _) => Unit::Urad,
+            (Law::LoadDependent, _) => Unit::UradPerKnm2,
+            (Law::Linear, Kind::Rotation) => Unit::NmPerRad,
+            (Law::Linear, Kind::Translation) => Unit::NPerMm,
         }
+    }
+
+    /// Its generalised load's response ([`Law::response`]) under the wrench `[f; m]` (base
+    /// frame) at the loading point `p` (base frame) at a posture where it is `placed`.
+    #[inline(always)]
+    pub fn response(&self, placed: &Placed, p: &Vector3<f64>, wrench: &Vector6<f64>) -> f64 {
+        self.law.response(placed.load(p, wrench))
     }
 
     /// Its axis and point in the base frame at the posture `frames` of `robot`.
@@ -188,15 +230,21 @@ pub enum ParameterKind {
     Rotation,
     /// A translational virtual spring (N/mm).
     Translation,
+    /// A lost motion ([`Law::LostMotion`], urad).
+    LostMotion,
+    /// A load-dependent compliance ([`Law::LoadDependent`], urad/kNm^2).
+    LoadDependent,
 }
 
 impl ParameterKind {
-    /// The name in files: `drive`, `rotation` or `translation`.
+    /// The name in files: `drive`, `rotation`, `translation`, `lost-motion`, `load-dependent`.
     pub fn name(self) -> &'static str {
         match self {
             ParameterKind::Drive => "drive",
             ParameterKind::Rotation => "rotation",
             ParameterKind::Translation => "translation",
+            ParameterKind::LostMotion => "lost-motion",
+            ParameterKind::LoadDependent => "load-dependent",
         }
     }
 }
@@ -278,9 +326,11 @@ impl Model {
         });
         let springs = self.springs.iter().map(|s| Parameter {
             name: s.name.clone(),
-            kind: match s.kind {
-                Kind::Rotation => ParameterKind::Rotation,
-                Kind::Translation => ParameterKind::Translation,
+            kind: match (s.law, s.kind) {
+                (Law::LostMotion { .. }, _) => ParameterKind::LostMotion,
+                (Law::LoadDependent, _) => ParameterKind::LoadDependent,
+                (Law::Linear, Kind::Rotation) => ParameterKind::Rotation,
+                (Law::Linear, Kind::Translation) => ParameterKind::Translation,
             },
             unit: s.unit(),
         });

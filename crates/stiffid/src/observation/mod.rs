@@ -85,7 +85,7 @@ pub fn write_posture_block(
 }
 
 /// The virtual springs of a model placed at a posture with their generalised loads
-/// `J_f,s^T W` (Nm or N) under one wrench: what their columns of `Psi` need beside the
+/// `J_f,s^T W` (Nm or N) under one wrench, through each one's law ([`crate::model::Law`]): what their columns of `Psi` need beside the
 /// measuring point. Empty (no allocation) for the drives alone.
 #[derive(Debug, Clone, Default)]
 pub struct SpringLoads {
@@ -109,7 +109,11 @@ impl SpringLoads {
             .iter()
             .map(|s| s.placed(setup.robot(), frames))
             .collect();
-        let loads = placed.iter().map(|s| s.load(&loading, wrench)).collect();
+        let loads = springs
+            .iter()
+            .zip(&placed)
+            .map(|(s, p)| s.response(p, &loading, wrench))
+            .collect();
         Self { placed, loads }
     }
 
@@ -118,7 +122,8 @@ impl SpringLoads {
         &self.placed
     }
 
-    /// `J_f,s^T W` of each spring, Nm (rotation) or N (translation).
+    /// `g(J_f,s^T W)` of each spring: the load, Nm (rotation) or N (translation), through the
+    /// spring's law ([`crate::model::Law::response`]; the load itself for a spring).
     pub fn loads(&self) -> &[f64] {
         &self.loads
     }

@@ -120,6 +120,9 @@ fn text(c: &Comparison, dropped: &[Dropped]) -> String {
             if chosen.is_empty() { "nothing".into() } else { chosen.join(", ") }
         );
     }
+    if let Some(note) = c.nonlinear_separation() {
+        s += &format!("\nLost motion and load-dependent compliance: {note}\n");
+    }
     s += "\nRecommended model fitted to every posture:\n";
     s += &fit_table(&c.recommended_fit);
     s += &format!("\n{}\n", c.conclusion());

@@ -30,6 +30,11 @@ pub struct Document {
     pub nested: Option<NestedDoc>,
     /// The candidates left out of the pool because the data could never identify them.
     pub dropped: Vec<DroppedDoc>,
+    /// The most load levels any posture holds (1 without load steps).
+    pub load_levels: usize,
+    /// When lost motion or load-dependent candidates were compared: whether these data can
+    /// separate them from the springs, in words.
+    pub nonlinear_separation: Option<String>,
 }
 
 /// A candidate left out of the pool.
@@ -92,14 +97,16 @@ pub struct StepDoc {
 pub struct ParameterDoc {
     /// `k1` .. `k6` or the spring's name.
     pub name: String,
-    /// `drive`, `rotation` or `translation`.
+    /// `drive`, `rotation`, `translation`, `lost-motion` or `load-dependent`.
     pub kind: crate::model::ParameterKind,
-    /// `Nm/rad` or `N/mm`.
+    /// `Nm/rad`, `N/mm`, `urad` or `urad/kNm^2`.
     pub unit: &'static str,
-    /// The stiffness in `unit` (`null` if not finite).
+    /// The stiffness in `unit` (`null` if not finite); for a lost motion its size `b` (urad),
+    /// for a load-dependent compliance its `c1` (urad/kNm^2).
     pub stiffness: Option<f64>,
-    /// Its 95% interval in `unit` (the compliance's interval inverted; `null` ends unbounded);
-    /// `null` when the data cannot identify the parameter.
+    /// Its 95% interval in `unit` (the compliance's interval inverted, or the parameter's own
+    /// for a lost motion and a load-dependent compliance; `null` ends unbounded); `null` when the
+    /// data cannot identify the parameter.
     pub ci95: Option<[Option<f64>; 2]>,
     /// Whether the data identify it.
     pub identified: bool,
@@ -168,8 +175,11 @@ pub fn parameter_docs(fit: &Fit) -> Vec<ParameterDoc> {
                 name: p.name.clone(),
                 kind: p.kind,
                 unit: p.unit.symbol(),
-                stiffness: finite(fit.stiffness[j] * unit),
-                ci95: fit.intervals[j].map(|i| i.stiffness_ci95.map(|v| finite(v * unit))),
+                stiffness: finite(p.unit.reported(fit.compliance[j])),
+                ci95: fit.intervals[j].map(|i| match p.unit.is_stiffness() {
+                    true => i.stiffness_ci95.map(|v| finite(v * unit)),
+                    false => i.compliance_ci95.map(|v| finite(v * unit)),
+                }),
                 identified: fit.identifiability.identified[j],
             }
         })
@@ -207,7 +217,7 @@ fn model_doc(row: &Row, all: &[Parameter], recommended: bool) -> ModelDoc {
             name: p.name.clone(),
             kind: p.kind,
             unit: p.unit.symbol(),
-            stiffness: finite(k * p.unit.per_si()),
+            stiffness: finite(p.unit.reported(1.0 / k)),
             ci95: None,
             identified: row.identified,
         })
@@ -231,6 +241,23 @@ fn model_doc(row: &Row, all: &[Parameter], recommended: bool) -> ModelDoc {
 }
 
 impl Comparison {
+    /// When lost motion or load-dependent candidates were compared, whether the data's loads can
+    /// separate them from the springs ([`crate::model::Law`]).
+    pub fn nonlinear_separation(&self) -> Option<String> {
+        use crate::model::ParameterKind::{LoadDependent, LostMotion};
+        let any = self
+            .parameters
+            .iter()
+            .any(|p| matches!(p.kind, LostMotion | LoadDependent));
+        if !any {
+            return None;
+        }
+        Some(match self.load_levels {
+            1 => "one load level per posture: a lost motion or a load-dependent compliance differs from a spring only through how the load changes from posture to posture, so it also takes up whatever else changes with the posture; trust it only when several load levels in the same posture (load steps) or a wide range of loads confirm it".into(),
+            n => format!("up to {n} load levels per posture: each posture's load-deflection curve separates a lost motion (its intercept) and a load-dependent compliance (its curvature) from the springs"),
+        })
+    }
+
     /// What the comparison recommends, in words.
     pub fn conclusion(&self) -> String {
         let rec = &self.models[self.recommended];
@@ -307,6 +334,8 @@ impl Comparison {
                     })
                     .collect(),
             }),
+            load_levels: self.load_levels,
+            nonlinear_separation: self.nonlinear_separation(),
             dropped: dropped
                 .iter()
                 .map(|d| DroppedDoc {

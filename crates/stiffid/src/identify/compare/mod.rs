@@ -4,7 +4,8 @@
 //! From the setup's model, each step fits the model with every remaining candidate spring added
 //! ([`super::model::fit`]) and its leave-one-posture-out error ([`super::model::held_out`]), and
 //! adds the candidate with the smallest held-out mean square `delta_b` among those whose fit is
-//! physical (every compliance `> 0`) and identified. It stops when no candidate lowers the
+//! physical (every compliance `> 0`; a load-dependent compliance `c0 + c1 |tau| > 0` at the
+//! largest load of the data, [`crate::model::Law`]) and identified. It stops when no candidate lowers the
 //! held-out error. The recommended model is the smallest on that path whose held-out mean square
 //! is within one standard error of the best one (the one-standard-error rule; Hastie, Tibshirani,
 //! Friedman, "The Elements of Statistical Learning", 2nd ed., 2009, Section 7.10): a spring must
@@ -22,7 +23,7 @@ pub use document::{parameter_docs, Document};
 pub use pool::{default_pool, pool_by_name, Dropped, Pool};
 
 use super::model::{fit, held_out, Fit, HeldOut};
-use crate::model::{Model, Spring};
+use crate::model::{Law, Model, Spring};
 use crate::observation::{Measurement, Observations};
 use crate::{Result, Setup};
 use nalgebra::{DMatrix, DVector};
@@ -110,6 +111,9 @@ pub struct Comparison {
     pub model_fits: bool,
     /// The parameters of the setup's model followed by the candidates.
     pub parameters: Vec<crate::model::Parameter>,
+    /// The most load levels (distinct wrenches) any posture of the data holds: 1 without load
+    /// steps.
+    pub load_levels: usize,
 }
 
 /// Column sets over the observations of the setup's model plus every candidate.
@@ -119,6 +123,38 @@ struct Problem<'a> {
     candidates: usize,
     noise_variance: f64,
     model: &'a Model,
+    /// The largest `|J_s(p_f)^T W|` over the data of each virtual spring (Nm or N).
+    max_load: Vec<f64>,
+}
+
+/// The largest `|J_s(p_f)^T W|` of each virtual spring of `setup`'s model over `measurements`.
+fn max_loads(setup: &Setup, measurements: &[Measurement]) -> Vec<f64> {
+    let springs = setup.model().springs();
+    let mut out = vec![0.0_f64; springs.len()];
+    for m in measurements {
+        let frames = setup.robot().frames(&m.q);
+        let loading = frames.point(&setup.tool().loading_point);
+        for (s, max) in springs.iter().zip(out.iter_mut()) {
+            let load = s.placed(setup.robot(), &frames).load(&loading, &m.wrench);
+            *max = max.max(load.abs());
+        }
+    }
+    out
+}
+
+/// The most distinct wrenches among the measurements of one posture.
+fn load_levels(measurements: &[Measurement]) -> usize {
+    let mut seen: Vec<(usize, [u64; 6])> = measurements
+        .iter()
+        .map(|m| (m.posture, m.wrench.map(f64::to_bits).into()))
+        .collect();
+    seen.sort_unstable();
+    seen.dedup();
+    let mut most = 0;
+    for chunk in seen.chunk_by(|a, b| a.0 == b.0) {
+        most = most.max(chunk.len());
+    }
+    most
 }
 
 /// Compares models by forward selection of `candidates` (module docs) on `measurements`,
@@ -146,6 +182,7 @@ pub fn compare(
         candidates: candidates.len(),
         noise_variance: setup.noise().variance,
         model: &model,
+        max_load: max_loads(&all, measurements),
     };
     let base_fit = fit(
         &p.sub(&(0..p.base).collect::<Vec<_>>()),
@@ -172,6 +209,7 @@ pub fn compare(
         nested,
         model_fits,
         parameters: model.parameters(),
+        load_levels: load_levels(measurements),
     })
 }
 
@@ -192,6 +230,23 @@ fn recommend(models: &[Row]) -> usize {
 }
 
 impl Problem<'_> {
+    /// Every compliance finite and positive, but a load-dependent compliance's `c1`, which may
+    /// be negative while `c0 + c1 |tau| > 0` at the largest load of the data, `c0` its joint's
+    /// drive.
+    fn physical(&self, f: &Fit, columns: &[usize]) -> bool {
+        columns.iter().enumerate().all(|(i, &c)| {
+            let h = f.compliance[i];
+            let spring = c.checked_sub(6).map(|s| &self.model.springs()[s]);
+            match spring {
+                Some(s) if s.law == Law::LoadDependent => {
+                    let c0 = f.compliance[s.link - 1];
+                    h.is_finite() && c0 + h * self.max_load[c - 6] > 0.0
+                }
+                _ => h.is_finite() && h > 0.0,
+            }
+        })
+    }
+
     fn parameters(&self, columns: &[usize]) -> Vec<crate::model::Parameter> {
         let all = self.model.parameters();
         columns.iter().map(|&c| all[c].clone()).collect()
@@ -228,7 +283,7 @@ impl Problem<'_> {
             aic: f.aic(),
             bic: f.bic(),
             noise_ratio: f.noise_ratio(self.noise_variance),
-            physical: f.physical(),
+            physical: self.physical(&f, columns),
             identified: f.identifiability.unidentifiable.is_empty(),
             stiffness: f.stiffness.iter().copied().collect(),
         })

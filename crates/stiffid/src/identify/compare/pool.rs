@@ -12,21 +12,29 @@
 //!   (bending of the link itself), for a link at least [`MIN_BEND_LENGTH`] long;
 //! - `base_x`, `base_y`, `base_z`, `base_rx`, `base_ry`, `base_rz`: the base mount
 //!   ([`crate::model::Family::Base`]);
-//! - `tool_x`, `tool_y`, `tool_z`: the tool ([`crate::model::Family::Tool`]).
+//! - `tool_x`, `tool_y`, `tool_z`: the tool ([`crate::model::Family::Tool`]);
+//! - `lost<j>` (j = 1..6): a lost motion of joint j, `b s(tau_j)` about joint j's own axis
+//!   ([`Law::LostMotion`], smoothed over [`crate::model::DEFAULT_SMOOTHING`] Nm);
+//! - `load<j>` (j = 1..6): a load-dependent compliance of joint j, the `c1` of
+//!   `(c0 + c1 |tau_j|) tau_j` ([`Law::LoadDependent`]).
+//!
+//! The last two are fixed in link j about joint j's axis through the point where the robot's
+//! zero posture puts it, so their load is the kinematic joint torque `tau_j`.
 //!
 //! **Dropped.** A rotational spring's column of the observation matrix depends only on the line
 //! of its axis at each posture (`[u x (p - o); u]` and the load `u . ((p_f - o) x f) + u . m`,
 //! unchanged when `u` turns sign or `o` slides along the axis), a translation's only on its
 //! direction. So a rotation whose axis is a joint's axis at every posture gives a column the
 //! drives already give (exactly that drive's, in kinematic coordinates; a combination of the
-//! drives' in axis coordinates), and two candidates on the same line (or direction) at every
-//! posture give the same column: such a candidate can never be identified, and is dropped with
+//! drives' in axis coordinates), and two candidates of the same law on the same line (or
+//! direction) at every posture give the same column (a nonlinear law's column differs from the
+//! drive's by its response, so `lost<j>` and `load<j>` are kept): such a candidate can never be identified, and is dropped with
 //! the reason. The test compares the lines at three postures of the setup's bounds (the middle
 //! and two fixed off-centre ones) to 1e-9 in direction and 1e-7 m in position. A spring already
 //! in the setup's model is not a candidate either.
 
 use crate::Frames;
-use crate::model::{Family, Kind, Placed, Spring};
+use crate::model::{Family, Kind, Law, Placed, Spring};
 use crate::{Result, Robot, Setup};
 use nalgebra::{Unit, Vector3, Vector6};
 
@@ -52,7 +60,8 @@ pub struct Pool {
 }
 
 /// The candidate families by name, for `--candidates`.
-pub const CANDIDATE_FAMILIES: [&str; 5] = ["tilt", "bend", "base", "tool", "declared"];
+pub const CANDIDATE_FAMILIES: [&str; 7] =
+    ["tilt", "bend", "base", "tool", "lost", "load", "declared"];
 
 /// Every candidate of the module docs on the setup's robot, before any is dropped, each with its
 /// family's name.
@@ -70,6 +79,7 @@ fn every_candidate(setup: &Setup) -> Vec<(&'static str, Spring)> {
         axis: Unit::new_normalize(axis),
         point,
         nominal_stiffness: None,
+        law: Law::Linear,
     };
     let axes = [
         ("x", Vector3::x()),
@@ -99,6 +109,19 @@ fn every_candidate(setup: &Setup) -> Vec<(&'static str, Spring)> {
         let springs = f.springs(robot, &[], None, None, "candidates");
         out.extend(springs.unwrap_or_default().into_iter().map(|s| (name, s)));
     }
+    let lost = Law::LostMotion {
+        smoothing: crate::model::DEFAULT_SMOOTHING,
+    };
+    for (family, law) in [("lost", lost), ("load", Law::LoadDependent)] {
+        for j in 1..=6 {
+            let link = zero.joints[j - 1].inverse();
+            let axis = link.rotation * zero.axis_directions[j - 1];
+            let point = link * nalgebra::Point3::from(zero.axis_points[j - 1]);
+            let mut s = rotation(format!("{family}{j}"), j, axis, point.coords);
+            s.law = law;
+            out.push((family, s));
+        }
+    }
     out
 }
 
@@ -117,9 +140,9 @@ fn probe_frames(setup: &Setup, robot: &Robot) -> Vec<Frames> {
         .collect()
 }
 
-/// Whether two placed springs of the same kind give the same column (same line, or same
-/// direction for translations).
-fn same_column(a: &Placed, b: &Placed) -> bool {
+/// Whether two placed springs lie on the same line (rotations) or along the same direction
+/// (translations).
+fn same_line(a: &Placed, b: &Placed) -> bool {
     if a.kind != b.kind || a.u.cross(&b.u).norm() > 1e-9 {
         return false;
     }
@@ -140,9 +163,9 @@ fn reason(
         probes
             .iter()
             .zip(&placed)
-            .all(|(f, p)| same_column(p, &other(f)))
+            .all(|(f, p)| same_line(p, &other(f)))
     };
-    if spring.kind == Kind::Rotation {
+    if spring.kind == Kind::Rotation && spring.law.is_linear() {
         for j in 0..6 {
             let joint = |f: &Frames| Placed {
                 kind: Kind::Rotation,
@@ -157,7 +180,7 @@ fn reason(
             }
         }
     }
-    let twin = |s: &Spring| everywhere(&|f: &Frames| s.placed(robot, f));
+    let twin = |s: &Spring| s.law == spring.law && everywhere(&|f: &Frames| s.placed(robot, f));
     if let Some(s) = model.iter().find(|s| twin(s)) {
         return Some(format!(
             "the same column as the model's spring '{}' (the same axis)",
