@@ -289,10 +289,11 @@ fn labels(origin: &Origin) -> Option<Vec<String>> {
 ///
 /// ``compare_models=True`` chooses the model by the data instead (``stiffid identify
 /// --compare-models``): from the setup's model, forward selection of ``candidates`` (names such
-/// as ``"tilt3_x"``, ``"tool_y"``, or families ``"tilt"``, ``"tool"``, ``"base"``; default the
-/// ``tilt`` springs of joints 1-6 and the ``tool`` translations) on the leave-one-posture-out
-/// error, nested in an outer cross-validation. Returns a dict: the command's ``--json`` document
-/// (``models``, ``steps``, ``recommended_fit``, ``nested``, ``conclusion``, ...; the same keys
+/// as ``"tilt3_z"``, ``"bend2_y"``, ``"tool_y"``, ``"lost3"``, a declared spring's, or families
+/// ``"tilt"``, ``"bend"``, ``"base"``, ``"tool"``, ``"lost"``, ``"load"``, ``"declared"``; default
+/// all of them) on the leave-one-posture-out error, nested in an outer cross-validation. Returns
+/// a dict: the command's ``--json`` document (``models``, ``steps``, ``recommended_fit``,
+/// ``nested``, ``conclusion``, ``dropped``, ``nonlinear_separation``, ...; the same keys
 /// and values), plus ``table`` (the selection path as arrays and names, one entry per model:
 /// ``added``, ``springs``, ``parameters``, ``in_sample_explained``, ``held_out_explained``,
 /// ``held_out_rms_delta_b_mm``, ``aic``, ``bic``, ``noise_ratio``, ``physical``, ``identified``,
