@@ -33,8 +33,8 @@
 //! and two fixed off-centre ones) to 1e-9 in direction and 1e-7 m in position. A spring already
 //! in the setup's model is not a candidate either.
 
-use crate::Frames;
 use crate::model::{Family, Kind, Law, Placed, Spring};
+use crate::Frames;
 use crate::{Result, Robot, Setup};
 use nalgebra::{Unit, Vector3, Vector6};
 
