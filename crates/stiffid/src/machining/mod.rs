@@ -31,7 +31,7 @@ pub mod program;
 use crate::common::words::{count, is_are};
 use crate::machining::compensate::{Compensated, Compliance, PathPoint, Target};
 use crate::machining::gcode::{GCode, Motion};
-use crate::machining::process::{Operation, Process};
+use crate::machining::process::{Kind, Operation, Process};
 use crate::machining::program::{Dialect, JointProgram};
 use crate::observation::deflection::Frame;
 use crate::robot::ik::tool_pose;
@@ -232,25 +232,40 @@ fn operations<'a>(
                 if p.motion == Motion::Rapid {
                     return Ok(None);
                 }
-                if let Some(name) = &p.operation {
-                    return ops
-                        .iter()
-                        .enumerate()
-                        .find(|(_, o)| &o.name == name)
-                        .map(Some)
-                        .ok_or_else(|| Error::Program {
+                let op = match &p.operation {
+                    Some(name) => Some(
+                        ops.iter()
+                            .enumerate()
+                            .find(|(_, o)| &o.name == name)
+                            .ok_or_else(|| Error::Program {
+                                line: p.line,
+                                message: format!(
+                                    "(operation: {name}): the process has no operation of that name"
+                                ),
+                            })?,
+                    ),
+                    None => p
+                        .tool_number
+                        .and_then(|t| {
+                            ops.iter()
+                                .enumerate()
+                                .find(|(_, o)| o.selector.tool_number == Some(t))
+                        })
+                        .or(fallback),
+                };
+                match (p.cycle, op) {
+                    (Some(c), Some((_, o))) if !matches!(o.kind, Kind::Drilling(_)) => {
+                        Err(Error::Program {
                             line: p.line,
                             message: format!(
-                                "(operation: {name}): the process has no operation of that name"
+                                "G{}: a drilling cycle in the milling operation '{}': select a drilling operation for it ((operation: NAME) or T)",
+                                g.cycles[c].code,
+                                o.name
                             ),
-                        });
+                        })
+                    }
+                    _ => Ok(op),
                 }
-                let by_tool = p.tool_number.and_then(|t| {
-                    ops.iter()
-                        .enumerate()
-                        .find(|(_, o)| o.selector.tool_number == Some(t))
-                });
-                Ok(by_tool.or(fallback))
             })
             .collect(),
         Program::Robot(r) => Ok(r

@@ -15,6 +15,7 @@ mod criteria;
 mod fanuc_data;
 mod formats_proptest;
 mod forward_model;
+mod gcode_cycles;
 mod gradients;
 mod identify;
 mod identify_blocks;

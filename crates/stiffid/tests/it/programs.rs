@@ -144,7 +144,7 @@ fn gcode_arcs_lie_on_their_analytic_circle_within_the_chord_tolerance() {
     // by R in the ZX plane, a full helical circle by IJK, inches for the last block.
     let text = format!(
         "{HEADER}G21 G90 G17\nG0 X30 Y0 Z5\nG1 Z0 F500\nG3 X70 Y0 I20 J0\nG18 G2 X90 Z-20 R20\n\
-         G17 G91 G2 I-20 J0 Z-2\nG20 G90 G1 X1\n"
+         G17 G91 G2 I-20 J0 Z-2\nG20 G90 G1 X1 F20\n"
     );
     let g = gcode::parse(&text, tolerance).unwrap();
     let on_circle = |line: u64, centre: Vector3<f64>, normal: usize| {

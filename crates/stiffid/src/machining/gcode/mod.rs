@@ -6,11 +6,16 @@
 //!   the positive end of the plane's normal) with `X Y Z`, the centre by `I J K` (incremental
 //!   from the start, in every distance mode) or the radius `R` (negative: the arc over 180 deg);
 //!   a helix moves linearly along the normal. `G17`/`G18`/`G19` choose the XY, ZX, YZ plane.
+//! - Drilling canned cycles `G81`, `G82`, `G83` with `G98`/`G99`, ended by `G80` or `G0`-`G3`:
+//!   each hole read as the moves it makes ([`Cycle`], module `cycles`); after `G80` a motion
+//!   needs its `G0`-`G3`.
 //! - Modes: `G90`/`G91` absolute / incremental, `G20`/`G21` inch / mm; `G4` dwell, `G40`, `G49`,
 //!   `G80`, `G94` are accepted and change nothing here. `F` is the feed rate (modal, per minute:
 //!   mm/min under `G21`, inch/min under `G20`), kept with every point for the robot programs
-//!   written from the path; `S`, `M`, `N`, `O`, `P` words are kept
-//!   and not interpreted; `T` sets the tool number (which selects the process operation).
+//!   written from the path; a change of units while an `F` is in force needs the `F` again in
+//!   its block (controllers differ on whether the feed follows the units). `S`, `M`, `N`, `O`, `P`
+//!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` sets the
+//!   tool number (which selects the process operation).
 //! - Comments `( ... )` and `; ...`. A comment `(operation: NAME)` selects the process operation
 //!   named `NAME` from there on. Header comments state the tool orientation:
 //!   `(stiffid: tool_rpy_deg = 180 0 0)`, the tool frame in the part frame as fixed-axis
@@ -19,7 +24,8 @@
 //!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation.
 //! - Arcs are split into chords whose sagitta is at most the chord tolerance.
 //!
-//! Any other G code or letter is refused naming its line, as are an arc whose end is not on its
+//! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
+//! saying it belongs to the CAM post), as are an arc whose end is not on its
 //! circle (more than 1 um or 1e-6 of the radius off), an arc of radius below 1 um, a letter given
 //! twice in one block (but `G` and `M`), a feed rate `F` outside `(0, MAX_FEED]`, a subprogram
 //! call or return (`M97`, `M98`, `M99`), a motion after the program's end (`M2`, `M30`), and more
@@ -27,9 +33,14 @@
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
-//! words are replaced by the corrected position of each point (an arc becomes its chords, `G2`/`G3`
+//! words are replaced by the corrected position of each point (a canned cycle becomes its `G0`,
+//! `G1` and `G4` blocks; an arc becomes its chords, `G2`/`G3`
 //! becomes `G1`), in the program's own units and distance mode. Only positions are corrected: a
 //! 3-axis program has no words for the tool's rotation.
+
+mod cycles;
+
+pub use cycles::{Cycle, PECK_CLEARANCE_MM};
 
 use crate::{Error, Result};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -70,6 +81,8 @@ pub struct Point {
     /// The feed rate in force (the last `F` word, per minute in the units of its block), m/s;
     /// `None` before the first `F`.
     pub feed: Option<f64>,
+    /// The drilling canned cycle (index into [`GCode::cycles`]) this point is a move of.
+    pub cycle: Option<usize>,
 }
 
 /// A motion block: where its line is and which points it made.
@@ -82,6 +95,9 @@ struct Block {
     arc_word: Option<Range<usize>>,
     inch: bool,
     incremental: bool,
+    /// A canned cycle's block: its points written as `G0`/`G1` blocks of their own, and the dwell
+    /// `G4 P..` after the point of this index (within the block) with the `P` word as written.
+    cycle: Option<Option<(usize, String)>>,
 }
 
 /// A G-code program and its tool path.
@@ -89,6 +105,8 @@ struct Block {
 pub struct GCode {
     /// Every point, in path order.
     pub points: Vec<Point>,
+    /// The drilling canned cycles, one per hole, in path order.
+    pub cycles: Vec<Cycle>,
     blocks: Vec<Block>,
     text: String,
 }
@@ -107,6 +125,12 @@ struct State {
     /// The line of the `M2`/`M30` that ended the program.
     ended: Option<u64>,
     feed: Option<f64>,
+    /// The line of the `F` word in force.
+    feed_line: u64,
+    /// `G99`: canned cycles retract to `R` (else, `G98`, to the level they started from).
+    retract_to_r: bool,
+    /// The canned cycle's words in force.
+    cycle: cycles::Modal,
 }
 
 fn at(line: u64, message: String) -> Error {
@@ -146,9 +170,13 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         rotary: false,
         ended: None,
         feed: None,
+        feed_line: 0,
+        retract_to_r: false,
+        cycle: Default::default(),
     };
     let mut out = GCode {
         points: Vec::new(),
+        cycles: Vec::new(),
         blocks: Vec::new(),
         text: text.to_string(),
     };
@@ -275,7 +303,10 @@ fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
     Ok(())
 }
 
-const SUBSET: &str = "G0-G4, G17-G21, G40, G49, G80, G90, G91, G94";
+const SUBSET: &str = "G0-G4, G17-G21, G40, G49, G80-G83, G90, G91, G94, G98, G99";
+
+/// `s.motion` after `G80` ended a canned cycle: no motion in force until `G0`-`G3`.
+const NO_MOTION: u8 = 80;
 
 fn block(
     line: u64,
@@ -293,6 +324,8 @@ fn block(
     let mut abc_given = false;
     check_words(line, words, s)?;
     let mut feed_given = None;
+    let mut cycle_words = cycles::Words::default();
+    let inch_before = s.inch;
     for w in words {
         let v = w.value;
         match w.letter {
@@ -303,6 +336,16 @@ fn block(
                 }
                 match g as u8 {
                     g @ 0..=3 => motion_given = Some((g, w.span.clone())),
+                    g @ 81..=83 => {
+                        motion_given = Some((g, w.span.clone()));
+                        drop.push(w.span.clone());
+                    }
+                    g @ (98 | 99) => {
+                        s.retract_to_r = g == 99;
+                        drop.push(w.span.clone());
+                    }
+                    80 if s.motion >= 81 => s.motion = NO_MOTION,
+                    g @ (41 | 42) => return Err(at(line, format!("G{g}: cutter radius compensation belongs to the CAM post: post the path of the tool centre (compensation in the computer, G40)"))),
                     g @ 17..=19 => s.plane = g,
                     20 => s.inch = true,
                     21 => s.inch = false,
@@ -338,15 +381,44 @@ fn block(
                 s.tool_number = Some(v as u32);
             }
             'F' => feed_given = Some(v),
-            'S' | 'M' | 'N' | 'O' | 'P' | 'H' | 'D' => {}
-            other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P X Y Z I J K R, A B C with rotary = abc)"))),
+            'Q' => {
+                cycle_words.peck = Some(v);
+                drop.push(w.span.clone());
+            }
+            'P' => cycle_words.dwell = Some((v, w.span.clone())),
+            'S' | 'M' | 'N' | 'O' | 'H' | 'D' => {}
+            other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P Q X Y Z I J K R, A B C with rotary = abc)"))),
         }
     }
     if let Some((g, _)) = &motion_given {
+        if *g >= 81 && s.motion < 81 {
+            s.cycle = cycles::Modal::starting_at(s.position.z);
+        }
         s.motion = *g;
     }
     if let Some(f) = feed_given {
         s.feed = Some(f * if s.inch { 25.4e-3 } else { 1e-3 } / 60.0);
+        s.feed_line = line;
+    } else if s.inch != inch_before && s.feed.is_some() {
+        return Err(at(line, format!("G{}: the units change while the feed rate F of line {} is in force, and controllers differ on whether it follows them: give F again in this block", if s.inch { 20 } else { 21 }, s.feed_line)));
+    }
+    if s.motion >= 81 && s.motion != NO_MOTION {
+        cycle_words.xyz = target;
+        cycle_words.retract = radius;
+        cycle_words.given = motion_given.is_some();
+        let centre_given = centre.iter().any(Option::is_some);
+        return cycles::block(
+            line,
+            span,
+            cycle_words,
+            centre_given || abc_given,
+            drop,
+            s,
+            out,
+        );
+    }
+    if cycle_words.peck.is_some() {
+        return Err(at(line, "Q: a peck depth outside a G83 cycle".into()));
     }
     let arc_only = s.motion >= 2 && (centre.iter().any(Option::is_some) || radius.is_some());
     let moves = target.iter().any(Option::is_some) || abc_given || arc_only;
@@ -356,13 +428,10 @@ fn block(
         }
         return Ok(());
     }
-    if let Some(end) = s.ended {
-        return Err(at(
-            line,
-            format!("a motion after the end of the program (M2/M30 on line {end})"),
-        ));
+    if s.motion == NO_MOTION {
+        return Err(at(line, "a motion after G80 without G0, G1, G2 or G3: controllers differ on the motion in force after a canned cycle; give it".into()));
     }
-    let tool = s.tool.ok_or_else(|| at(line, "no tool orientation: state it in a header comment before the first motion, e.g. (stiffid: tool_rpy_deg = 180 0 0)".into()))?;
+    let tool = may_move(line, s)?;
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
     let mut end = s.position;
     for k in 0..3 {
@@ -404,6 +473,7 @@ fn block(
             tool_number: s.tool_number,
             operation: s.operation.clone(),
             feed: s.feed,
+            cycle: None,
         });
     }
     s.position = end;
@@ -415,8 +485,21 @@ fn block(
         arc_word,
         inch: s.inch,
         incremental: s.incremental,
+        cycle: None,
     });
     Ok(())
+}
+
+/// The tool orientation for a motion on `line`: refused after the program's end or before the
+/// header states it.
+fn may_move(line: u64, s: &State) -> Result<UnitQuaternion<f64>> {
+    if let Some(end) = s.ended {
+        return Err(at(
+            line,
+            format!("a motion after the end of the program (M2/M30 on line {end})"),
+        ));
+    }
+    s.tool.ok_or_else(|| at(line, "no tool orientation: state it in a header comment before the first motion, e.g. (stiffid: tool_rpy_deg = 180 0 0)".into()))
 }
 
 /// The largest feed rate `F` accepted (mm/min, or inch/min after `G20`).
@@ -601,6 +684,39 @@ impl GCode {
                 written = *p;
                 format!("X{:.6} Y{:.6} Z{:.6}", v.x, v.y, v.z)
             };
+            let ending = match self.text[b.line.end..].starts_with("\r\n") {
+                true => "\r\n",
+                false => "\n",
+            };
+            if let Some(dwell) = &b.cycle {
+                let mut drop = b.drop.clone();
+                drop.sort_by_key(|r| r.start);
+                let mut from = b.line.start;
+                for r in &drop {
+                    out.push_str(&self.text[from..r.start]);
+                    from = r.end;
+                }
+                out.push_str(&self.text[from..b.line.end]);
+                for (j, (p, point)) in positions[b.points.clone()]
+                    .iter()
+                    .zip(&self.points[b.points.clone()])
+                    .enumerate()
+                {
+                    out.push_str(ending);
+                    out.push_str(match point.motion {
+                        Motion::Rapid => "G0 ",
+                        Motion::Feed => "G1 ",
+                    });
+                    out.push_str(&words(p));
+                    if let Some((_, p_word)) = dwell.as_ref().filter(|(after, _)| *after == j) {
+                        out.push_str(ending);
+                        out.push_str("G4 ");
+                        out.push_str(p_word);
+                    }
+                }
+                at = b.line.end;
+                continue;
+            }
             let first = words(&positions[b.points.start]);
             let mut line = String::new();
             let mut from = b.line.start;
@@ -628,10 +744,6 @@ impl GCode {
                 line.push_str(&first);
             }
             out.push_str(&line);
-            let ending = match self.text[b.line.end..].starts_with("\r\n") {
-                true => "\r\n",
-                false => "\n",
-            };
             for p in &positions[b.points.start + 1..b.points.end] {
                 out.push_str(ending);
                 out.push_str(&words(p));

@@ -1,0 +1,228 @@
+//! G-code drilling canned cycles (G81, G82, G83) read as the moves they make, written back as
+//! those moves and compensated under a drilling operation; cutter compensation, unit changes
+//! under a feed and the cycles' malformed forms refused naming the line.
+
+use nalgebra::{Isometry3, Vector3};
+use stiffid::machining::compensate::Options;
+use stiffid::machining::gcode::{self, Motion};
+use stiffid::machining::process::file;
+use stiffid::machining::{self, Language};
+use stiffid::{setup, Error};
+
+const HEADER: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
+
+/// The points of `text` as (line, position mm, rapid).
+fn moves(text: &str) -> Vec<(u64, [f64; 3], bool)> {
+    gcode::parse(text, 1e-5)
+        .unwrap()
+        .points
+        .iter()
+        .map(|p| {
+            let mm = p.position * 1e3;
+            (
+                p.line,
+                [mm.x, mm.y, mm.z].map(|v| (v * 1e9).round() / 1e9),
+                p.motion == Motion::Rapid,
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn canned_cycles_make_the_moves_of_their_definition() {
+    // G81 with G98: over the hole at the starting level, down to R, feed to Z, back up to the
+    // starting level (above R); the next block drills the next hole with the same Z and R.
+    let g81 = format!(
+        "{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nG98 G81 X10 Y20 Z-5 R2 F120\nX30\nG80\nG0 Z20\n"
+    );
+    let r = true;
+    assert_eq!(
+        moves(&g81),
+        vec![
+            (3, [0.0, 0.0, 10.0], r),
+            (4, [10.0, 20.0, 10.0], r),
+            (4, [10.0, 20.0, 2.0], r),
+            (4, [10.0, 20.0, -5.0], !r),
+            (4, [10.0, 20.0, 10.0], r),
+            (5, [30.0, 20.0, 10.0], r),
+            (5, [30.0, 20.0, 2.0], r),
+            (5, [30.0, 20.0, -5.0], !r),
+            (5, [30.0, 20.0, 10.0], r),
+            (7, [30.0, 20.0, 20.0], r),
+        ]
+    );
+    let g = gcode::parse(&g81, 1e-5).unwrap();
+    assert_eq!(g.cycles.len(), 2);
+    assert_eq!(g.cycles[1].code, 81);
+    assert!((g.cycles[1].bottom - Vector3::new(30e-3, 20e-3, -5e-3)).norm() < 1e-15);
+    assert_eq!((g.cycles[1].retract, g.cycles[1].clearance), (2e-3, 10e-3));
+    assert_eq!(g.points[3].cycle, Some(0));
+    assert_eq!(g.points[0].cycle, None);
+    // G83 with G99 in inches: pecks of Q0.1 in from R0.05 in to Z-0.25 in, out to R after each,
+    // back to 0.010 in (0.254 mm) above the depth reached, retract to R.
+    let g83 = format!("{HEADER}G20 G90 G17\nG0 X0 Y0 Z1\nG99 G83 X1 Y0 Z-0.25 R0.05 Q0.1 F4\n");
+    let inch = |v: f64| v * 25.4;
+    let expected: Vec<(u64, [f64; 3], bool)> = [
+        (3, [0.0, 0.0, 1.0], r),
+        (4, [1.0, 0.0, 1.0], r),
+        (4, [1.0, 0.0, 0.05], r),
+        (4, [1.0, 0.0, -0.05], !r),
+        (4, [1.0, 0.0, 0.05], r),
+        (4, [1.0, 0.0, -0.04], r),
+        (4, [1.0, 0.0, -0.15], !r),
+        (4, [1.0, 0.0, 0.05], r),
+        (4, [1.0, 0.0, -0.14], r),
+        (4, [1.0, 0.0, -0.25], !r),
+        (4, [1.0, 0.0, 0.05], r),
+    ]
+    .into_iter()
+    .map(|(l, p, m)| (l, p.map(|v| (inch(v) * 1e9).round() / 1e9), m))
+    .collect();
+    assert_eq!(moves(&g83), expected);
+    let g = gcode::parse(&g83, 1e-5).unwrap();
+    assert!((g.cycles[0].peck.unwrap() - 0.1 * 25.4e-3).abs() < 1e-15);
+    // The feed of the cycle: F4 inch/min.
+    assert!((g.points[3].feed.unwrap() - 4.0 * 25.4e-3 / 60.0).abs() < 1e-15);
+}
+
+#[test]
+fn canned_cycles_are_written_back_as_their_moves() {
+    let text = format!(
+        "{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nN10 G99 G82 X10 Y20 Z-5 R2 P500 F120 M8\nX30\nG80\nG0 Z20\n"
+    );
+    let g = gcode::parse(&text, 1e-5).unwrap();
+    let positions: Vec<Vector3<f64>> = g.points.iter().map(|p| p.position).collect();
+    let out = g.write(&positions).unwrap();
+    assert!(
+        !out.contains("G82") && !out.contains("R2") && !out.contains('Q'),
+        "{out}"
+    );
+    assert!(
+        out.contains("N10        F120 M8\nG0 X10.000000 Y20.000000 Z10.000000\n"),
+        "{out}"
+    );
+    assert!(
+        out.contains(
+            "G1 X10.000000 Y20.000000 Z-5.000000\nG4 P500\nG0 X10.000000 Y20.000000 Z2.000000\n"
+        ),
+        "{out}"
+    );
+    assert_eq!(out.matches("G4 P500").count(), 2, "{out}");
+    // Read back: the same moves, now plain G0/G1 blocks; a moved point goes where it is sent.
+    let again = gcode::parse(&out, 1e-5).unwrap();
+    assert!(again.cycles.is_empty());
+    assert_eq!(again.points.len(), g.points.len());
+    for (a, b) in again.points.iter().zip(&g.points) {
+        assert!((a.position - b.position).norm() < 1e-12);
+        assert_eq!(a.motion, b.motion);
+    }
+    let mut moved = positions.clone();
+    moved[3].x += 0.1234e-3;
+    let again = gcode::parse(&g.write(&moved).unwrap(), 1e-5).unwrap();
+    assert!((again.points[3].position - moved[3]).norm() < 1e-9);
+}
+
+#[test]
+fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refused() {
+    let start = format!("{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\n");
+    let cases = [
+        (
+            "G41 G1 X10 D1 F100",
+            4,
+            "G41: cutter radius compensation belongs to the CAM post",
+        ),
+        (
+            "G42 G1 X10 D1 F100",
+            4,
+            "G42: cutter radius compensation belongs to the CAM post",
+        ),
+        ("G1 X5 F600\nG20 G1 X1", 5, "F of line 4 is in force"),
+        ("G91 G81 X10 Y0 Z-5 R2 F100", 4, "G91"),
+        ("G18 G81 X10 Y0 Z-5 R2 F100", 4, "G17"),
+        ("G81 X10 Y0 Z-5 F100", 4, "R"),
+        ("G81 X10 Y0 Z5 R2 F100", 4, "below the retract level"),
+        ("G83 X10 Y0 Z-5 R2 F100", 4, "peck depth Q"),
+        ("G81 X10 Y0 Z-5 R2 Q1 F100", 4, "belongs to G83"),
+        ("G81 X10 Y0 Z-5 R2 P100 F100", 4, "belongs to G82"),
+        ("G82 X10 Y0 Z-5 R2 F100", 4, "dwell P"),
+        ("G81 X10 Y0 Z-5 R2 F100\nR3", 5, "controllers differ"),
+        ("G81 X10 Y0 Z-5 R2 F100\nG80\nX20", 6, "after G80"),
+        ("G1 X1 Q2 F100", 4, "Q: a peck depth outside"),
+        ("G81 X10 Y0 Z-5 R2 F100 L3", 4, "'L'"),
+    ];
+    for (body, line, word) in cases {
+        let text = format!("{start}{body}\n");
+        match gcode::parse(&text, 1e-5) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{body}: {message}");
+                assert!(message.contains(word), "{word}: {message}");
+            }
+            other => panic!("{body}: {other:?}"),
+        }
+    }
+    // A tool not pointing down.
+    let text = "(stiffid: tool_rpy_deg = 90 0 0)\nG0 X0 Y0 Z10\nG81 X1 Z-1 R1 F100\n";
+    match gcode::parse(text, 1e-5) {
+        Err(Error::Program { line: 3, message }) => assert!(message.contains("-Z"), "{message}"),
+        other => panic!("{other:?}"),
+    }
+    // Feeds: per minute in the block's units, F given again with the change is accepted.
+    let g = gcode::parse(&format!("{start}G1 X5 F600\nG20 G1 X1 F12\n"), 1e-5).unwrap();
+    assert!((g.points[2].feed.unwrap() - 12.0 * 25.4e-3 / 60.0).abs() < 1e-15);
+}
+
+const DRILL: &str = "[[operation]]\nname = \"drill\"\nkind = \"drilling\"\ntool_number = 2\n\
+    [operation.tool]\ndiameter_mm = 10\n[operation.cut]\nfeed_per_rev_mm = 0.2\n\
+    [operation.coefficients]\nspecific_energy_n_per_mm2 = 800\nspecific_thrust_n_per_mm2 = 1000\n\
+    [[operation]]\nname = \"wall\"\ntool_number = 1\n[operation.tool]\ndiameter_mm = 20\nflutes = 3\n\
+    [operation.cut]\nfeed_per_tooth_mm = 0.1\naxial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n\
+    [operation.coefficients]\npreset = \"al7075-t6\"\n";
+
+/// A drilling cycle's feed moves carry the drilling operation's thrust along the tool axis (1000 N
+/// up the spindle, the model's `k_f f D / 2`) and are compensated; under a milling operation the
+/// cycle is refused naming its line.
+#[test]
+fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
+    let s = setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_builder()
+        .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
+        .build()
+        .unwrap();
+    let compliance = s.model_compliance("test").unwrap();
+    let process = file::parse(DRILL, "p.toml").unwrap();
+    let text = format!("{HEADER}T2\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX40\nG80\n");
+    let program = machining::read(&text, Language::GCode, 1e-5).unwrap();
+    let report =
+        machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s))
+            .unwrap();
+    let drilled: Vec<_> = report
+        .points
+        .iter()
+        .zip(&report.operations)
+        .filter(|(_, o)| o.is_some())
+        .collect();
+    assert_eq!(drilled.len(), 2, "one feed move per hole");
+    for (p, _) in &drilled {
+        // The tool points down (base -Z): the thrust pushes the tool up, +Z.
+        assert!((p.wrench[2] - 1000.0).abs() < 1e-9, "{}", p.wrench);
+        assert!(p.wrench.fixed_rows::<2>(0).norm() < 1e-9);
+    }
+    let moved = report
+        .results
+        .iter()
+        .map(|r| (r.q_compensated - r.q).amax())
+        .fold(0.0, f64::max);
+    assert!(moved > 1e-6);
+    let milled = text.replace("T2", "T1");
+    let program = machining::read(&milled, Language::GCode, 1e-5).unwrap();
+    match machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s)) {
+        Err(Error::Program { line: 4, message }) => {
+            assert!(
+                message.contains("G81") && message.contains("'wall'"),
+                "{message}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
+}
