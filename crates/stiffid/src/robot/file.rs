@@ -9,6 +9,9 @@
 //! alpha_deg = 0.0
 //! d_mm = 830.0
 //! theta_offset_deg = 0.0                # optional, default 0
+//! beta_deg = 0.0                        # optional, default 0: Hayati's rotation about y
+//! mass_kg = 250.0                       # optional (all six or none): the link's mass
+//! com_mm = [0, 0, 0]                    #   and its centre in the joint's frame (with mass_kg)
 //! lower_deg = -175.0                    # axis (controller) coordinates
 //! upper_deg = 175.0
 //! # ... five more [[joint]] tables
@@ -27,7 +30,7 @@
 //! Unknown keys are rejected.
 
 use super::dh::{self, Convention, Row};
-use super::{AxisMap, Robot};
+use super::{AxisMap, LinkMass, Robot};
 use crate::common::limits::{self, check_in, JointBox};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
@@ -63,6 +66,11 @@ struct JointRow {
     d_mm: f64,
     #[serde(default)]
     theta_offset_deg: f64,
+    #[serde(default)]
+    beta_deg: f64,
+    mass_kg: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    com_mm: Option<[f64; 3]>,
     lower_deg: f64,
     upper_deg: f64,
 }
@@ -142,6 +150,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         for (name, v) in [
             ("alpha_deg", j.alpha_deg),
             ("theta_offset_deg", j.theta_offset_deg),
+            ("beta_deg", j.beta_deg),
             ("lower_deg", j.lower_deg),
             ("upper_deg", j.upper_deg),
         ] {
@@ -156,7 +165,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         }
         lower[i] = j.lower_deg.to_radians();
         upper[i] = j.upper_deg.to_radians();
-        rows.push(dh::joint(
+        rows.push(dh::hayati_joint(
             file.convention,
             &Row {
                 a: j.a_mm * 1e-3,
@@ -164,9 +173,11 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
                 d: j.d_mm * 1e-3,
                 theta_offset: j.theta_offset_deg.to_radians(),
             },
+            j.beta_deg.to_radians(),
         ));
     }
     let joints = rows.try_into().expect("six joints checked above");
+    let masses = masses(&file.joint, source_name)?;
     let base = transform(file.base, "base", source_name)?;
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
@@ -178,11 +189,39 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         .and_then(|r| r.with_axis_map(axis_map))
         .and_then(|r| r.with_base(base))
         .and_then(|r| r.with_flange(flange))
-        .map(|r| r.with_bodies(bodies))
+        .map(|r| r.with_bodies(bodies).with_masses(masses))
         .map_err(|e| match e {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),
             other => other,
         })
+}
+
+/// The links' masses and centres of `mass_kg` and `com_mm` (every joint or none), each mass
+/// within [`limits::MASS_KG`] and centre within [`limits::LENGTH_MM`].
+fn masses(joints: &[JointRow], source_name: &str) -> Result<Option<[LinkMass; 6]>> {
+    let given = joints.iter().filter(|j| j.mass_kg.is_some()).count();
+    let centres = joints.iter().filter(|j| j.com_mm.is_some()).count();
+    if given == 0 && centres == 0 {
+        return Ok(None);
+    }
+    let mut out = [LinkMass::default(); 6];
+    for (i, j) in joints.iter().enumerate() {
+        let (Some(mass), Some(com)) = (j.mass_kg, j.com_mm) else {
+            return Err(invalid(
+                source_name,
+                format!("joint[{}].mass_kg", i + 1),
+                "expected mass_kg and com_mm on every joint or on none",
+            ));
+        };
+        let field = |name: &str| format!("joint[{}].{name}", i + 1);
+        check_in(source_name, &field("mass_kg"), &[mass], &limits::MASS_KG)?;
+        check_in(source_name, &field("com_mm"), &com, &limits::LENGTH_MM)?;
+        out[i] = LinkMass {
+            mass,
+            centre: nalgebra::Vector3::from(com.map(|v| v * 1e-3)),
+        };
+    }
+    Ok(Some(out))
 }
 
 /// The bodies of `[robot_geometry]`: capsules of the radii given, each within

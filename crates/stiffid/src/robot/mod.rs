@@ -57,6 +57,16 @@ pub struct Robot {
     base: Isometry3<f64>,
     flange: Isometry3<f64>,
     bodies: Bodies,
+    masses: Option<[LinkMass; 6]>,
+}
+
+/// A link's mass and centre of mass (the gravity model of [`crate::calibration::gravity`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LinkMass {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of mass in the link frame (the joint frame [`crate::Frames::joints`]), m.
+    pub centre: Vector3<f64>,
 }
 
 impl Robot {
@@ -109,6 +119,7 @@ impl Robot {
             base: Isometry3::identity(),
             flange: Isometry3::identity(),
             bodies: Bodies::Scaled,
+            masses: None,
         }
         .with_limits(limits)
     }
@@ -195,6 +206,18 @@ impl Robot {
     /// The robot with these bodies (for the cell's checks and drawings).
     pub fn with_bodies(self, bodies: Bodies) -> Self {
         Self { bodies, ..self }
+    }
+
+    /// The robot with these link masses and centres (link `i` the body turned by joint `i`, the
+    /// tool's mass part of link 6), or none.
+    pub fn with_masses(self, masses: Option<[LinkMass; 6]>) -> Self {
+        Self { masses, ..self }
+    }
+
+    /// The link masses and centres, when the robot's description gives them (a robot file's
+    /// `mass_kg` and `com_mm`, a URDF's `<inertial>`).
+    pub fn masses(&self) -> Option<&[LinkMass; 6]> {
+        self.masses.as_ref()
     }
 
     /// Human-readable name, e.g. "COMAU SMART5 NJ 165-3.0".

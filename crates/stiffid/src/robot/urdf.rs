@@ -58,7 +58,65 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     };
     let path = chain_to(&tip, &by_child, urdf.joints.len()).map_err(chain_error)?;
     let source = format!("{source_name}, tip link '{}'", limits::short(&tip));
-    fold(&path, &urdf.name, &source).map_err(chain_error)
+    let robot = fold(&path, &urdf.name, &source).map_err(chain_error)?;
+    let masses = masses(&urdf, &path).map_err(chain_error)?;
+    Ok(robot.with_masses(masses))
+}
+
+/// The masses and centres of the six moving links from the links' `<inertial>` (a fixed joint's
+/// child folded into the link it hangs from, its centre carried into that link's frame), or none
+/// when no link of the chain has mass. Each mass within [`limits::MASS_KG`] and each centre within
+/// [`limits::LENGTH_M`].
+fn masses(
+    urdf: &urdf_rs::Robot,
+    path: &[&urdf_rs::Joint],
+) -> std::result::Result<Option<[super::LinkMass; 6]>, String> {
+    let links: HashMap<&str, &urdf_rs::Link> =
+        urdf.links.iter().map(|l| (l.name.as_str(), l)).collect();
+    let mut out = [(0.0, Vector3::zeros()); 6];
+    let (mut link, mut acc) = (None::<usize>, Isometry3::identity());
+    let mut any = false;
+    for j in path {
+        match j.joint_type {
+            JointType::Fixed => acc *= pose(j)?,
+            _ => {
+                link = Some(link.map_or(0, |l| l + 1));
+                acc = Isometry3::identity();
+            }
+        }
+        let (Some(l), Some(child)) = (link, links.get(j.child.link.as_str())) else {
+            continue;
+        };
+        let i = &child.inertial;
+        let name = limits::short(&child.name);
+        let m = i.mass.value;
+        limits::check(
+            &format!("link '{name}': inertial mass"),
+            &[m],
+            &limits::MASS_KG,
+        )
+        .map_err(|e| e.to_string())?;
+        let c = &i.origin.xyz;
+        limits::check(
+            &format!("link '{name}': inertial origin xyz"),
+            &c[..],
+            &limits::LENGTH_M,
+        )
+        .map_err(|e| e.to_string())?;
+        let centre = (acc * nalgebra::Point3::new(c[0], c[1], c[2])).coords;
+        let (total, moment) = out[l.min(5)];
+        out[l.min(5)] = (total + m, moment + centre * m);
+        any |= m > 0.0;
+    }
+    Ok(any.then(|| {
+        out.map(|(mass, moment)| super::LinkMass {
+            mass,
+            centre: match mass > 0.0 {
+                true => moment / mass,
+                false => Vector3::zeros(),
+            },
+        })
+    }))
 }
 
 /// Fails for what the XML reader would misname: an empty file, and a document type definition

@@ -62,6 +62,9 @@ pub const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
 /// at most 100 m from the origin.
 pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");
 
+/// A link's mass in a robot file (`mass_kg`): 0 to 100 t.
+pub const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
+
 /// [`LENGTH_MM`] in metres (URDF files).
 pub const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
 

@@ -699,6 +699,11 @@ impl ErrorModel {
         ]
     }
 
+    /// The basis of joint `i`'s rotation frame (0-based).
+    pub fn basis(&self, i: usize) -> &Basis {
+        &self.bases[i]
+    }
+
     /// Index of the first gravity parameter.
     pub fn gravity_start(&self) -> usize {
         self.gravity_start

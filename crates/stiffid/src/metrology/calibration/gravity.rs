@@ -67,14 +67,7 @@ impl crate::common::choice::Choice for Gravity {
 
 crate::common::choice::by_name!(Gravity);
 
-/// A link's mass and centre of mass.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LinkMass {
-    /// Mass, kg.
-    pub mass: f64,
-    /// Centre of mass in the link frame ([`crate::Frames::joints`]), m.
-    pub centre: Vector3<f64>,
-}
+pub use crate::robot::LinkMass;
 
 /// One gravity term.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -17,6 +17,7 @@
 //! - [`fit`]: Levenberg-Marquardt over the identifiable parameters, standard deviations, the
 //!   noise-ratio model check.
 //! - [`validation`]: the held-out position error of readings not fitted.
+//! - [`robot_file`]: the calibrated robot, as a robot TOML file and as a URDF.
 //!
 //! Equations and sources: docs/model.md, section "Calibration".
 
@@ -24,6 +25,7 @@ pub mod error_model;
 pub mod fit;
 pub mod gravity;
 pub mod identifiability;
+pub mod robot_file;
 pub mod validation;
 
 pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter, Target};

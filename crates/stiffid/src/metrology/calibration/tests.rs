@@ -78,6 +78,33 @@ fn perturbed(model: &ErrorModel, seed: u64, only: Option<&[usize]>, gravity: f64
     x
 }
 
+/// The UR10 (standard DH, Universal Robots' published table): joints 2, 3 and 4 parallel.
+pub(super) fn ur10() -> Robot {
+    use crate::robot::dh::{self, Convention, Row};
+    let half = std::f64::consts::FRAC_PI_2;
+    let rows = [
+        (0.0, half, 0.1273),
+        (-0.612, 0.0, 0.0),
+        (-0.5723, 0.0, 0.0),
+        (0.0, half, 0.163941),
+        (0.0, -half, 0.1157),
+        (0.0, 0.0, 0.0922),
+    ];
+    let joints = rows.map(|(a, alpha, d)| {
+        dh::joint(
+            Convention::StandardDh,
+            &Row {
+                a,
+                alpha,
+                d,
+                theta_offset: 0.0,
+            },
+        )
+    });
+    let limits = crate::common::limits::JointBox::new(Vector6::repeat(-6.28), Vector6::repeat(6.28));
+    Robot::new("UR10", "Universal Robots DH table", joints, limits).unwrap()
+}
+
 fn fanuc() -> Robot {
     presets::get("fanuc-r2000ic-165f").unwrap()
 }
@@ -286,4 +313,80 @@ fn gravity_lumped_recovered() {
         ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Offsets, g).unwrap();
     let id = recovers(&model, &postures(&robot, 60, 4), 5e-5);
     assert!(id.rank > 6 + 9 + 6);
+}
+
+/// The written robot files reproduce the model's positions at the fitted values.
+#[test]
+fn calibrated_robot_files_reproduce_positions() {
+    let urdf_robot = urdf::parse(
+        include_str!("../../tests/data/comau-nj165.urdf"),
+        "comau-nj165.urdf",
+        None,
+    )
+    .unwrap();
+    let robots = [
+        fanuc(),
+        presets::get("comau-smart5-nj165-3.0").unwrap(),
+        presets::get("kuka-kr210-robond").unwrap(),
+        ur10(),
+        urdf_robot,
+    ];
+    for (n, robot) in robots.iter().enumerate() {
+        for measured_in in [MeasuredIn::Tracker, MeasuredIn::Base] {
+            let model = ErrorModel::new(
+                robot,
+                &points(),
+                measured_in,
+                Geometry::Full,
+                gravity::Model::none(robot),
+            )
+            .unwrap();
+            let mut values = perturbed(&model, 11, None, 0.0);
+            // No lateral b: a DH table cannot hold it.
+            for (c, p) in model.parameters().iter().enumerate() {
+                if p.name.ends_with(".b") {
+                    values[c] = 0.0;
+                }
+            }
+            let estimate = Estimate {
+                frame: tracker(),
+                values,
+            }
+            .recentre();
+            let qs = postures(robot, 5, 12);
+            let at: Vec<_> = qs.iter().map(|q| (*q, 1)).collect();
+            let want: Vec<Vector3<f64>> = match measured_in {
+                MeasuredIn::Tracker => model.positions(&estimate.values, &at).unwrap(),
+                // Base-frame readings: the calibrated robot predicts the readings `T^-1 b`.
+                MeasuredIn::Base => (model.positions(&estimate.values, &at).unwrap().iter())
+                    .map(|b| (estimate.frame.inverse() * Point3::from(*b)).coords)
+                    .collect(),
+            };
+            let c = model.point(&estimate.values, 1);
+            let check = |written: &Robot, what: &str| {
+                for ((q, _), w) in at.iter().zip(&want) {
+                    // A URDF's joint positions are `M q` (the axis map's constant folded in).
+                    let q = match what {
+                        "urdf" => robot.axis_map().matrix * q,
+                        _ => *q,
+                    };
+                    let got = written.frames(&q).point(&c);
+                    assert!(
+                        (got - w).norm() < 1e-12,
+                        "robot {n} {what}: {got:?} vs {w:?}"
+                    );
+                }
+            };
+            let urdf_text = robot_file::urdf(&model, &estimate).unwrap();
+            check(&urdf::parse(&urdf_text, "out.urdf", None).unwrap(), "urdf");
+            let toml = robot_file::robot_toml(&model, &estimate);
+            match n {
+                4 => assert!(toml.is_err()),
+                _ => check(
+                    &crate::robot::file::parse(&toml.unwrap(), "out.toml").unwrap(),
+                    "toml",
+                ),
+            }
+        }
+    }
 }
