@@ -59,6 +59,10 @@ enum Command {
     /// unloaded readings: each point's shift with its standard deviation, the robot's unloaded
     /// absolute error, the corrected fragment.
     CalibrateCell(commands::calibrate_cell::Args),
+    /// The robot's geometric errors (and its deflection under its own weight), the tracker and
+    /// the measuring points fitted together from unloaded readings, with held-out validation;
+    /// the calibrated robot file and URDF.
+    Calibrate(commands::calibrate::Args),
     /// The mean cutting force and moment (about the tool tip) of every operation of a process file (milling, drilling), feed frame.
     Force(commands::force::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
@@ -116,6 +120,7 @@ fn main() -> ExitCode {
         Command::Compensate(args) => commands::compensate::run(&args),
         Command::Register(args) => commands::register::run(&args),
         Command::CalibrateCell(args) => commands::calibrate_cell::run(&args),
+        Command::Calibrate(args) => commands::calibrate::run(&args),
         Command::Force(args) => commands::force::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, command()),
         Command::Man(args) => commands::completions::man(&args, command()),

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+pub mod calibrate;
 pub mod calibrate_cell;
 pub mod cell_readings;
 pub mod common;

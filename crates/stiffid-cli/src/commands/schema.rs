@@ -17,7 +17,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 15] = [
+const DOCUMENTS: [(&str, &str); 16] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
@@ -42,6 +42,7 @@ const DOCUMENTS: [(&str, &str); 15] = [
     ("register", "stiffid register --json"),
     ("register-postures", "stiffid register --postures N --json"),
     ("calibrate-cell", "stiffid calibrate-cell --json"),
+    ("calibrate", "stiffid calibrate --json"),
 ];
 
 /// Prints the schema of the named document, or without a name the names, one per line.
@@ -80,6 +81,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "register" => closed::<stiffid::app::register::document::Document>(),
         "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
         "calibrate-cell" => closed::<stiffid::app::register::document::Calibration>(),
+        "calibrate" => closed::<stiffid::app::calibrate_robot::document::Document>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

@@ -22,6 +22,7 @@
 //! never of one front end's options; each front end adds its own hints.
 
 pub mod calibrate;
+pub mod calibrate_robot;
 pub mod compare_models;
 pub mod compensate;
 pub mod evaluate;

@@ -35,6 +35,9 @@ pub enum WarningKind {
     /// A URDF's collision meshes were not found: the robot serves kinematics and identification,
     /// the cell's body checks refuse it ([`crate::robot::Bodies::Missing`]).
     Meshes,
+    /// A model's residuals exceed what the tracker noise explains by more than
+    /// [`crate::app::calibrate_robot::MISFIT_RATIO`] times: the model misses something.
+    Misfit,
 }
 
 impl WarningKind {
@@ -50,6 +53,7 @@ impl WarningKind {
             WarningKind::NoForce => "no-force",
             WarningKind::Unidentifiable => "unidentifiable",
             WarningKind::Meshes => "meshes",
+            WarningKind::Misfit => "misfit",
         }
     }
 }

@@ -141,11 +141,26 @@ pub fn fit(
 /// collinear points).
 pub fn start(model: &ErrorModel, observations: &[Observation]) -> Result<Estimate> {
     let values = model.nominal();
-    let frame = match model.measured_in() {
+    let frame = start_at(model, observations, &values)?;
+    Ok(Estimate { frame, values })
+}
+
+/// The measurement frame registered on the positions the model predicts at `values` (SI)
+/// ([`crate::register::fit`]) for tracker readings, the identity for base-frame ones: the
+/// tracker registered anew on held-out readings of another series.
+///
+/// # Errors
+/// As [`start`].
+pub fn start_at(
+    model: &ErrorModel,
+    observations: &[Observation],
+    values: &DVector<f64>,
+) -> Result<nalgebra::Isometry3<f64>> {
+    Ok(match model.measured_in() {
         MeasuredIn::Base => nalgebra::Isometry3::identity(),
         MeasuredIn::Tracker => {
             let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
-            let b = model.positions(&values, &at)?;
+            let b = model.positions(values, &at)?;
             let pairs: Vec<Correspondence> = (observations.iter().zip(b))
                 .map(|(o, base)| Correspondence {
                     base,
@@ -154,8 +169,7 @@ pub fn start(model: &ErrorModel, observations: &[Observation]) -> Result<Estimat
                 .collect();
             crate::metrology::register::fit(&pairs)?.base_from_tracker
         }
-    };
-    Ok(Estimate { frame, values })
+    })
 }
 
 fn check(observations: &[Observation], options: &Options) -> Result<()> {

@@ -1,0 +1,183 @@
+//! `stiffid calibrate`: the robot's geometric errors, gravity terms, the tracker's registration
+//! and the measuring points fitted together from unloaded readings
+//! ([`stiffid::app::calibrate_robot`]), with held-out validation, and the calibrated robot
+//! written as a robot file and a URDF.
+
+use crate::load;
+use crate::output::{self, print_json_or, OutFile};
+use anyhow::{bail, Result};
+use std::path::PathBuf;
+use stiffid::metrology::calibration::gravity::Gravity;
+use stiffid::metrology::calibration::Geometry;
+use stiffid::app::calibrate_robot::document::Document;
+use stiffid::app::calibrate_robot::{self as job, Tolerances};
+use stiffid::app::readings::Request as Readings;
+
+use crate::commands::common::{choice, Common};
+
+/// Arguments of `stiffid calibrate`.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    common: Common,
+    /// Readings CSV: posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm (or
+    /// x_mm,y_mm,z_mm in the base frame), one row per posture and measuring point (at most 100000
+    /// rows; with load steps, the unloaded readings are used).
+    #[arg(long)]
+    data: PathBuf,
+    /// The joint errors fitted: none (the tracker and the measuring points only, as
+    /// calibrate-cell), offsets (the joint angle offsets too) or full (every joint error, the
+    /// dependent ones merged).
+    #[arg(long, value_parser = choice::<Geometry>(), default_value = "full")]
+    geometry: Geometry,
+    /// The deflection under the robot's own weight: none, masses (the robot's link masses and
+    /// centres known, the joint compliances fitted) or lumped (compliance times mass moment).
+    #[arg(long, value_parser = choice::<Gravity>(), default_value = "none")]
+    gravity: Gravity,
+    /// Held-out readings CSV (same format): their 3D position error with the calibration.
+    #[arg(long)]
+    validate: Option<PathBuf>,
+    /// Register the tracker anew on the --validate readings (another series: the tracker moved).
+    #[arg(long, requires = "validate")]
+    reregister: bool,
+    /// Leave-one-posture-out: each posture's error predicted by the fit of the others.
+    #[arg(long)]
+    cross_validate: bool,
+    /// Nominal tolerance of the joints' length errors, mm (a prior: weakly determined errors
+    /// are pulled towards nominal); with --tolerance-deg.
+    #[arg(long, requires = "tolerance_deg")]
+    tolerance_mm: Option<f64>,
+    /// Nominal tolerance of the joints' angle errors, deg; with --tolerance-mm.
+    #[arg(long, requires = "tolerance_mm")]
+    tolerance_deg: Option<f64>,
+    /// Write the calibrated robot file here (robot TOML: the DH table with the errors, the axis
+    /// map; point a setup's `robot` at it), the tracker and measuring-point fragment of the setup
+    /// in comments at its end. Never over an input.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Write the calibrated robot as a URDF here (corrected joint origins).
+    #[arg(long)]
+    urdf_out: Option<PathBuf>,
+}
+
+/// Runs `stiffid calibrate`.
+pub fn run(args: &Args) -> Result<()> {
+    let setup = args.common.load_setup()?;
+    let path = &args.data;
+    let priors = match (args.tolerance_mm, args.tolerance_deg) {
+        (Some(l), Some(a)) => {
+            if !(l.is_finite() && l > 0.0 && a.is_finite() && a > 0.0) {
+                bail!("--tolerance-mm, --tolerance-deg: expected positive numbers");
+            }
+            Some(Tolerances {
+                length: l * 1e-3,
+                angle: a.to_radians(),
+            })
+        }
+        _ => None,
+    };
+    let content = load::read(path)?;
+    let held = match &args.validate {
+        Some(p) => Some(load::read(p)?),
+        None => None,
+    };
+    let out = prepare(&args.out, "--out")?;
+    let urdf_out = prepare(&args.urdf_out, "--urdf-out")?;
+    let request = job::Request {
+        readings: Readings {
+            setup: &setup,
+            name: path.display().to_string(),
+            text: &content,
+        },
+        geometry: args.geometry,
+        gravity: args.gravity,
+        validate: (args.validate.as_ref().zip(held.as_deref()))
+            .map(|(p, t)| (p.display().to_string(), t)),
+        reregister: args.reregister,
+        cross_validate: args.cross_validate,
+        priors,
+    };
+    let report = job::run(&request)?;
+    let document = Document::new(&report, &args.common.setup);
+    if let Some(o) = &out {
+        match &document.robot_file {
+            Some(text) => {
+                let fragment: String = (document.fragment.lines())
+                    .map(|l| format!("# {}\n", l.trim_start_matches("# ")))
+                    .collect();
+                let note = "\n# The setup's tracker and measuring points from this calibration:\n";
+                o.write(format!("{text}{note}{fragment}").as_bytes())?
+            }
+            None => bail!(
+                "--out: {} (--urdf-out writes it)",
+                document.robot_file_error.clone().unwrap_or_default()
+            ),
+        }
+    }
+    if let Some(o) = &urdf_out {
+        o.write(document.urdf.as_bytes())?;
+    }
+    output::warnings(&document.warnings);
+    print_json_or(args.common.json, &document, text_of)
+}
+
+fn prepare(path: &Option<PathBuf>, option: &str) -> Result<Option<OutFile>> {
+    path.as_ref()
+        .map(|p| OutFile::prepare(p, option))
+        .transpose()
+}
+
+fn text_of(d: &Document) -> String {
+    let mut text = format!(
+        "robot calibration from {} unloaded readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
+         residual RMS {:.4} mm (nominal, tracker registered: {:.4} mm); noise per coordinate {:.4} mm{}\n\
+         rank {} of {} parameters, condition number {}\n",
+        d.readings,
+        d.setup,
+        d.geometry,
+        d.gravity,
+        d.iterations,
+        d.residual_rms_mm,
+        d.nominal_rms_mm,
+        d.noise_std_mm,
+        d.noise_ratio.map_or(String::new(), |r| format!(" ({r:.2} x the setup's)")),
+        d.rank,
+        d.parameters.len(),
+        d.condition.map_or("-".into(), |c| format!("{c:.3e}")),
+    );
+    text += "\nparameter          unit          nominal          value             sd\n";
+    for p in d.parameters.iter().filter(|p| p.identified) {
+        text += &format!(
+            "{:<18} {:<13} {:>12.6} {:>14.6} {:>14}\n",
+            p.name,
+            p.unit,
+            p.nominal,
+            p.value,
+            p.sd.map_or("-".into(), |s| format!("{s:.6}"))
+        );
+    }
+    if !d.merged.is_empty() {
+        text += "\nmerged (left nominal):\n";
+        for m in &d.merged {
+            let into = match m.into.is_empty() {
+                true => "no effect".to_string(),
+                false => format!("into {}", m.into.join(", ")),
+            };
+            text += &format!("  {}: {into}\n", m.name);
+        }
+    }
+    for c in &d.correlations {
+        text += &format!("correlated: {} and {} ({:+.3})\n", c.a, c.b, c.rho);
+    }
+    for v in d.validation.iter().chain(&d.cross_validation) {
+        text += &format!(
+            "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} readings (nominal, tracker registered: {:.4} mm)\n",
+            v.data,
+            v.rms_mm,
+            v.max_mm,
+            v.errors.len(),
+            v.nominal_rms_mm
+        );
+    }
+    text + "\n" + &d.fragment
+}

@@ -1,0 +1,282 @@
+//! `stiffid calibrate`: noise-free readings of a robot with known errors give a calibration that
+//! predicts held-out readings to rounding, write robot files that reproduce them, and agree with
+//! `calibrate-cell` when only the cell is fitted.
+
+use crate::common;
+
+use common::{json, stiffid, temp_dir, write_file};
+use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
+use stiffid::metrology::calibration::error_model::MeasuredIn;
+use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
+
+const SETUP: &str = "zhang2021-comau-nj165";
+
+/// Postures spread over the COMAU's range, deg.
+fn postures(n: usize, seed: u64) -> Vec<[f64; 6]> {
+    let mut state = seed;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    (0..n)
+        .map(|_| {
+            [
+                100.0 * next(),
+                60.0 * next(),
+                -90.0 + 60.0 * next(),
+                200.0 * next(),
+                60.0 + 60.0 * next(),
+                200.0 * next(),
+            ]
+        })
+        .collect()
+}
+
+fn model() -> ErrorModel {
+    let setup = stiffid::setup::builtin(SETUP).unwrap();
+    let robot = setup.robot();
+    ErrorModel::new(
+        robot,
+        &setup.tool().measuring_points,
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        gravity::Model::none(robot),
+    )
+    .unwrap()
+}
+
+/// The true errors: 0.5 mm and 0.5 mrad on the four (M)DH errors of joints 2-5.
+fn truth(model: &ErrorModel) -> DVector<f64> {
+    let mut x = model.nominal();
+    for (c, p) in model.parameters().iter().enumerate() {
+        let joint = ["joint2.", "joint3.", "joint4.", "joint5."];
+        let dh = [".a", ".alpha", ".theta"];
+        if joint.iter().any(|j| p.name.starts_with(j)) && dh.iter().any(|e| p.name.ends_with(e)) {
+            x[c] += 5e-4 * if c % 2 == 0 { 1.0 } else { -1.0 };
+        }
+    }
+    x
+}
+
+/// Readings of every measuring point at `postures`, by a tracker at `tracker`.
+fn readings(
+    model: &ErrorModel,
+    x: &DVector<f64>,
+    tracker: &Isometry3<f64>,
+    qs: &[[f64; 6]],
+) -> String {
+    let mut text = stiffid::io::readings::header() + "\n";
+    for (i, q_deg) in qs.iter().enumerate() {
+        let q = Vector6::from_iterator(q_deg.iter().map(|d| d.to_radians()));
+        for k in 0..model.points() {
+            let b = model.positions(x, &[(q, k)]).unwrap()[0];
+            let t = tracker.inverse() * Point3::from(b);
+            let q: Vec<String> = q_deg.iter().map(|v| format!("{v:?}")).collect();
+            text += &format!(
+                "P{},{},{},{:?},{:?},{:?}\n",
+                i + 1,
+                k + 1,
+                q.join(","),
+                t.x * 1e3,
+                t.y * 1e3,
+                t.z * 1e3
+            );
+        }
+    }
+    text
+}
+
+#[test]
+fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
+    let d = temp_dir("calibrate");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(25, 1)),
+    );
+    let held = write_file(
+        &d,
+        "held.csv",
+        &readings(&model, &x, &tracker, &postures(10, 2)),
+    );
+    let (robot, urdf) = (d.join("robot.toml"), d.join("robot.urdf"));
+    let args = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--validate",
+        held.to_str().unwrap(),
+        "--out",
+        robot.to_str().unwrap(),
+        "--urdf-out",
+        urdf.to_str().unwrap(),
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    assert!(
+        doc["residual_rms_mm"].as_f64().unwrap() < 1e-6,
+        "{}",
+        doc["residual_rms_mm"]
+    );
+    assert!(doc["nominal_rms_mm"].as_f64().unwrap() > 0.1);
+    let v = &doc["validation"];
+    assert!(v["rms_mm"].as_f64().unwrap() < 1e-6, "{v}");
+    assert!(v["nominal_rms_mm"].as_f64().unwrap() > 0.1);
+    assert_eq!(v["errors"].as_array().unwrap().len(), 10 * model.points());
+    // 6R arm, 4 points: 24 + 12.
+    assert_eq!(doc["rank"].as_u64(), Some(36));
+    let merged: Vec<&str> = (doc["merged"].as_array().unwrap().iter())
+        .map(|m| m["name"].as_str().unwrap())
+        .collect();
+    assert!(
+        merged.contains(&"joint1.theta") && merged.contains(&"joint6.d"),
+        "{merged:?}"
+    );
+    let p = (doc["parameters"].as_array().unwrap().iter())
+        .find(|p| p["name"] == "joint3.alpha")
+        .unwrap();
+    let want = x[model
+        .parameters()
+        .iter()
+        .position(|q| q.name == "joint3.alpha")
+        .unwrap()];
+    assert!(
+        (p["value"].as_f64().unwrap() - want.to_degrees()).abs() < 1e-9,
+        "{p}"
+    );
+    assert_eq!(p["unit"], "deg");
+    // The written robot file and URDF: the calibrated positions.
+    let written =
+        stiffid::robot::file::parse(&std::fs::read_to_string(&robot).unwrap(), "r").unwrap();
+    let from_urdf =
+        stiffid::robot::urdf::parse(&std::fs::read_to_string(&urdf).unwrap(), "u", None).unwrap();
+    let q = Vector6::new(0.3, -0.2, -1.4, 0.5, 0.9, -0.7);
+    let c = model.point(&x, 1);
+    let want = model.positions(&x, &[(q, 1)]).unwrap()[0];
+    let m = written.axis_map().matrix;
+    for got in [
+        written.frames(&q).point(&c),
+        from_urdf.frames(&(m * q)).point(&c),
+    ] {
+        assert!((got - want).norm() < 1e-9, "{got:?} vs {want:?}");
+    }
+    let text = String::from_utf8(stiffid(&args[..7]).stdout).unwrap();
+    assert!(
+        text.contains("held out") && text.contains("joint3.beta"),
+        "{text}"
+    );
+}
+
+#[test]
+fn calibrate_without_geometry_is_calibrate_cell() {
+    let d = temp_dir("calibrate-none");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(2.0, 1.0, 0.5), Vector3::new(0.1, 0.0, -1.0));
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(12, 3)),
+    );
+    let data = data.to_str().unwrap();
+    let cell = json(&stiffid(&[
+        "calibrate-cell",
+        "--setup",
+        SETUP,
+        "--data",
+        data,
+        "--json",
+    ]));
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data,
+        "--geometry",
+        "none",
+        "--json",
+    ]));
+    let (a, b) = (
+        cell["absolute_error_rms_mm"].as_f64().unwrap(),
+        doc["residual_rms_mm"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() < 1e-9 * a, "{a} vs {b}");
+    for (k, p) in cell["points"].as_array().unwrap().iter().enumerate() {
+        let fitted: Vec<f64> = serde_json::from_value(p["fitted_mm"].clone()).unwrap();
+        for (i, axis) in ["x", "y", "z"].iter().enumerate() {
+            let name = format!("point{}.{axis}", k + 1);
+            let q = (doc["parameters"].as_array().unwrap().iter())
+                .find(|q| q["name"] == name.as_str())
+                .unwrap();
+            assert!(
+                (q["value"].as_f64().unwrap() - fitted[i]).abs() < 1e-7,
+                "{name}"
+            );
+        }
+    }
+}
+
+#[test]
+fn calibrate_refuses_bad_input() {
+    let d = temp_dir("calibrate-bad");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::identity();
+    // 2 postures of 4 points: 24 coordinates, nearly all explained by the parameters the two
+    // postures can tell apart: a named warning.
+    let few = write_file(
+        &d,
+        "few.csv",
+        &readings(&model, &x, &tracker, &postures(2, 4)),
+    );
+    let out = stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        few.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("few.csv") && err.contains("degrees of freedom"),
+        "{err}"
+    );
+    // One posture: every coordinate explained, refused.
+    let one = write_file(
+        &d,
+        "one.csv",
+        &readings(&model, &x, &tracker, &postures(1, 5)),
+    );
+    let out = stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        one.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("one.csv") && err.contains("read more postures"),
+        "{err}"
+    );
+    let masses = stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        few.to_str().unwrap(),
+        "--gravity",
+        "masses",
+    ]);
+    assert_eq!(masses.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&masses.stderr).contains("mass_kg"));
+}

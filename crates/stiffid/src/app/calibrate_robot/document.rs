@@ -1,0 +1,255 @@
+//! The document of the robot calibration job ([`crate::app::calibrate_robot`]): `stiffid
+//! calibrate --json`, Python's `calibrate(...)`.
+
+use crate::app::document::{finite, mm};
+use crate::metrology::calibration::error_model::Target;
+use crate::metrology::calibration::validation::Validation;
+use crate::common::choice::Choice;
+use super::{Held, Report};
+use crate::app::Warning;
+use serde::Serialize;
+
+/// The robot calibration: every parameter with its value and standard deviation, what the
+/// readings determine, the residual and held-out errors, the calibrated robot's files.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The setup as given.
+    pub setup: String,
+    /// The readings file.
+    pub data: String,
+    /// The joint errors fitted: `none`, `offsets` or `full`.
+    pub geometry: &'static str,
+    /// The gravity terms fitted: `none`, `masses` or `lumped`.
+    pub gravity: &'static str,
+    /// The frame of the readings: `tracker` or `base`.
+    pub measured_in: &'static str,
+    /// Unloaded readings fitted.
+    pub readings: usize,
+    /// Every parameter of the error model, in the Jacobian's column order.
+    pub parameters: Vec<Parameter>,
+    /// The parameters the readings do not separate from the identified ones (left nominal).
+    pub merged: Vec<Merged>,
+    /// The identified parameters' count: the rank of the identification Jacobian.
+    pub rank: usize,
+    /// The condition number of the identified columns of the column-scaled identification
+    /// Jacobian; `null` when nothing is identified.
+    pub condition: Option<f64>,
+    /// Pairs of identified parameters correlated above 0.9 in absolute value.
+    pub correlations: Vec<Correlation>,
+    /// RMS of the fitted readings' 3D residuals, mm.
+    pub residual_rms_mm: f64,
+    /// The same with the nominal robot, the tracker registered and the setup's measuring points,
+    /// mm: where the calibration starts.
+    pub nominal_rms_mm: f64,
+    /// Noise per coordinate estimated from the residuals, mm.
+    pub noise_std_mm: f64,
+    /// `noise_std_mm` over the setup's tracker noise: about 1 when the model explains the
+    /// readings to the noise; `null` without a noise.
+    pub noise_ratio: Option<f64>,
+    /// Levenberg-Marquardt iterations.
+    pub iterations: usize,
+    /// The held-out readings' errors (`--validate`), if asked.
+    pub validation: Option<ValidationDocument>,
+    /// The leave-one-posture-out errors (`--cross-validate`), if asked.
+    pub cross_validation: Option<ValidationDocument>,
+    /// The calibrated robot as a robot TOML file; `null` when it cannot be one (a URDF robot, a
+    /// lateral error fitted): `robot_file_error` says why.
+    pub robot_file: Option<String>,
+    /// Why there is no robot file.
+    pub robot_file_error: Option<String>,
+    /// The calibrated robot as a URDF.
+    pub urdf: String,
+    /// The setup fragment: the tracker's registration and the measuring points.
+    pub fragment: String,
+    /// Results to look at before trusting the calibration.
+    pub warnings: Vec<Warning>,
+}
+
+/// One parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Parameter {
+    /// Its name (`tracker.x`, `point1.z`, `joint3.beta`, `gravity.c2`, ...).
+    pub name: String,
+    /// `tracker`, `base`, `point`, `joint`, `compliance` or `gravity`.
+    pub kind: &'static str,
+    /// The unit of `nominal`, `value` and `sd`.
+    pub unit: &'static str,
+    /// The nominal value (the frame's: registered on the nominal robot; a frame's rotation is
+    /// its rotation vector's component).
+    pub nominal: f64,
+    /// The fitted value (nominal when merged).
+    pub value: f64,
+    /// Its standard deviation; `null` when not fitted.
+    pub sd: Option<f64>,
+    /// Whether the readings determine it (fitted).
+    pub identified: bool,
+}
+
+/// A merged parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Merged {
+    /// Its name.
+    pub name: String,
+    /// The identified parameters its effect is a combination of, largest share first; empty
+    /// when it has no effect at all.
+    pub into: Vec<String>,
+    /// Why, in words.
+    pub reason: String,
+}
+
+/// Two correlated parameters.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Correlation {
+    /// The first's name.
+    pub a: String,
+    /// The second's name.
+    pub b: String,
+    /// Their correlation coefficient.
+    pub rho: f64,
+}
+
+/// Held-out errors.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ValidationDocument {
+    /// The readings (`cross-validation` for leave-one-posture-out).
+    pub data: String,
+    /// RMS of the 3D position error of every held-out reading, mm.
+    pub rms_mm: f64,
+    /// The largest, mm.
+    pub max_mm: f64,
+    /// The nominal robot's RMS on the same readings, the tracker registered on them, mm.
+    pub nominal_rms_mm: f64,
+    /// Every held-out reading's error.
+    pub errors: Vec<PointError>,
+}
+
+/// One held-out reading's error.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PointError {
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// Predicted minus read, base frame, mm.
+    pub error_mm: [f64; 3],
+    /// Its length, mm.
+    pub error_norm_mm: f64,
+}
+
+impl Document {
+    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
+    pub fn new(report: &Report, setup_name: &str) -> Self {
+        let model = &report.model;
+        let fit = &report.fit;
+        let params = model.parameters();
+        let values = &fit.estimate.values;
+        let frame = &fit.estimate.frame;
+        let frame_values = frame_vector(frame);
+        let start = frame_vector(&report.start_frame);
+        let parameters = (params.iter().enumerate())
+            .map(|(c, p)| {
+                let f = p.document_factor();
+                let (nominal, value) = match p.target {
+                    Target::Frame(i) => (start[i] * f, frame_values[i] * f),
+                    _ => (p.nominal * f, values[c] * f),
+                };
+                Parameter {
+                    name: p.name.clone(),
+                    kind: p.kind.name(),
+                    unit: p.unit(),
+                    nominal,
+                    value,
+                    sd: fit.sd[c].map(|s| s * f),
+                    identified: fit.fitted.contains(&c),
+                }
+            })
+            .collect();
+        let id = &fit.identifiability;
+        let merged = (id.merged.iter())
+            .filter(|m| !fit.fitted.contains(&m.parameter))
+            .map(|m| {
+                let into: Vec<String> = m.into.iter().map(|(k, _)| params[*k].name.clone()).collect();
+                let reason = match into.is_empty() {
+                    true => "no effect on the readings at these postures".to_string(),
+                    false => format!(
+                        "its effect is a combination of {} at these postures: left nominal, absorbed by them",
+                        into.join(", ")
+                    ),
+                };
+                Merged {
+                    name: params[m.parameter].name.clone(),
+                    into,
+                    reason,
+                }
+            })
+            .collect();
+        let correlations = (id.correlations.iter())
+            .map(|(a, b, rho)| Correlation {
+                a: params[*a].name.clone(),
+                b: params[*b].name.clone(),
+                rho: *rho,
+            })
+            .collect();
+        Document {
+            setup: setup_name.to_string(),
+            data: report.data_name.clone(),
+            geometry: Choice::name(report.geometry),
+            gravity: Choice::name(report.gravity),
+            measured_in: match model.measured_in() {
+                crate::metrology::calibration::error_model::MeasuredIn::Tracker => "tracker",
+                crate::metrology::calibration::error_model::MeasuredIn::Base => "base",
+            },
+            readings: report.readings,
+            parameters,
+            merged,
+            rank: id.rank,
+            condition: finite(id.condition),
+            correlations,
+            residual_rms_mm: mm(fit.rms),
+            nominal_rms_mm: mm(report.nominal.rms),
+            noise_std_mm: mm(fit.sigma),
+            noise_ratio: finite(report.noise_ratio),
+            iterations: fit.iterations,
+            validation: report.validation.as_ref().map(held),
+            cross_validation: report.cross_validation.as_ref().map(held),
+            robot_file: report.robot_toml.as_ref().ok().cloned(),
+            robot_file_error: report.robot_toml.as_ref().err().cloned(),
+            urdf: report.urdf.clone(),
+            fragment: report.fragment.clone(),
+            warnings: report.warnings.clone(),
+        }
+    }
+}
+
+/// A frame's translation (m) and rotation vector (rad).
+fn frame_vector(t: &nalgebra::Isometry3<f64>) -> [f64; 6] {
+    let (p, r) = (t.translation.vector, t.rotation.scaled_axis());
+    [p.x, p.y, p.z, r.x, r.y, r.z]
+}
+
+fn held(h: &Held) -> ValidationDocument {
+    ValidationDocument {
+        data: h.name.clone(),
+        rms_mm: mm(h.calibrated.rms),
+        max_mm: mm(h.calibrated.max),
+        nominal_rms_mm: mm(h.nominal.rms),
+        errors: errors(&h.calibrated, &h.labels),
+    }
+}
+
+fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {
+    (v.errors.iter())
+        .map(|e| PointError {
+            posture: labels.get(e.posture).cloned().unwrap_or_default(),
+            point: e.point + 1,
+            error_mm: [mm(e.error.x), mm(e.error.y), mm(e.error.z)],
+            error_norm_mm: mm(e.error.norm()),
+        })
+        .collect()
+}

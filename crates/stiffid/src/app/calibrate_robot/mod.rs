@@ -1,0 +1,391 @@
+//! The robot calibration job (`stiffid calibrate`): the robot's geometric errors, the gravity
+//! terms, the tracker's registration and the measuring points fitted together from the unloaded
+//! readings of a campaign ([`crate::metrology::calibration`]); held-out validation and leave-one-posture-out
+//! cross-validation; the calibrated robot as a robot TOML file and a URDF. `--geometry none
+//! --gravity none` is the cell calibration of `calibrate-cell`.
+//!
+//! Limits: at most [`MAX_READINGS`] unloaded readings (the readings file's own limit), at most
+//! [`crate::metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
+//! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
+//! cross-validation (one fit per posture).
+
+pub mod document;
+
+use super::in_data;
+use super::readings::{read, Request as Readings};
+use super::{Warning, WarningKind};
+use crate::io::readings::Readings as Data;
+use crate::observation::frames::DisplacementFrame;
+use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
+use crate::metrology::calibration::fit::{self, Fit, Options, Priors};
+use crate::metrology::calibration::gravity::{self, Gravity};
+use crate::metrology::calibration::validation::{self, Validation};
+use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
+use crate::{Error, Result, Setup};
+
+pub use crate::io::readings::MAX_READINGS;
+
+/// Most postures cross-validation refits for (one fit per posture).
+pub const MAX_CROSS_VALIDATION_POSTURES: usize = 2000;
+
+/// The noise ratio above which the job warns that the model misses something.
+pub const MISFIT_RATIO: f64 = 3.0;
+
+/// The residual degrees of freedom below which the job warns that the readings are too few.
+pub const MIN_DEGREES_OF_FREEDOM: usize = 10;
+
+/// The condition number of the scaled identification Jacobian above which the job warns that
+/// some parameters are weakly determined.
+pub const WEAK_CONDITION: f64 = 1e6;
+
+/// Nominal tolerances of the joint errors, as priors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances {
+    /// Of a length, m.
+    pub length: f64,
+    /// Of an angle, rad.
+    pub angle: f64,
+}
+
+/// What the job needs.
+pub struct Request<'a> {
+    /// The readings to fit (the setup, the file's name and text), as `register` reads them.
+    pub readings: Readings<'a>,
+    /// The joint errors fitted.
+    pub geometry: Geometry,
+    /// The gravity terms fitted.
+    pub gravity: Gravity,
+    /// Held-out readings (name, text), predicted by the calibration.
+    pub validate: Option<(String, &'a str)>,
+    /// Register the tracker anew on the held-out readings (another series: the tracker moved).
+    pub reregister: bool,
+    /// Leave-one-posture-out cross-validation.
+    pub cross_validate: bool,
+    /// Priors on the joint errors, if any.
+    pub priors: Option<Tolerances>,
+}
+
+/// A validation with the nominal model's error beside it.
+#[derive(Debug, Clone)]
+pub struct Held {
+    /// The readings' name (`cross-validation` for leave-one-posture-out).
+    pub name: String,
+    /// The calibrated model's errors.
+    pub calibrated: Validation,
+    /// The nominal model's, the tracker registered on the same readings (in sample).
+    pub nominal: Validation,
+    /// The posture labels of the readings.
+    pub labels: Vec<String>,
+}
+
+/// What the job found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The readings file's name.
+    pub data_name: String,
+    /// The error model.
+    pub model: ErrorModel,
+    /// The joint errors fitted.
+    pub geometry: Geometry,
+    /// The gravity terms fitted.
+    pub gravity: Gravity,
+    /// The fit.
+    pub fit: Fit,
+    /// The frame registered on the nominal robot (the start).
+    pub start_frame: nalgebra::Isometry3<f64>,
+    /// The fitted readings' posture labels.
+    pub labels: Vec<String>,
+    /// The fitted readings' count.
+    pub readings: usize,
+    /// The fitted readings' errors with the nominal model (tracker registered, points the
+    /// setup's): the error the calibration starts from.
+    pub nominal: Validation,
+    /// The estimated noise per coordinate over the setup's: near 1 when the model explains the
+    /// readings to the tracker's noise.
+    pub noise_ratio: f64,
+    /// The held-out validation, if asked.
+    pub validation: Option<Held>,
+    /// The cross-validation, if asked.
+    pub cross_validation: Option<Held>,
+    /// The calibrated robot as a robot TOML file, or why it cannot be one.
+    pub robot_toml: std::result::Result<String, String>,
+    /// The calibrated robot as a URDF.
+    pub urdf: String,
+    /// The setup fragment: the tracker's registration and the measuring points.
+    pub fragment: String,
+    /// Inputs and results to look at before trusting the result.
+    pub warnings: Vec<Warning>,
+}
+
+/// The unloaded observations of a readings file, the frame they are in, and their labels.
+fn observations(data: &Data) -> (Vec<Observation>, MeasuredIn) {
+    let measured_in = match data.frame {
+        DisplacementFrame::Tracker => MeasuredIn::Tracker,
+        _ => MeasuredIn::Base,
+    };
+    let obs = (data.readings.iter())
+        .filter(|r| r.unloaded())
+        .map(|r| Observation {
+            posture: r.posture,
+            point: r.point,
+            q: r.q,
+            measured: r.position,
+        })
+        .collect();
+    (obs, measured_in)
+}
+
+/// The error model of `setup` for readings in `measured_in`.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses; those
+/// of [`ErrorModel::new`] and [`gravity::Model::masses`].
+pub fn model(
+    setup: &Setup,
+    measured_in: MeasuredIn,
+    geometry: Geometry,
+    gravity: Gravity,
+) -> Result<ErrorModel> {
+    let robot = setup.robot();
+    let springs = setup.springs();
+    let g = match gravity {
+        Gravity::None => gravity::Model::none(robot),
+        Gravity::Lumped => gravity::Model::lumped(robot, springs),
+        Gravity::Masses => {
+            let Some(masses) = robot.masses() else {
+                return Err(Error::InvalidField {
+                    field: "gravity".into(),
+                    message: format!(
+                        "masses: the robot '{}' gives no link masses (mass_kg and com_mm per joint in a robot file, <inertial> in a URDF): give them or use lumped",
+                        robot.name()
+                    ),
+                });
+            };
+            let nominal = setup.nominal_compliance().unwrap_or_default();
+            gravity::Model::masses(robot, *masses, springs, nominal)?
+        }
+    };
+    ErrorModel::new(
+        robot,
+        &setup.tool().measuring_points,
+        measured_in,
+        geometry,
+        g,
+    )
+}
+
+/// Runs the job.
+///
+/// # Errors
+/// Those of [`read`], [`model`], [`fit::start`], [`fit::fit`], [`validation::validate`] and
+/// [`validation::cross_validate`], as [`Error::Input`] naming the file;
+/// [`Error::InvalidField`] (`cross_validate`) beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures,
+/// (`validate`) when the held-out readings are in another frame than the fitted.
+pub fn run(request: &Request<'_>) -> Result<Report> {
+    let setup = request.readings.setup;
+    let name = &request.readings.name;
+    let (data, mut warnings) = read(&request.readings)?;
+    let (obs, measured_in) = observations(&data);
+    let model = model(setup, measured_in, request.geometry, request.gravity)?;
+    let options = Options {
+        length: setup.characteristic_length().unwrap_or(1.0),
+        priors: request.priors.map(|t| Priors {
+            length: t.length,
+            angle: t.angle,
+            noise: setup.noise().sigma(),
+        }),
+    };
+    let start = fit::start(&model, &obs).map_err(|e| in_data(name, e))?;
+    let fitted = fit::fit(&model, &obs, &start, &options).map_err(|e| in_data(name, e))?;
+    let nominal = validation::validate(&model, &start, &obs)?;
+    let noise_ratio = fitted.sigma / setup.noise().sigma();
+    let cross_validation = match request.cross_validate {
+        false => None,
+        true => Some(cross(&model, &obs, &start, &options, &data, name)?),
+    };
+    let validation = match &request.validate {
+        None => None,
+        Some((held_name, text)) => Some(held_out(
+            request,
+            &model,
+            &fitted.estimate,
+            held_name,
+            text,
+            &mut warnings,
+        )?),
+    };
+    warnings.extend(judge(&model, &fitted, noise_ratio, &data, name));
+    let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
+    let urdf = robot_file::urdf(&model, &fitted.estimate)?;
+    let fragment = fragment(&model, &fitted);
+    Ok(Report {
+        data_name: name.clone(),
+        labels: data.labels.clone(),
+        readings: obs.len(),
+        model,
+        geometry: request.geometry,
+        gravity: request.gravity,
+        start_frame: start.frame,
+        fit: fitted,
+        nominal,
+        noise_ratio,
+        validation,
+        cross_validation,
+        robot_toml,
+        urdf,
+        fragment,
+        warnings,
+    })
+}
+
+fn cross(
+    model: &ErrorModel,
+    obs: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    data: &Data,
+    name: &str,
+) -> Result<Held> {
+    let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
+    postures.dedup();
+    if postures.len() > MAX_CROSS_VALIDATION_POSTURES {
+        return Err(Error::InvalidField {
+            field: "cross_validate".into(),
+            message: format!(
+                "at most {MAX_CROSS_VALIDATION_POSTURES} postures (one fit each), got {}: validate on a held-out file instead",
+                postures.len()
+            ),
+        });
+    }
+    let calibrated =
+        validation::cross_validate(model, obs, start, options).map_err(|e| in_data(name, e))?;
+    Ok(Held {
+        name: "cross-validation".into(),
+        calibrated,
+        nominal: validation::validate(model, start, obs)?,
+        labels: data.labels.clone(),
+    })
+}
+
+/// The held-out validation: the readings of `text` predicted at `estimate` (the tracker
+/// registered anew on them with `reregister`).
+fn held_out(
+    request: &Request<'_>,
+    model: &ErrorModel,
+    estimate: &Estimate,
+    name: &str,
+    text: &str,
+    warnings: &mut Vec<Warning>,
+) -> Result<Held> {
+    let readings = Readings {
+        setup: request.readings.setup,
+        name: name.to_string(),
+        text,
+    };
+    let (data, more) = read(&readings)?;
+    warnings.extend(more);
+    let (obs, measured_in) = observations(&data);
+    if measured_in != model.measured_in() {
+        return Err(Error::InvalidField {
+            field: "validate".into(),
+            message: format!(
+                "{name}: the held-out readings are in another frame than {}",
+                request.readings.name
+            ),
+        });
+    }
+    let nominal_start = fit::start(model, &obs).map_err(|e| in_data(name, e))?;
+    let estimate = match request.reregister {
+        false => estimate.clone(),
+        true => Estimate {
+            frame: fit::start_at(model, &obs, &estimate.values).map_err(|e| in_data(name, e))?,
+            values: estimate.values.clone(),
+        },
+    };
+    Ok(Held {
+        name: name.to_string(),
+        calibrated: validation::validate(model, &estimate, &obs).map_err(|e| in_data(name, e))?,
+        nominal: validation::validate(model, &nominal_start, &obs)?,
+        labels: data.labels.clone(),
+    })
+}
+
+/// The warnings about the fit.
+fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, data: &Data, name: &str) -> Vec<Warning> {
+    let mut w = Vec::new();
+    if data.has_loads {
+        w.push(Warning::new(
+            WarningKind::Unidentifiable,
+            format!(
+                "{name}: the loaded readings are not used: calibrate fits the unloaded readings (identify fits the compliances from the loaded ones)"
+            ),
+        ));
+    }
+    let id = &fit.identifiability;
+    let dof = fit.residuals.len() - fit.fitted.len().min(fit.residuals.len());
+    if dof < MIN_DEGREES_OF_FREEDOM {
+        w.push(Warning::new(
+            WarningKind::Unidentifiable,
+            format!(
+                "{name}: {} coordinates for {} fitted parameters leave {dof} degrees of freedom (fewer than {MIN_DEGREES_OF_FREEDOM}): the fit explains the readings whatever their errors, and its standard deviations and noise ratio mean little; read more postures",
+                fit.residuals.len(),
+                fit.fitted.len()
+            ),
+        ));
+    }
+    if id.condition > WEAK_CONDITION {
+        w.push(Warning::new(
+            WarningKind::Unidentifiable,
+            format!(
+                "the identification Jacobian's condition number is {:.3e} (above {WEAK_CONDITION:e}): some parameters are weakly determined; read more varied postures or give tolerances",
+                id.condition
+            ),
+        ));
+    }
+    if noise_ratio > MISFIT_RATIO {
+        w.push(Warning::new(
+            WarningKind::Misfit,
+            format!(
+                "the residuals are {noise_ratio:.1} times the tracker noise: the model misses part of the robot's error{}",
+                match model.gravity().is_empty() {
+                    true => " (try --gravity lumped or masses)",
+                    false => "",
+                }
+            ),
+        ));
+    }
+    w
+}
+
+/// The setup fragment: the tracker's registration and the measuring points.
+fn fragment(model: &ErrorModel, fit: &Fit) -> String {
+    let values = &fit.estimate.values;
+    let points: Vec<String> = (0..model.points())
+        .map(|k| {
+            let p = model.point(values, k) * 1e3;
+            format!("[{:.6}, {:.6}, {:.6}]", p.x, p.y, p.z)
+        })
+        .collect();
+    let mut text = format!(
+        "# robot calibration: residual RMS {:.4} mm\n",
+        fit.rms * 1e3
+    );
+    if model.measured_in() == MeasuredIn::Tracker {
+        let t = &fit.estimate.frame;
+        let p = t.translation.vector * 1e3;
+        let (r, pi, y) = t.rotation.euler_angles();
+        text += &format!(
+            "[tracker]\nbase_from_tracker = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
+            p.x,
+            p.y,
+            p.z,
+            r.to_degrees(),
+            pi.to_degrees(),
+            y.to_degrees()
+        );
+    }
+    text + &format!(
+        "# in [tool]:\n# measuring_points_mm = [{}]\n",
+        points.join(", ")
+    )
+}
