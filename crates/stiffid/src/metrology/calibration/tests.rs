@@ -101,7 +101,7 @@ pub(super) fn ur10() -> Robot {
             },
         )
     });
-    let limits = crate::common::limits::JointBox::new(Vector6::repeat(-6.28), Vector6::repeat(6.28));
+    let limits = crate::common::limits::JointBox::new(Vector6::repeat(-6.0), Vector6::repeat(6.0));
     Robot::new("UR10", "Universal Robots DH table", joints, limits).unwrap()
 }
 
