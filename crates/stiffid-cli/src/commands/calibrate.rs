@@ -7,11 +7,11 @@ use crate::load;
 use crate::output::{self, print_json_or, OutFile};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::Geometry;
 use stiffid::app::calibrate_robot::document::Document;
 use stiffid::app::calibrate_robot::{self as job, Tolerances};
 use stiffid::app::readings::Request as Readings;
+use stiffid::metrology::calibration::gravity::Gravity;
+use stiffid::metrology::calibration::Geometry;
 
 use crate::commands::common::{choice, Common};
 

@@ -60,7 +60,7 @@ pub struct Robot {
     masses: Option<[LinkMass; 6]>,
 }
 
-/// A link's mass and centre of mass (the gravity model of [`crate::calibration::gravity`]).
+/// A link's mass and centre of mass (the gravity model of [`crate::metrology::calibration::gravity`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LinkMass {
     /// Mass, kg.

@@ -1,12 +1,12 @@
 //! The document of the robot calibration job ([`crate::app::calibrate_robot`]): `stiffid
 //! calibrate --json`, Python's `calibrate(...)`.
 
+use super::{Held, Report};
 use crate::app::document::{finite, mm};
+use crate::app::Warning;
+use crate::common::choice::Choice;
 use crate::metrology::calibration::error_model::Target;
 use crate::metrology::calibration::validation::Validation;
-use crate::common::choice::Choice;
-use super::{Held, Report};
-use crate::app::Warning;
 use serde::Serialize;
 
 /// The robot calibration: every parameter with its value and standard deviation, what the

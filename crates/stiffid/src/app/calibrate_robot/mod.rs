@@ -15,12 +15,12 @@ use super::in_data;
 use super::readings::{read, Request as Readings};
 use super::{Warning, WarningKind};
 use crate::io::readings::Readings as Data;
-use crate::observation::frames::DisplacementFrame;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
 use crate::metrology::calibration::fit::{self, Fit, Options, Priors};
 use crate::metrology::calibration::gravity::{self, Gravity};
 use crate::metrology::calibration::validation::{self, Validation};
 use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
+use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
 
 pub use crate::io::readings::MAX_READINGS;

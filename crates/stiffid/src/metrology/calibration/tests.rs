@@ -274,7 +274,7 @@ fn fanuc_geometry_recovered_and_merged_named() {
 
 #[test]
 fn urdf_geometry_recovered() {
-    let text = include_str!("../../tests/data/comau-nj165.urdf");
+    let text = include_str!("../../../tests/data/comau-nj165.urdf");
     let robot = urdf::parse(text, "comau-nj165.urdf", None).unwrap();
     let model = ErrorModel::new(
         &robot,
@@ -319,7 +319,7 @@ fn gravity_lumped_recovered() {
 #[test]
 fn calibrated_robot_files_reproduce_positions() {
     let urdf_robot = urdf::parse(
-        include_str!("../../tests/data/comau-nj165.urdf"),
+        include_str!("../../../tests/data/comau-nj165.urdf"),
         "comau-nj165.urdf",
         None,
     )
