@@ -390,3 +390,68 @@ fn calibrated_robot_files_reproduce_positions() {
         }
     }
 }
+
+/// The standard deviations of the fit agree with a 500-run Monte Carlo of noisy readings
+/// (within 10%), for every identified joint offset and point coordinate.
+#[test]
+fn standard_deviations_match_monte_carlo() {
+    use rand_distr::{Distribution, Normal};
+    let robot = fanuc();
+    let model = ErrorModel::new(
+        &robot,
+        &points()[..2],
+        MeasuredIn::Tracker,
+        Geometry::Offsets,
+        gravity::Model::none(&robot),
+    )
+    .unwrap();
+    let truth = Estimate {
+        frame: tracker(),
+        values: model.nominal(),
+    };
+    let clean = readings(&model, &truth, &postures(&robot, 15, 21));
+    let options = Options {
+        length: 1.0,
+        priors: None,
+    };
+    let noise = Normal::new(0.0, 5e-5).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let runs = 500;
+    let n = model.parameters().len();
+    let (mut sum, mut sum2, mut sd_sum) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut fitted = Vec::new();
+    for _ in 0..runs {
+        let noisy: Vec<Observation> = (clean.iter())
+            .map(|o| Observation {
+                measured: o.measured + Vector3::from_fn(|_, _| noise.sample(&mut rng)),
+                ..o.clone()
+            })
+            .collect();
+        let start = fit::start(&model, &noisy).unwrap();
+        let f = fit::fit(&model, &noisy, &start, &options).unwrap();
+        fitted = f.fitted.clone();
+        for &c in &f.fitted {
+            let v = f.estimate.values[c];
+            sum[c] += v;
+            sum2[c] += v * v;
+            sd_sum[c] += f.sd[c].unwrap();
+        }
+    }
+    let mut checked = 0;
+    for &c in &fitted {
+        if matches!(model.parameters()[c].target, Target::Frame(_)) {
+            continue;
+        }
+        let mean = sum[c] / runs as f64;
+        let empirical =
+            ((sum2[c] / runs as f64 - mean * mean) * runs as f64 / (runs - 1) as f64).sqrt();
+        let predicted = sd_sum[c] / runs as f64;
+        assert!(
+            (empirical / predicted - 1.0).abs() < 0.1,
+            "{}: Monte Carlo {empirical:e}, fit {predicted:e}",
+            model.parameters()[c].name
+        );
+        checked += 1;
+    }
+    assert!(checked >= 6 + 4, "{checked}");
+}
