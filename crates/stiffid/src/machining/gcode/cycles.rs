@@ -180,7 +180,11 @@ pub(super) fn block(
     go(at_xy(retract), Motion::Rapid, &mut moves);
     let mut reached = retract;
     let bottom_index = loop {
-        let next = peck.map_or(depth, |q| (reached - q).max(depth));
+        // A peck too small to change the level in floating point goes to the bottom.
+        let next = peck
+            .map(|q| (reached - q).max(depth))
+            .filter(|n| *n < reached)
+            .unwrap_or(depth);
         if reached < retract {
             go(at_xy(retract), Motion::Rapid, &mut moves);
             go(
