@@ -1,10 +1,12 @@
 //! Experiment design: which postures to measure in (step 1 of the experiment).
 //!
-//! [`criteria`] scores a group of postures, [`Evaluator`] scores it fast for the search,
+//! [`criteria`] scores a group of postures (for the stiffness identification; [`calibration`] for
+//! the geometric and elastostatic calibration), [`Evaluator`] scores it fast for the search,
 //! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
 //! chooses them from a list of candidate postures, and [`target`] finds how many postures reach a
 //! predicted accuracy.
 
+pub mod calibration;
 pub mod criteria;
 mod evaluator;
 pub(crate) mod exchange;

@@ -1,0 +1,134 @@
+use super::*;
+use crate::metrology::calibration::error_model::MeasuredIn;
+use crate::metrology::calibration::{fit, gravity, validation, Estimate, Geometry};
+use crate::robot::presets;
+use crate::study::calibration as study;
+use crate::Robot;
+use nalgebra::{Isometry3, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const LENGTH: f64 = 1.0;
+
+fn postures(robot: &Robot, n: usize, seed: u64) -> Vec<Vector6<f64>> {
+    study::postures(robot, n, &mut ChaCha8Rng::seed_from_u64(seed))
+}
+
+fn design(noise: f64) -> (Robot, CalibrationDesign) {
+    let robot = presets::get("fanuc-r2000ic-165f").unwrap();
+    let points = [
+        Vector3::new(0.15, 0.0, 0.25),
+        Vector3::new(-0.1, 0.12, 0.3),
+        Vector3::new(0.0, -0.14, 0.2),
+    ];
+    let g = gravity::Model::lumped(&robot, crate::Coordinates::Axis);
+    let model = ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full, g).unwrap();
+    let reference = postures(&robot, 60, 1);
+    let test = postures(&robot, 20, 2);
+    let d = CalibrationDesign::new(model, LENGTH, &reference, &test, noise).unwrap();
+    (robot, d)
+}
+
+#[test]
+fn criteria_match_a_direct_svd() {
+    let (robot, d) = design(5e-5);
+    let group = postures(&robot, 14, 3);
+    let c = d.evaluate(&group).unwrap();
+    // Direct: the unscaled Jacobian, the kept columns scaled by hand.
+    let model = d.model();
+    let scales = model.column_scales(LENGTH, &postures(&robot, 60, 1));
+    let scaled = |qs: &[Vector6<f64>]| {
+        let at: Vec<_> = (qs.iter())
+            .flat_map(|q| (0..3).map(move |k| (*q, k)))
+            .collect();
+        let j = model.jacobian(&model.nominal(), &at).unwrap();
+        DMatrix::from_fn(j.nrows(), d.kept().len(), |r, c| {
+            j[(r, d.kept()[c])] * scales[d.kept()[c]]
+        })
+    };
+    let j = scaled(&group);
+    let s = j.clone().svd(false, false).singular_values;
+    let p = s.len();
+    assert_eq!(c.parameters, p);
+    assert!(p > 30, "kept {p}");
+    let product: f64 = s.iter().map(|v| v.ln()).sum::<f64>();
+    let close = |a: f64, b: f64| assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} against {b}");
+    close(c.o1, (product / p as f64).exp() / (14f64).sqrt());
+    close(c.o3, s.min());
+    close(c.o4, s.min() * s.min() / s.max());
+    close(c.o5, 1.0 / s.iter().map(|v| 1.0 / v).sum::<f64>());
+    // D-optimality against the determinant of the information matrix (LU, a test only).
+    let information = j.transpose() * &j;
+    close(
+        c.d_optimality.ln() * p as f64,
+        information.determinant().ln(),
+    );
+    // The test-pose error against the pseudo-inverse.
+    let a0 = scaled(&postures(&robot, 20, 2));
+    let pinv = j.clone().pseudo_inverse(1e-14).unwrap();
+    let direct = 5e-5 * ((&a0 * pinv).norm_squared() / 60.0).sqrt();
+    assert!((c.predicted_rms - direct).abs() <= 1e-7 * direct);
+}
+
+#[test]
+fn a_group_that_cannot_separate_the_parameters_scores_worst() {
+    let (robot, d) = design(5e-5);
+    let c = d.evaluate(&postures(&robot, 3, 4)).unwrap();
+    assert_eq!((c.o3, c.o4, c.o5), (0.0, 0.0, 0.0));
+    assert!(c.predicted_rms.is_infinite());
+    assert!(d.evaluate(&[]).is_err());
+    assert!(
+        CalibrationDesign::new(d.model().clone(), 0.0, &[Vector6::zeros()], &[], 1e-5).is_err()
+    );
+}
+
+/// The predicted RMS error at the test postures within 10% of a Monte Carlo of calibrations:
+/// noisy readings of a robot with known errors, fitted by Levenberg-Marquardt, the calibrated
+/// model's error at the test postures against the true positions.
+#[test]
+fn predicted_error_matches_a_monte_carlo_of_calibrations() {
+    let noise = 5e-5;
+    let (robot, d) = design(noise);
+    let model = d.model();
+    let group = postures(&robot, 12, 5);
+    let test = postures(&robot, 20, 2);
+    let predicted = d.evaluate(&group).unwrap().predicted_rms;
+    let mut rng = ChaCha8Rng::seed_from_u64(6);
+    let mut truth = model.nominal();
+    for &c in d.kept().iter().filter(|&&c| c >= 6) {
+        let p = &model.parameters()[c];
+        let at = d.kept().iter().position(|&k| k == c).unwrap();
+        let size = match p.kind {
+            crate::metrology::calibration::Kind::Gravity => 1e-4 * d.scales[at],
+            _ => 1e-3,
+        };
+        truth[c] += size * (2.0 * rng.random::<f64>() - 1.0);
+    }
+    let frame = Isometry3::new(Vector3::new(3.2, -1.1, 0.4), Vector3::new(0.1, -0.05, 2.4));
+    let truth = Estimate {
+        frame,
+        values: truth,
+    };
+    let held_out = study::read(model, &truth, &test, 0.0, &mut rng).unwrap();
+    let options = fit::Options {
+        length: LENGTH,
+        priors: None,
+    };
+    let runs = 100;
+    let mut squares = 0.0;
+    for _ in 0..runs {
+        let readings = study::read(model, &truth, &group, noise, &mut rng).unwrap();
+        let start = fit::start(model, &readings).unwrap();
+        let f = fit::fit(model, &readings, &start, &options).unwrap();
+        // The same rank (a family of lumped terms may keep another member: the same span).
+        assert_eq!(f.identifiability.rank, d.kept().len());
+        let v = validation::validate(model, &f.estimate, &held_out).unwrap();
+        squares += v.rms * v.rms;
+    }
+    let monte_carlo = (squares / runs as f64).sqrt();
+    let ratio = predicted / monte_carlo;
+    assert!(
+        (0.9..1.1).contains(&ratio),
+        "{predicted} against {monte_carlo}"
+    );
+}
