@@ -1,2612 +1,2614 @@
 /PROG  POCKET
 /ATTR
-COMMENT		= "stiffid compensated";
+COMMENT		= "stiffid";
 DEFAULT_GROUP	= 1,*,*,*,*;
 /MN
-   1:  ! rapid moves J at 20%: check for the cell ;
-   2:J P[1] 20% CNT100 ;
-   3:L P[2] 5mm/sec CNT100 ;
-   4:L P[3] 30mm/sec CNT100 ;
-   5:L P[4] 30mm/sec CNT100 ;
-   6:L P[5] 30mm/sec CNT100 ;
-   7:L P[6] 30mm/sec CNT100 ;
-   8:L P[7] 30mm/sec CNT100 ;
-   9:L P[8] 30mm/sec CNT100 ;
-  10:L P[9] 30mm/sec CNT100 ;
-  11:L P[10] 30mm/sec CNT100 ;
-  12:L P[11] 30mm/sec CNT100 ;
-  13:L P[12] 30mm/sec CNT100 ;
-  14:L P[13] 30mm/sec CNT100 ;
-  15:L P[14] 30mm/sec CNT100 ;
-  16:L P[15] 30mm/sec CNT100 ;
-  17:L P[16] 30mm/sec CNT100 ;
-  18:L P[17] 30mm/sec CNT100 ;
-  19:L P[18] 30mm/sec CNT100 ;
-  20:L P[19] 30mm/sec CNT100 ;
-  21:L P[20] 30mm/sec CNT100 ;
-  22:L P[21] 30mm/sec CNT100 ;
-  23:L P[22] 30mm/sec CNT100 ;
-  24:L P[23] 30mm/sec CNT100 ;
-  25:L P[24] 30mm/sec CNT100 ;
-  26:L P[25] 30mm/sec CNT100 ;
-  27:L P[26] 30mm/sec CNT100 ;
-  28:L P[27] 30mm/sec CNT100 ;
-  29:L P[28] 30mm/sec CNT100 ;
-  30:L P[29] 30mm/sec CNT100 ;
-  31:L P[30] 30mm/sec CNT100 ;
-  32:L P[31] 30mm/sec CNT100 ;
-  33:L P[32] 30mm/sec CNT100 ;
-  34:L P[33] 30mm/sec CNT100 ;
-  35:L P[34] 30mm/sec CNT100 ;
-  36:L P[35] 30mm/sec CNT100 ;
-  37:L P[36] 30mm/sec CNT100 ;
-  38:L P[37] 30mm/sec CNT100 ;
-  39:L P[38] 30mm/sec CNT100 ;
-  40:L P[39] 30mm/sec CNT100 ;
-  41:L P[40] 30mm/sec CNT100 ;
-  42:L P[41] 30mm/sec CNT100 ;
-  43:L P[42] 30mm/sec CNT100 ;
-  44:L P[43] 30mm/sec CNT100 ;
-  45:L P[44] 30mm/sec CNT100 ;
-  46:L P[45] 30mm/sec CNT100 ;
-  47:L P[46] 30mm/sec CNT100 ;
-  48:L P[47] 30mm/sec CNT100 ;
-  49:L P[48] 30mm/sec CNT100 ;
-  50:L P[49] 30mm/sec CNT100 ;
-  51:L P[50] 30mm/sec CNT100 ;
-  52:L P[51] 30mm/sec CNT100 ;
-  53:L P[52] 30mm/sec CNT100 ;
-  54:L P[53] 30mm/sec CNT100 ;
-  55:L P[54] 30mm/sec CNT100 ;
-  56:L P[55] 30mm/sec CNT100 ;
-  57:L P[56] 30mm/sec CNT100 ;
-  58:L P[57] 30mm/sec CNT100 ;
-  59:L P[58] 30mm/sec CNT100 ;
-  60:L P[59] 30mm/sec CNT100 ;
-  61:L P[60] 30mm/sec CNT100 ;
-  62:L P[61] 30mm/sec CNT100 ;
-  63:L P[62] 30mm/sec CNT100 ;
-  64:L P[63] 30mm/sec CNT100 ;
-  65:L P[64] 30mm/sec CNT100 ;
-  66:L P[65] 30mm/sec CNT100 ;
-  67:L P[66] 30mm/sec CNT100 ;
-  68:L P[67] 30mm/sec CNT100 ;
-  69:L P[68] 30mm/sec CNT100 ;
-  70:L P[69] 30mm/sec CNT100 ;
-  71:L P[70] 30mm/sec CNT100 ;
-  72:L P[71] 30mm/sec CNT100 ;
-  73:L P[72] 30mm/sec CNT100 ;
-  74:L P[73] 30mm/sec CNT100 ;
-  75:L P[74] 30mm/sec CNT100 ;
-  76:L P[75] 30mm/sec CNT100 ;
-  77:L P[76] 30mm/sec CNT100 ;
-  78:L P[77] 30mm/sec CNT100 ;
-  79:L P[78] 30mm/sec CNT100 ;
-  80:L P[79] 30mm/sec CNT100 ;
-  81:L P[80] 30mm/sec CNT100 ;
-  82:L P[81] 30mm/sec CNT100 ;
-  83:L P[82] 30mm/sec CNT100 ;
-  84:L P[83] 30mm/sec CNT100 ;
-  85:L P[84] 30mm/sec CNT100 ;
-  86:L P[85] 30mm/sec CNT100 ;
-  87:L P[86] 30mm/sec CNT100 ;
-  88:L P[87] 30mm/sec CNT100 ;
-  89:L P[88] 30mm/sec CNT100 ;
-  90:L P[89] 30mm/sec CNT100 ;
-  91:L P[90] 30mm/sec CNT100 ;
-  92:L P[91] 30mm/sec CNT100 ;
-  93:L P[92] 30mm/sec CNT100 ;
-  94:L P[93] 30mm/sec CNT100 ;
-  95:L P[94] 30mm/sec CNT100 ;
-  96:L P[95] 30mm/sec CNT100 ;
-  97:L P[96] 30mm/sec CNT100 ;
-  98:L P[97] 30mm/sec CNT100 ;
-  99:L P[98] 30mm/sec CNT100 ;
- 100:L P[99] 30mm/sec CNT100 ;
- 101:L P[100] 30mm/sec CNT100 ;
- 102:L P[101] 30mm/sec CNT100 ;
- 103:L P[102] 30mm/sec CNT100 ;
- 104:L P[103] 30mm/sec CNT100 ;
- 105:L P[104] 30mm/sec CNT100 ;
- 106:L P[105] 30mm/sec CNT100 ;
- 107:L P[106] 30mm/sec CNT100 ;
- 108:L P[107] 30mm/sec CNT100 ;
- 109:L P[108] 30mm/sec CNT100 ;
- 110:L P[109] 30mm/sec CNT100 ;
- 111:L P[110] 30mm/sec CNT100 ;
- 112:L P[111] 30mm/sec CNT100 ;
- 113:L P[112] 30mm/sec CNT100 ;
- 114:L P[113] 30mm/sec CNT100 ;
- 115:L P[114] 30mm/sec CNT100 ;
- 116:L P[115] 30mm/sec CNT100 ;
- 117:L P[116] 30mm/sec CNT100 ;
- 118:L P[117] 30mm/sec CNT100 ;
- 119:L P[118] 30mm/sec CNT100 ;
- 120:L P[119] 30mm/sec CNT100 ;
- 121:L P[120] 30mm/sec CNT100 ;
- 122:L P[121] 30mm/sec CNT100 ;
- 123:L P[122] 30mm/sec CNT100 ;
- 124:L P[123] 30mm/sec CNT100 ;
- 125:L P[124] 30mm/sec CNT100 ;
- 126:L P[125] 30mm/sec CNT100 ;
- 127:L P[126] 30mm/sec CNT100 ;
- 128:L P[127] 30mm/sec CNT100 ;
- 129:L P[128] 30mm/sec CNT100 ;
- 130:L P[129] 30mm/sec CNT100 ;
- 131:L P[130] 30mm/sec CNT100 ;
- 132:L P[131] 30mm/sec CNT100 ;
- 133:L P[132] 30mm/sec CNT100 ;
- 134:L P[133] 30mm/sec CNT100 ;
- 135:L P[134] 30mm/sec CNT100 ;
- 136:L P[135] 30mm/sec CNT100 ;
- 137:L P[136] 30mm/sec CNT100 ;
- 138:L P[137] 30mm/sec CNT100 ;
- 139:L P[138] 30mm/sec CNT100 ;
- 140:L P[139] 30mm/sec CNT100 ;
- 141:L P[140] 30mm/sec CNT100 ;
- 142:L P[141] 30mm/sec CNT100 ;
- 143:L P[142] 30mm/sec CNT100 ;
- 144:L P[143] 30mm/sec CNT100 ;
- 145:L P[144] 30mm/sec CNT100 ;
- 146:L P[145] 30mm/sec CNT100 ;
- 147:L P[146] 30mm/sec CNT100 ;
- 148:L P[147] 30mm/sec CNT100 ;
- 149:L P[148] 30mm/sec CNT100 ;
- 150:L P[149] 30mm/sec CNT100 ;
- 151:L P[150] 30mm/sec CNT100 ;
- 152:L P[151] 30mm/sec CNT100 ;
- 153:L P[152] 30mm/sec CNT100 ;
- 154:L P[153] 30mm/sec CNT100 ;
- 155:L P[154] 30mm/sec CNT100 ;
- 156:L P[155] 30mm/sec CNT100 ;
- 157:L P[156] 30mm/sec CNT100 ;
- 158:L P[157] 30mm/sec CNT100 ;
- 159:L P[158] 30mm/sec CNT100 ;
- 160:L P[159] 30mm/sec CNT100 ;
- 161:L P[160] 30mm/sec CNT100 ;
- 162:L P[161] 30mm/sec CNT100 ;
- 163:L P[162] 30mm/sec CNT100 ;
- 164:L P[163] 30mm/sec CNT100 ;
- 165:L P[164] 30mm/sec CNT100 ;
- 166:L P[165] 30mm/sec CNT100 ;
- 167:L P[166] 30mm/sec CNT100 ;
- 168:L P[167] 30mm/sec CNT100 ;
- 169:L P[168] 30mm/sec CNT100 ;
- 170:L P[169] 30mm/sec CNT100 ;
- 171:L P[170] 30mm/sec CNT100 ;
- 172:L P[171] 30mm/sec CNT100 ;
- 173:L P[172] 30mm/sec CNT100 ;
- 174:L P[173] 30mm/sec CNT100 ;
- 175:L P[174] 30mm/sec CNT100 ;
- 176:L P[175] 30mm/sec CNT100 ;
- 177:L P[176] 30mm/sec CNT100 ;
- 178:L P[177] 30mm/sec CNT100 ;
- 179:L P[178] 30mm/sec CNT100 ;
- 180:L P[179] 30mm/sec CNT100 ;
- 181:L P[180] 30mm/sec CNT100 ;
- 182:L P[181] 30mm/sec CNT100 ;
- 183:L P[182] 30mm/sec CNT100 ;
- 184:L P[183] 30mm/sec CNT100 ;
- 185:L P[184] 30mm/sec CNT100 ;
- 186:L P[185] 30mm/sec CNT100 ;
- 187:L P[186] 30mm/sec CNT100 ;
- 188:L P[187] 5mm/sec CNT100 ;
- 189:L P[188] 30mm/sec CNT100 ;
- 190:L P[189] 30mm/sec CNT100 ;
- 191:L P[190] 30mm/sec CNT100 ;
- 192:L P[191] 30mm/sec CNT100 ;
- 193:L P[192] 30mm/sec CNT100 ;
- 194:L P[193] 30mm/sec CNT100 ;
- 195:L P[194] 30mm/sec CNT100 ;
- 196:L P[195] 30mm/sec CNT100 ;
- 197:L P[196] 30mm/sec CNT100 ;
- 198:L P[197] 30mm/sec CNT100 ;
- 199:L P[198] 30mm/sec CNT100 ;
- 200:L P[199] 30mm/sec CNT100 ;
- 201:L P[200] 30mm/sec CNT100 ;
- 202:L P[201] 30mm/sec CNT100 ;
- 203:L P[202] 30mm/sec CNT100 ;
- 204:L P[203] 30mm/sec CNT100 ;
- 205:L P[204] 30mm/sec CNT100 ;
- 206:L P[205] 30mm/sec CNT100 ;
- 207:L P[206] 30mm/sec CNT100 ;
- 208:L P[207] 30mm/sec CNT100 ;
- 209:L P[208] 30mm/sec CNT100 ;
- 210:L P[209] 30mm/sec CNT100 ;
- 211:L P[210] 30mm/sec CNT100 ;
- 212:L P[211] 30mm/sec CNT100 ;
- 213:L P[212] 30mm/sec CNT100 ;
- 214:L P[213] 30mm/sec CNT100 ;
- 215:L P[214] 30mm/sec CNT100 ;
- 216:L P[215] 30mm/sec CNT100 ;
- 217:L P[216] 30mm/sec CNT100 ;
- 218:L P[217] 30mm/sec CNT100 ;
- 219:L P[218] 30mm/sec CNT100 ;
- 220:L P[219] 30mm/sec CNT100 ;
- 221:L P[220] 30mm/sec CNT100 ;
- 222:L P[221] 30mm/sec CNT100 ;
- 223:L P[222] 30mm/sec CNT100 ;
- 224:L P[223] 30mm/sec CNT100 ;
- 225:L P[224] 30mm/sec CNT100 ;
- 226:L P[225] 30mm/sec CNT100 ;
- 227:L P[226] 30mm/sec CNT100 ;
- 228:L P[227] 30mm/sec CNT100 ;
- 229:L P[228] 30mm/sec CNT100 ;
- 230:L P[229] 30mm/sec CNT100 ;
- 231:L P[230] 30mm/sec CNT100 ;
- 232:L P[231] 30mm/sec CNT100 ;
- 233:L P[232] 30mm/sec CNT100 ;
- 234:L P[233] 30mm/sec CNT100 ;
- 235:L P[234] 30mm/sec CNT100 ;
- 236:L P[235] 30mm/sec CNT100 ;
- 237:L P[236] 30mm/sec CNT100 ;
- 238:L P[237] 30mm/sec CNT100 ;
- 239:L P[238] 30mm/sec CNT100 ;
- 240:L P[239] 30mm/sec CNT100 ;
- 241:L P[240] 30mm/sec CNT100 ;
- 242:L P[241] 30mm/sec CNT100 ;
- 243:L P[242] 30mm/sec CNT100 ;
- 244:L P[243] 30mm/sec CNT100 ;
- 245:L P[244] 30mm/sec CNT100 ;
- 246:L P[245] 30mm/sec CNT100 ;
- 247:L P[246] 30mm/sec CNT100 ;
- 248:L P[247] 30mm/sec CNT100 ;
- 249:L P[248] 30mm/sec CNT100 ;
- 250:L P[249] 30mm/sec CNT100 ;
- 251:L P[250] 30mm/sec CNT100 ;
- 252:L P[251] 30mm/sec CNT100 ;
- 253:L P[252] 30mm/sec CNT100 ;
- 254:L P[253] 30mm/sec CNT100 ;
- 255:L P[254] 30mm/sec CNT100 ;
- 256:L P[255] 30mm/sec CNT100 ;
- 257:L P[256] 30mm/sec CNT100 ;
- 258:L P[257] 30mm/sec CNT100 ;
- 259:L P[258] 30mm/sec CNT100 ;
- 260:L P[259] 30mm/sec CNT100 ;
- 261:L P[260] 30mm/sec CNT100 ;
- 262:L P[261] 30mm/sec CNT100 ;
- 263:L P[262] 30mm/sec CNT100 ;
- 264:L P[263] 30mm/sec CNT100 ;
- 265:L P[264] 30mm/sec CNT100 ;
- 266:L P[265] 30mm/sec CNT100 ;
- 267:L P[266] 30mm/sec CNT100 ;
- 268:L P[267] 30mm/sec CNT100 ;
- 269:L P[268] 30mm/sec CNT100 ;
- 270:L P[269] 30mm/sec CNT100 ;
- 271:L P[270] 30mm/sec CNT100 ;
- 272:L P[271] 30mm/sec CNT100 ;
- 273:L P[272] 30mm/sec CNT100 ;
- 274:L P[273] 30mm/sec CNT100 ;
- 275:L P[274] 30mm/sec CNT100 ;
- 276:L P[275] 30mm/sec CNT100 ;
- 277:L P[276] 30mm/sec CNT100 ;
- 278:L P[277] 30mm/sec CNT100 ;
- 279:L P[278] 30mm/sec CNT100 ;
- 280:L P[279] 30mm/sec CNT100 ;
- 281:L P[280] 30mm/sec CNT100 ;
- 282:L P[281] 30mm/sec CNT100 ;
- 283:L P[282] 30mm/sec CNT100 ;
- 284:L P[283] 30mm/sec CNT100 ;
- 285:L P[284] 30mm/sec CNT100 ;
- 286:L P[285] 30mm/sec CNT100 ;
- 287:L P[286] 30mm/sec CNT100 ;
- 288:L P[287] 30mm/sec CNT100 ;
- 289:L P[288] 30mm/sec CNT100 ;
- 290:L P[289] 30mm/sec CNT100 ;
- 291:L P[290] 30mm/sec CNT100 ;
- 292:L P[291] 30mm/sec CNT100 ;
- 293:L P[292] 30mm/sec CNT100 ;
- 294:L P[293] 30mm/sec CNT100 ;
- 295:L P[294] 30mm/sec CNT100 ;
- 296:L P[295] 30mm/sec CNT100 ;
- 297:L P[296] 30mm/sec CNT100 ;
- 298:L P[297] 30mm/sec CNT100 ;
- 299:L P[298] 30mm/sec CNT100 ;
- 300:L P[299] 30mm/sec CNT100 ;
- 301:L P[300] 30mm/sec CNT100 ;
- 302:L P[301] 30mm/sec CNT100 ;
- 303:L P[302] 30mm/sec CNT100 ;
- 304:L P[303] 30mm/sec CNT100 ;
- 305:L P[304] 30mm/sec CNT100 ;
- 306:L P[305] 30mm/sec CNT100 ;
- 307:L P[306] 30mm/sec CNT100 ;
- 308:L P[307] 30mm/sec CNT100 ;
- 309:L P[308] 30mm/sec CNT100 ;
- 310:L P[309] 30mm/sec CNT100 ;
- 311:L P[310] 30mm/sec CNT100 ;
- 312:L P[311] 30mm/sec CNT100 ;
- 313:L P[312] 30mm/sec CNT100 ;
- 314:L P[313] 30mm/sec CNT100 ;
- 315:L P[314] 30mm/sec CNT100 ;
- 316:L P[315] 30mm/sec CNT100 ;
- 317:L P[316] 30mm/sec CNT100 ;
- 318:L P[317] 30mm/sec CNT100 ;
- 319:L P[318] 30mm/sec CNT100 ;
- 320:L P[319] 30mm/sec CNT100 ;
- 321:L P[320] 30mm/sec CNT100 ;
- 322:L P[321] 30mm/sec CNT100 ;
- 323:L P[322] 30mm/sec CNT100 ;
- 324:L P[323] 30mm/sec CNT100 ;
- 325:L P[324] 30mm/sec CNT100 ;
- 326:L P[325] 30mm/sec CNT100 ;
- 327:L P[326] 30mm/sec CNT100 ;
- 328:L P[327] 30mm/sec CNT100 ;
- 329:L P[328] 30mm/sec CNT100 ;
- 330:L P[329] 30mm/sec CNT100 ;
- 331:L P[330] 30mm/sec CNT100 ;
- 332:L P[331] 30mm/sec CNT100 ;
- 333:L P[332] 30mm/sec CNT100 ;
- 334:L P[333] 30mm/sec CNT100 ;
- 335:L P[334] 30mm/sec CNT100 ;
- 336:L P[335] 30mm/sec CNT100 ;
- 337:L P[336] 30mm/sec CNT100 ;
- 338:L P[337] 30mm/sec CNT100 ;
- 339:L P[338] 30mm/sec CNT100 ;
- 340:L P[339] 30mm/sec CNT100 ;
- 341:L P[340] 30mm/sec CNT100 ;
- 342:L P[341] 30mm/sec CNT100 ;
- 343:L P[342] 30mm/sec CNT100 ;
- 344:L P[343] 30mm/sec CNT100 ;
- 345:L P[344] 30mm/sec CNT100 ;
- 346:L P[345] 30mm/sec CNT100 ;
- 347:L P[346] 30mm/sec CNT100 ;
- 348:L P[347] 30mm/sec CNT100 ;
- 349:L P[348] 30mm/sec CNT100 ;
- 350:L P[349] 30mm/sec CNT100 ;
- 351:L P[350] 30mm/sec CNT100 ;
- 352:L P[351] 30mm/sec CNT100 ;
- 353:L P[352] 30mm/sec CNT100 ;
- 354:L P[353] 30mm/sec CNT100 ;
- 355:L P[354] 30mm/sec CNT100 ;
- 356:L P[355] 30mm/sec CNT100 ;
- 357:L P[356] 30mm/sec CNT100 ;
- 358:L P[357] 30mm/sec CNT100 ;
- 359:L P[358] 30mm/sec CNT100 ;
- 360:L P[359] 30mm/sec CNT100 ;
- 361:L P[360] 30mm/sec CNT100 ;
- 362:L P[361] 30mm/sec CNT100 ;
- 363:L P[362] 30mm/sec CNT100 ;
- 364:L P[363] 30mm/sec CNT100 ;
- 365:L P[364] 30mm/sec CNT100 ;
- 366:L P[365] 30mm/sec CNT100 ;
- 367:L P[366] 30mm/sec CNT100 ;
- 368:L P[367] 30mm/sec CNT100 ;
- 369:L P[368] 30mm/sec CNT100 ;
- 370:L P[369] 30mm/sec CNT100 ;
- 371:L P[370] 30mm/sec CNT100 ;
- 372:L P[371] 30mm/sec CNT100 ;
- 373:J P[372] 20% CNT100 ;
+   1:  ! set UTOOL[1] to the setup TCP ;
+   2:  UFRAME_NUM=0 ;
+   3:  UTOOL_NUM=1 ;
+   4:J P[1] 20% FINE ;
+   5:L P[2] 5mm/sec CNT100 ;
+   6:L P[3] 30mm/sec CNT100 ;
+   7:L P[4] 30mm/sec CNT100 ;
+   8:L P[5] 30mm/sec CNT100 ;
+   9:L P[6] 30mm/sec CNT100 ;
+  10:L P[7] 30mm/sec CNT100 ;
+  11:L P[8] 30mm/sec CNT100 ;
+  12:L P[9] 30mm/sec CNT100 ;
+  13:L P[10] 30mm/sec CNT100 ;
+  14:L P[11] 30mm/sec CNT100 ;
+  15:L P[12] 30mm/sec CNT100 ;
+  16:L P[13] 30mm/sec CNT100 ;
+  17:L P[14] 30mm/sec CNT100 ;
+  18:L P[15] 30mm/sec CNT100 ;
+  19:L P[16] 30mm/sec CNT100 ;
+  20:L P[17] 30mm/sec CNT100 ;
+  21:L P[18] 30mm/sec CNT100 ;
+  22:L P[19] 30mm/sec CNT100 ;
+  23:L P[20] 30mm/sec CNT100 ;
+  24:L P[21] 30mm/sec CNT100 ;
+  25:L P[22] 30mm/sec CNT100 ;
+  26:L P[23] 30mm/sec CNT100 ;
+  27:L P[24] 30mm/sec CNT100 ;
+  28:L P[25] 30mm/sec CNT100 ;
+  29:L P[26] 30mm/sec CNT100 ;
+  30:L P[27] 30mm/sec CNT100 ;
+  31:L P[28] 30mm/sec CNT100 ;
+  32:L P[29] 30mm/sec CNT100 ;
+  33:L P[30] 30mm/sec CNT100 ;
+  34:L P[31] 30mm/sec CNT100 ;
+  35:L P[32] 30mm/sec CNT100 ;
+  36:L P[33] 30mm/sec CNT100 ;
+  37:L P[34] 30mm/sec CNT100 ;
+  38:L P[35] 30mm/sec CNT100 ;
+  39:L P[36] 30mm/sec CNT100 ;
+  40:L P[37] 30mm/sec CNT100 ;
+  41:L P[38] 30mm/sec CNT100 ;
+  42:L P[39] 30mm/sec CNT100 ;
+  43:L P[40] 30mm/sec CNT100 ;
+  44:L P[41] 30mm/sec CNT100 ;
+  45:L P[42] 30mm/sec CNT100 ;
+  46:L P[43] 30mm/sec CNT100 ;
+  47:L P[44] 30mm/sec CNT100 ;
+  48:L P[45] 30mm/sec CNT100 ;
+  49:L P[46] 30mm/sec CNT100 ;
+  50:L P[47] 30mm/sec CNT100 ;
+  51:L P[48] 30mm/sec CNT100 ;
+  52:L P[49] 30mm/sec CNT100 ;
+  53:L P[50] 30mm/sec CNT100 ;
+  54:L P[51] 30mm/sec CNT100 ;
+  55:L P[52] 30mm/sec CNT100 ;
+  56:L P[53] 30mm/sec CNT100 ;
+  57:L P[54] 30mm/sec CNT100 ;
+  58:L P[55] 30mm/sec CNT100 ;
+  59:L P[56] 30mm/sec CNT100 ;
+  60:L P[57] 30mm/sec CNT100 ;
+  61:L P[58] 30mm/sec CNT100 ;
+  62:L P[59] 30mm/sec CNT100 ;
+  63:L P[60] 30mm/sec CNT100 ;
+  64:L P[61] 30mm/sec CNT100 ;
+  65:L P[62] 30mm/sec CNT100 ;
+  66:L P[63] 30mm/sec CNT100 ;
+  67:L P[64] 30mm/sec CNT100 ;
+  68:L P[65] 30mm/sec CNT100 ;
+  69:L P[66] 30mm/sec CNT100 ;
+  70:L P[67] 30mm/sec CNT100 ;
+  71:L P[68] 30mm/sec CNT100 ;
+  72:L P[69] 30mm/sec CNT100 ;
+  73:L P[70] 30mm/sec CNT100 ;
+  74:L P[71] 30mm/sec CNT100 ;
+  75:L P[72] 30mm/sec CNT100 ;
+  76:L P[73] 30mm/sec CNT100 ;
+  77:L P[74] 30mm/sec CNT100 ;
+  78:L P[75] 30mm/sec CNT100 ;
+  79:L P[76] 30mm/sec CNT100 ;
+  80:L P[77] 30mm/sec CNT100 ;
+  81:L P[78] 30mm/sec CNT100 ;
+  82:L P[79] 30mm/sec CNT100 ;
+  83:L P[80] 30mm/sec CNT100 ;
+  84:L P[81] 30mm/sec CNT100 ;
+  85:L P[82] 30mm/sec CNT100 ;
+  86:L P[83] 30mm/sec CNT100 ;
+  87:L P[84] 30mm/sec CNT100 ;
+  88:L P[85] 30mm/sec CNT100 ;
+  89:L P[86] 30mm/sec CNT100 ;
+  90:L P[87] 30mm/sec CNT100 ;
+  91:L P[88] 30mm/sec CNT100 ;
+  92:L P[89] 30mm/sec CNT100 ;
+  93:L P[90] 30mm/sec CNT100 ;
+  94:L P[91] 30mm/sec CNT100 ;
+  95:L P[92] 30mm/sec CNT100 ;
+  96:L P[93] 30mm/sec CNT100 ;
+  97:L P[94] 30mm/sec CNT100 ;
+  98:L P[95] 30mm/sec CNT100 ;
+  99:L P[96] 30mm/sec CNT100 ;
+ 100:L P[97] 30mm/sec CNT100 ;
+ 101:L P[98] 30mm/sec CNT100 ;
+ 102:L P[99] 30mm/sec CNT100 ;
+ 103:L P[100] 30mm/sec CNT100 ;
+ 104:L P[101] 30mm/sec CNT100 ;
+ 105:L P[102] 30mm/sec CNT100 ;
+ 106:L P[103] 30mm/sec CNT100 ;
+ 107:L P[104] 30mm/sec CNT100 ;
+ 108:L P[105] 30mm/sec CNT100 ;
+ 109:L P[106] 30mm/sec CNT100 ;
+ 110:L P[107] 30mm/sec CNT100 ;
+ 111:L P[108] 30mm/sec CNT100 ;
+ 112:L P[109] 30mm/sec CNT100 ;
+ 113:L P[110] 30mm/sec CNT100 ;
+ 114:L P[111] 30mm/sec CNT100 ;
+ 115:L P[112] 30mm/sec CNT100 ;
+ 116:L P[113] 30mm/sec CNT100 ;
+ 117:L P[114] 30mm/sec CNT100 ;
+ 118:L P[115] 30mm/sec CNT100 ;
+ 119:L P[116] 30mm/sec CNT100 ;
+ 120:L P[117] 30mm/sec CNT100 ;
+ 121:L P[118] 30mm/sec CNT100 ;
+ 122:L P[119] 30mm/sec CNT100 ;
+ 123:L P[120] 30mm/sec CNT100 ;
+ 124:L P[121] 30mm/sec CNT100 ;
+ 125:L P[122] 30mm/sec CNT100 ;
+ 126:L P[123] 30mm/sec CNT100 ;
+ 127:L P[124] 30mm/sec CNT100 ;
+ 128:L P[125] 30mm/sec CNT100 ;
+ 129:L P[126] 30mm/sec CNT100 ;
+ 130:L P[127] 30mm/sec CNT100 ;
+ 131:L P[128] 30mm/sec CNT100 ;
+ 132:L P[129] 30mm/sec CNT100 ;
+ 133:L P[130] 30mm/sec CNT100 ;
+ 134:L P[131] 30mm/sec CNT100 ;
+ 135:L P[132] 30mm/sec CNT100 ;
+ 136:L P[133] 30mm/sec CNT100 ;
+ 137:L P[134] 30mm/sec CNT100 ;
+ 138:L P[135] 30mm/sec CNT100 ;
+ 139:L P[136] 30mm/sec CNT100 ;
+ 140:L P[137] 30mm/sec CNT100 ;
+ 141:L P[138] 30mm/sec CNT100 ;
+ 142:L P[139] 30mm/sec CNT100 ;
+ 143:L P[140] 30mm/sec CNT100 ;
+ 144:L P[141] 30mm/sec CNT100 ;
+ 145:L P[142] 30mm/sec CNT100 ;
+ 146:L P[143] 30mm/sec CNT100 ;
+ 147:L P[144] 30mm/sec CNT100 ;
+ 148:L P[145] 30mm/sec CNT100 ;
+ 149:L P[146] 30mm/sec CNT100 ;
+ 150:L P[147] 30mm/sec CNT100 ;
+ 151:L P[148] 30mm/sec CNT100 ;
+ 152:L P[149] 30mm/sec CNT100 ;
+ 153:L P[150] 30mm/sec CNT100 ;
+ 154:L P[151] 30mm/sec CNT100 ;
+ 155:L P[152] 30mm/sec CNT100 ;
+ 156:L P[153] 30mm/sec CNT100 ;
+ 157:L P[154] 30mm/sec CNT100 ;
+ 158:L P[155] 30mm/sec CNT100 ;
+ 159:L P[156] 30mm/sec CNT100 ;
+ 160:L P[157] 30mm/sec CNT100 ;
+ 161:L P[158] 30mm/sec CNT100 ;
+ 162:L P[159] 30mm/sec CNT100 ;
+ 163:L P[160] 30mm/sec CNT100 ;
+ 164:L P[161] 30mm/sec CNT100 ;
+ 165:L P[162] 30mm/sec CNT100 ;
+ 166:L P[163] 30mm/sec CNT100 ;
+ 167:L P[164] 30mm/sec CNT100 ;
+ 168:L P[165] 30mm/sec CNT100 ;
+ 169:L P[166] 30mm/sec CNT100 ;
+ 170:L P[167] 30mm/sec CNT100 ;
+ 171:L P[168] 30mm/sec CNT100 ;
+ 172:L P[169] 30mm/sec CNT100 ;
+ 173:L P[170] 30mm/sec CNT100 ;
+ 174:L P[171] 30mm/sec CNT100 ;
+ 175:L P[172] 30mm/sec CNT100 ;
+ 176:L P[173] 30mm/sec CNT100 ;
+ 177:L P[174] 30mm/sec CNT100 ;
+ 178:L P[175] 30mm/sec CNT100 ;
+ 179:L P[176] 30mm/sec CNT100 ;
+ 180:L P[177] 30mm/sec CNT100 ;
+ 181:L P[178] 30mm/sec CNT100 ;
+ 182:L P[179] 30mm/sec CNT100 ;
+ 183:L P[180] 30mm/sec CNT100 ;
+ 184:L P[181] 30mm/sec CNT100 ;
+ 185:L P[182] 30mm/sec CNT100 ;
+ 186:L P[183] 30mm/sec CNT100 ;
+ 187:L P[184] 30mm/sec CNT100 ;
+ 188:L P[185] 30mm/sec CNT100 ;
+ 189:L P[186] 30mm/sec CNT100 ;
+ 190:L P[187] 5mm/sec CNT100 ;
+ 191:L P[188] 30mm/sec CNT100 ;
+ 192:L P[189] 30mm/sec CNT100 ;
+ 193:L P[190] 30mm/sec CNT100 ;
+ 194:L P[191] 30mm/sec CNT100 ;
+ 195:L P[192] 30mm/sec CNT100 ;
+ 196:L P[193] 30mm/sec CNT100 ;
+ 197:L P[194] 30mm/sec CNT100 ;
+ 198:L P[195] 30mm/sec CNT100 ;
+ 199:L P[196] 30mm/sec CNT100 ;
+ 200:L P[197] 30mm/sec CNT100 ;
+ 201:L P[198] 30mm/sec CNT100 ;
+ 202:L P[199] 30mm/sec CNT100 ;
+ 203:L P[200] 30mm/sec CNT100 ;
+ 204:L P[201] 30mm/sec CNT100 ;
+ 205:L P[202] 30mm/sec CNT100 ;
+ 206:L P[203] 30mm/sec CNT100 ;
+ 207:L P[204] 30mm/sec CNT100 ;
+ 208:L P[205] 30mm/sec CNT100 ;
+ 209:L P[206] 30mm/sec CNT100 ;
+ 210:L P[207] 30mm/sec CNT100 ;
+ 211:L P[208] 30mm/sec CNT100 ;
+ 212:L P[209] 30mm/sec CNT100 ;
+ 213:L P[210] 30mm/sec CNT100 ;
+ 214:L P[211] 30mm/sec CNT100 ;
+ 215:L P[212] 30mm/sec CNT100 ;
+ 216:L P[213] 30mm/sec CNT100 ;
+ 217:L P[214] 30mm/sec CNT100 ;
+ 218:L P[215] 30mm/sec CNT100 ;
+ 219:L P[216] 30mm/sec CNT100 ;
+ 220:L P[217] 30mm/sec CNT100 ;
+ 221:L P[218] 30mm/sec CNT100 ;
+ 222:L P[219] 30mm/sec CNT100 ;
+ 223:L P[220] 30mm/sec CNT100 ;
+ 224:L P[221] 30mm/sec CNT100 ;
+ 225:L P[222] 30mm/sec CNT100 ;
+ 226:L P[223] 30mm/sec CNT100 ;
+ 227:L P[224] 30mm/sec CNT100 ;
+ 228:L P[225] 30mm/sec CNT100 ;
+ 229:L P[226] 30mm/sec CNT100 ;
+ 230:L P[227] 30mm/sec CNT100 ;
+ 231:L P[228] 30mm/sec CNT100 ;
+ 232:L P[229] 30mm/sec CNT100 ;
+ 233:L P[230] 30mm/sec CNT100 ;
+ 234:L P[231] 30mm/sec CNT100 ;
+ 235:L P[232] 30mm/sec CNT100 ;
+ 236:L P[233] 30mm/sec CNT100 ;
+ 237:L P[234] 30mm/sec CNT100 ;
+ 238:L P[235] 30mm/sec CNT100 ;
+ 239:L P[236] 30mm/sec CNT100 ;
+ 240:L P[237] 30mm/sec CNT100 ;
+ 241:L P[238] 30mm/sec CNT100 ;
+ 242:L P[239] 30mm/sec CNT100 ;
+ 243:L P[240] 30mm/sec CNT100 ;
+ 244:L P[241] 30mm/sec CNT100 ;
+ 245:L P[242] 30mm/sec CNT100 ;
+ 246:L P[243] 30mm/sec CNT100 ;
+ 247:L P[244] 30mm/sec CNT100 ;
+ 248:L P[245] 30mm/sec CNT100 ;
+ 249:L P[246] 30mm/sec CNT100 ;
+ 250:L P[247] 30mm/sec CNT100 ;
+ 251:L P[248] 30mm/sec CNT100 ;
+ 252:L P[249] 30mm/sec CNT100 ;
+ 253:L P[250] 30mm/sec CNT100 ;
+ 254:L P[251] 30mm/sec CNT100 ;
+ 255:L P[252] 30mm/sec CNT100 ;
+ 256:L P[253] 30mm/sec CNT100 ;
+ 257:L P[254] 30mm/sec CNT100 ;
+ 258:L P[255] 30mm/sec CNT100 ;
+ 259:L P[256] 30mm/sec CNT100 ;
+ 260:L P[257] 30mm/sec CNT100 ;
+ 261:L P[258] 30mm/sec CNT100 ;
+ 262:L P[259] 30mm/sec CNT100 ;
+ 263:L P[260] 30mm/sec CNT100 ;
+ 264:L P[261] 30mm/sec CNT100 ;
+ 265:L P[262] 30mm/sec CNT100 ;
+ 266:L P[263] 30mm/sec CNT100 ;
+ 267:L P[264] 30mm/sec CNT100 ;
+ 268:L P[265] 30mm/sec CNT100 ;
+ 269:L P[266] 30mm/sec CNT100 ;
+ 270:L P[267] 30mm/sec CNT100 ;
+ 271:L P[268] 30mm/sec CNT100 ;
+ 272:L P[269] 30mm/sec CNT100 ;
+ 273:L P[270] 30mm/sec CNT100 ;
+ 274:L P[271] 30mm/sec CNT100 ;
+ 275:L P[272] 30mm/sec CNT100 ;
+ 276:L P[273] 30mm/sec CNT100 ;
+ 277:L P[274] 30mm/sec CNT100 ;
+ 278:L P[275] 30mm/sec CNT100 ;
+ 279:L P[276] 30mm/sec CNT100 ;
+ 280:L P[277] 30mm/sec CNT100 ;
+ 281:L P[278] 30mm/sec CNT100 ;
+ 282:L P[279] 30mm/sec CNT100 ;
+ 283:L P[280] 30mm/sec CNT100 ;
+ 284:L P[281] 30mm/sec CNT100 ;
+ 285:L P[282] 30mm/sec CNT100 ;
+ 286:L P[283] 30mm/sec CNT100 ;
+ 287:L P[284] 30mm/sec CNT100 ;
+ 288:L P[285] 30mm/sec CNT100 ;
+ 289:L P[286] 30mm/sec CNT100 ;
+ 290:L P[287] 30mm/sec CNT100 ;
+ 291:L P[288] 30mm/sec CNT100 ;
+ 292:L P[289] 30mm/sec CNT100 ;
+ 293:L P[290] 30mm/sec CNT100 ;
+ 294:L P[291] 30mm/sec CNT100 ;
+ 295:L P[292] 30mm/sec CNT100 ;
+ 296:L P[293] 30mm/sec CNT100 ;
+ 297:L P[294] 30mm/sec CNT100 ;
+ 298:L P[295] 30mm/sec CNT100 ;
+ 299:L P[296] 30mm/sec CNT100 ;
+ 300:L P[297] 30mm/sec CNT100 ;
+ 301:L P[298] 30mm/sec CNT100 ;
+ 302:L P[299] 30mm/sec CNT100 ;
+ 303:L P[300] 30mm/sec CNT100 ;
+ 304:L P[301] 30mm/sec CNT100 ;
+ 305:L P[302] 30mm/sec CNT100 ;
+ 306:L P[303] 30mm/sec CNT100 ;
+ 307:L P[304] 30mm/sec CNT100 ;
+ 308:L P[305] 30mm/sec CNT100 ;
+ 309:L P[306] 30mm/sec CNT100 ;
+ 310:L P[307] 30mm/sec CNT100 ;
+ 311:L P[308] 30mm/sec CNT100 ;
+ 312:L P[309] 30mm/sec CNT100 ;
+ 313:L P[310] 30mm/sec CNT100 ;
+ 314:L P[311] 30mm/sec CNT100 ;
+ 315:L P[312] 30mm/sec CNT100 ;
+ 316:L P[313] 30mm/sec CNT100 ;
+ 317:L P[314] 30mm/sec CNT100 ;
+ 318:L P[315] 30mm/sec CNT100 ;
+ 319:L P[316] 30mm/sec CNT100 ;
+ 320:L P[317] 30mm/sec CNT100 ;
+ 321:L P[318] 30mm/sec CNT100 ;
+ 322:L P[319] 30mm/sec CNT100 ;
+ 323:L P[320] 30mm/sec CNT100 ;
+ 324:L P[321] 30mm/sec CNT100 ;
+ 325:L P[322] 30mm/sec CNT100 ;
+ 326:L P[323] 30mm/sec CNT100 ;
+ 327:L P[324] 30mm/sec CNT100 ;
+ 328:L P[325] 30mm/sec CNT100 ;
+ 329:L P[326] 30mm/sec CNT100 ;
+ 330:L P[327] 30mm/sec CNT100 ;
+ 331:L P[328] 30mm/sec CNT100 ;
+ 332:L P[329] 30mm/sec CNT100 ;
+ 333:L P[330] 30mm/sec CNT100 ;
+ 334:L P[331] 30mm/sec CNT100 ;
+ 335:L P[332] 30mm/sec CNT100 ;
+ 336:L P[333] 30mm/sec CNT100 ;
+ 337:L P[334] 30mm/sec CNT100 ;
+ 338:L P[335] 30mm/sec CNT100 ;
+ 339:L P[336] 30mm/sec CNT100 ;
+ 340:L P[337] 30mm/sec CNT100 ;
+ 341:L P[338] 30mm/sec CNT100 ;
+ 342:L P[339] 30mm/sec CNT100 ;
+ 343:L P[340] 30mm/sec CNT100 ;
+ 344:L P[341] 30mm/sec CNT100 ;
+ 345:L P[342] 30mm/sec CNT100 ;
+ 346:L P[343] 30mm/sec CNT100 ;
+ 347:L P[344] 30mm/sec CNT100 ;
+ 348:L P[345] 30mm/sec CNT100 ;
+ 349:L P[346] 30mm/sec CNT100 ;
+ 350:L P[347] 30mm/sec CNT100 ;
+ 351:L P[348] 30mm/sec CNT100 ;
+ 352:L P[349] 30mm/sec CNT100 ;
+ 353:L P[350] 30mm/sec CNT100 ;
+ 354:L P[351] 30mm/sec CNT100 ;
+ 355:L P[352] 30mm/sec CNT100 ;
+ 356:L P[353] 30mm/sec CNT100 ;
+ 357:L P[354] 30mm/sec CNT100 ;
+ 358:L P[355] 30mm/sec CNT100 ;
+ 359:L P[356] 30mm/sec CNT100 ;
+ 360:L P[357] 30mm/sec CNT100 ;
+ 361:L P[358] 30mm/sec CNT100 ;
+ 362:L P[359] 30mm/sec CNT100 ;
+ 363:L P[360] 30mm/sec CNT100 ;
+ 364:L P[361] 30mm/sec CNT100 ;
+ 365:L P[362] 30mm/sec CNT100 ;
+ 366:L P[363] 30mm/sec CNT100 ;
+ 367:L P[364] 30mm/sec CNT100 ;
+ 368:L P[365] 30mm/sec CNT100 ;
+ 369:L P[366] 30mm/sec CNT100 ;
+ 370:L P[367] 30mm/sec CNT100 ;
+ 371:L P[368] 30mm/sec CNT100 ;
+ 372:L P[369] 30mm/sec CNT100 ;
+ 373:L P[370] 30mm/sec CNT100 ;
+ 374:L P[371] 30mm/sec CNT100 ;
+ 375:J P[372] 20% FINE ;
 /POS
 P[1]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.217839174 deg,	J2= 3.911852226 deg,	J3= -48.141429767 deg,
-	J4= 0.000000000 deg,	J5= -41.858570233 deg,	J6= 23.217839173 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1299.999999993 mm,	Y = -799.999999993 mm,	Z = 404.999999966 mm,
+	W = 180.000000000 deg,	P = 0.000000000 deg,	R = 0.000000000 deg
 };
 P[2]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.217839174 deg,	J2= 4.272703142 deg,	J3= -48.620618521 deg,
-	J4= 0.000000000 deg,	J5= -41.379381479 deg,	J6= 23.217839174 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1300.000000000 mm,	Y = -800.000000000 mm,	Z = 396.000000000 mm,
+	W = -180.000000000 deg,	P = 0.000000000 deg,	R = 0.000000000 deg
 };
 P[3]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.081641322 deg,	J2= 4.736093127 deg,	J3= -48.582693534 deg,
-	J4= 0.013591884 deg,	J5= -41.415205420 deg,	J6= 23.053853151 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1309.692353863 mm,	Y = -800.620059663 mm,	Z = 396.027948226 mm,
+	W = 179.990904089 deg,	P = 0.001588543 deg,	R = -0.017595425 deg
 };
 P[4]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.924367443 deg,	J2= 5.196707274 deg,	J3= -48.540540536 deg,
-	J4= 0.013614519 deg,	J5= -41.457439315 deg,	J6= 22.896423019 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1319.689381064 mm,	Y = -800.627514769 mm,	Z = 396.027080191 mm,
+	W = 179.990910523 deg,	P = 0.001646818 deg,	R = -0.017741344 deg
 };
 P[5]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.769115228 deg,	J2= 5.655471136 deg,	J3= -48.494705964 deg,
-	J4= 0.013638264 deg,	J5= -41.503354047 deg,	J6= 22.741014550 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1329.686408691 mm,	Y = -800.635045226 mm,	Z = 396.026219854 mm,
+	W = 179.990915040 deg,	P = 0.001705325 deg,	R = -0.017887039 deg
 };
 P[6]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.615848225 deg,	J2= 6.112445199 deg,	J3= -48.445239705 deg,
-	J4= 0.013663108 deg,	J5= -41.552899735 deg,	J6= 22.587591293 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1339.683436990 mm,	Y = -800.642650811 mm,	Z = 396.025367057 mm,
+	W = 179.990917662 deg,	P = 0.001764046 deg,	R = -0.018032519 deg
 };
 P[7]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.464530795 deg,	J2= 6.567689067 deg,	J3= -48.392190124 deg,
-	J4= 0.013689037 deg,	J5= -41.606028025 deg,	J6= 22.436117610 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1349.680466190 mm,	Y = -800.650331308 mm,	Z = 396.024521649 mm,
+	W = 179.990918409 deg,	P = 0.001822966 deg,	R = -0.018177792 deg
 };
 P[8]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.315128091 deg,	J2= 7.021261498 deg,	J3= -48.335604085 deg,
-	J4= 0.013716040 deg,	J5= -41.662692061 deg,	J6= 22.286558651 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1359.677496509 mm,	Y = -800.658086505 mm,	Z = 396.023683480 mm,
+	W = 179.990917304 deg,	P = 0.001882068 deg,	R = -0.018322866 deg
 };
 P[9]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.167606035 deg,	J2= 7.473220423 deg,	J3= -48.275526979 deg,
-	J4= 0.013744103 deg,	J5= -41.722846463 deg,	J6= 22.138880340 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1369.674528151 mm,	Y = -800.665916191 mm,	Z = 396.022852404 mm,
+	W = 179.990914366 deg,	P = 0.001941337 deg,	R = -0.018467753 deg
 };
 P[10]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.021931302 deg,	J2= 7.923622987 deg,	J3= -48.212002747 deg,
-	J4= 0.013773214 deg,	J5= -41.786447297 deg,	J6= 21.993049352 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1379.671561306 mm,	Y = -800.673820162 mm,	Z = 396.022028278 mm,
+	W = 179.990909615 deg,	P = 0.002000759 deg,	R = -0.018612460 deg
 };
 P[11]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.878071299 deg,	J2= 8.372525568 deg,	J3= -48.145073903 deg,
-	J4= 0.013803362 deg,	J5= -41.853452058 deg,	J6= 21.849033094 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1389.668596155 mm,	Y = -800.681798217 mm,	Z = 396.021210961 mm,
+	W = 179.990903070 deg,	P = 0.002060319 deg,	R = -0.018756999 deg
 };
 P[12]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.735994149 deg,	J2= 8.819983812 deg,	J3= -48.074781562 deg,
-	J4= 0.013834534 deg,	J5= -41.923819640 deg,	J6= 21.706799688 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1399.665632867 mm,	Y = -800.689850159 mm,	Z = 396.020400318 mm,
+	W = 179.990894750 deg,	P = 0.002120005 deg,	R = -0.018901380 deg
 };
 P[13]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.595668669 deg,	J2= 9.266052658 deg,	J3= -48.001165456 deg,
-	J4= 0.013866718 deg,	J5= -41.997510320 deg,	J6= 21.566317952 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1409.662671597 mm,	Y = -800.697975795 mm,	Z = 396.019596215 mm,
+	W = 179.990884673 deg,	P = 0.002179805 deg,	R = -0.019045614 deg
 };
 P[14]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.457064356 deg,	J2= 9.710786371 deg,	J3= -47.924263958 deg,
-	J4= 0.013899903 deg,	J5= -42.074485731 deg,	J6= 21.427557384 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1419.659712494 mm,	Y = -800.706174936 mm,	Z = 396.018798521 mm,
+	W = 179.990872857 deg,	P = 0.002239705 deg,	R = -0.019189711 deg
 };
 P[15]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.320151372 deg,	J2= 10.154238569 deg,	J3= -47.844114107 deg,
-	J4= 0.013934078 deg,	J5= -42.154708845 deg,	J6= 21.290488143 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1429.656755694 mm,	Y = -800.714447398 mm,	Z = 396.018007110 mm,
+	W = 179.990859318 deg,	P = 0.002299696 deg,	R = -0.019333684 deg
 };
 P[16]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.301441568 deg,	J2= 10.209117062 deg,	J3= -47.833616538 deg,
-	J4= 0.014122405 deg,	J5= -42.164352394 deg,	J6= 21.272516374 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1430.929163085 mm,	Y = -800.674948253 mm,	Z = 396.025899303 mm,
+	W = 179.990429192 deg,	P = 0.001547571 deg,	R = -0.018457648 deg
 };
 P[17]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.279748615 deg,	J2= 10.262360902 deg,	J3= -47.823039210 deg,
-	J4= 0.014447869 deg,	J5= -42.173229550 deg,	J6= 21.252401321 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1432.214398352 mm,	Y = -800.553390326 mm,	Z = 396.041511202 mm,
+	W = 179.989606926 deg,	P = 0.000039611 deg,	R = -0.016640032 deg
 };
 P[18]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.255393461 deg,	J2= 10.313808639 deg,	J3= -47.812760207 deg,
-	J4= 0.014709946 deg,	J5= -42.181836911 deg,	J6= 21.229728517 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1433.490724716 mm,	Y = -800.350585008 mm,	Z = 396.056707417 mm,
+	W = 179.988835763 deg,	P = -0.001458242 deg,	R = -0.014764940 deg
 };
 P[19]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.228475742 deg,	J2= 10.363263702 deg,	J3= -47.802823946 deg,
-	J4= 0.014907703 deg,	J5= -42.190136443 deg,	J6= 21.204590963 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1434.753105410 mm,	Y = -800.067326082 mm,	Z = 396.071428880 mm,
+	W = 179.988118810 deg,	P = -0.002940302 deg,	R = -0.012839671 deg
 };
 P[20]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.199104393 deg,	J2= 10.410537747 deg,	J3= -47.793273703 deg,
-	J4= 0.015040449 deg,	J5= -42.198091090 deg,	J6= 21.177090571 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1435.996558091 mm,	Y = -799.704725710 mm,	Z = 396.085618610 mm,
+	W = 179.987458944 deg,	P = -0.004400949 deg,	R = -0.010871731 deg
 };
 P[21]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.167397174 deg,	J2= 10.455451302 deg,	J3= -47.784151380 deg,
-	J4= 0.015107738 deg,	J5= -42.205664991 deg,	J6= 21.147337725 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1437.216174514 mm,	Y = -799.264210126 mm,	Z = 396.099221922 mm,
+	W = 179.986858791 deg,	P = -0.005834646 deg,	R = -0.008868803 deg
 };
 P[22]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.133480186 deg,	J2= 10.497834358 deg,	J3= -47.775497274 deg,
-	J4= 0.015109370 deg,	J5= -42.212823687 deg,	J6= 21.115450817 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1438.407139918 mm,	Y = -798.747514088 mm,	Z = 396.112186616 mm,
+	W = 179.986320722 deg,	P = -0.007235957 deg,	R = -0.006838721 deg
 };
 P[23]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.097487356 deg,	J2= 10.537526935 deg,	J3= -47.767349854 deg,
-	J4= 0.015045387 deg,	J5= -42.219534327 deg,	J6= 21.081555770 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1439.564752053 mm,	Y = -798.156674081 mm,	Z = 396.124463166 mm,
+	W = 179.985846840 deg,	P = -0.008599568 deg,	R = -0.004789435 deg
 };
 P[24]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.059559917 deg,	J2= 10.574379599 deg,	J3= -47.759745545 deg,
-	J4= 0.014916079 deg,	J5= -42.225765869 deg,	J6= 21.045785544 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1440.684439770 mm,	Y = -797.494020324 mm,	Z = 396.136004888 mm,
+	W = 179.985438973 deg,	P = -0.009920299 deg,	R = -0.002728987 deg
 };
 P[25]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.019845862 deg,	J2= 10.608253950 deg,	J3= -47.752718515 deg,
-	J4= 0.014721974 deg,	J5= -42.231489269 deg,	J6= 21.008279626 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1441.761781111 mm,	Y = -796.762167601 mm,	Z = 396.146768092 mm,
+	W = 179.985098670 deg,	P = -0.011193128 deg,	R = -0.000665474 deg
 };
 P[26]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.978499390 deg,	J2= 10.639023055 deg,	J3= -47.746300487 deg,
-	J4= 0.014463843 deg,	J5= -42.236677661 deg,	J6= 20.969183510 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1442.792520804 mm,	Y = -795.964004938 mm,	Z = 396.156712236 mm,
+	W = 179.984827191 deg,	P = -0.012413203 deg,	R = 0.001392979 deg
 };
 P[27]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.935680339 deg,	J2= 10.666571855 deg,	J3= -47.740520545 deg,
-	J4= 0.014142695 deg,	J5= -42.241306531 deg,	J6= 20.928648159 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1443.772587121 mm,	Y = -795.102684200 mm,	Z = 396.165800047 mm,
+	W = 179.984625505 deg,	P = -0.013575862 deg,	R = 0.003438255 deg
 };
 P[28]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.891553609 deg,	J2= 10.690797523 deg,	J3= -47.735404973 deg,
-	J4= 0.013759768 deg,	J5= -42.245353867 deg,	J6= 20.886829469 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1444.698108006 mm,	Y = -794.181607613 mm,	Z = 396.173997644 mm,
+	W = 179.984494293 deg,	P = -0.014676648 deg,	R = 0.005462273 deg
 };
 P[29]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.846288570 deg,	J2= 10.711609783 deg,	J3= -47.730977095 deg,
-	J4= 0.013316533 deg,	J5= -42.248800305 deg,	J6= 20.843887710 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1445.565426427 mm,	Y = -793.204414298 mm,	Z = 396.181274638 mm,
+	W = 179.984433938 deg,	P = -0.015711321 deg,	R = 0.007457021 deg
 };
 P[30]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.800058475 deg,	J2= 10.728931189 deg,	J3= -47.727257139 deg,
-	J4= 0.012814684 deg,	J5= -42.251629253 deg,	J6= 20.799986973 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1446.371114880 mm,	Y = -792.174965842 mm,	Z = 396.187604226 mm,
+	W = 179.984444533 deg,	P = -0.016675881 deg,	R = 0.009414590 deg
 };
 P[31]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.753039853 deg,	J2= 10.742697364 deg,	J3= -47.724262118 deg,
-	J4= 0.012256130 deg,	J5= -42.253827002 deg,	J6= 20.755294602 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1447.111988989 mm,	Y = -791.097330983 mm,	Z = 396.192963266 mm,
+	W = 179.984525879 deg,	P = -0.017566576 deg,	R = 0.011327204 deg
 };
 P[32]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.705411905 deg,	J2= 10.752857192 deg,	J3= -47.722005727 deg,
-	J4= 0.011642994 deg,	J5= -42.255382812 deg,	J6= 20.709980624 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1447.785120149 mm,	Y = -789.975769456 mm,	Z = 396.197332340 mm,
+	W = 179.984677490 deg,	P = -0.018379919 deg,	R = 0.013187252 deg
 };
 P[33]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.657355892 deg,	J2= 10.759372980 deg,	J3= -47.720498267 deg,
-	J4= 0.010977602 deg,	J5= -42.256288990 deg,	J6= 20.664217176 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.387847160 mm,	Y = -788.814715081 mm,	Z = 396.200695807 mm,
+	W = 179.984898595 deg,	P = -0.019112699 deg,	R = 0.014987317 deg
 };
 P[34]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.609054525 deg,	J2= 10.762220565 deg,	J3= -47.719746576 deg,
-	J4= 0.010262478 deg,	J5= -42.256540941 deg,	J6= 20.618177925 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.917786801 mm,	Y = -787.618758148 mm,	Z = 396.203041837 mm,
+	W = 179.985188146 deg,	P = -0.019761998 deg,	R = 0.016720211 deg
 };
 P[35]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.560691343 deg,	J2= 10.761389392 deg,	J3= -47.719753997 deg,
-	J4= 0.009500330 deg,	J5= -42.256137198 deg,	J6= 20.572037491 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.372843309 mm,	Y = -786.392627173 mm,	Z = 396.204362443 mm,
+	W = 179.985544826 deg,	P = -0.020325200 deg,	R = 0.018378999 deg
 };
 P[36]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.512450102 deg,	J2= 10.756882544 deg,	J3= -47.720520357 deg,
-	J4= 0.008694047 deg,	J5= -42.255079438 deg,	J6= 20.525970858 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.751216717 mm,	Y = -785.141170106 mm,	Z = 396.204653485 mm,
+	W = 179.985967051 deg,	P = -0.020800000 deg,	R = 0.019957031 deg
 };
 P[37]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.464514152 deg,	J2= 10.748716731 deg,	J3= -47.722041966 deg,
-	J4= 0.007846688 deg,	J5= -42.253372472 deg,	J6= 20.480152800 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.051410018 mm,	Y = -783.869335057 mm,	Z = 396.203914674 mm,
+	W = 179.986452987 deg,	P = -0.021184420 deg,	R = 0.021447970 deg
 };
 P[38]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.417065822 deg,	J2= 10.736922244 deg,	J3= -47.724311648 deg,
-	J4= 0.006961468 deg,	J5= -42.251024220 deg,	J6= 20.434757289 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.272235135 mm,	Y = -782.582150630 mm,	Z = 396.202149564 mm,
+	W = 179.987000551 deg,	P = -0.021476815 deg,	R = 0.022845817 deg
 };
 P[39]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.370285804 deg,	J2= 10.721542859 deg,	J3= -47.727318781 deg,
-	J4= 0.006041752 deg,	J5= -42.248045658 deg,	J6= 20.389956917 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.412817657 mm,	Y = -781.284705928 mm,	Z = 396.199365518 mm,
+	W = 179.987607431 deg,	P = -0.021675879 deg,	R = 0.024144937 deg
 };
 P[40]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.324352540 deg,	J2= 10.702635706 deg,	J3= -47.731049363 deg,
-	J4= 0.005091040 deg,	J5= -42.244450755 deg,	J6= 20.345922315 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.472600334 mm,	Y = -779.982130332 mm,	Z = 396.195573684 mm,
+	W = 179.988271089 deg,	P = -0.021780660 deg,	R = 0.025340084 deg
 };
 P[41]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.973821002 deg,	J2= 10.539497831 deg,	J3= -47.762542585 deg,
-	J4= 0.004711051 deg,	J5= -42.213025301 deg,	J6= 19.996160900 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.480334753 mm,	Y = -769.961512233 mm,	Z = 396.193407225 mm,
+	W = 179.988669413 deg,	P = -0.021876239 deg,	R = 0.025830636 deg
 };
 P[42]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.622525777 deg,	J2= 10.378866941 deg,	J3= -47.793054940 deg,
-	J4= 0.004824273 deg,	J5= -42.182471130 deg,	J6= 19.644709409 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.478627111 mm,	Y = -759.964446800 mm,	Z = 396.193503092 mm,
+	W = 179.988719871 deg,	P = -0.021959759 deg,	R = 0.025759937 deg
 };
 P[43]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.269686029 deg,	J2= 10.220774147 deg,	J3= -47.822644611 deg,
-	J4= 0.004937789 deg,	J5= -42.152840694 deg,	J6= 19.291713394 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.476960977 mm,	Y = -749.967359012 mm,	Z = 396.193584282 mm,
+	W = 179.988771715 deg,	P = -0.022042739 deg,	R = 0.025689481 deg
 };
 P[44]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.915318526 deg,	J2= 10.065245327 deg,	J3= -47.851327197 deg,
-	J4= 0.005051600 deg,	J5= -42.124118408 deg,	J6= 18.937189623 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.475335899 mm,	Y = -739.970249121 mm,	Z = 396.193650781 mm,
+	W = 179.988824932 deg,	P = -0.022125149 deg,	R = 0.025619267 deg
 };
 P[45]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.559440650 deg,	J2= 9.912306380 deg,	J3= -47.879118310 deg,
-	J4= 0.005165706 deg,	J5= -42.096288675 deg,	J6= 18.581155478 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.473751426 mm,	Y = -729.973117392 mm,	Z = 396.193702578 mm,
+	W = 179.988879508 deg,	P = -0.022206958 deg,	R = 0.025549293 deg
 };
 P[46]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.202070398 deg,	J2= 9.761983212 deg,	J3= -47.906033566 deg,
-	J4= 0.005280107 deg,	J5= -42.069335893 deg,	J6= 18.223628958 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.472207111 mm,	Y = -719.975964098 mm,	Z = 396.193739666 mm,
+	W = 179.988935430 deg,	P = -0.022288136 deg,	R = 0.025479557 deg
 };
 P[47]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.843226385 deg,	J2= 9.614301713 deg,	J3= -47.932088574 deg,
-	J4= 0.005394802 deg,	J5= -42.043244468 deg,	J6= 17.864628675 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.470702509 mm,	Y = -709.978789525 mm,	Z = 396.193762039 mm,
+	W = 179.988992682 deg,	P = -0.022368654 deg,	R = 0.025410055 deg
 };
 P[48]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.482927838 deg,	J2= 9.469287732 deg,	J3= -47.957298923 deg,
-	J4= 0.005509791 deg,	J5= -42.017998827 deg,	J6= 17.504173859 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.469237177 mm,	Y = -699.981593970 mm,	Z = 396.193769696 mm,
+	W = 179.989051249 deg,	P = -0.022448481 deg,	R = 0.025340785 deg
 };
 P[49]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.121194606 deg,	J2= 9.326967059 deg,	J3= -47.981680170 deg,
-	J4= 0.005625072 deg,	J5= -41.993583425 deg,	J6= 17.142284357 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.467810679 mm,	Y = -689.984377740 mm,	Z = 396.193762638 mm,
+	W = 179.989111116 deg,	P = -0.022527589 deg,	R = 0.025271744 deg
 };
 P[50]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.758047151 deg,	J2= 9.187365400 deg,	J3= -48.005247829 deg,
-	J4= 0.005740644 deg,	J5= -41.969982762 deg,	J6= 16.778980631 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.466422578 mm,	Y = -679.987141155 mm,	Z = 396.193740870 mm,
+	W = 179.989172266 deg,	P = -0.022605947 deg,	R = 0.025202928 deg
 };
 P[51]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.393506550 deg,	J2= 9.050508355 deg,	J3= -48.028017359 deg,
-	J4= 0.005856505 deg,	J5= -41.947181394 deg,	J6= 16.414283759 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.465072446 mm,	Y = -669.989884543 mm,	Z = 396.193704400 mm,
+	W = 179.989234680 deg,	P = -0.022683527 deg,	R = 0.025134335 deg
 };
 P[52]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.027594495 deg,	J2= 8.916421396 deg,	J3= -48.050004149 deg,
-	J4= 0.005972652 deg,	J5= -41.925163945 deg,	J6= 16.048215433 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.463759854 mm,	Y = -659.992608244 mm,	Z = 396.193653240 mm,
+	W = 179.989298342 deg,	P = -0.022760301 deg,	R = 0.025065960 deg
 };
 P[53]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.660333288 deg,	J2= 8.785129840 deg,	J3= -48.071223507 deg,
-	J4= 0.006089083 deg,	J5= -41.903915122 deg,	J6= 15.680797954 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.462484383 mm,	Y = -649.995312611 mm,	Z = 396.193587404 mm,
+	W = 179.989363233 deg,	P = -0.022836239 deg,	R = 0.024997800 deg
 };
 P[54]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.291745839 deg,	J2= 8.656658832 deg,	J3= -48.091690643 deg,
-	J4= 0.006205793 deg,	J5= -41.883419726 deg,	J6= 15.312054233 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.461245615 mm,	Y = -639.997998004 mm,	Z = 396.193506911 mm,
+	W = 179.989429333 deg,	P = -0.022911313 deg,	R = 0.024929850 deg
 };
 P[55]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.921855666 deg,	J2= 8.531033314 deg,	J3= -48.111420660 deg,
-	J4= 0.006322780 deg,	J5= -41.863662668 deg,	J6= 14.942007787 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.460043140 mm,	Y = -630.000664796 mm,	Z = 396.193411784 mm,
+	W = 179.989496622 deg,	P = -0.022985496 deg,	R = 0.024862106 deg
 };
 P[56]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.550686885 deg,	J2= 8.408278009 deg,	J3= -48.130428538 deg,
-	J4= 0.006440040 deg,	J5= -41.844628982 deg,	J6= 14.570682733 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.458876550 mm,	Y = -620.003313369 mm,	Z = 396.193302048 mm,
+	W = 179.989565081 deg,	P = -0.023058760 deg,	R = 0.024794563 deg
 };
 P[57]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.503591793 deg,	J2= 8.391224106 deg,	J3= -48.133067705 deg,
-	J4= 0.005954133 deg,	J5= -41.842036081 deg,	J6= 14.524455933 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.426632072 mm,	Y = -618.725084494 mm,	Z = 396.191505003 mm,
+	W = 179.989909431 deg,	P = -0.023103796 deg,	R = 0.025301063 deg
 };
 P[58]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.456659137 deg,	J2= 8.370597344 deg,	J3= -48.136300008 deg,
-	J4= 0.004944864 deg,	J5= -41.838979806 deg,	J6= 14.479214290 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.321414339 mm,	Y = -617.429113872 mm,	Z = 396.187207642 mm,
+	W = 179.990624074 deg,	P = -0.023109834 deg,	R = 0.026240367 deg
 };
 P[59]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.410847325 deg,	J2= 8.346473068 deg,	J3= -48.140100670 deg,
-	J4= 0.003908494 deg,	J5= -41.835461740 deg,	J6= 14.435001110 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.135762490 mm,	Y = -616.143261886 mm,	Z = 396.181968024 mm,
+	W = 179.991382330 deg,	P = -0.023015885 deg,	R = 0.027067035 deg
 };
 P[60]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.366331938 deg,	J2= 8.318940657 deg,	J3= -48.144451184 deg,
-	J4= 0.002848983 deg,	J5= -41.831499433 deg,	J6= 14.391985659 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.870408763 mm,	Y = -614.872610851 mm,	Z = 396.175806459 mm,
+	W = 179.992181088 deg,	P = -0.022822129 deg,	R = 0.027777683 deg
 };
 P[61]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.323284157 deg,	J2= 8.288102295 deg,	J3= -48.149330489 deg,
-	J4= 0.001770386 deg,	J5= -41.827112603 deg,	J6= 14.350333196 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.526400420 mm,	Y = -613.622182384 mm,	Z = 396.168746661 mm,
+	W = 179.993017088 deg,	P = -0.022529123 deg,	R = 0.028369390 deg
 };
 P[62]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.281870158 deg,	J2= 8.254072664 deg,	J3= -48.154715112 deg,
-	J4= 0.000676845 deg,	J5= -41.822322998 deg,	J6= 14.310204385 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.105095609 mm,	Y = -612.396917475 mm,	Z = 396.160815666 mm,
+	W = 179.993886946 deg,	P = -0.022137812 deg,	R = 0.028839713 deg
 };
 P[63]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.242250520 deg,	J2= 8.216978593 deg,	J3= -48.160579318 deg,
-	J4= -0.000427427 deg,	J5= -41.817154244 deg,	J6= 14.271754728 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.608158001 mm,	Y = -611.201656895 mm,	Z = 396.152043731 mm,
+	W = 179.994787163 deg,	P = -0.021649523 deg,	R = 0.029186697 deg
 };
 P[64]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.204579629 deg,	J2= 8.176958669 deg,	J3= -48.166895280 deg,
-	J4= -0.001538161 deg,	J5= -41.811631682 deg,	J6= 14.235133986 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.037550199 mm,	Y = -610.041122004 mm,	Z = 396.142464237 mm,
+	W = 179.995714139 deg,	P = -0.021065963 deg,	R = 0.029408884 deg
 };
 P[65]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.169005109 deg,	J2= 8.134162808 deg,	J3= -48.173633258 deg,
-	J4= -0.002651048 deg,	J5= -41.805782197 deg,	J6= 14.200485635 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1447.395525973 mm,	Y = -608.919896054 mm,	Z = 396.132113569 mm,
+	W = 179.996664194 deg,	P = -0.020389217 deg,	R = 0.029505322 deg
 };
 P[66]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.135667256 deg,	J2= 8.088751778 deg,	J3= -48.180761786 deg,
-	J4= -0.003761754 deg,	J5= -41.799634036 deg,	J6= 14.167946305 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1446.684621331 mm,	Y = -607.842406046 mm,	Z = 396.121030996 mm,
+	W = 179.997633576 deg,	P = -0.019621744 deg,	R = 0.029475570 deg
 };
 P[67]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.104698489 deg,	J2= 8.040896693 deg,	J3= -48.188247873 deg,
-	J4= -0.004865939 deg,	J5= -41.793216616 deg,	J6= 14.137645259 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1445.907644478 mm,	Y = -606.812905229 mm,	Z = 396.109258541 mm,
+	W = 179.998618479 deg,	P = -0.018766369 deg,	R = 0.029319697 deg
 };
 P[68]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.076222819 deg,	J2= 7.990778458 deg,	J3= -48.196057203 deg,
-	J4= -0.005959266 deg,	J5= -41.786560333 deg,	J6= 14.109703866 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1445.067664692 mm,	Y = -605.835456294 mm,	Z = 396.096840837 mm,
+	W = 179.999615061 deg,	P = -0.017826275 deg,	R = 0.029038287 deg
 };
 P[69]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.050355338 deg,	J2= 7.938587178 deg,	J3= -48.204154347 deg,
-	J4= -0.007037427 deg,	J5= -41.779696362 deg,	J6= 14.084235100 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1444.168000158 mm,	Y = -604.913915342 mm,	Z = 396.083824982 mm,
+	W = -179.999380549 deg,	P = -0.016804992 deg,	R = 0.028632437 deg
 };
 P[70]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.027201722 deg,	J2= 7.884521526 deg,	J3= -48.212502973 deg,
-	J4= -0.008096152 deg,	J5= -41.772656460 deg,	J6= 14.061343058 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1443.212204834 mm,	Y = -604.051916692 mm,	Z = 396.070260378 mm,
+	W = -179.998372229 deg,	P = -0.015706391 deg,	R = 0.028103750 deg
 };
 P[71]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.006857770 deg,	J2= 7.828788075 deg,	J3= -48.221066054 deg,
-	J4= -0.009131231 deg,	J5= -41.765472766 deg,	J6= 14.041122500 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1442.204054362 mm,	Y = -603.252858568 mm,	Z = 396.056198573 mm,
+	W = -179.997363853 deg,	P = -0.014534664 deg,	R = 0.027454330 deg
 };
 P[72]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.989408956 deg,	J2= 7.771600591 deg,	J3= -48.229806087 deg,
-	J4= -0.010138526 deg,	J5= -41.758177606 deg,	J6= 14.023658406 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1441.147531121 mm,	Y = -602.519889748 mm,	Z = 396.041693080 mm,
+	W = -179.996359279 deg,	P = -0.013294318 deg,	R = 0.026686777 deg
 };
 P[73]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.974930017 deg,	J2= 7.713179288 deg,	J3= -48.238685293 deg,
-	J4= -0.011113995 deg,	J5= -41.750803300 deg,	J6= 14.009025567 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1440.046808446 mm,	Y = -601.855897208 mm,	Z = 396.026799202 mm,
+	W = -179.995362334 deg,	P = -0.011990150 deg,	R = 0.025804169 deg
 };
 P[74]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.963484571 deg,	J2= 7.653750048 deg,	J3= -48.247665826 deg,
-	J4= -0.012053701 deg,	J5= -41.743381977 deg,	J6= 13.997288203 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1438.906234110 mm,	Y = -601.263494816 mm,	Z = 396.011573842 mm,
+	W = -179.994376800 deg,	P = -0.010627237 deg,	R = 0.024810058 deg
 };
 P[75]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.955124767 deg,	J2= 7.593543612 deg,	J3= -48.256709966 deg,
-	J4= -0.012953834 deg,	J5= -41.735945399 deg,	J6= 13.988499609 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1437.730313100 mm,	Y = -600.745013118 mm,	Z = 395.996075312 mm,
+	W = -179.993406402 deg,	P = -0.009210915 deg,	R = 0.023708447 deg
 };
 P[76]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.949890971 deg,	J2= 7.532794731 deg,	J3= -48.265780311 deg,
-	J4= -0.013810725 deg,	J5= -41.728524791 deg,	J6= 13.982701842 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1436.523689791 mm,	Y = -600.302490259 mm,	Z = 395.980363125 mm,
+	W = -179.992454796 deg,	P = -0.007746757 deg,	R = 0.022503779 deg
 };
 P[77]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.947811497 deg,	J2= 7.471741296 deg,	J3= -48.274839951 deg,
-	J4= -0.014620865 deg,	J5= -41.721150682 deg,	J6= 13.979925437 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1435.291129557 mm,	Y = -599.937664059 mm,	Z = 395.964497793 mm,
+	W = -179.991525560 deg,	P = -0.006240554 deg,	R = 0.021200914 deg
 };
 P[78]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.948902374 deg,	J2= 7.410623430 deg,	J3= -48.283852643 deg,
-	J4= -0.015380917 deg,	J5= -41.713852763 deg,	J6= 13.980189171 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1434.037499917 mm,	Y = -599.651965295 mm,	Z = 395.948540609 mm,
+	W = -179.990622177 deg,	P = -0.004698289 deg,	R = 0.019805111 deg
 };
 P[79]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.953167160 deg,	J2= 7.349682568 deg,	J3= -48.292782960 deg,
-	J4= -0.016087733 deg,	J5= -41.706659753 deg,	J6= 13.983499864 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1432.767751277 mm,	Y = -599.446512195 mm,	Z = 395.932553431 mm,
+	W = -179.989748028 deg,	P = -0.003126118 deg,	R = 0.018322005 deg
 };
 P[80]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.960596805 deg,	J2= 7.289160502 deg,	J3= -48.301596439 deg,
-	J4= -0.016738369 deg,	J5= -41.699599281 deg,	J6= 13.989852231 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1431.486897349 mm,	Y = -599.322106170 mm,	Z = 395.916598451 mm,
+	W = -179.988906384 deg,	P = -0.001530339 deg,	R = 0.016757578 deg
 };
 P[81]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.971169559 deg,	J2= 7.229298419 deg,	J3= -48.310259708 deg,
-	J4= -0.017330101 deg,	J5= -41.692697788 deg,	J6= 13.999228775 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1430.199995328 mm,	Y = -599.279228804 mm,	Z = 395.900737971 mm,
+	W = -179.988100388 deg,	P = 0.000082630 deg,	R = 0.015118143 deg
 };
 P[82]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.066567586 deg,	J2= 6.754501679 deg,	J3= -48.371576945 deg,
-	J4= -0.017578221 deg,	J5= -41.632299668 deg,	J6= 14.093838981 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1420.182102880 mm,	Y = -599.286224676 mm,	Z = 395.893017325 mm,
+	W = -179.987730019 deg,	P = 0.000917705 deg,	R = 0.014132719 deg
 };
 P[83]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.163107494 deg,	J2= 6.277511686 deg,	J3= -48.428728250 deg,
-	J4= -0.017553118 deg,	J5= -41.575188913 deg,	J6= 14.190222524 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1410.179993867 mm,	Y = -599.294330289 mm,	Z = 395.893162599 mm,
+	W = -179.987747414 deg,	P = 0.000943669 deg,	R = 0.013983500 deg
 };
 P[84]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.260947450 deg,	J2= 5.798292068 deg,	J3= -48.481990905 deg,
-	J4= -0.017529517 deg,	J5= -41.521967561 deg,	J6= 14.287906116 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1400.177881267 mm,	Y = -599.302359086 mm,	Z = 395.893289042 mm,
+	W = -179.987762626 deg,	P = 0.000969675 deg,	R = 0.013833989 deg
 };
 P[85]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.360113357 deg,	J2= 5.316761603 deg,	J3= -48.531301713 deg,
-	J4= -0.017507446 deg,	J5= -41.472698824 deg,	J6= 14.386915656 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1390.175765151 mm,	Y = -599.310310727 mm,	Z = 395.893396390 mm,
+	W = -179.987775620 deg,	P = 0.000995713 deg,	R = 0.013684173 deg
 };
 P[86]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.460631792 deg,	J2= 4.832837285 deg,	J3= -48.576595117 deg,
-	J4= -0.017486931 deg,	J5= -41.427448268 deg,	J6= 14.487277725 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1380.173645604 mm,	Y = -599.318184861 mm,	Z = 395.893484370 mm,
+	W = -179.987786361 deg,	P = 0.001021773 deg,	R = 0.013534035 deg
 };
 P[87]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.562530032 deg,	J2= 4.346434248 deg,	J3= -48.617803137 deg,
-	J4= -0.017468000 deg,	J5= -41.386283889 deg,	J6= 14.589019599 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1370.171522724 mm,	Y = -599.325981124 mm,	Z = 395.893552700 mm,
+	W = -179.987794815 deg,	P = 0.001047842 deg,	R = 0.013383561 deg
 };
 P[88]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.665836073 deg,	J2= 3.857465685 deg,	J3= -48.654855289 deg,
-	J4= -0.017450682 deg,	J5= -41.349276183 deg,	J6= 14.692169273 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1360.169396623 mm,	Y = -599.333699142 mm,	Z = 395.893601089 mm,
+	W = -179.987800944 deg,	P = 0.001073909 deg,	R = 0.013232738 deg
 };
 P[89]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.770578656 deg,	J2= 3.365842769 deg,	J3= -48.687678516 deg,
-	J4= -0.017435005 deg,	J5= -41.316498220 deg,	J6= 14.796755490 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1350.167267430 mm,	Y = -599.341338526 mm,	Z = 395.893629236 mm,
+	W = -179.987804709 deg,	P = 0.001099961 deg,	R = 0.013081551 deg
 };
 P[90]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.876787290 deg,	J2= 2.871474565 deg,	J3= -48.716197103 deg,
-	J4= -0.017420999 deg,	J5= -41.288025729 deg,	J6= 14.902807756 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1340.165135291 mm,	Y = -599.348898877 mm,	Z = 395.893636829 mm,
+	W = -179.987806070 deg,	P = 0.001125983 deg,	R = 0.012929987 deg
 };
 P[91]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.984492275 deg,	J2= 2.374267947 deg,	J3= -48.740332599 deg,
-	J4= -0.017408694 deg,	J5= -41.263937176 deg,	J6= 15.010356373 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1330.163000365 mm,	Y = -599.356379781 mm,	Z = 395.893623548 mm,
+	W = -179.987804986 deg,	P = 0.001151961 deg,	R = 0.012778035 deg
 };
 P[92]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.093724732 deg,	J2= 1.874127506 deg,	J3= -48.760003727 deg,
-	J4= -0.017398123 deg,	J5= -41.244313850 deg,	J6= 15.119432461 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1320.160862836 mm,	Y = -599.363780811 mm,	Z = 395.893589060 mm,
+	W = -179.987801413 deg,	P = 0.001177878 deg,	R = 0.012625683 deg
 };
 P[93]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.204516626 deg,	J2= 1.370955455 deg,	J3= -48.775126294 deg,
-	J4= -0.017389315 deg,	J5= -41.229239959 deg,	J6= 15.230067986 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1310.158722901 mm,	Y = -599.371101529 mm,	Z = 395.893533024 mm,
+	W = -179.987795307 deg,	P = 0.001203719 deg,	R = 0.012472919 deg
 };
 P[94]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.316900799 deg,	J2= 0.864651536 deg,	J3= -48.785613101 deg,
-	J4= -0.017382304 deg,	J5= -41.218802719 deg,	J6= 15.342295789 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1300.156580783 mm,	Y = -599.378341481 mm,	Z = 395.893455086 mm,
+	W = -179.987786622 deg,	P = 0.001229465 deg,	R = 0.012319734 deg
 };
 P[95]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.430910992 deg,	J2= 0.355112915 deg,	J3= -48.791373837 deg,
-	J4= -0.017377123 deg,	J5= -41.213092453 deg,	J6= 15.456149613 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1290.154436723 mm,	Y = -599.385500197 mm,	Z = 395.893354881 mm,
+	W = -179.987775310 deg,	P = 0.001255098 deg,	R = 0.012166118 deg
 };
 P[96]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.546581883 deg,	J2= -0.157765913 deg,	J3= -48.792314986 deg,
-	J4= -0.017373807 deg,	J5= -41.212202694 deg,	J6= 15.571664134 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1280.152290989 mm,	Y = -599.392577197 mm,	Z = 395.893232034 mm,
+	W = -179.987761321 deg,	P = 0.001280596 deg,	R = 0.012012063 deg
 };
 P[97]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.663949115 deg,	J2= -0.674093241 deg,	J3= -48.788339712 deg,
-	J4= -0.017372389 deg,	J5= -41.216230293 deg,	J6= 15.688874995 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1270.150143870 mm,	Y = -599.399571983 mm,	Z = 395.893086158 mm,
+	W = -179.987744604 deg,	P = 0.001305939 deg,	R = 0.011857561 deg
 };
 P[98]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.783049326 deg,	J2= -1.193980253 deg,	J3= -48.779347755 deg,
-	J4= -0.017372905 deg,	J5= -41.225275526 deg,	J6= 15.807818835 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1260.147995684 mm,	Y = -599.406484043 mm,	Z = 395.892916852 mm,
+	W = -179.987725105 deg,	P = 0.001331104 deg,	R = 0.011702607 deg
 };
 P[99]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.903920189 deg,	J2= -1.717541145 deg,	J3= -48.765235310 deg,
-	J4= -0.017375392 deg,	J5= -41.239442214 deg,	J6= 15.928533326 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1250.145846774 mm,	Y = -599.413312850 mm,	Z = 395.892723706 mm,
+	W = -179.987702771 deg,	P = 0.001356067 deg,	R = 0.011547194 deg
 };
 P[100]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.026600441 deg,	J2= -2.244893240 deg,	J3= -48.745894909 deg,
-	J4= -0.017379886 deg,	J5= -41.258837841 deg,	J6= 16.051057207 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1240.143697516 mm,	Y = -599.420057861 mm,	Z = 395.892506296 mm,
+	W = -179.987677543 deg,	P = 0.001380802 deg,	R = 0.011391319 deg
 };
 P[101]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.151129925 deg,	J2= -2.776157112 deg,	J3= -48.721215295 deg,
-	J4= -0.017386425 deg,	J5= -41.283573680 deg,	J6= 16.175430318 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1230.141548315 mm,	Y = -599.426718518 mm,	Z = 395.892264186 mm,
+	W = -179.987649363 deg,	P = 0.001405282 deg,	R = 0.011234979 deg
 };
 P[102]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.277549625 deg,	J2= -3.311456716 deg,	J3= -48.691081292 deg,
-	J4= -0.017395049 deg,	J5= -41.313764926 deg,	J6= 16.301693646 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1220.139399609 mm,	Y = -599.433294247 mm,	Z = 395.891996927 mm,
+	W = -179.987618171 deg,	P = 0.001429478 deg,	R = 0.011078172 deg
 };
 P[103]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.405901709 deg,	J2= -3.850919517 deg,	J3= -48.655373668 deg,
-	J4= -0.017405795 deg,	J5= -41.349530826 deg,	J6= 16.429889356 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1210.137251871 mm,	Y = -599.439784456 mm,	Z = 395.891704058 mm,
+	W = -179.987583902 deg,	P = 0.001453359 deg,	R = 0.010920900 deg
 };
 P[104]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.536229564 deg,	J2= -4.394676633 deg,	J3= -48.613968996 deg,
-	J4= -0.017418704 deg,	J5= -41.390994826 deg,	J6= 16.560060838 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1200.135105613 mm,	Y = -599.446188541 mm,	Z = 395.891385105 mm,
+	W = -179.987546493 deg,	P = 0.001476893 deg,	R = 0.010763163 deg
 };
 P[105]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.668577847 deg,	J2= -4.942862971 deg,	J3= -48.566739502 deg,
-	J4= -0.017433817 deg,	J5= -41.438284718 deg,	J6= 16.692252747 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1190.132961384 mm,	Y = -599.452505877 mm,	Z = 395.891039581 mm,
+	W = -179.987505875 deg,	P = 0.001500045 deg,	R = 0.010604965 deg
 };
 P[106]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.802992525 deg,	J2= -5.495617379 deg,	J3= -48.513552917 deg,
-	J4= -0.017451176 deg,	J5= -41.491532788 deg,	J6= 16.826511051 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1180.130819777 mm,	Y = -599.458735825 mm,	Z = 395.890666986 mm,
+	W = -179.987461980 deg,	P = 0.001522780 deg,	R = 0.010446313 deg
 };
 P[107]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.939520921 deg,	J2= -6.053082795 deg,	J3= -48.454272315 deg,
-	J4= -0.017470822 deg,	J5= -41.550875980 deg,	J6= 16.962883072 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1170.128681428 mm,	Y = -599.464877729 mm,	Z = 395.890266807 mm,
+	W = -179.987414735 deg,	P = 0.001545058 deg,	R = 0.010287213 deg
 };
 P[108]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.958780635 deg,	J2= -6.122711836 deg,	J3= -48.446803625 deg,
-	J4= -0.017703908 deg,	J5= -41.559229185 deg,	J6= 16.981438528 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1168.856633563 mm,	Y = -599.504002318 mm,	Z = 395.882491879 mm,
+	W = -179.987006393 deg,	P = 0.002341313 deg,	R = 0.009410231 deg
 };
 P[109]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.981807634 deg,	J2= -6.190742940 deg,	J3= -48.439757719 deg,
-	J4= -0.018119317 deg,	J5= -41.568026528 deg,	J6= 17.003007623 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1167.573130046 mm,	Y = -599.622301170 mm,	Z = 395.867200066 mm,
+	W = -179.986228238 deg,	P = 0.003930300 deg,	R = 0.007643343 deg
 };
 P[110]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.008357135 deg,	J2= -6.256939810 deg,	J3= -48.432831867 deg,
-	J4= -0.018468943 deg,	J5= -41.576685664 deg,	J6= 17.028012096 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1166.299042194 mm,	Y = -599.820904934 mm,	Z = 395.852228586 mm,
+	W = -179.985495561 deg,	P = 0.005513230 deg,	R = 0.005838612 deg
 };
 P[111]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.038331596 deg,	J2= -6.321028930 deg,	J3= -48.426061872 deg,
-	J4= -0.018751189 deg,	J5= -41.585163738 deg,	J6= 17.056360510 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1165.039399094 mm,	Y = -600.099023642 mm,	Z = 395.837637575 mm,
+	W = -179.984811203 deg,	P = 0.007083635 deg,	R = 0.004003306 deg
 };
 P[112]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.071618766 deg,	J2= -6.382743888 deg,	J3= -48.419483776 deg,
-	J4= -0.018964746 deg,	J5= -41.593417725 deg,	J6= 17.087947035 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1163.799172347 mm,	Y = -600.455554244 mm,	Z = 395.823485939 mm,
+	W = -179.984177833 deg,	P = 0.008635081 deg,	R = 0.002144797 deg
 };
 P[113]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.108092017 deg,	J2= -6.441826636 deg,	J3= -48.413133568 deg,
-	J4= -0.019108603 deg,	J5= -41.601404745 deg,	J6= 17.122651765 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1162.583256444 mm,	Y = -600.889085049 mm,	Z = 395.809831105 mm,
+	W = -179.983597936 deg,	P = 0.010161207 deg,	R = 0.000270527 deg
 };
 P[114]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.147610765 deg,	J2= -6.498028746 deg,	J3= -48.407046889 deg,
-	J4= -0.019182052 deg,	J5= -41.609082402 deg,	J6= 17.160341101 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1161.396449447 mm,	Y = -601.397901369 mm,	Z = 395.796728766 mm,
+	W = -179.983073801 deg,	P = 0.011655745 deg,	R = -0.001612018 deg
 };
 P[115]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.190020959 deg,	J2= -6.551112629 deg,	J3= -48.401258713 deg,
-	J4= -0.019184696 deg,	J5= -41.616409121 deg,	J6= 17.200868219 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1160.243434059 mm,	Y = -601.979992348 mm,	Z = 395.784232632 mm,
+	W = -179.982607517 deg,	P = 0.013112553 deg,	R = -0.003495345 deg
 };
 P[116]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.235155649 deg,	J2= -6.600852739 deg,	J3= -48.395803034 deg,
-	J4= -0.019116451 deg,	J5= -41.623344504 deg,	J6= 17.244073609 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1159.128759161 mm,	Y = -602.633058945 mm,	Z = 395.772394191 mm,
+	W = -179.982200962 deg,	P = 0.014525643 deg,	R = -0.005371979 deg
 };
 P[117]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.282835635 deg,	J2= -6.647036720 deg,	J3= -48.390712544 deg,
-	J4= -0.018977548 deg,	J5= -41.629849673 deg,	J6= 17.289785690 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1158.056821882 mm,	Y = -603.354523036 mm,	Z = 395.761262465 mm,
+	W = -179.981855793 deg,	P = 0.015889207 deg,	R = -0.007234499 deg
 };
 P[118]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.332870178 deg,	J2= -6.689466517 deg,	J3= -48.386018315 deg,
-	J4= -0.018768535 deg,	J5= -41.635887625 deg,	J6= 17.337821499 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1157.031850271 mm,	Y = -604.141537598 mm,	Z = 395.750883780 mm,
+	W = -179.981573443 deg,	P = 0.017197646 deg,	R = -0.009075564 deg
 };
 P[119]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.385057795 deg,	J2= -6.727959423 deg,	J3= -48.381749495 deg,
-	J4= -0.018490271 deg,	J5= -41.641423562 deg,	J6= 17.387987447 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1156.057886649 mm,	Y = -604.990997947 mm,	Z = 395.741301546 mm,
+	W = -179.981355110 deg,	P = 0.018445593 deg,	R = -0.010887942 deg
 };
 P[120]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.439187114 deg,	J2= -6.762349057 deg,	J3= -48.377933004 deg,
-	J4= -0.018143926 deg,	J5= -41.646425221 deg,	J6= 17.440080145 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1155.138771698 mm,	Y = -605.899553966 mm,	Z = 395.732556043 mm,
+	W = -179.981201753 deg,	P = 0.019627940 deg,	R = -0.012664539 deg
 };
 P[121]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.495037786 deg,	J2= -6.792486268 deg,	J3= -48.374593261 deg,
-	J4= -0.017730973 deg,	J5= -41.650863180 deg,	J6= 17.493887290 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1154.278129350 mm,	Y = -606.863623293 mm,	Z = 395.724684219 mm,
+	W = -179.981114085 deg,	P = 0.020739859 deg,	R = -0.014398428 deg
 };
 P[122]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.552381473 deg,	J2= -6.818239952 deg,	J3= -48.371751921 deg,
-	J4= -0.017253183 deg,	J5= -41.654711140 deg,	J6= 17.549188612 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1153.479352539 mm,	Y = -607.879405403 mm,	Z = 395.717719509 mm,
+	W = -179.981092572 deg,	P = 0.021776826 deg,	R = -0.016082869 deg
 };
 P[123]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.610982867 deg,	J2= -6.839497784 deg,	J3= -48.369427642 deg,
-	J4= -0.016712613 deg,	J5= -41.657946185 deg,	J6= 17.605756869 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1152.745589864 mm,	Y = -608.942896540 mm,	Z = 395.711691656 mm,
+	W = -179.981137425 deg,	P = 0.022734639 deg,	R = -0.017711341 deg
 };
 P[124]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.670600771 deg,	J2= -6.856166844 deg,	J3= -48.367635882 deg,
-	J4= -0.016111596 deg,	J5= -41.660549003 deg,	J6= 17.663358890 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1152.079733227 mm,	Y = -610.049905440 mm,	Z = 395.706626563 mm,
+	W = -179.981248598 deg,	P = 0.023609438 deg,	R = -0.019277561 deg
 };
 P[125]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.730989213 deg,	J2= -6.868174136 deg,	J3= -48.366388726 deg,
-	J4= -0.015452729 deg,	J5= -41.662504084 deg,	J6= 17.721756663 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1151.484406478 mm,	Y = -611.196069773 mm,	Z = 395.702546149 mm,
+	W = -179.981425789 deg,	P = 0.024397722 deg,	R = -0.020775508 deg
 };
 P[126]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.791898595 deg,	J2= -6.875467011 deg,	J3= -48.365694752 deg,
-	J4= -0.014738860 deg,	J5= -41.663799869 deg,	J6= 17.780708447 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.961955126 mm,	Y = -612.376873261 mm,	Z = 395.699468233 mm,
+	W = -179.981668434 deg,	P = 0.025096361 deg,	R = -0.022199443 deg
 };
 P[127]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.853076859 deg,	J2= -6.878013458 deg,	J3= -48.365558926 deg,
-	J4= -0.013973067 deg,	J5= -41.664428863 deg,	J6= 17.839969912 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.514437145 mm,	Y = -613.587663379 mm,	Z = 395.697406437 mm,
+	W = -179.981975714 deg,	P = 0.025702612 deg,	R = -0.023543930 deg
 };
 P[128]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.914270686 deg,	J2= -6.875802293 deg,	J3= -48.365982553 deg,
-	J4= -0.013158650 deg,	J5= -41.664387712 deg,	J6= 17.899295302 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.143614916 mm,	Y = -614.823669604 mm,	Z = 395.696370101 mm,
+	W = -179.982346547 deg,	P = 0.026214127 deg,	R = -0.024803853 deg
 };
 P[129]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.975226682 deg,	J2= -6.868843218 deg,	J3= -48.366963248 deg,
-	J4= -0.012299105 deg,	J5= -41.663677225 deg,	J6= 17.958438599 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.850948329 mm,	Y = -616.080022109 mm,	Z = 395.696364236 mm,
+	W = -179.982779598 deg,	P = 0.026628965 deg,	R = -0.025974434 deg
 };
 P[130]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.035692587 deg,	J2= -6.857166772 deg,	J3= -48.368494965 deg,
-	J4= -0.011398109 deg,	J5= -41.662302363 deg,	J6= 18.017154693 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.637589087 mm,	Y = -617.351770854 mm,	Z = 395.697389481 mm,
+	W = -179.983273279 deg,	P = 0.026945592 deg,	R = -0.027051248 deg
 };
 P[131]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.095418457 deg,	J2= -6.840824148 deg,	J3= -48.370568055 deg,
-	J4= -0.010459502 deg,	J5= -41.660272183 deg,	J6= 18.075200543 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.504376207 mm,	Y = -618.633904991 mm,	Z = 395.699442093 mm,
+	W = -179.983825752 deg,	P = 0.027162894 deg,	R = -0.028030237 deg
 };
 P[132]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.154157840 deg,	J2= -6.819886910 deg,	J3= -48.373169371 deg,
-	J4= -0.009487264 deg,	J5= -41.657599732 deg,	J6= 18.132336327 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.451832765 mm,	Y = -619.921372508 mm,	Z = 395.702513960 mm,
+	W = -179.984434937 deg,	P = 0.027280172 deg,	R = -0.028907724 deg
 };
 P[133]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.606368775 deg,	J2= -6.633256143 deg,	J3= -48.396220539 deg,
-	J4= -0.008857485 deg,	J5= -41.634467001 deg,	J6= 18.583629552 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.444971901 mm,	Y = -629.938170694 mm,	Z = 395.703892831 mm,
+	W = -179.984645617 deg,	P = 0.027213542 deg,	R = -0.029357225 deg
 };
 P[134]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.055566079 deg,	J2= -6.442825031 deg,	J3= -48.419121289 deg,
-	J4= -0.008717221 deg,	J5= -41.611561101 deg,	J6= 19.032670509 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.443824509 mm,	Y = -639.939118956 mm,	Z = 395.703334056 mm,
+	W = -179.984524998 deg,	P = 0.027118714 deg,	R = -0.029411011 deg
 };
 P[135]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.502346201 deg,	J2= -6.248668119 deg,	J3= -48.441793043 deg,
-	J4= -0.008577865 deg,	J5= -41.588882554 deg,	J6= 19.479294285 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.442647201 mm,	Y = -649.940093131 mm,	Z = 395.702788642 mm,
+	W = -179.984405935 deg,	P = 0.027022537 deg,	R = -0.029465379 deg
 };
 P[136]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.946674774 deg,	J2= -6.050856320 deg,	J3= -48.464187656 deg,
-	J4= -0.008439425 deg,	J5= -41.566479530 deg,	J6= 19.923466511 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.441439400 mm,	Y = -659.941093783 mm,	Z = 395.702256469 mm,
+	W = -179.984288453 deg,	P = 0.026925056 deg,	R = -0.029520333 deg
 };
 P[137]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.388518982 deg,	J2= -5.849460525 deg,	J3= -48.486257190 deg,
-	J4= -0.008301907 deg,	J5= -41.544399990 deg,	J6= 20.365154371 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.440200520 mm,	Y = -669.942121461 mm,	Z = 395.701737412 mm,
+	W = -179.984172576 deg,	P = 0.026826314 deg,	R = -0.029575874 deg
 };
 P[138]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.827847558 deg,	J2= -5.644551526 deg,	J3= -48.507953977 deg,
-	J4= -0.008165317 deg,	J5= -41.522691627 deg,	J6= 20.804326599 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.438929965 mm,	Y = -679.943176693 mm,	Z = 395.701231336 mm,
+	W = -179.984058327 deg,	P = 0.026726358 deg,	R = -0.029632006 deg
 };
 P[139]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.264630772 deg,	J2= -5.436199936 deg,	J3= -48.529230669 deg,
-	J4= -0.008029659 deg,	J5= -41.501401815 deg,	J6= 21.240953464 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.437627132 mm,	Y = -689.944259992 mm,	Z = 395.700738103 mm,
+	W = -179.983945730 deg,	P = 0.026625231 deg,	R = -0.029688729 deg
 };
 P[140]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.698840420 deg,	J2= -5.224476115 deg,	J3= -48.550040297 deg,
-	J4= -0.007894937 deg,	J5= -41.480577549 deg,	J6= 21.675006762 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.436291406 mm,	Y = -699.945371851 mm,	Z = 395.700257567 mm,
+	W = -179.983834806 deg,	P = 0.026522981 deg,	R = -0.029746044 deg
 };
 P[141]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.130449810 deg,	J2= -5.009450100 deg,	J3= -48.570336317 deg,
-	J4= -0.007761151 deg,	J5= -41.460265400 deg,	J6= 22.106459802 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.434922169 mm,	Y = -709.946512745 mm,	Z = 395.699789578 mm,
+	W = -179.983725575 deg,	P = 0.026419653 deg,	R = -0.029803952 deg
 };
 P[142]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.559433750 deg,	J2= -4.791191536 deg,	J3= -48.590072659 deg,
-	J4= -0.007628303 deg,	J5= -41.440511461 deg,	J6= 22.535287391 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.433518794 mm,	Y = -719.947683128 mm,	Z = 395.699333979 mm,
+	W = -179.983618057 deg,	P = 0.026315293 deg,	R = -0.029862451 deg
 };
 P[143]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.985768528 deg,	J2= -4.569769609 deg,	J3= -48.609203777 deg,
-	J4= -0.007496392 deg,	J5= -41.421361308 deg,	J6= 22.961465818 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.432080646 mm,	Y = -729.948883438 mm,	Z = 395.698890608 mm,
+	W = -179.983512269 deg,	P = 0.026209949 deg,	R = -0.029921541 deg
 };
 P[144]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.409431899 deg,	J2= -4.345252984 deg,	J3= -48.627684686 deg,
-	J4= -0.007365417 deg,	J5= -41.402859951 deg,	J6= 23.384972836 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.430607086 mm,	Y = -739.950114089 mm,	Z = 395.698459300 mm,
+	W = -179.983408230 deg,	P = 0.026103666 deg,	R = -0.029981220 deg
 };
 P[145]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.830403061 deg,	J2= -4.117709746 deg,	J3= -48.645471005 deg,
-	J4= -0.007235375 deg,	J5= -41.385051798 deg,	J6= 23.805787645 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.429097468 mm,	Y = -749.951375480 mm,	Z = 395.698039884 mm,
+	W = -179.983305955 deg,	P = 0.025996494 deg,	R = -0.030041486 deg
 };
 P[146]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.248662638 deg,	J2= -3.887207344 deg,	J3= -48.662518995 deg,
-	J4= -0.007106262 deg,	J5= -41.367980616 deg,	J6= 24.223890869 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.427551144 mm,	Y = -759.952667987 mm,	Z = 395.697632184 mm,
+	W = -179.983205460 deg,	P = 0.025888478 deg,	R = -0.030102337 deg
 };
 P[147]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.664192660 deg,	J2= -3.653812533 deg,	J3= -48.678785592 deg,
-	J4= -0.006978073 deg,	J5= -41.351689498 deg,	J6= 24.639264535 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.425967458 mm,	Y = -769.953991966 mm,	Z = 395.697236022 mm,
+	W = -179.983106758 deg,	P = 0.025779666 deg,	R = -0.030163769 deg
 };
 P[148]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.076976534 deg,	J2= -3.417591329 deg,	J3= -48.694228439 deg,
-	J4= -0.006850803 deg,	J5= -41.336220825 deg,	J6= 25.051892055 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.424345753 mm,	Y = -779.955347754 mm,	Z = 395.696851215 mm,
+	W = -179.983009863 deg,	P = 0.025670106 deg,	R = -0.030225779 deg
 };
 P[149]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.128501300 deg,	J2= -3.385737210 deg,	J3= -48.696151351 deg,
-	J4= -0.006355562 deg,	J5= -41.334083536 deg,	J6= 25.102641825 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.457307085 mm,	Y = -781.228113800 mm,	Z = 395.699852834 mm,
+	W = -179.983374260 deg,	P = 0.025599644 deg,	R = -0.030629077 deg
 };
 P[150]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.178872144 deg,	J2= -3.349981440 deg,	J3= -48.698185156 deg,
-	J4= -0.005368599 deg,	J5= -41.331542140 deg,	J6= 25.151557019 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.564302882 mm,	Y = -782.512730620 mm,	Z = 395.706650409 mm,
+	W = -179.984157976 deg,	P = 0.025402865 deg,	R = -0.031343819 deg
 };
 P[151]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.227234766 deg,	J2= -3.310468539 deg,	J3= -48.700384562 deg,
-	J4= -0.004368655 deg,	J5= -41.328727584 deg,	J6= 25.198568411 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.751716591 mm,	Y = -783.787384049 mm,	Z = 395.714418468 mm,
+	W = -179.984996357 deg,	P = 0.025114258 deg,	R = -0.031944367 deg
 };
 P[152]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.273394398 deg,	J2= -3.267367428 deg,	J3= -48.702732167 deg,
-	J4= -0.003359809 deg,	J5= -41.325659978 deg,	J6= 25.243486562 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.018808063 mm,	Y = -785.047048548 mm,	Z = 395.723124665 mm,
+	W = -179.985886086 deg,	P = 0.024735214 deg,	R = -0.032428450 deg
 };
 P[153]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.317166280 deg,	J2= -3.220861688 deg,	J3= -48.705209658 deg,
-	J4= -0.002346153 deg,	J5= -41.322360778 deg,	J6= 25.286131605 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.364523321 mm,	Y = -786.286756858 mm,	Z = 395.732732738 mm,
+	W = -179.986823625 deg,	P = 0.024267481 deg,	R = -0.032794233 deg
 };
 P[154]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.358376424 deg,	J2= -3.171148611 deg,	J3= -48.707798037 deg,
-	J4= -0.001331764 deg,	J5= -41.318852542 deg,	J6= 25.326333992 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.787498727 mm,	Y = -787.501619535 mm,	Z = 395.743202689 mm,
+	W = -179.987805226 deg,	P = 0.023713153 deg,	R = -0.033040330 deg
 };
 P[155]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.396862319 deg,	J2= -3.118438187 deg,	J3= -48.710477858 deg,
-	J4= -0.000320695 deg,	J5= -41.315158680 deg,	J6= 25.363935183 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1151.286066348 mm,	Y = -788.686844209 mm,	Z = 395.754490971 mm,
+	W = -179.988826950 deg,	P = 0.023074658 deg,	R = -0.033165804 deg
 };
 P[156]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.432473560 deg,	J2= -3.062952054 deg,	J3= -48.713229447 deg,
-	J4= 0.000683050 deg,	J5= -41.311303203 deg,	J6= 25.398788255 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1151.858260517 mm,	Y = -789.837754457 mm,	Z = 395.766550703 mm,
+	W = -179.989884685 deg,	P = 0.022354743 deg,	R = -0.033170174 deg
 };
 P[157]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.465072411 deg,	J2= -3.004922395 deg,	J3= -48.716033137 deg,
-	J4= 0.001675521 deg,	J5= -41.307310475 deg,	J6= 25.430758458 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1152.501825559 mm,	Y = -790.949808246 mm,	Z = 395.779331886 mm,
+	W = -179.990974158 deg,	P = 0.021556462 deg,	R = -0.033053412 deg
 };
 P[158]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.494534299 deg,	J2= -2.944590811 deg,	J3= -48.718869485 deg,
-	J4= 0.002652847 deg,	J5= -41.303204964 deg,	J6= 25.459723692 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1153.214224658 mm,	Y = -792.018615862 mm,	Z = 395.792781648 mm,
+	W = -179.992090958 deg,	P = 0.020683158 deg,	R = -0.032815951 deg
 };
 P[159]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.520748230 deg,	J2= -2.882207166 deg,	J3= -48.721719484 deg,
-	J4= 0.003611246 deg,	J5= -41.299011012 deg,	J6= 25.485574916 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1153.992649811 mm,	Y = -793.039957249 mm,	Z = 395.806844487 mm,
+	W = -179.993230555 deg,	P = 0.019738446 deg,	R = -0.032458675 deg
 };
 P[160]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.543617135 deg,	J2= -2.818028416 deg,	J3= -48.724564759 deg,
-	J4= 0.004547037 deg,	J5= -41.294752607 deg,	J6= 25.508216486 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1154.834032858 mm,	Y = -794.009798696 mm,	Z = 395.821462530 mm,
+	W = -179.994388319 deg,	P = 0.018726202 deg,	R = -0.031982924 deg
 };
 P[161]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.563058147 deg,	J2= -2.752317420 deg,	J3= -48.727387756 deg,
-	J4= 0.005456654 deg,	J5= -41.290453173 deg,	J6= 25.527566422 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1155.735057528 mm,	Y = -794.924308839 mm,	Z = 395.836575744 mm,
+	W = -179.995559536 deg,	P = 0.017650542 deg,	R = -0.031390491 deg
 };
 P[162]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.579002797 deg,	J2= -2.685341785 deg,	J3= -48.730171893 deg,
-	J4= 0.006336661 deg,	J5= -41.286135377 deg,	J6= 25.543556613 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1156.692172443 mm,	Y = -795.779873718 mm,	Z = 395.852122429 mm,
+	W = -179.996739443 deg,	P = 0.016515792 deg,	R = -0.030683601 deg
 };
 P[163]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.591397155 deg,	J2= -2.617372647 deg,	J3= -48.732901719 deg,
-	J4= 0.007183755 deg,	J5= -41.281820962 deg,	J6= 25.556132941 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1157.701605086 mm,	Y = -796.573111305 mm,	Z = 395.868039169 mm,
+	W = -179.997923231 deg,	P = 0.015326493 deg,	R = -0.029864926 deg
 };
 P[164]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.600201888 deg,	J2= -2.548683534 deg,	J3= -48.735563032 deg,
-	J4= 0.007994784 deg,	J5= -41.277530589 deg,	J6= 25.565255350 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1158.759376589 mm,	Y = -797.300884812 mm,	Z = 395.884261325 mm,
+	W = -179.999106076 deg,	P = 0.014087367 deg,	R = -0.028937563 deg
 };
 P[165]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.605392263 deg,	J2= -2.479549200 deg,	J3= -48.738142979 deg,
-	J4= 0.008766752 deg,	J5= -41.273283708 deg,	J6= 25.570897847 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1159.861317363 mm,	Y = -797.960315206 mm,	Z = 395.900723269 mm,
+	W = 179.999716838 deg,	P = 0.012803300 deg,	R = -0.027905027 deg
 };
 P[166]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.606958080 deg,	J2= -2.410244507 deg,	J3= -48.740630135 deg,
-	J4= 0.009496828 deg,	J5= -41.269098457 deg,	J6= 25.573048447 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1161.003083472 mm,	Y = -798.548792674 mm,	Z = 395.917358663 mm,
+	W = 179.998550303 deg,	P = 0.011479325 deg,	R = -0.026771241 deg
 };
 P[167]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.604903552 deg,	J2= -2.341043311 deg,	J3= -48.743014555 deg,
-	J4= 0.010182354 deg,	J5= -41.264991573 deg,	J6= 25.571709051 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1162.180173699 mm,	Y = -799.063987046 mm,	Z = 395.934100744 mm,
+	W = 179.997399062 deg,	P = 0.010120602 deg,	R = -0.025540520 deg
 };
 P[168]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.599247121 deg,	J2= -2.272217399 deg,	J3= -48.745287807 deg,
-	J4= 0.010820852 deg,	J5= -41.260978338 deg,	J6= 25.566895275 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1163.387947230 mm,	Y = -799.503857104 mm,	Z = 395.950882598 mm,
+	W = 179.996267792 deg,	P = 0.008732400 deg,	R = -0.024217560 deg
 };
 P[169]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.590021223 deg,	J2= -2.204035448 deg,	J3= -48.747442978 deg,
-	J4= 0.011410030 deg,	J5= -41.257072543 deg,	J6= 25.558636230 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1164.621641893 mm,	Y = -799.866658768 mm,	Z = 395.967637442 mm,
+	W = 179.995161078 deg,	P = 0.007320074 deg,	R = -0.022807419 deg
 };
 P[170]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.577272006 deg,	J2= -2.136762022 deg,	J3= -48.749474659 deg,
-	J4= 0.011947789 deg,	J5= -41.253286474 deg,	J6= 25.546974248 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1165.876392887 mm,	Y = -800.150952107 mm,	Z = 395.984298886 mm,
+	W = 179.994083398 deg,	P = 0.005889051 deg,	R = -0.021315501 deg
 };
 P[171]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.561058996 deg,	J2= -2.070656617 deg,	J3= -48.751378905 deg,
-	J4= 0.012432223 deg,	J5= -41.249630926 deg,	J6= 25.531964570 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1167.147251935 mm,	Y = -800.355607136 mm,	Z = 396.000801233 mm,
+	W = 179.993039100 deg,	P = 0.004444806 deg,	R = -0.019747531 deg
 };
 P[172]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.541454724 deg,	J2= -2.005972731 deg,	J3= -48.753153186 deg,
-	J4= 0.012861631 deg,	J5= -41.246115235 deg,	J6= 25.513674967 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1168.429206668 mm,	Y = -800.479808437 mm,	Z = 396.017079614 mm,
+	W = 179.992032390 deg,	P = 0.002992854 deg,	R = -0.018109557 deg
 };
 P[173]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.518544309 deg,	J2= -1.942957004 deg,	J3= -48.754796305 deg,
-	J4= 0.013234514 deg,	J5= -41.242747323 deg,	J6= 25.492185381 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1169.717200489 mm,	Y = -800.523058441 mm,	Z = 396.033070420 mm,
+	W = 179.991067304 deg,	P = 0.001538714 deg,	R = -0.016407896 deg
 };
 P[174]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.328371791 deg,	J2= -1.449568402 deg,	J3= -48.770012559 deg,
-	J4= 0.013404702 deg,	J5= -41.226763222 deg,	J6= 25.302614885 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1179.730898129 mm,	Y = -800.530106269 mm,	Z = 396.040008918 mm,
+	W = 179.990635076 deg,	P = 0.000861797 deg,	R = -0.015675453 deg
 };
 P[175]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.141089392 deg,	J2= -0.958943308 deg,	J3= -48.781004622 deg,
-	J4= 0.013411697 deg,	J5= -41.215862522 deg,	J6= 25.115176236 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1189.727949667 mm,	Y = -800.536560369 mm,	Z = 396.039025439 mm,
+	W = 179.990668663 deg,	P = 0.000915017 deg,	R = -0.015824757 deg
 };
 P[176]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.956386692 deg,	J2= -0.471048028 deg,	J3= -48.787514956 deg,
-	J4= 0.013419975 deg,	J5= -41.209442688 deg,	J6= 24.930317286 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1199.724996856 mm,	Y = -800.543092941 mm,	Z = 396.038051912 mm,
+	W = 179.990700000 deg,	P = 0.000968790 deg,	R = -0.015973787 deg
 };
 P[177]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.774214568 deg,	J2= 0.014191976 deg,	J3= -48.789615876 deg,
-	J4= 0.013429522 deg,	J5= -41.207431415 deg,	J6= 24.747988913 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1209.722040190 mm,	Y = -800.549703736 mm,	Z = 396.037088153 mm,
+	W = 179.990729118 deg,	P = 0.001023083 deg,	R = -0.016122541 deg
 };
 P[178]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.594525031 deg,	J2= 0.496849996 deg,	J3= -48.787377791 deg,
-	J4= 0.013440325 deg,	J5= -41.209758303 deg,	J6= 24.568143125 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1219.719080136 mm,	Y = -800.556392504 mm,	Z = 396.036133978 mm,
+	W = 179.990756042 deg,	P = 0.001077865 deg,	R = -0.016271022 deg
 };
 P[179]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.417271190 deg,	J2= 0.976998103 deg,	J3= -48.780869236 deg,
-	J4= 0.013452370 deg,	J5= -41.216354827 deg,	J6= 24.390733033 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1229.716117143 mm,	Y = -800.563158995 mm,	Z = 396.035189205 mm,
+	W = 179.990780802 deg,	P = 0.001133108 deg,	R = -0.016419228 deg
 };
 P[180]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.242407232 deg,	J2= 1.454707171 deg,	J3= -48.770156901 deg,
-	J4= 0.013465646 deg,	J5= -41.227154306 deg,	J6= 24.215712824 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1239.713151632 mm,	Y = -800.570002963 mm,	Z = 396.034253654 mm,
+	W = 179.990803424 deg,	P = 0.001188784 deg,	R = -0.016567163 deg
 };
 P[181]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.069888389 deg,	J2= 1.930046910 deg,	J3= -48.755305665 deg,
-	J4= 0.013480137 deg,	J5= -41.242091873 deg,	J6= 24.043037731 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1249.710184006 mm,	Y = -800.576924160 mm,	Z = 396.033327144 mm,
+	W = 179.990823935 deg,	P = 0.001244866 deg,	R = -0.016714830 deg
 };
 P[182]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.899670918 deg,	J2= 2.403085890 deg,	J3= -48.736378620 deg,
-	J4= 0.013495832 deg,	J5= -41.261104443 deg,	J6= 23.872664008 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1259.707214647 mm,	Y = -800.583922344 mm,	Z = 396.032409499 mm,
+	W = 179.990842360 deg,	P = 0.001301329 deg,	R = -0.016862231 deg
 };
 P[183]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.731712066 deg,	J2= 2.873891568 deg,	J3= -48.713437107 deg,
-	J4= 0.013512716 deg,	J5= -41.284130686 deg,	J6= 23.704548905 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1269.704243916 mm,	Y = -800.590997271 mm,	Z = 396.031500545 mm,
+	W = 179.990858727 deg,	P = 0.001358148 deg,	R = -0.017009371 deg
 };
 P[184]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.565970056 deg,	J2= 3.342530320 deg,	J3= -48.686540746 deg,
-	J4= 0.013530776 deg,	J5= -41.311110991 deg,	J6= 23.538650643 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1279.701272156 mm,	Y = -800.598148702 mm,	Z = 396.030600109 mm,
+	W = 179.990873058 deg,	P = 0.001415301 deg,	R = -0.017156255 deg
 };
 P[185]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.402404053 deg,	J2= 3.809067466 deg,	J3= -48.655747462 deg,
-	J4= 0.013550000 deg,	J5= -41.341987445 deg,	J6= 23.374928388 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1289.698299692 mm,	Y = -800.605376400 mm,	Z = 396.029708022 mm,
+	W = 179.990885380 deg,	P = 0.001472765 deg,	R = -0.017302887 deg
 };
 P[186]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.240974146 deg,	J2= 4.273567302 deg,	J3= -48.621113516 deg,
-	J4= 0.013570373 deg,	J5= -41.376703793 deg,	J6= 23.213342228 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1299.695326831 mm,	Y = -800.612680131 mm,	Z = 396.028824115 mm,
+	W = 179.990895716 deg,	P = 0.001530519 deg,	R = -0.017449275 deg
 };
 P[187]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.217839174 deg,	J2= 4.434463863 deg,	J3= -48.833734770 deg,
-	J4= 0.000000000 deg,	J5= -41.166265230 deg,	J6= 23.217839174 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1299.999999998 mm,	Y = -799.999999999 mm,	Z = 391.999999971 mm,
+	W = -180.000000000 deg,	P = 0.000000000 deg,	R = 0.000000000 deg
 };
 P[188]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.081641326 deg,	J2= 4.896756052 deg,	J3= -48.794399211 deg,
-	J4= 0.013515762 deg,	J5= -41.203486896 deg,	J6= 23.053853155 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1309.692747442 mm,	Y = -800.619383701 mm,	Z = 392.027844145 mm,
+	W = 179.990979906 deg,	P = 0.001542304 deg,	R = -0.017619538 deg
 };
 P[189]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.924367447 deg,	J2= 5.356284968 deg,	J3= -48.750863663 deg,
-	J4= 0.013538900 deg,	J5= -41.247103526 deg,	J6= 22.896423023 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1319.689766564 mm,	Y = -800.626839302 mm,	Z = 392.026976030 mm,
+	W = 179.990986081 deg,	P = 0.001601150 deg,	R = -0.017765173 deg
 };
 P[190]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.769115232 deg,	J2= 5.813972238 deg,	J3= -48.703661446 deg,
-	J4= 0.013563148 deg,	J5= -41.294386083 deg,	J6= 22.741014554 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1329.686786283 mm,	Y = -800.634370290 mm,	Z = 392.026115619 mm,
+	W = 179.990990339 deg,	P = 0.001660219 deg,	R = -0.017910577 deg
 };
 P[191]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.615848228 deg,	J2= 6.269878348 deg,	J3= -48.652842354 deg,
-	J4= 0.013588493 deg,	J5= -41.345284783 deg,	J6= 22.587591297 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1339.683806839 mm,	Y = -800.641976441 mm,	Z = 392.025262757 mm,
+	W = 179.990992704 deg,	P = 0.001719493 deg,	R = -0.018055758 deg
 };
 P[192]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.464530799 deg,	J2= 6.724062899 deg,	J3= -48.598454650 deg,
-	J4= 0.013614921 deg,	J5= -41.399751371 deg,	J6= 22.436117613 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1349.680828459 mm,	Y = -800.649657537 mm,	Z = 392.024417289 mm,
+	W = 179.990993195 deg,	P = 0.001778956 deg,	R = -0.018200724 deg
 };
 P[193]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.315128094 deg,	J2= 7.176584635 deg,	J3= -48.540545097 deg,
-	J4= 0.013642422 deg,	J5= -41.457739095 deg,	J6= 22.286558655 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1359.677851356 mm,	Y = -800.657413364 mm,	Z = 392.023579064 mm,
+	W = 179.990991835 deg,	P = 0.001838592 deg,	R = -0.018345485 deg
 };
 P[194]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.167606038 deg,	J2= 7.627501469 deg,	J3= -48.479158977 deg,
-	J4= 0.013670981 deg,	J5= -41.519202681 deg,	J6= 22.138880344 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1369.674875730 mm,	Y = -800.665243710 mm,	Z = 392.022747936 mm,
+	W = 179.990988643 deg,	P = 0.001898385 deg,	R = -0.018490050 deg
 };
 P[195]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.021931305 deg,	J2= 8.076870519 deg,	J3= -48.414340119 deg,
-	J4= 0.013700587 deg,	J5= -41.584098308 deg,	J6= 21.993049356 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1379.671901769 mm,	Y = -800.673148370 mm,	Z = 392.021923759 mm,
+	W = 179.990983639 deg,	P = 0.001958323 deg,	R = -0.018634430 deg
 };
 P[196]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.878071302 deg,	J2= 8.524748131 deg,	J3= -48.346130928 deg,
-	J4= 0.013731227 deg,	J5= -41.652383581 deg,	J6= 21.849033098 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1389.668929649 mm,	Y = -800.681127140 mm,	Z = 392.021106393 mm,
+	W = 179.990976843 deg,	P = 0.002018391 deg,	R = -0.018778635 deg
 };
 P[197]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.735994151 deg,	J2= 8.971189915 deg,	J3= -48.274572399 deg,
-	J4= 0.013762890 deg,	J5= -41.724017514 deg,	J6= 21.706799692 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1399.665959535 mm,	Y = -800.689179823 mm,	Z = 392.020295702 mm,
+	W = 179.990968273 deg,	P = 0.002078576 deg,	R = -0.018922676 deg
 };
 P[198]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.595668671 deg,	J2= 9.416250770 deg,	J3= -48.199704147 deg,
-	J4= 0.013795563 deg,	J5= -41.798960498 deg,	J6= 21.566317956 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1409.662991580 mm,	Y = -800.697306225 mm,	Z = 392.019491549 mm,
+	W = 179.990957947 deg,	P = 0.002138866 deg,	R = -0.019066563 deg
 };
 P[199]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.457064359 deg,	J2= 9.859984911 deg,	J3= -48.121564428 deg,
-	J4= 0.013829236 deg,	J5= -41.877174289 deg,	J6= 21.427557387 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1419.660025930 mm,	Y = -800.705506156 mm,	Z = 392.018693805 mm,
+	W = 179.990945882 deg,	P = 0.002199250 deg,	R = -0.019210309 deg
 };
 P[200]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.320151374 deg,	J2= 10.302445906 deg,	J3= -48.040190157 deg,
-	J4= 0.013863895 deg,	J5= -41.958621979 deg,	J6= 21.290488146 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1429.657062716 mm,	Y = -800.713779431 mm,	Z = 392.017902341 mm,
+	W = 179.990932097 deg,	P = 0.002259716 deg,	R = -0.019353925 deg
 };
 P[201]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.301441572 deg,	J2= 10.357201402 deg,	J3= -48.029540277 deg,
-	J4= 0.014053530 deg,	J5= -41.968416473 deg,	J6= 21.272516377 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1430.929512323 mm,	Y = -800.674298452 mm,	Z = 392.025811365 mm,
+	W = 179.990501097 deg,	P = 0.001506494 deg,	R = -0.018476497 deg
 };
 P[202]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.279748621 deg,	J2= 10.410325264 deg,	J3= -48.018813812 deg,
-	J4= 0.014381758 deg,	J5= -41.977440045 deg,	J6= 21.252401323 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1432.214831314 mm,	Y = -800.552778627 mm,	Z = 392.041457703 mm,
+	W = 179.989676884 deg,	P = -0.000003597 deg,	R = -0.016656095 deg
 };
 P[203]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.255393468 deg,	J2= 10.461657124 deg,	J3= -48.008390798 deg,
-	J4= 0.014646866 deg,	J5= -41.986188745 deg,	J6= 21.229728518 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1433.491239116 mm,	Y = -800.350013752 mm,	Z = 392.056689251 mm,
+	W = 179.988903476 deg,	P = -0.001503411 deg,	R = -0.014778164 deg
 };
 P[204]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.228475752 deg,	J2= 10.511000844 deg,	J3= -47.998316185 deg,
-	J4= 0.014847909 deg,	J5= -41.994624013 deg,	J6= 21.204590963 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1434.753698667 mm,	Y = -800.066797442 mm,	Z = 392.071446795 mm,
+	W = 179.988183992 deg,	P = -0.002987256 deg,	R = -0.012850014 deg
 };
 P[205]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.199104404 deg,	J2= 10.558168498 deg,	J3= -47.988633761 deg,
-	J4= 0.014984183 deg,	J5= -42.002708294 deg,	J6= 21.177090571 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1435.997227347 mm,	Y = -799.704241681 mm,	Z = 392.085673205 mm,
+	W = 179.987521317 deg,	P = -0.004449507 deg,	R = -0.010879162 deg
 };
 P[206]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.167397187 deg,	J2= 10.602981006 deg,	J3= -47.979385912 deg,
-	J4= 0.015055227 deg,	J5= -42.010405251 deg,	J6= 21.147337724 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1437.216916642 mm,	Y = -799.263772525 mm,	Z = 392.099313641 mm,
+	W = 179.986918091 deg,	P = -0.005884621 deg,	R = -0.008873304 deg
 };
 P[207]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.133480200 deg,	J2= 10.645268734 deg,	J3= -47.970613393 deg,
-	J4= 0.015060826 deg,	J5= -42.017679976 deg,	J6= 21.115450815 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1438.407951537 mm,	Y = -798.747124544 mm,	Z = 392.112315754 mm,
+	W = 179.986376697 deg,	P = -0.007287159 deg,	R = -0.006840284 deg
 };
 P[208]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.097487371 deg,	J2= 10.684872051 deg,	J3= -47.962355103 deg,
-	J4= 0.015001006 deg,	J5= -42.024499198 deg,	J6= 21.081555766 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1439.565629539 mm,	Y = -798.156334040 mm,	Z = 392.124629862 mm,
+	W = 179.985899250 deg,	P = -0.008651803 deg,	R = -0.004788065 deg
 };
 P[209]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.059559932 deg,	J2= 10.721641851 deg,	J3= -47.954647865 deg,
-	J4= 0.014876040 deg,	J5= -42.030831483 deg,	J6= 21.045785539 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1440.685379276 mm,	Y = -797.493731043 mm,	Z = 392.136209130 mm,
+	W = 179.985487594 deg,	P = -0.009973372 deg,	R = -0.002724698 deg
 };
 P[210]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.019845878 deg,	J2= 10.755440034 deg,	J3= -47.947526218 deg,
-	J4= 0.014686441 deg,	J5= -42.036647426 deg,	J6= 21.008279621 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1441.762778575 mm,	Y = -796.761930143 mm,	Z = 392.147009717 mm,
+	W = 179.985143291 deg,	P = -0.011246840 deg,	R = -0.000658292 deg
 };
 P[211]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.978499406 deg,	J2= 10.786139946 deg,	J3= -47.941022221 deg,
-	J4= 0.014432961 deg,	J5= -42.041919831 deg,	J6= 20.969183504 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1442.793571969 mm,	Y = -795.963820179 mm,	Z = 392.156990929 mm,
+	W = 179.984867616 deg,	P = -0.012467356 deg,	R = 0.001403017 deg
 };
 P[212]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.935680356 deg,	J2= 10.813626776 deg,	J3= -47.935165266 deg,
-	J4= 0.014116591 deg,	J5= -42.046623885 deg,	J6= 20.928648153 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1443.773687545 mm,	Y = -795.102552820 mm,	Z = 392.166115347 mm,
+	W = 179.984661556 deg,	P = -0.013630256 deg,	R = 0.003451101 deg
 };
 P[213]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.891553625 deg,	J2= 10.837797921 deg,	J3= -47.929981908 deg,
-	J4= 0.013738552 deg,	J5= -42.050737311 deg,	J6= 20.886829462 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1444.699253081 mm,	Y = -794.181530102 mm,	Z = 392.174348944 mm,
+	W = 179.984525806 deg,	P = -0.014731083 deg,	R = 0.005477867 deg
 };
 P[214]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.846288586 deg,	J2= 10.858563302 deg,	J3= -47.925495712 deg,
-	J4= 0.013300296 deg,	J5= -42.054240510 deg,	J6= 20.843887703 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1445.566611396 mm,	Y = -793.204390954 mm,	Z = 392.181661191 mm,
+	W = 179.984460767 deg,	P = -0.015765600 deg,	R = 0.007475296 deg
 };
 P[215]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.800058490 deg,	J2= 10.875845640 deg,	J3= -47.921727110 deg,
-	J4= 0.012803497 deg,	J5= -42.057116691 deg,	J6= 20.799986965 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1446.372334848 mm,	Y = -792.174996772 mm,	Z = 392.188025146 mm,
+	W = 179.984466549 deg,	P = -0.016729806 deg,	R = 0.009435468 deg
 };
 P[216]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.753039867 deg,	J2= 10.889580698 deg,	J3= -47.918693287 deg,
-	J4= 0.012250049 deg,	J5= -42.059351978 deg,	J6= 20.755294594 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1447.113238944 mm,	Y = -791.097416104 mm,	Z = 392.193417535 mm,
+	W = 179.984542970 deg,	P = -0.017619952 deg,	R = 0.011350596 deg
 };
 P[217]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.705411917 deg,	J2= 10.899717473 deg,	J3= -47.916408074 deg,
-	J4= 0.011642053 deg,	J5= -42.060935502 deg,	J6= 20.709980616 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1447.786394977 mm,	Y = -789.975908498 mm,	Z = 392.197818811 mm,
+	W = 179.984689561 deg,	P = -0.018432552 deg,	R = 0.013213061 deg
 };
 P[218]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.657355903 deg,	J2= 10.906218352 deg,	J3= -47.914881872 deg,
-	J4= 0.010981817 deg,	J5= -42.061859471 deg,	J6= 20.664217168 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.389141660 mm,	Y = -788.814907590 mm,	Z = 392.201213212 mm,
+	W = 179.984905571 deg,	P = -0.019164401 deg,	R = 0.015015438 deg
 };
 P[219]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.609054534 deg,	J2= 10.909059227 deg,	J3= -47.914121585 deg,
-	J4= 0.010271845 deg,	J5= -42.062119229 deg,	J6= 20.618177917 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.919095703 mm,	Y = -787.619003486 mm,	Z = 392.203588792 mm,
+	W = 179.985189970 deg,	P = -0.019812583 deg,	R = 0.016750530 deg
 };
 P[220]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.560691350 deg,	J2= 10.908229565 deg,	J3= -47.914130586 deg,
-	J4= 0.009514828 deg,	J5= -42.061713281 deg,	J6= 20.572037483 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.374161291 mm,	Y = -786.392924521 mm,	Z = 392.204937451 mm,
+	W = 179.985541457 deg,	P = -0.020374486 deg,	R = 0.018411393 deg
 };
 P[221]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.512450107 deg,	J2= 10.903732445 deg,	J3= -47.914908697 deg,
-	J4= 0.008713636 deg,	J5= -42.060643311 deg,	J6= 20.525970851 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.752538420 mm,	Y = -785.141518468 mm,	Z = 392.205254947 mm,
+	W = 179.985958470 deg,	P = -0.020847811 deg,	R = 0.019991371 deg
 };
 P[222]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.464514155 deg,	J2= 10.895584543 deg,	J3= -47.916452188 deg,
-	J4= 0.007871308 deg,	J5= -42.058914175 deg,	J6= 20.480152793 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.052730068 mm,	Y = -783.869733264 mm,	Z = 392.204540895 mm,
+	W = 179.986439191 deg,	P = -0.021230585 deg,	R = 0.021484120 deg
 };
 P[223]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.417065823 deg,	J2= 10.883816085 deg,	J3= -47.918753805 deg,
-	J4= 0.006991043 deg,	J5= -42.056533869 deg,	J6= 20.434757282 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.273548154 mm,	Y = -782.582597341 mm,	Z = 392.202798758 mm,
+	W = 179.986981558 deg,	P = -0.021521167 deg,	R = 0.022883633 deg
 };
 P[224]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.370285803 deg,	J2= 10.868470754 deg,	J3= -47.921802815 deg,
-	J4= 0.006076185 deg,	J5= -42.053513481 deg,	J6= 20.389956912 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.414118284 mm,	Y = -781.285199638 mm,	Z = 392.200035818 mm,
+	W = 179.987583275 deg,	P = -0.021718261 deg,	R = 0.024184271 deg
 };
 P[225]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.324352537 deg,	J2= 10.849605560 deg,	J3= -47.925585070 deg,
-	J4= 0.005130217 deg,	J5= -42.049867126 deg,	J6= 20.345922310 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.473883243 mm,	Y = -779.982669372 mm,	Z = 392.196263148 mm,
+	W = 179.988241824 deg,	P = -0.021820917 deg,	R = 0.025380782 deg
 };
 P[226]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.973820997 deg,	J2= 10.686829206 deg,	J3= -47.957522960 deg,
-	J4= 0.004752260 deg,	J5= -42.017997090 deg,	J6= 19.996160896 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.481615663 mm,	Y = -769.962063881 mm,	Z = 392.194101331 mm,
+	W = 179.988638294 deg,	P = -0.021915819 deg,	R = 0.025872010 deg
 };
 P[227]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.622525773 deg,	J2= 10.526554940 deg,	J3= -47.988474337 deg,
-	J4= 0.004865163 deg,	J5= -41.987003805 deg,	J6= 19.644709405 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.479917328 mm,	Y = -759.964988260 mm,	Z = 392.194192697 mm,
+	W = 179.988689481 deg,	P = -0.021999800 deg,	R = 0.025801365 deg
 };
 P[228]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.269686025 deg,	J2= 10.368813861 deg,	J3= -48.018497425 deg,
-	J4= 0.004978355 deg,	J5= -41.956939862 deg,	J6= 19.291713389 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.478260356 mm,	Y = -749.967890097 mm,	Z = 392.194269356 mm,
+	W = 179.988742065 deg,	P = -0.022083234 deg,	R = 0.025730961 deg
 };
 P[229]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.915318522 deg,	J2= 10.213631746 deg,	J3= -48.047607682 deg,
-	J4= 0.005091836 deg,	J5= -41.927789817 deg,	J6= 18.937189618 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.476644290 mm,	Y = -739.970769645 mm,	Z = 392.194331297 mm,
+	W = 179.988796032 deg,	P = -0.022166091 deg,	R = 0.025660795 deg
 };
 P[230]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.559440646 deg,	J2= 10.061034400 deg,	J3= -48.075820582 deg,
-	J4= 0.005205608 deg,	J5= -41.899538211 deg,	J6= 18.581155474 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.475068675 mm,	Y = -729.973627168 mm,	Z = 392.194378508 mm,
+	W = 179.988851369 deg,	P = -0.022248339 deg,	R = 0.025590866 deg
 };
 P[231]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.202070395 deg,	J2= 9.911047633 deg,	J3= -48.103151603 deg,
-	J4= 0.005319668 deg,	J5= -41.872169580 deg,	J6= 18.223628953 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.473533059 mm,	Y = -719.976462943 mm,	Z = 392.194410983 mm,
+	W = 179.988908063 deg,	P = -0.022329948 deg,	R = 0.025521171 deg
 };
 P[232]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.843226381 deg,	J2= 9.763697238 deg,	J3= -48.129616216 deg,
-	J4= 0.005434018 deg,	J5= -41.845668470 deg,	J6= 17.864628670 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.472036991 mm,	Y = -709.979277256 mm,	Z = 392.194428715 mm,
+	W = 179.988966097 deg,	P = -0.022410889 deg,	R = 0.025451707 deg
 };
 P[233]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.482927835 deg,	J2= 9.619008970 deg,	J3= -48.155229872 deg,
-	J4= 0.005548657 deg,	J5= -41.820019442 deg,	J6= 17.504173854 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.470580026 mm,	Y = -699.982070407 mm,	Z = 392.194431705 mm,
+	W = 179.989025456 deg,	P = -0.022491132 deg,	R = 0.025382472 deg
 };
 P[234]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.121194604 deg,	J2= 9.477008525 deg,	J3= -48.180007993 deg,
-	J4= 0.005663582 deg,	J5= -41.795207090 deg,	J6= 17.142284352 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.469161720 mm,	Y = -689.984842705 mm,	Z = 392.194419953 mm,
+	W = 179.989086125 deg,	P = -0.022570646 deg,	R = 0.025313462 deg
 };
 P[235]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.758047148 deg,	J2= 9.337721515 deg,	J3= -48.203965957 deg,
-	J4= 0.005778793 deg,	J5= -41.771216047 deg,	J6= 16.778980626 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.467781634 mm,	Y = -679.987594470 mm,	Z = 392.194393466 mm,
+	W = 179.989148087 deg,	P = -0.022649402 deg,	R = 0.025244675 deg
 };
 P[236]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.393506548 deg,	J2= 9.201173447 deg,	J3= -48.227119090 deg,
-	J4= 0.005894288 deg,	J5= -41.748031005 deg,	J6= 16.414283754 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.466439333 mm,	Y = -669.990326034 mm,	Z = 392.194352251 mm,
+	W = 179.989211323 deg,	P = -0.022727370 deg,	R = 0.025176107 deg
 };
 P[237]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.027594493 deg,	J2= 9.067389702 deg,	J3= -48.249482648 deg,
-	J4= 0.006010063 deg,	J5= -41.725636719 deg,	J6= 16.048215428 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.465134385 mm,	Y = -659.993037741 mm,	Z = 392.194296321 mm,
+	W = 179.989275817 deg,	P = -0.022804522 deg,	R = 0.025107754 deg
 };
 P[238]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.660333286 deg,	J2= 8.936395507 deg,	J3= -48.271071806 deg,
-	J4= 0.006126117 deg,	J5= -41.704018029 deg,	J6= 15.680797949 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.463866365 mm,	Y = -649.995729943 mm,	Z = 392.194225691 mm,
+	W = 179.989341549 deg,	P = -0.022880829 deg,	R = 0.025039612 deg
 };
 P[239]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.291745838 deg,	J2= 8.808215915 deg,	J3= -48.291901646 deg,
-	J4= 0.006242447 deg,	J5= -41.683159866 deg,	J6= 15.312054228 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.462634851 mm,	Y = -639.998403004 mm,	Z = 392.194140380 mm,
+	W = 179.989408500 deg,	P = -0.022956263 deg,	R = 0.024971678 deg
 };
 P[240]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.921855665 deg,	J2= 8.682875783 deg,	J3= -48.311987140 deg,
-	J4= 0.006359048 deg,	J5= -41.663047269 deg,	J6= 14.942007782 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.461439427 mm,	Y = -630.001057301 mm,	Z = 392.194040411 mm,
+	W = 179.989476649 deg,	P = -0.023030795 deg,	R = 0.024903947 deg
 };
 P[241]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.550686883 deg,	J2= 8.560399742 deg,	J3= -48.331343141 deg,
-	J4= 0.006475916 deg,	J5= -41.643665400 deg,	J6= 14.570682728 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.460279683 mm,	Y = -620.003693219 mm,	Z = 392.193925810 mm,
+	W = 179.989545977 deg,	P = -0.023104397 deg,	R = 0.024836414 deg
 };
 P[242]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.503591790 deg,	J2= 8.543384710 deg,	J3= -48.334030823 deg,
-	J4= 0.005992381 deg,	J5= -41.641024061 deg,	J6= 14.524455929 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.428029611 mm,	Y = -618.725488357 mm,	Z = 392.192139281 mm,
+	W = 179.989887632 deg,	P = -0.023148663 deg,	R = 0.025343555 deg
 };
 P[243]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.456659132 deg,	J2= 8.522805074 deg,	J3= -48.337322038 deg,
-	J4= 0.004987806 deg,	J5= -41.637909163 deg,	J6= 14.479214287 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.322795599 mm,	Y = -617.429566397 mm,	Z = 392.187862230 mm,
+	W = 179.990596810 deg,	P = -0.023152999 deg,	R = 0.026284018 deg
 };
 P[244]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.410847319 deg,	J2= 8.498735992 deg,	J3= -48.341191760 deg,
-	J4= 0.003955988 deg,	J5= -41.634322496 deg,	J6= 14.435001107 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1450.137121874 mm,	Y = -616.143761658 mm,	Z = 392.182641075 mm,
+	W = 179.991349665 deg,	P = -0.023057198 deg,	R = 0.027111674 deg
 };
 P[245]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.366331929 deg,	J2= 8.471266646 deg,	J3= -48.345621242 deg,
-	J4= 0.002900868 deg,	J5= -41.630281852 deg,	J6= 14.391985657 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.871740737 mm,	Y = -614.873156289 mm,	Z = 392.176496064 mm,
+	W = 179.992143101 deg,	P = -0.022861442 deg,	R = 0.027823135 deg
 };
 P[246]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.323284146 deg,	J2= 8.440498992 deg,	J3= -48.350589143 deg,
-	J4= 0.001826486 deg,	J5= -41.625807226 deg,	J6= 14.350333194 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.527699531 mm,	Y = -613.622771746 mm,	Z = 392.169450855 mm,
+	W = 179.992973883 deg,	P = -0.022566298 deg,	R = 0.028415479 deg
 };
 P[247]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.281870146 deg,	J2= 8.406547457 deg,	J3= -48.356071675 deg,
-	J4= 0.000736968 deg,	J5= -41.620920676 deg,	J6= 14.310204385 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1449.106356509 mm,	Y = -612.397548864 mm,	Z = 392.161532434 mm,
+	W = 179.993838643 deg,	P = -0.022172716 deg,	R = 0.028886258 deg
 };
 P[248]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.242250505 deg,	J2= 8.369538588 deg,	J3= -48.362042755 deg,
-	J4= -0.000363487 deg,	J5= -41.615646174 deg,	J6= 14.271754728 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.609375457 mm,	Y = -611.202328258 mm,	Z = 392.152771019 mm,
+	W = 179.994733901 deg,	P = -0.021682030 deg,	R = 0.029233517 deg
 };
 P[249]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.204579613 deg,	J2= 8.329610663 deg,	J3= -48.368474174 deg,
-	J4= -0.001470627 deg,	J5= -41.610009440 deg,	J6= 14.235133988 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1448.038719119 mm,	Y = -610.041831142 mm,	Z = 392.143199956 mm,
+	W = 179.995656078 deg,	P = -0.021095955 deg,	R = 0.029455797 deg
 };
 P[250]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.169005092 deg,	J2= 8.286913259 deg,	J3= -48.375335775 deg,
-	J4= -0.002580155 deg,	J5= -41.604037771 deg,	J6= 14.200485637 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1447.396641420 mm,	Y = -608.920640622 mm,	Z = 392.132855603 mm,
+	W = 179.996601509 deg,	P = -0.020416587 deg,	R = 0.029552145 deg
 };
 P[251]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.135667238 deg,	J2= 8.241606786 deg,	J3= -48.382595647 deg,
-	J4= -0.003687752 deg,	J5= -41.597759853 deg,	J6= 14.167946309 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1446.685678545 mm,	Y = -607.843183564 mm,	Z = 392.121777213 mm,
+	W = 179.997566461 deg,	P = -0.019646391 deg,	R = 0.029522118 deg
 };
 P[252]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.104698471 deg,	J2= 8.193861972 deg,	J3= -48.390220321 deg,
-	J4= -0.004789087 deg,	J5= -41.591205578 deg,	J6= 14.137645264 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1445.908638893 mm,	Y = -606.813713082 mm,	Z = 392.110006795 mm,
+	W = 179.998547148 deg,	P = -0.018788202 deg,	R = 0.029365789 deg
 };
 P[253]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.076222800 deg,	J2= 8.143859313 deg,	J3= -48.398174974 deg,
-	J4= -0.005879838 deg,	J5= -41.584405840 deg,	J6= 14.109703871 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1445.068591951 mm,	Y = -605.836291743 mm,	Z = 392.097588979 mm,
+	W = 179.999539740 deg,	P = -0.017845211 deg,	R = 0.029083742 deg
 };
 P[254]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.050355319 deg,	J2= 8.091788484 deg,	J3= -48.406423643 deg,
-	J4= -0.006955705 deg,	J5= -41.577392344 deg,	J6= 14.084235106 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1444.168856137 mm,	Y = -604.914775530 mm,	Z = 392.084570866 mm,
+	W = -179.999459613 deg,	P = -0.016820960 deg,	R = 0.028677075 deg
 };
 P[255]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.027201703 deg,	J2= 8.037847707 deg,	J3= -48.414929432 deg,
-	J4= -0.008012429 deg,	J5= -41.570197400 deg,	J6= 14.061343065 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1443.212985653 mm,	Y = -604.052798651 mm,	Z = 392.071001870 mm,
+	W = -179.998454777 deg,	P = -0.015719329 deg,	R = 0.028147395 deg
 };
 P[256]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.006857752 deg,	J2= 7.982243087 deg,	J3= -48.423654732 deg,
-	J4= -0.009045807 deg,	J5= -41.562853726 deg,	J6= 14.041122507 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1442.204756408 mm,	Y = -603.253759227 mm,	Z = 392.056933553 mm,
+	W = -179.997449610 deg,	P = -0.014544523 deg,	R = 0.027496809 deg
 };
 P[257]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.989408939 deg,	J2= 7.925187900 deg,	J3= -48.432561427 deg,
-	J4= -0.010051712 deg,	J5= -41.555394248 deg,	J6= 14.023658414 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1441.148151058 mm,	Y = -602.520805942 mm,	Z = 392.042419456 mm,
+	W = -179.996447957 deg,	P = -0.013301055 deg,	R = 0.026727919 deg
 };
 P[258]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.974930001 deg,	J2= 7.866901856 deg,	J3= -48.441611110 deg,
-	J4= -0.011026105 deg,	J5= -41.547851909 deg,	J6= 14.009025575 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1440.047343236 mm,	Y = -601.856825688 mm,	Z = 392.027514912 mm,
+	W = -179.995453631 deg,	P = -0.011993738 deg,	R = 0.025843811 deg
 };
 P[259]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.963484556 deg,	J2= 7.807610321 deg,	J3= -48.450765285 deg,
-	J4= -0.011965057 deg,	J5= -41.540259478 deg,	J6= 13.997288211 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1438.906681027 mm,	Y = -601.264432260 mm,	Z = 392.012276863 mm,
+	W = -179.994470402 deg,	P = -0.010627659 deg,	R = 0.024848039 deg
 };
 P[260]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.955124753 deg,	J2= 7.747543503 deg,	J3= -48.459985565 deg,
-	J4= -0.012864761 deg,	J5= -41.532649374 deg,	J6= 13.988499618 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1437.730669744 mm,	Y = -600.745956140 mm,	Z = 391.996763666 mm,
+	W = -179.993501984 deg,	P = -0.009208165 deg,	R = 0.023744613 deg
 };
 P[261]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.949890959 deg,	J2= 7.686935613 deg,	J3= -48.469233867 deg,
-	J4= -0.013721553 deg,	J5= -41.525053493 deg,	J6= 13.982701851 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1436.523954099 mm,	Y = -600.303435420 mm,	Z = 391.981034885 mm,
+	W = -179.992552026 deg,	P = -0.007740842 deg,	R = 0.022537983 deg
 };
 P[262]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.947811488 deg,	J2= 7.626023989 deg,	J3= -48.478472589 deg,
-	J4= -0.014531923 deg,	J5= -41.517503046 deg,	J6= 13.979925446 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1435.291299820 mm,	Y = -599.938607881 mm,	Z = 391.965151092 mm,
+	W = -179.991624093 deg,	P = -0.006231492 deg,	R = 0.021233016 deg
 };
 P[263]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.948902367 deg,	J2= 7.565048199 deg,	J3= -48.487664784 deg,
-	J4= -0.015292537 deg,	J5= -41.510028417 deg,	J6= 13.980189179 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1434.037574787 mm,	Y = -599.652904274 mm,	Z = 391.949173645 mm,
+	W = -179.990721663 deg,	P = -0.004686112 deg,	R = 0.019834977 deg
 };
 P[264]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.953167155 deg,	J2= 7.504249115 deg,	J3= -48.496774315 deg,
-	J4= -0.016000246 deg,	J5= -41.502659023 deg,	J6= 13.983499872 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1432.767729780 mm,	Y = -599.447442812 mm,	Z = 391.933164470 mm,
+	W = -179.989848112 deg,	P = -0.003110869 deg,	R = 0.018349510 deg
 };
 P[265]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.960596802 deg,	J2= 7.443867965 deg,	J3= -48.505766006 deg,
-	J4= -0.016652104 deg,	J5= -41.495423199 deg,	J6= 13.989852239 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1431.486778893 mm,	Y = -599.323024907 mm,	Z = 391.917185840 mm,
+	W = -179.989006704 deg,	P = -0.001512074 deg,	R = 0.016782607 deg
 };
 P[266]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -13.971169559 deg,	J2= 7.384145373 deg,	J3= -48.514605769 deg,
-	J4= -0.017245384 deg,	J5= -41.488348086 deg,	J6= 13.999228782 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1430.199779709 mm,	Y = -599.280132157 mm,	Z = 391.901300138 mm,
+	W = -179.988200581 deg,	P = 0.000103843 deg,	R = 0.015140587 deg
 };
 P[267]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.066567587 deg,	J2= 6.910447124 deg,	J3= -48.577305802 deg,
-	J4= -0.017493810 deg,	J5= -41.426568658 deg,	J6= 14.093838988 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1420.181835916 mm,	Y = -599.287123472 mm,	Z = 391.893569100 mm,
+	W = -179.987830544 deg,	P = 0.000940709 deg,	R = 0.014154175 deg
 };
 P[268]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.163107495 deg,	J2= 6.434565249 deg,	J3= -48.635855480 deg,
-	J4= -0.017468076 deg,	J5= -41.368059581 deg,	J6= 14.190222532 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1410.179723718 mm,	Y = -599.295233864 mm,	Z = 391.893717381 mm,
+	W = -179.987848516 deg,	P = 0.000967051 deg,	R = 0.014005310 deg
 };
 P[269]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.260947452 deg,	J2= 5.956464067 deg,	J3= -48.690533702 deg,
-	J4= -0.017443842 deg,	J5= -41.313422717 deg,	J6= 14.287906123 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1400.177607751 mm,	Y = -599.303267490 mm,	Z = 391.893846877 mm,
+	W = -179.987864311 deg,	P = 0.000993444 deg,	R = 0.013856144 deg
 };
 P[270]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.360113358 deg,	J2= 5.476062406 deg,	J3= -48.741277447 deg,
-	J4= -0.017421134 deg,	J5= -41.262721097 deg,	J6= 14.386915664 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1390.175488081 mm,	Y = -599.311224011 mm,	Z = 391.893957325 mm,
+	W = -179.987877897 deg,	P = 0.001019878 deg,	R = 0.013706661 deg
 };
 P[271]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.460631793 deg,	J2= 4.993277302 deg,	J3= -48.788021335 deg,
-	J4= -0.017399979 deg,	J5= -41.216020115 deg,	J6= 14.487277733 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1380.173364785 mm,	Y = -599.319103075 mm,	Z = 391.894048452 mm,
+	W = -179.987889239 deg,	P = 0.001046341 deg,	R = 0.013556847 deg
 };
 P[272]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.562530033 deg,	J2= 4.508023921 deg,	J3= -48.830697556 deg,
-	J4= -0.017380406 deg,	J5= -41.173387595 deg,	J6= 14.589019606 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1370.171237956 mm,	Y = -599.326904321 mm,	Z = 391.894119976 mm,
+	W = -179.987898301 deg,	P = 0.001072824 deg,	R = 0.013406686 deg
 };
 P[273]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.665836074 deg,	J2= 4.020215482 deg,	J3= -48.869235794 deg,
-	J4= -0.017362442 deg,	J5= -41.134893863 deg,	J6= 14.692169281 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1360.169107700 mm,	Y = -599.334627372 mm,	Z = 391.894171605 mm,
+	W = -179.987905047 deg,	P = 0.001099314 deg,	R = 0.013256163 deg
 };
 P[274]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.770578658 deg,	J2= 3.529763170 deg,	J3= -48.903563155 deg,
-	J4= -0.017346118 deg,	J5= -41.100611830 deg,	J6= 14.796755497 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1350.166974138 mm,	Y = -599.342271842 mm,	Z = 391.894203039 mm,
+	W = -179.987909437 deg,	P = 0.001125798 deg,	R = 0.013105265 deg
 };
 P[275]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.876787292 deg,	J2= 3.036576054 deg,	J3= -48.933604083 deg,
-	J4= -0.017331461 deg,	J5= -41.070617063 deg,	J6= 14.902807764 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1340.164837407 mm,	Y = -599.349837329 mm,	Z = 391.894213967 mm,
+	W = -179.987911432 deg,	P = 0.001152263 deg,	R = 0.012953978 deg
 };
 P[276]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -14.984492277 deg,	J2= 2.540560998 deg,	J3= -48.959280278 deg,
-	J4= -0.017318504 deg,	J5= -41.044987877 deg,	J6= 15.010356381 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1330.162697663 mm,	Y = -599.357323422 mm,	Z = 391.894204066 mm,
+	W = -179.987910990 deg,	P = 0.001178693 deg,	R = 0.012802289 deg
 };
 P[277]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.093724734 deg,	J2= 2.041622569 deg,	J3= -48.980510609 deg,
-	J4= -0.017307277 deg,	J5= -41.023805418 deg,	J6= 15.119432469 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1320.160555078 mm,	Y = -599.364729693 mm,	Z = 391.894173004 mm,
+	W = -179.987908069 deg,	P = 0.001205074 deg,	R = 0.012650185 deg
 };
 P[278]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.204516628 deg,	J2= 1.539662947 deg,	J3= -48.997211021 deg,
-	J4= -0.017297813 deg,	J5= -41.007153755 deg,	J6= 15.230067995 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1310.158409845 mm,	Y = -599.372055701 mm,	Z = 391.894120440 mm,
+	W = -179.987902623 deg,	P = 0.001231389 deg,	R = 0.012497656 deg
 };
 P[279]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.316900800 deg,	J2= 1.034581819 deg,	J3= -49.009294442 deg,
-	J4= -0.017290143 deg,	J5= -40.995119974 deg,	J6= 15.342295798 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1300.156262175 mm,	Y = -599.379300994 mm,	Z = 391.894046018 mm,
+	W = -179.987894607 deg,	P = 0.001257620 deg,	R = 0.012344690 deg
 };
 P[280]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.430910994 deg,	J2= 0.526276287 deg,	J3= -49.016670683 deg,
-	J4= -0.017284302 deg,	J5= -40.987794280 deg,	J6= 15.456149621 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1290.154112305 mm,	Y = -599.386465101 mm,	Z = 391.893949373 mm,
+	W = -179.987883974 deg,	P = 0.001283749 deg,	R = 0.012191278 deg
 };
 P[281]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.546581885 deg,	J2= 0.014640756 deg,	J3= -49.019246334 deg,
-	J4= -0.017280324 deg,	J5= -40.985270097 deg,	J6= 15.571664143 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1280.151960490 mm,	Y = -599.393547541 mm,	Z = 391.893830129 mm,
+	W = -179.987870672 deg,	P = 0.001309756 deg,	R = 0.012037409 deg
 };
 P[282]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.663949117 deg,	J2= -0.500433171 deg,	J3= -49.016924659 deg,
-	J4= -0.017278243 deg,	J5= -40.987644178 deg,	J6= 15.688875004 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1270.149807013 mm,	Y = -599.400547814 mm,	Z = 391.893687897 mm,
+	W = -179.987854652 deg,	P = 0.001335620 deg,	R = 0.011883077 deg
 };
 P[283]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.783049328 deg,	J2= -1.019056804 deg,	J3= -49.009605479 deg,
-	J4= -0.017278095 deg,	J5= -40.995016718 deg,	J6= 15.807818844 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1260.147652181 mm,	Y = -599.407465408 mm,	Z = 391.893522276 mm,
+	W = -179.987835860 deg,	P = 0.001361318 deg,	R = 0.011728273 deg
 };
 P[284]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -15.903920191 deg,	J2= -1.541344489 deg,	J3= -48.997185058 deg,
-	J4= -0.017279917 deg,	J5= -41.007491468 deg,	J6= 15.928533335 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1250.145496329 mm,	Y = -599.414299793 mm,	Z = 391.893332853 mm,
+	W = -179.987814240 deg,	P = 0.001386827 deg,	R = 0.011572993 deg
 };
 P[285]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.026600443 deg,	J2= -2.067413721 deg,	J3= -48.979555981 deg,
-	J4= -0.017283746 deg,	J5= -41.025175861 deg,	J6= 16.051057215 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1240.143339822 mm,	Y = -599.421050425 mm,	Z = 391.893119202 mm,
+	W = -179.987789737 deg,	P = 0.001412121 deg,	R = 0.011417229 deg
 };
 P[286]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.151129927 deg,	J2= -2.597385277 deg,	J3= -48.956607025 deg,
-	J4= -0.017289620 deg,	J5= -41.048181136 deg,	J6= 16.175430327 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1230.141183055 mm,	Y = -599.427716743 mm,	Z = 391.892880886 mm,
+	W = -179.987762291 deg,	P = 0.001437174 deg,	R = 0.011260980 deg
 };
 P[287]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.277549628 deg,	J2= -3.131383340 deg,	J3= -48.928223028 deg,
-	J4= -0.017297579 deg,	J5= -41.076622471 deg,	J6= 16.301693655 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1220.139026456 mm,	Y = -599.434298172 mm,	Z = 391.892617453 mm,
+	W = -179.987731841 deg,	P = 0.001461956 deg,	R = 0.011104243 deg
 };
 P[288]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.405901711 deg,	J2= -3.669535637 deg,	J3= -48.894284752 deg,
-	J4= -0.017307661 deg,	J5= -41.110619123 deg,	J6= 16.429889365 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1210.136870487 mm,	Y = -599.440794116 mm,	Z = 391.892328440 mm,
+	W = -179.987698325 deg,	P = 0.001486438 deg,	R = 0.010947016 deg
 };
 P[289]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.536229567 deg,	J2= -4.211973578 deg,	J3= -48.854668737 deg,
-	J4= -0.017319907 deg,	J5= -41.150294569 deg,	J6= 16.560060847 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1200.134715648 mm,	Y = -599.447203968 mm,	Z = 391.892013369 mm,
+	W = -179.987661676 deg,	P = 0.001510588 deg,	R = 0.010789301 deg
 };
 P[290]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.668577850 deg,	J2= -4.758832401 deg,	J3= -48.809247154 deg,
-	J4= -0.017334358 deg,	J5= -41.195776656 deg,	J6= 16.692252756 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1190.132562479 mm,	Y = -599.453527100 mm,	Z = 391.891671749 mm,
+	W = -179.987621828 deg,	P = 0.001534371 deg,	R = 0.010631101 deg
 };
 P[291]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.802992528 deg,	J2= -5.310251324 deg,	J3= -48.757887645 deg,
-	J4= -0.017351057 deg,	J5= -41.247197759 deg,	J6= 16.826511060 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1180.130411558 mm,	Y = -599.459762869 mm,	Z = 391.891303078 mm,
+	W = -179.987578710 deg,	P = 0.001557751 deg,	R = 0.010472418 deg
 };
 P[292]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.939520924 deg,	J2= -5.866373699 deg,	J3= -48.700453169 deg,
-	J4= -0.017370046 deg,	J5= -41.304694940 deg,	J6= 16.962883081 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1170.128263512 mm,	Y = -599.465910615 mm,	Z = 391.890906838 mm,
+	W = -179.987532252 deg,	P = 0.001580691 deg,	R = 0.010313261 deg
 };
 P[293]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.958780639 deg,	J2= -5.935834558 deg,	J3= -48.693217010 deg,
-	J4= -0.017604410 deg,	J5= -41.312817221 deg,	J6= 16.981438537 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1168.856158731 mm,	Y = -599.505019872 mm,	Z = 391.883120565 mm,
+	W = -179.987123395 deg,	P = 0.002378511 deg,	R = 0.009434591 deg
 };
 P[294]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -16.981807642 deg,	J2= -6.003700665 deg,	J3= -48.686400097 deg,
-	J4= -0.018022742 deg,	J5= -41.321388756 deg,	J6= 17.003007631 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1167.572543634 mm,	Y = -599.623284326 mm,	Z = 391.867804304 mm,
+	W = -179.986343784 deg,	P = 0.003970432 deg,	R = 0.007664255 deg
 };
 P[295]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.008357145 deg,	J2= -6.069737029 deg,	J3= -48.679697164 deg,
-	J4= -0.018375665 deg,	J5= -41.329828129 deg,	J6= 17.028012103 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1166.298345894 mm,	Y = -599.821849749 mm,	Z = 391.852806748 mm,
+	W = -179.985609216 deg,	P = 0.005556140 deg,	R = 0.005855984 deg
 };
 P[296]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.038331609 deg,	J2= -6.133670794 deg,	J3= -48.673143085 deg,
-	J4= -0.018661569 deg,	J5= -41.338093400 deg,	J6= 17.056360516 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1165.038595073 mm,	Y = -600.099926296 mm,	Z = 391.838188127 mm,
+	W = -179.984922539 deg,	P = 0.007129151 deg,	R = 0.004017060 deg
 };
 P[297]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.071618781 deg,	J2= -6.195236186 deg,	J3= -48.666773002 deg,
-	J4= -0.018879132 deg,	J5= -41.346142430 deg,	J6= 17.087947040 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1163.798263247 mm,	Y = -600.456411060 mm,	Z = 391.824007449 mm,
+	W = -179.984286427 deg,	P = 0.008683023 deg,	R = 0.002154868 deg
 };
 P[298]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.108092035 deg,	J2= -6.254175779 deg,	J3= -48.660622029 deg,
-	J4= -0.019027328 deg,	J5= -41.353933204 deg,	J6= 17.122651769 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1162.582245369 mm,	Y = -600.889892511 mm,	Z = 391.810322249 mm,
+	W = -179.983703374 deg,	P = 0.010211379 deg,	R = 0.000276868 deg
 };
 P[299]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.147610785 deg,	J2= -6.310241736 deg,	J3= -48.654724964 deg,
-	J4= -0.019105433 deg,	J5= -41.361424153 deg,	J6= 17.160341104 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1161.395339957 mm,	Y = -601.398656147 mm,	Z = 391.797188336 mm,
+	W = -179.983175683 deg,	P = 0.011707941 deg,	R = -0.001609441 deg
 };
 P[300]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.190020981 deg,	J2= -6.363197040 deg,	J3= -48.649115977 deg,
-	J4= -0.019113032 deg,	J5= -41.368574498 deg,	J6= 17.200868221 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1160.242230158 mm,	Y = -601.980691314 mm,	Z = 391.784659545 mm,
+	W = -179.982705454 deg,	P = 0.013166558 deg,	R = -0.003496549 deg
 };
 P[301]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.235155672 deg,	J2= -6.412816681 deg,	J3= -48.643828294 deg,
-	J4= -0.019050021 deg,	J5= -41.375344592 deg,	J6= 17.244073610 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1159.127465281 mm,	Y = -602.633699193 mm,	Z = 391.772787491 mm,
+	W = -179.982294581 deg,	P = 0.014581229 deg,	R = -0.005376967 deg
 };
 P[302]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.282835659 deg,	J2= -6.458888808 deg,	J3= -48.638893886 deg,
-	J4= -0.018916611 deg,	J5= -41.381696268 deg,	J6= 17.289785691 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1158.055442864 mm,	Y = -603.355101900 mm,	Z = 391.761621331 mm,
+	W = -179.981944739 deg,	P = 0.015946141 deg,	R = -0.007243257 deg
 };
 P[303]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.332870202 deg,	J2= -6.501215840 deg,	J3= -48.634343154 deg,
-	J4= -0.018713326 deg,	J5= -41.387593184 deg,	J6= 17.337821499 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1157.030391348 mm,	Y = -604.142052670 mm,	Z = 391.751207533 mm,
+	W = -179.981657380 deg,	P = 0.017255684 deg,	R = -0.009088063 deg
 };
 P[304]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.385057820 deg,	J2= -6.539615503 deg,	J3= -48.630204621 deg,
-	J4= -0.018441004 deg,	J5= -41.393001154 deg,	J6= 17.387987446 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1156.056353422 mm,	Y = -604.991447092 mm,	Z = 391.741589652 mm,
+	W = -179.981433721 deg,	P = 0.018504486 deg,	R = -0.010904137 deg
 };
 P[305]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.439187138 deg,	J2= -6.573921811 deg,	J3= -48.626504643 deg,
-	J4= -0.018100789 deg,	J5= -41.397888471 deg,	J6= 17.440080143 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1155.137170111 mm,	Y = -605.899935337 mm,	Z = 391.732808116 mm,
+	W = -179.981274746 deg,	P = 0.019687432 deg,	R = -0.012684370 deg
 };
 P[306]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.495037811 deg,	J2= -6.603985966 deg,	J3= -48.623267130 deg,
-	J4= -0.017694130 deg,	J5= -41.402226211 deg,	J6= 17.493887288 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1154.276465664 mm,	Y = -606.863935341 mm,	Z = 391.724900029 mm,
+	W = -179.981181192 deg,	P = 0.020799692 deg,	R = -0.014421818 deg
 };
 P[307]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.552381496 deg,	J2= -6.629677178 deg,	J3= -48.620513290 deg,
-	J4= -0.017222770 deg,	J5= -41.405988513 deg,	J6= 17.549188609 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1153.477633299 mm,	Y = -607.879646893 mm,	Z = 391.717898977 mm,
+	W = -179.981153549 deg,	P = 0.021836736 deg,	R = -0.016109730 deg
 };
 P[308]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.610982889 deg,	J2= -6.650883386 deg,	J3= -48.618261396 deg,
-	J4= -0.016688740 deg,	J5= -41.409152837 deg,	J6= 17.605756865 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1152.743821873 mm,	Y = -608.943066557 mm,	Z = 391.711834863 mm,
+	W = -179.981192056 deg,	P = 0.022794363 deg,	R = -0.017741569 deg
 };
 P[309]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.670600792 deg,	J2= -6.667511889 deg,	J3= -48.616526590 deg,
-	J4= -0.016094345 deg,	J5= -41.411700183 deg,	J6= 17.663358887 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1152.077923509 mm,	Y = -610.050003398 mm,	Z = 391.706733745 mm,
+	W = -179.981296696 deg,	P = 0.023668712 deg,	R = -0.019311037 deg
 };
 P[310]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.730989232 deg,	J2= -6.679489868 deg,	J3= -48.615320705 deg,
-	J4= -0.015442155 deg,	J5= -41.413615284 deg,	J6= 17.721756660 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1151.482562248 mm,	Y = -611.196095419 mm,	Z = 391.702617701 mm,
+	W = -179.981467195 deg,	P = 0.024456281 deg,	R = -0.020812101 deg
 };
 P[311]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.791898611 deg,	J2= -6.686764796 deg,	J3= -48.614652137 deg,
-	J4= -0.014734987 deg,	J5= -41.414886756 deg,	J6= 17.780708443 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.960083750 mm,	Y = -612.376826677 mm,	Z = 391.699504706 mm,
+	W = -179.981703020 deg,	P = 0.025153944 deg,	R = -0.022239009 deg
 };
 P[312]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.853076874 deg,	J2= -6.689304742 deg,	J3= -48.614525740 deg,
-	J4= -0.013975893 deg,	J5= -41.415507215 deg,	J6= 17.839969908 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.512546108 mm,	Y = -613.587544986 mm,	Z = 391.697408536 mm,
+	W = -179.982003380 deg,	P = 0.025758962 deg,	R = -0.023586313 deg
 };
 P[313]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.914270697 deg,	J2= -6.687098547 deg,	J3= -48.614942778 deg,
-	J4= -0.013168142 deg,	J5= -41.415473340 deg,	J6= 17.899295299 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.141711782 mm,	Y = -614.823480158 mm,	Z = 391.696338685 mm,
+	W = -179.982367227 deg,	P = 0.026268992 deg,	R = -0.024848885 deg
 };
 P[314]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -17.975226691 deg,	J2= -6.680155895 deg,	J3= -48.615900894 deg,
-	J4= -0.012315202 deg,	J5= -41.414785911 deg,	J6= 17.958438596 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.849040706 mm,	Y = -616.079762699 mm,	Z = 391.696300309 mm,
+	W = -179.982793256 deg,	P = 0.026682098 deg,	R = -0.026021938 deg
 };
 P[315]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.035692593 deg,	J2= -6.668507250 deg,	J3= -48.617394143 deg,
-	J4= -0.011420724 deg,	J5= -41.413449787 deg,	J6= 18.017154690 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.635684587 mm,	Y = -617.351442895 mm,	Z = 391.697294191 mm,
+	W = -179.983279909 deg,	P = 0.026996755 deg,	R = -0.027101035 deg
 };
 P[316]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.095418460 deg,	J2= -6.652203690 deg,	J3= -48.619413045 deg,
-	J4= -0.010488517 deg,	J5= -41.411473853 deg,	J6= 18.075200541 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.502482413 mm,	Y = -618.633510216 mm,	Z = 391.699316728 mm,
+	W = -179.983825381 deg,	P = 0.027211858 deg,	R = -0.028082111 deg
 };
 P[317]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.154157840 deg,	J2= -6.631316610 deg,	J3= -48.621944693 deg,
-	J4= -0.009522536 deg,	J5= -41.408870918 deg,	J6= 18.132336325 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.449957190 mm,	Y = -619.920912958 mm,	Z = 391.702359939 mm,
+	W = -179.984427623 deg,	P = 0.027326718 deg,	R = -0.028961480 deg
 };
 P[318]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -18.606368774 deg,	J2= -6.445132797 deg,	J3= -48.644376124 deg,
-	J4= -0.008896382 deg,	J5= -41.386357655 deg,	J6= 18.583629551 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.443118722 mm,	Y = -629.937661502 mm,	Z = 391.703720065 mm,
+	W = -179.984633762 deg,	P = 0.027258342 deg,	R = -0.029411821 deg
 };
 P[319]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.055566077 deg,	J2= -6.255158286 deg,	J3= -48.666644910 deg,
-	J4= -0.008756705 deg,	J5= -41.364083594 deg,	J6= 19.032670508 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.441982844 mm,	Y = -639.938590782 mm,	Z = 391.703156018 mm,
+	W = -179.984511989 deg,	P = 0.027163009 deg,	R = -0.029465579 deg
 };
 P[320]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.502346199 deg,	J2= -6.061467514 deg,	J3= -48.688672604 deg,
-	J4= -0.008617926 deg,	J5= -41.342048977 deg,	J6= 19.479294284 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.440817347 mm,	Y = -649.939546322 mm,	Z = 391.702605383 mm,
+	W = -179.984391791 deg,	P = 0.027066313 deg,	R = -0.029519917 deg
 };
 P[321]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -19.946674771 deg,	J2= -5.864131229 deg,	J3= -48.710411345 deg,
-	J4= -0.008480055 deg,	J5= -41.320301691 deg,	J6= 19.923466510 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.439621643 mm,	Y = -659.940528692 mm,	Z = 391.702068039 mm,
+	W = -179.984273193 deg,	P = 0.026968297 deg,	R = -0.029574839 deg
 };
 P[322]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.388518979 deg,	J2= -5.663220153 deg,	J3= -48.731813483 deg,
-	J4= -0.008343097 deg,	J5= -41.298889411 deg,	J6= 20.365154370 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.438395133 mm,	Y = -669.941538440 mm,	Z = 391.701543860 mm,
+	W = -179.984156220 deg,	P = 0.026869008 deg,	R = -0.029630346 deg
 };
 P[323]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -20.827847555 deg,	J2= -5.458804902 deg,	J3= -48.752831636 deg,
-	J4= -0.008207058 deg,	J5= -41.277859542 deg,	J6= 20.804326598 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.437137209 mm,	Y = -679.942576101 mm,	Z = 391.701032711 mm,
+	W = -179.984040896 deg,	P = 0.026768490 deg,	R = -0.029686440 deg
 };
 P[324]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.264630768 deg,	J2= -5.250955914 deg,	J3= -48.773418750 deg,
-	J4= -0.008071942 deg,	J5= -41.257259165 deg,	J6= 21.240953463 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.435847255 mm,	Y = -689.943642187 mm,	Z = 391.700534451 mm,
+	W = -179.983927242 deg,	P = 0.026666789 deg,	R = -0.029743123 deg
 };
 P[325]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -21.698840416 deg,	J2= -5.039743369 deg,	J3= -48.793528147 deg,
-	J4= -0.007937752 deg,	J5= -41.237134983 deg,	J6= 21.675006761 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.434524647 mm,	Y = -699.944737194 mm,	Z = 391.700048936 mm,
+	W = -179.983815282 deg,	P = 0.026563953 deg,	R = -0.029800396 deg
 };
 P[326]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.130449806 deg,	J2= -4.825237122 deg,	J3= -48.813113580 deg,
-	J4= -0.007804490 deg,	J5= -41.217533271 deg,	J6= 22.106459801 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.433168753 mm,	Y = -709.945861598 mm,	Z = 391.699576012 mm,
+	W = -179.983705035 deg,	P = 0.026460027 deg,	R = -0.029858259 deg
 };
 P[327]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.559433745 deg,	J2= -4.607506633 deg,	J3= -48.832129277 deg,
-	J4= -0.007672156 deg,	J5= -41.198499825 deg,	J6= 22.535287390 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.431778934 mm,	Y = -719.947015854 mm,	Z = 391.699115523 mm,
+	W = -179.983596520 deg,	P = 0.026355060 deg,	R = -0.029916710 deg
 };
 P[328]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -22.985768524 deg,	J2= -4.386620901 deg,	J3= -48.850529990 deg,
-	J4= -0.007540749 deg,	J5= -41.180079921 deg,	J6= 22.961465816 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.430354545 mm,	Y = -729.948200399 mm,	Z = 391.698667307 mm,
+	W = -179.983489756 deg,	P = 0.026249097 deg,	R = -0.029975750 deg
 };
 P[329]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.409431894 deg,	J2= -4.162648402 deg,	J3= -48.868271034 deg,
-	J4= -0.007410269 deg,	J5= -41.162318272 deg,	J6= 23.384972835 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.428894935 mm,	Y = -739.949415649 mm,	Z = 391.698231195 mm,
+	W = -179.983384761 deg,	P = 0.026142188 deg,	R = -0.030035377 deg
 };
 P[330]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.830403056 deg,	J2= -3.935657030 deg,	J3= -48.885308328 deg,
-	J4= -0.007280713 deg,	J5= -41.145258985 deg,	J6= 23.805787643 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.427399448 mm,	Y = -749.950662001 mm,	Z = 391.697807016 mm,
+	W = -179.983281550 deg,	P = 0.026034379 deg,	R = -0.030095588 deg
 };
 P[331]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.248662633 deg,	J2= -3.705714038 deg,	J3= -48.901598434 deg,
-	J4= -0.007152075 deg,	J5= -41.128945525 deg,	J6= 24.223890867 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.425867422 mm,	Y = -759.951939831 mm,	Z = 391.697394595 mm,
+	W = -179.983180140 deg,	P = 0.025925718 deg,	R = -0.030156380 deg
 };
 P[332]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.664192653 deg,	J2= -3.472885990 deg,	J3= -48.917098589 deg,
-	J4= -0.007024353 deg,	J5= -41.113420683 deg,	J6= 24.639264534 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.424298192 mm,	Y = -769.953249494 mm,	Z = 391.696993750 mm,
+	W = -179.983080543 deg,	P = 0.025816253 deg,	R = -0.030217752 deg
 };
 P[333]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.076976528 deg,	J2= -3.237238703 deg,	J3= -48.931766738 deg,
-	J4= -0.006897540 deg,	J5= -41.098726542 deg,	J6= 25.051892053 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.422691091 mm,	Y = -779.954591325 mm,	Z = 391.696604298 mm,
+	W = -179.982982772 deg,	P = 0.025706033 deg,	R = -0.030279698 deg
 };
 P[334]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.128501292 deg,	J2= -3.205462174 deg,	J3= -48.933584855 deg,
-	J4= -0.006405156 deg,	J5= -41.096693648 deg,	J6= 25.102641824 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.455674931 mm,	Y = -781.227332654 mm,	Z = 391.699595578 mm,
+	W = -179.983344201 deg,	P = 0.025633730 deg,	R = -0.030683789 deg
 };
 P[335]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.178872134 deg,	J2= -3.169793728 deg,	J3= -48.935500533 deg,
-	J4= -0.005423678 deg,	J5= -41.094269453 deg,	J6= 25.151557018 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.562718543 mm,	Y = -782.511904472 mm,	Z = 391.706374519 mm,
+	W = -179.984122228 deg,	P = 0.025433246 deg,	R = -0.031399960 deg
 };
 P[336]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.227234754 deg,	J2= -3.130377378 deg,	J3= -48.937569328 deg,
-	J4= -0.004428966 deg,	J5= -41.091584393 deg,	J6= 25.198568412 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1149.750186072 mm,	Y = -783.786516692 mm,	Z = 391.714125953 mm,
+	W = -179.984955124 deg,	P = 0.025140806 deg,	R = -0.032001716 deg
 };
 P[337]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.273394383 deg,	J2= -3.087381634 deg,	J3= -48.939774402 deg,
-	J4= -0.003425080 deg,	J5= -41.088658015 deg,	J6= 25.243486563 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.017337104 mm,	Y = -785.046143943 mm,	Z = 391.722817604 mm,
+	W = -179.985839594 deg,	P = 0.024757820 deg,	R = -0.032486780 deg
 };
 P[338]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.317166263 deg,	J2= -3.040989630 deg,	J3= -48.942098061 deg,
-	J4= -0.002416091 deg,	J5= -41.085511165 deg,	J6= 25.286131607 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.363117381 mm,	Y = -786.285819113 mm,	Z = 391.732413271 mm,
+	W = -179.986772122 deg,	P = 0.024286053 deg,	R = -0.032853314 deg
 };
 P[339]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.358376406 deg,	J2= -2.991398176 deg,	J3= -48.944521970 deg,
-	J4= -0.001406056 deg,	J5= -41.082165745 deg,	J6= 25.326333995 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1150.786162956 mm,	Y = -787.500652885 mm,	Z = 391.742873004 mm,
+	W = -179.987748979 deg,	P = 0.023727619 deg,	R = -0.033099930 deg
 };
 P[340]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.396862300 deg,	J2= -2.938816750 deg,	J3= -48.947027385 deg,
-	J4= -0.000399012 deg,	J5= -41.078644467 deg,	J6= 25.363935186 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1151.284805570 mm,	Y = -788.685852990 mm,	Z = 391.754153298 mm,
+	W = -179.988766246 deg,	P = 0.023084963 deg,	R = -0.033225687 deg
 };
 P[341]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.432473539 deg,	J2= -2.883466447 deg,	J3= -48.949595380 deg,
-	J4= 0.000601052 deg,	J5= -41.074970607 deg,	J6= 25.398788259 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1151.857079214 mm,	Y = -789.836743086 mm,	Z = 391.766207298 mm,
+	W = -179.989819826 deg,	P = 0.022360851 deg,	R = -0.033230106 deg
 };
 P[342]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.465072390 deg,	J2= -2.825578885 deg,	J3= -48.952207063 deg,
-	J4= 0.001590202 deg,	J5= -41.071167759 deg,	J6= 25.430758463 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1152.500727853 mm,	Y = -790.948781197 mm,	Z = 391.778985026 mm,
+	W = -179.990905462 deg,	P = 0.021558355 deg,	R = -0.033113158 deg
 };
 P[343]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.494534277 deg,	J2= -2.765395071 deg,	J3= -48.954843803 deg,
-	J4= 0.002564579 deg,	J5= -41.067259591 deg,	J6= 25.459723698 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1153.213214298 mm,	Y = -792.017577643 mm,	Z = 391.792433617 mm,
+	W = -179.992018757 deg,	P = 0.020680837 deg,	R = -0.032875278 deg
 };
 P[344]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.520748208 deg,	J2= -2.703164260 deg,	J3= -48.957487427 deg,
-	J4= 0.003520410 deg,	J5= -41.063269618 deg,	J6= 25.485574923 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1153.991730162 mm,	Y = -793.038912380 mm,	Z = 391.806497568 mm,
+	W = -179.993155193 deg,	P = 0.019731931 deg,	R = -0.032517352 deg
 };
 P[345]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.543617114 deg,	J2= -2.639142776 deg,	J3= -48.960120421 deg,
-	J4= 0.004454025 deg,	J5= -41.059220980 deg,	J6= 25.508216494 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1154.833206894 mm,	Y = -794.008751690 mm,	Z = 391.821118993 mm,
+	W = -179.994310150 deg,	P = 0.018715530 deg,	R = -0.032040724 deg
 };
 P[346]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.563058127 deg,	J2= -2.573592836 deg,	J3= -48.962726108 deg,
-	J4= 0.005361863 deg,	J5= -41.055136234 deg,	J6= 25.527566430 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1155.734327821 mm,	Y = -794.923264178 mm,	Z = 391.836237837 mm,
+	W = -179.995478923 deg,	P = 0.017635767 deg,	R = -0.031447190 deg
 };
 P[347]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.579002778 deg,	J2= -2.506781388 deg,	J3= -48.965288797 deg,
-	J4= 0.006240494 deg,	J5= -41.051037166 deg,	J6= 25.543556621 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1156.691541162 mm,	Y = -795.778835832 mm,	Z = 391.851792368 mm,
+	W = -179.996656756 deg,	P = 0.016496986 deg,	R = -0.030738979 deg
 };
 P[348]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.591397137 deg,	J2= -2.438978905 deg,	J3= -48.967793942 deg,
-	J4= 0.007086621 deg,	J5= -41.046944626 deg,	J6= 25.556132949 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1157.701073992 mm,	Y = -796.572084555 mm,	Z = 391.867719129 mm,
+	W = -179.997838845 deg,	P = 0.015303744 deg,	R = -0.029918771 deg
 };
 P[349]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.600201872 deg,	J2= -2.370458242 deg,	J3= -48.970228250 deg,
-	J4= 0.007897091 deg,	J5= -41.042878378 deg,	J6= 25.565255358 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1158.758947033 mm,	Y = -797.299873471 mm,	Z = 391.883953430 mm,
+	W = -179.999020372 deg,	P = 0.014060778 deg,	R = -0.028989669 deg
 };
 P[350]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.605392248 deg,	J2= -2.301493479 deg,	J3= -48.972579780 deg,
-	J4= 0.008668910 deg,	J5= -41.038856972 deg,	J6= 25.570897856 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1159.860990289 mm,	Y = -797.959323442 mm,	Z = 391.900429584 mm,
+	W = 179.999803480 deg,	P = 0.012772991 deg,	R = -0.027955195 deg
 };
 P[351]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.606958068 deg,	J2= -2.232358801 deg,	J3= -48.974838017 deg,
-	J4= 0.009399245 deg,	J5= -41.034897647 deg,	J6= 25.573048456 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1161.002859417 mm,	Y = -798.547824534 mm,	Z = 391.917081186 mm,
+	W = 179.998637500 deg,	P = 0.011445428 deg,	R = -0.026819281 deg
 };
 P[352]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.604903542 deg,	J2= -2.163327394 deg,	J3= -48.976993925 deg,
-	J4= 0.010085434 deg,	J5= -41.031016245 deg,	J6= 25.571709059 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1162.180052797 mm,	Y = -799.063046439 mm,	Z = 391.933841395 mm,
+	W = 179.997486434 deg,	P = 0.010083265 deg,	R = -0.025586250 deg
 };
 P[353]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.599247113 deg,	J2= -2.094670375 deg,	J3= -48.979039967 deg,
-	J4= 0.010724996 deg,	J5= -41.027227163 deg,	J6= 25.566895283 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1163.387929217 mm,	Y = -799.502947791 mm,	Z = 391.950643217 mm,
+	W = 179.996354958 deg,	P = 0.008691780 deg,	R = -0.024260809 deg
 };
 P[354]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.590021218 deg,	J2= -2.026655760 deg,	J3= -48.980970117 deg,
-	J4= 0.011315633 deg,	J5= -41.023543318 deg,	J6= 25.558636238 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1164.621726117 mm,	Y = -799.865784347 mm,	Z = 391.967419776 mm,
+	W = 179.995247663 deg,	P = 0.007276343 deg,	R = -0.022848024 deg
 };
 P[355]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.577272003 deg,	J2= -1.959547463 deg,	J3= -48.982779836 deg,
-	J4= 0.011855236 deg,	J5= -41.019976138 deg,	J6= 25.546974255 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1165.876578312 mm,	Y = -800.150116001 mm,	Z = 391.984104588 mm,
+	W = 179.994169031 deg,	P = 0.005842390 deg,	R = -0.021353311 deg
 };
 P[356]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.561058996 deg,	J2= -1.893604342 deg,	J3= -48.984466031 deg,
-	J4= 0.012341891 deg,	J5= -41.016535576 deg,	J6= 25.531964576 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1167.147537150 mm,	Y = -800.354812584 mm,	Z = 392.000631853 mm,
+	W = 179.993123418 deg,	P = 0.004395406 deg,	R = -0.019782407 deg
 };
 P[357]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.541454726 deg,	J2= -1.829079272 deg,	J3= -48.986027005 deg,
-	J4= 0.012773887 deg,	J5= -41.013230152 deg,	J6= 25.513674973 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1168.429589899 mm,	Y = -800.479058487 mm,	Z = 392.016936594 mm,
+	W = 179.992115034 deg,	P = 0.002940917 deg,	R = -0.018141370 deg
 };
 P[358]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.518544313 deg,	J2= -1.766218285 deg,	J3= -48.987462366 deg,
-	J4= 0.013149713 deg,	J5= -41.010066989 deg,	J6= 25.492185385 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1169.717679609 mm,	Y = -800.522355938 mm,	Z = 392.032955090 mm,
+	W = 179.991147927 deg,	P = 0.001484448 deg,	R = -0.016436531 deg
 };
 P[359]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.328371797 deg,	J2= -1.274030362 deg,	J3= -49.001079730 deg,
-	J4= 0.013321975 deg,	J5= -40.995680507 deg,	J6= 25.302614889 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1179.731414089 mm,	Y = -800.529428243 mm,	Z = 392.039907512 mm,
+	W = 179.990714315 deg,	P = 0.000807132 deg,	R = -0.015702339 deg
 };
 P[360]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -25.141089398 deg,	J2= -0.784597910 deg,	J3= -49.010489844 deg,
-	J4= 0.013329478 deg,	J5= -40.986361987 deg,	J6= 25.115176240 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1189.728454953 mm,	Y = -800.535882138 mm,	Z = 392.038923658 mm,
+	W = 179.990747639 deg,	P = 0.000861072 deg,	R = -0.015851501 deg
 };
 P[361]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.956386697 deg,	J2= -0.297887668 deg,	J3= -49.015433699 deg,
-	J4= 0.013338264 deg,	J5= -40.981508856 deg,	J6= 24.930317290 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1199.725491695 mm,	Y = -800.542414579 mm,	Z = 392.037949796 mm,
+	W = 179.990778713 deg,	P = 0.000915552 deg,	R = -0.016000375 deg
 };
 P[362]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.774214574 deg,	J2= 0.186175069 deg,	J3= -49.015983632 deg,
-	J4= 0.013348320 deg,	J5= -40.981048792 deg,	J6= 24.747988917 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1209.722524804 mm,	Y = -800.549025312 mm,	Z = 392.036985737 mm,
+	W = 179.990807567 deg,	P = 0.000970539 deg,	R = -0.016148960 deg
 };
 P[363]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.594525036 deg,	J2= 0.667663741 deg,	J3= -49.012210058 deg,
-	J4= 0.013359632 deg,	J5= -40.984911386 deg,	J6= 24.568143129 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1219.719554743 mm,	Y = -800.555714082 mm,	Z = 392.036031293 mm,
+	W = 179.990834227 deg,	P = 0.001026003 deg,	R = -0.016297259 deg
 };
 P[364]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.417271195 deg,	J2= 1.146650551 deg,	J3= -49.004181506 deg,
-	J4= 0.013372187 deg,	J5= -40.993028121 deg,	J6= 24.390733037 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1229.716581955 mm,	Y = -800.562480639 mm,	Z = 392.035086281 mm,
+	W = 179.990858723 deg,	P = 0.001081916 deg,	R = -0.016445272 deg
 };
 P[365]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.242407236 deg,	J2= 1.623206491 deg,	J3= -48.991964647 deg,
-	J4= 0.013385972 deg,	J5= -41.005332335 deg,	J6= 24.215712828 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1239.713606857 mm,	Y = -800.569324731 mm,	Z = 392.034150517 mm,
+	W = 179.990881080 deg,	P = 0.001138250 deg,	R = -0.016593002 deg
 };
 P[366]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -24.069888394 deg,	J2= 2.097401371 deg,	J3= -48.975624330 deg,
-	J4= 0.013400972 deg,	J5= -41.021759189 deg,	J6= 24.043037735 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1249.710629849 mm,	Y = -800.576246108 mm,	Z = 392.033223818 mm,
+	W = 179.990901327 deg,	P = 0.001194978 deg,	R = -0.016740452 deg
 };
 P[367]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.899670922 deg,	J2= 2.569303845 deg,	J3= -48.955223608 deg,
-	J4= 0.013417176 deg,	J5= -41.042245640 deg,	J6= 23.872664012 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1259.707651306 mm,	Y = -800.583244524 mm,	Z = 392.032306007 mm,
+	W = 179.990919488 deg,	P = 0.001252076 deg,	R = -0.016887626 deg
 };
 P[368]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.731712071 deg,	J2= 3.038981448 deg,	J3= -48.930823775 deg,
-	J4= 0.013434568 deg,	J5= -41.066730404 deg,	J6= 23.704548909 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1269.704671587 mm,	Y = -800.590319733 mm,	Z = 392.031396905 mm,
+	W = 179.990935591 deg,	P = 0.001309520 deg,	R = -0.017034529 deg
 };
 P[369]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.565970061 deg,	J2= 3.506500614 deg,	J3= -48.902484391 deg,
-	J4= 0.013453136 deg,	J5= -41.095153929 deg,	J6= 23.538650647 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1279.701691029 mm,	Y = -800.597471493 mm,	Z = 392.030496338 mm,
+	W = 179.990949660 deg,	P = 0.001367286 deg,	R = -0.017181165 deg
 };
 P[370]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.402404058 deg,	J2= 3.971926715 deg,	J3= -48.870263317 deg,
-	J4= 0.013472867 deg,	J5= -41.127458366 deg,	J6= 23.374928392 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1289.698709953 mm,	Y = -800.604699565 mm,	Z = 392.029604135 mm,
+	W = 179.990961719 deg,	P = 0.001425352 deg,	R = -0.017327541 deg
 };
 P[371]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.240974150 deg,	J2= 4.435324085 deg,	J3= -48.834216741 deg,
-	J4= 0.013493746 deg,	J5= -41.163587534 deg,	J6= 23.213342232 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1299.695728662 mm,	Y = -800.612003712 mm,	Z = 392.028720126 mm,
+	W = 179.990971794 deg,	P = 0.001483698 deg,	R = -0.017473663 deg
 };
 P[372]{
    GP1:
-	UF : 0, UT : 1,
-	J1= -23.217839174 deg,	J2= 3.911852225 deg,	J3= -48.141429765 deg,
-	J4= 0.000000000 deg,	J5= -41.858570235 deg,	J6= 23.217839174 deg
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X = 1300.000000000 mm,	Y = -800.000000000 mm,	Z = 405.000000000 mm,
+	W = 180.000000000 deg,	P = 0.000000000 deg,	R = 0.000000000 deg
 };
 /END

@@ -9,11 +9,12 @@ use crate::setup::Setup;
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
 use stiffid::machining::process::file;
+use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::Language;
 use stiffid::observation::deflection::Frame;
 
@@ -39,10 +40,15 @@ use stiffid::observation::deflection::Frame;
 /// ``stiffid compensate --json`` (its ``program`` with the segments' force and deflection before
 /// and after, for a program); with a program, ``program``: the compensated program's text, in
 /// the program's own language or, for G-code with ``output="krl"``, ``"rapid"`` or ``"ls"``, a
-/// robot program of the compensated axis angles. Points without a process force are warned about
-/// (``UserWarning``) as the command does.
+/// robot program of the compensated targets (``targets="cartesian"``, the default: the compensated
+/// poses with their configuration, cutting moves linear; ``"joint"``: axis angles), named
+/// ``program_name`` (default the program file's stem, upper case), its feeds refused above
+/// ``max_tcp_speed_mm_s``, split into sub-programs of at most ``moves_per_file`` moves
+/// (``subprograms``: their names and texts, in call order), names within ``name_length``
+/// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
+/// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -58,6 +64,11 @@ pub fn compensate<'py>(
     free_tool_axis: bool,
     max_step_deg: f64,
     tool_axis_range_deg: f64,
+    program_name: Option<String>,
+    targets: &str,
+    max_tcp_speed_mm_s: f64,
+    name_length: Option<usize>,
+    moves_per_file: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let stiffness = stiffness.ok_or_else(|| {
@@ -89,6 +100,17 @@ pub fn compensate<'py>(
             };
             let process_name = process.display().to_string();
             let parsed = file::parse(&error::read(process)?, &process_name).map_err(raise)?;
+            let stem = program_name.unwrap_or_else(|| {
+                Path::new(&name)
+                    .file_stem()
+                    .map_or(String::new(), |s| s.to_string_lossy().into_owned())
+            });
+            let settings = Settings {
+                targets: targets.parse::<Targets>().map_err(raise)?,
+                max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
+                name_length,
+                moves_per_file,
+            };
             Input::Program {
                 name: name.clone(),
                 text: &text,
@@ -97,6 +119,8 @@ pub fn compensate<'py>(
                 process: parsed,
                 chord_tolerance: chord_tolerance_mm * 1e-3,
                 output,
+                out_name: format!("{stem}.{}", extension(output)),
+                settings,
             }
         }
         (None, Some(_)) => return Err(error::value("process: only with program=")),
@@ -139,8 +163,23 @@ pub fn compensate<'py>(
     )?;
     if let Some(p) = &report.program {
         out.set_item("program", &p.text)?;
+        let subprograms = PyDict::new(py);
+        for f in &p.subprograms {
+            subprograms.set_item(&f.name, &f.text)?;
+        }
+        out.set_item("subprograms", subprograms)?;
     }
     Ok(out)
+}
+
+/// The file extension of a program in `language`.
+fn extension(language: Language) -> &'static str {
+    match language.name() {
+        "krl" => "src",
+        "rapid" => "mod",
+        "ls" => "ls",
+        _ => "nc",
+    }
 }
 
 /// The language named by ``output``: `krl`, `rapid`, `ls` or `gcode`.

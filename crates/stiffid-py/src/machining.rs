@@ -74,7 +74,11 @@ pub fn read_program<'py>(
             out.set_item("rapid", numpy::PyArray1::from_vec(py, rapid))?;
             let tools: Vec<Option<u32>> = g.points.iter().map(|p| p.tool_number).collect();
             out.set_item("tool_number", tools)?;
-            let ops: Vec<Option<String>> = g.points.iter().map(|p| p.operation.clone()).collect();
+            let ops: Vec<Option<String>> = g
+                .points
+                .iter()
+                .map(|p| p.operation.as_deref().map(String::from))
+                .collect();
             out.set_item("operation", ops)?;
         }
         Program::Robot(r) => {

@@ -8,11 +8,18 @@ from conftest import REPO
 
 PATH = REPO / "examples" / "milling" / "path.csv"
 STIFFNESS = REPO / "examples" / "milling" / "stiffness.json"
+# The built-in FANUC setup with the tool centre point compensate requires ([tool] tcp_mm).
+SETUP = REPO / "examples" / "milling" / "fanuc-milling.toml"
+
+
+@pytest.fixture
+def milling():
+    return stiffid.Setup.from_file(SETUP)
 
 
 def command(cli, tmp_path, *extra):
     out = tmp_path / "compensated.csv"
-    args = ["compensate", "--setup", "fanuc-r2000ic-165f", "--stiffness", STIFFNESS, "--path", PATH]
+    args = ["compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--path", PATH]
     return cli(*args, "--out", out, "--json", *extra)["points"]
 
 
@@ -21,10 +28,10 @@ def column(points, *keys):
 
 
 @pytest.mark.parametrize("free", [False, True])
-def test_compensate_equals_the_command(fanuc, cli, tmp_path, free):
+def test_compensate_equals_the_command(milling, cli, tmp_path, free):
     extra = ["--free-tool-axis"] if free else []
     theirs = command(cli, tmp_path, *extra)
-    mine = stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=free)
+    mine = stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=free)
     assert mine["line"].dtype == np.int64 and mine["iterations"].dtype == np.int64
     assert mine["line"].tolist() == [p["line"] for p in theirs]
     assert mine["iterations"].tolist() == [p["iterations"] for p in theirs]
@@ -39,19 +46,25 @@ def test_compensate_equals_the_command(fanuc, cli, tmp_path, free):
     assert mine["residual_um"].max() < 0.1
 
 
-def test_stiffness_as_numbers_has_no_std(fanuc):
+def test_stiffness_as_numbers_has_no_std(milling):
     numbers = [860896.0, 2719582.5, 1959759.6, 270828.3, 424693.0, 206019.8]
-    out = stiffid.compensate(fanuc, PATH, numbers)
+    out = stiffid.compensate(milling, PATH, numbers)
     assert "deflection_std_mm" not in out
     assert out["q_compensated_deg"].shape == (len(out["line"]), 6)
 
 
-def test_bad_free_axis_and_start_are_refused(fanuc):
+def test_bad_free_axis_and_start_are_refused(milling):
     with pytest.raises(ValueError, match=r"max_step_deg: 0: expected a number > 0 and <= 90"):
-        stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=0.0)
+        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=0.0)
     with pytest.raises(ValueError, match=r"^tool_axis_range_deg: 1e308: expected a number > 0 and <= 180$"):
-        stiffid.compensate(fanuc, PATH, STIFFNESS, free_tool_axis=True, tool_axis_range_deg=1e308)
+        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, tool_axis_range_deg=1e308)
     with pytest.raises(ValueError, match=r"q0_deg"):
-        stiffid.compensate(fanuc, PATH, STIFFNESS, q0_deg=[0, 0, 0, 0, 0, 0, 0])
+        stiffid.compensate(milling, PATH, STIFFNESS, q0_deg=[0, 0, 0, 0, 0, 0, 0])
     with pytest.raises(FileNotFoundError, match=r"nope.csv"):
-        stiffid.compensate(fanuc, REPO / "nope.csv", STIFFNESS)
+        stiffid.compensate(milling, REPO / "nope.csv", STIFFNESS)
+
+
+def test_the_tool_centre_point_is_required(fanuc):
+    # A measuring setup's measuring point is no tool.
+    with pytest.raises(ValueError, match=r"tool.tcp_mm"):
+        stiffid.compensate(fanuc, PATH, STIFFNESS)

@@ -59,3 +59,24 @@ def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
     assert (force > 200).sum() >= len(force) - 4
     with pytest.raises(stiffid.InputError, match=r"process"):
         stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET)
+
+
+def test_program_options_equal_the_command(cli, tmp_path):
+    setup = stiffid.Setup.from_file(SETUP)
+    out = tmp_path / "WALL.ls"
+    cli("compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--program", POCKET, "--process", PROCESS,
+        "--out", out, "--targets", "joint", "--moves-per-file", "100", "--name-length", "36", "--json")
+    with pytest.warns(UserWarning, match="plunge"):
+        mine = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="ls",
+                                  program_name="wall", targets="joint", moves_per_file=100, name_length=36)
+    assert mine["program"] == out.read_text()
+    assert list(mine["subprograms"]) == ["WALL_01", "WALL_02", "WALL_03", "WALL_04"]
+    for name, text in mine["subprograms"].items():
+        assert (tmp_path / f"{name}.ls").read_text() == text
+    assert "CALL WALL_04 ;" in mine["program"]
+    with pytest.raises(ValueError, match=r"reserved word of FANUC LS"):
+        stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="ls",
+                           program_name="call")
+    with pytest.raises(ValueError, match=r"largest TCP speed, 10 mm/s"):
+        stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="ls",
+                           max_tcp_speed_mm_s=10.0)

@@ -132,7 +132,7 @@ def test_identify_validate_and_compensate(cli, tmp_path):
     v = cli("validate", "--setup", "fanuc-r2000ic-165f", "--stiffness", stiffness, "--data", FANUC_DATA, "--json")
     assert_valid("validate", v)
 
-    c = cli("compensate", "--setup", "fanuc-r2000ic-165f", "--stiffness", stiffness,
+    c = cli("compensate", "--setup", example("milling/fanuc-milling.toml"), "--stiffness", stiffness,
             "--path", example("milling/path.csv"), "--out", tmp_path / "compensated.csv",
             "--free-tool-axis", "--json")
     assert isinstance(c["points"][0]["dx_std_mm"], float)

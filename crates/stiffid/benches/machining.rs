@@ -1,12 +1,15 @@
 //! A 100 000-block G-code program compensated end to end on the FANUC R-2000iC/165F milling cell
-//! (read, process forces, inverse kinematics, compensation, the program written back): the
-//! compensate job as `stiffid compensate --program` runs it (goal: under 2 s on 2 cores).
+//! (read, process forces, inverse kinematics, compensation, the program written back, as G-code
+//! or as a FANUC LS program of Cartesian targets split into sub-programs): the compensate job as
+//! `stiffid compensate --program` runs it (goal: under 2 s on 2 cores).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Isometry3;
 use stiffid::app::compensate::{self, Input, Request};
 use stiffid::machining::compensate::Options;
 use stiffid::machining::process::file;
+use stiffid::machining::program::generate::Settings;
+use stiffid::machining::program::Dialect;
 use stiffid::machining::Language;
 use stiffid::setup;
 
@@ -30,9 +33,10 @@ fn raster() -> String {
 }
 
 fn benches(c: &mut Criterion) {
-    let s = setup::builtin("fanuc-r2000ic-165f")
-        .unwrap()
+    let builtin = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let s = builtin
         .to_builder()
+        .with_tcp(builtin.tool().tcp)
         .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
         .build()
         .unwrap();
@@ -46,25 +50,35 @@ fn benches(c: &mut Criterion) {
     let compliance = s.model_compliance("bench").unwrap();
     let mut group = c.benchmark_group("compensate a G-code program");
     group.sample_size(10);
-    group.bench_function("100 000 blocks, end to end", |b| {
-        b.iter(|| {
-            let request = Request {
-                setup: &s,
-                compliance: compliance.clone(),
-                input: Input::Program {
-                    name: "raster.nc".into(),
-                    text: &text,
-                    language: Language::GCode,
-                    process_name: "p.toml".into(),
-                    process: process.clone(),
-                    chord_tolerance: 1e-5,
-                    output: Language::GCode,
-                },
-                options: Options::for_setup(&s),
-            };
-            compensate::run(request, |_, _, _| Ok::<(), stiffid::Error>(())).unwrap()
-        })
-    });
+    for (label, output) in [
+        ("100 000 blocks, end to end", Language::GCode),
+        (
+            "100 000 blocks to FANUC LS",
+            Language::Robot(Dialect::FanucLs),
+        ),
+    ] {
+        group.bench_function(label, |b| {
+            b.iter(|| {
+                let request = Request {
+                    setup: &s,
+                    compliance: compliance.clone(),
+                    input: Input::Program {
+                        name: "raster.nc".into(),
+                        text: &text,
+                        language: Language::GCode,
+                        process_name: "p.toml".into(),
+                        process: process.clone(),
+                        chord_tolerance: 1e-5,
+                        output,
+                        out_name: "RST.ls".into(),
+                        settings: Settings::default(),
+                    },
+                    options: Options::for_setup(&s),
+                };
+                compensate::run(request, |_, _, _| Ok::<(), stiffid::Error>(())).unwrap()
+            })
+        });
+    }
     group.finish();
 }
 

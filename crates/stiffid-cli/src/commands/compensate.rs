@@ -15,6 +15,7 @@ use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
 use stiffid::machining::process::file;
+use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::Language;
 use stiffid::observation::deflection::Frame;
 use stiffid::{Error, Setup};
@@ -45,10 +46,29 @@ pub struct Args {
     chord_tolerance_mm: f64,
     /// With --path: the CSV written, one row per path point, units in the header. With
     /// --program: the compensated program, in the program's own language, or for G-code a robot
-    /// program of the compensated axis angles (.src KRL, .mod RAPID, .ls FANUC LS). Never one of
-    /// the inputs.
+    /// program of the compensated targets (.src KRL, .mod RAPID, .ls FANUC LS) named after the
+    /// file (its stem, upper case), with its sub-programs beside it when it is split. Never one
+    /// of the inputs.
     #[arg(long)]
     out: PathBuf,
+    /// With a G-code --program written as a robot program: Cartesian targets (the compensated
+    /// poses with their configuration, cutting moves linear) or joint targets (every move
+    /// axis-interpolated).
+    #[arg(long, value_parser = choice::<Targets>(), default_value = "cartesian", requires = "program")]
+    targets: Targets,
+    /// With a G-code --program written as a robot program: the robot's largest TCP speed, mm/s
+    /// (0 < value <= 10000); a faster feed is refused.
+    #[arg(long, default_value_t = 2000.0, requires = "program")]
+    max_tcp_speed_mm_s: f64,
+    /// With a G-code --program written as a robot program: the longest program name the
+    /// controller takes (8 to 64; default KRL 24, RAPID 32, LS 8 as on R-30iA, longer on later
+    /// FANUC controllers).
+    #[arg(long, requires = "program")]
+    name_length: Option<usize>,
+    /// With a G-code --program written as a robot program: the most moves in one program file
+    /// (100 to 1000000); a longer program is split into sub-programs its main program calls.
+    #[arg(long, default_value_t = 10_000, requires = "program")]
+    moves_per_file: usize,
     /// With --program: also the CSV of every path point (the columns of --path's --out).
     #[arg(long, requires = "program")]
     csv: Option<PathBuf>,
@@ -182,6 +202,13 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
         process: parsed,
         chord_tolerance: args.chord_tolerance_mm * 1e-3,
         output,
+        out_name,
+        settings: Settings {
+            targets: args.targets,
+            max_tcp_speed: args.max_tcp_speed_mm_s * 1e-3,
+            name_length: args.name_length,
+            moves_per_file: args.moves_per_file,
+        },
     })
 }
 
@@ -224,6 +251,7 @@ fn finish(
     }
     if let Some(p) = &report.program {
         out.write(p.text.as_bytes())?;
+        write_subprograms(&args.out, &p.subprograms)?;
     }
     // Through a `Value`: its keys in alphabetical order, as the output has always had them; the
     // points spliced in from the rows written.
@@ -256,14 +284,45 @@ fn finish(
     }
 }
 
+/// A split program's sub-programs, each beside the main program in a file of its name with the
+/// main program's extension.
+fn write_subprograms(
+    out: &Path,
+    files: &[stiffid::machining::program::generate::File],
+) -> Result<()> {
+    let extension = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let dir = out.parent().unwrap_or(Path::new(""));
+    let prepared = files
+        .iter()
+        .map(|f| {
+            let path = dir.join(format!("{}.{extension}", f.name));
+            OutFile::prepare(&path, "--out").map(|o| (o, f))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    for (o, f) in prepared {
+        o.write(f.text.as_bytes())?;
+    }
+    Ok(())
+}
+
 /// The library's error of the run: an option's as the command names it.
 fn option_error(e: Error) -> anyhow::Error {
     match e {
         Error::InvalidField { field, message }
-            if ["max_step_deg", "tool_axis_range_deg", "chord_tolerance_mm"]
-                .contains(&field.as_str()) =>
+            if [
+                "max_step_deg",
+                "tool_axis_range_deg",
+                "chord_tolerance_mm",
+                "max_tcp_speed_mm_s",
+                "name_length",
+                "moves_per_file",
+            ]
+            .contains(&field.as_str()) =>
         {
             anyhow!("--{}: {message}", field.replace('_', "-"))
+        }
+        Error::InvalidField { field, message } if field == "name" => {
+            anyhow!("--out: program name {message}")
         }
         e => e.into(),
     }
@@ -354,6 +413,20 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
         if !written.is_empty() {
             text += &format!("written: {written}\n");
         }
+    }
+    if let Some(p) = report
+        .program
+        .as_ref()
+        .filter(|p| !p.subprograms.is_empty())
+    {
+        let (first, last) = (
+            &p.subprograms[0].name,
+            &p.subprograms[p.subprograms.len() - 1].name,
+        );
+        text += &format!(
+            "written: {} beside it, {first} to {last}, which it calls in order\n",
+            count(p.subprograms.len(), "sub-program")
+        );
     }
     if let Some(dir) = &args.report {
         text += &format!("report: {}\n", Path::new(dir).join("report.html").display());

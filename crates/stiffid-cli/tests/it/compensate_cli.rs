@@ -119,10 +119,11 @@ fn identified_covariance_gives_standard_deviations() {
 
 fn compensate(path: &str, out: &Path, extra: &[&str]) -> std::process::Output {
     let stiffness = example("milling/stiffness.json");
+    let setup = example("milling/fanuc-milling.toml");
     let mut args = vec![
         "compensate",
         "--setup",
-        "fanuc-r2000ic-165f",
+        &setup,
         "--stiffness",
         &stiffness,
         "--path",
@@ -299,32 +300,33 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
             report.to_str().unwrap(),
         ],
     ));
-    // The LS program's targets are the compensated axis angles of the CSV, to 1e-9 deg.
+    // The LS program's targets are Cartesian, one per point, in the configuration of the
+    // compensated axis angles (J5 negative: no flip, elbow up, in front of axis 1).
     let text = std::fs::read_to_string(&ls).unwrap();
-    let targets =
-        stiffid::machining::program::parse(&text, stiffid::machining::program::Dialect::FanucLs)
-            .unwrap()
-            .targets;
     let points = r["points"].as_array().unwrap();
-    assert_eq!(targets.len(), points.len());
-    for (t, p) in targets.iter().zip(points) {
-        for k in 0..6 {
-            let qc = p[format!("qc{}_deg", k + 1)].as_f64().unwrap();
-            assert!((t.q_deg[k] - qc).abs() <= 1e-9, "{} {qc}", t.q_deg[k]);
-        }
-    }
+    assert_eq!(text.matches("GP1:").count(), points.len());
+    assert_eq!(
+        text.matches("CONFIG : 'N U T, 0, 0, 0',").count(),
+        points.len()
+    );
     // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
-    // first point and the rapid moves are joint motions.
-    assert!(text.contains("   2:J P[1] 20% CNT100 ;\n   3:L P[2] 5mm/sec CNT100 ;\n"));
+    // first point and the rapid moves are joint motions, exact; the last point is exact.
+    assert!(
+        text.contains("   4:J P[1] 20% FINE ;\n   5:L P[2] 5mm/sec CNT100 ;\n"),
+        "{text}"
+    );
     let linear = text.lines().filter(|l| l.contains("mm/sec CNT100")).count();
     let at_feed = text
         .lines()
         .filter(|l| l.contains(" 30mm/sec CNT100 ;"))
         .count();
     assert!(
-        at_feed > 300 && linear == targets.len() - 2,
+        at_feed > 300 && linear == points.len() - 2,
         "{at_feed} {linear}"
     );
+    // The program ends with the retract (G0), exact.
+    assert!(text.contains(&format!(":J P[{}] 20% FINE ;\n/POS\n", points.len())));
+    assert!(text.starts_with("/PROG  POCKET\n"));
     // The process force: about 240 N where the wall is cut, none on the rapid moves and plunges.
     let force = |p: &serde_json::Value| {
         ["fx_base_n", "fy_base_n", "fz_base_n"]
@@ -363,8 +365,22 @@ fn bad_programs_exit_2_naming_the_line_or_the_field() {
     let dir = temp_dir("badprogram");
     let stiffness = example("milling/stiffness.json");
     let fanuc = example("milling/fanuc-milling.toml");
-    // The built-in setup has no [workpiece]: a G-code program cannot be placed.
+    // The built-in setup has no tool centre point: its measuring point is no tool.
     let o = program("fanuc-r2000ic-165f", &stiffness, &dir.join("o.nc"), &[]);
+    assert_usage_error(&o, &["tool.tcp_mm", "fanuc-r2000ic-165f"]);
+    // A setup without [workpiece]: a G-code program cannot be placed.
+    let text = std::fs::read_to_string(&fanuc).unwrap();
+    let placeless = write_file(
+        &dir,
+        "placeless.toml",
+        &text[..text.find("[workpiece]").unwrap()],
+    );
+    let o = program(
+        placeless.to_str().unwrap(),
+        &stiffness,
+        &dir.join("o.nc"),
+        &[],
+    );
     assert_usage_error(&o, &["workpiece.base_from_part", "setup file"]);
     // An output a program cannot become, and an unknown extension.
     let o = program(&fanuc, &stiffness, &dir.join("o.txt"), &[]);
@@ -407,5 +423,105 @@ fn bad_programs_exit_2_naming_the_line_or_the_field() {
     for o in ["o.nc", "o.ls"] {
         assert!(!dir.join(o).exists(), "{o}");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The milling example's programs (examples/milling/pocket.ls, pocket.src, pocket.mod) are what
+/// the command writes from pocket.nc: FANUC LS on the FANUC setup, KRL and RAPID on the KUKA
+/// KR 210 setup (its spindle's mass in `$LOAD` and the `tooldata`).
+#[test]
+fn the_milling_examples_generated_programs_are_golden() {
+    let dir = temp_dir("golden");
+    let cases = [
+        ("fanuc-milling.toml", "stiffness.json", "pocket.ls"),
+        ("kuka-milling.toml", "kuka-stiffness.json", "pocket.src"),
+        ("kuka-milling.toml", "kuka-stiffness.json", "pocket.mod"),
+    ];
+    for (setup, stiffness, golden) in cases {
+        let out = dir.join(golden);
+        let o = program(
+            &example(&format!("milling/{setup}")),
+            &example(&format!("milling/{stiffness}")),
+            &out,
+            &[],
+        );
+        assert!(
+            o.status.success(),
+            "{golden}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let written = std::fs::read_to_string(&out).unwrap();
+        let shipped = std::fs::read_to_string(example(&format!("milling/{golden}"))).unwrap();
+        assert!(
+            written == shipped,
+            "examples/milling/{golden} is not what the command writes (regenerate it as examples/milling/README.md says)"
+        );
+        let first = written.lines().find(|l| l.contains("POCKET")).unwrap();
+        assert!(
+            ["/PROG  POCKET", "DEF POCKET( )", "MODULE POCKET"].contains(&first),
+            "{first}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The controller rules the command enforces on a generated program, each refused with exit 2
+/// before anything is written: a name that is a reserved word or too long, a KRL program in a
+/// .dat, a feed beyond the robot's TCP speed; and a split program's sub-programs written beside it.
+#[test]
+fn generated_programs_keep_the_controller_rules() {
+    let dir = temp_dir("rules");
+    let (kuka, kuka_stiffness) = (
+        example("milling/kuka-milling.toml"),
+        example("milling/kuka-stiffness.json"),
+    );
+    let o = program(&kuka, &kuka_stiffness, &dir.join("end.src"), &[]);
+    assert_usage_error(&o, &["\"END\"", "reserved word of KUKA KRL"]);
+    let o = program(&kuka, &kuka_stiffness, &dir.join("pocket.dat"), &[]);
+    assert_usage_error(&o, &["pocket.dat", ".src"]);
+    let o = program(&kuka, &kuka_stiffness, &dir.join("proc.mod"), &[]);
+    assert_usage_error(&o, &["\"PROC\"", "reserved word of ABB RAPID"]);
+    let fanuc = example("milling/fanuc-milling.toml");
+    let stiffness = example("milling/stiffness.json");
+    let o = program(&fanuc, &stiffness, &dir.join("pocketwall.ls"), &[]);
+    assert_usage_error(&o, &["\"POCKETWALL\"", "at most 8", "name_length"]);
+    let o = program(
+        &fanuc,
+        &stiffness,
+        &dir.join("p.ls"),
+        &["--max-tcp-speed-mm-s", "20"],
+    );
+    assert_usage_error(&o, &["pocket.nc", "line 10", "largest TCP speed, 20 mm/s"]);
+    let o = program(
+        &fanuc,
+        &stiffness,
+        &dir.join("p.ls"),
+        &["--moves-per-file", "10"],
+    );
+    assert_usage_error(&o, &["--moves-per-file", "10: expected 100 to 1000000"]);
+    for f in ["end.src", "pocket.dat", "proc.mod", "pocketwall.ls", "p.ls"] {
+        assert!(!dir.join(f).exists(), "{f}");
+    }
+    let o = program(
+        &fanuc,
+        &stiffness,
+        &dir.join("wall.ls"),
+        &["--moves-per-file", "100"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let main = std::fs::read_to_string(dir.join("wall.ls")).unwrap();
+    assert!(
+        main.contains("CALL WALL_01 ;") && main.contains("CALL WALL_04 ;"),
+        "{main}"
+    );
+    for k in 1..=4 {
+        let sub = std::fs::read_to_string(dir.join(format!("WALL_0{k}.ls"))).unwrap();
+        assert!(sub.starts_with(&format!("/PROG  WALL_0{k}\n")));
+    }
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("4 sub-programs beside it, WALL_01 to WALL_04"),
+        "{text}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

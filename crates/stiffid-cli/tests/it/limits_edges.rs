@@ -72,7 +72,7 @@ fn a_tiny_tool_axis_step_is_refused_naming_the_option() {
             &[
                 "compensate",
                 "--setup",
-                "zhang2021-comau-nj165",
+                &format!("{MILLING}/fanuc-milling.toml"),
                 "--stiffness",
                 &format!("{MILLING}/stiffness.json"),
                 "--path",

@@ -323,8 +323,13 @@ def compensate(
     free_tool_axis: bool = False,
     max_step_deg: float = 2.0,
     tool_axis_range_deg: float = 90.0,
+    program_name: Optional[str] = None,
+    targets: Literal["cartesian", "joint"] = "cartesian",
+    max_tcp_speed_mm_s: float = 2000.0,
+    name_length: Optional[int] = None,
+    moves_per_file: int = 10000,
 ) -> dict[str, Any]:
-    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance; document (the command's JSON); program (text) with program=."""
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
 
 def process_force(
     process: Union[str, os.PathLike[str]],

@@ -38,6 +38,9 @@ pub enum WarningKind {
     /// A model's residuals exceed what the tracker noise explains by more than
     /// [`crate::app::calibrate_robot::MISFIT_RATIO`] times: the model misses something.
     Misfit,
+    /// A generated robot program states a feed only to its nearest unit (an LS feed in neither
+    /// whole mm/sec nor whole cm/min).
+    Feed,
 }
 
 impl WarningKind {
@@ -54,6 +57,7 @@ impl WarningKind {
             WarningKind::Unidentifiable => "unidentifiable",
             WarningKind::Meshes => "meshes",
             WarningKind::Misfit => "misfit",
+            WarningKind::Feed => "feed",
         }
     }
 }

@@ -40,6 +40,7 @@
 use crate::common::error::ColumnProblem;
 use crate::common::limits::number;
 use crate::observation::deflection::{base_wrench, Frame, Points};
+use crate::robot::configuration::Arm;
 use crate::robot::ik::{self, pose_error, tool_pose};
 use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{common::limits, Error, Result, Setup};
@@ -675,9 +676,18 @@ fn nominal_postures(
                 *q
             }
             Target::Pose(t) => {
-                ik::solve(robot, &setup.tool().tcp, t, &previous, &options.ik)
+                let q = ik::solve(robot, &setup.tool().tcp, t, &previous, &options.ik)
                     .map_err(|e| uncompensated(p.line, "x_mm..rz_deg", e.to_string()))?
-                    .q
+                    .q;
+                let from = if out.is_empty() {
+                    "the start posture"
+                } else {
+                    "the previous point"
+                };
+                if let Some(change) = Arm::of(robot, &q).change_from(&Arm::of(robot, &previous)) {
+                    return Err(uncompensated(p.line, "x_mm..rz_deg", format!("inverse kinematics reaches this pose only in another configuration than {from}'s ({change}); refused rather than switched silently: start in the configuration wanted (--q0-deg, q0_deg)")));
+                }
+                q
             }
         };
         previous = q;

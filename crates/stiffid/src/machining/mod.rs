@@ -11,7 +11,9 @@
 //!    frame into the base frame along the path's own feed direction (the TCP's motion from the
 //!    previous point; the first point takes the second's) and the tool axis
 //!    ([`Operation::base_wrench`]). Rapid moves (`G0`) and points no operation covers cut nothing;
-//!    a milling point fed along the tool axis (a plunge) gets no force and is counted.
+//!    a milling point fed along the tool axis (a plunge) gets no force and is counted. With the
+//!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
+//!    wrench ([`crate::setup::Payload::wrench`]).
 //! 3. [`compensate::path`] compensates every point, refusing any whose compensated axis angles
 //!    leave the joint limits (naming its line).
 //! 4. Compensated targets that move more than [`MAX_CORRECTION_DEG`] from the nominal ones, or
@@ -148,7 +150,12 @@ pub fn compensate(
 ) -> Result<Report> {
     let poses = poses(setup, program)?;
     let operations = operations(program, process)?;
-    let (points, warnings) = path_points(&poses, &operations);
+    let weight = |pose: &Isometry3<f64>| {
+        setup.payload().map_or(Vector6::zeros(), |p| {
+            p.wrench(&pose.rotation, &setup.tool().tcp)
+        })
+    };
+    let (points, warnings) = path_points(&poses, &operations, weight);
     let results = compensate::path(setup, compliance, &points, options)?;
     check_configuration(&points, &results)?;
     let program = match program {
@@ -236,7 +243,7 @@ fn operations<'a>(
                     Some(name) => Some(
                         ops.iter()
                             .enumerate()
-                            .find(|(_, o)| &o.name == name)
+                            .find(|(_, o)| o.name == **name)
                             .ok_or_else(|| Error::Program {
                                 line: p.line,
                                 message: format!(
@@ -287,6 +294,7 @@ fn operations<'a>(
 fn path_points(
     poses: &[(u64, Target, Isometry3<f64>)],
     operations: &[Option<(usize, &Operation)>],
+    weight: impl Fn(&Isometry3<f64>) -> Vector6<f64>,
 ) -> (Vec<PathPoint>, Vec<String>) {
     let mut plunges = Vec::new();
     let mut uncovered = 0;
@@ -320,7 +328,7 @@ fn path_points(
             PathPoint {
                 line: *line,
                 target: target.clone(),
-                wrench,
+                wrench: wrench + weight(pose),
                 frame: Frame::Base,
             }
         })

@@ -5,6 +5,7 @@
 
 pub(crate) mod builtin;
 pub mod collision;
+pub mod configuration;
 pub mod dh;
 pub mod file;
 pub mod ik;

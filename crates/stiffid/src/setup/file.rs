@@ -56,6 +56,10 @@ struct ToolFile {
     measuring_points_mm: Vec<[f64; 3]>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     tcp_mm: Option<[f64; 3]>,
+    #[serde(default)]
+    mass_kg: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    centre_of_mass_mm: Option<[f64; 3]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -304,6 +308,21 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
     }
     if let Some(tcp) = &f.tool.tcp_mm {
         b = b.with_tcp(mm(tcp));
+    }
+    match (f.tool.mass_kg, &f.tool.centre_of_mass_mm) {
+        (Some(mass), Some(c)) => {
+            b = b.with_payload(crate::setup::Payload {
+                mass,
+                centre: mm(c),
+            })
+        }
+        (None, None) => {}
+        _ => {
+            return Err(Error::InvalidField {
+                field: "tool.mass_kg".into(),
+                message: "mass_kg and centre_of_mass_mm come together: give both or neither".into(),
+            })
+        }
     }
     if let Some(t) = f.test {
         b = b.with_test_postures(t.postures_deg.iter().map(deg6).collect());

@@ -18,7 +18,10 @@
 //! [tool]                                 # points in the flange frame
 //! loading_point_mm = [150, 0, 200]
 //! measuring_points_mm = [[80, 80, 260], [-80, 80, 260]]
-//! # tcp_mm = [80, 80, 260]               # for the dexterity index; default measuring point 1
+//! # tcp_mm = [80, 80, 260]               # the dexterity index's (default measuring point 1);
+//! #                                      # compensate requires it: the cutting tool's centre point
+//! # mass_kg = 12.5                       # optional, with centre_of_mass_mm: the spindle's weight
+//! # centre_of_mass_mm = [0, 0, 120]      # joins the process wrench in compensate
 //! [loading]                              # rope and mass over a pulley
 //! load_n = 500.0
 //! anchor_mm = [1500, 1500, 0]            # base frame
@@ -88,6 +91,36 @@ impl Tool {
         std::iter::once(&self.loading_point)
             .chain(&self.measuring_points)
             .chain(std::iter::once(&self.tcp))
+    }
+}
+
+/// The tool's mass and centre of mass (a spindle), `[tool] mass_kg` and `centre_of_mass_mm`: its
+/// weight, `m g` down the base frame's -z (the base z axis taken as vertical, up), acts on the
+/// robot with the process wrench ([`Payload::wrench`]), and a generated robot program states it
+/// (KRL `$LOAD`, RAPID `tooldata`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Payload {
+    /// The mass, kg (within [`limits::TOOL_MASS_KG`]).
+    pub mass: f64,
+    /// The centre of mass, flange frame, m.
+    pub centre: Vector3<f64>,
+}
+
+/// Standard gravity, m/s^2 (CGPM 1901).
+pub const GRAVITY: f64 = 9.80665;
+
+impl Payload {
+    /// The weight's wrench `[f; m]` (N, Nm, base frame) at the tool centre point `tcp` (flange
+    /// frame, m) of a flange in orientation `flange` (base frame): `f = (0, 0, -m g)`,
+    /// `m = R (c - tcp) x f`.
+    pub fn wrench(
+        &self,
+        flange: &nalgebra::UnitQuaternion<f64>,
+        tcp: &Vector3<f64>,
+    ) -> Vector6<f64> {
+        let f = Vector3::new(0.0, 0.0, -self.mass * GRAVITY);
+        let m = (flange * (self.centre - tcp)).cross(&f);
+        Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z)
     }
 }
 
@@ -179,6 +212,8 @@ pub struct Setup {
     shapes: Bodies,
     tracker: Option<Tracker>,
     workpiece: Option<Isometry3<f64>>,
+    tcp_given: bool,
+    payload: Option<Payload>,
 }
 
 impl Setup {
@@ -208,6 +243,7 @@ impl Setup {
             tool_radius: None,
             tracker: None,
             workpiece: None,
+            payload: None,
         }
     }
 
@@ -223,7 +259,7 @@ impl Setup {
             candidate_springs: self.candidate_springs.clone(),
             loading_point: Some(self.tool.loading_point),
             measuring_points: self.tool.measuring_points.clone(),
-            tcp: Some(self.tool.tcp),
+            tcp: self.tcp_given.then_some(self.tool.tcp),
             load: Some(self.load.clone()),
             load_steps: self.load_steps.clone(),
             noise: Some(self.noise.clone()),
@@ -237,6 +273,7 @@ impl Setup {
             tool_radius: Some(self.geometry.tool_radius),
             tracker: self.tracker.clone(),
             workpiece: self.workpiece,
+            payload: self.payload,
         }
     }
 
@@ -473,6 +510,17 @@ impl Setup {
         self.tracker.as_ref()
     }
 
+    /// Whether the tool centre point was given (`[tool] tcp_mm`), not taken from measuring
+    /// point 1.
+    pub fn tcp_given(&self) -> bool {
+        self.tcp_given
+    }
+
+    /// The tool's mass and centre of mass, if given.
+    pub fn payload(&self) -> Option<&Payload> {
+        self.payload.as_ref()
+    }
+
     /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workpiece.as_ref()
@@ -545,6 +593,7 @@ pub struct SetupBuilder {
     tool_radius: Option<f64>,
     tracker: Option<Tracker>,
     workpiece: Option<Isometry3<f64>>,
+    payload: Option<Payload>,
 }
 
 impl SetupBuilder {
@@ -691,6 +740,13 @@ impl SetupBuilder {
         self
     }
 
+    /// The tool's mass and centre of mass (default none; the mass within [`limits::TOOL_MASS_KG`],
+    /// the centre's coordinates within [`limits::LENGTH_MM`]).
+    pub fn with_payload(mut self, payload: Payload) -> Self {
+        self.payload = Some(payload);
+        self
+    }
+
     /// The setup, every field checked against [`crate::common::limits`] and the others.
     ///
     /// # Errors
@@ -771,6 +827,10 @@ impl SetupBuilder {
             let field = "workpiece.base_from_part.xyz_mm";
             check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
         }
+        if let Some(p) = &self.payload {
+            limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
+            check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
+        }
         let tracker = self
             .tracker
             .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))
@@ -796,6 +856,8 @@ impl SetupBuilder {
             shapes,
             tracker,
             workpiece: self.workpiece,
+            tcp_given: self.tcp.is_some(),
+            payload: self.payload,
         })
     }
 }

@@ -406,3 +406,50 @@ fn every_point_that_cannot_be_compensated_is_named() {
         other => panic!("{other:?}"),
     }
 }
+
+/// Inverse kinematics keeps the start posture's configuration or refuses naming the point: with
+/// axes 4 and 6 held within +-30 deg, the pose of a posture with axis 5 at +40 deg has no solution
+/// with axis 5 negative (its wrist twin turns axes 4 and 6 by 180 deg), so a path starting with
+/// axis 5 at -40 deg is refused, never flipped silently; started with axis 5 positive it passes.
+#[test]
+fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
+    let base = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let mut limits = *base.robot().limits();
+    for k in [3, 5] {
+        limits.lower[k] = -30f64.to_radians();
+        limits.upper[k] = 30f64.to_radians();
+    }
+    let robot = base.robot().clone().with_limits(limits).unwrap();
+    let s = base
+        .to_builder()
+        .with_robot(robot)
+        .with_bounds(limits)
+        .with_test_postures(Vec::new())
+        .with_tcp(base.tool().tcp)
+        .build()
+        .unwrap();
+    let compliance = s.model_compliance("test").unwrap();
+    let deg = |q: [f64; 6]| Vector6::from(q).map(f64::to_radians);
+    let target = tool_pose(
+        &s.robot().frames(&deg([-60.0, 0.0, -20.0, 0.0, 40.0, 0.0])),
+        &s.tool().tcp,
+    );
+    let path = vec![PathPoint {
+        line: 7,
+        target: Target::Pose(target),
+        wrench: Vector6::zeros(),
+        frame: Frame::Base,
+    }];
+    let mut o = options(&s, None);
+    o.q0 = deg([-60.0, 0.0, -20.0, 0.0, -40.0, 0.0]);
+    let e = compensate::path(&s, &compliance, &path, &o)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("line 7") && e.contains("another configuration") && e.contains("wrist"),
+        "{e}"
+    );
+    o.q0 = deg([-55.0, 5.0, -25.0, 5.0, 30.0, 5.0]);
+    let q = compensate::path(&s, &compliance, &path, &o).unwrap()[0].q;
+    assert!(q[4] > 0.0, "{q}");
+}

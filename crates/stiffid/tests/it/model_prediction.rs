@@ -32,6 +32,7 @@ fn extended() -> Setup {
     springs.extend(tool.into_iter().filter(|s| s.name == "tool_y"));
     paper
         .to_builder()
+        .with_tcp(paper.tool().tcp)
         .with_virtual_springs(springs)
         .build()
         .unwrap()

@@ -418,13 +418,16 @@ fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_progra
 
 /// A G-code path written as a robot program moves at its own feed: `F` read per minute in the
 /// block's units, rapid moves and the first point as joint motions; a cutting move without a feed
-/// in force is refused naming its line, as is a feed that is not positive.
+/// in force is refused naming its line, as is a feed that is not positive or faster than the
+/// robot.
 #[test]
 fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
-    use stiffid::machining::program::generate::{generate, moves, Move};
+    use stiffid::machining::program::generate::{
+        generate, moves, Move, Plan, Settings, Target, Tool,
+    };
     let text = format!("{HEADER}G21 G0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40\nG20 G1 X2 F12\nG0 Z1\n");
     let g = gcode::parse(&text, 1e-5).unwrap();
-    let m = moves(&g.points).unwrap();
+    let m = moves(&g.points, 2.0).unwrap();
     assert_eq!(m.len(), 5);
     assert_eq!(m[0], Move::Rapid);
     assert_relative_eq!(g.points[1].feed.unwrap(), 0.01, max_relative = 1e-15);
@@ -434,15 +437,54 @@ fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
     };
     assert_relative_eq!(inch, 12.0 * 25.4e-3 / 60.0, max_relative = 1e-15);
     assert_eq!(m[4], Move::Rapid);
-    let q = vec![[0.0, -90.0, 10.0, 0.0, 30.0, 0.0]; 5];
-    let ls = generate(Dialect::FanucLs, "P", &q, &m).unwrap();
-    assert!(ls.contains("   3:L P[2] 10mm/sec CNT100 ;\n"), "{ls}");
+    let (s, _) = fanuc();
+    let q = Vector6::new(0.0, -10.0, 10.0, 0.0, -30.0, 0.0).map(f64::to_radians);
+    let targets = vec![Target::new(s.robot(), &s.tool().tcp, &q); 5];
+    let plan = Plan {
+        dialect: Dialect::FanucLs,
+        name: "P",
+        targets: &targets,
+        moves: &m,
+        tool: Tool {
+            tcp: s.tool().tcp,
+            payload: None,
+        },
+        work: *s.workpiece().unwrap(),
+        approximation: 1e-5,
+        settings: Settings::default(),
+    };
+    let written = generate(&plan).unwrap();
+    let ls = &written.files[0].text;
+    assert!(ls.contains("   5:L P[2] 10mm/sec CNT100 ;\n"), "{ls}");
+    // 12 inch/min = 5.08 mm/s = 30.48 cm/min: the nearest whole cm/min, with a warning.
     assert!(
-        ls.contains("   5:L P[4] 5mm/sec CNT100 ;\n   6:J P[5] 20% CNT100 ;\n"),
+        ls.contains("   7:L P[4] 30cm/min CNT100 ;\n   8:J P[5] 20% FINE ;\n"),
         "{ls}"
     );
+    assert!(
+        written.warnings[0].contains("304.8 mm/min"),
+        "{:?}",
+        written.warnings
+    );
+    // F1000000 mm/min (16.7 m/s), or a feed in inch/min after G20 beyond the robot: refused.
+    for fast in ["G21 G1 X1 F1000000", "G20 G1 X1 F5000"] {
+        match moves(
+            &gcode::parse(&format!("{HEADER}G0 X0 Y0 Z5\n{fast}\n"), 1e-5)
+                .unwrap()
+                .points,
+            2.0,
+        ) {
+            Err(Error::Program { line: 3, message }) => {
+                assert!(
+                    message.contains("largest TCP speed, 2000 mm/s"),
+                    "{message}"
+                )
+            }
+            other => panic!("{fast}: {other:?}"),
+        }
+    }
     let without = format!("{HEADER}G0 X0 Y0 Z5\nG1 Z0\n");
-    match moves(&gcode::parse(&without, 1e-5).unwrap().points) {
+    match moves(&gcode::parse(&without, 1e-5).unwrap().points, 2.0) {
         Err(Error::Program { line: 3, message }) => assert!(message.contains("feed"), "{message}"),
         other => panic!("{other:?}"),
     }
@@ -450,4 +492,42 @@ fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
         Err(Error::Program { line: 2, message }) => assert!(message.contains("F-5"), "{message}"),
         other => panic!("{other:?}"),
     }
+}
+
+/// The controller's straight line between two compensated Cartesian targets stays on the
+/// compensated path: the midpoint of the line between the targets of a path cut every 10 mm is
+/// within the chord tolerance of the compensated midpoint (the target of the same path cut every
+/// 5 mm).
+#[test]
+fn a_linear_move_between_compensated_targets_stays_within_the_chord_tolerance() {
+    use stiffid::machining::program::generate::Target;
+    let (s, compliance) = fanuc();
+    let process = file::parse(PROCESS, "p.toml").unwrap();
+    let path = |step: usize| {
+        let blocks: String = (1..=80 / step)
+            .map(|i| format!("G1 X{}\n", i * step))
+            .collect();
+        let text = format!("{HEADER}G0 X0 Y0 Z0\nG1 X0 F600\n{blocks}");
+        let program = machining::read(&text, Language::GCode, 1e-5).unwrap();
+        let r = machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s))
+            .unwrap();
+        r.results
+            .iter()
+            .map(|c| Target::new(s.robot(), &s.tool().tcp, &c.q_compensated))
+            .collect::<Vec<_>>()
+    };
+    let (coarse, fine) = (path(10), path(5));
+    let tolerance = 0.01e-3;
+    let mut largest = 0.0f64;
+    for i in 2..coarse.len() - 1 {
+        let (a, b) = (&coarse[i], &coarse[i + 1]);
+        let middle = (a.pose.translation.vector + b.pose.translation.vector) / 2.0;
+        let compensated = fine[2 * i].pose.translation.vector;
+        largest = largest.max((middle - compensated).norm());
+        // The targets are the compensated axis angles' forward kinematics, not the path's.
+        let nominal_x = (i - 1) as f64 * 10e-3 + 1.3;
+        assert!((a.pose.translation.x - nominal_x).abs() > 1e-6);
+    }
+    assert!(largest < tolerance, "{largest} m");
+    assert!(largest > 0.0);
 }

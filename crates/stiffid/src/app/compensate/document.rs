@@ -89,6 +89,9 @@ pub struct Program {
     pub process: String,
     /// The compensated program written (empty when none is).
     pub out: String,
+    /// A generated program's sub-programs, in the order its main program calls them (empty
+    /// unless it is split): each written beside the main program, in a file of its name.
+    pub subprograms: Vec<String>,
     /// One entry per segment (a program line with at least one point), in program order.
     pub segments: Vec<SegmentDocument>,
 }
@@ -229,6 +232,7 @@ impl Document {
                 output_language: p.output.name(),
                 process: p.process.clone(),
                 out: names.program_out.clone(),
+                subprograms: p.subprograms.iter().map(|f| f.name.clone()).collect(),
                 segments: p.segments.iter().map(segment).collect(),
             }),
             summary: report.summary.document(),

@@ -25,7 +25,8 @@ use crate::machining::compensate::{
 };
 use crate::machining::path;
 use crate::machining::process::Process;
-use crate::machining::program::generate::{generate, moves};
+use crate::machining::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
+use crate::machining::program::Dialect;
 use crate::machining::{self, Language, Program};
 use crate::model::Parameter;
 use crate::observation::deflection::Frame;
@@ -58,8 +59,13 @@ pub enum Input<'t> {
         /// G-code arcs are split into chords of at most this sagitta, m.
         chord_tolerance: f64,
         /// The language of the compensated program: the program's own, or for G-code a robot
-        /// program of the compensated axis angles ([`generate`]).
+        /// program of the compensated targets ([`generate`]).
         output: Language,
+        /// The name of the file the compensated program is written to: a generated robot
+        /// program is named after its stem (upper case), as the controllers call it.
+        out_name: String,
+        /// How a generated robot program is written.
+        settings: Settings,
     },
 }
 
@@ -86,8 +92,12 @@ pub struct ProgramReport {
     pub process: String,
     /// The program, compensated, in its own format (robot programs with the compensated axis
     /// angles and every other byte as read, G-code with the compensated positions), or a G-code
-    /// path as a new robot program of the compensated axis angles.
+    /// path as a new robot program of the compensated targets (its main program when it is
+    /// split).
     pub text: String,
+    /// A generated program's sub-programs, in call order (empty unless it is split): each
+    /// written to a file of its name next to the main program's.
+    pub subprograms: Vec<generate::File>,
     /// Each segment's force and deflection, in program order.
     pub segments: Vec<Segment>,
 }
@@ -138,7 +148,9 @@ pub struct Report {
 /// 0-based index of its first point, the points, their results) in path order as it is computed.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for options outside their limits ([`Options::validate`]); errors about
+/// [`Error::InvalidField`] for options outside their limits ([`Options::validate`],
+/// [`Settings::validate`]), a setup without `[tool] tcp_mm` (`tool.tcp_mm`), a generated robot
+/// program's name, tool or file its controller does not take ([`generate`]); errors about
 /// the path as [`Error::Input`] naming the path or program file: those of
 /// [`path::points`], [`compensate::stream`], [`machining::read`] and [`machining::compensate`]
 /// (a malformed program, a point outside the joint limits or whose compensation changes the
@@ -155,6 +167,13 @@ where
         options,
     } = request;
     options.validate()?;
+    if !setup.tcp_given() {
+        return Err(Error::InvalidField {
+            field: "tool.tcp_mm".into(),
+            message: format!("missing in setup {}: compensation moves the cutting tool's centre point, which the setup must give ([tool] tcp_mm); measuring point 1 is a measuring target, not the tool", setup.name()),
+        }
+        .into());
+    }
     let mut summary = Summary::new(options.free_tool_axis.is_some());
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
@@ -182,8 +201,11 @@ where
             process,
             chord_tolerance,
             output,
+            out_name,
+            settings,
         } => {
             check_output(language, output).map_err(|e| in_input(&name, e))?;
+            settings.validate()?;
             let (program, compensated) = (|| {
                 let program = machining::read(text, language, chord_tolerance)?;
                 let compensated =
@@ -199,22 +221,32 @@ where
             {
                 add(k * CHUNK, p, r)?;
             }
-            let warnings = compensated
+            let mut warnings: Vec<Warning> = compensated
                 .warnings
                 .iter()
                 .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
                 .collect();
-            let text = match (output, &program) {
+            let (text, subprograms) = match (output, &program) {
                 (Language::Robot(d), Program::GCode(g)) => {
-                    let q: Vec<[f64; 6]> = compensated
-                        .results
-                        .iter()
-                        .map(|r| r.q_compensated.map(f64::to_degrees).into())
-                        .collect();
-                    let moves = moves(&g.points).map_err(|e| in_input(&name, e))?;
-                    generate(d, &program_name(&name), &q, &moves)?
+                    let written = write_robot_program(
+                        setup,
+                        d,
+                        &compensated,
+                        &g.points,
+                        (&out_name, &settings, chord_tolerance),
+                    )
+                    .map_err(|e| in_input(&name, e))?;
+                    warnings.extend(
+                        written
+                            .warnings
+                            .into_iter()
+                            .map(|w| Warning::new(WarningKind::Feed, w)),
+                    );
+                    let mut files = written.files.into_iter();
+                    let main = files.next().map(|f| f.text).unwrap_or_default();
+                    (main, files.collect())
                 }
-                _ => compensated.program.clone(),
+                _ => (compensated.program.clone(), Vec::new()),
             };
             let report = ProgramReport {
                 language,
@@ -222,6 +254,7 @@ where
                 process: process_name,
                 segments: segments(&compensated, &process),
                 text,
+                subprograms,
             };
             (name, Some(report), warnings)
         }
@@ -268,25 +301,55 @@ fn check_output(language: Language, output: Language) -> Result<()> {
     }
 }
 
-/// The program name of a generated robot program: the input file's stem, upper case, letters,
-/// digits and `_` (others as `_`), starting with a letter, at most 24 characters.
-fn program_name(input: &str) -> String {
-    let stem = std::path::Path::new(input)
+/// The robot program of a compensated G-code path ([`generate`]): named after the stem of
+/// `out_name` (upper case), written with `settings`, cutting points approximated within the
+/// chord tolerance (m).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`out`) for a KRL program to be written into a `.dat` (a `DEF` belongs
+/// in the `.src`); those of [`moves`] and [`generate`].
+fn write_robot_program(
+    setup: &Setup,
+    dialect: Dialect,
+    compensated: &machining::Report,
+    points: &[crate::machining::gcode::Point],
+    (out_name, settings, chord_tolerance): (&str, &Settings, f64),
+) -> Result<generate::Written> {
+    use rayon::prelude::*;
+    let path = std::path::Path::new(out_name);
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if dialect == Dialect::Krl && extension.eq_ignore_ascii_case("dat") {
+        return Err(Error::InvalidField {
+            field: "out".into(),
+            message: format!("{out_name}: a KRL program (DEF) is written to a .src file; its .dat holds only data (DEFDAT)"),
+        });
+    }
+    let name = path
         .file_stem()
         .and_then(|s| s.to_str())
-        .unwrap_or("");
-    let mut name: String = stem
-        .chars()
-        .map(|c| match c.is_ascii_alphanumeric() {
-            true => c.to_ascii_uppercase(),
-            false => '_',
-        })
+        .unwrap_or("")
+        .to_ascii_uppercase();
+    let moves = moves(points, settings.max_tcp_speed)?;
+    let tool = setup.tool();
+    let targets: Vec<Target> = compensated
+        .results
+        .par_iter()
+        .map(|r| Target::new(setup.robot(), &tool.tcp, &r.q_compensated))
         .collect();
-    if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
-        name.insert(0, 'P');
-    }
-    name.truncate(24);
-    name
+    let plan = Plan {
+        dialect,
+        name: &name,
+        targets: &targets,
+        moves: &moves,
+        tool: Tool {
+            tcp: tool.tcp,
+            payload: setup.payload().map(|p| (p.mass, p.centre)),
+        },
+        work: setup.workpiece().copied().unwrap_or_default(),
+        approximation: chord_tolerance,
+        settings: *settings,
+    };
+    generate(&plan)
 }
 
 /// A failure of the streamed path: the library's, or the sink's.
@@ -322,7 +385,7 @@ fn in_input(name: &str, error: Error) -> Error {
 }
 
 fn is_option(e: &Error) -> bool {
-    matches!(e, Error::InvalidField { field, .. } if ["max_step_deg", "tool_axis_range_deg", "chord_tolerance_mm"].contains(&field.as_str()))
+    matches!(e, Error::InvalidField { field, .. } if ["max_step_deg", "tool_axis_range_deg", "chord_tolerance_mm", "max_tcp_speed_mm_s", "name_length", "moves_per_file", "name", "tool.tcp_mm", "tool.mass_kg"].contains(&field.as_str()))
 }
 
 /// The segments of a compensated program: its points grouped by line, in order.

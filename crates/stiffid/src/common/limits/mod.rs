@@ -85,6 +85,9 @@ pub const STIFFNESS_N_PER_MM: Range = Range::new(1e-3, 1e10, "N/mm");
 /// Components of a spring's axis (any length; it is normalised), dimensionless.
 pub const AXIS: Range = Range::new(-1e6, 1e6, "");
 
+/// A tool's mass (`[tool] mass_kg`).
+pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
+
 /// The rope load of a setup.
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 

@@ -76,8 +76,9 @@ pub struct Point {
     pub motion: Motion,
     /// The tool number in force (`T` word).
     pub tool_number: Option<u32>,
-    /// The operation named in force (`(operation: NAME)`).
-    pub operation: Option<String>,
+    /// The operation named in force (`(operation: NAME)`), shared by every point it covers (an
+    /// arc's thousands of chords hold one copy of the name).
+    pub operation: Option<std::sync::Arc<str>>,
     /// The feed rate in force (the last `F` word, per minute in the units of its block), m/s;
     /// `None` before the first `F`.
     pub feed: Option<f64>,
@@ -119,7 +120,7 @@ struct State {
     inch: bool,
     incremental: bool,
     tool_number: Option<u32>,
-    operation: Option<String>,
+    operation: Option<std::sync::Arc<str>>,
     tool: Option<UnitQuaternion<f64>>,
     rotary: bool,
     /// The line of the `M2`/`M30` that ended the program.
@@ -256,7 +257,7 @@ fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<Vec<Word>> {
 fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
     let t = text.trim();
     if let Some(name) = t.strip_prefix("operation:") {
-        s.operation = Some(name.trim().to_string());
+        s.operation = Some(name.trim().into());
     }
     let Some(directive) = t.strip_prefix("stiffid:") else {
         return Ok(());

@@ -1,0 +1,113 @@
+//! KUKA KRL (`.src`): `DEF NAME( )` ... `END` (module docs of [`super`]).
+
+use super::{in_work, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT};
+use std::fmt::Write;
+
+/// The motion set-up at the top of the main program.
+pub(super) fn header(plan: &Plan) -> String {
+    let mut s = String::from(
+        "; written by stiffid: compensated targets, the tool, base and speeds below;\n\
+         ; check them for the cell before running\n\
+         BAS(#INITMOV, 0)\n",
+    );
+    let _ = write!(
+        s,
+        "BAS(#VEL_PTP, {RAPID_PERCENT})\nBAS(#ACC_PTP, {RAPID_PERCENT})\n\
+         $VEL.ORI1 = 200\n$VEL.ORI2 = 200\n$ACC.CP = 1\n$ACC.ORI1 = 100\n$ACC.ORI2 = 100\n\
+         $APO.CDIS = {}\n",
+        number(plan.approximation * 1e3)
+    );
+    if plan.settings.targets == Targets::Cartesian {
+        let t = plan.tool.tcp * 1e3;
+        let _ = writeln!(
+            s,
+            "$TOOL = {{X {}, Y {}, Z {}, A 0, B 0, C 0}}",
+            number(t.x),
+            number(t.y),
+            number(t.z)
+        );
+        if let Some((mass, c)) = plan.tool.payload {
+            let c = c * 1e3;
+            let _ = writeln!(
+                s,
+                "$LOAD = {{M {}, CM {{X {}, Y {}, Z {}, A 0, B 0, C 0}}, J {{X 0, Y 0, Z 0}}}}",
+                number(mass),
+                number(c.x),
+                number(c.y),
+                number(c.z)
+            );
+        }
+        let p = plan.work.translation.vector * 1e3;
+        let [a, b, c] = zyx_deg(&plan.work.rotation);
+        let _ = writeln!(
+            s,
+            "$BASE = {{X {}, Y {}, Z {}, A {}, B {}, C {}}}",
+            number(p.x),
+            number(p.y),
+            number(p.z),
+            number(a),
+            number(b),
+            number(c)
+        );
+    }
+    s
+}
+
+/// The moves of one file.
+pub(super) fn body(plan: &Plan, part: &Part) -> String {
+    let mut s = String::with_capacity(part.targets.len() * 140);
+    let mut speed: Option<f64> = None;
+    let n = part.targets.len();
+    for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
+        let exact = part.last && k + 1 == n;
+        if let Move::Feed(f) = m {
+            if speed != Some(*f) {
+                let _ = writeln!(s, "$VEL.CP = {}", number(*f));
+                speed = Some(*f);
+            }
+        }
+        let approximate = |c: &str| match (exact, m) {
+            (false, Move::Feed(_)) => format!(" {c}"),
+            _ => String::new(),
+        };
+        match plan.settings.targets {
+            Targets::Joint => {
+                let axes: Vec<String> = (0..6)
+                    .map(|k| format!("A{} {}", k + 1, v(t.q_deg[k])))
+                    .collect();
+                let _ = writeln!(s, "PTP {{{}}}{}", axes.join(", "), approximate("C_PTP"));
+            }
+            Targets::Cartesian => {
+                let (p, r) = in_work(plan, t);
+                let [a, b, c] = zyx_deg(&r);
+                let (status, turn) = t.arm.kuka();
+                let motion = match m {
+                    Move::Rapid => "PTP",
+                    Move::Feed(_) => "LIN",
+                };
+                let _ = writeln!(
+                    s,
+                    "{motion} {{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}, S 'B{status:03b}', T 'B{turn:06b}'}}{}",
+                    v(p.x),
+                    v(p.y),
+                    v(p.z),
+                    v(a),
+                    v(b),
+                    v(c),
+                    approximate("C_DIS")
+                );
+            }
+        }
+    }
+    s
+}
+
+/// The main program's calls of its sub-programs.
+pub(super) fn calls(subs: &[String]) -> String {
+    subs.iter().map(|n| format!("{n}( )\n")).collect()
+}
+
+/// A whole `.src` file.
+pub(super) fn wrap(name: &str, header: &str, body: &str) -> String {
+    format!("DEF {name}( )\n{header}{body}END\n")
+}

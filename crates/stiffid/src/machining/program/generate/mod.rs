@@ -1,0 +1,718 @@
+//! New robot programs from compensated targets: what a G-code path becomes for a robot controller
+//! ([`generate`]), each target moved to at the path's own speed ([`Move`], from the G-code's `F`
+//! words: [`moves`]).
+//!
+//! ## Targets
+//! By default ([`Targets::Cartesian`]) every target is the compensated pose expressed in the
+//! controller's own nominal kinematics: the forward kinematics of the compensated axis angles,
+//! the tool centre point's position and the flange's orientation, with the configuration data
+//! of the compensated posture ([`crate::robot::configuration`]). Cutting moves are linear
+//! (KUKA `LIN`, ABB `MoveL`, FANUC `L`): the controller interpolates the tool in a straight line
+//! between compensated points, as the G-code does between its points. The first target and rapid
+//! moves (`G0`) are joint motions to Cartesian targets with their configuration (`PTP`, `MoveJ`,
+//! `J`). With [`Targets::Joint`] every target is the compensated axis angles (`PTP {A1 ..}`,
+//! `MoveAbsJ`, positions in joint representation), cutting moves included: the controller
+//! interpolates the axes, and the tool leaves the straight line between two targets by the joint
+//! interpolation's deviation.
+//!
+//! ## The tool and the work object
+//! - KUKA KRL (`.src`): `$TOOL` is the setup's TCP (orientation of the flange), `$LOAD` its mass
+//!   and centre of mass when the setup gives them, `$BASE` the part frame (`[workpiece]
+//!   base_from_part`); targets in the part frame.
+//! - ABB RAPID (`.mod`): `PERS tooldata tspindle` (the TCP, the mass and centre of mass, required)
+//!   and `PERS wobjdata wpart` (the part frame as its user frame); targets in the part frame.
+//! - FANUC LS (`.ls`): positions in user frame 0 (the robot's world, taken as its base frame) with
+//!   tool frame 1 (`UT : 1`), which must hold the setup's TCP on the controller (an LS program
+//!   cannot set it); the program says so in a remark.
+//!
+//! ## Controller rules
+//! Every rule comes from the controller's manual (docs/reference.md lists the sources):
+//! - the program's name is an identifier of the language, not a reserved word, within
+//!   [`Settings::name_length`] (default: KRL 24, RAPID 32, LS 8 as on R-30iA controllers);
+//!   a generated program is called as its file is named, so the name is the file's stem;
+//! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
+//!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`;
+//! - intermediate cutting points are approximated within the chord tolerance (KRL `C_DIS` with
+//!   `$APO.CDIS`, RAPID a `zonedata` of that size, LS `CNT100`); the last point is exact (no
+//!   approximation, `fine`, `FINE`), as are the first point and rapid moves;
+//! - feeds are written exactly: KRL `$VEL.CP` in m/s and RAPID `v_tcp` in mm/s with 9 decimals,
+//!   LS in whole `mm/sec`, else whole `cm/min` (exact for a feed in whole mm/min divisible by 10),
+//!   else the nearest whole `cm/min` with a warning; a feed above [`Settings::max_tcp_speed`] or
+//!   one an LS program cannot state (below 1 cm/min) is refused naming the G-code line;
+//! - the LS `COMMENT` is at most 16 characters;
+//! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
+//!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
+//!   program calls in order.
+//!
+//! Each program written reads back ([`super::parse`], joint targets) or states its targets to
+//! `10^-DECIMALS` mm and deg.
+
+mod krl;
+mod ls;
+mod rapid;
+
+use super::{Dialect, DECIMALS};
+use crate::machining::gcode::{Motion, Point};
+use crate::robot::configuration::Arm;
+use crate::{Error, Result, Robot};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
+
+/// How the robot moves to a target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Move {
+    /// A joint motion at the program's rapid speed: the first target and rapid moves (`G0`).
+    Rapid,
+    /// A cutting move at the path's feed, m/s.
+    Feed(f64),
+}
+
+/// What the targets of a generated program are (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Targets {
+    /// Compensated poses with their configuration; cutting moves linear.
+    #[default]
+    Cartesian,
+    /// Compensated axis angles; every move axis-interpolated.
+    Joint,
+}
+
+impl Targets {
+    /// Both, the default first.
+    pub const ALL: [Targets; 2] = [Targets::Cartesian, Targets::Joint];
+
+    /// The name in options and documents: `cartesian` or `joint`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Targets::Cartesian => "cartesian",
+            Targets::Joint => "joint",
+        }
+    }
+}
+
+impl crate::common::choice::Choice for Targets {
+    const FIELD: &'static str = "targets";
+    const ALL: &'static [Self] = &Targets::ALL;
+    fn name(self) -> &'static str {
+        Targets::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Targets::Cartesian => {
+                "Compensated poses with their configuration, cutting moves linear"
+            }
+            Targets::Joint => "Compensated axis angles, every move axis-interpolated",
+        }
+    }
+}
+
+crate::common::choice::by_name!(Targets);
+
+/// The rapid speed of RAPID's `vrapid`, mm/s.
+pub const RAPID_SPEED_MM_S: f64 = 200.0;
+/// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J`), percent of the axes' top speed.
+pub const RAPID_PERCENT: u32 = 20;
+/// The slowest feed written, m/s (0.001 mm/s): a slower one is refused, never written as 0.
+pub const MIN_FEED: f64 = 1e-6;
+/// The range of [`Settings::moves_per_file`].
+pub const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
+/// The range of [`Settings::name_length`].
+pub const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
+/// The most sub-programs a program is split into.
+pub const MAX_FILES: usize = 9999;
+
+/// How programs are written (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Cartesian or joint targets.
+    pub targets: Targets,
+    /// The robot's largest TCP speed, m/s (> 0, at most 10): a faster feed is refused.
+    pub max_tcp_speed: f64,
+    /// The longest program name the controller takes; `None`: the dialect's
+    /// ([`default_name_length`]).
+    pub name_length: Option<usize>,
+    /// The most moves in one program file (within [`MOVES_PER_FILE`]).
+    pub moves_per_file: usize,
+}
+
+impl Default for Settings {
+    /// Cartesian targets, 2000 mm/s, the dialect's name length, 10 000 moves per file.
+    fn default() -> Self {
+        Self {
+            targets: Targets::Cartesian,
+            max_tcp_speed: 2.0,
+            name_length: None,
+            moves_per_file: 10_000,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks every field against its limit.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field (`max_tcp_speed_mm_s`, `name_length`,
+    /// `moves_per_file`), the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |field: &str, message: String| {
+            Err(Error::InvalidField {
+                field: field.into(),
+                message,
+            })
+        };
+        if !(self.max_tcp_speed > 0.0 && self.max_tcp_speed <= 10.0) {
+            return bad(
+                "max_tcp_speed_mm_s",
+                format!(
+                    "{} mm/s: expected > 0 and at most 10000",
+                    self.max_tcp_speed * 1e3
+                ),
+            );
+        }
+        if let Some(n) = self.name_length.filter(|n| !NAME_LENGTH.contains(n)) {
+            return bad(
+                "name_length",
+                format!(
+                    "{n}: expected {} to {}",
+                    NAME_LENGTH.start(),
+                    NAME_LENGTH.end()
+                ),
+            );
+        }
+        if !MOVES_PER_FILE.contains(&self.moves_per_file) {
+            return bad(
+                "moves_per_file",
+                format!(
+                    "{}: expected {} to {}",
+                    self.moves_per_file,
+                    MOVES_PER_FILE.start(),
+                    MOVES_PER_FILE.end()
+                ),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// The longest program name of a dialect's controller: KRL 24 (KUKA System Software 8), RAPID 32
+/// (RAPID identifiers), LS 8 (R-30iA; later controllers take longer names: raise
+/// [`Settings::name_length`]).
+pub fn default_name_length(dialect: Dialect) -> usize {
+    match dialect {
+        Dialect::Krl => 24,
+        Dialect::Rapid => 32,
+        Dialect::FanucLs => 8,
+    }
+}
+
+/// One target: the compensated axis angles, the TCP pose they give, their configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Target {
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+    /// The TCP position (m) and the flange's orientation, base frame: the forward kinematics of
+    /// the axis angles.
+    pub pose: Isometry3<f64>,
+    /// The configuration of the axis angles.
+    pub arm: Arm,
+}
+
+impl Target {
+    /// The target of `robot` at axis angles `q` (rad) with the tool centre point `tcp` (flange
+    /// frame, m).
+    pub fn new(robot: &Robot, tcp: &Vector3<f64>, q: &Vector6<f64>) -> Self {
+        let frames = robot.frames(q);
+        Self {
+            q_deg: q.map(f64::to_degrees).into(),
+            pose: crate::robot::ik::tool_pose(&frames, tcp),
+            arm: Arm::of(robot, q),
+        }
+    }
+}
+
+/// The tool a program is written for: its centre point and, if known, its mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tool {
+    /// The tool centre point, flange frame, m.
+    pub tcp: Vector3<f64>,
+    /// The mass (kg) and centre of mass (flange frame, m), if the setup gives them.
+    pub payload: Option<(f64, Vector3<f64>)>,
+}
+
+/// What to write.
+#[derive(Debug, Clone, Copy)]
+pub struct Plan<'a> {
+    /// The language.
+    pub dialect: Dialect,
+    /// The program's name: its file's stem.
+    pub name: &'a str,
+    /// The targets, in path order.
+    pub targets: &'a [Target],
+    /// How to move to each target (one per target).
+    pub moves: &'a [Move],
+    /// The tool.
+    pub tool: Tool,
+    /// The part frame in the base frame (the work object).
+    pub work: Isometry3<f64>,
+    /// The approximation of intermediate cutting points, m (the chord tolerance).
+    pub approximation: f64,
+    /// How.
+    pub settings: Settings,
+}
+
+/// One program file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct File {
+    /// The program's name (the file's stem).
+    pub name: String,
+    /// Its text.
+    pub text: String,
+}
+
+/// The programs written: the main program first, then its sub-programs in call order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// The files.
+    pub files: Vec<File>,
+    /// What the user should know (a feed LS cannot state exactly).
+    pub warnings: Vec<String>,
+}
+
+/// How the robot moves to each point of a G-code path: the first point and rapid moves
+/// [`Move::Rapid`], cutting moves at the feed in force.
+///
+/// # Errors
+/// [`Error::Program`] naming the line of a cutting move with no feed rate (`F`) in force, or one
+/// faster than `max_tcp_speed` (m/s).
+pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
+    let error = |line, message: String| Err(Error::Program { line, message });
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| match (i, p.motion, p.feed) {
+            (0, _, _) | (_, Motion::Rapid, _) => Ok(Move::Rapid),
+            (_, Motion::Feed, Some(f)) if f > max_tcp_speed => error(p.line, format!(
+                "a feed of {} mm/s ({} mm/min) is faster than the robot's largest TCP speed, {} mm/s (a setting: max_tcp_speed_mm_s)",
+                number(f * 1e3), number(f * 6e4), number(max_tcp_speed * 1e3)
+            )),
+            (_, Motion::Feed, Some(f)) => Ok(Move::Feed(f)),
+            (_, Motion::Feed, None) => error(
+                p.line,
+                "a cutting move without a feed rate (F) in force: a robot program written from the path moves at its feed".into(),
+            ),
+        })
+        .collect()
+}
+
+/// The program of `plan` (module docs), split into sub-programs when it has more moves than
+/// [`Settings::moves_per_file`].
+///
+/// # Errors
+/// [`Error::InvalidField`] for settings outside their limits (field named), a program name the
+/// controller does not accept or that leaves no room for the sub-programs' numbers (`name`), no
+/// target or more than [`super::MAX_TARGETS`], an axis angle that is not finite (`targets`), a
+/// count of moves other than the targets' or a feed below [`MIN_FEED`] or not finite (`moves`),
+/// a RAPID program with Cartesian targets and a tool without mass (`tool.mass_kg`), more than
+/// [`MAX_FILES`] sub-programs (`moves_per_file`); [`Error::Program`] for a feed an LS program
+/// cannot state (naming the target's 1-based index as its line).
+pub fn generate(plan: &Plan) -> Result<Written> {
+    plan.settings.validate()?;
+    check_targets(plan)?;
+    let chunks: Vec<&[Target]> = plan.targets.chunks(plan.settings.moves_per_file).collect();
+    if chunks.len() > MAX_FILES {
+        return Err(invalid(
+            "moves_per_file",
+            format!(
+                "{} moves per file make {} sub-programs; at most {MAX_FILES}: raise moves_per_file",
+                plan.settings.moves_per_file,
+                chunks.len()
+            ),
+        ));
+    }
+    let names = names(plan, chunks.len())?;
+    let mut written = Written {
+        files: Vec::new(),
+        warnings: Vec::new(),
+    };
+    let mut first = 0;
+    let mut bodies = Vec::new();
+    for (chunk, name) in chunks
+        .iter()
+        .zip(names.iter().skip(usize::from(chunks.len() > 1)))
+    {
+        let part = Part {
+            first,
+            targets: chunk,
+            moves: &plan.moves[first..first + chunk.len()],
+            last: first + chunk.len() == plan.targets.len(),
+        };
+        bodies.push((name.clone(), body(plan, &part, &mut written.warnings)?));
+        first += chunk.len();
+    }
+    let header = header(plan, &names[0], &names[1..]);
+    if chunks.len() == 1 {
+        let (name, text) = bodies.pop().unwrap_or_default();
+        written.files.push(File {
+            text: wrap(plan, &name, &header, &text, true),
+            name,
+        });
+    } else {
+        written.files.push(File {
+            name: names[0].clone(),
+            text: wrap(
+                plan,
+                &names[0],
+                &header,
+                &calls(plan.dialect, &names[1..]),
+                true,
+            ),
+        });
+        for (name, text) in bodies {
+            written.files.push(File {
+                text: wrap(plan, &name, "", &text, false),
+                name,
+            });
+        }
+    }
+    Ok(written)
+}
+
+/// A run of targets written into one file.
+pub(crate) struct Part<'a> {
+    /// The 0-based index of its first target in the whole program.
+    pub first: usize,
+    pub targets: &'a [Target],
+    pub moves: &'a [Move],
+    /// Whether it ends the whole program (its last point exact).
+    pub last: bool,
+}
+
+fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+    Ok(match plan.dialect {
+        Dialect::Krl => krl::body(plan, part),
+        Dialect::Rapid => rapid::body(plan, part),
+        Dialect::FanucLs => ls::body(plan, part, warnings)?,
+    })
+}
+
+fn header(plan: &Plan, main: &str, subs: &[String]) -> String {
+    match plan.dialect {
+        Dialect::Krl => krl::header(plan),
+        Dialect::Rapid => rapid::header(plan, main, subs),
+        Dialect::FanucLs => ls::header(plan),
+    }
+}
+
+fn calls(dialect: Dialect, subs: &[String]) -> String {
+    match dialect {
+        Dialect::Krl => krl::calls(subs),
+        Dialect::Rapid => rapid::calls(subs),
+        Dialect::FanucLs => ls::calls(subs),
+    }
+}
+
+fn wrap(plan: &Plan, name: &str, header: &str, body: &str, main: bool) -> String {
+    match plan.dialect {
+        Dialect::Krl => krl::wrap(name, header, body),
+        Dialect::Rapid => rapid::wrap(name, header, body, main),
+        Dialect::FanucLs => ls::wrap(name, header, body),
+    }
+}
+
+fn invalid(field: &str, message: String) -> Error {
+    Error::InvalidField {
+        field: field.into(),
+        message,
+    }
+}
+
+fn check_targets(plan: &Plan) -> Result<()> {
+    let t = plan.targets;
+    if t.is_empty()
+        || t.len() > super::MAX_TARGETS
+        || t.iter().flat_map(|t| t.q_deg).any(|v| !v.is_finite())
+    {
+        return Err(invalid(
+            "targets",
+            format!(
+                "expected 1 to {} targets of 6 finite axis angles",
+                super::MAX_TARGETS
+            ),
+        ));
+    }
+    let bad_feed = plan
+        .moves
+        .iter()
+        .any(|m| matches!(m, Move::Feed(f) if !(f.is_finite() && *f >= MIN_FEED)));
+    if plan.moves.len() != t.len() || bad_feed {
+        return Err(invalid(
+            "moves",
+            format!(
+                "expected one move per target ({}), each feed finite and at least {} mm/s",
+                t.len(),
+                MIN_FEED * 1e3
+            ),
+        ));
+    }
+    let needs_mass = plan.dialect == Dialect::Rapid && plan.settings.targets == Targets::Cartesian;
+    if needs_mass && plan.tool.payload.is_none() {
+        return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
+    }
+    Ok(())
+}
+
+/// The main program's name and, for `files > 1`, the sub-programs' `NAME_01`, ...
+fn names(plan: &Plan, files: usize) -> Result<Vec<String>> {
+    let longest = plan
+        .settings
+        .name_length
+        .unwrap_or(default_name_length(plan.dialect));
+    check_name(plan.dialect, plan.name, longest)?;
+    let mut names = vec![plan.name.to_string()];
+    if files > 1 {
+        let width = files.to_string().len().max(2);
+        for i in 1..=files {
+            let sub = format!("{}_{i:0width$}", plan.name);
+            // A RAPID sub-program's routine is its module's name after an `r`.
+            if sub.len() + usize::from(plan.dialect == Dialect::Rapid) > longest {
+                return Err(invalid("name", format!("{:?}: the sub-programs' names ({sub} for {files} sub-programs) would be longer than {longest} characters, the controller's longest name (a setting: name_length): name the program shorter or raise moves_per_file", plan.name)));
+            }
+            names.push(sub);
+        }
+    }
+    Ok(names)
+}
+
+/// Refuses a program name the controller does not take (module docs).
+pub fn check_name(dialect: Dialect, name: &str, longest: usize) -> Result<()> {
+    let identifier = name.starts_with(|c: char| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let reserved = reserved_words(dialect)
+        .iter()
+        .any(|w| w.eq_ignore_ascii_case(name));
+    let message = if !identifier {
+        "expected letters, digits and _, starting with a letter (the program is named after its file: rename the file)".to_string()
+    } else if name.len() > longest {
+        format!(
+            "{} characters: the controller takes at most {longest} (a setting: name_length)",
+            name.len()
+        )
+    } else if reserved {
+        format!(
+            "a reserved word of {} (rename the file)",
+            dialect_name(dialect)
+        )
+    } else {
+        return Ok(());
+    };
+    Err(invalid("name", format!("{name:?}: {message}")))
+}
+
+fn dialect_name(d: Dialect) -> &'static str {
+    match d {
+        Dialect::Krl => "KUKA KRL",
+        Dialect::Rapid => "ABB RAPID",
+        Dialect::FanucLs => "FANUC LS",
+    }
+}
+
+/// The words a program may not be named (module docs; docs/reference.md cites the lists), and
+/// the names of the data stiffid declares in it.
+fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
+    match dialect {
+        Dialect::Krl => &[
+            "AND",
+            "ANIN",
+            "ANOUT",
+            "AXIS",
+            "B_AND",
+            "B_EXOR",
+            "B_NOT",
+            "B_OR",
+            "BOOL",
+            "BRAKE",
+            "C_DIS",
+            "C_ORI",
+            "C_PTP",
+            "C_SPL",
+            "C_VEL",
+            "CASE",
+            "CAST_FROM",
+            "CAST_TO",
+            "CHAR",
+            "CIRC",
+            "CIRC_REL",
+            "CONST",
+            "CONTINUE",
+            "DECL",
+            "DEF",
+            "DEFAULT",
+            "DEFDAT",
+            "DEFFCT",
+            "DELAY",
+            "DO",
+            "E6AXIS",
+            "E6POS",
+            "ELSE",
+            "END",
+            "ENDDAT",
+            "ENDFCT",
+            "ENDFOR",
+            "ENDIF",
+            "ENDLOOP",
+            "ENDSPLINE",
+            "ENDSWITCH",
+            "ENDWHILE",
+            "ENUM",
+            "EXIT",
+            "EXOR",
+            "EXT",
+            "EXTFCT",
+            "FALSE",
+            "FOR",
+            "FRAME",
+            "GLOBAL",
+            "GOTO",
+            "HALT",
+            "IF",
+            "IMPORT",
+            "INTERRUPT",
+            "INT",
+            "IS",
+            "LIN",
+            "LIN_REL",
+            "LOOP",
+            "MAXIMUM",
+            "MINIMUM",
+            "NOT",
+            "OR",
+            "POS",
+            "PRIO",
+            "PTP",
+            "PTP_REL",
+            "PUBLIC",
+            "REAL",
+            "REPEAT",
+            "RESUME",
+            "RETURN",
+            "SCIRC",
+            "SEC",
+            "SIGNAL",
+            "SLIN",
+            "SPLINE",
+            "SPTP",
+            "STEP",
+            "STRUC",
+            "SWITCH",
+            "THEN",
+            "TO",
+            "TRIGGER",
+            "TRUE",
+            "UNTIL",
+            "WAIT",
+            "WHEN",
+            "WHILE",
+        ],
+        Dialect::Rapid => &[
+            "ALIAS",
+            "AND",
+            "BACKWARD",
+            "CASE",
+            "CONNECT",
+            "CONST",
+            "DEFAULT",
+            "DIV",
+            "DO",
+            "ELSE",
+            "ELSEIF",
+            "ENDFOR",
+            "ENDFUNC",
+            "ENDIF",
+            "ENDMODULE",
+            "ENDPROC",
+            "ENDRECORD",
+            "ENDTEST",
+            "ENDTRAP",
+            "ENDWHILE",
+            "ERROR",
+            "EXIT",
+            "FALSE",
+            "FOR",
+            "FROM",
+            "FUNC",
+            "GOTO",
+            "IF",
+            "INOUT",
+            "LOCAL",
+            "MOD",
+            "MODULE",
+            "NOSTEPIN",
+            "NOT",
+            "NOVIEW",
+            "OR",
+            "PERS",
+            "PROC",
+            "RAISE",
+            "READONLY",
+            "RECORD",
+            "RETRY",
+            "RETURN",
+            "STEP",
+            "SYSMODULE",
+            "TEST",
+            "THEN",
+            "TO",
+            "TRAP",
+            "TRUE",
+            "TRYNEXT",
+            "UNDO",
+            "VAR",
+            "VIEWONLY",
+            "WHILE",
+            "WITH",
+            "XOR",
+            "main",
+            "tspindle",
+            "wpart",
+            "vrapid",
+            "zpath",
+        ],
+        Dialect::FanucLs => &[
+            "ABORT", "AND", "CALL", "CNT", "CONFIG", "ELSE", "END", "ENDFOR", "ENDIF", "FINE",
+            "FOR", "IF", "JMP", "LBL", "MOD", "NOT", "OFF", "ON", "OR", "PAUSE", "RUN", "SELECT",
+            "THEN", "TO", "WAIT",
+        ],
+    }
+}
+
+/// `x` with [`DECIMALS`] decimals, a negative zero without its sign.
+pub(crate) fn v(x: f64) -> String {
+    let s = format!("{x:.DECIMALS$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// A number as short as it is exact to [`DECIMALS`] decimals (trailing zeros dropped).
+pub(crate) fn number(x: f64) -> String {
+    let s = v(x);
+    match s.contains('.') {
+        true => s.trim_end_matches('0').trim_end_matches('.').to_string(),
+        false => s,
+    }
+}
+
+/// A target's pose in the frame `work` (part frame): position (mm) and rotation.
+pub(crate) fn in_work(plan: &Plan, t: &Target) -> (Vector3<f64>, UnitQuaternion<f64>) {
+    let local = plan.work.inverse() * t.pose;
+    (local.translation.vector * 1e3, local.rotation)
+}
+
+/// KUKA's A, B, C and FANUC's R, P, W (deg): `R = Rz(A) Ry(B) Rx(C)`.
+pub(crate) fn zyx_deg(r: &UnitQuaternion<f64>) -> [f64; 3] {
+    let (roll, pitch, yaw) = r.euler_angles();
+    [yaw.to_degrees(), pitch.to_degrees(), roll.to_degrees()]
+}
+
+#[cfg(test)]
+mod tests;

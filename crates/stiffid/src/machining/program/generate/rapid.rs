@@ -1,0 +1,117 @@
+//! ABB RAPID (`.mod`): `MODULE NAME` with `PROC main()`, sub-programs `MODULE NAME_01` with
+//! `PROC rNAME_01()` (module docs of [`super`]).
+
+use super::{in_work, number, v, Move, Part, Plan, Targets, RAPID_SPEED_MM_S};
+use std::fmt::Write;
+
+/// The data the moves use, declared in the main module.
+pub(super) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
+    let mut s = String::from(
+        "  ! written by stiffid: compensated targets, the tool, work object and speeds below;\n  \
+         ! check them for the cell before running\n",
+    );
+    if plan.settings.targets == Targets::Cartesian {
+        let t = plan.tool.tcp * 1e3;
+        let (mass, c) = plan.tool.payload.unwrap_or_default();
+        let c = c * 1e3;
+        let _ = writeln!(
+            s,
+            "  PERS tooldata tspindle := [TRUE,[[{},{},{}],[1,0,0,0]],[{},[{},{},{}],[1,0,0,0],0,0,0]];",
+            number(t.x),
+            number(t.y),
+            number(t.z),
+            number(mass),
+            number(c.x),
+            number(c.y),
+            number(c.z)
+        );
+        let p = plan.work.translation.vector * 1e3;
+        let _ = writeln!(
+            s,
+            "  PERS wobjdata wpart := [FALSE,TRUE,\"\",[[{},{},{}],{}],[[0,0,0],[1,0,0,0]]];",
+            number(p.x),
+            number(p.y),
+            number(p.z),
+            quaternion(&plan.work.rotation)
+        );
+    }
+    let a = number(plan.approximation * 1e3);
+    let _ = write!(
+        s,
+        "  CONST speeddata vrapid := [{},500,5000,1000];\n  \
+         CONST zonedata zpath := [FALSE,{a},{a},{a},0.1,{a},0.1];\n",
+        number(RAPID_SPEED_MM_S)
+    );
+    s
+}
+
+/// `[q1,q2,q3,q4]` of a rotation, the scalar first and not negative.
+fn quaternion(r: &nalgebra::UnitQuaternion<f64>) -> String {
+    let q = r.quaternion();
+    let sign = if q.w < 0.0 { -1.0 } else { 1.0 };
+    format!(
+        "[{},{},{},{}]",
+        v(sign * q.w),
+        v(sign * q.i),
+        v(sign * q.j),
+        v(sign * q.k)
+    )
+}
+
+/// The moves of one file.
+pub(super) fn body(plan: &Plan, part: &Part) -> String {
+    let mut s = String::with_capacity(part.targets.len() * 160);
+    let n = part.targets.len();
+    for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
+        let exact = part.last && k + 1 == n;
+        let (speed, zone) = match m {
+            Move::Rapid => ("vrapid".to_string(), "fine"),
+            Move::Feed(f) => (
+                format!("[{},500,5000,1000]", number(f * 1e3)),
+                if exact { "fine" } else { "zpath" },
+            ),
+        };
+        let _ = match plan.settings.targets {
+            Targets::Joint => {
+                let axes: Vec<String> = t.q_deg.iter().map(|x| v(*x)).collect();
+                writeln!(
+                    s,
+                    "    MoveAbsJ [[{}],[9E9,9E9,9E9,9E9,9E9,9E9]], {speed}, {zone}, tool0;",
+                    axes.join(",")
+                )
+            }
+            Targets::Cartesian => {
+                let (p, r) = in_work(plan, t);
+                let [c1, c4, c6, cx] = t.arm.abb();
+                let motion = match m {
+                    Move::Rapid => "MoveJ",
+                    Move::Feed(_) => "MoveL",
+                };
+                writeln!(
+                    s,
+                    "    {motion} [[{},{},{}],{},[{c1},{c4},{c6},{cx}],[9E9,9E9,9E9,9E9,9E9,9E9]], {speed}, {zone}, tspindle\\WObj:=wpart;",
+                    v(p.x),
+                    v(p.y),
+                    v(p.z),
+                    quaternion(&r)
+                )
+            }
+        };
+    }
+    s
+}
+
+/// The main program's calls of its sub-programs.
+pub(super) fn calls(subs: &[String]) -> String {
+    subs.iter().map(|n| format!("    r{n};\n")).collect()
+}
+
+/// A whole module.
+pub(super) fn wrap(name: &str, header: &str, body: &str, main: bool) -> String {
+    match main {
+        true => format!(
+            "MODULE {name}\n{header}  PROC main()\n    ConfJ \\On;\n    ConfL \\On;\n{body}  ENDPROC\nENDMODULE\n"
+        ),
+        false => format!("MODULE {name}\n  PROC r{name}()\n{body}  ENDPROC\nENDMODULE\n"),
+    }
+}

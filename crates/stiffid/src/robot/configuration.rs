@@ -1,0 +1,211 @@
+//! The arm configuration of a posture: which of the up to eight inverse-kinematics solutions of a
+//! pose a 6R arm with a wrist is in, and the configuration data each controller stores with a
+//! Cartesian target to name it (KUKA status and turn, ABB `confdata`, FANUC `CONFIG`).
+//!
+//! Three binary choices separate the solutions of a pose, each read from the geometry of the
+//! posture (so independent of the robot's axis sign conventions):
+//! - **shoulder**: the wrist centre (the point of axis 5 nearest to axis 4, their intersection
+//!   on a spherical wrist) in front of or behind axis 1, along the arm's forward direction (the
+//!   horizontal direction from axis 1 to axis 2, which turns with axis 1: the x axis of KUKA's A1
+//!   coordinate system);
+//! - **elbow**: the wrist centre in front of or behind the line of the lower arm (axis 2 to axis
+//!   3), seen along the arm's side direction `z1 x forward`: in front in the usual posture,
+//!   upper arm raised and forearm reaching forward;
+//! - **wrist**: the sign of axis 5's angle.
+//!
+//! The controllers' definitions (KUKA System Software 8 operating and programming instructions for
+//! system integrators, "Status" and "Turn"; ABB Technical reference manual RAPID Instructions,
+//! Functions and Data types, `confdata`; FANUC R-30iA/R-30iB operator's manual, "Configuration" of
+//! a position in Cartesian representation):
+//! - KUKA `S`: bit 0 set behind axis 1 (overhead area: the wrist centre's x in the A1 coordinate
+//!   system negative), bit 1 set when `A3 >= phi` (the elbow in front, the usual posture), bit 2
+//!   set when `A5 <= 0`; `T`: bit `k` set when axis `k+1` is negative.
+//! - ABB `[cf1, cf4, cf6, cfx]`: the quadrant of axes 1, 4 and 6 (`floor(q / 90 deg)`), and
+//!   `cfx = 4 (behind axis 1) + 2 (wrist centre behind the lower arm) + (axis 5 negative)`.
+//! - FANUC `'W E S, t1, t4, t6'`: `F` (flip) when J5 > 0, else `N`; `U` (up) with the elbow in
+//!   front, else `D`; `T` (front) in front of axis 1, else `B`; the turn numbers of J1, J4 and
+//!   J6: `floor((q + 180 deg) / 360 deg)`.
+//!
+//! What stiffid assumes: the setup's axis angles are the controller's (same zero and sign, as a
+//! joint program of that controller reads them), and the configuration is read from the setup's
+//! kinematics. The wrist bit follows the sign of axis 5 as each manual states it, which is robot
+//! dependent: a robot whose axis 5 counts the other way has the opposite bit.
+
+use crate::Robot;
+use nalgebra::{Vector3, Vector6};
+
+/// Below this, a geometric quantity is on the boundary between two configurations (m, or rad for
+/// axis 5).
+const MARGIN: f64 = 1e-6;
+
+/// The configuration of a posture (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arm {
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+    /// The wrist centre's distance in front of axis 1 along the forward direction, m (negative:
+    /// behind).
+    pub front: f64,
+    /// The wrist centre's distance in front of the lower arm's line, m (negative: behind).
+    pub elbow: f64,
+}
+
+impl Arm {
+    /// The configuration of `robot` at axis angles `q` (rad).
+    pub fn of(robot: &Robot, q: &Vector6<f64>) -> Self {
+        let f = robot.frames(q);
+        let z1 = f.axis_directions[0];
+        let wrist = nearest_on(
+            f.axis_points[4],
+            f.axis_directions[4],
+            f.axis_points[3],
+            f.axis_directions[3],
+        );
+        let horizontal = |v: Vector3<f64>| v - z1 * z1.dot(&v);
+        let mut forward = horizontal(f.axis_points[1] - f.axis_points[0]);
+        if forward.norm() < MARGIN {
+            // No shoulder offset: the side direction of axis 2 gives the forward one.
+            forward = horizontal(f.axis_directions[1].cross(&z1));
+        }
+        let forward = forward.normalize();
+        let side = z1.cross(&forward);
+        let lower = f.axis_points[2] - f.axis_points[1];
+        let lower_in_plane = lower - side * side.dot(&lower);
+        let reach = wrist - f.axis_points[2];
+        let elbow = lower_in_plane.cross(&reach).dot(&side) / lower_in_plane.norm().max(MARGIN);
+        Self {
+            q_deg: q.map(f64::to_degrees).into(),
+            front: (wrist - f.axis_points[0]).dot(&forward),
+            elbow,
+        }
+    }
+
+    /// Whether the wrist centre is behind axis 1.
+    pub fn behind(&self) -> bool {
+        self.front < 0.0
+    }
+
+    /// Whether the wrist centre is behind the lower arm (elbow down).
+    pub fn elbow_down(&self) -> bool {
+        self.elbow < 0.0
+    }
+
+    /// Whether axis 5 is negative.
+    pub fn wrist_negative(&self) -> bool {
+        self.q_deg[4] < 0.0
+    }
+
+    /// KUKA status and turn (module docs).
+    pub fn kuka(&self) -> (u8, u8) {
+        let status = u8::from(self.behind())
+            | u8::from(!self.elbow_down()) << 1
+            | u8::from(self.q_deg[4] <= 0.0) << 2;
+        let turn = (0..6).fold(0u8, |t, k| t | u8::from(self.q_deg[k] < 0.0) << k);
+        (status, turn)
+    }
+
+    /// ABB `confdata` `[cf1, cf4, cf6, cfx]` (module docs).
+    pub fn abb(&self) -> [i64; 4] {
+        let quadrant = |q: f64| (q / 90.0).floor() as i64;
+        let cfx = 4 * i64::from(self.behind())
+            + 2 * i64::from(self.elbow_down())
+            + i64::from(self.wrist_negative());
+        [
+            quadrant(self.q_deg[0]),
+            quadrant(self.q_deg[3]),
+            quadrant(self.q_deg[5]),
+            cfx,
+        ]
+    }
+
+    /// FANUC `CONFIG` (module docs), e.g. `N U T, 0, 0, 0`.
+    pub fn fanuc(&self) -> String {
+        let turn = |q: f64| ((q + 180.0) / 360.0).floor() as i64;
+        format!(
+            "{} {} {}, {}, {}, {}",
+            if self.q_deg[4] > 0.0 { 'F' } else { 'N' },
+            if self.elbow_down() { 'D' } else { 'U' },
+            if self.behind() { 'B' } else { 'T' },
+            turn(self.q_deg[0]),
+            turn(self.q_deg[3]),
+            turn(self.q_deg[5])
+        )
+    }
+
+    /// What differs from `other` among the shoulder, elbow and wrist choices, each compared only
+    /// where both postures are clear of the boundary; `None` when they agree.
+    pub fn change_from(&self, other: &Arm) -> Option<String> {
+        let clear = |a: f64, b: f64| a.abs() > MARGIN && b.abs() > MARGIN;
+        let mut changes = Vec::new();
+        if clear(self.front, other.front) && self.behind() != other.behind() {
+            changes.push("the wrist centre crosses to the other side of axis 1");
+        }
+        if clear(self.elbow, other.elbow) && self.elbow_down() != other.elbow_down() {
+            changes.push("the elbow flips");
+        }
+        let (q5, r5) = (self.q_deg[4].to_radians(), other.q_deg[4].to_radians());
+        if clear(q5, r5) && self.wrist_negative() != other.wrist_negative() {
+            changes.push("the wrist flips (axis 5 changes sign)");
+        }
+        (!changes.is_empty()).then(|| changes.join(", "))
+    }
+}
+
+/// The point of the line `(p, d)` nearest to the line `(r, e)` (unit directions); `p` when they
+/// are parallel.
+fn nearest_on(p: Vector3<f64>, d: Vector3<f64>, r: Vector3<f64>, e: Vector3<f64>) -> Vector3<f64> {
+    let w = p - r;
+    let b = d.dot(&e);
+    let denominator = 1.0 - b * b;
+    if denominator < 1e-12 {
+        return p;
+    }
+    let s = (b * e.dot(&w) - d.dot(&w)) / denominator;
+    p + d * s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::presets;
+
+    fn arm(robot: &str, q_deg: [f64; 6]) -> Arm {
+        let robot = presets::get(robot).unwrap();
+        Arm::of(&robot, &Vector6::from(q_deg).map(f64::to_radians))
+    }
+
+    #[test]
+    fn the_usual_posture_is_front_elbow_up_and_the_flags_follow_the_axes() {
+        // FANUC's usual posture, tool down: J5 negative, no flip, elbow up, front.
+        let a = arm("fanuc-r2000ic-165f", [-23.2, 3.9, -48.1, 0.0, -41.9, 23.2]);
+        assert!(!a.behind() && !a.elbow_down(), "{a:?}");
+        assert_eq!(a.fanuc(), "N U T, 0, 0, 0");
+        assert_eq!(a.abb(), [-1, 0, 0, 1]);
+        // Status: front (bit 0 clear), A3 >= phi (bit 1), A5 <= 0 (bit 2); turn: A1, A3, A5 < 0.
+        assert_eq!(a.kuka(), (0b110, 0b010101));
+        // Axis 1 turned half a revolution and the arm swung back over: the wrist centre is behind
+        // axis 1's forward direction.
+        let back = arm(
+            "fanuc-r2000ic-165f",
+            [10.0, -80.0, 60.0, 200.0, 30.0, -400.0],
+        );
+        assert!(back.behind(), "{back:?}");
+        assert!(back.fanuc().starts_with("F "), "{}", back.fanuc());
+        assert!(back.fanuc().ends_with(", 0, 1, -1"), "{}", back.fanuc());
+        assert_eq!(back.abb()[1..3], [2, -5]);
+    }
+
+    #[test]
+    fn the_elbow_and_wrist_changes_are_named() {
+        let robot = presets::get("kuka-kr210-robond").unwrap();
+        // The model's zero: upper arm up, forearm forward (the URDF's axis angles).
+        let q = Vector6::new(0.0, 0.0, 0.0, 0.0, 45.0, 0.0).map(f64::to_radians);
+        let a = Arm::of(&robot, &q);
+        assert!(!a.elbow_down() && !a.behind(), "{a:?}");
+        let mut flipped = q;
+        flipped[4] = -flipped[4];
+        let change = Arm::of(&robot, &flipped).change_from(&a).unwrap();
+        assert!(change.contains("wrist flips"), "{change}");
+        assert_eq!(Arm::of(&robot, &q).change_from(&a), None);
+    }
+}
