@@ -233,3 +233,34 @@ fn unit_slips_get_a_plausibility_warning() {
     let w = radians_as_degrees(&radians).unwrap();
     assert!(w.message.contains("radians"), "{w}");
 }
+
+/// `[tool] mass_kg` and `centre_of_mass_mm`: the weight's wrench at the TCP (down the base z
+/// axis, its moment from the lever `R (c - tcp)`); both or neither; the mass within its limits.
+#[test]
+fn the_tools_weight_is_a_wrench_at_the_tcp() {
+    let base = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/milling/kuka-milling.toml"
+    ))
+    .unwrap();
+    let s = stiffid::setup::parse(&base, "kuka-milling.toml", |r, _| presets::get(r)).unwrap();
+    let p = *s.payload().unwrap();
+    assert_eq!(p.mass, 25.0);
+    let tcp = s.tool().tcp;
+    let down = p.wrench(&nalgebra::UnitQuaternion::identity(), &tcp);
+    let g = 25.0 * stiffid::setup::GRAVITY;
+    assert_eq!(down, nalgebra::Vector6::new(0.0, 0.0, -g, 0.0, 0.0, 0.0));
+    // The tool axis horizontal (the flange turned 90 deg about x): the centre of mass sits
+    // 130 mm along +y of the TCP, its weight a moment of -0.13 g m about x.
+    let turned = nalgebra::UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
+    let w = p.wrench(&turned, &tcp);
+    assert!((w[3] + 0.13 * g).abs() < 1e-12 && w[4].abs() < 1e-12 && w[5].abs() < 1e-12, "{w}");
+    let alone = base.replace("centre_of_mass_mm = [0, 0, 120]\n", "");
+    let e = stiffid::setup::parse(&alone, "k.toml", |r, _| presets::get(r)).unwrap_err().to_string();
+    assert!(e.contains("tool.mass_kg") && e.contains("both or neither"), "{e}");
+    let heavy = base.replace("mass_kg = 25", "mass_kg = 1e9");
+    let e = stiffid::setup::parse(&heavy, "k.toml", |r, _| presets::get(r)).unwrap_err().to_string();
+    assert!(e.contains("tool.mass_kg"), "{e}");
+    assert!(s.tcp_given());
+    assert!(!stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap().tcp_given());
+}
