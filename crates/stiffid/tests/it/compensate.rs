@@ -440,7 +440,7 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
         wrench: Vector6::zeros(),
         frame: Frame::Base,
     }];
-    let mut o = options(&s, None);
+    let mut o = Options::for_setup(&s);
     o.q0 = deg([-60.0, 0.0, -20.0, 0.0, -40.0, 0.0]);
     let e = compensate::path(&s, &compliance, &path, &o)
         .unwrap_err()

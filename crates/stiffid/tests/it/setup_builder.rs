@@ -254,13 +254,25 @@ fn the_tools_weight_is_a_wrench_at_the_tcp() {
     // 130 mm along +y of the TCP, its weight a moment of -0.13 g m about x.
     let turned = nalgebra::UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
     let w = p.wrench(&turned, &tcp);
-    assert!((w[3] + 0.13 * g).abs() < 1e-12 && w[4].abs() < 1e-12 && w[5].abs() < 1e-12, "{w}");
+    assert!(
+        (w[3] + 0.13 * g).abs() < 1e-12 && w[4].abs() < 1e-12 && w[5].abs() < 1e-12,
+        "{w}"
+    );
     let alone = base.replace("centre_of_mass_mm = [0, 0, 120]\n", "");
-    let e = stiffid::setup::parse(&alone, "k.toml", |r, _| presets::get(r)).unwrap_err().to_string();
-    assert!(e.contains("tool.mass_kg") && e.contains("both or neither"), "{e}");
+    let e = stiffid::setup::parse(&alone, "k.toml", |r, _| presets::get(r))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("tool.mass_kg") && e.contains("both or neither"),
+        "{e}"
+    );
     let heavy = base.replace("mass_kg = 25", "mass_kg = 1e9");
-    let e = stiffid::setup::parse(&heavy, "k.toml", |r, _| presets::get(r)).unwrap_err().to_string();
+    let e = stiffid::setup::parse(&heavy, "k.toml", |r, _| presets::get(r))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("tool.mass_kg"), "{e}");
     assert!(s.tcp_given());
-    assert!(!stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap().tcp_given());
+    assert!(!stiffid::setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .tcp_given());
 }
