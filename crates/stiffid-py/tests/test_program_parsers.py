@@ -21,7 +21,7 @@ def test_generated_and_compensated_rapid_programs_parse(tmp_path):
     setup = stiffid.Setup.from_file(SETUP)
     with pytest.warns(UserWarning, match="plunge"):
         generated = stiffid.compensate(setup, stiffness=STIFFNESS, program=MILLING / "pocket.nc",
-                                       process=PROCESS, output="rapid")["program"]
+                                       process=PROCESS, output="rapid", targets="joint")["program"]
     assert "MoveAbsJ" in generated
     assert check.check_format(generated) == []
     module = tmp_path / "POCKET.mod"
