@@ -73,7 +73,7 @@ pub fn run(args: &Args) -> Result<()> {
         s += &parameters_text(&doc);
     }
     s += "\npredicted mean deviation rate, % (first order)\n";
-    let not_computed = match setup.try_nominal_stiffness("the prediction") {
+    let not_computed = match setup.try_model_nominal_compliance("the prediction") {
         Err(e) => Some(e.to_string()),
         Ok(_) if !separable(e) => Some(NOT_SEPARABLE.to_string()),
         Ok(_) => None,
@@ -104,12 +104,19 @@ pub fn run(args: &Args) -> Result<()> {
 pub fn criteria_text(e: &Evaluation, setup: &Setup) -> String {
     let mut s = String::new();
     for c in Criterion::ALL {
-        if let Err(Error::MissingField { field, .. }) = c.check(setup) {
-            s += &format!(
-                "  {:<12} not computed: the setup has no {field}\n",
-                c.name()
-            );
-            continue;
+        match c.check(setup) {
+            Err(Error::MissingField { field, .. }) => {
+                s += &format!(
+                    "  {:<12} not computed: the setup has no {field}\n",
+                    c.name()
+                );
+                continue;
+            }
+            Err(e @ Error::InvalidField { .. }) => {
+                s += &format!("  {:<12} not computed: {e}\n", c.name());
+                continue;
+            }
+            _ => {}
         }
         let (value, unit) = match c {
             Criterion::TestPose => (e.test_pose * 1e3, " mm"),

@@ -195,3 +195,33 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_simulations_say_so() {
     assert!(!out.exists() && !report.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn evaluate_names_the_virtual_springs_without_a_nominal_stiffness() {
+    let dir = common::temp_dir("optional-spring-nominal");
+    let shown = stiffid(&["setups", "show", "zhang2021-comau-nj165"]);
+    let springs =
+        "\n[[model.spring]]\nname = \"bend\"\nkind = \"rotation\"\nlink = 3\naxis = [1, 0, 0]\n\
+        \n[[model.spring]]\nname = \"shift\"\nkind = \"translation\"\nlink = 2\naxis = [0, 0, 1]\n\
+        \n[[model.spring]]\nname = \"given\"\nkind = \"rotation\"\nlink = 2\naxis = [0, 1, 0]\n\
+        nominal_stiffness_nm_per_rad = 5e6\n";
+    let text = String::from_utf8(shown.stdout).unwrap() + springs;
+    let setup = common::write_file(&dir, "s.toml", &text);
+    let postures = common::write_file(&dir, "g.csv", common::GROUP);
+    let out = stiffid(&[
+        "evaluate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--postures",
+        postures.to_str().unwrap(),
+    ]);
+    common::assert_success(&out);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!stdout.contains("NaN"), "{stdout}");
+    assert!(
+        !stdout.contains("the setup has no nominal_stiffness_nm_per_rad"),
+        "{stdout}"
+    );
+    let named = "not computed: [[model.spring]] bend, shift: no nominal stiffness";
+    assert_eq!(stdout.matches(named).count(), 4, "{stdout}");
+}

@@ -79,18 +79,7 @@ impl Criterion {
                 setup.try_characteristic_length(&needed_by()).map(drop)
             }
             Criterion::ScaledCond | Criterion::DOptimal | Criterion::RelativeA => {
-                setup.try_nominal_stiffness(&needed_by())?;
-                let springs = setup.model().springs();
-                match springs.iter().find(|s| s.nominal_stiffness.is_none()) {
-                    None => Ok(()),
-                    Some(s) => Err(Error::MissingField {
-                        field: match s.kind {
-                            crate::model::Kind::Rotation => "nominal_stiffness_nm_per_rad",
-                            crate::model::Kind::Translation => "nominal_stiffness_n_per_mm",
-                        },
-                        needed_by: format!("{} (virtual spring {})", needed_by(), s.name),
-                    }),
-                }
+                setup.try_model_nominal_compliance(&needed_by()).map(drop)
             }
             Criterion::TestPose => match setup.test_postures().is_empty() {
                 false => Ok(()),

@@ -301,6 +301,7 @@ impl Context<'_> {
         let (path, bytes) = self.find(filename, link)?;
         let shown = short(&path.display().to_string());
         let bad = |m: String| self.error(link, format!("mesh {shown}: {m}"));
+        binary_size(&bytes).map_err(bad)?;
         let mut cursor = Cursor::new(bytes);
         let reader = stl_io::create_stl_reader(&mut cursor)
             .map_err(|e| bad(format!("not an STL file ({e})")))?;
@@ -324,6 +325,11 @@ impl Context<'_> {
                 }
                 points.push(p);
             }
+        }
+        if flat(&points) {
+            return Err(bad(
+                "its points span no volume (empty, or flat: all in one plane)".into(),
+            ));
         }
         ConvexPolyhedron::from_convex_hull(&points)
             .map(|c| Shape::Convex(Arc::new(c)))
@@ -385,6 +391,54 @@ impl Context<'_> {
             },
             e => e,
         }
+    }
+}
+
+/// Whether `points` span no volume: none, or all within a plane (their spread across the
+/// thinnest direction at most [`FLAT`] of the spread along the widest, from the eigenvalues of
+/// their covariance; STL's f32 coordinates leave a plane rotated in space that much out of it).
+fn flat(points: &[Point3<f64>]) -> bool {
+    if points.len() < 4 {
+        return true;
+    }
+    let n = points.len() as f64;
+    let mean = points.iter().map(|p| p.coords).sum::<Vector3<f64>>() / n;
+    let covariance = points
+        .iter()
+        .map(|p| (p.coords - mean) * (p.coords - mean).transpose())
+        .sum::<nalgebra::Matrix3<f64>>()
+        / n;
+    let eigen = covariance.symmetric_eigenvalues();
+    let (thin, wide) = (eigen.min().max(0.0).sqrt(), eigen.max().max(0.0).sqrt());
+    thin <= FLAT * wide
+}
+
+/// The relative thickness below which a mesh is flat ([`flat`]).
+const FLAT: f64 = 1e-6;
+
+/// Checks a binary STL's size against the triangle count of its header (84 bytes, then 50 per
+/// triangle): a header claiming fewer triangles would leave the rest unread, more would read past
+/// the end. An ASCII STL (first line `solid ...`, as `stl_io` tells them) passes.
+fn binary_size(bytes: &[u8]) -> std::result::Result<(), String> {
+    let first = bytes.split(|b| *b == b'\n').next().unwrap_or(&[]);
+    if first.starts_with(b"solid ") && std::str::from_utf8(first).is_ok() {
+        return Ok(());
+    }
+    let Some(count) = bytes.get(80..84) else {
+        return Err(format!(
+            "not an STL file ({} bytes, a binary STL has at least 84)",
+            bytes.len()
+        ));
+    };
+    let count = u32::from_le_bytes([count[0], count[1], count[2], count[3]]);
+    let expected = 84 + 50 * u64::from(count);
+    match bytes.len() as u64 == expected {
+        true => Ok(()),
+        false => Err(format!(
+            "its header says {count} triangles ({expected} bytes), but the file holds {} bytes \
+             (a binary STL is 84 bytes and 50 per triangle): a damaged or mislabelled file",
+            bytes.len()
+        )),
     }
 }
 
@@ -575,6 +629,62 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("link 'link_4': collision mesh scale"), "{e}");
+    }
+
+    /// The geometry with `robots/meshes/cube_bin.stl` holding `bytes`.
+    fn with_binary_mesh(bytes: Vec<u8>) -> Result<CollisionGeometry> {
+        let mut files = files();
+        files.insert(PathBuf::from("robots/meshes/cube_bin.stl"), bytes);
+        let read = move |p: &Path| files.get(p).cloned().map(Ok);
+        let pkgs = [PathBuf::from("pkgs")];
+        parse(URDF, "s.urdf", Path::new("robots"), None, &pkgs, &read)
+    }
+
+    #[test]
+    fn a_flat_mesh_is_refused_in_any_plane() {
+        // Two triangles of a square in a tilted plane (normal (1, 1, 1)): no volume.
+        let (a, b, c, d) = (
+            [1.0, -1.0, 0.0],
+            [0.0, 1.0, -1.0],
+            [-1.0, 1.0, 0.0],
+            [0.0, -1.0, 1.0],
+        );
+        let e = with_binary_mesh(binary_stl(&[[a, b, c], [a, c, d]]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("link 'link_4': mesh robots/meshes/cube_bin.stl: its points span no volume (empty, or flat"), "{e}");
+        // A thin but solid plate (0.1 mm over 0.125 m) is a body.
+        let mut plate = cube(0.125);
+        for t in &mut plate {
+            for v in t.iter_mut() {
+                v[2] *= 0.0008;
+            }
+        }
+        assert_eq!(
+            with_binary_mesh(binary_stl(&plate)).unwrap().shapes.len(),
+            6
+        );
+    }
+
+    #[test]
+    fn a_binary_header_counting_other_than_the_file_holds_is_refused() {
+        let full = binary_stl(&cube(0.125));
+        for claimed in [11u32, 13] {
+            let mut bytes = full.clone();
+            bytes[80..84].copy_from_slice(&claimed.to_le_bytes());
+            let e = with_binary_mesh(bytes).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!(
+                    "its header says {claimed} triangles ({} bytes), but the file holds 684 bytes",
+                    84 + 50 * claimed
+                )),
+                "{e}"
+            );
+        }
+        let e = with_binary_mesh(full[..40].to_vec())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not an STL file (40 bytes"), "{e}");
     }
 
     /// parry's box-to-box distance (its cuboid-cuboid closest points) against alternating

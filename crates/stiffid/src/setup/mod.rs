@@ -326,6 +326,31 @@ impl Setup {
             .nominal_compliance(self.nominal_stiffness.as_ref()?)
     }
 
+    /// [`Setup::model_nominal_compliance`] for `needed_by` (a criterion or computation, named in
+    /// the error).
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] without the drives' `nominal_stiffness_nm_per_rad`;
+    /// [`Error::InvalidField`] (`[[model.spring]] NAME, ...`) naming every virtual spring without
+    /// a nominal stiffness.
+    pub fn try_model_nominal_compliance(&self, needed_by: &str) -> Result<nalgebra::DVector<f64>> {
+        let drives = self.try_nominal_stiffness(needed_by)?;
+        self.model.nominal_compliance(drives).ok_or_else(|| {
+            let lacking: Vec<&str> = (self.model.springs().iter())
+                .filter(|s| s.nominal_stiffness.is_none())
+                .map(|s| s.name.as_str())
+                .collect();
+            Error::InvalidField {
+                field: format!("[[model.spring]] {}", lacking.join(", ")),
+                message: format!(
+                    "no nominal stiffness (nominal_stiffness_nm_per_rad of a rotation, \
+                     nominal_stiffness_n_per_mm of a translation): {needed_by} needs one for \
+                     every virtual spring"
+                ),
+            }
+        })
+    }
+
     /// The loading of the simulation and of the posture search.
     pub fn load(&self) -> &RopeLoad {
         &self.load
