@@ -21,6 +21,7 @@ const DOCUMENTS: [(&str, &str); 16] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
+    ("plan", "stiffid select --report DIR: plan.json"),
     ("predict", "stiffid predict --json"),
     ("identify", "stiffid identify --json (and --out)"),
     (
@@ -70,6 +71,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "kinematics" => closed::<stiffid::app::kinematics::document::Document>(),
         "evaluate" => closed::<stiffid::app::evaluate::document::Document>(),
         "select" => closed::<stiffid::app::select::document::Document>(),
+        "plan" => closed::<stiffid::app::plan::document::Document>(),
         "predict" => closed::<stiffid::app::predict::document::Document>(),
         "identify" => closed::<stiffid::app::identify::document::Document>(),
         "identify-model" => closed::<stiffid::app::identify_model::document::Document>(),

@@ -1,22 +1,21 @@
 //! The measurement plan of `stiffid select --report DIR`: `plan.html` (self-contained, figures
-//! inline), `plan.csv` (one row per posture) and `figures/` (SVG and PNG): what the operator needs
-//! to carry the experiment out in their cell.
+//! inline), `plan.csv` (one row per posture), `plan.json` (the plan job's document,
+//! [`stiffid::app::plan`], which the other files render) and `figures/` (SVG and PNG): what the
+//! operator needs to carry the experiment out in their cell.
 
 use super::content::Writer;
 use super::figures::{self, Figure};
 use super::html;
 use super::tables::{num, Table};
-use crate::output::ReportDir;
+use crate::output::{json, ReportDir};
 use anyhow::Result;
-use nalgebra::{Vector3, Vector6};
+use nalgebra::Vector6;
 use std::path::Path;
-use stiffid::app::document::feasibility::describe;
-use stiffid::cell::Checker;
+use stiffid::app::plan::document::{Bodies, Document};
+use stiffid::app::plan::{self as job, Request};
 use stiffid::common::words::{count, is_are};
-use stiffid::design::criteria::predicted_deviation_pct;
 use stiffid::design::target::TargetOutcome;
-use stiffid::design::{Criterion, Evaluation, Evaluator};
-use stiffid::observation::stiffness::rope_displacements;
+use stiffid::design::Criterion;
 use stiffid::Setup;
 
 /// The generator mark of `plan.html`, by which a plan directory is recognised as ours.
@@ -26,7 +25,8 @@ const GENERATOR: &str = "stiffid select";
 /// ours (its `plan.html`), unless `force`; see [`ReportDir::prepare`].
 pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
     let holds = |rel: &Path| {
-        rel == Path::new("plan.html") || rel == Path::new("plan.csv") || rel.starts_with("figures")
+        ["plan.html", "plan.csv", "plan.json"].contains(&rel.to_str().unwrap_or_default())
+            || rel.starts_with("figures")
     };
     ReportDir::prepare(dir, "--report", Some(force), &holds, &|d| {
         std::fs::read_to_string(d.join("plan.html"))
@@ -34,82 +34,19 @@ pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
     })
 }
 
-/// What the plan says about one posture.
-struct Row {
-    /// Axis angles, rad.
-    q: Vector6<f64>,
-    /// Unit vector from the loading point to the rope anchor, base frame.
-    rope_direction: Vector3<f64>,
-    /// Distance from the loading point to the anchor, m.
-    rope_length: f64,
-    /// Height of the loading point (base z), m.
-    loading_point_z: f64,
-    /// Displacement of every measuring point under the load with the nominal stiffness, m.
-    displacements: Vec<Vector3<f64>>,
-    /// Predicted deviation rate of each joint at noise multiple 1 without this posture, %.
-    without_pct: [f64; 6],
-    /// The smallest clearance between bodies (and lines) that must not touch, m; `None` without
-    /// `[cell]` or `[tracker]`.
-    clearance: Option<f64>,
-    /// The cell's checks the posture fails, in words.
-    failed: Vec<String>,
-}
-
-/// A measurement plan: the group, what each posture asks of the operator, what it predicts.
+/// A measurement plan to render: the plan document, the setup and the group drawn, the target
+/// curve if any.
 struct Plan<'a> {
     setup: &'a Setup,
-    criterion: Criterion,
-    rows: Vec<Row>,
-    evaluation: Evaluation,
+    postures: &'a [Vector6<f64>],
+    doc: Document,
     target: Option<&'a TargetOutcome>,
 }
 
-impl<'a> Plan<'a> {
-    fn new(
-        setup: &'a Setup,
-        k: &Vector6<f64>,
-        criterion: Criterion,
-        postures: &[Vector6<f64>],
-        target: Option<&'a TargetOutcome>,
-    ) -> Self {
-        let evaluator = Evaluator::new(setup);
-        let checker = Checker::new(setup);
-        let rows = postures
-            .iter()
-            .enumerate()
-            .map(|(i, q)| {
-                let frames = setup.robot().frames(q);
-                let lp = frames.point(&setup.tool().loading_point);
-                let rope = setup.load().anchor - lp;
-                let mut others = postures.to_vec();
-                others.remove(i);
-                let without = evaluator.evaluation(&others).relative_std;
-                let feasibility = checker.feasibility(q);
-                Row {
-                    q: *q,
-                    rope_direction: rope.normalize(),
-                    rope_length: rope.norm(),
-                    loading_point_z: lp.z,
-                    displacements: rope_displacements(setup, &frames, k),
-                    without_pct: predicted_deviation_pct(&without, 1.0),
-                    clearance: feasibility.min_clearance(),
-                    failed: feasibility.violations().map(describe).collect(),
-                }
-            })
-            .collect();
-        Self {
-            setup,
-            criterion,
-            rows,
-            evaluation: evaluator.evaluation(postures),
-            target,
-        }
-    }
-
+impl Plan<'_> {
     /// Every figure of the plan: the group, each posture, and the target curve if any.
     fn figures(&self) -> Result<Vec<Figure>> {
-        let postures: Vec<Vector6<f64>> = self.rows.iter().map(|r| r.q).collect();
-        let mut all = figures::postures::each(self.setup, &postures)?;
+        let mut all = figures::postures::each(self.setup, self.postures)?;
         if let Some(t) = self.target {
             all.push(figures::target::figure(t)?);
         }
@@ -131,16 +68,29 @@ pub fn write(
     postures: &[Vector6<f64>],
     target: Option<&TargetOutcome>,
 ) -> Result<()> {
-    let plan = Plan::new(setup, stiffness(setup)?, criterion, postures, target);
+    let request = Request {
+        setup,
+        criterion,
+        postures,
+        target_pct: target.map(|t| t.target_pct),
+    };
+    let doc = Document::new(&job::run(&request)?, setup);
+    let plan = Plan {
+        setup,
+        postures,
+        doc,
+        target,
+    };
     let figures = plan.figures()?;
     let title = format!(
         "Measurement plan: {} postures, {}",
         postures.len(),
         setup.name()
     );
-    let page = html::page(&title, GENERATOR, |w| compose(&plan, &figures, w));
+    let page = html::page(&title, GENERATOR, |w| compose(&plan.doc, &figures, w));
     dir.write("plan.html", page.as_bytes())?;
-    dir.write("plan.csv", csv(&plan).as_bytes())?;
+    dir.write("plan.csv", csv(&plan.doc).as_bytes())?;
+    dir.write("plan.json", json(&plan.doc)?.as_bytes())?;
     for f in &figures {
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;
@@ -148,14 +98,18 @@ pub fn write(
     dir.finish()
 }
 
-fn mm3(v: &Vector3<f64>) -> [String; 3] {
-    std::array::from_fn(|a| format!("{:.3}", v[a] * 1e3))
+fn fixed<const N: usize>(values: &[f64; N], digits: usize) -> [String; N] {
+    values.map(|v| format!("{v:.digits$}"))
+}
+
+/// A percentage of the document (`null`: infinite) as the tables write it.
+fn pct(v: Option<f64>) -> String {
+    num(v.unwrap_or(f64::INFINITY))
 }
 
 /// `plan.csv`: one row per posture; the leave-one-out rates are each joint's predicted deviation
 /// rate at noise multiple 1 if that posture could not be measured.
-fn csv(plan: &Plan) -> String {
-    let p = plan.setup.tool().measuring_points.len();
+fn csv(plan: &Document) -> String {
     let mut header: Vec<String> = [
         "posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg",
     ]
@@ -171,25 +125,29 @@ fn csv(plan: &Plan) -> String {
         ]
         .map(String::from),
     );
-    for k in 1..=p {
+    for k in 1..=plan.measuring_points {
         header.extend(["dx", "dy", "dz"].map(|c| format!("point{k}_{c}_mm")));
     }
     header.extend((1..=6).map(|j| format!("without_joint{j}_pct")));
     header.extend(["min_clearance_mm", "failed_checks"].map(String::from));
     let mut text = header.join(",") + "\n";
-    for (i, r) in plan.rows.iter().enumerate() {
-        let mut cells = vec![(i + 1).to_string()];
-        cells.extend(r.q.iter().map(|v| format!("{:.6}", v.to_degrees())));
-        cells.extend(r.rope_direction.iter().map(|v| format!("{v:.6}")));
-        cells.push(format!("{:.1}", r.rope_length * 1e3));
-        cells.push(format!("{:.1}", r.loading_point_z * 1e3));
-        cells.extend(r.displacements.iter().flat_map(mm3));
-        cells.extend(r.without_pct.iter().map(|v| format!("{v:.4}")));
+    for r in &plan.postures {
+        let mut cells = vec![r.posture.to_string()];
+        cells.extend(fixed(&r.q_deg, 6));
+        cells.extend(fixed(&r.rope_direction, 6));
+        cells.push(format!("{:.1}", r.rope_length_mm));
+        cells.push(format!("{:.1}", r.loading_point_z_mm));
+        cells.extend(r.displacements_mm.iter().flat_map(|d| fixed(d, 3)));
+        let without = r.without_pct.map(|v| v.unwrap_or(f64::INFINITY));
+        cells.extend(fixed(&without, 4));
         cells.push(
-            r.clearance
-                .map_or(String::new(), |c| format!("{:.1}", c * 1e3)),
+            r.min_clearance_mm
+                .map_or(String::new(), |c| format!("{c:.1}")),
         );
-        cells.push(format!("\"{}\"", r.failed.join("; ").replace('"', "'")));
+        cells.push(format!(
+            "\"{}\"",
+            r.failed_checks.join("; ").replace('"', "'")
+        ));
         text += &(cells.join(",") + "\n");
     }
     text
@@ -200,20 +158,14 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
 }
 
 /// What the cell's checks and the drawings take the robot's bodies to be.
-fn bodies_sentence(s: &stiffid::Setup) -> String {
-    let tool = s.geometry().tool_radius * 1e3;
-    match s.shapes() {
-        Some(g) => format!(
-            "The cell's checks and the drawings use the robot's own {} collision shapes (its URDF's, meshes as convex hulls) and a tool capsule of radius {tool:.0} mm.",
-            g.shapes.len()
+fn bodies_sentence(b: &Bodies) -> String {
+    let tool = b.tool_radius_mm;
+    match (b.collision_shapes, &b.link_radii_mm) {
+        (Some(n), _) => format!(
+            "The cell's checks and the drawings use the robot's own {n} collision shapes (its URDF's, meshes as convex hulls) and a tool capsule of radius {tool:.0} mm."
         ),
-        None => {
-            let radii: Vec<String> = s
-                .geometry()
-                .link_radii
-                .iter()
-                .map(|r| format!("{:.0}", r * 1e3))
-                .collect();
+        (None, radii) => {
+            let radii: Vec<String> = radii.iter().flatten().map(|r| format!("{r:.0}")).collect();
             format!(
                 "The cell's checks and the drawings use capsules for the robot's bodies (radii {} mm for the base and links 1-6) and the tool (radius {tool:.0} mm).",
                 radii.join(", ")
@@ -223,44 +175,42 @@ fn bodies_sentence(s: &stiffid::Setup) -> String {
 }
 
 /// The body of `plan.html`.
-fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
-    let s = plan.setup;
-    let n = plan.rows.len();
+fn compose(plan: &Document, figures: &[Figure], w: &mut dyn Writer) {
+    let n = plan.postures.len();
     w.heading(
         1,
-        &format!("Measurement plan: {n} postures on {}", s.name()),
+        &format!("Measurement plan: {n} postures on {}", plan.setup),
     );
     w.paragraph(&format!(
         "Robot {}, {} measuring point(s), a load of {} N hung from the loading point by a rope over the anchor (pulley) at ({}) mm, base frame. Postures chosen by the design criterion `{}`.",
-        s.robot().name(),
-        s.tool().measuring_points.len(),
-        s.load().load,
-        mm3(&s.load().anchor).join(", "),
+        plan.robot,
+        plan.measuring_points,
+        plan.load_n,
+        fixed(&plan.anchor_mm, 3).join(", "),
         plan.criterion
     ));
-    if s.cell().is_some() || s.tracker().is_some() {
-        w.paragraph(&bodies_sentence(s));
+    if let Some(b) = &plan.bodies {
+        w.paragraph(&bodies_sentence(b));
     }
     w.heading(2, "Predicted accuracy");
     w.paragraph("The predicted mean deviation rate |k_identified - k_true| / k_true of each joint (first order, `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)`) at the setup's noise levels, if every posture is measured as planned.");
-    if !s.load_steps().is_empty() {
+    if !plan.load_steps_n.is_empty() {
         w.paragraph(&format!(
             "With the load steps, every reading carries the tracker noise and each posture's unloaded reading is shared by its steps: the least squares over every step is worth one load of {} N with {} times the variance of one reading per displacement coordinate (docs/model.md, load steps in the design).",
-            s.load().load,
-            num(s.displacement_variance() / s.noise().variance)
+            plan.load_n,
+            num(plan.displacement_variance_multiple)
         ));
     }
     w.table(&accuracy(plan));
-    if !s.model().is_drives_only() {
+    if plan.virtual_springs {
         w.paragraph("Every parameter of the setup's model: whether the group identifies it (the column-scaled rank of the observation matrix) and its predicted deviation rate at noise level multiple 1. A parameter the group does not identify cannot be fitted from these measurements, whatever the noise: add postures that load it differently.");
         w.table(&parameters_table(plan));
     }
-    if let Some(t) = plan.target {
+    if let Some(t) = plan.target_pct {
         w.paragraph(&format!(
-            "{} {} the fewest whose group predicts at most {} % on every joint at noise level multiple 1.",
+            "{} {} the fewest whose group predicts at most {t} % on every joint at noise level multiple 1.",
             count(n, "posture"),
             is_are(n),
-            t.target_pct
         ));
         if let Some(f) = find(figures, "target") {
             w.figure(f);
@@ -269,7 +219,7 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(2, "Steps, for each posture");
     w.list(&[
         "Move the robot to the posture's axis angles (the controller's, degrees) and check the rope runs freely from the loading point to the pulley (direction and length below).".into(),
-        measure_item(s),
+        measure_item(plan),
         "Compare with the expected displacement below (nominal stiffness): a measured value several times larger or smaller points at a wrong point, a slipping rope or a wrong load.".into(),
         "If a posture cannot be measured, the last column says what the group predicts without it.".into(),
     ]);
@@ -284,8 +234,8 @@ fn compose(plan: &Plan, figures: &[Figure], w: &mut dyn Writer) {
 
 /// What to read in each posture: unloaded and loaded, or unloaded and at every load step of the
 /// setup (`[loading] steps_n`).
-fn measure_item(s: &stiffid::Setup) -> String {
-    let steps = s.load_steps();
+fn measure_item(plan: &Document) -> String {
+    let steps = &plan.load_steps_n;
     if steps.is_empty() {
         return "Measure every measuring point with the tracker unloaded, hang the load, measure again: the difference is the displacement.".into();
     }
@@ -294,23 +244,21 @@ fn measure_item(s: &stiffid::Setup) -> String {
         "Measure every measuring point with the tracker unloaded, then at each load step, rising: {} N ({} steps; the rope pulls the same way at every step). Write every reading, the unloaded ones with load 0, into a readings CSV with a `load_n` column (docs/reference.md, Readings CSV): each step's displacement is its reading minus the unloaded one, and at step f it is f / {} of the displacement below.",
         levels.join(", "),
         steps.len(),
-        s.load().load
+        plan.load_n
     )
 }
 
 /// The group's predicted deviation rate per joint at each noise level of the setup.
-fn accuracy(plan: &Plan) -> Table {
+fn accuracy(plan: &Document) -> Table {
     let mut header = vec!["noise level (x variance)".to_string()];
     header.extend((1..=6).map(|j| format!("joint {j}, %")));
     let rows = plan
-        .setup
-        .noise()
-        .levels
+        .noise_levels
         .iter()
-        .zip(&plan.evaluation.predicted_deviation_pct)
+        .zip(&plan.predicted_deviation_pct)
         .map(|(m, rates)| {
             let mut row = vec![num(*m)];
-            row.extend(rates.iter().map(|r| num(*r)));
+            row.extend(rates.iter().map(|r| pct(*r)));
             row
         })
         .collect();
@@ -319,7 +267,7 @@ fn accuracy(plan: &Plan) -> Table {
 
 /// Per parameter of the model: identified or not, predicted deviation rate at noise multiple 1;
 /// then the combinations the group cannot separate.
-fn parameters_table(plan: &Plan) -> Table {
+fn parameters_table(plan: &Document) -> Table {
     let header = [
         "parameter",
         "unit",
@@ -329,31 +277,29 @@ fn parameters_table(plan: &Plan) -> Table {
     .map(String::from)
     .to_vec();
     let mut rows: Vec<Vec<String>> = plan
-        .evaluation
-        .parameters(plan.setup)
-        .into_iter()
+        .parameters
+        .iter()
         .map(|p| {
             vec![
-                p.parameter.name,
-                p.parameter.unit.symbol().to_string(),
+                p.name.clone(),
+                p.unit.to_string(),
                 if p.identified { "yes" } else { "NO" }.to_string(),
-                num(p.predicted_deviation_pct),
+                pct(p.predicted_deviation_pct),
             ]
         })
         .collect();
-    let names = plan.setup.model().parameters();
-    for c in &plan.evaluation.identifiability.unidentifiable {
+    for c in &plan.unidentifiable {
         rows.push(vec![
             "cannot separate".into(),
             String::new(),
             "NO".into(),
-            c.describe(&names),
+            c.clone(),
         ]);
     }
     Table { header, rows }
 }
 
-fn postures_table(plan: &Plan) -> Table {
+fn postures_table(plan: &Document) -> Table {
     let mut header: Vec<String> = [
         "posture",
         "q1..q6, deg",
@@ -372,46 +318,36 @@ fn postures_table(plan: &Plan) -> Table {
         .map(String::from),
     );
     let rows = plan
-        .rows
+        .postures
         .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let angles: Vec<String> =
-                r.q.iter()
-                    .map(|v| format!("{:.2}", v.to_degrees()))
-                    .collect();
-            let dir: Vec<String> = r.rope_direction.iter().map(|v| format!("{v:.3}")).collect();
-            let worst = r.without_pct.iter().copied().fold(0.0, f64::max);
+        .map(|r| {
             vec![
-                (i + 1).to_string(),
-                angles.join(", "),
-                dir.join(", "),
-                format!("{:.0}", r.rope_length * 1e3),
-                format!("{:.0}", r.loading_point_z * 1e3),
-                r.clearance
-                    .map_or("-".into(), |c| format!("{:.0}", c * 1e3)),
-                match r.failed.is_empty() {
+                r.posture.to_string(),
+                fixed(&r.q_deg, 2).join(", "),
+                fixed(&r.rope_direction, 3).join(", "),
+                format!("{:.0}", r.rope_length_mm),
+                format!("{:.0}", r.loading_point_z_mm),
+                r.min_clearance_mm.map_or("-".into(), |c| format!("{c:.0}")),
+                match r.failed_checks.is_empty() {
                     true => "pass".into(),
-                    false => format!("FAIL: {}", r.failed.join("; ")),
+                    false => format!("FAIL: {}", r.failed_checks.join("; ")),
                 },
-                num(worst),
+                pct(r.without_worst_pct),
             ]
         })
         .collect();
     Table { header, rows }
 }
 
-fn displacements_table(plan: &Plan) -> Table {
-    let p = plan.setup.tool().measuring_points.len();
+fn displacements_table(plan: &Document) -> Table {
     let mut header = vec!["posture".to_string()];
-    header.extend((1..=p).map(|k| format!("point {k}: dx, dy, dz, mm")));
+    header.extend((1..=plan.measuring_points).map(|k| format!("point {k}: dx, dy, dz, mm")));
     let rows = plan
-        .rows
+        .postures
         .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let mut row = vec![(i + 1).to_string()];
-            row.extend(r.displacements.iter().map(|d| mm3(d).join(", ")));
+        .map(|r| {
+            let mut row = vec![r.posture.to_string()];
+            row.extend(r.displacements_mm.iter().map(|d| fixed(d, 3).join(", ")));
             row
         })
         .collect();

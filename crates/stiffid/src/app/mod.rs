@@ -30,6 +30,7 @@ pub mod force;
 pub mod identify;
 pub mod identify_model;
 pub mod kinematics;
+pub mod plan;
 pub mod predict;
 pub mod register;
 pub mod reproduce;

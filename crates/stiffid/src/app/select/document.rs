@@ -246,7 +246,7 @@ impl From<&Unconstrained> for Free {
 }
 
 #[cfg(feature = "schema")]
-mod schema {
+pub(crate) mod schema {
     use crate::app::select::Method;
     use crate::common::choice::{names, Choice};
     use crate::design::{Criterion, Solver, Termination};

@@ -1,0 +1,160 @@
+//! The document of the plan job ([`crate::app::plan`]): `plan.json` of `stiffid select --report
+//! DIR` (which renders `plan.html` and `plan.csv` from it), Python's `Setup.plan`.
+
+use crate::app::document::feasibility::describe;
+use crate::app::document::{finite, finite_each, mm};
+use crate::app::evaluate::document::{parameters, Parameter};
+use crate::app::plan::{Posture, Report};
+use crate::design::unidentifiable;
+use crate::Setup;
+use serde::Serialize;
+
+/// The measurement plan: the setup's load and bodies, what the group predicts, and what each
+/// posture asks of the operator.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Document {
+    /// The setup's name.
+    pub setup: String,
+    /// The robot's name.
+    pub robot: String,
+    /// The criterion that chose the group (`relative-a`, ...).
+    #[cfg_attr(
+        feature = "schema",
+        schemars(schema_with = "crate::app::select::document::schema::criterion")
+    )]
+    pub criterion: &'static str,
+    /// The number of measuring points of the tool.
+    pub measuring_points: usize,
+    /// The load hung from the loading point, N.
+    pub load_n: f64,
+    /// The rope's anchor (pulley), base frame, mm.
+    pub anchor_mm: [f64; 3],
+    /// The load steps of `[loading] steps_n`, rising, N; empty without load steps.
+    pub load_steps_n: Vec<f64>,
+    /// The variance of one displacement coordinate over the load steps, in multiples of the
+    /// variance of one reading (docs/model.md, load steps in the design); 1 without load steps.
+    pub displacement_variance_multiple: f64,
+    /// What the cell's checks and the drawings take the robot's bodies to be; `null` without
+    /// `[cell]` or `[tracker]`.
+    pub bodies: Option<Bodies>,
+    /// The predicted deviation rate (%) the group was chosen to reach; `null` for a group of a
+    /// given size.
+    pub target_pct: Option<f64>,
+    /// The setup's noise levels, multiples of its variance.
+    pub noise_levels: Vec<f64>,
+    /// Predicted mean deviation rate of each joint at each noise level, percent, `[levels][6]`,
+    /// `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)` (`null` for a joint the group cannot
+    /// identify).
+    pub predicted_deviation_pct: Vec<[Option<f64>; 6]>,
+    /// Whether the setup's model has virtual springs beside the drives.
+    pub virtual_springs: bool,
+    /// Every parameter of the setup's model, drives first: whether the group identifies it and
+    /// how well.
+    pub parameters: Vec<Parameter>,
+    /// The combinations of parameters the group cannot separate; empty when it identifies every
+    /// parameter.
+    pub unidentifiable: Vec<String>,
+    /// Each posture, in the order of the group.
+    pub postures: Vec<PlannedPosture>,
+}
+
+/// The robot's bodies in the cell's checks and the drawings.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Bodies {
+    /// The number of the robot's own collision shapes (its URDF's, meshes as convex hulls);
+    /// `null` when capsules stand for the links.
+    pub collision_shapes: Option<usize>,
+    /// The capsules' radii for the base and links 1-6, mm; `null` with collision shapes.
+    pub link_radii_mm: Option<[f64; 7]>,
+    /// The radius of the tool's capsule, mm.
+    pub tool_radius_mm: f64,
+}
+
+/// What the plan asks of the operator in one posture, and what it expects.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PlannedPosture {
+    /// 1-based position in the group.
+    pub posture: usize,
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+    /// Unit vector from the loading point to the rope anchor, base frame.
+    pub rope_direction: [f64; 3],
+    /// Distance from the loading point to the anchor, mm.
+    pub rope_length_mm: f64,
+    /// Height of the loading point (base z), mm.
+    pub loading_point_z_mm: f64,
+    /// Expected displacement `[dx, dy, dz]` of every measuring point under the load with the
+    /// nominal stiffness, base frame, mm.
+    pub displacements_mm: Vec<[f64; 3]>,
+    /// Each joint's predicted deviation rate at noise level multiple 1 if this posture could not
+    /// be measured, percent (`null`: the rest cannot identify the joint).
+    pub without_pct: [Option<f64>; 6],
+    /// The largest of `without_pct`, percent; `null` when one is.
+    pub without_worst_pct: Option<f64>,
+    /// The smallest distance between bodies (and lines) that must not touch, mm; `null` without
+    /// `[cell]` or `[tracker]`.
+    pub min_clearance_mm: Option<f64>,
+    /// The cell's checks the posture fails, in words (e.g. `floor (tool - floor) fails by 12
+    /// mm`); empty when it passes them all.
+    pub failed_checks: Vec<String>,
+}
+
+impl Document {
+    /// The document of a plan report on `setup`.
+    pub fn new(report: &Report, setup: &Setup) -> Self {
+        let e = &report.evaluation;
+        let shows_bodies = setup.cell().is_some() || setup.tracker().is_some();
+        Self {
+            setup: setup.name().to_string(),
+            robot: setup.robot().name().to_string(),
+            criterion: report.criterion.name(),
+            measuring_points: setup.tool().measuring_points.len(),
+            load_n: setup.load().load,
+            anchor_mm: setup.load().anchor.map(mm).into(),
+            load_steps_n: setup.load_steps().to_vec(),
+            displacement_variance_multiple: setup.displacement_variance() / setup.noise().variance,
+            bodies: shows_bodies.then(|| bodies(setup)),
+            target_pct: report.target_pct,
+            noise_levels: setup.noise().levels.clone(),
+            predicted_deviation_pct: e
+                .predicted_deviation_pct
+                .iter()
+                .map(|row| row.map(finite))
+                .collect(),
+            virtual_springs: !setup.model().is_drives_only(),
+            parameters: parameters(e, setup),
+            unidentifiable: unidentifiable(e, setup),
+            postures: report.postures.iter().enumerate().map(posture).collect(),
+        }
+    }
+}
+
+fn bodies(setup: &Setup) -> Bodies {
+    let shapes = setup.shapes().map(|g| g.shapes.len());
+    Bodies {
+        collision_shapes: shapes,
+        link_radii_mm: shapes
+            .is_none()
+            .then(|| setup.geometry().link_radii.map(mm)),
+        tool_radius_mm: mm(setup.geometry().tool_radius),
+    }
+}
+
+fn posture((i, p): (usize, &Posture)) -> PlannedPosture {
+    let worst = p.without_pct.iter().copied().fold(0.0, f64::max);
+    PlannedPosture {
+        posture: i + 1,
+        q_deg: p.q.map(f64::to_degrees).into(),
+        rope_direction: p.rope_direction.into(),
+        rope_length_mm: mm(p.rope_length),
+        loading_point_z_mm: mm(p.loading_point_z),
+        displacements_mm: p.displacements.iter().map(|d| d.map(mm).into()).collect(),
+        without_pct: finite_each(p.without_pct),
+        without_worst_pct: finite(worst),
+        min_clearance_mm: p.feasibility.min_clearance().map(mm),
+        failed_checks: p.feasibility.violations().map(describe).collect(),
+    }
+}

@@ -1,0 +1,108 @@
+//! The plan job: what the operator needs to carry a group of postures out in their cell (the
+//! measurement plan of `stiffid select --report`, Python's `Setup.plan`). For each posture: the
+//! rope's direction and length from the loading point to the anchor, the height of the loading
+//! point, the expected displacement of every measuring point under the load with the nominal
+//! stiffness (Eq. 3-7), the cell's checks, and each joint's predicted deviation rate if that
+//! posture could not be measured (leave-one-out, Eq. 19); for the group, its predicted deviation
+//! rates at the setup's noise levels and how well it identifies every parameter of the model.
+
+pub mod document;
+
+use super::Warning;
+use crate::cell::{Checker, Feasibility};
+use crate::design::criteria::predicted_deviation_pct;
+use crate::design::{Criterion, Evaluation, Evaluator};
+use crate::observation::stiffness::rope_displacements;
+use crate::{Result, Setup};
+use nalgebra::{Vector3, Vector6};
+
+/// What the setup's nominal stiffness is needed for here, in [`crate::Error::MissingField`].
+pub const NEEDED_BY: &str = "the measurement plan (its expected displacements)";
+
+/// The group to plan.
+pub struct Request<'a> {
+    /// The setup: robot, tool, load and anchor, noise, nominal stiffness, cell, model.
+    pub setup: &'a Setup,
+    /// The criterion that chose the group (named in the plan).
+    pub criterion: Criterion,
+    /// The group: axis angles (rad).
+    pub postures: &'a [Vector6<f64>],
+    /// The predicted deviation rate (%) the group was chosen to reach, if it was.
+    pub target_pct: Option<f64>,
+}
+
+/// What the plan says about one posture.
+#[derive(Debug, Clone)]
+pub struct Posture {
+    /// Axis angles, rad.
+    pub q: Vector6<f64>,
+    /// Unit vector from the loading point to the rope anchor, base frame.
+    pub rope_direction: Vector3<f64>,
+    /// Distance from the loading point to the anchor, m.
+    pub rope_length: f64,
+    /// Height of the loading point (base z), m.
+    pub loading_point_z: f64,
+    /// Displacement of every measuring point under the load with the nominal stiffness, m, base
+    /// frame.
+    pub displacements: Vec<Vector3<f64>>,
+    /// Predicted deviation rate of each joint at noise multiple 1 without this posture, %.
+    pub without_pct: [f64; 6],
+    /// The posture's checks in the cell.
+    pub feasibility: Feasibility,
+}
+
+/// A measurement plan.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The criterion that chose the group.
+    pub criterion: Criterion,
+    /// Each posture, in the order of the group.
+    pub postures: Vec<Posture>,
+    /// The whole group's criteria and predicted deviation rates.
+    pub evaluation: Evaluation,
+    /// The predicted deviation rate (%) the group was chosen to reach, if it was.
+    pub target_pct: Option<f64>,
+    /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// Plans the group.
+///
+/// # Errors
+/// [`crate::Error::MissingField`] for a setup without a nominal stiffness; the errors of
+/// [`Setup::check_bodies`].
+pub fn run(request: &Request) -> Result<Report> {
+    let (setup, postures) = (request.setup, request.postures);
+    let k = setup.try_nominal_stiffness(NEEDED_BY)?;
+    setup.check_bodies()?;
+    let evaluator = Evaluator::new(setup);
+    let checker = Checker::new(setup);
+    let planned = postures
+        .iter()
+        .enumerate()
+        .map(|(i, q)| {
+            let frames = setup.robot().frames(q);
+            let lp = frames.point(&setup.tool().loading_point);
+            let rope = setup.load().anchor - lp;
+            let mut others = postures.to_vec();
+            others.remove(i);
+            let without = evaluator.evaluation(&others).relative_std;
+            Posture {
+                q: *q,
+                rope_direction: rope.normalize(),
+                rope_length: rope.norm(),
+                loading_point_z: lp.z,
+                displacements: rope_displacements(setup, &frames, k),
+                without_pct: predicted_deviation_pct(&without, 1.0),
+                feasibility: checker.feasibility(q),
+            }
+        })
+        .collect();
+    Ok(Report {
+        criterion: request.criterion,
+        postures: planned,
+        evaluation: evaluator.evaluation(postures),
+        target_pct: request.target_pct,
+        warnings: Vec::new(),
+    })
+}
