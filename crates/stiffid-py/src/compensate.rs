@@ -36,7 +36,10 @@ use stiffid::observation::deflection::Frame;
 /// and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP under the wrench), ``force_n``
 /// (``(n, 3)``, base frame), ``residual_um`` and ``residual_urad`` (``(n,)``), ``iterations``
 /// (``(n,)``, ``int64``: the Newton steps of the compensation), ``tool_rotation_deg`` (``(n,)``)
-/// and, with a covariance, ``deflection_std_mm`` (``(n, 3)``); ``document``: the document of
+/// and, with a covariance, ``deflection_std_mm`` (``(n, 3)``); with a stiffness file that holds
+/// held-out residuals (``identify(..., cross_validate=True)``), the deflection's prediction
+/// intervals at ``level`` (0.5 to 0.999), ``deflection_lower_mm`` and ``deflection_upper_mm``
+/// (``(n, 3)``, base frame; ``-inf``/``inf`` for an unbounded end); ``document``: the document of
 /// ``stiffid compensate --json`` (its ``program`` with the segments' force and deflection before
 /// and after, for a program); with a program, ``program``: the compensated program's text, in
 /// the program's own language or, for G-code with ``output="krl"``, ``"rapid"`` or ``"ls"``, a
@@ -48,7 +51,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -69,6 +72,7 @@ pub fn compensate<'py>(
     max_tcp_speed_mm_s: f64,
     name_length: Option<usize>,
     moves_per_file: usize,
+    level: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let stiffness = stiffness.ok_or_else(|| {
@@ -76,7 +80,8 @@ pub fn compensate<'py>(
     })?;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let options = options(s, q0_deg, free_tool_axis, max_step_deg, tool_axis_range_deg)?;
+    let mut options = options(s, q0_deg, free_tool_axis, max_step_deg, tool_axis_range_deg)?;
+    options.level = level;
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
         _ => {
@@ -254,6 +259,22 @@ fn table<'py>(
     if results.iter().all(|c| c.deflection_std.is_some()) {
         let std = |c: &Compensated| c.deflection_std.unwrap_or_default();
         out.set_item("deflection_std_mm", part(&std, 0, 1e3))?;
+    }
+    if results.iter().all(|c| c.deflection_interval.is_some()) {
+        for (end, key) in ["deflection_lower_mm", "deflection_upper_mm"]
+            .iter()
+            .enumerate()
+        {
+            let rows: Vec<[f64; 3]> = results
+                .iter()
+                .map(|c| {
+                    c.deflection_interval
+                        .unwrap_or_default()
+                        .map(|i| i[end] * 1e3)
+                })
+                .collect();
+            out.set_item(*key, arrays::table(py, &rows))?;
+        }
     }
     Ok(out)
 }

@@ -375,10 +375,13 @@ pub fn identify<'py>(
 /// and ``delta_b_mm``, ``|delta_m - delta_c|``), ``mean_delta_b_mm``, ``max_delta_b_mm``,
 /// ``rms_delta_b_mm``, ``mean_measured_mm``, ``max_measured_mm``, ``rms_measured_mm`` and
 /// ``explained`` (``1 - RMS(delta_b) / RMS(|delta_m|)``); plus the checks as arrays,
-/// ``delta_b_mm`` (shape ``(n,)``), ``measured_mm`` and ``predicted_mm`` (``(n, 3)``). The job's
+/// ``delta_b_mm`` (shape ``(n,)``), ``measured_mm`` and ``predicted_mm`` (``(n, 3)``). With a
+/// stiffness file that holds held-out residuals (``identify(..., cross_validate=True)``), each
+/// check's ``interval_mm`` and ``prediction_intervals`` (``method``, ``level``, ``coverage``, the
+/// share of the measured coordinates inside their intervals) at ``level`` (0.5 to 0.999). The job's
 /// warnings (angles that look like radians) are raised as ``UserWarning``.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None))]
+#[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, level=0.95))]
 #[allow(clippy::too_many_arguments)]
 pub fn validate<'py>(
     py: Python<'py>,
@@ -389,6 +392,7 @@ pub fn validate<'py>(
     wrench: Option<&Bound<'py, PyAny>>,
     displacement_mm: Option<&Bound<'py, PyAny>>,
     point: Option<Vec<i64>>,
+    level: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let compliance =
@@ -398,6 +402,7 @@ pub fn validate<'py>(
         setup: s,
         compliance: &compliance,
         data,
+        level,
     };
     let report = py.detach(|| validation::run(request)).map_err(raise)?;
     documents::warn(py, &report.warnings)?;

@@ -22,9 +22,11 @@ use stiffid::observation::deflection::Frame;
 /// (docs/schemas/predict.schema.json) as a dict, equal to ``stiffid predict --json``: drive
 /// torques and deflections, every measuring point's and the TCP's displacement (``*_std_*``
 /// standard deviations with a covariance, else ``None``), and the Cartesian compliance and
-/// stiffness of the loaded point.
+/// stiffness of the loaded point. With a stiffness file that holds held-out residuals
+/// (``identify(..., cross_validate=True)``), every displacement's prediction interval at
+/// ``level`` (0.5 to 0.999; ``*_interval_mm``).
 #[pyfunction]
-#[pyo3(signature = (setup, q_deg, wrench, *, at_mm=None, frame="base", stiffness_nm_per_rad=None, compliance_covariance_rad2_per_nm2=None))]
+#[pyo3(signature = (setup, q_deg, wrench, *, at_mm=None, frame="base", stiffness_nm_per_rad=None, compliance_covariance_rad2_per_nm2=None, level=0.95))]
 #[allow(clippy::too_many_arguments)]
 pub fn predict<'py>(
     py: Python<'py>,
@@ -35,6 +37,7 @@ pub fn predict<'py>(
     frame: &str,
     stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
     compliance_covariance_rad2_per_nm2: Option<&Bound<'py, PyAny>>,
+    level: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let q = Vector6::from(arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?);
@@ -64,6 +67,7 @@ pub fn predict<'py>(
         frame: frame.parse::<Frame>().map_err(raise)?,
         at,
         compliance,
+        level,
     };
     let report = py.detach(|| job::run(request)).map_err(raise)?;
     documents::to_python(py, &Document::new(&report, s.name()), &[])

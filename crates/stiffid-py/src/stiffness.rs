@@ -44,7 +44,11 @@ pub fn compliance(
         h[j] = p.unit.per_si() / k[j];
     }
     let covariance = covariance.map(|c| covariance_of(c, n)).transpose()?;
-    Ok(Compliance { h, covariance })
+    Ok(Compliance {
+        h,
+        covariance,
+        prediction: None,
+    })
 }
 
 /// The `(n, n)` covariance of the compliance (SI) given as `compliance_covariance_rad2_per_nm2`:

@@ -42,6 +42,7 @@ fn benches(c: &mut Criterion) {
         q0: q,
         ik: ik::Options::default(),
         free_tool_axis: None,
+        level: 0.95,
     };
     let solved = compensate::path(&s, &compliance, &poses, &options).unwrap();
     let postures: Vec<PathPoint> = poses

@@ -93,6 +93,11 @@ pub struct Args {
     /// With --free-tool-axis: the rotation stays within +- this of the path's, deg (0 < value <= 180).
     #[arg(long, default_value_t = 90.0, requires = "free_tool_axis")]
     tool_axis_range_deg: f64,
+    /// The level of the deflection's prediction intervals (0.5 to 0.999; the CSV's
+    /// `d*_lower_mm`, `d*_upper_mm`), when the stiffness file holds the held-out residuals of its
+    /// identification (`identify --cross-validate`).
+    #[arg(long, default_value_t = 0.95)]
+    level: f64,
 }
 
 /// A failure of the run: the library's, or writing.
@@ -358,6 +363,8 @@ fn json_row(columns: &[String], values: &[Option<f64>]) -> Result<String> {
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
+    stiffid::model::prediction::check_level("--level", args.level)?;
+    options.level = args.level;
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
@@ -390,6 +397,14 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
         d.max_residual_urad,
         d.max_iterations
     );
+    if let Some(level) = report.prediction_level {
+        text += &format!(
+            "prediction intervals of the TCP deflection ({:.0}%, from the held-out residuals of the identification) in the CSV; the widest {}\n",
+            100.0 * level,
+            d.max_interval_width_mm
+                .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
+        );
+    }
     if let Some((before, after, [lo, hi])) = s.free_tool_axis() {
         text += &format!(
             "free tool axis: mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{:.1}, {:.1}] deg\n",

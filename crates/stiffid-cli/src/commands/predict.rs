@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use stiffid::app::predict;
 use stiffid::app::predict::document::Document;
 use stiffid::common::limits;
+use stiffid::model::prediction::check_level;
 use stiffid::observation::deflection::Frame;
 
 /// Arguments of `stiffid predict`.
@@ -37,10 +38,15 @@ pub struct Args {
     /// displacement also gets its standard deviation.
     #[arg(long)]
     stiffness: Option<PathBuf>,
+    /// The level of the prediction intervals (0.5 to 0.999), when the stiffness file holds the
+    /// held-out residuals of its identification (`identify --cross-validate`).
+    #[arg(long, default_value_t = 0.95)]
+    level: f64,
 }
 
 /// Predicts and prints.
 pub fn run(args: &Args) -> Result<()> {
+    check_level("--level", args.level)?;
     let setup = args.common.load_setup()?;
     let (_, q) = load::posture(&args.q_deg, "--q-deg", setup.robot())?;
     let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;
@@ -67,6 +73,7 @@ pub fn run(args: &Args) -> Result<()> {
         frame: args.frame,
         at,
         compliance,
+        level: args.level,
     })?;
     let document = Document::new(&report, &args.common.setup);
     print_json_or(args.common.json, &document, human)
@@ -111,6 +118,33 @@ fn human(r: &Document) -> String {
             p.displacement_norm_mm
         );
     }
+    let ranges = |i: &[[Option<f64>; 2]; 3]| {
+        i.map(|[lo, hi]| {
+            let end = |v: Option<f64>, inf: &str| v.map_or(inf.to_string(), |v| format!("{v:.4}"));
+            format!("[{}, {}]", end(lo, "-inf"), end(hi, "inf"))
+        })
+        .join(", ")
+    };
+    if r.measuring_points
+        .iter()
+        .any(|p| p.displacement_interval_mm.is_some())
+    {
+        s += &format!(
+            "prediction intervals ({:.0}%, from the held-out residuals of the identification), mm (x, y, z):
+",
+            100.0 * r.prediction_level
+        );
+        for p in &r.measuring_points {
+            if let Some(i) = &p.displacement_interval_mm {
+                s += &format!(
+                    "{:>5}   {}
+",
+                    p.point,
+                    ranges(i)
+                );
+            }
+        }
+    }
     let [a, b, c] = r.flange_rotation_mrad;
     s += &format!("\nflange rotation (base frame): ({a:.5}, {b:.5}, {c:.5}) mrad\n");
     let pm = |v: &[f64; 3], sd: &Option<[f64; 3]>, digits: usize| match sd {
@@ -135,6 +169,13 @@ fn human(r: &Document) -> String {
             None => "",
         }
     );
+    if let Some(i) = &r.tcp_deflection_interval_mm {
+        s += &format!(
+            "TCP deflection's {:.0}% prediction interval, mm (x, y, z): {}\n",
+            100.0 * r.prediction_level,
+            ranges(i)
+        );
+    }
     s += "\nCartesian compliance C_x at the loaded point, base frame, rows dx dy dz (mm) drx dry drz (mrad), per fx fy fz (kN) mx my mz (kNm):\n";
     let c = &r.cartesian_compliance.matrix_si;
     for line in c {

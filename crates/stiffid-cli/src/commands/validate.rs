@@ -11,6 +11,7 @@ use stiffid::app::identify::Data;
 use stiffid::app::validate::document::Document;
 use stiffid::app::validate::{self as job, Request};
 use stiffid::common::words::count;
+use stiffid::model::prediction::check_level;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
@@ -22,10 +23,15 @@ pub struct Args {
     /// Measurements CSV (same format as for `identify`), ideally postures not used to identify.
     #[arg(long)]
     data: PathBuf,
+    /// The level of the prediction intervals (0.5 to 0.999), built from the held-out residuals
+    /// the stiffness file holds (`identify --cross-validate`).
+    #[arg(long, default_value_t = 0.95)]
+    level: f64,
 }
 
 /// Validates and prints.
 pub fn run(args: &Args) -> Result<()> {
+    check_level("--level", args.level)?;
     let setup = args.common.load_setup()?;
     let compliance = args.stiffness.load(&setup)?;
     let reader = load::open(&args.data)?;
@@ -36,6 +42,7 @@ pub fn run(args: &Args) -> Result<()> {
             name: args.data.display().to_string(),
             reader,
         },
+        level: args.level,
     })?;
     output::warnings(&report.warnings);
     let doc = Document::new(&report, &args.common.setup, &setup);
@@ -84,5 +91,18 @@ fn human(r: &Document) -> String {
         r.rms_measured_mm,
         100.0 * r.explained
     );
+    s += &match &r.prediction_intervals {
+        Some(p) => format!(
+            "prediction intervals ({}, {:.0}% level, from the held-out residuals of the identification): {:.1}% of {} measured coordinates inside ({} outside)
+",
+            p.method,
+            100.0 * p.level,
+            100.0 * p.coverage,
+            p.coordinates,
+            p.coordinates - p.covered
+        ),
+        None => "prediction intervals: none (the stiffness file holds no held-out residuals: identify with --cross-validate)
+".into(),
+    };
     s
 }

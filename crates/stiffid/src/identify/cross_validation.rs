@@ -72,9 +72,15 @@ pub struct Fold {
     pub postures: Vec<usize>,
     /// The held-out measurements (indices into the measurements).
     pub measurements: Vec<usize>,
+    /// The compliance of every parameter fitted without them, SI (rad/Nm, m/N), in the order of
+    /// the columns of `Psi`.
+    pub compliance: DVector<f64>,
     /// The stiffness of every parameter fitted without them, SI (Nm/rad, N/m), in the order of
     /// the columns of `Psi`.
     pub stiffness: DVector<f64>,
+    /// The held-out residuals `delta_m - Psi_i h` of each held-out measurement (three per
+    /// measurement, in the order of `measurements`), base frame, m.
+    pub residuals: DVector<f64>,
     /// `delta_b` (Eq. 22) of each held-out measurement, m.
     pub delta_b: Vec<f64>,
     /// Root mean square of `delta_b`, m.
@@ -99,6 +105,9 @@ pub struct CrossValidation {
     pub rms_delta_b: f64,
     /// Root mean square of the measured displacement magnitudes, m.
     pub rms_measured: f64,
+    /// The standard error of [`CrossValidation::explained`] over the postures
+    /// ([`explained_share`]).
+    pub explained_std_error: f64,
 }
 
 impl CrossValidation {
@@ -106,6 +115,28 @@ impl CrossValidation {
     pub fn explained(&self) -> f64 {
         1.0 - self.rms_delta_b / self.rms_measured
     }
+}
+
+/// The held-out explained share `1 - sqrt(A / B)` and its standard error over the postures, from
+/// each posture's `[a_p, b_p]`: the sums of its squared prediction errors `delta_b^2` and of its
+/// squared measured displacements `|delta_m|^2` (`A`, `B` their sums over the `n` postures).
+/// The postures are the independent units: the ratio `r = A / B` has the variance `n / (n - 1)
+/// sum_p (a_p - r b_p)^2 / B^2` (the delta method of a ratio estimator; Cochran, *Sampling
+/// Techniques*, 1977, Eq. 6.9), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
+/// `NaN` for one posture.
+pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
+    let n = per_posture.len() as f64;
+    let [a, b] = per_posture
+        .iter()
+        .fold([0.0, 0.0], |[a, b], p| [a + p[0], b + p[1]]);
+    let r = a / b;
+    let var = per_posture
+        .iter()
+        .map(|p| (p[0] - r * p[1]).powi(2))
+        .sum::<f64>()
+        * n
+        / ((n - 1.0) * b * b);
+    [1.0 - r.sqrt(), var.sqrt() / (2.0 * r.sqrt())]
 }
 
 /// The full fit that every fold repeats: its compliance and its stiffness standard errors.
@@ -210,7 +241,7 @@ fn run(
         }
         held
     };
-    let fitted: Vec<(DVector<f64>, Vec<f64>)> = match method {
+    let fitted: Vec<(DVector<f64>, DVector<f64>)> = match method {
         Method::LeastSquares => linear_folds(obs, &full.h, &inverse()?, &held)?,
         _ => held
             .par_iter()
@@ -222,7 +253,7 @@ fn run(
     let folds: Vec<Fold> = held
         .into_iter()
         .zip(fitted)
-        .map(|(out, (h, delta_b))| fold(obs, out, h, delta_b, &full_k, se))
+        .map(|(out, (h, residuals))| fold(obs, out, h, residuals, &full_k, se))
         .collect();
     Ok(summarise(obs, folds))
 }
@@ -279,7 +310,16 @@ fn summarise(obs: &Observations, folds: Vec<Fold>) -> CrossValidation {
         .flat_map(|f| f.delta_b.iter().copied())
         .collect();
     let measured = obs.delta.norm_squared() / (obs.delta.len() / 3) as f64;
+    let mut per_posture = vec![[0.0; 2]; obs.postures];
+    for f in &folds {
+        for (&i, d) in f.measurements.iter().zip(&f.delta_b) {
+            let p = &mut per_posture[obs.posture_index[i]];
+            p[0] += d * d;
+            p[1] += obs.delta.fixed_rows::<3>(3 * i).norm_squared();
+        }
+    }
     CrossValidation {
+        explained_std_error: explained_share(&per_posture)[1],
         stiffness_mean: mean,
         stiffness_std: var.map(f64::sqrt),
         stiffness_range: range,
@@ -323,13 +363,13 @@ fn delta_b(residual: &DVector<f64>) -> Vec<f64> {
 }
 
 /// Every least-squares fold from the full fit `h` and `r_inv` (module docs): the compliance
-/// without the fold's rows and `delta_b` of each of its measurements.
+/// without the fold's rows and the held-out residuals of its measurements.
 fn linear_folds(
     obs: &Observations,
     h: &DVector<f64>,
     r_inv: &DMatrix<f64>,
     held: &[Vec<usize>],
-) -> Result<Vec<(DVector<f64>, Vec<f64>)>> {
+) -> Result<Vec<(DVector<f64>, DVector<f64>)>> {
     let residual = &obs.delta - &obs.psi * h;
     held.par_iter()
         .enumerate()
@@ -339,7 +379,7 @@ fn linear_folds(
             let e_o = residual.select_rows(&ids);
             let (dh, e_loo) = without_rows(&psi_o, r_inv, &e_o)
                 .ok_or_else(|| unidentifiable(f, "removing them leaves Psi rank deficient"))?;
-            Ok((h - dh, delta_b(&e_loo)))
+            Ok((h - dh, e_loo))
         })
         .collect()
 }
@@ -375,7 +415,7 @@ fn refit_fold(
     f: usize,
     out: &[usize],
     refit: &impl Fn(&Observations) -> Result<DVector<f64>>,
-) -> Result<(DVector<f64>, Vec<f64>)> {
+) -> Result<(DVector<f64>, DVector<f64>)> {
     let mut is_out = vec![false; obs.posture_index.len()];
     out.iter().for_each(|&i| is_out[i] = true);
     let train: Vec<usize> = (0..is_out.len()).filter(|&i| !is_out[i]).collect();
@@ -391,7 +431,7 @@ fn refit_fold(
     let h = refit(&rest).map_err(|e| unidentifiable(f, &e.to_string()))?;
     let (psi, delta) = rows(obs, out);
     let residual = delta - psi * &h;
-    Ok((h, delta_b(&residual)))
+    Ok((h, residual))
 }
 
 /// Renumbers posture numbers densely in order of first appearance; returns how many there are.
@@ -408,11 +448,12 @@ fn fold(
     obs: &Observations,
     out: Vec<usize>,
     h: DVector<f64>,
-    delta_b: Vec<f64>,
+    residuals: DVector<f64>,
     full: &DVector<f64>,
     se: Option<&DVector<f64>>,
 ) -> Fold {
     let stiffness = h.map(|v| 1.0 / v);
+    let delta_b = delta_b(&residuals);
     let mut postures: Vec<usize> = out.iter().map(|&i| obs.posture_index[i]).collect();
     postures.sort_unstable();
     postures.dedup();
@@ -423,6 +464,8 @@ fn fold(
             .map(|j| se.is_some_and(|se| (stiffness[j] - full[j]).abs() > se[j]))
             .collect(),
         stiffness,
+        compliance: h,
+        residuals,
         measurements: out,
         delta_b,
     }

@@ -32,6 +32,7 @@ pub mod cross_validation;
 pub mod model;
 pub mod nonnegative;
 pub mod offsets;
+pub mod prediction;
 pub mod robust;
 pub mod steps;
 pub mod streamed;

@@ -8,7 +8,13 @@
 //! the measured deflections `|delta_m|` and the share of them the model explains,
 //! `1 - RMS(delta_b) / RMS(|delta_m|)` (1: perfect prediction; 0: no better than predicting no
 //! deflection; negative: worse).
+//!
+//! With a compliance that carries the held-out residuals of its identification
+//! ([`Compliance::prediction`]), each measurement also gets its prediction interval
+//! ([`crate::model::prediction`], jackknife+ or CV+) and the summary the share of the measured
+//! coordinates inside their intervals: the coverage, to compare with the level.
 
+use crate::model::prediction::{check_level, inside, Interval, DEFAULT_LEVEL};
 use crate::model::Compliance;
 use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};
@@ -27,6 +33,29 @@ pub struct PointCheck {
     pub predicted: Vector3<f64>,
     /// `delta_b = |delta_m - delta_c|` (Eq. 22), m.
     pub delta_b: f64,
+    /// The prediction interval of each coordinate of `measured`, m, with the compliance's
+    /// prediction calibration.
+    pub interval: Option<Interval>,
+}
+
+/// How well the prediction intervals covered the measurements.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coverage {
+    /// The intervals' level.
+    pub level: f64,
+    /// `jackknife+` or `cv+` ([`crate::model::prediction::Calibration::method`]).
+    pub method: &'static str,
+    /// Measured coordinates inside their intervals.
+    pub covered: usize,
+    /// Measured coordinates (three per measurement).
+    pub coordinates: usize,
+}
+
+impl Coverage {
+    /// `covered / coordinates`.
+    pub fn coverage(&self) -> f64 {
+        self.covered as f64 / self.coordinates as f64
+    }
 }
 
 /// The validation of a stiffness on a list of measurements.
@@ -44,20 +73,39 @@ pub struct Validation {
     pub measured: [f64; 3],
     /// `1 - RMS(delta_b) / RMS(|delta_m|)`: the share of the measured deflection the model explains.
     pub explained: f64,
+    /// The coverage of the prediction intervals, with the compliance's prediction calibration.
+    pub prediction: Option<Coverage>,
 }
 
 /// Predicts every measurement with the compliance `compliance` of every parameter of the setup's
-/// model ([`crate::model`]; rad/Nm, m/N) and compares (Eq. 22).
+/// model ([`crate::model`]; rad/Nm, m/N) and compares (Eq. 22); prediction intervals at
+/// [`DEFAULT_LEVEL`] ([`compare_at`]).
 ///
 /// # Errors
-/// Those of [`Compliance::check`]; [`Error::InvalidField`] (`stiffness`) unless every compliance
-/// is positive, or (`measurements`) for an empty list; those of
-/// [`Observations::from_measurements`].
+/// Those of [`compare_at`].
 pub fn compare(
     setup: &Setup,
     compliance: &Compliance,
     measurements: &[Measurement],
 ) -> Result<Validation> {
+    compare_at(setup, compliance, measurements, DEFAULT_LEVEL)
+}
+
+/// [`compare`] with prediction intervals at `level` (when the compliance carries a prediction
+/// calibration).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`level`) outside [`crate::model::prediction::LEVEL`];
+/// Those of [`Compliance::check`]; [`Error::InvalidField`] (`stiffness`) unless every compliance
+/// is positive, or (`measurements`) for an empty list; those of
+/// [`Observations::from_measurements`].
+pub fn compare_at(
+    setup: &Setup,
+    compliance: &Compliance,
+    measurements: &[Measurement],
+    level: f64,
+) -> Result<Validation> {
+    check_level("level", level)?;
     compliance.check(setup.model())?;
     if !compliance.h.iter().all(|h| *h > 0.0) {
         return Err(Error::InvalidField {
@@ -78,15 +126,31 @@ pub fn compare(
         .enumerate()
         .map(|(i, meas)| {
             let predicted: Vector3<f64> = predicted.fixed_rows::<3>(3 * i).into_owned();
+            let interval = compliance
+                .prediction
+                .as_ref()
+                .map(|p| p.interval(&obs.psi.rows(3 * i, 3).into_owned(), level));
             PointCheck {
                 posture: meas.posture,
                 point: meas.point,
                 measured: meas.displacement,
                 predicted,
                 delta_b: (meas.displacement - predicted).norm(),
+                interval,
             }
         })
         .collect();
+    let prediction = compliance.prediction.as_ref().map(|p| Coverage {
+        level,
+        method: p.method(),
+        covered: checks
+            .iter()
+            .filter_map(|c| Some(inside(c.interval.as_ref()?, &c.measured.into())))
+            .flatten()
+            .filter(|b| *b)
+            .count(),
+        coordinates: 3 * checks.len(),
+    });
     let [mean, max, rms] = summary(checks.iter().map(|c| c.delta_b));
     let measured = summary(checks.iter().map(|c| c.measured.norm()));
     Ok(Validation {
@@ -96,6 +160,7 @@ pub fn compare(
         rms,
         explained: 1.0 - rms / measured[2],
         measured,
+        prediction,
     })
 }
 

@@ -18,13 +18,19 @@
 //!  "compliance_covariance_rad2_per_nm2": [[...6 numbers...], ...6 rows...]}
 //! ```
 //!
-//! With `parameters`, `stiffness_nm_per_rad` and its covariance are ignored. A file is used with a
+//! With `parameters`, `stiffness_nm_per_rad` and its covariance are ignored.
+//!
+//! From `identify --cross-validate`, the key `prediction` holds what prediction intervals are
+//! built from ([`crate::model::prediction`]): per fold, the compliance fitted without its
+//! postures and the scores of their held-out coordinates ([`PredictionSection`]); `predict`,
+//! `compensate` and `validate` give intervals with it. A file is used with a
 //! setup whose model has the same parameters in the same order ([`StiffnessFile::compliance`]).
 
 use crate::common::limits::{self, MAX_PARAMETERS, STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
+use crate::model::prediction::{self, Calibration, HeldOut};
 use crate::model::{Compliance, Model, ParameterKind};
 use crate::{Error, Result};
-use nalgebra::{DMatrix, Matrix6, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// What a stiffness file holds, as its JSON keys (other keys of the file are ignored).
@@ -60,6 +66,125 @@ pub struct StiffnessFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[serde(deserialize_with = "crate::common::exact::option_matrix")]
     pub compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
+    /// Optional, with `parameters`: the held-out residuals of a cross-validation over postures,
+    /// what prediction intervals are built from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prediction: Option<PredictionSection>,
+}
+
+/// The held-out residuals of an identification cross-validated over postures: what the
+/// jackknife+ (or CV+) prediction intervals of `predict`, `compensate` and `validate` are built
+/// from ([`crate::model::prediction`], Barber et al. 2021).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PredictionSection {
+    /// `jackknife+` (one fold per posture) or `cv+` (fewer folds): written for the reader,
+    /// recomputed from `postures` and the folds when read.
+    pub method: String,
+    /// The postures the folds held out.
+    pub postures: usize,
+    /// `sigma_0`, the scale's noise floor: the standard deviation of one displacement coordinate
+    /// from the setup's tracker noise, mm; finite, >= 0.
+    pub noise_floor_mm: f64,
+    /// One per fold, at most [`prediction::MAX_FOLDS`], with at most [`prediction::MAX_SCORES`]
+    /// scores in all.
+    pub folds: Vec<FoldSection>,
+}
+
+/// One fold of [`PredictionSection`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FoldSection {
+    /// The postures the fold held out (labels).
+    pub postures: Vec<String>,
+    /// The compliance of every parameter fitted without them, SI (rad/Nm, m/N), in the order of
+    /// `parameters`; finite.
+    pub compliance_si: Vec<f64>,
+    /// The score of each held-out coordinate: `|measured - predicted|` over `|predicted| +
+    /// noise_floor_mm`, the prediction the fold's (three per measurement, x, y, z); finite, >= 0.
+    pub scores: Vec<f64>,
+}
+
+impl PredictionSection {
+    /// The section of `calibration`, its folds' postures named by `labels`.
+    pub fn new(calibration: &Calibration, labels: Vec<Vec<String>>) -> Self {
+        PredictionSection {
+            method: calibration.method().into(),
+            postures: calibration.postures,
+            noise_floor_mm: calibration.noise_floor * 1e3,
+            folds: calibration
+                .folds
+                .iter()
+                .zip(labels)
+                .map(|(f, postures)| FoldSection {
+                    postures,
+                    compliance_si: f.compliance.iter().copied().collect(),
+                    scores: f.scores.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// The calibration it holds.
+    pub fn calibration(&self) -> Calibration {
+        Calibration {
+            postures: self.postures,
+            noise_floor: self.noise_floor_mm * 1e-3,
+            folds: self
+                .folds
+                .iter()
+                .map(|f| HeldOut {
+                    compliance: DVector::from_column_slice(&f.compliance_si),
+                    scores: f.scores.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// Checks the counts and numbers against `n` parameters.
+    fn check(&self, n: usize) -> Result<()> {
+        limits::check_count(
+            "prediction.folds",
+            self.folds.len(),
+            2,
+            prediction::MAX_FOLDS,
+        )?;
+        let field = "prediction.noise_floor_mm";
+        if !(self.noise_floor_mm.is_finite() && self.noise_floor_mm >= 0.0) {
+            return Err(invalid(
+                field.into(),
+                "expected a finite number >= 0".into(),
+            ));
+        }
+        if self.postures < self.folds.len() {
+            return Err(invalid(
+                "prediction.postures".into(),
+                format!(
+                    "{} postures for {} folds: expected at least one posture per fold",
+                    self.postures,
+                    self.folds.len()
+                ),
+            ));
+        }
+        let mut total = 0usize;
+        for (k, f) in self.folds.iter().enumerate() {
+            let field = format!("prediction.folds[{}]", k + 1);
+            if f.compliance_si.len() != n || f.compliance_si.iter().any(|v| !v.is_finite()) {
+                return Err(invalid(
+                    format!("{field}.compliance_si"),
+                    format!("expected {n} finite numbers, one per parameter"),
+                ));
+            }
+            if f.scores.is_empty() || f.scores.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+                return Err(invalid(
+                    format!("{field}.scores"),
+                    "expected at least one finite number >= 0".into(),
+                ));
+            }
+            total = total.saturating_add(f.scores.len());
+        }
+        limits::check_count("prediction scores", total, 1, prediction::MAX_SCORES)
+    }
 }
 
 /// One parameter's stiffness in a stiffness file.
@@ -134,7 +259,12 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
         }
     })?;
     match &file.parameters {
-        Some(parameters) => check_parameters(parameters, &file.compliance_covariance_si)?,
+        Some(parameters) => {
+            check_parameters(parameters, &file.compliance_covariance_si)?;
+            if let Some(p) = &file.prediction {
+                p.check(parameters.len())?;
+            }
+        }
         None => {
             let k = file
                 .stiffness_nm_per_rad
@@ -298,6 +428,7 @@ impl StiffnessFile {
                 .compliance_covariance_si
                 .as_ref()
                 .map(|rows| DMatrix::from_fn(n, n, |r, c| rows[r][c])),
+            prediction: self.prediction.as_ref().map(PredictionSection::calibration),
         })
     }
 

@@ -39,6 +39,7 @@
 
 use crate::common::error::ColumnProblem;
 use crate::common::limits::number;
+use crate::observation::deflection::PointDeflection;
 use crate::observation::deflection::{base_wrench, Frame, Points};
 use crate::robot::configuration::Arm;
 use crate::robot::ik::{self, pose_error, tool_pose};
@@ -175,6 +176,10 @@ pub struct Options {
     pub ik: ik::Options,
     /// Optimise the rotation about the tool z axis.
     pub free_tool_axis: Option<FreeToolAxis>,
+    /// The level of the prediction intervals of the deflection (with a compliance that carries
+    /// a prediction calibration, [`crate::model::prediction`]), within
+    /// [`crate::model::prediction::LEVEL`].
+    pub level: f64,
 }
 
 impl Options {
@@ -191,6 +196,7 @@ impl Options {
             &limits::ANGLE_RAD,
         )?;
         self.ik.validate()?;
+        crate::model::prediction::check_level("compensate::Options.level", self.level)?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
@@ -224,6 +230,7 @@ impl Options {
                 .unwrap_or((bounds.lower + bounds.upper) / 2.0),
             ik: ik::Options::default(),
             free_tool_axis: None,
+            level: crate::model::prediction::DEFAULT_LEVEL,
         }
     }
 }
@@ -244,6 +251,9 @@ pub struct Compensated {
     /// The standard deviation of the translation's length `|dp|` (first order:
     /// `sqrt(u^T Cov(dp) u)`, `u = dp / |dp|`), m.
     pub translation_norm_std: Option<f64>,
+    /// The prediction interval of the translation (m, base frame) at [`Options::level`], given
+    /// the compliance's prediction calibration ([`crate::model::prediction`]).
+    pub deflection_interval: Option<crate::model::prediction::Interval>,
     /// The compensated axis angles `q_c`, rad.
     pub q_compensated: Vector6<f64>,
     /// `|p_nominal - p_loaded(q_c)|`, m.
@@ -265,6 +275,8 @@ pub struct Model<'a> {
     compliance: &'a Compliance,
     /// Spring deflections to axis angles: `M^-1` for kinematic springs, else the identity.
     to_axis: Matrix6<f64>,
+    /// The level of the prediction intervals.
+    level: f64,
 }
 
 impl<'a> Model<'a> {
@@ -294,7 +306,14 @@ impl<'a> Model<'a> {
             setup,
             compliance,
             to_axis,
+            level: crate::model::prediction::DEFAULT_LEVEL,
         })
+    }
+
+    /// The model with prediction intervals at `level` (default
+    /// [`crate::model::prediction::DEFAULT_LEVEL`]).
+    pub fn at_level(self, level: f64) -> Self {
+        Self { level, ..self }
     }
 
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
@@ -338,6 +357,12 @@ impl<'a> Model<'a> {
         frames: &Frames,
         wrench: &Vector6<f64>,
     ) -> (Vector6<f64>, Option<(Vector6<f64>, f64)>) {
+        let d = self.tcp_deflection(frames, wrench);
+        (d.displacement, self.std(&d))
+    }
+
+    /// The TCP's deflection in the posture `frames` under `wrench` (base frame).
+    fn tcp_deflection(&self, frames: &Frames, wrench: &Vector6<f64>) -> PointDeflection {
         let tcp = &self.setup.tool().tcp;
         let points = Points {
             setup: self.setup,
@@ -345,8 +370,13 @@ impl<'a> Model<'a> {
             loaded: tcp,
             observed: tcp,
         };
-        let d = points.deflection(wrench, &self.compliance.h);
-        let std = self.compliance.covariance.as_ref().map(|c| {
+        points.deflection(wrench, &self.compliance.h)
+    }
+
+    /// The standard deviation of the deflection `d` per coordinate and of its translation's
+    /// length, given the compliance covariance.
+    fn std(&self, d: &PointDeflection) -> Option<(Vector6<f64>, f64)> {
+        self.compliance.covariance.as_ref().map(|c| {
             let cov = d.covariance(c);
             let u = d.displacement.fixed_rows::<3>(0).normalize();
             let along = (u.transpose() * cov.fixed_view::<3, 3>(0, 0) * u)[0];
@@ -354,8 +384,7 @@ impl<'a> Model<'a> {
                 cov.diagonal().map(|v| v.max(0.0).sqrt()),
                 along.max(0.0).sqrt(),
             )
-        });
-        (d.displacement, std)
+        })
     }
 
     /// Compensates one point: the nominal posture `q` (rad) under `wrench` (base frame) at the
@@ -423,7 +452,7 @@ pub fn path(
     if let Some(free) = &options.free_tool_axis {
         free.check_grid(points.len())?;
     }
-    let model = Model::new(setup, compliance)?;
+    let model = Model::new(setup, compliance)?.at_level(options.level);
     let nominal = nominal_postures(setup, points, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = points
         .par_iter()
@@ -485,7 +514,7 @@ where
         }
         return Ok(all.len());
     }
-    let model = Model::new(setup, compliance)?;
+    let model = Model::new(setup, compliance)?.at_level(options.level);
     let (mut previous, mut count) = (options.q0, 0);
     loop {
         let chunk: Vec<PathPoint> = points.by_ref().take(CHUNK).collect::<Result<_>>()?;
@@ -545,7 +574,13 @@ fn compensate_chosen(
                 .compensate_from(q, frames.clone(), &c.wrenches[i])
                 .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
             check_compensated(setup, points[i].line, &qc, ep, eo)?;
-            let (deflection, deflection_std) = model.deflection(&frames, &c.wrenches[i]);
+            let d = model.tcp_deflection(&frames, &c.wrenches[i]);
+            let deflection_std = model.std(&d);
+            let deflection_interval = model
+                .compliance
+                .prediction
+                .as_ref()
+                .map(|p| d.interval(p, model.level));
             let deflection_before = free.then(|| {
                 let frames = setup.robot().frames(&c.nominal[i]);
                 model.deflection(&frames, &c.wrenches[i]).0
@@ -554,9 +589,10 @@ fn compensate_chosen(
                 q: *q,
                 pose: tool_pose(&frames, &setup.tool().tcp),
                 wrench: c.wrenches[i],
-                deflection,
+                deflection: d.displacement,
                 deflection_std: deflection_std.map(|s| s.0),
                 translation_norm_std: deflection_std.map(|s| s.1),
+                deflection_interval,
                 q_compensated: qc,
                 residual_position: ep,
                 residual_rotation: eo,

@@ -1,6 +1,7 @@
 //! The compliance of every parameter of a model and its covariance: what an identification gives
 //! and what prediction, validation and compensation use.
 
+use super::prediction::Calibration;
 use super::Model;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
@@ -13,6 +14,9 @@ pub struct Compliance {
     pub h: DVector<f64>,
     /// `Cov(h)`, n x n, SI (the products of the parameters' compliance units).
     pub covariance: Option<DMatrix<f64>>,
+    /// From an identification cross-validated over postures: what its prediction intervals are
+    /// built from ([`crate::model::prediction`]).
+    pub prediction: Option<Calibration>,
 }
 
 impl Compliance {
@@ -22,6 +26,7 @@ impl Compliance {
         Self {
             h: DVector::from_column_slice(h.as_slice()),
             covariance: covariance.map(|c| DMatrix::from_column_slice(6, 6, c.as_slice())),
+            prediction: None,
         }
     }
 
@@ -56,7 +61,15 @@ impl Compliance {
             .covariance
             .as_ref()
             .is_some_and(|c| c.nrows() != n || c.ncols() != n);
-        if self.h.len() != n || wrong_cov || self.h.iter().any(|v| !v.is_finite()) {
+        let wrong_prediction = self
+            .prediction
+            .as_ref()
+            .is_some_and(|p| p.parameters() != n);
+        if self.h.len() != n
+            || wrong_cov
+            || wrong_prediction
+            || self.h.iter().any(|v| !v.is_finite())
+        {
             let names: Vec<String> = model.parameters().into_iter().map(|p| p.name).collect();
             return Err(Error::InvalidField {
                 field: "stiffness".into(),

@@ -26,6 +26,7 @@ mod compliance;
 mod family;
 pub(crate) mod file;
 mod law;
+pub mod prediction;
 
 pub use compliance::Compliance;
 pub use family::{Family, FAMILIES};

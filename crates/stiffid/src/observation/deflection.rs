@@ -145,6 +145,26 @@ impl PointDeflection {
         Matrix6::from_fn(|r, c| full[(r, c)])
     }
 
+    /// The translation rows of the observation matrix here: `J_b[0..3] diag(tau)` (3 x n, SI), so
+    /// that the translation is these rows times the compliance (Eq. 10-11).
+    pub fn translation_rows(&self) -> DMatrix<f64> {
+        let mut a = self.jacobian.rows(0, 3).into_owned();
+        for (c, mut col) in a.column_iter_mut().enumerate() {
+            col *= self.torques[c];
+        }
+        DMatrix::from_column_slice(3, a.ncols(), a.as_slice())
+    }
+
+    /// The prediction interval of the translation at `level` (m, base frame), when the compliance
+    /// carries a prediction calibration ([`crate::model::prediction`]).
+    pub fn interval(
+        &self,
+        calibration: &crate::model::prediction::Calibration,
+        level: f64,
+    ) -> crate::model::prediction::Interval {
+        calibration.interval(&self.translation_rows(), level)
+    }
+
     /// The standard deviation of each coordinate of the displacement (m, m, m, rad, rad, rad).
     pub fn std(&self, compliance_covariance: &DMatrix<f64>) -> Vector6<f64> {
         self.covariance(compliance_covariance)

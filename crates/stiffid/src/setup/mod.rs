@@ -527,6 +527,7 @@ impl Setup {
         Ok(Compliance {
             h,
             covariance: None,
+            prediction: None,
         })
     }
 

@@ -235,6 +235,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         q0: s.test_postures()[0],
         ik: ik::Options::default(),
         free_tool_axis: free,
+        level: 0.95,
     }
 }
 

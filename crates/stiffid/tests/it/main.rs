@@ -35,6 +35,7 @@ mod options_validation;
 mod parsers_proptest;
 mod path_format;
 mod pool;
+mod prediction;
 mod prior;
 mod process_forces;
 mod program_forms;

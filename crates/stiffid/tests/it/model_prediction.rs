@@ -241,6 +241,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
         &Compliance {
             h: truth,
             covariance: None,
+            prediction: None,
         },
         &noise_free(&s, &s.model_compliance("t").unwrap().h, 4, 9),
     )

@@ -1,7 +1,7 @@
 //! `stiffid identify` over a model with virtual springs, and `--compare-models`: the library's
 //! fits ([`stiffid::identify::model`], [`stiffid::identify::compare`]) rendered as text or JSON.
 
-use super::Args;
+use super::{text, Args};
 use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::{bail, Result};
@@ -11,6 +11,7 @@ use stiffid::app::identify::{Data, Request};
 use stiffid::app::identify_model::document::Document;
 use stiffid::app::identify_model::{self, Report};
 use stiffid::common::words::count;
+use stiffid::identify::adequacy::SIGNIFICANCE;
 use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Row};
 use stiffid::identify::cross_validation::CrossValidation;
 use stiffid::identify::model::Fit;
@@ -49,7 +50,7 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
     }
     match args.common.json {
         true => output::print(&json(&report.document(&args.common.setup))?),
-        false => output::print(&text(&report.comparison, &report.dropped)),
+        false => output::print(&text(&report.comparison, &report.dropped, setup)),
     }
 }
 
@@ -81,7 +82,7 @@ const HEADER: &str =
     "  added            par in-sample  held out  dB RMS mm       AIC       BIC   noise  all k>0\n";
 
 /// The text report of a comparison and of the candidates dropped from its pool.
-fn text(c: &Comparison, dropped: &[Dropped]) -> String {
+fn text(c: &Comparison, dropped: &[Dropped], setup: &Setup) -> String {
     let mut s =
         String::from("Model comparison: forward selection on the leave-one-posture-out error\n\n");
     if !dropped.is_empty() {
@@ -125,6 +126,7 @@ fn text(c: &Comparison, dropped: &[Dropped]) -> String {
     }
     s += "\nRecommended model fitted to every posture:\n";
     s += &fit_table(&c.recommended_fit);
+    s += &model_check(&c.recommended_fit, setup);
     s += &format!("\n{}\n", c.conclusion());
     s
 }
@@ -196,9 +198,7 @@ fn model_text(report: &Report, setup: &Setup) -> String {
         report.method.name()
     );
     s += &fit_table(f);
-    if let Some(r) = f.noise_ratio(setup.noise().variance) {
-        s += &format!("residual std / tracker noise: {r:.2}\n");
-    }
+    s += &model_check(f, setup);
     if let Some(robust) = &f.robust {
         s += &format!(
             "{} reweighting: scale {:.4} mm, {} iterations{}, {} below weight 0.5\n",
@@ -216,7 +216,23 @@ fn model_text(report: &Report, setup: &Setup) -> String {
     if let Some(cv) = &report.cross_validation {
         s += &cross_validation_text(f, cv);
     }
+    if let Some(p) = &report.prediction {
+        s += &text::prediction(p);
+    }
     s
+}
+
+/// The model check of a fit against the setup's tracker noise, with its verdict.
+pub fn model_check(f: &Fit, setup: &Setup) -> String {
+    let variance = setup.noise().variance;
+    let (Some(r), Some(p)) = (f.noise_ratio(variance), f.adequacy_p_value(variance)) else {
+        return "model check: none (no degrees of freedom)\n".into();
+    };
+    let verdict = match p < SIGNIFICANCE {
+        true => text::model_error_dominates(),
+        false => "the residuals are consistent with the tracker noise".into(),
+    };
+    format!("model check: residual std {r:.2} x the tracker noise (chi-square p = {p:.3e}): {verdict}\n")
 }
 
 /// The spread of every parameter over the folds and the held-out explained share.
@@ -243,10 +259,11 @@ fn cross_validation_text(f: &Fit, cv: &CrossValidation) -> String {
         );
     }
     s += &format!(
-        "held out: RMS delta_b {:.4} mm of RMS {:.4} mm measured: {:.1}% explained\n",
+        "held out: RMS delta_b {:.4} mm of RMS {:.4} mm measured: {:.1}% explained (standard error {:.1}, over the postures)\n",
         cv.rms_delta_b * 1e3,
         cv.rms_measured * 1e3,
-        100.0 * cv.explained()
+        100.0 * cv.explained(),
+        100.0 * cv.explained_std_error
     );
     s
 }

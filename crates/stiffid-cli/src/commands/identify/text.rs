@@ -5,6 +5,7 @@ use stiffid::app::document::mm;
 use stiffid::app::identify::{Fit, Report};
 use stiffid::identify::adequacy::SIGNIFICANCE;
 use stiffid::identify::{Identification, Uncertainty};
+use stiffid::model::prediction::Calibration;
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
@@ -83,7 +84,7 @@ pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
         u.t_quantile
     );
     s += &model_check(run);
-    s += "\n95% intervals from the residual variance s^2:\n";
+    s += "\n95% intervals from the residual variance s^2 (conditional on the model: they cover if it is right):\n";
     s += &table(id, u, true);
     s += &bounds_and_physics(id);
     if let Some(a) = &run.adequacy {
@@ -180,9 +181,7 @@ fn model_check(run: &Report) -> String {
         a.dof
     );
     match (a.model_error_dominates(), a.below_noise()) {
-        (true, _) => format!(
-            "{head}:\n  the model error dominates (p < {SIGNIFICANCE}), not the tracker: trust the intervals from the residual variance; those from the tracker noise assume an exact model and are too narrow\n"
-        ),
+        (true, _) => format!("{head}:\n  {}\n", model_error_dominates()),
         (false, true) => format!(
             "{head}:\n  the residuals are far below the tracker noise (lower tail p = {:.3e} < {SIGNIFICANCE}): noise-free or simulated data, or the setup's variance_mm2 is too large; the intervals from the tracker noise are then too wide\n",
             a.lower_p_value()
@@ -361,11 +360,15 @@ fn cross_validation(run: &Report) -> String {
         );
     }
     s += &format!(
-        "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% of the held-out deflection\n",
+        "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% (standard error {:.1}, over the postures) of the held-out deflection\n",
         mm(cv.rms_delta_b),
         mm(cv.rms_measured),
-        100.0 * (1.0 - cv.rms_delta_b / cv.rms_measured)
+        100.0 * cv.explained(),
+        100.0 * cv.explained_std_error
     );
+    if let Some(p) = &run.prediction {
+        s += &prediction(p);
+    }
     let influential = &run.influential;
     s += "influential (removal moves a stiffness by more than its standard error): ";
     match influential.is_empty() {
@@ -382,6 +385,30 @@ fn cross_validation(run: &Report) -> String {
         }
     }
     s
+}
+
+/// What the model check's failure means for the intervals.
+pub fn model_error_dominates() -> String {
+    format!("the model error dominates (p < {SIGNIFICANCE}), not the tracker: the parameter intervals are conditional on the model (a compliance it lacks biases the stiffness, and no interval shows it); the prediction intervals (--cross-validate, then validate, predict, compensate) come from held-out errors and are not")
+}
+
+/// The calibration of the prediction intervals, in one line.
+pub fn prediction(p: &Calibration) -> String {
+    let mut scores: Vec<f64> = p
+        .folds
+        .iter()
+        .flat_map(|f| f.scores.iter().copied())
+        .collect();
+    scores.sort_by(f64::total_cmp);
+    let q95 = scores[((0.95 * scores.len() as f64).ceil() as usize).clamp(1, scores.len()) - 1];
+    format!(
+        "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {:.1}% of the predicted displacement plus {:.4} mm\n",
+        p.method(),
+        scores.len(),
+        stiffid::common::words::count(p.postures, "posture"),
+        100.0 * q95,
+        mm(p.noise_floor)
+    )
 }
 
 /// The line of measurement `i` in its file (`-` for arrays).

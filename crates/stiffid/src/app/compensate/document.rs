@@ -4,6 +4,7 @@
 //! accumulated point by point so that a path of any length is summarised in bounded memory).
 
 use crate::app::compensate::{Report, Segment};
+use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::common::warning::Warning;
@@ -41,6 +42,10 @@ pub struct Document {
     /// Whether the stiffness file has the compliance covariance (then the `*_std_*` columns
     /// have values).
     pub has_covariance: bool,
+    /// With a stiffness file that holds held-out residuals (`identify --cross-validate`): the
+    /// level of the deflection's prediction intervals (the `*_lower_mm`, `*_upper_mm` columns);
+    /// else `null` (those columns empty).
+    pub prediction_level: Option<f64>,
     /// With `--free-tool-axis`: its options; else `null`.
     pub free_tool_axis: Option<FreeToolAxis>,
     /// With a program: the program, its process and each segment's force and deflection; else
@@ -139,6 +144,9 @@ pub struct SummaryDocument {
     pub max_residual_urad: f64,
     /// The most Newton steps of a point.
     pub max_iterations: usize,
+    /// With prediction intervals: the widest interval of a TCP deflection coordinate along the
+    /// path (`upper - lower`), mm; `null` without intervals or when one is unbounded.
+    pub max_interval_width_mm: Option<f64>,
     /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
     pub free_tool_axis: Option<FreeSummary>,
 }
@@ -206,7 +214,10 @@ impl schemars::JsonSchema for Row {
 /// Whether the column `name` may be empty (see [`Row`]'s schema).
 #[cfg(feature = "schema")]
 fn may_be_empty(name: &str) -> bool {
-    name.contains("_std_") || name == "d_norm_before_mm"
+    name.contains("_std_")
+        || name.contains("_lower_")
+        || name.contains("_upper_")
+        || name == "d_norm_before_mm"
 }
 
 impl Document {
@@ -223,6 +234,7 @@ impl Document {
             stiffness_nm_per_rad: report.compliance.drives_h().map(|h| 1.0 / h).into(),
             parameters: stiffness(&report.parameters, &report.compliance.h),
             has_covariance: report.compliance.covariance.is_some(),
+            prediction_level: report.prediction_level,
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
                 max_step_deg: f.max_step.to_degrees(),
                 range_deg: f.range.to_degrees(),
@@ -283,6 +295,10 @@ pub fn header() -> Vec<String> {
     ] {
         header.push(name.into());
     }
+    for c in xyz {
+        header.push(format!("d{c}_lower_mm"));
+        header.push(format!("d{c}_upper_mm"));
+    }
     header
 }
 
@@ -311,6 +327,8 @@ pub fn values(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
         r.deflection_before
             .map(|b| b.fixed_rows::<3>(0).norm() * 1e3),
     ]);
+    let ends = |k: usize| r.deflection_interval.map(|i| i[k / 2][k % 2] * 1e3);
+    v.extend((0..6).map(|k| ends(k).filter(|e| e.is_finite())));
     v
 }
 
@@ -348,6 +366,8 @@ pub struct Summary {
     max_residual_position: f64,
     max_residual_rotation: f64,
     max_iterations: usize,
+    /// The widest prediction interval of a deflection coordinate, m (`None` without intervals).
+    max_interval_width: Option<f64>,
     /// Sum of |d| before and after the tool-axis optimisation, and the rotation range, rad.
     free: Option<(f64, f64, f64, f64)>,
     /// Every `stride`-th point (0-based index and result), at most [`SAMPLE`] + 1.
@@ -372,6 +392,7 @@ impl Summary {
             max_residual_position: 0.0,
             max_residual_rotation: 0.0,
             max_iterations: 0,
+            max_interval_width: None,
             free: free.then_some((0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY)),
             sample: Vec::new(),
             stride: 1,
@@ -392,6 +413,10 @@ impl Summary {
         self.max_residual_position = self.max_residual_position.max(r.residual_position);
         self.max_residual_rotation = self.max_residual_rotation.max(r.residual_rotation);
         self.max_iterations = self.max_iterations.max(r.iterations);
+        if let Some(i) = &r.deflection_interval {
+            let width = i.iter().map(|[lo, hi]| hi - lo).fold(0.0, f64::max);
+            self.max_interval_width = Some(self.max_interval_width.map_or(width, |w| w.max(width)));
+        }
         if let (Some((before, after, lo, hi)), Some(b)) = (&mut self.free, &r.deflection_before) {
             *before += norm(b);
             *after += d;
@@ -451,6 +476,7 @@ impl Summary {
             max_residual_um: self.max_residual_position * 1e6,
             max_residual_urad: self.max_residual_rotation * 1e6,
             max_iterations: self.max_iterations,
+            max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
             free_tool_axis: self.free.map(|(before, after, lo, hi)| FreeSummary {
                 sum_deflection_before_mm: mm(before),
                 sum_deflection_after_mm: mm(after),

@@ -134,6 +134,9 @@ pub struct Report {
     pub parameters: Vec<Parameter>,
     /// The compliance used.
     pub compliance: Compliance,
+    /// The level of the deflection's prediction intervals, when the compliance carries a
+    /// prediction calibration ([`crate::model::prediction`]).
+    pub prediction_level: Option<f64>,
     /// The free tool axis, if asked.
     pub free_tool_axis: Option<FreeToolAxis>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
@@ -264,6 +267,7 @@ where
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
         parameters: setup.model().parameters(),
+        prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
         summary,
         program,

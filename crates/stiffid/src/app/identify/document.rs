@@ -6,6 +6,8 @@ use crate::app::document::{finite, finite_each, mm};
 use crate::app::identify::{Origin, Report};
 use crate::common::warning::WarningKind;
 use crate::identify::{Adequacy, RobustFit, Uncertainty};
+use crate::io::stiffness::PredictionSection;
+use crate::model::prediction::Calibration;
 use crate::model::Model;
 use crate::{Coordinates, Setup};
 use nalgebra::DVector;
@@ -94,6 +96,9 @@ pub struct Document {
     pub load_steps: Option<Vec<LoadStep>>,
     /// With offsets fitted beside the compliances: one per posture and measuring point.
     pub offsets: Option<Vec<PointOffset>>,
+    /// With cross-validation: the held-out residuals that prediction intervals are built from
+    /// (the stiffness file's `prediction`, [`crate::io::stiffness::PredictionSection`]).
+    pub prediction: Option<PredictionSection>,
 }
 
 /// How one posture's deflection follows the load steps. P-values test each effect against the
@@ -235,6 +240,9 @@ pub struct CrossValidation {
     pub rms_measured_mm: f64,
     /// `1 - rms_delta_b_mm / rms_measured_mm`.
     pub explained: f64,
+    /// The standard error of `explained` over the postures (delta method of the ratio, the
+    /// postures as independent units).
+    pub explained_std_error: f64,
     /// Folds whose removal moves a stiffness by more than its standard error in the full fit.
     pub influential_postures: Vec<Influential>,
     /// Every fold.
@@ -339,8 +347,25 @@ impl Document {
             cross_validation: cross_validation(report),
             load_steps: load_steps(report),
             offsets: offsets(report),
+            prediction: prediction(
+                report.prediction.as_ref(),
+                report.cross_validation.as_ref(),
+                &report.origin,
+            ),
         }
     }
+}
+
+/// The stiffness file's `prediction` of a calibration and its cross-validation, the folds'
+/// postures named as in `origin`.
+pub(crate) fn prediction(
+    calibration: Option<&Calibration>,
+    cv: Option<&crate::identify::CrossValidation>,
+    origin: &Origin,
+) -> Option<PredictionSection> {
+    let (calibration, cv) = calibration.zip(cv)?;
+    let labels = cv.folds.iter().map(|f| origin.labels_of(&f.postures));
+    Some(PredictionSection::new(calibration, labels.collect()))
 }
 
 fn load_steps(report: &Report) -> Option<Vec<LoadStep>> {
@@ -438,7 +463,8 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
         stiffness_max_nm_per_rad: six(cv.stiffness_range[1].as_slice()),
         rms_delta_b_mm: mm(cv.rms_delta_b),
         rms_measured_mm: mm(cv.rms_measured),
-        explained: 1.0 - cv.rms_delta_b / cv.rms_measured,
+        explained: cv.explained(),
+        explained_std_error: cv.explained_std_error,
         influential_postures: report
             .influential
             .iter()

@@ -10,6 +10,8 @@
 pub mod document;
 
 use super::in_data;
+use crate::identify::prediction::calibrate;
+use crate::model::prediction::Calibration;
 
 use crate::common::warning::{joint_list, Warning, WarningKind};
 use crate::identify::adequacy::UNIT_FACTOR;
@@ -102,6 +104,23 @@ pub enum Folds {
     Count(usize),
 }
 
+impl Folds {
+    /// The number of folds over `postures` postures.
+    pub fn count(self, postures: usize) -> usize {
+        match self {
+            Folds::LeaveOneOut => postures,
+            Folds::Count(k) => k,
+        }
+    }
+}
+
+/// The noise floor of the prediction intervals' scale: the standard deviation of one
+/// displacement coordinate from the setup's tracker noise, m
+/// ([`crate::model::prediction`]).
+pub fn noise_floor(setup: &Setup) -> f64 {
+    setup.noise().sigma()
+}
+
 /// Where each measurement came from: what a report names a measurement by.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Origin {
@@ -178,6 +197,8 @@ pub struct Report {
     pub unit: Option<UnitCheck>,
     /// The cross-validation, if asked.
     pub cross_validation: Option<CrossValidation>,
+    /// With the cross-validation: what prediction intervals are built from.
+    pub prediction: Option<Calibration>,
     /// Fold by fold: the postures left out and the joints (0-based) whose stiffness the removal
     /// moves by more than its standard error in the full fit (influential folds only).
     pub influential: Vec<(Vec<String>, Vec<usize>)>,
@@ -194,7 +215,7 @@ pub struct Report {
 struct Found {
     identification: Identification,
     origin: Origin,
-    cross_validation: Option<CrossValidation>,
+    cross_validation: Option<(CrossValidation, Calibration)>,
     load_steps: Option<Vec<Linearity>>,
     offsets: Option<Vec<Offset>>,
 }
@@ -250,6 +271,7 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let unit = setup
         .nominal_stiffness()
         .and_then(|k| identification.unit_check(k));
+    let (cross_validation, prediction) = cross_validation.unzip();
     let mut report = Report {
         data_name,
         fit: how,
@@ -259,6 +281,7 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         identification,
         origin,
         cross_validation,
+        prediction,
         load_steps,
         offsets,
         warnings: Vec::new(),
@@ -445,15 +468,19 @@ fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Foun
     })
 }
 
-/// The fit of measurements in the base frame, the cross-validation and the offsets if asked.
-/// Plain least squares without cross-validation nor offsets runs in blocks ([`least_squares`]),
-/// without the whole `Psi`.
+/// The fit of measurements in the base frame, the cross-validation (and the calibration of its
+/// prediction intervals) and the offsets if asked. Plain least squares without cross-validation
+/// nor offsets runs in blocks ([`least_squares`]), without the whole `Psi`.
 #[allow(clippy::type_complexity)]
 fn fit(
     setup: &Setup,
     how: How,
     measurements: &[Measurement],
-) -> Result<(Identification, Option<CrossValidation>, Option<Vec<Offset>>)> {
+) -> Result<(
+    Identification,
+    Option<(CrossValidation, Calibration)>,
+    Option<Vec<Offset>>,
+)> {
     if how.offsets {
         let (id, offsets) = offsets::least_squares(setup, measurements)?;
         return Ok((id, None, Some(offsets)));
@@ -467,8 +494,11 @@ fn fit(
     let id = method.fit(&obs)?;
     let cross_validation = match how.folds {
         None => None,
-        Some(Folds::LeaveOneOut) => Some(cross_validate(&obs, &id, obs.postures, method)?),
-        Some(Folds::Count(k)) => Some(cross_validate(&obs, &id, k, method)?),
+        Some(folds) => {
+            let cv = cross_validate(&obs, &id, folds.count(obs.postures), method)?;
+            let calibration = calibrate(&obs, &cv, noise_floor(setup));
+            Some((cv, calibration))
+        }
     };
     Ok((id, cross_validation, None))
 }

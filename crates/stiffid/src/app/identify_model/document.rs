@@ -4,11 +4,13 @@
 //! rotational springs, N/mm for translational ones) and every stiffness is in that unit.
 
 use crate::app::document::{finite, mm};
+use crate::app::identify::document::prediction;
 use crate::app::identify::document::Robust;
 use crate::app::identify_model::Report;
 use crate::common::warning::Warning;
 use crate::identify::compare::document::{fit_doc, FitDoc};
 use crate::identify::cross_validation::CrossValidation;
+use crate::io::stiffness::PredictionSection;
 use crate::model::Parameter;
 use crate::Setup;
 use nalgebra::DVector;
@@ -39,6 +41,9 @@ pub struct Document {
     pub robust: Option<Robust>,
     /// With cross-validation: the cross-validation over postures.
     pub cross_validation: Option<CrossValidationDoc>,
+    /// With cross-validation: the held-out residuals that prediction intervals are built from
+    /// (the stiffness file's `prediction`, [`crate::io::stiffness::PredictionSection`]).
+    pub prediction: Option<PredictionSection>,
     /// Results to look at before trusting them.
     pub warnings: Vec<Warning>,
 }
@@ -57,6 +62,9 @@ pub struct CrossValidationDoc {
     pub rms_measured_mm: f64,
     /// `1 - rms_delta_b_mm / rms_measured_mm`: the held-out explained share.
     pub explained: f64,
+    /// The standard error of `explained` over the postures (delta method of the ratio, the
+    /// postures as independent units).
+    pub explained_std_error: f64,
     /// Every fold.
     pub per_fold: Vec<FoldDoc>,
 }
@@ -117,6 +125,11 @@ impl Document {
                 .cross_validation
                 .as_ref()
                 .map(|cv| cross_validation(report, cv)),
+            prediction: prediction(
+                report.prediction.as_ref(),
+                report.cross_validation.as_ref(),
+                &report.origin,
+            ),
             warnings: report.warnings.clone(),
         }
     }
@@ -157,6 +170,7 @@ fn cross_validation(report: &Report, cv: &CrossValidation) -> CrossValidationDoc
         rms_delta_b_mm: mm(cv.rms_delta_b),
         rms_measured_mm: mm(cv.rms_measured),
         explained: cv.explained(),
+        explained_std_error: cv.explained_std_error,
         per_fold: cv
             .folds
             .iter()

@@ -9,11 +9,13 @@
 
 pub mod document;
 
-use super::identify::{self, angle_warnings, on_measurements, Folds, Origin, Request};
+use super::identify::{self, angle_warnings, noise_floor, on_measurements, Folds, Origin, Request};
 use super::{Warning, WarningKind};
 use crate::common::words::count;
 use crate::identify::cross_validation::{cross_validate_model, CrossValidation};
 use crate::identify::model::{fit_by, Fit};
+use crate::identify::prediction::calibrate;
+use crate::model::prediction::Calibration;
 use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};
 use std::io::Read;
@@ -31,6 +33,8 @@ pub struct Report {
     pub origin: Origin,
     /// The cross-validation, if asked: stiffness in the order of [`Fit::parameters`], SI.
     pub cross_validation: Option<CrossValidation>,
+    /// With the cross-validation: what prediction intervals are built from.
+    pub prediction: Option<Calibration>,
     /// Results to look at before trusting them (parameters the data cannot separate,
     /// compliances that are not positive).
     pub warnings: Vec<Warning>,
@@ -62,6 +66,7 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     }
     let (data_name, origin, (fit, cross_validation)) =
         on_measurements(setup, data, |m| fit_all(setup, method, folds, m))?;
+    let (cross_validation, prediction) = cross_validation.unzip();
     let mut warnings = warnings(&fit);
     warnings.extend(angle_warnings(&data_name, &origin));
     Ok(Report {
@@ -70,26 +75,27 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         fit,
         origin,
         cross_validation,
+        prediction,
         warnings,
     })
 }
 
-/// The fit of every parameter and the cross-validation if asked.
+/// The fit of every parameter and the cross-validation (and its calibration) if asked.
 fn fit_all(
     setup: &Setup,
     method: identify::Fit,
     folds: Option<Folds>,
     measurements: &[Measurement],
-) -> Result<(Fit, Option<CrossValidation>)> {
+) -> Result<(Fit, Option<(CrossValidation, Calibration)>)> {
     let obs = Observations::from_measurements(setup, measurements)?;
     let method = method.method();
     let fit = fit_by(&obs, &setup.model().parameters(), method)?;
-    let folds = folds.map(|f| match f {
-        Folds::LeaveOneOut => obs.postures,
-        Folds::Count(k) => k,
-    });
     let cv = folds
-        .map(|k| cross_validate_model(&obs, &fit, k, method))
+        .map(|f| {
+            let cv = cross_validate_model(&obs, &fit, f.count(obs.postures), method)?;
+            let calibration = calibrate(&obs, &cv, noise_floor(setup));
+            Ok::<_, Error>((cv, calibration))
+        })
         .transpose()?;
     Ok((fit, cv))
 }

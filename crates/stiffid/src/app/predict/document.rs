@@ -4,6 +4,7 @@
 
 use crate::app::document::mm;
 use crate::app::predict::{Point, Report};
+use crate::app::validate::document::interval_mm;
 use nalgebra::{Matrix6, Vector6};
 use serde::Serialize;
 
@@ -41,6 +42,12 @@ pub struct Document {
     pub tcp_deflection_mm: [f64; 3],
     /// Its standard deviation, mm.
     pub tcp_deflection_std_mm: Option<[f64; 3]>,
+    /// Its prediction interval `[lower, upper]` per coordinate at `prediction_level`, base frame,
+    /// mm (`null` ends: unbounded); `null` without a stiffness file that holds held-out residuals
+    /// (`identify --cross-validate`).
+    pub tcp_deflection_interval_mm: Option<[[Option<f64>; 2]; 3]>,
+    /// The level of the prediction intervals (`--level`).
+    pub prediction_level: f64,
     /// The tool's rotation, base frame, mrad.
     pub tcp_rotation_mrad: [f64; 3],
     /// Its standard deviation, mrad.
@@ -63,6 +70,9 @@ pub struct PointDocument {
     pub displacement_mm: [f64; 3],
     /// Its standard deviation, mm.
     pub displacement_std_mm: Option<[f64; 3]>,
+    /// Its prediction interval `[lower, upper]` per coordinate, base frame, mm (as
+    /// `tcp_deflection_interval_mm`).
+    pub displacement_interval_mm: Option<[[Option<f64>; 2]; 3]>,
     /// The displacement's length, mm.
     pub displacement_norm_mm: f64,
 }
@@ -127,6 +137,8 @@ impl Document {
             tcp_mm: tcp.position.map(mm).into(),
             tcp_deflection_mm: xyz(&d.displacement, 0, 1e3),
             tcp_deflection_std_mm: tcp.std.map(|s| xyz(&s, 0, 1e3)),
+            tcp_deflection_interval_mm: tcp.interval.map(interval_mm),
+            prediction_level: report.level,
             tcp_rotation_mrad: xyz(&d.displacement, 3, 1e3),
             tcp_rotation_std_mrad: tcp.std.map(|s| xyz(&s, 3, 1e3)),
             cartesian_compliance: ComplianceDocument {
@@ -156,6 +168,7 @@ impl PointDocument {
             position_mm: p.position.map(mm).into(),
             displacement_mm: t.into(),
             displacement_std_mm: p.std.map(|s| xyz(&s, 0, 1e3)),
+            displacement_interval_mm: p.interval.map(interval_mm),
             displacement_norm_mm: t.norm(),
         }
     }

@@ -5,6 +5,7 @@
 
 pub mod document;
 
+use crate::model::prediction::{check_level, Interval};
 use crate::model::Compliance;
 use crate::observation::cartesian;
 use crate::observation::deflection::{base_wrench, Frame, PointDeflection, Points};
@@ -26,8 +27,11 @@ pub struct Request<'a> {
     /// Where the wrench acts, flange frame, m; `None`: the setup's loading point.
     pub at: Option<Vector3<f64>>,
     /// The compliance of every parameter of the setup's model (with its covariance, for the
-    /// standard deviations); `None`: the setup's nominal.
+    /// standard deviations, and its prediction calibration, for the prediction intervals);
+    /// `None`: the setup's nominal.
     pub compliance: Option<Compliance>,
+    /// The level of the prediction intervals, within [`crate::model::prediction::LEVEL`].
+    pub level: f64,
 }
 
 /// One tool point's deflection, and its standard deviation when the compliance has a covariance.
@@ -39,6 +43,9 @@ pub struct Point {
     pub deflection: PointDeflection,
     /// The standard deviation of `deflection.displacement` (m, rad).
     pub std: Option<Vector6<f64>>,
+    /// The prediction interval of the translation (m, base frame) when the compliance carries a
+    /// prediction calibration ([`crate::model::prediction`]).
+    pub interval: Option<Interval>,
 }
 
 /// What the predict job found.
@@ -56,6 +63,8 @@ pub struct Report {
     pub base_wrench: Vector6<f64>,
     /// The compliance used.
     pub compliance: Compliance,
+    /// The level of the prediction intervals.
+    pub level: f64,
     /// Every measuring point of the setup's tool, in its order.
     pub measuring_points: Vec<Point>,
     /// The TCP.
@@ -70,6 +79,7 @@ pub struct Report {
 /// Runs the predict job.
 ///
 /// # Errors
+/// [`crate::Error::InvalidField`] (`level`) outside [`crate::model::prediction::LEVEL`];
 /// [`crate::Error::OutsideBox`] (field `q_deg[i]`) for an axis angle outside the robot's limits;
 /// without a compliance, those of [`crate::Setup::model_compliance`] (no nominal stiffness); with one, those
 /// of [`Compliance::check`] (not one value per parameter of the setup's model).
@@ -81,7 +91,9 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         frame,
         at,
         compliance,
+        level,
     } = request;
+    check_level("level", level)?;
     let field = |a: usize| format!("q_deg[{}]", a + 1);
     setup
         .robot()
@@ -97,7 +109,8 @@ pub fn run(request: Request<'_>) -> Result<Report> {
     let at = at.unwrap_or(setup.tool().loading_point);
     let frames = setup.robot().frames(&q);
     let base = base_wrench(&frames, &wrench, frame);
-    let point = |observed: &Vector3<f64>| point(setup, &frames, &at, observed, &base, &compliance);
+    let point =
+        |observed: &Vector3<f64>| point(setup, &frames, &at, observed, &base, &compliance, level);
     Ok(Report {
         measuring_points: setup.tool().measuring_points.iter().map(point).collect(),
         tcp: point(&setup.tool().tcp),
@@ -109,6 +122,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         at,
         base_wrench: base,
         compliance,
+        level,
     })
 }
 
@@ -120,6 +134,7 @@ fn point(
     observed: &Vector3<f64>,
     base: &Vector6<f64>,
     compliance: &Compliance,
+    level: f64,
 ) -> Point {
     let points = Points {
         setup,
@@ -129,9 +144,14 @@ fn point(
     };
     let deflection = points.deflection(base, &compliance.h);
     let std = compliance.covariance.as_ref().map(|c| deflection.std(c));
+    let interval = compliance
+        .prediction
+        .as_ref()
+        .map(|p| deflection.interval(p, level));
     Point {
         position: frames.point(observed),
         deflection,
         std,
+        interval,
     }
 }

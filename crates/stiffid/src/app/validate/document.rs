@@ -1,9 +1,11 @@
 //! The document of the validate job ([`crate::app::validate`]): `stiffid validate --json`,
 //! Python's `validate(...)`.
 
+use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::validate::Report;
+use crate::model::prediction::Interval;
 use crate::Setup;
 use serde::Serialize;
 
@@ -33,6 +35,25 @@ pub struct Document {
     pub rms_measured_mm: f64,
     /// `1 - rms_delta_b_mm / rms_measured_mm`.
     pub explained: f64,
+    /// With a stiffness file that holds held-out residuals (`identify --cross-validate`): the
+    /// coverage of the prediction intervals; else `null`.
+    pub prediction_intervals: Option<PredictionIntervals>,
+}
+
+/// How well the prediction intervals covered the measurements.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PredictionIntervals {
+    /// `jackknife+` (leave one posture out) or `cv+` (K folds).
+    pub method: &'static str,
+    /// The level asked (`--level`).
+    pub level: f64,
+    /// The share of the measured displacement coordinates inside their intervals.
+    pub coverage: f64,
+    /// Measured coordinates inside their intervals.
+    pub covered: usize,
+    /// Measured coordinates (three per measurement).
+    pub coordinates: usize,
 }
 
 /// One measurement against its prediction.
@@ -53,6 +74,9 @@ pub struct Check {
     pub predicted_mm: [f64; 3],
     /// `|measured - predicted|` (Eq. 22), mm.
     pub delta_b_mm: f64,
+    /// The prediction interval `[lower, upper]` of x, y, z, base frame, mm (`null` ends:
+    /// unbounded, too few held-out residuals for the level); `null` without held-out residuals.
+    pub interval_mm: Option<[[Option<f64>; 2]; 3]>,
 }
 
 impl Document {
@@ -75,6 +99,7 @@ impl Document {
                     measured_mm: c.measured.map(mm).into(),
                     predicted_mm: c.predicted.map(mm).into(),
                     delta_b_mm: mm(c.delta_b),
+                    interval_mm: c.interval.map(interval_mm),
                 })
                 .collect(),
             mean_delta_b_mm: mm(v.mean),
@@ -84,6 +109,18 @@ impl Document {
             max_measured_mm: mm(v.measured[1]),
             rms_measured_mm: mm(v.measured[2]),
             explained: v.explained,
+            prediction_intervals: v.prediction.as_ref().map(|p| PredictionIntervals {
+                method: p.method,
+                level: p.level,
+                coverage: p.coverage(),
+                covered: p.covered,
+                coordinates: p.coordinates,
+            }),
         }
     }
+}
+
+/// A prediction interval (m) in mm, `null` for an unbounded end.
+pub fn interval_mm(interval: Interval) -> [[Option<f64>; 2]; 3] {
+    interval.map(|c| c.map(|v| finite(mm(v))))
 }

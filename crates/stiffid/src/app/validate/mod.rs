@@ -5,7 +5,7 @@ pub mod document;
 
 use super::identify::{angle_warnings, on_measurements, Data, Origin};
 use super::Warning;
-use crate::identify::validate::{compare, Validation};
+use crate::identify::validate::{compare_at, Validation};
 use crate::model::Compliance;
 use crate::{Result, Setup};
 use std::io::Read;
@@ -19,6 +19,10 @@ pub struct Request<'a, R> {
     pub compliance: &'a Compliance,
     /// The measurements (as for [`super::identify`]), ideally postures not used to identify.
     pub data: Data<R>,
+    /// The level of the prediction intervals (with the compliance's prediction calibration),
+    /// within [`crate::model::prediction::LEVEL`]; default
+    /// [`crate::model::prediction::DEFAULT_LEVEL`].
+    pub level: f64,
 }
 
 /// What the validate job found.
@@ -47,9 +51,11 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         setup,
         compliance,
         data,
+        level,
     } = request;
+    crate::model::prediction::check_level("level", level)?;
     let (data_name, origin, validation) =
-        on_measurements(setup, data, |m| compare(setup, compliance, m))?;
+        on_measurements(setup, data, |m| compare_at(setup, compliance, m, level))?;
     let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
         data_name,

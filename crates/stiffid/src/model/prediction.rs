@@ -1,0 +1,215 @@
+//! Prediction intervals that cover what the model misses: jackknife+ and CV+ over the postures
+//! (Barber, Candes, Ramdas and Tibshirani, "Predictive inference with the jackknife+", Annals of
+//! Statistics 49(1), 2021, Sections 2 and 4).
+//!
+//! The confidence intervals of the stiffness ([`crate::identify::Uncertainty`]) are conditional on the
+//! model: a compliance the model lacks biases the stiffness and no covariance shows it. The
+//! prediction error, unlike the stiffness, is measurable on postures the fit has not seen, so the
+//! intervals a user acts on are built from it.
+//!
+//! ## The calibration (from a cross-validation over postures)
+//! Fold `k` of a cross-validation ([`crate::identify::cross_validation`];
+//! [`crate::identify::prediction::calibrate`]) fits the compliance `h_(-k)`
+//! without its postures and predicts each of their measurements: `mu_(-k) = Psi_i h_(-k)` (m,
+//! three coordinates). Each held-out coordinate `c` gives the score
+//!
+//! ```text
+//! R = |delta_m,c - mu_(-k),c| / s(mu_(-k)),    s(mu) = |mu| + sigma_0          (P1)
+//! ```
+//!
+//! the error relative to the size of the predicted displacement, `sigma_0` the noise floor (the
+//! standard deviation of one displacement coordinate from the setup's tracker noise), so that a
+//! residual carries to another posture, point and load: a model error grows with the deflection,
+//! the tracker noise does not. [`Calibration`] keeps, per fold, `h_(-k)` and the scores of its
+//! held-out coordinates (`N` scores in all).
+//!
+//! ## The interval
+//! For a new prediction (any posture, point and wrench: `Psi_x`, the three translation rows of
+//! the observation matrix there), each fold predicts `mu_(-k)(x) = Psi_x h_(-k)` and each score
+//! `R` of that fold gives the two values `mu_(-k),c(x) -+ R s(mu_(-k)(x))`. With `alpha = 1 -
+//! level`, the interval of coordinate `c` is
+//!
+//! ```text
+//! [ q-_alpha{ mu_(-k),c(x) - R s(mu_(-k)(x)) },  q+_alpha{ mu_(-k),c(x) + R s(mu_(-k)(x)) } ]   (P2)
+//! ```
+//!
+//! `q+` the `ceil((1 - alpha)(N + 1))`-th smallest of the `N` upper values (`+inf` beyond `N`),
+//! `q-` the `floor(alpha (N + 1))`-th smallest of the lower values (`-inf` below 1): Barber et
+//! al.'s Eq. (6), the jackknife+ with leave-one-posture-out folds, CV+ with `K` folds.
+//!
+//! ## The guarantee
+//! If the postures (each with its points and loads) are exchangeable, a new posture drawn like the
+//! measured ones, the jackknife+ interval of a score's unit covers the new measurement with
+//! probability at least `1 - 2 alpha` (Theorem 1) and, in practice and in our simulations, about
+//! `1 - alpha`; CV+ with `K` folds of `n` postures at least `1 - 2 alpha - min(2 (1 - 1/K) /
+//! (n/K + 1), (1 - K/n) / (K + 1))` (Theorem 4). This holds
+//! whatever the model misses: it needs no correct model and no Gaussian noise. The scores pool the
+//! coordinates of every point of a posture; the coverage is then that of a coordinate drawn at
+//! random among the measured ones, which the simulations check (`tests/it/prediction.rs`). It does
+//! not hold for postures unlike the measured ones (outside their range of angles or loads).
+
+use crate::{Error, Result};
+use nalgebra::{DMatrix, DVector};
+
+/// The most folds a calibration holds.
+pub const MAX_FOLDS: usize = 100_000;
+/// The most scores (held-out coordinates) a calibration holds.
+pub const MAX_SCORES: usize = 3_000_000;
+/// The level accepted: `[0.5, 0.999]`.
+pub const LEVEL: crate::common::limits::Range = crate::common::limits::Range::new(0.5, 0.999, "");
+/// The default level of the prediction intervals.
+pub const DEFAULT_LEVEL: f64 = 0.95;
+
+/// One fold of a calibration: the fit without its postures and the scores (P1) of their
+/// held-out coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldOut {
+    /// `h_(-k)`: the compliance of every parameter fitted without the fold's postures, SI.
+    pub compliance: DVector<f64>,
+    /// The score (P1) of every held-out coordinate (three per measurement), non-negative.
+    pub scores: Vec<f64>,
+}
+
+/// What prediction intervals are built from (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Calibration {
+    /// The number of postures the folds held out.
+    pub postures: usize,
+    /// `sigma_0` of the scale (P1), m.
+    pub noise_floor: f64,
+    /// One per fold (one per posture for the jackknife+).
+    pub folds: Vec<HeldOut>,
+}
+
+/// A prediction interval `[lower, upper]` of each translation coordinate x, y, z, m; an end is
+/// infinite when there are too few scores for the level.
+pub type Interval = [[f64; 2]; 3];
+
+impl Calibration {
+    /// `jackknife+` (one fold per posture) or `cv+`.
+    pub fn method(&self) -> &'static str {
+        match self.folds.len() == self.postures {
+            true => "jackknife+",
+            false => "cv+",
+        }
+    }
+
+    /// The number of scores `N`.
+    pub fn scores(&self) -> usize {
+        self.folds.iter().map(|f| f.scores.len()).sum()
+    }
+
+    /// The number of parameters of the folds' compliance.
+    pub fn parameters(&self) -> usize {
+        self.folds.first().map_or(0, |f| f.compliance.len())
+    }
+
+    /// The interval (P2) at `level` of the translation `rows * h` (`rows`: 3 x n, the translation
+    /// rows of the observation matrix at the point and wrench predicted, SI).
+    ///
+    /// # Panics
+    /// If `rows` does not have one column per parameter.
+    pub fn interval(&self, rows: &DMatrix<f64>, level: f64) -> Interval {
+        let n = self.scores();
+        let mut lower = Vec::with_capacity(n);
+        let mut upper = Vec::with_capacity(n);
+        let mu: Vec<(DVector<f64>, f64)> = self
+            .folds
+            .iter()
+            .map(|f| {
+                let mu = rows * &f.compliance;
+                let s = mu.norm() + self.noise_floor;
+                (mu, s)
+            })
+            .collect();
+        let [k_lo, k_hi] = ranks(n, level);
+        std::array::from_fn(|c| {
+            lower.clear();
+            upper.clear();
+            for (f, (mu, s)) in self.folds.iter().zip(&mu) {
+                for r in &f.scores {
+                    lower.push(mu[c] - r * s);
+                    upper.push(mu[c] + r * s);
+                }
+            }
+            [
+                k_lo.map_or(f64::NEG_INFINITY, |k| smallest(&mut lower, k)),
+                k_hi.map_or(f64::INFINITY, |k| smallest(&mut upper, k)),
+            ]
+        })
+    }
+}
+
+/// The 1-based ranks of `q-` and `q+` (P2) among `n` values at `level`; `None` for an infinite end.
+fn ranks(n: usize, level: f64) -> [Option<usize>; 2] {
+    // A hair below the product, so that 0.9 * 10 = 9.000000000000002 gives 9, not 10.
+    let slack = 1e-9;
+    let hi = (level * (n + 1) as f64 - slack).ceil() as usize;
+    let lo = ((1.0 - level) * (n + 1) as f64 + slack).floor() as usize;
+    [(lo >= 1).then_some(lo), (hi <= n && hi >= 1).then_some(hi)]
+}
+
+/// The `k`-th smallest (1-based) of `values`, reordering them.
+fn smallest(values: &mut [f64], k: usize) -> f64 {
+    *values.select_nth_unstable_by(k - 1, f64::total_cmp).1
+}
+
+/// Checks a level of prediction intervals, named `field`.
+///
+/// # Errors
+/// [`Error::InvalidField`] naming `field` unless `level` is in [`LEVEL`].
+pub fn check_level(field: &str, level: f64) -> Result<()> {
+    match LEVEL.contains(level) {
+        true => Ok(()),
+        false => Err(Error::InvalidField {
+            field: field.into(),
+            message: format!("{level}: expected a level in {LEVEL}, e.g. 0.95"),
+        }),
+    }
+}
+
+/// Whether each coordinate of `value` (m) lies in its interval.
+pub fn inside(interval: &Interval, value: &[f64; 3]) -> [bool; 3] {
+    std::array::from_fn(|c| interval[c][0] <= value[c] && value[c] <= interval[c][1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ranks_follow_barber_et_al() {
+        // N = 19 at 90%: ceil(0.9 * 20) = 18, floor(0.1 * 20) = 2.
+        assert_eq!(ranks(19, 0.9), [Some(2), Some(18)]);
+        // N = 9 at 90%: ceil(9.000000000000002) must be 9.
+        assert_eq!(ranks(9, 0.9), [Some(1), Some(9)]);
+        // Too few scores for 95%: both ends infinite.
+        assert_eq!(ranks(10, 0.95), [None, None]);
+    }
+
+    #[test]
+    fn one_fold_of_constant_prediction_gives_the_empirical_quantile() {
+        // One fold predicting 1 mm along x; scores 0.01..1.00 relative (N = 99 per coordinate
+        // pooled: 33 measurements).
+        let scores: Vec<f64> = (1..=99).map(|i| i as f64 / 100.0).collect();
+        let cal = Calibration {
+            postures: 1,
+            noise_floor: 0.0,
+            folds: vec![HeldOut {
+                compliance: DVector::from_vec(vec![1e-3]),
+                scores,
+            }],
+        };
+        let rows = DMatrix::from_column_slice(3, 1, &[1.0, 0.0, 0.0]);
+        let i = cal.interval(&rows, 0.9);
+        // |mu| = 1e-3: upper = mu + R_(90) * 1e-3, R_(90) the 90th smallest = 0.90.
+        assert!((i[0][1] - (1e-3 + 0.90e-3)).abs() < 1e-15, "{i:?}");
+        assert!((i[0][0] - (1e-3 - 0.90e-3)).abs() < 1e-15, "{i:?}");
+        assert!((i[1][1] - 0.90e-3).abs() < 1e-15, "{i:?}");
+        assert!(inside(&i, &[1.5e-3, 0.0, -0.8e-3]).iter().all(|b| *b));
+        assert_eq!(inside(&i, &[2.0e-3, 0.0, 0.0]), [false, true, true]);
+        assert!(check_level("level", 0.95).is_ok());
+        assert!(check_level("level", 1.0).is_err());
+        assert!(check_level("level", f64::NAN).is_err());
+    }
+}
