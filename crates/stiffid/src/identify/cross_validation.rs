@@ -122,7 +122,7 @@ impl CrossValidation {
 /// squared measured displacements `|delta_m|^2` (`A`, `B` their sums over the `n` postures).
 /// The postures are the independent units: the ratio `r = A / B` has the variance `n / (n - 1)
 /// sum_p (a_p - r b_p)^2 / B^2` (the delta method of a ratio estimator; Cochran, *Sampling
-/// Techniques*, 1977, Eq. 6.9), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
+/// Techniques*, 3rd ed., 1977, ch. 6), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
 /// `NaN` for one posture.
 pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
     let n = per_posture.len() as f64;
