@@ -41,6 +41,9 @@ pub enum WarningKind {
     /// A generated robot program states a feed only to its nearest unit (an LS feed in neither
     /// whole mm/sec nor whole cm/min).
     Feed,
+    /// Two postures of a designed group are near in axis angles or reach the same flange pose
+    /// ([`crate::design::distinct`]).
+    NearPostures,
 }
 
 impl WarningKind {
@@ -58,6 +61,7 @@ impl WarningKind {
             WarningKind::Meshes => "meshes",
             WarningKind::Misfit => "misfit",
             WarningKind::Feed => "feed",
+            WarningKind::NearPostures => "near-postures",
         }
     }
 }

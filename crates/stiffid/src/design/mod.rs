@@ -3,11 +3,12 @@
 //! [`criteria`] scores a group of postures (for the stiffness identification; [`calibration`] for
 //! the geometric and elastostatic calibration), [`Evaluator`] scores it fast for the search,
 //! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
-//! chooses them from a list of candidate postures, and [`target`] finds how many postures reach a
-//! predicted accuracy.
+//! chooses them from a list of candidate postures, [`target`] finds how many postures reach a
+//! predicted accuracy, and [`distinct`] flags postures of a group that are not distinct.
 
 pub mod calibration;
 pub mod criteria;
+pub mod distinct;
 mod evaluator;
 pub(crate) mod exchange;
 mod identifiable;

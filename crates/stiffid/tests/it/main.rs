@@ -12,6 +12,7 @@ mod comau_checks;
 mod common;
 mod compensate;
 mod criteria;
+mod distinct_postures;
 mod fanuc_data;
 mod formats_proptest;
 mod forward_model;

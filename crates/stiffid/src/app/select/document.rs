@@ -65,12 +65,31 @@ pub struct Document {
     /// With cell checks, for a local or global search: the same search without them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unconstrained: Option<Free>,
+    /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
+    /// pose within 10 mm and 2 deg: a wrist flip counts).
+    pub near_postures: Vec<NearDoc>,
     /// The postures file written (the command's `--out`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub out: Option<String>,
     /// The measurement plan's directory (the command's `--report`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub report: Option<String>,
+}
+
+/// Two postures of the group that are not distinct.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct NearDoc {
+    /// The two postures' numbers in the group (1-based).
+    pub postures: [usize; 2],
+    /// The largest difference of their axis angles, deg.
+    pub joint_distance_deg: f64,
+    /// The distance between their flange origins, mm.
+    pub flange_distance_mm: f64,
+    /// The angle between their flange orientations, deg.
+    pub flange_angle_deg: f64,
+    /// The same flange pose reached on another branch (a wrist flip), not close axis angles.
+    pub same_pose_other_branch: bool,
 }
 
 /// How many local searches stopped for one reason.
@@ -177,6 +196,16 @@ impl Document {
             pool: r.pool.as_ref().map(Pool::from),
             target: r.target.as_ref().map(Target::from),
             unconstrained: r.unconstrained.as_ref().map(Free::from),
+            near_postures: crate::design::distinct::near_pairs(setup.robot(), &r.postures)
+                .iter()
+                .map(|n| NearDoc {
+                    postures: [n.a + 1, n.b + 1],
+                    joint_distance_deg: n.joint_distance.to_degrees(),
+                    flange_distance_mm: n.position_distance * 1e3,
+                    flange_angle_deg: n.angle_distance.to_degrees(),
+                    same_pose_other_branch: n.same_pose_other_branch(),
+                })
+                .collect(),
             out: None,
             report: None,
         }

@@ -139,7 +139,8 @@ pub struct Report {
     /// With cell checks, for a local or global search without a target: the same search without
     /// them.
     pub unconstrained: Option<Unconstrained>,
-    /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    /// The job's warnings: postures of the group that are not distinct
+    /// ([`crate::design::distinct`]).
     pub warnings: Vec<Warning>,
 }
 
@@ -225,7 +226,6 @@ pub fn run(request: &Request) -> Result<Report> {
         solver: (request.method != Method::Pool)
             .then(|| request.options.solver.resolve(request.criterion)),
         evaluation: evaluate(request.setup, &found.postures),
-        postures: found.postures,
         start_value: found.start_value,
         value: found.value,
         evaluations: found.evaluations,
@@ -235,8 +235,30 @@ pub fn run(request: &Request) -> Result<Report> {
         pool: pool.map(|p| p.report(found.chosen)),
         target,
         unconstrained,
-        warnings: Vec::new(),
+        warnings: near_warnings(request.setup, &found.postures),
+        postures: found.postures,
     })
+}
+
+/// One warning per pair of near postures of `postures` ([`crate::design::distinct`]).
+fn near_warnings(setup: &Setup, postures: &[Vector6<f64>]) -> Vec<Warning> {
+    crate::design::distinct::near_pairs(setup.robot(), postures)
+        .iter()
+        .map(|n| {
+            let why = match n.same_pose_other_branch() {
+                true => "reach the same flange pose on another branch (a wrist flip)",
+                false => "have axis angles within 2 deg",
+            };
+            Warning::new(
+                crate::common::warning::WarningKind::NearPostures,
+                format!(
+                    "postures {} and {} {why}: they measure nearly the same thing; choose another posture for one of them",
+                    n.a + 1,
+                    n.b + 1
+                ),
+            )
+        })
+        .collect()
 }
 
 /// The group size of a request without a target.
