@@ -224,18 +224,6 @@ fn compose(plan: &Document, figures: &[Figure], w: &mut dyn Writer) {
         "If a posture cannot be measured, the last column says what the group predicts without it.".into(),
     ]);
     w.table(&postures_table(plan));
-    let postures: Vec<Vector6<f64>> = plan.rows.iter().map(|r| r.q).collect();
-    for n in stiffid::design::distinct::near_pairs(s.robot(), &postures) {
-        w.paragraph(&format!(
-            "Not distinct: postures {} and {} {} (axis angles up to {:.1} deg apart, flanges {:.1} mm and {:.1} deg apart): they measure nearly the same thing.",
-            n.a + 1,
-            n.b + 1,
-            if n.same_pose_other_branch() { "reach the same flange pose on another branch (a wrist flip)" } else { "have axis angles within 2 deg" },
-            n.joint_distance.to_degrees(),
-            n.position_distance * 1e3,
-            n.angle_distance.to_degrees()
-        ));
-    }
     w.table(&displacements_table(plan));
     w.heading(2, "The postures");
     for f in figures.iter().filter(|f| f.name.starts_with("posture")) {
