@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use stiffid::app::calibrate as calibrate_job;
 use stiffid::app::register as register_job;
 use stiffid::app::register::document::{Calibration, Document, Proposal};
-use stiffid::metrology::register::design;
+use stiffid::design::registration as design;
 
 /// The readings of `path` as a job's request runs on them.
 fn with_request<T>(

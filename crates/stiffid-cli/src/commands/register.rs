@@ -9,7 +9,7 @@ use crate::output::print_json_or;
 use anyhow::Result;
 use stiffid::app::register as job;
 use stiffid::app::register::document::{Document, Proposal};
-use stiffid::metrology::register::design;
+use stiffid::design::registration as design;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
 /// gets the `[tracker] base_from_tracker` fragment. Or `--postures N` proposes the postures to

@@ -1,7 +1,7 @@
 //! The best `n` of `u` candidates for any value of a group: every group enumerated when there
 //! are few, else the modified Fedorov exchange (Cook & Nachtsheim 1980, Technometrics 22(3)) from
 //! seeded random groups. A pool of postures ([`super::Pool`]) and a registration design
-//! ([`crate::metrology::register::design`]) choose their groups with it; each gives the value of a group of
+//! ([`crate::design::registration`]) choose their groups with it; each gives the value of a group of
 //! candidate indices (lower is better, `+infinity` for a group that determines nothing).
 
 use super::{PoolMethod, PoolOptions};

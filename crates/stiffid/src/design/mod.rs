@@ -4,7 +4,8 @@
 //! the geometric and elastostatic calibration), [`Evaluator`] scores it fast for the search,
 //! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
 //! chooses them from a list of candidate postures, [`target`] finds how many postures reach a
-//! predicted accuracy, and [`distinct`] flags postures of a group that are not distinct.
+//! predicted accuracy, [`distinct`] flags postures of a group that are not distinct, and
+//! [`registration`] chooses the postures that register the tracker best.
 
 pub mod calibration;
 pub mod criteria;
@@ -13,6 +14,7 @@ mod evaluator;
 pub(crate) mod exchange;
 mod identifiable;
 pub mod pool;
+pub mod registration;
 pub mod search;
 pub mod target;
 

@@ -6,7 +6,7 @@
 //! data ([`crate::app::identify`]).
 
 use super::Setup;
-use crate::app::{Warning, WarningKind};
+use crate::common::warning::{Warning, WarningKind};
 use crate::robot::Bodies;
 use crate::Robot;
 use nalgebra::Vector6;

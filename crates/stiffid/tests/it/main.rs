@@ -22,6 +22,7 @@ mod identify;
 mod identify_blocks;
 mod identify_streamed;
 mod jacobians;
+mod layout;
 mod joint_box;
 mod load_steps;
 mod load_steps_design;

@@ -8,7 +8,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::cell::Checker;
-use stiffid::metrology::register::design::{design, Options, LOAD_CHECKS};
+use stiffid::design::registration::{design, Options, LOAD_CHECKS};
 use stiffid::metrology::register::{self, Correspondence};
 use stiffid::Setup;
 

@@ -1,7 +1,7 @@
 //! The register job: the laser tracker's transform to the robot base from measuring points read
 //! by the tracker at known axis angles ([`crate::metrology::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation; or the postures to register in
-//! ([`propose`], [`crate::metrology::register::design`]).
+//! ([`propose`], [`crate::design::registration`]).
 
 pub mod document;
 
@@ -9,8 +9,8 @@ use super::in_data;
 pub use super::readings::{read, Request};
 use super::Warning;
 use crate::cell::{CheckKind, Checker};
+use crate::design::registration::{self as design, Design};
 use crate::io::readings::Readings;
-use crate::metrology::register::design::{self, Design};
 use crate::metrology::register::{self, Registration};
 use crate::{Result, Setup};
 

@@ -17,9 +17,7 @@
 //!
 //! Only the rotation turns a displacement measured in the tracker frame into the base frame, so
 //! the rotation's standard deviation is what a registration design minimises
-//! ([`rotation_std_per_noise`], [`design`]).
-
-pub mod design;
+//! ([`rotation_std_per_noise`], [`crate::design::registration`]).
 
 use crate::io::readings::Readings;
 use crate::observation::frames::DisplacementFrame;

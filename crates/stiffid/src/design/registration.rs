@@ -2,7 +2,7 @@
 //! measuring points determine the tracker's transform best.
 //!
 //! **Criterion.** The registration's covariance per unit noise is `(J^T J)^-1` (module
-//! [`super`]; Umeyama 1991, Horn 1987), `J` stacking `[I, -[b_i]x]` for every point `b_i` (base
+//! [`crate::metrology::register`]; Umeyama 1991, Horn 1987), `J` stacking `[I, -[b_i]x]` for every point `b_i` (base
 //! frame) read. Only its rotation block matters for identification: a displacement measured in
 //! the tracker frame is turned into the base frame by the rotation alone (the translation
 //! cancels in loaded minus unloaded), and a rotation error `dtheta` moves a displacement `d` by
@@ -24,15 +24,15 @@
 //! the inertia about the base origin of its points, so a group's `C_rr` is one 3 x 3 Cholesky.
 //! A coordinate search then moves each chosen posture's axis angles while the criterion falls
 //! and the posture stays feasible, and the group's covariance is recomputed by the
-//! SVD of its `J` ([`super::unit_covariance`]). The same seed gives the same postures whatever
+//! SVD of its `J` ([`crate::metrology::register::unit_covariance`]). The same seed gives the same postures whatever
 //! the thread count. On the guide's tracker cell, five postures: 1.50e-4 deg from 20 000
 //! candidates (the default), 1.33e-4 deg from 100 000, against a median of 3.6e-4 deg for
 //! random feasible groups.
 
-use super::{unit_covariance, MIN_POINTS};
 use crate::cell::{CheckKind, Checker};
 use crate::common::limits;
 use crate::design::{exchange, PoolMethod, PoolOptions};
+use crate::metrology::register::{unit_covariance, MIN_POINTS};
 use crate::{Error, Result, Setup};
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
@@ -346,7 +346,7 @@ mod tests {
             .map(|q| Moments::of(&points(&setup, q)))
             .collect();
         let fast = criterion(moments.iter());
-        let svd = super::super::rotation_std_per_noise(&all);
+        let svd = crate::metrology::register::rotation_std_per_noise(&all);
         assert!((fast - svd).abs() < 1e-9 * svd, "{fast} vs {svd}");
         let one_point = [Moments::of(&all[..1])];
         assert!(criterion(one_point.iter()).is_infinite());
