@@ -8,6 +8,7 @@
 //! of reach) or `UnidentifiableError`, with the library's message. Long calls release the GIL.
 
 mod arrays;
+mod calibrate;
 mod cartesian;
 mod compare;
 mod compensate;
@@ -19,6 +20,7 @@ mod ik;
 mod machining;
 mod measure;
 mod model;
+mod output;
 mod predict;
 mod register;
 mod robot;
@@ -50,5 +52,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(machining::read_program, m)?)?;
     m.add_function(wrap_pyfunction!(register::register, m)?)?;
     m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
+    m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
     Ok(())
 }

@@ -16,6 +16,9 @@ use stiffid::setup::reference::{self, Meshes};
 #[pyclass(frozen, module = "stiffid", name = "Setup")]
 pub struct Setup {
     pub inner: stiffid::Setup,
+    /// The files it was read from (the setup file, its robot file), which a call that writes
+    /// files never writes over.
+    pub files: Vec<PathBuf>,
 }
 
 #[pymethods]
@@ -26,6 +29,7 @@ impl Setup {
     fn builtin(name: &str) -> PyResult<Self> {
         Ok(Self {
             inner: setup::builtin(name).map_err(raise)?,
+            files: Vec::new(),
         })
     }
 
@@ -44,7 +48,9 @@ impl Setup {
     fn from_file(py: Python<'_>, path: PathBuf, package_paths: Vec<PathBuf>) -> PyResult<Self> {
         let text = error::read(&path)?;
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-        Self::parse(py, &text, &path.display().to_string(), &dir, &package_paths)
+        let mut setup = Self::parse(py, &text, &path.display().to_string(), &dir, &package_paths)?;
+        setup.files.push(path);
+        Ok(setup)
     }
 
     /// A setup from the text of a setup TOML (``source_name`` names it in errors; robot files are
@@ -90,7 +96,10 @@ impl Setup {
     fn with_model(&self, py: Python<'_>, toml: &str, source_name: &str) -> PyResult<Self> {
         let inner = crate::model::with_model(&self.inner, toml, source_name)?;
         crate::documents::warn(py, &setup::plausibility::warnings(&inner))?;
-        Ok(Self { inner })
+        Ok(Self {
+            inner,
+            files: self.files.clone(),
+        })
     }
 
     /// Each posture's checks in the cell (the setup's bounds, floor, obstacles, self-collision,
@@ -370,7 +379,9 @@ impl Setup {
         let inner = reference::setup_text_with_meshes(text, source_name, dir, read, &meshes)
             .map_err(|e: Failure| e.0)?;
         crate::documents::warn(py, &setup::plausibility::warnings(&inner))?;
-        Ok(Self { inner })
+        let robot_file = dir.join(inner.robot_ref());
+        let files = Vec::from_iter(robot_file.is_file().then_some(robot_file));
+        Ok(Self { inner, files })
     }
 
     /// A group of postures within the setup's bounds (at most 10000).

@@ -65,15 +65,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
     let path = &args.data;
     let priors = match (args.tolerance_mm, args.tolerance_deg) {
-        (Some(l), Some(a)) => {
-            if !(l.is_finite() && l > 0.0 && a.is_finite() && a > 0.0) {
-                bail!("--tolerance-mm, --tolerance-deg: expected positive numbers");
-            }
-            Some(Tolerances {
-                length: l * 1e-3,
-                angle: a.to_radians(),
-            })
-        }
+        (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(option_names)?),
         _ => None,
     };
     let content = load::read(path)?;
@@ -100,14 +92,8 @@ pub fn run(args: &Args) -> Result<()> {
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);
     if let Some(o) = &out {
-        match &document.robot_file {
-            Some(text) => {
-                let fragment: String = (document.fragment.lines())
-                    .map(|l| format!("# {}\n", l.trim_start_matches("# ")))
-                    .collect();
-                let note = "\n# The setup's tracker and measuring points from this calibration:\n";
-                o.write(format!("{text}{note}{fragment}").as_bytes())?
-            }
+        match document.robot_file_out() {
+            Some(text) => o.write(text.as_bytes())?,
             None => bail!(
                 "--out: {} (--urdf-out writes it)",
                 document.robot_file_error.clone().unwrap_or_default()
@@ -119,6 +105,16 @@ pub fn run(args: &Args) -> Result<()> {
     }
     output::warnings(&document.warnings);
     print_json_or(args.common.json, &document, text_of)
+}
+
+/// The job's field names as the command's options.
+fn option_names(e: stiffid::Error) -> anyhow::Error {
+    match e {
+        stiffid::Error::InvalidField { field, message } if field.starts_with("tolerance") => {
+            anyhow::anyhow!("--tolerance-mm, --tolerance-deg: {message}")
+        }
+        e => e.into(),
+    }
 }
 
 fn prepare(path: &Option<PathBuf>, option: &str) -> Result<Option<OutFile>> {

@@ -4,8 +4,9 @@ A thin Python layer over the stiffid Rust library (the same code as the ``stiffi
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
 identification and validation from measurements (``identify``, ``validate``), the deflection
 under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
-with ``process_force`` and ``read_program``), the tracker's registration and the cell's
-calibration from raw readings (``register``, ``calibrate_cell``), the Monte Carlo
+with ``process_force`` and ``read_program``), the tracker's registration, the cell's
+calibration and the robot's geometric and elastostatic calibration from raw readings
+(``register``, ``calibrate_cell``, ``calibrate``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
 
 Units: postures in degrees (controller axis angles), points in mm, forces in N, moments in Nm,
@@ -31,6 +32,7 @@ from ._stiffid import (
     Study,
     UnidentifiableError,
     __version__,
+    calibrate,
     calibrate_cell,
     cartesian_compliance,
     cartesian_stiffness,
@@ -56,6 +58,7 @@ __all__ = [
     "Study",
     "UnidentifiableError",
     "__version__",
+    "calibrate",
     "calibrate_cell",
     "cartesian_compliance",
     "cartesian_stiffness",

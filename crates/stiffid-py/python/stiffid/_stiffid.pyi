@@ -401,3 +401,18 @@ def register(
 
 def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]]) -> dict[str, Any]:
     """The document of `stiffid calibrate-cell --json`: the transform as for register, points (setup_mm, fitted_mm, shift_mm, std_mm), absolute_error_rms_mm, noise_std_mm, readings, iterations, fragment."""
+def calibrate(
+    setup: Setup,
+    readings: _PathLike,
+    *,
+    geometry: Literal["none", "offsets", "full"] = "full",
+    gravity: Literal["none", "masses", "lumped"] = "none",
+    validate: Optional[_PathLike] = None,
+    reregister: bool = False,
+    cross_validate: bool = False,
+    tolerance_mm: Optional[float] = None,
+    tolerance_deg: Optional[float] = None,
+    out: Optional[_PathLike] = None,
+    urdf_out: Optional[_PathLike] = None,
+) -> dict[str, Any]:
+    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, validation, cross_validation, robot_file, urdf, fragment; out and urdf_out write the calibrated robot file and URDF."""

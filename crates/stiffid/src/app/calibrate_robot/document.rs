@@ -227,6 +227,20 @@ impl Document {
     }
 }
 
+impl Document {
+    /// The text of the calibrated robot file (`stiffid calibrate --out`, Python's `out=`): the
+    /// robot TOML with the setup's tracker and measuring points from this calibration in comments
+    /// at its end; `None` when there is no robot file (`robot_file_error` says why).
+    pub fn robot_file_out(&self) -> Option<String> {
+        let text = self.robot_file.as_ref()?;
+        let fragment: String = (self.fragment.lines())
+            .map(|l| format!("# {}\n", l.trim_start_matches("# ")))
+            .collect();
+        let note = "\n# The setup's tracker and measuring points from this calibration:\n";
+        Some(format!("{text}{note}{fragment}"))
+    }
+}
+
 /// A frame's translation (m) and rotation vector (rad).
 fn frame_vector(t: &nalgebra::Isometry3<f64>) -> [f64; 6] {
     let (p, r) = (t.translation.vector, t.rotation.scaled_axis());

@@ -47,6 +47,31 @@ pub struct Tolerances {
     pub angle: f64,
 }
 
+impl Tolerances {
+    /// The tolerances of a length, `length_mm` (mm), and of an angle, `angle_deg` (deg).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`tolerance_mm, tolerance_deg`) unless both are positive and
+    /// finite.
+    pub fn from_mm_deg(length_mm: f64, angle_deg: f64) -> Result<Self> {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        match positive(length_mm) && positive(angle_deg) {
+            true => Ok(Tolerances {
+                length: length_mm * 1e-3,
+                angle: angle_deg.to_radians(),
+            }),
+            false => Err(Error::InvalidField {
+                field: "tolerance_mm, tolerance_deg".into(),
+                message: format!(
+                    "expected positive numbers, got {} and {}",
+                    crate::common::limits::number(length_mm),
+                    crate::common::limits::number(angle_deg)
+                ),
+            }),
+        }
+    }
+}
+
 /// What the job needs.
 pub struct Request<'a> {
     /// The readings to fit (the setup, the file's name and text), as `register` reads them.

@@ -1,0 +1,118 @@
+//! `stiffid.calibrate`: the robot calibration job of `stiffid calibrate`
+//! ([`stiffid::app::calibrate_robot`]) and the calibrated robot's files.
+
+use crate::documents::{to_python, warn};
+use crate::error::{self, raise, value};
+use crate::output;
+use crate::setup::Setup;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use stiffid::app::calibrate_robot::document::Document;
+use stiffid::app::calibrate_robot::{self as job, Tolerances};
+use stiffid::app::readings::Request as Readings;
+
+/// Calibrates the robot from the unloaded ``readings`` of a campaign (a CSV path in the ``stiffid
+/// register --data`` format: ``posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm``
+/// or ``x_mm,y_mm,z_mm`` in the base frame; with load steps only the unloaded readings count):
+/// the robot's geometric errors (``geometry``: ``"none"``, the tracker and the measuring points
+/// only, as ``calibrate_cell``; ``"offsets"``, the joint angle offsets too; ``"full"``, the
+/// default, every joint error with the dependent ones merged), its deflection under its own
+/// weight (``gravity``: ``"none"``, the default; ``"masses"``, one compliance per joint with the
+/// robot's link masses and centres; ``"lumped"``, compliance times mass moment), the tracker's
+/// registration and the measuring points, fitted together by Levenberg-Marquardt (docs/model.md,
+/// geometric and elastostatic calibration). ``validate``: held-out readings (same format) whose
+/// 3D position error the calibration predicts (``reregister=True``: the tracker registered anew
+/// on them, another series); ``cross_validate=True``: each posture's error predicted by the fit
+/// of the others; ``tolerance_mm`` and ``tolerance_deg`` together: the nominal tolerances of the
+/// joints' length and angle errors as priors. The same job as ``stiffid calibrate``: returns its
+/// document (docs/schemas/calibrate.schema.json) as a dict, equal to ``stiffid calibrate
+/// --json``: ``parameters`` (``name``, ``kind``, ``unit``, ``nominal``, ``value``, ``sd``,
+/// ``identified``), ``merged``, ``rank``, ``condition``, ``correlations``, ``residual_rms_mm``,
+/// ``nominal_rms_mm``, ``noise_std_mm``, ``noise_ratio``, ``validation`` and
+/// ``cross_validation`` (``rms_mm``, ``max_mm``, ``nominal_rms_mm``, the error of every held-out
+/// posture and point), ``robot_file``, ``urdf``, ``fragment`` and ``warnings``; the warnings are
+/// raised as ``UserWarning`` too.
+///
+/// ``out``: writes the calibrated robot file (robot TOML, the calibrated DH table and axis map,
+/// the setup's tracker and measuring points in comments at its end; point a setup's ``robot`` at
+/// it and every function uses the calibrated robot), byte for byte what ``stiffid calibrate
+/// --out`` writes; ``InputError`` for a URDF robot or a fitted lateral error (``urdf_out``
+/// writes it). ``urdf_out``: the calibrated robot as a URDF. Each checked before the fit (never
+/// over a file the call reads, a directory or a dangling symlink) and written whole after it.
+/// ``InputError`` naming the file, line and column for bad readings.
+#[pyfunction]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, out=None, urdf_out=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn calibrate<'py>(
+    py: Python<'py>,
+    setup: &Setup,
+    readings: PathBuf,
+    geometry: &str,
+    gravity: &str,
+    validate: Option<PathBuf>,
+    reregister: bool,
+    cross_validate: bool,
+    tolerance_mm: Option<f64>,
+    tolerance_deg: Option<f64>,
+    out: Option<PathBuf>,
+    urdf_out: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let priors = match (tolerance_mm, tolerance_deg) {
+        (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(raise)?),
+        (None, None) => None,
+        _ => return Err(value("tolerance_mm, tolerance_deg: give both or neither")),
+    };
+    if reregister && validate.is_none() {
+        return Err(value(
+            "reregister: only with validate= (the held-out readings)",
+        ));
+    }
+    let text = error::read(&readings)?;
+    let held = validate.as_ref().map(|p| error::read(p)).transpose()?;
+    let mut inputs = setup.files.clone();
+    inputs.extend(
+        [Some(readings.clone()), validate.clone()]
+            .into_iter()
+            .flatten(),
+    );
+    let prepare = |path: &Option<PathBuf>, what, others: &[output::OutFile]| {
+        (path.as_ref())
+            .map(|p| output::prepare(p, what, &inputs, others))
+            .transpose()
+    };
+    let out_file = prepare(&out, "out", &[])?;
+    let urdf_file = prepare(&urdf_out, "urdf_out", out_file.as_slice())?;
+    let request = job::Request {
+        readings: Readings {
+            setup: &setup.inner,
+            name: readings.display().to_string(),
+            text: &text,
+        },
+        geometry: geometry.parse().map_err(raise)?,
+        gravity: gravity.parse().map_err(raise)?,
+        validate: (validate.as_ref().zip(held.as_deref()))
+            .map(|(p, t)| (p.display().to_string(), t)),
+        reregister,
+        cross_validate,
+        priors,
+    };
+    let report = py.detach(|| job::run(&request)).map_err(raise)?;
+    let document = Document::new(&report, setup.inner.name());
+    let robot_file = match (&out_file, document.robot_file_out()) {
+        (Some(file), Some(text)) => Some((file, text)),
+        (Some(_), None) => {
+            let why = document.robot_file_error.clone().unwrap_or_default();
+            return Err(value(format!("out: {why} (urdf_out writes it)")));
+        }
+        (None, _) => None,
+    };
+    warn(py, &document.warnings)?;
+    if let Some((file, text)) = robot_file {
+        file.write(text.as_bytes())?;
+    }
+    if let Some(file) = &urdf_file {
+        file.write(document.urdf.as_bytes())?;
+    }
+    to_python(py, &document, &[])
+}

@@ -1,0 +1,168 @@
+"""calibrate: noise-free readings of a robot with known geometric errors give them back, the same
+document and files as `stiffid calibrate`, and a setup pointing at the calibrated robot file
+serves every function with the calibrated robot."""
+
+import re
+
+import numpy as np
+import pytest
+
+import stiffid
+from test_schemas import assert_valid
+
+SETUP = "zhang2021-comau-nj165"
+HEADER = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm"
+# base_from_tracker: a turn of 90 deg about z and a translation, mm.
+ROTATION = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+TRANSLATION_MM = np.array([3000.0, -2000.0, 1500.0])
+# The true robot's errors: (joint, field of the robot file, nominal, true value).
+ERRORS = [(3, "a_mm", 1175.0, 1175.5), (4, "d_mm", 1444.0, 1444.3), (5, "alpha_deg", 90.0, 90.02)]
+
+
+def postures(n, seed):
+    """Postures spread over the COMAU's range, deg."""
+    u = np.random.default_rng(seed).random((n, 6)) - 0.5
+    return u * [100, 60, 60, 200, 60, 200] + [0, 0, -90, 0, 60, 0]
+
+
+def readings(robot, points_mm, qs, path):
+    """Every measuring point in every posture of `robot`, as the tracker reads it."""
+    lines = [HEADER]
+    for i, q in enumerate(qs):
+        pose = robot.flange_pose(q)
+        for k, point in enumerate(points_mm):
+            tracker = ROTATION.T @ ((pose @ np.append(point, 1.0))[:3] - TRANSLATION_MM)
+            lines.append(f"P{i + 1},{k + 1}," + ",".join(repr(float(v)) for v in [*q, *tracker]))
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def joint_field(text, joint, field, value):
+    """The robot file `text` with `field` of its `joint`-th [[joint]] table set to `value`."""
+    tables = text.split("[[joint]]")
+    tables[joint] = re.sub(rf"(?m)^{field} = .*$", f"{field} = {value!r}", tables[joint], count=1)
+    return "[[joint]]".join(tables)
+
+
+@pytest.fixture(scope="module")
+def campaign(paper, tmp_path_factory):
+    """The true robot (the paper's with ERRORS, from the robot file a cell-only calibration of the
+    nominal robot writes) and its readings: 25 postures to fit, 10 held out."""
+    d = tmp_path_factory.mktemp("calibrate")
+    nominal_readings = readings(paper.robot, paper.measuring_points_mm, postures(12, 3), d / "nominal.csv")
+    doc = stiffid.calibrate(paper, nominal_readings, geometry="none", out=d / "nominal.toml")
+    assert doc["residual_rms_mm"] < 1e-6
+    nominal = stiffid.Robot.from_file(d / "nominal.toml")
+    q = postures(5, 4)
+    # The written robot file is the nominal robot.
+    np.testing.assert_allclose(nominal.flange_pose(q), paper.robot.flange_pose(q), rtol=0, atol=1e-9)
+    text = (d / "nominal.toml").read_text()
+    for joint, field, before, after in ERRORS:
+        assert re.search(rf"(?m)^{field} = {before}$", text.split("[[joint]]")[joint]), (joint, field)
+        text = joint_field(text, joint, field, after)
+    (d / "true.toml").write_text(text)
+    true = stiffid.Robot.from_file(d / "true.toml")
+    points = paper.measuring_points_mm
+    fit = readings(true, points, postures(25, 1), d / "fit.csv")
+    held = readings(true, points, postures(10, 2), d / "held.csv")
+    return d, true, fit, held
+
+
+def test_known_errors_come_back_with_the_commands_document_and_files(paper, cli, campaign):
+    d, _, fit, held = campaign
+    mine = stiffid.calibrate(paper, fit, validate=held, out=d / "py.toml", urdf_out=d / "py.urdf")
+    assert mine["residual_rms_mm"] < 1e-6 and mine["nominal_rms_mm"] > 0.1
+    v = mine["validation"]
+    assert v["rms_mm"] < 1e-6 and v["nominal_rms_mm"] > 0.1 and len(v["errors"]) == 10 * 4
+    values = {p["name"]: p for p in mine["parameters"]}
+    for (joint, field, before, after), unit in zip(ERRORS, ["mm", "mm", "deg"]):
+        p = values[f"joint{joint}.{field.split('_')[0]}"]
+        assert p["identified"] and p["unit"] == unit and p["nominal"] == 0.0
+        assert abs(p["value"] - (after - before)) < 1e-7, p
+    theirs = cli("calibrate", "--setup", SETUP, "--data", fit, "--validate", held,
+                 "--out", d / "cli.toml", "--urdf-out", d / "cli.urdf", "--json")
+    assert mine == theirs
+    assert (d / "py.toml").read_bytes() == (d / "cli.toml").read_bytes()
+    assert (d / "py.urdf").read_bytes() == (d / "cli.urdf").read_bytes()
+    assert_valid("calibrate", mine)
+
+
+@pytest.mark.parametrize(
+    "kwargs, flags",
+    [
+        (dict(geometry="offsets", cross_validate=True), ["--geometry", "offsets", "--cross-validate"]),
+        (dict(gravity="lumped"), ["--gravity", "lumped"]),
+        (dict(tolerance_mm=0.5, tolerance_deg=0.05), ["--tolerance-mm", "0.5", "--tolerance-deg", "0.05"]),
+        (dict(reregister=True), ["--reregister"]),
+    ],
+)
+def test_every_option_equals_the_command(paper, cli, campaign, kwargs, flags):
+    _, _, fit, held = campaign
+    if kwargs.get("reregister"):
+        kwargs, flags = dict(kwargs, validate=held), [*flags, "--validate", held]
+    with pytest.warns(UserWarning) if kwargs.get("geometry") == "offsets" else _nothing():
+        mine = stiffid.calibrate(paper, fit, **kwargs)
+    assert mine == cli("calibrate", "--setup", SETUP, "--data", fit, *flags, "--json")
+
+
+def test_a_setup_with_the_calibrated_robot_serves_every_function(paper, cli, campaign):
+    d, true, fit, _ = campaign
+    stiffid.calibrate(paper, fit, out=d / "calibrated.toml")
+    text = cli("setups", "show", SETUP, parse=False)
+    assert 'robot = "comau-smart5-nj165-3.0"' in text
+    setup_file = d / "calibrated-setup.toml"
+    setup_file.write_text(text.replace('robot = "comau-smart5-nj165-3.0"', 'robot = "calibrated.toml"'))
+    calibrated = stiffid.Setup.from_file(setup_file)
+    assert calibrated.robot.name.endswith("(calibrated)")
+    # The tracker registers on the calibrated robot to the readings' rounding, not on the nominal.
+    assert stiffid.register(calibrated, fit)["residual_rms_mm"] < 1e-6
+    assert stiffid.register(paper, fit)["residual_rms_mm"] > 0.1
+    # Its joints move as the true robot's: the flange's displacement between two postures.
+    qs = postures(2, 5)
+    poses = calibrated.robot.flange_pose(qs)
+    truth = true.flange_pose(qs)
+    moved = np.linalg.solve(poses[0], poses[1])
+    np.testing.assert_allclose(moved, np.linalg.solve(truth[0], truth[1]), atol=1e-8)
+    q, w = [10, 20, -90, 30, 20, 10], [100, -50, 200, 5, 0, 3]
+    theirs = cli("predict", "--setup", setup_file, "--q-deg", ",".join(map(str, q)),
+                 "--wrench", ",".join(map(str, w)), "--json")
+    mine = stiffid.predict(calibrated, q, w)
+    assert mine == dict(theirs, setup=mine["setup"])
+    assert mine != stiffid.predict(paper, q, w) | {"setup": mine["setup"]}
+
+
+def test_bad_arguments_are_refused_and_nothing_is_written(paper, campaign, tmp_path):
+    d, _, fit, held = campaign
+    before = fit.read_bytes()
+    with pytest.raises(stiffid.InputError, match=r"^out .*fit.csv: refusing to write over the input file"):
+        stiffid.calibrate(paper, fit, out=fit)
+    assert fit.read_bytes() == before
+    with pytest.raises(stiffid.InputError, match=r"^urdf_out .*: refusing to write over the input file .*held.csv"):
+        stiffid.calibrate(paper, fit, validate=held, urdf_out=held)
+    with pytest.raises(stiffid.InputError, match=r"^urdf_out .*same.toml: the same file as out"):
+        stiffid.calibrate(paper, fit, out=tmp_path / "same.toml", urdf_out=tmp_path / "same.toml")
+    with pytest.raises(stiffid.InputError, match=r"^out .*: exists and is not a regular file"):
+        stiffid.calibrate(paper, fit, out=tmp_path)
+    with pytest.raises(stiffid.InputError, match=r"^out .*nowhere/x.toml: no directory"):
+        stiffid.calibrate(paper, fit, out=tmp_path / "nowhere" / "x.toml")
+    with pytest.raises(stiffid.InputError, match=r"^tolerance_mm, tolerance_deg: give both or neither"):
+        stiffid.calibrate(paper, fit, tolerance_mm=0.5)
+    with pytest.raises(stiffid.InputError, match=r"^tolerance_mm, tolerance_deg: expected positive numbers, got -1 and 0.1"):
+        stiffid.calibrate(paper, fit, tolerance_mm=-1, tolerance_deg=0.1)
+    with pytest.raises(stiffid.InputError, match=r"^reregister: only with validate="):
+        stiffid.calibrate(paper, fit, reregister=True)
+    with pytest.raises(stiffid.InputError, match=r"geometry.*'everything'.*none, offsets, full"):
+        stiffid.calibrate(paper, fit, geometry="everything")
+    with pytest.raises(stiffid.InputError, match=r"gravity.*masses"):
+        stiffid.calibrate(paper, fit, gravity="masses")
+    assert list(tmp_path.iterdir()) == []
+
+
+class _nothing:
+    """No warning expected (a context that checks nothing)."""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
