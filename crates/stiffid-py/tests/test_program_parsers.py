@@ -1,6 +1,8 @@
 """Every RAPID program stiffid writes parses with an independent parser of the language: PyPI's
 rapidchecker (a pyparsing grammar of ABB RAPID, pinned in requirements-test.txt) finds no grammar
-or format error in a program generated from G-code nor in a RAPID program compensated in place."""
+or format error in a program generated from G-code, with Cartesian or joint targets, nor in a RAPID
+program compensated in place. The milling pocket's first wall (straight moves and an arc, its
+process and tool) keeps the parser's seconds few; the whole pocket's program has the same lines."""
 
 import warnings
 
@@ -12,25 +14,47 @@ from conftest import REPO
 check = pytest.importorskip("rapidchecker.check")
 
 MILLING = REPO / "examples" / "milling"
-SETUP = MILLING / "fanuc-milling.toml"
 STIFFNESS = MILLING / "stiffness.json"
 PROCESS = MILLING / "aluminium.toml"
 
 
-def test_generated_and_compensated_rapid_programs_parse(tmp_path):
-    setup = stiffid.Setup.from_file(SETUP)
-    with pytest.warns(UserWarning, match="plunge"):
-        generated = stiffid.compensate(setup, stiffness=STIFFNESS, program=MILLING / "pocket.nc",
-                                       process=PROCESS, output="rapid", targets="joint")["program"]
-    assert "MoveAbsJ" in generated
-    assert check.check_format(generated) == []
-    module = tmp_path / "POCKET.mod"
-    module.write_text(generated)
+@pytest.fixture(scope="module")
+def wall(tmp_path_factory):
+    """The pocket's header and first wall (down to its first arc) with its program end."""
+    lines = (MILLING / "pocket.nc").read_text().splitlines()
+    arc = next(i for i, line in enumerate(lines) if line.startswith("G3"))
+    path = tmp_path_factory.mktemp("rapid") / "wall.nc"
+    path.write_text("\n".join(lines[: arc + 3] + ["G0 Z5", "M05", "M30"]) + "\n")
+    return path
+
+
+@pytest.fixture(scope="module")
+def setup():
+    """The milling setup with the spindle's mass, which a RAPID tooldata needs."""
+    text = (MILLING / "fanuc-milling.toml").read_text()
+    spindle = "[tool]\nmass_kg = 15.0\ncentre_of_mass_mm = [0.0, 0.0, 120.0]\n"
+    return stiffid.Setup.from_toml(text.replace("[tool]\n", spindle, 1), base_dir=MILLING)
+
+
+def generate(setup, program, **kwargs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        compensated = stiffid.compensate(setup, stiffness=STIFFNESS, program=module, process=PROCESS)["program"]
-    assert compensated != generated
+        return stiffid.compensate(setup, stiffness=STIFFNESS, program=program, process=PROCESS, **kwargs)["program"]
+
+
+@pytest.mark.parametrize("targets, move", [("cartesian", "MoveL ["), ("joint", "MoveAbsJ")])
+def test_generated_rapid_programs_parse(setup, wall, targets, move):
+    generated = generate(setup, wall, output="rapid", targets=targets)
+    assert move in generated
+    assert check.check_format(generated) == []
+
+
+def test_a_rapid_program_compensated_in_place_parses(setup, wall, tmp_path):
+    module = tmp_path / "WALL.mod"
+    module.write_text(generate(setup, wall, output="rapid", targets="joint"))
+    compensated = generate(setup, module)
+    assert compensated != module.read_text()
     assert check.check_format(compensated) == []
     # The parser is not a formality: a statement without its ';' is an error.
-    broken = compensated.replace("tool0;", "tool0", 1)
-    assert check.check_format(broken) != []
+    broken = compensated.replace("ConfL \\On;", "ConfL \\On", 1)
+    assert broken != compensated and check.check_format(broken) != []
