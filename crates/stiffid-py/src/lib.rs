@@ -21,6 +21,7 @@ mod machining;
 mod measure;
 mod model;
 mod output;
+mod plan;
 mod predict;
 mod register;
 mod robot;
@@ -53,5 +54,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(register::register, m)?)?;
     m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
     Ok(())
 }

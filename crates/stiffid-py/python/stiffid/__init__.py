@@ -2,7 +2,7 @@
 
 A thin Python layer over the stiffid Rust library (the same code as the ``stiffid`` command):
 robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
-identification and validation from measurements (``identify``, ``validate``), the deflection
+the measurement plan of a group (``plan``), identification and validation from measurements (``identify``, ``validate``), the deflection
 under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
 with ``process_force`` and ``read_program``), the tracker's registration, the cell's
 calibration and the robot's geometric and elastostatic calibration from raw readings
@@ -39,6 +39,7 @@ from ._stiffid import (
     compensate,
     deflection,
     identify,
+    plan,
     predict,
     process_force,
     read_program,
@@ -65,6 +66,7 @@ __all__ = [
     "compensate",
     "deflection",
     "identify",
+    "plan",
     "predict",
     "process_force",
     "read_program",

@@ -416,3 +416,11 @@ def calibrate(
     urdf_out: Optional[_PathLike] = None,
 ) -> dict[str, Any]:
     """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, validation, cross_validation, robot_file, urdf, fragment; out and urdf_out write the calibrated robot file and URDF."""
+def plan(
+    setup: Setup,
+    postures_deg: ArrayLike,
+    *,
+    criterion: _CriterionName = "relative-a",
+    target_pct: Optional[float] = None,
+) -> dict[str, Any]:
+    """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates."""

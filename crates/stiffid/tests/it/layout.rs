@@ -111,10 +111,17 @@ fn no_import_circle_between_top_level_modules() {
         .iter()
         .map(|t| (t.clone(), imports(&src().join(t), &tops)))
         .collect();
-    assert!(graph["common"].is_empty(), "common imports {:?}", graph["common"]);
+    assert!(
+        graph["common"].is_empty(),
+        "common imports {:?}",
+        graph["common"]
+    );
     assert!(graph["app"].len() > 5, "the jobs import the stages");
     if let Some(c) = circle(&graph) {
-        panic!("import circle between top-level modules: {}", c.join(" -> "));
+        panic!(
+            "import circle between top-level modules: {}",
+            c.join(" -> ")
+        );
     }
 }
 
@@ -123,7 +130,10 @@ fn a_circle_is_found() {
     let g = |edges: &[(&str, &str)]| {
         let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
         for (a, b) in edges {
-            graph.entry(a.to_string()).or_default().insert(b.to_string());
+            graph
+                .entry(a.to_string())
+                .or_default()
+                .insert(b.to_string());
             graph.entry(b.to_string()).or_default();
         }
         graph

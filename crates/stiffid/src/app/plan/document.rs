@@ -1,5 +1,5 @@
 //! The document of the plan job ([`crate::app::plan`]): `plan.json` of `stiffid select --report
-//! DIR` (which renders `plan.html` and `plan.csv` from it), Python's `Setup.plan`.
+//! DIR` (which renders `plan.html` and `plan.csv` from it), Python's `stiffid.plan`.
 
 use crate::app::document::feasibility::describe;
 use crate::app::document::{finite, finite_each, mm};

@@ -1,5 +1,5 @@
 //! The plan job: what the operator needs to carry a group of postures out in their cell (the
-//! measurement plan of `stiffid select --report`, Python's `Setup.plan`). For each posture: the
+//! measurement plan of `stiffid select --report`, Python's `stiffid.plan`). For each posture: the
 //! rope's direction and length from the loading point to the anchor, the height of the loading
 //! point, the expected displacement of every measuring point under the load with the nominal
 //! stiffness (Eq. 3-7), the cell's checks, and each joint's predicted deviation rate if that

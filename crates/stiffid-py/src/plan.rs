@@ -1,0 +1,49 @@
+//! `stiffid.plan`: the measurement plan job ([`stiffid::app::plan`]) whose document `stiffid
+//! select --report DIR` writes as `plan.json`.
+
+use crate::arrays::postures;
+use crate::documents::{to_python, warn};
+use crate::error::raise;
+use crate::setup::Setup;
+use pyo3::prelude::*;
+use pyo3::types::{PyAny, PyDict};
+use stiffid::app::plan::document::Document;
+use stiffid::app::plan::{self as job, Request};
+use stiffid::common::limits::MAX_GROUP_POSTURES;
+
+/// The measurement plan of the group ``postures_deg`` (axis angles, deg, shape ``(n, 6)``, within
+/// the joint limits; at most 10000), as chosen by ``criterion`` (named in the plan; default
+/// ``"relative-a"``) to reach ``target_pct`` (the predicted deviation rate the group was chosen
+/// for, or ``None`` for a group of a given size): what the operator needs to carry the group out
+/// in the cell. The plan job of ``stiffid select --report DIR``: returns its document
+/// (docs/schemas/plan.schema.json) as a dict, equal to the ``plan.json`` that command writes for
+/// the same group: the setup's load, anchor, load steps and bodies, the group's predicted
+/// deviation rates at the setup's noise levels (Zhang et al. 2021, Eq. 19), how well it identifies
+/// every parameter of the model, and per posture the rope's direction and length from the loading
+/// point to the anchor, the loading point's height, the expected displacement of every measuring
+/// point under the load with the nominal stiffness (Eq. 3-7), the cell's checks, and each joint's
+/// predicted deviation rate if that posture could not be measured (leave-one-out).
+/// ``InputError`` for a setup without a nominal stiffness, or a robot whose meshes were not found
+/// with a ``[cell]``.
+#[pyfunction]
+#[pyo3(signature = (setup, postures_deg, *, criterion="relative-a", target_pct=None))]
+pub fn plan<'py>(
+    py: Python<'py>,
+    setup: &Setup,
+    postures_deg: &Bound<'py, PyAny>,
+    criterion: &str,
+    target_pct: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = &setup.inner;
+    let within = (s.robot().limits(), "the joint limits");
+    let (group, _) = postures(postures_deg, "postures_deg", within, MAX_GROUP_POSTURES)?;
+    let request = Request {
+        setup: s,
+        criterion: criterion.parse().map_err(raise)?,
+        postures: &group,
+        target_pct,
+    };
+    let report = py.detach(|| job::run(&request)).map_err(raise)?;
+    warn(py, &report.warnings)?;
+    to_python(py, &Document::new(&report, s), &[])
+}
