@@ -40,9 +40,11 @@ use stiffid::app::readings::Request as Readings;
 /// --out`` writes; ``InputError`` for a URDF robot or a fitted lateral error (``urdf_out``
 /// writes it). ``urdf_out``: the calibrated robot as a URDF. Each checked before the fit (never
 /// over a file the call reads, a directory or a dangling symlink) and written whole after it.
-/// ``InputError`` naming the file, line and column for bad readings.
+/// ``InputError`` naming the file, line and column for bad readings, and, unless ``force=True``,
+/// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
+/// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, out=None, urdf_out=None))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, out=None, urdf_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -57,6 +59,7 @@ pub fn calibrate<'py>(
     tolerance_deg: Option<f64>,
     out: Option<PathBuf>,
     urdf_out: Option<PathBuf>,
+    force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let priors = match (tolerance_mm, tolerance_deg) {
         (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(raise)?),
@@ -88,6 +91,7 @@ pub fn calibrate<'py>(
             setup: &setup.inner,
             name: readings.display().to_string(),
             text: &text,
+            force,
         },
         geometry: geometry.parse().map_err(raise)?,
         gravity: gravity.parse().map_err(raise)?,

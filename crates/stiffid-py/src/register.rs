@@ -17,7 +17,7 @@ use stiffid::design::registration as design;
 /// The readings of `path` as a job's request runs on them.
 fn with_request<T>(
     setup: &Setup,
-    path: PathBuf,
+    (path, force): (PathBuf, bool),
     job: impl FnOnce(&register_job::Request<'_>) -> stiffid::Result<T>,
 ) -> PyResult<T> {
     let text = error::read(&path)?;
@@ -25,6 +25,7 @@ fn with_request<T>(
         setup: &setup.inner,
         name: path.display().to_string(),
         text: &text,
+        force,
     };
     job(&request).map_err(raise)
 }
@@ -38,7 +39,9 @@ fn with_request<T>(
 /// ``translation_std_mm``, ``rotation_std_deg``, ``residual_rms_mm``, ``noise_std_mm``,
 /// ``points`` (each unloaded reading's residual) and ``fragment`` (the ``[tracker]`` text of the
 /// setup file). ``InputError`` naming the file, line and column for bad readings, fewer than 3
-/// points or points on one line; angles that look like radians raise a ``UserWarning``.
+/// points or points on one line, and, unless ``force=True``, readings no rigid transform
+/// explains (a mirror image, a residual beyond the larger of 10 mm and 1000 times the tracker
+/// noise); angles that look like radians raise a ``UserWarning``.
 ///
 /// With ``postures=N`` instead of ``readings``: proposes the N registration postures (1 to 60)
 /// inside the setup's bounds that pass the cell's checks without the load and minimise the
@@ -51,7 +54,8 @@ fn with_request<T>(
 /// ``evaluations``. ``InputError`` when both or neither of ``readings`` and ``postures`` are
 /// given, or too few candidates pass the cell's checks.
 #[pyfunction]
-#[pyo3(signature = (setup, readings=None, *, postures=None, seed=1, candidates=None, restarts=None))]
+#[pyo3(signature = (setup, readings=None, *, postures=None, seed=1, candidates=None, restarts=None, force=false))]
+#[allow(clippy::too_many_arguments)]
 pub fn register<'py>(
     py: Python<'py>,
     setup: &Setup,
@@ -60,6 +64,7 @@ pub fn register<'py>(
     seed: u64,
     candidates: Option<usize>,
     restarts: Option<usize>,
+    force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let readings = match (readings, postures) {
         (Some(readings), None) => readings,
@@ -88,7 +93,9 @@ pub fn register<'py>(
             }))
         }
     };
-    let report = with_request(setup, readings, |r| py.detach(|| register_job::run(r)))?;
+    let report = with_request(setup, (readings, force), |r| {
+        py.detach(|| register_job::run(r))
+    })?;
     warn(py, &report.warnings)?;
     to_python(py, &Document::new(&report, setup.inner.name()), &[])
 }
@@ -100,14 +107,19 @@ pub fn register<'py>(
 /// ``setup_mm``, ``fitted_mm``, ``shift_mm`` and ``std_mm``, ``None`` for a point never read),
 /// ``absolute_error_rms_mm`` (the robot's unloaded absolute error at these postures),
 /// ``noise_std_mm``, ``readings``, ``iterations`` and the corrected ``fragment``.
-/// ``InputError`` for bad readings or readings that cannot separate the unknowns.
+/// ``InputError`` for bad readings or readings that cannot separate the unknowns, and, unless
+/// ``force=True``, readings no rigid transform explains (as ``register``).
 #[pyfunction]
+#[pyo3(signature = (setup, readings, *, force=false))]
 pub fn calibrate_cell<'py>(
     py: Python<'py>,
     setup: &Setup,
     readings: PathBuf,
+    force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let report = with_request(setup, readings, |r| py.detach(|| calibrate_job::run(r)))?;
+    let report = with_request(setup, (readings, force), |r| {
+        py.detach(|| calibrate_job::run(r))
+    })?;
     warn(py, &report.warnings)?;
     to_python(py, &Calibration::new(&report, setup.inner.name()), &[])
 }

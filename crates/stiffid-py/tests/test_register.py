@@ -61,6 +61,21 @@ def test_collinear_points_are_refused_naming_the_file(paper, tmp_path):
         stiffid.register(paper, path)
 
 
+def test_mirrored_readings_are_refused_unless_forced(paper, tmp_path):
+    path = readings(paper, tmp_path / "readings.csv")
+    lines = path.read_text().splitlines()
+    mirrored = [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        cells[8] = repr(-float(cells[8]))
+        mirrored.append(",".join(cells))
+    path.write_text("\n".join(mirrored) + "\n")
+    for job in (stiffid.register, stiffid.calibrate_cell):
+        with pytest.raises(stiffid.InputError, match=r"readings.csv: readings: the tracker's readings are a mirror image"):
+            job(paper, path)
+        assert job(paper, path, force=True)["noise_std_mm"] > 10.0
+
+
 def test_proposed_postures_equal_the_command_and_register_when_read(cli, tmp_path):
     cell = stiffid.Setup.from_file(REPO / "examples" / "cell" / "zhang2021-tracker.toml")
     doc = stiffid.register(cell, postures=3, candidates=500)

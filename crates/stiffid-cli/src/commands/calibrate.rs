@@ -40,6 +40,11 @@ pub struct Args {
     /// Register the tracker anew on the --validate readings (another series: the tracker moved).
     #[arg(long, requires = "validate")]
     reregister: bool,
+    /// Fit readings that no rigid transform explains (a mirror image of the robot's points, or a
+    /// residual beyond the larger of 10 mm and 1000 times the tracker noise) instead of refusing
+    /// them.
+    #[arg(long)]
+    force: bool,
     /// Leave-one-posture-out: each posture's error predicted by the fit of the others.
     #[arg(long)]
     cross_validate: bool,
@@ -80,6 +85,7 @@ pub fn run(args: &Args) -> Result<()> {
             setup: &setup,
             name: path.display().to_string(),
             text: &content,
+            force: args.force,
         },
         geometry: args.geometry,
         gravity: args.gravity,

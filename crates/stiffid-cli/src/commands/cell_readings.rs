@@ -26,6 +26,11 @@ pub struct Args {
     /// --postures`, the readings CSV to fill in.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Fit readings that no rigid transform explains (a mirror image of the robot's points, or a
+    /// residual beyond the larger of 10 mm and 1000 times the tracker noise) instead of refusing
+    /// them.
+    #[arg(long, requires = "data")]
+    pub force: bool,
 }
 
 /// What a job on the readings gives the command: its document, the fragment to write with
@@ -63,6 +68,7 @@ impl Args {
             setup,
             name: path.display().to_string(),
             text: &content,
+            force: self.force,
         };
         let outcome = job(&request)?;
         output::warnings(&outcome.warnings);

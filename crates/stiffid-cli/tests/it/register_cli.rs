@@ -218,3 +218,81 @@ fn proposed_postures_filled_in_register_the_tracker() {
     ]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `text` with each data row's tracker x negated (a mirror image), or its z shifted by `dz_mm`
+/// on the row of `line`.
+fn edited(text: &str, edit: impl Fn(usize, &mut Vec<f64>)) -> String {
+    let mut out = String::new();
+    for (i, row) in text.lines().enumerate() {
+        let cells: Vec<&str> = row.split(',').collect();
+        let Ok(mut xyz) = cells[8..]
+            .iter()
+            .map(|v| v.parse::<f64>())
+            .collect::<Result<Vec<f64>, _>>()
+        else {
+            out += &format!("{row}\n");
+            continue;
+        };
+        edit(i + 1, &mut xyz);
+        let xyz: Vec<String> = xyz.iter().map(|v| format!("{v:.9}")).collect();
+        out += &format!("{},{}\n", cells[..8].join(","), xyz.join(","));
+    }
+    out
+}
+
+#[test]
+fn mirrored_readings_and_far_residuals_are_refused_unless_forced() {
+    let d = temp_dir("register-suspect");
+    let truth = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let mirrored = write_file(
+        &d,
+        "mirrored.csv",
+        &edited(&readings(&truth), |_, v| v[0] = -v[0]),
+    );
+    let far = edited(&readings(&truth), |line, v| {
+        if line == 6 {
+            v[2] += 50.0
+        }
+    });
+    let far = write_file(&d, "far.csv", &far);
+    let out = d.join("tracker.toml");
+    for command in ["register", "calibrate-cell"] {
+        let run = |data: &std::path::Path, force: bool| {
+            let mut args = vec![
+                command,
+                "--setup",
+                "zhang2021-comau-nj165",
+                "--data",
+                data.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ];
+            if force {
+                args.push("--force");
+            }
+            stiffid(&args)
+        };
+        let refused = run(&mirrored, false);
+        assert_eq!(refused.status.code(), Some(2), "{command}");
+        let e = String::from_utf8(refused.stderr).unwrap();
+        assert!(
+            e.contains("mirrored.csv: readings: the tracker's readings are a mirror image")
+                && e.contains("--force"),
+            "{command}: {e}"
+        );
+        assert!(!out.exists(), "{command}: nothing written");
+        let refused = run(&far, false);
+        assert_eq!(refused.status.code(), Some(2), "{command}");
+        let e = String::from_utf8(refused.stderr).unwrap();
+        assert!(
+            e.contains("far.csv: line 6 (posture P2, point 1), residual_norm_mm: ")
+                && e.contains("expected at most 10.000 mm"),
+            "{command}: {e}"
+        );
+        assert!(!out.exists(), "{command}: nothing written");
+        let forced = run(&far, true);
+        assert_eq!(forced.status.code(), Some(0), "{command}: {forced:?}");
+        assert!(out.exists(), "{command}: forced, the fragment is written");
+        std::fs::remove_file(&out).unwrap();
+    }
+}

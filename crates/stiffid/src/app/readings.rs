@@ -2,8 +2,10 @@
 
 use super::{in_data, Warning};
 use crate::io::readings::{self, Readings};
+use crate::metrology::register::{self, suspect, Registration, Suspect};
 use crate::setup::plausibility;
-use crate::{Result, Setup};
+use crate::{Error, Result, Setup};
+use nalgebra::Vector3;
 
 /// Readings of a cell: what the register and calibrate jobs read.
 pub struct Request<'a> {
@@ -15,6 +17,10 @@ pub struct Request<'a> {
     /// ([`crate::io::readings`]; with load steps, only the unloaded readings are used), at
     /// most [`readings::MAX_READINGS`] rows.
     pub text: &'a str,
+    /// Fit readings that no rigid transform explains ([`crate::metrology::register::suspect`]: a
+    /// mirror image, a residual beyond [`crate::metrology::register::residual_limit`]) instead of
+    /// refusing them.
+    pub force: bool,
 }
 
 /// The readings of `request`, and the warnings about them.
@@ -22,7 +28,9 @@ pub struct Request<'a> {
 /// # Errors
 /// Those of [`readings::parse`], as [`crate::Error::Input`] naming the file.
 pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
-    let Request { setup, name, text } = request;
+    let Request {
+        setup, name, text, ..
+    } = request;
     let points = setup.tool().measuring_points.len();
     let data = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
     let warnings = plausibility::radians_as_degrees(data.readings.iter().map(|r| &r.q))
@@ -33,4 +41,71 @@ pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
         .into_iter()
         .collect();
     Ok((data, warnings))
+}
+
+/// Refuses, unless `request.force`, readings that no rigid transform explains
+/// ([`crate::metrology::register::suspect`] at the setup's tracker noise): tracker readings that
+/// are a mirror image of the nominal robot's points (by `registration`, or the registration of
+/// `data` when `None`), or a fitted residual (`residuals`, m, one per unloaded reading of `data`
+/// in file order) beyond [`crate::metrology::register::residual_limit`].
+///
+/// # Errors
+/// [`Error::InvalidField`] in an [`Error::Input`] naming the file: `readings` for a mirror image
+/// (both RMS), or the reading's line, posture and point with `residual_norm_mm` (its length and
+/// the limit).
+pub(crate) fn refuse_implausible(
+    request: &Request<'_>,
+    data: &Readings,
+    registration: Option<&Registration>,
+    residuals: &[Vector3<f64>],
+) -> Result<()> {
+    if request.force {
+        return Ok(());
+    }
+    let sigma = request.setup.noise().sigma();
+    let registered = match registration {
+        Some(r) => Some(r.clone()),
+        // Readings in the base frame, or too few: the job says so itself.
+        None => register::correspondences(request.setup, data)
+            .and_then(|points| register::fit(&points))
+            .ok(),
+    };
+    let mirrored = registered.and_then(|r| suspect(&[], r.rms, r.mirror_rms, sigma));
+    let error = match mirrored.or_else(|| suspect(residuals, 0.0, f64::INFINITY, sigma)) {
+        None => return Ok(()),
+        Some(Suspect::Mirrored { rms, mirror_rms }) => Error::InvalidField {
+            field: "readings".into(),
+            message: format!(
+                "the tracker's readings are a mirror image of the robot's points: the best rotation leaves a residual RMS of {:.3} mm, a reflection {:.3} mm; expected readings in a right-handed tracker frame (an axis flipped, or two coordinate columns swapped?); --force fits the best rotation anyway",
+                rms * 1e3,
+                mirror_rms * 1e3
+            ),
+        },
+        Some(Suspect::Residual {
+            index,
+            length,
+            limit,
+        }) => {
+            let (reading, line) = (data.readings.iter().zip(&data.lines))
+                .filter(|(r, _)| r.unloaded())
+                .nth(index)
+                .expect("one residual per unloaded reading");
+            Error::InvalidField {
+                field: format!(
+                    "line {line} (posture {}, point {}), residual_norm_mm",
+                    crate::common::limits::short(&data.labels[reading.posture]),
+                    reading.point + 1
+                ),
+                message: format!(
+                    "{:.3}: expected at most {:.3} mm (the larger of {} mm, twice a robot's unloaded absolute error, and {} times the tracker noise {:.4} mm): a reading of another point or posture, or axis angles that are not the robot's; --force fits the readings anyway",
+                    length * 1e3,
+                    limit * 1e3,
+                    register::RESIDUAL_LIMIT * 1e3,
+                    register::RESIDUAL_NOISE_MULTIPLE,
+                    sigma * 1e3
+                ),
+            }
+        }
+    };
+    Err(in_data(&request.name, error))
 }

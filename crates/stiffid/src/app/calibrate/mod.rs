@@ -3,8 +3,8 @@
 //! over 6 + 3p unknowns), each point's shift from the setup's value with its standard deviation.
 
 use super::in_data;
-use super::readings::read;
 pub use super::readings::Request;
+use super::readings::{read, refuse_implausible};
 use super::Warning;
 use crate::metrology::calibrate::{self, Calibration};
 use crate::Result;
@@ -30,7 +30,9 @@ pub struct Report {
 /// # Errors
 /// Those of [`read`]; of [`calibrate::observations`] and [`calibrate::fit`] (readings in the base
 /// frame, too few readings for the unknowns, one flange orientation), as
-/// [`crate::Error::Input`] naming the file.
+/// [`crate::Error::Input`] naming the file; unless [`Request::force`], readings that are a
+/// mirror image (of the nominal robot's points) or leave a residual beyond
+/// [`crate::metrology::register::residual_limit`], naming the reading.
 pub fn run(request: &Request<'_>) -> Result<Report> {
     let (data, warnings) = read(request)?;
     let name = &request.name;
@@ -38,6 +40,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let observations =
         calibrate::observations(request.setup, &data).map_err(|e| in_data(name, e))?;
     let calibration = calibrate::fit(&observations, &setup_points).map_err(|e| in_data(name, e))?;
+    refuse_implausible(request, &data, None, &calibration.residuals)?;
     Ok(Report {
         data_name: name.clone(),
         setup_points,

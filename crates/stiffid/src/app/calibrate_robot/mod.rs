@@ -12,7 +12,7 @@
 pub mod document;
 
 use super::in_data;
-use super::readings::{read, Request as Readings};
+use super::readings::{read, refuse_implausible, Request as Readings};
 use super::{Warning, WarningKind};
 use crate::io::readings::Readings as Data;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
@@ -222,6 +222,11 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     };
     let start = fit::start(&model, &obs).map_err(|e| in_data(name, e))?;
     let fitted = fit::fit(&model, &obs, &start, &options).map_err(|e| in_data(name, e))?;
+    let residuals: Vec<_> = (fitted.residuals.as_slice().chunks_exact(3))
+        .map(nalgebra::Vector3::from_column_slice)
+        .take(obs.len())
+        .collect();
+    refuse_implausible(&request.readings, &data, None, &residuals)?;
     let nominal = validation::validate(&model, &start, &obs)?;
     let noise_ratio = fitted.sigma / setup.noise().sigma();
     let cross_validation = match request.cross_validate {
@@ -306,6 +311,7 @@ fn held_out(
         setup: request.readings.setup,
         name: name.to_string(),
         text,
+        force: request.readings.force,
     };
     let (data, more) = read(&readings)?;
     warnings.extend(more);

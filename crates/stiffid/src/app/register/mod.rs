@@ -6,6 +6,7 @@
 pub mod document;
 
 use super::in_data;
+use super::readings::refuse_implausible;
 pub use super::readings::{read, Request};
 use super::Warning;
 use crate::cell::{CheckKind, Checker};
@@ -32,12 +33,16 @@ pub struct Report {
 /// # Errors
 /// Those of [`read`]; of [`register::correspondences`] and [`register::fit`] (readings in the
 /// base frame, fewer than [`register::MIN_POINTS`] unloaded readings, collinear points), as
-/// [`crate::Error::Input`] naming the file.
+/// [`crate::Error::Input`] naming the file; unless [`Request::force`], readings that are a
+/// mirror image or leave a residual beyond [`register::residual_limit`] ([`register::suspect`]),
+/// naming the reading.
 pub fn run(request: &Request<'_>) -> Result<Report> {
     let (data, warnings) = read(request)?;
     let name = &request.name;
     let points = register::correspondences(request.setup, &data).map_err(|e| in_data(name, e))?;
     let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
+    let fit = &registration;
+    refuse_implausible(request, &data, Some(fit), &fit.residuals)?;
     Ok(Report {
         data_name: name.clone(),
         readings: data,

@@ -18,6 +18,12 @@
 //! Only the rotation turns a displacement measured in the tracker frame into the base frame, so
 //! the rotation's standard deviation is what a registration design minimises
 //! ([`rotation_std_per_noise`], [`crate::design::registration`]).
+//!
+//! Readings that no rigid transform explains are flagged ([`suspect`]): a mirror image (the best
+//! transform with a reflection, `R = U diag(1, 1, -det(U V^T)) V^T`, leaves less than a quarter of
+//! the residual RMS of the best rotation, which is beyond ten times the tracker noise: a tracker
+//! axis flipped, or two columns swapped), and a residual longer than [`residual_limit`] (wrong
+//! axis angles, measuring point or reading).
 
 use crate::io::readings::Readings;
 use crate::observation::frames::DisplacementFrame;
@@ -36,6 +42,71 @@ pub const COLLINEAR_RATIO: f64 = 1e-4;
 /// Second principal extent (RMS distance from the best line, times `sqrt(n)`) below which points
 /// are collinear whatever their length, m (1 um: below a tracker's resolution).
 pub const COLLINEAR_M: f64 = 1e-6;
+
+/// The shortest residual that is refused whatever the tracker noise, m: twice the largest unloaded
+/// absolute positioning error of uncalibrated industrial robots (0.5 to 5 mm over the workspace;
+/// Nubiola and Bonev 2013, Robotics and Computer-Integrated Manufacturing 29(1): 2.16 mm at most
+/// on an ABB IRB 1600), so only readings of another point or posture reach it.
+pub const RESIDUAL_LIMIT: f64 = 10e-3;
+
+/// The residual limit in units of the tracker noise per coordinate: a residual this many times
+/// the noise is refused even where the noise is large ([`residual_limit`]).
+pub const RESIDUAL_NOISE_MULTIPLE: f64 = 1000.0;
+
+/// The longest residual a registration accepts without being forced, m: the larger of
+/// [`RESIDUAL_LIMIT`] and [`RESIDUAL_NOISE_MULTIPLE`] times the tracker noise `sigma` (m).
+pub fn residual_limit(sigma: f64) -> f64 {
+    RESIDUAL_LIMIT.max(RESIDUAL_NOISE_MULTIPLE * sigma)
+}
+
+/// What makes readings implausible for a rigid transform ([`suspect`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Suspect {
+    /// The readings are a mirror image of the robot's points: the best transform with a
+    /// reflection fits them far better than any rotation.
+    Mirrored {
+        /// RMS of the residual lengths of the best rotation, m.
+        rms: f64,
+        /// RMS of the residual lengths of the best transform with a reflection, m.
+        mirror_rms: f64,
+    },
+    /// A residual longer than [`residual_limit`].
+    Residual {
+        /// The residual's index (among the points fitted, in order).
+        index: usize,
+        /// Its length, m.
+        length: f64,
+        /// The limit, m.
+        limit: f64,
+    },
+}
+
+/// Whether readings fitted with `residuals` (m, per point), their RMS `rms` and the mirror
+/// image's RMS `mirror_rms` (m, [`Registration::mirror_rms`]) are implausible at the tracker
+/// noise `sigma` (m per coordinate, the setup's): a mirror image (module docs) first, else the
+/// longest residual beyond [`residual_limit`]; `None` when neither.
+pub fn suspect(
+    residuals: &[Vector3<f64>],
+    rms: f64,
+    mirror_rms: f64,
+    sigma: f64,
+) -> Option<Suspect> {
+    if rms > 10.0 * sigma && mirror_rms < 0.25 * rms {
+        return Some(Suspect::Mirrored { rms, mirror_rms });
+    }
+    let limit = residual_limit(sigma);
+    let (index, length) = residuals
+        .iter()
+        .map(|r| r.norm())
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    // A NaN length is beyond every limit.
+    (length.is_nan() || length > limit).then_some(Suspect::Residual {
+        index,
+        length,
+        limit,
+    })
+}
 
 /// One point known in both frames, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +130,9 @@ pub struct Registration {
     pub sigma: f64,
     /// Covariance of `[dp (m); dtheta (rad)]` (module docs), base frame.
     pub covariance: Matrix6<f64>,
+    /// RMS of the residual lengths of the best transform with a reflection (`det R = -1`), m:
+    /// far below `rms` when the readings are a mirror image ([`suspect`]).
+    pub mirror_rms: f64,
 }
 
 impl Registration {
@@ -161,7 +235,8 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
         svd.u.ok_or(not_converged())?,
         svd.v_t.ok_or(not_converged())?,
     );
-    let d = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, (u * v_t).determinant().signum()));
+    let sign = (u * v_t).determinant().signum();
+    let d = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, sign));
     let rotation =
         UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(u * d * v_t));
     let translation = b_mean - rotation * t_mean;
@@ -171,6 +246,11 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
         .map(|c| c.base - base_from_tracker.transform_vector(&c.tracker) - translation)
         .collect();
     let ssr: f64 = residuals.iter().map(|r| r.norm_squared()).sum();
+    let mirror = u * Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, -sign)) * v_t;
+    let mirror_ssr: f64 = points
+        .iter()
+        .map(|c| ((c.base - b_mean) - mirror * (c.tracker - t_mean)).norm_squared())
+        .sum();
     let sigma = (ssr / (3.0 * n - 6.0)).sqrt();
     let rotated: Vec<Vector3<f64>> = points.iter().map(|c| rotation * c.tracker).collect();
     let covariance = unit_covariance(&rotated)? * sigma * sigma;
@@ -180,6 +260,7 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
         residuals,
         sigma,
         covariance,
+        mirror_rms: (mirror_ssr / n).sqrt(),
     })
 }
 
@@ -359,6 +440,35 @@ mod tests {
                 < 1e-12
         );
         assert!(r.rms > 0.1, "a rotation cannot fit a mirror image");
+        assert!(r.mirror_rms < 1e-12, "a reflection fits it exactly");
+        let s = suspect(&r.residuals, r.rms, r.mirror_rms, 1e-5);
+        assert!(matches!(s, Some(Suspect::Mirrored { .. })), "{s:?}");
+        // The true readings, with noise: neither mirrored nor beyond the limit.
+        let normal = Normal::new(0.0, 1e-5).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let r = fit(&pairs(|| Vector3::from_fn(|_, _| normal.sample(&mut rng)))).unwrap();
+        assert!(r.mirror_rms > 0.1, "{}", r.mirror_rms);
+        assert_eq!(suspect(&r.residuals, r.rms, r.mirror_rms, 1e-5), None);
+    }
+
+    #[test]
+    fn a_residual_beyond_the_limit_is_named() {
+        let mut points = pairs(Vector3::zeros);
+        points[4].tracker.z += 0.05;
+        let r = fit(&points).unwrap();
+        let Some(Suspect::Residual {
+            index,
+            length,
+            limit,
+        }) = suspect(&r.residuals, r.rms, r.mirror_rms, 1e-5)
+        else {
+            panic!("not flagged")
+        };
+        assert_eq!((index, limit), (4, RESIDUAL_LIMIT));
+        assert!(length > 0.03 && length < 0.05, "{length}");
+        // The same residual at a noise of 0.1 mm is within 1000 sigma.
+        assert_eq!(suspect(&r.residuals, r.rms, r.mirror_rms, 1e-4), None);
+        assert_eq!(residual_limit(1e-4), 0.1);
     }
 
     #[test]
