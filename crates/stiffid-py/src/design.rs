@@ -24,6 +24,8 @@ pub fn evaluate<'py>(
     group: &[Vector6<f64>],
 ) -> PyResult<Bound<'py, PyDict>> {
     let request = evaluate::Request {
+        purpose: Default::default(),
+        calibration: Default::default(),
         setup,
         postures: group,
     };
@@ -89,6 +91,8 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     let request = select::Request {
         setup,
         criterion: r.criterion.parse().map_err(raise)?,
+        purpose: Default::default(),
+        calibration: Default::default(),
         method,
         start: r.start,
         pool: r.pool.map(|postures| select::PoolInput {

@@ -1,37 +1,108 @@
-//! Design for calibration: one evaluation of the calibration criteria (O1, O3, O4, O5,
-//! D-optimality and the predicted error at 20 test postures) of 12 postures x 3 measuring points
-//! on the FANUC R-2000iC/165F preset with full geometry and lumped gravity terms (55 kept
-//! parameters), without a gradient.
+//! Design for calibration on the FANUC R-2000iC/165F preset, 12 postures x 3 measuring points
+//! (20 test postures): one evaluation of every calibration criterion (O1, O3, O4, O5,
+//! D-optimality, the predicted error) with full geometry and lumped gravity terms (55 kept
+//! parameters), without a gradient; one value of the default criterion (the predicted error)
+//! with its exact gradient, with the lumped terms (55) and with full geometry, the six
+//! compliances under known masses and a fourth measuring point (41 kept parameters); and the default global search for
+//! calibration (12 postures) in the guide's tracker cell.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use stiffid::design::calibration::CalibrationDesign;
+use stiffid::app::purpose::{self, CalibrationOptions};
+use stiffid::design::calibration::{CalibrationCriterion, CalibrationDesign};
+use stiffid::design::{self, CalibrationGoal, Goal, SearchOptions};
 use stiffid::metrology::calibration::error_model::MeasuredIn;
 use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
-use stiffid::robot::presets;
+use stiffid::robot::{presets, LinkMass};
 use stiffid::study::calibration::postures;
+use stiffid::Robot;
 
-fn bench(c: &mut Criterion) {
-    let robot = presets::get("fanuc-r2000ic-165f").unwrap();
-    let points = [
-        Vector3::new(0.15, 0.0, 0.25),
-        Vector3::new(-0.1, 0.12, 0.3),
-        Vector3::new(0.0, -0.14, 0.2),
-    ];
-    let g = gravity::Model::lumped(&robot, stiffid::Coordinates::Axis);
-    let model = ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full, g).unwrap();
+/// The design on the preset with the gravity model `g`, and a group of 12 postures.
+fn fanuc(
+    g: impl Fn(&Robot) -> gravity::Model,
+    points: &[Vector3<f64>],
+) -> (CalibrationDesign, Vec<nalgebra::Vector6<f64>>) {
+    let masses: [LinkMass; 6] = std::array::from_fn(|l| LinkMass {
+        mass: 200.0 - 30.0 * l as f64,
+        centre: Vector3::new(0.05 * l as f64, -0.03, 0.1 + 0.02 * l as f64),
+    });
+    let robot = presets::get("fanuc-r2000ic-165f")
+        .unwrap()
+        .with_masses(Some(masses));
+    let model = ErrorModel::new(
+        &robot,
+        points,
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        g(&robot),
+    )
+    .unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let reference = postures(&robot, 60, &mut rng);
     let test = postures(&robot, 20, &mut rng);
     let group = postures(&robot, 12, &mut rng);
     let design = CalibrationDesign::new(model, 1.0, &reference, &test, 5e-5).unwrap();
+    (design, group)
+}
+
+fn bench(c: &mut Criterion) {
+    let mut points = vec![
+        Vector3::new(0.15, 0.0, 0.25),
+        Vector3::new(-0.1, 0.12, 0.3),
+        Vector3::new(0.0, -0.14, 0.2),
+    ];
+    let lumped = |r: &Robot| gravity::Model::lumped(r, stiffid::Coordinates::Axis);
+    let (design, group) = fanuc(lumped, &points);
     assert_eq!(design.kept().len(), 55);
     c.bench_function("calibration criteria 12 postures 55 parameters", |b| {
         b.iter(|| design.evaluate(&group).unwrap())
     });
+    let test_pose = CalibrationCriterion::TestPose;
+    c.bench_function("calibration gradient 12 postures 55 parameters", |b| {
+        b.iter(|| design.value_and_log_gradient(test_pose, &group))
+    });
+    let masses = |r: &Robot| {
+        let m = *r.masses().unwrap();
+        let nominal = nalgebra::Vector6::repeat(2e-6);
+        gravity::Model::masses(r, m, stiffid::Coordinates::Axis, nominal).unwrap()
+    };
+    points.push(Vector3::new(0.12, 0.1, 0.15));
+    let (design, group) = fanuc(masses, &points);
+    assert_eq!(design.kept().len(), 41);
+    c.bench_function("calibration gradient 12 postures 41 parameters", |b| {
+        b.iter(|| design.value_and_log_gradient(test_pose, &group))
+    });
 }
 
-criterion_group!(benches, bench);
+/// The paper's setup in the guide's cell (floor, clearance, the tracker at (3000, -2000, 1500)
+/// mm, line of sight and incidence).
+fn tracker_cell() -> stiffid::Setup {
+    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+        + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
+    stiffid::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap()
+}
+
+fn search(c: &mut Criterion) {
+    let setup = tracker_cell();
+    let d = purpose::design(&setup, &CalibrationOptions::default()).unwrap();
+    let goal = Goal {
+        stiffness: stiffid::design::Criterion::RelativeA,
+        calibration: Some(CalibrationGoal {
+            design: &d,
+            criterion: CalibrationCriterion::TestPose,
+            weight: 1.0,
+        }),
+    };
+    let options = SearchOptions::default();
+    let mut g = c.benchmark_group("calibration/search");
+    g.sample_size(10);
+    g.bench_function("global/test-pose/12-postures/tracker-cell", |b| {
+        b.iter(|| design::global_for(&setup, &goal, 12, &options, &()).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, search);
 criterion_main!(benches);

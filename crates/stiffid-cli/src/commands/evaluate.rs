@@ -1,16 +1,20 @@
 //! `stiffid evaluate`: every design criterion of a group of postures and its predicted deviation
 //! rates.
 
-use crate::commands::common::Common;
+use crate::commands::common::{choice, Common};
 use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
-use stiffid::app::evaluate::document::Document;
+use stiffid::app::evaluate::document::{CalibrationDoc, Document};
 use stiffid::app::evaluate::{self as job, Request};
+use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::common::limits::short;
 use stiffid::common::words::count;
+use stiffid::design::calibration::CalibrationCriterion;
 use stiffid::design::{Criterion, Evaluation};
+use stiffid::metrology::calibration::gravity::Gravity;
+use stiffid::metrology::calibration::Geometry;
 use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid evaluate`.
@@ -21,6 +25,76 @@ pub struct Args {
     /// Postures file (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     postures: PathBuf,
+    #[command(flatten)]
+    purpose: ForArgs,
+}
+
+/// What a group is designed for, and the calibration it is for (`select`, `evaluate`).
+#[derive(clap::Args)]
+pub struct ForArgs {
+    /// What the group is for: stiffness (the identification), calibration (the robot's
+    /// geometric and elastostatic calibration, as `stiffid calibrate` fits it) or both (the
+    /// weighted sum of the two log-criteria, --weight).
+    #[arg(long = "for", value_name = "PURPOSE", value_parser = choice::<Purpose>(), default_value = "stiffness")]
+    pub purpose: Purpose,
+    /// The calibration criterion: test-pose (the predicted RMS position error after
+    /// calibration at the setup's test postures, the default), o1, o3, o4, o5 or d-optimality.
+    #[arg(long, value_parser = choice::<CalibrationCriterion>(), default_value = "test-pose")]
+    pub calibration_criterion: CalibrationCriterion,
+    /// The joint errors the calibration fits: none, offsets or full (as `calibrate --geometry`).
+    #[arg(long, value_parser = choice::<Geometry>(), default_value = "full")]
+    pub geometry: Geometry,
+    /// The gravity terms the calibration fits: none, masses or lumped (as `calibrate --gravity`).
+    #[arg(long, value_parser = choice::<Gravity>(), default_value = "none")]
+    pub gravity: Gravity,
+    /// With --for both: the weight of the calibration's log-criterion, between 0 and 1 (the
+    /// stiffness criterion's is 1 - weight).
+    #[arg(long, default_value_t = 0.5)]
+    pub weight: f64,
+}
+
+impl ForArgs {
+    /// The calibration options of the arguments.
+    pub fn options(&self) -> CalibrationOptions {
+        CalibrationOptions {
+            criterion: self.calibration_criterion,
+            geometry: self.geometry,
+            gravity: self.gravity,
+            weight: self.weight,
+        }
+    }
+}
+
+/// The calibration criteria, one per line.
+pub fn calibration_text(c: &CalibrationDoc) -> String {
+    let mut s = format!(
+        "
+calibration criteria (geometry {}, gravity {}, {} identifiable parameters; the indices larger is better)
+",
+        c.geometry, c.gravity, c.parameters
+    );
+    for (name, v, unit) in [
+        ("o1", c.o1_mm, " mm"),
+        ("o3", c.o3_mm, " mm"),
+        ("o4", c.o4_mm, " mm"),
+        ("o5", c.o5_mm, " mm"),
+        ("d-optimality", c.d_optimality_mm2, " mm^2"),
+    ] {
+        s += &format!(
+            "  {name:<13} {}{unit}
+",
+            number(v)
+        );
+    }
+    let rms = c.predicted_rms_mm.map_or(
+        "infinite (the group does not separate the parameters)".to_string(),
+        |v| format!("{} mm", number(v)),
+    );
+    s + &format!(
+        "  {:<13} {rms} (predicted RMS position error after calibration)
+",
+        "test-pose"
+    )
 }
 
 /// The parameters' lines of `stiffid evaluate`: identified or not, and the predicted deviation
@@ -54,6 +128,8 @@ pub fn run(args: &Args) -> Result<()> {
     let request = Request {
         setup: &setup,
         postures: &group,
+        purpose: args.purpose.purpose,
+        calibration: args.purpose.options(),
     };
     let report = job::run(&request).with_context(|| args.postures.display().to_string())?;
     output::warnings(&report.warnings);
@@ -68,6 +144,14 @@ pub fn run(args: &Args) -> Result<()> {
         args.postures.display(),
         short(setup.name())
     );
+    if let Some(c) = &doc.calibration {
+        s += &calibration_text(c);
+        if args.purpose.purpose == Purpose::Calibration {
+            s += &feasibility::text(&report.feasibility);
+            return output::print(&s);
+        }
+        s += "\nstiffness criteria\n";
+    }
     s += &criteria_text(e, &setup);
     if !setup.model().is_drives_only() || !separable(e) {
         s += &parameters_text(&doc);

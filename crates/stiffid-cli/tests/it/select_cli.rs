@@ -301,3 +301,91 @@ fn select_force_without_report_replaces_the_postures_file() {
     ));
     assert_eq!(std::fs::read_to_string(plain).unwrap(), written);
 }
+
+/// `select --for calibration` lowers the predicted calibration error of its start group, and
+/// `evaluate --for calibration` of the group written reports the same value; `--for both`
+/// minimises the weighted geometric mean and reports both designs' criteria.
+#[test]
+fn select_for_calibration_and_both_and_evaluate_agree() {
+    let d = temp_dir("select-calibration");
+    let setup = "zhang2021-comau-nj165";
+    let out = d.join("cal.csv");
+    let doc = json(&stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--for",
+        "calibration",
+        "--start-random",
+        "--postures",
+        "14",
+        "--max-evals",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(doc["for"], "calibration");
+    let (before, after) = (
+        doc["start_value"].as_f64().unwrap(),
+        doc["value"].as_f64().unwrap(),
+    );
+    assert!(after < 0.8 * before, "{after} vs {before}");
+    let cal = &doc["calibration"];
+    assert_eq!(cal["criterion"], "test-pose");
+    let rms = cal["predicted_rms_mm"].as_f64().unwrap();
+    assert!((rms - 1e3 * after).abs() < 1e-9 * rms, "{rms} vs {after}");
+    let eval = json(&stiffid(&[
+        "evaluate",
+        "--setup",
+        setup,
+        "--postures",
+        out.to_str().unwrap(),
+        "--for",
+        "calibration",
+        "--json",
+    ]));
+    let again = eval["calibration"]["predicted_rms_mm"].as_f64().unwrap();
+    assert!(
+        (again - rms).abs() < 1e-6 * rms,
+        "file round trip: {again} vs {rms}"
+    );
+    assert!(eval["calibration"]["o1_mm"].as_f64().unwrap() > 0.0);
+
+    let both = json(&stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--for",
+        "both",
+        "--start-random",
+        "--postures",
+        "14",
+        "--max-evals",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(both["calibration_weight"].as_f64(), Some(0.5));
+    let (s, c) = (
+        both["criteria"]["relative_a"].as_f64().unwrap(),
+        both["calibration"]["predicted_rms_mm"].as_f64().unwrap() * 1e-3,
+    );
+    let v = both["value"].as_f64().unwrap();
+    assert!((v - (s * c).sqrt()).abs() < 1e-6 * v, "{v} vs {s} and {c}");
+
+    let bad = stiffid(&[
+        "select",
+        "--setup",
+        setup,
+        "--for",
+        "both",
+        "--weight",
+        "1.5",
+        "--start-random",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_usage_error(&bad, &["weight", "between 0 and 1"]);
+}

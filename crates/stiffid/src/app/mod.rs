@@ -39,6 +39,7 @@ pub mod simulate;
 pub mod validate;
 
 pub mod document;
+pub mod purpose;
 pub mod readings;
 
 pub use crate::common::warning::{Warning, WarningKind};

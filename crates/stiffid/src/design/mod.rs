@@ -23,5 +23,6 @@ pub use evaluator::{Evaluator, PostureTerms};
 pub use identifiable::{identifiable, unidentifiable};
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
 pub use search::{
-    global, local, random_group, Gradient, SearchOptions, SearchOutcome, Solver, Termination,
+    global, global_for, local, local_for, random_group, CalibrationGoal, Goal, Gradient,
+    SearchOptions, SearchOutcome, Solver, Termination,
 };

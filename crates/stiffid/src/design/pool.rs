@@ -195,7 +195,11 @@ impl<'a> Pool<'a> {
         options: &PoolOptions,
     ) -> Result<PoolChoice> {
         options.validate()?;
-        check_count(self.evaluator.setup(), criterion, n)?;
+        check_count(
+            self.evaluator.setup(),
+            &super::search::Goal::stiffness(criterion),
+            n,
+        )?;
         if n > MAX_GROUP.min(self.usable.len()) {
             return Err(Error::InvalidField {
                 field: "postures".into(),
@@ -222,6 +226,58 @@ impl<'a> Pool<'a> {
             value,
             method,
             evaluations,
+        })
+    }
+
+    /// The best group of `n` usable postures for `goal` ([`super::Goal`]): [`Pool::best`] for a
+    /// stiffness criterion alone; with a calibration part, the same enumeration or exchange on
+    /// the goal's value of each group ([`super::Goal::value`], from the postures).
+    ///
+    /// # Errors
+    /// Those of [`Pool::best`]; (field `pool`) no group of `n` usable postures with a finite
+    /// value.
+    pub fn best_for(
+        &self,
+        goal: &super::Goal,
+        n: usize,
+        options: &PoolOptions,
+    ) -> Result<PoolChoice> {
+        if goal.calibration.is_none() {
+            return self.best(goal.stiffness, n, options);
+        }
+        options.validate()?;
+        check_count(self.evaluator.setup(), goal, n)?;
+        if n > MAX_GROUP.min(self.usable.len()) {
+            return Err(Error::InvalidField {
+                field: "postures".into(),
+                message: format!(
+                    "{n} given: expected at most {MAX_GROUP} and at most the {} usable pool postures",
+                    self.usable.len()
+                ),
+            });
+        }
+        let of = |group: &[usize]| -> Vec<Vector6<f64>> {
+            group
+                .iter()
+                .map(|&k| self.postures[self.usable[k]])
+                .collect()
+        };
+        let value = |group: &[usize]| goal.value(&self.evaluator, &of(group));
+        let chosen = exchange::best(self.usable.len(), n, options, &value);
+        let mut indices: Vec<usize> = chosen.group.iter().map(|&k| self.usable[k]).collect();
+        indices.sort_unstable();
+        let value = goal.value(&self.evaluator, &self.postures(&indices));
+        if !value.is_finite() {
+            return Err(pool_error(format!(
+                "no group of {n} of the {} usable postures has a finite value",
+                self.usable.len()
+            )));
+        }
+        Ok(PoolChoice {
+            indices,
+            value,
+            method: chosen.method,
+            evaluations: chosen.evaluations,
         })
     }
 

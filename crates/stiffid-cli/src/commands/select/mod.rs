@@ -5,7 +5,7 @@
 
 mod target;
 
-use super::evaluate::{criteria_text, number};
+use super::evaluate::{calibration_text, criteria_text, number, ForArgs};
 use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
@@ -32,6 +32,8 @@ pub struct Args {
     /// (rho -0.10): see docs/guide.md, "The paper's study".
     #[arg(long, default_value = "relative-a")]
     criterion: Criterion,
+    #[command(flatten)]
+    purpose: ForArgs,
     /// Start group (posture,q1_deg,...,q6_deg) of a local search.
     #[arg(long, conflicts_with_all = ["start_random", "global", "target_pct"])]
     start: Option<PathBuf>,
@@ -134,6 +136,8 @@ pub fn run(args: &Args) -> Result<()> {
     let request = Request {
         setup: &setup,
         criterion: args.criterion,
+        purpose: args.purpose.purpose,
+        calibration: args.purpose.options(),
         method: method(args, pool.is_some())?,
         start,
         pool,
@@ -222,8 +226,11 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
     }
     text += &outcome_text(setup, r);
     text += &criteria_text(&r.evaluation, setup);
+    if let Some(c) = &doc.calibration {
+        text += &calibration_text(c);
+    }
     if let Some(free) = &r.unconstrained {
-        text += &cost_text(args.criterion, r, &free.evaluation, free.value);
+        text += &cost_text(&objective(r), r, &free.evaluation, free.value);
     }
     text += &format!("postures written to {}\n", args.out.display());
     if let Some(dir) = &args.report {
@@ -255,7 +262,7 @@ fn pool_text(p: &Pool) -> String {
 }
 
 /// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
-fn cost_text(criterion: Criterion, r: &Report, free_e: &Evaluation, free_value: f64) -> String {
+fn cost_text(criterion: &str, r: &Report, free_e: &Evaluation, free_value: f64) -> String {
     let mean = Evaluation::predicted_average_pct;
     let e = &r.evaluation;
     let mut text = format!(
@@ -276,6 +283,27 @@ fn cost_text(criterion: Criterion, r: &Report, free_e: &Evaluation, free_value: 
     text
 }
 
+/// The value the search minimised, in words: the stiffness criterion, the calibration
+/// criterion's loss, or both.
+fn objective(r: &Report) -> String {
+    use stiffid::common::choice::Choice;
+    let loss = |c: stiffid::design::calibration::CalibrationCriterion| match c.name() {
+        "test-pose" => "calibration test-pose (predicted RMS error, m)".to_string(),
+        name => format!("calibration 1/{name}"),
+    };
+    match &r.calibration {
+        None => r.criterion.to_string(),
+        Some(c) if c.weight >= 1.0 => loss(c.criterion),
+        Some(c) => format!(
+            "{}^{:.2} x ({})^{:.2}",
+            r.criterion,
+            1.0 - c.weight,
+            loss(c.criterion),
+            c.weight
+        ),
+    }
+}
+
 fn outcome_text(setup: &Setup, r: &Report) -> String {
     let mut text = format!(
         "{} search of {} postures on setup {} (seed {})\n",
@@ -289,7 +317,7 @@ fn outcome_text(setup: &Setup, r: &Report) -> String {
             let factor = start / r.value;
             format!(
                 "{}: {} -> {} ({})\n",
-                r.criterion,
+                objective(r),
                 number(start),
                 number(r.value),
                 match factor.is_finite() {
@@ -298,7 +326,7 @@ fn outcome_text(setup: &Setup, r: &Report) -> String {
                 }
             )
         }
-        None => format!("{}: {}\n", r.criterion, number(r.value)),
+        None => format!("{}: {}\n", objective(r), number(r.value)),
     };
     text += &format!("{} evaluations in {:.2} s", r.evaluations, r.elapsed_s);
     text += &match r.solver {

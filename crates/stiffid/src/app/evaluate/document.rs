@@ -121,6 +121,62 @@ pub struct Document {
     /// The combinations of parameters the group cannot separate (e.g. `0.71 k6 - 0.71 twin6`);
     /// empty when it identifies every parameter.
     pub unidentifiable: Vec<String>,
+    /// With `--for calibration` or `both`: the group's calibration criteria.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<CalibrationDoc>,
+}
+
+/// The calibration criteria of a group (docs/model.md, "Design for calibration"), over the
+/// column-scaled identification Jacobian of the calibration's kept parameters (a scaled column
+/// is the position change of a typical parameter error: mm).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct CalibrationDoc {
+    /// The criterion a selection minimises (`o1`, `o3`, `o4`, `o5`, `d-optimality`,
+    /// `test-pose`).
+    pub criterion: &'static str,
+    /// The joint errors of the calibration (`none`, `offsets`, `full`).
+    pub geometry: &'static str,
+    /// Its gravity terms (`none`, `masses`, `lumped`).
+    pub gravity: &'static str,
+    /// The kept (identifiable) parameters' count.
+    pub parameters: usize,
+    /// `O1`: the geometric mean of the singular values over `sqrt(n)`, mm (larger is better).
+    pub o1_mm: f64,
+    /// `O3`: the smallest singular value, mm (larger is better; 0 for a group that does not
+    /// separate the parameters).
+    pub o3_mm: f64,
+    /// `O4`: the smallest singular value squared over the largest, mm (larger is better).
+    pub o4_mm: f64,
+    /// `O5`: the inverse sum of the singular values' inverses, mm (larger is better).
+    pub o5_mm: f64,
+    /// D-optimality `det(J_s^T J_s)^(1/p)`, mm^2 (larger is better).
+    pub d_optimality_mm2: f64,
+    /// The predicted RMS position error after calibration at the test postures, mm (smaller is
+    /// better; `null` for a group that does not separate the parameters).
+    pub predicted_rms_mm: Option<f64>,
+}
+
+impl CalibrationDoc {
+    /// The document of the options `o` and the criteria `c`.
+    pub fn new(
+        o: &crate::app::purpose::CalibrationOptions,
+        c: &crate::design::calibration::CalibrationCriteria,
+    ) -> Self {
+        use crate::common::choice::Choice;
+        Self {
+            criterion: o.criterion.name(),
+            geometry: o.geometry.name(),
+            gravity: o.gravity.name(),
+            parameters: c.parameters,
+            o1_mm: c.o1 * 1e3,
+            o3_mm: c.o3 * 1e3,
+            o4_mm: c.o4 * 1e3,
+            o5_mm: c.o5 * 1e3,
+            d_optimality_mm2: c.d_optimality * 1e6,
+            predicted_rms_mm: finite(mm(c.predicted_rms)),
+        }
+    }
 }
 
 impl Document {
@@ -131,6 +187,7 @@ impl Document {
             feasibility: feasibility::postures(&report.feasibility),
             parameters: parameters(&report.evaluation, setup),
             unidentifiable: report.unidentifiable.clone(),
+            calibration: (report.calibration.as_ref()).map(|(o, c)| CalibrationDoc::new(o, c)),
         }
     }
 }

@@ -5,8 +5,10 @@
 
 pub mod document;
 
+use super::purpose::{self, CalibrationOptions, Purpose};
 use super::Warning;
 use crate::cell::{Checker, Feasibility};
+use crate::design::calibration::CalibrationCriteria;
 use crate::design::{evaluate, unidentifiable, Evaluation};
 use crate::math::lsq::Factor;
 use crate::observation::rope_observation_matrix;
@@ -19,6 +21,12 @@ pub struct Request<'a> {
     pub setup: &'a Setup,
     /// The group: axis angles (rad), within the setup's bounds.
     pub postures: &'a [Vector6<f64>],
+    /// What the group is for: with [`Purpose::Calibration`] or [`Purpose::Both`], the
+    /// calibration criteria too (and for the calibration alone, no check that the group
+    /// identifies the stiffness).
+    pub purpose: Purpose,
+    /// The calibration the group is for ([`purpose::design`]).
+    pub calibration: CalibrationOptions,
 }
 
 /// What the evaluation found.
@@ -31,6 +39,9 @@ pub struct Report {
     /// The combinations of the model's parameters the group cannot separate (empty when it
     /// identifies every parameter), e.g. `0.71 k6 - 0.71 flange_rz`.
     pub unidentifiable: Vec<String>,
+    /// With [`Purpose::Calibration`] or [`Purpose::Both`]: the calibration options and the
+    /// group's calibration criteria.
+    pub calibration: Option<(CalibrationOptions, CalibrationCriteria)>,
     /// None today: the job's warnings, for the pattern ([`crate::app`]).
     pub warnings: Vec<Warning>,
 }
@@ -38,21 +49,30 @@ pub struct Report {
 /// Evaluates the group.
 ///
 /// # Errors
-/// For the drives alone, [`Error::Unidentifiable`] naming the joints when the group's observation
-/// matrix cannot identify every joint (a model with virtual springs reports what it cannot
-/// separate in [`Report::unidentifiable`] instead).
+/// For the drives alone and a purpose with the stiffness, [`Error::Unidentifiable`] naming the
+/// joints when the group's observation matrix cannot identify every joint (a model with virtual
+/// springs reports what it cannot separate in [`Report::unidentifiable`] instead); those of
+/// [`purpose::design`] and [`crate::design::calibration::CalibrationDesign::evaluate`].
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     setup.check_bodies()?;
-    if setup.model().is_drives_only() {
+    if setup.model().is_drives_only() && request.purpose != Purpose::Calibration {
         Factor::try_new(rope_observation_matrix(setup, postures))?;
     }
+    let calibration = match request.purpose {
+        Purpose::Stiffness => None,
+        _ => {
+            let design = purpose::design(setup, &request.calibration)?;
+            Some((request.calibration, design.evaluate(postures)?))
+        }
+    };
     let evaluation = evaluate(setup, postures);
     let checker = Checker::new(setup);
     Ok(Report {
         feasibility: postures.iter().map(|q| checker.feasibility(q)).collect(),
         unidentifiable: unidentifiable(&evaluation, setup),
         evaluation,
+        calibration,
         warnings: Vec::new(),
     })
 }

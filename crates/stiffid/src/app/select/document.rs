@@ -3,7 +3,7 @@
 
 use crate::app::document::feasibility::describe;
 use crate::app::document::{degrees, finite};
-use crate::app::evaluate::document::Criteria;
+use crate::app::evaluate::document::{CalibrationDoc, Criteria};
 use crate::app::select::{PoolReport, Report, Unconstrained};
 use crate::common::choice::Choice;
 use crate::design::target::{TargetOutcome, TargetStep};
@@ -17,7 +17,11 @@ use serde::Serialize;
 pub struct Document {
     /// The setup's name.
     pub setup: String,
-    /// The criterion minimised (`relative-a`, ...).
+    /// What the group is designed for: `stiffness`, `calibration` or `both`.
+    #[serde(rename = "for")]
+    pub purpose: &'static str,
+    /// The stiffness criterion minimised (`relative-a`, ...; with `for` `calibration`, the one
+    /// the `criteria` are reported beside, not minimised).
     #[cfg_attr(feature = "schema", schemars(schema_with = "schema::criterion"))]
     pub criterion: &'static str,
     /// `local`, `global` or `pool`.
@@ -33,10 +37,12 @@ pub struct Document {
     pub solver: Option<&'static str>,
     /// The seed of the random start group, the global starts or the pool's exchange runs.
     pub seed: u64,
-    /// The criterion of the start group; `null` for a pool choice (no start group) or an
-    /// infinite value.
+    /// The value minimised for the start group: the stiffness criterion, the calibration
+    /// criterion's loss (the reciprocal of an index, SI: 1/m or 1/m^2; the predicted RMS error,
+    /// m) or, for `both`, their weighted geometric mean `c_s^(1-w) c_c^w`; `null` for a pool
+    /// choice (no start group) or an infinite value.
     pub start_value: Option<f64>,
-    /// The criterion of the group found (`null` if infinite).
+    /// The value minimised for the group found (`null` if infinite).
     pub value: Option<f64>,
     /// Criterion evaluations of the search (of every group size tried, with a target).
     pub evaluations: usize,
@@ -56,6 +62,12 @@ pub struct Document {
     pub postures_deg: Vec<[f64; 6]>,
     /// Every criterion of the group found.
     pub criteria: Criteria,
+    /// With `for` `calibration` or `both`: the group's calibration criteria.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration: Option<CalibrationDoc>,
+    /// With `for` `both`: the weight `w` of the calibration's log-criterion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calibration_weight: Option<f64>,
     /// With a pool: the pool and the postures chosen from it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pool: Option<Pool>,
@@ -180,6 +192,7 @@ impl Document {
     pub fn new(r: &Report, setup: &Setup) -> Self {
         Self {
             setup: setup.name().into(),
+            purpose: r.purpose.name(),
             criterion: r.criterion.name(),
             search: r.method.name(),
             gradient: r.gradient.map(|g| g.name()),
@@ -193,6 +206,11 @@ impl Document {
             terminations: r.termination.map(|_| counts(&r.terminations)),
             postures_deg: degrees(&r.postures),
             criteria: Criteria::from(&r.evaluation),
+            calibration: (r.calibration.as_ref())
+                .map(|c| CalibrationDoc::new(&c.options, &c.criteria)),
+            calibration_weight: (r.calibration.as_ref())
+                .filter(|c| c.weight < 1.0)
+                .map(|c| c.weight),
             pool: r.pool.as_ref().map(Pool::from),
             target: r.target.as_ref().map(Target::from),
             unconstrained: r.unconstrained.as_ref().map(Free::from),

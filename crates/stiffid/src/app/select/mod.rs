@@ -5,15 +5,17 @@
 
 pub mod document;
 
+use super::purpose::{self, CalibrationOptions, Purpose};
 use super::Warning;
 use crate::cell::{Check, Checker};
 use crate::common::limits::{self, check_count, Range};
 use crate::common::progress::Progress;
+use crate::design::calibration::{CalibrationCriteria, CalibrationCriterion, CalibrationDesign};
 use crate::design::identifiable;
 use crate::design::pool::MAX_POOL;
 use crate::design::target::{smallest_group, TargetOutcome};
 use crate::design::{
-    self, evaluate, Criterion, Evaluation, Gradient, PoolMethod, PoolOptions, SearchOptions,
+    self, evaluate, Criterion, Evaluation, Goal, Gradient, PoolMethod, PoolOptions, SearchOptions,
     SearchOutcome, Solver, Termination,
 };
 use crate::{Error, Result, Setup};
@@ -71,8 +73,13 @@ pub struct PoolInput {
 pub struct Request<'a> {
     /// The setup: robot, tool, load, noise, nominal stiffness, bounds, cell, model.
     pub setup: &'a Setup,
-    /// The criterion to minimise.
+    /// The stiffness criterion to minimise ([`Purpose::Stiffness`] or [`Purpose::Both`]).
     pub criterion: Criterion,
+    /// What the group is for: the stiffness identification, the calibration, or both.
+    pub purpose: Purpose,
+    /// The calibration the group is designed for ([`Purpose::Calibration`] or
+    /// [`Purpose::Both`]; [`purpose::design`]).
+    pub calibration: CalibrationOptions,
     /// How.
     pub method: Method,
     /// [`Method::Local`] only: the start group (axis angles, rad, within the setup's bounds;
@@ -86,7 +93,7 @@ pub struct Request<'a> {
     pub postures: usize,
     /// The smallest group whose predicted mean deviation rate at noise level multiple 1 is at
     /// most this many percent on every parameter ([`TARGET_PCT`]; [`Method::Global`] or
-    /// [`Method::Pool`]).
+    /// [`Method::Pool`]; [`Purpose::Stiffness`] only).
     pub target_pct: Option<f64>,
     /// The budget and tolerances of the searches; its seed seeds the random start group, the
     /// global starts and the pool's exchange runs.
@@ -106,8 +113,12 @@ pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 pub struct Report {
     /// How it was chosen.
     pub method: Method,
-    /// The criterion minimised.
+    /// The stiffness criterion minimised (unused for [`Purpose::Calibration`]).
     pub criterion: Criterion,
+    /// What the group is for.
+    pub purpose: Purpose,
+    /// With [`Purpose::Calibration`] or [`Purpose::Both`]: the calibration criteria of the group.
+    pub calibration: Option<CalibrationReport>,
     /// The seed.
     pub seed: u64,
     /// The gradient of the searches; `None` for a pool choice.
@@ -117,9 +128,11 @@ pub struct Report {
     pub solver: Option<Solver>,
     /// The group chosen (axis angles, rad).
     pub postures: Vec<Vector6<f64>>,
-    /// The criterion of the start group (`None` for a pool choice).
+    /// The value minimised for the start group (`None` for a pool choice): the stiffness
+    /// criterion, the calibration criterion's loss ([`CalibrationCriterion::loss`]) or their
+    /// weighted geometric mean ([`Goal`]).
     pub start_value: Option<f64>,
-    /// The criterion of the group chosen.
+    /// The value minimised for the group chosen.
     pub value: f64,
     /// Criterion evaluations, over every group size tried with a target.
     pub evaluations: usize,
@@ -142,6 +155,19 @@ pub struct Report {
     /// The job's warnings: postures of the group that are not distinct
     /// ([`crate::design::distinct`]).
     pub warnings: Vec<Warning>,
+}
+
+/// The calibration a group was designed for, and its criteria.
+#[derive(Debug, Clone)]
+pub struct CalibrationReport {
+    /// The calibration criterion minimised.
+    pub criterion: CalibrationCriterion,
+    /// The options (criterion, geometry, gravity, weight).
+    pub options: CalibrationOptions,
+    /// Every calibration criterion of the group chosen.
+    pub criteria: CalibrationCriteria,
+    /// The weight of the calibration's log-criterion (1 for [`Purpose::Calibration`]).
+    pub weight: f64,
 }
 
 /// A pool, and what was chosen from it.
@@ -193,6 +219,16 @@ pub struct Unconstrained {
 /// rate reachable); the searches' errors; a group that cannot identify every parameter.
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
+    let design = match request.purpose {
+        Purpose::Stiffness => None,
+        _ => Some(purpose::design(request.setup, &request.calibration)?),
+    };
+    let goal = purpose::goal(
+        request.purpose,
+        request.criterion,
+        design.as_ref(),
+        &request.calibration,
+    );
     let pool = request
         .pool
         .as_ref()
@@ -201,7 +237,7 @@ pub fn run(request: &Request) -> Result<Report> {
     let started = Instant::now();
     let (found, target) = match request.target_pct {
         None => (
-            choose(request, request.setup, pool.as_ref(), size(request))?,
+            choose(request, &goal, request.setup, pool.as_ref(), size(request))?,
             None,
         ),
         Some(pct) => {
@@ -210,21 +246,28 @@ pub fn run(request: &Request) -> Result<Report> {
         }
     };
     let elapsed_s = started.elapsed().as_secs_f64();
-    identifiable(request.setup, &found.postures).map_err(|e| Error::Input {
-        source_name: "postures: the best group the search found".into(),
-        error: Box::new(e),
-    })?;
+    if request.purpose != Purpose::Calibration {
+        identifiable(request.setup, &found.postures).map_err(|e| Error::Input {
+            source_name: "postures: the best group the search found".into(),
+            error: Box::new(e),
+        })?;
+    }
     let unconstrained = match pool.is_none() && target.is_none() {
-        true => unconstrained(request, found.postures.len())?,
+        true => unconstrained(request, &goal, found.postures.len())?,
         false => None,
+    };
+    let calibration = match (&design, goal.calibration) {
+        (Some(d), Some(c)) => Some(calibration_report(d, request, c.weight, &found.postures)?),
+        _ => None,
     };
     Ok(Report {
         method: request.method,
         criterion: request.criterion,
+        purpose: request.purpose,
+        calibration,
         seed: request.options.seed,
         gradient: (request.method != Method::Pool).then_some(request.options.gradient),
-        solver: (request.method != Method::Pool)
-            .then(|| request.options.solver.resolve(request.criterion)),
+        solver: (request.method != Method::Pool).then(|| goal.solver(request.options.solver)),
         evaluation: evaluate(request.setup, &found.postures),
         start_value: found.start_value,
         value: found.value,
@@ -237,6 +280,21 @@ pub fn run(request: &Request) -> Result<Report> {
         unconstrained,
         warnings: near_warnings(request.setup, &found.postures),
         postures: found.postures,
+    })
+}
+
+/// The calibration criteria of `postures` under `design`.
+fn calibration_report(
+    design: &CalibrationDesign,
+    request: &Request,
+    weight: f64,
+    postures: &[Vector6<f64>],
+) -> Result<CalibrationReport> {
+    Ok(CalibrationReport {
+        criterion: request.calibration.criterion,
+        options: request.calibration,
+        criteria: design.evaluate(postures)?,
+        weight,
     })
 }
 
@@ -290,6 +348,12 @@ fn check(r: &Request) -> Result<()> {
     limits::check_integer("restarts", r.restarts as u64, 1, limits::MAX_POOL_RESTARTS)?;
     if let Some(pct) = r.target_pct {
         limits::check("target_pct", &[pct], &TARGET_PCT)?;
+        if r.purpose != Purpose::Stiffness {
+            return invalid(
+                "target_pct",
+                "a target deviation rate is for the stiffness design only",
+            );
+        }
         if r.method == Method::Local {
             return invalid(
                 "target_pct",
@@ -362,7 +426,7 @@ impl<'a> Candidates<'a> {
     }
 
     /// The best group of `n` usable postures.
-    fn choose(&self, r: &Request, n: usize) -> Result<Found> {
+    fn choose(&self, r: &Request, goal: &Goal, n: usize) -> Result<Found> {
         if n > self.usable() && !self.skipped.is_empty() {
             let message = format!(
                 "{n} asked for, but only {} of the {} pass the cell's checks (failed most often: {})",
@@ -377,7 +441,7 @@ impl<'a> Candidates<'a> {
             restarts: r.restarts,
             ..PoolOptions::default()
         };
-        let c = (self.pool.best(r.criterion, n, &options)).map_err(|e| Error::Input {
+        let c = (self.pool.best_for(goal, n, &options)).map_err(|e| Error::Input {
             source_name: self.name.into(),
             error: Box::new(e),
         })?;
@@ -451,30 +515,49 @@ impl From<SearchOutcome> for Found {
 }
 
 /// The group of `n` postures on `setup` by the request's method.
-fn choose(r: &Request, setup: &Setup, pool: Option<&Candidates>, n: usize) -> Result<Found> {
+fn choose(
+    r: &Request,
+    goal: &Goal,
+    setup: &Setup,
+    pool: Option<&Candidates>,
+    n: usize,
+) -> Result<Found> {
     if let Some(p) = pool {
-        return p.choose(r, n);
+        return p.choose(r, goal, n);
     }
+    let name = match (r.purpose, goal.calibration) {
+        (Purpose::Stiffness, _) | (_, None) => r.criterion.to_string(),
+        (Purpose::Calibration, Some(c)) => format!("calibration {}", choice_name(c.criterion)),
+        (Purpose::Both, Some(c)) => {
+            format!(
+                "{} and calibration {}",
+                r.criterion,
+                choice_name(c.criterion)
+            )
+        }
+    };
     let outcome = match r.method {
         Method::Global => {
-            r.progress.begin(
-                &format!("global search ({})", r.criterion),
-                r.options.starts,
-            );
-            design::global(setup, r.criterion, n, &r.options, r.progress)
+            r.progress
+                .begin(&format!("global search ({name})"), r.options.starts);
+            design::global_for(setup, goal, n, &r.options, r.progress)
         }
         _ => {
-            r.progress
-                .begin(&format!("local search ({})", r.criterion), 0);
+            r.progress.begin(&format!("local search ({name})"), 0);
             let start = match &r.start {
                 Some(s) => s.clone(),
                 None => design::random_group(setup, n, r.options.seed),
             };
-            design::local(setup, r.criterion, &start, &r.options)
+            design::local_for(setup, goal, &start, &r.options)
         }
     };
     r.progress.end();
     Ok(outcome?.into())
+}
+
+/// The name of a choice.
+fn choice_name<C: crate::common::choice::Choice>(c: C) -> &'static str {
+    c.name()
 }
 
 /// The smallest group that reaches `pct` (its evaluations those of every group size tried), and
@@ -482,8 +565,9 @@ fn choose(r: &Request, setup: &Setup, pool: Option<&Candidates>, n: usize) -> Re
 fn smallest(r: &Request, pool: Option<&Candidates>, pct: f64) -> Result<(Found, TargetOutcome)> {
     let max = pool.map_or(design::target::MAX_POSTURES, Candidates::usable);
     let (mut last, mut evaluations) = (None, 0);
+    let goal = Goal::stiffness(r.criterion);
     let outcome = smallest_group(r.setup, pct, max, |n| -> Result<_> {
-        let found = choose(r, r.setup, pool, n)?;
+        let found = choose(r, &goal, r.setup, pool, n)?;
         let postures = found.postures.clone();
         evaluations += found.evaluations;
         last = Some(found);
@@ -523,11 +607,11 @@ fn smallest(r: &Request, pool: Option<&Candidates>, pct: f64) -> Result<(Found, 
 }
 
 /// With cell checks: the same search of `n` postures without them.
-fn unconstrained(r: &Request, n: usize) -> Result<Option<Unconstrained>> {
+fn unconstrained(r: &Request, goal: &Goal, n: usize) -> Result<Option<Unconstrained>> {
     if !Checker::new(r.setup).constrains() {
         return Ok(None);
     }
-    let free = choose(r, &r.setup.without_cell(), None, n)?;
+    let free = choose(r, goal, &r.setup.without_cell(), None, n)?;
     Ok(Some(Unconstrained {
         evaluation: evaluate(r.setup, &free.postures),
         postures: free.postures,

@@ -41,11 +41,16 @@
 use crate::metrology::calibration::identifiability;
 use crate::metrology::calibration::ErrorModel;
 use crate::{Error, Result};
+use jacobian::Layout;
 use nalgebra::{DMatrix, Vector6};
 use serde::Serialize;
 
+mod jacobian;
+mod score;
 #[cfg(test)]
 mod tests;
+
+pub use score::CalibrationCriterion;
 
 /// A singular value below this share of the largest counts as zero: the group does not
 /// separate the kept parameters.
@@ -76,10 +81,11 @@ pub struct CalibrationCriteria {
 /// test postures' Jacobian.
 #[derive(Debug, Clone)]
 pub struct CalibrationDesign {
-    model: ErrorModel,
+    layout: Layout,
     kept: Vec<usize>,
-    scales: Vec<f64>,
     test: DMatrix<f64>,
+    /// `R_A` (`p x p`, upper triangular) of the QR of `test`: `A_0^T A_0 = R_A^T R_A`.
+    test_factor: DMatrix<f64>,
     noise: f64,
 }
 
@@ -117,23 +123,25 @@ impl CalibrationDesign {
         }
         let scales = model.column_scales(length, reference);
         let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
-        let j = model.jacobian(&model.nominal(), &pairs(&model, reference))?;
+        let j = model.jacobian(&rigid(&model), &pairs(&model, reference))?;
         let kept = identifiability::analyse(&j, &scales, &priorities)?.identified;
         let scales: Vec<f64> = kept.iter().map(|&c| scales[c]).collect();
+        let layout = Layout::new(model, &kept, scales);
         let mut design = CalibrationDesign {
-            model,
+            layout,
             kept,
-            scales,
             test: DMatrix::zeros(0, 0),
+            test_factor: DMatrix::zeros(0, 0),
             noise,
         };
         design.test = design.jacobian(test)?;
+        design.test_factor = score::triangular_factor(&design.test);
         Ok(design)
     }
 
     /// The error model.
     pub fn model(&self) -> &ErrorModel {
-        &self.model
+        &self.layout.model
     }
 
     /// The kept parameters' indices (in [`ErrorModel::parameters`]), ascending.
@@ -141,20 +149,31 @@ impl CalibrationDesign {
         &self.kept
     }
 
+    /// The tracker's noise per coordinate, m.
+    pub fn noise(&self) -> f64 {
+        self.noise
+    }
+
     /// The scaled identification Jacobian of the kept parameters at `postures` (rad), every
-    /// measuring point at each: 3 rows per (posture, point), posture-major, m per scaled unit.
+    /// measuring point at each: 3 rows per (posture, point), posture-major, m per scaled unit;
+    /// on the nominal chain at the commanded postures (no deflection under gravity: the
+    /// gravity terms' values do not enter).
     ///
     /// # Errors
-    /// Those of [`ErrorModel::jacobian`].
+    /// [`Error::NotFinite`] for a non-finite posture.
     pub fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
-        let j = self
-            .model
-            .jacobian(&self.model.nominal(), &pairs(&self.model, postures))?;
-        let mut s = j.select_columns(self.kept.iter());
-        for (c, scale) in self.scales.iter().enumerate() {
-            s.column_mut(c).scale_mut(*scale);
+        if !postures.iter().all(|q| q.iter().all(|v| v.is_finite())) {
+            return Err(Error::NotFinite {
+                what: "a posture of the calibration design".into(),
+            });
         }
-        Ok(s)
+        let l = &self.layout;
+        let mut j = DMatrix::zeros(l.rows(postures.len()), self.kept.len());
+        let rows = l.rows(1);
+        for (i, q) in postures.iter().enumerate() {
+            l.write_rows(&l.posture(q), &mut j, rows * i);
+        }
+        Ok(j)
     }
 
     /// The criteria of the group `postures` (rad; module docs).
@@ -176,6 +195,55 @@ impl CalibrationDesign {
             self.noise,
         )
     }
+
+    /// The value of `criterion` for `postures` (rad) as a search minimises it
+    /// ([`CalibrationCriterion::loss`]): `+infinity` for a group that does not separate the
+    /// kept parameters or a non-finite posture.
+    pub fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
+        match self.jacobian(postures) {
+            Ok(j) => score::Scored::new(j, criterion, self).map_or(f64::INFINITY, |s| s.value),
+            Err(_) => f64::INFINITY,
+        }
+    }
+
+    /// [`CalibrationDesign::value`] and the exact gradient of its logarithm with respect to
+    /// every posture's axis angles (1/rad, one per posture; zero for an infinite value), from
+    /// the derivative of the criterion with respect to the Jacobian (`score`) and of the
+    /// Jacobian with respect to the postures (`jacobian`).
+    pub fn value_and_log_gradient(
+        &self,
+        criterion: CalibrationCriterion,
+        postures: &[Vector6<f64>],
+    ) -> (f64, Vec<Vector6<f64>>) {
+        let zero = vec![Vector6::zeros(); postures.len()];
+        if !postures.iter().all(|q| q.iter().all(|v| v.is_finite())) {
+            return (f64::INFINITY, zero);
+        }
+        let l = &self.layout;
+        let terms: Vec<_> = postures.iter().map(|q| l.posture(q)).collect();
+        let rows = l.rows(1);
+        let mut j = DMatrix::zeros(l.rows(postures.len()), self.kept.len());
+        for (i, t) in terms.iter().enumerate() {
+            l.write_rows(t, &mut j, rows * i);
+        }
+        let Some(scored) = score::Scored::new(j, criterion, self) else {
+            return (f64::INFINITY, zero);
+        };
+        let g = scored.log_gradient();
+        let gradient = (terms.iter().enumerate())
+            .map(|(i, t)| l.gradient(t, &scored.j, &g, rows * i))
+            .collect();
+        (scored.value, gradient)
+    }
+}
+
+/// The model's nominal values with the gravity terms at zero: the rigid nominal chain, where the
+/// design Jacobian is taken.
+fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
+    let mut x = model.nominal();
+    x.rows_mut(model.gravity_start(), model.gravity().len())
+        .fill(0.0);
+    x
 }
 
 /// Every measuring point of `model` at every posture, posture-major.

@@ -99,7 +99,7 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
         let p = &model.parameters()[c];
         let at = d.kept().iter().position(|&k| k == c).unwrap();
         let size = match p.kind {
-            crate::metrology::calibration::Kind::Gravity => 1e-4 * d.scales[at],
+            crate::metrology::calibration::Kind::Gravity => 1e-4 * d.layout.scales[at],
             _ => 1e-3,
         };
         truth[c] += size * (2.0 * rng.random::<f64>() - 1.0);
@@ -131,4 +131,121 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
         (0.9..1.1).contains(&ratio),
         "{predicted} against {monte_carlo}"
     );
+}
+
+/// A design on the FANUC preset (coupled J2/J3 axis map) with the gravity model `g`.
+fn design_with(g: impl Fn(&Robot) -> gravity::Model) -> (Robot, CalibrationDesign) {
+    let robot = presets::get("fanuc-r2000ic-165f").unwrap();
+    let masses: [crate::robot::LinkMass; 6] = std::array::from_fn(|l| crate::robot::LinkMass {
+        mass: 200.0 - 30.0 * l as f64,
+        centre: Vector3::new(0.05 * l as f64, -0.03, 0.1 + 0.02 * l as f64),
+    });
+    let robot = robot.with_masses(Some(masses));
+    let points = [
+        Vector3::new(0.15, 0.0, 0.25),
+        Vector3::new(-0.1, 0.12, 0.3),
+        Vector3::new(0.0, -0.14, 0.2),
+    ];
+    let model = ErrorModel::new(
+        &robot,
+        &points,
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        g(&robot),
+    )
+    .unwrap();
+    let reference = postures(&robot, 60, 1);
+    let test = postures(&robot, 20, 2);
+    let d = CalibrationDesign::new(model, LENGTH, &reference, &test, 5e-5).unwrap();
+    (robot, d)
+}
+
+/// A gravity model of a robot.
+type GravityOf = Box<dyn Fn(&Robot) -> gravity::Model>;
+
+fn gravity_models() -> Vec<(&'static str, GravityOf)> {
+    vec![
+        ("none", Box::new(gravity::Model::none)),
+        (
+            "lumped",
+            Box::new(|r: &Robot| gravity::Model::lumped(r, crate::Coordinates::Axis)),
+        ),
+        (
+            "lumped kinematic",
+            Box::new(|r: &Robot| gravity::Model::lumped(r, crate::Coordinates::Kinematic)),
+        ),
+        (
+            "masses",
+            Box::new(|r: &Robot| {
+                let masses = *r.masses().unwrap();
+                let nominal = Vector6::repeat(2e-6);
+                gravity::Model::masses(r, masses, crate::Coordinates::Axis, nominal).unwrap()
+            }),
+        ),
+    ]
+}
+
+/// The design's own Jacobian (screws and regressors per posture) equals the error model's on
+/// the rigid nominal chain, column-scaled, for every gravity model.
+#[test]
+fn design_jacobian_matches_the_error_model() {
+    for (name, g) in gravity_models() {
+        let (robot, d) = design_with(g);
+        let model = d.model();
+        let group = postures(&robot, 5, 9);
+        let at: Vec<_> = (group.iter())
+            .flat_map(|q| (0..3).map(move |k| (*q, k)))
+            .collect();
+        let full = model.jacobian(&rigid(model), &at).unwrap();
+        let scales = model.column_scales(LENGTH, &postures(&robot, 60, 1));
+        let fast = d.jacobian(&group).unwrap();
+        assert_eq!(fast.ncols(), d.kept().len());
+        for (c, &k) in d.kept().iter().enumerate() {
+            for r in 0..full.nrows() {
+                let (a, b) = (fast[(r, c)], full[(r, k)] * scales[k]);
+                assert!(
+                    (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
+                    "{name} {r} {k}: {a} {b}"
+                );
+            }
+        }
+    }
+}
+
+/// The exact gradient of every criterion's log against central differences, for every gravity
+/// model (the regressors' derivatives) on a robot with a coupled axis map.
+#[test]
+fn log_gradients_match_central_differences() {
+    for (name, g) in gravity_models() {
+        let (robot, d) = design_with(g);
+        let group = postures(&robot, 12, 10);
+        for criterion in CalibrationCriterion::ALL {
+            let (value, gradient) = d.value_and_log_gradient(criterion, &group);
+            assert!(value.is_finite(), "{name} {criterion:?}");
+            let c = d.evaluate(&group).unwrap();
+            let loss = criterion.loss(&c);
+            assert!(
+                (value - loss).abs() <= 1e-8 * loss,
+                "{value} against {loss}"
+            );
+            let h = 1e-6;
+            let mut worst: f64 = 0.0;
+            let scale = gradient.iter().map(|g| g.amax()).fold(0.0, f64::max);
+            for i in 0..group.len() {
+                for a in 0..6 {
+                    let mut up = group.clone();
+                    let mut down = group.clone();
+                    up[i][a] += h;
+                    down[i][a] -= h;
+                    let fd =
+                        (d.value(criterion, &up).ln() - d.value(criterion, &down).ln()) / (2.0 * h);
+                    worst = worst.max((fd - gradient[i][a]).abs());
+                }
+            }
+            assert!(
+                worst <= 1e-5 * scale,
+                "{name} {criterion:?}: worst {worst} of {scale}"
+            );
+        }
+    }
 }

@@ -4,7 +4,7 @@
 use super::constraints::violation;
 use super::local::{check_count, evals_per_step, infeasible, local_in};
 use super::sample::group_from_stream;
-use super::{SearchOptions, SearchOutcome};
+use super::{Goal, SearchOptions, SearchOutcome};
 use crate::cell::Checker;
 use crate::common::progress::Progress;
 use crate::design::Criterion;
@@ -61,8 +61,29 @@ pub fn global(
     options: &SearchOptions,
     progress: &dyn Progress,
 ) -> Result<SearchOutcome> {
+    global_for(
+        setup,
+        &Goal::stiffness(criterion),
+        postures,
+        options,
+        progress,
+    )
+}
+
+/// [`global`] of any [`Goal`]: a stiffness criterion, a calibration criterion, or both.
+///
+/// # Errors
+/// Those of [`global`]; [`crate::Error::InvalidField`] (`postures`) for a group too small to
+/// separate the calibration's kept parameters.
+pub fn global_for(
+    setup: &Setup,
+    goal: &Goal,
+    postures: usize,
+    options: &SearchOptions,
+    progress: &dyn Progress,
+) -> Result<SearchOutcome> {
     options.validate()?;
-    check_count(setup, criterion, postures)?;
+    check_count(setup, goal, postures)?;
     let checker = Checker::new(setup);
     let screening = match options.screen_steps {
         0 => options.clone(),
@@ -76,13 +97,13 @@ pub fn global(
         .into_par_iter()
         .map(|s| {
             let start = group_from_stream(&checker, postures, options.seed, s as u64 + 1);
-            let outcome = local_in(&checker, criterion, &start, &screening);
+            let outcome = local_in(&checker, goal, &start, &screening);
             progress.advance(done.fetch_add(1, Ordering::Relaxed) + 1);
             outcome
         })
         .collect();
     if options.screen_steps > 0 {
-        polish(&checker, criterion, options, &mut outcomes);
+        polish(&checker, goal, options, &mut outcomes);
     }
     infeasible(&checker, outcomes.iter())?;
     let evaluations = outcomes.iter().map(|o| o.evaluations).sum();
@@ -99,18 +120,13 @@ pub fn global(
 
 /// Continues the [`SearchOptions::polished`] best screened searches (in parallel, each from its
 /// screened group with the whole budget), adding their evaluations.
-fn polish(
-    checker: &Checker,
-    criterion: Criterion,
-    options: &SearchOptions,
-    outcomes: &mut [SearchOutcome],
-) {
+fn polish(checker: &Checker, goal: &Goal, options: &SearchOptions, outcomes: &mut [SearchOutcome]) {
     let mut order: Vec<usize> = (0..outcomes.len()).collect();
     order.sort_by(|&a, &b| rank(checker, outcomes, a, b));
     order.truncate(options.polished);
     let polished: Vec<SearchOutcome> = order
         .par_iter()
-        .map(|&i| local_in(checker, criterion, &outcomes[i].postures, options))
+        .map(|&i| local_in(checker, goal, &outcomes[i].postures, options))
         .collect();
     for (i, p) in order.into_iter().zip(polished) {
         let o = &mut outcomes[i];

@@ -21,15 +21,112 @@ mod sqp;
 mod termination;
 
 pub use constraints::{cell_constraints, CellConstraints};
-pub use global::global;
+pub use global::{global, global_for};
 pub(super) use local::check_count;
-pub use local::local;
+pub use local::{local, local_for};
 pub use sample::{random_group, CONSTRAINT_TRIES};
 pub use termination::Termination;
 
-use crate::design::Criterion;
+use crate::design::calibration::{CalibrationCriterion, CalibrationDesign};
+use crate::design::{Criterion, Evaluator};
 use crate::{common::limits, Result};
 use nalgebra::Vector6;
+
+/// What a search minimises: a stiffness criterion, a calibration criterion, or both.
+///
+/// With a calibration part of weight `w`, the objective is `c_s^(1-w) c_c^w` (`c_s` the stiffness
+/// criterion, `c_c` the calibration criterion's loss, [`CalibrationCriterion::loss`]), so its
+/// logarithm, what the SQP minimises, is the weighted sum `(1-w) ln c_s + w ln c_c` of the
+/// log-criteria: each criterion's relative improvement counts with its weight, whatever their
+/// units and scales (no normalisation constant changes the minimiser), and `w = 1` is the
+/// calibration alone (the stiffness criterion is then not evaluated).
+#[derive(Debug, Clone, Copy)]
+pub struct Goal<'a> {
+    /// The stiffness criterion.
+    pub stiffness: Criterion,
+    /// The calibration part, if any.
+    pub calibration: Option<CalibrationGoal<'a>>,
+}
+
+/// The calibration part of a [`Goal`].
+#[derive(Debug, Clone, Copy)]
+pub struct CalibrationGoal<'a> {
+    /// The design problem (error model, kept parameters, test postures, noise).
+    pub design: &'a CalibrationDesign,
+    /// The criterion.
+    pub criterion: CalibrationCriterion,
+    /// The weight `w` of its logarithm, in `(0, 1]` (1: the calibration alone).
+    pub weight: f64,
+}
+
+impl<'a> Goal<'a> {
+    /// The stiffness criterion alone.
+    pub fn stiffness(criterion: Criterion) -> Self {
+        Goal {
+            stiffness: criterion,
+            calibration: None,
+        }
+    }
+
+    /// The weight of the stiffness criterion's logarithm: `1 - w`.
+    pub(crate) fn stiffness_weight(&self) -> f64 {
+        self.calibration.map_or(1.0, |c| 1.0 - c.weight)
+    }
+
+    /// Whether the stiffness criterion enters the objective.
+    pub(crate) fn has_stiffness(&self) -> bool {
+        self.stiffness_weight() > 0.0
+    }
+
+    /// The SQP a local search on the goal runs for the option `solver`: [`Solver::resolve`] of
+    /// the stiffness criterion alone; with a calibration part, under [`Solver::Auto`], ours
+    /// ([`Solver::ActiveSet`]) when every part is smooth (`o1`, `d-optimality`, `test-pose`, and a
+    /// stiffness criterion ours serves) and SLSQP when one has kinks (`o3`, `o4`, `o5`: extreme
+    /// singular values, a condition number or a maximum).
+    pub fn solver(&self, solver: Solver) -> Solver {
+        let Some(c) = self.calibration else {
+            return solver.resolve(self.stiffness);
+        };
+        let smooth_calibration = matches!(
+            c.criterion,
+            CalibrationCriterion::O1
+                | CalibrationCriterion::DOptimality
+                | CalibrationCriterion::TestPose
+        );
+        let smooth_stiffness =
+            !self.has_stiffness() || Solver::Auto.resolve(self.stiffness) == Solver::ActiveSet;
+        match (solver, smooth_calibration && smooth_stiffness) {
+            (Solver::Auto, true) => Solver::ActiveSet,
+            (Solver::Auto, false) => Solver::Slsqp,
+            (concrete, _) => concrete,
+        }
+    }
+
+    /// The goal's value at `postures` (axis angles, rad), `evaluator` scoring the stiffness
+    /// criterion: `+infinity` when a part is not positive and finite.
+    pub fn value(&self, evaluator: &Evaluator, postures: &[Vector6<f64>]) -> f64 {
+        let Some(c) = self.calibration else {
+            return evaluator.value(self.stiffness, postures);
+        };
+        let calibration = c.design.value(c.criterion, postures);
+        match self.has_stiffness() {
+            false => calibration,
+            true => combine(
+                evaluator.value(self.stiffness, postures),
+                calibration,
+                c.weight,
+            ),
+        }
+    }
+}
+
+/// `a^(1-w) b^w`, computed in logarithms; `+infinity` when either is not positive and finite.
+pub(crate) fn combine(a: f64, b: f64, w: f64) -> f64 {
+    match a.is_finite() && a > 0.0 && b.is_finite() && b > 0.0 {
+        true => ((1.0 - w) * a.ln() + w * b.ln()).exp(),
+        false => f64::INFINITY,
+    }
+}
 
 /// How a local search gets the gradient of its objective `ln(criterion)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]

@@ -36,7 +36,7 @@ impl<'p, 'a> Epigraph<'p, 'a> {
             problem.criterion,
             Criterion::Classical | Criterion::Zhang2021
         );
-        maximum && problem.options.gradient == Gradient::Exact
+        maximum && problem.goal.calibration.is_none() && problem.options.gradient == Gradient::Exact
     }
 
     /// The problem from the angles `x0` (within the bounds), `t` at their worst `ln k(J_N)`.

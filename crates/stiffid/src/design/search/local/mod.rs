@@ -8,7 +8,7 @@ use super::constraints::{
 };
 use super::sqp::{self, Gradients, Nlp, SparseRows, Values};
 use super::termination::{from_slsqp, Termination};
-use super::{Gradient, SearchOptions, SearchOutcome, Solver};
+use super::{combine, Goal, Gradient, SearchOptions, SearchOutcome, Solver};
 use crate::cell::{CheckKind, Checker};
 use crate::design::PostureTerms;
 use crate::design::{Criterion, Evaluator};
@@ -73,10 +73,24 @@ pub fn local(
     start: &[Vector6<f64>],
     options: &SearchOptions,
 ) -> Result<SearchOutcome> {
+    local_for(setup, &Goal::stiffness(criterion), start, options)
+}
+
+/// [`local`] of any [`Goal`]: a stiffness criterion, a calibration criterion, or both.
+///
+/// # Errors
+/// Those of [`local`]; [`Error::InvalidField`] (`postures`) for a group too small to separate
+/// the calibration's kept parameters.
+pub fn local_for(
+    setup: &Setup,
+    goal: &Goal,
+    start: &[Vector6<f64>],
+    options: &SearchOptions,
+) -> Result<SearchOutcome> {
     options.validate()?;
-    check_start(setup, criterion, start)?;
+    check_start(setup, goal, start)?;
     let checker = Checker::new(setup);
-    let outcome = local_in(&checker, criterion, start, options);
+    let outcome = local_in(&checker, goal, start, options);
     infeasible(&checker, std::iter::once(&outcome))?;
     Ok(outcome)
 }
@@ -84,11 +98,11 @@ pub fn local(
 /// [`local`] with a checker built once, from a checked start; the result may be infeasible.
 pub(super) fn local_in(
     checker: &Checker,
-    criterion: Criterion,
+    goal: &Goal,
     start: &[Vector6<f64>],
     options: &SearchOptions,
 ) -> SearchOutcome {
-    Problem::new(checker, criterion, start.len(), options).run(start)
+    Problem::new(checker, *goal, start.len(), options).run(start)
 }
 
 /// [`Error::Infeasible`] if the best of `outcomes` (the least violating) fails a check, naming the
@@ -121,12 +135,8 @@ pub(super) fn evals_per_step(options: &SearchOptions, n: usize) -> usize {
 }
 
 /// Checks a start group: at least 2 postures, finite, within the bounds.
-pub(super) fn check_start(
-    setup: &Setup,
-    criterion: Criterion,
-    start: &[Vector6<f64>],
-) -> Result<()> {
-    check_count(setup, criterion, start.len())?;
+pub(super) fn check_start(setup: &Setup, goal: &Goal, start: &[Vector6<f64>]) -> Result<()> {
+    check_count(setup, goal, start.len())?;
     for (i, q) in start.iter().enumerate() {
         let field = |a: usize| format!("start posture {}, q{}_deg", i + 1, a + 1);
         setup.bounds().check(q, "the setup's bounds", field)?;
@@ -134,15 +144,27 @@ pub(super) fn check_start(
     Ok(())
 }
 
-/// Checks a group size and that the setup can evaluate the criterion ([`Criterion::check`]).
-pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usize) -> Result<()> {
-    criterion.check(setup)?;
-    if n < 2 {
-        return Err(Error::InvalidField {
-            field: "postures".into(),
-            message: format!("{n} given: a search needs at least 2 postures"),
-        });
+/// Checks a group size and that the setup can evaluate the goal's criteria
+/// ([`Criterion::check`]; a calibration needs at least as many coordinates as kept parameters).
+pub(in crate::design) fn check_count(setup: &Setup, goal: &Goal, n: usize) -> Result<()> {
+    if let Some(c) = goal.calibration {
+        let (rows, kept) = (3 * c.design.model().points(), c.design.kept().len());
+        if n >= 2 && n * rows < kept {
+            return Err(Error::InvalidField {
+                field: "postures".into(),
+                message: format!(
+                    "{n} given: the calibration's {kept} parameters need at least {} postures ({rows} coordinates each)",
+                    kept.div_ceil(rows)
+                ),
+            });
+        }
+        if !goal.has_stiffness() {
+            return check_size(n);
+        }
     }
+    let criterion = goal.stiffness;
+    criterion.check(setup)?;
+    check_size(n)?;
     // A posture gives at most min(3p, 6) independent rows of Psi.
     let rows = (3 * setup.tool().measuring_points.len()).min(6);
     let parameters = setup.model().len();
@@ -164,11 +186,23 @@ pub(in crate::design) fn check_count(setup: &Setup, criterion: Criterion, n: usi
     Ok(())
 }
 
+/// At least 2 postures.
+fn check_size(n: usize) -> Result<()> {
+    match n < 2 {
+        true => Err(Error::InvalidField {
+            field: "postures".into(),
+            message: format!("{n} given: a search needs at least 2 postures"),
+        }),
+        false => Ok(()),
+    }
+}
+
 /// The SQP problem of one local search.
 struct Problem<'a> {
     evaluator: Evaluator<'a>,
     checker: &'a Checker<'a>,
     criterion: Criterion,
+    goal: Goal<'a>,
     n: usize,
     lower: Vec<f64>,
     upper: Vec<f64>,
@@ -209,18 +243,14 @@ struct PostureConstraints {
 }
 
 impl<'a> Problem<'a> {
-    fn new(
-        checker: &'a Checker<'a>,
-        criterion: Criterion,
-        n: usize,
-        options: &'a SearchOptions,
-    ) -> Self {
+    fn new(checker: &'a Checker<'a>, goal: Goal<'a>, n: usize, options: &'a SearchOptions) -> Self {
         let setup = checker.setup();
         let b = &setup.bounds();
         Self {
             evaluator: Evaluator::new(setup),
             checker,
-            criterion,
+            criterion: goal.stiffness,
+            goal,
             n,
             lower: (0..6 * n).map(|k| b.lower[k % 6]).collect(),
             upper: (0..6 * n).map(|k| b.upper[k % 6]).collect(),
@@ -241,7 +271,7 @@ impl<'a> Problem<'a> {
 
     fn run(self, start: &[Vector6<f64>]) -> SearchOutcome {
         let x0: Vec<f64> = start.iter().flat_map(|q| q.iter().copied()).collect();
-        let stop = match self.options.solver.resolve(self.criterion) {
+        let stop = match self.goal.solver(self.options.solver) {
             Solver::ActiveSet if self.can_evaluate() => match Epigraph::applies(&self) {
                 true => Epigraph::new(&self, &self.clamp(&x0)).minimise(self.tolerances()),
                 false => sqp::minimise(&self, &self.clamp(&x0), self.tolerances()),
@@ -276,6 +306,34 @@ impl<'a> Problem<'a> {
             termination,
             terminations: vec![termination],
         }
+    }
+
+    /// The goal's value at `postures` ([`Goal::value`]).
+    fn goal_value(&self, postures: &[Vector6<f64>]) -> f64 {
+        self.goal.value(&self.evaluator, postures)
+    }
+
+    /// The goal's value at `postures` and the gradient of its logarithm.
+    fn goal_value_and_log_gradient(&self, postures: &[Vector6<f64>]) -> (f64, Vec<Vector6<f64>>) {
+        let stiffness = || {
+            let terms: Vec<PostureTerms> =
+                postures.iter().map(|q| self.evaluator.posture(q)).collect();
+            let refs: Vec<&PostureTerms> = terms.iter().collect();
+            self.evaluator.value_and_log_gradient(self.criterion, &refs)
+        };
+        let Some(c) = self.goal.calibration else {
+            return stiffness();
+        };
+        let (v, g) = c.design.value_and_log_gradient(c.criterion, postures);
+        if !self.goal.has_stiffness() {
+            return (v, g);
+        }
+        let (vs, gs) = stiffness();
+        let w = c.weight;
+        let gradient = (g.iter().zip(&gs))
+            .map(|(gc, gs)| gc * w + gs * (1.0 - w))
+            .collect();
+        (combine(vs, v, w), gradient)
     }
 
     /// The stops of our SQP.
@@ -364,7 +422,7 @@ impl<'a> Problem<'a> {
     fn value(&self, x: &[f64]) -> f64 {
         let x = self.clamp(x);
         let postures = postures(&x);
-        let value = self.evaluator.value(self.criterion, &postures);
+        let value = self.goal_value(&postures);
         self.record(x, &postures, value)
     }
 
@@ -413,12 +471,10 @@ impl<'a> Problem<'a> {
     fn objective(&self, x: &[f64]) -> f64 {
         let postures = postures(x);
         if self.options.gradient == Gradient::FiniteDifference {
-            let value = self.evaluator.value(self.criterion, &postures);
+            let value = self.goal_value(&postures);
             return log_value(self.record(x.to_vec(), &postures, value));
         }
-        let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
-        let refs: Vec<&PostureTerms> = terms.iter().collect();
-        let (value, gradient) = self.evaluator.value_and_log_gradient(self.criterion, &refs);
+        let (value, gradient) = self.goal_value_and_log_gradient(&postures);
         let f = log_value(self.record(x.to_vec(), &postures, value));
         let g = match f >= PENALTY {
             true => vec![0.0; x.len()],
@@ -432,6 +488,15 @@ impl<'a> Problem<'a> {
     /// one posture, so the other postures' terms are reused.
     fn fd_objective_gradient(&self, x: &[f64], f: f64) -> Vec<f64> {
         let postures = postures(x);
+        if self.goal.calibration.is_some() {
+            let mut g = vec![0.0; x.len()];
+            self.fd_gradient(x, f, &mut g, |_, probe| {
+                let probed = self::postures(probe);
+                let value = self.goal_value(&probed);
+                log_value(self.record(probe.to_vec(), &probed, value))
+            });
+            return g;
+        }
         let terms: Vec<PostureTerms> = postures.iter().map(|q| self.evaluator.posture(q)).collect();
         let refs: Vec<&PostureTerms> = terms.iter().collect();
         let mut g = vec![0.0; x.len()];

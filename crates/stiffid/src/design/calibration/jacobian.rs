@@ -1,0 +1,372 @@
+//! The design's identification Jacobian of one posture and the exact derivative of a criterion
+//! through it.
+//!
+//! Every column of the identification Jacobian ([`ErrorModel::jacobian`]) is the velocity of
+//! the measuring point `b` under a unit motion of a screw: a rotation about the unit axis `s`
+//! through `o` (column `s x (b - o)`) or a translation along `s` (column `s`), the screw fixed in
+//! link `L` of the chain (moved by the joints `j < L`: 0 for the measurement frame, `i` for the
+//! errors of joint `i` (0-based, they sit before its rotation), 6 for a measuring point in the
+//! flange). A gravity term's column is the point Jacobian's column of its joint (a weighted sum
+//! of joint screws) times its torque regressor `y(q)`. So the derivative of a column with respect
+//! to the kinematic angle `theta_j` is `z_j x col` when joint `j` moves the screw (`j < L`), and
+//! otherwise `s x (z_j x (b - o_j))` for a rotation and 0 for a translation (`z_j`, `o_j` joint
+//! `j`'s axis and a point on it). For a criterion `f` with gradient `G` with respect to the
+//! Jacobian (3 rows `g_c` per reading and column), this sums to
+//!
+//! ```text
+//! df/dtheta_j = z_j . [ sum_{L_c > j} col_c x g_c  +  (b - o_j) x sum_{rotations, L_c <= j} g_c x s_c ]
+//!               + sum_t (g_t . col_t / y_t) dy_t/dtheta_j
+//! ```
+//!
+//! per reading, and `df/dq = M^T df/dtheta` through the axis map. The regressors' derivatives
+//! follow from the same rule: `y` sums `(z_i x arm) . g` over joint axes `i` and link points or
+//! directions `arm` of link `l >= i`.
+//!
+//! The design Jacobian is evaluated on the nominal chain at the commanded posture (no deflection
+//! under gravity: it changes the columns by a relative amount of the deflection's size, micro
+//! radians, as the gravity regressors themselves are taken on the nominal chain).
+
+use crate::metrology::calibration::error_model::{Component, Target};
+use crate::metrology::calibration::gravity::{Term, G};
+use crate::metrology::calibration::ErrorModel;
+use crate::robot::kinematics::Coordinates;
+use crate::Frames;
+use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
+
+/// A kept column of the design Jacobian: what it moves.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Column {
+    /// The frame's translation along base axis `0..3`: constant.
+    FrameTranslation(usize),
+    /// The frame's rotation about base axis `0..3`, through the origin.
+    FrameRotation(usize),
+    /// Measuring point `point`'s coordinate `axis` (flange frame).
+    Point { point: usize, axis: usize },
+    /// An error of joint `joint` (0-based).
+    Joint { joint: usize, component: Component },
+    /// Gravity term `term` (index in the gravity model's terms).
+    Gravity { term: usize, joint: usize },
+}
+
+impl Column {
+    /// The column of the model's parameter `target` (gravity terms at `index` among the terms).
+    pub(super) fn of(target: Target, model: &ErrorModel, index: usize) -> Self {
+        match target {
+            Target::Frame(a) if a < 3 => Column::FrameTranslation(a),
+            Target::Frame(a) => Column::FrameRotation(a - 3),
+            Target::Point { point, axis } => Column::Point { point, axis },
+            Target::Joint { joint, component } => Column::Joint { joint, component },
+            Target::Gravity(term) => Column::Gravity {
+                term: index - model.gravity_start(),
+                joint: term.joint(),
+            },
+        }
+    }
+}
+
+/// What one posture needs for its rows and their derivative.
+pub(super) struct Posture {
+    frames: Frames,
+    /// Each joint's error basis `(u, v)` in the base frame (before its rotation).
+    u: [Vector3<f64>; 6],
+    v: [Vector3<f64>; 6],
+    /// The gravity terms' regressors and their derivatives in the kinematic angles.
+    regressors: Vec<f64>,
+    regressor_gradients: Vec<Vector6<f64>>,
+    /// The base-frame position of every measuring point.
+    points: Vec<Vector3<f64>>,
+}
+
+/// The model, its kept parameters' columns and scales, and the measuring points (flange frame,
+/// m, nominal).
+#[derive(Debug, Clone)]
+pub(super) struct Layout {
+    pub(super) model: ErrorModel,
+    pub(super) columns: Vec<Column>,
+    pub(super) scales: Vec<f64>,
+    pub(super) points: Vec<Vector3<f64>>,
+}
+
+impl Layout {
+    /// The layout of the parameters `kept` of `model`, scaled by `scales` (one per kept).
+    pub(super) fn new(model: ErrorModel, kept: &[usize], scales: Vec<f64>) -> Self {
+        let columns = (kept.iter())
+            .map(|&c| Column::of(model.parameters()[c].target, &model, c))
+            .collect();
+        let nominal = model.nominal();
+        let points = (0..model.points())
+            .map(|k| model.point(&nominal, k))
+            .collect();
+        Layout {
+            model,
+            columns,
+            scales,
+            points,
+        }
+    }
+
+    /// The rows of the Jacobian: 3 per measuring point and posture.
+    pub(super) fn rows(&self, postures: usize) -> usize {
+        3 * self.points.len() * postures
+    }
+
+    /// The terms of posture `q` (axis angles, rad).
+    pub(super) fn posture(&self, q: &Vector6<f64>) -> Posture {
+        let robot = self.model.robot();
+        let frames = robot.frames(q);
+        let mut u = [Vector3::zeros(); 6];
+        let mut v = [Vector3::zeros(); 6];
+        for i in 0..6 {
+            let before = if i == 0 {
+                *robot.base()
+            } else {
+                frames.joints[i - 1]
+            };
+            let r = (before * robot.joints()[i].pre).rotation;
+            let basis = self.model.basis(i);
+            u[i] = r * basis.u;
+            v[i] = r * basis.v;
+        }
+        let (regressors, regressor_gradients) = regressors(&self.model, &frames);
+        let points = self.points.iter().map(|c| frames.point(c)).collect();
+        Posture {
+            frames,
+            u,
+            v,
+            regressors,
+            regressor_gradients,
+            points,
+        }
+    }
+
+    /// The unscaled column `c` at measuring point `k` of posture `p`.
+    fn column(&self, p: &Posture, c: Column, k: usize) -> Vector3<f64> {
+        let b = p.points[k];
+        let f = &p.frames;
+        match c {
+            Column::FrameTranslation(a) => Vector3::ith(a, 1.0),
+            Column::FrameRotation(a) => Vector3::<f64>::ith(a, 1.0).cross(&b),
+            Column::Point { point, axis } => match point == k {
+                true => f.flange.rotation * Vector3::ith(axis, 1.0),
+                false => Vector3::zeros(),
+            },
+            Column::Joint {
+                joint: i,
+                component,
+            } => {
+                let (z, o) = (f.axis_directions[i], f.axis_points[i]);
+                match component {
+                    Component::Theta => z.cross(&(b - o)),
+                    Component::D => z,
+                    Component::A => p.u[i],
+                    Component::Alpha => p.u[i].cross(&(b - o)),
+                    Component::Beta => p.v[i].cross(&(b - o)),
+                    Component::B => p.v[i],
+                }
+            }
+            Column::Gravity { term, joint } => {
+                let weights = self.spring_weights(joint);
+                let mut col = Vector3::zeros();
+                for (i, w) in weights.iter().enumerate() {
+                    if *w != 0.0 {
+                        col += f.axis_directions[i].cross(&(b - f.axis_points[i])) * *w;
+                    }
+                }
+                col * p.regressors[term]
+            }
+        }
+    }
+
+    /// The kinematic joints' weights in the spring coordinate `joint` (a column of `M` in axis
+    /// coordinates, a unit vector in kinematic ones).
+    fn spring_weights(&self, joint: usize) -> Vector6<f64> {
+        match self.model.gravity().coordinates() {
+            Coordinates::Kinematic => Vector6::ith(joint, 1.0),
+            Coordinates::Axis => self.model.robot().axis_map().matrix.column(joint).into(),
+        }
+    }
+
+    /// Writes the scaled rows of posture `p` (3 per measuring point) into `j` from row `row`.
+    pub(super) fn write_rows(&self, p: &Posture, j: &mut DMatrix<f64>, row: usize) {
+        for k in 0..p.points.len() {
+            for (c, (column, scale)) in self.columns.iter().zip(&self.scales).enumerate() {
+                let col = self.column(p, *column, k) * *scale;
+                j.fixed_view_mut::<3, 1>(row + 3 * k, c).copy_from(&col);
+            }
+        }
+    }
+
+    /// `df/dq` (axis angles) of posture `p` given `g`, the gradient of `f` with respect to the
+    /// scaled Jacobian `j`, at their rows from `row` (module docs).
+    pub(super) fn gradient(
+        &self,
+        p: &Posture,
+        j: &DMatrix<f64>,
+        g: &DMatrix<f64>,
+        row: usize,
+    ) -> Vector6<f64> {
+        let f = &p.frames;
+        let mut theta = Vector6::zeros();
+        let mut eta = vec![0.0; p.regressors.len()];
+        for k in 0..p.points.len() {
+            let b = p.points[k];
+            // by_link[L]: sum of col x g over the columns of link L; turns[L]: sum of g x s over
+            // its rotations (L = 7 slots: 0..=6).
+            let mut by_link = [Vector3::zeros(); 7];
+            let mut turns = [Vector3::zeros(); 7];
+            for (c, (column, scale)) in self.columns.iter().zip(&self.scales).enumerate() {
+                let gs: Vector3<f64> = g.fixed_view::<3, 1>(row + 3 * k, c).into_owned();
+                if gs == Vector3::zeros() || *scale == 0.0 {
+                    continue;
+                }
+                // col x g of the unscaled column and gradient: the scaled column times the
+                // gradient with respect to it.
+                let js: Vector3<f64> = j.fixed_view::<3, 1>(row + 3 * k, c).into_owned();
+                let gc = gs * *scale;
+                match *column {
+                    Column::FrameTranslation(_) => {}
+                    Column::FrameRotation(a) => turns[0] += gc.cross(&Vector3::ith(a, 1.0)),
+                    Column::Point { point, .. } if point == k => by_link[6] += js.cross(&gs),
+                    Column::Point { .. } => {}
+                    Column::Joint {
+                        joint: i,
+                        component,
+                    } => {
+                        by_link[i] += js.cross(&gs);
+                        let s = match component {
+                            Component::Theta => Some(f.axis_directions[i]),
+                            Component::Alpha => Some(p.u[i]),
+                            Component::Beta => Some(p.v[i]),
+                            _ => None,
+                        };
+                        if let Some(s) = s {
+                            turns[i] += gc.cross(&s);
+                        }
+                    }
+                    Column::Gravity { term, joint } => {
+                        let y = p.regressors[term];
+                        let weights = self.spring_weights(joint);
+                        let mut jp = Vector3::zeros();
+                        for (i, w) in weights.iter().enumerate() {
+                            if *w == 0.0 {
+                                continue;
+                            }
+                            let z = f.axis_directions[i];
+                            let col = z.cross(&(b - f.axis_points[i])) * *w;
+                            jp += col;
+                            by_link[i] += col.cross(&gc) * y;
+                            turns[i] += gc.cross(&z) * (*w * y);
+                        }
+                        eta[term] += gc.dot(&jp);
+                    }
+                }
+            }
+            // Suffix sums of by_link over L > j, prefix sums of turns over L <= j.
+            let mut after: Vector3<f64> = by_link[1..].iter().sum();
+            let mut before = Vector3::zeros();
+            for j in 0..6 {
+                before += turns[j];
+                if j > 0 {
+                    after -= by_link[j];
+                }
+                let (z, o) = (f.axis_directions[j], f.axis_points[j]);
+                theta[j] += z.dot(&(after + (b - o).cross(&before)));
+            }
+        }
+        for (e, d) in eta.iter().zip(&p.regressor_gradients) {
+            theta += d * *e;
+        }
+        self.model.robot().axis_map().matrix.transpose() * theta
+    }
+}
+
+/// The gravity terms' regressors of `model` at the posture `f` and their derivatives in the
+/// kinematic angles: the torques `(z_i x arm) . g` of unit masses and moments
+/// ([`crate::metrology::calibration::gravity`], module docs), equal to its `regressors`.
+fn regressors(model: &ErrorModel, f: &Frames) -> (Vec<f64>, Vec<Vector6<f64>>) {
+    let gm = model.gravity();
+    if gm.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let g = Vector3::new(0.0, 0.0, -G);
+    let m: Matrix6<f64> = model.robot().axis_map().matrix;
+    let to_springs = |theta: Vector6<f64>| match gm.coordinates() {
+        Coordinates::Kinematic => theta,
+        Coordinates::Axis => m.transpose() * theta,
+    };
+    // unit[l][k]: the torque vector (springs' coordinates) of a unit mass (k = 0) or moment
+    // (k = 1..3) of link l; its derivative with respect to theta_j.
+    let mut unit = [[Vector6::zeros(); 4]; 6];
+    let mut d_unit = [[[Vector6::zeros(); 6]; 4]; 6];
+    for l in 0..6 {
+        let frame = f.joints[l];
+        let o = frame.translation.vector;
+        for k in 0..4 {
+            let mut theta = Vector6::zeros();
+            let mut d_theta = [Vector6::zeros(); 6];
+            for i in 0..=l {
+                let (zi, oi) = (f.axis_directions[i], f.axis_points[i]);
+                let arm = match k {
+                    0 => o - oi,
+                    _ => frame.rotation * Vector3::ith(k - 1, 1.0),
+                };
+                let torque = zi.cross(&arm);
+                theta[i] = torque.dot(&g);
+                for (j, d) in d_theta.iter_mut().enumerate() {
+                    let (zj, oj) = (f.axis_directions[j], f.axis_points[j]);
+                    d[i] = if j < i {
+                        zj.dot(&torque.cross(&g))
+                    } else if j <= l {
+                        let moved = match k {
+                            0 => o - oj,
+                            _ => arm,
+                        };
+                        zj.dot(&moved.cross(&g.cross(&zi)))
+                    } else {
+                        0.0
+                    };
+                }
+            }
+            unit[l][k] = to_springs(theta);
+            for j in 0..6 {
+                d_unit[l][k][j] = to_springs(d_theta[j]);
+            }
+        }
+    }
+    let weights: Option<Vec<[f64; 4]>> = gm.link_masses().map(|masses| {
+        masses
+            .iter()
+            .map(|lm| {
+                let c = lm.centre;
+                [lm.mass, lm.mass * c[0], lm.mass * c[1], lm.mass * c[2]]
+            })
+            .collect()
+    });
+    let mut y = Vec::with_capacity(gm.len());
+    let mut dy = Vec::with_capacity(gm.len());
+    for term in gm.terms() {
+        match *term {
+            Term::Lumped {
+                joint,
+                link,
+                moment,
+            } => {
+                y.push(unit[link][moment][joint]);
+                dy.push(Vector6::from_fn(|j, _| d_unit[link][moment][j][joint]));
+            }
+            Term::Compliance { joint } => {
+                let w = weights.as_ref().expect("a compliance term has masses");
+                let (mut v, mut d) = (0.0, Vector6::zeros());
+                for (l, wl) in w.iter().enumerate() {
+                    for (k, wk) in wl.iter().enumerate() {
+                        v += unit[l][k][joint] * wk;
+                        d += Vector6::from_fn(|j, _| d_unit[l][k][j][joint]) * *wk;
+                    }
+                }
+                y.push(v);
+                dy.push(d);
+            }
+        }
+    }
+    (y, dy)
+}
