@@ -78,7 +78,10 @@ def load_setup(path):
         "tcp": np.array(tool["tcp_mm"], dtype=float) * 1e-3 if "tcp_mm" in tool else measuring[0],
         "load": doc["loading"]["load_n"],
         "anchor": np.array(doc["loading"]["anchor_mm"], dtype=float) * 1e-3,
-        "sigma": np.sqrt(doc["noise"]["variance_mm2"] * 1e-6),
+        # The displacement's noise: a loaded minus an unloaded reading (the old variance_mm2).
+        "sigma": np.sqrt(2.0) * doc["noise"]["reading_sd_mm"] * 1e-3
+        if "reading_sd_mm" in doc["noise"]
+        else np.sqrt(doc["noise"]["variance_mm2"] * 1e-6),
         "levels": np.array(doc["noise"]["level_multiples"], dtype=float),
         "lower": np.radians(doc["bounds"]["lower_deg"]),
         "upper": np.radians(doc["bounds"]["upper_deg"]),

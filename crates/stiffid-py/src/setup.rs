@@ -217,10 +217,11 @@ impl Setup {
         arrays::vec1(py, self.inner.load().anchor.iter().map(|v| v * 1e3))
     }
 
-    /// Variance of one measured coordinate at noise multiple 1, mm^2.
+    /// Variance of one displacement coordinate (a loaded minus an unloaded reading: twice
+    /// the reading variance of ``[noise] reading_sd_mm``) at noise multiple 1, mm^2.
     #[getter]
     fn noise_variance_mm2(&self) -> f64 {
-        self.inner.noise().variance * 1e6
+        self.inner.noise().displacement_variance() * 1e6
     }
 
     /// Noise levels as multiples of the variance, shape ``(levels,)`` (Table 3).

@@ -138,7 +138,7 @@ def test_setup_from_toml_and_file(tmp_path, paper):
         "nominal_stiffness_nm_per_rad = [950000, 3000000, 900000, 250000, 200000, 150000]\n"
         "[tool]\nloading_point_mm = [150, 0, 200]\nmeasuring_points_mm = [[80, 80, 260], [-80, 80, 260]]\n"
         "[loading]\nload_n = 500.0\nanchor_mm = [1500, 1500, 0]\n"
-        "[noise]\nvariance_mm2 = 9.23e-5\nlevel_multiples = [1.0]\n"
+        "[noise]\nreading_sd_mm = 0.0068\nlevel_multiples = [1.0]\n"
         "[bounds]\nlower_deg = [-90, -60, -180, -180, -90, -180]\nupper_deg = [90, 40, -40, 180, 90, 180]\n"
     )
     s = stiffid.Setup.from_toml(text)

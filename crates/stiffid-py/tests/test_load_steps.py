@@ -63,7 +63,8 @@ def test_load_steps_in_the_setup_scale_the_predicted_rates(paper):
     stepped = stiffid.Setup.from_toml(text.replace("[loading]\n", "[loading]\nsteps_n = [100, 200, 300, 400, 500]\n"))
     assert paper.load_steps_n == [] and stepped.load_steps_n == [100.0, 200.0, 300.0, 400.0, 500.0]
     group = paper.random_group(6, 1)
-    # F^2 (S2 + S1^2) / S2^2: the least squares over every step, the unloaded reading shared.
-    factor = 500.0**2 * (550_000.0 + 1500.0**2) / 550_000.0**2
+    # F^2 (S2 + S1^2) / S2^2: the least squares over every step, the unloaded reading shared,
+    # over the 2 of one loaded minus one unloaded reading.
+    factor = 500.0**2 * (550_000.0 + 1500.0**2) / 550_000.0**2 / 2.0
     np.testing.assert_allclose(stepped.evaluate(group)["predicted_deviation_pct"],
                                np.sqrt(factor) * paper.evaluate(group)["predicted_deviation_pct"], rtol=1e-9)

@@ -227,8 +227,8 @@ pub fn setup(study: &Study) -> Table {
             format!("{} / {}", s.load().load, mm3(&s.load().anchor)),
         ),
         (
-            "noise variance sigma^2, mm^2",
-            format!("{:.3e}", s.noise().variance * 1e6),
+            "displacement noise variance sigma^2, mm^2",
+            format!("{:.3e}", s.noise().displacement_variance() * 1e6),
         ),
         (
             "noise levels (multiples of sigma^2)",

@@ -300,9 +300,9 @@ fn every_setup_field_is_checked_at_load_time() {
             "nominal_stiffness_nm_per_rad[1]: 1e-320 is outside [1, 1e10] Nm/rad",
         ),
         (
-            "variance_mm2 = 9.23e-5",
-            "variance_mm2 = 0.0",
-            "noise.variance_mm2: 0 is outside",
+            "reading_sd_mm = 0.006793379129711516",
+            "reading_sd_mm = 0.0",
+            "noise.reading_sd_mm: 0 is outside",
         ),
         (
             "load_n = 500.0",

@@ -361,8 +361,9 @@ fn a_plan_with_load_steps_lists_them_and_predicts_with_them() {
         stepped["postures_deg"], plain["postures_deg"],
         "the same group"
     );
-    // F^2 (S2 + S1^2) / S2^2 with S1 = 1500 N, S2 = 550 000 N^2.
-    let factor: f64 = 250_000.0 * (550_000.0 + 2_250_000.0) / 550_000.0f64.powi(2);
+    // F^2 (S2 + S1^2) / S2^2 with S1 = 1500 N, S2 = 550 000 N^2, over the 2 of one loaded minus
+    // one unloaded reading.
+    let factor: f64 = 250_000.0 * (550_000.0 + 2_250_000.0) / 550_000.0f64.powi(2) / 2.0;
     let rates = |doc: &serde_json::Value| -> Vec<f64> {
         crate::common::numbers(&doc["criteria"]["predicted_deviation_pct"][1])
     };

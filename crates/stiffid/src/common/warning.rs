@@ -44,6 +44,9 @@ pub enum WarningKind {
     /// Two postures of a designed group are near in axis angles or reach the same flange pose
     /// ([`crate::design::distinct`]).
     NearPostures,
+    /// A setup field under its old name: it still reads, and the warning says what it meant
+    /// (`[noise] variance_mm2`, [`crate::setup::Noise`]).
+    OldField,
 }
 
 impl WarningKind {
@@ -62,6 +65,7 @@ impl WarningKind {
             WarningKind::Misfit => "misfit",
             WarningKind::Feed => "feed",
             WarningKind::NearPostures => "near-postures",
+            WarningKind::OldField => "old-field",
         }
     }
 }

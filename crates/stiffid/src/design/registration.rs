@@ -240,8 +240,8 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
         .flat_map(|q| points(setup, q))
         .map(|b| b - origin)
         .collect();
-    let covariance = unit_covariance(&all)? * setup.noise().variance;
-    let sigma = setup.noise().sigma();
+    let covariance = unit_covariance(&all)? * setup.noise().reading_variance;
+    let sigma = setup.noise().reading_sd();
     Ok(Design {
         rotation_std: covariance.fixed_view::<3, 3>(3, 3).trace().sqrt(),
         random_median_rotation_std: sigma * random_median(&moments, n, options.seed),

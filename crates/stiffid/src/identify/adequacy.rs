@@ -3,7 +3,8 @@
 //!
 //! ## Model adequacy
 //! If the model is right and the measurement errors are independent Gaussian with the setup's
-//! variance `sigma^2` on every coordinate, `dof s^2 / sigma^2` follows a chi-square distribution
+//! variance `sigma^2` on every displacement coordinate (twice that of one reading,
+//! [`crate::setup::Noise::displacement_variance`]), `dof s^2 / sigma^2` follows a chi-square distribution
 //! with `dof = m - 6` degrees of freedom (`s^2` the residual variance). A large value, with a small
 //! upper-tail p-value, says the residuals are larger than the tracker noise can explain: the model
 //! (rigid links, one spring per joint, exact kinematics and wrench) limits the fit, not the
@@ -37,7 +38,8 @@ pub const UNIT_JOINTS: usize = 4;
 /// The residuals against the setup's tracker noise (module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Adequacy {
-    /// `sigma^2`, the setup's noise variance of one coordinate, m^2.
+    /// `sigma^2`, the setup's noise variance of one displacement coordinate, m^2 (twice that of
+    /// one reading, [`crate::setup::Noise::displacement_variance`]).
     pub noise_variance: f64,
     /// Degrees of freedom of the test (those of the residual variance).
     pub dof: usize,
@@ -53,7 +55,53 @@ pub struct Adequacy {
     pub from_noise: Uncertainty,
 }
 
+/// The model check's verdict (module docs), for every fit of every model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// The residuals are what the tracker noise explains.
+    Consistent,
+    /// The residuals exceed the tracker noise (upper-tail p below [`SIGNIFICANCE`]): the model
+    /// error dominates, the parameter intervals are conditional on the model, the prediction
+    /// intervals (from held-out errors) are not.
+    ModelError,
+    /// The residuals are far below the tracker noise (lower-tail p below [`SIGNIFICANCE`]):
+    /// noise-free or simulated data, or a tracker noise set too large.
+    BelowNoise,
+}
+
+impl Verdict {
+    /// The verdict of `rss / sigma^2 = chi2` with `dof` degrees of freedom; `None` without
+    /// degrees of freedom or for a statistic that is not finite.
+    pub fn of(chi2: f64, dof: usize) -> Option<Verdict> {
+        let c = ChiSquared::new(dof as f64).ok()?;
+        if !chi2.is_finite() {
+            return None;
+        }
+        Some(match (c.sf(chi2), c.cdf(chi2)) {
+            (upper, _) if upper < SIGNIFICANCE => Verdict::ModelError,
+            (_, lower) if lower < SIGNIFICANCE => Verdict::BelowNoise,
+            _ => Verdict::Consistent,
+        })
+    }
+
+    /// The verdict in a few words, for a table.
+    pub fn short(self) -> &'static str {
+        match self {
+            Verdict::Consistent => "noise",
+            Verdict::ModelError => "model error",
+            Verdict::BelowNoise => "below noise",
+        }
+    }
+}
+
 impl Adequacy {
+    /// The verdict of this check.
+    pub fn verdict(&self) -> Option<Verdict> {
+        Verdict::of(self.chi2, self.dof)
+    }
+
     /// Whether the model error dominates: `p_value <` [`SIGNIFICANCE`].
     pub fn model_error_dominates(&self) -> bool {
         self.p_value < SIGNIFICANCE
@@ -65,7 +113,7 @@ impl Adequacy {
     }
 
     /// Whether the residuals are far below the tracker noise: [`Adequacy::lower_p_value`] `<`
-    /// [`SIGNIFICANCE`] (noise-free or simulated data, or a `variance_mm2` too large: the
+    /// [`SIGNIFICANCE`] (noise-free or simulated data, or a `reading_sd_mm` too large: the
     /// intervals from the tracker noise are then too wide).
     pub fn below_noise(&self) -> bool {
         self.lower_p_value() < SIGNIFICANCE

@@ -145,6 +145,12 @@ impl Fit {
         Some(chi.sf(self.rss / noise_variance))
     }
 
+    /// The model check's verdict against the tracker noise (`noise_variance`, m^2, one row's
+    /// coordinate); `None` without degrees of freedom.
+    pub fn verdict(&self, noise_variance: f64) -> Option<crate::identify::adequacy::Verdict> {
+        crate::identify::adequacy::Verdict::of(self.rss / noise_variance, self.dof)
+    }
+
     /// Akaike's information criterion of the Gaussian fit, `m ln(rss / m) + 2 r`.
     pub fn aic(&self) -> f64 {
         let m = self.rows as f64;

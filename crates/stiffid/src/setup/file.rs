@@ -3,6 +3,7 @@
 
 use super::{cell, CellConstraints, Noise, RopeLoad, Setup, SetupBuilder};
 use crate::common::limits::{self, JointBox};
+use crate::common::warning::{Warning, WarningKind};
 use crate::model::file::ModelFile;
 use crate::robot::file::{transform, TransformFile};
 use crate::robot::kinematics::Coordinates;
@@ -75,8 +76,47 @@ struct LoadingFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct NoiseFile {
-    variance_mm2: f64,
+    reading_sd_mm: Option<f64>,
+    variance_mm2: Option<f64>,
     level_multiples: Vec<f64>,
+}
+
+impl NoiseFile {
+    /// The variance of one coordinate of one reading, m^2, and the note of the old
+    /// `variance_mm2` (what it meant: one displacement coordinate, or with load steps one
+    /// reading's), `steps` whether the setup has `[loading] steps_n`.
+    fn reading_variance(&self, steps: bool) -> Result<(f64, Option<Warning>)> {
+        match (self.reading_sd_mm, self.variance_mm2) {
+            (Some(sd), None) => {
+                limits::check("noise.reading_sd_mm", &[sd], &limits::READING_SD_MM)?;
+                let sd = sd * 1e-3;
+                Ok((sd * sd, None))
+            }
+            (None, Some(v)) => {
+                limits::check("noise.variance_mm2", &[v], &limits::VARIANCE_MM2)?;
+                let (reading, meant, formula) = match steps {
+                    false => (v / 2.0, "one coordinate of one displacement (a loaded minus an unloaded reading)", "sqrt(variance_mm2 / 2)"),
+                    true => (v, "one coordinate of one reading (with loading.steps_n)", "sqrt(variance_mm2)"),
+                };
+                let note = Warning::new(
+                    WarningKind::OldField,
+                    format!(
+                        "noise.variance_mm2 = {v} is the old noise field, the variance of {meant}: read as reading_sd_mm = {formula} = {:.6} mm, the standard deviation of one coordinate of one tracker reading; write reading_sd_mm instead",
+                        reading.sqrt()
+                    ),
+                );
+                Ok((reading * 1e-6, Some(note)))
+            }
+            (Some(_), Some(_)) => Err(Error::InvalidField {
+                field: "noise.variance_mm2".into(),
+                message: "expected reading_sd_mm or the old variance_mm2, not both".into(),
+            }),
+            (None, None) => Err(Error::InvalidField {
+                field: "noise.reading_sd_mm".into(),
+                message: "missing: expected the standard deviation of one coordinate of one tracker reading, mm".into(),
+            }),
+        }
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -208,9 +248,16 @@ where
         package_paths: &file.package_paths,
     })?;
     let robot = mounted(robot, &file, source_name)?;
-    builder(file, robot)
+    let steps = !file.loading.steps_n.is_empty();
+    let (reading_variance, note) = file
+        .noise
+        .reading_variance(steps)
+        .map_err(|e| in_file(e, source_name))?;
+    let mut setup = builder(file, robot, reading_variance)
         .and_then(SetupBuilder::build)
-        .map_err(|e| in_file(e, source_name))
+        .map_err(|e| in_file(e, source_name))?;
+    setup.notes.extend(note);
+    Ok(setup)
 }
 
 fn check_package_paths(paths: &[String]) -> Result<()> {
@@ -273,7 +320,7 @@ fn deg6(v: &[f64; 6]) -> Vector6<f64> {
 }
 
 /// The file's fields in SI units, for [`SetupBuilder::build`] to check.
-fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
+fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBuilder> {
     let measuring_points = f.tool.measuring_points_mm.iter().map(mm).collect();
     let springs = match &f.model {
         Some(m) => m.springs(&robot)?,
@@ -293,7 +340,7 @@ fn builder(f: SetupFile, robot: Robot) -> Result<SetupBuilder> {
         })
         .with_load_steps(f.loading.steps_n)
         .with_noise(Noise {
-            variance: f.noise.variance_mm2 * 1e-6,
+            reading_variance,
             levels: f.noise.level_multiples,
         })
         .with_bounds(JointBox::new(

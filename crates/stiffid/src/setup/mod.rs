@@ -26,7 +26,7 @@
 //! load_n = 500.0
 //! anchor_mm = [1500, 1500, 0]            # base frame
 //! [noise]
-//! variance_mm2 = 9.23e-5                 # per measured coordinate
+//! reading_sd_mm = 0.0068                 # one coordinate of one tracker reading
 //! level_multiples = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]
 //! [bounds]                               # experiment bounds, axis coordinates
 //! lower_deg = [-90, -60, -180, -180, -90, -180]
@@ -163,19 +163,34 @@ impl RopeLoad {
     }
 }
 
-/// Laser-tracker noise: white Gaussian on every measured coordinate.
+/// Laser-tracker noise: white Gaussian on every coordinate of every reading (docs/model.md, "The
+/// noise convention"). A displacement is a loaded minus an unloaded reading, so its variance per
+/// coordinate is twice the reading's ([`Noise::displacement_variance`]); with load steps the
+/// displacement at the rope load has [`Setup::displacement_variance`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Noise {
-    /// Variance `sigma^2` of one coordinate at multiple 1, m^2.
-    pub variance: f64,
+    /// Variance `sigma_r^2` of one coordinate of one tracker reading at multiple 1, m^2
+    /// (`[noise] reading_sd_mm` squared).
+    pub reading_variance: f64,
     /// The noise levels, as multiples of the variance (Table 3: 0.5 .. 3.0).
     pub levels: Vec<f64>,
 }
 
 impl Noise {
-    /// Standard deviation `sigma` at multiple 1, m.
-    pub fn sigma(&self) -> f64 {
-        self.variance.sqrt()
+    /// Standard deviation `sigma_r` of one coordinate of one reading at multiple 1, m.
+    pub fn reading_sd(&self) -> f64 {
+        self.reading_variance.sqrt()
+    }
+
+    /// Variance of one coordinate of one displacement, a loaded minus an unloaded reading, at
+    /// multiple 1: `2 sigma_r^2`, m^2 (the paper's noise, Table 3, is this one).
+    pub fn displacement_variance(&self) -> f64 {
+        2.0 * self.reading_variance
+    }
+
+    /// Standard deviation of one coordinate of one displacement at multiple 1, m.
+    pub fn displacement_sd(&self) -> f64 {
+        self.displacement_variance().sqrt()
     }
 }
 
@@ -214,6 +229,7 @@ pub struct Setup {
     workpiece: Option<Isometry3<f64>>,
     tcp_given: bool,
     payload: Option<Payload>,
+    notes: Vec<crate::common::warning::Warning>,
 }
 
 impl Setup {
@@ -368,14 +384,22 @@ impl Setup {
     }
 
     /// The variance of one displacement coordinate at the rope load, at noise level multiple 1,
-    /// m^2, that gives the compliances' covariance of the design: the noise variance without
-    /// load steps; with them, that of the displacement their readings are worth
-    /// ([`crate::setup::load_steps::StepWeights::variance_factor`] times the reading variance).
+    /// m^2, that gives the compliances' covariance of the design: a loaded minus an unloaded
+    /// reading without load steps ([`Noise::displacement_variance`], twice the reading
+    /// variance); with them, that of the displacement their readings are worth
+    /// ([`crate::setup::load_steps::StepWeights::variance_factor`] times the reading variance,
+    /// also 2 for one step at the rope load).
     pub fn displacement_variance(&self) -> f64 {
         match StepWeights::new(self.load.load, &self.load_steps) {
-            None => self.noise.variance,
-            Some(w) => self.noise.variance * w.variance_factor(),
+            None => self.noise.displacement_variance(),
+            Some(w) => self.noise.reading_variance * w.variance_factor(),
         }
+    }
+
+    /// Notes on how the setup file said things (an old field name and what it meant), shown as
+    /// warnings with the plausibility ones ([`plausibility::warnings`]).
+    pub fn notes(&self) -> &[crate::common::warning::Warning] {
+        &self.notes
     }
 
     /// Experiment bounds, axis coordinates.
@@ -587,7 +611,7 @@ impl Setup {
 ///     .with_loading_point(Vector3::new(0.15, 0.0, 0.2))
 ///     .with_measuring_points(vec![Vector3::new(0.08, 0.08, 0.26)])
 ///     .with_load(RopeLoad { load: 500.0, anchor: Vector3::new(1.5, 1.5, 0.0) })
-///     .with_noise(Noise { variance: 9.23e-11, levels: vec![1.0] })
+///     .with_noise(Noise { reading_variance: 4.615e-11, levels: vec![1.0] })
 ///     .with_nominal_stiffness(Vector6::repeat(1e6))
 ///     .with_characteristic_length(1.2)
 ///     .build()
@@ -884,6 +908,7 @@ impl SetupBuilder {
             workpiece: self.workpiece,
             tcp_given: self.tcp.is_some(),
             payload: self.payload,
+            notes: Vec::new(),
         })
     }
 }
@@ -952,10 +977,10 @@ fn check_load_steps(steps: &[f64]) -> Result<()> {
 
 fn check_noise(noise: &Noise) -> Result<()> {
     check_scaled(
-        "noise.variance_mm2",
-        &[noise.variance],
-        1e6,
-        &limits::VARIANCE_MM2,
+        "noise.reading_sd_mm",
+        &[noise.reading_variance.sqrt()],
+        1e3,
+        &limits::READING_SD_MM,
     )?;
     let levels = &noise.levels;
     limits::check_count("noise.level_multiples", levels.len(), 1, limits::MAX_LEVELS)?;

@@ -21,9 +21,11 @@ pub const MAX_REACH_M: f64 = 20.0;
 pub const MIN_TOOL_M: f64 = 1e-3;
 
 /// The warnings of `setup` (module docs), each one sentence naming the field and the likely
-/// cause; empty when nothing looks wrong.
+/// cause, and the setup file's notes ([`Setup::notes`]: an old field and what it meant); empty
+/// when nothing looks wrong.
 pub fn warnings(setup: &Setup) -> Vec<Warning> {
     let mut out: Vec<Warning> = meshes(setup.robot()).into_iter().collect();
+    out.extend(setup.notes().iter().cloned());
     let bounds = setup.bounds();
     let frames = setup.robot().frames(&((bounds.lower + bounds.upper) / 2.0));
     let reach = (frames.flange.translation.vector - frames.joints[0].translation.vector)

@@ -224,7 +224,12 @@ fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> V
         .into_par_iter()
         .map(|i| {
             let (l, r) = (i / runs, i % runs);
-            let sigma = (setup.noise().variance * setup.noise().levels[l]).sqrt();
+            // Without steps the noise is added to each displacement, with them to each reading.
+            let variance = match weights {
+                None => setup.noise().displacement_variance(),
+                Some(_) => setup.noise().reading_variance,
+            };
+            let sigma = (variance * setup.noise().levels[l]).sqrt();
             let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
             identify_once(group, sigma, weights.as_ref(), &mut rng)
         })

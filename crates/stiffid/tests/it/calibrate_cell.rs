@@ -104,7 +104,7 @@ fn tool_points_shifted_by_2_mm_are_corrected() {
     );
     // With the paper's tracker noise: each shift within 4 standard deviations of the truth, and
     // the standard deviations close to a Monte Carlo's.
-    let sigma = setup.noise().sigma();
+    let sigma = setup.noise().reading_sd();
     let runs = 200;
     let mut errors = [Vector3::zeros(); 4];
     let mut predicted = [Vector3::zeros(); 4];

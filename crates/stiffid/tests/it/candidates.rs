@@ -119,7 +119,7 @@ fn the_recommended_model_holds_the_true_declared_candidate() {
     let h = truth.model_nominal_compliance().unwrap();
     let pool = default_pool(&declared);
     assert!(pool.candidates.len() > 20, "{}", pool.candidates.len());
-    let sigma = truth.noise().sigma();
+    let sigma = truth.noise().displacement_sd();
     for seed in 0..5 {
         let postures = random_group(&truth, 15, 10 + seed);
         let data = measure(&truth, &postures, &h, sigma, seed);

@@ -108,7 +108,7 @@ pub fn noisy(setup: &Setup, n: usize, seed: u64) -> Vec<Measurement> {
     let wrenches: Vec<Vector6<f64>> = (0..n)
         .map(|_| Vector6::from_fn(|i, _| rng.random_range(-1.0..1.0) * [800.0, 150.0][i / 3]))
         .collect();
-    let noise = Normal::new(0.0, setup.noise().sigma()).unwrap();
+    let noise = Normal::new(0.0, setup.noise().displacement_sd()).unwrap();
     let mut data = synthetic(setup, &postures, |i, _| wrenches[i]);
     for m in &mut data {
         m.displacement += Vector6::from_fn(|_, _| noise.sample(&mut rng)).fixed_rows::<3>(0);

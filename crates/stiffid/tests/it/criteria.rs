@@ -26,7 +26,7 @@ fn cond(m: &DMatrix<f64>) -> f64 {
 fn reference(setup: &Setup, group: &[Vector6<f64>]) -> (Vec<f64>, Vector6<f64>) {
     let psi = rope_observation_matrix(setup, group);
     let h = setup.nominal_compliance().unwrap();
-    let sigma = setup.noise().sigma();
+    let sigma = setup.noise().displacement_sd();
     let s =
         &psi * DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(h.as_slice())) / sigma;
     let c: Matrix6<f64> = (s.transpose() * &s)
@@ -179,7 +179,7 @@ fn in_other_length_unit(setup: &Setup, c: f64) -> Setup {
         })
         .with_characteristic_length(setup.characteristic_length().unwrap() * c)
         .with_noise(Noise {
-            variance: noise.variance * c * c,
+            reading_variance: noise.reading_variance * c * c,
             ..noise.clone()
         })
         .with_nominal_stiffness(setup.nominal_stiffness().unwrap() * c)

@@ -53,7 +53,7 @@ fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let noisy = with_noise(&data, setup.noise().sigma(), &mut rng);
+    let noisy = with_noise(&data, setup.noise().displacement_sd(), &mut rng);
     let id = least_squares(&setup, &noisy).unwrap();
     let u = id.uncertainty.unwrap();
     assert_eq!(u.dof, 66);
@@ -78,7 +78,7 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
     let truth_h = setup.nominal_compliance().unwrap();
     let truth_k = setup.nominal_stiffness().unwrap();
     // Ten times the paper's noise, so that the intervals are wide enough to matter.
-    let sigma = 10.0 * setup.noise().sigma();
+    let sigma = 10.0 * setup.noise().displacement_sd();
     let sets = 300;
     let (mut covered_h, mut covered_k) = (0, 0);
     for set in 0..sets {
@@ -109,7 +109,11 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
 fn robust_modes_down_weight_an_injected_outlier() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let mut data = with_noise(&paper_measurements(&setup), setup.noise().sigma(), &mut rng);
+    let mut data = with_noise(
+        &paper_measurements(&setup),
+        setup.noise().displacement_sd(),
+        &mut rng,
+    );
     // Measurement 10 (posture 3, point 2), y: 0.3 mm off, about 30 sigma.
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
@@ -129,7 +133,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
             fit.weights[outlier_row]
         );
         // The MAD scale estimates the noise, not the outlier.
-        let ratio = fit.scale / setup.noise().sigma();
+        let ratio = fit.scale / setup.noise().displacement_sd();
         assert!((0.6..1.6).contains(&ratio), "{loss:?}: scale/sigma {ratio}");
         let err = max_relative_error(&id.stiffness, setup.nominal_stiffness().unwrap());
         assert!(

@@ -203,7 +203,7 @@ fn offsets_beside_the_compliances_recover_the_stiffness() {
 #[test]
 fn the_standard_errors_with_offsets_match_a_monte_carlo() {
     let setup = paper();
-    let sigma_mm = setup.noise().sigma() * 1e3;
+    let sigma_mm = setup.noise().reading_sd() * 1e3;
     let loads = [100.0, 200.0, 300.0, 400.0, 500.0];
     let runs = 200;
     let mut compliances = Vec::new();
@@ -250,7 +250,7 @@ fn noise_alone_is_not_flagged() {
         loads: &RISING_FALLING,
         offset_mm: 0.0,
         hysteresis_mm: 0.0,
-        noise_mm: setup.noise().sigma() * 1e3,
+        noise_mm: setup.noise().reading_sd() * 1e3,
         seed: 7,
     };
     let report = identify(&setup, &campaign.readings(&setup), false).unwrap();
@@ -309,7 +309,7 @@ fn worked_example_with_and_without_the_offset_term() {
         loads: &[100.0, 200.0, 300.0, 400.0, 500.0],
         offset_mm: 0.02,
         hysteresis_mm: 0.0,
-        noise_mm: setup.noise().sigma() * 1e3,
+        noise_mm: setup.noise().reading_sd() * 1e3,
         seed: 1,
     };
     let text = campaign.readings(&setup);

@@ -40,8 +40,10 @@ fn the_prediction_with_steps_is_the_reading_noise_scaled_by_the_steps() {
     let (plain, stepped) = (paper(), stepped());
     let (s1, s2) = (1500.0, 550_000.0);
     let factor: f64 = 500.0f64.powi(2) * (s2 + s1 * s1) / (s2 * s2);
-    assert!((stepped.displacement_variance() / plain.noise().variance - factor).abs() < 1e-12);
-    assert_eq!(plain.displacement_variance(), plain.noise().variance);
+    let reading = plain.noise().reading_variance;
+    assert!((stepped.displacement_variance() / reading - factor).abs() < 1e-12);
+    // Without steps a displacement is two readings: the step formula with one step at the load.
+    assert_eq!(plain.displacement_variance(), 2.0 * reading);
     let (a, b) = (
         evaluate(&plain, &postures()),
         evaluate(&stepped, &postures()),
@@ -53,7 +55,7 @@ fn the_prediction_with_steps_is_the_reading_noise_scaled_by_the_steps() {
     {
         for j in 0..6 {
             assert!(
-                (pb[j] / pa[j] - factor.sqrt()).abs() < 1e-9,
+                (pb[j] / pa[j] - (factor / 2.0).sqrt()).abs() < 1e-9,
                 "joint {}",
                 j + 1
             );
@@ -105,7 +107,7 @@ fn an_independent_least_squares_over_every_steps_rows_matches_the_prediction() {
             .copy_from(&(&psi * (f / load)));
     }
     let svd = stacked.clone().svd(true, true);
-    let sigma = setup.noise().sigma();
+    let sigma = setup.noise().reading_sd();
     let normal = Normal::new(0.0, sigma).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let runs = 1500;

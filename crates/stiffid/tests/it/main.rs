@@ -32,6 +32,7 @@ mod model_prediction;
 mod models;
 mod mounting;
 mod mutate;
+mod noise_convention;
 mod optional_fields;
 mod options_validation;
 mod parsers_proptest;

@@ -222,7 +222,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
     }
     let obs = Observations::from_measurements(&s, &data).unwrap();
     let f = fit(&obs, &s.model().parameters()).unwrap();
-    let text = serde_json::to_string(&fit_doc(&f, s.noise().variance)).unwrap();
+    let text = serde_json::to_string(&fit_doc(&f, s.noise().displacement_variance())).unwrap();
     let file = stiffness::parse(&text).unwrap();
     let c = file.compliance(s.model()).unwrap();
     for j in 0..8 {

@@ -106,7 +106,7 @@ fn an_elbow_spring_is_recovered_and_the_drives_alone_fail_the_check() {
         .unwrap()
         .least_squares()
         .unwrap();
-    let check = id.adequacy(drives.noise().variance).unwrap();
+    let check = id.adequacy(drives.noise().displacement_variance()).unwrap();
     assert!(check.model_error_dominates(), "{check:?}");
     assert!(check.noise_ratio > 3.0, "{}", check.noise_ratio);
 }
@@ -187,7 +187,7 @@ fn forward_selection_finds_the_true_spring_and_rarely_a_false_one() {
     );
     candidates.retain(|c| ["tilt3_x", "tilt2_y", "tool_x", "tool_y"].contains(&c.name.as_str()));
     let postures = random_group(&truth, 12, 7);
-    let sigma = truth.noise().sigma();
+    let sigma = truth.noise().displacement_sd();
     let (mut found, mut false_added) = (0, 0);
     for seed in 0..100 {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -212,7 +212,7 @@ fn on_data_the_model_fits_no_extension_is_needed() {
         &paper,
         &postures,
         &h,
-        paper.noise().sigma(),
+        paper.noise().displacement_sd(),
         &mut ChaCha8Rng::seed_from_u64(3),
     );
     let candidates = stiffid::identify::compare::default_candidates(&paper);

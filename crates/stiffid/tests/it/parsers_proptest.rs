@@ -80,7 +80,7 @@ fn assert_setup_usable(setup: &Setup) {
         .unwrap()
         .iter()
         .all(|h| h.is_finite() && *h > 0.0));
-    assert!(setup.noise().sigma().is_finite() && setup.noise().sigma() > 0.0);
+    assert!(setup.noise().displacement_sd().is_finite() && setup.noise().displacement_sd() > 0.0);
     assert!(!setup.noise().levels.is_empty());
     let group = random_group(setup, 6, 1);
     for q in &group {

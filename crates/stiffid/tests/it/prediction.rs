@@ -42,7 +42,7 @@ fn with_elbow(k: f64) -> Setup {
 /// `n` postures of data set `rng` under random forces, displaced by `truth` (the compliance of
 /// every parameter of `s`) plus the tracker noise; postures numbered from `first`.
 fn data(s: &Setup, truth: &DVector<f64>, n: usize, rng: &mut ChaCha8Rng) -> Vec<Measurement> {
-    let noise = Normal::new(0.0, s.noise().sigma()).unwrap();
+    let noise = Normal::new(0.0, s.noise().displacement_sd()).unwrap();
     let b = s.bounds();
     let mut out = Vec::new();
     for posture in 0..n {
@@ -106,7 +106,7 @@ fn prediction_intervals_cover_a_compliance_the_model_lacks() {
         let obs = Observations::from_measurements(&drives, &train).unwrap();
         let id = obs.least_squares().unwrap();
         let cv = cross_validate(&obs, &id, TRAIN, Method::LeastSquares).unwrap();
-        let calibration = calibrate(&obs, &cv, drives.noise().sigma());
+        let calibration = calibrate(&obs, &cv, drives.noise().displacement_sd());
         let [a, b] = covered_by_hand(&drives, &calibration, &test, 0.9);
         (inside, all) = (inside + a, all + b);
         let u = id.uncertainty.unwrap();
@@ -145,7 +145,7 @@ fn with_the_true_model_parameter_and_prediction_intervals_cover_at_their_level()
         let c = Compliance {
             h: f.compliance.clone(),
             covariance: None,
-            prediction: Some(calibrate(&obs, &cv, s.noise().sigma())),
+            prediction: Some(calibrate(&obs, &cv, s.noise().displacement_sd())),
         };
         let [a, b] = covered(&s, &c, &test, 0.95);
         (inside, all) = (inside + a, all + b);

@@ -40,7 +40,7 @@ fn proposed_postures_beat_random_feasible_ones_and_pass_the_checks() {
             "{failing:?}"
         );
     }
-    let sigma = setup.noise().sigma();
+    let sigma = setup.noise().reading_sd();
     // Twenty random feasible groups of five (Latin hypercube, redrawn until they pass the cell).
     let random: Vec<f64> = (1..=20)
         .map(|seed| {
@@ -90,7 +90,7 @@ fn the_predicted_deviation_matches_a_monte_carlo_of_the_fit() {
     // The tracker at the cell's position_mm: the predicted translation is of its origin.
     let truth = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.01, -0.02, 2.4));
     let base = base_points(&setup, &d.postures);
-    let normal = Normal::new(0.0, setup.noise().sigma()).unwrap();
+    let normal = Normal::new(0.0, setup.noise().reading_sd()).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let runs = 1000;
     let mut sum_sq = Vector6::zeros();

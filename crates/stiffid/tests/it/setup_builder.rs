@@ -40,7 +40,8 @@ fn paper_in_code() -> SetupBuilder {
             anchor: mm(2000.0, 1500.0, 0.0),
         })
         .with_noise(Noise {
-            variance: 9.23e-5 * 1e-6,
+            // The file's reading_sd_mm squared: the paper's displacement variance, halved.
+            reading_variance: 9.23e-5 * 1e-6 / 2.0,
             levels: vec![0.5, 1.0, 1.5, 2.0, 2.5, 3.0],
         })
         .with_bounds(JointBox {
@@ -99,17 +100,17 @@ fn bad_values_in_code_name_the_field() {
         ),
         (
             paper_in_code().with_noise(Noise {
-                variance: 1e-10,
+                reading_variance: 1e-10,
                 levels: vec![1.0, 0.0],
             }),
             "noise.level_multiples[2]",
         ),
         (
             paper_in_code().with_noise(Noise {
-                variance: -1.0,
+                reading_variance: -1.0,
                 levels: vec![1.0],
             }),
-            "noise.variance_mm2",
+            "noise.reading_sd_mm",
         ),
         (
             paper_in_code().with_bounds(JointBox {

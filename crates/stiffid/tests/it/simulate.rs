@@ -57,13 +57,13 @@ fn mean_deviation_rates_agree_with_the_prediction_at_2000_runs() {
 
 #[test]
 fn at_the_smallest_noise_the_stiffness_is_recovered_to_1e_7() {
-    // The smallest noise a setup accepts (variance 1e-12 mm^2 at multiple 1e-6, sigma = 1 pm, 1e-8
-    // of the deflections): deviation rates about 1e-7 %.
+    // The smallest noise a setup accepts (reading sd 1e-6 mm at multiple 1e-6, sigma about 1 pm,
+    // 1e-8 of the deflections): deviation rates about 1e-7 %.
     let setup = setup::builtin("zhang2021-comau-nj165")
         .unwrap()
         .to_builder()
         .with_noise(Noise {
-            variance: limits::VARIANCE_MM2.min * 1e-6,
+            reading_variance: (limits::READING_SD_MM.min * 1e-3).powi(2),
             levels: vec![limits::LEVEL_MULTIPLE.min],
         })
         .build()
@@ -214,7 +214,7 @@ fn at_the_smallest_noise_a_virtual_spring_is_recovered() {
         .to_builder()
         .with_virtual_springs(tilt)
         .with_noise(Noise {
-            variance: limits::VARIANCE_MM2.min * 1e-6,
+            reading_variance: (limits::READING_SD_MM.min * 1e-3).powi(2),
             levels: vec![limits::LEVEL_MULTIPLE.min],
         })
         .build()

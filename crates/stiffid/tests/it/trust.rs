@@ -28,7 +28,7 @@ fn noisy_paper_data(setup: &Setup, repeats: usize, seed: u64) -> Vec<Measurement
     let clean = paper_measurements(setup);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..repeats)
-        .flat_map(|_| with_noise(&clean, setup.noise().sigma(), &mut rng))
+        .flat_map(|_| with_noise(&clean, setup.noise().displacement_sd(), &mut rng))
         .collect()
 }
 
@@ -36,7 +36,7 @@ fn noisy_paper_data(setup: &Setup, repeats: usize, seed: u64) -> Vec<Measurement
 fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     let setup = paper();
     let id = least_squares(&setup, &noisy_paper_data(&setup, 10, 7)).unwrap();
-    let a = id.adequacy(setup.noise().variance).unwrap();
+    let a = id.adequacy(setup.noise().displacement_variance()).unwrap();
     assert_eq!(a.dof, 720 - 6);
     // s / sigma has a standard deviation of about 1 / sqrt(2 dof) = 0.026.
     assert!((a.noise_ratio - 1.0).abs() < 0.1, "ratio {}", a.noise_ratio);
@@ -49,18 +49,18 @@ fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     // Ten times the noise: the model check fails.
     let loud = with_noise(
         &paper_measurements(&setup),
-        10.0 * setup.noise().sigma(),
+        10.0 * setup.noise().displacement_sd(),
         &mut ChaCha8Rng::seed_from_u64(1),
     );
     let a = least_squares(&setup, &loud)
         .unwrap()
-        .adequacy(setup.noise().variance)
+        .adequacy(setup.noise().displacement_variance())
         .unwrap();
     assert!(a.noise_ratio > 5.0 && a.model_error_dominates(), "{a:?}");
     // The noise intervals: normal quantile, sigma^2 instead of s^2.
     let u = id.uncertainty.as_ref().unwrap();
-    let scale = (setup.noise().variance / u.residual_variance).sqrt();
-    let a = id.adequacy(setup.noise().variance).unwrap();
+    let scale = (setup.noise().displacement_variance() / u.residual_variance).sqrt();
+    let a = id.adequacy(setup.noise().displacement_variance()).unwrap();
     for j in 0..6 {
         let se = a.from_noise.compliance_std_error[j];
         assert!((se - u.compliance_std_error[j] * scale).abs() < 1e-12 * se);

@@ -148,7 +148,7 @@ measuring_points_mm = [[80.0, 80.0, 260.0], [-80.0, 80.0, 260.0], [80.0, -80.0, 
 load_n = 500.0
 anchor_mm = [1500.0, 1500.0, 0.0]
 [noise]
-variance_mm2 = 9.23e-5
+reading_sd_mm = 0.0068
 level_multiples = [1.0]
 [bounds]
 lower_deg = [-90.0, -60.0, -150.0, -180.0, -110.0, -180.0]

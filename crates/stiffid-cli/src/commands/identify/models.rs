@@ -11,7 +11,7 @@ use stiffid::app::identify::{Data, Request};
 use stiffid::app::identify_model::document::Document;
 use stiffid::app::identify_model::{self, Report};
 use stiffid::common::words::count;
-use stiffid::identify::adequacy::SIGNIFICANCE;
+use stiffid::identify::adequacy::Verdict;
 use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Row};
 use stiffid::identify::cross_validation::CrossValidation;
 use stiffid::identify::model::Fit;
@@ -61,7 +61,7 @@ fn pct(v: Option<f64>) -> String {
 fn row_line(r: &Row, mark: &str) -> String {
     let what = r.added.clone().unwrap_or_else(|| "(setup's model)".into());
     format!(
-        "{mark:1} {what:<16} {:>3} {:>9} {:>9} {:>10} {:>9.1} {:>9.1} {:>7} {:>8}\n",
+        "{mark:1} {what:<16} {:>3} {:>9} {:>9} {:>10} {:>9.1} {:>9.1} {:>7} {:>11} {:>8}\n",
         r.parameters,
         pct(Some(r.in_sample_explained)),
         pct(r.held_out_explained),
@@ -70,6 +70,7 @@ fn row_line(r: &Row, mark: &str) -> String {
         r.aic,
         r.bic,
         r.noise_ratio.map_or("n/a".into(), |v| format!("{v:.2}")),
+        r.model_check.map_or("n/a", Verdict::short),
         match (r.physical, r.identified) {
             (_, false) => "unident.",
             (true, true) => "yes",
@@ -79,7 +80,7 @@ fn row_line(r: &Row, mark: &str) -> String {
 }
 
 const HEADER: &str =
-    "  added            par in-sample  held out  dB RMS mm       AIC       BIC   noise  all k>0\n";
+    "  added            par in-sample  held out  dB RMS mm       AIC       BIC   noise   residuals  all k>0\n";
 
 /// The text report of a comparison and of the candidates dropped from its pool.
 fn text(c: &Comparison, dropped: &[Dropped], setup: &Setup) -> String {
@@ -224,15 +225,18 @@ fn model_text(report: &Report, setup: &Setup) -> String {
 
 /// The model check of a fit against the setup's tracker noise, with its verdict.
 pub fn model_check(f: &Fit, setup: &Setup) -> String {
-    let variance = setup.noise().variance;
-    let (Some(r), Some(p)) = (f.noise_ratio(variance), f.adequacy_p_value(variance)) else {
+    let variance = setup.noise().displacement_variance();
+    let (Some(r), Some(p), Some(v)) = (
+        f.noise_ratio(variance),
+        f.adequacy_p_value(variance),
+        f.verdict(variance),
+    ) else {
         return "model check: none (no degrees of freedom)\n".into();
     };
-    let verdict = match p < SIGNIFICANCE {
-        true => text::model_error_dominates(),
-        false => "the residuals are consistent with the tracker noise".into(),
-    };
-    format!("model check: residual std {r:.2} x the tracker noise (chi-square p = {p:.3e}): {verdict}\n")
+    format!(
+        "model check: residual std {r:.2} x the tracker noise (chi-square p = {p:.3e}): {}\n",
+        text::verdict(v)
+    )
 }
 
 /// The spread of every parameter over the folds and the held-out explained share.

@@ -3,7 +3,7 @@
 
 use stiffid::app::document::mm;
 use stiffid::app::identify::{Fit, Report};
-use stiffid::identify::adequacy::SIGNIFICANCE;
+use stiffid::identify::adequacy::{Verdict, SIGNIFICANCE};
 use stiffid::identify::{Identification, Uncertainty};
 use stiffid::model::prediction::Calibration;
 use stiffid::robot::kinematics::Coordinates;
@@ -180,13 +180,18 @@ fn model_check(run: &Report) -> String {
         num(a.chi2, 1),
         a.dof
     );
-    match (a.model_error_dominates(), a.below_noise()) {
-        (true, _) => format!("{head}:\n  {}\n", model_error_dominates()),
-        (false, true) => format!(
-            "{head}:\n  the residuals are far below the tracker noise (lower tail p = {:.3e} < {SIGNIFICANCE}): noise-free or simulated data, or the setup's variance_mm2 is too large; the intervals from the tracker noise are then too wide\n",
-            a.lower_p_value()
-        ),
-        (false, false) => format!("{head}: the residuals are consistent with the tracker noise\n"),
+    match a.verdict() {
+        Some(v) => format!("{head}:\n  {}\n", verdict(v)),
+        None => format!("{head}\n"),
+    }
+}
+
+/// The model check's verdict in a sentence.
+pub fn verdict(v: Verdict) -> String {
+    match v {
+        Verdict::ModelError => model_error_dominates(),
+        Verdict::BelowNoise => format!("the residuals are far below the tracker noise (lower tail p < {SIGNIFICANCE}): noise-free or simulated data, or the setup's reading_sd_mm is too large; the intervals from the tracker noise are then too wide"),
+        Verdict::Consistent => "the residuals are consistent with the tracker noise: the model explains the data as far as the tracker can tell".into(),
     }
 }
 

@@ -16,7 +16,7 @@ pub fn figure(study: &Study) -> Result<Figure> {
         &format!(
             "Average deviation rate |k_id - k_true| / k_true of each joint against the noise level \
              (levels 1-{} are the variance multiples {} of sigma^2 = {:.3e} mm^2, the paper's \
-             Table 3), {} Monte Carlo runs per point; solid: simulated mean, dashed: first-order \
+             Table 3: one displacement coordinate), {} Monte Carlo runs per point; solid: simulated mean, dashed: first-order \
              prediction (the paper's Fig. 8).",
             study.setup.noise().levels.len(),
             study
@@ -27,7 +27,7 @@ pub fn figure(study: &Study) -> Result<Figure> {
                 .map(|m| m.to_string())
                 .collect::<Vec<_>>()
                 .join(", "),
-            study.setup.noise().variance * 1e6,
+            study.setup.noise().displacement_variance() * 1e6,
             study.runs
         ),
         &Deviation(study),

@@ -217,7 +217,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         priors: request.priors.map(|t| Priors {
             length: t.length,
             angle: t.angle,
-            noise: setup.noise().sigma(),
+            noise: setup.noise().reading_sd(),
         }),
     };
     let start = fit::start(&model, &obs).map_err(|e| in_data(name, e))?;
@@ -228,7 +228,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
     let nominal = validation::validate(&model, &start, &obs)?;
-    let noise_ratio = fitted.sigma / setup.noise().sigma();
+    let noise_ratio = fitted.sigma / setup.noise().reading_sd();
     let cross_validation = match request.cross_validate {
         false => None,
         true => Some(cross(&model, &obs, &start, &options, &data, name)?),

@@ -81,7 +81,7 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         data_name,
         comparison,
         dropped: pool.dropped,
-        noise_variance: setup.noise().variance,
+        noise_variance: setup.noise().displacement_variance(),
         warnings,
     })
 }

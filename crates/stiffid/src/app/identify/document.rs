@@ -66,7 +66,9 @@ pub struct Document {
     pub t_quantile: Option<f64>,
     /// Standard deviation of the residuals, mm.
     pub residual_std_mm: Option<f64>,
-    /// The setup's tracker noise (standard deviation per coordinate), mm.
+    /// The setup's tracker noise on one row's coordinate that the model check uses, mm: a
+    /// displacement's (a loaded minus an unloaded reading: `sqrt(2)` times `reading_sd_mm`), or
+    /// with offsets fitted one reading's (`reading_sd_mm`).
     pub noise_std_mm: f64,
     /// `residual_std_mm / noise_std_mm`: about 1 if the model is adequate.
     pub noise_ratio: Option<f64>,
@@ -329,7 +331,7 @@ impl Document {
             degrees_of_freedom: u.map(|u| u.dof),
             t_quantile: u.map(|u| u.t_quantile),
             residual_std_mm: u.map(|u| mm(u.residual_variance.sqrt())),
-            noise_std_mm: mm(setup.noise().sigma()),
+            noise_std_mm: mm(a.map_or(setup.noise().displacement_sd(), |a| a.noise_variance.sqrt())),
             noise_ratio: a.map(|a| a.noise_ratio),
             chi2_statistic: a.map(|a| a.chi2),
             chi2_p_value: a.map(|a| a.p_value),

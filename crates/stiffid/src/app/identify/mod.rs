@@ -114,11 +114,22 @@ impl Folds {
     }
 }
 
+/// The tracker noise variance of one row of the fit, m^2, that the model check tests the
+/// residuals against: a displacement's (a loaded minus an unloaded reading, twice a reading's);
+/// with offsets fitted, one reading's, the unloaded reading's error going into its offset
+/// (docs/model.md, the noise convention).
+pub fn row_noise_variance(setup: &Setup, offsets: bool) -> f64 {
+    match offsets {
+        true => setup.noise().reading_variance,
+        false => setup.noise().displacement_variance(),
+    }
+}
+
 /// The noise floor of the prediction intervals' scale: the standard deviation of one
 /// displacement coordinate from the setup's tracker noise, m
 /// ([`crate::model::prediction`]).
 pub fn noise_floor(setup: &Setup) -> f64 {
-    setup.noise().sigma()
+    setup.noise().displacement_sd()
 }
 
 /// Where each measurement came from: what a report names a measurement by.
@@ -275,7 +286,7 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let mut report = Report {
         data_name,
         fit: how,
-        adequacy: identification.adequacy(setup.noise().variance),
+        adequacy: identification.adequacy(row_noise_variance(setup, offsets.is_some())),
         unit,
         influential: Vec::new(),
         identification,
@@ -463,7 +474,7 @@ fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Foun
         identification: id,
         origin,
         cross_validation: cv,
-        load_steps: Some(linearity(&steps, setup.noise().variance)),
+        load_steps: Some(linearity(&steps, setup.noise().reading_variance)),
         offsets,
     })
 }

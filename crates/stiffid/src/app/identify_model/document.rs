@@ -108,7 +108,7 @@ impl Document {
     /// The document of `report`, identified on `setup` (named `setup_name`, as the user gave it).
     pub fn new(report: &Report, setup_name: &str, setup: &Setup) -> Self {
         let f = &report.fit;
-        let variance = setup.noise().variance;
+        let variance = setup.noise().displacement_variance();
         Document {
             setup: setup_name.to_string(),
             data: report.data_name.clone(),

@@ -32,8 +32,9 @@ pub struct Document {
     pub anchor_mm: [f64; 3],
     /// The load steps of `[loading] steps_n`, rising, N; empty without load steps.
     pub load_steps_n: Vec<f64>,
-    /// The variance of one displacement coordinate over the load steps, in multiples of the
-    /// variance of one reading (docs/model.md, load steps in the design); 1 without load steps.
+    /// The variance of one displacement coordinate at the rope load, in multiples of the
+    /// variance of one reading (docs/model.md, the noise convention and load steps in the
+    /// design): 2 without load steps (a loaded minus an unloaded reading).
     pub displacement_variance_multiple: f64,
     /// What the cell's checks and the drawings take the robot's bodies to be; `null` without
     /// `[cell]` or `[tracker]`.
@@ -115,7 +116,8 @@ impl Document {
             load_n: setup.load().load,
             anchor_mm: setup.load().anchor.map(mm).into(),
             load_steps_n: setup.load_steps().to_vec(),
-            displacement_variance_multiple: setup.displacement_variance() / setup.noise().variance,
+            displacement_variance_multiple: setup.displacement_variance()
+                / setup.noise().reading_variance,
             bodies: shows_bodies.then(|| bodies(setup)),
             target_pct: report.target_pct,
             noise_levels: setup.noise().levels.clone(),

@@ -95,7 +95,10 @@ pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 /// limits of [`crate::observation::MAX_FORCE`] and [`crate::observation::MAX_MOMENT`]).
 pub const WRENCH: Range = Range::new(-1e7, 1e7, "N or Nm");
 
-/// The measurement noise variance of one coordinate.
+/// The standard deviation of one coordinate of one tracker reading (`[noise] reading_sd_mm`).
+pub const READING_SD_MM: Range = Range::new(1e-6, 1e2, "mm");
+
+/// The old `[noise] variance_mm2`, the variance of one displacement coordinate.
 pub const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
 
 /// A noise level, as a multiple of the variance.

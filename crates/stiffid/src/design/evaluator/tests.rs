@@ -88,7 +88,7 @@ fn wide_criteria_equal_their_definitions() {
         let group = random_group(&setup, 12, 5);
         let psi = rope_observation_matrix(&setup, &group);
         assert_eq!(psi.ncols(), n);
-        let h = setup.model_nominal_compliance().unwrap() / setup.noise().sigma();
+        let h = setup.model_nominal_compliance().unwrap() / setup.noise().displacement_sd();
         let s = DMatrix::from_fn(psi.nrows(), n, |i, j| psi[(i, j)] * h[j]);
         let sv = |a: &DMatrix<f64>| a.clone().svd(false, false).singular_values;
         let (psv, ssv) = (sv(&psi), sv(&s));
@@ -111,7 +111,7 @@ fn wide_criteria_equal_their_definitions() {
         let a = rope_observation_matrix(&setup, setup.test_postures());
         let m = (psi.transpose() * &psi).try_inverse().unwrap();
         let t = setup.test_postures().len() as f64;
-        let test = setup.noise().sigma() * ((&a * m * a.transpose()).trace() / t).sqrt();
+        let test = setup.noise().displacement_sd() * ((&a * m * a.transpose()).trace() / t).sqrt();
         assert!(rel(e.test_pose, test) < 1e-8);
         assert_eq!(e.identifiability.identified, vec![true; n]);
         assert_eq!(e.identifiability.rank, n);

@@ -3,6 +3,7 @@
 //! is not defined.
 
 use super::{Comparison, Row};
+use crate::identify::adequacy::Verdict;
 use crate::identify::model::Fit;
 use crate::model::Parameter;
 use serde::Serialize;
@@ -71,6 +72,8 @@ pub struct ModelDoc {
     pub bic: Option<f64>,
     /// Residual standard deviation over the tracker noise.
     pub noise_ratio: Option<f64>,
+    /// The model check's verdict against the tracker noise (`null` without degrees of freedom).
+    pub model_check: Option<Verdict>,
     /// Every compliance `> 0`.
     pub physical: bool,
     /// The data identify every parameter.
@@ -126,6 +129,8 @@ pub struct FitDoc {
     pub unidentifiable: Vec<String>,
     /// Residual standard deviation over the tracker noise.
     pub noise_ratio: Option<f64>,
+    /// The model check's verdict against the tracker noise (`null` without degrees of freedom).
+    pub model_check: Option<Verdict>,
     /// `Cov(h)` of the compliance of every parameter, SI (rad/Nm, m/N), row-major n x n (for a
     /// bounded fit, that of the free parameters, zero for those at the bound); `null` without
     /// degrees of freedom. With `parameters`, what a stiffness file holds.
@@ -199,6 +204,7 @@ pub fn fit_doc(fit: &Fit, noise_variance: f64) -> FitDoc {
             .map(|c| c.describe(&fit.parameters))
             .collect(),
         noise_ratio: fit.noise_ratio(noise_variance),
+        model_check: fit.verdict(noise_variance),
         compliance_covariance_si: fit
             .covariance
             .as_ref()
@@ -233,6 +239,7 @@ fn model_doc(row: &Row, all: &[Parameter], recommended: bool) -> ModelDoc {
         aic: finite(row.aic),
         bic: finite(row.bic),
         noise_ratio: row.noise_ratio,
+        model_check: row.model_check,
         physical: row.physical,
         identified: row.identified,
         recommended,

@@ -23,6 +23,7 @@ pub use document::{parameter_docs, Document};
 pub use pool::{default_pool, pool_by_name, Dropped, Pool};
 
 use super::model::{fit, held_out, Fit, HeldOut};
+use crate::identify::adequacy::Verdict;
 use crate::model::{Law, Model, Spring};
 use crate::observation::{Measurement, Observations};
 use crate::{Result, Setup};
@@ -61,6 +62,9 @@ pub struct Row {
     pub bic: f64,
     /// `s / sigma` against the setup's tracker noise.
     pub noise_ratio: Option<f64>,
+    /// The model check's verdict against the setup's tracker noise; `None` without degrees of
+    /// freedom.
+    pub model_check: Option<Verdict>,
     /// Every compliance `> 0`.
     pub physical: bool,
     /// The data identify every parameter.
@@ -180,7 +184,7 @@ pub fn compare(
         obs: &obs,
         base: setup.model().len(),
         candidates: candidates.len(),
-        noise_variance: setup.noise().variance,
+        noise_variance: setup.noise().displacement_variance(),
         model: &model,
         max_load: max_loads(&all, measurements),
     };
@@ -283,6 +287,7 @@ impl Problem<'_> {
             aic: f.aic(),
             bic: f.bic(),
             noise_ratio: f.noise_ratio(self.noise_variance),
+            model_check: f.verdict(self.noise_variance),
             physical: self.physical(&f, columns),
             identified: f.identifiability.unidentifiable.is_empty(),
             stiffness: f.stiffness.iter().copied().collect(),

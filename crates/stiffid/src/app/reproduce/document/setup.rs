@@ -127,8 +127,11 @@ struct LoadingJson {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 struct NoiseJson {
-    /// The variance of one coordinate at level multiple 1, mm^2.
-    variance_mm2: f64,
+    /// The standard deviation of one coordinate of one tracker reading at level multiple 1, mm.
+    reading_sd_mm: f64,
+    /// The variance of one coordinate of one displacement (a loaded minus an unloaded reading)
+    /// at level multiple 1, mm^2: the paper's noise variance (Table 3).
+    displacement_variance_mm2: f64,
     /// The noise level multiples of the variance.
     level_multiples: Vec<f64>,
 }
@@ -185,7 +188,8 @@ impl<'a> SetupJson<'a> {
                 anchor_mm: mm(&s.load().anchor),
             },
             noise: NoiseJson {
-                variance_mm2: s.noise().variance * 1e6,
+                reading_sd_mm: s.noise().reading_sd() * 1e3,
+                displacement_variance_mm2: s.noise().displacement_variance() * 1e6,
                 level_multiples: s.noise().levels.clone(),
             },
             bounds: BoundsJson {
