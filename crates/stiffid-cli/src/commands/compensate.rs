@@ -5,12 +5,13 @@
 use crate::commands::common::choice;
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
-use crate::output::{self, json, print, write_stdout_parts, OutFile, Part, Writer};
+use crate::output::{self, print, write_stdout_with, OutFile, Writer};
 use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{csv_line, header, values, Document, Names, GENERATOR};
+use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
@@ -112,11 +113,11 @@ impl From<Error> for Failure {
     }
 }
 
-/// Where the rows go as they come: the CSV, and the JSON rows (for `--json` and the report).
+/// Where the rows go as they come: the CSV, and the document's points (for `--json` and the
+/// report).
 struct Sinks {
-    columns: Vec<String>,
     csv: Writer,
-    rows: Option<Writer>,
+    rows: Option<Points<Writer>>,
 }
 
 impl Sinks {
@@ -126,8 +127,7 @@ impl Sinks {
             let v = values(index, p.line, r);
             writeln!(self.csv, "{}", csv_line(&v))?;
             if let Some(rows) = self.rows.as_mut() {
-                let sep = if index == 0 { "" } else { ",\n" };
-                write!(rows, "{sep}{}", json_row(&self.columns, &v)?)?;
+                rows.push(&v)?;
             }
         }
         Ok(())
@@ -157,13 +157,12 @@ pub fn run(args: &Args) -> Result<()> {
         .as_deref()
         .map(|dir| report::open(dir, "--report", None, GENERATOR, &compensation::holds))
         .transpose()?;
-    let columns = header();
     let mut csv = csv_out.as_ref().unwrap_or(&out).writer()?;
-    writeln!(csv, "{}", columns.join(","))?;
+    writeln!(csv, "{}", header().join(","))?;
     let rows = (args.common.json || report_dir.is_some())
-        .then(|| out.writer())
+        .then(|| out.writer().map(Points::new))
         .transpose()?;
-    let mut sinks = Sinks { columns, csv, rows };
+    let mut sinks = Sinks { csv, rows };
     let request = Request {
         setup: &setup,
         compliance,
@@ -247,10 +246,11 @@ fn finish(
     report: &Report,
     names: &Names,
     csv: Writer,
-    mut rows: Option<Writer>,
+    rows: Option<Points<Writer>>,
     out: &OutFile,
     report_dir: Option<output::ReportDir>,
 ) -> Result<()> {
+    let mut rows = rows.map(Points::into_inner);
     if let Some(rows) = rows.as_mut() {
         rows.sync()?;
     }
@@ -258,24 +258,20 @@ fn finish(
         out.write(p.text.as_bytes())?;
         write_subprograms(&args.out, &p.subprograms)?;
     }
-    // Through a `Value`: its keys in alphabetical order, as the output has always had them; the
-    // points spliced in from the rows written.
+    // The document without its points, which the library writes from the rows stored.
     let typed = Document::new(report, names, Vec::new());
-    let document = serde_json::to_value(&typed)?;
-    let (before, after) = split_at_points(&json(&document)?)?;
     let rows_path = rows.as_ref().map(|r| r.path().to_path_buf());
-    let empty = PathBuf::new();
-    let rows_file = rows_path.as_deref().unwrap_or(&empty);
-    let parts = [
-        Part::Bytes(before.as_bytes()),
-        Part::File(rows_file),
-        Part::Bytes(after.as_bytes()),
-    ];
+    let json = |w: &mut dyn Write| match &rows_path {
+        Some(p) => typed
+            .write_json(std::fs::File::open(p)?, w)
+            .map_err(std::io::Error::from),
+        None => Ok(()),
+    };
     if let Some(dir) = report_dir {
         let view = compensation::View {
             report,
             csv: csv.path(),
-            summary: &parts,
+            summary: &json,
             document: &typed,
         };
         compensation::write(dir, setup, &view)?;
@@ -284,7 +280,7 @@ fn finish(
         csv.finish()?;
     }
     match (args.common.json, &rows_path) {
-        (true, Some(_)) => write_stdout_parts(&parts),
+        (true, Some(_)) => write_stdout_with(&json),
         _ => print(&human(args, setup, report, names)),
     }
 }
@@ -331,34 +327,6 @@ fn option_error(e: Error) -> anyhow::Error {
         }
         e => e.into(),
     }
-}
-
-/// The pretty JSON document split where its (empty) `points` array goes: the text before the
-/// array's first row and after its last.
-fn split_at_points(text: &str) -> Result<(String, String)> {
-    let key = "\"points\": []";
-    let at = text
-        .find(key)
-        .ok_or_else(|| anyhow!("the document has no points key"))?;
-    let before = format!("{}\"points\": [\n", &text[..at]);
-    let after = format!("\n  ]{}", &text[at + key.len()..]);
-    Ok((before, after))
-}
-
-/// One point as a pretty JSON object at the indentation of the document's `points` array, keys
-/// in alphabetical order.
-fn json_row(columns: &[String], values: &[Option<f64>]) -> Result<String> {
-    let map: std::collections::BTreeMap<&str, Option<f64>> = columns
-        .iter()
-        .map(String::as_str)
-        .zip(values.iter().copied())
-        .collect();
-    let text = serde_json::to_string_pretty(&map)?;
-    Ok(text
-        .lines()
-        .map(|l| format!("    {l}"))
-        .collect::<Vec<_>>()
-        .join("\n"))
 }
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {

@@ -130,12 +130,12 @@ impl ReportDir {
         replace(&resolve(&path, "report file")?, &self.tmp, bytes, false)
     }
 
-    /// Writes the file `rel` (as [`ReportDir::write`]) from `parts` in turn: byte strings and
-    /// files (a large result that never sits in memory whole).
+    /// Writes the file `rel` (as [`ReportDir::write`]) by `fill` (a large result that never sits
+    /// in memory whole).
     ///
     /// # Errors
-    /// As [`ReportDir::write`]; a part that cannot be read.
-    pub fn write_parts(&self, rel: &str, parts: &[Part]) -> Result<()> {
+    /// As [`ReportDir::write`]; those of `fill`.
+    pub fn write_with(&self, rel: &str, fill: Fill) -> Result<()> {
         let path = self.dir.join(rel);
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent)
@@ -148,12 +148,7 @@ impl ReportDir {
             .retain(|p| *p != path);
         let (tmp, file) = super::target::temporary(&self.tmp)?;
         let mut out = std::io::BufWriter::new(file);
-        let written = parts
-            .iter()
-            .try_for_each(|part| match part {
-                Part::Bytes(b) => out.write_all(b),
-                Part::File(f) => std::io::copy(&mut std::fs::File::open(f)?, &mut out).map(drop),
-            })
+        let written = fill(&mut out)
             .and_then(|()| out.flush())
             .and_then(|()| out.get_ref().sync_all());
         if let Err(e) = written {
@@ -196,13 +191,9 @@ impl Drop for ReportDir {
     }
 }
 
-/// A piece of a file written by [`ReportDir::write_parts`].
-pub enum Part<'a> {
-    /// These bytes.
-    Bytes(&'a [u8]),
-    /// The contents of this file.
-    File(&'a Path),
-}
+/// What writes a file or stdout, a piece at a time ([`ReportDir::write_with`],
+/// [`super::write_stdout_with`]).
+pub type Fill<'a> = &'a dyn Fn(&mut dyn Write) -> std::io::Result<()>;
 
 /// Takes an exclusive lock on the directory `dir` (held as long as the returned handle), refusing
 /// when another process (or another open of it) holds it.

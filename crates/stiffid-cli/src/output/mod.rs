@@ -13,7 +13,7 @@ mod file;
 pub mod staged;
 mod target;
 
-pub use dir::{Part, ReportDir};
+pub use dir::{Fill, ReportDir};
 pub use file::{OutFile, Writer};
 
 use anyhow::{Context, Result};
@@ -45,27 +45,13 @@ fn quiet_pipe(written: std::io::Result<()>) -> Result<()> {
     }
 }
 
-/// Writes `parts` (bytes and files, [`Part`]) to stdout in turn, never whole in memory.
+/// Writes to stdout by `fill` (locked, flushed), never whole in memory.
 ///
 /// # Errors
-/// When stdout cannot take them or a file cannot be read.
-pub fn write_stdout_parts(parts: &[Part]) -> Result<()> {
+/// When stdout cannot take it or `fill` fails otherwise.
+pub fn write_stdout_with(fill: Fill) -> Result<()> {
     let mut out = std::io::stdout().lock();
-    let mut written = Ok(());
-    for part in parts {
-        written = match part {
-            Part::Bytes(b) => out.write_all(b),
-            Part::File(f) => {
-                let mut file = std::fs::File::open(f)
-                    .with_context(|| format!("{}: cannot read", f.display()))?;
-                std::io::copy(&mut file, &mut out).map(drop)
-            }
-        };
-        if written.is_err() {
-            break;
-        }
-    }
-    quiet_pipe(written.and_then(|()| out.flush()))
+    quiet_pipe(fill(&mut out).and_then(|()| out.flush()))
 }
 
 /// Prints `warning: {text}` on stderr; a stderr that cannot be written is ignored (the result

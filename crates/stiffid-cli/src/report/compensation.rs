@@ -6,7 +6,7 @@
 use super::figures::{self, Figure};
 use super::html::{page, Writer};
 use super::tables::{num, Table};
-use crate::output::{Part, ReportDir};
+use crate::output::{Fill, ReportDir};
 use anyhow::Result;
 use std::path::Path;
 use stiffid::app::compensate::document::GENERATOR;
@@ -25,15 +25,15 @@ pub fn holds(rel: &Path) -> bool {
 }
 
 /// What the report shows of a streamed compensation: the job's report (its sample of the points
-/// for the figures, the ten largest deflections), the CSV written, the parts of the JSON document
+/// for the figures, the ten largest deflections), the CSV written, what writes the JSON document
 /// (`--json`) and the document without its points.
 pub struct View<'a> {
     /// The job's report.
     pub report: &'a Report,
     /// The CSV of every point.
     pub csv: &'a Path,
-    /// The parts of `summary.json`.
-    pub summary: &'a [Part<'a>],
+    /// What writes `summary.json`.
+    pub summary: Fill<'a>,
     /// The document without its points.
     pub document: &'a Document,
 }
@@ -51,8 +51,11 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
         figures.push(figures::machining::force(&summary.sample)?);
         figures.push(figures::machining::segments(&p.segments)?);
     }
-    dir.write_parts(FILES[0], view.summary)?;
-    dir.write_parts(FILES[1], &[Part::File(view.csv)])?;
+    dir.write_with(FILES[0], view.summary)?;
+    let csv = |w: &mut dyn std::io::Write| {
+        std::io::copy(&mut std::fs::File::open(view.csv)?, w).map(drop)
+    };
+    dir.write_with(FILES[1], &csv)?;
     for f in &figures {
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;

@@ -89,7 +89,7 @@ pub fn write(
     );
     let page = html::page(&title, GENERATOR, |w| compose(&plan.doc, &figures, w));
     dir.write("plan.html", page.as_bytes())?;
-    dir.write("plan.csv", csv(&plan.doc).as_bytes())?;
+    dir.write("plan.csv", plan.doc.csv().as_bytes())?;
     dir.write("plan.json", json(&plan.doc)?.as_bytes())?;
     for f in &figures {
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
@@ -105,52 +105,6 @@ fn fixed<const N: usize>(values: &[f64; N], digits: usize) -> [String; N] {
 /// A percentage of the document (`null`: infinite) as the tables write it.
 fn pct(v: Option<f64>) -> String {
     num(v.unwrap_or(f64::INFINITY))
-}
-
-/// `plan.csv`: one row per posture; the leave-one-out rates are each joint's predicted deviation
-/// rate at noise multiple 1 if that posture could not be measured.
-fn csv(plan: &Document) -> String {
-    let mut header: Vec<String> = [
-        "posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg",
-    ]
-    .map(String::from)
-    .to_vec();
-    header.extend(
-        [
-            "rope_x",
-            "rope_y",
-            "rope_z",
-            "rope_length_mm",
-            "loading_point_z_mm",
-        ]
-        .map(String::from),
-    );
-    for k in 1..=plan.measuring_points {
-        header.extend(["dx", "dy", "dz"].map(|c| format!("point{k}_{c}_mm")));
-    }
-    header.extend((1..=6).map(|j| format!("without_joint{j}_pct")));
-    header.extend(["min_clearance_mm", "failed_checks"].map(String::from));
-    let mut text = header.join(",") + "\n";
-    for r in &plan.postures {
-        let mut cells = vec![r.posture.to_string()];
-        cells.extend(fixed(&r.q_deg, 6));
-        cells.extend(fixed(&r.rope_direction, 6));
-        cells.push(format!("{:.1}", r.rope_length_mm));
-        cells.push(format!("{:.1}", r.loading_point_z_mm));
-        cells.extend(r.displacements_mm.iter().flat_map(|d| fixed(d, 3)));
-        let without = r.without_pct.map(|v| v.unwrap_or(f64::INFINITY));
-        cells.extend(fixed(&without, 4));
-        cells.push(
-            r.min_clearance_mm
-                .map_or(String::new(), |c| format!("{c:.1}")),
-        );
-        cells.push(format!(
-            "\"{}\"",
-            r.failed_checks.join("; ").replace('"', "'")
-        ));
-        text += &(cells.join(",") + "\n");
-    }
-    text
 }
 
 fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {

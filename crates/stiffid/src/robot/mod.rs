@@ -151,7 +151,7 @@ impl Robot {
     /// condition number is NaN or above [`limits::MAX_AXIS_MAP_COND`], or `axis_map.offset` when
     /// an offset is not finite.
     pub fn with_axis_map(self, axis_map: AxisMap) -> Result<Self> {
-        let cond = crate::math::linalg::cond(&axis_map.matrix);
+        let cond = crate::math::jacobi::cond(&axis_map.matrix);
         if cond.is_nan() || cond > limits::MAX_AXIS_MAP_COND {
             return Err(invalid(
                 "axis_map.matrix".into(),

@@ -454,3 +454,59 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
     let q = compensate::path(&s, &compliance, &path, &o).unwrap()[0].q;
     assert!(q[4] > 0.0, "{q}");
 }
+
+/// The compensate document written with its points streamed from storage is, byte for byte, the
+/// document holding them written whole; storage that ends inside a point is an error.
+#[test]
+fn the_streamed_compensate_document_is_the_whole_one() {
+    use stiffid::app::compensate::document::{values, Document, Names, Row};
+    use stiffid::app::compensate::stream::Points as Stored;
+    use stiffid::app::compensate::{run, Input, Request};
+    let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let s = paper.to_builder().with_tcp(paper.tool().tcp).build().unwrap();
+    let q = s.test_postures();
+    let mut text = String::from("q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n");
+    for (i, q) in q.iter().take(4).enumerate() {
+        let deg: Vec<String> = q.iter().map(|a| a.to_degrees().to_string()).collect();
+        text += &format!("{},{},0,{}\n", deg.join(","), 50.0 * i as f64, -300.0);
+    }
+    let request = Request {
+        setup: &s,
+        compliance: s.model_compliance("test").unwrap(),
+        input: Input::Path {
+            name: "path.csv".into(),
+            text: &text,
+            frame: Frame::Base,
+        },
+        options: Options::for_setup(&s),
+    };
+    let mut rows = Vec::new();
+    let mut stored = Stored::new(Vec::new());
+    let report = run(
+        request,
+        |first, p: &[PathPoint], r: &[compensate::Compensated]| {
+            for (k, (p, r)) in p.iter().zip(r).enumerate() {
+                let v = values(first + k, p.line, r);
+                rows.push(Row::new(&v));
+                stored.push(&v).unwrap();
+            }
+            Ok::<(), Error>(())
+        },
+    )
+    .unwrap();
+    assert_eq!(rows.len(), q.len().min(4));
+    assert!(rows.len() >= 2);
+    let names = Names::default();
+    let whole = Document::new(&report, &names, rows);
+    let whole =
+        serde_json::to_string_pretty(&serde_json::to_value(&whole).unwrap()).unwrap() + "\n";
+    // Empty cells (no covariance: the standard deviations) are null in both.
+    assert!(whole.contains("\"dx_std_mm\": null"), "{whole}");
+    let bytes = stored.into_inner();
+    let head = Document::new(&report, &names, Vec::new());
+    let mut streamed = Vec::new();
+    head.write_json(&bytes[..], &mut streamed).unwrap();
+    assert_eq!(String::from_utf8(streamed).unwrap(), whole);
+    let cut = head.write_json(&bytes[..bytes.len() - 3], &mut Vec::new());
+    assert!(cut.unwrap_err().to_string().contains("inside a point"));
+}

@@ -17,6 +17,7 @@
 //! deflection before and after.
 
 pub mod document;
+pub mod stream;
 
 use super::{Warning, WarningKind};
 use crate::app::compensate::document::Summary;

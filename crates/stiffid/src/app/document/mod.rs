@@ -35,10 +35,45 @@ pub fn degrees(postures: &[nalgebra::Vector6<f64>]) -> Vec<[f64; 6]> {
     postures.iter().map(row).collect()
 }
 
-/// `text` as one CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
-pub fn csv_field(text: &str) -> String {
-    match text.contains([',', '"', '\n', '\r']) {
-        true => format!("\"{}\"", text.replace('"', "\"\"")),
-        false => text.to_string(),
+/// A CSV text of `header` and `rows` (fields as they are, each row one record) written by
+/// [`csv::Writer`]: a field is quoted, its quotes doubled, when it holds a comma, quote or line
+/// break; lines end in `\n`.
+pub fn csv_text<R, F>(header: &[String], rows: R) -> String
+where
+    R: IntoIterator<Item = F>,
+    F: IntoIterator<Item = String>,
+{
+    let mut w = csv::WriterBuilder::new()
+        .flexible(true)
+        .from_writer(Vec::new());
+    // Into memory, with rows of any length (`flexible`): no write can fail.
+    w.write_record(header).expect("writing to memory");
+    for row in rows {
+        w.write_record(row).expect("writing to memory");
+    }
+    let bytes = w.into_inner().expect("writing to memory");
+    String::from_utf8(bytes).expect("fields are UTF-8")
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn csv_text_quotes_only_the_fields_that_need_it_and_reads_back() {
+        let header = ["name".to_string(), "checks".to_string()];
+        let rows = [
+            vec!["a,b".to_string(), "floor; \"rope\" blocked".to_string()],
+            vec!["plain".to_string(), String::new()],
+        ];
+        let text = super::csv_text(&header, rows.clone());
+        assert_eq!(
+            text,
+            "name,checks\n\"a,b\",\"floor; \"\"rope\"\" blocked\"\nplain,\n"
+        );
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let back: Vec<Vec<String>> = reader
+            .records()
+            .map(|r| r.unwrap().iter().map(String::from).collect())
+            .collect();
+        assert_eq!(back, rows);
     }
 }

@@ -1,8 +1,9 @@
 //! The document of the plan job ([`crate::app::plan`]): `plan.json` of `stiffid select --report
-//! DIR` (which renders `plan.html` and `plan.csv` from it), Python's `stiffid.plan`.
+//! DIR` (which renders `plan.html` from it) and its `plan.csv` ([`Document::csv`]), Python's
+//! `stiffid.plan`.
 
 use crate::app::document::feasibility::describe;
-use crate::app::document::{finite, finite_each, mm};
+use crate::app::document::{csv_text, finite, finite_each, mm};
 use crate::app::evaluate::document::{parameters, Parameter};
 use crate::app::plan::{Posture, Report};
 use crate::design::unidentifiable;
@@ -131,6 +132,55 @@ impl Document {
             unidentifiable: unidentifiable(e, setup),
             postures: report.postures.iter().enumerate().map(posture).collect(),
         }
+    }
+
+    /// `plan.csv`: one row per posture (axis angles, rope direction and length, the loading
+    /// point's height, each measuring point's expected displacement, the leave-one-out rates:
+    /// each joint's predicted deviation rate at noise multiple 1 if that posture could not be
+    /// measured, `inf` where the rest cannot identify it; the smallest clearance and the failed
+    /// checks joined by `; `), written by [`csv_text`].
+    pub fn csv(&self) -> String {
+        let mut header: Vec<String> = [
+            "posture",
+            "q1_deg",
+            "q2_deg",
+            "q3_deg",
+            "q4_deg",
+            "q5_deg",
+            "q6_deg",
+            "rope_x",
+            "rope_y",
+            "rope_z",
+            "rope_length_mm",
+            "loading_point_z_mm",
+        ]
+        .map(String::from)
+        .to_vec();
+        for k in 1..=self.measuring_points {
+            header.extend(["dx", "dy", "dz"].map(|c| format!("point{k}_{c}_mm")));
+        }
+        header.extend((1..=6).map(|j| format!("without_joint{j}_pct")));
+        header.extend(["min_clearance_mm", "failed_checks"].map(String::from));
+        let fixed = |values: &[f64], digits: usize| -> Vec<String> {
+            values.iter().map(|v| format!("{v:.digits$}")).collect()
+        };
+        let rows = self.postures.iter().map(|r| {
+            let mut cells = vec![r.posture.to_string()];
+            cells.extend(fixed(&r.q_deg, 6));
+            cells.extend(fixed(&r.rope_direction, 6));
+            cells.push(format!("{:.1}", r.rope_length_mm));
+            cells.push(format!("{:.1}", r.loading_point_z_mm));
+            cells.extend(r.displacements_mm.iter().flat_map(|d| fixed(d, 3)));
+            let without = r.without_pct.map(|v| v.unwrap_or(f64::INFINITY));
+            cells.extend(fixed(&without, 4));
+            cells.push(
+                r.min_clearance_mm
+                    .map_or(String::new(), |c| format!("{c:.1}")),
+            );
+            cells.push(r.failed_checks.join("; "));
+            cells
+        });
+        csv_text(&header, rows)
     }
 }
 

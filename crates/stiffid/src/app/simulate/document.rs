@@ -2,7 +2,7 @@
 //! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; each group's part
 //! ([`Group`]) is also a group of the study's summary.
 
-use crate::app::document::csv_field;
+use crate::app::document::csv_text;
 use crate::app::simulate::Report;
 use crate::model::Parameter;
 use crate::study::simulate::GroupSimulation;
@@ -123,24 +123,33 @@ impl Document {
 
 /// `deviation_rates.csv`: one row per group, noise level and joint.
 pub fn deviation_csv(names: &[String], sims: &[GroupSimulation], levels: &[f64]) -> String {
-    let mut text = String::from(
-        "group,level,variance_multiple,joint,mean_deviation_pct,std_deviation_pct,predicted_deviation_pct,mean_stiffness_nm_per_rad\n",
-    );
+    let header = [
+        "group",
+        "level",
+        "variance_multiple",
+        "joint",
+        "mean_deviation_pct",
+        "std_deviation_pct",
+        "predicted_deviation_pct",
+        "mean_stiffness_nm_per_rad",
+    ]
+    .map(String::from);
+    let mut rows = Vec::new();
     for (name, sim) in names.iter().zip(sims) {
         for (l, m) in levels.iter().enumerate() {
             for j in 0..6 {
-                text += &format!(
-                    "{},{},{m},{},{:.6},{:.6},{:.6},{:.1}\n",
-                    csv_field(name),
-                    l + 1,
-                    j + 1,
-                    sim.mean_deviation_pct[l][j],
-                    sim.std_deviation_pct[l][j],
-                    sim.predicted_deviation_pct[l][j],
-                    sim.mean_stiffness[l][j]
-                );
+                rows.push(vec![
+                    name.clone(),
+                    (l + 1).to_string(),
+                    m.to_string(),
+                    (j + 1).to_string(),
+                    format!("{:.6}", sim.mean_deviation_pct[l][j]),
+                    format!("{:.6}", sim.std_deviation_pct[l][j]),
+                    format!("{:.6}", sim.predicted_deviation_pct[l][j]),
+                    format!("{:.1}", sim.mean_stiffness[l][j]),
+                ]);
             }
         }
     }
-    text
+    csv_text(&header, rows)
 }

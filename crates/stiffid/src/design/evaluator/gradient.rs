@@ -41,7 +41,8 @@ pub(crate) struct MaxSplit {
 }
 use crate::design::criteria::PLACEHOLDER_LENGTH;
 use crate::design::Criterion;
-use crate::math::linalg::{singular_values_and_vectors, times_6x6};
+use crate::math::jacobi::singular_values_and_vectors;
+use crate::math::linalg::times_6x6;
 use crate::observation::{posture_block, rope_block_gradient};
 use crate::robot::kinematics::dexterity_log_gradient;
 use nalgebra::{DMatrix, Matrix6, MatrixXx6, Vector3, Vector6};

@@ -22,7 +22,8 @@
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
 use crate::identify::model::{identifiability, Identifiability};
-use crate::math::linalg::{cond, householder_qr_columns, triangular_factor};
+use crate::math::jacobi::{cond, cond_n};
+use crate::math::linalg::{householder_qr_columns, triangular_factor};
 use crate::math::lsq::Factor;
 use crate::observation::{compact_posture_block, points_factor, rope_observation_matrix};
 use crate::setup::Setup;
@@ -487,7 +488,7 @@ impl Factored {
     fn cond_psi(&self) -> f64 {
         match self {
             Factored::Six(g) => cond(&g.r),
-            Factored::Wide(g) => wide::cond(&g.r),
+            Factored::Wide(g) => cond_n(&g.r),
         }
     }
 
@@ -495,7 +496,7 @@ impl Factored {
     fn cond_scaled(&self) -> f64 {
         match self {
             Factored::Six(g) => cond(&g.rs),
-            Factored::Wide(g) => wide::cond(&g.rs),
+            Factored::Wide(g) => cond_n(&g.rs),
         }
     }
 

@@ -2,12 +2,14 @@
 //! virtual springs, [`crate::model`]), and the criteria computed from it.
 //!
 //! The same quantities as the six-column [`super::Group`], for `n` parameters (`R` is `n x n`):
-//! `cond_2(Psi)`, `cond_2(S)` from one-sided Jacobi singular values of `R` and `R_s`;
+//! `cond_2(Psi)`, `cond_2(S)` from one-sided Jacobi singular values of `R` and `R_s`
+//! ([`crate::math::jacobi`]);
 //! `d-optimal = det((S^T S)^-1)^(1/(2n)) = prod_k |R_s,kk|^(-1/n)`;
 //! `relative-a = |R_s^-1|_F / sqrt(n)`; the relative standard deviations as the row norms of
 //! `R_s^-1`. Every product is a loop in a fixed order (the same bits on every processor, like
 //! [`crate::math::linalg::times_6x6`]); no general matrix product that picks its kernel at run time.
 
+use crate::math::jacobi::{cond_n, singular_values_and_vectors_n};
 use crate::math::linalg::householder_qr_columns;
 use crate::math::lsq::RANK_TOLERANCE;
 use nalgebra::{DMatrix, DVector};
@@ -46,7 +48,7 @@ impl WideGroup {
             b if !b.is_finite() => true,
             b if b * RANK_TOLERANCE < 1.0 => false,
             b if b * RANK_TOLERANCE >= n as f64 => true,
-            _ => cond(&r) * RANK_TOLERANCE >= 1.0,
+            _ => cond_n(&r) * RANK_TOLERANCE >= 1.0,
         };
         if deficient {
             return None;
@@ -184,77 +186,10 @@ pub(super) fn cholesky_upper(a: &DMatrix<f64>) -> Option<DMatrix<f64>> {
     Some(u)
 }
 
-/// `s_max / s_min` of a square matrix ([`singular_values_and_vectors`]).
-pub(super) fn cond(a: &DMatrix<f64>) -> f64 {
-    let (s, _) = jacobi(a, false);
-    s.max() / s.min()
-}
-
-/// The singular values (no particular order) and right singular vectors (columns) of a square
-/// matrix by one-sided (Hestenes) Jacobi, cyclic by rows, to working precision, as
-/// [`crate::math::linalg::singular_values_and_vectors`] for six columns.
-pub(super) fn singular_values_and_vectors(a: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
-    let (s, v) = jacobi(a, true);
-    (
-        s,
-        v.unwrap_or_else(|| DMatrix::identity(a.ncols(), a.ncols())),
-    )
-}
-
-fn jacobi(a: &DMatrix<f64>, vectors: bool) -> (DVector<f64>, Option<DMatrix<f64>>) {
-    let n = a.ncols();
-    let mut u = a.clone();
-    let mut v = vectors.then(|| DMatrix::identity(n, n));
-    let eps2 = f64::EPSILON * f64::EPSILON;
-    let negligible = eps2 * a.norm_squared();
-    let mut norms: Vec<f64> = (0..n).map(|i| u.column(i).norm_squared()).collect();
-    for _sweep in 0..60 {
-        let mut largest_tangent: f64 = 0.0;
-        for i in 0..n {
-            for j in i + 1..n {
-                let g = dot(u.column(i).as_slice(), u.column(j).as_slice());
-                if g * g <= eps2 * norms[i] * norms[j]
-                    || norms[i] <= negligible
-                    || norms[j] <= negligible
-                {
-                    continue;
-                }
-                let d = norms[j] - norms[i];
-                let h = (d * d + 4.0 * g * g).sqrt();
-                let p = d.abs() + h;
-                let scale = 1.0 / (2.0 * h * p).sqrt();
-                let (c, s) = (p * scale, 2.0 * g * d.signum() * scale);
-                rotate(&mut u, i, j, c, s);
-                if let Some(v) = v.as_mut() {
-                    rotate(v, i, j, c, s);
-                }
-                let t = 2.0 * g * d.signum() / p;
-                norms[i] -= t * g;
-                norms[j] += t * g;
-                largest_tangent = largest_tangent.max(t.abs());
-            }
-        }
-        if largest_tangent < 1e-8 {
-            break;
-        }
-    }
-    let s = DVector::from_fn(n, |i, _| u.column(i).norm());
-    (s, v)
-}
-
-/// Columns `i < j` of `u` rotated: `(u_i, u_j) <- (c u_i - s u_j, s u_i + c u_j)`.
-fn rotate(u: &mut DMatrix<f64>, i: usize, j: usize, c: f64, s: f64) {
-    for k in 0..u.nrows() {
-        let (x, y) = (u[(k, i)], u[(k, j)]);
-        u[(k, i)] = c * x - s * y;
-        u[(k, j)] = s * x + c * y;
-    }
-}
-
 /// `v_max v_max^T / s_max^2 - v_min v_min^T / s_min^2` of the square `r`: the `Y` of
 /// `d ln cond_2` (as `super::gradient::cond_weight` for six columns).
 pub(super) fn cond_weight(r: &DMatrix<f64>) -> DMatrix<f64> {
-    let (s, v) = singular_values_and_vectors(r);
+    let (s, v) = singular_values_and_vectors_n(r);
     let (max, min) = (s.imax(), s.imin());
     let n = r.ncols();
     DMatrix::from_fn(n, n, |i, j| {

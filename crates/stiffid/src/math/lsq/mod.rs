@@ -15,9 +15,8 @@ mod reduced;
 
 pub use reduced::{Reduced, Solution};
 
-use crate::math::linalg::{
-    axpy, column_norms, dot, householder_qr, singular_values, upper_triangle,
-};
+use crate::math::jacobi::singular_values;
+use crate::math::linalg::{axpy, column_norms, dot, householder_qr, upper_triangle};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
@@ -131,7 +130,7 @@ impl Factor {
 
     /// The 2-norm condition number `cond_2(Psi) = s_max / s_min` (computed on each call).
     pub fn cond(&self) -> f64 {
-        crate::math::linalg::cond(&self.r)
+        crate::math::jacobi::cond(&self.r)
     }
 }
 

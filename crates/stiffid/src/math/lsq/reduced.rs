@@ -101,7 +101,7 @@ impl Reduced {
         Ok(Solution {
             h: r_inv * self.c,
             unit_covariance: r_inv * r_inv.transpose(),
-            cond: crate::math::linalg::cond(&self.r),
+            cond: crate::math::jacobi::cond(&self.r),
         })
     }
 }
