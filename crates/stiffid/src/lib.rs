@@ -35,7 +35,7 @@ pub mod robot;
 pub mod setup;
 pub mod study;
 
-pub use common::error::{ColumnProblem, Error, MeasurementField, Result};
+pub use common::error::{ColumnProblem, Error, JobOption, MeasurementField, Result};
 pub use common::progress::Progress;
 pub use robot::kinematics::{dexterity, Coordinates, Frames};
 pub use robot::{AxisMap, Joint, Robot};

@@ -174,7 +174,7 @@ pub fn run(args: &Args) -> Result<()> {
     }) {
         Ok(report) => report,
         Err(Failure::Output(e)) => return Err(e),
-        Err(Failure::Library(e)) => return Err(option_error(e)),
+        Err(Failure::Library(e)) => return Err(e.into()),
     };
     output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
@@ -306,29 +306,6 @@ fn write_subprograms(
     Ok(())
 }
 
-/// The library's error of the run: an option's as the command names it.
-fn option_error(e: Error) -> anyhow::Error {
-    match e {
-        Error::InvalidField { field, message }
-            if [
-                "max_step_deg",
-                "tool_axis_range_deg",
-                "chord_tolerance_mm",
-                "max_tcp_speed_mm_s",
-                "name_length",
-                "moves_per_file",
-            ]
-            .contains(&field.as_str()) =>
-        {
-            anyhow!("--{}: {message}", field.replace('_', "-"))
-        }
-        Error::InvalidField { field, message } if field == "name" => {
-            anyhow!("--out: program name {message}")
-        }
-        e => e.into(),
-    }
-}
-
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     stiffid::model::prediction::check_level("--level", args.level)?;
@@ -337,8 +314,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
     if args.free_tool_axis {
-        let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)
-            .map_err(option_error)?;
+        let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)?;
         options.free_tool_axis = Some(free);
     }
     Ok(options)

@@ -18,6 +18,7 @@ pub use file::{OutFile, Writer};
 
 use anyhow::{Context, Result};
 use std::io::Write;
+use stiffid::JobOption;
 
 /// Writes `text` to stdout (locked, flushed): [`write_stdout`] of its bytes.
 ///
@@ -99,6 +100,24 @@ pub fn one_line(message: &str) -> String {
 
 /// [`one_line`] of an error and its causes, outermost first.
 pub fn one_line_chain(e: &anyhow::Error) -> String {
-    let chain: Vec<String> = e.chain().map(|c| c.to_string()).collect();
+    let chain: Vec<String> = e.chain().map(named).collect();
     one_line(&chain.join(": "))
+}
+
+/// One error of a chain in words; a job option's as the command names it ([`flag`]).
+fn named(e: &(dyn std::error::Error + 'static)) -> String {
+    match e.downcast_ref::<stiffid::Error>() {
+        Some(stiffid::Error::InvalidOption { option, message }) => {
+            format!("{}: {message}", flag(*option))
+        }
+        _ => e.to_string(),
+    }
+}
+
+/// A job option as the command names it: `--max-step-deg`; the program's name comes from `--out`.
+fn flag(option: JobOption) -> String {
+    match option {
+        JobOption::ProgramName => "--out: program name".into(),
+        o => format!("--{}", o.name().replace('_', "-")),
+    }
 }

@@ -30,6 +30,16 @@ pub enum Error {
         /// What was expected.
         message: String,
     },
+    /// An option of a job's request has a value outside what it may hold. A front end names the
+    /// option its own way: Python by its keyword (`max_step_deg`, as this error's text does),
+    /// the command by its option (`--max-step-deg`).
+    #[error("{option}: {message}")]
+    InvalidOption {
+        /// The option.
+        option: JobOption,
+        /// What was expected.
+        message: String,
+    },
     /// A URDF's collision mesh was not found (no file, or a `package://` package in none of the
     /// package paths). Only the cell's body checks need meshes: the robot still loads for
     /// kinematics and identification ([`crate::robot::Bodies::Missing`]).
@@ -432,6 +442,65 @@ impl Error {
         match self {
             Error::Input { error, .. } => error.root(),
             other => other,
+        }
+    }
+}
+
+/// The options of the jobs' requests that a user sets directly (not fields of a file), named by
+/// [`Error::InvalidOption`]: one enum, so that a front end maps each to its own spelling without
+/// matching names as strings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JobOption {
+    /// compensate: the free tool axis' largest change between consecutive points, deg.
+    MaxStepDeg,
+    /// compensate: how far the free tool axis may turn from the path's rotation, deg.
+    ToolAxisRangeDeg,
+    /// compensate: the largest sagitta of the chords of a G-code arc, mm.
+    ChordToleranceMm,
+    /// compensate: the robot's largest TCP speed, mm/s.
+    MaxTcpSpeedMmS,
+    /// compensate: the longest program name the controller takes.
+    NameLength,
+    /// compensate: the most moves in one program file.
+    MovesPerFile,
+    /// compensate: the name of the robot program written (from the output file's name).
+    ProgramName,
+    /// select: the target predicted deviation rate, %.
+    TargetPct,
+    /// select: the group a local search starts from.
+    Start,
+}
+
+impl JobOption {
+    /// The option's name as the library and Python spell it (`max_step_deg`).
+    pub fn name(self) -> &'static str {
+        match self {
+            JobOption::MaxStepDeg => "max_step_deg",
+            JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
+            JobOption::ChordToleranceMm => "chord_tolerance_mm",
+            JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
+            JobOption::NameLength => "name_length",
+            JobOption::MovesPerFile => "moves_per_file",
+            JobOption::ProgramName => "name",
+            JobOption::TargetPct => "target_pct",
+            JobOption::Start => "start",
+        }
+    }
+}
+
+impl std::fmt::Display for JobOption {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Error {
+    /// An [`Error::InvalidField`] (as [`crate::common::limits::check`] makes it) as the error of
+    /// the job option `option`; any other error as it is.
+    pub(crate) fn for_option(self, option: JobOption) -> Self {
+        match self {
+            Error::InvalidField { message, .. } => Error::InvalidOption { option, message },
+            e => e,
         }
     }
 }

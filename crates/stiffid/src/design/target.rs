@@ -14,6 +14,7 @@
 
 use super::criteria::predicted_deviation_pct;
 use super::Evaluator;
+use crate::common::error::JobOption;
 use crate::setup::Setup;
 use crate::Error;
 use nalgebra::Vector6;
@@ -96,7 +97,7 @@ impl TargetOutcome {
 /// (of the joints and the model's virtual springs) is at most `target_pct` (%).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`target_pct`) for a target that is not a finite number > 0,
+/// [`Error::InvalidOption`] ([`JobOption::TargetPct`]) for a target that is not a finite number > 0,
 /// (`postures`) for `max_postures` below [`MIN_POSTURES`]; [`Error::MissingField`] for a setup
 /// without a nominal stiffness (the predicted deviation rates need it); whatever `choose` returns.
 pub fn smallest_group<E: From<Error>>(
@@ -106,8 +107,8 @@ pub fn smallest_group<E: From<Error>>(
     mut choose: impl FnMut(usize) -> std::result::Result<Vec<Vector6<f64>>, E>,
 ) -> std::result::Result<TargetOutcome, E> {
     if !(target_pct.is_finite() && target_pct > 0.0) {
-        return Err(Error::InvalidField {
-            field: "target_pct".into(),
+        return Err(Error::InvalidOption {
+            option: JobOption::TargetPct,
             message: format!("{target_pct} given: expected a finite percentage > 0"),
         }
         .into());

@@ -38,6 +38,7 @@
 //! 2019.
 
 use crate::common::error::ColumnProblem;
+use crate::common::error::JobOption;
 use crate::common::limits::number;
 use crate::observation::deflection::PointDeflection;
 use crate::observation::deflection::{base_wrench, Frame, Points};
@@ -106,24 +107,23 @@ impl FreeToolAxis {
     /// the Python package): `max_step_deg` in (0, 90], `tool_axis_range_deg` in (0, 180].
     ///
     /// # Errors
-    /// [`Error::InvalidField`] naming the one argument that is wrong (field `max_step_deg` or
-    /// `tool_axis_range_deg`, as the Python arguments and, with `--` and hyphens, the command's
-    /// options) with the value given.
+    /// [`Error::InvalidOption`] naming the one argument that is wrong ([`JobOption::MaxStepDeg`] or
+    /// [`JobOption::ToolAxisRangeDeg`]) with the value given.
     pub fn try_from_degrees(max_step_deg: f64, tool_axis_range_deg: f64) -> Result<Self> {
         // A subnormal angle in rad (5e-324 deg) is zero in every computation: refused as <= 0.
-        let check = |v: f64, max: f64, field: &str| match v.to_radians().is_normal() && v <= max {
+        let check = |v: f64, max: f64, option| match v.to_radians().is_normal() && v <= max {
             true => Ok(v.to_radians()),
-            false => Err(Error::InvalidField {
-                field: field.into(),
+            false => Err(Error::InvalidOption {
+                option,
                 message: format!("{}: expected a number > 0 and <= {max}", number(v)),
             }),
         };
         Ok(Self {
-            max_step: check(max_step_deg, Self::MAX_STEP_DEG, "max_step_deg")?,
+            max_step: check(max_step_deg, Self::MAX_STEP_DEG, JobOption::MaxStepDeg)?,
             range: check(
                 tool_axis_range_deg,
                 Self::MAX_RANGE_DEG,
-                "tool_axis_range_deg",
+                JobOption::ToolAxisRangeDeg,
             )?,
         })
     }
@@ -148,15 +148,16 @@ impl FreeToolAxis {
     /// Checks that the grid of a path of `points` points stays within [`Self::MAX_GRID_CELLS`].
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (field `max_step_deg`) with the grid's size and what to change.
+    /// [`Error::InvalidOption`] ([`JobOption::MaxStepDeg`]) with the grid's size and what to
+    /// change.
     pub fn check_grid(&self, points: usize) -> Result<()> {
         let angles = self.angle_count();
         let cells = angles * points as f64;
         if cells <= Self::MAX_GRID_CELLS {
             return Ok(());
         }
-        Err(Error::InvalidField {
-            field: "max_step_deg".into(),
+        Err(Error::InvalidOption {
+            option: JobOption::MaxStepDeg,
             message: format!(
                 "{} deg with a range of +-{} deg makes a grid of {angles:.3e} angles x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range or a shorter path)",
                 number(self.max_step.to_degrees()),

@@ -463,7 +463,11 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     use stiffid::app::compensate::stream::Points as Stored;
     use stiffid::app::compensate::{run, Input, Request};
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let s = paper.to_builder().with_tcp(paper.tool().tcp).build().unwrap();
+    let s = paper
+        .to_builder()
+        .with_tcp(paper.tool().tcp)
+        .build()
+        .unwrap();
     let q = s.test_postures();
     let mut text = String::from("q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n");
     for (i, q) in q.iter().take(4).enumerate() {

@@ -201,12 +201,21 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         range: 1.0,
     });
     rejected(options.validate(), "FreeToolAxis.max_step", "0 rad");
-    // 5e-324 deg is 0 rad: refused by the degrees' own check, naming the argument.
-    rejected(
-        FreeToolAxis::try_from_degrees(5e-324, 90.0),
-        "max_step_deg",
-        "5e-324",
-    );
+    // 5e-324 deg is 0 rad: refused by the degrees' own check, naming the option.
+    match FreeToolAxis::try_from_degrees(5e-324, 90.0) {
+        Err(Error::InvalidOption { option, message }) => {
+            assert_eq!(option, stiffid::JobOption::MaxStepDeg);
+            assert!(message.contains("5e-324"), "{message}");
+        }
+        other => panic!("expected an option error, got {other:?}"),
+    }
+    assert!(matches!(
+        FreeToolAxis::try_from_degrees(10.0, 181.0),
+        Err(Error::InvalidOption {
+            option: stiffid::JobOption::ToolAxisRangeDeg,
+            ..
+        })
+    ));
     let free = FreeToolAxis::try_from_degrees(90.0, 180.0).unwrap();
     options.free_tool_axis = Some(free);
     assert!(options.validate().is_ok());

@@ -233,7 +233,10 @@ fn malformed_gcode_is_refused_naming_the_line() {
     }
     assert!(matches!(
         gcode::parse(&format!("{HEADER}G1 X1\n"), 0.0),
-        Err(Error::InvalidField { .. })
+        Err(Error::InvalidOption {
+            option: stiffid::JobOption::ChordToleranceMm,
+            ..
+        })
     ));
 }
 

@@ -18,7 +18,7 @@ use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::common::limits::{self, short};
 use stiffid::common::words::count;
 use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions, Solver};
-use stiffid::{io::postures, Error, Setup};
+use stiffid::{io::postures, Setup};
 
 /// Arguments of `stiffid select`.
 #[derive(clap::Args)]
@@ -149,7 +149,7 @@ pub fn run(args: &Args) -> Result<()> {
             .map_or(PoolOptions::default().restarts, |r| r as usize),
         progress: &bars,
     };
-    let report = job::run(&request).map_err(option_names)?;
+    let report = job::run(&request)?;
     output::warnings(&report.warnings);
     out.write(postures::to_csv(&report.postures).as_bytes())?;
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
@@ -201,19 +201,6 @@ fn options(args: &Args) -> SearchOptions {
         options.max_evals = m as usize;
     }
     options
-}
-
-/// The job's field names as the command's options.
-fn option_names(e: Error) -> Error {
-    match e {
-        Error::InvalidField { field, message } if field == "target_pct" || field == "start" => {
-            Error::InvalidField {
-                field: format!("--{}", field.replace('_', "-")),
-                message,
-            }
-        }
-        e => e,
-    }
 }
 
 fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {

@@ -210,6 +210,9 @@ where
         } => {
             check_output(language, output).map_err(|e| in_input(&name, e))?;
             settings.validate()?;
+            if let (Language::GCode, Language::Robot(d)) = (language, output) {
+                generate::check_payload(d, settings.targets, &program_tool(setup))?;
+            }
             let (program, compensated) = (|| {
                 let program = machining::read(text, language, chord_tolerance)?;
                 let compensated =
@@ -346,15 +349,20 @@ fn write_robot_program(
         name: &name,
         targets: &targets,
         moves: &moves,
-        tool: Tool {
-            tcp: tool.tcp,
-            payload: setup.payload().map(|p| (p.mass, p.centre)),
-        },
+        tool: program_tool(setup),
         work: setup.workpiece().copied().unwrap_or_default(),
         approximation: chord_tolerance,
         settings: *settings,
     };
     generate(&plan)
+}
+
+/// The tool a generated program states: the setup's TCP, mass and centre of mass.
+fn program_tool(setup: &Setup) -> Tool {
+    Tool {
+        tcp: setup.tool().tcp,
+        payload: setup.payload().map(|p| (p.mass, p.centre)),
+    }
 }
 
 /// A failure of the streamed path: the library's, or the sink's.
@@ -378,19 +386,16 @@ impl<E: From<Error>> Failure<E> {
     }
 }
 
-/// `error` placed in the input `name`; an option's error (the free tool axis' grid) as it is.
+/// `error` placed in the input `name`; an option's error (the free tool axis' grid, the program's
+/// name) as it is.
 fn in_input(name: &str, error: Error) -> Error {
     match error {
-        e @ Error::InvalidField { .. } if is_option(&e) => e,
+        e @ Error::InvalidOption { .. } => e,
         e => Error::Input {
             source_name: name.to_string(),
             error: Box::new(e),
         },
     }
-}
-
-fn is_option(e: &Error) -> bool {
-    matches!(e, Error::InvalidField { field, .. } if ["max_step_deg", "tool_axis_range_deg", "chord_tolerance_mm", "max_tcp_speed_mm_s", "name_length", "moves_per_file", "name", "tool.tcp_mm", "tool.mass_kg"].contains(&field.as_str()))
 }
 
 /// The segments of a compensated program: its points grouped by line, in order.

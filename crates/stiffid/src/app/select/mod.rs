@@ -8,6 +8,7 @@ pub mod document;
 use super::purpose::{self, CalibrationOptions, Purpose};
 use super::Warning;
 use crate::cell::{Check, Checker};
+use crate::common::error::JobOption;
 use crate::common::limits::{self, check_count, Range};
 use crate::common::progress::Progress;
 use crate::design::calibration::{CalibrationCriteria, CalibrationCriterion, CalibrationDesign};
@@ -212,10 +213,11 @@ pub struct Unconstrained {
 /// Selects the group.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for a request whose parts do not fit its method (`start`, `pool`,
-/// `target_pct`) or a count out of range (`postures`, `restarts`, the search options); the
+/// [`Error::InvalidOption`] for a start group or target that does not fit the method
+/// ([`JobOption::Start`], [`JobOption::TargetPct`]); [`Error::InvalidField`] for a pool that does
+/// not (`pool`) or a count out of range (`postures`, `restarts`, the search options); the
 /// pool's errors named by it (more postures asked for than pass the cell's checks, naming the
-/// checks failed most often); a target that no group size reaches (`target_pct`, naming the best
+/// checks failed most often); a target that no group size reaches ([`JobOption::TargetPct`], naming the best
 /// rate reachable); the searches' errors; a group that cannot identify every parameter.
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
@@ -333,30 +335,38 @@ fn check(r: &Request) -> Result<()> {
             message: message.into(),
         })
     };
+    let invalid_option = |option, message: &str| {
+        Err(Error::InvalidOption {
+            option,
+            message: message.into(),
+        })
+    };
     if r.start.is_some() && r.method != Method::Local {
-        return invalid("start", "only for a local search");
+        return invalid_option(JobOption::Start, "only for a local search");
     }
     if r.pool.is_some() != (r.method == Method::Pool) {
         return invalid("pool", "a pool choice needs the pool postures, and only it");
     }
     let most = limits::MAX_SEARCH_POSTURES as usize;
     match &r.start {
-        Some(start) => check_count("start", start.len(), 2, most)?,
+        Some(start) => check_count("start", start.len(), 2, most)
+            .map_err(|e| e.for_option(JobOption::Start))?,
         None if r.target_pct.is_none() => check_count("postures", r.postures, 2, most)?,
         None => {}
     }
     limits::check_integer("restarts", r.restarts as u64, 1, limits::MAX_POOL_RESTARTS)?;
     if let Some(pct) = r.target_pct {
-        limits::check("target_pct", &[pct], &TARGET_PCT)?;
+        limits::check("target_pct", &[pct], &TARGET_PCT)
+            .map_err(|e| e.for_option(JobOption::TargetPct))?;
         if r.purpose != Purpose::Stiffness {
-            return invalid(
-                "target_pct",
+            return invalid_option(
+                JobOption::TargetPct,
                 "a target deviation rate is for the stiffness design only",
             );
         }
         if r.method == Method::Local {
-            return invalid(
-                "target_pct",
+            return invalid_option(
+                JobOption::TargetPct,
                 "needs a pool or the global search to choose each group",
             );
         }
@@ -598,8 +608,8 @@ fn smallest(r: &Request, pool: Option<&Candidates>, pct: f64) -> Result<(Found, 
             outcome.steps.len()
         ),
     };
-    Err(Error::InvalidField {
-        field: "target_pct".into(),
+    Err(Error::InvalidOption {
+        option: JobOption::TargetPct,
         message: format!(
             "{pct} % is not reachable: {found} at noise level multiple 1 (add postures to the pool, lower the noise or raise the target)"
         ),

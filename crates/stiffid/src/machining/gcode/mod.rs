@@ -42,6 +42,7 @@ mod cycles;
 
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
 
+use crate::common::error::JobOption;
 use crate::{Error, Result};
 use nalgebra::{UnitQuaternion, Vector3};
 use std::ops::Range;
@@ -148,7 +149,7 @@ struct Word {
 /// Parses `text` (module docs), arcs split to `chord_tolerance` (m).
 ///
 /// # Errors
-/// [`Error::InvalidField`] for a chord tolerance outside [`CHORD_TOLERANCE_MM`];
+/// [`Error::InvalidOption`] for a chord tolerance outside [`CHORD_TOLERANCE_MM`];
 /// [`Error::Program`] naming the line for anything outside the subset, a malformed word, an arc
 /// off its circle, no tool orientation in the header, rotary words without `rotary = abc`, no
 /// motion at all, or more than [`MAX_BLOCKS`] lines or [`MAX_POINTS`] points.
@@ -157,7 +158,8 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         "chord_tolerance_mm",
         &[chord_tolerance * 1e3],
         &CHORD_TOLERANCE_MM,
-    )?;
+    )
+    .map_err(|e| e.for_option(JobOption::ChordToleranceMm))?;
     let mut s = State {
         position: Vector3::zeros(),
         abc: [0.0; 3],

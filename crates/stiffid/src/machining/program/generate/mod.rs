@@ -52,6 +52,7 @@ mod ls;
 mod rapid;
 
 use super::{Dialect, DECIMALS};
+use crate::common::error::JobOption;
 use crate::machining::gcode::{Motion, Point};
 use crate::robot::configuration::Arm;
 use crate::{Error, Result, Robot};
@@ -150,18 +151,13 @@ impl Settings {
     /// Checks every field against its limit.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] naming the field (`max_tcp_speed_mm_s`, `name_length`,
-    /// `moves_per_file`), the value and the range.
+    /// [`Error::InvalidOption`] naming the option ([`JobOption::MaxTcpSpeedMmS`],
+    /// [`JobOption::NameLength`], [`JobOption::MovesPerFile`]), the value and the range.
     pub fn validate(&self) -> Result<()> {
-        let bad = |field: &str, message: String| {
-            Err(Error::InvalidField {
-                field: field.into(),
-                message,
-            })
-        };
+        let bad = |option, message: String| Err(Error::InvalidOption { option, message });
         if !(self.max_tcp_speed > 0.0 && self.max_tcp_speed <= 10.0) {
             return bad(
-                "max_tcp_speed_mm_s",
+                JobOption::MaxTcpSpeedMmS,
                 format!(
                     "{} mm/s: expected > 0 and at most 10000",
                     self.max_tcp_speed * 1e3
@@ -170,7 +166,7 @@ impl Settings {
         }
         if let Some(n) = self.name_length.filter(|n| !NAME_LENGTH.contains(n)) {
             return bad(
-                "name_length",
+                JobOption::NameLength,
                 format!(
                     "{n}: expected {} to {}",
                     NAME_LENGTH.start(),
@@ -180,7 +176,7 @@ impl Settings {
         }
         if !MOVES_PER_FILE.contains(&self.moves_per_file) {
             return bad(
-                "moves_per_file",
+                JobOption::MovesPerFile,
                 format!(
                     "{}: expected {} to {}",
                     self.moves_per_file,
@@ -307,26 +303,28 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// [`Settings::moves_per_file`].
 ///
 /// # Errors
-/// [`Error::InvalidField`] for settings outside their limits (field named), a program name the
-/// controller does not accept or that leaves no room for the sub-programs' numbers (`name`), no
+/// [`Error::InvalidOption`] for settings outside their limits (option named), a program name the
+/// controller does not accept or that leaves no room for the sub-programs' numbers
+/// ([`JobOption::ProgramName`]), more than [`MAX_FILES`] sub-programs
+/// ([`JobOption::MovesPerFile`]); [`Error::InvalidField`] for no
 /// target or more than [`super::MAX_TARGETS`], an axis angle that is not finite (`targets`), a
 /// count of moves other than the targets' or a feed below [`MIN_FEED`] or not finite (`moves`),
-/// a RAPID program with Cartesian targets and a tool without mass (`tool.mass_kg`), more than
-/// [`MAX_FILES`] sub-programs (`moves_per_file`); [`Error::Program`] for a feed an LS program
+/// a RAPID program with Cartesian targets and a tool without mass (`tool.mass_kg`);
+/// [`Error::Program`] for a feed an LS program
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
     plan.settings.validate()?;
     check_targets(plan)?;
     let chunks: Vec<&[Target]> = plan.targets.chunks(plan.settings.moves_per_file).collect();
     if chunks.len() > MAX_FILES {
-        return Err(invalid(
-            "moves_per_file",
-            format!(
+        return Err(Error::InvalidOption {
+            option: JobOption::MovesPerFile,
+            message: format!(
                 "{} moves per file make {} sub-programs; at most {MAX_FILES}: raise moves_per_file",
                 plan.settings.moves_per_file,
                 chunks.len()
             ),
-        ));
+        });
     }
     let names = names(plan, chunks.len())?;
     let mut written = Written {
@@ -453,8 +451,17 @@ fn check_targets(plan: &Plan) -> Result<()> {
             ),
         ));
     }
-    let needs_mass = plan.dialect == Dialect::Rapid && plan.settings.targets == Targets::Cartesian;
-    if needs_mass && plan.tool.payload.is_none() {
+    check_payload(plan.dialect, plan.settings.targets, &plan.tool)
+}
+
+/// Whether a program of `dialect` with `targets` can be written for `tool`: a RAPID program
+/// with Cartesian targets states the tool's mass and centre of mass.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`tool.mass_kg`) when the program needs them and `tool` has none.
+pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<()> {
+    let needs_mass = dialect == Dialect::Rapid && targets == Targets::Cartesian;
+    if needs_mass && tool.payload.is_none() {
         return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
     }
     Ok(())
@@ -474,7 +481,7 @@ fn names(plan: &Plan, files: usize) -> Result<Vec<String>> {
             let sub = format!("{}_{i:0width$}", plan.name);
             // A RAPID sub-program's routine is its module's name after an `r`.
             if sub.len() + usize::from(plan.dialect == Dialect::Rapid) > longest {
-                return Err(invalid("name", format!("{:?}: the sub-programs' names ({sub} for {files} sub-programs) would be longer than {longest} characters, the controller's longest name (a setting: name_length): name the program shorter or raise moves_per_file", plan.name)));
+                return Err(Error::InvalidOption { option: JobOption::ProgramName, message: format!("{:?}: the sub-programs' names ({sub} for {files} sub-programs) would be longer than {longest} characters, the controller's longest name (a setting: name_length): name the program shorter or raise moves_per_file", plan.name) });
             }
             names.push(sub);
         }
@@ -504,7 +511,10 @@ pub fn check_name(dialect: Dialect, name: &str, longest: usize) -> Result<()> {
     } else {
         return Ok(());
     };
-    Err(invalid("name", format!("{name:?}: {message}")))
+    Err(Error::InvalidOption {
+        option: JobOption::ProgramName,
+        message: format!("{name:?}: {message}"),
+    })
 }
 
 fn dialect_name(d: Dialect) -> &'static str {

@@ -305,7 +305,10 @@ fn feeds_are_exact_or_refused() {
 fn names_are_identifiers_within_the_controllers_length_and_never_reserved() {
     let t = targets(&Q);
     let name_error = |d, name: &str| match generate(&plan(d, name, &t, &MOVES)) {
-        Err(Error::InvalidField { field, message }) if field == "name" => message,
+        Err(Error::InvalidOption {
+            option: JobOption::ProgramName,
+            message,
+        }) => message,
         other => panic!("{name}: {other:?}"),
     };
     assert!(name_error(Dialect::Krl, "END").contains("reserved word of KUKA KRL"));
@@ -335,25 +338,27 @@ fn settings_and_moves_outside_their_limits_are_refused() {
                 max_tcp_speed: 0.0,
                 ..Settings::default()
             },
-            "max_tcp_speed_mm_s",
+            JobOption::MaxTcpSpeedMmS,
         ),
         (
             Settings {
                 name_length: Some(4),
                 ..Settings::default()
             },
-            "name_length",
+            JobOption::NameLength,
         ),
         (
             Settings {
                 moves_per_file: 10,
                 ..Settings::default()
             },
-            "moves_per_file",
+            JobOption::MovesPerFile,
         ),
     ] {
         p.settings = settings;
-        assert!(matches!(generate(&p), Err(Error::InvalidField { field: f, .. }) if f == field));
+        assert!(
+            matches!(generate(&p), Err(Error::InvalidOption { option, .. }) if option == field)
+        );
     }
     let p = plan(Dialect::Krl, "P", &t, &MOVES[..2]);
     assert!(matches!(generate(&p), Err(Error::InvalidField { field, .. }) if field == "moves"));
@@ -392,7 +397,7 @@ fn a_million_moves_are_split_into_called_sub_programs() {
     // A name with no room for the sub-programs' numbers on an 8-character controller.
     let long = plan(Dialect::FanucLs, "POCKET", &t, &m);
     assert!(
-        matches!(generate(&long), Err(Error::InvalidField { field, message }) if field == "name" && message.contains("POCKET_001"))
+        matches!(generate(&long), Err(Error::InvalidOption { option: JobOption::ProgramName, message }) if message.contains("POCKET_001"))
     );
 }
 
