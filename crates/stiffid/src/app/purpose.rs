@@ -109,7 +109,7 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
         setup.characteristic_length().unwrap_or(1.0),
         &reference,
         test,
-        setup.noise().sigma(),
+        setup.noise().reading_sd(),
     )
 }
 

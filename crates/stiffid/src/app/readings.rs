@@ -62,7 +62,7 @@ pub(crate) fn refuse_implausible(
     if request.force {
         return Ok(());
     }
-    let sigma = request.setup.noise().sigma();
+    let sigma = request.setup.noise().reading_sd();
     let registered = match registration {
         Some(r) => Some(r.clone()),
         // Readings in the base frame, or too few: the job says so itself.
