@@ -31,7 +31,8 @@ pub struct Args {
     #[arg(long, value_parser = choice::<Geometry>(), default_value = "full")]
     geometry: Geometry,
     /// The deflection under the robot's own weight: none, masses (the robot's link masses and
-    /// centres known, the joint compliances fitted) or lumped (compliance times mass moment).
+    /// centres known, the joint compliances fitted), lumped (compliance times mass moment of the
+    /// upper arm, the forearm and the wrist) or lumped-links (of every link each joint carries).
     #[arg(long, value_parser = choice::<Gravity>(), default_value = "none")]
     gravity: Gravity,
     /// Held-out readings CSV (same format): their 3D position error with the calibration.

@@ -20,7 +20,7 @@ pub struct Document {
     pub data: String,
     /// The joint errors fitted: `none`, `offsets` or `full`.
     pub geometry: &'static str,
-    /// The gravity terms fitted: `none`, `masses` or `lumped`.
+    /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links`.
     pub gravity: &'static str,
     /// The frame of the readings: `tracker` or `base`.
     pub measured_in: &'static str,

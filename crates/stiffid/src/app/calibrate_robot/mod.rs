@@ -175,7 +175,8 @@ pub fn model(
     let springs = setup.springs();
     let g = match gravity {
         Gravity::None => gravity::Model::none(robot),
-        Gravity::Lumped => gravity::Model::lumped(robot, springs),
+        Gravity::Lumped => gravity::Model::lumped_bodies(robot, springs),
+        Gravity::LumpedLinks => gravity::Model::lumped(robot, springs),
         Gravity::Masses => {
             let Some(masses) = robot.masses() else {
                 return Err(Error::InvalidField {

@@ -84,6 +84,13 @@ pub const MAX_POINTS: usize = 100;
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
 pub const NO_EFFECT: f64 = 1e-9;
 
+/// One commanded posture: its frames at the deflected posture and its gravity regressors.
+struct Posture {
+    q: Vector6<f64>,
+    frames: crate::Frames,
+    regressors: Vec<f64>,
+}
+
 /// Which joint errors a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -571,13 +578,36 @@ impl ErrorModel {
             Translation3::new(values[0], values[1], values[2]),
             UnitQuaternion::from_scaled_axis(Vector3::new(values[3], values[4], values[5])),
         );
+        let mut last: Option<Posture> = None;
         Ok(at
             .iter()
             .map(|(q, k)| {
-                let f = robot.frames(&self.deflected(values, q));
-                (delta * nalgebra::Point3::from(f.point(&self.point(values, *k)))).coords
+                let p = self.posture_of(&mut last, &robot, values, q);
+                (delta * nalgebra::Point3::from(p.frames.point(&self.point(values, *k)))).coords
             })
             .collect())
+    }
+
+    /// The posture of commanded `q` on `robot` (the chain at `values`), reused from `last` when
+    /// it is the same posture: the readings of one posture's points come together.
+    fn posture_of<'p>(
+        &self,
+        last: &'p mut Option<Posture>,
+        robot: &Robot,
+        values: &DVector<f64>,
+        q: &Vector6<f64>,
+    ) -> &'p Posture {
+        if last.as_ref().is_none_or(|p| p.q != *q) {
+            let regressors = self.gravity.regressors(q);
+            let g = values.rows(self.gravity_start, self.gravity.len());
+            let frames = robot.frames(&(q + self.gravity.deflection_from(&g, &regressors)));
+            *last = Some(Posture {
+                q: *q,
+                frames,
+                regressors,
+            });
+        }
+        last.as_ref().expect("set above")
     }
 
     /// The residuals `exp([dphi]x) b + dp - T t` (3 per observation, base frame, m).
@@ -623,8 +653,10 @@ impl ErrorModel {
         let robot = self.robot_at(values)?;
         let mut j = DMatrix::zeros(3 * at.len(), self.parameters.len());
         let springs = self.gravity.coordinates();
+        let mut last: Option<Posture> = None;
         for (row, (q, k)) in at.iter().enumerate() {
-            let f = robot.frames(&self.deflected(values, q));
+            let posture = self.posture_of(&mut last, &robot, values, q);
+            let f = &posture.frames;
             let c = self.point(values, *k);
             let b = f.point(&c);
             let mut block = j.fixed_rows_mut::<3>(3 * row);
@@ -639,7 +671,7 @@ impl ErrorModel {
                 .copy_from(f.flange.rotation.to_rotation_matrix().matrix());
             if let Some(s) = self.joint_start {
                 for i in 0..6 {
-                    let cols = self.joint_columns(&f, values, i, &b);
+                    let cols = self.joint_columns(f, values, i, &b);
                     for (c, col) in cols.iter().enumerate() {
                         block.column_mut(s + 6 * i + c).copy_from(col);
                     }
@@ -652,8 +684,8 @@ impl ErrorModel {
             }
             if !self.gravity.is_empty() {
                 let jp = f.jacobian(&c, springs);
-                let regressors = self.gravity.regressors(q);
-                for (t, (term, y)) in self.gravity.terms().iter().zip(&regressors).enumerate() {
+                let regressors = &posture.regressors;
+                for (t, (term, y)) in self.gravity.terms().iter().zip(regressors).enumerate() {
                     let col = jp.fixed_view::<3, 1>(0, term.joint()) * *y;
                     block.column_mut(self.gravity_start + t).copy_from(&col);
                 }

@@ -13,7 +13,7 @@
 //!
 //! - [`Gravity::Masses`]: masses and centres known (URDF `<inertial>`, robot files' `mass_kg`,
 //!   `com_mm`), the six compliances `c_j` unknown: one term per joint, regressor `tau_j(q)` (N m).
-//! - [`Gravity::Lumped`]: masses unknown. Writing `m_l s_l = (m_l s_x, m_l s_y, m_l s_z)`, the
+//! - [`Gravity::LumpedLinks`]: masses unknown. Writing `m_l s_l = (m_l s_x, m_l s_y, m_l s_z)`, the
 //!   torque is linear in the four mass moments `(m_l, m_l s_l)` of every link:
 //!   `tau_j = sum_l [m_l Y_jl0(q) + sum_k (m_l s_l)_k Y_jlk(q)]`, `Y_jl0 = J_l(o_l)[:, j] . g` (the
 //!   unit mass at the link origin `o_l`), `Y_jlk = (J_l(o_l + R_l e_k) - J_l(o_l))[:, j] . g`. The
@@ -23,6 +23,16 @@
 //!   vertical joint's terms not at all (gravity exerts no torque about it), a moment along a joint
 //!   axis not by that joint; [`crate::metrology::calibration::identifiability`] keeps the independent terms
 //!   and names the merged.
+//! - [`Gravity::Lumped`]: the same for three bodies ([`BODIES`]): the upper arm (link 1), the
+//!   forearm (link 2, with link 3, the forearm tube that joint 4 rolls, lumped in) and the wrist
+//!   (link 4, with the flange and the tool, link 5, lumped in). A lumped link's mass moments are
+//!   taken as fixed in its body's frame: exact for a centre on the rolling axis (joints 4 and 6
+//!   of a spherical wrist), an approximation otherwise. On an anthropomorphic arm (joint 1
+//!   vertical, 2 and 3 horizontal and parallel) the separable products are, in the absolute
+//!   angles `phi_2` of the upper arm and `phi_23` of the forearm: `c_2` times `A, B, C, D` of
+//!   `tau_2 = A cos phi_2 + B sin phi_2 + C cos phi_23 + D sin phi_23 + (the wrist's)`, `c_3`
+//!   times `C, D` of `tau_3`, and the wrist's first moments with `c_2`, `c_3`, `c_4` and `c_5`:
+//!   17 terms on the FANUC R-2000iC/165F (kinematic springs) against 30 for every link.
 
 use super::error_model::{Kind, Parameter, Target};
 use crate::robot::kinematics::Coordinates;
@@ -33,6 +43,11 @@ use serde::Serialize;
 /// Standard gravity, m/s^2.
 pub const G: f64 = 9.80665;
 
+/// The bodies of [`Gravity::Lumped`] (links, 0-based): the turret (no term: joint 1 is vertical
+/// on every floor robot, and its terms merge), the upper arm, the forearm with link 3 lumped in,
+/// the wrist with link 5 and the tool lumped in.
+pub const BODIES: [usize; 4] = [0, 1, 2, 4];
+
 /// Which gravity terms a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -42,25 +57,40 @@ pub enum Gravity {
     None,
     /// Known masses and centres, unknown compliances.
     Masses,
-    /// Unknown masses: compliance times mass moment.
+    /// Unknown masses: compliance times mass moment of three bodies, the upper arm, the forearm
+    /// and the wrist ([`Model::lumped_bodies`]).
     Lumped,
+    /// Unknown masses: compliance times mass moment, for every spring and every link it carries
+    /// ([`Model::lumped`]).
+    LumpedLinks,
 }
 
 impl crate::common::choice::Choice for Gravity {
     const FIELD: &'static str = "gravity";
-    const ALL: &'static [Self] = &[Gravity::None, Gravity::Masses, Gravity::Lumped];
+    const ALL: &'static [Self] = &[
+        Gravity::None,
+        Gravity::Masses,
+        Gravity::Lumped,
+        Gravity::LumpedLinks,
+    ];
     fn name(self) -> &'static str {
         match self {
             Gravity::None => "none",
             Gravity::Masses => "masses",
             Gravity::Lumped => "lumped",
+            Gravity::LumpedLinks => "lumped-links",
         }
     }
     fn help(self) -> &'static str {
         match self {
             Gravity::None => "The rigid robot",
             Gravity::Masses => "Known link masses and centres, the joint compliances fitted",
-            Gravity::Lumped => "Unknown masses: compliance times mass moment, per joint and link",
+            Gravity::Lumped => {
+                "Unknown masses: compliance times mass moment of the upper arm, the forearm and the wrist"
+            }
+            Gravity::LumpedLinks => {
+                "Unknown masses: compliance times mass moment, every joint and every link it carries"
+            }
         }
     }
 }
@@ -183,6 +213,17 @@ impl Model {
     /// Unknown masses: the lumped terms of every spring (in `coordinates`) and every link it
     /// carries.
     pub fn lumped(robot: &Robot, coordinates: Coordinates) -> Self {
+        Self::lumped_links(robot, coordinates, &[0, 1, 2, 3, 4, 5])
+    }
+
+    /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of
+    /// every spring (in `coordinates`) and every link of [`BODIES`] it carries.
+    pub fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
+        Self::lumped_links(robot, coordinates, &BODIES)
+    }
+
+    /// The lumped terms of every spring and every link of `links` (0-based) it carries.
+    fn lumped_links(robot: &Robot, coordinates: Coordinates, links: &[usize]) -> Self {
         let m = robot.axis_map().matrix;
         let carries = |joint: usize, link: usize| match coordinates {
             Coordinates::Kinematic => joint <= link,
@@ -190,7 +231,7 @@ impl Model {
         };
         let mut terms = Vec::new();
         for joint in 0..6 {
-            for link in 0..6 {
+            for &link in links {
                 if carries(joint, link) {
                     terms.extend((0..4).map(|moment| Term::Lumped {
                         joint,
@@ -329,11 +370,20 @@ impl Model {
     /// The deflection in axis angles (rad) at commanded axis angles `q` (rad) with the term
     /// values `values` (SI, term order).
     pub fn deflection(&self, values: &DVectorView<'_, f64>, q: &Vector6<f64>) -> Vector6<f64> {
-        let mut springs = Vector6::zeros();
-        if self.terms.is_empty() {
-            return springs;
+        match self.terms.is_empty() {
+            true => Vector6::zeros(),
+            false => self.deflection_from(values, &self.regressors(q)),
         }
-        for ((t, y), v) in self.terms.iter().zip(self.regressors(q)).zip(values.iter()) {
+    }
+
+    /// [`Model::deflection`] from the regressors of the posture ([`Model::regressors`]).
+    pub fn deflection_from(
+        &self,
+        values: &DVectorView<'_, f64>,
+        regressors: &[f64],
+    ) -> Vector6<f64> {
+        let mut springs = Vector6::zeros();
+        for ((t, y), v) in self.terms.iter().zip(regressors).zip(values.iter()) {
             springs[t.joint()] += v * y;
         }
         match self.coordinates {

@@ -31,4 +31,6 @@ pub mod validation;
 pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter, Target};
 
 #[cfg(test)]
+mod heavy_tests;
+#[cfg(test)]
 mod tests;

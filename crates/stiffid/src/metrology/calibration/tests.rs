@@ -315,6 +315,28 @@ fn gravity_lumped_recovered() {
     assert!(id.rank > 6 + 9 + 6);
 }
 
+/// The three bodies' lumped terms with full geometry on the FANUC preset (kinematic springs):
+/// recovered, and 17 products kept (model.md, section 7): joint 1 (vertical) and the moments
+/// along the axes merge; the arm's six (`c2` times the upper arm's and the forearm's two moments
+/// in their plane, `c3` times the forearm's two) are among them.
+#[test]
+fn gravity_lumped_bodies_recovered() {
+    let robot = fanuc();
+    let g = gravity::Model::lumped_bodies(&robot, crate::Coordinates::Kinematic);
+    let model = ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap();
+    let id = recovers(&model, &postures(&robot, 40, 4), 5e-5);
+    let kept: Vec<&str> = (id.identified.iter())
+        .map(|&c| model.parameters()[c].name.as_str())
+        .filter(|n| n.starts_with("gravity."))
+        .collect();
+    assert_eq!(kept.len(), 17, "{kept:?}");
+    assert!(
+        !kept.iter().any(|n| n.starts_with("gravity.c1.")),
+        "{kept:?}"
+    );
+    assert_eq!(id.rank, 33 + 17);
+}
+
 /// The written robot files reproduce the model's positions at the fitted values.
 #[test]
 fn calibrated_robot_files_reproduce_positions() {
