@@ -64,6 +64,11 @@ pub struct Args {
     /// Write the calibrated robot as a URDF here (corrected joint origins).
     #[arg(long)]
     urdf_out: Option<PathBuf>,
+    /// With --gravity masses: write the fitted compliance as a stiffness file here (JSON, as
+    /// identify --out; predict and compensate --stiffness read it): the fitted joints at their
+    /// fitted value, the others at the setup's nominal stiffness. Never over an input.
+    #[arg(long)]
+    stiffness_out: Option<PathBuf>,
 }
 
 /// Runs `stiffid calibrate`.
@@ -81,6 +86,10 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let out = prepare(&args.out, "--out")?;
     let urdf_out = prepare(&args.urdf_out, "--urdf-out")?;
+    if args.stiffness_out.is_some() && args.gravity != Gravity::Masses {
+        bail!("--stiffness-out: the compliances are fitted with --gravity masses only");
+    }
+    let stiffness_out = prepare(&args.stiffness_out, "--stiffness-out")?;
     let request = job::Request {
         readings: Readings {
             setup: &setup,
@@ -98,6 +107,15 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);
+    // Checked before anything is written.
+    let stiffness_text = match (&stiffness_out, &document.stiffness_file) {
+        (None, _) => None,
+        (Some(_), Some(file)) => Some(serde_json::to_string_pretty(file)?),
+        (Some(_), None) => bail!(
+            "--stiffness-out: {}",
+            document.stiffness_file_error.clone().unwrap_or_default()
+        ),
+    };
     if let Some(o) = &out {
         match document.robot_file_out() {
             Some(text) => o.write(text.as_bytes())?,
@@ -106,6 +124,9 @@ pub fn run(args: &Args) -> Result<()> {
                 document.robot_file_error.clone().unwrap_or_default()
             ),
         }
+    }
+    if let Some((o, text)) = stiffness_out.as_ref().zip(stiffness_text) {
+        o.write(text.as_bytes())?;
     }
     if let Some(o) = &urdf_out {
         o.write(document.urdf.as_bytes())?;

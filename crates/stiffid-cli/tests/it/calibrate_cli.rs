@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{json, stiffid, temp_dir, write_file};
+use common::{json, refused, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
 use stiffid::metrology::calibration::error_model::MeasuredIn;
 use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
@@ -279,4 +279,101 @@ fn calibrate_refuses_bad_input() {
     ]);
     assert_eq!(masses.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&masses.stderr).contains("mass_kg"));
+}
+
+/// With known masses, `--stiffness-out` writes the fitted compliance as a stiffness file that
+/// the readers take: noise-free readings of a robot whose joints 2-6 are 30 % more compliant than
+/// the setup's nominal give them back (joint 1, vertical, keeps its nominal stiffness).
+#[test]
+fn calibrate_with_masses_writes_the_stiffness_file() {
+    let d = temp_dir("calibrate-stiffness");
+    let setup = stiffid::setup::builtin(SETUP).unwrap();
+    let masses = [250.0, 180.0, 120.0, 60.0, 20.0, 40.0];
+    let mut robot_text = String::new();
+    for (i, part) in include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml")
+        .split("[[joint]]\n")
+        .enumerate()
+    {
+        robot_text += part;
+        if i < 6 {
+            robot_text += &format!(
+                "[[joint]]\nmass_kg = {}\ncom_mm = [{}, 30.0, {}]\n",
+                masses[i],
+                100.0 + 50.0 * i as f64,
+                -20.0 * i as f64
+            );
+        }
+    }
+    write_file(&d, "robot.toml", &robot_text);
+    let setup_text = include_str!("../../../stiffid/setups/zhang2021-comau-nj165.toml").replace(
+        "robot = \"comau-smart5-nj165-3.0\"",
+        "robot = \"robot.toml\"",
+    );
+    let setup_file = write_file(&d, "setup.toml", &setup_text);
+    let robot = stiffid::robot::file::parse(&robot_text, "robot.toml").unwrap();
+    let nominal = setup.nominal_compliance().unwrap();
+    let springs = Vector6::from_fn(|i, _| nominal[i] * if i == 0 { 1.0 } else { 1.3 });
+    let g =
+        gravity::Model::masses(&robot, *robot.masses().unwrap(), setup.springs(), nominal).unwrap();
+    let model = ErrorModel::new(
+        &robot,
+        &setup.tool().measuring_points,
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        g,
+    )
+    .unwrap();
+    let mut x = truth(&model);
+    let start = model.gravity_start();
+    x.rows_mut(start, 6).copy_from(&springs);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(30, 5)),
+    );
+    let k = d.join("k.json");
+    let args = [
+        "calibrate",
+        "--setup",
+        setup_file.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--gravity",
+        "masses",
+        "--stiffness-out",
+        k.to_str().unwrap(),
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    assert!(doc["residual_rms_mm"].as_f64().unwrap() < 1e-6, "{doc}");
+    let file = stiffid::io::stiffness::parse(&std::fs::read_to_string(&k).unwrap()).unwrap();
+    let c = file.compliance(setup.model()).unwrap();
+    for j in 0..6 {
+        assert!(
+            ((c.h[j] - springs[j]) / springs[j]).abs() < 1e-6,
+            "joint {}: {:e} vs {:e}",
+            j + 1,
+            c.h[j],
+            springs[j]
+        );
+    }
+    let cov = c.covariance.unwrap();
+    assert_eq!(cov[(0, 0)], 0.0);
+    assert!((1..6).all(|j| cov[(j, j)] > 0.0));
+    // Without masses there is no compliance to write: refused, nothing written.
+    let (setup_arg, data_arg) = (setup_file.to_str().unwrap(), data.to_str().unwrap());
+    refused(
+        &d,
+        &[
+            "calibrate",
+            "--setup",
+            setup_arg,
+            "--data",
+            data_arg,
+            "--stiffness-out",
+            "{dir}/k2.json",
+        ],
+        &["--stiffness-out", "--gravity masses"],
+    );
 }

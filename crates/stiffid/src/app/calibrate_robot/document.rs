@@ -2,6 +2,7 @@
 //! calibrate --json`, Python's `calibrate(...)`.
 
 use super::{Held, Report};
+use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, mm};
 use crate::app::Warning;
 use crate::common::choice::Choice;
@@ -62,8 +63,27 @@ pub struct Document {
     pub urdf: String,
     /// The setup fragment: the tracker's registration and the measuring points.
     pub fragment: String,
+    /// With `gravity` `masses`: the stiffness of every parameter of the setup's model, as a
+    /// stiffness file holds it (what `calibrate --stiffness-out` writes, `predict` and
+    /// `compensate --stiffness` read); the fitted drives at their fitted compliance, the others
+    /// at the setup's nominal stiffness with zero variance; `null` otherwise.
+    pub stiffness_file: Option<StiffnessSection>,
+    /// Why there is no stiffness file with `masses`.
+    pub stiffness_file_error: Option<String>,
     /// Results to look at before trusting the calibration.
     pub warnings: Vec<Warning>,
+}
+
+/// The calibrated compliance as a stiffness file ([`crate::io::stiffness`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct StiffnessSection {
+    /// Every parameter of the setup's model with its stiffness.
+    pub parameters: Vec<ParameterStiffness>,
+    /// `Cov(h)` of the compliance of every parameter, SI, row-major.
+    pub compliance_covariance_si: Vec<Vec<f64>>,
+    /// Whether the calibration fitted each parameter (the others are the setup's nominal).
+    pub fitted: Vec<bool>,
 }
 
 /// One parameter.
@@ -222,6 +242,20 @@ impl Document {
             robot_file_error: report.robot_toml.as_ref().err().cloned(),
             urdf: report.urdf.clone(),
             fragment: report.fragment.clone(),
+            stiffness_file: match &report.compliance {
+                Some(Ok(c)) => Some(StiffnessSection {
+                    parameters: stiffness(&c.parameters, &c.h),
+                    compliance_covariance_si: (c.covariance.row_iter())
+                        .map(|r| r.iter().copied().collect())
+                        .collect(),
+                    fitted: c.fitted.clone(),
+                }),
+                _ => None,
+            },
+            stiffness_file_error: match &report.compliance {
+                Some(Err(e)) => Some(e.clone()),
+                _ => None,
+            },
             warnings: report.warnings.clone(),
         }
     }

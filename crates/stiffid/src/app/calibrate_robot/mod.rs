@@ -15,13 +15,15 @@ use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
 use super::{Warning, WarningKind};
 use crate::io::readings::Readings as Data;
+use crate::metrology::calibration::error_model::Target;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
 use crate::metrology::calibration::fit::{self, Fit, Options, Priors};
-use crate::metrology::calibration::gravity::{self, Gravity};
+use crate::metrology::calibration::gravity::{self, Gravity, Term};
 use crate::metrology::calibration::validation::{self, Validation};
 use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
 use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
+use nalgebra::{DMatrix, DVector};
 
 pub use crate::io::readings::MAX_READINGS;
 
@@ -138,6 +140,9 @@ pub struct Report {
     pub urdf: String,
     /// The setup fragment: the tracker's registration and the measuring points.
     pub fragment: String,
+    /// With [`Gravity::Masses`]: the compliance of every parameter of the setup's model, as a
+    /// stiffness file holds it ([`fitted_compliance`]), or why there is none.
+    pub compliance: Option<std::result::Result<FittedCompliance, String>>,
     /// Inputs and results to look at before trusting the result.
     pub warnings: Vec<Warning>,
 }
@@ -249,6 +254,8 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate)?;
     let fragment = fragment(&model, &fitted);
+    let compliance =
+        (request.gravity == Gravity::Masses).then(|| fitted_compliance(setup, &model, &fitted));
     Ok(Report {
         data_name: name.clone(),
         labels: data.labels.clone(),
@@ -265,7 +272,69 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         robot_toml,
         urdf,
         fragment,
+        compliance,
         warnings,
+    })
+}
+
+/// The compliance of every parameter of the setup's model (SI: rad/(N m), m/N) and its
+/// covariance, from a calibration with known masses: what `identify` writes as a stiffness file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FittedCompliance {
+    /// The setup's model's parameters (drives first).
+    pub parameters: Vec<crate::model::Parameter>,
+    /// One per parameter.
+    pub h: DVector<f64>,
+    /// `Cov(h)`, SI: the fitted compliances' block of the calibration's covariance, zero for a
+    /// parameter not fitted.
+    pub covariance: DMatrix<f64>,
+    /// Whether the calibration fitted each (the others keep the setup's nominal stiffness).
+    pub fitted: Vec<bool>,
+}
+
+/// The compliance of a calibration with known masses ([`Gravity::Masses`]): each drive whose
+/// compliance the readings determine at its fitted value, every other parameter of the setup's
+/// model (a vertical joint 1, the virtual springs) at the setup's nominal stiffness with zero
+/// variance.
+///
+/// # Errors
+/// Why there is none, in words: the setup gives no nominal stiffness, or a fitted compliance is
+/// not positive (no spring).
+pub fn fitted_compliance(
+    setup: &Setup,
+    model: &ErrorModel,
+    fit: &Fit,
+) -> std::result::Result<FittedCompliance, String> {
+    let Some(mut h) = setup.model_nominal_compliance() else {
+        return Err("the setup gives no nominal stiffness (nominal_stiffness_nm_per_rad) for the parameters the calibration does not fit".into());
+    };
+    let n = h.len();
+    let joints: Vec<(usize, usize)> = (fit.fitted.iter().enumerate())
+        .filter_map(|(i, &c)| match model.parameters()[c].target {
+            Target::Gravity(Term::Compliance { joint }) => Some((i, joint)),
+            _ => None,
+        })
+        .collect();
+    let (mut covariance, mut fitted) = (DMatrix::zeros(n, n), vec![false; n]);
+    for &(i, joint) in &joints {
+        let value = fit.estimate.values[fit.fitted[i]];
+        if !(value.is_finite() && value > 0.0) {
+            return Err(format!(
+                "joint {}'s compliance is fitted at {value:.4e} rad/(N m), not positive: no spring",
+                joint + 1
+            ));
+        }
+        h[joint] = value;
+        fitted[joint] = true;
+        for &(k, other) in &joints {
+            covariance[(joint, other)] = fit.covariance[(i, k)];
+        }
+    }
+    Ok(FittedCompliance {
+        parameters: setup.model().parameters(),
+        h,
+        covariance,
+        fitted,
     })
 }
 
