@@ -44,7 +44,7 @@ pub struct ForArgs {
     /// The joint errors the calibration fits: none, offsets or full (as `calibrate --geometry`).
     #[arg(long, value_parser = choice::<Geometry>(), default_value = "full")]
     pub geometry: Geometry,
-    /// The gravity terms the calibration fits: none, masses or lumped (as `calibrate --gravity`).
+    /// The gravity terms the calibration fits: none, masses, lumped or lumped-links (as `calibrate --gravity`).
     #[arg(long, value_parser = choice::<Gravity>(), default_value = "none")]
     pub gravity: Gravity,
     /// With --for both: the weight of the calibration's log-criterion, between 0 and 1 (the
