@@ -103,6 +103,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         target_pct: r.target_pct,
         options,
         restarts: r.restarts.unwrap_or(PoolOptions::default().restarts),
+        distinct: None,
         progress: &(),
     };
     let report = py.detach(|| select::run(&request)).map_err(raise)?;

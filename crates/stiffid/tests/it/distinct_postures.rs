@@ -31,3 +31,61 @@ fn duplicate_postures_and_wrist_flips_are_flagged() {
     );
     assert!(near_pairs(robot, &[a, b, c]).is_empty());
 }
+
+/// `distinct` in a pool choice: a pool of six spread postures, each with a repeat 0.5 deg away
+/// (toward the middle of the bounds). Eight postures from it must hold at least two near pairs
+/// (six places); with `distinct` the pool keeps the first of every pair, six postures are chosen
+/// with no near pair, and eight are refused naming why.
+#[test]
+fn a_pool_choice_with_distinct_has_no_near_postures() {
+    use stiffid::app::select::{self, Method, PoolInput, Request};
+    use stiffid::design::distinct::Distinctness;
+    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let bounds = setup.bounds();
+    let middle = (bounds.lower + bounds.upper) / 2.0;
+    let spread = stiffid::design::random_group(&setup, 6, 3);
+    let step = 0.5_f64.to_radians();
+    let mut pool = spread.clone();
+    pool.extend(
+        spread
+            .iter()
+            .map(|q| q + (middle - q).map(|d| step * d.signum())),
+    );
+    let run = |n: usize, distinct: Option<Distinctness>| {
+        select::run(&Request {
+            setup: &setup,
+            criterion: stiffid::design::Criterion::RelativeA,
+            purpose: Default::default(),
+            calibration: Default::default(),
+            method: Method::Pool,
+            start: None,
+            pool: Some(PoolInput {
+                name: "pool".into(),
+                postures: pool.clone(),
+            }),
+            postures: n,
+            target_pct: None,
+            options: Default::default(),
+            restarts: 8,
+            distinct,
+            progress: &(),
+        })
+    };
+    let free = run(8, None).unwrap();
+    assert!(free.near.len() >= 2, "{:?}", free.near);
+    assert_eq!(free.warnings.len(), free.near.len());
+    let strict = run(6, Some(Distinctness::default())).unwrap();
+    assert!(strict.near.is_empty() && strict.warnings.is_empty());
+    assert!(near_pairs(setup.robot(), &strict.postures).is_empty());
+    let p = strict.pool.as_ref().unwrap();
+    assert_eq!(p.usable, 6);
+    let dropped: Vec<(usize, usize)> = (7..=12).map(|i| (i, i - 6)).collect();
+    assert_eq!(p.not_distinct, dropped);
+    let err = run(8, Some(Distinctness::default()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("only 6 of the 12") && err.contains("are distinct"),
+        "{err}"
+    );
+}

@@ -17,6 +17,7 @@ use stiffid::app::select::document::{Document, Pool};
 use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::common::limits::{self, short};
 use stiffid::common::words::count;
+use stiffid::design::distinct::Distinctness;
 use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions, Solver};
 use stiffid::{io::postures, Setup};
 
@@ -52,6 +53,18 @@ pub struct Args {
     /// Exchange runs of a --pool choice, 1 to 1000 [default: 8].
     #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
+    /// Forbid postures that are not distinct in a --pool choice: the pool keeps the first of
+    /// every pair whose axis angles all lie within --distinct-deg or whose flanges reach the same
+    /// pose (origins within --distinct-mm, orientations within --distinct-deg; a wrist flip
+    /// counts).
+    #[arg(long, requires = "pool")]
+    distinct: bool,
+    /// The axis-angle and flange-orientation distance of --distinct, 0 to 180 deg [default: 2].
+    #[arg(long, requires = "distinct")]
+    distinct_deg: Option<f64>,
+    /// The flange-origin distance of --distinct, 0 to 10000 mm [default: 10].
+    #[arg(long, requires = "distinct")]
+    distinct_mm: Option<f64>,
     /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
     /// prints the group size against the worst joint's rate and plots it (into --report, else
@@ -147,6 +160,7 @@ pub fn run(args: &Args) -> Result<()> {
         restarts: args
             .restarts
             .map_or(PoolOptions::default().restarts, |r| r as usize),
+        distinct: args.distinct.then(|| distinctness(args)),
         progress: &bars,
     };
     let report = job::run(&request)?;
@@ -166,6 +180,18 @@ pub fn run(args: &Args) -> Result<()> {
         true => output::print(&json(&doc)?),
         false => output::print(&text(args, &setup, &report, &doc)),
     }
+}
+
+/// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
+fn distinctness(args: &Args) -> Distinctness {
+    let mut d = Distinctness::default();
+    if let Some(deg) = args.distinct_deg {
+        (d.joint, d.angle) = (deg.to_radians(), deg.to_radians());
+    }
+    if let Some(mm) = args.distinct_mm {
+        d.position = mm * 1e-3;
+    }
+    d
 }
 
 /// The method the arguments ask for.

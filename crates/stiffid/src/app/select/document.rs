@@ -6,6 +6,7 @@ use crate::app::document::{degrees, finite};
 use crate::app::evaluate::document::{CalibrationDoc, Criteria};
 use crate::app::select::{PoolReport, Report, Unconstrained};
 use crate::common::choice::Choice;
+use crate::design::distinct::Near;
 use crate::design::target::{TargetOutcome, TargetStep};
 use crate::design::Termination;
 use crate::Setup;
@@ -78,7 +79,7 @@ pub struct Document {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unconstrained: Option<Free>,
     /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
-    /// pose within 10 mm and 2 deg: a wrist flip counts).
+    /// pose within 10 mm and 2 deg: a wrist flip counts; or the distances of `distinct`).
     pub near_postures: Vec<NearDoc>,
     /// The postures file written (the command's `--out`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -102,6 +103,18 @@ pub struct NearDoc {
     pub flange_angle_deg: f64,
     /// The same flange pose reached on another branch (a wrist flip), not close axis angles.
     pub same_pose_other_branch: bool,
+}
+
+impl From<&Near> for NearDoc {
+    fn from(n: &Near) -> Self {
+        NearDoc {
+            postures: [n.a + 1, n.b + 1],
+            joint_distance_deg: n.joint_distance.to_degrees(),
+            flange_distance_mm: n.position_distance * 1e3,
+            flange_angle_deg: n.angle_distance.to_degrees(),
+            same_pose_other_branch: n.same_pose_other_branch(),
+        }
+    }
 }
 
 /// How many local searches stopped for one reason.
@@ -131,6 +144,9 @@ pub struct Pool {
     pub method: &'static str,
     /// The chosen postures' numbers in the pool (1-based).
     pub chosen: Vec<usize>,
+    /// With `distinct`: the usable postures left out because they are near one kept before
+    /// them, `[left out, kept]`, numbers in the pool (1-based).
+    pub not_distinct: Vec<[usize; 2]>,
 }
 
 /// A pool posture that cannot be measured, and why.
@@ -214,16 +230,7 @@ impl Document {
             pool: r.pool.as_ref().map(Pool::from),
             target: r.target.as_ref().map(Target::from),
             unconstrained: r.unconstrained.as_ref().map(Free::from),
-            near_postures: crate::design::distinct::near_pairs(setup.robot(), &r.postures)
-                .iter()
-                .map(|n| NearDoc {
-                    postures: [n.a + 1, n.b + 1],
-                    joint_distance_deg: n.joint_distance.to_degrees(),
-                    flange_distance_mm: n.position_distance * 1e3,
-                    flange_angle_deg: n.angle_distance.to_degrees(),
-                    same_pose_other_branch: n.same_pose_other_branch(),
-                })
-                .collect(),
+            near_postures: r.near.iter().map(NearDoc::from).collect(),
             out: None,
             report: None,
         }
@@ -255,6 +262,7 @@ impl From<&PoolReport> for Pool {
                 .collect(),
             method: p.method.name(),
             chosen: p.chosen.clone(),
+            not_distinct: p.not_distinct.iter().map(|&(a, b)| [a, b]).collect(),
         }
     }
 }

@@ -12,6 +12,7 @@ use crate::common::error::JobOption;
 use crate::common::limits::{self, check_count, Range};
 use crate::common::progress::Progress;
 use crate::design::calibration::{CalibrationCriteria, CalibrationCriterion, CalibrationDesign};
+use crate::design::distinct::{distinct_pool, near_pairs_by, Distinctness, Near};
 use crate::design::identifiable;
 use crate::design::pool::MAX_POOL;
 use crate::design::target::{smallest_group, TargetOutcome};
@@ -101,6 +102,11 @@ pub struct Request<'a> {
     pub options: SearchOptions,
     /// Exchange runs of a pool choice (1 to [`limits::MAX_POOL_RESTARTS`]).
     pub restarts: usize,
+    /// Forbid postures that are not distinct by these distances ([`Method::Pool`] only: the
+    /// pool keeps the first of every near pair, [`crate::design::distinct::distinct_pool`]);
+    /// `None` allows them. Either way the group's near pairs are flagged, by these distances or
+    /// the defaults.
+    pub distinct: Option<Distinctness>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
     /// (`global search (relative-a)` with its starts as the total; a local search with total 0).
     pub progress: &'a dyn Progress,
@@ -108,6 +114,12 @@ pub struct Request<'a> {
 
 /// The accepted target, %.
 pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
+
+/// The accepted distance in axis angles and flange orientation of [`Request::distinct`], deg.
+pub const DISTINCT_DEG: Range = Range::new(0.0, 180.0, "deg");
+
+/// The accepted distance of flange origins of [`Request::distinct`], mm.
+pub const DISTINCT_MM: Range = Range::new(0.0, 1e4, "mm");
 
 /// What the selection found.
 #[derive(Debug, Clone)]
@@ -153,8 +165,10 @@ pub struct Report {
     /// With cell checks, for a local or global search without a target: the same search without
     /// them.
     pub unconstrained: Option<Unconstrained>,
-    /// The job's warnings: postures of the group that are not distinct
-    /// ([`crate::design::distinct`]).
+    /// The pairs of postures of the group that are not distinct ([`crate::design::distinct`]),
+    /// by the request's distances or the defaults.
+    pub near: Vec<Near>,
+    /// The job's warnings: one per pair of `near`.
     pub warnings: Vec<Warning>,
 }
 
@@ -186,6 +200,9 @@ pub struct PoolReport {
     pub method: PoolMethod,
     /// The chosen postures' numbers in the pool (1-based), ascending.
     pub chosen: Vec<usize>,
+    /// With [`Request::distinct`]: the usable postures left out because they are near one kept
+    /// before them, `(left out, kept)`, numbers in the pool (1-based).
+    pub not_distinct: Vec<(usize, usize)>,
 }
 
 /// A pool posture that cannot be measured.
@@ -234,7 +251,7 @@ pub fn run(request: &Request) -> Result<Report> {
     let pool = request
         .pool
         .as_ref()
-        .map(|p| Candidates::new(request.setup, p))
+        .map(|p| Candidates::new(request.setup, p, request.distinct.as_ref()))
         .transpose()?;
     let started = Instant::now();
     let (found, target) = match request.target_pct {
@@ -254,6 +271,8 @@ pub fn run(request: &Request) -> Result<Report> {
             error: Box::new(e),
         })?;
     }
+    let distances = request.distinct.unwrap_or_default();
+    let near = near_pairs_by(request.setup.robot(), &found.postures, &distances);
     let unconstrained = match pool.is_none() && target.is_none() {
         true => unconstrained(request, &goal, found.postures.len())?,
         false => None,
@@ -280,7 +299,8 @@ pub fn run(request: &Request) -> Result<Report> {
         pool: pool.map(|p| p.report(found.chosen)),
         target,
         unconstrained,
-        warnings: near_warnings(request.setup, &found.postures),
+        warnings: near.iter().map(Near::warning).collect(),
+        near,
         postures: found.postures,
     })
 }
@@ -298,27 +318,6 @@ fn calibration_report(
         criteria: design.evaluate(postures)?,
         weight,
     })
-}
-
-/// One warning per pair of near postures of `postures` ([`crate::design::distinct`]).
-fn near_warnings(setup: &Setup, postures: &[Vector6<f64>]) -> Vec<Warning> {
-    crate::design::distinct::near_pairs(setup.robot(), postures)
-        .iter()
-        .map(|n| {
-            let why = match n.same_pose_other_branch() {
-                true => "reach the same flange pose on another branch (a wrist flip)",
-                false => "have axis angles within 2 deg",
-            };
-            Warning::new(
-                crate::common::warning::WarningKind::NearPostures,
-                format!(
-                    "postures {} and {} {why}: they measure nearly the same thing; choose another posture for one of them",
-                    n.a + 1,
-                    n.b + 1
-                ),
-            )
-        })
-        .collect()
 }
 
 /// The group size of a request without a target.
@@ -346,6 +345,17 @@ fn check(r: &Request) -> Result<()> {
     }
     if r.pool.is_some() != (r.method == Method::Pool) {
         return invalid("pool", "a pool choice needs the pool postures, and only it");
+    }
+    if let Some(d) = &r.distinct {
+        if r.method != Method::Pool {
+            return invalid(
+                "distinct",
+                "only for a pool choice: a search moves every posture freely and cannot forbid pairs; choose from a pool of postures (the pool keeps the first of every near pair), or drop distinct and look at the near pairs flagged",
+            );
+        }
+        limits::check("distinct.joint_deg", &[d.joint.to_degrees()], &DISTINCT_DEG)?;
+        limits::check("distinct.angle_deg", &[d.angle.to_degrees()], &DISTINCT_DEG)?;
+        limits::check("distinct.position_mm", &[d.position * 1e3], &DISTINCT_MM)?;
     }
     let most = limits::MAX_SEARCH_POSTURES as usize;
     match &r.start {
@@ -400,10 +410,15 @@ struct Candidates<'a> {
     pool: design::Pool<'a>,
     total: usize,
     skipped: Vec<Skipped>,
+    not_distinct: Vec<(usize, usize)>,
 }
 
 impl<'a> Candidates<'a> {
-    fn new(setup: &'a Setup, input: &'a PoolInput) -> Result<Self> {
+    fn new(
+        setup: &'a Setup,
+        input: &'a PoolInput,
+        distinct: Option<&Distinctness>,
+    ) -> Result<Self> {
         let checker = Checker::new(setup);
         let skipped: Vec<Skipped> = (input.postures.iter().enumerate())
             .filter_map(|(i, q)| {
@@ -415,9 +430,16 @@ impl<'a> Candidates<'a> {
                 })
             })
             .collect();
-        let usable: Vec<bool> = (1..=input.postures.len())
+        let mut usable: Vec<bool> = (1..=input.postures.len())
             .map(|number| skipped.iter().all(|s| s.posture != number))
             .collect();
+        let not_distinct = match distinct {
+            Some(d) => distinct_pool(setup.robot(), &input.postures, &mut usable, d)
+                .into_iter()
+                .map(|(a, b)| (a + 1, b + 1))
+                .collect(),
+            None => Vec::new(),
+        };
         let pool =
             design::Pool::new(setup, &input.postures, &usable).map_err(|e| Error::Input {
                 source_name: input.name.clone(),
@@ -428,6 +450,7 @@ impl<'a> Candidates<'a> {
             pool,
             total: input.postures.len(),
             skipped,
+            not_distinct,
         })
     }
 
@@ -437,12 +460,19 @@ impl<'a> Candidates<'a> {
 
     /// The best group of `n` usable postures.
     fn choose(&self, r: &Request, goal: &Goal, n: usize) -> Result<Found> {
-        if n > self.usable() && !self.skipped.is_empty() {
+        if n > self.usable() && !(self.skipped.is_empty() && self.not_distinct.is_empty()) {
             let message = format!(
-                "{n} asked for, but only {} of the {} pass the cell's checks (failed most often: {})",
+                "{n} asked for, but only {} of the {} pass the cell's checks{}{}",
                 self.usable(),
                 self.total,
-                self.most_failed()
+                match self.not_distinct.len() {
+                    0 => String::new(),
+                    d => format!(" and are distinct ({d} near an earlier one)"),
+                },
+                match self.skipped.is_empty() {
+                    true => String::new(),
+                    false => format!(" (failed most often: {})", self.most_failed()),
+                }
             );
             return Err(in_pool(self.name, "postures", message));
         }
@@ -494,6 +524,7 @@ impl<'a> Candidates<'a> {
             skipped: self.skipped,
             method,
             chosen,
+            not_distinct: self.not_distinct,
         }
     }
 }
