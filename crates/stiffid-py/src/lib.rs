@@ -26,6 +26,7 @@ mod predict;
 mod register;
 mod robot;
 mod setup;
+mod setups_new;
 mod stiffness;
 mod study;
 
@@ -55,5 +56,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
+    m.add_function(wrap_pyfunction!(setups_new::setups_new, m)?)?;
     Ok(())
 }

@@ -82,6 +82,29 @@ impl OutFile {
     /// `OSError` naming the argument and the file when it cannot be written (the temporary file
     /// removed).
     pub fn write(&self, bytes: &[u8]) -> PyResult<()> {
+        self.put(bytes, |temporary, target| {
+            std::fs::rename(temporary, target)
+        })
+    }
+
+    /// Writes `bytes` as a new file: as [`OutFile::write`], but never over a file (one created
+    /// since the check included: the temporary file is linked to the target's name, which fails
+    /// if the name exists).
+    ///
+    /// # Errors
+    /// `OSError` as for [`OutFile::write`], and for a file that exists.
+    pub fn write_new(&self, bytes: &[u8]) -> PyResult<()> {
+        self.put(bytes, |temporary, target| {
+            std::fs::hard_link(temporary, target).and_then(|_| std::fs::remove_file(temporary))
+        })
+    }
+
+    /// `bytes` into a new temporary file beside the target, put in place by `place`.
+    fn put(
+        &self,
+        bytes: &[u8],
+        place: impl FnOnce(&Path, &Path) -> std::io::Result<()>,
+    ) -> PyResult<()> {
         static COUNTER: AtomicUsize = AtomicUsize::new(0);
         let dir = self.target.parent().unwrap_or(Path::new("."));
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);
@@ -99,7 +122,7 @@ impl OutFile {
             .open(&temporary)
             .map_err(error)?;
         let written = (file.write_all(bytes).and_then(|_| file.sync_all()))
-            .and_then(|_| std::fs::rename(&temporary, &self.target));
+            .and_then(|_| place(&temporary, &self.target));
         written.map_err(|e| {
             let _ = std::fs::remove_file(&temporary);
             error(e)

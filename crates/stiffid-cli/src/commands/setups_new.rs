@@ -1,13 +1,12 @@
-//! `stiffid setups new --robot R`: a complete, commented setup for the user's own robot, with every
-//! field's unit and meaning, starting values derived from the robot, and the optional fields
-//! commented out. The text is loaded back before it is written, so it always loads as written.
+//! `stiffid setups new --robot R`: a complete, commented setup for the user's own robot
+//! ([`stiffid::app::setups_new`]). The text is loaded back before it is written, so it always
+//! loads as written.
 
 use crate::{load, output};
 use anyhow::{Context, Result};
-use nalgebra::{Vector3, Vector6};
 use std::path::{Path, PathBuf};
-use stiffid::setup::Tool;
-use stiffid::{robot::presets, setup::prior, Robot};
+use stiffid::app::setups_new::{self as job, relative_to, robot_reference};
+use stiffid::{Error, Robot};
 
 /// Arguments of `stiffid setups new`.
 #[derive(clap::Args)]
@@ -27,13 +26,6 @@ pub struct NewArgs {
     out: Option<PathBuf>,
 }
 
-/// The paper's robot, whose Table 2 stiffness the prior scales.
-const REFERENCE_ROBOT: &str = "comau-smart5-nj165-3.0";
-/// Bounds stay this far inside the joint limits, deg.
-const LIMIT_MARGIN_DEG: f64 = 5.0;
-/// The seed of the sampled postures behind the starting values (same robot, same file).
-const SEED: u64 = 1;
-
 /// Writes (or prints) the setup.
 pub fn run(args: &NewArgs) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
@@ -42,12 +34,20 @@ pub fn run(args: &NewArgs) -> Result<()> {
         .as_deref()
         .map(|p| output::OutFile::prepare_new(p, "--out"))
         .transpose()?;
-    let robot_ref = reference_from(&args.robot, args.out.as_deref())?;
+    let at = args.out.as_deref();
+    let robot_ref = robot_reference(&args.robot, at, "--robot")?;
     let package_paths = load::package_paths()
         .iter()
-        .map(|p| from_out(p, args.out.as_deref(), "--package-path"))
-        .collect::<Result<Vec<_>>>()?;
-    let text = template(&robot, &robot_ref, &package_paths, args)?;
+        .map(|p| relative_to(p, at, "--package-path"))
+        .collect::<stiffid::Result<Vec<_>>>()?;
+    let request = job::Request {
+        robot: &robot,
+        robot_ref: &robot_ref,
+        tip: args.tip.as_deref(),
+        package_paths: &package_paths,
+        payload_kg: args.payload_kg,
+    };
+    let text = job::run(&request).map_err(option_names)?;
     let source_name = args
         .out
         .as_ref()
@@ -66,37 +66,17 @@ pub fn run(args: &NewArgs) -> Result<()> {
     }
 }
 
-/// The robot reference as the setup file must hold it: a preset name as is; a file path relative
-/// to the directory of `--out` (or to the current directory).
-fn reference_from(robot: &str, out: Option<&Path>) -> Result<String> {
-    if presets::get(robot).is_ok() {
-        return Ok(robot.to_string());
+/// The job's field names as the command's options.
+fn option_names(e: Error) -> Error {
+    match e {
+        Error::InvalidField { field, message } if field == "payload_kg" || field == "out" => {
+            Error::InvalidField {
+                field: format!("--{}", field.replace('_', "-")),
+                message,
+            }
+        }
+        e => e,
     }
-    from_out(Path::new(robot), out, "--robot")
-}
-
-/// The file or directory `path` (given as `option`) relative to the directory of `--out` (or to
-/// the current directory), as a setup file must hold it.
-fn from_out(path: &Path, out: Option<&Path>, option: &str) -> Result<String> {
-    let file =
-        std::fs::canonicalize(path).with_context(|| format!("{option} {}", path.display()))?;
-    let dir = match out
-        .and_then(Path::parent)
-        .filter(|d| !d.as_os_str().is_empty())
-    {
-        Some(d) => std::fs::canonicalize(d).with_context(|| format!("--out {}", d.display()))?,
-        None => std::env::current_dir()?,
-    };
-    Ok(relative(&file, &dir).to_string_lossy().into_owned())
-}
-
-/// `path` relative to `dir` (both absolute), through `..` where needed.
-fn relative(path: &Path, dir: &Path) -> PathBuf {
-    let (p, d): (Vec<_>, Vec<_>) = (path.components().collect(), dir.components().collect());
-    let common = p.iter().zip(&d).take_while(|(a, b)| a == b).count();
-    let mut rel: PathBuf = d[common..].iter().map(|_| "..").collect();
-    rel.extend(&p[common..]);
-    rel
 }
 
 /// Parses the generated text as `--setup` would read it from `--out`, with its own
@@ -116,229 +96,4 @@ fn check_loads(text: &str, source_name: &str, args: &NewArgs, robot: &Robot) -> 
         );
     }
     Ok(())
-}
-
-/// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], within +-180 deg, degrees.
-fn bounds_deg(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
-    let lower = robot
-        .limits()
-        .lower
-        .map(|l| (l.to_degrees() + LIMIT_MARGIN_DEG).max(-180.0));
-    let upper = robot
-        .limits()
-        .upper
-        .map(|u| (u.to_degrees() - LIMIT_MARGIN_DEG).min(180.0));
-    // A joint narrower than twice the margin keeps its full range.
-    let narrow = |a: usize| lower[a] > upper[a];
-    (
-        Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.limits().lower[a].to_degrees().max(-180.0),
-            false => lower[a],
-        }),
-        Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.limits().upper[a].to_degrees().min(180.0),
-            false => upper[a],
-        }),
-    )
-}
-
-/// The template of [`template`]: `@NAME@` placeholders, each replaced once.
-const TEMPLATE: &str = include_str!("../../assets/setup-template.toml");
-
-/// The commented TOML of the new setup.
-fn template(
-    robot: &Robot,
-    robot_ref: &str,
-    package_paths: &[String],
-    args: &NewArgs,
-) -> Result<String> {
-    let reach = prior::reach(robot, SEED);
-    let reference_reach = prior::reach(&presets::get(REFERENCE_ROBOT)?, SEED);
-    let (payload, payload_note) = match args.payload_kg {
-        Some(kg) => (kg, format!("the rated payload given, {kg} kg")),
-        None => {
-            let kg = prior::payload_class_kg(reach, reference_reach);
-            let note = format!("a payload class of about {kg:.0} kg guessed from the reach");
-            (kg, note + " (give --payload-kg)")
-        }
-    };
-    let stiffness = prior::nominal_stiffness(payload).map_err(|e| match e {
-        // The library names its argument `payload_kg`; the user wrote the option.
-        stiffid::Error::InvalidField { message, .. } => stiffid::Error::InvalidField {
-            field: "--payload-kg".into(),
-            message,
-        },
-        e => e,
-    })?;
-    // The paper's tool (a 160 mm plate 260 mm out, a loading arm 150 mm off axis 6), scaled down
-    // for robots smaller than the paper's; mm.
-    let scale = (reach / reference_reach).min(1.0);
-    let tool = |x: f64, y: f64, z: f64| Vector3::new(x, y, z) * scale;
-    let (lower, upper) = bounds_deg(robot);
-    let to_rad = |v: &Vector6<f64>| v.map(f64::to_radians);
-    let corners = [(80.0, 80.0), (-80.0, 80.0), (-80.0, -80.0), (80.0, -80.0)];
-    let tool_mm = Tool {
-        loading_point: tool(150.0, 0.0, 200.0),
-        measuring_points: corners.iter().map(|&(x, y)| tool(x, y, 260.0)).collect(),
-        tcp: tool(80.0, 80.0, 260.0),
-    };
-    let l = prior::characteristic_length(
-        robot,
-        &to_rad(&lower),
-        &to_rad(&upper),
-        &(tool_mm.tcp * 1e-3),
-        SEED,
-    )?;
-    let points: Vec<String> = tool_mm
-        .measuring_points
-        .iter()
-        .map(|p| list(p.iter(), 1))
-        .collect();
-    let stem = match presets::get(robot_ref) {
-        Ok(_) => robot_ref.into(),
-        Err(_) => Path::new(robot_ref)
-            .file_stem()
-            .map_or(robot_ref.into(), |s| s.to_string_lossy()),
-    };
-    let urdf = Path::new(robot_ref)
-        .extension()
-        .is_some_and(|e| e == "urdf");
-    let tip_line = match &args.tip {
-        Some(tip) => format!("robot_tip = {}", quoted(tip)),
-        None if urdf => "# robot_tip = \"tool0\"".into(),
-        None => "# (this robot is a preset or a robot TOML: it has no tip link to choose)".into(),
-    };
-    let package_line = match package_paths {
-        [] if urdf => "# package_paths = [\"../ros_ws/src\"]".into(),
-        [] => "# (a preset or a robot TOML has no meshes to find)".into(),
-        paths => format!(
-            "package_paths = [{}]",
-            paths
-                .iter()
-                .map(|p| quoted(p))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    };
-    let reach_mm = reach * 1e3;
-    let mut values = vec![
-        ("ROBOT_NAME", in_comment(robot.name())),
-        ("ROBOT_REF", in_comment(robot_ref)),
-        ("NAME", quoted(&format!("{stem}-cell"))),
-        (
-            "DESCRIPTION",
-            quoted(&format!(
-                "Stiffness identification cell of the {}",
-                robot.name()
-            )),
-        ),
-        ("ROBOT", quoted(robot_ref)),
-        ("TIP_LINE", tip_line),
-        ("PACKAGE_PATHS_LINE", package_line),
-        ("REACH_MM", format!("{reach_mm:.0}")),
-        ("LENGTH_MM", format!("{:.1}", l * 1e3)),
-        ("PAYLOAD_NOTE", payload_note),
-        ("STIFFNESS", list(stiffness.iter(), 0)),
-        ("LOADING_POINT", list(tool_mm.loading_point.iter(), 1)),
-        (
-            "MEASURING_POINTS",
-            format!("[\n  {},\n]", points.join(",\n  ")),
-        ),
-        ("TCP", list(tool(0.0, 0.0, 300.0).iter(), 1)),
-        (
-            "LOAD_N",
-            format!("{:.1}", (50.0 * scale).max(5.0).round() * 10.0),
-        ),
-        (
-            "ANCHOR",
-            list([0.65 * reach_mm, 0.5 * reach_mm, 0.0].iter(), 0),
-        ),
-        ("MARGIN_DEG", format!("{LIMIT_MARGIN_DEG}")),
-        ("LOWER", list(lower.iter(), 1)),
-        ("UPPER", list(upper.iter(), 1)),
-        ("TEST_POSTURE", list(((lower + upper) / 2.0).iter(), 1)),
-    ];
-    values.extend(cell_values(robot, &tool_mm, reach_mm));
-    fill(&values)
-}
-
-/// The values of the commented-out `[cell]`, `[robot_geometry]` and `[tracker]` sections for a
-/// robot of reach `reach_mm` with the tool `tool_mm` (mm): a table behind the robot, the default
-/// body radii, a tracker in front of it to the side (the paper's cell at (3000, -2000, 1500) mm for
-/// a reach of about 3 m), the flange z axis as every measuring point's normal.
-fn cell_values(robot: &Robot, tool_mm: &Tool, reach_mm: f64) -> Vec<(&'static str, String)> {
-    let r = |x: f64, y: f64, z: f64| Vector3::new(x, y, z) * reach_mm;
-    let si = Tool {
-        loading_point: tool_mm.loading_point * 1e-3,
-        measuring_points: tool_mm.measuring_points.iter().map(|p| p * 1e-3).collect(),
-        tcp: tool_mm.tcp * 1e-3,
-    };
-    let geometry = stiffid::setup::default_geometry(robot, &si);
-    let normals = vec!["[0.0, 0.0, 1.0]"; si.measuring_points.len()];
-    vec![
-        ("OBSTACLE_MIN", list(r(-0.7, -0.15, 0.0).iter(), 0)),
-        ("OBSTACLE_MAX", list(r(-0.45, 0.15, 0.25).iter(), 0)),
-        (
-            "LINK_RADII",
-            list(geometry.link_radii.map(|v| v * 1e3).iter(), 1),
-        ),
-        ("TOOL_RADIUS", format!("{:.1}", geometry.tool_radius * 1e3)),
-        ("TRACKER_POSITION", list(r(1.0, -0.7, 0.5).iter(), 0)),
-        ("NORMALS", format!("[{}]", normals.join(", "))),
-    ]
-}
-
-/// [`TEMPLATE`] with every `@KEY@` replaced by its value.
-fn fill(values: &[(&str, String)]) -> Result<String> {
-    Ok(values
-        .iter()
-        .fold(TEMPLATE.to_string(), |text, (key, value)| {
-            text.replace(&format!("@{key}@"), value)
-        }))
-}
-
-/// `[a, b, c]` with `decimals` digits after the point.
-fn list<'a>(values: impl Iterator<Item = &'a f64>, decimals: usize) -> String {
-    let v: Vec<String> = values.map(|x| format!("{x:.decimals$}")).collect();
-    format!("[{}]", v.join(", "))
-}
-
-/// A TOML basic string.
-/// `s` for a TOML comment: line breaks and other control characters escaped (`\n`), so a
-/// robot name cannot end the comment.
-fn in_comment(s: &str) -> String {
-    s.chars()
-        .map(|c| match c.is_control() {
-            true => c.escape_default().to_string(),
-            false => c.to_string(),
-        })
-        .collect()
-}
-
-fn quoted(s: &str) -> String {
-    toml::Value::String(s.to_string()).to_string()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_placeholder_of_the_template_is_filled() {
-        let robot = presets::get(REFERENCE_ROBOT).unwrap();
-        let args = NewArgs {
-            robot: REFERENCE_ROBOT.into(),
-            tip: None,
-            payload_kg: None,
-            out: None,
-        };
-        let text = template(&robot, REFERENCE_ROBOT, &[], &args).unwrap();
-        assert!(!text.contains('@'), "{text}");
-    }
-
-    #[test]
-    fn relative_paths_climb_out_of_the_output_directory() {
-        let rel = relative(Path::new("/a/robots/r.urdf"), Path::new("/a/cells/x"));
-        assert_eq!(rel, Path::new("../../robots/r.urdf"));
-    }
 }

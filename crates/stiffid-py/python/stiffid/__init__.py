@@ -1,7 +1,8 @@
 """stiffid: joint stiffness identification of industrial robots and the design of its experiment.
 
 A thin Python layer over the stiffid Rust library (the same code as the ``stiffid`` command):
-robots and their kinematics (``Robot``), experimental setups and posture selection (``Setup``),
+robots and their kinematics (``Robot``), experimental setups (``Setup``, a new one for your robot:
+``setups_new``) and posture selection,
 the measurement plan of a group (``plan``), identification and validation from measurements (``identify``, ``validate``), the deflection
 under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
 with ``process_force`` and ``read_program``), the tracker's registration, the cell's
@@ -45,6 +46,7 @@ from ._stiffid import (
     read_program,
     register,
     reproduce,
+    setups_new,
     simulate,
     validate,
 )
@@ -72,6 +74,7 @@ __all__ = [
     "read_program",
     "register",
     "reproduce",
+    "setups_new",
     "simulate",
     "validate",
 ]

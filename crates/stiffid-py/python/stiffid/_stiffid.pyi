@@ -424,3 +424,12 @@ def plan(
     target_pct: Optional[float] = None,
 ) -> dict[str, Any]:
     """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates."""
+def setups_new(
+    robot: _PathLike,
+    *,
+    tip: Optional[str] = None,
+    payload_kg: Optional[float] = None,
+    out: Optional[_PathLike] = None,
+    package_paths: Sequence[_PathLike] = (),
+) -> str:
+    """The commented setup TOML of `stiffid setups new` for a preset, robot TOML or URDF; with out, written to that new file."""

@@ -35,6 +35,7 @@ pub mod predict;
 pub mod register;
 pub mod reproduce;
 pub mod select;
+pub mod setups_new;
 pub mod simulate;
 pub mod validate;
 
