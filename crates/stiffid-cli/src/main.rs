@@ -80,7 +80,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    if let Err(message) = standard_streams().and_then(|()| thread_pool()) {
+    if let Err(message) = standard_streams().and_then(|()| stiffid::common::threads::start()) {
         return fail(&message);
     }
     let cli = match command()
@@ -224,36 +224,6 @@ static STDOUT_AT_START: extern "C" fn() = {
     }
     record
 };
-
-/// Most worker threads `RAYON_NUM_THREADS` may ask for: more only cost memory (each thread its
-/// stack), and 5000 of them under a 4 GB memory cap could not start.
-const MAX_THREADS: usize = 256;
-
-/// The worker threads of `RAYON_NUM_THREADS` (0 or unset: one per core), at most [`MAX_THREADS`],
-/// started now, so a count the machine cannot start is an error naming the setting, not a panic.
-fn thread_pool() -> Result<(), String> {
-    let Some(value) = std::env::var_os("RAYON_NUM_THREADS") else {
-        return Ok(());
-    };
-    let text = value.to_string_lossy();
-    let n = text
-        .trim()
-        .parse::<usize>()
-        .ok()
-        .filter(|&n| n <= MAX_THREADS)
-        .ok_or_else(|| {
-            format!(
-                "RAYON_NUM_THREADS = '{}': expected a number of threads from 0 (one per core) to {MAX_THREADS}",
-                stiffid::common::limits::short(&text)
-            )
-        })?;
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n)
-        .build_global()
-        .map_err(|e| {
-            format!("RAYON_NUM_THREADS = {n}: the threads could not start ({e}); give fewer")
-        })
-}
 
 /// Checks that stdout is open: a closed descriptor (`>&-`) is an error, since the results would go
 /// nowhere; `/dev/null`, however opened, is the user's choice.

@@ -80,7 +80,14 @@ pub fn compensate<'py>(
     })?;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let mut options = options(s, q0_deg, free_tool_axis, max_step_deg, tool_axis_range_deg)?;
+    let mut options = options(
+        py,
+        s,
+        q0_deg,
+        free_tool_axis,
+        max_step_deg,
+        tool_axis_range_deg,
+    )?;
     options.level = level;
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
@@ -205,6 +212,7 @@ fn output_language(name: &str) -> PyResult<Language> {
 
 /// The compensation's options from the arguments.
 fn options(
+    py: Python<'_>,
     s: &stiffid::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,
     free_tool_axis: bool,
@@ -216,6 +224,8 @@ fn options(
         let r = s.robot();
         let within = (r.limits(), "the joint limits");
         options.q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
+        let warning = stiffid::setup::plausibility::radians_in_option("q0_deg", &options.q0);
+        warn(py, &Vec::from_iter(warning))?;
     }
     if free_tool_axis {
         let free = FreeToolAxis::try_from_degrees(max_step_deg, tool_axis_range_deg);

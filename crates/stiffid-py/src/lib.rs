@@ -37,6 +37,9 @@ use pyo3::prelude::*;
 fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     error::register(m)?;
+    // The worker threads RAYON_NUM_THREADS asks for, as the command starts them: a setting out
+    // of range fails the import with the command's message.
+    stiffid::common::threads::start().map_err(error::value)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<setup::Setup>()?;
     m.add_class::<measure::Identification>()?;

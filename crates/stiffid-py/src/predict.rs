@@ -11,6 +11,7 @@ use stiffid::app::predict as job;
 use stiffid::app::predict::document::Document;
 use stiffid::common::limits;
 use stiffid::observation::deflection::Frame;
+use stiffid::setup::plausibility::radians_in_option;
 
 /// The forward model (Zhang et al. 2021, Eq. 3-7) of one posture ``q_deg`` (shape ``(6,)``, deg,
 /// within the joint limits) under ``wrench`` (``[fx, fy, fz, mx, my, mz]``, N and Nm, in
@@ -60,9 +61,11 @@ pub fn predict<'py>(
         }
         (None, None) => None,
     };
+    let q = q.map(f64::to_radians);
+    documents::warn(py, &Vec::from_iter(radians_in_option("q_deg", &q)))?;
     let request = job::Request {
         setup: s,
-        q: q.map(f64::to_radians),
+        q,
         wrench,
         frame: frame.parse::<Frame>().map_err(raise)?,
         at,

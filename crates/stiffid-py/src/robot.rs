@@ -173,9 +173,12 @@ impl Robot {
         coordinates: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
         let q = Vector6::from(arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?);
+        let q = q.map(f64::to_radians);
+        let warning = stiffid::setup::plausibility::radians_in_option("q_deg", &q);
+        crate::documents::warn(py, &Vec::from_iter(warning))?;
         let request = job::Request {
             robot: &self.inner,
-            q: q.map(f64::to_radians),
+            q,
             point: point(point_mm)?,
             characteristic_length: characteristic_length_mm.map(|l| l * 1e-3),
             coordinates: coordinates_arg(coordinates)?,

@@ -6,5 +6,6 @@ pub mod error;
 pub(crate) mod exact;
 pub mod limits;
 pub mod progress;
+pub mod threads;
 pub mod warning;
 pub mod words;
