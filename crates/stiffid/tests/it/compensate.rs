@@ -514,3 +514,71 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     let cut = head.write_json(&bytes[..bytes.len() - 3], &mut Vec::new());
     assert!(cut.unwrap_err().to_string().contains("inside a point"));
 }
+
+/// A compensation on the calibrated robot: the robot file `calibrate --out` writes (a robot TOML
+/// with the fitted DH errors), loaded into the setup, reproduces the calibrated model's positions
+/// to 1e-9 mm, and the compensated axis angles, deflected, bring the calibrated (true) robot's
+/// TCP onto the path's nominal targets to 0.1 um; the nominal robot's compensation misses them
+/// through the true robot by the geometric errors (over 0.1 mm).
+#[test]
+fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
+    use stiffid::metrology::calibration::error_model::{Component, MeasuredIn, Target as Moved};
+    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    let s = loaded_at_tcp("fanuc-r2000ic-165f");
+    let points = &s.tool().measuring_points;
+    let model = ErrorModel::new(
+        s.robot(),
+        points,
+        MeasuredIn::Base,
+        Geometry::Full,
+        gravity::Model::none(s.robot()),
+    )
+    .unwrap();
+    // Known errors in every (M)DH parameter class: up to 1 mm and 1 mrad.
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let mut values = model.nominal();
+    for (i, p) in model.parameters().iter().enumerate() {
+        if let Moved::Joint { component, .. } = p.target {
+            if matches!(
+                component,
+                Component::Theta | Component::D | Component::A | Component::Alpha
+            ) {
+                values[i] += 1e-3 * (2.0 * rng.random::<f64>() - 1.0);
+            }
+        }
+    }
+    let estimate = Estimate {
+        frame: Isometry3::identity(),
+        values,
+    };
+    let text = robot_file::robot_toml(&model, &estimate).unwrap();
+    let calibrated = stiffid::robot::file::parse(&text, "calibrated.toml").unwrap();
+    // The robot file reproduces the calibrated positions.
+    for q in s.test_postures() {
+        for k in 0..points.len() {
+            let want = model.positions(&estimate.values, &[(*q, k)]).unwrap()[0];
+            let got = calibrated.frames(q).point(&points[k]);
+            assert!((want - got).norm() < 1e-12, "{}", (want - got).norm());
+        }
+    }
+    let true_setup = s.to_builder().with_robot(calibrated).build().unwrap();
+    let compliance = s.model_compliance("test").unwrap();
+    let path = line_path(&s, 10); // targets on the nominal robot's path
+    let on_true = compensate::path(&true_setup, &compliance, &path, &options(&s, None)).unwrap();
+    let on_nominal = compensate::path(&s, &compliance, &path, &options(&s, None)).unwrap();
+    let h = s.nominal_stiffness().unwrap();
+    let miss = |c: &compensate::Compensated, p: &PathPoint| {
+        let Target::Pose(target) = &p.target else {
+            unreachable!()
+        };
+        let frames = true_setup.robot().frames(&c.q_compensated);
+        let dq = stiffness::deflection(&true_setup, &frames, &c.wrench, h).joint_deflections;
+        pose_error(target, &deflected_pose(&true_setup, &c.q_compensated, &dq))
+    };
+    for ((t, n), p) in on_true.iter().zip(&on_nominal).zip(&path) {
+        let e = miss(t, p);
+        assert!(e.fixed_rows::<3>(0).norm() < 1e-7, "{e}");
+        assert!(e.fixed_rows::<3>(3).norm() < 1e-6, "{e}");
+        assert!(miss(n, p).fixed_rows::<3>(0).norm() > 1e-4);
+    }
+}
