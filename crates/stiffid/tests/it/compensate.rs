@@ -555,9 +555,9 @@ fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
     let calibrated = stiffid::robot::file::parse(&text, "calibrated.toml").unwrap();
     // The robot file reproduces the calibrated positions.
     for q in s.test_postures() {
-        for k in 0..points.len() {
+        for (k, point) in points.iter().enumerate() {
             let want = model.positions(&estimate.values, &[(*q, k)]).unwrap()[0];
-            let got = calibrated.frames(q).point(&points[k]);
+            let got = calibrated.frames(q).point(point);
             assert!((want - got).norm() < 1e-12, "{}", (want - got).norm());
         }
     }
