@@ -884,3 +884,108 @@ fn evaluate_names_a_model_the_group_cannot_separate() {
         "{stdout}"
     );
 }
+
+/// A stiffness file of the paper setup's six drives (`parameters`), `extra` JSON after them.
+fn drives_file(identified_k6: &str, extra: &str) -> String {
+    let k = [1e6, 2e6, 1e6, 3e5, 2e5, 1e5];
+    let params: Vec<String> = (0..6)
+        .map(|j| {
+            let flag = match j {
+                5 => identified_k6,
+                _ => "",
+            };
+            format!(
+                r#"{{"name": "k{}", "kind": "drive", "unit": "Nm/rad", "stiffness": {}{flag}}}"#,
+                j + 1,
+                k[j]
+            )
+        })
+        .collect();
+    format!(r#"{{"parameters": [{}]{extra}}}"#, params.join(", "))
+}
+
+#[test]
+fn unidentified_parameters_and_unknown_keys_of_a_stiffness_file_are_refused() {
+    let dir = scratch("stiffness-unidentified");
+    let predict = |file: &Path| {
+        vec![
+            "predict".to_string(),
+            "--setup".into(),
+            SETUP.into(),
+            "--q-deg".into(),
+            "0,10,-80,0,30,0".into(),
+            "--wrench".into(),
+            "0,0,-1000".into(),
+            "--stiffness".into(),
+            file.to_str().unwrap().into(),
+        ]
+    };
+    fn args(v: &[String]) -> Vec<&str> {
+        v.iter().map(String::as_str).collect()
+    }
+    let good = write_file(
+        &dir,
+        "good.json",
+        &drives_file(r#", "identified": true"#, ""),
+    );
+    assert_success(&stiffid(&args(&predict(&good))));
+    let text = drives_file(
+        r#", "identified": false, "ci95": null"#,
+        r#", "unidentifiable": ["0.71 k6 - 0.71 tool_rz"]"#,
+    );
+    let bad = write_file(&dir, "unidentified.json", &text);
+    refused(
+        &dir,
+        &args(&predict(&bad)),
+        &[
+            "unidentified.json: parameters[6].identified: false: identify could not identify 'k6' (the data cannot separate 0.71 k6 - 0.71 tool_rz)",
+        ],
+    );
+    let misspelt = drives_file("", r#", "compliance_covariance": [[1]]"#);
+    let bad = write_file(&dir, "misspelt.json", &misspelt);
+    refused(
+        &dir,
+        &args(&predict(&bad)),
+        &["misspelt.json: compliance_covariance: unknown key"],
+    );
+    let inner = drives_file(r#", "stifness": 3"#, "");
+    let bad = write_file(&dir, "inner.json", &inner);
+    refused(
+        &dir,
+        &args(&predict(&bad)),
+        &["inner.json", "unknown field `stifness`"],
+    );
+}
+
+/// `--compare-models` with `--offsets` (which it ignored) or on two postures (where it recommended
+/// negative stiffness with no held-out error) is refused, saying the minimum.
+#[test]
+fn compare_models_refuses_offsets_and_too_few_postures() {
+    let dir = scratch("compare-few");
+    let text = std::fs::read_to_string(common::fanuc_csv()).unwrap();
+    let two: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("posture") || l.starts_with("1,") || l.starts_with("2,"))
+        .collect();
+    write_file(&dir, "two.csv", &(two.join("\n") + "\n"));
+    std::fs::copy(common::fanuc_csv(), dir.join("all.csv")).unwrap();
+    let base = [
+        "identify",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--compare-models",
+    ];
+    refused(
+        &dir,
+        &[&base[..], &["--data", "{dir}/two.csv"]].concat(),
+        &[
+            "two.csv",
+            "postures: 2 given: comparing models needs at least 3 postures",
+        ],
+    );
+    refused(
+        &dir,
+        &[&base[..], &["--data", "{dir}/all.csv", "--offsets"]].concat(),
+        &["--compare-models", "--offsets"],
+    );
+}

@@ -1,5 +1,6 @@
 //! Stiffness files: JSON with the stiffness of every parameter of a model and, optionally, the
-//! covariance of the compliance, as `stiffid identify --out` writes them (other keys are ignored).
+//! covariance of the compliance, as `stiffid identify --out` writes them (the identify document's
+//! other keys, [`DOCUMENT_KEYS`], are ignored; any other key is refused).
 //!
 //! Every parameter named, with its kind and unit (the drives and rotational springs in Nm/rad,
 //! translational springs in N/mm; [`crate::model`]), and the covariance `Cov(h)` of the
@@ -25,6 +26,10 @@
 //! postures and the scores of their held-out coordinates ([`PredictionSection`]); `predict`,
 //! `compensate` and `validate` give intervals with it. A file is used with a
 //! setup whose model has the same parameters in the same order ([`StiffnessFile::compliance`]).
+//!
+//! A parameter `identify` could not separate from others carries `"identified": false` (the
+//! file's `unidentifiable` writes the combinations out): its stiffness is one of infinitely many
+//! that fit the data, so [`StiffnessFile::compliance`] refuses the file rather than predict with it.
 
 use crate::common::limits::{self, MAX_PARAMETERS, STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
 use crate::model::prediction::{self, Calibration, HeldOut};
@@ -33,7 +38,51 @@ use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use serde::{Deserialize, Serialize};
 
-/// What a stiffness file holds, as its JSON keys (other keys of the file are ignored).
+/// The keys of the identify documents (`stiffid identify --json`, over the drives or over a model
+/// with virtual springs) that a stiffness file may hold beside [`StiffnessFile`]'s: read and
+/// ignored. Any other key is refused ([`parse`]): a misspelt key would otherwise be dropped
+/// silently.
+pub const DOCUMENT_KEYS: &[&str] = &[
+    "setup",
+    "data",
+    "springs",
+    "method",
+    "rows",
+    "postures",
+    "compliance_rad_per_nm",
+    "physical",
+    "active_bounds",
+    "intervals_from",
+    "std_error_nm_per_rad",
+    "ci95_nm_per_rad",
+    "ci95_from_compliance_nm_per_rad",
+    "compliance_std_error_rad_per_nm",
+    "compliance_ci95_rad_per_nm",
+    "degrees_of_freedom",
+    "t_quantile",
+    "residual_std_mm",
+    "noise_std_mm",
+    "noise_ratio",
+    "chi2_statistic",
+    "chi2_p_value",
+    "model_error_dominates",
+    "tracker_noise",
+    "unit_warning",
+    "cond_psi",
+    "residual_rms_mm",
+    "residuals",
+    "robust",
+    "cross_validation",
+    "load_steps",
+    "offsets",
+    "rank",
+    "scaled_cond",
+    "model_check",
+    "warnings",
+];
+
+/// What a stiffness file holds, as its JSON keys (the identify document's others,
+/// [`DOCUMENT_KEYS`], are ignored).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct StiffnessFile {
@@ -70,6 +119,11 @@ pub struct StiffnessFile {
     /// what prediction intervals are built from.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub prediction: Option<PredictionSection>,
+    /// Optional, with `parameters`: the combinations of parameters the data could not separate,
+    /// written out (as `identify` writes them; read for the error about an unidentified
+    /// parameter).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unidentifiable: Option<Vec<String>>,
 }
 
 /// The held-out residuals of an identification cross-validated over postures: what the
@@ -77,6 +131,7 @@ pub struct StiffnessFile {
 /// from ([`crate::model::prediction`], Barber et al. 2021).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
 pub struct PredictionSection {
     /// `jackknife+` (one fold per posture) or `cv+` (fewer folds): written for the reader,
     /// recomputed from `postures` and the folds when read.
@@ -94,6 +149,7 @@ pub struct PredictionSection {
 /// One fold of [`PredictionSection`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
 pub struct FoldSection {
     /// The postures the fold held out (labels).
     pub postures: Vec<String>,
@@ -190,6 +246,7 @@ impl PredictionSection {
 /// One parameter's stiffness in a stiffness file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
 pub struct ParameterStiffness {
     /// `k1` .. `k6` for the drives, the virtual spring's name otherwise.
     pub name: String,
@@ -200,6 +257,14 @@ pub struct ParameterStiffness {
     /// The stiffness in `unit`; `null` (infinitely stiff, as a non-negative fit writes a
     /// compliance at its bound) is refused by the readers.
     pub stiffness: Option<f64>,
+    /// Optional: `false` when the data could not separate the parameter from others (as
+    /// `identify` writes it over a model); such a file is refused by
+    /// [`StiffnessFile::compliance`]. Absent: identified.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub identified: Option<bool>,
+    /// Optional, ignored: the 95% interval `identify` writes beside the stiffness, in `unit`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ci95: Option<[Option<f64>; 2]>,
 }
 
 /// Six stiffness values, exactly; a `null` (an infinitely stiff joint, as `identify
@@ -248,7 +313,7 @@ const EXPECTED: &str = "JSON with the key parameters (name, kind, unit, stiffnes
 /// assert!(c.covariance.is_none());
 /// ```
 pub fn parse(text: &str) -> Result<StiffnessFile> {
-    let file: StiffnessFile = serde_json::from_str(text).map_err(|e| {
+    let json = |e: serde_json::Error| {
         let message = e.to_string();
         let position = format!(" at line {} column {}", e.line(), e.column());
         Error::Json {
@@ -257,7 +322,27 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
             message: message.strip_suffix(&position).unwrap_or(&message).into(),
             expected: EXPECTED,
         }
-    })?;
+    };
+    // Not an object: the struct's reading below says where.
+    let keys: std::collections::BTreeMap<String, serde::de::IgnoredAny> =
+        serde_json::from_str(text).unwrap_or_default();
+    let ours = [
+        "parameters",
+        "compliance_covariance_si",
+        "stiffness_nm_per_rad",
+        "compliance_covariance_rad2_per_nm2",
+        "prediction",
+        "unidentifiable",
+    ];
+    if let Some(key) =
+        (keys.keys()).find(|k| !ours.contains(&k.as_str()) && !DOCUMENT_KEYS.contains(&k.as_str()))
+    {
+        return Err(invalid(
+            limits::short(key),
+            format!("unknown key: expected {EXPECTED} (and the other keys of identify's document)"),
+        ));
+    }
+    let file: StiffnessFile = serde_json::from_str(text).map_err(json)?;
     match &file.parameters {
         Some(parameters) => {
             check_parameters(parameters, &file.compliance_covariance_si)?;
@@ -416,6 +501,23 @@ impl StiffnessFile {
                     ),
                 ));
             }
+        }
+        let unidentified: Vec<String> = (parameters.iter())
+            .filter(|p| p.identified == Some(false))
+            .map(|p| format!("'{}'", limits::short(&p.name)))
+            .collect();
+        if let Some(i) = parameters.iter().position(|p| p.identified == Some(false)) {
+            let combinations = match self.unidentifiable.as_deref().unwrap_or_default() {
+                [] => String::new(),
+                c => format!(" (the data cannot separate {})", c.join("; ")),
+            };
+            return Err(invalid(
+                format!("parameters[{}].identified", i + 1),
+                format!(
+                    "false: identify could not identify {}{combinations}; its stiffness is one of infinitely many that fit the data, and a prediction with it would carry a standard deviation that means nothing: measure postures that load these parameters differently and identify again, or leave the virtual springs concerned out of the setup's [model]",
+                    unidentified.join(", ")
+                ),
+            ));
         }
         let h = parameters
             .iter()

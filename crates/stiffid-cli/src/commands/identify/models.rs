@@ -20,8 +20,9 @@ use stiffid::Setup;
 /// `--compare-models`: the library's job ([`stiffid::app::compare_models`]) rendered as the
 /// table and the recommendation, `--out` the recommended `[model]`.
 pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
-    if args.robust.is_some() || args.nonnegative || args.cross_validate || args.folds.is_some() {
-        bail!("--compare-models compares least-squares fits held out posture by posture: leave out --robust, --nonnegative, --cross-validate and --folds");
+    let other = args.robust.is_some() || args.nonnegative || args.cross_validate;
+    if other || args.folds.is_some() || args.offsets {
+        bail!("--compare-models compares least-squares fits without offsets held out posture by posture: leave out --robust, --nonnegative, --cross-validate, --folds and --offsets");
     }
     // Opened (and so known as an input, never written over) before --out is prepared.
     let reader = load::open(&args.data)?;

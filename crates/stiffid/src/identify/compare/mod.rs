@@ -161,12 +161,19 @@ fn load_levels(measurements: &[Measurement]) -> usize {
     most
 }
 
+/// Fewest postures a comparison takes: every model is judged by its error on postures left out
+/// one at a time, and the nested estimate leaves one out of the selection too, so the selection
+/// in each outer fold still has a posture to hold out.
+pub const MIN_POSTURES: usize = 3;
+
 /// Compares models by forward selection of `candidates` (module docs) on `measurements`,
 /// starting from `setup`'s model; `nested` runs the outer cross-validation.
 ///
 /// # Errors
 /// Those of [`Observations::from_measurements`] and of [`super::model::fit`] for the setup's
-/// model; [`crate::Error::InvalidField`] for candidates that clash with the model's springs.
+/// model; [`crate::Error::InvalidField`] for candidates that clash with the model's springs, and
+/// (`postures`) for fewer than [`MIN_POSTURES`] postures or postures whose every subset without
+/// one cannot identify the setup's model (no held-out error to compare models by).
 pub fn compare(
     setup: &Setup,
     measurements: &[Measurement],
@@ -180,6 +187,18 @@ pub fn compare(
         .with_candidate_springs(Vec::new())
         .build()?;
     let obs = Observations::from_measurements(&all, measurements)?;
+    let too_few = |why: &str| {
+        crate::Error::InvalidField {
+        field: "postures".into(),
+        message: format!(
+            "{} given: comparing models needs at least {MIN_POSTURES} postures{why} (each model is judged by its error on postures left out one at a time): measure more postures",
+            obs.postures
+        ),
+    }
+    };
+    if obs.postures < MIN_POSTURES {
+        return Err(too_few(""));
+    }
     let p = Problem {
         obs: &obs,
         base: setup.model().len(),
@@ -196,6 +215,11 @@ pub fn compare(
         .adequacy_p_value(p.noise_variance)
         .is_some_and(|pv| pv >= crate::identify::adequacy::SIGNIFICANCE);
     let (models, steps, path) = p.select(&obs);
+    if models.first().is_none_or(|m| m.held_out_mse.is_none()) {
+        return Err(too_few(
+            ", and the others must identify the setup's model without any one of them",
+        ));
+    }
     let recommended = recommend(&models);
     let columns = &path[recommended];
     let recommended_fit = fit(&p.sub(columns), &p.parameters(columns))?;
