@@ -6,7 +6,7 @@ use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
-use stiffid::app::evaluate::document::{CalibrationDoc, Document};
+use stiffid::app::evaluate::document::{CalibrationDoc, Document, Infinite, InfiniteCriterion};
 use stiffid::app::evaluate::{self as job, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::common::limits::short;
@@ -152,7 +152,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         s += "\nstiffness criteria\n";
     }
-    s += &criteria_text(e, &setup);
+    s += &criteria_text(e, &doc.criteria.infinite, &setup);
     if !setup.model().is_drives_only() || !separable(e) {
         s += &parameters_text(&doc);
     }
@@ -183,9 +183,9 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// Every criterion of an evaluation on `setup`, one per line (smaller is better): an infinite
-/// value says why (a singular posture, parameters the group cannot separate, or a number beyond
-/// the range of f64), and so does a criterion the setup lacks a field for.
-pub fn criteria_text(e: &Evaluation, setup: &Setup) -> String {
+/// value says why, as the document's `infinite` has it, and so does a criterion the setup lacks a
+/// field for.
+pub fn criteria_text(e: &Evaluation, infinite: &[InfiniteCriterion], setup: &Setup) -> String {
     let mut s = String::new();
     for c in Criterion::ALL {
         match c.check(setup) {
@@ -206,18 +206,15 @@ pub fn criteria_text(e: &Evaluation, setup: &Setup) -> String {
             Criterion::TestPose => (e.test_pose * 1e3, " mm"),
             _ => (e.value(c), ""),
         };
-        let singular =
-            matches!(c, Criterion::Classical | Criterion::Zhang2021) && e.classical.is_infinite();
-        let text = match (value.is_finite(), singular) {
-            (true, _) => format!("{}{unit}", number(value)),
-            (false, true) => SINGULAR.to_string(),
-            (false, false) => infinite(e),
+        let text = match value.is_finite() {
+            true => format!("{}{unit}", number(value)),
+            false => why(infinite, c.key()),
         };
         s += &format!("  {:<12} {text}\n", c.name());
     }
     let cond = match e.cond_psi.is_finite() {
         true => number(e.cond_psi),
-        false => infinite(e),
+        false => why(infinite, "cond_psi"),
     };
     s + &format!("  {:<12} {cond}\n", "cond(Psi)")
 }
@@ -237,11 +234,15 @@ fn separable(e: &Evaluation) -> bool {
     e.identifiability.unidentifiable.is_empty()
 }
 
-/// Why a criterion of `e` is infinite, in words.
-fn infinite(e: &Evaluation) -> String {
-    match separable(e) {
-        true => OVERFLOW.to_string(),
-        false => format!("infinite: {NOT_SEPARABLE}"),
+/// Why the criterion of JSON key `key` is infinite, in words, as `infinite` (the document's) has
+/// it.
+fn why(infinite: &[InfiniteCriterion], key: &str) -> String {
+    let reason = infinite.iter().find(|i| i.criterion == key);
+    match reason.map(|i| i.reason) {
+        Some(Infinite::Singular) => SINGULAR.to_string(),
+        Some(Infinite::NotSeparable) => format!("infinite: {NOT_SEPARABLE}"),
+        Some(Infinite::Overflow) => OVERFLOW.to_string(),
+        None => "infinite".into(),
     }
 }
 

@@ -497,6 +497,15 @@ fn infinite_values_say_why() {
     assert!(!text.contains("rank deficient"), "{text}");
     let doc = json(&evaluate(&["--json"]));
     assert!(doc["classical"].is_null() && doc["zhang2021"].is_null());
+    // The document says why: the singular posture, for exactly the two criteria it makes
+    // infinite.
+    assert_eq!(
+        doc["infinite"],
+        serde_json::json!([
+            {"criterion": "classical", "reason": "singular"},
+            {"criterion": "zhang2021", "reason": "singular"}
+        ])
+    );
     assert!(doc["relative_a"]
         .as_f64()
         .is_some_and(|v| v.is_finite() && v > 0.0));
@@ -883,6 +892,24 @@ fn evaluate_names_a_model_the_group_cannot_separate() {
         stdout.contains("cannot separate: ") && stdout.contains("base_rz"),
         "{stdout}"
     );
+    // The document gives the same reason for every infinite criterion, relative_a among them.
+    let doc = json(&stiffid(&[
+        "evaluate",
+        "--setup",
+        &setup,
+        "--postures",
+        &group,
+        "--json",
+    ]));
+    let infinite = doc["infinite"].as_array().unwrap();
+    assert!(
+        infinite.iter().any(|i| i["criterion"] == "relative_a"),
+        "{infinite:?}"
+    );
+    for i in infinite {
+        assert_eq!(i["reason"], "not-separable", "{i}");
+        assert!(doc[i["criterion"].as_str().unwrap()].is_null(), "{i}");
+    }
 }
 
 /// A stiffness file of the paper setup's six drives (`parameters`), `extra` JSON after them.

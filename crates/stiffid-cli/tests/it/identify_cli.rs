@@ -49,6 +49,40 @@ fn fanuc_data_agree_with_the_numpy_least_squares_fit() {
     // Joint 1 is well determined, joint 6 is not (relative standard errors 3.5% and 48%).
     let se = numbers(&r["std_error_nm_per_rad"]);
     assert!(se[0] / k[0] < 0.05 && se[5] / k[5] > 0.4, "{se:?}");
+    // Flagged poorly determined: a relative standard error above 0.25, joint 6 and not joint 1.
+    let poor: Vec<bool> = r["poorly_determined"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_bool().unwrap())
+        .collect();
+    for j in 0..6 {
+        assert_eq!(poor[j], se[j] / k[j] > 0.25, "joint {}: {poor:?}", j + 1);
+    }
+    assert!(!poor[0] && poor[5], "{poor:?}");
+    // The text names the same joints.
+    let out = stiffid(&[
+        "identify",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--data",
+        fanuc_csv().to_str().unwrap(),
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let named: Vec<String> = (0..6)
+        .filter(|&j| poor[j])
+        .map(|j| (j + 1).to_string())
+        .collect();
+    let list = match named.len() {
+        1 => format!("joint {}", named[0]),
+        _ => format!("joints {}", named.join(", ")),
+    };
+    assert!(
+        text.contains(&format!(
+            "poorly determined (std error > 25% of the value): {list};"
+        )),
+        "{text}"
+    );
 }
 
 #[test]

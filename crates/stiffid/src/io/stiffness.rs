@@ -54,6 +54,7 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "active_bounds",
     "intervals_from",
     "std_error_nm_per_rad",
+    "poorly_determined",
     "ci95_nm_per_rad",
     "ci95_from_compliance_nm_per_rad",
     "compliance_std_error_rad_per_nm",

@@ -99,8 +99,9 @@ pub fn run(args: &Args) -> Result<()> {
         .transpose()?;
     let report = job::run(request)?;
     output::warnings(&report.warnings);
+    let doc = Document::new(&report, &args.common.setup, &setup);
     if args.common.json || out.is_some() {
-        let text = json(&Document::new(&report, &args.common.setup, &setup))?;
+        let text = json(&doc)?;
         if let Some(out) = &out {
             out.write(text.as_bytes())?;
         }
@@ -108,5 +109,5 @@ pub fn run(args: &Args) -> Result<()> {
             return output::print(&text);
         }
     }
-    output::print(&text::human(&report, &args.common.setup, &setup))
+    output::print(&text::human(&report, &doc, &args.common.setup, &setup))
 }

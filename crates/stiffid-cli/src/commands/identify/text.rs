@@ -2,15 +2,13 @@
 //! words, never as `NaN` or `inf`.
 
 use stiffid::app::document::mm;
+use stiffid::app::identify::document::{Document, POORLY_DETERMINED};
 use stiffid::app::identify::{Fit, Report};
 use stiffid::identify::adequacy::{Verdict, SIGNIFICANCE};
 use stiffid::identify::{Identification, Uncertainty};
 use stiffid::model::prediction::Calibration;
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
-
-/// Relative standard error above which a joint is called poorly determined.
-const POOR: f64 = 0.25;
 
 /// `v` with `decimals` decimals, or `n/a` if it is not finite.
 fn num(v: f64, decimals: usize) -> String {
@@ -36,8 +34,9 @@ fn joint_list(joints: impl IntoIterator<Item = usize>) -> String {
     }
 }
 
-/// The text report of `report`, identified on `setup` (named `setup_name`).
-pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
+/// The text report of `report` and its document `doc`, identified on `setup` (named
+/// `setup_name`).
+pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> String {
     let id = &run.identification;
     let springs = match setup.springs() {
         Coordinates::Axis => "axes (drives)",
@@ -85,7 +84,7 @@ pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
     );
     s += &model_check(run);
     s += "\n95% intervals from the residual variance s^2 (conditional on the model: they cover if it is right):\n";
-    s += &table(id, u, true);
+    s += &table(id, u, doc.poorly_determined);
     s += &bounds_and_physics(id);
     if let Some(a) = &run.adequacy {
         s += &format!(
@@ -95,14 +94,14 @@ pub fn human(run: &Report, setup_name: &str, setup: &Setup) -> String {
                 false => "",
             }
         );
-        s += &table(id, &a.from_noise, false);
+        s += &table(id, &a.from_noise, None);
     }
     s += &largest_residuals(run);
     if let Some(robust) = &id.robust {
         s += &down_weighted(run, robust);
     }
-    if run.cross_validation.is_some() {
-        s += &cross_validation(run);
+    if let Some(cv) = &doc.cross_validation {
+        s += &cross_validation(run, cv.explained);
     }
     s += &load_steps(run);
     s += &offsets(run);
@@ -195,16 +194,13 @@ pub fn verdict(v: Verdict) -> String {
     }
 }
 
-fn table(id: &Identification, u: &Uncertainty, marks: bool) -> String {
+/// The intervals of `u`, with the poorly determined joints named below if `poor` is given.
+fn table(id: &Identification, u: &Uncertainty, poor: Option<[bool; 6]>) -> String {
     let physical = id.physical();
     let mut s = "joint  stiffness Nm/rad  std error  rel.    95% CI (delta method)    95% CI (1/compliance CI)  compliance rad/Nm\n".to_string();
-    let mut poor = Vec::new();
     for (j, physical) in physical.iter().enumerate() {
         let k = id.stiffness[j];
         let rel = u.stiffness_std_error[j] / k.abs();
-        if rel > POOR {
-            poor.push(j);
-        }
         let [a, b] = u.stiffness_ci95[j];
         let [c, d] = u.stiffness_ci95_from_compliance[j];
         let upper = match d.is_finite() {
@@ -232,11 +228,12 @@ fn table(id: &Identification, u: &Uncertainty, marks: bool) -> String {
             }
         );
     }
-    if marks && !poor.is_empty() {
+    let poor: Vec<usize> = poor.map_or(Vec::new(), |p| (0..6).filter(|&j| p[j]).collect());
+    if !poor.is_empty() {
         s += &format!(
             "poorly determined (std error > {:.0}% of the value): {}; the delta-method interval \
              is unreliable there, trust the 1/compliance interval and measure postures that load these joints more\n",
-            100.0 * POOR,
+            100.0 * POORLY_DETERMINED,
             joint_list(poor)
         );
     }
@@ -317,7 +314,9 @@ fn down_weighted(run: &Report, fit: &stiffid::identify::RobustFit) -> String {
     s
 }
 
-fn cross_validation(run: &Report) -> String {
+/// The cross-validation of `run`, the model explaining the share `explained` of the held-out
+/// deflection (the document's).
+fn cross_validation(run: &Report, explained: f64) -> String {
     let Some(cv) = &run.cross_validation else {
         return String::new();
     };
@@ -368,7 +367,7 @@ fn cross_validation(run: &Report) -> String {
         "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% (standard error {:.1}, over the postures) of the held-out deflection\n",
         mm(cv.rms_delta_b),
         mm(cv.rms_measured),
-        100.0 * cv.explained(),
+        100.0 * explained,
         100.0 * cv.explained_std_error
     );
     if let Some(p) = &run.prediction {

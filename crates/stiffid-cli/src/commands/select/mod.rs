@@ -238,7 +238,7 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
         text += &target::text(t);
     }
     text += &outcome_text(setup, r);
-    text += &criteria_text(&r.evaluation, setup);
+    text += &criteria_text(&r.evaluation, &doc.criteria.infinite, setup);
     if let Some(c) = &doc.calibration {
         text += &calibration_text(c);
     }

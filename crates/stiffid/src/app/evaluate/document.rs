@@ -5,7 +5,7 @@
 use crate::app::document::feasibility::{self, Posture};
 use crate::app::document::{finite, mm};
 use crate::app::evaluate::Report;
-use crate::design::Evaluation;
+use crate::design::{Criterion, Evaluation};
 use crate::Setup;
 use serde::Serialize;
 
@@ -22,6 +22,66 @@ pub struct Criteria {
     /// Predicted mean deviation rate, percent, `[levels][6]` (`null` inside for a joint the group
     /// cannot identify); `null` for a setup without a nominal stiffness.
     pub predicted_deviation_pct: Option<Vec<[Option<f64>; 6]>>,
+    /// Every criterion that is `+infinity` (`null` above), in the order of the criteria, with
+    /// why; empty when every computed criterion is finite.
+    pub infinite: Vec<InfiniteCriterion>,
+}
+
+/// A criterion that is `+infinity`, and why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct InfiniteCriterion {
+    /// The criterion's key (`classical`, `zhang2021`, `scaled_cond`, `d_optimal`, `relative_a`,
+    /// `test_pose_mm`, `cond_psi`).
+    pub criterion: &'static str,
+    /// Why it is infinite.
+    pub reason: Infinite,
+}
+
+/// Why a criterion of a group is `+infinity`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "kebab-case")]
+pub enum Infinite {
+    /// A posture is singular: its TCP Jacobian has no inverse (`classical` and `zhang2021`).
+    Singular,
+    /// The group cannot separate every parameter of the model (`unidentifiable` names the
+    /// combinations).
+    NotSeparable,
+    /// A group that separates the parameters: a number beyond the floating-point range (loads or
+    /// variances too extreme).
+    Overflow,
+}
+
+impl Infinite {
+    /// Why the value `value` of `criterion` (`None`: `cond(Psi)`) in `e` is infinite; `None` if
+    /// it is not (finite, or NaN: not computed).
+    pub fn of(e: &Evaluation, criterion: Option<Criterion>, value: f64) -> Option<Self> {
+        let singular = matches!(criterion, Some(Criterion::Classical | Criterion::Zhang2021))
+            && e.classical.is_infinite();
+        if !value.is_infinite() {
+            None
+        } else if singular {
+            Some(Infinite::Singular)
+        } else if e.identifiability.unidentifiable.is_empty() {
+            Some(Infinite::Overflow)
+        } else {
+            Some(Infinite::NotSeparable)
+        }
+    }
+}
+
+/// Every infinite criterion of `e` and `cond(Psi)`, with why.
+fn infinite(e: &Evaluation) -> Vec<InfiniteCriterion> {
+    let criteria = Criterion::ALL.map(|c| (c.key(), Some(c), e.value(c)));
+    let all = criteria.into_iter().chain([("cond_psi", None, e.cond_psi)]);
+    all.filter_map(|(key, c, v)| {
+        Infinite::of(e, c, v).map(|reason| InfiniteCriterion {
+            criterion: key,
+            reason,
+        })
+    })
+    .collect()
 }
 
 /// The design criteria of a group (smaller is better; `null` for `+infinity`: a singular posture
@@ -73,6 +133,7 @@ impl From<&Evaluation> for Criteria {
                 let rows = e.predicted_deviation_pct.iter();
                 rows.map(|row| row.map(finite)).collect()
             }),
+            infinite: infinite(e),
         }
     }
 }

@@ -5,13 +5,26 @@ use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, finite_each, mm};
 use crate::app::identify::{Origin, Report};
 use crate::common::warning::WarningKind;
-use crate::identify::{Adequacy, RobustFit, Uncertainty};
+use crate::identify::{Adequacy, Identification, RobustFit, Uncertainty};
 use crate::io::stiffness::PredictionSection;
 use crate::model::prediction::Calibration;
 use crate::model::Model;
 use crate::{Coordinates, Setup};
 use nalgebra::DVector;
 use serde::Serialize;
+
+/// The relative standard error of a stiffness (its standard error over its magnitude) above
+/// which the document calls it poorly determined (`poorly_determined`): the stiffness is then
+/// far from linear in the compliance over its interval, the delta-method interval is unreliable
+/// and the interval from the compliance's (`ci95_from_compliance_nm_per_rad`) is the one to trust.
+pub const POORLY_DETERMINED: f64 = 0.25;
+
+/// Whether each stiffness of `id` is poorly determined: its standard error in `u` above
+/// [`POORLY_DETERMINED`] times its magnitude (`false` for a stiffness or an error that is not a
+/// number).
+pub fn poorly_determined(id: &Identification, u: &Uncertainty) -> [bool; 6] {
+    std::array::from_fn(|j| u.stiffness_std_error[j] / id.stiffness[j].abs() > POORLY_DETERMINED)
+}
 
 /// The identify document. Units in the key names; intervals `[lower, upper]`; `null` for a number
 /// that is not finite (an unbounded end, an infinite stiffness) or when there are no degrees of
@@ -50,6 +63,10 @@ pub struct Document {
     pub intervals_from: &'static str,
     /// Standard error of each stiffness (delta method), Nm/rad.
     pub std_error_nm_per_rad: Option<[Option<f64>; 6]>,
+    /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
+    /// [`POORLY_DETERMINED`] (0.25) times its magnitude ([`poorly_determined`]); measure postures
+    /// that load these joints more. `null` without degrees of freedom.
+    pub poorly_determined: Option<[bool; 6]>,
     /// 95% confidence interval of each stiffness, symmetric in the stiffness, Nm/rad.
     pub ci95_nm_per_rad: Option<[[Option<f64>; 2]; 6]>,
     /// 95% confidence interval of each stiffness, the compliance's interval inverted, Nm/rad.
@@ -320,6 +337,7 @@ impl Document {
             active_bounds: id.active_bounds,
             intervals_from: "residual variance",
             std_error_nm_per_rad: u.map(|u| finite_each(u.stiffness_std_error)),
+            poorly_determined: u.map(|u| poorly_determined(id, u)),
             ci95_nm_per_rad: u.map(|u| u.stiffness_ci95.map(|i| i.map(finite))),
             ci95_from_compliance_nm_per_rad: u
                 .map(|u| u.stiffness_ci95_from_compliance.map(|i| i.map(finite))),
