@@ -19,7 +19,8 @@ use stiffid::app::readings::Request as Readings;
 /// only, as ``calibrate_cell``; ``"offsets"``, the joint angle offsets too; ``"full"``, the
 /// default, every joint error with the dependent ones merged), its deflection under its own
 /// weight (``gravity``: ``"none"``, the default; ``"masses"``, one compliance per joint with the
-/// robot's link masses and centres; ``"lumped"``, compliance times mass moment), the tracker's
+/// robot's link masses and centres; ``"lumped"``, compliance times the mass moments of the upper
+/// arm, forearm and wrist; ``"lumped-links"``, of every link), the tracker's
 /// registration and the measuring points, fitted together by Levenberg-Marquardt (docs/model.md,
 /// geometric and elastostatic calibration). ``validate``: held-out readings (same format) whose
 /// 3D position error the calibration predicts (``reregister=True``: the tracker registered anew

@@ -406,7 +406,7 @@ def calibrate(
     readings: _PathLike,
     *,
     geometry: Literal["none", "offsets", "full"] = "full",
-    gravity: Literal["none", "masses", "lumped"] = "none",
+    gravity: Literal["none", "masses", "lumped", "lumped-links"] = "none",
     validate: Optional[_PathLike] = None,
     reregister: bool = False,
     cross_validate: bool = False,
