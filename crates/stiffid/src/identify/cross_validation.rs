@@ -7,7 +7,10 @@
 //! `delta_b = |delta_m - Psi_i h|` per measurement. The spread of a joint's stiffness across folds
 //! says how much it depends on which postures were measured; a fold whose removal moves a
 //! stiffness by more than its standard error in the full fit is influential for that joint (with
-//! a standard error of zero, a noise-free fit, nothing is: influence is not computed).
+//! a standard error of zero, a noise-free fit, nothing is: influence is not computed). Nor is it
+//! for data exact to their rounding: a full fit whose residuals are at most [`EXACT_SHARE`] of
+//! the measured displacements (both as root sum of squares), where the standard errors and the
+//! folds' moves are both the rounding's.
 //!
 //! ## Least squares: every fold from the full fit, linear in the postures
 //! With `Psi = Q R` (QR of the full `Psi`, `p` columns), `e = delta - Psi h` the full residuals and
@@ -139,6 +142,17 @@ pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
     [1.0 - r.sqrt(), var.sqrt() / (2.0 * r.sqrt())]
 }
 
+/// The share of the measured displacements (root sum of squares) at or below which a full fit's
+/// residuals are the data's rounding: no tracker measures a displacement to a part in a million
+/// (0.01 mm of noise on a 1 mm deflection is 1e-2), while data computed by a model and written
+/// with six or more significant digits fit it this well.
+pub const EXACT_SHARE: f64 = 1e-6;
+
+/// Whether a fit with `residuals` explains `delta` (m) to the data's rounding ([`EXACT_SHARE`]).
+fn exact(residuals: &DVector<f64>, delta: &DVector<f64>) -> bool {
+    residuals.norm() <= EXACT_SHARE * delta.norm()
+}
+
 /// The full fit that every fold repeats: its compliance and its stiffness standard errors.
 struct Full {
     /// `h`, SI, one per column of `Psi`.
@@ -164,9 +178,8 @@ pub fn cross_validate(
     let dvec = |v: &Vector6<f64>| DVector::from_column_slice(v.as_slice());
     let full_fit = Full {
         h: dvec(&full.compliance),
-        se: full
-            .uncertainty
-            .as_ref()
+        se: (full.uncertainty.as_ref())
+            .filter(|_| !exact(&full.residuals, &obs.delta))
             .map(|u| dvec(&u.stiffness_std_error)),
     };
     let inverse = || {
@@ -199,7 +212,7 @@ pub fn cross_validate_model(
         .collect::<Option<Vec<f64>>>();
     let full_fit = Full {
         h: full.compliance.clone(),
-        se: se.map(DVector::from_vec),
+        se: (se.map(DVector::from_vec)).filter(|_| !exact(&full.residuals, &obs.delta)),
     };
     let n = full.parameters.len();
     let inverse = || model::inverse_factor(&obs.psi);

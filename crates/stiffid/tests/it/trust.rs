@@ -431,3 +431,42 @@ fn bounded_and_robust_folds_are_refits_with_the_full_fits_method() {
         }
     }
 }
+
+/// Data exact to their rounding (the model's displacements written to 1e-9 mm): the folds move
+/// the stiffness by as much as its standard error, both the rounding's, so a threshold of one
+/// standard error alone calls postures influential; none is.
+#[test]
+fn data_exact_to_rounding_have_no_influential_posture() {
+    let setup = paper();
+    let rounded: Vec<Measurement> = paper_measurements(&setup)
+        .into_iter()
+        .map(|m| Measurement {
+            displacement: m.displacement.map(|d| (d * 1e12).round() / 1e12),
+            ..m
+        })
+        .collect();
+    let obs = Observations::from_measurements(&setup, &rounded).unwrap();
+    let full = obs.least_squares().unwrap();
+    let cv = cross_validate(&obs, &full, 6, Method::LeastSquares).unwrap();
+    let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;
+    let by_one_se = cv
+        .folds
+        .iter()
+        .any(|f| (0..6).any(|j| (f.stiffness[j] - full.stiffness[j]).abs() > se[j]));
+    assert!(
+        by_one_se,
+        "the rounding moves some stiffness by a standard error"
+    );
+    assert!(cv.folds.iter().all(|f| f.influential.iter().all(|i| !i)));
+    // With the tracker's noise, a threshold of one standard error stands.
+    let noisy = Observations::from_measurements(&setup, &noisy_paper_data(&setup, 1, 5)).unwrap();
+    let full = noisy.least_squares().unwrap();
+    let cv = cross_validate(&noisy, &full, 6, Method::LeastSquares).unwrap();
+    let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;
+    for f in &cv.folds {
+        for j in 0..6 {
+            let moved = (f.stiffness[j] - full.stiffness[j]).abs() > se[j];
+            assert_eq!(f.influential[j], moved);
+        }
+    }
+}
