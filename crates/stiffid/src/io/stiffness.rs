@@ -39,8 +39,9 @@ use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// The keys of the identify documents (`stiffid identify --json`, over the drives or over a model
-/// with virtual springs) that a stiffness file may hold beside [`StiffnessFile`]'s: read and
-/// ignored. Any other key is refused ([`parse`]): a misspelt key would otherwise be dropped
+/// with virtual springs) and of the stiffness file `stiffid calibrate --stiffness-out` writes
+/// (`fitted`: which joints the calibration fitted) that a stiffness file may hold beside
+/// [`StiffnessFile`]'s: read and ignored. Any other key is refused ([`parse`]): a misspelt key would otherwise be dropped
 /// silently.
 pub const DOCUMENT_KEYS: &[&str] = &[
     "setup",
@@ -55,6 +56,7 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "intervals_from",
     "std_error_nm_per_rad",
     "poorly_determined",
+    "fitted",
     "ci95_nm_per_rad",
     "ci95_from_compliance_nm_per_rad",
     "compliance_std_error_rad_per_nm",
