@@ -19,6 +19,18 @@ _Array = NDArray[np.float64]
 _Ints = NDArray[np.int64]
 
 @final
+class Error(ValueError):
+    """The library's error, with its message (a ``ValueError``)."""
+
+class InputError(Error):
+    """Bad input: a file, line, field or argument and what was expected."""
+
+class InfeasibleError(Error):
+    """A search that finds no feasible group, or a pose out of reach."""
+
+class UnidentifiableError(Error):
+    """Data that cannot identify every parameter."""
+
 class Robot:
     """A 6-axis serial robot (immutable); postures in deg, (6,) or (n, 6)."""
 
@@ -299,6 +311,8 @@ def validate(
     q_deg: Optional[ArrayLike] = None,
     wrench: Optional[ArrayLike] = None,
     displacement_mm: Optional[ArrayLike] = None,
+    point: Optional[Sequence[int]] = None,
+    level: float = 0.95,
 ) -> dict[str, Any]: ...
 def simulate(setup: Setup, groups: Sequence[ArrayLike], runs: int = 200, seed: int = 1) -> list[dict[str, _Array]]: ...
 def reproduce(
@@ -328,6 +342,7 @@ def compensate(
     max_tcp_speed_mm_s: float = 2000.0,
     name_length: Optional[int] = None,
     moves_per_file: int = 10000,
+    level: float = 0.95,
 ) -> dict[str, Any]:
     """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
 
@@ -372,6 +387,7 @@ def predict(
     frame: Literal["base", "tool"] = "base",
     stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
+    level: float = 0.95,
 ) -> dict[str, Any]:
     """The predict document (docs/schemas/predict.schema.json), equal to `stiffid predict --json`."""
 
@@ -396,10 +412,11 @@ def register(
     seed: int = 1,
     candidates: Optional[int] = None,
     restarts: Optional[int] = None,
+    force: bool = False,
 ) -> dict[str, Any]:
     """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment. With postures=N instead of readings, that of `stiffid register --postures N --json`: setup, seed, postures (posture, q_deg), measuring_points, noise_std_mm, translation_std_mm, rotation_std_deg, rotation_std_total_deg, random_median_rotation_std_total_deg, candidates, feasible, checks, method, evaluations, readings_template."""
 
-def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]]) -> dict[str, Any]:
+def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]], *, force: bool = False) -> dict[str, Any]:
     """The document of `stiffid calibrate-cell --json`: the transform as for register, points (setup_mm, fitted_mm, shift_mm, std_mm), absolute_error_rms_mm, noise_std_mm, readings, iterations, fragment."""
 def calibrate(
     setup: Setup,
@@ -414,6 +431,7 @@ def calibrate(
     tolerance_deg: Optional[float] = None,
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,
+    force: bool = False,
 ) -> dict[str, Any]:
     """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, validation, cross_validation, robot_file, urdf, fragment; out and urdf_out write the calibrated robot file and URDF."""
 def plan(
