@@ -170,6 +170,24 @@ fn compose(plan: &Document, figures: &[Figure], w: &mut dyn Writer) {
             w.figure(f);
         }
     }
+    if !plan.near_postures.is_empty() {
+        let pairs: Vec<String> = (plan.near_postures.iter())
+            .map(|p| match p.same_pose_other_branch {
+                true => format!(
+                    "{} and {} (the same flange pose on another branch)",
+                    p.postures[0], p.postures[1]
+                ),
+                false => format!(
+                    "{} and {} (axis angles within {:.2} deg)",
+                    p.postures[0], p.postures[1], p.joint_distance_deg
+                ),
+            })
+            .collect();
+        w.paragraph(&format!(
+            "Not distinct: postures {}. Such a pair measures nearly the same thing: choose another posture for one of them (`select --pool --distinct` forbids them).",
+            pairs.join("; ")
+        ));
+    }
     w.heading(2, "Steps, for each posture");
     w.list(&[
         "Move the robot to the posture's axis angles (the controller's, degrees) and check the rope runs freely from the loading point to the pulley (direction and length below).".into(),

@@ -89,3 +89,34 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
         "{err}"
     );
 }
+
+/// The measurement plan flags the same pairs: its document's `near_postures` (1-based) and a
+/// warning per pair; a spread group has none.
+#[test]
+fn the_plan_flags_near_postures() {
+    use stiffid::app::plan::{self, document::Document, Request};
+    use stiffid::app::WarningKind;
+    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let a = Vector6::new(0.2, -0.3, 0.4, 0.5, 0.6, -0.7);
+    let b = Vector6::new(-0.8, 0.1, -0.2, -1.0, 1.1, 0.9);
+    let c = Vector6::new(1.0, 0.4, 0.1, 0.3, -0.9, 0.2);
+    let near_a = a + Vector6::repeat(0.5_f64.to_radians());
+    let run = |group: &[Vector6<f64>]| {
+        let request = Request {
+            setup: &setup,
+            criterion: stiffid::design::Criterion::RelativeA,
+            postures: group,
+            target_pct: None,
+        };
+        plan::run(&request).unwrap()
+    };
+    let report = run(&[a, b, c, near_a]);
+    let doc = Document::new(&report, &setup);
+    assert_eq!(doc.near_postures.len(), 1);
+    assert_eq!(doc.near_postures[0].postures, [1, 4]);
+    assert!((doc.near_postures[0].joint_distance_deg - 0.5).abs() < 1e-9);
+    assert_eq!(report.warnings.len(), 1);
+    assert_eq!(report.warnings[0].kind, WarningKind::NearPostures);
+    let spread = run(&[a, b, c]);
+    assert!(spread.near.is_empty() && spread.warnings.is_empty());
+}

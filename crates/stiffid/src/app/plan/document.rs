@@ -6,6 +6,7 @@ use crate::app::document::feasibility::describe;
 use crate::app::document::{csv_text, finite, finite_each, mm};
 use crate::app::evaluate::document::{parameters, Parameter};
 use crate::app::plan::{Posture, Report};
+use crate::app::select::document::NearDoc;
 use crate::design::unidentifiable;
 use crate::Setup;
 use serde::Serialize;
@@ -59,6 +60,9 @@ pub struct Document {
     pub unidentifiable: Vec<String>,
     /// Each posture, in the order of the group.
     pub postures: Vec<PlannedPosture>,
+    /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
+    /// pose within 10 mm and 2 deg: a wrist flip counts); empty when all are.
+    pub near_postures: Vec<NearDoc>,
 }
 
 /// The robot's bodies in the cell's checks and the drawings.
@@ -131,6 +135,7 @@ impl Document {
             parameters: parameters(e, setup),
             unidentifiable: unidentifiable(e, setup),
             postures: report.postures.iter().enumerate().map(posture).collect(),
+            near_postures: report.near.iter().map(NearDoc::from).collect(),
         }
     }
 

@@ -4,13 +4,16 @@
 //! point, the expected displacement of every measuring point under the load with the nominal
 //! stiffness (Eq. 3-7), the cell's checks, and each joint's predicted deviation rate if that
 //! posture could not be measured (leave-one-out, Eq. 19); for the group, its predicted deviation
-//! rates at the setup's noise levels and how well it identifies every parameter of the model.
+//! rates at the setup's noise levels, how well it identifies every parameter of the model, and
+//! the pairs of postures that are not distinct ([`crate::design::distinct`], by its default
+//! distances), each with a warning.
 
 pub mod document;
 
 use super::Warning;
 use crate::cell::{Checker, Feasibility};
 use crate::design::criteria::predicted_deviation_pct;
+use crate::design::distinct::{near_pairs, Near};
 use crate::design::{Criterion, Evaluation, Evaluator};
 use crate::observation::stiffness::rope_displacements;
 use crate::{Result, Setup};
@@ -62,7 +65,9 @@ pub struct Report {
     pub evaluation: Evaluation,
     /// The predicted deviation rate (%) the group was chosen to reach, if it was.
     pub target_pct: Option<f64>,
-    /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    /// The pairs of postures that are not distinct.
+    pub near: Vec<Near>,
+    /// A warning per pair of postures that are not distinct ([`Near::warning`]).
     pub warnings: Vec<Warning>,
 }
 
@@ -98,11 +103,13 @@ pub fn run(request: &Request) -> Result<Report> {
             }
         })
         .collect();
+    let near = near_pairs(setup.robot(), postures);
     Ok(Report {
         criterion: request.criterion,
         postures: planned,
         evaluation: evaluator.evaluation(postures),
         target_pct: request.target_pct,
-        warnings: Vec::new(),
+        warnings: near.iter().map(Near::warning).collect(),
+        near,
     })
 }
