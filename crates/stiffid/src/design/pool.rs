@@ -194,39 +194,17 @@ impl<'a> Pool<'a> {
         n: usize,
         options: &PoolOptions,
     ) -> Result<PoolChoice> {
-        options.validate()?;
-        check_count(
-            self.evaluator.setup(),
-            &super::search::Goal::stiffness(criterion),
-            n,
-        )?;
-        if n > MAX_GROUP.min(self.usable.len()) {
-            return Err(Error::InvalidField {
-                field: "postures".into(),
-                message: format!(
-                    "{n} given: expected at most {MAX_GROUP} and at most the {} usable pool postures",
-                    self.usable.len()
-                ),
-            });
-        }
+        let goal = super::search::Goal::stiffness(criterion);
         let value = |group: &[usize]| self.value(criterion, group);
-        let chosen = exchange::best(self.usable.len(), n, options, &value);
-        let (group, evaluations, method) = (chosen.group, chosen.evaluations, chosen.method);
-        let mut indices: Vec<usize> = group.iter().map(|&k| self.usable[k]).collect();
-        indices.sort_unstable();
-        let value = self.evaluator.value(criterion, &self.postures(&indices));
-        if !value.is_finite() {
-            return Err(pool_error(format!(
-                "no group of {n} of the {} usable postures identifies all six compliances",
-                self.usable.len()
-            )));
-        }
-        Ok(PoolChoice {
-            indices,
-            value,
-            method,
-            evaluations,
-        })
+        let full = |postures: &[Vector6<f64>]| self.evaluator.value(criterion, postures);
+        self.choose(
+            &goal,
+            n,
+            options,
+            &value,
+            &full,
+            "identifies all six compliances",
+        )
     }
 
     /// The best group of `n` usable postures for `goal` ([`super::Goal`]): [`Pool::best`] for a
@@ -245,6 +223,30 @@ impl<'a> Pool<'a> {
         if goal.calibration.is_none() {
             return self.best(goal.stiffness, n, options);
         }
+        let of = |group: &[usize]| -> Vec<Vector6<f64>> {
+            group
+                .iter()
+                .map(|&k| self.postures[self.usable[k]])
+                .collect()
+        };
+        let value = |group: &[usize]| goal.value(&self.evaluator, &of(group));
+        let full = |postures: &[Vector6<f64>]| goal.value(&self.evaluator, postures);
+        self.choose(goal, n, options, &value, &full, "has a finite value")
+    }
+
+    /// The group of `n` usable postures that minimises `value` (of positions in
+    /// [`Pool::usable`]), by enumeration or exchange, as pool indices in ascending order with
+    /// `full`'s value of its postures; `failure` says what no group achieved when that value is
+    /// not finite.
+    fn choose(
+        &self,
+        goal: &super::Goal,
+        n: usize,
+        options: &PoolOptions,
+        value: &(dyn Fn(&[usize]) -> f64 + Sync),
+        full: &dyn Fn(&[Vector6<f64>]) -> f64,
+        failure: &str,
+    ) -> Result<PoolChoice> {
         options.validate()?;
         check_count(self.evaluator.setup(), goal, n)?;
         if n > MAX_GROUP.min(self.usable.len()) {
@@ -256,20 +258,13 @@ impl<'a> Pool<'a> {
                 ),
             });
         }
-        let of = |group: &[usize]| -> Vec<Vector6<f64>> {
-            group
-                .iter()
-                .map(|&k| self.postures[self.usable[k]])
-                .collect()
-        };
-        let value = |group: &[usize]| goal.value(&self.evaluator, &of(group));
-        let chosen = exchange::best(self.usable.len(), n, options, &value);
+        let chosen = exchange::best(self.usable.len(), n, options, value);
         let mut indices: Vec<usize> = chosen.group.iter().map(|&k| self.usable[k]).collect();
         indices.sort_unstable();
-        let value = goal.value(&self.evaluator, &self.postures(&indices));
+        let value = full(&self.postures(&indices));
         if !value.is_finite() {
             return Err(pool_error(format!(
-                "no group of {n} of the {} usable postures has a finite value",
+                "no group of {n} of the {} usable postures {failure}",
                 self.usable.len()
             )));
         }
