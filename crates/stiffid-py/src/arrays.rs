@@ -156,11 +156,6 @@ pub fn table<'py, const N: usize>(py: Python<'py>, rows: &[[f64; N]]) -> Bound<'
     Array2::from_shape_fn((rows.len(), N), |(r, c)| rows[r][c]).into_pyarray(py)
 }
 
-/// Rows of `n` numbers as an `(rows, n)` array.
-pub fn table_n<'py>(py: Python<'py>, rows: &[Vec<f64>], n: usize) -> Bound<'py, PyArray2<f64>> {
-    Array2::from_shape_fn((rows.len(), n), |(r, c)| rows[r][c]).into_pyarray(py)
-}
-
 /// Postures (rad) as an `(n, 6)` array of degrees.
 pub fn degrees<'py>(py: Python<'py>, postures: &[Vector6<f64>]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((postures.len(), 6), |(r, c)| postures[r][c].to_degrees())

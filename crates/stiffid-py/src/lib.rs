@@ -12,7 +12,6 @@ mod calibrate;
 mod cartesian;
 mod compare;
 mod compensate;
-mod deflection;
 mod design;
 mod documents;
 mod error;
@@ -48,7 +47,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measure::validate, m)?)?;
     m.add_function(wrap_pyfunction!(study::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(study::reproduce, m)?)?;
-    m.add_function(wrap_pyfunction!(deflection::deflection, m)?)?;
+    m.add_function(wrap_pyfunction!(predict::deflection, m)?)?;
     m.add_function(wrap_pyfunction!(predict::predict, m)?)?;
     m.add_function(wrap_pyfunction!(cartesian::cartesian_compliance, m)?)?;
     m.add_function(wrap_pyfunction!(cartesian::cartesian_stiffness, m)?)?;

@@ -73,10 +73,10 @@ def test_virtual_springs_add_their_columns(paper):
 def test_the_compliance_predicts_the_deflection(paper):
     """[dp; dphi] = C_x W: the same displacement as `deflection` under a wrench at the point."""
     w = np.array([300.0, -200, 500, 20, -10, 30])
-    c = stiffid.cartesian_compliance(paper, Q[1])
-    d = stiffid.deflection(paper, Q[1], w)
-    np.testing.assert_allclose((c @ w)[:3] * 1e3, d["displacement_mm"][0], rtol=1e-10)
-    np.testing.assert_allclose((c @ w)[3:], d["rotation_rad"][0], rtol=1e-10)
+    c = stiffid.cartesian_compliance(paper, Q[1], point_mm=paper.tcp_mm)
+    d = stiffid.deflection(paper, Q[1], w, at_mm=paper.tcp_mm)[0]
+    np.testing.assert_allclose((c @ w)[:3] * 1e3, d["tcp_deflection_mm"], rtol=1e-10)
+    np.testing.assert_allclose((c @ w)[3:] * 1e3, d["tcp_rotation_mrad"], rtol=1e-10)
 
 
 def test_a_wrist_singularity_has_no_stiffness(paper):

@@ -181,5 +181,5 @@ def test_fields_only_some_criteria_use_may_be_left_out(paper, cli, tmp_path):
     assert no_stiffness.select("zhang2021", method="local", start=group, max_evals=50)["value"] > 0
     with pytest.raises(ValueError, match=r"nominal_stiffness_nm_per_rad: the simulation"):
         stiffid.simulate(no_stiffness, [group], runs=5)
-    with pytest.raises(ValueError, match=r"nominal_stiffness_nm_per_rad: deflection without stiffness_nm_per_rad"):
+    with pytest.raises(ValueError, match=r"nominal_stiffness_nm_per_rad: predict without a stiffness"):
         stiffid.deflection(no_stiffness, group[0], [0, 0, -500, 0, 0, 0])

@@ -33,17 +33,49 @@ def test_a_stiffness_file_with_its_covariance_equals_the_command(fanuc, cli):
 
 
 def test_it_is_the_deflection_of_the_measuring_points(paper):
-    """Each measuring point's displacement is the forward model's (`deflection`, Eq. 3-7), and
-    C_x times the wrench is the loaded point's displacement and rotation."""
+    """C_x times the wrench is the loaded point's displacement and rotation (the TCP's, with the
+    wrench at the TCP)."""
     w = np.array([100.0, -50, 200, 5, 0, 3])
-    doc = stiffid.predict(paper, Q, w)
-    for p, point in zip(doc["measuring_points"], paper.measuring_points_mm):
-        d = stiffid.deflection(paper, Q, w, observed_mm=point)
-        np.testing.assert_allclose(p["displacement_mm"], d["displacement_mm"][0], rtol=1e-12)
-    loaded = stiffid.deflection(paper, Q, w)
+    tcp = paper.tcp_mm
+    doc = stiffid.predict(paper, Q, w, at_mm=tcp)
     c = np.array(doc["cartesian_compliance"]["matrix_si"])
-    np.testing.assert_allclose((c @ w)[:3] * 1e3, loaded["displacement_mm"][0], rtol=1e-9)
-    np.testing.assert_allclose((c @ w)[3:], loaded["rotation_rad"][0], rtol=1e-9)
+    np.testing.assert_allclose((c @ w)[:3] * 1e3, doc["tcp_deflection_mm"], rtol=1e-9)
+    np.testing.assert_allclose((c @ w)[3:] * 1e3, doc["tcp_rotation_mrad"], rtol=1e-9)
+
+
+def test_deflection_is_predict_for_each_posture(paper, fanuc, cli):
+    """deflection over (n, 6) postures is the list of the command's predict documents, equal as
+    parsed JSON (every number to the last bit), with a wrench per posture and every option."""
+    qs = [Q, [0, 10, -20, 0, 30, 0], [-30, 5, -100, 40, -20, 90]]
+    ws = [[100, -50, 200, 5, 0, 3], [0, 0, -1000, 0, 0, 0], [300, 20, -40, 0, 10, 0]]
+    for setup, name, stiffness in [(paper, "zhang2021-comau-nj165", None),
+                                   (fanuc, "fanuc-r2000ic-165f", MILLING_STIFFNESS)]:
+        extra = ["--stiffness", str(stiffness)] if stiffness else []
+        theirs = [cli("predict", "--setup", name, "--q-deg", ",".join(map(str, q)),
+                      "--wrench", ",".join(map(str, w)), "--frame", "tool", "--at-mm", "10,0,250",
+                      "--level", "0.9", *extra, "--json")
+                  for q, w in zip(qs, ws)]
+        mine = stiffid.deflection(setup, qs, ws, frame="tool", at_mm=[10, 0, 250], level=0.9,
+                                  stiffness_nm_per_rad=stiffness)
+        assert mine == theirs
+    one = stiffid.deflection(paper, Q, ws[0])
+    assert one == [stiffid.predict(paper, Q, ws[0])]
+    # One wrench for every posture.
+    assert stiffid.deflection(paper, qs, ws[0])[1] == stiffid.predict(paper, qs[1], ws[0])
+
+
+def test_deflection_refuses_as_predict_does(paper, fanuc):
+    qs = [Q, [0, 0, -300, 0, 0, 0]]
+    with pytest.raises(stiffid.InputError, match=r"^posture 1: q_deg\[3\]"):
+        stiffid.deflection(paper, qs, [0, 0, -500, 0, 0, 0])
+    with pytest.raises(ValueError, match="compliance_covariance_rad2_per_nm2: needs stiffness_nm_per_rad"):
+        stiffid.deflection(paper, Q, [0, 0, -500, 0, 0, 0], compliance_covariance_rad2_per_nm2=np.eye(6))
+    with pytest.raises(ValueError, match=r"wrench: expected shape \(6,\) or \(2, 6\)"):
+        stiffid.deflection(paper, qs, np.zeros((3, 6)))
+    with pytest.raises(TypeError, match="observed_mm"):
+        stiffid.deflection(paper, Q, [0, 0, -500, 0, 0, 0], observed_mm=[0, 0, 0])
+    with pytest.warns(UserWarning, match="q_deg posture 0: every axis angle lies within"):
+        stiffid.deflection(fanuc, [0.1, 0.2, -0.3, 0.4, 0.5, 0.6], [0, 0, -500, 0, 0, 0])
 
 
 def test_bad_input_is_refused_by_name(paper):

@@ -396,13 +396,13 @@ def deflection(
     q_deg: ArrayLike,
     wrench: ArrayLike,
     *,
-    loaded_mm: Optional[ArrayLike] = None,
-    observed_mm: Optional[ArrayLike] = None,
-    stiffness_nm_per_rad: Optional[ArrayLike] = None,
+    at_mm: Optional[ArrayLike] = None,
     frame: Literal["base", "tool"] = "base",
+    stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
-) -> dict[str, _Array]:
-    """displacement_mm, rotation_rad (n, 3); torques_nm, joint_deflections_rad (n, 6); std with a covariance."""
+    level: float = 0.95,
+) -> list[dict[str, Any]]:
+    """The predict document of each posture of q_deg ((6,) or (n, 6)) under wrench ((6,) or (n, 6)), each equal to `stiffid predict --json` (loaded_mm became at_mm; observed_mm was removed: every measuring point and the TCP are in each document)."""
 
 def register(
     setup: Setup,
