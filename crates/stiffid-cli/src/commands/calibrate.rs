@@ -76,7 +76,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
     let path = &args.data;
     let priors = match (args.tolerance_mm, args.tolerance_deg) {
-        (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(option_names)?),
+        (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a)?),
         _ => None,
     };
     let content = load::read(path)?;
@@ -133,16 +133,6 @@ pub fn run(args: &Args) -> Result<()> {
     }
     output::warnings(&document.warnings);
     print_json_or(args.common.json, &document, text_of)
-}
-
-/// The job's field names as the command's options.
-fn option_names(e: stiffid::Error) -> anyhow::Error {
-    match e {
-        stiffid::Error::InvalidField { field, message } if field.starts_with("tolerance") => {
-            anyhow::anyhow!("--tolerance-mm, --tolerance-deg: {message}")
-        }
-        e => e.into(),
-    }
 }
 
 fn prepare(path: &Option<PathBuf>, option: &str) -> Result<Option<OutFile>> {

@@ -6,7 +6,7 @@ use crate::{load, output};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use stiffid::app::setups_new::{self as job, relative_to, robot_reference};
-use stiffid::{Error, Robot};
+use stiffid::Robot;
 
 /// Arguments of `stiffid setups new`.
 #[derive(clap::Args)]
@@ -47,7 +47,7 @@ pub fn run(args: &NewArgs) -> Result<()> {
         package_paths: &package_paths,
         payload_kg: args.payload_kg,
     };
-    let text = job::run(&request).map_err(option_names)?;
+    let text = job::run(&request)?;
     let source_name = args
         .out
         .as_ref()
@@ -63,19 +63,6 @@ pub fn run(args: &NewArgs) -> Result<()> {
             ))
         }
         _ => output::print(&text),
-    }
-}
-
-/// The job's field names as the command's options.
-fn option_names(e: Error) -> Error {
-    match e {
-        Error::InvalidField { field, message } if field == "payload_kg" || field == "out" => {
-            Error::InvalidField {
-                field: format!("--{}", field.replace('_', "-")),
-                message,
-            }
-        }
-        e => e,
     }
 }
 

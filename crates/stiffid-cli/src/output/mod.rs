@@ -118,6 +118,7 @@ fn named(e: &(dyn std::error::Error + 'static)) -> String {
 fn flag(option: JobOption) -> String {
     match option {
         JobOption::ProgramName => "--out: program name".into(),
+        JobOption::Tolerances => "--tolerance-mm, --tolerance-deg".into(),
         o => format!("--{}", o.name().replace('_', "-")),
     }
 }

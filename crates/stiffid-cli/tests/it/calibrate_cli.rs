@@ -279,6 +279,22 @@ fn calibrate_refuses_bad_input() {
     ]);
     assert_eq!(masses.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&masses.stderr).contains("mass_kg"));
+    // The job's typed option error, in the command's spelling.
+    let tolerance = stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        few.to_str().unwrap(),
+        "--tolerance-mm=-1",
+        "--tolerance-deg",
+        "0.1",
+    ]);
+    assert_eq!(tolerance.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&tolerance.stderr),
+        "error: --tolerance-mm, --tolerance-deg: expected positive numbers, got -1 and 0.1\n"
+    );
 }
 
 /// With known masses, `--stiffness-out` writes the fitted compliance as a stiffness file that

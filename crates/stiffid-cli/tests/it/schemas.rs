@@ -54,3 +54,47 @@ fn the_shipped_schemas_are_the_generated_ones() {
         "docs/schemas holds a schema stiffid does not generate"
     );
 }
+
+/// The top-level keys of the shipped schema `name`, or of its definition `def`.
+fn keys(name: &str, def: Option<&str>) -> std::collections::BTreeSet<String> {
+    let text = std::fs::read_to_string(schema_path(name)).unwrap();
+    let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let object = match def {
+        Some(d) => &schema["$defs"][d],
+        None => &schema,
+    };
+    let properties = object["properties"].as_object();
+    properties.unwrap_or_else(|| panic!("{name} {def:?}: no properties"));
+    properties.unwrap().keys().cloned().collect()
+}
+
+/// A stiffness file is what `identify --out` and `calibrate --stiffness-out` write: every key of
+/// the identify documents (over the drives and over a model with virtual springs) and of the
+/// calibration's stiffness file is one the stiffness file reads or ignores
+/// (`stiffid::io::stiffness::DOCUMENT_KEYS`), else the files they write would be refused as
+/// holding an unknown key; and every key ignored is one they write.
+#[test]
+fn a_stiffness_file_reads_every_key_the_documents_write() {
+    let mut written = keys("identify", None);
+    written.extend(keys("identify-model", None));
+    written.extend(keys("calibrate", Some("StiffnessSection")));
+    let mut read = keys("stiffness", None);
+    let ignored = ::stiffid::io::stiffness::DOCUMENT_KEYS;
+    read.extend(ignored.iter().map(|k| k.to_string()));
+    let refused: Vec<_> = written.difference(&read).collect();
+    assert!(
+        refused.is_empty(),
+        "keys the documents write that a stiffness file refuses: {refused:?} (add them to DOCUMENT_KEYS)"
+    );
+    let stale: Vec<_> = (ignored.iter())
+        .filter(|k| !written.contains(**k))
+        .collect();
+    assert!(
+        stale.is_empty(),
+        "DOCUMENT_KEYS no document writes: {stale:?}"
+    );
+    let both: Vec<_> = (ignored.iter())
+        .filter(|k| keys("stiffness", None).contains(**k))
+        .collect();
+    assert!(both.is_empty(), "keys both read and ignored: {both:?}");
+}

@@ -469,6 +469,13 @@ pub enum JobOption {
     TargetPct,
     /// select: the group a local search starts from.
     Start,
+    /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
+    /// deg), given together.
+    Tolerances,
+    /// setups new: the robot's rated payload, kg.
+    PayloadKg,
+    /// setups new: the file the setup is written to.
+    Out,
 }
 
 impl JobOption {
@@ -484,6 +491,9 @@ impl JobOption {
             JobOption::ProgramName => "name",
             JobOption::TargetPct => "target_pct",
             JobOption::Start => "start",
+            JobOption::Tolerances => "tolerance_mm, tolerance_deg",
+            JobOption::PayloadKg => "payload_kg",
+            JobOption::Out => "out",
         }
     }
 }

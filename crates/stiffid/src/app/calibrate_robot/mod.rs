@@ -14,6 +14,7 @@ pub mod document;
 use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
 use super::{Warning, WarningKind};
+use crate::common::error::JobOption;
 use crate::io::readings::Readings as Data;
 use crate::metrology::calibration::error_model::Target;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
@@ -53,8 +54,7 @@ impl Tolerances {
     /// The tolerances of a length, `length_mm` (mm), and of an angle, `angle_deg` (deg).
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`tolerance_mm, tolerance_deg`) unless both are positive and
-    /// finite.
+    /// [`Error::InvalidOption`] ([`JobOption::Tolerances`]) unless both are positive and finite.
     pub fn from_mm_deg(length_mm: f64, angle_deg: f64) -> Result<Self> {
         let positive = |v: f64| v.is_finite() && v > 0.0;
         match positive(length_mm) && positive(angle_deg) {
@@ -62,8 +62,8 @@ impl Tolerances {
                 length: length_mm * 1e-3,
                 angle: angle_deg.to_radians(),
             }),
-            false => Err(Error::InvalidField {
-                field: "tolerance_mm, tolerance_deg".into(),
+            false => Err(Error::InvalidOption {
+                option: JobOption::Tolerances,
                 message: format!(
                     "expected positive numbers, got {} and {}",
                     crate::common::limits::number(length_mm),

@@ -4,6 +4,7 @@
 //! length, a nominal stiffness from the payload, a tool scaled to the reach), and the optional
 //! fields commented out.
 
+use crate::common::error::JobOption;
 use crate::robot::presets;
 use crate::setup::{prior, Tool};
 use crate::{Error, Result, Robot};
@@ -37,7 +38,7 @@ const SEED: u64 = 1;
 /// The commented TOML of the new setup.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`payload_kg`) for a payload out of its range; those of
+/// [`Error::InvalidOption`] ([`JobOption::PayloadKg`]) for a payload out of its range; those of
 /// [`prior::characteristic_length`].
 pub fn run(request: &Request<'_>) -> Result<String> {
     let Request {
@@ -57,7 +58,8 @@ pub fn run(request: &Request<'_>) -> Result<String> {
             (kg, note + " (give --payload-kg)")
         }
     };
-    let stiffness = prior::nominal_stiffness(payload)?;
+    let stiffness =
+        prior::nominal_stiffness(payload).map_err(|e| e.for_option(JobOption::PayloadKg))?;
     // The paper's tool (a 160 mm plate 260 mm out, a loading arm 150 mm off axis 6), scaled down
     // for robots smaller than the paper's; mm.
     let scale = (reach / reference_reach).min(1.0);
@@ -250,19 +252,24 @@ pub fn robot_reference(robot: &str, out: Option<&Path>, field: &str) -> Result<S
 /// (or to the current directory), as a setup file written to `out` must hold it.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`field`, or the argument `out`) naming the path that does not exist.
+/// [`Error::InvalidField`] (`field`) naming the path that does not exist;
+/// [`Error::InvalidOption`] ([`JobOption::Out`]) for a directory of `out` that does not.
 pub fn relative_to(path: &Path, out: Option<&Path>, field: &str) -> Result<String> {
-    let missing = |field: &str, p: &Path, e: std::io::Error| Error::InvalidField {
+    let message = |p: &Path, e: std::io::Error| format!("{}: {e}", p.display());
+    let file = std::fs::canonicalize(path).map_err(|e| Error::InvalidField {
         field: field.into(),
-        message: format!("{}: {e}", p.display()),
+        message: message(path, e),
+    })?;
+    let missing = |p: &Path, e| Error::InvalidOption {
+        option: JobOption::Out,
+        message: message(p, e),
     };
-    let file = std::fs::canonicalize(path).map_err(|e| missing(field, path, e))?;
     let dir = match out
         .and_then(Path::parent)
         .filter(|d| !d.as_os_str().is_empty())
     {
-        Some(d) => std::fs::canonicalize(d).map_err(|e| missing("out", d, e))?,
-        None => std::env::current_dir().map_err(|e| missing("out", Path::new("."), e))?,
+        Some(d) => std::fs::canonicalize(d).map_err(|e| missing(d, e))?,
+        None => std::env::current_dir().map_err(|e| missing(Path::new("."), e))?,
     };
     Ok(relative(&file, &dir).to_string_lossy().into_owned())
 }
