@@ -147,7 +147,7 @@ def test_bad_arguments_are_refused_and_nothing_is_written(paper, campaign, tmp_p
         stiffid.calibrate(paper, fit, out=tmp_path / "nowhere" / "x.toml")
     with pytest.raises(stiffid.InputError, match=r"^tolerance_mm, tolerance_deg: give both or neither"):
         stiffid.calibrate(paper, fit, tolerance_mm=0.5)
-    with pytest.raises(stiffid.InputError, match=r"^tolerance_mm, tolerance_deg: expected positive numbers, got -1 and 0.1"):
+    with pytest.raises(stiffid.InputError, match=r"^tolerance_mm, tolerance_deg: expected \[1e-6, 1000\] mm and \[1e-6, 90\] deg, got -1 and 0.1"):
         stiffid.calibrate(paper, fit, tolerance_mm=-1, tolerance_deg=0.1)
     with pytest.raises(stiffid.InputError, match=r"^reregister: only with validate="):
         stiffid.calibrate(paper, fit, reregister=True)

@@ -49,11 +49,11 @@ pub struct Args {
     /// Leave-one-posture-out: each posture's error predicted by the fit of the others.
     #[arg(long)]
     cross_validate: bool,
-    /// Nominal tolerance of the joints' length errors, mm (a prior: weakly determined errors
-    /// are pulled towards nominal); with --tolerance-deg.
+    /// Nominal tolerance of the joints' length errors, mm [1e-6 to 1000] (a prior: weakly
+    /// determined errors are pulled towards nominal); with --tolerance-deg.
     #[arg(long, requires = "tolerance_deg")]
     tolerance_mm: Option<f64>,
-    /// Nominal tolerance of the joints' angle errors, deg; with --tolerance-mm.
+    /// Nominal tolerance of the joints' angle errors, deg [1e-6 to 90]; with --tolerance-mm.
     #[arg(long, requires = "tolerance_mm")]
     tolerance_deg: Option<f64>,
     /// Write the calibrated robot file here (robot TOML: the DH table with the errors, the axis

@@ -293,7 +293,7 @@ fn calibrate_refuses_bad_input() {
     assert_eq!(tolerance.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&tolerance.stderr),
-        "error: --tolerance-mm, --tolerance-deg: expected positive numbers, got -1 and 0.1\n"
+        "error: --tolerance-mm, --tolerance-deg: expected [1e-6, 1000] mm and [1e-6, 90] deg, got -1 and 0.1\n"
     );
 }
 

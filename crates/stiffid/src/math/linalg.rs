@@ -8,6 +8,11 @@
 
 use nalgebra::{DMatrix, Matrix6, Vector6};
 
+/// The iteration cap of every nalgebra SVD stiffid runs (`try_svd`'s `max_niter`): nalgebra's
+/// default, 0, never stops on a matrix holding a NaN or an overflow, while a finite matrix of the
+/// sizes stiffid factors converges in a few iterations per singular value.
+pub(crate) const SVD_MAX_ITERATIONS: usize = 10_000;
+
 /// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
 /// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below
 /// it. Returns the `tau_k`.

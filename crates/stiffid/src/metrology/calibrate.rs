@@ -216,7 +216,12 @@ fn solve(
         });
     }
     let svd = j
-        .try_svd(true, true, f64::EPSILON, 0)
+        .try_svd(
+            true,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .ok_or(not_converged())?;
     let (u, v_t) = (
         svd.u.ok_or(not_converged())?,

@@ -266,3 +266,30 @@ fn point_rows_take_the_point_and_match_the_posture_block() {
     let far = point_rows(&setup, &frames, &Vector3::new(0.0, 0.0, 1.0), &tau);
     assert!(far.iter().all(|v| v.is_finite()));
 }
+
+/// A calibration prior's tolerances outside their limits (a tolerance of 1e-300 mm once hung the
+/// fit: its prior rows overflowed) are refused naming both fields.
+#[test]
+fn calibration_tolerances_out_of_range_are_refused() {
+    use stiffid::app::calibrate_robot::Tolerances;
+    let refused = |r: Result<Tolerances, Error>| match r {
+        Err(Error::InvalidOption { option, message }) => {
+            assert_eq!(option, stiffid::JobOption::Tolerances);
+            assert!(
+                message.contains("expected [1e-6, 1000] mm and [1e-6, 90] deg"),
+                "{message}"
+            );
+        }
+        other => panic!("expected an option error, got {other:?}"),
+    };
+    for v in [f64::NAN, f64::INFINITY, -1.0, 0.0, 1e-300, 1e300] {
+        refused(Tolerances::from_mm_deg(v, 0.01));
+        refused(Tolerances::from_mm_deg(0.1, v));
+    }
+    for (mm, deg) in [(1e-6, 1e-6), (0.1, 0.01), (1e3, 90.0)] {
+        assert!(
+            Tolerances::from_mm_deg(mm, deg).is_ok(),
+            "{mm} mm, {deg} deg"
+        );
+    }
+}

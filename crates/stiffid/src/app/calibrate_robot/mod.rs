@@ -15,6 +15,7 @@ use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
 use super::{Warning, WarningKind};
 use crate::common::error::JobOption;
+use crate::common::limits;
 use crate::io::readings::Readings as Data;
 use crate::metrology::calibration::error_model::Target;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
@@ -54,10 +55,11 @@ impl Tolerances {
     /// The tolerances of a length, `length_mm` (mm), and of an angle, `angle_deg` (deg).
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] ([`JobOption::Tolerances`]) unless both are positive and finite.
+    /// [`Error::InvalidOption`] ([`JobOption::Tolerances`]) unless they lie within
+    /// [`limits::TOLERANCE_MM`] and [`limits::TOLERANCE_DEG`].
     pub fn from_mm_deg(length_mm: f64, angle_deg: f64) -> Result<Self> {
-        let positive = |v: f64| v.is_finite() && v > 0.0;
-        match positive(length_mm) && positive(angle_deg) {
+        match limits::TOLERANCE_MM.contains(length_mm) && limits::TOLERANCE_DEG.contains(angle_deg)
+        {
             true => Ok(Tolerances {
                 length: length_mm * 1e-3,
                 angle: angle_deg.to_radians(),
@@ -65,9 +67,11 @@ impl Tolerances {
             false => Err(Error::InvalidOption {
                 option: JobOption::Tolerances,
                 message: format!(
-                    "expected positive numbers, got {} and {}",
-                    crate::common::limits::number(length_mm),
-                    crate::common::limits::number(angle_deg)
+                    "expected {} and {}, got {} and {}",
+                    limits::TOLERANCE_MM,
+                    limits::TOLERANCE_DEG,
+                    limits::number(length_mm),
+                    limits::number(angle_deg)
                 ),
             }),
         }

@@ -98,6 +98,12 @@ pub const WRENCH: Range = Range::new(-1e7, 1e7, "N or Nm");
 /// The standard deviation of one coordinate of one tracker reading (`[noise] reading_sd_mm`).
 pub const READING_SD_MM: Range = Range::new(1e-6, 1e2, "mm");
 
+/// A calibration prior's nominal tolerance of the joints' length errors (`--tolerance-mm`).
+pub const TOLERANCE_MM: Range = Range::new(1e-6, 1e3, "mm");
+
+/// A calibration prior's nominal tolerance of the joints' angle errors (`--tolerance-deg`).
+pub const TOLERANCE_DEG: Range = Range::new(1e-6, 90.0, "deg");
+
 /// The old `[noise] variance_mm2`, the variance of one displacement coordinate.
 pub const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
 

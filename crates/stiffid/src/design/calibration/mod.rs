@@ -282,7 +282,12 @@ pub fn criteria(
     }
     let svd = j
         .clone()
-        .try_svd(false, true, f64::EPSILON, 0)
+        .try_svd(
+            false,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .ok_or_else(not_finite)?;
     let mut s: Vec<f64> = svd.singular_values.iter().copied().collect();
     s.resize(p, 0.0);

@@ -181,7 +181,12 @@ impl Scored {
 /// The value and `W` of an index that needs the singular values, from the SVD of `r`.
 fn spectral(r: &DMatrix<f64>, criterion: CalibrationCriterion) -> Option<(f64, DMatrix<f64>)> {
     let p = r.ncols();
-    let svd = r.clone().try_svd(false, true, f64::EPSILON, 0)?;
+    let svd = r.clone().try_svd(
+        false,
+        true,
+        f64::EPSILON,
+        crate::math::linalg::SVD_MAX_ITERATIONS,
+    )?;
     let v_t = svd.v_t?;
     let s = svd.singular_values;
     let mut order: Vec<usize> = (0..p).collect();

@@ -346,7 +346,12 @@ impl Problem<'_> {
         let j = self.jacobian(&estimate)?;
         let (rt, _) = factor(&j, &DVector::zeros(j.nrows()));
         let svd = rt
-            .try_svd(false, true, f64::EPSILON, 0)
+            .try_svd(
+                false,
+                true,
+                f64::EPSILON,
+                crate::math::linalg::SVD_MAX_ITERATIONS,
+            )
             .ok_or_else(not_converged)?;
         let v_t = svd.v_t.ok_or_else(not_converged)?;
         let s = &svd.singular_values;
@@ -400,7 +405,12 @@ fn damped_step(rt: &DMatrix<f64>, qtr: &DVector<f64>, lambda: f64) -> Result<DVe
     let mut b = DVector::zeros(k + n);
     b.rows_mut(0, k).copy_from(&(-qtr));
     let svd = a
-        .try_svd(true, true, f64::EPSILON, 0)
+        .try_svd(
+            true,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .ok_or_else(not_converged)?;
     svd.solve(&b, 0.0).map_err(|_| not_converged())
 }

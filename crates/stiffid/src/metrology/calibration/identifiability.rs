@@ -161,7 +161,12 @@ fn pivot(r: &DMatrix<f64>, priorities: &[u8]) -> Result<(Vec<usize>, Vec<Merged>
         DMatrix::from_columns(&kept.iter().map(|&c| unit[c].clone()).collect::<Vec<_>>());
     let svd = match kept.is_empty() {
         true => None,
-        false => kept_columns.clone().try_svd(true, true, f64::EPSILON, 0),
+        false => kept_columns.clone().try_svd(
+            true,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        ),
     };
     let merged = (0..n)
         .filter(|c| !kept.contains(c))
@@ -195,7 +200,12 @@ fn conditioning(kept: &DMatrix<f64>, identified: &[usize]) -> Result<(f64, Vec<C
     }
     let svd = kept
         .clone()
-        .try_svd(false, true, f64::EPSILON, 0)
+        .try_svd(
+            false,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .ok_or_else(not_converged)?;
     let s = &svd.singular_values;
     let condition = s.max() / s.min();

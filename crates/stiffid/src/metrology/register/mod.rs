@@ -229,7 +229,12 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
         .map(|c| (c.base - b_mean) * (c.tracker - t_mean).transpose())
         .sum();
     let svd = h
-        .try_svd(true, true, f64::EPSILON, 0)
+        .try_svd(
+            true,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .ok_or(not_converged())?;
     let (u, v_t) = (
         svd.u.ok_or(not_converged())?,
@@ -280,7 +285,12 @@ pub fn unit_covariance(rotated: &[Vector3<f64>]) -> Result<Matrix6<f64>> {
             .copy_from(&(-p.cross_matrix()));
     }
     let svd = j
-        .try_svd(false, true, f64::EPSILON, 0)
+        .try_svd(
+            false,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .ok_or(not_converged())?;
     let v_t = svd.v_t.ok_or(not_converged())?;
     let s = &svd.singular_values;
@@ -345,7 +355,12 @@ fn collinear_cloud(points: &[Vector3<f64>]) -> bool {
     if !scatter.iter().all(|v| v.is_finite()) {
         return true;
     }
-    let Some(svd) = scatter.try_svd(false, false, f64::EPSILON, 0) else {
+    let Some(svd) = scatter.try_svd(
+        false,
+        false,
+        f64::EPSILON,
+        crate::math::linalg::SVD_MAX_ITERATIONS,
+    ) else {
         return true;
     };
     let mut s = svd.singular_values.map(f64::sqrt);
