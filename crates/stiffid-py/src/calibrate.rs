@@ -103,7 +103,7 @@ pub fn calibrate<'py>(
         priors,
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    let document = Document::new(&report, setup.inner.name());
+    let document = Document::new(&report, &setup.given);
     let robot_file = match (&out_file, document.robot_file_out()) {
         (Some(file), Some(text)) => Some((file, text)),
         (Some(_), None) => {

@@ -34,7 +34,7 @@ pub fn compare_models<'py>(
         })
         .map_err(raise)?;
     documents::warn(py, &report.warnings)?;
-    let document = report.document(s.name());
+    let document = report.document(&setup.given);
     let d = documents::to_python(py, &document, &[])?;
     d.set_item("table", table(py, &document)?)?;
     d.set_item("fragment", report.fragment())?;

@@ -161,7 +161,7 @@ pub fn compensate<'py>(
         .map_err(raise)?;
     warn(py, &report.warnings)?;
     let names = Names {
-        setup: s.name().to_string(),
+        setup: setup.given.clone(),
         stiffness: stiffness
             .extract::<PathBuf>()
             .map_or("arrays".into(), |p| p.display().to_string()),

@@ -212,7 +212,7 @@ impl Identification {
     /// ``compensate`` take), `ci95` (`(p, 2)`, NaN where unbounded or not identifiable),
     /// `compliance_covariance_si`, and `labels`.
     fn over_model(py: Python<'_>, report: &over_model::Report, setup: &Setup) -> PyResult<Self> {
-        let document = ModelDocument::new(report, setup.inner.name(), &setup.inner);
+        let document = ModelDocument::new(report, &setup.given, &setup.inner);
         let attributes = documents::to_python(py, &document, &["compliance_covariance_si"])?;
         let parameters = &document.fit.parameters;
         let names: Vec<&str> = parameters.iter().map(|p| p.name.as_str()).collect();
@@ -237,7 +237,7 @@ impl Identification {
     }
 
     fn new(py: Python<'_>, report: &job::Report, setup: &Setup) -> PyResult<Self> {
-        let document = Document::new(report, setup.inner.name(), &setup.inner);
+        let document = Document::new(report, &setup.given, &setup.inner);
         let attributes = documents::to_python(py, &document, &ARRAYS)?;
         let residuals: Vec<[f64; 3]> = document.residuals.iter().map(|r| r.residual_mm).collect();
         attributes.set_item("residuals_mm", arrays::table(py, &residuals))?;
@@ -406,7 +406,7 @@ pub fn validate<'py>(
     };
     let report = py.detach(|| validation::run(request)).map_err(raise)?;
     documents::warn(py, &report.warnings)?;
-    let document = Checked::new(&report, s.name(), s);
+    let document = Checked::new(&report, &setup.given, s);
     let d = documents::to_python(py, &document, &[])?;
     let checks = &document.checks;
     let delta_b = checks.iter().map(|c| c.delta_b_mm);

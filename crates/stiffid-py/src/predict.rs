@@ -181,7 +181,7 @@ impl Options {
             compliance: self.compliance.clone(),
             level: self.level,
         })?;
-        Ok(Document::new(&report, s.name()))
+        Ok(Document::new(&report, &setup.given))
     }
 }
 

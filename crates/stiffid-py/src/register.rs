@@ -83,7 +83,7 @@ pub fn register<'py>(
                 .detach(|| register_job::propose(&request))
                 .map_err(raise)?;
             warn(py, &report.warnings)?;
-            return to_python(py, &Proposal::new(&report, setup.inner.name()), &[]);
+            return to_python(py, &Proposal::new(&report, &setup.given), &[]);
         }
         _ => {
             return Err(raise(stiffid::Error::InvalidField {
@@ -97,7 +97,7 @@ pub fn register<'py>(
         py.detach(|| register_job::run(r))
     })?;
     warn(py, &report.warnings)?;
-    to_python(py, &Document::new(&report, setup.inner.name()), &[])
+    to_python(py, &Document::new(&report, &setup.given), &[])
 }
 
 /// Calibrates the cell from unloaded ``readings`` (the ``register`` format) of postures that turn
@@ -121,5 +121,5 @@ pub fn calibrate_cell<'py>(
         py.detach(|| calibrate_job::run(r))
     })?;
     warn(py, &report.warnings)?;
-    to_python(py, &Calibration::new(&report, setup.inner.name()), &[])
+    to_python(py, &Calibration::new(&report, &setup.given), &[])
 }

@@ -19,6 +19,9 @@ pub struct Setup {
     /// The files it was read from (the setup file, its robot file), which a call that writes
     /// files never writes over.
     pub files: Vec<PathBuf>,
+    /// The setup as the user named it: a built-in's name, the path given to `from_file`, the
+    /// `source_name` of `from_toml`. The documents' `setup`, as the command's is its `--setup`.
+    pub given: String,
 }
 
 #[pymethods]
@@ -30,6 +33,7 @@ impl Setup {
         Ok(Self {
             inner: setup::builtin(name).map_err(raise)?,
             files: Vec::new(),
+            given: name.to_string(),
         })
     }
 
@@ -99,6 +103,7 @@ impl Setup {
         Ok(Self {
             inner,
             files: self.files.clone(),
+            given: self.given.clone(),
         })
     }
 
@@ -382,7 +387,11 @@ impl Setup {
         crate::documents::warn(py, &setup::plausibility::warnings(&inner))?;
         let robot_file = dir.join(inner.robot_ref());
         let files = Vec::from_iter(robot_file.is_file().then_some(robot_file));
-        Ok(Self { inner, files })
+        Ok(Self {
+            inner,
+            files,
+            given: source_name.to_string(),
+        })
     }
 
     /// A group of postures within the setup's bounds (at most 10000).

@@ -127,8 +127,12 @@ def test_a_setup_with_the_calibrated_robot_serves_every_function(paper, cli, cam
     theirs = cli("predict", "--setup", setup_file, "--q-deg", ",".join(map(str, q)),
                  "--wrench", ",".join(map(str, w)), "--json")
     mine = stiffid.predict(calibrated, q, w)
-    assert mine == dict(theirs, setup=mine["setup"])
+    # A setup from a file is named by its path as given, from both front ends.
+    assert mine == theirs and mine["setup"] == str(setup_file)
     assert mine != stiffid.predict(paper, q, w) | {"setup": mine["setup"]}
+    again = stiffid.calibrate(calibrated, fit)
+    assert again == cli("calibrate", "--setup", setup_file, "--data", fit, "--json")
+    assert again["setup"] == str(setup_file)
 
 
 def test_bad_arguments_are_refused_and_nothing_is_written(paper, campaign, tmp_path):

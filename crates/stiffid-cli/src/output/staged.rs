@@ -118,8 +118,8 @@ pub fn commit() -> Result<()> {
     let mut first: Option<anyhow::Error> = None;
     for step in steps {
         let done = match &step {
-            Step::Replace { tmp, target } => rename(tmp, target),
-            Step::Create { tmp, target } => create_new(tmp, target),
+            Step::Replace { tmp, target } => place(tmp, target, false),
+            Step::Create { tmp, target } => place(tmp, target, true),
             Step::Stale(path) => match std::fs::remove_file(path) {
                 Err(e) if e.kind() != ErrorKind::NotFound => {
                     Err(e).with_context(|| format!("{}: cannot remove", path.display()))
@@ -179,55 +179,10 @@ pub fn discard() {
     release();
 }
 
-/// Renames `tmp` over `target` after checking once more that `target` is a regular file or
-/// missing; removes `tmp` on failure.
-fn rename(tmp: &Path, target: &Path) -> Result<()> {
-    let done = match std::fs::symlink_metadata(target) {
-        Ok(m) if !m.is_file() => Err(anyhow::anyhow!(
-            "became {} while this run computed; not replaced",
-            super::target::kind(target)
-        )),
-        _ => std::fs::rename(tmp, target).map_err(anyhow::Error::from),
-    };
-    if done.is_err() {
-        let _ = std::fs::remove_file(tmp);
-    }
-    done.with_context(|| format!("{}: cannot write", target.display()))
-}
-
-/// Makes `tmp` the new file `target` without ever replacing an existing one: a hard link (atomic:
-/// it fails if `target` exists), then `tmp` removed; where the file system has no hard links, a
-/// `create_new` open (also atomic) and a copy.
-fn create_new(tmp: &Path, target: &Path) -> Result<()> {
-    let exists = || {
-        anyhow::anyhow!(
-            "{}: exists (created meanwhile by another program); not replaced",
-            target.display()
-        )
-    };
-    let done = match std::fs::hard_link(tmp, target) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == ErrorKind::AlreadyExists => Err(exists()),
-        Err(_) => match std::fs::File::options()
-            .write(true)
-            .create_new(true)
-            .open(target)
-        {
-            Ok(mut file) => {
-                let copied = std::fs::File::open(tmp)
-                    .and_then(|mut from| std::io::copy(&mut from, &mut file))
-                    .and_then(|_| file.sync_all());
-                if copied.is_err() {
-                    let _ = std::fs::remove_file(target);
-                }
-                copied.with_context(|| format!("{}: cannot write", target.display()))
-            }
-            Err(e) if e.kind() == ErrorKind::AlreadyExists => Err(exists()),
-            Err(e) => Err(e).with_context(|| format!("{}: cannot create", target.display())),
-        },
-    };
-    let _ = std::fs::remove_file(tmp);
-    done
+/// Puts `tmp` in place as `target` ([`stiffid::io::output::place`]), the error naming it.
+fn place(tmp: &Path, target: &Path, new_only: bool) -> Result<()> {
+    stiffid::io::output::place(tmp, target, new_only)
+        .with_context(|| format!("{}: cannot write", target.display()))
 }
 
 #[cfg(test)]

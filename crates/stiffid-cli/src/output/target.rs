@@ -1,107 +1,34 @@
-//! Where a write lands, and whether it may: the checks shared by [`super::OutFile`] and
-//! [`super::ReportDir`].
+//! Where a write lands, and whether it may: the library's rules ([`stiffid::io::output`]) with
+//! the command's inputs, shared by [`super::OutFile`] and [`super::ReportDir`].
 
 use crate::load;
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use std::fs::File;
-use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use stiffid::io::output;
 
-/// The file a write to `path` replaces or creates, paths resolved: `path` itself (absolute) for a
-/// new name or a regular file, the final target for a symlink to a regular file.
+/// The file a write to `path` replaces or creates ([`output::resolve`]), never one the command
+/// read ([`load::input_at`]).
 ///
 /// # Errors
-/// `option` (the command-line option, e.g. `--out`) and the path named in the message, when the
-/// path exists and is not a regular file (a directory, a device, a FIFO, a socket), is a dangling
-/// symlink, its directory does not exist, or it is a file the command read.
+/// Those of [`output::resolve`], naming `option` (the command-line option, e.g. `--out`) and the
+/// path.
 pub fn resolve(path: &Path, option: &str) -> Result<PathBuf> {
-    let name = path.display();
-    let target = match std::fs::symlink_metadata(path) {
-        Err(e) if e.kind() == ErrorKind::NotFound => {
-            let file_name = path
-                .file_name()
-                .with_context(|| format!("{option} {name}: not a file name"))?;
-            let parent = match path.parent() {
-                Some(p) if !p.as_os_str().is_empty() => p,
-                _ => Path::new("."),
-            };
-            let dir = parent
-                .canonicalize()
-                .with_context(|| format!("{option} {name}: no directory {}", parent.display()))?;
-            dir.join(file_name)
-        }
-        Err(e) => return Err(e).with_context(|| format!("{option} {name}: cannot inspect")),
-        Ok(_) => {
-            let target = path.canonicalize().with_context(|| {
-                format!("{option} {name}: a symlink to nothing; refusing to write through it")
-            })?;
-            if !target.is_file() {
-                bail!(
-                    "{option} {name}: exists and is not a regular file ({}); refusing to replace it",
-                    kind(&target)
-                );
-            }
-            target
-        }
-    };
-    if let Some(input) = load::input_at(&target) {
-        bail!(
-            "{option} {name}: refusing to write over the input file {}",
-            input.display()
-        );
-    }
-    Ok(target)
+    Ok(output::resolve(path, option, load::input_at)?)
 }
 
-/// What a non-regular file is, in words.
-#[cfg(unix)]
-pub fn kind(path: &Path) -> &'static str {
-    use std::os::unix::fs::FileTypeExt;
-    match std::fs::metadata(path).map(|m| m.file_type()) {
-        Ok(t) if t.is_dir() => "a directory",
-        Ok(t) if t.is_char_device() || t.is_block_device() => "a device",
-        Ok(t) if t.is_fifo() => "a FIFO",
-        Ok(t) if t.is_socket() => "a socket",
-        _ => "not a regular file",
-    }
-}
-
-/// What a non-regular file is, in words.
-#[cfg(not(unix))]
-fn kind(path: &Path) -> &'static str {
-    match std::fs::metadata(path).map(|m| m.file_type()) {
-        Ok(t) if t.is_dir() => "a directory",
-        _ => "not a regular file",
-    }
-}
-
-/// A new temporary file in `dir` with a short name (`.stiffid-PID-N.tmp`, under 32 bytes, so any
-/// valid target name works), created exclusively.
+/// A new temporary file in `dir` ([`output::temporary`]).
 pub fn temporary(dir: &Path) -> Result<(PathBuf, File)> {
-    static COUNT: AtomicUsize = AtomicUsize::new(0);
-    let n = COUNT.fetch_add(1, Ordering::Relaxed);
-    let path = dir.join(format!(".stiffid-{}-{n}.tmp", std::process::id()));
-    let file = File::options()
-        .write(true)
-        .create_new(true)
-        .open(&path)
-        .with_context(|| format!("{}: cannot write", dir.display()))?;
-    Ok((path, file))
+    output::temporary(dir).with_context(|| format!("{}: cannot write", dir.display()))
 }
 
 /// Writes `bytes` whole to a temporary file in `tmp_dir` (same file system as the resolved
-/// `target`, see [`resolve`]), synced, and stages it to be renamed over `target` when the run
-/// succeeds ([`super::staged`]; `new_only`: only if `target` does not exist by then). The
-/// temporary file is removed on any failure.
+/// `target`, see [`resolve`]), synced ([`output::write_temporary`]), and stages it to be put in
+/// place as `target` when the run succeeds ([`super::staged`]; `new_only`: only if `target` does
+/// not exist by then).
 pub fn replace(target: &Path, tmp_dir: &Path, bytes: &[u8], new_only: bool) -> Result<()> {
-    use std::io::Write;
-    let (tmp, mut file) = temporary(tmp_dir)?;
-    let written = file.write_all(bytes).and_then(|_| file.sync_all());
-    if written.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    written.with_context(|| format!("{}: cannot write", target.display()))?;
+    let tmp = output::write_temporary(tmp_dir, bytes)
+        .with_context(|| format!("{}: cannot write", target.display()))?;
     match new_only {
         true => super::staged::create(tmp, target.to_path_buf()),
         false => super::staged::replace(tmp, target.to_path_buf()),

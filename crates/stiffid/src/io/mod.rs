@@ -1,9 +1,11 @@
-//! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here): the
+//! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here but the
+//! writing of [`output`]): the
 //! caller reads the file and adds its name to errors. [`text`] turns the bytes a caller read into
 //! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`); [`Capped`]
 //! holds a reader of an input read in pieces to the same limit.
 //!
 //! - [`measurements`]: the measurement CSV of an identification or validation.
+//! - [`output`]: the files a front end writes: where a write lands, whether it may, whole files.
 //! - [`path`]: the path (pose list) CSV of compensation.
 //! - [`postures`]: the postures CSV of a group of postures.
 //! - [`program`]: the joint targets of robot programs (KUKA KRL, ABB RAPID, FANUC LS).
@@ -12,6 +14,7 @@
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
 pub mod measurements;
+pub mod output;
 pub mod postures;
 pub mod readings;
 pub mod stiffness;

@@ -1,0 +1,237 @@
+//! The files a front end writes (the command's `--out`, Python's `out=`): where a write lands and
+//! whether it may, and writing a file whole. One set of rules for both front ends: a new name in
+//! an existing directory, or a regular file (through a symlink to one, to its target); never a
+//! directory, a device or another non-regular file, a dangling symlink, or a file the run reads;
+//! the bytes go to a short temporary name beside the target, synced, then renamed over it (or
+//! linked to it, for a file that must be new), so a file is there whole or not at all and
+//! nothing is left behind on failure. When the file is put in place is the front end's choice
+//! (the command stages it until its run has succeeded, Python puts it at once).
+
+use crate::{Error, Result};
+use std::fs::File;
+use std::io::{ErrorKind, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The file a write to `path` replaces or creates, paths resolved: `path` itself (absolute) for a
+/// new name or a regular file, the final target for a symlink to a regular file. `input_at`
+/// gives the input file of the run that a resolved path is, if any.
+///
+/// # Errors
+/// [`Error::InvalidField`] with the field `what` (the option or argument, e.g. `--out`) and the
+/// path: the path exists and is not a regular file ([`kind`]), is a dangling symlink, its
+/// directory does not exist, or it is an input of the run.
+pub fn resolve(
+    path: &Path,
+    what: &str,
+    input_at: impl Fn(&Path) -> Option<PathBuf>,
+) -> Result<PathBuf> {
+    let fail = |message: String| Error::InvalidField {
+        field: format!("{what} {}", path.display()),
+        message,
+    };
+    let target = match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == ErrorKind::NotFound => {
+            let file_name = path
+                .file_name()
+                .ok_or_else(|| fail("not a file name".into()))?;
+            let parent = match path.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p,
+                _ => Path::new("."),
+            };
+            let dir = parent
+                .canonicalize()
+                .map_err(|_| fail(format!("no directory {}", parent.display())))?;
+            dir.join(file_name)
+        }
+        Err(e) => return Err(fail(format!("cannot inspect: {e}"))),
+        Ok(_) => {
+            let target = path
+                .canonicalize()
+                .map_err(|_| fail("a symlink to nothing; refusing to write through it".into()))?;
+            if !target.is_file() {
+                return Err(fail(format!(
+                    "exists and is not a regular file ({}); refusing to replace it",
+                    kind(&target)
+                )));
+            }
+            target
+        }
+    };
+    match input_at(&target) {
+        Some(input) => Err(fail(format!(
+            "refusing to write over the input file {}",
+            input.display()
+        ))),
+        None => Ok(target),
+    }
+}
+
+/// What a non-regular file is, in words: "a directory", "a device", "a FIFO", "a socket".
+pub fn kind(path: &Path) -> &'static str {
+    let file_type = std::fs::metadata(path).map(|m| m.file_type());
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        match file_type {
+            Ok(t) if t.is_dir() => "a directory",
+            Ok(t) if t.is_char_device() || t.is_block_device() => "a device",
+            Ok(t) if t.is_fifo() => "a FIFO",
+            Ok(t) if t.is_socket() => "a socket",
+            _ => "not a regular file",
+        }
+    }
+    #[cfg(not(unix))]
+    match file_type {
+        Ok(t) if t.is_dir() => "a directory",
+        _ => "not a regular file",
+    }
+}
+
+/// A new temporary file in `dir` with a short name (`.stiffid-PID-N.tmp`, under 32 bytes, so any
+/// valid target name works), created exclusively.
+///
+/// # Errors
+/// When it cannot be created.
+pub fn temporary(dir: &Path) -> std::io::Result<(PathBuf, File)> {
+    static COUNT: AtomicUsize = AtomicUsize::new(0);
+    let n = COUNT.fetch_add(1, Ordering::Relaxed);
+    let path = dir.join(format!(".stiffid-{}-{n}.tmp", std::process::id()));
+    let file = File::options().write(true).create_new(true).open(&path)?;
+    Ok((path, file))
+}
+
+/// `bytes` written whole to a new [`temporary`] file in `dir`, synced; its path. Nothing is left
+/// behind on failure.
+///
+/// # Errors
+/// When the file cannot be created or written (a full device).
+pub fn write_temporary(dir: &Path, bytes: &[u8]) -> std::io::Result<PathBuf> {
+    let (tmp, mut file) = temporary(dir)?;
+    match file.write_all(bytes).and_then(|_| file.sync_all()) {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}
+
+/// Puts the temporary file `tmp` in place as `target` (a resolved path, [`resolve`]): renamed
+/// over it (`new_only` false), or as a new file only, never over one created since the check
+/// (linked to the name, which fails if the name exists; copied where links are not supported).
+/// `tmp` is gone afterwards either way.
+///
+/// # Errors
+/// When `target` became a non-regular file, or (`new_only`) exists; when it cannot be written.
+pub fn place(tmp: &Path, target: &Path, new_only: bool) -> std::io::Result<()> {
+    let done = match new_only {
+        false => replace(tmp, target),
+        true => create_new(tmp, target),
+    };
+    let _ = std::fs::remove_file(tmp);
+    done
+}
+
+fn replace(tmp: &Path, target: &Path) -> std::io::Result<()> {
+    match std::fs::symlink_metadata(target) {
+        Ok(m) if !m.is_file() => Err(std::io::Error::other(format!(
+            "became {} meanwhile; not replaced",
+            kind(target)
+        ))),
+        _ => std::fs::rename(tmp, target),
+    }
+}
+
+fn create_new(tmp: &Path, target: &Path) -> std::io::Result<()> {
+    let exists =
+        || std::io::Error::other("exists (created meanwhile by another program); not replaced");
+    match std::fs::hard_link(tmp, target) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == ErrorKind::AlreadyExists => Err(exists()),
+        Err(_) => match File::options().write(true).create_new(true).open(target) {
+            Ok(mut file) => {
+                let copied = File::open(tmp)
+                    .and_then(|mut from| std::io::copy(&mut from, &mut file))
+                    .and_then(|_| file.sync_all());
+                if copied.is_err() {
+                    let _ = std::fs::remove_file(target);
+                }
+                copied.map(|_| ())
+            }
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => Err(exists()),
+            Err(e) => Err(e),
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("stiffid-output-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d.canonicalize().unwrap()
+    }
+
+    #[test]
+    fn the_rules_refuse_what_must_not_be_written() {
+        let d = dir("rules");
+        let none = |_: &Path| None;
+        let new = d.join("new.toml");
+        assert_eq!(resolve(&new, "out", none).unwrap(), new);
+        let e = resolve(&d, "out", none).unwrap_err().to_string();
+        assert!(
+            e.ends_with("exists and is not a regular file (a directory); refusing to replace it"),
+            "{e}"
+        );
+        let e = resolve(&d.join("no/x.toml"), "--out", none)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("--out ") && e.contains(": no directory "),
+            "{e}"
+        );
+        let input = d.join("in.csv");
+        std::fs::write(&input, "x").unwrap();
+        let is_input = |p: &Path| (p == input).then(|| input.clone());
+        let e = resolve(&input, "out", is_input).unwrap_err().to_string();
+        assert!(e.contains("refusing to write over the input file"), "{e}");
+        #[cfg(unix)]
+        {
+            let link = d.join("link.csv");
+            std::os::unix::fs::symlink(&input, &link).unwrap();
+            assert!(
+                resolve(&link, "out", is_input).is_err(),
+                "through a symlink to an input"
+            );
+            assert_eq!(resolve(&link, "out", none).unwrap(), input, "to its target");
+            let dangling = d.join("dangling.csv");
+            std::os::unix::fs::symlink(d.join("gone"), &dangling).unwrap();
+            let e = resolve(&dangling, "out", none).unwrap_err().to_string();
+            assert!(e.contains("a symlink to nothing"), "{e}");
+        }
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn files_are_placed_whole_and_new_files_never_replace_one() {
+        let d = dir("place");
+        let target = d.join("out.txt");
+        let tmp = write_temporary(&d, b"first").unwrap();
+        place(&tmp, &target, true).unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"first");
+        let tmp = write_temporary(&d, b"second").unwrap();
+        let e = place(&tmp, &target, true).unwrap_err().to_string();
+        assert!(e.contains("exists"), "{e}");
+        assert_eq!(std::fs::read(&target).unwrap(), b"first");
+        let tmp = write_temporary(&d, b"third").unwrap();
+        place(&tmp, &target, false).unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"third");
+        let left: Vec<_> = std::fs::read_dir(&d).unwrap().collect();
+        assert_eq!(left.len(), 1, "no temporary file left behind");
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+}
