@@ -106,10 +106,6 @@ pub fn compensate<'py>(
         },
         (Some(_), Some(process)) => {
             let language = Language::of_file(&name).map_err(raise)?;
-            let output = match output {
-                None => language,
-                Some(o) => output_language(o)?,
-            };
             let process_name = process.display().to_string();
             let parsed = file::parse(&error::read(process)?, &process_name).map_err(raise)?;
             let stem = program_name.unwrap_or_else(|| {
@@ -117,6 +113,8 @@ pub fn compensate<'py>(
                     .file_stem()
                     .map_or(String::new(), |s| s.to_string_lossy().into_owned())
             });
+            let (output, out_name) =
+                Language::output(language, None, output, &stem).map_err(raise)?;
             let settings = Settings {
                 targets: targets.parse::<Targets>().map_err(raise)?,
                 max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
@@ -131,7 +129,7 @@ pub fn compensate<'py>(
                 process: parsed,
                 chord_tolerance: chord_tolerance_mm * 1e-3,
                 output,
-                out_name: format!("{stem}.{}", extension(output)),
+                out_name,
                 settings,
             }
         }
@@ -182,32 +180,6 @@ pub fn compensate<'py>(
         out.set_item("subprograms", subprograms)?;
     }
     Ok(out)
-}
-
-/// The file extension of a program in `language`.
-fn extension(language: Language) -> &'static str {
-    match language.name() {
-        "krl" => "src",
-        "rapid" => "mod",
-        "ls" => "ls",
-        _ => "nc",
-    }
-}
-
-/// The language named by ``output``: `krl`, `rapid`, `ls` or `gcode`.
-fn output_language(name: &str) -> PyResult<Language> {
-    let extension = match name {
-        "krl" => "src",
-        "rapid" => "mod",
-        "ls" => "ls",
-        "gcode" => "nc",
-        _ => "",
-    };
-    Language::from_extension(extension).ok_or_else(|| {
-        error::value(format!(
-            "output: {name:?}: expected \"krl\", \"rapid\", \"ls\" or \"gcode\", or None for the program's own language"
-        ))
-    })
 }
 
 /// The compensation's options from the arguments.

@@ -59,6 +59,9 @@ def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
     assert (force > 200).sum() >= len(force) - 4
     with pytest.raises(stiffid.InputError, match=r"process"):
         stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET)
+    # The output language by its name, as the command's by the extension of --out: one rule.
+    with pytest.raises(stiffid.InputError, match=r"^output: unknown value 'cobol' \(known: gcode, krl, rapid, ls\)"):
+        stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="cobol")
 
 
 def test_program_options_equal_the_command(cli, tmp_path):

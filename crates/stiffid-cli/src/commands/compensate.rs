@@ -194,8 +194,9 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
         });
     };
     let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
-    let out_name = args.out.display().to_string();
-    let output = Language::of_file(&out_name).map_err(|e| anyhow!("--out {e}"))?;
+    let out = args.out.display().to_string();
+    let (output, out_name) =
+        Language::output(language, Some(&out), None, "").map_err(|e| anyhow!("--out {e}"))?;
     let process_name = process.display().to_string();
     let parsed = file::parse(&load::read(process)?, &process_name)?;
     Ok(Input::Program {

@@ -96,6 +96,67 @@ impl Language {
             Language::Robot(Dialect::FanucLs) => "ls",
         }
     }
+
+    /// The extension of a file written in the language where no file name says it (Python's
+    /// `output=`): `nc`, `src`, `mod` or `ls`; [`Language::from_extension`] of it is the
+    /// language.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Language::GCode => "nc",
+            Language::Robot(Dialect::Krl) => "src",
+            Language::Robot(Dialect::Rapid) => "mod",
+            Language::Robot(Dialect::FanucLs) => "ls",
+        }
+    }
+
+    /// The language a compensated program is written in, the one rule of both front ends: that
+    /// of the output file's name `out` ([`Language::of_file`]), else the one named `requested`
+    /// ([`crate::common::choice::parse`]), else the program's own `language`; and the file name
+    /// it is written under: `out`, else `stem` with the language's [`Language::extension`].
+    ///
+    /// # Errors
+    /// Those of [`Language::of_file`] (naming `out`) and of [`crate::common::choice::parse`]
+    /// (field `output`).
+    pub fn output(
+        language: Language,
+        out: Option<&str>,
+        requested: Option<&str>,
+        stem: &str,
+    ) -> Result<(Language, String)> {
+        match (out, requested) {
+            (Some(out), _) => Ok((Language::of_file(out)?, out.to_string())),
+            (None, requested) => {
+                let output = match requested {
+                    Some(name) => crate::common::choice::parse::<Language>(name)?,
+                    None => language,
+                };
+                Ok((output, format!("{stem}.{}", output.extension())))
+            }
+        }
+    }
+}
+
+impl crate::common::choice::Choice for Language {
+    const FIELD: &'static str = "output";
+    const ALL: &'static [Self] = &[
+        Language::GCode,
+        Language::Robot(Dialect::Krl),
+        Language::Robot(Dialect::Rapid),
+        Language::Robot(Dialect::FanucLs),
+    ];
+
+    fn name(self) -> &'static str {
+        Language::name(self)
+    }
+
+    fn help(self) -> &'static str {
+        match self {
+            Language::GCode => "G-code",
+            Language::Robot(Dialect::Krl) => "KUKA KRL",
+            Language::Robot(Dialect::Rapid) => "ABB RAPID",
+            Language::Robot(Dialect::FanucLs) => "FANUC LS",
+        }
+    }
 }
 
 impl Program {
