@@ -41,6 +41,11 @@ def test_it_is_the_deflection_of_the_measuring_points(paper):
     c = np.array(doc["cartesian_compliance"]["matrix_si"])
     np.testing.assert_allclose((c @ w)[:3] * 1e3, doc["tcp_deflection_mm"], rtol=1e-9)
     np.testing.assert_allclose((c @ w)[3:] * 1e3, doc["tcp_rotation_mrad"], rtol=1e-9)
+    # The text's units are the document's: C_x in mm, mrad per kN, kNm; K_x in N, Nm per um, urad.
+    np.testing.assert_allclose(doc["cartesian_compliance"]["matrix_mm_mrad_per_kn_knm"], c * 1e6, rtol=1e-15)
+    k = np.array(doc["cartesian_stiffness"]["matrix_si"])
+    np.testing.assert_allclose(doc["cartesian_stiffness"]["matrix_n_nm_per_um_urad"], k * 1e-6, rtol=1e-15)
+    np.testing.assert_allclose(doc["tcp_deflection_norm_mm"], np.linalg.norm(doc["tcp_deflection_mm"]), rtol=1e-15)
 
 
 def test_deflection_is_predict_for_each_posture(paper, fanuc, cli):

@@ -158,11 +158,7 @@ fn human(r: &Document) -> String {
         "TCP at ({}) mm: deflection ({}) mm, |d| {:.4} mm; rotation ({}) mrad{}\n",
         r.tcp_mm.map(|v| format!("{v:.1}")).join(", "),
         pm(&r.tcp_deflection_mm, &r.tcp_deflection_std_mm, 4),
-        r.tcp_deflection_mm
-            .iter()
-            .map(|v| v * v)
-            .sum::<f64>()
-            .sqrt(),
+        r.tcp_deflection_norm_mm,
         pm(&r.tcp_rotation_mrad, &r.tcp_rotation_std_mrad, 5),
         match r.tcp_deflection_std_mm {
             Some(_) => " (+- one standard deviation from the compliance covariance)",
@@ -177,18 +173,15 @@ fn human(r: &Document) -> String {
         );
     }
     s += "\nCartesian compliance C_x at the loaded point, base frame, rows dx dy dz (mm) drx dry drz (mrad), per fx fy fz (kN) mx my mz (kNm):\n";
-    let c = &r.cartesian_compliance.matrix_si;
-    for line in c {
-        let values: Vec<f64> = line.iter().map(|v| v * 1e6).collect();
-        s += &format!("  {}\n", row(&values, 5));
+    for line in &r.cartesian_compliance.matrix_mm_mrad_per_kn_knm {
+        s += &format!("  {}\n", row(line, 5));
     }
     match &r.cartesian_stiffness {
         None => s += "Cartesian stiffness: none (the Jacobian of the loaded point is singular)\n",
         Some(k) => {
             s += "Cartesian stiffness K_x = C_x^-1, rows fx fy fz (N) mx my mz (Nm), per dx dy dz (um) drx dry drz (urad):\n";
-            for line in &k.matrix_si {
-                let values: Vec<f64> = line.iter().map(|v| v * 1e-6).collect();
-                s += &format!("  {}\n", row(&values, 4));
+            for line in &k.matrix_n_nm_per_um_urad {
+                s += &format!("  {}\n", row(line, 4));
             }
         }
     }

@@ -42,6 +42,8 @@ pub struct Document {
     pub tcp_deflection_mm: [f64; 3],
     /// Its standard deviation, mm.
     pub tcp_deflection_std_mm: Option<[f64; 3]>,
+    /// The TCP displacement's length, mm.
+    pub tcp_deflection_norm_mm: f64,
     /// Its prediction interval `[lower, upper]` per coordinate at `prediction_level`, base frame,
     /// mm (`null` ends: unbounded); `null` without a stiffness file that holds held-out residuals
     /// (`identify --cross-validate`).
@@ -92,6 +94,9 @@ pub struct ComplianceDocument {
     pub rotation_per_moment_rad_per_nm: [[f64; 3]; 3],
     /// The whole 6x6 matrix, SI.
     pub matrix_si: [[f64; 6]; 6],
+    /// The whole matrix in the units of the text: rows dx, dy, dz (mm), drx, dry, drz (mrad)
+    /// per columns fx, fy, fz (kN), mx, my, mz (kNm); `matrix_si` times 1e6.
+    pub matrix_mm_mrad_per_kn_knm: [[f64; 6]; 6],
 }
 
 /// `K_x = C_x^-1` of the loaded point, base frame, by blocks and whole (SI).
@@ -108,6 +113,9 @@ pub struct StiffnessDocument {
     pub moment_per_rotation_nm_per_rad: [[f64; 3]; 3],
     /// The whole 6x6 matrix, SI.
     pub matrix_si: [[f64; 6]; 6],
+    /// The whole matrix in the units of the text: rows fx, fy, fz (N), mx, my, mz (Nm) per
+    /// columns dx, dy, dz (um), drx, dry, drz (urad); `matrix_si` times 1e-6.
+    pub matrix_n_nm_per_um_urad: [[f64; 6]; 6],
 }
 
 impl Document {
@@ -137,6 +145,11 @@ impl Document {
             tcp_mm: tcp.position.map(mm).into(),
             tcp_deflection_mm: xyz(&d.displacement, 0, 1e3),
             tcp_deflection_std_mm: tcp.std.map(|s| xyz(&s, 0, 1e3)),
+            tcp_deflection_norm_mm: xyz(&d.displacement, 0, 1e3)
+                .iter()
+                .map(|v| v * v)
+                .sum::<f64>()
+                .sqrt(),
             tcp_deflection_interval_mm: tcp.interval.map(interval_mm),
             prediction_level: report.level,
             tcp_rotation_mrad: xyz(&d.displacement, 3, 1e3),
@@ -147,6 +160,7 @@ impl Document {
                 rotation_per_force_rad_per_n: block(c, 3, 0),
                 rotation_per_moment_rad_per_nm: block(c, 3, 3),
                 matrix_si: block(c, 0, 0),
+                matrix_mm_mrad_per_kn_knm: block(&(c * 1e6), 0, 0),
             },
             cartesian_stiffness: k.as_ref().map(|k| StiffnessDocument {
                 force_per_translation_n_per_m: block(k, 0, 0),
@@ -154,6 +168,7 @@ impl Document {
                 moment_per_translation_nm_per_m: block(k, 3, 0),
                 moment_per_rotation_nm_per_rad: block(k, 3, 3),
                 matrix_si: block(k, 0, 0),
+                matrix_n_nm_per_um_urad: block(&(k * 1e-6), 0, 0),
             }),
         }
     }
