@@ -38,7 +38,7 @@ impl Range {
         crate::common::error::ColumnProblem::Outside {
             name: name.into(),
             value,
-            within: "the accepted range (stiffid::common::limits)",
+            within: "the accepted range",
             lower: self.min,
             upper: self.max,
         }
