@@ -13,6 +13,7 @@ pub mod kinematics;
 pub mod parts;
 pub mod presets;
 pub mod urdf;
+pub(crate) mod urdf_write;
 
 mod axis_map;
 pub use axis_map::AxisMap;
@@ -59,6 +60,7 @@ pub struct Robot {
     flange: Isometry3<f64>,
     bodies: Bodies,
     masses: Option<[LinkMass; 6]>,
+    urdf: Option<std::sync::Arc<urdf::UrdfSource>>,
 }
 
 /// A link's mass and centre of mass (the gravity model of [`crate::metrology::calibration::gravity`]).
@@ -121,6 +123,7 @@ impl Robot {
             flange: Isometry3::identity(),
             bodies: Bodies::Scaled,
             masses: None,
+            urdf: None,
         }
         .with_limits(limits)
     }
@@ -213,6 +216,20 @@ impl Robot {
     /// tool's mass part of link 6), or none.
     pub fn with_masses(self, masses: Option<[LinkMass; 6]>) -> Self {
         Self { masses, ..self }
+    }
+
+    /// The URDF the robot was read from, when it was ([`urdf::parse`]): a calibrated URDF is that
+    /// file with its chain's joint origins corrected.
+    pub fn urdf_source(&self) -> Option<&urdf::UrdfSource> {
+        self.urdf.as_deref()
+    }
+
+    /// The robot with the URDF it was read from.
+    pub(crate) fn with_urdf_source(self, source: urdf::UrdfSource) -> Self {
+        Self {
+            urdf: Some(std::sync::Arc::new(source)),
+            ..self
+        }
     }
 
     /// The link masses and centres, when the robot's description gives them (a robot file's

@@ -23,6 +23,20 @@ use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
 use std::collections::{HashMap, HashSet};
 use urdf_rs::JointType;
 
+/// The URDF a [`Robot`] was read from: its text, its tip link and its chain's six revolute
+/// joints, base first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UrdfSource {
+    /// The document as read.
+    pub text: String,
+    /// The tip link of the chain.
+    pub tip: String,
+    /// The names of the chain's revolute joints, base first.
+    pub joints: [String; 6],
+    /// Their `<origin>` transforms (parent link to joint frame, m).
+    pub origins: [Isometry3<f64>; 6],
+}
+
 /// Parses a URDF document into a [`Robot`]. `source_name` (the file name) is used in errors;
 /// `tip` names the tip link; by default the only leaf link, else the only leaf at the end of a
 /// chain of six revolute joints, else `tool0` among several (ROS-Industrial URDFs have the leaves
@@ -60,7 +74,19 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     let source = format!("{source_name}, tip link '{}'", limits::short(&tip));
     let robot = fold(&path, &urdf.name, &source).map_err(chain_error)?;
     let masses = masses(&urdf, &path).map_err(chain_error)?;
-    Ok(robot.with_masses(masses))
+    let revolute: Vec<&urdf_rs::Joint> = (path.iter().copied())
+        .filter(|j| j.joint_type != JointType::Fixed)
+        .collect();
+    let mut origins = [Isometry3::identity(); 6];
+    for (o, j) in origins.iter_mut().zip(&revolute) {
+        *o = pose(j).map_err(chain_error)?;
+    }
+    Ok(robot.with_masses(masses).with_urdf_source(UrdfSource {
+        text: text.to_string(),
+        tip,
+        joints: std::array::from_fn(|i| revolute[i].name.clone()),
+        origins,
+    }))
 }
 
 /// The masses and centres of the six moving links from the links' `<inertial>` (a fixed joint's

@@ -14,10 +14,14 @@
 
 use super::error_model::{Component, ErrorModel, Estimate, MeasuredIn};
 use crate::robot::dh::Convention;
-use crate::robot::Bodies;
+use crate::robot::urdf::UrdfSource;
+use crate::robot::{urdf_write, Bodies};
 use crate::{Error, Result, Robot};
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::fmt::Write;
+
+/// What a calibrated robot's name ends with.
+const CALIBRATED: &str = " (calibrated)";
 
 /// Lengths below this (m) count as zero when a chain is read as a DH table.
 const DH_TOLERANCE: f64 = 1e-12;
@@ -160,7 +164,7 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         base = estimate.frame.inverse() * base;
     }
     let mut t = String::new();
-    let name = format!("{} (calibrated)", nominal.name());
+    let name = format!("{}{CALIBRATED}", nominal.name());
     let _ = writeln!(t, "name = {}", quoted(&name));
     let _ = writeln!(t, "source = {}", quoted(nominal.source()));
     let _ = writeln!(
@@ -215,22 +219,32 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     Ok(t)
 }
 
-/// The calibrated robot as a URDF (module docs): links `base_link`, `link1`..`link6`, `flange`,
-/// revolute joints `joint1`..`joint6` with the corrected origins (the axis map's constant `c`
-/// folded in: the URDF's joint positions are `M q`, the axis angles themselves for the identity
-/// `M`), the nominal limits (an unbounded axis as a continuous joint) and the links' masses when
-/// the nominal robot has them (zero inertia tensors: stiffid uses masses and centres only).
+/// The calibrated robot as a URDF (module docs). A robot read from a URDF gets its own document
+/// back with the origins of its six chain joints corrected (`origin_i N_i^-1 C_i`, `N_i` and
+/// `C_i` the nominal and calibrated transforms from the previous joint's frame to joint `i`'s, a
+/// base correction folded into the first): links, meshes, inertials, mimic joints, fixed joints
+/// and comments kept; it is read back and its kinematics checked against the calibrated robot's.
+/// Any other robot is written as links `base_link`, `link1`..`link6`, `flange`, revolute joints
+/// `joint1`..`joint6` with the corrected origins (the axis map's constant `c` folded in: the
+/// URDF's joint positions are `M q`, the axis angles themselves for the identity `M`), the
+/// nominal limits (an unbounded axis as a continuous joint) and the links' masses when the
+/// nominal robot has them (zero inertia tensors: stiffid uses masses and centres only).
 ///
 /// # Errors
-/// Those of [`calibrated`].
+/// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the nominal URDF's text cannot
+/// carry the correction (a chain joint not found in it, a document that no longer reproduces the
+/// calibrated robot).
 pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let robot = calibrated(model, estimate)?;
+    if let Some(source) = model.robot().urdf_source() {
+        return edited_urdf(model.robot(), &robot, source);
+    }
     let limits = robot.limits();
     let mut t = String::new();
     let _ = writeln!(
         t,
         "<?xml version=\"1.0\"?>\n<robot name={}>",
-        xml_quoted(&format!("{} (calibrated)", robot.name()))
+        xml_quoted(&format!("{}{CALIBRATED}", robot.name()))
     );
     let mut links = vec!["base_link".to_string()];
     links.extend((1..=6).map(|i| format!("link{i}")));
@@ -267,7 +281,7 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             if bounded { "revolute" } else { "continuous" },
             links[i],
             links[i + 1],
-            origin_xml(&origin),
+            urdf_write::origin_xml(&origin),
             j.axis.x,
             j.axis.y,
             j.axis.z
@@ -283,18 +297,56 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let _ = writeln!(
         t,
         "  <joint name=\"flange\" type=\"fixed\">\n    <parent link=\"link6\"/><child link=\"flange\"/>\n    {}\n  </joint>\n</robot>",
-        origin_xml(&(before * robot.flange()))
+        urdf_write::origin_xml(&(before * robot.flange()))
     );
     Ok(t)
 }
 
-fn origin_xml(t: &Isometry3<f64>) -> String {
-    let p = t.translation.vector;
-    let (r, pi, y) = t.rotation.euler_angles();
-    format!(
-        "<origin xyz=\"{:?} {:?} {:?}\" rpy=\"{r:?} {pi:?} {y:?}\"/>",
-        p.x, p.y, p.z
-    )
+/// The nominal URDF `source` of `nominal` with the origins of `calibrated` (the function docs of
+/// [`urdf`]), checked by reading it back.
+fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Result<String> {
+    let invalid = |message: String| Error::InvalidField {
+        field: "robot".into(),
+        message: format!("the calibrated robot cannot be written as a URDF: {message}"),
+    };
+    // From the previous joint's frame to joint `i`'s at `theta = 0` (the axis map applies to
+    // both robots alike and stays out).
+    let step = |r: &Robot, i: usize| {
+        let before = match i {
+            0 => *r.base(),
+            _ => r.joints()[i - 1].post,
+        };
+        let j = &r.joints()[i];
+        before * j.pre * UnitQuaternion::from_axis_angle(&j.axis, j.offset)
+    };
+    let origins: [Isometry3<f64>; 6] = std::array::from_fn(|i| {
+        source.origins[i] * step(nominal, i).inverse() * step(calibrated, i)
+    });
+    let name = match calibrated.name().ends_with(CALIBRATED) {
+        true => calibrated.name().to_string(),
+        false => format!("{}{CALIBRATED}", calibrated.name()),
+    };
+    let text = urdf_write::with_origins(source, &name, &origins).map_err(invalid)?;
+    let back = crate::robot::urdf::parse(&text, "the calibrated URDF", Some(&source.tip))?
+        .with_base(*nominal.base())?
+        .with_axis_map(nominal.axis_map().clone())?;
+    let q = [
+        Vector6::zeros(),
+        Vector6::new(0.3, -0.4, 0.5, -0.6, 0.7, -0.8),
+        Vector6::new(-1.1, 0.9, -0.7, 1.3, -0.5, 2.1),
+    ];
+    let worst = (q.iter())
+        .map(|q| {
+            let (a, b) = (calibrated.frames(q).flange, back.frames(q).flange);
+            (a.inverse() * b).translation.vector.norm() + (a.rotation.angle_to(&b.rotation))
+        })
+        .fold(0.0, f64::max);
+    match worst <= 1e-12 {
+        true => Ok(text),
+        false => Err(invalid(format!(
+            "read back, its flange misses the calibrated robot's by {worst:.3e} (m + rad)"
+        ))),
+    }
 }
 
 fn transform(t: &Isometry3<f64>) -> String {
