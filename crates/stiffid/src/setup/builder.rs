@@ -1,0 +1,513 @@
+//! [`SetupBuilder`]: a [`Setup`] from SI values, every field checked as a setup file's are.
+
+use super::cell::{self, RobotGeometry};
+use super::{Arm, Cell, CellConstraints, Experiment, Noise, Payload, RopeLoad, Setup, Tool};
+use super::{Tracker, Workcell};
+use crate::common::limits::joint_box::distinct;
+use crate::common::limits::{self, JointBox};
+use crate::model::{Model, Spring};
+use crate::robot::kinematics::Coordinates;
+use crate::robot::Bodies;
+use crate::{Error, Result, Robot};
+use nalgebra::{Isometry3, Vector3, Vector6};
+
+impl Setup {
+    /// A builder of a setup named `name` on `robot`, SI units; see [`SetupBuilder`].
+    pub fn builder(name: impl Into<String>, robot: Robot) -> SetupBuilder {
+        SetupBuilder {
+            name: name.into(),
+            description: String::new(),
+            robot_ref: robot.name().to_string(),
+            robot,
+            springs: Coordinates::default(),
+            virtual_springs: Vec::new(),
+            candidate_springs: Vec::new(),
+            loading_point: None,
+            measuring_points: Vec::new(),
+            tcp: None,
+            load: None,
+            load_steps: Vec::new(),
+            noise: None,
+            bounds: None,
+            nominal_stiffness: None,
+            characteristic_length: None,
+            test_postures: Vec::new(),
+            constraints: CellConstraints::default(),
+            cell: None,
+            link_radii: None,
+            tool_radius: None,
+            tracker: None,
+            workpiece: None,
+            payload: None,
+        }
+    }
+
+    /// A builder holding every field of this setup, to change some and build again.
+    pub fn to_builder(&self) -> SetupBuilder {
+        let (arm, experiment, workcell) = (&self.arm, &self.experiment, &self.workcell);
+        SetupBuilder {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            robot_ref: self.robot_ref.clone(),
+            robot: arm.robot.clone(),
+            springs: arm.model.coordinates(),
+            virtual_springs: arm.model.springs().to_vec(),
+            candidate_springs: experiment.candidate_springs.clone(),
+            loading_point: Some(arm.tool.loading_point),
+            measuring_points: arm.tool.measuring_points.clone(),
+            tcp: arm.tcp_given.then_some(arm.tool.tcp),
+            load: Some(experiment.load.clone()),
+            load_steps: experiment.load_steps.clone(),
+            noise: Some(experiment.noise.clone()),
+            bounds: Some(experiment.bounds),
+            nominal_stiffness: experiment.nominal_stiffness,
+            characteristic_length: experiment.characteristic_length,
+            test_postures: experiment.test_postures.clone(),
+            constraints: workcell.constraints.clone(),
+            cell: workcell.cell.clone(),
+            link_radii: arm.shapes().is_none().then_some(arm.geometry.link_radii),
+            tool_radius: Some(arm.geometry.tool_radius),
+            tracker: workcell.tracker.clone(),
+            workpiece: workcell.workpiece,
+            payload: arm.payload,
+        }
+    }
+}
+
+/// Builds a [`Setup`] from SI values (m, rad, N, Nm/rad, m^2), argmin-style: `with_*` setters,
+/// then [`SetupBuilder::build`] checks every field as a setup file's are checked.
+///
+/// ```
+/// use nalgebra::{Vector3, Vector6};
+/// use stiffid::setup::{Noise, RopeLoad, Setup};
+///
+/// let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+/// let setup = Setup::builder("my-cell", robot)
+///     .with_loading_point(Vector3::new(0.15, 0.0, 0.2))
+///     .with_measuring_points(vec![Vector3::new(0.08, 0.08, 0.26)])
+///     .with_load(RopeLoad { load: 500.0, anchor: Vector3::new(1.5, 1.5, 0.0) })
+///     .with_noise(Noise { reading_variance: 4.615e-11, levels: vec![1.0] })
+///     .with_nominal_stiffness(Vector6::repeat(1e6))
+///     .with_characteristic_length(1.2)
+///     .build()
+///     .unwrap();
+/// assert_eq!(setup.tool().tcp, setup.tool().measuring_points[0]);
+/// ```
+#[derive(Debug, Clone)]
+pub struct SetupBuilder {
+    name: String,
+    description: String,
+    robot_ref: String,
+    robot: Robot,
+    springs: Coordinates,
+    virtual_springs: Vec<Spring>,
+    candidate_springs: Vec<Spring>,
+    loading_point: Option<Vector3<f64>>,
+    measuring_points: Vec<Vector3<f64>>,
+    tcp: Option<Vector3<f64>>,
+    load: Option<RopeLoad>,
+    load_steps: Vec<f64>,
+    noise: Option<Noise>,
+    bounds: Option<JointBox>,
+    nominal_stiffness: Option<Vector6<f64>>,
+    characteristic_length: Option<f64>,
+    test_postures: Vec<Vector6<f64>>,
+    constraints: CellConstraints,
+    cell: Option<Cell>,
+    link_radii: Option<[f64; 7]>,
+    tool_radius: Option<f64>,
+    tracker: Option<Tracker>,
+    workpiece: Option<Isometry3<f64>>,
+    payload: Option<Payload>,
+}
+
+impl SetupBuilder {
+    /// Free-text description (default empty).
+    pub fn with_description(mut self, description: impl Into<String>) -> Self {
+        self.description = description.into();
+        self
+    }
+
+    /// The robot reference as written (default the robot's name).
+    pub fn with_robot_ref(mut self, robot_ref: impl Into<String>) -> Self {
+        self.robot_ref = robot_ref.into();
+        self
+    }
+
+    /// The robot (the setup's other fields are kept).
+    pub fn with_robot(mut self, robot: Robot) -> Self {
+        self.robot = robot;
+        self
+    }
+
+    /// Where the springs sit (default [`Coordinates::Axis`]).
+    pub fn with_springs(mut self, springs: Coordinates) -> Self {
+        self.springs = springs;
+        self
+    }
+
+    /// The virtual springs of the model after the drives (default none: [`Setup::model`]).
+    pub fn with_virtual_springs(mut self, springs: Vec<Spring>) -> Self {
+        self.virtual_springs = springs;
+        self
+    }
+
+    /// The declared candidate springs of the model comparison (default none:
+    /// [`Setup::candidate_springs`]); their names must differ from the model's springs'.
+    pub fn with_candidate_springs(mut self, springs: Vec<Spring>) -> Self {
+        self.candidate_springs = springs;
+        self
+    }
+
+    /// The loading point, flange frame, m (required).
+    pub fn with_loading_point(mut self, point: Vector3<f64>) -> Self {
+        self.loading_point = Some(point);
+        self
+    }
+
+    /// The measuring points, flange frame, m (1 to [`limits::MAX_MEASURING_POINTS`]).
+    pub fn with_measuring_points(mut self, points: Vec<Vector3<f64>>) -> Self {
+        self.measuring_points = points;
+        self
+    }
+
+    /// The tool centre point, flange frame, m (default the first measuring point).
+    pub fn with_tcp(mut self, tcp: Vector3<f64>) -> Self {
+        self.tcp = Some(tcp);
+        self
+    }
+
+    /// The load levels applied in each posture, N (positive, rising, at most
+    /// [`crate::setup::load_steps::MAX_STEPS`]; empty: one load, the rope load).
+    pub fn with_load_steps(mut self, steps: Vec<f64>) -> Self {
+        self.load_steps = steps;
+        self
+    }
+
+    /// The rope load (required).
+    pub fn with_load(mut self, load: RopeLoad) -> Self {
+        self.load = Some(load);
+        self
+    }
+
+    /// The measurement noise (required).
+    pub fn with_noise(mut self, noise: Noise) -> Self {
+        self.noise = Some(noise);
+        self
+    }
+
+    /// The experiment bounds, rad (default the robot's joint limits).
+    pub fn with_bounds(mut self, bounds: JointBox) -> Self {
+        self.bounds = Some(bounds);
+        self
+    }
+
+    /// The nominal joint stiffness, Nm/rad (default none: [`Setup::nominal_stiffness`]).
+    pub fn with_nominal_stiffness(mut self, stiffness: Vector6<f64>) -> Self {
+        self.nominal_stiffness = Some(stiffness);
+        self
+    }
+
+    /// The characteristic length `L` of the dexterity index (Eq. 20), m (default none:
+    /// [`Setup::characteristic_length`]).
+    pub fn with_characteristic_length(mut self, length: f64) -> Self {
+        self.characteristic_length = Some(length);
+        self
+    }
+
+    /// Test postures, axis angles, rad (default none).
+    pub fn with_test_postures(mut self, postures: Vec<Vector6<f64>>) -> Self {
+        self.test_postures = postures;
+        self
+    }
+
+    /// Cell constraints for posture search (default none).
+    pub fn with_constraints(mut self, constraints: CellConstraints) -> Self {
+        self.constraints = constraints;
+        self
+    }
+
+    /// The cell's floor, clearance and obstacles (default none).
+    pub fn with_cell(mut self, cell: Cell) -> Self {
+        self.cell = Some(cell);
+        self
+    }
+
+    /// Capsule radii of the bodies, m (default [`default_geometry`]).
+    pub fn with_geometry(self, geometry: RobotGeometry) -> Self {
+        self.with_link_radii(geometry.link_radii)
+            .with_tool_radius(geometry.tool_radius)
+    }
+
+    /// Capsule radii of the base and links 1-6, m (default the robot's: its capsule radii, or
+    /// its collision shapes, else scaled to its size); given, they replace the robot's shapes.
+    pub fn with_link_radii(mut self, radii: [f64; 7]) -> Self {
+        self.link_radii = Some(radii);
+        self
+    }
+
+    /// Capsule radius of the tool, m (default: holding every tool point).
+    pub fn with_tool_radius(mut self, radius: f64) -> Self {
+        self.tool_radius = Some(radius);
+        self
+    }
+
+    /// The laser tracker (default none).
+    pub fn with_tracker(mut self, tracker: Tracker) -> Self {
+        self.tracker = Some(tracker);
+        self
+    }
+
+    /// A G-code program's part frame in the robot base frame, m (default none; its translation
+    /// within [`limits::LENGTH_MM`]).
+    pub fn with_workpiece(mut self, base_from_part: Isometry3<f64>) -> Self {
+        self.workpiece = Some(base_from_part);
+        self
+    }
+
+    /// The tool's mass and centre of mass (default none; the mass within [`limits::TOOL_MASS_KG`],
+    /// the centre's coordinates within [`limits::LENGTH_MM`]).
+    pub fn with_payload(mut self, payload: Payload) -> Self {
+        self.payload = Some(payload);
+        self
+    }
+
+    /// The setup, every field checked against [`crate::common::limits`] and the others.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field as a setup file names it (unit in the name, the
+    /// value given in that unit) for a missing required field, an empty name, a number that is not
+    /// finite or outside its documented range, no measuring point or no noise level (or more than
+    /// their limits), bounds not below each other, and an inconsistent cell or tracker ([`Cell`],
+    /// [`Tracker`]) or virtual springs ([`crate::model::check_springs`]); [`Error::OutsideBox`] with the field, the value and the range for bounds or
+    /// test postures outside the robot's limits.
+    pub fn build(self) -> Result<Setup> {
+        if self.name.trim().is_empty() {
+            return Err(invalid("name", "expected a non-empty name"));
+        }
+        let loading_point = required(self.loading_point, "tool.loading_point_mm")?;
+        let load = required(self.load, "loading")?;
+        let noise = required(self.noise, "noise")?;
+        if let Some(l) = self.characteristic_length {
+            check_scaled(
+                "characteristic_length_mm",
+                &[l],
+                1e3,
+                &limits::CHARACTERISTIC_LENGTH_MM,
+            )?;
+        }
+        if let Some(k) = &self.nominal_stiffness {
+            limits::check(
+                "nominal_stiffness_nm_per_rad",
+                k.as_slice(),
+                &limits::STIFFNESS_NM_PER_RAD,
+            )?;
+        }
+        let tcp = self.tcp.or(self.measuring_points.first().copied());
+        check_tool(&loading_point, &self.measuring_points, tcp)?;
+        check_load(&load)?;
+        check_load_steps(&self.load_steps)?;
+        check_noise(&noise)?;
+        let bounds = self.bounds.unwrap_or(*self.robot.limits());
+        check_bounds(&bounds, &self.robot)?;
+        check_test_postures(&self.test_postures, &self.robot)?;
+        if let Some(z) = self.constraints.loading_point_min_z {
+            check_scaled(
+                "constraints.loading_point_min_z_mm",
+                &[z],
+                1e3,
+                &limits::LENGTH_MM,
+            )?;
+        }
+        if let Some(c) = &self.cell {
+            cell::check_cell(c)?;
+        }
+        let model = Model::new(self.springs, self.virtual_springs)?;
+        model.with(&self.candidate_springs)?;
+        let tool = Tool {
+            loading_point,
+            measuring_points: self.measuring_points,
+            tcp: tcp.unwrap_or_default(),
+        };
+        let defaults = cell::default_geometry(&self.robot, &tool);
+        let shapes = match (&self.robot.bodies(), self.link_radii) {
+            (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
+            (Bodies::Missing(m), None) => Bodies::Missing(m.clone()),
+            _ => Bodies::Scaled,
+        };
+        let robot_radii = match &self.robot.bodies() {
+            Bodies::Capsules(r) => Some(*r),
+            _ => None,
+        };
+        let geometry = RobotGeometry {
+            link_radii: self
+                .link_radii
+                .or(robot_radii)
+                .unwrap_or(defaults.link_radii),
+            tool_radius: self.tool_radius.unwrap_or(defaults.tool_radius),
+        };
+        cell::check_geometry(&geometry)?;
+        if let Some(w) = &self.workpiece {
+            let xyz = w.translation.vector;
+            let field = "workpiece.base_from_part.xyz_mm";
+            check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
+        }
+        if let Some(p) = &self.payload {
+            limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
+            check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
+        }
+        let tracker = self
+            .tracker
+            .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))
+            .transpose()?;
+        Ok(Setup {
+            name: self.name,
+            description: self.description,
+            robot_ref: self.robot_ref,
+            arm: Arm {
+                robot: self.robot,
+                tool,
+                tcp_given: self.tcp.is_some(),
+                model,
+                payload: self.payload,
+                geometry,
+                shapes,
+            },
+            experiment: Experiment {
+                load,
+                load_steps: self.load_steps,
+                noise,
+                bounds,
+                test_postures: self.test_postures,
+                nominal_stiffness: self.nominal_stiffness,
+                characteristic_length: self.characteristic_length,
+                candidate_springs: self.candidate_springs,
+            },
+            workcell: Workcell {
+                constraints: self.constraints,
+                cell: self.cell,
+                tracker,
+                workpiece: self.workpiece,
+            },
+            notes: Vec::new(),
+        })
+    }
+}
+
+pub(super) fn invalid(field: &str, message: impl Into<String>) -> Error {
+    Error::InvalidField {
+        field: field.to_string(),
+        message: message.into(),
+    }
+}
+
+fn required<T>(value: Option<T>, field: &str) -> Result<T> {
+    value.ok_or_else(|| invalid(field, "expected a value: the setup has none"))
+}
+
+/// [`limits::check`] of SI `values` against a `range` in the file's unit (`scale` per SI unit),
+/// the values shown in that unit.
+fn check_scaled(field: &str, values: &[f64], scale: f64, range: &limits::Range) -> Result<()> {
+    let scaled: Vec<f64> = values.iter().map(|v| v * scale).collect();
+    limits::check(field, &scaled, range)
+}
+
+fn check_points(field: &str, points: &[Vector3<f64>]) -> Result<()> {
+    let values: Vec<f64> = points.iter().flat_map(|p| p.iter().copied()).collect();
+    check_scaled(field, &values, 1e3, &limits::LENGTH_MM)
+}
+
+fn check_tool(
+    loading_point: &Vector3<f64>,
+    measuring_points: &[Vector3<f64>],
+    tcp: Option<Vector3<f64>>,
+) -> Result<()> {
+    check_points("tool.loading_point_mm", std::slice::from_ref(loading_point))?;
+    let n = measuring_points.len();
+    limits::check_count(
+        "tool.measuring_points_mm",
+        n,
+        1,
+        limits::MAX_MEASURING_POINTS,
+    )?;
+    check_points("tool.measuring_points_mm", measuring_points)?;
+    check_points("tool.tcp_mm", tcp.as_slice())
+}
+
+fn check_load(load: &RopeLoad) -> Result<()> {
+    limits::check("loading.load_n", &[load.load], &limits::LOAD_N)?;
+    check_points("loading.anchor_mm", std::slice::from_ref(&load.anchor))
+}
+
+fn check_load_steps(steps: &[f64]) -> Result<()> {
+    let field = "loading.steps_n";
+    limits::check_count(field, steps.len(), 0, crate::setup::load_steps::MAX_STEPS)?;
+    limits::check(field, steps, &limits::LOAD_N)?;
+    match steps.windows(2).position(|w| w[1] <= w[0]) {
+        Some(i) => Err(invalid(
+            &format!("{field}[{}]", i + 2),
+            format!(
+                "{} after {}: expected rising load levels",
+                steps[i + 1],
+                steps[i]
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+fn check_noise(noise: &Noise) -> Result<()> {
+    check_scaled(
+        "noise.reading_sd_mm",
+        &[noise.reading_variance.sqrt()],
+        1e3,
+        &limits::READING_SD_MM,
+    )?;
+    let levels = &noise.levels;
+    limits::check_count("noise.level_multiples", levels.len(), 1, limits::MAX_LEVELS)?;
+    limits::check("noise.level_multiples", levels, &limits::LEVEL_MULTIPLE)
+}
+
+fn degrees(q: &Vector6<f64>) -> Vec<f64> {
+    q.iter().map(|v| v.to_degrees()).collect()
+}
+
+/// Bounds may leave the robot's limits by this, rad: the rounding of degrees to radians.
+const BOUNDS_TOLERANCE: f64 = 1e-12;
+
+fn check_bounds(bounds: &JointBox, robot: &Robot) -> Result<()> {
+    let sides = [("lower_deg", &bounds.lower), ("upper_deg", &bounds.upper)];
+    for (side, q) in sides {
+        limits::check(&format!("bounds.{side}"), &degrees(q), &limits::ANGLE_DEG)?;
+    }
+    if let Some(i) = (0..6).find(|&i| bounds.lower[i] >= bounds.upper[i]) {
+        let (l, u) = (bounds.lower[i].to_degrees(), bounds.upper[i].to_degrees());
+        return Err(invalid(
+            &format!("bounds.lower_deg[{}]", i + 1),
+            format!(
+                "{} deg is not below bounds.upper_deg[{}] = {u:.2} deg",
+                distinct(l, u, u),
+                i + 1
+            ),
+        ));
+    }
+    let within = robot.limits().widened(BOUNDS_TOLERANCE);
+    for (side, q) in sides {
+        within.check(q, "the robot's limits", |a| {
+            format!("bounds.{side}[{}]", a + 1)
+        })?;
+    }
+    Ok(())
+}
+
+fn check_test_postures(postures: &[Vector6<f64>], robot: &Robot) -> Result<()> {
+    let n = postures.len();
+    limits::check_count("test.postures_deg", n, 0, limits::MAX_TEST_POSTURES)?;
+    for (i, q) in postures.iter().enumerate() {
+        let field = format!("test.postures_deg[{}]", i + 1);
+        limits::check(&field, &degrees(q), &limits::ANGLE_DEG)?;
+        let axis = |a: usize| format!("{field}[{}]", a + 1);
+        robot.limits().check(q, "the robot's limits", axis)?;
+    }
+    Ok(())
+}
