@@ -38,7 +38,7 @@ pub fn cartesian_compliance<'py>(
         q_deg,
         point_mm,
         stiffness_nm_per_rad,
-        &|s, f, p, h| cartesian::compliance(s, f, p, h),
+        &|s, f, p, h| cartesian::compliance(s.arm(), f, p, h),
     )
 }
 
@@ -62,7 +62,9 @@ pub fn cartesian_stiffness<'py>(
         q_deg,
         point_mm,
         stiffness_nm_per_rad,
-        &|s, f, p, h| cartesian::stiffness(s, f, p, h).unwrap_or(Matrix6::from_element(f64::NAN)),
+        &|s, f, p, h| {
+            cartesian::stiffness(s.arm(), f, p, h).unwrap_or(Matrix6::from_element(f64::NAN))
+        },
     )
 }
 

@@ -31,7 +31,7 @@ fn feasibility(c: &mut Bench) {
         b.iter(|| checker.margins(black_box(&q)))
     });
     c.bench_function("cell/capsules/one-posture", |b| {
-        b.iter(|| stiffid::cell::capsules(&setup, &setup.robot().frames(black_box(&q))))
+        b.iter(|| stiffid::cell::capsules(setup.arm(), &setup.robot().frames(black_box(&q))))
     });
     let group = design::random_group(&setup, 6, 1);
     let evaluator = design::Evaluator::new(&setup);

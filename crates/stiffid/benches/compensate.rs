@@ -16,15 +16,15 @@ fn benches(c: &mut Criterion) {
     c.bench_function("Cartesian stiffness of one posture (frames, J, K_x)", |b| {
         b.iter(|| {
             let frames = s.robot().frames(black_box(&q));
-            cartesian::stiffness(&s, &frames, &s.tool().tcp, &h)
+            cartesian::stiffness(s.arm(), &frames, &s.tool().tcp, &h)
         })
     });
     let frames = s.robot().frames(&q);
     c.bench_function("Cartesian stiffness, frames given (J, K_x)", |b| {
-        b.iter(|| cartesian::stiffness(&s, black_box(&frames), &s.tool().tcp, &h))
+        b.iter(|| cartesian::stiffness(s.arm(), black_box(&frames), &s.tool().tcp, &h))
     });
     c.bench_function("Cartesian compliance, frames given (J, C_x)", |b| {
-        b.iter(|| cartesian::compliance(&s, black_box(&frames), &s.tool().tcp, &h))
+        b.iter(|| cartesian::compliance(s.arm(), black_box(&frames), &s.tool().tcp, &h))
     });
     let start = tool_pose(&frames, &s.tool().tcp);
     let n = 10_000;
@@ -44,7 +44,7 @@ fn benches(c: &mut Criterion) {
         free_tool_axis: None,
         level: 0.95,
     };
-    let solved = compensate::path(&s, &compliance, &poses, &options).unwrap();
+    let solved = compensate::path(s.arm(), &compliance, &poses, &options).unwrap();
     let postures: Vec<PathPoint> = poses
         .iter()
         .zip(&solved)
@@ -56,10 +56,10 @@ fn benches(c: &mut Criterion) {
     let mut group = c.benchmark_group("compensate 10 000 points");
     group.sample_size(10);
     group.bench_function("postures given", |b| {
-        b.iter(|| compensate::path(&s, &compliance, black_box(&postures), &options).unwrap())
+        b.iter(|| compensate::path(s.arm(), &compliance, black_box(&postures), &options).unwrap())
     });
     group.bench_function("poses given (inverse kinematics)", |b| {
-        b.iter(|| compensate::path(&s, &compliance, black_box(&poses), &options).unwrap())
+        b.iter(|| compensate::path(s.arm(), &compliance, black_box(&poses), &options).unwrap())
     });
     group.finish();
 }

@@ -33,7 +33,7 @@ fn postures(n: usize) -> Vec<Measurement> {
 
 fn bench(c: &mut Criterion) {
     let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let obs = Observations::from_measurements(&setup, &postures(20_000)).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &postures(20_000)).unwrap();
     let full = obs.least_squares().unwrap();
     let mut group = c.benchmark_group("cross_validation");
     group.sample_size(10);

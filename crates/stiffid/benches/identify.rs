@@ -24,13 +24,14 @@ fn bench(c: &mut Criterion) {
             ..m
         })
         .collect();
-    let obs = Observations::from_measurements(&setup, &data).expect("valid measurements");
+    let obs = Observations::from_measurements(setup.arm(), &data).expect("valid measurements");
     c.bench_function("identify/72x6 least squares and statistics", |b| {
         b.iter(|| black_box(&obs).least_squares().expect("identifiable"))
     });
     c.bench_function("identify/observation matrix of 24 measurements", |b| {
         b.iter(|| {
-            Observations::from_measurements(black_box(&setup), black_box(&data)).expect("valid")
+            Observations::from_measurements(black_box(setup.arm()), black_box(&data))
+                .expect("valid")
         })
     });
     c.bench_function("identify/from measurements", |b| {

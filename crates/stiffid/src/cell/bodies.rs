@@ -1,11 +1,11 @@
 //! The robot and tool bodies of a posture: capsules (segments with a radius) along the chain, or
-//! the robot's own collision shapes ([`Setup::shapes`]) with the tool's capsule.
+//! the robot's own collision shapes ([`Arm::shapes`]) with the tool's capsule.
 
 use crate::robot::collision::Shape;
 use crate::robot::kinematics::Frames;
 use crate::robot::parts::polylines;
 pub use crate::robot::parts::Part;
-use crate::setup::{Setup, Tool};
+use crate::setup::{Arm, Tool};
 use nalgebra::{Isometry3, Vector3};
 
 /// A capsule of a robot part: the points within `radius` of the segment `a`-`b`, base frame, m.
@@ -85,17 +85,17 @@ impl Body {
 }
 
 /// The bodies of the posture whose forward kinematics are `frames`, base frame, m: with the
-/// robot's collision shapes ([`Setup::shapes`]), each shape posed by its body's frame (the base,
+/// robot's collision shapes ([`Arm::shapes`]), each shape posed by its body's frame (the base,
 /// or joint frame i for link i) then the tool's capsule ([`capsules`]); else [`capsules`]. The same
 /// bodies in the same order in every posture. What the cell's checks and the drawings use.
-pub fn bodies(setup: &Setup, frames: &Frames) -> Vec<Body> {
-    let Some(g) = setup.shapes() else {
-        return capsules(setup, frames)
+pub fn bodies(arm: &Arm, frames: &Frames) -> Vec<Body> {
+    let Some(g) = arm.shapes() else {
+        return capsules(arm, frames)
             .into_iter()
             .map(Body::Capsule)
             .collect();
     };
-    let base = *setup.robot().base();
+    let base = *arm.robot().base();
     let mut out: Vec<Body> = g
         .shapes
         .iter()
@@ -115,7 +115,7 @@ pub fn bodies(setup: &Setup, frames: &Frames) -> Vec<Body> {
             })
         })
         .collect();
-    out.push(Body::Capsule(tool_capsule(setup, frames)));
+    out.push(Body::Capsule(tool_capsule(arm, frames)));
     out
 }
 
@@ -134,25 +134,25 @@ const SAME_POINT: f64 = 1e-9;
 ///   point farthest along it (loading, measuring and tool centre points).
 ///
 /// Radii from [`RobotGeometry`]. This is what `stiffid plot` draws.
-pub fn capsules(setup: &Setup, frames: &Frames) -> Vec<Capsule> {
-    let g = &setup.geometry();
+pub fn capsules(arm: &Arm, frames: &Frames) -> Vec<Capsule> {
+    let g = &arm.geometry();
     let mut out = Vec::with_capacity(16);
     for (part, points) in polylines(frames) {
         push_polyline(&mut out, part, &points, g.link_radii[part.index()]);
     }
-    out.push(tool_capsule(setup, frames));
+    out.push(tool_capsule(arm, frames));
     out
 }
 
 /// The tool's capsule: from the flange origin along the flange z axis to the tool point farthest
 /// along it, radius [`RobotGeometry::tool_radius`].
-fn tool_capsule(setup: &Setup, frames: &Frames) -> Capsule {
-    let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(setup.tool())));
+fn tool_capsule(arm: &Arm, frames: &Frames) -> Capsule {
+    let tip = frames.point(&Vector3::new(0.0, 0.0, tool_length(arm.tool())));
     Capsule {
         part: Part::Tool,
         a: frames.flange.translation.vector,
         b: tip,
-        radius: setup.geometry().tool_radius,
+        radius: arm.geometry().tool_radius,
     }
 }
 

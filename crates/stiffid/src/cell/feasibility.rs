@@ -365,7 +365,7 @@ impl<'a> Checker<'a> {
             return;
         }
         let frames = s.robot().frames(q);
-        let bodies = bodies(s, &frames);
+        let bodies = bodies(s.arm(), &frames);
         let loading = frames.point(&s.tool().loading_point);
         if let Some(cell) = &s.cell() {
             self.body_margins(&bodies, &loading, cell, out);
@@ -515,7 +515,7 @@ impl<'a> Checker<'a> {
     /// The self-collision pairs: non-adjacent parts, not in contact in every sampled posture.
     fn self_pairs(&self) -> Vec<(usize, usize)> {
         let s = self.setup;
-        let rest = bodies(s, &s.robot().frames(&s.bounds().lower));
+        let rest = bodies(s.arm(), &s.robot().frames(&s.bounds().lower));
         let candidates: Vec<(usize, usize)> = (0..rest.len())
             .flat_map(|i| (i + 1..rest.len()).map(move |j| (i, j)))
             .filter(|&(i, j)| !adjacent(&rest, rest[i].part(), rest[j].part()))
@@ -527,7 +527,7 @@ impl<'a> Checker<'a> {
             let q = Vector6::from_fn(|a, _| {
                 rng.random_range(s.bounds().lower[a]..=s.bounds().upper[a])
             });
-            let bodies = bodies(s, &s.robot().frames(&q));
+            let bodies = bodies(s.arm(), &s.robot().frames(&q));
             for (k, &(i, j)) in candidates.iter().enumerate() {
                 let ((ci, ri), (cj, rj)) = (bodies[i].bound(), bodies[j].bound());
                 free[k] = free[k]

@@ -176,7 +176,7 @@ impl<'a> InBlocks<'a> {
     /// # Errors
     /// Those of [`crate::observation::check`], numbering measurements over all parts.
     pub fn push(&mut self, measurements: &[Measurement]) -> Result<()> {
-        self.check.push(self.setup, measurements, None)?;
+        self.check.push(self.setup.arm(), measurements, None)?;
         self.deflected |= measurements
             .iter()
             .any(|m| m.displacement.iter().any(|d| *d != 0.0));
@@ -277,7 +277,7 @@ pub fn residuals(setup: &Setup, h: &Vector6<f64>, measurements: &[Measurement]) 
 fn rows(setup: &Setup, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f64>) {
     let n = 3 * measurements.len();
     let (mut psi, mut delta) = (DMatrix::zeros(n, 6), DVector::zeros(n));
-    assemble(setup, measurements, &mut psi, &mut delta);
+    assemble(setup.arm(), measurements, &mut psi, &mut delta);
     (psi, delta)
 }
 

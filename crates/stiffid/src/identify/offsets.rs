@@ -40,7 +40,7 @@ pub fn least_squares(
     setup: &Setup,
     measurements: &[Measurement],
 ) -> Result<(Identification, Vec<Offset>)> {
-    let obs = Observations::from_measurements(setup, measurements)?;
+    let obs = Observations::from_measurements(setup.arm(), measurements)?;
     if obs.psi.ncols() != 6 {
         return Err(six_parameters_only());
     }

@@ -17,7 +17,8 @@
 use crate::model::prediction::{check_level, inside, Interval, DEFAULT_LEVEL};
 use crate::model::Compliance;
 use crate::observation::{Measurement, Observations};
-use crate::{Error, Result, Setup};
+use crate::setup::Arm;
+use crate::{Error, Result};
 use nalgebra::Vector3;
 
 /// The check of one measurement.
@@ -77,18 +78,18 @@ pub struct Validation {
     pub prediction: Option<Coverage>,
 }
 
-/// Predicts every measurement with the compliance `compliance` of every parameter of the setup's
+/// Predicts every measurement with the compliance `compliance` of every parameter of the arm's
 /// model ([`crate::model`]; rad/Nm, m/N) and compares (Eq. 22); prediction intervals at
 /// [`DEFAULT_LEVEL`] ([`compare_at`]).
 ///
 /// # Errors
 /// Those of [`compare_at`].
 pub fn compare(
-    setup: &Setup,
+    arm: &Arm,
     compliance: &Compliance,
     measurements: &[Measurement],
 ) -> Result<Validation> {
-    compare_at(setup, compliance, measurements, DEFAULT_LEVEL)
+    compare_at(arm, compliance, measurements, DEFAULT_LEVEL)
 }
 
 /// [`compare`] with prediction intervals at `level` (when the compliance carries a prediction
@@ -100,13 +101,13 @@ pub fn compare(
 /// is positive, or (`measurements`) for an empty list; those of
 /// [`Observations::from_measurements`].
 pub fn compare_at(
-    setup: &Setup,
+    arm: &Arm,
     compliance: &Compliance,
     measurements: &[Measurement],
     level: f64,
 ) -> Result<Validation> {
     check_level("level", level)?;
-    compliance.check(setup.model())?;
+    compliance.check(arm.model())?;
     if !compliance.h.iter().all(|h| *h > 0.0) {
         return Err(Error::InvalidField {
             field: "stiffness".into(),
@@ -119,7 +120,7 @@ pub fn compare_at(
             message: "expected at least one measurement".into(),
         });
     }
-    let obs = Observations::from_measurements(setup, measurements)?;
+    let obs = Observations::from_measurements(arm, measurements)?;
     let predicted = &obs.psi * &compliance.h;
     let checks: Vec<PointCheck> = measurements
         .iter()

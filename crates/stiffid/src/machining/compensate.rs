@@ -42,9 +42,10 @@ use crate::common::error::JobOption;
 use crate::common::limits::number;
 use crate::observation::deflection::PointDeflection;
 use crate::observation::deflection::{base_wrench, Frame, Points};
-use crate::robot::configuration::Arm;
+use crate::robot::configuration::Configuration;
 use crate::robot::ik::{self, pose_error, tool_pose};
 use crate::robot::kinematics::{Coordinates, Frames};
+use crate::setup::Arm;
 use crate::{common::limits, Error, Result, Setup};
 use nalgebra::{Isometry3, Matrix6, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
@@ -269,10 +270,10 @@ pub struct Compensated {
     pub deflection_before: Option<Vector6<f64>>,
 }
 
-/// The compensation model of one setup: its robot, TCP, springs and compliance.
+/// The compensation model of one arm: its robot, TCP, springs and compliance.
 #[derive(Debug, Clone)]
 pub struct Model<'a> {
-    setup: &'a Setup,
+    arm: &'a Arm,
     compliance: &'a Compliance,
     /// Spring deflections to axis angles: `M^-1` for kinematic springs, else the identity.
     to_axis: Matrix6<f64>,
@@ -281,30 +282,29 @@ pub struct Model<'a> {
 }
 
 impl<'a> Model<'a> {
-    /// The model of `setup` (its TCP, drive springs and virtual springs) with the compliance
-    /// `compliance` of every parameter of the setup's model.
+    /// The model of `arm` (its TCP, drive springs and virtual springs) with the compliance
+    /// `compliance` of every parameter of the arm's model.
     ///
     /// # Errors
     /// Those of [`Compliance::check`]; [`Error::InvalidField`] when the springs are kinematic and
     /// the robot's axis map is singular.
-    pub fn new(setup: &'a Setup, compliance: &'a Compliance) -> Result<Self> {
-        compliance.check(setup.model())?;
+    pub fn new(arm: &'a Arm, compliance: &'a Compliance) -> Result<Self> {
+        compliance.check(arm.model())?;
         let to_axis =
-            match setup.springs() {
+            match arm.springs() {
                 Coordinates::Axis => Matrix6::identity(),
-                Coordinates::Kinematic => setup
-                    .robot()
-                    .axis_map()
-                    .matrix
-                    .try_inverse()
-                    .ok_or_else(|| Error::InvalidField {
-                        field: "axis_map".into(),
-                        message: "singular: kinematic spring deflections have no axis angles"
-                            .into(),
-                    })?,
+                Coordinates::Kinematic => {
+                    arm.robot().axis_map().matrix.try_inverse().ok_or_else(|| {
+                        Error::InvalidField {
+                            field: "axis_map".into(),
+                            message: "singular: kinematic spring deflections have no axis angles"
+                                .into(),
+                        }
+                    })?
+                }
             };
         Ok(Self {
-            setup,
+            arm,
             compliance,
             to_axis,
             level: crate::model::prediction::DEFAULT_LEVEL,
@@ -320,26 +320,26 @@ impl<'a> Model<'a> {
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
     /// TCP (module docs).
     pub fn loaded_pose(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
-        self.loaded(&self.setup.robot().frames(q), q, wrench)
+        self.loaded(&self.arm.robot().frames(q), q, wrench)
     }
 
     /// [`Model::loaded_pose`] with the frames of `q` given. The virtual springs' deflection (a
     /// twist of the tool, `sum_s c_s (J_s^T W) J_s`) is applied to first order after the drives'
     /// (their second-order terms are about `|dq|^2` times the reach, far below the tolerance).
     fn loaded(&self, frames: &Frames, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
-        let tcp = &self.setup.tool().tcp;
+        let tcp = &self.arm.tool().tcp;
         let h = &self.compliance.h;
-        let j = frames.jacobian(tcp, self.setup.springs());
+        let j = frames.jacobian(tcp, self.arm.springs());
         let drives = Vector6::from_fn(|r, _| h[r]);
         let dq = self.to_axis * j.tr_mul(wrench).component_mul(&drives);
-        let pose = tool_pose(&self.setup.robot().frames(&(q + dq)), tcp);
-        let model = self.setup.model();
+        let pose = tool_pose(&self.arm.robot().frames(&(q + dq)), tcp);
+        let model = self.arm.model();
         if model.is_drives_only() {
             return pose;
         }
         let p = frames.point(tcp);
         let twist: Vector6<f64> = model
-            .placed(self.setup.robot(), frames)
+            .placed(self.arm.robot(), frames)
             .iter()
             .enumerate()
             .map(|(s, spring)| spring.column(&p) * (h[6 + s] * spring.load(&p, wrench)))
@@ -364,9 +364,9 @@ impl<'a> Model<'a> {
 
     /// The TCP's deflection in the posture `frames` under `wrench` (base frame).
     fn tcp_deflection(&self, frames: &Frames, wrench: &Vector6<f64>) -> PointDeflection {
-        let tcp = &self.setup.tool().tcp;
+        let tcp = &self.arm.tool().tcp;
         let points = Points {
-            setup: self.setup,
+            arm: self.arm,
             frames,
             loaded: tcp,
             observed: tcp,
@@ -398,7 +398,7 @@ impl<'a> Model<'a> {
         q: &Vector6<f64>,
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
-        self.compensate_from(q, self.setup.robot().frames(q), wrench)
+        self.compensate_from(q, self.arm.robot().frames(q), wrench)
     }
 
     /// [`Model::compensate`] with the frames of `q` given.
@@ -408,7 +408,7 @@ impl<'a> Model<'a> {
         mut frames: Frames,
         wrench: &Vector6<f64>,
     ) -> Result<(Vector6<f64>, f64, f64, usize)> {
-        let tcp = &self.setup.tool().tcp;
+        let tcp = &self.arm.tool().tcp;
         let target = tool_pose(&frames, tcp);
         let mut qc = *q;
         let mut iterations = 0;
@@ -425,7 +425,7 @@ impl<'a> Model<'a> {
                     .into(),
             })?;
             qc += step;
-            frames = self.setup.robot().frames(&qc);
+            frames = self.arm.robot().frames(&qc);
             iterations += 1;
         }
     }
@@ -444,7 +444,7 @@ impl<'a> Model<'a> {
 /// above 0.1 micrometre / 1 microradian (`Uncompensated` with the lines of the other points that
 /// fail, `q_compensated`).
 pub fn path(
-    setup: &Setup,
+    arm: &Arm,
     compliance: &Compliance,
     points: &[PathPoint],
     options: &Options,
@@ -453,12 +453,12 @@ pub fn path(
     if let Some(free) = &options.free_tool_axis {
         free.check_grid(points.len())?;
     }
-    let model = Model::new(setup, compliance)?.at_level(options.level);
-    let nominal = nominal_postures(setup, points, options.q0, options)?;
+    let model = Model::new(arm, compliance)?.at_level(options.level);
+    let nominal = nominal_postures(arm, points, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = points
         .par_iter()
         .zip(&nominal)
-        .map(|(p, q)| base_wrench(&setup.robot().frames(q), &p.wrench, p.frame))
+        .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
     let (postures, rotations) = match &options.free_tool_axis {
         None => (nominal.clone(), vec![0.0; points.len()]),
@@ -490,7 +490,7 @@ pub const CHUNK: usize = 4096;
 /// the whole path), the first error `points` yields, [`Error::InvalidField`] (`path`) for a path
 /// without points (all as `E`), and those of `sink`.
 pub fn stream<I, F, E>(
-    setup: &Setup,
+    arm: &Arm,
     compliance: &Compliance,
     points: I,
     options: &Options,
@@ -509,25 +509,25 @@ where
             all.push(p?);
             free.check_grid(all.len())?;
         }
-        let results = path(setup, compliance, &all, options)?;
+        let results = path(arm, compliance, &all, options)?;
         for (p, r) in all.chunks(CHUNK).zip(results.chunks(CHUNK)) {
             sink(p, r)?;
         }
         return Ok(all.len());
     }
-    let model = Model::new(setup, compliance)?.at_level(options.level);
+    let model = Model::new(arm, compliance)?.at_level(options.level);
     let (mut previous, mut count) = (options.q0, 0);
     loop {
         let chunk: Vec<PathPoint> = points.by_ref().take(CHUNK).collect::<Result<_>>()?;
         if chunk.is_empty() {
             break;
         }
-        let nominal = nominal_postures(setup, &chunk, previous, options)?;
+        let nominal = nominal_postures(arm, &chunk, previous, options)?;
         previous = nominal[nominal.len() - 1];
         let wrenches: Vec<Vector6<f64>> = chunk
             .par_iter()
             .zip(&nominal)
-            .map(|(p, q)| base_wrench(&setup.robot().frames(q), &p.wrench, p.frame))
+            .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
             .collect();
         let rotations = vec![0.0; chunk.len()];
         let chosen = Chosen {
@@ -565,16 +565,16 @@ fn compensate_chosen(
     c: &Chosen,
     free: bool,
 ) -> Result<Vec<Compensated>> {
-    let setup = model.setup;
+    let arm = model.arm;
     let results: Vec<Result<Compensated>> = (0..points.len())
         .into_par_iter()
         .map(|i| {
             let q = &c.postures[i];
-            let frames = setup.robot().frames(q);
+            let frames = arm.robot().frames(q);
             let (qc, ep, eo, iterations) = model
                 .compensate_from(q, frames.clone(), &c.wrenches[i])
                 .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
-            check_compensated(setup, points[i].line, &qc, ep, eo)?;
+            check_compensated(arm, points[i].line, &qc, ep, eo)?;
             let d = model.tcp_deflection(&frames, &c.wrenches[i]);
             let deflection_std = model.std(&d);
             let deflection_interval = model
@@ -583,12 +583,12 @@ fn compensate_chosen(
                 .as_ref()
                 .map(|p| d.interval(p, model.level));
             let deflection_before = free.then(|| {
-                let frames = setup.robot().frames(&c.nominal[i]);
+                let frames = arm.robot().frames(&c.nominal[i]);
                 model.deflection(&frames, &c.wrenches[i]).0
             });
             Ok(Compensated {
                 q: *q,
-                pose: tool_pose(&frames, &setup.tool().tcp),
+                pose: tool_pose(&frames, &arm.tool().tcp),
                 wrench: c.wrenches[i],
                 deflection: d.displacement,
                 deflection_std: deflection_std.map(|s| s.0),
@@ -658,8 +658,8 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
     Ok(out)
 }
 
-fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
-    let robot = &setup.robot();
+fn check_compensated(arm: &Arm, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
+    let robot = &arm.robot();
     if let Some(v) = robot.limits().first_violation(qc) {
         return Err(uncompensated(
             line,
@@ -690,12 +690,12 @@ fn check_compensated(setup: &Setup, line: u64, qc: &Vector6<f64>, ep: f64, eo: f
 /// The nominal axis angles of every point: given, or by inverse kinematics continued from the
 /// previous point (the first from `start`).
 fn nominal_postures(
-    setup: &Setup,
+    arm: &Arm,
     points: &[PathPoint],
     start: Vector6<f64>,
     options: &Options,
 ) -> Result<Vec<Vector6<f64>>> {
-    let robot = &setup.robot();
+    let robot = &arm.robot();
     let mut previous = start;
     let mut out = Vec::with_capacity(points.len());
     for p in points {
@@ -713,7 +713,7 @@ fn nominal_postures(
                 *q
             }
             Target::Pose(t) => {
-                let q = ik::solve(robot, &setup.tool().tcp, t, &previous, &options.ik)
+                let q = ik::solve(robot, &arm.tool().tcp, t, &previous, &options.ik)
                     .map_err(|e| uncompensated(p.line, "x_mm..rz_deg", e.to_string()))?
                     .q;
                 let from = if out.is_empty() {
@@ -721,7 +721,9 @@ fn nominal_postures(
                 } else {
                     "the previous point"
                 };
-                if let Some(change) = Arm::of(robot, &q).change_from(&Arm::of(robot, &previous)) {
+                if let Some(change) =
+                    Configuration::of(robot, &q).change_from(&Configuration::of(robot, &previous))
+                {
                     return Err(uncompensated(p.line, "x_mm..rz_deg", format!("inverse kinematics reaches this pose only in another configuration than {from}'s ({change}); refused rather than switched silently: start in the configuration wanted (--q0-deg, q0_deg)")));
                 }
                 q
@@ -813,8 +815,8 @@ fn column(
     phi: f64,
     ik_options: &ik::Options,
 ) -> Column {
-    let setup = model.setup;
-    let tcp = &setup.tool().tcp;
+    let arm = model.arm;
+    let tcp = &arm.tool().tcp;
     let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi);
     let options = ik::Options {
         restarts: 0,
@@ -828,18 +830,18 @@ fn column(
             let q = match phi == 0.0 {
                 true => Some(*q),
                 false => {
-                    let mut target = tool_pose(&setup.robot().frames(q), tcp);
+                    let mut target = tool_pose(&arm.robot().frames(q), tcp);
                     target.rotation *= turn;
                     let start = previous.unwrap_or(*q);
-                    ik::solve(setup.robot(), tcp, &target, &start, &options)
-                        .or_else(|_| ik::solve(setup.robot(), tcp, &target, q, &options))
+                    ik::solve(arm.robot(), tcp, &target, &start, &options)
+                        .or_else(|_| ik::solve(arm.robot(), tcp, &target, q, &options))
                         .ok()
                         .map(|s| s.q)
                 }
             };
             previous = q;
             q.map(|q| {
-                let d = model.deflection(&setup.robot().frames(&q), w).0;
+                let d = model.deflection(&arm.robot().frames(&q), w).0;
                 (q, d.fixed_rows::<3>(0).norm())
             })
         })

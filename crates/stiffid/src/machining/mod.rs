@@ -37,7 +37,8 @@ use crate::machining::process::{Kind, Operation, Process};
 use crate::machining::program::{Dialect, JointProgram};
 use crate::observation::deflection::Frame;
 use crate::robot::ik::tool_pose;
-use crate::{Error, Result, Setup};
+use crate::setup::Arm;
+use crate::{Error, Result};
 use nalgebra::{Isometry3, Vector3, Vector6};
 
 /// The largest change of an axis angle compensation may make, deg; more means another
@@ -195,29 +196,32 @@ pub struct Report {
     pub warnings: Vec<String>,
 }
 
-/// Compensates `program` under `process` (module docs).
+/// Compensates `program` under `process` (module docs) on `arm` with the compliance `compliance`
+/// of every parameter of its model; `workpiece` is the part frame in the robot base frame (the
+/// setup's `[workpiece] base_from_part`, [`crate::setup::Workcell::workpiece`]) that a G-code
+/// program's positions are in.
 ///
 /// # Errors
-/// [`Error::InvalidField`] for a G-code program without `[workpiece] base_from_part` in the
-/// setup; [`Error::Program`] naming the line of a point whose `(operation: NAME)` names no
+/// [`Error::InvalidField`] for a G-code program without a `workpiece`; [`Error::Program`] naming the line of a point whose `(operation: NAME)` names no
 /// operation, or whose compensation changes the configuration; those of [`compensate::path`]
 /// (joint limits, unreachable poses, naming the line).
 pub fn compensate(
-    setup: &Setup,
+    arm: &Arm,
+    workpiece: Option<&Isometry3<f64>>,
     compliance: &Compliance,
     program: &Program,
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
-    let poses = poses(setup, program)?;
+    let poses = poses(arm, workpiece, program)?;
     let operations = operations(program, process)?;
     let weight = |pose: &Isometry3<f64>| {
-        setup.payload().map_or(Vector6::zeros(), |p| {
-            p.wrench(&pose.rotation, &setup.tool().tcp)
+        arm.payload().map_or(Vector6::zeros(), |p| {
+            p.wrench(&pose.rotation, &arm.tool().tcp)
         })
     };
     let (points, warnings) = path_points(&poses, &operations, weight);
-    let results = compensate::path(setup, compliance, &points, options)?;
+    let results = compensate::path(arm, compliance, &points, options)?;
     check_configuration(&points, &results)?;
     let program = match program {
         Program::Robot(p) => {
@@ -228,12 +232,12 @@ pub fn compensate(
             p.write(&q)?
         }
         Program::GCode(g) => {
-            let part = workpiece(setup)?.inverse();
-            let tcp = &setup.tool().tcp;
+            let part = part_frame(workpiece)?.inverse();
+            let tcp = &arm.tool().tcp;
             let positions: Vec<Vector3<f64>> = results
                 .iter()
                 .map(|r| {
-                    let pose = tool_pose(&setup.robot().frames(&r.q_compensated), tcp);
+                    let pose = tool_pose(&arm.robot().frames(&r.q_compensated), tcp);
                     part * nalgebra::Point3::from(pose.translation.vector)
                 })
                 .map(|p| p.coords)
@@ -250,18 +254,23 @@ pub fn compensate(
     })
 }
 
-fn workpiece(setup: &Setup) -> Result<Isometry3<f64>> {
-    setup.workpiece().copied().ok_or_else(|| Error::InvalidField {
+/// The part frame a G-code program needs: the setup's `[workpiece] base_from_part`.
+fn part_frame(workpiece: Option<&Isometry3<f64>>) -> Result<Isometry3<f64>> {
+    workpiece.copied().ok_or_else(|| Error::InvalidField {
         field: "workpiece.base_from_part".into(),
         message: "missing: a G-code program needs the part frame in the robot base frame ([workpiece] base_from_part = { xyz_mm = [..], rpy_deg = [..] } in the setup file)".into(),
     })
 }
 
 /// Each point's line, target and nominal TCP pose (base frame).
-fn poses(setup: &Setup, program: &Program) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
+fn poses(
+    arm: &Arm,
+    workpiece: Option<&Isometry3<f64>>,
+    program: &Program,
+) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
     match program {
         Program::GCode(g) => {
-            let base = workpiece(setup)?;
+            let base = part_frame(workpiece)?;
             Ok(g.points
                 .iter()
                 .map(|p| {
@@ -275,7 +284,7 @@ fn poses(setup: &Setup, program: &Program) -> Result<Vec<(u64, Target, Isometry3
             .iter()
             .map(|t| {
                 let q = nalgebra::Vector6::from(t.q_deg).map(f64::to_radians);
-                let pose = tool_pose(&setup.robot().frames(&q), &setup.tool().tcp);
+                let pose = tool_pose(&arm.robot().frames(&q), &arm.tool().tcp);
                 (t.line, Target::Posture(q), pose)
             })
             .collect()),

@@ -27,25 +27,25 @@
 //! `the_complementary_stiffness_is_about_a_thousandth_of_the_deflection`).
 
 use crate::robot::kinematics::Frames;
-use crate::Setup;
+use crate::setup::Arm;
 use nalgebra::{DVector, Matrix6, Vector3};
 
 /// `C_x = J_p diag(h) J_p^T` (6x6, symmetric, base frame, SI blocks as in the module docs) of the
 /// tool point `point` (flange frame, m) in the posture `frames`, with the compliance `h` of every
-/// parameter of the setup's model (rad/Nm, m/N; drives first): `J_p` the augmented Jacobian
+/// parameter of the arm's model (rad/Nm, m/N; drives first): `J_p` the augmented Jacobian
 /// ([`crate::model::Model::jacobian`]), so that with virtual springs
 /// `C_x = J_q K^-1 J_q^T + sum_s c_s J_s J_s^T`.
 ///
 /// # Panics
 /// If `h` does not have one value per parameter.
 pub fn compliance(
-    setup: &Setup,
+    arm: &Arm,
     frames: &Frames,
     point: &Vector3<f64>,
     h: &DVector<f64>,
 ) -> Matrix6<f64> {
-    assert_eq!(h.len(), setup.model().len(), "one compliance per parameter");
-    let j = setup.model().jacobian(setup.robot(), frames, point);
+    assert_eq!(h.len(), arm.model().len(), "one compliance per parameter");
+    let j = arm.model().jacobian(arm.robot(), frames, point);
     let mut jh = j.clone();
     for (c, mut col) in jh.column_iter_mut().enumerate() {
         col *= h[c];
@@ -60,7 +60,7 @@ fn symmetric(a: Matrix6<f64>) -> Matrix6<f64> {
 }
 
 /// `K_x = C_x^-1` (6x6, symmetric, base frame, SI blocks as in the module docs) of the tool point
-/// `point` (flange frame, m), with the compliance `h` of every parameter of the setup's model.
+/// `point` (flange frame, m), with the compliance `h` of every parameter of the arm's model.
 /// For the drives alone it is computed from the inverse Jacobian, `J_p^-T diag(1/h) J_p^-1`, not
 /// by inverting `C_x` (whose condition number is the square of `J_p`'s); with virtual springs
 /// (`J_p` is 6 x n) by inverting `C_x`. `None` where it is singular (numerically: not invertible
@@ -69,22 +69,22 @@ fn symmetric(a: Matrix6<f64>) -> Matrix6<f64> {
 /// # Panics
 /// If `h` does not have one value per parameter.
 pub fn stiffness(
-    setup: &Setup,
+    arm: &Arm,
     frames: &Frames,
     point: &Vector3<f64>,
     h: &DVector<f64>,
 ) -> Option<Matrix6<f64>> {
-    assert_eq!(h.len(), setup.model().len(), "one compliance per parameter");
-    let kx = match setup.model().is_drives_only() {
+    assert_eq!(h.len(), arm.model().len(), "one compliance per parameter");
+    let kx = match arm.model().is_drives_only() {
         true => {
-            let inv = frames.jacobian(point, setup.springs()).try_inverse()?;
+            let inv = frames.jacobian(point, arm.springs()).try_inverse()?;
             let mut kj = inv;
             for (r, mut row) in kj.row_iter_mut().enumerate() {
                 row *= 1.0 / h[r];
             }
             symmetric(inv.transpose() * kj)
         }
-        false => symmetric(compliance(setup, frames, point, h).try_inverse()?),
+        false => symmetric(compliance(arm, frames, point, h).try_inverse()?),
     };
     kx.iter().all(|v| v.is_finite()).then_some(kx)
 }

@@ -17,7 +17,7 @@
 //! map is linear in h).
 
 use crate::robot::kinematics::Frames;
-use crate::Setup;
+use crate::setup::Arm;
 use nalgebra::{DMatrix, DVector, Matrix6, Matrix6xX, Vector3, Vector6};
 use serde::{Deserialize, Serialize};
 
@@ -75,12 +75,12 @@ pub fn base_wrench(frames: &Frames, wrench: &Vector6<f64>, frame: Frame) -> Vect
     }
 }
 
-/// Where a wrench acts and where the deflection is wanted, in one posture of a setup's robot,
-/// over the setup's model ([`crate::model`]: the drives and the virtual springs).
+/// Where a wrench acts and where the deflection is wanted, in one posture of an arm's robot,
+/// over the arm's model ([`crate::model`]: the drives and the virtual springs).
 #[derive(Debug, Clone, Copy)]
 pub struct Points<'a> {
-    /// The setup: robot, model (drive coordinates, virtual springs).
-    pub setup: &'a Setup,
+    /// The arm: robot, model (drive coordinates, virtual springs).
+    pub arm: &'a Arm,
     /// The posture's kinematics.
     pub frames: &'a Frames,
     /// Where the wrench acts, flange frame, m.
@@ -105,13 +105,13 @@ pub struct PointDeflection {
 
 impl Points<'_> {
     /// The deflection under `wrench` (`[f; m]`, N and Nm, base frame, at the loaded point) with
-    /// the compliance `h` of every parameter of the setup's model (rad/Nm, m/N; drives first),
+    /// the compliance `h` of every parameter of the arm's model (rad/Nm, m/N; drives first),
     /// by the augmented Jacobians ([`crate::model::Model::jacobian`]).
     ///
     /// # Panics
     /// If `h` does not have one value per parameter ([`crate::model::Compliance::check`]).
     pub fn deflection(&self, wrench: &Vector6<f64>, h: &DVector<f64>) -> PointDeflection {
-        let (model, robot) = (self.setup.model(), self.setup.robot());
+        let (model, robot) = (self.arm.model(), self.arm.robot());
         assert_eq!(h.len(), model.len(), "one compliance per parameter");
         let jb = model.jacobian(robot, self.frames, self.observed);
         let torques = match self.loaded == self.observed {

@@ -3,7 +3,8 @@
 
 use crate::observation::stiffness::joint_torques;
 use crate::observation::{point_rows, SpringLoads};
-use crate::{Error, MeasurementField, Result, Setup};
+use crate::setup::Arm;
+use crate::{Error, MeasurementField, Result};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
 use std::collections::HashMap;
 
@@ -24,7 +25,7 @@ pub struct Measurement {
     /// order of first appearance). Measurements of the same posture must have the same axis
     /// angles.
     pub posture: usize,
-    /// Index of the measuring point in the setup's tool, 0-based.
+    /// Index of the measuring point in the arm's tool, 0-based.
     pub point: usize,
     /// Axis angles q, rad (controller convention).
     pub q: Vector6<f64>,
@@ -37,7 +38,7 @@ pub struct Measurement {
 /// The observation matrix and measured displacements of a list of measurements.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Observations {
-    /// `Psi`, `3n x c` for n measurements and the `c` parameters of the setup's model (six drives,
+    /// `Psi`, `3n x c` for n measurements and the `c` parameters of the arm's model (six drives,
     /// then the virtual springs), m per (rad/Nm) or per (m/N) (Eq. 11), rows in the order of the
     /// [module docs](crate::observation).
     pub psi: DMatrix<f64>,
@@ -55,12 +56,12 @@ impl Observations {
     ///
     /// # Errors
     /// Those of [`check`].
-    pub fn from_measurements(setup: &Setup, measurements: &[Measurement]) -> Result<Self> {
-        let (postures, posture_index) = check(setup, measurements)?;
+    pub fn from_measurements(arm: &Arm, measurements: &[Measurement]) -> Result<Self> {
+        let (postures, posture_index) = check(arm, measurements)?;
         let n = measurements.len();
-        let mut psi = DMatrix::zeros(3 * n, setup.model().len());
+        let mut psi = DMatrix::zeros(3 * n, arm.model().len());
         let mut delta = DVector::zeros(3 * n);
-        assemble(setup, measurements, &mut psi, &mut delta);
+        assemble(arm, measurements, &mut psi, &mut delta);
         Ok(Observations {
             psi,
             delta,
@@ -76,14 +77,14 @@ impl Observations {
 ///
 /// # Errors
 /// [`Error::Measurement`] naming the measurement (1-based) and what is wrong: a measuring point the
-/// setup lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
+/// arm lacks (`point`), a non-finite axis angle or one outside the robot's joint limits (`q1` ..
 /// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
 /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
 /// angles (`posture`).
-pub fn check(setup: &Setup, measurements: &[Measurement]) -> Result<(usize, Vec<usize>)> {
+pub fn check(arm: &Arm, measurements: &[Measurement]) -> Result<(usize, Vec<usize>)> {
     let mut check = Check::default();
     let mut posture_index = Vec::with_capacity(measurements.len());
-    check.push(setup, measurements, Some(&mut posture_index))?;
+    check.push(arm, measurements, Some(&mut posture_index))?;
     Ok((check.postures(), posture_index))
 }
 
@@ -107,14 +108,14 @@ impl Check {
     /// Those of [`check`], numbering measurements over all parts.
     pub fn push(
         &mut self,
-        setup: &Setup,
+        arm: &Arm,
         measurements: &[Measurement],
         mut posture_index: Option<&mut Vec<usize>>,
     ) -> Result<()> {
         for meas in measurements {
             self.measurements += 1;
             let number = self.measurements;
-            check_one(setup, number, meas)?;
+            check_one(arm, number, meas)?;
             let next = (self.angles.len(), number);
             let (index, first) = self.table.entry(meas.posture, next);
             if index == self.angles.len() {
@@ -150,15 +151,15 @@ impl Check {
 
 /// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x c`) and `delta`
 /// (`3n`), in the row order of the [module docs](crate::observation): the six drive columns and
-/// the first `c - 6` virtual springs of the setup's model ([`crate::model`]). Frames are computed
+/// the first `c - 6` virtual springs of the arm's model ([`crate::model`]). Frames are computed
 /// once per run of measurements with the same axis angles, torques once per run with the same
 /// angles and wrench.
 ///
 /// # Panics
 /// If `psi` or `delta` do not have three rows per measurement, `psi` has fewer than six columns or
-/// more than the model's parameters, or a measuring point is not the setup's.
+/// more than the model's parameters, or a measuring point is not the arm's.
 pub fn assemble(
-    setup: &Setup,
+    arm: &Arm,
     measurements: &[Measurement],
     psi: &mut DMatrix<f64>,
     delta: &mut DVector<f64>,
@@ -169,20 +170,20 @@ pub fn assemble(
         // One run of measurements with the same axis angles: its frames (computed in place, not
         // moved: they are large), and the torques of the previous measurement's wrench.
         let first = &measurements[i];
-        let frames = setup.robot().frames(&first.q);
+        let frames = arm.robot().frames(&first.q);
         let springs = psi.ncols() - 6;
-        let mut tau = joint_torques(setup, &frames, &first.wrench);
-        let mut loads = SpringLoads::new(setup, &frames, &first.wrench, springs);
+        let mut tau = joint_torques(arm, &frames, &first.wrench);
+        let mut loads = SpringLoads::new(arm, &frames, &first.wrench, springs);
         let mut previous = first;
         while let Some(meas) = measurements.get(i).filter(|m| m.q == first.q) {
             if previous.wrench != meas.wrench {
-                tau = joint_torques(setup, &frames, &meas.wrench);
-                loads = SpringLoads::new(setup, &frames, &meas.wrench, springs);
+                tau = joint_torques(arm, &frames, &meas.wrench);
+                loads = SpringLoads::new(arm, &frames, &meas.wrench, springs);
             }
             previous = meas;
-            let point = &setup.tool().measuring_points[meas.point];
+            let point = &arm.tool().measuring_points[meas.point];
             psi.fixed_view_mut::<3, 6>(3 * i, 0)
-                .copy_from(&point_rows(setup, &frames, point, &tau));
+                .copy_from(&point_rows(arm, &frames, point, &tau));
             loads.write_rows(&frames, point, psi, 3 * i);
             delta
                 .fixed_rows_mut::<3>(3 * i)
@@ -192,13 +193,13 @@ pub fn assemble(
     }
 }
 
-fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
+fn check_one(arm: &Arm, number: usize, meas: &Measurement) -> Result<()> {
     let error = |field, message: String| Error::Measurement {
         number,
         field,
         message,
     };
-    let points = setup.tool().measuring_points.len();
+    let points = arm.tool().measuring_points.len();
     if meas.point >= points {
         return Err(error(
             MeasurementField::Point,
@@ -208,7 +209,7 @@ fn check_one(setup: &Setup, number: usize, meas: &Measurement) -> Result<()> {
             ),
         ));
     }
-    let robot = &setup.robot();
+    let robot = &arm.robot();
     if let Some(v) = robot.limits().first_violation(&meas.q) {
         let message = match v.value.is_finite() {
             false => "the axis angle is not finite".to_string(),

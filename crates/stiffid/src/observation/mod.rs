@@ -31,19 +31,19 @@ pub use measurement::{
 use crate::model::Placed;
 use crate::observation::stiffness::joint_torques;
 use crate::robot::kinematics::Frames;
-use crate::setup::Setup;
+use crate::setup::{Arm, Setup, Tool};
 use nalgebra::{DMatrix, Matrix3x6, Matrix6, MatrixXx6, Vector3, Vector6};
 
 /// The three translation rows of the measuring point `point` (flange frame, m; any point, so no
 /// index can be out of range) under joint torques `tau` (Nm): `J_m[0..3, j] * tau_j`, the
-/// Jacobian in the setup's spring coordinates.
+/// Jacobian in the arm's spring coordinates.
 pub fn point_rows(
-    setup: &Setup,
+    arm: &Arm,
     frames: &Frames,
     point: &Vector3<f64>,
     tau: &Vector6<f64>,
 ) -> Matrix3x6<f64> {
-    let jm = frames.jacobian(point, setup.springs());
+    let jm = frames.jacobian(point, arm.springs());
     let mut rows = jm.fixed_rows::<3>(0).into_owned();
     for (j, mut col) in rows.column_iter_mut().enumerate() {
         col *= tau[j];
@@ -52,12 +52,12 @@ pub fn point_rows(
 }
 
 /// The `3p x n` block of one posture under a wrench `[f; m]` (N, Nm, base frame) at the loading
-/// point, `n` the parameters of the setup's model ([`Setup::model`]: the six drives, then the
+/// point, `n` the parameters of the arm's model ([`Arm::model`]: the six drives, then the
 /// virtual springs).
-pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> DMatrix<f64> {
-    let n = setup.model().len();
-    let mut block = DMatrix::zeros(3 * setup.tool().measuring_points.len(), n);
-    write_posture_block(setup, frames, wrench, &mut block, 0);
+pub fn posture_block(arm: &Arm, frames: &Frames, wrench: &Vector6<f64>) -> DMatrix<f64> {
+    let n = arm.model().len();
+    let mut block = DMatrix::zeros(3 * arm.tool().measuring_points.len(), n);
+    write_posture_block(arm, frames, wrench, &mut block, 0);
     block
 }
 
@@ -69,17 +69,17 @@ pub fn posture_block(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> D
 /// If `psi` has fewer than `first + 3p` rows or fewer than six columns, or more columns than
 /// the model has parameters.
 pub fn write_posture_block(
-    setup: &Setup,
+    arm: &Arm,
     frames: &Frames,
     wrench: &Vector6<f64>,
     psi: &mut DMatrix<f64>,
     first: usize,
 ) {
-    let tau = joint_torques(setup, frames, wrench);
-    let springs = SpringLoads::new(setup, frames, wrench, psi.ncols() - 6);
-    for (k, point) in setup.tool().measuring_points.iter().enumerate() {
+    let tau = joint_torques(arm, frames, wrench);
+    let springs = SpringLoads::new(arm, frames, wrench, psi.ncols() - 6);
+    for (k, point) in arm.tool().measuring_points.iter().enumerate() {
         psi.fixed_view_mut::<3, 6>(first + 3 * k, 0)
-            .copy_from(&point_rows(setup, frames, point, &tau));
+            .copy_from(&point_rows(arm, frames, point, &tau));
         springs.write_rows(frames, point, psi, first + 3 * k);
     }
 }
@@ -94,20 +94,20 @@ pub struct SpringLoads {
 }
 
 impl SpringLoads {
-    /// The first `count` virtual springs of the setup's model at the posture `frames`, loaded by
+    /// The first `count` virtual springs of the arm's model at the posture `frames`, loaded by
     /// the wrench `[f; m]` (N, Nm, base frame) at the loading point.
     ///
     /// # Panics
     /// If the model has fewer than `count` virtual springs.
-    pub fn new(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>, count: usize) -> Self {
+    pub fn new(arm: &Arm, frames: &Frames, wrench: &Vector6<f64>, count: usize) -> Self {
         if count == 0 {
             return Self::default();
         }
-        let springs = &setup.model().springs()[..count];
-        let loading = frames.point(&setup.tool().loading_point);
+        let springs = &arm.model().springs()[..count];
+        let loading = frames.point(&arm.tool().loading_point);
         let placed: Vec<Placed> = springs
             .iter()
-            .map(|s| s.placed(setup.robot(), frames))
+            .map(|s| s.placed(arm.robot(), frames))
             .collect();
         let loads = springs
             .iter()
@@ -157,7 +157,7 @@ pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMat
     for (i, q) in postures.iter().enumerate() {
         let frames = setup.robot().frames(q);
         let wrench = setup.rope_wrench(&frames);
-        write_posture_block(setup, &frames, &wrench, &mut psi, p3 * i);
+        write_posture_block(setup.arm(), &frames, &wrench, &mut psi, p3 * i);
     }
     psi
 }
@@ -174,8 +174,8 @@ pub fn rope_observation_matrix(setup: &Setup, postures: &[Vector6<f64>]) -> DMat
 /// so `B^T B = C^T C`, and the stacked `C` of a group have the triangular factor, column norms and
 /// singular values of `Psi` (an orthogonal change of rows, no normal equations) on `min(3p, 6)`
 /// rows per posture instead of `3p`.
-pub(crate) fn points_factor(setup: &Setup) -> Matrix6<f64> {
-    let points = &setup.tool().measuring_points;
+pub(crate) fn points_factor(tool: &Tool) -> Matrix6<f64> {
+    let points = &tool.measuring_points;
     let rows = DMatrix::from_fn(3 * points.len(), 6, |r, c| {
         let p = points[r / 3];
         match c {
@@ -195,7 +195,7 @@ pub(crate) fn compact_posture_block(
     frames: &Frames,
     points_factor: &Matrix6<f64>,
 ) -> Matrix6<f64> {
-    let tau = joint_torques(setup, frames, &setup.rope_wrench(frames));
+    let tau = joint_torques(setup.arm(), frames, &setup.rope_wrench(frames));
     let body = frames.body_jacobian(setup.springs());
     // R_P is upper triangular: row i of R_P J_b starts at column i of R_P.
     Matrix6::from_fn(|i, j| {
@@ -225,7 +225,7 @@ pub fn rope_block_gradient(
     weight: &MatrixXx6<f64>,
 ) -> Vector6<f64> {
     let wrench = setup.rope_wrench(frames);
-    let tau = joint_torques(setup, frames, &wrench);
+    let tau = joint_torques(setup.arm(), frames, &wrench);
     let mut c = Vector6::zeros();
     let mut grad = Vector6::zeros();
     for (k, p) in setup.tool().measuring_points.iter().enumerate() {
@@ -269,11 +269,11 @@ mod tests {
             .unwrap();
         let fanuc = crate::setup::builtin("fanuc-r2000ic-165f").unwrap();
         for (setup, rows) in [(&paper, 6), (&two_points, 6), (&fanuc, 3)] {
-            let factor = points_factor(setup);
+            let factor = points_factor(setup.tool());
             assert!(factor.rows(rows, 6 - rows).iter().all(|&x| x == 0.0));
             for q in setup.random_postures(5, 7) {
                 let frames = setup.robot().frames(&q);
-                let b = posture_block(setup, &frames, &setup.rope_wrench(&frames));
+                let b = posture_block(setup.arm(), &frames, &setup.rope_wrench(&frames));
                 let c = compact_posture_block(setup, &frames, &factor);
                 let (bb, cc) = (b.transpose() * &b, c.transpose() * c);
                 let scale = bb.amax();

@@ -61,7 +61,7 @@ fn spring_columns_are_finite_differences_of_the_virtual_joint() {
     for q in setup.random_postures(4, 3) {
         let frames = setup.robot().frames(&q);
         let wrench = setup.rope_wrench(&frames) + Vector6::new(0.0, 0.0, 0.0, 30.0, -20.0, 10.0);
-        let block = posture_block(&setup, &frames, &wrench);
+        let block = posture_block(setup.arm(), &frames, &wrench);
         assert_eq!(block.ncols(), setup.model().len());
         let pf = frames.point(&setup.tool().loading_point);
         for (s, spring) in setup.model().springs().iter().enumerate() {
@@ -87,7 +87,9 @@ fn spring_columns_are_finite_differences_of_the_virtual_joint() {
         }
         // The drive columns are those of the drives-only model.
         let drives = posture_block(
-            &crate::setup::builtin("zhang2021-comau-nj165").unwrap(),
+            crate::setup::builtin("zhang2021-comau-nj165")
+                .unwrap()
+                .arm(),
             &frames,
             &wrench,
         );

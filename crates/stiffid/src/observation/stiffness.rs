@@ -1,7 +1,7 @@
 //! The forward model of the Virtual Joint Method (Zhang et al. 2021, Eq. 3-7).
 
 use crate::robot::kinematics::Frames;
-use crate::setup::Setup;
+use crate::setup::{Arm, Setup};
 use nalgebra::{Vector3, Vector6};
 
 /// What a wrench does to a posture: joint torques, joint deflections and the displacement of every
@@ -18,28 +18,28 @@ pub struct Deflection {
 }
 
 /// Joint torques `tau = J_f^T W` (Eq. 4), Nm, of a wrench `[f; m]` (N, Nm, base frame) at the
-/// setup's loading point, in the coordinates of the springs.
-pub fn joint_torques(setup: &Setup, frames: &Frames, wrench: &Vector6<f64>) -> Vector6<f64> {
+/// arm's loading point, in the coordinates of the springs.
+pub fn joint_torques(arm: &Arm, frames: &Frames, wrench: &Vector6<f64>) -> Vector6<f64> {
     frames
-        .jacobian(&setup.tool().loading_point, setup.springs())
+        .jacobian(&arm.tool().loading_point, arm.springs())
         .tr_mul(wrench)
 }
 
 /// The deflection of the posture `frames` under a wrench `[f; m]` (N, Nm, base frame, at the loading
 /// point) with joint stiffness `stiffness` (Nm/rad) (Eq. 3-7).
 pub fn deflection(
-    setup: &Setup,
+    arm: &Arm,
     frames: &Frames,
     wrench: &Vector6<f64>,
     stiffness: &Vector6<f64>,
 ) -> Deflection {
-    let torques = joint_torques(setup, frames, wrench);
+    let torques = joint_torques(arm, frames, wrench);
     let joint_deflections = torques.component_div(stiffness);
-    let displacements = setup
+    let displacements = arm
         .tool()
         .measuring_points
         .iter()
-        .map(|p| frames.jacobian(p, setup.springs()) * joint_deflections)
+        .map(|p| frames.jacobian(p, arm.springs()) * joint_deflections)
         .collect();
     Deflection {
         torques,
@@ -56,7 +56,7 @@ pub fn rope_displacements(
     stiffness: &Vector6<f64>,
 ) -> Vec<Vector3<f64>> {
     let wrench = setup.rope_wrench(frames);
-    deflection(setup, frames, &wrench, stiffness)
+    deflection(setup.arm(), frames, &wrench, stiffness)
         .displacements
         .iter()
         .map(|d| d.fixed_rows::<3>(0).into_owned())

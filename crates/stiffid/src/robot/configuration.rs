@@ -40,7 +40,7 @@ const MARGIN: f64 = 1e-6;
 
 /// The configuration of a posture (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Arm {
+pub struct Configuration {
     /// Axis angles q1..q6, deg.
     pub q_deg: [f64; 6],
     /// The wrist centre's distance in front of axis 1 along the forward direction, m (negative:
@@ -50,7 +50,7 @@ pub struct Arm {
     pub elbow: f64,
 }
 
-impl Arm {
+impl Configuration {
     /// The configuration of `robot` at axis angles `q` (rad).
     pub fn of(robot: &Robot, q: &Vector6<f64>) -> Self {
         let f = robot.frames(q);
@@ -134,7 +134,7 @@ impl Arm {
 
     /// What differs from `other` among the shoulder, elbow and wrist choices, each compared only
     /// where both postures are clear of the boundary; `None` when they agree.
-    pub fn change_from(&self, other: &Arm) -> Option<String> {
+    pub fn change_from(&self, other: &Configuration) -> Option<String> {
         let clear = |a: f64, b: f64| a.abs() > MARGIN && b.abs() > MARGIN;
         let mut changes = Vec::new();
         if clear(self.front, other.front) && self.behind() != other.behind() {
@@ -169,9 +169,9 @@ mod tests {
     use super::*;
     use crate::robot::presets;
 
-    fn arm(robot: &str, q_deg: [f64; 6]) -> Arm {
+    fn arm(robot: &str, q_deg: [f64; 6]) -> Configuration {
         let robot = presets::get(robot).unwrap();
-        Arm::of(&robot, &Vector6::from(q_deg).map(f64::to_radians))
+        Configuration::of(&robot, &Vector6::from(q_deg).map(f64::to_radians))
     }
 
     #[test]
@@ -200,12 +200,12 @@ mod tests {
         let robot = presets::get("kuka-kr210-robond").unwrap();
         // The model's zero: upper arm up, forearm forward (the URDF's axis angles).
         let q = Vector6::new(0.0, 0.0, 0.0, 0.0, 45.0, 0.0).map(f64::to_radians);
-        let a = Arm::of(&robot, &q);
+        let a = Configuration::of(&robot, &q);
         assert!(!a.elbow_down() && !a.behind(), "{a:?}");
         let mut flipped = q;
         flipped[4] = -flipped[4];
-        let change = Arm::of(&robot, &flipped).change_from(&a).unwrap();
+        let change = Configuration::of(&robot, &flipped).change_from(&a).unwrap();
         assert!(change.contains("wrist flips"), "{change}");
-        assert_eq!(Arm::of(&robot, &q).change_from(&a), None);
+        assert_eq!(Configuration::of(&robot, &q).change_from(&a), None);
     }
 }

@@ -45,7 +45,7 @@ fn mesh_setup() -> Setup {
 /// The first body of `part` at posture `q`.
 fn body(setup: &Setup, q: &Vector6<f64>, part: Part) -> Body {
     let frames = setup.robot().frames(q);
-    cell::bodies(setup, &frames)
+    cell::bodies(setup.arm(), &frames)
         .into_iter()
         .find(|b| b.part() == part)
         .unwrap()
@@ -222,7 +222,7 @@ fn capsules_are_the_fallback_and_the_users_override() {
     assert!(setup.shapes().is_none());
     close(setup.geometry().link_radii[1], 0.3, 1e-12);
     let frames = setup.robot().frames(&Vector6::zeros());
-    assert!(cell::bodies(&setup, &frames)
+    assert!(cell::bodies(setup.arm(), &frames)
         .iter()
         .all(|b| matches!(b, Body::Capsule(_))));
     // Without a mesh reader, a URDF robot has capsules.

@@ -48,7 +48,7 @@ fn measure(
     for (posture, q) in postures.iter().enumerate() {
         let frames = truth.robot().frames(q);
         let wrench = truth.rope_wrench(&frames);
-        let d = posture_block(truth, &frames, &wrench) * h;
+        let d = posture_block(truth.arm(), &frames, &wrench) * h;
         for point in 0..truth.tool().measuring_points.len() {
             let noise = Vector3::from_fn(|_, _| sigma * normal.sample(&mut rng));
             out.push(Measurement {
@@ -78,7 +78,7 @@ fn a_declared_candidate_is_in_the_pool_and_recovered_noise_free() {
     let h = truth.model_nominal_compliance().unwrap();
     let postures = random_group(&truth, 14, 3);
     let data = measure(&truth, &postures, &h, 0.0, 0);
-    let obs = Observations::from_measurements(&truth, &data).unwrap();
+    let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     let f = fit(&obs, &truth.model().parameters()).unwrap();
     for j in 0..7 {
         assert!(
@@ -243,7 +243,7 @@ fn a_lost_motion_is_recovered_from_load_steps() {
         let frames = truth.robot().frames(q);
         for level in [0.3, 0.65, 1.0] {
             let wrench = truth.rope_wrench(&frames) * level;
-            let d = posture_block(&truth, &frames, &wrench) * &h;
+            let d = posture_block(truth.arm(), &frames, &wrench) * &h;
             for point in 0..truth.tool().measuring_points.len() {
                 data.push(Measurement {
                     posture,
@@ -255,7 +255,7 @@ fn a_lost_motion_is_recovered_from_load_steps() {
             }
         }
     }
-    let obs = Observations::from_measurements(&truth, &data).unwrap();
+    let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     let f = fit(&obs, &truth.model().parameters()).unwrap();
     for j in 0..7 {
         assert!(

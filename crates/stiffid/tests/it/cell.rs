@@ -78,7 +78,7 @@ fn segment_against_a_capsule() {
 fn capsules_follow_the_comau_kinematics() {
     let setup = paper_with("").unwrap();
     let q = deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]);
-    let bodies = cell::capsules(&setup, &setup.robot().frames(&q));
+    let bodies = cell::capsules(setup.arm(), &setup.robot().frames(&q));
     let base = bodies[0];
     assert_eq!(base.part, Part::Base);
     assert_relative_eq!(base.a, Vector3::zeros(), epsilon = 1e-12);

@@ -51,7 +51,7 @@ pub fn synthetic(
     for (i, q) in postures.iter().enumerate() {
         let frames = setup.robot().frames(q);
         let w = wrench(i, q);
-        let d = stiffness::deflection(setup, &frames, &w, setup.nominal_stiffness().unwrap());
+        let d = stiffness::deflection(setup.arm(), &frames, &w, setup.nominal_stiffness().unwrap());
         for (point, disp) in d.displacements.iter().enumerate() {
             out.push(Measurement {
                 posture: i,

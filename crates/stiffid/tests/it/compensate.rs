@@ -47,14 +47,15 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
         let h = s.nominal_compliance().unwrap();
         for q in s.test_postures() {
             let frames = s.robot().frames(q);
-            let c = cartesian::compliance(&s, &frames, &s.tool().tcp, &dv(&h));
+            let c = cartesian::compliance(s.arm(), &frames, &s.tool().tcp, &dv(&h));
             let unloaded = tool_pose(&frames, &s.tool().tcp);
             for k in 0..6 {
                 let eps = if k < 3 { 50.0 } else { 20.0 };
                 let at = |sign: f64| {
                     let w = Vector6::from_fn(|i, _| if i == k { sign * eps } else { 0.0 });
-                    let dq = stiffness::deflection(&s, &frames, &w, s.nominal_stiffness().unwrap())
-                        .joint_deflections;
+                    let dq =
+                        stiffness::deflection(s.arm(), &frames, &w, s.nominal_stiffness().unwrap())
+                            .joint_deflections;
                     -pose_error(&unloaded, &deflected_pose(&s, q, &dq))
                 };
                 let column = (at(1.0) - at(-1.0)) / (2.0 * eps);
@@ -68,7 +69,7 @@ fn cartesian_compliance_matches_finite_differences_of_the_forward_model() {
                     );
                 }
             }
-            let kx = cartesian::stiffness(&s, &frames, &s.tool().tcp, &dv(&h)).unwrap();
+            let kx = cartesian::stiffness(s.arm(), &frames, &s.tool().tcp, &dv(&h)).unwrap();
             assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-8);
         }
     }
@@ -103,14 +104,14 @@ fn a_tool_frame_wrench_is_the_base_wrench_rotated_by_the_flange() {
     );
     // A wrench at another tool point: the deflection of the TCP equals J_tcp h .* J_a^T W.
     let points = Points {
-        setup: &s,
+        arm: s.arm(),
         frames: &frames,
         loaded: &s.tool().loading_point,
         observed: &s.tool().tcp,
     };
     let d = points.deflection(&rotated, &dv(&s.nominal_compliance().unwrap()));
     let expected = frames.jacobian(&s.tool().tcp, s.springs())
-        * stiffness::deflection(&s, &frames, &rotated, s.nominal_stiffness().unwrap())
+        * stiffness::deflection(s.arm(), &frames, &rotated, s.nominal_stiffness().unwrap())
             .joint_deflections;
     assert_relative_eq!(d.displacement, expected, max_relative = 1e-12);
 }
@@ -132,7 +133,7 @@ fn covariance_propagation_agrees_with_monte_carlo() {
     let q = s.test_postures()[0];
     let frames = s.robot().frames(&q);
     let points = Points {
-        setup: &s,
+        arm: s.arm(),
         frames: &frames,
         loaded: &s.tool().loading_point,
         observed: &s.tool().tcp,
@@ -245,14 +246,15 @@ fn a_compensated_posture_loaded_reaches_the_nominal_pose() {
         let s = loaded_at_tcp(name);
         let compliance = s.model_compliance("test").unwrap();
         let path = line_path(&s, 25);
-        let out = compensate::path(&s, &compliance, &path, &options(&s, None)).unwrap();
+        let out = compensate::path(s.arm(), &compliance, &path, &options(&s, None)).unwrap();
         for (p, c) in path.iter().zip(&out) {
             let Target::Pose(nominal) = &p.target else {
                 unreachable!()
             };
             let frames = s.robot().frames(&c.q_compensated);
-            let dq = stiffness::deflection(&s, &frames, &c.wrench, s.nominal_stiffness().unwrap())
-                .joint_deflections;
+            let dq =
+                stiffness::deflection(s.arm(), &frames, &c.wrench, s.nominal_stiffness().unwrap())
+                    .joint_deflections;
             let e = pose_error(nominal, &deflected_pose(&s, &c.q_compensated, &dq));
             assert!(e.fixed_rows::<3>(0).norm() < 1e-7, "{name}: {e}");
             assert!(e.fixed_rows::<3>(3).norm() < 1e-6, "{name}: {e}");
@@ -277,7 +279,7 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
         max_step: 3f64.to_radians(),
         range: 60f64.to_radians(),
     };
-    let out = compensate::path(&s, &compliance, &path, &options(&s, Some(free))).unwrap();
+    let out = compensate::path(s.arm(), &compliance, &path, &options(&s, Some(free))).unwrap();
     let norm = |d: &Vector6<f64>| d.fixed_rows::<3>(0).norm();
     let (mut before, mut after) = (0.0, 0.0);
     for (i, (p, c)) in path.iter().zip(&out).enumerate() {
@@ -318,13 +320,14 @@ fn the_free_tool_axis_keeps_the_path_angle_when_every_angle_ties() {
     let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 12);
     let free = FreeToolAxis::try_from_degrees(2.0, 90.0).unwrap();
-    let out = compensate::path(&s, &compliance, &path, &options(&s, Some(free))).unwrap();
+    let out = compensate::path(s.arm(), &compliance, &path, &options(&s, Some(free))).unwrap();
     for (i, c) in out.iter().enumerate() {
         assert_eq!(c.tool_rotation, 0.0, "point {i}");
     }
     for step in [1e-300, 1e-9, 1e-4] {
         let tiny = FreeToolAxis::try_from_degrees(step, 90.0).unwrap();
-        let e = compensate::path(&s, &compliance, &path, &options(&s, Some(tiny))).unwrap_err();
+        let e =
+            compensate::path(s.arm(), &compliance, &path, &options(&s, Some(tiny))).unwrap_err();
         assert!(e.to_string().contains("max_step_deg"), "{e}");
     }
 }
@@ -392,7 +395,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         point(6, -300.0),
         point(7, 300.0),
     ];
-    match compensate::path(&s, &compliance, &path, &options(&s, None)) {
+    match compensate::path(s.arm(), &compliance, &path, &options(&s, None)) {
         Err(Error::Column {
             line: 4,
             name,
@@ -443,7 +446,7 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
     }];
     let mut o = Options::for_setup(&s);
     o.q0 = deg([-60.0, 0.0, -20.0, 0.0, -40.0, 0.0]);
-    let e = compensate::path(&s, &compliance, &path, &o)
+    let e = compensate::path(s.arm(), &compliance, &path, &o)
         .unwrap_err()
         .to_string();
     assert!(
@@ -451,7 +454,7 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
         "{e}"
     );
     o.q0 = deg([-55.0, 5.0, -25.0, 5.0, 30.0, 5.0]);
-    let q = compensate::path(&s, &compliance, &path, &o).unwrap()[0].q;
+    let q = compensate::path(s.arm(), &compliance, &path, &o).unwrap()[0].q;
     assert!(q[4] > 0.0, "{q}");
 }
 
@@ -564,15 +567,16 @@ fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
     let true_setup = s.to_builder().with_robot(calibrated).build().unwrap();
     let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 10); // targets on the nominal robot's path
-    let on_true = compensate::path(&true_setup, &compliance, &path, &options(&s, None)).unwrap();
-    let on_nominal = compensate::path(&s, &compliance, &path, &options(&s, None)).unwrap();
+    let on_true =
+        compensate::path(true_setup.arm(), &compliance, &path, &options(&s, None)).unwrap();
+    let on_nominal = compensate::path(s.arm(), &compliance, &path, &options(&s, None)).unwrap();
     let h = s.nominal_stiffness().unwrap();
     let miss = |c: &compensate::Compensated, p: &PathPoint| {
         let Target::Pose(target) = &p.target else {
             unreachable!()
         };
         let frames = true_setup.robot().frames(&c.q_compensated);
-        let dq = stiffness::deflection(&true_setup, &frames, &c.wrench, h).joint_deflections;
+        let dq = stiffness::deflection(true_setup.arm(), &frames, &c.wrench, h).joint_deflections;
         pose_error(target, &deflected_pose(&true_setup, &c.q_compensated, &dq))
     };
     for ((t, n), p) in on_true.iter().zip(&on_nominal).zip(&path) {

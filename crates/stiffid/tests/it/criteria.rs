@@ -41,7 +41,7 @@ fn reference(setup: &Setup, group: &[Vector6<f64>]) -> (Vec<f64>, Vector6<f64>) 
         .iter()
         .map(|q| {
             let frames = setup.robot().frames(q);
-            let a = posture_block(setup, &frames, &setup.rope_wrench(&frames));
+            let a = posture_block(setup.arm(), &frames, &setup.rope_wrench(&frames));
             (&a * &unit_cov * a.transpose()).trace()
         })
         .sum::<f64>()

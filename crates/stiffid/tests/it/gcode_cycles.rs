@@ -193,9 +193,15 @@ fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
     let process = file::parse(DRILL, "p.toml").unwrap();
     let text = format!("{HEADER}T2\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX40\nG80\n");
     let program = machining::read(&text, Language::GCode, 1e-5).unwrap();
-    let report =
-        machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s))
-            .unwrap();
+    let report = machining::compensate(
+        s.arm(),
+        s.workpiece(),
+        &compliance,
+        &program,
+        &process,
+        &Options::for_setup(&s),
+    )
+    .unwrap();
     let drilled: Vec<_> = report
         .points
         .iter()
@@ -216,7 +222,14 @@ fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
     assert!(moved > 1e-6);
     let milled = text.replace("T2", "T1");
     let program = machining::read(&milled, Language::GCode, 1e-5).unwrap();
-    match machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s)) {
+    match machining::compensate(
+        s.arm(),
+        s.workpiece(),
+        &compliance,
+        &program,
+        &process,
+        &Options::for_setup(&s),
+    ) {
         Err(Error::Program { line: 4, message }) => {
             assert!(
                 message.contains("G81") && message.contains("'wall'"),

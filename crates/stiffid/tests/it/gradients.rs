@@ -120,7 +120,7 @@ fn rope_block_gradient_matches_central_differences() {
                 MatrixXx6::from_column_slice(random_matrix(&mut rng, rows).as_slice());
             let phi = |q: &Vector6<f64>| {
                 let f = setup.robot().frames(q);
-                posture_block(&setup, &f, &setup.rope_wrench(&f)).dot(&g)
+                posture_block(setup.arm(), &f, &setup.rope_wrench(&f)).dot(&g)
             };
             let exact = rope_block_gradient(&setup, &setup.robot().frames(&q), &g);
             let err = relative_error(exact.as_slice(), central(&q, phi).as_slice());

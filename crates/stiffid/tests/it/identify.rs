@@ -120,7 +120,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
     let plain = least_squares(&setup, &data).unwrap();
     let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness().unwrap());
     for loss in [Loss::Huber, Loss::Tukey] {
-        let id = Observations::from_measurements(&setup, &data)
+        let id = Observations::from_measurements(setup.arm(), &data)
             .unwrap()
             .robust(loss)
             .unwrap();
@@ -141,7 +141,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
             "{loss:?}: {err} vs least squares {plain_err}"
         );
     }
-    let tukey = Observations::from_measurements(&setup, &data)
+    let tukey = Observations::from_measurements(setup.arm(), &data)
         .unwrap()
         .robust(Loss::Tukey)
         .unwrap();
@@ -152,12 +152,13 @@ fn robust_modes_down_weight_an_injected_outlier() {
 fn validation_compares_measured_and_predicted_displacements() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let data = paper_measurements(&setup);
-    let exact = validate::compare(&setup, &setup.model_compliance("test").unwrap(), &data).unwrap();
+    let exact =
+        validate::compare(setup.arm(), &setup.model_compliance("test").unwrap(), &data).unwrap();
     assert_eq!(exact.checks.len(), 24);
     assert!(exact.max < 1e-15, "{}", exact.max);
     // Twice as stiff: every prediction is half the measurement, so delta_b = |delta_m| / 2.
     let stiffer = validate::compare(
-        &setup,
+        setup.arm(),
         &Compliance::drives(setup.nominal_compliance().unwrap() / 2.0, None),
         &data,
     )
@@ -171,7 +172,7 @@ fn validation_compares_measured_and_predicted_displacements() {
     assert!((stiffer.mean - mean).abs() < 1e-15);
     assert!((stiffer.max - halves.iter().cloned().fold(0.0, f64::max)).abs() < 1e-15);
     assert!(validate::compare(
-        &setup,
+        setup.arm(),
         &Compliance::drives(Vector6::repeat(-1.0), None),
         &data
     )

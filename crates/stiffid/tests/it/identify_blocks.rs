@@ -18,7 +18,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
     let data = noisy(&setup, 1500, 1);
     assert!(data.len() > 5 * BLOCK && data.len() % BLOCK != 0);
     let blocks = identify::least_squares(&setup, &data).unwrap();
-    let whole = Observations::from_measurements(&setup, &data)
+    let whole = Observations::from_measurements(setup.arm(), &data)
         .unwrap()
         .least_squares()
         .unwrap();

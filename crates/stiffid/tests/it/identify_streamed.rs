@@ -22,7 +22,7 @@ fn streamed(setup: &Setup, text: &str) -> stiffid::Result<(Identification, strea
 fn whole(setup: &Setup, text: &str) -> Identification {
     let mut file = measurements::parse(text).unwrap();
     file.to_base_frame(setup).unwrap();
-    Observations::from_measurements(setup, &file.measurements)
+    Observations::from_measurements(setup.arm(), &file.measurements)
         .unwrap()
         .least_squares()
         .unwrap()

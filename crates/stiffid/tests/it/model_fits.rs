@@ -43,7 +43,7 @@ fn noise_free(s: &Setup, h: &DVector<f64>, postures: usize, seed: u64) -> Vec<Me
     for (posture, q) in random_group(s, postures, seed).into_iter().enumerate() {
         let frames = s.robot().frames(&q);
         let wrench = s.rope_wrench(&frames);
-        let d = posture_block(s, &frames, &wrench) * h;
+        let d = posture_block(s.arm(), &frames, &wrench) * h;
         for point in 0..s.tool().measuring_points.len() {
             out.push(Measurement {
                 posture,
@@ -75,7 +75,7 @@ fn assert_recovered(what: &str, h: &DVector<f64>, truth: &DVector<f64>) {
 fn every_method_and_every_fold_recovers_a_seven_parameter_truth() {
     let (truth, h) = elbow_truth();
     let data = noise_free(&truth, &h, 12, 4);
-    let obs = Observations::from_measurements(&truth, &data).unwrap();
+    let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     let parameters = truth.model().parameters();
     assert_eq!(parameters.len(), 7);
     for method in METHODS {
@@ -107,7 +107,7 @@ fn a_robust_fit_over_seven_parameters_rejects_an_outlier() {
         m.displacement.z += 2e-6 * (((i * 5) % 13) as f64 / 6.0 - 1.0);
     }
     data[9].displacement.y += 2e-3;
-    let obs = Observations::from_measurements(&truth, &data).unwrap();
+    let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     let parameters = truth.model().parameters();
     let error = |f: &stiffid::identify::model::Fit| {
         (0..7)
@@ -139,7 +139,7 @@ fn the_model_cross_validation_of_the_drives_is_the_six_parameter_one() {
     for (i, m) in data.iter_mut().enumerate() {
         m.displacement.y += 1e-5 * (((i * 3) % 7) as f64 / 3.0 - 1.0);
     }
-    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &data).unwrap();
     for method in [Method::LeastSquares, Method::Robust(Loss::Huber)] {
         let six = cross_validate(&obs, &method.fit(&obs).unwrap(), 5, method).unwrap();
         let f = fit_by(&obs, &setup.model().parameters(), method).unwrap();
@@ -196,7 +196,7 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
     assert!((cv.explained() - 0.843).abs() < 5e-4, "{}", cv.explained());
     let mut file = stiffid::io::measurements::parse(text).unwrap();
     file.to_base_frame(&model).unwrap();
-    let obs = Observations::from_measurements(&model, &file.measurements).unwrap();
+    let obs = Observations::from_measurements(model.arm(), &file.measurements).unwrap();
     let press = held_out(&obs).unwrap();
     assert!((press.explained() / cv.explained() - 1.0).abs() < 1e-9);
     let drives = run(&fanuc).cross_validation.unwrap().explained();

@@ -72,7 +72,7 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
         let frames = s.robot().frames(q);
         let j = jacobian_by_hand(&s, q, &tcp);
         let by_hand = &j * DMatrix::from_diagonal(&h) * j.transpose();
-        let c = cartesian::compliance(&s, &frames, &tcp, &h);
+        let c = cartesian::compliance(s.arm(), &frames, &tcp, &h);
         let scale = by_hand.amax();
         for r in 0..6 {
             for col in 0..6 {
@@ -87,7 +87,7 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
         // The springs add compliance: C_x minus the drives' part is sum_s c_s J_s J_s^T.
         let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
         let hd = h.rows(0, 6).into_owned();
-        let c_drives = cartesian::compliance(&drives, &frames, &tcp, &hd);
+        let c_drives = cartesian::compliance(drives.arm(), &frames, &tcp, &hd);
         let springs = j.columns(6, 2)
             * DMatrix::from_diagonal(&h.rows(6, 2).into_owned())
             * j.columns(6, 2).transpose();
@@ -97,7 +97,7 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
                 assert!((extra[(r, col)] - springs[(r, col)]).abs() <= 1e-12 * scale);
             }
         }
-        let kx = cartesian::stiffness(&s, &frames, &tcp, &h).unwrap();
+        let kx = cartesian::stiffness(s.arm(), &frames, &tcp, &h).unwrap();
         assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-8);
     }
 }
@@ -111,7 +111,7 @@ fn a_tool_point_deflection_and_its_covariance_over_the_model_match_the_hand_buil
     let (a, b) = (s.tool().loading_point, s.tool().tcp);
     let w = Vector6::new(150.0, -80.0, -200.0, 10.0, 5.0, -3.0);
     let d = Points {
-        setup: &s,
+        arm: s.arm(),
         frames: &frames,
         loaded: &a,
         observed: &b,
@@ -156,7 +156,7 @@ fn compensation_uses_the_virtual_springs() {
         .build()
         .unwrap();
     let compliance = s.model_compliance("test").unwrap();
-    let model = compensate::Model::new(&s, &compliance).unwrap();
+    let model = compensate::Model::new(s.arm(), &compliance).unwrap();
     let q = s.test_postures()[0];
     let frames = s.robot().frames(&q);
     let tcp = s.tool().tcp;
@@ -164,7 +164,7 @@ fn compensation_uses_the_virtual_springs() {
     let loaded = model.loaded_pose(&q, &w);
     let unloaded = tool_pose(&frames, &tcp);
     let moved = loaded.translation.vector - unloaded.translation.vector;
-    let c = cartesian::compliance(&s, &frames, &tcp, &compliance.h) * w;
+    let c = cartesian::compliance(s.arm(), &frames, &tcp, &compliance.h) * w;
     let first_order = c.fixed_rows::<3>(0).into_owned();
     assert!(
         (moved - first_order).norm() < 1e-3 * first_order.norm(),
@@ -174,7 +174,7 @@ fn compensation_uses_the_virtual_springs() {
     let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
     let drives = drives.to_builder().with_loading_point(tcp).build().unwrap();
     let hd = Compliance::drives(compliance.drives_h(), None);
-    let without = compensate::Model::new(&drives, &hd)
+    let without = compensate::Model::new(drives.arm(), &hd)
         .unwrap()
         .loaded_pose(&q, &w);
     let spring_share = (loaded.translation.vector - without.translation.vector).norm();
@@ -186,7 +186,7 @@ fn compensation_uses_the_virtual_springs() {
         "{residual}"
     );
     // A drives-only compliance does not fit the extended model.
-    assert!(compensate::Model::new(&s, &hd).is_err());
+    assert!(compensate::Model::new(s.arm(), &hd).is_err());
 }
 
 fn noise_free(s: &Setup, h: &DVector<f64>, postures: usize, seed: u64) -> Vec<Measurement> {
@@ -194,7 +194,7 @@ fn noise_free(s: &Setup, h: &DVector<f64>, postures: usize, seed: u64) -> Vec<Me
     for (posture, q) in random_group(s, postures, seed).into_iter().enumerate() {
         let frames = s.robot().frames(&q);
         let wrench = s.rope_wrench(&frames);
-        let d = posture_block(s, &frames, &wrench) * h;
+        let d = posture_block(s.arm(), &frames, &wrench) * h;
         for point in 0..s.tool().measuring_points.len() {
             out.push(Measurement {
                 posture,
@@ -220,7 +220,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
     for (i, m) in data.iter_mut().enumerate() {
         m.displacement.x += 1e-6 * ((i % 7) as f64 - 3.0);
     }
-    let obs = Observations::from_measurements(&s, &data).unwrap();
+    let obs = Observations::from_measurements(s.arm(), &data).unwrap();
     let f = fit(&obs, &s.model().parameters()).unwrap();
     let text = serde_json::to_string(&fit_doc(&f, s.noise().displacement_variance())).unwrap();
     let file = stiffness::parse(&text).unwrap();
@@ -237,7 +237,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
     assert!((se / interval.compliance_std_error - 1.0).abs() < 1e-12);
     // Validation with the truth on noise-free data is exact; with the file, near the noise added.
     let exact = validate::compare(
-        &s,
+        s.arm(),
         &Compliance {
             h: truth,
             covariance: None,
@@ -247,7 +247,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
     )
     .unwrap();
     assert!(exact.rms < 1e-12, "{}", exact.rms);
-    let v = validate::compare(&s, &c, &data).unwrap();
+    let v = validate::compare(s.arm(), &c, &data).unwrap();
     assert!(v.rms < 1e-5, "{}", v.rms);
     let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
     let e = file.compliance(drives.model()).unwrap_err().to_string();

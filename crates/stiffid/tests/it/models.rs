@@ -37,7 +37,7 @@ fn measure(
     for (posture, q) in postures.iter().enumerate() {
         let frames = truth.robot().frames(q);
         let wrench = truth.rope_wrench(&frames);
-        let d = posture_block(truth, &frames, &wrench) * h;
+        let d = posture_block(truth.arm(), &frames, &wrench) * h;
         for point in 0..truth.tool().measuring_points.len() {
             let noise = Vector3::from_fn(|_, _| sigma * normal.sample(rng));
             let displacement = d.fixed_rows::<3>(3 * point).into_owned() + noise;
@@ -88,7 +88,7 @@ fn an_elbow_spring_is_recovered_and_the_drives_alone_fail_the_check() {
         0.0,
         &mut ChaCha8Rng::seed_from_u64(0),
     );
-    let obs = Observations::from_measurements(&truth, &data).unwrap();
+    let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     assert_eq!(obs.psi.ncols(), 7);
     let f = fit(&obs, &truth.model().parameters()).unwrap();
     assert_eq!(f.identifiability.rank, 7);
@@ -102,7 +102,7 @@ fn an_elbow_spring_is_recovered_and_the_drives_alone_fail_the_check() {
     }
     assert_eq!(f.parameters[6].name, "tilt3_x");
     let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
-    let id = Observations::from_measurements(&drives, &data)
+    let id = Observations::from_measurements(drives.arm(), &data)
         .unwrap()
         .least_squares()
         .unwrap();
@@ -148,7 +148,7 @@ fn a_flange_compliance_from_one_point_and_forces_is_named_unidentifiable() {
     assert!(data
         .iter()
         .all(|m| m.wrench.fixed_rows::<3>(3).norm() == 0.0));
-    let obs = Observations::from_measurements(&model, &data).unwrap();
+    let obs = Observations::from_measurements(model.arm(), &data).unwrap();
     let f = fit(&obs, &model.model().parameters()).unwrap();
     let id = &f.identifiability;
     assert!(id.rank < 12, "rank {}", id.rank);

@@ -256,14 +256,14 @@ fn point_rows_take_the_point_and_match_the_posture_block() {
     let setup = paper();
     let frames = setup.robot().frames(&setup.test_postures()[1]);
     let wrench = setup.rope_wrench(&frames);
-    let block = posture_block(&setup, &frames, &wrench);
-    let tau = joint_torques(&setup, &frames, &wrench);
+    let block = posture_block(setup.arm(), &frames, &wrench);
+    let tau = joint_torques(setup.arm(), &frames, &wrench);
     for (k, p) in setup.tool().measuring_points.iter().enumerate() {
-        let rows = point_rows(&setup, &frames, p, &tau);
+        let rows = point_rows(setup.arm(), &frames, p, &tau);
         assert_eq!(rows, block.fixed_view::<3, 6>(3 * k, 0));
     }
     // Any point, not only the setup's: no index to get out of range.
-    let far = point_rows(&setup, &frames, &Vector3::new(0.0, 0.0, 1.0), &tau);
+    let far = point_rows(setup.arm(), &frames, &Vector3::new(0.0, 0.0, 1.0), &tau);
     assert!(far.iter().all(|v| v.is_finite()));
 }
 

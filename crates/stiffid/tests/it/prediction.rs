@@ -51,7 +51,7 @@ fn data(s: &Setup, truth: &DVector<f64>, n: usize, rng: &mut ChaCha8Rng) -> Vec<
         let f = direction * rng.random_range(200.0..1000.0);
         let wrench = Vector6::new(f.x, f.y, f.z, 0.0, 0.0, 0.0);
         let frames = s.robot().frames(&q);
-        let d = posture_block(s, &frames, &wrench) * truth;
+        let d = posture_block(s.arm(), &frames, &wrench) * truth;
         for point in 0..s.tool().measuring_points.len() {
             let e = Vector3::from_fn(|_, _| noise.sample(rng));
             out.push(Measurement {
@@ -68,14 +68,17 @@ fn data(s: &Setup, truth: &DVector<f64>, n: usize, rng: &mut ChaCha8Rng) -> Vec<
 
 /// Coverage counts `[inside, coordinates]` of `compliance` at `level` on `test`, by validation.
 fn covered(s: &Setup, c: &Compliance, test: &[Measurement], level: f64) -> [usize; 2] {
-    let p = compare_at(s, c, test, level).unwrap().prediction.unwrap();
+    let p = compare_at(s.arm(), c, test, level)
+        .unwrap()
+        .prediction
+        .unwrap();
     [p.covered, p.coordinates]
 }
 
 /// [`covered`] by hand from the intervals (a fit whose compliance is not all positive, which
 /// validation refuses, still predicts).
 fn covered_by_hand(s: &Setup, p: &Calibration, test: &[Measurement], level: f64) -> [usize; 2] {
-    let obs = Observations::from_measurements(s, test).unwrap();
+    let obs = Observations::from_measurements(s.arm(), test).unwrap();
     let inside = (0..test.len())
         .map(|i| {
             let interval = p.interval(&obs.psi.rows(3 * i, 3).into_owned(), level);
@@ -103,7 +106,7 @@ fn prediction_intervals_cover_a_compliance_the_model_lacks() {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let train = data(&truth_setup, &truth, TRAIN, &mut rng);
         let test = data(&truth_setup, &truth, TEST, &mut rng);
-        let obs = Observations::from_measurements(&drives, &train).unwrap();
+        let obs = Observations::from_measurements(drives.arm(), &train).unwrap();
         let id = obs.least_squares().unwrap();
         let cv = cross_validate(&obs, &id, TRAIN, Method::LeastSquares).unwrap();
         let calibration = calibrate(&obs, &cv, drives.noise().displacement_sd());
@@ -139,7 +142,7 @@ fn with_the_true_model_parameter_and_prediction_intervals_cover_at_their_level()
         let mut rng = ChaCha8Rng::seed_from_u64(1000 + seed);
         let train = data(&s, &truth, TRAIN, &mut rng);
         let test = data(&s, &truth, TEST, &mut rng);
-        let obs = Observations::from_measurements(&s, &train).unwrap();
+        let obs = Observations::from_measurements(s.arm(), &train).unwrap();
         let f = fit(&obs, &parameters).unwrap();
         let cv = cross_validate_model(&obs, &f, TRAIN, Method::LeastSquares).unwrap();
         let c = Compliance {

@@ -308,7 +308,15 @@ fn the_path_order_is_the_motions_not_the_position_table() {
     let run = |reversed: bool| {
         let text = ls_square(&s, reversed);
         let program = machining::read(&text, Language::Robot(Dialect::FanucLs), 1e-5).unwrap();
-        machining::compensate(&s, &compliance, &program, &process, &options).unwrap()
+        machining::compensate(
+            s.arm(),
+            s.workpiece(),
+            &compliance,
+            &program,
+            &process,
+            &options,
+        )
+        .unwrap()
     };
     let (forward, backward) = (run(false), run(true));
     for (a, b) in forward.results.iter().zip(&backward.results) {
@@ -340,7 +348,15 @@ fn a_compensated_program_has_the_csv_routes_targets() {
     let text = ls_program(&s);
     let program = machining::read(&text, Language::Robot(Dialect::FanucLs), 1e-5).unwrap();
     let options = Options::for_setup(&s);
-    let report = machining::compensate(&s, &compliance, &program, &process, &options).unwrap();
+    let report = machining::compensate(
+        s.arm(),
+        s.workpiece(),
+        &compliance,
+        &program,
+        &process,
+        &options,
+    )
+    .unwrap();
     // Every point cuts: the down-milling force, about 300 N, against the feed.
     for p in &report.points {
         let f = p.wrench.fixed_rows::<3>(0).norm();
@@ -363,7 +379,7 @@ fn a_compensated_program_has_the_csv_routes_targets() {
         csv += &(cells.join(",") + "\n");
     }
     let points = machining::path::parse(&csv, Frame::Base).unwrap();
-    let by_csv = compensate::path(&s, &compliance, &points, &options).unwrap();
+    let by_csv = compensate::path(s.arm(), &compliance, &points, &options).unwrap();
     let written = program::parse(&report.program, Dialect::FanucLs).unwrap();
     for ((a, b), t) in report.results.iter().zip(&by_csv).zip(&written.targets) {
         let qa = a.q_compensated.map(f64::to_degrees);
@@ -387,9 +403,15 @@ fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_progra
     let process = file::parse(PROCESS, "p.toml").unwrap();
     let text = format!("{HEADER}G0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40\nG3 X60 Y20 I0 J20\nG1 Y40\n");
     let program = machining::read(&text, Language::GCode, 0.05e-3).unwrap();
-    let report =
-        machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s))
-            .unwrap();
+    let report = machining::compensate(
+        s.arm(),
+        s.workpiece(),
+        &compliance,
+        &program,
+        &process,
+        &Options::for_setup(&s),
+    )
+    .unwrap();
     assert!(
         report.warnings.iter().any(|w| w.contains("plunge")),
         "{:?}",
@@ -512,8 +534,15 @@ fn a_linear_move_between_compensated_targets_stays_within_the_chord_tolerance() 
             .collect();
         let text = format!("{HEADER}G0 X0 Y0 Z0\nG1 X0 F600\n{blocks}");
         let program = machining::read(&text, Language::GCode, 1e-5).unwrap();
-        let r = machining::compensate(&s, &compliance, &program, &process, &Options::for_setup(&s))
-            .unwrap();
+        let r = machining::compensate(
+            s.arm(),
+            s.workpiece(),
+            &compliance,
+            &program,
+            &process,
+            &Options::for_setup(&s),
+        )
+        .unwrap();
         r.results
             .iter()
             .map(|c| Target::new(s.robot(), &s.tool().tcp, &c.q_compensated))

@@ -124,7 +124,7 @@ fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
 fn nonnegative_fit_equals_least_squares_when_that_is_non_negative() {
     let setup = paper();
     let data = noisy_paper_data(&setup, 1, 3);
-    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &data).unwrap();
     let (plain, bounded) = (obs.least_squares().unwrap(), obs.nonnegative().unwrap());
     assert!(plain.compliance.iter().all(|h| *h > 0.0));
     assert_eq!(bounded.active_bounds, Some([false; 6]));
@@ -151,7 +151,7 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
             ..m
         })
         .collect();
-    let obs = Observations::from_measurements(&setup, &flipped).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &flipped).unwrap();
     let plain = obs.least_squares().unwrap();
     assert_eq!(plain.physical(), [false; 6]);
     let bounded = obs.nonnegative().unwrap();
@@ -164,7 +164,7 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
 fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
     let setup = paper();
     let data = noisy_paper_data(&setup, 1, 5);
-    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &data).unwrap();
     let full = obs.least_squares().unwrap();
     let cv = cross_validate(&obs, &full, 6, Method::LeastSquares).unwrap();
     assert_eq!(cv.folds.len(), 6);
@@ -178,8 +178,12 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
             .map(|j| (fold.stiffness[j] / by_hand.stiffness[j] - 1.0).abs())
             .fold(0.0, f64::max);
         assert!(rel < 1e-9, "fold {p}: {rel:e}");
-        let check = validate::compare(&setup, &Compliance::drives(by_hand.compliance, None), &held)
-            .unwrap();
+        let check = validate::compare(
+            setup.arm(),
+            &Compliance::drives(by_hand.compliance, None),
+            &held,
+        )
+        .unwrap();
         for (a, c) in fold.delta_b.iter().zip(&check.checks) {
             assert!((a - c.delta_b).abs() < 1e-12, "{a} vs {}", c.delta_b);
         }
@@ -201,7 +205,7 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
             ..m.clone()
         })
         .collect();
-    let again = Observations::from_measurements(&setup, &sparse).unwrap();
+    let again = Observations::from_measurements(setup.arm(), &sparse).unwrap();
     assert_eq!(
         (again.postures, &again.posture_index),
         (6, &obs.posture_index)
@@ -380,10 +384,11 @@ fn validation_reports_the_share_of_the_deflection_explained() {
     let data = synthetic(&setup, &qs, |_, q| {
         setup.rope_wrench(&setup.robot().frames(q))
     });
-    let exact = validate::compare(&setup, &setup.model_compliance("test").unwrap(), &data).unwrap();
+    let exact =
+        validate::compare(setup.arm(), &setup.model_compliance("test").unwrap(), &data).unwrap();
     assert!((exact.explained - 1.0).abs() < 1e-12);
     let stiffer = validate::compare(
-        &setup,
+        setup.arm(),
         &Compliance::drives(setup.nominal_compliance().unwrap() / 2.0, None),
         &data,
     )
@@ -405,7 +410,7 @@ fn bounded_and_robust_folds_are_refits_with_the_full_fits_method() {
     use stiffid::identify::Loss;
     let setup = paper();
     let data = noisy_paper_data(&setup, 1, 5);
-    let obs = Observations::from_measurements(&setup, &data).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &data).unwrap();
     for method in [
         Method::Nonnegative,
         Method::Robust(Loss::Tukey),
@@ -419,7 +424,7 @@ fn bounded_and_robust_folds_are_refits_with_the_full_fits_method() {
                 .map(|i| data[i].clone())
                 .collect();
             let by_hand = method
-                .fit(&Observations::from_measurements(&setup, &rest).unwrap())
+                .fit(&Observations::from_measurements(setup.arm(), &rest).unwrap())
                 .unwrap();
             for j in 0..6 {
                 let (a, b) = (fold.stiffness[j], by_hand.stiffness[j]);
@@ -445,7 +450,7 @@ fn data_exact_to_rounding_have_no_influential_posture() {
             ..m
         })
         .collect();
-    let obs = Observations::from_measurements(&setup, &rounded).unwrap();
+    let obs = Observations::from_measurements(setup.arm(), &rounded).unwrap();
     let full = obs.least_squares().unwrap();
     let cv = cross_validate(&obs, &full, 6, Method::LeastSquares).unwrap();
     let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;
@@ -459,7 +464,8 @@ fn data_exact_to_rounding_have_no_influential_posture() {
     );
     assert!(cv.folds.iter().all(|f| f.influential.iter().all(|i| !i)));
     // With the tracker's noise, a threshold of one standard error stands.
-    let noisy = Observations::from_measurements(&setup, &noisy_paper_data(&setup, 1, 5)).unwrap();
+    let noisy =
+        Observations::from_measurements(setup.arm(), &noisy_paper_data(&setup, 1, 5)).unwrap();
     let full = noisy.least_squares().unwrap();
     let cv = cross_validate(&noisy, &full, 6, Method::LeastSquares).unwrap();
     let se = full.uncertainty.as_ref().unwrap().stiffness_std_error;

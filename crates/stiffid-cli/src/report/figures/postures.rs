@@ -296,7 +296,7 @@ impl Postures<'_> {
     ) -> Result<()> {
         let cell = self.setup.cell();
         let base_frames = self.setup.robot().frames(&Vector6::zeros());
-        let base = bodies(self.setup, &base_frames)
+        let base = bodies(self.setup.arm(), &base_frames)
             .into_iter()
             .filter(|b| b.part() == Part::Base);
         for body in base {
@@ -364,7 +364,7 @@ impl Postures<'_> {
         let frames = setup.robot().frames(q);
         let c = colour(number);
         let project = |p: &Vector3<f64>| (p.x, p[v]);
-        let moving = bodies(setup, &frames)
+        let moving = bodies(setup.arm(), &frames)
             .into_iter()
             .filter(|b| b.part() != Part::Base);
         for body in moving {

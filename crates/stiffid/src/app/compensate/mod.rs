@@ -189,7 +189,7 @@ where
         Input::Path { name, text, frame } => {
             let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
             let mut first = 0;
-            compensate::stream(setup, &compliance, points, &options, |p, r| {
+            compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
                 add(first, p, r).map_err(Failure::Sink)?;
                 first += p.len();
                 Ok(())
@@ -215,8 +215,14 @@ where
             }
             let (program, compensated) = (|| {
                 let program = machining::read(text, language, chord_tolerance)?;
-                let compensated =
-                    machining::compensate(setup, &compliance, &program, &process, &options)?;
+                let compensated = machining::compensate(
+                    setup.arm(),
+                    setup.workpiece(),
+                    &compliance,
+                    &program,
+                    &process,
+                    &options,
+                )?;
                 Ok::<_, Error>((program, compensated))
             })()
             .map_err(|e| in_input(&name, e))?;

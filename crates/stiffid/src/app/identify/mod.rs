@@ -499,7 +499,7 @@ fn fit(
     if how.in_blocks() {
         return Ok((least_squares(setup, measurements)?, None, None));
     }
-    let obs = Observations::from_measurements(setup, measurements)?;
+    let obs = Observations::from_measurements(setup.arm(), measurements)?;
     // Every fold is fitted as the full fit.
     let method = how.fit.method();
     let id = method.fit(&obs)?;

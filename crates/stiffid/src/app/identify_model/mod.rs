@@ -87,7 +87,7 @@ fn fit_all(
     folds: Option<Folds>,
     measurements: &[Measurement],
 ) -> Result<(Fit, Option<(CrossValidation, Calibration)>)> {
-    let obs = Observations::from_measurements(setup, measurements)?;
+    let obs = Observations::from_measurements(setup.arm(), measurements)?;
     let method = method.method();
     let fit = fit_by(&obs, &setup.model().parameters(), method)?;
     let cv = folds

@@ -10,6 +10,7 @@ use crate::model::Compliance;
 use crate::observation::cartesian;
 use crate::observation::deflection::{base_wrench, Frame, PointDeflection, Points};
 use crate::robot::kinematics::Frames;
+use crate::setup::Arm;
 use crate::{Result, Setup};
 use nalgebra::{Matrix6, Vector3, Vector6};
 
@@ -109,13 +110,22 @@ pub fn run(request: Request<'_>) -> Result<Report> {
     let at = at.unwrap_or(setup.tool().loading_point);
     let frames = setup.robot().frames(&q);
     let base = base_wrench(&frames, &wrench, frame);
-    let point =
-        |observed: &Vector3<f64>| point(setup, &frames, &at, observed, &base, &compliance, level);
+    let point = |observed: &Vector3<f64>| {
+        point(
+            setup.arm(),
+            &frames,
+            &at,
+            observed,
+            &base,
+            &compliance,
+            level,
+        )
+    };
     Ok(Report {
         measuring_points: setup.tool().measuring_points.iter().map(point).collect(),
         tcp: point(&setup.tool().tcp),
-        cartesian_compliance: cartesian::compliance(setup, &frames, &at, &compliance.h),
-        cartesian_stiffness: cartesian::stiffness(setup, &frames, &at, &compliance.h),
+        cartesian_compliance: cartesian::compliance(setup.arm(), &frames, &at, &compliance.h),
+        cartesian_stiffness: cartesian::stiffness(setup.arm(), &frames, &at, &compliance.h),
         q,
         wrench,
         frame,
@@ -128,7 +138,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
 
 /// The deflection of `observed` (flange frame, m) under the base-frame wrench `base` at `at`.
 fn point(
-    setup: &Setup,
+    arm: &Arm,
     frames: &Frames,
     at: &Vector3<f64>,
     observed: &Vector3<f64>,
@@ -137,7 +147,7 @@ fn point(
     level: f64,
 ) -> Point {
     let points = Points {
-        setup,
+        arm,
         frames,
         loaded: at,
         observed,

@@ -54,8 +54,9 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         level,
     } = request;
     crate::model::prediction::check_level("level", level)?;
-    let (data_name, origin, validation) =
-        on_measurements(setup, data, |m| compare_at(setup, compliance, m, level))?;
+    let (data_name, origin, validation) = on_measurements(setup, data, |m| {
+        compare_at(setup.arm(), compliance, m, level)
+    })?;
     let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
         data_name,

@@ -151,7 +151,7 @@ impl Evaluator<'_> {
                 if let Some(y) = self.psi_weight(criterion, group) {
                     for (t, g) in terms.iter().zip(gradient.iter_mut()) {
                         let block = posture_block(
-                            self.setup,
+                            self.setup.arm(),
                             &t.frames,
                             &self.setup.rope_wrench(&t.frames),
                         );
@@ -175,7 +175,7 @@ impl Evaluator<'_> {
     /// columns through [`rope_block_gradient`], the virtual springs' through
     /// [`springs::spring_gradient`].
     fn wide_block_gradient(&self, frames: &crate::Frames, y: &DMatrix<f64>) -> Vector6<f64> {
-        let block = posture_block(self.setup, frames, &self.setup.rope_wrench(frames));
+        let block = posture_block(self.setup.arm(), frames, &self.setup.rope_wrench(frames));
         let weight = wide::product(&block, y);
         let drives = MatrixXx6::from_column_slice(&weight.as_slice()[..6 * weight.nrows()]);
         rope_block_gradient(self.setup, frames, &drives)

@@ -85,7 +85,7 @@ impl<'a> Evaluator<'a> {
             // Without a nominal stiffness, 1 rad/Nm: the criteria that need it are NaN then.
             scaling: setup.nominal_compliance().unwrap_or(Vector6::repeat(1.0))
                 / setup.displacement_variance().sqrt(),
-            points_factor: points_factor(setup),
+            points_factor: points_factor(setup.tool()),
             compact_rows: (3 * setup.tool().measuring_points.len()).min(6),
             test_factor: match setup.model().is_drives_only() {
                 true => triangular_factor(rope_observation_matrix(setup, setup.test_postures())),

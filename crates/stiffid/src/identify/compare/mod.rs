@@ -186,7 +186,7 @@ pub fn compare(
         .with_virtual_springs(model.springs().to_vec())
         .with_candidate_springs(Vec::new())
         .build()?;
-    let obs = Observations::from_measurements(&all, measurements)?;
+    let obs = Observations::from_measurements(all.arm(), measurements)?;
     let too_few = |why: &str| {
         crate::Error::InvalidField {
         field: "postures".into(),

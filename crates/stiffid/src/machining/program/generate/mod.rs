@@ -54,7 +54,7 @@ mod rapid;
 use super::{Dialect, DECIMALS};
 use crate::common::error::JobOption;
 use crate::machining::gcode::{Motion, Point};
-use crate::robot::configuration::Arm;
+use crate::robot::configuration::Configuration;
 use crate::{Error, Result, Robot};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 
@@ -209,7 +209,7 @@ pub struct Target {
     /// the axis angles.
     pub pose: Isometry3<f64>,
     /// The configuration of the axis angles.
-    pub arm: Arm,
+    pub arm: Configuration,
 }
 
 impl Target {
@@ -220,7 +220,7 @@ impl Target {
         Self {
             q_deg: q.map(f64::to_degrees).into(),
             pose: crate::robot::ik::tool_pose(&frames, tcp),
-            arm: Arm::of(robot, q),
+            arm: Configuration::of(robot, q),
         }
     }
 }
