@@ -50,7 +50,7 @@ fn compare(c: &mut Criterion) {
     });
     let data = measurements();
     group.bench_function("identify", |b| {
-        b.iter(|| identify::least_squares(&setup, black_box(&data)).unwrap())
+        b.iter(|| identify::least_squares(setup.arm(), black_box(&data)).unwrap())
     });
     let options = SearchOptions::default();
     group.sample_size(10).bench_function("local-search", |b| {

@@ -36,7 +36,7 @@ fn bench(c: &mut Criterion) {
     });
     c.bench_function("identify/from measurements", |b| {
         b.iter(|| {
-            identify::least_squares(black_box(&setup), black_box(&data)).expect("identifiable")
+            identify::least_squares(black_box(setup.arm()), black_box(&data)).expect("identifiable")
         })
     });
 }

@@ -46,7 +46,8 @@ pub use uncertainty::Uncertainty;
 
 use crate::math::lsq::{Factor, Reduced, Solution};
 use crate::observation::{assemble, Check, Measurement, Observations};
-use crate::{Error, Result, Setup};
+use crate::setup::Arm;
+use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use rayon::prelude::*;
 
@@ -115,18 +116,18 @@ impl Identification {
 ///         measurements.push(Measurement { posture, point, q, wrench, displacement });
 ///     }
 /// }
-/// let id = stiffid::identify::least_squares(&setup, &measurements)?;
+/// let id = stiffid::identify::least_squares(setup.arm(), &measurements)?;
 /// assert!((0..6).all(|j| (id.stiffness[j] / k[j] - 1.0).abs() < 1e-9));
 /// # Ok::<(), stiffid::Error>(())
 /// ```
 ///
 /// # Errors
 /// Those of [`InBlocks::push`] and [`InBlocks::solve`].
-pub fn least_squares(setup: &Setup, measurements: &[Measurement]) -> Result<Identification> {
-    let mut blocks = InBlocks::new(setup);
+pub fn least_squares(arm: &Arm, measurements: &[Measurement]) -> Result<Identification> {
+    let mut blocks = InBlocks::new(arm);
     blocks.push(measurements)?;
     let solved = blocks.solve()?;
-    let residuals = residuals(setup, &solved.solution.h, measurements);
+    let residuals = residuals(arm, &solved.solution.h, measurements);
     Ok(solved.finish(residuals))
 }
 
@@ -140,7 +141,7 @@ pub const BLOCK: usize = 1024;
 /// measurements are cut into parts, nor on the number of threads. Memory: one block, and what
 /// [`Check`] keeps per posture.
 pub struct InBlocks<'a> {
-    setup: &'a Setup,
+    arm: &'a Arm,
     check: Check,
     /// The measurements of the block being filled.
     pending: Vec<Measurement>,
@@ -161,9 +162,9 @@ pub struct Solved {
 
 impl<'a> InBlocks<'a> {
     /// No measurements yet.
-    pub fn new(setup: &'a Setup) -> Self {
+    pub fn new(arm: &'a Arm) -> Self {
         Self {
-            setup,
+            arm,
             check: Check::default(),
             pending: Vec::with_capacity(BLOCK),
             reduced: Reduced::default(),
@@ -176,7 +177,7 @@ impl<'a> InBlocks<'a> {
     /// # Errors
     /// Those of [`crate::observation::check`], numbering measurements over all parts.
     pub fn push(&mut self, measurements: &[Measurement]) -> Result<()> {
-        self.check.push(self.setup.arm(), measurements, None)?;
+        self.check.push(self.arm, measurements, None)?;
         self.deflected |= measurements
             .iter()
             .any(|m| m.displacement.iter().any(|d| *d != 0.0));
@@ -203,7 +204,7 @@ impl<'a> InBlocks<'a> {
         let blocks: Vec<Reduced> = measurements
             .par_chunks(BLOCK)
             .map(|block| {
-                let (psi, delta) = rows(self.setup, block);
+                let (psi, delta) = rows(self.arm, block);
                 let mut reduced = Reduced::default();
                 reduced.push(&psi, &delta);
                 reduced
@@ -220,7 +221,7 @@ impl<'a> InBlocks<'a> {
     /// [`Error::InvalidField`] when every displacement is zero; those of [`Reduced::try_solve`]
     /// ([`Error::TooFewRows`], [`Error::Unidentifiable`], [`Error::NotFinite`]).
     pub fn solve(&mut self) -> Result<Solved> {
-        if !self.setup.model().is_drives_only() {
+        if !self.arm.model().is_drives_only() {
             return Err(six_parameters_only());
         }
         let pending = std::mem::take(&mut self.pending);
@@ -263,21 +264,21 @@ impl Solved {
 /// `delta - Psi h` of some measurements (checked), three per measurement in the row order of
 /// [`crate::observation`], computed in parallel blocks of [`BLOCK`] (the same values whatever
 /// the blocks).
-pub fn residuals(setup: &Setup, h: &Vector6<f64>, measurements: &[Measurement]) -> Vec<f64> {
+pub fn residuals(arm: &Arm, h: &Vector6<f64>, measurements: &[Measurement]) -> Vec<f64> {
     measurements
         .par_chunks(BLOCK)
         .flat_map_iter(|block| {
-            let (psi, delta) = rows(setup, block);
+            let (psi, delta) = rows(arm, block);
             (delta - psi * h).as_slice().to_vec()
         })
         .collect()
 }
 
 /// `Psi` and `delta` of some measurements ([`assemble`]).
-fn rows(setup: &Setup, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f64>) {
+fn rows(arm: &Arm, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f64>) {
     let n = 3 * measurements.len();
     let (mut psi, mut delta) = (DMatrix::zeros(n, 6), DVector::zeros(n));
-    assemble(setup.arm(), measurements, &mut psi, &mut delta);
+    assemble(arm, measurements, &mut psi, &mut delta);
     (psi, delta)
 }
 

@@ -15,7 +15,8 @@
 use super::{check_deflection, finish, six_parameters_only, Identification};
 use crate::math::lsq::Factor;
 use crate::observation::{Measurement, Observations};
-use crate::{Error, Result, Setup};
+use crate::setup::Arm;
+use crate::{Error, Result};
 use nalgebra::{DVector, RowVector6, Vector3};
 use std::collections::HashMap;
 
@@ -37,10 +38,10 @@ pub struct Offset {
 /// [`Error::InvalidField`] (`offsets`) when a posture's point has a single load (one wrench);
 /// those of [`Observations::from_measurements`] and of [`Observations::least_squares`].
 pub fn least_squares(
-    setup: &Setup,
+    arm: &Arm,
     measurements: &[Measurement],
 ) -> Result<(Identification, Vec<Offset>)> {
-    let obs = Observations::from_measurements(setup.arm(), measurements)?;
+    let obs = Observations::from_measurements(arm, measurements)?;
     if obs.psi.ncols() != 6 {
         return Err(six_parameters_only());
     }

@@ -62,7 +62,7 @@ pub fn least_squares<R: BufRead + Send>(
 ) -> Result<(Identification, Rows)> {
     let mut reader = Reader::new(source)?;
     let layout = reader.layout().clone();
-    let mut blocks = InBlocks::new(setup);
+    let mut blocks = InBlocks::new(setup.arm());
     let mut rows = Rows {
         labels: Labels::default(),
         postures: Vec::new(),
@@ -108,7 +108,7 @@ pub fn least_squares<R: BufRead + Send>(
                     }
                 })
                 .collect();
-            block.copy_from_slice(&residuals(setup, &h, &measurements));
+            block.copy_from_slice(&residuals(setup.arm(), &h, &measurements));
         });
     Ok((solved.finish(all), rows))
 }

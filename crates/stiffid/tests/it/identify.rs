@@ -39,7 +39,7 @@ fn noise_free_data_recover_the_stiffness_of_every_preset_and_spring_placement() 
                 })
                 .collect();
             let data = synthetic(&setup, &postures, |i, _| wrenches[i]);
-            let id = least_squares(&setup, &data).unwrap();
+            let id = least_squares(setup.arm(), &data).unwrap();
             let err = max_relative_error(&id.stiffness, setup.nominal_stiffness().unwrap());
             assert!(err < 1e-9, "{name}, {springs:?}: relative error {err:e}");
             assert_eq!((id.rows, id.postures), (96, 8));
@@ -54,7 +54,7 @@ fn the_t_quantile_and_the_delta_method_are_the_documented_ones() {
     let data = paper_measurements(&setup);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let noisy = with_noise(&data, setup.noise().displacement_sd(), &mut rng);
-    let id = least_squares(&setup, &noisy).unwrap();
+    let id = least_squares(setup.arm(), &noisy).unwrap();
     let u = id.uncertainty.unwrap();
     assert_eq!(u.dof, 66);
     // t_{0.975, 66} from R: qt(0.975, 66) = 1.996564418952332.
@@ -85,7 +85,10 @@ fn confidence_intervals_cover_the_truth_at_about_95_percent() {
         let mut rng =
             ChaCha8Rng::seed_from_u64(0x5eed ^ (set as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         let noisy = with_noise(&clean, sigma, &mut rng);
-        let u = least_squares(&setup, &noisy).unwrap().uncertainty.unwrap();
+        let u = least_squares(setup.arm(), &noisy)
+            .unwrap()
+            .uncertainty
+            .unwrap();
         for j in 0..6 {
             let [lo, hi] = u.compliance_ci95[j];
             covered_h += usize::from(lo <= truth_h[j] && truth_h[j] <= hi);
@@ -117,7 +120,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
     // Measurement 10 (posture 3, point 2), y: 0.3 mm off, about 30 sigma.
     data[9].displacement.y += 0.3e-3;
     let outlier_row = 3 * 9 + 1;
-    let plain = least_squares(&setup, &data).unwrap();
+    let plain = least_squares(setup.arm(), &data).unwrap();
     let plain_err = max_relative_error(&plain.stiffness, setup.nominal_stiffness().unwrap());
     for loss in [Loss::Huber, Loss::Tukey] {
         let id = Observations::from_measurements(setup.arm(), &data)
@@ -190,29 +193,29 @@ fn data_that_cannot_be_used_are_errors_naming_the_measurement() {
     let mut bad = data.clone();
     bad[4].point = 4;
     assert_eq!(
-        field(least_squares(&setup, &bad).unwrap_err()),
+        field(least_squares(setup.arm(), &bad).unwrap_err()),
         (5, MeasurementField::Point)
     );
     let mut bad = data.clone();
     bad[6].q[2] = setup.robot().limits().upper[2] + 0.1;
     assert_eq!(
-        field(least_squares(&setup, &bad).unwrap_err()),
+        field(least_squares(setup.arm(), &bad).unwrap_err()),
         (7, MeasurementField::Axis(2))
     );
     let mut bad = data.clone();
     bad[2].wrench[1] = f64::NAN;
     assert_eq!(
-        field(least_squares(&setup, &bad).unwrap_err()),
+        field(least_squares(setup.arm(), &bad).unwrap_err()),
         (3, MeasurementField::Force)
     );
     let mut bad = data.clone();
     bad[5].posture = 0;
     assert_eq!(
-        field(least_squares(&setup, &bad).unwrap_err()),
+        field(least_squares(setup.arm(), &bad).unwrap_err()),
         (6, MeasurementField::Posture)
     );
     assert_eq!(
-        least_squares(&setup, &data[..1]).unwrap_err(),
+        least_squares(setup.arm(), &data[..1]).unwrap_err(),
         Error::TooFewRows { rows: 3 }
     );
 }
@@ -227,7 +230,7 @@ fn a_joint_no_measurement_loads_is_named() {
         .build()
         .unwrap();
     let data = paper_measurements(&setup);
-    match least_squares(&setup, &data).unwrap_err() {
+    match least_squares(setup.arm(), &data).unwrap_err() {
         Error::Unidentifiable { joints, .. } => assert_eq!(joints, vec![6]),
         other => panic!("unexpected {other}"),
     }
@@ -250,7 +253,7 @@ fn one_posture_may_carry_several_wrenches() {
         .zip(twist)
         .flat_map(|(a, b)| [a, b])
         .collect();
-    let id = least_squares(&setup, &data).unwrap();
+    let id = least_squares(setup.arm(), &data).unwrap();
     assert_eq!((id.rows, id.postures), (144, 6));
     let err = max_relative_error(&id.stiffness, setup.nominal_stiffness().unwrap());
     assert!(err < 1e-9, "relative error {err:e}");

@@ -17,7 +17,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
     // 1500 postures x 4 points: six blocks, the last one partial.
     let data = noisy(&setup, 1500, 1);
     assert!(data.len() > 5 * BLOCK && data.len() % BLOCK != 0);
-    let blocks = identify::least_squares(&setup, &data).unwrap();
+    let blocks = identify::least_squares(setup.arm(), &data).unwrap();
     let whole = Observations::from_measurements(setup.arm(), &data)
         .unwrap()
         .least_squares()
@@ -37,7 +37,7 @@ fn blocks_give_the_same_bits_with_one_and_two_threads() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| identify::least_squares(&setup, &data).unwrap())
+            .install(|| identify::least_squares(setup.arm(), &data).unwrap())
     };
     let (one, two) = (run(1), run(2));
     assert_eq!(one, two);
@@ -63,7 +63,7 @@ fn a_generated_file_of_many_postures_gives_back_the_known_stiffness() {
     let text = measurement_csv(&data);
     let mut file = measurements::parse(&text).unwrap();
     file.to_base_frame(&setup).unwrap();
-    let id = identify::least_squares(&setup, &file.measurements).unwrap();
+    let id = identify::least_squares(setup.arm(), &file.measurements).unwrap();
     assert_eq!((id.rows, id.postures), (60_000, 5000));
     let k = setup.nominal_stiffness().unwrap();
     let error = (id.stiffness - k).component_div(k).amax();

@@ -38,7 +38,7 @@ fn synthetic_file(setup: &Setup, n: usize, seed: u64) -> String {
 fn parsed(setup: &Setup, text: &str) -> (Identification, measurements::MeasurementFile) {
     let mut file = measurements::parse(text).unwrap();
     file.to_base_frame(setup).unwrap();
-    let id = identify::least_squares(setup, &file.measurements).unwrap();
+    let id = identify::least_squares(setup.arm(), &file.measurements).unwrap();
     (id, file)
 }
 

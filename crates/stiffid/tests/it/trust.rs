@@ -35,7 +35,7 @@ fn noisy_paper_data(setup: &Setup, repeats: usize, seed: u64) -> Vec<Measurement
 #[test]
 fn chi_square_ratio_is_near_one_with_the_setups_noise() {
     let setup = paper();
-    let id = least_squares(&setup, &noisy_paper_data(&setup, 10, 7)).unwrap();
+    let id = least_squares(setup.arm(), &noisy_paper_data(&setup, 10, 7)).unwrap();
     let a = id.adequacy(setup.noise().displacement_variance()).unwrap();
     assert_eq!(a.dof, 720 - 6);
     // s / sigma has a standard deviation of about 1 / sqrt(2 dof) = 0.026.
@@ -52,7 +52,7 @@ fn chi_square_ratio_is_near_one_with_the_setups_noise() {
         10.0 * setup.noise().displacement_sd(),
         &mut ChaCha8Rng::seed_from_u64(1),
     );
-    let a = least_squares(&setup, &loud)
+    let a = least_squares(setup.arm(), &loud)
         .unwrap()
         .adequacy(setup.noise().displacement_variance())
         .unwrap();
@@ -173,7 +173,7 @@ fn k_folds_equal_to_the_postures_is_leave_one_out_by_hand() {
         assert_eq!(fold.postures, vec![p]);
         let (held, rest): (Vec<Measurement>, Vec<Measurement>) =
             data.iter().cloned().partition(|m| m.posture == p);
-        let by_hand = least_squares(&setup, &rest).unwrap();
+        let by_hand = least_squares(setup.arm(), &rest).unwrap();
         let rel = (0..6)
             .map(|j| (fold.stiffness[j] / by_hand.stiffness[j] - 1.0).abs())
             .fold(0.0, f64::max);
@@ -253,7 +253,7 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
     let base = {
         let mut f = measurements::parse(FANUC_CSV).unwrap();
         f.to_base_frame(&setup).unwrap();
-        least_squares(&setup, &f.measurements).unwrap()
+        least_squares(setup.arm(), &f.measurements).unwrap()
     };
     let tracker = Isometry3::from_parts(
         Translation3::new(3.2, -1.1, 0.4),
@@ -276,7 +276,7 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
         .build()
         .unwrap();
     file.to_base_frame(&setup).unwrap();
-    let other = least_squares(&setup, &file.measurements).unwrap();
+    let other = least_squares(setup.arm(), &file.measurements).unwrap();
     let rel = (other.stiffness - base.stiffness)
         .component_div(&base.stiffness)
         .amax();
@@ -333,7 +333,7 @@ fn the_unit_check_fires_on_displacements_in_metres_and_forces_in_kilonewtons() {
                 ..m.clone()
             })
             .collect();
-        least_squares(&setup, &scaled)
+        least_squares(setup.arm(), &scaled)
             .unwrap()
             .unit_check(setup.nominal_stiffness().unwrap())
     };
@@ -351,14 +351,14 @@ fn absurd_magnitudes_and_no_deflection_are_errors() {
     let data = paper_measurements(&setup);
     let mut bad = data.clone();
     bad[3].displacement.x = 1.5;
-    let e = least_squares(&setup, &bad).unwrap_err();
+    let e = least_squares(setup.arm(), &bad).unwrap_err();
     assert!(
         e.to_string().contains("measurement 4, displacement") && e.to_string().contains("limit"),
         "{e}"
     );
     let mut bad = data.clone();
     bad[2].wrench[2] = -2e6;
-    assert!(least_squares(&setup, &bad)
+    assert!(least_squares(setup.arm(), &bad)
         .unwrap_err()
         .to_string()
         .contains("measurement 3, force"));
@@ -369,7 +369,7 @@ fn absurd_magnitudes_and_no_deflection_are_errors() {
             ..m.clone()
         })
         .collect();
-    let e = least_squares(&setup, &zero).unwrap_err();
+    let e = least_squares(setup.arm(), &zero).unwrap_err();
     assert!(
         e.to_string()
             .contains("every measured displacement is zero"),

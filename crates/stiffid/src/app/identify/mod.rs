@@ -26,7 +26,7 @@ use crate::io::measurements::{self, Labels};
 use crate::io::read_text;
 use crate::io::readings::{self, has_load_column};
 use crate::observation::{Measurement, Observations};
-use crate::setup::plausibility;
+use crate::setup::{plausibility, Noise};
 use crate::{Error, Result, Setup};
 use nalgebra::Vector6;
 use std::io::{BufRead, BufReader, Read};
@@ -118,18 +118,18 @@ impl Folds {
 /// residuals against: a displacement's (a loaded minus an unloaded reading, twice a reading's);
 /// with offsets fitted, one reading's, the unloaded reading's error going into its offset
 /// (docs/model.md, the noise convention).
-pub fn row_noise_variance(setup: &Setup, offsets: bool) -> f64 {
+pub fn row_noise_variance(noise: &Noise, offsets: bool) -> f64 {
     match offsets {
-        true => setup.noise().reading_variance,
-        false => setup.noise().displacement_variance(),
+        true => noise.reading_variance,
+        false => noise.displacement_variance(),
     }
 }
 
 /// The noise floor of the prediction intervals' scale: the standard deviation of one
-/// displacement coordinate from the setup's tracker noise, m
+/// displacement coordinate from the tracker noise `noise`, m
 /// ([`crate::model::prediction`]).
-pub fn noise_floor(setup: &Setup) -> f64 {
-    setup.noise().displacement_sd()
+pub fn noise_floor(noise: &Noise) -> f64 {
+    noise.displacement_sd()
 }
 
 /// Where each measurement came from: what a report names a measurement by.
@@ -286,7 +286,7 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let mut report = Report {
         data_name,
         fit: how,
-        adequacy: identification.adequacy(row_noise_variance(setup, offsets.is_some())),
+        adequacy: identification.adequacy(row_noise_variance(setup.noise(), offsets.is_some())),
         unit,
         influential: Vec::new(),
         identification,
@@ -493,11 +493,11 @@ fn fit(
     Option<Vec<Offset>>,
 )> {
     if how.offsets {
-        let (id, offsets) = offsets::least_squares(setup, measurements)?;
+        let (id, offsets) = offsets::least_squares(setup.arm(), measurements)?;
         return Ok((id, None, Some(offsets)));
     }
     if how.in_blocks() {
-        return Ok((least_squares(setup, measurements)?, None, None));
+        return Ok((least_squares(setup.arm(), measurements)?, None, None));
     }
     let obs = Observations::from_measurements(setup.arm(), measurements)?;
     // Every fold is fitted as the full fit.
@@ -507,7 +507,7 @@ fn fit(
         None => None,
         Some(folds) => {
             let cv = cross_validate(&obs, &id, folds.count(obs.postures), method)?;
-            let calibration = calibrate(&obs, &cv, noise_floor(setup));
+            let calibration = calibrate(&obs, &cv, noise_floor(setup.noise()));
             Some((cv, calibration))
         }
     };

@@ -93,7 +93,7 @@ fn fit_all(
     let cv = folds
         .map(|f| {
             let cv = cross_validate_model(&obs, &fit, f.count(obs.postures), method)?;
-            let calibration = calibrate(&obs, &cv, noise_floor(setup));
+            let calibration = calibrate(&obs, &cv, noise_floor(setup.noise()));
             Ok::<_, Error>((cv, calibration))
         })
         .transpose()?;
