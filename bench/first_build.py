@@ -37,9 +37,11 @@ def load(root, html, cpulog):
     for u in units:
         if u['mode'] == 'run-custom-build':
             continue
-        script = 'build' in (u['target'] or '') and 'script' in (u['target'] or '')
-        crate = ('build_script_build' if script
-                 else 'stiffid' if u['name'] == 'stiffid-cli' else u['name'].replace('-', '_'))
+        target = u['target'] or ''
+        script = 'build' in target and 'script' in target
+        binary = '"bin"' in target
+        crate = ('build_script_build' if script else target.split('"')[0].strip() if binary
+                 else u['name'].replace('-', '_'))
         runs = cpu.get(crate)
         if runs:  # the run of that crate whose wall time is nearest the unit's
             run = min(runs, key=lambda r: abs(r[0] - u['duration']))
@@ -47,7 +49,7 @@ def load(root, html, cpulog):
             w = run[1]
         else:
             w = u['duration'] / 10
-        key = (u['name'], u['version'])
+        key = (u['name'] + (' (bin)' if binary else ''), u['version'])
         weight[key] += w
         for name, section in u.get('sections') or []:
             if name == 'frontend' and u['duration'] > 0 and not script:
@@ -65,12 +67,21 @@ def load(root, html, cpulog):
                 continue
             q = packages[d['pkg']]
             macro = any('proc-macro' in t['kind'] for t in q['targets'])
-            deps[x].append((d['pkg'], macro or kinds == {'build'} or x == cli))
+            deps[x].append((d['pkg'], macro or kinds == {'build'}))
             stack.append(d['pkg'])
     key = {x: (packages[x]['name'], packages[x]['version']) for x in need}
-    work = {x: weight[key[x]] for x in need}
-    front = {x: frontend.get(key[x], 1.0) for x in need}
-    return cli, key, deps, work, front
+    # The binary links every crate: it waits for all of them; its package's library, if it has
+    # one, is pipelined like any other.
+    binary = cli + ' (bin)'
+    key[binary] = (key[cli][0] + ' (bin)', key[cli][1])
+    if weight[key[cli]] == 0:  # no library: the package's dependencies are the binary's
+        deps[binary] = [(d, True) for d, _ in deps.pop(cli)]
+        del key[cli]
+    else:
+        deps[binary] = [(cli, True)] + [(d, True) for d, _ in deps[cli]]
+    work = {x: weight[key[x]] for x in key}
+    front = {x: frontend.get(key[x], 1.0) for x in key}
+    return binary, key, deps, work, front
 
 
 def critical_path(cli, key, deps, work, front):
@@ -132,7 +143,7 @@ def main():
     total = sum(work.values())
     length, path = critical_path(cli, key, deps, work, front)
     wall = two_cores(cli, deps, work, front)
-    print(f'{len(work)} packages, rustc CPU {total:.1f} s (half: {total / 2:.1f} s)')
+    print(f'{len(work)} crates, rustc CPU {total:.1f} s (half: {total / 2:.1f} s)')
     print(f'critical path, CPU-weighted, one thread per crate: {length:.1f} s')
     for s, w, (name, version) in path:
         print(f'  {s:6.1f} s  {w:6.1f} s  {name} {version}')
