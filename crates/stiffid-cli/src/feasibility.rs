@@ -7,9 +7,12 @@ use stiffid::cell::{Check, Feasibility};
 pub fn text(checks: &[Feasibility]) -> String {
     let mut s = format!("\nfeasibility in the cell (checks: {})\n", kinds(checks));
     for (i, f) in checks.iter().enumerate() {
-        let clearance = f.min_clearance().map_or(String::new(), |c| {
+        let mut clearance = f.min_clearance().map_or(String::new(), |c| {
             format!(", smallest clearance {:.1} mm", c * 1e3)
         });
+        if let Some(c) = f.min_margin() {
+            clearance += &format!(", nearest constraint {} {:.1} mm", c.kind, c.margin * 1e3);
+        }
         s += &match f.feasible() {
             true => format!("  posture {}: feasible{clearance}\n", i + 1),
             false => {

@@ -52,6 +52,8 @@ pub struct Request<'a> {
     pub pool: Option<Vec<Vector6<f64>>>,
     pub restarts: Option<usize>,
     pub target_pct: Option<f64>,
+    /// mm.
+    pub margin_mm: Option<f64>,
 }
 
 /// Runs the select job (the GIL released) and returns its document, its warnings raised.
@@ -88,6 +90,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     }
     options.polished = r.polished.unwrap_or(options.polished);
     options.max_evals = r.max_evals.unwrap_or(options.max_evals);
+    options.margin = r.margin_mm.map(|m| m * 1e-3);
     let request = select::Request {
         setup,
         criterion: r.criterion.parse().map_err(raise)?,

@@ -290,6 +290,9 @@ impl Setup {
     ///   (shape ``(m, 6)``, deg, at most 10000; postures failing a cell check are skipped), exact
     ///   by enumeration up to 100000 groups, else the best of ``restarts`` exchange runs.
     ///
+    /// ``margin_mm`` (0 to 1000): the margin every posture keeps to every constraint of the
+    /// cell (line of sight, incidence, floor, obstacles, bodies, rope, ``[constraints]``), in a
+    /// search and a pool alike; default the tracker's ``registration_uncertainty_mm``, else 0.
     /// ``target_pct`` (global or pool): the smallest group whose predicted mean deviation rate at
     /// noise level multiple 1 is at most this many percent on every parameter, instead of ``n``.
     /// ``max_evals`` bounds the evaluations of one local search (default 6000); ``gradient`` is
@@ -301,7 +304,7 @@ impl Setup {
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -320,6 +323,7 @@ impl Setup {
         pool: Option<&Bound<'py, PyAny>>,
         restarts: Option<usize>,
         target_pct: Option<f64>,
+        margin_mm: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {
@@ -341,6 +345,7 @@ impl Setup {
             pool,
             restarts,
             target_pct,
+            margin_mm,
         };
         design::select(py, &self.inner, request)
     }

@@ -179,6 +179,7 @@ class Setup:
         pool: Optional[ArrayLike] = None,
         restarts: Optional[int] = None,
         target_pct: Optional[float] = None,
+        margin_mm: Optional[float] = None,
     ) -> dict[str, Any]:
         """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained where they apply."""
     def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...

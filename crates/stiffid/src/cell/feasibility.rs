@@ -129,7 +129,9 @@ pub struct Margin {
     pub kind: CheckKind,
     /// Distance (or angle, height) minus what is required: m, or rad for angles.
     pub margin: f64,
-    /// What is required on top of contact (the clearance for body checks), m; 0 for the others.
+    /// What is required on top of contact: the clearance for body checks, plus the margin the
+    /// checker keeps ([`Checker::keeping`]) for every check but the bounds (m; rad for the
+    /// incidence).
     pub required: f64,
     /// The pair.
     pub between: (Thing, Thing),
@@ -178,6 +180,17 @@ impl Feasibility {
             .filter_map(|c| c.clearance)
             .reduce(f64::min)
     }
+
+    /// The check of lengths (the cell's, the tracker's line of sight and `[constraints]`: every
+    /// check but the bounds and the incidence) with the smallest margin, the posture's distance
+    /// to its nearest constraint (beyond what the checker keeps, [`Checker::keeping`]); `None`
+    /// without such checks.
+    pub fn min_margin(&self) -> Option<&Check> {
+        self.checks
+            .iter()
+            .filter(|c| !c.kind.is_angle())
+            .min_by(|a, b| a.margin.total_cmp(&b.margin))
+    }
 }
 
 /// Postures of the sample that decides which body pairs always touch.
@@ -191,6 +204,9 @@ pub struct Checker<'a> {
     kinds: Vec<CheckKind>,
     /// Capsule index pairs of the self-collision check.
     pairs: Vec<(usize, usize)>,
+    /// The margin every check but the bounds keeps on top of what it requires, m
+    /// ([`Checker::keeping`]).
+    keep: f64,
 }
 
 impl<'a> Checker<'a> {
@@ -232,6 +248,7 @@ impl<'a> Checker<'a> {
             setup,
             kinds,
             pairs: Vec::new(),
+            keep: 0.0,
         };
         if setup.cell().is_some() {
             checker.pairs = checker.self_pairs();
@@ -247,6 +264,28 @@ impl<'a> Checker<'a> {
     /// The setup.
     pub fn setup(&self) -> &'a Setup {
         self.setup
+    }
+
+    /// This checker with every check but the bounds keeping a margin of `keep` (m, finite and
+    /// `>= 0`; a negative or non-finite value counts as 0) on top of what it requires, so that
+    /// a posture it passes survives a cell, tracker or robot that is off by up to `keep`: the
+    /// bodies keep the clearance plus `keep` from the floor, the obstacles, each other and the
+    /// rope; a line of sight passes `keep` from every body and obstacle; the tool, which the
+    /// rope and the line of sight start from, only beyond its radius, the clearance (the rope)
+    /// and `keep` from the loading or the measuring point (a tracker moved by `keep` moves the
+    /// line there by a small part of `keep`); the loading point
+    /// stands `keep` above its lowest height and the anchor; the incidence angle keeps `keep /
+    /// L` rad below its largest (`L` the length of the line of sight: the angle a tracker moved
+    /// by `keep` across the line turns it by). Every margin ([`Checker::margins`],
+    /// [`Checker::feasibility`]) is then what is left beyond `keep`, and its gradient exact.
+    pub fn keeping(mut self, keep: f64) -> Self {
+        self.keep = if keep.is_finite() { keep.max(0.0) } else { 0.0 };
+        self
+    }
+
+    /// The margin every check but the bounds keeps ([`Checker::keeping`]), m: 0 unless asked.
+    pub fn keep(&self) -> f64 {
+        self.keep
     }
 
     /// The check kinds that apply, in [`CheckKind::ALL`] order.
@@ -373,22 +412,32 @@ impl<'a> Checker<'a> {
         if let Some(t) = &s.tracker() {
             for (i, p) in s.tool().measuring_points.iter().enumerate() {
                 let p = frames.point(p);
-                let sight = line(&t.position, &p, s.geometry().tool_radius);
+                let sight = line(&t.position, &p, s.geometry().tool_radius + self.keep);
                 self.line_margins(
                     CheckKind::LineOfSight,
                     &sight,
                     Thing::Sight(i),
                     &bodies,
-                    0.0,
+                    self.keep,
                     out,
                 );
                 if let Some(max) = t.max_incidence {
                     let normal = frames.flange.rotation * t.measuring_normals[i];
-                    let angle = normal.angle(&(t.position - p));
-                    let m = Thing::MeasuringPoint(i);
                     let sight = t.position - p;
-                    let m = margin(CheckKind::Incidence, max - angle, 0.0, m, m);
-                    out.push(m, Deferred::Angle { normal, sight, p });
+                    let angle = normal.angle(&sight);
+                    let turn = self.keep / sight.norm();
+                    let m = Thing::MeasuringPoint(i);
+                    let m = margin(CheckKind::Incidence, max - angle - turn, turn, m, m);
+                    let keep = self.keep;
+                    out.push(
+                        m,
+                        Deferred::Angle {
+                            normal,
+                            sight,
+                            p,
+                            keep,
+                        },
+                    );
                 }
             }
         }
@@ -396,15 +445,21 @@ impl<'a> Checker<'a> {
         let height = Deferred::Height(loading);
         if let Some(z) = c.loading_point_min_z {
             let (l, f) = (Thing::LoadingPoint, Thing::Floor);
-            let m = margin(CheckKind::LoadingPointHeight, loading.z - z, 0.0, l, f);
+            let m = margin(
+                CheckKind::LoadingPointHeight,
+                loading.z - z - self.keep,
+                self.keep,
+                l,
+                f,
+            );
             out.push(m, height);
         }
         if c.anchor_below_loading_point {
             let (l, a) = (Thing::LoadingPoint, Thing::Anchor);
             let m = margin(
                 CheckKind::AnchorBelow,
-                loading.z - s.load().anchor.z,
-                0.0,
+                loading.z - s.load().anchor.z - self.keep,
+                self.keep,
                 l,
                 a,
             );
@@ -420,7 +475,7 @@ impl<'a> Checker<'a> {
         cell: &crate::setup::Cell,
         out: &mut Margins,
     ) {
-        let c = cell.clearance;
+        let c = cell.clearance + self.keep;
         if let Some(z) = cell.floor_z {
             for b in bodies.iter().filter(|b| b.part() != Part::Base) {
                 let (centre, r) = b.bound();

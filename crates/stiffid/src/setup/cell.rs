@@ -87,6 +87,12 @@ pub struct Tracker {
     /// The tracker frame in the robot base frame (m), to turn displacements measured in the
     /// tracker frame into the base frame ([`crate::observation::frames`]); `None` if not given.
     pub base_from_tracker: Option<Isometry3<f64>>,
+    /// How far the tracker may be from where the setup puts it, m
+    /// (`registration_uncertainty_mm`, 0 to [`limits::MARGIN_MM`]; `stiffid register` writes
+    /// three standard deviations of the registered position): the margin a design keeps to
+    /// every constraint of the cell unless one is stated
+    /// ([`crate::design::SearchOptions::margin`]); `None`: not given.
+    pub registration_uncertainty: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -125,6 +131,7 @@ pub(super) struct TrackerFile {
     #[serde(default, deserialize_with = "crate::common::exact::option_arrays")]
     measuring_normals: Option<Vec<[f64; 3]>>,
     base_from_tracker: Option<TransformFile>,
+    registration_uncertainty_mm: Option<f64>,
 }
 
 /// The numbers of a field for messages, shortened.
@@ -250,6 +257,13 @@ pub(super) fn tracker(f: TrackerFile) -> Result<Tracker> {
         let rpy = &limits::ANGLE_DEG;
         limits::check("tracker.base_from_tracker.rpy_deg", &t.rpy_deg, rpy)?;
     }
+    if let Some(u) = f.registration_uncertainty_mm {
+        limits::check(
+            "tracker.registration_uncertainty_mm",
+            &[u],
+            &limits::MARGIN_MM,
+        )?;
+    }
     let base_from_tracker = f.base_from_tracker.map(|t| t.isometry());
     let position = match (f.position_mm, &base_from_tracker) {
         (Some(p), _) => mm(&p),
@@ -268,6 +282,7 @@ pub(super) fn tracker(f: TrackerFile) -> Result<Tracker> {
             .measuring_normals
             .map_or(Vec::new(), |n| n.into_iter().map(Vector3::from).collect()),
         base_from_tracker,
+        registration_uncertainty: f.registration_uncertainty_mm.map(|u| u * 1e-3),
     })
 }
 

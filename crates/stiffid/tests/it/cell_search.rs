@@ -2,7 +2,8 @@
 //! constraints are an error naming the check, and the same seed gives the same postures whatever
 //! the thread count.
 
-use stiffid::cell::Checker;
+use stiffid::app::select::{self, PoolInput, Request};
+use stiffid::cell::{CheckKind, Checker, Part, Thing};
 use stiffid::design::{self, Criterion, SearchOptions};
 use stiffid::{Error, Setup};
 
@@ -103,4 +104,121 @@ fn impossible_constraints_are_an_error_naming_the_check() {
             other => panic!("{other:?}"),
         }
     }
+}
+
+/// A search (and a pool choice) with a stated margin keeps it to every constraint of the cell:
+/// every length check's margin is at least 20 mm (a line against the tool it starts from: beyond
+/// the tool's radius plus 20 mm) and each incidence angle 20 mm / (line of sight) below its limit;
+/// the same search without it hugs a line of sight by the 0.1 mm the searches keep. The tracker's registration
+/// uncertainty is the default margin.
+#[test]
+fn a_design_keeps_its_margin_where_one_without_hugs_a_line_of_sight() {
+    let setup = cell_with_table();
+    let start = design::random_group(&setup, 6, 1);
+    let plain = design::local(&setup, Criterion::RelativeA, &start, &small(1500, 1)).unwrap();
+    let sight = |q| {
+        let f = Checker::new(&setup).feasibility(q);
+        let c = f.checks.iter().find(|c| c.kind == CheckKind::LineOfSight);
+        c.unwrap().margin
+    };
+    let hug = plain
+        .postures
+        .iter()
+        .map(sight)
+        .fold(f64::INFINITY, f64::min);
+    assert!((0.0..1e-3).contains(&hug), "{hug}");
+    let kept_options = SearchOptions {
+        margin: Some(0.02),
+        ..small(1500, 1)
+    };
+    let kept = design::local(&setup, Criterion::RelativeA, &start, &kept_options).unwrap();
+    let tracker = setup.tracker().unwrap().position;
+    let mut seen = std::collections::BTreeSet::new();
+    for q in &kept.postures {
+        let frames = setup.robot().frames(q);
+        for m in Checker::new(&setup).margins(q) {
+            let line = matches!(m.kind, CheckKind::Rope | CheckKind::LineOfSight);
+            let tool = m.between.1 == Thing::Part(Part::Tool);
+            let kept_by = match (m.kind, m.between.0) {
+                (CheckKind::Bounds, _) => continue,
+                // The line starts at the tool: it keeps the margin beyond the tool's radius.
+                _ if line && tool => continue,
+                (CheckKind::Incidence, Thing::MeasuringPoint(i)) => {
+                    let p = frames.point(&setup.tool().measuring_points[i]);
+                    0.02 / (tracker - p).norm()
+                }
+                _ => 0.02,
+            };
+            assert!(m.margin >= kept_by, "{m:?}");
+            seen.insert(m.kind);
+        }
+    }
+    assert_eq!(seen.len(), 6, "{seen:?}");
+    let keeping = Checker::new(&setup).keeping(0.02);
+    assert!(kept
+        .postures
+        .iter()
+        .all(|q| keeping.feasibility(q).feasible()));
+    assert!(
+        kept.value > plain.value,
+        "{} vs {}",
+        kept.value,
+        plain.value
+    );
+    // The registration's uncertainty in the setup gives the same design.
+    let registered = paper_with(&format!(
+        "{PAPER_CELL}max_incidence_deg = 60.0\nregistration_uncertainty_mm = 20.0
+[[cell.obstacle]]
+name = \"table\"
+min_mm = [-1500.0, 1000.0, 0.0]
+max_mm = [-700.0, 1800.0, 800.0]
+"
+    ))
+    .unwrap();
+    let by_default = design::local(&registered, Criterion::RelativeA, &start, &small(1500, 1));
+    assert_eq!(by_default.unwrap().postures, kept.postures);
+    // A pool of both groups: with the margin, the postures hugging a line of sight are skipped.
+    let pool: Vec<_> = plain
+        .postures
+        .iter()
+        .chain(&kept.postures)
+        .copied()
+        .collect();
+    let pool_input = || PoolInput {
+        name: "pool".into(),
+        postures: pool.clone(),
+    };
+    let choose = |margin| {
+        select::run(&Request {
+            setup: &setup,
+            criterion: Criterion::RelativeA,
+            purpose: Default::default(),
+            calibration: Default::default(),
+            method: select::Method::Pool,
+            start: None,
+            pool: Some(pool_input()),
+            postures: 6,
+            target_pct: None,
+            options: SearchOptions {
+                margin,
+                ..small(1500, 1)
+            },
+            restarts: 8,
+            distinct: None,
+            progress: &(),
+        })
+        .unwrap()
+    };
+    let (free, held) = (choose(None), choose(Some(0.02)));
+    let skipped = held.pool.as_ref().unwrap().skipped.len();
+    assert!(
+        skipped >= 1 && free.pool.unwrap().skipped.is_empty(),
+        "{skipped}"
+    );
+    assert!(
+        held.min_margins.iter().all(|m| m.unwrap() >= 0.02),
+        "{:?}",
+        held.min_margins
+    );
+    assert_eq!(held.margin, 0.02);
 }

@@ -136,6 +136,7 @@ fn bad_values_in_code_name_the_field() {
                 max_incidence: None,
                 measuring_normals: vec![Vector3::z()],
                 base_from_tracker: None,
+                registration_uncertainty: None,
             }),
             "tracker.measuring_normals",
         ),

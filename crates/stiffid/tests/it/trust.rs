@@ -272,6 +272,7 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
             max_incidence: None,
             measuring_normals: vec![nalgebra::Vector3::z()],
             base_from_tracker: Some(tracker),
+            registration_uncertainty: None,
         })
         .build()
         .unwrap();

@@ -65,6 +65,11 @@ pub struct Args {
     /// The flange-origin distance of --distinct, 0 to 10000 mm [default: 10].
     #[arg(long, requires = "distinct")]
     distinct_mm: Option<f64>,
+    /// The margin every posture keeps to every constraint of the cell (line of sight, incidence,
+    /// floor, obstacles, bodies, rope, [constraints]), 0 to 1000 mm, in a search and in a pool
+    /// alike [default: the tracker's registration_uncertainty_mm, else 0].
+    #[arg(long)]
+    margin_mm: Option<f64>,
     /// Choose the smallest group (2 to 60 postures) whose predicted mean deviation rate at noise
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
     /// prints the group size against the worst joint's rate and plots it (into --report, else
@@ -212,6 +217,7 @@ fn options(args: &Args) -> SearchOptions {
         seed: args.seed,
         gradient: args.gradient,
         solver: args.solver,
+        margin: args.margin_mm.map(|m| m * 1e-3),
         ..SearchOptions::default()
     };
     if let Some(s) = args.starts {
@@ -238,6 +244,7 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
         text += &target::text(t);
     }
     text += &outcome_text(setup, r);
+    text += &margin_text(doc);
     text += &criteria_text(&r.evaluation, &doc.criteria.infinite, setup);
     if let Some(c) = &doc.calibration {
         text += &calibration_text(c);
@@ -250,6 +257,22 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
         text += &format!("plan: {}\n", dir.join("plan.html").display());
     }
     text
+}
+
+/// The margin kept and each posture's smallest margin, in words; empty without the cell's
+/// checks of lengths.
+fn margin_text(doc: &Document) -> String {
+    let smallest: Vec<String> = (doc.min_margin_mm.iter())
+        .map(|m| m.map_or("-".into(), |m| format!("{m:.1}")))
+        .collect();
+    match doc.min_margin_mm.iter().any(Option::is_some) {
+        true => format!(
+            "margin kept to every constraint of the cell: {} mm; each posture's smallest: {} mm\n",
+            number(doc.margin_mm),
+            smallest.join(", ")
+        ),
+        false => String::new(),
+    }
 }
 
 /// What the pool held and what was chosen, in words.

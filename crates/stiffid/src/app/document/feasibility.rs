@@ -15,6 +15,12 @@ pub struct Posture {
     /// The smallest distance between bodies (and lines) that must not touch, mm; `null` without
     /// `[cell]` or `[tracker]`.
     pub min_clearance_mm: Option<f64>,
+    /// The smallest margin to a constraint of the cell's lengths (floor, obstacles,
+    /// self-collision, rope, line of sight, `[constraints]`: every check but the bounds and the
+    /// incidence), mm: how far the posture is from its nearest constraint; `null` without them.
+    pub min_margin_mm: Option<f64>,
+    /// The check of `min_margin_mm`, e.g. `line-of-sight`.
+    pub min_margin_check: Option<&'static str>,
     /// The failing checks.
     pub violations: Vec<Violation>,
 }
@@ -42,6 +48,8 @@ pub fn postures(checks: &[Feasibility]) -> Vec<Posture> {
             posture: i + 1,
             feasible: f.feasible(),
             min_clearance_mm: f.min_clearance().map(super::mm),
+            min_margin_mm: f.min_margin().map(|c| super::mm(c.margin)),
+            min_margin_check: f.min_margin().map(|c| c.kind.key()),
             violations: f.violations().map(violation).collect(),
         })
         .collect()

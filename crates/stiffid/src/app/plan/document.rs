@@ -103,6 +103,12 @@ pub struct PlannedPosture {
     /// The smallest distance between bodies (and lines) that must not touch, mm; `null` without
     /// `[cell]` or `[tracker]`.
     pub min_clearance_mm: Option<f64>,
+    /// The smallest margin to a constraint of the cell's lengths (every check but the bounds and
+    /// the incidence), mm: how far the posture is from its nearest constraint; `null` without
+    /// them.
+    pub min_margin_mm: Option<f64>,
+    /// The check of `min_margin_mm`, e.g. `line-of-sight`.
+    pub min_margin_check: Option<&'static str>,
     /// The cell's checks the posture fails, in words (e.g. `floor (tool - floor) fails by 12
     /// mm`); empty when it passes them all.
     pub failed_checks: Vec<String>,
@@ -165,7 +171,8 @@ impl Document {
             header.extend(["dx", "dy", "dz"].map(|c| format!("point{k}_{c}_mm")));
         }
         header.extend((1..=6).map(|j| format!("without_joint{j}_pct")));
-        header.extend(["min_clearance_mm", "failed_checks"].map(String::from));
+        let last = ["min_clearance_mm", "min_margin_mm", "failed_checks"];
+        header.extend(last.map(String::from));
         let fixed = |values: &[f64], digits: usize| -> Vec<String> {
             values.iter().map(|v| format!("{v:.digits$}")).collect()
         };
@@ -182,6 +189,7 @@ impl Document {
                 r.min_clearance_mm
                     .map_or(String::new(), |c| format!("{c:.1}")),
             );
+            cells.push(r.min_margin_mm.map_or(String::new(), |c| format!("{c:.1}")));
             cells.push(r.failed_checks.join("; "));
             cells
         });
@@ -212,6 +220,8 @@ fn posture((i, p): (usize, &Posture)) -> PlannedPosture {
         without_pct: finite_each(p.without_pct),
         without_worst_pct: finite(worst),
         min_clearance_mm: p.feasibility.min_clearance().map(mm),
+        min_margin_mm: p.feasibility.min_margin().map(|c| mm(c.margin)),
+        min_margin_check: p.feasibility.min_margin().map(|c| c.kind.key()),
         failed_checks: p.feasibility.violations().map(describe).collect(),
     }
 }

@@ -2,7 +2,7 @@
 //! `Setup.select`.
 
 use crate::app::document::feasibility::describe;
-use crate::app::document::{degrees, finite};
+use crate::app::document::{degrees, finite, mm};
 use crate::app::evaluate::document::{CalibrationDoc, Criteria};
 use crate::app::select::{PoolReport, Report, Unconstrained};
 use crate::common::choice::Choice;
@@ -61,6 +61,13 @@ pub struct Document {
     pub terminations: Option<Vec<TerminationCount>>,
     /// The group found, axis angles q1..q6, deg, one row per posture.
     pub postures_deg: Vec<[f64; 6]>,
+    /// The margin every posture was chosen to keep to every constraint of the cell (line of
+    /// sight, incidence, floor, obstacles, bodies, rope, `[constraints]`), mm: `margin_mm`, else
+    /// the tracker's `registration_uncertainty_mm`, else 0.
+    pub margin_mm: f64,
+    /// Each posture's smallest margin to a constraint of the cell's lengths (every check but the
+    /// bounds and the incidence), mm, in the order of `postures_deg`; `null` without such checks.
+    pub min_margin_mm: Vec<Option<f64>>,
     /// Every criterion of the group found.
     pub criteria: Criteria,
     /// With `for` `calibration` or `both`: the group's calibration criteria.
@@ -221,6 +228,8 @@ impl Document {
             termination: r.termination.map(Termination::name),
             terminations: r.termination.map(|_| counts(&r.terminations)),
             postures_deg: degrees(&r.postures),
+            margin_mm: mm(r.margin),
+            min_margin_mm: r.min_margins.iter().map(|m| m.map(mm)).collect(),
             criteria: Criteria::from(&r.evaluation),
             calibration: (r.calibration.as_ref())
                 .map(|c| CalibrationDoc::new(&c.options, &c.criteria)),

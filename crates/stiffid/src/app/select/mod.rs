@@ -15,6 +15,7 @@ use crate::design::calibration::{CalibrationCriteria, CalibrationCriterion, Cali
 use crate::design::distinct::{distinct_pool, near_pairs_by, Distinctness, Near};
 use crate::design::identifiable;
 use crate::design::pool::MAX_POOL;
+use crate::design::search::{design_checker, design_margin};
 use crate::design::target::{smallest_group, TargetOutcome};
 use crate::design::{
     self, evaluate, Criterion, Evaluation, Goal, Gradient, PoolMethod, PoolOptions, SearchOptions,
@@ -168,6 +169,15 @@ pub struct Report {
     /// The pairs of postures of the group that are not distinct ([`crate::design::distinct`]),
     /// by the request's distances or the defaults.
     pub near: Vec<Near>,
+    /// The margin every posture was chosen to keep to every constraint of the cell, m
+    /// ([`crate::design::design_margin`]: the request's, else the tracker's registration
+    /// uncertainty, else 0).
+    pub margin: f64,
+    /// Each chosen posture's smallest margin to a constraint of the cell's lengths (m, from the
+    /// exact checks: [`crate::cell::Feasibility::min_margin`]; the tool, where the rope and the
+    /// lines of sight start, counted beyond `margin` as the design keeps it), `None` without
+    /// such checks.
+    pub min_margins: Vec<Option<f64>>,
     /// The job's warnings: one per pair of `near`.
     pub warnings: Vec<Warning>,
 }
@@ -251,7 +261,7 @@ pub fn run(request: &Request) -> Result<Report> {
     let pool = request
         .pool
         .as_ref()
-        .map(|p| Candidates::new(request.setup, p, request.distinct.as_ref()))
+        .map(|p| Candidates::new(request, p))
         .transpose()?;
     let started = Instant::now();
     let (found, target) = match request.target_pct {
@@ -301,8 +311,20 @@ pub fn run(request: &Request) -> Result<Report> {
         unconstrained,
         warnings: near.iter().map(Near::warning).collect(),
         near,
+        margin: design_margin(request.setup, request.options.margin),
+        min_margins: min_margins(request.setup, request.options.margin, &found.postures),
         postures: found.postures,
     })
+}
+
+/// Each posture's smallest margin to a constraint of the cell's lengths, m
+/// ([`crate::cell::Feasibility::min_margin`]), as the design with `margin` kept it (the tool,
+/// where the rope and the lines of sight start, beyond the margin: [`design_checker`]).
+fn min_margins(setup: &Setup, margin: Option<f64>, postures: &[Vector6<f64>]) -> Vec<Option<f64>> {
+    let checker = design_checker(setup, margin);
+    let keep = checker.keep();
+    let margin = |q| checker.feasibility(q).min_margin().map(|c| c.margin + keep);
+    postures.iter().map(margin).collect()
 }
 
 /// The calibration criteria of `postures` under `design`.
@@ -414,12 +436,12 @@ struct Candidates<'a> {
 }
 
 impl<'a> Candidates<'a> {
-    fn new(
-        setup: &'a Setup,
-        input: &'a PoolInput,
-        distinct: Option<&Distinctness>,
-    ) -> Result<Self> {
-        let checker = Checker::new(setup);
+    /// The pool `input` of the request: the postures that fail a check of the cell with the
+    /// request's margin ([`design_checker`]) skipped, and those that are not distinct with
+    /// [`Request::distinct`].
+    fn new(request: &Request<'a>, input: &'a PoolInput) -> Result<Self> {
+        let (setup, distinct) = (request.setup, request.distinct.as_ref());
+        let checker = design_checker(setup, request.options.margin);
         let skipped: Vec<Skipped> = (input.postures.iter().enumerate())
             .filter_map(|(i, q)| {
                 let f = checker.feasibility(q);

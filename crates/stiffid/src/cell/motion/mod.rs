@@ -122,11 +122,12 @@ pub(super) enum Deferred {
     /// without a witness).
     Witness(Carrier, Carrier, Option<Witness>),
     /// The incidence angle between `normal` and `sight` at the measuring point `p`, as a margin
-    /// `max - angle` ([`angle_gradient`]).
+    /// `max - angle - keep / |sight|` ([`angle_gradient`]; `keep` in m).
     Angle {
         normal: Vector3<f64>,
         sight: Vector3<f64>,
         p: Vector3<f64>,
+        keep: f64,
     },
     /// The height of a point of the flange (base frame, m).
     Height(Vector3<f64>),
@@ -174,7 +175,21 @@ impl MarginGradients {
                 let f = frames();
                 (velocity(f, b, &w.b) - velocity(f, a, &w.a)).transpose() * w.normal
             }
-            Deferred::Angle { normal, sight, p } => -angle_gradient(frames(), &normal, &sight, &p),
+            Deferred::Angle {
+                normal,
+                sight,
+                p,
+                keep,
+            } => {
+                // d(keep / L) = -keep / L^2 dL, dL = -(sight / L) . v_p (the tracker fixed).
+                let f = frames();
+                let l = sight.norm();
+                let turn = match keep > 0.0 && l > 0.0 {
+                    true => f.link_point_jacobian(&p, 6).transpose() * sight * (keep / (l * l * l)),
+                    false => Vector6::zeros(),
+                };
+                -angle_gradient(f, &normal, &sight, &p) - turn
+            }
             Deferred::Height(p) => frames().link_point_jacobian(&p, 6).row(2).transpose(),
         }
     }

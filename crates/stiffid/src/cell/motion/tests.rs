@@ -47,7 +47,7 @@ fn feasible(setup: &Setup, checker: &Checker, count: usize) -> Vec<Vector6<f64>>
 #[test]
 fn margin_gradients_match_central_differences() {
     for robot in presets::names() {
-        let (compared, kinds) = compare(&cell(robot), robot, 8);
+        let (compared, kinds) = compare(&cell(robot), robot, 8, 0.0);
         assert!(compared > 1000, "{robot}: {compared}");
         assert_eq!(kinds.len(), CheckKind::ALL.len() - 1, "{robot}: {kinds:?}");
     }
@@ -89,21 +89,77 @@ pub(crate) fn mesh_setup() -> Setup {
 fn hull_margin_gradients_match_central_differences() {
     let setup = mesh_setup();
     assert!(setup.shapes().is_some());
-    let (compared, kinds) = compare(&setup, "mesh robot", 8);
+    let (compared, kinds) = compare(&setup, "mesh robot", 8, 0.0);
     assert!(compared > 500, "{compared}");
     assert!(kinds.contains(&CheckKind::SelfCollision), "{kinds:?}");
     assert!(kinds.contains(&CheckKind::Floor), "{kinds:?}");
 }
 
+/// A checker that keeps 50 mm: every margin is the plain one less 50 mm (less `0.05 / L` rad
+/// for the incidence, `L` the line of sight's length; the tool against a line excepted, whose
+/// exempt part grows by the margin), and its gradients are still exact.
+#[test]
+fn kept_margins_are_the_plain_ones_less_the_margin_with_exact_gradients() {
+    let setup = cell(presets::names().next().unwrap());
+    let (plain, kept) = (Checker::new(&setup), Checker::new(&setup).keeping(0.05));
+    let tracker = setup.tracker().unwrap().position;
+    let mut seen = std::collections::BTreeSet::new();
+    for q in feasible(&setup, &plain, 6) {
+        let frames = setup.robot().frames(&q);
+        for (a, b) in plain.margins(&q).iter().zip(kept.margins(&q)) {
+            let less = match (a.kind, a.between.0) {
+                (CheckKind::Bounds, _) => 0.0,
+                (CheckKind::Incidence, crate::cell::Thing::MeasuringPoint(i)) => {
+                    let p = frames.point(&setup.tool().measuring_points[i]);
+                    0.05 / (tracker - p).norm()
+                }
+                _ => 0.05,
+            };
+            // A pair within FAR_MARGIN of its requirement is exact in both (never broad phase),
+            // as a line against an obstacle always is; the tool's part of a line grows shorter
+            // with the margin kept.
+            let line = matches!(a.kind, CheckKind::Rope | CheckKind::LineOfSight);
+            let obstacle = matches!(a.between.1, crate::cell::Thing::Obstacle(_));
+            let tool = a.between.1 == crate::cell::Thing::Part(crate::cell::Part::Tool);
+            let shortened = tool && line;
+            let exact = a.kind.is_angle()
+                || (line && obstacle)
+                || a.margin < crate::cell::FAR_MARGIN
+                || matches!(
+                    a.kind,
+                    CheckKind::LoadingPointHeight | CheckKind::AnchorBelow
+                );
+            if a.margin.is_finite() && exact && !shortened {
+                assert!((a.margin - b.margin - less).abs() < 1e-12, "{a:?} {b:?}");
+                seen.insert(a.kind);
+            }
+        }
+    }
+    for kind in [
+        CheckKind::Rope,
+        CheckKind::LineOfSight,
+        CheckKind::Incidence,
+        CheckKind::LoadingPointHeight,
+        CheckKind::AnchorBelow,
+    ] {
+        assert!(seen.contains(&kind), "{kind}: {seen:?}");
+    }
+    let (compared, kinds) = compare(&setup, "kept", 6, 0.05);
+    assert!(compared > 500, "{compared}");
+    assert!(kinds.contains(&CheckKind::Incidence), "{kinds:?}");
+}
+
 /// Compares every margin's exact gradient with central differences at `count` feasible postures
-/// of `setup`: how many derivatives were compared and of which checks.
+/// of `setup` (for a checker keeping `keep`, m): how many derivatives were compared and of which
+/// checks.
 fn compare(
     setup: &Setup,
     robot: &str,
     count: usize,
+    keep: f64,
 ) -> (usize, std::collections::BTreeSet<CheckKind>) {
     let h = 1e-5;
-    let checker = Checker::new(setup);
+    let checker = Checker::new(setup).keeping(keep);
     let postures = feasible(setup, &checker, count);
     assert_eq!(postures.len(), count, "{robot}");
     let (mut compared, mut kinds) = (0, std::collections::BTreeSet::new());

@@ -104,6 +104,10 @@ pub const TOLERANCE_MM: Range = Range::new(1e-6, 1e3, "mm");
 /// A calibration prior's nominal tolerance of the joints' angle errors (`--tolerance-deg`).
 pub const TOLERANCE_DEG: Range = Range::new(1e-6, 90.0, "deg");
 
+/// The accepted margin a design keeps to every constraint of the cell (`[tracker]
+/// registration_uncertainty_mm`, `select --margin-mm`): 0 to 1 m.
+pub const MARGIN_MM: Range = Range::new(0.0, 1e3, "mm");
+
 /// The old `[noise] variance_mm2`, the variance of one displacement coordinate.
 pub const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
 

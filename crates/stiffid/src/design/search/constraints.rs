@@ -2,7 +2,23 @@
 //! one posture, for the SQP.
 
 use crate::cell::{CheckKind, Checker, Margin};
+use crate::setup::Setup;
 use nalgebra::Vector6;
+
+/// The margin a design keeps to every constraint of the cell, m: `margin` when stated
+/// ([`super::SearchOptions::margin`]), else the tracker's registration uncertainty
+/// ([`crate::setup::Tracker::registration_uncertainty`]), else 0.
+pub fn design_margin(setup: &Setup, margin: Option<f64>) -> f64 {
+    margin
+        .or_else(|| setup.tracker().and_then(|t| t.registration_uncertainty))
+        .unwrap_or(0.0)
+}
+
+/// The checker of a design on `setup`: every check but the bounds keeps [`design_margin`]
+/// ([`Checker::keeping`]). The searches, the start groups and a pool's filter use it.
+pub fn design_checker(setup: &Setup, margin: Option<f64>) -> Checker<'_> {
+    Checker::new(setup).keeping(design_margin(setup, margin))
+}
 
 /// What a search keeps on top of every check's margin (m, or rad for angles; the bounds excepted,
 /// which the SQP keeps exactly): 0.1 mm, so that postures written with 6 decimals of a degree

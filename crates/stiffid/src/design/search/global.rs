@@ -1,7 +1,7 @@
 //! Global search: local searches in parallel from seeded space-filling starts, screened, the best
 //! polished and kept.
 
-use super::constraints::violation;
+use super::constraints::{design_checker, violation};
 use super::local::{check_count, evals_per_step, infeasible, local_in};
 use super::sample::group_from_stream;
 use super::{Goal, SearchOptions, SearchOutcome};
@@ -84,7 +84,7 @@ pub fn global_for(
 ) -> Result<SearchOutcome> {
     options.validate()?;
     check_count(setup, goal, postures)?;
-    let checker = Checker::new(setup);
+    let checker = design_checker(setup, options.margin);
     let screening = match options.screen_steps {
         0 => options.clone(),
         steps => SearchOptions {

@@ -20,7 +20,7 @@ mod sample;
 mod sqp;
 mod termination;
 
-pub use constraints::{cell_constraints, CellConstraints};
+pub use constraints::{cell_constraints, design_checker, design_margin, CellConstraints};
 pub use global::{global, global_for};
 pub(super) use local::check_count;
 pub use local::{local, local_for};
@@ -284,6 +284,11 @@ pub struct SearchOptions {
     /// The SQP of every local search (default [`Solver::Auto`]: per criterion,
     /// [`Solver::resolve`]).
     pub solver: Solver,
+    /// The margin every posture keeps to every constraint of the cell, m (0 to
+    /// [`limits::MARGIN_MM`]; [`crate::cell::Checker::keeping`]): lines of sight, incidence, floor,
+    /// obstacles, bodies, rope, `[constraints]`. Default `None`: the tracker's
+    /// `registration_uncertainty_mm` when the setup gives one, else 0 ([`design_margin`]).
+    pub margin: Option<f64>,
 }
 
 impl Default for SearchOptions {
@@ -299,6 +304,7 @@ impl Default for SearchOptions {
             fd_step: 1e-7,
             gradient: Gradient::Exact,
             solver: Solver::Auto,
+            margin: None,
         }
     }
 }
@@ -308,7 +314,8 @@ impl SearchOptions {
     /// `max_evals` 1 to [`limits::MAX_EVALS`], `starts` and `polished` 1 to
     /// [`limits::MAX_STARTS`], `screen_steps` 0 to [`limits::MAX_EVALS`], `ftol` within
     /// [`limits::FTOL`], `xtol` within [`limits::XTOL_RAD`], `fd_step` within
-    /// [`limits::FD_STEP_RAD`] (NaN and infinities never). [`local`] and [`global`] call it.
+    /// [`limits::FD_STEP_RAD`], `margin` (in mm) within [`limits::MARGIN_MM`] (NaN and
+    /// infinities never). [`local`] and [`global`] call it.
     ///
     /// # Errors
     /// [`crate::Error::InvalidField`] naming the field (`SearchOptions.fd_step`), the value and the range.
@@ -329,6 +336,9 @@ impl SearchOptions {
         ];
         for (field, value, range) in tolerances {
             limits::check(&format!("SearchOptions.{field}"), &[value], range)?;
+        }
+        if let Some(m) = self.margin {
+            limits::check("SearchOptions.margin", &[m * 1e3], &limits::MARGIN_MM)?;
         }
         Ok(())
     }

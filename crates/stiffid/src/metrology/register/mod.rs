@@ -151,7 +151,8 @@ impl Registration {
     }
 
     /// The `[tracker]` fragment of a setup file with this transform (the table
-    /// `base_from_tracker = { xyz_mm, rpy_deg }`), with the fit in comments.
+    /// `base_from_tracker = { xyz_mm, rpy_deg }` and `registration_uncertainty_mm`, three
+    /// standard deviations of the registered position, at most 1000), with the fit in comments.
     pub fn fragment(&self) -> String {
         let (xyz, rpy) = self.xyz_mm_rpy_deg();
         let s = self.std();
@@ -159,7 +160,9 @@ impl Registration {
         format!(
             "# registration of {} points: residual RMS {:.4} mm; standard deviation of the \
              translation [{:.4}, {:.4}, {:.4}] mm, of the rotation [{:.5}, {:.5}, {:.5}] deg\n\
-             [tracker]\nbase_from_tracker = {{ xyz_mm = {}, rpy_deg = {} }}\n",
+             [tracker]\nbase_from_tracker = {{ xyz_mm = {}, rpy_deg = {} }}\n\
+             # three standard deviations of the tracker's position: the margin designs keep\n\
+             registration_uncertainty_mm = {:.3}\n",
             self.residuals.len(),
             self.rms * 1e3,
             s[0] * 1e3,
@@ -169,7 +172,8 @@ impl Registration {
             s[4].to_degrees(),
             s[5].to_degrees(),
             list(xyz),
-            list(rpy)
+            list(rpy),
+            (3e3 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt()).min(1e3)
         )
     }
 }

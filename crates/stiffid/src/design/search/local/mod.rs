@@ -4,7 +4,8 @@
 mod epigraph;
 
 use super::constraints::{
-    inequalities, inequalities_and_gradients, kinds, most_failed, violation, CellConstraints,
+    design_checker, inequalities, inequalities_and_gradients, kinds, most_failed, violation,
+    CellConstraints,
 };
 use super::sqp::{self, Gradients, Nlp, SparseRows, Values};
 use super::termination::{from_slsqp, Termination};
@@ -89,7 +90,7 @@ pub fn local_for(
 ) -> Result<SearchOutcome> {
     options.validate()?;
     check_start(setup, goal, start)?;
-    let checker = Checker::new(setup);
+    let checker = design_checker(setup, options.margin);
     let outcome = local_in(&checker, goal, start, options);
     infeasible(&checker, std::iter::once(&outcome))?;
     Ok(outcome)
@@ -118,8 +119,16 @@ pub(super) fn infeasible<'o>(
     let groups = outcomes.map(|o| o.postures.as_slice());
     let (check, failed, postures) =
         most_failed(checker, groups).unwrap_or((CheckKind::Bounds, 0, 0));
+    let check = match checker.keep() > 0.0 {
+        false => check.key().to_string(),
+        true => format!(
+            "{} with its {} mm margin",
+            check.key(),
+            checker.keep() * 1e3
+        ),
+    };
     Err(Error::Infeasible {
-        check: check.key().to_string(),
+        check,
         failed,
         postures,
     })
