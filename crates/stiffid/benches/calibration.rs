@@ -42,6 +42,7 @@ fn campaign(postures: usize) -> (ErrorModel, Vec<Observation>) {
                 point: k,
                 q,
                 measured: (frame.inverse() * Point3::from(b)).coords,
+                wrench: Vector6::zeros(),
             });
         }
     }

@@ -22,7 +22,8 @@ pub struct Args {
     common: Common,
     /// Readings CSV: posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm (or
     /// x_mm,y_mm,z_mm in the base frame), one row per posture and measuring point (at most 100000
-    /// rows; with load steps, the unloaded readings are used).
+    /// rows); with load steps (load_step or load_n and the force columns), the loaded readings
+    /// fit the setup's model's compliances in the same fit.
     #[arg(long)]
     data: PathBuf,
     /// The joint errors fitted: none (the tracker and the measuring points only, as
@@ -64,9 +65,10 @@ pub struct Args {
     /// Write the calibrated robot as a URDF here (corrected joint origins).
     #[arg(long)]
     urdf_out: Option<PathBuf>,
-    /// With --gravity masses: write the fitted compliance as a stiffness file here (JSON, as
-    /// identify --out; predict and compensate --stiffness read it): the fitted joints at their
-    /// fitted value, the others at the setup's nominal stiffness. Never over an input.
+    /// With loaded readings (load steps) or --gravity masses: write the fitted compliances as a
+    /// stiffness file here (JSON, as identify --out; predict and compensate --stiffness read
+    /// it): the fitted parameters at their fitted value, the others at the setup's nominal
+    /// stiffness. Never over an input.
     #[arg(long)]
     stiffness_out: Option<PathBuf>,
 }
@@ -86,9 +88,6 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let out = prepare(&args.out, "--out")?;
     let urdf_out = prepare(&args.urdf_out, "--urdf-out")?;
-    if args.stiffness_out.is_some() && args.gravity != Gravity::Masses {
-        bail!("--stiffness-out: the compliances are fitted with --gravity masses only");
-    }
     let stiffness_out = prepare(&args.stiffness_out, "--stiffness-out")?;
     let request = job::Request {
         readings: Readings {
@@ -113,7 +112,10 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(_), Some(file)) => Some(serde_json::to_string_pretty(file)?),
         (Some(_), None) => bail!(
             "--stiffness-out: {}",
-            document.stiffness_file_error.clone().unwrap_or_default()
+            document.stiffness_file_error.clone().unwrap_or_else(|| {
+                "no compliance is fitted: loaded readings (load steps) or --gravity masses fit them"
+                    .into()
+            })
         ),
     };
     if let Some(o) = &out {
@@ -143,7 +145,7 @@ fn prepare(path: &Option<PathBuf>, option: &str) -> Result<Option<OutFile>> {
 
 fn text_of(d: &Document) -> String {
     let mut text = format!(
-        "robot calibration from {} unloaded readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
+        "robot calibration from {} readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
          residual RMS {:.4} mm (nominal, tracker registered: {:.4} mm); noise per coordinate {:.4} mm{}\n\
          rank {} of {} parameters, condition number {}\n",
         d.readings,

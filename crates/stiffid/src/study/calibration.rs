@@ -178,6 +178,7 @@ pub(crate) fn read(
                 point: *k,
                 q: *q,
                 measured: t + Vector3::from_fn(|_, _| normal.sample(rng)),
+                wrench: Vector6::zeros(),
             }
         })
         .collect())

@@ -25,7 +25,7 @@ pub struct Document {
     pub gravity: &'static str,
     /// The frame of the readings: `tracker` or `base`.
     pub measured_in: &'static str,
-    /// Unloaded readings fitted.
+    /// Readings fitted: the unloaded, and the loaded ones with load steps.
     pub readings: usize,
     /// Every parameter of the error model, in the Jacobian's column order.
     pub parameters: Vec<Parameter>,
@@ -63,12 +63,13 @@ pub struct Document {
     pub urdf: String,
     /// The setup fragment: the tracker's registration and the measuring points.
     pub fragment: String,
-    /// With `gravity` `masses`: the stiffness of every parameter of the setup's model, as a
-    /// stiffness file holds it (what `calibrate --stiffness-out` writes, `predict` and
-    /// `compensate --stiffness` read); the fitted drives at their fitted compliance, the others
-    /// at the setup's nominal stiffness with zero variance; `null` otherwise.
+    /// With loaded readings (load steps) or `gravity` `masses`: the stiffness of every
+    /// parameter of the setup's model, as a stiffness file holds it (what `calibrate
+    /// --stiffness-out` writes, `predict` and `compensate --stiffness` read); the fitted
+    /// parameters at their fitted compliance, the others at the setup's nominal stiffness with
+    /// zero variance; `null` otherwise.
     pub stiffness_file: Option<StiffnessSection>,
-    /// Why there is no stiffness file with `masses`.
+    /// Why there is no stiffness file with loaded readings or `masses`.
     pub stiffness_file_error: Option<String>,
     /// Results to look at before trusting the calibration.
     pub warnings: Vec<Warning>,

@@ -1,10 +1,12 @@
 //! The robot calibration job (`stiffid calibrate`): the robot's geometric errors, the gravity
-//! terms, the tracker's registration and the measuring points fitted together from the unloaded
-//! readings of a campaign ([`crate::metrology::calibration`]); held-out validation and leave-one-posture-out
-//! cross-validation; the calibrated robot as a robot TOML file and a URDF. `--geometry none
+//! terms, the tracker's registration and the measuring points fitted together from the readings
+//! of a campaign ([`crate::metrology::calibration`]); with loaded readings (load steps) the
+//! compliances of the setup's stiffness model in the same fit ([`ErrorModel::with_loads`]);
+//! held-out validation and leave-one-posture-out cross-validation; the calibrated robot as a
+//! robot TOML file and a URDF, the fitted compliances as a stiffness file. `--geometry none
 //! --gravity none` is the cell calibration of `calibrate-cell`.
 //!
-//! Limits: at most [`MAX_READINGS`] unloaded readings (the readings file's own limit), at most
+//! Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
 //! [`crate::metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
 //! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
 //! cross-validation (one fit per posture).
@@ -23,6 +25,7 @@ use crate::metrology::calibration::fit::{self, Fit, Options, Priors};
 use crate::metrology::calibration::gravity::{self, Gravity, Term};
 use crate::metrology::calibration::validation::{self, Validation};
 use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
+use crate::observation::deflection::base_wrench;
 use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
 use nalgebra::{DMatrix, DVector};
@@ -144,26 +147,33 @@ pub struct Report {
     pub urdf: String,
     /// The setup fragment: the tracker's registration and the measuring points.
     pub fragment: String,
-    /// With [`Gravity::Masses`]: the compliance of every parameter of the setup's model, as a
+    /// With [`Gravity::Masses`] or loaded readings: the compliance of every parameter of the
+    /// setup's model, as a
     /// stiffness file holds it ([`fitted_compliance`]), or why there is none.
     pub compliance: Option<std::result::Result<FittedCompliance, String>>,
     /// Inputs and results to look at before trusting the result.
     pub warnings: Vec<Warning>,
 }
 
-/// The unloaded observations of a readings file, the frame they are in, and their labels.
-fn observations(data: &Data) -> (Vec<Observation>, MeasuredIn) {
+/// The observations of a readings file, the frame they are in: every reading, the wrenches in
+/// the base frame (a tool-frame wrench turned by the nominal flange), or with `unloaded_only`
+/// the unloaded readings alone.
+fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observation>, MeasuredIn) {
     let measured_in = match data.frame {
         DisplacementFrame::Tracker => MeasuredIn::Tracker,
         _ => MeasuredIn::Base,
     };
     let obs = (data.readings.iter())
-        .filter(|r| r.unloaded())
+        .filter(|r| !unloaded_only || r.unloaded())
         .map(|r| Observation {
             posture: r.posture,
             point: r.point,
             q: r.q,
             measured: r.position,
+            wrench: match r.wrench == nalgebra::Vector6::zeros() {
+                true => r.wrench,
+                false => base_wrench(&setup.robot().frames(&r.q), &r.wrench, data.wrench_frame),
+            },
         })
         .collect();
     (obs, measured_in)
@@ -220,8 +230,12 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let setup = request.readings.setup;
     let name = &request.readings.name;
     let (data, mut warnings) = read(&request.readings)?;
-    let (obs, measured_in) = observations(&data);
+    let (obs, measured_in) = observations(setup, &data, false);
     let model = model(setup, measured_in, request.geometry, request.gravity)?;
+    let model = match obs.iter().any(Observation::loaded) {
+        true => model.with_loads(setup)?,
+        false => model,
+    };
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
@@ -233,8 +247,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let start = fit::start(&model, &obs).map_err(|e| in_data(name, e))?;
     let fitted = fit::fit(&model, &obs, &start, &options).map_err(|e| in_data(name, e))?;
     let residuals: Vec<_> = (fitted.residuals.as_slice().chunks_exact(3))
-        .map(nalgebra::Vector3::from_column_slice)
-        .take(obs.len())
+        .zip(&data.readings)
+        .filter(|(_, r)| r.unloaded())
+        .map(|(r, _)| nalgebra::Vector3::from_column_slice(r))
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
     let nominal = validation::validate(&model, &start, &obs)?;
@@ -254,12 +269,12 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             &mut warnings,
         )?),
     };
-    warnings.extend(judge(&model, &fitted, noise_ratio, &data, name));
+    warnings.extend(judge(&model, &fitted, noise_ratio, name));
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate)?;
     let fragment = fragment(&model, &fitted);
-    let compliance =
-        (request.gravity == Gravity::Masses).then(|| fitted_compliance(setup, &model, &fitted));
+    let compliance = (request.gravity == Gravity::Masses || model.has_loads())
+        .then(|| fitted_compliance(setup, &model, &fitted));
     Ok(Report {
         data_name: name.clone(),
         labels: data.labels.clone(),
@@ -282,7 +297,8 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
 }
 
 /// The compliance of every parameter of the setup's model (SI: rad/(N m), m/N) and its
-/// covariance, from a calibration with known masses: what `identify` writes as a stiffness file.
+/// covariance, from a calibration that fits compliances: what `identify` writes as a stiffness
+/// file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FittedCompliance {
     /// The setup's model's parameters (drives first).
@@ -296,9 +312,11 @@ pub struct FittedCompliance {
     pub fitted: Vec<bool>,
 }
 
-/// The compliance of a calibration with known masses ([`Gravity::Masses`]): each drive whose
-/// compliance the readings determine at its fitted value, every other parameter of the setup's
-/// model (a vertical joint 1, the virtual springs) at the setup's nominal stiffness with zero
+/// The compliance of a calibration that fits compliances: with known masses
+/// ([`Gravity::Masses`]) the drives' under gravity, with loaded readings
+/// ([`ErrorModel::with_loads`]) every parameter of the setup's model. Each parameter the
+/// readings determine at its fitted value, every other (a vertical joint 1, the virtual springs
+/// without loaded readings, a merged compliance) at the setup's nominal stiffness with zero
 /// variance.
 ///
 /// # Errors
@@ -313,29 +331,34 @@ pub fn fitted_compliance(
         return Err("the setup gives no nominal stiffness (nominal_stiffness_nm_per_rad) for the parameters the calibration does not fit".into());
     };
     let n = h.len();
-    let joints: Vec<(usize, usize)> = (fit.fitted.iter().enumerate())
-        .filter_map(|(i, &c)| match model.parameters()[c].target {
-            Target::Gravity(Term::Compliance { joint }) => Some((i, joint)),
-            _ => None,
-        })
+    let parameters = setup.model().parameters();
+    // (index in the fitted parameters, index in the setup's model) of each fitted compliance.
+    let of = |c: usize| match (model.parameters()[c].target, model.compliance_columns()) {
+        (_, Some(columns)) => columns.iter().position(|&k| k == c),
+        (Target::Gravity(Term::Compliance { joint }), None) => Some(joint),
+        _ => None,
+    };
+    let fitted_here: Vec<(usize, usize)> = (fit.fitted.iter().enumerate())
+        .filter_map(|(i, &c)| of(c).map(|m| (i, m)))
         .collect();
     let (mut covariance, mut fitted) = (DMatrix::zeros(n, n), vec![false; n]);
-    for &(i, joint) in &joints {
+    for &(i, m) in &fitted_here {
         let value = fit.estimate.values[fit.fitted[i]];
-        if !(value.is_finite() && value > 0.0) {
+        let linear = parameters[m].unit.is_stiffness();
+        if linear && !(value.is_finite() && value > 0.0) {
             return Err(format!(
-                "joint {}'s compliance is fitted at {value:.4e} rad/(N m), not positive: no spring",
-                joint + 1
+                "{}'s compliance is fitted at {value:.4e} (SI), not positive: no spring",
+                parameters[m].name
             ));
         }
-        h[joint] = value;
-        fitted[joint] = true;
-        for &(k, other) in &joints {
-            covariance[(joint, other)] = fit.covariance[(i, k)];
+        h[m] = value;
+        fitted[m] = true;
+        for &(k, other) in &fitted_here {
+            covariance[(m, other)] = fit.covariance[(i, k)];
         }
     }
     Ok(FittedCompliance {
-        parameters: setup.model().parameters(),
+        parameters,
         h,
         covariance,
         fitted,
@@ -389,7 +412,7 @@ fn held_out(
     };
     let (data, more) = read(&readings)?;
     warnings.extend(more);
-    let (obs, measured_in) = observations(&data);
+    let (obs, measured_in) = observations(request.readings.setup, &data, !model.has_loads());
     if measured_in != model.measured_in() {
         return Err(Error::InvalidField {
             field: "validate".into(),
@@ -416,16 +439,8 @@ fn held_out(
 }
 
 /// The warnings about the fit.
-fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, data: &Data, name: &str) -> Vec<Warning> {
+fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<Warning> {
     let mut w = Vec::new();
-    if data.has_loads {
-        w.push(Warning::new(
-            WarningKind::Unidentifiable,
-            format!(
-                "{name}: the loaded readings are not used: calibrate fits the unloaded readings (identify fits the compliances from the loaded ones)"
-            ),
-        ));
-    }
     let id = &fit.identifiability;
     let dof = fit.residuals.len() - fit.fitted.len().min(fit.residuals.len());
     if dof < MIN_DEGREES_OF_FREEDOM {

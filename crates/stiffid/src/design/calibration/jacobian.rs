@@ -46,6 +46,8 @@ pub(super) enum Column {
     Joint { joint: usize, component: Component },
     /// Gravity term `term` (index in the gravity model's terms).
     Gravity { term: usize, joint: usize },
+    /// A compliance under an applied wrench: zero on the unloaded readings a design reads.
+    Unloaded,
 }
 
 impl Column {
@@ -60,6 +62,7 @@ impl Column {
                 term: index - model.gravity_start(),
                 joint: term.joint(),
             },
+            Target::Compliance { .. } => Column::Unloaded,
         }
     }
 }
@@ -144,6 +147,7 @@ impl Layout {
         let b = p.points[k];
         let f = &p.frames;
         match c {
+            Column::Unloaded => Vector3::zeros(),
             Column::FrameTranslation(a) => Vector3::ith(a, 1.0),
             Column::FrameRotation(a) => Vector3::<f64>::ith(a, 1.0).cross(&b),
             Column::Point { point, axis } => match point == k {
@@ -224,7 +228,7 @@ impl Layout {
                 let js: Vector3<f64> = j.fixed_view::<3, 1>(row + 3 * k, c).into_owned();
                 let gc = gs * *scale;
                 match *column {
-                    Column::FrameTranslation(_) => {}
+                    Column::FrameTranslation(_) | Column::Unloaded => {}
                     Column::FrameRotation(a) => turns[0] += gc.cross(&Vector3::ith(a, 1.0)),
                     Column::Point { point, .. } if point == k => by_link[6] += js.cross(&gs),
                     Column::Point { .. } => {}

@@ -207,6 +207,16 @@ pub enum Target {
     },
     /// A gravity term ([`gravity::Term`]).
     Gravity(gravity::Term),
+    /// The compliance of parameter `index` (0-based, drives first) of the setup's stiffness
+    /// model under the wrenches of loaded readings ([`ErrorModel::with_loads`]): rad/(N m), m/N
+    /// (or a nonlinear law's parameter, [`crate::model::Law`]).
+    Compliance {
+        /// The parameter of the setup's model, 0-based (drives `0..6`, then the virtual
+        /// springs).
+        index: usize,
+        /// What it is: a drive, a rotational or translational spring, a nonlinear law's.
+        kind: crate::model::ParameterKind,
+    },
 }
 
 /// The kind of a parameter, as documents name it.
@@ -221,7 +231,8 @@ pub enum Kind {
     Point,
     /// A joint's geometric error.
     Joint,
-    /// A joint compliance under gravity (known masses).
+    /// A compliance: of a joint under gravity (known masses), or of a parameter of the setup's
+    /// stiffness model under the applied wrenches (loaded readings).
     Compliance,
     /// A lumped gravity term: a compliance times a mass moment.
     Gravity,
@@ -268,6 +279,7 @@ impl Parameter {
             Target::Joint { component, .. } if component.is_angle() => "deg",
             Target::Joint { .. } => "mm",
             Target::Gravity(term) => term.unit(),
+            Target::Compliance { kind, .. } => compliance_unit(kind),
         }
     }
 
@@ -283,9 +295,23 @@ impl Parameter {
             "deg" => 180.0 / std::f64::consts::PI,
             _ => match self.target {
                 Target::Gravity(term) => term.document_factor(),
+                Target::Compliance { .. } => 1e6,
                 _ => 1.0,
             },
         }
+    }
+}
+
+/// The document unit of a compliance of `kind` (SI times 1e6): `urad/(N m)` of a drive or a
+/// rotational spring, `um/N` of a translational one, `urad` of a lost motion, `urad/(N m)^2` of
+/// a load-dependent compliance.
+fn compliance_unit(kind: crate::model::ParameterKind) -> &'static str {
+    use crate::model::ParameterKind as P;
+    match kind {
+        P::Drive | P::Rotation => "urad/(N m)",
+        P::Translation => "um/N",
+        P::LostMotion => "urad",
+        P::LoadDependent => "urad/(N m)^2",
     }
 }
 
@@ -371,6 +397,16 @@ pub struct Observation {
     pub q: Vector6<f64>,
     /// The reading in the measurement frame, m.
     pub measured: Vector3<f64>,
+    /// The wrench `[f; m]` at the setup's loading point, base frame, N and N m: zero for an
+    /// unloaded reading ([`ErrorModel::with_loads`] models the others).
+    pub wrench: Vector6<f64>,
+}
+
+impl Observation {
+    /// Whether the reading carries a wrench.
+    pub fn loaded(&self) -> bool {
+        self.wrench != Vector6::zeros()
+    }
 }
 
 /// The error model of a robot, its measuring points and the frame its readings are in.
@@ -387,6 +423,19 @@ pub struct ErrorModel {
     offsets_start: Option<usize>,
     gravity: gravity::Model,
     gravity_start: usize,
+    /// The compliances under the applied wrenches, with loaded readings.
+    loads: Option<Loads>,
+}
+
+/// What the deflection under the applied wrenches needs: the setup (its stiffness model,
+/// springs' coordinates, loading and measuring points, nominal robot) and the column of each of
+/// its model's parameters.
+#[derive(Debug, Clone)]
+struct Loads {
+    setup: Box<crate::Setup>,
+    /// The parameter (index in [`ErrorModel::parameters`]) of each parameter of the setup's
+    /// model: a gravity compliance with known masses for a drive, else its own.
+    columns: Vec<usize>,
 }
 
 impl ErrorModel {
@@ -480,7 +529,128 @@ impl ErrorModel {
             offsets_start: (geometry == Geometry::Offsets).then_some(start),
             gravity,
             gravity_start,
+            loads: None,
         })
+    }
+
+    /// The model with the compliances of `setup`'s stiffness model ([`crate::Setup::model`]:
+    /// the drives, then the virtual springs) under the wrenches of loaded readings (module docs,
+    /// "Loaded readings"): one parameter per model parameter (kind [`Kind::Compliance`], named
+    /// `compliance.<name>`, nominal the setup's nominal compliance or 0), after the gravity
+    /// terms; with known masses ([`gravity::Term::Compliance`]) a drive's is its gravity
+    /// compliance, one parameter for both. The setup is the one whose robot and measuring
+    /// points the model was made of.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`loads`) when the model already has them, when the setup's
+    /// measuring points are not the model's count, or when the gravity terms' springs are in
+    /// other coordinates than the setup's model.
+    pub fn with_loads(mut self, setup: &crate::Setup) -> Result<Self> {
+        let invalid = |message: String| Error::InvalidField {
+            field: "loads".into(),
+            message,
+        };
+        if self.loads.is_some() {
+            return Err(invalid("the model has the loads already".into()));
+        }
+        if setup.tool().measuring_points.len() != self.points() {
+            return Err(invalid(format!(
+                "expected a setup with the model's {} measuring points, got {}",
+                self.points(),
+                setup.tool().measuring_points.len()
+            )));
+        }
+        let shared = |joint: usize| {
+            (self.gravity.terms().iter())
+                .position(|t| *t == gravity::Term::Compliance { joint })
+                .map(|t| self.gravity_start + t)
+        };
+        if self.gravity.link_masses().is_some() && self.gravity.coordinates() != setup.springs() {
+            return Err(invalid(
+                "the gravity compliances' springs are in other coordinates than the setup's model"
+                    .into(),
+            ));
+        }
+        let nominal = setup.model_nominal_compliance();
+        let mut columns = Vec::new();
+        for (index, p) in setup.model().parameters().into_iter().enumerate() {
+            if let Some(c) = (index < 6).then(|| shared(index)).flatten() {
+                columns.push(c);
+                continue;
+            }
+            columns.push(self.parameters.len());
+            self.parameters.push(Parameter {
+                name: format!("compliance.{}", p.name),
+                kind: Kind::Compliance,
+                target: Target::Compliance {
+                    index,
+                    kind: p.kind,
+                },
+                nominal: nominal.as_ref().map_or(0.0, |h| h[index]),
+                priority: 4,
+            });
+        }
+        self.loads = Some(Loads {
+            setup: Box::new(setup.clone()),
+            columns,
+        });
+        Ok(self)
+    }
+
+    /// Whether the model has the compliances under the applied wrenches
+    /// ([`ErrorModel::with_loads`]).
+    pub fn has_loads(&self) -> bool {
+        self.loads.is_some()
+    }
+
+    /// The parameter (index in [`ErrorModel::parameters`]) of each parameter of the setup's
+    /// stiffness model, with loads ([`ErrorModel::with_loads`]).
+    pub fn compliance_columns(&self) -> Option<&[usize]> {
+        self.loads.as_ref().map(|l| l.columns.as_slice())
+    }
+
+    /// The `3 x n` observation rows (`n` the setup's model's parameters; base frame, m per unit
+    /// of compliance) of measuring point `k` at commanded axis angles `q` (rad) under `wrench`
+    /// (base frame, N, N m, at the loading point): the rows of `Psi`
+    /// ([`crate::observation::write_posture_block`]) on the nominal chain with the setup's
+    /// points; `None` without loads or without a wrench.
+    pub fn load_rows(
+        &self,
+        q: &Vector6<f64>,
+        k: usize,
+        wrench: &Vector6<f64>,
+    ) -> Option<DMatrix<f64>> {
+        let loads = self.loads.as_ref()?;
+        if *wrench == Vector6::zeros() {
+            return None;
+        }
+        let setup = &loads.setup;
+        let frames = setup.robot().frames(q);
+        let mut rows = DMatrix::zeros(3, loads.columns.len());
+        write_load_rows(setup, &frames, k, wrench, &mut rows, 0);
+        Some(rows)
+    }
+
+    /// The deflection (base frame, m) of measuring point `k` at commanded `q` under `wrench`
+    /// with the compliances of `values` (SI): [`ErrorModel::load_rows`] times them, zero without
+    /// loads or wrench.
+    pub fn load_deflection(
+        &self,
+        values: &DVector<f64>,
+        q: &Vector6<f64>,
+        k: usize,
+        wrench: &Vector6<f64>,
+    ) -> Vector3<f64> {
+        match (self.load_rows(q, k, wrench), &self.loads) {
+            (Some(rows), Some(loads)) => {
+                let h = DVector::from_iterator(
+                    loads.columns.len(),
+                    loads.columns.iter().map(|&c| values[c]),
+                );
+                Vector3::from_iterator((rows * h).iter().copied())
+            }
+            _ => Vector3::zeros(),
+        }
     }
 
     /// The parameters, in the order of the Jacobian's columns.
@@ -610,7 +780,31 @@ impl ErrorModel {
         last.as_ref().expect("set above")
     }
 
-    /// The residuals `exp([dphi]x) b + dp - T t` (3 per observation, base frame, m).
+    /// The predicted base-frame positions (m) of `observations` at `values`: those of
+    /// [`ErrorModel::positions`] plus, for a loaded reading, the deflection under its wrench
+    /// ([`ErrorModel::load_deflection`]), the frame's perturbation applied.
+    ///
+    /// # Errors
+    /// Those of [`ErrorModel::positions`].
+    pub fn predict(
+        &self,
+        values: &DVector<f64>,
+        observations: &[Observation],
+    ) -> Result<Vec<Vector3<f64>>> {
+        let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
+        let mut b = self.positions(values, &at)?;
+        if self.loads.is_some() {
+            let turn =
+                UnitQuaternion::from_scaled_axis(Vector3::new(values[3], values[4], values[5]));
+            for (b, o) in b.iter_mut().zip(observations).filter(|(_, o)| o.loaded()) {
+                *b += turn * self.load_deflection(values, &o.q, o.point, &o.wrench);
+            }
+        }
+        Ok(b)
+    }
+
+    /// The residuals `exp([dphi]x) b + dp - T t` (3 per observation, base frame, m), `b` with
+    /// the deflection under a loaded reading's wrench ([`ErrorModel::predict`]).
     ///
     /// # Errors
     /// Those of [`ErrorModel::positions`].
@@ -619,8 +813,7 @@ impl ErrorModel {
         estimate: &Estimate,
         observations: &[Observation],
     ) -> Result<DVector<f64>> {
-        let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
-        let b = self.positions(&estimate.values, &at)?;
+        let b = self.predict(&estimate.values, observations)?;
         let mut r = DVector::zeros(3 * observations.len());
         for (i, (o, b)) in observations.iter().zip(&b).enumerate() {
             let t = estimate.frame * nalgebra::Point3::from(o.measured);
@@ -697,6 +890,86 @@ impl ErrorModel {
             });
         }
         Ok(j)
+    }
+
+    /// The Jacobian of [`ErrorModel::residuals`] (and of [`ErrorModel::predict`]) at `values`:
+    /// [`ErrorModel::jacobian`] of the observations' postures and points, with, for a loaded
+    /// reading, the compliances' columns (its observation rows, [`ErrorModel::load_rows`]) and
+    /// the frame's rotation about the deflected point.
+    ///
+    /// # Errors
+    /// Those of [`ErrorModel::jacobian`].
+    pub fn jacobian_of(
+        &self,
+        values: &DVector<f64>,
+        observations: &[Observation],
+    ) -> Result<DMatrix<f64>> {
+        let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
+        let mut j = self.jacobian(values, &at)?;
+        let Some(loads) = &self.loads else {
+            return Ok(j);
+        };
+        for (i, o) in observations.iter().enumerate() {
+            let Some(rows) = self.load_rows(&o.q, o.point, &o.wrench) else {
+                continue;
+            };
+            let d = self.load_deflection(values, &o.q, o.point, &o.wrench);
+            let mut block = j.fixed_rows_mut::<3>(3 * i);
+            let turned = block.fixed_view::<3, 3>(0, 3) - d.cross_matrix();
+            block.fixed_view_mut::<3, 3>(0, 3).copy_from(&turned);
+            for (m, &c) in loads.columns.iter().enumerate() {
+                let col = block.column(c) + rows.column(m);
+                block.column_mut(c).copy_from(&col);
+            }
+        }
+        Ok(j)
+    }
+
+    /// [`ErrorModel::column_scales`] at the observations' postures, with, for a compliance
+    /// under the applied wrenches ([`Target::Compliance`]), `1 / rms`, `rms` the RMS length of
+    /// its observation rows ([`ErrorModel::load_rows`]) over the loaded readings: a compliance
+    /// that moves a loaded reading by 1 m RMS (0 below [`NO_EFFECT`] times the largest of its
+    /// unit's); for a drive's gravity compliance with known masses, the smaller of that and its
+    /// gravity scale (either where the other is 0).
+    pub fn column_scales_of(&self, length: f64, observations: &[Observation]) -> DVector<f64> {
+        let qs: Vec<Vector6<f64>> = observations.iter().map(|o| o.q).collect();
+        let mut scales = self.column_scales(length, &qs);
+        let Some(loads) = &self.loads else {
+            return scales;
+        };
+        let mut sum = vec![0.0; loads.columns.len()];
+        let mut loaded = 0usize;
+        for o in observations {
+            if let Some(rows) = self.load_rows(&o.q, o.point, &o.wrench) {
+                loaded += 1;
+                for (s, col) in sum.iter_mut().zip(rows.column_iter()) {
+                    *s += col.norm_squared();
+                }
+            }
+        }
+        let rms: Vec<f64> = sum
+            .iter()
+            .map(|s| (s / loaded.max(1) as f64).sqrt())
+            .collect();
+        for (m, &c) in loads.columns.iter().enumerate() {
+            let unit = self.parameters[c].unit();
+            let largest = (loads.columns.iter().zip(&rms))
+                .filter(|(&c, _)| self.parameters[c].unit() == unit)
+                .map(|(_, r)| *r)
+                .fold(0.0, f64::max);
+            let loaded = match rms[m] > NO_EFFECT * largest {
+                true => 1.0 / rms[m],
+                false => 0.0,
+            };
+            // A drive's gravity compliance (known masses): the smaller of its two scales, the
+            // larger effect, where both have one.
+            scales[c] = match self.parameters[c].target {
+                Target::Gravity(_) if scales[c] > 0.0 && loaded > 0.0 => scales[c].min(loaded),
+                Target::Gravity(_) if loaded == 0.0 => scales[c],
+                _ => loaded,
+            };
+        }
+        scales
     }
 
     /// The six columns `[theta, d, a, alpha, beta, b]` of joint `i` for the base-frame point `b`.
@@ -776,4 +1049,24 @@ impl ErrorModel {
                 }),
         )
     }
+}
+
+/// Writes the three observation rows of measuring point `k` (the setup's) at the posture
+/// `frames` under `wrench` (base frame, N, N m, at the loading point) into rows `row..row + 3`
+/// of `psi` (one column per parameter of the setup's model): the drives' (Eq. 11) and the
+/// virtual springs' ([`crate::observation::SpringLoads`]).
+fn write_load_rows(
+    setup: &crate::Setup,
+    frames: &crate::Frames,
+    k: usize,
+    wrench: &Vector6<f64>,
+    psi: &mut DMatrix<f64>,
+    row: usize,
+) {
+    use crate::observation::{point_rows, stiffness::joint_torques, SpringLoads};
+    let point = &setup.tool().measuring_points[k];
+    let tau = joint_torques(setup, frames, wrench);
+    psi.fixed_view_mut::<3, 6>(row, 0)
+        .copy_from(&point_rows(setup, frames, point, &tau));
+    SpringLoads::new(setup, frames, wrench, psi.ncols() - 6).write_rows(frames, point, psi, row);
 }

@@ -23,7 +23,7 @@ use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Ta
 use super::identifiability::{self, Identifiability};
 use crate::metrology::register::Correspondence;
 use crate::{Error, Result};
-use nalgebra::{DMatrix, DVector, Vector6};
+use nalgebra::{DMatrix, DVector};
 
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 100;
@@ -94,11 +94,9 @@ pub fn fit(
     options: &Options,
 ) -> Result<Fit> {
     check(observations, options)?;
-    let at: Vec<(Vector6<f64>, usize)> = observations.iter().map(|o| (o.q, o.point)).collect();
-    let qs: Vec<Vector6<f64>> = at.iter().map(|(q, _)| *q).collect();
-    let scales = model.column_scales(options.length, &qs);
+    let scales = model.column_scales_of(options.length, observations);
     let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
-    let j = model.jacobian(&start.values, &at)?;
+    let j = model.jacobian_of(&start.values, observations)?;
     let identifiability = identifiability::analyse(&j, &scales, &priorities)?;
     let fitted: Vec<usize> = match options.priors {
         None => identifiability.identified.clone(),
@@ -122,7 +120,6 @@ pub fn fit(
     let problem = Problem {
         model,
         observations,
-        at: &at,
         fitted: &fitted,
         scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
         priors: options.priors.map(|p| prior_weights(model, &fitted, &p)),
@@ -159,8 +156,7 @@ pub fn start_at(
     Ok(match model.measured_in() {
         MeasuredIn::Base => nalgebra::Isometry3::identity(),
         MeasuredIn::Tracker => {
-            let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
-            let b = model.positions(values, &at)?;
+            let b = model.predict(values, observations)?;
             let pairs: Vec<Correspondence> = (observations.iter().zip(b))
                 .map(|(o, base)| Correspondence {
                     base,
@@ -229,7 +225,6 @@ fn prior_weights(model: &ErrorModel, fitted: &[usize], p: &Priors) -> DVector<f6
 struct Problem<'a> {
     model: &'a ErrorModel,
     observations: &'a [Observation],
-    at: &'a [(Vector6<f64>, usize)],
     fitted: &'a [usize],
     scales: DVector<f64>,
     priors: Option<DVector<f64>>,
@@ -257,7 +252,7 @@ impl Problem<'_> {
 
     /// The scaled Jacobian of the fitted parameters with the prior rows.
     fn jacobian(&self, e: &Estimate) -> Result<DMatrix<f64>> {
-        let full = self.model.jacobian(&e.values, self.at)?;
+        let full = self.model.jacobian_of(&e.values, self.observations)?;
         let mut j = full.select_columns(self.fitted.iter());
         for (c, s) in self.scales.iter().enumerate() {
             j.column_mut(c).scale_mut(*s);

@@ -116,6 +116,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
                         point: k,
                         q: *q,
                         measured: t.coords + Vector3::from_fn(|_, _| noise.sample(rng)),
+                        wrench: Vector6::zeros(),
                     });
                 }
             }

@@ -33,4 +33,6 @@ pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter
 #[cfg(test)]
 mod heavy_tests;
 #[cfg(test)]
+mod loaded_tests;
+#[cfg(test)]
 mod tests;

@@ -31,7 +31,7 @@ pub(super) fn points() -> Vec<Vector3<f64>> {
     ]
 }
 
-fn tracker() -> Isometry3<f64> {
+pub(super) fn tracker() -> Isometry3<f64> {
     Isometry3::new(Vector3::new(3.2, -1.1, 0.4), Vector3::new(0.1, -0.05, 2.4))
 }
 
@@ -52,6 +52,7 @@ pub(super) fn readings(
             point: *k,
             q: *q,
             measured: (truth.frame.inverse() * Point3::from(b)).coords,
+            wrench: Vector6::zeros(),
         })
         .collect()
 }
@@ -109,7 +110,7 @@ fn fanuc() -> Robot {
     presets::get("fanuc-r2000ic-165f").unwrap()
 }
 
-fn masses() -> [LinkMass; 6] {
+pub(super) fn masses() -> [LinkMass; 6] {
     let m = |mass: f64, x: f64, y: f64, z: f64| LinkMass {
         mass,
         centre: Vector3::new(x, y, z),
