@@ -36,7 +36,7 @@ pub fn run(args: &Args) -> Result<()> {
 fn text_of(d: &Calibration) -> String {
     let t = &d.transform;
     let mut text = format!(
-        "cell calibration from {} unloaded readings (setup {}, {} Gauss-Newton iterations)\n\
+        "cell calibration from {} unloaded readings (setup {}, {} iterations)\n\
          base_from_tracker: xyz_mm = [{}], rpy_deg = [{}]\n\
          standard deviation: translation [{}] mm, rotation [{}] deg\n\
          robot's unloaded absolute error at these postures: RMS {:.4} mm (noise per coordinate {:.4} mm)\n\

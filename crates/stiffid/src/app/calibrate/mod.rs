@@ -1,6 +1,7 @@
 //! The calibrate job (`stiffid calibrate-cell`): the tracker's transform and the measuring points
-//! in the flange frame fitted together from unloaded readings ([`crate::metrology::calibrate`], Gauss-Newton
-//! over 6 + 3p unknowns), each point's shift from the setup's value with its standard deviation.
+//! in the flange frame fitted together from unloaded readings ([`crate::metrology::calibrate`]:
+//! the robot calibration's Levenberg-Marquardt over 6 + 3p unknowns, `calibrate --geometry none
+//! --gravity none`), each point's shift from the setup's value with its standard deviation.
 
 use super::in_data;
 pub use super::readings::Request;
@@ -39,7 +40,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let setup_points = request.setup.tool().measuring_points.clone();
     let observations =
         calibrate::observations(request.setup, &data).map_err(|e| in_data(name, e))?;
-    let calibration = calibrate::fit(&observations, &setup_points).map_err(|e| in_data(name, e))?;
+    let calibration = calibrate::fit(request.setup, &observations).map_err(|e| in_data(name, e))?;
     refuse_implausible(request, &data, None, &calibration.residuals)?;
     Ok(Report {
         data_name: name.clone(),

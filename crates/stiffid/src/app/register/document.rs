@@ -127,7 +127,7 @@ pub struct Calibration {
     pub noise_std_mm: f64,
     /// Unloaded readings used.
     pub readings: usize,
-    /// Gauss-Newton iterations.
+    /// Levenberg-Marquardt iterations.
     pub iterations: usize,
     /// The corrected fragment of the setup file.
     pub fragment: String,

@@ -5,7 +5,7 @@ use super::error_model::{MeasuredIn, Observation, Target};
 use super::fit::{self, Options};
 use super::gravity;
 use super::identifiability;
-use super::tests::{masses, postures, tracker};
+use super::tests::{masses, matches_central_differences, postures, tracker};
 use super::*;
 use crate::Setup;
 use nalgebra::{DVector, Isometry3, Point3, Vector6};
@@ -183,24 +183,7 @@ fn loaded_jacobian_matches_central_differences() {
         };
         let obs = readings(&model, &truth, &postures(robot, 3, 9));
         let j = model.jacobian_of(&x, &obs).unwrap();
-        for c in 0..x.len() {
-            let h = 1e-6 / j.column(c).amax().max(1e-3);
-            let (mut plus, mut minus) = (x.clone(), x.clone());
-            plus[c] += h;
-            minus[c] -= h;
-            let bp = model.predict(&plus, &obs).unwrap();
-            let bm = model.predict(&minus, &obs).unwrap();
-            for (r, (p, m)) in bp.iter().zip(&bm).enumerate() {
-                let fd = (p - m) / (2.0 * h);
-                let analytic = j.fixed_view::<3, 1>(3 * r, c).into_owned();
-                let scale = analytic.norm().max(fd.norm()).max(1e-3);
-                assert!(
-                    (fd - analytic).norm() < 1e-7 * scale,
-                    "{} row {r}: {fd:?} vs {analytic:?}",
-                    model.parameters()[c].name
-                );
-            }
-        }
+        matches_central_differences(&model, &x, &j, |v| model.predict(v, &obs).unwrap());
     }
 }
 

@@ -148,25 +148,32 @@ fn identification_jacobian_matches_central_differences() {
             .map(|(i, q)| (q, i % 3))
             .collect();
         let j = model.jacobian(&x, &at).unwrap();
-        for c in 0..x.len() {
-            let h = 1e-6 / j.column(c).amax().max(1e-3);
-            let (mut plus, mut minus) = (x.clone(), x.clone());
-            plus[c] += h;
-            minus[c] -= h;
-            let (bp, bm) = (
-                model.positions(&plus, &at).unwrap(),
-                model.positions(&minus, &at).unwrap(),
+        matches_central_differences(&model, &x, &j, |v| model.positions(v, &at).unwrap());
+    }
+}
+
+/// Every column of `j` against the central differences of the positions `b` at `x`, to 1e-7
+/// relative.
+pub(super) fn matches_central_differences(
+    model: &ErrorModel,
+    x: &DVector<f64>,
+    j: &nalgebra::DMatrix<f64>,
+    b: impl Fn(&DVector<f64>) -> Vec<Vector3<f64>>,
+) {
+    for c in 0..x.len() {
+        let h = 1e-6 / j.column(c).amax().max(1e-3);
+        let (mut plus, mut minus) = (x.clone(), x.clone());
+        plus[c] += h;
+        minus[c] -= h;
+        for (r, (p, m)) in b(&plus).iter().zip(&b(&minus)).enumerate() {
+            let fd = (p - m) / (2.0 * h);
+            let analytic = j.fixed_view::<3, 1>(3 * r, c).into_owned();
+            let scale = analytic.norm().max(fd.norm()).max(1e-3);
+            assert!(
+                (fd - analytic).norm() < 1e-7 * scale,
+                "{} row {r}: {fd:?} vs {analytic:?}",
+                model.parameters()[c].name
             );
-            for (r, (p, m)) in bp.iter().zip(&bm).enumerate() {
-                let fd = (p - m) / (2.0 * h);
-                let analytic = j.fixed_view::<3, 1>(3 * r, c).into_owned();
-                let scale = analytic.norm().max(fd.norm()).max(1e-3);
-                assert!(
-                    (fd - analytic).norm() < 1e-7 * scale,
-                    "{} row {r}: {fd:?} vs {analytic:?}",
-                    model.parameters()[c].name
-                );
-            }
         }
     }
 }
