@@ -5,8 +5,8 @@
 //! nominal) minimise `|r(x)|^2`, `r` the residuals of [`ErrorModel::residuals`], by
 //! Levenberg-Marquardt (Marquardt 1963) in the scaled parameters `x_s = x / s`
 //! ([`ErrorModel::column_scales`]): each iteration factors `[J_s | r]` by Householder QR once
-//! (`J_s` the scaled Jacobian), then solves `[R; sqrt(lambda) I] dx_s = -[Q^T r; 0]` by SVD of that small matrix (never
-//! the normal equations), accepts the step when the cost falls (and divides `lambda` by 10) or
+//! (`J_s` the scaled Jacobian) and `R = U S V^T` by SVD once, then solves `[R; sqrt(lambda) I]
+//! dx_s = -[Q^T r; 0]` for each trial `lambda` from that SVD (never the normal equations), accepts the step when the cost falls (and divides `lambda` by 10) or
 //! multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
 //! after every step ([`Estimate::recentre`]).
 //!
@@ -290,9 +290,10 @@ impl Problem<'_> {
         for iteration in 1..=MAX_ITERATIONS {
             let j = self.jacobian(&e)?;
             let (rt, qtr) = factor(&j, &r);
+            let damped = Damped::new(rt, &qtr)?;
             let mut accepted = false;
             for _ in 0..30 {
-                let dx = damped_step(&rt, &qtr, lambda)?;
+                let dx = damped.step(lambda);
                 let trial = self.step(&e, &dx);
                 let r_trial = self.residuals(&trial)?;
                 let c = r_trial.norm_squared();
@@ -389,25 +390,51 @@ fn factor(j: &DMatrix<f64>, r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
     (rt, a.column(n).rows(0, k).into_owned())
 }
 
-/// The step of `[R; sqrt(lambda) I] dx = -[Q^T r; 0]`, by SVD.
-fn damped_step(rt: &DMatrix<f64>, qtr: &DVector<f64>, lambda: f64) -> Result<DVector<f64>> {
-    let (k, n) = rt.shape();
-    let mut a = DMatrix::zeros(k + n, n);
-    a.rows_mut(0, k).copy_from(rt);
-    for i in 0..n {
-        a[(k + i, i)] = lambda.sqrt();
+/// The damped steps of one iteration from one SVD `R = U S V^T` of the triangular factor: the
+/// least-squares solution of `[R; sqrt(lambda) I] dx = -[Q^T r; 0]` is `dx = -V diag(s_i / (s_i^2
+/// + lambda)) U^T Q^T r` for every `lambda` (never the normal equations).
+struct Damped {
+    /// `U^T Q^T r`.
+    projected: DVector<f64>,
+    singular: DVector<f64>,
+    v: DMatrix<f64>,
+}
+
+impl Damped {
+    fn new(rt: DMatrix<f64>, qtr: &DVector<f64>) -> Result<Self> {
+        let svd = rt
+            .try_svd(
+                true,
+                true,
+                f64::EPSILON,
+                crate::math::linalg::SVD_MAX_ITERATIONS,
+            )
+            .ok_or_else(not_converged)?;
+        let (u, v_t) = (
+            svd.u.ok_or_else(not_converged)?,
+            svd.v_t.ok_or_else(not_converged)?,
+        );
+        Ok(Damped {
+            projected: u.tr_mul(qtr),
+            singular: svd.singular_values,
+            v: v_t.transpose(),
+        })
     }
-    let mut b = DVector::zeros(k + n);
-    b.rows_mut(0, k).copy_from(&(-qtr));
-    let svd = a
-        .try_svd(
-            true,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        )
-        .ok_or_else(not_converged)?;
-    svd.solve(&b, 0.0).map_err(|_| not_converged())
+
+    /// The step at damping `lambda`.
+    fn step(&self, lambda: f64) -> DVector<f64> {
+        let weights = DVector::from_iterator(
+            self.singular.len(),
+            (self.singular.iter().zip(self.projected.iter())).map(|(s, g)| {
+                let d = s * s + lambda;
+                match d > 0.0 {
+                    true => -s * g / d,
+                    false => 0.0,
+                }
+            }),
+        );
+        &self.v * weights
+    }
 }
 
 fn not_converged() -> Error {
