@@ -1065,8 +1065,9 @@ fn write_load_rows(
 ) {
     use crate::observation::{point_rows, stiffness::joint_torques, SpringLoads};
     let point = &setup.tool().measuring_points[k];
-    let tau = joint_torques(setup, frames, wrench);
+    let arm = setup.arm();
+    let tau = joint_torques(arm, frames, wrench);
     psi.fixed_view_mut::<3, 6>(row, 0)
-        .copy_from(&point_rows(setup, frames, point, &tau));
-    SpringLoads::new(setup, frames, wrench, psi.ncols() - 6).write_rows(frames, point, psi, row);
+        .copy_from(&point_rows(arm, frames, point, &tau));
+    SpringLoads::new(arm, frames, wrench, psi.ncols() - 6).write_rows(frames, point, psi, row);
 }
