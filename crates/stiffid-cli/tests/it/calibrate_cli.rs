@@ -9,10 +9,10 @@ use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
 use stiffid::metrology::calibration::error_model::MeasuredIn;
 use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
 
-const SETUP: &str = "zhang2021-comau-nj165";
+pub(crate) const SETUP: &str = "zhang2021-comau-nj165";
 
 /// Postures spread over the COMAU's range, deg.
-fn postures(n: usize, seed: u64) -> Vec<[f64; 6]> {
+pub(crate) fn postures(n: usize, seed: u64) -> Vec<[f64; 6]> {
     let mut state = seed;
     let mut next = move || {
         state = state
@@ -34,7 +34,7 @@ fn postures(n: usize, seed: u64) -> Vec<[f64; 6]> {
         .collect()
 }
 
-fn model() -> ErrorModel {
+pub(crate) fn model() -> ErrorModel {
     let setup = stiffid::setup::builtin(SETUP).unwrap();
     let robot = setup.robot();
     ErrorModel::new(
@@ -48,7 +48,7 @@ fn model() -> ErrorModel {
 }
 
 /// The true errors: 0.5 mm and 0.5 mrad on the four (M)DH errors of joints 2-5.
-fn truth(model: &ErrorModel) -> DVector<f64> {
+pub(crate) fn truth(model: &ErrorModel) -> DVector<f64> {
     let mut x = model.nominal();
     for (c, p) in model.parameters().iter().enumerate() {
         let joint = ["joint2.", "joint3.", "joint4.", "joint5."];
@@ -61,7 +61,7 @@ fn truth(model: &ErrorModel) -> DVector<f64> {
 }
 
 /// Readings of every measuring point at `postures`, by a tracker at `tracker`.
-fn readings(
+pub(crate) fn readings(
     model: &ErrorModel,
     x: &DVector<f64>,
     tracker: &Isometry3<f64>,

@@ -3,6 +3,7 @@
 
 mod bodies_cli;
 mod calibrate_cli;
+mod calibrated_robot_cli;
 mod cell_cli;
 mod common;
 mod compensate_cli;

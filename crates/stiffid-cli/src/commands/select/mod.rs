@@ -17,6 +17,7 @@ use stiffid::app::select::document::{Document, Pool};
 use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::common::limits::{self, short};
 use stiffid::common::words::count;
+use stiffid::design::calibration::CalibrationCriterion;
 use stiffid::design::distinct::Distinctness;
 use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions, Solver};
 use stiffid::{io::postures, Setup};
@@ -303,8 +304,8 @@ fn cost_text(criterion: &str, r: &Report, free_e: &Evaluation, free_value: f64) 
     let e = &r.evaluation;
     let mut text = format!(
         "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
-        number(r.value),
-        number(free_value),
+        number(shown(r, r.value)),
+        number(shown(r, free_value)),
         100.0 * (r.value / free_value - 1.0),
     );
     // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
@@ -320,12 +321,13 @@ fn cost_text(criterion: &str, r: &Report, free_e: &Evaluation, free_value: f64) 
 }
 
 /// The value the search minimised, in words: the stiffness criterion, the calibration
-/// criterion's loss, or both.
+/// criterion's loss in the text's units ([`shown`]), or both.
 fn objective(r: &Report) -> String {
     use stiffid::common::choice::Choice;
-    let loss = |c: stiffid::design::calibration::CalibrationCriterion| match c.name() {
-        "test-pose" => "calibration test-pose (predicted RMS error, m)".to_string(),
-        name => format!("calibration 1/{name}"),
+    let loss = |c: CalibrationCriterion| match c {
+        CalibrationCriterion::TestPose => "calibration test-pose (predicted RMS error, mm)".into(),
+        CalibrationCriterion::DOptimality => "calibration 1/d-optimality (1/mm^2)".into(),
+        c => format!("calibration 1/{} (1/mm)", c.name()),
     };
     match &r.calibration {
         None => r.criterion.to_string(),
@@ -338,6 +340,21 @@ fn objective(r: &Report) -> String {
             c.weight
         ),
     }
+}
+
+/// A value the search minimised (the report's SI: the calibration's predicted error in m, its
+/// indices' reciprocals in 1/m or 1/m^2) in the units [`objective`] names: mm, 1/mm, 1/mm^2,
+/// and for both purposes the calibration's part so scaled.
+fn shown(r: &Report, value: f64) -> f64 {
+    let Some(c) = &r.calibration else {
+        return value;
+    };
+    let factor: f64 = match c.criterion {
+        CalibrationCriterion::TestPose => 1e3,
+        CalibrationCriterion::DOptimality => 1e-6,
+        _ => 1e-3,
+    };
+    value * factor.powf(c.weight.min(1.0))
 }
 
 fn outcome_text(setup: &Setup, r: &Report) -> String {
@@ -354,15 +371,15 @@ fn outcome_text(setup: &Setup, r: &Report) -> String {
             format!(
                 "{}: {} -> {} ({})\n",
                 objective(r),
-                number(start),
-                number(r.value),
+                number(shown(r, start)),
+                number(shown(r, r.value)),
                 match factor.is_finite() {
                     true => format!("{factor:.3}x lower"),
                     false => "the start's criterion was infinite".into(),
                 }
             )
         }
-        None => format!("{}: {}\n", objective(r), number(r.value)),
+        None => format!("{}: {}\n", objective(r), number(shown(r, r.value))),
     };
     text += &format!("{} evaluations in {:.2} s", r.evaluations, r.elapsed_s);
     text += &match r.solver {

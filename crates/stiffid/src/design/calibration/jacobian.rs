@@ -31,7 +31,7 @@ use crate::metrology::calibration::gravity::{Term, G};
 use crate::metrology::calibration::ErrorModel;
 use crate::robot::kinematics::Coordinates;
 use crate::Frames;
-use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
+use nalgebra::{DMatrix, Matrix6, Point3, Vector3, Vector6};
 
 /// A kept column of the design Jacobian: what it moves.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,6 +78,13 @@ pub(super) struct Posture {
     regressor_gradients: Vec<Vector6<f64>>,
     /// The base-frame position of every measuring point.
     points: Vec<Vector3<f64>>,
+    /// Per measuring point, the lever `b - o_i` of every joint axis and the point Jacobian's
+    /// kinematic columns `z_i x (b - o_i)`.
+    levers: Vec<[Vector3<f64>; 6]>,
+    screws: Vec<[Vector3<f64>; 6]>,
+    /// Per measuring point, the point Jacobian's column of every spring (the springs'
+    /// coordinates); empty without gravity terms.
+    springs: Vec<[Vector3<f64>; 6]>,
 }
 
 /// The model, its kept parameters' columns and scales, and the measuring points (flange frame,
@@ -131,7 +138,24 @@ impl Layout {
             v[i] = r * basis.v;
         }
         let (regressors, regressor_gradients) = regressors(&self.model, &frames);
-        let points = self.points.iter().map(|c| frames.point(c)).collect();
+        let points: Vec<Vector3<f64>> = self.points.iter().map(|c| frames.point(c)).collect();
+        let levers: Vec<[Vector3<f64>; 6]> = (points.iter())
+            .map(|b| std::array::from_fn(|i| b - frames.axis_points[i]))
+            .collect();
+        let screws: Vec<[Vector3<f64>; 6]> = (levers.iter())
+            .map(|r| std::array::from_fn(|i| frames.axis_directions[i].cross(&r[i])))
+            .collect();
+        let springs = match regressors.is_empty() {
+            true => Vec::new(),
+            false => (screws.iter())
+                .map(|s| {
+                    std::array::from_fn(|joint| {
+                        let w = self.spring_weights(joint);
+                        (0..6).map(|i| s[i] * w[i]).sum()
+                    })
+                })
+                .collect(),
+        };
         Posture {
             frames,
             u,
@@ -139,45 +163,34 @@ impl Layout {
             regressors,
             regressor_gradients,
             points,
+            levers,
+            screws,
+            springs,
         }
     }
 
     /// The unscaled column `c` at measuring point `k` of posture `p`.
     fn column(&self, p: &Posture, c: Column, k: usize) -> Vector3<f64> {
-        let b = p.points[k];
-        let f = &p.frames;
         match c {
             Column::Unloaded => Vector3::zeros(),
             Column::FrameTranslation(a) => Vector3::ith(a, 1.0),
-            Column::FrameRotation(a) => Vector3::<f64>::ith(a, 1.0).cross(&b),
+            Column::FrameRotation(a) => Vector3::<f64>::ith(a, 1.0).cross(&p.points[k]),
             Column::Point { point, axis } => match point == k {
-                true => f.flange.rotation * Vector3::ith(axis, 1.0),
+                true => p.frames.flange.rotation * Vector3::ith(axis, 1.0),
                 false => Vector3::zeros(),
             },
             Column::Joint {
                 joint: i,
                 component,
-            } => {
-                let (z, o) = (f.axis_directions[i], f.axis_points[i]);
-                match component {
-                    Component::Theta => z.cross(&(b - o)),
-                    Component::D => z,
-                    Component::A => p.u[i],
-                    Component::Alpha => p.u[i].cross(&(b - o)),
-                    Component::Beta => p.v[i].cross(&(b - o)),
-                    Component::B => p.v[i],
-                }
-            }
-            Column::Gravity { term, joint } => {
-                let weights = self.spring_weights(joint);
-                let mut col = Vector3::zeros();
-                for (i, w) in weights.iter().enumerate() {
-                    if *w != 0.0 {
-                        col += f.axis_directions[i].cross(&(b - f.axis_points[i])) * *w;
-                    }
-                }
-                col * p.regressors[term]
-            }
+            } => match component {
+                Component::Theta => p.screws[k][i],
+                Component::D => p.frames.axis_directions[i],
+                Component::A => p.u[i],
+                Component::Alpha => p.u[i].cross(&p.levers[k][i]),
+                Component::Beta => p.v[i].cross(&p.levers[k][i]),
+                Component::B => p.v[i],
+            },
+            Column::Gravity { term, joint } => p.springs[k][joint] * p.regressors[term],
         }
     }
 
@@ -192,8 +205,8 @@ impl Layout {
 
     /// Writes the scaled rows of posture `p` (3 per measuring point) into `j` from row `row`.
     pub(super) fn write_rows(&self, p: &Posture, j: &mut DMatrix<f64>, row: usize) {
-        for k in 0..p.points.len() {
-            for (c, (column, scale)) in self.columns.iter().zip(&self.scales).enumerate() {
+        for (c, (column, scale)) in self.columns.iter().zip(&self.scales).enumerate() {
+            for k in 0..p.points.len() {
                 let col = self.column(p, *column, k) * *scale;
                 j.fixed_view_mut::<3, 1>(row + 3 * k, c).copy_from(&col);
             }
@@ -213,7 +226,6 @@ impl Layout {
         let mut theta = Vector6::zeros();
         let mut eta = vec![0.0; p.regressors.len()];
         for k in 0..p.points.len() {
-            let b = p.points[k];
             // by_link[L]: sum of col x g over the columns of link L; turns[L]: sum of g x s over
             // its rotations (L = 7 slots: 0..=6).
             let mut by_link = [Vector3::zeros(); 7];
@@ -250,18 +262,14 @@ impl Layout {
                     Column::Gravity { term, joint } => {
                         let y = p.regressors[term];
                         let weights = self.spring_weights(joint);
-                        let mut jp = Vector3::zeros();
                         for (i, w) in weights.iter().enumerate() {
                             if *w == 0.0 {
                                 continue;
                             }
-                            let z = f.axis_directions[i];
-                            let col = z.cross(&(b - f.axis_points[i])) * *w;
-                            jp += col;
-                            by_link[i] += col.cross(&gc) * y;
-                            turns[i] += gc.cross(&z) * (*w * y);
+                            by_link[i] += p.screws[k][i].cross(&gc) * (*w * y);
+                            turns[i] += gc.cross(&f.axis_directions[i]) * (*w * y);
                         }
-                        eta[term] += gc.dot(&jp);
+                        eta[term] += gc.dot(&p.springs[k][joint]);
                     }
                 }
             }
@@ -273,8 +281,8 @@ impl Layout {
                 if j > 0 {
                     after -= by_link[j];
                 }
-                let (z, o) = (f.axis_directions[j], f.axis_points[j]);
-                theta[j] += z.dot(&(after + (b - o).cross(&before)));
+                let z = f.axis_directions[j];
+                theta[j] += z.dot(&(after + p.levers[k][j].cross(&before)));
             }
         }
         for (e, d) in eta.iter().zip(&p.regressor_gradients) {
@@ -286,91 +294,95 @@ impl Layout {
 
 /// The gravity terms' regressors of `model` at the posture `f` and their derivatives in the
 /// kinematic angles: the torques `(z_i x arm) . g` of unit masses and moments
-/// ([`crate::metrology::calibration::gravity`], module docs), equal to its `regressors`.
+/// ([`crate::metrology::calibration::gravity`], module docs), equal to its `regressors`. Only
+/// the mass moments the terms read are formed; known masses are summed into one arm per joint
+/// first (`a_i = sum_{l >= i} m_l (p_l - o_i)`, `p_l` link `l`'s centre), so a compliance term
+/// costs what one unit moment does.
 fn regressors(model: &ErrorModel, f: &Frames) -> (Vec<f64>, Vec<Vector6<f64>>) {
     let gm = model.gravity();
     if gm.is_empty() {
         return (Vec::new(), Vec::new());
     }
-    let g = Vector3::new(0.0, 0.0, -G);
     let m: Matrix6<f64> = model.robot().axis_map().matrix;
-    let to_springs = |theta: Vector6<f64>| match gm.coordinates() {
-        Coordinates::Kinematic => theta,
-        Coordinates::Axis => m.transpose() * theta,
-    };
-    // unit[l][k]: the torque vector (springs' coordinates) of a unit mass (k = 0) or moment
-    // (k = 1..3) of link l; its derivative with respect to theta_j.
-    let mut unit = [[Vector6::zeros(); 4]; 6];
-    let mut d_unit = [[[Vector6::zeros(); 6]; 4]; 6];
-    for l in 0..6 {
-        let frame = f.joints[l];
-        let o = frame.translation.vector;
-        for k in 0..4 {
-            let mut theta = Vector6::zeros();
-            let mut d_theta = [Vector6::zeros(); 6];
-            for i in 0..=l {
-                let (zi, oi) = (f.axis_directions[i], f.axis_points[i]);
-                let arm = match k {
-                    0 => o - oi,
-                    _ => frame.rotation * Vector3::ith(k - 1, 1.0),
-                };
-                let torque = zi.cross(&arm);
-                theta[i] = torque.dot(&g);
-                for (j, d) in d_theta.iter_mut().enumerate() {
-                    let (zj, oj) = (f.axis_directions[j], f.axis_points[j]);
-                    d[i] = if j < i {
-                        zj.dot(&torque.cross(&g))
-                    } else if j <= l {
-                        let moved = match k {
-                            0 => o - oj,
-                            _ => arm,
-                        };
-                        zj.dot(&moved.cross(&g.cross(&zi)))
-                    } else {
-                        0.0
-                    };
-                }
-            }
-            unit[l][k] = to_springs(theta);
-            for j in 0..6 {
-                d_unit[l][k][j] = to_springs(d_theta[j]);
-            }
+    // The spring `joint`'s row of a kinematic torque vector and of its derivatives.
+    let spring = |(theta, d): &Torques, joint: usize| match gm.coordinates() {
+        Coordinates::Kinematic => (theta[joint], d.row(joint).transpose()),
+        Coordinates::Axis => {
+            let w = m.column(joint);
+            (w.dot(theta), d.tr_mul(&w))
         }
-    }
-    let weights: Option<Vec<[f64; 4]>> = gm.link_masses().map(|masses| {
-        masses
-            .iter()
-            .map(|lm| {
-                let c = lm.centre;
-                [lm.mass, lm.mass * c[0], lm.mass * c[1], lm.mass * c[2]]
-            })
-            .collect()
+    };
+    let masses = gm.link_masses().map(|masses| {
+        let mut arms = [Vector3::zeros(); 6];
+        let (mut moment, mut mass) = (Vector3::zeros(), 0.0);
+        for l in (0..6).rev() {
+            let lm = &masses[l];
+            moment += (f.joints[l] * Point3::from(lm.centre)).coords * lm.mass;
+            mass += lm.mass;
+            arms[l] = moment - f.axis_points[l] * mass;
+        }
+        torques(f, &arms)
     });
+    // unit[l][k]: link l's mass (k = 0) or first moment along its x, y, z (k = 1..3), formed
+    // on first use.
+    let mut unit: [[Option<Torques>; 4]; 6] = Default::default();
     let mut y = Vec::with_capacity(gm.len());
     let mut dy = Vec::with_capacity(gm.len());
     for term in gm.terms() {
-        match *term {
+        let (v, d) = match *term {
             Term::Lumped {
                 joint,
                 link,
                 moment,
             } => {
-                y.push(unit[link][moment][joint]);
-                dy.push(Vector6::from_fn(|j, _| d_unit[link][moment][j][joint]));
-            }
-            Term::Compliance { joint } => {
-                let w = weights.as_ref().expect("a compliance term has masses");
-                let (mut v, mut d) = (0.0, Vector6::zeros());
-                for (l, wl) in w.iter().enumerate() {
-                    for (k, wk) in wl.iter().enumerate() {
-                        v += unit[l][k][joint] * wk;
-                        d += Vector6::from_fn(|j, _| d_unit[l][k][j][joint]) * *wk;
+                let t = unit[link][moment].get_or_insert_with(|| {
+                    let frame = &f.joints[link];
+                    let mut arms = [Vector3::zeros(); 6];
+                    for (i, a) in arms.iter_mut().enumerate().take(link + 1) {
+                        *a = match moment {
+                            0 => frame.translation.vector - f.axis_points[i],
+                            _ => frame.rotation * Vector3::ith(moment - 1, 1.0),
+                        };
                     }
-                }
-                y.push(v);
-                dy.push(d);
+                    torques(f, &arms[..=link])
+                });
+                spring(t, joint)
             }
-        }
+            Term::Compliance { joint } => spring(
+                masses.as_ref().expect("a compliance term has masses"),
+                joint,
+            ),
+        };
+        y.push(v);
+        dy.push(d);
     }
     (y, dy)
+}
+
+/// Kinematic joint torques and their derivatives in the kinematic angles ([`torques`]).
+type Torques = (Vector6<f64>, Matrix6<f64>);
+
+/// The kinematic joint torques `theta_i = (z_i x a_i) . g` of a weight whose arm about joint
+/// `i` is `arms[i]` (joints `i < arms.len()`, the links the weight hangs on; 0 beyond), and
+/// their derivatives `d[(i, j)] = dtheta_i / dtheta_j`. With `t_i = (z_i x a_i) x g`: turning
+/// joint `j < i` turns `z_i` and `a_i` together (`z_j . t_i`); turning joint `j >= i` turns the
+/// part beyond `j`, whose arm about `o_j` is `a_j`, so `a_i` changes by `z_j x a_j` and
+/// `theta_i` by `z_i . t_j`.
+fn torques(f: &Frames, arms: &[Vector3<f64>]) -> Torques {
+    let g = Vector3::new(0.0, 0.0, -G);
+    let z = &f.axis_directions;
+    let mut theta = Vector6::zeros();
+    let mut t = [Vector3::zeros(); 6];
+    for (i, a) in arms.iter().enumerate() {
+        let torque = z[i].cross(a);
+        theta[i] = torque.dot(&g);
+        t[i] = torque.cross(&g);
+    }
+    let last = arms.len();
+    let d = Matrix6::from_fn(|i, j| match (i < last, j < last) {
+        (false, _) | (_, false) => 0.0,
+        _ if j < i => z[j].dot(&t[i]),
+        _ => z[i].dot(&t[j]),
+    });
+    (theta, d)
 }

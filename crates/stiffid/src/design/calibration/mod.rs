@@ -84,8 +84,8 @@ pub struct CalibrationDesign {
     layout: Layout,
     kept: Vec<usize>,
     test: DMatrix<f64>,
-    /// `R_A` (`p x p`, upper triangular) of the QR of `test`: `A_0^T A_0 = R_A^T R_A`.
-    test_factor: DMatrix<f64>,
+    /// `H = A_0^T A_0 = R_A^T R_A` (`p x p`) from the QR `A_0 = Q_A R_A` of `test`.
+    test_information: DMatrix<f64>,
     noise: f64,
 }
 
@@ -131,11 +131,12 @@ impl CalibrationDesign {
             layout,
             kept,
             test: DMatrix::zeros(0, 0),
-            test_factor: DMatrix::zeros(0, 0),
+            test_information: DMatrix::zeros(0, 0),
             noise,
         };
         design.test = design.jacobian(test)?;
-        design.test_factor = score::triangular_factor(&design.test);
+        let r_a = score::triangular_factor(&design.test);
+        design.test_information = r_a.tr_mul(&r_a);
         Ok(design)
     }
 
@@ -229,7 +230,7 @@ impl CalibrationDesign {
         let Some(scored) = score::Scored::new(j, criterion, self) else {
             return (f64::INFINITY, zero);
         };
-        let g = scored.log_gradient();
+        let g = scored.log_gradient(self);
         let gradient = (terms.iter().enumerate())
             .map(|(i, t)| l.gradient(t, &scored.j, &g, rows * i))
             .collect();

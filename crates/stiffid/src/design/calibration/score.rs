@@ -2,23 +2,32 @@
 //! design Jacobian.
 //!
 //! The search minimises the logarithm of a smaller-is-better value ([`CalibrationCriterion::loss`]):
-//! the reciprocal of an observability index, the predicted RMS error itself. With the Householder
-//! QR `J_s = Q R` (never the normal equations), `ln det` terms read `R`'s diagonal and the
-//! predicted error `sigma |R_A R^-1|_F / sqrt(m_0)` (`A_0 = Q_A R_A`, factored once); the indices
-//! that need singular values take them from the SVD of the `p x p` `R` (the same as `J_s`'s). The
-//! gradient of `ln loss` with respect to `J_s` is `J_s W` with `W` symmetric (`p x p`):
+//! the reciprocal of an observability index, the predicted RMS error itself. O1, D-optimality
+//! and the predicted error (the default) are scored from the information matrix
+//! `J_s^T J_s = R^T R` (one matrix product; the Cholesky factor `R` equals the QR's up to the
+//! signs of its rows, which no criterion sees) and its inverse `C = (J_s^T J_s)^-1`: `ln det`
+//! terms read `R`'s diagonal, the predicted error is `sigma sqrt(tr(H C) / m_0)` with
+//! `H = A_0^T A_0 = R_A^T R_A` (`A_0 = Q_A R_A` factored once). The Cholesky factor loses about
+//! `cond(J_s)^2 eps` relative where a QR of `J_s` loses `cond(J_s) eps`: a search ranks groups as
+//! well (a group with `cond(J_s)` beyond about `1e8` scores as not separating the parameters),
+//! reports re-evaluate the criteria by the SVD of `J_s` ([`super::criteria`]), and it costs a
+//! third of a Householder QR with its products in the matrix-product kernel. The indices that
+//! need singular values (O3, O4, O5) take them from the SVD of the `p x p` `R` of the
+//! Householder QR of `J_s` (the same as `J_s`'s: the smallest one is what they read, so it is
+//! kept as accurate as `J_s` allows). The gradient of `ln loss` with respect to `J_s` is `J_s W`
+//! with `W` symmetric (`p x p`):
 //!
 //! ```text
-//! O1:         W = -(1/p) R^-1 R^-T                 (d ln det = <J (J^T J)^-1, dJ>)
-//! D:          W = -(2/p) R^-1 R^-T
-//! test-pose:  W = -(Y^T Y) / |Z|_F^2,  Z = R_A R^-1, Y = Z R^-T
+//! O1:         W = -(1/p) C                         (d ln det = <J (J^T J)^-1, dJ>)
+//! D:          W = -(2/p) C
+//! test-pose:  W = -C H C / tr(H C)
 //! O3:         W = -v_p v_p^T / s_p^2               (d s_i = u_i^T dJ v_i, u_i = J v_i / s_i)
 //! O4:         W = -2 v_p v_p^T / s_p^2 + v_1 v_1^T / s_1^2
 //! O5:         W = -(sum_i v_i v_i^T / s_i^3) / (sum_i 1 / s_i)
 //! ```
 
 use super::{CalibrationDesign, RANK_TOLERANCE};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DMatrixView};
 
 /// A calibration design criterion, as `select` and `evaluate` name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -115,9 +124,9 @@ pub(super) struct Scored {
 
 /// `W` of the module docs, formed only for a gradient.
 enum Weight {
-    /// `c R^-1 R^-T`.
-    GramInverse(DMatrix<f64>, f64),
-    /// `-(Y^T Y) / t`.
+    /// `c C`.
+    Covariance(DMatrix<f64>, f64),
+    /// `-C H C / t`.
     Test(DMatrix<f64>, f64),
     /// Formed already (the spectral indices).
     Formed(DMatrix<f64>),
@@ -125,8 +134,9 @@ enum Weight {
 
 impl Scored {
     /// The score of the scaled Jacobian `j` of `n` postures; `None` for a group that does not
-    /// separate the kept parameters (fewer rows than columns, a zero pivot of `R`, a singular
-    /// value below [`RANK_TOLERANCE`] of the largest) or a non-finite value.
+    /// separate the kept parameters (fewer rows than columns, an information matrix that is
+    /// not positive definite, a pivot of `R` below [`RANK_TOLERANCE`] of the largest, a
+    /// singular value below it for the spectral indices) or a non-finite value.
     pub(super) fn new(
         j: DMatrix<f64>,
         criterion: CalibrationCriterion,
@@ -137,30 +147,18 @@ impl Scored {
             return None;
         }
         let n = j.nrows() / design.layout.rows(1);
-        let r = j.clone().qr().r();
-        let diagonal = r.diagonal().map(f64::abs);
-        if diagonal.min() <= RANK_TOLERANCE * diagonal.max() {
-            return None;
-        }
-        let r_inv = r.solve_upper_triangular(&DMatrix::identity(p, p))?;
-        let mean_log = diagonal.iter().map(|d| d.ln()).sum::<f64>() / p as f64;
         let (value, weight) = match criterion {
-            CalibrationCriterion::O1 => (
-                (n as f64).sqrt() * (-mean_log).exp(),
-                Weight::GramInverse(r_inv, -1.0 / p as f64),
-            ),
-            CalibrationCriterion::DOptimality => (
-                (-2.0 * mean_log).exp(),
-                Weight::GramInverse(r_inv, -2.0 / p as f64),
-            ),
-            CalibrationCriterion::TestPose => {
-                let z = &design.test_factor * &r_inv;
-                let trace = z.norm_squared();
-                let m0 = (design.test.nrows() / 3).max(1) as f64;
-                let value = design.noise * (trace / m0).sqrt();
-                (value, Weight::Test(z * r_inv.transpose(), trace))
-            }
+            CalibrationCriterion::O1
+            | CalibrationCriterion::DOptimality
+            | CalibrationCriterion::TestPose => from_information(&j, n, criterion, design)?,
             _ => {
+                // The spectral indices need the SVD anyway: of the QR's `R`, as accurate as
+                // `J_s` allows.
+                let r = triangular_factor(&j);
+                let diagonal = r.diagonal().map(f64::abs);
+                if diagonal.min() <= RANK_TOLERANCE * diagonal.max() {
+                    return None;
+                }
                 let (value, w) = spectral(&r, criterion)?;
                 (value, Weight::Formed(w))
             }
@@ -168,14 +166,74 @@ impl Scored {
         (value.is_finite() && value > 0.0).then_some(Scored { value, j, weight })
     }
 
-    /// The gradient of `ln value` with respect to the scaled Jacobian: `J_s W`.
-    pub(super) fn log_gradient(&self) -> DMatrix<f64> {
-        match &self.weight {
-            Weight::GramInverse(r_inv, c) => (&self.j * r_inv) * r_inv.transpose() * *c,
-            Weight::Test(y, trace) => (&self.j * y.transpose()) * y * (-1.0 / trace),
-            Weight::Formed(w) => &self.j * w,
+    /// The gradient of `ln value` with respect to the scaled Jacobian: `J_s W`, with the
+    /// `p x p` `W` formed first (one product with the tall `J_s`).
+    pub(super) fn log_gradient(&self, design: &CalibrationDesign) -> DMatrix<f64> {
+        let w = match &self.weight {
+            Weight::Covariance(c, factor) => c * *factor,
+            Weight::Test(c, trace) => c * (&design.test_information * c) * (-1.0 / trace),
+            Weight::Formed(w) => return &self.j * w,
+        };
+        &self.j * w
+    }
+}
+
+/// The value and `W` of O1, D-optimality or the test-pose criterion of the scaled Jacobian `j`
+/// of `n` postures, from the information matrix (module docs); `None` when it is not positive
+/// definite or a pivot is below [`RANK_TOLERANCE`] of the largest.
+fn from_information(
+    j: &DMatrix<f64>,
+    n: usize,
+    criterion: CalibrationCriterion,
+    design: &CalibrationDesign,
+) -> Option<(f64, Weight)> {
+    // J^T J by the matrix-product kernel, J^T as a view of J's columns (no copy).
+    let (m, p) = j.shape();
+    let transposed = DMatrixView::from_slice_with_strides(j.as_slice(), p, m, m, 1);
+    let mut information = DMatrix::zeros(p, p);
+    information.gemm(1.0, &transposed, j, 0.0);
+    let l = information.cholesky()?.unpack();
+    let diagonal = l.diagonal();
+    if diagonal.min() <= RANK_TOLERANCE * diagonal.max() {
+        return None;
+    }
+    let inverse = lower_inverse(&l);
+    let c = inverse.transpose() * inverse;
+    let mean_log = diagonal.iter().map(|d| d.ln()).sum::<f64>() / p as f64;
+    Some(match criterion {
+        CalibrationCriterion::O1 => (
+            (n as f64).sqrt() * (-mean_log).exp(),
+            Weight::Covariance(c, -1.0 / p as f64),
+        ),
+        CalibrationCriterion::DOptimality => (
+            (-2.0 * mean_log).exp(),
+            Weight::Covariance(c, -2.0 / p as f64),
+        ),
+        _ => {
+            let trace = c.component_mul(&design.test_information).sum();
+            let m0 = (design.test.nrows() / 3).max(1) as f64;
+            let value = design.noise * (trace.max(0.0) / m0).sqrt();
+            (value, Weight::Test(c, trace))
+        }
+    })
+}
+
+/// The inverse of the lower triangular `l` (`p x p`, nonzero diagonal) by forward substitution,
+/// column by column in column sweeps (contiguous updates).
+fn lower_inverse(l: &DMatrix<f64>) -> DMatrix<f64> {
+    let p = l.ncols();
+    let mut x = DMatrix::zeros(p, p);
+    let l = l.as_slice();
+    for (j, col) in x.as_mut_slice().chunks_exact_mut(p).enumerate() {
+        col[j] = 1.0;
+        for i in j..p {
+            col[i] /= l[i * p + i];
+            let xi = col[i];
+            let (below, source) = (&mut col[i + 1..], &l[i * p + i + 1..(i + 1) * p]);
+            below.iter_mut().zip(source).for_each(|(y, v)| *y -= xi * v);
         }
     }
+    x
 }
 
 /// The value and `W` of an index that needs the singular values, from the SVD of `r`.

@@ -226,9 +226,9 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
 /// and comments kept; it is read back and its kinematics checked against the calibrated robot's.
 /// Any other robot is written as links `base_link`, `link1`..`link6`, `flange`, revolute joints
 /// `joint1`..`joint6` with the corrected origins (the axis map's constant `c` folded in: the
-/// URDF's joint positions are `M q`, the axis angles themselves for the identity `M`), the
-/// nominal limits (an unbounded axis as a continuous joint) and the links' masses when the
-/// nominal robot has them (zero inertia tensors: stiffid uses masses and centres only).
+/// URDF's joint positions are `M q`, the axis angles themselves for the identity `M`), as limits
+/// the range of each joint position `(M q)_i` over the nominal axis limits (an unbounded one as a
+/// continuous joint) and the links' masses when the nominal robot has them (zero inertia tensors: stiffid uses masses and centres only).
 ///
 /// # Errors
 /// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the nominal URDF's text cannot
@@ -239,7 +239,6 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     if let Some(source) = model.robot().urdf_source() {
         return edited_urdf(model.robot(), &robot, source);
     }
-    let limits = robot.limits();
     let mut t = String::new();
     let _ = writeln!(
         t,
@@ -272,7 +271,7 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             * j.pre
             * UnitQuaternion::from_axis_angle(&j.axis, j.offset + robot.axis_map().offset[i]);
         before = j.post;
-        let (lo, hi) = (limits.lower[i], limits.upper[i]);
+        let (lo, hi) = position_range(&robot, i);
         let bounded = lo.is_finite() && hi.is_finite();
         let _ = writeln!(
             t,
@@ -362,6 +361,21 @@ fn transform(t: &Isometry3<f64>) -> String {
 
 fn list(v: &Vector3<f64>) -> String {
     format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
+}
+
+/// The range (rad) of the joint position `(M q)_i` of `robot` over its axis limits (interval
+/// arithmetic: for a row of `M` with one entry, that axis's limits, mirrored for a negative one;
+/// for a coupled row, the sum of its terms' ranges); infinite where an axis it reads is
+/// unbounded.
+fn position_range(robot: &Robot, i: usize) -> (f64, f64) {
+    let (m, limits) = (robot.axis_map().matrix, robot.limits());
+    (0..6)
+        .filter(|&j| m[(i, j)] != 0.0)
+        .fold((0.0, 0.0), |(lo, hi), j| {
+            let w = m[(i, j)];
+            let (a, b) = (w * limits.lower[j], w * limits.upper[j]);
+            (lo + a.min(b), hi + a.max(b))
+        })
 }
 
 /// A joint limit (rad) in degrees; an unbounded end as the file's largest angle.
