@@ -457,3 +457,44 @@ fn robust_flag_alone_is_the_huber_fit_and_lists_down_weighted_rows() {
         "some, not all, of the 43 FANUC rows are down-weighted: {down:?}"
     );
 }
+
+#[test]
+fn text_figures_of_the_cross_validation_are_the_documents() {
+    let doc = json(&identify_fanuc(&["--cross-validate"]));
+    let data = fanuc_csv();
+    let setup = ["identify", "--setup", "fanuc-r2000ic-165f", "--data"];
+    let out = stiffid(&[&setup[..], &[data.to_str().unwrap(), "--cross-validate"]].concat());
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let cv = &doc["cross_validation"];
+    // std/full: the document's percentage, itself the fold std over the full fit's stiffness.
+    let (std, full) = (
+        numbers(&cv["stiffness_std_nm_per_rad"]),
+        numbers(&doc["stiffness_nm_per_rad"]),
+    );
+    let percent = numbers(&cv["stiffness_std_percent"]);
+    let spread = text.split("spread across folds:\n").nth(1).unwrap();
+    for j in 0..6 {
+        assert!((percent[j] - 100.0 * std[j] / full[j].abs()).abs() < 1e-9 * percent[j]);
+        let row = spread.lines().nth(1 + j).unwrap();
+        let shown = row.split_whitespace().nth(4).unwrap();
+        assert_eq!(shown, format!("{:.1}%", percent[j]), "joint {}", j + 1);
+    }
+    // The 95% quantile: the ceil(0.95 N)-th smallest of the held-out scores the document holds.
+    let p = &doc["prediction"];
+    let mut scores: Vec<f64> = (p["folds"].as_array().unwrap().iter())
+        .flat_map(|f| numbers(&f["scores"]))
+        .collect();
+    scores.sort_by(f64::total_cmp);
+    let q95 = p["score_q95"].as_f64().unwrap();
+    assert_eq!(
+        q95,
+        scores[(0.95 * scores.len() as f64).ceil() as usize - 1]
+    );
+    assert!(q95 > scores[0] && q95 < scores[scores.len() - 1]);
+    let within = format!(
+        "95% of the held-out errors are within {:.1}% of the predicted displacement",
+        100.0 * q95
+    );
+    assert!(text.contains(&within), "{within} not in\n{text}");
+}

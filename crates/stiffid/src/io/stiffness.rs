@@ -144,6 +144,11 @@ pub struct PredictionSection {
     /// `sigma_0`, the scale's noise floor: the standard deviation of one displacement coordinate
     /// from the setup's tracker noise, mm; finite, >= 0.
     pub noise_floor_mm: f64,
+    /// The 95% quantile of the held-out scores ([`Calibration::score_quantile`]): 95% of the
+    /// held-out errors are within this share of the predicted displacement plus
+    /// `noise_floor_mm`; `null` without scores. Written for the reader, ignored when read.
+    #[serde(default)]
+    pub score_q95: Option<f64>,
     /// One per fold, at most [`prediction::MAX_FOLDS`], with at most [`prediction::MAX_SCORES`]
     /// scores in all.
     pub folds: Vec<FoldSection>,
@@ -171,6 +176,7 @@ impl PredictionSection {
             method: calibration.method().into(),
             postures: calibration.postures,
             noise_floor_mm: calibration.noise_floor * 1e3,
+            score_q95: calibration.score_quantile(0.95),
             folds: calibration
                 .folds
                 .iter()

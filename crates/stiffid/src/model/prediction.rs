@@ -99,6 +99,21 @@ impl Calibration {
         self.folds.iter().map(|f| f.scores.len()).sum()
     }
 
+    /// The empirical `level` quantile of the scores (P1) pooled over the folds: the
+    /// `ceil(level N)`-th smallest of the `N` scores, so that a share `level` of the held-out
+    /// errors are within it times the predicted displacement plus the noise floor; `None`
+    /// without scores.
+    pub fn score_quantile(&self, level: f64) -> Option<f64> {
+        let mut scores: Vec<f64> = self
+            .folds
+            .iter()
+            .flat_map(|f| f.scores.iter().copied())
+            .collect();
+        scores.sort_by(f64::total_cmp);
+        let n = scores.len();
+        (n > 0).then(|| scores[((level * n as f64).ceil() as usize).clamp(1, n) - 1])
+    }
+
     /// The number of parameters of the folds' compliance.
     pub fn parameters(&self) -> usize {
         self.folds.first().map_or(0, |f| f.compliance.len())

@@ -177,8 +177,9 @@ pub fn identify_model<R: Read + Send>(
         .transpose()?;
     let report = identify_model::run(request)?;
     output::warnings(&report.warnings);
+    let doc = Document::new(&report, &args.common.setup, setup);
     if args.common.json || out.is_some() {
-        let text = json(&Document::new(&report, &args.common.setup, setup))?;
+        let text = json(&doc)?;
         if let Some(out) = &out {
             out.write(text.as_bytes())?;
         }
@@ -186,11 +187,11 @@ pub fn identify_model<R: Read + Send>(
             return output::print(&text);
         }
     }
-    output::print(&model_text(&report, setup))
+    output::print(&model_text(&report, &doc, setup))
 }
 
-/// The text report of a model's identification.
-fn model_text(report: &Report, setup: &Setup) -> String {
+/// The text report of a model's identification, its document `doc`.
+fn model_text(report: &Report, doc: &Document, setup: &Setup) -> String {
     let f = &report.fit;
     let mut s = format!(
         "Stiffness of the model's {} from {} ({} rows), {}\n",
@@ -218,7 +219,7 @@ fn model_text(report: &Report, setup: &Setup) -> String {
     if let Some(cv) = &report.cross_validation {
         s += &cross_validation_text(f, cv);
     }
-    if let Some(p) = &report.prediction {
+    if let Some(p) = &doc.prediction {
         s += &text::prediction(p);
     }
     s

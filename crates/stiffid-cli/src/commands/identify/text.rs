@@ -2,11 +2,11 @@
 //! words, never as `NaN` or `inf`.
 
 use stiffid::app::document::mm;
-use stiffid::app::identify::document::{Document, POORLY_DETERMINED};
+use stiffid::app::identify::document::{Document, LoadStep, PointOffset, POORLY_DETERMINED};
 use stiffid::app::identify::{Fit, Report};
 use stiffid::identify::adequacy::{Verdict, SIGNIFICANCE};
 use stiffid::identify::{Identification, Uncertainty};
-use stiffid::model::prediction::Calibration;
+use stiffid::io::stiffness::PredictionSection;
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
@@ -16,6 +16,11 @@ fn num(v: f64, decimals: usize) -> String {
         true => format!("{v:.decimals$}"),
         false => "n/a".into(),
     }
+}
+
+/// `v` with `decimals` decimals, or `n/a` if it is missing.
+fn opt(v: Option<f64>, decimals: usize) -> String {
+    v.map_or("n/a".into(), |v| num(v, decimals))
 }
 
 /// `v` in scientific notation, or `n/a`.
@@ -101,21 +106,20 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
         s += &down_weighted(run, robust);
     }
     if let Some(cv) = &doc.cross_validation {
-        s += &cross_validation(run, cv.explained);
+        s += &cross_validation(run, cv, doc.prediction.as_ref());
     }
-    s += &load_steps(run);
-    s += &offsets(run);
+    s += &load_steps(doc.load_steps.as_deref());
+    s += &offsets(doc.offsets.as_deref());
     s
 }
 
-/// Each posture's linearity, zero-load offset and hysteresis under the load steps.
-fn load_steps(run: &Report) -> String {
-    let Some(steps) = &run.load_steps else {
+/// Each posture's linearity, zero-load offset and hysteresis under the load steps (the
+/// document's).
+fn load_steps(steps: Option<&[LoadStep]>) -> String {
+    let Some(steps) = steps else {
         return String::new();
     };
-    let opt = |v: Option<f64>, scale: f64, decimals: usize| {
-        v.map_or("-".to_string(), |v| num(v * scale, decimals))
-    };
+    let opt = |v: Option<f64>, decimals: usize| v.map_or("-".to_string(), |v| num(v, decimals));
     let mark = |flag: bool| if flag { "*" } else { " " };
     let mut s = "
 load steps (* beyond the tracker noise, p < 0.01):
@@ -126,23 +130,23 @@ load steps (* beyond the tracker noise, p < 0.01):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
 ",
-            stiffid::common::limits::short(run.origin.labels.get(l.posture)),
+            stiffid::common::limits::short(&l.posture),
             l.levels,
-            opt(l.slope_m_per_n, 1e6, 4),
-            opt(l.offset_m, 1e3, 4),
-            mark(l.offset_flagged()),
-            opt(l.r_squared, 1.0, 6),
-            mark(l.nonlinear()),
-            opt(l.hysteresis_m, 1e3, 4),
-            mark(l.hysteresis_flagged()),
+            opt(l.slope_mm_per_kn, 4),
+            opt(l.zero_load_offset_mm, 4),
+            mark(l.offset_flagged),
+            opt(l.r_squared, 6),
+            mark(l.nonlinear),
+            opt(l.hysteresis_mm, 4),
+            mark(l.hysteresis_flagged),
         );
     }
     s
 }
 
-/// The offsets fitted beside the compliances.
-fn offsets(run: &Report) -> String {
-    let Some(offsets) = &run.offsets else {
+/// The offsets fitted beside the compliances (the document's).
+fn offsets(offsets: Option<&[PointOffset]>) -> String {
+    let Some(offsets) = offsets else {
         return String::new();
     };
     let mut s = "
@@ -151,14 +155,15 @@ offsets fitted beside the compliances (base frame):
 "
     .to_string();
     for o in offsets {
+        let [x, y, z] = o.offset_mm;
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
 ",
-            stiffid::common::limits::short(run.origin.labels.get(o.posture)),
-            o.point + 1,
-            num(o.offset.x * 1e3, 4),
-            num(o.offset.y * 1e3, 4),
-            num(o.offset.z * 1e3, 4),
+            stiffid::common::limits::short(&o.posture),
+            o.point,
+            num(x, 4),
+            num(y, 4),
+            num(z, 4),
         );
     }
     s
@@ -314,9 +319,12 @@ fn down_weighted(run: &Report, fit: &stiffid::identify::RobustFit) -> String {
     s
 }
 
-/// The cross-validation of `run`, the model explaining the share `explained` of the held-out
-/// deflection (the document's).
-fn cross_validation(run: &Report, explained: f64) -> String {
+/// The cross-validation of `run`, its figures from the document's `doc` and `prediction`.
+fn cross_validation(
+    run: &Report,
+    doc: &stiffid::app::identify::document::CrossValidation,
+    prediction: Option<&PredictionSection>,
+) -> String {
     let Some(cv) = &run.cross_validation else {
         return String::new();
     };
@@ -358,7 +366,7 @@ fn cross_validation(run: &Report, explained: f64) -> String {
             num(full, 0),
             num(cv.stiffness_mean[j], 0),
             num(cv.stiffness_std[j], 0),
-            num(100.0 * cv.stiffness_std[j] / full.abs(), 1),
+            opt(doc.stiffness_std_percent[j], 1),
             num(cv.stiffness_range[0][j], 0),
             num(cv.stiffness_range[1][j], 0)
         );
@@ -367,11 +375,11 @@ fn cross_validation(run: &Report, explained: f64) -> String {
         "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% (standard error {:.1}, over the postures) of the held-out deflection\n",
         mm(cv.rms_delta_b),
         mm(cv.rms_measured),
-        100.0 * explained,
+        100.0 * doc.explained,
         100.0 * cv.explained_std_error
     );
-    if let Some(p) = &run.prediction {
-        s += &prediction(p);
+    if let Some(p) = prediction {
+        s += &self::prediction(p);
     }
     let influential = &run.influential;
     s += "influential (removal moves a stiffness by more than its standard error): ";
@@ -396,22 +404,16 @@ pub fn model_error_dominates() -> String {
     format!("the model error dominates (p < {SIGNIFICANCE}), not the tracker: the parameter intervals are conditional on the model (a compliance it lacks biases the stiffness, and no interval shows it); the prediction intervals (--cross-validate, then validate, predict, compensate) come from held-out errors and are not")
 }
 
-/// The calibration of the prediction intervals, in one line.
-pub fn prediction(p: &Calibration) -> String {
-    let mut scores: Vec<f64> = p
-        .folds
-        .iter()
-        .flat_map(|f| f.scores.iter().copied())
-        .collect();
-    scores.sort_by(f64::total_cmp);
-    let q95 = scores[((0.95 * scores.len() as f64).ceil() as usize).clamp(1, scores.len()) - 1];
+/// The calibration of the prediction intervals (a document's `prediction`), in one line.
+pub fn prediction(p: &PredictionSection) -> String {
+    let scores: usize = p.folds.iter().map(|f| f.scores.len()).sum();
     format!(
-        "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {:.1}% of the predicted displacement plus {:.4} mm\n",
-        p.method(),
-        scores.len(),
+        "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {}% of the predicted displacement plus {:.4} mm\n",
+        p.method,
+        scores,
         stiffid::common::words::count(p.postures, "posture"),
-        100.0 * q95,
-        mm(p.noise_floor)
+        opt(p.score_q95.map(|q| 100.0 * q), 1),
+        p.noise_floor_mm
     )
 }
 

@@ -131,9 +131,9 @@ pub struct LoadStep {
     pub levels: usize,
     /// Readings of the posture, the unloaded references excepted.
     pub readings: usize,
-    /// Deflection per load (RMS over the measuring points of the slopes' lengths), mm/N;
+    /// Deflection per load (RMS over the measuring points of the slopes' lengths), mm/kN;
     /// `null` with fewer than two non-zero loads.
-    pub slope_mm_per_n: Option<f64>,
+    pub slope_mm_per_kn: Option<f64>,
     /// The straight lines' deflection at zero load (RMS over the measuring points), mm.
     pub zero_load_offset_mm: Option<f64>,
     /// `R^2` of the straight lines.
@@ -253,6 +253,9 @@ pub struct CrossValidation {
     pub stiffness_min_nm_per_rad: [Option<f64>; 6],
     /// Largest over the folds, Nm/rad.
     pub stiffness_max_nm_per_rad: [Option<f64>; 6],
+    /// `stiffness_std_nm_per_rad` as a percentage of the full fit's stiffness (its magnitude),
+    /// %; `null` unless finite.
+    pub stiffness_std_percent: [Option<f64>; 6],
     /// RMS prediction error of the left-out measurements (Eq. 22), mm.
     pub rms_delta_b_mm: f64,
     /// RMS of the measured displacements, mm.
@@ -393,7 +396,7 @@ fn load_steps(report: &Report) -> Option<Vec<LoadStep>> {
         posture: report.origin.labels.get(l.posture).to_string(),
         levels: l.levels,
         readings: l.readings,
-        slope_mm_per_n: l.slope_m_per_n.map(mm),
+        slope_mm_per_kn: l.slope_m_per_n.map(|v| v * 1e6),
         zero_load_offset_mm: l.offset_m.map(mm),
         r_squared: l.r_squared,
         hysteresis_mm: l.hysteresis_m.map(mm),
@@ -481,6 +484,9 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
         stiffness_std_nm_per_rad: six(cv.stiffness_std.as_slice()),
         stiffness_min_nm_per_rad: six(cv.stiffness_range[0].as_slice()),
         stiffness_max_nm_per_rad: six(cv.stiffness_range[1].as_slice()),
+        stiffness_std_percent: std::array::from_fn(|j| {
+            finite(100.0 * cv.stiffness_std[j] / report.identification.stiffness[j].abs())
+        }),
         rms_delta_b_mm: mm(cv.rms_delta_b),
         rms_measured_mm: mm(cv.rms_measured),
         explained: cv.explained(),
