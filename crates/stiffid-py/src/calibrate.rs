@@ -12,9 +12,10 @@ use stiffid::app::calibrate_robot::document::Document;
 use stiffid::app::calibrate_robot::{self as job, Tolerances};
 use stiffid::app::readings::Request as Readings;
 
-/// Calibrates the robot from the unloaded ``readings`` of a campaign (a CSV path in the ``stiffid
+/// Calibrates the robot from the ``readings`` of a campaign (a CSV path in the ``stiffid
 /// register --data`` format: ``posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm``
-/// or ``x_mm,y_mm,z_mm`` in the base frame; with load steps only the unloaded readings count):
+/// or ``x_mm,y_mm,z_mm`` in the base frame; with load steps every reading, loaded ones fitting the
+/// setup model's compliances too, as ``stiffid calibrate``):
 /// the robot's geometric errors (``geometry``: ``"none"``, the tracker and the measuring points
 /// only, as ``calibrate_cell``; ``"offsets"``, the joint angle offsets too; ``"full"``, the
 /// default, every joint error with the dependent ones merged), its deflection under its own

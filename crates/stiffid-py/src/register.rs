@@ -102,7 +102,7 @@ pub fn register<'py>(
 
 /// Calibrates the cell from unloaded ``readings`` (the ``register`` format) of postures that turn
 /// the flange: the tracker's transform and every measuring point in the flange frame fitted
-/// together (Gauss-Newton over 6 + 3 per point read). Returns the document of ``stiffid
+/// together (the Levenberg-Marquardt fit of ``calibrate`` over 6 + 3 per point read). Returns the document of ``stiffid
 /// calibrate-cell --json``: the transform as for ``register``, ``points`` (each measuring point's
 /// ``setup_mm``, ``fitted_mm``, ``shift_mm`` and ``std_mm``, ``None`` for a point never read),
 /// ``absolute_error_rms_mm`` (the robot's unloaded absolute error at these postures),

@@ -469,6 +469,10 @@ pub enum JobOption {
     TargetPct,
     /// select: the group a local search starts from.
     Start,
+    /// select: the axis-angle and flange-orientation distance of distinct postures, deg.
+    DistinctDeg,
+    /// select: the flange-origin distance of distinct postures, mm.
+    DistinctMm,
     /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
     /// deg), given together.
     Tolerances,
@@ -491,6 +495,8 @@ impl JobOption {
             JobOption::ProgramName => "name",
             JobOption::TargetPct => "target_pct",
             JobOption::Start => "start",
+            JobOption::DistinctDeg => "distinct_deg",
+            JobOption::DistinctMm => "distinct_mm",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",

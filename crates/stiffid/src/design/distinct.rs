@@ -9,8 +9,10 @@
 //! within [`Distinctness::angle`] (default [`ANGLE_TOLERANCE`]) of each other. A pool choice can
 //! forbid them ([`distinct_pool`]): it keeps the first of every near pair in pool order.
 
+use crate::common::error::JobOption;
+use crate::common::limits::{self, Range};
 use crate::common::warning::{Warning, WarningKind};
-use crate::Robot;
+use crate::{Result, Robot};
 use nalgebra::{Isometry3, Vector6};
 
 /// Axis angles closer than this in every joint make two postures near, rad (2 deg).
@@ -43,7 +45,34 @@ impl Default for Distinctness {
     }
 }
 
+/// The accepted distance in axis angles and flange orientation, deg.
+pub const DISTINCT_DEG: Range = Range::new(0.0, 180.0, "deg");
+
+/// The accepted distance of flange origins, mm.
+pub const DISTINCT_MM: Range = Range::new(0.0, 1e4, "mm");
+
 impl Distinctness {
+    /// The default distances with the axis-angle and orientation distance `deg` (deg) and the
+    /// flange-origin distance `mm` (mm) where given.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidOption`] ([`JobOption::DistinctDeg`], [`JobOption::DistinctMm`])
+    /// for a distance outside [`DISTINCT_DEG`] or [`DISTINCT_MM`].
+    pub fn try_from_deg_mm(deg: Option<f64>, mm: Option<f64>) -> Result<Self> {
+        let mut d = Self::default();
+        if let Some(deg) = deg {
+            limits::check("distinct_deg", &[deg], &DISTINCT_DEG)
+                .map_err(|e| e.for_option(JobOption::DistinctDeg))?;
+            (d.joint, d.angle) = (deg.to_radians(), deg.to_radians());
+        }
+        if let Some(mm) = mm {
+            limits::check("distinct_mm", &[mm], &DISTINCT_MM)
+                .map_err(|e| e.for_option(JobOption::DistinctMm))?;
+            d.position = mm * 1e-3;
+        }
+        Ok(d)
+    }
+
     /// The pair `(a, b)` if postures `qa`, `qb` with flanges `fa`, `fb` are near.
     fn near(
         &self,

@@ -293,3 +293,47 @@ fn calibration_tolerances_out_of_range_are_refused() {
         );
     }
 }
+
+/// `--distinct-deg` and `--distinct-mm` out of range are refused as their own options, with the
+/// value as given (1e9, not its round trip through radians).
+#[test]
+fn distinct_distances_out_of_range_are_refused_as_options() {
+    use stiffid::design::distinct::Distinctness;
+    let cases = [
+        (
+            Some(1e9),
+            None,
+            stiffid::JobOption::DistinctDeg,
+            "1e9 is outside [0, 180] deg",
+        ),
+        (
+            Some(-1.0),
+            None,
+            stiffid::JobOption::DistinctDeg,
+            "-1 is outside",
+        ),
+        (
+            None,
+            Some(f64::NAN),
+            stiffid::JobOption::DistinctMm,
+            "NaN is outside",
+        ),
+        (
+            None,
+            Some(2e4),
+            stiffid::JobOption::DistinctMm,
+            "20000 is outside [0, 10000] mm",
+        ),
+    ];
+    for (deg, mm, want, text) in cases {
+        match Distinctness::try_from_deg_mm(deg, mm) {
+            Err(Error::InvalidOption { option, message }) => {
+                assert_eq!(option, want);
+                assert!(message.contains(text), "{message}");
+            }
+            other => panic!("{deg:?} deg, {mm:?} mm: expected an option error, got {other:?}"),
+        }
+    }
+    let d = Distinctness::try_from_deg_mm(Some(5.0), Some(20.0)).unwrap();
+    assert!((d.joint - 5f64.to_radians()).abs() < 1e-15 && (d.position - 0.02).abs() < 1e-15);
+}

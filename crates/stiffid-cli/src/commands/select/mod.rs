@@ -166,7 +166,7 @@ pub fn run(args: &Args) -> Result<()> {
         restarts: args
             .restarts
             .map_or(PoolOptions::default().restarts, |r| r as usize),
-        distinct: args.distinct.then(|| distinctness(args)),
+        distinct: args.distinct.then(|| distinctness(args)).transpose()?,
         progress: &bars,
     };
     let report = job::run(&request)?;
@@ -189,15 +189,8 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
-fn distinctness(args: &Args) -> Distinctness {
-    let mut d = Distinctness::default();
-    if let Some(deg) = args.distinct_deg {
-        (d.joint, d.angle) = (deg.to_radians(), deg.to_radians());
-    }
-    if let Some(mm) = args.distinct_mm {
-        d.position = mm * 1e-3;
-    }
-    d
+fn distinctness(args: &Args) -> stiffid::Result<Distinctness> {
+    Distinctness::try_from_deg_mm(args.distinct_deg, args.distinct_mm)
 }
 
 /// The method the arguments ask for.

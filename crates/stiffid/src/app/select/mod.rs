@@ -116,11 +116,7 @@ pub struct Request<'a> {
 /// The accepted target, %.
 pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 
-/// The accepted distance in axis angles and flange orientation of [`Request::distinct`], deg.
-pub const DISTINCT_DEG: Range = Range::new(0.0, 180.0, "deg");
-
-/// The accepted distance of flange origins of [`Request::distinct`], mm.
-pub const DISTINCT_MM: Range = Range::new(0.0, 1e4, "mm");
+pub use crate::design::distinct::{DISTINCT_DEG, DISTINCT_MM};
 
 /// What the selection found.
 #[derive(Debug, Clone)]
@@ -375,9 +371,10 @@ fn check(r: &Request) -> Result<()> {
                 "only for a pool choice: a search moves every posture freely and cannot forbid pairs; choose from a pool of postures (the pool keeps the first of every near pair), or drop distinct and look at the near pairs flagged",
             );
         }
-        limits::check("distinct.joint_deg", &[d.joint.to_degrees()], &DISTINCT_DEG)?;
-        limits::check("distinct.angle_deg", &[d.angle.to_degrees()], &DISTINCT_DEG)?;
-        limits::check("distinct.position_mm", &[d.position * 1e3], &DISTINCT_MM)?;
+        let deg = |v: f64| limits::check("distinct_deg", &[v.to_degrees()], &DISTINCT_DEG);
+        (deg(d.joint).and(deg(d.angle))).map_err(|e| e.for_option(JobOption::DistinctDeg))?;
+        limits::check("distinct_mm", &[d.position * 1e3], &DISTINCT_MM)
+            .map_err(|e| e.for_option(JobOption::DistinctMm))?;
     }
     let most = limits::MAX_SEARCH_POSTURES as usize;
     match &r.start {
