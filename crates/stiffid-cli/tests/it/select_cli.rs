@@ -389,3 +389,32 @@ fn select_for_calibration_and_both_and_evaluate_agree() {
     ]);
     assert_usage_error(&bad, &["weight", "between 0 and 1"]);
 }
+
+/// A group too small to separate the calibration's parameters is refused, naming the count, and
+/// no postures file is written; twelve postures are enough on the same setup.
+#[test]
+fn select_for_calibration_refuses_a_group_that_cannot_separate_it() {
+    let d = temp_dir("select-calibration-small");
+    for (n, ok) in [("3", false), ("12", true)] {
+        let out = d.join(format!("group-{n}.csv"));
+        let run = stiffid(&[
+            "select",
+            "--setup",
+            "zhang2021-comau-nj165",
+            "--for",
+            "calibration",
+            "--postures",
+            n,
+            "--start-random",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        match ok {
+            true => assert!(run.status.success() && out.exists()),
+            false => {
+                assert_usage_error(&run, &["the 3 postures do not separate", "36 parameters"]);
+                assert!(!out.exists());
+            }
+        }
+    }
+}

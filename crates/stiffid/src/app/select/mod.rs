@@ -241,7 +241,7 @@ pub struct Unconstrained {
 /// not (`pool`) or a count out of range (`postures`, `restarts`, the search options); the
 /// pool's errors named by it (more postures asked for than pass the cell's checks, naming the
 /// checks failed most often); a target that no group size reaches ([`JobOption::TargetPct`], naming the best
-/// rate reachable); the searches' errors; a group that cannot identify every parameter.
+/// rate reachable); the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
     let design = match request.purpose {
@@ -276,6 +276,19 @@ pub fn run(request: &Request) -> Result<Report> {
             source_name: "postures: the best group the search found".into(),
             error: Box::new(e),
         })?;
+    }
+    if let (Some(d), false) = (&design, found.value.is_finite()) {
+        return Err(Error::Input {
+            source_name: "postures: the best group the search found".into(),
+            error: Box::new(Error::InvalidField {
+                field: "calibration".into(),
+                message: format!(
+                    "the {} postures do not separate the calibration's {} parameters (its predicted error is infinite): choose more postures or measuring points, or a smaller --geometry",
+                    found.postures.len(),
+                    d.kept().len()
+                ),
+            }),
+        });
     }
     let distances = request.distinct.unwrap_or_default();
     let near = near_pairs_by(request.setup.robot(), &found.postures, &distances);
