@@ -203,7 +203,12 @@ impl Scaled {
             col *= *s;
         }
         let svd = a
-            .try_svd(true, true, f64::EPSILON, 500)
+            .try_svd(
+                true,
+                true,
+                f64::EPSILON,
+                crate::math::linalg::SVD_MAX_ITERATIONS,
+            )
             .ok_or_else(|| Error::NotFinite {
                 what: "the singular value decomposition of the observation matrix".into(),
             })?;

@@ -173,7 +173,12 @@ fn checked_inverse(r: &Matrix6<f64>, norms: &Vector6<f64>) -> Result<Matrix6<f64
 /// vector of the smallest singular value of `R`.
 fn dependent_columns(r: &Matrix6<f64>) -> Error {
     let joints = r
-        .try_svd(false, true, f64::EPSILON, 200)
+        .try_svd(
+            false,
+            true,
+            f64::EPSILON,
+            crate::math::linalg::SVD_MAX_ITERATIONS,
+        )
         .and_then(|svd| {
             let (imin, _) = svd.singular_values.argmin();
             let v = svd.v_t?.row(imin).transpose();
