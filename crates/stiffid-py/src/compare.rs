@@ -43,7 +43,8 @@ pub fn compare_models<'py>(
 
 /// The models of the selection path, one entry per model in every array: `added` (the spring
 /// added at that step, `None` for the setup's model), `springs` (lists of names), `parameters`
-/// (int), `in_sample_explained`, `held_out_explained`, `held_out_rms_delta_b_mm`, `aic`, `bic`,
+/// (int), `in_sample_explained`, `held_out_explained`, `held_out_explained_std_error`,
+/// `held_out_rms_delta_b_mm`, `aic`, `bic`,
 /// `noise_ratio` (float, NaN where the document has `null`), `physical`, `identified`,
 /// `recommended` (bool).
 fn table<'py>(py: Python<'py>, document: &Document) -> PyResult<Bound<'py, PyDict>> {
@@ -70,6 +71,10 @@ fn table<'py>(py: Python<'py>, document: &Document) -> PyResult<Bound<'py, PyDic
         floats(&|m| Some(m.in_sample_explained)),
     )?;
     t.set_item("held_out_explained", floats(&|m| m.held_out_explained))?;
+    t.set_item(
+        "held_out_explained_std_error",
+        floats(&|m| m.held_out_explained_std_error),
+    )?;
     t.set_item(
         "held_out_rms_delta_b_mm",
         floats(&|m| m.held_out_rms_delta_b_mm),

@@ -33,6 +33,9 @@ def test_compare_models_table_is_the_path_as_arrays_and_names(compared, compared
     assert t["parameters"].dtype == np.int64
     np.testing.assert_array_equal(t["parameters"], [m["parameters"] for m in models])
     np.testing.assert_array_equal(t["held_out_explained"], [m["held_out_explained"] for m in models])
+    np.testing.assert_array_equal(
+        t["held_out_explained_std_error"], [m["held_out_explained_std_error"] for m in models]
+    )
     np.testing.assert_array_equal(t["physical"], [m["physical"] for m in models])
     np.testing.assert_array_equal(t["recommended"], [m["recommended"] for m in models])
     # The FANUC data: 76.5% held out for the drives, at least 81% for the recommended model.

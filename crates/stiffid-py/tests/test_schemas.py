@@ -163,6 +163,9 @@ def test_compare_models(cli, tmp_path):
     assert_valid("identify-model", robust)
     loo = cli("identify", "--setup", setup, "--data", FANUC_DATA, "--json", "--cross-validate")
     assert loo["cross_validation"]["explained"] == pytest.approx(rec["held_out_explained"], rel=1e-9)
+    assert loo["cross_validation"]["explained_std_error"] == pytest.approx(
+        rec["held_out_explained_std_error"], rel=1e-9
+    )
     assert_valid("identify-model", loo)
 
 

@@ -28,7 +28,7 @@
 //! Diagnostics", 1980, ch. 2). `delta_b` is the norm of each measurement's three residuals
 //! (Eq. 22); the explained share is `1 - RMS(delta_b) / RMS(|delta|)`.
 
-use super::cross_validation::Method;
+use super::cross_validation::{explained_share, Method};
 use super::robust::{self, Loss, RobustFit};
 use crate::model::Parameter;
 use crate::observation::Observations;
@@ -499,6 +499,9 @@ pub struct HeldOut {
     pub delta_b: Vec<f64>,
     /// Per posture, the mean of `delta_b^2` over its measurements, m^2.
     pub posture_mse: Vec<f64>,
+    /// Per posture, the sums of `delta_b^2` and of `|delta|^2` over its measurements, m^2 (what
+    /// [`crate::identify::cross_validation::explained_share`] takes).
+    pub posture_sums: Vec<[f64; 2]>,
     /// `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
     /// `RMS(|delta|)` of the measured displacements, m.
@@ -509,6 +512,12 @@ impl HeldOut {
     /// `1 - RMS(delta_b) / RMS(|delta|)`.
     pub fn explained(&self) -> f64 {
         1.0 - self.rms_delta_b / self.rms_measured
+    }
+
+    /// The standard error of [`HeldOut::explained`] over the postures (the delta method on the
+    /// ratio of the postures' sums, [`crate::identify::cross_validation::explained_share`]).
+    pub fn explained_std_error(&self) -> f64 {
+        explained_share(&self.posture_sums)[1]
     }
 
     /// The mean over postures of their mean `delta_b^2` (m^2), and its standard error
@@ -540,6 +549,7 @@ pub fn held_out(obs: &Observations) -> Option<HeldOut> {
     }
     let mut delta_b = vec![0.0; obs.posture_index.len()];
     let mut posture_mse = Vec::with_capacity(obs.postures);
+    let mut posture_sums = Vec::with_capacity(obs.postures);
     for rows in &rows_of {
         let ui = ur.select_rows(rows);
         let mut a = -(&ui * ui.transpose());
@@ -561,6 +571,7 @@ pub fn held_out(obs: &Observations) -> Option<HeldOut> {
             sum += d * d;
         }
         posture_mse.push(sum / (rows.len() / 3) as f64);
+        posture_sums.push([sum, rows.iter().map(|&k| obs.delta[k].powi(2)).sum()]);
     }
     let n = delta_b.len() as f64;
     Some(HeldOut {
@@ -568,5 +579,6 @@ pub fn held_out(obs: &Observations) -> Option<HeldOut> {
         rms_measured: (obs.delta.norm_squared() / n).sqrt(),
         delta_b,
         posture_mse,
+        posture_sums,
     })
 }

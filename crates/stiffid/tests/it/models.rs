@@ -7,6 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::design::{local, random_group, Criterion, SearchOptions};
 use stiffid::identify::compare::compare;
+use stiffid::identify::cross_validation::{cross_validate_model, Method};
 use stiffid::identify::model::fit;
 use stiffid::model::{Family, Kind, Spring};
 use stiffid::observation::{posture_block, Measurement, Observations};
@@ -250,6 +251,19 @@ fn fanuc_data_choose_a_larger_model() {
     let nested = c.nested.as_ref().unwrap();
     assert_eq!(nested.parameters.len(), 43);
     assert!(nested.held_out_explained > drives);
+    let se = nested.held_out_explained_std_error;
+    assert!((0.005..0.05).contains(&se), "{se}");
+    // The row's standard error (from the hat matrix) is the cross-validation's (43 refits).
+    let model = setup
+        .to_builder()
+        .with_virtual_springs(c.recommended_springs.clone())
+        .build()
+        .unwrap();
+    let obs = Observations::from_measurements(model.arm(), &file.measurements).unwrap();
+    let f = fit(&obs, &model.model().parameters()).unwrap();
+    let cv = cross_validate_model(&obs, &f, 43, Method::LeastSquares).unwrap();
+    let se = rec.held_out_explained_std_error.unwrap();
+    assert!((cv.explained_std_error - se).abs() <= 1e-9 * se, "{cv:?} {se}");
     // No candidate of the pool is a drive's own column: every one is identified in the first
     // step (tilt4_y, joint 5's axis through the wrist centre, is dropped from the pool).
     assert!(c.steps[0].candidates.iter().all(|r| r.identified));

@@ -62,10 +62,12 @@ fn pct(v: Option<f64>) -> String {
 fn row_line(r: &Row, mark: &str) -> String {
     let what = r.added.clone().unwrap_or_else(|| "(setup's model)".into());
     format!(
-        "{mark:1} {what:<16} {:>3} {:>9} {:>9} {:>10} {:>9.1} {:>9.1} {:>7} {:>11} {:>8}\n",
+        "{mark:1} {what:<16} {:>3} {:>9} {:>9} {:>5} {:>10} {:>9.1} {:>9.1} {:>7} {:>11} {:>8}\n",
         r.parameters,
         pct(Some(r.in_sample_explained)),
         pct(r.held_out_explained),
+        r.held_out_explained_std_error
+            .map_or("n/a".into(), |v| format!("{:.1}", 100.0 * v)),
         r.held_out_rms_delta_b
             .map_or("n/a".into(), |v| format!("{:.4}", v * 1e3)),
         r.aic,
@@ -81,7 +83,7 @@ fn row_line(r: &Row, mark: &str) -> String {
 }
 
 const HEADER: &str =
-    "  added            par in-sample  held out  dB RMS mm       AIC       BIC   noise   residuals  all k>0\n";
+    "  added            par in-sample  held out  s.e.  dB RMS mm       AIC       BIC   noise   residuals  all k>0\n";
 
 /// The text report of a comparison and of the candidates dropped from its pool.
 fn text(c: &Comparison, dropped: &[Dropped], setup: &Setup) -> String {
@@ -117,8 +119,9 @@ fn text(c: &Comparison, dropped: &[Dropped], setup: &Setup) -> String {
             .map(|(name, k)| format!("{name} {k}/{}", n.parameters.len()))
             .collect();
         s += &format!(
-            "\nNested estimate (the whole selection repeated without each posture): held out {} explained, RMS delta_b {:.4} mm; chosen: {}\n",
+            "\nNested estimate (the whole selection repeated without each posture): held out {} explained (standard error {:.1}, over the postures), RMS delta_b {:.4} mm; chosen: {}\n",
             pct(Some(n.held_out_explained)),
+            100.0 * n.held_out_explained_std_error,
             n.rms_delta_b * 1e3,
             if chosen.is_empty() { "nothing".into() } else { chosen.join(", ") }
         );

@@ -62,6 +62,8 @@ pub struct ModelDoc {
     pub in_sample_explained: f64,
     /// `1 - RMS(delta_b) / RMS(|delta|)` with each posture left out.
     pub held_out_explained: Option<f64>,
+    /// Its standard error over the postures (a share, as it is).
+    pub held_out_explained_std_error: Option<f64>,
     /// `RMS(delta_b)` held out, mm.
     pub held_out_rms_delta_b_mm: Option<f64>,
     /// The standard error of the held-out mean square `delta_b`, mm^2.
@@ -147,6 +149,8 @@ pub struct FitDoc {
 pub struct NestedDoc {
     /// `1 - RMS(delta_b) / RMS(|delta|)`, each posture predicted by the model chosen without it.
     pub held_out_explained: f64,
+    /// Its standard error over the postures (a share, as it is).
+    pub held_out_explained_std_error: f64,
     /// That `RMS(delta_b)`, mm.
     pub rms_delta_b_mm: f64,
     /// The parameters chosen in each outer fold.
@@ -234,6 +238,7 @@ fn model_doc(row: &Row, all: &[Parameter], recommended: bool) -> ModelDoc {
         parameters: row.parameters,
         in_sample_explained: row.in_sample_explained,
         held_out_explained: row.held_out_explained,
+        held_out_explained_std_error: row.held_out_explained_std_error,
         held_out_rms_delta_b_mm: row.held_out_rms_delta_b.map(|v| v * 1e3),
         held_out_mse_std_error_mm2: row.held_out_mse.map(|m| m.1 * 1e6),
         aic: finite(row.aic),
@@ -330,6 +335,7 @@ impl Comparison {
             recommended_fit: fit_doc(&self.recommended_fit, noise_variance),
             nested: self.nested.as_ref().map(|n| NestedDoc {
                 held_out_explained: n.held_out_explained,
+                held_out_explained_std_error: n.held_out_explained_std_error,
                 rms_delta_b_mm: n.rms_delta_b * 1e3,
                 parameters: n.parameters.clone(),
                 chosen: n

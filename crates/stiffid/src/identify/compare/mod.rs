@@ -22,6 +22,7 @@ pub mod pool;
 pub use document::{parameter_docs, Document};
 pub use pool::{default_pool, pool_by_name, Dropped, Pool};
 
+use super::cross_validation::explained_share;
 use super::model::{fit, held_out, Fit, HeldOut};
 use crate::identify::adequacy::Verdict;
 use crate::model::{Law, Model, Spring};
@@ -52,6 +53,9 @@ pub struct Row {
     /// `1 - RMS(delta_b) / RMS(|delta|)` with each posture left out; `None` when some posture is
     /// needed to identify the model.
     pub held_out_explained: Option<f64>,
+    /// The standard error of `held_out_explained` over the postures
+    /// ([`HeldOut::explained_std_error`]).
+    pub held_out_explained_std_error: Option<f64>,
     /// `RMS(delta_b)` held out, m.
     pub held_out_rms_delta_b: Option<f64>,
     /// The held-out mean square `delta_b` over postures and its standard error, m^2.
@@ -87,6 +91,9 @@ pub struct Step {
 pub struct Nested {
     /// `1 - RMS(delta_b) / RMS(|delta|)` over every posture predicted by the model chosen without it.
     pub held_out_explained: f64,
+    /// Its standard error over the postures (the delta method on the ratio of the postures'
+    /// sums, [`crate::identify::cross_validation::explained_share`]).
+    pub held_out_explained_std_error: f64,
     /// That `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
     /// The number of parameters chosen in each outer fold.
@@ -306,6 +313,7 @@ impl Problem<'_> {
             parameter_indices: columns.to_vec(),
             in_sample_explained: explained(&f.residuals, &sub.delta),
             held_out_explained: held.as_ref().map(HeldOut::explained),
+            held_out_explained_std_error: held.as_ref().map(HeldOut::explained_std_error),
             held_out_rms_delta_b: held.as_ref().map(|h| h.rms_delta_b),
             held_out_mse: held.as_ref().map(HeldOut::mse_and_se),
             aic: f.aic(),
@@ -370,7 +378,7 @@ impl Problem<'_> {
     /// whatever the threads.
     fn nested(&self, candidates: &[Spring]) -> Nested {
         let obs = self.obs;
-        let folds: Vec<(Vec<usize>, Vec<f64>)> = (0..obs.postures)
+        let folds: Vec<(Vec<usize>, Vec<f64>, [f64; 2])> = (0..obs.postures)
             .into_par_iter()
             .map(|p| {
                 let (train, test) = split(obs, p);
@@ -387,15 +395,21 @@ impl Problem<'_> {
                     }
                     Err(_) => vec![f64::NAN; test.delta.len() / 3],
                 };
-                (columns.clone(), delta_b)
+                let sums = [
+                    delta_b.iter().map(|d| d * d).sum(),
+                    test.delta.norm_squared(),
+                ];
+                (columns.clone(), delta_b, sums)
             })
             .collect();
         let all: Vec<f64> = folds.iter().flat_map(|f| f.1.iter().copied()).collect();
         let rms = (all.iter().map(|d| d * d).sum::<f64>() / all.len() as f64).sqrt();
-        let measured = (obs.delta.norm_squared() / all.len() as f64).sqrt();
+        let [explained, std_error] =
+            explained_share(&folds.iter().map(|f| f.2).collect::<Vec<_>>());
         let names = self.model.parameters();
         Nested {
-            held_out_explained: 1.0 - rms / measured,
+            held_out_explained: explained,
+            held_out_explained_std_error: std_error,
             rms_delta_b: rms,
             parameters: folds.iter().map(|f| f.0.len()).collect(),
             chosen: (0..candidates.len())
