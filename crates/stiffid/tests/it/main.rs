@@ -14,6 +14,7 @@ mod compensate;
 mod criteria;
 mod distinct_postures;
 mod fanuc_data;
+mod fanuc_prediction;
 mod formats_proptest;
 mod forward_model;
 mod gcode_cycles;

@@ -263,7 +263,10 @@ fn fanuc_data_choose_a_larger_model() {
     let f = fit(&obs, &model.model().parameters()).unwrap();
     let cv = cross_validate_model(&obs, &f, 43, Method::LeastSquares).unwrap();
     let se = rec.held_out_explained_std_error.unwrap();
-    assert!((cv.explained_std_error - se).abs() <= 1e-9 * se, "{cv:?} {se}");
+    assert!(
+        (cv.explained_std_error - se).abs() <= 1e-9 * se,
+        "{cv:?} {se}"
+    );
     // No candidate of the pool is a drive's own column: every one is identified in the first
     // step (tilt4_y, joint 5's axis through the wrist centre, is dropped from the pool).
     assert!(c.steps[0].candidates.iter().all(|r| r.identified));
