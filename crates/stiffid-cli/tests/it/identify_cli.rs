@@ -458,14 +458,19 @@ fn robust_flag_alone_is_the_huber_fit_and_lists_down_weighted_rows() {
     );
 }
 
-#[test]
-fn text_figures_of_the_cross_validation_are_the_documents() {
+/// The document and the text of the FANUC data identified with `--cross-validate`.
+fn cross_validated_fanuc() -> (Value, String) {
     let doc = json(&identify_fanuc(&["--cross-validate"]));
     let data = fanuc_csv();
     let setup = ["identify", "--setup", "fanuc-r2000ic-165f", "--data"];
     let out = stiffid(&[&setup[..], &[data.to_str().unwrap(), "--cross-validate"]].concat());
     assert!(out.status.success());
-    let text = String::from_utf8(out.stdout).unwrap();
+    (doc, String::from_utf8(out.stdout).unwrap())
+}
+
+#[test]
+fn text_figures_of_the_cross_validation_are_the_documents() {
+    let (doc, text) = cross_validated_fanuc();
     let cv = &doc["cross_validation"];
     // std/full: the document's percentage, itself the fold std over the full fit's stiffness.
     let (std, full) = (
@@ -497,4 +502,71 @@ fn text_figures_of_the_cross_validation_are_the_documents() {
         100.0 * q95
     );
     assert!(text.contains(&within), "{within} not in\n{text}");
+}
+
+#[test]
+fn text_relative_errors_and_largest_residuals_are_the_documents() {
+    let (doc, text) = cross_validated_fanuc();
+    // rel.: the standard error over the stiffness, %, in the document and in the text's tables
+    // (from the residual variance, then from the tracker noise).
+    let k = numbers(&doc["stiffness_nm_per_rad"]);
+    let tables: Vec<&str> = text
+        .split("joint  stiffness Nm/rad  std error  rel.")
+        .collect();
+    assert_eq!(tables.len(), 3, "{text}");
+    for (t, intervals) in [&doc, &doc["tracker_noise"]].into_iter().enumerate() {
+        let (se, percent) = (
+            numbers(&intervals["std_error_nm_per_rad"]),
+            numbers(&intervals["std_error_percent"]),
+        );
+        for j in 0..6 {
+            assert!((percent[j] - 100.0 * se[j] / k[j].abs()).abs() < 1e-12 * percent[j]);
+            let row = tables[1 + t].lines().nth(1 + j).unwrap();
+            let shown = row.split_whitespace().nth(3).unwrap();
+            assert_eq!(shown, format!("{:.1}%", percent[j]), "joint {}", j + 1);
+        }
+    }
+    assert_eq!(doc["poorly_determined_above_percent"], 25.0);
+    // The five longest of the 43 residuals, the longest first, as the text lists them.
+    let all = doc["residuals"].as_array().unwrap();
+    let norm = |r: &Value| {
+        numbers(&r["residual_mm"])
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt()
+    };
+    let largest = doc["largest_residuals"].as_array().unwrap();
+    assert_eq!(largest.len(), 5);
+    let listed = text.split("largest residuals").nth(1).unwrap();
+    for (i, r) in largest.iter().enumerate() {
+        let n = r["norm_mm"].as_f64().unwrap();
+        assert!((n - norm(r)).abs() < 1e-12 * n);
+        let same = all.iter().find(|a| a["line"] == r["line"]).unwrap();
+        assert_eq!(same, r);
+        let longer = all.iter().filter(|a| norm(a) > n * (1.0 + 1e-12)).count();
+        assert_eq!(
+            longer,
+            i,
+            "residual {} is the {}-th longest",
+            i + 1,
+            longer + 1
+        );
+        let line = listed.lines().nth(1 + i).unwrap();
+        assert!(line.ends_with(&format!("|{n:.4}|")), "{line}");
+        assert!(
+            line.contains(&format!("line {:>4}", r["line"].as_u64().unwrap())),
+            "{line}"
+        );
+    }
+    // The held-out share and its standard error in %.
+    let cv = &doc["cross_validation"];
+    let explained = cv["explained"].as_f64().unwrap();
+    assert_eq!(cv["explained_percent"].as_f64().unwrap(), 100.0 * explained);
+    let shown = format!(
+        "the model explains {:.1}% (standard error {:.1},",
+        100.0 * explained,
+        100.0 * cv["explained_std_error"].as_f64().unwrap()
+    );
+    assert!(text.contains(&shown), "{shown} not in\n{text}");
 }

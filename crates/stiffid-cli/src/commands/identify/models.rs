@@ -8,12 +8,11 @@ use anyhow::{bail, Result};
 use std::io::Read;
 use stiffid::app::compare_models;
 use stiffid::app::identify::{Data, Request};
-use stiffid::app::identify_model::document::Document;
+use stiffid::app::identify_model::document::{CrossValidationDoc, Document};
 use stiffid::app::identify_model::{self, Report};
 use stiffid::common::words::count;
 use stiffid::identify::adequacy::Verdict;
 use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Row};
-use stiffid::identify::cross_validation::CrossValidation;
 use stiffid::identify::model::Fit;
 use stiffid::Setup;
 
@@ -205,22 +204,22 @@ fn model_text(report: &Report, doc: &Document, setup: &Setup) -> String {
     );
     s += &fit_table(f);
     s += &model_check(f, setup);
-    if let Some(robust) = &f.robust {
+    if let Some(robust) = &doc.robust {
         s += &format!(
             "{} reweighting: scale {:.4} mm, {} iterations{}, {} below weight 0.5\n",
-            robust.loss.name(),
-            robust.scale * 1e3,
+            robust.loss,
+            robust.scale_mm,
             robust.iterations,
             if robust.converged {
                 ""
             } else {
                 " (not converged)"
             },
-            count(robust.down_weighted().len(), "row")
+            count(robust.down_weighted.len(), "row")
         );
     }
-    if let Some(cv) = &report.cross_validation {
-        s += &cross_validation_text(f, cv);
+    if let Some(cv) = &doc.cross_validation {
+        s += &cross_validation_text(cv);
     }
     if let Some(p) = &doc.prediction {
         s += &text::prediction(p);
@@ -244,35 +243,36 @@ pub fn model_check(f: &Fit, setup: &Setup) -> String {
     )
 }
 
-/// The spread of every parameter over the folds and the held-out explained share.
-fn cross_validation_text(f: &Fit, cv: &CrossValidation) -> String {
+/// The spread of every parameter over the folds and the held-out explained share (the
+/// document's).
+fn cross_validation_text(cv: &CrossValidationDoc) -> String {
     let mut s = format!(
         "\ncross-validation: {}, each fitted without its postures and validated on them (Eq. 22)\n  {:<12} {:>14} {:>12} {:>14} {:>14}  unit\n",
-        count(cv.folds.len(), "fold"),
+        count(cv.folds, "fold"),
         "parameter",
         "mean",
         "std",
         "min",
         "max"
     );
-    for (j, p) in f.parameters.iter().enumerate() {
-        let u = p.unit.per_si();
+    let k = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{v:.0}"));
+    for p in &cv.spread {
         s += &format!(
-            "  {:<12} {:>14.0} {:>12.0} {:>14.0} {:>14.0}  {}\n",
+            "  {:<12} {:>14} {:>12} {:>14} {:>14}  {}\n",
             p.name,
-            cv.stiffness_mean[j] * u,
-            cv.stiffness_std[j] * u,
-            cv.stiffness_range[0][j] * u,
-            cv.stiffness_range[1][j] * u,
-            p.unit.symbol()
+            k(p.mean),
+            k(p.std),
+            k(p.min),
+            k(p.max),
+            p.unit
         );
     }
     s += &format!(
         "held out: RMS delta_b {:.4} mm of RMS {:.4} mm measured: {:.1}% explained (standard error {:.1}, over the postures)\n",
-        cv.rms_delta_b * 1e3,
-        cv.rms_measured * 1e3,
-        100.0 * cv.explained(),
-        100.0 * cv.explained_std_error
+        cv.rms_delta_b_mm,
+        cv.rms_measured_mm,
+        cv.explained_percent,
+        cv.explained_std_error_percent
     );
     s
 }

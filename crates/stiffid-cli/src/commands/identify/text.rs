@@ -1,11 +1,11 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
-use stiffid::app::document::mm;
-use stiffid::app::identify::document::{Document, LoadStep, PointOffset, POORLY_DETERMINED};
+use stiffid::app::identify::document::{
+    CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
+};
 use stiffid::app::identify::{Fit, Report};
 use stiffid::identify::adequacy::{Verdict, SIGNIFICANCE};
-use stiffid::identify::{Identification, Uncertainty};
 use stiffid::io::stiffness::PredictionSection;
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
@@ -66,7 +66,7 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
         id.rows,
         stiffid::common::words::count(id.postures, "posture"),
         num(id.cond_psi, 4),
-        num(mm(id.residual_rms), 4)
+        num(doc.residual_rms_mm, 4)
     );
     let Some(u) = &id.uncertainty else {
         s += "\n\njoint  stiffness Nm/rad  compliance rad/Nm\n";
@@ -83,14 +83,16 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
     };
     s += &format!(
         ", residual standard deviation s {} mm ({} degrees of freedom, t = {:.4})\n",
-        num(mm(u.residual_variance.sqrt()), 4),
+        opt(doc.residual_std_mm, 4),
         u.dof,
         u.t_quantile
     );
-    s += &model_check(run);
+    s += &model_check(run, doc);
     s += "\n95% intervals from the residual variance s^2 (conditional on the model: they cover if it is right):\n";
-    s += &table(id, u, doc.poorly_determined);
-    s += &bounds_and_physics(id);
+    if let Some(columns) = Columns::residual(doc) {
+        s += &table(doc, columns, doc.poorly_determined);
+    }
+    s += &bounds_and_physics(doc);
     if let Some(a) = &run.adequacy {
         s += &format!(
             "\n95% intervals from the tracker noise sigma^2 (valid only if the model were exact{}):\n",
@@ -99,14 +101,16 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
                 false => "",
             }
         );
-        s += &table(id, &a.from_noise, None);
+        if let Some(noise) = &doc.tracker_noise {
+            s += &table(doc, Columns::noise(noise), None);
+        }
     }
-    s += &largest_residuals(run);
-    if let Some(robust) = &id.robust {
-        s += &down_weighted(run, robust);
+    s += &largest_residuals(&doc.largest_residuals);
+    if let Some(robust) = &doc.robust {
+        s += &down_weighted(robust);
     }
     if let Some(cv) = &doc.cross_validation {
-        s += &cross_validation(run, cv, doc.prediction.as_ref());
+        s += &cross_validation(doc, cv);
     }
     s += &load_steps(doc.load_steps.as_deref());
     s += &offsets(doc.offsets.as_deref());
@@ -169,7 +173,7 @@ offsets fitted beside the compliances (base frame):
     s
 }
 
-fn model_check(run: &Report) -> String {
+fn model_check(run: &Report, doc: &Document) -> String {
     let Some(a) = &run.adequacy else {
         return String::new();
     };
@@ -180,7 +184,7 @@ fn model_check(run: &Report) -> String {
     let head = format!(
         "model check: s is {} x the tracker noise sigma = {:.4} mm (chi-square {} with {} degrees of freedom, p {p})",
         num(a.noise_ratio, 2),
-        mm(a.noise_variance.sqrt()),
+        doc.noise_std_mm,
         num(a.chi2, 1),
         a.dof
     );
@@ -199,34 +203,56 @@ pub fn verdict(v: Verdict) -> String {
     }
 }
 
-/// The intervals of `u`, with the poorly determined joints named below if `poor` is given.
-fn table(id: &Identification, u: &Uncertainty, poor: Option<[bool; 6]>) -> String {
-    let physical = id.physical();
+/// The columns of one table of intervals (the document's, or its `tracker_noise`).
+struct Columns<'a> {
+    std_error: &'a [Option<f64>; 6],
+    percent: &'a [Option<f64>; 6],
+    ci95: &'a [[Option<f64>; 2]; 6],
+    ci95_from_compliance: &'a [[Option<f64>; 2]; 6],
+}
+
+impl<'a> Columns<'a> {
+    /// The intervals from the residual variance of `doc` (none without degrees of freedom).
+    fn residual(doc: &'a Document) -> Option<Self> {
+        Some(Columns {
+            std_error: doc.std_error_nm_per_rad.as_ref()?,
+            percent: doc.std_error_percent.as_ref()?,
+            ci95: doc.ci95_nm_per_rad.as_ref()?,
+            ci95_from_compliance: doc.ci95_from_compliance_nm_per_rad.as_ref()?,
+        })
+    }
+
+    /// The intervals from the tracker noise.
+    fn noise(iv: &'a Intervals) -> Self {
+        Columns {
+            std_error: &iv.std_error_nm_per_rad,
+            percent: &iv.std_error_percent,
+            ci95: &iv.ci95_nm_per_rad,
+            ci95_from_compliance: &iv.ci95_from_compliance_nm_per_rad,
+        }
+    }
+}
+
+/// The stiffness of `doc` with the intervals `iv`, with the poorly determined joints named below
+/// if `poor` is given.
+fn table(doc: &Document, iv: Columns, poor: Option<[bool; 6]>) -> String {
     let mut s = "joint  stiffness Nm/rad  std error  rel.    95% CI (delta method)    95% CI (1/compliance CI)  compliance rad/Nm\n".to_string();
-    for (j, physical) in physical.iter().enumerate() {
-        let k = id.stiffness[j];
-        let rel = u.stiffness_std_error[j] / k.abs();
-        let [a, b] = u.stiffness_ci95[j];
-        let [c, d] = u.stiffness_ci95_from_compliance[j];
-        let upper = match d.is_finite() {
-            true => format!("{d:.0}"),
-            false => "unbounded".into(),
-        };
-        let lower = match c.is_finite() {
-            true => format!("{c:.0}"),
-            false => "none".into(),
-        };
+    for (j, physical) in doc.physical.iter().enumerate() {
+        let [a, b] = iv.ci95[j];
+        let [c, d] = iv.ci95_from_compliance[j];
+        let upper = d.map_or("unbounded".into(), |d| format!("{d:.0}"));
+        let lower = c.map_or("none".into(), |c| format!("{c:.0}"));
         s += &format!(
             "{:>5}  {:>16}  {:>9}  {:>5}%  [{:>10}, {:>10}]  [{:>10}, {:>10}]  {:>17}{}\n",
             j + 1,
-            num(k, 0),
-            num(u.stiffness_std_error[j], 0),
-            num(100.0 * rel, 1),
-            num(a, 0),
-            num(b, 0),
+            opt(doc.stiffness_nm_per_rad[j], 0),
+            opt(iv.std_error[j], 0),
+            opt(iv.percent[j], 1),
+            opt(a, 0),
+            opt(b, 0),
             lower,
             upper,
-            sci(id.compliance[j]),
+            sci(doc.compliance_rad_per_nm[j]),
             match physical {
                 true => "",
                 false => "  not physical",
@@ -238,15 +264,15 @@ fn table(id: &Identification, u: &Uncertainty, poor: Option<[bool; 6]>) -> Strin
         s += &format!(
             "poorly determined (std error > {:.0}% of the value): {}; the delta-method interval \
              is unreliable there, trust the 1/compliance interval and measure postures that load these joints more\n",
-            100.0 * POORLY_DETERMINED,
+            doc.poorly_determined_above_percent,
             joint_list(poor)
         );
     }
     s
 }
 
-fn bounds_and_physics(id: &Identification) -> String {
-    let Some(active) = id.active_bounds else {
+fn bounds_and_physics(doc: &Document) -> String {
+    let Some(active) = doc.active_bounds else {
         return String::new();
     };
     match active.iter().any(|a| *a) {
@@ -258,57 +284,45 @@ fn bounds_and_physics(id: &Identification) -> String {
     }
 }
 
-fn largest_residuals(run: &Report) -> String {
-    let id = &run.identification;
-    let n = id.residuals.len() / 3;
-    let norm = |i: usize| id.residuals.fixed_rows::<3>(3 * i).norm();
-    let mut order: Vec<usize> = (0..n).collect();
-    let shown = 5.min(n);
-    order.select_nth_unstable_by(shown.saturating_sub(1), |&a, &b| {
-        norm(b).total_cmp(&norm(a))
-    });
-    order.truncate(shown);
-    order.sort_by(|&a, &b| norm(b).total_cmp(&norm(a)));
+/// The document's largest residuals.
+fn largest_residuals(largest: &[Residual]) -> String {
     let mut s = "\nlargest residuals (measured - fitted), mm (all of them: --json):\n".to_string();
-    for i in order {
-        let r = id.residuals.fixed_rows::<3>(3 * i).map(mm);
+    for r in largest {
+        let [x, y, z] = r.residual_mm;
         s += &format!(
-            "  line {:>4}  posture {:>4}  point {}  ({:+.4}, {:+.4}, {:+.4})  |{:.4}|\n",
-            line(run, i),
-            run.origin.label(i),
-            run.origin.points[i] + 1,
-            r.x,
-            r.y,
-            r.z,
-            r.norm()
+            "  line {:>4}  posture {:>4}  point {}  ({x:+.4}, {y:+.4}, {z:+.4})  |{:.4}|\n",
+            line(r.line),
+            r.posture,
+            r.point,
+            r.norm_mm
         );
     }
     s
 }
 
-fn down_weighted(run: &Report, fit: &stiffid::identify::RobustFit) -> String {
+/// The document's robust reweighting.
+fn down_weighted(robust: &Robust) -> String {
     let shown = 10;
-    let rows = fit.down_weighted();
+    let rows = &robust.down_weighted;
     let mut s = format!(
         "\nrobust fit: {} weights, c = {}, scale {:.4} mm (1.4826 x median |residual|), {} iterations{}\n\
          down-weighted rows (weight < {}), lowest weight first:\n",
-        fit.loss.name(),
-        fit.loss.tuning_constant(),
-        mm(fit.scale),
-        fit.iterations,
-        if fit.converged { "" } else { " (not converged)" },
+        robust.loss,
+        robust.tuning_constant,
+        robust.scale_mm,
+        robust.iterations,
+        if robust.converged { "" } else { " (not converged)" },
         stiffid::identify::robust::DOWN_WEIGHTED
     );
-    for &row in rows.iter().take(shown) {
-        let i = row / 3;
+    for row in rows.iter().take(shown) {
         s += &format!(
             "  line {:>4}  posture {:>4}  point {}  {}: weight {:.3}, residual {:+.4} mm\n",
-            line(run, i),
-            run.origin.label(i),
-            run.origin.points[i] + 1,
-            ['x', 'y', 'z'][row % 3],
-            fit.weights[row],
-            mm(run.identification.residuals[row])
+            line(row.line),
+            row.posture,
+            row.point,
+            row.coordinate,
+            row.weight,
+            row.residual_mm
         );
     }
     match rows.len() {
@@ -319,78 +333,69 @@ fn down_weighted(run: &Report, fit: &stiffid::identify::RobustFit) -> String {
     s
 }
 
-/// The cross-validation of `run`, its figures from the document's `doc` and `prediction`.
-fn cross_validation(
-    run: &Report,
-    doc: &stiffid::app::identify::document::CrossValidation,
-    prediction: Option<&PredictionSection>,
-) -> String {
-    let Some(cv) = &run.cross_validation else {
-        return String::new();
-    };
-    let postures = run.identification.postures;
+/// The cross-validation `cv` of the document `doc`.
+fn cross_validation(doc: &Document, cv: &CrossValidation) -> String {
     let mut s = format!(
         "\ncross-validation: {} folds{}, each refitted without its postures and validated on them (Eq. 22)\n\
          fold  held-out postures      stiffness Nm/rad (joints 1-6)                                        held-out RMS delta_b mm\n",
-        cv.folds.len(),
-        match cv.folds.len() == postures {
+        cv.folds,
+        match cv.folds == doc.postures {
             true => " (leave one posture out)",
             false => "",
         }
     );
-    for (f, fold) in cv.folds.iter().enumerate() {
-        let labels = run.origin.labels_of(&fold.postures);
+    for (f, fold) in cv.per_fold.iter().enumerate() {
+        let labels = &fold.postures;
         let shown = match labels.len() {
             n if n > 3 => format!("{} ... ({n})", labels[..3].join(",")),
             _ => labels.join(","),
         };
         let k: Vec<String> = fold
-            .stiffness
+            .stiffness_nm_per_rad
             .iter()
-            .map(|k| format!("{:>10}", num(*k, 0)))
+            .map(|k| format!("{:>10}", opt(*k, 0)))
             .collect();
         s += &format!(
             "{:>4}  {:<20}  {}  {:.4}\n",
             f + 1,
             shown,
             k.join(" "),
-            mm(fold.rms_delta_b)
+            fold.rms_delta_b_mm
         );
     }
     s += "\nspread across folds:\njoint  full fit Nm/rad  fold mean   fold std  std/full        min         max\n";
     for j in 0..6 {
-        let full = run.identification.stiffness[j];
         s += &format!(
             "{:>5}  {:>15}  {:>9}  {:>9}  {:>7}%  {:>10}  {:>10}\n",
             j + 1,
-            num(full, 0),
-            num(cv.stiffness_mean[j], 0),
-            num(cv.stiffness_std[j], 0),
-            opt(doc.stiffness_std_percent[j], 1),
-            num(cv.stiffness_range[0][j], 0),
-            num(cv.stiffness_range[1][j], 0)
+            opt(doc.stiffness_nm_per_rad[j], 0),
+            opt(cv.stiffness_mean_nm_per_rad[j], 0),
+            opt(cv.stiffness_std_nm_per_rad[j], 0),
+            opt(cv.stiffness_std_percent[j], 1),
+            opt(cv.stiffness_min_nm_per_rad[j], 0),
+            opt(cv.stiffness_max_nm_per_rad[j], 0)
         );
     }
     s += &format!(
         "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% (standard error {:.1}, over the postures) of the held-out deflection\n",
-        mm(cv.rms_delta_b),
-        mm(cv.rms_measured),
-        100.0 * doc.explained,
-        100.0 * cv.explained_std_error
+        cv.rms_delta_b_mm,
+        cv.rms_measured_mm,
+        cv.explained_percent,
+        cv.explained_std_error_percent
     );
-    if let Some(p) = prediction {
+    if let Some(p) = &doc.prediction {
         s += &self::prediction(p);
     }
-    let influential = &run.influential;
     s += "influential (removal moves a stiffness by more than its standard error): ";
-    match influential.is_empty() {
+    match cv.influential_postures.is_empty() {
         true => s += "none\n",
         false => {
-            let items: Vec<String> = influential
+            let items: Vec<String> = cv
+                .influential_postures
                 .iter()
-                .map(|(postures, joints)| {
-                    let joints = joint_list(joints.iter().copied());
-                    format!("{} ({joints})", postures.join(","))
+                .map(|i| {
+                    let joints = joint_list(i.joints.iter().map(|j| j - 1));
+                    format!("{} ({joints})", i.postures.join(","))
                 })
                 .collect();
             s += &format!("postures {}\n", items.join("; "));
@@ -417,10 +422,7 @@ pub fn prediction(p: &PredictionSection) -> String {
     )
 }
 
-/// The line of measurement `i` in its file (`-` for arrays).
-fn line(run: &Report, i: usize) -> String {
-    run.origin
-        .lines
-        .as_ref()
-        .map_or("-".into(), |l| l[i].to_string())
+/// A measurement's line in its file (`-` for arrays).
+fn line(line: Option<u64>) -> String {
+    line.map_or("-".into(), |l| l.to_string())
 }

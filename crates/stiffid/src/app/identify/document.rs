@@ -26,6 +26,15 @@ pub fn poorly_determined(id: &Identification, u: &Uncertainty) -> [bool; 6] {
     std::array::from_fn(|j| u.stiffness_std_error[j] / id.stiffness[j].abs() > POORLY_DETERMINED)
 }
 
+/// How many of the largest residuals the document lists (`largest_residuals`).
+pub const LARGEST_RESIDUALS: usize = 5;
+
+/// The relative standard error of each stiffness of `id` in `u`: the standard error over the
+/// stiffness's magnitude, %, `None` unless finite.
+fn std_error_percent(id: &Identification, u: &Uncertainty) -> [Option<f64>; 6] {
+    std::array::from_fn(|j| finite(100.0 * (u.stiffness_std_error[j] / id.stiffness[j].abs())))
+}
+
 /// The identify document. Units in the key names; intervals `[lower, upper]`; `null` for a number
 /// that is not finite (an unbounded end, an infinite stiffness) or when there are no degrees of
 /// freedom.
@@ -63,6 +72,12 @@ pub struct Document {
     pub intervals_from: &'static str,
     /// Standard error of each stiffness (delta method), Nm/rad.
     pub std_error_nm_per_rad: Option<[Option<f64>; 6]>,
+    /// The relative standard error of each stiffness: `std_error_nm_per_rad` over the
+    /// stiffness's magnitude, %; `null` unless finite, or without degrees of freedom.
+    pub std_error_percent: Option<[Option<f64>; 6]>,
+    /// The relative standard error above which a stiffness is poorly determined
+    /// ([`POORLY_DETERMINED`]), %.
+    pub poorly_determined_above_percent: f64,
     /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
     /// [`POORLY_DETERMINED`] (0.25) times its magnitude ([`poorly_determined`]); measure postures
     /// that load these joints more. `null` without degrees of freedom.
@@ -106,6 +121,9 @@ pub struct Document {
     pub residual_rms_mm: f64,
     /// Every measurement's residual (measured - fitted), in the data's order.
     pub residuals: Vec<Residual>,
+    /// The [`LARGEST_RESIDUALS`] (5) measurements with the longest residuals (or all of them if
+    /// fewer), the longest first.
+    pub largest_residuals: Vec<Residual>,
     /// With a robust fit: the reweighting.
     pub robust: Option<Robust>,
     /// With cross-validation: the cross-validation over postures.
@@ -177,6 +195,9 @@ pub struct Intervals {
     pub ci95_nm_per_rad: [[Option<f64>; 2]; 6],
     /// 95% confidence interval of each stiffness from the compliance's, Nm/rad.
     pub ci95_from_compliance_nm_per_rad: [[Option<f64>; 2]; 6],
+    /// The relative standard error of each stiffness: `std_error_nm_per_rad` over the
+    /// stiffness's magnitude, %; `null` unless finite.
+    pub std_error_percent: [Option<f64>; 6],
     /// Standard error of each compliance, rad/Nm.
     pub compliance_std_error_rad_per_nm: [f64; 6],
     /// 95% confidence interval of each compliance, rad/Nm.
@@ -199,6 +220,8 @@ pub struct Residual {
     pub line: Option<u64>,
     /// Measured minus fitted displacement, x, y, z, mm.
     pub residual_mm: [f64; 3],
+    /// The length of `residual_mm`, mm.
+    pub norm_mm: f64,
 }
 
 /// The robust fit's reweighting.
@@ -265,6 +288,10 @@ pub struct CrossValidation {
     /// The standard error of `explained` over the postures (delta method of the ratio, the
     /// postures as independent units).
     pub explained_std_error: f64,
+    /// `explained`, %.
+    pub explained_percent: f64,
+    /// `explained_std_error`, %.
+    pub explained_std_error_percent: f64,
     /// Folds whose removal moves a stiffness by more than its standard error in the full fit.
     pub influential_postures: Vec<Influential>,
     /// Every fold.
@@ -296,13 +323,14 @@ pub struct Influential {
 }
 
 impl Intervals {
-    fn new(u: &Uncertainty) -> Self {
+    fn new(id: &Identification, u: &Uncertainty) -> Self {
         Intervals {
             std_error_nm_per_rad: finite_each(u.stiffness_std_error),
             ci95_nm_per_rad: u.stiffness_ci95.map(|i| i.map(finite)),
             ci95_from_compliance_nm_per_rad: u
                 .stiffness_ci95_from_compliance
                 .map(|i| i.map(finite)),
+            std_error_percent: std_error_percent(id, u),
             compliance_std_error_rad_per_nm: u.compliance_std_error.into(),
             compliance_ci95_rad_per_nm: u.compliance_ci95,
             quantile: u.t_quantile,
@@ -316,7 +344,7 @@ impl Document {
         let id = &report.identification;
         let u = id.uncertainty.as_ref();
         let a = report.adequacy.as_ref();
-        let noise = a.map(|a| Intervals::new(&a.from_noise));
+        let noise = a.map(|a| Intervals::new(id, &a.from_noise));
         Document {
             setup: setup_name.to_string(),
             data: report.data_name.clone(),
@@ -340,6 +368,8 @@ impl Document {
             active_bounds: id.active_bounds,
             intervals_from: "residual variance",
             std_error_nm_per_rad: u.map(|u| finite_each(u.stiffness_std_error)),
+            std_error_percent: u.map(|u| std_error_percent(id, u)),
+            poorly_determined_above_percent: 100.0 * POORLY_DETERMINED,
             poorly_determined: u.map(|u| poorly_determined(id, u)),
             ci95_nm_per_rad: u.map(|u| u.stiffness_ci95.map(|i| i.map(finite))),
             ci95_from_compliance_nm_per_rad: u
@@ -366,6 +396,7 @@ impl Document {
             cond_psi: id.cond_psi,
             residual_rms_mm: mm(id.residual_rms),
             residuals: residuals(report),
+            largest_residuals: largest_residuals(report),
             robust: robust(report),
             cross_validation: cross_validation(report),
             load_steps: load_steps(report),
@@ -424,16 +455,42 @@ fn line(report: &Report, i: usize) -> Option<u64> {
     report.origin.lines.as_ref().map(|l| l[i])
 }
 
+/// The residual of measurement `i` of `report`.
+fn residual(report: &Report, i: usize) -> Residual {
+    let origin = &report.origin;
+    let r = report
+        .identification
+        .residuals
+        .fixed_rows::<3>(3 * i)
+        .map(mm);
+    Residual {
+        posture: origin.label(i).to_string(),
+        point: origin.points[i] + 1,
+        line: line(report, i),
+        residual_mm: r.into(),
+        norm_mm: r.norm(),
+    }
+}
+
 fn residuals(report: &Report) -> Vec<Residual> {
-    let (id, origin) = (&report.identification, &report.origin);
-    (0..origin.points.len())
-        .map(|i| Residual {
-            posture: origin.label(i).to_string(),
-            point: origin.points[i] + 1,
-            line: line(report, i),
-            residual_mm: id.residuals.fixed_rows::<3>(3 * i).map(mm).into(),
-        })
+    (0..report.origin.points.len())
+        .map(|i| residual(report, i))
         .collect()
+}
+
+/// The [`LARGEST_RESIDUALS`] longest residuals of `report`, the longest first.
+fn largest_residuals(report: &Report) -> Vec<Residual> {
+    let residuals = &report.identification.residuals;
+    let norm = |i: usize| residuals.fixed_rows::<3>(3 * i).norm();
+    let n = residuals.len() / 3;
+    let shown = LARGEST_RESIDUALS.min(n);
+    let mut order: Vec<usize> = (0..n).collect();
+    if shown > 0 {
+        order.select_nth_unstable_by(shown - 1, |&a, &b| norm(b).total_cmp(&norm(a)));
+    }
+    order.truncate(shown);
+    order.sort_by(|&a, &b| norm(b).total_cmp(&norm(a)));
+    order.into_iter().map(|i| residual(report, i)).collect()
 }
 
 fn robust(report: &Report) -> Option<Robust> {
@@ -491,6 +548,8 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
         rms_measured_mm: mm(cv.rms_measured),
         explained: cv.explained(),
         explained_std_error: cv.explained_std_error,
+        explained_percent: 100.0 * cv.explained(),
+        explained_std_error_percent: 100.0 * cv.explained_std_error,
         influential_postures: report
             .influential
             .iter()

@@ -65,6 +65,10 @@ pub struct CrossValidationDoc {
     /// The standard error of `explained` over the postures (delta method of the ratio, the
     /// postures as independent units).
     pub explained_std_error: f64,
+    /// `explained`, %.
+    pub explained_percent: f64,
+    /// `explained_std_error`, %.
+    pub explained_std_error_percent: f64,
     /// Every fold.
     pub per_fold: Vec<FoldDoc>,
 }
@@ -171,6 +175,8 @@ fn cross_validation(report: &Report, cv: &CrossValidation) -> CrossValidationDoc
         rms_measured_mm: mm(cv.rms_measured),
         explained: cv.explained(),
         explained_std_error: cv.explained_std_error,
+        explained_percent: 100.0 * cv.explained(),
+        explained_std_error_percent: 100.0 * cv.explained_std_error,
         per_fold: cv
             .folds
             .iter()
