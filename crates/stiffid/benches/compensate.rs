@@ -1,13 +1,36 @@
-//! Cartesian stiffness of one posture (issue 13 target: under 1 microsecond) and compensating a
+//! Cartesian stiffness of one posture (target: under 1 microsecond) and compensating a
 //! 10 000-point path on the FANUC R-2000iC/165F cell, postures given (under 100 ms on 2 cores) and
-//! poses given, inverse kinematics included (under 1 s).
+//! poses given, inverse kinematics included (under 1 s); and the same path with the jackknife+
+//! prediction interval of every point's deflection, from the drives identified on the FANUC data
+//! with leave-one-posture-out cross-validation (43 folds; target: under 50 ms beyond the
+//! compensation).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Translation3, Vector6};
+use stiffid::identify::cross_validation::{cross_validate, Method};
+use stiffid::identify::prediction::calibrate;
 use stiffid::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::model::Compliance;
 use stiffid::observation::deflection::Frame;
+use stiffid::observation::Observations;
 use stiffid::robot::ik::{self, tool_pose};
 use stiffid::{observation::cartesian, setup};
+
+/// The drives identified on the FANUC data with their jackknife+ calibration, as `identify
+/// --cross-validate --out` stores them.
+fn identified_with_prediction(s: &setup::Setup) -> Compliance {
+    let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
+    let mut file = stiffid::io::measurements::parse(text).unwrap();
+    file.to_base_frame(s).unwrap();
+    let obs = Observations::from_measurements(s.arm(), &file.measurements).unwrap();
+    let id = obs.least_squares().unwrap();
+    let cv = cross_validate(&obs, &id, obs.postures, Method::LeastSquares).unwrap();
+    Compliance {
+        h: nalgebra::DVector::from_column_slice(id.compliance.as_slice()),
+        covariance: None,
+        prediction: Some(calibrate(&obs, &cv, s.noise().displacement_sd())),
+    }
+}
 
 fn benches(c: &mut Criterion) {
     let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
@@ -61,6 +84,22 @@ fn benches(c: &mut Criterion) {
     group.bench_function("poses given (inverse kinematics)", |b| {
         b.iter(|| compensate::path(s.arm(), &compliance, black_box(&poses), &options).unwrap())
     });
+    let identified = identified_with_prediction(&s);
+    group.bench_function("postures given, identified drives", |b| {
+        let plain = Compliance {
+            prediction: None,
+            ..identified.clone()
+        };
+        b.iter(|| compensate::path(s.arm(), &plain, black_box(&postures), &options).unwrap())
+    });
+    group.bench_function(
+        "postures given, identified drives, 95% jackknife+ intervals",
+        |b| {
+            b.iter(|| {
+                compensate::path(s.arm(), &identified, black_box(&postures), &options).unwrap()
+            })
+        },
+    );
     group.finish();
 }
 

@@ -49,7 +49,7 @@
 //! not hold for postures unlike the measured ones (outside their range of angles or loads).
 
 use crate::{Error, Result};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 /// The most folds a calibration holds.
 pub const MAX_FOLDS: usize = 100_000;
@@ -126,30 +126,29 @@ impl Calibration {
     /// If `rows` does not have one column per parameter.
     pub fn interval(&self, rows: &DMatrix<f64>, level: f64) -> Interval {
         let n = self.scores();
-        let mut lower = Vec::with_capacity(n);
-        let mut upper = Vec::with_capacity(n);
-        let mu: Vec<(DVector<f64>, f64)> = self
+        // Each fold's prediction `mu_(-k)` and scale, without allocating per fold: a path's
+        // every point asks for an interval.
+        let mu: Vec<(Vector3<f64>, f64)> = self
             .folds
             .iter()
             .map(|f| {
-                let mu = rows * &f.compliance;
-                let s = mu.norm() + self.noise_floor;
-                (mu, s)
+                let mu = Vector3::from_fn(|c, _| rows.row(c).tr_dot(&f.compliance));
+                (mu, mu.norm() + self.noise_floor)
             })
             .collect();
         let [k_lo, k_hi] = ranks(n, level);
-        std::array::from_fn(|c| {
-            lower.clear();
-            upper.clear();
+        let mut values = Vec::with_capacity(n);
+        let mut end = |c: usize, sign: f64, k: usize| {
+            values.clear();
             for (f, (mu, s)) in self.folds.iter().zip(&mu) {
-                for r in &f.scores {
-                    lower.push(mu[c] - r * s);
-                    upper.push(mu[c] + r * s);
-                }
+                values.extend(f.scores.iter().map(|r| mu[c] + sign * r * s));
             }
+            smallest(&mut values, k)
+        };
+        std::array::from_fn(|c| {
             [
-                k_lo.map_or(f64::NEG_INFINITY, |k| smallest(&mut lower, k)),
-                k_hi.map_or(f64::INFINITY, |k| smallest(&mut upper, k)),
+                k_lo.map_or(f64::NEG_INFINITY, |k| end(c, -1.0, k)),
+                k_hi.map_or(f64::INFINITY, |k| end(c, 1.0, k)),
             ]
         })
     }
