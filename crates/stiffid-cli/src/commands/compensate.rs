@@ -323,20 +323,20 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
 
 /// The text summary.
 fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
-    let s = &report.summary;
-    let (max, line) = s.max_deflection();
-    let d = s.document();
+    let doc = Document::new(report, names, Vec::new());
+    let d = &doc.summary;
     let mut text = format!(
         "{} path points of {} compensated (setup {}, stiffness {}{})\n\
-         TCP deflection under the path's wrench: largest {:.4} mm (line {line}), mean {:.4} mm; largest tool rotation {:.4} mrad\n\
+         TCP deflection under the path's wrench: largest {:.4} mm (line {}), mean {:.4} mm; largest tool rotation {:.4} mrad\n\
          compensated axis angles: residual at most {:.2e} um and {:.2e} urad (required: 0.1 um, 1 urad), at most {} Newton steps\n",
-        s.points,
+        d.points,
         report.input,
         setup.name(),
         names.stiffness,
         if report.compliance.covariance.is_some() { ", with its covariance: standard deviations in the CSV" } else { "" },
-        max * 1e3,
-        s.mean_deflection() * 1e3,
+        d.max_deflection_mm,
+        d.max_deflection_line,
+        d.mean_deflection_mm,
         d.max_rotation_mrad,
         d.max_residual_um,
         d.max_residual_urad,
@@ -350,23 +350,22 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
                 .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
         );
     }
-    if let Some((before, after, [lo, hi])) = s.free_tool_axis() {
+    if let Some(f) = &d.free_tool_axis {
+        let [lo, hi] = f.tool_rotation_range_deg;
         text += &format!(
-            "free tool axis: mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{:.1}, {:.1}] deg\n",
-            before * 1e3,
-            after * 1e3,
-            100.0 * (after / before - 1.0),
-            lo.to_degrees(),
-            hi.to_degrees()
+            "free tool axis: mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
+            f.mean_deflection_before_mm,
+            f.mean_deflection_after_mm,
+            f.mean_change_percent,
         );
     }
-    if let Some(p) = &report.program {
-        let force = p.segments.iter().map(|s| s.force).fold(0.0, f64::max);
+    if let Some(p) = &doc.program {
         text += &format!(
-            "program ({}, process {}): {}, process force up to {force:.1} N\n",
-            p.language.name(),
+            "program ({}, process {}): {}, process force up to {:.1} N\n",
+            p.language,
             p.process,
-            count(p.segments.len(), "segment")
+            count(p.segments.len(), "segment"),
+            p.max_force_n
         );
     }
     for written in [&names.program_out, &names.out] {

@@ -525,3 +525,53 @@ fn generated_programs_keep_the_controller_rules() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The text's free-tool-axis gain and largest process force are the document's, which are the
+/// means of its sums and the largest of its segments' forces.
+#[test]
+fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
+    let dir = temp_dir("pocket-free");
+    let (setup, stiffness) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+    );
+    let free = ["--free-tool-axis"];
+    let doc = json(&program(
+        &setup,
+        &stiffness,
+        &dir.join("A.ls"),
+        &[&free[..], &["--json"]].concat(),
+    ));
+    let out = program(&setup, &stiffness, &dir.join("B.ls"), &free);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let f = &doc["summary"]["free_tool_axis"];
+    let points = doc["summary"]["points"].as_f64().unwrap();
+    let number = |key: &str| f[key].as_f64().unwrap();
+    let (before, after) = (
+        number("mean_deflection_before_mm"),
+        number("mean_deflection_after_mm"),
+    );
+    assert!((before - number("sum_deflection_before_mm") / points).abs() < 1e-12 * before);
+    assert!((after - number("sum_deflection_after_mm") / points).abs() < 1e-12 * after);
+    let change = number("mean_change_percent");
+    assert!((change - 100.0 * (after / before - 1.0)).abs() < 1e-9);
+    assert!(
+        change < 0.0,
+        "the rotations chosen lower the mean deflection: {change}"
+    );
+    let shown =
+        format!("mean TCP deflection {before:.4} mm before, {after:.4} mm after ({change:+.1}%)");
+    assert!(text.contains(&shown), "{shown} not in\n{text}");
+    let program = &doc["program"];
+    let forces = program["segments"].as_array().unwrap().iter();
+    let largest = forces
+        .map(|s| s["force_n"].as_f64().unwrap())
+        .fold(0.0, f64::max);
+    assert_eq!(program["max_force_n"].as_f64().unwrap(), largest);
+    assert!(largest > 0.0);
+    assert!(
+        text.contains(&format!("process force up to {largest:.1} N")),
+        "{text}"
+    );
+}

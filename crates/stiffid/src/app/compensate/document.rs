@@ -99,6 +99,8 @@ pub struct Program {
     pub subprograms: Vec<String>,
     /// One entry per segment (a program line with at least one point), in program order.
     pub segments: Vec<SegmentDocument>,
+    /// The largest process force on the tool over the program (of `segments`), N.
+    pub max_force_n: f64,
 }
 
 /// One segment of a program: the points of one line (a G-code block's arc points, a robot
@@ -161,6 +163,13 @@ pub struct FreeSummary {
     pub sum_deflection_after_mm: f64,
     /// The smallest and largest rotation chosen, deg.
     pub tool_rotation_range_deg: [f64; 2],
+    /// The mean TCP deflection with the path's rotation, mm.
+    pub mean_deflection_before_mm: f64,
+    /// The mean TCP deflection with the rotations chosen, mm.
+    pub mean_deflection_after_mm: f64,
+    /// How much the rotations chosen change the mean TCP deflection, %: negative when they
+    /// lower it.
+    pub mean_change_percent: f64,
 }
 
 /// One path point: the columns of [`header`] by name, `null` for an empty cell.
@@ -246,6 +255,7 @@ impl Document {
                 out: names.program_out.clone(),
                 subprograms: p.subprograms.iter().map(|f| f.name.clone()).collect(),
                 segments: p.segments.iter().map(segment).collect(),
+                max_force_n: p.segments.iter().map(|s| s.force).fold(0.0, f64::max),
             }),
             summary: report.summary.document(),
             warnings: report.warnings.clone(),
@@ -467,6 +477,7 @@ impl Summary {
 
     /// The summary in document units.
     pub fn document(&self) -> SummaryDocument {
+        let means = self.free_tool_axis();
         SummaryDocument {
             points: self.points,
             max_deflection_mm: mm(self.max_deflection.0),
@@ -477,11 +488,20 @@ impl Summary {
             max_residual_urad: self.max_residual_rotation * 1e6,
             max_iterations: self.max_iterations,
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
-            free_tool_axis: self.free.map(|(before, after, lo, hi)| FreeSummary {
-                sum_deflection_before_mm: mm(before),
-                sum_deflection_after_mm: mm(after),
-                tool_rotation_range_deg: [lo.to_degrees(), hi.to_degrees()],
-            }),
+            free_tool_axis: self
+                .free
+                .zip(means)
+                .map(|((before, after, lo, hi), means)| {
+                    let (mean_before, mean_after, _) = means;
+                    FreeSummary {
+                        sum_deflection_before_mm: mm(before),
+                        sum_deflection_after_mm: mm(after),
+                        tool_rotation_range_deg: [lo.to_degrees(), hi.to_degrees()],
+                        mean_deflection_before_mm: mm(mean_before),
+                        mean_deflection_after_mm: mm(mean_after),
+                        mean_change_percent: 100.0 * (mean_after / mean_before - 1.0),
+                    }
+                }),
         }
     }
 }
