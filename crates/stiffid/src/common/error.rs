@@ -473,6 +473,8 @@ pub enum JobOption {
     DistinctDeg,
     /// select: the flange-origin distance of distinct postures, mm.
     DistinctMm,
+    /// select: the margin every posture keeps to every constraint of the cell, mm.
+    MarginMm,
     /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
     /// deg), given together.
     Tolerances,
@@ -497,6 +499,7 @@ impl JobOption {
             JobOption::Start => "start",
             JobOption::DistinctDeg => "distinct_deg",
             JobOption::DistinctMm => "distinct_mm",
+            JobOption::MarginMm => "margin_mm",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",

@@ -109,7 +109,10 @@ pub fn smallest_group<E: From<Error>>(
     if !(target_pct.is_finite() && target_pct > 0.0) {
         return Err(Error::InvalidOption {
             option: JobOption::TargetPct,
-            message: format!("{target_pct} given: expected a finite percentage > 0"),
+            message: format!(
+                "{} given: expected a finite percentage > 0",
+                crate::common::limits::number(target_pct)
+            ),
         }
         .into());
     }

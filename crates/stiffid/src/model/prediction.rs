@@ -177,7 +177,10 @@ pub fn check_level(field: &str, level: f64) -> Result<()> {
         true => Ok(()),
         false => Err(Error::InvalidField {
             field: field.into(),
-            message: format!("{level}: expected a level in {LEVEL}, e.g. 0.95"),
+            message: format!(
+                "{}: expected a level in {LEVEL}, e.g. 0.95",
+                crate::common::limits::number(level)
+            ),
         }),
     }
 }

@@ -337,3 +337,31 @@ fn distinct_distances_out_of_range_are_refused_as_options() {
     let d = Distinctness::try_from_deg_mm(Some(5.0), Some(20.0)).unwrap();
     assert!((d.joint - 5f64.to_radians()).abs() < 1e-15 && (d.position - 0.02).abs() < 1e-15);
 }
+
+/// A margin out of range is refused as the user's option (`--margin-mm`, Python `margin_mm`),
+/// not as a library field, with the value in mm in its shortest form.
+#[test]
+fn a_margin_out_of_range_is_refused_as_an_option() {
+    for (margin, text) in [
+        (-1e-3, "-1 is outside [0, 1000] mm"),
+        (f64::NAN, "NaN is outside"),
+        (1e297, "1e300 is outside"),
+    ] {
+        let options = SearchOptions {
+            margin: Some(margin),
+            ..SearchOptions::default()
+        };
+        match options.validate() {
+            Err(Error::InvalidOption { option, message }) => {
+                assert_eq!(option, stiffid::JobOption::MarginMm);
+                assert!(message.contains(text), "{message}");
+            }
+            other => panic!("{margin}: expected an option error, got {other:?}"),
+        }
+    }
+    let inside = SearchOptions {
+        margin: Some(0.02),
+        ..SearchOptions::default()
+    };
+    assert!(inside.validate().is_ok());
+}

@@ -318,7 +318,9 @@ impl SearchOptions {
     /// infinities never). [`local`] and [`global`] call it.
     ///
     /// # Errors
-    /// [`crate::Error::InvalidField`] naming the field (`SearchOptions.fd_step`), the value and the range.
+    /// [`crate::Error::InvalidField`] naming the field (`SearchOptions.fd_step`), the value and the
+    /// range; for the margin, a user's option, [`crate::Error::InvalidOption`]
+    /// ([`crate::JobOption::MarginMm`]).
     pub fn validate(&self) -> Result<()> {
         let counts = [
             ("max_evals", self.max_evals, 1, limits::MAX_EVALS),
@@ -338,7 +340,8 @@ impl SearchOptions {
             limits::check(&format!("SearchOptions.{field}"), &[value], range)?;
         }
         if let Some(m) = self.margin {
-            limits::check("SearchOptions.margin", &[m * 1e3], &limits::MARGIN_MM)?;
+            limits::check("margin_mm", &[m * 1e3], &limits::MARGIN_MM)
+                .map_err(|e| e.for_option(crate::JobOption::MarginMm))?;
         }
         Ok(())
     }
