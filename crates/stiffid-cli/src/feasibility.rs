@@ -1,44 +1,44 @@
-//! The cell's feasibility checks of a group of postures, as text (their document:
-//! [`stiffid::app::document::feasibility`]).
+//! The cell's feasibility checks of a group of postures, as text, from their document
+//! ([`stiffid::app::document::feasibility`]).
 
-use stiffid::cell::{Check, Feasibility};
+use stiffid::app::document::feasibility::{Posture, Violation};
 
 /// One line per posture: feasible with its smallest clearance, or the failing checks.
-pub fn text(checks: &[Feasibility]) -> String {
-    let mut s = format!("\nfeasibility in the cell (checks: {})\n", kinds(checks));
-    for (i, f) in checks.iter().enumerate() {
-        let mut clearance = f.min_clearance().map_or(String::new(), |c| {
-            format!(", smallest clearance {:.1} mm", c * 1e3)
-        });
-        if let Some(c) = f.min_margin() {
-            clearance += &format!(", nearest constraint {} {:.1} mm", c.kind, c.margin * 1e3);
+pub fn text(postures: &[Posture]) -> String {
+    let checks = postures
+        .first()
+        .map_or(String::new(), |p| p.checks.join(", "));
+    let mut s = format!("\nfeasibility in the cell (checks: {checks})\n");
+    for p in postures {
+        let mut clearance = p
+            .min_clearance_mm
+            .map_or(String::new(), |c| format!(", smallest clearance {c:.1} mm"));
+        if let (Some(check), Some(margin)) = (p.min_margin_check, p.min_margin_mm) {
+            clearance += &format!(", nearest constraint {check} {margin:.1} mm");
         }
-        s += &match f.feasible() {
-            true => format!("  posture {}: feasible{clearance}\n", i + 1),
+        s += &match p.feasible {
+            true => format!("  posture {}: feasible{clearance}\n", p.posture),
             false => {
-                let failing: Vec<String> = f.violations().map(describe).collect();
-                format!("  posture {}: INFEASIBLE: {}\n", i + 1, failing.join("; "))
+                let failing: Vec<String> = p.violations.iter().map(describe).collect();
+                format!(
+                    "  posture {}: INFEASIBLE: {}\n",
+                    p.posture,
+                    failing.join("; ")
+                )
             }
         };
     }
     s
 }
 
-fn kinds(checks: &[Feasibility]) -> String {
-    checks.first().map_or(String::new(), |f| {
-        let k: Vec<&str> = f.checks.iter().map(|c| c.kind.key()).collect();
-        k.join(", ")
-    })
-}
-
 /// `floor (tool - floor, margin -12.3 mm)`.
-fn describe(c: &Check) -> String {
-    let margin = match c.kind.is_angle() {
-        true => format!("{:.2} deg", c.margin.to_degrees()),
-        false => format!("{:.1} mm", c.margin * 1e3),
+fn describe(v: &Violation) -> String {
+    let margin = match (v.margin_deg, v.margin_mm) {
+        (Some(deg), _) => format!("{deg:.2} deg"),
+        (None, mm) => format!("{:.1} mm", mm.unwrap_or(f64::NAN)),
     };
     format!(
         "{} ({} - {}, margin {margin})",
-        c.kind, c.between.0, c.between.1
+        v.check, v.between[0], v.between[1]
     )
 }

@@ -6,7 +6,9 @@ use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
-use stiffid::app::evaluate::document::{CalibrationDoc, Document, Infinite, InfiniteCriterion};
+use stiffid::app::evaluate::document::{
+    CalibrationDoc, Criteria, Document, Infinite, InfiniteCriterion,
+};
 use stiffid::app::evaluate::{self as job, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::common::limits::short;
@@ -147,12 +149,12 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(c) = &doc.calibration {
         s += &calibration_text(c);
         if args.purpose.purpose == Purpose::Calibration {
-            s += &feasibility::text(&report.feasibility);
+            s += &feasibility::text(&doc.feasibility);
             return output::print(&s);
         }
         s += "\nstiffness criteria\n";
     }
-    s += &criteria_text(e, &doc.criteria.infinite, &setup);
+    s += &criteria_text(&doc.criteria, &setup);
     if !setup.model().is_drives_only() || !separable(e) {
         s += &parameters_text(&doc);
     }
@@ -164,7 +166,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     if let Some(why) = not_computed {
         s += &format!("  not computed: {why}\n");
-        s += &feasibility::text(&report.feasibility);
+        s += &feasibility::text(&doc.feasibility);
         return output::print(&s);
     }
     s += &format!("{:>5} {:>6}  {}\n", "level", "x var", joints_header());
@@ -178,14 +180,15 @@ pub fn run(args: &Args) -> Result<()> {
         let cells: Vec<String> = row.iter().map(|v| format!("{v:>9.4}")).collect();
         s += &format!("{:>5} {:>6.2}  {}\n", l + 1, m, cells.join(" "));
     }
-    s += &feasibility::text(&report.feasibility);
+    s += &feasibility::text(&doc.feasibility);
     output::print(&s)
 }
 
-/// Every criterion of an evaluation on `setup`, one per line (smaller is better): an infinite
-/// value says why, as the document's `infinite` has it, and so does a criterion the setup lacks a
-/// field for.
-pub fn criteria_text(e: &Evaluation, infinite: &[InfiniteCriterion], setup: &Setup) -> String {
+/// Every criterion of a document's `criteria` on `setup`, one per line (smaller is better): an
+/// infinite value says why, as the document's `infinite` has it, and so does a criterion the
+/// setup lacks a field for.
+pub fn criteria_text(criteria: &Criteria, setup: &Setup) -> String {
+    let infinite = &criteria.infinite;
     let mut s = String::new();
     for c in Criterion::ALL {
         match c.check(setup) {
@@ -202,19 +205,19 @@ pub fn criteria_text(e: &Evaluation, infinite: &[InfiniteCriterion], setup: &Set
             }
             _ => {}
         }
-        let (value, unit) = match c {
-            Criterion::TestPose => (e.test_pose * 1e3, " mm"),
-            _ => (e.value(c), ""),
+        let unit = match c {
+            Criterion::TestPose => " mm",
+            _ => "",
         };
-        let text = match value.is_finite() {
-            true => format!("{}{unit}", number(value)),
-            false => why(infinite, c.key()),
+        let text = match criteria.values.get(c) {
+            Some(value) => format!("{}{unit}", number(value)),
+            None => why(infinite, c.key()),
         };
         s += &format!("  {:<12} {text}\n", c.name());
     }
-    let cond = match e.cond_psi.is_finite() {
-        true => number(e.cond_psi),
-        false => why(infinite, "cond_psi"),
+    let cond = match criteria.values.cond_psi {
+        Some(cond) => number(cond),
+        None => why(infinite, "cond_psi"),
     };
     s + &format!("  {:<12} {cond}\n", "cond(Psi)")
 }

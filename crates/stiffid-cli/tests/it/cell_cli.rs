@@ -64,6 +64,27 @@ fn evaluate_reports_each_postures_feasibility() {
         text.contains("posture 2: feasible, smallest clearance"),
         "{text}"
     );
+    // Its figures are the document's: the checks made, the clearance and the failing margin.
+    let made: Vec<&str> = (f[0]["checks"].as_array().unwrap().iter())
+        .map(|c| c.as_str().unwrap())
+        .collect();
+    assert_eq!(made, ["bounds", "floor", "self-collision", "rope"]);
+    assert!(f.iter().all(|p| p["checks"] == f[0]["checks"]));
+    let shown = [
+        format!("feasibility in the cell (checks: {})\n", made.join(", ")),
+        format!(
+            "posture 2: feasible, smallest clearance {:.1} mm",
+            f[1]["min_clearance_mm"].as_f64().unwrap()
+        ),
+        format!(
+            "posture 1: INFEASIBLE: floor ({} - floor, margin {:.1} mm)",
+            floor["between"][0].as_str().unwrap(),
+            floor["margin_mm"].as_f64().unwrap()
+        ),
+    ];
+    for line in shown {
+        assert!(text.contains(&line), "{line} not in\n{text}");
+    }
 }
 
 #[test]

@@ -239,7 +239,7 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
     }
     text += &outcome_text(setup, r);
     text += &margin_text(doc);
-    text += &criteria_text(&r.evaluation, &doc.criteria.infinite, setup);
+    text += &criteria_text(&doc.criteria, setup);
     if let Some(c) = &doc.calibration {
         text += &calibration_text(c);
     }

@@ -12,6 +12,8 @@ pub struct Posture {
     pub posture: usize,
     /// Whether every check passes.
     pub feasible: bool,
+    /// The checks made, e.g. `floor`, `self-collision` (those the setup's cell asks for).
+    pub checks: Vec<&'static str>,
     /// The smallest distance between bodies (and lines) that must not touch, mm; `null` without
     /// `[cell]` or `[tracker]`.
     pub min_clearance_mm: Option<f64>,
@@ -47,6 +49,7 @@ pub fn postures(checks: &[Feasibility]) -> Vec<Posture> {
         .map(|(i, f)| Posture {
             posture: i + 1,
             feasible: f.feasible(),
+            checks: f.checks.iter().map(|c| c.kind.key()).collect(),
             min_clearance_mm: f.min_clearance().map(super::mm),
             min_margin_mm: f.min_margin().map(|c| super::mm(c.margin)),
             min_margin_check: f.min_margin().map(|c| c.kind.key()),

@@ -108,6 +108,21 @@ pub struct CriteriaValues {
     pub cond_psi: Option<f64>,
 }
 
+impl CriteriaValues {
+    /// The value of `criterion` as the document has it (`test_pose_mm` in mm; `None` where
+    /// the document has `null`).
+    pub fn get(&self, criterion: Criterion) -> Option<f64> {
+        match criterion {
+            Criterion::Classical => self.classical,
+            Criterion::Zhang2021 => self.zhang2021,
+            Criterion::ScaledCond => self.scaled_cond,
+            Criterion::DOptimal => self.d_optimal,
+            Criterion::RelativeA => self.relative_a,
+            Criterion::TestPose => self.test_pose_mm,
+        }
+    }
+}
+
 impl From<&Evaluation> for CriteriaValues {
     fn from(e: &Evaluation) -> Self {
         Self {
