@@ -475,6 +475,8 @@ pub enum JobOption {
     DistinctMm,
     /// select: the margin every posture keeps to every constraint of the cell, mm.
     MarginMm,
+    /// identify --compare-models: the candidate springs, by family or name.
+    Candidates,
     /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
     /// deg), given together.
     Tolerances,
@@ -500,6 +502,7 @@ impl JobOption {
             JobOption::DistinctDeg => "distinct_deg",
             JobOption::DistinctMm => "distinct_mm",
             JobOption::MarginMm => "margin_mm",
+            JobOption::Candidates => "candidates",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",

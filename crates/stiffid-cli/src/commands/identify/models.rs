@@ -37,12 +37,6 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
             reader,
         },
         candidates: args.candidates.as_deref(),
-    })
-    .map_err(|e| match e {
-        stiffid::Error::InvalidField { ref field, .. } if field == "candidates" => {
-            anyhow::Error::new(e).context("--candidates")
-        }
-        e => e.into(),
     })?;
     output::warnings(&report.warnings);
     if let Some(out) = &out {

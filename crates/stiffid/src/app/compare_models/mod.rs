@@ -61,7 +61,7 @@ impl Report {
 /// Runs the comparison, with the nested estimate.
 ///
 /// # Errors
-/// [`crate::Error::InvalidField`] (`candidates`) for an unknown candidate or none left; errors
+/// [`crate::Error::InvalidOption`] ([`crate::JobOption::Candidates`]) for an unknown candidate or none left; errors
 /// about the data as [`crate::Error::Input`] naming the data (a file's line and column): those
 /// of the measurement file's parser and of [`compare`].
 pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {

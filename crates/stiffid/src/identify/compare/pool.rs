@@ -236,8 +236,8 @@ pub fn default_pool(setup: &Setup) -> Pool {
 /// `tool_y`, a declared spring's name), in the pool's order, without repeats.
 ///
 /// # Errors
-/// [`crate::Error::InvalidField`] (`candidates`) for a name that is neither (the message lists
-/// the pool's names), or no candidate left.
+/// [`crate::Error::InvalidOption`] ([`crate::JobOption::Candidates`]) for a name that is neither
+/// (the message lists the pool's names), or no candidate left.
 pub fn pool_by_name(setup: &Setup, names: &[String]) -> Result<Pool> {
     let all = every_candidate(setup);
     for name in names {
@@ -245,8 +245,8 @@ pub fn pool_by_name(setup: &Setup, names: &[String]) -> Result<Pool> {
             CANDIDATE_FAMILIES.contains(&name.as_str()) || all.iter().any(|(_, s)| s.name == *name);
         if !known {
             let some: Vec<&str> = all.iter().map(|(_, s)| s.name.as_str()).collect();
-            return Err(crate::Error::InvalidField {
-                field: "candidates".into(),
+            return Err(crate::Error::InvalidOption {
+                option: crate::JobOption::Candidates,
                 message: format!(
                     "'{}' is not a candidate: expected a family ({}) or one of: {}",
                     crate::common::limits::short(name),
@@ -260,8 +260,8 @@ pub fn pool_by_name(setup: &Setup, names: &[String]) -> Result<Pool> {
         names.iter().any(|n| n == family || *n == s.name)
     });
     if pool.candidates.is_empty() {
-        return Err(crate::Error::InvalidField {
-            field: "candidates".into(),
+        return Err(crate::Error::InvalidOption {
+            option: crate::JobOption::Candidates,
             message: match pool.dropped.first() {
                 Some(d) => format!("no candidate left: '{}' is dropped ({})", d.name, d.reason),
                 None => {
