@@ -12,16 +12,18 @@ use std::fs::File;
 use stiffid::app::compare_models::{run, Request};
 use stiffid::app::identify::Data;
 use stiffid::identify::compare::document::{Document, ModelDoc};
+use stiffid::identify::compare::Resampling;
 use stiffid::io::Capped;
 
 /// Runs the comparison on `data` from `setup`'s model over `candidates` (names; `None`: the
-/// default ones) and returns the document with the table of the selection path (key `table`) and
+/// default ones), with the posture bootstrap if `bootstrap` is given, and returns the document with the table of the selection path (key `table`) and
 /// the recommended model as a `[model]` fragment (key `fragment`).
 pub fn compare_models<'py>(
     py: Python<'py>,
     setup: &Setup,
     data: Data<Capped<File>>,
     candidates: Option<Vec<String>>,
+    bootstrap: Option<Resampling>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let report = py
@@ -30,6 +32,7 @@ pub fn compare_models<'py>(
                 setup: s,
                 data,
                 candidates: candidates.as_deref(),
+                bootstrap,
             })
         })
         .map_err(raise)?;

@@ -19,6 +19,7 @@ use stiffid::app::identify_model as over_model;
 use stiffid::app::identify_model::document::Document as ModelDocument;
 use stiffid::app::validate as validation;
 use stiffid::app::validate::document::Document as Checked;
+use stiffid::identify::compare::Resampling;
 use stiffid::identify::Loss;
 use stiffid::io::Capped;
 use stiffid::observation::Measurement;
@@ -298,10 +299,14 @@ fn labels(origin: &Origin) -> Option<Vec<String>> {
 /// ``added``, ``springs``, ``parameters``, ``in_sample_explained``, ``held_out_explained``,
 /// ``held_out_rms_delta_b_mm``, ``aic``, ``bic``, ``noise_ratio``, ``physical``, ``identified``,
 /// ``recommended``; NaN where the document has ``null``) and ``fragment`` (the recommended
-/// model as a ``[model]`` fragment for ``Setup.with_model``). Not with ``robust``,
-/// ``nonnegative``, ``cross_validate``, ``folds`` or ``offsets``.
+/// model as a ``[model]`` fragment for ``Setup.with_model``). ``bootstrap=N`` (1 to 10000)
+/// adds the posture bootstrap (``stiffid identify --compare-models --bootstrap N --seed S``):
+/// postures drawn with replacement (``seed``, the same result whatever the thread count), the
+/// selection redone on each resample; the document's ``bootstrap`` holds how often each
+/// parameter is chosen and the spread of its stiffness over the models chosen. Not with
+/// ``robust``, ``nonnegative``, ``cross_validate``, ``folds`` or ``offsets``.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None, bootstrap=None, seed=1))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify<'py>(
     py: Python<'py>,
@@ -318,6 +323,8 @@ pub fn identify<'py>(
     offsets: bool,
     compare_models: bool,
     candidates: Option<Vec<String>>,
+    bootstrap: Option<usize>,
+    seed: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let s = &setup.inner;
     if compare_models {
@@ -325,10 +332,14 @@ pub fn identify<'py>(
             return Err(value("compare_models compares least-squares fits held out posture by posture: leave out robust, nonnegative, cross_validate, folds and offsets"));
         }
         let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
-        return Ok(compare::compare_models(py, setup, data, candidates)?.into_any());
+        let bootstrap = bootstrap.map(|resamples| Resampling { resamples, seed });
+        return Ok(compare::compare_models(py, setup, data, candidates, bootstrap)?.into_any());
     }
     if candidates.is_some() {
         return Err(value("candidates: only with compare_models=True"));
+    }
+    if bootstrap.is_some() {
+        return Err(value("bootstrap: only with compare_models=True"));
     }
     let fit = match (robust, nonnegative) {
         (Some(_), true) => return Err(value("robust and nonnegative: choose one")),

@@ -59,6 +59,34 @@ def test_compare_models_candidates_and_refusals(fanuc):
         stiffid.identify(fanuc, FANUC_DATA, candidates=["tilt"])
 
 
+def test_compare_models_bootstrap_is_the_commands_document(fanuc, cli):
+    """The bootstrap from both front ends: the same document, bootstrap section included."""
+    ours = stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=20, seed=5)
+    theirs = cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA,
+                 "--compare-models", "--bootstrap", "20", "--seed", "5", "--json")
+    assert {k: v for k, v in ours.items() if k not in ("table", "fragment")} == theirs
+    b = theirs["bootstrap"]
+    assert (b["resamples"], b["seed"]) == (20, 5)
+    # The drives are in every model; every share is a multiple of one usable resample.
+    usable = 20 - b["unidentified"]
+    assert [p["name"] for p in b["parameters"][:6]] == ["k1", "k2", "k3", "k4", "k5", "k6"]
+    assert all(p["chosen_share"] == 1.0 for p in b["parameters"][:6])
+    for p in b["parameters"]:
+        assert round(p["chosen_share"] * usable) == pytest.approx(p["chosen_share"] * usable)
+        assert p["percentile_2_5"] <= p["median"] <= p["percentile_97_5"]
+    assert "bootstrap" not in stiffid.identify(fanuc, FANUC_DATA, compare_models=True,
+                                               candidates=["tool_y"])
+
+
+def test_compare_models_bootstrap_refusals(fanuc):
+    with pytest.raises(ValueError, match="bootstrap: 0 resamples: expected 1 to 10000"):
+        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=0)
+    with pytest.raises(ValueError, match="bootstrap: 10001 resamples: expected 1 to 10000"):
+        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=10001)
+    with pytest.raises(ValueError, match="bootstrap: only with compare_models"):
+        stiffid.identify(fanuc, FANUC_DATA, bootstrap=10)
+
+
 def test_identify_over_a_model_is_the_commands_document(compared, cli, tmp_path):
     setup_file = tmp_path / "with-model.toml"
     setup_file.write_text(cli("setups", "show", "fanuc-r2000ic-165f", parse=False) + compared["fragment"])

@@ -144,6 +144,8 @@ def test_compare_models(cli, tmp_path):
     fragment = tmp_path / "model.toml"
     m = identify(cli, "--compare-models", "--out", fragment)
     assert_valid("compare-models", m)
+    assert_valid("compare-models", identify(cli, "--compare-models", "--candidates", "tilt3_x,tool_y",
+                                            "--bootstrap", "5"))
     models = m["models"]
     assert models[0]["held_out_explained"] == pytest.approx(0.765, abs=5e-4)
     rec = next(r for r in models if r["recommended"])

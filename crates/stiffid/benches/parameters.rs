@@ -5,7 +5,8 @@
 //! rank test only); one evaluation of `relative-a` and of `zhang2021` (with
 //! the singular values), and `relative-a` with its exact gradient, 6 postures x 4 measuring points;
 //! and the model comparison of `stiffid identify --compare-models` on the FANUC data (43 postures,
-//! the default candidate pool, 39 candidates, with the nested estimate), the job from the file's text.
+//! the default candidate pool, 39 candidates, with the nested estimate), the job from the file's
+//! text, alone and with a posture bootstrap of 20 resamples (`--bootstrap 20`).
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
@@ -68,23 +69,32 @@ fn parameters(c: &mut Bench) {
 fn compare_models(c: &mut Bench) {
     use stiffid::app::compare_models::{run, Request};
     use stiffid::app::identify::Data;
+    use stiffid::identify::compare::Resampling;
     let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
-    c.benchmark_group("models")
-        .sample_size(10)
-        .bench_function("compare-models/fanuc", |b| {
-            b.iter(|| {
-                run(Request {
-                    setup: &setup,
-                    data: Data::File {
-                        name: "measurements.csv".into(),
-                        reader: black_box(text.as_bytes()),
-                    },
-                    candidates: None,
-                })
-                .unwrap()
-            })
-        });
+    let job = |bootstrap| {
+        run(Request {
+            setup: &setup,
+            data: Data::File {
+                name: "measurements.csv".into(),
+                reader: black_box(text.as_bytes()),
+            },
+            candidates: None,
+            bootstrap,
+        })
+        .unwrap()
+    };
+    let mut group = c.benchmark_group("models");
+    group.sample_size(10);
+    group.bench_function("compare-models/fanuc", |b| b.iter(|| job(None)));
+    let twenty = Resampling {
+        resamples: 20,
+        seed: 1,
+    };
+    group.bench_function("compare-models/fanuc-bootstrap-20", |b| {
+        b.iter(|| job(Some(twenty)))
+    });
+    group.finish();
 }
 
 criterion_group!(benches, parameters, compare_models);

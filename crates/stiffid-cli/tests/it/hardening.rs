@@ -1016,3 +1016,39 @@ fn compare_models_refuses_offsets_and_too_few_postures() {
         &["--compare-models", "--offsets"],
     );
 }
+
+/// `--bootstrap` needs `--compare-models` and takes 1 to 10000 resamples; `--seed` needs
+/// `--bootstrap`. Each refusal names the option.
+#[test]
+fn bootstrap_is_refused_out_of_range_or_without_compare_models() {
+    let dir = scratch("bootstrap-refused");
+    std::fs::copy(common::fanuc_csv(), dir.join("all.csv")).unwrap();
+    let base = [
+        "identify",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--data",
+        "{dir}/all.csv",
+    ];
+    let compare = [&base[..], &["--compare-models"]].concat();
+    refused(
+        &dir,
+        &[&compare[..], &["--bootstrap", "0"]].concat(),
+        &["--bootstrap: 0 resamples: expected 1 to 10000"],
+    );
+    refused(
+        &dir,
+        &[&compare[..], &["--bootstrap", "10001"]].concat(),
+        &["--bootstrap: 10001 resamples: expected 1 to 10000"],
+    );
+    refused(
+        &dir,
+        &[&base[..], &["--bootstrap", "10"]].concat(),
+        &["--compare-models"],
+    );
+    refused(
+        &dir,
+        &[&compare[..], &["--seed", "3"]].concat(),
+        &["--bootstrap"],
+    );
+}

@@ -303,6 +303,8 @@ def identify(
     point: Optional[Sequence[int]] = None,
     compare_models: Literal[True],
     candidates: Optional[Sequence[str]] = None,
+    bootstrap: Optional[int] = None,
+    seed: int = 1,
 ) -> dict[str, Any]: ...
 def validate(
     setup: Setup,

@@ -484,6 +484,8 @@ pub enum JobOption {
     PayloadKg,
     /// setups new: the file the setup is written to.
     Out,
+    /// identify --compare-models: the number of bootstrap resamples.
+    Bootstrap,
 }
 
 impl JobOption {
@@ -506,6 +508,7 @@ impl JobOption {
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",
+            JobOption::Bootstrap => "bootstrap",
         }
     }
 }

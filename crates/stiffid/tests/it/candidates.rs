@@ -14,7 +14,7 @@ use stiffid::setup::Setup;
 
 /// A bending spring of the forearm about the z axis of link 3's frame through a point 600 mm
 /// along its x axis (the paper's COMAU cell; as a new user would declare an elbow spring).
-const ELBOW: &str = r#"
+pub const ELBOW: &str = r#"
 [[model.spring]]
 name = "elbow_z"
 kind = "rotation"
@@ -25,7 +25,7 @@ nominal_stiffness_nm_per_rad = 4e6
 "#;
 
 /// The paper's setup with `extra` appended to its TOML.
-fn paper_with(extra: &str) -> Setup {
+pub fn paper_with(extra: &str) -> Setup {
     let text = format!(
         "{}\n{extra}",
         stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap()
@@ -35,7 +35,7 @@ fn paper_with(extra: &str) -> Setup {
 
 /// Measurements of `postures` under the rope load with compliance `h` of `truth`'s model, plus
 /// Gaussian noise of standard deviation `sigma` (m).
-fn measure(
+pub fn measure(
     truth: &Setup,
     postures: &[Vector6<f64>],
     h: &DVector<f64>,

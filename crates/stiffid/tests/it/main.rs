@@ -4,6 +4,7 @@
 
 mod active_set;
 mod bodies;
+mod bootstrap;
 mod calibrate_cell;
 mod candidates;
 mod cell;

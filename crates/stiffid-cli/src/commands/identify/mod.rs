@@ -59,6 +59,15 @@ pub struct Args {
     /// duplicating another are left out, with the reason.
     #[arg(long, value_delimiter = ',', requires = "compare_models")]
     candidates: Option<Vec<String>>,
+    /// With `--compare-models`: N posture bootstrap resamples (1 to 10000), the whole selection
+    /// redone on each; reports how often each parameter is chosen and the spread of its
+    /// stiffness over the models chosen.
+    #[arg(long, value_name = "N", requires = "compare_models")]
+    bootstrap: Option<usize>,
+    /// The seed of the bootstrap's draws: the same seed gives the same result whatever the
+    /// thread count.
+    #[arg(long, default_value_t = 1, requires = "bootstrap")]
+    seed: u64,
 }
 
 /// Identifies, prints, and writes `--out`.

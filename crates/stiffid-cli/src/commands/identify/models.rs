@@ -12,7 +12,8 @@ use stiffid::app::identify_model::document::{CrossValidationDoc, Document};
 use stiffid::app::identify_model::{self, Report};
 use stiffid::common::words::count;
 use stiffid::identify::adequacy::Verdict;
-use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Row};
+use stiffid::identify::compare::document::BootstrapDoc;
+use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Resampling, Row};
 use stiffid::identify::model::Fit;
 use stiffid::Setup;
 
@@ -37,15 +38,61 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
             reader,
         },
         candidates: args.candidates.as_deref(),
+        bootstrap: args.bootstrap.map(|resamples| Resampling {
+            resamples,
+            seed: args.seed,
+        }),
     })?;
     output::warnings(&report.warnings);
     if let Some(out) = &out {
         out.write(report.fragment().as_bytes())?;
     }
+    let document = report.document(&args.common.setup);
     match args.common.json {
-        true => output::print(&json(&report.document(&args.common.setup))?),
-        false => output::print(&text(&report.comparison, &report.dropped, setup)),
+        true => output::print(&json(&document)?),
+        false => output::print(&text(
+            &report.comparison,
+            &report.dropped,
+            document.bootstrap.as_ref(),
+            setup,
+        )),
     }
+}
+
+/// The bootstrap's table from its document.
+fn bootstrap_text(b: &BootstrapDoc) -> String {
+    let mut s = format!(
+        "\nPosture bootstrap ({} resamples, seed {}; the selection redone on each): the spread of each stiffness over the models chosen, not an interval conditional on one model\n",
+        b.resamples, b.seed
+    );
+    if b.unidentified > 0 {
+        s += &format!(
+            "  {} left out: their postures cannot identify the model they chose\n",
+            count(b.unidentified, "resample")
+        );
+    }
+    s += &format!(
+        "  the recommended model exactly: {}\n  {:<12} {:>7} {:>14} {:>14} {:>14}  unit\n",
+        pct(Some(b.recommended_share)),
+        "parameter",
+        "chosen",
+        "median",
+        "2.5%",
+        "97.5%"
+    );
+    let v = |x: Option<f64>| x.map_or("n/a".into(), |v| format!("{v:.0}"));
+    for p in &b.parameters {
+        s += &format!(
+            "  {:<12} {:>7} {:>14} {:>14} {:>14}  {}\n",
+            p.name,
+            pct(Some(p.chosen_share)),
+            v(p.median),
+            v(p.percentile_2_5),
+            v(p.percentile_97_5),
+            p.unit
+        );
+    }
+    s
 }
 
 fn pct(v: Option<f64>) -> String {
@@ -78,8 +125,13 @@ fn row_line(r: &Row, mark: &str) -> String {
 const HEADER: &str =
     "  added            par in-sample  held out  s.e.  dB RMS mm       AIC       BIC   noise   residuals  all k>0\n";
 
-/// The text report of a comparison and of the candidates dropped from its pool.
-fn text(c: &Comparison, dropped: &[Dropped], setup: &Setup) -> String {
+/// The text report of a comparison, of the candidates dropped from its pool and of its bootstrap.
+fn text(
+    c: &Comparison,
+    dropped: &[Dropped],
+    bootstrap: Option<&BootstrapDoc>,
+    setup: &Setup,
+) -> String {
     let mut s =
         String::from("Model comparison: forward selection on the leave-one-posture-out error\n\n");
     if !dropped.is_empty() {
@@ -118,6 +170,9 @@ fn text(c: &Comparison, dropped: &[Dropped], setup: &Setup) -> String {
             n.rms_delta_b * 1e3,
             if chosen.is_empty() { "nothing".into() } else { chosen.join(", ") }
         );
+    }
+    if let Some(b) = bootstrap {
+        s += &bootstrap_text(b);
     }
     if let Some(note) = c.nonlinear_separation() {
         s += &format!("\nLost motion and load-dependent compliance: {note}\n");

@@ -1,12 +1,14 @@
 //! The model-comparison job (`stiffid identify --compare-models`): from the setup's model, forward
 //! selection of candidate virtual springs on the leave-one-posture-out error, nested in an outer
-//! cross-validation ([`crate::identify::compare`]), on a measurement file or measurements given
-//! as arrays.
+//! cross-validation ([`crate::identify::compare`]), and on request its posture bootstrap
+//! ([`crate::identify::compare::bootstrap`]), on a measurement file or measurements given as
+//! arrays.
 
 use super::identify::{angle_warnings, on_measurements, Data};
 use super::Warning;
 use crate::identify::compare::{
-    compare, default_pool, pool_by_name, Comparison, Document, Dropped,
+    bootstrap, compare, default_pool, pool_by_name, Bootstrap, Comparison, Document, Dropped,
+    Resampling,
 };
 use crate::model::fragment;
 use crate::{Result, Setup};
@@ -23,6 +25,8 @@ pub struct Request<'a, R> {
     /// `declared`); `None` for the default, every family and the setup's declared candidates
     /// ([`default_pool`]).
     pub candidates: Option<&'a [String]>,
+    /// The posture bootstrap of the selection (`--bootstrap N --seed S`); `None` for none.
+    pub bootstrap: Option<Resampling>,
 }
 
 /// What the comparison found.
@@ -34,6 +38,8 @@ pub struct Report {
     pub comparison: Comparison,
     /// The candidates left out because the data could never identify them, with the reason.
     pub dropped: Vec<Dropped>,
+    /// The posture bootstrap, when asked for.
+    pub bootstrap: Option<Bootstrap>,
     /// The setup's tracker noise variance, m^2 (what the noise ratios are against).
     pub noise_variance: f64,
     /// Results to look at before trusting them (angles that look like radians).
@@ -43,8 +49,13 @@ pub struct Report {
 impl Report {
     /// The document (`stiffid identify --compare-models --json`), `setup` named as given.
     pub fn document(&self, setup: &str) -> Document {
-        self.comparison
-            .document(setup, &self.data_name, self.noise_variance, &self.dropped)
+        self.comparison.document(
+            setup,
+            &self.data_name,
+            self.noise_variance,
+            &self.dropped,
+            self.bootstrap.as_ref(),
+        )
     }
 
     /// The recommended model as a `[model]` fragment to paste into the setup, with a comment
@@ -58,10 +69,12 @@ impl Report {
     }
 }
 
-/// Runs the comparison, with the nested estimate.
+/// Runs the comparison, with the nested estimate, and the bootstrap if asked.
 ///
 /// # Errors
-/// [`crate::Error::InvalidOption`] ([`crate::JobOption::Candidates`]) for an unknown candidate or none left; errors
+/// [`crate::Error::InvalidOption`] ([`crate::JobOption::Bootstrap`]) for a number of resamples
+/// out of range ([`Resampling::check`]), ([`crate::JobOption::Candidates`]) for an unknown
+/// candidate or none left; errors
 /// about the data as [`crate::Error::Input`] naming the data (a file's line and column): those
 /// of the measurement file's parser and of [`compare`].
 pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
@@ -69,18 +82,28 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         setup,
         data,
         candidates,
+        bootstrap: resampling,
     } = request;
+    if let Some(r) = &resampling {
+        r.check()?;
+    }
     let pool = match candidates {
         Some(names) => pool_by_name(setup, names)?,
         None => default_pool(setup),
     };
-    let (data_name, origin, comparison) =
-        on_measurements(setup, data, |m| compare(setup, m, &pool.candidates, true))?;
+    let (data_name, origin, (comparison, bootstrap)) = on_measurements(setup, data, |m| {
+        let c = compare(setup, m, &pool.candidates, true)?;
+        let b = resampling
+            .map(|r| bootstrap(setup, m, &pool.candidates, &c, r))
+            .transpose()?;
+        Ok((c, b))
+    })?;
     let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
         data_name,
         comparison,
         dropped: pool.dropped,
+        bootstrap,
         noise_variance: setup.noise().displacement_variance(),
         warnings,
     })

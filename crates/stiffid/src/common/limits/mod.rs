@@ -136,6 +136,10 @@ pub const MAX_LEVELS: usize = 20;
 /// Most Monte Carlo runs per group and noise level (`--runs`).
 pub const MAX_RUNS: u64 = 100_000;
 
+/// Most resamples of the model comparison's bootstrap (`--bootstrap`): each redoes the whole
+/// forward selection.
+pub const MAX_BOOTSTRAP: u64 = 10_000;
+
 /// Most local searches of a global search (`--starts`).
 pub const MAX_STARTS: u64 = 10_000;
 

@@ -2,7 +2,7 @@
 //! parameter named with its unit, mm and the parameters' own units at the edge, `null` for what
 //! is not defined.
 
-use super::{Comparison, Row};
+use super::{Bootstrap, Comparison, Row};
 use crate::identify::adequacy::Verdict;
 use crate::identify::model::Fit;
 use crate::model::Parameter;
@@ -36,6 +36,50 @@ pub struct Document {
     /// When lost motion or load-dependent candidates were compared: whether these data can
     /// separate them from the springs, in words.
     pub nonlinear_separation: Option<String>,
+    /// The posture bootstrap of the whole selection (`--bootstrap`; absent without it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bootstrap: Option<BootstrapDoc>,
+}
+
+/// The posture bootstrap ([`super::bootstrap`]): postures drawn with replacement, the selection
+/// and the recommendation redone on each resample; the spread of each stiffness over the models
+/// chosen, not a confidence interval conditional on one model.
+#[derive(Debug, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct BootstrapDoc {
+    /// The number of resamples.
+    pub resamples: usize,
+    /// The seed of the draws.
+    pub seed: u64,
+    /// Resamples whose data cannot identify their recommended model, left out of the shares
+    /// and spreads.
+    pub unidentified: usize,
+    /// The share of the other resamples whose recommended model is exactly the data's.
+    pub recommended_share: f64,
+    /// Every parameter chosen in at least one resample, the setup's model's first.
+    pub parameters: Vec<SpreadDoc>,
+}
+
+/// One parameter over the bootstrap's resamples.
+#[derive(Debug, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct SpreadDoc {
+    /// `k1` .. `k6` or the spring's name.
+    pub name: String,
+    /// `drive`, `rotation`, `translation`, `lost-motion` or `load-dependent`.
+    pub kind: crate::model::ParameterKind,
+    /// `Nm/rad`, `N/mm`, `urad` or `urad/kNm^2`.
+    pub unit: &'static str,
+    /// The share of the usable resamples whose recommended model holds it.
+    pub chosen_share: f64,
+    /// The median of its stiffness in `unit` over the resamples that chose it (for a lost
+    /// motion its size `b`, for a load-dependent compliance its `c1`); `null` if not finite.
+    pub median: Option<f64>,
+    /// The 2.5% percentile of the same, in `unit` (linear interpolation between order
+    /// statistics); `null` if not finite.
+    pub percentile_2_5: Option<f64>,
+    /// The 97.5% percentile of the same, in `unit`; `null` if not finite.
+    pub percentile_97_5: Option<f64>,
 }
 
 /// A candidate left out of the pool.
@@ -300,13 +344,15 @@ impl Comparison {
     }
 
     /// The document, `setup` and `data` as given, `noise_variance` the setup's (m^2), `dropped`
-    /// the candidates left out of the pool ([`super::Pool::dropped`]).
+    /// the candidates left out of the pool ([`super::Pool::dropped`]), `bootstrap` the posture
+    /// bootstrap if it was run.
     pub fn document(
         &self,
         setup: &str,
         data: &str,
         noise_variance: f64,
         dropped: &[super::Dropped],
+        bootstrap: Option<&Bootstrap>,
     ) -> Document {
         let all = &self.parameters;
         Document {
@@ -349,11 +395,40 @@ impl Comparison {
             }),
             load_levels: self.load_levels,
             nonlinear_separation: self.nonlinear_separation(),
+            bootstrap: bootstrap.map(|b| self.bootstrap_doc(b)),
             dropped: dropped
                 .iter()
                 .map(|d| DroppedDoc {
                     name: d.name.clone(),
                     reason: d.reason.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// The document of the posture bootstrap `b` of this comparison, in the parameters' units.
+    pub fn bootstrap_doc(&self, b: &Bootstrap) -> BootstrapDoc {
+        let share = |n: usize| n as f64 / b.usable().max(1) as f64;
+        BootstrapDoc {
+            resamples: b.resampling.resamples,
+            seed: b.resampling.seed,
+            unidentified: b.unidentified,
+            recommended_share: share(b.recommended),
+            parameters: b
+                .parameters
+                .iter()
+                .map(|s| {
+                    let p = &self.parameters[s.parameter];
+                    let unit = |v: f64| finite(v * p.unit.per_si());
+                    SpreadDoc {
+                        name: p.name.clone(),
+                        kind: p.kind,
+                        unit: p.unit.symbol(),
+                        chosen_share: share(s.chosen),
+                        median: unit(s.median),
+                        percentile_2_5: unit(s.lower),
+                        percentile_97_5: unit(s.upper),
+                    }
                 })
                 .collect(),
         }

@@ -16,9 +16,11 @@
 //! posture with the model it chose (outer leave-one-posture-out): the error to expect from
 //! choosing by the data.
 
+pub mod bootstrap;
 pub mod document;
 pub mod pool;
 
+pub use bootstrap::{bootstrap, Bootstrap, Resampling};
 pub use document::{parameter_docs, Document};
 pub use pool::{default_pool, pool_by_name, Dropped, Pool};
 
