@@ -89,7 +89,7 @@ fn human(r: &Document) -> String {
         r.mean_measured_mm,
         r.max_measured_mm,
         r.rms_measured_mm,
-        100.0 * r.explained
+        r.explained_percent
     );
     s += &match &r.prediction_intervals {
         Some(p) => format!(
@@ -97,7 +97,7 @@ fn human(r: &Document) -> String {
 ",
             p.method,
             100.0 * p.level,
-            100.0 * p.coverage,
+            p.coverage_percent,
             p.coordinates,
             p.coordinates - p.covered
         ),

@@ -106,6 +106,34 @@ fn out_file_feeds_validate_and_predict() {
     }
     let rms = v["rms_delta_b_mm"].as_f64().unwrap();
     assert!((rms - id["residual_rms_mm"].as_f64().unwrap() * 3f64.sqrt()).abs() < 1e-9);
+    // The explained share in %, as the text prints it.
+    let explained = 1.0 - rms / v["rms_measured_mm"].as_f64().unwrap();
+    let percent = v["explained_percent"].as_f64().unwrap();
+    assert!((percent - 100.0 * explained).abs() < 1e-9, "{percent}");
+    let text = String::from_utf8(validate_fanuc(&result, &[]).stdout).unwrap();
+    let shown = format!("1 - RMS(delta_b)/RMS(|delta_m|): {percent:.1}%\n");
+    assert!(text.contains(&shown), "{shown} not in\n{text}");
+    // With held-out residuals in the stiffness file: the intervals' coverage in %.
+    let cv = dir.join("cv.json");
+    json(&identify_fanuc(&[
+        "--cross-validate",
+        "--out",
+        cv.to_str().unwrap(),
+    ]));
+    let v = json(&validate_fanuc(&cv, &["--json"]));
+    let p = &v["prediction_intervals"];
+    let (covered, all) = (
+        p["covered"].as_f64().unwrap(),
+        p["coordinates"].as_f64().unwrap(),
+    );
+    let coverage = p["coverage_percent"].as_f64().unwrap();
+    assert!(
+        (coverage - 100.0 * covered / all).abs() < 1e-9,
+        "{coverage}"
+    );
+    let text = String::from_utf8(validate_fanuc(&cv, &[]).stdout).unwrap();
+    let shown = format!("{coverage:.1}% of {all} measured coordinates inside");
+    assert!(text.contains(&shown), "{shown} not in\n{text}");
     // predict with the identified stiffness reproduces validate's prediction of line 2.
     let first = &checks[0];
     let q: Vec<String> = {

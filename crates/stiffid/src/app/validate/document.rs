@@ -35,6 +35,8 @@ pub struct Document {
     pub rms_measured_mm: f64,
     /// `1 - rms_delta_b_mm / rms_measured_mm`.
     pub explained: f64,
+    /// `explained`, %.
+    pub explained_percent: f64,
     /// With a stiffness file that holds held-out residuals (`identify --cross-validate`): the
     /// coverage of the prediction intervals; else `null`.
     pub prediction_intervals: Option<PredictionIntervals>,
@@ -50,6 +52,8 @@ pub struct PredictionIntervals {
     pub level: f64,
     /// The share of the measured displacement coordinates inside their intervals.
     pub coverage: f64,
+    /// `coverage`, %.
+    pub coverage_percent: f64,
     /// Measured coordinates inside their intervals.
     pub covered: usize,
     /// Measured coordinates (three per measurement).
@@ -109,10 +113,12 @@ impl Document {
             max_measured_mm: mm(v.measured[1]),
             rms_measured_mm: mm(v.measured[2]),
             explained: v.explained,
+            explained_percent: 100.0 * v.explained,
             prediction_intervals: v.prediction.as_ref().map(|p| PredictionIntervals {
                 method: p.method,
                 level: p.level,
                 coverage: p.coverage(),
+                coverage_percent: 100.0 * p.coverage(),
                 covered: p.covered,
                 coordinates: p.coordinates,
             }),
