@@ -30,6 +30,7 @@
 
 use super::cross_validation::{explained_share, Method};
 use super::robust::{self, Loss, RobustFit};
+use crate::math::linalg::CappedSvd;
 use crate::model::Parameter;
 use crate::observation::Observations;
 use crate::{Error, Result};
@@ -202,16 +203,9 @@ impl Scaled {
         for (mut col, s) in a.column_iter_mut().zip(scale.iter()) {
             col *= *s;
         }
-        let svd = a
-            .try_svd(
-                true,
-                true,
-                f64::EPSILON,
-                crate::math::linalg::SVD_MAX_ITERATIONS,
-            )
-            .ok_or_else(|| Error::NotFinite {
-                what: "the singular value decomposition of the observation matrix".into(),
-            })?;
+        let svd = a.capped_svd(true, true).ok_or_else(|| Error::NotFinite {
+            what: "the singular value decomposition of the observation matrix".into(),
+        })?;
         // Sort descending (nalgebra does not promise an order).
         let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
         let sv = &svd.singular_values;

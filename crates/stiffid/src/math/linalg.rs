@@ -6,12 +6,44 @@
 //! bookkeeping; these kernels keep [`crate::math::lsq::Factor`] and the design evaluator
 //! ([`crate::design::Evaluator`]) within their microsecond budgets. Everything else uses nalgebra.
 
-use nalgebra::{DMatrix, Matrix6, Vector6};
+use nalgebra::allocator::Allocator;
+use nalgebra::{
+    DMatrix, DefaultAllocator, Dim, DimDiff, DimMin, DimMinimum, DimSub, Matrix6, OMatrix, Vector6,
+    SVD, U1,
+};
 
 /// The iteration cap of every nalgebra SVD stiffid runs (`try_svd`'s `max_niter`): nalgebra's
 /// default, 0, never stops on a matrix holding a NaN or an overflow, while a finite matrix of the
 /// sizes stiffid factors converges in a few iterations per singular value.
 pub(crate) const SVD_MAX_ITERATIONS: usize = 10_000;
+
+/// nalgebra's SVD as stiffid runs it: machine epsilon and the cap [`SVD_MAX_ITERATIONS`].
+pub(crate) trait CappedSvd<R: DimMin<C>, C: Dim>
+where
+    DefaultAllocator: Allocator<DimMinimum<R, C>, C>
+        + Allocator<R, DimMinimum<R, C>>
+        + Allocator<DimMinimum<R, C>>,
+{
+    /// The SVD of `self`, with `U` if `u` and `V^T` if `v_t`; `None` if it does not converge
+    /// within the cap (a matrix holding a NaN or an overflow).
+    fn capped_svd(self, u: bool, v_t: bool) -> Option<SVD<f64, R, C>>;
+}
+
+impl<R: DimMin<C>, C: Dim> CappedSvd<R, C> for OMatrix<f64, R, C>
+where
+    DimMinimum<R, C>: DimSub<U1>,
+    DefaultAllocator: Allocator<R, C>
+        + Allocator<C>
+        + Allocator<R>
+        + Allocator<DimDiff<DimMinimum<R, C>, U1>>
+        + Allocator<DimMinimum<R, C>, C>
+        + Allocator<R, DimMinimum<R, C>>
+        + Allocator<DimMinimum<R, C>>,
+{
+    fn capped_svd(self, u: bool, v_t: bool) -> Option<SVD<f64, R, C>> {
+        self.try_svd(u, v_t, f64::EPSILON, SVD_MAX_ITERATIONS)
+    }
+}
 
 /// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
 /// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below

@@ -38,6 +38,7 @@
 //! calibration under independent noise (the test-pose criterion of Klimchik, Pashkevich et al.
 //! applied to calibration). It does not depend on the column scaling.
 
+use crate::math::linalg::CappedSvd;
 use crate::metrology::calibration::identifiability;
 use crate::metrology::calibration::ErrorModel;
 use crate::{Error, Result};
@@ -281,15 +282,7 @@ pub fn criteria(
     if !j.iter().all(|v| v.is_finite()) {
         return Err(not_finite());
     }
-    let svd = j
-        .clone()
-        .try_svd(
-            false,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        )
-        .ok_or_else(not_finite)?;
+    let svd = j.clone().capped_svd(false, true).ok_or_else(not_finite)?;
     let mut s: Vec<f64> = svd.singular_values.iter().copied().collect();
     s.resize(p, 0.0);
     s.sort_by(|a, b| b.total_cmp(a));

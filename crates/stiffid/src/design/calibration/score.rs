@@ -27,6 +27,7 @@
 //! ```
 
 use super::{CalibrationDesign, RANK_TOLERANCE};
+use crate::math::linalg::CappedSvd;
 use nalgebra::{DMatrix, DMatrixView};
 
 /// A calibration design criterion, as `select` and `evaluate` name it.
@@ -239,12 +240,7 @@ fn lower_inverse(l: &DMatrix<f64>) -> DMatrix<f64> {
 /// The value and `W` of an index that needs the singular values, from the SVD of `r`.
 fn spectral(r: &DMatrix<f64>, criterion: CalibrationCriterion) -> Option<(f64, DMatrix<f64>)> {
     let p = r.ncols();
-    let svd = r.clone().try_svd(
-        false,
-        true,
-        f64::EPSILON,
-        crate::math::linalg::SVD_MAX_ITERATIONS,
-    )?;
+    let svd = r.clone().capped_svd(false, true)?;
     let v_t = svd.v_t?;
     let s = svd.singular_values;
     let mut order: Vec<usize> = (0..p).collect();

@@ -16,6 +16,7 @@ mod reduced;
 pub use reduced::{Reduced, Solution};
 
 use crate::math::jacobi::singular_values;
+use crate::math::linalg::CappedSvd;
 use crate::math::linalg::{axpy, column_norms, dot, householder_qr, upper_triangle};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
@@ -173,12 +174,7 @@ fn checked_inverse(r: &Matrix6<f64>, norms: &Vector6<f64>) -> Result<Matrix6<f64
 /// vector of the smallest singular value of `R`.
 fn dependent_columns(r: &Matrix6<f64>) -> Error {
     let joints = r
-        .try_svd(
-            false,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        )
+        .capped_svd(false, true)
         .and_then(|svd| {
             let (imin, _) = svd.singular_values.argmin();
             let v = svd.v_t?.row(imin).transpose();

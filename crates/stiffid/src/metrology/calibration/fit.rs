@@ -21,6 +21,7 @@
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
+use crate::math::linalg::CappedSvd;
 use crate::metrology::register::Correspondence;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
@@ -341,14 +342,7 @@ impl Problem<'_> {
         };
         let j = self.jacobian(&estimate)?;
         let (rt, _) = factor(&j, &DVector::zeros(j.nrows()));
-        let svd = rt
-            .try_svd(
-                false,
-                true,
-                f64::EPSILON,
-                crate::math::linalg::SVD_MAX_ITERATIONS,
-            )
-            .ok_or_else(not_converged)?;
+        let svd = rt.capped_svd(false, true).ok_or_else(not_converged)?;
         let v_t = svd.v_t.ok_or_else(not_converged)?;
         let s = &svd.singular_values;
         let inverse = DMatrix::from_diagonal(&s.map(|v| 1.0 / (v * v)));
@@ -402,14 +396,7 @@ struct Damped {
 
 impl Damped {
     fn new(rt: DMatrix<f64>, qtr: &DVector<f64>) -> Result<Self> {
-        let svd = rt
-            .try_svd(
-                true,
-                true,
-                f64::EPSILON,
-                crate::math::linalg::SVD_MAX_ITERATIONS,
-            )
-            .ok_or_else(not_converged)?;
+        let svd = rt.capped_svd(true, true).ok_or_else(not_converged)?;
         let (u, v_t) = (
             svd.u.ok_or_else(not_converged)?,
             svd.v_t.ok_or_else(not_converged)?,

@@ -19,6 +19,7 @@
 //! parameters (from `(J^T J)^-1`) above [`CORRELATION_REPORTED`] in absolute value are listed:
 //! the weakly separated pairs (Sun and Hollerbach 2008 on observability).
 
+use crate::math::linalg::CappedSvd;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
 
@@ -161,12 +162,7 @@ fn pivot(r: &DMatrix<f64>, priorities: &[u8]) -> Result<(Vec<usize>, Vec<Merged>
         DMatrix::from_columns(&kept.iter().map(|&c| unit[c].clone()).collect::<Vec<_>>());
     let svd = match kept.is_empty() {
         true => None,
-        false => kept_columns.clone().try_svd(
-            true,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        ),
+        false => kept_columns.clone().capped_svd(true, true),
     };
     let merged = (0..n)
         .filter(|c| !kept.contains(c))
@@ -200,12 +196,7 @@ fn conditioning(kept: &DMatrix<f64>, identified: &[usize]) -> Result<(f64, Vec<C
     }
     let svd = kept
         .clone()
-        .try_svd(
-            false,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        )
+        .capped_svd(false, true)
         .ok_or_else(not_converged)?;
     let s = &svd.singular_values;
     let condition = s.max() / s.min();

@@ -26,6 +26,7 @@
 //! axis angles, measuring point or reading).
 
 use crate::io::readings::Readings;
+use crate::math::linalg::CappedSvd;
 use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
 use nalgebra::{
@@ -232,14 +233,7 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
         .iter()
         .map(|c| (c.base - b_mean) * (c.tracker - t_mean).transpose())
         .sum();
-    let svd = h
-        .try_svd(
-            true,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        )
-        .ok_or(not_converged())?;
+    let svd = h.capped_svd(true, true).ok_or(not_converged())?;
     let (u, v_t) = (
         svd.u.ok_or(not_converged())?,
         svd.v_t.ok_or(not_converged())?,
@@ -288,14 +282,7 @@ pub fn unit_covariance(rotated: &[Vector3<f64>]) -> Result<Matrix6<f64>> {
             .fixed_view_mut::<3, 3>(0, 3)
             .copy_from(&(-p.cross_matrix()));
     }
-    let svd = j
-        .try_svd(
-            false,
-            true,
-            f64::EPSILON,
-            crate::math::linalg::SVD_MAX_ITERATIONS,
-        )
-        .ok_or(not_converged())?;
+    let svd = j.capped_svd(false, true).ok_or(not_converged())?;
     let v_t = svd.v_t.ok_or(not_converged())?;
     let s = &svd.singular_values;
     let largest = s.max();
@@ -359,12 +346,7 @@ fn collinear_cloud(points: &[Vector3<f64>]) -> bool {
     if !scatter.iter().all(|v| v.is_finite()) {
         return true;
     }
-    let Some(svd) = scatter.try_svd(
-        false,
-        false,
-        f64::EPSILON,
-        crate::math::linalg::SVD_MAX_ITERATIONS,
-    ) else {
+    let Some(svd) = scatter.capped_svd(false, false) else {
         return true;
     };
     let mut s = svd.singular_values.map(f64::sqrt);
