@@ -598,3 +598,51 @@ fn text_relative_errors_and_largest_residuals_are_the_documents() {
     );
     assert!(text.contains(&shown), "{shown} not in\n{text}");
 }
+
+/// `--compare-models --bootstrap`: the text's bootstrap table shows the document's figures (the
+/// same seed, the same resamples), one row per parameter chosen; without `--bootstrap` the
+/// document has no `bootstrap` and the text no table.
+#[test]
+fn text_of_the_bootstrap_is_the_documents() {
+    let args = [
+        "--compare-models",
+        "--candidates",
+        "tilt3_x,tool_y",
+        "--bootstrap",
+        "12",
+        "--seed",
+        "4",
+    ];
+    let doc = json(&identify_fanuc(&args));
+    let b = &doc["bootstrap"];
+    let data = fanuc_csv();
+    let base = ["identify", "--setup", "fanuc-r2000ic-165f", "--data"];
+    let out = stiffid(&[&base[..], &[data.to_str().unwrap()], &args[..]].concat());
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("Posture bootstrap (12 resamples, seed 4;"),
+        "{text}"
+    );
+    let share = 100.0 * b["recommended_share"].as_f64().unwrap();
+    assert!(text.contains(&format!("the recommended model exactly: {share:.1}%")));
+    let table = text.split("97.5%  unit\n").nth(1).unwrap();
+    let parameters = b["parameters"].as_array().unwrap();
+    assert!(parameters.len() >= 6);
+    for (p, row) in parameters.iter().zip(table.lines()) {
+        let fields: Vec<&str> = row.split_whitespace().collect();
+        let value = |key: &str| format!("{:.0}", p[key].as_f64().unwrap());
+        let chosen = format!("{:.1}%", 100.0 * p["chosen_share"].as_f64().unwrap());
+        let expected = [
+            p["name"].as_str().unwrap().to_string(),
+            chosen,
+            value("median"),
+            value("percentile_2_5"),
+            value("percentile_97_5"),
+            p["unit"].as_str().unwrap().to_string(),
+        ];
+        assert_eq!(fields, expected, "{row}");
+    }
+    let without = json(&identify_fanuc(&args[..3]));
+    assert!(without.get("bootstrap").is_none());
+}
