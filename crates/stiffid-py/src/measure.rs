@@ -301,12 +301,13 @@ fn labels(origin: &Origin) -> Option<Vec<String>> {
 /// ``recommended``; NaN where the document has ``null``) and ``fragment`` (the recommended
 /// model as a ``[model]`` fragment for ``Setup.with_model``). ``bootstrap=N`` (1 to 10000)
 /// adds the posture bootstrap (``stiffid identify --compare-models --bootstrap N --seed S``):
-/// postures drawn with replacement (``seed``, the same result whatever the thread count), the
+/// postures drawn with replacement (``seed``, default 1, only with ``bootstrap``; the same result
+/// whatever the thread count), the
 /// selection redone on each resample; the document's ``bootstrap`` holds how often each
 /// parameter is chosen and the spread of its stiffness over the models chosen. Not with
 /// ``robust``, ``nonnegative``, ``cross_validate``, ``folds`` or ``offsets``.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None, bootstrap=None, seed=1))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None, bootstrap=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify<'py>(
     py: Python<'py>,
@@ -324,14 +325,18 @@ pub fn identify<'py>(
     compare_models: bool,
     candidates: Option<Vec<String>>,
     bootstrap: Option<usize>,
-    seed: u64,
+    seed: Option<u64>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    if seed.is_some() && bootstrap.is_none() {
+        return Err(value("seed: only with bootstrap"));
+    }
     let s = &setup.inner;
     if compare_models {
         if robust.is_some() || nonnegative || cross_validate || folds.is_some() || offsets {
             return Err(value("compare_models compares least-squares fits held out posture by posture: leave out robust, nonnegative, cross_validate, folds and offsets"));
         }
         let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
+        let seed = seed.unwrap_or(1);
         let bootstrap = bootstrap.map(|resamples| Resampling { resamples, seed });
         return Ok(compare::compare_models(py, setup, data, candidates, bootstrap)?.into_any());
     }

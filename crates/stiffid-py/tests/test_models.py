@@ -85,6 +85,8 @@ def test_compare_models_bootstrap_refusals(fanuc):
         stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=10001)
     with pytest.raises(ValueError, match="bootstrap: only with compare_models"):
         stiffid.identify(fanuc, FANUC_DATA, bootstrap=10)
+    with pytest.raises(ValueError, match="seed: only with bootstrap"):
+        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, seed=3)
 
 
 def test_identify_over_a_model_is_the_commands_document(compared, cli, tmp_path):

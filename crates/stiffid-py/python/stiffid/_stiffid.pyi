@@ -304,7 +304,7 @@ def identify(
     compare_models: Literal[True],
     candidates: Optional[Sequence[str]] = None,
     bootstrap: Optional[int] = None,
-    seed: int = 1,
+    seed: Optional[int] = None,
 ) -> dict[str, Any]: ...
 def validate(
     setup: Setup,
