@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, json, numbers, stiffid, temp_dir, write_file};
 use std::path::PathBuf;
 
 /// The paper setup (as `stiffid setups show` prints it) with `extra` appended, written to `dir`.
@@ -109,6 +109,22 @@ fn select_in_a_cell_is_feasible_and_shows_the_unconstrained_optimum() {
     assert!(free["value"].as_f64().unwrap() > 0.0);
     assert_eq!(free["postures_deg"].as_array().unwrap().len(), 6);
     assert!(free["criteria"]["relative_a"].as_f64().unwrap() > 0.0);
+    // What the checks cost, in %: the feasible value over the unconstrained one, and the mean
+    // of each group's predicted deviation rates (levels x joints) over the other's.
+    let value = |d: &serde_json::Value| d["value"].as_f64().unwrap();
+    let cost = free["cost_percent"].as_f64().unwrap();
+    assert!((cost - 100.0 * (value(&doc) / value(free) - 1.0)).abs() < 1e-9);
+    let mean = |c: &serde_json::Value| {
+        let rows = c["predicted_deviation_pct"].as_array().unwrap();
+        let all: Vec<f64> = rows.iter().flat_map(numbers).collect();
+        all.iter().sum::<f64>() / all.len() as f64
+    };
+    let pct = |key: &str| free[key].as_f64().unwrap();
+    let (feasible, unconstrained) = (mean(&doc["criteria"]), mean(&free["criteria"]));
+    assert!((pct("feasible_predicted_average_pct") - feasible).abs() < 1e-12 * feasible);
+    assert!((pct("predicted_average_pct") - unconstrained).abs() < 1e-12 * unconstrained);
+    let change = 100.0 * (feasible / unconstrained - 1.0);
+    assert!((pct("predicted_average_change_percent") - change).abs() < 1e-9);
     let eval = json(&stiffid(&[
         "evaluate",
         "--setup",

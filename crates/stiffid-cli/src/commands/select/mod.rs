@@ -13,13 +13,13 @@ use crate::progress::Bars;
 use crate::report::plan;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::app::select::document::{Document, Pool};
+use stiffid::app::select::document::{Document, Free, Pool};
 use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::common::limits::{self, short};
 use stiffid::common::words::count;
 use stiffid::design::calibration::CalibrationCriterion;
 use stiffid::design::distinct::Distinctness;
-use stiffid::design::{Criterion, Evaluation, Gradient, PoolOptions, SearchOptions, Solver};
+use stiffid::design::{Criterion, Gradient, PoolOptions, SearchOptions, Solver};
 use stiffid::{io::postures, Setup};
 
 /// Arguments of `stiffid select`.
@@ -243,8 +243,8 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
     if let Some(c) = &doc.calibration {
         text += &calibration_text(c);
     }
-    if let Some(free) = &r.unconstrained {
-        text += &cost_text(&objective(r), r, &free.evaluation, free.value);
+    if let (Some(free), Some(doc)) = (&r.unconstrained, &doc.unconstrained) {
+        text += &cost_text(&objective(r), r, free.value, doc);
     }
     text += &format!("postures written to {}\n", args.out.display());
     if let Some(dir) = &args.report {
@@ -291,23 +291,24 @@ fn pool_text(p: &Pool) -> String {
     )
 }
 
-/// What the cell's checks cost: the feasible group beside the unconstrained optimum, in words.
-fn cost_text(criterion: &str, r: &Report, free_e: &Evaluation, free_value: f64) -> String {
-    let mean = Evaluation::predicted_average_pct;
-    let e = &r.evaluation;
+/// What the cell's checks cost: the feasible group beside the unconstrained optimum (of
+/// minimised value `free_value`), in words, its shares from the document's `free`.
+fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> String {
+    let percent = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{v:+.1}"));
     let mut text = format!(
-        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({:+.1}%)\n",
+        "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({}%)\n",
         number(shown(r, r.value)),
         number(shown(r, free_value)),
-        100.0 * (r.value / free_value - 1.0),
+        percent(free.cost_percent),
     );
-    // NaN only for a setup without a nominal stiffness (stiffid::design::Evaluation).
-    if !mean(e).is_nan() {
+    // None only for a setup without a nominal stiffness (stiffid::design::Evaluation).
+    if let (Some(feasible), Some(unconstrained)) = (
+        free.feasible_predicted_average_pct,
+        free.predicted_average_pct,
+    ) {
         text += &format!(
-            "  predicted mean deviation rate: {:.3}% feasible vs {:.3}% unconstrained ({:+.1}%)\n",
-            mean(e),
-            mean(free_e),
-            100.0 * (mean(e) / mean(free_e) - 1.0)
+            "  predicted mean deviation rate: {feasible:.3}% feasible vs {unconstrained:.3}% unconstrained ({}%)\n",
+            percent(free.predicted_average_change_percent)
         );
     }
     text

@@ -207,6 +207,16 @@ pub struct Free {
     pub postures_deg: Vec<[f64; 6]>,
     /// Every criterion of the unconstrained group.
     pub criteria: Criteria,
+    /// What the cell's checks cost: the feasible group's minimised value over the unconstrained
+    /// one's, minus 1, % (`null` unless finite).
+    pub cost_percent: Option<f64>,
+    /// The feasible group's predicted mean deviation rate (over the noise levels and joints), %;
+    /// `null` for a setup without a nominal stiffness.
+    pub feasible_predicted_average_pct: Option<f64>,
+    /// The unconstrained group's, %.
+    pub predicted_average_pct: Option<f64>,
+    /// `feasible_predicted_average_pct` over `predicted_average_pct`, minus 1, %.
+    pub predicted_average_change_percent: Option<f64>,
 }
 
 impl Document {
@@ -238,7 +248,7 @@ impl Document {
                 .map(|c| c.weight),
             pool: r.pool.as_ref().map(Pool::from),
             target: r.target.as_ref().map(Target::from),
-            unconstrained: r.unconstrained.as_ref().map(Free::from),
+            unconstrained: r.unconstrained.as_ref().map(|u| Free::new(r, u)),
             near_postures: r.near.iter().map(NearDoc::from).collect(),
             out: None,
             report: None,
@@ -298,13 +308,22 @@ impl From<&TargetStep> for Step {
     }
 }
 
-impl From<&Unconstrained> for Free {
-    fn from(u: &Unconstrained) -> Self {
+impl Free {
+    /// The unconstrained optimum `u` of the search `r`, beside `r`'s feasible group.
+    fn new(r: &Report, u: &Unconstrained) -> Self {
+        let (feasible, free) = (
+            r.evaluation.predicted_average_pct(),
+            u.evaluation.predicted_average_pct(),
+        );
         Self {
             value: finite(u.value),
             termination: u.termination.name(),
             postures_deg: degrees(&u.postures),
             criteria: Criteria::from(&u.evaluation),
+            cost_percent: finite(100.0 * (r.value / u.value - 1.0)),
+            feasible_predicted_average_pct: finite(feasible),
+            predicted_average_pct: finite(free),
+            predicted_average_change_percent: finite(100.0 * (feasible / free - 1.0)),
         }
     }
 }
