@@ -525,9 +525,10 @@ fn text_figures_of_the_cross_validation_are_the_documents() {
         scores[(0.95 * scores.len() as f64).ceil() as usize - 1]
     );
     assert!(q95 > scores[0] && q95 < scores[scores.len() - 1]);
+    assert_eq!(p["score_q95_percent"].as_f64().unwrap(), 100.0 * q95);
     let within = format!(
         "95% of the held-out errors are within {:.1}% of the predicted displacement",
-        100.0 * q95
+        p["score_q95_percent"].as_f64().unwrap()
     );
     assert!(text.contains(&within), "{within} not in\n{text}");
 }

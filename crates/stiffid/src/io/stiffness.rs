@@ -152,6 +152,9 @@ pub struct PredictionSection {
     /// `noise_floor_mm`; `null` without scores. Written for the reader, ignored when read.
     #[serde(default)]
     pub score_q95: Option<f64>,
+    /// `score_q95` in %. Written for the reader, ignored when read.
+    #[serde(default)]
+    pub score_q95_percent: Option<f64>,
     /// One per fold, at most [`prediction::MAX_FOLDS`], with at most [`prediction::MAX_SCORES`]
     /// scores in all.
     pub folds: Vec<FoldSection>,
@@ -180,6 +183,7 @@ impl PredictionSection {
             postures: calibration.postures,
             noise_floor_mm: calibration.noise_floor * 1e3,
             score_q95: calibration.score_quantile(0.95),
+            score_q95_percent: calibration.score_quantile(0.95).map(|q| 100.0 * q),
             folds: calibration
                 .folds
                 .iter()

@@ -417,7 +417,7 @@ pub fn prediction(p: &PredictionSection) -> String {
         p.method,
         scores,
         stiffid::common::words::count(p.postures, "posture"),
-        opt(p.score_q95.map(|q| 100.0 * q), 1),
+        opt(p.score_q95_percent, 1),
         p.noise_floor_mm
     )
 }
