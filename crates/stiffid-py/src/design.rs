@@ -22,12 +22,14 @@ pub fn evaluate<'py>(
     py: Python<'py>,
     setup: &Setup,
     group: &[Vector6<f64>],
+    candidates: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let request = evaluate::Request {
         purpose: Default::default(),
         calibration: Default::default(),
         setup,
         postures: group,
+        candidates,
     };
     let report = py.detach(|| evaluate::run(&request)).map_err(raise)?;
     warn(py, &report.warnings)?;

@@ -266,14 +266,22 @@ impl Setup {
     /// lacks a field for: ``classical`` and ``zhang2021`` without ``characteristic_length_mm``;
     /// ``scaled_cond``, ``d_optimal``, ``relative_a``, ``relative_std`` and
     /// ``predicted_deviation_pct`` without ``nominal_stiffness_nm_per_rad``; ``test_pose_mm``
-    /// without test postures. ``ValueError`` for a group that cannot identify every joint.
+    /// without test postures. ``candidates``: how the group identifies each candidate of
+    /// ``identify --compare-models`` together with the setup's model (``identified``,
+    /// ``separation``, the combinations it cannot separate, and ``separable``: those the
+    /// comparison can separate on data measured in the group), for the candidates named in
+    /// ``candidates`` (families or single candidates, as ``stiffid evaluate --candidates``),
+    /// default all. ``ValueError`` for a group that cannot identify every joint, or an unknown
+    /// candidate.
+    #[pyo3(signature = (postures_deg, *, candidates=None))]
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
         postures_deg: &Bound<'py, PyAny>,
+        candidates: Option<Vec<String>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let group = self.group(postures_deg, "postures_deg")?;
-        design::evaluate(py, &self.inner, &group)
+        design::evaluate(py, &self.inner, &group, candidates)
     }
 
     /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises

@@ -4,8 +4,9 @@
 use crate::commands::common::{choice, Common};
 use crate::output::{self, json};
 use crate::{feasibility, load};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::PathBuf;
+use stiffid::app::document::candidates::CandidatesDoc;
 use stiffid::app::evaluate::document::{
     CalibrationDoc, Criteria, Document, Infinite, InfiniteCriterion,
 };
@@ -29,6 +30,11 @@ pub struct Args {
     postures: PathBuf,
     #[command(flatten)]
     purpose: ForArgs,
+    /// The candidates of `identify --compare-models` to judge the group for, comma-separated:
+    /// single candidates (`tilt3_z`, `bend2_y`, `lost2`, a declared spring's name) or families
+    /// (`tilt`, `bend`, `base`, `tool`, `lost`, `load`, `declared`); default all of them.
+    #[arg(long, value_delimiter = ',')]
+    candidates: Option<Vec<String>>,
 }
 
 /// What a group is designed for, and the calibration it is for (`select`, `evaluate`).
@@ -132,8 +138,14 @@ pub fn run(args: &Args) -> Result<()> {
         postures: &group,
         purpose: args.purpose.purpose,
         calibration: args.purpose.options(),
+        candidates: args.candidates.clone(),
     };
-    let report = job::run(&request).with_context(|| args.postures.display().to_string())?;
+    let report = job::run(&request).map_err(|e| match e {
+        Error::InvalidField { ref field, .. } if field == "candidates" => {
+            anyhow::Error::new(e).context("--candidates")
+        }
+        e => anyhow::Error::new(e).context(args.postures.display().to_string()),
+    })?;
     output::warnings(&report.warnings);
     let doc = Document::new(&report, &setup);
     if args.common.json {
@@ -166,9 +178,19 @@ pub fn run(args: &Args) -> Result<()> {
     };
     if let Some(why) = not_computed {
         s += &format!("  not computed: {why}\n");
-        s += &feasibility::text(&doc.feasibility);
-        return output::print(&s);
+    } else {
+        s += &deviation_text(&setup, e);
     }
+    if let Some(c) = &doc.candidates {
+        s += &candidates_text(c);
+    }
+    s += &feasibility::text(&doc.feasibility);
+    output::print(&s)
+}
+
+/// The predicted mean deviation rates, one row per noise level.
+fn deviation_text(setup: &Setup, e: &Evaluation) -> String {
+    let mut s = String::new();
     s += &format!("{:>5} {:>6}  {}\n", "level", "x var", joints_header());
     for (l, (m, row)) in setup
         .noise()
@@ -180,8 +202,61 @@ pub fn run(args: &Args) -> Result<()> {
         let cells: Vec<String> = row.iter().map(|v| format!("{v:>9.4}")).collect();
         s += &format!("{:>5} {:>6.2}  {}\n", l + 1, m, cells.join(" "));
     }
-    s += &feasibility::text(&doc.feasibility);
-    output::print(&s)
+    s
+}
+
+/// The candidates of the model comparison as the group identifies them with the model: one line
+/// each, then those `--compare-models` can separate on data measured in the group.
+pub fn candidates_text(c: &CandidatesDoc) -> String {
+    let mut s = format!(
+        "\ncandidates of --compare-models with the model ({}; separation: the share of the candidate's deflections the model cannot reproduce, 0 to 1)\n",
+        count(c.load_levels, "load level")
+    );
+    s += &format!(
+        "  {:<16} {:<9} {:<16} {:>10}\n",
+        "candidate", "family", "identified", "separation"
+    );
+    for k in &c.candidates {
+        let id = match (k.identified, k.needs_load_steps) {
+            (false, _) => "NOT identified",
+            (true, true) => "by posture only",
+            (true, false) => "identified",
+        };
+        s += &format!(
+            "  {:<16} {:<9} {id:<16} {:>10.4}\n",
+            k.name, k.family, k.separation
+        );
+        for u in &k.unidentifiable {
+            s += &format!("    cannot separate: {u}\n");
+        }
+    }
+    s += &format!(
+        "  --compare-models can separate {} of the {} on data measured in this group{}\n",
+        c.separable.len(),
+        c.candidates.len(),
+        match c.separable.len() == c.candidates.len() {
+            true => String::new(),
+            false => format!(": {}", c.separable.join(", ")),
+        }
+    );
+    s += &match c.together {
+        true => "  the model and every linear candidate at once: identified (every model of a forward selection among them is)\n".to_string(),
+        false => format!(
+            "  the model and every linear candidate at once: NOT identified ({} combinations cannot be separated; select --for-candidates designs for them)\n",
+            c.together_unidentifiable.len()
+        ),
+    };
+    if let Some(note) = &c.nonlinear_separation {
+        s += &format!("  lost motion and load-dependent compliance ('by posture only'): {note}\n");
+    }
+    if !c.dropped.is_empty() {
+        let names: Vec<&str> = c.dropped.iter().map(|d| d.name.as_str()).collect();
+        s += &format!(
+            "  left out of the pool (along a joint's own axis or another candidate's): {}\n",
+            names.join(", ")
+        );
+    }
+    s
 }
 
 /// Every criterion of a document's `criteria` on `setup`, one per line (smaller is better): an

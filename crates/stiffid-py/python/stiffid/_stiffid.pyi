@@ -160,8 +160,10 @@ class Setup:
     def upper_deg(self) -> _Array: ...
     @property
     def test_postures_deg(self) -> _Array: ...
-    def evaluate(self, postures_deg: ArrayLike) -> dict[str, Any]:
-        """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable; None where the setup lacks the field."""
+    def evaluate(
+        self, postures_deg: ArrayLike, *, candidates: Optional[Sequence[str]] = None
+    ) -> dict[str, Any]:
+        """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable, candidates; None where the setup lacks the field."""
     def select(
         self,
         criterion: _CriterionName = "relative-a",

@@ -5,9 +5,11 @@
 //! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
 //! chooses them from a list of candidate postures, [`target`] finds how many postures reach a
 //! predicted accuracy, [`distinct`] flags postures of a group that are not distinct, and
-//! [`registration`] chooses the postures that register the tracker best.
+//! [`registration`] chooses the postures that register the tracker best; [`candidates`] says
+//! which candidates of the model comparison a group identifies and designs for them.
 
 pub mod calibration;
+pub mod candidates;
 pub mod criteria;
 pub mod distinct;
 mod evaluator;

@@ -13,6 +13,7 @@ mod comau_checks;
 mod common;
 mod compensate;
 mod criteria;
+mod design_candidates;
 mod distinct_postures;
 mod fanuc_data;
 mod fanuc_prediction;

@@ -11,6 +11,7 @@
 //! turns the same documents into dicts (and arrays where its API promises arrays), so the two
 //! front ends give the same document for the same call.
 
+pub mod candidates;
 pub mod feasibility;
 pub mod parameters;
 

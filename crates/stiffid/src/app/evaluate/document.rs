@@ -2,6 +2,7 @@
 //! Python's `Setup.evaluate`; its criteria part ([`Criteria`]) is also the `criteria` of the
 //! select document and its values ([`CriteriaValues`]) those of the study's summary.
 
+use crate::app::document::candidates::CandidatesDoc;
 use crate::app::document::feasibility::{self, Posture};
 use crate::app::document::{finite, mm};
 use crate::app::evaluate::Report;
@@ -200,6 +201,10 @@ pub struct Document {
     /// With `--for calibration` or `both`: the group's calibration criteria.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub calibration: Option<CalibrationDoc>,
+    /// Unless `--for calibration`: how the group identifies each candidate of the model
+    /// comparison together with the setup's model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub candidates: Option<CandidatesDoc>,
 }
 
 /// The calibration criteria of a group (docs/model.md, "Design for calibration"), over the
@@ -264,6 +269,7 @@ impl Document {
             parameters: parameters(&report.evaluation, setup),
             unidentifiable: report.unidentifiable.clone(),
             calibration: (report.calibration.as_ref()).map(|(o, c)| CalibrationDoc::new(o, c)),
+            candidates: report.candidates.as_ref().map(CandidatesDoc::from),
         }
     }
 }

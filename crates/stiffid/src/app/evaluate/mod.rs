@@ -1,7 +1,8 @@
 //! The evaluate job: every design criterion of a group of postures (Zhang et al. 2021, Eq.
 //! 19-21, and the criteria beyond the paper, [`crate::design::criteria`]), its predicted
-//! deviation rates, each posture's feasibility in the cell, and which parameters of the setup's
-//! model the group identifies.
+//! deviation rates, each posture's feasibility in the cell, which parameters of the setup's
+//! model the group identifies, and which candidates of the model comparison it identifies
+//! together with the model ([`crate::design::candidates`]).
 
 pub mod document;
 
@@ -9,7 +10,9 @@ use super::purpose::{self, CalibrationOptions, Purpose};
 use super::Warning;
 use crate::cell::{Checker, Feasibility};
 use crate::design::calibration::CalibrationCriteria;
+use crate::design::candidates::{verdicts, Verdicts};
 use crate::design::{evaluate, unidentifiable, Evaluation};
+use crate::identify::compare::{default_pool, pool_by_name, Pool};
 use crate::math::lsq::Factor;
 use crate::observation::rope_observation_matrix;
 use crate::{Result, Setup};
@@ -27,6 +30,9 @@ pub struct Request<'a> {
     pub purpose: Purpose,
     /// The calibration the group is for ([`purpose::design`]).
     pub calibration: CalibrationOptions,
+    /// The candidates to judge the group for, as `identify --compare-models --candidates` names
+    /// them ([`pool_by_name`]); `None` for the default pool ([`default_pool`]).
+    pub candidates: Option<Vec<String>>,
 }
 
 /// What the evaluation found.
@@ -42,6 +48,9 @@ pub struct Report {
     /// With [`Purpose::Calibration`] or [`Purpose::Both`]: the calibration options and the
     /// group's calibration criteria.
     pub calibration: Option<(CalibrationOptions, CalibrationCriteria)>,
+    /// With a purpose with the stiffness: how the group identifies each candidate of the model
+    /// comparison together with the setup's model.
+    pub candidates: Option<Verdicts>,
     /// None today: the job's warnings, for the pattern ([`crate::app`]).
     pub warnings: Vec<Warning>,
 }
@@ -52,7 +61,8 @@ pub struct Report {
 /// For the drives alone and a purpose with the stiffness, [`Error::Unidentifiable`] naming the
 /// joints when the group's observation matrix cannot identify every joint (a model with virtual
 /// springs reports what it cannot separate in [`Report::unidentifiable`] instead); those of
-/// [`purpose::design`] and [`crate::design::calibration::CalibrationDesign::evaluate`].
+/// [`purpose::design`] and [`crate::design::calibration::CalibrationDesign::evaluate`];
+/// [`pool_by_name`]'s for the candidates; [`verdicts`]'.
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     setup.check_bodies()?;
@@ -66,13 +76,33 @@ pub fn run(request: &Request) -> Result<Report> {
             Some((request.calibration, design.evaluate(postures)?))
         }
     };
+    let candidates = match request.purpose {
+        Purpose::Calibration => None,
+        _ => Some(verdicts(
+            setup,
+            postures,
+            &pool(setup, &request.candidates)?,
+        )?),
+    };
     let evaluation = evaluate(setup, postures);
     let checker = Checker::new(setup);
     Ok(Report {
+        candidates,
         feasibility: postures.iter().map(|q| checker.feasibility(q)).collect(),
         unidentifiable: unidentifiable(&evaluation, setup),
         evaluation,
         calibration,
         warnings: Vec::new(),
     })
+}
+
+/// The pool of the candidates `names` ([`pool_by_name`]), the default pool for `None`.
+///
+/// # Errors
+/// Those of [`pool_by_name`].
+pub fn pool(setup: &Setup, names: &Option<Vec<String>>) -> Result<Pool> {
+    match names {
+        Some(names) => pool_by_name(setup, names),
+        None => Ok(default_pool(setup)),
+    }
 }

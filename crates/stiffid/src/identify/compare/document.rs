@@ -83,13 +83,22 @@ pub struct SpreadDoc {
 }
 
 /// A candidate left out of the pool.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct DroppedDoc {
     /// The candidate's name.
     pub name: String,
     /// Why: its axis is a joint's own, or it gives the same column as another spring.
     pub reason: String,
+}
+
+impl From<&super::Dropped> for DroppedDoc {
+    fn from(d: &super::Dropped) -> Self {
+        Self {
+            name: d.name.clone(),
+            reason: d.reason.clone(),
+        }
+    }
 }
 
 /// One model.
@@ -308,10 +317,7 @@ impl Comparison {
         if !any {
             return None;
         }
-        Some(match self.load_levels {
-            1 => "one load level per posture: a lost motion or a load-dependent compliance differs from a spring only through how the load changes from posture to posture, so it also takes up whatever else changes with the posture; trust it only when several load levels in the same posture (load steps) or a wide range of loads confirm it".into(),
-            n => format!("up to {n} load levels per posture: each posture's load-deflection curve separates a lost motion (its intercept) and a load-dependent compliance (its curvature) from the springs"),
-        })
+        Some(super::pool::nonlinear_separation(self.load_levels))
     }
 
     /// What the comparison recommends, in words.
@@ -396,13 +402,7 @@ impl Comparison {
             load_levels: self.load_levels,
             nonlinear_separation: self.nonlinear_separation(),
             bootstrap: bootstrap.map(|b| self.bootstrap_doc(b)),
-            dropped: dropped
-                .iter()
-                .map(|d| DroppedDoc {
-                    name: d.name.clone(),
-                    reason: d.reason.clone(),
-                })
-                .collect(),
+            dropped: dropped.iter().map(DroppedDoc::from).collect(),
         }
     }
 

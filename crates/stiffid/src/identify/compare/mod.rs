@@ -22,7 +22,7 @@ pub mod pool;
 
 pub use bootstrap::{bootstrap, Bootstrap, Resampling};
 pub use document::{parameter_docs, Document};
-pub use pool::{default_pool, pool_by_name, Dropped, Pool};
+pub use pool::{default_pool, nonlinear_separation, pool_by_name, Dropped, Pool};
 
 use super::cross_validation::explained_share;
 use super::model::{fit, held_out, Fit, HeldOut};

@@ -55,8 +55,20 @@ pub struct Dropped {
 pub struct Pool {
     /// The candidates, in the order of the module docs.
     pub candidates: Vec<Spring>,
+    /// Each candidate's family ([`CANDIDATE_FAMILIES`]), in the order of `candidates`.
+    pub families: Vec<&'static str>,
     /// Those dropped, with the reason.
     pub dropped: Vec<Dropped>,
+}
+
+/// Whether `load_levels` load levels per posture separate a lost motion or a load-dependent
+/// compliance from the springs, in words ([`crate::model::Law`]): the data's most load levels in
+/// one posture for a comparison, the setup's load steps (1 without) for a design.
+pub fn nonlinear_separation(load_levels: usize) -> String {
+    match load_levels {
+        0 | 1 => "one load level per posture: a lost motion or a load-dependent compliance differs from a spring only through how the load changes from posture to posture, so it also takes up whatever else changes with the posture; trust it only when several load levels in the same posture (load steps) or a wide range of loads confirm it".into(),
+        n => format!("up to {n} load levels per posture: each posture's load-deflection curve separates a lost motion (its intercept) and a load-dependent compliance (its curvature) from the springs"),
+    }
 }
 
 /// The candidate families by name, for `--candidates`.
@@ -204,6 +216,7 @@ fn build(setup: &Setup, wanted: &dyn Fn(&str, &Spring) -> bool) -> Pool {
     let model = setup.model().springs();
     let mut pool = Pool {
         candidates: Vec::new(),
+        families: Vec::new(),
         dropped: Vec::new(),
     };
     for (family, s) in every_candidate(setup) {
@@ -220,7 +233,10 @@ fn build(setup: &Setup, wanted: &dyn Fn(&str, &Spring) -> bool) -> Pool {
                 name: s.name,
                 reason,
             }),
-            None => pool.candidates.push(s),
+            None => {
+                pool.candidates.push(s);
+                pool.families.push(family);
+            }
         }
     }
     pool
