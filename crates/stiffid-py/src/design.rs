@@ -56,6 +56,8 @@ pub struct Request<'a> {
     pub target_pct: Option<f64>,
     /// mm.
     pub margin_mm: Option<f64>,
+    pub for_candidates: bool,
+    pub candidates: Option<Vec<String>>,
 }
 
 /// Runs the select job (the GIL released) and returns its document, its warnings raised.
@@ -109,6 +111,8 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         options,
         restarts: r.restarts.unwrap_or(PoolOptions::default().restarts),
         distinct: None,
+        for_candidates: r.for_candidates,
+        candidates: r.candidates,
         progress: &(),
     };
     let report = py.detach(|| select::run(&request)).map_err(raise)?;

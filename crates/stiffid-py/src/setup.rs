@@ -307,12 +307,18 @@ impl Setup {
     /// ``"exact"`` or ``"fd"``; ``solver`` the SQP: ``"auto"`` (per criterion: ``"active-set"``
     /// on ``relative-a``, ``d-optimal`` and ``test-pose``, ``"slsqp"`` on the others),
     /// ``"slsqp"`` or ``"active-set"`` (ours); the document's ``solver`` names the one that ran.
+    /// ``for_candidates=True``: design for the setup's model and the candidates of
+    /// ``identify --compare-models`` together (``candidates``: families or single candidates,
+    /// default all; the linear ones are added to the model of the design, each at the drives'
+    /// geometric-mean stiffness unless declared with one), the document's ``candidates`` saying
+    /// how the group identifies each, as ``evaluate`` does; ``ValueError`` for too few postures
+    /// (naming the count needed), with ``target_pct``, or ``candidates`` without it.
     /// Deterministic for a ``seed``. Returns the document of ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -332,6 +338,8 @@ impl Setup {
         restarts: Option<usize>,
         target_pct: Option<f64>,
         margin_mm: Option<f64>,
+        for_candidates: bool,
+        candidates: Option<Vec<String>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {
@@ -354,6 +362,8 @@ impl Setup {
             restarts,
             target_pct,
             margin_mm,
+            for_candidates,
+            candidates,
         };
         design::select(py, &self.inner, request)
     }

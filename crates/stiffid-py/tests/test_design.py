@@ -183,3 +183,32 @@ def test_fields_only_some_criteria_use_may_be_left_out(paper, cli, tmp_path):
         stiffid.simulate(no_stiffness, [group], runs=5)
     with pytest.raises(ValueError, match=r"nominal_stiffness_nm_per_rad: predict without a stiffness"):
         stiffid.deflection(no_stiffness, group[0], [0, 0, -500, 0, 0, 0])
+
+
+def test_the_candidates_documents_equal_the_command(paper, cli, tmp_path):
+    """Evaluate with candidates and select for the candidates: the same documents from Python and
+    the command; the group designed for the candidates identifies every designable one together."""
+    group = paper.random_group(6, 7)
+    path = write_postures(tmp_path / "group.csv", group)
+    mine = paper.evaluate(group, candidates=["tilt", "lost2"])
+    theirs = cli("evaluate", "--setup", "zhang2021-comau-nj165", "--postures", path,
+                 "--candidates", "tilt,lost2", "--json")
+    assert plain(mine) == theirs
+    assert {c["family"] for c in mine["candidates"]["candidates"]} == {"tilt", "lost"}
+    assert mine["candidates"]["candidates"][-1]["needs_load_steps"]
+    chosen = paper.select(method="global", n=8, starts=4, for_candidates=True, candidates=["tilt", "bend"])
+    theirs = cli("select", "--setup", "zhang2021-comau-nj165", "--out", tmp_path / "out.csv", "--json",
+                 "--global", "--postures", 8, "--starts", 4, "--for-candidates", "--candidates", "tilt,bend")
+    assert timeless(plain(chosen)) == timeless(theirs)
+    c = chosen["candidates"]
+    assert c["together"] and c["designed"] == c["designable"] and c["nonlinear"] == []
+    assert all(k["identified"] for k in c["candidates"] if k["name"] in c["designable"])
+
+
+def test_a_design_for_the_candidates_refuses(paper):
+    with pytest.raises(ValueError, match=r"for_candidates: .* at least 5 postures"):
+        paper.select(method="global", n=3, starts=2, for_candidates=True)
+    with pytest.raises(ValueError, match=r"candidates: only with for_candidates"):
+        paper.select(method="global", n=6, starts=2, candidates=["tilt"])
+    with pytest.raises(ValueError, match=r"candidates: 'elbow' is not a candidate"):
+        paper.evaluate(paper.random_group(6, 1), candidates=["elbow"])

@@ -239,13 +239,20 @@ pub fn candidates_text(c: &CandidatesDoc) -> String {
             false => format!(": {}", c.separable.join(", ")),
         }
     );
-    s += &match c.together {
-        true => "  the model and every linear candidate at once: identified (every model of a forward selection among them is)\n".to_string(),
-        false => format!(
-            "  the model and every linear candidate at once: NOT identified ({} combinations cannot be separated; select --for-candidates designs for them)\n",
-            c.together_unidentifiable.len()
-        ),
-    };
+    s += &format!(
+        "  the model and the {} candidates a design can identify together, at once: {}\n",
+        c.designable.len(),
+        match c.together {
+            true => "identified (and so is every model a forward selection among them reaches)".to_string(),
+            false => format!(
+                "NOT identified ({} combinations cannot be separated; select --for-candidates designs for them)",
+                c.together_unidentifiable.len()
+            ),
+        }
+    );
+    for d in &c.not_designable {
+        s += &format!("  {}: {}\n", d.name, d.reason);
+    }
     if let Some(note) = &c.nonlinear_separation {
         s += &format!("  lost motion and load-dependent compliance ('by posture only'): {note}\n");
     }

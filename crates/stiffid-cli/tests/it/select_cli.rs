@@ -418,3 +418,60 @@ fn select_for_calibration_refuses_a_group_that_cannot_separate_it() {
         }
     }
 }
+
+/// `select --for-candidates`: too few postures refused naming the count (nothing written), with
+/// `--for calibration` refused, `--candidates` only with it; a design of 6 postures prints how
+/// it identifies each candidate, and `evaluate --candidates` of that group agrees.
+#[test]
+fn select_for_candidates_refuses_and_reports() {
+    let d = temp_dir("for-candidates");
+    let out = d.join("group.csv");
+    let out_s = out.to_str().unwrap();
+    let setup = "zhang2021-comau-nj165";
+    let base = [
+        "select", "--setup", setup, "--global", "--starts", "2", "--out", out_s,
+    ];
+    let few = stiffid(&[&base[..], &["--for-candidates", "--postures", "4"]].concat());
+    assert_usage_error(&few, &["--for-candidates:", "at least 5 postures"]);
+    assert!(!out.exists());
+    let calibration = stiffid(&[&base[..], &["--for-candidates", "--for", "calibration"]].concat());
+    assert_usage_error(&calibration, &["--for-candidates:", "stiffness"]);
+    let names = stiffid(&[&base[..], &["--candidates", "tilt"]].concat());
+    assert_eq!(names.status.code(), Some(2));
+    let unknown = stiffid(&[&base[..], &["--for-candidates", "--candidates", "elbow"]].concat());
+    assert_usage_error(&unknown, &["--candidates", "'elbow' is not a candidate"]);
+    let doc = json(&stiffid(
+        &[
+            &base[..],
+            &["--for-candidates", "--candidates", "tilt", "--json"],
+        ]
+        .concat(),
+    ));
+    let c = &doc["candidates"];
+    assert_eq!(c["together"], true);
+    let designed = c["designed"].as_array().unwrap();
+    assert!(!designed.is_empty());
+    let text = String::from_utf8(
+        stiffid(&[
+            "evaluate",
+            "--setup",
+            setup,
+            "--postures",
+            out_s,
+            "--candidates",
+            "tilt",
+        ])
+        .stdout,
+    )
+    .unwrap();
+    assert!(text.contains("at once: identified"), "{text}");
+    for name in designed {
+        let line = (text.lines())
+            .find(|l| {
+                l.trim_start()
+                    .starts_with(&format!("{} ", name.as_str().unwrap()))
+            })
+            .unwrap();
+        assert!(line.contains(" identified "), "{line}");
+    }
+}

@@ -182,8 +182,10 @@ class Setup:
         restarts: Optional[int] = None,
         target_pct: Optional[float] = None,
         margin_mm: Optional[float] = None,
+        for_candidates: bool = False,
+        candidates: Optional[Sequence[str]] = None,
     ) -> dict[str, Any]:
-        """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained where they apply."""
+        """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained, candidates where they apply."""
     def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...
 
 @final

@@ -475,7 +475,10 @@ pub enum JobOption {
     DistinctMm,
     /// select: the margin every posture keeps to every constraint of the cell, mm.
     MarginMm,
-    /// identify --compare-models: the candidate springs, by family or name.
+    /// select: design for the candidates of the model comparison.
+    ForCandidates,
+    /// identify --compare-models, select --for-candidates, evaluate: the candidate springs, by
+    /// family or name.
     Candidates,
     /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
     /// deg), given together.
@@ -504,6 +507,7 @@ impl JobOption {
             JobOption::DistinctDeg => "distinct_deg",
             JobOption::DistinctMm => "distinct_mm",
             JobOption::MarginMm => "margin_mm",
+            JobOption::ForCandidates => "for_candidates",
             JobOption::Candidates => "candidates",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
             JobOption::PayloadKg => "payload_kg",

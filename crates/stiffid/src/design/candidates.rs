@@ -23,15 +23,18 @@
 //! [`Verdict::needs_load_steps`] says so; load steps (`[loading] steps_n`) separate them in every
 //! posture ([`crate::identify::compare::nonlinear_separation`]).
 //!
-//! **The design setup.** [`design_setup`] adds every linear candidate to the setup's model, so
+//! **The design setup.** [`design_setup`] adds the linear candidates to the setup's model, so
 //! that the design criteria and searches, which work over any number of parameters, choose a group
-//! for the model and the candidates together. A candidate needs a nominal stiffness for the scaled
+//! for the model and the candidates together. Not every set of candidates can be identified
+//! together by any group: [`designable`] keeps, in the pool's order, each that a generic group
+//! separates from the model and the candidates kept before it, and names the others with the
+//! combination no group can see. A candidate needs a nominal stiffness for the scaled
 //! criteria: its own when declared with one, else [`candidate_nominal_stiffness`]: a candidate is
 //! asked to be identified as well as a spring as compliant as the drives. The nonlinear candidates
 //! stay out of the design: what separates them is the load levels of each posture, which the
 //! choice of postures does not give (their verdict on the group is reported all the same).
 
-use crate::identify::compare::{Dropped, Pool};
+use crate::identify::compare::{default_pool, pool_by_name, Dropped, Pool};
 use crate::identify::model::identifiability;
 use crate::math::linalg::householder_qr_columns;
 use crate::model::{Kind, Parameter, Spring};
@@ -65,10 +68,12 @@ pub struct Verdicts {
     pub load_levels: usize,
     /// Each candidate of the pool, in its order.
     pub candidates: Vec<Verdict>,
-    /// The combinations of the model's parameters and every linear candidate at once (what
-    /// `select --for-candidates` designs for) that the group cannot separate, named: empty when it
-    /// identifies them all together, so that any model of a forward selection among them is
-    /// identified too.
+    /// The linear candidates a design can identify together with the model ([`designable`]):
+    /// what `select --for-candidates` designs for.
+    pub designable: Designable,
+    /// The combinations of the model's parameters and every designable candidate at once that
+    /// the group cannot separate, named: empty when it identifies them all together, so that any
+    /// model of a forward selection among them is identified too.
     pub together: Vec<String>,
     /// The candidates the pool left out, with why ([`Pool::dropped`]).
     pub dropped: Vec<Dropped>,
@@ -120,27 +125,92 @@ pub fn verdicts(setup: &Setup, postures: &[Vector6<f64>], pool: &Pool) -> Result
         })
     });
     let candidates: Vec<Verdict> = verdicts.collect::<Result<_>>()?;
+    let designable = designable(setup, pool)?;
     Ok(Verdicts {
         load_levels: scales.len(),
-        together: together(setup, &psi, pool)?,
+        together: unseparated(setup, &psi, pool, &designable.kept)?,
+        designable,
         candidates,
         dropped: pool.dropped.clone(),
     })
 }
 
-/// The combinations of the model's parameters and every linear candidate of `pool` that `psi`
-/// (the model's columns, then every candidate's) cannot separate, named.
-fn together(setup: &Setup, psi: &DMatrix<f64>, pool: &Pool) -> Result<Vec<String>> {
+/// The linear candidates of a pool that a design can identify together with the model, and
+/// those it cannot (module docs, "The design setup").
+#[derive(Debug, Clone, PartialEq)]
+pub struct Designable {
+    /// Their indices in the pool, in its order.
+    pub kept: Vec<usize>,
+    /// The linear candidates left out: a combination of the model's parameters and the earlier
+    /// kept candidates at every posture of the probe group, with that combination.
+    pub left_out: Vec<Dropped>,
+}
+
+/// The postures of the seeded group over the setup's bounds that [`designable`] probes.
+pub const PROBE_POSTURES: usize = 60;
+
+/// The seed of that group ([`crate::design::random_group`]).
+pub const PROBE_SEED: u64 = 1;
+
+/// The linear candidates of `pool`, in its order, that a design can identify together with the
+/// setup's model: each is kept unless the seeded group of [`PROBE_POSTURES`] postures over the
+/// setup's bounds (without the cell) cannot separate it from the model and the candidates kept
+/// before it (then no group can: a generic group separates whatever any group does). Several
+/// candidates can be jointly dependent though none duplicates another: an equal compliance along
+/// the base's three axes and along the tool's three axes deflects every point by the same `c f`.
+///
+/// # Errors
+/// [`Error::NotFinite`] for a non-finite observation matrix.
+pub fn designable(setup: &Setup, pool: &Pool) -> Result<Designable> {
+    let probe = crate::design::random_group(&setup.without_cell(), PROBE_POSTURES, PROBE_SEED);
+    let psi = observation(setup, &probe, &pool.candidates, &[1.0]);
     let n = setup.model().len();
-    let linear: Vec<usize> = (pool.candidates.iter().enumerate())
-        .filter(|(_, s)| s.law.is_linear())
-        .map(|(c, _)| n + c)
-        .collect();
-    let columns: Vec<usize> = (0..n).chain(linear.iter().copied()).collect();
     let mut names = setup.model().parameters();
-    for &c in &linear {
-        names.push(parameter_of(setup, &pool.candidates[c - n])?);
+    for spring in &pool.candidates {
+        names.push(parameter_of(setup, spring)?);
     }
+    let mut out = Designable {
+        kept: Vec::new(),
+        left_out: Vec::new(),
+    };
+    for (c, spring) in pool.candidates.iter().enumerate() {
+        if !spring.law.is_linear() {
+            continue;
+        }
+        let kept = out.kept.iter().map(|k| n + k);
+        let columns: Vec<usize> = (0..n).chain(kept).chain([n + c]).collect();
+        let id = identifiability(&psi.select_columns(&columns))?;
+        match id.unidentifiable.first() {
+            None => out.kept.push(c),
+            Some(u) => {
+                let named: Vec<Parameter> = columns.iter().map(|&j| names[j].clone()).collect();
+                out.left_out.push(Dropped {
+                    name: spring.name.clone(),
+                    reason: format!(
+                        "no group separates it from the model and the candidates before it: {} deflects nothing",
+                        u.describe(&named)
+                    ),
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The combinations of the model's parameters and the candidates `kept` (indices in `pool`)
+/// that `psi` (the model's columns, then every candidate's) cannot separate, named.
+fn unseparated(
+    setup: &Setup,
+    psi: &DMatrix<f64>,
+    pool: &Pool,
+    kept: &[usize],
+) -> Result<Vec<String>> {
+    let n = setup.model().len();
+    let mut names = setup.model().parameters();
+    for &c in kept {
+        names.push(parameter_of(setup, &pool.candidates[c])?);
+    }
+    let columns: Vec<usize> = (0..n).chain(kept.iter().map(|c| n + c)).collect();
     let sub = psi.select_columns(&columns);
     let rows = sub.nrows().max(columns.len());
     let id = identifiability(&sub.resize_vertically(rows, 0.0))?;
@@ -149,6 +219,18 @@ fn together(setup: &Setup, psi: &DMatrix<f64>, pool: &Pool) -> Result<Vec<String
         .iter()
         .map(|u| u.describe(&names))
         .collect())
+}
+
+/// The pool of the candidates `names` ([`pool_by_name`]: families or single candidates), the
+/// default pool ([`default_pool`]) for `None`.
+///
+/// # Errors
+/// Those of [`pool_by_name`].
+pub fn pool(setup: &Setup, names: Option<&[String]>) -> Result<Pool> {
+    match names {
+        Some(names) => pool_by_name(setup, names),
+        None => Ok(default_pool(setup)),
+    }
 }
 
 /// The candidate `spring` as a parameter of the setup's model with it.
@@ -232,19 +314,18 @@ pub fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f64> {
     })
 }
 
-/// `setup` with every linear candidate of `pool` added to its model (module docs), without
-/// declared candidates; and the names of the candidates left out of the design (the nonlinear
-/// ones).
+/// `setup` with every designable candidate of `pool` ([`designable`]) added to its model
+/// (module docs), without declared candidates; and the designable candidates.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`candidates`) when the model and the candidates exceed
 /// [`crate::common::limits::MAX_VIRTUAL_SPRINGS`] virtual springs (naming the count and asking
 /// for fewer with `--candidates`); the setup builder's errors.
-pub fn design_setup(setup: &Setup, pool: &Pool) -> Result<(Setup, Vec<String>)> {
-    let (linear, nonlinear): (Vec<&Spring>, Vec<&Spring>) =
-        pool.candidates.iter().partition(|s| s.law.is_linear());
+pub fn design_setup(setup: &Setup, pool: &Pool) -> Result<(Setup, Designable)> {
+    let designable = designable(setup, pool)?;
+    let kept = designable.kept.iter().map(|&c| &pool.candidates[c]);
     let mut springs = setup.model().springs().to_vec();
-    springs.extend(linear.into_iter().map(|s| {
+    springs.extend(kept.map(|s| {
         Spring {
             nominal_stiffness: s
                 .nominal_stiffness
@@ -266,5 +347,13 @@ pub fn design_setup(setup: &Setup, pool: &Pool) -> Result<(Setup, Vec<String>)> 
         .with_virtual_springs(springs)
         .with_candidate_springs(Vec::new())
         .build()?;
-    Ok((design, nonlinear.iter().map(|s| s.name.clone()).collect()))
+    Ok((design, designable))
+}
+
+/// The fewest postures that can identify the `parameters` parameters of a design on `setup`:
+/// each posture's rows have rank at most `min(3 p, 6)` (`p` measuring points on the flange, a
+/// rigid motion of six components).
+pub fn fewest_postures(setup: &Setup, parameters: usize) -> usize {
+    let rank = (3 * setup.tool().measuring_points.len()).min(6);
+    parameters.div_ceil(rank)
 }

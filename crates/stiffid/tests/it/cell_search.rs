@@ -205,6 +205,8 @@ max_mm = [-700.0, 1800.0, 800.0]
             },
             restarts: 8,
             distinct: None,
+            for_candidates: false,
+            candidates: None,
             progress: &(),
         })
         .unwrap()

@@ -68,6 +68,8 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
             options: Default::default(),
             restarts: 8,
             distinct,
+            for_candidates: false,
+            candidates: None,
             progress: &(),
         })
     };

@@ -5,7 +5,7 @@
 
 mod target;
 
-use super::evaluate::{calibration_text, criteria_text, number, ForArgs};
+use super::evaluate::{calibration_text, candidates_text, criteria_text, number, ForArgs};
 use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
@@ -107,6 +107,18 @@ pub struct Args {
     /// for large groups).
     #[arg(long, default_value_t = Solver::default())]
     solver: Solver,
+    /// Design for the model and the candidates of `identify --compare-models` together: the
+    /// setup's model with every linear candidate added (each at the drives' geometric-mean
+    /// stiffness unless declared with one), with the chosen criterion, search and options; the
+    /// lost motion and load-dependent candidates stay out (load steps separate them). Reports how
+    /// the group identifies each candidate, as `evaluate` does. Stiffness design only.
+    #[arg(long)]
+    for_candidates: bool,
+    /// With --for-candidates: the candidates, comma-separated, as `identify --compare-models
+    /// --candidates` names them (families `tilt`, `bend`, `base`, `tool`, `lost`, `load`,
+    /// `declared`, or single candidates); default all of them.
+    #[arg(long, value_delimiter = ',', requires = "for_candidates")]
+    candidates: Option<Vec<String>>,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     out: PathBuf,
@@ -167,9 +179,16 @@ pub fn run(args: &Args) -> Result<()> {
             .restarts
             .map_or(PoolOptions::default().restarts, |r| r as usize),
         distinct: args.distinct.then(|| distinctness(args)).transpose()?,
+        for_candidates: args.for_candidates,
+        candidates: args.candidates.clone(),
         progress: &bars,
     };
-    let report = job::run(&request)?;
+    let report = job::run(&request).map_err(|e| match e {
+        stiffid::Error::InvalidField { ref field, .. } if field == "candidates" => {
+            anyhow::Error::new(e).context("--candidates")
+        }
+        e => e.into(),
+    })?;
     output::warnings(&report.warnings);
     out.write(postures::to_csv(&report.postures).as_bytes())?;
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
@@ -245,6 +264,21 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
     }
     if let (Some(free), Some(doc)) = (&r.unconstrained, &doc.unconstrained) {
         text += &cost_text(&objective(r), r, free.value, doc);
+    }
+    if let Some(c) = &doc.candidates {
+        text += &format!(
+            "\ndesigned for the model and {}{}\n",
+            count(c.designed.len(), "candidate"),
+            match c.nonlinear.is_empty() {
+                true => String::new(),
+                false => format!(
+                    " (not for {}: load steps separate them, not postures)",
+                    c.nonlinear.join(", ")
+                ),
+            }
+        );
+        text += &candidates_text(&c.identified);
+        text += "\n";
     }
     text += &format!("postures written to {}\n", args.out.display());
     if let Some(dir) = &args.report {

@@ -21,12 +21,18 @@ pub struct CandidatesDoc {
     /// With a lost motion or load-dependent candidate: whether the load levels separate them
     /// from the springs, in words.
     pub nonlinear_separation: Option<String>,
-    /// Whether the group identifies the model and every linear candidate at once (what `select
-    /// --for-candidates` designs for; then every model a forward selection among them can reach
-    /// is identified too).
+    /// The linear candidates some group can identify together with the model (in the pool's
+    /// order, each unless a generic group cannot separate it from the model and those before it):
+    /// what `select --for-candidates` designs for.
+    pub designable: Vec<String>,
+    /// The linear candidates no group can identify together with the model and the designable
+    /// ones before them, with the combination that deflects nothing.
+    pub not_designable: Vec<DroppedDoc>,
+    /// Whether this group identifies the model and every designable candidate at once (then
+    /// every model a forward selection among them can reach is identified too).
     pub together: bool,
-    /// The combinations of the model's parameters and the linear candidates, all at once, the
-    /// group cannot separate; empty when `together`.
+    /// The combinations of the model's parameters and the designable candidates, all at once,
+    /// this group cannot separate; empty when `together`.
     pub together_unidentifiable: Vec<String>,
     /// Each candidate, in the pool's order.
     pub candidates: Vec<CandidateDoc>,
@@ -85,6 +91,10 @@ impl From<&Verdicts> for CandidatesDoc {
             load_levels: v.load_levels,
             separable: v.separable().into_iter().map(String::from).collect(),
             nonlinear_separation: nonlinear.then(|| nonlinear_separation(v.load_levels)),
+            designable: (v.designable.kept.iter())
+                .map(|&c| v.candidates[c].parameter.name.clone())
+                .collect(),
+            not_designable: v.designable.left_out.iter().map(DroppedDoc::from).collect(),
             together: v.together.is_empty(),
             together_unidentifiable: v.together.clone(),
             candidates: v.candidates.iter().map(CandidateDoc::from).collect(),

@@ -10,9 +10,8 @@ use super::purpose::{self, CalibrationOptions, Purpose};
 use super::Warning;
 use crate::cell::{Checker, Feasibility};
 use crate::design::calibration::CalibrationCriteria;
-use crate::design::candidates::{verdicts, Verdicts};
+use crate::design::candidates::{pool, verdicts, Verdicts};
 use crate::design::{evaluate, unidentifiable, Evaluation};
-use crate::identify::compare::{default_pool, pool_by_name, Pool};
 use crate::math::lsq::Factor;
 use crate::observation::rope_observation_matrix;
 use crate::{Result, Setup};
@@ -31,7 +30,7 @@ pub struct Request<'a> {
     /// The calibration the group is for ([`purpose::design`]).
     pub calibration: CalibrationOptions,
     /// The candidates to judge the group for, as `identify --compare-models --candidates` names
-    /// them ([`pool_by_name`]); `None` for the default pool ([`default_pool`]).
+    /// them ([`pool`]); `None` for the default pool.
     pub candidates: Option<Vec<String>>,
 }
 
@@ -62,7 +61,7 @@ pub struct Report {
 /// joints when the group's observation matrix cannot identify every joint (a model with virtual
 /// springs reports what it cannot separate in [`Report::unidentifiable`] instead); those of
 /// [`purpose::design`] and [`crate::design::calibration::CalibrationDesign::evaluate`];
-/// [`pool_by_name`]'s for the candidates; [`verdicts`]'.
+/// [`pool`]'s for the candidates; [`verdicts`]'.
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     setup.check_bodies()?;
@@ -81,7 +80,7 @@ pub fn run(request: &Request) -> Result<Report> {
         _ => Some(verdicts(
             setup,
             postures,
-            &pool(setup, &request.candidates)?,
+            &pool(setup, request.candidates.as_deref())?,
         )?),
     };
     let evaluation = evaluate(setup, postures);
@@ -94,15 +93,4 @@ pub fn run(request: &Request) -> Result<Report> {
         calibration,
         warnings: Vec::new(),
     })
-}
-
-/// The pool of the candidates `names` ([`pool_by_name`]), the default pool for `None`.
-///
-/// # Errors
-/// Those of [`pool_by_name`].
-pub fn pool(setup: &Setup, names: &Option<Vec<String>>) -> Result<Pool> {
-    match names {
-        Some(names) => pool_by_name(setup, names),
-        None => Ok(default_pool(setup)),
-    }
 }

@@ -1,10 +1,11 @@
 //! The document of the select job ([`crate::app::select`]): `stiffid select --json`, Python's
 //! `Setup.select`.
 
+use crate::app::document::candidates::CandidatesDoc;
 use crate::app::document::feasibility::describe;
 use crate::app::document::{degrees, finite, mm};
 use crate::app::evaluate::document::{CalibrationDoc, Criteria};
-use crate::app::select::{PoolReport, Report, Unconstrained};
+use crate::app::select::{CandidatesReport, PoolReport, Report, Unconstrained};
 use crate::common::choice::Choice;
 use crate::design::distinct::Near;
 use crate::design::target::{TargetOutcome, TargetStep};
@@ -88,12 +89,47 @@ pub struct Document {
     /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
     /// pose within 10 mm and 2 deg: a wrist flip counts; or the distances of `distinct`).
     pub near_postures: Vec<NearDoc>,
+    /// With `--for-candidates`: the candidates designed for and how the group identifies each
+    /// together with the setup's model (as `evaluate`'s `candidates`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub candidates: Option<ForCandidates>,
     /// The postures file written (the command's `--out`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub out: Option<String>,
     /// The measurement plan's directory (the command's `--report`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub report: Option<String>,
+}
+
+/// A design for the candidates of the model comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ForCandidates {
+    /// The linear candidates the group was designed for (added to the model of the design, whose
+    /// parameters the `criteria` are over), by name.
+    pub designed: Vec<String>,
+    /// The lost motion and load-dependent candidates, left out of the design (what separates
+    /// them is the load levels of each posture, which the postures do not give), by name.
+    pub nonlinear: Vec<String>,
+    /// How the group chosen identifies each candidate together with the setup's model.
+    #[serde(flatten)]
+    pub identified: CandidatesDoc,
+}
+
+impl From<&CandidatesReport> for ForCandidates {
+    fn from(c: &CandidatesReport) -> Self {
+        use crate::model::ParameterKind::{Rotation, Translation};
+        Self {
+            designed: c.designed.clone(),
+            nonlinear: (c.verdicts.candidates.iter())
+                .filter(|v| {
+                    v.needs_load_steps || !matches!(v.parameter.kind, Rotation | Translation)
+                })
+                .map(|v| v.parameter.name.clone())
+                .collect(),
+            identified: CandidatesDoc::from(&c.verdicts),
+        }
+    }
 }
 
 /// Two postures of the group that are not distinct.
@@ -250,6 +286,7 @@ impl Document {
             target: r.target.as_ref().map(Target::from),
             unconstrained: r.unconstrained.as_ref().map(|u| Free::new(r, u)),
             near_postures: r.near.iter().map(NearDoc::from).collect(),
+            candidates: r.candidates.as_ref().map(ForCandidates::from),
             out: None,
             report: None,
         }

@@ -12,6 +12,7 @@ use crate::common::error::JobOption;
 use crate::common::limits::{self, check_count, Range};
 use crate::common::progress::Progress;
 use crate::design::calibration::{CalibrationCriteria, CalibrationCriterion, CalibrationDesign};
+use crate::design::candidates::{self, Verdicts};
 use crate::design::distinct::{distinct_pool, near_pairs_by, Distinctness, Near};
 use crate::design::identifiable;
 use crate::design::pool::MAX_POOL;
@@ -73,6 +74,7 @@ pub struct PoolInput {
 }
 
 /// What to select and how.
+#[derive(Clone)]
 pub struct Request<'a> {
     /// The setup: robot, tool, load, noise, nominal stiffness, bounds, cell, model.
     pub setup: &'a Setup,
@@ -108,6 +110,14 @@ pub struct Request<'a> {
     /// `None` allows them. Either way the group's near pairs are flagged, by these distances or
     /// the defaults.
     pub distinct: Option<Distinctness>,
+    /// Design for the setup's model and the candidates of the model comparison together
+    /// ([`crate::design::candidates`]): the search runs on the setup with every linear candidate
+    /// added to its model, and the report says how the group identifies each candidate.
+    /// [`Purpose::Stiffness`] only, without a target.
+    pub for_candidates: bool,
+    /// With `for_candidates`: the candidates, as `identify --compare-models --candidates` names
+    /// them (families or single candidates); `None` for the default pool.
+    pub candidates: Option<Vec<String>>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
     /// (`global search (relative-a)` with its starts as the total; a local search with total 0).
     pub progress: &'a dyn Progress,
@@ -174,8 +184,22 @@ pub struct Report {
     /// lines of sight start, counted beyond `margin` as the design keeps it), `None` without
     /// such checks.
     pub min_margins: Vec<Option<f64>>,
+    /// With [`Request::for_candidates`]: what the design was for and how the group identifies
+    /// each candidate.
+    pub candidates: Option<CandidatesReport>,
     /// The job's warnings: one per pair of `near`.
     pub warnings: Vec<Warning>,
+}
+
+/// A design for the candidates ([`Request::for_candidates`]).
+#[derive(Debug, Clone)]
+pub struct CandidatesReport {
+    /// The linear candidates designed for (added to the model of the design), by name: the
+    /// designable ones ([`candidates::designable`]).
+    pub designed: Vec<String>,
+    /// How the group chosen identifies each candidate of the pool with the setup's model (and
+    /// the linear candidates no group can identify with the others, `designable.left_out`).
+    pub verdicts: Verdicts,
 }
 
 /// The calibration a group was designed for, and its criteria.
@@ -241,9 +265,54 @@ pub struct Unconstrained {
 /// not (`pool`) or a count out of range (`postures`, `restarts`, the search options); the
 /// pool's errors named by it (more postures asked for than pass the cell's checks, naming the
 /// checks failed most often); a target that no group size reaches ([`JobOption::TargetPct`], naming the best
-/// rate reachable); the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
+/// rate reachable); with `for_candidates`: [`JobOption::ForCandidates`] with another purpose, a
+/// target or too few postures for the model and the candidates (naming the count needed),
+/// [`JobOption::Candidates`] without it, those of [`candidates::pool`] and
+/// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
+    if !request.for_candidates {
+        return run_on(request);
+    }
+    let setup = request.setup;
+    let pool = candidates::pool(setup, request.candidates.as_deref())?;
+    let (design, _) = candidates::design_setup(setup, &pool)?;
+    check_for_candidates(request, &design)?;
+    let on_design = Request {
+        setup: &design,
+        for_candidates: false,
+        candidates: None,
+        ..request.clone()
+    };
+    let mut report = run_on(&on_design)?;
+    let springs = design.model().springs()[setup.model().springs().len()..].iter();
+    report.candidates = Some(CandidatesReport {
+        designed: springs.map(|s| s.name.clone()).collect(),
+        verdicts: candidates::verdicts(setup, &report.postures, &pool)?,
+    });
+    Ok(report)
+}
+
+/// Refuses a design for the candidates that cannot identify them: fewer postures than the model
+/// and the linear candidates need ([`candidates::fewest_postures`]).
+fn check_for_candidates(r: &Request, design: &Setup) -> Result<()> {
+    let (n, parameters) = (size(r), design.model().len());
+    let fewest = candidates::fewest_postures(design, parameters);
+    if n >= fewest {
+        return Ok(());
+    }
+    Err(Error::InvalidOption {
+        option: JobOption::ForCandidates,
+        message: format!(
+            "the model and the {} candidates a design can identify together are {parameters} parameters, which {n} postures cannot identify: each posture gives at most {} independent rows, so at least {fewest} postures are needed (or name fewer candidates)",
+            parameters - r.setup.model().len(),
+            (3 * design.tool().measuring_points.len()).min(6)
+        ),
+    })
+}
+
+/// [`run`] on the request's setup, without the candidates.
+fn run_on(request: &Request) -> Result<Report> {
     let design = match request.purpose {
         Purpose::Stiffness => None,
         _ => Some(purpose::design(request.setup, &request.calibration)?),
@@ -323,6 +392,7 @@ pub fn run(request: &Request) -> Result<Report> {
         margin: design_margin(request.setup, request.options.margin),
         min_margins: min_margins(request.setup, request.options.margin, &found.postures),
         postures: found.postures,
+        candidates: None,
     })
 }
 
@@ -397,6 +467,21 @@ fn check(r: &Request) -> Result<()> {
         None => {}
     }
     limits::check_integer("restarts", r.restarts as u64, 1, limits::MAX_POOL_RESTARTS)?;
+    if r.candidates.is_some() && !r.for_candidates {
+        return invalid_option(JobOption::Candidates, "only with for_candidates");
+    }
+    if r.for_candidates && r.purpose != Purpose::Stiffness {
+        return invalid_option(
+            JobOption::ForCandidates,
+            "the candidates are springs of the stiffness model: design for them with the stiffness purpose, and for the calibration separately",
+        );
+    }
+    if r.for_candidates && r.target_pct.is_some() {
+        return invalid_option(
+            JobOption::ForCandidates,
+            "a target deviation rate is for the drives: give the number of postures",
+        );
+    }
     if let Some(pct) = r.target_pct {
         limits::check("target_pct", &[pct], &TARGET_PCT)
             .map_err(|e| e.for_option(JobOption::TargetPct))?;
