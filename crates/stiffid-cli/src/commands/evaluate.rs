@@ -141,9 +141,7 @@ pub fn run(args: &Args) -> Result<()> {
         candidates: args.candidates.clone(),
     };
     let report = job::run(&request).map_err(|e| match e {
-        Error::InvalidField { ref field, .. } if field == "candidates" => {
-            anyhow::Error::new(e).context("--candidates")
-        }
+        Error::InvalidOption { .. } => e.into(),
         e => anyhow::Error::new(e).context(args.postures.display().to_string()),
     })?;
     output::warnings(&report.warnings);

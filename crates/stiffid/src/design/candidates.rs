@@ -318,7 +318,7 @@ pub fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f64> {
 /// (module docs), without declared candidates; and the designable candidates.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`candidates`) when the model and the candidates exceed
+/// [`Error::InvalidOption`] ([`crate::JobOption::Candidates`]) when the model and the candidates exceed
 /// [`crate::common::limits::MAX_VIRTUAL_SPRINGS`] virtual springs (naming the count and asking
 /// for fewer with `--candidates`); the setup builder's errors.
 pub fn design_setup(setup: &Setup, pool: &Pool) -> Result<(Setup, Designable)> {
@@ -335,8 +335,8 @@ pub fn design_setup(setup: &Setup, pool: &Pool) -> Result<(Setup, Designable)> {
     }));
     let most = crate::common::limits::MAX_VIRTUAL_SPRINGS;
     if springs.len() > most {
-        return Err(Error::InvalidField {
-            field: "candidates".into(),
+        return Err(Error::InvalidOption {
+            option: crate::JobOption::Candidates,
             message: format!(
                 "the model's virtual springs and the linear candidates are {}, a design takes at most {most}: name fewer candidates",
                 springs.len()

@@ -183,12 +183,7 @@ pub fn run(args: &Args) -> Result<()> {
         candidates: args.candidates.clone(),
         progress: &bars,
     };
-    let report = job::run(&request).map_err(|e| match e {
-        stiffid::Error::InvalidField { ref field, .. } if field == "candidates" => {
-            anyhow::Error::new(e).context("--candidates")
-        }
-        e => e.into(),
-    })?;
+    let report = job::run(&request)?;
     output::warnings(&report.warnings);
     out.write(postures::to_csv(&report.postures).as_bytes())?;
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
