@@ -11,6 +11,7 @@ use stiffid::app::{
     evaluate::document::Document as Evaluated, select::document::Document as Selected,
 };
 use stiffid::common::limits::{self, check_count};
+use stiffid::design::distinct::Distinctness;
 use stiffid::design::{PoolOptions, SearchOptions};
 use stiffid::Setup;
 
@@ -58,6 +59,10 @@ pub struct Request<'a> {
     pub margin_mm: Option<f64>,
     pub for_candidates: bool,
     pub candidates: Option<Vec<String>>,
+    /// Forbid near postures of a pool, by these distances (deg, mm; the defaults when None).
+    pub distinct: bool,
+    pub distinct_deg: Option<f64>,
+    pub distinct_mm: Option<f64>,
 }
 
 /// Runs the select job (the GIL released) and returns its document, its warnings raised.
@@ -71,6 +76,13 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     if r.restarts.is_some() && method != select::Method::Pool {
         return Err(value("restarts: only with pool"));
     }
+    if !r.distinct && (r.distinct_deg.is_some() || r.distinct_mm.is_some()) {
+        return Err(value("distinct_deg, distinct_mm: only with distinct=True"));
+    }
+    let distinct = match r.distinct {
+        true => Some(Distinctness::try_from_deg_mm(r.distinct_deg, r.distinct_mm).map_err(raise)?),
+        false => None,
+    };
     let n = match (&r.start, r.n) {
         (Some(s), Some(n)) if s.len() != n => {
             return Err(value(format!(
@@ -110,7 +122,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         target_pct: r.target_pct,
         options,
         restarts: r.restarts.unwrap_or(PoolOptions::default().restarts),
-        distinct: None,
+        distinct,
         for_candidates: r.for_candidates,
         candidates: r.candidates,
         progress: &(),

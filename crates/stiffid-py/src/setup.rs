@@ -313,12 +313,18 @@ impl Setup {
     /// geometric-mean stiffness unless declared with one), the document's ``candidates`` saying
     /// how the group identifies each, as ``evaluate`` does; ``ValueError`` for too few postures
     /// (naming the count needed), with ``target_pct``, or ``candidates`` without it.
+    /// ``distinct=True`` (pool only): forbid postures that are not distinct, the pool keeping the
+    /// first of every pair whose axis angles all lie within ``distinct_deg`` (0 to 180, default 2)
+    /// or whose flanges reach the same pose (origins within ``distinct_mm``, 0 to 10000, default
+    /// 10; orientations within ``distinct_deg``; a wrist flip counts); the document's
+    /// ``pool.not_distinct`` lists those left out. ``ValueError`` for a search, or for the
+    /// distances without ``distinct``.
     /// Deterministic for a ``seed``. Returns the document of ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -340,6 +346,9 @@ impl Setup {
         margin_mm: Option<f64>,
         for_candidates: bool,
         candidates: Option<Vec<String>>,
+        distinct: bool,
+        distinct_deg: Option<f64>,
+        distinct_mm: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {
@@ -364,6 +373,9 @@ impl Setup {
             margin_mm,
             for_candidates,
             candidates,
+            distinct,
+            distinct_deg,
+            distinct_mm,
         };
         design::select(py, &self.inner, request)
     }

@@ -76,6 +76,22 @@ def test_the_select_documents_equal_the_command(paper, cli, tmp_path):
     assert "solver" not in mine and "gradient" not in mine
 
 
+def test_a_distinct_pool_choice_equals_the_command(paper, cli, tmp_path):
+    """distinct=True keeps the first of every near pair of the pool, as --distinct does: a pool
+    with two postures 1 deg from others gives the command's document, those two left out."""
+    pool = paper.random_group(10, 5)
+    near = pool[[2, 6]] + 1.0
+    pool = np.vstack([pool, near])
+    pool_csv = write_postures(tmp_path / "pool.csv", pool)
+    mine = paper.select(pool=pool, n=6, distinct=True, distinct_deg=3, distinct_mm=20)
+    theirs = cli("select", "--setup", "zhang2021-comau-nj165", "--out", tmp_path / "out.csv", "--json",
+                 "--pool", pool_csv, "--postures", 6, "--distinct", "--distinct-deg", 3, "--distinct-mm", 20)
+    assert timeless(plain(mine)) == timeless(theirs)
+    assert mine["pool"]["not_distinct"] == [[11, 3], [12, 7]]
+    with pytest.raises(ValueError, match="distinct_deg: 1e9 is outside"):
+        paper.select(pool=pool, n=6, distinct=True, distinct_deg=1e9)
+
+
 def test_local_select_from_a_start(paper):
     start = paper.random_group(6, 2)
     found = paper.select("relative-a", start=start)
@@ -118,6 +134,8 @@ def test_same_seed_same_group(paper):
         (dict(restarts=3), "restarts: only with pool"),
         (dict(method="local", target_pct=5), "target_pct: needs a pool or the global search"),
         (dict(method="global", target_pct=0.0), "target_pct"),
+        (dict(method="global", distinct=True), "distinct"),
+        (dict(distinct_deg=3.0), "distinct_deg, distinct_mm: only with distinct=True"),
     ],
 )
 def test_bad_select_arguments(paper, kwargs, message):

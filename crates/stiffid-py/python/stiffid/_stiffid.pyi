@@ -184,6 +184,9 @@ class Setup:
         margin_mm: Optional[float] = None,
         for_candidates: bool = False,
         candidates: Optional[Sequence[str]] = None,
+        distinct: bool = False,
+        distinct_deg: Optional[float] = None,
+        distinct_mm: Optional[float] = None,
     ) -> dict[str, Any]:
         """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained, candidates where they apply."""
     def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...
