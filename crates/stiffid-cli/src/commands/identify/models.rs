@@ -12,8 +12,8 @@ use stiffid::app::identify_model::document::{CrossValidationDoc, Document};
 use stiffid::app::identify_model::{self, Report};
 use stiffid::common::words::count;
 use stiffid::identify::adequacy::Verdict;
-use stiffid::identify::compare::document::BootstrapDoc;
-use stiffid::identify::compare::{parameter_docs, Comparison, Dropped, Resampling, Row};
+use stiffid::identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
+use stiffid::identify::compare::{parameter_docs, Comparison, Resampling};
 use stiffid::identify::model::Fit;
 use stiffid::Setup;
 
@@ -50,12 +50,7 @@ pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
     let document = report.document(&args.common.setup);
     match args.common.json {
         true => output::print(&json(&document)?),
-        false => output::print(&text(
-            &report.comparison,
-            &report.dropped,
-            document.bootstrap.as_ref(),
-            setup,
-        )),
+        false => output::print(&text(&document, &report.comparison, setup)),
     }
 }
 
@@ -99,20 +94,19 @@ fn pct(v: Option<f64>) -> String {
     v.map_or("n/a".into(), |v| format!("{:.1}%", 100.0 * v))
 }
 
-fn row_line(r: &Row, mark: &str) -> String {
+fn row_line(r: &ModelDoc, mark: &str) -> String {
     let what = r.added.clone().unwrap_or_else(|| "(setup's model)".into());
+    let fixed = |v: Option<f64>, digits: usize| v.map_or("n/a".into(), |v| format!("{v:.digits$}"));
     format!(
-        "{mark:1} {what:<16} {:>3} {:>9} {:>9} {:>5} {:>10} {:>9.1} {:>9.1} {:>7} {:>11} {:>8}\n",
+        "{mark:1} {what:<16} {:>3} {:>9} {:>9} {:>5} {:>10} {:>9} {:>9} {:>7} {:>11} {:>8}\n",
         r.parameters,
         pct(Some(r.in_sample_explained)),
         pct(r.held_out_explained),
-        r.held_out_explained_std_error
-            .map_or("n/a".into(), |v| format!("{:.1}", 100.0 * v)),
-        r.held_out_rms_delta_b
-            .map_or("n/a".into(), |v| format!("{:.4}", v * 1e3)),
-        r.aic,
-        r.bic,
-        r.noise_ratio.map_or("n/a".into(), |v| format!("{v:.2}")),
+        fixed(r.held_out_explained_std_error.map(|v| 100.0 * v), 1),
+        fixed(r.held_out_rms_delta_b_mm, 4),
+        fixed(r.aic, 1),
+        fixed(r.bic, 1),
+        fixed(r.noise_ratio, 2),
         r.model_check.map_or("n/a", Verdict::short),
         match (r.physical, r.identified) {
             (_, false) => "unident.",
@@ -125,62 +119,57 @@ fn row_line(r: &Row, mark: &str) -> String {
 const HEADER: &str =
     "  added            par in-sample  held out  s.e.  dB RMS mm       AIC       BIC   noise   residuals  all k>0\n";
 
-/// The text report of a comparison, of the candidates dropped from its pool and of its bootstrap.
-fn text(
-    c: &Comparison,
-    dropped: &[Dropped],
-    bootstrap: Option<&BootstrapDoc>,
-    setup: &Setup,
-) -> String {
+/// The text report of a comparison's document `doc` (the path, every step, the nested estimate,
+/// the candidates dropped from its pool and its bootstrap), and the recommended model's fit.
+fn text(doc: &CompareDocument, c: &Comparison, setup: &Setup) -> String {
     let mut s =
         String::from("Model comparison: forward selection on the leave-one-posture-out error\n\n");
-    if !dropped.is_empty() {
+    if !doc.dropped.is_empty() {
         s += "Candidates left out (the data could never identify them):\n";
-        for d in dropped {
+        for d in &doc.dropped {
             s += &format!("  {:<16} {}\n", d.name, d.reason);
         }
         s += "\n";
     }
     s += "Selected path (* recommended):\n";
     s += HEADER;
-    for (i, r) in c.models.iter().enumerate() {
-        s += &row_line(r, if i == c.recommended { "*" } else { "" });
+    for r in &doc.models {
+        s += &row_line(r, if r.recommended { "*" } else { "" });
     }
-    for (k, step) in c.steps.iter().enumerate() {
+    for (k, step) in doc.steps.iter().enumerate() {
         s += &format!(
             "\nStep {}: every candidate added to the model of step {k}\n",
             k + 1
         );
         s += HEADER;
-        for (i, r) in step.candidates.iter().enumerate() {
-            s += &row_line(r, if step.chosen == Some(i) { ">" } else { "" });
+        for r in &step.candidates {
+            let chosen = step.chosen.is_some() && r.added == step.chosen;
+            s += &row_line(r, if chosen { ">" } else { "" });
         }
     }
-    if let Some(n) = &c.nested {
-        let chosen: Vec<String> = n
-            .chosen
-            .iter()
-            .filter(|(_, k)| *k > 0)
-            .map(|(name, k)| format!("{name} {k}/{}", n.parameters.len()))
+    if let Some(n) = &doc.nested {
+        let chosen: Vec<String> = (n.chosen.iter())
+            .filter(|c| c.folds > 0)
+            .map(|c| format!("{} {}/{}", c.name, c.folds, n.parameters.len()))
             .collect();
         s += &format!(
             "\nNested estimate (the whole selection repeated without each posture): held out {} explained (standard error {:.1}, over the postures), RMS delta_b {:.4} mm; chosen: {}\n",
             pct(Some(n.held_out_explained)),
             100.0 * n.held_out_explained_std_error,
-            n.rms_delta_b * 1e3,
+            n.rms_delta_b_mm,
             if chosen.is_empty() { "nothing".into() } else { chosen.join(", ") }
         );
     }
-    if let Some(b) = bootstrap {
+    if let Some(b) = &doc.bootstrap {
         s += &bootstrap_text(b);
     }
-    if let Some(note) = c.nonlinear_separation() {
+    if let Some(note) = &doc.nonlinear_separation {
         s += &format!("\nLost motion and load-dependent compliance: {note}\n");
     }
     s += "\nRecommended model fitted to every posture:\n";
     s += &fit_table(&c.recommended_fit);
     s += &model_check(&c.recommended_fit, setup);
-    s += &format!("\n{}\n", c.conclusion());
+    s += &format!("\n{}\n", doc.conclusion);
     s
 }
 
