@@ -73,6 +73,16 @@ pub fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
     })
 }
 
+/// The built-in FANUC setup and the real FANUC measurements (examples/data/fanuc-r2000ic-165f),
+/// in its base frame.
+pub fn fanuc() -> (Setup, Vec<Measurement>) {
+    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
+    let mut file = stiffid::io::measurements::parse(text).unwrap();
+    file.to_base_frame(&setup).unwrap();
+    (setup, file.measurements)
+}
+
 /// `data` with independent Gaussian noise of standard deviation `sigma` (m) on every displacement
 /// component, drawn in measurement order from `rng`.
 pub fn with_noise(data: &[Measurement], sigma: f64, rng: &mut ChaCha8Rng) -> Vec<Measurement> {

@@ -5,6 +5,7 @@
 //! coverage the data's README quotes, for the drives alone and for the model `--compare-models`
 //! recommends on these data (chosen on all 43 postures).
 
+use crate::common::fanuc;
 use nalgebra::Vector3;
 use stiffid::app::identify::noise_floor;
 use stiffid::identify::compare::pool_by_name;
@@ -14,14 +15,6 @@ use stiffid::identify::prediction::calibrate;
 use stiffid::model::prediction::inside;
 use stiffid::observation::{Measurement, Observations};
 use stiffid::setup::Setup;
-
-fn fanuc() -> (Setup, Vec<Measurement>) {
-    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
-    let mut file = stiffid::io::measurements::parse(text).unwrap();
-    file.to_base_frame(&setup).unwrap();
-    (setup, file.measurements)
-}
 
 /// The shares of the held-out coordinates inside their intervals at each of `levels`.
 fn coverage(setup: &Setup, data: &[Measurement], levels: &[f64]) -> Vec<f64> {

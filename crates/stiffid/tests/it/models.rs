@@ -234,15 +234,12 @@ fn on_data_the_model_fits_no_extension_is_needed() {
 /// given.
 #[test]
 fn fanuc_data_choose_a_larger_model() {
-    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
-    let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
-    let mut file = stiffid::io::measurements::parse(text).unwrap();
-    file.to_base_frame(&setup).unwrap();
+    let (setup, measurements) = crate::common::fanuc();
     let pool = stiffid::identify::compare::default_pool(&setup);
     // 18 tilt, 12 bend (links 1, 2, 3 and 5), 6 base, 3 tool, 6 lost, 6 load; 12 dropped.
     assert_eq!((pool.candidates.len(), pool.dropped.len()), (39, 12));
     let candidates = pool.candidates;
-    let c = compare(&setup, &file.measurements, &candidates, true).unwrap();
+    let c = compare(&setup, &measurements, &candidates, true).unwrap();
     let drives = c.models[0].held_out_explained.unwrap();
     assert!((drives - 0.765).abs() < 5e-4, "{drives}");
     let rec = &c.models[c.recommended];
@@ -259,7 +256,7 @@ fn fanuc_data_choose_a_larger_model() {
         .with_virtual_springs(c.recommended_springs.clone())
         .build()
         .unwrap();
-    let obs = Observations::from_measurements(model.arm(), &file.measurements).unwrap();
+    let obs = Observations::from_measurements(model.arm(), &measurements).unwrap();
     let f = fit(&obs, &model.model().parameters()).unwrap();
     let cv = cross_validate_model(&obs, &f, 43, Method::LeastSquares).unwrap();
     let se = rec.held_out_explained_std_error.unwrap();

@@ -75,19 +75,23 @@ fn bootstrap_text(b: &BootstrapDoc) -> String {
         "2.5%",
         "97.5%"
     );
-    let v = |x: Option<f64>| x.map_or("n/a".into(), |v| format!("{v:.0}"));
     for p in &b.parameters {
         s += &format!(
             "  {:<12} {:>7} {:>14} {:>14} {:>14}  {}\n",
             p.name,
             pct(Some(p.chosen_share)),
-            v(p.median),
-            v(p.percentile_2_5),
-            v(p.percentile_97_5),
+            whole(p.median),
+            whole(p.percentile_2_5),
+            whole(p.percentile_97_5),
             p.unit
         );
     }
     s
+}
+
+/// A figure in whole units, `n/a` where the document has `null`.
+fn whole(v: Option<f64>) -> String {
+    v.map_or("n/a".into(), |v| format!("{v:.0}"))
 }
 
 fn pct(v: Option<f64>) -> String {
@@ -180,7 +184,7 @@ pub fn fit_table(f: &Fit) -> String {
         "parameter", "stiffness", "95% interval"
     );
     for p in parameter_docs(f) {
-        let v = p.stiffness.map_or("n/a".into(), |v| format!("{v:.0}"));
+        let v = whole(p.stiffness);
         let ci = match (p.identified, p.ci95) {
             (false, _) => "not identifiable".to_string(),
             (true, None) => "n/a".into(),
@@ -293,15 +297,14 @@ fn cross_validation_text(cv: &CrossValidationDoc) -> String {
         "min",
         "max"
     );
-    let k = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{v:.0}"));
     for p in &cv.spread {
         s += &format!(
             "  {:<12} {:>14} {:>12} {:>14} {:>14}  {}\n",
             p.name,
-            k(p.mean),
-            k(p.std),
-            k(p.min),
-            k(p.max),
+            whole(p.mean),
+            whole(p.std),
+            whole(p.min),
+            whole(p.max),
             p.unit
         );
     }
