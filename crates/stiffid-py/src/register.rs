@@ -1,6 +1,6 @@
 //! `stiffid.register` and `stiffid.calibrate_cell`: the tracker's transform from raw readings
 //! ([`stiffid::app::register`]) and the transform with the measuring points fitted together
-//! ([`stiffid::app::calibrate`]), as the command computes them; the postures to register in
+//! ([`stiffid::app::calibrate_cell`]), as the command computes them; the postures to register in
 //! ([`stiffid::app::register::propose`]).
 
 use crate::documents::{to_python, warn};
@@ -9,7 +9,7 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::app::calibrate as calibrate_job;
+use stiffid::app::calibrate_cell as calibrate_job;
 use stiffid::app::register as register_job;
 use stiffid::app::register::document::{Calibration, Document, Proposal};
 use stiffid::design::registration as design;

@@ -1,9 +1,9 @@
 //! The documents of the register and calibrate jobs ([`crate::app::register`],
-//! [`crate::app::calibrate`]): `stiffid register --json`, `stiffid register --postures N
+//! [`crate::app::calibrate_cell`]): `stiffid register --json`, `stiffid register --postures N
 //! --json`, `stiffid calibrate-cell --json`, Python's `register(...)` and `calibrate_cell(...)`.
 
 use crate::app::document::{degrees, mm};
-use crate::app::{calibrate, register};
+use crate::app::{calibrate_cell, register};
 use nalgebra::{Isometry3, Vector3};
 use serde::Serialize;
 
@@ -151,7 +151,7 @@ pub struct ToolPoint {
 
 impl Calibration {
     /// The document of `report`, for the setup named `setup_name` (as the user gave it).
-    pub fn new(report: &calibrate::Report, setup_name: &str) -> Self {
+    pub fn new(report: &calibrate_cell::Report, setup_name: &str) -> Self {
         let fit = &report.calibration;
         let points: Vec<ToolPoint> = (0..report.setup_points.len())
             .map(|k| ToolPoint {
