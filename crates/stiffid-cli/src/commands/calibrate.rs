@@ -1,14 +1,14 @@
 //! `stiffid calibrate`: the robot's geometric errors, gravity terms, the tracker's registration
 //! and the measuring points fitted together from unloaded readings
-//! ([`stiffid::app::calibrate_robot`]), with held-out validation, and the calibrated robot
+//! ([`stiffid::app::calibrate`]), with held-out validation, and the calibrated robot
 //! written as a robot file and a URDF.
 
 use crate::load;
 use crate::output::{self, print_json_or, OutFile};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::app::calibrate_robot::document::Document;
-use stiffid::app::calibrate_robot::{self as job, Tolerances};
+use stiffid::app::calibrate::document::Document;
+use stiffid::app::calibrate::{self as job, Tolerances};
 use stiffid::app::readings::Request as Readings;
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::metrology::calibration::Geometry;

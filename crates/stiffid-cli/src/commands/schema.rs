@@ -83,7 +83,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "register" => closed::<stiffid::app::register::document::Document>(),
         "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
         "calibrate-cell" => closed::<stiffid::app::register::document::Calibration>(),
-        "calibrate" => closed::<stiffid::app::calibrate_robot::document::Document>(),
+        "calibrate" => closed::<stiffid::app::calibrate::document::Document>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

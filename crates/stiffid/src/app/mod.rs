@@ -21,8 +21,8 @@
 //! Errors are [`crate::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
 //! never of one front end's options; each front end adds its own hints.
 
+pub mod calibrate;
 pub mod calibrate_cell;
-pub mod calibrate_robot;
 pub mod compare_models;
 pub mod compensate;
 pub mod evaluate;

@@ -2,7 +2,7 @@
 //! identification, the robot's calibration, or both; and the calibration design of a setup that
 //! the last two score groups with ([`crate::design::calibration`]).
 
-use super::calibrate_robot;
+use super::calibrate;
 use crate::design::calibration::{CalibrationCriterion, CalibrationDesign};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
@@ -84,7 +84,7 @@ impl Default for CalibrationOptions {
 /// machining region; the reference postures without them) and the setup's noise per coordinate.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`weight`) outside `(0, 1)`; those of [`calibrate_robot::model`] and
+/// [`Error::InvalidField`] (`weight`) outside `(0, 1)`; those of [`calibrate::model`] and
 /// [`CalibrationDesign::new`].
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
     if !(options.weight > 0.0 && options.weight < 1.0) {
@@ -93,7 +93,7 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
             message: format!("expected a number between 0 and 1, got {}", options.weight),
         });
     }
-    let model = calibrate_robot::model(
+    let model = calibrate::model(
         setup,
         MeasuredIn::Tracker,
         options.geometry,

@@ -36,7 +36,7 @@ pub enum WarningKind {
     /// the cell's body checks refuse it ([`crate::robot::Bodies::Missing`]).
     Meshes,
     /// A model's residuals exceed what the tracker noise explains by more than
-    /// [`crate::app::calibrate_robot::MISFIT_RATIO`] times: the model misses something.
+    /// [`crate::app::calibrate::MISFIT_RATIO`] times: the model misses something.
     Misfit,
     /// A generated robot program states a feed only to its nearest unit (an LS feed in neither
     /// whole mm/sec nor whole cm/min).

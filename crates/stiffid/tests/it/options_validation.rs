@@ -271,7 +271,7 @@ fn point_rows_take_the_point_and_match_the_posture_block() {
 /// fit: its prior rows overflowed) are refused naming both fields.
 #[test]
 fn calibration_tolerances_out_of_range_are_refused() {
-    use stiffid::app::calibrate_robot::Tolerances;
+    use stiffid::app::calibrate::Tolerances;
     let refused = |r: Result<Tolerances, Error>| match r {
         Err(Error::InvalidOption { option, message }) => {
             assert_eq!(option, stiffid::JobOption::Tolerances);

@@ -1,4 +1,4 @@
-//! The document of the robot calibration job ([`crate::app::calibrate_robot`]): `stiffid
+//! The document of the robot calibration job ([`crate::app::calibrate`]): `stiffid
 //! calibrate --json`, Python's `calibrate(...)`.
 
 use super::{Held, Report};
