@@ -16,12 +16,12 @@ use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::purpose::{self, CalibrationOptions};
-use stiffid::design::calibration::{CalibrationCriterion, CalibrationDesign};
+use stiffid::design::observability::{CalibrationCriterion, CalibrationDesign};
 use stiffid::design::{self, CalibrationGoal, Goal, SearchOptions};
 use stiffid::metrology::calibration::error_model::MeasuredIn;
 use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
 use stiffid::robot::{presets, LinkMass};
-use stiffid::study::calibration::postures;
+use stiffid::study::observability::postures;
 use stiffid::Robot;
 
 /// The design on the preset with the gravity model `g`, and a group of 12 postures.

@@ -14,7 +14,7 @@ use stiffid::app::evaluate::{self as job, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::common::limits::short;
 use stiffid::common::words::count;
-use stiffid::design::calibration::CalibrationCriterion;
+use stiffid::design::observability::CalibrationCriterion;
 use stiffid::design::{Criterion, Evaluation};
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::metrology::calibration::Geometry;

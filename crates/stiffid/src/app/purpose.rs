@@ -1,9 +1,9 @@
 //! What a group of postures is designed for (`select` and `evaluate` `--for`): the stiffness
 //! identification, the robot's calibration, or both; and the calibration design of a setup that
-//! the last two score groups with ([`crate::design::calibration`]).
+//! the last two score groups with ([`crate::design::observability`]).
 
 use super::calibrate;
-use crate::design::calibration::{CalibrationCriterion, CalibrationDesign};
+use crate::design::observability::{CalibrationCriterion, CalibrationDesign};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
 use crate::metrology::calibration::gravity::Gravity;
@@ -17,7 +17,7 @@ pub enum Purpose {
     #[default]
     Stiffness,
     /// The geometric and elastostatic calibration (the criteria of
-    /// [`crate::design::calibration`]).
+    /// [`crate::design::observability`]).
     Calibration,
     /// Both: the weighted sum of the two log-criteria ([`Goal`]).
     Both,

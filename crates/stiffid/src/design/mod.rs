@@ -1,6 +1,6 @@
 //! Experiment design: which postures to measure in (step 1 of the experiment).
 //!
-//! [`criteria`] scores a group of postures (for the stiffness identification; [`calibration`] for
+//! [`criteria`] scores a group of postures (for the stiffness identification; [`observability`] for
 //! the geometric and elastostatic calibration), [`Evaluator`] scores it fast for the search,
 //! [`search`] chooses the postures that minimise a criterion within the setup's bounds, [`pool`]
 //! chooses them from a list of candidate postures, [`target`] finds how many postures reach a
@@ -8,13 +8,13 @@
 //! [`registration`] chooses the postures that register the tracker best; [`candidates`] says
 //! which candidates of the model comparison a group identifies and designs for them.
 
-pub mod calibration;
 pub mod candidates;
 pub mod criteria;
 pub mod distinct;
 mod evaluator;
 pub(crate) mod exchange;
 mod identifiable;
+pub mod observability;
 pub mod pool;
 pub mod registration;
 pub mod search;

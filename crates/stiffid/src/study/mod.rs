@@ -6,15 +6,15 @@
 //! [`run`] is the whole study as `stiffid reproduce` runs it; [`start_trials`] the start-group
 //! check alone.
 
-pub mod calibration;
 mod findings;
+pub mod observability;
 pub mod simulate;
 mod spearman;
 mod table4;
 mod trials;
 
-pub use calibration::{calibration_study, CalibrationStudy};
 pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
+pub use observability::{calibration_study, CalibrationStudy};
 pub use spearman::spearman;
 pub use table4::{paper_table4, TABLE4};
 use trials::{judge, paper_searches};

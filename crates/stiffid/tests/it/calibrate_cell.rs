@@ -7,8 +7,8 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::metrology::calibrate;
 use stiffid::metrology::calibration::error_model::Observation;
+use stiffid::metrology::cell_calibration;
 use stiffid::Setup;
 
 fn paper() -> Setup {
@@ -76,7 +76,7 @@ fn shift(k: usize) -> Vector3<f64> {
 #[test]
 fn tool_points_shifted_by_2_mm_are_corrected() {
     let setup = paper();
-    let exact = calibrate::fit(&setup, &readings(&setup, shift, 0.0, 1)).unwrap();
+    let exact = cell_calibration::fit(&setup, &readings(&setup, shift, 0.0, 1)).unwrap();
     for k in 0..4 {
         assert!(
             (exact.shifts[k] - shift(k)).amax() < 1e-9,
@@ -97,7 +97,7 @@ fn tool_points_shifted_by_2_mm_are_corrected() {
     let mut predicted = [Vector3::zeros(); 4];
     let (mut transform_errors, mut transform_predicted) = ([0.0; 6], [0.0; 6]);
     for seed in 0..runs {
-        let fit = calibrate::fit(&setup, &readings(&setup, shift, sigma, seed)).unwrap();
+        let fit = cell_calibration::fit(&setup, &readings(&setup, shift, sigma, seed)).unwrap();
         let t = fit.base_from_tracker;
         let dp = t.translation.vector - truth().translation.vector;
         let dtheta = (t.rotation * truth().rotation.inverse()).scaled_axis();
@@ -143,7 +143,7 @@ fn one_flange_orientation_is_refused() {
         .map(|i| q0 + Vector6::new(0.2 * i as f64, 0.0, 0.0, 0.0, 0.0, 0.0))
         .collect();
     let obs = readings_at(&setup, &postures, shift, 0.0, 1);
-    let e = calibrate::fit(&setup, &obs).unwrap_err().to_string();
+    let e = cell_calibration::fit(&setup, &obs).unwrap_err().to_string();
     assert!(
         e.contains("postures that turn the flange") && e.contains("of the 18 unknowns"),
         "{e}"

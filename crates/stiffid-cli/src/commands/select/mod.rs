@@ -17,8 +17,8 @@ use stiffid::app::select::document::{Document, Free, Pool};
 use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid::common::limits::{self, short};
 use stiffid::common::words::count;
-use stiffid::design::calibration::CalibrationCriterion;
 use stiffid::design::distinct::Distinctness;
+use stiffid::design::observability::CalibrationCriterion;
 use stiffid::design::{Criterion, Gradient, PoolOptions, SearchOptions, Solver};
 use stiffid::{io::postures, Setup};
 

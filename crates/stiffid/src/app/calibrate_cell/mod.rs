@@ -1,5 +1,5 @@
 //! The calibrate job (`stiffid calibrate-cell`): the tracker's transform and the measuring points
-//! in the flange frame fitted together from unloaded readings ([`crate::metrology::calibrate`]:
+//! in the flange frame fitted together from unloaded readings ([`crate::metrology::cell_calibration`]:
 //! the robot calibration's Levenberg-Marquardt over 6 + 3p unknowns, `calibrate --geometry none
 //! --gravity none`), each point's shift from the setup's value with its standard deviation.
 
@@ -7,7 +7,7 @@ use super::in_data;
 pub use super::readings::Request;
 use super::readings::{read, refuse_implausible};
 use super::Warning;
-use crate::metrology::calibrate::{self, Calibration};
+use crate::metrology::cell_calibration::{self, Calibration};
 use crate::Result;
 use nalgebra::Vector3;
 
@@ -29,7 +29,7 @@ pub struct Report {
 /// Runs the calibrate job.
 ///
 /// # Errors
-/// Those of [`read`]; of [`calibrate::observations`] and [`calibrate::fit`] (readings in the base
+/// Those of [`read`]; of [`cell_calibration::observations`] and [`cell_calibration::fit`] (readings in the base
 /// frame, too few readings for the unknowns, one flange orientation), as
 /// [`crate::Error::Input`] naming the file; unless [`Request::force`], readings that are a
 /// mirror image (of the nominal robot's points) or leave a residual beyond
@@ -39,8 +39,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let name = &request.name;
     let setup_points = request.setup.tool().measuring_points.clone();
     let observations =
-        calibrate::observations(request.setup, &data).map_err(|e| in_data(name, e))?;
-    let calibration = calibrate::fit(request.setup, &observations).map_err(|e| in_data(name, e))?;
+        cell_calibration::observations(request.setup, &data).map_err(|e| in_data(name, e))?;
+    let calibration =
+        cell_calibration::fit(request.setup, &observations).map_err(|e| in_data(name, e))?;
     refuse_implausible(request, &data, None, &calibration.residuals)?;
     Ok(Report {
         data_name: name.clone(),

@@ -242,7 +242,7 @@ impl CalibrationDoc {
     /// The document of the options `o` and the criteria `c`.
     pub fn new(
         o: &crate::app::purpose::CalibrationOptions,
-        c: &crate::design::calibration::CalibrationCriteria,
+        c: &crate::design::observability::CalibrationCriteria,
     ) -> Self {
         use crate::common::choice::Choice;
         Self {

@@ -9,8 +9,8 @@ pub mod document;
 use super::purpose::{self, CalibrationOptions, Purpose};
 use super::Warning;
 use crate::cell::{Checker, Feasibility};
-use crate::design::calibration::CalibrationCriteria;
 use crate::design::candidates::{pool, verdicts, Verdicts};
+use crate::design::observability::CalibrationCriteria;
 use crate::design::{evaluate, unidentifiable, Evaluation};
 use crate::math::lsq::Factor;
 use crate::observation::rope_observation_matrix;
@@ -60,7 +60,7 @@ pub struct Report {
 /// For the drives alone and a purpose with the stiffness, [`Error::Unidentifiable`] naming the
 /// joints when the group's observation matrix cannot identify every joint (a model with virtual
 /// springs reports what it cannot separate in [`Report::unidentifiable`] instead); those of
-/// [`purpose::design`] and [`crate::design::calibration::CalibrationDesign::evaluate`];
+/// [`purpose::design`] and [`crate::design::observability::CalibrationDesign::evaluate`];
 /// [`pool`]'s for the candidates; [`verdicts`]'.
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);

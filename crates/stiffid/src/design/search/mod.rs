@@ -27,7 +27,7 @@ pub use local::{local, local_for};
 pub use sample::{random_group, CONSTRAINT_TRIES};
 pub use termination::Termination;
 
-use crate::design::calibration::{CalibrationCriterion, CalibrationDesign};
+use crate::design::observability::{CalibrationCriterion, CalibrationDesign};
 use crate::design::{Criterion, Evaluator};
 use crate::{common::limits, Result};
 use nalgebra::Vector6;

@@ -1,5 +1,5 @@
 //! Which calibration criterion predicts held-out accuracy: Spearman's rank correlation, over
-//! random groups of postures, between each criterion of [`crate::design::calibration`] and the
+//! random groups of postures, between each criterion of [`crate::design::observability`] and the
 //! held-out RMS position error of the calibration the group's readings give (the check of the
 //! paper's Fig. 8, for calibration).
 //!
@@ -12,7 +12,7 @@
 //! are drawn uniformly in the middle 60% of the joint ranges (at most +-150 deg), every stream
 //! from `seed`.
 
-use crate::design::calibration::{CalibrationCriteria, CalibrationDesign};
+use crate::design::observability::{CalibrationCriteria, CalibrationDesign};
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
 use crate::metrology::calibration::{fit, gravity, validation, ErrorModel, Estimate, Geometry};
 use crate::{Error, Result, Robot};

@@ -2,7 +2,7 @@ use super::*;
 use crate::metrology::calibration::error_model::MeasuredIn;
 use crate::metrology::calibration::{fit, gravity, validation, Estimate, Geometry};
 use crate::robot::presets;
-use crate::study::calibration as study;
+use crate::study::observability as study;
 use crate::Robot;
 use nalgebra::{Isometry3, Vector3};
 use rand::{Rng, SeedableRng};
