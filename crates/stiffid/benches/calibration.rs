@@ -18,7 +18,7 @@ fn campaign(postures: usize) -> (ErrorModel, Vec<Observation>) {
         Vector3::new(-0.1, 0.12, 0.3),
         Vector3::new(0.0, -0.14, 0.2),
     ];
-    let g = gravity::Model::lumped(&robot, stiffid::Coordinates::Axis);
+    let g = gravity::Terms::lumped(&robot, stiffid::Coordinates::Axis);
     let model = ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full, g).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let mut values = model.nominal();

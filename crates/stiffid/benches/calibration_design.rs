@@ -26,7 +26,7 @@ use stiffid::Robot;
 
 /// The design on the preset with the gravity model `g`, and a group of 12 postures.
 fn fanuc(
-    g: impl Fn(&Robot) -> gravity::Model,
+    g: impl Fn(&Robot) -> gravity::Terms,
     points: &[Vector3<f64>],
 ) -> (CalibrationDesign, Vec<nalgebra::Vector6<f64>>) {
     let masses: [LinkMass; 6] = std::array::from_fn(|l| LinkMass {
@@ -58,7 +58,7 @@ fn bench(c: &mut Criterion<Cpu>) {
         Vector3::new(-0.1, 0.12, 0.3),
         Vector3::new(0.0, -0.14, 0.2),
     ];
-    let lumped = |r: &Robot| gravity::Model::lumped(r, stiffid::Coordinates::Axis);
+    let lumped = |r: &Robot| gravity::Terms::lumped(r, stiffid::Coordinates::Axis);
     let (design, group) = fanuc(lumped, &points);
     assert_eq!(design.kept().len(), 55);
     c.bench_function("calibration criteria 12 postures 55 parameters", |b| {
@@ -71,7 +71,7 @@ fn bench(c: &mut Criterion<Cpu>) {
     let masses = |r: &Robot| {
         let m = *r.masses().unwrap();
         let nominal = nalgebra::Vector6::repeat(2e-6);
-        gravity::Model::masses(r, m, stiffid::Coordinates::Axis, nominal).unwrap()
+        gravity::Terms::masses(r, m, stiffid::Coordinates::Axis, nominal).unwrap()
     };
     points.push(Vector3::new(0.12, 0.1, 0.15));
     let (design, group) = fanuc(masses, &points);

@@ -42,7 +42,7 @@ pub(crate) fn model() -> ErrorModel {
         &setup.tool().measuring_points,
         MeasuredIn::Tracker,
         Geometry::Full,
-        gravity::Model::none(robot),
+        gravity::Terms::none(robot),
     )
     .unwrap()
 }
@@ -330,7 +330,7 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     let nominal = setup.nominal_compliance().unwrap();
     let springs = Vector6::from_fn(|i, _| nominal[i] * if i == 0 { 1.0 } else { 1.3 });
     let g =
-        gravity::Model::masses(&robot, *robot.masses().unwrap(), setup.springs(), nominal).unwrap();
+        gravity::Terms::masses(&robot, *robot.masses().unwrap(), setup.springs(), nominal).unwrap();
     let model = ErrorModel::new(
         &robot,
         &setup.tool().measuring_points,

@@ -30,7 +30,7 @@ pub enum WarningKind {
     /// operation covers).
     NoForce,
     /// The data cannot separate some parameters of the model: they get no interval
-    /// ([`crate::identify::model::Identifiability`]).
+    /// ([`crate::identify::svd::Identifiability`]).
     Unidentifiable,
     /// A URDF's collision meshes were not found: the robot serves kinematics and identification,
     /// the cell's body checks refuse it ([`crate::robot::Bodies::Missing`]).

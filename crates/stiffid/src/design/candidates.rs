@@ -6,7 +6,7 @@
 //! load step (the rope wrench scaled by `f_s / F`; one block at the rope load without steps), with
 //! the setup's model's columns and then the candidate's, through its law ([`crate::model::Law`]).
 //! The group identifies the candidate when this matrix has full column-scaled rank, by the rule of
-//! `identify` ([`identifiability`]: singular values above [`crate::identify::model::RANK_TOLERANCE`]
+//! `identify` ([`identifiability`]: singular values above [`crate::identify::svd::RANK_TOLERANCE`]
 //! times the largest); otherwise the combinations it cannot see are named. How well: the
 //! candidate's *separation* `|P psi_c| / |psi_c|`, `psi_c` its column and `P` the projector onto
 //! the complement of the model's columns (the last diagonal entry of the Householder QR of the
@@ -35,7 +35,7 @@
 //! choice of postures does not give (their verdict on the group is reported all the same).
 
 use crate::identify::compare::{default_pool, pool_by_name, Dropped, Pool};
-use crate::identify::model::identifiability;
+use crate::identify::svd::identifiability;
 use crate::math::linalg::householder_qr_columns;
 use crate::model::{Kind, Parameter, Spring};
 use crate::observation::write_posture_block;

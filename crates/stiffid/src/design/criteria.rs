@@ -11,7 +11,7 @@
 //! on `Psi`, never NaN.
 
 use super::Evaluator;
-use crate::identify::model::Identifiability;
+use crate::identify::svd::Identifiability;
 use crate::setup::Setup;
 use crate::{dexterity, Error, Frames};
 use nalgebra::Vector6;
@@ -194,7 +194,7 @@ pub struct Evaluation {
     pub predicted_deviation_pct: Vec<[f64; 6]>,
     /// Which parameters (drives, then virtual springs) the group identifies, and the combinations
     /// it cannot separate: the column-scaled rank of its `Psi`, by the rule of identification
-    /// ([`crate::identify::model::identifiability`]); needs no nominal stiffness.
+    /// ([`crate::identify::svd::identifiability`]); needs no nominal stiffness.
     pub identifiability: Identifiability,
 }
 

@@ -30,7 +30,7 @@
 //! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its
 //! rows. That costs `O(K m p^2)`: `folds x measurements` is at most [`MAX_REFIT_WORK`].
 
-use crate::identify::{model, Identification, Loss};
+use crate::identify::{svd, Identification, Loss};
 use crate::math::lsq::Factor;
 use crate::observation::Observations;
 use crate::{Error, Result};
@@ -190,9 +190,9 @@ pub fn cross_validate(
     run(obs, &full_fit, folds, method, inverse, refit)
 }
 
-/// Cross-validates a model of any number of parameters ([`super::model`]) as
-/// [`cross_validate`]: `full` is the fit of all of `obs` by `method` ([`model::fit_by`]);
-/// least-squares folds come from its column-scaled SVD ([`model::inverse_factor`]), bounded and
+/// Cross-validates a model of any number of parameters ([`super::svd`]) as
+/// [`cross_validate`]: `full` is the fit of all of `obs` by `method` ([`svd::fit_by`]);
+/// least-squares folds come from its column-scaled SVD ([`svd::inverse_factor`]), bounded and
 /// robust folds are refitted. A fold whose other postures do not identify every parameter is
 /// refused.
 ///
@@ -200,7 +200,7 @@ pub fn cross_validate(
 /// As [`cross_validate`].
 pub fn cross_validate_model(
     obs: &Observations,
-    full: &model::Fit,
+    full: &svd::Fit,
     folds: usize,
     method: Method,
 ) -> Result<CrossValidation> {
@@ -215,9 +215,9 @@ pub fn cross_validate_model(
         se: (se.map(DVector::from_vec)).filter(|_| !exact(&full.residuals, &obs.delta)),
     };
     let n = full.parameters.len();
-    let inverse = || model::inverse_factor(&obs.psi);
+    let inverse = || svd::inverse_factor(&obs.psi);
     let refit = |rest: &Observations| {
-        let f = model::fit_by(rest, &full.parameters, method)?;
+        let f = svd::fit_by(rest, &full.parameters, method)?;
         match f.identifiability.rank == n {
             true => Ok(f.compliance),
             false => Err(Error::InvalidField {

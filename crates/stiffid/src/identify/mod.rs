@@ -29,13 +29,13 @@
 pub mod adequacy;
 pub mod compare;
 pub mod cross_validation;
-pub mod model;
 pub mod nonnegative;
 pub mod offsets;
 pub mod prediction;
 pub mod robust;
 pub mod steps;
 pub mod streamed;
+pub mod svd;
 mod uncertainty;
 pub mod validate;
 
@@ -286,7 +286,7 @@ fn rows(arm: &Arm, measurements: &[Measurement]) -> (DMatrix<f64>, DVector<f64>)
 fn six_parameters_only() -> Error {
     Error::InvalidField {
         field: "model".into(),
-        message: "this fit takes the six drive springs alone; fit a model with virtual springs with identify::model".into(),
+        message: "this fit takes the six drive springs alone; fit a model with virtual springs with identify::svd".into(),
     }
 }
 

@@ -100,7 +100,7 @@ pub fn fit(setup: &Setup, observations: &[Observation]) -> Result<Calibration> {
         setup_points,
         MeasuredIn::Tracker,
         Geometry::None,
-        gravity::Model::none(robot),
+        gravity::Terms::none(robot),
     )?;
     let start = fit::start(&model, observations)?;
     let options = Options {

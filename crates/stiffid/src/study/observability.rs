@@ -99,7 +99,7 @@ pub fn calibration_study(
         &points,
         MeasuredIn::Tracker,
         Geometry::Full,
-        gravity::Model::none(&robot),
+        gravity::Terms::none(&robot),
     )?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let reference = postures(&robot, REFERENCE_POSTURES, &mut rng);

@@ -23,7 +23,7 @@
 //! sums are taken in run order, so the result is the same whatever the number of threads.
 
 use crate::design::criteria::evaluate;
-use crate::identify::model::identifiability;
+use crate::identify::svd::identifiability;
 use crate::math::lsq::Factor;
 
 use crate::observation::rope_observation_matrix;

@@ -8,7 +8,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::design::random_group;
 use stiffid::identify::compare::{compare, default_pool, pool_by_name};
-use stiffid::identify::model::fit;
+use stiffid::identify::svd::fit;
 use stiffid::observation::{posture_block, Measurement, Observations};
 use stiffid::setup::Setup;
 

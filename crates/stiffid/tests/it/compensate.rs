@@ -534,7 +534,7 @@ fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
         points,
         MeasuredIn::Base,
         Geometry::Full,
-        gravity::Model::none(s.robot()),
+        gravity::Terms::none(s.robot()),
     )
     .unwrap();
     // Known errors in every (M)DH parameter class: up to 1 mm and 1 mrad.

@@ -1,5 +1,5 @@
 //! Robust, bounded and cross-validated identification over every parameter of a model with
-//! virtual springs (crate::identify::model::fit_by, crate::identify::cross_validation::
+//! virtual springs (crate::identify::svd::fit_by, crate::identify::cross_validation::
 //! cross_validate_model, crate::jobs::identify_model).
 
 use nalgebra::DVector;
@@ -7,7 +7,7 @@ use stiffid::app::identify::{Data, Fit, Folds, Request};
 use stiffid::app::identify_model;
 use stiffid::design::random_group;
 use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, Method};
-use stiffid::identify::model::{fit_by, held_out};
+use stiffid::identify::svd::{fit_by, held_out};
 use stiffid::identify::Loss;
 use stiffid::model::Family;
 use stiffid::observation::{posture_block, Measurement, Observations};
@@ -109,7 +109,7 @@ fn a_robust_fit_over_seven_parameters_rejects_an_outlier() {
     data[9].displacement.y += 2e-3;
     let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     let parameters = truth.model().parameters();
-    let error = |f: &stiffid::identify::model::Fit| {
+    let error = |f: &stiffid::identify::svd::Fit| {
         (0..7)
             .map(|j| (f.compliance[j] / h[j] - 1.0).abs())
             .fold(0.0, f64::max)

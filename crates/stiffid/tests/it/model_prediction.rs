@@ -7,7 +7,7 @@ use approx::assert_relative_eq;
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
 use stiffid::design::random_group;
 use stiffid::identify::compare::document::fit_doc;
-use stiffid::identify::model::fit;
+use stiffid::identify::svd::fit;
 use stiffid::io::stiffness;
 use stiffid::machining::compensate;
 use stiffid::model::{link_frame, Compliance, Family, Kind};

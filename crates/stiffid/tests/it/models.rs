@@ -1,5 +1,5 @@
 //! Models beyond the six drives: identification of virtual springs, identifiability, and model
-//! choice by forward selection (crate::model, crate::identify::model, crate::identify::compare).
+//! choice by forward selection (crate::model, crate::identify::svd, crate::identify::compare).
 
 use nalgebra::{DVector, Vector3, Vector6};
 use rand::SeedableRng;
@@ -8,7 +8,7 @@ use rand_distr::{Distribution, Normal};
 use stiffid::design::{local, random_group, Criterion, SearchOptions};
 use stiffid::identify::compare::compare;
 use stiffid::identify::cross_validation::{cross_validate_model, Method};
-use stiffid::identify::model::fit;
+use stiffid::identify::svd::fit;
 use stiffid::model::{Family, Kind, Spring};
 use stiffid::observation::{posture_block, Measurement, Observations};
 use stiffid::setup::Setup;

@@ -47,7 +47,7 @@ fn group(origin: Origin, rates: [f64; 6], classical: f64, levels: usize) -> Grou
             relative_std: Vector6::zeros(),
             spring_relative_std: Vec::new(),
             predicted_deviation_pct: predicted.clone(),
-            identifiability: stiffid::identify::model::Identifiability {
+            identifiability: stiffid::identify::svd::Identifiability {
                 rank: 6,
                 scaled_cond: 1.0,
                 unidentifiable: Vec::new(),

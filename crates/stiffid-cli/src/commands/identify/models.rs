@@ -1,5 +1,5 @@
 //! `stiffid identify` over a model with virtual springs, and `--compare-models`: the library's
-//! fits ([`stiffid::identify::model`], [`stiffid::identify::compare`]) rendered as text or JSON.
+//! fits ([`stiffid::identify::svd`], [`stiffid::identify::compare`]) rendered as text or JSON.
 
 use super::{text, Args};
 use crate::load;
@@ -14,7 +14,7 @@ use stiffid::common::words::count;
 use stiffid::identify::adequacy::Verdict;
 use stiffid::identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
 use stiffid::identify::compare::{parameter_docs, Comparison, Resampling};
-use stiffid::identify::model::Fit;
+use stiffid::identify::svd::Fit;
 use stiffid::Setup;
 
 /// `--compare-models`: the library's job ([`stiffid::app::compare_models`]) rendered as the

@@ -183,7 +183,7 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses; those
-/// of [`ErrorModel::new`] and [`gravity::Model::masses`].
+/// of [`ErrorModel::new`] and [`gravity::Terms::masses`].
 pub fn model(
     setup: &Setup,
     measured_in: MeasuredIn,
@@ -193,9 +193,9 @@ pub fn model(
     let robot = setup.robot();
     let springs = setup.springs();
     let g = match gravity {
-        Gravity::None => gravity::Model::none(robot),
-        Gravity::Lumped => gravity::Model::lumped_bodies(robot, springs),
-        Gravity::LumpedLinks => gravity::Model::lumped(robot, springs),
+        Gravity::None => gravity::Terms::none(robot),
+        Gravity::Lumped => gravity::Terms::lumped_bodies(robot, springs),
+        Gravity::LumpedLinks => gravity::Terms::lumped(robot, springs),
         Gravity::Masses => {
             let Some(masses) = robot.masses() else {
                 return Err(Error::InvalidField {
@@ -207,7 +207,7 @@ pub fn model(
                 });
             };
             let nominal = setup.nominal_compliance().unwrap_or_default();
-            gravity::Model::masses(robot, *masses, springs, nominal)?
+            gravity::Terms::masses(robot, *masses, springs, nominal)?
         }
     };
     ErrorModel::new(

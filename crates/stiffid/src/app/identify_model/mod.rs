@@ -1,6 +1,6 @@
 //! The identify job over a model with virtual springs ([`crate::model`]): every parameter of the
 //! setup's model identified by least squares, the bounded non-negative fit or a robust fit
-//! ([`crate::identify::model::fit_by`]), with its identifiability and intervals, and if asked the
+//! ([`crate::identify::svd::fit_by`]), with its identifiability and intervals, and if asked the
 //! cross-validation over postures ([`cross_validate_model`]): leave one posture out, or `K`
 //! folds, each fold fitted as the full fit.
 //!
@@ -13,8 +13,8 @@ use super::identify::{self, angle_warnings, noise_floor, on_measurements, Folds,
 use super::{Warning, WarningKind};
 use crate::common::words::count;
 use crate::identify::cross_validation::{cross_validate_model, CrossValidation};
-use crate::identify::model::{fit_by, Fit};
 use crate::identify::prediction::calibrate;
+use crate::identify::svd::{fit_by, Fit};
 use crate::model::prediction::Calibration;
 use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};

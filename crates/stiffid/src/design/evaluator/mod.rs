@@ -21,7 +21,7 @@
 //! `wide` (the same formulas over n columns). The six drives alone keep the fixed-size path above.
 
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
-use crate::identify::model::{identifiability, Identifiability};
+use crate::identify::svd::{identifiability, Identifiability};
 use crate::math::jacobi::{cond, cond_n};
 use crate::math::linalg::{householder_qr_columns, triangular_factor};
 use crate::math::lsq::Factor;

@@ -21,7 +21,7 @@ fn design(noise: f64) -> (Robot, CalibrationDesign) {
         Vector3::new(-0.1, 0.12, 0.3),
         Vector3::new(0.0, -0.14, 0.2),
     ];
-    let g = gravity::Model::lumped(&robot, crate::Coordinates::Axis);
+    let g = gravity::Terms::lumped(&robot, crate::Coordinates::Axis);
     let model = ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full, g).unwrap();
     let reference = postures(&robot, 60, 1);
     let test = postures(&robot, 20, 2);
@@ -134,7 +134,7 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
 }
 
 /// A design on the FANUC preset (coupled J2/J3 axis map) with the gravity model `g`.
-fn design_with(g: impl Fn(&Robot) -> gravity::Model) -> (Robot, CalibrationDesign) {
+fn design_with(g: impl Fn(&Robot) -> gravity::Terms) -> (Robot, CalibrationDesign) {
     let robot = presets::get("fanuc-r2000ic-165f").unwrap();
     let masses: [crate::robot::LinkMass; 6] = std::array::from_fn(|l| crate::robot::LinkMass {
         mass: 200.0 - 30.0 * l as f64,
@@ -161,25 +161,25 @@ fn design_with(g: impl Fn(&Robot) -> gravity::Model) -> (Robot, CalibrationDesig
 }
 
 /// A gravity model of a robot.
-type GravityOf = Box<dyn Fn(&Robot) -> gravity::Model>;
+type GravityOf = Box<dyn Fn(&Robot) -> gravity::Terms>;
 
 fn gravity_models() -> Vec<(&'static str, GravityOf)> {
     vec![
-        ("none", Box::new(gravity::Model::none)),
+        ("none", Box::new(gravity::Terms::none)),
         (
             "lumped",
-            Box::new(|r: &Robot| gravity::Model::lumped(r, crate::Coordinates::Axis)),
+            Box::new(|r: &Robot| gravity::Terms::lumped(r, crate::Coordinates::Axis)),
         ),
         (
             "lumped kinematic",
-            Box::new(|r: &Robot| gravity::Model::lumped(r, crate::Coordinates::Kinematic)),
+            Box::new(|r: &Robot| gravity::Terms::lumped(r, crate::Coordinates::Kinematic)),
         ),
         (
             "masses",
             Box::new(|r: &Robot| {
                 let masses = *r.masses().unwrap();
                 let nominal = Vector6::repeat(2e-6);
-                gravity::Model::masses(r, masses, crate::Coordinates::Axis, nominal).unwrap()
+                gravity::Terms::masses(r, masses, crate::Coordinates::Axis, nominal).unwrap()
             }),
         ),
     ]

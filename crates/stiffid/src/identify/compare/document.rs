@@ -4,7 +4,7 @@
 
 use super::{Bootstrap, Comparison, Row};
 use crate::identify::adequacy::Verdict;
-use crate::identify::model::Fit;
+use crate::identify::svd::Fit;
 use crate::model::Parameter;
 use serde::Serialize;
 

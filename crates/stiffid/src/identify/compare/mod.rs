@@ -2,7 +2,7 @@
 //! error, nested in an outer cross-validation for an honest estimate of the chosen model's error.
 //!
 //! From the setup's model, each step fits the model with every remaining candidate spring added
-//! ([`super::model::fit`]) and its leave-one-posture-out error ([`super::model::held_out`]), and
+//! ([`super::svd::fit`]) and its leave-one-posture-out error ([`super::svd::held_out`]), and
 //! adds the candidate with the smallest held-out mean square `delta_b` among those whose fit is
 //! physical (every compliance `> 0`; a load-dependent compliance `c0 + c1 |tau| > 0` at the
 //! largest load of the data, [`crate::model::Law`]) and identified. It stops when no candidate lowers the
@@ -25,7 +25,7 @@ pub use document::{parameter_docs, Document};
 pub use pool::{default_pool, nonlinear_separation, pool_by_name, Dropped, Pool};
 
 use super::cross_validation::explained_share;
-use super::model::{fit, held_out, Fit, HeldOut};
+use super::svd::{fit, held_out, Fit, HeldOut};
 use crate::identify::adequacy::Verdict;
 use crate::model::{Law, Model, Spring};
 use crate::observation::{Measurement, Observations};
@@ -179,7 +179,7 @@ pub const MIN_POSTURES: usize = 3;
 /// starting from `setup`'s model; `nested` runs the outer cross-validation.
 ///
 /// # Errors
-/// Those of [`Observations::from_measurements`] and of [`super::model::fit`] for the setup's
+/// Those of [`Observations::from_measurements`] and of [`super::svd::fit`] for the setup's
 /// model; [`crate::Error::InvalidField`] for candidates that clash with the model's springs, and
 /// (`postures`) for fewer than [`MIN_POSTURES`] postures or postures whose every subset without
 /// one cannot identify the setup's model (no held-out error to compare models by).

@@ -61,7 +61,7 @@
 //! let robot = presets::get("fanuc-r2000ic-165f")?;
 //! let points = vec![Vector3::new(0.1, 0.0, 0.2), Vector3::new(-0.1, 0.05, 0.2)];
 //! let model = ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full,
-//!     gravity::Model::none(&robot))?;
+//!     gravity::Terms::none(&robot))?;
 //! let x = model.nominal();                       // SI: m, rad
 //! let postures = [(Vector6::new(0.1, 0.2, -0.3, 0.4, 0.5, 0.6), 0)];
 //! let j = model.jacobian(&x, &postures)?;       // 3 rows per (posture, point)
@@ -421,7 +421,7 @@ pub struct ErrorModel {
     joint_start: Option<usize>,
     /// Index of the first offset when only the offsets are modelled.
     offsets_start: Option<usize>,
-    gravity: gravity::Model,
+    gravity: gravity::Terms,
     gravity_start: usize,
     /// The compliances under the applied wrenches, with loaded readings.
     loads: Option<Loads>,
@@ -454,7 +454,7 @@ impl ErrorModel {
         points: &[Vector3<f64>],
         measured_in: MeasuredIn,
         geometry: Geometry,
-        gravity: gravity::Model,
+        gravity: gravity::Terms,
     ) -> Result<Self> {
         if points.is_empty() || points.len() > MAX_POINTS {
             return Err(Error::InvalidField {
@@ -669,7 +669,7 @@ impl ErrorModel {
     }
 
     /// The gravity model.
-    pub fn gravity(&self) -> &gravity::Model {
+    pub fn gravity(&self) -> &gravity::Terms {
         &self.gravity
     }
 

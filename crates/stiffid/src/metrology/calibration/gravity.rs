@@ -58,10 +58,10 @@ pub enum Gravity {
     /// Known masses and centres, unknown compliances.
     Masses,
     /// Unknown masses: compliance times mass moment of three bodies, the upper arm, the forearm
-    /// and the wrist ([`Model::lumped_bodies`]).
+    /// and the wrist ([`Terms::lumped_bodies`]).
     Lumped,
     /// Unknown masses: compliance times mass moment, for every spring and every link it carries
-    /// ([`Model::lumped`]).
+    /// ([`Terms::lumped`]).
     LumpedLinks,
 }
 
@@ -159,9 +159,9 @@ impl Term {
     }
 }
 
-/// The gravity model of a calibration: its terms and what their regressors need.
+/// The gravity terms of a calibration and what their regressors need.
 #[derive(Debug, Clone)]
-pub struct Model {
+pub struct Terms {
     robot: Robot,
     coordinates: Coordinates,
     masses: Option<[LinkMass; 6]>,
@@ -171,7 +171,7 @@ pub struct Model {
     inverse_map: Matrix6<f64>,
 }
 
-impl Model {
+impl Terms {
     /// No gravity term.
     pub fn none(robot: &Robot) -> Self {
         Self::with_terms(robot, Coordinates::Axis, None, Vector6::zeros(), Vec::new())
@@ -251,7 +251,7 @@ impl Model {
         nominal: Vector6<f64>,
         terms: Vec<Term>,
     ) -> Self {
-        Model {
+        Terms {
             inverse_map: robot
                 .axis_map()
                 .matrix
@@ -376,7 +376,7 @@ impl Model {
         }
     }
 
-    /// [`Model::deflection`] from the regressors of the posture ([`Model::regressors`]).
+    /// [`Terms::deflection`] from the regressors of the posture ([`Terms::regressors`]).
     pub fn deflection_from(
         &self,
         values: &DVectorView<'_, f64>,

@@ -57,7 +57,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
     let masses = masses(&robot);
     let compliance = Vector6::from_fn(|i, _| 1.0 / STIFFNESS[i]);
     let truth_gravity =
-        gravity::Model::masses(&robot, masses, Coordinates::Kinematic, compliance).unwrap();
+        gravity::Terms::masses(&robot, masses, Coordinates::Kinematic, compliance).unwrap();
     let truth_model = ErrorModel::new(
         &robot,
         &points(),
@@ -70,10 +70,10 @@ fn simulate(models: &[&str], splits: u64) -> Study {
         .iter()
         .map(|m| {
             let g = match *m {
-                "none" => gravity::Model::none(&robot),
-                "lumped" => gravity::Model::lumped_bodies(&robot, Coordinates::Kinematic),
-                "lumped-links" => gravity::Model::lumped(&robot, Coordinates::Kinematic),
-                _ => gravity::Model::masses(&robot, masses, Coordinates::Kinematic, compliance)
+                "none" => gravity::Terms::none(&robot),
+                "lumped" => gravity::Terms::lumped_bodies(&robot, Coordinates::Kinematic),
+                "lumped-links" => gravity::Terms::lumped(&robot, Coordinates::Kinematic),
+                _ => gravity::Terms::masses(&robot, masses, Coordinates::Kinematic, compliance)
                     .unwrap(),
             };
             ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap()

@@ -34,7 +34,7 @@ nominal_stiffness_nm_per_rad = 4e6
 "#;
 
 /// Full geometry, the gravity model `g`, the compliances of `setup`'s model under the loads.
-fn model(setup: &Setup, g: gravity::Model) -> ErrorModel {
+fn model(setup: &Setup, g: gravity::Terms) -> ErrorModel {
     let robot = setup.robot();
     ErrorModel::new(
         robot,
@@ -165,8 +165,8 @@ fn loaded_jacobian_matches_central_differences() {
     let setup = setup(SPRING);
     let robot = setup.robot();
     for g in [
-        gravity::Model::lumped_bodies(robot, setup.springs()),
-        gravity::Model::masses(
+        gravity::Terms::lumped_bodies(robot, setup.springs()),
+        gravity::Terms::masses(
             robot,
             masses(),
             setup.springs(),
@@ -192,7 +192,7 @@ fn loaded_jacobian_matches_central_differences() {
 #[test]
 fn geometry_gravity_and_drive_compliances_recovered() {
     let setup = setup("");
-    let g = gravity::Model::lumped_bodies(setup.robot(), setup.springs());
+    let g = gravity::Terms::lumped_bodies(setup.robot(), setup.springs());
     let model = model(&setup, g);
     let fit = recovers(&model, 5e-5, &postures(setup.robot(), 30, 4));
     let names: Vec<&str> = (model.compliance_columns().unwrap().iter())
@@ -217,7 +217,7 @@ fn geometry_gravity_and_drive_compliances_recovered() {
 #[test]
 fn known_masses_and_a_virtual_spring_recovered() {
     let setup = setup(SPRING);
-    let g = gravity::Model::masses(
+    let g = gravity::Terms::masses(
         setup.robot(),
         masses(),
         setup.springs(),

@@ -129,8 +129,8 @@ pub(super) fn masses() -> [LinkMass; 6] {
 fn identification_jacobian_matches_central_differences() {
     let robot = fanuc();
     for g in [
-        gravity::Model::lumped(&robot, crate::Coordinates::Axis),
-        gravity::Model::masses(
+        gravity::Terms::lumped(&robot, crate::Coordinates::Axis),
+        gravity::Terms::masses(
             &robot,
             masses(),
             crate::Coordinates::Kinematic,
@@ -244,7 +244,7 @@ fn fanuc_geometry_recovered_and_merged_named() {
         &points(),
         MeasuredIn::Tracker,
         Geometry::Full,
-        gravity::Model::none(&robot),
+        gravity::Terms::none(&robot),
     )
     .unwrap();
     let id = recovers(&model, &postures(&robot, 30, 1), 0.0);
@@ -289,7 +289,7 @@ fn urdf_geometry_recovered() {
         &points()[..2],
         MeasuredIn::Tracker,
         Geometry::Full,
-        gravity::Model::none(&robot),
+        gravity::Terms::none(&robot),
     )
     .unwrap();
     let id = recovers(&model, &postures(&robot, 30, 2), 0.0);
@@ -301,7 +301,7 @@ fn urdf_geometry_recovered() {
 #[test]
 fn gravity_compliances_recovered_with_known_masses() {
     let robot = fanuc();
-    let g = gravity::Model::masses(&robot, masses(), crate::Coordinates::Axis, Vector6::zeros())
+    let g = gravity::Terms::masses(&robot, masses(), crate::Coordinates::Axis, Vector6::zeros())
         .unwrap();
     let model = ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap();
     let id = recovers(&model, &postures(&robot, 40, 3), 5e-6);
@@ -316,7 +316,7 @@ fn gravity_compliances_recovered_with_known_masses() {
 #[test]
 fn gravity_lumped_recovered() {
     let robot = fanuc();
-    let g = gravity::Model::lumped(&robot, crate::Coordinates::Axis);
+    let g = gravity::Terms::lumped(&robot, crate::Coordinates::Axis);
     let model =
         ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Offsets, g).unwrap();
     let id = recovers(&model, &postures(&robot, 60, 4), 5e-5);
@@ -330,7 +330,7 @@ fn gravity_lumped_recovered() {
 #[test]
 fn gravity_lumped_bodies_recovered() {
     let robot = fanuc();
-    let g = gravity::Model::lumped_bodies(&robot, crate::Coordinates::Kinematic);
+    let g = gravity::Terms::lumped_bodies(&robot, crate::Coordinates::Kinematic);
     let model = ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap();
     let id = recovers(&model, &postures(&robot, 40, 4), 5e-5);
     let kept: Vec<&str> = (id.identified.iter())
@@ -368,7 +368,7 @@ fn calibrated_robot_files_reproduce_positions() {
                 &points(),
                 measured_in,
                 Geometry::Full,
-                gravity::Model::none(robot),
+                gravity::Terms::none(robot),
             )
             .unwrap();
             let mut values = perturbed(&model, 11, None, 0.0);
@@ -432,7 +432,7 @@ fn standard_deviations_match_monte_carlo() {
         &points()[..2],
         MeasuredIn::Tracker,
         Geometry::Offsets,
-        gravity::Model::none(&robot),
+        gravity::Terms::none(&robot),
     )
     .unwrap();
     let truth = Estimate {
