@@ -1,42 +1,23 @@
 //! `stiffid.identify(..., compare_models=True)`: the model-comparison job
-//! ([`stiffid::app::compare_models`]), its document as `stiffid identify --compare-models --json`
+//! ([`stiffid::app::identify::comparison`]), its document as `stiffid identify --compare-models --json`
 //! writes it, plus the selection path as arrays and names.
 
 use crate::documents;
-use crate::error::raise;
 use crate::setup::Setup;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::fs::File;
-use stiffid::app::compare_models::{run, Request};
-use stiffid::app::identify::Data;
+use stiffid::app::identify::comparison::Report;
 use stiffid::identify::compare::document::{Document, ModelDoc};
-use stiffid::identify::compare::Resampling;
-use stiffid::io::Capped;
 
-/// Runs the comparison on `data` from `setup`'s model over `candidates` (names; `None`: the
-/// default ones), with the posture bootstrap if `bootstrap` is given, and returns the document with the table of the selection path (key `table`) and
-/// the recommended model as a `[model]` fragment (key `fragment`).
+/// The comparison's document as `stiffid identify --compare-models --json` writes it, with the
+/// table of the selection path (key `table`) and the recommended model as a `[model]` fragment
+/// (key `fragment`).
 pub fn compare_models<'py>(
     py: Python<'py>,
     setup: &Setup,
-    data: Data<Capped<File>>,
-    candidates: Option<Vec<String>>,
-    bootstrap: Option<Resampling>,
+    report: &Report,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let s = &setup.inner;
-    let report = py
-        .detach(|| {
-            run(Request {
-                setup: s,
-                data,
-                candidates: candidates.as_deref(),
-                bootstrap,
-            })
-        })
-        .map_err(raise)?;
-    documents::warn(py, &report.warnings)?;
     let document = report.document(&setup.given);
     let d = documents::to_python(py, &document, &[])?;
     d.set_item("table", table(py, &document)?)?;

@@ -13,13 +13,11 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
 use std::path::PathBuf;
-use stiffid::app::identify::document::Document;
-use stiffid::app::identify::{self as job, Fit, Folds, Origin, Request};
-use stiffid::app::identify_model as over_model;
-use stiffid::app::identify_model::document::Document as ModelDocument;
+use stiffid::app::identify::document::drives::Document;
+use stiffid::app::identify::document::springs::Document as ModelDocument;
+use stiffid::app::identify::{self as job, Options, Origin, Report, Request};
 use stiffid::app::validate as validation;
 use stiffid::app::validate::document::Document as Checked;
-use stiffid::identify::compare::Resampling;
 use stiffid::identify::Loss;
 use stiffid::io::Capped;
 use stiffid::observation::Measurement;
@@ -208,11 +206,11 @@ impl Identification {
 }
 
 impl Identification {
-    /// Over a model with virtual springs: the identify-model document, and as arrays `names`,
+    /// Over a model with virtual springs: the identify document of a model with virtual springs, and as arrays `names`,
     /// `units`, `stiffness` (each parameter in its unit: Nm/rad or N/mm, what ``validate`` and
     /// ``compensate`` take), `ci95` (`(p, 2)`, NaN where unbounded or not identifiable),
     /// `compliance_covariance_si`, and `labels`.
-    fn over_model(py: Python<'_>, report: &over_model::Report, setup: &Setup) -> PyResult<Self> {
+    fn over_model(py: Python<'_>, report: &job::springs::Report, setup: &Setup) -> PyResult<Self> {
         let document = ModelDocument::new(report, &setup.given, &setup.inner);
         let attributes = documents::to_python(py, &document, &["compliance_covariance_si"])?;
         let parameters = &document.fit.parameters;
@@ -237,7 +235,7 @@ impl Identification {
         })
     }
 
-    fn new(py: Python<'_>, report: &job::Report, setup: &Setup) -> PyResult<Self> {
+    fn new(py: Python<'_>, report: &job::drives::Report, setup: &Setup) -> PyResult<Self> {
         let document = Document::new(report, &setup.given, &setup.inner);
         let attributes = documents::to_python(py, &document, &ARRAYS)?;
         let residuals: Vec<[f64; 3]> = document.residuals.iter().map(|r| r.residual_mm).collect();
@@ -327,55 +325,31 @@ pub fn identify<'py>(
     bootstrap: Option<usize>,
     seed: Option<u64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if seed.is_some() && bootstrap.is_none() {
-        return Err(value("seed: only with bootstrap"));
-    }
+    let options = Options {
+        robust: robust.map(str::parse::<Loss>).transpose().map_err(raise)?,
+        nonnegative,
+        cross_validate,
+        folds,
+        offsets,
+        compare_models,
+        candidates,
+        bootstrap,
+        seed,
+    };
+    options.check().map_err(raise)?;
     let s = &setup.inner;
-    if compare_models {
-        if robust.is_some() || nonnegative || cross_validate || folds.is_some() || offsets {
-            return Err(value("compare_models compares least-squares fits held out posture by posture: leave out robust, nonnegative, cross_validate, folds and offsets"));
-        }
-        let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
-        let seed = seed.unwrap_or(1);
-        let bootstrap = bootstrap.map(|resamples| Resampling { resamples, seed });
-        return Ok(compare::compare_models(py, setup, data, candidates, bootstrap)?.into_any());
-    }
-    if candidates.is_some() {
-        return Err(value("candidates: only with compare_models=True"));
-    }
-    if bootstrap.is_some() {
-        return Err(value("bootstrap: only with compare_models=True"));
-    }
-    let fit = match (robust, nonnegative) {
-        (Some(_), true) => return Err(value("robust and nonnegative: choose one")),
-        (Some(r), false) => Fit::Robust(r.parse::<Loss>().map_err(raise)?),
-        (None, true) => Fit::Nonnegative,
-        (None, false) => Fit::LeastSquares,
-    };
-    let folds = match (folds, cross_validate) {
-        (Some(k), _) => Some(Folds::Count(k)),
-        (None, true) => Some(Folds::LeaveOneOut),
-        (None, false) => None,
-    };
     let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let request = Request {
         setup: s,
         data,
-        fit,
-        folds,
-        offsets,
+        options,
     };
-    let identification = match s.model().is_drives_only() {
-        true => {
-            let report = py.detach(|| job::run(request)).map_err(raise)?;
-            documents::warn(py, &report.warnings)?;
-            Identification::new(py, &report, setup)?
-        }
-        false => {
-            let report = py.detach(|| over_model::run(request)).map_err(raise)?;
-            documents::warn(py, &report.warnings)?;
-            Identification::over_model(py, &report, setup)?
-        }
+    let report = py.detach(|| job::run(request)).map_err(raise)?;
+    documents::warn(py, report.warnings())?;
+    let identification = match &report {
+        Report::Comparison(r) => return Ok(compare::compare_models(py, setup, r)?.into_any()),
+        Report::Drives(r) => Identification::new(py, r, setup)?,
+        Report::Springs(r) => Identification::over_model(py, r, setup)?,
     };
     Ok(Bound::new(py, identification)?.into_any())
 }

@@ -53,7 +53,7 @@ def test_compare_models_candidates_and_refusals(fanuc):
     assert {r["added"] for r in c["steps"][0]["candidates"]} == {"tilt3_x", "tool_y"}
     with pytest.raises(ValueError, match="candidates: 'nope' is not a candidate"):
         stiffid.identify(fanuc, FANUC_DATA, compare_models=True, candidates=["nope"])
-    with pytest.raises(ValueError, match="leave out robust"):
+    with pytest.raises(ValueError, match="compare_models: not with robust"):
         stiffid.identify(fanuc, FANUC_DATA, compare_models=True, robust="huber")
     with pytest.raises(ValueError, match="candidates: only with compare_models"):
         stiffid.identify(fanuc, FANUC_DATA, candidates=["tilt"])

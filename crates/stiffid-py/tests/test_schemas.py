@@ -143,8 +143,8 @@ def test_compare_models(cli, tmp_path):
     # --compare-models: the document, and the [model] fragment of --out read back by a setup.
     fragment = tmp_path / "model.toml"
     m = identify(cli, "--compare-models", "--out", fragment)
-    assert_valid("compare-models", m)
-    assert_valid("compare-models", identify(cli, "--compare-models", "--candidates", "tilt3_x,tool_y",
+    assert_valid("identify", m)
+    assert_valid("identify", identify(cli, "--compare-models", "--candidates", "tilt3_x,tool_y",
                                             "--bootstrap", "5"))
     models = m["models"]
     assert models[0]["held_out_explained"] == pytest.approx(0.765, abs=5e-4)
@@ -156,19 +156,19 @@ def test_compare_models(cli, tmp_path):
     names = [p["name"] for p in fit["parameters"]]
     assert len(names) == rec["parameters"]
     assert names[:6] == ["k1", "k2", "k3", "k4", "k5", "k6"]
-    assert_valid("identify-model", fit)
+    assert_valid("identify", fit)
     assert_valid("stiffness", fit, closed=False)
     # Robust and cross-validated over every parameter of the model.
     robust = cli("identify", "--setup", setup, "--data", FANUC_DATA, "--json", "--robust", "tukey", "--folds", "5")
     assert isinstance(robust["robust"], dict) and isinstance(robust["cross_validation"], dict)
     assert [s["name"] for s in robust["cross_validation"]["spread"]] == names
-    assert_valid("identify-model", robust)
+    assert_valid("identify", robust)
     loo = cli("identify", "--setup", setup, "--data", FANUC_DATA, "--json", "--cross-validate")
     assert loo["cross_validation"]["explained"] == pytest.approx(rec["held_out_explained"], rel=1e-9)
     assert loo["cross_validation"]["explained_std_error"] == pytest.approx(
         rec["held_out_explained_std_error"], rel=1e-9
     )
-    assert_valid("identify-model", loo)
+    assert_valid("identify", loo)
 
 
 def test_python_model_documents():
@@ -179,9 +179,9 @@ def test_python_model_documents():
 
     fanuc = stiffid.Setup.builtin("fanuc-r2000ic-165f")
     compared = stiffid.identify(fanuc, FANUC_DATA, compare_models=True, candidates=["tilt3_x", "tool_y"])
-    assert_valid("compare-models", {k: v for k, v in compared.items() if k not in ("table", "fragment")})
+    assert_valid("identify", {k: v for k, v in compared.items() if k not in ("table", "fragment")})
     fit = stiffid.identify(fanuc.with_model(compared["fragment"]), FANUC_DATA, folds=5)
-    assert_valid("identify-model", plain(fit.to_dict()))
+    assert_valid("identify", plain(fit.to_dict()))
     assert_valid("stiffness", plain(fit.to_dict()), closed=False)
 
 

@@ -67,9 +67,7 @@ fn parameters(c: &mut Bench) {
 }
 
 fn compare_models(c: &mut Bench) {
-    use stiffid::app::compare_models::{run, Request};
-    use stiffid::app::identify::Data;
-    use stiffid::identify::compare::Resampling;
+    use stiffid::app::identify::{run, Data, Options, Request};
     let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     let job = |bootstrap| {
@@ -79,20 +77,19 @@ fn compare_models(c: &mut Bench) {
                 name: "measurements.csv".into(),
                 reader: black_box(text.as_bytes()),
             },
-            candidates: None,
-            bootstrap,
+            options: Options {
+                compare_models: true,
+                bootstrap,
+                ..Options::default()
+            },
         })
         .unwrap()
     };
     let mut group = c.benchmark_group("models");
     group.sample_size(10);
     group.bench_function("compare-models/fanuc", |b| b.iter(|| job(None)));
-    let twenty = Resampling {
-        resamples: 20,
-        seed: 1,
-    };
     group.bench_function("compare-models/fanuc-bootstrap-20", |b| {
-        b.iter(|| job(Some(twenty)))
+        b.iter(|| job(Some(20)))
     });
     group.finish();
 }

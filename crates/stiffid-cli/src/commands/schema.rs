@@ -17,19 +17,17 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 17] = [
+const DOCUMENTS: [(&str, &str); 15] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
     ("plan", "stiffid select --report DIR: plan.json"),
     ("predict", "stiffid predict --json"),
-    ("identify", "stiffid identify --json (and --out)"),
     (
-        "identify-model",
-        "stiffid identify --json (and --out) with virtual springs in the setup's model",
+        "identify",
+        "stiffid identify --json (and --out): the six drives, a model with virtual springs, or --compare-models",
     ),
     ("stiffness", "the stiffness file --stiffness reads"),
-    ("compare-models", "stiffid identify --compare-models --json"),
     ("validate", "stiffid validate --json"),
     (
         "compensate",
@@ -74,8 +72,6 @@ pub fn schema(name: &str) -> Result<Schema> {
         "plan" => closed::<stiffid::app::plan::document::Document>(),
         "predict" => closed::<stiffid::app::predict::document::Document>(),
         "identify" => closed::<stiffid::app::identify::document::Document>(),
-        "identify-model" => closed::<stiffid::app::identify_model::document::Document>(),
-        "compare-models" => closed::<stiffid::identify::compare::Document>(),
         "validate" => closed::<stiffid::app::validate::document::Document>(),
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
         "simulate" => closed::<stiffid::app::simulate::document::Document>(),

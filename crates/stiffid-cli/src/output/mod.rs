@@ -18,6 +18,7 @@ pub use file::{OutFile, Writer};
 
 use anyhow::{Context, Result};
 use std::io::Write;
+use stiffid::common::error::combination;
 use stiffid::JobOption;
 
 /// Writes `text` to stdout (locked, flushed): [`write_stdout`] of its bytes.
@@ -110,6 +111,12 @@ fn named(e: &(dyn std::error::Error + 'static)) -> String {
         Some(stiffid::Error::InvalidOption { option, message }) => {
             format!("{}: {message}", flag(*option))
         }
+        Some(stiffid::Error::OptionCombination {
+            option,
+            with,
+            needs,
+            reason,
+        }) => combination(option, with, needs, reason, flag),
         _ => e.to_string(),
     }
 }

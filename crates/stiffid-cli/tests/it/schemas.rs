@@ -75,8 +75,16 @@ fn keys(name: &str, def: Option<&str>) -> std::collections::BTreeSet<String> {
 /// holding an unknown key; and every key ignored is one they write.
 #[test]
 fn a_stiffness_file_reads_every_key_the_documents_write() {
-    let mut written = keys("identify", None);
-    written.extend(keys("identify-model", None));
+    // The identify schema's forms: the six drives, a model with virtual springs (then the
+    // comparison, which writes a `[model]` fragment, not a stiffness file).
+    let text = std::fs::read_to_string(schema_path("identify")).unwrap();
+    let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let forms: Vec<&str> = (schema["anyOf"].as_array().unwrap().iter())
+        .map(|f| f["$ref"].as_str().unwrap().trim_start_matches("#/$defs/"))
+        .collect();
+    assert_eq!(forms.len(), 3, "{forms:?}");
+    let mut written = keys("identify", Some(forms[0]));
+    written.extend(keys("identify", Some(forms[1])));
     written.extend(keys("calibrate", Some("StiffnessSection")));
     let mut read = keys("stiffness", None);
     let ignored = ::stiffid::io::stiffness::DOCUMENT_KEYS;

@@ -23,12 +23,10 @@
 
 pub mod calibrate;
 pub mod calibrate_cell;
-pub mod compare_models;
 pub mod compensate;
 pub mod evaluate;
 pub mod force;
 pub mod identify;
-pub mod identify_model;
 pub mod kinematics;
 pub mod plan;
 pub mod predict;

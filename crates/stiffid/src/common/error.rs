@@ -40,6 +40,21 @@ pub enum Error {
         /// What was expected.
         message: String,
     },
+    /// Options of a job's request set together that cannot go together, or an option set
+    /// without the one it needs. A front end names the options its own way, as for
+    /// [`Error::InvalidOption`] ([`combination`]).
+    #[error("{}", combination(.option, .with, .needs, .reason, |o| o.name().to_string()))]
+    OptionCombination {
+        /// The option refused.
+        option: JobOption,
+        /// With `needs`, the option it needs; else the options set with it that it cannot go
+        /// with.
+        with: Vec<JobOption>,
+        /// Whether `option` needs `with` (else it cannot go with them).
+        needs: bool,
+        /// Why, or empty.
+        reason: String,
+    },
     /// A URDF's collision mesh was not found (no file, or a `package://` package in none of the
     /// package paths). Only the cell's body checks need meshes: the robot still loads for
     /// kinematics and identification ([`crate::robot::Bodies::Missing`]).
@@ -489,6 +504,20 @@ pub enum JobOption {
     Out,
     /// identify --compare-models: the number of bootstrap resamples.
     Bootstrap,
+    /// identify: the robust fit's loss.
+    Robust,
+    /// identify: the non-negative fit.
+    Nonnegative,
+    /// identify: cross-validation over postures.
+    CrossValidate,
+    /// identify: the number of cross-validation folds.
+    Folds,
+    /// identify: offsets per posture and measuring point beside the compliances.
+    Offsets,
+    /// identify: the model comparison.
+    CompareModels,
+    /// identify --compare-models --bootstrap: the seed of the resamples.
+    Seed,
 }
 
 impl JobOption {
@@ -513,8 +542,37 @@ impl JobOption {
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",
             JobOption::Bootstrap => "bootstrap",
+            JobOption::Robust => "robust",
+            JobOption::Nonnegative => "nonnegative",
+            JobOption::CrossValidate => "cross_validate",
+            JobOption::Folds => "folds",
+            JobOption::Offsets => "offsets",
+            JobOption::CompareModels => "compare_models",
+            JobOption::Seed => "seed",
         }
     }
+}
+
+/// The text of [`Error::OptionCombination`], each option spelled by `name` (the library and
+/// Python by [`JobOption::name`], the command by its flag): `robust: not with nonnegative:
+/// REASON`, `seed: only with bootstrap`.
+pub fn combination(
+    option: &JobOption,
+    with: &[JobOption],
+    needs: &bool,
+    reason: &str,
+    name: impl Fn(JobOption) -> String,
+) -> String {
+    let with: Vec<String> = with.iter().map(|o| name(*o)).collect();
+    let mut text = match needs {
+        true => format!("{}: only with {}", name(*option), with.join(" and ")),
+        false => format!("{}: not with {}", name(*option), with.join(", ")),
+    };
+    if !reason.is_empty() {
+        text += ": ";
+        text += reason;
+    }
+    text
 }
 
 impl std::fmt::Display for JobOption {

@@ -4,8 +4,8 @@
 
 use crate::candidates::{measure, paper_with, ELBOW};
 use std::io::Empty;
-use stiffid::app::compare_models::{run, Request};
 use stiffid::app::identify::Data;
+use stiffid::app::identify::{run, Options, Report, Request};
 use stiffid::design::random_group;
 use stiffid::identify::compare::bootstrap::percentile;
 use stiffid::identify::compare::{bootstrap, compare, Bootstrap, Comparison, Resampling};
@@ -67,13 +67,18 @@ fn the_bootstrap_is_seeded_and_independent_of_the_thread_count() {
                 let report = run(Request::<Empty> {
                     setup: &declared,
                     data: Data::Measurements(data.clone()),
-                    candidates: Some(&names),
-                    bootstrap: Some(Resampling {
-                        resamples: 40,
-                        seed: 3,
-                    }),
+                    options: Options {
+                        compare_models: true,
+                        candidates: Some(names.to_vec()),
+                        bootstrap: Some(40),
+                        seed: Some(3),
+                        ..Options::default()
+                    },
                 })
                 .unwrap();
+                let Report::Comparison(report) = report else {
+                    panic!("not a comparison")
+                };
                 serde_json::to_string(&report.document("paper")).unwrap()
             })
     };

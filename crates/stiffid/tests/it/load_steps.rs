@@ -7,7 +7,8 @@ use nalgebra::{Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::app::identify::{self as job, Data, Fit, Folds, Report, Request};
+use stiffid::app::identify::drives::Report;
+use stiffid::app::identify::{self as job, Data, Options, Request};
 use stiffid::observation::stiffness::rope_displacements;
 use stiffid::Setup;
 
@@ -82,15 +83,21 @@ impl Campaign<'_> {
 }
 
 fn identify(setup: &Setup, text: &str, offsets: bool) -> stiffid::Result<Report> {
+    let options = Options {
+        offsets,
+        ..Options::default()
+    };
     job::run(Request {
         setup,
         data: Data::File {
             name: "readings.csv".into(),
             reader: text.as_bytes(),
         },
-        fit: Fit::LeastSquares,
-        folds: None,
-        offsets,
+        options,
+    })
+    .map(|r| match r {
+        job::Report::Drives(r) => *r,
+        _ => panic!("not the six drives"),
     })
 }
 
@@ -379,32 +386,51 @@ fn offsets_with_a_robust_nonnegative_or_cross_validated_fit_are_refused_saying_w
         seed: 1,
     };
     let text = campaign.readings(&setup);
-    let run = |fit: Fit, folds: Option<Folds>| {
+    let run = |options: Options| {
         job::run(Request {
             setup: &setup,
             data: Data::File {
                 name: "readings.csv".into(),
                 reader: text.as_bytes(),
             },
-            fit,
-            folds,
-            offsets: true,
+            options: Options {
+                offsets: true,
+                ..options
+            },
         })
         .unwrap_err()
         .to_string()
     };
-    let huber = run(Fit::Robust(stiffid::identify::robust::Loss::Huber), None);
+    let huber = run(Options {
+        robust: Some(stiffid::identify::robust::Loss::Huber),
+        ..Options::default()
+    });
     assert!(
-        huber.starts_with("offsets: not with a robust fit"),
+        huber.starts_with("offsets: not with robust: the offsets are eliminated by centring"),
         "{huber}"
     );
-    let nnls = run(Fit::Nonnegative, None);
+    let nnls = run(Options {
+        nonnegative: true,
+        ..Options::default()
+    });
     assert!(
-        nnls.starts_with("offsets: not with the non-negative fit"),
+        nnls.starts_with("offsets: not with nonnegative: the non-negative fit's standard errors"),
         "{nnls}"
     );
-    for folds in [Folds::LeaveOneOut, Folds::Count(3)] {
-        let cv = run(Fit::LeastSquares, Some(folds));
-        assert!(cv.starts_with("offsets: not with cross-validation"), "{cv}");
-    }
+    let loo = run(Options {
+        cross_validate: true,
+        ..Options::default()
+    });
+    assert!(
+        loo.starts_with("offsets: not with cross_validate: a held-out posture's offsets"),
+        "{loo}"
+    );
+    let folds = run(Options {
+        folds: Some(3),
+        ..Options::default()
+    });
+    assert!(
+        folds.starts_with("offsets: not with folds: a held-out posture's offsets"),
+        "{folds}"
+    );
 }

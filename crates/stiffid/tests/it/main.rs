@@ -23,6 +23,7 @@ mod gcode_cycles;
 mod gradients;
 mod identify;
 mod identify_blocks;
+mod identify_options;
 mod identify_streamed;
 mod jacobians;
 mod joint_box;

@@ -1,10 +1,9 @@
 //! Robust, bounded and cross-validated identification over every parameter of a model with
 //! virtual springs (crate::identify::svd::fit_by, crate::identify::cross_validation::
-//! cross_validate_model, crate::jobs::identify_model).
+//! cross_validate_model, crate::app::identify).
 
 use nalgebra::DVector;
-use stiffid::app::identify::{Data, Fit, Folds, Request};
-use stiffid::app::identify_model;
+use stiffid::app::identify::{self, Data, Options, Report, Request};
 use stiffid::design::random_group;
 use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, Method};
 use stiffid::identify::svd::{fit_by, held_out};
@@ -176,17 +175,22 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
         .unwrap();
     let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     let run = |setup: &Setup| {
-        identify_model::run(Request {
+        let report = identify::run(Request {
             setup,
             data: Data::File {
                 name: "measurements.csv".into(),
                 reader: text.as_bytes(),
             },
-            fit: Fit::LeastSquares,
-            folds: Some(Folds::LeaveOneOut),
-            offsets: false,
+            options: Options {
+                cross_validate: true,
+                ..Options::default()
+            },
         })
-        .unwrap()
+        .unwrap();
+        match report {
+            Report::Springs(report) => report,
+            _ => panic!("not a model with virtual springs"),
+        }
     };
     let report = run(&model);
     assert_eq!(report.fit.parameters.len(), 8);
@@ -199,7 +203,23 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
     let obs = Observations::from_measurements(model.arm(), &file.measurements).unwrap();
     let press = held_out(&obs).unwrap();
     assert!((press.explained() / cv.explained() - 1.0).abs() < 1e-9);
-    let drives = run(&fanuc).cross_validation.unwrap().explained();
+    // The six drives alone take the job's fast path (QR), with the same held-out share.
+    let drives = identify::run(Request {
+        setup: &fanuc,
+        data: Data::File {
+            name: "measurements.csv".into(),
+            reader: text.as_bytes(),
+        },
+        options: Options {
+            cross_validate: true,
+            ..Options::default()
+        },
+    })
+    .unwrap();
+    let Report::Drives(drives) = drives else {
+        panic!("not the six drives")
+    };
+    let drives = drives.cross_validation.unwrap().explained();
     assert!((drives - 0.765).abs() < 5e-4, "{drives}");
     // A tool translation's stiffness is in N/m inside (SI): about 1.58e6 N/m (1581 N/mm).
     let k_tool = 1.0 / report.fit.compliance[7];

@@ -7,7 +7,7 @@ use crate::common::{paper_measurements, paper_with};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use stiffid::app::identify::{self, Data, Fit, Request};
+use stiffid::app::identify::{self, Data, Options, Report, Request};
 use stiffid::app::WarningKind;
 use stiffid::identify::adequacy::Verdict;
 use stiffid::setup::plausibility::warnings;
@@ -108,11 +108,12 @@ fn the_model_check_tests_displacements_against_two_readings() {
     let report = identify::run(Request::<&[u8]> {
         setup: &setup,
         data: Data::Measurements(data),
-        fit: Fit::LeastSquares,
-        folds: None,
-        offsets: false,
+        options: Options::default(),
     })
     .unwrap();
+    let Report::Drives(report) = report else {
+        panic!("not the six drives")
+    };
     let a = report.adequacy.as_ref().unwrap();
     assert_eq!(a.noise_variance, 2.0 * setup.noise().reading_variance);
     assert!((a.noise_ratio - 1.0).abs() < 0.1, "{}", a.noise_ratio);

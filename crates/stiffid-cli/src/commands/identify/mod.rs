@@ -8,8 +8,8 @@ use crate::load;
 use crate::output::{self, json, OutFile};
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::identify::document::Document;
-use stiffid::app::identify::{self as job, Data, Fit, Folds, Request};
+use stiffid::app::identify::document::{drives, springs};
+use stiffid::app::identify::{self as job, Data, Options, Report, Request};
 use stiffid::identify::Loss;
 
 mod models;
@@ -29,10 +29,10 @@ pub struct Args {
     /// Fit an offset per posture and measuring point beside the compliances (backlash,
     /// friction): needs at least two different loads of every point in every posture; least
     /// squares only.
-    #[arg(long, conflicts_with_all = ["robust", "nonnegative", "cross_validate", "folds"])]
+    #[arg(long)]
     offsets: bool,
     /// Down-weight outliers by iteratively reweighted least squares (`--robust` alone: huber).
-    #[arg(long, value_parser = choice::<Loss>(), num_args = 0..=1, default_missing_value = "huber", conflicts_with = "nonnegative")]
+    #[arg(long, value_parser = choice::<Loss>(), num_args = 0..=1, default_missing_value = "huber")]
     robust: Option<Loss>,
     /// Bound every compliance at >= 0 (Lawson-Hanson non-negative least squares) and report the
     /// active bounds.
@@ -57,66 +57,78 @@ pub struct Args {
     /// `bend2_y`, `tool_y`, `base_rz`, a declared spring's name) or families (`tilt`, `bend`,
     /// `base`, `tool`, `declared`); default all of them. Those along a joint's own axis or
     /// duplicating another are left out, with the reason.
-    #[arg(long, value_delimiter = ',', requires = "compare_models")]
+    #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,
     /// With `--compare-models`: N posture bootstrap resamples (1 to 10000), the whole selection
     /// redone on each; reports how often each parameter is chosen and the spread of its
     /// stiffness over the models chosen.
-    #[arg(long, value_name = "N", requires = "compare_models")]
+    #[arg(long, value_name = "N")]
     bootstrap: Option<usize>,
     /// The seed of the bootstrap's draws: the same seed gives the same result whatever the
-    /// thread count.
-    #[arg(long, default_value_t = 1, requires = "bootstrap")]
-    seed: u64,
+    /// thread count (default 1).
+    #[arg(long)]
+    seed: Option<u64>,
 }
 
-/// Identifies, prints, and writes `--out`.
+/// Identifies (or compares models), prints, and writes `--out`: the options checked together
+/// by the library ([`Options`]) before any file is opened.
 pub fn run(args: &Args) -> Result<()> {
+    let options = Options {
+        robust: args.robust,
+        nonnegative: args.nonnegative,
+        cross_validate: args.cross_validate,
+        folds: args.folds,
+        offsets: args.offsets,
+        compare_models: args.compare_models,
+        candidates: args.candidates.clone(),
+        bootstrap: args.bootstrap,
+        seed: args.seed,
+    };
+    options.check()?;
     let setup = args.common.load_setup()?;
-    if args.compare_models {
-        return models::compare_models(args, &setup);
-    }
     // Opened (and so known as an input, never written over) before --out is prepared.
     let reader = load::open(&args.data)?;
-    let fit = match (args.robust, args.nonnegative) {
-        (Some(loss), _) => Fit::Robust(loss),
-        (None, true) => Fit::Nonnegative,
-        (None, false) => Fit::LeastSquares,
-    };
-    let folds = match (args.folds, args.cross_validate) {
-        (Some(k), _) => Some(Folds::Count(k)),
-        (None, true) => Some(Folds::LeaveOneOut),
-        (None, false) => None,
-    };
-    let request = Request {
-        setup: &setup,
-        data: Data::File {
-            name: args.data.display().to_string(),
-            reader,
-        },
-        fit,
-        folds,
-        offsets: args.offsets,
-    };
-    if !setup.model().is_drives_only() {
-        return models::identify_model(args, &setup, request);
-    }
     let out = args
         .out
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
-    let report = job::run(request)?;
-    output::warnings(&report.warnings);
-    let doc = Document::new(&report, &args.common.setup, &setup);
-    if args.common.json || out.is_some() {
-        let text = json(&doc)?;
-        if let Some(out) = &out {
-            out.write(text.as_bytes())?;
+    let report = job::run(Request {
+        setup: &setup,
+        data: Data::File {
+            name: args.data.display().to_string(),
+            reader,
+        },
+        options,
+    })?;
+    output::warnings(report.warnings());
+    let name = &args.common.setup;
+    // The document's JSON is its form's (the document is untagged).
+    let (json_text, text) = match &report {
+        Report::Comparison(r) => {
+            if let Some(out) = &out {
+                out.write(r.fragment().as_bytes())?;
+            }
+            let doc = r.document(name);
+            return match args.common.json {
+                true => output::print(&json(&doc)?),
+                false => output::print(&models::text(&doc, &r.comparison, &setup)),
+            };
         }
-        if args.common.json {
-            return output::print(&text);
+        Report::Drives(r) => {
+            let doc = drives::Document::new(r, name, &setup);
+            (json(&doc)?, text::human(r, &doc, name, &setup))
         }
+        Report::Springs(r) => {
+            let doc = springs::Document::new(r, name, &setup);
+            (json(&doc)?, models::model_text(r, &doc, &setup))
+        }
+    };
+    if let Some(out) = &out {
+        out.write(json_text.as_bytes())?;
     }
-    output::print(&text::human(&report, &doc, &args.common.setup, &setup))
+    match args.common.json {
+        true => output::print(&json_text),
+        false => output::print(&text),
+    }
 }

@@ -1,58 +1,15 @@
 //! `stiffid identify` over a model with virtual springs, and `--compare-models`: the library's
-//! fits ([`stiffid::identify::svd`], [`stiffid::identify::compare`]) rendered as text or JSON.
+//! fits ([`stiffid::identify::svd`], [`stiffid::identify::compare`]) rendered as text.
 
-use super::{text, Args};
-use crate::load;
-use crate::output::{self, json, OutFile};
-use anyhow::{bail, Result};
-use std::io::Read;
-use stiffid::app::compare_models;
-use stiffid::app::identify::{Data, Request};
-use stiffid::app::identify_model::document::{CrossValidationDoc, Document};
-use stiffid::app::identify_model::{self, Report};
+use super::text;
+use stiffid::app::identify::document::springs::{CrossValidationDoc, Document};
+use stiffid::app::identify::springs::Report;
 use stiffid::common::words::count;
 use stiffid::identify::adequacy::Verdict;
 use stiffid::identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
-use stiffid::identify::compare::{parameter_docs, Comparison, Resampling};
+use stiffid::identify::compare::{parameter_docs, Comparison};
 use stiffid::identify::svd::Fit;
 use stiffid::Setup;
-
-/// `--compare-models`: the library's job ([`stiffid::app::compare_models`]) rendered as the
-/// table and the recommendation, `--out` the recommended `[model]`.
-pub fn compare_models(args: &Args, setup: &Setup) -> Result<()> {
-    let other = args.robust.is_some() || args.nonnegative || args.cross_validate;
-    if other || args.folds.is_some() || args.offsets {
-        bail!("--compare-models compares least-squares fits without offsets held out posture by posture: leave out --robust, --nonnegative, --cross-validate, --folds and --offsets");
-    }
-    // Opened (and so known as an input, never written over) before --out is prepared.
-    let reader = load::open(&args.data)?;
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| OutFile::prepare(p, "--out"))
-        .transpose()?;
-    let report = compare_models::run(compare_models::Request {
-        setup,
-        data: Data::File {
-            name: args.data.display().to_string(),
-            reader,
-        },
-        candidates: args.candidates.as_deref(),
-        bootstrap: args.bootstrap.map(|resamples| Resampling {
-            resamples,
-            seed: args.seed,
-        }),
-    })?;
-    output::warnings(&report.warnings);
-    if let Some(out) = &out {
-        out.write(report.fragment().as_bytes())?;
-    }
-    let document = report.document(&args.common.setup);
-    match args.common.json {
-        true => output::print(&json(&document)?),
-        false => output::print(&text(&document, &report.comparison, setup)),
-    }
-}
 
 /// The bootstrap's table from its document.
 fn bootstrap_text(b: &BootstrapDoc) -> String {
@@ -125,7 +82,7 @@ const HEADER: &str =
 
 /// The text report of a comparison's document `doc` (the path, every step, the nested estimate,
 /// the candidates dropped from its pool and its bootstrap), and the recommended model's fit.
-fn text(doc: &CompareDocument, c: &Comparison, setup: &Setup) -> String {
+pub fn text(doc: &CompareDocument, c: &Comparison, setup: &Setup) -> String {
     let mut s =
         String::from("Model comparison: forward selection on the leave-one-posture-out error\n\n");
     if !doc.dropped.is_empty() {
@@ -205,37 +162,8 @@ pub fn fit_table(f: &Fit) -> String {
     s
 }
 
-/// `stiffid identify` with a setup whose model has virtual springs: the library's job
-/// ([`stiffid::app::identify_model`]) with least squares, `--nonnegative` or `--robust`, and
-/// `--cross-validate`/`--folds`; every parameter with its unit and interval, what is not
-/// identifiable; `--out` the stiffness file of every parameter (what `--stiffness` reads).
-pub fn identify_model<R: Read + Send>(
-    args: &Args,
-    setup: &Setup,
-    request: Request<'_, R>,
-) -> Result<()> {
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| OutFile::prepare(p, "--out"))
-        .transpose()?;
-    let report = identify_model::run(request)?;
-    output::warnings(&report.warnings);
-    let doc = Document::new(&report, &args.common.setup, setup);
-    if args.common.json || out.is_some() {
-        let text = json(&doc)?;
-        if let Some(out) = &out {
-            out.write(text.as_bytes())?;
-        }
-        if args.common.json {
-            return output::print(&text);
-        }
-    }
-    output::print(&model_text(&report, &doc, setup))
-}
-
 /// The text report of a model's identification, its document `doc`.
-fn model_text(report: &Report, doc: &Document, setup: &Setup) -> String {
+pub fn model_text(report: &Report, doc: &Document, setup: &Setup) -> String {
     let f = &report.fit;
     let mut s = format!(
         "Stiffness of the model's {} from {} ({} rows), {}\n",

@@ -1,10 +1,11 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
-use stiffid::app::identify::document::{
+use stiffid::app::identify::document::drives::{
     CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
 };
-use stiffid::app::identify::{Fit, Report};
+use stiffid::app::identify::drives::Report;
+use stiffid::app::identify::Fit;
 use stiffid::identify::adequacy::{Verdict, SIGNIFICANCE};
 use stiffid::io::stiffness::PredictionSection;
 use stiffid::robot::kinematics::Coordinates;

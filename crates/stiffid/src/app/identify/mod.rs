@@ -1,35 +1,36 @@
-//! The identify job: joint stiffness from measurements (Zhang et al. 2021, Eq. 10-14), with its
-//! uncertainty, the model check against the tracker noise ([`Adequacy`]), the unit check against
-//! the setup's nominal stiffness ([`UnitCheck`]), the physical-sign warnings and, if asked, the
-//! cross-validation over postures ([`cross_validate`]).
+//! The identify job: the stiffness of the setup's model from measurements (Zhang et al. 2021,
+//! Eq. 10-14), with its uncertainty, or the model chosen by the data. One request ([`Request`]:
+//! the setup, whose model says what to fit, the data and the [`Options`]), one report
+//! ([`Report`]) and one document ([`document::Document`]), whatever is asked:
 //!
-//! Plain least squares on a file is streamed: the file is read once in chunks and `Psi` reduced in
-//! blocks ([`streamed`]), in bounded memory. Every other fit (robust, non-negative) and
-//! cross-validation need the whole observation matrix ([`Observations`]).
+//! - the six drive springs (a setup's model without virtual springs): least squares by QR, the
+//!   job's fast path ([`drives`]: streamed in blocks from a file, robust and non-negative fits,
+//!   offsets, load steps, cross-validation);
+//! - a model with virtual springs: the column-scaled SVD ([`springs`]);
+//! - the model comparison (`compare_models`): forward selection of candidate springs
+//!   ([`comparison`]).
+//!
+//! The options are checked together once ([`Options`]), so that the command and Python refuse
+//! the same combinations with the same error.
 
+pub mod comparison;
 pub mod document;
+pub mod drives;
+mod options;
+pub mod springs;
 
-use super::in_data;
-use crate::identify::prediction::calibrate;
-use crate::model::prediction::Calibration;
+pub(crate) use drives::{angle_warnings, on_measurements};
+pub use drives::{noise_floor, row_noise_variance, Origin};
+pub use options::Options;
 
-use crate::common::warning::{joint_list, Warning, WarningKind};
-use crate::identify::adequacy::UNIT_FACTOR;
+use crate::app::Warning;
 use crate::identify::cross_validation::Method;
-use crate::identify::offsets::{self, Offset};
-use crate::identify::steps::{linearity, Linearity, LoadSteps};
-use crate::identify::{
-    cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, Loss,
-    UnitCheck,
-};
-use crate::io::measurements::{self, Labels};
-use crate::io::read_text;
-use crate::io::readings::{self, has_load_column};
-use crate::observation::{Measurement, Observations};
-use crate::setup::{plausibility, Noise};
-use crate::{Error, Result, Setup};
-use nalgebra::Vector6;
-use std::io::{BufRead, BufReader, Read};
+use crate::identify::Loss;
+use crate::observation::Measurement;
+use crate::{Result, Setup};
+use document::Document;
+use options::Plan;
+use std::io::Read;
 
 /// The fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -78,23 +79,6 @@ pub enum Data<R> {
     Measurements(Vec<Measurement>),
 }
 
-/// What to identify and how.
-pub struct Request<'a, R> {
-    /// The setup: robot, tool, tracker noise, nominal stiffness.
-    pub setup: &'a Setup,
-    /// The measurements.
-    pub data: Data<R>,
-    /// The fit.
-    pub fit: Fit,
-    /// Cross-validation over postures: `Some(folds)` (2 to the number of postures; the number of
-    /// postures leaves one posture out), `None` for none.
-    pub folds: Option<Folds>,
-    /// Fit an offset per posture and measuring point beside the compliances
-    /// ([`crate::identify::offsets`]; least squares only, without cross-validation; every point
-    /// of every posture under at least two different loads).
-    pub offsets: bool,
-}
-
 /// The folds of a cross-validation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Folds {
@@ -113,603 +97,92 @@ impl Folds {
         }
     }
 }
-
-/// The tracker noise variance of one row of the fit, m^2, that the model check tests the
-/// residuals against: a displacement's (a loaded minus an unloaded reading, twice a reading's);
-/// with offsets fitted, one reading's, the unloaded reading's error going into its offset
-/// (docs/model.md, the noise convention).
-pub fn row_noise_variance(noise: &Noise, offsets: bool) -> f64 {
-    match offsets {
-        true => noise.reading_variance,
-        false => noise.displacement_variance(),
-    }
+/// What to identify and how.
+pub struct Request<'a, R> {
+    /// The setup: robot, tool, the model to fit (the six drives alone take the fast path),
+    /// tracker noise, nominal stiffness, candidate springs.
+    pub setup: &'a Setup,
+    /// The measurements.
+    pub data: Data<R>,
+    /// The fit, the cross-validation, the offsets and the model comparison.
+    pub options: Options,
 }
 
-/// The noise floor of the prediction intervals' scale: the standard deviation of one
-/// displacement coordinate from the tracker noise `noise`, m
-/// ([`crate::model::prediction`]).
-pub fn noise_floor(noise: &Noise) -> f64 {
-    noise.displacement_sd()
-}
-
-/// Where each measurement came from: what a report names a measurement by.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Origin {
-    /// The posture labels (a file's; for arrays `1`, `2`, ... in order).
-    pub labels: Labels,
-    /// The posture of each measurement, numbered in order of first appearance.
-    pub postures: Vec<usize>,
-    /// The measuring point of each measurement, 0-based.
-    pub points: Vec<usize>,
-    /// The axis angles of each posture (rad), by posture number.
-    pub angles: Vec<Vector6<f64>>,
-    /// The line of each measurement in its file (1-based); `None` for arrays.
-    pub lines: Option<Vec<u64>>,
-    /// The first measurement of each posture (dense number).
-    pub first_of_posture: Vec<usize>,
-    /// The names of the force and of the displacement columns (a file's header, or the arrays'
-    /// argument names), comma-separated.
-    pub columns: [String; 2],
-}
-
-impl Origin {
-    /// The label of measurement `i`'s posture.
-    pub fn label(&self, i: usize) -> &str {
-        self.labels.get(self.postures[i])
-    }
-
-    /// The labels of dense posture numbers.
-    pub fn labels_of(&self, postures: &[usize]) -> Vec<String> {
-        postures
-            .iter()
-            .map(|&p| self.label(self.first_of_posture[p]).to_string())
-            .collect()
-    }
-
-    fn new(
-        labels: Labels,
-        postures: Vec<usize>,
-        points: Vec<usize>,
-        angles: Vec<Vector6<f64>>,
-        lines: Option<Vec<u64>>,
-        columns: [String; 2],
-    ) -> Self {
-        let mut first_of_posture = vec![usize::MAX; labels.len()];
-        for (i, &p) in postures.iter().enumerate().rev() {
-            first_of_posture[p] = i;
-        }
-        Origin {
-            labels,
-            postures,
-            points,
-            angles,
-            lines,
-            first_of_posture,
-            columns,
-        }
-    }
-}
-
-/// What the identify job found.
+/// What the identify job found, by what was asked.
 #[derive(Debug, Clone)]
-pub struct Report {
-    /// The data's name (a file's, or `arrays`).
-    pub data_name: String,
-    /// The fit asked for.
-    pub fit: Fit,
-    /// The identification.
-    pub identification: Identification,
-    /// Where each measurement came from.
-    pub origin: Origin,
-    /// The residuals against the setup's tracker noise; `None` without degrees of freedom.
-    pub adequacy: Option<Adequacy>,
-    /// The unit check against the setup's nominal stiffness, when it fails; `None` when the
-    /// stiffness is plausible or the setup has no nominal stiffness.
-    pub unit: Option<UnitCheck>,
-    /// The cross-validation, if asked.
-    pub cross_validation: Option<CrossValidation>,
-    /// With the cross-validation: what prediction intervals are built from.
-    pub prediction: Option<Calibration>,
-    /// Fold by fold: the postures left out and the joints (0-based) whose stiffness the removal
-    /// moves by more than its standard error in the full fit (influential folds only).
-    pub influential: Vec<(Vec<String>, Vec<usize>)>,
-    /// With raw readings under load steps ([`crate::identify::steps`]): each posture's linearity, offset
-    /// and hysteresis; `None` for displacements.
-    pub load_steps: Option<Vec<Linearity>>,
-    /// The offsets fitted beside the compliances, when asked ([`Request::offsets`]).
-    pub offsets: Option<Vec<Offset>>,
-    /// Results to look at before trusting them (signs, units).
-    pub warnings: Vec<Warning>,
+pub enum Report {
+    /// The six drive springs.
+    Drives(Box<drives::Report>),
+    /// A model with virtual springs.
+    Springs(Box<springs::Report>),
+    /// The model comparison.
+    Comparison(Box<comparison::Report>),
 }
 
-/// What identification from a file found besides the compliances.
-struct Found {
-    identification: Identification,
-    origin: Origin,
-    cross_validation: Option<(CrossValidation, Calibration)>,
-    load_steps: Option<Vec<Linearity>>,
-    offsets: Option<Vec<Offset>>,
+impl Report {
+    /// Results to look at before trusting them.
+    pub fn warnings(&self) -> &[Warning] {
+        match self {
+            Report::Drives(r) => &r.warnings,
+            Report::Springs(r) => &r.warnings,
+            Report::Comparison(r) => &r.warnings,
+        }
+    }
+
+    /// The document (`stiffid identify --json`), `setup_name` the setup as given.
+    pub fn document(&self, setup_name: &str, setup: &Setup) -> Document {
+        match self {
+            Report::Drives(r) => Document::Drives(Box::new(document::drives::Document::new(
+                r, setup_name, setup,
+            ))),
+            Report::Springs(r) => Document::Springs(Box::new(document::springs::Document::new(
+                r, setup_name, setup,
+            ))),
+            Report::Comparison(r) => Document::Comparison(Box::new(r.document(setup_name))),
+        }
+    }
 }
 
-/// Runs the identify job.
+/// Runs the identify job: checks the options together, then fits the six drive springs by QR,
+/// a model with virtual springs by the SVD, or compares models.
 ///
 /// # Errors
-/// Errors about the data are [`Error::Input`] naming the data (a file's line and column, or the
-/// measurement's number): those of [`streamed::least_squares`], [`measurements::parse`],
-/// [`Observations::from_measurements`] and of the fits; [`Error::InvalidField`] (`folds`) and
-/// those of [`cross_validate`].
+/// Those of [`Options`]' check ([`crate::Error::OptionCombination`],
+/// [`crate::Error::InvalidOption`]); errors about the data as [`crate::Error::Input`] naming the
+/// data (a file's line and column, or the measurement's number), from the path taken.
 pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
         data,
-        fit: how,
-        folds,
-        offsets,
+        options,
     } = request;
-    if offsets {
-        check_offsets(how, folds)?;
-    }
-    let how_fit = How {
-        fit: how,
-        folds,
-        offsets,
-    };
-    let (data_name, found) = match data {
-        Data::File { name, reader } => {
-            let found = from_file(setup, how_fit, &name, reader)?;
-            (name, found)
-        }
-        Data::Measurements(measurements) => {
-            let (id, cv, offsets) =
-                fit(setup, how_fit, &measurements).map_err(|e| in_data("arrays", e))?;
-            let found = Found {
-                identification: id,
-                origin: arrays_origin(&measurements),
-                cross_validation: cv,
-                load_steps: None,
+    match options.plan()? {
+        Plan::Compare {
+            candidates,
+            bootstrap,
+        } => comparison::run(comparison::Request {
+            setup,
+            data,
+            candidates: candidates.as_deref(),
+            bootstrap,
+        })
+        .map(|r| Report::Comparison(Box::new(r))),
+        Plan::Fit {
+            fit,
+            folds,
+            offsets,
+        } => {
+            let request = drives::Request {
+                setup,
+                data,
+                fit,
+                folds,
                 offsets,
             };
-            ("arrays".to_string(), found)
-        }
-    };
-    let Found {
-        identification,
-        origin,
-        cross_validation,
-        load_steps,
-        offsets,
-    } = found;
-    let unit = setup
-        .nominal_stiffness()
-        .and_then(|k| identification.unit_check(k));
-    let (cross_validation, prediction) = cross_validation.unzip();
-    let mut report = Report {
-        data_name,
-        fit: how,
-        adequacy: identification.adequacy(row_noise_variance(setup.noise(), offsets.is_some())),
-        unit,
-        influential: Vec::new(),
-        identification,
-        origin,
-        cross_validation,
-        prediction,
-        load_steps,
-        offsets,
-        warnings: Vec::new(),
-    };
-    report.influential = influential(&report);
-    report.warnings = warnings(&report);
-    Ok(report)
-}
-
-/// Offsets are fitted by plain least squares without cross-validation: why each other choice is
-/// refused.
-///
-/// # Errors
-/// [`Error::InvalidField`] (`offsets`) naming the choice and the reason.
-fn check_offsets(how: Fit, folds: Option<Folds>) -> Result<()> {
-    let reason = match (how, folds) {
-        (Fit::Robust(_), _) => {
-            "not with a robust fit: the offsets are eliminated by centring each posture's and point's rows on their mean, which is exact for equal weights only (the weights of a robust fit would need a weighted centring at every iteration); fit without --robust, or drop --offsets"
-        }
-        (Fit::Nonnegative, _) => {
-            "not with the non-negative fit: its standard errors and degrees of freedom would not count the offsets (3 unknowns per posture and point); fit by least squares with --offsets, or drop --offsets"
-        }
-        (_, Some(_)) => {
-            "not with cross-validation: a held-out posture's offsets are unknowns of that posture, so its deflection cannot be predicted; cross-validate without --offsets"
-        }
-        (Fit::LeastSquares, None) => return Ok(()),
-    };
-    Err(Error::InvalidField {
-        field: "offsets".into(),
-        message: reason.into(),
-    })
-}
-
-/// How to fit: the fit, the folds, the offsets.
-#[derive(Clone, Copy)]
-struct How {
-    fit: Fit,
-    folds: Option<Folds>,
-    offsets: bool,
-}
-
-impl How {
-    /// Whether the fit runs in blocks, without the whole `Psi`.
-    fn in_blocks(self) -> bool {
-        self.fit == Fit::LeastSquares && self.folds.is_none() && !self.offsets
-    }
-}
-
-/// The identification of a measurement file: streamed for plain least squares without
-/// cross-validation nor offsets, else parsed whole; a readings file with load steps
-/// ([`has_load_column`]) through [`from_readings`].
-fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> Result<Found> {
-    let mut source = BufReader::with_capacity(1 << 20, reader);
-    if header_has_loads(&mut source) {
-        let text = read_text(name, source)?;
-        return from_readings(setup, how, name, &text);
-    }
-    if how.in_blocks() {
-        let (id, rows) = streamed::least_squares(setup, source).map_err(|e| in_data(name, e))?;
-        let columns = [
-            rows.layout.force_columns(),
-            rows.layout.displacement_columns(),
-        ];
-        let origin = Origin::new(
-            rows.labels,
-            rows.postures,
-            rows.points,
-            rows.angles,
-            Some(rows.lines),
-            columns,
-        );
-        return Ok(Found {
-            identification: id,
-            origin,
-            cross_validation: None,
-            load_steps: None,
-            offsets: None,
-        });
-    }
-    let (file, origin) = read_file(setup, name, source)?;
-    let (id, cv, offsets) =
-        fit(setup, how, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
-    Ok(Found {
-        identification: id,
-        origin,
-        cross_validation: cv,
-        load_steps: None,
-        offsets,
-    })
-}
-
-/// A whole measurement file read, parsed and turned into the base frame, and where each
-/// measurement came from.
-pub(crate) fn read_file<R: Read>(
-    setup: &Setup,
-    name: &str,
-    reader: R,
-) -> Result<(measurements::MeasurementFile, Origin)> {
-    let text = read_text(name, reader)?;
-    let mut file = measurements::parse(&text).map_err(|e| in_data(name, e))?;
-    drop(text);
-    file.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let columns = [
-        file.layout.force_columns(),
-        file.layout.displacement_columns(),
-    ];
-    let origin = Origin::new(
-        Labels::from_iter(&file.labels),
-        file.measurements.iter().map(|m| m.posture).collect(),
-        file.measurements.iter().map(|m| m.point).collect(),
-        posture_angles(&file.measurements),
-        Some(file.lines.clone()),
-        columns,
-    );
-    Ok((file, origin))
-}
-
-/// Whether the header of the text `source` starts with (its first line that is neither blank nor
-/// a `#` comment, within the buffer) names a load column: raw readings under load steps.
-fn header_has_loads<R: Read>(source: &mut BufReader<R>) -> bool {
-    let Ok(buffer) = source.fill_buf() else {
-        return false;
-    };
-    let text = String::from_utf8_lossy(buffer);
-    text.lines()
-        .find(|l| !(l.trim().is_empty() || l.starts_with('#')))
-        .is_some_and(has_load_column)
-}
-
-/// The identification of raw readings under load steps ([`crate::identify::steps`]): every loaded reading
-/// relative to its point's unloaded one, and each posture's linearity.
-fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
-    let points = setup.tool().measuring_points.len();
-    let readings = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
-    let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
-    steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let loaded = steps.loaded();
-    if let Some(p) = (0..steps.labels.len())
-        .find(|&p| !loaded.iter().any(|&i| steps.measurements[i].posture == p))
-    {
-        return Err(in_data(
-            name,
-            Error::InvalidField {
-                field: "load_step".into(),
-                message: format!(
-                    "posture '{}' has no loaded reading: nothing to identify from it",
-                    crate::common::limits::short(&steps.labels[p])
-                ),
-            },
-        ));
-    }
-    let measurements: Vec<Measurement> = loaded
-        .iter()
-        .map(|&i| steps.measurements[i].clone())
-        .collect();
-    let lines: Vec<u64> = loaded.iter().map(|&i| steps.lines[i]).collect();
-    let (id, cv, offsets) = fit(setup, how, &measurements).map_err(|e| {
-        let e = match e {
-            Error::Measurement { number, .. } => Error::InvalidField {
-                field: "readings".into(),
-                message: format!(
-                    "line {}: {e}",
-                    lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)
-                ),
-            },
-            e => e,
-        };
-        in_data(name, e)
-    })?;
-    let origin = Origin::new(
-        Labels::from_iter(&steps.labels),
-        measurements.iter().map(|m| m.posture).collect(),
-        measurements.iter().map(|m| m.point).collect(),
-        posture_angles(&measurements),
-        Some(lines),
-        readings.columns.clone(),
-    );
-    Ok(Found {
-        identification: id,
-        origin,
-        cross_validation: cv,
-        load_steps: Some(linearity(&steps, setup.noise().reading_variance)),
-        offsets,
-    })
-}
-
-/// The fit of measurements in the base frame, the cross-validation (and the calibration of its
-/// prediction intervals) and the offsets if asked. Plain least squares without cross-validation
-/// nor offsets runs in blocks ([`least_squares`]), without the whole `Psi`.
-#[allow(clippy::type_complexity)]
-fn fit(
-    setup: &Setup,
-    how: How,
-    measurements: &[Measurement],
-) -> Result<(
-    Identification,
-    Option<(CrossValidation, Calibration)>,
-    Option<Vec<Offset>>,
-)> {
-    if how.offsets {
-        let (id, offsets) = offsets::least_squares(setup.arm(), measurements)?;
-        return Ok((id, None, Some(offsets)));
-    }
-    if how.in_blocks() {
-        return Ok((least_squares(setup.arm(), measurements)?, None, None));
-    }
-    let obs = Observations::from_measurements(setup.arm(), measurements)?;
-    // Every fold is fitted as the full fit.
-    let method = how.fit.method();
-    let id = method.fit(&obs)?;
-    let cross_validation = match how.folds {
-        None => None,
-        Some(folds) => {
-            let cv = cross_validate(&obs, &id, folds.count(obs.postures), method)?;
-            let calibration = calibrate(&obs, &cv, noise_floor(setup.noise()));
-            Some((cv, calibration))
-        }
-    };
-    Ok((id, cross_validation, None))
-}
-
-/// `f` on the measurements of `data` (a file read and turned into the base frame, or arrays):
-/// the data's name, where each measurement came from and `f`'s result; `f`'s errors as
-/// [`Error::Input`] naming the data (a file's line and column).
-///
-/// # Errors
-/// Those of [`read_file`] and of `f`.
-pub(crate) fn on_measurements<R: Read, T>(
-    setup: &Setup,
-    data: Data<R>,
-    f: impl FnOnce(&[Measurement]) -> Result<T>,
-) -> Result<(String, Origin, T)> {
-    match data {
-        Data::File { name, reader } => {
-            let (file, origin) = read_file(setup, &name, reader)?;
-            let found = f(&file.measurements).map_err(|e| in_data(&name, file.explain(e)))?;
-            Ok((name, origin, found))
-        }
-        Data::Measurements(measurements) => {
-            let found = f(&measurements).map_err(|e| in_data("arrays", e))?;
-            Ok(("arrays".to_string(), arrays_origin(&measurements), found))
+            match setup.model().is_drives_only() {
+                true => drives::run(request).map(|r| Report::Drives(Box::new(r))),
+                false => springs::run(request).map(|r| Report::Springs(Box::new(r))),
+            }
         }
     }
-}
-
-/// The warning that the data's angles look like radians under `_deg` names, if they do
-/// ([`plausibility::radians_as_degrees`]), naming the data.
-pub(crate) fn angle_warnings(data_name: &str, origin: &Origin) -> Vec<Warning> {
-    plausibility::radians_as_degrees(&origin.angles)
-        .map(|mut w| {
-            w.message = format!("{data_name}: {}", w.message);
-            w
-        })
-        .into_iter()
-        .collect()
-}
-
-/// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
-pub(crate) fn arrays_origin(measurements: &[Measurement]) -> Origin {
-    let postures = measurements.iter().map(|m| m.posture).collect::<Vec<_>>();
-    let count = postures.iter().max().map_or(0, |p| p + 1);
-    Origin::new(
-        Labels::from_iter((1..=count).map(|p| p.to_string())),
-        postures,
-        measurements.iter().map(|m| m.point).collect(),
-        posture_angles(measurements),
-        None,
-        ["wrench".into(), "displacement_mm".into()],
-    )
-}
-
-/// The axis angles of each posture of `measurements` (numbered from 0, each with a measurement).
-fn posture_angles(measurements: &[Measurement]) -> Vec<Vector6<f64>> {
-    let count = measurements
-        .iter()
-        .map(|m| m.posture + 1)
-        .max()
-        .unwrap_or(0);
-    let mut angles = vec![Vector6::zeros(); count];
-    for m in measurements {
-        angles[m.posture] = m.q;
-    }
-    angles
-}
-
-/// The postures of each influential fold and the joints (0-based) it moves.
-fn influential(report: &Report) -> Vec<(Vec<String>, Vec<usize>)> {
-    let Some(cv) = &report.cross_validation else {
-        return Vec::new();
-    };
-    cv.folds
-        .iter()
-        .filter(|f| f.influential.iter().any(|i| *i))
-        .map(|f| {
-            let joints = (0..f.influential.len())
-                .filter(|&j| f.influential[j])
-                .collect();
-            (report.origin.labels_of(&f.postures), joints)
-        })
-        .collect()
-}
-
-/// The warnings: results that are not physical, a likely unit mix-up.
-fn warnings(report: &Report) -> Vec<Warning> {
-    let id = &report.identification;
-    let physical = id.physical();
-    // The likely cause first: radians under `_deg` names make every other result nonsense.
-    let mut out = angle_warnings(&report.data_name, &report.origin);
-    let n = id.compliance.len();
-    let negative: Vec<usize> = (0..n).filter(|&j| id.compliance[j] < 0.0).collect();
-    let rigid: Vec<usize> = (0..n)
-        .filter(|&j| !physical[j] && id.compliance[j] >= 0.0)
-        .collect();
-    match negative.len() {
-        0 => {}
-        k if k == n => out.push(Warning::new(
-            WarningKind::AllNegative,
-            "every compliance is negative (not physical): the displacements or the forces probably have the wrong sign (the wrench is the force on the robot; the displacement is loaded minus unloaded)",
-        )),
-        _ => out.push(Warning::new(
-            WarningKind::Negative,
-            format!(
-                "{}: negative compliance, not physical: the model or the data are wrong there; a non-negative fit bounds the compliances at 0",
-                joint_list(negative)
-            ),
-        )),
-    }
-    if !rigid.is_empty() {
-        out.push(Warning::new(
-            WarningKind::Rigid,
-            format!(
-                "{}: zero or non-finite compliance (infinitely stiff), not physical: the data cannot tell the joint from a rigid one",
-                joint_list(rigid)
-            ),
-        ));
-    }
-    if let Some(unit) = &report.unit {
-        out.push(Warning::new(WarningKind::Units, unit_message(report, unit)));
-    }
-    out.extend(load_step_warnings(report));
-    out
-}
-
-/// The warnings of load steps: postures whose offset, linearity or hysteresis exceeds the
-/// tracker noise.
-fn load_step_warnings(report: &Report) -> Vec<Warning> {
-    let Some(steps) = &report.load_steps else {
-        return Vec::new();
-    };
-    let offset_hint = match report.offsets {
-        Some(_) => "fitted beside the compliances",
-        None => "backlash or friction; fit it with offsets beside the compliances",
-    };
-    type Flag = fn(&Linearity) -> bool;
-    let checks: [(Flag, String); 3] = [
-        (
-            Linearity::offset_flagged,
-            format!("a zero-load offset beyond the tracker noise ({offset_hint})"),
-        ),
-        (
-            Linearity::nonlinear,
-            "a deflection that departs from a straight line in the load beyond the tracker noise"
-                .into(),
-        ),
-        (
-            Linearity::hysteresis_flagged,
-            "a hysteresis between rising and falling loads beyond the tracker noise".into(),
-        ),
-    ];
-    checks
-        .into_iter()
-        .filter_map(|(flagged, what)| {
-            let labels: Vec<String> = steps
-                .iter()
-                .filter(|l| flagged(l))
-                .map(|l| {
-                    format!(
-                        "'{}'",
-                        crate::common::limits::short(report.origin.labels.get(l.posture))
-                    )
-                })
-                .collect();
-            (!labels.is_empty()).then(|| {
-                let noun = match labels.len() {
-                    1 => "posture",
-                    _ => "postures",
-                };
-                Warning::new(
-                    WarningKind::LoadSteps,
-                    format!("{}: {noun} {}: {what}", report.data_name, labels.join(", ")),
-                )
-            })
-        })
-        .collect()
-}
-
-/// The unit warning, naming the columns.
-fn unit_message(report: &Report, unit: &UnitCheck) -> String {
-    let [forces, displacements] = &report.origin.columns;
-    let cause = match unit.stiffer {
-        true => format!(
-            "displacements ({displacements}) in m instead of mm, or forces ({forces}) in mN instead of N"
-        ),
-        false => format!(
-            "forces ({forces}) in kN instead of N, or displacements ({displacements}) in um instead of mm"
-        ),
-    };
-    let angles = match report.origin.lines {
-        Some(_) => "q1_deg..q6_deg",
-        None => "q_deg",
-    };
-    format!(
-        "the identified stiffness is {} times the setup's nominal on {} (more than {UNIT_FACTOR}x off): a unit is the likely cause: {cause}; the axis angles must be in degrees ({angles})",
-        match unit.typical_ratio >= 1.0 {
-            true => format!("about {:.3e}", unit.typical_ratio),
-            false => format!("about 1/{:.3e}", 1.0 / unit.typical_ratio),
-        },
-        joint_list(unit.joints.iter().copied())
-    )
 }

@@ -1,22 +1,22 @@
-//! The identify job over a model with virtual springs ([`crate::model`]): every parameter of the
+//! The identify job over a model with virtual springs ([`crate::model`]), by the column-scaled
+//! SVD: every parameter of the
 //! setup's model identified by least squares, the bounded non-negative fit or a robust fit
 //! ([`crate::identify::svd::fit_by`]), with its identifiability and intervals, and if asked the
 //! cross-validation over postures ([`cross_validate_model`]): leave one posture out, or `K`
 //! folds, each fold fitted as the full fit.
 //!
-//! The request is [`identify::Request`]; offsets beside the compliances take the six drives
-//! alone ([`identify::run`]).
+//! Offsets beside the compliances take the six drives alone ([`super::drives`]).
 
-pub mod document;
-
-use super::identify::{self, angle_warnings, noise_floor, on_measurements, Folds, Origin, Request};
-use super::{Warning, WarningKind};
+use super::drives::{angle_warnings, noise_floor, on_measurements, Request};
+use super::{Fit as Method, Folds, Origin};
+use crate::app::{Warning, WarningKind};
 use crate::common::words::count;
 use crate::identify::cross_validation::{cross_validate_model, CrossValidation};
 use crate::identify::prediction::calibrate;
 use crate::identify::svd::{fit_by, Fit};
 use crate::model::prediction::Calibration;
 use crate::observation::{Measurement, Observations};
+use crate::JobOption;
 use crate::{Error, Result, Setup};
 use std::io::Read;
 
@@ -26,7 +26,7 @@ pub struct Report {
     /// The data's name (a file's, or `arrays`).
     pub data_name: String,
     /// The fit asked for.
-    pub method: identify::Fit,
+    pub method: Method,
     /// The fit of every parameter of the setup's model.
     pub fit: Fit,
     /// Where each measurement came from.
@@ -41,14 +41,14 @@ pub struct Report {
 }
 
 /// Runs the identify job over the setup's model (any number of parameters; the six drives alone
-/// give the same compliance as [`identify::run`] to rounding).
+/// give the same compliance as [`super::drives`] to rounding).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`offsets`) when offsets are asked; errors about the data as
+/// [`Error::InvalidOption`] ([`JobOption::Offsets`]) when offsets are asked; errors about the data as
 /// [`Error::Input`] naming the data (a file's line and column): those of
 /// the measurement file's parser, [`Observations::from_measurements`], [`fit_by`] and
 /// [`cross_validate_model`] (a fold whose other postures cannot identify every parameter).
-pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
+pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
         data,
@@ -57,8 +57,8 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         offsets,
     } = request;
     if offsets {
-        return Err(Error::InvalidField {
-            field: "offsets".into(),
+        return Err(Error::InvalidOption {
+            option: JobOption::Offsets,
             message:
                 "offsets are fitted beside the six drive springs alone, not beside virtual springs"
                     .into(),
@@ -83,7 +83,7 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
 /// The fit of every parameter and the cross-validation (and its calibration) if asked.
 fn fit_all(
     setup: &Setup,
-    method: identify::Fit,
+    method: Method,
     folds: Option<Folds>,
     measurements: &[Measurement],
 ) -> Result<(Fit, Option<(CrossValidation, Calibration)>)> {

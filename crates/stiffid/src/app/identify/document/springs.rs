@@ -1,12 +1,11 @@
 //! The document of the identify job over a model with virtual springs
-//! ([`crate::app::identify_model`]): `stiffid identify --json` and the stiffness file of `--out`
+//! ([`crate::app::identify`]): `stiffid identify --json` and the stiffness file of `--out`
 //! for such a setup. Every parameter is named with its kind and unit (Nm/rad for the drives and
 //! rotational springs, N/mm for translational ones) and every stiffness is in that unit.
 
+use super::drives::{prediction, Robust};
 use crate::app::document::{finite, mm};
-use crate::app::identify::document::prediction;
-use crate::app::identify::document::Robust;
-use crate::app::identify_model::Report;
+use crate::app::identify::springs::Report;
 use crate::common::warning::Warning;
 use crate::identify::compare::document::{fit_doc, FitDoc};
 use crate::identify::cross_validation::CrossValidation;

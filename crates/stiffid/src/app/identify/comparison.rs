@@ -4,8 +4,9 @@
 //! ([`crate::identify::compare::bootstrap`]), on a measurement file or measurements given as
 //! arrays.
 
-use super::identify::{angle_warnings, on_measurements, Data};
-use super::Warning;
+use super::drives::{angle_warnings, on_measurements};
+use super::Data;
+use crate::app::Warning;
 use crate::identify::compare::{
     bootstrap, compare, default_pool, pool_by_name, Bootstrap, Comparison, Document, Dropped,
     Resampling,
@@ -15,7 +16,7 @@ use crate::{Result, Setup};
 use std::io::Read;
 
 /// What to compare.
-pub struct Request<'a, R> {
+pub(super) struct Request<'a, R> {
     /// The setup: its model is where the selection starts, its tracker noise judges the fit.
     pub setup: &'a Setup,
     /// The measurements.
@@ -77,7 +78,7 @@ impl Report {
 /// candidate or none left; errors
 /// about the data as [`crate::Error::Input`] naming the data (a file's line and column): those
 /// of the measurement file's parser and of [`compare`].
-pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
+pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
         data,

@@ -1,9 +1,10 @@
-//! The document of the identify job ([`crate::app::identify`]): `stiffid identify --json`, the
+//! The document of the identify job ([`crate::app::identify`]) for the six drive springs: `stiffid identify --json`, the
 //! stiffness file of `--out`, Python's `identify(...).to_dict()`.
 
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, finite_each, mm};
-use crate::app::identify::{Origin, Report};
+use crate::app::identify::drives::Report;
+use crate::app::identify::Origin;
 use crate::common::warning::WarningKind;
 use crate::identify::{Adequacy, Identification, RobustFit, Uncertainty};
 use crate::io::stiffness::PredictionSection;
