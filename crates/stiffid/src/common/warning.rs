@@ -47,6 +47,9 @@ pub enum WarningKind {
     /// A setup field under its old name: it still reads, and the warning says what it meant
     /// (`[noise] variance_mm2`, [`crate::setup::Noise`]).
     OldField,
+    /// An iterative solver stopped before it converged (the robust reweighting at its
+    /// iteration limit): its result may still move.
+    NotConverged,
 }
 
 impl WarningKind {
@@ -66,6 +69,7 @@ impl WarningKind {
             WarningKind::Feed => "feed",
             WarningKind::NearPostures => "near-postures",
             WarningKind::OldField => "old-field",
+            WarningKind::NotConverged => "not-converged",
         }
     }
 }

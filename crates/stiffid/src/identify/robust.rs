@@ -20,6 +20,7 @@
 //! Tuning constants (Huber 1.345, Tukey 4.685) give 95% of the efficiency of least squares when
 //! the errors are Gaussian (Holland & Welsch 1977).
 
+use crate::common::warning::{Warning, WarningKind};
 use crate::Result;
 use nalgebra::{DMatrix, DVector};
 
@@ -94,6 +95,26 @@ impl crate::common::choice::Choice for Loss {
 
 crate::common::choice::by_name!(Loss);
 
+/// Why the reweighting stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stop {
+    /// No compliance changed by more than [`TOLERANCE`] relative to the largest.
+    Converged,
+    /// [`MAX_ITERATIONS`] reached with a compliance still changing by more than [`TOLERANCE`]:
+    /// the weights and the compliances may still move.
+    IterationLimit,
+}
+
+impl Stop {
+    /// The stop reason's name in documents: `converged` or `iteration-limit`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stop::Converged => "converged",
+            Stop::IterationLimit => "iteration-limit",
+        }
+    }
+}
+
 /// What the robust fit did.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobustFit {
@@ -103,13 +124,33 @@ pub struct RobustFit {
     pub scale: f64,
     /// IRLS iterations taken with `loss` (after the Huber start, for Tukey).
     pub iterations: usize,
-    /// Whether the iterations met [`TOLERANCE`] before [`MAX_ITERATIONS`].
-    pub converged: bool,
+    /// Why the iterations stopped: [`TOLERANCE`] met, or [`MAX_ITERATIONS`] reached.
+    pub stop: Stop,
     /// The final weight of every row of `Psi`, in `[0, 1]`.
     pub weights: DVector<f64>,
 }
 
 impl RobustFit {
+    /// Whether the iterations met [`TOLERANCE`] before [`MAX_ITERATIONS`].
+    pub fn converged(&self) -> bool {
+        self.stop == Stop::Converged
+    }
+
+    /// A warning ([`WarningKind::NotConverged`]) when the reweighting stopped at its iteration
+    /// limit: the stiffness comes from weights that were still changing.
+    pub fn warning(&self) -> Option<Warning> {
+        (!self.converged()).then(|| {
+            Warning::new(
+                WarningKind::NotConverged,
+                format!(
+                    "the {} reweighting stopped at its limit of {} iterations with the compliances still changing: the weights and the stiffness may still move; look at the down-weighted rows, or fit without a robust loss",
+                    self.loss.name(),
+                    self.iterations
+                ),
+            )
+        })
+    }
+
     /// The rows (indices into `Psi`) with weight below [`DOWN_WEIGHTED`], lowest weight first.
     pub fn down_weighted(&self) -> Vec<usize> {
         let mut rows: Vec<usize> = (0..self.weights.len())
@@ -138,17 +179,19 @@ pub(crate) fn fit<S>(
 ) -> Result<(DVector<f64>, S, RobustFit)> {
     let start = match loss {
         Loss::Huber => start,
-        Loss::Tukey => iterate(psi, delta, start, Loss::Huber, solve)?.0,
+        Loss::Tukey => iterate(psi, delta, start, Loss::Huber, solve, MAX_ITERATIONS)?.0,
     };
-    iterate(psi, delta, start, loss, solve)
+    iterate(psi, delta, start, loss, solve, MAX_ITERATIONS)
 }
 
+/// IRLS with `loss` from `h`, at most `limit` iterations.
 fn iterate<S>(
     psi: &DMatrix<f64>,
     delta: &DVector<f64>,
     mut h: DVector<f64>,
     loss: Loss,
     solve: &impl Fn(DMatrix<f64>, &DVector<f64>) -> Result<(DVector<f64>, S)>,
+    limit: usize,
 ) -> Result<(DVector<f64>, S, RobustFit)> {
     let mut iterations = 0;
     loop {
@@ -164,13 +207,16 @@ fn iterate<S>(
         let (next, factor) = solve(weighted, &delta.component_mul(&roots))?;
         let change = (&next - &h).amax();
         h = next;
-        let converged = change <= TOLERANCE * h.amax();
-        if converged || iterations == MAX_ITERATIONS {
+        let stop = match change <= TOLERANCE * h.amax() {
+            true => Some(Stop::Converged),
+            false => (iterations >= limit).then_some(Stop::IterationLimit),
+        };
+        if let Some(stop) = stop {
             let fit = RobustFit {
                 loss,
                 scale,
                 iterations,
-                converged,
+                stop,
                 weights,
             };
             return Ok((h, factor, fit));
@@ -207,6 +253,54 @@ mod tests {
         assert_eq!(mad_scale(&even, 4.0), MAD_TO_SIGMA * 1.5);
         // 1.4826 is 1 / Phi^-1(3/4): the MAD of N(0, 1) is 0.6744897501960817.
         assert!((MAD_TO_SIGMA * 0.674_489_750_196_081_7 - 1.0).abs() < 1e-15);
+    }
+
+    /// A line `y = a x` through 20 points with two outliers: by plain least squares per step.
+    fn line_with_outliers() -> (DMatrix<f64>, DVector<f64>) {
+        let x = DMatrix::from_fn(20, 1, |i, _| 1.0 + i as f64);
+        let noise = |i: usize| 1e-3 * ((i * 7919) % 13) as f64 - 6e-3;
+        let mut y = DVector::from_fn(20, |i, _| 2.0 * x[(i, 0)] + noise(i));
+        y[3] += 5.0;
+        y[11] -= 8.0;
+        (x, y)
+    }
+
+    fn solve(a: DMatrix<f64>, b: &DVector<f64>) -> Result<(DVector<f64>, ())> {
+        let qr = a.clone().qr();
+        let h = qr
+            .r()
+            .solve_upper_triangular(&(qr.q().transpose() * b))
+            .unwrap();
+        Ok((h, ()))
+    }
+
+    #[test]
+    fn the_reweighting_says_why_it_stopped_and_warns_at_its_iteration_limit() {
+        let (x, y) = line_with_outliers();
+        let start = solve(x.clone(), &y).unwrap().0;
+        for loss in [Loss::Huber, Loss::Tukey] {
+            // Forced to stop after one step, the compliance is still moving.
+            let (h1, _, cut) = iterate(&x, &y, start.clone(), loss, &solve, 1).unwrap();
+            assert_eq!((cut.stop, cut.iterations), (Stop::IterationLimit, 1));
+            assert!(!cut.converged());
+            let warning = cut.warning().unwrap();
+            assert_eq!(warning.kind, WarningKind::NotConverged);
+            assert!(
+                warning
+                    .message
+                    .contains("stopped at its limit of 1 iterations"),
+                "{}",
+                warning.message
+            );
+            // Left to converge, it meets the tolerance, near the slope 2, and does not warn.
+            let (h, _, done) = fit(&x, &y, start.clone(), loss, &solve).unwrap();
+            assert_eq!(done.stop, Stop::Converged);
+            assert!(done.iterations > 1 && done.iterations < MAX_ITERATIONS);
+            assert_eq!(done.warning(), None);
+            assert!((h[0] - 2.0).abs() < 1e-3, "{}", h[0]);
+            assert!((h1[0] - h[0]).abs() > TOLERANCE * h[0].abs());
+        }
+        assert_eq!(Stop::IterationLimit.name(), "iteration-limit");
     }
 
     #[test]

@@ -128,7 +128,7 @@ fn robust_modes_down_weight_an_injected_outlier() {
             .robust(loss)
             .unwrap();
         let fit = id.robust.as_ref().unwrap();
-        assert!(fit.converged, "{loss:?}");
+        assert!(fit.converged(), "{loss:?}");
         assert_eq!(fit.down_weighted()[0], outlier_row, "{loss:?}");
         assert!(
             fit.weights[outlier_row] < 0.1,

@@ -505,6 +505,7 @@ fn warnings(report: &Report) -> Vec<Warning> {
     let physical = id.physical();
     // The likely cause first: radians under `_deg` names make every other result nonsense.
     let mut out = angle_warnings(&report.data_name, &report.origin);
+    out.extend(id.robust.as_ref().and_then(|r| r.warning()));
     let n = id.compliance.len();
     let negative: Vec<usize> = (0..n).filter(|&j| id.compliance[j] < 0.0).collect();
     let rigid: Vec<usize> = (0..n)

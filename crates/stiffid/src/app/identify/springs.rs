@@ -102,7 +102,12 @@ fn fit_all(
 
 /// Parameters the data cannot separate; compliances that are not positive.
 fn warnings(fit: &Fit) -> Vec<Warning> {
-    let mut out = Vec::new();
+    let mut out: Vec<Warning> = fit
+        .robust
+        .as_ref()
+        .and_then(|r| r.warning())
+        .into_iter()
+        .collect();
     let combinations = &fit.identifiability.unidentifiable;
     if !combinations.is_empty() {
         let written: Vec<String> = combinations

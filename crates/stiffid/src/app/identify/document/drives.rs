@@ -239,6 +239,8 @@ pub struct Robust {
     pub iterations: usize,
     /// Whether the weights converged.
     pub converged: bool,
+    /// Why the reweighting stopped: `converged` or `iteration-limit` (a warning says so).
+    pub stop_reason: &'static str,
     /// Every row with a weight below 1.
     pub down_weighted: Vec<Row>,
 }
@@ -512,7 +514,8 @@ impl Robust {
             tuning_constant: fit.loss.tuning_constant(),
             scale_mm: mm(fit.scale),
             iterations: fit.iterations,
-            converged: fit.converged,
+            converged: fit.converged(),
+            stop_reason: fit.stop.name(),
             down_weighted: fit
                 .down_weighted()
                 .into_iter()
