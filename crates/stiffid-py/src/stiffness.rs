@@ -48,6 +48,7 @@ pub fn compliance(
         h,
         covariance,
         prediction: None,
+        own_weight: None,
     })
 }
 

@@ -29,6 +29,7 @@ fn identified_with_prediction(s: &setup::Setup) -> Compliance {
         h: nalgebra::DVector::from_column_slice(id.compliance.as_slice()),
         covariance: None,
         prediction: Some(calibrate(&obs, &cv, s.noise().displacement_sd())),
+        own_weight: None,
     }
 }
 
@@ -88,6 +89,7 @@ fn benches(c: &mut Criterion) {
     group.bench_function("postures given, identified drives", |b| {
         let plain = Compliance {
             prediction: None,
+            own_weight: None,
             ..identified.clone()
         };
         b.iter(|| compensate::path(s.arm(), &plain, black_box(&postures), &options).unwrap())

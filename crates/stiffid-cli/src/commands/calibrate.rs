@@ -65,10 +65,11 @@ pub struct Args {
     /// Write the calibrated robot as a URDF here (corrected joint origins).
     #[arg(long)]
     urdf_out: Option<PathBuf>,
-    /// With loaded readings (load steps) or --gravity masses: write the fitted compliances as a
+    /// With loaded readings (load steps) or --gravity: write the fitted compliances as a
     /// stiffness file here (JSON, as identify --out; predict and compensate --stiffness read
     /// it): the fitted parameters at their fitted value, the others at the setup's nominal
-    /// stiffness. Never over an input.
+    /// stiffness, and the fitted gravity terms (compensate adds the sag under the robot's own
+    /// weight). Never over an input.
     #[arg(long)]
     stiffness_out: Option<PathBuf>,
 }
@@ -113,7 +114,7 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(_), None) => bail!(
             "--stiffness-out: {}",
             document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or --gravity masses fit them"
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (--gravity masses, lumped or lumped-links) fit them"
                     .into()
             })
         ),

@@ -130,6 +130,75 @@ pub struct StiffnessFile {
     /// parameter).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unidentifiable: Option<Vec<String>>,
+    /// Optional: the robot's own weight as `stiffid calibrate --gravity` fitted it (the
+    /// calibrated robot is the robot without its sag; `compensate` adds the sag).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<GravitySection>,
+}
+
+/// The most gravity terms a stiffness file holds: four mass moments of six links for each of
+/// the six springs.
+pub const MAX_GRAVITY_TERMS: usize = 144;
+
+/// The gravity terms a calibration fitted ([`crate::model::OwnWeight`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct GravitySection {
+    /// The gravity model: `masses` (the robot's link masses, the terms the joint compliances),
+    /// `lumped` or `lumped-links` (compliance times mass moment).
+    pub model: String,
+    /// Each term, in the model's order; at most [`MAX_GRAVITY_TERMS`].
+    pub terms: Vec<GravityTerm>,
+}
+
+/// One gravity term.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct GravityTerm {
+    /// Its name: `gravity.c2` (a compliance) or `gravity.c2.link3.mx` (compliance times a mass
+    /// moment).
+    pub name: String,
+    /// Its value, SI: rad/(N m) for a compliance, rad kg/(N m) for a mass, rad kg/N for a first
+    /// moment; finite.
+    pub value_si: f64,
+}
+
+impl GravitySection {
+    /// The section of `weight`.
+    pub fn new(weight: &crate::model::OwnWeight) -> Self {
+        Self {
+            model: weight.gravity.clone(),
+            terms: (weight.terms.iter())
+                .map(|(name, v)| GravityTerm {
+                    name: name.clone(),
+                    value_si: *v,
+                })
+                .collect(),
+        }
+    }
+
+    /// Checks the count and that every value is finite.
+    fn check(&self) -> Result<()> {
+        limits::check_count("gravity.terms", self.terms.len(), 1, MAX_GRAVITY_TERMS)?;
+        match self.terms.iter().position(|t| !t.value_si.is_finite()) {
+            Some(i) => Err(invalid(
+                format!("gravity.terms[{}].value_si", i + 1),
+                "expected a finite number".into(),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn own_weight(&self) -> crate::model::OwnWeight {
+        crate::model::OwnWeight {
+            gravity: self.model.clone(),
+            terms: (self.terms.iter())
+                .map(|t| (t.name.clone(), t.value_si))
+                .collect(),
+        }
+    }
 }
 
 /// The held-out residuals of an identification cross-validated over postures: what the
@@ -349,6 +418,7 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
         "compliance_covariance_rad2_per_nm2",
         "prediction",
         "unidentifiable",
+        "gravity",
     ];
     if let Some(key) =
         (keys.keys()).find(|k| !ours.contains(&k.as_str()) && !DOCUMENT_KEYS.contains(&k.as_str()))
@@ -359,6 +429,9 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
         ));
     }
     let file: StiffnessFile = serde_json::from_str(text).map_err(json)?;
+    if let Some(g) = &file.gravity {
+        g.check()?;
+    }
     match &file.parameters {
         Some(parameters) => {
             check_parameters(parameters, &file.compliance_covariance_si)?;
@@ -547,6 +620,7 @@ impl StiffnessFile {
                 .as_ref()
                 .map(|rows| DMatrix::from_fn(n, n, |r, c| rows[r][c])),
             prediction: self.prediction.as_ref().map(PredictionSection::calibration),
+            own_weight: self.gravity.as_ref().map(GravitySection::own_weight),
         })
     }
 
@@ -566,7 +640,10 @@ impl StiffnessFile {
         let cov = self
             .compliance_covariance_rad2_per_nm2
             .map(|rows| Matrix6::from_fn(|r, c| rows[r][c]));
-        Ok(Compliance::drives(k.map(|v| 1.0 / v), cov))
+        Ok(Compliance {
+            own_weight: self.gravity.as_ref().map(GravitySection::own_weight),
+            ..Compliance::drives(k.map(|v| 1.0 / v), cov)
+        })
     }
 }
 

@@ -40,6 +40,7 @@
 use crate::common::error::ColumnProblem;
 use crate::common::error::JobOption;
 use crate::common::limits::number;
+use crate::machining::weight::Weight;
 use crate::observation::deflection::PointDeflection;
 use crate::observation::deflection::{base_wrench, Frame, Points};
 use crate::robot::configuration::Configuration;
@@ -279,15 +280,18 @@ pub struct Model<'a> {
     to_axis: Matrix6<f64>,
     /// The level of the prediction intervals.
     level: f64,
+    /// The sag under the robot's own weight, from a calibration with gravity.
+    weight: Option<Weight>,
 }
 
 impl<'a> Model<'a> {
     /// The model of `arm` (its TCP, drive springs and virtual springs) with the compliance
-    /// `compliance` of every parameter of the arm's model.
+    /// `compliance` of every parameter of the arm's model; with the compliance's
+    /// [`crate::model::OwnWeight`], the sag under the robot's own weight ([`Weight`]).
     ///
     /// # Errors
-    /// Those of [`Compliance::check`]; [`Error::InvalidField`] when the springs are kinematic and
-    /// the robot's axis map is singular.
+    /// Those of [`Compliance::check`] and [`Weight::new`]; [`Error::InvalidField`] when the
+    /// springs are kinematic and the robot's axis map is singular.
     pub fn new(arm: &'a Arm, compliance: &'a Compliance) -> Result<Self> {
         compliance.check(arm.model())?;
         let to_axis =
@@ -303,11 +307,15 @@ impl<'a> Model<'a> {
                     })?
                 }
             };
+        let weight = (compliance.own_weight.as_ref())
+            .map(|w| Weight::new(arm.robot(), arm.springs(), w))
+            .transpose()?;
         Ok(Self {
             arm,
             compliance,
             to_axis,
             level: crate::model::prediction::DEFAULT_LEVEL,
+            weight,
         })
     }
 
@@ -318,7 +326,7 @@ impl<'a> Model<'a> {
     }
 
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
-    /// TCP (module docs).
+    /// TCP, sagging under its own weight with a [`Weight`] (module docs).
     pub fn loaded_pose(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
         self.loaded(&self.arm.robot().frames(q), q, wrench)
     }
@@ -331,7 +339,10 @@ impl<'a> Model<'a> {
         let h = &self.compliance.h;
         let j = frames.jacobian(tcp, self.arm.springs());
         let drives = Vector6::from_fn(|r, _| h[r]);
-        let dq = self.to_axis * j.tr_mul(wrench).component_mul(&drives);
+        let mut dq = self.to_axis * j.tr_mul(wrench).component_mul(&drives);
+        if let Some(w) = &self.weight {
+            dq += w.deflection(q);
+        }
         let pose = tool_pose(&self.arm.robot().frames(&(q + dq)), tcp);
         let model = self.arm.model();
         if model.is_drives_only() {

@@ -29,6 +29,7 @@ pub mod gcode;
 pub mod path;
 pub mod process;
 pub mod program;
+pub mod weight;
 
 use crate::common::words::{count, is_are};
 use crate::machining::compensate::{Compensated, Compliance, PathPoint, Target};

@@ -17,6 +17,23 @@ pub struct Compliance {
     /// From an identification cross-validated over postures: what its prediction intervals are
     /// built from ([`crate::model::prediction`]).
     pub prediction: Option<Calibration>,
+    /// From a calibration that fitted the robot's own weight: the gravity terms it fitted
+    /// ([`OwnWeight`]); compensation then adds the sag under the robot's weight.
+    pub own_weight: Option<OwnWeight>,
+}
+
+/// The deflection under the robot's own weight as a calibration fitted it
+/// (`stiffid calibrate --gravity`, [`crate::metrology::calibration::gravity`]): the gravity model
+/// and the value of each of its terms. A calibration with gravity describes the robot without its
+/// sag, so compensation adds it (docs/model.md, "Compensation").
+#[derive(Debug, Clone, PartialEq)]
+pub struct OwnWeight {
+    /// The gravity model: `masses`, `lumped` or `lumped-links`.
+    pub gravity: String,
+    /// Each term's name (`gravity.c2`, `gravity.c2.link3.mx`) and value, SI (rad/(N m) for a
+    /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
+    /// model's term order.
+    pub terms: Vec<(String, f64)>,
 }
 
 impl Compliance {
@@ -27,6 +44,7 @@ impl Compliance {
             h: DVector::from_column_slice(h.as_slice()),
             covariance: covariance.map(|c| DMatrix::from_column_slice(6, 6, c.as_slice())),
             prediction: None,
+            own_weight: None,
         }
     }
 

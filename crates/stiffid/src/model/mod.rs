@@ -28,7 +28,7 @@ pub(crate) mod file;
 mod law;
 pub mod prediction;
 
-pub use compliance::Compliance;
+pub use compliance::{Compliance, OwnWeight};
 pub use family::{Family, FAMILIES};
 pub use file::{fragment, parse as parse_fragment};
 pub use law::{Law, DEFAULT_SMOOTHING};

@@ -63,6 +63,9 @@ pub struct Robot {
     urdf: Option<std::sync::Arc<urdf::UrdfSource>>,
 }
 
+/// What a calibrated robot's name ends with (the robot files `stiffid calibrate` writes).
+pub const CALIBRATED: &str = " (calibrated)";
+
 /// A link's mass and centre of mass (the gravity model of [`crate::metrology::calibration::gravity`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LinkMass {
@@ -241,6 +244,12 @@ impl Robot {
     /// Human-readable name, e.g. "COMAU SMART5 NJ 165-3.0".
     pub fn name(&self) -> &str {
         &self.name
+    }
+
+    /// Whether it is a calibrated robot: its name ends with [`CALIBRATED`], as the files of
+    /// `stiffid calibrate` name it.
+    pub fn is_calibrated(&self) -> bool {
+        self.name.ends_with(CALIBRATED)
     }
 
     /// Where the numbers come from (datasheet, paper, repository).

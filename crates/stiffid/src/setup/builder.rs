@@ -2,7 +2,7 @@
 
 use super::cell::{self, RobotGeometry};
 use super::{Arm, Cell, CellConstraints, Experiment, Noise, Payload, RopeLoad, Setup, Tool};
-use super::{Tracker, Workcell};
+use super::{Controller, Tracker, Workcell};
 use crate::common::limits::joint_box::distinct;
 use crate::common::limits::{self, JointBox};
 use crate::model::{Model, Spring};
@@ -38,6 +38,7 @@ impl Setup {
             tool_radius: None,
             tracker: None,
             workpiece: None,
+            controller: Controller::default(),
             payload: None,
         }
     }
@@ -69,6 +70,7 @@ impl Setup {
             tool_radius: Some(arm.geometry.tool_radius),
             tracker: workcell.tracker.clone(),
             workpiece: workcell.workpiece,
+            controller: workcell.controller.clone(),
             payload: arm.payload,
         }
     }
@@ -118,6 +120,7 @@ pub struct SetupBuilder {
     tool_radius: Option<f64>,
     tracker: Option<Tracker>,
     workpiece: Option<Isometry3<f64>>,
+    controller: Controller,
     payload: Option<Payload>,
 }
 
@@ -258,6 +261,13 @@ impl SetupBuilder {
         self
     }
 
+    /// The kinematics of the controller that runs a program (default: nominal, the setup's
+    /// robot).
+    pub fn with_controller(mut self, controller: Controller) -> Self {
+        self.controller = controller;
+        self
+    }
+
     /// A G-code program's part frame in the robot base frame, m (default none; its translation
     /// within [`limits::LENGTH_MM`]).
     pub fn with_workpiece(mut self, base_from_part: Isometry3<f64>) -> Self {
@@ -388,6 +398,7 @@ impl SetupBuilder {
                 cell: self.cell,
                 tracker,
                 workpiece: self.workpiece,
+                controller: self.controller,
             },
             notes: Vec::new(),
         })

@@ -39,6 +39,16 @@ struct SetupFile {
     tracker: Option<cell::TrackerFile>,
     model: Option<ModelFile>,
     workpiece: Option<WorkpieceFile>,
+    controller: Option<ControllerFile>,
+}
+
+/// `[controller]`: the kinematics of the controller that runs a generated program.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ControllerFile {
+    kinematics: Option<String>,
+    robot: Option<String>,
+    robot_tip: Option<String>,
 }
 
 /// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
@@ -203,9 +213,9 @@ pub fn builtin(name: &str) -> Result<Setup> {
 /// `[robot_base]`/`[robot_flange]` offsets; [`Error::OutsideBox`] naming the file, the field and
 /// the value for bounds or test postures outside the robot's limits; whatever `resolve_robot`
 /// returns.
-pub fn parse<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
+pub fn parse<F>(text: &str, source_name: &str, mut resolve_robot: F) -> Result<Setup>
 where
-    F: FnOnce(&str, Option<&str>) -> Result<Robot>,
+    F: FnMut(&str, Option<&str>) -> Result<Robot>,
 {
     parse_with(text, source_name, |r: &RobotRequest| {
         resolve_robot(r.reference, r.tip)
@@ -223,21 +233,26 @@ pub struct RobotRequest<'a> {
     pub tip: Option<&'a str>,
     /// The `package_paths` field: at most [`MAX_PACKAGE_PATHS`] directories.
     pub package_paths: &'a [String],
+    /// The field that names it: `robot`, or `controller.robot` (the robot file the controller
+    /// runs).
+    pub field: &'a str,
 }
 
 /// Most `package_paths` a setup may list.
 pub const MAX_PACKAGE_PATHS: usize = 64;
 
-/// [`parse`] with the whole [`RobotRequest`] handed to `resolve_robot`.
+/// [`parse`] with the whole [`RobotRequest`] handed to `resolve_robot` (once for `robot`, once
+/// more for `[controller] robot`).
 ///
 /// # Errors
 /// Those of [`parse`]; [`Error::InvalidField`] (`package_paths`) for more than
-/// [`MAX_PACKAGE_PATHS`] paths or an empty one.
-pub fn parse_with<F>(text: &str, source_name: &str, resolve_robot: F) -> Result<Setup>
+/// [`MAX_PACKAGE_PATHS`] paths or an empty one, (`controller.kinematics`) for a kinematics other
+/// than `nominal` or `calibrated`, or `[controller] robot` with `kinematics = "calibrated"`.
+pub fn parse_with<F>(text: &str, source_name: &str, mut resolve_robot: F) -> Result<Setup>
 where
-    F: FnOnce(&RobotRequest) -> Result<Robot>,
+    F: FnMut(&RobotRequest) -> Result<Robot>,
 {
-    let file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
+    let mut file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
         message: limits::one_line(&e.to_string()),
     })?;
@@ -246,18 +261,65 @@ where
         reference: &file.robot,
         tip: file.robot_tip.as_deref(),
         package_paths: &file.package_paths,
+        field: "robot",
     })?;
     let robot = mounted(robot, &file, source_name)?;
+    let controller = match file.controller.take() {
+        None => super::Controller::default(),
+        Some(c) => controller(c, &file, source_name, &mut resolve_robot)?,
+    };
     let steps = !file.loading.steps_n.is_empty();
     let (reading_variance, note) = file
         .noise
         .reading_variance(steps)
         .map_err(|e| in_file(e, source_name))?;
     let mut setup = builder(file, robot, reading_variance)
+        .map(|b| b.with_controller(controller))
         .and_then(SetupBuilder::build)
         .map_err(|e| in_file(e, source_name))?;
     setup.notes.extend(note);
     Ok(setup)
+}
+
+/// `[controller]`: its kinematics and the robot file it runs (resolved as `robot` is, with the
+/// setup's offsets).
+fn controller<F>(
+    c: ControllerFile,
+    file: &SetupFile,
+    source_name: &str,
+    resolve_robot: &mut F,
+) -> Result<super::Controller>
+where
+    F: FnMut(&RobotRequest) -> Result<Robot>,
+{
+    use super::Kinematics;
+    let kinematics = match c.kinematics.as_deref().map(str::parse::<Kinematics>) {
+        None => Kinematics::Nominal,
+        Some(Ok(k)) => k,
+        Some(Err(e)) => return Err(in_file(e, source_name)),
+    };
+    let robot = match (&c.robot, kinematics) {
+        (None, _) => None,
+        (Some(_), Kinematics::Calibrated) => {
+            return Err(in_file(
+                Error::InvalidField {
+                    field: "controller.robot".into(),
+                    message: "given with kinematics = \"calibrated\": a controller loaded with the calibrated model runs the setup's robot; leave robot out, or say kinematics = \"nominal\"".into(),
+                },
+                source_name,
+            ))
+        }
+        (Some(reference), Kinematics::Nominal) => {
+            let robot = resolve_robot(&RobotRequest {
+                reference,
+                tip: c.robot_tip.as_deref(),
+                package_paths: &file.package_paths,
+                field: "controller.robot",
+            })?;
+            Some(mounted(robot, file, source_name)?)
+        }
+    };
+    Ok(super::Controller { kinematics, robot })
 }
 
 fn check_package_paths(paths: &[String]) -> Result<()> {

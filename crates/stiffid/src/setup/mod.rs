@@ -82,7 +82,7 @@ pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
-pub use workcell::{CellConstraints, Workcell};
+pub use workcell::{CellConstraints, Controller, Kinematics, Workcell};
 
 use crate::common::limits::JointBox;
 use crate::model::{Compliance, Model, Spring};
@@ -350,6 +350,7 @@ impl Setup {
             h,
             covariance: None,
             prediction: None,
+            own_weight: None,
         })
     }
 
@@ -373,6 +374,30 @@ impl Setup {
         self.workcell.workpiece()
     }
 
+    /// The robot whose forward kinematics the controller runs ([`Workcell::controller`]): the
+    /// setup's robot with `kinematics = "calibrated"`, else `[controller] robot`, else the setup's
+    /// robot unless that is a calibrated one.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`controller.robot`) when the setup's robot is a calibrated one
+    /// (`stiffid calibrate --out`) and neither `[controller] robot` nor
+    /// `kinematics = "calibrated"` says which kinematics the controller runs.
+    pub fn controller_robot(&self) -> Result<&Robot> {
+        let c = self.workcell.controller();
+        match (c.kinematics, &c.robot) {
+            (Kinematics::Calibrated, _) => Ok(self.robot()),
+            (Kinematics::Nominal, Some(r)) => Ok(r),
+            (Kinematics::Nominal, None) if self.robot().is_calibrated() => Err(Error::InvalidField {
+                field: "controller.robot".into(),
+                message: format!(
+                    "missing: the setup's robot '{}' is a calibrated one, and a controller with its own nominal kinematics would take Cartesian targets of the calibrated model elsewhere; name the robot file the controller runs ([controller] robot), or say kinematics = \"calibrated\" for a controller loaded with the calibrated model",
+                    self.robot().name()
+                ),
+            }),
+            (Kinematics::Nominal, None) => Ok(self.robot()),
+        }
+    }
+
     /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm ([`Experiment::nominal_compliance`]).
     pub fn nominal_compliance(&self) -> Option<Vector6<f64>> {
         self.experiment.nominal_compliance()
@@ -385,6 +410,7 @@ impl Setup {
         Setup {
             workcell: Workcell {
                 workpiece: self.workcell.workpiece,
+                controller: self.workcell.controller.clone(),
                 ..Workcell::default()
             },
             ..self.clone()

@@ -303,7 +303,7 @@ where
         });
         robot_in(dir, r.reference, r.tip, "robot_tip", &read, meshes.as_ref()).map_err(|e| {
             Error::Parse {
-                source_name: format!("{source_name}: robot"),
+                source_name: format!("{source_name}: {}", r.field),
                 message: e.to_string(),
             }
         })

@@ -2,7 +2,52 @@
 //! laser tracker, the search's constraints, the workpiece's frame) ([`super::Setup::workcell`]).
 
 use super::{Cell, Tracker};
+use crate::Robot;
 use nalgebra::Isometry3;
+
+/// Which kinematics the robot controller runs a program with (`[controller] kinematics`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Kinematics {
+    /// The nominal robot: the robot file the controller runs (`[controller] robot`, else the
+    /// setup's `robot` when it is not a calibrated one).
+    #[default]
+    Nominal,
+    /// The setup's (calibrated) robot: a controller loaded with an absolute-accuracy model.
+    Calibrated,
+}
+
+impl crate::common::choice::Choice for Kinematics {
+    const FIELD: &'static str = "controller.kinematics";
+    const ALL: &'static [Self] = &[Kinematics::Nominal, Kinematics::Calibrated];
+    fn name(self) -> &'static str {
+        match self {
+            Kinematics::Nominal => "nominal",
+            Kinematics::Calibrated => "calibrated",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Kinematics::Nominal => "The robot file the controller runs (the nominal robot)",
+            Kinematics::Calibrated => {
+                "The setup's calibrated robot (an absolute-accuracy controller)"
+            }
+        }
+    }
+}
+
+crate::common::choice::by_name!(Kinematics);
+
+/// `[controller]`: the kinematics of the controller that runs a generated program. Its
+/// Cartesian targets are the controller's own forward kinematics of the compensated axis angles
+/// (the calibration "filters" them), so that its inverse kinematics returns those angles.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Controller {
+    /// Which kinematics.
+    pub kinematics: Kinematics,
+    /// `[controller] robot`: the robot file the controller runs (with the setup's
+    /// `[robot_base]` and `[robot_flange]`), if given.
+    pub robot: Option<Robot>,
+}
 
 /// Constraints of a real cell on the postures a search may choose.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -23,6 +68,7 @@ pub struct Workcell {
     pub(super) cell: Option<Cell>,
     pub(super) tracker: Option<Tracker>,
     pub(super) workpiece: Option<Isometry3<f64>>,
+    pub(super) controller: Controller,
 }
 
 impl Workcell {
@@ -44,5 +90,10 @@ impl Workcell {
     /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workpiece.as_ref()
+    }
+
+    /// `[controller]`: the kinematics of the controller that runs a program.
+    pub fn controller(&self) -> &Controller {
+        &self.controller
     }
 }

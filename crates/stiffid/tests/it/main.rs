@@ -53,5 +53,6 @@ mod setup_builder;
 mod simulate;
 mod solver_auto;
 mod study;
+mod true_robot;
 mod trust;
 mod urdf;

@@ -14,7 +14,7 @@ const FLANGE: &str = "xyz_mm = [0.0, 0.0, 20.0]\nrpy_deg = [0.0, 0.0, 45.0]\n";
 fn paper_setup(extra: &str, robot: stiffid::Robot) -> stiffid::Setup {
     let text = setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let with = text.replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
-    setup::parse(&with, "mounted.toml", |_, _| Ok(robot)).unwrap()
+    setup::parse(&with, "mounted.toml", |_, _| Ok(robot.clone())).unwrap()
 }
 
 #[test]

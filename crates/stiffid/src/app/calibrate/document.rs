@@ -61,8 +61,14 @@ pub struct Document {
     pub robot_file_error: Option<String>,
     /// The calibrated robot as a URDF.
     pub urdf: String,
-    /// The setup fragment: the tracker's registration and the measuring points.
+    /// The setup fragment: the tracker's registration, the measuring points and the corrected
+    /// TCP.
     pub fragment: String,
+    /// With the setup's `[tool] tcp_mm`: the TCP moved with the fitted measuring points (what
+    /// merges into them, joint 6's `theta` and `d` and the flange's errors, moves the tool), flange
+    /// frame, mm: the `tcp_mm` to use with the calibrated robot.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tcp_mm: Option<[f64; 3]>,
     /// With loaded readings (load steps) or `gravity` `masses`: the stiffness of every
     /// parameter of the setup's model, as a stiffness file holds it (what `calibrate
     /// --stiffness-out` writes, `predict` and `compensate --stiffness` read); the fitted
@@ -85,6 +91,10 @@ pub struct StiffnessSection {
     pub compliance_covariance_si: Vec<Vec<f64>>,
     /// Whether the calibration fitted each parameter (the others are the setup's nominal).
     pub fitted: Vec<bool>,
+    /// With gravity terms fitted: the robot's own weight, which `compensate` adds to the
+    /// program (the calibrated robot is the robot without its sag).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<crate::io::stiffness::GravitySection>,
 }
 
 /// One parameter.
@@ -243,6 +253,7 @@ impl Document {
             robot_file_error: report.robot_toml.as_ref().err().cloned(),
             urdf: report.urdf.clone(),
             fragment: report.fragment.clone(),
+            tcp_mm: report.tcp.map(|t| [mm(t.x), mm(t.y), mm(t.z)]),
             stiffness_file: match &report.compliance {
                 Some(Ok(c)) => Some(StiffnessSection {
                     parameters: stiffness(&c.parameters, &c.h),
@@ -250,6 +261,10 @@ impl Document {
                         .map(|r| r.iter().copied().collect())
                         .collect(),
                     fitted: c.fitted.clone(),
+                    gravity: c
+                        .own_weight
+                        .as_ref()
+                        .map(crate::io::stiffness::GravitySection::new),
                 }),
                 _ => None,
             },

@@ -28,7 +28,7 @@ use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
 use crate::observation::deflection::base_wrench;
 use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 pub use crate::io::readings::MAX_READINGS;
 
@@ -145,10 +145,14 @@ pub struct Report {
     pub robot_toml: std::result::Result<String, String>,
     /// The calibrated robot as a URDF.
     pub urdf: String,
-    /// The setup fragment: the tracker's registration and the measuring points.
+    /// The setup fragment: the tracker's registration, the measuring points and the corrected
+    /// TCP.
     pub fragment: String,
-    /// With [`Gravity::Masses`] or loaded readings: the compliance of every parameter of the
-    /// setup's model, as a
+    /// With the setup's `[tool] tcp_mm`: the TCP moved with the measuring points ([`tcp`]), flange
+    /// frame, m: what compensation uses with the calibrated robot.
+    pub tcp: Option<nalgebra::Vector3<f64>>,
+    /// With gravity terms or loaded readings: the compliance of every parameter of the
+    /// setup's model (and the gravity terms), as a
     /// stiffness file holds it ([`fitted_compliance`]), or why there is none.
     pub compliance: Option<std::result::Result<FittedCompliance, String>>,
     /// Inputs and results to look at before trusting the result.
@@ -183,7 +187,7 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses; those
-/// of [`ErrorModel::new`] and [`gravity::Terms::masses`].
+/// of [`ErrorModel::new`] and [`gravity::Terms::of`].
 pub fn model(
     setup: &Setup,
     measured_in: MeasuredIn,
@@ -191,25 +195,8 @@ pub fn model(
     gravity: Gravity,
 ) -> Result<ErrorModel> {
     let robot = setup.robot();
-    let springs = setup.springs();
-    let g = match gravity {
-        Gravity::None => gravity::Terms::none(robot),
-        Gravity::Lumped => gravity::Terms::lumped_bodies(robot, springs),
-        Gravity::LumpedLinks => gravity::Terms::lumped(robot, springs),
-        Gravity::Masses => {
-            let Some(masses) = robot.masses() else {
-                return Err(Error::InvalidField {
-                    field: "gravity".into(),
-                    message: format!(
-                        "masses: the robot '{}' gives no link masses (mass_kg and com_mm per joint in a robot file, <inertial> in a URDF): give them or use lumped",
-                        robot.name()
-                    ),
-                });
-            };
-            let nominal = setup.nominal_compliance().unwrap_or_default();
-            gravity::Terms::masses(robot, *masses, springs, nominal)?
-        }
-    };
+    let nominal = setup.nominal_compliance().unwrap_or_default();
+    let g = gravity::Terms::of(robot, gravity, setup.springs(), nominal)?;
     ErrorModel::new(
         robot,
         &setup.tool().measuring_points,
@@ -272,8 +259,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     warnings.extend(judge(&model, &fitted, noise_ratio, name));
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate)?;
-    let fragment = fragment(&model, &fitted);
-    let compliance = (request.gravity == Gravity::Masses || model.has_loads())
+    let tcp = tcp(setup, &model, &fitted.estimate.values);
+    let fragment = fragment(&model, &fitted, tcp.as_ref());
+    let compliance = (request.gravity != Gravity::None || model.has_loads())
         .then(|| fitted_compliance(setup, &model, &fitted));
     Ok(Report {
         data_name: name.clone(),
@@ -291,6 +279,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         robot_toml,
         urdf,
         fragment,
+        tcp,
         compliance,
         warnings,
     })
@@ -310,6 +299,8 @@ pub struct FittedCompliance {
     pub covariance: DMatrix<f64>,
     /// Whether the calibration fitted each (the others keep the setup's nominal stiffness).
     pub fitted: Vec<bool>,
+    /// With gravity terms fitted: the robot's own weight as fitted (what `compensate` adds).
+    pub own_weight: Option<crate::model::OwnWeight>,
 }
 
 /// The compliance of a calibration that fits compliances: with known masses
@@ -317,7 +308,8 @@ pub struct FittedCompliance {
 /// ([`ErrorModel::with_loads`]) every parameter of the setup's model. Each parameter the
 /// readings determine at its fitted value, every other (a vertical joint 1, the virtual springs
 /// without loaded readings, a merged compliance) at the setup's nominal stiffness with zero
-/// variance.
+/// variance. With gravity terms (any [`Gravity`] but none), their fitted values as
+/// [`FittedCompliance::own_weight`].
 ///
 /// # Errors
 /// Why there is none, in words: the setup gives no nominal stiffness, or a fitted compliance is
@@ -357,11 +349,20 @@ pub fn fitted_compliance(
             covariance[(m, other)] = fit.covariance[(i, k)];
         }
     }
+    let g = model.gravity();
+    let values = fit.estimate.values.rows(model.gravity_start(), g.len());
+    let own_weight = (!g.is_empty()).then(|| crate::model::OwnWeight {
+        gravity: crate::common::choice::Choice::name(g.kind()).into(),
+        terms: (g.parameters().into_iter().map(|p| p.name))
+            .zip(values.iter().copied())
+            .collect(),
+    });
     Ok(FittedCompliance {
         parameters,
         h,
         covariance,
         fitted,
+        own_weight,
     })
 }
 
@@ -477,8 +478,44 @@ fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<War
     w
 }
 
-/// The setup fragment: the tracker's registration and the measuring points.
-fn fragment(model: &ErrorModel, fit: &Fit) -> String {
+/// The TCP of the calibrated tool (flange frame, m), when the setup gives one: the measuring
+/// points absorb what the readings cannot tell from them (joint 6's `theta` and `d`, the
+/// flange's errors), and the tool is one rigid body, so the TCP moves with them: by the rigid
+/// transform from the setup's measuring points to the fitted ones (Umeyama's least squares,
+/// [`crate::metrology::register::fit`]; with fewer than three points not on one line, their mean
+/// shift).
+pub fn tcp(setup: &Setup, model: &ErrorModel, values: &DVector<f64>) -> Option<Vector3<f64>> {
+    use crate::metrology::register::{fit, Correspondence};
+    if !setup.tcp_given() {
+        return None;
+    }
+    let tcp = setup.tool().tcp;
+    let pairs: Vec<Correspondence> = (setup.tool().measuring_points.iter().enumerate())
+        .map(|(k, p)| Correspondence {
+            base: model.point(values, k),
+            tracker: *p,
+        })
+        .collect();
+    Some(
+        match fit(&pairs) {
+            Ok(r) => r.base_from_tracker * nalgebra::Point3::from(tcp),
+            Err(_) => {
+                let n = pairs.len().max(1) as f64;
+                nalgebra::Point3::from(
+                    tcp + pairs
+                        .iter()
+                        .map(|c| c.base - c.tracker)
+                        .sum::<Vector3<f64>>()
+                        / n,
+                )
+            }
+        }
+        .coords,
+    )
+}
+
+/// The setup fragment: the tracker's registration, the measuring points and the corrected TCP.
+fn fragment(model: &ErrorModel, fit: &Fit, tcp: Option<&Vector3<f64>>) -> String {
     let values = &fit.estimate.values;
     let points: Vec<String> = (0..model.points())
         .map(|k| {
@@ -504,8 +541,12 @@ fn fragment(model: &ErrorModel, fit: &Fit) -> String {
             y.to_degrees()
         );
     }
-    text + &format!(
+    text += &format!(
         "# in [tool]:\n# measuring_points_mm = [{}]\n",
         points.join(", ")
-    )
+    );
+    match tcp.map(|t| t * 1e3) {
+        Some(t) => text + &format!("# tcp_mm = [{:.6}, {:.6}, {:.6}]\n", t.x, t.y, t.z),
+        None => text,
+    }
 }

@@ -317,11 +317,13 @@ fn check_output(language: Language, output: Language) -> Result<()> {
 
 /// The robot program of a compensated G-code path ([`generate`]): named after the stem of
 /// `out_name` (upper case), written with `settings`, cutting points approximated within the
-/// chord tolerance (m).
+/// chord tolerance (m). Its Cartesian targets are the forward kinematics of the compensated axis
+/// angles in the controller's kinematics ([`Setup::controller_robot`]), with the configuration
+/// that makes its inverse kinematics return them.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`out`) for a KRL program to be written into a `.dat` (a `DEF` belongs
-/// in the `.src`); those of [`moves`] and [`generate`].
+/// in the `.src`); those of [`Setup::controller_robot`], [`moves`] and [`generate`].
 fn write_robot_program(
     setup: &Setup,
     dialect: Dialect,
@@ -345,10 +347,15 @@ fn write_robot_program(
         .to_ascii_uppercase();
     let moves = moves(points, settings.max_tcp_speed)?;
     let tool = setup.tool();
+    // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
+    let controller = match settings.targets {
+        generate::Targets::Joint => setup.robot(),
+        generate::Targets::Cartesian => setup.controller_robot()?,
+    };
     let targets: Vec<Target> = compensated
         .results
         .par_iter()
-        .map(|r| Target::new(setup.robot(), &tool.tcp, &r.q_compensated))
+        .map(|r| Target::new(controller, &tool.tcp, &r.q_compensated))
         .collect();
     let plan = Plan {
         dialect,

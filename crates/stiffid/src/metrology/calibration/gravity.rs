@@ -160,8 +160,9 @@ impl Term {
 }
 
 /// The gravity terms of a calibration and what their regressors need.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Terms {
+    kind: Gravity,
     robot: Robot,
     coordinates: Coordinates,
     masses: Option<[LinkMass; 6]>,
@@ -174,7 +175,45 @@ pub struct Terms {
 impl Terms {
     /// No gravity term.
     pub fn none(robot: &Robot) -> Self {
-        Self::with_terms(robot, Coordinates::Axis, None, Vector6::zeros(), Vec::new())
+        Self::with_terms(
+            (robot, Gravity::None),
+            Coordinates::Axis,
+            None,
+            Vector6::zeros(),
+            Vec::new(),
+        )
+    }
+
+    /// The model `gravity` of `robot` with springs in `coordinates`: [`Terms::none`],
+    /// [`Terms::masses`] of the robot's link masses (the compliances' nominal values `nominal`,
+    /// rad/(N m)), [`Terms::lumped_bodies`] or [`Terms::lumped`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses;
+    /// those of [`Terms::masses`].
+    pub fn of(
+        robot: &Robot,
+        gravity: Gravity,
+        coordinates: Coordinates,
+        nominal: Vector6<f64>,
+    ) -> Result<Self> {
+        match gravity {
+            Gravity::None => Ok(Self::none(robot)),
+            Gravity::Lumped => Ok(Self::lumped_bodies(robot, coordinates)),
+            Gravity::LumpedLinks => Ok(Self::lumped(robot, coordinates)),
+            Gravity::Masses => {
+                let Some(masses) = robot.masses() else {
+                    return Err(Error::InvalidField {
+                        field: "gravity".into(),
+                        message: format!(
+                            "masses: the robot '{}' gives no link masses (mass_kg and com_mm per joint in a robot file, <inertial> in a URDF): give them or use lumped",
+                            robot.name()
+                        ),
+                    });
+                };
+                Self::masses(robot, *masses, coordinates, nominal)
+            }
+        }
     }
 
     /// Known masses and centres, the compliances of the springs (in `coordinates`) unknown, their
@@ -202,7 +241,7 @@ impl Terms {
         }
         let terms = (0..6).map(|joint| Term::Compliance { joint }).collect();
         Ok(Self::with_terms(
-            robot,
+            (robot, Gravity::Masses),
             coordinates,
             Some(masses),
             nominal,
@@ -213,17 +252,25 @@ impl Terms {
     /// Unknown masses: the lumped terms of every spring (in `coordinates`) and every link it
     /// carries.
     pub fn lumped(robot: &Robot, coordinates: Coordinates) -> Self {
-        Self::lumped_links(robot, coordinates, &[0, 1, 2, 3, 4, 5])
+        Self::lumped_links(
+            (robot, Gravity::LumpedLinks),
+            coordinates,
+            &[0, 1, 2, 3, 4, 5],
+        )
     }
 
     /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of
     /// every spring (in `coordinates`) and every link of [`BODIES`] it carries.
     pub fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
-        Self::lumped_links(robot, coordinates, &BODIES)
+        Self::lumped_links((robot, Gravity::Lumped), coordinates, &BODIES)
     }
 
     /// The lumped terms of every spring and every link of `links` (0-based) it carries.
-    fn lumped_links(robot: &Robot, coordinates: Coordinates, links: &[usize]) -> Self {
+    fn lumped_links(
+        (robot, kind): (&Robot, Gravity),
+        coordinates: Coordinates,
+        links: &[usize],
+    ) -> Self {
         let m = robot.axis_map().matrix;
         let carries = |joint: usize, link: usize| match coordinates {
             Coordinates::Kinematic => joint <= link,
@@ -241,17 +288,18 @@ impl Terms {
                 }
             }
         }
-        Self::with_terms(robot, coordinates, None, Vector6::zeros(), terms)
+        Self::with_terms((robot, kind), coordinates, None, Vector6::zeros(), terms)
     }
 
     fn with_terms(
-        robot: &Robot,
+        (robot, kind): (&Robot, Gravity),
         coordinates: Coordinates,
         masses: Option<[LinkMass; 6]>,
         nominal: Vector6<f64>,
         terms: Vec<Term>,
     ) -> Self {
         Terms {
+            kind,
             inverse_map: robot
                 .axis_map()
                 .matrix
@@ -263,6 +311,11 @@ impl Terms {
             nominal,
             terms,
         }
+    }
+
+    /// Which model it is.
+    pub fn kind(&self) -> Gravity {
+        self.kind
     }
 
     /// The terms, in parameter order.

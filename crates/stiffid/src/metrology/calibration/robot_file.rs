@@ -20,8 +20,7 @@ use crate::{Error, Result, Robot};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::fmt::Write;
 
-/// What a calibrated robot's name ends with.
-const CALIBRATED: &str = " (calibrated)";
+use crate::robot::CALIBRATED;
 
 /// Lengths below this (m) count as zero when a chain is read as a DH table.
 const DH_TOLERANCE: f64 = 1e-12;
