@@ -11,7 +11,9 @@
 //!
 //! ## Compensation
 //! The compensated axis angles `q_c` solve `loaded_pose(q_c) = T_nominal`, the TCP pose of the
-//! unloaded robot at the nominal posture, by Newton steps `q += J^-1 e` from the nominal posture
+//! unloaded (rigid) robot at the nominal posture, the loaded pose sagging under the robot's own
+//! weight too when the compliance carries a calibration's gravity terms
+//! ([`crate::machining::weight`]), by Newton steps `q += J^-1 e` from the nominal posture
 //! (the first step is the classical `q - J^-1 J dq`), until the residual is below
 //! [`TOLERANCE_M`] and [`TOLERANCE_RAD`] (success needs 0.1 micrometre and 1 microradian). The
 //! Jacobian neglects `d(dq)/dq`, so the convergence is linear with a rate of about `|dq|`:

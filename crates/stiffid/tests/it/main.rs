@@ -39,6 +39,7 @@ mod mutate;
 mod noise_convention;
 mod optional_fields;
 mod options_validation;
+mod own_weight;
 mod parsers_proptest;
 mod path_format;
 mod pool;

@@ -308,8 +308,8 @@ fn rectangle() -> String {
     let corners = [(60.0, 0.0), (60.0, 40.0), (0.0, 40.0), (0.0, 0.0)];
     let mut at = (0.0f64, 0.0f64);
     for (x, y) in corners {
-        for s in 1..=((x - at.0).abs().max((y - at.1).abs()) / 10.0) as usize {
-            let n = ((x - at.0).abs().max((y - at.1).abs()) / 10.0) as f64;
+        let n = ((x - at.0).abs().max((y - at.1).abs()) / 10.0).round();
+        for s in 1..=n as usize {
             let f = s as f64 / n;
             g += &format!(
                 "G1 X{:.3} Y{:.3}\n",
