@@ -11,23 +11,9 @@ use stiffid::{setup, Error};
 
 const SETUP: &str = "zhang2021-comau-nj165";
 
-/// The paper's setup with a TCP, its robot with link masses.
+/// The paper's setup with a TCP, its robot with link masses ([`crate::true_robot::dh_robot_text`]).
 fn heavy_setup(extra: &str) -> stiffid::Setup {
-    let mut robot_text = String::new();
-    for (i, part) in include_str!("../../presets/comau-smart5-nj165-3.0.toml")
-        .split("[[joint]]\n")
-        .enumerate()
-    {
-        robot_text += part;
-        if i < 6 {
-            robot_text += &format!(
-                "[[joint]]\nmass_kg = {}\ncom_mm = [{}, 30.0, {}]\n",
-                [250.0, 180.0, 120.0, 60.0, 20.0, 40.0][i],
-                100.0 + 50.0 * i as f64,
-                -20.0 * i as f64
-            );
-        }
-    }
+    let robot_text = crate::true_robot::dh_robot_text();
     let text = setup::builtin_text(SETUP)
         .unwrap()
         .replacen("\n[tool]\n", "\n[tool]\ntcp_mm = [0.0, 0.0, 300.0]\n", 1)

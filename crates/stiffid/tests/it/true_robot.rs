@@ -68,7 +68,7 @@ fn masses() -> [LinkMass; 6] {
 }
 
 /// The COMAU preset with [`masses`] in its robot file.
-fn dh_robot_text() -> String {
+pub(crate) fn dh_robot_text() -> String {
     let mut text = String::new();
     let m = masses();
     for (i, part) in include_str!("../../presets/comau-smart5-nj165-3.0.toml")
