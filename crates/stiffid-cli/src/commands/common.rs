@@ -84,3 +84,23 @@ impl<T: Choice + Send + Sync> TypedValueParser for ChoiceParser<T> {
         Some(Box::new(Self::values()))
     }
 }
+
+/// The command line that runs this command, as a shell reads it: `stiffid` and its arguments,
+/// each with a space, a quote or a shell character single-quoted.
+pub fn command_line() -> String {
+    let quote = |a: String| match a.is_empty()
+        || a.chars()
+            .any(|c| !(c.is_ascii_alphanumeric() || "-_./=,:+@%".contains(c)))
+    {
+        true => format!("'{}'", a.replace('\'', "'\\''")),
+        false => a,
+    };
+    std::iter::once("stiffid".to_string())
+        .chain(
+            std::env::args_os()
+                .skip(1)
+                .map(|a| quote(a.to_string_lossy().into_owned())),
+        )
+        .collect::<Vec<_>>()
+        .join(" ")
+}

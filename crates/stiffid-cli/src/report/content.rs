@@ -3,6 +3,7 @@
 
 use super::figures::Figure;
 use super::tables::{self, Table};
+use stiffid::app::document::scene::Scene;
 use stiffid::app::reproduce::document::Summary;
 use stiffid::app::reproduce::Report;
 use stiffid::study::paper_table4;
@@ -19,6 +20,8 @@ pub trait Writer {
     fn table(&mut self, table: &Table);
     /// A figure with its caption.
     fn figure(&mut self, figure: &Figure);
+    /// The 3D scene (HTML: the viewer; other formats: the name of its `.glb` file, `glb`).
+    fn scene(&mut self, scene: &Scene, glb: &str);
 }
 
 fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {

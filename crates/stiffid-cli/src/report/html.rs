@@ -7,13 +7,8 @@ use super::tables::Table;
 use stiffid::app::reproduce::document::{Summary, GENERATOR};
 use stiffid::app::reproduce::Report;
 
-/// Text with `&`, `<`, `>` and `"` escaped.
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
+use stiffid::app::document::scene::page::{self as scene_page, escape};
+use stiffid::app::document::scene::Scene;
 
 /// Escaped text with `code spans` as `<code>`.
 fn inline(text: &str) -> String {
@@ -70,6 +65,12 @@ impl Writer for Html {
             svg.trim(),
             inline(&figure.caption),
             figure.name
+        );
+    }
+    fn scene(&mut self, scene: &Scene, glb: &str) {
+        self.0 += &scene_page::fragment(scene, "scene");
+        self.0 += &format!(
+            "<p class=\"files\">The same scene as glTF binary for Blender, RoboDK and CAD viewers: {glb} (metres, a node per posture, a node per link).</p>\n"
         );
     }
 }

@@ -3,6 +3,7 @@
 use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
+use stiffid::app::document::scene::Scene;
 use stiffid::app::reproduce::document::Summary;
 use stiffid::app::reproduce::Report;
 
@@ -28,6 +29,9 @@ fn cell(text: &str) -> String {
 }
 
 impl Writer for Markdown {
+    fn scene(&mut self, _scene: &Scene, glb: &str) {
+        self.0 += &format!("The 3D scene: the HTML report, and {glb} (glTF binary, metres).\n\n");
+    }
     fn heading(&mut self, level: usize, text: &str) {
         self.0 += &format!("{} {}\n\n", "#".repeat(level), inline(text));
     }

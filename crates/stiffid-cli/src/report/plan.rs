@@ -11,6 +11,7 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use nalgebra::Vector6;
 use std::path::Path;
+use stiffid::app::document::scene::{self, glb, Extras, Scene};
 use stiffid::app::plan::document::{Bodies, Document};
 use stiffid::app::plan::{self as job, Request};
 use stiffid::common::words::{count, is_are};
@@ -25,7 +26,8 @@ const GENERATOR: &str = "stiffid select";
 /// ours (its `plan.html`), unless `force`; see [`ReportDir::prepare`].
 pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
     let holds = |rel: &Path| {
-        ["plan.html", "plan.csv", "plan.json"].contains(&rel.to_str().unwrap_or_default())
+        ["plan.html", "plan.csv", "plan.json", "plan.glb"]
+            .contains(&rel.to_str().unwrap_or_default())
             || rel.starts_with("figures")
     };
     ReportDir::prepare(dir, "--report", Some(force), &holds, &|d| {
@@ -59,14 +61,25 @@ pub fn stiffness(setup: &Setup) -> Result<&Vector6<f64>> {
     Ok(setup.try_nominal_stiffness("select --report (the plan's expected displacements)")?)
 }
 
-/// Writes `plan.html`, `plan.csv` and `figures/` of `postures` (axis angles, rad) into `dir`,
-/// each file whole.
+/// How the group was chosen, as the plan states it.
+pub struct Provenance {
+    /// The command line.
+    pub command: String,
+    /// The seed of the search.
+    pub seed: u64,
+    /// The criterion's value for the group.
+    pub value: f64,
+}
+
+/// Writes `plan.html`, `plan.csv`, `plan.json`, `plan.glb` and `figures/` of `postures` (axis
+/// angles, rad) into `dir`, each file whole.
 pub fn write(
     dir: ReportDir,
     setup: &Setup,
     criterion: Criterion,
     postures: &[Vector6<f64>],
     target: Option<&TargetOutcome>,
+    provenance: &Provenance,
 ) -> Result<()> {
     let request = Request {
         setup,
@@ -74,7 +87,21 @@ pub fn write(
         postures,
         target_pct: target.map(|t| t.target_pct),
     };
-    let doc = Document::new(&job::run(&request)?, setup);
+    let report = job::run(&request)?;
+    let doc = Document::new(&report, setup);
+    let h = setup.try_model_nominal_compliance("select --report (the compliance ellipsoids)")?;
+    let predicted: Vec<_> = report
+        .postures
+        .iter()
+        .map(|p| p.displacements.clone())
+        .collect();
+    let extras = Extras {
+        compliance: Some(&h),
+        predicted: &predicted,
+        rope: true,
+        ..Extras::default()
+    };
+    let scene = scene::scene(setup, postures, &extras)?;
     let plan = Plan {
         setup,
         postures,
@@ -87,8 +114,11 @@ pub fn write(
         postures.len(),
         setup.name()
     );
-    let page = html::page(&title, GENERATOR, |w| compose(&plan.doc, &figures, w));
+    let page = html::page(&title, GENERATOR, |w| {
+        compose(&plan.doc, &figures, &scene, provenance, w);
+    });
     dir.write("plan.html", page.as_bytes())?;
+    dir.write("plan.glb", &glb::glb(&scene))?;
     dir.write("plan.csv", plan.doc.csv().as_bytes())?;
     dir.write("plan.json", json(&plan.doc)?.as_bytes())?;
     for f in &figures {
@@ -129,7 +159,13 @@ fn bodies_sentence(b: &Bodies) -> String {
 }
 
 /// The body of `plan.html`.
-fn compose(plan: &Document, figures: &[Figure], w: &mut dyn Writer) {
+fn compose(
+    plan: &Document,
+    figures: &[Figure],
+    scene: &Scene,
+    provenance: &Provenance,
+    w: &mut dyn Writer,
+) {
     let n = plan.postures.len();
     w.heading(
         1,
@@ -143,9 +179,19 @@ fn compose(plan: &Document, figures: &[Figure], w: &mut dyn Writer) {
         fixed(&plan.anchor_mm, 3).join(", "),
         plan.criterion
     ));
+    w.paragraph(&format!(
+        "Chosen by `{}` (seed {}): the criterion `{}` is {} for this group.",
+        provenance.command,
+        provenance.seed,
+        plan.criterion,
+        num(provenance.value)
+    ));
     if let Some(b) = &plan.bodies {
         w.paragraph(&bodies_sentence(b));
     }
+    w.heading(2, "The postures in the cell");
+    w.paragraph("Each posture with the robot's bodies as the cell's checks take them, the tracker's lines of sight (coloured by their margin), the rope to the anchor, the compliance ellipsoid at the tool centre point under the load (nominal stiffness) and each measuring point's expected displacement (magnified, the factor in the legend).");
+    w.scene(scene, "plan.glb");
     w.heading(2, "Predicted accuracy");
     w.paragraph("The predicted mean deviation rate |k_identified - k_true| / k_true of each joint (first order, `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)`) at the setup's noise levels, if every posture is measured as planned.");
     if !plan.load_steps_n.is_empty() {
@@ -201,7 +247,7 @@ fn compose(plan: &Document, figures: &[Figure], w: &mut dyn Writer) {
     for f in figures.iter().filter(|f| f.name.starts_with("posture")) {
         w.figure(f);
     }
-    w.paragraph("Files: plan.csv (the postures table, one row per posture, machine-readable), figures/ (SVG and PNG).");
+    w.paragraph("Files: plan.glb (the 3D scene as glTF binary), plan.csv (the postures table, one row per posture, machine-readable), figures/ (SVG and PNG).");
 }
 
 /// What to read in each posture: unloaded and loaded, or unloaded and at every load step of the

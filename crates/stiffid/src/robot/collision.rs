@@ -68,6 +68,8 @@ pub struct LinkShape {
     pub body: usize,
     /// The URDF link it comes from.
     pub link: String,
+    /// The mesh file as the URDF names it (`package://...`), for a mesh; `None` for a primitive.
+    pub mesh: Option<String>,
     /// Its pose in the body's frame, m.
     pub origin: Isometry3<f64>,
     /// The shape.
@@ -160,6 +162,10 @@ pub fn parse(
             out.shapes.push(LinkShape {
                 body: *body,
                 link: link.name.clone(),
+                mesh: match &c.geometry {
+                    Geometry::Mesh { filename, .. } => Some(filename.clone()),
+                    _ => None,
+                },
                 origin,
                 shape,
                 bound: (sphere.center.coords, sphere.radius),

@@ -49,6 +49,7 @@ mod process_forces;
 mod program_forms;
 mod programs;
 mod register_postures;
+mod scene;
 mod search;
 mod setup_builder;
 mod simulate;

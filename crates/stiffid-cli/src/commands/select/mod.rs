@@ -191,7 +191,19 @@ pub fn run(args: &Args) -> Result<()> {
     }
     if let Some(dir) = report_dir {
         let t = report.target.as_ref();
-        plan::write(dir, &setup, args.criterion, &report.postures, t)?;
+        let provenance = plan::Provenance {
+            command: crate::commands::common::command_line(),
+            seed: report.seed,
+            value: report.value,
+        };
+        plan::write(
+            dir,
+            &setup,
+            args.criterion,
+            &report.postures,
+            t,
+            &provenance,
+        )?;
     }
     let mut doc = Document::new(&report, &setup);
     doc.out = Some(args.out.display().to_string());

@@ -14,6 +14,7 @@
 pub mod candidates;
 pub mod feasibility;
 pub mod parameters;
+pub mod scene;
 
 /// `v` if finite, else `None`.
 pub fn finite(v: f64) -> Option<f64> {
