@@ -58,6 +58,8 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::scene, m)?)?;
+    m.add_class::<plan::Scene>()?;
     m.add_function(wrap_pyfunction!(setups_new::setups_new, m)?)?;
     Ok(())
 }

@@ -12,12 +12,18 @@ use std::path::Path;
 use stiffid::app::compensate::document::GENERATOR;
 use stiffid::app::compensate::document::{Document, SegmentDocument};
 use stiffid::app::compensate::Report;
+use stiffid::app::document::scene::{self, glb, Extras, Scene};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::Compensated;
 use stiffid::Setup;
 
 /// The fixed files of the report (besides `figures/`).
-const FILES: [&str; 3] = ["summary.json", "compensation.csv", "report.html"];
+const FILES: [&str; 4] = [
+    "summary.json",
+    "compensation.csv",
+    "report.html",
+    "path.glb",
+];
 
 /// Whether the report writes the file `rel` (relative to its directory).
 pub fn holds(rel: &Path) -> bool {
@@ -60,16 +66,41 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
+    let (path, path_error) = summary.scene_path();
+    let mut postures: Vec<_> = summary
+        .sample
+        .first()
+        .map(|(_, c)| c.q)
+        .into_iter()
+        .collect();
+    postures.extend(summary.largest.first().map(|(_, c)| c.q));
+    let extras = Extras {
+        path: &path,
+        path_error,
+        ..Extras::default()
+    };
+    let scene = (!postures.is_empty())
+        .then(|| scene::scene(setup, &postures, &extras))
+        .transpose()?;
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),
         GENERATOR,
-        |w| compose(w, setup, view, &figures),
+        |w| compose(w, setup, view, &figures, scene.as_ref()),
     );
     dir.write(FILES[2], html.as_bytes())?;
+    if let Some(s) = &scene {
+        dir.write(FILES[3], &glb::glb(s))?;
+    }
     dir.finish()
 }
 
-fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
+fn compose(
+    w: &mut dyn Writer,
+    setup: &Setup,
+    view: &View,
+    figures: &[Figure],
+    scene: Option<&Scene>,
+) {
     let document = view.document;
     let s = &document.summary;
     let points = view.report.summary.points;
@@ -90,12 +121,20 @@ fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
             num(s.mean_deflection_mm),
             num(s.max_rotation_mrad)
         ),
-        format!(
-            "After compensation: residual at most {:.2e} um and {:.2e} urad (required 0.1 um and 1 urad), at most {} Newton steps per point.",
-            s.max_residual_um,
-            s.max_residual_urad,
-            s.max_iterations
-        ),
+        match s.max_remaining_error_mm {
+            Some(e) => format!(
+                "After compensation the error that remains is the prediction's uncertainty: at most {} mm (the standard deviation of |d| from the stiffness's covariance; the compensated axis angles reproduce the model itself to {:.2e} um, {} Newton steps per point at most).",
+                num(e),
+                s.max_residual_um,
+                s.max_iterations
+            ),
+            None => format!(
+                "After compensation: the stiffness file has no covariance, so the error that remains cannot be predicted (the compensated axis angles reproduce the model itself to {:.2e} um and {:.2e} urad, {} Newton steps per point at most).",
+                s.max_residual_um,
+                s.max_residual_urad,
+                s.max_iterations
+            ),
+        },
     ];
     if let Some(free) = &s.free_tool_axis {
         items.push(format!(
@@ -123,6 +162,11 @@ fn compose(w: &mut dyn Writer, setup: &Setup, view: &View, figures: &[Figure]) {
             .map(|w| format!("Warning: {}", w.message)),
     );
     w.list(&items);
+    if let Some(scene) = scene {
+        w.heading(2, "The path in the cell");
+        w.paragraph("The path coloured by the error predicted to remain after compensation (without a covariance, by the deflection compensated), with the robot at the path's first point and at its largest deflection.");
+        w.scene(scene, FILES[3]);
+    }
     for fig in figures {
         w.figure(fig);
     }

@@ -11,7 +11,7 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use nalgebra::Vector6;
 use std::path::Path;
-use stiffid::app::document::scene::{self, glb, Extras, Scene};
+use stiffid::app::document::scene::{glb, Scene};
 use stiffid::app::plan::document::{Bodies, Document};
 use stiffid::app::plan::{self as job, Request};
 use stiffid::common::words::{count, is_are};
@@ -89,19 +89,7 @@ pub fn write(
     };
     let report = job::run(&request)?;
     let doc = Document::new(&report, setup);
-    let h = setup.try_model_nominal_compliance("select --report (the compliance ellipsoids)")?;
-    let predicted: Vec<_> = report
-        .postures
-        .iter()
-        .map(|p| p.displacements.clone())
-        .collect();
-    let extras = Extras {
-        compliance: Some(&h),
-        predicted: &predicted,
-        rope: true,
-        ..Extras::default()
-    };
-    let scene = scene::scene(setup, postures, &extras)?;
+    let scene = job::document::scene(&report, setup)?;
     let plan = Plan {
         setup,
         postures,

@@ -7,6 +7,7 @@ use crate::app::compensate::{Report, Segment};
 use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use crate::app::document::scene::PathPoint;
 use crate::common::warning::Warning;
 use crate::machining::compensate::Compensated;
 use crate::Coordinates;
@@ -151,6 +152,10 @@ pub struct SummaryDocument {
     pub max_interval_width_mm: Option<f64>,
     /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
     pub free_tool_axis: Option<FreeSummary>,
+    /// The largest error predicted to remain after compensation, mm: the standard deviation of
+    /// the TCP deflection's length `|d|` from the compliance's covariance (the compensation
+    /// removes the predicted deflection, not its uncertainty); `null` without a covariance.
+    pub max_remaining_error_mm: Option<f64>,
 }
 
 /// What the free tool axis gained.
@@ -378,6 +383,8 @@ pub struct Summary {
     max_iterations: usize,
     /// The widest prediction interval of a deflection coordinate, m (`None` without intervals).
     max_interval_width: Option<f64>,
+    /// The largest standard deviation of `|d|`, m (`None` without a covariance).
+    max_norm_std: Option<f64>,
     /// Sum of |d| before and after the tool-axis optimisation, and the rotation range, rad.
     free: Option<(f64, f64, f64, f64)>,
     /// Every `stride`-th point (0-based index and result), at most [`SAMPLE`] + 1.
@@ -403,6 +410,7 @@ impl Summary {
             max_residual_rotation: 0.0,
             max_iterations: 0,
             max_interval_width: None,
+            max_norm_std: None,
             free: free.then_some((0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY)),
             sample: Vec::new(),
             stride: 1,
@@ -426,6 +434,9 @@ impl Summary {
         if let Some(i) = &r.deflection_interval {
             let width = i.iter().map(|[lo, hi]| hi - lo).fold(0.0, f64::max);
             self.max_interval_width = Some(self.max_interval_width.map_or(width, |w| w.max(width)));
+        }
+        if let Some(sd) = r.translation_norm_std {
+            self.max_norm_std = Some(self.max_norm_std.map_or(sd, |m| m.max(sd)));
         }
         if let (Some((before, after, lo, hi)), Some(b)) = (&mut self.free, &r.deflection_before) {
             *before += norm(b);
@@ -455,6 +466,30 @@ impl Summary {
             None => self.largest.push((i, r.clone())),
         }
         self.largest.truncate(10);
+    }
+
+    /// The sampled points as a 3D scene's path ([`crate::app::document::scene`]): each TCP
+    /// position (base frame, m) with the error predicted to remain after compensation, the
+    /// standard deviation of `|d|` (m); without a covariance, the deflection `|d|` compensated.
+    /// Then what that error is, in words.
+    pub fn scene_path(&self) -> (Vec<PathPoint>, &'static str) {
+        let remaining = self.max_norm_std.is_some();
+        let path = self
+            .sample
+            .iter()
+            .map(|(_, c)| PathPoint {
+                at_m: c.pose.translation.vector.into(),
+                error_m: match remaining {
+                    true => c.translation_norm_std.unwrap_or(0.0),
+                    false => norm(&c.deflection),
+                },
+            })
+            .collect();
+        let words = match remaining {
+            true => "error remaining after compensation (std of |d|)",
+            false => "deflection compensated |d| (no covariance: no remaining error)",
+        };
+        (path, words)
     }
 
     /// The mean TCP deflection, m.
@@ -488,6 +523,7 @@ impl Summary {
             max_residual_urad: self.max_residual_rotation * 1e6,
             max_iterations: self.max_iterations,
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
+            max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
             free_tool_axis: self
                 .free
                 .zip(means)

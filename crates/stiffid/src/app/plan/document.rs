@@ -3,7 +3,7 @@
 //! `stiffid.plan`.
 
 use crate::app::document::feasibility::describe;
-use crate::app::document::{csv_text, finite, finite_each, mm};
+use crate::app::document::{csv_text, finite, finite_each, mm, scene};
 use crate::app::evaluate::document::{parameters, Parameter};
 use crate::app::plan::{Posture, Report};
 use crate::app::select::document::NearDoc;
@@ -224,4 +224,29 @@ fn posture((i, p): (usize, &Posture)) -> PlannedPosture {
         min_margin_check: p.feasibility.min_margin().map(|c| c.kind.key()),
         failed_checks: p.feasibility.violations().map(describe).collect(),
     }
+}
+
+/// The plan's 3D scene ([`crate::app::document::scene`]): the group of `report` in the cell, the
+/// rope, the nominal compliance's ellipsoids at the tool centre point under the load and each
+/// measuring point's expected displacement (the plan's, nominal stiffness). What `select
+/// --report` shows in `plan.html` and writes as `plan.glb`, and Python's `stiffid.scene`.
+///
+/// # Errors
+/// [`crate::Error::MissingField`] for a setup without a nominal stiffness; those of
+/// [`scene::scene`].
+pub fn scene(report: &Report, setup: &Setup) -> crate::Result<scene::Scene> {
+    let h = setup.try_model_nominal_compliance(super::NEEDED_BY)?;
+    let postures: Vec<_> = report.postures.iter().map(|p| p.q).collect();
+    let predicted: Vec<_> = report
+        .postures
+        .iter()
+        .map(|p| p.displacements.clone())
+        .collect();
+    let extras = scene::Extras {
+        compliance: Some(&h),
+        predicted: &predicted,
+        rope: true,
+        ..scene::Extras::default()
+    };
+    scene::scene(setup, &postures, &extras)
 }

@@ -51,6 +51,8 @@ pub struct Scene {
     pub ellipsoid_force_n: f64,
     /// The path over the part, base frame, with its predicted error; empty without a path.
     pub path: Vec<PathPoint>,
+    /// What the path's error is, in words; empty without a path.
+    pub path_error: String,
     /// What the drawing simplifies, in words (meshes drawn as convex hulls, a thinned path).
     pub notes: Vec<String>,
 }
@@ -199,6 +201,8 @@ pub struct Extras<'a> {
     pub predicted: &'a [Vec<Vector3<f64>>],
     /// A path and its predicted error.
     pub path: &'a [PathPoint],
+    /// What the path's error is, in words.
+    pub path_error: &'a str,
     /// Whether the scene has the rope (a measurement campaign: the plan, identification).
     pub rope: bool,
 }
@@ -291,6 +295,7 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate
         anchor_m: extras.rope.then(|| array(&setup.load().anchor)),
         ellipsoid_force_n: force,
         path,
+        path_error: extras.path_error.to_string(),
         notes,
     })
 }

@@ -17,7 +17,7 @@ const VIEWER: &str = include_str!("viewer.js");
 
 const STYLE: &str = "
 .stiffid-scene { position: relative; font: 13px/1.4 system-ui, sans-serif; color: #222; }
-.stiffid-scene .view { width: 100%; height: 560px; border: 1px solid #ccd; }
+.stiffid-scene .view { box-sizing: border-box; width: 100%; height: 560px; border: 1px solid #ccd; }
 .stiffid-scene .controls { margin: 4px 0; }
 .stiffid-scene .legend { position: absolute; top: 36px; left: 8px; background: rgba(255,255,255,0.85);
   padding: 6px 8px; border-radius: 4px; max-width: 46%; }

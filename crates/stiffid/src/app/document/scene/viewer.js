@@ -186,7 +186,7 @@ function draw(root, scene) {
   }
   if (scene.anchor_m) rows.push(key('#333333', 'rope from the loading point to the anchor'));
   if (scene.obstacles.length) rows.push(key('#6b8fb3', 'obstacles'));
-  if (errors) rows.push(`path by predicted error: <span class="ramp"></span> ${(errors[0] * 1e3).toFixed(3)} to ${(errors[1] * 1e3).toFixed(3)} mm`);
+  if (errors) rows.push(`path by ${scene.path_error}: <span class="ramp"></span> ${(errors[0] * 1e3).toFixed(3)} to ${(errors[1] * 1e3).toFixed(3)} mm`);
   rows.push(`grid: 0.25 m squares at ${scene.floor_z_m === null ? 'the lowest point' : 'the floor'}, z = ${(floorZ * 1e3).toFixed(0)} mm`);
   legend.innerHTML = rows.map((r) => `<div>${r}</div>`).join('') + scene.notes.map((n) => `<div class="note">${n}</div>`).join('');
   const bar = root.querySelector('.bar'), barText = root.querySelector('.bar-text');
