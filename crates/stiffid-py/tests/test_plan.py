@@ -60,3 +60,26 @@ def test_a_target_is_named_and_a_plan_needs_the_nominal_stiffness(paper, cli, tm
         stiffid.plan(paper, chosen, criterion="best")
     with pytest.raises(stiffid.InputError, match=r"postures_deg: posture 0, q3_deg = 10 is outside the joint limits"):
         stiffid.plan(paper, [[0, 0, 10, 0, 0, 0]])
+
+
+def test_the_scene_is_the_plans_in_3d_and_the_commands_glb(cli, tmp_path):
+    (tmp_path / "cell.toml").write_text(CELL)
+    cell = stiffid.Setup.from_file(tmp_path / "cell.toml")
+    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--postures", 6)
+    scene = stiffid.scene(cell, chosen)
+    doc = scene.document()
+    assert len(doc["postures"]) == 6
+    # The flange and the arrows are the plan's: the forward kinematics and its displacements.
+    for q, p, planned in zip(chosen, doc["postures"], plan["postures"]):
+        flange = cell.robot.flange_pose(q)[:3, 3]
+        np.testing.assert_allclose(np.array(p["flange_m"]) * 1e3, flange, atol=1e-9)
+        predicted = np.array([a["predicted_m"] for a in p["arrows"]]) * 1e3
+        np.testing.assert_allclose(predicted, planned["displacements_mm"], rtol=1e-12)
+    # The same glTF binary as the command's plan.glb; a page without any address to fetch.
+    assert scene.glb() == (tmp_path / "plan" / "plan.glb").read_bytes()
+    assert scene.glb()[:4] == b"glTF"
+    html = scene.html("plan")
+    assert "<title>plan</title>" in html and "https://" not in html
+    assert scene._repr_html_().startswith("<iframe srcdoc=")
+    with pytest.raises(stiffid.InputError, match="postures_deg"):
+        stiffid.scene(cell, np.zeros((501, 6)))

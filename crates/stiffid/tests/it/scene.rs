@@ -4,9 +4,7 @@
 //! the readings given; the `.glb` reads back with a glTF parser (its validation) with the nodes,
 //! names and transforms of the scene; the page fetches nothing.
 
-#[path = "../support/mesh_robot.rs"]
-mod mesh_robot;
-
+use super::bodies::mesh_robot;
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -269,11 +267,12 @@ fn glb_reads_back_with_one_node_per_posture_and_link() {
             assert_eq!(l.name(), Some(s.links[k].name.as_str()));
             let (t, r, _) = l.transform().decomposed();
             let f = &s.postures[i].link_frames[k];
-            for a in 0..3 {
-                assert!((f64::from(t[a]) - f.translation_m[a]).abs() < 1e-6);
-            }
-            for a in 0..4 {
-                assert!((f64::from(r[a]) - f.rotation_xyzw[a]).abs() < 1e-6);
+            for (got, want) in t
+                .iter()
+                .zip(f.translation_m)
+                .chain(r.iter().zip(f.rotation_xyzw))
+            {
+                assert!((f64::from(*got) - want).abs() < 1e-6);
             }
             // The mesh's positions are the scene's, read back from the binary chunk.
             let mesh = l.mesh().unwrap();
