@@ -3,7 +3,7 @@
 //! capsules as the fallback and the user's override; `[robot_geometry]` in robot TOML files.
 
 #[path = "../support/mesh_robot.rs"]
-pub mod mesh_robot;
+mod mesh_robot;
 
 use nalgebra::{Vector3, Vector6};
 use std::collections::HashMap;
@@ -38,7 +38,8 @@ fn setup_from(toml: &str, package_paths: &[PathBuf]) -> stiffid::Result<Setup> {
     reference::setup_text_with_meshes(toml, "pkg/cell.toml", Path::new("pkg"), text, &meshes)
 }
 
-fn mesh_setup() -> Setup {
+/// The mesh robot in its cell (also the 3D scene's tests').
+pub fn mesh_setup() -> Setup {
     setup_from(&mesh_robot::setup_toml(), &[]).unwrap()
 }
 

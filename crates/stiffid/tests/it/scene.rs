@@ -4,40 +4,17 @@
 //! the readings given; the `.glb` reads back with a glTF parser (its validation) with the nodes,
 //! names and transforms of the scene; the page fetches nothing.
 
-use super::bodies::mesh_robot;
+use super::bodies::mesh_setup;
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
 use stiffid::app::document::scene::{self, glb, page, Extras, PathPoint, Scene};
 use stiffid::app::kinematics;
 use stiffid::robot::kinematics::Coordinates;
-use stiffid::setup::reference::{self, Meshes};
 use stiffid::Setup;
 
 fn tracker_setup() -> Setup {
     let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "[cell]\nfloor_z_mm = 0.0\n[[cell.obstacle]]\nname = \"table\"\nmin_mm = [1200, -400, 0]\nmax_mm = [1800, 400, 750]\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
     stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
-}
-
-fn mesh_setup() -> Setup {
-    let files: HashMap<PathBuf, Vec<u8>> = mesh_robot::files(16)
-        .into_iter()
-        .map(|(p, b)| (Path::new("pkg").join(p), b))
-        .collect();
-    let text = |p: &Path| {
-        Some(Ok::<_, stiffid::Error>(
-            String::from_utf8(files.get(p)?.clone()).unwrap(),
-        ))
-    };
-    let bytes = |p: &Path| files.get(p).cloned().map(Ok);
-    let meshes = Meshes {
-        read: &bytes,
-        package_paths: &[],
-    };
-    let toml = mesh_robot::setup_toml();
-    reference::setup_text_with_meshes(&toml, "pkg/cell.toml", Path::new("pkg"), text, &meshes)
-        .unwrap()
 }
 
 fn vector(a: [f64; 3]) -> Vector3<f64> {
