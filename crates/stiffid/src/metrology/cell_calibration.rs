@@ -50,6 +50,8 @@ pub struct Calibration {
     pub sigma: f64,
     /// Levenberg-Marquardt iterations taken.
     pub iterations: usize,
+    /// Why they stopped.
+    pub termination: fit::Termination,
 }
 
 /// The observations of a readings file: its unloaded readings.
@@ -141,6 +143,7 @@ pub fn fit(setup: &Setup, observations: &[Observation]) -> Result<Calibration> {
         sigma: result.sigma,
         base_from_tracker: result.estimate.frame,
         iterations: result.iterations,
+        termination: result.termination,
     })
 }
 

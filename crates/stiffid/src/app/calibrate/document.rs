@@ -50,6 +50,9 @@ pub struct Document {
     pub noise_ratio: Option<f64>,
     /// Levenberg-Marquardt iterations.
     pub iterations: usize,
+    /// Why the iterations stopped: `converged`, `stalled`, `damping-exhausted` (a minimum within
+    /// rounding) or `iteration-limit` (not converged; a warning says so).
+    pub stop_reason: &'static str,
     /// The held-out readings' errors (`--validate`), if asked.
     pub validation: Option<ValidationDocument>,
     /// The leave-one-posture-out errors (`--cross-validate`), if asked.
@@ -247,6 +250,7 @@ impl Document {
             noise_std_mm: mm(fit.sigma),
             noise_ratio: finite(report.noise_ratio),
             iterations: fit.iterations,
+            stop_reason: fit.termination.name(),
             validation: report.validation.as_ref().map(held),
             cross_validation: report.cross_validation.as_ref().map(held),
             robot_file: report.robot_toml.as_ref().ok().cloned(),

@@ -441,7 +441,11 @@ fn held_out(
 
 /// The warnings about the fit.
 fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<Warning> {
-    let mut w = Vec::new();
+    let mut w: Vec<Warning> = fit
+        .termination
+        .warning(fit.iterations)
+        .into_iter()
+        .collect();
     let id = &fit.identifiability;
     let dof = fit.residuals.len() - fit.fitted.len().min(fit.residuals.len());
     if dof < MIN_DEGREES_OF_FREEDOM {

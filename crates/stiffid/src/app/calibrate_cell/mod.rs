@@ -35,7 +35,7 @@ pub struct Report {
 /// mirror image (of the nominal robot's points) or leave a residual beyond
 /// [`crate::metrology::register::residual_limit`], naming the reading.
 pub fn run(request: &Request<'_>) -> Result<Report> {
-    let (data, warnings) = read(request)?;
+    let (data, mut warnings) = read(request)?;
     let name = &request.name;
     let setup_points = request.setup.tool().measuring_points.clone();
     let observations =
@@ -43,6 +43,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let calibration =
         cell_calibration::fit(request.setup, &observations).map_err(|e| in_data(name, e))?;
     refuse_implausible(request, &data, None, &calibration.residuals)?;
+    warnings.extend(calibration.termination.warning(calibration.iterations));
     Ok(Report {
         data_name: name.clone(),
         setup_points,

@@ -129,6 +129,9 @@ pub struct Calibration {
     pub readings: usize,
     /// Levenberg-Marquardt iterations.
     pub iterations: usize,
+    /// Why the iterations stopped: `converged`, `stalled`, `damping-exhausted` (a minimum within
+    /// rounding) or `iteration-limit` (not converged; a warning says so).
+    pub stop_reason: &'static str,
     /// The corrected fragment of the setup file.
     pub fragment: String,
 }
@@ -184,6 +187,7 @@ impl Calibration {
             noise_std_mm: mm(fit.sigma),
             readings: report.readings,
             iterations: fit.iterations,
+            stop_reason: fit.termination.name(),
             fragment,
         }
     }

@@ -21,6 +21,7 @@
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
+use crate::common::warning::{Warning, WarningKind};
 use crate::math::linalg::CappedSvd;
 use crate::metrology::register::Correspondence;
 use crate::{Error, Result};
@@ -34,6 +35,47 @@ pub const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
 pub const STEP_TOLERANCE: f64 = 1e-13;
+
+/// Why the Levenberg-Marquardt iterations stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Termination {
+    /// An accepted step shorter than [`STEP_TOLERANCE`] (scaled, times one plus the number of
+    /// parameters fitted).
+    Converged,
+    /// An accepted step lowered the cost by at most `1e-15` of it: a minimum within rounding.
+    Stalled,
+    /// No damping of 30 tried (each ten times the last) lowered the cost: a minimum within
+    /// rounding, where every step's change is below the cost's rounding.
+    DampingExhausted,
+    /// [`MAX_ITERATIONS`] taken with the cost still falling: not converged, a warning says so.
+    IterationLimit,
+}
+
+impl Termination {
+    /// The stop reason's name in documents: `converged`, `stalled`, `damping-exhausted` or
+    /// `iteration-limit`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Termination::Converged => "converged",
+            Termination::Stalled => "stalled",
+            Termination::DampingExhausted => "damping-exhausted",
+            Termination::IterationLimit => "iteration-limit",
+        }
+    }
+
+    /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit
+    /// (`iterations`) with the cost still falling: the calibration may still move.
+    pub fn warning(self, iterations: usize) -> Option<Warning> {
+        (self == Termination::IterationLimit).then(|| {
+            Warning::new(
+                WarningKind::NotConverged,
+                format!(
+                    "the calibration's Levenberg-Marquardt fit stopped at its limit of {iterations} iterations with the residuals still falling: its parameters may still move; read more varied postures or give tolerances"
+                ),
+            )
+        })
+    }
+}
 
 /// Nominal tolerances of the joint errors, as Gaussian priors.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,6 +120,8 @@ pub struct Fit {
     pub sigma: f64,
     /// Iterations taken.
     pub iterations: usize,
+    /// Why the iterations stopped.
+    pub termination: Termination,
 }
 
 /// Fits `model` to `observations` from `start` (module docs).
@@ -93,6 +137,17 @@ pub fn fit(
     observations: &[Observation],
     start: &Estimate,
     options: &Options,
+) -> Result<Fit> {
+    fit_within(model, observations, start, options, MAX_ITERATIONS)
+}
+
+/// [`fit`] with at most `limit` iterations.
+pub(super) fn fit_within(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    limit: usize,
 ) -> Result<Fit> {
     check(observations, options)?;
     let scales = model.column_scales_of(options.length, observations);
@@ -127,8 +182,8 @@ pub fn fit(
         noise: options.priors.map(|p| p.noise),
         nominal: model.nominal(),
     };
-    let (estimate, iterations) = problem.minimise(start.recentre())?;
-    problem.finish(estimate, identifiability, iterations)
+    let (estimate, iterations, termination) = problem.minimise(start.recentre(), limit)?;
+    problem.finish(estimate, identifiability, iterations, termination)
 }
 
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
@@ -283,12 +338,12 @@ impl Problem<'_> {
         .recentre()
     }
 
-    fn minimise(&self, mut e: Estimate) -> Result<(Estimate, usize)> {
+    fn minimise(&self, mut e: Estimate, limit: usize) -> Result<(Estimate, usize, Termination)> {
         let mut r = self.residuals(&e)?;
         let mut cost = r.norm_squared();
         let mut lambda = 1e-9;
         let n = self.fitted.len();
-        for iteration in 1..=MAX_ITERATIONS {
+        for iteration in 1..=limit {
             let j = self.jacobian(&e)?;
             let (rt, qtr) = factor(&j, &r);
             let damped = Damped::new(rt, &qtr)?;
@@ -311,18 +366,21 @@ impl Problem<'_> {
                     cost = c;
                     lambda = (lambda / 10.0).max(1e-12);
                     accepted = true;
-                    if small || stalled {
-                        return Ok((e, iteration));
+                    if small {
+                        return Ok((e, iteration, Termination::Converged));
+                    }
+                    if stalled {
+                        return Ok((e, iteration, Termination::Stalled));
                     }
                     break;
                 }
                 lambda *= 10.0;
             }
             if !accepted {
-                return Ok((e, iteration));
+                return Ok((e, iteration, Termination::DampingExhausted));
             }
         }
-        Ok((e, MAX_ITERATIONS))
+        Ok((e, limit, Termination::IterationLimit))
     }
 
     fn finish(
@@ -330,6 +388,7 @@ impl Problem<'_> {
         estimate: Estimate,
         identifiability: Identifiability,
         iterations: usize,
+        termination: Termination,
     ) -> Result<Fit> {
         let r_all = self.residuals(&estimate)?;
         let data = 3 * self.observations.len();
@@ -367,6 +426,7 @@ impl Problem<'_> {
             rms,
             sigma,
             iterations,
+            termination,
         })
     }
 }

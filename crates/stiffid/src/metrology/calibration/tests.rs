@@ -485,3 +485,55 @@ fn standard_deviations_match_monte_carlo() {
     }
     assert!(checked >= 6 + 4, "{checked}");
 }
+
+#[test]
+fn the_fit_says_why_it_stopped_and_warns_at_its_iteration_limit() {
+    let robot = ur10();
+    let model = ErrorModel::new(
+        &robot,
+        &points()[..2],
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        gravity::Terms::none(&robot),
+    )
+    .unwrap();
+    let truth = Estimate {
+        frame: tracker(),
+        values: perturbed(&model, 3, None, 0.0),
+    };
+    let data = readings(&model, &truth, &postures(&robot, 20, 4));
+    let start = fit::start(&model, &data).unwrap();
+    let options = Options {
+        length: 1.0,
+        priors: None,
+    };
+    // One step from the registered nominal leaves the 1 mm errors partly unfitted.
+    let cut = fit::fit_within(&model, &data, &start, &options, 1).unwrap();
+    assert_eq!(cut.termination, fit::Termination::IterationLimit);
+    assert_eq!(cut.iterations, 1);
+    let warning = cut.termination.warning(cut.iterations).unwrap();
+    assert_eq!(
+        warning.kind,
+        crate::common::warning::WarningKind::NotConverged
+    );
+    assert!(
+        warning.message.contains("limit of 1 iterations"),
+        "{}",
+        warning.message
+    );
+    // Left to its limit, the noise-free fit reaches the readings and stops at a minimum.
+    let done = fit::fit(&model, &data, &start, &options).unwrap();
+    assert!(
+        done.rms < 1e-11 && cut.rms > 1e3 * done.rms.max(1e-15),
+        "{} {}",
+        cut.rms,
+        done.rms
+    );
+    assert_ne!(done.termination, fit::Termination::IterationLimit);
+    assert!(done.iterations < fit::MAX_ITERATIONS);
+    assert_eq!(done.termination.warning(done.iterations), None);
+    assert_eq!(
+        fit::Termination::DampingExhausted.name(),
+        "damping-exhausted"
+    );
+}
