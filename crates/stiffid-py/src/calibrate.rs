@@ -39,8 +39,9 @@ use stiffid::app::readings::Request as Readings;
 /// ``out``: writes the calibrated robot file (robot TOML, the calibrated DH table and axis map,
 /// the setup's tracker and measuring points in comments at its end; point a setup's ``robot`` at
 /// it and every function uses the calibrated robot), byte for byte what ``stiffid calibrate
-/// --out`` writes; ``InputError`` for a URDF robot or a fitted lateral error (``urdf_out``
-/// writes it). ``urdf_out``: the calibrated robot as a URDF. Each checked before the fit (never
+/// --out`` writes; ``InputError`` when the calibrated chain has no DH table (its reason).
+/// ``urdf_out``: the calibrated robot as a URDF taking the same axis angles; ``InputError`` when
+/// the robot's axis map couples or scales axes (its reason). Each checked before the fit (never
 /// over a file the call reads, a directory or a dangling symlink) and written whole after it.
 /// ``InputError`` naming the file, line and column for bad readings, and, unless ``force=True``,
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
@@ -109,7 +110,15 @@ pub fn calibrate<'py>(
         (Some(file), Some(text)) => Some((file, text)),
         (Some(_), None) => {
             let why = document.robot_file_error.clone().unwrap_or_default();
-            return Err(value(format!("out: {why} (urdf_out writes it)")));
+            return Err(value(format!("out: {why}")));
+        }
+        (None, _) => None,
+    };
+    let urdf = match (&urdf_file, &document.urdf) {
+        (Some(file), Some(text)) => Some((file, text)),
+        (Some(_), None) => {
+            let why = document.urdf_error.clone().unwrap_or_default();
+            return Err(value(format!("urdf_out: {why}")));
         }
         (None, _) => None,
     };
@@ -117,8 +126,8 @@ pub fn calibrate<'py>(
     if let Some((file, text)) = robot_file {
         file.write(text.as_bytes())?;
     }
-    if let Some(file) = &urdf_file {
-        file.write(document.urdf.as_bytes())?;
+    if let Some((file, text)) = urdf {
+        file.write(text.as_bytes())?;
     }
     to_python(py, &document, &[])
 }

@@ -119,20 +119,28 @@ pub fn run(args: &Args) -> Result<()> {
             })
         ),
     };
-    if let Some(o) = &out {
-        match document.robot_file_out() {
-            Some(text) => o.write(text.as_bytes())?,
-            None => bail!(
-                "--out: {} (--urdf-out writes it)",
-                document.robot_file_error.clone().unwrap_or_default()
-            ),
-        }
+    let robot_text = match (&out, document.robot_file_out()) {
+        (Some(_), None) => bail!(
+            "--out: {}",
+            document.robot_file_error.clone().unwrap_or_default()
+        ),
+        (_, text) => text,
+    };
+    let urdf_text = match (&urdf_out, &document.urdf) {
+        (Some(_), None) => bail!(
+            "--urdf-out: {}",
+            document.urdf_error.clone().unwrap_or_default()
+        ),
+        (_, text) => text.clone(),
+    };
+    if let Some((o, text)) = out.as_ref().zip(robot_text) {
+        o.write(text.as_bytes())?;
     }
     if let Some((o, text)) = stiffness_out.as_ref().zip(stiffness_text) {
         o.write(text.as_bytes())?;
     }
-    if let Some(o) = &urdf_out {
-        o.write(document.urdf.as_bytes())?;
+    if let Some((o, text)) = urdf_out.as_ref().zip(urdf_text) {
+        o.write(text.as_bytes())?;
     }
     output::warnings(&document.warnings);
     print_json_or(args.common.json, &document, text_of)

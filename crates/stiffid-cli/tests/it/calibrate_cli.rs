@@ -104,7 +104,7 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
         "held.csv",
         &readings(&model, &x, &tracker, &postures(10, 2)),
     );
-    let (robot, urdf) = (d.join("robot.toml"), d.join("robot.urdf"));
+    let robot = d.join("robot.toml");
     let args = [
         "calibrate",
         "--setup",
@@ -115,8 +115,6 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
         held.to_str().unwrap(),
         "--out",
         robot.to_str().unwrap(),
-        "--urdf-out",
-        urdf.to_str().unwrap(),
         "--json",
     ];
     let doc = json(&stiffid(&args));
@@ -152,21 +150,22 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
         "{p}"
     );
     assert_eq!(p["unit"], "deg");
-    // The written robot file and URDF: the calibrated positions.
+    // The written robot file: the calibrated positions.
     let written =
         stiffid::robot::file::parse(&std::fs::read_to_string(&robot).unwrap(), "r").unwrap();
-    let from_urdf =
-        stiffid::robot::urdf::parse(&std::fs::read_to_string(&urdf).unwrap(), "u", None).unwrap();
     let q = Vector6::new(0.3, -0.2, -1.4, 0.5, 0.9, -0.7);
     let c = model.point(&x, 1);
     let want = model.positions(&x, &[(q, 1)]).unwrap()[0];
-    let m = written.axis_map().matrix;
-    for got in [
-        written.frames(&q).point(&c),
-        from_urdf.frames(&(m * q)).point(&c),
-    ] {
-        assert!((got - want).norm() < 1e-9, "{got:?} vs {want:?}");
-    }
+    let got = written.frames(&q).point(&c);
+    assert!((got - want).norm() < 1e-9, "{got:?} vs {want:?}");
+    // The COMAU's axis map makes joint 3's angle of q2 and q3: no URDF joint turns so, and
+    // --urdf-out is refused before anything is written.
+    let empty = temp_dir("calibrate-no-urdf");
+    refused(
+        &empty,
+        &[&args[..5], &["--out", "{dir}/r.toml", "--urdf-out", "{dir}/r.urdf"]].concat(),
+        &["--urdf-out", "axis map", "q2 and q3", "--out"],
+    );
     let text = String::from_utf8(stiffid(&args[..7]).stdout).unwrap();
     assert!(
         text.contains("held out") && text.contains("joint3.beta"),
@@ -348,6 +347,11 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
         "fit.csv",
         &readings(&model, &x, &tracker, &postures(30, 5)),
     );
+    let held = write_file(
+        &d,
+        "held.csv",
+        &readings(&model, &x, &tracker, &postures(8, 6)),
+    );
     let k = d.join("k.json");
     let args = [
         "calibrate",
@@ -355,6 +359,8 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
         setup_file.to_str().unwrap(),
         "--data",
         data.to_str().unwrap(),
+        "--validate",
+        held.to_str().unwrap(),
         "--gravity",
         "masses",
         "--stiffness-out",
@@ -363,6 +369,32 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     ];
     let doc = json(&stiffid(&args));
     assert!(doc["residual_rms_mm"].as_f64().unwrap() < 1e-6, "{doc}");
+    // The nominal reference is the rigid nominal robot whatever the model fitted: the same
+    // without gravity, and its independent computation here (the tracker registered on the
+    // nominal positions, their RMS error).
+    let rigid = json(&stiffid(&[&args[..7], &["--json"]].concat()));
+    let nominal_model = ErrorModel::new(
+        &robot,
+        &setup.tool().measuring_points,
+        MeasuredIn::Tracker,
+        Geometry::None,
+        gravity::Terms::none(&robot),
+    )
+    .unwrap();
+    let reference = nominal_rms_mm(&nominal_model, &x, &model, &tracker, &postures(8, 6));
+    for key in ["nominal_rms_mm", "/validation/nominal_rms_mm"] {
+        let (a, b) = match key.strip_prefix('/') {
+            Some(p) => (doc.pointer(&format!("/{p}")), rigid.pointer(&format!("/{p}"))),
+            None => (doc.get(key), rigid.get(key)),
+        };
+        let (a, b) = (a.unwrap().as_f64().unwrap(), b.unwrap().as_f64().unwrap());
+        assert!((a - b).abs() <= 1e-9 * b, "{key}: {a} with masses, {b} without");
+    }
+    let held_nominal = doc["validation"]["nominal_rms_mm"].as_f64().unwrap();
+    assert!(
+        (held_nominal - reference).abs() < 1e-6 * reference,
+        "{held_nominal} vs {reference}"
+    );
     let file = stiffid::io::stiffness::parse(&std::fs::read_to_string(&k).unwrap()).unwrap();
     let c = file.compliance(setup.model()).unwrap();
     for j in 0..6 {
@@ -392,6 +424,38 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
         ],
         &["--stiffness-out", "--gravity masses"],
     );
+}
+
+/// The RMS 3D error (mm) of the rigid nominal robot (`nominal`, Geometry::None) predicting the
+/// readings of `truth` at `x` by a tracker at `tracker`, the tracker registered on them
+/// (Umeyama, [`stiffid::metrology::register::fit`]).
+fn nominal_rms_mm(
+    nominal: &ErrorModel,
+    x: &DVector<f64>,
+    truth: &ErrorModel,
+    tracker: &Isometry3<f64>,
+    qs: &[[f64; 6]],
+) -> f64 {
+    let mut pairs = Vec::new();
+    for q_deg in qs {
+        let q = Vector6::from_iterator(q_deg.iter().map(|d| d.to_radians()));
+        for k in 0..truth.points() {
+            let read = tracker.inverse() * Point3::from(truth.positions(x, &[(q, k)]).unwrap()[0]);
+            let base = nominal.positions(&nominal.nominal(), &[(q, k)]).unwrap()[0];
+            pairs.push((base, read.coords));
+        }
+    }
+    let correspondences: Vec<_> = (pairs.iter())
+        .map(|(base, tracker)| stiffid::metrology::register::Correspondence {
+            base: *base,
+            tracker: *tracker,
+        })
+        .collect();
+    let t = stiffid::metrology::register::fit(&correspondences).unwrap().base_from_tracker;
+    let sum: f64 = (pairs.iter())
+        .map(|(base, read)| (t * Point3::from(*read) - Point3::from(*base)).norm_squared())
+        .sum();
+    (sum / pairs.len() as f64).sqrt() * 1e3
 }
 
 /// Readings with load steps (`load_step`, the wrench in the base frame at the loading point):

@@ -1,5 +1,5 @@
-//! The calibrated robot everywhere: the robot file `calibrate --out` writes and the URDF of
-//! `--urdf-out`, named as a robot or as a setup's `robot`, are what `kinematics`, `predict`,
+//! The calibrated robot everywhere: the robot file `calibrate --out` writes, named as a robot or
+//! as a setup's `robot`, is what `kinematics`, `predict`,
 //! `evaluate`, `select` and `compensate` use. Noise-free readings of a robot with known errors
 //! (0.5 mm and 0.5 mrad on joints 2-5): the calibrated positions are the true ones.
 
@@ -10,9 +10,8 @@ use std::path::{Path, PathBuf};
 use stiffid::app::purpose::{self, CalibrationOptions};
 use stiffid::metrology::calibration::ErrorModel;
 
-/// Calibrates on noise-free readings in `d`: the robot file, the URDF, the error model and the
-/// true values.
-fn calibrated(d: &Path) -> (PathBuf, PathBuf, ErrorModel, DVector<f64>) {
+/// Calibrates on noise-free readings in `d`: the robot file, the error model and the true values.
+fn calibrated(d: &Path) -> (PathBuf, ErrorModel, DVector<f64>) {
     let model = model();
     let x = truth(&model);
     let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
@@ -21,7 +20,7 @@ fn calibrated(d: &Path) -> (PathBuf, PathBuf, ErrorModel, DVector<f64>) {
         "fit.csv",
         &readings(&model, &x, &tracker, &postures(25, 1)),
     );
-    let (robot, urdf) = (d.join("robot.toml"), d.join("robot.urdf"));
+    let robot = d.join("robot.toml");
     json(&stiffid(&[
         "calibrate",
         "--setup",
@@ -30,11 +29,9 @@ fn calibrated(d: &Path) -> (PathBuf, PathBuf, ErrorModel, DVector<f64>) {
         data.to_str().unwrap(),
         "--out",
         robot.to_str().unwrap(),
-        "--urdf-out",
-        urdf.to_str().unwrap(),
         "--json",
     ]));
-    (robot, urdf, model, x)
+    (robot, model, x)
 }
 
 /// The built-in setup with a cutting tool's centre point and its robot replaced by `robot`.
@@ -77,31 +74,27 @@ fn mm(v: &[f64]) -> Vector3<f64> {
 #[test]
 fn kinematics_and_predict_reproduce_the_calibrated_positions() {
     let d = temp_dir("calibrated-kinematics");
-    let (robot, urdf, model, x) = calibrated(&d);
+    let (robot, model, x) = calibrated(&d);
     let setup = setup_with(&d, "calibrated.toml", "robot.toml");
     let nominal = stiffid::setup::builtin(SETUP).unwrap();
-    let m = nominal.robot().axis_map().matrix;
     for (i, q) in postures(4, 7).iter().enumerate() {
         let q = Vector6::from_iterator(q.iter().map(|v| v.to_radians()));
         for k in 0..model.points() {
             let want = model.positions(&x, &[(q, k)]).unwrap()[0];
             let point = model.point(&x, k) * 1e3;
             let point = format!("{:?},{:?},{:?}", point.x, point.y, point.z);
-            // The robot file in axis angles, the URDF in its joint positions M q.
-            for (r, angles) in [(&robot, q), (&urdf, m * q)] {
-                let doc = json(&stiffid(&[
-                    "kinematics",
-                    "--robot",
-                    r.to_str().unwrap(),
-                    "--q-deg",
-                    &deg(&angles),
-                    "--point-mm",
-                    &point,
-                    "--json",
-                ]));
-                let got = mm(&numbers(&doc["point_position_mm"]));
-                assert!((got - want).norm() < 1e-12, "{r:?} {i} {k}: {got} {want}");
-            }
+            let doc = json(&stiffid(&[
+                "kinematics",
+                "--robot",
+                robot.to_str().unwrap(),
+                "--q-deg",
+                &deg(&q),
+                "--point-mm",
+                &point,
+                "--json",
+            ]));
+            let got = mm(&numbers(&doc["point_position_mm"]));
+            assert!((got - want).norm() < 1e-12, "{i} {k}: {got} {want}");
         }
         // predict on the setup whose robot is the calibrated file: every measuring point where
         // the calibrated robot puts it, the nominal robot 0.1 mm and more away.
@@ -137,7 +130,7 @@ fn kinematics_and_predict_reproduce_the_calibrated_positions() {
 #[test]
 fn evaluate_and_select_design_on_the_calibrated_robot() {
     let d = temp_dir("calibrated-design");
-    let (robot, _, _, _) = calibrated(&d);
+    let (robot, _, _) = calibrated(&d);
     let setup = setup_with(&d, "calibrated.toml", "robot.toml");
     let group = postures(10, 3);
     let mut csv = String::from("posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n");
@@ -230,7 +223,7 @@ fn evaluate_and_select_design_on_the_calibrated_robot() {
 #[test]
 fn compensate_lands_on_the_target_with_the_calibrated_robot() {
     let d = temp_dir("calibrated-compensate");
-    let (robot, _, _, _) = calibrated(&d);
+    let (robot, _, _) = calibrated(&d);
     let stiffness = write_file(
         &d,
         "k.json",

@@ -286,6 +286,16 @@ impl Robot {
     pub fn bodies(&self) -> &Bodies {
         &self.bodies
     }
+
+    /// The robot's size (m): the sum of the lengths of its chain's fixed transforms (each joint's
+    /// `pre` and `post`, the flange), at least 1 mm. A scale for tolerances of lengths.
+    pub fn size(&self) -> f64 {
+        let lengths = (self.joints.iter())
+            .flat_map(|j| [&j.pre, &j.post])
+            .chain([&self.flange])
+            .map(|t| t.translation.vector.norm());
+        lengths.sum::<f64>().max(1e-3)
+    }
 }
 
 fn finite(t: &Isometry3<f64>) -> bool {

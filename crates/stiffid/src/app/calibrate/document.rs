@@ -57,13 +57,16 @@ pub struct Document {
     pub validation: Option<ValidationDocument>,
     /// The leave-one-posture-out errors (`--cross-validate`), if asked.
     pub cross_validation: Option<ValidationDocument>,
-    /// The calibrated robot as a robot TOML file; `null` when it cannot be one (a URDF robot, a
-    /// lateral error fitted): `robot_file_error` says why.
+    /// The calibrated robot as a robot TOML file; `null` when it cannot be one:
+    /// `robot_file_error` says why.
     pub robot_file: Option<String>,
     /// Why there is no robot file.
     pub robot_file_error: Option<String>,
-    /// The calibrated robot as a URDF.
-    pub urdf: String,
+    /// The calibrated robot as a URDF, taking the robot file's axis angles; `null` when it
+    /// cannot be one (an axis map that couples or scales axes): `urdf_error` says why.
+    pub urdf: Option<String>,
+    /// Why there is no URDF.
+    pub urdf_error: Option<String>,
     /// The setup fragment: the tracker's registration, the measuring points and the corrected
     /// TCP.
     pub fragment: String,
@@ -255,7 +258,8 @@ impl Document {
             cross_validation: report.cross_validation.as_ref().map(held),
             robot_file: report.robot_toml.as_ref().ok().cloned(),
             robot_file_error: report.robot_toml.as_ref().err().cloned(),
-            urdf: report.urdf.clone(),
+            urdf: report.urdf.as_ref().ok().cloned(),
+            urdf_error: report.urdf.as_ref().err().cloned(),
             fragment: report.fragment.clone(),
             tcp_mm: report.tcp.map(|t| [mm(t.x), mm(t.y), mm(t.z)]),
             stiffness_file: match &report.compliance {

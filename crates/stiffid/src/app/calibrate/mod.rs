@@ -143,8 +143,9 @@ pub struct Report {
     pub cross_validation: Option<Held>,
     /// The calibrated robot as a robot TOML file, or why it cannot be one.
     pub robot_toml: std::result::Result<String, String>,
-    /// The calibrated robot as a URDF.
-    pub urdf: String,
+    /// The calibrated robot as a URDF, or why it cannot be one (the job does not fail for it:
+    /// only a front end asked to write it refuses).
+    pub urdf: std::result::Result<String, String>,
     /// The setup fragment: the tracker's registration, the measuring points and the corrected
     /// TCP.
     pub fragment: String,
@@ -239,17 +240,18 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         .map(|(r, _)| nalgebra::Vector3::from_column_slice(r))
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
-    let nominal = validation::validate(&model, &start, &obs)?;
+    let reference = reference(setup, &model)?;
+    let nominal = nominal(&reference, &obs, name)?;
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
     let cross_validation = match request.cross_validate {
         false => None,
-        true => Some(cross(&model, &obs, &start, &options, &data, name)?),
+        true => Some(cross(&model, &reference, &obs, &start, &options, &data, name)?),
     };
     let validation = match &request.validate {
         None => None,
         Some((held_name, text)) => Some(held_out(
             request,
-            &model,
+            (&model, &reference),
             &fitted.estimate,
             held_name,
             text,
@@ -258,7 +260,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     };
     warnings.extend(judge(&model, &fitted, noise_ratio, name));
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
-    let urdf = robot_file::urdf(&model, &fitted.estimate)?;
+    let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());
     let compliance = (request.gravity != Gravity::None || model.has_loads())
@@ -368,6 +370,7 @@ pub fn fitted_compliance(
 
 fn cross(
     model: &ErrorModel,
+    reference: &ErrorModel,
     obs: &[Observation],
     start: &Estimate,
     options: &Options,
@@ -390,16 +393,38 @@ fn cross(
     Ok(Held {
         name: "cross-validation".into(),
         calibrated,
-        nominal: validation::validate(model, start, obs)?,
+        nominal: nominal(reference, obs, name)?,
         labels: data.labels.clone(),
     })
+}
+
+/// The nominal reference of every validation, whatever the model fitted: the nominal robot,
+/// rigid, with the setup's measuring points, in the readings' frame.
+///
+/// # Errors
+/// Those of [`ErrorModel::new`].
+fn reference(setup: &Setup, model: &ErrorModel) -> Result<ErrorModel> {
+    let robot = model.robot();
+    ErrorModel::new(
+        robot,
+        &setup.tool().measuring_points,
+        model.measured_in(),
+        Geometry::None,
+        gravity::Terms::none(robot),
+    )
+}
+
+/// The errors of the nominal `reference` on `obs` (named `name`), the tracker registered on them.
+fn nominal(reference: &ErrorModel, obs: &[Observation], name: &str) -> Result<Validation> {
+    let start = fit::start(reference, obs).map_err(|e| in_data(name, e))?;
+    validation::validate(reference, &start, obs)
 }
 
 /// The held-out validation: the readings of `text` predicted at `estimate` (the tracker
 /// registered anew on them with `reregister`).
 fn held_out(
     request: &Request<'_>,
-    model: &ErrorModel,
+    (model, reference): (&ErrorModel, &ErrorModel),
     estimate: &Estimate,
     name: &str,
     text: &str,
@@ -423,7 +448,6 @@ fn held_out(
             ),
         });
     }
-    let nominal_start = fit::start(model, &obs).map_err(|e| in_data(name, e))?;
     let estimate = match request.reregister {
         false => estimate.clone(),
         true => Estimate {
@@ -434,7 +458,7 @@ fn held_out(
     Ok(Held {
         name: name.to_string(),
         calibrated: validation::validate(model, &estimate, &obs).map_err(|e| in_data(name, e))?,
-        nominal: validation::validate(model, &nominal_start, &obs)?,
+        nominal: nominal(reference, &obs, name)?,
         labels: data.labels.clone(),
     })
 }

@@ -12,18 +12,15 @@
 //! joint `i`'s origin becomes `post_{i-1} pre_i E_i Rot(w_i, offset_i + theta_i)`, the base folded
 //! into the first and the flange into a fixed joint to the `flange` link.
 
-use super::error_model::{Component, ErrorModel, Estimate, MeasuredIn};
-use crate::robot::dh::Convention;
+use super::error_model::{ErrorModel, Estimate, MeasuredIn};
+use crate::robot::dh::{self, Convention};
 use crate::robot::urdf::UrdfSource;
 use crate::robot::{urdf_write, Bodies};
 use crate::{Error, Result, Robot};
-use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3, Vector6};
 use std::fmt::Write;
 
 use crate::robot::CALIBRATED;
-
-/// Lengths below this (m) count as zero when a chain is read as a DH table.
-const DH_TOLERANCE: f64 = 1e-12;
 
 /// The calibrated robot: the chain with the fitted errors, the base corrected for base-frame
 /// readings.
@@ -41,129 +38,63 @@ pub fn calibrated(model: &ErrorModel, estimate: &Estimate) -> Result<Robot> {
     }
 }
 
-/// A row of a DH table, SI.
-#[derive(Debug, Clone, Copy, Default)]
-struct Row {
-    a: f64,
-    alpha: f64,
-    beta: f64,
-    d: f64,
-    theta: f64,
-}
+/// The share of the robot's size ([`Robot::size`]) by which a written file's flange may miss the
+/// calibrated robot's when read back (m per m), and the angle (rad).
+const READ_BACK: f64 = 1e-9;
 
-/// The nominal robot's DH convention and rows, or `None` when its chain is not a DH table.
-fn dh_rows(robot: &Robot) -> Option<(Convention, [Row; 6])> {
-    let x_rotation = |q: &UnitQuaternion<f64>| {
-        let v = q.as_ref().imag();
-        (v.y.abs() < DH_TOLERANCE && v.z.abs() < DH_TOLERANCE).then(|| 2.0 * v.x.atan2(q.w))
-    };
-    let joints = robot.joints();
-    if joints.iter().any(|j| j.axis != Vector3::z_axis()) {
-        return None;
-    }
-    let modified = joints.iter().all(|j| {
-        let (t, p) = (j.post.translation.vector, j.pre.translation.vector);
-        j.post.rotation == UnitQuaternion::identity()
-            && t.x.abs() < DH_TOLERANCE
-            && t.y.abs() < DH_TOLERANCE
-            && p.y.abs() < DH_TOLERANCE
-            && p.z.abs() < DH_TOLERANCE
-            && x_rotation(&j.pre.rotation).is_some()
-    });
-    let standard = joints.iter().all(|j| {
+/// The share of the robot's size below which a length counts as zero when a chain is read as a
+/// DH table.
+const DH_TOLERANCE: f64 = 1e-12;
+
+/// The notation of the nominal robot's table: modified DH when every joint turns about z and its
+/// `post` only slides along z, else standard DH (a URDF robot, too).
+fn convention(robot: &Robot, tolerance: f64) -> Convention {
+    let modified = robot.joints().iter().all(|j| {
         let t = j.post.translation.vector;
-        j.pre == Isometry3::identity()
-            && t.y.abs() < DH_TOLERANCE
-            && x_rotation(&j.post.rotation).is_some()
+        j.axis == Vector3::z_axis()
+            && j.post.rotation.angle() < DH_TOLERANCE
+            && t.xy().norm() < tolerance
     });
-    let row = |i: usize| {
-        let j = &joints[i];
-        let (t, alpha) = match modified {
-            true => (j.pre.translation.vector, x_rotation(&j.pre.rotation)),
-            false => (j.post.translation.vector, x_rotation(&j.post.rotation)),
-        };
-        let d = match modified {
-            true => j.post.translation.vector.z,
-            false => t.z,
-        };
-        Row {
-            a: t.x,
-            alpha: alpha.unwrap_or(0.0),
-            beta: 0.0,
-            d,
-            theta: j.offset,
-        }
-    };
-    let convention = match (modified, standard) {
-        (true, _) => Convention::ModifiedDh,
-        (false, true) => Convention::StandardDh,
-        _ => return None,
-    };
-    Some((convention, std::array::from_fn(row)))
-}
-
-/// The errors `[theta, d, a, alpha, beta, b]` of joint `i` at `values`.
-fn errors(model: &ErrorModel, estimate: &Estimate, i: usize) -> [f64; 6] {
-    let mut e = [0.0; 6];
-    for (p, v) in model.parameters().iter().zip(estimate.values.iter()) {
-        if let super::Target::Joint { joint, component } = p.target {
-            if joint == i {
-                let c = Component::ALL.iter().position(|&c| c == component);
-                e[c.unwrap_or(0)] = *v;
-            }
-        }
+    match modified {
+        true => Convention::ModifiedDh,
+        false => Convention::StandardDh,
     }
-    e
 }
 
-/// The calibrated robot as a robot TOML file (module docs): the DH table with the errors
-/// applied, Hayati's `beta_deg` where fitted, the axis map, joint limits, base, flange, capsule
-/// radii and masses of the nominal robot. Numbers are written in full (shortest round-trip), so
-/// the file reproduces the calibrated positions to rounding.
+/// The robot of a DH `table` with `robot`'s name, axis map, limits and bodies.
+fn table_robot(robot: &Robot, table: &dh::Table) -> Result<Robot> {
+    let joints = std::array::from_fn(|i| {
+        dh::hayati_joint(table.convention, &table.rows[i], table.betas[i])
+    });
+    Robot::new(robot.name(), robot.source(), joints, *robot.limits())?
+        .with_axis_map(robot.axis_map().clone())?
+        .with_base(table.base)?
+        .with_flange(table.flange)
+}
+
+/// The calibrated robot as a robot TOML file (module docs): its chain as a DH table in the
+/// nominal robot's notation (a URDF robot's in standard DH, [`dh::table`]), Hayati's `beta_deg`
+/// where a row needs it, the axis map, joint limits, base, flange, capsule radii and masses (their
+/// centres carried into the table's link frames) of the nominal robot. Numbers are written in
+/// full (shortest round-trip) and the file is read back: its flange is the calibrated robot's
+/// within [`READ_BACK`] of the robot's size at three postures.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`robot`) when the nominal robot is not a DH table (a URDF: write a
-/// URDF) or a lateral error `b` was fitted.
+/// [`Error::InvalidField`] (`robot`) when a joint's transform has no DH row (axes at 90 degrees
+/// about y after the common normal) or the file read back misses the calibrated robot.
 pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let nominal = model.robot();
-    let Some((convention, mut rows)) = dh_rows(nominal) else {
+    let robot = calibrated(model, estimate)?;
+    let tolerance = DH_TOLERANCE * robot.size();
+    let convention = convention(nominal, tolerance);
+    let Some(table) = dh::table(&robot, convention, tolerance) else {
         return Err(not_dh(
-            "its chain is not a DH table (a URDF): write a URDF instead",
+            "a joint's transform has no DH row (consecutive axes at 90 degrees about y): write a URDF instead",
         ));
     };
-    let mut base = *nominal.base();
-    for i in 0..6 {
-        let [theta, d, a, alpha, beta, b] = errors(model, estimate, i);
-        if b != 0.0 {
-            return Err(not_dh(&format!(
-                "joint{}.b was fitted, which a DH table cannot hold: write a URDF instead",
-                i + 1
-            )));
-        }
-        rows[i].theta += theta;
-        rows[i].d += d;
-        let target = match (convention, i) {
-            (Convention::ModifiedDh, _) => Some(i),
-            (Convention::StandardDh, 0) => None,
-            (Convention::StandardDh, _) => Some(i - 1),
-        };
-        match target {
-            Some(r) => {
-                rows[r].a += a;
-                rows[r].alpha += alpha;
-                rows[r].beta += beta;
-            }
-            None => {
-                let e = model.basis(0).error(&[0.0, 0.0, a, alpha, beta, 0.0]);
-                base *= e;
-            }
-        }
-    }
-    if model.measured_in() == MeasuredIn::Base {
-        base = estimate.frame.inverse() * base;
-    }
+    let written = table_robot(&robot, &table)?;
     let mut t = String::new();
-    let name = format!("{}{CALIBRATED}", nominal.name());
+    let name = format!("{}{CALIBRATED}", nominal.name().trim_end_matches(CALIBRATED));
     let _ = writeln!(t, "name = {}", quoted(&name));
     let _ = writeln!(t, "source = {}", quoted(nominal.source()));
     let _ = writeln!(
@@ -175,20 +106,23 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         }
     );
     let limits = nominal.limits();
-    for (i, r) in rows.iter().enumerate() {
+    // A link's centre moves into the table's frame of the same link (both turn with it).
+    let (at, table_at) = (robot.frames(&Vector6::zeros()), written.frames(&Vector6::zeros()));
+    for (i, r) in table.rows.iter().enumerate() {
         let _ = writeln!(t, "\n[[joint]]");
         let _ = writeln!(t, "a_mm = {:?}", r.a * 1e3);
         let _ = writeln!(t, "alpha_deg = {:?}", r.alpha.to_degrees());
-        if r.beta != 0.0 {
-            let _ = writeln!(t, "beta_deg = {:?}", r.beta.to_degrees());
+        if table.betas[i] != 0.0 {
+            let _ = writeln!(t, "beta_deg = {:?}", table.betas[i].to_degrees());
         }
         let _ = writeln!(t, "d_mm = {:?}", r.d * 1e3);
-        let _ = writeln!(t, "theta_offset_deg = {:?}", r.theta.to_degrees());
+        let _ = writeln!(t, "theta_offset_deg = {:?}", r.theta_offset.to_degrees());
         let _ = writeln!(t, "lower_deg = {:?}", limit(limits.lower[i]));
         let _ = writeln!(t, "upper_deg = {:?}", limit(limits.upper[i]));
-        if let Some(m) = nominal.masses() {
+        if let Some(m) = robot.masses() {
+            let centre = table_at.joints[i].inverse() * at.joints[i] * Point3::from(m[i].centre);
             let _ = writeln!(t, "mass_kg = {:?}", m[i].mass);
-            let _ = writeln!(t, "com_mm = {}", list(&(m[i].centre * 1e3)));
+            let _ = writeln!(t, "com_mm = {}", list(&(centre.coords * 1e3)));
         }
     }
     let map = nominal.axis_map();
@@ -205,8 +139,8 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         .map(|v| format!("{:?}", v.to_degrees()))
         .collect();
     let _ = writeln!(t, "]\noffset_deg = [{}]", offsets.join(", "));
-    let _ = write!(t, "\n[base]\n{}", transform(&base));
-    let _ = write!(t, "\n[flange]\n{}", transform(nominal.flange()));
+    let _ = write!(t, "\n[base]\n{}", transform(&table.base));
+    let _ = write!(t, "\n[flange]\n{}", transform(&table.flange));
     if let Bodies::Capsules(r) = nominal.bodies() {
         let radii: Vec<String> = r.iter().map(|v| format!("{:?}", v * 1e3)).collect();
         let _ = writeln!(
@@ -215,34 +149,67 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             radii.join(", ")
         );
     }
+    let back = crate::robot::file::parse(&t, "the calibrated robot file")?;
+    read_back(&robot, &back).map_err(|e| not_dh(&e))?;
     Ok(t)
 }
 
-/// The calibrated robot as a URDF (module docs). A robot read from a URDF gets its own document
-/// back with the origins of its six chain joints corrected (`origin_i N_i^-1 C_i`, `N_i` and
-/// `C_i` the nominal and calibrated transforms from the previous joint's frame to joint `i`'s, a
-/// base correction folded into the first): links, meshes, inertials, mimic joints, fixed joints
-/// and comments kept; it is read back and its kinematics checked against the calibrated robot's.
-/// Any other robot is written as links `base_link`, `link1`..`link6`, `flange`, revolute joints
-/// `joint1`..`joint6` with the corrected origins (the axis map's constant `c` folded in: the
-/// URDF's joint positions are `M q`, the axis angles themselves for the identity `M`), as limits
-/// the range of each joint position `(M q)_i` over the nominal axis limits (an unbounded one as a
-/// continuous joint) and the links' masses when the nominal robot has them (zero inertia tensors: stiffid uses masses and centres only).
+/// Whether `back`, a written file read back, has `robot`'s flange at the same axis angles
+/// within [`READ_BACK`] of the robot's size (m) and [`READ_BACK`] rad, at three postures.
+fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
+    let q = [
+        Vector6::zeros(),
+        Vector6::new(0.3, -0.4, 0.5, -0.6, 0.7, -0.8),
+        Vector6::new(-1.1, 0.9, -0.7, 1.3, -0.5, 2.1),
+    ];
+    let (mut distance, mut angle) = (0.0_f64, 0.0_f64);
+    for q in &q {
+        let (a, b) = (robot.frames(q).flange, back.frames(q).flange);
+        distance = distance.max((a.translation.vector - b.translation.vector).norm());
+        angle = angle.max(a.rotation.angle_to(&b.rotation));
+    }
+    let tolerance = READ_BACK * robot.size();
+    match distance <= tolerance && angle <= READ_BACK {
+        true => Ok(()),
+        false => Err(format!(
+            "read back, its flange misses the calibrated robot's by {:.3e} mm and {:.3e} deg (at most {:.3e} mm, {:.3e} deg)",
+            distance * 1e3,
+            angle.to_degrees(),
+            tolerance * 1e3,
+            READ_BACK.to_degrees()
+        )),
+    }
+}
+
+/// The calibrated robot as a URDF (module docs), with the same kinematics, joint limits and axis
+/// angles as the robot file. A robot read from a URDF gets its own document back with the
+/// origins of its six chain joints corrected (`origin_i N_i^-1 C_i`, `N_i` and `C_i` the nominal
+/// and calibrated transforms from the previous joint's frame to joint `i`'s, a base correction
+/// folded into the first): links, meshes, inertials, mimic joints, fixed joints and comments
+/// kept. Any other robot is written as links `base_link`, `link1`..`link6`, `flange`, revolute
+/// joints `joint1`..`joint6` with the corrected origins, the axis map folded in (its constant
+/// into the origins, a negative sign into the axis: the URDF's joint positions are the axis
+/// angles), the axis limits as joint limits (an unbounded axis a continuous joint) and the
+/// links' masses when the nominal robot has them (zero inertia tensors: stiffid uses masses and
+/// centres only). Either is read back: its flange is the calibrated robot's within
+/// [`READ_BACK`] of the robot's size at three postures.
 ///
 /// # Errors
-/// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the nominal URDF's text cannot
-/// carry the correction (a chain joint not found in it, a document that no longer reproduces the
-/// calibrated robot).
+/// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the axis map couples axes or
+/// scales them (a URDF joint turns by its own position: the robot file carries the map), when
+/// the nominal URDF's text cannot carry the correction (a chain joint not found in it) or the
+/// document read back misses the calibrated robot.
 pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let robot = calibrated(model, estimate)?;
     if let Some(source) = model.robot().urdf_source() {
         return edited_urdf(model.robot(), &robot, source);
     }
+    let signs = signs(robot.axis_map()).map_err(|e| not_urdf(&e))?;
     let mut t = String::new();
     let _ = writeln!(
         t,
         "<?xml version=\"1.0\"?>\n<robot name={}>",
-        xml_quoted(&format!("{}{CALIBRATED}", robot.name()))
+        xml_quoted(&format!("{}{CALIBRATED}", robot.name().trim_end_matches(CALIBRATED)))
     );
     let mut links = vec!["base_link".to_string()];
     links.extend((1..=6).map(|i| format!("link{i}")));
@@ -252,7 +219,7 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             (1..=6, Some(m)) => {
                 let m = &m[i - 1];
                 // The link frame of the URDF is the joint frame before `post`.
-                let c = robot.joints()[i - 1].post * nalgebra::Point3::from(m.centre);
+                let c = robot.joints()[i - 1].post * Point3::from(m.centre);
                 let _ = writeln!(
                     t,
                     "  <link name=\"{l}\"><inertial><origin xyz=\"{:?} {:?} {:?}\"/><mass value=\"{:?}\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial></link>",
@@ -265,13 +232,16 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         }
     }
     let mut before = *robot.base();
+    let limits = robot.limits();
     for (i, j) in robot.joints().iter().enumerate() {
+        // Rot(w, s q + c + offset) = Rot(w, c + offset) Rot(s w, q).
         let origin = before
             * j.pre
             * UnitQuaternion::from_axis_angle(&j.axis, j.offset + robot.axis_map().offset[i]);
         before = j.post;
-        let (lo, hi) = position_range(&robot, i);
-        let bounded = lo.is_finite() && hi.is_finite();
+        let axis = j.axis.into_inner() * signs[i];
+        let (lo, hi) = (limits.lower[i], limits.upper[i]);
+        let bounded = lo.is_finite() || hi.is_finite();
         let _ = writeln!(
             t,
             "  <joint name=\"joint{}\" type=\"{}\">\n    <parent link=\"{}\"/><child link=\"{}\"/>\n    {}\n    <axis xyz=\"{:?} {:?} {:?}\"/>",
@@ -280,14 +250,17 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             links[i],
             links[i + 1],
             urdf_write::origin_xml(&origin),
-            j.axis.x,
-            j.axis.y,
-            j.axis.z
+            axis.x,
+            axis.y,
+            axis.z
         );
         if bounded {
+            let end = crate::common::limits::ANGLE_RAD.max;
             let _ = writeln!(
                 t,
-                "    <limit lower=\"{lo:?}\" upper=\"{hi:?}\" effort=\"0\" velocity=\"0\"/>"
+                "    <limit lower=\"{:?}\" upper=\"{:?}\" effort=\"0\" velocity=\"0\"/>",
+                lo.max(-end),
+                hi.min(end)
             );
         }
         let _ = writeln!(t, "  </joint>");
@@ -297,7 +270,33 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         "  <joint name=\"flange\" type=\"fixed\">\n    <parent link=\"link6\"/><child link=\"flange\"/>\n    {}\n  </joint>\n</robot>",
         urdf_write::origin_xml(&(before * robot.flange()))
     );
+    let back = crate::robot::urdf::parse(&t, "the calibrated URDF", Some("flange"))?;
+    read_back(&robot, &back).map_err(|e| not_urdf(&e))?;
     Ok(t)
+}
+
+/// The sign of each axis in `map` when it is diagonal with entries +-1 (each kinematic angle one
+/// axis angle, mirrored or not), or why a URDF cannot carry it.
+fn signs(map: &crate::robot::AxisMap) -> std::result::Result<[f64; 6], String> {
+    let m = &map.matrix;
+    for r in 0..6 {
+        let read: Vec<String> = (0..6)
+            .filter(|&c| m[(r, c)] != 0.0)
+            .map(|c| format!("q{}", c + 1))
+            .collect();
+        if read.len() != 1 || m[(r, r)].abs() != 1.0 {
+            return Err(format!(
+                "its axis map makes joint {}'s angle of {} (axis_map.matrix row {}), and a URDF joint turns by its own position alone: use the robot file (--out), which carries the map",
+                r + 1,
+                match read.is_empty() {
+                    true => "no axis".to_string(),
+                    false => format!("{} times {}", m[(r, r)], read.join(" and ")),
+                },
+                r + 1
+            ));
+        }
+    }
+    Ok(std::array::from_fn(|i| m[(i, i)]))
 }
 
 /// The nominal URDF `source` of `nominal` with the origins of `calibrated` (the function docs of
@@ -328,23 +327,8 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
     let back = crate::robot::urdf::parse(&text, "the calibrated URDF", Some(&source.tip))?
         .with_base(*nominal.base())?
         .with_axis_map(nominal.axis_map().clone())?;
-    let q = [
-        Vector6::zeros(),
-        Vector6::new(0.3, -0.4, 0.5, -0.6, 0.7, -0.8),
-        Vector6::new(-1.1, 0.9, -0.7, 1.3, -0.5, 2.1),
-    ];
-    let worst = (q.iter())
-        .map(|q| {
-            let (a, b) = (calibrated.frames(q).flange, back.frames(q).flange);
-            (a.inverse() * b).translation.vector.norm() + (a.rotation.angle_to(&b.rotation))
-        })
-        .fold(0.0, f64::max);
-    match worst <= 1e-12 {
-        true => Ok(text),
-        false => Err(invalid(format!(
-            "read back, its flange misses the calibrated robot's by {worst:.3e} (m + rad)"
-        ))),
-    }
+    read_back(calibrated, &back).map_err(invalid)?;
+    Ok(text)
 }
 
 fn transform(t: &Isometry3<f64>) -> String {
@@ -360,21 +344,6 @@ fn transform(t: &Isometry3<f64>) -> String {
 
 fn list(v: &Vector3<f64>) -> String {
     format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
-}
-
-/// The range (rad) of the joint position `(M q)_i` of `robot` over its axis limits (interval
-/// arithmetic: for a row of `M` with one entry, that axis's limits, mirrored for a negative one;
-/// for a coupled row, the sum of its terms' ranges); infinite where an axis it reads is
-/// unbounded.
-fn position_range(robot: &Robot, i: usize) -> (f64, f64) {
-    let (m, limits) = (robot.axis_map().matrix, robot.limits());
-    (0..6)
-        .filter(|&j| m[(i, j)] != 0.0)
-        .fold((0.0, 0.0), |(lo, hi), j| {
-            let w = m[(i, j)];
-            let (a, b) = (w * limits.lower[j], w * limits.upper[j]);
-            (lo + a.min(b), hi + a.max(b))
-        })
 }
 
 /// A joint limit (rad) in degrees; an unbounded end as the file's largest angle.
@@ -396,6 +365,13 @@ fn xml_quoted(s: &str) -> String {
         .replace('<', "&lt;")
         .replace('>', "&gt;");
     format!("\"{escaped}\"")
+}
+
+fn not_urdf(message: &str) -> Error {
+    Error::InvalidField {
+        field: "robot".into(),
+        message: format!("the calibrated robot cannot be written as a URDF: {message}"),
+    }
 }
 
 fn not_dh(message: &str) -> Error {
