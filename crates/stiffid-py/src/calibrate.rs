@@ -33,7 +33,8 @@ use stiffid::app::readings::Request as Readings;
 /// ``identified``), ``merged``, ``rank``, ``condition``, ``correlations``, ``residual_rms_mm``,
 /// ``nominal_rms_mm``, ``noise_std_mm``, ``noise_ratio``, ``validation`` and
 /// ``cross_validation`` (``rms_mm``, ``max_mm``, ``nominal_rms_mm``, the error of every held-out
-/// posture and point), ``robot_file``, ``urdf``, ``fragment`` and ``warnings``; the warnings are
+/// posture and point), ``robot_file`` (or ``robot_file_error``), ``urdf`` (or ``urdf_error``),
+/// ``fragment`` and ``warnings``; the warnings are
 /// raised as ``UserWarning`` too.
 ///
 /// ``out``: writes the calibrated robot file (robot TOML, the calibrated DH table and axis map,

@@ -163,7 +163,11 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
     let empty = temp_dir("calibrate-no-urdf");
     refused(
         &empty,
-        &[&args[..5], &["--out", "{dir}/r.toml", "--urdf-out", "{dir}/r.urdf"]].concat(),
+        &[
+            &args[..5],
+            &["--out", "{dir}/r.toml", "--urdf-out", "{dir}/r.urdf"],
+        ]
+        .concat(),
         &["--urdf-out", "axis map", "q2 and q3", "--out"],
     );
     let text = String::from_utf8(stiffid(&args[..7]).stdout).unwrap();
@@ -384,11 +388,17 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     let reference = nominal_rms_mm(&nominal_model, &x, &model, &tracker, &postures(8, 6));
     for key in ["nominal_rms_mm", "/validation/nominal_rms_mm"] {
         let (a, b) = match key.strip_prefix('/') {
-            Some(p) => (doc.pointer(&format!("/{p}")), rigid.pointer(&format!("/{p}"))),
+            Some(p) => (
+                doc.pointer(&format!("/{p}")),
+                rigid.pointer(&format!("/{p}")),
+            ),
             None => (doc.get(key), rigid.get(key)),
         };
         let (a, b) = (a.unwrap().as_f64().unwrap(), b.unwrap().as_f64().unwrap());
-        assert!((a - b).abs() <= 1e-9 * b, "{key}: {a} with masses, {b} without");
+        assert!(
+            (a - b).abs() <= 1e-9 * b,
+            "{key}: {a} with masses, {b} without"
+        );
     }
     let held_nominal = doc["validation"]["nominal_rms_mm"].as_f64().unwrap();
     assert!(
@@ -446,12 +456,16 @@ fn nominal_rms_mm(
         }
     }
     let correspondences: Vec<_> = (pairs.iter())
-        .map(|(base, tracker)| stiffid::metrology::register::Correspondence {
-            base: *base,
-            tracker: *tracker,
-        })
+        .map(
+            |(base, tracker)| stiffid::metrology::register::Correspondence {
+                base: *base,
+                tracker: *tracker,
+            },
+        )
         .collect();
-    let t = stiffid::metrology::register::fit(&correspondences).unwrap().base_from_tracker;
+    let t = stiffid::metrology::register::fit(&correspondences)
+        .unwrap()
+        .base_from_tracker;
     let sum: f64 = (pairs.iter())
         .map(|(base, read)| (t * Point3::from(*read) - Point3::from(*base)).norm_squared())
         .sum();

@@ -443,7 +443,7 @@ def calibrate(
     urdf_out: Optional[_PathLike] = None,
     force: bool = False,
 ) -> dict[str, Any]:
-    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, validation, cross_validation, robot_file, urdf, fragment; out and urdf_out write the calibrated robot file and URDF."""
+    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, validation, cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
     postures_deg: ArrayLike,

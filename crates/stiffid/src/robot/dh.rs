@@ -2,8 +2,8 @@
 
 use super::Joint;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use std::f64::consts::PI;
 use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
 
 /// Which Denavit-Hartenberg notation a table uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -194,7 +194,10 @@ pub fn table(robot: &super::Robot, convention: Convention, tolerance: f64) -> Op
         Some(s) => {
             (rows[0].a, rows[0].alpha, betas[0]) = (s.a, s.alpha, s.beta);
             rows[0].theta_offset += s.gamma;
-            (robot.base() * Isometry3::translation(0.0, 0.0, s.e), s.delta)
+            (
+                robot.base() * Isometry3::translation(0.0, 0.0, s.e),
+                s.delta,
+            )
         }
         None => {
             // What turns about and slides along the first axis joins its row; the rest, the base.

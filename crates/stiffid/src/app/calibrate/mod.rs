@@ -245,7 +245,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
     let cross_validation = match request.cross_validate {
         false => None,
-        true => Some(cross(&model, &reference, &obs, &start, &options, &data, name)?),
+        true => Some(cross(
+            &model, &reference, &obs, &start, &options, &data, name,
+        )?),
     };
     let validation = match &request.validate {
         None => None,

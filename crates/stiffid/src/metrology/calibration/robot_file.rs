@@ -63,9 +63,8 @@ fn convention(robot: &Robot, tolerance: f64) -> Convention {
 
 /// The robot of a DH `table` with `robot`'s name, axis map, limits and bodies.
 fn table_robot(robot: &Robot, table: &dh::Table) -> Result<Robot> {
-    let joints = std::array::from_fn(|i| {
-        dh::hayati_joint(table.convention, &table.rows[i], table.betas[i])
-    });
+    let joints =
+        std::array::from_fn(|i| dh::hayati_joint(table.convention, &table.rows[i], table.betas[i]));
     Robot::new(robot.name(), robot.source(), joints, *robot.limits())?
         .with_axis_map(robot.axis_map().clone())?
         .with_base(table.base)?
@@ -94,7 +93,10 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     };
     let written = table_robot(&robot, &table)?;
     let mut t = String::new();
-    let name = format!("{}{CALIBRATED}", nominal.name().trim_end_matches(CALIBRATED));
+    let name = format!(
+        "{}{CALIBRATED}",
+        nominal.name().trim_end_matches(CALIBRATED)
+    );
     let _ = writeln!(t, "name = {}", quoted(&name));
     let _ = writeln!(t, "source = {}", quoted(nominal.source()));
     let _ = writeln!(
@@ -107,7 +109,10 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     );
     let limits = nominal.limits();
     // A link's centre moves into the table's frame of the same link (both turn with it).
-    let (at, table_at) = (robot.frames(&Vector6::zeros()), written.frames(&Vector6::zeros()));
+    let (at, table_at) = (
+        robot.frames(&Vector6::zeros()),
+        written.frames(&Vector6::zeros()),
+    );
     for (i, r) in table.rows.iter().enumerate() {
         let _ = writeln!(t, "\n[[joint]]");
         let _ = writeln!(t, "a_mm = {:?}", r.a * 1e3);
@@ -209,7 +214,10 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let _ = writeln!(
         t,
         "<?xml version=\"1.0\"?>\n<robot name={}>",
-        xml_quoted(&format!("{}{CALIBRATED}", robot.name().trim_end_matches(CALIBRATED)))
+        xml_quoted(&format!(
+            "{}{CALIBRATED}",
+            robot.name().trim_end_matches(CALIBRATED)
+        ))
     );
     let mut links = vec!["base_link".to_string()];
     links.extend((1..=6).map(|i| format!("link{i}")));

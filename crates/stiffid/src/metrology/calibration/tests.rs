@@ -429,7 +429,10 @@ fn calibrated_files_agree(robot: &Robot, measured_in: MeasuredIn, seed: u64, n: 
         assert!((got - w).norm() < 1e-11, "robot {n} toml: {got:?} vs {w:?}");
         if let Some(u) = &from_urdf {
             let other = u.frames(q).point(&c);
-            assert!((other - got).norm() < 1e-12, "robot {n} urdf: {other:?} vs {got:?}");
+            assert!(
+                (other - got).norm() < 1e-12,
+                "robot {n} urdf: {other:?} vs {got:?}"
+            );
         }
     }
     from_urdf.iter().for_each(same_limits);
