@@ -25,7 +25,11 @@ use stiffid::setup::plausibility::radians_in_option;
 /// (docs/schemas/predict.schema.json) as a dict, equal to ``stiffid predict --json``: drive
 /// torques and deflections, every measuring point's and the TCP's displacement (``*_std_*``
 /// standard deviations with a covariance, else ``None``), and the Cartesian compliance and
-/// stiffness of the loaded point. With a stiffness file that holds held-out residuals
+/// stiffness of the loaded point; where the robot gives its masses (a robot file's ``mass_kg``,
+/// ``com_mm``, ``inertia_kg_m2``, a URDF's ``<inertial>``; the tool's from the setup), the
+/// natural frequencies and mode shapes of the posture, the effective mass along the wrench's
+/// force (held in the other five directions) and the breakthrough surge ``surge_mm_s``
+/// (placeholder masses warned about, ``UserWarning``). With a stiffness file that holds held-out residuals
 /// (``identify(..., cross_validate=True)``), every displacement's prediction interval at
 /// ``level`` (0.5 to 0.999; ``*_interval_mm``).
 #[pyfunction]
@@ -57,6 +61,7 @@ pub fn predict<'py>(
     let document = py
         .detach(|| options.run(setup, q.into(), wrench.into()))
         .map_err(raise)?;
+    documents::warn(py, &document.warnings)?;
     documents::to_python(py, &document, &[])
 }
 
@@ -114,6 +119,8 @@ pub fn deflection<'py>(
             .collect::<Result<Vec<_>, _>>()
     });
     let documents = documents.map_err(|b| raise_in(&format!("posture {}", b.0), b.1))?;
+    // The mass model is the setup's: its warnings are every posture's.
+    documents::warn(py, &documents[0].warnings)?;
     let list = PyList::empty(py);
     for d in &documents {
         list.append(documents::to_python(py, d, &[])?)?;

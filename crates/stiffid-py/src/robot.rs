@@ -162,8 +162,12 @@ impl Robot {
     /// as a dict, equal to ``stiffid kinematics --json``: the flange pose, the point
     /// ``point_mm``'s position (flange frame, mm; default the flange origin) and Jacobian
     /// (``coordinates``), every joint frame's origin, and the dexterity with the characteristic
-    /// length ``characteristic_length_mm`` (``None``: the robot's own, named ``derived``).
-    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis"))]
+    /// length ``characteristic_length_mm`` (``None``: the robot's own, named ``derived``); where
+    /// the robot gives its masses, the mass matrix and the point's operational-space inertia,
+    /// and with ``stiffness_nm_per_rad`` (shape ``(6,)``, Nm/rad, in ``coordinates``) the
+    /// natural frequencies and mode shapes. Placeholder masses are warned about
+    /// (``UserWarning``).
+    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis", stiffness_nm_per_rad=None))]
     fn kinematics<'py>(
         &self,
         py: Python<'py>,
@@ -171,7 +175,14 @@ impl Robot {
         point_mm: Option<&Bound<'py, PyAny>>,
         characteristic_length_mm: Option<f64>,
         coordinates: &str,
+        stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let stiffness = stiffness_nm_per_rad
+            .map(|k| {
+                let range = &limits::STIFFNESS_NM_PER_RAD;
+                arrays::vector::<6>(k, "stiffness_nm_per_rad", range).map(Vector6::from)
+            })
+            .transpose()?;
         let q = Vector6::from(arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?);
         let q = q.map(f64::to_radians);
         let warning = stiffid::setup::plausibility::radians_in_option("q_deg", &q);
@@ -182,8 +193,10 @@ impl Robot {
             point: point(point_mm)?,
             characteristic_length: characteristic_length_mm.map(|l| l * 1e-3),
             coordinates: coordinates_arg(coordinates)?,
+            stiffness,
         };
         let report = py.detach(|| job::run(request)).map_err(raise)?;
+        crate::documents::warn(py, &report.warnings)?;
         crate::documents::to_python(py, &Document::new(&report, &self.inner), &[])
     }
 

@@ -32,6 +32,7 @@ fn fanuc(
     let masses: [LinkMass; 6] = std::array::from_fn(|l| LinkMass {
         mass: 200.0 - 30.0 * l as f64,
         centre: Vector3::new(0.05 * l as f64, -0.03, 0.1 + 0.02 * l as f64),
+        ..LinkMass::default()
     });
     let robot = presets::get("fanuc-r2000ic-165f")
         .unwrap()

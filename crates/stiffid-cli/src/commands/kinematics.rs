@@ -32,6 +32,12 @@ pub struct Args {
     /// The joint coordinates of the Jacobian's columns.
     #[arg(long, value_parser = choice::<Coordinates>(), default_value = "axis")]
     coordinates: Coordinates,
+    /// The six joints' stiffness, Nm/rad, comma-separated, in the coordinates of
+    /// `--coordinates` [1 to 1e10 each]: the natural frequencies and mode shapes of the posture
+    /// with the robot's masses (a robot file's mass_kg, com_mm, inertia_kg_m2 or a URDF's
+    /// <inertial>).
+    #[arg(long)]
+    stiffness_nm_per_rad: Option<String>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -42,17 +48,22 @@ pub fn run(args: &Args) -> Result<()> {
     let robot = load::robot(&args.robot, args.tip.as_deref())?;
     let (_, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
     let point = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)? * 1e-3;
+    let stiffness = (args.stiffness_nm_per_rad.as_deref())
+        .map(|k| load::vector::<6>(k, "--stiffness-nm-per-rad", &limits::STIFFNESS_NM_PER_RAD))
+        .transpose()?;
     let request = job::Request {
         robot: &robot,
         q,
         point,
         characteristic_length: args.characteristic_length_mm.map(|l| l * 1e-3),
         coordinates: args.coordinates,
+        stiffness,
     };
     let report = job::run(request).with_context(|| match args.characteristic_length_mm {
         Some(_) => "--characteristic-length-mm",
         None => "give --characteristic-length-mm",
     })?;
+    output::warnings(&report.warnings);
     output::print_json_or(args.json, &Document::new(&report, &robot), text)
 }
 
@@ -100,6 +111,9 @@ fn text(r: &Document) -> String {
         "dexterity k(J_N) (L = {} mm, {source}): {k}\n",
         fixed(r.characteristic_length_mm, 1)
     );
+    if let Some(f) = &r.natural_frequencies_hz {
+        s += &format!("natural frequencies Hz: {}\n", list(f, 2));
+    }
     s
 }
 

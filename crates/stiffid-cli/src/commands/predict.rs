@@ -75,6 +75,7 @@ pub fn run(args: &Args) -> Result<()> {
         compliance,
         level: args.level,
     })?;
+    crate::output::warnings(&report.warnings);
     let document = Document::new(&report, &args.common.setup);
     print_json_or(args.common.json, &document, human)
 }
@@ -184,6 +185,24 @@ fn human(r: &Document) -> String {
                 s += &format!("  {}\n", row(line, 4));
             }
         }
+    }
+    s + &mass(r)
+}
+
+/// The mass lines: natural frequencies and the surge, where the robot gives its masses.
+fn mass(r: &Document) -> String {
+    let Some(f) = &r.natural_frequencies_hz else {
+        return String::new();
+    };
+    let hz: Vec<String> = f.iter().map(|v| format!("{v:.2}")).collect();
+    let mut s = format!("\nnatural frequencies Hz: {}\n", hz.join(", "));
+    if let (Some(m), Some(v)) = (r.effective_mass_kg, r.surge_mm_s) {
+        let std = r
+            .surge_std_mm_s
+            .map_or(String::new(), |d| format!(" (std {d:.3})"));
+        s += &format!(
+            "effective mass along the force, held: {m:.2} kg; breakthrough surge {v:.3} mm/s{std}\n"
+        );
     }
     s
 }

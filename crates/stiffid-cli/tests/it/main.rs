@@ -12,6 +12,7 @@ mod hardening;
 mod identify_cli;
 mod kinematics;
 mod limits_edges;
+mod mass_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
 mod optional_fields_cli;

@@ -50,6 +50,9 @@ pub enum WarningKind {
     /// An iterative solver stopped before it converged (the robust reweighting at its
     /// iteration limit): its result may still move.
     NotConverged,
+    /// The robot's masses are placeholders (or unusable): no mass matrix, natural frequencies
+    /// or surge ([`crate::robot::dynamics::MassModel::new`]).
+    Masses,
 }
 
 impl WarningKind {
@@ -70,6 +73,7 @@ impl WarningKind {
             WarningKind::NearPostures => "near-postures",
             WarningKind::OldField => "old-field",
             WarningKind::NotConverged => "not-converged",
+            WarningKind::Masses => "masses",
         }
     }
 }

@@ -17,6 +17,7 @@
 
 pub mod cartesian;
 pub mod deflection;
+pub mod dynamics;
 pub mod frames;
 mod measurement;
 pub mod stiffness;

@@ -12,6 +12,8 @@
 //! beta_deg = 0.0                        # optional, default 0: Hayati's rotation about y
 //! mass_kg = 250.0                       # optional (all six or none): the link's mass
 //! com_mm = [0, 0, 0]                    #   and its centre in the joint's frame (with mass_kg)
+//! inertia_kg_m2 = [12, 10, 8, 0, 0, 0]  # optional: [ixx, iyy, izz, ixy, ixz, iyz] about the
+//!                                       #   centre, joint frame's axes (default zero)
 //! lower_deg = -175.0                    # axis (controller) coordinates
 //! upper_deg = 175.0
 //! # ... five more [[joint]] tables
@@ -71,6 +73,8 @@ struct JointRow {
     mass_kg: Option<f64>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     com_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    inertia_kg_m2: Option<[f64; 6]>,
     lower_deg: f64,
     upper_deg: f64,
 }
@@ -196,12 +200,15 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         })
 }
 
-/// The links' masses and centres of `mass_kg` and `com_mm` (every joint or none), each mass
-/// within [`limits::MASS_KG`] and centre within [`limits::LENGTH_MM`].
+/// The links' masses, centres and inertia tensors of `mass_kg`, `com_mm` (every joint or none)
+/// and `inertia_kg_m2` (optional, zero without it), each mass within [`limits::MASS_KG`], centre
+/// within [`limits::LENGTH_MM`], tensor component within [`limits::INERTIA_KG_M2`] and tensor
+/// physical ([`super::dynamics::body::physical`]).
 fn masses(joints: &[JointRow], source_name: &str) -> Result<Option<[LinkMass; 6]>> {
     let given = joints.iter().filter(|j| j.mass_kg.is_some()).count();
     let centres = joints.iter().filter(|j| j.com_mm.is_some()).count();
-    if given == 0 && centres == 0 {
+    let tensors = joints.iter().filter(|j| j.inertia_kg_m2.is_some()).count();
+    if given == 0 && centres == 0 && tensors == 0 {
         return Ok(None);
     }
     let mut out = [LinkMass::default(); 6];
@@ -210,15 +217,26 @@ fn masses(joints: &[JointRow], source_name: &str) -> Result<Option<[LinkMass; 6]
             return Err(invalid(
                 source_name,
                 format!("joint[{}].mass_kg", i + 1),
-                "expected mass_kg and com_mm on every joint or on none",
+                "expected mass_kg and com_mm on every joint or on none (inertia_kg_m2 needs them)",
             ));
         };
         let field = |name: &str| format!("joint[{}].{name}", i + 1);
         check_in(source_name, &field("mass_kg"), &[mass], &limits::MASS_KG)?;
         check_in(source_name, &field("com_mm"), &com, &limits::LENGTH_MM)?;
+        let six = j.inertia_kg_m2.unwrap_or_default();
+        check_in(
+            source_name,
+            &field("inertia_kg_m2"),
+            &six,
+            &limits::INERTIA_KG_M2,
+        )?;
+        let inertia = super::dynamics::body::tensor(six);
+        super::dynamics::body::physical(&inertia)
+            .map_err(|m| invalid(source_name, field("inertia_kg_m2"), &m))?;
         out[i] = LinkMass {
             mass,
             centre: nalgebra::Vector3::from(com.map(|v| v * 1e-3)),
+            inertia,
         };
     }
     Ok(Some(out))

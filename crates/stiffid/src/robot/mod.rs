@@ -7,6 +7,7 @@ pub(crate) mod builtin;
 pub mod collision;
 pub mod configuration;
 pub mod dh;
+pub mod dynamics;
 pub mod file;
 pub mod ik;
 pub mod kinematics;
@@ -18,7 +19,7 @@ pub(crate) mod urdf_write;
 mod axis_map;
 pub use axis_map::AxisMap;
 
-use nalgebra::{Isometry3, Unit, Vector3};
+use nalgebra::{Isometry3, Matrix3, Unit, Vector3};
 use std::sync::Arc;
 
 use crate::common::limits::{self, JointBox};
@@ -66,13 +67,18 @@ pub struct Robot {
 /// What a calibrated robot's name ends with (the robot files `stiffid calibrate` writes).
 pub const CALIBRATED: &str = " (calibrated)";
 
-/// A link's mass and centre of mass (the gravity model of [`crate::metrology::calibration::gravity`]).
+/// A link's rigid-body inertia: its mass, centre of mass and inertia tensor (the gravity model of
+/// [`crate::metrology::calibration::gravity`] uses the first two, the mass matrix of
+/// [`dynamics`] all three).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LinkMass {
     /// Mass, kg.
     pub mass: f64,
     /// Centre of mass in the link frame (the joint frame [`crate::Frames::joints`]), m.
     pub centre: Vector3<f64>,
+    /// Inertia tensor about the centre of mass, axes of the link frame, kg m^2 (symmetric;
+    /// zero when the description gives none).
+    pub inertia: Matrix3<f64>,
 }
 
 impl Robot {

@@ -16,7 +16,7 @@
 //! one root, and every number of an origin, axis or limit must be finite and within the limits
 //! ([`crate::common::limits::LENGTH_M`], [`crate::common::limits::ANGLE_RAD`]).
 
-use super::{Joint, Robot};
+use super::{Joint, LinkMass, Robot};
 use crate::common::limits::{self, JointBox};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
@@ -89,17 +89,19 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     }))
 }
 
-/// The masses and centres of the six moving links from the links' `<inertial>` (a fixed joint's
-/// child folded into the link it hangs from, its centre carried into that link's frame), or none
-/// when no link of the chain has mass. Each mass within [`limits::MASS_KG`] and each centre within
-/// [`limits::LENGTH_M`].
+/// The rigid bodies of the six moving links from the links' `<inertial>` (a fixed joint's child
+/// folded into the link it hangs from, carried into that link's frame: [`LinkMass::moved`],
+/// [`LinkMass::plus`]), or none when no link of the chain has mass. Each mass within
+/// [`limits::MASS_KG`], each centre within [`limits::LENGTH_M`], each tensor component within
+/// [`limits::INERTIA_KG_M2`] and each tensor physical
+/// ([`super::dynamics::body::physical`]); the `<inertial>` origin's rotation turns the tensor.
 fn masses(
     urdf: &urdf_rs::Robot,
     path: &[&urdf_rs::Joint],
-) -> std::result::Result<Option<[super::LinkMass; 6]>, String> {
+) -> std::result::Result<Option<[LinkMass; 6]>, String> {
     let links: HashMap<&str, &urdf_rs::Link> =
         urdf.links.iter().map(|l| (l.name.as_str(), l)).collect();
-    let mut out = [(0.0, Vector3::zeros()); 6];
+    let mut out = [LinkMass::default(); 6];
     let (mut link, mut acc) = (None::<usize>, Isometry3::identity());
     let mut any = false;
     for j in path {
@@ -113,36 +115,42 @@ fn masses(
         let (Some(l), Some(child)) = (link, links.get(j.child.link.as_str())) else {
             continue;
         };
-        let i = &child.inertial;
-        let name = limits::short(&child.name);
-        let m = i.mass.value;
-        limits::check(
-            &format!("link '{name}': inertial mass"),
-            &[m],
-            &limits::MASS_KG,
-        )
-        .map_err(|e| e.to_string())?;
-        let c = &i.origin.xyz;
-        limits::check(
-            &format!("link '{name}': inertial origin xyz"),
-            &c[..],
-            &limits::LENGTH_M,
-        )
-        .map_err(|e| e.to_string())?;
-        let centre = (acc * nalgebra::Point3::new(c[0], c[1], c[2])).coords;
-        let (total, moment) = out[l.min(5)];
-        out[l.min(5)] = (total + m, moment + centre * m);
-        any |= m > 0.0;
+        let body = inertial(child)?;
+        out[l.min(5)] = out[l.min(5)].plus(&body.moved(&acc));
+        any |= body.mass > 0.0;
     }
-    Ok(any.then(|| {
-        out.map(|(mass, moment)| super::LinkMass {
-            mass,
-            centre: match mass > 0.0 {
-                true => moment / mass,
-                false => Vector3::zeros(),
-            },
-        })
-    }))
+    Ok(any.then_some(out))
+}
+
+/// The body of a link's `<inertial>`, in the link's frame, its numbers checked.
+fn inertial(link: &urdf_rs::Link) -> std::result::Result<LinkMass, String> {
+    let i = &link.inertial;
+    let name = limits::short(&link.name);
+    let check = |what: &str, values: &[f64], range: &limits::Range| {
+        limits::check(&format!("link '{name}': inertial {what}"), values, range)
+            .map_err(|e| e.to_string())
+    };
+    check("mass", &[i.mass.value], &limits::MASS_KG)?;
+    let c = &i.origin.xyz;
+    check("origin xyz", &c[..], &limits::LENGTH_M)?;
+    check("origin rpy", &i.origin.rpy[..], &limits::ANGLE_RAD)?;
+    let t = &i.inertia;
+    let six = [t.ixx, t.iyy, t.izz, t.ixy, t.ixz, t.iyz];
+    check("inertia", &six, &limits::INERTIA_KG_M2)?;
+    let inertia = super::dynamics::body::tensor(six);
+    super::dynamics::body::physical(&inertia)
+        .map_err(|m| format!("link '{name}': inertial inertia: {m}"))?;
+    let [r, p, y] = [i.origin.rpy[0], i.origin.rpy[1], i.origin.rpy[2]];
+    let frame = Isometry3::from_parts(
+        Translation3::new(c[0], c[1], c[2]),
+        UnitQuaternion::from_euler_angles(r, p, y),
+    );
+    let body = LinkMass {
+        mass: i.mass.value,
+        centre: Vector3::zeros(),
+        inertia,
+    };
+    Ok(body.moved(&frame))
 }
 
 /// Fails for what the XML reader would misname: an empty file, and a document type definition

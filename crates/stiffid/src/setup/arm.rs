@@ -7,7 +7,7 @@ use crate::robot::collision::CollisionGeometry;
 use crate::robot::kinematics::Coordinates;
 use crate::robot::Bodies;
 use crate::Robot;
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Matrix3, Vector3, Vector6};
 
 /// Points of the tool, in the flange frame, m.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,19 +33,32 @@ impl Tool {
 /// The tool's mass and centre of mass (a spindle), `[tool] mass_kg` and `centre_of_mass_mm`: its
 /// weight, `m g` down the base frame's -z (the base z axis taken as vertical, up), acts on the
 /// robot with the process wrench ([`Payload::wrench`]), and a generated robot program states it
-/// (KRL `$LOAD`, RAPID `tooldata`).
+/// (KRL `$LOAD`, RAPID `tooldata`); with `inertia_kg_m2` its inertia joins link 6 in the mass
+/// matrix ([`Payload::body`], [`crate::robot::dynamics`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Payload {
     /// The mass, kg (within [`crate::common::limits::TOOL_MASS_KG`]).
     pub mass: f64,
     /// The centre of mass, flange frame, m.
     pub centre: Vector3<f64>,
+    /// The inertia tensor about the centre of mass, flange frame's axes, kg m^2 (zero: a point
+    /// mass).
+    pub inertia: Matrix3<f64>,
 }
 
 /// Standard gravity, m/s^2 (CGPM 1901).
 pub const GRAVITY: f64 = 9.80665;
 
 impl Payload {
+    /// The tool as a rigid body in the flange frame (the mass model's link 6 carries it).
+    pub fn body(&self) -> crate::robot::LinkMass {
+        crate::robot::LinkMass {
+            mass: self.mass,
+            centre: self.centre,
+            inertia: self.inertia,
+        }
+    }
+
     /// The weight's wrench `[f; m]` (N, Nm, base frame) at the tool centre point `tcp` (flange
     /// frame, m) of a flange in orientation `flange` (base frame): `f = (0, 0, -m g)`,
     /// `m = R (c - tcp) x f`.

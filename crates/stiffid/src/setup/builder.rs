@@ -365,6 +365,14 @@ impl SetupBuilder {
         if let Some(p) = &self.payload {
             limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
             check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
+            let six = crate::robot::dynamics::body::components(&p.inertia);
+            limits::check("tool.inertia_kg_m2", &six, &limits::INERTIA_KG_M2)?;
+            crate::robot::dynamics::body::physical(&p.inertia).map_err(|message| {
+                crate::Error::InvalidField {
+                    field: "tool.inertia_kg_m2".into(),
+                    message,
+                }
+            })?;
         }
         let tracker = self
             .tracker

@@ -71,6 +71,8 @@ struct ToolFile {
     mass_kg: Option<f64>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     centre_of_mass_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    inertia_kg_m2: Option<[f64; 6]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -423,6 +425,15 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
             b = b.with_payload(crate::setup::Payload {
                 mass,
                 centre: mm(c),
+                inertia: crate::robot::dynamics::body::tensor(
+                    f.tool.inertia_kg_m2.unwrap_or_default(),
+                ),
+            })
+        }
+        (None, None) if f.tool.inertia_kg_m2.is_some() => {
+            return Err(Error::InvalidField {
+                field: "tool.inertia_kg_m2".into(),
+                message: "inertia_kg_m2 needs mass_kg and centre_of_mass_mm".into(),
             })
         }
         (None, None) => {}

@@ -35,6 +35,8 @@
 //! #                                      # compensate requires it: the cutting tool's centre point
 //! # mass_kg = 12.5                       # optional, with centre_of_mass_mm: the spindle's weight
 //! # centre_of_mass_mm = [0, 0, 120]      # joins the process wrench in compensate
+//! # inertia_kg_m2 = [0.3, 0.3, 0.1, 0, 0, 0]  # optional: [ixx, iyy, izz, ixy, ixz, iyz] about the
+//! #                                     # centre, flange axes: joins link 6 in the mass matrix
 //! [loading]                              # rope and mass over a pulley
 //! load_n = 500.0
 //! anchor_mm = [1500, 1500, 0]            # base frame

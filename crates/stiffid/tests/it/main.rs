@@ -15,6 +15,7 @@ mod compensate;
 mod criteria;
 mod design_candidates;
 mod distinct_postures;
+mod dynamics;
 mod fanuc_data;
 mod fanuc_prediction;
 mod formats_proptest;

@@ -44,6 +44,7 @@ fn joint_positions_equal_the_kinematics_job_and_link_frames_carry_the_chain() {
                 point: setup.tool().tcp,
                 characteristic_length: Some(1.2),
                 coordinates: Coordinates::Axis,
+                stiffness: None,
             })
             .unwrap();
             let doc = kinematics::document::Document::new(&report, setup.robot());

@@ -64,6 +64,7 @@ fn masses() -> [LinkMass; 6] {
     std::array::from_fn(|i| LinkMass {
         mass: kg[i],
         centre: Vector3::new(0.1 + 0.05 * i as f64, 0.03, -0.02 * i as f64),
+        ..LinkMass::default()
     })
 }
 

@@ -13,6 +13,7 @@
 
 pub mod candidates;
 pub mod feasibility;
+pub mod mass;
 pub mod parameters;
 pub mod scene;
 
@@ -24,6 +25,11 @@ pub fn finite(v: f64) -> Option<f64> {
 /// [`finite`] of each of `values`.
 pub fn finite_each<const N: usize>(values: impl Into<[f64; N]>) -> [Option<f64>; N] {
     values.into().map(finite)
+}
+
+/// A matrix as an array of rows.
+pub fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
 }
 
 /// A length in m, in mm.

@@ -2,8 +2,10 @@
 //! Python's `Robot.kinematics(...)`. Millimetres and degrees for positions and angles, SI (m/rad,
 //! rad/rad) for the Jacobian, rows `[v; omega]`; base frame.
 
-use crate::app::document::{finite, mm};
+use crate::app::document::mass::{self, ModeShape};
+use crate::app::document::{finite, mm, rows};
 use crate::app::kinematics::Report;
+use crate::common::warning::Warning;
 use crate::robot::kinematics::Coordinates;
 use crate::Robot;
 use serde::Serialize;
@@ -42,12 +44,28 @@ pub struct Document {
     pub dexterity: Option<f64>,
     /// Origin of each joint frame (after the joint), base frame, mm.
     pub joint_positions_mm: [[f64; 3]; 6],
+    /// The joint-space mass matrix `M(q)` (kg m^2, columns in `coordinates`, the robot's links
+    /// without a tool); `null` where the robot gives no masses or they are placeholders.
+    pub mass_matrix_kg_m2: Option<[[f64; 6]; 6]>,
+    /// The operational-space inertia `Lambda = (J M^-1 J^T)^-1` of the point, base frame, rows
+    /// and columns `[v; omega]` (kg, kg m, kg m^2); `null` without masses or at a singular
+    /// posture.
+    pub operational_inertia_si: Option<[[f64; 6]; 6]>,
+    /// The natural frequencies, Hz, ascending (`K v = w^2 M v` with `--stiffness-nm-per-rad`);
+    /// `null` without a stiffness or masses.
+    pub natural_frequencies_hz: Option<[f64; 6]>,
+    /// The modes, lowest first, with the point's direction of motion; `null` as
+    /// `natural_frequencies_hz`.
+    pub mode_shapes: Option<Vec<ModeShape>>,
+    /// What to look at before trusting the document (placeholder masses).
+    pub warnings: Vec<Warning>,
 }
 
 impl Document {
     /// The document of `report` on `robot`.
     pub fn new(report: &Report, robot: &Robot) -> Self {
         let f = &report.frames;
+        let (frequencies, shapes) = mass::modes(report.modes.as_ref(), &report.point_directions);
         Document {
             robot: robot.name().to_string(),
             robot_source: robot.source().to_string(),
@@ -65,11 +83,11 @@ impl Document {
             jacobian: rows(&report.jacobian),
             dexterity: finite(report.dexterity),
             joint_positions_mm: f.joints.map(|j| j.translation.vector.map(mm).into()),
+            mass_matrix_kg_m2: report.mass_matrix.as_ref().map(rows),
+            operational_inertia_si: report.operational_inertia.as_ref().map(rows),
+            natural_frequencies_hz: frequencies,
+            mode_shapes: shapes,
+            warnings: report.warnings.clone(),
         }
     }
-}
-
-/// A matrix as an array of rows.
-fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
-    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
 }

@@ -2,9 +2,11 @@
 //! `predict(...)`. `*_std_*` keys are standard deviations from the compliance covariance, `null`
 //! without one.
 
-use crate::app::document::mm;
+use crate::app::document::mass::{self, ModeShape};
+use crate::app::document::{mm, rows};
 use crate::app::predict::{Point, Report};
 use crate::app::validate::document::interval_mm;
+use crate::common::warning::Warning;
 use nalgebra::{Matrix6, Vector6};
 use serde::Serialize;
 
@@ -58,6 +60,34 @@ pub struct Document {
     pub cartesian_compliance: ComplianceDocument,
     /// `K_x` of the loaded point; `null` where `C_x` is singular.
     pub cartesian_stiffness: Option<StiffnessDocument>,
+    /// The natural frequencies of the posture, Hz, ascending (`K v = w^2 M v`, the model's
+    /// springs with the robot's and the tool's mass); `null` where the robot gives no masses.
+    pub natural_frequencies_hz: Option<[f64; 6]>,
+    /// The modes, lowest first, with the loaded point's direction of motion; `null` as
+    /// `natural_frequencies_hz`.
+    pub mode_shapes: Option<Vec<ModeShape>>,
+    /// The joint-space mass matrix `M(q)`, axis coordinates, kg m^2; `null` without masses.
+    pub mass_matrix_kg_m2: Option<[[f64; 6]; 6]>,
+    /// The operational-space inertia `Lambda = (J M^-1 J^T)^-1` of the loaded point, base frame,
+    /// rows and columns `[v; omega]` (kg, kg m, kg m^2); `null` without masses or at a singular
+    /// posture.
+    pub operational_inertia_si: Option<[[f64; 6]; 6]>,
+    /// The effective mass along the wrench's force with the other five directions held (a drill
+    /// in its hole), `u^T Lambda_vv u`, kg; `null` without masses or a force.
+    pub effective_mass_kg: Option<f64>,
+    /// The effective mass along the force with the point free, `1 / (u^T (J M^-1 J^T)_vv u)`, kg.
+    pub effective_mass_free_kg: Option<f64>,
+    /// The compliance along the force, `u^T C_x u`, mm/N.
+    pub compliance_along_force_mm_per_n: Option<f64>,
+    /// The energy the force stores in the compliance, `F^2 c / 2`, J.
+    pub surge_energy_j: Option<f64>,
+    /// The speed the force's sudden release (a drill's breakthrough) gives the loaded point,
+    /// `F sqrt(c / m)` with `m` the held effective mass, mm/s.
+    pub surge_mm_s: Option<f64>,
+    /// Its standard deviation from the compliance covariance (first order), mm/s.
+    pub surge_std_mm_s: Option<f64>,
+    /// What to look at before trusting the document (placeholder masses).
+    pub warnings: Vec<Warning>,
 }
 
 /// One measuring point's displacement.
@@ -124,6 +154,13 @@ impl Document {
         let tcp = &report.tcp;
         let d = &tcp.deflection;
         let (c, k) = (&report.cartesian_compliance, &report.cartesian_stiffness);
+        let mass = report.mass.as_ref();
+        let posture = mass.map(|m| &m.posture);
+        let (frequencies, shapes) = match posture {
+            Some(p) => mass::modes(p.modes.as_ref(), &p.point_directions),
+            None => (None, None),
+        };
+        let surge = mass.and_then(|m| m.surge.as_ref());
         Document {
             setup: setup_name.to_string(),
             q_deg: report.q.map(f64::to_degrees).into(),
@@ -170,6 +207,19 @@ impl Document {
                 matrix_si: block(k, 0, 0),
                 matrix_n_nm_per_um_urad: block(&(k * 1e-6), 0, 0),
             }),
+            natural_frequencies_hz: frequencies,
+            mode_shapes: shapes,
+            mass_matrix_kg_m2: posture.map(|p| rows(&p.mass_matrix)),
+            operational_inertia_si: posture
+                .and_then(|p| p.operational_inertia.as_ref())
+                .map(rows),
+            effective_mass_kg: surge.map(|s| s.mass),
+            effective_mass_free_kg: mass.and_then(|m| m.free_mass),
+            compliance_along_force_mm_per_n: surge.map(|s| mm(s.compliance)),
+            surge_energy_j: surge.map(|s| s.energy),
+            surge_mm_s: surge.map(|s| mm(s.speed)),
+            surge_std_mm_s: surge.and_then(|s| s.speed_std).map(mm),
+            warnings: report.warnings.clone(),
         }
     }
 }

@@ -1,14 +1,20 @@
 //! The predict job: the forward model (Zhang et al. 2021, Eq. 3-7) of one posture under one
 //! wrench: joint torques and deflections, the displacement of every measuring point and of the
 //! TCP (with standard deviations from a compliance covariance), and the Cartesian compliance and
-//! stiffness of the loaded point ([`crate::observation::deflection`], [`crate::observation::cartesian`]).
+//! stiffness of the loaded point ([`crate::observation::deflection`], [`crate::observation::cartesian`]),
+//! and where the robot gives its masses the mass matrix, the operational-space inertia, natural
+//! frequencies and mode shapes of the posture and the breakthrough surge of the wrench's force
+//! ([`crate::observation::dynamics`]).
 
 pub mod document;
 
+use crate::common::warning::Warning;
 use crate::model::prediction::{check_level, Interval};
 use crate::model::Compliance;
 use crate::observation::cartesian;
 use crate::observation::deflection::{base_wrench, Frame, PointDeflection, Points};
+use crate::observation::dynamics::{self, Surge};
+use crate::robot::dynamics::free_mass;
 use crate::robot::kinematics::Frames;
 use crate::setup::Arm;
 use crate::{Result, Setup};
@@ -75,6 +81,24 @@ pub struct Report {
     /// `K_x = C_x^-1` of the loaded point; `None` where `C_x` is singular
     /// ([`cartesian::stiffness`]).
     pub cartesian_stiffness: Option<Matrix6<f64>>,
+    /// The robot's mass at this posture, at the loaded point; `None` where the robot gives no
+    /// masses or they are placeholders (then a warning).
+    pub mass: Option<Mass>,
+    /// What to look at before trusting the report (placeholder masses).
+    pub warnings: Vec<Warning>,
+}
+
+/// The mass of one posture at the loaded point, and the surge of the wrench's force.
+#[derive(Debug, Clone)]
+pub struct Mass {
+    /// Mass matrix, operational-space inertia, modes ([`dynamics::posture`]).
+    pub posture: dynamics::Posture,
+    /// The effective mass along the wrench's force with the point free,
+    /// `1 / (u^T (J M^-1 J^T)_vv u)`, kg; `None` without a force or at a singular posture.
+    pub free_mass: Option<f64>,
+    /// The breakthrough surge of the wrench's force (its effective mass held in the other five
+    /// directions); `None` without a force or at a singular posture.
+    pub surge: Option<Surge>,
 }
 
 /// Runs the predict job.
@@ -110,6 +134,20 @@ pub fn run(request: Request<'_>) -> Result<Report> {
     let at = at.unwrap_or(setup.tool().loading_point);
     let frames = setup.robot().frames(&q);
     let base = base_wrench(&frames, &wrench, frame);
+    let (masses, warning) = dynamics::mass_model(setup.arm());
+    let mass = masses.map(|m| {
+        let posture = dynamics::posture(&m, setup.arm(), &frames, &at, &compliance.h);
+        let force = base.fixed_rows::<3>(0).into_owned();
+        let lambda = posture.operational_inertia;
+        let surge = lambda
+            .and_then(|l| dynamics::surge(setup.arm(), &frames, &at, &l, &compliance, &force));
+        let free = lambda.zip(force.try_normalize(0.0));
+        Mass {
+            free_mass: free.and_then(|(l, u)| free_mass(&l, &u)),
+            posture,
+            surge,
+        }
+    });
     let point = |observed: &Vector3<f64>| {
         point(
             setup.arm(),
@@ -133,6 +171,8 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         base_wrench: base,
         compliance,
         level,
+        mass,
+        warnings: Vec::from_iter(warning),
     })
 }
 

@@ -65,6 +65,10 @@ pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");
 /// A link's mass in a robot file (`mass_kg`): 0 to 100 t.
 pub const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
 
+/// A component of an inertia tensor (a robot file's `inertia_kg_m2`, a URDF's `<inertia>`, a
+/// setup's `[tool] inertia_kg_m2`): at most 1e6 kg m^2 in magnitude (100 t at 100 m).
+pub const INERTIA_KG_M2: Range = Range::new(-1e6, 1e6, "kg m^2");
+
 /// [`LENGTH_MM`] in metres (URDF files).
 pub const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
 

@@ -139,6 +139,7 @@ fn design_with(g: impl Fn(&Robot) -> gravity::Terms) -> (Robot, CalibrationDesig
     let masses: [crate::robot::LinkMass; 6] = std::array::from_fn(|l| crate::robot::LinkMass {
         mass: 200.0 - 30.0 * l as f64,
         centre: Vector3::new(0.05 * l as f64, -0.03, 0.1 + 0.02 * l as f64),
+        ..Default::default()
     });
     let robot = robot.with_masses(Some(masses));
     let points = [

@@ -42,6 +42,7 @@ fn masses(robot: &Robot) -> [LinkMass; 6] {
     std::array::from_fn(|l| LinkMass {
         mass: kg[l],
         centre: (f.joints[l].inverse() * Point3::from(centres[l])).coords,
+        ..LinkMass::default()
     })
 }
 

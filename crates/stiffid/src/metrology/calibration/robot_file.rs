@@ -125,9 +125,14 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         let _ = writeln!(t, "lower_deg = {:?}", limit(limits.lower[i]));
         let _ = writeln!(t, "upper_deg = {:?}", limit(limits.upper[i]));
         if let Some(m) = robot.masses() {
-            let centre = table_at.joints[i].inverse() * at.joints[i] * Point3::from(m[i].centre);
+            let moved = m[i].moved(&(table_at.joints[i].inverse() * at.joints[i]));
             let _ = writeln!(t, "mass_kg = {:?}", m[i].mass);
-            let _ = writeln!(t, "com_mm = {}", list(&(centre.coords * 1e3)));
+            let _ = writeln!(t, "com_mm = {}", list(&(moved.centre * 1e3)));
+            if moved.inertia != nalgebra::Matrix3::zeros() {
+                let six = crate::robot::dynamics::body::components(&moved.inertia);
+                let six: Vec<String> = six.iter().map(|v| format!("{v:?}")).collect();
+                let _ = writeln!(t, "inertia_kg_m2 = [{}]", six.join(", "));
+            }
         }
     }
     let map = nominal.axis_map();
@@ -195,8 +200,7 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// joints `joint1`..`joint6` with the corrected origins, the axis map folded in (its constant
 /// into the origins, a negative sign into the axis: the URDF's joint positions are the axis
 /// angles), the axis limits as joint limits (an unbounded axis a continuous joint) and the
-/// links' masses when the nominal robot has them (zero inertia tensors: stiffid uses masses and
-/// centres only). Either is read back: its flange is the calibrated robot's within
+/// links' masses, centres and inertia tensors when the nominal robot has them. Either is read back: its flange is the calibrated robot's within
 /// [`READ_BACK`] of the robot's size at three postures.
 ///
 /// # Errors
@@ -225,12 +229,15 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     for (i, l) in links.iter().enumerate() {
         match (i, robot.masses()) {
             (1..=6, Some(m)) => {
-                let m = &m[i - 1];
                 // The link frame of the URDF is the joint frame before `post`.
-                let c = robot.joints()[i - 1].post * Point3::from(m.centre);
+                let m = m[i - 1].moved(&robot.joints()[i - 1].post);
+                let (c, [xx, yy, zz, xy, xz, yz]) = (
+                    m.centre,
+                    crate::robot::dynamics::body::components(&m.inertia),
+                );
                 let _ = writeln!(
                     t,
-                    "  <link name=\"{l}\"><inertial><origin xyz=\"{:?} {:?} {:?}\"/><mass value=\"{:?}\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial></link>",
+                    "  <link name=\"{l}\"><inertial><origin xyz=\"{:?} {:?} {:?}\"/><mass value=\"{:?}\"/><inertia ixx=\"{xx:?}\" ixy=\"{xy:?}\" ixz=\"{xz:?}\" iyy=\"{yy:?}\" iyz=\"{yz:?}\" izz=\"{zz:?}\"/></inertial></link>",
                     c.x, c.y, c.z, m.mass
                 );
             }

@@ -114,6 +114,7 @@ pub(super) fn masses() -> [LinkMass; 6] {
     let m = |mass: f64, x: f64, y: f64, z: f64| LinkMass {
         mass,
         centre: Vector3::new(x, y, z),
+        ..LinkMass::default()
     };
     [
         m(300.0, 0.1, 0.0, -0.2),
