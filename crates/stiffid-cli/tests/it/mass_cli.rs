@@ -47,16 +47,13 @@ fn files(name: &str, equal: bool) -> String {
 fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
     let setup_path = files("mass-predict", false);
     let q = "10,-20,-100,30,40,50";
-    let out = stiffid(&[
-        "predict",
-        "--setup",
-        &setup_path,
-        "--q-deg",
-        q,
-        "--wrench",
-        "200,-100,-1500",
-        "--json",
-    ]);
+    let predict = |json: bool| {
+        let mut args = vec!["predict", "--setup", &setup_path, "--q-deg", q];
+        args.extend(["--wrench", "200,-100,-1500"]);
+        args.extend(json.then_some("--json"));
+        stiffid(&args)
+    };
+    let out = predict(true);
     assert_success(&out);
     let v = json(&out);
     let setup = stiffid::setup::parse(
@@ -103,15 +100,7 @@ fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
     let f2 = 200.0f64.powi(2) + 100.0f64.powi(2) + 1500.0f64.powi(2);
     assert!((0.5 * m * (s * 1e-3).powi(2) - 0.5 * f2 * c).abs() < 1e-12 * f2 * c);
     assert!(m >= v["effective_mass_free_kg"].as_f64().unwrap());
-    let text = stiffid(&[
-        "predict",
-        "--setup",
-        &setup_path,
-        "--q-deg",
-        q,
-        "--wrench",
-        "200,-100,-1500",
-    ]);
+    let text = predict(false);
     let text = String::from_utf8_lossy(&text.stdout);
     assert!(
         text.contains(&format!("natural frequencies Hz: {:.2}", hz[0])),
@@ -126,12 +115,18 @@ fn kinematics_gives_the_librarys_frequencies_with_a_stiffness() {
     let path = write_file(&d, "robot.toml", &robot_text(false));
     let path = path.to_string_lossy();
     let k = "950000,3000000,900000,250000,200000,150000";
-    let out = stiffid(&[
-        "kinematics",
-        "--robot",
-        &path,
-        "--q-deg",
-        "10,-20,-100,30,40,50",
+    let kinematics = |extra: &[&str]| {
+        let mut args = vec![
+            "kinematics",
+            "--robot",
+            &path,
+            "--q-deg",
+            "10,-20,-100,30,40,50",
+        ];
+        args.extend(extra);
+        stiffid(&args)
+    };
+    let out = kinematics(&[
         "--point-mm",
         "150,0,200",
         "--stiffness-nm-per-rad",
@@ -156,14 +151,7 @@ fn kinematics_gives_the_librarys_frequencies_with_a_stiffness() {
     let got: Vec<f64> = serde_json::from_value(v["natural_frequencies_hz"].clone()).unwrap();
     assert_eq!(got, expected.to_vec());
     // Without a stiffness: the mass matrix, no frequencies.
-    let out = stiffid(&[
-        "kinematics",
-        "--robot",
-        &path,
-        "--q-deg",
-        "10,-20,-100,30,40,50",
-        "--json",
-    ]);
+    let out = kinematics(&["--json"]);
     let v = json(&out);
     assert!(v["natural_frequencies_hz"].is_null() && v["mass_matrix_kg_m2"].is_array());
 }
