@@ -79,6 +79,7 @@ class Robot:
         point_mm: Optional[ArrayLike] = None,
         characteristic_length_mm: Optional[float] = None,
         coordinates: _Coordinates = "axis",
+        stiffness_nm_per_rad: Optional[ArrayLike] = None,
     ) -> dict[str, Any]:
         """The kinematics document (docs/schemas/kinematics.schema.json), equal to `stiffid kinematics --json`."""
     @overload
