@@ -17,7 +17,7 @@ use crate::robot::dh::{self, Convention};
 use crate::robot::urdf::UrdfSource;
 use crate::robot::{urdf_write, Bodies};
 use crate::{Error, Result, Robot};
-use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::fmt::Write;
 
 use crate::robot::CALIBRATED;
@@ -200,8 +200,9 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// joints `joint1`..`joint6` with the corrected origins, the axis map folded in (its constant
 /// into the origins, a negative sign into the axis: the URDF's joint positions are the axis
 /// angles), the axis limits as joint limits (an unbounded axis a continuous joint) and the
-/// links' masses, centres and inertia tensors when the nominal robot has them. Either is read back: its flange is the calibrated robot's within
-/// [`READ_BACK`] of the robot's size at three postures.
+/// links' masses, centres and inertia tensors when the nominal robot has them. Either is read
+/// back: its flange is the calibrated robot's within [`READ_BACK`] of the robot's size at three
+/// postures.
 ///
 /// # Errors
 /// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the axis map couples axes or
