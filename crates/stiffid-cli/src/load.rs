@@ -125,17 +125,18 @@ pub fn read(path: &Path) -> Result<String> {
     Ok(io::read_text(&name, open(path)?.into_inner())?)
 }
 
-/// The file at `path` opened for reading, not a directory, remembered as an input
+/// The file at `path` opened for reading, a regular file ([`io::input::open`]: never a wait on
+/// a FIFO), remembered as an input
 /// ([`input_at`]); reading more than [`limits::MAX_INPUT_BYTES`] from it fails.
 pub fn open(path: &Path) -> Result<Capped<File>> {
     let name = path.display();
-    let file = File::open(path).with_context(|| format!("{name}: cannot read"))?;
+    let file = io::input::open(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::InvalidInput => anyhow::anyhow!("{name}: {e}"),
+        _ => anyhow::Error::new(e).context(format!("{name}: cannot read")),
+    })?;
     let meta = file
         .metadata()
         .with_context(|| format!("{name}: cannot read"))?;
-    if meta.is_dir() {
-        bail!("{name}: is a directory, expected a file");
-    }
     if let Ok(resolved) = path.canonicalize() {
         let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
         inputs.push((resolved, file_id(&meta)));

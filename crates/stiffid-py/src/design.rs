@@ -12,7 +12,7 @@ use stiffid::app::{
 };
 use stiffid::common::limits::{self, check_count};
 use stiffid::design::distinct::Distinctness;
-use stiffid::design::{PoolOptions, SearchOptions};
+use stiffid::design::SearchOptions;
 use stiffid::Setup;
 
 /// The keys of the evaluate document returned as NumPy arrays.
@@ -73,9 +73,6 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         (None, None, Some(_)) => select::Method::Pool,
         (None, None, None) => select::Method::Global,
     };
-    if r.restarts.is_some() && method != select::Method::Pool {
-        return Err(value("restarts: only with pool"));
-    }
     if !r.distinct && (r.distinct_deg.is_some() || r.distinct_mm.is_some()) {
         return Err(value("distinct_deg, distinct_mm: only with distinct=True"));
     }
@@ -121,7 +118,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         postures: n,
         target_pct: r.target_pct,
         options,
-        restarts: r.restarts.unwrap_or(PoolOptions::default().restarts),
+        restarts: r.restarts,
         distinct,
         for_candidates: r.for_candidates,
         candidates: r.candidates,

@@ -121,14 +121,13 @@ pub fn read(path: &Path) -> Result<String, PyErr> {
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or
-/// `OSError`; `ValueError` for a directory); reading more than the input limit from it fails
+/// `OSError`; `ValueError` for a directory, a FIFO, a device: [`io::input::open`]); reading more than the input limit from it fails
 /// ([`Capped`]).
 pub fn open(path: &Path) -> Result<Capped<File>, PyErr> {
-    let file = File::open(path).map_err(|e| os_error(path, e))?;
-    if file.metadata().map_err(|e| os_error(path, e))?.is_dir() {
-        let name = path.display();
-        return Err(value(format!("{name}: is a directory, expected a file")));
-    }
+    let file = io::input::open(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::InvalidInput => value(format!("{}: {e}", path.display())),
+        _ => os_error(path, e),
+    })?;
     Ok(Capped::new(file))
 }
 

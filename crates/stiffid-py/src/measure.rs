@@ -371,7 +371,7 @@ pub fn identify<'py>(
 /// share of the measured coordinates inside their intervals) at ``level`` (0.5 to 0.999). The job's
 /// warnings (angles that look like radians) are raised as ``UserWarning``.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, level=0.95))]
+#[pyo3(signature = (setup, stiffness_nm_per_rad, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, level=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn validate<'py>(
     py: Python<'py>,
@@ -382,7 +382,7 @@ pub fn validate<'py>(
     wrench: Option<&Bound<'py, PyAny>>,
     displacement_mm: Option<&Bound<'py, PyAny>>,
     point: Option<Vec<i64>>,
-    level: f64,
+    level: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let compliance =

@@ -33,7 +33,7 @@ use stiffid::setup::plausibility::radians_in_option;
 /// (``identify(..., cross_validate=True)``), every displacement's prediction interval at
 /// ``level`` (0.5 to 0.999; ``*_interval_mm``).
 #[pyfunction]
-#[pyo3(signature = (setup, q_deg, wrench, *, at_mm=None, frame="base", stiffness_nm_per_rad=None, compliance_covariance_rad2_per_nm2=None, level=0.95))]
+#[pyo3(signature = (setup, q_deg, wrench, *, at_mm=None, frame="base", stiffness_nm_per_rad=None, compliance_covariance_rad2_per_nm2=None, level=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn predict<'py>(
     py: Python<'py>,
@@ -44,7 +44,7 @@ pub fn predict<'py>(
     frame: &str,
     stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
     compliance_covariance_rad2_per_nm2: Option<&Bound<'py, PyAny>>,
-    level: f64,
+    level: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let q = arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?;
     let wrench = arrays::vector::<6>(wrench, "wrench", &limits::WRENCH)?;
@@ -72,7 +72,7 @@ pub fn predict<'py>(
 /// (Eq. 4), ``dq = h .* tau`` (Eq. 5), ``[dp; dphi] = J_b dq`` (Eq. 6), the Jacobians augmented
 /// by the virtual springs' columns. A posture's error names it (``posture i: ...``, 0-based).
 #[pyfunction]
-#[pyo3(signature = (setup, q_deg, wrench, *, at_mm=None, frame="base", stiffness_nm_per_rad=None, compliance_covariance_rad2_per_nm2=None, level=0.95))]
+#[pyo3(signature = (setup, q_deg, wrench, *, at_mm=None, frame="base", stiffness_nm_per_rad=None, compliance_covariance_rad2_per_nm2=None, level=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn deflection<'py>(
     py: Python<'py>,
@@ -83,7 +83,7 @@ pub fn deflection<'py>(
     frame: &str,
     stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
     compliance_covariance_rad2_per_nm2: Option<&Bound<'py, PyAny>>,
-    level: f64,
+    level: Option<f64>,
 ) -> PyResult<Bound<'py, PyList>> {
     let max = crate::robot::MAX_POSTURES;
     let qs = rows::<6>(q_deg, "q_deg")?.rows;
@@ -133,7 +133,7 @@ struct Options {
     at: Option<Vector3<f64>>,
     frame: Frame,
     compliance: Option<Compliance>,
-    level: f64,
+    level: Option<f64>,
 }
 
 impl Options {
@@ -143,7 +143,7 @@ impl Options {
         frame: &str,
         stiffness: Option<&Bound<'_, PyAny>>,
         covariance: Option<&Bound<'_, PyAny>>,
-        level: f64,
+        level: Option<f64>,
     ) -> PyResult<Self> {
         let at = at_mm
             .map(|p| arrays::vector::<3>(p, "at_mm", &limits::LENGTH_MM))

@@ -78,6 +78,7 @@ pub fn register<'py>(
                     candidates: candidates.unwrap_or(defaults.candidates),
                     restarts: restarts.unwrap_or(defaults.restarts),
                 },
+                force,
             };
             let report = py
                 .detach(|| register_job::propose(&request))

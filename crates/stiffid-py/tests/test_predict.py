@@ -58,9 +58,9 @@ def test_deflection_is_predict_for_each_posture(paper, fanuc, cli):
         extra = ["--stiffness", str(stiffness)] if stiffness else []
         theirs = [cli("predict", "--setup", name, "--q-deg", ",".join(map(str, q)),
                       "--wrench", ",".join(map(str, w)), "--frame", "tool", "--at-mm", "10,0,250",
-                      "--level", "0.9", *extra, "--json")
+                      *extra, "--json")
                   for q, w in zip(qs, ws)]
-        mine = stiffid.deflection(setup, qs, ws, frame="tool", at_mm=[10, 0, 250], level=0.9,
+        mine = stiffid.deflection(setup, qs, ws, frame="tool", at_mm=[10, 0, 250],
                                   stiffness_nm_per_rad=stiffness)
         assert mine == theirs
     one = stiffid.deflection(paper, Q, ws[0])

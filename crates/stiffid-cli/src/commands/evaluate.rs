@@ -47,18 +47,21 @@ pub struct ForArgs {
     pub purpose: Purpose,
     /// The calibration criterion: test-pose (the predicted RMS position error after
     /// calibration at the setup's test postures, the default), o1, o3, o4, o5 or d-optimality.
-    #[arg(long, value_parser = choice::<CalibrationCriterion>(), default_value = "test-pose")]
-    pub calibration_criterion: CalibrationCriterion,
-    /// The joint errors the calibration fits: none, offsets or full (as `calibrate --geometry`).
-    #[arg(long, value_parser = choice::<Geometry>(), default_value = "full")]
-    pub geometry: Geometry,
-    /// The gravity terms the calibration fits: none, masses, lumped or lumped-links (as `calibrate --gravity`).
-    #[arg(long, value_parser = choice::<Gravity>(), default_value = "none")]
-    pub gravity: Gravity,
-    /// With --for both: the weight of the calibration's log-criterion, between 0 and 1 (the
-    /// stiffness criterion's is 1 - weight).
-    #[arg(long, default_value_t = 0.5)]
-    pub weight: f64,
+    /// With --for calibration or both only.
+    #[arg(long, value_parser = choice::<CalibrationCriterion>())]
+    pub calibration_criterion: Option<CalibrationCriterion>,
+    /// The joint errors the calibration fits: none, offsets or full (as `calibrate --geometry`;
+    /// the default full). With --for calibration or both only.
+    #[arg(long, value_parser = choice::<Geometry>())]
+    pub geometry: Option<Geometry>,
+    /// The gravity terms the calibration fits: none, masses, lumped or lumped-links (as
+    /// `calibrate --gravity`; the default none). With --for calibration or both only.
+    #[arg(long, value_parser = choice::<Gravity>())]
+    pub gravity: Option<Gravity>,
+    /// With --for both only: the weight of the calibration's log-criterion, between 0 and 1
+    /// (the stiffness criterion's is 1 - weight; the default 0.5).
+    #[arg(long)]
+    pub weight: Option<f64>,
 }
 
 impl ForArgs {

@@ -11,7 +11,6 @@ use std::path::PathBuf;
 use stiffid::app::predict;
 use stiffid::app::predict::document::Document;
 use stiffid::common::limits;
-use stiffid::model::prediction::check_level;
 use stiffid::observation::deflection::Frame;
 
 /// Arguments of `stiffid predict`.
@@ -40,13 +39,13 @@ pub struct Args {
     stiffness: Option<PathBuf>,
     /// The level of the prediction intervals (0.5 to 0.999), when the stiffness file holds the
     /// held-out residuals of its identification (`identify --cross-validate`).
-    #[arg(long, default_value_t = 0.95)]
-    level: f64,
+    /// Only with such a file [default: 0.95].
+    #[arg(long)]
+    level: Option<f64>,
 }
 
 /// Predicts and prints.
 pub fn run(args: &Args) -> Result<()> {
-    check_level("--level", args.level)?;
     let setup = args.common.load_setup()?;
     let (_, q) = load::posture(&args.q_deg, "--q-deg", setup.robot())?;
     let w = load::numbers(&args.wrench, "--wrench", &limits::WRENCH)?;

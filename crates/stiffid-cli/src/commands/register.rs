@@ -67,6 +67,7 @@ fn propose(args: &Args, setup: &stiffid::Setup, n: usize) -> Result<()> {
             candidates: args.candidates.map_or(defaults.candidates, |c| c as usize),
             restarts: args.restarts.map_or(defaults.restarts, |r| r as usize),
         },
+        force: args.readings.force,
     };
     let report = job::propose(&request)?;
     let document = Proposal::new(&report, &args.readings.common.setup);

@@ -11,7 +11,6 @@ use stiffid::app::identify::Data;
 use stiffid::app::validate::document::Document;
 use stiffid::app::validate::{self as job, Request};
 use stiffid::common::words::count;
-use stiffid::model::prediction::check_level;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
@@ -25,13 +24,13 @@ pub struct Args {
     data: PathBuf,
     /// The level of the prediction intervals (0.5 to 0.999), built from the held-out residuals
     /// the stiffness file holds (`identify --cross-validate`).
-    #[arg(long, default_value_t = 0.95)]
-    level: f64,
+    /// Only with such a file [default: 0.95].
+    #[arg(long)]
+    level: Option<f64>,
 }
 
 /// Validates and prints.
 pub fn run(args: &Args) -> Result<()> {
-    check_level("--level", args.level)?;
     let setup = args.common.load_setup()?;
     let compliance = args.stiffness.load(&setup)?;
     let reader = load::open(&args.data)?;

@@ -6,11 +6,12 @@ use serde_json::Value;
 use std::path::Path;
 use stiffid::app::reproduce::document::Summary;
 
-/// Whether `path` is a `summary.json` whose `generator` is `generator` (e.g.
+/// Whether `path` is a regular file `summary.json` (never waiting on a FIFO) whose `generator` is `generator` (e.g.
 /// [`stiffid::app::reproduce::document::GENERATOR`]).
 pub fn is_ours(path: &Path, generator: &str) -> bool {
-    std::fs::read_to_string(path)
+    stiffid::io::input::open(path)
         .ok()
+        .and_then(|f| stiffid::io::read_text("summary.json", f).ok())
         .and_then(|t| serde_json::from_str::<Value>(&t).ok())
         .is_some_and(|v| v["generator"] == generator)
 }

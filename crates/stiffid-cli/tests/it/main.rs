@@ -1,6 +1,7 @@
 //! The command's integration tests, one test binary: each former test file is a module here. A new
 //! test file `tests/it/NAME.rs` is added as `mod NAME;` below; `common` holds the shared helpers.
 
+mod answers;
 mod bodies_cli;
 mod calibrate_cli;
 mod calibrated_robot_cli;

@@ -323,7 +323,7 @@ def validate(
     wrench: Optional[ArrayLike] = None,
     displacement_mm: Optional[ArrayLike] = None,
     point: Optional[Sequence[int]] = None,
-    level: float = 0.95,
+    level: Optional[float] = None,
 ) -> dict[str, Any]: ...
 def simulate(setup: Setup, groups: Sequence[ArrayLike], runs: int = 200, seed: int = 1) -> list[dict[str, _Array]]: ...
 def reproduce(
@@ -398,7 +398,7 @@ def predict(
     frame: Literal["base", "tool"] = "base",
     stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
-    level: float = 0.95,
+    level: Optional[float] = None,
 ) -> dict[str, Any]:
     """The predict document (docs/schemas/predict.schema.json), equal to `stiffid predict --json`."""
 
@@ -411,7 +411,7 @@ def deflection(
     frame: Literal["base", "tool"] = "base",
     stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
-    level: float = 0.95,
+    level: Optional[float] = None,
 ) -> list[dict[str, Any]]:
     """The predict document of each posture of q_deg ((6,) or (n, 6)) under wrench ((6,) or (n, 6)), each equal to `stiffid predict --json` (loaded_mm became at_mm; observed_mm was removed: every measuring point and the TCP are in each document)."""
 

@@ -3,6 +3,8 @@
 //! the last two score groups with ([`crate::design::observability`]).
 
 use super::calibrate;
+use crate::common::error::JobOption;
+use crate::common::limits;
 use crate::design::observability::{CalibrationCriterion, CalibrationDesign};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
@@ -53,27 +55,79 @@ pub const REFERENCE_POSTURES: usize = 60;
 pub const REFERENCE_SEED: u64 = 1;
 
 /// The calibration a group is designed for, and how the two designs combine.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CalibrationOptions {
-    /// The calibration criterion (default [`CalibrationCriterion::TestPose`]).
-    pub criterion: CalibrationCriterion,
-    /// The joint errors the calibration fits (default [`Geometry::Full`], as `calibrate`).
-    pub geometry: Geometry,
-    /// The gravity terms it fits (default [`Gravity::None`], as `calibrate`).
-    pub gravity: Gravity,
-    /// With [`Purpose::Both`], the weight `w` of the calibration's log-criterion, in `(0, 1)`
-    /// (default 0.5: each design's relative improvement counts the same).
-    pub weight: f64,
+    /// The calibration criterion; `None` for the default ([`CalibrationOptions::criterion`]).
+    pub criterion: Option<CalibrationCriterion>,
+    /// The joint errors the calibration fits; `None` for the default
+    /// ([`CalibrationOptions::geometry`]).
+    pub geometry: Option<Geometry>,
+    /// The gravity terms it fits; `None` for the default ([`CalibrationOptions::gravity`]).
+    pub gravity: Option<Gravity>,
+    /// With [`Purpose::Both`] only, the weight `w` of the calibration's log-criterion, in
+    /// `(0, 1)`; `None` for the default ([`CalibrationOptions::weight`]).
+    pub weight: Option<f64>,
 }
 
-impl Default for CalibrationOptions {
-    fn default() -> Self {
-        Self {
-            criterion: CalibrationCriterion::default(),
-            geometry: Geometry::Full,
-            gravity: Gravity::None,
-            weight: 0.5,
+impl CalibrationOptions {
+    /// The calibration criterion (default [`CalibrationCriterion::TestPose`]).
+    pub fn criterion(&self) -> CalibrationCriterion {
+        self.criterion.unwrap_or_default()
+    }
+
+    /// The joint errors the calibration fits (default [`Geometry::Full`], as `calibrate`).
+    pub fn geometry(&self) -> Geometry {
+        self.geometry.unwrap_or(Geometry::Full)
+    }
+
+    /// The gravity terms it fits (default [`Gravity::None`], as `calibrate`).
+    pub fn gravity(&self) -> Gravity {
+        self.gravity.unwrap_or(Gravity::None)
+    }
+
+    /// The weight of the calibration's log-criterion with [`Purpose::Both`] (default 0.5: each
+    /// design's relative improvement counts the same).
+    pub fn weight(&self) -> f64 {
+        self.weight.unwrap_or(0.5)
+    }
+}
+
+/// Refuses calibration options that mean nothing for `purpose`: any of them for
+/// [`Purpose::Stiffness`], the weight unless [`Purpose::Both`]; and a weight outside `(0, 1)`.
+///
+/// # Errors
+/// [`Error::InvalidOption`] naming the option ([`JobOption::CalibrationCriterion`],
+/// [`JobOption::Geometry`], [`JobOption::Gravity`], [`JobOption::Weight`]).
+pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
+    let refuse = |option: JobOption, message: &str| {
+        Err(Error::InvalidOption {
+            option,
+            message: message.into(),
+        })
+    };
+    if purpose == Purpose::Stiffness {
+        let given = [
+            (options.criterion.is_some(), JobOption::CalibrationCriterion),
+            (options.geometry.is_some(), JobOption::Geometry),
+            (options.gravity.is_some(), JobOption::Gravity),
+        ];
+        if let Some((_, option)) = given.into_iter().find(|(given, _)| *given) {
+            return refuse(
+                option,
+                "a calibration option: only with for = calibration or both (the group is designed for the stiffness identification)",
+            );
         }
+    }
+    match options.weight {
+        Some(_) if purpose != Purpose::Both => refuse(
+            JobOption::Weight,
+            "only with for = both: it weighs the calibration's criterion against the stiffness criterion",
+        ),
+        Some(w) if !(w > 0.0 && w < 1.0) => refuse(
+            JobOption::Weight,
+            &format!("expected a number between 0 and 1, got {}", limits::number(w)),
+        ),
+        _ => Ok(()),
     }
 }
 
@@ -84,20 +138,14 @@ impl Default for CalibrationOptions {
 /// machining region; the reference postures without them) and the setup's noise per coordinate.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`weight`) outside `(0, 1)`; those of [`calibrate::model`] and
-/// [`CalibrationDesign::new`].
+/// Those of [`calibrate::model`] and [`CalibrationDesign::new`] (the options are checked
+/// by [`check`]).
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
-    if !(options.weight > 0.0 && options.weight < 1.0) {
-        return Err(Error::InvalidField {
-            field: "weight".into(),
-            message: format!("expected a number between 0 and 1, got {}", options.weight),
-        });
-    }
     let model = calibrate::model(
         setup,
         MeasuredIn::Tracker,
-        options.geometry,
-        options.gravity,
+        options.geometry(),
+        options.gravity(),
     )?;
     let reference = random_group(setup, REFERENCE_POSTURES, REFERENCE_SEED);
     let test = match setup.test_postures() {
@@ -124,12 +172,12 @@ pub fn goal<'a>(
     let calibration = match purpose {
         Purpose::Stiffness => None,
         Purpose::Calibration => Some(1.0),
-        Purpose::Both => Some(options.weight),
+        Purpose::Both => Some(options.weight()),
     }
     .and_then(|weight| {
         design.map(|design| CalibrationGoal {
             design,
-            criterion: options.criterion,
+            criterion: options.criterion(),
             weight,
         })
     });

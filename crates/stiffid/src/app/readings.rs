@@ -26,13 +26,15 @@ pub struct Request<'a> {
 /// The readings of `request`, and the warnings about them.
 ///
 /// # Errors
-/// Those of [`readings::parse`], as [`crate::Error::Input`] naming the file.
+/// Those of [`readings::parse`] and [`refuse_other_scale`], as [`crate::Error::Input`] naming
+/// the file.
 pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
     let Request {
         setup, name, text, ..
     } = request;
     let points = setup.tool().measuring_points.len();
     let data = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
+    refuse_other_scale(setup, &data).map_err(|e| in_data(name, e))?;
     let warnings = plausibility::radians_as_degrees(data.readings.iter().map(|r| &r.q))
         .map(|mut w| {
             w.message = format!("{name}: {}", w.message);
@@ -41,6 +43,57 @@ pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
         .into_iter()
         .collect();
     Ok((data, warnings))
+}
+
+/// Refuses readings (any frame, loaded or not) whose spread is not the robot's: the RMS distance
+/// of the readings from their centroid against that of the setup's measuring points through the
+/// nominal robot at the same axis angles ([`register::spread_ratio`]), beyond
+/// [`register::SPREAD_RATIO_LIMIT`] either way. Readings in metres or centimetres under `_mm`
+/// names would otherwise calibrate a robot shrunk to their scale with a residual of zero. Nothing
+/// forces them: no robot is a tenth of its model's size.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with both spreads and the likely unit.
+pub(crate) fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
+    let points = &setup.tool().measuring_points;
+    let pairs: Vec<register::Correspondence> = (data.readings.iter())
+        .map(|r| register::Correspondence {
+            base: setup.robot().frames(&r.q).point(&points[r.point]),
+            tracker: r.position,
+        })
+        .collect();
+    let Some((ratio, spread)) = register::spread_ratio(&pairs) else {
+        return Ok(());
+    };
+    let limit = register::SPREAD_RATIO_LIMIT;
+    if ratio.is_finite() && ratio <= limit && ratio >= 1.0 / limit {
+        return Ok(());
+    }
+    let units = [
+        (1e-3, "metres"),
+        (1e-2, "decimetres"),
+        (0.1, "centimetres"),
+        (1.0 / 25.4, "inches"),
+        (1e3, "micrometres"),
+    ];
+    let (_, unit) = units
+        .iter()
+        .min_by(|a, b| {
+            (a.0 / ratio)
+                .ln()
+                .abs()
+                .total_cmp(&(b.0 / ratio).ln().abs())
+        })
+        .expect("units");
+    Err(Error::InvalidField {
+        field: "readings".into(),
+        message: format!(
+            "the readings spread {:.4} mm about their centroid (RMS) where the robot's measuring points at the same axis angles spread {:.1} mm: {ratio:.4} times the robot's size, readings in {unit}? expected millimetres ({}) of this robot and tool",
+            ratio * spread * 1e3,
+            spread * 1e3,
+            data.columns[1]
+        ),
+    })
 }
 
 /// Refuses, unless `request.force`, readings that no rigid transform explains

@@ -518,6 +518,20 @@ pub enum JobOption {
     CompareModels,
     /// identify --compare-models --bootstrap: the seed of the resamples.
     Seed,
+    /// select, evaluate: the calibration criterion (a calibration design only).
+    CalibrationCriterion,
+    /// select, evaluate: the joint errors the calibration fits (a calibration design only).
+    Geometry,
+    /// select, evaluate: the gravity terms the calibration fits (a calibration design only).
+    Gravity,
+    /// select, evaluate: the weight of the calibration's criterion (a design for both only).
+    Weight,
+    /// select: the exchange runs of a pool choice.
+    Restarts,
+    /// register: fit readings that no rigid transform explains (readings only).
+    Force,
+    /// predict, validate, compensate: the level of the prediction intervals.
+    Level,
 }
 
 impl JobOption {
@@ -549,6 +563,13 @@ impl JobOption {
             JobOption::Offsets => "offsets",
             JobOption::CompareModels => "compare_models",
             JobOption::Seed => "seed",
+            JobOption::CalibrationCriterion => "calibration_criterion",
+            JobOption::Geometry => "geometry",
+            JobOption::Gravity => "gravity",
+            JobOption::Weight => "weight",
+            JobOption::Restarts => "restarts",
+            JobOption::Force => "force",
+            JobOption::Level => "level",
         }
     }
 }

@@ -1,9 +1,10 @@
 //! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here but the
-//! writing of [`output`]): the
+//! opening of [`input`] files and the writing of [`output`]): the
 //! caller reads the file and adds its name to errors. [`text`] turns the bytes a caller read into
 //! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`); [`Capped`]
 //! holds a reader of an input read in pieces to the same limit.
 //!
+//! - [`input`]: the files a front end reads: regular files only, never a wait on a FIFO.
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`output`]: the files a front end writes: where a write lands, whether it may, whole files.
 //! - [`path`]: the path (pose list) CSV of compensation.
@@ -13,6 +14,7 @@
 //! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
+pub mod input;
 pub mod measurements;
 pub mod output;
 pub mod postures;

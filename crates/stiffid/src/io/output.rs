@@ -19,7 +19,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 ///
 /// # Errors
 /// [`Error::InvalidField`] with the field `what` (the option or argument, e.g. `--out`) and the
-/// path: the path exists and is not a regular file ([`kind`]), is a dangling symlink, its
+/// path: the path ends with a separator, `.` or `..` (a directory's spelling, even where nothing
+/// exists), exists and is not a regular file ([`kind`]), is a dangling symlink, its
 /// directory does not exist, or it is an input of the run.
 pub fn resolve(
     path: &Path,
@@ -30,6 +31,12 @@ pub fn resolve(
         field: format!("{what} {}", path.display()),
         message,
     };
+    if names_a_directory(path) {
+        return Err(fail(
+            "ends with a directory separator, '.' or '..': a directory, expected a file name"
+                .into(),
+        ));
+    }
     let target = match std::fs::symlink_metadata(path) {
         Err(e) if e.kind() == ErrorKind::NotFound => {
             let file_name = path
@@ -67,23 +74,38 @@ pub fn resolve(
     }
 }
 
+/// Whether `path` is spelt as a directory: its last component, as written, is empty (a trailing
+/// separator), `.` or `..` (`Path::file_name` drops a trailing separator and `.`).
+fn names_a_directory(path: &Path) -> bool {
+    let text = path.as_os_str().as_encoded_bytes();
+    let last = text
+        .rsplit(|&b| std::path::is_separator(char::from(b)))
+        .next()
+        .unwrap_or_default();
+    matches!(last, b"" | b"." | b"..")
+}
+
 /// What a non-regular file is, in words: "a directory", "a device", "a FIFO", "a socket".
 pub fn kind(path: &Path) -> &'static str {
-    let file_type = std::fs::metadata(path).map(|m| m.file_type());
+    std::fs::metadata(path).map_or("not a regular file", |m| kind_of(m.file_type()))
+}
+
+/// What a file of type `file_type` is, in words ([`kind`]).
+pub fn kind_of(file_type: std::fs::FileType) -> &'static str {
     #[cfg(unix)]
     {
         use std::os::unix::fs::FileTypeExt;
         match file_type {
-            Ok(t) if t.is_dir() => "a directory",
-            Ok(t) if t.is_char_device() || t.is_block_device() => "a device",
-            Ok(t) if t.is_fifo() => "a FIFO",
-            Ok(t) if t.is_socket() => "a socket",
+            t if t.is_dir() => "a directory",
+            t if t.is_char_device() || t.is_block_device() => "a device",
+            t if t.is_fifo() => "a FIFO",
+            t if t.is_socket() => "a socket",
             _ => "not a regular file",
         }
     }
     #[cfg(not(unix))]
     match file_type {
-        Ok(t) if t.is_dir() => "a directory",
+        t if t.is_dir() => "a directory",
         _ => "not a regular file",
     }
 }
@@ -194,6 +216,14 @@ mod tests {
             e.starts_with("--out ") && e.contains(": no directory "),
             "{e}"
         );
+        for spelt_as_directory in ["new/", "new/.", "new/.."] {
+            let e = resolve(&d.join(spelt_as_directory), "--out", none).unwrap_err();
+            assert!(
+                e.to_string().ends_with("a directory, expected a file name"),
+                "{e}"
+            );
+            assert!(!d.join("new").exists());
+        }
         let input = d.join("in.csv");
         std::fs::write(&input, "x").unwrap();
         let is_input = |p: &Path| (p == input).then(|| input.clone());

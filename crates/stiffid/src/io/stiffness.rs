@@ -19,7 +19,8 @@
 //!  "compliance_covariance_rad2_per_nm2": [[...6 numbers...], ...6 rows...]}
 //! ```
 //!
-//! With `parameters`, `stiffness_nm_per_rad` and its covariance are ignored.
+//! With `parameters`, `stiffness_nm_per_rad` (as identify writes it beside them) must be the
+//! drives' stiffness in `parameters`; its covariance is ignored.
 //!
 //! From `identify --cross-validate`, the key `prediction` holds what prediction intervals are
 //! built from ([`crate::model::prediction`]): per fold, the compliance fitted without its
@@ -282,8 +283,11 @@ impl PredictionSection {
         }
     }
 
-    /// Checks the counts and numbers against `n` parameters.
-    fn check(&self, n: usize) -> Result<()> {
+    /// Checks the counts and numbers against the parameters of `kinds`: each fold's compliance
+    /// a stiffness within its kind's range (as the file's own stiffness), the noise floor within
+    /// [`limits::READING_SD_MM`] (or 0).
+    fn check(&self, kinds: &[ParameterKind]) -> Result<()> {
+        let n = kinds.len();
         limits::check_count(
             "prediction.folds",
             self.folds.len(),
@@ -291,10 +295,15 @@ impl PredictionSection {
             prediction::MAX_FOLDS,
         )?;
         let field = "prediction.noise_floor_mm";
-        if !(self.noise_floor_mm.is_finite() && self.noise_floor_mm >= 0.0) {
+        let floor = self.noise_floor_mm;
+        if !(floor == 0.0 || limits::READING_SD_MM.contains(floor)) {
             return Err(invalid(
                 field.into(),
-                "expected a finite number >= 0".into(),
+                format!(
+                    "{}: expected 0 or a tracker's noise within {}",
+                    limits::number(floor),
+                    limits::READING_SD_MM
+                ),
             ));
         }
         if self.postures < self.folds.len() {
@@ -315,6 +324,14 @@ impl PredictionSection {
                     format!("{field}.compliance_si"),
                     format!("expected {n} finite numbers, one per parameter"),
                 ));
+            }
+            for (j, (h, kind)) in f.compliance_si.iter().zip(kinds).enumerate() {
+                let (unit, range) = stiffness_unit(*kind);
+                limits::check(
+                    &format!("{field}.compliance_si[{}] as a stiffness", j + 1),
+                    &[unit.per_si() / h],
+                    range,
+                )?;
             }
             if f.scores.is_empty() || f.scores.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
                 return Err(invalid(
@@ -435,8 +452,11 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
     match &file.parameters {
         Some(parameters) => {
             check_parameters(parameters, &file.compliance_covariance_si)?;
+            if let Some(k) = &file.stiffness_nm_per_rad {
+                check_drives_agree(parameters, k)?;
+            }
             if let Some(p) = &file.prediction {
-                p.check(parameters.len())?;
+                p.check(&parameters.iter().map(|p| p.kind).collect::<Vec<_>>())?;
             }
         }
         None => {
@@ -450,6 +470,9 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
             if let Some(rows) = file.compliance_covariance_rad2_per_nm2 {
                 check_covariance(&Matrix6::from_fn(|r, c| rows[r][c]))?;
             }
+            if let Some(p) = &file.prediction {
+                p.check(&[ParameterKind::Drive; 6])?;
+            }
         }
     }
     Ok(file)
@@ -459,14 +482,43 @@ fn invalid(field: String, message: String) -> Error {
     Error::InvalidField { field, message }
 }
 
+/// The unit of a parameter's stiffness in a stiffness file and its range.
+fn stiffness_unit(kind: ParameterKind) -> (crate::model::Unit, &'static limits::Range) {
+    match kind {
+        ParameterKind::Translation => (crate::model::Unit::NPerMm, &STIFFNESS_N_PER_MM),
+        _ => (crate::model::Unit::NmPerRad, &STIFFNESS_NM_PER_RAD),
+    }
+}
+
+/// Refuses a file whose `stiffness_nm_per_rad` (written beside `parameters` by identify) is not
+/// the stiffness of its drives in `parameters`, to 1e-9: one file, one stiffness.
+fn check_drives_agree(parameters: &[ParameterStiffness], k: &[f64; 6]) -> Result<()> {
+    let drives = parameters.iter().filter(|p| p.kind == ParameterKind::Drive);
+    for (j, (p, k)) in drives.zip(k).enumerate() {
+        let theirs = p.stiffness.unwrap_or(f64::NAN);
+        let agree = (k - theirs).abs() <= 1e-9 * theirs.abs();
+        if !agree {
+            return Err(invalid(
+                format!("stiffness_nm_per_rad[{}]", j + 1),
+                format!(
+                    "{} where parameters gives {} '{}' {}: the file contradicts itself; keep one",
+                    limits::number(*k),
+                    p.kind.name(),
+                    limits::short(&p.name),
+                    limits::number(theirs)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn check_parameters(parameters: &[ParameterStiffness], cov: &Option<Vec<Vec<f64>>>) -> Result<()> {
     limits::check_count("parameters", parameters.len(), 6, MAX_PARAMETERS)?;
     for (i, p) in parameters.iter().enumerate() {
         let field = format!("parameters[{}]", i + 1);
-        let (unit, range) = match p.kind {
-            ParameterKind::Translation => ("N/mm", &STIFFNESS_N_PER_MM),
-            _ => ("Nm/rad", &STIFFNESS_NM_PER_RAD),
-        };
+        let (unit, range) = stiffness_unit(p.kind);
+        let unit = unit.symbol();
         if p.unit != unit {
             return Err(invalid(
                 format!("{field}.unit"),

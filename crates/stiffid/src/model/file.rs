@@ -236,7 +236,7 @@ pub fn fragment(springs: &[Spring]) -> String {
             let _ = writeln!(s, "point_mm = [{:?}, {:?}, {:?}]", p.x, p.y, p.z);
         }
         if let Some(k) = spring.nominal_stiffness {
-            let unit = spring.unit();
+            let unit = spring.kind.stiffness_unit();
             let _ = writeln!(
                 s,
                 "nominal_stiffness_{} = {:?}",

@@ -53,6 +53,18 @@ pub enum Kind {
     Translation,
 }
 
+impl Kind {
+    /// The unit of a nominal stiffness in files (`nominal_stiffness_nm_per_rad`,
+    /// `nominal_stiffness_n_per_mm`), whatever the spring's law: a lost motion's or a
+    /// load-dependent compliance's nominal stiffness is a stiffness too.
+    pub fn stiffness_unit(self) -> Unit {
+        match self {
+            Kind::Rotation => Unit::NmPerRad,
+            Kind::Translation => Unit::NPerMm,
+        }
+    }
+}
+
 /// The unit of a parameter's stiffness in files and reports; for a nonlinear law's parameter
 /// ([`Law`]), which has no stiffness, the unit of the parameter itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -430,18 +442,13 @@ pub fn check_springs(springs: &[Spring]) -> Result<()> {
         let mm: Vec<f64> = s.point.iter().map(|v| v * 1e3).collect();
         crate::common::limits::check(&field("point_mm"), &mm, &crate::common::limits::LENGTH_MM)?;
         if let Some(k) = s.nominal_stiffness {
-            let (name, range) = match s.kind {
-                Kind::Rotation => (
-                    "nominal_stiffness_nm_per_rad",
-                    crate::common::limits::STIFFNESS_NM_PER_RAD,
-                ),
-                Kind::Translation => (
-                    "nominal_stiffness_n_per_mm",
-                    crate::common::limits::STIFFNESS_N_PER_MM,
-                ),
+            let range = match s.kind {
+                Kind::Rotation => crate::common::limits::STIFFNESS_NM_PER_RAD,
+                Kind::Translation => crate::common::limits::STIFFNESS_N_PER_MM,
             };
-            let value = k * s.unit().per_si();
-            crate::common::limits::check(&field(name), &[value], &range)?;
+            let unit = s.kind.stiffness_unit();
+            let name = format!("nominal_stiffness_{}", unit.suffix());
+            crate::common::limits::check(&field(&name), &[k * unit.per_si()], &range)?;
         }
     }
     Ok(())
@@ -486,4 +493,38 @@ pub fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vector3<f64>
             "the zero vector has no direction: expected a non-zero axis".into(),
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rotational spring on link 3 with `law` and the nominal stiffness `k` (Nm/rad).
+    fn spring(law: Law, k: f64) -> Spring {
+        Spring {
+            name: "bend".into(),
+            kind: Kind::Rotation,
+            link: 3,
+            axis: Vector3::y_axis(),
+            point: Vector3::zeros(),
+            nominal_stiffness: Some(k),
+            law,
+        }
+    }
+
+    #[test]
+    fn a_nonlinear_springs_nominal_stiffness_is_checked_as_the_user_gave_it() {
+        for law in [
+            Law::Linear,
+            Law::LostMotion { smoothing: 10.0 },
+            Law::LoadDependent,
+        ] {
+            assert!(check_springs(&[spring(law, 4e6)]).is_ok(), "{law:?}");
+            let e = check_springs(&[spring(law, 4e10)]).unwrap_err().to_string();
+            assert!(
+                e.starts_with("model.spring[1].nominal_stiffness_nm_per_rad: 4e10 is outside"),
+                "{law:?}: {e}"
+            );
+        }
+    }
 }

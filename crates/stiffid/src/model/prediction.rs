@@ -48,6 +48,7 @@
 //! random among the measured ones, which the simulations check (`tests/it/prediction.rs`). It does
 //! not hold for postures unlike the measured ones (outside their range of angles or loads).
 
+use crate::common::error::JobOption;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Vector3};
 
@@ -182,6 +183,25 @@ pub fn check_level(field: &str, level: f64) -> Result<()> {
                 crate::common::limits::number(level)
             ),
         }),
+    }
+}
+
+/// The level of a job's prediction intervals: `level` as given, else [`DEFAULT_LEVEL`].
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside [`LEVEL`], or for one
+/// given where the compliance carries no prediction calibration (`calibrated` false): no
+/// interval would use it.
+pub fn requested_level(level: Option<f64>, calibrated: bool) -> Result<f64> {
+    match level {
+        None => Ok(DEFAULT_LEVEL),
+        Some(_) if !calibrated => Err(Error::InvalidOption {
+            option: JobOption::Level,
+            message: "only with a stiffness file that holds prediction data (identify --cross-validate writes it): without it there is no prediction interval to give a level".into(),
+        }),
+        Some(l) => check_level("level", l)
+            .map(|_| l)
+            .map_err(|e| e.for_option(JobOption::Level)),
     }
 }
 

@@ -203,7 +203,7 @@ max_mm = [-700.0, 1800.0, 800.0]
                 margin,
                 ..small(1500, 1)
             },
-            restarts: 8,
+            restarts: Some(8),
             distinct: None,
             for_candidates: false,
             candidates: None,

@@ -190,7 +190,7 @@ fn global<'a>(setup: &'a Setup, n: usize, for_candidates: bool) -> select::Reque
             starts: 8,
             ..Default::default()
         },
-        restarts: 8,
+        restarts: None,
         distinct: None,
         for_candidates,
         candidates: None,

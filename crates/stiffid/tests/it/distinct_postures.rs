@@ -66,7 +66,7 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
             postures: n,
             target_pct: None,
             options: Default::default(),
-            restarts: 8,
+            restarts: Some(8),
             distinct,
             for_candidates: false,
             candidates: None,

@@ -365,3 +365,141 @@ fn a_margin_out_of_range_is_refused_as_an_option() {
     };
     assert!(inside.validate().is_ok());
 }
+
+/// Options that mean nothing where they are given are refused by the jobs themselves, as typed
+/// option errors (the command and Python name them their own way): a pool's restarts for a
+/// search, a calibration option for a stiffness design, the weight unless for both, a margin on a
+/// setup without a cell, `force` for a registration proposal, a level without prediction data.
+#[test]
+fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
+    use stiffid::app::purpose::{CalibrationOptions, Purpose};
+    use stiffid::app::{evaluate, predict, register, select};
+    use stiffid::design::observability::CalibrationCriterion;
+    use stiffid::metrology::calibration::gravity::Gravity;
+    use stiffid::JobOption;
+    let setup = paper();
+    let refused = |result: Result<(), Error>, want: JobOption, text: &str| match result {
+        Err(Error::InvalidOption { option, message }) => {
+            assert_eq!(option, want, "{message}");
+            assert!(message.contains(text), "{want:?}: {message}");
+        }
+        other => panic!("{want:?}: expected an option error, got {other:?}"),
+    };
+    let search = select::Request {
+        setup: &setup,
+        criterion: Criterion::RelativeA,
+        purpose: Purpose::Stiffness,
+        calibration: CalibrationOptions::default(),
+        method: select::Method::Global,
+        start: None,
+        pool: None,
+        postures: 6,
+        target_pct: None,
+        options: SearchOptions::default(),
+        restarts: None,
+        distinct: None,
+        for_candidates: false,
+        candidates: None,
+        progress: &(),
+    };
+    let weight = CalibrationOptions {
+        weight: Some(0.3),
+        ..Default::default()
+    };
+    let o1 = CalibrationOptions {
+        criterion: Some(CalibrationCriterion::O1),
+        ..Default::default()
+    };
+    let cases = [
+        (
+            select::Request {
+                restarts: Some(4),
+                ..search.clone()
+            },
+            JobOption::Restarts,
+            "only for a pool choice",
+        ),
+        (
+            select::Request {
+                calibration: weight,
+                ..search.clone()
+            },
+            JobOption::Weight,
+            "only with for = both",
+        ),
+        (
+            select::Request {
+                purpose: Purpose::Calibration,
+                calibration: weight,
+                ..search.clone()
+            },
+            JobOption::Weight,
+            "only with for = both",
+        ),
+        (
+            select::Request {
+                calibration: o1,
+                ..search.clone()
+            },
+            JobOption::CalibrationCriterion,
+            "only with for = calibration or both",
+        ),
+        (
+            select::Request {
+                options: SearchOptions {
+                    margin: Some(0.01),
+                    ..SearchOptions::default()
+                },
+                ..search.clone()
+            },
+            JobOption::MarginMm,
+            "no cell, tracker or constraints",
+        ),
+    ];
+    for (request, option, text) in cases {
+        refused(select::run(&request).map(drop), option, text);
+    }
+    let group = design::random_group(&setup, 6, 1);
+    let gravity = CalibrationOptions {
+        gravity: Some(Gravity::Lumped),
+        ..Default::default()
+    };
+    let evaluate = evaluate::Request {
+        purpose: Purpose::Stiffness,
+        calibration: gravity,
+        setup: &setup,
+        postures: &group,
+        candidates: None,
+    };
+    refused(
+        evaluate::run(&evaluate).map(drop),
+        JobOption::Gravity,
+        "for = calibration",
+    );
+    let proposal = register::DesignRequest {
+        setup: &setup,
+        postures: 4,
+        options: Default::default(),
+        force: true,
+    };
+    refused(
+        register::propose(&proposal).map(drop),
+        JobOption::Force,
+        "only with readings",
+    );
+    let prediction = |level| predict::Request {
+        setup: &setup,
+        q: group[0],
+        wrench: nalgebra::Vector6::new(0.0, 0.0, -500.0, 0.0, 0.0, 0.0),
+        frame: stiffid::observation::deflection::Frame::Base,
+        at: None,
+        compliance: None,
+        level,
+    };
+    refused(
+        predict::run(prediction(Some(0.9))).map(drop),
+        JobOption::Level,
+        "prediction data",
+    );
+    assert!(predict::run(prediction(None)).is_ok());
+}

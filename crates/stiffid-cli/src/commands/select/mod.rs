@@ -19,7 +19,7 @@ use stiffid::common::limits::{self, short};
 use stiffid::common::words::count;
 use stiffid::design::distinct::Distinctness;
 use stiffid::design::observability::CalibrationCriterion;
-use stiffid::design::{Criterion, Gradient, PoolOptions, SearchOptions, Solver};
+use stiffid::design::{Criterion, Gradient, SearchOptions, Solver};
 use stiffid::{io::postures, Setup};
 
 /// Arguments of `stiffid select`.
@@ -175,9 +175,7 @@ pub fn run(args: &Args) -> Result<()> {
         postures: args.postures.unwrap_or(6) as usize,
         target_pct: args.target_pct,
         options: options(args),
-        restarts: args
-            .restarts
-            .map_or(PoolOptions::default().restarts, |r| r as usize),
+        restarts: args.restarts.map(|r| r as usize),
         distinct: args.distinct.then(|| distinctness(args)).transpose()?,
         for_candidates: args.for_candidates,
         candidates: args.candidates.clone(),

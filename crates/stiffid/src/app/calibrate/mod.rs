@@ -240,6 +240,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         .map(|(r, _)| nalgebra::Vector3::from_column_slice(r))
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
+    refuse_repeated(setup, &data, &model, &fitted).map_err(|e| in_data(name, e))?;
     let reference = reference(setup, &model)?;
     let nominal = nominal(&reference, &obs, name)?;
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
@@ -261,6 +262,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         )?),
     };
     warnings.extend(judge(&model, &fitted, noise_ratio, name));
+    if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
+        w.message += &largest_residual(&data, &fitted.residuals);
+    }
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     let tcp = tcp(setup, &model, &fitted.estimate.values);
@@ -457,12 +461,80 @@ fn held_out(
             values: estimate.values.clone(),
         },
     };
-    Ok(Held {
+    let held = Held {
         name: name.to_string(),
         calibrated: validation::validate(model, &estimate, &obs).map_err(|e| in_data(name, e))?,
         nominal: nominal(reference, &obs, name)?,
         labels: data.labels.clone(),
+    };
+    // The gate of the fitted readings: a held-out reading that the nominal robot registered on
+    // them, or the calibration, misses by more than a robot's error is not of this robot.
+    for errors in [&held.nominal.errors, &held.calibrated.errors] {
+        let unloaded: Vec<_> = (errors.iter())
+            .zip(
+                data.readings
+                    .iter()
+                    .filter(|r| model.has_loads() || r.unloaded()),
+            )
+            .filter(|(_, r)| r.unloaded())
+            .map(|(e, _)| e.error)
+            .collect();
+        refuse_implausible(&readings, &data, None, &unloaded)?;
+    }
+    Ok(held)
+}
+
+/// Refuses readings whose distinct postures ([`crate::design::distinct`], the default distances)
+/// give no more coordinates than the fit has parameters: repeated readings of few postures
+/// determine nothing the fit does not choose, and would write a "calibrated" robot that is the
+/// nominal one (or any other).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) naming the count of distinct postures, of readings, of
+/// their coordinates and of the fitted parameters.
+fn refuse_repeated(setup: &Setup, data: &Data, model: &ErrorModel, fit: &Fit) -> Result<()> {
+    let mut postures = vec![None; data.labels.len()];
+    for r in &data.readings {
+        postures[r.posture].get_or_insert(r.q);
+    }
+    let postures: Vec<_> = postures.into_iter().flatten().collect();
+    let mut usable = vec![true; postures.len()];
+    let distance = crate::design::distinct::Distinctness::default();
+    crate::design::distinct::distinct_pool(setup.robot(), &postures, &mut usable, &distance);
+    let distinct = usable.iter().filter(|&&u| u).count();
+    let coordinates = 3 * model.points() * distinct;
+    if coordinates > fit.fitted.len() {
+        return Ok(());
+    }
+    Err(Error::InvalidField {
+        field: "readings".into(),
+        message: format!(
+            "{} readings of {distinct} distinct posture{} (postures closer than 2 deg in every axis, or 10 mm and 2 deg at the flange, count once) give {coordinates} coordinates for {} fitted parameters: the readings determine nothing the fit would not choose; read more distinct postures",
+            data.readings.len(),
+            if distinct == 1 { "" } else { "s" },
+            fit.fitted.len()
+        ),
     })
+}
+
+/// The reading with the longest residual (`residuals`: three coordinates per reading of `data`,
+/// m), as a clause of the misfit warning: one bad reading raises the noise ratio as a missing
+/// model term does.
+fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String {
+    let longest = (residuals.as_slice().chunks_exact(3))
+        .map(|r| nalgebra::Vector3::from_column_slice(r).norm())
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    let Some((i, length)) = longest else {
+        return String::new();
+    };
+    let (reading, line) = (&data.readings[i], data.lines[i]);
+    format!(
+        "; or a bad reading: the longest residual is {:.3} mm, line {line} (posture {}, point {})",
+        length * 1e3,
+        limits::short(&data.labels[reading.posture]),
+        reading.point + 1
+    )
 }
 
 /// The warnings about the fit.

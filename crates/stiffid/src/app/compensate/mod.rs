@@ -27,6 +27,7 @@ use crate::machining::compensate::{
 use crate::machining::path;
 use crate::machining::process::Process;
 use crate::machining::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
+use crate::machining::program::rename::renamed;
 use crate::machining::program::Dialect;
 use crate::machining::{self, Language, Program};
 use crate::model::Parameter;
@@ -213,18 +214,18 @@ where
             if let (Language::GCode, Language::Robot(d)) = (language, output) {
                 generate::check_payload(d, settings.targets, &program_tool(setup))?;
             }
-            let (program, compensated) = (|| {
-                let program = machining::read(text, language, chord_tolerance)?;
-                let compensated = machining::compensate(
-                    setup.arm(),
-                    setup.workpiece(),
-                    &compliance,
-                    &program,
-                    &process,
-                    &options,
-                )?;
-                Ok::<_, Error>((program, compensated))
-            })()
+            let program =
+                machining::read(text, language, chord_tolerance).map_err(|e| in_input(&name, e))?;
+            // Every name and setting of the output before the compensation, which can be long.
+            let written_name = written_name(&program, output, &out_name, &settings)?;
+            let compensated = machining::compensate(
+                setup.arm(),
+                setup.workpiece(),
+                &compliance,
+                &program,
+                &process,
+                &options,
+            )
             .map_err(|e| in_input(&name, e))?;
             for (k, (p, r)) in compensated
                 .points
@@ -246,7 +247,11 @@ where
                         d,
                         &compensated,
                         &g.points,
-                        (&out_name, &settings, chord_tolerance),
+                        (
+                            &written_name.unwrap_or_default(),
+                            &settings,
+                            chord_tolerance,
+                        ),
                     )
                     .map_err(|e| in_input(&name, e))?;
                     warnings.extend(
@@ -259,6 +264,10 @@ where
                     let main = files.next().map(|f| f.text).unwrap_or_default();
                     (main, files.collect())
                 }
+                (Language::Robot(d), _) => match &written_name {
+                    Some(to) => (renamed(&compensated.program, d, to), Vec::new()),
+                    None => (compensated.program.clone(), Vec::new()),
+                },
                 _ => (compensated.program.clone(), Vec::new()),
             };
             let report = ProgramReport {
@@ -315,36 +324,69 @@ fn check_output(language: Language, output: Language) -> Result<()> {
     }
 }
 
-/// The robot program of a compensated G-code path ([`generate`]): named after the stem of
-/// `out_name` (upper case), written with `settings`, cutting points approximated within the
-/// chord tolerance (m). Its Cartesian targets are the forward kinematics of the compensated axis
-/// angles in the controller's kinematics ([`Setup::controller_robot`]), with the configuration
-/// that makes its inverse kinematics return them.
+/// The name of the program written, checked before anything is computed: for a G-code program
+/// written as a robot program, the stem of `out_name` in upper case ([`generate::check_plan`]:
+/// every name, setting and count of the program of its points); for a robot program written back
+/// under another name, that stem (upper case for LS, as written for KRL;
+/// [`generate::check_name`]), which its declaration takes ([`renamed`]); `None` otherwise (a
+/// RAPID module, G-code written as G-code, no output file).
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`out`) for a KRL program to be written into a `.dat` (a `DEF` belongs
-/// in the `.src`); those of [`Setup::controller_robot`], [`moves`] and [`generate`].
-fn write_robot_program(
-    setup: &Setup,
-    dialect: Dialect,
-    compensated: &machining::Report,
-    points: &[crate::machining::gcode::Point],
-    (out_name, settings, chord_tolerance): (&str, &Settings, f64),
-) -> Result<generate::Written> {
-    use rayon::prelude::*;
+/// in the `.src`); those of [`generate::check_plan`] and [`generate::check_name`].
+fn written_name(
+    program: &Program,
+    output: Language,
+    out_name: &str,
+    settings: &Settings,
+) -> Result<Option<String>> {
     let path = std::path::Path::new(out_name);
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+    let Language::Robot(dialect) = output else {
+        return Ok(None);
+    };
     if dialect == Dialect::Krl && extension.eq_ignore_ascii_case("dat") {
         return Err(Error::InvalidField {
             field: "out".into(),
             message: format!("{out_name}: a KRL program (DEF) is written to a .src file; its .dat holds only data (DEFDAT)"),
         });
     }
-    let name = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("")
-        .to_ascii_uppercase();
+    match program {
+        Program::GCode(g) => {
+            let name = stem.to_ascii_uppercase();
+            generate::check_plan(dialect, &name, settings, g.points.len())?;
+            Ok(Some(name))
+        }
+        Program::Robot(_) if stem.is_empty() || dialect == Dialect::Rapid => Ok(None),
+        Program::Robot(_) => {
+            let name = match dialect {
+                Dialect::FanucLs => stem.to_ascii_uppercase(),
+                _ => stem.to_string(),
+            };
+            let longest = (settings.name_length).unwrap_or(generate::max_name_length(dialect));
+            generate::check_name(dialect, &name, longest)?;
+            Ok(Some(name))
+        }
+    }
+}
+
+/// The robot program of a compensated G-code path ([`generate`]) named `name`
+/// ([`written_name`]), written with `settings`, cutting points approximated within the chord
+/// tolerance (m). Its Cartesian targets are the forward kinematics of the compensated axis angles
+/// in the controller's kinematics ([`Setup::controller_robot`]), with the configuration that makes
+/// its inverse kinematics return them.
+///
+/// # Errors
+/// Those of [`Setup::controller_robot`], [`moves`] and [`generate`].
+fn write_robot_program(
+    setup: &Setup,
+    dialect: Dialect,
+    compensated: &machining::Report,
+    points: &[crate::machining::gcode::Point],
+    (name, settings, chord_tolerance): (&str, &Settings, f64),
+) -> Result<generate::Written> {
+    use rayon::prelude::*;
     let moves = moves(points, settings.max_tcp_speed)?;
     let tool = setup.tool();
     // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
@@ -359,7 +401,7 @@ fn write_robot_program(
         .collect();
     let plan = Plan {
         dialect,
-        name: &name,
+        name,
         targets: &targets,
         moves: &moves,
         tool: program_tool(setup),

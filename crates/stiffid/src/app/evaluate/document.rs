@@ -246,9 +246,9 @@ impl CalibrationDoc {
     ) -> Self {
         use crate::common::choice::Choice;
         Self {
-            criterion: o.criterion.name(),
-            geometry: o.geometry.name(),
-            gravity: o.gravity.name(),
+            criterion: o.criterion().name(),
+            geometry: o.geometry().name(),
+            gravity: o.gravity().name(),
             parameters: c.parameters,
             o1_mm: c.o1 * 1e3,
             o3_mm: c.o3 * 1e3,

@@ -60,10 +60,11 @@ pub struct Report {
 /// For the drives alone and a purpose with the stiffness, [`Error::Unidentifiable`] naming the
 /// joints when the group's observation matrix cannot identify every joint (a model with virtual
 /// springs reports what it cannot separate in [`Report::unidentifiable`] instead); those of
-/// [`purpose::design`] and [`crate::design::observability::CalibrationDesign::evaluate`];
-/// [`pool`]'s for the candidates; [`verdicts`]'.
+/// [`purpose::check`] (options that mean nothing for the purpose), [`purpose::design`] and
+/// [`crate::design::observability::CalibrationDesign::evaluate`]; [`pool`]'s for the candidates; [`verdicts`]'.
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
+    purpose::check(request.purpose, &request.calibration)?;
     setup.check_bodies()?;
     if setup.model().is_drives_only() && request.purpose != Purpose::Calibration {
         Factor::try_new(rope_observation_matrix(setup, postures))?;

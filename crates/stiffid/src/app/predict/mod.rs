@@ -9,7 +9,7 @@
 pub mod document;
 
 use crate::common::warning::Warning;
-use crate::model::prediction::{check_level, Interval};
+use crate::model::prediction::{requested_level, Interval};
 use crate::model::Compliance;
 use crate::observation::cartesian;
 use crate::observation::deflection::{base_wrench, Frame, PointDeflection, Points};
@@ -37,8 +37,10 @@ pub struct Request<'a> {
     /// standard deviations, and its prediction calibration, for the prediction intervals);
     /// `None`: the setup's nominal.
     pub compliance: Option<Compliance>,
-    /// The level of the prediction intervals, within [`crate::model::prediction::LEVEL`].
-    pub level: f64,
+    /// The level of the prediction intervals, within [`crate::model::prediction::LEVEL`], only
+    /// with a compliance that carries a prediction calibration; `None` for
+    /// [`crate::model::prediction::DEFAULT_LEVEL`].
+    pub level: Option<f64>,
 }
 
 /// One tool point's deflection, and its standard deviation when the compliance has a covariance.
@@ -104,7 +106,8 @@ pub struct Mass {
 /// Runs the predict job.
 ///
 /// # Errors
-/// [`crate::Error::InvalidField`] (`level`) outside [`crate::model::prediction::LEVEL`];
+/// Those of [`requested_level`] (a level outside [`crate::model::prediction::LEVEL`], or
+/// without a prediction calibration);
 /// [`crate::Error::OutsideBox`] (field `q_deg[i]`) for an axis angle outside the robot's limits;
 /// without a compliance, those of [`crate::Setup::model_compliance`] (no nominal stiffness); with one, those
 /// of [`Compliance::check`] (not one value per parameter of the setup's model).
@@ -118,7 +121,6 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         compliance,
         level,
     } = request;
-    check_level("level", level)?;
     let field = |a: usize| format!("q_deg[{}]", a + 1);
     setup
         .robot()
@@ -131,6 +133,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         }
         None => setup.model_compliance("predict without a stiffness")?,
     };
+    let level = requested_level(level, compliance.prediction.is_some())?;
     let at = at.unwrap_or(setup.tool().loading_point);
     let frames = setup.robot().frames(&q);
     let base = base_wrench(&frames, &wrench, frame);

@@ -10,6 +10,7 @@ use super::readings::refuse_implausible;
 pub use super::readings::{read, Request};
 use super::Warning;
 use crate::cell::{CheckKind, Checker};
+use crate::common::error::JobOption;
 use crate::design::registration::{self as design, Design};
 use crate::io::readings::Readings;
 use crate::metrology::register::{self, Registration};
@@ -59,6 +60,9 @@ pub struct DesignRequest<'a> {
     pub postures: usize,
     /// The seed, the candidates and the exchange runs.
     pub options: design::Options,
+    /// Whether the caller asked to fit implausible readings ([`Request::force`]): refused, a
+    /// proposal fits none.
+    pub force: bool,
 }
 
 /// The registration postures proposed.
@@ -80,8 +84,15 @@ pub struct DesignReport {
 /// ([`design::design`]).
 ///
 /// # Errors
-/// Those of [`design::design`].
+/// [`crate::Error::InvalidOption`] ([`JobOption::Force`]) with [`DesignRequest::force`]; those
+/// of [`design::design`].
 pub fn propose(request: &DesignRequest<'_>) -> Result<DesignReport> {
+    if request.force {
+        return Err(crate::Error::InvalidOption {
+            option: JobOption::Force,
+            message: "only with readings to register from: a proposal of postures fits none".into(),
+        });
+    }
     request.setup.check_bodies()?;
     let design = design::design(request.setup, request.postures, &request.options)?;
     let checker = Checker::new(request.setup);

@@ -103,8 +103,9 @@ pub struct Request<'a> {
     /// The budget and tolerances of the searches; its seed seeds the random start group, the
     /// global starts and the pool's exchange runs.
     pub options: SearchOptions,
-    /// Exchange runs of a pool choice (1 to [`limits::MAX_POOL_RESTARTS`]).
-    pub restarts: usize,
+    /// [`Method::Pool`] only: exchange runs of the pool choice (1 to
+    /// [`limits::MAX_POOL_RESTARTS`]); `None` for [`PoolOptions`]' default.
+    pub restarts: Option<usize>,
     /// Forbid postures that are not distinct by these distances ([`Method::Pool`] only: the
     /// pool keeps the first of every near pair, [`crate::design::distinct::distinct_pool`]);
     /// `None` allows them. Either way the group's near pairs are flagged, by these distances or
@@ -414,7 +415,7 @@ fn calibration_report(
     postures: &[Vector6<f64>],
 ) -> Result<CalibrationReport> {
     Ok(CalibrationReport {
-        criterion: request.calibration.criterion,
+        criterion: request.calibration.criterion(),
         options: request.calibration,
         criteria: design.evaluate(postures)?,
         weight,
@@ -466,7 +467,23 @@ fn check(r: &Request) -> Result<()> {
         None if r.target_pct.is_none() => check_count("postures", r.postures, 2, most)?,
         None => {}
     }
-    limits::check_integer("restarts", r.restarts as u64, 1, limits::MAX_POOL_RESTARTS)?;
+    if let Some(restarts) = r.restarts {
+        if r.method != Method::Pool {
+            return invalid_option(
+                JobOption::Restarts,
+                "only for a pool choice (the exchange runs over the pool)",
+            );
+        }
+        limits::check_integer("restarts", restarts as u64, 1, limits::MAX_POOL_RESTARTS)
+            .map_err(|e| e.for_option(JobOption::Restarts))?;
+    }
+    if r.options.margin.is_some() && !Checker::new(r.setup).constrains() {
+        return invalid_option(
+            JobOption::MarginMm,
+            "the setup has no cell, tracker or constraints to keep a margin to",
+        );
+    }
+    purpose::check(r.purpose, &r.calibration)?;
     if r.candidates.is_some() && !r.for_candidates {
         return invalid_option(JobOption::Candidates, "only with for_candidates");
     }
@@ -595,7 +612,7 @@ impl<'a> Candidates<'a> {
         }
         let options = PoolOptions {
             seed: r.options.seed,
-            restarts: r.restarts,
+            restarts: r.restarts.unwrap_or(PoolOptions::default().restarts),
             ..PoolOptions::default()
         };
         let c = (self.pool.best_for(goal, n, &options)).map_err(|e| Error::Input {

@@ -20,9 +20,9 @@ pub struct Request<'a, R> {
     /// The measurements (as for [`super::identify`]), ideally postures not used to identify.
     pub data: Data<R>,
     /// The level of the prediction intervals (with the compliance's prediction calibration),
-    /// within [`crate::model::prediction::LEVEL`]; default
-    /// [`crate::model::prediction::DEFAULT_LEVEL`].
-    pub level: f64,
+    /// within [`crate::model::prediction::LEVEL`], only with a compliance that carries one;
+    /// `None` for [`crate::model::prediction::DEFAULT_LEVEL`].
+    pub level: Option<f64>,
 }
 
 /// What the validate job found.
@@ -53,7 +53,7 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         data,
         level,
     } = request;
-    crate::model::prediction::check_level("level", level)?;
+    let level = crate::model::prediction::requested_level(level, compliance.prediction.is_some())?;
     let (data_name, origin, validation) = on_measurements(setup, data, |m| {
         compare_at(setup.arm(), compliance, m, level)
     })?;

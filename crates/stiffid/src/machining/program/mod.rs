@@ -35,6 +35,7 @@ pub mod generate;
 pub mod krl;
 pub mod ls;
 pub mod rapid;
+pub mod rename;
 
 use crate::{Error, Result};
 use std::ops::Range;

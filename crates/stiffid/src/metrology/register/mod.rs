@@ -109,6 +109,34 @@ pub fn suspect(
     })
 }
 
+/// The largest ratio of the readings' spread to the robot's points' spread ([`spread_ratio`]) in
+/// either direction that is a robot's own size: a real robot's lengths are within a few per cent of
+/// its model's; millimetres read as centimetres (0.1), metres (0.001) or inches (1/25.4) are
+/// far outside.
+pub const SPREAD_RATIO_LIMIT: f64 = 1.25;
+
+/// The robot's points must spread at least this far (RMS distance from their centroid, m) for
+/// [`spread_ratio`] to judge the readings' scale: one posture, or postures close together, say
+/// nothing of it.
+pub const MIN_SPREAD_M: f64 = 0.05;
+
+/// How far the readings spread against the robot's points (`points`, pairs in any frames: the
+/// RMS distance from the centroid is the same in every frame): the RMS distance of the readings
+/// from their centroid over that of the robot's points from theirs, with the points' spread (m).
+/// 1 within the robot's errors for readings in mm as labelled, 0.001 for readings in metres.
+/// `None` when the points spread less than [`MIN_SPREAD_M`].
+pub fn spread_ratio(points: &[Correspondence]) -> Option<(f64, f64)> {
+    let spread = |v: &[Vector3<f64>]| {
+        let n = v.len().max(1) as f64;
+        let mean = v.iter().sum::<Vector3<f64>>() / n;
+        (v.iter().map(|p| (p - mean).norm_squared()).sum::<f64>() / n).sqrt()
+    };
+    let base: Vec<_> = points.iter().map(|c| c.base).collect();
+    let tracker: Vec<_> = points.iter().map(|c| c.tracker).collect();
+    let robot = spread(&base);
+    (robot >= MIN_SPREAD_M).then(|| (spread(&tracker) / robot, robot))
+}
+
 /// One point known in both frames, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Correspondence {

@@ -28,7 +28,8 @@
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
 //! - the program's name is an identifier of the language, not a reserved word, within
-//!   [`Settings::name_length`] (default: KRL 24, RAPID 32, LS 8 as on R-30iA controllers);
+//!   [`Settings::name_length`] (default: KRL 24, RAPID 32, LS 8 as on R-30iA controllers; at
+//!   most [`max_name_length`]: KRL 24, RAPID 32, LS 36);
 //!   a generated program is called as its file is named, so the name is the file's stem;
 //! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
 //!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`;
@@ -39,7 +40,9 @@
 //!   LS in whole `mm/sec`, else whole `cm/min` (exact for a feed in whole mm/min divisible by 10),
 //!   else the nearest whole `cm/min` with a warning; a feed above [`Settings::max_tcp_speed`] or
 //!   one an LS program cannot state (below 1 cm/min) is refused naming the G-code line;
-//! - the LS `COMMENT` is at most 16 characters;
+//! - the LS `COMMENT` is at most 16 characters, and an LS file at most [`LS_MAX_LINES`]
+//!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
+//! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
 //! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
 //!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
 //!   program calls in order.
@@ -49,7 +52,13 @@
 
 mod krl;
 mod ls;
+mod names;
 mod rapid;
+
+pub use names::{
+    check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
+    MAX_FILES,
+};
 
 use super::{Dialect, DECIMALS};
 use crate::common::error::JobOption;
@@ -108,7 +117,7 @@ impl crate::common::choice::Choice for Targets {
 
 crate::common::choice::by_name!(Targets);
 
-/// The rapid speed of RAPID's `vrapid`, mm/s.
+/// The rapid speed of RAPID's `vrapid`, mm/s, or [`Settings::max_tcp_speed`] when slower.
 pub const RAPID_SPEED_MM_S: f64 = 200.0;
 /// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J`), percent of the axes' top speed.
 pub const RAPID_PERCENT: u32 = 20;
@@ -118,8 +127,6 @@ pub const MIN_FEED: f64 = 1e-6;
 pub const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
 /// The range of [`Settings::name_length`].
 pub const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
-/// The most sub-programs a program is split into.
-pub const MAX_FILES: usize = 9999;
 
 /// How programs are written (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,17 +193,6 @@ impl Settings {
             );
         }
         Ok(())
-    }
-}
-
-/// The longest program name of a dialect's controller: KRL 24 (KUKA System Software 8), RAPID 32
-/// (RAPID identifiers), LS 8 (R-30iA; later controllers take longer names: raise
-/// [`Settings::name_length`]).
-pub fn default_name_length(dialect: Dialect) -> usize {
-    match dialect {
-        Dialect::Krl => 24,
-        Dialect::Rapid => 32,
-        Dialect::FanucLs => 8,
     }
 }
 
@@ -313,20 +309,10 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// [`Error::Program`] for a feed an LS program
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
-    plan.settings.validate()?;
+    let names = check_plan(plan.dialect, plan.name, &plan.settings, plan.targets.len())?;
     check_targets(plan)?;
-    let chunks: Vec<&[Target]> = plan.targets.chunks(plan.settings.moves_per_file).collect();
-    if chunks.len() > MAX_FILES {
-        return Err(Error::InvalidOption {
-            option: JobOption::MovesPerFile,
-            message: format!(
-                "{} moves per file make {} sub-programs; at most {MAX_FILES}: raise moves_per_file",
-                plan.settings.moves_per_file,
-                chunks.len()
-            ),
-        });
-    }
-    let names = names(plan, chunks.len())?;
+    let per_file = moves_per_file(plan.dialect, &plan.settings);
+    let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
     let mut written = Written {
         files: Vec::new(),
         warnings: Vec::new(),
@@ -465,233 +451,6 @@ pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<
         return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
     }
     Ok(())
-}
-
-/// The main program's name and, for `files > 1`, the sub-programs' `NAME_01`, ...
-fn names(plan: &Plan, files: usize) -> Result<Vec<String>> {
-    let longest = plan
-        .settings
-        .name_length
-        .unwrap_or(default_name_length(plan.dialect));
-    check_name(plan.dialect, plan.name, longest)?;
-    let mut names = vec![plan.name.to_string()];
-    if files > 1 {
-        let width = files.to_string().len().max(2);
-        for i in 1..=files {
-            let sub = format!("{}_{i:0width$}", plan.name);
-            // A RAPID sub-program's routine is its module's name after an `r`.
-            if sub.len() + usize::from(plan.dialect == Dialect::Rapid) > longest {
-                return Err(Error::InvalidOption { option: JobOption::ProgramName, message: format!("{:?}: the sub-programs' names ({sub} for {files} sub-programs) would be longer than {longest} characters, the controller's longest name (a setting: name_length): name the program shorter or raise moves_per_file", plan.name) });
-            }
-            names.push(sub);
-        }
-    }
-    Ok(names)
-}
-
-/// Refuses a program name the controller does not take (module docs).
-pub fn check_name(dialect: Dialect, name: &str, longest: usize) -> Result<()> {
-    let identifier = name.starts_with(|c: char| c.is_ascii_alphabetic())
-        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    let reserved = reserved_words(dialect)
-        .iter()
-        .any(|w| w.eq_ignore_ascii_case(name));
-    let message = if !identifier {
-        "expected letters, digits and _, starting with a letter (the program is named after its file: rename the file)".to_string()
-    } else if name.len() > longest {
-        format!(
-            "{} characters: the controller takes at most {longest} (a setting: name_length)",
-            name.len()
-        )
-    } else if reserved {
-        format!(
-            "a reserved word of {} (rename the file)",
-            dialect_name(dialect)
-        )
-    } else {
-        return Ok(());
-    };
-    Err(Error::InvalidOption {
-        option: JobOption::ProgramName,
-        message: format!("{name:?}: {message}"),
-    })
-}
-
-fn dialect_name(d: Dialect) -> &'static str {
-    match d {
-        Dialect::Krl => "KUKA KRL",
-        Dialect::Rapid => "ABB RAPID",
-        Dialect::FanucLs => "FANUC LS",
-    }
-}
-
-/// The words a program may not be named (module docs; docs/reference.md cites the lists), and
-/// the names of the data stiffid declares in it.
-fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
-    match dialect {
-        Dialect::Krl => &[
-            "AND",
-            "ANIN",
-            "ANOUT",
-            "AXIS",
-            "B_AND",
-            "B_EXOR",
-            "B_NOT",
-            "B_OR",
-            "BOOL",
-            "BRAKE",
-            "C_DIS",
-            "C_ORI",
-            "C_PTP",
-            "C_SPL",
-            "C_VEL",
-            "CASE",
-            "CAST_FROM",
-            "CAST_TO",
-            "CHAR",
-            "CIRC",
-            "CIRC_REL",
-            "CONST",
-            "CONTINUE",
-            "DECL",
-            "DEF",
-            "DEFAULT",
-            "DEFDAT",
-            "DEFFCT",
-            "DELAY",
-            "DO",
-            "E6AXIS",
-            "E6POS",
-            "ELSE",
-            "END",
-            "ENDDAT",
-            "ENDFCT",
-            "ENDFOR",
-            "ENDIF",
-            "ENDLOOP",
-            "ENDSPLINE",
-            "ENDSWITCH",
-            "ENDWHILE",
-            "ENUM",
-            "EXIT",
-            "EXOR",
-            "EXT",
-            "EXTFCT",
-            "FALSE",
-            "FOR",
-            "FRAME",
-            "GLOBAL",
-            "GOTO",
-            "HALT",
-            "IF",
-            "IMPORT",
-            "INTERRUPT",
-            "INT",
-            "IS",
-            "LIN",
-            "LIN_REL",
-            "LOOP",
-            "MAXIMUM",
-            "MINIMUM",
-            "NOT",
-            "OR",
-            "POS",
-            "PRIO",
-            "PTP",
-            "PTP_REL",
-            "PUBLIC",
-            "REAL",
-            "REPEAT",
-            "RESUME",
-            "RETURN",
-            "SCIRC",
-            "SEC",
-            "SIGNAL",
-            "SLIN",
-            "SPLINE",
-            "SPTP",
-            "STEP",
-            "STRUC",
-            "SWITCH",
-            "THEN",
-            "TO",
-            "TRIGGER",
-            "TRUE",
-            "UNTIL",
-            "WAIT",
-            "WHEN",
-            "WHILE",
-        ],
-        Dialect::Rapid => &[
-            "ALIAS",
-            "AND",
-            "BACKWARD",
-            "CASE",
-            "CONNECT",
-            "CONST",
-            "DEFAULT",
-            "DIV",
-            "DO",
-            "ELSE",
-            "ELSEIF",
-            "ENDFOR",
-            "ENDFUNC",
-            "ENDIF",
-            "ENDMODULE",
-            "ENDPROC",
-            "ENDRECORD",
-            "ENDTEST",
-            "ENDTRAP",
-            "ENDWHILE",
-            "ERROR",
-            "EXIT",
-            "FALSE",
-            "FOR",
-            "FROM",
-            "FUNC",
-            "GOTO",
-            "IF",
-            "INOUT",
-            "LOCAL",
-            "MOD",
-            "MODULE",
-            "NOSTEPIN",
-            "NOT",
-            "NOVIEW",
-            "OR",
-            "PERS",
-            "PROC",
-            "RAISE",
-            "READONLY",
-            "RECORD",
-            "RETRY",
-            "RETURN",
-            "STEP",
-            "SYSMODULE",
-            "TEST",
-            "THEN",
-            "TO",
-            "TRAP",
-            "TRUE",
-            "TRYNEXT",
-            "UNDO",
-            "VAR",
-            "VIEWONLY",
-            "WHILE",
-            "WITH",
-            "XOR",
-            "main",
-            "tspindle",
-            "wpart",
-            "vrapid",
-            "zpath",
-        ],
-        Dialect::FanucLs => &[
-            "ABORT", "AND", "CALL", "CNT", "CONFIG", "ELSE", "END", "ENDFOR", "ENDIF", "FINE",
-            "FOR", "IF", "JMP", "LBL", "MOD", "NOT", "OFF", "ON", "OR", "PAUSE", "RUN", "SELECT",
-            "THEN", "TO", "WAIT",
-        ],
-    }
 }
 
 /// `x` with [`DECIMALS`] decimals, a negative zero without its sign.

@@ -40,7 +40,7 @@ pub(super) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
         s,
         "  CONST speeddata vrapid := [{},500,5000,1000];\n  \
          CONST zonedata zpath := [FALSE,{a},{a},{a},0.1,{a},0.1];\n",
-        number(RAPID_SPEED_MM_S)
+        number(RAPID_SPEED_MM_S.min(plan.settings.max_tcp_speed * 1e3))
     );
     s
 }

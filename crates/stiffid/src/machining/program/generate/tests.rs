@@ -424,3 +424,70 @@ fn split_krl_and_rapid_programs_call_their_sub_programs() {
         }));
     }
 }
+
+#[test]
+fn the_controllers_limits_hold_whatever_the_settings() {
+    let t = targets(&Q);
+    // KRL's spline motion is a reserved word too.
+    let e = generate(&plan(Dialect::Krl, "SPL", &t, &MOVES)).unwrap_err();
+    assert!(e.to_string().contains("reserved word of KUKA KRL"), "{e}");
+    // name_length lowers the controller's longest name, never raises it.
+    for (dialect, most) in [
+        (Dialect::Krl, 24),
+        (Dialect::Rapid, 32),
+        (Dialect::FanucLs, 36),
+    ] {
+        let mut p = plan(dialect, "P", &t, &MOVES);
+        p.settings.name_length = Some(most + 1);
+        match generate(&p) {
+            Err(Error::InvalidOption {
+                option: JobOption::NameLength,
+                message,
+            }) => assert!(
+                message.contains(&format!("at most {most} characters")),
+                "{message}"
+            ),
+            other => panic!("{dialect:?}: {other:?}"),
+        }
+        p.settings.name_length = Some(most);
+        generate(&p).unwrap();
+    }
+    // RAPID's rapids move no faster than the robot's largest TCP speed.
+    let mut p = plan(Dialect::Rapid, "P", &t, &MOVES);
+    p.settings.max_tcp_speed = 0.05;
+    let text = &generate(&p).unwrap().files[0].text;
+    assert!(text.contains("CONST speeddata vrapid := [50,"), "{text}");
+    p.settings.max_tcp_speed = 2.0;
+    let text = &generate(&p).unwrap().files[0].text;
+    assert!(text.contains("CONST speeddata vrapid := [200,"), "{text}");
+}
+
+#[test]
+fn an_ls_file_never_numbers_more_lines_than_the_pendant() {
+    let q: Vec<[f64; 6]> = (0..10_000)
+        .map(|i| [-20.0 + 1e-3 * i as f64, 5.0, -45.0, 10.0, -40.0, 20.0])
+        .collect();
+    let t = targets(&q);
+    let m = vec![Move::Feed(0.01); t.len()];
+    // One file of 10 000 moves would number 10 003 lines; the main program's header counts.
+    let written = generate(&plan(Dialect::FanucLs, "P", &t, &m)).unwrap();
+    assert_eq!(
+        written.files.len(),
+        3,
+        "the main program and two sub-programs"
+    );
+    for file in &written.files {
+        let number = |l: &str| {
+            let p = l.get(..5).filter(|p| p.ends_with(':'))?;
+            p[..4].trim().parse::<u32>().ok()
+        };
+        let last = file.text.lines().filter_map(number).max().unwrap();
+        assert!(last <= LS_MAX_LINES as u32, "{}: {last} lines", file.name);
+    }
+    assert_eq!(
+        names::LS_HEADER_LINES,
+        ls::header(&plan(Dialect::FanucLs, "P", &t, &m))
+            .lines()
+            .count()
+    );
+}

@@ -1,0 +1,63 @@
+//! A robot program written back under another file name: the name it declares follows the file's,
+//! as the controller calls a program by its file's name (KUKA System Software refuses a `.src`
+//! whose `DEF` is not its file's name; loading an LS file replaces the program its `/PROG` line
+//! names, whatever the file is called). A RAPID module's name is not its file's: it is kept.
+
+use super::Dialect;
+
+/// `text`, a program of `dialect`, with the name it declares replaced by `name`: KRL's first
+/// `DEF NAME(` (also `GLOBAL DEF`), LS's `/PROG  NAME`; every other byte as it was. A RAPID
+/// program, or one that declares no name, comes back unchanged.
+///
+/// # Examples
+/// ```
+/// use stiffid::machining::program::{rename::renamed, Dialect};
+/// let krl = "&ACCESS RVP\nDEF pocket( )\n  PTP {A1 0}\nEND\n";
+/// assert_eq!(renamed(krl, Dialect::Krl, "pocket_c"), "&ACCESS RVP\nDEF pocket_c( )\n  PTP {A1 0}\nEND\n");
+/// let ls = "/PROG  POCKET\n/ATTR\n";
+/// assert_eq!(renamed(ls, Dialect::FanucLs, "POCKET_C"), "/PROG  POCKET_C\n/ATTR\n");
+/// ```
+pub fn renamed(text: &str, dialect: Dialect, name: &str) -> String {
+    let span = match dialect {
+        Dialect::Krl => declared(text, |line| {
+            let upper = line.to_ascii_uppercase();
+            let rest = upper
+                .strip_prefix("GLOBAL")
+                .map_or(upper.as_str(), str::trim_start);
+            rest.strip_prefix("DEF")
+                .filter(|r| r.starts_with(char::is_whitespace))
+                .map(|r| line.len() - r.len())
+        }),
+        Dialect::FanucLs => declared(text, |line| {
+            line.strip_prefix("/PROG").map(|r| line.len() - r.len())
+        }),
+        Dialect::Rapid => None,
+    };
+    match span {
+        Some((start, end)) => format!("{}{name}{}", &text[..start], &text[end..]),
+        None => text.to_string(),
+    }
+}
+
+/// The byte span in `text` of the name on the first line where `keyword` finds the end of the
+/// declaring keyword (an offset in the line with its leading blanks removed): the identifier
+/// after the blanks that follow it.
+fn declared(text: &str, keyword: impl Fn(&str) -> Option<usize>) -> Option<(usize, usize)> {
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        let indent = line.len() - trimmed.len();
+        if let Some(after) = keyword(trimmed) {
+            let rest = &trimmed[after..];
+            let blanks = rest.len() - rest.trim_start().len();
+            let start = offset + indent + after + blanks;
+            let length = rest
+                .trim_start()
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '$'))
+                .unwrap_or(rest.trim_start().len());
+            return (length > 0).then_some((start, start + length));
+        }
+        offset += line.len();
+    }
+    None
+}
