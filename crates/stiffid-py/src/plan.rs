@@ -10,7 +10,6 @@ use pyo3::types::{PyAny, PyBytes, PyDict};
 use stiffid::app::document::scene::{glb, page, MAX_POSTURES as MAX_SCENE_POSTURES};
 use stiffid::app::plan::document::Document;
 use stiffid::app::plan::{self as job, Request};
-use stiffid::common::limits::MAX_GROUP_POSTURES;
 
 /// The measurement plan of the group ``postures_deg`` (axis angles, deg, shape ``(n, 6)``, within
 /// the joint limits; at most 10000), as chosen by ``criterion`` (named in the plan; default
@@ -37,7 +36,7 @@ pub fn plan<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let within = (s.robot().limits(), "the joint limits");
-    let (group, _) = postures(postures_deg, "postures_deg", within, MAX_GROUP_POSTURES)?;
+    let (group, _) = postures(postures_deg, "postures_deg", within, job::MAX_POSTURES)?;
     let request = Request {
         setup: s,
         criterion: criterion.parse().map_err(raise)?,

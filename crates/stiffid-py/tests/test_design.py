@@ -131,7 +131,7 @@ def test_same_seed_same_group(paper):
         (dict(solver="newton"), "solver: unknown value 'newton' \\(known: auto, slsqp, active-set\\)"),
         (dict(method="global", start=np.zeros((6, 6))), "start"),
         (dict(method="pool"), "pool"),
-        (dict(restarts=3), "restarts: only with pool"),
+        (dict(restarts=3), "restarts: only for a pool choice"),
         (dict(method="local", target_pct=5), "target_pct: needs a pool or the global search"),
         (dict(method="global", target_pct=0.0), "target_pct"),
         (dict(method="global", distinct=True), "distinct"),

@@ -83,3 +83,9 @@ def test_the_scene_is_the_plans_in_3d_and_the_commands_glb(cli, tmp_path):
     assert scene._repr_html_().startswith("<iframe srcdoc=")
     with pytest.raises(stiffid.InputError, match="postures_deg"):
         stiffid.scene(cell, np.zeros((501, 6)))
+
+
+def test_a_plan_takes_at_most_1000_postures(paper):
+    """The plan's leave-one-out is quadratic in the count: its maximum is 1000, refused beyond."""
+    with pytest.raises(ValueError, match=r"postures_deg: expected 1 to 1000 postures, got 1001"):
+        stiffid.plan(paper, np.zeros((1001, 6)))

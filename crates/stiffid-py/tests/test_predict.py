@@ -1,5 +1,7 @@
 """predict: the document equals the command's, with every option; bad input is refused by name."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -81,6 +83,21 @@ def test_deflection_refuses_as_predict_does(paper, fanuc):
         stiffid.deflection(paper, Q, [0, 0, -500, 0, 0, 0], observed_mm=[0, 0, 0])
     with pytest.warns(UserWarning, match="q_deg posture 0: every axis angle lies within"):
         stiffid.deflection(fanuc, [0.1, 0.2, -0.3, 0.4, 0.5, 0.6], [0, 0, -500, 0, 0, 0])
+
+
+def test_a_level_without_prediction_data_is_refused(paper, tmp_path):
+    """The job's own option check: no prediction interval, no level (as --level)."""
+    with pytest.raises(stiffid.InputError, match=r"^level: only with a stiffness file that holds prediction data"):
+        stiffid.predict(paper, Q, [0, 0, -500, 0, 0, 0], level=0.9)
+    assert "tcp_deflection_mm" in stiffid.predict(paper, Q, [0, 0, -500, 0, 0, 0])
+
+
+def test_a_fifo_is_refused_at_once_as_an_input_file(paper, tmp_path):
+    """A named pipe with no writer: refused, never waited on."""
+    fifo = tmp_path / "readings.csv"
+    os.mkfifo(fifo)
+    with pytest.raises(stiffid.InputError, match=r"readings.csv: is a FIFO, not a regular file"):
+        stiffid.register(paper, fifo)
 
 
 def test_bad_input_is_refused_by_name(paper):

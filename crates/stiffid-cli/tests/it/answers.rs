@@ -172,7 +172,15 @@ fn a_fifo_given_as_an_input_file_is_refused_at_once() {
         "--criterion",
         "classical",
     ];
-    let more = ["--start", fifo.to_str().unwrap(), "--max-evals", "5"];
+    let out = d.join("out.csv");
+    let more = [
+        "--start",
+        fifo.to_str().unwrap(),
+        "--max-evals",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+    ];
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stiffid"))
         .args([&args[..], &more].concat())
         .stdout(std::process::Stdio::piped())
@@ -254,20 +262,8 @@ fn compensate(program: &str, out: &str) -> std::process::Output {
 #[test]
 fn a_robot_program_written_under_another_name_declares_that_name() {
     let d = temp_dir("answers-rename");
-    let angles = ["-60, -17, -29, 4, -63, 145", "-58, -15, -28, 4, -62, 140"];
-    let axes = |a: &str| {
-        let v: Vec<&str> = a.split(", ").collect();
-        format!(
-            "A1 {}, A2 {}, A3 {}, A4 {}, A5 {}, A6 {}",
-            v[0], v[1], v[2], v[3], v[4], v[5]
-        )
-    };
-    let krl = format!(
-        "&ACCESS RVP\nDEF far( )\nPTP {{{}}}\nPTP {{{}}}\nEND\n",
-        axes(angles[0]),
-        axes(angles[1])
-    );
-    let src = write_file(&d, "far.src", &krl);
+    let krl = "&ACCESS RVP\nDEF far( )\nPTP {A1 -60, A2 -17, A3 -29, A4 4, A5 -63, A6 145}\nPTP {A1 -58, A2 -15, A3 -28, A4 4, A5 -62, A6 140}\nEND\n";
+    let src = write_file(&d, "far.src", krl);
     let out = d.join("pocket_c.src");
     let o = compensate(src.to_str().unwrap(), out.to_str().unwrap());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -276,17 +272,16 @@ fn a_robot_program_written_under_another_name_declares_that_name() {
         text.starts_with("&ACCESS RVP\nDEF pocket_c( )\nPTP {A1 "),
         "{text}"
     );
-    let position = |a: &str| {
-        let v: Vec<&str> = a.split(", ").collect();
+    let position = |i: usize, q: [&str; 6]| {
         format!(
-            "P[{{}}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {} deg,\tJ2= {} deg,\tJ3= {} deg,\n\tJ4= {} deg,\tJ5= {} deg,\tJ6= {} deg\n}};\n",
-            v[0], v[1], v[2], v[3], v[4], v[5]
+            "P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {} deg,\tJ2= {} deg,\tJ3= {} deg,\n\tJ4= {} deg,\tJ5= {} deg,\tJ6= {} deg\n}};\n",
+            q[0], q[1], q[2], q[3], q[4], q[5]
         )
     };
     let ls = format!(
         "/PROG  FAR\n/MN\n   1:J P[1] 10% FINE ;\n   2:J P[2] 10% FINE ;\n/POS\n{}{}/END\n",
-        position(angles[0]).replacen("{}", "1", 1),
-        position(angles[1]).replacen("{}", "2", 1)
+        position(1, ["-60", "-17", "-29", "4", "-63", "145"]),
+        position(2, ["-58", "-15", "-28", "4", "-62", "140"])
     );
     let ls = write_file(&d, "far.ls", &ls);
     let out = d.join("wall.ls");
@@ -319,4 +314,27 @@ fn a_program_name_is_refused_before_the_compensation_runs() {
     let o = compensate(nc.to_str().unwrap(), d.join("wall.ls").to_str().unwrap());
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && stderr.contains("far.nc"), "{stderr}");
+}
+
+#[test]
+fn a_model_comparison_that_no_model_fits_physically_is_refused() {
+    let d = temp_dir("answers-compare");
+    // The first four postures of the FANUC data: the drives alone fit them with k4 < 0.
+    let text = std::fs::read_to_string(crate::common::fanuc_csv()).unwrap();
+    let four: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .take(5)
+        .collect();
+    let data = write_file(&d, "four.csv", &(four.join("\n") + "\n"));
+    let args = [
+        "identify",
+        "--setup",
+        "fanuc-r2000ic-165f",
+        "--data",
+        data.to_str().unwrap(),
+    ];
+    let out = stiffid(&[&args[..], &["--compare-models", "--json"]].concat());
+    let line = crate::common::assert_usage_error(&out, &["4 given", "every stiffness positive"]);
+    assert!(line.contains("measure more postures"), "{line}");
 }

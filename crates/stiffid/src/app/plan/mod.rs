@@ -19,6 +19,10 @@ use crate::observation::stiffness::rope_displacements;
 use crate::{Result, Setup};
 use nalgebra::{Vector3, Vector6};
 
+/// Most postures a plan takes: each posture's leave-one-out factors the group without it, so the
+/// work grows with the square of the count.
+pub const MAX_POSTURES: usize = 1000;
+
 /// What the setup's nominal stiffness is needed for here, in [`crate::Error::MissingField`].
 pub const NEEDED_BY: &str = "the measurement plan (its expected displacements)";
 
@@ -74,31 +78,31 @@ pub struct Report {
 /// Plans the group.
 ///
 /// # Errors
+/// [`crate::Error::InvalidField`] (`postures`) for none or more than [`MAX_POSTURES`];
 /// [`crate::Error::MissingField`] for a setup without a nominal stiffness; the errors of
 /// [`Setup::check_bodies`].
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
+    crate::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
     let k = setup.try_nominal_stiffness(NEEDED_BY)?;
     setup.check_bodies()?;
     let evaluator = Evaluator::new(setup);
     let checker = Checker::new(setup);
+    let without_each = evaluator.relative_std_without_each(postures);
     let planned = postures
         .iter()
-        .enumerate()
-        .map(|(i, q)| {
+        .zip(&without_each)
+        .map(|(q, without)| {
             let frames = setup.robot().frames(q);
             let lp = frames.point(&setup.tool().loading_point);
             let rope = setup.load().anchor - lp;
-            let mut others = postures.to_vec();
-            others.remove(i);
-            let without = evaluator.evaluation(&others).relative_std;
             Posture {
                 q: *q,
                 rope_direction: rope.normalize(),
                 rope_length: rope.norm(),
                 loading_point_z: lp.z,
                 displacements: rope_displacements(setup, &frames, k),
-                without_pct: predicted_deviation_pct(&without, 1.0),
+                without_pct: predicted_deviation_pct(without, 1.0),
                 feasibility: checker.feasibility(q),
             }
         })

@@ -306,6 +306,26 @@ impl<'a> Evaluator<'a> {
         .without_missing(self.setup)
     }
 
+    /// The relative standard deviations of the six drives (Eq. 19, noise level 1) of `postures`
+    /// (axis angles, rad) without each posture in turn (leave-one-out): [`Evaluation::relative_std`]
+    /// of the others, infinite where they do not identify every parameter. Each posture's terms
+    /// are computed once, so the work is one factorisation of `n - 1` postures per posture.
+    pub fn relative_std_without_each(&self, postures: &[Vector6<f64>]) -> Vec<Vector6<f64>> {
+        let terms: Vec<PostureTerms> = postures.iter().map(|q| self.posture(q)).collect();
+        (0..terms.len())
+            .map(|i| {
+                let others: Vec<&PostureTerms> = (terms.iter().enumerate())
+                    .filter(|(j, _)| *j != i)
+                    .map(|(_, t)| t)
+                    .collect();
+                self.group(&others)
+                    .map_or(Vector6::repeat(f64::INFINITY), |g| {
+                        Vector6::from_column_slice(&g.relative_std()[..6])
+                    })
+            })
+            .collect()
+    }
+
     /// The classical index `max_i k(J_N)_i` of the postures' terms.
     fn classical(&self, terms: &[&PostureTerms]) -> f64 {
         terms.iter().map(|t| self.dexterity(t)).fold(0.0, f64::max)

@@ -218,3 +218,25 @@ nominal_stiffness_nm_per_rad = 1e6
         (6, vec![true; 6], 0)
     );
 }
+
+#[test]
+fn leave_one_out_is_the_evaluation_of_the_others() {
+    for setup in [
+        crate::setup::builtin("zhang2021-comau-nj165").unwrap(),
+        with_model("zhang2021-comau-nj165", ELBOW),
+    ] {
+        let evaluator = Evaluator::new(&setup);
+        let group = random_group(&setup, 7, 3);
+        let without = evaluator.relative_std_without_each(&group);
+        assert_eq!(without.len(), group.len());
+        for (i, got) in without.iter().enumerate() {
+            let mut others = group.clone();
+            others.remove(i);
+            assert_eq!(
+                *got,
+                evaluator.evaluation(&others).relative_std,
+                "posture {i}"
+            );
+        }
+    }
+}

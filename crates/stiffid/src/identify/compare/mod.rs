@@ -181,8 +181,10 @@ pub const MIN_POSTURES: usize = 3;
 /// # Errors
 /// Those of [`Observations::from_measurements`] and of [`super::svd::fit`] for the setup's
 /// model; [`crate::Error::InvalidField`] for candidates that clash with the model's springs, and
-/// (`postures`) for fewer than [`MIN_POSTURES`] postures or postures whose every subset without
-/// one cannot identify the setup's model (no held-out error to compare models by).
+/// (`postures`) for fewer than [`MIN_POSTURES`] postures, postures whose every subset without
+/// one cannot identify the setup's model (no held-out error to compare models by), or postures
+/// no model on the path fits physically and identified (a recommendation would be a negative
+/// stiffness).
 pub fn compare(
     setup: &Setup,
     measurements: &[Measurement],
@@ -230,6 +232,11 @@ pub fn compare(
         ));
     }
     let recommended = recommend(&models);
+    if !(models[recommended].physical && models[recommended].identified) {
+        return Err(too_few(
+            ", and no model on the path fits them with every stiffness positive and every parameter identified (the setup's model neither)",
+        ));
+    }
     let columns = &path[recommended];
     let recommended_fit = fit(&p.sub(columns), &p.parameters(columns))?;
     let recommended_springs = columns[6..]

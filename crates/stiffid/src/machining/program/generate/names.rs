@@ -232,6 +232,7 @@ fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
             "SEC",
             "SIGNAL",
             "SLIN",
+            "SPL",
             "SPLINE",
             "SPTP",
             "STEP",

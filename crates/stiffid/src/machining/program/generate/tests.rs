@@ -376,16 +376,25 @@ fn a_million_moves_are_split_into_called_sub_programs() {
     let mut p = plan(Dialect::FanucLs, "PK", &t, &m);
     p.settings.targets = Targets::Joint;
     let w = generate(&p).unwrap();
-    assert_eq!(w.files.len(), 101);
+    // 10 000 moves per file, but an LS file numbers at most 9999 lines: 9996 moves each.
+    let per_file = LS_MAX_LINES - names::LS_HEADER_LINES;
+    let subs = 1_000_000_usize.div_ceil(per_file);
+    assert_eq!((per_file, subs), (9996, 101));
+    assert_eq!(w.files.len(), subs + 1);
     let main = &w.files[0];
     assert_eq!(main.name, "PK");
     let calls: Vec<&str> = main.text.lines().filter(|l| l.contains("CALL ")).collect();
-    assert_eq!(calls.len(), 100);
-    assert!(calls[0].ends_with("CALL PK_001 ;") && calls[99].ends_with("CALL PK_100 ;"));
+    assert_eq!(calls.len(), subs);
+    assert!(calls[0].ends_with("CALL PK_001 ;") && calls[100].ends_with("CALL PK_101 ;"));
     for (k, f) in w.files[1..].iter().enumerate() {
         assert_eq!(f.name, format!("PK_{:03}", k + 1));
         assert!(f.text.starts_with(&format!("/PROG  {}\n", f.name)));
-        assert_eq!(f.text.matches("GP1:").count(), 10_000);
+        let moves = if k + 1 < subs {
+            per_file
+        } else {
+            1_000_000 - 100 * per_file
+        };
+        assert_eq!(f.text.matches("GP1:").count(), moves);
     }
     // Only the very last point is exact.
     let fine = w
