@@ -137,21 +137,23 @@ fn readings_of_too_few_distinct_postures_are_refused_with_their_count() {
     );
 }
 
+/// A short search on the paper setup, before its start and output.
+const SELECT: [&str; 5] = [
+    "select",
+    "--setup",
+    "zhang2021-comau-nj165",
+    "--criterion",
+    "classical",
+];
+
 #[test]
 fn an_output_spelt_as_a_directory_is_refused_and_nothing_is_written() {
     let d = temp_dir("answers-out-dir");
     for out in ["{dir}/new/", "{dir}/new/.", "{dir}/.."] {
-        let args = [
-            "select",
-            "--setup",
-            "zhang2021-comau-nj165",
-            "--criterion",
-            "classical",
-        ];
         let more = ["--start-random", "--max-evals", "5", "--out", out];
         refused(
             &d,
-            &[&args[..], &more].concat(),
+            &[&SELECT[..], &more].concat(),
             &["--out", "a directory, expected a file name"],
         );
         assert!(!d.join("new").exists());
@@ -165,13 +167,6 @@ fn a_fifo_given_as_an_input_file_is_refused_at_once() {
     let _ = std::fs::remove_file(&fifo);
     let made = std::process::Command::new("mkfifo").arg(&fifo).status();
     assert!(made.is_ok_and(|s| s.success()), "mkfifo");
-    let args = [
-        "select",
-        "--setup",
-        "zhang2021-comau-nj165",
-        "--criterion",
-        "classical",
-    ];
     let out = d.join("out.csv");
     let more = [
         "--start",
@@ -182,7 +177,7 @@ fn a_fifo_given_as_an_input_file_is_refused_at_once() {
         out.to_str().unwrap(),
     ];
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stiffid"))
-        .args([&args[..], &more].concat())
+        .args([&SELECT[..], &more].concat())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()

@@ -376,7 +376,7 @@ fn input_files_have_a_size_limit() {
     refused(
         &dir,
         &["evaluate", "--setup", SETUP, "--postures", "/dev/zero"],
-        &["/dev/zero", "larger than the input limit of 256 MiB"],
+        &["/dev/zero", "is a device, not a regular file"],
     );
     refused(
         &dir,

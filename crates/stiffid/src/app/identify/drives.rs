@@ -331,7 +331,6 @@ fn header_has_loads<R: Read>(source: &mut BufReader<R>) -> bool {
 fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
     let points = setup.tool().measuring_points.len();
     let readings = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
-    super::super::readings::refuse_other_scale(setup, &readings).map_err(|e| in_data(name, e))?;
     let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
     steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
     let loaded = steps.loaded();
@@ -367,6 +366,8 @@ fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Foun
         };
         in_data(name, e)
     })?;
+    // Readings in another unit fit a robot of another size: refused whatever the fit found.
+    super::super::readings::refuse_other_scale(setup, &readings).map_err(|e| in_data(name, e))?;
     let origin = Origin::new(
         Labels::from_iter(&steps.labels),
         measurements.iter().map(|m| m.posture).collect(),
