@@ -72,7 +72,7 @@ fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
         frame: Frame::Base,
         at: None,
         compliance: None,
-        level: 0.95,
+        level: None,
     })
     .unwrap();
     let library =
