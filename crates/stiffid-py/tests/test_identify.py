@@ -160,8 +160,8 @@ def test_missing_file(fanuc, tmp_path):
         stiffid.identify(fanuc, tmp_path / "none.csv")
     with pytest.raises(ValueError, match="is a directory, expected a file"):
         stiffid.identify(fanuc, tmp_path)
-    for robust in [None, "huber"]:  # read whole, or in pieces: the same input limit
-        with pytest.raises(ValueError, match="larger than the input limit of 256 MiB"):
+    for robust in [None, "huber"]:  # read whole, or in pieces: a device is no input file
+        with pytest.raises(ValueError, match="/dev/zero: is a device, not a regular file; give a file"):
             stiffid.identify(fanuc, "/dev/zero", robust=robust)
 
 
