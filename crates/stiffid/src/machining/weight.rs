@@ -45,7 +45,7 @@ impl Weight {
             Ok(g) => g,
         };
         let model = gravity::Terms::of(robot, kind, springs, Vector6::zeros())?;
-        let names: Vec<String> = model.parameters().into_iter().map(|p| p.name).collect();
+        let names: Vec<String> = model.terms().iter().map(|t| t.name()).collect();
         let given: Vec<&str> = own.terms.iter().map(|(n, _)| n.as_str()).collect();
         if names != given {
             return Err(Error::InvalidField {

@@ -361,7 +361,7 @@ pub fn fitted_compliance(
     let values = fit.estimate.values.rows(model.gravity_start(), g.len());
     let own_weight = (!g.is_empty()).then(|| crate::model::OwnWeight {
         gravity: crate::common::choice::Choice::name(g.kind()).into(),
-        terms: (g.parameters().into_iter().map(|p| p.name))
+        terms: (g.terms().iter().map(|t| t.name()))
             .zip(values.iter().copied())
             .collect(),
     });

@@ -34,7 +34,6 @@
 //!   times `C, D` of `tau_3`, and the wrist's first moments with `c_2`, `c_3`, `c_4` and `c_5`:
 //!   17 terms on the FANUC R-2000iC/165F (kinematic springs) against 30 for every link.
 
-use super::error_model::{Kind, Parameter, Target};
 use crate::robot::kinematics::Coordinates;
 use crate::{Error, Result, Robot};
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
@@ -142,7 +141,9 @@ impl Term {
         1e6
     }
 
-    fn name(self) -> String {
+    /// Its parameter name: `gravity.c2` for joint 2's compliance, `gravity.c2.link3.mx` for a
+    /// lumped term (the joint, the link, the mass moment `m`, `mx`, `my` or `mz`).
+    pub fn name(self) -> String {
         match self {
             Term::Compliance { joint } => format!("gravity.c{}", joint + 1),
             Term::Lumped {
@@ -343,24 +344,13 @@ impl Terms {
         self.masses.as_ref()
     }
 
-    /// The parameters of the terms (priority 4).
-    pub(crate) fn parameters(&self) -> Vec<Parameter> {
-        self.terms
-            .iter()
-            .map(|&t| Parameter {
-                name: t.name(),
-                kind: match t {
-                    Term::Compliance { .. } => Kind::Compliance,
-                    Term::Lumped { .. } => Kind::Gravity,
-                },
-                target: Target::Gravity(t),
-                nominal: match t {
-                    Term::Compliance { joint } => self.nominal[joint],
-                    Term::Lumped { .. } => 0.0,
-                },
-                priority: 4,
-            })
-            .collect()
+    /// The nominal value (SI) of `term`: its compliance's nominal value (rad/(N m), zero when
+    /// unknown), zero for a lumped term.
+    pub(crate) fn nominal(&self, term: Term) -> f64 {
+        match term {
+            Term::Compliance { joint } => self.nominal[joint],
+            Term::Lumped { .. } => 0.0,
+        }
     }
 
     /// The unit torques `tau[l][k]` (springs' coordinates) of link `l`'s mass moment `k` at
