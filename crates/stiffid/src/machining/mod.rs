@@ -10,8 +10,11 @@
 //!    one without a selector), its mean force and moment over a revolution, turned from the feed
 //!    frame into the base frame along the path's own feed direction (the TCP's motion from the
 //!    previous point; the first point takes the second's) and the tool axis
-//!    ([`Operation::base_wrench`]). Rapid moves (`G0`) and points no operation covers cut nothing;
-//!    a milling point fed along the tool axis (a plunge) gets no force and is counted. With the
+//!    ([`Operation::base_wrench`]). Rapid moves (`G0`) and points no operation covers cut nothing,
+//!    but for the start of a drilling cycle's feed (the `R` level, a peck's re-approach), which
+//!    takes the feed's wrench: both ends of the feed are then compensated under the same thrust,
+//!    and the drill runs along the compensated hole axis instead of sliding sideways while it
+//!    cuts; a milling point fed along the tool axis (a plunge) gets no force and is counted. With the
 //!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
 //!    wrench ([`crate::setup::Payload::wrench`]).
 //! 3. [`compensate::path`] compensates every point, refusing any whose compensated axis angles
@@ -221,7 +224,8 @@ pub fn compensate(
             p.wrench(&pose.rotation, &arm.tool().tcp)
         })
     };
-    let (points, warnings) = path_points(&poses, &operations, weight);
+    let starts = feed_starts(program);
+    let (points, warnings) = path_points(&poses, &operations, &starts, weight);
     let results = compensate::path(arm, compliance, &points, options)?;
     check_configuration(&points, &results)?;
     let program = match program {
@@ -361,19 +365,70 @@ fn operations<'a>(
     }
 }
 
-/// The path points with their base-frame wrenches, and the warnings.
+/// Whether each point starts a drilling cycle's feed: a rapid move of a canned cycle (to the `R`
+/// level, or a `G83` peck's re-approach) followed by a feed of the same cycle. Such a point takes
+/// the feed's wrench, so that both ends of the feed are compensated under the same thrust and
+/// the controller's straight line between them runs along the compensated hole axis: a start
+/// compensated unloaded would slide the drill sideways by the thrust's deflection while it cuts.
+fn feed_starts(program: &Program) -> Vec<bool> {
+    match program {
+        Program::GCode(g) => {
+            let p = &g.points;
+            (0..p.len())
+                .map(|i| {
+                    p.get(i + 1).is_some_and(|next| {
+                        p[i].cycle.is_some()
+                            && p[i].motion == Motion::Rapid
+                            && next.motion == Motion::Feed
+                            && next.cycle == p[i].cycle
+                    })
+                })
+                .collect()
+        }
+        Program::Robot(r) => vec![false; r.targets.len()],
+    }
+}
+
+/// The path points with their base-frame wrenches, and the warnings. A feed's start
+/// ([`feed_starts`]) takes the process wrench of the feed it starts.
 fn path_points(
     poses: &[(u64, Target, Isometry3<f64>)],
     operations: &[Option<(usize, &Operation)>],
+    starts: &[bool],
     weight: impl Fn(&Isometry3<f64>) -> Vector6<f64>,
 ) -> (Vec<PathPoint>, Vec<String>) {
-    let mut plunges = Vec::new();
-    let mut uncovered = 0;
-    let mut previous_feed: Option<Vector3<f64>> = None;
+    let (process, warnings) = process_wrenches(poses, operations);
     let points = poses
         .iter()
         .enumerate()
         .map(|(i, (line, target, pose))| {
+            let wrench = match starts[i] {
+                true => process[i + 1],
+                false => process[i],
+            };
+            PathPoint {
+                line: *line,
+                target: target.clone(),
+                wrench: wrench + weight(pose),
+                frame: Frame::Base,
+            }
+        })
+        .collect();
+    (points, warnings)
+}
+
+/// Each point's process wrench (base frame), and the warnings.
+fn process_wrenches(
+    poses: &[(u64, Target, Isometry3<f64>)],
+    operations: &[Option<(usize, &Operation)>],
+) -> (Vec<Vector6<f64>>, Vec<String>) {
+    let mut plunges = Vec::new();
+    let mut uncovered = 0;
+    let mut previous_feed: Option<Vector3<f64>> = None;
+    let wrenches = poses
+        .iter()
+        .enumerate()
+        .map(|(i, (line, _, pose))| {
             let here = pose.translation.vector;
             let feed = match i {
                 0 => poses.get(1).map(|p| p.2.translation.vector - here),
@@ -383,7 +438,7 @@ fn path_points(
             .or(previous_feed);
             previous_feed = feed;
             let tool_z = pose.rotation * Vector3::z();
-            let wrench = match operations[i] {
+            match operations[i] {
                 None => {
                     uncovered += 1;
                     Vector6::zeros()
@@ -395,12 +450,6 @@ fn path_points(
                         Vector6::zeros()
                     }
                 },
-            };
-            PathPoint {
-                line: *line,
-                target: target.clone(),
-                wrench: wrench + weight(pose),
-                frame: Frame::Base,
             }
         })
         .collect();
@@ -422,7 +471,7 @@ fn path_points(
             is_are(uncovered)
         ));
     }
-    (points, warnings)
+    (wrenches, warnings)
 }
 
 /// Refuses a compensated target that changes the configuration (module docs).
