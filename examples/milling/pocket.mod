@@ -1,7 +1,7 @@
 MODULE POCKET
   ! written by stiffid: compensated targets, the tool, work object and speeds below;
   ! check them for the cell before running
-  PERS tooldata tspindle := [TRUE,[[0,0,250],[1,0,0,0]],[25,[0,0,120],[1,0,0,0],0,0,0]];
+  PERS tooldata tspindle := [TRUE,[[0,0,250],[1.000000000,0.000000000,0.000000000,0.000000000]],[25,[0,0,120],[1,0,0,0],0,0,0]];
   PERS wobjdata wpart := [FALSE,TRUE,"",[[2000,0,550],[1.000000000,0.000000000,0.000000000,0.000000000]],[[0,0,0],[1,0,0,0]]];
   CONST speeddata vrapid := [200,500,5000,1000];
   CONST zonedata zpath := [FALSE,0.01,0.01,0.01,0.1,0.01,0.1];

@@ -312,7 +312,7 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
     // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
     // first point and the rapid moves are joint motions, exact; the last point is exact.
     assert!(
-        text.contains("   4:J P[1] 20% FINE ;\n   5:L P[2] 5mm/sec CNT100 ;\n"),
+        text.contains("  10:J P[1] 20% FINE ;\n  11:L P[2] 5mm/sec CNT100 ;\n"),
         "{text}"
     );
     let linear = text.lines().filter(|l| l.contains("mm/sec CNT100")).count();

@@ -266,10 +266,12 @@ where
         field: "robot",
     })?;
     let robot = mounted(robot, &file, source_name)?;
-    let controller = match file.controller.take() {
+    let mut controller = match file.controller.take() {
         None => super::Controller::default(),
         Some(c) => controller(c, &file, source_name, &mut resolve_robot)?,
     };
+    controller.world = transform(file.robot_base, "robot_base", source_name)?;
+    controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = !file.loading.steps_n.is_empty();
     let (reading_variance, note) = file
         .noise
@@ -321,7 +323,11 @@ where
             Some(mounted(robot, file, source_name)?)
         }
     };
-    Ok(super::Controller { kinematics, robot })
+    Ok(super::Controller {
+        kinematics,
+        robot,
+        ..Default::default()
+    })
 }
 
 fn check_package_paths(paths: &[String]) -> Result<()> {

@@ -48,6 +48,7 @@ mod prediction;
 mod prior;
 mod process_forces;
 mod program_forms;
+mod program_frames;
 mod programs;
 mod register_postures;
 mod scene;

@@ -188,7 +188,7 @@ fn the_controller_kinematics_are_read_and_checked() {
         .to_builder()
         .with_controller(setup::Controller {
             kinematics: setup::Kinematics::Calibrated,
-            robot: None,
+            ..Default::default()
         })
         .build()
         .unwrap();

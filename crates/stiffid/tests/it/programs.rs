@@ -471,19 +471,20 @@ fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
         targets: &targets,
         moves: &m,
         tool: Tool {
-            tcp: s.tool().tcp,
+            frame: nalgebra::Translation3::from(s.tool().tcp).into(),
             payload: None,
         },
         work: *s.workpiece().unwrap(),
+        world: nalgebra::Isometry3::identity(),
         approximation: 1e-5,
         settings: Settings::default(),
     };
     let written = generate(&plan).unwrap();
     let ls = &written.files[0].text;
-    assert!(ls.contains("   5:L P[2] 10mm/sec CNT100 ;\n"), "{ls}");
+    assert!(ls.contains("  11:L P[2] 10mm/sec CNT100 ;\n"), "{ls}");
     // 12 inch/min = 5.08 mm/s = 30.48 cm/min: the nearest whole cm/min, with a warning.
     assert!(
-        ls.contains("   7:L P[4] 30cm/min CNT100 ;\n   8:J P[5] 20% FINE ;\n"),
+        ls.contains("  13:L P[4] 30cm/min CNT100 ;\n  14:J P[5] 20% FINE ;\n"),
         "{ls}"
     );
     assert!(

@@ -437,6 +437,7 @@ fn calibrated(
     let controller = Controller {
         kinematics: Kinematics::Nominal,
         robot: Some(setup.robot().clone()),
+        ..Default::default()
     };
     let calibrated = setup
         .to_builder()

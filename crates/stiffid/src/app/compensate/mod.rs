@@ -406,17 +406,22 @@ fn write_robot_program(
         moves: &moves,
         tool: program_tool(setup),
         work: setup.workpiece().copied().unwrap_or_default(),
+        world: setup.workcell().controller().world,
         approximation: chord_tolerance,
         settings: *settings,
     };
     generate(&plan)
 }
 
-/// The tool a generated program states: the setup's TCP, mass and centre of mass.
+/// The tool a generated program states, from the controller's flange (the setup's
+/// `[robot_flange]` adapter included): the setup's TCP, mass and centre of mass.
 fn program_tool(setup: &Setup) -> Tool {
+    let adapter = setup.workcell().controller().adapter;
     Tool {
-        tcp: setup.tool().tcp,
-        payload: setup.payload().map(|p| (p.mass, p.centre)),
+        frame: adapter * nalgebra::Translation3::from(setup.tool().tcp),
+        payload: setup
+            .payload()
+            .map(|p| (p.mass, adapter.transform_point(&p.centre.into()).coords)),
     }
 }
 

@@ -18,14 +18,7 @@ pub(super) fn header(plan: &Plan) -> String {
         number(plan.approximation * 1e3)
     );
     if plan.settings.targets == Targets::Cartesian {
-        let t = plan.tool.tcp * 1e3;
-        let _ = writeln!(
-            s,
-            "$TOOL = {{X {}, Y {}, Z {}, A 0, B 0, C 0}}",
-            number(t.x),
-            number(t.y),
-            number(t.z)
-        );
+        let _ = writeln!(s, "$TOOL = {}", frame(&plan.tool.frame));
         if let Some((mass, c)) = plan.tool.payload {
             let c = c * 1e3;
             let _ = writeln!(
@@ -37,20 +30,24 @@ pub(super) fn header(plan: &Plan) -> String {
                 number(c.z)
             );
         }
-        let p = plan.work.translation.vector * 1e3;
-        let [a, b, c] = zyx_deg(&plan.work.rotation);
-        let _ = writeln!(
-            s,
-            "$BASE = {{X {}, Y {}, Z {}, A {}, B {}, C {}}}",
-            number(p.x),
-            number(p.y),
-            number(p.z),
-            number(a),
-            number(b),
-            number(c)
-        );
+        let _ = writeln!(s, "$BASE = {}", frame(&plan.world.inv_mul(&plan.work)));
     }
     s
+}
+
+/// A KRL `FRAME` (mm, deg).
+fn frame(f: &nalgebra::Isometry3<f64>) -> String {
+    let p = f.translation.vector * 1e3;
+    let [a, b, c] = zyx_deg(&f.rotation);
+    format!(
+        "{{X {}, Y {}, Z {}, A {}, B {}, C {}}}",
+        number(p.x),
+        number(p.y),
+        number(p.z),
+        number(a),
+        number(b),
+        number(c)
+    )
 }
 
 /// The moves of one file.

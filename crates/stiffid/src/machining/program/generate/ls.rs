@@ -1,15 +1,31 @@
 //! FANUC LS (`.ls`): `/PROG NAME`, `/ATTR`, `/MN`, `/POS`, `/END` (module docs of [`super`]).
 
-use super::{number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT};
+use super::{in_world, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT};
 use crate::{Error, Result};
 use std::fmt::Write;
 
 /// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
 pub const COMMENT: &str = "stiffid";
 
-/// The frames set up at the top of the main program.
-pub(super) fn header(_plan: &Plan) -> String {
-    "! set UTOOL[1] to the setup TCP ;\nUFRAME_NUM=0 ;\nUTOOL_NUM=1 ;\n".into()
+/// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
+/// whose values (the tool frame from the controller's flange) the remarks state, one per line
+/// (a remark is at most 32 characters on the pendant).
+pub(super) fn header(plan: &Plan) -> String {
+    let t = &plan.tool.frame;
+    let p = t.translation.vector * 1e3;
+    let [r, pitch, w] = zyx_deg(&t.rotation);
+    let mut s = String::from("! set UTOOL[1] to the tool: ;\n");
+    for (name, value, unit) in [
+        ("X", p.x, "mm"),
+        ("Y", p.y, "mm"),
+        ("Z", p.z, "mm"),
+        ("W", w, "deg"),
+        ("P", pitch, "deg"),
+        ("R", r, "deg"),
+    ] {
+        let _ = writeln!(s, "! UT1 {name} = {} {unit} ;", number(value));
+    }
+    s + "UFRAME_NUM=0 ;\nUTOOL_NUM=1 ;\n"
 }
 
 /// A feed (m/s) as an LS speed: whole mm/sec, else whole cm/min, else the nearest cm/min (with a
@@ -70,8 +86,8 @@ pub(super) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
                 v(t.q_deg[0]), v(t.q_deg[1]), v(t.q_deg[2]), v(t.q_deg[3]), v(t.q_deg[4]), v(t.q_deg[5])
             ),
             Targets::Cartesian => {
-                let p = t.pose.translation.vector * 1e3;
-                let [r, pitch, w] = zyx_deg(&t.pose.rotation);
+                let (p, rotation) = in_world(plan, &t.pose);
+                let [r, pitch, w] = zyx_deg(&rotation);
                 write!(
                     pos,
                     "\t\tCONFIG : '{}',\n\tX = {} mm,\tY = {} mm,\tZ = {} mm,\n\tW = {} deg,\tP = {} deg,\tR = {} deg\n}};\n",

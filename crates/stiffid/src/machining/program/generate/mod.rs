@@ -16,14 +16,19 @@
 //! interpolation's deviation.
 //!
 //! ## The tool and the work object
-//! - KUKA KRL (`.src`): `$TOOL` is the setup's TCP (orientation of the flange), `$LOAD` its mass
-//!   and centre of mass when the setup gives them, `$BASE` the part frame (`[workpiece]
-//!   base_from_part`); targets in the part frame.
-//! - ABB RAPID (`.mod`): `PERS tooldata tspindle` (the TCP, the mass and centre of mass, required)
-//!   and `PERS wobjdata wpart` (the part frame as its user frame); targets in the part frame.
-//! - FANUC LS (`.ls`): positions in user frame 0 (the robot's world, taken as its base frame) with
-//!   tool frame 1 (`UT : 1`), which must hold the setup's TCP on the controller (an LS program
-//!   cannot set it); the program says so in a remark.
+//! Every frame a program states is the controller's ([`crate::setup::Controller`]): the tool
+//! from the controller's flange, an adapter plate (the setup's `[robot_flange]`) included
+//! ([`Tool::frame`]), and positions, base and work object in the controller's world, the robot
+//! file's base frame, a pedestal (the setup's `[robot_base]`) taken out ([`Plan::world`]).
+//! - KUKA KRL (`.src`): `$TOOL` is the tool frame (the TCP with the mounted flange's
+//!   orientation), `$LOAD` its mass and centre of mass when the setup gives them, `$BASE` the part
+//!   frame (`[workpiece] base_from_part`) in the world; targets in the part frame.
+//! - ABB RAPID (`.mod`): `PERS tooldata tspindle` (the tool frame, the mass and centre of mass,
+//!   required) and `PERS wobjdata wpart` (the part frame in the world as its user frame); targets
+//!   in the part frame.
+//! - FANUC LS (`.ls`): positions in user frame 0 (the world) with tool frame 1 (`UT : 1`), which
+//!   must hold the tool frame on the controller (an LS program cannot set it); the program states
+//!   its values in remarks.
 //!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
@@ -221,12 +226,16 @@ impl Target {
     }
 }
 
-/// The tool a program is written for: its centre point and, if known, its mass.
+/// The tool a program is written for, as the controller holds it: its frame and, if known, its
+/// mass.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tool {
-    /// The tool centre point, flange frame, m.
-    pub tcp: Vector3<f64>,
-    /// The mass (kg) and centre of mass (flange frame, m), if the setup gives them.
+    /// The tool frame in the controller's flange frame: its origin the tool centre point, its
+    /// axes those of the flange the targets' orientations are given for (the mounted flange,
+    /// after an adapter plate); lengths in m.
+    pub frame: Isometry3<f64>,
+    /// The mass (kg) and centre of mass (the controller's flange frame, m), if the setup gives
+    /// them.
     pub payload: Option<(f64, Vector3<f64>)>,
 }
 
@@ -243,8 +252,12 @@ pub struct Plan<'a> {
     pub moves: &'a [Move],
     /// The tool.
     pub tool: Tool,
-    /// The part frame in the base frame (the work object).
+    /// The part frame (the work object) in the frame of the targets' poses (the setup's base
+    /// frame).
     pub work: Isometry3<f64>,
+    /// The controller's world frame in the frame of the targets' poses (the setup's
+    /// `[robot_base]`): what the program's world positions, base and work object are relative to.
+    pub world: Isometry3<f64>,
     /// The approximation of intermediate cutting points, m (the chord tolerance).
     pub approximation: f64,
     /// How.
@@ -474,6 +487,13 @@ pub(crate) fn number(x: f64) -> String {
 /// A target's pose in the frame `work` (part frame): position (mm) and rotation.
 pub(crate) fn in_work(plan: &Plan, t: &Target) -> (Vector3<f64>, UnitQuaternion<f64>) {
     let local = plan.work.inverse() * t.pose;
+    (local.translation.vector * 1e3, local.rotation)
+}
+
+/// A pose (the frame of the targets' poses) in the controller's world: position (mm) and
+/// rotation.
+pub(crate) fn in_world(plan: &Plan, pose: &Isometry3<f64>) -> (Vector3<f64>, UnitQuaternion<f64>) {
+    let local = plan.world.inverse() * pose;
     (local.translation.vector * 1e3, local.rotation)
 }
 

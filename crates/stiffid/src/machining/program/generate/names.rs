@@ -16,9 +16,9 @@ pub const MAX_FILES: usize = 9999;
 /// digits (FANUC's line numbers run 1 to 9999).
 pub const LS_MAX_LINES: usize = 9999;
 
-/// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`,
-/// `UFRAME_NUM`, `UTOOL_NUM`).
-pub(super) const LS_HEADER_LINES: usize = 3;
+/// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`, six
+/// remarks of the tool frame's values, `UFRAME_NUM`, `UTOOL_NUM`).
+pub(super) const LS_HEADER_LINES: usize = 9;
 
 /// The longest program name of a dialect's controller and language: KRL 24 (KUKA System
 /// Software 8), RAPID 32 (RAPID identifiers), FANUC LS 36 (R-30iB Plus; R-30iA takes 8, the

@@ -11,28 +11,22 @@ pub(super) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
          ! check them for the cell before running\n",
     );
     if plan.settings.targets == Targets::Cartesian {
-        let t = plan.tool.tcp * 1e3;
+        let tool = &plan.tool.frame;
         let (mass, c) = plan.tool.payload.unwrap_or_default();
         let c = c * 1e3;
         let _ = writeln!(
             s,
-            "  PERS tooldata tspindle := [TRUE,[[{},{},{}],[1,0,0,0]],[{},[{},{},{}],[1,0,0,0],0,0,0]];",
-            number(t.x),
-            number(t.y),
-            number(t.z),
+            "  PERS tooldata tspindle := [TRUE,{},[{},[{},{},{}],[1,0,0,0],0,0,0]];",
+            pose(tool),
             number(mass),
             number(c.x),
             number(c.y),
             number(c.z)
         );
-        let p = plan.work.translation.vector * 1e3;
         let _ = writeln!(
             s,
-            "  PERS wobjdata wpart := [FALSE,TRUE,\"\",[[{},{},{}],{}],[[0,0,0],[1,0,0,0]]];",
-            number(p.x),
-            number(p.y),
-            number(p.z),
-            quaternion(&plan.work.rotation)
+            "  PERS wobjdata wpart := [FALSE,TRUE,\"\",{},[[0,0,0],[1,0,0,0]]];",
+            pose(&plan.world.inv_mul(&plan.work))
         );
     }
     let a = number(plan.approximation * 1e3);
@@ -99,6 +93,18 @@ pub(super) fn body(plan: &Plan, part: &Part) -> String {
         };
     }
     s
+}
+
+/// A RAPID `pose`: `[[x,y,z],[q1,q2,q3,q4]]` (mm).
+fn pose(f: &nalgebra::Isometry3<f64>) -> String {
+    let p = f.translation.vector * 1e3;
+    format!(
+        "[[{},{},{}],{}]",
+        number(p.x),
+        number(p.y),
+        number(p.z),
+        quaternion(&f.rotation)
+    )
 }
 
 /// The main program's calls of its sub-programs.

@@ -8,7 +8,7 @@ fn robot() -> Robot {
 
 fn tool() -> Tool {
     Tool {
-        tcp: Vector3::new(0.01, -0.02, 0.3),
+        frame: Isometry3::translation(0.01, -0.02, 0.3),
         payload: Some((12.5, Vector3::new(0.0, 0.0, 0.12))),
     }
 }
@@ -25,7 +25,13 @@ fn targets(q_deg: &[[f64; 6]]) -> Vec<Target> {
     let r = robot();
     q_deg
         .iter()
-        .map(|q| Target::new(&r, &tool().tcp, &Vector6::from(*q).map(f64::to_radians)))
+        .map(|q| {
+            Target::new(
+                &r,
+                &tool().frame.translation.vector,
+                &Vector6::from(*q).map(f64::to_radians),
+            )
+        })
         .collect()
 }
 
@@ -37,6 +43,7 @@ fn plan<'a>(dialect: Dialect, name: &'a str, t: &'a [Target], m: &'a [Move]) -> 
         moves: m,
         tool: tool(),
         work: work(),
+        world: Isometry3::identity(),
         approximation: 1e-5,
         settings: Settings::default(),
     }
@@ -219,7 +226,7 @@ fn the_programs_initialise_motion_end_exact_and_name_their_tool_and_work_object(
         .text;
     for needed in [
         "MODULE POCKET\n",
-        "PERS tooldata tspindle := [TRUE,[[10,-20,300],[1,0,0,0]],[12.5,[0,0,120],",
+        "PERS tooldata tspindle := [TRUE,[[10,-20,300],[1.000000000,0.000000000,0.000000000,0.000000000]],[12.5,[0,0,120],",
         "PERS wobjdata wpart := [FALSE,TRUE,\"\",[[1300,-700,400],",
         "ConfL \\On;",
         ", [30,500,5000,1000], zpath, tspindle\\WObj:=wpart;",
@@ -376,10 +383,11 @@ fn a_million_moves_are_split_into_called_sub_programs() {
     let mut p = plan(Dialect::FanucLs, "PK", &t, &m);
     p.settings.targets = Targets::Joint;
     let w = generate(&p).unwrap();
-    // 10 000 moves per file, but an LS file numbers at most 9999 lines: 9996 moves each.
+    // 10 000 moves per file, but an LS file numbers at most 9999 lines, nine of them the
+    // header's: 9990 moves each.
     let per_file = LS_MAX_LINES - names::LS_HEADER_LINES;
     let subs = 1_000_000_usize.div_ceil(per_file);
-    assert_eq!((per_file, subs), (9996, 101));
+    assert_eq!((per_file, subs), (9990, 101));
     assert_eq!(w.files.len(), subs + 1);
     let main = &w.files[0];
     assert_eq!(main.name, "PK");

@@ -1,0 +1,205 @@
+//! Every frame in a generated program is the controller's: with a pedestal (`[robot_base]`) and
+//! an adapter plate (`[robot_flange]`) in the setup, the controller's own robot file (the preset,
+//! neither offset in it) run at the compensated axis angles, with the tool the program states,
+//! puts the tool on the target the program states in its base, work object or user frame 0,
+//! for KRL, RAPID and LS. The controller is simulated here from the program's text alone.
+
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector6};
+use stiffid::app::compensate::{self, Input};
+use stiffid::machining::compensate::{Compensated, Options};
+use stiffid::machining::program::generate::{Settings, Targets};
+use stiffid::machining::program::Dialect;
+use stiffid::machining::Language;
+use stiffid::robot::presets;
+
+const PEDESTAL: &str =
+    "[robot_base]\nxyz_mm = [250.0, -120.0, 500.0]\nrpy_deg = [0.0, 0.0, 20.0]\n";
+const ADAPTER: &str = "[robot_flange]\nxyz_mm = [0.0, 0.0, 100.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
+
+/// The FANUC milling cell on a pedestal with an adapter plate, its part where the robot reaches
+/// it as in the example (the part frame moved with the pedestal).
+fn mounted_setup() -> stiffid::Setup {
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
+    let pedestal = Isometry3::from_parts(
+        Translation3::new(0.25, -0.12, 0.5),
+        UnitQuaternion::from_euler_angles(0.0, 0.0, 20f64.to_radians()),
+    );
+    let part = pedestal * Isometry3::translation(1.3, -0.7, 0.3);
+    let (p, (r, pi, y)) = (part.translation.vector * 1e3, part.rotation.euler_angles());
+    let workpiece = format!(
+        "base_from_part = {{ xyz_mm = [{}, {}, {}], rpy_deg = [{}, {}, {}] }}",
+        p.x,
+        p.y,
+        p.z,
+        r.to_degrees(),
+        pi.to_degrees(),
+        y.to_degrees()
+    );
+    let text = text
+        .replace(
+            "base_from_part = { xyz_mm = [1300, -700, 400], rpy_deg = [0, 0, 0] }",
+            &workpiece,
+        )
+        .replacen("\n[tool]", &format!("\n{PEDESTAL}\n{ADAPTER}\n[tool]"), 1)
+        .replacen(
+            "\n[loading]",
+            "mass_kg = 12.0\ncentre_of_mass_mm = [10.0, 0.0, 150.0]\n\n[loading]",
+            1,
+        );
+    stiffid::setup::parse(&text, "mounted.toml", |name, _| presets::get(name)).unwrap()
+}
+
+fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated>) {
+    let compliance =
+        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
+            .unwrap()
+            .compliance(setup.model())
+            .unwrap();
+    let process = stiffid::machining::process::file::parse(
+        include_str!("../../../../examples/milling/aluminium.toml"),
+        "aluminium.toml",
+    )
+    .unwrap();
+    let request = compensate::Request {
+        setup,
+        compliance,
+        input: Input::Program {
+            name: "pocket.nc".into(),
+            text: include_str!("../../../../examples/milling/pocket.nc"),
+            language: Language::GCode,
+            process_name: "aluminium.toml".into(),
+            process,
+            chord_tolerance: 1e-4,
+            output: Language::Robot(dialect),
+            out_name: format!("pocket.{}", Language::Robot(dialect).extension()),
+            settings: Settings {
+                targets: Targets::Cartesian,
+                ..Settings::default()
+            },
+        },
+        options: Options::for_setup(setup),
+    };
+    let mut results = Vec::new();
+    let report = compensate::run::<stiffid::Error, _>(request, |_, _, r| {
+        results.extend_from_slice(r);
+        Ok(())
+    })
+    .unwrap();
+    (report.program.unwrap().text, results)
+}
+
+/// The numbers of a `name value` or `name = value unit` list after `prefix` on a line.
+fn numbers(text: &str) -> Vec<f64> {
+    text.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == 'e'))
+        .filter_map(|t| t.parse::<f64>().ok())
+        .collect()
+}
+
+/// A KRL frame `{X .., Y .., Z .., A .., B .., C ..}` (mm, deg; `R = Rz(A) Ry(B) Rx(C)`).
+fn krl_frame(v: &[f64]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
+        UnitQuaternion::from_euler_angles(v[5].to_radians(), v[4].to_radians(), v[3].to_radians()),
+    )
+}
+
+/// A RAPID pose `[[x,y,z],[q1,q2,q3,q4]]` (mm).
+fn rapid_pose(v: &[f64]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
+        UnitQuaternion::from_quaternion(Quaternion::new(v[3], v[4], v[5], v[6])),
+    )
+}
+
+/// What the controller reads from a program: its tool (from its flange) and each target as a
+/// tool pose in its world.
+fn controller_view(dialect: Dialect, text: &str) -> (Isometry3<f64>, Vec<Isometry3<f64>>) {
+    let line = |prefix: &str| {
+        text.lines()
+            .find_map(|l| l.find(prefix).map(|i| &l[i + prefix.len()..]))
+            .unwrap_or_else(|| panic!("{prefix}: {text}"))
+    };
+    match dialect {
+        Dialect::Krl => {
+            let tool = krl_frame(&numbers(line("$TOOL =")));
+            let base = krl_frame(&numbers(line("$BASE =")));
+            let targets = text
+                .lines()
+                .filter_map(|l| l.split_once("{E6POS:"))
+                .map(|(_, rest)| base * krl_frame(&numbers(rest.split('S').next().unwrap())))
+                .collect();
+            (tool, targets)
+        }
+        Dialect::Rapid => {
+            let tooldata = numbers(line("PERS tooldata tspindle := [TRUE,"));
+            // The centre of mass from the controller's flange: the adapter's turn and stand-off.
+            let turn = 30f64.to_radians();
+            let cog = [10.0 * turn.cos(), 10.0 * turn.sin(), 250.0];
+            for (k, want) in cog.iter().enumerate() {
+                assert!((tooldata[8 + k] - want).abs() < 1e-6, "{tooldata:?}");
+            }
+            let tool = rapid_pose(&tooldata[..7]);
+            let wobj = rapid_pose(&numbers(line("PERS wobjdata wpart := [FALSE,TRUE,\"\","))[..7]);
+            let targets = text
+                .lines()
+                .filter_map(|l| {
+                    l.trim()
+                        .strip_prefix("MoveL ")
+                        .or(l.trim().strip_prefix("MoveJ "))
+                })
+                .map(|rest| wobj * rapid_pose(&numbers(rest)[..7]))
+                .collect();
+            (tool, targets)
+        }
+        Dialect::FanucLs => {
+            let ut = |name: &str| numbers(line(&format!("! UT1 {name} =")))[0];
+            let tool = krl_frame(&[ut("X"), ut("Y"), ut("Z"), ut("R"), ut("P"), ut("W")]);
+            let lines: Vec<&str> = text.lines().collect();
+            let targets = (0..lines.len())
+                .filter(|&i| lines[i].trim_start().starts_with("X ="))
+                .map(|i| {
+                    let xyz = numbers(lines[i]);
+                    let wpr = numbers(lines[i + 1]);
+                    // W about x, P about y, R about z: R = Rz(R) Ry(P) Rx(W).
+                    krl_frame(&[xyz[0], xyz[1], xyz[2], wpr[2], wpr[1], wpr[0]])
+                })
+                .collect();
+            (tool, targets)
+        }
+    }
+}
+
+#[test]
+fn programs_state_the_tool_and_positions_in_the_controllers_frames() {
+    let setup = mounted_setup();
+    // The controller runs the robot file as it is: no pedestal, no adapter.
+    let controller = presets::get("fanuc-r2000ic-165f").unwrap();
+    assert!(
+        (controller.base().translation.vector - setup.robot().base().translation.vector).norm()
+            > 0.4
+    );
+    for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
+        let (text, results) = program(&setup, dialect);
+        let (tool, targets) = controller_view(dialect, &text);
+        // The adapter is in the tool: its 100 mm stand-off and 30 deg turn.
+        assert!(
+            (tool.translation.vector.z - (0.1 + setup.tool().tcp.z)).abs() < 1e-6,
+            "{dialect:?}: {tool}"
+        );
+        assert!(
+            (tool.rotation.angle() - 30f64.to_radians()).abs() < 1e-6,
+            "{dialect:?}"
+        );
+        assert_eq!(targets.len(), results.len(), "{dialect:?}");
+        let mut worst: (f64, f64) = (0.0, 0.0);
+        for (target, r) in targets.iter().zip(&results) {
+            let q: Vector6<f64> = r.q_compensated;
+            let reached = controller.frames(&q).flange * tool;
+            worst.0 = worst
+                .0
+                .max((reached.translation.vector - target.translation.vector).norm());
+            worst.1 = worst.1.max(reached.rotation.angle_to(&target.rotation));
+        }
+        assert!(worst.0 < 2e-8 && worst.1 < 1e-7, "{dialect:?}: {worst:?}");
+    }
+}
