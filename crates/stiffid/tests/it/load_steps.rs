@@ -434,3 +434,61 @@ fn offsets_with_a_robust_nonnegative_or_cross_validated_fit_are_refused_saying_w
         "{folds}"
     );
 }
+
+/// Each step reads what the last wrote: the readings under load steps that `identify` reads
+/// (`load_n` and the force columns) are read by `validate` and `identify --compare-models` too,
+/// turned into the same displacements: noise-free readings of the nominal stiffness validate
+/// to round-off against it, and the comparison finds the six drives' stiffness again.
+#[test]
+fn validate_and_the_model_comparison_read_load_step_readings() {
+    let setup = paper();
+    let text = Campaign {
+        loads: &[250.0, 500.0],
+        offset_mm: 0.0,
+        hysteresis_mm: 0.0,
+        noise_mm: 0.0,
+        seed: 1,
+    }
+    .readings(&setup);
+    let compliance = setup.model_compliance("test").unwrap();
+    let report = stiffid::app::validate::run(stiffid::app::validate::Request {
+        setup: &setup,
+        compliance: &compliance,
+        data: Data::File {
+            name: "readings.csv".into(),
+            reader: text.as_bytes(),
+        },
+        level: None,
+    })
+    .unwrap();
+    let v = &report.validation;
+    assert_eq!(
+        v.checks.len(),
+        2 * PAPER_POSTURES_DEG.len() * setup.tool().measuring_points.len()
+    );
+    assert!(v.max < 1e-10, "{} m", v.max);
+    assert!(v.measured[0] > 1e-4);
+    let drives = identify(&setup, &text, false).unwrap();
+    let compared = job::run(Request {
+        setup: &setup,
+        data: Data::File {
+            name: "readings.csv".into(),
+            reader: text.as_bytes(),
+        },
+        options: Options {
+            compare_models: true,
+            candidates: Some(vec!["tilt3_x".into()]),
+            ..Options::default()
+        },
+    })
+    .unwrap();
+    let job::Report::Comparison(c) = compared else {
+        panic!("not the comparison")
+    };
+    let k = setup.nominal_stiffness().unwrap();
+    for j in 0..6 {
+        let identified = drives.identification.stiffness[j];
+        assert!((identified - k[j]).abs() < 1e-6 * k[j], "{j}: {identified}");
+    }
+    assert!(!c.comparison.models.is_empty());
+}

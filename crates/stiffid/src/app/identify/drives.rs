@@ -326,61 +326,101 @@ fn header_has_loads<R: Read>(source: &mut BufReader<R>) -> bool {
         .is_some_and(has_load_column)
 }
 
-/// The identification of raw readings under load steps ([`crate::identify::steps`]): every loaded reading
-/// relative to its point's unloaded one, and each posture's linearity.
-fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
-    let points = setup.tool().measuring_points.len();
-    let readings = readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
-    let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
-    steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let loaded = steps.loaded();
-    if let Some(p) = (0..steps.labels.len())
-        .find(|&p| !loaded.iter().any(|&i| steps.measurements[i].posture == p))
-    {
-        return Err(in_data(
-            name,
-            Error::InvalidField {
-                field: "load_step".into(),
-                message: format!(
-                    "posture '{}' has no loaded reading: nothing to identify from it",
-                    crate::common::limits::short(&steps.labels[p])
-                ),
-            },
-        ));
+/// Raw readings under load steps read for a fit ([`crate::identify::steps`]): every loaded
+/// reading relative to its point's unloaded one, in the base frame, with its line and where it
+/// came from.
+struct Loaded {
+    readings: readings::Readings,
+    steps: LoadSteps,
+    /// The loaded readings as displacement measurements.
+    measurements: Vec<Measurement>,
+    /// The line of each measurement's reading.
+    lines: Vec<u64>,
+    origin: Origin,
+}
+
+impl Loaded {
+    /// The readings of `text` (named `name`): refused naming the data when a posture has no
+    /// loaded reading.
+    fn read(setup: &Setup, name: &str, text: &str) -> Result<Self> {
+        let points = setup.tool().measuring_points.len();
+        let readings =
+            readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
+        let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
+        steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
+        let loaded = steps.loaded();
+        if let Some(p) = (0..steps.labels.len())
+            .find(|&p| !loaded.iter().any(|&i| steps.measurements[i].posture == p))
+        {
+            return Err(in_data(
+                name,
+                Error::InvalidField {
+                    field: "load_step".into(),
+                    message: format!(
+                        "posture '{}' has no loaded reading: nothing to identify from it",
+                        crate::common::limits::short(&steps.labels[p])
+                    ),
+                },
+            ));
+        }
+        let measurements: Vec<Measurement> = loaded
+            .iter()
+            .map(|&i| steps.measurements[i].clone())
+            .collect();
+        let lines: Vec<u64> = loaded.iter().map(|&i| steps.lines[i]).collect();
+        let origin = Origin::new(
+            Labels::from_iter(&steps.labels),
+            measurements.iter().map(|m| m.posture).collect(),
+            measurements.iter().map(|m| m.point).collect(),
+            posture_angles(&measurements),
+            Some(lines.clone()),
+            readings.columns.clone(),
+        );
+        Ok(Loaded {
+            readings,
+            steps,
+            measurements,
+            lines,
+            origin,
+        })
     }
-    let measurements: Vec<Measurement> = loaded
-        .iter()
-        .map(|&i| steps.measurements[i].clone())
-        .collect();
-    let lines: Vec<u64> = loaded.iter().map(|&i| steps.lines[i]).collect();
-    let (id, cv, offsets) = fit(setup, how, &measurements).map_err(|e| {
-        let e = match e {
+
+    /// `error` of a fit of the measurements, placed in the data `name`: a measurement's number
+    /// as its reading's line.
+    fn explain(&self, name: &str, error: Error) -> Error {
+        let e = match error {
             Error::Measurement { number, .. } => Error::InvalidField {
                 field: "readings".into(),
                 message: format!(
-                    "line {}: {e}",
-                    lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)
+                    "line {}: {error}",
+                    self.lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)
                 ),
             },
             e => e,
         };
         in_data(name, e)
-    })?;
-    // Readings in another unit fit a robot of another size: refused whatever the fit found.
-    super::super::readings::refuse_other_scale(setup, &readings).map_err(|e| in_data(name, e))?;
-    let origin = Origin::new(
-        Labels::from_iter(&steps.labels),
-        measurements.iter().map(|m| m.posture).collect(),
-        measurements.iter().map(|m| m.point).collect(),
-        posture_angles(&measurements),
-        Some(lines),
-        readings.columns.clone(),
-    );
+    }
+
+    /// Readings in another unit fit a robot of another size: refused whatever a fit found
+    /// (after it, so that a file's own errors come first).
+    fn check_scale(&self, setup: &Setup, name: &str) -> Result<()> {
+        super::super::readings::refuse_other_scale(setup, &self.readings)
+            .map_err(|e| in_data(name, e))
+    }
+}
+
+/// The identification of raw readings under load steps ([`Loaded`]), and each posture's
+/// linearity.
+fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
+    let data = Loaded::read(setup, name, text)?;
+    let (id, cv, offsets) =
+        fit(setup, how, &data.measurements).map_err(|e| data.explain(name, e))?;
+    data.check_scale(setup, name)?;
     Ok(Found {
         identification: id,
-        origin,
+        load_steps: Some(linearity(&data.steps, setup.noise().reading_variance)),
+        origin: data.origin,
         cross_validation: cv,
-        load_steps: Some(linearity(&steps, setup.noise().reading_variance)),
         offsets,
     })
 }
@@ -420,12 +460,14 @@ fn fit(
     Ok((id, cross_validation, None))
 }
 
-/// `f` on the measurements of `data` (a file read and turned into the base frame, or arrays):
-/// the data's name, where each measurement came from and `f`'s result; `f`'s errors as
-/// [`Error::Input`] naming the data (a file's line and column).
+/// `f` on the measurements of `data` (a measurement file or raw readings under load steps, as
+/// `identify` reads them, turned into the base frame; or arrays): the data's name, where each
+/// measurement came from and `f`'s result; `f`'s errors as [`Error::Input`] naming the data (a
+/// file's line and column).
 ///
 /// # Errors
-/// Those of [`read_file`] and of `f`.
+/// Those of [`read_file`], of the readings ([`crate::io::readings::parse`],
+/// [`LoadSteps::new`]) and of `f`.
 pub(crate) fn on_measurements<R: Read, T>(
     setup: &Setup,
     data: Data<R>,
@@ -433,7 +475,14 @@ pub(crate) fn on_measurements<R: Read, T>(
 ) -> Result<(String, Origin, T)> {
     match data {
         Data::File { name, reader } => {
-            let (file, origin) = read_file(setup, &name, reader)?;
+            let mut source = BufReader::with_capacity(1 << 20, reader);
+            if header_has_loads(&mut source) {
+                let data = Loaded::read(setup, &name, &read_text(&name, source)?)?;
+                let found = f(&data.measurements).map_err(|e| data.explain(&name, e))?;
+                data.check_scale(setup, &name)?;
+                return Ok((name, data.origin, found));
+            }
+            let (file, origin) = read_file(setup, &name, source)?;
             let found = f(&file.measurements).map_err(|e| in_data(&name, file.explain(e)))?;
             Ok((name, origin, found))
         }
