@@ -10,7 +10,8 @@
 //! Every point evaluated is recorded with its true criterion value at its postures, so the best
 //! point seen is kept as in the plain search; `t` starts at the start group's worst `ln k(J_N)`.
 
-use super::{log_value, postures, Problem, PENALTY};
+use super::super::PENALTY;
+use super::{log_value, postures, Problem};
 use crate::design::evaluator::MaxSplit;
 use crate::design::search::sqp::{self, violation, Gradients, Nlp, Tolerances, Values, FEASIBLE};
 use crate::design::search::termination::Termination;

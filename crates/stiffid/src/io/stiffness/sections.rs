@@ -1,0 +1,218 @@
+//! The optional sections of a stiffness file: the gravity terms of a calibration and the
+//! held-out residuals that calibrate prediction intervals.
+
+use super::{invalid, stiffness_unit};
+use crate::common::limits::{self};
+use crate::model::prediction::{self, Calibration, HeldOut};
+use crate::model::ParameterKind;
+use crate::Result;
+use nalgebra::DVector;
+use serde::{Deserialize, Serialize};
+
+/// The most gravity terms a stiffness file holds: four mass moments of six links for each of
+/// the six springs.
+pub const MAX_GRAVITY_TERMS: usize = 144;
+
+/// The gravity terms a calibration fitted ([`crate::model::OwnWeight`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct GravitySection {
+    /// The gravity model: `masses` (the robot's link masses, the terms the joint compliances),
+    /// `lumped` or `lumped-links` (compliance times mass moment).
+    pub model: String,
+    /// Each term, in the model's order; at most [`MAX_GRAVITY_TERMS`].
+    pub terms: Vec<GravityTerm>,
+}
+
+/// One gravity term.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct GravityTerm {
+    /// Its name: `gravity.c2` (a compliance) or `gravity.c2.link3.mx` (compliance times a mass
+    /// moment).
+    pub name: String,
+    /// Its value, SI: rad/(N m) for a compliance, rad kg/(N m) for a mass, rad kg/N for a first
+    /// moment; finite.
+    pub value_si: f64,
+}
+
+impl GravitySection {
+    /// The section of `weight`.
+    pub fn new(weight: &crate::model::OwnWeight) -> Self {
+        Self {
+            model: weight.gravity.clone(),
+            terms: (weight.terms.iter())
+                .map(|(name, v)| GravityTerm {
+                    name: name.clone(),
+                    value_si: *v,
+                })
+                .collect(),
+        }
+    }
+
+    /// Checks the count and that every value is finite.
+    pub(super) fn check(&self) -> Result<()> {
+        limits::check_count("gravity.terms", self.terms.len(), 1, MAX_GRAVITY_TERMS)?;
+        match self.terms.iter().position(|t| !t.value_si.is_finite()) {
+            Some(i) => Err(invalid(
+                format!("gravity.terms[{}].value_si", i + 1),
+                "expected a finite number".into(),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    pub(super) fn own_weight(&self) -> crate::model::OwnWeight {
+        crate::model::OwnWeight {
+            gravity: self.model.clone(),
+            terms: (self.terms.iter())
+                .map(|t| (t.name.clone(), t.value_si))
+                .collect(),
+        }
+    }
+}
+
+/// The held-out residuals of an identification cross-validated over postures: what the
+/// jackknife+ (or CV+) prediction intervals of `predict`, `compensate` and `validate` are built
+/// from ([`crate::model::prediction`], Barber et al. 2021).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct PredictionSection {
+    /// `jackknife+` (one fold per posture) or `cv+` (fewer folds): written for the reader,
+    /// recomputed from `postures` and the folds when read.
+    pub method: String,
+    /// The postures the folds held out.
+    pub postures: usize,
+    /// `sigma_0`, the scale's noise floor: the standard deviation of one displacement coordinate
+    /// from the setup's tracker noise, mm; finite, >= 0.
+    pub noise_floor_mm: f64,
+    /// The 95% quantile of the held-out scores ([`Calibration::score_quantile`]): 95% of the
+    /// held-out errors are within this share of the predicted displacement plus
+    /// `noise_floor_mm`; `null` without scores. Written for the reader, ignored when read.
+    #[serde(default)]
+    pub score_q95: Option<f64>,
+    /// `score_q95` in %. Written for the reader, ignored when read.
+    #[serde(default)]
+    pub score_q95_percent: Option<f64>,
+    /// One per fold, at most [`prediction::MAX_FOLDS`], with at most [`prediction::MAX_SCORES`]
+    /// scores in all.
+    pub folds: Vec<FoldSection>,
+}
+
+/// One fold of [`PredictionSection`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct FoldSection {
+    /// The postures the fold held out (labels).
+    pub postures: Vec<String>,
+    /// The compliance of every parameter fitted without them, SI (rad/Nm, m/N), in the order of
+    /// `parameters`; finite.
+    pub compliance_si: Vec<f64>,
+    /// The score of each held-out coordinate: `|measured - predicted|` over `|predicted| +
+    /// noise_floor_mm`, the prediction the fold's (three per measurement, x, y, z); finite, >= 0.
+    pub scores: Vec<f64>,
+}
+
+impl PredictionSection {
+    /// The section of `calibration`, its folds' postures named by `labels`.
+    pub fn new(calibration: &Calibration, labels: Vec<Vec<String>>) -> Self {
+        PredictionSection {
+            method: calibration.method().into(),
+            postures: calibration.postures,
+            noise_floor_mm: calibration.noise_floor * 1e3,
+            score_q95: calibration.score_quantile(0.95),
+            score_q95_percent: calibration.score_quantile(0.95).map(|q| 100.0 * q),
+            folds: calibration
+                .folds
+                .iter()
+                .zip(labels)
+                .map(|(f, postures)| FoldSection {
+                    postures,
+                    compliance_si: f.compliance.iter().copied().collect(),
+                    scores: f.scores.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// The calibration it holds.
+    pub fn calibration(&self) -> Calibration {
+        Calibration {
+            postures: self.postures,
+            noise_floor: self.noise_floor_mm * 1e-3,
+            folds: self
+                .folds
+                .iter()
+                .map(|f| HeldOut {
+                    compliance: DVector::from_column_slice(&f.compliance_si),
+                    scores: f.scores.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// Checks the counts and numbers against the parameters of `kinds`: each fold's compliance
+    /// a stiffness within its kind's range (as the file's own stiffness), the noise floor within
+    /// [`limits::READING_SD_MM`] (or 0).
+    pub(super) fn check(&self, kinds: &[ParameterKind]) -> Result<()> {
+        let n = kinds.len();
+        limits::check_count(
+            "prediction.folds",
+            self.folds.len(),
+            2,
+            prediction::MAX_FOLDS,
+        )?;
+        let field = "prediction.noise_floor_mm";
+        let floor = self.noise_floor_mm;
+        if !(floor == 0.0 || limits::READING_SD_MM.contains(floor)) {
+            return Err(invalid(
+                field.into(),
+                format!(
+                    "{}: expected 0 or a tracker's noise within {}",
+                    limits::number(floor),
+                    limits::READING_SD_MM
+                ),
+            ));
+        }
+        if self.postures < self.folds.len() {
+            return Err(invalid(
+                "prediction.postures".into(),
+                format!(
+                    "{} postures for {} folds: expected at least one posture per fold",
+                    self.postures,
+                    self.folds.len()
+                ),
+            ));
+        }
+        let mut total = 0usize;
+        for (k, f) in self.folds.iter().enumerate() {
+            let field = format!("prediction.folds[{}]", k + 1);
+            if f.compliance_si.len() != n || f.compliance_si.iter().any(|v| !v.is_finite()) {
+                return Err(invalid(
+                    format!("{field}.compliance_si"),
+                    format!("expected {n} finite numbers, one per parameter"),
+                ));
+            }
+            for (j, (h, kind)) in f.compliance_si.iter().zip(kinds).enumerate() {
+                let (unit, range) = stiffness_unit(*kind);
+                limits::check(
+                    &format!("{field}.compliance_si[{}] as a stiffness", j + 1),
+                    &[unit.per_si() / h],
+                    range,
+                )?;
+            }
+            if f.scores.is_empty() || f.scores.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+                return Err(invalid(
+                    format!("{field}.scores"),
+                    "expected at least one finite number >= 0".into(),
+                ));
+            }
+            total = total.saturating_add(f.scores.len());
+        }
+        limits::check_count("prediction scores", total, 1, prediction::MAX_SCORES)
+    }
+}

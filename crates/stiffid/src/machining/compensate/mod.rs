@@ -1,0 +1,124 @@
+//! Deflection compensation of a machining path: the axis angles that put the loaded tool where
+//! the unloaded robot would.
+//!
+//! ## The loaded robot
+//! At commanded axis angles q a wrench `W` (base frame) at the tool centre point (TCP) deflects the
+//! joint springs by `dq = h .* (J^T W)` (Zhang et al. 2021, Eq. 4-5, the torques of the unloaded
+//! posture: the complementary stiffness is neglected, see [`crate::observation::cartesian`]), and the rigid links
+//! then put the tool at the forward kinematics of the deflected joints, [`Model::loaded_pose`]. (Eq. 6's
+//! `J dq` is its first-order approximation; the two differ by about `|dq|^2` times the reach,
+//! a micrometre, which matters at the 0.1 micrometre this module solves to.)
+//!
+//! ## Compensation
+//! The compensated axis angles `q_c` solve `loaded_pose(q_c) = T_nominal`, the TCP pose of the
+//! unloaded (rigid) robot at the nominal posture, the loaded pose sagging under the robot's own
+//! weight too when the compliance carries a calibration's gravity terms
+//! ([`crate::machining::weight`]), by Newton steps `q += J^-1 e` from the nominal posture
+//! (the first step is the classical `q - J^-1 J dq`), until the residual is below
+//! [`TOLERANCE_M`] and [`TOLERANCE_RAD`] (success needs 0.1 micrometre and 1 microradian). The
+//! Jacobian neglects `d(dq)/dq`, so the convergence is linear with a rate of about `|dq|`:
+//! three or four steps.
+//!
+//! ## The free tool axis
+//! In 5-axis milling and drilling the rotation about the spindle (tool z) is free. With
+//! [`FreeToolAxis`], every path point's pose is turned about its tool z by the angle that minimises
+//! the TCP translation deflection, within the joint limits and with at most
+//! [`FreeToolAxis::max_step`] between consecutive points: dynamic programming over a grid of
+//! angles, each angle's postures continued along the path by inverse kinematics; a point only takes
+//! an angle whose deflection is no larger than at the nominal angle (so the nominal path is always
+//! feasible and no point's deflection rises); the sum of the deflections is minimised, plus a
+//! tie-breaking cost of [`TIE_BREAK`] times each point's nominal deflection per full range away
+//! from the path's own angle and per full step between points: where the angles tie (a TCP on
+//! the spindle axis turns nothing) the path keeps its own angle, and a rotation is smooth along
+//! the path, never a zig-zag between equal angles; a gain below about 1e-6 of the deflection is
+//! not worth a turn. The wrench
+//! stays fixed in the base frame (the process force does not turn with the spindle). This is the
+//! redundancy resolution of stiffness-oriented posture optimisation for robotic machining: Caro,
+//! Dumas, Garnier and Furet, "Workpiece placement optimization for machining operations with a
+//! KUKA KR270-2 robot", IEEE ICRA 2013; Xiong, Ding and Zhu, "Stiffness-based pose optimization of
+//! an industrial robot for five-axis milling", Robotics and Computer-Integrated Manufacturing 55,
+//! 2019.
+
+use crate::observation::deflection::Frame;
+use nalgebra::{Isometry3, Vector6};
+
+mod model;
+mod options;
+mod stream;
+mod tool_axis;
+
+pub use model::Model;
+pub use options::{FreeToolAxis, Options};
+pub use stream::{path, stream, CHUNK};
+
+/// The residual the Newton steps aim at, m.
+pub const TOLERANCE_M: f64 = 1e-10;
+/// The residual rotation the Newton steps aim at, rad.
+pub const TOLERANCE_RAD: f64 = 1e-10;
+/// The residual a compensated point must reach: 0.1 micrometre.
+pub const REQUIRED_M: f64 = 1e-7;
+/// The residual rotation a compensated point must reach: 1 microradian.
+pub const REQUIRED_RAD: f64 = 1e-6;
+/// Newton steps at most.
+pub const MAX_ITERATIONS: usize = 30;
+/// The relative weight of the free tool axis' tie-breaking cost (module docs).
+pub const TIE_BREAK: f64 = 1e-6;
+
+/// Where a path point is: axis angles, or a TCP pose reached by inverse kinematics.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// Axis angles, rad.
+    Posture(Vector6<f64>),
+    /// TCP position (m) and tool orientation, base frame.
+    Pose(Isometry3<f64>),
+}
+
+/// One point of a machining path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathPoint {
+    /// Its line in the path file (for errors), 1-based.
+    pub line: u64,
+    /// Where the TCP is.
+    pub target: Target,
+    /// The wrench `[f; m]` at the TCP, N and Nm, in `frame`.
+    pub wrench: Vector6<f64>,
+    /// The frame of the wrench.
+    pub frame: Frame,
+}
+
+/// The compliance of every parameter of the setup's model and, from an identification, its
+/// covariance ([`crate::model::Compliance`]).
+pub use crate::model::Compliance;
+
+/// One compensated path point, SI units, base frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compensated {
+    /// The nominal axis angles (after the tool-axis rotation, if optimised), rad.
+    pub q: Vector6<f64>,
+    /// The nominal TCP pose (m).
+    pub pose: Isometry3<f64>,
+    /// The wrench at the TCP, base frame, N and Nm.
+    pub wrench: Vector6<f64>,
+    /// TCP translation (m) and tool rotation (rad) under the wrench at the nominal posture (Eq. 6).
+    pub deflection: Vector6<f64>,
+    /// Its standard deviation per coordinate, given the compliance covariance.
+    pub deflection_std: Option<Vector6<f64>>,
+    /// The standard deviation of the translation's length `|dp|` (first order:
+    /// `sqrt(u^T Cov(dp) u)`, `u = dp / |dp|`), m.
+    pub translation_norm_std: Option<f64>,
+    /// The prediction interval of the translation (m, base frame) at [`Options::level`], given
+    /// the compliance's prediction calibration ([`crate::model::prediction`]).
+    pub deflection_interval: Option<crate::model::prediction::Interval>,
+    /// The compensated axis angles `q_c`, rad.
+    pub q_compensated: Vector6<f64>,
+    /// `|p_nominal - p_loaded(q_c)|`, m.
+    pub residual_position: f64,
+    /// The rotation between the nominal and the loaded tool at `q_c`, rad.
+    pub residual_rotation: f64,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// The rotation about tool z chosen by [`FreeToolAxis`] (0 without), rad.
+    pub tool_rotation: f64,
+    /// With [`FreeToolAxis`]: the deflection at the path's own rotation, before optimisation.
+    pub deflection_before: Option<Vector6<f64>>,
+}

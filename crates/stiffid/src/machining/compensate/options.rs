@@ -1,0 +1,155 @@
+//! How to compensate a path: the free tool axis and the options of the Newton steps.
+
+use crate::common::error::JobOption;
+use crate::common::limits::number;
+use crate::robot::ik::{self};
+use crate::{common::limits, Error, Result, Setup};
+use nalgebra::Vector6;
+
+/// The stiffness-optimal rotation about the tool z axis (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeToolAxis {
+    /// Largest change of the rotation between consecutive points, rad, > 0.
+    pub max_step: f64,
+    /// The rotation stays within `+-range` of the path's, rad.
+    pub range: f64,
+}
+
+impl FreeToolAxis {
+    /// Largest accepted `max_step`, deg.
+    pub const MAX_STEP_DEG: f64 = 90.0;
+    /// Largest accepted `range`, deg.
+    pub const MAX_RANGE_DEG: f64 = 180.0;
+
+    /// The free tool axis from its step and range in degrees (the units of the command line and
+    /// the Python package): `max_step_deg` in (0, 90], `tool_axis_range_deg` in (0, 180].
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the one argument that is wrong ([`JobOption::MaxStepDeg`] or
+    /// [`JobOption::ToolAxisRangeDeg`]) with the value given.
+    pub fn try_from_degrees(max_step_deg: f64, tool_axis_range_deg: f64) -> Result<Self> {
+        // A subnormal angle in rad (5e-324 deg) is zero in every computation: refused as <= 0.
+        let check = |v: f64, max: f64, option| match v.to_radians().is_normal() && v <= max {
+            true => Ok(v.to_radians()),
+            false => Err(Error::InvalidOption {
+                option,
+                message: format!("{}: expected a number > 0 and <= {max}", number(v)),
+            }),
+        };
+        Ok(Self {
+            max_step: check(max_step_deg, Self::MAX_STEP_DEG, JobOption::MaxStepDeg)?,
+            range: check(
+                tool_axis_range_deg,
+                Self::MAX_RANGE_DEG,
+                JobOption::ToolAxisRangeDeg,
+            )?,
+        })
+    }
+
+    /// The most grid cells (angles x path points) the optimisation may visit: each is one
+    /// inverse kinematics solution kept in memory (about 70 bytes), so at most about 0.4 GB.
+    pub const MAX_GRID_CELLS: f64 = 5e6;
+
+    /// The grid spacing: `max_step` divided into whole cells of at most 5 deg, and the number of
+    /// cells one step may move.
+    pub(super) fn grid(&self) -> (f64, usize) {
+        let cells = (self.max_step / 5f64.to_radians()).ceil().max(1.0);
+        (self.max_step / cells, cells as usize)
+    }
+
+    /// The number of angles of the grid: `2 floor(range / spacing) + 1`, as a float (it may be
+    /// astronomically large for a tiny `max_step`).
+    pub(super) fn angle_count(&self) -> f64 {
+        2.0 * (self.range / self.grid().0 + 1e-9).floor() + 1.0
+    }
+
+    /// Checks that the grid of a path of `points` points stays within [`Self::MAX_GRID_CELLS`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] ([`JobOption::MaxStepDeg`]) with the grid's size and what to
+    /// change.
+    pub fn check_grid(&self, points: usize) -> Result<()> {
+        let angles = self.angle_count();
+        let cells = angles * points as f64;
+        if cells <= Self::MAX_GRID_CELLS {
+            return Ok(());
+        }
+        Err(Error::InvalidOption {
+            option: JobOption::MaxStepDeg,
+            message: format!(
+                "{} deg with a range of +-{} deg makes a grid of {angles:.3e} angles x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range or a shorter path)",
+                number(self.max_step.to_degrees()),
+                number(self.range.to_degrees()),
+                Self::MAX_GRID_CELLS
+            ),
+        })
+    }
+}
+
+/// How to compensate a path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Where inverse kinematics starts for the first pose, axis angles, rad.
+    pub q0: Vector6<f64>,
+    /// Inverse kinematics tolerances and effort.
+    pub ik: ik::Options,
+    /// Optimise the rotation about the tool z axis.
+    pub free_tool_axis: Option<FreeToolAxis>,
+    /// The level of the prediction intervals of the deflection (with a compliance that carries
+    /// a prediction calibration, [`crate::model::prediction`]), within
+    /// [`crate::model::prediction::LEVEL`].
+    pub level: f64,
+}
+
+impl Options {
+    /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
+    /// ([`ik::Options::validate`]), and a free tool axis' `max_step` in (0, 90] deg and `range` in
+    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them. [`path`] calls it.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming the field, the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        limits::check(
+            "compensate::Options.q0",
+            self.q0.as_slice(),
+            &limits::ANGLE_RAD,
+        )?;
+        self.ik.validate()?;
+        crate::model::prediction::check_level("compensate::Options.level", self.level)?;
+        let Some(free) = &self.free_tool_axis else {
+            return Ok(());
+        };
+        let fields = [
+            ("max_step", free.max_step, FreeToolAxis::MAX_STEP_DEG),
+            ("range", free.range, FreeToolAxis::MAX_RANGE_DEG),
+        ];
+        for (field, value, most) in fields {
+            if !(value > 0.0 && value <= most.to_radians()) {
+                return Err(Error::InvalidField {
+                    field: format!("FreeToolAxis.{field}"),
+                    message: format!(
+                        "{} rad: expected a number > 0 and <= {most} deg",
+                        number(value)
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
+    /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis.
+    pub fn for_setup(setup: &Setup) -> Self {
+        let bounds = setup.bounds();
+        Self {
+            q0: setup
+                .test_postures()
+                .first()
+                .copied()
+                .unwrap_or((bounds.lower + bounds.upper) / 2.0),
+            ik: ik::Options::default(),
+            free_tool_axis: None,
+            level: crate::model::prediction::DEFAULT_LEVEL,
+        }
+    }
+}

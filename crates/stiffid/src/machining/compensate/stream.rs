@@ -1,0 +1,319 @@
+//! A whole path compensated: in parallel, in chunks of bounded memory, the failing points named.
+
+use super::tool_axis::optimise_tool_axis;
+use super::{
+    Compensated, Compliance, Model, Options, PathPoint, Target, MAX_ITERATIONS, REQUIRED_M,
+    REQUIRED_RAD,
+};
+use crate::common::error::ColumnProblem;
+use crate::observation::deflection::base_wrench;
+use crate::robot::configuration::Configuration;
+use crate::robot::ik::{self, tool_pose};
+use crate::setup::Arm;
+use crate::{Error, Result};
+use nalgebra::Vector6;
+use rayon::prelude::*;
+
+/// Compensates every point of a path (module docs), the points in parallel; the result does not
+/// depend on the number of threads.
+///
+/// # Errors
+/// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
+/// tool axis grid beyond [`FreeToolAxis::MAX_GRID_CELLS`] ([`FreeToolAxis::check_grid`]);
+/// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
+/// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
+/// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
+/// message, `x_mm..rz_deg`), or compensated axis angles outside the joint limits or a residual
+/// above 0.1 micrometre / 1 microradian (`Uncompensated` with the lines of the other points that
+/// fail, `q_compensated`).
+pub fn path(
+    arm: &Arm,
+    compliance: &Compliance,
+    points: &[PathPoint],
+    options: &Options,
+) -> Result<Vec<Compensated>> {
+    options.validate()?;
+    if let Some(free) = &options.free_tool_axis {
+        free.check_grid(points.len())?;
+    }
+    let model = Model::new(arm, compliance)?.at_level(options.level);
+    let nominal = nominal_postures(arm, points, options.q0, options)?;
+    let wrenches: Vec<Vector6<f64>> = points
+        .par_iter()
+        .zip(&nominal)
+        .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
+        .collect();
+    let (postures, rotations) = match &options.free_tool_axis {
+        None => (nominal.clone(), vec![0.0; points.len()]),
+        Some(free) => optimise_tool_axis(&model, &nominal, &wrenches, free, &options.ik),
+    };
+    let chosen = Chosen {
+        nominal: &nominal,
+        postures: &postures,
+        rotations: &rotations,
+        wrenches: &wrenches,
+    };
+    compensate_chosen(&model, points, &chosen, options.free_tool_axis.is_some())
+}
+
+/// Path points per chunk of [`stream`].
+pub const CHUNK: usize = 4096;
+
+/// [`path`] for a path of any length in bounded memory: the points come from `points` (an
+/// iterator, e.g. a file's rows as they are parsed) and are compensated [`CHUNK`] at a time (in
+/// parallel within a chunk, inverse kinematics continued from the previous chunk's last
+/// posture); `sink` gets each chunk's points and results, in path order, before the next chunk is
+/// read. With [`FreeToolAxis`] the whole path is one problem (dynamic programming over the
+/// path): its points are collected (at most [`FreeToolAxis::MAX_GRID_CELLS`] grid cells) and
+/// compensated by [`path`], then given to `sink` chunk by chunk. The results equal [`path`]'s.
+/// Returns the number of points.
+///
+/// # Errors
+/// Those of [`path`] (an uncompensated point names the other failing lines of its chunk, not of
+/// the whole path), the first error `points` yields, [`Error::InvalidField`] (`path`) for a path
+/// without points (all as `E`), and those of `sink`.
+pub fn stream<I, F, E>(
+    arm: &Arm,
+    compliance: &Compliance,
+    points: I,
+    options: &Options,
+    mut sink: F,
+) -> std::result::Result<usize, E>
+where
+    I: IntoIterator<Item = Result<PathPoint>>,
+    F: FnMut(&[PathPoint], &[Compensated]) -> std::result::Result<(), E>,
+    E: From<Error>,
+{
+    options.validate()?;
+    let mut points = points.into_iter();
+    if let Some(free) = &options.free_tool_axis {
+        let mut all = Vec::new();
+        for p in points {
+            all.push(p?);
+            free.check_grid(all.len())?;
+        }
+        let results = path(arm, compliance, &all, options)?;
+        for (p, r) in all.chunks(CHUNK).zip(results.chunks(CHUNK)) {
+            sink(p, r)?;
+        }
+        return Ok(all.len());
+    }
+    let model = Model::new(arm, compliance)?.at_level(options.level);
+    let (mut previous, mut count) = (options.q0, 0);
+    loop {
+        let chunk: Vec<PathPoint> = points.by_ref().take(CHUNK).collect::<Result<_>>()?;
+        if chunk.is_empty() {
+            break;
+        }
+        let nominal = nominal_postures(arm, &chunk, previous, options)?;
+        previous = nominal[nominal.len() - 1];
+        let wrenches: Vec<Vector6<f64>> = chunk
+            .par_iter()
+            .zip(&nominal)
+            .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
+            .collect();
+        let rotations = vec![0.0; chunk.len()];
+        let chosen = Chosen {
+            nominal: &nominal,
+            postures: &nominal,
+            rotations: &rotations,
+            wrenches: &wrenches,
+        };
+        sink(&chunk, &compensate_chosen(&model, &chunk, &chosen, false)?)?;
+        count += chunk.len();
+    }
+    match count {
+        0 => Err(Error::InvalidField {
+            field: "path".into(),
+            message: "no path points".into(),
+        }
+        .into()),
+        n => Ok(n),
+    }
+}
+
+/// The postures chosen for a run of path points: nominal, after the tool-axis rotation (equal
+/// without one), the rotations and the base-frame wrenches.
+struct Chosen<'a> {
+    nominal: &'a [Vector6<f64>],
+    postures: &'a [Vector6<f64>],
+    rotations: &'a [f64],
+    wrenches: &'a [Vector6<f64>],
+}
+
+/// Compensates every point at its chosen posture, in parallel; the first error in path order.
+fn compensate_chosen(
+    model: &Model,
+    points: &[PathPoint],
+    c: &Chosen,
+    free: bool,
+) -> Result<Vec<Compensated>> {
+    let arm = model.arm;
+    let results: Vec<Result<Compensated>> = (0..points.len())
+        .into_par_iter()
+        .map(|i| {
+            let q = &c.postures[i];
+            let frames = arm.robot().frames(q);
+            let (qc, ep, eo, iterations) = model
+                .compensate_from(q, frames.clone(), &c.wrenches[i])
+                .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
+            check_compensated(arm, points[i].line, &qc, ep, eo)?;
+            let d = model.tcp_deflection(&frames, &c.wrenches[i]);
+            let deflection_std = model.std(&d);
+            let deflection_interval = model
+                .compliance
+                .prediction
+                .as_ref()
+                .map(|p| d.interval(p, model.level));
+            let deflection_before = free.then(|| {
+                let frames = arm.robot().frames(&c.nominal[i]);
+                model.deflection(&frames, &c.wrenches[i]).0
+            });
+            Ok(Compensated {
+                q: *q,
+                pose: tool_pose(&frames, &arm.tool().tcp),
+                wrench: c.wrenches[i],
+                deflection: d.displacement,
+                deflection_std: deflection_std.map(|s| s.0),
+                translation_norm_std: deflection_std.map(|s| s.1),
+                deflection_interval,
+                q_compensated: qc,
+                residual_position: ep,
+                residual_rotation: eo,
+                iterations,
+                tool_rotation: c.rotations[i],
+                deflection_before,
+            })
+        })
+        .collect();
+    first_error(results)
+}
+
+/// The error of the path point at `line` that cannot be compensated; `columns` names where.
+fn uncompensated(line: u64, columns: &str, reason: String) -> Error {
+    Error::Column {
+        line,
+        column: None,
+        name: columns.into(),
+        problem: ColumnProblem::Uncompensated {
+            reason,
+            others: Vec::new(),
+            failed: 1,
+        },
+    }
+}
+
+/// The results, or the first error (in path order) naming the lines of the other failing points
+/// (the first ten).
+fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
+    let failed: Vec<u64> = results
+        .iter()
+        .filter_map(|r| match r {
+            Err(Error::Column { line, .. }) => Some(*line),
+            _ => None,
+        })
+        .collect();
+    let mut out = Vec::with_capacity(results.len());
+    for r in results {
+        match r {
+            Ok(v) => out.push(v),
+            Err(Error::Column {
+                line,
+                column,
+                name,
+                problem: ColumnProblem::Uncompensated { reason, .. },
+            }) => {
+                let problem = ColumnProblem::Uncompensated {
+                    reason,
+                    others: failed[1..].iter().take(10).copied().collect(),
+                    failed: failed.len(),
+                };
+                return Err(Error::Column {
+                    line,
+                    column,
+                    name,
+                    problem,
+                });
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(out)
+}
+
+fn check_compensated(arm: &Arm, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
+    let robot = &arm.robot();
+    if let Some(v) = robot.limits().first_violation(qc) {
+        return Err(uncompensated(
+            line,
+            "q_compensated",
+            format!(
+                "cannot be compensated within the joint limits: axis {} would need {:.4} deg, limits [{:.2}, {:.2}] deg",
+                v.axis + 1,
+                v.value.to_degrees(),
+                v.lower.to_degrees(),
+                v.upper.to_degrees()
+            ),
+        ));
+    }
+    if !(ep <= REQUIRED_M && eo <= REQUIRED_RAD) {
+        return Err(uncompensated(
+            line,
+            "q_compensated",
+            format!(
+                "the compensation did not converge: residual {:.3} um and {:.3} urad after {MAX_ITERATIONS} steps (near a singularity?)",
+                ep * 1e6,
+                eo * 1e6
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The nominal axis angles of every point: given, or by inverse kinematics continued from the
+/// previous point (the first from `start`).
+fn nominal_postures(
+    arm: &Arm,
+    points: &[PathPoint],
+    start: Vector6<f64>,
+    options: &Options,
+) -> Result<Vec<Vector6<f64>>> {
+    let robot = &arm.robot();
+    let mut previous = start;
+    let mut out = Vec::with_capacity(points.len());
+    for p in points {
+        let q = match &p.target {
+            Target::Posture(q) => {
+                if let Some(v) = robot.limits().first_violation(q) {
+                    let name = format!("q{}_deg", v.axis + 1);
+                    return Err(Error::Column {
+                        line: p.line,
+                        column: None,
+                        problem: v.outside(name.clone(), "the joint limits"),
+                        name,
+                    });
+                }
+                *q
+            }
+            Target::Pose(t) => {
+                let q = ik::solve(robot, &arm.tool().tcp, t, &previous, &options.ik)
+                    .map_err(|e| uncompensated(p.line, "x_mm..rz_deg", e.to_string()))?
+                    .q;
+                let from = if out.is_empty() {
+                    "the start posture"
+                } else {
+                    "the previous point"
+                };
+                if let Some(change) =
+                    Configuration::of(robot, &q).change_from(&Configuration::of(robot, &previous))
+                {
+                    return Err(uncompensated(p.line, "x_mm..rz_deg", format!("inverse kinematics reaches this pose only in another configuration than {from}'s ({change}); refused rather than switched silently: start in the configuration wanted (--q0-deg, q0_deg)")));
+                }
+                q
+            }
+        };
+        previous = q;
+        out.push(q);
+    }
+    Ok(out)
+}
