@@ -19,7 +19,8 @@ pub struct Args {
     common: Common,
     #[command(flatten)]
     stiffness: Stiffness,
-    /// Measurements CSV (same format as for `identify`), ideally postures not used to identify.
+    /// Measurements CSV or raw readings under load steps (the formats `identify` reads), ideally
+    /// postures not used to identify.
     #[arg(long)]
     data: PathBuf,
     /// The level of the prediction intervals (0.5 to 0.999), built from the held-out residuals
