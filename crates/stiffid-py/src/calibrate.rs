@@ -104,6 +104,7 @@ pub fn calibrate<'py>(
         reregister,
         cross_validate,
         priors,
+        progress: &(),
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);

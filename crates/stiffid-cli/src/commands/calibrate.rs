@@ -8,6 +8,7 @@ use crate::output::{self, print_json_or, OutFile};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid::app::calibrate::document::Document;
+use crate::progress::Bars;
 use stiffid::app::calibrate::{self as job, Tolerances};
 use stiffid::app::readings::Request as Readings;
 use stiffid::metrology::calibration::gravity::Gravity;
@@ -47,7 +48,8 @@ pub struct Args {
     /// them.
     #[arg(long)]
     force: bool,
-    /// Leave-one-posture-out: each posture's error predicted by the fit of the others.
+    /// Leave-one-posture-out: each posture's error predicted by the fit of the others (at most
+    /// 500 postures, with progress on stderr).
     #[arg(long)]
     cross_validate: bool,
     /// Nominal tolerance of the joints' length errors, mm [1e-6 to 1000] (a prior: weakly
@@ -90,6 +92,7 @@ pub fn run(args: &Args) -> Result<()> {
     let out = prepare(&args.out, "--out")?;
     let urdf_out = prepare(&args.urdf_out, "--urdf-out")?;
     let stiffness_out = prepare(&args.stiffness_out, "--stiffness-out")?;
+    let bars = Bars::new(false);
     let request = job::Request {
         readings: Readings {
             setup: &setup,
@@ -104,6 +107,7 @@ pub fn run(args: &Args) -> Result<()> {
         reregister: args.reregister,
         cross_validate: args.cross_validate,
         priors,
+        progress: &bars,
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);

@@ -333,3 +333,56 @@ fn a_model_comparison_that_no_model_fits_physically_is_refused() {
     let line = crate::common::assert_usage_error(&out, &["4 given", "every stiffness positive"]);
     assert!(line.contains("measure more postures"), "{line}");
 }
+
+/// `select --margin-mm M` keeps M as `evaluate` measures it: one margin computation, the same
+/// figure in both documents (the tool's part of a line of sight used to be exempt over M more,
+/// so a search "kept" 30 mm where `evaluate` measured 7.9 mm of line of sight).
+#[test]
+fn the_margin_select_keeps_is_the_margin_evaluate_measures() {
+    let d = temp_dir("answers-margin");
+    let (setup, start) = (
+        example("cell/zhang2021-tracker.toml"),
+        example("cell/feasible-relative-a.csv"),
+    );
+    for margin in [10.0, 30.0] {
+        let out = d.join(format!("margin{margin}.csv"));
+        let out = out.to_str().unwrap();
+        let (m, s) = (format!("{margin}"), setup.as_str());
+        let o = stiffid(&[
+            "select", "--setup", s, "--start", &start, "--margin-mm", &m, "--out", out, "--json",
+        ]);
+        let selected = crate::common::json(&o);
+        let o = stiffid(&["evaluate", "--setup", s, "--postures", out, "--json"]);
+        let evaluated = crate::common::json(&o);
+        let kept = crate::common::numbers(&selected["min_margin_mm"]);
+        let measured: Vec<f64> = evaluated["feasibility"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["min_margin_mm"].as_f64().unwrap())
+            .collect();
+        assert_eq!(kept.len(), measured.len());
+        for (k, e) in kept.iter().zip(&measured) {
+            // The postures file holds 6 decimals of a degree: 1e-6 deg moves a point by 1e-5 mm.
+            assert!((k - e).abs() < 1e-3, "select {k} mm, evaluate {e} mm");
+            assert!(*e >= margin, "{e} mm kept, {margin} mm asked");
+        }
+    }
+}
+
+/// `calibrate --cross-validate` refits once per posture: beyond its documented 500 postures it
+/// is refused before any fit, naming the limit and the way out.
+#[test]
+fn cross_validation_beyond_its_posture_limit_is_refused_at_once() {
+    let d = temp_dir("answers-cross-limit");
+    let model = model();
+    let text = readings(&model, &truth(&model), &tracker(), &postures(501, 4));
+    write_file(&d, "many.csv", &text);
+    let args = ["calibrate", "--setup", SETUP, "--data", "{dir}/many.csv"];
+    let line = refused(
+        &d,
+        &[&args[..], &["--cross-validate"]].concat(),
+        &["cross_validate", "at most 500 postures", "got 501", "held-out"],
+    );
+    assert!(line.starts_with("error: "), "{line}");
+}

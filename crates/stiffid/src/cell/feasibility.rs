@@ -271,13 +271,14 @@ impl<'a> Checker<'a> {
     /// a posture it passes survives a cell, tracker or robot that is off by up to `keep`: the
     /// bodies keep the clearance plus `keep` from the floor, the obstacles, each other and the
     /// rope; a line of sight passes `keep` from every body and obstacle; the tool, which the
-    /// rope and the line of sight start from, only beyond its radius, the clearance (the rope)
-    /// and `keep` from the loading or the measuring point (a tracker moved by `keep` moves the
-    /// line there by a small part of `keep`); the loading point
+    /// rope and the line of sight start from, beyond its radius (and the clearance, for the
+    /// rope) from the loading or the measuring point, as without `keep`; the loading point
     /// stands `keep` above its lowest height and the anchor; the incidence angle keeps `keep /
     /// L` rad below its largest (`L` the length of the line of sight: the angle a tracker moved
     /// by `keep` across the line turns it by). Every margin ([`Checker::margins`],
-    /// [`Checker::feasibility`]) is then what is left beyond `keep`, and its gradient exact.
+    /// [`Checker::feasibility`]) is then the plain checker's less `keep` (the same pairs, the
+    /// same distances: one margin computation for the design, `evaluate` and the plan), and its
+    /// gradient exact.
     pub fn keeping(mut self, keep: f64) -> Self {
         self.keep = if keep.is_finite() { keep.max(0.0) } else { 0.0 };
         self
@@ -412,7 +413,7 @@ impl<'a> Checker<'a> {
         if let Some(t) = &s.tracker() {
             for (i, p) in s.tool().measuring_points.iter().enumerate() {
                 let p = frames.point(p);
-                let sight = line(&t.position, &p, s.geometry().tool_radius + self.keep);
+                let sight = line(&t.position, &p, s.geometry().tool_radius);
                 self.line_margins(
                     CheckKind::LineOfSight,
                     &sight,
@@ -520,7 +521,7 @@ impl<'a> Checker<'a> {
             );
             out.witness(m, part_carrier(pi), part_carrier(pj), w);
         }
-        let exempt = self.setup.geometry().tool_radius + c;
+        let exempt = self.setup.geometry().tool_radius + cell.clearance;
         let rope = line(&self.setup.load().anchor, loading, exempt);
         self.line_margins(CheckKind::Rope, &rope, Thing::Rope, bodies, c, out);
     }

@@ -424,6 +424,7 @@ fn calibrated(
         reregister: false,
         cross_validate: false,
         priors: None,
+        progress: &(),
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");

@@ -17,6 +17,7 @@ use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
 use super::{Warning, WarningKind};
 use crate::common::error::JobOption;
+use crate::common::progress::Progress;
 use crate::common::limits;
 use crate::io::readings::Readings as Data;
 use crate::metrology::calibration::error_model::Target;
@@ -33,7 +34,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 pub use crate::io::readings::MAX_READINGS;
 
 /// Most postures cross-validation refits for (one fit per posture).
-pub const MAX_CROSS_VALIDATION_POSTURES: usize = 2000;
+pub const MAX_CROSS_VALIDATION_POSTURES: usize = 500;
 
 /// The noise ratio above which the job warns that the model misses something.
 pub const MISFIT_RATIO: f64 = 3.0;
@@ -97,6 +98,8 @@ pub struct Request<'a> {
     pub cross_validate: bool,
     /// Priors on the joint errors, if any.
     pub priors: Option<Tolerances>,
+    /// Hears the cross-validation's folds (one unit per posture), `&()` for none.
+    pub progress: &'a dyn Progress,
 }
 
 /// A validation with the nominal model's error beside it.
@@ -219,6 +222,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let name = &request.readings.name;
     let (data, mut warnings) = read(&request.readings)?;
     let (obs, measured_in) = observations(setup, &data, false);
+    if request.cross_validate {
+        cross_validation_size(&obs)?;
+    }
     let model = model(setup, measured_in, request.geometry, request.gravity)?;
     let model = match obs.iter().any(Observation::loaded) {
         true => model.with_loads(setup)?,
@@ -247,7 +253,12 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let cross_validation = match request.cross_validate {
         false => None,
         true => Some(cross(
-            &model, &reference, &obs, &start, &options, &data, name,
+            &model,
+            &reference,
+            (&obs, &fitted.estimate),
+            (&options, request.progress),
+            &data,
+            name,
         )?),
     };
     let validation = match &request.validate {
@@ -374,28 +385,33 @@ pub fn fitted_compliance(
     })
 }
 
-fn cross(
-    model: &ErrorModel,
-    reference: &ErrorModel,
-    obs: &[Observation],
-    start: &Estimate,
-    options: &Options,
-    data: &Data,
-    name: &str,
-) -> Result<Held> {
+/// Refuses cross-validation beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures, before any fit.
+fn cross_validation_size(obs: &[Observation]) -> Result<()> {
     let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
     postures.dedup();
-    if postures.len() > MAX_CROSS_VALIDATION_POSTURES {
-        return Err(Error::InvalidField {
+    match postures.len() > MAX_CROSS_VALIDATION_POSTURES {
+        true => Err(Error::InvalidField {
             field: "cross_validate".into(),
             message: format!(
                 "at most {MAX_CROSS_VALIDATION_POSTURES} postures (one fit each), got {}: validate on a held-out file instead",
                 postures.len()
             ),
-        });
+        }),
+        false => Ok(()),
     }
+}
+
+fn cross(
+    model: &ErrorModel,
+    reference: &ErrorModel,
+    (obs, start): (&[Observation], &Estimate),
+    (options, progress): (&Options, &dyn Progress),
+    data: &Data,
+    name: &str,
+) -> Result<Held> {
     let calibrated =
-        validation::cross_validate(model, obs, start, options).map_err(|e| in_data(name, e))?;
+        validation::cross_validate(model, obs, start, options, progress)
+        .map_err(|e| in_data(name, e))?;
     Ok(Held {
         name: "cross-validation".into(),
         calibrated,

@@ -8,7 +8,9 @@
 
 use super::error_model::{ErrorModel, Estimate, Observation};
 use super::fit::{self, Options};
+use crate::common::progress::{Progress, Tally};
 use crate::{Error, Result};
+use rayon::prelude::*;
 use nalgebra::Vector3;
 
 /// The error of one held-out reading.
@@ -73,16 +75,20 @@ pub fn validate(
     ))
 }
 
-/// Leave-one-posture-out: each posture predicted by the fit of the others from `start`.
+/// Leave-one-posture-out: each posture predicted by the fit of the others from `start` (the
+/// full fit's estimate makes each fold converge in a step or two). The folds run on the worker
+/// threads, each independent of the others, so the result does not depend on the thread count;
+/// `progress` hears a stage `cross-validation` with one unit per posture.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) with fewer than 2 postures; those of [`fit::fit`] on
-/// each subset.
+/// each subset (the first posture's in reading order).
 pub fn cross_validate(
     model: &ErrorModel,
     observations: &[Observation],
     start: &Estimate,
     options: &Options,
+    progress: &dyn Progress,
 ) -> Result<Validation> {
     let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
@@ -93,12 +99,23 @@ pub fn cross_validate(
             message: "cross-validation needs 2 postures or more".into(),
         });
     }
+    progress.begin("cross-validation", postures.len());
+    let tally = Tally::new(progress);
+    let folds: Vec<Result<Validation>> = postures
+        .par_iter()
+        .map(|&p| {
+            let (out, kept): (Vec<Observation>, Vec<Observation>) =
+                observations.iter().cloned().partition(|o| o.posture == p);
+            let fitted = fit::fit(model, &kept, start, options)?;
+            let held = validate(model, &fitted.estimate, &out);
+            tally.add(1);
+            held
+        })
+        .collect();
+    progress.end();
     let mut errors = Vec::new();
-    for p in postures {
-        let (out, kept): (Vec<Observation>, Vec<Observation>) =
-            observations.iter().cloned().partition(|o| o.posture == p);
-        let fitted = fit::fit(model, &kept, start, options)?;
-        errors.extend(validate(model, &fitted.estimate, &out)?.errors);
+    for fold in folds {
+        errors.extend(fold?.errors);
     }
     Ok(Validation::new(errors))
 }
