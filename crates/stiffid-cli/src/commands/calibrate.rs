@@ -5,10 +5,10 @@
 
 use crate::load;
 use crate::output::{self, print_json_or, OutFile};
+use crate::progress::Bars;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid::app::calibrate::document::Document;
-use crate::progress::Bars;
 use stiffid::app::calibrate::{self as job, Tolerances};
 use stiffid::app::readings::Request as Readings;
 use stiffid::metrology::calibration::gravity::Gravity;

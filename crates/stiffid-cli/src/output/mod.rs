@@ -122,7 +122,7 @@ fn named(e: &(dyn std::error::Error + 'static)) -> String {
 }
 
 /// A job option as the command names it: `--max-step-deg`; the program's name comes from `--out`.
-fn flag(option: JobOption) -> String {
+pub fn flag(option: JobOption) -> String {
     match option {
         JobOption::ProgramName => "--out: program name".into(),
         JobOption::Tolerances => "--tolerance-mm, --tolerance-deg".into(),

@@ -349,7 +349,16 @@ fn the_margin_select_keeps_is_the_margin_evaluate_measures() {
         let out = out.to_str().unwrap();
         let (m, s) = (format!("{margin}"), setup.as_str());
         let o = stiffid(&[
-            "select", "--setup", s, "--start", &start, "--margin-mm", &m, "--out", out, "--json",
+            "select",
+            "--setup",
+            s,
+            "--start",
+            &start,
+            "--margin-mm",
+            &m,
+            "--out",
+            out,
+            "--json",
         ]);
         let selected = crate::common::json(&o);
         let o = stiffid(&["evaluate", "--setup", s, "--postures", out, "--json"]);
@@ -382,7 +391,12 @@ fn cross_validation_beyond_its_posture_limit_is_refused_at_once() {
     let line = refused(
         &d,
         &[&args[..], &["--cross-validate"]].concat(),
-        &["cross_validate", "at most 500 postures", "got 501", "held-out"],
+        &[
+            "cross_validate",
+            "at most 500 postures",
+            "got 501",
+            "held-out",
+        ],
     );
     assert!(line.starts_with("error: "), "{line}");
 }

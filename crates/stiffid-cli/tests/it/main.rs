@@ -19,6 +19,7 @@ mod mutate;
 mod optional_fields_cli;
 mod options_proptest;
 mod pool_cli;
+mod readable_files;
 mod register_cli;
 mod reproduce;
 mod schemas;

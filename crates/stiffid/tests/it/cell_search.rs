@@ -3,7 +3,7 @@
 //! the thread count.
 
 use stiffid::app::select::{self, PoolInput, Request};
-use stiffid::cell::{CheckKind, Checker, Part, Thing};
+use stiffid::cell::{CheckKind, Checker, Thing};
 use stiffid::design::{self, Criterion, SearchOptions};
 use stiffid::{Error, Setup};
 
@@ -107,8 +107,8 @@ fn impossible_constraints_are_an_error_naming_the_check() {
 }
 
 /// A search (and a pool choice) with a stated margin keeps it to every constraint of the cell:
-/// every length check's margin is at least 20 mm (a line against the tool it starts from: beyond
-/// the tool's radius plus 20 mm) and each incidence angle 20 mm / (line of sight) below its limit;
+/// every length check's margin, as the plain checker (`evaluate`) measures it, is at least 20 mm
+/// (a line against the tool it starts from too, beyond the tool's radius) and each incidence angle 20 mm / (line of sight) below its limit;
 /// the same search without it hugs a line of sight by the 0.1 mm the searches keep. The tracker's registration
 /// uncertainty is the default margin.
 #[test]
@@ -137,12 +137,8 @@ fn a_design_keeps_its_margin_where_one_without_hugs_a_line_of_sight() {
     for q in &kept.postures {
         let frames = setup.robot().frames(q);
         for m in Checker::new(&setup).margins(q) {
-            let line = matches!(m.kind, CheckKind::Rope | CheckKind::LineOfSight);
-            let tool = m.between.1 == Thing::Part(Part::Tool);
             let kept_by = match (m.kind, m.between.0) {
                 (CheckKind::Bounds, _) => continue,
-                // The line starts at the tool: it keeps the margin beyond the tool's radius.
-                _ if line && tool => continue,
                 (CheckKind::Incidence, Thing::MeasuringPoint(i)) => {
                     let p = frames.point(&setup.tool().measuring_points[i]);
                     0.02 / (tracker - p).norm()

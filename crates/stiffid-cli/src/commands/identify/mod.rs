@@ -45,7 +45,9 @@ pub struct Args {
     #[arg(long)]
     folds: Option<usize>,
     /// Also write the JSON result to this file (for `predict --stiffness`, `validate --stiffness`);
-    /// with `--compare-models`, the recommended model's `[model]` fragment for the setup.
+    /// with `--compare-models`, the recommended model's `[model]` fragment for the setup. A
+    /// stiffness file those would refuse (a negative compliance) is not written: refused with
+    /// the way out (--nonnegative, --compare-models).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Compare models: add candidate virtual springs to the setup's model by forward selection on
@@ -125,6 +127,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
     };
     if let Some(out) = &out {
+        job::check_stiffness_file(&json_text, &setup, &output::flag)?;
         out.write(json_text.as_bytes())?;
     }
     match args.common.json {

@@ -17,8 +17,8 @@ use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
 use super::{Warning, WarningKind};
 use crate::common::error::JobOption;
-use crate::common::progress::Progress;
 use crate::common::limits;
+use crate::common::progress::Progress;
 use crate::io::readings::Readings as Data;
 use crate::metrology::calibration::error_model::Target;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
@@ -409,8 +409,7 @@ fn cross(
     data: &Data,
     name: &str,
 ) -> Result<Held> {
-    let calibrated =
-        validation::cross_validate(model, obs, start, options, progress)
+    let calibrated = validation::cross_validate(model, obs, start, options, progress)
         .map_err(|e| in_data(name, e))?;
     Ok(Held {
         name: "cross-validation".into(),

@@ -24,10 +24,11 @@ pub use drives::{noise_floor, row_noise_variance, Origin};
 pub use options::Options;
 
 use crate::app::Warning;
+use crate::common::error::JobOption;
 use crate::identify::cross_validation::Method;
 use crate::identify::Loss;
 use crate::observation::Measurement;
-use crate::{Result, Setup};
+use crate::{Error, Result, Setup};
 use document::Document;
 use options::Plan;
 use std::io::Read;
@@ -185,4 +186,31 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
             }
         }
     }
+}
+
+/// Reads back the stiffness file `text` (the document's JSON, as `identify --out` writes it) as
+/// `validate`, `predict` and `compensate` read a stiffness file: parsed
+/// ([`crate::io::stiffness::parse`]) and checked against `setup`'s model
+/// ([`crate::io::stiffness::StiffnessFile::compliance`]). What identify writes, the next step
+/// reads: a fit whose file they would refuse (a negative or zero compliance, a stiffness outside
+/// its range, a fold's outside it) is refused here, before anything is written, with the way out.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Out`]) with the reader's reason and the way out: the
+/// non-negative fit, or the model comparison (the data may need springs the model lacks), each
+/// option as the front end `spell`s it.
+pub fn check_stiffness_file(
+    text: &str,
+    setup: &Setup,
+    spell: &dyn Fn(JobOption) -> String,
+) -> Result<()> {
+    let read = crate::io::stiffness::parse(text).and_then(|f| f.compliance(setup.model()));
+    read.map(|_| ()).map_err(|e| Error::InvalidOption {
+        option: JobOption::Out,
+        message: format!(
+            "not written: validate, predict and compensate would refuse this stiffness file ({e}); fit with every compliance non-negative ({}), or compare models ({}): the data may need springs the model lacks",
+            spell(JobOption::Nonnegative),
+            spell(JobOption::CompareModels)
+        ),
+    })
 }

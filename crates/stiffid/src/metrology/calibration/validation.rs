@@ -10,8 +10,8 @@ use super::error_model::{ErrorModel, Estimate, Observation};
 use super::fit::{self, Options};
 use crate::common::progress::{Progress, Tally};
 use crate::{Error, Result};
-use rayon::prelude::*;
 use nalgebra::Vector3;
+use rayon::prelude::*;
 
 /// The error of one held-out reading.
 #[derive(Debug, Clone, PartialEq)]
