@@ -27,16 +27,31 @@
 //! [`crate::identify::adequacy::SIGNIFICANCE`] flags the posture: the effect exceeds what the
 //! tracker noise explains.
 //!
+//! ## The shared unloaded reading ([`generalised`])
+//! The loaded readings of a point are each taken relative to the same unloaded reading, so their
+//! errors are correlated: with `m` loaded readings `d_k = x_k - x_0` of one point and independent
+//! reading errors of variance `sigma^2` per coordinate, `Cov(d) = sigma^2 (I + J)` per coordinate
+//! (`J` the `m x m` matrix of ones). Least squares on the displacements as if independent gives
+//! intervals that ignore it (too narrow for the compliances the common error moves). The fit is
+//! instead generalised least squares (Aitken 1935; Seber & Lee, *Linear Regression Analysis*,
+//! 2003, sec. 3.10): the rows of each point and coordinate are whitened by
+//! `W = (I + J)^(-1/2) = I + a J`, `a = (1/sqrt(1 + m) - 1) / m` (the eigenvalues of `I + J` are
+//! `1 + m` along the ones and `1` across them), so that `Cov(W d) = sigma^2 I`, and the whitened
+//! system is solved by QR as usual. The residual variance and the model check then refer to one
+//! reading's `sigma^2`; the stored residuals are the displacements' (unwhitened).
+//!
 //! The design side of the steps (`[loading] steps_n`: what they are worth in the criteria and
 //! the Monte Carlo) is [`design`].
 
 use crate::identify::adequacy::SIGNIFICANCE;
+use crate::identify::cross_validation::Method;
+use crate::identify::Identification;
 use crate::io::readings::{Load, Readings};
 use crate::observation::deflection::Frame;
 use crate::observation::frames::{self, DisplacementFrame};
-use crate::observation::Measurement;
+use crate::observation::{Measurement, Observations};
 use crate::{Error, Result, Setup};
-use nalgebra::Vector3;
+use nalgebra::{DVector, RowDVector, Vector3};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::collections::HashMap;
 
@@ -140,6 +155,45 @@ impl LoadSteps {
             .filter(|&i| !self.steps[i].is_zero())
             .collect()
     }
+}
+
+/// Generalised least squares of displacements that share their point's unloaded reading
+/// (module docs): `method` on `obs` whitened per posture and measuring point of `measurements`
+/// (the measurements of `obs`, in its row order), with the residuals and their RMS of `obs`
+/// itself.
+///
+/// # Errors
+/// Those of `method`.
+pub fn generalised(
+    obs: &Observations,
+    measurements: &[Measurement],
+    method: Method,
+) -> Result<Identification> {
+    let mut white = obs.clone();
+    let mut groups: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    for (i, m) in measurements.iter().enumerate() {
+        groups.entry((m.posture, m.point)).or_default().push(i);
+    }
+    for members in groups.values() {
+        let m = members.len() as f64;
+        let a = ((1.0 + m).sqrt().recip() - 1.0) / m;
+        for c in 0..3 {
+            let rows = || members.iter().map(move |&i| 3 * i + c);
+            let psi_sum = rows().fold(RowDVector::zeros(obs.psi.ncols()), |sum, r| {
+                sum + obs.psi.row(r)
+            });
+            let delta_sum: f64 = rows().map(|r| obs.delta[r]).sum();
+            for r in rows() {
+                white.psi.set_row(r, &(obs.psi.row(r) + &psi_sum * a));
+                white.delta[r] = obs.delta[r] + a * delta_sum;
+            }
+        }
+    }
+    let mut id = method.fit(&white)?;
+    let h = DVector::from_column_slice(id.compliance.as_slice());
+    id.residuals = &obs.delta - &obs.psi * h;
+    id.residual_rms = (id.residuals.norm_squared() / id.residuals.len() as f64).sqrt();
+    Ok(id)
 }
 
 fn loaded_first(readings: &Readings, posture: usize, point: usize, line: u64) -> Error {

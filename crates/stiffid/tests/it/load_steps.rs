@@ -492,3 +492,44 @@ fn validate_and_the_model_comparison_read_load_step_readings() {
     }
     assert!(!c.comparison.models.is_empty());
 }
+
+/// The share of `runs` seeded campaigns (loads rising then falling, no offset, the setup's
+/// tracker noise) whose 95% interval of each joint's compliance holds the true compliance, the
+/// six joints pooled; the intervals from the fit's residual variance (`uncertainty`) and from
+/// the tracker noise (`adequacy.from_noise`).
+fn coverage(setup: &Setup, runs: u64) -> (f64, f64) {
+    let sigma_mm = setup.noise().reading_sd() * 1e3;
+    let truth = setup.nominal_stiffness().unwrap().map(|k| 1.0 / k);
+    let (mut residual, mut noise) = (0usize, 0usize);
+    let inside = |ci: &[[f64; 2]; 6], j: usize| ci[j][0] <= truth[j] && truth[j] <= ci[j][1];
+    for seed in 0..runs {
+        let campaign = Campaign {
+            loads: &RISING_FALLING,
+            offset_mm: 0.0,
+            hysteresis_mm: 0.0,
+            noise_mm: sigma_mm,
+            seed: 1000 + seed,
+        };
+        let report = identify(setup, &campaign.readings(setup), false).unwrap();
+        let u = report.identification.uncertainty.as_ref().unwrap();
+        let n = &report.adequacy.as_ref().unwrap().from_noise;
+        residual += (0..6).filter(|&j| inside(&u.compliance_ci95, j)).count();
+        noise += (0..6).filter(|&j| inside(&n.compliance_ci95, j)).count();
+    }
+    let total = 6.0 * runs as f64;
+    (residual as f64 / total, noise as f64 / total)
+}
+
+#[test]
+fn the_intervals_include_the_shared_unloaded_reading() {
+    // Nine loaded readings of a point share its unloaded reading: their errors are correlated
+    // (covariance sigma^2 (I + J)). Over 200 seeds (1200 intervals, the binomial standard
+    // deviation of the share 0.6%), the 95% intervals cover 93-97% of the true compliances.
+    let (residual, noise) = coverage(&paper(), 200);
+    for (name, share) in [("residual", residual), ("noise", noise)] {
+        assert!(
+            (0.93..=0.97).contains(&share),
+            "{name} intervals cover {share} (residual {residual}, noise {noise})"
+        );
+    }
+}

@@ -15,7 +15,7 @@ use crate::model::prediction::Calibration;
 use crate::common::warning::{joint_list, Warning, WarningKind};
 use crate::identify::adequacy::UNIT_FACTOR;
 use crate::identify::offsets::{self, Offset};
-use crate::identify::steps::{linearity, Linearity, LoadSteps};
+use crate::identify::steps::{self, linearity, Linearity, LoadSteps};
 use crate::identify::{
     cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, UnitCheck,
 };
@@ -47,10 +47,11 @@ pub(super) struct Request<'a, R> {
 
 /// The tracker noise variance of one row of the fit, m^2, that the model check tests the
 /// residuals against: a displacement's (a loaded minus an unloaded reading, twice a reading's);
-/// with offsets fitted, one reading's, the unloaded reading's error going into its offset
-/// (docs/model.md, the noise convention).
-pub fn row_noise_variance(noise: &Noise, offsets: bool) -> f64 {
-    match offsets {
+/// `per_reading` (offsets fitted, or readings under load steps), one reading's: the unloaded
+/// reading's error goes into the offset, or the fit is whitened for it
+/// ([`crate::identify::steps::generalised`]; docs/model.md, the noise convention).
+pub fn row_noise_variance(noise: &Noise, per_reading: bool) -> f64 {
+    match per_reading {
         true => noise.reading_variance,
         false => noise.displacement_variance(),
     }
@@ -189,7 +190,7 @@ pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         }
         Data::Measurements(measurements) => {
             let (id, cv, offsets) =
-                fit(setup, how_fit, &measurements).map_err(|e| in_data("arrays", e))?;
+                fit(setup, how_fit, &measurements, false).map_err(|e| in_data("arrays", e))?;
             let found = Found {
                 identification: id,
                 origin: arrays_origin(&measurements),
@@ -214,7 +215,10 @@ pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let mut report = Report {
         data_name,
         fit: how,
-        adequacy: identification.adequacy(row_noise_variance(setup.noise(), offsets.is_some())),
+        adequacy: identification.adequacy(row_noise_variance(
+            setup.noise(),
+            offsets.is_some() || load_steps.is_some(),
+        )),
         unit,
         influential: Vec::new(),
         identification,
@@ -278,7 +282,7 @@ fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> 
     }
     let (file, origin) = read_file(setup, name, source)?;
     let (id, cv, offsets) =
-        fit(setup, how, &file.measurements).map_err(|e| in_data(name, file.explain(e)))?;
+        fit(setup, how, &file.measurements, false).map_err(|e| in_data(name, file.explain(e)))?;
     Ok(Found {
         identification: id,
         origin,
@@ -414,7 +418,7 @@ impl Loaded {
 fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
     let data = Loaded::read(setup, name, text)?;
     let (id, cv, offsets) =
-        fit(setup, how, &data.measurements).map_err(|e| data.explain(name, e))?;
+        fit(setup, how, &data.measurements, true).map_err(|e| data.explain(name, e))?;
     data.check_scale(setup, name)?;
     Ok(Found {
         identification: id,
@@ -427,12 +431,15 @@ fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Foun
 
 /// The fit of measurements in the base frame, the cross-validation (and the calibration of its
 /// prediction intervals) and the offsets if asked. Plain least squares without cross-validation
-/// nor offsets runs in blocks ([`least_squares`]), without the whole `Psi`.
+/// nor offsets runs in blocks ([`least_squares`]), without the whole `Psi`. With `shared`, the
+/// loaded readings of each point share its unloaded reading: the fit is generalised least
+/// squares ([`steps::generalised`]; offsets absorb the shared error, their fit stays ordinary).
 #[allow(clippy::type_complexity)]
 fn fit(
     setup: &Setup,
     how: How,
     measurements: &[Measurement],
+    shared: bool,
 ) -> Result<(
     Identification,
     Option<(CrossValidation, Calibration)>,
@@ -442,13 +449,16 @@ fn fit(
         let (id, offsets) = offsets::least_squares(setup.arm(), measurements)?;
         return Ok((id, None, Some(offsets)));
     }
-    if how.in_blocks() {
+    if how.in_blocks() && !shared {
         return Ok((least_squares(setup.arm(), measurements)?, None, None));
     }
     let obs = Observations::from_measurements(setup.arm(), measurements)?;
     // Every fold is fitted as the full fit.
     let method = how.fit.method();
-    let id = method.fit(&obs)?;
+    let id = match shared {
+        true => steps::generalised(&obs, measurements, method)?,
+        false => method.fit(&obs)?,
+    };
     let cross_validation = match how.folds {
         None => None,
         Some(folds) => {
