@@ -15,6 +15,7 @@ mod compensate;
 mod design;
 mod documents;
 mod error;
+mod figures;
 mod ik;
 mod machining;
 mod measure;
@@ -57,6 +58,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(register::register, m)?)?;
     m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(figures::figures, m)?)?;
     m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
     m.add_function(wrap_pyfunction!(plan::scene, m)?)?;
     m.add_class::<plan::Scene>()?;

@@ -6,6 +6,7 @@
 use crate::load;
 use crate::output::{self, print_json_or, OutFile};
 use crate::progress::Bars;
+use crate::report::calibration;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid::app::calibrate::document::Document;
@@ -74,6 +75,12 @@ pub struct Args {
     /// weight). Never over an input.
     #[arg(long)]
     stiffness_out: Option<PathBuf>,
+    /// Also write a report into this directory (created; must be missing, empty or hold an
+    /// earlier calibration report): each reading's error before and after, the errors in 3D,
+    /// the parameters with their intervals, the residuals against the noise, the merged
+    /// parameters.
+    #[arg(long)]
+    report: Option<PathBuf>,
 }
 
 /// Runs `stiffid calibrate`.
@@ -93,6 +100,7 @@ pub fn run(args: &Args) -> Result<()> {
     let urdf_out = prepare(&args.urdf_out, "--urdf-out")?;
     let stiffness_out = prepare(&args.stiffness_out, "--stiffness-out")?;
     let bars = Bars::new(false);
+    let report_dir = args.report.as_deref().map(calibration::open).transpose()?;
     let request = job::Request {
         readings: Readings {
             setup: &setup,
@@ -145,6 +153,9 @@ pub fn run(args: &Args) -> Result<()> {
     }
     if let Some((o, text)) = urdf_out.as_ref().zip(urdf_text) {
         o.write(text.as_bytes())?;
+    }
+    if let Some(dir) = report_dir {
+        calibration::write(dir, &setup, &report, &document)?;
     }
     output::warnings(&document.warnings);
     print_json_or(args.common.json, &document, text_of)

@@ -2,10 +2,12 @@
 //! `report.md`, `summary.json`, `deviation_rates.csv`, one postures CSV per group and `figures/`
 //! (SVG and PNG).
 
+pub mod calibration;
 pub mod compensation;
 mod content;
 pub mod figures;
 pub mod html;
+pub mod identification;
 mod markdown;
 pub mod plan;
 pub mod summary;

@@ -21,6 +21,7 @@ mod options_proptest;
 mod pool_cli;
 mod readable_files;
 mod register_cli;
+mod report_cli;
 mod reproduce;
 mod schemas;
 mod select_cli;

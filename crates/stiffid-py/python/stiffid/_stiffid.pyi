@@ -415,6 +415,9 @@ def deflection(
 ) -> list[dict[str, Any]]:
     """The predict document of each posture of q_deg ((6,) or (n, 6)) under wrench ((6,) or (n, 6)), each equal to `stiffid predict --json` (loaded_mm became at_mm; observed_mm was removed: every measuring point and the TCP are in each document)."""
 
+def figures(document: Any) -> dict[str, str]:
+    """The figures of a calibration (the dict calibrate() returns) or an identification (identify()'s Identification or dict, or a model comparison) as SVG strings keyed by name, as `calibrate --report` and `identify --report` draw them."""
+
 def register(
     setup: Setup,
     readings: Optional[Union[str, os.PathLike[str]]] = None,

@@ -6,6 +6,7 @@
 use crate::commands::common::{choice, Common};
 use crate::load;
 use crate::output::{self, json, OutFile};
+use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::identify::document::{drives, springs};
@@ -70,6 +71,11 @@ pub struct Args {
     /// thread count (default 1).
     #[arg(long)]
     seed: Option<u64>,
+    /// Also write a report into this directory (created; must be missing, empty or hold an
+    /// earlier identification report): the residuals' QQ plot against the noise, the folds'
+    /// stability, the prediction intervals' held-out scores, the compared models.
+    #[arg(long)]
+    report: Option<PathBuf>,
 }
 
 /// Identifies (or compares models), prints, and writes `--out`: the options checked together
@@ -95,6 +101,11 @@ pub fn run(args: &Args) -> Result<()> {
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
+    let report_dir = args
+        .report
+        .as_deref()
+        .map(identification::open)
+        .transpose()?;
     let report = job::run(Request {
         setup: &setup,
         data: Data::File {
@@ -112,6 +123,9 @@ pub fn run(args: &Args) -> Result<()> {
                 out.write(r.fragment().as_bytes())?;
             }
             let doc = r.document(name);
+            if let Some(dir) = report_dir {
+                identification::write(dir, &json(&doc)?)?;
+            }
             return match args.common.json {
                 true => output::print(&json(&doc)?),
                 false => output::print(&models::text(&doc, &r.comparison, &setup)),
@@ -129,6 +143,9 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(out) = &out {
         job::check_stiffness_file(&json_text, &setup, &output::flag)?;
         out.write(json_text.as_bytes())?;
+    }
+    if let Some(dir) = report_dir {
+        identification::write(dir, &json_text)?;
     }
     match args.common.json {
         true => output::print(&json_text),

@@ -9,33 +9,11 @@ pub mod postures;
 pub mod table;
 pub mod target;
 
-use anyhow::{anyhow, bail, Context, Result};
-use plotters::coord::Shift;
+use anyhow::{Context, Result};
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
 use rayon::prelude::*;
-use std::sync::OnceLock;
 use stiffid::study::Study;
-
-/// DejaVu Sans (Bitstream Vera license, `assets/DejaVuSans-LICENSE.txt`): the PNG text font.
-const FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
-
-/// One colour per group, in group order (colour-blind-safe Okabe-Ito hues).
-pub const PALETTE: [RGBColor; 8] = [
-    RGBColor(0, 0, 0),
-    RGBColor(230, 159, 0),
-    RGBColor(0, 114, 178),
-    RGBColor(0, 158, 115),
-    RGBColor(204, 121, 167),
-    RGBColor(213, 94, 0),
-    RGBColor(86, 180, 233),
-    RGBColor(170, 170, 0),
-];
-
-/// The colour of group `g`.
-pub fn colour(g: usize) -> RGBColor {
-    PALETTE[g % PALETTE.len()]
-}
+pub use stiffid_figures::{colour, failed, short, Plot};
 
 /// A rendered figure.
 pub struct Figure {
@@ -49,43 +27,10 @@ pub struct Figure {
     pub png: Vec<u8>,
 }
 
-/// Something drawable on any plotters backend.
-pub trait Plot {
-    /// Width and height, pixels.
-    fn size(&self) -> (u32, u32);
-    /// Draws onto the whole area.
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>;
-}
-
-/// Plotters errors as anyhow errors.
-pub fn failed<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("drawing a figure failed: {e:?}")
-}
-
 /// Draws `plot` into SVG and PNG.
 pub fn render(name: &str, caption: &str, plot: &impl Plot) -> Result<Figure> {
-    static FONTS: OnceLock<bool> = OnceLock::new();
-    let registered = FONTS.get_or_init(|| {
-        [
-            FontStyle::Normal,
-            FontStyle::Bold,
-            FontStyle::Italic,
-            FontStyle::Oblique,
-        ]
-        .into_iter()
-        .all(|style| register_font("sans-serif", style, FONT).is_ok())
-    });
-    if !registered {
-        bail!("the bundled font assets/DejaVuSans.ttf does not parse");
-    }
     let (w, h) = plot.size();
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(failed)?;
-        plot.draw(&root)?;
-        root.present().map_err(failed)?;
-    }
+    let svg = stiffid_figures::svg(plot)?;
     let mut rgb = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
@@ -129,15 +74,7 @@ pub fn all(study: &Study) -> Result<Vec<Figure>> {
         .collect()
 }
 
-/// `v` with 3 significant digits, no trailing zeros (axis labels).
-pub fn short(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let decimals = (2 - v.abs().log10().floor() as i32).max(0) as usize;
-    let s = format!("{v:.decimals$}");
-    match s.contains('.') {
-        true => s.trim_end_matches('0').trim_end_matches('.').to_string(),
-        false => s,
-    }
+/// A shared figure ([`stiffid_figures`]) drawn into SVG and PNG.
+pub fn shared(f: &stiffid_figures::Figure) -> Result<Figure> {
+    render(&f.name, &f.caption, &f.chart)
 }

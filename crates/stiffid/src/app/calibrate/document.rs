@@ -3,7 +3,7 @@
 
 use super::{Held, Report};
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
-use crate::app::document::{finite, mm};
+use crate::app::document::{finite, mm, scene};
 use crate::app::Warning;
 use crate::common::choice::Choice;
 use crate::metrology::calibration::error_model::Target;
@@ -53,6 +53,11 @@ pub struct Document {
     /// Why the iterations stopped: `converged`, `stalled`, `damping-exhausted` (a minimum within
     /// rounding) or `iteration-limit` (not converged; a warning says so).
     pub stop_reason: &'static str,
+    /// Every reading's 3D position error before the calibration (the nominal robot, the tracker
+    /// registered on the same readings, the setup's measuring points) and after it: the fitted
+    /// readings (`set` `fitted`), then the held-out ones (`validation`, `--validate`), then each
+    /// posture predicted by the fit of the others (`cross-validation`, `--cross-validate`).
+    pub errors: Vec<BeforeAfter>,
     /// The held-out readings' errors (`--validate`), if asked.
     pub validation: Option<ValidationDocument>,
     /// The leave-one-posture-out errors (`--cross-validate`), if asked.
@@ -135,6 +140,27 @@ pub struct Merged {
     pub into: Vec<String>,
     /// Why, in words.
     pub reason: String,
+}
+
+/// One reading's error before and after the calibration.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct BeforeAfter {
+    /// `fitted`, `validation` (held out) or `cross-validation` (held out by the fit of the other
+    /// postures).
+    pub set: &'static str,
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// Predicted minus read with the nominal robot, base frame, mm.
+    pub before_mm: [f64; 3],
+    /// Predicted minus read with the calibration, base frame, mm.
+    pub after_mm: [f64; 3],
+    /// The length of `before_mm`, mm.
+    pub before_norm_mm: f64,
+    /// The length of `after_mm`, mm.
+    pub after_norm_mm: f64,
 }
 
 /// Two correlated parameters.
@@ -254,6 +280,7 @@ impl Document {
             noise_ratio: finite(report.noise_ratio),
             iterations: fit.iterations,
             stop_reason: fit.termination.name(),
+            errors: before_after(report),
             validation: report.validation.as_ref().map(held),
             cross_validation: report.cross_validation.as_ref().map(held),
             robot_file: report.robot_toml.as_ref().ok().cloned(),
@@ -313,6 +340,90 @@ fn held(h: &Held) -> ValidationDocument {
         nominal_rms_mm: mm(h.nominal.rms),
         errors: errors(&h.calibrated, &h.labels),
     }
+}
+
+/// Every reading's error before and after ([`Document::errors`]).
+fn before_after(report: &Report) -> Vec<BeforeAfter> {
+    let sets = [
+        (
+            "fitted",
+            Some((&report.nominal, &report.calibrated, &report.labels)),
+        ),
+        (
+            "validation",
+            report
+                .validation
+                .as_ref()
+                .map(|h| (&h.nominal, &h.calibrated, &h.labels)),
+        ),
+        (
+            "cross-validation",
+            report
+                .cross_validation
+                .as_ref()
+                .map(|h| (&h.nominal, &h.calibrated, &h.labels)),
+        ),
+    ];
+    let mut all = Vec::new();
+    for (set, held) in sets {
+        let Some((before, after, labels)) = held else {
+            continue;
+        };
+        all.extend(
+            before
+                .errors
+                .iter()
+                .zip(&after.errors)
+                .map(|(b, a)| BeforeAfter {
+                    set,
+                    posture: labels.get(a.posture).cloned().unwrap_or_default(),
+                    point: a.point + 1,
+                    before_mm: [mm(b.error.x), mm(b.error.y), mm(b.error.z)],
+                    after_mm: [mm(a.error.x), mm(a.error.y), mm(a.error.z)],
+                    before_norm_mm: mm(b.error.norm()),
+                    after_norm_mm: mm(a.error.norm()),
+                }),
+        );
+    }
+    all
+}
+
+/// The 3D scene of the calibration: the robot at each fitted posture (the first
+/// [`scene::MAX_POSTURES`]) with each measuring point's error before the calibration (as
+/// `measured`) and after it (as `predicted`), base frame; a point without a reading in a posture
+/// has no error drawn (zero).
+///
+/// # Errors
+/// Those of [`scene::scene`].
+pub fn scene(report: &Report, setup: &crate::Setup) -> crate::Result<scene::Scene> {
+    let n = report.postures.len().min(scene::MAX_POSTURES);
+    let points = setup.tool().measuring_points.len();
+    let arrows = |v: &Validation| {
+        let mut d = vec![vec![nalgebra::Vector3::zeros(); points]; n];
+        for e in v
+            .errors
+            .iter()
+            .filter(|e| e.posture < n && e.point < points)
+        {
+            d[e.posture][e.point] = e.error;
+        }
+        d
+    };
+    let (before, after) = (arrows(&report.nominal), arrows(&report.calibrated));
+    let extras = scene::Extras {
+        measured: &before,
+        predicted: &after,
+        arrow_names: Some(["error before calibration", "error after calibration"]),
+        ..scene::Extras::default()
+    };
+    let mut s = scene::scene(setup, &report.postures[..n], &extras)?;
+    if n < report.postures.len() {
+        s.notes.push(format!(
+            "the first {n} of {} postures are drawn",
+            report.postures.len()
+        ));
+    }
+    Ok(s)
 }
 
 fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {

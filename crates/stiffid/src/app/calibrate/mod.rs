@@ -137,6 +137,10 @@ pub struct Report {
     /// The fitted readings' errors with the nominal model (tracker registered, points the
     /// setup's): the error the calibration starts from.
     pub nominal: Validation,
+    /// The fitted readings' errors with the calibration, in the order of `nominal`'s.
+    pub calibrated: Validation,
+    /// Each fitted posture's axis angles, rad, in the order of `labels`.
+    pub postures: Vec<nalgebra::Vector6<f64>>,
     /// The estimated noise per coordinate over the setup's: near 1 when the model explains the
     /// readings to the tracker's noise.
     pub noise_ratio: f64,
@@ -249,6 +253,12 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     refuse_repeated(setup, &data, &model, &fitted).map_err(|e| in_data(name, e))?;
     let reference = reference(setup, &model)?;
     let nominal = nominal(&reference, &obs, name)?;
+    let calibrated =
+        validation::validate(&model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
+    let mut postures = vec![nalgebra::Vector6::zeros(); data.labels.len()];
+    for o in &obs {
+        postures[o.posture] = o.q;
+    }
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
     let cross_validation = match request.cross_validate {
         false => None,
@@ -292,6 +302,8 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         start_frame: start.frame,
         fit: fitted,
         nominal,
+        calibrated,
+        postures,
         noise_ratio,
         validation,
         cross_validation,

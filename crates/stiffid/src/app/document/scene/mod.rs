@@ -53,6 +53,8 @@ pub struct Scene {
     pub path: Vec<PathPoint>,
     /// What the path's error is, in words; empty without a path.
     pub path_error: String,
+    /// What the arrows' two displacements are, in words: `measured_m`'s, `predicted_m`'s.
+    pub arrow_names: [String; 2],
     /// What the drawing simplifies, in words (meshes drawn as convex hulls, a thinned path).
     pub notes: Vec<String>,
 }
@@ -205,6 +207,9 @@ pub struct Extras<'a> {
     pub path_error: &'a str,
     /// Whether the scene has the rope (a measurement campaign: the plan, identification).
     pub rope: bool,
+    /// What `measured` and `predicted` are, in words; `None`: the measured and the predicted
+    /// displacement.
+    pub arrow_names: Option<[&'a str; 2]>,
 }
 
 /// The scene of the postures `postures` (axis angles, rad) of `setup`.
@@ -296,6 +301,10 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate
         ellipsoid_force_n: force,
         path,
         path_error: extras.path_error.to_string(),
+        arrow_names: extras
+            .arrow_names
+            .unwrap_or(["measured displacement", "predicted displacement"])
+            .map(String::from),
         notes,
     })
 }

@@ -177,8 +177,8 @@ function draw(root, scene) {
   const legend = root.querySelector('.legend');
   const rows = [];
   rows.push(`displacements and ellipsoids drawn x${gain.toLocaleString('en')}`);
-  if (postures.some((p) => p.arrows.some((a) => a.measured_m))) rows.push(key('#1f77b4', 'measured displacement'));
-  if (postures.some((p) => p.arrows.some((a) => a.predicted_m))) rows.push(key('#d62728', 'predicted displacement'));
+  if (postures.some((p) => p.arrows.some((a) => a.measured_m))) rows.push(key('#1f77b4', scene.arrow_names[0]));
+  if (postures.some((p) => p.arrows.some((a) => a.predicted_m))) rows.push(key('#d62728', scene.arrow_names[1]));
   if (postures.some((p) => p.ellipsoid)) rows.push(key('#9467bd', `compliance ellipsoid at the TCP, under ${scene.ellipsoid_force_n.toFixed(0)} N`));
   if (scene.tracker_m) {
     rows.push(key('#2b7a2b', 'tracker; lines of sight by margin:'));

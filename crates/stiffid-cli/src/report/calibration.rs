@@ -1,0 +1,194 @@
+//! The report of `stiffid calibrate --report DIR`: `report.html` (self-contained: figures inline
+//! as SVG, the 3D scene), `calibration.json` (the calibrate job's document, which the other files
+//! render), `errors.glb` (the scene as glTF binary) and `figures/` (SVG and PNG). The figures are
+//! the shared ones ([`stiffid_figures::calibrate`]) drawn from the document.
+
+use super::figures::{self, Figure};
+use super::html::{page, Writer};
+use super::tables::{num, Table};
+use crate::output::{json, ReportDir};
+use anyhow::Result;
+use rayon::prelude::*;
+use std::path::Path;
+use stiffid::app::calibrate::document::{self as document, Document};
+use stiffid::app::calibrate::Report;
+use stiffid::app::document::scene::{glb, Scene};
+use stiffid::Setup;
+
+/// The generator mark of `report.html`, by which a calibration report is recognised as ours.
+const GENERATOR: &str = "stiffid calibrate";
+
+/// The fixed files of the report (besides `figures/`).
+const FILES: [&str; 3] = ["calibration.json", "report.html", "errors.glb"];
+
+/// Opens the report directory `dir` (`--report`) before the calibration: new, empty or holding a
+/// calibration report of ours (its `report.html`); see [`ReportDir::prepare`].
+pub fn open(dir: &Path) -> Result<ReportDir> {
+    let holds =
+        |rel: &Path| FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures");
+    ReportDir::prepare(dir, "--report", None, &holds, &|d| {
+        stiffid::io::input::open(&d.join("report.html"))
+            .ok()
+            .and_then(|f| stiffid::io::read_text("report.html", f).ok())
+            .is_some_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))
+    })
+}
+
+/// Writes every file of the report of `report` (whose document is `doc`) into `dir`, each whole.
+pub fn write(dir: ReportDir, setup: &Setup, report: &Report, doc: &Document) -> Result<()> {
+    let value = serde_json::to_value(doc)?;
+    let shared = stiffid_figures::calibrate::figures(&value)?;
+    let figures: Vec<Figure> = shared
+        .par_iter()
+        .map(figures::shared)
+        .collect::<Result<_>>()?;
+    let scene = document::scene(report, setup)?;
+    let html = page(
+        &format!("stiffid calibration: {}", doc.setup),
+        GENERATOR,
+        |w| compose(w, doc, &figures, &scene),
+    );
+    let mut files: Vec<(String, Vec<u8>)> = vec![
+        (FILES[0].into(), json(doc)?.into_bytes()),
+        (FILES[1].into(), html.into_bytes()),
+        (FILES[2].into(), glb::glb(&scene)),
+    ];
+    for f in figures {
+        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
+        files.push((format!("figures/{}.png", f.name), f.png));
+    }
+    files
+        .par_iter()
+        .try_for_each(|(rel, bytes)| dir.write(rel, bytes))?;
+    dir.finish()
+}
+
+fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
+    figures.iter().find(|f| f.name == name)
+}
+
+fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene) {
+    w.heading(1, &format!("Robot calibration: {}", doc.setup));
+    w.paragraph(&format!(
+        "Readings `{}` ({} fitted, in the {} frame); joint errors `{}`, gravity terms `{}`. The fit stopped: {} after {} iterations.",
+        doc.data, doc.readings, doc.measured_in, doc.geometry, doc.gravity, doc.stop_reason, doc.iterations
+    ));
+    let mut summary = format!(
+        "RMS error of the fitted readings: {} mm with the nominal robot (the tracker registered on them), {} mm calibrated; the noise estimated from the residuals is {} mm per coordinate",
+        num(doc.nominal_rms_mm),
+        num(doc.residual_rms_mm),
+        num(doc.noise_std_mm)
+    );
+    if let Some(r) = doc.noise_ratio {
+        summary += &format!(", {} times the setup's tracker noise", num(r));
+    }
+    summary.push('.');
+    for v in [&doc.validation, &doc.cross_validation]
+        .into_iter()
+        .flatten()
+    {
+        summary += &format!(
+            " Held out ({}): RMS {} mm (max {} mm), nominal {} mm.",
+            v.data,
+            num(v.rms_mm),
+            num(v.max_mm),
+            num(v.nominal_rms_mm)
+        );
+    }
+    w.paragraph(&summary);
+    for warning in &doc.warnings {
+        w.paragraph(&format!("Warning: {}", warning.message));
+    }
+    w.heading(2, "Error per posture and measuring point, before and after");
+    if let Some(f) = find(figures, "errors") {
+        w.figure(f);
+    }
+    w.table(&errors_table(doc));
+    w.heading(2, "The errors in 3D");
+    w.paragraph("The robot at each fitted posture with each measuring point's error before the calibration (the nominal robot) and after it, magnified (the factor in the legend).");
+    w.scene(scene, FILES[2]);
+    w.heading(2, "Residuals against the noise");
+    if let Some(f) = find(figures, "residuals") {
+        w.figure(f);
+    }
+    w.heading(2, "The parameters with their intervals");
+    w.paragraph(&format!(
+        "{} parameters identified (the rank of the identification Jacobian){}.",
+        doc.rank,
+        doc.condition
+            .map_or(String::new(), |c| format!(", condition number {}", num(c)))
+    ));
+    for f in figures.iter().filter(|f| f.name.starts_with("parameters_")) {
+        w.figure(f);
+    }
+    w.table(&parameters_table(doc));
+    w.heading(2, "Merged parameters");
+    match doc.merged.is_empty() {
+        true => w.paragraph("None: the readings determine every parameter of the error model."),
+        false => {
+            w.paragraph("The readings do not separate these parameters from the identified ones: each is left at its nominal value and its effect is carried by the parameters named.");
+            let items: Vec<String> = (doc.merged.iter())
+                .map(|m| format!("`{}`: {}.", m.name, m.reason))
+                .collect();
+            w.list(&items);
+        }
+    }
+    if !doc.correlations.is_empty() {
+        let items: Vec<String> = (doc.correlations.iter())
+            .map(|c| format!("`{}` and `{}`: correlation {:.3}", c.a, c.b, c.rho))
+            .collect();
+        w.paragraph("Identified parameters correlated above 0.9 (their sum or difference is better determined than each):");
+        w.list(&items);
+    }
+    w.paragraph("Files: calibration.json (the calibrate document this page renders), errors.glb (the 3D scene), figures/ (SVG and PNG).");
+}
+
+/// The before and after error of every reading.
+fn errors_table(doc: &Document) -> Table {
+    let header = ["set", "posture", "point", "before, mm", "after, mm"]
+        .map(String::from)
+        .to_vec();
+    let rows = (doc.errors.iter())
+        .map(|e| {
+            vec![
+                e.set.to_string(),
+                e.posture.clone(),
+                e.point.to_string(),
+                format!("{:.4}", e.before_norm_mm),
+                format!("{:.4}", e.after_norm_mm),
+            ]
+        })
+        .collect();
+    Table { header, rows }
+}
+
+/// Every parameter: nominal, fitted, standard deviation and 95% interval.
+fn parameters_table(doc: &Document) -> Table {
+    let header = [
+        "parameter",
+        "unit",
+        "nominal",
+        "fitted",
+        "sd",
+        "95% interval",
+        "identified",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows = (doc.parameters.iter())
+        .map(|p| {
+            vec![
+                p.name.clone(),
+                p.unit.to_string(),
+                num(p.nominal),
+                num(p.value),
+                p.sd.map_or("-".into(), num),
+                p.sd.map_or("-".into(), |s| {
+                    format!("{} to {}", num(p.value - 1.96 * s), num(p.value + 1.96 * s))
+                }),
+                if p.identified { "yes" } else { "merged" }.into(),
+            ]
+        })
+        .collect();
+    Table { header, rows }
+}

@@ -1,0 +1,185 @@
+//! The report of `stiffid identify --report DIR`: `report.html` (self-contained, figures inline as
+//! SVG), `identify.json` (the identify job's document, any of its forms, which the other files
+//! render) and `figures/` (SVG and PNG): the residuals' QQ plot against the noise, the stability
+//! of the cross-validation's folds, the prediction intervals' held-out scores, the compared
+//! models' held-out shares with their standard errors ([`stiffid_figures::identify`]).
+
+use super::figures::{self, Figure};
+use super::html::{page, Writer};
+use super::tables::{num, Table};
+use crate::output::ReportDir;
+use anyhow::Result;
+use rayon::prelude::*;
+use serde_json::Value;
+use std::path::Path;
+
+/// The generator mark of `report.html`, by which an identification report is recognised.
+const GENERATOR: &str = "stiffid identify";
+
+/// The fixed files of the report (besides `figures/`).
+const FILES: [&str; 2] = ["identify.json", "report.html"];
+
+/// Opens the report directory `dir` (`--report`) before the identification: new, empty or
+/// holding an identification report of ours (its `report.html`); see [`ReportDir::prepare`].
+pub fn open(dir: &Path) -> Result<ReportDir> {
+    let holds =
+        |rel: &Path| FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures");
+    ReportDir::prepare(dir, "--report", None, &holds, &|d| {
+        stiffid::io::input::open(&d.join("report.html"))
+            .ok()
+            .and_then(|f| stiffid::io::read_text("report.html", f).ok())
+            .is_some_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))
+    })
+}
+
+/// Writes every file of the report of the identify document `json` (its text) into `dir`.
+pub fn write(dir: ReportDir, json: &str) -> Result<()> {
+    let doc: Value = serde_json::from_str(json)?;
+    let shared = stiffid_figures::identify::figures(&doc)?;
+    let figures: Vec<Figure> = shared
+        .par_iter()
+        .map(figures::shared)
+        .collect::<Result<_>>()?;
+    let setup = doc["setup"].as_str().unwrap_or_default();
+    let html = page(
+        &format!("stiffid identification: {setup}"),
+        GENERATOR,
+        |w| compose(w, &doc, &figures),
+    );
+    let mut files: Vec<(String, Vec<u8>)> = vec![
+        (FILES[0].into(), json.as_bytes().to_vec()),
+        (FILES[1].into(), html.into_bytes()),
+    ];
+    for f in figures {
+        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
+        files.push((format!("figures/{}.png", f.name), f.png));
+    }
+    files
+        .par_iter()
+        .try_for_each(|(rel, bytes)| dir.write(rel, bytes))?;
+    dir.finish()
+}
+
+fn text(v: &Value) -> String {
+    match v {
+        Value::Null => "-".into(),
+        Value::Number(n) if n.is_f64() => n.as_f64().map_or("-".into(), num),
+        Value::Number(n) => n.to_string(),
+        Value::String(s) => s.clone(),
+        Value::Bool(b) => if *b { "yes" } else { "no" }.into(),
+        other => other.to_string(),
+    }
+}
+
+fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure]) {
+    w.heading(
+        1,
+        &format!("Stiffness identification: {}", text(&doc["setup"])),
+    );
+    w.paragraph(&format!("Measurements `{}`.", text(&doc["data"])));
+    if let Some(c) = doc["conclusion"].as_str() {
+        w.paragraph(c);
+    }
+    for warning in doc["warnings"].as_array().into_iter().flatten() {
+        w.paragraph(&format!("Warning: {}", text(&warning["message"])));
+    }
+    if doc.get("models").is_some() {
+        w.heading(2, "The compared models");
+        w.table(&models_table(doc));
+    }
+    if let Some(p) = doc["parameters"]
+        .as_array()
+        .or(doc["fit"]["parameters"].as_array())
+    {
+        w.heading(2, "The stiffness");
+        w.table(&parameters_table(doc, p));
+    }
+    if doc.get("residual_rms_mm").is_some() {
+        w.paragraph(&format!(
+            "Residual RMS {} mm; the residuals' spread is {} times the tracker's noise on a displacement coordinate ({} mm).",
+            text(&doc["residual_rms_mm"]),
+            text(&doc["noise_ratio"]),
+            text(&doc["noise_std_mm"])
+        ));
+    }
+    let cv = &doc["cross_validation"];
+    if cv.is_object() {
+        w.paragraph(&format!(
+            "Cross-validation over {} folds: held out, the model explains {} % ± {} % of the measured displacement (RMS prediction error {} mm).",
+            text(&cv["folds"]),
+            text(&cv["explained_percent"]),
+            text(&cv["explained_std_error_percent"]),
+            text(&cv["rms_delta_b_mm"])
+        ));
+    }
+    if let Some(q) = doc["prediction"]["score_q95_percent"].as_f64() {
+        w.paragraph(&format!(
+            "Prediction intervals ({}): 95% of the held-out errors are within {} % of the predicted displacement plus {} mm; `predict --stiffness` gives them for any posture.",
+            text(&doc["prediction"]["method"]),
+            num(q),
+            text(&doc["prediction"]["noise_floor_mm"])
+        ));
+    }
+    for f in figures {
+        w.figure(f);
+    }
+    w.paragraph(
+        "Files: identify.json (the identify document this page renders), figures/ (SVG and PNG).",
+    );
+}
+
+/// Each parameter's stiffness and, for the drives, its standard error.
+fn parameters_table(doc: &Value, parameters: &[Value]) -> Table {
+    let se = doc["std_error_percent"].as_array();
+    let header = ["parameter", "unit", "stiffness", "standard error, %"]
+        .map(String::from)
+        .to_vec();
+    let rows = (parameters.iter().enumerate())
+        .map(|(j, p)| {
+            vec![
+                text(&p["name"]),
+                text(&p["unit"]),
+                text(&p["stiffness"]),
+                se.and_then(|s| s.get(j)).map_or("-".into(), text),
+            ]
+        })
+        .collect();
+    Table { header, rows }
+}
+
+/// The compared models: parameters, in-sample and held-out shares with standard errors.
+fn models_table(doc: &Value) -> Table {
+    let header = [
+        "model",
+        "parameters",
+        "explained in sample, %",
+        "held out, %",
+        "standard error, %",
+        "recommended",
+    ]
+    .map(String::from)
+    .to_vec();
+    let pct = |v: &Value| v.as_f64().map_or("-".into(), |x| num(100.0 * x));
+    let rows = (doc["models"].as_array().into_iter().flatten())
+        .map(|m| {
+            let springs: Vec<String> = m["springs"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .map(text)
+                .collect();
+            vec![
+                match springs.is_empty() {
+                    true => "drives".into(),
+                    false => springs.join(", "),
+                },
+                text(&m["parameters"]),
+                pct(&m["in_sample_explained"]),
+                pct(&m["held_out_explained"]),
+                pct(&m["held_out_explained_std_error"]),
+                text(&m["recommended"]),
+            ]
+        })
+        .collect();
+    Table { header, rows }
+}

@@ -1,0 +1,41 @@
+"""figures: the SVG figures of a calibration and an identification, drawn from their documents,
+are byte for byte the figures the command's reports write for the same call."""
+
+import pytest
+
+import stiffid
+from conftest import FANUC_DATA
+from test_calibrate import SETUP, campaign  # noqa: F401 (the fixture)
+
+
+def test_calibration_figures_are_the_reports(paper, cli, campaign, tmp_path):  # noqa: F811
+    _, _, fit, held = campaign
+    doc = stiffid.calibrate(paper, fit, validate=held)
+    figures = stiffid.figures(doc)
+    assert list(figures)[:2] == ["errors", "residuals"]
+    assert "parameters_mm" in figures and "parameters_deg" in figures
+    cli("calibrate", "--setup", SETUP, "--data", fit, "--validate", held, "--report", tmp_path / "r", "--json")
+    for name, svg in figures.items():
+        assert svg.startswith("<svg") and svg == (tmp_path / "r" / "figures" / f"{name}.svg").read_text(), name
+    # The errors figure draws every reading before and after (a circle each).
+    assert figures["errors"].count("<circle") == 2 * len(doc["errors"])
+
+
+def test_identification_figures_are_the_reports(fanuc, cli, tmp_path):
+    ident = stiffid.identify(fanuc, FANUC_DATA, cross_validate=True)
+    figures = stiffid.figures(ident)
+    assert list(figures) == ["qq", "folds", "prediction"]
+    assert figures == stiffid.figures(ident.to_dict())
+    cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--cross-validate",
+        "--report", tmp_path / "r", "--json")
+    for name, svg in figures.items():
+        assert svg == (tmp_path / "r" / "figures" / f"{name}.svg").read_text(), name
+    models = stiffid.identify(fanuc, FANUC_DATA, compare_models=True)
+    assert list(stiffid.figures(models)) == ["models"]
+
+
+def test_other_documents_are_refused():
+    with pytest.raises(stiffid.InputError, match="document: not an identify document"):
+        stiffid.figures({"setup": "x"})
+    with pytest.raises(stiffid.InputError, match="is not part of a document"):
+        stiffid.figures({"errors": [object()], "geometry": "full"})
