@@ -118,7 +118,7 @@ fn residuals(doc: &Value, errors: &[Value]) -> Result<Figure> {
             marks.push(Mark::Line {
                 label: format!("{label} (sd {} mm)", crate::short(sd)),
                 colour: colour(c),
-                xy: density(sd, 4.0 * sd.max(spread(&values))),
+                xy: density(sd, (4.0 * sd).max(1.1 * spread(&values))),
             });
         }
     }

@@ -110,9 +110,27 @@ impl Chart {
     }
 }
 
+impl Chart {
+    /// Whether the category names are written upright (many categories).
+    fn rotated(&self) -> bool {
+        self.x_names.len() > 8
+    }
+}
+
+/// `v` as an axis label on an axis spanning `span`: round-off beside 0 written as 0.
+fn label(v: f64, span: f64) -> String {
+    match v.abs() < 1e-9 * span.abs() {
+        true => "0".into(),
+        false => short(v),
+    }
+}
+
 impl Plot for Chart {
     fn size(&self) -> (u32, u32) {
-        (760, 440)
+        match self.rotated() {
+            true => (760, 540),
+            false => (760, 440),
+        }
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
@@ -121,7 +139,7 @@ impl Plot for Chart {
             let k = x.round();
             match ((x - k).abs() < 1e-9 && k >= 0.0).then(|| self.x_names.get(k as usize)) {
                 Some(Some(n)) => n.clone(),
-                _ if self.x_names.is_empty() => short(*x),
+                _ if self.x_names.is_empty() => label(*x, x1 - x0),
                 _ => String::new(),
             }
         };
@@ -129,7 +147,7 @@ impl Plot for Chart {
         builder
             .caption(&self.title, ("sans-serif", 20))
             .margin(14)
-            .x_label_area_size(44)
+            .x_label_area_size(if self.rotated() { 150 } else { 44 })
             .y_label_area_size(70);
         let ticks = match self.x_names.is_empty() {
             true => 10,
@@ -144,8 +162,12 @@ impl Plot for Chart {
                     .y_desc(self.y_desc.as_str())
                     .x_labels(ticks)
                     .x_label_formatter(&names)
-                    .y_label_formatter(&|y| short(*y))
+                    .y_label_formatter(&|y| label(*y, y1 - y0))
                     .label_style(("sans-serif", 13))
+                    .x_label_style(match self.rotated() {
+                        true => ("sans-serif", 12).into_font().transform(FontTransform::Rotate90),
+                        false => ("sans-serif", 13).into_font(),
+                    })
                     .light_line_style(WHITE.mix(0.0))
                     .draw()
                     .map_err(failed)?;

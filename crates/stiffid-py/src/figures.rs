@@ -41,29 +41,33 @@ fn json(o: &Bound<'_, PyAny>) -> PyResult<Value> {
     if o.is_none() {
         return Ok(Value::Null);
     }
-    if let Ok(b) = o.downcast::<PyBool>() {
+    if let Ok(b) = o.cast::<PyBool>() {
         return Ok(Value::Bool(b.is_true()));
     }
-    if let Ok(i) = o.downcast::<PyInt>() {
+    if let Ok(i) = o.cast::<PyInt>() {
         return Ok(match i.extract::<i64>() {
             Ok(v) => Value::Number(v.into()),
             Err(_) => Value::Number(Number::from_f64(i.extract::<f64>()?).unwrap_or(0.into())),
         });
     }
-    if let Ok(s) = o.downcast::<PyString>() {
+    if let Ok(s) = o.cast::<PyString>() {
         return Ok(Value::String(s.to_string()));
     }
-    if let Ok(d) = o.downcast::<PyDict>() {
+    if let Ok(d) = o.cast::<PyDict>() {
         let mut map = Map::new();
         for (k, v) in d.iter() {
             map.insert(k.str()?.to_string(), json(&v)?);
         }
         return Ok(Value::Object(map));
     }
-    if o.downcast::<PyList>().is_ok() || o.downcast::<PyTuple>().is_ok() {
-        return o.try_iter()?.map(|v| json(&v?)).collect::<PyResult<_>>().map(Value::Array);
+    if o.cast::<PyList>().is_ok() || o.cast::<PyTuple>().is_ok() {
+        return o
+            .try_iter()?
+            .map(|v| json(&v?))
+            .collect::<PyResult<_>>()
+            .map(Value::Array);
     }
-    if o.downcast::<PyFloat>().is_ok() || o.hasattr("__float__")? && !o.hasattr("tolist")? {
+    if o.cast::<PyFloat>().is_ok() || o.hasattr("__float__")? && !o.hasattr("tolist")? {
         return Ok(Number::from_f64(o.extract::<f64>()?).map_or(Value::Null, Value::Number));
     }
     for method in ["to_dict", "tolist"] {

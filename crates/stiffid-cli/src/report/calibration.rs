@@ -103,7 +103,6 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
     if let Some(f) = find(figures, "errors") {
         w.figure(f);
     }
-    w.table(&errors_table(doc));
     w.heading(2, "The errors in 3D");
     w.paragraph("The robot at each fitted posture with each measuring point's error before the calibration (the nominal robot) and after it, magnified (the factor in the legend).");
     w.scene(scene, FILES[2]);
@@ -140,6 +139,8 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
         w.paragraph("Identified parameters correlated above 0.9 (their sum or difference is better determined than each):");
         w.list(&items);
     }
+    w.heading(2, "Every reading");
+    w.table(&errors_table(doc));
     w.paragraph("Files: calibration.json (the calibrate document this page renders), errors.glb (the 3D scene), figures/ (SVG and PNG).");
 }
 

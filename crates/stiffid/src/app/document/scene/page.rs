@@ -41,7 +41,7 @@ pub fn fragment(scene: &Scene, id: &str) -> String {
     let mut s = String::with_capacity(json.len() + THREE_CORE.len() + THREE.len() + 60_000);
     let _ = write!(
         s,
-        "<style>{STYLE}</style>\n<div class=\"stiffid-scene\" data-scene=\"{id}-data\">\n\
+        "<style>{STYLE}</style>\n<div class=\"stiffid-scene\" id=\"{id}\" data-scene=\"{id}-data\">\n\
          <div class=\"controls\">Posture: <select>"
     );
     for i in 1..=scene.postures.len() {

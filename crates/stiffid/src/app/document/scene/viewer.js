@@ -147,13 +147,16 @@ function draw(root, scene) {
     const colours = scene.path.flatMap((q) => ramp((q.error_m - errors[0]) / span));
     const b = new THREE.BufferGeometry().setFromPoints(scene.path.map((q) => v3(q.at_m)));
     b.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
-    world.add(new THREE.Line(b, new THREE.LineBasicMaterial({ vertexColors: true })));
+    // Drawn over the bodies: the tool's capsule holds the tool centre point.
+    const line = new THREE.Line(b, new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false }));
+    line.renderOrder = 10;
+    world.add(line);
   }
 
   // Camera and controls: z up, looking at the scene's centre from the front right.
   const camera = new THREE.PerspectiveCamera(40, width / height, size / 1000, size * 20);
   camera.up.set(0, 0, 1);
-  camera.position.copy(centre).add(new THREE.Vector3(1.1, -1.5, 0.8).normalize().multiplyScalar(size * 1.05));
+  camera.position.copy(centre).add(new THREE.Vector3(1.1, -1.5, 0.8).normalize().multiplyScalar(size * 1.4));
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(centre);
   controls.update();
