@@ -66,7 +66,7 @@ impl Body {
     /// direction `cos t u + sin t v` (its support point), `t = 2 pi k / n`: the convex outline
     /// a drawing fills, true to scale.
     pub fn outline(&self, u: &Vector3<f64>, v: &Vector3<f64>, n: usize) -> Vec<(f64, f64)> {
-        super::distance::with_parry(self, |shape, pose| {
+        with_parry(self, |shape, pose| {
             let support = shape.as_support_map().expect("every body is convex");
             (0..n)
                 .map(|k| {
@@ -182,4 +182,25 @@ fn tool_length(tool: &Tool) -> f64 {
     tool.points()
         .map(|p| p.z)
         .fold(0.0, |best, z| if z.abs() > best.abs() { z } else { best })
+}
+
+/// Calls `f` with the body as parry takes it: a shape and its pose, base frame.
+pub(super) fn with_parry<R>(
+    b: &Body,
+    f: impl FnOnce(&dyn parry3d_f64::shape::Shape, &Isometry3<f64>) -> R,
+) -> R {
+    match b {
+        Body::Capsule(c) => {
+            let capsule = parry3d_f64::shape::Capsule::new(
+                nalgebra::Point3::from(c.a),
+                nalgebra::Point3::from(c.b),
+                c.radius,
+            );
+            f(&capsule, &Isometry3::identity())
+        }
+        Body::Solid(s) => {
+            let (shape, fix) = s.shape.parry();
+            f(shape, &(s.pose * fix))
+        }
+    }
 }

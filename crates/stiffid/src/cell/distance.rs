@@ -2,7 +2,7 @@
 //! dimforge's parry (segment-segment closest points; GJK/EPA for a capsule against a box), with
 //! their witness points for the distance's gradient.
 
-use super::bodies::{Body, Capsule};
+use super::bodies::{with_parry, Body, Capsule};
 use crate::robot::collision::FAR;
 use crate::setup::Obstacle;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -205,23 +205,6 @@ pub(crate) fn body_box_witness(b: &Body, o: &Obstacle) -> (f64, Option<Witness>)
             );
             let cuboid = shape::Cuboid::new((o.max - o.min) / 2.0);
             with_parry(b, |s, p| contact(p, s, &centre, &cuboid))
-        }
-    }
-}
-
-/// Calls `f` with the body as parry takes it: a shape and its pose, base frame.
-pub(super) fn with_parry<R>(
-    b: &Body,
-    f: impl FnOnce(&dyn shape::Shape, &Isometry3<f64>) -> R,
-) -> R {
-    match b {
-        Body::Capsule(c) => {
-            let capsule = shape::Capsule::new(Point3::from(c.a), Point3::from(c.b), c.radius);
-            f(&capsule, &Isometry3::identity())
-        }
-        Body::Solid(s) => {
-            let (shape, fix) = s.shape.parry();
-            f(shape, &(s.pose * fix))
         }
     }
 }
