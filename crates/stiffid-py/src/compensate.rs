@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::Language;
@@ -147,14 +148,17 @@ pub fn compensate<'py>(
     let mut rows: Vec<Row> = Vec::new();
     let report = py
         .detach(|| {
-            job::run(request, |first, p: &[PathPoint], r: &[Compensated]| {
-                for (k, (p, r)) in p.iter().zip(r).enumerate() {
-                    rows.push(Row::new(&values(first + k, p.line, r)));
-                }
-                points.extend_from_slice(p);
-                results.extend_from_slice(r);
-                Ok::<(), stiffid::Error>(())
-            })
+            job::run(
+                request,
+                |first, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
+                    for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
+                        rows.push(Row::new(&values(first + k, p.line, r, d)));
+                    }
+                    points.extend_from_slice(p);
+                    results.extend_from_slice(r);
+                    Ok::<(), stiffid::Error>(())
+                },
+            )
         })
         .map_err(raise)?;
     warn(py, &report.warnings)?;

@@ -1,10 +1,16 @@
 //! The robot's mass at one posture: the mass matrix (composite rigid body algorithm), the TCP's
 //! operational-space inertia and the six modes, with the forward kinematics, on the
 //! `zhang2021-comau-nj165` setup given link masses and inertia tensors (the drives' nominal
-//! stiffness). Goals: one posture under 20 us, 10 000 path postures under 0.2 s.
+//! stiffness). Goals: one posture under 20 us, 10 000 path postures under 0.2 s; and the
+//! compensate job's per-point dynamics of a 10 000-point program
+//! ([`stiffid::machining::dynamics::program`]: every point milled, so every point's modes).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Matrix3, Vector3, Vector6};
+use stiffid::machining;
+use stiffid::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::machining::process::file;
+use stiffid::observation::deflection::Frame;
 use stiffid::observation::dynamics;
 use stiffid::robot::LinkMass;
 use stiffid::setup;
@@ -42,6 +48,37 @@ fn dynamics(c: &mut Criterion) {
                 lowest += p.modes.map_or(0.0, |m| m.frequencies[0]);
             }
             lowest
+        })
+    });
+    let compliance = setup.model_compliance("bench").unwrap();
+    let points: Vec<PathPoint> = path
+        .iter()
+        .map(|q| PathPoint {
+            line: 1,
+            target: Target::Posture(*q),
+            wrench: Vector6::new(100.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+            frame: Frame::Base,
+        })
+        .collect();
+    let options = Options::for_setup(&setup);
+    let results = compensate::path(setup.arm(), &compliance, &points, &options).unwrap();
+    let process = file::parse(
+        "[tool]\ndiameter_mm = 20\nflutes = 3\n[cut]\nfeed_per_tooth_mm = 0.1\naxial_depth_mm = 4\n\
+         radial_depth_mm = 10\nmode = \"down\"\nspindle_rpm = 6000\n[coefficients]\npreset = \"al7075-t6\"\n",
+        "p.toml",
+    )
+    .unwrap();
+    let operations = vec![Some(0); results.len()];
+    group.bench_function("10 000 milling points: compensate's first frequency", |b| {
+        b.iter(|| {
+            machining::dynamics::program(
+                setup.arm(),
+                &model,
+                &compliance,
+                &process,
+                &results,
+                &operations,
+            )
         })
     });
     group.finish();

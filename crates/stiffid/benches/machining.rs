@@ -75,7 +75,7 @@ fn benches(c: &mut Criterion) {
                     },
                     options: Options::for_setup(&s),
                 };
-                compensate::run(request, |_, _, _| Ok::<(), stiffid::Error>(())).unwrap()
+                compensate::run(request, |_, _, _, _| Ok::<(), stiffid::Error>(())).unwrap()
             })
         });
     }

@@ -15,6 +15,7 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::Language;
@@ -121,10 +122,16 @@ struct Sinks {
 }
 
 impl Sinks {
-    fn write(&mut self, first: usize, points: &[PathPoint], results: &[Compensated]) -> Result<()> {
-        for (k, (p, r)) in points.iter().zip(results).enumerate() {
+    fn write(
+        &mut self,
+        first: usize,
+        points: &[PathPoint],
+        results: &[Compensated],
+        dynamics: &[Dynamics],
+    ) -> Result<()> {
+        for (k, ((p, r), d)) in points.iter().zip(results).zip(dynamics).enumerate() {
             let index = first + k;
-            let v = values(index, p.line, r);
+            let v = values(index, p.line, r, d);
             writeln!(self.csv, "{}", csv_line(&v))?;
             if let Some(rows) = self.rows.as_mut() {
                 rows.push(&v)?;
@@ -169,8 +176,8 @@ pub fn run(args: &Args) -> Result<()> {
         input,
         options,
     };
-    let report = match job::run(request, |first, p, r| {
-        sinks.write(first, p, r).map_err(Failure::Output)
+    let report = match job::run(request, |first, p, r, d| {
+        sinks.write(first, p, r, d).map_err(Failure::Output)
     }) {
         Ok(report) => report,
         Err(Failure::Output(e)) => return Err(e),

@@ -53,6 +53,9 @@ pub enum WarningKind {
     /// The robot's masses are placeholders (or unusable): no mass matrix, natural frequencies
     /// or surge ([`crate::robot::dynamics::MassModel::new`]).
     Masses,
+    /// A milling point's first natural frequency is near a harmonic of the tooth-passing
+    /// frequency ([`crate::machining::dynamics`]).
+    Chatter,
 }
 
 impl WarningKind {
@@ -74,6 +77,7 @@ impl WarningKind {
             WarningKind::OldField => "old-field",
             WarningKind::NotConverged => "not-converged",
             WarningKind::Masses => "masses",
+            WarningKind::Chatter => "chatter",
         }
     }
 }

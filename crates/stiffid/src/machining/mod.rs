@@ -28,6 +28,7 @@
 //!    so that the loaded tool lands on the programmed one).
 
 pub mod compensate;
+pub mod dynamics;
 pub mod gcode;
 pub mod path;
 pub mod process;

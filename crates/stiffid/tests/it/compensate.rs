@@ -465,6 +465,7 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     use stiffid::app::compensate::document::{values, Document, Names, Row};
     use stiffid::app::compensate::stream::Points as Stored;
     use stiffid::app::compensate::{run, Input, Request};
+    use stiffid::machining::dynamics::Dynamics;
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
     let s = paper
         .to_builder()
@@ -491,9 +492,9 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     let mut stored = Stored::new(Vec::new());
     let report = run(
         request,
-        |first, p: &[PathPoint], r: &[compensate::Compensated]| {
-            for (k, (p, r)) in p.iter().zip(r).enumerate() {
-                let v = values(first + k, p.line, r);
+        |first, p: &[PathPoint], r: &[compensate::Compensated], d: &[Dynamics]| {
+            for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
+                let v = values(first + k, p.line, r, d);
                 rows.push(Row::new(&v));
                 stored.push(&v).unwrap();
             }

@@ -9,43 +9,9 @@ use stiffid::robot::dynamics::{self as mass, body, modes, MassModel};
 use stiffid::robot::LinkMass;
 use stiffid::{Coordinates, Robot};
 
-/// A URDF 6R arm with turned joint origins, axes along x, y and -z, full inertia tensors in
+/// A URDF 6R arm (`tests/data/pinocchio/arm.urdf`) with turned joint origins, axes along x, y and -z, full inertia tensors in
 /// turned inertial frames, and a spindle link hung from the last joint by a fixed joint.
-const ARM_URDF: &str = r#"<?xml version="1.0"?>
-<robot name="mass-test">
-  <link name="base"/>
-  <link name="l1"><inertial><origin xyz="0.02 -0.01 0.25" rpy="0.1 0 0.2"/><mass value="180"/>
-    <inertia ixx="9" ixy="0.4" ixz="-0.3" iyy="8" iyz="0.2" izz="6"/></inertial></link>
-  <link name="l2"><inertial><origin xyz="0.45 0.03 0.1" rpy="0 0.3 0"/><mass value="120"/>
-    <inertia ixx="2" ixy="0.1" ixz="0.2" iyy="14" iyz="-0.1" izz="13"/></inertial></link>
-  <link name="l3"><inertial><origin xyz="0.1 0.05 0.02" rpy="0.2 -0.1 0.4"/><mass value="70"/>
-    <inertia ixx="3" ixy="0" ixz="0.1" iyy="2.5" iyz="0" izz="1.5"/></inertial></link>
-  <link name="l4"><inertial><origin xyz="0.3 0 0.01" rpy="0 0 0"/><mass value="25"/>
-    <inertia ixx="0.3" ixy="0.01" ixz="0" iyy="1.1" iyz="0" izz="1.0"/></inertial></link>
-  <link name="l5"><inertial><origin xyz="0 0.02 0" rpy="0.5 0 0"/><mass value="9"/>
-    <inertia ixx="0.08" ixy="0" ixz="0" iyy="0.07" iyz="0.005" izz="0.05"/></inertial></link>
-  <link name="l6"><inertial><origin xyz="0 0 0.01" rpy="0 0 0"/><mass value="2"/>
-    <inertia ixx="0.004" ixy="0" ixz="0" iyy="0.004" iyz="0" izz="0.006"/></inertial></link>
-  <link name="spindle"><inertial><origin xyz="0.01 0 0.12" rpy="0 0.2 0"/><mass value="18"/>
-    <inertia ixx="0.25" ixy="0" ixz="0" iyy="0.24" iyz="0" izz="0.06"/></inertial></link>
-  <link name="tool0"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <origin xyz="0 0 0.4" rpy="0 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <origin xyz="0.3 0 0.3" rpy="0.05 0 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-  <joint name="j3" type="revolute"><parent link="l2"/><child link="l3"/>
-    <origin xyz="0 0 1.1" rpy="0 0 0.02"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-  <joint name="j4" type="revolute"><parent link="l3"/><child link="l4"/>
-    <origin xyz="0.2 0 0.2" rpy="0 0 0"/><axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-  <joint name="j5" type="revolute"><parent link="l4"/><child link="l5"/>
-    <origin xyz="1.0 0 0" rpy="0 0 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-  <joint name="j6" type="revolute"><parent link="l5"/><child link="l6"/>
-    <origin xyz="0.15 0 0" rpy="0 1.5707963267948966 0"/><axis xyz="0 0 -1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-  <joint name="mount" type="fixed"><parent link="l6"/><child link="spindle"/>
-    <origin xyz="0 0 0.05" rpy="0 0 0.3"/></joint>
-  <joint name="tip" type="fixed"><parent link="spindle"/><child link="tool0"/>
-    <origin xyz="0 0 0.25" rpy="0 0 0"/></joint>
-</robot>"#;
+const ARM_URDF: &str = include_str!("../data/pinocchio/arm.urdf");
 
 /// One rigid body of the reference: its link (0-based), its pose in the link frame, mass and
 /// tensor in its own frame.
@@ -201,6 +167,35 @@ fn reference_jacobian(robot: &Robot, tcp: &Vector3<f64>, q: &Vector6<f64>) -> Ma
 
 fn relative(a: &Matrix6<f64>, b: &Matrix6<f64>) -> f64 {
     (a - b).amax() / b.amax()
+}
+
+/// Pinocchio's `crba` and `Lambda` of tool0 for the arm, recorded by
+/// `tests/data/pinocchio/record.py` (kept beside its output).
+#[test]
+fn the_mass_matrix_and_lambda_of_a_urdf_arm_equal_pinocchios() {
+    let text = include_str!("../data/pinocchio/reference.json");
+    let reference: serde_json::Value = serde_json::from_str(text).unwrap();
+    let matrix =
+        |v: &serde_json::Value| Matrix6::from_fn(|r, c| v[r][c].as_f64().expect("a number"));
+    let robot = arm();
+    let masses = MassModel::new(&robot, None).unwrap();
+    let postures = reference["postures"].as_array().unwrap();
+    assert_eq!(postures.len(), 3);
+    for p in postures {
+        let q = Vector6::from_fn(|i, _| p["q_rad"][i].as_f64().unwrap());
+        let frames = robot.frames(&q);
+        let m = masses.mass_matrix(&robot, &frames, Coordinates::Axis);
+        let m_ref = matrix(&p["mass_matrix"]);
+        assert!(relative(&m, &m_ref) < 1e-9, "{m}\n{m_ref}");
+        let tcp = Vector3::zeros();
+        let lambda =
+            mass::operational_inertia(&m, &frames.jacobian(&tcp, Coordinates::Axis)).unwrap();
+        let lambda_ref = matrix(&p["lambda"]);
+        assert!(
+            relative(&lambda, &lambda_ref) < 1e-9,
+            "{lambda}\n{lambda_ref}"
+        );
+    }
 }
 
 #[test]

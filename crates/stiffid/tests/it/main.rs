@@ -12,6 +12,7 @@ mod cell_search;
 mod comau_checks;
 mod common;
 mod compensate;
+mod compensate_dynamics;
 mod criteria;
 mod design_candidates;
 mod distinct_postures;

@@ -280,7 +280,7 @@ fn the_compensate_document_lists_every_parameter_of_the_model() {
         },
         options: compensate::Options::for_setup(&s),
     };
-    let report = run(request, |_, _, _| Ok::<(), stiffid::Error>(())).unwrap();
+    let report = run(request, |_, _, _, _| Ok::<(), stiffid::Error>(())).unwrap();
     let doc = Document::new(&report, &Names::default(), Vec::new());
     let json = serde_json::to_value(&doc).unwrap();
     let parameters = json["parameters"].as_array().unwrap();

@@ -30,6 +30,7 @@ fn cut(radial_mm: f64, mode: Mode, helix_deg: f64, flutes: u32) -> Milling {
         radial_depth: radial_mm * 1e-3,
         mode,
         coefficients: coefficients(),
+        spindle_speed: None,
     }
 }
 
@@ -256,6 +257,20 @@ fn a_preset_gives_its_published_coefficients_and_fields_override_them() {
     };
     assert_relative_eq!(m.coefficients.k_tc, 767.01e6, max_relative = 1e-12);
     assert_relative_eq!(m.coefficients.k_ae, 0.7e3, max_relative = 1e-12);
+    assert_eq!(m.tooth_passing_frequency(), None);
+    // 12 000 rpm with three flutes: 200 rev/s, 600 tooth passes per second.
+    let turning = MILLING.replace("mode = \"up\"", "mode = \"up\"\nspindle_rpm = 12000");
+    let Kind::Milling(t) = &file::parse(&turning, "p.toml").unwrap().operations[0].kind else {
+        panic!("milling expected")
+    };
+    assert_relative_eq!(
+        t.tooth_passing_frequency().unwrap(),
+        600.0,
+        max_relative = 1e-15
+    );
+    let slow = MILLING.replace("mode = \"up\"", "mode = \"up\"\nspindle_rpm = 0.5");
+    let e = file::parse(&slow, "p.toml").unwrap_err().to_string();
+    assert!(e.contains("cut.spindle_rpm"), "{e}");
     let text = MILLING.replace(
         "preset = \"al7075-t6\"",
         "preset = \"al7075-t6\"\nk_tc_n_per_mm2 = 800",
@@ -367,6 +382,7 @@ fn el_hofy_slot_milling_example_gives_the_published_mean_force_and_power() {
             k_re: 0.0,
             k_ae: 0.0,
         },
+        spindle_speed: None,
     };
     // The spindle speed from the table feed: f / (Z S_z) = 120 / 0.8 = 150 rpm (published).
     let rpm = 120.0 / (teeth * 0.1);

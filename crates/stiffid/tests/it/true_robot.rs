@@ -501,7 +501,7 @@ fn program(
         options,
     };
     let mut results = Vec::new();
-    let report = compensate::run::<stiffid::Error, _>(request, |_, _, r| {
+    let report = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
         results.extend_from_slice(r);
         Ok(())
     })

@@ -10,6 +10,7 @@ use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::scene::PathPoint;
 use crate::common::warning::Warning;
 use crate::machining::compensate::Compensated;
+use crate::machining::dynamics::Dynamics;
 use crate::Coordinates;
 use nalgebra::Vector6;
 use serde::Serialize;
@@ -102,6 +103,10 @@ pub struct Program {
     pub segments: Vec<SegmentDocument>,
     /// The largest process force on the tool over the program (of `segments`), N.
     pub max_force_n: f64,
+    /// Each operation's breakthrough surge (drilling: the largest over its exits) or first
+    /// natural frequency against its tooth-passing frequency (milling); empty when the robot
+    /// gives no masses.
+    pub dynamics: Vec<crate::app::compensate::dynamics::OperationDynamics>,
 }
 
 /// One segment of a program: the points of one line (a G-code block's arc points, a robot
@@ -217,7 +222,7 @@ impl schemars::JsonSchema for Row {
             })
             .collect();
         schemars::json_schema!({
-            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis).",
+            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses).",
             "type": "object",
             "properties": properties,
             "required": columns,
@@ -232,6 +237,7 @@ fn may_be_empty(name: &str) -> bool {
         || name.contains("_lower_")
         || name.contains("_upper_")
         || name == "d_norm_before_mm"
+        || DYNAMICS.contains(&name)
 }
 
 impl Document {
@@ -261,6 +267,7 @@ impl Document {
                 subprograms: p.subprograms.iter().map(|f| f.name.clone()).collect(),
                 segments: p.segments.iter().map(segment).collect(),
                 max_force_n: p.segments.iter().map(|s| s.force).fold(0.0, f64::max),
+                dynamics: p.dynamics.clone(),
             }),
             summary: report.summary.document(),
             warnings: report.warnings.clone(),
@@ -314,12 +321,25 @@ pub fn header() -> Vec<String> {
         header.push(format!("d{c}_lower_mm"));
         header.push(format!("d{c}_upper_mm"));
     }
+    header.extend(DYNAMICS.map(String::from));
     header
 }
 
-/// The values of point `i` (0-based) from `line` of its file, one per column of [`header`]
-/// (mm, deg, N, Nm, mrad, um, urad); `None` for an empty cell.
-pub fn values(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
+/// The columns of a point's dynamics ([`crate::machining::dynamics`]): at a drilling exit the
+/// breakthrough surge, its standard deviation and the held effective mass along the drill; at a
+/// milling point the first natural frequency and the tooth-passing frequency.
+pub const DYNAMICS: [&str; 5] = [
+    "surge_mm_s",
+    "surge_std_mm_s",
+    "effective_mass_kg",
+    "first_frequency_hz",
+    "tooth_passing_hz",
+];
+
+/// The values of point `i` (0-based) from `line` of its file with its dynamics `dynamics`, one
+/// per column of [`header`] (mm, deg, N, Nm, mrad, um, urad, mm/s, kg, Hz); `None` for an empty
+/// cell.
+pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<Option<f64>> {
     let deg = |q: &Vector6<f64>| q.iter().map(|v| Some(v.to_degrees())).collect::<Vec<_>>();
     let (rx, ry, rz) = r.pose.rotation.euler_angles();
     let p = r.pose.translation.vector * 1e3;
@@ -344,6 +364,14 @@ pub fn values(i: usize, line: u64, r: &Compensated) -> Vec<Option<f64>> {
     ]);
     let ends = |k: usize| r.deflection_interval.map(|i| i[k / 2][k % 2] * 1e3);
     v.extend((0..6).map(|k| ends(k).filter(|e| e.is_finite())));
+    let surge = dynamics.surge.as_ref();
+    v.extend([
+        surge.map(|s| s.speed * 1e3),
+        surge.and_then(|s| s.speed_std).map(|s| s * 1e3),
+        surge.map(|s| s.mass),
+        dynamics.first_frequency,
+        dynamics.tooth_passing,
+    ]);
     v
 }
 

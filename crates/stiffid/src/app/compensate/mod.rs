@@ -17,6 +17,7 @@
 //! deflection before and after.
 
 pub mod document;
+pub mod dynamics;
 pub mod stream;
 
 use super::{Warning, WarningKind};
@@ -24,6 +25,7 @@ use crate::app::compensate::document::Summary;
 use crate::machining::compensate::{
     self, Compensated, Compliance, FreeToolAxis, Options, PathPoint, CHUNK,
 };
+use crate::machining::dynamics::Dynamics;
 use crate::machining::path;
 use crate::machining::process::Process;
 use crate::machining::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
@@ -102,6 +104,9 @@ pub struct ProgramReport {
     pub subprograms: Vec<generate::File>,
     /// Each segment's force and deflection, in program order.
     pub segments: Vec<Segment>,
+    /// Each operation's drilling surge or milling frequencies ([`dynamics::operations`]); empty
+    /// without a mass model.
+    pub dynamics: Vec<dynamics::OperationDynamics>,
 }
 
 /// The points of one program line (a G-code block's arc points, a robot program's target).
@@ -149,8 +154,10 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
-/// Runs the compensate job; `sink(first, points, results)` gets every chunk of points (the
-/// 0-based index of its first point, the points, their results) in path order as it is computed.
+/// Runs the compensate job; `sink(first, points, results, dynamics)` gets every chunk of points
+/// (the 0-based index of its first point, the points, their results, their drilling surge and
+/// milling frequencies: [`crate::machining::dynamics::program`] for a program with a mass model,
+/// else empty values) in path order as it is computed.
 ///
 /// # Errors
 /// [`Error::InvalidField`] for options outside their limits ([`Options::validate`],
@@ -163,7 +170,7 @@ pub struct Report {
 pub fn run<E, F>(request: Request<'_>, mut sink: F) -> std::result::Result<Report, E>
 where
     E: From<Error>,
-    F: FnMut(usize, &[PathPoint], &[Compensated]) -> std::result::Result<(), E>,
+    F: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
 {
     let Request {
         setup,
@@ -180,18 +187,18 @@ where
         .into());
     }
     let mut summary = Summary::new(options.free_tool_axis.is_some());
-    let mut add = |first: usize, points: &[PathPoint], results: &[Compensated]| {
+    let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
             summary.add(first + k, p.line, r);
         }
-        sink(first, points, results)
+        sink(first, points, results, d)
     };
     let (name, program, warnings) = match input {
         Input::Path { name, text, frame } => {
             let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
             let mut first = 0;
             compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
-                add(first, p, r).map_err(Failure::Sink)?;
+                add(first, p, r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
                 first += p.len();
                 Ok(())
             })
@@ -227,19 +234,40 @@ where
                 &options,
             )
             .map_err(|e| in_input(&name, e))?;
-            for (k, (p, r)) in compensated
+            let (masses, mass_warning) = crate::observation::dynamics::mass_model(setup.arm());
+            let point_dynamics = match &masses {
+                Some(m) => crate::machining::dynamics::program(
+                    setup.arm(),
+                    m,
+                    &compliance,
+                    &process,
+                    &compensated.results,
+                    &compensated.operations,
+                ),
+                None => vec![Dynamics::default(); compensated.points.len()],
+            };
+            for (k, ((p, r), d)) in compensated
                 .points
                 .chunks(CHUNK)
                 .zip(compensated.results.chunks(CHUNK))
+                .zip(point_dynamics.chunks(CHUNK))
                 .enumerate()
             {
-                add(k * CHUNK, p, r)?;
+                add(k * CHUNK, p, r, d)?;
             }
             let mut warnings: Vec<Warning> = compensated
                 .warnings
                 .iter()
                 .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
                 .collect();
+            warnings.extend(mass_warning);
+            let (operation_dynamics, chatter) = dynamics::operations(
+                &process,
+                &compensated.points,
+                &compensated.operations,
+                &point_dynamics,
+            );
+            warnings.extend(chatter);
             let (text, subprograms) = match (output, &program) {
                 (Language::Robot(d), Program::GCode(g)) => {
                     let written = write_robot_program(
@@ -275,6 +303,7 @@ where
                 output,
                 process: process_name,
                 segments: segments(&compensated, &process),
+                dynamics: operation_dynamics,
                 text,
                 subprograms,
             };

@@ -12,6 +12,7 @@
 //! axial_depth_mm = 4
 //! radial_depth_mm = 10
 //! mode = "up"                      # or "down"
+//! spindle_rpm = 12000              # optional: the tooth-passing frequency for the chatter check
 //! [coefficients]
 //! preset = "al7075-t6"             # or the six below (a preset's values may be overridden)
 //! k_tc_n_per_mm2 = 767.01
@@ -26,7 +27,7 @@
 //!
 //! # Limits
 //! `diameter_mm` (0, 200]; `flutes` 1..=12; `helix_deg` [-60, 60]; `feed_per_tooth_mm` and
-//! `feed_per_rev_mm` (0, 5]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
+//! `feed_per_rev_mm` (0, 5]; `spindle_rpm` [1, 100000]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
 //! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
 //! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most [`MAX_OPERATIONS`] operations;
 //! `lines` two 1-based line numbers, first <= last.
@@ -54,6 +55,7 @@ const FEED: Range = Range::new(1e-6, 5.0, "mm");
 const DEPTH: Range = Range::new(1e-6, 200.0, "mm");
 const CUTTING: Range = Range::new(0.0, 2e4, "N/mm^2");
 const CUTTING_SIGNED: Range = Range::new(-2e4, 2e4, "N/mm^2");
+const SPINDLE: Range = Range::new(1.0, 1e5, "rpm");
 const EDGE: Range = Range::new(0.0, 1e3, "N/mm");
 const EDGE_SIGNED: Range = Range::new(-1e3, 1e3, "N/mm");
 
@@ -99,6 +101,7 @@ struct CutToml {
     radial_depth_mm: Option<f64>,
     mode: Option<String>,
     feed_per_rev_mm: Option<f64>,
+    spindle_rpm: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -350,6 +353,11 @@ fn milling(prefix: &str, diameter: f64, t: &OperationToml) -> Result<Milling> {
         )? * 1e-3,
         mode,
         coefficients: coefficients(prefix, &t.coefficients)?,
+        spindle_speed: c
+            .spindle_rpm
+            .map(|n| ranged(prefix, "cut.spindle_rpm", n, &SPINDLE))
+            .transpose()?
+            .map(|n| n / 60.0),
     })
 }
 
@@ -440,6 +448,7 @@ fn drilling(prefix: &str, diameter: f64, t: &OperationToml) -> Result<Drilling> 
         ("cut.axial_depth_mm", c.axial_depth_mm.is_some()),
         ("cut.radial_depth_mm", c.radial_depth_mm.is_some()),
         ("cut.mode", c.mode.is_some()),
+        ("cut.spindle_rpm", c.spindle_rpm.is_some()),
         ("tool.flutes", t.tool.flutes.is_some()),
         ("tool.helix_deg", t.tool.helix_deg.is_some()),
         ("coefficients.preset", k.preset.is_some()),

@@ -1,0 +1,208 @@
+//! The robot's mass along a compensated program: the breakthrough surge at each drilling exit
+//! (the operation's thrust along the tool axis, the held mass of the posture) and the first
+//! natural frequency of each milling point against the tooth-passing frequency, with the
+//! chatter warning within 10%.
+
+use nalgebra::{Isometry3, Vector3};
+use stiffid::app::compensate::{run, Input, Request};
+use stiffid::common::warning::WarningKind;
+use stiffid::machining::compensate::{Compensated, Options, PathPoint};
+use stiffid::machining::dynamics::Dynamics;
+use stiffid::machining::process::file;
+use stiffid::machining::program::generate::Settings;
+use stiffid::machining::Language;
+use stiffid::observation::dynamics;
+use stiffid::robot::dynamics::{held_mass, operational_inertia};
+use stiffid::{setup, Coordinates, Setup};
+
+const FANUC: &str = include_str!("../../presets/fanuc-r2000ic-165f.toml");
+const HEADER: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
+
+/// A drilling operation (thrust `k_f f D / 2` = 1000 N) on `T2` and a three-flute milling one
+/// on `T1` turning at `rpm`.
+fn process(rpm: f64) -> String {
+    format!("[[operation]]\nname = \"drill\"\nkind = \"drilling\"\ntool_number = 2\n\
+    [operation.tool]\ndiameter_mm = 10\n[operation.cut]\nfeed_per_rev_mm = 0.2\n\
+    [operation.coefficients]\nspecific_energy_n_per_mm2 = 800\nspecific_thrust_n_per_mm2 = 1000\n\
+    [[operation]]\nname = \"wall\"\ntool_number = 1\n[operation.tool]\ndiameter_mm = 20\nflutes = 3\n\
+    [operation.cut]\nfeed_per_tooth_mm = 0.1\naxial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n\
+    spindle_rpm = {rpm:?}\n[operation.coefficients]\npreset = \"al7075-t6\"\n")
+}
+
+/// The FANUC setup on its robot with a mass, centre and tensor on every joint, a spindle TCP
+/// and a workpiece below the flange.
+fn massive() -> Setup {
+    let masses = [300.0, 180.0, 120.0, 40.0, 20.0, 8.0];
+    let mut parts = FANUC.split("[[joint]]\n");
+    let mut text = parts.next().unwrap().to_string();
+    for (i, part) in parts.enumerate() {
+        let m = masses[i];
+        text += &format!(
+            "[[joint]]\nmass_kg = {m:?}\ncom_mm = [{:?}, 15.0, -25.0]\ninertia_kg_m2 = [{:?}, {:?}, {:?}, 0.01, 0, 0]\n{part}",
+            40.0 * i as f64,
+            m * 0.02,
+            m * 0.025,
+            m * 0.015
+        );
+    }
+    let robot = stiffid::robot::file::parse(&text, "fanuc-masses.toml").unwrap();
+    setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_builder()
+        .with_robot(robot)
+        .with_tcp(Vector3::new(0.0, 0.0, 0.25))
+        .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
+        .build()
+        .unwrap()
+}
+
+/// Compensates `program` (G-code) under `process`; every point with its result and dynamics.
+fn compensate(
+    s: &Setup,
+    program: &str,
+    process: &str,
+) -> (
+    stiffid::app::compensate::Report,
+    Vec<(PathPoint, Compensated, Dynamics)>,
+) {
+    let mut rows = Vec::new();
+    let request = Request {
+        setup: s,
+        compliance: s.model_compliance("test").unwrap(),
+        input: Input::Program {
+            name: "p.nc".into(),
+            text: program,
+            language: Language::GCode,
+            process_name: "p.toml".into(),
+            process: file::parse(process, "p.toml").unwrap(),
+            chord_tolerance: 1e-5,
+            output: Language::GCode,
+            out_name: String::new(),
+            settings: Settings::default(),
+        },
+        options: Options::for_setup(s),
+    };
+    let report = run(
+        request,
+        |_, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
+            for ((p, r), d) in p.iter().zip(r).zip(d) {
+                rows.push((p.clone(), r.clone(), *d));
+            }
+            Ok::<(), stiffid::Error>(())
+        },
+    )
+    .unwrap();
+    (report, rows)
+}
+
+#[test]
+fn each_drilling_exit_gets_the_surge_of_its_thrust_along_the_tool_axis() {
+    let s = massive();
+    let text = format!("{HEADER}T2\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX40\nG80\n");
+    let (report, rows) = compensate(&s, &text, &process(6000.0));
+    let compliance = s.model_compliance("test").unwrap();
+    let masses = dynamics::mass_model(s.arm()).0.expect("masses");
+    let exits: Vec<_> = rows.iter().filter(|(_, _, d)| d.surge.is_some()).collect();
+    assert_eq!(exits.len(), 2, "one exit per hole");
+    for (_, r, d) in &rows {
+        assert!(d.first_frequency.is_none() && d.tooth_passing.is_none());
+        if d.surge.is_none() {
+            continue;
+        }
+        let surge = d.surge.unwrap();
+        // The thrust (1000 N) along the tool axis, against the held mass of the posture.
+        assert!((surge.force - 1000.0).abs() < 1e-9);
+        let tool_z = r.pose.rotation * Vector3::z();
+        assert!((surge.direction + tool_z).norm() < 1e-12);
+        let frames = s.robot().frames(&r.q);
+        let m = masses.mass_matrix(s.robot(), &frames, Coordinates::Axis);
+        let tcp = s.tool().tcp;
+        let lambda = operational_inertia(&m, &frames.jacobian(&tcp, Coordinates::Axis)).unwrap();
+        let mass = held_mass(&lambda, &tool_z);
+        assert!((surge.mass - mass).abs() < 1e-9 * mass);
+        // c from the model's deflection under a pure 1 N force along the drill.
+        let unit = nalgebra::Vector6::new(-tool_z.x, -tool_z.y, -tool_z.z, 0.0, 0.0, 0.0);
+        let points = stiffid::observation::deflection::Points {
+            arm: s.arm(),
+            frames: &frames,
+            loaded: &tcp,
+            observed: &tcp,
+        };
+        let d = points.deflection(&unit, &compliance.h).displacement;
+        let c = -tool_z.dot(&d.fixed_rows::<3>(0));
+        let speed = 1000.0 * (c / mass).sqrt();
+        assert!(
+            (surge.speed - speed).abs() < 1e-9 * speed,
+            "{} {speed}",
+            surge.speed
+        );
+        assert!(
+            surge.speed > 0.01 && surge.speed < 1.0,
+            "{} m/s",
+            surge.speed
+        );
+    }
+    let ops = &report.program.as_ref().unwrap().dynamics;
+    assert_eq!(ops.len(), 1);
+    assert_eq!(ops[0].kind, "drilling");
+    assert_eq!(ops[0].points, 2);
+    let largest = exits
+        .iter()
+        .map(|(_, _, d)| d.surge.unwrap().speed)
+        .fold(0.0, f64::max);
+    assert!((ops[0].max_surge_mm_s.unwrap() - largest * 1e3).abs() < 1e-9);
+}
+
+#[test]
+fn milling_points_get_their_first_frequency_and_a_chatter_warning_near_a_harmonic() {
+    let s = massive();
+    let text = format!("{HEADER}T1\nG0 X0 Y0 Z5\nG1 Z-2 F600\nG1 X30\nG1 X60 Y10\n");
+    let (_, rows) = compensate(&s, &text, &process(6000.0));
+    let compliance = s.model_compliance("test").unwrap();
+    let masses = dynamics::mass_model(s.arm()).0.unwrap();
+    let milled: Vec<_> = rows
+        .iter()
+        .filter(|(_, _, d)| d.first_frequency.is_some())
+        .collect();
+    assert!(milled.len() >= 3, "{}", milled.len());
+    for (_, r, d) in &milled {
+        let frames = s.robot().frames(&r.q);
+        let posture = dynamics::posture(&masses, s.arm(), &frames, &s.tool().tcp, &compliance.h);
+        let first = posture.modes.unwrap().frequencies[0];
+        assert!((d.first_frequency.unwrap() - first).abs() < 1e-9 * first);
+        // 6000 rpm x 3 flutes = 300 Hz.
+        assert!((d.tooth_passing.unwrap() - 300.0).abs() < 1e-12);
+        assert!(first > 1.0 && first < 100.0, "{first} Hz");
+        // The modes agree with an independent generalised eigen-solution: det(K - w^2 M) = 0.
+        let c = dynamics::joint_compliance(s.arm(), &frames, &s.tool().tcp, &compliance.h).unwrap();
+        let k = c.try_inverse().unwrap();
+        let w2 = (first * std::f64::consts::TAU).powi(2);
+        let m = masses.mass_matrix(s.robot(), &frames, Coordinates::Axis);
+        let min_sv = (k - m * w2).singular_values().min();
+        assert!(min_sv < 1e-9 * k.norm(), "{min_sv}");
+    }
+    // A spindle speed whose tooth-passing frequency is 5% above the first frequency: chatter.
+    let f1 = milled[0].2.first_frequency.unwrap();
+    let rpm = f1 * 1.05 / 3.0 * 60.0;
+    let (report, _) = compensate(&s, &text, &process(rpm));
+    let chatter: Vec<_> = report
+        .warnings
+        .iter()
+        .filter(|w| w.kind == WarningKind::Chatter)
+        .collect();
+    assert_eq!(chatter.len(), 1, "{:?}", report.warnings);
+    assert!(
+        chatter[0].message.contains("'wall'"),
+        "{}",
+        chatter[0].message
+    );
+    let op = &report.program.as_ref().unwrap().dynamics[0];
+    assert_eq!(op.nearest_harmonic_order, Some(1));
+    assert!(op.nearest_harmonic_percent.unwrap() <= 10.0);
+    // Far from every harmonic (300 Hz): no warning.
+    let (report, _) = compensate(&s, &text, &process(6000.0));
+    assert!(report
+        .warnings
+        .iter()
+        .all(|w| w.kind != WarningKind::Chatter));
+}
