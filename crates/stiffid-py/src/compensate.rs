@@ -10,7 +10,7 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{values, Document, Names, Row};
+use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
 use stiffid::machining::dynamics::Dynamics;
@@ -146,6 +146,7 @@ pub fn compensate<'py>(
     let mut points: Vec<PathPoint> = Vec::new();
     let mut results: Vec<Compensated> = Vec::new();
     let mut rows: Vec<Row> = Vec::new();
+    let mut dynamics: Vec<Vec<Option<f64>>> = Vec::new();
     let report = py
         .detach(|| {
             job::run(
@@ -171,6 +172,10 @@ pub fn compensate<'py>(
         program_out: String::new(),
     };
     let out = table(py, &results, &points)?;
+    for (k, name) in DYNAMICS.iter().enumerate() {
+        let column = dynamics.iter().map(|v| v[k].unwrap_or(f64::NAN));
+        out.set_item(*name, arrays::vec1(py, column))?;
+    }
     out.set_item(
         "document",
         to_python(py, &Document::new(&report, &names, rows), &[])?,

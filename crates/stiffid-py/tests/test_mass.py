@@ -65,3 +65,34 @@ def test_placeholder_masses_warn(tmp_path):
     with pytest.warns(UserWarning, match="placeholders"):
         doc = stiffid.predict(setup, Q, [0, 0, -1000, 0, 0, 0])
     assert doc["natural_frequencies_hz"] is None and doc["warnings"][0]["kind"] == "masses"
+
+
+DRILL = (
+    'kind = "drilling"\n[tool]\ndiameter_mm = 10\n[cut]\nfeed_per_rev_mm = 0.2\n'
+    "[coefficients]\nspecific_energy_n_per_mm2 = 800\nspecific_thrust_n_per_mm2 = 1000\n"
+)
+
+
+def test_compensate_gives_the_commands_surge_at_each_drilling_exit(tmp_path, cli):
+    path = files(tmp_path)
+    text = path.read_text().replace("[tool]\n", "[tool]\ntcp_mm = [0, 0, 250]\n", 1)
+    text += "\n[workpiece]\nbase_from_part = { xyz_mm = [1500, 0, 300], rpy_deg = [0, 0, 0] }\n"
+    path.write_text(text)
+    program = tmp_path / "holes.nc"
+    program.write_text("(stiffid: tool_rpy_deg = 180 0 0)\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX40\nG80\n")
+    process = tmp_path / "drill.toml"
+    process.write_text(DRILL)
+    setup = stiffid.Setup.from_file(path)
+    mine = stiffid.compensate(setup, program=program, process=process)
+    surge = mine["surge_mm_s"]
+    exits = ~np.isnan(surge)
+    assert exits.sum() == 2
+    assert np.all(np.isnan(mine["first_frequency_hz"]))
+    command = cli("compensate", "--setup", path, "--program", program, "--process", process,
+                  "--out", tmp_path / "out.nc", "--json")
+    rows = command["points"]
+    assert [r["surge_mm_s"] for r in rows if r["surge_mm_s"] is not None] == list(surge[exits])
+    assert mine["document"]["program"]["dynamics"] == command["program"]["dynamics"]
+    # The held mass and the surge give back the energy F^2 c / 2 of a positive compliance.
+    m = mine["effective_mass_kg"][exits]
+    assert np.all(m > 0) and np.all(surge[exits] > 0)

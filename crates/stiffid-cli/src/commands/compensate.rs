@@ -11,6 +11,7 @@ use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{csv_line, header, values, Document, Names, GENERATOR};
+use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
@@ -374,6 +375,9 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             count(p.segments.len(), "segment"),
             p.max_force_n
         );
+        for o in &p.dynamics {
+            text += &dynamics_line(o);
+        }
     }
     for written in [&names.program_out, &names.out] {
         if !written.is_empty() {
@@ -398,4 +402,31 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
         text += &format!("report: {}\n", Path::new(dir).join("report.html").display());
     }
     text
+}
+
+/// One operation's surge (drilling) or first frequency against its tooth passing (milling).
+fn dynamics_line(o: &OperationDynamics) -> String {
+    let mut line = format!("  {} '{}': ", o.kind, o.operation);
+    if let (Some(v), Some(at)) = (o.max_surge_mm_s, o.max_surge_line) {
+        let std = o
+            .max_surge_std_mm_s
+            .map_or(String::new(), |s| format!(" +- {s:.1}"));
+        line += &format!(
+            "{} exits, breakthrough surge up to {v:.1}{std} mm/s (line {at}, held mass {:.1} kg)",
+            o.points,
+            o.max_surge_effective_mass_kg.unwrap_or(f64::NAN)
+        );
+    } else if let Some([lo, hi]) = o.first_frequency_hz {
+        line += &format!("first natural frequency {lo:.1}-{hi:.1} Hz");
+        if let (Some(t), Some(p), Some(k)) = (
+            o.tooth_passing_hz,
+            o.nearest_harmonic_percent,
+            o.nearest_harmonic_order,
+        ) {
+            line += &format!(", tooth passing {t:.1} Hz (nearest: {p:.1}% from harmonic {k})");
+        }
+    } else {
+        line += "no surge or frequency (a singular posture)";
+    }
+    line + "\n"
 }

@@ -355,7 +355,7 @@ def compensate(
     moves_per_file: int = 10000,
     level: float = 0.95,
 ) -> dict[str, Any]:
-    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg (n,) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
 
 def process_force(
     process: Union[str, os.PathLike[str]],
