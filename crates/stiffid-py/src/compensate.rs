@@ -153,7 +153,9 @@ pub fn compensate<'py>(
                 request,
                 |first, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
                     for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
-                        rows.push(Row::new(&values(first + k, p.line, r, d)));
+                        let v = values(first + k, p.line, r, d);
+                        dynamics.push(v[v.len() - DYNAMICS.len()..].to_vec());
+                        rows.push(Row::new(&v));
                     }
                     points.extend_from_slice(p);
                     results.extend_from_slice(r);

@@ -80,7 +80,7 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
         options: Options::for_setup(setup),
     };
     let mut results = Vec::new();
-    let report = compensate::run::<stiffid::Error, _>(request, |_, _, r| {
+    let report = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
         results.extend_from_slice(r);
         Ok(())
     })
