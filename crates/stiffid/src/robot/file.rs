@@ -16,6 +16,9 @@
 //!                                       #   centre, joint frame's axes (default zero)
 //! lower_deg = -175.0                    # axis (controller) coordinates
 //! upper_deg = 175.0
+//! error_map = { cos_deg = [0.001, 0.0002], sin_deg = [-0.0005, 0.0] }
+//!                                       # optional: the axis's angle error (deg) at axis angle q,
+//!                                       #   sum_h cos_deg[h-1] cos(h q) + sin_deg[h-1] sin(h q)
 //! # ... five more [[joint]] tables
 //! [axis_map]                            # optional: theta = matrix * q + offset
 //! matrix = [[-1,0,0,0,0,0], [0,1,0,0,0,0], [0,-1,-1,0,0,0], [0,0,0,-1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,-1]]
@@ -77,6 +80,16 @@ struct JointRow {
     inertia_kg_m2: Option<[f64; 6]>,
     lower_deg: f64,
     upper_deg: f64,
+    error_map: Option<ErrorMapFile>,
+}
+
+/// A joint's `error_map`: the Fourier coefficients of its axis's angle error, deg
+/// ([`super::ErrorMap`]).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ErrorMapFile {
+    cos_deg: Vec<f64>,
+    sin_deg: Vec<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -182,6 +195,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     }
     let joints = rows.try_into().expect("six joints checked above");
     let masses = masses(&file.joint, source_name)?;
+    let maps = error_maps(&file.joint, source_name)?;
     let base = transform(file.base, "base", source_name)?;
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
@@ -193,7 +207,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         .and_then(|r| r.with_axis_map(axis_map))
         .and_then(|r| r.with_base(base))
         .and_then(|r| r.with_flange(flange))
-        .map(|r| r.with_bodies(bodies).with_masses(masses))
+        .map(|r| r.with_bodies(bodies).with_masses(masses).with_error_maps(maps))
         .map_err(|e| match e {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),
             other => other,
@@ -240,6 +254,25 @@ fn masses(joints: &[JointRow], source_name: &str) -> Result<Option<[LinkMass; 6]
         };
     }
     Ok(Some(out))
+}
+
+/// The joints' error maps (`error_map`, deg, each as [`super::ErrorMap::new`] checks it), empty
+/// where a joint has none.
+fn error_maps(joints: &[JointRow], source_name: &str) -> Result<[super::ErrorMap; 6]> {
+    let mut maps: [super::ErrorMap; 6] = Default::default();
+    for (i, j) in joints.iter().enumerate() {
+        if let Some(m) = &j.error_map {
+            let rad = |v: &[f64]| v.iter().map(|d| d.to_radians()).collect();
+            maps[i] = super::ErrorMap::new(rad(&m.cos_deg), rad(&m.sin_deg)).map_err(|e| {
+                let message = match e {
+                    Error::InvalidField { message, .. } => message,
+                    other => other.to_string(),
+                };
+                invalid(source_name, format!("joint[{}].error_map", i + 1), &message)
+            })?;
+        }
+    }
+    Ok(maps)
 }
 
 /// The bodies of `[robot_geometry]`: capsules of the radii given, each within

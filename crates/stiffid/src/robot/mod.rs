@@ -8,6 +8,7 @@ pub mod collision;
 pub mod configuration;
 pub mod dh;
 pub mod dynamics;
+pub mod error_map;
 pub mod file;
 pub mod ik;
 pub mod kinematics;
@@ -18,6 +19,7 @@ pub(crate) mod urdf_write;
 
 mod axis_map;
 pub use axis_map::AxisMap;
+pub use error_map::ErrorMap;
 
 use nalgebra::{Isometry3, Matrix3, Unit, Vector3};
 use std::sync::Arc;
@@ -62,6 +64,8 @@ pub struct Robot {
     bodies: Bodies,
     masses: Option<[LinkMass; 6]>,
     urdf: Option<std::sync::Arc<urdf::UrdfSource>>,
+    /// The axes' error maps ([`ErrorMap`]), when any axis has one.
+    error_maps: Option<Arc<[ErrorMap; 6]>>,
 }
 
 /// What a calibrated robot's name ends with (the robot files `stiffid calibrate` writes).
@@ -133,6 +137,7 @@ impl Robot {
             bodies: Bodies::Scaled,
             masses: None,
             urdf: None,
+            error_maps: None,
         }
         .with_limits(limits)
     }
@@ -225,6 +230,28 @@ impl Robot {
     /// tool's mass part of link 6), or none.
     pub fn with_masses(self, masses: Option<[LinkMass; 6]>) -> Self {
         Self { masses, ..self }
+    }
+
+    /// The robot with these axis error maps ([`ErrorMap`], one per axis, empty for none): its
+    /// frames turn each axis by `q + e(q)` ([`Robot::mapped`]). All empty: no maps.
+    pub fn with_error_maps(self, maps: [ErrorMap; 6]) -> Self {
+        let error_maps = (!maps.iter().all(ErrorMap::is_empty)).then(|| Arc::new(maps));
+        Self { error_maps, ..self }
+    }
+
+    /// The axes' error maps, when any axis has one.
+    pub fn error_maps(&self) -> Option<&[ErrorMap; 6]> {
+        self.error_maps.as_deref()
+    }
+
+    /// The axis angles the chain turns by at axis angles `q` (rad): `q + e(q)` with the error
+    /// maps ([`ErrorMap::angle`] of each axis's own angle), `q` without.
+    #[inline]
+    pub fn mapped(&self, q: &nalgebra::Vector6<f64>) -> nalgebra::Vector6<f64> {
+        match &self.error_maps {
+            None => *q,
+            Some(maps) => nalgebra::Vector6::from_fn(|i, _| q[i] + maps[i].angle(q[i])),
+        }
     }
 
     /// The URDF the robot was read from, when it was ([`urdf::parse`]): a calibrated URDF is that

@@ -81,7 +81,10 @@ struct Screws {
 }
 
 impl Robot {
-    /// Forward kinematics at axis angles `q` (rad).
+    /// Forward kinematics at axis angles `q` (rad), the error maps applied ([`Robot::mapped`]).
+    /// The Jacobians are the chain's at the mapped angles: the maps' slope `e'(q)` (about
+    /// `H` times a coefficient, below 1e-3 of a column for maps of a few arc seconds) is left out
+    /// of them, as a spring deflects the link whatever its gear's error.
     pub fn frames(&self, q: &Vector6<f64>) -> Frames {
         let mut f = Frames {
             joints: [Isometry3::identity(); 6],
@@ -98,7 +101,7 @@ impl Robot {
     /// [`Robot::frames`] at `q` written over `f` (every field), so that a loop over postures reuses
     /// one `Frames` instead of copying a new one out of each call.
     pub(crate) fn update_frames(&self, q: &Vector6<f64>, f: &mut Frames) {
-        let theta = self.axis_map().kinematic(q);
+        let theta = self.axis_map().kinematic(&self.mapped(q));
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
         f.flange = *self.base();

@@ -1,0 +1,137 @@
+//! Joint error maps: the angle error of an axis as a periodic function of its own angle.
+//!
+//! Strain-wave gears and encoders turn a joint by a little more or less than its axis angle
+//! says, by an error that repeats with every turn of the axis (transmission error, eccentricity
+//! of the encoder disc). A map writes it as a Fourier series of the axis angle `q` (rad):
+//!
+//! ```text
+//! e(q) = sum_{h=1..H} a_h cos(h q) + b_h sin(h q)        (rad)
+//! ```
+//!
+//! and the chain turns by `q + e(q)`: a robot with maps ([`crate::Robot::with_error_maps`])
+//! evaluates its kinematic angles as `theta = M (q + e(q)) + c` ([`crate::AxisMap`]), so every
+//! computation on its frames (kinematics, prediction, compensation, design) uses them. The
+//! calibration identifies the coefficients ([`crate::metrology::calibration::maps`]). Source:
+//! docs/model.md, section "Calibration", "Joint error maps".
+
+use crate::{Error, Result};
+
+/// Most harmonics a map holds.
+pub const MAX_HARMONICS: usize = 64;
+
+/// The largest coefficient a map holds, rad (10 deg): an error map is a small correction.
+pub const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// One axis's error map: the coefficients of harmonics `1..=H`, rad.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ErrorMap {
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+}
+
+impl ErrorMap {
+    /// The map of the cosine coefficients `cos` (`a_1..a_H`, rad) and the sine coefficients
+    /// `sin` (`b_1..b_H`, rad); empty for no map.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`error_map`) when the two differ in length, hold more than
+    /// [`MAX_HARMONICS`], or a coefficient is not finite or beyond [`MAX_COEFFICIENT`].
+    pub fn new(cos: Vec<f64>, sin: Vec<f64>) -> Result<Self> {
+        let invalid = |message: String| Error::InvalidField {
+            field: "error_map".into(),
+            message,
+        };
+        if cos.len() != sin.len() {
+            return Err(invalid(format!(
+                "expected as many sine as cosine coefficients, got {} and {}",
+                sin.len(),
+                cos.len()
+            )));
+        }
+        if cos.len() > MAX_HARMONICS {
+            return Err(invalid(format!(
+                "expected at most {MAX_HARMONICS} harmonics, got {}",
+                cos.len()
+            )));
+        }
+        if !(cos.iter().chain(&sin)).all(|v| v.is_finite() && v.abs() <= MAX_COEFFICIENT) {
+            return Err(invalid(format!(
+                "expected finite coefficients within {:.0} deg",
+                MAX_COEFFICIENT.to_degrees()
+            )));
+        }
+        Ok(ErrorMap { cos, sin })
+    }
+
+    /// The number of harmonics `H` (0: no map).
+    pub fn harmonics(&self) -> usize {
+        self.cos.len()
+    }
+
+    /// Whether the map is empty (no harmonic).
+    pub fn is_empty(&self) -> bool {
+        self.cos.is_empty()
+    }
+
+    /// The cosine coefficients `a_1..a_H`, rad.
+    pub fn cos(&self) -> &[f64] {
+        &self.cos
+    }
+
+    /// The sine coefficients `b_1..b_H`, rad.
+    pub fn sin(&self) -> &[f64] {
+        &self.sin
+    }
+
+    /// The error `e(q)` (rad) at the axis angle `q` (rad), the harmonics by the angle-addition
+    /// recurrence from one `sin_cos`.
+    #[inline]
+    pub fn angle(&self, q: f64) -> f64 {
+        let (s1, c1) = q.sin_cos();
+        let (mut s, mut c) = (s1, c1);
+        let mut e = 0.0;
+        for (a, b) in self.cos.iter().zip(&self.sin) {
+            e += a * c + b * s;
+            (s, c) = (s * c1 + c * s1, c * c1 - s * s1);
+        }
+        e
+    }
+
+    /// The map whose coefficients are the sums of this one's and `other`'s (the longer's count).
+    pub fn plus(&self, other: &ErrorMap) -> ErrorMap {
+        let n = self.harmonics().max(other.harmonics());
+        let at = |v: &[f64], h: usize| v.get(h).copied().unwrap_or(0.0);
+        ErrorMap {
+            cos: (0..n).map(|h| at(&self.cos, h) + at(&other.cos, h)).collect(),
+            sin: (0..n).map(|h| at(&self.sin, h) + at(&other.sin, h)).collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_recurrence_is_the_series() {
+        let map = ErrorMap::new(
+            (1..=40).map(|h| 1e-4 / h as f64).collect(),
+            (1..=40).map(|h| -2e-4 / (h * h) as f64).collect(),
+        )
+        .unwrap();
+        for q in [-3.0, -0.7, 0.0, 1.3, 6.0] {
+            let direct: f64 = (1..=40)
+                .map(|h| {
+                    let x = h as f64 * q;
+                    1e-4 / h as f64 * x.cos() - 2e-4 / (h * h) as f64 * x.sin()
+                })
+                .sum();
+            assert!((map.angle(q) - direct).abs() < 1e-15, "{q}");
+        }
+        assert!(ErrorMap::new(vec![0.0], vec![]).is_err());
+        assert!(ErrorMap::new(vec![f64::NAN], vec![0.0]).is_err());
+        let sum = map.plus(&ErrorMap::new(vec![1e-3], vec![0.0]).unwrap());
+        assert_eq!(sum.harmonics(), 40);
+        assert_eq!(sum.cos()[0], 1e-4 + 1e-3);
+    }
+}
