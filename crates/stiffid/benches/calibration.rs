@@ -53,6 +53,7 @@ fn bench(c: &mut Criterion) {
     let options = Options {
         length: 1.0,
         priors: None,
+        ridge: 0.0,
     };
     for postures in [36, 3000] {
         let (model, obs) = campaign(postures);

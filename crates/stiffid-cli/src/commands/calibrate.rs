@@ -13,6 +13,7 @@ use stiffid::app::calibrate::document::Document;
 use stiffid::app::calibrate::{self as job, Tolerances};
 use stiffid::app::readings::Request as Readings;
 use stiffid::metrology::calibration::gravity::Gravity;
+use stiffid::metrology::calibration::maps::Spec;
 use stiffid::metrology::calibration::Geometry;
 
 use crate::commands::common::{choice, Common};
@@ -60,6 +61,12 @@ pub struct Args {
     /// Nominal tolerance of the joints' angle errors, deg [1e-6 to 90]; with --tolerance-mm.
     #[arg(long, requires = "tolerance_mm")]
     tolerance_deg: Option<f64>,
+    /// The joint error maps fitted (each axis's angle error as a Fourier series of its own
+    /// angle): auto (joints, harmonics and ridge chosen by cross-validation inside the readings,
+    /// with 30 distinct postures or more; none below), none, or joints with their harmonics,
+    /// J1,J3:16 (a bare joint 16 harmonics; the ridge chosen by cross-validation).
+    #[arg(long, default_value = "auto")]
+    maps: String,
     /// Write the calibrated robot file here (robot TOML: the DH table with the errors, the axis
     /// map; point a setup's `robot` at it), the tracker and measuring-point fragment of the setup
     /// in comments at its end. Never over an input.
@@ -116,6 +123,7 @@ pub fn run(args: &Args) -> Result<()> {
         cross_validate: args.cross_validate,
         priors,
         progress: &bars,
+        maps: Spec::parse(&args.maps)?,
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);

@@ -498,6 +498,8 @@ pub enum JobOption {
     /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
     /// deg), given together.
     Tolerances,
+    /// calibrate: the joint error maps fitted (auto, none or joints with harmonics).
+    Maps,
     /// setups new: the robot's rated payload, kg.
     PayloadKg,
     /// setups new: the file the setup is written to.
@@ -553,6 +555,7 @@ impl JobOption {
             JobOption::ForCandidates => "for_candidates",
             JobOption::Candidates => "candidates",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
+            JobOption::Maps => "maps",
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",
             JobOption::Bootstrap => "bootstrap",

@@ -56,6 +56,9 @@ pub enum WarningKind {
     /// A milling point's first natural frequency is near a harmonic of the tooth-passing
     /// frequency ([`crate::machining::dynamics`]).
     Chatter,
+    /// A file written leaves out part of the model: a URDF holds no joint error map
+    /// ([`crate::robot::ErrorMap`]).
+    LeftOut,
 }
 
 impl WarningKind {
@@ -78,6 +81,7 @@ impl WarningKind {
             WarningKind::NotConverged => "not-converged",
             WarningKind::Masses => "masses",
             WarningKind::Chatter => "chatter",
+            WarningKind::LeftOut => "left-out",
         }
     }
 }

@@ -108,6 +108,7 @@ pub fn fit(setup: &Setup, observations: &[Observation]) -> Result<Calibration> {
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: None,
+        ridge: 0.0,
     };
     let result = fit::fit(&model, observations, &start, &options)?;
     let rank = result.identifiability.rank;

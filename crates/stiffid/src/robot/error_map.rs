@@ -102,8 +102,12 @@ impl ErrorMap {
         let n = self.harmonics().max(other.harmonics());
         let at = |v: &[f64], h: usize| v.get(h).copied().unwrap_or(0.0);
         ErrorMap {
-            cos: (0..n).map(|h| at(&self.cos, h) + at(&other.cos, h)).collect(),
-            sin: (0..n).map(|h| at(&self.sin, h) + at(&other.sin, h)).collect(),
+            cos: (0..n)
+                .map(|h| at(&self.cos, h) + at(&other.cos, h))
+                .collect(),
+            sin: (0..n)
+                .map(|h| at(&self.sin, h) + at(&other.sin, h))
+                .collect(),
         }
     }
 }

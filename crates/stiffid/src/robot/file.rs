@@ -207,7 +207,11 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         .and_then(|r| r.with_axis_map(axis_map))
         .and_then(|r| r.with_base(base))
         .and_then(|r| r.with_flange(flange))
-        .map(|r| r.with_bodies(bodies).with_masses(masses).with_error_maps(maps))
+        .map(|r| {
+            r.with_bodies(bodies)
+                .with_masses(masses)
+                .with_error_maps(maps)
+        })
         .map_err(|e| match e {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),
             other => other,

@@ -117,6 +117,7 @@ pub fn calibration_study(
     let options = fit::Options {
         length: 1.0,
         priors: None,
+        ridge: 0.0,
     };
     let mut outcome = CalibrationStudy {
         criteria: Vec::with_capacity(groups),

@@ -17,6 +17,7 @@ mod criteria;
 mod design_candidates;
 mod distinct_postures;
 mod dynamics;
+mod error_maps;
 mod fanuc_data;
 mod fanuc_prediction;
 mod formats_proptest;

@@ -425,6 +425,7 @@ fn calibrated(
         cross_validate: false,
         priors: None,
         progress: &(),
+        maps: stiffid::metrology::calibration::maps::Spec::None,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");

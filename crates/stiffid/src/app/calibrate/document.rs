@@ -58,6 +58,9 @@ pub struct Document {
     /// readings (`set` `fitted`), then the held-out ones (`validation`, `--validate`), then each
     /// posture predicted by the fit of the others (`cross-validation`, `--cross-validate`).
     pub errors: Vec<BeforeAfter>,
+    /// The joint error maps: what was asked, the choice by cross-validation inside the fitted
+    /// readings and its held-out gain by an outer cross-validation around the choice.
+    pub maps: MapsDocument,
     /// The held-out readings' errors (`--validate`), if asked.
     pub validation: Option<ValidationDocument>,
     /// The leave-one-posture-out errors (`--cross-validate`), if asked.
@@ -92,6 +95,105 @@ pub struct Document {
     pub warnings: Vec<Warning>,
 }
 
+/// The joint error maps ([`crate::metrology::calibration::maps`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct MapsDocument {
+    /// What was asked: `auto`, `none` or the joints with their harmonics (`J1:16,J3:8`).
+    pub asked: String,
+    /// The distinct postures of the fitted readings.
+    pub postures: usize,
+    /// Why no map was considered; `null` when maps were.
+    pub skipped: Option<String>,
+    /// The maps fitted, `J3:16,J5:8` (joint and harmonics), or `none`.
+    pub chosen: String,
+    /// The ridge of the maps fitted (per reading, dimensionless); `null` without maps.
+    pub ridge: Option<f64>,
+    /// The choice's held-out RMS error in the cross-validation inside the fitted readings (the
+    /// figure the choice was tuned on), mm; `null` when maps were not considered.
+    pub inner_rms_mm: Option<f64>,
+    /// The same without maps, mm.
+    pub inner_none_rms_mm: Option<f64>,
+    /// Every candidate the choice evaluated, in order.
+    pub tried: Vec<MapTried>,
+    /// The held-out gain of the choice (the honest figure): an outer cross-validation that makes
+    /// the whole choice on each fold's training postures; `null` when maps were not considered.
+    pub nested: Option<MapsNested>,
+}
+
+/// A candidate of the maps' choice.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct MapTried {
+    /// Its maps, `J3:16,J5:8`.
+    pub maps: String,
+    /// Its best ridge.
+    pub ridge: f64,
+    /// Its held-out RMS error (inner cross-validation), mm.
+    pub rms_mm: f64,
+    /// Whether the forward selection kept it.
+    pub kept: bool,
+}
+
+/// The nested held-out gain of choosing maps.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct MapsNested {
+    /// The outer folds.
+    pub folds: usize,
+    /// The held-out RMS error without maps, mm.
+    pub none_rms_mm: f64,
+    /// The held-out RMS error with the maps each fold chose on its own training postures, mm.
+    pub rms_mm: f64,
+    /// The maps each outer fold chose.
+    pub choices: Vec<String>,
+}
+
+/// Maps as documents name them: `J3:16,J5:8`, or `none`.
+pub fn maps_name(h: &crate::metrology::calibration::maps::Harmonics) -> String {
+    let parts: Vec<String> = (h.iter().enumerate())
+        .filter(|(_, &n)| n > 0)
+        .map(|(j, n)| format!("J{}:{n}", j + 1))
+        .collect();
+    match parts.is_empty() {
+        true => "none".into(),
+        false => parts.join(","),
+    }
+}
+
+fn maps_document(m: &super::Maps) -> MapsDocument {
+    use crate::metrology::calibration::maps::Spec;
+    let choice = m.choice.as_ref();
+    let chosen = choice.map_or([0; 6], |c| c.harmonics);
+    MapsDocument {
+        asked: match m.spec {
+            Spec::Auto => "auto".into(),
+            Spec::None => "none".into(),
+            Spec::Fixed(h) => maps_name(&h),
+        },
+        postures: m.postures,
+        skipped: m.skipped.clone(),
+        chosen: maps_name(&chosen),
+        ridge: choice.filter(|_| chosen != [0; 6]).map(|c| c.ridge),
+        inner_rms_mm: choice.map(|c| mm(c.rms)),
+        inner_none_rms_mm: choice.map(|c| mm(c.none_rms)),
+        tried: (choice.iter().flat_map(|c| &c.tried))
+            .map(|t| MapTried {
+                maps: maps_name(&t.harmonics),
+                ridge: t.ridge,
+                rms_mm: mm(t.rms),
+                kept: t.kept,
+            })
+            .collect(),
+        nested: m.nested.as_ref().map(|n| MapsNested {
+            folds: n.folds,
+            none_rms_mm: mm(n.none_rms),
+            rms_mm: mm(n.rms),
+            choices: n.choices.iter().map(maps_name).collect(),
+        }),
+    }
+}
+
 /// The calibrated compliance as a stiffness file ([`crate::io::stiffness`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
@@ -114,7 +216,7 @@ pub struct StiffnessSection {
 pub struct Parameter {
     /// Its name (`tracker.x`, `point1.z`, `joint3.beta`, `gravity.c2`, ...).
     pub name: String,
-    /// `tracker`, `base`, `point`, `joint`, `compliance` or `gravity`.
+    /// `tracker`, `base`, `point`, `joint`, `compliance`, `gravity` or `map`.
     pub kind: &'static str,
     /// The unit of `nominal`, `value` and `sd`.
     pub unit: &'static str,
@@ -281,6 +383,7 @@ impl Document {
             iterations: fit.iterations,
             stop_reason: fit.termination.name(),
             errors: before_after(report),
+            maps: maps_document(&report.maps),
             validation: report.validation.as_ref().map(held),
             cross_validation: report.cross_validation.as_ref().map(held),
             robot_file: report.robot_toml.as_ref().ok().cloned(),

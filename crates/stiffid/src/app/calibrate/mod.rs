@@ -12,6 +12,9 @@
 //! cross-validation (one fit per posture).
 
 pub mod document;
+mod maps;
+
+pub use maps::Maps;
 
 use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
@@ -100,6 +103,8 @@ pub struct Request<'a> {
     pub priors: Option<Tolerances>,
     /// Hears the cross-validation's folds (one unit per posture), `&()` for none.
     pub progress: &'a dyn Progress,
+    /// The joint error maps fitted ([`crate::metrology::calibration::maps`]).
+    pub maps: crate::metrology::calibration::maps::Spec,
 }
 
 /// A validation with the nominal model's error beside it.
@@ -144,6 +149,8 @@ pub struct Report {
     /// The estimated noise per coordinate over the setup's: near 1 when the model explains the
     /// readings to the tracker's noise.
     pub noise_ratio: f64,
+    /// The joint error maps: what was asked, the choice and its nested held-out gain.
+    pub maps: Maps,
     /// The held-out validation, if asked.
     pub validation: Option<Held>,
     /// The cross-validation, if asked.
@@ -241,9 +248,16 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             angle: t.angle,
             noise: setup.noise().reading_sd(),
         }),
+        ridge: 0.0,
     };
     let start = fit::start(&model, &obs).map_err(|e| in_data(name, e))?;
     let fitted = fit::fit(&model, &obs, &start, &options).map_err(|e| in_data(name, e))?;
+    let (model, fitted, options, maps) =
+        maps::fit_maps(request.maps, model, fitted, &obs, options).map_err(|e| in_data(name, e))?;
+    let start = match model.map_start() {
+        Some(_) => fit::start(&model, &obs).map_err(|e| in_data(name, e))?,
+        None => start,
+    };
     let residuals: Vec<_> = (fitted.residuals.as_slice().chunks_exact(3))
         .zip(&data.readings)
         .filter(|(_, r)| r.unloaded())
@@ -288,6 +302,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     }
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
+    if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
+        warnings.push(Warning::new(WarningKind::LeftOut, note));
+    }
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());
     let compliance = (request.gravity != Gravity::None || model.has_loads())
@@ -305,6 +322,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         calibrated,
         postures,
         noise_ratio,
+        maps,
         validation,
         cross_validation,
         robot_toml,

@@ -46,7 +46,8 @@ pub(super) enum Column {
     Joint { joint: usize, component: Component },
     /// Gravity term `term` (index in the gravity model's terms).
     Gravity { term: usize, joint: usize },
-    /// A compliance under an applied wrench: zero on the unloaded readings a design reads.
+    /// A compliance under an applied wrench: zero on the unloaded readings a design reads (and
+    /// an error map's coefficient, which no design's model holds).
     Unloaded,
 }
 
@@ -62,7 +63,7 @@ impl Column {
                 term: index - model.gravity_start(),
                 joint: term.joint(),
             },
-            Target::Compliance { .. } => Column::Unloaded,
+            Target::Compliance { .. } | Target::Map { .. } => Column::Unloaded,
         }
     }
 }

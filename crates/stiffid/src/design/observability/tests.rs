@@ -113,6 +113,7 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
     let options = fit::Options {
         length: LENGTH,
         priors: None,
+        ridge: 0.0,
     };
     let runs = 100;
     let mut squares = 0.0;

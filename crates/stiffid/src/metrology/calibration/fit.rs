@@ -95,6 +95,11 @@ pub struct Options {
     pub length: f64,
     /// Priors on the joint errors, if any.
     pub priors: Option<Priors>,
+    /// The ridge `mu` on the error maps' coefficients ([`ErrorModel::with_maps`]), dimensionless:
+    /// each coefficient gets the row `sqrt(mu n) L (x - x_0)` (`n` the readings, `L` the
+    /// characteristic length), a penalty of `mu` per reading on a coefficient that moves a point
+    /// at `L` by 1 m. 0 without maps.
+    pub ridge: f64,
 }
 
 /// The fitted calibration.
@@ -153,17 +158,24 @@ pub(super) fn fit_within(
     let scales = model.column_scales_of(options.length, observations);
     let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
     let j = model.jacobian_of(&start.values, observations)?;
-    let identifiability = identifiability::analyse(&j, &scales, &priorities)?;
-    let fitted: Vec<usize> = match options.priors {
-        None => identifiability.identified.clone(),
-        Some(_) => (0..model.parameters().len())
-            .filter(|&c| {
-                identifiability.identified.contains(&c) || model.parameters()[c].kind == Kind::Joint
-            })
-            .collect(),
-    };
+    // The maps' coefficients (the last parameters) are regularised, not analysed: every one is
+    // fitted under the ridge.
+    let analysed = model.map_start().unwrap_or(j.ncols());
+    let identifiability = identifiability::analyse(
+        &j.columns(0, analysed).into_owned(),
+        &scales.rows(0, analysed).into_owned(),
+        &priorities[..analysed],
+    )?;
+    let fitted: Vec<usize> = (0..model.parameters().len())
+        .filter(|&c| {
+            identifiability.identified.contains(&c)
+                || (options.priors.is_some() && model.parameters()[c].kind == Kind::Joint)
+                || c >= analysed
+        })
+        .collect();
     let coordinates = 3 * observations.len();
-    if options.priors.is_none() && coordinates <= fitted.len() {
+    let regularised = options.priors.is_some() || analysed < j.ncols();
+    if !regularised && coordinates <= fitted.len() {
         return Err(Error::InvalidField {
             field: "readings".into(),
             message: format!(
@@ -178,7 +190,7 @@ pub(super) fn fit_within(
         observations,
         fitted: &fitted,
         scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
-        priors: options.priors.map(|p| prior_weights(model, &fitted, &p)),
+        priors: regularised.then(|| prior_weights(model, &fitted, options, observations.len())),
         noise: options.priors.map(|p| p.noise),
         nominal: model.nominal(),
     };
@@ -254,6 +266,9 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
             "expected a positive characteristic length".into(),
         ));
     }
+    if !(options.ridge.is_finite() && options.ridge >= 0.0) {
+        return Err(invalid("options", "expected a ridge of 0 or more".into()));
+    }
     if let Some(p) = options.priors {
         if !(positive(p.length) && positive(p.angle) && positive(p.noise)) {
             return Err(invalid(
@@ -265,16 +280,28 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
     Ok(())
 }
 
-/// The weight of each fitted parameter's prior row (`sigma_t / sigma_p`, per SI unit), 0 for a
-/// parameter without a prior.
-fn prior_weights(model: &ErrorModel, fitted: &[usize], p: &Priors) -> DVector<f64> {
+/// The weight of each fitted parameter's prior row (per SI unit): `sigma_t / sigma_p` of a joint
+/// error with priors, `sqrt(mu n) L` of a map's coefficient ([`Options::ridge`], `n` readings),
+/// 0 for any other parameter.
+fn prior_weights(
+    model: &ErrorModel,
+    fitted: &[usize],
+    options: &Options,
+    readings: usize,
+) -> DVector<f64> {
+    let ridge = (options.ridge * readings as f64).sqrt() * options.length;
     DVector::from_iterator(
         fitted.len(),
-        fitted.iter().map(|&c| match model.parameters()[c].target {
-            Target::Joint { component, .. } if component.is_angle() => p.noise / p.angle,
-            Target::Joint { .. } => p.noise / p.length,
-            _ => 0.0,
-        }),
+        fitted
+            .iter()
+            .map(|&c| match (model.parameters()[c].target, options.priors) {
+                (Target::Joint { component, .. }, Some(p)) if component.is_angle() => {
+                    p.noise / p.angle
+                }
+                (Target::Joint { .. }, Some(p)) => p.noise / p.length,
+                (Target::Map { .. }, _) => ridge,
+                _ => 0.0,
+            }),
     )
 }
 

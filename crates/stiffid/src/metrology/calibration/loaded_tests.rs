@@ -107,6 +107,7 @@ fn recovers(model: &ErrorModel, gravity: f64, qs: &[Vector6<f64>]) -> fit::Fit {
     let options = Options {
         length: 1.2,
         priors: None,
+        ridge: 0.0,
     };
     let nominal = Estimate {
         frame: Isometry3::identity(),

@@ -25,6 +25,7 @@ pub mod error_model;
 pub mod fit;
 pub mod gravity;
 pub mod identifiability;
+pub mod maps;
 pub mod robot_file;
 pub mod validation;
 
@@ -34,5 +35,7 @@ pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter
 mod heavy_tests;
 #[cfg(test)]
 mod loaded_tests;
+#[cfg(test)]
+mod maps_tests;
 #[cfg(test)]
 mod tests;

@@ -65,10 +65,42 @@ fn convention(robot: &Robot, tolerance: f64) -> Convention {
 fn table_robot(robot: &Robot, table: &dh::Table) -> Result<Robot> {
     let joints =
         std::array::from_fn(|i| dh::hayati_joint(table.convention, &table.rows[i], table.betas[i]));
-    Robot::new(robot.name(), robot.source(), joints, *robot.limits())?
-        .with_axis_map(robot.axis_map().clone())?
-        .with_base(table.base)?
-        .with_flange(table.flange)
+    let maps = robot.error_maps().cloned().unwrap_or_default();
+    Ok(
+        Robot::new(robot.name(), robot.source(), joints, *robot.limits())?
+            .with_axis_map(robot.axis_map().clone())?
+            .with_base(table.base)?
+            .with_flange(table.flange)?
+            .with_error_maps(maps),
+    )
+}
+
+/// The `error_map` line of a joint's map (deg, shortest round-trip), or nothing without one.
+fn error_map_line(map: &crate::robot::ErrorMap) -> String {
+    if map.is_empty() {
+        return String::new();
+    }
+    let deg = |v: &[f64]| {
+        let parts: Vec<String> = v.iter().map(|x| format!("{:?}", x.to_degrees())).collect();
+        parts.join(", ")
+    };
+    format!(
+        "error_map = {{ cos_deg = [{}], sin_deg = [{}] }}\n",
+        deg(map.cos()),
+        deg(map.sin())
+    )
+}
+
+/// What a URDF of the calibrated robot leaves out, in words: its joint error maps (a URDF holds
+/// none); `None` when it has none.
+pub fn urdf_leaves_out(model: &ErrorModel, estimate: &Estimate) -> Option<String> {
+    let robot = model.robot_at(&estimate.values).ok()?;
+    let maps = robot.error_maps()?;
+    let joints: Vec<usize> = (0..6).filter(|&i| !maps[i].is_empty()).collect();
+    Some(format!(
+        "the URDF leaves out the error maps of {} (a URDF holds no joint error map): a robot read from it misses them; use the robot file",
+        crate::common::warning::joint_list(joints)
+    ))
 }
 
 /// The calibrated robot as a robot TOML file (module docs): its chain as a DH table in the
@@ -124,6 +156,9 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
         let _ = writeln!(t, "theta_offset_deg = {:?}", r.theta_offset.to_degrees());
         let _ = writeln!(t, "lower_deg = {:?}", limit(limits.lower[i]));
         let _ = writeln!(t, "upper_deg = {:?}", limit(limits.upper[i]));
+        if let Some(maps) = robot.error_maps() {
+            t += &error_map_line(&maps[i]);
+        }
         if let Some(m) = robot.masses() {
             let moved = m[i].moved(&(table_at.joints[i].inverse() * at.joints[i]));
             let _ = writeln!(t, "mass_kg = {:?}", m[i].mass);
@@ -202,7 +237,8 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// angles), the axis limits as joint limits (an unbounded axis a continuous joint) and the
 /// links' masses, centres and inertia tensors when the nominal robot has them. Either is read
 /// back: its flange is the calibrated robot's within [`READ_BACK`] of the robot's size at three
-/// postures.
+/// postures. It leaves out the joint error maps ([`urdf_leaves_out`]): it is the calibrated
+/// chain without them.
 ///
 /// # Errors
 /// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the axis map couples axes or
@@ -210,7 +246,7 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// the nominal URDF's text cannot carry the correction (a chain joint not found in it) or the
 /// document read back misses the calibrated robot.
 pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
-    let robot = calibrated(model, estimate)?;
+    let robot = calibrated(model, estimate)?.with_error_maps(Default::default());
     if let Some(source) = model.robot().urdf_source() {
         return edited_urdf(model.robot(), &robot, source);
     }

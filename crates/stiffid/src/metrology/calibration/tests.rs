@@ -195,6 +195,7 @@ fn recovers(
     let options = Options {
         length: 1.0,
         priors: None,
+        ridge: 0.0,
     };
     let found = fit::fit(model, &probe, &start0, &options).unwrap();
     let identified = found.identifiability.identified.clone();
@@ -462,6 +463,7 @@ fn standard_deviations_match_monte_carlo() {
     let options = Options {
         length: 1.0,
         priors: None,
+        ridge: 0.0,
     };
     let noise = Normal::new(0.0, 5e-5).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
@@ -525,6 +527,7 @@ fn the_fit_says_why_it_stopped_and_warns_at_its_iteration_limit() {
     let options = Options {
         length: 1.0,
         priors: None,
+        ridge: 0.0,
     };
     // One step from the registered nominal leaves the 1 mm errors partly unfitted.
     let cut = fit::fit_within(&model, &data, &start, &options, 1).unwrap();

@@ -59,6 +59,13 @@ impl ErrorModel {
                     block.column_mut(s + i).copy_from(&col);
                 }
             }
+            if self.maps.is_some() {
+                let jq = f.jacobian(&c, crate::robot::kinematics::Coordinates::Axis);
+                let columns = std::array::from_fn(|i| jq.fixed_view::<3, 1>(0, i).into_owned());
+                self.map_columns(&columns, &posture.at, |m, col| {
+                    block.column_mut(m).copy_from(&col)
+                });
+            }
             if !self.gravity.is_empty() {
                 let jp = f.jacobian(&c, springs);
                 let regressors = &posture.regressors;
@@ -208,6 +215,7 @@ impl ErrorModel {
                 .map(|(i, p)| match p.target {
                     Target::Frame(a) if a >= 3 => 1.0 / length,
                     Target::Joint { component, .. } if component.is_angle() => 1.0 / length,
+                    Target::Map { .. } => 1.0 / length,
                     Target::Gravity(term) => {
                         let y = rms[i - self.gravity_start];
                         let largest = (self.gravity.terms().iter().zip(&rms))

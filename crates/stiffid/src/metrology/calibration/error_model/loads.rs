@@ -37,6 +37,9 @@ impl ErrorModel {
         if self.loads.is_some() {
             return Err(invalid("the model has the loads already".into()));
         }
+        if self.maps.is_some() {
+            return Err(invalid("add the loads before the error maps".into()));
+        }
         if setup.tool().measuring_points.len() != self.points() {
             return Err(invalid(format!(
                 "expected a setup with the model's {} measuring points, got {}",

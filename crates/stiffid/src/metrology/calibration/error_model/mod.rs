@@ -74,6 +74,7 @@
 mod basis;
 mod jacobian;
 mod loads;
+mod maps;
 mod parameter;
 
 pub use basis::Basis;
@@ -93,6 +94,8 @@ pub const NO_EFFECT: f64 = 1e-9;
 /// One commanded posture: its frames at the deflected posture and its gravity regressors.
 struct Posture {
     q: Vector6<f64>,
+    /// The axis angles the chain stands at: `q` plus the deflection under gravity.
+    at: Vector6<f64>,
     frames: crate::Frames,
     regressors: Vec<f64>,
 }
@@ -165,6 +168,8 @@ pub struct ErrorModel {
     gravity_start: usize,
     /// The compliances under the applied wrenches, with loaded readings.
     loads: Option<Loads>,
+    /// The joints' fitted error maps ([`ErrorModel::with_maps`]).
+    maps: Option<maps::Maps>,
 }
 
 impl ErrorModel {
@@ -259,6 +264,7 @@ impl ErrorModel {
             gravity,
             gravity_start,
             loads: None,
+            maps: None,
         })
     }
 
@@ -315,11 +321,13 @@ impl ErrorModel {
     }
 
     /// The robot with the joint errors of `values` (joint `i`'s `pre` becomes `pre_i E_i` and
-    /// its offset gains `theta_i`; module docs). Its `frames` at the deflected posture
+    /// its offset gains `theta_i`; module docs) and the error maps of `values`
+    /// ([`ErrorModel::with_maps`]). Its `frames` at the deflected posture
     /// ([`ErrorModel::deflected`]) give the predicted positions.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] when a value is not finite.
+    /// [`Error::InvalidField`] when a value is not finite or a map's coefficient beyond its
+    /// limit ([`crate::robot::ErrorMap::new`]).
     pub fn robot_at(&self, values: &DVector<f64>) -> Result<Robot> {
         let joints: [Joint; 6] = std::array::from_fn(|i| {
             let j = &self.robot.joints()[i];
@@ -331,7 +339,11 @@ impl ErrorModel {
                 offset: j.offset + e[0],
             }
         });
-        self.robot.clone().with_joints(joints)
+        let robot = self.robot.clone().with_joints(joints)?;
+        Ok(match self.maps_at(values)? {
+            Some(maps) => robot.with_error_maps(maps),
+            None => robot,
+        })
     }
 
     /// The axis angles `q + dq_g` at which the robot stands when commanded `q` (rad), with the
@@ -379,9 +391,11 @@ impl ErrorModel {
         if last.as_ref().is_none_or(|p| p.q != *q) {
             let regressors = self.gravity.regressors(q);
             let g = values.rows(self.gravity_start, self.gravity.len());
-            let frames = robot.frames(&(q + self.gravity.deflection_from(&g, &regressors)));
+            let at = q + self.gravity.deflection_from(&g, &regressors);
+            let frames = robot.frames(&at);
             *last = Some(Posture {
                 q: *q,
+                at,
                 frames,
                 regressors,
             });

@@ -130,6 +130,17 @@ pub enum Target {
         /// What it is: a drive, a rotational or translational spring, a nonlinear law's.
         kind: crate::model::ParameterKind,
     },
+    /// A coefficient of joint `joint`'s error map ([`crate::robot::ErrorMap`], rad): of
+    /// `cos(h q)` or, with `sine`, of `sin(h q)`, `h = harmonic` (1-based), `q` the joint's axis
+    /// angle ([`super::ErrorModel::with_maps`]).
+    Map {
+        /// The joint, 0-based.
+        joint: usize,
+        /// The harmonic `h`, 1-based.
+        harmonic: usize,
+        /// Whether it is the sine's coefficient (else the cosine's).
+        sine: bool,
+    },
 }
 
 /// The kind of a parameter, as documents name it.
@@ -149,6 +160,8 @@ pub enum Kind {
     Compliance,
     /// A lumped gravity term: a compliance times a mass moment.
     Gravity,
+    /// A coefficient of a joint's error map.
+    Map,
 }
 
 impl Kind {
@@ -161,6 +174,7 @@ impl Kind {
             Kind::Joint => "joint",
             Kind::Compliance => "compliance",
             Kind::Gravity => "gravity",
+            Kind::Map => "map",
         }
     }
 }
@@ -178,7 +192,8 @@ pub struct Parameter {
     /// a measuring point, the nominal compliance (or 0) for a compliance.
     pub nominal: f64,
     /// The order in which [`crate::metrology::calibration::identifiability`] keeps parameters: lower first
-    /// (0 the frame and the points, 1 the (M)DH errors, 2 `beta`, 3 `b`, 4 the gravity terms).
+    /// (0 the frame and the points, 1 the (M)DH errors, 2 `beta`, 3 `b`, 4 the gravity terms, 5
+    /// the error maps' coefficients).
     pub priority: u8,
 }
 
@@ -191,6 +206,7 @@ impl Parameter {
             Target::Point { .. } => "mm",
             Target::Joint { component, .. } if component.is_angle() => "deg",
             Target::Joint { .. } => "mm",
+            Target::Map { .. } => "deg",
             Target::Gravity(term) => term.unit(),
             Target::Compliance { kind, .. } => compliance_unit(kind),
         }

@@ -1,0 +1,351 @@
+//! Which joint error maps a calibration fits: joints, harmonics and ridge chosen by
+//! cross-validation inside the fitted readings, and the held-out gain of that choice measured by
+//! an outer cross-validation around it (nested: the figure quoted is never the one the choice was
+//! tuned on).
+//!
+//! # The candidates
+//! A joint's map ([`crate::robot::ErrorMap`]) of `H` harmonics, `H` in [`HARMONICS`], with the
+//! ridge `mu` in [`RIDGES`] ([`crate::metrology::calibration::fit::Options::ridge`]: a penalty of
+//! `mu` per reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics
+//! (a bare joint takes [`DEFAULT_HARMONICS`]) and chooses the ridge alone.
+//!
+//! # The choice ([`choose`])
+//! The postures are dealt into [`FOLDS`] folds (posture `p` of the training postures in fold
+//! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
+//! postures predicted by the fit of the others, at its best ridge. First each joint alone, at each
+//! harmonic count; then, from no map, the joints in the order of their own held-out error, each
+//! kept when it lowers the held-out error by more than [`ACCEPT`] standard errors of the paired
+//! per-posture differences (a one-sided test at about 0.1 %) and by [`LEAST_GAIN`] of it: the
+//! choice keeps no map on a robot without one. The choice is made on the linearised fit ([`linear`]): exact to second order in
+//! the parameters' change from the fit, a few nanometres on a calibrated robot.
+//!
+//! # The honest figure ([`nested`])
+//! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
+//! training postures and predicts its held-out postures with it, beside the geometry alone on the
+//! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
+//! (rayon), the result independent of the thread count.
+//!
+//! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
+
+pub mod linear;
+
+pub use linear::{extended, Harmonics, Linear};
+
+use crate::common::error::JobOption;
+use crate::robot::error_map::MAX_HARMONICS;
+use crate::{Error, Result};
+use rayon::prelude::*;
+
+/// The harmonic counts `--maps auto` tries per joint.
+pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+
+/// The harmonics of a joint named without a count (`--maps J2`).
+pub const DEFAULT_HARMONICS: usize = 16;
+
+/// The ridges `mu` tried (dimensionless, per reading).
+pub const RIDGES: [f64; 9] = [1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1];
+
+/// The folds of the inner and of the outer cross-validation.
+pub const FOLDS: usize = 5;
+
+/// The standard errors of the paired per-posture differences by which a map must lower the
+/// held-out error to be kept.
+pub const ACCEPT: f64 = 3.0;
+
+/// The least share of the held-out squared error a map must remove to be kept.
+pub const LEAST_GAIN: f64 = 0.02;
+
+/// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
+/// folds of at least six postures.
+pub const MIN_POSTURES: usize = 30;
+
+/// Which maps a calibration fits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Spec {
+    /// Chosen by cross-validation with [`MIN_POSTURES`] postures or more, none below.
+    #[default]
+    Auto,
+    /// None.
+    None,
+    /// These joints with these harmonics (the ridge chosen by cross-validation).
+    Fixed(Harmonics),
+}
+
+impl Spec {
+    /// Parses `auto`, `none` or a list of joints `J1,J3:16` (a joint `J1`..`J6`, optionally
+    /// `:H` harmonics, 1 to [`MAX_HARMONICS`], default [`DEFAULT_HARMONICS`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] ([`JobOption::Maps`]) naming the part not understood.
+    pub fn parse(text: &str) -> Result<Self> {
+        let text = text.trim();
+        match text {
+            "auto" => return Ok(Spec::Auto),
+            "none" => return Ok(Spec::None),
+            _ => {}
+        }
+        let bad = |part: &str| {
+            Error::InvalidOption {
+            option: JobOption::Maps,
+            message: format!(
+                "expected auto, none or joints such as J1,J3:16 (J1 to J6, 1 to {MAX_HARMONICS} harmonics), got {part:?}"
+            ),
+        }
+        };
+        let mut harmonics = [0; 6];
+        for part in text.split(',') {
+            let part = part.trim();
+            let (joint, count) = part.split_once(':').unwrap_or((part, ""));
+            let joint = (joint.strip_prefix(['J', 'j']))
+                .and_then(|j| j.parse::<usize>().ok())
+                .filter(|j| (1..=6).contains(j))
+                .ok_or_else(|| bad(part))?;
+            let count = match count {
+                "" => DEFAULT_HARMONICS,
+                c => (c.parse::<usize>().ok())
+                    .filter(|h| (1..=MAX_HARMONICS).contains(h))
+                    .ok_or_else(|| bad(part))?,
+            };
+            harmonics[joint - 1] = count;
+        }
+        Ok(Spec::Fixed(harmonics))
+    }
+
+    /// The harmonics of each joint the linearised fit needs columns for: every joint at the
+    /// largest of [`HARMONICS`] for [`Spec::Auto`], the fixed ones, none.
+    pub fn candidates(self) -> Harmonics {
+        match self {
+            Spec::Auto => [HARMONICS[HARMONICS.len() - 1]; 6],
+            Spec::None => [0; 6],
+            Spec::Fixed(h) => h,
+        }
+    }
+}
+
+/// One candidate the choice evaluated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tried {
+    /// Its maps.
+    pub harmonics: Harmonics,
+    /// Its best ridge.
+    pub ridge: f64,
+    /// Its held-out RMS error (inner cross-validation), m.
+    pub rms: f64,
+    /// Whether the choice kept it (a step of the forward selection that passed [`ACCEPT`]).
+    pub kept: bool,
+}
+
+/// The maps chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choice {
+    /// The harmonics of each joint's map (0 none).
+    pub harmonics: Harmonics,
+    /// The ridge.
+    pub ridge: f64,
+    /// The held-out RMS error of the choice (inner cross-validation: the figure it was tuned on), m.
+    pub rms: f64,
+    /// The held-out RMS error without maps on the same folds, m.
+    pub none_rms: f64,
+    /// Every candidate evaluated, in order.
+    pub tried: Vec<Tried>,
+}
+
+/// The held-out gain of choosing maps by cross-validation (the outer folds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nested {
+    /// The outer folds.
+    pub folds: usize,
+    /// The held-out RMS error without maps, m.
+    pub none_rms: f64,
+    /// The held-out RMS error with the maps each outer fold chose on its training postures, m.
+    pub rms: f64,
+    /// The maps each outer fold chose.
+    pub choices: Vec<Harmonics>,
+}
+
+/// The folds of `postures`: fold `k` holds `postures[i]` with `i mod K = k`, `K = min(FOLDS, n)`.
+fn folds(postures: &[usize]) -> Vec<(Vec<usize>, Vec<usize>)> {
+    let k = FOLDS.min(postures.len());
+    (0..k)
+        .map(|f| {
+            let (test, train): (Vec<(usize, usize)>, Vec<(usize, usize)>) = postures
+                .iter()
+                .copied()
+                .enumerate()
+                .partition(|(i, _)| i % k == f);
+            (
+                train.into_iter().map(|(_, p)| p).collect(),
+                test.into_iter().map(|(_, p)| p).collect(),
+            )
+        })
+        .collect()
+}
+
+/// The inner cross-validation of some postures: its splits, prepared once.
+struct Inner<'a> {
+    linear: &'a Linear,
+    splits: Vec<linear::Split>,
+    /// The readings of the held-out postures, all folds.
+    readings: usize,
+    /// The training readings of each split (the ridge's `n`).
+    train_readings: Vec<usize>,
+}
+
+/// A candidate's held-out errors at its best ridge.
+struct Scored {
+    ridge: f64,
+    /// Per held-out posture (all folds, in order), the sum of squared errors, m^2.
+    errors: Vec<f64>,
+    total: f64,
+}
+
+impl<'a> Inner<'a> {
+    fn new(linear: &'a Linear, postures: &[usize]) -> Result<Self> {
+        let parts = folds(postures);
+        let readings_of = |ps: &[usize]| ps.iter().map(|&p| linear.rows[p].len() / 3).sum();
+        let splits = (parts.par_iter())
+            .map(|(train, test)| linear.split(train, test))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Inner {
+            linear,
+            readings: readings_of(postures),
+            train_readings: parts.iter().map(|(t, _)| readings_of(t)).collect(),
+            splits,
+        })
+    }
+
+    /// The held-out errors of `choice` at its best ridge of [`RIDGES`].
+    fn score(&self, choice: &Harmonics) -> Result<Scored> {
+        let per_fold = (self.splits.par_iter().zip(&self.train_readings))
+            .map(|(s, &n)| {
+                let lambdas: Vec<f64> = RIDGES.iter().map(|mu| mu * n as f64).collect();
+                self.linear.errors(s, choice, &lambdas)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let totals: Vec<f64> = (0..RIDGES.len())
+            .map(|r| per_fold.iter().flat_map(|f| &f[r]).sum())
+            .collect();
+        let best = (0..RIDGES.len())
+            .min_by(|&a, &b| totals[a].total_cmp(&totals[b]))
+            .unwrap_or(0);
+        Ok(Scored {
+            ridge: RIDGES[best],
+            errors: per_fold.iter().flat_map(|f| f[best].clone()).collect(),
+            total: totals[best],
+        })
+    }
+
+    fn rms(&self, s: &Scored) -> f64 {
+        (s.total / self.readings.max(1) as f64).sqrt()
+    }
+}
+
+/// Whether `candidate` lowers the held-out error of `current` by more than [`ACCEPT`] standard
+/// errors of the paired per-posture differences and by [`LEAST_GAIN`] of it.
+fn better(current: &Scored, candidate: &Scored) -> bool {
+    let n = current.errors.len();
+    if n < 2 {
+        return false;
+    }
+    let d: Vec<f64> = (current.errors.iter().zip(&candidate.errors))
+        .map(|(a, b)| a - b)
+        .collect();
+    let mean = d.iter().sum::<f64>() / n as f64;
+    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    mean > ACCEPT * (var / n as f64).sqrt() && candidate.total < (1.0 - LEAST_GAIN) * current.total
+}
+
+/// Chooses the maps of `spec` by cross-validation over the postures `postures` of `linear`
+/// (module docs).
+///
+/// # Errors
+/// [`Error::NotFinite`] when an SVD does not converge.
+pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
+    let inner = Inner::new(linear, postures)?;
+    let none = inner.score(&[0; 6])?;
+    let none_rms = inner.rms(&none);
+    let mut tried = Vec::new();
+    let mut record = |h: Harmonics, s: &Scored, kept: bool| {
+        tried.push(Tried {
+            harmonics: h,
+            ridge: s.ridge,
+            rms: inner.rms(s),
+            kept,
+        })
+    };
+    let (mut chosen, mut current) = ([0; 6], none);
+    match spec {
+        Spec::None => {}
+        Spec::Fixed(h) => {
+            let s = inner.score(&h)?;
+            record(h, &s, true);
+            (chosen, current) = (h, s);
+        }
+        Spec::Auto => {
+            // Each joint alone at each harmonic count: its best.
+            let mut alone = Vec::new();
+            for joint in 0..6 {
+                let mut best: Option<(usize, Scored)> = None;
+                for &h in &HARMONICS {
+                    let mut choice = [0; 6];
+                    choice[joint] = h;
+                    let s = inner.score(&choice)?;
+                    record(choice, &s, false);
+                    if best.as_ref().is_none_or(|(_, b)| s.total < b.total) {
+                        best = Some((h, s));
+                    }
+                }
+                if let Some((h, s)) = best {
+                    alone.push((joint, h, s.total));
+                }
+            }
+            alone.sort_by(|a, b| a.2.total_cmp(&b.2));
+            // Forward: the joints in that order, each kept when it lowers the error enough.
+            for (joint, h, _) in alone {
+                let mut choice = chosen;
+                choice[joint] = h;
+                let s = inner.score(&choice)?;
+                let kept = better(&current, &s);
+                record(choice, &s, kept);
+                if kept {
+                    (chosen, current) = (choice, s);
+                }
+            }
+        }
+    }
+    let rms = inner.rms(&current);
+    Ok(Choice {
+        harmonics: chosen,
+        ridge: current.ridge,
+        rms,
+        none_rms,
+        tried,
+    })
+}
+
+/// The held-out gain of [`choose`] by an outer cross-validation over `postures` (module docs).
+///
+/// # Errors
+/// Those of [`choose`].
+pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested> {
+    let parts = folds(postures);
+    let outer = (parts.par_iter())
+        .map(|(train, test)| {
+            let choice = choose(linear, train, spec)?;
+            let split = linear.split(train, test)?;
+            let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
+            let maps = linear.errors(&split, &choice.harmonics, &[choice.ridge * n as f64])?;
+            let none = linear.errors(&split, &[0; 6], &[0.0])?;
+            let sum = |e: &[Vec<f64>]| e[0].iter().sum::<f64>();
+            Ok((sum(&maps), sum(&none), choice.harmonics))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();
+    let rms = |total: f64| (total / readings.max(1) as f64).sqrt();
+    Ok(Nested {
+        folds: parts.len(),
+        rms: rms(outer.iter().map(|o| o.0).sum()),
+        none_rms: rms(outer.iter().map(|o| o.1).sum()),
+        choices: outer.iter().map(|o| o.2).collect(),
+    })
+}

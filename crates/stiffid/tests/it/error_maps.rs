@@ -1,0 +1,125 @@
+//! A robot file's joint error maps: the kinematics with a map equal the chain turned by the
+//! axis angle plus the map's error, computed here term by term.
+
+use nalgebra::{Vector3, Vector6};
+use stiffid::robot::file;
+
+const TABLE: &str = r#"
+name = "six"
+convention = "standard-dh"
+[[joint]]
+a_mm = 150
+alpha_deg = 90
+d_mm = 450
+lower_deg = -180
+upper_deg = 180
+ERROR1
+[[joint]]
+a_mm = 600
+alpha_deg = 0
+d_mm = 0
+lower_deg = -180
+upper_deg = 180
+[[joint]]
+a_mm = 120
+alpha_deg = 90
+d_mm = 0
+lower_deg = -180
+upper_deg = 180
+ERROR3
+[[joint]]
+a_mm = 0
+alpha_deg = -90
+d_mm = 640
+lower_deg = -180
+upper_deg = 180
+[[joint]]
+a_mm = 0
+alpha_deg = 90
+d_mm = 0
+lower_deg = -180
+upper_deg = 180
+[[joint]]
+a_mm = 0
+alpha_deg = 0
+d_mm = 100
+lower_deg = -360
+upper_deg = 360
+"#;
+
+const COS1: [f64; 3] = [0.01, -0.004, 0.002];
+const SIN1: [f64; 3] = [0.003, 0.0, -0.001];
+const COS3: [f64; 1] = [-0.02];
+const SIN3: [f64; 1] = [0.015];
+
+/// The error (rad) of coefficients in degrees at `q` (rad), term by term.
+fn error(cos: &[f64], sin: &[f64], q: f64) -> f64 {
+    let terms = cos.iter().zip(sin).enumerate();
+    terms
+        .map(|(i, (a, b))| {
+            let h = (i + 1) as f64;
+            (a * (h * q).cos() + b * (h * q).sin()).to_radians()
+        })
+        .sum()
+}
+
+fn list(v: &[f64]) -> String {
+    let parts: Vec<String> = v.iter().map(|x| format!("{x}")).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+#[test]
+fn the_kinematics_with_maps_turn_each_axis_by_its_error() {
+    let line = |c: &[f64], s: &[f64]| {
+        format!(
+            "error_map = {{ cos_deg = {}, sin_deg = {} }}",
+            list(c),
+            list(s)
+        )
+    };
+    let mapped = TABLE
+        .replace("ERROR1", &line(&COS1, &SIN1))
+        .replace("ERROR3", &line(&COS3, &SIN3));
+    let plain = TABLE.replace("ERROR1", "").replace("ERROR3", "");
+    let (mapped, plain) = (
+        file::parse(&mapped, "mapped.toml").unwrap(),
+        file::parse(&plain, "plain.toml").unwrap(),
+    );
+    assert!(mapped.error_maps().is_some() && plain.error_maps().is_none());
+    let tool = Vector3::new(0.05, -0.02, 0.2);
+    for q in [
+        Vector6::new(0.3, -0.4, 0.5, -0.6, 0.7, -0.8),
+        Vector6::new(-2.1, 0.9, -1.7, 1.3, -0.5, 2.1),
+    ] {
+        let mut turned = q;
+        turned[0] += error(&COS1, &SIN1, q[0]);
+        turned[2] += error(&COS3, &SIN3, q[2]);
+        let (a, b) = (
+            mapped.frames(&q).point(&tool),
+            plain.frames(&turned).point(&tool),
+        );
+        assert!((a - b).norm() < 1e-14, "{:e}", (a - b).norm());
+        // The map moves the point by far more than rounding.
+        assert!((a - plain.frames(&q).point(&tool)).norm() > 1e-5);
+    }
+}
+
+#[test]
+fn a_bad_error_map_is_refused_naming_the_joint() {
+    let bad = TABLE
+        .replace(
+            "ERROR1",
+            "error_map = { cos_deg = [0.1, 0.2], sin_deg = [0.1] }",
+        )
+        .replace("ERROR3", "");
+    let e = file::parse(&bad, "bad.toml").unwrap_err().to_string();
+    assert!(e.contains("bad.toml: joint[1].error_map"), "{e}");
+    let huge = TABLE
+        .replace(
+            "ERROR1",
+            "error_map = { cos_deg = [20.0], sin_deg = [0.0] }",
+        )
+        .replace("ERROR3", "");
+    let e = file::parse(&huge, "huge.toml").unwrap_err().to_string();
+    assert!(e.contains("within 10 deg"), "{e}");
+}
