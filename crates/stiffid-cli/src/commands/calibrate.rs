@@ -217,6 +217,7 @@ fn text_of(d: &Document) -> String {
     for c in &d.correlations {
         text += &format!("correlated: {} and {} ({:+.3})\n", c.a, c.b, c.rho);
     }
+    text += &maps_text(&d.maps);
     for v in d.validation.iter().chain(&d.cross_validation) {
         text += &format!(
             "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} readings (nominal, tracker registered: {:.4} mm)\n",
@@ -228,4 +229,30 @@ fn text_of(d: &Document) -> String {
         );
     }
     text + "\n" + &d.fragment
+}
+
+/// The maps' lines: the choice, the figure it was tuned on and the nested held-out gain.
+fn maps_text(m: &stiffid::app::calibrate::document::MapsDocument) -> String {
+    if let Some(why) = &m.skipped {
+        return format!("\njoint error maps: none ({why})\n");
+    }
+    let mut text = format!(
+        "\njoint error maps ({}): {}{}\n",
+        m.asked,
+        m.chosen,
+        m.ridge.map_or(String::new(), |r| format!(", ridge {r:e}"))
+    );
+    if let (Some(a), Some(b)) = (m.inner_rms_mm, m.inner_none_rms_mm) {
+        text += &format!(
+            "  chosen by {}-posture cross-validation: {a:.4} mm held out ({b:.4} mm without maps; the figure the choice was tuned on)\n",
+            m.postures
+        );
+    }
+    if let Some(n) = &m.nested {
+        text += &format!(
+            "  nested ({} outer folds, the choice made inside each): {:.4} mm held out, {:.4} mm without maps\n",
+            n.folds, n.rms_mm, n.none_rms_mm
+        );
+    }
+    text
 }
