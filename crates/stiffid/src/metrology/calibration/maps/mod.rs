@@ -168,15 +168,13 @@ fn folds(postures: &[usize]) -> Vec<(Vec<usize>, Vec<usize>)> {
     let k = FOLDS.min(postures.len());
     (0..k)
         .map(|f| {
-            let (test, train): (Vec<(usize, usize)>, Vec<(usize, usize)>) = postures
-                .iter()
-                .copied()
-                .enumerate()
-                .partition(|(i, _)| i % k == f);
-            (
-                train.into_iter().map(|(_, p)| p).collect(),
-                test.into_iter().map(|(_, p)| p).collect(),
-            )
+            let in_fold = |keep: bool| {
+                (postures.iter().enumerate())
+                    .filter(|(i, _)| (i % k == f) == keep)
+                    .map(|(_, p)| *p)
+                    .collect::<Vec<usize>>()
+            };
+            (in_fold(false), in_fold(true))
         })
         .collect()
 }
