@@ -17,8 +17,10 @@ def test_calibration_figures_are_the_reports(paper, cli, campaign, tmp_path):  #
     cli("calibrate", "--setup", SETUP, "--data", fit, "--validate", held, "--report", tmp_path / "r", "--json")
     for name, svg in figures.items():
         assert svg.startswith("<svg") and svg == (tmp_path / "r" / "figures" / f"{name}.svg").read_text(), name
-    # The errors figure draws every reading before and after (a circle each).
-    assert figures["errors"].count("<circle") == 2 * len(doc["errors"])
+    # The errors figure draws every reading before and after (a circle each) on a log scale: an
+    # error of round-off after the fit may fall below the axis.
+    tiny = sum(1 for e in doc["errors"] if e["after_norm_mm"] < 1e-9)
+    assert 2 * len(doc["errors"]) - tiny <= figures["errors"].count("<circle") <= 2 * len(doc["errors"])
 
 
 def test_identification_figures_are_the_reports(fanuc, cli, tmp_path):

@@ -82,13 +82,15 @@ def test_compensate_gives_the_commands_surge_at_each_drilling_exit(tmp_path, cli
     program.write_text("(stiffid: tool_rpy_deg = 180 0 0)\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX40\nG80\n")
     process = tmp_path / "drill.toml"
     process.write_text(DRILL)
+    stiffness = tmp_path / "k.json"
+    stiffness.write_text('{"stiffness_nm_per_rad": [950000, 3000000, 900000, 250000, 200000, 150000]}')
     setup = stiffid.Setup.from_file(path)
-    mine = stiffid.compensate(setup, program=program, process=process)
+    mine = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process)
     surge = mine["surge_mm_s"]
     exits = ~np.isnan(surge)
     assert exits.sum() == 2
     assert np.all(np.isnan(mine["first_frequency_hz"]))
-    command = cli("compensate", "--setup", path, "--program", program, "--process", process,
+    command = cli("compensate", "--setup", path, "--stiffness", stiffness, "--program", program, "--process", process,
                   "--out", tmp_path / "out.nc", "--json")
     rows = command["points"]
     assert [r["surge_mm_s"] for r in rows if r["surge_mm_s"] is not None] == list(surge[exits])
