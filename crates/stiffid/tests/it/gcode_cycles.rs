@@ -178,30 +178,37 @@ const DRILL: &str = "[[operation]]\nname = \"drill\"\nkind = \"drilling\"\ntool_
     [operation.cut]\nfeed_per_tooth_mm = 0.1\naxial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n\
     [operation.coefficients]\npreset = \"al7075-t6\"\n";
 
+/// The FANUC setup with the part of the drilling tests at (1300, -700, 400) mm.
+fn drilling_setup() -> setup::Setup {
+    setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_builder()
+        .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
+        .build()
+        .unwrap()
+}
+
+/// The G-code `text` compensated on `s` (its test compliance) under the process [`DRILL`].
+fn compensated(s: &setup::Setup, text: &str) -> stiffid::Result<machining::Report> {
+    let program = machining::read(text, Language::GCode, 1e-5).unwrap();
+    machining::compensate(
+        s.arm(),
+        s.workpiece(),
+        &s.model_compliance("test").unwrap(),
+        &program,
+        &file::parse(DRILL, "p.toml").unwrap(),
+        &Options::for_setup(s),
+    )
+}
+
 /// A drilling cycle's feed moves carry the drilling operation's thrust along the tool axis (1000 N
 /// up the spindle, the model's `k_f f D / 2`) and are compensated; under a milling operation the
 /// cycle is refused naming its line.
 #[test]
 fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
-    let s = setup::builtin("fanuc-r2000ic-165f")
-        .unwrap()
-        .to_builder()
-        .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
-        .build()
-        .unwrap();
-    let compliance = s.model_compliance("test").unwrap();
-    let process = file::parse(DRILL, "p.toml").unwrap();
+    let s = drilling_setup();
     let text = format!("{HEADER}T2\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX40\nG80\n");
-    let program = machining::read(&text, Language::GCode, 1e-5).unwrap();
-    let report = machining::compensate(
-        s.arm(),
-        s.workpiece(),
-        &compliance,
-        &program,
-        &process,
-        &Options::for_setup(&s),
-    )
-    .unwrap();
+    let report = compensated(&s, &text).unwrap();
     let drilled: Vec<_> = report
         .points
         .iter()
@@ -221,15 +228,7 @@ fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
         .fold(0.0, f64::max);
     assert!(moved > 1e-6);
     let milled = text.replace("T2", "T1");
-    let program = machining::read(&milled, Language::GCode, 1e-5).unwrap();
-    match machining::compensate(
-        s.arm(),
-        s.workpiece(),
-        &compliance,
-        &program,
-        &process,
-        &Options::for_setup(&s),
-    ) {
+    match compensated(&s, &milled) {
         Err(Error::Program { line: 4, message }) => {
             assert!(
                 message.contains("G81") && message.contains("'wall'"),
@@ -248,26 +247,10 @@ fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
 /// tool lands on the nominal start too.
 #[test]
 fn a_drilling_feed_runs_along_the_compensated_hole_axis() {
-    let s = setup::builtin("fanuc-r2000ic-165f")
-        .unwrap()
-        .to_builder()
-        .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
-        .build()
-        .unwrap();
-    let compliance = s.model_compliance("test").unwrap();
-    let process = file::parse(DRILL, "p.toml").unwrap();
+    let s = drilling_setup();
     for cycle in ["G81 X20 Y10 Z-30 R2 F120", "G83 X20 Y10 Z-30 R2 Q12 F120"] {
         let text = format!("{HEADER}T2\nG0 X0 Y0 Z10\n{cycle}\nG80\n");
-        let program = machining::read(&text, Language::GCode, 1e-5).unwrap();
-        let report = machining::compensate(
-            s.arm(),
-            s.workpiece(),
-            &compliance,
-            &program,
-            &process,
-            &Options::for_setup(&s),
-        )
-        .unwrap();
+        let report = compensated(&s, &text).unwrap();
         let commanded = |i: usize| {
             let q = &report.results[i].q_compensated;
             stiffid::robot::ik::tool_pose(&s.robot().frames(q), &s.tool().tcp)
