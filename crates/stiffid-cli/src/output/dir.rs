@@ -11,6 +11,9 @@ use std::path::{Path, PathBuf};
 /// held to the end of the run): a second one is refused.
 pub const TEMP_DIR: &str = ".stiffid-tmp";
 
+/// Most threads [`ReportDir::write_all`] writes files on.
+pub const WRITERS: usize = 16;
+
 /// A directory being filled with a report, checked when the command starts (before computing).
 ///
 /// Dropped without [`ReportDir::finish`] (an error on the way), it removes its temporary files
@@ -128,6 +131,31 @@ impl ReportDir {
             .unwrap_or_else(|e| e.into_inner())
             .retain(|p| *p != path);
         replace(&resolve(&path, "report file")?, &self.tmp, bytes, false)
+    }
+
+    /// Writes every file of `files` (each a path relative to the directory and its bytes) as
+    /// [`ReportDir::write`] does, on up to [`WRITERS`] threads of their own, so that the files'
+    /// syncs to the disk overlap instead of following one another (on a busy disk a sync waits
+    /// 5 to 15 ms).
+    ///
+    /// # Errors
+    /// The first of [`ReportDir::write`]'s.
+    pub fn write_all<B: AsRef<[u8]> + Sync>(&self, files: &[(String, B)]) -> Result<()> {
+        let writers = files.len().min(WRITERS);
+        std::thread::scope(|s| {
+            let handles: Vec<_> = (0..writers)
+                .map(|t| {
+                    s.spawn(move || {
+                        (files.iter().skip(t).step_by(writers))
+                            .try_for_each(|(rel, bytes)| self.write(rel, bytes.as_ref()))
+                    })
+                })
+                .collect();
+            handles.into_iter().try_for_each(|h| {
+                h.join()
+                    .unwrap_or_else(|_| bail!("a report file's writer failed"))
+            })
+        })
     }
 
     /// Writes the file `rel` (as [`ReportDir::write`]) by `fill` (a large result that never sits

@@ -3,68 +3,45 @@
 //! render), `errors.glb` (the scene as glTF binary) and `figures/` (SVG and PNG). The figures are
 //! the shared ones ([`stiffid_figures::calibrate`]) drawn from the document.
 
-use super::figures::{self, Figure};
-use super::html::{page, Writer};
+use super::document::{self as report, find, Kind, PAGE};
+use super::figures::Figure;
+use super::html::Writer;
 use super::tables::{num, Table};
 use crate::output::{json, ReportDir};
 use anyhow::Result;
-use rayon::prelude::*;
 use std::path::Path;
 use stiffid::app::calibrate::document::{self as document, Document};
 use stiffid::app::calibrate::Report;
 use stiffid::app::document::scene::{glb, Scene};
 use stiffid::Setup;
 
-/// The generator mark of `report.html`, by which a calibration report is recognised as ours.
-const GENERATOR: &str = "stiffid calibrate";
-
-/// The fixed files of the report (besides `figures/`).
-const FILES: [&str; 3] = ["calibration.json", "report.html", "errors.glb"];
+/// The calibration's report: `report.html`, `calibration.json`, `errors.glb`.
+const KIND: Kind = Kind {
+    generator: "stiffid calibrate",
+    files: &[PAGE, "calibration.json", "errors.glb"],
+};
 
 /// Opens the report directory `dir` (`--report`) before the calibration: new, empty or holding a
-/// calibration report of ours (its `report.html`); see [`ReportDir::prepare`].
+/// calibration report of ours (its `report.html`); see [`Kind::open`].
 pub fn open(dir: &Path) -> Result<ReportDir> {
-    let holds =
-        |rel: &Path| FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures");
-    ReportDir::prepare(dir, "--report", None, &holds, &|d| {
-        stiffid::io::input::open(&d.join("report.html"))
-            .ok()
-            .and_then(|f| stiffid::io::read_text("report.html", f).ok())
-            .is_some_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))
-    })
+    KIND.open(dir)
 }
 
 /// Writes every file of the report of `report` (whose document is `doc`) into `dir`, each whole.
 pub fn write(dir: ReportDir, setup: &Setup, report: &Report, doc: &Document) -> Result<()> {
-    let value = serde_json::to_value(doc)?;
-    let shared = stiffid_figures::calibrate::figures(&value)?;
-    let figures: Vec<Figure> = shared
-        .par_iter()
-        .map(figures::shared)
-        .collect::<Result<_>>()?;
+    let figures = report::draw(&stiffid_figures::calibrate::figures(
+        &serde_json::to_value(doc)?,
+    )?)?;
     let scene = document::scene(report, setup)?;
-    let html = page(
-        &format!("stiffid calibration: {}", doc.setup),
-        GENERATOR,
-        |w| compose(w, doc, &figures, &scene),
-    );
-    let mut files: Vec<(String, Vec<u8>)> = vec![
-        (FILES[0].into(), json(doc)?.into_bytes()),
-        (FILES[1].into(), html.into_bytes()),
-        (FILES[2].into(), glb::glb(&scene)),
+    let html = KIND.page(&format!("stiffid calibration: {}", doc.setup), |w| {
+        compose(w, doc, &figures, &scene)
+    });
+    let files = vec![
+        (PAGE.into(), html.into_bytes()),
+        (KIND.files[1].into(), json(doc)?.into_bytes()),
+        (KIND.files[2].into(), glb::glb(&scene)),
     ];
-    for f in figures {
-        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
-        files.push((format!("figures/{}.png", f.name), f.png));
-    }
-    files
-        .par_iter()
-        .try_for_each(|(rel, bytes)| dir.write(rel, bytes))?;
-    dir.finish()
-}
-
-fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
-    figures.iter().find(|f| f.name == name)
+    report::write(dir, files, figures)
 }
 
 fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene) {
@@ -105,7 +82,7 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
     }
     w.heading(2, "The errors in 3D");
     w.paragraph("The robot at each fitted posture with each measuring point's error before the calibration (the nominal robot) and after it, magnified (the factor in the legend).");
-    w.scene(scene, FILES[2]);
+    w.scene(scene, KIND.files[2]);
     w.heading(2, "Residuals against the noise");
     if let Some(f) = find(figures, "residuals") {
         w.figure(f);

@@ -4,60 +4,40 @@
 //! of the cross-validation's folds, the prediction intervals' held-out scores, the compared
 //! models' held-out shares with their standard errors ([`stiffid_figures::identify`]).
 
-use super::figures::{self, Figure};
-use super::html::{page, Writer};
+use super::document::{self as report, Kind, PAGE};
+use super::figures::Figure;
+use super::html::Writer;
 use super::tables::{num, Table};
 use crate::output::ReportDir;
 use anyhow::Result;
-use rayon::prelude::*;
 use serde_json::Value;
 use std::path::Path;
 
-/// The generator mark of `report.html`, by which an identification report is recognised.
-const GENERATOR: &str = "stiffid identify";
-
-/// The fixed files of the report (besides `figures/`).
-const FILES: [&str; 2] = ["identify.json", "report.html"];
+/// The identification's report: `report.html`, `identify.json`.
+const KIND: Kind = Kind {
+    generator: "stiffid identify",
+    files: &[PAGE, "identify.json"],
+};
 
 /// Opens the report directory `dir` (`--report`) before the identification: new, empty or
-/// holding an identification report of ours (its `report.html`); see [`ReportDir::prepare`].
+/// holding an identification report of ours (its `report.html`); see [`Kind::open`].
 pub fn open(dir: &Path) -> Result<ReportDir> {
-    let holds =
-        |rel: &Path| FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures");
-    ReportDir::prepare(dir, "--report", None, &holds, &|d| {
-        stiffid::io::input::open(&d.join("report.html"))
-            .ok()
-            .and_then(|f| stiffid::io::read_text("report.html", f).ok())
-            .is_some_and(|t| t.contains(&format!("content=\"{GENERATOR}\"")))
-    })
+    KIND.open(dir)
 }
 
 /// Writes every file of the report of the identify document `json` (its text) into `dir`.
 pub fn write(dir: ReportDir, json: &str) -> Result<()> {
     let doc: Value = serde_json::from_str(json)?;
-    let shared = stiffid_figures::identify::figures(&doc)?;
-    let figures: Vec<Figure> = shared
-        .par_iter()
-        .map(figures::shared)
-        .collect::<Result<_>>()?;
+    let figures = report::draw(&stiffid_figures::identify::figures(&doc)?)?;
     let setup = doc["setup"].as_str().unwrap_or_default();
-    let html = page(
-        &format!("stiffid identification: {setup}"),
-        GENERATOR,
-        |w| compose(w, &doc, &figures),
-    );
-    let mut files: Vec<(String, Vec<u8>)> = vec![
-        (FILES[0].into(), json.as_bytes().to_vec()),
-        (FILES[1].into(), html.into_bytes()),
+    let html = KIND.page(&format!("stiffid identification: {setup}"), |w| {
+        compose(w, &doc, &figures)
+    });
+    let files = vec![
+        (PAGE.into(), html.into_bytes()),
+        (KIND.files[1].into(), json.as_bytes().to_vec()),
     ];
-    for f in figures {
-        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
-        files.push((format!("figures/{}.png", f.name), f.png));
-    }
-    files
-        .par_iter()
-        .try_for_each(|(rel, bytes)| dir.write(rel, bytes))?;
-    dir.finish()
+    report::write(dir, files, figures)
 }
 
 fn text(v: &Value) -> String {

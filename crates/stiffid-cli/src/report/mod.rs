@@ -5,6 +5,7 @@
 pub mod calibration;
 pub mod compensation;
 mod content;
+pub mod document;
 pub mod figures;
 pub mod html;
 pub mod identification;
@@ -16,7 +17,6 @@ pub mod tables;
 use crate::output::ReportDir;
 use anyhow::Result;
 use figures::Figure;
-use rayon::prelude::*;
 use std::path::Path;
 use stiffid::app::reproduce::document::Summary;
 use stiffid::app::reproduce::Report;
@@ -120,10 +120,7 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
             .iter()
             .map(|(rel, text)| (rel.clone(), text.as_bytes())),
     );
-    // In parallel: each file is synced before its rename, and the syncs overlap.
-    files
-        .par_iter()
-        .try_for_each(|(rel, bytes)| dir.write(rel, bytes))?;
+    dir.write_all(&files)?;
     dir.finish()
 }
 

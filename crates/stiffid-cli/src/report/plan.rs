@@ -105,14 +105,17 @@ pub fn write(
     let page = html::page(&title, GENERATOR, |w| {
         compose(&plan.doc, &figures, &scene, provenance, w);
     });
-    dir.write("plan.html", page.as_bytes())?;
-    dir.write("plan.glb", &glb::glb(&scene))?;
-    dir.write("plan.csv", plan.doc.csv().as_bytes())?;
-    dir.write("plan.json", json(&plan.doc)?.as_bytes())?;
-    for f in &figures {
-        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
-        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
+    let mut files = vec![
+        ("plan.html".to_string(), page.into_bytes()),
+        ("plan.glb".into(), glb::glb(&scene)),
+        ("plan.csv".into(), plan.doc.csv().into_bytes()),
+        ("plan.json".into(), json(&plan.doc)?.into_bytes()),
+    ];
+    for f in figures {
+        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
+        files.push((format!("figures/{}.png", f.name), f.png));
     }
+    dir.write_all(&files)?;
     dir.finish()
 }
 

@@ -9,6 +9,7 @@ use nalgebra::{Vector3, Vector6};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use rayon::prelude::*;
 use stiffid::cell::{bodies, Body, Part};
 use stiffid::study::Study;
 use stiffid::Setup;
@@ -104,27 +105,33 @@ pub fn each(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Vec<Figure>> {
                   (numbered); squares: loading point; grey: the rope to the anchor (star); dashed: \
                   the tracker's lines of sight (triangle); boxes: obstacles; the floor (or the \
                   base plane z = 0).";
-    let mut figures = vec![render(
-        "postures",
-        &format!(
-            "The robot in the {} postures of the plan, {legend}",
-            postures.len()
-        ),
-        &Postures::new(setup, "every posture", numbered.clone(), range),
-    )?];
-    for (number, q) in numbered {
-        figures.push(render(
-            &format!("posture_{number:02}"),
-            &format!("Posture {number}, {legend}"),
-            &Postures::new(
-                setup,
-                &format!("posture {number}"),
-                vec![(number, q)],
-                range,
+    // Every posture alone after the group, drawn in parallel.
+    (0..=numbered.len())
+        .into_par_iter()
+        .map(|k| match k {
+            0 => render(
+                "postures",
+                &format!(
+                    "The robot in the {} postures of the plan, {legend}",
+                    postures.len()
+                ),
+                &Postures::new(setup, "every posture", numbered.clone(), range),
             ),
-        )?);
-    }
-    Ok(figures)
+            _ => {
+                let (number, q) = numbered[k - 1];
+                render(
+                    &format!("posture_{number:02}"),
+                    &format!("Posture {number}, {legend}"),
+                    &Postures::new(
+                        setup,
+                        &format!("posture {number}"),
+                        vec![(number, q)],
+                        range,
+                    ),
+                )
+            }
+        })
+        .collect()
 }
 
 /// The box (m, (min, max) per axis) of the robot in `postures` (its chain, widened by the largest
