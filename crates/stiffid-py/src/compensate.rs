@@ -12,7 +12,7 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
-use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::compensate::{Compensated, FreeToolAxis, Objective, Options, PathPoint};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
@@ -31,7 +31,10 @@ use stiffid::observation::deflection::Frame;
 /// the setup's ``[workpiece]``) with the process file ``process`` that gives each point its
 /// cutting force. Inverse kinematics starts at ``q0_deg`` (shape ``(6,)``, deg; default the
 /// setup's first test posture); ``free_tool_axis=True`` turns each pose about its tool z within
-/// ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to the least deflection.
+/// ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to the least deflection, or
+/// with ``free_tool_axis_objective="surge"`` to the least breakthrough surge at the drilling exits
+/// of a program (the robot must give its masses; ``surge_before_mm_s``: the surge at the path's
+/// own rotation).
 /// Returns a dict of arrays with one row per path point, in path order: ``line`` (the file's line
 /// numbers, ``int64``), ``q_deg`` and ``q_compensated_deg`` (``(n, 6)``, deg), ``deflection_mm``
 /// and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP under the wrench), ``force_n``
@@ -52,7 +55,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -68,6 +71,7 @@ pub fn compensate<'py>(
     free_tool_axis: bool,
     max_step_deg: f64,
     tool_axis_range_deg: f64,
+    free_tool_axis_objective: Option<&str>,
     program_name: Option<String>,
     targets: &str,
     max_tcp_speed_mm_s: f64,
@@ -81,14 +85,8 @@ pub fn compensate<'py>(
     })?;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let mut options = options(
-        py,
-        s,
-        q0_deg,
-        free_tool_axis,
-        max_step_deg,
-        tool_axis_range_deg,
-    )?;
+    let free = free_tool_axis.then_some((max_step_deg, tool_axis_range_deg));
+    let mut options = options(py, s, q0_deg, free, free_tool_axis_objective)?;
     options.level = level;
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
@@ -198,9 +196,8 @@ fn options(
     py: Python<'_>,
     s: &stiffid::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,
-    free_tool_axis: bool,
-    max_step_deg: f64,
-    tool_axis_range_deg: f64,
+    free_tool_axis: Option<(f64, f64)>,
+    objective: Option<&str>,
 ) -> PyResult<Options> {
     let mut options = Options::for_setup(s);
     if let Some(q) = q0_deg {
@@ -210,9 +207,21 @@ fn options(
         let warning = stiffid::setup::plausibility::radians_in_option("q0_deg", &options.q0);
         warn(py, &Vec::from_iter(warning))?;
     }
-    if free_tool_axis {
-        let free = FreeToolAxis::try_from_degrees(max_step_deg, tool_axis_range_deg);
-        options.free_tool_axis = Some(free.map_err(raise)?);
+    let objective = objective.map(str::parse::<Objective>).transpose();
+    match (free_tool_axis, objective.map_err(raise)?) {
+        (Some((max_step_deg, range_deg)), objective) => {
+            let free = FreeToolAxis::try_from_degrees(max_step_deg, range_deg).map_err(raise)?;
+            options.free_tool_axis = Some(FreeToolAxis {
+                objective: objective.unwrap_or_default(),
+                ..free
+            });
+        }
+        (None, Some(_)) => {
+            return Err(error::value(
+                "free_tool_axis_objective: only with free_tool_axis=True",
+            ))
+        }
+        (None, None) => {}
     }
     Ok(options)
 }

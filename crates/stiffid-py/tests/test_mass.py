@@ -73,9 +73,11 @@ DRILL = (
 )
 
 
-def test_compensate_gives_the_commands_surge_at_each_drilling_exit(tmp_path, cli):
+def drilling(tmp_path, tcp_mm):
+    """The setup (its path) with the tool point `tcp_mm` and a workpiece, two G81 holes, the
+    drilling process and the stiffness file."""
     path = files(tmp_path)
-    text = path.read_text().replace("[tool]\n", "[tool]\ntcp_mm = [0, 0, 250]\n", 1)
+    text = path.read_text().replace("[tool]\n", f"[tool]\ntcp_mm = {tcp_mm}\n", 1)
     text += "\n[workpiece]\nbase_from_part = { xyz_mm = [1500, 0, 300], rpy_deg = [0, 0, 0] }\n"
     path.write_text(text)
     program = tmp_path / "holes.nc"
@@ -84,6 +86,11 @@ def test_compensate_gives_the_commands_surge_at_each_drilling_exit(tmp_path, cli
     process.write_text(DRILL)
     stiffness = tmp_path / "k.json"
     stiffness.write_text('{"stiffness_nm_per_rad": [950000, 3000000, 900000, 250000, 200000, 150000]}')
+    return path, program, process, stiffness
+
+
+def test_compensate_gives_the_commands_surge_at_each_drilling_exit(tmp_path, cli):
+    path, program, process, stiffness = drilling(tmp_path, [0, 0, 250])
     setup = stiffid.Setup.from_file(path)
     mine = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process)
     surge = mine["surge_mm_s"]
@@ -98,3 +105,33 @@ def test_compensate_gives_the_commands_surge_at_each_drilling_exit(tmp_path, cli
     # The held mass and the surge give back the energy F^2 c / 2 of a positive compliance.
     m = mine["effective_mass_kg"][exits]
     assert np.all(m > 0) and np.all(surge[exits] > 0)
+
+
+def test_the_free_tool_axis_minimises_the_surge_as_the_command_does(tmp_path, cli):
+    # A spindle 120 mm off the flange axis: a turn about the drill moves the whole arm.
+    path, program, process, stiffness = drilling(tmp_path, [120, 0, 250])
+    setup = stiffid.Setup.from_file(path)
+    free = dict(free_tool_axis=True, max_step_deg=20.0, tool_axis_range_deg=90.0)
+    mine = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
+                              free_tool_axis_objective="surge", **free)
+    assert mine["document"]["free_tool_axis"]["objective"] == "surge"
+    exits = ~np.isnan(mine["surge_mm_s"])
+    assert exits.sum() == 2
+    assert np.all(mine["surge_mm_s"][exits] <= mine["surge_before_mm_s"][exits])
+    command = cli("compensate", "--setup", path, "--stiffness", stiffness, "--program", program, "--process", process,
+                  "--free-tool-axis", "--max-step-deg", 20, "--tool-axis-range-deg", 90,
+                  "--free-tool-axis-objective", "surge", "--out", tmp_path / "out.nc", "--json")
+    rows = command["points"]
+    for key in ["tool_rotation_deg", "surge_mm_s", "surge_before_mm_s"]:
+        theirs = np.array([np.nan if r[key] is None else r[key] for r in rows])
+        np.testing.assert_array_equal(mine[key], theirs)
+    assert mine["document"]["program"]["dynamics"] == command["program"]["dynamics"]
+    # The default objective is the deflection; the objective means nothing without the free axis.
+    deflection = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process, **free)
+    assert deflection["document"]["free_tool_axis"]["objective"] == "deflection"
+    with pytest.raises(ValueError, match=r"free_tool_axis_objective: only with free_tool_axis=True"):
+        stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
+                           free_tool_axis_objective="surge")
+    with pytest.raises(ValueError, match=r"free_tool_axis_objective: unknown value 'speed'"):
+        stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
+                           free_tool_axis_objective="speed", **free)

@@ -15,7 +15,7 @@ use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
-use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::compensate::{Compensated, FreeToolAxis, Objective, Options, PathPoint};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
@@ -86,9 +86,15 @@ pub struct Args {
     /// The frame of the wrench in rows without a `frame` column value.
     #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
     frame: Frame,
-    /// Choose the rotation about the tool z axis of every point to minimise the TCP deflection.
+    /// Choose the rotation about the tool z axis of every point to minimise the TCP deflection
+    /// (or, with --free-tool-axis-objective surge, the drilling surge).
     #[arg(long)]
     free_tool_axis: bool,
+    /// With --free-tool-axis: what the rotation minimises: the TCP deflection at every point, or
+    /// the breakthrough surge at every drilling exit of a program (the robot must give its
+    /// masses).
+    #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
+    free_tool_axis_objective: Objective,
     /// With --free-tool-axis: the largest change of that rotation between consecutive points, deg
     /// (0 < value <= 90).
     #[arg(long, default_value_t = 2.0, requires = "free_tool_axis")]
@@ -324,7 +330,10 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     }
     if args.free_tool_axis {
         let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)?;
-        options.free_tool_axis = Some(free);
+        options.free_tool_axis = Some(FreeToolAxis {
+            objective: args.free_tool_axis_objective,
+            ..free
+        });
     }
     Ok(options)
 }
@@ -358,10 +367,11 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
                 .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
         );
     }
-    if let Some(f) = &d.free_tool_axis {
+    if let (Some(f), Some(o)) = (&d.free_tool_axis, &doc.free_tool_axis) {
         let [lo, hi] = f.tool_rotation_range_deg;
         text += &format!(
-            "free tool axis: mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
+            "free tool axis (minimising the {}): mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
+            o.objective,
             f.mean_deflection_before_mm,
             f.mean_deflection_after_mm,
             f.mean_change_percent,
@@ -416,6 +426,9 @@ fn dynamics_line(o: &OperationDynamics) -> String {
             o.points,
             o.max_surge_effective_mass_kg.unwrap_or(f64::NAN)
         );
+        if let Some(b) = o.max_surge_before_mm_s {
+            line += &format!("; {b:.1} mm/s at the path's own tool rotation");
+        }
     } else if let Some([lo, hi]) = o.first_frequency_hz {
         line += &format!("first natural frequency {lo:.1}-{hi:.1} Hz");
         if let (Some(t), Some(p), Some(k)) = (

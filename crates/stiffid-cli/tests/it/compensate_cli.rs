@@ -257,6 +257,16 @@ fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
         assert!(!line.contains(other), "{line}");
         assert!(!out.exists());
     }
+    // The surge objective needs the robot's masses (the example's robot gives none) and means
+    // nothing without the free tool axis.
+    let surge = ["--free-tool-axis-objective", "surge"];
+    let o = compensate(&path, &out, &[&["--free-tool-axis"][..], &surge].concat());
+    assert_usage_error(
+        &o,
+        &["--free-tool-axis-objective: surge: the surge needs the robot's masses"],
+    );
+    assert_usage_error(&compensate(&path, &out, &surge), &["--free-tool-axis"]);
+    assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

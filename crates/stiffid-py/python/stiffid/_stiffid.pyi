@@ -348,6 +348,7 @@ def compensate(
     free_tool_axis: bool = False,
     max_step_deg: float = 2.0,
     tool_axis_range_deg: float = 90.0,
+    free_tool_axis_objective: Optional[Literal["deflection", "surge"]] = None,
     program_name: Optional[str] = None,
     targets: Literal["cartesian", "joint"] = "cartesian",
     max_tcp_speed_mm_s: float = 2000.0,
@@ -355,7 +356,7 @@ def compensate(
     moves_per_file: int = 10000,
     level: float = 0.95,
 ) -> dict[str, Any]:
-    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg (n,) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg, surge_before_mm_s (n,; the last with free_tool_axis) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
 
 def process_force(
     process: Union[str, os.PathLike[str]],

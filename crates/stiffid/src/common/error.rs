@@ -470,6 +470,8 @@ pub enum JobOption {
     MaxStepDeg,
     /// compensate: how far the free tool axis may turn from the path's rotation, deg.
     ToolAxisRangeDeg,
+    /// compensate: what the free tool axis minimises (the deflection, or the drilling surge).
+    FreeToolAxisObjective,
     /// compensate: the largest sagitta of the chords of a G-code arc, mm.
     ChordToleranceMm,
     /// compensate: the robot's largest TCP speed, mm/s.
@@ -542,6 +544,7 @@ impl JobOption {
         match self {
             JobOption::MaxStepDeg => "max_step_deg",
             JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
+            JobOption::FreeToolAxisObjective => "free_tool_axis_objective",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
             JobOption::NameLength => "name_length",

@@ -4,11 +4,13 @@
 //!
 //! **Drilling exits.** A point of a drilling operation is an exit when the drill leaves the
 //! material after it: the next point belongs to no operation or another one, or moves back
-//! against the tool's z (a retract), or the path ends there. At an exit the thrust `F` of the
-//! operation (`k_f f D / 2`, [`crate::machining::process::drilling`]) acts along the tool axis;
-//! its sudden release gives the surge `F sqrt(c / m)` with the held effective mass
-//! `m = u^T Lambda_vv u` ([`crate::observation::dynamics::surge`]). A `G83` peck's every bottom
-//! is an exit (the last one is the breakthrough).
+//! against the tool's z (a retract, by more than a nanometre), or the path ends there
+//! ([`exit_thrusts`]). At an exit the thrust `F` of the operation (`k_f f D / 2`,
+//! [`crate::machining::process::drilling`]) acts along the tool axis; its sudden release gives
+//! the surge `F sqrt(c / m)` with the held effective mass `m = u^T Lambda_vv u`
+//! ([`crate::observation::dynamics::surge`]). A `G83` peck's every bottom is an exit (the last
+//! one is the breakthrough). The free tool axis can choose the rotation about the tool z that
+//! minimises it ([`crate::machining::compensate::Objective::Surge`]).
 //!
 //! **Milling points.** Every point of a milling operation gets the first natural frequency of
 //! its posture (`K v = w^2 M v`, [`crate::robot::dynamics::modes`]), per point because the
@@ -23,10 +25,10 @@
 use crate::machining::compensate::{Compensated, Compliance};
 use crate::machining::process::{Kind, Process};
 use crate::observation::dynamics::{self, Surge};
-use crate::robot::dynamics::{modes, operational_inertia, MassModel};
+use crate::robot::dynamics::{modes, MassModel};
 use crate::robot::kinematics::Coordinates;
 use crate::setup::Arm;
-use nalgebra::Vector3;
+use nalgebra::{Isometry3, Vector3, Vector6};
 
 /// The relative distance of the first frequency to a tooth-passing harmonic below which a
 /// milling point is a chatter risk (10%).
@@ -38,6 +40,9 @@ pub const CLOSE: f64 = 0.1;
 pub struct Dynamics {
     /// At a drilling exit: the breakthrough surge of the operation's thrust.
     pub surge: Option<Surge>,
+    /// At a drilling exit with the free tool axis: the surge at the path's own rotation about
+    /// tool z (before the rotation was chosen).
+    pub surge_before: Option<Surge>,
     /// At a milling point: the lowest natural frequency of the posture, Hz.
     pub first_frequency: Option<f64>,
     /// At a milling point whose operation gives its spindle speed: the tooth-passing frequency,
@@ -69,7 +74,9 @@ impl Harmonic {
 
 /// The dynamics of every point of a compensated program (module docs), in path order:
 /// `results` the points' compensation, `operations` each point's operation (index into
-/// `process`), `masses` the arm's mass model with its tool, `compliance` the model's.
+/// `process`), `masses` the arm's mass model with its tool, `compliance` the model's. With the
+/// free tool axis each drilling exit gets the surge at the path's own rotation too
+/// ([`Compensated::q_before`]).
 ///
 /// # Panics
 /// If `operations` and `results` differ in length or the compliance does not have one value per
@@ -85,6 +92,8 @@ pub fn program(
     use rayon::prelude::*;
     assert_eq!(results.len(), operations.len(), "one operation per point");
     let point = arm.tool().tcp;
+    let poses: Vec<Isometry3<f64>> = results.iter().map(|r| r.pose).collect();
+    let thrusts = exit_thrusts(process, &poses, operations);
     (0..results.len())
         .into_par_iter()
         .map(|i| {
@@ -92,35 +101,34 @@ pub fn program(
                 return Dynamics::default();
             };
             let r = &results[i];
-            let frames = arm.robot().frames(&r.q);
             match &process.operations[op].kind {
-                Kind::Drilling(d) if is_exit(results, operations, i) => {
-                    let tool_z = r.pose.rotation * Vector3::z();
-                    let m = masses.mass_matrix(arm.robot(), &frames, Coordinates::Axis);
-                    let jacobian = frames.jacobian(&point, Coordinates::Axis);
-                    let surge = operational_inertia(&m, &jacobian).and_then(|lambda| {
-                        let force = -tool_z * d.thrust();
-                        dynamics::surge(arm, &frames, &point, &lambda, compliance, &force)
-                    });
+                Kind::Drilling(_) => {
+                    let Some(force) = thrusts[i] else {
+                        return Dynamics::default();
+                    };
+                    let surge = |q: &Vector6<f64>| {
+                        dynamics::tcp_surge(masses, arm, &arm.robot().frames(q), compliance, &force)
+                    };
                     Dynamics {
-                        surge,
+                        surge: surge(&r.q),
+                        surge_before: r.q_before.as_ref().and_then(surge),
                         ..Dynamics::default()
                     }
                 }
-                Kind::Drilling(_) => Dynamics::default(),
                 Kind::Milling(mill) => {
+                    let frames = arm.robot().frames(&r.q);
                     let m = masses.mass_matrix(arm.robot(), &frames, Coordinates::Axis);
                     let first = dynamics::joint_compliance(arm, &frames, &point, &compliance.h)
                         .and_then(|c| modes::modes(&m, &c))
                         .map(|modes| modes.frequencies[0]);
                     let tooth_passing = mill.tooth_passing_frequency();
                     Dynamics {
-                        surge: None,
                         first_frequency: first,
                         tooth_passing,
                         harmonic: first
                             .zip(tooth_passing)
                             .map(|(f, t)| Harmonic::nearest(f, t)),
+                        ..Dynamics::default()
                     }
                 }
             }
@@ -128,17 +136,46 @@ pub fn program(
         .collect()
 }
 
+/// The thrust `-F z_tool` (N, base frame) released at each drilling exit of a path (module
+/// docs), `None` at every other point: `poses` every point's TCP pose (base frame), `operations`
+/// its operation (index into `process`). A rotation about the tool z changes no exit and no
+/// thrust.
+///
+/// # Panics
+/// If `operations` and `poses` differ in length.
+pub fn exit_thrusts(
+    process: &Process,
+    poses: &[Isometry3<f64>],
+    operations: &[Option<usize>],
+) -> Vec<Option<Vector3<f64>>> {
+    assert_eq!(poses.len(), operations.len(), "one operation per point");
+    (0..poses.len())
+        .map(
+            |i| match operations[i].map(|o| &process.operations[o].kind) {
+                Some(Kind::Drilling(d)) if is_exit(poses, operations, i) => {
+                    Some(-(poses[i].rotation * Vector3::z()) * d.thrust())
+                }
+                _ => None,
+            },
+        )
+        .collect()
+}
+
+/// A move back against the tool's z shorter than this is no retract, m (round-off between a
+/// programmed pose and the forward kinematics of its posture).
+const RETRACT: f64 = 1e-9;
+
 /// Whether point `i` (of a drilling operation) is an exit (module docs).
-fn is_exit(results: &[Compensated], operations: &[Option<usize>], i: usize) -> bool {
-    let Some(next) = results.get(i + 1) else {
+fn is_exit(poses: &[Isometry3<f64>], operations: &[Option<usize>], i: usize) -> bool {
+    let Some(next) = poses.get(i + 1) else {
         return true;
     };
     if operations[i + 1] != operations[i] {
         return true;
     }
-    let tool_z = results[i].pose.rotation * Vector3::z();
-    let step = next.pose.translation.vector - results[i].pose.translation.vector;
-    step.dot(&tool_z) < 0.0
+    let tool_z = poses[i].rotation * Vector3::z();
+    let step = next.translation.vector - poses[i].translation.vector;
+    step.dot(&tool_z) < -RETRACT
 }
 
 #[cfg(test)]

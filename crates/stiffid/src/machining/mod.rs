@@ -17,8 +17,9 @@
 //!    cuts; a milling point fed along the tool axis (a plunge) gets no force and is counted. With the
 //!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
 //!    wrench ([`crate::setup::Payload::wrench`]).
-//! 3. [`compensate::path`] compensates every point, refusing any whose compensated axis angles
-//!    leave the joint limits (naming its line).
+//! 3. [`compensate::path_with_exits`] compensates every point, refusing any whose compensated
+//!    axis angles leave the joint limits (naming its line); the free tool axis may minimise the
+//!    surge at the drilling exits ([`dynamics::exit_thrusts`]).
 //! 4. Compensated targets that move more than [`MAX_CORRECTION_DEG`] from the nominal ones, or
 //!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
 //!    the line.
@@ -227,7 +228,10 @@ pub fn compensate(
     };
     let starts = feed_starts(program);
     let (points, warnings) = path_points(&poses, &operations, &starts, weight);
-    let results = compensate::path(arm, compliance, &points, options)?;
+    let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
+    let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
+    let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
+    let results = compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?;
     check_configuration(&points, &results)?;
     let program = match program {
         Program::Robot(p) => {
@@ -254,7 +258,7 @@ pub fn compensate(
     Ok(Report {
         points,
         results,
-        operations: operations.into_iter().map(|o| o.map(|(i, _)| i)).collect(),
+        operations: indices,
         program,
         warnings,
     })

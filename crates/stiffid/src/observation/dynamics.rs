@@ -170,3 +170,22 @@ pub fn surge(
         speed_std,
     })
 }
+
+/// [`surge`] at the arm's TCP in the posture `frames`, with the operational-space inertia of
+/// `masses` there ([`operational_inertia`]); `None` at a singular posture or where [`surge`]
+/// gives none.
+///
+/// # Panics
+/// If the compliance does not have one value per parameter.
+pub fn tcp_surge(
+    masses: &MassModel,
+    arm: &Arm,
+    frames: &Frames,
+    compliance: &Compliance,
+    force: &Vector3<f64>,
+) -> Option<Surge> {
+    let point = arm.tool().tcp;
+    let m = masses.mass_matrix(arm.robot(), frames, Coordinates::Axis);
+    let lambda = operational_inertia(&m, &frames.jacobian(&point, Coordinates::Axis))?;
+    surge(arm, frames, &point, &lambda, compliance, force)
+}

@@ -275,10 +275,7 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 30);
-    let free = FreeToolAxis {
-        max_step: 3f64.to_radians(),
-        range: 60f64.to_radians(),
-    };
+    let free = FreeToolAxis::try_from_degrees(3.0, 60.0).unwrap();
     let out = compensate::path(s.arm(), &compliance, &path, &options(&s, Some(free))).unwrap();
     let norm = |d: &Vector6<f64>| d.fixed_rows::<3>(0).norm();
     let (mut before, mut after) = (0.0, 0.0);

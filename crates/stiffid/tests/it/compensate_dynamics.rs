@@ -3,10 +3,10 @@
 //! natural frequency of each milling point against the tooth-passing frequency, with the
 //! chatter warning within 10%.
 
-use nalgebra::{Isometry3, Vector3};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::warning::WarningKind;
-use stiffid::machining::compensate::{Compensated, Options, PathPoint};
+use stiffid::machining::compensate::{Compensated, FreeToolAxis, Objective, Options, PathPoint};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::Settings;
@@ -32,6 +32,11 @@ fn process(rpm: f64) -> String {
 /// The FANUC setup on its robot with a mass, centre and tensor on every joint, a spindle TCP
 /// and a workpiece below the flange.
 fn massive() -> Setup {
+    massive_with_tcp(Vector3::new(0.0, 0.0, 0.25))
+}
+
+/// [`massive`] with the TCP at `tcp` (flange frame, m).
+fn massive_with_tcp(tcp: Vector3<f64>) -> Setup {
     let masses = [300.0, 180.0, 120.0, 40.0, 20.0, 8.0];
     let mut parts = FANUC.split("[[joint]]\n");
     let mut text = parts.next().unwrap().to_string();
@@ -50,21 +55,27 @@ fn massive() -> Setup {
         .unwrap()
         .to_builder()
         .with_robot(robot)
-        .with_tcp(Vector3::new(0.0, 0.0, 0.25))
+        .with_tcp(tcp)
         .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
         .build()
         .unwrap()
 }
 
+/// Every point of a compensated program with its result and dynamics.
+type Rows = Vec<(PathPoint, Compensated, Dynamics)>;
+
 /// Compensates `program` (G-code) under `process`; every point with its result and dynamics.
-fn compensate(
+fn compensate(s: &Setup, program: &str, process: &str) -> (stiffid::app::compensate::Report, Rows) {
+    compensate_with(s, program, process, Options::for_setup(s)).unwrap()
+}
+
+/// [`compensate`] with `options`.
+fn compensate_with(
     s: &Setup,
     program: &str,
     process: &str,
-) -> (
-    stiffid::app::compensate::Report,
-    Vec<(PathPoint, Compensated, Dynamics)>,
-) {
+    options: Options,
+) -> stiffid::Result<(stiffid::app::compensate::Report, Rows)> {
     let mut rows = Vec::new();
     let request = Request {
         setup: s,
@@ -80,7 +91,7 @@ fn compensate(
             out_name: String::new(),
             settings: Settings::default(),
         },
-        options: Options::for_setup(s),
+        options,
     };
     let report = run(
         request,
@@ -90,9 +101,8 @@ fn compensate(
             }
             Ok::<(), stiffid::Error>(())
         },
-    )
-    .unwrap();
-    (report, rows)
+    )?;
+    Ok((report, rows))
 }
 
 #[test]
@@ -205,4 +215,144 @@ fn milling_points_get_their_first_frequency_and_a_chatter_warning_near_a_harmoni
         .warnings
         .iter()
         .all(|w| w.kind != WarningKind::Chatter));
+}
+
+/// Three holes drilled by `T2` (1000 N of thrust) on the FANUC with masses and a spindle whose
+/// TCP is 120 mm off the flange axis (so that a turn about the tool z moves the whole arm).
+fn holes() -> (Setup, String) {
+    let s = massive_with_tcp(Vector3::new(0.12, 0.0, 0.25));
+    let text =
+        format!("{HEADER}T2\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nX120 Y-60\nX-80 Y90\nG80\n");
+    (s, text)
+}
+
+/// The free tool axis with `objective`: steps of at most 20 deg (a 5 deg grid) within +-90 deg.
+fn free_options(s: &Setup, objective: Objective) -> Options {
+    let free = FreeToolAxis::try_from_degrees(20.0, 90.0).unwrap();
+    Options {
+        free_tool_axis: Some(FreeToolAxis { objective, ..free }),
+        ..Options::for_setup(s)
+    }
+}
+
+/// The surge of 1000 N along the drill at the exit of `r` turned by `phi` about tool z from the
+/// path's own rotation, by hand: inverse kinematics of the turned pose from the path's posture,
+/// the mass matrix, Lambda and [`dynamics::surge`]; `None` where the pose is out of reach.
+fn surge_turned(s: &Setup, r: &Compensated, phi: f64) -> Option<f64> {
+    let z = |a: f64| UnitQuaternion::from_axis_angle(&Vector3::z_axis(), a);
+    let own = r.pose * z(-r.tool_rotation);
+    let target = own * z(phi);
+    let start = r.q_before.expect("the path's posture");
+    let tcp = s.tool().tcp;
+    let q = stiffid::robot::ik::solve(s.robot(), &tcp, &target, &start, &Default::default())
+        .ok()?
+        .q;
+    let frames = s.robot().frames(&q);
+    let masses = dynamics::mass_model(s.arm()).0.unwrap();
+    let m = masses.mass_matrix(s.robot(), &frames, Coordinates::Axis);
+    let lambda = operational_inertia(&m, &frames.jacobian(&tcp, Coordinates::Axis))?;
+    let force = -(own.rotation * Vector3::z()) * 1000.0;
+    let compliance = s.model_compliance("test").unwrap();
+    dynamics::surge(s.arm(), &frames, &tcp, &lambda, &compliance, &force).map(|v| v.speed)
+}
+
+/// The surge objective: at every drilling exit the rotation chosen gives the least surge over
+/// the whole grid of angles (an exhaustive search by hand), never more than the path's own;
+/// the reported surge is at the rotation chosen; and it chooses otherwise than the deflection.
+#[test]
+fn the_free_tool_axis_chooses_the_rotation_of_least_surge_at_every_drilling_exit() {
+    let (s, text) = holes();
+    let run = |objective| {
+        compensate_with(&s, &text, &process(6000.0), free_options(&s, objective)).unwrap()
+    };
+    let (report, rows) = run(Objective::Surge);
+    let (_, by_deflection) = run(Objective::Deflection);
+    let grid: Vec<f64> = (-18..=18).map(|k| (5.0 * k as f64).to_radians()).collect();
+    let exits: Vec<usize> = (0..rows.len())
+        .filter(|&i| rows[i].2.surge.is_some())
+        .collect();
+    assert_eq!(exits.len(), 3, "one exit per hole");
+    let (mut differ, mut gained) = (0, 0.0f64);
+    for &i in &exits {
+        let (_, r, d) = &rows[i];
+        let chosen = d.surge.unwrap().speed;
+        let before = d.surge_before.unwrap().speed;
+        // The reported surges are those at the rotation chosen and at the path's own.
+        let by_hand = surge_turned(&s, r, r.tool_rotation).unwrap();
+        assert!(
+            (chosen - by_hand).abs() < 1e-6 * by_hand,
+            "{chosen} {by_hand}"
+        );
+        let own = surge_turned(&s, r, 0.0).unwrap();
+        assert!((before - own).abs() < 1e-6 * own, "{before} {own}");
+        assert!(grid.iter().any(|a| (a - r.tool_rotation).abs() < 1e-9));
+        // The least over the grid, within the tie-breaking cost; never above the path's own.
+        let least = grid
+            .iter()
+            .filter_map(|&a| surge_turned(&s, r, a))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            chosen <= least * (1.0 + 1e-5),
+            "line {}: {chosen} > {least}",
+            rows[i].0.line
+        );
+        assert!(chosen <= before * (1.0 + 1e-12));
+        gained = gained.max(1.0 - chosen / before);
+        // The deflection's choice at the same exit.
+        let (_, other, od) = &by_deflection[i];
+        assert!(od.surge.is_some() && od.surge_before.is_some());
+        if (other.tool_rotation - r.tool_rotation).abs() > 1e-9 {
+            differ += 1;
+            assert!(od.surge.unwrap().speed > chosen, "line {}", rows[i].0.line);
+        }
+    }
+    assert!(
+        differ >= 1,
+        "the surge chose the deflection's rotation at every exit"
+    );
+    assert!(
+        gained > 0.01,
+        "the surge objective gained {:.2}% at most",
+        100.0 * gained
+    );
+    // The operation reports the largest surge before and after.
+    let op = &report.program.as_ref().unwrap().dynamics[0];
+    let largest =
+        |f: &dyn Fn(&Dynamics) -> f64| exits.iter().map(|&i| f(&rows[i].2)).fold(0.0, f64::max);
+    assert!((op.max_surge_mm_s.unwrap() - 1e3 * largest(&|d| d.surge.unwrap().speed)).abs() < 1e-9);
+    let before = op.max_surge_before_mm_s.unwrap();
+    assert!((before - 1e3 * largest(&|d| d.surge_before.unwrap().speed)).abs() < 1e-9);
+}
+
+/// The surge objective refuses, naming the option, a robot without masses and a program
+/// without a drilling exit.
+#[test]
+fn the_surge_objective_needs_masses_and_a_drilling_exit() {
+    let refused =
+        |r: stiffid::Result<(stiffid::app::compensate::Report, Rows)>, words: &str| match r {
+            Err(stiffid::Error::InvalidOption { option, message }) => {
+                assert_eq!(option, stiffid::JobOption::FreeToolAxisObjective);
+                assert!(message.contains(words), "{message}");
+            }
+            other => panic!("{:?}", other.map(|_| ())),
+        };
+    let (s, text) = holes();
+    let plain = setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_builder()
+        .with_tcp(s.tool().tcp)
+        .with_workpiece(*s.workpiece().unwrap())
+        .build()
+        .unwrap();
+    let options = free_options(&plain, Objective::Surge);
+    refused(
+        compensate_with(&plain, &text, &process(6000.0), options),
+        "no link masses",
+    );
+    let milled = format!("{HEADER}T1\nG0 X0 Y0 Z5\nG1 Z-2 F600\nG1 X30\n");
+    let options = free_options(&s, Objective::Surge);
+    refused(
+        compensate_with(&s, &milled, &process(6000.0), options),
+        "drilling exit",
+    );
 }

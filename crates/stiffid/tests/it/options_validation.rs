@@ -199,6 +199,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     options.free_tool_axis = Some(FreeToolAxis {
         max_step: 0.0,
         range: 1.0,
+        objective: compensate::Objective::Deflection,
     });
     rejected(options.validate(), "FreeToolAxis.max_step", "0 rad");
     // 5e-324 deg is 0 rad: refused by the degrees' own check, naming the option.

@@ -82,6 +82,9 @@ pub struct FreeToolAxis {
     pub max_step_deg: f64,
     /// The rotation stays within +- this of the path's, deg.
     pub range_deg: f64,
+    /// What the rotation minimises: `deflection` (the TCP deflection at every point) or `surge`
+    /// (the breakthrough surge at every drilling exit).
+    pub objective: &'static str,
 }
 
 /// A compensated program: what was read, and each segment's force and deflection.
@@ -222,7 +225,7 @@ impl schemars::JsonSchema for Row {
             })
             .collect();
         schemars::json_schema!({
-            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses).",
+            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses, `surge_before_mm_s` also without --free-tool-axis).",
             "type": "object",
             "properties": properties,
             "required": columns,
@@ -258,6 +261,7 @@ impl Document {
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
                 max_step_deg: f.max_step.to_degrees(),
                 range_deg: f.range.to_degrees(),
+                objective: crate::common::choice::Choice::name(f.objective),
             }),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
@@ -326,12 +330,14 @@ pub fn header() -> Vec<String> {
 }
 
 /// The columns of a point's dynamics ([`crate::machining::dynamics`]): at a drilling exit the
-/// breakthrough surge, its standard deviation and the held effective mass along the drill; at a
-/// milling point the first natural frequency and the tooth-passing frequency.
-pub const DYNAMICS: [&str; 5] = [
+/// breakthrough surge, its standard deviation, the held effective mass along the drill and, with
+/// the free tool axis, the surge at the path's own rotation; at a milling point the first natural
+/// frequency and the tooth-passing frequency.
+pub const DYNAMICS: [&str; 6] = [
     "surge_mm_s",
     "surge_std_mm_s",
     "effective_mass_kg",
+    "surge_before_mm_s",
     "first_frequency_hz",
     "tooth_passing_hz",
 ];
@@ -369,6 +375,7 @@ pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<
         surge.map(|s| s.speed * 1e3),
         surge.and_then(|s| s.speed_std).map(|s| s * 1e3),
         surge.map(|s| s.mass),
+        dynamics.surge_before.map(|s| s.speed * 1e3),
         dynamics.first_frequency,
         dynamics.tooth_passing,
     ]);

@@ -29,6 +29,9 @@ pub struct OperationDynamics {
     pub max_surge_effective_mass_kg: Option<f64>,
     /// The program line of that exit.
     pub max_surge_line: Option<u64>,
+    /// With the free tool axis: the largest surge over its exits at the path's own rotation about
+    /// tool z (before the rotation was chosen), mm/s.
+    pub max_surge_before_mm_s: Option<f64>,
     /// Milling: the lowest and highest first natural frequency over its points, Hz.
     pub first_frequency_hz: Option<[f64; 2]>,
     /// Milling with `cut.spindle_rpm`: the tooth-passing frequency (flutes x spindle speed), Hz.
@@ -69,6 +72,7 @@ pub fn operations(
             max_surge_std_mm_s: None,
             max_surge_effective_mass_kg: None,
             max_surge_line: None,
+            max_surge_before_mm_s: None,
             first_frequency_hz: None,
             tooth_passing_hz: None,
             nearest_harmonic_percent: None,
@@ -90,6 +94,9 @@ pub fn operations(
                     doc.max_surge_effective_mass_kg = Some(s.mass);
                     doc.max_surge_line = Some(*line);
                 }
+                doc.max_surge_before_mm_s = mine()
+                    .filter_map(|(_, d)| d.surge_before.map(|s| s.speed * 1e3))
+                    .reduce(f64::max);
             }
             Kind::Milling(m) => {
                 doc.points = mine().count();

@@ -31,13 +31,20 @@
 //! from the path's own angle and per full step between points: where the angles tie (a TCP on
 //! the spindle axis turns nothing) the path keeps its own angle, and a rotation is smooth along
 //! the path, never a zig-zag between equal angles; a gain below about 1e-6 of the deflection is
-//! not worth a turn. The wrench
-//! stays fixed in the base frame (the process force does not turn with the spindle). This is the
-//! redundancy resolution of stiffness-oriented posture optimisation for robotic machining: Caro,
-//! Dumas, Garnier and Furet, "Workpiece placement optimization for machining operations with a
-//! KUKA KR270-2 robot", IEEE ICRA 2013; Xiong, Ding and Zhu, "Stiffness-based pose optimization of
-//! an industrial robot for five-axis milling", Robotics and Computer-Integrated Manufacturing 55,
-//! 2019.
+//! not worth a turn. The wrench stays fixed in the base frame (the process force does not turn
+//! with the spindle). This is the redundancy resolution of stiffness-oriented posture
+//! optimisation for robotic machining: Caro, Dumas, Garnier and Furet, "Workpiece placement
+//! optimization for machining operations with a KUKA KR270-2 robot", IEEE ICRA 2013; Xiong, Ding
+//! and Zhu, "Stiffness-based pose optimization of an industrial robot for five-axis milling",
+//! Robotics and Computer-Integrated Manufacturing 55, 2019.
+//!
+//! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
+//! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
+//! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
+//! than at the path's own angle; every other point costs nothing but the tie-breaking cost, here
+//! [`TIE_BREAK`] times the path's largest surge (a rotation about the drill axis changes neither
+//! the exits nor the thrust). Where the surge cannot be computed at the path's own angle (a
+//! singular posture) the point keeps that angle.
 
 use crate::observation::deflection::Frame;
 use nalgebra::{Isometry3, Vector6};
@@ -48,8 +55,8 @@ mod stream;
 mod tool_axis;
 
 pub use model::Model;
-pub use options::{FreeToolAxis, Options};
-pub use stream::{path, stream, CHUNK};
+pub use options::{FreeToolAxis, Objective, Options};
+pub use stream::{path, path_with_exits, stream, CHUNK};
 
 /// The residual the Newton steps aim at, m.
 pub const TOLERANCE_M: f64 = 1e-10;
@@ -121,4 +128,7 @@ pub struct Compensated {
     pub tool_rotation: f64,
     /// With [`FreeToolAxis`]: the deflection at the path's own rotation, before optimisation.
     pub deflection_before: Option<Vector6<f64>>,
+    /// With [`FreeToolAxis`]: the nominal axis angles at the path's own rotation, before
+    /// optimisation, rad.
+    pub q_before: Option<Vector6<f64>>,
 }

@@ -13,7 +13,41 @@ pub struct FreeToolAxis {
     pub max_step: f64,
     /// The rotation stays within `+-range` of the path's, rad.
     pub range: f64,
+    /// What the rotation minimises.
+    pub objective: Objective,
 }
+
+/// What the free tool axis minimises (module docs, "The free tool axis").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Objective {
+    /// The TCP translation deflection under the path's wrench at every point.
+    #[default]
+    Deflection,
+    /// The breakthrough surge at every drilling exit of a program
+    /// ([`crate::machining::dynamics`]): needs the robot's masses and a process that drills.
+    Surge,
+}
+
+impl crate::common::choice::Choice for Objective {
+    const FIELD: &'static str = "free_tool_axis_objective";
+    const ALL: &'static [Self] = &[Objective::Deflection, Objective::Surge];
+    fn name(self) -> &'static str {
+        match self {
+            Objective::Deflection => "deflection",
+            Objective::Surge => "surge",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Objective::Deflection => "The TCP deflection under the path's wrench at every point",
+            Objective::Surge => {
+                "The breakthrough surge at every drilling exit (a program whose robot gives its masses)"
+            }
+        }
+    }
+}
+
+crate::common::choice::by_name!(Objective);
 
 impl FreeToolAxis {
     /// Largest accepted `max_step`, deg.
@@ -22,7 +56,8 @@ impl FreeToolAxis {
     pub const MAX_RANGE_DEG: f64 = 180.0;
 
     /// The free tool axis from its step and range in degrees (the units of the command line and
-    /// the Python package): `max_step_deg` in (0, 90], `tool_axis_range_deg` in (0, 180].
+    /// the Python package): `max_step_deg` in (0, 90], `tool_axis_range_deg` in (0, 180]; it
+    /// minimises the deflection ([`Objective::Deflection`]).
     ///
     /// # Errors
     /// [`Error::InvalidOption`] naming the one argument that is wrong ([`JobOption::MaxStepDeg`] or
@@ -43,6 +78,7 @@ impl FreeToolAxis {
                 Self::MAX_RANGE_DEG,
                 JobOption::ToolAxisRangeDeg,
             )?,
+            objective: Objective::Deflection,
         })
     }
 

@@ -1,17 +1,17 @@
 //! A whole path compensated: in parallel, in chunks of bounded memory, the failing points named.
 
-use super::tool_axis::optimise_tool_axis;
+use super::tool_axis::{optimise_tool_axis, Cost};
 use super::{
-    Compensated, Compliance, Model, Options, PathPoint, Target, MAX_ITERATIONS, REQUIRED_M,
-    REQUIRED_RAD,
+    Compensated, Compliance, FreeToolAxis, Model, Objective, Options, PathPoint, Target,
+    MAX_ITERATIONS, REQUIRED_M, REQUIRED_RAD,
 };
-use crate::common::error::ColumnProblem;
+use crate::common::error::{ColumnProblem, JobOption};
 use crate::observation::deflection::base_wrench;
 use crate::robot::configuration::Configuration;
 use crate::robot::ik::{self, tool_pose};
 use crate::setup::Arm;
 use crate::{Error, Result};
-use nalgebra::Vector6;
+use nalgebra::{Vector3, Vector6};
 use rayon::prelude::*;
 
 /// Compensates every point of a path (module docs), the points in parallel; the result does not
@@ -20,6 +20,8 @@ use rayon::prelude::*;
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
 /// tool axis grid beyond [`FreeToolAxis::MAX_GRID_CELLS`] ([`FreeToolAxis::check_grid`]);
+/// [`Error::InvalidOption`] ([`JobOption::FreeToolAxisObjective`]) for the surge objective, which
+/// needs a drilling program ([`path_with_exits`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
 /// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
 /// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
@@ -32,10 +34,36 @@ pub fn path(
     points: &[PathPoint],
     options: &Options,
 ) -> Result<Vec<Compensated>> {
+    path_with_exits(arm, compliance, points, &[], options)
+}
+
+/// [`path`] of a drilling program: `thrusts` holds each point's thrust (N, base frame) released
+/// at a drilling exit, `None` elsewhere ([`crate::machining::dynamics::exit_thrusts`]; empty for
+/// a path without any), which the free tool axis' [`Objective::Surge`] minimises.
+///
+/// # Errors
+/// Those of [`path`]; [`Error::InvalidOption`] ([`JobOption::FreeToolAxisObjective`]) for the
+/// surge objective with a robot that gives no masses (or placeholders) or a path without a
+/// drilling exit.
+///
+/// # Panics
+/// If `thrusts` is neither empty nor one per point.
+pub fn path_with_exits(
+    arm: &Arm,
+    compliance: &Compliance,
+    points: &[PathPoint],
+    thrusts: &[Option<Vector3<f64>>],
+    options: &Options,
+) -> Result<Vec<Compensated>> {
     options.validate()?;
-    if let Some(free) = &options.free_tool_axis {
-        free.check_grid(points.len())?;
-    }
+    assert!(thrusts.is_empty() || thrusts.len() == points.len());
+    let free = match &options.free_tool_axis {
+        Some(free) => {
+            free.check_grid(points.len())?;
+            Some((free, cost(arm, free, thrusts)?))
+        }
+        None => None,
+    };
     let model = Model::new(arm, compliance)?.at_level(options.level);
     let nominal = nominal_postures(arm, points, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = points
@@ -43,9 +71,11 @@ pub fn path(
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
-    let (postures, rotations) = match &options.free_tool_axis {
+    let (postures, rotations) = match &free {
         None => (nominal.clone(), vec![0.0; points.len()]),
-        Some(free) => optimise_tool_axis(&model, &nominal, &wrenches, free, &options.ik),
+        Some((free, cost)) => {
+            optimise_tool_axis(&model, &nominal, &wrenches, (free, cost), &options.ik)
+        }
     };
     let chosen = Chosen {
         nominal: &nominal,
@@ -53,7 +83,42 @@ pub fn path(
         rotations: &rotations,
         wrenches: &wrenches,
     };
-    compensate_chosen(&model, points, &chosen, options.free_tool_axis.is_some())
+    compensate_chosen(&model, points, &chosen, free.is_some())
+}
+
+/// The cost of the free tool axis' objective; for the surge, the arm's mass model and the
+/// path's drilling exits (`thrusts`), refused without either.
+fn cost<'a>(
+    arm: &Arm,
+    free: &FreeToolAxis,
+    thrusts: &'a [Option<Vector3<f64>>],
+) -> Result<Cost<'a>> {
+    if free.objective == Objective::Deflection {
+        return Ok(Cost::Deflection);
+    }
+    let refuse = |message: String| Error::InvalidOption {
+        option: JobOption::FreeToolAxisObjective,
+        message: format!("surge: {message}"),
+    };
+    let masses = match crate::observation::dynamics::mass_model(arm) {
+        (Some(masses), _) => masses,
+        (None, warning) => {
+            let why = warning.map_or_else(
+                || {
+                    format!(
+                        "the robot's description gives no link masses: {}",
+                        crate::robot::dynamics::HOW_TO_GIVE
+                    )
+                },
+                |w| w.message,
+            );
+            return Err(refuse(format!("the surge needs the robot's masses; {why}")));
+        }
+    };
+    if thrusts.iter().all(Option::is_none) {
+        return Err(refuse("no point of the path is a drilling exit: the surge is that of a program's drilling exits, which needs the program and a process whose drilling operation covers them".into()));
+    }
+    Ok(Cost::Surge { masses, thrusts })
 }
 
 /// Path points per chunk of [`stream`].
@@ -183,6 +248,7 @@ fn compensate_chosen(
                 iterations,
                 tool_rotation: c.rotations[i],
                 deflection_before,
+                q_before: free.then_some(c.nominal[i]),
             })
         })
         .collect();

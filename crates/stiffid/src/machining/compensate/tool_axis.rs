@@ -2,16 +2,61 @@
 //! programming (module docs of [`super`], "The free tool axis").
 
 use super::{FreeToolAxis, Model, TIE_BREAK};
+use crate::observation::dynamics::tcp_surge;
+use crate::robot::dynamics::MassModel;
 use crate::robot::ik::{self, tool_pose};
+use crate::robot::kinematics::Frames;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
+
+/// What a point costs at an angle ([`super::Objective`]).
+pub(super) enum Cost<'a> {
+    /// The TCP translation deflection under the point's wrench, m.
+    Deflection,
+    /// At a drilling exit the surge speed of its thrust (m/s), elsewhere nothing.
+    Surge {
+        /// The arm's mass model.
+        masses: MassModel,
+        /// Each point's thrust (N, base frame) at a drilling exit, `None` elsewhere.
+        thrusts: &'a [Option<Vector3<f64>>],
+    },
+}
+
+impl Cost<'_> {
+    /// The cost of point `i` in the posture `frames` under `wrench` (base frame); `None` where
+    /// it cannot be computed (a surge at a singular posture).
+    fn of(&self, model: &Model, i: usize, frames: &Frames, wrench: &Vector6<f64>) -> Option<f64> {
+        match self {
+            Cost::Deflection => Some(model.deflection(frames, wrench).0.fixed_rows::<3>(0).norm()),
+            Cost::Surge { masses, thrusts } => match &thrusts[i] {
+                None => Some(0.0),
+                Some(force) => {
+                    tcp_surge(masses, model.arm, frames, model.compliance, force).map(|s| s.speed)
+                }
+            },
+        }
+    }
+
+    /// The scale of the tie-breaking cost of each point from the costs `own` at the path's
+    /// angle: the point's own for the deflection, the largest for the surge (a point that is no
+    /// exit costs nothing but still keeps the path smooth).
+    fn scales(&self, own: &[f64]) -> Vec<f64> {
+        match self {
+            Cost::Deflection => own.to_vec(),
+            Cost::Surge { .. } => {
+                let largest = own.iter().copied().fold(0.0, f64::max);
+                vec![if largest > 0.0 { largest } else { 1.0 }; own.len()]
+            }
+        }
+    }
+}
 
 /// The postures and tool rotations of the free tool axis (module docs).
 pub(super) fn optimise_tool_axis(
     model: &Model,
     nominal: &[Vector6<f64>],
     wrenches: &[Vector6<f64>],
-    free: &FreeToolAxis,
+    (free, cost): (&FreeToolAxis, &Cost),
     ik_options: &ik::Options,
 ) -> (Vec<Vector6<f64>>, Vec<f64>) {
     let (spacing, reach) = free.grid();
@@ -19,21 +64,26 @@ pub(super) fn optimise_tool_axis(
     let angles: Vec<f64> = (-half..=half).map(|g| g as f64 * spacing).collect();
     let columns: Vec<Column> = angles
         .par_iter()
-        .map(|&phi| column(model, nominal, wrenches, phi, ik_options))
+        .map(|&phi| column(model, nominal, wrenches, (phi, cost), ik_options))
         .collect();
     let zero = half as usize;
     let n = nominal.len();
     let g_count = angles.len();
-    // cost[i][g]: the smallest sum of deflections up to point i ending at angle g.
+    let own: Vec<f64> = columns[zero]
+        .iter()
+        .map(|c| c.map_or(0.0, |z| z.1))
+        .collect();
+    // cost[i][g]: the smallest sum of costs up to point i ending at angle g.
     let feasible = |i: usize, g: usize| {
         columns[g][i]
             .as_ref()
-            .filter(|(_, d)| *d <= columns[zero][i].as_ref().map_or(0.0, |z| z.1))
+            .filter(|(_, d)| *d <= own[i])
             .map(|(_, d)| *d)
     };
-    // The tie-breaking cost (module docs): TIE_BREAK of the nominal deflection per full range
-    // away from the path's angle and per full step between points.
-    let weight = |i: usize| TIE_BREAK * columns[zero][i].as_ref().map_or(0.0, |z| z.1);
+    // The tie-breaking cost (module docs): TIE_BREAK of the scale per full range away from the
+    // path's angle and per full step between points.
+    let scales = cost.scales(&own);
+    let weight = |i: usize| TIE_BREAK * scales[i];
     let mut cost = vec![vec![f64::INFINITY; g_count]; n];
     let mut from = vec![vec![0usize; g_count]; n];
     for i in 0..n {
@@ -73,17 +123,18 @@ pub(super) fn optimise_tool_axis(
         .unzip()
 }
 
-/// One angle's posture and TCP translation deflection (m) at every path point; `None` where
-/// inverse kinematics fails.
+/// One angle's posture and [`Cost`] at every path point; `None` where inverse kinematics fails
+/// or the cost cannot be computed.
 type Column = Vec<Option<(Vector6<f64>, f64)>>;
 
-/// The postures of the path turned by `phi` about tool z, continued along the path, and their TCP
-/// translation deflection (m); `None` where inverse kinematics fails.
+/// The postures of the path turned by `phi` about tool z, continued along the path, and their
+/// cost; `None` where inverse kinematics fails or the cost cannot be computed (at the path's own
+/// angle such a cost is 0: no other angle is then taken there).
 fn column(
     model: &Model,
     nominal: &[Vector6<f64>],
     wrenches: &[Vector6<f64>],
-    phi: f64,
+    (phi, cost): (f64, &Cost),
     ik_options: &ik::Options,
 ) -> Column {
     let arm = model.arm;
@@ -97,7 +148,8 @@ fn column(
     nominal
         .iter()
         .zip(wrenches)
-        .map(|(q, w)| {
+        .enumerate()
+        .map(|(i, (q, w))| {
             let q = match phi == 0.0 {
                 true => Some(*q),
                 false => {
@@ -111,10 +163,12 @@ fn column(
                 }
             };
             previous = q;
-            q.map(|q| {
-                let d = model.deflection(&arm.robot().frames(&q), w).0;
-                (q, d.fixed_rows::<3>(0).norm())
-            })
+            let q = q?;
+            match cost.of(model, i, &arm.robot().frames(&q), w) {
+                Some(c) => Some((q, c)),
+                None if phi == 0.0 => Some((q, 0.0)),
+                None => None,
+            }
         })
         .collect()
 }
