@@ -118,7 +118,10 @@ fn cost<'a>(
     if thrusts.iter().all(Option::is_none) {
         return Err(refuse("no point of the path is a drilling exit: the surge is that of a program's drilling exits, which needs the program and a process whose drilling operation covers them".into()));
     }
-    Ok(Cost::Surge { masses, thrusts })
+    Ok(Cost::Surge {
+        masses: Box::new(masses),
+        thrusts,
+    })
 }
 
 /// Path points per chunk of [`stream`].

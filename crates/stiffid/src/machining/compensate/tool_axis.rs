@@ -16,7 +16,7 @@ pub(super) enum Cost<'a> {
     /// At a drilling exit the surge speed of its thrust (m/s), elsewhere nothing.
     Surge {
         /// The arm's mass model.
-        masses: MassModel,
+        masses: Box<MassModel>,
         /// Each point's thrust (N, base frame) at a drilling exit, `None` elsewhere.
         thrusts: &'a [Option<Vector3<f64>>],
     },
