@@ -340,10 +340,7 @@ fn a_model_comparison_that_no_model_fits_physically_is_refused() {
 #[test]
 fn the_margin_select_keeps_is_the_margin_evaluate_measures() {
     let d = temp_dir("answers-margin");
-    let (setup, start) = (
-        example("cell/zhang2021-tracker.toml"),
-        example("cell/feasible-relative-a.csv"),
-    );
+    let setup = example("cell/zhang2021-tracker.toml");
     for margin in [10.0, 30.0] {
         let out = d.join(format!("margin{margin}.csv"));
         let out = out.to_str().unwrap();
@@ -352,8 +349,9 @@ fn the_margin_select_keeps_is_the_margin_evaluate_measures() {
             "select",
             "--setup",
             s,
-            "--start",
-            &start,
+            "--global",
+            "--seed",
+            "1",
             "--margin-mm",
             &m,
             "--out",

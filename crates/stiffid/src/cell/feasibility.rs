@@ -1,6 +1,7 @@
 //! The checks a posture must pass in the cell, with the signed margin of every pair they test.
 
 use super::bodies::{bodies, Body, Capsule, Part};
+use super::check::CheckKind;
 use super::distance::{body_body, body_body_witness, body_box_witness, body_floor_witness};
 use super::distance::{capsule_box_witness, closest_on_segment, Witness};
 use super::motion::{part_carrier, Carrier, Deferred, MarginGradients, Margins};
@@ -8,76 +9,6 @@ use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::fmt;
-
-/// One kind of feasibility check (the checks 1-6; the body checks split by what they
-/// test).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum CheckKind {
-    /// 1. Inside the experiment bounds (which lie within the joint limits). Margin in rad.
-    Bounds,
-    /// 2. No body below `floor_z + clearance` (the base excepted: it stands on the floor). m.
-    Floor,
-    /// 2. Every body (base included) at least the clearance from every obstacle. m.
-    Obstacles,
-    /// 3. Non-adjacent links, and the tool against the base and links 1-3, at least the clearance
-    ///    apart. m.
-    SelfCollision,
-    /// 4. The rope (loading point to anchor) at least the clearance from every body and obstacle
-    ///    (from the tool only beyond `tool_radius + clearance` of the loading point). m.
-    Rope,
-    /// 5. The line from the tracker to every measuring point misses every body and obstacle (the
-    ///    tool only beyond `tool_radius` of the measuring point). m.
-    LineOfSight,
-    /// 5. The angle between a measuring point's normal and its line of sight at most
-    ///    `max_incidence`. rad.
-    Incidence,
-    /// 6. `[constraints] loading_point_min_z_mm`. m.
-    LoadingPointHeight,
-    /// 6. `[constraints] anchor_below_loading_point`. m.
-    AnchorBelow,
-}
-
-impl CheckKind {
-    /// Every kind, in report order.
-    pub const ALL: [CheckKind; 9] = [
-        CheckKind::Bounds,
-        CheckKind::Floor,
-        CheckKind::Obstacles,
-        CheckKind::SelfCollision,
-        CheckKind::Rope,
-        CheckKind::LineOfSight,
-        CheckKind::Incidence,
-        CheckKind::LoadingPointHeight,
-        CheckKind::AnchorBelow,
-    ];
-
-    /// Its name in reports and JSON, e.g. `self-collision`.
-    pub fn key(self) -> &'static str {
-        match self {
-            CheckKind::Bounds => "bounds",
-            CheckKind::Floor => "floor",
-            CheckKind::Obstacles => "obstacles",
-            CheckKind::SelfCollision => "self-collision",
-            CheckKind::Rope => "rope",
-            CheckKind::LineOfSight => "line-of-sight",
-            CheckKind::Incidence => "incidence",
-            CheckKind::LoadingPointHeight => "loading-point-min-z",
-            CheckKind::AnchorBelow => "anchor-below-loading-point",
-        }
-    }
-
-    /// Whether the margin is an angle (rad) rather than a length (m).
-    pub fn is_angle(self) -> bool {
-        matches!(self, CheckKind::Bounds | CheckKind::Incidence)
-    }
-}
-
-impl fmt::Display for CheckKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.key())
-    }
-}
 
 /// What a margin is measured at.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -136,7 +136,7 @@ pub enum Error {
     /// No group of postures that passes every feasibility check of the cell was found.
     #[error(
         "no feasible group found: the {check} check failed in {failed} of the {} \
-         of the groups searched (evaluating a group shows every posture's checks)",
+         searched; what decides it: {remedy}",
         crate::common::words::count(*.postures, "posture")
     )]
     Infeasible {
@@ -146,6 +146,9 @@ pub enum Error {
         failed: usize,
         /// How many postures were checked.
         postures: usize,
+        /// The setup fields that decide the check, with their values
+        /// ([`crate::cell::CheckKind::remedy`]).
+        remedy: String,
     },
     /// A table file (CSV) cannot be read: the line and, where there is one, the column.
     #[error("line {line}{}: {problem}", column_name(*column, name))]

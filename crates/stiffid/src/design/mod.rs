@@ -26,5 +26,5 @@ pub use identifiable::{identifiable, unidentifiable};
 pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
 pub use search::{
     global, global_for, local, local_for, random_group, CalibrationGoal, Goal, Gradient,
-    SearchOptions, SearchOutcome, Solver, Termination,
+    SearchOptions, SearchOutcome, Solver, Termination, PROBE_DRAWS,
 };

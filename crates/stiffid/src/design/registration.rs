@@ -207,7 +207,7 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
         .map(|(q, _)| *q)
         .collect();
     if feasible.len() < n {
-        return Err(too_few_feasible(n, &failed));
+        return Err(too_few_feasible(setup, n, &failed));
     }
     let moments: Vec<Moments> = feasible
         .iter()
@@ -313,20 +313,23 @@ fn random_median(moments: &[Moments], n: usize, seed: u64) -> f64 {
 }
 
 /// The error for fewer feasible candidates than postures asked for.
-fn too_few_feasible(n: usize, failed: &[Option<CheckKind>]) -> Error {
+fn too_few_feasible(setup: &Setup, n: usize, failed: &[Option<CheckKind>]) -> Error {
     let feasible = failed.iter().filter(|f| f.is_none()).count();
     let most = CheckKind::ALL
-        .iter()
-        .map(|k| (k, failed.iter().filter(|f| **f == Some(*k)).count()))
-        .max_by_key(|(_, c)| *c)
-        .filter(|(_, c)| *c > 0)
-        .map_or(String::new(), |(k, c)| {
-            format!(" (the {k} check failed first in {c})")
-        });
+        .into_iter()
+        .map(|k| (k, failed.iter().filter(|f| **f == Some(k)).count()))
+        .max_by_key(|&(k, c)| (c, std::cmp::Reverse(k)))
+        .filter(|(_, c)| *c > 0);
+    let mut why = most.map_or(String::new(), |(k, c)| {
+        format!(" (the {k} check failed first in {c})")
+    });
+    if let (0, Some((k, _))) = (feasible, most) {
+        why += &format!("; what decides it: {}", k.remedy(setup));
+    }
     Error::InvalidField {
         field: "postures".into(),
         message: format!(
-            "{n} asked for, but only {feasible} of the {} candidates drawn in the bounds pass the cell's checks{most}: draw more candidates or widen the bounds",
+            "{n} asked for, but only {feasible} of the {} candidates drawn in the bounds pass the cell's checks{why}: draw more candidates or widen the bounds",
             failed.len()
         ),
     }

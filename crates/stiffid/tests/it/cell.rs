@@ -90,12 +90,16 @@ fn capsules_follow_the_comau_kinematics() {
     assert_eq!(tool.part, Part::Tool);
     assert_relative_eq!(tool.a, Vector3::new(2.074, 0.0, 2.255), epsilon = 1e-9);
     assert_relative_eq!((tool.b - tool.a).norm(), 0.26, epsilon = 1e-9);
-    // Default radii: fractions of the summed segment lengths (4.329 m), the tool holding the
-    // loading point 150 mm off its axis.
+    // Default radii: fractions of the summed segment lengths (4.329 m), the tool half as wide as
+    // the reflectors are off its axis (80 sqrt 2 mm).
     let size = 0.83 + 0.4 + 1.175 + 0.25 + 1.444 + 0.23;
     assert_relative_eq!(setup.geometry().link_radii[0], 0.08 * size, epsilon = 1e-9);
     assert_relative_eq!(setup.geometry().link_radii[6], 0.02 * size, epsilon = 1e-9);
-    assert_relative_eq!(setup.geometry().tool_radius, 0.15, epsilon = 1e-12);
+    assert_relative_eq!(
+        setup.geometry().tool_radius,
+        0.04 * 2f64.sqrt(),
+        epsilon = 1e-12
+    );
 }
 
 #[test]
@@ -203,4 +207,66 @@ fn bad_cell_fields_are_named_with_their_values() {
     let inside = "\n[[cell.obstacle]]\nname = \"stand\"\nmin_mm = [0, 0, 0]\nmax_mm = [1000, 1000, 1000]\n[tracker]\nposition_mm = [500, 500, 500]\n";
     let e = paper_with(inside).unwrap_err().to_string();
     assert!(e.contains("inside obstacle 'stand'"), "{e}");
+}
+
+/// The paper setup in the cell with three reflectors 40 mm off the flange axis, below the loading
+/// point, and `extra` appended.
+fn close_reflectors(extra: &str) -> stiffid::setup::Setup {
+    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let start = text.find("measuring_points_mm = [").unwrap();
+    let end = start + text[start..].find("\n]\n").unwrap() + 3;
+    let points = "measuring_points_mm = [[40.0, 0.0, 150.0], [-20.0, 34.641, 150.0], [-20.0, -34.641, 150.0]]\n";
+    let text = format!(
+        "{}{points}{}{}{extra}",
+        &text[..start],
+        &text[end..],
+        common::PAPER_CELL
+    );
+    stiffid::setup::parse(&text, "close.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+}
+
+/// The default tool body is half as wide as the nearest reflector is off the flange axis: no
+/// reflector lies inside it, and the tracker sees all three in many postures, where a body that
+/// held every tool point (150 mm, the loading point's distance) hides them in every posture.
+#[test]
+fn the_default_tool_body_leaves_the_reflectors_outside() {
+    let setup = close_reflectors("");
+    assert_relative_eq!(setup.geometry().tool_radius, 0.02, epsilon = 1e-6);
+    let wide = close_reflectors("[robot_geometry]\ntool_radius_mm = 150.0\n");
+    let seen = |s: &stiffid::setup::Setup| {
+        let checker = Checker::new(s);
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(7);
+        (0..500)
+            .filter(|_| {
+                let q = nalgebra::Vector6::from_fn(|a, _| {
+                    rand::Rng::random_range(&mut rng, s.bounds().lower[a]..=s.bounds().upper[a])
+                });
+                let f = checker.feasibility(&q);
+                f.checks
+                    .iter()
+                    .any(|c| c.kind == CheckKind::LineOfSight && c.ok)
+            })
+            .count()
+    };
+    let frames = setup.robot().frames(&nalgebra::Vector6::zeros());
+    let tool = cell::capsules(setup.arm(), &frames)
+        .into_iter()
+        .find(|c| c.part == Part::Tool)
+        .unwrap();
+    for p in &setup.tool().measuring_points {
+        let at = frames.point(p);
+        assert!(
+            distance_to_segment(&at, &tool.a, &tool.b) > tool.radius,
+            "{p}"
+        );
+    }
+    let (narrow, hidden) = (seen(&setup), seen(&wide));
+    assert!(narrow >= 50, "{narrow} of 500");
+    assert_eq!(hidden, 0);
+}
+
+fn distance_to_segment(p: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+    let ab = b - a;
+    let t = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+    (a + ab * t - p).norm()
 }

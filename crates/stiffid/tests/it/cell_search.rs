@@ -11,13 +11,21 @@ use crate::common;
 use common::{paper_with, PAPER_CELL};
 
 /// The guide's cell with a table beside the robot and a 60 deg acceptance half-angle.
+/// The paper setup in a cell with a floor, a tracker, a table and a 150 mm tool body.
 fn cell_with_table() -> Setup {
+    cell_with_table_and("")
+}
+
+/// [`cell_with_table`] with `tracker` appended to its `[tracker]` table.
+fn cell_with_table_and(tracker: &str) -> Setup {
     paper_with(&format!(
         "{PAPER_CELL}max_incidence_deg = 60.0
-[[cell.obstacle]]
+{tracker}[[cell.obstacle]]
 name = \"table\"
 min_mm = [-1500.0, 1000.0, 0.0]
 max_mm = [-700.0, 1800.0, 800.0]
+[robot_geometry]
+tool_radius_mm = 150.0
 "
     ))
     .unwrap()
@@ -87,19 +95,22 @@ fn impossible_constraints_are_an_error_naming_the_check() {
     // 100 m: the highest the limits accept (stiffid::common::limits::LENGTH_MM), far out of reach.
     let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e5\n").unwrap();
     let start = design::random_group(&setup, 6, 1);
-    for result in [
-        design::global(&setup, Criterion::RelativeA, 6, &small(200, 2), &|_| {}),
-        design::local(&setup, Criterion::RelativeA, &start, &small(200, 1)),
-    ] {
+    let global = design::global(&setup, Criterion::RelativeA, 6, &small(200, 2), &|_| {});
+    let local = design::local(&setup, Criterion::RelativeA, &start, &small(200, 1));
+    // The global search stops after its probe draws, before any start is searched.
+    for (result, searched) in [(global, Some(design::PROBE_DRAWS)), (local, None)] {
         match result {
             Err(Error::Infeasible {
                 check,
                 failed,
                 postures,
+                remedy,
             }) => {
                 assert_eq!(check, "loading-point-min-z");
                 assert_eq!(failed, postures);
                 assert!(postures >= 6);
+                assert!(searched.is_none_or(|n| n == postures), "{postures}");
+                assert_eq!(remedy, "[constraints] loading_point_min_z_mm = 100000");
             }
             other => panic!("{other:?}"),
         }
@@ -162,15 +173,7 @@ fn a_design_keeps_its_margin_where_one_without_hugs_a_line_of_sight() {
         plain.value
     );
     // The registration's uncertainty in the setup gives the same design.
-    let registered = paper_with(&format!(
-        "{PAPER_CELL}max_incidence_deg = 60.0\nregistration_uncertainty_mm = 20.0
-[[cell.obstacle]]
-name = \"table\"
-min_mm = [-1500.0, 1000.0, 0.0]
-max_mm = [-700.0, 1800.0, 800.0]
-"
-    ))
-    .unwrap();
+    let registered = cell_with_table_and("registration_uncertainty_mm = 20.0\n");
     let by_default = design::local(&registered, Criterion::RelativeA, &start, &small(1500, 1));
     assert_eq!(by_default.unwrap().postures, kept.postures);
     // A pool of both groups: with the margin, the postures hugging a line of sight are skipped.

@@ -3,7 +3,7 @@
 
 use super::constraints::{design_checker, violation};
 use super::local::{check_count, evals_per_step, infeasible, local_in};
-use super::sample::group_from_stream;
+use super::sample::{check_some_feasible, group_from_stream};
 use super::{Goal, SearchOptions, SearchOutcome};
 use crate::cell::Checker;
 use crate::common::progress::Progress;
@@ -38,8 +38,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// [`crate::Error::InvalidField`] for `options` outside their limits ([`SearchOptions::validate`]), fewer
 /// than 2 postures, or the `test-pose` criterion on a setup without test postures;
 /// [`crate::Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
-/// [`crate::Error::Infeasible`] naming the check failed by the most postures
-/// of the starts' results when none of them passes every check.
+/// [`crate::Error::Infeasible`] naming the check failed by the most postures and the setup
+/// fields that decide it: at once when none of [`super::PROBE_DRAWS`] uniform postures passes
+/// every check, else when none of the starts' results does.
 ///
 /// # Examples
 /// Two starts on the paper's setup: the same group with the same seed, and the evaluations of
@@ -85,6 +86,7 @@ pub fn global_for(
     options.validate()?;
     check_count(setup, goal, postures)?;
     let checker = design_checker(setup, options.margin);
+    check_some_feasible(&checker, options.seed)?;
     let screening = match options.screen_steps {
         0 => options.clone(),
         steps => SearchOptions {

@@ -24,7 +24,7 @@ pub use constraints::{cell_constraints, design_checker, design_margin, CellConst
 pub use global::{global, global_for};
 pub(super) use local::check_count;
 pub use local::{local, local_for};
-pub use sample::{random_group, CONSTRAINT_TRIES};
+pub use sample::{random_group, CONSTRAINT_TRIES, PROBE_DRAWS};
 pub use termination::Termination;
 
 use crate::design::observability::{CalibrationCriterion, CalibrationDesign};

@@ -1,8 +1,10 @@
 //! Seeded, space-filling start groups within the setup's bounds (and cell constraints).
 
-use super::constraints::violation;
+use super::constraints::{most_failed, violation};
+use super::local::infeasible_error;
 use crate::cell::Checker;
 use crate::setup::Setup;
+use crate::Result;
 use nalgebra::Vector6;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -11,6 +13,38 @@ use rand_chacha::ChaCha8Rng;
 /// Uniform redraws of a posture that fails the cell's checks before the least violating draw is
 /// kept.
 pub const CONSTRAINT_TRIES: usize = 1000;
+
+/// Uniform postures a global search draws before it starts, to stop at once when none of them
+/// passes the cell's checks ([`check_some_feasible`]).
+pub const PROBE_DRAWS: usize = 2000;
+
+/// `Ok` if one of [`PROBE_DRAWS`] uniform postures within the bounds (stream `u64::MAX` of
+/// `seed`) passes every check of `checker`, or if it constrains nothing.
+///
+/// # Errors
+/// [`crate::Error::Infeasible`] naming the check failed by the most draws and the setup fields
+/// that decide it, when none passes: a search would spend its whole budget and find nothing.
+pub(super) fn check_some_feasible(checker: &Checker, seed: u64) -> Result<()> {
+    if !checker.constrains() {
+        return Ok(());
+    }
+    let setup = checker.setup();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(u64::MAX);
+    let draws: Vec<Vector6<f64>> = (0..PROBE_DRAWS)
+        .map(|_| {
+            Vector6::from_fn(|a, _| {
+                rng.random_range(setup.bounds().lower[a]..=setup.bounds().upper[a])
+            })
+        })
+        .collect();
+    if draws.iter().any(|q| checker.violation(q) == 0.0) {
+        return Ok(());
+    }
+    let (kind, failed, postures) =
+        most_failed(checker, std::iter::once(draws.as_slice())).expect("every draw fails a check");
+    Err(infeasible_error(checker, kind, failed, postures))
+}
 
 /// A seeded group of `n` postures (axis angles, rad) within the setup's bounds: a Latin hypercube
 /// (each axis's range cut into `n` equal strata, every posture in a different stratum of every

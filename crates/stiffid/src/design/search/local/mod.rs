@@ -111,19 +111,27 @@ pub(super) fn infeasible<'o>(
     let groups = outcomes.map(|o| o.postures.as_slice());
     let (check, failed, postures) =
         most_failed(checker, groups).unwrap_or((CheckKind::Bounds, 0, 0));
+    Err(infeasible_error(checker, check, failed, postures))
+}
+
+/// [`Error::Infeasible`] for the check `kind` failed in `failed` of `postures` postures, with the
+/// checker's margin and the setup fields that decide the check.
+pub(super) fn infeasible_error(
+    checker: &Checker,
+    kind: CheckKind,
+    failed: usize,
+    postures: usize,
+) -> Error {
     let check = match checker.keep() > 0.0 {
-        false => check.key().to_string(),
-        true => format!(
-            "{} with its {} mm margin",
-            check.key(),
-            checker.keep() * 1e3
-        ),
+        false => kind.key().to_string(),
+        true => format!("{} with its {} mm margin", kind.key(), checker.keep() * 1e3),
     };
-    Err(Error::Infeasible {
+    Error::Infeasible {
         check,
         failed,
         postures,
-    })
+        remedy: kind.remedy(checker.setup()),
+    }
 }
 
 /// Criterion evaluations of one SQP call for `n` postures: 1 with the exact gradient, `6n + 1`
