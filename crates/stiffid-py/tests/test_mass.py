@@ -51,6 +51,21 @@ def test_predict_gives_the_commands_modes_and_surge(tmp_path, cli):
     assert abs(0.5 * m * v * v - 0.5 * f2 * c) < 1e-12 * f2 * c
 
 
+def test_masses_known_to_a_percentage_widen_the_surge_as_the_command_says(tmp_path, cli):
+    path = files(tmp_path)
+    path.write_text(path.read_text() + "\n[masses]\nsd_percent = 10\n")
+    setup = stiffid.Setup.from_file(path)
+    doc = stiffid.predict(setup, Q, [200, -100, -1500, 0, 0, 0])
+    command = cli("predict", "--setup", path, "--q-deg", ",".join(map(str, Q)), "--wrench", "200,-100,-1500", "--json")
+    for key in ["effective_mass_std_kg", "surge_std_mm_s"]:
+        assert doc[key] == command[key], key
+    m, sd = doc["effective_mass_kg"], doc["effective_mass_std_kg"]
+    assert 0 < sd < 0.1 * m
+    # The nominal stiffness has no covariance: the surge's uncertainty is the mass's alone.
+    expected = doc["surge_mm_s"] * sd / (2 * m)
+    assert abs(doc["surge_std_mm_s"] - expected) < 1e-12 * expected
+
+
 def test_kinematics_gives_the_commands_frequencies(tmp_path, cli):
     files(tmp_path)
     robot = stiffid.Robot.from_file(tmp_path / "robot.toml")

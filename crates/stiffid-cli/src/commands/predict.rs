@@ -199,8 +199,11 @@ fn mass(r: &Document) -> String {
         let std = r
             .surge_std_mm_s
             .map_or(String::new(), |d| format!(" (std {d:.3})"));
+        let mass_std = r
+            .effective_mass_std_kg
+            .map_or(String::new(), |d| format!(" (std {d:.2})"));
         s += &format!(
-            "effective mass along the force, held: {m:.2} kg; breakthrough surge {v:.3} mm/s{std}\n"
+            "effective mass along the force, held: {m:.2} kg{mass_std}; breakthrough surge {v:.3} mm/s{std}\n"
         );
     }
     s

@@ -13,8 +13,10 @@
 //! stored energy `E = F^2 c / 2` goes into the mass the tool has along `u` while the hole holds the
 //! other five directions, `m = u^T Lambda_vv u` ([`crate::robot::dynamics::held_mass`]): the tool
 //! surges at `v = sqrt(2 E / m) = F sqrt(c / m)`. `c` is linear in the parameters' compliance,
-//! `c = sum_p h_p (u^T J_p)^2`, so its variance is `g^T Cov(h) g` with `g_p = (u^T J_p)^2`, and
-//! `std(v) = v std(c) / (2 c)` (first order).
+//! `c = sum_p h_p (u^T J_p)^2`, so its variance is `g^T Cov(h) g` with `g_p = (u^T J_p)^2`; with
+//! the mass model's standard deviation `std(m)` ([`MassModel::held_mass_sd`], from the setup's
+//! `[masses] sd_percent`), `std(v) = v sqrt((std(c) / 2c)^2 + (std(m) / 2m)^2)` (first order, the
+//! two independent).
 
 use crate::common::warning::Warning;
 use crate::model::Compliance;
@@ -27,8 +29,10 @@ use nalgebra::{DVector, Matrix6, Vector3};
 /// The mass model of the arm: the robot's links ([`crate::Robot::masses`]) and the tool's body
 /// ([`crate::setup::Payload::body`]), as [`MassModel::optional`] gives it: none without masses,
 /// none with a warning for placeholders.
+/// The model carries the setup's relative standard deviation of the masses ([`Arm::mass_sd`]).
 pub fn mass_model(arm: &Arm) -> (Option<MassModel>, Option<Warning>) {
-    MassModel::optional(arm.robot(), arm.payload().map(|p| p.body()))
+    let (model, warning) = MassModel::optional(arm.robot(), arm.payload().map(|p| p.body()));
+    (model.map(|m| m.with_relative_sd(arm.mass_sd())), warning)
 }
 
 /// The mass and the springs of one posture.
@@ -118,22 +122,27 @@ pub struct Surge {
     pub compliance: f64,
     /// The effective mass along it with the other five directions held, `u^T Lambda_vv u`, kg.
     pub mass: f64,
+    /// Its standard deviation from the mass model's ([`MassModel::held_mass_sd`]), kg; `None`
+    /// where the masses are taken as exact (no `[masses] sd_percent`).
+    pub mass_std: Option<f64>,
     /// The stored energy `F^2 c / 2`, J.
     pub energy: f64,
     /// The surge speed `F sqrt(c / m)`, m/s.
     pub speed: f64,
-    /// Its standard deviation from the compliance covariance (first order), m/s.
+    /// Its standard deviation from the compliance covariance and the mass model's (first order,
+    /// module docs), m/s; `None` with neither.
     pub speed_std: Option<f64>,
 }
 
 /// The surge of the thrust `force` (N, base frame) released at the tool point `point` (flange
 /// frame, m) of the arm in the posture `frames`, with the point's operational-space inertia
-/// `lambda` and the model's `compliance`; `None` for a zero force or a non-positive mass or
-/// compliance along it.
+/// `lambda` (of `masses`) and the model's `compliance`; `None` for a zero force or a non-positive
+/// mass or compliance along it.
 ///
 /// # Panics
 /// If the compliance does not have one value per parameter.
 pub fn surge(
+    masses: &MassModel,
     arm: &Arm,
     frames: &Frames,
     point: &Vector3<f64>,
@@ -156,15 +165,27 @@ pub fn surge(
         return None;
     }
     let speed = f * (c / mass).sqrt();
-    let speed_std = compliance.covariance.as_ref().map(|cov| {
+    let of_compliance = compliance.covariance.as_ref().map(|cov| {
         let var = (g.transpose() * cov * &g)[0].max(0.0);
-        speed * var.sqrt() / (2.0 * c)
+        var.sqrt() / (2.0 * c)
     });
+    let mass_std = (masses.relative_sd() > 0.0)
+        .then(|| {
+            let jacobian = frames.jacobian(point, Coordinates::Axis);
+            masses.held_mass_sd(arm.robot(), frames, &jacobian, &u)
+        })
+        .flatten();
+    let of_mass = mass_std.map(|s| s / (2.0 * mass));
+    let speed_std = match (of_compliance, of_mass) {
+        (None, None) => None,
+        (a, b) => Some(speed * a.unwrap_or(0.0).hypot(b.unwrap_or(0.0))),
+    };
     Some(Surge {
         force: f,
         direction: u,
         compliance: c,
         mass,
+        mass_std,
         energy: 0.5 * f * f * c,
         speed,
         speed_std,
@@ -187,5 +208,5 @@ pub fn tcp_surge(
     let point = arm.tool().tcp;
     let m = masses.mass_matrix(arm.robot(), frames, Coordinates::Axis);
     let lambda = operational_inertia(&m, &frames.jacobian(&point, Coordinates::Axis))?;
-    surge(arm, frames, &point, &lambda, compliance, force)
+    surge(masses, arm, frames, &point, &lambda, compliance, force)
 }

@@ -85,6 +85,7 @@ pub struct Arm {
     pub(super) tcp_given: bool,
     pub(super) model: Model,
     pub(super) payload: Option<Payload>,
+    pub(super) mass_sd: f64,
     pub(super) geometry: RobotGeometry,
     /// The robot's shapes ([`Bodies::Shapes`]) if the cell uses them, else [`Bodies::Scaled`].
     pub(super) shapes: Bodies,
@@ -121,6 +122,13 @@ impl Arm {
     /// The tool's mass and centre of mass, if given.
     pub fn payload(&self) -> Option<&Payload> {
         self.payload.as_ref()
+    }
+
+    /// The relative standard deviation of every body's mass and inertia (`[masses] sd_percent`
+    /// as a fraction; 0: the masses taken as exact), independent between bodies: the mass
+    /// model's share of a surge's uncertainty ([`crate::observation::dynamics`]).
+    pub fn mass_sd(&self) -> f64 {
+        self.mass_sd
     }
 
     /// Capsule radii of the robot and tool bodies, m: the setup's `[robot_geometry]`, else the

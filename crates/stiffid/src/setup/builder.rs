@@ -40,6 +40,7 @@ impl Setup {
             workpiece: None,
             controller: Controller::default(),
             payload: None,
+            mass_sd: 0.0,
         }
     }
 
@@ -72,6 +73,7 @@ impl Setup {
             workpiece: workcell.workpiece,
             controller: workcell.controller.clone(),
             payload: arm.payload,
+            mass_sd: arm.mass_sd,
         }
     }
 }
@@ -122,6 +124,7 @@ pub struct SetupBuilder {
     workpiece: Option<Isometry3<f64>>,
     controller: Controller,
     payload: Option<Payload>,
+    mass_sd: f64,
 }
 
 impl SetupBuilder {
@@ -282,6 +285,14 @@ impl SetupBuilder {
         self
     }
 
+    /// The relative standard deviation of every body's mass and inertia, the robot's links' and
+    /// the tool's, independent between bodies (default 0: the masses taken as exact; a fraction,
+    /// within [`limits::MASS_SD_PERCENT`] as a percentage).
+    pub fn with_mass_sd(mut self, relative: f64) -> Self {
+        self.mass_sd = relative;
+        self
+    }
+
     /// The setup, every field checked against [`crate::common::limits`] and the others.
     ///
     /// # Errors
@@ -374,6 +385,11 @@ impl SetupBuilder {
                 }
             })?;
         }
+        limits::check(
+            "masses.sd_percent",
+            &[self.mass_sd * 1e2],
+            &limits::MASS_SD_PERCENT,
+        )?;
         let tracker = self
             .tracker
             .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))
@@ -388,6 +404,7 @@ impl SetupBuilder {
                 tcp_given: self.tcp.is_some(),
                 model,
                 payload: self.payload,
+                mass_sd: self.mass_sd,
                 geometry,
                 shapes,
             },

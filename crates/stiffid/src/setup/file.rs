@@ -40,6 +40,14 @@ struct SetupFile {
     model: Option<ModelFile>,
     workpiece: Option<WorkpieceFile>,
     controller: Option<ControllerFile>,
+    masses: Option<MassesFile>,
+}
+
+/// `[masses]`: how well the robot's and the tool's masses are known.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MassesFile {
+    sd_percent: f64,
 }
 
 /// `[controller]`: the kinematics of the controller that runs a generated program.
@@ -449,6 +457,9 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
                 message: "mass_kg and centre_of_mass_mm come together: give both or neither".into(),
             })
         }
+    }
+    if let Some(m) = &f.masses {
+        b = b.with_mass_sd(m.sd_percent * 1e-2);
     }
     if let Some(t) = f.test {
         b = b.with_test_postures(t.postures_deg.iter().map(deg6).collect());

@@ -253,7 +253,16 @@ fn surge_turned(s: &Setup, r: &Compensated, phi: f64) -> Option<f64> {
     let lambda = operational_inertia(&m, &frames.jacobian(&tcp, Coordinates::Axis))?;
     let force = -(own.rotation * Vector3::z()) * 1000.0;
     let compliance = s.model_compliance("test").unwrap();
-    dynamics::surge(s.arm(), &frames, &tcp, &lambda, &compliance, &force).map(|v| v.speed)
+    dynamics::surge(
+        &masses,
+        s.arm(),
+        &frames,
+        &tcp,
+        &lambda,
+        &compliance,
+        &force,
+    )
+    .map(|v| v.speed)
 }
 
 /// The surge objective: at every drilling exit the rotation chosen gives the least surge over

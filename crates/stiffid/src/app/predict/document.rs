@@ -75,6 +75,8 @@ pub struct Document {
     /// The effective mass along the wrench's force with the other five directions held (a drill
     /// in its hole), `u^T Lambda_vv u`, kg; `null` without masses or a force.
     pub effective_mass_kg: Option<f64>,
+    /// Its standard deviation from the setup's `[masses] sd_percent`, kg; `null` without it.
+    pub effective_mass_std_kg: Option<f64>,
     /// The effective mass along the force with the point free, `1 / (u^T (J M^-1 J^T)_vv u)`, kg.
     pub effective_mass_free_kg: Option<f64>,
     /// The compliance along the force, `u^T C_x u`, mm/N.
@@ -84,7 +86,8 @@ pub struct Document {
     /// The speed the force's sudden release (a drill's breakthrough) gives the loaded point,
     /// `F sqrt(c / m)` with `m` the held effective mass, mm/s.
     pub surge_mm_s: Option<f64>,
-    /// Its standard deviation from the compliance covariance (first order), mm/s.
+    /// Its standard deviation from the compliance covariance and the setup's `[masses]
+    /// sd_percent` (first order), mm/s; `null` with neither.
     pub surge_std_mm_s: Option<f64>,
     /// What to look at before trusting the document (placeholder masses).
     pub warnings: Vec<Warning>,
@@ -214,6 +217,7 @@ impl Document {
                 .and_then(|p| p.operational_inertia.as_ref())
                 .map(rows),
             effective_mass_kg: surge.map(|s| s.mass),
+            effective_mass_std_kg: surge.and_then(|s| s.mass_std),
             effective_mass_free_kg: mass.and_then(|m| m.free_mass),
             compliance_along_force_mm_per_n: surge.map(|s| mm(s.compliance)),
             surge_energy_j: surge.map(|s| s.energy),

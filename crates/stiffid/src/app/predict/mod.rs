@@ -143,7 +143,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         let force = base.fixed_rows::<3>(0).into_owned();
         let lambda = posture.operational_inertia;
         let surge = lambda
-            .and_then(|l| dynamics::surge(setup.arm(), &frames, &at, &l, &compliance, &force));
+            .and_then(|l| dynamics::surge(&m, setup.arm(), &frames, &at, &l, &compliance, &force));
         let free = lambda.zip(force.try_normalize(0.0));
         Mass {
             free_mass: free.and_then(|(l, u)| free_mass(&l, &u)),

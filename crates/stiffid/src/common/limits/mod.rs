@@ -92,6 +92,9 @@ pub const AXIS: Range = Range::new(-1e6, 1e6, "");
 /// A tool's mass (`[tool] mass_kg`).
 pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 
+/// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_percent`).
+pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
+
 /// The rope load of a setup.
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 

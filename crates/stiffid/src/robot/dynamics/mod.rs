@@ -8,6 +8,12 @@
 //! `com_mm`, `inertia_kg_m2` or a URDF's `<inertial>`) and the tool's (a setup's `[tool]`),
 //! checked for the placeholders robot descriptions often carry. All results are SI, base frame,
 //! columns in axis coordinates `q` (`theta = A q + c`: `M_q = A^T M_theta A`).
+//!
+//! **How well the masses are known.** A model may carry a relative standard deviation `s` of every
+//! body's mass and inertia ([`MassModel::with_relative_sd`]), independent between bodies. `M` is
+//! linear in the bodies, `M = sum_k M_k` ([`MassModel::parts`]), and so is the held mass along `u`:
+//! `m = w^T M w = sum_k w^T M_k w` with `w = J^-1 [u; 0]`, so its standard deviation is
+//! `s sqrt(sum_k (w^T M_k w)^2)` ([`MassModel::held_mass_sd`]), exactly (no linearisation).
 
 pub mod body;
 mod crba;
@@ -25,6 +31,7 @@ use nalgebra::{Cholesky, Matrix3, Matrix6, Vector3};
 pub struct MassModel {
     links: [LinkMass; 6],
     tool: Option<LinkMass>,
+    relative_sd: f64,
 }
 
 /// How [`MassModel::new`] tells the user to give real inertials.
@@ -63,7 +70,64 @@ impl MassModel {
         Ok(Self {
             links: *links,
             tool,
+            relative_sd: 0.0,
         })
+    }
+
+    /// This model with every body's mass and inertia known to the relative standard deviation
+    /// `sd` (a fraction; 0, the default: exact), independent between bodies (module docs).
+    pub fn with_relative_sd(mut self, sd: f64) -> Self {
+        self.relative_sd = sd;
+        self
+    }
+
+    /// The relative standard deviation of every body's mass and inertia ([`Self::with_relative_sd`]).
+    pub fn relative_sd(&self) -> f64 {
+        self.relative_sd
+    }
+
+    /// Each body alone, links 1-6 then the tool if there is one: the parts' mass matrices sum to
+    /// the model's (the composite rigid body algorithm is linear in the bodies).
+    pub fn parts(&self) -> Vec<MassModel> {
+        let empty = Self {
+            links: [LinkMass::default(); 6],
+            tool: None,
+            relative_sd: 0.0,
+        };
+        let links = (0..6).map(|k| {
+            let mut part = empty.clone();
+            part.links[k] = self.links[k];
+            part
+        });
+        let tool = self.tool.map(|t| Self {
+            tool: Some(t),
+            ..empty.clone()
+        });
+        links.chain(tool).collect()
+    }
+
+    /// The standard deviation (kg) of the [`held_mass`] along the unit direction `u` (base frame)
+    /// at the point whose Jacobian is `jacobian` (6x6, base frame, axis coordinates), from the
+    /// model's [`Self::relative_sd`] (module docs); `None` where the Jacobian is singular.
+    pub fn held_mass_sd(
+        &self,
+        robot: &Robot,
+        frames: &Frames,
+        jacobian: &Matrix6<f64>,
+        u: &Vector3<f64>,
+    ) -> Option<f64> {
+        let along = nalgebra::Vector6::new(u.x, u.y, u.z, 0.0, 0.0, 0.0);
+        let w = jacobian.lu().solve(&along)?;
+        let squares: f64 = self
+            .parts()
+            .iter()
+            .map(|part| {
+                let a = (w.transpose() * part.mass_matrix(robot, frames, Coordinates::Axis) * w)[0];
+                a * a
+            })
+            .sum();
+        let sd = self.relative_sd * squares.sqrt();
+        sd.is_finite().then_some(sd)
     }
 
     /// [`MassModel::new`] for the jobs whose mass results are extras: none (and no warning)
