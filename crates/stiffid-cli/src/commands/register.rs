@@ -113,7 +113,8 @@ fn text_of(d: &Document) -> String {
     let mut text = format!(
         "registration of {} points (setup {})\n\
          base_from_tracker: xyz_mm = [{}], rpy_deg = [{}]\n\
-         standard deviation: translation [{}] mm, rotation [{}] deg\n\
+         standard deviation: translation [{}] mm, rotation [{}] deg \
+         (the robot model's frames {} mm, {} mrad; the tracker noise alone: [{}] mm, [{}] deg)\n\
          residual RMS {:.4} mm (noise per coordinate {:.4} mm)\n\
          \nposture  point  line  residual_mm\n",
         d.points.len(),
@@ -122,6 +123,10 @@ fn text_of(d: &Document) -> String {
         three(t.rpy_deg, 5),
         three(t.std.translation_std_mm, 4),
         three(t.std.rotation_std_deg, 5),
+        d.robot_frame_sd_mm,
+        d.robot_frame_sd_mrad,
+        three(d.noise_only_std.translation_std_mm, 4),
+        three(d.noise_only_std.rotation_std_deg, 5),
         d.residual_rms_mm,
         d.noise_std_mm,
     );

@@ -86,6 +86,7 @@ pub struct Arm {
     pub(super) model: Model,
     pub(super) payload: Option<Payload>,
     pub(super) mass_sd: f64,
+    pub(super) frame_sd: (f64, f64),
     pub(super) geometry: RobotGeometry,
     /// The robot's shapes ([`Bodies::Shapes`]) if the cell uses them, else [`Bodies::Scaled`].
     pub(super) shapes: Bodies,
@@ -129,6 +130,14 @@ impl Arm {
     /// model's share of a surge's uncertainty ([`crate::observation::dynamics`]).
     pub fn mass_sd(&self) -> f64 {
         self.mass_sd
+    }
+
+    /// How far each frame of the robot model (joints 1-6 and the flange) may be from the true
+    /// robot's: the standard deviation of each coordinate of its position (m) and orientation
+    /// (rad) (`[robot_accuracy]`, default [`super::DEFAULT_FRAME_SD`]): what a registration
+    /// from the nominal robot cannot see ([`crate::metrology::register::robot_covariance`]).
+    pub fn frame_sd(&self) -> (f64, f64) {
+        self.frame_sd
     }
 
     /// Capsule radii of the robot and tool bodies, m: the setup's `[robot_geometry]`, else the

@@ -41,6 +41,7 @@ impl Setup {
             controller: Controller::default(),
             payload: None,
             mass_sd: 0.0,
+            frame_sd: DEFAULT_FRAME_SD,
         }
     }
 
@@ -74,9 +75,16 @@ impl Setup {
             controller: workcell.controller.clone(),
             payload: arm.payload,
             mass_sd: arm.mass_sd,
+            frame_sd: arm.frame_sd,
         }
     }
 }
+
+/// The default standard deviations of a robot model's frames, m and rad (0.3 mm and 0.3 mrad
+/// per coordinate): a nominal industrial robot, whose joint frames are typically off by 0.1 to 0.5
+/// mm and mrad, 1 to 3 mm at the tool over the workspace (Nubiola and Bonev 2013, Robotics and
+/// Computer-Integrated Manufacturing 29(1)).
+pub const DEFAULT_FRAME_SD: (f64, f64) = (3e-4, 3e-4);
 
 /// Builds a [`Setup`] from SI values (m, rad, N, Nm/rad, m^2), argmin-style: `with_*` setters,
 /// then [`SetupBuilder::build`] checks every field as a setup file's are checked.
@@ -125,6 +133,7 @@ pub struct SetupBuilder {
     controller: Controller,
     payload: Option<Payload>,
     mass_sd: f64,
+    frame_sd: (f64, f64),
 }
 
 impl SetupBuilder {
@@ -293,6 +302,15 @@ impl SetupBuilder {
         self
     }
 
+    /// How far each frame of the robot model (joints 1-6 and the flange) may be from the true
+    /// robot's: the standard deviation of each coordinate of its position (m) and of its
+    /// orientation (rad), independent (default [`DEFAULT_FRAME_SD`]; 0 and 0 for a calibrated
+    /// robot; each within [`limits::FRAME_SD`] in mm and mrad).
+    pub fn with_frame_sd(mut self, position: f64, orientation: f64) -> Self {
+        self.frame_sd = (position, orientation);
+        self
+    }
+
     /// The setup, every field checked against [`crate::common::limits`] and the others.
     ///
     /// # Errors
@@ -385,6 +403,13 @@ impl SetupBuilder {
                 }
             })?;
         }
+        let (p, o) = self.frame_sd;
+        limits::check("robot_accuracy.frame_sd_mm", &[p * 1e3], &limits::FRAME_SD)?;
+        limits::check(
+            "robot_accuracy.frame_sd_mrad",
+            &[o * 1e3],
+            &limits::FRAME_SD,
+        )?;
         limits::check(
             "masses.sd_percent",
             &[self.mass_sd * 1e2],
@@ -405,6 +430,7 @@ impl SetupBuilder {
                 model,
                 payload: self.payload,
                 mass_sd: self.mass_sd,
+                frame_sd: self.frame_sd,
                 geometry,
                 shapes,
             },

@@ -41,6 +41,15 @@ struct SetupFile {
     workpiece: Option<WorkpieceFile>,
     controller: Option<ControllerFile>,
     masses: Option<MassesFile>,
+    robot_accuracy: Option<RobotAccuracyFile>,
+}
+
+/// `[robot_accuracy]`: how far the robot model's frames may be from the true robot's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotAccuracyFile {
+    frame_sd_mm: f64,
+    frame_sd_mrad: f64,
 }
 
 /// `[masses]`: how well the robot's and the tool's masses are known.
@@ -457,6 +466,9 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
                 message: "mass_kg and centre_of_mass_mm come together: give both or neither".into(),
             })
         }
+    }
+    if let Some(a) = &f.robot_accuracy {
+        b = b.with_frame_sd(a.frame_sd_mm * 1e-3, a.frame_sd_mrad * 1e-3);
     }
     if let Some(m) = &f.masses {
         b = b.with_mass_sd(m.sd_percent * 1e-2);

@@ -75,7 +75,7 @@ pub mod reference;
 mod workcell;
 
 pub use arm::{Arm, Payload, Tool, GRAVITY};
-pub use builder::SetupBuilder;
+pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
 pub use cell::{
     default_geometry, Cell, Obstacle, RobotGeometry, Tracker, DEFAULT_RADIUS_FRACTIONS,
     MAX_LENGTH_MM, MAX_OBSTACLES,

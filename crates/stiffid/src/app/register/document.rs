@@ -53,6 +53,13 @@ pub struct Document {
     pub residual_rms_mm: f64,
     /// Noise per coordinate estimated from the residuals, mm.
     pub noise_std_mm: f64,
+    /// How far each frame of the robot model may be from the true robot's, per coordinate of
+    /// its position, mm (the setup's `[robot_accuracy] frame_sd_mm`): its part is in `std`.
+    pub robot_frame_sd_mm: f64,
+    /// The same of its orientation, mrad (`frame_sd_mrad`).
+    pub robot_frame_sd_mrad: f64,
+    /// The standard deviations the tracker noise alone gives (`std` without the robot's part).
+    pub noise_only_std: TransformStd,
     /// Every unloaded reading's residual, in file order.
     pub points: Vec<Residual>,
     /// The `[tracker]` fragment of the setup file.
@@ -100,6 +107,14 @@ impl Document {
             transform: Transform::new(&fit.base_from_tracker, fit.std().into()),
             residual_rms_mm: mm(fit.rms),
             noise_std_mm: mm(fit.sigma),
+            robot_frame_sd_mm: report.frame_sd.0 * 1e3,
+            robot_frame_sd_mrad: report.frame_sd.1 * 1e3,
+            noise_only_std: TransformStd::new(
+                (fit.covariance - fit.robot_covariance)
+                    .diagonal()
+                    .map(|v| v.max(0.0).sqrt())
+                    .into(),
+            ),
             points,
             fragment: fit.fragment(),
         }

@@ -1,6 +1,7 @@
 //! The register job: the laser tracker's transform to the robot base from measuring points read
 //! by the tracker at known axis angles ([`crate::metrology::register`]: Umeyama's least-squares rigid
-//! transform), its residuals and standard deviation; or the postures to register in
+//! transform), its residuals and standard deviation (the tracker noise's and the robot model's own
+//! error's, [`register::robot_covariance`]); or the postures to register in
 //! ([`propose`], [`crate::design::registration`]).
 
 pub mod document;
@@ -27,6 +28,9 @@ pub struct Report {
     pub registration: Registration,
     /// Inputs to look at before trusting the result (angles that look like radians).
     pub warnings: Vec<Warning>,
+    /// The robot model's frame standard deviations the covariance holds, m and rad
+    /// ([`crate::setup::Arm::frame_sd`]).
+    pub frame_sd: (f64, f64),
 }
 
 /// Runs the register job.
@@ -42,6 +46,8 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let name = &request.name;
     let points = register::correspondences(request.setup, &data).map_err(|e| in_data(name, e))?;
     let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
+    let robot = register::robot_covariance(request.setup, &data, &registration);
+    let registration = registration.with_robot(robot.map_err(|e| in_data(name, e))?);
     let fit = &registration;
     refuse_implausible(request, &data, Some(fit), &fit.residuals)?;
     Ok(Report {
@@ -49,6 +55,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         readings: data,
         registration,
         warnings,
+        frame_sd: request.setup.arm().frame_sd(),
     })
 }
 

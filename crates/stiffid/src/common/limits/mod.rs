@@ -95,6 +95,10 @@ pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 /// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_percent`).
 pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 
+/// How far each frame of the robot model may be from the true robot's, per coordinate
+/// (`[robot_accuracy] frame_sd_mm` and `frame_sd_mrad`).
+pub const FRAME_SD: Range = Range::new(0.0, 100.0, "");
+
 /// The rope load of a setup.
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 

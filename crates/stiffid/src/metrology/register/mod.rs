@@ -15,6 +15,14 @@
 //! residuals as `sum |r_i|^2 / (3n - 6)`. `(J^T J)^-1` comes from the SVD of `J`, never from the
 //! normal equations.
 //!
+//! The robot's own error: the base-frame points come from the robot model, and a model's frames
+//! are off the true robot's (by `s_p` per coordinate of each frame's position and `s_r` of its
+//! orientation, the setup's `[robot_accuracy]`; joints 1-6 and the flange, independent). Frame
+//! `k`'s error twist `[e_p; e_r]` moves point `i` by `e_p + e_r x (b_i - o_k)` (`G`, 3n x 42); the
+//! transform absorbs its least-squares part `J^+ G`, so [`robot_covariance`] adds
+//! `(J^+ G) S (J^+ G)^T`, `S = diag(s_p^2, s_r^2, ...)`. Most of a nominal robot's error is of
+//! this kind: joint 1's and the base's errors move every point rigidly and leave no residual.
+//!
 //! Only the rotation turns a displacement measured in the tracker frame into the base frame, so
 //! the rotation's standard deviation is what a registration design minimises
 //! ([`rotation_std_per_noise`], [`crate::design::registration`]).
@@ -157,14 +165,24 @@ pub struct Registration {
     pub rms: f64,
     /// The noise per coordinate estimated from the residuals, `sqrt(sum |r_i|^2 / (3n - 6))`, m.
     pub sigma: f64,
-    /// Covariance of `[dp (m); dtheta (rad)]` (module docs), base frame.
+    /// Covariance of `[dp (m); dtheta (rad)]` (module docs), base frame: from the residuals'
+    /// noise ([`fit`]), with the robot model's error once [`Registration::with_robot`] adds it.
     pub covariance: Matrix6<f64>,
+    /// The robot model's part of the covariance ([`robot_covariance`]); zero from [`fit`].
+    pub robot_covariance: Matrix6<f64>,
     /// RMS of the residual lengths of the best transform with a reflection (`det R = -1`), m:
     /// far below `rms` when the readings are a mirror image ([`suspect`]).
     pub mirror_rms: f64,
 }
 
 impl Registration {
+    /// This registration with the robot model's part `covariance` ([`robot_covariance`]) added.
+    pub fn with_robot(mut self, covariance: Matrix6<f64>) -> Self {
+        self.covariance += covariance;
+        self.robot_covariance = covariance;
+        self
+    }
+
     /// Standard deviations of the translation (m) and of the rotation about the base x, y, z axes
     /// (rad): the square roots of the covariance's diagonal.
     pub fn std(&self) -> Vector6<f64> {
@@ -187,8 +205,9 @@ impl Registration {
         let s = self.std();
         let list = |v: [f64; 3]| format!("[{:.6}, {:.6}, {:.6}]", v[0], v[1], v[2]);
         format!(
-            "# registration of {} points: residual RMS {:.4} mm; standard deviation of the \
-             translation [{:.4}, {:.4}, {:.4}] mm, of the rotation [{:.5}, {:.5}, {:.5}] deg\n\
+            "# registration of {} points: residual RMS {:.4} mm; standard deviation (the tracker \
+             noise and the robot model's frames) of the translation [{:.4}, {:.4}, {:.4}] mm, of \
+             the rotation [{:.5}, {:.5}, {:.5}] deg\n\
              [tracker]\nbase_from_tracker = {{ xyz_mm = {}, rpy_deg = {} }}\n\
              # three standard deviations of the tracker's position: the margin designs keep\n\
              registration_uncertainty_mm = {:.3}\n",
@@ -291,8 +310,50 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
         residuals,
         sigma,
         covariance,
+        robot_covariance: Matrix6::zeros(),
         mirror_rms: (mirror_ssr / n).sqrt(),
     })
+}
+
+/// The covariance of `[dp (m); dtheta (rad)]` that the robot model's own error gives the
+/// registration `fit` of the unloaded `readings` (module docs), with the setup's
+/// [`crate::setup::Arm::frame_sd`].
+///
+/// # Errors
+/// [`Error::NotFinite`] when the SVD does not converge.
+pub fn robot_covariance(
+    setup: &Setup,
+    readings: &Readings,
+    fit: &Registration,
+) -> Result<Matrix6<f64>> {
+    let (sd_p, sd_r) = setup.arm().frame_sd();
+    let points = &setup.tool().measuring_points;
+    let unloaded: Vec<_> = readings.readings.iter().filter(|r| r.unloaded()).collect();
+    let mut j = DMatrix::zeros(3 * unloaded.len(), 6);
+    let mut g = DMatrix::zeros(3 * unloaded.len(), 42);
+    for (i, r) in unloaded.iter().enumerate() {
+        let frames = setup.robot().frames(&r.q);
+        let b = frames.point(&points[r.point]);
+        let rotated = fit.base_from_tracker.rotation * r.position;
+        let mut row = j.fixed_view_mut::<3, 6>(3 * i, 0);
+        row.fixed_view_mut::<3, 3>(0, 0).fill_with_identity();
+        row.fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(-rotated.cross_matrix()));
+        let origins = frames.joints.iter().chain([&frames.flange]);
+        for (k, o) in origins.map(|f| f.translation.vector).enumerate() {
+            let mut block = g.fixed_view_mut::<3, 6>(3 * i, 6 * k);
+            block
+                .fixed_view_mut::<3, 3>(0, 0)
+                .copy_from(&(Matrix3::identity() * sd_p));
+            block
+                .fixed_view_mut::<3, 3>(0, 3)
+                .copy_from(&(-(b - o).cross_matrix() * sd_r));
+        }
+    }
+    let svd = j.capped_svd(true, true).ok_or(not_converged())?;
+    let absorbed = svd.solve(&g, 0.0).map_err(|_| not_converged())?;
+    let m = absorbed.fixed_rows::<6>(0);
+    Ok(m * m.transpose())
 }
 
 /// `(J^T J)^-1` for the rotated tracker points `R t_i` (module docs): the covariance per unit noise
