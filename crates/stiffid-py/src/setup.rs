@@ -332,16 +332,16 @@ impl Setup {
         criterion: &str,
         method: Option<&str>,
         start: Option<&Bound<'py, PyAny>>,
-        n: Option<usize>,
-        seed: u64,
-        starts: Option<usize>,
-        screen_steps: Option<usize>,
-        polished: Option<usize>,
-        max_evals: Option<usize>,
+        n: Option<i64>,
+        seed: i64,
+        starts: Option<i64>,
+        screen_steps: Option<i64>,
+        polished: Option<i64>,
+        max_evals: Option<i64>,
         gradient: &str,
         solver: &str,
         pool: Option<&Bound<'py, PyAny>>,
-        restarts: Option<usize>,
+        restarts: Option<i64>,
         target_pct: Option<f64>,
         margin_mm: Option<f64>,
         for_candidates: bool,
@@ -350,6 +350,7 @@ impl Setup {
         distinct_deg: Option<f64>,
         distinct_mm: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        use crate::count::optional;
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {
             None => None,
@@ -359,16 +360,16 @@ impl Setup {
             criterion,
             method,
             start,
-            n,
-            seed,
-            starts,
-            screen_steps,
-            polished,
-            max_evals,
+            n: optional("n", n)?,
+            seed: crate::count::seed("seed", seed)?,
+            starts: optional("starts", starts)?,
+            screen_steps: optional("screen_steps", screen_steps)?,
+            polished: optional("polished", polished)?,
+            max_evals: optional("max_evals", max_evals)?,
             gradient,
             solver,
             pool,
-            restarts,
+            restarts: optional("restarts", restarts)?,
             target_pct,
             margin_mm,
             for_candidates,
@@ -386,9 +387,13 @@ impl Setup {
     fn random_group<'py>(
         &self,
         py: Python<'py>,
-        n: usize,
-        seed: u64,
+        n: i64,
+        seed: i64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (n, seed) = (
+            crate::count::count("n", n)?,
+            crate::count::seed("seed", seed)?,
+        );
         design::check_postures(n)?;
         Ok(arrays::degrees(
             py,
