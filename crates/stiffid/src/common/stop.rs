@@ -1,9 +1,9 @@
 //! Why an iterative solver stopped: one stop reason for the calibration's Levenberg-Marquardt
 //! fit ([`crate::metrology::calibration::fit`]), inverse kinematics ([`crate::robot::ik`]), the
 //! robust reweighting of identification ([`crate::identify::robust`]) and the compensation's
-//! Newton steps ([`crate::machining::compensate`]). Each solver documents which reasons it gives;
-//! the posture search, whose reasons are those of an SQP, has its own
-//! ([`crate::design::Termination`]).
+//! Newton steps ([`crate::machining::compensate`](mod@crate::machining::compensate)). Each
+//! solver documents which reasons it gives; the posture search, whose reasons are those of an
+//! SQP, has its own ([`crate::design::Termination`]).
 //!
 //! Documents carry it as `stop_reason`, a kebab-case string ([`Stop::name`]); a result from a
 //! solver stopped at its iteration limit comes with a warning of kind
