@@ -2,6 +2,7 @@
 document and files as `stiffid calibrate`, and a setup pointing at the calibrated robot file
 serves every function with the calibrated robot."""
 
+import json
 import re
 
 import numpy as np
@@ -175,3 +176,17 @@ class _nothing:
 
     def __exit__(self, *exc):
         return False
+
+
+def test_stiffness_out_writes_the_commands_stiffness_file(paper, cli, campaign):
+    d, _, fit, _ = campaign
+    mine = stiffid.calibrate(paper, fit, gravity="lumped", stiffness_out=d / "py-k.json")
+    cli("calibrate", "--setup", SETUP, "--data", fit, "--gravity", "lumped",
+        "--stiffness-out", d / "cli-k.json", "--json")
+    assert (d / "py-k.json").read_bytes() == (d / "cli-k.json").read_bytes()
+    written = json.loads((d / "py-k.json").read_text())
+    assert written == mine["stiffness_file"]
+    # Without loads or a gravity model no compliance is fitted: refused, nothing written.
+    with pytest.raises(stiffid.InputError, match=r"stiffness_out: no compliance is fitted.*gravity=\"masses\""):
+        stiffid.calibrate(paper, fit, stiffness_out=d / "none.json")
+    assert not (d / "none.json").exists()

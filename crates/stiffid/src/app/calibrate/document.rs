@@ -427,6 +427,15 @@ impl Document {
         let note = "\n# The setup's tracker and measuring points from this calibration:\n";
         Some(format!("{text}{note}{fragment}"))
     }
+
+    /// The text of the stiffness file (`stiffid calibrate --stiffness-out`, Python's
+    /// `stiffness_out=`): `stiffness_file` as pretty JSON; `None` when there is none
+    /// (`stiffness_file_error` says why, or no compliance is fitted: neither loaded readings nor a
+    /// gravity model).
+    pub fn stiffness_file_out(&self) -> Option<String> {
+        let file = self.stiffness_file.as_ref()?;
+        serde_json::to_string_pretty(file).ok()
+    }
 }
 
 /// A frame's translation (m) and rotation vector (rad).
