@@ -273,15 +273,37 @@ impl Setup {
     /// ``candidates`` (families or single candidates, as ``stiffid evaluate --candidates``),
     /// default all. ``ValueError`` for a group that cannot identify every joint, or an unknown
     /// candidate.
-    #[pyo3(signature = (postures_deg, *, candidates=None))]
+    /// ``purpose``: what the group is for, as the command's ``--for``: ``"stiffness"`` (the
+    /// identification, the default), ``"calibration"`` (the robot's geometric and elastostatic
+    /// calibration, as ``calibrate`` fits it, with ``calibration_criterion``: ``"test-pose"``, the
+    /// default, ``"o1"``, ``"o3"``, ``"o4"``, ``"o5"`` or ``"d-optimality"``; ``geometry`` and
+    /// ``gravity`` as ``calibrate``'s) or ``"both"`` (the weighted sum of the two log-criteria,
+    /// ``weight`` the calibration's, default 0.5); ``ValueError`` naming a calibration option given
+    /// for the stiffness alone, or ``weight`` without ``"both"``.
+    /// With the calibration, the document's ``calibration`` holds the group's calibration
+    /// criteria.
+    #[pyo3(signature = (postures_deg, *, candidates=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None))]
+    #[allow(clippy::too_many_arguments)]
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
         postures_deg: &Bound<'py, PyAny>,
         candidates: Option<Vec<String>>,
+        purpose: &str,
+        calibration_criterion: Option<&str>,
+        geometry: Option<&str>,
+        gravity: Option<&str>,
+        weight: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let group = self.group(postures_deg, "postures_deg")?;
-        design::evaluate(py, &self.inner, &group, candidates)
+        let purpose = design::For {
+            purpose,
+            calibration_criterion,
+            geometry,
+            gravity,
+            weight,
+        };
+        design::evaluate(py, &self.inner, &group, candidates, &purpose)
     }
 
     /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises
@@ -319,12 +341,19 @@ impl Setup {
     /// 10; orientations within ``distinct_deg``; a wrist flip counts); the document's
     /// ``pool.not_distinct`` lists those left out. ``ValueError`` for a search, or for the
     /// distances without ``distinct``.
+    /// ``purpose``: what the group is for, as the command's ``--for``: ``"stiffness"`` (the
+    /// identification, the default), ``"calibration"`` (the robot's geometric and elastostatic
+    /// calibration, as ``calibrate`` fits it, with ``calibration_criterion``: ``"test-pose"``, the
+    /// default, ``"o1"``, ``"o3"``, ``"o4"``, ``"o5"`` or ``"d-optimality"``; ``geometry`` and
+    /// ``gravity`` as ``calibrate``'s) or ``"both"`` (the weighted sum of the two log-criteria,
+    /// ``weight`` the calibration's, default 0.5); ``ValueError`` naming a calibration option given
+    /// for the stiffness alone, or ``weight`` without ``"both"``.
     /// Deterministic for a ``seed``. Returns the document of ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -349,6 +378,11 @@ impl Setup {
         distinct: bool,
         distinct_deg: Option<f64>,
         distinct_mm: Option<f64>,
+        purpose: &str,
+        calibration_criterion: Option<&str>,
+        geometry: Option<&str>,
+        gravity: Option<&str>,
+        weight: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         use crate::count::optional;
         let start = start.map(|s| self.group(s, "start")).transpose()?;
@@ -377,6 +411,13 @@ impl Setup {
             distinct,
             distinct_deg,
             distinct_mm,
+            purpose: design::For {
+                purpose,
+                calibration_criterion,
+                geometry,
+                gravity,
+                weight,
+            },
         };
         design::select(py, &self.inner, request)
     }
