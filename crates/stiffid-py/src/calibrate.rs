@@ -45,13 +45,16 @@ use stiffid::app::readings::Request as Readings;
 /// it and every function uses the calibrated robot), byte for byte what ``stiffid calibrate
 /// --out`` writes; ``InputError`` when the calibrated chain has no DH table (its reason).
 /// ``urdf_out``: the calibrated robot as a URDF taking the same axis angles; ``InputError`` when
-/// the robot's axis map couples or scales axes (its reason). Each checked before the fit (never
+/// the robot's axis map couples or scales axes (its reason). ``stiffness_out``: the fitted
+/// compliances as a stiffness file (what ``stiffid calibrate --stiffness-out`` writes, which
+/// ``predict`` and ``compensate`` read), with loaded readings or a gravity model; ``InputError``
+/// otherwise (its reason). Each checked before the fit (never
 /// over a file the call reads, a directory or a dangling symlink) and written whole after it.
 /// ``InputError`` naming the file, line and column for bad readings, and, unless ``force=True``,
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", out=None, urdf_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -67,6 +70,7 @@ pub fn calibrate<'py>(
     maps: &str,
     out: Option<PathBuf>,
     urdf_out: Option<PathBuf>,
+    stiffness_out: Option<PathBuf>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let priors = match (tolerance_mm, tolerance_deg) {
@@ -94,6 +98,8 @@ pub fn calibrate<'py>(
     };
     let out_file = prepare(&out, "out", &[])?;
     let urdf_file = prepare(&urdf_out, "urdf_out", out_file.as_slice())?;
+    let written: Vec<output::OutFile> = out_file.iter().chain(&urdf_file).cloned().collect();
+    let stiffness_file = prepare(&stiffness_out, "stiffness_out", &written)?;
     let request = job::Request {
         readings: Readings {
             setup: &setup.inner,
@@ -129,11 +135,24 @@ pub fn calibrate<'py>(
         }
         (None, _) => None,
     };
+    let stiffness = match (&stiffness_file, document.stiffness_file_out()) {
+        (Some(file), Some(text)) => Some((file, text)),
+        (Some(_), None) => {
+            let why = document.stiffness_file_error.clone().unwrap_or_else(|| {
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\" or \"lumped-links\") fit them".into()
+            });
+            return Err(value(format!("stiffness_out: {why}")));
+        }
+        (None, _) => None,
+    };
     warn(py, &document.warnings)?;
     if let Some((file, text)) = robot_file {
         file.write(text.as_bytes())?;
     }
     if let Some((file, text)) = urdf {
+        file.write(text.as_bytes())?;
+    }
+    if let Some((file, text)) = stiffness {
         file.write(text.as_bytes())?;
     }
     to_python(py, &document, &[])

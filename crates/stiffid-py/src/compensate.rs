@@ -75,10 +75,12 @@ pub fn compensate<'py>(
     program_name: Option<String>,
     targets: &str,
     max_tcp_speed_mm_s: f64,
-    name_length: Option<usize>,
-    moves_per_file: usize,
+    name_length: Option<i64>,
+    moves_per_file: i64,
     level: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let name_length = crate::count::optional("name_length", name_length)?;
+    let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;
     let s = &setup.inner;
     let stiffness = stiffness.ok_or_else(|| {
         error::value("stiffness: expected one stiffness per parameter of the setup's model or a stiffness file")

@@ -6,10 +6,12 @@ use crate::error::{raise, value};
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::app::{evaluate, select};
 use stiffid::app::{
     evaluate::document::Document as Evaluated, select::document::Document as Selected,
 };
+use stiffid::common::choice::Choice;
 use stiffid::common::limits::{self, check_count};
 use stiffid::design::distinct::Distinctness;
 use stiffid::design::SearchOptions;
@@ -18,16 +20,52 @@ use stiffid::Setup;
 /// The keys of the evaluate document returned as NumPy arrays.
 const CRITERIA_ARRAYS: [&str; 2] = ["relative_std", "predicted_deviation_pct"];
 
+/// What a group is designed for, as Python gives it: `purpose` (`stiffness`, `calibration` or
+/// `both`, the command's `--for`) and the calibration's options (`calibration_criterion`,
+/// `geometry`, `gravity`, `weight`), which the library checks against the purpose.
+pub struct For<'a> {
+    pub purpose: &'a str,
+    pub calibration_criterion: Option<&'a str>,
+    pub geometry: Option<&'a str>,
+    pub gravity: Option<&'a str>,
+    pub weight: Option<f64>,
+}
+
+impl For<'_> {
+    /// The purpose and the calibration options, each name parsed.
+    fn parse(&self) -> PyResult<(Purpose, CalibrationOptions)> {
+        let purpose = self.purpose.parse::<Purpose>().map_err(|_| {
+            let known: Vec<&str> = Purpose::ALL.iter().map(|p| p.name()).collect();
+            value(format!(
+                "purpose: '{}' is not a purpose (known: {})",
+                self.purpose,
+                known.join(", ")
+            ))
+        })?;
+        let options = CalibrationOptions {
+            criterion: (self.calibration_criterion.map(str::parse))
+                .transpose()
+                .map_err(raise)?,
+            geometry: self.geometry.map(str::parse).transpose().map_err(raise)?,
+            gravity: self.gravity.map(str::parse).transpose().map_err(raise)?,
+            weight: self.weight,
+        };
+        Ok((purpose, options))
+    }
+}
+
 /// The evaluate document of a group (see `Setup.evaluate`), its warnings raised.
 pub fn evaluate<'py>(
     py: Python<'py>,
     setup: &Setup,
     group: &[Vector6<f64>],
     candidates: Option<Vec<String>>,
+    purpose: &For,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (purpose, calibration) = purpose.parse()?;
     let request = evaluate::Request {
-        purpose: Default::default(),
-        calibration: Default::default(),
+        purpose,
+        calibration,
         setup,
         postures: group,
         candidates,
@@ -63,6 +101,8 @@ pub struct Request<'a> {
     pub distinct: bool,
     pub distinct_deg: Option<f64>,
     pub distinct_mm: Option<f64>,
+    /// What the group is for.
+    pub purpose: For<'a>,
 }
 
 /// Runs the select job (the GIL released) and returns its document, its warnings raised.
@@ -104,11 +144,12 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     options.polished = r.polished.unwrap_or(options.polished);
     options.max_evals = r.max_evals.unwrap_or(options.max_evals);
     options.margin = r.margin_mm.map(|m| m * 1e-3);
+    let (purpose, calibration) = r.purpose.parse()?;
     let request = select::Request {
         setup,
         criterion: r.criterion.parse().map_err(raise)?,
-        purpose: Default::default(),
-        calibration: Default::default(),
+        purpose,
+        calibration,
         method,
         start: r.start,
         pool: r.pool.map(|postures| select::PoolInput {

@@ -12,6 +12,7 @@ mod calibrate;
 mod cartesian;
 mod compare;
 mod compensate;
+mod count;
 mod design;
 mod documents;
 mod error;

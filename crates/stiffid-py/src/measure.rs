@@ -4,6 +4,7 @@
 
 use crate::arrays::{self, rows};
 use crate::compare;
+use crate::count;
 use crate::documents;
 use crate::error::{self, raise, value};
 use crate::setup::Setup;
@@ -318,13 +319,16 @@ pub fn identify<'py>(
     robust: Option<&str>,
     nonnegative: bool,
     cross_validate: bool,
-    folds: Option<usize>,
+    folds: Option<i64>,
     offsets: bool,
     compare_models: bool,
     candidates: Option<Vec<String>>,
-    bootstrap: Option<usize>,
-    seed: Option<u64>,
+    bootstrap: Option<i64>,
+    seed: Option<i64>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let folds = count::optional("folds", folds)?;
+    let bootstrap = count::optional("bootstrap", bootstrap)?;
+    let seed = seed.map(|s| count::seed("seed", s)).transpose()?;
     let options = Options {
         robust: robust.map(str::parse::<Loss>).transpose().map_err(raise)?,
         nonnegative,

@@ -1,4 +1,4 @@
-//! The files Python writes (`calibrate(out=..., urdf_out=...)`, `setups_new(out=...)`), by the
+//! The files Python writes (`calibrate(out=..., urdf_out=..., stiffness_out=...)`, `setups_new(out=...)`), by the
 //! command's rules ([`stiffid::io::output`]): each checked before the job runs (a new name in an
 //! existing directory, or a regular file, through a symlink to one; never a directory, a device,
 //! a dangling symlink or a file the call reads), written whole after it succeeds, nothing left
@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use stiffid::io::output;
 
 /// An output file, checked.
+#[derive(Clone)]
 pub struct OutFile {
     /// Where the bytes go (the symlink's target for a symlink).
     target: PathBuf,

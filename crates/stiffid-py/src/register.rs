@@ -3,6 +3,7 @@
 //! ([`stiffid::app::calibrate_cell`]), as the command computes them; the postures to register in
 //! ([`stiffid::app::register::propose`]).
 
+use crate::count;
 use crate::documents::{to_python, warn};
 use crate::error::{self, raise};
 use crate::setup::Setup;
@@ -60,12 +61,16 @@ pub fn register<'py>(
     py: Python<'py>,
     setup: &Setup,
     readings: Option<PathBuf>,
-    postures: Option<usize>,
-    seed: u64,
-    candidates: Option<usize>,
-    restarts: Option<usize>,
+    postures: Option<i64>,
+    seed: i64,
+    candidates: Option<i64>,
+    restarts: Option<i64>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let postures = count::optional("postures", postures)?;
+    let seed = count::seed("seed", seed)?;
+    let candidates = count::optional("candidates", candidates)?;
+    let restarts = count::optional("restarts", restarts)?;
     let readings = match (readings, postures) {
         (Some(readings), None) => readings,
         (None, Some(n)) => {

@@ -242,10 +242,13 @@ impl Robot {
         point_mm: Option<&Bound<'py, PyAny>>,
         position_tolerance_mm: Option<f64>,
         rotation_tolerance_deg: Option<f64>,
-        max_iterations: Option<usize>,
-        restarts: Option<usize>,
-        seed: u64,
+        max_iterations: Option<i64>,
+        restarts: Option<i64>,
+        seed: i64,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let max_iterations = crate::count::optional("max_iterations", max_iterations)?;
+        let restarts = crate::count::optional("restarts", restarts)?;
+        let seed = crate::count::seed("seed", seed)?;
         let limits = (self.inner.limits(), "the joint limits");
         let (q0, single) = arrays::postures(q0_deg, "q0_deg", limits, 1)?;
         if !single {

@@ -273,15 +273,37 @@ impl Setup {
     /// ``candidates`` (families or single candidates, as ``stiffid evaluate --candidates``),
     /// default all. ``ValueError`` for a group that cannot identify every joint, or an unknown
     /// candidate.
-    #[pyo3(signature = (postures_deg, *, candidates=None))]
+    /// ``purpose``: what the group is for, as the command's ``--for``: ``"stiffness"`` (the
+    /// identification, the default), ``"calibration"`` (the robot's geometric and elastostatic
+    /// calibration, as ``calibrate`` fits it, with ``calibration_criterion``: ``"test-pose"``, the
+    /// default, ``"o1"``, ``"o3"``, ``"o4"``, ``"o5"`` or ``"d-optimality"``; ``geometry`` and
+    /// ``gravity`` as ``calibrate``'s) or ``"both"`` (the weighted sum of the two log-criteria,
+    /// ``weight`` the calibration's, default 0.5); ``ValueError`` naming a calibration option given
+    /// for the stiffness alone, or ``weight`` without ``"both"``.
+    /// With the calibration, the document's ``calibration`` holds the group's calibration
+    /// criteria.
+    #[pyo3(signature = (postures_deg, *, candidates=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None))]
+    #[allow(clippy::too_many_arguments)]
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
         postures_deg: &Bound<'py, PyAny>,
         candidates: Option<Vec<String>>,
+        purpose: &str,
+        calibration_criterion: Option<&str>,
+        geometry: Option<&str>,
+        gravity: Option<&str>,
+        weight: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let group = self.group(postures_deg, "postures_deg")?;
-        design::evaluate(py, &self.inner, &group, candidates)
+        let purpose = design::For {
+            purpose,
+            calibration_criterion,
+            geometry,
+            gravity,
+            weight,
+        };
+        design::evaluate(py, &self.inner, &group, candidates, &purpose)
     }
 
     /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises
@@ -319,12 +341,19 @@ impl Setup {
     /// 10; orientations within ``distinct_deg``; a wrist flip counts); the document's
     /// ``pool.not_distinct`` lists those left out. ``ValueError`` for a search, or for the
     /// distances without ``distinct``.
+    /// ``purpose``: what the group is for, as the command's ``--for``: ``"stiffness"`` (the
+    /// identification, the default), ``"calibration"`` (the robot's geometric and elastostatic
+    /// calibration, as ``calibrate`` fits it, with ``calibration_criterion``: ``"test-pose"``, the
+    /// default, ``"o1"``, ``"o3"``, ``"o4"``, ``"o5"`` or ``"d-optimality"``; ``geometry`` and
+    /// ``gravity`` as ``calibrate``'s) or ``"both"`` (the weighted sum of the two log-criteria,
+    /// ``weight`` the calibration's, default 0.5); ``ValueError`` naming a calibration option given
+    /// for the stiffness alone, or ``weight`` without ``"both"``.
     /// Deterministic for a ``seed``. Returns the document of ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -332,16 +361,16 @@ impl Setup {
         criterion: &str,
         method: Option<&str>,
         start: Option<&Bound<'py, PyAny>>,
-        n: Option<usize>,
-        seed: u64,
-        starts: Option<usize>,
-        screen_steps: Option<usize>,
-        polished: Option<usize>,
-        max_evals: Option<usize>,
+        n: Option<i64>,
+        seed: i64,
+        starts: Option<i64>,
+        screen_steps: Option<i64>,
+        polished: Option<i64>,
+        max_evals: Option<i64>,
         gradient: &str,
         solver: &str,
         pool: Option<&Bound<'py, PyAny>>,
-        restarts: Option<usize>,
+        restarts: Option<i64>,
         target_pct: Option<f64>,
         margin_mm: Option<f64>,
         for_candidates: bool,
@@ -349,7 +378,13 @@ impl Setup {
         distinct: bool,
         distinct_deg: Option<f64>,
         distinct_mm: Option<f64>,
+        purpose: &str,
+        calibration_criterion: Option<&str>,
+        geometry: Option<&str>,
+        gravity: Option<&str>,
+        weight: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        use crate::count::optional;
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {
             None => None,
@@ -359,16 +394,16 @@ impl Setup {
             criterion,
             method,
             start,
-            n,
-            seed,
-            starts,
-            screen_steps,
-            polished,
-            max_evals,
+            n: optional("n", n)?,
+            seed: crate::count::seed("seed", seed)?,
+            starts: optional("starts", starts)?,
+            screen_steps: optional("screen_steps", screen_steps)?,
+            polished: optional("polished", polished)?,
+            max_evals: optional("max_evals", max_evals)?,
             gradient,
             solver,
             pool,
-            restarts,
+            restarts: optional("restarts", restarts)?,
             target_pct,
             margin_mm,
             for_candidates,
@@ -376,6 +411,13 @@ impl Setup {
             distinct,
             distinct_deg,
             distinct_mm,
+            purpose: design::For {
+                purpose,
+                calibration_criterion,
+                geometry,
+                gravity,
+                weight,
+            },
         };
         design::select(py, &self.inner, request)
     }
@@ -386,9 +428,13 @@ impl Setup {
     fn random_group<'py>(
         &self,
         py: Python<'py>,
-        n: usize,
-        seed: u64,
+        n: i64,
+        seed: i64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (n, seed) = (
+            crate::count::count("n", n)?,
+            crate::count::seed("seed", seed)?,
+        );
         design::check_postures(n)?;
         Ok(arrays::degrees(
             py,

@@ -17,10 +17,11 @@ use stiffid::common::limits::{self, check_count};
 use stiffid::study::simulate::{self as monte_carlo, GroupSimulation};
 use stiffid::study::{self, Options};
 
-/// A count within `[min, max]` (`field` names it in errors).
-fn count(field: &str, v: u64, min: u64, max: u64) -> PyResult<usize> {
-    check_count(field, v as usize, min as usize, max as usize).map_err(raise)?;
-    Ok(v as usize)
+/// A count within `[min, max]` (`field` names it in errors, a negative one too).
+fn count(field: &str, v: i64, min: u64, max: u64) -> PyResult<usize> {
+    let v = crate::count::count(field, v)?;
+    check_count(field, v, min as usize, max as usize).map_err(raise)?;
+    Ok(v)
 }
 
 /// Simulates the identification with each group of postures (``groups``: a list of arrays of
@@ -37,14 +38,15 @@ pub fn simulate<'py>(
     py: Python<'py>,
     setup: &Setup,
     groups: &Bound<'py, PyAny>,
-    runs: u64,
-    seed: u64,
+    runs: i64,
+    seed: i64,
 ) -> PyResult<Bound<'py, PyList>> {
+    let seed = crate::count::seed("seed", seed)?;
     let items: Vec<Bound<'py, PyAny>> = groups
         .try_iter()
         .map_err(|_| value("groups: expected a list of (n, 6) arrays"))?
         .collect::<PyResult<_>>()?;
-    count("groups", items.len() as u64, 1, limits::MAX_GROUPS as u64)?;
+    count("groups", items.len() as i64, 1, limits::MAX_GROUPS as u64)?;
     let groups = items
         .iter()
         .enumerate()
@@ -92,12 +94,13 @@ const RATES: [&str; 4] = [
 pub fn reproduce(
     py: Python<'_>,
     setup: Option<&Setup>,
-    runs: u64,
-    seed: u64,
-    starts: u64,
-    trials: u64,
+    runs: i64,
+    seed: i64,
+    starts: i64,
+    trials: i64,
     solver: &str,
 ) -> PyResult<Study> {
+    let seed = crate::count::seed("seed", seed)?;
     let options = Options {
         runs: count("runs", runs, 1, limits::MAX_RUNS)?,
         seed,

@@ -2,6 +2,7 @@
 document and files as `stiffid calibrate`, and a setup pointing at the calibrated robot file
 serves every function with the calibrated robot."""
 
+import json
 import re
 
 import numpy as np
@@ -73,6 +74,7 @@ def test_known_errors_come_back_with_the_commands_document_and_files(paper, cli,
     d, _, fit, held = campaign
     mine = stiffid.calibrate(paper, fit, validate=held, out=d / "py.toml")
     assert mine["residual_rms_mm"] < 1e-6 and mine["nominal_rms_mm"] > 0.1
+    assert mine["stop_reason"] in ("converged", "stalled", "damping-exhausted")
     v = mine["validation"]
     assert v["rms_mm"] < 1e-6 and v["nominal_rms_mm"] > 0.1 and len(v["errors"]) == 10 * 4
     values = {p["name"]: p for p in mine["parameters"]}
@@ -174,3 +176,17 @@ class _nothing:
 
     def __exit__(self, *exc):
         return False
+
+
+def test_stiffness_out_writes_the_commands_stiffness_file(paper, cli, campaign):
+    d, _, fit, _ = campaign
+    mine = stiffid.calibrate(paper, fit, gravity="lumped", stiffness_out=d / "py-k.json")
+    cli("calibrate", "--setup", SETUP, "--data", fit, "--gravity", "lumped",
+        "--stiffness-out", d / "cli-k.json", "--json")
+    assert (d / "py-k.json").read_bytes() == (d / "cli-k.json").read_bytes()
+    written = json.loads((d / "py-k.json").read_text())
+    assert written == mine["stiffness_file"]
+    # Without loads or a gravity model no compliance is fitted: refused, nothing written.
+    with pytest.raises(stiffid.InputError, match=r"stiffness_out: no compliance is fitted.*gravity=\"masses\""):
+        stiffid.calibrate(paper, fit, stiffness_out=d / "none.json")
+    assert not (d / "none.json").exists()

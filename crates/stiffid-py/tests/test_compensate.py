@@ -44,6 +44,9 @@ def test_compensate_equals_the_command(milling, cli, tmp_path, free):
     # Compensation is real: the compensated angles differ from the nominal, and the residual is tiny.
     assert np.abs(mine["q_compensated_deg"] - mine["q_deg"]).max() > 1e-3
     assert mine["residual_um"].max() < 0.1
+    # Every point's Newton steps converged: the document says so, and nothing warns.
+    summary = mine["document"]["summary"]
+    assert (summary["stop_reason"], summary["not_converged"]) == ("converged", 0)
 
 
 def test_stiffness_as_numbers_has_no_std(milling):

@@ -230,3 +230,35 @@ def test_a_design_for_the_candidates_refuses(paper):
         paper.select(method="global", n=6, starts=2, candidates=["tilt"])
     with pytest.raises(ValueError, match=r"candidates: 'elbow' is not a candidate"):
         paper.evaluate(paper.random_group(6, 1), candidates=["elbow"])
+
+
+def test_evaluate_and_select_for_the_calibration_equal_the_command(paper, cli, tmp_path):
+    """purpose= is the command's --for, with the calibration's options: the same documents."""
+    group = paper.random_group(8, 7)
+    path = write_postures(tmp_path / "group.csv", group)
+    setup = ["--setup", "zhang2021-comau-nj165"]
+    for kwargs, flags in [
+        (dict(purpose="calibration"), ["--for", "calibration"]),
+        (dict(purpose="calibration", calibration_criterion="o1", geometry="offsets"),
+         ["--for", "calibration", "--calibration-criterion", "o1", "--geometry", "offsets"]),
+        (dict(purpose="both", weight=0.25), ["--for", "both", "--weight", 0.25]),
+    ]:
+        mine = paper.evaluate(group, **kwargs)
+        assert plain(mine) == cli("evaluate", *setup, "--postures", path, "--json", *flags), flags
+        assert mine["calibration"]["predicted_rms_mm"] > 0
+    chosen = paper.select(method="global", n=8, starts=2, polished=1, max_evals=300, purpose="both")
+    theirs = cli("select", *setup, "--out", tmp_path / "out.csv", "--json", "--global", "--postures", 8,
+                 "--starts", 2, "--polished", 1, "--max-evals", 300, "--for", "both")
+    assert timeless(plain(chosen)) == timeless(theirs)
+
+
+def test_calibration_options_need_their_purpose(paper):
+    group = paper.random_group(8, 7)
+    with pytest.raises(ValueError, match=r"^geometry: a calibration option: only with for = calibration or both"):
+        paper.evaluate(group, geometry="full")
+    with pytest.raises(ValueError, match=r"^weight: "):
+        paper.select(method="global", n=8, starts=2, purpose="calibration", weight=0.5)
+    with pytest.raises(ValueError, match=r"^purpose: 'geometry' is not a purpose \(known: stiffness, calibration, both\)"):
+        paper.evaluate(group, purpose="geometry")
+    with pytest.raises(ValueError, match=r"calibration_criterion"):
+        paper.evaluate(group, purpose="calibration", calibration_criterion="o2")

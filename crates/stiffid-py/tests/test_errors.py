@@ -57,3 +57,28 @@ def test_a_model_no_group_can_separate_is_unidentifiable(paper):
     assert setup.evaluate(group)["unidentifiable"] == ["0.71 base_rz - 0.71 k1"]
     with pytest.raises(stiffid.UnidentifiableError, match=r"the group cannot separate 0.71 base_rz - 0.71 k1"):
         setup.select(method="local", start=group, max_evals=20)
+
+
+@pytest.mark.parametrize(
+    "name, call",
+    [
+        ("n", lambda s: s.select(n=-1)),
+        ("seed", lambda s: s.select(seed=-1)),
+        ("starts", lambda s: s.select(starts=-2)),
+        ("max_evals", lambda s: s.select(max_evals=-5)),
+        ("n", lambda s: s.random_group(n=-6)),
+        ("restarts", lambda s: s.robot.inverse_kinematics(s.robot.flange_pose([0, 0, -90, 0, 30, 0]),
+                                                          [0, 0, -90, 0, 30, 0], restarts=-1)),
+        ("max_iterations", lambda s: s.robot.inverse_kinematics(s.robot.flange_pose([0, 0, -90, 0, 30, 0]),
+                                                                [0, 0, -90, 0, 30, 0], max_iterations=-1)),
+        ("runs", lambda s: stiffid.simulate(s, [s.random_group()], runs=-1)),
+        ("seed", lambda s: stiffid.simulate(s, [s.random_group()], seed=-1)),
+        ("trials", lambda s: stiffid.reproduce(s, trials=-1)),
+        ("postures", lambda s: stiffid.register(s, postures=-3)),
+        ("folds", lambda s: stiffid.identify(s, q_deg=np.zeros((6, 6)), wrench=np.zeros((6, 6)),
+                                             displacement_mm=np.zeros((6, 3)), folds=-1)),
+    ],
+)
+def test_a_negative_count_is_a_value_error_naming_the_argument(paper, name, call):
+    with pytest.raises(stiffid.InputError, match=rf"^{name}: -\d+ is negative: expected a whole number, 0 or more$"):
+        call(paper)

@@ -207,8 +207,12 @@ def test_inverse_kinematics_along_a_path_stays_on_one_branch(robot):
 def test_inverse_kinematics_of_an_unreachable_pose(robot):
     target = robot.flange_pose([0, 0, -90, 0, 30, 0]).copy()
     target[:3, 3] = [9000, 0, 0]
-    with pytest.raises(stiffid.InfeasibleError, match="mm"):
+    with pytest.raises(stiffid.InfeasibleError, match="the closest of 3 starts stopped at iteration-limit"):
         robot.inverse_kinematics(target, [0, 0, -90, 0, 30, 0], restarts=2)
+    # One step from a reachable pose 10 deg away is cut short, and the message says so.
+    near = robot.flange_pose([10, 10, -80, 10, 40, 10])
+    with pytest.raises(stiffid.InfeasibleError, match=r"1 start stopped at iteration-limit.*max_iterations"):
+        robot.inverse_kinematics(near, [0, 0, -90, 0, 30, 0], restarts=0, max_iterations=1)
 
 
 def test_inverse_kinematics_arguments(robot):

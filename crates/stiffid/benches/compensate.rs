@@ -67,6 +67,7 @@ fn benches(c: &mut Criterion) {
         ik: ik::Options::default(),
         free_tool_axis: None,
         level: 0.95,
+        max_iterations: compensate::MAX_ITERATIONS,
     };
     let solved = compensate::path(s.arm(), &compliance, &poses, &options).unwrap();
     let postures: Vec<PathPoint> = poses

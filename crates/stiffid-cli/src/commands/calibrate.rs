@@ -128,9 +128,9 @@ pub fn run(args: &Args) -> Result<()> {
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);
     // Checked before anything is written.
-    let stiffness_text = match (&stiffness_out, &document.stiffness_file) {
+    let stiffness_text = match (&stiffness_out, document.stiffness_file_out()) {
         (None, _) => None,
-        (Some(_), Some(file)) => Some(serde_json::to_string_pretty(file)?),
+        (Some(_), Some(text)) => Some(text),
         (Some(_), None) => bail!(
             "--stiffness-out: {}",
             document.stiffness_file_error.clone().unwrap_or_else(|| {

@@ -345,7 +345,7 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     let mut text = format!(
         "{} path points of {} compensated (setup {}, stiffness {}{})\n\
          TCP deflection under the path's wrench: largest {:.4} mm (line {}), mean {:.4} mm; largest tool rotation {:.4} mrad\n\
-         compensated axis angles: residual at most {:.2e} um and {:.2e} urad (required: 0.1 um, 1 urad), at most {} Newton steps\n",
+         compensated axis angles: residual at most {:.2e} um and {:.2e} urad (required: 0.1 um, 1 urad), at most {} Newton steps ({})\n",
         d.points,
         report.input,
         setup.name(),
@@ -357,7 +357,8 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
         d.max_rotation_mrad,
         d.max_residual_um,
         d.max_residual_urad,
-        d.max_iterations
+        d.max_iterations,
+        d.stop_reason
     );
     if let Some(level) = report.prediction_level {
         text += &format!(

@@ -162,9 +162,17 @@ class Setup:
     @property
     def test_postures_deg(self) -> _Array: ...
     def evaluate(
-        self, postures_deg: ArrayLike, *, candidates: Optional[Sequence[str]] = None
+        self,
+        postures_deg: ArrayLike,
+        *,
+        candidates: Optional[Sequence[str]] = None,
+        purpose: Literal["stiffness", "calibration", "both"] = "stiffness",
+        calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
+        geometry: Optional[Literal["none", "offsets", "full"]] = None,
+        gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
+        weight: Optional[float] = None,
     ) -> dict[str, Any]:
-        """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable, candidates; None where the setup lacks the field."""
+        """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable, candidates, calibration (with purpose calibration or both); None where the setup lacks the field."""
     def select(
         self,
         criterion: _CriterionName = "relative-a",
@@ -188,6 +196,11 @@ class Setup:
         distinct: bool = False,
         distinct_deg: Optional[float] = None,
         distinct_mm: Optional[float] = None,
+        purpose: Literal["stiffness", "calibration", "both"] = "stiffness",
+        calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
+        geometry: Optional[Literal["none", "offsets", "full"]] = None,
+        gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
+        weight: Optional[float] = None,
     ) -> dict[str, Any]:
         """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained, candidates where they apply."""
     def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...
@@ -447,6 +460,7 @@ def calibrate(
     maps: str = "auto",
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,
+    stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
 ) -> dict[str, Any]:
     """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation, cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""

@@ -175,13 +175,22 @@ pub enum Error {
         /// What the text should hold.
         expected: &'static str,
     },
-    /// Inverse kinematics found no posture within the joint limits that reaches the pose.
-    #[error("pose not reached within the joint limits: {position_error_mm:.3} mm and {rotation_error_deg:.3} deg away at best (outside the workspace, or only reachable beyond a joint limit)")]
+    /// Inverse kinematics found no posture within the joint limits that reaches the pose
+    /// ([`crate::robot::ik::solve`]).
+    #[error("pose not reached within the joint limits: {position_error_mm:.3} mm and {rotation_error_deg:.3} deg away at best (outside the workspace, or only reachable beyond a joint limit); {}", unreached(*stop, *starts))]
     Unreachable {
         /// The remaining distance of the tool point, mm.
         position_error_mm: f64,
         /// The remaining rotation of the tool frame, deg.
         rotation_error_deg: f64,
+        /// Why the descent from the start that came closest stopped:
+        /// [`crate::common::stop::Stop::DampingExhausted`] (no step lowered the error: a local
+        /// minimum, a joint limit, the edge of the workspace) or
+        /// [`crate::common::stop::Stop::IterationLimit`] (the error still falling after the most
+        /// steps: more steps may reach the pose).
+        stop: crate::common::stop::Stop,
+        /// The starts tried: the given posture and the seeded random ones.
+        starts: usize,
     },
     /// An axis angle outside a box of axis angles ([`crate::common::limits::JointBox::check`]): the
     /// robot's joint limits or the setup's bounds.
@@ -620,4 +629,18 @@ impl Error {
             e => e,
         }
     }
+}
+
+/// The clause of [`Error::Unreachable`] that says why the closest of `starts` starts stopped.
+fn unreached(stop: crate::common::stop::Stop, starts: usize) -> String {
+    use crate::common::stop::Stop;
+    let why = match stop {
+        Stop::IterationLimit => {
+            "with the error still falling: more steps (max_iterations) may come closer"
+        }
+        Stop::DampingExhausted | Stop::Stalled => "where no step lowered the error",
+        Stop::Converged => "within the tolerances",
+    };
+    let starts = crate::common::words::count(starts, "start");
+    format!("the closest of {starts} stopped at {stop}, {why}")
 }

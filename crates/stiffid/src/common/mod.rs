@@ -6,6 +6,7 @@ pub mod error;
 pub(crate) mod exact;
 pub mod limits;
 pub mod progress;
+pub mod stop;
 pub mod threads;
 pub mod warning;
 pub mod words;

@@ -20,6 +20,7 @@
 //! Tuning constants (Huber 1.345, Tukey 4.685) give 95% of the efficiency of least squares when
 //! the errors are Gaussian (Holland & Welsch 1977).
 
+use crate::common::stop::Stop;
 use crate::common::warning::{Warning, WarningKind};
 use crate::Result;
 use nalgebra::{DMatrix, DVector};
@@ -95,26 +96,6 @@ impl crate::common::choice::Choice for Loss {
 
 crate::common::choice::by_name!(Loss);
 
-/// Why the reweighting stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Stop {
-    /// No compliance changed by more than [`TOLERANCE`] relative to the largest.
-    Converged,
-    /// [`MAX_ITERATIONS`] reached with a compliance still changing by more than [`TOLERANCE`]:
-    /// the weights and the compliances may still move.
-    IterationLimit,
-}
-
-impl Stop {
-    /// The stop reason's name in documents: `converged` or `iteration-limit`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Stop::Converged => "converged",
-            Stop::IterationLimit => "iteration-limit",
-        }
-    }
-}
-
 /// What the robust fit did.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobustFit {
@@ -124,7 +105,10 @@ pub struct RobustFit {
     pub scale: f64,
     /// IRLS iterations taken with `loss` (after the Huber start, for Tukey).
     pub iterations: usize,
-    /// Why the iterations stopped: [`TOLERANCE`] met, or [`MAX_ITERATIONS`] reached.
+    /// Why the iterations stopped: [`Stop::Converged`], no compliance changed by more than
+    /// [`TOLERANCE`] relative to the largest; or [`Stop::IterationLimit`], [`MAX_ITERATIONS`]
+    /// reached with a compliance still changing (the weights and the compliances may still
+    /// move).
     pub stop: Stop,
     /// The final weight of every row of `Psi`, in `[0, 1]`.
     pub weights: DVector<f64>,
@@ -300,7 +284,6 @@ mod tests {
             assert!((h[0] - 2.0).abs() < 1e-3, "{}", h[0]);
             assert!((h1[0] - h[0]).abs() > TOLERANCE * h[0].abs());
         }
-        assert_eq!(Stop::IterationLimit.name(), "iteration-limit");
     }
 
     #[test]

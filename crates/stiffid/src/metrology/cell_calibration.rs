@@ -51,7 +51,7 @@ pub struct Calibration {
     /// Levenberg-Marquardt iterations taken.
     pub iterations: usize,
     /// Why they stopped.
-    pub termination: fit::Termination,
+    pub stop: crate::common::stop::Stop,
 }
 
 /// The observations of a readings file: its unloaded readings.
@@ -144,7 +144,7 @@ pub fn fit(setup: &Setup, observations: &[Observation]) -> Result<Calibration> {
         sigma: result.sigma,
         base_from_tracker: result.estimate.frame,
         iterations: result.iterations,
-        termination: result.termination,
+        stop: result.stop,
     })
 }
 

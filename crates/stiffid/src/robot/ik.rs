@@ -13,7 +13,14 @@
 //!
 //! From the start posture first, so a path continued point by point stays on one branch of
 //! solutions; if that fails, from [`Options::restarts`] seeded random postures within the limits.
+//!
+//! A descent stops ([`Stop`]) when the pose is reached within the tolerances
+//! ([`Stop::Converged`]), when no damping up to `1e3` gives a step that lowers `|e|`
+//! ([`Stop::DampingExhausted`]: a local minimum of the error, a joint limit, the edge of the
+//! workspace), or after [`Options::max_iterations`] steps ([`Stop::IterationLimit`]). When no
+//! start converges, the error says why the closest one stopped.
 
+use crate::common::stop::Stop;
 use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{common::limits, Error, Result, Robot};
 use nalgebra::{Isometry3, Matrix6, Translation3, Vector3, Vector6};
@@ -114,8 +121,9 @@ pub struct Solution {
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]);
 /// [`Error::NotFinite`] for a non-finite target or start; [`Error::Unreachable`] with the smallest
-/// remaining distance and rotation when no start converges (the pose is outside the workspace or
-/// only reachable beyond a joint limit).
+/// remaining distance and rotation and why that start stopped ([`Stop`]) when no start converges
+/// (the pose is outside the workspace or only reachable beyond a joint limit, or the steps ran out:
+/// [`Stop::IterationLimit`]).
 pub fn solve(
     robot: &Robot,
     point: &Vector3<f64>,
@@ -133,25 +141,27 @@ pub fn solve(
     }
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let mut iterations = 0;
-    let mut best = (f64::INFINITY, f64::INFINITY);
+    let mut best = (f64::INFINITY, f64::INFINITY, Stop::DampingExhausted);
     let mut start = *q0;
     for attempt in 0..=options.restarts {
         if attempt > 0 {
             start = random_posture(robot, &mut rng);
         }
-        let s = descend(robot, point, target, &start, options);
+        let (s, stop) = descend(robot, point, target, &start, options);
         iterations += s.iterations;
         if converged(&s, options) {
             return Ok(Solution { iterations, ..s });
         }
         if s.position_error + s.rotation_error * ROTATION_WEIGHT < best.0 + best.1 * ROTATION_WEIGHT
         {
-            best = (s.position_error, s.rotation_error);
+            best = (s.position_error, s.rotation_error, stop);
         }
     }
     Err(Error::Unreachable {
         position_error_mm: best.0 * 1e3,
         rotation_error_deg: best.1.to_degrees(),
+        stop: best.2,
+        starts: options.restarts + 1,
     })
 }
 
@@ -181,14 +191,14 @@ fn weighted_error(
     (frames, e)
 }
 
-/// Damped least squares from one start (module docs).
+/// Damped least squares from one start (module docs), and why it stopped.
 fn descend(
     robot: &Robot,
     point: &Vector3<f64>,
     target: &Isometry3<f64>,
     start: &Vector6<f64>,
     options: &Options,
-) -> Solution {
+) -> (Solution, Stop) {
     let mut q = robot.limits().clamp(start);
     let (mut frames, mut e) = weighted_error(robot, point, target, &q);
     let mut lambda = 1e-4;
@@ -197,6 +207,7 @@ fn descend(
         e.fixed_rows::<3>(0).norm() <= options.position_tolerance
             && e.fixed_rows::<3>(3).norm() <= options.rotation_tolerance * ROTATION_WEIGHT
     };
+    let mut stop = Stop::IterationLimit;
     while iterations < options.max_iterations.max(1) && !done(&e) {
         iterations += 1;
         let mut j = frames.jacobian(point, Coordinates::Axis);
@@ -219,14 +230,19 @@ fn descend(
         } else {
             lambda *= 5.0;
             if lambda > 1e3 {
+                stop = Stop::DampingExhausted;
                 break;
             }
         }
     }
-    Solution {
+    if done(&e) {
+        stop = Stop::Converged;
+    }
+    let solution = Solution {
         q,
         iterations,
         position_error: e.fixed_rows::<3>(0).norm(),
         rotation_error: e.fixed_rows::<3>(3).norm() / ROTATION_WEIGHT,
-    }
+    };
+    (solution, stop)
 }

@@ -237,6 +237,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         ik: ik::Options::default(),
         free_tool_axis: free,
         level: 0.95,
+        max_iterations: compensate::MAX_ITERATIONS,
     }
 }
 

@@ -59,6 +59,7 @@ mod search;
 mod setup_builder;
 mod simulate;
 mod solver_auto;
+mod stop_reasons;
 mod study;
 mod true_robot;
 mod trust;

@@ -52,7 +52,7 @@ pub struct Document {
     pub iterations: usize,
     /// Why the iterations stopped: `converged`, `stalled`, `damping-exhausted` (a minimum within
     /// rounding) or `iteration-limit` (not converged; a warning says so).
-    pub stop_reason: &'static str,
+    pub stop_reason: crate::common::stop::Stop,
     /// Every reading's 3D position error before the calibration (the nominal robot, the tracker
     /// registered on the same readings, the setup's measuring points) and after it: the fitted
     /// readings (`set` `fitted`), then the held-out ones (`validation`, `--validate`), then each
@@ -381,7 +381,7 @@ impl Document {
             noise_std_mm: mm(fit.sigma),
             noise_ratio: finite(report.noise_ratio),
             iterations: fit.iterations,
-            stop_reason: fit.termination.name(),
+            stop_reason: fit.stop,
             errors: before_after(report),
             maps: maps_document(&report.maps),
             validation: report.validation.as_ref().map(held),
@@ -426,6 +426,15 @@ impl Document {
             .collect();
         let note = "\n# The setup's tracker and measuring points from this calibration:\n";
         Some(format!("{text}{note}{fragment}"))
+    }
+
+    /// The text of the stiffness file (`stiffid calibrate --stiffness-out`, Python's
+    /// `stiffness_out=`): `stiffness_file` as pretty JSON; `None` when there is none
+    /// (`stiffness_file_error` says why, or no compliance is fitted: neither loaded readings nor a
+    /// gravity model).
+    pub fn stiffness_file_out(&self) -> Option<String> {
+        let file = self.stiffness_file.as_ref()?;
+        serde_json::to_string_pretty(file).ok()
     }
 }
 

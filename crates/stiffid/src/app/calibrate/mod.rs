@@ -584,11 +584,8 @@ fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String {
 
 /// The warnings about the fit.
 fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<Warning> {
-    let mut w: Vec<Warning> = fit
-        .termination
-        .warning(fit.iterations)
-        .into_iter()
-        .collect();
+    let not_converged = fit::stop_warning(fit.stop, fit.iterations);
+    let mut w: Vec<Warning> = not_converged.into_iter().collect();
     let id = &fit.identifiability;
     let dof = fit.residuals.len() - fit.fitted.len().min(fit.residuals.len());
     if dof < MIN_DEGREES_OF_FREEDOM {

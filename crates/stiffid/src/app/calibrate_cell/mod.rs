@@ -43,7 +43,10 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let calibration =
         cell_calibration::fit(request.setup, &observations).map_err(|e| in_data(name, e))?;
     refuse_implausible(request, &data, None, &calibration.residuals)?;
-    warnings.extend(calibration.termination.warning(calibration.iterations));
+    warnings.extend(crate::metrology::calibration::fit::stop_warning(
+        calibration.stop,
+        calibration.iterations,
+    ));
     Ok(Report {
         data_name: name.clone(),
         setup_points,

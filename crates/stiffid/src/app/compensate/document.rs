@@ -8,7 +8,8 @@ use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::scene::PathPoint;
-use crate::common::warning::Warning;
+use crate::common::stop::Stop;
+use crate::common::warning::{Warning, WarningKind};
 use crate::machining::compensate::Compensated;
 use crate::machining::dynamics::Dynamics;
 use crate::Coordinates;
@@ -155,6 +156,13 @@ pub struct SummaryDocument {
     pub max_residual_urad: f64,
     /// The most Newton steps of a point.
     pub max_iterations: usize,
+    /// Why the Newton steps stopped along the path: `converged` when every point's residual fell
+    /// below 1e-4 um and 1e-4 urad, `iteration-limit` when some point's steps stopped at their
+    /// limit first (within the 0.1 um and 1 urad a compensated point must reach, else the point
+    /// is refused; a warning names the points).
+    pub stop_reason: Stop,
+    /// The points whose Newton steps stopped at their limit (`iteration-limit`).
+    pub not_converged: usize,
     /// With prediction intervals: the widest interval of a TCP deflection coordinate along the
     /// path (`upper - lower`), mm; `null` without intervals or when one is unbounded.
     pub max_interval_width_mm: Option<f64>,
@@ -416,6 +424,10 @@ pub struct Summary {
     max_residual_position: f64,
     max_residual_rotation: f64,
     max_iterations: usize,
+    /// The points whose Newton steps stopped at their limit.
+    not_converged: usize,
+    /// The lines of the first ten of them.
+    not_converged_lines: Vec<u64>,
     /// The widest prediction interval of a deflection coordinate, m (`None` without intervals).
     max_interval_width: Option<f64>,
     /// The largest standard deviation of `|d|`, m (`None` without a covariance).
@@ -444,6 +456,8 @@ impl Summary {
             max_residual_position: 0.0,
             max_residual_rotation: 0.0,
             max_iterations: 0,
+            not_converged: 0,
+            not_converged_lines: Vec::new(),
             max_interval_width: None,
             max_norm_std: None,
             free: free.then_some((0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY)),
@@ -466,6 +480,12 @@ impl Summary {
         self.max_residual_position = self.max_residual_position.max(r.residual_position);
         self.max_residual_rotation = self.max_residual_rotation.max(r.residual_rotation);
         self.max_iterations = self.max_iterations.max(r.iterations);
+        if r.stop != Stop::Converged {
+            self.not_converged += 1;
+            if self.not_converged_lines.len() < 10 {
+                self.not_converged_lines.push(line);
+            }
+        }
         if let Some(i) = &r.deflection_interval {
             let width = i.iter().map(|[lo, hi]| hi - lo).fold(0.0, f64::max);
             self.max_interval_width = Some(self.max_interval_width.map_or(width, |w| w.max(width)));
@@ -527,6 +547,38 @@ impl Summary {
         (path, words)
     }
 
+    /// A warning ([`WarningKind::NotConverged`]) when some point's Newton steps stopped at their
+    /// limit of `max_iterations` before the residual fell below
+    /// [`crate::machining::compensate::TOLERANCE_M`] and
+    /// [`crate::machining::compensate::TOLERANCE_RAD`]: the points are kept (within
+    /// [`crate::machining::compensate::REQUIRED_M`] and
+    /// [`crate::machining::compensate::REQUIRED_RAD`]), their compensation less exact.
+    pub fn stop_warning(&self, max_iterations: usize) -> Option<Warning> {
+        let (n, lines) = (self.not_converged, &self.not_converged_lines);
+        (n > 0).then(|| {
+            let shown: Vec<String> = lines.iter().map(u64::to_string).collect();
+            let more = match n > lines.len() {
+                true => ", ...",
+                false => "",
+            };
+            let word = match n {
+                1 => "line",
+                _ => "lines",
+            };
+            Warning::new(
+                WarningKind::NotConverged,
+                format!(
+                    "the compensation's Newton steps stopped at their limit of {max_iterations} at {} of {} ({word} {}{more}) with the residual still above 1e-4 um or 1e-4 urad: kept, as within the 0.1 um and 1 urad required (the largest residual is {:.4} um and {:.4} urad), but not converged (near a singularity, or too few steps)",
+                    crate::common::words::count(n, "point"),
+                    self.points,
+                    shown.join(", "),
+                    self.max_residual_position * 1e6,
+                    self.max_residual_rotation * 1e6
+                ),
+            )
+        })
+    }
+
     /// The mean TCP deflection, m.
     pub fn mean_deflection(&self) -> f64 {
         self.sum_deflection / self.points.max(1) as f64
@@ -557,6 +609,11 @@ impl Summary {
             max_residual_um: self.max_residual_position * 1e6,
             max_residual_urad: self.max_residual_rotation * 1e6,
             max_iterations: self.max_iterations,
+            stop_reason: match self.not_converged {
+                0 => Stop::Converged,
+                _ => Stop::IterationLimit,
+            },
+            not_converged: self.not_converged,
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
             max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
             free_tool_axis: self

@@ -310,6 +310,8 @@ where
             (name, Some(report), warnings)
         }
     };
+    let mut warnings = warnings;
+    warnings.extend(summary.stop_warning(options.max_iterations));
     Ok(Report {
         input: name,
         springs: setup.springs(),

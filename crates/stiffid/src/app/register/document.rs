@@ -146,7 +146,7 @@ pub struct Calibration {
     pub iterations: usize,
     /// Why the iterations stopped: `converged`, `stalled`, `damping-exhausted` (a minimum within
     /// rounding) or `iteration-limit` (not converged; a warning says so).
-    pub stop_reason: &'static str,
+    pub stop_reason: crate::common::stop::Stop,
     /// The corrected fragment of the setup file.
     pub fragment: String,
 }
@@ -202,7 +202,7 @@ impl Calibration {
             noise_std_mm: mm(fit.sigma),
             readings: report.readings,
             iterations: fit.iterations,
-            stop_reason: fit.termination.name(),
+            stop_reason: fit.stop,
             fragment,
         }
     }

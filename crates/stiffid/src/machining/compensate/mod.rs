@@ -15,9 +15,11 @@
 //! weight too when the compliance carries a calibration's gravity terms
 //! ([`crate::machining::weight`]), by Newton steps `q += J^-1 e` from the nominal posture
 //! (the first step is the classical `q - J^-1 J dq`), until the residual is below
-//! [`TOLERANCE_M`] and [`TOLERANCE_RAD`] (success needs 0.1 micrometre and 1 microradian). The
-//! Jacobian neglects `d(dq)/dq`, so the convergence is linear with a rate of about `|dq|`:
-//! three or four steps.
+//! [`TOLERANCE_M`] and [`TOLERANCE_RAD`] ([`Stop::Converged`]) or for at most
+//! [`Options::max_iterations`] steps ([`Stop::IterationLimit`]; success needs 0.1 micrometre and
+//! 1 microradian, [`REQUIRED_M`] and [`REQUIRED_RAD`]: a point stopped at the limit within them
+//! is kept, and the compensate job warns). The Jacobian neglects `d(dq)/dq`, so the convergence
+//! is linear with a rate of about `|dq|`: three or four steps.
 //!
 //! ## The free tool axis
 //! In 5-axis milling and drilling the rotation about the spindle (tool z) is free. With
@@ -46,6 +48,7 @@
 //! the exits nor the thrust). Where the surge cannot be computed at the path's own angle (a
 //! singular posture) the point keeps that angle.
 
+pub use crate::common::stop::Stop;
 use crate::observation::deflection::Frame;
 use nalgebra::{Isometry3, Vector6};
 
@@ -54,7 +57,7 @@ mod options;
 mod stream;
 mod tool_axis;
 
-pub use model::Model;
+pub use model::{Model, Newton};
 pub use options::{FreeToolAxis, Objective, Options};
 pub use stream::{path, path_with_exits, stream, CHUNK};
 
@@ -66,7 +69,7 @@ pub const TOLERANCE_RAD: f64 = 1e-10;
 pub const REQUIRED_M: f64 = 1e-7;
 /// The residual rotation a compensated point must reach: 1 microradian.
 pub const REQUIRED_RAD: f64 = 1e-6;
-/// Newton steps at most.
+/// Newton steps at most per point, and the default of [`Options::max_iterations`].
 pub const MAX_ITERATIONS: usize = 30;
 /// The relative weight of the free tool axis' tie-breaking cost (module docs).
 pub const TIE_BREAK: f64 = 1e-6;
@@ -124,6 +127,8 @@ pub struct Compensated {
     pub residual_rotation: f64,
     /// Newton steps taken.
     pub iterations: usize,
+    /// Why the Newton steps stopped ([`Newton::stop`]).
+    pub stop: Stop,
     /// The rotation about tool z chosen by [`FreeToolAxis`] (0 without), rad.
     pub tool_rotation: f64,
     /// With [`FreeToolAxis`]: the deflection at the path's own rotation, before optimisation.

@@ -2,6 +2,7 @@
 //! one point (module docs of [`super`], "The loaded robot", "Compensation").
 
 use super::{Compliance, MAX_ITERATIONS, TOLERANCE_M, TOLERANCE_RAD};
+use crate::common::stop::Stop;
 use crate::machining::weight::Weight;
 use crate::observation::deflection::PointDeflection;
 use crate::observation::deflection::Points;
@@ -22,6 +23,26 @@ pub struct Model<'a> {
     pub(super) level: f64,
     /// The sag under the robot's own weight, from a calibration with gravity.
     weight: Option<Weight>,
+    /// Newton steps at most per point.
+    max_iterations: usize,
+}
+
+/// One point compensated by the Newton steps ([`Model::compensate`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Newton {
+    /// The compensated axis angles `q_c`, rad.
+    pub q: Vector6<f64>,
+    /// `|p_nominal - p_loaded(q_c)|`, m.
+    pub residual_position: f64,
+    /// The rotation between the nominal and the loaded tool at `q_c`, rad.
+    pub residual_rotation: f64,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// Why they stopped: [`Stop::Converged`], the residual below [`TOLERANCE_M`] and
+    /// [`TOLERANCE_RAD`]; or [`Stop::IterationLimit`], the most steps taken with the residual
+    /// above them (the point is accepted when it is within [`super::REQUIRED_M`] and
+    /// [`super::REQUIRED_RAD`], with a warning).
+    pub stop: Stop,
 }
 
 impl<'a> Model<'a> {
@@ -56,6 +77,7 @@ impl<'a> Model<'a> {
             to_axis,
             level: crate::model::prediction::DEFAULT_LEVEL,
             weight,
+            max_iterations: MAX_ITERATIONS,
         })
     }
 
@@ -63,6 +85,15 @@ impl<'a> Model<'a> {
     /// [`crate::model::prediction::DEFAULT_LEVEL`]).
     pub fn at_level(self, level: f64) -> Self {
         Self { level, ..self }
+    }
+
+    /// The model taking at most `max_iterations` Newton steps per point (at least 1; default
+    /// [`MAX_ITERATIONS`]).
+    pub fn with_max_iterations(self, max_iterations: usize) -> Self {
+        Self {
+            max_iterations: max_iterations.max(1),
+            ..self
+        }
     }
 
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
@@ -145,15 +176,12 @@ impl<'a> Model<'a> {
     }
 
     /// Compensates one point: the nominal posture `q` (rad) under `wrench` (base frame) at the
-    /// TCP. Returns `q_c`, the residual (m, rad) and the steps taken (module docs).
+    /// TCP. Returns `q_c`, the residual (m, rad), the steps taken and why they stopped (module
+    /// docs).
     ///
     /// # Errors
     /// [`Error::InvalidField`] (field `posture`) when the Jacobian is singular on the way.
-    pub fn compensate(
-        &self,
-        q: &Vector6<f64>,
-        wrench: &Vector6<f64>,
-    ) -> Result<(Vector6<f64>, f64, f64, usize)> {
+    pub fn compensate(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Result<Newton> {
         self.compensate_from(q, self.arm.robot().frames(q), wrench)
     }
 
@@ -163,7 +191,7 @@ impl<'a> Model<'a> {
         q: &Vector6<f64>,
         mut frames: Frames,
         wrench: &Vector6<f64>,
-    ) -> Result<(Vector6<f64>, f64, f64, usize)> {
+    ) -> Result<Newton> {
         let tcp = &self.arm.tool().tcp;
         let target = tool_pose(&frames, tcp);
         let mut qc = *q;
@@ -171,8 +199,18 @@ impl<'a> Model<'a> {
         loop {
             let e = pose_error(&target, &self.loaded(&frames, &qc, wrench));
             let (ep, eo) = (e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm());
-            if (ep <= TOLERANCE_M && eo <= TOLERANCE_RAD) || iterations == MAX_ITERATIONS {
-                return Ok((qc, ep, eo, iterations));
+            let stop = match ep <= TOLERANCE_M && eo <= TOLERANCE_RAD {
+                true => Some(Stop::Converged),
+                false => (iterations >= self.max_iterations).then_some(Stop::IterationLimit),
+            };
+            if let Some(stop) = stop {
+                return Ok(Newton {
+                    q: qc,
+                    residual_position: ep,
+                    residual_rotation: eo,
+                    iterations,
+                    stop,
+                });
             }
             let j = frames.jacobian(tcp, Coordinates::Axis);
             let step = j.lu().solve(&e).ok_or_else(|| Error::InvalidField {

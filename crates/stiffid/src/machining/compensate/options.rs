@@ -135,11 +135,13 @@ pub struct Options {
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
     pub level: f64,
+    /// Newton steps at most per point, 1 to [`super::MAX_ITERATIONS`] (the default).
+    pub max_iterations: usize,
 }
 
 impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
-    /// ([`ik::Options::validate`]), and a free tool axis' `max_step` in (0, 90] deg and `range` in
+    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], and a free tool axis' `max_step` in (0, 90] deg and `range` in
     /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them. [`path`] calls it.
     ///
     /// # Errors
@@ -152,6 +154,12 @@ impl Options {
         )?;
         self.ik.validate()?;
         crate::model::prediction::check_level("compensate::Options.level", self.level)?;
+        limits::check_integer(
+            "compensate::Options.max_iterations",
+            self.max_iterations as u64,
+            1,
+            super::MAX_ITERATIONS as u64,
+        )?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
@@ -174,7 +182,8 @@ impl Options {
     }
 
     /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
-    /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis.
+    /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis; at most
+    /// [`super::MAX_ITERATIONS`] Newton steps per point.
     pub fn for_setup(setup: &Setup) -> Self {
         let bounds = setup.bounds();
         Self {
@@ -186,6 +195,7 @@ impl Options {
             ik: ik::Options::default(),
             free_tool_axis: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
+            max_iterations: super::MAX_ITERATIONS,
         }
     }
 }

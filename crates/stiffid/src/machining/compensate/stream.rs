@@ -2,8 +2,8 @@
 
 use super::tool_axis::{optimise_tool_axis, Cost};
 use super::{
-    Compensated, Compliance, FreeToolAxis, Model, Objective, Options, PathPoint, Target,
-    MAX_ITERATIONS, REQUIRED_M, REQUIRED_RAD,
+    Compensated, Compliance, FreeToolAxis, Model, Newton, Objective, Options, PathPoint, Target,
+    REQUIRED_M, REQUIRED_RAD,
 };
 use crate::common::error::{ColumnProblem, JobOption};
 use crate::observation::deflection::base_wrench;
@@ -64,7 +64,9 @@ pub fn path_with_exits(
         }
         None => None,
     };
-    let model = Model::new(arm, compliance)?.at_level(options.level);
+    let model = Model::new(arm, compliance)?
+        .at_level(options.level)
+        .with_max_iterations(options.max_iterations);
     let nominal = nominal_postures(arm, points, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = points
         .par_iter()
@@ -166,7 +168,9 @@ where
         }
         return Ok(all.len());
     }
-    let model = Model::new(arm, compliance)?.at_level(options.level);
+    let model = Model::new(arm, compliance)?
+        .at_level(options.level)
+        .with_max_iterations(options.max_iterations);
     let (mut previous, mut count) = (options.q0, 0);
     loop {
         let chunk: Vec<PathPoint> = points.by_ref().take(CHUNK).collect::<Result<_>>()?;
@@ -222,10 +226,10 @@ fn compensate_chosen(
         .map(|i| {
             let q = &c.postures[i];
             let frames = arm.robot().frames(q);
-            let (qc, ep, eo, iterations) = model
+            let newton = model
                 .compensate_from(q, frames.clone(), &c.wrenches[i])
                 .map_err(|e| uncompensated(points[i].line, "q_compensated", e.to_string()))?;
-            check_compensated(arm, points[i].line, &qc, ep, eo)?;
+            check_compensated(arm, points[i].line, &newton)?;
             let d = model.tcp_deflection(&frames, &c.wrenches[i]);
             let deflection_std = model.std(&d);
             let deflection_interval = model
@@ -245,10 +249,11 @@ fn compensate_chosen(
                 deflection_std: deflection_std.map(|s| s.0),
                 translation_norm_std: deflection_std.map(|s| s.1),
                 deflection_interval,
-                q_compensated: qc,
-                residual_position: ep,
-                residual_rotation: eo,
-                iterations,
+                q_compensated: newton.q,
+                residual_position: newton.residual_position,
+                residual_rotation: newton.residual_rotation,
+                iterations: newton.iterations,
+                stop: newton.stop,
                 tool_rotation: c.rotations[i],
                 deflection_before,
                 q_before: free.then_some(c.nominal[i]),
@@ -310,9 +315,12 @@ fn first_error<T>(results: Vec<Result<T>>) -> Result<Vec<T>> {
     Ok(out)
 }
 
-fn check_compensated(arm: &Arm, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) -> Result<()> {
+/// Refuses a point compensated outside the joint limits, or whose Newton steps stopped with a
+/// residual above [`REQUIRED_M`] or [`REQUIRED_RAD`].
+fn check_compensated(arm: &Arm, line: u64, newton: &Newton) -> Result<()> {
     let robot = &arm.robot();
-    if let Some(v) = robot.limits().first_violation(qc) {
+    let (ep, eo) = (newton.residual_position, newton.residual_rotation);
+    if let Some(v) = robot.limits().first_violation(&newton.q) {
         return Err(uncompensated(
             line,
             "q_compensated",
@@ -330,9 +338,11 @@ fn check_compensated(arm: &Arm, line: u64, qc: &Vector6<f64>, ep: f64, eo: f64) 
             line,
             "q_compensated",
             format!(
-                "the compensation did not converge: residual {:.3} um and {:.3} urad after {MAX_ITERATIONS} steps (near a singularity?)",
+                "the compensation did not converge: residual {:.3} um and {:.3} urad after {} Newton steps ({}; near a singularity?)",
                 ep * 1e6,
-                eo * 1e6
+                eo * 1e6,
+                newton.iterations,
+                newton.stop
             ),
         ));
     }

@@ -21,6 +21,7 @@
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
+use crate::common::stop::Stop;
 use crate::common::warning::{Warning, WarningKind};
 use crate::math::linalg::CappedSvd;
 use crate::metrology::register::Correspondence;
@@ -36,45 +37,24 @@ pub const MAX_READINGS: usize = 100_000;
 /// The scaled step length below which the fit has converged.
 pub const STEP_TOLERANCE: f64 = 1e-13;
 
-/// Why the Levenberg-Marquardt iterations stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Termination {
-    /// An accepted step shorter than [`STEP_TOLERANCE`] (scaled, times one plus the number of
-    /// parameters fitted).
-    Converged,
-    /// An accepted step lowered the cost by at most `1e-15` of it: a minimum within rounding.
-    Stalled,
-    /// No damping of 30 tried (each ten times the last) lowered the cost: a minimum within
-    /// rounding, where every step's change is below the cost's rounding.
-    DampingExhausted,
-    /// [`MAX_ITERATIONS`] taken with the cost still falling: not converged, a warning says so.
-    IterationLimit,
-}
-
-impl Termination {
-    /// The stop reason's name in documents: `converged`, `stalled`, `damping-exhausted` or
-    /// `iteration-limit`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Termination::Converged => "converged",
-            Termination::Stalled => "stalled",
-            Termination::DampingExhausted => "damping-exhausted",
-            Termination::IterationLimit => "iteration-limit",
-        }
-    }
-
-    /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit
-    /// (`iterations`) with the cost still falling: the calibration may still move.
-    pub fn warning(self, iterations: usize) -> Option<Warning> {
-        (self == Termination::IterationLimit).then(|| {
-            Warning::new(
-                WarningKind::NotConverged,
-                format!(
-                    "the calibration's Levenberg-Marquardt fit stopped at its limit of {iterations} iterations with the residuals still falling: its parameters may still move; read more varied postures or give tolerances"
-                ),
-            )
-        })
-    }
+/// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
+/// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
+///
+/// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than
+/// [`STEP_TOLERANCE`] (scaled, times one plus the number of parameters fitted);
+/// [`Stop::Stalled`], an accepted step lowered the cost by at most `1e-15` of it;
+/// [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the last) lowered the cost:
+/// both minima within rounding; [`Stop::IterationLimit`], [`MAX_ITERATIONS`] taken with the cost
+/// still falling.
+pub fn stop_warning(stop: Stop, iterations: usize) -> Option<Warning> {
+    (stop == Stop::IterationLimit).then(|| {
+        Warning::new(
+            WarningKind::NotConverged,
+            format!(
+                "the calibration's Levenberg-Marquardt fit stopped at its limit of {iterations} iterations with the residuals still falling: its parameters may still move; read more varied postures or give tolerances"
+            ),
+        )
+    })
 }
 
 /// Nominal tolerances of the joint errors, as Gaussian priors.
@@ -125,8 +105,8 @@ pub struct Fit {
     pub sigma: f64,
     /// Iterations taken.
     pub iterations: usize,
-    /// Why the iterations stopped.
-    pub termination: Termination,
+    /// Why the iterations stopped ([`stop_warning`] lists the reasons).
+    pub stop: Stop,
 }
 
 /// Fits `model` to `observations` from `start` (module docs).
@@ -194,8 +174,8 @@ pub(super) fn fit_within(
         noise: options.priors.map(|p| p.noise),
         nominal: model.nominal(),
     };
-    let (estimate, iterations, termination) = problem.minimise(start.recentre(), limit)?;
-    problem.finish(estimate, identifiability, iterations, termination)
+    let (estimate, iterations, stop) = problem.minimise(start.recentre(), limit)?;
+    problem.finish(estimate, identifiability, iterations, stop)
 }
 
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
@@ -365,7 +345,7 @@ impl Problem<'_> {
         .recentre()
     }
 
-    fn minimise(&self, mut e: Estimate, limit: usize) -> Result<(Estimate, usize, Termination)> {
+    fn minimise(&self, mut e: Estimate, limit: usize) -> Result<(Estimate, usize, Stop)> {
         let mut r = self.residuals(&e)?;
         let mut cost = r.norm_squared();
         let mut lambda = 1e-9;
@@ -394,20 +374,20 @@ impl Problem<'_> {
                     lambda = (lambda / 10.0).max(1e-12);
                     accepted = true;
                     if small {
-                        return Ok((e, iteration, Termination::Converged));
+                        return Ok((e, iteration, Stop::Converged));
                     }
                     if stalled {
-                        return Ok((e, iteration, Termination::Stalled));
+                        return Ok((e, iteration, Stop::Stalled));
                     }
                     break;
                 }
                 lambda *= 10.0;
             }
             if !accepted {
-                return Ok((e, iteration, Termination::DampingExhausted));
+                return Ok((e, iteration, Stop::DampingExhausted));
             }
         }
-        Ok((e, limit, Termination::IterationLimit))
+        Ok((e, limit, Stop::IterationLimit))
     }
 
     fn finish(
@@ -415,7 +395,7 @@ impl Problem<'_> {
         estimate: Estimate,
         identifiability: Identifiability,
         iterations: usize,
-        termination: Termination,
+        stop: Stop,
     ) -> Result<Fit> {
         let r_all = self.residuals(&estimate)?;
         let data = 3 * self.observations.len();
@@ -453,7 +433,7 @@ impl Problem<'_> {
             rms,
             sigma,
             iterations,
-            termination,
+            stop,
         })
     }
 }

@@ -240,7 +240,7 @@ pub struct Robust {
     /// Whether the weights converged.
     pub converged: bool,
     /// Why the reweighting stopped: `converged` or `iteration-limit` (a warning says so).
-    pub stop_reason: &'static str,
+    pub stop_reason: crate::common::stop::Stop,
     /// Every row with a weight below 1.
     pub down_weighted: Vec<Row>,
 }
@@ -515,7 +515,7 @@ impl Robust {
             scale_mm: mm(fit.scale),
             iterations: fit.iterations,
             converged: fit.converged(),
-            stop_reason: fit.stop.name(),
+            stop_reason: fit.stop,
             down_weighted: fit
                 .down_weighted()
                 .into_iter()
