@@ -53,6 +53,7 @@ mod program_forms;
 mod program_frames;
 mod programs;
 mod register_postures;
+mod robot_masses;
 mod scene;
 mod search;
 mod setup_builder;
