@@ -141,14 +141,16 @@ pub const MAX_LEVELS: usize = 20;
 pub const MAX_RUNS: u64 = 100_000;
 
 /// Most resamples of the model comparison's bootstrap (`--bootstrap`): each redoes the whole
-/// forward selection.
-pub const MAX_BOOTSTRAP: u64 = 10_000;
+/// forward selection (about 25 ms of CPU on the FANUC data set: 2000 take about 25 s on two
+/// cores).
+pub const MAX_BOOTSTRAP: u64 = 2000;
 
 /// Most local searches of a global search (`--starts`).
 pub const MAX_STARTS: u64 = 10_000;
 
-/// Most start groups of the start-group check of `stiffid reproduce` (`--trials`).
-pub const MAX_TRIALS: u64 = 10_000;
+/// Most start groups of the start-group check of `stiffid reproduce` (`--trials`): two local
+/// searches each (about 20 ms of CPU: 2000 take about 20 s on two cores).
+pub const MAX_TRIALS: u64 = 2000;
 
 /// Most postures a search chooses (`--postures`): 6 variables each, and SQP's memory grows with
 /// their square.
