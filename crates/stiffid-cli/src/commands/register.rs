@@ -33,7 +33,7 @@ pub struct Args {
     /// Candidate postures drawn in the bounds for --postures [default: 20000; 1 to 100000].
     #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
-    /// Exchange runs of --postures, 1 to 1000 [default: 8].
+    /// Exchange runs of --postures, 1 to 50 [default: 8].
     #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }

@@ -107,7 +107,8 @@ struct Truth {
 /// ([`evaluate`]).
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`]; [`Error::MissingField`]
+/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`], or groups x noise levels
+/// x runs over [`limits::MAX_SIMULATED_RUNS`]; [`Error::MissingField`]
 /// for a setup without a nominal stiffness (the true stiffness of the simulation); the errors of
 /// [`Factor::try_new`] (for example [`Error::Unidentifiable`]) for a group whose observation
 /// matrix cannot identify every joint.
@@ -173,10 +174,19 @@ pub fn monte_carlo_with_predictions(
         .map(|g| prepare(setup, g, &truth))
         .collect::<Result<Vec<_>>>()?;
     let runs = options.runs;
-    progress.begin(
-        "Monte Carlo identification",
-        groups.len() * setup.noise().levels.len() * runs,
-    );
+    let total = groups.len() * setup.noise().levels.len() * runs;
+    if total as u64 > limits::MAX_SIMULATED_RUNS {
+        return Err(Error::InvalidField {
+            field: "runs".into(),
+            message: format!(
+                "{runs} runs x {} noise levels x {} groups = {total} identifications, more than {:.0e}: give fewer runs",
+                setup.noise().levels.len(),
+                groups.len(),
+                limits::MAX_SIMULATED_RUNS as f64
+            ),
+        });
+    }
+    progress.begin("Monte Carlo identification", total);
     let tally = Tally::new(progress);
     let simulations = prepared
         .iter()

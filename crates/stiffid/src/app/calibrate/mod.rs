@@ -14,7 +14,7 @@
 pub mod document;
 mod maps;
 
-pub use maps::Maps;
+pub use maps::{Maps, MAX_MAP_WORK};
 
 use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
@@ -265,7 +265,11 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     progress.begin("joint error maps", 0);
     let mapped = maps::fit_maps(request.maps, model, fitted, &obs, options);
     progress.end();
-    let (model, fitted, options, maps) = mapped.map_err(|e| in_data(name, e))?;
+    let (model, fitted, options, maps) = mapped.map_err(|e| match e {
+        // Too many maps for the readings is the option's error, not the data's.
+        e @ crate::Error::InvalidOption { .. } => e,
+        e => in_data(name, e),
+    })?;
     let start = match model.map_start() {
         Some(_) => fit::start(&model, &obs).map_err(|e| in_data(name, e))?,
         None => start,
