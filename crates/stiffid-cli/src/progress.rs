@@ -1,5 +1,6 @@
 //! Progress on stderr for the library's long jobs ([`stiffid::Progress`]): a bar per stage with a
-//! total, a spinner for a stage without one; hidden when stderr is not a terminal.
+//! total, a spinner with the count done for a stage without one; hidden when stderr is not a
+//! terminal.
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::sync::Mutex;
@@ -26,10 +27,17 @@ impl Bars {
 }
 
 impl Progress for Bars {
+    /// Ends the current stage, if one is still open (a front end's spinner for a whole job,
+    /// replaced by the job's own stages), then begins `what`.
     fn begin(&self, what: &str, total: usize) {
+        self.end();
         let bar = match total {
             0 => {
-                let bar = ProgressBar::new_spinner().with_message(what.to_string());
+                let style = ProgressStyle::with_template("{spinner} {msg} {pos} {elapsed}")
+                    .expect("valid template");
+                let bar = ProgressBar::new_spinner()
+                    .with_style(style)
+                    .with_message(what.to_string());
                 bar.enable_steady_tick(Duration::from_millis(100));
                 self.lines.add(bar)
             }

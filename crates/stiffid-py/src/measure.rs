@@ -298,7 +298,7 @@ fn labels(origin: &Origin) -> Option<Vec<String>> {
 /// ``added``, ``springs``, ``parameters``, ``in_sample_explained``, ``held_out_explained``,
 /// ``held_out_rms_delta_b_mm``, ``aic``, ``bic``, ``noise_ratio``, ``physical``, ``identified``,
 /// ``recommended``; NaN where the document has ``null``) and ``fragment`` (the recommended
-/// model as a ``[model]`` fragment for ``Setup.with_model``). ``bootstrap=N`` (1 to 10000)
+/// model as a ``[model]`` fragment for ``Setup.with_model``). ``bootstrap=N`` (1 to 2000)
 /// adds the posture bootstrap (``stiffid identify --compare-models --bootstrap N --seed S``):
 /// postures drawn with replacement (``seed``, default 1, only with ``bootstrap``; the same result
 /// whatever the thread count), the

@@ -35,7 +35,7 @@ REFUSED = [
     (["--compare-models", "--seed", "3"], dict(compare_models=True, seed=3),
      "seed: only with bootstrap"),
     (["--compare-models", "--bootstrap", "0"], dict(compare_models=True, bootstrap=0),
-     "bootstrap: 0 resamples: expected 1 to 10000"),
+     "bootstrap: 0 resamples: expected 1 to 2000"),
 ]
 
 

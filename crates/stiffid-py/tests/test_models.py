@@ -79,10 +79,10 @@ def test_compare_models_bootstrap_is_the_commands_document(fanuc, cli):
 
 
 def test_compare_models_bootstrap_refusals(fanuc):
-    with pytest.raises(ValueError, match="bootstrap: 0 resamples: expected 1 to 10000"):
+    with pytest.raises(ValueError, match="bootstrap: 0 resamples: expected 1 to 2000"):
         stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=0)
-    with pytest.raises(ValueError, match="bootstrap: 10001 resamples: expected 1 to 10000"):
-        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=10001)
+    with pytest.raises(ValueError, match="bootstrap: 2001 resamples: expected 1 to 2000"):
+        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=2001)
     with pytest.raises(ValueError, match="bootstrap: only with compare_models"):
         stiffid.identify(fanuc, FANUC_DATA, bootstrap=10)
     with pytest.raises(ValueError, match="seed: only with bootstrap"):

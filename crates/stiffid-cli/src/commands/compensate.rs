@@ -6,6 +6,7 @@ use crate::commands::common::choice;
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
 use crate::output::{self, print, write_stdout_with, OutFile, Writer};
+use crate::progress::Bars;
 use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
@@ -21,7 +22,7 @@ use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::Language;
 use stiffid::observation::deflection::Frame;
-use stiffid::{Error, Setup};
+use stiffid::{Error, Progress, Setup};
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -183,13 +184,18 @@ pub fn run(args: &Args) -> Result<()> {
         input,
         options,
     };
+    // The points are counted as they come (a program's are known only once its arcs are split).
+    let bars = Bars::new(false);
+    bars.begin("points compensated", 0);
     let report = match job::run(request, |first, p, r, d| {
+        bars.advance(first + p.len());
         sinks.write(first, p, r, d).map_err(Failure::Output)
     }) {
         Ok(report) => report,
         Err(Failure::Output(e)) => return Err(e),
         Err(Failure::Library(e)) => return Err(e.into()),
     };
+    bars.end();
     output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
     csv.sync()?;

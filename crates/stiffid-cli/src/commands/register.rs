@@ -6,10 +6,12 @@
 
 use crate::commands::cell_readings::{self, three, Outcome};
 use crate::output::print_json_or;
+use crate::progress::Bars;
 use anyhow::Result;
 use stiffid::app::register as job;
 use stiffid::app::register::document::{Document, Proposal};
 use stiffid::design::registration as design;
+use stiffid::Progress;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
 /// gets the `[tracker] base_from_tracker` fragment. Or `--postures N` proposes the postures to
@@ -31,7 +33,7 @@ pub struct Args {
     /// Candidate postures drawn in the bounds for --postures [default: 20000; 1 to 100000].
     #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
-    /// Exchange runs of --postures, 1 to 1000 [default: 8].
+    /// Exchange runs of --postures, 1 to 50 [default: 8].
     #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }
@@ -69,7 +71,12 @@ fn propose(args: &Args, setup: &stiffid::Setup, n: usize) -> Result<()> {
         },
         force: args.readings.force,
     };
-    let report = job::propose(&request)?;
+    // The exchange runs report nothing as they go: a spinner says the choice is running.
+    let bars = Bars::new(false);
+    bars.begin("registration postures", 0);
+    let report = job::propose(&request);
+    bars.end();
+    let report = report?;
     let document = Proposal::new(&report, &args.readings.common.setup);
     if let Some(out) = &out {
         out.write(document.readings_template.as_bytes())?;

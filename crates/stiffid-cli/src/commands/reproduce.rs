@@ -33,7 +33,7 @@ pub struct Args {
     #[arg(long, default_value_t = DEFAULT_STARTS as u64, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     starts: u64,
     /// Start groups of the start-group check (the paper's local searches from other seeded start
-    /// groups; 0 skips it) [0 to 10000].
+    /// groups; 0 skips it) [0 to 2000].
     #[arg(long, default_value_t = DEFAULT_TRIALS as u64, value_parser = clap::value_parser!(u64).range(0..=limits::MAX_TRIALS))]
     trials: u64,
     /// SQP of every search: auto (per criterion: active-set on the global relative-a and d-optimal

@@ -5,6 +5,7 @@
 use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, ReportDir};
+use crate::progress::Bars;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 use stiffid::app::simulate::document::{deviation_csv, Document};
@@ -69,7 +70,7 @@ pub fn run(args: &Args) -> Result<()> {
             seed: args.seed,
         },
     };
-    let report = job::run(&request)?;
+    let report = job::run_with_progress(&request, &Bars::new(false))?;
     output::warnings(&report.warnings);
     let doc = Document::new(&report, &setup);
     let (sims, levels) = (&report.simulations, &setup.noise().levels);

@@ -261,7 +261,7 @@ fn every_count_has_a_limit_named_in_the_message() {
         ),
         (&simulate, "--runs", "1000000000", "1000000000"),
         (&reproduce, "--runs", "4611686018427387904", "1..=100000"),
-        (&reproduce, "--trials", "1000000000", "0..=10000"),
+        (&reproduce, "--trials", "1000000000", "0..=2000"),
         (&reproduce, "--starts", "1000000000", "1..=10000"),
         (&global, "--starts", "1000000000", "1000000000"),
         (&random, "--postures", "1000000000", "2..=100"),
@@ -1017,7 +1017,7 @@ fn compare_models_refuses_offsets_and_too_few_postures() {
     );
 }
 
-/// `--bootstrap` needs `--compare-models` and takes 1 to 10000 resamples; `--seed` needs
+/// `--bootstrap` needs `--compare-models` and takes 1 to 2000 resamples; `--seed` needs
 /// `--bootstrap`. Each refusal names the option.
 #[test]
 fn bootstrap_is_refused_out_of_range_or_without_compare_models() {
@@ -1034,12 +1034,12 @@ fn bootstrap_is_refused_out_of_range_or_without_compare_models() {
     refused(
         &dir,
         &[&compare[..], &["--bootstrap", "0"]].concat(),
-        &["--bootstrap: 0 resamples: expected 1 to 10000"],
+        &["--bootstrap: 0 resamples: expected 1 to 2000"],
     );
     refused(
         &dir,
-        &[&compare[..], &["--bootstrap", "10001"]].concat(),
-        &["--bootstrap: 10001 resamples: expected 1 to 10000"],
+        &[&compare[..], &["--bootstrap", "2001"]].concat(),
+        &["--bootstrap: 2001 resamples: expected 1 to 2000"],
     );
     refused(
         &dir,

@@ -415,3 +415,102 @@ fn test_pose_without_test_postures_is_not_computed() {
     let text = String::from_utf8(stiffid(&args).stdout).unwrap();
     assert!(text.contains("test-pose    not computed"), "{text}");
 }
+
+/// The joint error maps' choice has a bound on its work (readings x map coefficients^2): fixed
+/// maps beyond it are refused naming `--maps` before they are chosen, `--maps auto` beyond it
+/// fits no map and says why; within it the maps are chosen.
+#[test]
+fn joint_error_maps_beyond_their_work_bound_are_refused_or_skipped() {
+    use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
+    use nalgebra::{Isometry3, Vector3};
+    let d = temp_dir("maps-work");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    // 250 postures of 4 points: 1000 readings x 768^2 coefficients = 5.9e8 > 5e8.
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(250, 3)),
+    );
+    let data = data.to_str().unwrap();
+    let all64 = "J1:64,J2:64,J3:64,J4:64,J5:64,J6:64";
+    let args = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data,
+        "--maps",
+        all64,
+    ];
+    let line = refused(
+        &d,
+        &args,
+        &["--maps", all64, "1000 readings x 768^2", "5e8"],
+    );
+    assert!(line.contains("fewer joints or harmonics"), "{line}");
+    // The same readings with fewer harmonics (1000 x 32^2) are fitted.
+    let args = ["calibrate", "--setup", SETUP, "--data", data, "--json"];
+    let v = json(&stiffid(&[&args[..], &["--maps", "J2:8,J3:8"]].concat()));
+    assert_eq!(v["maps"]["asked"], "J2:8,J3:8");
+    assert!(v["maps"]["skipped"].is_null() && v["maps"]["nested"].is_object());
+    // 900 postures: 3600 readings x 384^2 = 5.3e8: auto fits none, and says why.
+    let many = write_file(
+        &d,
+        "many.csv",
+        &readings(&model, &x, &tracker, &postures(900, 4)),
+    );
+    let args = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        many.to_str().unwrap(),
+        "--json",
+    ];
+    let v = json(&stiffid(&args));
+    assert_eq!(v["maps"]["chosen"], "none");
+    let why = v["maps"]["skipped"].as_str().unwrap();
+    assert!(
+        why.starts_with("3600 readings x 384^2 map coefficients = 5.308e8"),
+        "{why}"
+    );
+}
+
+/// A simulation's identifications (groups x noise levels x runs) are bounded: 2e8 is refused
+/// naming `--runs` before any run.
+#[test]
+fn a_simulation_beyond_its_identifications_bound_is_refused() {
+    let d = temp_dir("simulation-work");
+    let text = std::str::from_utf8(&stiffid(&["setups", "show", "zhang2021-comau-nj165"]).stdout)
+        .unwrap()
+        .to_string();
+    let levels = (1..=20)
+        .map(|l| format!("{}", l as f64 * 0.25))
+        .collect::<Vec<_>>();
+    let from = "level_multiples = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]";
+    assert!(text.contains(from));
+    let setup = text.replace(from, &format!("level_multiples = [{}]", levels.join(", ")));
+    let setup = write_file(&d, "setup.toml", &setup);
+    let group = write_file(&d, "group.csv", GROUP);
+    let group = group.to_str().unwrap();
+    let mut args = vec![
+        "simulate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--runs",
+        "100000",
+    ];
+    args.push("--postures");
+    args.extend([group; 100]);
+    refused(
+        &d,
+        &args,
+        &[
+            "runs",
+            "100000 runs x 20 noise levels x 100 groups = 200000000",
+            "1e8",
+        ],
+    );
+}

@@ -221,7 +221,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
 /// The links' masses, centres and inertia tensors of `mass_kg`, `com_mm` (every joint or none)
 /// and `inertia_kg_m2` (optional, zero without it), each mass within [`limits::MASS_KG`], centre
 /// within [`limits::LENGTH_MM`], tensor component within [`limits::INERTIA_KG_M2`] and tensor
-/// physical ([`super::dynamics::body::physical`]).
+/// physical ([`super::dynamics::body::physical`]; zero for a massless link).
 fn masses(joints: &[JointRow], source_name: &str) -> Result<Option<[LinkMass; 6]>> {
     let given = joints.iter().filter(|j| j.mass_kg.is_some()).count();
     let centres = joints.iter().filter(|j| j.com_mm.is_some()).count();
@@ -251,6 +251,13 @@ fn masses(joints: &[JointRow], source_name: &str) -> Result<Option<[LinkMass; 6]
         let inertia = super::dynamics::body::tensor(six);
         super::dynamics::body::physical(&inertia)
             .map_err(|m| invalid(source_name, field("inertia_kg_m2"), &m))?;
+        if mass == 0.0 && six.iter().any(|v| *v != 0.0) {
+            return Err(invalid(
+                source_name,
+                field("inertia_kg_m2"),
+                "expected zeros for a link of mass_kg = 0 (a body without mass has no inertia)",
+            ));
+        }
         out[i] = LinkMass {
             mass,
             centre: nalgebra::Vector3::from(com.map(|v| v * 1e-3)),

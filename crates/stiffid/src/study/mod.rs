@@ -164,7 +164,7 @@ pub struct Study {
 /// busy; the same options give the same study whatever the thread count.
 ///
 /// `progress` hears two stages: `searches` (one unit per local search and per global search's
-/// start) and the Monte Carlo identification.
+/// start) and `Monte Carlo identification` (one unit per run: groups x levels x runs).
 ///
 /// # Errors
 /// [`crate::Error::InvalidField`] for `runs`, `starts` or `trials` outside their limits
@@ -217,7 +217,6 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
     };
     let (found, trials) = search_all(setup, options, &search, progress)?;
     let evaluations: Vec<Evaluation> = found.iter().map(|(_, p, _)| evaluate(setup, p)).collect();
-    progress.begin("Monte Carlo identification", 1);
     let sims = monte_carlo_with_predictions(
         setup,
         &found.iter().map(|(_, p, _)| p.clone()).collect::<Vec<_>>(),
@@ -229,8 +228,8 @@ pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<
             runs: options.runs,
             seed: options.seed,
         },
+        progress,
     )?;
-    progress.end();
     let validation_level = nearest_level(&setup.noise().levels, 1.0);
     let test_deflection: Vec<Vec<Vector3<f64>>> = setup
         .test_postures()

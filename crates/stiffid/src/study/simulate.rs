@@ -22,6 +22,7 @@
 //! Every run draws its noise from its own generator, seeded from `(seed, group, level, run)`, and the
 //! sums are taken in run order, so the result is the same whatever the number of threads.
 
+use crate::common::progress::{Progress, Tally};
 use crate::design::criteria::evaluate;
 use crate::identify::svd::identifiability;
 use crate::math::lsq::Factor;
@@ -106,7 +107,8 @@ struct Truth {
 /// ([`evaluate`]).
 ///
 /// # Errors
-/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`]; [`Error::MissingField`]
+/// [`Error::InvalidField`] for `runs` outside 1 to [`limits::MAX_RUNS`], or groups x noise levels
+/// x runs over [`limits::MAX_SIMULATED_RUNS`]; [`Error::MissingField`]
 /// for a setup without a nominal stiffness (the true stiffness of the simulation); the errors of
 /// [`Factor::try_new`] (for example [`Error::Unidentifiable`]) for a group whose observation
 /// matrix cannot identify every joint.
@@ -115,18 +117,32 @@ pub fn monte_carlo(
     groups: &[Vec<Vector6<f64>>],
     options: &Options,
 ) -> Result<Vec<GroupSimulation>> {
+    monte_carlo_reporting(setup, groups, options, &())
+}
+
+/// [`monte_carlo`], reporting to `progress` as [`monte_carlo_with_predictions`] does.
+///
+/// # Errors
+/// As [`monte_carlo`].
+pub fn monte_carlo_reporting(
+    setup: &Setup,
+    groups: &[Vec<Vector6<f64>>],
+    options: &Options,
+    progress: &dyn Progress,
+) -> Result<Vec<GroupSimulation>> {
     check_runs(options)?;
     let predicted: Vec<Vec<[f64; 6]>> = groups
         .iter()
         .map(|g| evaluate(setup, g).predicted_deviation_pct)
         .collect();
-    monte_carlo_with_predictions(setup, groups, &predicted, options)
+    monte_carlo_with_predictions(setup, groups, &predicted, options, progress)
 }
 
 /// [`monte_carlo`] with the first-order predictions already at hand (for example from the groups'
 /// [`crate::design::Evaluation`]s): `predicted[g]` is group `g`'s
 /// [`crate::design::Evaluation::predicted_deviation_pct`], percent, \[levels\]\[6\], copied into its
-/// result as is.
+/// result as is. `progress` hears one stage, `Monte Carlo identification`, one unit per run
+/// (groups x levels x runs).
 ///
 /// # Errors
 /// As [`monte_carlo`]; [`Error::InvalidField`] when `predicted` does not hold one entry per group.
@@ -135,6 +151,7 @@ pub fn monte_carlo_with_predictions(
     groups: &[Vec<Vector6<f64>>],
     predicted: &[Vec<[f64; 6]>],
     options: &Options,
+    progress: &dyn Progress,
 ) -> Result<Vec<GroupSimulation>> {
     check_runs(options)?;
     let needed_by = "the simulation (the true stiffness)";
@@ -157,20 +174,36 @@ pub fn monte_carlo_with_predictions(
         .map(|g| prepare(setup, g, &truth))
         .collect::<Result<Vec<_>>>()?;
     let runs = options.runs;
-    Ok(prepared
+    let total = groups.len() * setup.noise().levels.len() * runs;
+    if total as u64 > limits::MAX_SIMULATED_RUNS {
+        return Err(Error::InvalidField {
+            field: "runs".into(),
+            message: format!(
+                "{runs} runs x {} noise levels x {} groups = {total} identifications, more than {:.0e}: give fewer runs",
+                setup.noise().levels.len(),
+                groups.len(),
+                limits::MAX_SIMULATED_RUNS as f64
+            ),
+        });
+    }
+    progress.begin("Monte Carlo identification", total);
+    let tally = Tally::new(progress);
+    let simulations = prepared
         .iter()
         .zip(predicted)
         .zip(groups)
         .enumerate()
         .map(|(g, ((group, predicted), postures))| {
-            let stiffness = group_runs(setup, group, g, options);
+            let stiffness = group_runs(setup, group, g, options, &tally);
             let mut sim = summarise(&truth.drives, &stiffness, runs, predicted.clone());
             if !setup.model().is_drives_only() {
                 add_springs(&mut sim, setup, postures, &truth, &stiffness, runs);
             }
             sim
         })
-        .collect())
+        .collect();
+    progress.end();
+    Ok(simulations)
 }
 
 /// The virtual springs' deviation rates, mean stiffness and first-order predictions of one
@@ -217,7 +250,13 @@ fn add_springs(
 
 /// The identified stiffness of every run of group `g`, level-major: one group at a time, so the
 /// memory held is `levels x runs` results whatever the number of groups.
-fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> Vec<Vec<f64>> {
+fn group_runs(
+    setup: &Setup,
+    group: &Prepared,
+    g: usize,
+    options: &Options,
+    tally: &Tally,
+) -> Vec<Vec<f64>> {
     let runs = options.runs;
     let weights = StepWeights::new(setup.load().load, setup.load_steps());
     (0..setup.noise().levels.len() * runs)
@@ -231,7 +270,9 @@ fn group_runs(setup: &Setup, group: &Prepared, g: usize, options: &Options) -> V
             };
             let sigma = (variance * setup.noise().levels[l]).sqrt();
             let mut rng = ChaCha8Rng::seed_from_u64(run_seed(options.seed, g, l, r));
-            identify_once(group, sigma, weights.as_ref(), &mut rng)
+            let stiffness = identify_once(group, sigma, weights.as_ref(), &mut rng);
+            tally.add(1);
+            stiffness
         })
         .collect()
 }

@@ -49,7 +49,7 @@ fn run_bootstrap(
     let candidates = setup.candidate_springs().to_vec();
     let c = compare(setup, data, &candidates, false).unwrap();
     let resampling = Resampling { resamples, seed };
-    let b = bootstrap(setup, data, &candidates, &c, resampling).unwrap();
+    let b = bootstrap(setup, data, &candidates, &c, resampling, &()).unwrap();
     (c, b)
 }
 
@@ -219,17 +219,50 @@ fn resamples_that_cannot_identify_the_model_are_counted() {
 /// The number of resamples is checked: 0 and more than the limit are refused, naming the option.
 #[test]
 fn the_number_of_resamples_is_limited() {
-    for resamples in [0, 10_001] {
+    for resamples in [0, 2001] {
         let err = Resampling { resamples, seed: 1 }.check().unwrap_err();
         assert_eq!(
             err.to_string(),
-            format!("bootstrap: {resamples} resamples: expected 1 to 10000")
+            format!("bootstrap: {resamples} resamples: expected 1 to 2000")
         );
     }
     assert!(Resampling {
-        resamples: 10_000,
+        resamples: 2000,
         seed: 1
     }
     .check()
     .is_ok());
+}
+
+/// The bootstrap reports one unit per resample, in one stage.
+#[test]
+fn the_bootstrap_reports_each_resample_as_progress() {
+    #[derive(Default)]
+    struct Heard(std::sync::Mutex<Vec<(String, usize, usize)>>);
+    impl stiffid::Progress for Heard {
+        fn begin(&self, what: &str, total: usize) {
+            self.0.lock().unwrap().push((what.into(), total, 0));
+        }
+        fn advance(&self, done: usize) {
+            let mut stages = self.0.lock().unwrap();
+            let last = stages.last_mut().expect("advance inside a stage");
+            last.2 = last.2.max(done);
+        }
+    }
+    let (_, declared, data) = simulated(0);
+    let heard = Heard::default();
+    let request = Request::<Empty> {
+        setup: &declared,
+        data: Data::Measurements(data),
+        options: Options {
+            compare_models: true,
+            candidates: Some(vec!["declared".to_string()]),
+            bootstrap: Some(12),
+            seed: Some(3),
+            ..Options::default()
+        },
+    };
+    stiffid::app::identify::run_with_progress(request, &heard).unwrap();
+    let stages = heard.0.into_inner().unwrap();
+    assert_eq!(stages, [("bootstrap resamples".to_string(), 12, 12)]);
 }

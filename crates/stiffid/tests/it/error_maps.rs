@@ -123,3 +123,25 @@ fn a_bad_error_map_is_refused_naming_the_joint() {
     let e = file::parse(&huge, "huge.toml").unwrap_err().to_string();
     assert!(e.contains("within 10 deg"), "{e}");
 }
+
+#[test]
+fn a_maps_list_gives_each_joint_once_in_digits() {
+    use stiffid::metrology::calibration::maps::Spec;
+    let fixed = Spec::parse("J2, j3:8").unwrap();
+    assert_eq!(fixed, Spec::Fixed([0, 16, 8, 0, 0, 0]));
+    // A joint named twice would silently keep the last count.
+    for twice in ["J1,J1:16", "J1:8,J1:16", "J3,j3"] {
+        let e = Spec::parse(twice).unwrap_err().to_string();
+        assert!(
+            e.starts_with("maps: ") && e.contains("twice"),
+            "{twice}: {e}"
+        );
+    }
+    // Signs, leading zeros and exponents are not a joint or a count.
+    for odd in [
+        "J+1", "J01", "J1:+4", "J1:08", "J1:1e1", "J1:4.0", "J1:0", "J1:65",
+    ] {
+        let e = Spec::parse(odd).unwrap_err().to_string();
+        assert!(e.starts_with("maps: ") && e.contains(odd), "{odd}: {e}");
+    }
+}

@@ -54,6 +54,7 @@ mod program_frames;
 mod programs;
 mod register_postures;
 mod register_robot_error;
+mod robot_masses;
 mod scene;
 mod search;
 mod setup_builder;

@@ -121,14 +121,19 @@ fn predictions_given_are_kept_and_must_match_the_groups() {
     let options = Options { runs: 20, seed: 4 };
     let own = &monte_carlo(&setup, &[group()], &options).unwrap()[0];
     let given = vec![[1.0; 6]; setup.noise().levels.len()];
-    let with =
-        &monte_carlo_with_predictions(&setup, &[group()], std::slice::from_ref(&given), &options)
-            .unwrap()[0];
+    let with = &monte_carlo_with_predictions(
+        &setup,
+        &[group()],
+        std::slice::from_ref(&given),
+        &options,
+        &(),
+    )
+    .unwrap()[0];
     // The runs are the same; only the prediction is the one given.
     assert_eq!(with.mean_deviation_pct, own.mean_deviation_pct);
     assert_eq!(with.predicted_deviation_pct, given);
-    let e =
-        monte_carlo_with_predictions(&setup, &[group(), group()], &[given], &options).unwrap_err();
+    let e = monte_carlo_with_predictions(&setup, &[group(), group()], &[given], &options, &())
+        .unwrap_err();
     assert!(
         e.to_string()
             .contains("one prediction per group (2), got 1"),

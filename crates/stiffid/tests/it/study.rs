@@ -169,8 +169,9 @@ fn a_small_study_on_the_paper_setup_reports_its_stages_and_repeats_itself() {
     let progress = Recorder::default();
     let s = study::run(&setup, &options, &progress).unwrap();
     let stages = progress.0.into_inner().unwrap();
-    // One stage for every search: 2 trials x 2 local searches, 2 global searches x 2 starts.
-    let expected = [("searches", 8, 8), ("Monte Carlo identification", 1, 0)];
+    // One stage for every search: 2 trials x 2 local searches, 2 global searches x 2 starts;
+    // one unit per Monte Carlo run: 5 groups x 6 noise levels x 10 runs.
+    let expected = [("searches", 8, 8), ("Monte Carlo identification", 300, 300)];
     let got: Vec<(&str, usize, usize)> = stages
         .iter()
         .map(|(w, t, d)| (w.as_str(), *t, *d))

@@ -6,12 +6,14 @@
 use crate::commands::common::{choice, Common};
 use crate::load;
 use crate::output::{self, json, OutFile};
+use crate::progress::Bars;
 use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::identify::document::{drives, springs};
 use stiffid::app::identify::{self as job, Data, Options, Report, Request};
 use stiffid::identify::Loss;
+use stiffid::Progress;
 
 mod models;
 mod text;
@@ -62,7 +64,7 @@ pub struct Args {
     /// duplicating another are left out, with the reason.
     #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,
-    /// With `--compare-models`: N posture bootstrap resamples (1 to 10000), the whole selection
+    /// With `--compare-models`: N posture bootstrap resamples (1 to 2000), the whole selection
     /// redone on each; reports how often each parameter is chosen and the spread of its
     /// stiffness over the models chosen.
     #[arg(long, value_name = "N")]
@@ -106,14 +108,20 @@ pub fn run(args: &Args) -> Result<()> {
         .as_deref()
         .map(identification::open)
         .transpose()?;
-    let report = job::run(Request {
+    let bars = Bars::new(false);
+    let request = Request {
         setup: &setup,
         data: Data::File {
             name: args.data.display().to_string(),
             reader,
         },
         options,
-    })?;
+    };
+    // A spinner for the whole job, replaced by the bootstrap's bar when there is one.
+    bars.begin("identification", 0);
+    let report = job::run_with_progress(request, &bars);
+    bars.end();
+    let report = report?;
     output::warnings(report.warnings());
     let name = &args.common.setup;
     // The document's JSON is its form's (the document is untagged).

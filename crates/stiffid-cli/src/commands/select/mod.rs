@@ -51,7 +51,7 @@ pub struct Args {
     /// setup's bounds are reported and skipped.
     #[arg(long, conflicts_with_all = ["start", "start_random", "global"])]
     pool: Option<PathBuf>,
-    /// Exchange runs of a --pool choice, 1 to 1000 [default: 8].
+    /// Exchange runs of a --pool choice, 1 to 50 [default: 8].
     #[arg(long, requires = "pool", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
     /// Forbid postures that are not distinct in a --pool choice: the pool keeps the first of

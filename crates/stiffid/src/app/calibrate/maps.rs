@@ -2,11 +2,18 @@
 //! cross-validation inside the fitted readings, its nested held-out gain, and the fit with the
 //! maps chosen.
 
+use crate::common::error::JobOption;
 use crate::metrology::calibration::error_model::Observation;
 use crate::metrology::calibration::fit::{self, Fit, Options};
 use crate::metrology::calibration::maps::{self, Choice, Linear, Nested, Spec};
 use crate::metrology::calibration::ErrorModel;
-use crate::Result;
+use crate::{Error, Result};
+
+/// The most work the maps' choice takes on: readings x (map coefficients)^2, the cost of its
+/// cross-validated fits (about 1.2e-7 s of CPU each: a minute of CPU at this bound, half of it
+/// on two cores). `--maps auto` (up to 32 harmonics per joint, 384 coefficients) chooses maps on
+/// up to 3390 readings; `--maps J1,J3:16` (64 coefficients) on up to 122 070.
+pub const MAX_MAP_WORK: f64 = 5e8;
 
 /// What the maps' choice found.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +52,12 @@ pub(super) fn fit_maps(
         nested: None,
         skipped: None,
     };
+    let coefficients = 2 * spec.candidates().iter().sum::<usize>();
+    let readings = observations.len();
+    let work = readings as f64 * (coefficients * coefficients) as f64;
+    let over = format!(
+        "{readings} readings x {coefficients}^2 map coefficients = {work:.3e}, more than the {MAX_MAP_WORK:.0e} on which maps are chosen in about a minute"
+    );
     report.skipped = match spec {
         Spec::None => Some("--maps none".into()),
         Spec::Auto if postures.len() < maps::MIN_POSTURES => Some(format!(
@@ -52,6 +65,18 @@ pub(super) fn fit_maps(
             postures.len(),
             maps::MIN_POSTURES
         )),
+        Spec::Auto if work > MAX_MAP_WORK => Some(format!(
+            "{over}: give fewer joints or harmonics (--maps J2,J3:8) or fewer readings"
+        )),
+        Spec::Fixed(h) if work > MAX_MAP_WORK => {
+            return Err(Error::InvalidOption {
+                option: JobOption::Maps,
+                message: format!(
+                    "{}: {over}; give fewer joints or harmonics, or fewer readings",
+                    super::document::maps_name(&h)
+                ),
+            })
+        }
         _ => None,
     };
     if report.skipped.is_some() {

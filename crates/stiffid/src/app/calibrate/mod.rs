@@ -14,7 +14,7 @@
 pub mod document;
 mod maps;
 
-pub use maps::Maps;
+pub use maps::{Maps, MAX_MAP_WORK};
 
 use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
@@ -101,7 +101,9 @@ pub struct Request<'a> {
     pub cross_validate: bool,
     /// Priors on the joint errors, if any.
     pub priors: Option<Tolerances>,
-    /// Hears the cross-validation's folds (one unit per posture), `&()` for none.
+    /// Hears the fit (`fit`) and the maps' choice (`joint error maps`), each a stage of total 0,
+    /// then the cross-validation's folds (`cross-validation`, one unit per posture); `&()` for
+    /// none.
     pub progress: &'a dyn Progress,
     /// The joint error maps fitted ([`crate::metrology::calibration::maps`]).
     pub maps: crate::metrology::calibration::maps::Spec,
@@ -250,10 +252,24 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         }),
         ridge: 0.0,
     };
-    let start = fit::start(&model, &obs).map_err(|e| in_data(name, e))?;
-    let fitted = fit::fit(&model, &obs, &start, &options).map_err(|e| in_data(name, e))?;
-    let (model, fitted, options, maps) =
-        maps::fit_maps(request.maps, model, fitted, &obs, options).map_err(|e| in_data(name, e))?;
+    // The fit and the maps' choice report no count: each a stage of total 0 (a spinner).
+    let progress = request.progress;
+    progress.begin("fit", 0);
+    let start = fit::start(&model, &obs).map_err(|e| in_data(name, e));
+    let fitted = start.and_then(|s| {
+        let f = fit::fit(&model, &obs, &s, &options).map_err(|e| in_data(name, e));
+        f.map(|f| (s, f))
+    });
+    progress.end();
+    let (start, fitted) = fitted?;
+    progress.begin("joint error maps", 0);
+    let mapped = maps::fit_maps(request.maps, model, fitted, &obs, options);
+    progress.end();
+    let (model, fitted, options, maps) = mapped.map_err(|e| match e {
+        // Too many maps for the readings is the option's error, not the data's.
+        e @ crate::Error::InvalidOption { .. } => e,
+        e => in_data(name, e),
+    })?;
     let start = match model.map_start() {
         Some(_) => fit::start(&model, &obs).map_err(|e| in_data(name, e))?,
         None => start,

@@ -7,6 +7,7 @@
 use super::drives::{angle_warnings, on_measurements};
 use super::Data;
 use crate::app::Warning;
+use crate::common::progress::Progress;
 use crate::identify::compare::{
     bootstrap, compare, default_pool, pool_by_name, Bootstrap, Comparison, Document, Dropped,
     Resampling,
@@ -28,6 +29,8 @@ pub(super) struct Request<'a, R> {
     pub candidates: Option<&'a [String]>,
     /// The posture bootstrap of the selection (`--bootstrap N --seed S`); `None` for none.
     pub bootstrap: Option<Resampling>,
+    /// Where the bootstrap reports its resamples.
+    pub progress: &'a dyn Progress,
 }
 
 /// What the comparison found.
@@ -84,6 +87,7 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         data,
         candidates,
         bootstrap: resampling,
+        progress,
     } = request;
     if let Some(r) = &resampling {
         r.check()?;
@@ -95,7 +99,7 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let (data_name, origin, (comparison, bootstrap)) = on_measurements(setup, data, |m| {
         let c = compare(setup, m, &pool.candidates, true)?;
         let b = resampling
-            .map(|r| bootstrap(setup, m, &pool.candidates, &c, r))
+            .map(|r| bootstrap(setup, m, &pool.candidates, &c, r, progress))
             .transpose()?;
         Ok((c, b))
     })?;

@@ -25,6 +25,7 @@ pub use options::Options;
 
 use crate::app::Warning;
 use crate::common::error::JobOption;
+use crate::common::progress::Progress;
 use crate::identify::cross_validation::Method;
 use crate::identify::Loss;
 use crate::observation::Measurement;
@@ -152,6 +153,18 @@ impl Report {
 /// [`crate::Error::InvalidOption`]); errors about the data as [`crate::Error::Input`] naming the
 /// data (a file's line and column, or the measurement's number), from the path taken.
 pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
+    run_with_progress(request, &())
+}
+
+/// [`run`], the model comparison's bootstrap reporting its resamples to `progress` (one stage,
+/// `bootstrap resamples`); the other paths report nothing.
+///
+/// # Errors
+/// Those of [`run`].
+pub fn run_with_progress<R: Read + Send>(
+    request: Request<'_, R>,
+    progress: &dyn Progress,
+) -> Result<Report> {
     let Request {
         setup,
         data,
@@ -166,6 +179,7 @@ pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
             data,
             candidates: candidates.as_deref(),
             bootstrap,
+            progress,
         })
         .map(|r| Report::Comparison(Box::new(r))),
         Plan::Fit {

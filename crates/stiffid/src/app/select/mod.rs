@@ -125,7 +125,8 @@ pub struct Request<'a> {
     /// them (families or single candidates); `None` for the default pool.
     pub candidates: Option<Vec<String>>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
-    /// (`global search (relative-a)` with its starts as the total; a local search with total 0).
+    /// (`global search (relative-a)` with its starts as the total; a local search and the choice
+    /// from a pool with total 0).
     pub progress: &'a dyn Progress,
 }
 

@@ -95,7 +95,10 @@ impl<'a> Candidates<'a> {
             restarts: r.restarts.unwrap_or(PoolOptions::default().restarts),
             ..PoolOptions::default()
         };
-        let c = (self.pool.best_for(goal, n, &options)).map_err(|e| Error::Input {
+        r.progress.begin("choice from the pool", 0);
+        let c = self.pool.best_for(goal, n, &options);
+        r.progress.end();
+        let c = c.map_err(|e| Error::Input {
             source_name: self.name.into(),
             error: Box::new(e),
         })?;

@@ -6,8 +6,9 @@
 pub mod document;
 
 use super::Warning;
+use crate::common::progress::Progress;
 use crate::model::Parameter;
-use crate::study::simulate::{monte_carlo, GroupSimulation, Options};
+use crate::study::simulate::{monte_carlo_reporting, GroupSimulation, Options};
 use crate::{common::limits, Result, Setup};
 use nalgebra::Vector6;
 
@@ -55,13 +56,22 @@ pub struct Report {
 /// errors of [`monte_carlo`] (among them a virtual spring without a nominal stiffness, the
 /// truth of the simulation, and a group that cannot identify every parameter of the model).
 pub fn run(request: &Request) -> Result<Report> {
+    run_with_progress(request, &())
+}
+
+/// [`run`], reporting one stage to `progress`, `Monte Carlo identification`, one unit per run
+/// (groups x levels x runs).
+///
+/// # Errors
+/// Those of [`run`].
+pub fn run_with_progress(request: &Request, progress: &dyn Progress) -> Result<Report> {
     let setup = request.setup;
     limits::check_count("groups", request.groups.len(), 1, limits::MAX_GROUPS)?;
     let groups: Vec<Vec<Vector6<f64>>> =
         request.groups.iter().map(|g| g.postures.clone()).collect();
     Ok(Report {
         names: request.groups.iter().map(|g| g.name.clone()).collect(),
-        simulations: monte_carlo(setup, &groups, &request.options)?,
+        simulations: monte_carlo_reporting(setup, &groups, &request.options, progress)?,
         parameters: setup.model().parameters(),
         runs: request.options.runs,
         seed: request.options.seed,

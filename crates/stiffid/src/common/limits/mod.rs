@@ -147,15 +147,21 @@ pub const MAX_LEVELS: usize = 20;
 /// Most Monte Carlo runs per group and noise level (`--runs`).
 pub const MAX_RUNS: u64 = 100_000;
 
+/// Most identifications of one simulation, groups x noise levels x runs (each about 0.7 us of CPU
+/// for six postures: 1e8 take about 40 s on two cores).
+pub const MAX_SIMULATED_RUNS: u64 = 100_000_000;
+
 /// Most resamples of the model comparison's bootstrap (`--bootstrap`): each redoes the whole
-/// forward selection.
-pub const MAX_BOOTSTRAP: u64 = 10_000;
+/// forward selection (about 25 ms of CPU on the FANUC data set: 2000 take about 25 s on two
+/// cores).
+pub const MAX_BOOTSTRAP: u64 = 2000;
 
 /// Most local searches of a global search (`--starts`).
 pub const MAX_STARTS: u64 = 10_000;
 
-/// Most start groups of the start-group check of `stiffid reproduce` (`--trials`).
-pub const MAX_TRIALS: u64 = 10_000;
+/// Most start groups of the start-group check of `stiffid reproduce` (`--trials`): two local
+/// searches each (about 20 ms of CPU: 2000 take about 20 s on two cores).
+pub const MAX_TRIALS: u64 = 2000;
 
 /// Most postures a search chooses (`--postures`): 6 variables each, and SQP's memory grows with
 /// their square.
@@ -179,8 +185,10 @@ pub const XTOL_RAD: Range = Range::new(0.0, 1.0, "rad");
 /// difference no longer approximates the derivative).
 pub const FD_STEP_RAD: Range = Range::new(1e-12, 1e-2, "rad");
 
-/// Most exchange runs of a choice from a pool (`--restarts`, [`crate::design::PoolOptions`]).
-pub const MAX_POOL_RESTARTS: u64 = 1000;
+/// Most exchange runs of a choice from a pool (`--restarts`, [`crate::design::PoolOptions`]),
+/// and of the registration postures: each about 1.3 s of CPU for 60 postures of a pool of 10 000,
+/// so 50 take about half a minute on two cores.
+pub const MAX_POOL_RESTARTS: u64 = 50;
 
 /// Most groups a choice from a pool enumerates
 /// ([`crate::design::PoolOptions::enumeration_limit`]; about a minute of evaluations).

@@ -22,6 +22,7 @@
 //! expresses biases every resample alike).
 
 use super::{compare, Comparison};
+use crate::common::progress::{Progress, Tally};
 use crate::observation::Measurement;
 use crate::JobOption;
 use crate::{Error, Result, Setup};
@@ -149,7 +150,8 @@ fn resample(postures: &[Vec<&Measurement>], seed: u64, b: usize) -> Vec<Measurem
 }
 
 /// The posture bootstrap (module docs) of the comparison `data` made of `measurements` over
-/// `candidates` from `setup`'s model.
+/// `candidates` from `setup`'s model. `progress` hears one stage, `bootstrap resamples`, one
+/// unit per resample.
 ///
 /// # Errors
 /// Those of [`Resampling::check`].
@@ -159,6 +161,7 @@ pub fn bootstrap(
     candidates: &[crate::model::Spring],
     data: &Comparison,
     resampling: Resampling,
+    progress: &dyn Progress,
 ) -> Result<Bootstrap> {
     resampling.check()?;
     let mut labels: Vec<usize> = measurements.iter().map(|m| m.posture).collect();
@@ -171,13 +174,20 @@ pub fn bootstrap(
             .expect("a label of the data");
         postures[p].push(m);
     }
+    progress.begin("bootstrap resamples", resampling.resamples);
+    let tally = Tally::new(progress);
     let models: Vec<Option<Chosen>> = (0..resampling.resamples)
         .into_par_iter()
         .map(|b| {
             let data = resample(&postures, resampling.seed, b);
-            chosen(&compare(setup, &data, candidates, false).ok()?)
+            let model = compare(setup, &data, candidates, false)
+                .ok()
+                .and_then(|c| chosen(&c));
+            tally.add(1);
+            model
         })
         .collect();
+    progress.end();
     let usable: Vec<&Chosen> = models.iter().flatten().collect();
     let mut exact: Vec<usize> = data.models[data.recommended].parameter_indices.clone();
     exact.sort_unstable();

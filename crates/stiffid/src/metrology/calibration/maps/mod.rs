@@ -92,20 +92,32 @@ impl Spec {
             ),
         }
         };
+        // Digits only: `+1`, `01` or `1e1` are not a joint or a count.
+        let number = |t: &str| {
+            (!t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) && !t.starts_with('0'))
+                .then(|| t.parse::<usize>().ok())
+                .flatten()
+        };
         let mut harmonics = [0; 6];
         for part in text.split(',') {
             let part = part.trim();
             let (joint, count) = part.split_once(':').unwrap_or((part, ""));
             let joint = (joint.strip_prefix(['J', 'j']))
-                .and_then(|j| j.parse::<usize>().ok())
+                .and_then(number)
                 .filter(|j| (1..=6).contains(j))
                 .ok_or_else(|| bad(part))?;
             let count = match count {
                 "" => DEFAULT_HARMONICS,
-                c => (c.parse::<usize>().ok())
+                c => number(c)
                     .filter(|h| (1..=MAX_HARMONICS).contains(h))
                     .ok_or_else(|| bad(part))?,
             };
+            if harmonics[joint - 1] != 0 {
+                return Err(Error::InvalidOption {
+                    option: JobOption::Maps,
+                    message: format!("J{joint} is given twice in {text:?}: give each joint once"),
+                });
+            }
             harmonics[joint - 1] = count;
         }
         Ok(Spec::Fixed(harmonics))
