@@ -149,18 +149,6 @@ pub struct MapsNested {
     pub choices: Vec<String>,
 }
 
-/// Maps as documents name them: `J3:16,J5:8`, or `none`.
-pub fn maps_name(h: &crate::metrology::calibration::maps::Harmonics) -> String {
-    let parts: Vec<String> = (h.iter().enumerate())
-        .filter(|(_, &n)| n > 0)
-        .map(|(j, n)| format!("J{}:{n}", j + 1))
-        .collect();
-    match parts.is_empty() {
-        true => "none".into(),
-        false => parts.join(","),
-    }
-}
-
 fn maps_document(m: &super::Maps) -> MapsDocument {
     use crate::metrology::calibration::maps::Spec;
     let choice = m.choice.as_ref();
@@ -169,17 +157,17 @@ fn maps_document(m: &super::Maps) -> MapsDocument {
         asked: match m.spec {
             Spec::Auto => "auto".into(),
             Spec::None => "none".into(),
-            Spec::Fixed(h) => maps_name(&h),
+            Spec::Fixed(h) => crate::metrology::calibration::maps::name(&h),
         },
         postures: m.postures,
         skipped: m.skipped.clone(),
-        chosen: maps_name(&chosen),
+        chosen: crate::metrology::calibration::maps::name(&chosen),
         ridge: choice.filter(|_| chosen != [0; 6]).map(|c| c.ridge),
         inner_rms_mm: choice.map(|c| mm(c.rms)),
         inner_none_rms_mm: choice.map(|c| mm(c.none_rms)),
         tried: (choice.iter().flat_map(|c| &c.tried))
             .map(|t| MapTried {
-                maps: maps_name(&t.harmonics),
+                maps: crate::metrology::calibration::maps::name(&t.harmonics),
                 ridge: t.ridge,
                 rms_mm: mm(t.rms),
                 kept: t.kept,
@@ -189,7 +177,11 @@ fn maps_document(m: &super::Maps) -> MapsDocument {
             folds: n.folds,
             none_rms_mm: mm(n.none_rms),
             rms_mm: mm(n.rms),
-            choices: n.choices.iter().map(maps_name).collect(),
+            choices: n
+                .choices
+                .iter()
+                .map(crate::metrology::calibration::maps::name)
+                .collect(),
         }),
     }
 }

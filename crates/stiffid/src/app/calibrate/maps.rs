@@ -73,7 +73,7 @@ pub(super) fn fit_maps(
                 option: JobOption::Maps,
                 message: format!(
                     "{}: {over}; give fewer joints or harmonics, or fewer readings",
-                    super::document::maps_name(&h)
+                    maps::name(&h)
                 ),
             })
         }

@@ -36,6 +36,18 @@ use crate::robot::error_map::MAX_HARMONICS;
 use crate::{Error, Result};
 use rayon::prelude::*;
 
+/// Maps as documents name them: `J3:16,J5:8`, or `none`.
+pub fn name(h: &Harmonics) -> String {
+    let parts: Vec<String> = (h.iter().enumerate())
+        .filter(|(_, &n)| n > 0)
+        .map(|(j, n)| format!("J{}:{n}", j + 1))
+        .collect();
+    match parts.is_empty() {
+        true => "none".into(),
+        false => parts.join(","),
+    }
+}
+
 /// The harmonic counts `--maps auto` tries per joint.
 pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
