@@ -33,7 +33,7 @@ impl Progress for Bars {
         self.end();
         let bar = match total {
             0 => {
-                let style = ProgressStyle::with_template("{spinner} {msg} {pos} {elapsed}")
+                let style = ProgressStyle::with_template("{spinner} {msg} {elapsed}")
                     .expect("valid template");
                 let bar = ProgressBar::new_spinner()
                     .with_style(style)
@@ -55,6 +55,12 @@ impl Progress for Bars {
 
     fn advance(&self, done: usize) {
         if let Some(bar) = self.current.lock().expect("progress lock").as_ref() {
+            // A spinner shows its count once it has one.
+            if bar.length().is_none() && bar.position() == 0 && done > 0 {
+                let style = ProgressStyle::with_template("{spinner} {msg} {pos} {elapsed}")
+                    .expect("valid template");
+                bar.set_style(style);
+            }
             bar.set_position(done as u64);
         }
     }

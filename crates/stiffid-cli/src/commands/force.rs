@@ -3,11 +3,13 @@
 
 use crate::load;
 use crate::output::print_json_or;
+use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::force::document::Document;
 use stiffid::app::force::{self, Request};
 use stiffid::machining::process::file;
+use stiffid::Progress;
 
 /// Arguments of `stiffid force`.
 #[derive(clap::Args)]
@@ -35,7 +37,12 @@ pub fn run(args: &Args) -> Result<()> {
         process: &parsed,
         peak_resolution_deg: args.peak_resolution_deg,
     };
-    let report = force::run(&request).map_err(|e| match e {
+    // The job reports no count: a spinner while the peaks are searched.
+    let bars = Bars::new(false);
+    bars.begin("forces", 0);
+    let report = force::run(&request);
+    bars.end();
+    let report = report.map_err(|e| match e {
         stiffid::Error::InvalidField { field, message } => {
             anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
         }

@@ -2,9 +2,11 @@
 
 use crate::load;
 use crate::output::{self, ReportDir};
+use crate::progress::Bars;
 use crate::report::figures;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
+use stiffid::Progress;
 
 /// Arguments of `stiffid plot`.
 #[derive(clap::Args)]
@@ -58,11 +60,18 @@ pub fn run(args: &Args) -> Result<()> {
         &holds,
         &only_our_figures,
     )?;
-    let figures = figures::postures::each(&setup, &group)?;
-    for f in &figures {
-        dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
-        dir.write(&format!("{}.png", f.name), &f.png)?;
-    }
+    // The figures are drawn at once: a spinner while they are drawn and written.
+    let bars = Bars::new(false);
+    bars.begin("figures", 0);
+    let written = figures::postures::each(&setup, &group).and_then(|figures| {
+        for f in &figures {
+            dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
+            dir.write(&format!("{}.png", f.name), &f.png)?;
+        }
+        Ok(figures)
+    });
+    bars.end();
+    let figures = written?;
     dir.finish()?;
     output::print(&format!(
         "{} figures (SVG and PNG) of {} postures written to {}\n",

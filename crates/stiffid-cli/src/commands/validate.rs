@@ -5,12 +5,14 @@
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
 use crate::output::{self, print_json_or};
+use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::identify::Data;
 use stiffid::app::validate::document::Document;
 use stiffid::app::validate::{self as job, Request};
 use stiffid::common::words::count;
+use stiffid::Progress;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]
@@ -35,6 +37,9 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = args.common.load_setup()?;
     let compliance = args.stiffness.load(&setup)?;
     let reader = load::open(&args.data)?;
+    // The job reports no count: a spinner says it is reading and predicting.
+    let bars = Bars::new(false);
+    bars.begin("validation", 0);
     let report = job::run(Request {
         setup: &setup,
         compliance: &compliance,
@@ -43,7 +48,9 @@ pub fn run(args: &Args) -> Result<()> {
             reader,
         },
         level: args.level,
-    })?;
+    });
+    bars.end();
+    let report = report?;
     output::warnings(&report.warnings);
     let doc = Document::new(&report, &args.common.setup, &setup);
     print_json_or(args.common.json, &doc, human)
