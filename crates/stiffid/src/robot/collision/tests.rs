@@ -285,3 +285,24 @@ fn box_to_box_distances_equal_alternating_projections() {
     let d = distance(&cube, &Isometry3::identity(), &cube, &corner);
     assert!((d - 3f64.sqrt()).abs() < 1e-12, "{d}");
 }
+
+/// A mesh of exactly [`MAX_MESH_TRIANGLES`] triangles is read (its repeated vertices hulled once:
+/// the cube's eight), one more is refused naming the mesh and the way out.
+#[test]
+fn a_mesh_beyond_the_triangle_limit_is_refused_asking_for_a_decimated_one() {
+    let many =
+        |n: usize| -> Vec<[[f32; 3]; 3]> { cube(0.125).into_iter().cycle().take(n).collect() };
+    let at = with_binary_mesh(binary_stl(&many(MAX_MESH_TRIANGLES))).unwrap();
+    let hull = at.shapes.iter().find_map(|s| match &s.shape {
+        Shape::Convex(c) if s.link == "link_4" => Some(c.points().len()),
+        _ => None,
+    });
+    assert_eq!(hull, Some(8));
+    let e = with_binary_mesh(binary_stl(&many(MAX_MESH_TRIANGLES + 1)))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("mesh robots/meshes/cube_bin.stl: more than 100000 triangles: decimate the collision mesh"),
+        "{e}"
+    );
+}
