@@ -120,12 +120,7 @@ impl CheckKind {
                 )
             }
             CheckKind::LineOfSight => {
-                let nearest = setup
-                    .tool()
-                    .measuring_points
-                    .iter()
-                    .map(|p| p.xy().norm())
-                    .fold(f64::INFINITY, f64::min);
+                let nearest = crate::setup::nearest_measuring_point(setup.tool());
                 let at = setup.tracker().map(|t| t.position).unwrap_or_default();
                 format!(
                     "[tracker] position_mm = [{}, {}, {}], the tool body's \

@@ -396,10 +396,13 @@ pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
 /// outside of the tool, so a body that reached them would hide them from the tracker: the tool
 /// capsule stands for the spindle or the bar that carries them, not for their envelope.
 pub fn default_tool_radius(tool: &Tool) -> f64 {
-    let nearest = tool
-        .measuring_points
-        .iter()
+    (0.5 * nearest_measuring_point(tool)).max(MIN_TOOL_RADIUS)
+}
+
+/// The distance of the measuring point nearest the flange z axis from it, m (infinite without
+/// measuring points).
+pub fn nearest_measuring_point(tool: &Tool) -> f64 {
+    (tool.measuring_points.iter())
         .map(|p| p.xy().norm())
-        .fold(f64::INFINITY, f64::min);
-    (0.5 * nearest).max(MIN_TOOL_RADIUS)
+        .fold(f64::INFINITY, f64::min)
 }

@@ -77,8 +77,8 @@ mod workcell;
 pub use arm::{Arm, Payload, Tool, GRAVITY};
 pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
 pub use cell::{
-    default_geometry, Cell, Obstacle, RobotGeometry, Tracker, DEFAULT_RADIUS_FRACTIONS,
-    MAX_LENGTH_MM, MAX_OBSTACLES,
+    default_geometry, default_tool_radius, nearest_measuring_point, Cell, Obstacle, RobotGeometry,
+    Tracker, DEFAULT_RADIUS_FRACTIONS, MAX_LENGTH_MM, MAX_OBSTACLES, MIN_TOOL_RADIUS,
 };
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{

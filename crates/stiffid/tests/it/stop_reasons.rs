@@ -32,19 +32,10 @@ fn inverse_kinematics_says_why_a_pose_was_not_reached() {
         restarts: 0,
         ..options
     };
-    let e = ik::solve(&robot, &tcp, &target, &q0, &one).unwrap_err();
-    let Error::Unreachable {
-        position_error_mm,
-        stop,
-        starts,
-        ..
-    } = &e
-    else {
-        panic!("{e:?}")
-    };
-    assert_eq!((*stop, *starts), (Stop::IterationLimit, 1));
-    assert!(*position_error_mm > 1.0, "{position_error_mm}");
-    let message = e.to_string();
+    let (position_error_mm, stop, starts, message) =
+        unreachable(ik::solve(&robot, &tcp, &target, &q0, &one));
+    assert_eq!((stop, starts), (Stop::IterationLimit, 1));
+    assert!(position_error_mm > 1.0, "{position_error_mm}");
     assert!(
         message.contains("the closest of 1 start stopped at iteration-limit")
             && message.contains("more steps (max_iterations)"),
@@ -53,19 +44,10 @@ fn inverse_kinematics_says_why_a_pose_was_not_reached() {
     // Ten metres away: every start creeps towards the edge of the workspace until its steps run
     // out, 6.9 m short.
     let far = Isometry3::translation(10.0, 0.0, 1.0);
-    let e = ik::solve(&robot, &tcp, &far, &q0, &options).unwrap_err();
-    let Error::Unreachable {
-        position_error_mm,
-        stop,
-        starts,
-        ..
-    } = &e
-    else {
-        panic!("{e:?}")
-    };
-    assert_eq!((*stop, *starts), (Stop::IterationLimit, 9));
-    assert!(*position_error_mm > 5000.0, "{position_error_mm}");
-    let message = e.to_string();
+    let (position_error_mm, stop, starts, message) =
+        unreachable(ik::solve(&robot, &tcp, &far, &q0, &options));
+    assert_eq!((stop, starts), (Stop::IterationLimit, 9));
+    assert!(position_error_mm > 5000.0, "{position_error_mm}");
     assert!(
         message.contains("outside the workspace")
             && message.contains("the closest of 9 starts stopped at iteration-limit"),
@@ -74,6 +56,19 @@ fn inverse_kinematics_says_why_a_pose_was_not_reached() {
 }
 
 /// The paper's COMAU with its TCP, and a path of its first four test postures under 300 N.
+/// The position error (mm), stop reason, starts and message of an unreachable pose's error.
+fn unreachable<T: std::fmt::Debug>(result: Result<T, Error>) -> (f64, Stop, usize, String) {
+    match result.unwrap_err() {
+        e @ Error::Unreachable {
+            position_error_mm,
+            stop,
+            starts,
+            ..
+        } => (position_error_mm, stop, starts, e.to_string()),
+        e => panic!("{e:?}"),
+    }
+}
+
 fn comau_path() -> (Setup, String) {
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
     let s = paper

@@ -315,6 +315,19 @@ pub fn fit(points: &[Correspondence]) -> Result<Registration> {
     })
 }
 
+/// `J` (3n x 6, module docs): the rows `[I, -[R t_i]x]` of the rotated tracker points `R t_i`.
+fn jacobian(rotated: &[Vector3<f64>]) -> DMatrix<f64> {
+    let mut j = DMatrix::zeros(3 * rotated.len(), 6);
+    for (i, p) in rotated.iter().enumerate() {
+        let mut block = j.fixed_view_mut::<3, 6>(3 * i, 0);
+        block.fixed_view_mut::<3, 3>(0, 0).fill_with_identity();
+        block
+            .fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(-p.cross_matrix()));
+    }
+    j
+}
+
 /// The covariance of `[dp (m); dtheta (rad)]` that the robot model's own error gives the
 /// registration `fit` of the unloaded `readings` (module docs), with the setup's
 /// [`crate::setup::Arm::frame_sd`].
@@ -329,16 +342,13 @@ pub fn robot_covariance(
     let (sd_p, sd_r) = setup.arm().frame_sd();
     let points = &setup.tool().measuring_points;
     let unloaded: Vec<_> = readings.readings.iter().filter(|r| r.unloaded()).collect();
-    let mut j = DMatrix::zeros(3 * unloaded.len(), 6);
+    let rotated: Vec<Vector3<f64>> = (unloaded.iter())
+        .map(|r| fit.base_from_tracker.rotation * r.position)
+        .collect();
     let mut g = DMatrix::zeros(3 * unloaded.len(), 42);
     for (i, r) in unloaded.iter().enumerate() {
         let frames = setup.robot().frames(&r.q);
         let b = frames.point(&points[r.point]);
-        let rotated = fit.base_from_tracker.rotation * r.position;
-        let mut row = j.fixed_view_mut::<3, 6>(3 * i, 0);
-        row.fixed_view_mut::<3, 3>(0, 0).fill_with_identity();
-        row.fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(-rotated.cross_matrix()));
         let origins = frames.joints.iter().chain([&frames.flange]);
         for (k, o) in origins.map(|f| f.translation.vector).enumerate() {
             let mut block = g.fixed_view_mut::<3, 6>(3 * i, 6 * k);
@@ -350,7 +360,9 @@ pub fn robot_covariance(
                 .copy_from(&(-(b - o).cross_matrix() * sd_r));
         }
     }
-    let svd = j.capped_svd(true, true).ok_or(not_converged())?;
+    let svd = jacobian(&rotated)
+        .capped_svd(true, true)
+        .ok_or(not_converged())?;
     let absorbed = svd.solve(&g, 0.0).map_err(|_| not_converged())?;
     let m = absorbed.fixed_rows::<6>(0);
     Ok(m * m.transpose())
@@ -363,15 +375,9 @@ pub fn robot_covariance(
 /// [`Error::NotFinite`] when the SVD does not converge; [`Error::InvalidField`] when `J` is
 /// rank-deficient (collinear points).
 pub fn unit_covariance(rotated: &[Vector3<f64>]) -> Result<Matrix6<f64>> {
-    let mut j = DMatrix::zeros(3 * rotated.len(), 6);
-    for (i, p) in rotated.iter().enumerate() {
-        let mut block = j.fixed_view_mut::<3, 6>(3 * i, 0);
-        block.fixed_view_mut::<3, 3>(0, 0).fill_with_identity();
-        block
-            .fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(-p.cross_matrix()));
-    }
-    let svd = j.capped_svd(false, true).ok_or(not_converged())?;
+    let svd = jacobian(rotated)
+        .capped_svd(false, true)
+        .ok_or(not_converged())?;
     let v_t = svd.v_t.ok_or(not_converged())?;
     let s = &svd.singular_values;
     let largest = s.max();
