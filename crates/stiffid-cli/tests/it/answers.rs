@@ -216,6 +216,45 @@ fn a_stiffness_files_prediction_data_and_its_two_stiffness_keys_are_checked() {
         e.starts_with("prediction.folds[2].compliance_si[3] as a stiffness: -"),
         "{e}"
     );
+    let mut rho = doc.clone();
+    rho["prediction"]["model_error_percent"] = 1e9.into();
+    let e = parse(&rho).unwrap_err().to_string();
+    assert!(
+        e.starts_with("prediction.model_error_percent: 1e9: expected a share in [0, 10000]"),
+        "{e}"
+    );
+    let mut score = doc.clone();
+    score["prediction"]["deflection_scores"][4] = (-1.0).into();
+    let e = parse(&score).unwrap_err().to_string();
+    assert!(
+        e.starts_with("prediction.deflection_scores[5]: -1: expected a finite number >= 0"),
+        "{e}"
+    );
+    let mut alone = doc.clone();
+    alone["prediction"]
+        .as_object_mut()
+        .unwrap()
+        .remove("deflection_scores");
+    let e = parse(&alone).unwrap_err().to_string();
+    assert!(e.contains("together, or neither"), "{e}");
+    // A file written before the deflection intervals: its measurement intervals serve.
+    alone["prediction"]
+        .as_object_mut()
+        .unwrap()
+        .remove("model_error_percent");
+    let old = parse(&alone).unwrap().prediction.unwrap().calibration();
+    assert!(old.deflection.is_none());
+    let h = old.folds[0].compliance.clone();
+    let rows = nalgebra::DMatrix::from_fn(3, h.len(), |r, c| 1e3 * (1 + r + c) as f64);
+    assert_eq!(
+        old.deflection_interval(&rows, &h, 0.9),
+        old.interval(&rows, 0.9)
+    );
+    let new = parse(&doc).unwrap().prediction.unwrap().calibration();
+    assert_ne!(
+        new.deflection_interval(&rows, &h, 0.9),
+        new.interval(&rows, 0.9)
+    );
     let mut two = doc.clone();
     let k1 = doc["parameters"][0]["stiffness"].as_f64().unwrap();
     two["stiffness_nm_per_rad"] = serde_json::json!([2.0 * k1, 1e6, 1e6, 1e6, 1e6, 1e6]);

@@ -78,6 +78,9 @@ pub struct Calibration {
     pub postures: usize,
     /// `sigma_0` of the scale (P1), m.
     pub noise_floor: f64,
+    /// What the deflection intervals (P3) are built from; `None` for a calibration that did not
+    /// keep it (its deflection intervals are then its measurement intervals, wider).
+    pub deflection: Option<Deflection>,
     /// One per fold (one per posture for the jackknife+).
     pub folds: Vec<HeldOut>,
 }
@@ -153,6 +156,119 @@ impl Calibration {
             ]
         })
     }
+}
+
+impl Calibration {
+    /// The interval (P3) at `level` of the true translation `rows * h`, what a compensation by
+    /// the prediction leaves (`rows`: 3 x n as for [`Calibration::interval`]; `h` the full fit's
+    /// compliance, SI): per coordinate `mu ± kappa sqrt(v + rho^2 |mu|^2)`, `v` the jackknife
+    /// variance of the prediction ([`jackknife_covariance`]), `rho` and `kappa` from
+    /// [`Calibration::deflection`] ([`Deflection::kappa`]). Without it, the measurement
+    /// interval [`Calibration::interval`] (wider: it holds the noise).
+    ///
+    /// # Panics
+    /// If `rows` does not have one column per parameter of `h` and of the folds.
+    pub fn deflection_interval(
+        &self,
+        rows: &DMatrix<f64>,
+        h: &DVector<f64>,
+        level: f64,
+    ) -> Interval {
+        let Some(deflection) = &self.deflection else {
+            return self.interval(rows, level);
+        };
+        let mu = Vector3::from_fn(|c, _| rows.row(c).tr_dot(h));
+        let covariance = jackknife_covariance(&self.folds, self.postures);
+        let kappa = deflection.kappa(level);
+        let model = (deflection.model_error * mu.norm()).powi(2);
+        std::array::from_fn(|c| {
+            let row = rows.row(c);
+            let v = (row * &covariance).dot(&row);
+            let half = kappa * (v.max(0.0) + model).sqrt();
+            [mu[c] - half, mu[c] + half]
+        })
+    }
+}
+
+/// What the deflection intervals (P3) are built from: the model's error and the studentised
+/// held-out scores.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Deflection {
+    /// `rho`: the model's held-out error relative to the predicted displacement, the tracker
+    /// noise and the estimate's own variance taken out (method of moments), >= 0.
+    pub model_error: f64,
+    /// The held-out scores `|e| / sqrt(v + rho^2 |mu|^2 + sigma_0^2)` of every held-out
+    /// coordinate, sorted; finite, >= 0.
+    pub scores: Vec<f64>,
+}
+
+impl Deflection {
+    /// From the held-out `errors` (m, one per coordinate: measured minus the fold's prediction),
+    /// the folds' `predicted` displacement lengths there (m), the jackknife `variances` of those
+    /// predictions (m^2) and the noise of one coordinate `noise_sd` (m):
+    ///
+    /// ```text
+    /// rho^2 = max(0, sum (e^2 - v - sigma_0^2)) / sum |mu|^2                             (P4)
+    /// ```
+    ///
+    /// the share of the held-out squared error that neither the tracker noise nor the estimate
+    /// explains, per squared predicted displacement, and the scores. `None` without a
+    /// coordinate or a displacement.
+    pub fn from_held_out(
+        errors: &[f64],
+        predicted: &[f64],
+        variances: &[f64],
+        noise_sd: f64,
+    ) -> Option<Self> {
+        let sigma2 = noise_sd * noise_sd;
+        let excess: f64 = (errors.iter().zip(variances))
+            .map(|(e, v)| e * e - v - sigma2)
+            .sum();
+        let scale: f64 = predicted.iter().map(|m| m * m).sum();
+        let rho = (scale > 0.0).then(|| (excess.max(0.0) / scale).sqrt())?;
+        let mut scores: Vec<f64> = (errors.iter().zip(predicted).zip(variances))
+            .map(|((e, m), v)| e.abs() / (v + (rho * m).powi(2) + sigma2).sqrt())
+            .filter(|r| r.is_finite())
+            .collect();
+        scores.sort_by(f64::total_cmp);
+        (!scores.is_empty()).then_some(Deflection {
+            model_error: rho,
+            scores,
+        })
+    }
+
+    /// `kappa` at `level`: the `ceil(level (N + 1))`-th smallest of the `N` scores (the split
+    /// conformal quantile, Lei et al. 2018), infinite beyond `N`. With the noise in the scores'
+    /// scale and not in the interval's, it carries the held-out errors' shape to the true
+    /// deflection.
+    pub fn kappa(&self, level: f64) -> f64 {
+        let [_, hi] = ranks(self.scores.len(), level);
+        hi.map_or(f64::INFINITY, |k| self.scores[k - 1])
+    }
+}
+
+/// The delete-`d` jackknife covariance of the folds' compliance (one fold per `d = n / K` of
+/// `n = postures` postures, `K` folds): `(n - d) / (d K) sum_k (h_k - mean)(h_k - mean)^T`
+/// (Shao and Wu, "A general theory for jackknife variance estimation", Annals of Statistics
+/// 17(3), 1989); `(n - 1) / n sum_k ...` when each fold holds out one posture (Efron and Stein
+/// 1981). A prediction `psi h` has the variance `psi S psi^T`. Zero without folds.
+pub fn jackknife_covariance(folds: &[HeldOut], postures: usize) -> DMatrix<f64> {
+    let p = folds.first().map_or(0, |f| f.compliance.len());
+    if folds.is_empty() {
+        return DMatrix::zeros(p, p);
+    }
+    let k = folds.len() as f64;
+    let mean = folds
+        .iter()
+        .fold(DVector::zeros(p), |a, f| a + &f.compliance)
+        / k;
+    let mut sum = DMatrix::zeros(p, p);
+    for f in folds {
+        let d = &f.compliance - &mean;
+        sum.ger(1.0, &d, &d, 1.0);
+    }
+    let (n, d) = (postures as f64, postures as f64 / k);
+    sum * ((n - d) / (d * k))
 }
 
 /// The 1-based ranks of `q-` and `q+` (P2) among `n` values at `level`; `None` for an infinite end.
@@ -232,6 +348,7 @@ mod tests {
         let cal = Calibration {
             postures: 1,
             noise_floor: 0.0,
+            deflection: None,
             folds: vec![HeldOut {
                 compliance: DVector::from_vec(vec![1e-3]),
                 scores,

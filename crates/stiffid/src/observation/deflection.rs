@@ -155,14 +155,16 @@ impl PointDeflection {
         DMatrix::from_column_slice(3, a.ncols(), a.as_slice())
     }
 
-    /// The prediction interval of the translation at `level` (m, base frame), when the compliance
-    /// carries a prediction calibration ([`crate::model::prediction`]).
+    /// The interval at `level` of the true translation (m, base frame) predicted with the
+    /// compliance `h` (SI), when the compliance carries a prediction calibration: what a
+    /// compensation by the prediction leaves ([`crate::model::prediction`], P3).
     pub fn interval(
         &self,
         calibration: &crate::model::prediction::Calibration,
+        h: &nalgebra::DVector<f64>,
         level: f64,
     ) -> crate::model::prediction::Interval {
-        calibration.interval(&self.translation_rows(), level)
+        calibration.deflection_interval(&self.translation_rows(), h, level)
     }
 
     /// The standard deviation of each coordinate of the displacement (m, m, m, rad, rad, rad).

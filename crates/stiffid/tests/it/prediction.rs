@@ -204,3 +204,101 @@ fn with_the_true_model_parameter_and_prediction_intervals_cover_at_their_level()
     assert!((0.93..=0.97).contains(&coverage), "{coverage}");
     assert!((0.93..=0.97).contains(&k_coverage), "{k_coverage}");
 }
+
+/// Coverage counts `[inside, coordinates]` of the deflection intervals (P3) of `calibration`
+/// and `h` at `level` on the true displacements of `test` (`truth_setup` displaced by `truth`,
+/// no noise), and the sums of their half-widths, of the prediction's absolute errors and of the
+/// measurement intervals' (P2) half-widths (m).
+fn deflection_covered(
+    s: &Setup,
+    h: &DVector<f64>,
+    calibration: &Calibration,
+    (truth_setup, truth): (&Setup, &DVector<f64>),
+    test: &[Measurement],
+    level: f64,
+) -> [f64; 5] {
+    let obs = Observations::from_measurements(s.arm(), test).unwrap();
+    let mut out = [0.0; 5];
+    for (i, m) in test.iter().enumerate() {
+        let rows = obs.psi.rows(3 * i, 3).into_owned();
+        let interval = calibration.deflection_interval(&rows, h, level);
+        let frames = truth_setup.robot().frames(&m.q);
+        let d = (posture_block(truth_setup.arm(), &frames, &m.wrench) * truth)
+            .fixed_rows::<3>(3 * m.point)
+            .into_owned();
+        let mu = &rows * h;
+        out[0] += inside(&interval, &[d.x, d.y, d.z])
+            .iter()
+            .filter(|b| **b)
+            .count() as f64;
+        out[1] += 3.0;
+        out[2] += (0..3)
+            .map(|c| (interval[c][1] - interval[c][0]) / 2.0)
+            .sum::<f64>();
+        out[3] += (0..3).map(|c| (d[c] - mu[c]).abs()).sum::<f64>();
+        let measurement = calibration.interval(&rows, level);
+        out[4] += (0..3)
+            .map(|c| (measurement[c][1] - measurement[c][0]) / 2.0)
+            .sum::<f64>();
+    }
+    out
+}
+
+/// The deflection intervals (P3) cover the true deflection, what a compensation by the
+/// prediction leaves, at their level, with the true model and with compliances the model lacks;
+/// and they are as wide as that error, where the measurement intervals (P2) hold the tracker
+/// noise scaled with the deflection.
+#[test]
+fn deflection_intervals_cover_the_true_deflection() {
+    let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let elbow = with_elbow(1.5e6);
+    let cases: [(&[&str], &[f64], bool); 3] = [
+        (&["tilt3_x"], &[1.0 / 1.5e6], true),
+        (&["tilt3_x"], &[1.0 / 1.5e6], false),
+        (
+            &["tilt3_x", "bend3_x", "lost2"],
+            &[1.0 / 3e6, 1.0 / 3e6, 50e-6],
+            false,
+        ),
+    ];
+    for (case, (names, values, true_model)) in cases.iter().enumerate() {
+        let (truth_setup, truth) = with_candidates(names, values);
+        let model = if *true_model { &elbow } else { &drives };
+        let parameters = model.model().parameters();
+        for level in [0.9, 0.95] {
+            let mut sums = [0.0; 5];
+            for seed in 0..DATA_SETS {
+                let mut rng = ChaCha8Rng::seed_from_u64(20_000 * case as u64 + seed);
+                let train = data(&truth_setup, &truth, TRAIN, &mut rng);
+                let test = data(&truth_setup, &truth, TEST, &mut rng);
+                let obs = Observations::from_measurements(model.arm(), &train).unwrap();
+                let f = fit(&obs, &parameters).unwrap();
+                let cv = cross_validate_model(&obs, &f, TRAIN, Method::LeastSquares).unwrap();
+                let calibration = calibrate(&obs, &cv, model.noise().displacement_sd());
+                let c = deflection_covered(
+                    model,
+                    &f.compliance,
+                    &calibration,
+                    (&truth_setup, &truth),
+                    &test,
+                    level,
+                );
+                sums.iter_mut().zip(c).for_each(|(s, c)| *s += c);
+            }
+            let coverage = sums[0] / sums[1];
+            let [ratio, measurement] = [sums[2] / sums[3], sums[4] / sums[3]];
+            eprintln!("{names:?} true model {true_model}: {level} deflection coverage {coverage:.4} of {}, half-width / mean error {ratio:.2} (measurement intervals {measurement:.2})", sums[1]);
+            assert!(
+                (level - 0.02..=level + 0.025).contains(&coverage),
+                "{names:?} {level}: {coverage}"
+            );
+            // A Gaussian error's mean absolute value is 0.8 sigma: a half-width of z sigma is
+            // 2.1 (90%) to 2.5 (95%) times it; heavier tails widen it.
+            assert!((2.0..5.0).contains(&ratio), "{names:?} {level}: {ratio}");
+            if *true_model {
+                // The noise no longer scales with the deflection.
+                assert!(measurement > 4.0 * ratio, "{measurement} vs {ratio}");
+            }
+        }
+    }
+}

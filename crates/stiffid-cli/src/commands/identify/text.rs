@@ -413,8 +413,11 @@ pub fn model_error_dominates() -> String {
 /// The calibration of the prediction intervals (a document's `prediction`), in one line.
 pub fn prediction(p: &PredictionSection) -> String {
     let scores: usize = p.folds.iter().map(|f| f.scores.len()).sum();
+    let model = p.model_error_percent.map_or(String::new(), |r| {
+        format!("; the model's error beyond the noise and the estimate: {r:.1}% of the predicted displacement (the deflection intervals of predict and compensate)")
+    });
     format!(
-        "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {}% of the predicted displacement plus {:.4} mm\n",
+        "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {}% of the predicted displacement plus {:.4} mm{model}\n",
         p.method,
         scores,
         stiffid::common::words::count(p.postures, "posture"),

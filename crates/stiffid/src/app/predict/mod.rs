@@ -200,7 +200,7 @@ fn point(
     let interval = compliance
         .prediction
         .as_ref()
-        .map(|p| deflection.interval(p, level));
+        .map(|p| deflection.interval(p, &compliance.h, level));
     Point {
         position: frames.point(observed),
         deflection,

@@ -97,6 +97,16 @@ pub struct PredictionSection {
     /// `score_q95` in %. Written for the reader, ignored when read.
     #[serde(default)]
     pub score_q95_percent: Option<f64>,
+    /// `rho` of the deflection intervals ([`prediction::Deflection::model_error`], P4) in %: the
+    /// model's held-out error relative to the predicted displacement, the tracker noise and the
+    /// estimate's variance taken out; in [0, 10 000]. With `deflection_scores`; a file without
+    /// them gives the measurement intervals (wider) for the deflection.
+    #[serde(default)]
+    pub model_error_percent: Option<f64>,
+    /// The studentised held-out scores of the deflection intervals
+    /// ([`prediction::Deflection::scores`]), one per held-out coordinate; finite, >= 0.
+    #[serde(default)]
+    pub deflection_scores: Option<Vec<f64>>,
     /// One per fold, at most [`prediction::MAX_FOLDS`], with at most [`prediction::MAX_SCORES`]
     /// scores in all.
     pub folds: Vec<FoldSection>,
@@ -126,6 +136,8 @@ impl PredictionSection {
             noise_floor_mm: calibration.noise_floor * 1e3,
             score_q95: calibration.score_quantile(0.95),
             score_q95_percent: calibration.score_quantile(0.95).map(|q| 100.0 * q),
+            model_error_percent: (calibration.deflection.as_ref()).map(|d| 100.0 * d.model_error),
+            deflection_scores: (calibration.deflection.as_ref()).map(|d| d.scores.clone()),
             folds: calibration
                 .folds
                 .iter()
@@ -144,6 +156,7 @@ impl PredictionSection {
         Calibration {
             postures: self.postures,
             noise_floor: self.noise_floor_mm * 1e-3,
+            deflection: self.deflection(),
             folds: self
                 .folds
                 .iter()
@@ -152,6 +165,51 @@ impl PredictionSection {
                     scores: f.scores.clone(),
                 })
                 .collect(),
+        }
+    }
+
+    /// The deflection intervals' data, when the file has them.
+    fn deflection(&self) -> Option<prediction::Deflection> {
+        let (rho, scores) = (self.model_error_percent?, self.deflection_scores.as_ref()?);
+        let mut scores = scores.clone();
+        scores.sort_by(f64::total_cmp);
+        Some(prediction::Deflection {
+            model_error: rho / 100.0,
+            scores,
+        })
+    }
+
+    /// Checks `model_error_percent` and `deflection_scores`: both or neither, within their
+    /// ranges, at most [`prediction::MAX_SCORES`] scores.
+    fn check_deflection(&self) -> Result<()> {
+        let field = "prediction.model_error_percent";
+        match (self.model_error_percent, &self.deflection_scores) {
+            (None, None) => Ok(()),
+            (Some(r), _) if !(0.0..=1e4).contains(&r) => Err(invalid(
+                field.into(),
+                format!("{}: expected a share in [0, 10000] %", limits::number(r)),
+            )),
+            (Some(_), Some(s)) if s.len() <= prediction::MAX_SCORES && !s.is_empty() => {
+                match s.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+                    Some(i) => Err(invalid(
+                        format!("prediction.deflection_scores[{}]", i + 1),
+                        format!("{}: expected a finite number >= 0", limits::number(s[i])),
+                    )),
+                    None => Ok(()),
+                }
+            }
+            (Some(_), Some(s)) => Err(invalid(
+                "prediction.deflection_scores".into(),
+                format!(
+                    "{} scores: expected 1 to {}",
+                    s.len(),
+                    prediction::MAX_SCORES
+                ),
+            )),
+            _ => Err(invalid(
+                field.into(),
+                "expected model_error_percent and deflection_scores together, or neither".into(),
+            )),
         }
     }
 
@@ -178,6 +236,7 @@ impl PredictionSection {
                 ),
             ));
         }
+        self.check_deflection()?;
         if self.postures < self.folds.len() {
             return Err(invalid(
                 "prediction.postures".into(),

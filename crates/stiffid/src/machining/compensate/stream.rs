@@ -236,7 +236,7 @@ fn compensate_chosen(
                 .compliance
                 .prediction
                 .as_ref()
-                .map(|p| d.interval(p, model.level));
+                .map(|p| d.interval(p, &model.compliance.h, model.level));
             let deflection_before = free.then(|| {
                 let frames = arm.robot().frames(&c.nominal[i]);
                 model.deflection(&frames, &c.wrenches[i]).0
