@@ -452,3 +452,39 @@ fn file_circles_are_found() {
         "x  \"\" ' ' ' ' 'a \"\" "
     );
 }
+
+/// The job folder a library file belongs to (`app/<job>/...`), `None` outside one: `app/document`
+/// and the files directly in `app/` are what the jobs share.
+fn job_folder(file: &str) -> Option<&str> {
+    let mut parts = file.split('/');
+    let (Some("app"), Some(job)) = (parts.next(), parts.next()) else {
+        return None;
+    };
+    (job != "document" && src().join("app").join(job).is_dir()).then_some(job)
+}
+
+#[test]
+fn no_job_folder_imports_another() {
+    let graph = file_graph();
+    let crossing: Vec<String> = (graph.iter())
+        .flat_map(|(from, to)| to.iter().map(move |t| (from, t)))
+        .filter_map(|(from, to)| match (job_folder(from), job_folder(to)) {
+            (Some(a), Some(b)) if a != b => Some(format!("{from} -> {to}")),
+            _ => None,
+        })
+        .collect();
+    assert!(
+        graph["app/plan/document"]
+            .iter()
+            .any(|t| t.starts_with("app/document")),
+        "{graph:?}"
+    );
+    assert!(
+        crossing.is_empty(),
+        "move what jobs share to app/document: {crossing:#?}"
+    );
+    assert_eq!(job_folder("app/select/document"), Some("select"));
+    assert_eq!(job_folder("app/select"), Some("select"));
+    assert_eq!(job_folder("app/document/scene"), None);
+    assert_eq!(job_folder("app/readings"), None);
+}

@@ -4,7 +4,7 @@
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, finite_each, mm};
 use crate::app::identify::drives::Report;
-use crate::app::identify::Origin;
+use crate::app::measurements::Origin;
 use crate::common::warning::WarningKind;
 use crate::identify::{Adequacy, Identification, RobustFit, Uncertainty};
 use crate::io::stiffness::PredictionSection;
