@@ -28,8 +28,8 @@
 //! Diagnostics", 1980, ch. 2). `delta_b` is the norm of each measurement's three residuals
 //! (Eq. 22); the explained share is `1 - RMS(delta_b) / RMS(|delta|)`.
 
-use super::cross_validation::{explained_share, Method};
 use super::robust::{self, Loss, RobustFit};
+use super::{explained_share, Method};
 use crate::math::linalg::CappedSvd;
 use crate::model::Parameter;
 use crate::observation::Observations;
@@ -494,7 +494,7 @@ pub struct HeldOut {
     /// Per posture, the mean of `delta_b^2` over its measurements, m^2.
     pub posture_mse: Vec<f64>,
     /// Per posture, the sums of `delta_b^2` and of `|delta|^2` over its measurements, m^2 (what
-    /// [`crate::identify::cross_validation::explained_share`] takes).
+    /// [`crate::identify::explained_share`] takes).
     pub posture_sums: Vec<[f64; 2]>,
     /// `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
@@ -509,7 +509,7 @@ impl HeldOut {
     }
 
     /// The standard error of [`HeldOut::explained`] over the postures (the delta method on the
-    /// ratio of the postures' sums, [`crate::identify::cross_validation::explained_share`]).
+    /// ratio of the postures' sums, [`crate::identify::explained_share`]).
     pub fn explained_std_error(&self) -> f64 {
         explained_share(&self.posture_sums)[1]
     }

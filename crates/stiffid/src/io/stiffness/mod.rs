@@ -301,10 +301,10 @@ fn check_drives_agree(parameters: &[ParameterStiffness], k: &[f64; 6]) -> Result
                 format!("stiffness_nm_per_rad[{}]", j + 1),
                 format!(
                     "{} where parameters gives {} '{}' {}: the file contradicts itself; keep one",
-                    limits::number(*k),
+                    crate::common::words::number(*k),
                     p.kind.name(),
                     limits::short(&p.name),
-                    limits::number(theirs)
+                    crate::common::words::number(theirs)
                 ),
             ));
         }
