@@ -126,6 +126,10 @@ pub struct Identification {
     /// The compliances held at their bound `h_j = 0` by [`Observations::nonnegative`]
     /// (the active constraints); `None` for an unbounded fit.
     pub active_bounds: Option<[bool; 6]>,
+    /// Why the active-set steps of [`Observations::nonnegative`] stopped: converged (the
+    /// bounded minimum) or at their limit ([`nonnegative::warning`]); `None` for an unbounded
+    /// fit.
+    pub nonnegative_stop: Option<crate::common::stop::Stop>,
 }
 
 impl Identification {
@@ -406,6 +410,7 @@ impl Observations {
             None,
         );
         id.active_bounds = Some(fit.active);
+        id.nonnegative_stop = Some(fit.stop);
         Ok(id)
     }
 
@@ -479,5 +484,6 @@ fn finish(
         robust,
         unit_covariance,
         active_bounds: None,
+        nonnegative_stop: None,
     }
 }

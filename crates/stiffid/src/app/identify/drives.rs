@@ -316,6 +316,7 @@ fn warnings(report: &Report) -> Vec<Warning> {
     let mut out = angle_warnings(&report.data_name, &report.origin);
     out.extend(id.robust.as_ref().and_then(|r| r.warning()));
     let n = id.compliance.len();
+    out.extend((id.nonnegative_stop).and_then(|s| crate::identify::nonnegative::warning(s, n)));
     let negative: Vec<usize> = (0..n).filter(|&j| id.compliance[j] < 0.0).collect();
     let rigid: Vec<usize> = (0..n)
         .filter(|&j| !physical[j] && id.compliance[j] >= 0.0)

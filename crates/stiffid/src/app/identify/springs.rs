@@ -109,6 +109,8 @@ fn warnings(fit: &Fit) -> Vec<Warning> {
         .and_then(|r| r.warning())
         .into_iter()
         .collect();
+    let n = fit.compliance.len();
+    out.extend((fit.nonnegative_stop).and_then(|s| crate::identify::nonnegative::warning(s, n)));
     let combinations = &fit.identifiability.unidentifiable;
     if !combinations.is_empty() {
         let written: Vec<String> = combinations

@@ -61,6 +61,7 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "compliance_rad_per_nm",
     "physical",
     "active_bounds",
+    "nonnegative_stop_reason",
     "intervals_from",
     "std_error_nm_per_rad",
     "std_error_percent",
