@@ -468,3 +468,73 @@ fn no_job_folder_imports_another() {
     assert_eq!(job_folder("app/document/scene"), None);
     assert_eq!(job_folder("app/readings"), None);
 }
+
+/// The names `lib.rs` makes public at the crate's root: its `pub mod` modules and the items of
+/// its `pub use` lines.
+fn public_surface(lib: &str) -> BTreeSet<String> {
+    let code = strip(lib);
+    let mut names = BTreeSet::new();
+    for statement in code.split(';') {
+        // From the line the statement starts on (attributes and blank lines before it left out).
+        let at = (statement.match_indices('\n').map(|(i, _)| i + 1))
+            .chain([0])
+            .filter(|&i| statement[i..].trim_start().starts_with("pub "))
+            .min()
+            .unwrap_or(statement.len());
+        let statement = statement[at..].trim();
+        if let Some(module) = statement.strip_prefix("pub mod ") {
+            names.insert(module.trim().to_string());
+        } else if let Some(tree) = statement.strip_prefix("pub use ") {
+            for path in expand(tree) {
+                let name = path.rsplit("::").next().unwrap_or("").trim();
+                names.insert(name.to_string());
+            }
+        }
+    }
+    names
+}
+
+/// The names listed in `docs/ARCHITECTURE.md`'s section "Public surface": every `stiffid::NAME`
+/// that starts a list line.
+fn listed_surface(architecture: &str) -> BTreeSet<String> {
+    let section = (architecture.split("\n## "))
+        .find(|s| s.starts_with("Public surface"))
+        .expect("docs/ARCHITECTURE.md has a section 'Public surface'");
+    let mut names = BTreeSet::new();
+    for line in section.lines().filter(|l| l.starts_with("- ")) {
+        let head = line.split("`: ").next().unwrap_or("");
+        for (at, _) in head.match_indices("`stiffid::") {
+            let name: String = (head[at + 10..].chars())
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            names.insert(name);
+        }
+    }
+    names
+}
+
+#[test]
+fn the_public_surface_is_the_one_architecture_lists() {
+    let lib = std::fs::read_to_string(src().join("lib.rs")).unwrap();
+    let architecture =
+        std::fs::read_to_string(src().join("../../../docs/ARCHITECTURE.md")).unwrap();
+    let (public, listed) = (public_surface(&lib), listed_surface(&architecture));
+    assert!(
+        public.contains("app") && public.contains("Setup"),
+        "{public:?}"
+    );
+    assert!(public.len() >= 20, "{public:?}");
+    assert_eq!(
+        public, listed,
+        "lib.rs's pub mod and pub use against docs/ARCHITECTURE.md's 'Public surface'"
+    );
+    // The parsers themselves.
+    let lib =
+        "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\n";
+    assert_eq!(
+        public_surface(lib),
+        ["B", "D", "a"].map(String::from).into()
+    );
+    let doc = "# A\n## Public surface\n\n- `stiffid::a`, `stiffid::B`: x `stiffid::no`\n## Next\n- `stiffid::c`: y\n";
+    assert_eq!(listed_surface(doc), ["B", "a"].map(String::from).into());
+}
