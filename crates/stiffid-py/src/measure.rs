@@ -16,7 +16,8 @@ use std::fs::File;
 use std::path::PathBuf;
 use stiffid::app::identify::document::drives::Document;
 use stiffid::app::identify::document::springs::Document as ModelDocument;
-use stiffid::app::identify::{self as job, Options, Origin, Report, Request};
+use stiffid::app::identify::{self as job, Options, Report, Request};
+use stiffid::app::measurements::{Data, Origin};
 use stiffid::app::validate as validation;
 use stiffid::app::validate::document::Document as Checked;
 use stiffid::identify::Loss;
@@ -32,7 +33,7 @@ fn job_data(
     measurements: Option<&Bound<'_, PyAny>>,
     arrays: [Option<&Bound<'_, PyAny>>; 3],
     point: Option<Vec<i64>>,
-) -> PyResult<job::Data<Capped<File>>> {
+) -> PyResult<Data<Capped<File>>> {
     if point.is_some() && measurements.is_some() {
         return Err(value(
             "point: only with q_deg, wrench and displacement_mm (a measurements file has its own point column)",
@@ -43,10 +44,10 @@ fn job_data(
             let path = m.extract::<PathBuf>()?;
             let reader = error::open(&path)?;
             let name = path.display().to_string();
-            Ok(job::Data::File { name, reader })
+            Ok(Data::File { name, reader })
         }
         (None, [Some(q), Some(w), Some(d)]) => {
-            Ok(job::Data::Measurements(from_arrays(setup, q, w, d, point)?))
+            Ok(Data::Measurements(from_arrays(setup, q, w, d, point)?))
         }
         _ => Err(value(
             "give either a measurements CSV path, or q_deg, wrench and displacement_mm",

@@ -67,7 +67,8 @@ fn parameters(c: &mut Bench) {
 }
 
 fn compare_models(c: &mut Bench) {
-    use stiffid::app::identify::{run, Data, Options, Request};
+    use stiffid::app::identify::{run, Options, Request};
+    use stiffid::app::measurements::Data;
     let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     let job = |bootstrap| {

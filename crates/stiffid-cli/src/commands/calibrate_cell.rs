@@ -5,7 +5,7 @@
 use crate::commands::cell_readings::{self, three, Outcome};
 use anyhow::Result;
 use stiffid::app::calibrate_cell as job;
-use stiffid::app::register::document::Calibration;
+use stiffid::app::calibrate_cell::document::Calibration;
 
 /// Arguments of `stiffid calibrate-cell`: `--data` is every measuring point read in postures
 /// that turn the flange (more coordinates than 6 + 3 per point read); `--out` gets the corrected

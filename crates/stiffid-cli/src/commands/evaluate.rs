@@ -7,9 +7,8 @@ use crate::{feasibility, load};
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::document::candidates::CandidatesDoc;
-use stiffid::app::evaluate::document::{
-    CalibrationDoc, Criteria, Document, Infinite, InfiniteCriterion,
-};
+use stiffid::app::document::group::{CalibrationDoc, Criteria, Infinite, InfiniteCriterion};
+use stiffid::app::evaluate::document::Document;
 use stiffid::app::evaluate::{self as job, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::common::limits::short;

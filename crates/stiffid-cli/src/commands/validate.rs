@@ -8,7 +8,7 @@ use crate::output::{self, print_json_or};
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::identify::Data;
+use stiffid::app::measurements::Data;
 use stiffid::app::validate::document::Document;
 use stiffid::app::validate::{self as job, Request};
 use stiffid::common::words::count;

@@ -38,6 +38,7 @@ pub mod simulate;
 pub mod validate;
 
 pub mod document;
+pub mod measurements;
 pub mod purpose;
 pub mod readings;
 

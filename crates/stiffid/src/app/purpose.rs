@@ -4,7 +4,6 @@
 
 use super::calibrate;
 use crate::common::error::JobOption;
-use crate::common::limits;
 use crate::design::observability::{CalibrationCriterion, CalibrationDesign};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
@@ -125,7 +124,7 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
         ),
         Some(w) if !(w > 0.0 && w < 1.0) => refuse(
             JobOption::Weight,
-            &format!("expected a number between 0 and 1, got {}", limits::number(w)),
+            &format!("expected a number between 0 and 1, got {}", crate::common::words::number(w)),
         ),
         _ => Ok(()),
     }

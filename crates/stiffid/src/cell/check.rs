@@ -1,6 +1,7 @@
-//! The kinds of feasibility check a posture must pass in the cell, and the setup fields that
-//! decide each.
+//! The kinds of feasibility check a posture must pass in the cell, the setup fields that decide
+//! each, and the signed margin of one tested pair ([`Margin`], between two [`Thing`]s).
 
+use super::bodies::Part;
 use crate::setup::Setup;
 use std::fmt;
 
@@ -158,4 +159,62 @@ impl CheckKind {
 /// A length in m as mm to 0.1 mm.
 fn round_mm(v: f64) -> f64 {
     (v * 1e4).round() / 10.0
+}
+
+/// What a margin is measured at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Thing {
+    /// A robot or tool body.
+    Part(Part),
+    /// The floor.
+    Floor,
+    /// Obstacle i (0-based) of the cell.
+    Obstacle(usize),
+    /// The rope.
+    Rope,
+    /// The line of sight to measuring point i (0-based).
+    Sight(usize),
+    /// Measuring point i (0-based).
+    MeasuringPoint(usize),
+    /// Axis i (0-based).
+    Axis(usize),
+    /// The loading point.
+    LoadingPoint,
+    /// The rope anchor.
+    Anchor,
+}
+
+impl Thing {
+    /// Its name in reports, obstacles by their names in the setup.
+    pub fn name(self, setup: &Setup) -> String {
+        match self {
+            Thing::Part(p) => p.to_string(),
+            Thing::Floor => "floor".into(),
+            Thing::Obstacle(i) => setup.cell().map_or_else(
+                || format!("obstacle {}", i + 1),
+                |c| c.obstacles[i].name.clone(),
+            ),
+            Thing::Rope => "rope".into(),
+            Thing::Sight(i) => format!("line of sight {}", i + 1),
+            Thing::MeasuringPoint(i) => format!("measuring point {}", i + 1),
+            Thing::Axis(i) => format!("axis {}", i + 1),
+            Thing::LoadingPoint => "loading point".into(),
+            Thing::Anchor => "anchor".into(),
+        }
+    }
+}
+
+/// The signed margin of one tested pair: `>= 0` satisfied.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Margin {
+    /// The check it belongs to.
+    pub kind: CheckKind,
+    /// Distance (or angle, height) minus what is required: m, or rad for angles.
+    pub margin: f64,
+    /// What is required on top of contact: the clearance for body checks, plus the margin the
+    /// checker keeps ([`Checker::keeping`](super::Checker::keeping)) for every check but the bounds (m; rad for the
+    /// incidence).
+    pub required: f64,
+    /// The pair.
+    pub between: (Thing, Thing),
 }

@@ -196,7 +196,7 @@ pub enum Error {
     /// robot's joint limits or the setup's bounds.
     #[error(
         "{field} = {} deg: expected within {within} [{lower_deg:.2}, {upper_deg:.2}] deg",
-        crate::common::limits::joint_box::distinct(*value_deg, *lower_deg, *upper_deg)
+        crate::common::words::distinct(*value_deg, *lower_deg, *upper_deg)
     )]
     OutsideBox {
         /// The angle as the user gave it, e.g. `bounds.upper_deg[3]` or `--q-deg[2]`.
@@ -352,7 +352,7 @@ pub enum ColumnProblem {
         value: String,
     },
     /// A number outside the range it must lie in, e.g. an axis angle outside the joint limits.
-    #[error("{name} = {} is outside {within} [{lower:.1}, {upper:.1}]", crate::common::limits::number(*value))]
+    #[error("{name} = {} is outside {within} [{lower:.1}, {upper:.1}]", crate::common::words::number(*value))]
     Outside {
         /// The column's name.
         name: String,

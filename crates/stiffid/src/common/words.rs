@@ -1,5 +1,6 @@
-//! Counts in sentences: a number with its noun and the verb that agrees with it, so that a
-//! message reads `1 point is` and `3 points are` whatever the count.
+//! Words and numbers in messages: a count with its noun and the verb that agrees with it, so that
+//! a message reads `1 point is` and `3 points are` whatever the count; a number short enough to
+//! read (`1e308`, never 309 digits), and a value told apart from the limit it is compared with.
 
 /// `n` and `noun`, singular for exactly one and plural (the noun and `s`) otherwise:
 /// `count(1, "point")` is `1 point`, `count(0, "point")` and `count(3, "point")` are `0 points`
@@ -27,6 +28,30 @@ pub fn is_are(n: usize) -> &'static str {
     }
 }
 
+/// A number for messages: plain for moderate magnitudes, shortest round-trip scientific notation
+/// otherwise (`1e308`, never 309 digits).
+pub fn number(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) || !v.is_finite() {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// `value` with 2 decimals, or as many more (up to 9) as tell it apart from the nearer end of
+/// `[lower, upper]` printed the same way: `35.001` is not shown as `35.00` beside a limit `35.00`
+/// (2 decimals if they are equal).
+pub fn distinct(value: f64, lower: f64, upper: f64) -> String {
+    let nearer = match (value - lower).abs() < (value - upper).abs() {
+        true => lower,
+        false => upper,
+    };
+    (2..=9)
+        .map(|p| (format!("{value:.p$}"), format!("{nearer:.p$}")))
+        .find(|(v, n)| v != n)
+        .map_or_else(|| format!("{value:.2}"), |(v, _)| v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -39,5 +64,22 @@ mod tests {
             assert_eq!(is_are(n), "are");
         }
         assert_eq!(is_are(1), "is");
+    }
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(number(1e308), "1e308");
+        assert_eq!(number(1e-320), "1e-320");
+        assert_eq!(number(950000.0), "950000");
+        assert_eq!(number(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn distinct_shows_enough_digits() {
+        assert_eq!(distinct(40.0, -155.0, 35.0), "40.00");
+        assert_eq!(distinct(35.001, -155.0, 35.0), "35.001");
+        assert_eq!(distinct(35.0, -155.0, 35.0), "35.00");
+        assert_eq!(distinct(f64::NAN, -1.0, 1.0), "NaN");
+        assert_eq!(distinct(f64::INFINITY, -1.0, 1.0), "inf");
     }
 }

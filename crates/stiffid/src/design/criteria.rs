@@ -5,12 +5,11 @@
 //! model (`N = 6` for the six drive springs, more with virtual springs: [`crate::model`]), and
 //! `S = Psi diag(h_nominal) / sigma` its unitless scaling (`sigma` the noise standard deviation at
 //! multiple 1, m): `(S^T S)^-1` is the covariance of the *relative* compliance errors at noise
-//! level 1. Everything is computed from the triangular factor `Psi = Q R` ([`Evaluator`]):
+//! level 1. Everything is computed from the triangular factor `Psi = Q R` ([`Evaluator`](super::Evaluator)):
 //! `S = Q (R diag(h) / sigma)`, so `S` never needs forming. A group whose `Psi` is rank deficient
 //! (the rule of [`crate::math::lsq::Factor::try_new`]) gets `+infinity` for every criterion that depends
 //! on `Psi`, never NaN.
 
-use super::Evaluator;
 use crate::identify::svd::Identifiability;
 use crate::setup::Setup;
 use crate::{dexterity, Error, Frames};
@@ -300,7 +299,7 @@ pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
 /// `k(J_N)` (Eq. 20-21) of the setup's TCP in one posture, its Jacobian in the springs' coordinates
 /// and normalised by the setup's characteristic length; `+infinity` at a singularity. Without a
 /// characteristic length it is normalised by 1 m, so that no NaN reaches a decomposition (the
-/// criteria that need one are NaN then: [`Evaluation`], [`Evaluator::value`]).
+/// criteria that need one are NaN then: [`Evaluation`], [`Evaluator::value`](super::Evaluator::value)).
 pub fn tcp_dexterity(setup: &Setup, frames: &Frames) -> f64 {
     let j = frames.jacobian(&setup.tool().tcp, setup.springs());
     let l = setup.characteristic_length().unwrap_or(PLACEHOLDER_LENGTH);
@@ -316,25 +315,4 @@ pub(crate) const PLACEHOLDER_LENGTH: f64 = 1.0;
 pub fn predicted_deviation_pct(relative_std: &Vector6<f64>, multiple: f64) -> [f64; 6] {
     let f = 100.0 * (2.0 / PI).sqrt() * multiple.sqrt();
     std::array::from_fn(|j| f * relative_std[j])
-}
-
-/// Every criterion of a group of postures (axis angles, rad); see [`Evaluator`] for how they are
-/// computed, and to evaluate many groups of one setup.
-///
-/// # Examples
-/// A seeded group of 8 postures on the paper's setup: the relative-A criterion is the RMS of the
-/// relative standard deviations, and the predicted deviation rate grows as the square root of the
-/// noise level (levels 0.5 and 2.0: a factor of 2).
-/// ```
-/// use stiffid::design::{evaluate, random_group, Criterion};
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
-/// let e = evaluate(&setup, &random_group(&setup, 8, 1));
-/// let rms = e.relative_std.norm() / 6f64.sqrt();
-/// assert!((e.value(Criterion::RelativeA) - rms).abs() < 1e-12 * rms);
-/// let (low, high) = (e.predicted_deviation_pct[0], e.predicted_deviation_pct[3]);
-/// assert!((0..6).all(|j| (high[j] / low[j] - 2.0).abs() < 1e-12));
-/// # Ok::<(), stiffid::Error>(())
-/// ```
-pub fn evaluate(setup: &Setup, postures: &[Vector6<f64>]) -> Evaluation {
-    Evaluator::new(setup).evaluation(postures)
 }

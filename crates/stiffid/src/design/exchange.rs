@@ -4,7 +4,7 @@
 //! ([`crate::design::registration`]) choose their groups with it; each gives the value of a group of
 //! candidate indices (lower is better, `+infinity` for a group that determines nothing).
 
-use super::{PoolMethod, PoolOptions};
+use crate::{common::limits, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -12,6 +12,72 @@ use rayon::prelude::*;
 /// Most passes of one exchange run (each pass that exchanges nothing ends the run; the value
 /// falls strictly at every exchange, so the limit is a guard, not reached in practice).
 const MAX_PASSES: usize = 100;
+
+/// How a pool is searched.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoolOptions {
+    /// Exchange runs from seeded random groups (default 8).
+    pub restarts: usize,
+    /// Seed of the random groups: run r uses ChaCha8 stream `r` of it (default 1).
+    pub seed: u64,
+    /// Enumerate every group when there are at most this many (default 100 000); 0 always uses
+    /// the exchange algorithm.
+    pub enumeration_limit: u64,
+}
+
+impl PoolOptions {
+    /// Checks every field against its documented limit: `restarts` 1 to
+    /// [`limits::MAX_POOL_RESTARTS`], `enumeration_limit` at most [`limits::MAX_ENUMERATION`].
+    /// [`Pool::best`](super::Pool::best) calls it.
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidField`] naming the field (`PoolOptions.restarts`), the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        let restarts = self.restarts as u64;
+        limits::check_integer(
+            "PoolOptions.restarts",
+            restarts,
+            1,
+            limits::MAX_POOL_RESTARTS,
+        )?;
+        let limit = self.enumeration_limit;
+        limits::check_integer(
+            "PoolOptions.enumeration_limit",
+            limit,
+            0,
+            limits::MAX_ENUMERATION,
+        )
+    }
+}
+
+impl Default for PoolOptions {
+    fn default() -> Self {
+        Self {
+            restarts: 8,
+            seed: 1,
+            enumeration_limit: 100_000,
+        }
+    }
+}
+
+/// How a group was chosen from a pool.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PoolMethod {
+    /// Every group was evaluated: the group is the exact optimum.
+    Enumeration,
+    /// The exchange algorithm: the best of its restarts, a local optimum.
+    Exchange,
+}
+
+impl PoolMethod {
+    /// Its name in documents: `enumeration` or `exchange`.
+    pub fn name(self) -> &'static str {
+        match self {
+            PoolMethod::Enumeration => "enumeration",
+            PoolMethod::Exchange => "exchange",
+        }
+    }
+}
 
 /// The group chosen.
 #[derive(Debug, Clone, PartialEq)]

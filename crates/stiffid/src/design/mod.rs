@@ -20,10 +20,11 @@ pub mod registration;
 pub mod search;
 pub mod target;
 
-pub use criteria::{evaluate, Criterion, Evaluation, ParameterQuality};
-pub use evaluator::{Evaluator, PostureTerms};
+pub use criteria::{Criterion, Evaluation, ParameterQuality};
+pub use evaluator::{evaluate, Evaluator, PostureTerms};
+pub use exchange::{PoolMethod, PoolOptions};
 pub use identifiable::{identifiable, unidentifiable};
-pub use pool::{Pool, PoolChoice, PoolMethod, PoolOptions};
+pub use pool::{Pool, PoolChoice};
 pub use search::{
     global, global_for, local, local_for, random_group, CalibrationGoal, Goal, Gradient,
     SearchOptions, SearchOutcome, Solver, Termination, PROBE_DRAWS,

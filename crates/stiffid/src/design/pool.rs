@@ -21,11 +21,11 @@
 //! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to [`MAX_GROUP`] postures.
 
 use super::evaluator::Information;
-use super::exchange;
+use super::exchange::{self, PoolMethod, PoolOptions};
 use super::search::check_count;
 use super::{Criterion, Evaluator};
 use crate::setup::Setup;
-use crate::{common::limits, Error, Result};
+use crate::{Error, Result};
 use nalgebra::Vector6;
 
 /// Most postures in a pool (each costs one forward kinematics and a 6 x 6 matrix; an exchange
@@ -34,72 +34,6 @@ pub const MAX_POOL: usize = 10_000;
 
 /// Most postures in a group chosen from a pool.
 pub const MAX_GROUP: usize = 60;
-
-/// How a pool is searched.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PoolOptions {
-    /// Exchange runs from seeded random groups (default 8).
-    pub restarts: usize,
-    /// Seed of the random groups: run r uses ChaCha8 stream `r` of it (default 1).
-    pub seed: u64,
-    /// Enumerate every group when there are at most this many (default 100 000); 0 always uses
-    /// the exchange algorithm.
-    pub enumeration_limit: u64,
-}
-
-impl PoolOptions {
-    /// Checks every field against its documented limit: `restarts` 1 to
-    /// [`limits::MAX_POOL_RESTARTS`], `enumeration_limit` at most [`limits::MAX_ENUMERATION`].
-    /// [`Pool::best`] calls it.
-    ///
-    /// # Errors
-    /// [`Error::InvalidField`] naming the field (`PoolOptions.restarts`), the value and the range.
-    pub fn validate(&self) -> Result<()> {
-        let restarts = self.restarts as u64;
-        limits::check_integer(
-            "PoolOptions.restarts",
-            restarts,
-            1,
-            limits::MAX_POOL_RESTARTS,
-        )?;
-        let limit = self.enumeration_limit;
-        limits::check_integer(
-            "PoolOptions.enumeration_limit",
-            limit,
-            0,
-            limits::MAX_ENUMERATION,
-        )
-    }
-}
-
-impl Default for PoolOptions {
-    fn default() -> Self {
-        Self {
-            restarts: 8,
-            seed: 1,
-            enumeration_limit: 100_000,
-        }
-    }
-}
-
-/// How a group was chosen from a pool.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PoolMethod {
-    /// Every group was evaluated: the group is the exact optimum.
-    Enumeration,
-    /// The exchange algorithm: the best of its restarts, a local optimum.
-    Exchange,
-}
-
-impl PoolMethod {
-    /// Its name in documents: `enumeration` or `exchange`.
-    pub fn name(self) -> &'static str {
-        match self {
-            PoolMethod::Enumeration => "enumeration",
-            PoolMethod::Exchange => "exchange",
-        }
-    }
-}
 
 /// The group chosen from a pool.
 #[derive(Debug, Clone, PartialEq)]

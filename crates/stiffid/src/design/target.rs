@@ -111,7 +111,7 @@ pub fn smallest_group<E: From<Error>>(
             option: JobOption::TargetPct,
             message: format!(
                 "{} given: expected a finite percentage > 0",
-                crate::common::limits::number(target_pct)
+                crate::common::words::number(target_pct)
             ),
         }
         .into());

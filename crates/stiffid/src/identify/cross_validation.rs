@@ -30,37 +30,14 @@
 //! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its
 //! rows. That costs `O(K m p^2)`: `folds x measurements` is at most [`MAX_REFIT_WORK`].
 
-use crate::identify::{svd, Identification, Loss};
+pub use super::Method;
+
+use crate::identify::{explained_share, svd, Identification};
 use crate::math::lsq::Factor;
 use crate::observation::Observations;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Vector6};
 use rayon::prelude::*;
-
-/// The fit of the full data, which every fold repeats.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
-    /// Least squares ([`Observations::least_squares`]).
-    LeastSquares,
-    /// Non-negative least squares ([`Observations::nonnegative`]).
-    Nonnegative,
-    /// Robust, with this loss ([`Observations::robust`]).
-    Robust(Loss),
-}
-
-impl Method {
-    /// Fits `obs` with this method.
-    ///
-    /// # Errors
-    /// Those of the fit.
-    pub fn fit(self, obs: &Observations) -> Result<Identification> {
-        match self {
-            Method::LeastSquares => obs.least_squares(),
-            Method::Nonnegative => obs.nonnegative(),
-            Method::Robust(loss) => obs.robust(loss),
-        }
-    }
-}
 
 /// The smallest Cholesky pivot of `I - H_oo` (module docs) for a fold to count as identifiable.
 pub const MIN_PIVOT: f64 = 1e-7;
@@ -120,28 +97,6 @@ impl CrossValidation {
     pub fn explained(&self) -> f64 {
         1.0 - self.rms_delta_b / self.rms_measured
     }
-}
-
-/// The held-out explained share `1 - sqrt(A / B)` and its standard error over the postures, from
-/// each posture's `[a_p, b_p]`: the sums of its squared prediction errors `delta_b^2` and of its
-/// squared measured displacements `|delta_m|^2` (`A`, `B` their sums over the `n` postures).
-/// The postures are the independent units: the ratio `r = A / B` has the variance `n / (n - 1)
-/// sum_p (a_p - r b_p)^2 / B^2` (the delta method of a ratio estimator; Cochran, *Sampling
-/// Techniques*, 3rd ed., 1977, ch. 6), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
-/// `NaN` for one posture.
-pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
-    let n = per_posture.len() as f64;
-    let [a, b] = per_posture
-        .iter()
-        .fold([0.0, 0.0], |[a, b], p| [a + p[0], b + p[1]]);
-    let r = a / b;
-    let var = per_posture
-        .iter()
-        .map(|p| (p[0] - r * p[1]).powi(2))
-        .sum::<f64>()
-        * n
-        / ((n - 1.0) * b * b);
-    [1.0 - r.sqrt(), var.sqrt() / (2.0 * r.sqrt())]
 }
 
 /// The share of the measured displacements (root sum of squares) at or below which a full fit's

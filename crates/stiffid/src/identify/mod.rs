@@ -51,6 +51,54 @@ use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use rayon::prelude::*;
 
+/// How a model is fitted to the data: the full fit, which every fold of a cross-validation
+/// repeats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Least squares ([`Observations::least_squares`]).
+    LeastSquares,
+    /// Non-negative least squares ([`Observations::nonnegative`]).
+    Nonnegative,
+    /// Robust, with this loss ([`Observations::robust`]).
+    Robust(Loss),
+}
+
+impl Method {
+    /// Fits `obs` with this method.
+    ///
+    /// # Errors
+    /// Those of the fit.
+    pub fn fit(self, obs: &Observations) -> Result<Identification> {
+        match self {
+            Method::LeastSquares => obs.least_squares(),
+            Method::Nonnegative => obs.nonnegative(),
+            Method::Robust(loss) => obs.robust(loss),
+        }
+    }
+}
+
+/// The held-out explained share `1 - sqrt(A / B)` and its standard error over the postures, from
+/// each posture's `[a_p, b_p]`: the sums of its squared prediction errors `delta_b^2` and of its
+/// squared measured displacements `|delta_m|^2` (`A`, `B` their sums over the `n` postures).
+/// The postures are the independent units: the ratio `r = A / B` has the variance `n / (n - 1)
+/// sum_p (a_p - r b_p)^2 / B^2` (the delta method of a ratio estimator; Cochran, *Sampling
+/// Techniques*, 3rd ed., 1977, ch. 6), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
+/// `NaN` for one posture.
+pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
+    let n = per_posture.len() as f64;
+    let [a, b] = per_posture
+        .iter()
+        .fold([0.0, 0.0], |[a, b], p| [a + p[0], b + p[1]]);
+    let r = a / b;
+    let var = per_posture
+        .iter()
+        .map(|p| (p[0] - r * p[1]).powi(2))
+        .sum::<f64>()
+        * n
+        / ((n - 1.0) * b * b);
+    [1.0 - r.sqrt(), var.sqrt() / (2.0 * r.sqrt())]
+}
+
 /// The result of an identification.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Identification {
@@ -78,6 +126,10 @@ pub struct Identification {
     /// The compliances held at their bound `h_j = 0` by [`Observations::nonnegative`]
     /// (the active constraints); `None` for an unbounded fit.
     pub active_bounds: Option<[bool; 6]>,
+    /// Why the active-set steps of [`Observations::nonnegative`] stopped: converged (the
+    /// bounded minimum) or at their limit ([`nonnegative::warning`]); `None` for an unbounded
+    /// fit.
+    pub nonnegative_stop: Option<crate::common::stop::Stop>,
 }
 
 impl Identification {
@@ -358,6 +410,7 @@ impl Observations {
             None,
         );
         id.active_bounds = Some(fit.active);
+        id.nonnegative_stop = Some(fit.stop);
         Ok(id)
     }
 
@@ -431,5 +484,6 @@ fn finish(
         robust,
         unit_covariance,
         active_bounds: None,
+        nonnegative_stop: None,
     }
 }

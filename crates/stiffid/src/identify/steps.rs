@@ -44,8 +44,8 @@
 //! the Monte Carlo) is [`design`].
 
 use crate::identify::adequacy::SIGNIFICANCE;
-use crate::identify::cross_validation::Method;
 use crate::identify::Identification;
+use crate::identify::Method;
 use crate::io::readings::{Load, Readings};
 use crate::observation::deflection::Frame;
 use crate::observation::frames::{self, DisplacementFrame};

@@ -28,8 +28,8 @@
 //! Diagnostics", 1980, ch. 2). `delta_b` is the norm of each measurement's three residuals
 //! (Eq. 22); the explained share is `1 - RMS(delta_b) / RMS(|delta|)`.
 
-use super::cross_validation::{explained_share, Method};
 use super::robust::{self, Loss, RobustFit};
+use super::{explained_share, Method};
 use crate::math::linalg::CappedSvd;
 use crate::model::Parameter;
 use crate::observation::Observations;
@@ -123,6 +123,9 @@ pub struct Fit {
     pub dof: usize,
     /// Which compliances are held at 0, for a bounded fit ([`fit_nonnegative`]).
     pub active_bounds: Option<Vec<bool>>,
+    /// Why the bounded fit's active-set steps stopped ([`fit_nonnegative`]; converged when the
+    /// least-squares fit is already non-negative); `None` for another fit.
+    pub nonnegative_stop: Option<crate::common::stop::Stop>,
     /// The iteratively reweighted fit, for a robust fit ([`fit_robust`]).
     pub robust: Option<RobustFit>,
 }
@@ -367,7 +370,9 @@ pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<F
     let scaled = Scaled::new(&obs.psi)?;
     let h = scaled.solve(&obs.delta);
     if h.iter().all(|v| *v >= 0.0) {
-        return Ok(finish(obs, parameters, &scaled, h, None, None));
+        let mut out = finish(obs, parameters, &scaled, h, None, None);
+        out.nonnegative_stop = Some(crate::common::stop::Stop::Converged);
+        return Ok(out);
     }
     let bounded = super::nonnegative::solve_general(&obs.psi, &obs.delta);
     let free: Vec<usize> = (0..h.len()).filter(|&j| !bounded.active[j]).collect();
@@ -399,6 +404,7 @@ pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<F
         c
     });
     out.dof = sub_fit.dof;
+    out.nonnegative_stop = Some(bounded.stop);
     Ok(out)
 }
 
@@ -474,6 +480,7 @@ fn finish(
         postures: obs.postures,
         dof,
         active_bounds,
+        nonnegative_stop: None,
         robust,
     }
 }
@@ -494,7 +501,7 @@ pub struct HeldOut {
     /// Per posture, the mean of `delta_b^2` over its measurements, m^2.
     pub posture_mse: Vec<f64>,
     /// Per posture, the sums of `delta_b^2` and of `|delta|^2` over its measurements, m^2 (what
-    /// [`crate::identify::cross_validation::explained_share`] takes).
+    /// [`crate::identify::explained_share`] takes).
     pub posture_sums: Vec<[f64; 2]>,
     /// `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
@@ -509,7 +516,7 @@ impl HeldOut {
     }
 
     /// The standard error of [`HeldOut::explained`] over the postures (the delta method on the
-    /// ratio of the postures' sums, [`crate::identify::cross_validation::explained_share`]).
+    /// ratio of the postures' sums, [`crate::identify::explained_share`]).
     pub fn explained_std_error(&self) -> f64 {
         explained_share(&self.posture_sums)[1]
     }

@@ -296,7 +296,7 @@ pub fn check_level(field: &str, level: f64) -> Result<()> {
             field: field.into(),
             message: format!(
                 "{}: expected a level in {LEVEL}, e.g. 0.95",
-                crate::common::limits::number(level)
+                crate::common::words::number(level)
             ),
         }),
     }

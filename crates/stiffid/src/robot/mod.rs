@@ -174,8 +174,8 @@ impl Robot {
                 "axis_map.matrix".into(),
                 &format!(
                     "expected an invertible 6x6 matrix; its condition number is {} (at most {})",
-                    limits::number(cond),
-                    limits::number(limits::MAX_AXIS_MAP_COND)
+                    crate::common::words::number(cond),
+                    crate::common::words::number(limits::MAX_AXIS_MAP_COND)
                 ),
             ));
         }

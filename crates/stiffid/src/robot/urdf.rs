@@ -390,8 +390,8 @@ fn joint_limits(j: &urdf_rs::Joint) -> std::result::Result<(f64, f64), String> {
     if lower >= upper {
         return Err(format!(
             "joint '{name}': limit lower = {} is not below upper = {}",
-            limits::number(lower),
-            limits::number(upper)
+            crate::common::words::number(lower),
+            crate::common::words::number(upper)
         ));
     }
     Ok((lower, upper))

@@ -1,10 +1,10 @@
 //! The arm: the robot with its tool, elastostatic model, payload and bodies; what kinematics,
 //! deflection, prediction and compensation need of a setup ([`super::Setup::arm`]).
 
-use super::RobotGeometry;
 use crate::model::Model;
 use crate::robot::collision::CollisionGeometry;
 use crate::robot::kinematics::Coordinates;
+use crate::robot::parts::polylines;
 use crate::robot::Bodies;
 use crate::Robot;
 use nalgebra::{Matrix3, Vector3, Vector6};
@@ -166,4 +166,52 @@ impl Arm {
             _ => None,
         }
     }
+}
+
+/// Capsule radii of the robot bodies, m (see [`crate::cell::capsules`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotGeometry {
+    /// Radii of the base and of links 1-6, m.
+    pub link_radii: [f64; 7],
+    /// Radius of the tool capsule, m.
+    pub tool_radius: f64,
+}
+
+/// Default radius of the base and links 1-6 as a fraction of the robot's size (the total length
+/// of its capsule segments): 8, 6, 4.5, 4, 3, 2.5 and 2 %.
+pub const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
+
+/// Smallest default tool radius, m (10 mm).
+pub const MIN_TOOL_RADIUS: f64 = 0.01;
+
+/// The default [`RobotGeometry`] of a robot and tool: link radii
+/// [`DEFAULT_RADIUS_FRACTIONS`] of the robot's size (the summed length of its base and link
+/// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
+/// the COMAU NJ 165), and [`default_tool_radius`].
+pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
+    let frames = robot.frames(&Vector6::zeros());
+    let size: f64 = polylines(&frames)
+        .iter()
+        .flat_map(|(_, p)| p.windows(2).map(|w| (w[1] - w[0]).norm()))
+        .sum();
+    RobotGeometry {
+        link_radii: DEFAULT_RADIUS_FRACTIONS.map(|f| f * size),
+        tool_radius: default_tool_radius(tool),
+    }
+}
+
+/// The default radius of the tool body, m: half the distance of the nearest measuring point from
+/// the flange z axis, at least [`MIN_TOOL_RADIUS`]. The measuring points (reflectors) sit on the
+/// outside of the tool, so a body that reached them would hide them from the tracker: the tool
+/// capsule stands for the spindle or the bar that carries them, not for their envelope.
+pub fn default_tool_radius(tool: &Tool) -> f64 {
+    (0.5 * nearest_measuring_point(tool)).max(MIN_TOOL_RADIUS)
+}
+
+/// The distance of the measuring point nearest the flange z axis from it, m (infinite without
+/// measuring points).
+pub fn nearest_measuring_point(tool: &Tool) -> f64 {
+    (tool.measuring_points.iter())
+        .map(|p| p.xy().norm())
+        .fold(f64::INFINITY, f64::min)
 }

@@ -1,14 +1,15 @@
 //! [`SetupBuilder`]: a [`Setup`] from SI values, every field checked as a setup file's are.
 
-use super::cell::{self, RobotGeometry};
+use super::cell;
+use super::{invalid, RobotGeometry};
 use super::{Arm, Cell, CellConstraints, Experiment, Noise, Payload, RopeLoad, Setup, Tool};
 use super::{Controller, Tracker, Workcell};
-use crate::common::limits::joint_box::distinct;
 use crate::common::limits::{self, JointBox};
+use crate::common::words::distinct;
 use crate::model::{Model, Spring};
 use crate::robot::kinematics::Coordinates;
 use crate::robot::Bodies;
-use crate::{Error, Result, Robot};
+use crate::{Result, Robot};
 use nalgebra::{Isometry3, Vector3, Vector6};
 
 impl Setup {
@@ -368,7 +369,7 @@ impl SetupBuilder {
             measuring_points: self.measuring_points,
             tcp: tcp.unwrap_or_default(),
         };
-        let defaults = cell::default_geometry(&self.robot, &tool);
+        let defaults = super::default_geometry(&self.robot, &tool);
         let shapes = match (&self.robot.bodies(), self.link_radii) {
             (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
             (Bodies::Missing(m), None) => Bodies::Missing(m.clone()),
@@ -453,13 +454,6 @@ impl SetupBuilder {
             },
             notes: Vec::new(),
         })
-    }
-}
-
-pub(super) fn invalid(field: &str, message: impl Into<String>) -> Error {
-    Error::InvalidField {
-        field: field.to_string(),
-        message: message.into(),
     }
 }
 

@@ -20,14 +20,9 @@
 //! measuring_normals = [[0, 0, 1]]   # per measuring point, flange frame; default flange z
 //! ```
 
-use super::file::mm;
-use super::{invalid, SetupBuilder, Tool};
-use crate::robot::file::TransformFile;
-use crate::robot::parts::polylines;
-use crate::Robot;
+use super::{invalid, RobotGeometry};
 use crate::{common::limits, Result};
-use nalgebra::{Isometry3, Vector3, Vector6};
-use serde::Deserialize;
+use nalgebra::{Isometry3, Vector3};
 
 /// Most obstacles a cell may list.
 pub const MAX_OBSTACLES: usize = 100;
@@ -64,15 +59,6 @@ impl Obstacle {
     }
 }
 
-/// Capsule radii of the robot bodies, m (see [`crate::cell::capsules`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct RobotGeometry {
-    /// Radii of the base and of links 1-6, m.
-    pub link_radii: [f64; 7],
-    /// Radius of the tool capsule, m.
-    pub tool_radius: f64,
-}
-
 /// The laser tracker that measures the measuring points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tracker {
@@ -95,48 +81,13 @@ pub struct Tracker {
     pub registration_uncertainty: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct CellFile {
-    floor_z_mm: Option<f64>,
-    clearance_mm: Option<f64>,
-    #[serde(default)]
-    obstacle: Vec<ObstacleFile>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObstacleFile {
-    name: String,
-    #[serde(deserialize_with = "crate::common::exact::array")]
-    min_mm: [f64; 3],
-    #[serde(deserialize_with = "crate::common::exact::array")]
-    max_mm: [f64; 3],
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct GeometryFile {
-    #[serde(default, deserialize_with = "crate::common::exact::option")]
-    link_radius_mm: Option<[f64; 7]>,
-    tool_radius_mm: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct TrackerFile {
-    #[serde(default, deserialize_with = "crate::common::exact::option")]
-    position_mm: Option<[f64; 3]>,
-    max_incidence_deg: Option<f64>,
-    #[serde(default, deserialize_with = "crate::common::exact::option_arrays")]
-    measuring_normals: Option<Vec<[f64; 3]>>,
-    base_from_tracker: Option<TransformFile>,
-    registration_uncertainty_mm: Option<f64>,
-}
-
 /// The numbers of a field for messages, shortened.
 fn shown(values: &[f64]) -> String {
-    let text: Vec<String> = values.iter().take(7).map(|v| limits::number(*v)).collect();
+    let text: Vec<String> = values
+        .iter()
+        .take(7)
+        .map(|v| crate::common::words::number(*v))
+        .collect();
     let more = if values.len() > 7 { ", ..." } else { "" };
     format!("[{}{more}]", text.join(", "))
 }
@@ -148,7 +99,7 @@ fn in_mm(v: &Vector3<f64>) -> [f64; 3] {
 
 /// A position (mm) within the cell's reach: [`limits::LENGTH_MM`] (100 m), the range of every
 /// length of a robot file.
-fn position(field: &str, values_mm: &[f64]) -> Result<()> {
+pub(super) fn position(field: &str, values_mm: &[f64]) -> Result<()> {
     limits::check(field, values_mm, &limits::LENGTH_MM)
 }
 
@@ -164,26 +115,9 @@ fn length(field: &str, v: f64, open: bool) -> Result<()> {
         field,
         format!(
             "{} given: expected a length {low} and <= {MAX_LENGTH_MM} mm",
-            limits::number(v)
+            crate::common::words::number(v)
         ),
     ))
-}
-
-/// The `[cell]` table in SI units (checked by [`check_cell`] when the setup is built).
-pub(super) fn cell(f: CellFile) -> Cell {
-    Cell {
-        floor_z: f.floor_z_mm.map(|z| z * 1e-3),
-        clearance: f.clearance_mm.unwrap_or(0.0) * 1e-3,
-        obstacles: f
-            .obstacle
-            .into_iter()
-            .map(|o| Obstacle {
-                name: o.name,
-                min: mm(&o.min_mm),
-                max: mm(&o.max_mm),
-            })
-            .collect(),
-    }
 }
 
 /// Checks a cell: floor height within [`limits::LENGTH_MM`], clearance within [`MAX_LENGTH_MM`],
@@ -226,17 +160,6 @@ fn check_obstacle(o: &Obstacle, field: &str) -> Result<()> {
     Ok(())
 }
 
-/// The builder with the radii the file gives.
-pub(super) fn geometry(f: GeometryFile, mut b: SetupBuilder) -> SetupBuilder {
-    if let Some(radii) = f.link_radius_mm {
-        b = b.with_link_radii(radii.map(|r| r * 1e-3));
-    }
-    if let Some(r) = f.tool_radius_mm {
-        b = b.with_tool_radius(r * 1e-3);
-    }
-    b
-}
-
 /// Checks every radius: a length in `(0, MAX_LENGTH_MM]` mm.
 pub(super) fn check_geometry(g: &RobotGeometry) -> Result<()> {
     for (i, r) in g.link_radii.iter().enumerate() {
@@ -247,43 +170,6 @@ pub(super) fn check_geometry(g: &RobotGeometry) -> Result<()> {
         )?;
     }
     length("robot_geometry.tool_radius_mm", g.tool_radius, true)
-}
-
-/// The `[tracker]` table in SI units: the position is `position_mm`, or the translation of
-/// `base_from_tracker` (checked by [`checked_tracker`] when the setup is built).
-pub(super) fn tracker(f: TrackerFile) -> Result<Tracker> {
-    if let Some(t) = &f.base_from_tracker {
-        position("tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
-        let rpy = &limits::ANGLE_DEG;
-        limits::check("tracker.base_from_tracker.rpy_deg", &t.rpy_deg, rpy)?;
-    }
-    if let Some(u) = f.registration_uncertainty_mm {
-        limits::check(
-            "tracker.registration_uncertainty_mm",
-            &[u],
-            &limits::MARGIN_MM,
-        )?;
-    }
-    let base_from_tracker = f.base_from_tracker.map(|t| t.isometry());
-    let position = match (f.position_mm, &base_from_tracker) {
-        (Some(p), _) => mm(&p),
-        (None, Some(t)) => t.translation.vector,
-        (None, None) => {
-            return Err(invalid(
-                "tracker",
-                "expected position_mm or base_from_tracker",
-            ))
-        }
-    };
-    Ok(Tracker {
-        position,
-        max_incidence: f.max_incidence_deg.map(f64::to_radians),
-        measuring_normals: f
-            .measuring_normals
-            .map_or(Vec::new(), |n| n.into_iter().map(Vector3::from).collect()),
-        base_from_tracker,
-        registration_uncertainty: f.registration_uncertainty_mm.map(|u| u * 1e-3),
-    })
 }
 
 /// The tracker checked, its normals made unit (the flange z axis for each of the
@@ -327,7 +213,7 @@ pub(super) fn checked_tracker(
                 "tracker.max_incidence_deg",
                 format!(
                     "{} given: expected an angle in (0, 90] deg",
-                    limits::number(a.to_degrees())
+                    crate::common::words::number(a.to_degrees())
                 ),
             ));
         }
@@ -366,43 +252,4 @@ fn normals(given: &[Vector3<f64>], count: usize) -> Result<Vec<Vector3<f64>>> {
             })
         })
         .collect()
-}
-
-/// Default radius of the base and links 1-6 as a fraction of the robot's size (the total length
-/// of its capsule segments): 8, 6, 4.5, 4, 3, 2.5 and 2 %.
-pub const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
-
-/// Smallest default tool radius, m (10 mm).
-pub const MIN_TOOL_RADIUS: f64 = 0.01;
-
-/// The default [`RobotGeometry`] of a robot and tool: link radii
-/// [`DEFAULT_RADIUS_FRACTIONS`] of the robot's size (the summed length of its base and link
-/// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
-/// the COMAU NJ 165), and [`default_tool_radius`].
-pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
-    let frames = robot.frames(&Vector6::zeros());
-    let size: f64 = polylines(&frames)
-        .iter()
-        .flat_map(|(_, p)| p.windows(2).map(|w| (w[1] - w[0]).norm()))
-        .sum();
-    RobotGeometry {
-        link_radii: DEFAULT_RADIUS_FRACTIONS.map(|f| f * size),
-        tool_radius: default_tool_radius(tool),
-    }
-}
-
-/// The default radius of the tool body, m: half the distance of the nearest measuring point from
-/// the flange z axis, at least [`MIN_TOOL_RADIUS`]. The measuring points (reflectors) sit on the
-/// outside of the tool, so a body that reached them would hide them from the tracker: the tool
-/// capsule stands for the spindle or the bar that carries them, not for their envelope.
-pub fn default_tool_radius(tool: &Tool) -> f64 {
-    (0.5 * nearest_measuring_point(tool)).max(MIN_TOOL_RADIUS)
-}
-
-/// The distance of the measuring point nearest the flange z axis from it, m (infinite without
-/// measuring points).
-pub fn nearest_measuring_point(tool: &Tool) -> f64 {
-    (tool.measuring_points.iter())
-        .map(|p| p.xy().norm())
-        .fold(f64::INFINITY, f64::min)
 }

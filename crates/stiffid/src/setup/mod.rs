@@ -74,12 +74,12 @@ pub mod prior;
 pub mod reference;
 mod workcell;
 
-pub use arm::{Arm, Payload, Tool, GRAVITY};
-pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
-pub use cell::{
-    default_geometry, default_tool_radius, nearest_measuring_point, Cell, Obstacle, RobotGeometry,
-    Tracker, DEFAULT_RADIUS_FRACTIONS, MAX_LENGTH_MM, MAX_OBSTACLES, MIN_TOOL_RADIUS,
+pub use arm::{
+    default_geometry, default_tool_radius, nearest_measuring_point, Arm, Payload, RobotGeometry,
+    Tool, DEFAULT_RADIUS_FRACTIONS, GRAVITY, MIN_TOOL_RADIUS,
 };
+pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
+pub use cell::{Cell, Obstacle, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
@@ -91,8 +91,20 @@ use crate::model::{Compliance, Model, Spring};
 use crate::robot::collision::CollisionGeometry;
 use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Robot};
-use builder::invalid;
 use nalgebra::{Isometry3, Vector6};
+
+/// The error of the setup field `field`.
+fn invalid(field: &str, message: impl Into<String>) -> Error {
+    Error::InvalidField {
+        field: field.to_string(),
+        message: message.into(),
+    }
+}
+
+/// A point in mm as a vector in m.
+fn mm(v: &[f64; 3]) -> nalgebra::Vector3<f64> {
+    nalgebra::Vector3::new(v[0], v[1], v[2]) * 1e-3
+}
 
 /// A resolved experimental setup, SI units throughout, its fields checked ([`SetupBuilder::build`]):
 /// a name, the [`Arm`], the [`Experiment`] and the [`Workcell`].

@@ -142,7 +142,7 @@ pub fn nominal_stiffness(payload_kg: f64) -> Result<Vector6<f64>> {
             field: "payload_kg".into(),
             message: format!(
                 "expected a payload in (0, {MAX_PAYLOAD_KG}] kg, got {}",
-                crate::common::limits::number(payload_kg)
+                crate::common::words::number(payload_kg)
             ),
         });
     }

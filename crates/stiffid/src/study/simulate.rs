@@ -23,7 +23,7 @@
 //! sums are taken in run order, so the result is the same whatever the number of threads.
 
 use crate::common::progress::{Progress, Tally};
-use crate::design::criteria::evaluate;
+use crate::design::evaluate;
 use crate::identify::svd::identifiability;
 use crate::math::lsq::Factor;
 

@@ -4,8 +4,8 @@
 
 use crate::candidates::{measure, paper_with, ELBOW};
 use std::io::Empty;
-use stiffid::app::identify::Data;
 use stiffid::app::identify::{run, Options, Report, Request};
+use stiffid::app::measurements::Data;
 use stiffid::design::random_group;
 use stiffid::identify::compare::bootstrap::percentile;
 use stiffid::identify::compare::{bootstrap, compare, Bootstrap, Comparison, Resampling};

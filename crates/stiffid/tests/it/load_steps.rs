@@ -8,7 +8,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::identify::drives::Report;
-use stiffid::app::identify::{self as job, Data, Options, Request};
+use stiffid::app::identify::{self as job, Options, Request};
+use stiffid::app::measurements::Data;
 use stiffid::observation::stiffness::rope_displacements;
 use stiffid::Setup;
 

@@ -3,7 +3,8 @@
 //! cross_validate_model, crate::app::identify).
 
 use nalgebra::DVector;
-use stiffid::app::identify::{self, Data, Options, Report, Request};
+use stiffid::app::identify::{self, Options, Report, Request};
+use stiffid::app::measurements::Data;
 use stiffid::design::random_group;
 use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, Method};
 use stiffid::identify::svd::{fit_by, held_out};

@@ -59,7 +59,7 @@ fn search_options_out_of_range_are_refused_by_local_and_global() {
         ];
         for (field, o) in cases {
             let field = format!("SearchOptions.{field}");
-            let shown = stiffid::common::limits::number(v);
+            let shown = stiffid::common::words::number(v);
             rejected(
                 design::local(&setup, Criterion::DOptimal, &start, &o),
                 &field,
@@ -164,7 +164,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         rejected(
             solve(o),
             "ik::Options.position_tolerance",
-            &stiffid::common::limits::number(v),
+            &stiffid::common::words::number(v),
         );
         let o = ik::Options {
             rotation_tolerance: v,
@@ -173,7 +173,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         rejected(
             solve(o),
             "ik::Options.rotation_tolerance",
-            &stiffid::common::limits::number(v),
+            &stiffid::common::words::number(v),
         );
     }
     let o = ik::Options {

@@ -1,7 +1,8 @@
 //! Every iterative solver says why it stopped: inverse kinematics in its error, the
-//! compensation's Newton steps per point and in the compensate document, with a `not-converged`
-//! warning when a result comes from steps stopped at their limit. (The calibration's fit and the
-//! robust reweighting are tested beside their code.)
+//! compensation's Newton steps per point and in the compensate document, the non-negative least
+//! squares in the identify document, with a `not-converged` warning when a result comes from
+//! steps stopped at their limit. (The calibration's fit, the robust reweighting and the
+//! non-negative least squares at its limit are tested beside their code.)
 
 use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid::app::compensate::document::{Document, Names};
@@ -14,6 +15,47 @@ use stiffid::observation::deflection::Frame;
 use stiffid::robot::ik::{self, tool_pose};
 use stiffid::robot::presets;
 use stiffid::{setup, Error, Setup};
+
+#[test]
+fn the_nonnegative_fit_says_why_it_stopped_in_the_identify_document() {
+    use stiffid::app::identify::{self, Options, Request};
+    use stiffid::app::measurements::Data;
+    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
+    let measured = crate::common::paper_measurements(&setup);
+    // Displacements with the wrong sign: every compliance of the bounded fit sits at 0.
+    let flipped: Vec<_> = (measured.iter().cloned())
+        .map(|mut m| {
+            m.displacement = -m.displacement;
+            m
+        })
+        .collect();
+    let run = |data: &[stiffid::observation::Measurement], nonnegative: bool| {
+        let report = identify::run(Request::<&[u8]> {
+            setup: &setup,
+            data: Data::Measurements(data.to_vec()),
+            options: Options {
+                nonnegative,
+                ..Options::default()
+            },
+        })
+        .unwrap();
+        let document = serde_json::to_value(report.document("paper", &setup)).unwrap();
+        (report.warnings().to_vec(), document)
+    };
+    for data in [&measured, &flipped] {
+        let (warnings, document) = run(data, true);
+        assert_eq!(document["method"], "nonnegative-least-squares");
+        assert_eq!(document["nonnegative_stop_reason"], "converged");
+        assert!(!(warnings.iter()).any(|w| w.kind == WarningKind::NotConverged));
+    }
+    assert_eq!(
+        run(&flipped, true).1["active_bounds"],
+        serde_json::json!([true, true, true, true, true, true])
+    );
+    let (_, plain) = run(&measured, false);
+    assert_eq!(plain["method"], "least-squares");
+    assert_eq!(plain.get("nonnegative_stop_reason"), None);
+}
 
 #[test]
 fn inverse_kinematics_says_why_a_pose_was_not_reached() {

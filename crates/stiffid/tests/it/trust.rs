@@ -106,6 +106,7 @@ fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
         });
         let b = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
         let fit = nonnegative::solve(&a, &b);
+        assert_eq!(fit.stop, stiffid::common::stop::Stop::Converged);
         let truth = nnls_by_enumeration(&a, &b);
         assert!((fit.h - truth).amax() < 1e-10, "{} vs {}", fit.h, truth);
         assert!(fit.h.iter().all(|v| *v >= 0.0));
@@ -156,6 +157,10 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
     assert_eq!(plain.physical(), [false; 6]);
     let bounded = obs.nonnegative().unwrap();
     assert_eq!(bounded.active_bounds, Some([true; 6]));
+    assert_eq!(
+        (plain.nonnegative_stop, bounded.nonnegative_stop),
+        (None, Some(stiffid::common::stop::Stop::Converged))
+    );
     assert_eq!(bounded.compliance, Vector6::zeros());
     assert_eq!(bounded.physical(), [false; 6]);
 }

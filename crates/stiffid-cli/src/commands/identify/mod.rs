@@ -11,7 +11,8 @@ use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::identify::document::{drives, springs};
-use stiffid::app::identify::{self as job, Data, Options, Report, Request};
+use stiffid::app::identify::{self as job, Options, Report, Request};
+use stiffid::app::measurements::Data;
 use stiffid::identify::Loss;
 use stiffid::Progress;
 

@@ -78,8 +78,8 @@ impl Tolerances {
                     "expected {} and {}, got {} and {}",
                     limits::TOLERANCE_MM,
                     limits::TOLERANCE_DEG,
-                    limits::number(length_mm),
-                    limits::number(angle_deg)
+                    crate::common::words::number(length_mm),
+                    crate::common::words::number(angle_deg)
                 ),
             }),
         }

@@ -3,6 +3,8 @@
 //! the robot calibration's Levenberg-Marquardt over 6 + 3p unknowns, `calibrate --geometry none
 //! --gravity none`), each point's shift from the setup's value with its standard deviation.
 
+pub mod document;
+
 use super::in_data;
 pub use super::readings::Request;
 use super::readings::{read, refuse_implausible};

@@ -13,9 +13,29 @@
 
 pub mod candidates;
 pub mod feasibility;
+pub mod group;
 pub mod mass;
 pub mod parameters;
 pub mod scene;
+pub mod transform;
+
+/// The JSON Schemas of the documents' fields that hold one of a choice's names.
+#[cfg(feature = "schema")]
+pub(crate) mod schema {
+    use crate::common::choice::{names, Choice};
+    use crate::design::Criterion;
+    use schemars::{json_schema, Schema, SchemaGenerator};
+
+    /// A string that is one of `T`'s names.
+    pub fn one_of<T: Choice>() -> Schema {
+        json_schema!({ "type": "string", "enum": names::<T>() })
+    }
+
+    /// A stiffness criterion's name (`relative-a`, ...).
+    pub fn criterion(_: &mut SchemaGenerator) -> Schema {
+        one_of::<Criterion>()
+    }
+}
 
 /// `v` if finite, else `None`.
 pub fn finite(v: f64) -> Option<f64> {
@@ -35,6 +55,16 @@ pub fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) ->
 /// A length in m, in mm.
 pub fn mm(v: f64) -> f64 {
     v * 1e3
+}
+
+/// A prediction interval (m) in mm, `null` for an unbounded end.
+pub fn interval_mm(interval: crate::model::prediction::Interval) -> [[Option<f64>; 2]; 3] {
+    interval.map(|c| c.map(|v| finite(mm(v))))
+}
+
+/// A vector in m, in mm.
+pub fn mm3(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
+    [mm(v.x), mm(v.y), mm(v.z)]
 }
 
 /// Axis angles (rad) of a group as rows of degrees, q1..q6.

@@ -4,8 +4,7 @@
 //! ([`crate::identify::compare::bootstrap`]), on a measurement file or measurements given as
 //! arrays.
 
-use super::drives::{angle_warnings, on_measurements};
-use super::Data;
+use crate::app::measurements::{angle_warnings, on_measurements, Data};
 use crate::app::Warning;
 use crate::common::progress::Progress;
 use crate::identify::compare::{

@@ -7,26 +7,26 @@
 //! blocks ([`streamed`]), in bounded memory. Every other fit (robust, non-negative) and
 //! cross-validation need the whole observation matrix ([`Observations`]).
 
-use super::{Data, Fit, Folds};
+use super::{Fit, Folds};
 use crate::app::in_data;
+use crate::app::measurements::{
+    angle_warnings, arrays_origin, header_has_loads, read_file, Data, Loaded, Origin,
+};
 use crate::identify::prediction::calibrate;
 use crate::model::prediction::Calibration;
 
 use crate::common::warning::{joint_list, Warning, WarningKind};
 use crate::identify::adequacy::UNIT_FACTOR;
 use crate::identify::offsets::{self, Offset};
-use crate::identify::steps::{self, linearity, Linearity, LoadSteps};
+use crate::identify::steps::{self, linearity, Linearity};
 use crate::identify::{
     cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, UnitCheck,
 };
-use crate::io::measurements::{self, Labels};
 use crate::io::read_text;
-use crate::io::readings::{self, has_load_column};
 use crate::observation::{Measurement, Observations};
-use crate::setup::{plausibility, Noise};
-use crate::{Error, Result, Setup};
-use nalgebra::Vector6;
-use std::io::{BufRead, BufReader, Read};
+use crate::setup::Noise;
+use crate::{Result, Setup};
+use std::io::{BufReader, Read};
 
 /// What to identify and how (checked together by [`super::Options`]).
 pub(super) struct Request<'a, R> {
@@ -62,64 +62,6 @@ pub fn row_noise_variance(noise: &Noise, per_reading: bool) -> f64 {
 /// ([`crate::model::prediction`]).
 pub fn noise_floor(noise: &Noise) -> f64 {
     noise.displacement_sd()
-}
-
-/// Where each measurement came from: what a report names a measurement by.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Origin {
-    /// The posture labels (a file's; for arrays `1`, `2`, ... in order).
-    pub labels: Labels,
-    /// The posture of each measurement, numbered in order of first appearance.
-    pub postures: Vec<usize>,
-    /// The measuring point of each measurement, 0-based.
-    pub points: Vec<usize>,
-    /// The axis angles of each posture (rad), by posture number.
-    pub angles: Vec<Vector6<f64>>,
-    /// The line of each measurement in its file (1-based); `None` for arrays.
-    pub lines: Option<Vec<u64>>,
-    /// The first measurement of each posture (dense number).
-    pub first_of_posture: Vec<usize>,
-    /// The names of the force and of the displacement columns (a file's header, or the arrays'
-    /// argument names), comma-separated.
-    pub columns: [String; 2],
-}
-
-impl Origin {
-    /// The label of measurement `i`'s posture.
-    pub fn label(&self, i: usize) -> &str {
-        self.labels.get(self.postures[i])
-    }
-
-    /// The labels of dense posture numbers.
-    pub fn labels_of(&self, postures: &[usize]) -> Vec<String> {
-        postures
-            .iter()
-            .map(|&p| self.label(self.first_of_posture[p]).to_string())
-            .collect()
-    }
-
-    fn new(
-        labels: Labels,
-        postures: Vec<usize>,
-        points: Vec<usize>,
-        angles: Vec<Vector6<f64>>,
-        lines: Option<Vec<u64>>,
-        columns: [String; 2],
-    ) -> Self {
-        let mut first_of_posture = vec![usize::MAX; labels.len()];
-        for (i, &p) in postures.iter().enumerate().rev() {
-            first_of_posture[p] = i;
-        }
-        Origin {
-            labels,
-            postures,
-            points,
-            angles,
-            lines,
-            first_of_posture,
-            columns,
-        }
-    }
 }
 
 /// What the identify job found.
@@ -167,7 +109,7 @@ struct Found {
 ///
 /// # Errors
 /// Errors about the data are [`Error::Input`] naming the data (a file's line and column, or the
-/// measurement's number): those of [`streamed::least_squares`], [`measurements::parse`],
+/// measurement's number): those of [`streamed::least_squares`], [`crate::io::measurements::parse`],
 /// [`Observations::from_measurements`] and of the fits; [`Error::InvalidField`] (`folds`) and
 /// those of [`cross_validate`].
 pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
@@ -251,7 +193,7 @@ impl How {
 
 /// The identification of a measurement file: streamed for plain least squares without
 /// cross-validation nor offsets, else parsed whole; a readings file with load steps
-/// ([`has_load_column`]) through [`from_readings`].
+/// ([`crate::io::readings::has_load_column`]) through [`from_readings`].
 fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> Result<Found> {
     let mut source = BufReader::with_capacity(1 << 20, reader);
     if header_has_loads(&mut source) {
@@ -292,128 +234,7 @@ fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> 
     })
 }
 
-/// A whole measurement file read, parsed and turned into the base frame, and where each
-/// measurement came from.
-pub(crate) fn read_file<R: Read>(
-    setup: &Setup,
-    name: &str,
-    reader: R,
-) -> Result<(measurements::MeasurementFile, Origin)> {
-    let text = read_text(name, reader)?;
-    let mut file = measurements::parse(&text).map_err(|e| in_data(name, e))?;
-    drop(text);
-    file.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-    let columns = [
-        file.layout.force_columns(),
-        file.layout.displacement_columns(),
-    ];
-    let origin = Origin::new(
-        Labels::from_iter(&file.labels),
-        file.measurements.iter().map(|m| m.posture).collect(),
-        file.measurements.iter().map(|m| m.point).collect(),
-        posture_angles(&file.measurements),
-        Some(file.lines.clone()),
-        columns,
-    );
-    Ok((file, origin))
-}
-
-/// Whether the header of the text `source` starts with (its first line that is neither blank nor
-/// a `#` comment, within the buffer) names a load column: raw readings under load steps.
-fn header_has_loads<R: Read>(source: &mut BufReader<R>) -> bool {
-    let Ok(buffer) = source.fill_buf() else {
-        return false;
-    };
-    let text = String::from_utf8_lossy(buffer);
-    text.lines()
-        .find(|l| !(l.trim().is_empty() || l.starts_with('#')))
-        .is_some_and(has_load_column)
-}
-
-/// Raw readings under load steps read for a fit ([`crate::identify::steps`]): every loaded
-/// reading relative to its point's unloaded one, in the base frame, with its line and where it
-/// came from.
-struct Loaded {
-    readings: readings::Readings,
-    steps: LoadSteps,
-    /// The loaded readings as displacement measurements.
-    measurements: Vec<Measurement>,
-    /// The line of each measurement's reading.
-    lines: Vec<u64>,
-    origin: Origin,
-}
-
-impl Loaded {
-    /// The readings of `text` (named `name`): refused naming the data when a posture has no
-    /// loaded reading.
-    fn read(setup: &Setup, name: &str, text: &str) -> Result<Self> {
-        let points = setup.tool().measuring_points.len();
-        let readings =
-            readings::parse(text, setup.robot(), points).map_err(|e| in_data(name, e))?;
-        let mut steps = LoadSteps::new(&readings).map_err(|e| in_data(name, e))?;
-        steps.to_base_frame(setup).map_err(|e| in_data(name, e))?;
-        let loaded = steps.loaded();
-        if let Some(p) = (0..steps.labels.len())
-            .find(|&p| !loaded.iter().any(|&i| steps.measurements[i].posture == p))
-        {
-            return Err(in_data(
-                name,
-                Error::InvalidField {
-                    field: "load_step".into(),
-                    message: format!(
-                        "posture '{}' has no loaded reading: nothing to identify from it",
-                        crate::common::limits::short(&steps.labels[p])
-                    ),
-                },
-            ));
-        }
-        let measurements: Vec<Measurement> = loaded
-            .iter()
-            .map(|&i| steps.measurements[i].clone())
-            .collect();
-        let lines: Vec<u64> = loaded.iter().map(|&i| steps.lines[i]).collect();
-        let origin = Origin::new(
-            Labels::from_iter(&steps.labels),
-            measurements.iter().map(|m| m.posture).collect(),
-            measurements.iter().map(|m| m.point).collect(),
-            posture_angles(&measurements),
-            Some(lines.clone()),
-            readings.columns.clone(),
-        );
-        Ok(Loaded {
-            readings,
-            steps,
-            measurements,
-            lines,
-            origin,
-        })
-    }
-
-    /// `error` of a fit of the measurements, placed in the data `name`: a measurement's number
-    /// as its reading's line.
-    fn explain(&self, name: &str, error: Error) -> Error {
-        let e = match error {
-            Error::Measurement { number, .. } => Error::InvalidField {
-                field: "readings".into(),
-                message: format!(
-                    "line {}: {error}",
-                    self.lines.get(number.wrapping_sub(1)).copied().unwrap_or(0)
-                ),
-            },
-            e => e,
-        };
-        in_data(name, e)
-    }
-
-    /// Readings in another unit fit a robot of another size: refused whatever a fit found
-    /// (after it, so that a file's own errors come first).
-    fn check_scale(&self, setup: &Setup, name: &str) -> Result<()> {
-        super::super::readings::refuse_other_scale(setup, &self.readings)
-            .map_err(|e| in_data(name, e))
-    }
-}
-
-/// The identification of raw readings under load steps ([`Loaded`]), and each posture's
+/// The identification of raw readings under load steps ([`Loaded`](crate::app::measurements::Loaded)), and each posture's
 /// linearity.
 fn from_readings(setup: &Setup, how: How, name: &str, text: &str) -> Result<Found> {
     let data = Loaded::read(setup, name, text)?;
@@ -470,79 +291,6 @@ fn fit(
     Ok((id, cross_validation, None))
 }
 
-/// `f` on the measurements of `data` (a measurement file or raw readings under load steps, as
-/// `identify` reads them, turned into the base frame; or arrays): the data's name, where each
-/// measurement came from and `f`'s result; `f`'s errors as [`Error::Input`] naming the data (a
-/// file's line and column).
-///
-/// # Errors
-/// Those of [`read_file`], of the readings ([`crate::io::readings::parse`],
-/// [`LoadSteps::new`]) and of `f`.
-pub(crate) fn on_measurements<R: Read, T>(
-    setup: &Setup,
-    data: Data<R>,
-    f: impl FnOnce(&[Measurement]) -> Result<T>,
-) -> Result<(String, Origin, T)> {
-    match data {
-        Data::File { name, reader } => {
-            let mut source = BufReader::with_capacity(1 << 20, reader);
-            if header_has_loads(&mut source) {
-                let data = Loaded::read(setup, &name, &read_text(&name, source)?)?;
-                let found = f(&data.measurements).map_err(|e| data.explain(&name, e))?;
-                data.check_scale(setup, &name)?;
-                return Ok((name, data.origin, found));
-            }
-            let (file, origin) = read_file(setup, &name, source)?;
-            let found = f(&file.measurements).map_err(|e| in_data(&name, file.explain(e)))?;
-            Ok((name, origin, found))
-        }
-        Data::Measurements(measurements) => {
-            let found = f(&measurements).map_err(|e| in_data("arrays", e))?;
-            Ok(("arrays".to_string(), arrays_origin(&measurements), found))
-        }
-    }
-}
-
-/// The warning that the data's angles look like radians under `_deg` names, if they do
-/// ([`plausibility::radians_as_degrees`]), naming the data.
-pub(crate) fn angle_warnings(data_name: &str, origin: &Origin) -> Vec<Warning> {
-    plausibility::radians_as_degrees(&origin.angles)
-        .map(|mut w| {
-            w.message = format!("{data_name}: {}", w.message);
-            w
-        })
-        .into_iter()
-        .collect()
-}
-
-/// The origin of measurements given as arrays: postures labelled `1`, `2`, ... in order.
-pub(crate) fn arrays_origin(measurements: &[Measurement]) -> Origin {
-    let postures = measurements.iter().map(|m| m.posture).collect::<Vec<_>>();
-    let count = postures.iter().max().map_or(0, |p| p + 1);
-    Origin::new(
-        Labels::from_iter((1..=count).map(|p| p.to_string())),
-        postures,
-        measurements.iter().map(|m| m.point).collect(),
-        posture_angles(measurements),
-        None,
-        ["wrench".into(), "displacement_mm".into()],
-    )
-}
-
-/// The axis angles of each posture of `measurements` (numbered from 0, each with a measurement).
-fn posture_angles(measurements: &[Measurement]) -> Vec<Vector6<f64>> {
-    let count = measurements
-        .iter()
-        .map(|m| m.posture + 1)
-        .max()
-        .unwrap_or(0);
-    let mut angles = vec![Vector6::zeros(); count];
-    for m in measurements {
-        angles[m.posture] = m.q;
-    }
-    angles
-}
-
 /// The postures of each influential fold and the joints (0-based) it moves.
 fn influential(report: &Report) -> Vec<(Vec<String>, Vec<usize>)> {
     let Some(cv) = &report.cross_validation else {
@@ -568,6 +316,7 @@ fn warnings(report: &Report) -> Vec<Warning> {
     let mut out = angle_warnings(&report.data_name, &report.origin);
     out.extend(id.robust.as_ref().and_then(|r| r.warning()));
     let n = id.compliance.len();
+    out.extend((id.nonnegative_stop).and_then(|s| crate::identify::nonnegative::warning(s, n)));
     let negative: Vec<usize> = (0..n).filter(|&j| id.compliance[j] < 0.0).collect();
     let rigid: Vec<usize> = (0..n)
         .filter(|&j| !physical[j] && id.compliance[j] >= 0.0)

@@ -19,16 +19,15 @@ pub mod drives;
 mod options;
 pub mod springs;
 
-pub(crate) use drives::{angle_warnings, on_measurements};
-pub use drives::{noise_floor, row_noise_variance, Origin};
+pub use drives::{noise_floor, row_noise_variance};
 pub use options::Options;
 
+use crate::app::measurements::Data;
 use crate::app::Warning;
 use crate::common::error::JobOption;
 use crate::common::progress::Progress;
-use crate::identify::cross_validation::Method;
 use crate::identify::Loss;
-use crate::observation::Measurement;
+use crate::identify::Method;
 use crate::{Error, Result, Setup};
 use document::Document;
 use options::Plan;
@@ -65,20 +64,6 @@ impl Fit {
             Fit::Robust(loss) => loss.name(),
         }
     }
-}
-
-/// The measurements to identify from.
-pub enum Data<R> {
-    /// A measurement file ([`crate::io::measurements`]) that `reader` reads (the caller
-    /// opened it: a file, a buffer), named `name` in the report and in errors.
-    File {
-        /// The file's name, e.g. its path.
-        name: String,
-        /// Its reader.
-        reader: R,
-    },
-    /// Measurements in the robot base frame, SI units (from arrays).
-    Measurements(Vec<Measurement>),
 }
 
 /// The folds of a cross-validation.

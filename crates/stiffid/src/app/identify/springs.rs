@@ -7,8 +7,9 @@
 //!
 //! Offsets beside the compliances take the six drives alone ([`super::drives`]).
 
-use super::drives::{angle_warnings, noise_floor, on_measurements, Request};
-use super::{Fit as Method, Folds, Origin};
+use super::drives::{noise_floor, Request};
+use super::{Fit as Method, Folds};
+use crate::app::measurements::{angle_warnings, on_measurements, Origin};
 use crate::app::{Warning, WarningKind};
 use crate::common::words::count;
 use crate::identify::cross_validation::{cross_validate_model, CrossValidation};
@@ -108,6 +109,8 @@ fn warnings(fit: &Fit) -> Vec<Warning> {
         .and_then(|r| r.warning())
         .into_iter()
         .collect();
+    let n = fit.compliance.len();
+    out.extend((fit.nonnegative_stop).and_then(|s| crate::identify::nonnegative::warning(s, n)));
     let combinations = &fit.identifiability.unidentifiable;
     if !combinations.is_empty() {
         let written: Vec<String> = combinations

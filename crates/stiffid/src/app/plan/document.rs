@@ -3,10 +3,9 @@
 //! `stiffid.plan`.
 
 use crate::app::document::feasibility::describe;
+use crate::app::document::group::{parameters, NearDoc, Parameter};
 use crate::app::document::{csv_text, finite, finite_each, mm, scene};
-use crate::app::evaluate::document::{parameters, Parameter};
 use crate::app::plan::{Posture, Report};
-use crate::app::select::document::NearDoc;
 use crate::design::unidentifiable;
 use crate::Setup;
 use serde::Serialize;
@@ -23,7 +22,7 @@ pub struct Document {
     /// The criterion that chose the group (`relative-a`, ...).
     #[cfg_attr(
         feature = "schema",
-        schemars(schema_with = "crate::app::select::document::schema::criterion")
+        schemars(schema_with = "crate::app::document::schema::criterion")
     )]
     pub criterion: &'static str,
     /// The number of measuring points of the tool.

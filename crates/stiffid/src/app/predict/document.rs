@@ -3,9 +3,8 @@
 //! without one.
 
 use crate::app::document::mass::{self, ModeShape};
-use crate::app::document::{mm, rows};
+use crate::app::document::{interval_mm, mm, rows};
 use crate::app::predict::{Point, Report};
-use crate::app::validate::document::interval_mm;
 use crate::common::warning::Warning;
 use nalgebra::{Matrix6, Vector6};
 use serde::Serialize;

@@ -1,42 +1,10 @@
-//! The documents of the register and calibrate jobs ([`crate::app::register`],
-//! [`crate::app::calibrate_cell`]): `stiffid register --json`, `stiffid register --postures N
-//! --json`, `stiffid calibrate-cell --json`, Python's `register(...)` and `calibrate_cell(...)`.
+//! The documents of the register job ([`crate::app::register`]): `stiffid register --json`,
+//! `stiffid register --postures N --json`, Python's `register(...)`.
 
-use crate::app::document::{degrees, mm};
-use crate::app::{calibrate_cell, register};
-use nalgebra::{Isometry3, Vector3};
+use crate::app::document::transform::{Transform, TransformStd};
+use crate::app::document::{degrees, mm, mm3};
+use crate::app::register;
 use serde::Serialize;
-
-/// A vector in m, in mm.
-fn mm3(v: &Vector3<f64>) -> [f64; 3] {
-    [mm(v.x), mm(v.y), mm(v.z)]
-}
-
-/// The tracker frame in the robot base frame, as a setup file writes it, with its standard
-/// deviation.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Transform {
-    /// Translation, mm.
-    pub xyz_mm: [f64; 3],
-    /// Fixed-axis roll, pitch, yaw, deg (as the setup's `base_from_tracker`).
-    pub rpy_deg: [f64; 3],
-    /// Standard deviations (linearised, from the residuals).
-    #[serde(flatten)]
-    pub std: TransformStd,
-}
-
-impl Transform {
-    /// `base_from_tracker` (SI) with the standard deviations `std` (m, then rad).
-    pub fn new(base_from_tracker: &Isometry3<f64>, std: [f64; 6]) -> Self {
-        let (r, p, y) = base_from_tracker.rotation.euler_angles();
-        Transform {
-            xyz_mm: mm3(&base_from_tracker.translation.vector),
-            rpy_deg: [r, p, y].map(f64::to_degrees),
-            std: TransformStd::new(std),
-        }
-    }
-}
 
 /// The register document: the tracker's transform, its quality and uncertainty.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -121,93 +89,6 @@ impl Document {
     }
 }
 
-/// The calibrate-cell document: the transform, the measuring points and the robot's unloaded
-/// absolute error.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Calibration {
-    /// The setup as given.
-    pub setup: String,
-    /// The readings file.
-    pub data: String,
-    /// The tracker frame in the robot base frame.
-    #[serde(flatten)]
-    pub transform: Transform,
-    /// Every measuring point of the setup.
-    pub points: Vec<ToolPoint>,
-    /// RMS of the residual lengths, mm: the robot's unloaded absolute positioning error at these
-    /// postures (with the tracker noise).
-    pub absolute_error_rms_mm: f64,
-    /// Noise per coordinate estimated from the residuals, mm.
-    pub noise_std_mm: f64,
-    /// Unloaded readings used.
-    pub readings: usize,
-    /// Levenberg-Marquardt iterations.
-    pub iterations: usize,
-    /// Why the iterations stopped: `converged`, `stalled`, `damping-exhausted` (a minimum within
-    /// rounding) or `iteration-limit` (not converged; a warning says so).
-    pub stop_reason: crate::common::stop::Stop,
-    /// The corrected fragment of the setup file.
-    pub fragment: String,
-}
-
-/// One measuring point: the setup's, the fitted, the shift and its standard deviation.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct ToolPoint {
-    /// The measuring point (1-based).
-    pub point: usize,
-    /// The setup's value, flange frame, mm.
-    pub setup_mm: [f64; 3],
-    /// The fitted value, flange frame, mm.
-    pub fitted_mm: [f64; 3],
-    /// Fitted minus setup, mm.
-    pub shift_mm: [f64; 3],
-    /// Standard deviation of the fitted coordinates, mm; `null` for a point never read.
-    pub std_mm: Option<[f64; 3]>,
-}
-
-impl Calibration {
-    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
-    pub fn new(report: &calibrate_cell::Report, setup_name: &str) -> Self {
-        let fit = &report.calibration;
-        let points: Vec<ToolPoint> = (0..report.setup_points.len())
-            .map(|k| ToolPoint {
-                point: k + 1,
-                setup_mm: mm3(&report.setup_points[k]),
-                fitted_mm: mm3(&fit.points[k]),
-                shift_mm: mm3(&fit.shifts[k]),
-                std_mm: fit.point_std[k].as_ref().map(mm3),
-            })
-            .collect();
-        let transform = Transform::new(&fit.base_from_tracker, fit.transform_std);
-        let list = |v: [f64; 3]| format!("[{:.6}, {:.6}, {:.6}]", v[0], v[1], v[2]);
-        let measuring: Vec<String> = points.iter().map(|p| list(p.fitted_mm)).collect();
-        let fragment = format!(
-            "# cell calibration from {} unloaded readings: unloaded absolute error RMS {:.4} mm\n\
-             [tracker]\nbase_from_tracker = {{ xyz_mm = {}, rpy_deg = {} }}\n\
-             # in [tool]:\n# measuring_points_mm = [{}]\n",
-            report.readings,
-            mm(fit.rms),
-            list(transform.xyz_mm),
-            list(transform.rpy_deg),
-            measuring.join(", ")
-        );
-        Calibration {
-            setup: setup_name.to_string(),
-            data: report.data_name.clone(),
-            transform,
-            points,
-            absolute_error_rms_mm: mm(fit.rms),
-            noise_std_mm: mm(fit.sigma),
-            readings: report.readings,
-            iterations: fit.iterations,
-            stop_reason: fit.stop,
-            fragment,
-        }
-    }
-}
-
 /// The registration postures proposed (`stiffid register --postures N --json`, Python's
 /// `register(setup, postures=N)`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -254,27 +135,6 @@ pub struct ProposedPosture {
     pub posture: String,
     /// Axis angles q1..q6, deg.
     pub q_deg: [f64; 6],
-}
-
-/// Standard deviations of a transform's translation and rotation.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct TransformStd {
-    /// Standard deviation of the translation, base frame, mm (linearised: from the residuals
-    /// of a fit, from the tracker noise for proposed postures).
-    pub translation_std_mm: [f64; 3],
-    /// Standard deviation of the rotation about the base x, y, z axes, deg.
-    pub rotation_std_deg: [f64; 3],
-}
-
-impl TransformStd {
-    /// Of the standard deviations `std` (m, then rad).
-    pub fn new(std: [f64; 6]) -> Self {
-        TransformStd {
-            translation_std_mm: [mm(std[0]), mm(std[1]), mm(std[2])],
-            rotation_std_deg: [std[3], std[4], std[5]].map(f64::to_degrees),
-        }
-    }
 }
 
 impl Proposal {

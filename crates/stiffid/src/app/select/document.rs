@@ -3,11 +3,10 @@
 
 use crate::app::document::candidates::CandidatesDoc;
 use crate::app::document::feasibility::describe;
+use crate::app::document::group::{CalibrationDoc, Criteria, NearDoc};
 use crate::app::document::{degrees, finite, mm};
-use crate::app::evaluate::document::{CalibrationDoc, Criteria};
 use crate::app::select::{CandidatesReport, PoolReport, Report, Unconstrained};
 use crate::common::choice::Choice;
-use crate::design::distinct::Near;
 use crate::design::target::{TargetOutcome, TargetStep};
 use crate::design::Termination;
 use crate::Setup;
@@ -24,7 +23,10 @@ pub struct Document {
     pub purpose: &'static str,
     /// The stiffness criterion minimised (`relative-a`, ...; with `for` `calibration`, the one
     /// the `criteria` are reported beside, not minimised).
-    #[cfg_attr(feature = "schema", schemars(schema_with = "schema::criterion"))]
+    #[cfg_attr(
+        feature = "schema",
+        schemars(schema_with = "crate::app::document::schema::criterion")
+    )]
     pub criterion: &'static str,
     /// `local`, `global` or `pool`.
     #[cfg_attr(feature = "schema", schemars(schema_with = "schema::method"))]
@@ -128,34 +130,6 @@ impl From<&CandidatesReport> for ForCandidates {
                 .map(|v| v.parameter.name.clone())
                 .collect(),
             identified: CandidatesDoc::from(&c.verdicts),
-        }
-    }
-}
-
-/// Two postures of the group that are not distinct.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct NearDoc {
-    /// The two postures' numbers in the group (1-based).
-    pub postures: [usize; 2],
-    /// The largest difference of their axis angles, deg.
-    pub joint_distance_deg: f64,
-    /// The distance between their flange origins, mm.
-    pub flange_distance_mm: f64,
-    /// The angle between their flange orientations, deg.
-    pub flange_angle_deg: f64,
-    /// The same flange pose reached on another branch (a wrist flip), not close axis angles.
-    pub same_pose_other_branch: bool,
-}
-
-impl From<&Near> for NearDoc {
-    fn from(n: &Near) -> Self {
-        NearDoc {
-            postures: [n.a + 1, n.b + 1],
-            joint_distance_deg: n.joint_distance.to_degrees(),
-            flange_distance_mm: n.position_distance * 1e3,
-            flange_angle_deg: n.angle_distance.to_degrees(),
-            same_pose_other_branch: n.same_pose_other_branch(),
         }
     }
 }
@@ -366,19 +340,11 @@ impl Free {
 }
 
 #[cfg(feature = "schema")]
-pub(crate) mod schema {
+mod schema {
+    use crate::app::document::schema::one_of;
     use crate::app::select::Method;
-    use crate::common::choice::{names, Choice};
-    use crate::design::{Criterion, Solver, Termination};
+    use crate::design::{Solver, Termination};
     use schemars::{json_schema, Schema, SchemaGenerator};
-
-    fn one_of<T: Choice>() -> Schema {
-        json_schema!({ "type": "string", "enum": names::<T>() })
-    }
-
-    pub fn criterion(_: &mut SchemaGenerator) -> Schema {
-        one_of::<Criterion>()
-    }
 
     pub fn method(_: &mut SchemaGenerator) -> Schema {
         one_of::<Method>()

@@ -29,7 +29,7 @@ pub(super) struct Candidates<'a> {
 
 impl<'a> Candidates<'a> {
     /// The pool `input` of the request: the postures that fail a check of the cell with the
-    /// request's margin ([`design_checker`]) skipped, and those that are not distinct with
+    /// request's margin ([`crate::cell::Checker::keeping`]) skipped, and those that are not distinct with
     /// [`Request::distinct`].
     pub(super) fn new(request: &Request<'a>, input: &'a PoolInput) -> Result<Self> {
         let (setup, distinct) = (request.setup, request.distinct.as_ref());

@@ -1,72 +1,14 @@
 //! The document of the simulate job ([`crate::app::simulate`]): `stiffid simulate --json` (and
 //! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; each group's part
-//! ([`Group`]) is also a group of the study's summary.
+//! ([`Group`]) as the study's summary has it too.
 
 use crate::app::document::csv_text;
+use crate::app::document::group::Group;
 use crate::app::simulate::Report;
 use crate::model::Parameter;
 use crate::study::simulate::GroupSimulation;
 use crate::Setup;
 use serde::Serialize;
-
-/// One group's simulation: deviation rates in percent, per level then parameter (the drives,
-/// then the model's virtual springs, in the order of `parameters`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Group {
-    /// Name of the group.
-    pub name: String,
-    /// Mean deviation rate, percent, `[levels][parameters]`.
-    pub mean_deviation_pct: Vec<Vec<f64>>,
-    /// Standard deviation of the deviation rate, percent, `[levels][parameters]`.
-    pub std_deviation_pct: Vec<Vec<f64>>,
-    /// First-order predicted mean deviation rate, percent, `[levels][parameters]`.
-    pub predicted_deviation_pct: Vec<Vec<f64>>,
-    /// Mean identified stiffness of the drives, Nm/rad, `[levels][6]`.
-    pub mean_stiffness_nm_per_rad: Vec<[f64; 6]>,
-    /// Mean identified stiffness of each virtual spring, in its parameter's unit (Nm/rad for a
-    /// rotation, N/mm for a translation), `[levels][springs]`; left out for the drives alone.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    #[cfg_attr(feature = "schema", schemars(default))]
-    pub mean_spring_stiffness: Vec<Vec<f64>>,
-}
-
-impl Group {
-    /// The document of group `name`'s simulation of a model with `parameters` (drives first).
-    pub fn new(name: &str, sim: &GroupSimulation, parameters: &[Parameter]) -> Self {
-        let join = |drives: &[[f64; 6]], springs: &[Vec<f64>]| -> Vec<Vec<f64>> {
-            drives
-                .iter()
-                .enumerate()
-                .map(|(l, d)| {
-                    let rest = springs.get(l).map_or(&[][..], Vec::as_slice);
-                    d.iter().chain(rest).copied().collect()
-                })
-                .collect()
-        };
-        let springs = parameters.get(6..).unwrap_or_default();
-        Self {
-            name: name.into(),
-            mean_deviation_pct: join(&sim.mean_deviation_pct, &sim.spring_mean_deviation_pct),
-            std_deviation_pct: join(&sim.std_deviation_pct, &sim.spring_std_deviation_pct),
-            predicted_deviation_pct: join(
-                &sim.predicted_deviation_pct,
-                &sim.spring_predicted_deviation_pct,
-            ),
-            mean_stiffness_nm_per_rad: sim.mean_stiffness.iter().map(|k| (*k).into()).collect(),
-            mean_spring_stiffness: sim
-                .spring_mean_stiffness
-                .iter()
-                .map(|k| {
-                    k.iter()
-                        .zip(springs)
-                        .map(|(k, p)| k * p.unit.per_si())
-                        .collect()
-                })
-                .collect(),
-        }
-    }
-}
 
 /// A parameter of the simulated model: its name and the unit of its stiffness.
 #[derive(Debug, Clone, PartialEq, Serialize)]

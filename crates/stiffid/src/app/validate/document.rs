@@ -1,11 +1,9 @@
 //! The document of the validate job ([`crate::app::validate`]): `stiffid validate --json`,
 //! Python's `validate(...)`.
 
-use crate::app::document::finite;
-use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use crate::app::document::{interval_mm, mm};
 use crate::app::validate::Report;
-use crate::model::prediction::Interval;
 use crate::Setup;
 use serde::Serialize;
 
@@ -124,9 +122,4 @@ impl Document {
             }),
         }
     }
-}
-
-/// A prediction interval (m) in mm, `null` for an unbounded end.
-pub fn interval_mm(interval: Interval) -> [[Option<f64>; 2]; 3] {
-    interval.map(|c| c.map(|v| finite(mm(v))))
 }

@@ -3,7 +3,7 @@
 
 pub mod document;
 
-use super::identify::{angle_warnings, on_measurements, Data, Origin};
+use super::measurements::{angle_warnings, on_measurements, Data, Origin};
 use super::Warning;
 use crate::identify::validate::{compare_at, Validation};
 use crate::model::Compliance;

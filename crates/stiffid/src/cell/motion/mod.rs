@@ -2,8 +2,8 @@
 //! feasibility margins ([`super::Checker`]).
 
 use super::bodies::Part;
+use super::check::Margin;
 use super::distance::Witness;
-use super::feasibility::Margin;
 use crate::robot::kinematics::Frames;
 use nalgebra::{Matrix3, Matrix3x6, Vector3, Vector6};
 

@@ -126,31 +126,3 @@ impl Violation {
         }
     }
 }
-
-/// `value` with 2 decimals, or as many more (up to 9) as tell it apart from the nearer end of
-/// `[lower, upper]` printed the same way: `35.001` is not shown as `35.00` beside a limit `35.00`
-/// (2 decimals if they are equal).
-pub(crate) fn distinct(value: f64, lower: f64, upper: f64) -> String {
-    let nearer = match (value - lower).abs() < (value - upper).abs() {
-        true => lower,
-        false => upper,
-    };
-    (2..=9)
-        .map(|p| (format!("{value:.p$}"), format!("{nearer:.p$}")))
-        .find(|(v, n)| v != n)
-        .map_or_else(|| format!("{value:.2}"), |(v, _)| v)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn distinct_shows_enough_digits() {
-        assert_eq!(distinct(40.0, -155.0, 35.0), "40.00");
-        assert_eq!(distinct(35.001, -155.0, 35.0), "35.001");
-        assert_eq!(distinct(35.0, -155.0, 35.0), "35.00");
-        assert_eq!(distinct(f64::NAN, -1.0, 1.0), "NaN");
-        assert_eq!(distinct(f64::INFINITY, -1.0, 1.0), "inf");
-    }
-}

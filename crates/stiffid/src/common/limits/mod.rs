@@ -1,11 +1,12 @@
 //! The documented limits of every input (counts and physically meaningful ranges, in the units of
 //! the files), the checks that apply them, the one box of axis angles ([`JointBox`]: joint limits
-//! and posture bounds), and the short forms of values in error messages.
+//! and posture bounds), and texts cut short for error messages (numbers: [`crate::common::words`]).
 //!
 //! Every number read from a robot, URDF or setup file is checked against one of these ranges when
 //! the file is parsed, so an accepted file gives finite results: a stiffness of `1e-320` Nm/rad or
 //! a link of `1e308` mm is an error naming the field and the value, not a NaN later on.
 
+use crate::common::words::number;
 use crate::{Error, Result};
 
 pub(crate) mod joint_box;
@@ -266,16 +267,6 @@ fn cut(text: &str, n: usize) -> String {
     }
 }
 
-/// A number for messages: plain for moderate magnitudes, shortest round-trip scientific notation
-/// otherwise (`1e308`, never 309 digits).
-pub fn number(v: f64) -> String {
-    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) || !v.is_finite() {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
-    }
-}
-
 /// Checks every value of `values` against `range`; the error names `field` (with the 1-based
 /// index when there are several values) and the value found.
 ///
@@ -362,14 +353,6 @@ mod tests {
         assert!(m.len() < 200, "{}", m.len());
         let many = "word ".repeat(1000);
         assert_eq!(one_line(&many).chars().count(), MAX_MESSAGE_CHARS + 3);
-    }
-
-    #[test]
-    fn numbers_are_short() {
-        assert_eq!(number(1e308), "1e308");
-        assert_eq!(number(1e-320), "1e-320");
-        assert_eq!(number(950000.0), "950000");
-        assert_eq!(number(f64::NAN), "NaN");
     }
 
     #[test]

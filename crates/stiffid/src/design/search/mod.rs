@@ -20,7 +20,8 @@ mod sample;
 mod sqp;
 mod termination;
 
-pub use constraints::{cell_constraints, design_checker, design_margin, CellConstraints};
+pub use constraints::{cell_constraints, CellConstraints};
+pub(crate) use constraints::{design_checker, design_margin};
 pub use global::{global, global_for};
 pub(super) use local::check_count;
 pub use local::{local, local_for};
@@ -287,7 +288,7 @@ pub struct SearchOptions {
     /// The margin every posture keeps to every constraint of the cell, m (0 to
     /// [`limits::MARGIN_MM`]; [`crate::cell::Checker::keeping`]): lines of sight, incidence, floor,
     /// obstacles, bodies, rope, `[constraints]`. Default `None`: the tracker's
-    /// `registration_uncertainty_mm` when the setup gives one, else 0 ([`design_margin`]).
+    /// `registration_uncertainty_mm` when the setup gives one, else 0.
     pub margin: Option<f64>,
 }
 

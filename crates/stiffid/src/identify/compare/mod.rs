@@ -24,7 +24,7 @@ pub use bootstrap::{bootstrap, Bootstrap, Resampling};
 pub use document::{parameter_docs, Document};
 pub use pool::{default_pool, nonlinear_separation, pool_by_name, Dropped, Pool};
 
-use super::cross_validation::explained_share;
+use super::explained_share;
 use super::svd::{fit, held_out, Fit, HeldOut};
 use crate::identify::adequacy::Verdict;
 use crate::model::{Law, Model, Spring};
@@ -94,7 +94,7 @@ pub struct Nested {
     /// `1 - RMS(delta_b) / RMS(|delta|)` over every posture predicted by the model chosen without it.
     pub held_out_explained: f64,
     /// Its standard error over the postures (the delta method on the ratio of the postures'
-    /// sums, [`crate::identify::cross_validation::explained_share`]).
+    /// sums, [`crate::identify::explained_share`]).
     pub held_out_explained_std_error: f64,
     /// That `RMS(delta_b)`, m.
     pub rms_delta_b: f64,

@@ -61,6 +61,7 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "compliance_rad_per_nm",
     "physical",
     "active_bounds",
+    "nonnegative_stop_reason",
     "intervals_from",
     "std_error_nm_per_rad",
     "std_error_percent",
@@ -301,10 +302,10 @@ fn check_drives_agree(parameters: &[ParameterStiffness], k: &[f64; 6]) -> Result
                 format!("stiffness_nm_per_rad[{}]", j + 1),
                 format!(
                     "{} where parameters gives {} '{}' {}: the file contradicts itself; keep one",
-                    limits::number(*k),
+                    crate::common::words::number(*k),
                     p.kind.name(),
                     limits::short(&p.name),
-                    limits::number(theirs)
+                    crate::common::words::number(theirs)
                 ),
             ));
         }

@@ -231,7 +231,7 @@ impl PredictionSection {
                 field.into(),
                 format!(
                     "{}: expected 0 or a tracker's noise within {}",
-                    limits::number(floor),
+                    crate::common::words::number(floor),
                     limits::READING_SD_MM
                 ),
             ));

@@ -1,7 +1,7 @@
 //! How to compensate a path: the free tool axis and the options of the Newton steps.
 
 use crate::common::error::JobOption;
-use crate::common::limits::number;
+use crate::common::words::number;
 use crate::robot::ik::{self};
 use crate::{common::limits, Error, Result, Setup};
 use nalgebra::Vector6;

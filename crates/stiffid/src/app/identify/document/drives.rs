@@ -4,7 +4,7 @@
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, finite_each, mm};
 use crate::app::identify::drives::Report;
-use crate::app::identify::Origin;
+use crate::app::measurements::Origin;
 use crate::common::warning::WarningKind;
 use crate::identify::{Adequacy, Identification, RobustFit, Uncertainty};
 use crate::io::stiffness::PredictionSection;
@@ -69,6 +69,10 @@ pub struct Document {
     pub physical: [bool; 6],
     /// With a non-negative fit: which compliances sit at their bound 0; else `null`.
     pub active_bounds: Option<[bool; 6]>,
+    /// With a non-negative fit: why its active-set steps stopped, `converged` (the bounded
+    /// minimum) or `iteration-limit` (a warning says so); left out for another fit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nonnegative_stop_reason: Option<crate::common::stop::Stop>,
     /// Where the intervals below come from (`residual variance`).
     pub intervals_from: &'static str,
     /// Standard error of each stiffness (delta method), Nm/rad.
@@ -369,6 +373,7 @@ impl Document {
             compliance_rad_per_nm: id.compliance.into(),
             physical: id.physical(),
             active_bounds: id.active_bounds,
+            nonnegative_stop_reason: id.nonnegative_stop,
             intervals_from: "residual variance",
             std_error_nm_per_rad: u.map(|u| finite_each(u.stiffness_std_error)),
             std_error_percent: u.map(|u| std_error_percent(id, u)),

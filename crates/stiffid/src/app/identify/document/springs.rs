@@ -36,6 +36,11 @@ pub struct Document {
     /// `P(X >= rss / sigma^2)` for `X ~ chi2(dof)`: small when the residuals exceed the tracker
     /// noise; `null` without degrees of freedom.
     pub chi2_p_value: Option<f64>,
+    /// With a non-negative fit: why its active-set steps stopped, `converged` (the bounded
+    /// minimum, also when the least-squares fit is already non-negative) or `iteration-limit`
+    /// (a warning says so); left out for another fit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nonnegative_stop_reason: Option<crate::common::stop::Stop>,
     /// With a robust fit: the reweighting.
     pub robust: Option<Robust>,
     /// With cross-validation: the cross-validation over postures.
@@ -120,6 +125,7 @@ impl Document {
             postures: f.postures,
             fit: fit_doc(f, variance),
             chi2_p_value: f.adequacy_p_value(variance),
+            nonnegative_stop_reason: f.nonnegative_stop,
             robust: f
                 .robust
                 .as_ref()

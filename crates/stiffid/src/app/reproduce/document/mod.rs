@@ -9,9 +9,8 @@ mod setup;
 pub use sentences::{search_words, sentences, CRITERION_KEYS};
 pub use setup::SetupJson;
 
-use crate::app::evaluate::document::CriteriaValues;
+use crate::app::document::group::{CriteriaValues, Group};
 use crate::app::reproduce::Report;
-use crate::app::simulate::document::Group;
 use crate::study::Study;
 use nalgebra::{Vector3, Vector6};
 use serde::Serialize;
