@@ -9,6 +9,7 @@ mod cell_cli;
 mod common;
 mod compensate_cli;
 mod completions;
+mod extrapolation_cli;
 mod hardening;
 mod identify_cli;
 mod kinematics;
