@@ -21,6 +21,7 @@ mod optional_fields_cli;
 mod options_proptest;
 mod pool_cli;
 mod readable_files;
+mod refused_options;
 mod register_cli;
 mod report_cli;
 mod reproduce;
