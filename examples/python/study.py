@@ -23,12 +23,13 @@ import stiffid
 DATA = Path(__file__).resolve().parents[1] / "data" / "fanuc-r2000ic-165f" / "measurements.csv"
 
 
-def study(runs: int) -> stiffid.Study:
-    s = stiffid.reproduce(runs=runs, seed=1)
-    print(f"The paper's study: {runs} runs per group and noise level, seed 1, {s.elapsed_s:.1f} s")
-    for title, group, average in zip(s.titles, s.groups, s.average_deviation_pct):
-        print(f"  {title:<30} relative-a {group['relative_a']:.5f}  average deviation rate {average:.3f}%")
-    f = s.findings
+def study(runs: int) -> dict:
+    s = stiffid.reproduce(runs=runs, seed=1)  # the document of summary.json, arrays as NumPy arrays
+    print(f"The paper's study: {runs} runs per group and noise level, seed 1, {s['elapsed_s']:.1f} s")
+    for group in s["groups"]:
+        print(f"  {group['title']:<30} relative-a {group['relative_a']:.5f}  "
+              f"average deviation rate {group['average_deviation_pct']:.3f}%")
+    f = s["findings"]
     print(
         f"  Group 3 (the paper's procedure) beats Groups 1 and 2: {f['group3_beats_groups_1_and_2']} "
         f"({f['group3_factor_vs_group1']:.2f}x and {f['group3_factor_vs_group2']:.2f}x lower); "
@@ -37,7 +38,7 @@ def study(runs: int) -> stiffid.Study:
     return s
 
 
-def plot_fig8(s: stiffid.Study, out: Path) -> None:
+def plot_fig8(s: dict, out: Path) -> None:
     try:
         import matplotlib
 
@@ -46,12 +47,12 @@ def plot_fig8(s: stiffid.Study, out: Path) -> None:
     except ImportError:
         print("matplotlib is not installed: no figure (pip install matplotlib)")
         return
-    rates = s.mean_deviation_pct  # (groups, levels, 6), percent
-    predicted = s.predicted_deviation_pct
-    levels = np.arange(1, len(s.level_multiples) + 1)
+    rates = np.array([g["mean_deviation_pct"] for g in s["groups"]])  # (groups, levels, 6), percent
+    predicted = np.array([g["predicted_deviation_pct"] for g in s["groups"]])
+    levels = np.arange(1, len(s["levels"]) + 1)
     fig, axes = plt.subplots(2, 3, figsize=(12, 7), sharex=True)
     for joint, ax in enumerate(axes.flat):
-        for g, title in enumerate(s.titles):
+        for g, title in enumerate(group["title"] for group in s["groups"]):
             line = ax.plot(levels, rates[g, :, joint], marker="o", label=title)[0]
             ax.plot(levels, predicted[g, :, joint], ls=":", color=line.get_color())
         ax.set_title(f"joint {joint + 1}")
@@ -66,15 +67,15 @@ def plot_fig8(s: stiffid.Study, out: Path) -> None:
 
 def fanuc() -> None:
     setup = stiffid.Setup.builtin("fanuc-r2000ic-165f")
-    result = stiffid.identify(setup, DATA)
-    ci = result.ci95_nm_per_rad  # None only for exactly six rows (no degrees of freedom)
+    result = stiffid.identify(setup, DATA)  # the identify document, its numbers as NumPy arrays
+    ci = result["ci95_nm_per_rad"]  # None only for exactly six rows (no degrees of freedom)
     assert ci is not None
-    print(f"FANUC R-2000iC/165F, {result.postures} postures ({result.rows} rows), least squares by QR:")
+    print(f"FANUC R-2000iC/165F, {result['postures']} postures ({result['rows']} rows), least squares by QR:")
     for j in range(6):
-        k = result.stiffness_nm_per_rad[j]
+        k = result["stiffness_nm_per_rad"][j]
         lo, hi = ci[j]
         print(f"  k{j + 1} = {k:12.0f} Nm/rad   95% CI [{lo:.0f}, {hi:.0f}]")
-    print(f"  residual RMS {result.residual_rms_mm:.4f} mm, cond(Psi) {result.cond_psi:.1f}")
+    print(f"  residual RMS {result['residual_rms_mm']:.4f} mm, cond(Psi) {result['cond_psi']:.1f}")
 
 
 def main() -> None:

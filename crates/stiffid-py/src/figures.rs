@@ -7,7 +7,7 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde_json::{Map, Number, Value};
 
 /// The figures of ``document``: a calibration's (the dict ``calibrate(...)`` returns) or an
-/// identification's (``identify(...)``: the ``Identification`` or its ``to_dict()``, or the
+/// identification's (the dict ``identify(...)`` returns, or the
 /// model comparison's dict), as a dict of SVG documents (str) keyed by the figure's name, in the
 /// order ``calibrate --report`` and ``identify --report`` show them: for a calibration
 /// ``errors`` (each reading's error before and after, held-out readings marked), ``residuals``

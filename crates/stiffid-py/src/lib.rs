@@ -43,8 +43,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     stiffid::common::threads::start().map_err(error::value)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<setup::Setup>()?;
-    m.add_class::<measure::Identification>()?;
-    m.add_class::<study::Study>()?;
     m.add_function(wrap_pyfunction!(measure::identify, m)?)?;
     m.add_function(wrap_pyfunction!(measure::validate, m)?)?;
     m.add_function(wrap_pyfunction!(study::simulate, m)?)?;

@@ -9,7 +9,6 @@ use crate::documents;
 use crate::error::{self, raise, value};
 use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
-use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
@@ -17,7 +16,7 @@ use std::path::PathBuf;
 use stiffid::app::identify::document::drives::Document;
 use stiffid::app::identify::document::springs::Document as ModelDocument;
 use stiffid::app::identify::{self as job, Options, Report, Request};
-use stiffid::app::measurements::{Data, Origin};
+use stiffid::app::measurements::Data;
 use stiffid::app::validate as validation;
 use stiffid::app::validate::document::Document as Checked;
 use stiffid::identify::Loss;
@@ -151,20 +150,7 @@ fn wrenches(w: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<Vector6<f64>>> {
     }
 }
 
-/// The result of `stiffid.identify`: the identify document (``stiffid identify --json``, the
-/// same keys and values) as attributes, NumPy arrays for the stiffness, compliance, their standard
-/// errors, intervals and covariance (``None`` without degrees of freedom), plus ``residuals_mm``
-/// (shape ``(n, 3)``) and ``labels`` (a file's posture labels; ``None`` for arrays).
-/// ``to_dict()`` is the whole document as JSON types.
-#[pyclass(frozen, module = "stiffid", name = "Identification")]
-pub struct Identification {
-    /// The document with arrays, and the extra attributes.
-    attributes: Py<PyDict>,
-    /// The document as JSON types.
-    document: Py<PyDict>,
-}
-
-/// The keys of the identify document that Python returns as arrays.
+/// The keys of the identify document (the six drives) that Python returns as NumPy arrays.
 const ARRAYS: [&str; 8] = [
     "stiffness_nm_per_rad",
     "compliance_rad_per_nm",
@@ -176,87 +162,9 @@ const ARRAYS: [&str; 8] = [
     "compliance_covariance_rad2_per_nm2",
 ];
 
-#[pymethods]
-impl Identification {
-    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        self.attributes.bind(py).get_item(name)?.ok_or_else(|| {
-            PyAttributeError::new_err(format!("Identification has no attribute '{name}'"))
-        })
-    }
-
-    fn __dir__(&self, py: Python<'_>) -> Vec<String> {
-        let keys = self.attributes.bind(py).keys();
-        keys.iter().map(|k| k.to_string()).collect()
-    }
-
-    /// The identify document, as ``stiffid identify --json`` writes it (dicts, lists, numbers).
-    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.document.bind(py).copy()
-    }
-
-    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
-        let a = self.attributes.bind(py);
-        Ok(format!(
-            "Identification(method={}, stiffness_nm_per_rad={})",
-            a.get_item("method")?.map_or("None".into(), |m| m
-                .repr()
-                .map_or(String::new(), |r| r.to_string())),
-            a.get_item("stiffness_nm_per_rad")?
-                .map_or("None".into(), |k| k.to_string())
-        ))
-    }
-}
-
-impl Identification {
-    /// Over a model with virtual springs: the identify document of a model with virtual springs, and as arrays `names`,
-    /// `units`, `stiffness` (each parameter in its unit: Nm/rad or N/mm, what ``validate`` and
-    /// ``compensate`` take), `ci95` (`(p, 2)`, NaN where unbounded or not identifiable),
-    /// `compliance_covariance_si`, and `labels`.
-    fn over_model(py: Python<'_>, report: &job::springs::Report, setup: &Setup) -> PyResult<Self> {
-        let document = ModelDocument::new(report, &setup.given, &setup.inner);
-        let attributes = documents::to_python(py, &document, &["compliance_covariance_si"])?;
-        let parameters = &document.fit.parameters;
-        let names: Vec<&str> = parameters.iter().map(|p| p.name.as_str()).collect();
-        let units: Vec<&str> = parameters.iter().map(|p| p.unit).collect();
-        attributes.set_item("names", names)?;
-        attributes.set_item("units", units)?;
-        let stiffness = parameters.iter().map(|p| p.stiffness.unwrap_or(f64::NAN));
-        attributes.set_item("stiffness", arrays::vec1(py, stiffness))?;
-        let ci: Vec<[f64; 2]> = parameters
-            .iter()
-            .map(|p| {
-                let [lo, hi] = p.ci95.unwrap_or([None, None]);
-                [lo.unwrap_or(f64::NAN), hi.unwrap_or(f64::NAN)]
-            })
-            .collect();
-        attributes.set_item("ci95", arrays::table(py, &ci))?;
-        attributes.set_item("labels", labels(&report.origin))?;
-        Ok(Identification {
-            attributes: attributes.unbind(),
-            document: documents::to_python(py, &document, &[])?.unbind(),
-        })
-    }
-
-    fn new(py: Python<'_>, report: &job::drives::Report, setup: &Setup) -> PyResult<Self> {
-        let document = Document::new(report, &setup.given, &setup.inner);
-        let attributes = documents::to_python(py, &document, &ARRAYS)?;
-        let residuals: Vec<[f64; 3]> = document.residuals.iter().map(|r| r.residual_mm).collect();
-        attributes.set_item("residuals_mm", arrays::table(py, &residuals))?;
-        attributes.set_item("labels", labels(&report.origin))?;
-        Ok(Identification {
-            attributes: attributes.unbind(),
-            document: documents::to_python(py, &document, &[])?.unbind(),
-        })
-    }
-}
-
-/// A file's posture labels, `None` for arrays.
-fn labels(origin: &Origin) -> Option<Vec<String>> {
-    origin
-        .lines
-        .as_ref()
-        .map(|_| origin.labels.iter().map(str::to_string).collect())
-}
+/// The keys of the identify document of a model with virtual springs that Python returns as
+/// NumPy arrays.
+const MODEL_ARRAYS: [&str; 1] = ["compliance_covariance_si"];
 
 /// Identifies the joint stiffness of ``setup``'s robot (Zhang et al. 2021, Eq. 10-14: least
 /// squares by QR) from ``measurements``, a CSV path in the ``stiffid identify --data`` format
@@ -276,17 +184,20 @@ fn labels(origin: &Origin) -> Option<Vec<String>> {
 /// hysteresis; ``offsets=True`` fits an offset per posture and measuring point beside the
 /// compliances (key ``offsets``). The same job as ``stiffid identify``: a stiffness that is not physical
 /// or far off the setup's nominal (a likely unit mistake: displacements in m, forces in kN)
-/// raises a ``UserWarning`` with the command's message. Returns an ``Identification``.
+/// raises a ``UserWarning`` with the command's message. Returns the identify document as a dict,
+/// the keys and values of ``stiffid identify --json`` (docs/schemas/identify.schema.json) with
+/// the stiffness, compliance, their standard errors, intervals and covariance as NumPy arrays
+/// (NaN for ``null``; ``None`` without degrees of freedom): ``stiffness_nm_per_rad``,
+/// ``compliance_rad_per_nm``, ``ci95_nm_per_rad`` (``(6, 2)``), ``residuals`` (per
+/// measurement: ``posture``, ``point``, ``residual_mm``, ...), ``region``, ... .
 /// ``ValueError`` naming the file, line and column (or the measurement) for bad data, and for
 /// data that cannot identify every joint.
 ///
 /// Over a setup whose model has virtual springs (``Setup.with_model``, a ``[model]`` table) every
 /// parameter is identified (the document of ``stiffid identify --json`` for such a setup:
-/// ``parameters`` with name, kind, unit, stiffness and interval, ``unidentifiable``, ...), with
-/// the arrays ``names``, ``units``, ``stiffness`` (each parameter in its unit, Nm/rad or N/mm:
-/// what ``validate`` and ``compensate`` take), ``ci95`` (``(p, 2)``, NaN where unbounded or not
-/// identifiable) and ``compliance_covariance_si``; a combination of parameters the data cannot
-/// separate raises a ``UserWarning``.
+/// ``parameters`` with name, kind, unit, stiffness in that unit and interval,
+/// ``unidentifiable``, ...), with ``compliance_covariance_si`` as a NumPy array; a combination of
+/// parameters the data cannot separate raises a ``UserWarning``.
 ///
 /// ``compare_models=True`` chooses the model by the data instead (``stiffid identify
 /// --compare-models``): from the setup's model, forward selection of ``candidates`` (names such
@@ -351,12 +262,18 @@ pub fn identify<'py>(
     };
     let report = py.detach(|| job::run(request)).map_err(raise)?;
     documents::warn(py, report.warnings())?;
-    let identification = match &report {
-        Report::Comparison(r) => return Ok(compare::compare_models(py, setup, r)?.into_any()),
-        Report::Drives(r) => Identification::new(py, r, setup)?,
-        Report::Springs(r) => Identification::over_model(py, r, setup)?,
+    let document = match &report {
+        Report::Comparison(r) => compare::compare_models(py, setup, r)?,
+        Report::Drives(r) => {
+            let document = Document::new(r, &setup.given, &setup.inner);
+            documents::to_python(py, &document, &ARRAYS)?
+        }
+        Report::Springs(r) => {
+            let document = ModelDocument::new(r, &setup.given, &setup.inner);
+            documents::to_python(py, &document, &MODEL_ARRAYS)?
+        }
     };
-    Ok(Bound::new(py, identification)?.into_any())
+    Ok(document.into_any())
 }
 
 /// Validates the stiffness of every parameter of the setup's model (``stiffness_nm_per_rad``: shape

@@ -119,8 +119,15 @@ pub fn deflection<'py>(
             .collect::<Result<Vec<_>, _>>()
     });
     let documents = documents.map_err(|b| raise_in(&format!("posture {}", b.0), b.1))?;
-    // The mass model is the setup's: its warnings are every posture's.
-    documents::warn(py, &documents[0].warnings)?;
+    // Each distinct warning once: the mass model's and a stiffness file without its region are
+    // every posture's; a posture outside the region is its own.
+    let mut warnings: Vec<stiffid::common::warning::Warning> = Vec::new();
+    for w in documents.iter().flat_map(|d| &d.warnings) {
+        if !warnings.contains(w) {
+            warnings.push(w.clone());
+        }
+    }
+    documents::warn(py, &warnings)?;
     let list = PyList::empty(py);
     for d in &documents {
         list.append(documents::to_python(py, d, &[])?)?;

@@ -49,6 +49,7 @@ pub fn compliance(
         covariance,
         prediction: None,
         own_weight: None,
+        region: stiffid::model::Region::NotIdentified,
     })
 }
 

@@ -4,7 +4,7 @@ are byte for byte the figures the command's reports write for the same call."""
 import pytest
 
 import stiffid
-from conftest import FANUC_DATA
+from conftest import FANUC_DATA, plain
 from test_calibrate import SETUP, campaign  # noqa: F401 (the fixture)
 
 
@@ -27,7 +27,7 @@ def test_identification_figures_are_the_reports(fanuc, cli, tmp_path):
     ident = stiffid.identify(fanuc, FANUC_DATA, cross_validate=True)
     figures = stiffid.figures(ident)
     assert list(figures) == ["qq", "folds", "prediction"]
-    assert figures == stiffid.figures(ident.to_dict())
+    assert figures == stiffid.figures(plain(ident))
     cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--cross-validate",
         "--report", tmp_path / "r", "--json")
     for name, svg in figures.items():

@@ -107,3 +107,59 @@ def test_bad_input_is_refused_by_name(paper):
         stiffid.predict(paper, Q, [0, 0, -500])
     with pytest.raises(ValueError, match="compliance_covariance_rad2_per_nm2"):
         stiffid.predict(paper, Q, [0, 0, -500, 0, 0, 0], compliance_covariance_rad2_per_nm2=np.eye(6))
+
+
+FANUC_POSTURE = [-59.991, -16.693, -28.93, 3.788, -62.93, 144.919]
+
+
+def test_a_posture_beyond_the_identification_range_is_flagged_and_warned(fanuc, cli, tmp_path):
+    """identify's stiffness file records the region of its postures (each axis' range widened by
+    5 deg); predict and validate flag a posture with an axis beyond it, as the command does."""
+    import warnings
+    from conftest import FANUC_DATA
+
+    k = tmp_path / "k.json"
+    cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--out", k, parse=False)
+    wrench = [0, 0, -1000, 0, 0, 0]
+    for q2 in [-16.693, 42.5]:  # a measured posture; 4 deg past axis 2's largest angle
+        q = list(FANUC_POSTURE)
+        q[1] = q2
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            doc = stiffid.predict(fanuc, q, wrench, stiffness_nm_per_rad=k)
+        assert doc["extrapolates"] is False and doc["outside_region"] == []
+    q = list(FANUC_POSTURE)
+    q[1] = 48.5
+    with pytest.warns(UserWarning, match=r"^the posture lies outside the region the stiffness was identified from "
+                      r".*axis 2 at 48\.50 deg \(identified over -52\.03 \.\. 38\.50\)"):
+        doc = stiffid.predict(fanuc, q, wrench, stiffness_nm_per_rad=k)
+    assert doc["extrapolates"] is True
+    assert doc["outside_region"][0]["axis"] == 2
+    assert doc["region"]["postures"] == 43
+    assert doc == cli("predict", "--setup", "fanuc-r2000ic-165f", "--q-deg", ",".join(map(str, q)),
+                      "--wrench", "0,0,-1000", "--stiffness", k, "--json")
+    # Over many postures, each flagged posture is warned about.
+    with pytest.warns(UserWarning, match="axis 2 at 48.50 deg"):
+        docs = stiffid.deflection(fanuc, [FANUC_POSTURE, q], wrench, stiffness_nm_per_rad=k)
+    assert [d["extrapolates"] for d in docs] == [False, True]
+    # validate: the identification data are inside.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        v = stiffid.validate(fanuc, k, FANUC_DATA)
+    assert v["extrapolated_postures"] == 0
+    assert all(c["extrapolates"] is False for c in v["checks"])
+
+
+def test_a_stiffness_file_without_its_region_is_read_with_one_warning(fanuc, cli, tmp_path):
+    import json
+    from conftest import FANUC_DATA
+
+    k = tmp_path / "k.json"
+    cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--out", k, parse=False)
+    old = json.loads(k.read_text())
+    del old["region"]
+    k.write_text(json.dumps(old))
+    with pytest.warns(UserWarning, match="does not record the postures it was identified from") as caught:
+        doc = stiffid.predict(fanuc, FANUC_POSTURE, [0, 0, -1000, 0, 0, 0], stiffness_nm_per_rad=k)
+    assert len([w for w in caught if "region" in str(w.message)]) == 1
+    assert doc["extrapolates"] is None and doc["region"] is None

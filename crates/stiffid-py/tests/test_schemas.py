@@ -181,8 +181,8 @@ def test_python_model_documents():
     compared = stiffid.identify(fanuc, FANUC_DATA, compare_models=True, candidates=["tilt3_x", "tool_y"])
     assert_valid("identify", {k: v for k, v in compared.items() if k not in ("table", "fragment")})
     fit = stiffid.identify(fanuc.with_model(compared["fragment"]), FANUC_DATA, folds=5)
-    assert_valid("identify", plain(fit.to_dict()))
-    assert_valid("stiffness", plain(fit.to_dict()), closed=False)
+    assert_valid("identify", plain(fit))
+    assert_valid("stiffness", plain(fit), closed=False)
 
 
 def test_simulate_and_reproduce(cli, tmp_path, group):

@@ -30,6 +30,7 @@ fn identified_with_prediction(s: &setup::Setup) -> Compliance {
         covariance: None,
         prediction: Some(calibrate(&obs, &cv, s.noise().displacement_sd())),
         own_weight: None,
+        region: Default::default(),
     }
 }
 

@@ -232,5 +232,8 @@ fn a_search_ending_on_its_constraints_keeps_its_result() {
     let margins = numbers(&doc["min_margin_mm"]);
     assert_eq!(margins.len(), 36);
     assert!(margins.iter().all(|m| *m > 0.0999), "{margins:?}");
-    assert!(margins.iter().filter(|m| **m < 0.1001).count() >= 6, "{margins:?}");
+    assert!(
+        margins.iter().filter(|m| **m < 0.1001).count() >= 6,
+        "{margins:?}"
+    );
 }

@@ -25,13 +25,11 @@ that is not physical, a likely unit mistake) raise ``UserWarning``, as the comma
 
 from ._stiffid import (
     Error,
-    Identification,
     InfeasibleError,
     InputError,
     Robot,
     Scene,
     Setup,
-    Study,
     UnidentifiableError,
     __version__,
     calibrate,
@@ -56,13 +54,11 @@ from ._stiffid import (
 
 __all__ = [
     "Error",
-    "Identification",
     "InfeasibleError",
     "InputError",
     "Robot",
     "Scene",
     "Setup",
-    "Study",
     "UnidentifiableError",
     "__version__",
     "calibrate",

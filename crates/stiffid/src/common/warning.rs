@@ -59,6 +59,9 @@ pub enum WarningKind {
     /// A file written leaves out part of the model: a URDF holds no joint error map
     /// ([`crate::robot::ErrorMap`]).
     LeftOut,
+    /// A posture or path point lies outside the region the stiffness was identified from, or
+    /// the stiffness file does not record that region ([`crate::model::region`]).
+    Extrapolation,
 }
 
 impl WarningKind {
@@ -82,6 +85,7 @@ impl WarningKind {
             WarningKind::Masses => "masses",
             WarningKind::Chatter => "chatter",
             WarningKind::LeftOut => "left-out",
+            WarningKind::Extrapolation => "extrapolation",
         }
     }
 }

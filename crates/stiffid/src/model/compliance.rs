@@ -20,6 +20,9 @@ pub struct Compliance {
     /// From a calibration that fitted the robot's own weight: the gravity terms it fitted
     /// ([`OwnWeight`]); compensation then adds the sag under the robot's weight.
     pub own_weight: Option<OwnWeight>,
+    /// The postures it was identified from, as the region a prediction stays inside
+    /// ([`crate::model::region`]).
+    pub region: super::Region,
 }
 
 /// The deflection under the robot's own weight as a calibration fitted it
@@ -45,6 +48,7 @@ impl Compliance {
             covariance: covariance.map(|c| DMatrix::from_column_slice(6, 6, c.as_slice())),
             prediction: None,
             own_weight: None,
+            region: super::Region::NotIdentified,
         }
     }
 

@@ -27,11 +27,13 @@ mod family;
 pub(crate) mod file;
 mod law;
 pub mod prediction;
+pub mod region;
 
 pub use compliance::{Compliance, OwnWeight};
 pub use family::{Family, FAMILIES};
 pub use file::{fragment, parse as parse_fragment};
 pub use law::{Law, DEFAULT_SMOOTHING};
+pub use region::{PostureRange, Region};
 
 use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Robot};

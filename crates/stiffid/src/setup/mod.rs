@@ -365,6 +365,7 @@ impl Setup {
             covariance: None,
             prediction: None,
             own_weight: None,
+            region: crate::model::Region::NotIdentified,
         })
     }
 

@@ -244,6 +244,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
             covariance: None,
             prediction: None,
             own_weight: None,
+            region: Default::default(),
         },
         &noise_free(&s, &s.model_compliance("t").unwrap().h, 4, 9),
     )

@@ -37,10 +37,10 @@ pub struct Args {
     #[command(flatten)]
     purpose: ForArgs,
     /// Start group (posture,q1_deg,...,q6_deg) of a local search.
-    #[arg(long, conflicts_with_all = ["start_random", "global", "target_pct"])]
+    #[arg(long, conflicts_with_all = ["start_random", "global"])]
     start: Option<PathBuf>,
     /// Start a local search from a seeded Latin-hypercube group within the bounds.
-    #[arg(long, conflicts_with_all = ["global", "target_pct"])]
+    #[arg(long, conflicts_with = "global")]
     start_random: bool,
     /// Global search: local searches from --starts seeded start groups, the best kept.
     #[arg(long)]
@@ -117,7 +117,7 @@ pub struct Args {
     /// With --for-candidates: the candidates, comma-separated, as `identify --compare-models
     /// --candidates` names them (families `tilt`, `bend`, `base`, `tool`, `lost`, `load`,
     /// `declared`, or single candidates); default all of them.
-    #[arg(long, value_delimiter = ',', requires = "for_candidates")]
+    #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
@@ -149,9 +149,6 @@ pub fn run(args: &Args) -> Result<()> {
     };
     if let Some(pct) = args.target_pct {
         limits::check("--target-pct", &[pct], &job::TARGET_PCT)?;
-        if pool.is_none() && !args.global {
-            bail!("--target-pct needs --pool FILE.csv or --global to choose each group");
-        }
     }
     let out = OutFile::prepare(&args.out, "--out")?;
     let target_files = match (args.target_pct, &args.report) {

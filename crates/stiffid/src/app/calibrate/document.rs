@@ -200,6 +200,11 @@ pub struct StiffnessSection {
     /// program (the calibrated robot is the robot without its sag).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gravity: Option<crate::io::stiffness::GravitySection>,
+    /// The region of axis angles the fitted readings' postures span, widened by a margin:
+    /// what `predict`, `validate` and `compensate` flag a posture outside of
+    /// ([`crate::io::stiffness::RegionSection`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub region: Option<crate::io::stiffness::RegionSection>,
 }
 
 /// One parameter.
@@ -395,6 +400,8 @@ impl Document {
                         .own_weight
                         .as_ref()
                         .map(crate::io::stiffness::GravitySection::new),
+                    region: crate::model::PostureRange::of(&report.postures)
+                        .map(|r| crate::io::stiffness::RegionSection::new(&r)),
                 }),
                 _ => None,
             },

@@ -8,10 +8,13 @@ use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::scene::PathPoint;
+use crate::common::limits::Violation;
 use crate::common::stop::Stop;
 use crate::common::warning::{Warning, WarningKind};
+use crate::io::stiffness::RegionSection;
 use crate::machining::compensate::Compensated;
 use crate::machining::dynamics::Dynamics;
+use crate::model::region::{self, Region};
 use crate::Coordinates;
 use nalgebra::Vector6;
 use serde::Serialize;
@@ -49,6 +52,10 @@ pub struct Document {
     /// level of the deflection's prediction intervals (the `*_lower_mm`, `*_upper_mm` columns);
     /// else `null` (those columns empty).
     pub prediction_level: Option<f64>,
+    /// The region of axis angles the stiffness was identified from (a point outside it
+    /// extrapolates: the CSV's `extrapolates`, the summary's `extrapolated`); `null` when the
+    /// stiffness records none.
+    pub region: Option<RegionSection>,
     /// With `--free-tool-axis`: its options; else `null`.
     pub free_tool_axis: Option<FreeToolAxis>,
     /// With a program: the program, its process and each segment's force and deflection; else
@@ -163,6 +170,10 @@ pub struct SummaryDocument {
     pub stop_reason: Stop,
     /// The points whose Newton steps stopped at their limit (`iteration-limit`).
     pub not_converged: usize,
+    /// The points outside the region the stiffness was identified from (an axis beyond the
+    /// identification postures' range widened by its margin, the CSV's `extrapolates`); `null`
+    /// when the stiffness records no region.
+    pub extrapolated: Option<usize>,
     /// With prediction intervals: the widest interval of a TCP deflection coordinate along the
     /// path (`upper - lower`), mm; `null` without intervals or when one is unbounded.
     pub max_interval_width_mm: Option<f64>,
@@ -233,7 +244,7 @@ impl schemars::JsonSchema for Row {
             })
             .collect();
         schemars::json_schema!({
-            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses, `surge_before_mm_s` also without --free-tool-axis).",
+            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis, `extrapolates` (1 outside the region the stiffness was identified from, else 0) when the stiffness records no region, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses, `surge_before_mm_s` also without --free-tool-axis).",
             "type": "object",
             "properties": properties,
             "required": columns,
@@ -248,6 +259,7 @@ fn may_be_empty(name: &str) -> bool {
         || name.contains("_lower_")
         || name.contains("_upper_")
         || name == "d_norm_before_mm"
+        || name == "extrapolates"
         || DYNAMICS.contains(&name)
 }
 
@@ -266,6 +278,7 @@ impl Document {
             parameters: stiffness(&report.parameters, &report.compliance.h),
             has_covariance: report.compliance.covariance.is_some(),
             prediction_level: report.prediction_level,
+            region: RegionSection::of(&report.compliance.region),
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
                 max_step_deg: f.max_step.to_degrees(),
                 range_deg: f.range.to_degrees(),
@@ -333,6 +346,7 @@ pub fn header() -> Vec<String> {
         header.push(format!("d{c}_lower_mm"));
         header.push(format!("d{c}_upper_mm"));
     }
+    header.push("extrapolates".into());
     header.extend(DYNAMICS.map(String::from));
     header
 }
@@ -378,6 +392,11 @@ pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<
     ]);
     let ends = |k: usize| r.deflection_interval.map(|i| i[k / 2][k % 2] * 1e3);
     v.extend((0..6).map(|k| ends(k).filter(|e| e.is_finite())));
+    v.push(
+        r.outside_region
+            .as_ref()
+            .map(|o| f64::from(u8::from(!o.is_empty()))),
+    );
     let surge = dynamics.surge.as_ref();
     v.extend([
         surge.map(|s| s.speed * 1e3),
@@ -428,6 +447,11 @@ pub struct Summary {
     not_converged: usize,
     /// The lines of the first ten of them.
     not_converged_lines: Vec<u64>,
+    /// The points outside the region the stiffness was identified from; `None` while no point
+    /// had a region to check.
+    extrapolated: Option<usize>,
+    /// The first of them ([`region::NAMED`]): the line and the axes outside.
+    extrapolated_lines: Vec<(u64, Vec<Violation>)>,
     /// The widest prediction interval of a deflection coordinate, m (`None` without intervals).
     max_interval_width: Option<f64>,
     /// The largest standard deviation of `|d|`, m (`None` without a covariance).
@@ -458,6 +482,8 @@ impl Summary {
             max_iterations: 0,
             not_converged: 0,
             not_converged_lines: Vec::new(),
+            extrapolated: None,
+            extrapolated_lines: Vec::new(),
             max_interval_width: None,
             max_norm_std: None,
             free: free.then_some((0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY)),
@@ -484,6 +510,15 @@ impl Summary {
             self.not_converged += 1;
             if self.not_converged_lines.len() < 10 {
                 self.not_converged_lines.push(line);
+            }
+        }
+        if let Some(outside) = &r.outside_region {
+            let n = self.extrapolated.get_or_insert(0);
+            if !outside.is_empty() {
+                *n += 1;
+                if self.extrapolated_lines.len() < region::NAMED {
+                    self.extrapolated_lines.push((line, outside.clone()));
+                }
             }
         }
         if let Some(i) = &r.deflection_interval {
@@ -579,6 +614,28 @@ impl Summary {
         })
     }
 
+    /// The warnings about the region the stiffness was identified from (`region`, the
+    /// compliance's): the path points outside it ([`WarningKind::Extrapolation`], naming the
+    /// first lines and their axes), or that the stiffness file does not record it.
+    pub fn region_warnings(&self, region: &Region) -> Vec<Warning> {
+        let mut out = Vec::from_iter(region.unrecorded_warning());
+        if let (Region::Postures(r), Some(n)) = (region, self.extrapolated) {
+            if n > 0 {
+                let flagged: Vec<(String, Vec<Violation>)> = (self.extrapolated_lines.iter())
+                    .map(|(line, axes)| (format!("line {line}"), axes.clone()))
+                    .collect();
+                let subject = format!("{n} of {} path points {}", self.points, region::lie(n));
+                out.push(region::extrapolation_warning(
+                    r,
+                    &subject,
+                    &flagged,
+                    n - flagged.len(),
+                ));
+            }
+        }
+        out
+    }
+
     /// The mean TCP deflection, m.
     pub fn mean_deflection(&self) -> f64 {
         self.sum_deflection / self.points.max(1) as f64
@@ -614,6 +671,7 @@ impl Summary {
                 _ => Stop::IterationLimit,
             },
             not_converged: self.not_converged,
+            extrapolated: self.extrapolated,
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
             max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
             free_tool_axis: self

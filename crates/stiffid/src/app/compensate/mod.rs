@@ -312,6 +312,7 @@ where
     };
     let mut warnings = warnings;
     warnings.extend(summary.stop_warning(options.max_iterations));
+    warnings.extend(summary.region_warnings(&compliance.region));
     Ok(Report {
         input: name,
         springs: setup.springs(),

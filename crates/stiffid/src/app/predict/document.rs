@@ -5,7 +5,9 @@
 use crate::app::document::mass::{self, ModeShape};
 use crate::app::document::{interval_mm, mm, rows};
 use crate::app::predict::{Point, Report};
+use crate::common::limits::Violation;
 use crate::common::warning::Warning;
+use crate::io::stiffness::RegionSection;
 use nalgebra::{Matrix6, Vector6};
 use serde::Serialize;
 
@@ -88,8 +90,43 @@ pub struct Document {
     /// Its standard deviation from the compliance covariance and the setup's `[masses]
     /// sd_percent` (first order), mm/s; `null` with neither.
     pub surge_std_mm_s: Option<f64>,
-    /// What to look at before trusting the document (placeholder masses).
+    /// Whether the posture lies outside the region the stiffness was identified from (an axis
+    /// beyond the identification postures' range widened by its margin): the prediction
+    /// extrapolates; `null` when the stiffness records no region (the setup's nominal, values
+    /// given directly, a stiffness file written before files carried it).
+    pub extrapolates: Option<bool>,
+    /// The axes outside that region, with their angle and the identification postures' range;
+    /// empty inside it.
+    pub outside_region: Vec<AxisOutside>,
+    /// The region of axis angles the stiffness was identified from; `null` as `extrapolates`.
+    pub region: Option<RegionSection>,
+    /// What to look at before trusting the document (placeholder masses, a posture outside the
+    /// region the stiffness was identified from).
     pub warnings: Vec<Warning>,
+}
+
+/// One axis of a posture outside the region the stiffness was identified from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct AxisOutside {
+    /// The axis, 1-based.
+    pub axis: usize,
+    /// Its angle, deg.
+    pub q_deg: f64,
+    /// The identification postures' range of this axis `[lower, upper]`, deg (the region adds
+    /// the margin at both ends).
+    pub identified_deg: [f64; 2],
+}
+
+impl AxisOutside {
+    /// The documents' form of `v`.
+    pub fn new(v: &Violation) -> Self {
+        AxisOutside {
+            axis: v.axis + 1,
+            q_deg: v.value.to_degrees(),
+            identified_deg: [v.lower.to_degrees(), v.upper.to_degrees()],
+        }
+    }
 }
 
 /// One measuring point's displacement.
@@ -222,6 +259,11 @@ impl Document {
             surge_energy_j: surge.map(|s| s.energy),
             surge_mm_s: surge.map(|s| mm(s.speed)),
             surge_std_mm_s: surge.and_then(|s| s.speed_std).map(mm),
+            extrapolates: report.outside_region.as_ref().map(|o| !o.is_empty()),
+            outside_region: (report.outside_region.iter().flatten())
+                .map(AxisOutside::new)
+                .collect(),
+            region: RegionSection::of(&report.compliance.region),
             warnings: report.warnings.clone(),
         }
     }

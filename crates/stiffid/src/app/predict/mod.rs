@@ -8,8 +8,10 @@
 
 pub mod document;
 
+use crate::common::limits::Violation;
 use crate::common::warning::Warning;
 use crate::model::prediction::{requested_level, Interval};
+use crate::model::region::{extrapolation_warning, Region};
 use crate::model::Compliance;
 use crate::observation::cartesian;
 use crate::observation::deflection::{base_wrench, Frame, PointDeflection, Points};
@@ -86,7 +88,11 @@ pub struct Report {
     /// The robot's mass at this posture, at the loaded point; `None` where the robot gives no
     /// masses or they are placeholders (then a warning).
     pub mass: Option<Mass>,
-    /// What to look at before trusting the report (placeholder masses).
+    /// The axes of `q` outside the region the compliance was identified from
+    /// ([`crate::model::region`]): empty inside; `None` when it records no region.
+    pub outside_region: Option<Vec<Violation>>,
+    /// What to look at before trusting the report (placeholder masses, a posture outside the
+    /// region the stiffness was identified from).
     pub warnings: Vec<Warning>,
 }
 
@@ -151,6 +157,15 @@ pub fn run(request: Request<'_>) -> Result<Report> {
             surge,
         }
     });
+    let outside_region = compliance.region.outside(&q);
+    let mut warnings = Vec::from_iter(warning);
+    warnings.extend(compliance.region.unrecorded_warning());
+    if let (Region::Postures(r), Some(axes)) = (&compliance.region, &outside_region) {
+        if !axes.is_empty() {
+            let flagged = [(String::new(), axes.clone())];
+            warnings.push(extrapolation_warning(r, "the posture lies", &flagged, 0));
+        }
+    }
     let point = |observed: &Vector3<f64>| {
         point(
             setup.arm(),
@@ -175,7 +190,8 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         compliance,
         level,
         mass,
-        warnings: Vec::from_iter(warning),
+        outside_region,
+        warnings,
     })
 }
 

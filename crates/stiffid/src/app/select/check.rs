@@ -67,7 +67,12 @@ pub(super) fn check(r: &Request) -> Result<()> {
     }
     purpose::check(r.purpose, &r.calibration)?;
     if r.candidates.is_some() && !r.for_candidates {
-        return invalid_option(JobOption::Candidates, "only with for_candidates");
+        return Err(Error::OptionCombination {
+            option: JobOption::Candidates,
+            with: vec![JobOption::ForCandidates],
+            needs: true,
+            reason: String::new(),
+        });
     }
     if r.for_candidates && r.purpose != Purpose::Stiffness {
         return invalid_option(

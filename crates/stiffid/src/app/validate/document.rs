@@ -4,6 +4,7 @@
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{interval_mm, mm};
 use crate::app::validate::Report;
+use crate::io::stiffness::RegionSection;
 use crate::Setup;
 use serde::Serialize;
 
@@ -38,6 +39,11 @@ pub struct Document {
     /// With a stiffness file that holds held-out residuals (`identify --cross-validate`): the
     /// coverage of the prediction intervals; else `null`.
     pub prediction_intervals: Option<PredictionIntervals>,
+    /// The region of axis angles the stiffness was identified from; `null` when the stiffness
+    /// records none (values given directly, a stiffness file written before files carried it).
+    pub region: Option<RegionSection>,
+    /// The postures outside that region (their checks' `extrapolates`); `null` as `region`.
+    pub extrapolated_postures: Option<usize>,
 }
 
 /// How well the prediction intervals covered the measurements.
@@ -79,6 +85,10 @@ pub struct Check {
     /// The prediction interval `[lower, upper]` of x, y, z, base frame, mm (`null` ends:
     /// unbounded, too few held-out residuals for the level); `null` without held-out residuals.
     pub interval_mm: Option<[[Option<f64>; 2]; 3]>,
+    /// Whether the posture lies outside the region the stiffness was identified from (an axis
+    /// beyond the identification postures' range widened by its margin): the prediction
+    /// extrapolates; `null` when the stiffness records no region.
+    pub extrapolates: Option<bool>,
 }
 
 impl Document {
@@ -102,6 +112,8 @@ impl Document {
                     predicted_mm: c.predicted.map(mm).into(),
                     delta_b_mm: mm(c.delta_b),
                     interval_mm: c.interval.map(interval_mm),
+                    extrapolates: (report.outside_region.as_ref())
+                        .map(|o| !o[origin.postures[i]].is_empty()),
                 })
                 .collect(),
             mean_delta_b_mm: mm(v.mean),
@@ -120,6 +132,9 @@ impl Document {
                 covered: p.covered,
                 coordinates: p.coordinates,
             }),
+            region: RegionSection::of(&report.compliance.region),
+            extrapolated_postures: (report.outside_region.as_ref())
+                .map(|o| o.iter().filter(|axes| !axes.is_empty()).count()),
         }
     }
 }

@@ -5,7 +5,9 @@ pub mod document;
 
 use super::measurements::{angle_warnings, on_measurements, Data, Origin};
 use super::Warning;
+use crate::common::limits::Violation;
 use crate::identify::validate::{compare_at, Validation};
+use crate::model::region::{self, PostureRange, Region};
 use crate::model::Compliance;
 use crate::{Result, Setup};
 use std::io::Read;
@@ -36,7 +38,12 @@ pub struct Report {
     pub validation: Validation,
     /// Where each measurement came from.
     pub origin: Origin,
-    /// Inputs to look at before trusting the result (angles that look like radians).
+    /// Per posture (by the number of [`Origin::angles`]), its axes outside the region the
+    /// compliance was identified from ([`crate::model::region`]): empty inside; `None` when it
+    /// records no region.
+    pub outside_region: Option<Vec<Vec<Violation>>>,
+    /// Inputs to look at before trusting the result (angles that look like radians, postures
+    /// outside the region the stiffness was identified from).
     pub warnings: Vec<Warning>,
 }
 
@@ -57,12 +64,44 @@ pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let (data_name, origin, validation) = on_measurements(setup, data, |m| {
         compare_at(setup.arm(), compliance, m, level)
     })?;
-    let warnings = angle_warnings(&data_name, &origin);
+    let mut warnings = angle_warnings(&data_name, &origin);
+    warnings.extend(compliance.region.unrecorded_warning());
+    let outside_region: Option<Vec<Vec<Violation>>> = match &compliance.region {
+        Region::Postures(r) => Some(origin.angles.iter().map(|q| r.outside(q)).collect()),
+        _ => None,
+    };
+    if let (Region::Postures(r), Some(outside)) = (&compliance.region, &outside_region) {
+        warnings.extend(extrapolated(r, &origin, outside));
+    }
     Ok(Report {
+        outside_region,
         data_name,
         compliance: compliance.clone(),
         validation,
         origin,
         warnings,
+    })
+}
+
+/// The warning naming the postures outside `region` (`outside`: per posture number, its axes
+/// outside), if any.
+fn extrapolated(
+    region: &PostureRange,
+    origin: &Origin,
+    outside: &[Vec<Violation>],
+) -> Option<Warning> {
+    let flagged: Vec<usize> = (0..outside.len())
+        .filter(|&p| !outside[p].is_empty())
+        .collect();
+    let n = flagged.len();
+    (n > 0).then(|| {
+        let named: Vec<(String, Vec<Violation>)> = (flagged.iter().take(region::NAMED))
+            .map(|&p| {
+                let label = origin.label(origin.first_of_posture[p]);
+                (format!("posture {label}"), outside[p].clone())
+            })
+            .collect();
+        let subject = format!("{n} of {} postures {}", outside.len(), region::lie(n));
+        region::extrapolation_warning(region, &subject, &named, n - named.len())
     })
 }

@@ -28,6 +28,12 @@
 //! `compensate` and `validate` give intervals with it. A file is used with a
 //! setup whose model has the same parameters in the same order ([`StiffnessFile::compliance`]).
 //!
+//! The key `region` ([`RegionSection`], written by `identify` and `calibrate --stiffness-out`)
+//! holds the range of every axis over the postures the stiffness was identified from and the
+//! margin that widens it ([`crate::model::region`]): `predict`, `validate` and `compensate` flag
+//! a posture outside it. A file without it is read, and nothing is checked
+//! ([`crate::model::Region::Unrecorded`]).
+//!
 //! A parameter `identify` could not separate from others carries `"identified": false` (the
 //! file's `unidentifiable` writes the combinations out): its stiffness is one of infinitely many
 //! that fit the data, so [`StiffnessFile::compliance`] refuses the file rather than predict with it.
@@ -37,11 +43,11 @@ mod sections;
 
 pub use covariance::{check_covariance, check_covariance_of};
 pub use sections::{
-    FoldSection, GravitySection, GravityTerm, PredictionSection, MAX_GRAVITY_TERMS,
+    FoldSection, GravitySection, GravityTerm, PredictionSection, RegionSection, MAX_GRAVITY_TERMS,
 };
 
 use crate::common::limits::{self, MAX_PARAMETERS, STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
-use crate::model::{Compliance, Model, ParameterKind};
+use crate::model::{Compliance, Model, ParameterKind, Region};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use serde::{Deserialize, Serialize};
@@ -143,6 +149,11 @@ pub struct StiffnessFile {
     /// calibrated robot is the robot without its sag; `compensate` adds the sag).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gravity: Option<GravitySection>,
+    /// Optional: the region of axis angles the stiffness was identified from (as `identify`
+    /// and `calibrate --stiffness-out` write it); `predict`, `validate` and `compensate` flag a
+    /// posture outside it. A file without it is read, and nothing is checked (said once).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<RegionSection>,
 }
 
 /// One parameter's stiffness in a stiffness file.
@@ -236,6 +247,7 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
         "prediction",
         "unidentifiable",
         "gravity",
+        "region",
     ];
     if let Some(key) =
         (keys.keys()).find(|k| !ours.contains(&k.as_str()) && !DOCUMENT_KEYS.contains(&k.as_str()))
@@ -248,6 +260,9 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
     let file: StiffnessFile = serde_json::from_str(text).map_err(json)?;
     if let Some(g) = &file.gravity {
         g.check()?;
+    }
+    if let Some(r) = &file.region {
+        r.check()?;
     }
     match &file.parameters {
         Some(parameters) => {
@@ -422,7 +437,17 @@ impl StiffnessFile {
                 .map(|rows| DMatrix::from_fn(n, n, |r, c| rows[r][c])),
             prediction: self.prediction.as_ref().map(PredictionSection::calibration),
             own_weight: self.gravity.as_ref().map(GravitySection::own_weight),
+            region: self.region(),
         })
+    }
+
+    /// The region of its identification postures: [`Region::Unrecorded`] when the file does
+    /// not record it.
+    fn region(&self) -> Region {
+        match &self.region {
+            Some(r) => Region::Postures(r.range()),
+            None => Region::Unrecorded,
+        }
     }
 
     /// The compliance of a file of the six drives alone.
@@ -443,6 +468,7 @@ impl StiffnessFile {
             .map(|rows| Matrix6::from_fn(|r, c| rows[r][c]));
         Ok(Compliance {
             own_weight: self.gravity.as_ref().map(GravitySection::own_weight),
+            region: self.region(),
             ..Compliance::drives(k.map(|v| 1.0 / v), cov)
         })
     }

@@ -2,11 +2,13 @@
 //! held-out residuals that calibrate prediction intervals.
 
 use super::{invalid, stiffness_unit};
+use crate::common::limits::JointBox;
 use crate::common::limits::{self};
 use crate::model::prediction::{self, Calibration, HeldOut};
+use crate::model::region::{PostureRange, Region, MAX_MARGIN_DEG};
 use crate::model::ParameterKind;
 use crate::Result;
-use nalgebra::DVector;
+use nalgebra::{DVector, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// The most gravity terms a stiffness file holds: four mass moments of six links for each of
@@ -187,13 +189,19 @@ impl PredictionSection {
             (None, None) => Ok(()),
             (Some(r), _) if !(0.0..=1e4).contains(&r) => Err(invalid(
                 field.into(),
-                format!("{}: expected a share in [0, 10000] %", limits::number(r)),
+                format!(
+                    "{}: expected a share in [0, 10000] %",
+                    crate::common::words::number(r)
+                ),
             )),
             (Some(_), Some(s)) if s.len() <= prediction::MAX_SCORES && !s.is_empty() => {
                 match s.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
                     Some(i) => Err(invalid(
                         format!("prediction.deflection_scores[{}]", i + 1),
-                        format!("{}: expected a finite number >= 0", limits::number(s[i])),
+                        format!(
+                            "{}: expected a finite number >= 0",
+                            crate::common::words::number(s[i])
+                        ),
                     )),
                     None => Ok(()),
                 }
@@ -273,5 +281,89 @@ impl PredictionSection {
             total = total.saturating_add(f.scores.len());
         }
         limits::check_count("prediction scores", total, 1, prediction::MAX_SCORES)
+    }
+}
+
+/// The region of axis angles the stiffness was identified from ([`crate::model::region`]): a
+/// posture with an axis outside `[lower_deg - margin_deg, upper_deg + margin_deg]` extrapolates,
+/// and `predict`, `validate` and `compensate` flag it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(deny_unknown_fields)]
+pub struct RegionSection {
+    /// The postures the stiffness was identified from (at least 1).
+    pub postures: usize,
+    /// Per axis, the smallest angle of those postures, deg; finite.
+    pub lower_deg: [f64; 6],
+    /// Per axis, the largest, deg; finite, at least `lower_deg`.
+    pub upper_deg: [f64; 6],
+    /// The margin that widens every axis' range at both ends, deg, within
+    /// [0, [`crate::model::region::MAX_MARGIN_DEG`]] (written as
+    /// [`crate::model::region::MARGIN_DEG`], 5).
+    pub margin_deg: f64,
+}
+
+impl RegionSection {
+    /// The section of `range`.
+    pub fn new(range: &PostureRange) -> Self {
+        RegionSection {
+            postures: range.postures,
+            lower_deg: range.range.lower.map(f64::to_degrees).into(),
+            upper_deg: range.range.upper.map(f64::to_degrees).into(),
+            margin_deg: range.margin.to_degrees(),
+        }
+    }
+
+    /// The section of `region`; `None` when it records no postures.
+    pub fn of(region: &Region) -> Option<Self> {
+        match region {
+            Region::Postures(r) => Some(Self::new(r)),
+            _ => None,
+        }
+    }
+
+    /// The range it holds, SI.
+    pub fn range(&self) -> PostureRange {
+        let rad = |v: &[f64; 6]| Vector6::from_column_slice(v).map(f64::to_radians);
+        PostureRange {
+            range: JointBox::new(rad(&self.lower_deg), rad(&self.upper_deg)),
+            margin: self.margin_deg.to_radians(),
+            postures: self.postures,
+        }
+    }
+
+    /// Checks the count, that every angle is finite with each lower end at most its upper one,
+    /// and the margin's range.
+    pub(super) fn check(&self) -> Result<()> {
+        if self.postures == 0 {
+            return Err(invalid(
+                "region.postures".into(),
+                "0: expected at least 1 posture".into(),
+            ));
+        }
+        for i in 0..6 {
+            let (lo, hi) = (self.lower_deg[i], self.upper_deg[i]);
+            if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+                return Err(invalid(
+                    format!("region.lower_deg[{0}], region.upper_deg[{0}]", i + 1),
+                    format!(
+                        "{} and {}: expected finite angles, the lower at most the upper",
+                        crate::common::words::number(lo),
+                        crate::common::words::number(hi)
+                    ),
+                ));
+            }
+        }
+        let m = self.margin_deg;
+        if !(0.0..=MAX_MARGIN_DEG).contains(&m) {
+            return Err(invalid(
+                "region.margin_deg".into(),
+                format!(
+                    "{}: expected within [0, {MAX_MARGIN_DEG}] deg",
+                    crate::common::words::number(m)
+                ),
+            ));
+        }
+        Ok(())
     }
 }

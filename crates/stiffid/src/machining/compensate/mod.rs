@@ -136,4 +136,7 @@ pub struct Compensated {
     /// With [`FreeToolAxis`]: the nominal axis angles at the path's own rotation, before
     /// optimisation, rad.
     pub q_before: Option<Vector6<f64>>,
+    /// The axes of `q` outside the region the compliance was identified from
+    /// ([`crate::model::region`]): empty inside; `None` when the compliance records no region.
+    pub outside_region: Option<Vec<crate::common::limits::Violation>>,
 }

@@ -257,6 +257,7 @@ fn compensate_chosen(
                 tool_rotation: c.rotations[i],
                 deflection_before,
                 q_before: free.then_some(c.nominal[i]),
+                outside_region: model.compliance.region.outside(q),
             })
         })
         .collect();

@@ -7,9 +7,10 @@ use crate::app::identify::drives::Report;
 use crate::app::measurements::Origin;
 use crate::common::warning::WarningKind;
 use crate::identify::{Adequacy, Identification, RobustFit, Uncertainty};
-use crate::io::stiffness::PredictionSection;
+use crate::io::stiffness::{PredictionSection, RegionSection};
 use crate::model::prediction::Calibration;
 use crate::model::Model;
+use crate::model::PostureRange;
 use crate::{Coordinates, Setup};
 use nalgebra::DVector;
 use serde::Serialize;
@@ -141,6 +142,10 @@ pub struct Document {
     /// With cross-validation: the held-out residuals that prediction intervals are built from
     /// (the stiffness file's `prediction`, [`crate::io::stiffness::PredictionSection`]).
     pub prediction: Option<PredictionSection>,
+    /// The region of axis angles the data's postures span, widened by a margin: what
+    /// `predict`, `validate` and `compensate` flag a posture outside of (the stiffness file's
+    /// `region`, [`crate::io::stiffness::RegionSection`]).
+    pub region: Option<RegionSection>,
 }
 
 /// How one posture's deflection follows the load steps. P-values test each effect against the
@@ -414,8 +419,15 @@ impl Document {
                 report.cross_validation.as_ref(),
                 &report.origin,
             ),
+            region: region(&report.origin),
         }
     }
+}
+
+/// The stiffness file's `region`: the range of the postures of `origin`
+/// ([`crate::model::region`]).
+pub(crate) fn region(origin: &Origin) -> Option<RegionSection> {
+    PostureRange::of(&origin.angles).map(|r| RegionSection::new(&r))
 }
 
 /// The stiffness file's `prediction` of a calibration and its cross-validation, the folds'

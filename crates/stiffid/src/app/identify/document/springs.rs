@@ -3,13 +3,13 @@
 //! for such a setup. Every parameter is named with its kind and unit (Nm/rad for the drives and
 //! rotational springs, N/mm for translational ones) and every stiffness is in that unit.
 
-use super::drives::{prediction, Robust};
+use super::drives::{prediction, region, Robust};
 use crate::app::document::{finite, mm};
 use crate::app::identify::springs::Report;
 use crate::common::warning::Warning;
 use crate::identify::compare::document::{fit_doc, FitDoc};
 use crate::identify::cross_validation::CrossValidation;
-use crate::io::stiffness::PredictionSection;
+use crate::io::stiffness::{PredictionSection, RegionSection};
 use crate::model::Parameter;
 use crate::Setup;
 use nalgebra::DVector;
@@ -48,6 +48,9 @@ pub struct Document {
     /// With cross-validation: the held-out residuals that prediction intervals are built from
     /// (the stiffness file's `prediction`, [`crate::io::stiffness::PredictionSection`]).
     pub prediction: Option<PredictionSection>,
+    /// The region of axis angles the data's postures span, widened by a margin (the stiffness
+    /// file's `region`, [`crate::io::stiffness::RegionSection`]).
+    pub region: Option<RegionSection>,
     /// Results to look at before trusting them.
     pub warnings: Vec<Warning>,
 }
@@ -139,6 +142,7 @@ impl Document {
                 report.cross_validation.as_ref(),
                 &report.origin,
             ),
+            region: region(&report.origin),
             warnings: report.warnings.clone(),
         }
     }

@@ -1,0 +1,308 @@
+//! A prediction outside the region of the postures the stiffness was identified from is flagged:
+//! identify writes the region (each axis' range over the 43 FANUC postures, widened by 5 deg)
+//! into its stiffness file, and predict, validate and compensate flag and warn about a posture
+//! with an axis beyond it; a posture inside gives no flag, and a stiffness file without the
+//! region is read with one warning that nothing is checked.
+
+use nalgebra::Vector6;
+use stiffid::app::compensate::document::{header, values, Document as CompensateDocument, Names};
+use stiffid::app::compensate::{self, Input};
+use stiffid::app::identify::{self, Data, Options};
+use stiffid::app::{predict, validate};
+use stiffid::common::warning::{Warning, WarningKind};
+use stiffid::io::stiffness;
+use stiffid::machining::compensate::{Compensated, PathPoint};
+use stiffid::machining::dynamics::Dynamics;
+use stiffid::model::{Compliance, Region};
+use stiffid::observation::deflection::Frame;
+use stiffid::{Error, Setup};
+
+const DATA: &str = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
+
+fn fanuc() -> Setup {
+    let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    s.to_builder().with_tcp(s.tool().tcp).build().unwrap()
+}
+
+/// The stiffness file identify writes from the FANUC data (`identify --out`), as JSON.
+fn stiffness_file(setup: &Setup) -> serde_json::Value {
+    let request = identify::Request {
+        setup,
+        data: Data::File {
+            name: "measurements.csv".into(),
+            reader: DATA.as_bytes(),
+        },
+        options: Options::default(),
+    };
+    let report = identify::run(request).unwrap();
+    serde_json::to_value(report.document("fanuc", setup)).unwrap()
+}
+
+fn compliance(setup: &Setup, file: &serde_json::Value) -> Compliance {
+    let parsed = stiffness::parse(&file.to_string()).unwrap();
+    parsed.compliance(setup.model()).unwrap()
+}
+
+/// The first FANUC posture, rad, with axis 2 moved to `q2_deg`.
+fn posture(q2_deg: Option<f64>) -> Vector6<f64> {
+    let d = f64::to_radians;
+    let mut q = Vector6::new(
+        d(-59.991000024985645),
+        d(-16.692999997970958),
+        d(-28.93000002280604),
+        d(3.7879999962445363),
+        d(-62.929999983955376),
+        d(144.91900001732265),
+    );
+    if let Some(v) = q2_deg {
+        q[1] = d(v);
+    }
+    q
+}
+
+fn predicted(setup: &Setup, c: &Compliance, q: Vector6<f64>) -> predict::Report {
+    predict::run(predict::Request {
+        setup,
+        q,
+        wrench: Vector6::new(0.0, 0.0, -1000.0, 0.0, 0.0, 0.0),
+        frame: Frame::Base,
+        at: None,
+        compliance: Some(c.clone()),
+        level: None,
+    })
+    .unwrap()
+}
+
+fn extrapolation(warnings: &[Warning]) -> Vec<&str> {
+    (warnings.iter())
+        .filter(|w| w.kind == WarningKind::Extrapolation)
+        .map(|w| w.message.as_str())
+        .collect()
+}
+
+#[test]
+fn identify_writes_the_region_of_its_postures_and_reads_it_back() {
+    let setup = fanuc();
+    let file = stiffness_file(&setup);
+    let region = &file["region"];
+    assert_eq!(region["postures"], 43);
+    assert_eq!(region["margin_deg"], 5.0);
+    // The data's range of axis 2 (its README's table of the 43 postures).
+    let lower = region["lower_deg"][1].as_f64().unwrap();
+    let upper = region["upper_deg"][1].as_f64().unwrap();
+    assert!((lower - -52.028).abs() < 1e-3 && (upper - 38.503).abs() < 1e-3);
+    let Region::Postures(r) = compliance(&setup, &file).region else {
+        panic!("no region read back");
+    };
+    assert_eq!(r.postures, 43);
+    assert!((r.range.upper[1].to_degrees() - upper).abs() < 1e-9);
+    assert!((r.margin.to_degrees() - 5.0).abs() < 1e-12);
+}
+
+#[test]
+fn predict_flags_a_posture_with_one_axis_beyond_the_identification_range() {
+    let setup = fanuc();
+    let c = compliance(&setup, &stiffness_file(&setup));
+    // A measured posture, and one 4 deg beyond axis 2's largest angle (within the margin).
+    for q2 in [None, Some(38.503 + 4.0)] {
+        let inside = predicted(&setup, &c, posture(q2));
+        assert_eq!(inside.outside_region, Some(vec![]));
+        assert!(extrapolation(&inside.warnings).is_empty());
+        let doc = serde_json::to_value(predict::document::Document::new(&inside, "f")).unwrap();
+        assert_eq!(doc["extrapolates"], false);
+        assert_eq!(doc["outside_region"], serde_json::json!([]));
+    }
+    // 10 deg beyond: flagged, warned about, in the document with the axis and its range.
+    let outside = predicted(&setup, &c, posture(Some(48.5)));
+    let axes = outside.outside_region.clone().unwrap();
+    assert_eq!(axes.len(), 1);
+    assert_eq!(axes[0].axis, 1);
+    let warnings = extrapolation(&outside.warnings);
+    assert_eq!(warnings.len(), 1);
+    assert!(
+        warnings[0].starts_with("the posture lies outside the region the stiffness was identified from (each axis' range over its 43 postures, widened by 5.0 deg)"),
+        "{}",
+        warnings[0]
+    );
+    assert!(
+        warnings[0].contains("axis 2 at 48.50 deg (identified over -52.03 .. 38.50)"),
+        "{}",
+        warnings[0]
+    );
+    let doc = serde_json::to_value(predict::document::Document::new(&outside, "f")).unwrap();
+    assert_eq!(doc["extrapolates"], true);
+    assert_eq!(doc["outside_region"][0]["axis"], 2);
+    assert!((doc["outside_region"][0]["q_deg"].as_f64().unwrap() - 48.5).abs() < 1e-9);
+    assert!(
+        (doc["outside_region"][0]["identified_deg"][1]
+            .as_f64()
+            .unwrap()
+            - 38.503)
+            .abs()
+            < 1e-3
+    );
+    assert_eq!(doc["region"]["postures"], 43);
+    // The nominal stiffness is not identified from postures: nothing to check, nothing said.
+    let nominal = predict::run(predict::Request {
+        setup: &setup,
+        q: posture(Some(48.5)),
+        wrench: Vector6::new(0.0, 0.0, -1000.0, 0.0, 0.0, 0.0),
+        frame: Frame::Base,
+        at: None,
+        compliance: None,
+        level: None,
+    })
+    .unwrap();
+    assert_eq!(nominal.outside_region, None);
+    assert!(extrapolation(&nominal.warnings).is_empty());
+}
+
+#[test]
+fn a_stiffness_file_without_its_region_is_read_and_said_once_unchecked() {
+    let setup = fanuc();
+    let mut file = stiffness_file(&setup);
+    file.as_object_mut().unwrap().remove("region");
+    let c = compliance(&setup, &file);
+    assert_eq!(c.region, Region::Unrecorded);
+    let report = predicted(&setup, &c, posture(Some(48.5)));
+    assert_eq!(report.outside_region, None);
+    let warnings = extrapolation(&report.warnings);
+    assert_eq!(warnings.len(), 1);
+    assert!(
+        warnings[0].contains("does not record the postures"),
+        "{}",
+        warnings[0]
+    );
+    let doc = serde_json::to_value(predict::document::Document::new(&report, "f")).unwrap();
+    assert_eq!(doc["extrapolates"], serde_json::Value::Null);
+    // Validation over 43 postures says it once too.
+    let v = validated(&setup, &c, DATA);
+    assert_eq!(extrapolation(&v.warnings).len(), 1);
+}
+
+#[test]
+fn a_region_out_of_shape_is_refused_naming_the_field() {
+    let setup = fanuc();
+    let mut file = stiffness_file(&setup);
+    file["region"]["margin_deg"] = serde_json::json!(-1.0);
+    match stiffness::parse(&file.to_string()) {
+        Err(Error::InvalidField { field, message }) => {
+            assert_eq!(field, "region.margin_deg");
+            assert!(
+                message.contains("expected within [0, 360] deg"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    let mut file = stiffness_file(&setup);
+    file["region"]["lower_deg"][2] = serde_json::json!(50.0);
+    match stiffness::parse(&file.to_string()) {
+        Err(Error::InvalidField { field, .. }) => {
+            assert_eq!(field, "region.lower_deg[3], region.upper_deg[3]")
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+fn validated(setup: &Setup, c: &Compliance, text: &str) -> validate::Report {
+    validate::run(validate::Request {
+        setup,
+        compliance: c,
+        data: Data::File {
+            name: "data.csv".into(),
+            reader: text.as_bytes(),
+        },
+        level: None,
+    })
+    .unwrap()
+}
+
+#[test]
+fn validate_flags_each_posture_beyond_the_identification_range() {
+    let setup = fanuc();
+    let c = compliance(&setup, &stiffness_file(&setup));
+    let inside = validated(&setup, &c, DATA);
+    assert!(extrapolation(&inside.warnings).is_empty());
+    let doc = validate::document::Document::new(&inside, "f", &setup);
+    assert_eq!(doc.extrapolated_postures, Some(0));
+    assert!(doc.checks.iter().all(|c| c.extrapolates == Some(false)));
+    // Posture 2's axis 2 moved to 60 deg (its one measurement), the others as measured.
+    let moved = DATA.replace(
+        "2,1,-61.110999989328384,-12.853000013817956,",
+        "2,1,-61.110999989328384,60,",
+    );
+    assert_ne!(moved, DATA);
+    let outside = validated(&setup, &c, &moved);
+    let doc = validate::document::Document::new(&outside, "f", &setup);
+    assert_eq!(doc.extrapolated_postures, Some(1));
+    let flagged: Vec<&str> = (doc.checks.iter())
+        .filter(|c| c.extrapolates == Some(true))
+        .map(|c| c.posture.as_str())
+        .collect();
+    assert_eq!(flagged, ["2"]);
+    let warnings = extrapolation(&outside.warnings);
+    assert_eq!(warnings.len(), 1);
+    assert!(
+        warnings[0].starts_with("1 of 43 postures lies outside the region"),
+        "{}",
+        warnings[0]
+    );
+    assert!(
+        warnings[0].contains("posture 2: axis 2 at 60.00 deg (identified over -52.03 .. 38.50)"),
+        "{}",
+        warnings[0]
+    );
+}
+
+#[test]
+fn compensate_flags_each_path_point_beyond_the_identification_range() {
+    let setup = fanuc();
+    let c = compliance(&setup, &stiffness_file(&setup));
+    let mut text = String::from("q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n");
+    for q2 in [None, Some(20.0), Some(48.5)] {
+        let deg: Vec<String> = (posture(q2).iter())
+            .map(|a| a.to_degrees().to_string())
+            .collect();
+        text += &format!("{},0,0,-500\n", deg.join(","));
+    }
+    let request = compensate::Request {
+        setup: &setup,
+        options: stiffid::machining::compensate::Options::for_setup(&setup),
+        compliance: c,
+        input: Input::Path {
+            name: "path.csv".into(),
+            text: &text,
+            frame: Frame::Base,
+        },
+    };
+    let mut rows = Vec::new();
+    let report = compensate::run(
+        request,
+        |first, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
+            for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
+                rows.push(values(first + k, p.line, r, d));
+            }
+            Ok::<(), Error>(())
+        },
+    )
+    .unwrap();
+    let column = header().iter().position(|h| h == "extrapolates").unwrap();
+    let flags: Vec<Option<f64>> = rows.iter().map(|v| v[column]).collect();
+    assert_eq!(flags, [Some(0.0), Some(0.0), Some(1.0)]);
+    let warnings = extrapolation(&report.warnings);
+    assert_eq!(warnings.len(), 1);
+    assert!(
+        warnings[0].starts_with("1 of 3 path points lies outside the region"),
+        "{}",
+        warnings[0]
+    );
+    assert!(
+        warnings[0].contains("line 4: axis 2 at 48.50 deg"),
+        "{}",
+        warnings[0]
+    );
+    let doc = CompensateDocument::new(&report, &Names::default(), Vec::new());
+    assert_eq!(doc.summary.extrapolated, Some(1));
+    assert_eq!(doc.region.map(|r| r.postures), Some(43));
+}
