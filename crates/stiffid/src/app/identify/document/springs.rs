@@ -3,7 +3,7 @@
 //! for such a setup. Every parameter is named with its kind and unit (Nm/rad for the drives and
 //! rotational springs, N/mm for translational ones) and every stiffness is in that unit.
 
-use super::drives::{prediction, Robust};
+use super::drives::{prediction, Residual, Robust};
 use crate::app::document::{finite, mm};
 use crate::app::identify::springs::Report;
 use crate::common::warning::Warning;
@@ -36,6 +36,10 @@ pub struct Document {
     /// `P(X >= rss / sigma^2)` for `X ~ chi2(dof)`: small when the residuals exceed the tracker
     /// noise; `null` without degrees of freedom.
     pub chi2_p_value: Option<f64>,
+    /// The setup's tracker noise on a displacement coordinate, mm (the model check's).
+    pub noise_std_mm: f64,
+    /// Every measurement's residual, measured and predicted displacement.
+    pub residuals: Vec<Residual>,
     /// With a robust fit: the reweighting.
     pub robust: Option<Robust>,
     /// With cross-validation: the cross-validation over postures.
@@ -120,6 +124,8 @@ impl Document {
             postures: f.postures,
             fit: fit_doc(f, variance),
             chi2_p_value: f.adequacy_p_value(variance),
+            noise_std_mm: mm(variance.sqrt()),
+            residuals: Residual::all(&report.origin, &f.residuals, &f.predicted),
             robust: f
                 .robust
                 .as_ref()
