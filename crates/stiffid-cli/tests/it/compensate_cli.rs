@@ -371,7 +371,8 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
     // the deflection, not the model's residual.
     assert!(html.contains("<th>remaining after, 2 sd of |d| mm</th>"));
     let table = &html[html.find("Force and deflection per segment").unwrap()..];
-    for s in segments.iter().take(20) {
+    let mut loaded = 0;
+    for s in segments.iter().take(40) {
         let start = table.find(&format!("<tr><td>{}</td>", s["line"])).unwrap();
         let row = &table[start..start + table[start..].find("</tr>").unwrap()];
         let cells: Vec<&str> = row
@@ -381,8 +382,10 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
             .collect();
         let shown: f64 = cells[5].parse().unwrap();
         let sd = s["deflection_std_mm"].as_f64().unwrap();
-        assert!(sd > 0.0 && (shown / (2.0 * sd) - 1.0).abs() < 1e-3, "{row}");
+        assert!((shown - 2.0 * sd).abs() <= 1e-3 * 2.0 * sd, "{row}");
+        loaded += usize::from(sd > 0.0);
     }
+    assert!(loaded > 20, "{loaded} segments under a force");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
