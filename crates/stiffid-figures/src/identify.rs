@@ -1,6 +1,7 @@
 //! The figures of an identification, from its document (`stiffid identify --json`,
-//! `docs/schemas/identify.schema.json`): the residuals' normal QQ plot against the tracker's
-//! noise, the stiffness of each cross-validation fold against the full fit's, the held-out
+//! `docs/schemas/identify.schema.json`, the six drives' form or a model with virtual springs):
+//! each measured displacement coordinate against the predicted one, the parameters' stiffness
+//! with their 95% intervals, the residuals' normal QQ plot against the tracker's noise, the stiffness of each cross-validation fold against the full fit's, the held-out
 //! scores the prediction intervals are built from, and with `--compare-models` the compared
 //! models' held-out shares with their standard errors.
 
@@ -23,10 +24,110 @@ pub fn figures(doc: &Value) -> Result<Vec<Figure>> {
         bail!("not an identify document: no `residuals`, `fit` or `models`");
     }
     let mut all = Vec::new();
+    all.extend(measured(doc));
+    all.extend(parameters(doc));
     all.extend(qq(doc));
     all.extend(folds(doc));
     all.extend(prediction(doc));
     Ok(all)
+}
+
+/// Each measured displacement coordinate against the one the fit predicts, with the line where
+/// they are equal.
+fn measured(doc: &Value) -> Option<Figure> {
+    let residuals = list(doc, "residuals");
+    let mut series: [Vec<(f64, f64)>; 3] = Default::default();
+    for r in residuals {
+        let (Some(m), Some(p)) = (triple(r, "measured_mm"), triple(r, "predicted_mm")) else {
+            continue;
+        };
+        for a in 0..3 {
+            series[a].push((p[a], m[a]));
+        }
+    }
+    let all = series.iter().flatten();
+    let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (x, y)| {
+        (a.min(x.min(*y)), b.max(x.max(*y)))
+    });
+    if !lo.is_finite() {
+        return None;
+    }
+    let mut marks: Vec<Mark> = ["x", "y", "z"]
+        .iter()
+        .zip(series)
+        .enumerate()
+        .map(|(a, (name, xy))| Mark::Points {
+            label: format!("{name}, base frame"),
+            colour: colour(a + 1),
+            xy,
+        })
+        .collect();
+    marks.push(Mark::Line {
+        label: "measured = predicted".into(),
+        colour: colour(0),
+        xy: vec![(lo, lo), (hi, hi)],
+    });
+    Some(Figure {
+        name: "measured".into(),
+        caption: format!("Each measured displacement coordinate (base frame) against the one the identified model predicts for it, {} measurements: on the line the model explains the measurement; the residual is the vertical distance to it.", residuals.len()),
+        chart: Chart {
+            title: "Measured against predicted displacement".into(),
+            x_desc: "predicted displacement, mm".into(),
+            y_desc: "measured displacement, mm".into(),
+            log_y: false,
+            x_names: Vec::new(),
+            marks,
+        },
+    })
+}
+
+/// Each parameter's stiffness with its 95% interval, % of the stiffness: the six drives' form
+/// (`ci95_nm_per_rad`) or a model's (`parameters[].ci95`), the parameters named.
+fn parameters(doc: &Value) -> Option<Figure> {
+    let params = list(doc, "parameters");
+    let drives = list(doc, "ci95_nm_per_rad");
+    let mut values = Vec::new();
+    let mut names = Vec::new();
+    for (j, p) in params.iter().enumerate() {
+        let k = number(p, "stiffness");
+        let ci = p
+            .get("ci95")
+            .filter(|c| !c.is_null())
+            .or_else(|| drives.get(j))
+            .and_then(Value::as_array);
+        let at = |i: usize| ci.and_then(|c| c.get(i)).and_then(Value::as_f64);
+        names.push(
+            p.get("name")
+                .and_then(Value::as_str)
+                .unwrap_or("?")
+                .to_string(),
+        );
+        if let (Some(k), Some(lo), Some(hi)) = (k, at(0), at(1)) {
+            if k != 0.0 {
+                let pct = |v: f64| 100.0 * (v / k - 1.0);
+                values.push((j as f64, 0.0, pct(lo), pct(hi)));
+            }
+        }
+    }
+    if values.is_empty() {
+        return None;
+    }
+    Some(Figure {
+        name: "parameters".into(),
+        caption: format!("The 95% interval of each of the {} parameters' stiffness, % of the identified stiffness (each in its unit: Nm/rad for the drives and rotational springs, N/mm for translational ones; the table gives the values). A parameter without a bar is not identified by the data, or its interval is unbounded (the table gives its ends).", params.len()),
+        chart: Chart {
+            title: "Stiffness of each parameter: 95% interval".into(),
+            x_desc: "parameter".into(),
+            y_desc: "interval / stiffness - 1, %".into(),
+            log_y: false,
+            x_names: names,
+            marks: vec![Mark::Intervals {
+                label: "95% interval around the identified stiffness".into(),
+                colour: colour(2),
+                values,
+            }],
+        },
+    })
 }
 
 /// The residual coordinates over the tracker's noise against the normal quantiles.

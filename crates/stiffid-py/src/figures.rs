@@ -12,8 +12,10 @@ use serde_json::{Map, Number, Value};
 /// order ``calibrate --report`` and ``identify --report`` show them: for a calibration
 /// ``errors`` (each reading's error before and after, held-out readings marked), ``residuals``
 /// (their distribution against the tracker's noise) and ``parameters_<unit>`` (fitted minus
-/// nominal with 95% intervals); for an identification ``qq`` (the residuals' normal QQ plot
-/// against the noise), ``folds`` (with cross-validation: each fold's stiffness against the full
+/// nominal with 95% intervals); for an identification (the six drives or a model with virtual
+/// springs) ``measured`` (each measured displacement coordinate against the predicted one),
+/// ``parameters`` (each parameter's 95% interval, % of its stiffness), ``qq`` (the residuals'
+/// normal QQ plot against the noise), ``folds`` (with cross-validation: each fold's stiffness against the full
 /// fit's), ``prediction`` (the held-out scores of the prediction intervals) or, for a model
 /// comparison, ``models`` (held-out shares with one standard error). Show one in Jupyter with
 /// ``IPython.display.SVG(svg)``. ``InputError`` when ``document`` is neither.

@@ -78,7 +78,7 @@ impl Scene {
     fn _repr_html_(&self) -> String {
         let page = page::page(&self.inner, &self.inner.setup);
         format!(
-            "<iframe srcdoc=\"{}\" style=\"width: 100%; height: 660px; border: none\"></iframe>",
+            "<iframe srcdoc=\"{}\" style=\"width: 100%; height: 800px; border: none\"></iframe>",
             page::escape(&page)
         )
     }

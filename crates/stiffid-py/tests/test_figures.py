@@ -1,6 +1,7 @@
 """figures: the SVG figures of a calibration and an identification, drawn from their documents,
 are byte for byte the figures the command's reports write for the same call."""
 
+import numpy as np
 import pytest
 
 import stiffid
@@ -26,7 +27,12 @@ def test_calibration_figures_are_the_reports(paper, cli, campaign, tmp_path):  #
 def test_identification_figures_are_the_reports(fanuc, cli, tmp_path):
     ident = stiffid.identify(fanuc, FANUC_DATA, cross_validate=True)
     figures = stiffid.figures(ident)
-    assert list(figures) == ["qq", "folds", "prediction"]
+    assert list(figures) == ["measured", "parameters", "qq", "folds", "prediction"]
+    # Measured against predicted: one point per displacement coordinate of the document.
+    residuals = ident["residuals"]
+    assert figures["measured"].count("<circle") == 3 * len(residuals)
+    for r in residuals:
+        np.testing.assert_allclose(np.add(r["predicted_mm"], r["residual_mm"]), r["measured_mm"], rtol=0, atol=1e-12)
     assert figures == stiffid.figures(plain(ident))
     cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--cross-validate",
         "--report", tmp_path / "r", "--json")

@@ -11,9 +11,6 @@ use std::path::{Path, PathBuf};
 /// held to the end of the run): a second one is refused.
 pub const TEMP_DIR: &str = ".stiffid-tmp";
 
-/// Most threads [`ReportDir::write_all`] writes files on.
-pub const WRITERS: usize = 16;
-
 /// A directory being filled with a report, checked when the command starts (before computing).
 ///
 /// Dropped without [`ReportDir::finish`] (an error on the way), it removes its temporary files
@@ -116,7 +113,10 @@ impl ReportDir {
     }
 
     /// Writes `bytes` whole as the file `rel` (relative to the directory; subdirectories are
-    /// created), through an existing symlink to its target.
+    /// created), through an existing symlink to its target. Not synced to the disk: a report is
+    /// put in place whole by renames when its run succeeds, and written again by running the
+    /// command again, while a sync per file cost more than the report's drawing (5 to 15 ms
+    /// each on a busy disk, against a few ms of drawing).
     ///
     /// # Errors
     /// Those of [`resolve`]; a file that cannot be written.
@@ -130,32 +130,24 @@ impl ReportDir {
             .lock()
             .unwrap_or_else(|e| e.into_inner())
             .retain(|p| *p != path);
-        replace(&resolve(&path, "report file")?, &self.tmp, bytes, false)
+        replace(
+            &resolve(&path, "report file")?,
+            &self.tmp,
+            bytes,
+            false,
+            false,
+        )
     }
 
     /// Writes every file of `files` (each a path relative to the directory and its bytes) as
-    /// [`ReportDir::write`] does, on up to [`WRITERS`] threads of their own, so that the files'
-    /// syncs to the disk overlap instead of following one another (on a busy disk a sync waits
-    /// 5 to 15 ms).
+    /// [`ReportDir::write`] does.
     ///
     /// # Errors
     /// The first of [`ReportDir::write`]'s.
-    pub fn write_all<B: AsRef<[u8]> + Sync>(&self, files: &[(String, B)]) -> Result<()> {
-        let writers = files.len().min(WRITERS);
-        std::thread::scope(|s| {
-            let handles: Vec<_> = (0..writers)
-                .map(|t| {
-                    s.spawn(move || {
-                        (files.iter().skip(t).step_by(writers))
-                            .try_for_each(|(rel, bytes)| self.write(rel, bytes.as_ref()))
-                    })
-                })
-                .collect();
-            handles.into_iter().try_for_each(|h| {
-                h.join()
-                    .unwrap_or_else(|_| bail!("a report file's writer failed"))
-            })
-        })
+    pub fn write_all<B: AsRef<[u8]>>(&self, files: &[(String, B)]) -> Result<()> {
+        files
+            .iter()
+            .try_for_each(|(rel, bytes)| self.write(rel, bytes.as_ref()))
     }
 
     /// Writes the file `rel` (as [`ReportDir::write`]) by `fill` (a large result that never sits
@@ -176,9 +168,7 @@ impl ReportDir {
             .retain(|p| *p != path);
         let (tmp, file) = super::target::temporary(&self.tmp)?;
         let mut out = std::io::BufWriter::new(file);
-        let written = fill(&mut out)
-            .and_then(|()| out.flush())
-            .and_then(|()| out.get_ref().sync_all());
+        let written = fill(&mut out).and_then(|()| out.flush());
         if let Err(e) = written {
             let _ = std::fs::remove_file(&tmp);
             return Err(e).with_context(|| format!("{}: cannot write", target.display()));

@@ -57,7 +57,13 @@ impl OutFile {
     /// # Errors
     /// When the file cannot be written (nothing is left behind then).
     pub fn write(&self, bytes: &[u8]) -> Result<()> {
-        replace(&self.target, dir_of(&self.target), bytes, self.new_only)
+        replace(
+            &self.target,
+            dir_of(&self.target),
+            bytes,
+            self.new_only,
+            true,
+        )
     }
 }
 

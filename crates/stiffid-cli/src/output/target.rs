@@ -23,11 +23,17 @@ pub fn temporary(dir: &Path) -> Result<(PathBuf, File)> {
 }
 
 /// Writes `bytes` whole to a temporary file in `tmp_dir` (same file system as the resolved
-/// `target`, see [`resolve`]), synced ([`output::write_temporary`]), and stages it to be put in
-/// place as `target` when the run succeeds ([`super::staged`]; `new_only`: only if `target` does
-/// not exist by then).
-pub fn replace(target: &Path, tmp_dir: &Path, bytes: &[u8], new_only: bool) -> Result<()> {
-    let tmp = output::write_temporary(tmp_dir, bytes)
+/// `target`, see [`resolve`]), synced when `sync` ([`output::write_temporary_as`]), and stages it
+/// to be put in place as `target` when the run succeeds ([`super::staged`]; `new_only`: only if
+/// `target` does not exist by then).
+pub fn replace(
+    target: &Path,
+    tmp_dir: &Path,
+    bytes: &[u8],
+    new_only: bool,
+    sync: bool,
+) -> Result<()> {
+    let tmp = output::write_temporary_as(tmp_dir, bytes, sync)
         .with_context(|| format!("{}: cannot write", target.display()))?;
     match new_only {
         true => super::staged::create(tmp, target.to_path_buf()),

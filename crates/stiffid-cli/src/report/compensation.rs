@@ -198,8 +198,8 @@ fn segments(segments: &[SegmentDocument]) -> Table {
             "points",
             "force N",
             "|d| before mm",
-            "|d| after mm",
-            "std of |d| mm",
+            "remaining after, 2 sd of |d| mm",
+            "model residual mm",
         ]
         .map(String::from)
         .to_vec(),
@@ -213,8 +213,8 @@ fn segments(segments: &[SegmentDocument]) -> Table {
                     s.points.to_string(),
                     num(s.force_n),
                     num(s.deflection_before_mm),
+                    s.deflection_std_mm.map_or("-".into(), |v| num(2.0 * v)),
                     format!("{:.2e}", s.deflection_after_mm),
-                    s.deflection_std_mm.map_or("-".into(), num),
                 ]
             })
             .collect(),

@@ -1,6 +1,7 @@
 //! The report of `stiffid identify --report DIR`: `report.html` (self-contained, figures inline as
 //! SVG), `identify.json` (the identify job's document, any of its forms, which the other files
-//! render) and `figures/` (SVG and PNG): the residuals' QQ plot against the noise, the stability
+//! render) and `figures/` (SVG and PNG): the measured against the predicted displacements, the
+//! parameters' 95% intervals, the residuals' QQ plot against the noise, the stability
 //! of the cross-validation's folds, the prediction intervals' held-out scores, the compared
 //! models' held-out shares with their standard errors ([`stiffid_figures::identify`]).
 
@@ -108,18 +109,33 @@ fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure]) {
     );
 }
 
-/// Each parameter's stiffness and, for the drives, its standard error.
+/// Each parameter's stiffness with its 95% interval and, for the drives, its standard error.
 fn parameters_table(doc: &Value, parameters: &[Value]) -> Table {
     let se = doc["std_error_percent"].as_array();
-    let header = ["parameter", "unit", "stiffness", "standard error, %"]
-        .map(String::from)
-        .to_vec();
+    let drives = doc["ci95_nm_per_rad"].as_array();
+    let header = [
+        "parameter",
+        "unit",
+        "stiffness",
+        "95% interval",
+        "standard error, %",
+    ]
+    .map(String::from)
+    .to_vec();
     let rows = (parameters.iter().enumerate())
         .map(|(j, p)| {
+            let ci = match &p["ci95"] {
+                Value::Array(c) => Some(c),
+                _ => drives.and_then(|d| d.get(j)).and_then(Value::as_array),
+            };
             vec![
                 text(&p["name"]),
                 text(&p["unit"]),
                 text(&p["stiffness"]),
+                ci.map_or("-".into(), |c| {
+                    let end = |i: usize| c.get(i).map_or("-".into(), text);
+                    format!("{} to {}", end(0), end(1))
+                }),
                 se.and_then(|s| s.get(j)).map_or("-".into(), text),
             ]
         })

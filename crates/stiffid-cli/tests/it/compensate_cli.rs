@@ -367,6 +367,25 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
     }
     let html = std::fs::read_to_string(report.join("report.html")).unwrap();
     assert!(html.contains("Force and deflection per segment"));
+    // What the report calls "after" is the error predicted to remain, 2 standard deviations of
+    // the deflection, not the model's residual.
+    assert!(html.contains("<th>remaining after, 2 sd of |d| mm</th>"));
+    let table = &html[html.find("Force and deflection per segment").unwrap()..];
+    let mut loaded = 0;
+    for s in segments.iter().take(40) {
+        let start = table.find(&format!("<tr><td>{}</td>", s["line"])).unwrap();
+        let row = &table[start..start + table[start..].find("</tr>").unwrap()];
+        let cells: Vec<&str> = row
+            .split("<td>")
+            .skip(1)
+            .map(|c| c.trim_end_matches("</td>"))
+            .collect();
+        let shown: f64 = cells[5].parse().unwrap();
+        let sd = s["deflection_std_mm"].as_f64().unwrap();
+        assert!((shown - 2.0 * sd).abs() <= 1e-3 * 2.0 * sd, "{row}");
+        loaded += usize::from(sd > 0.0);
+    }
+    assert!(loaded > 20, "{loaded} segments under a force");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

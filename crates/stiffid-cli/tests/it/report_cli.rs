@@ -201,6 +201,14 @@ fn the_identification_report_renders_the_document() {
     let cv = &doc["cross_validation"];
     let sentence = format!("Cross-validation over {} folds", cv["folds"]);
     assert!(html.contains(&sentence), "{sentence}");
+    // Each residual carries the measured displacement (the file's, the FANUC setup measuring in
+    // the base frame) and the fitted one, their difference the residual.
+    measured_is_the_file(&doc);
+    for needle in ["id=\"measured\"", "id=\"parameters\""] {
+        assert!(html.contains(needle), "{needle}");
+    }
+    let measured = std::fs::read_to_string(report.join("figures/measured.svg")).unwrap();
+    assert_eq!(measured.matches("<circle").count(), coordinates);
 
     let models = d.join("models");
     let args = [
@@ -222,4 +230,91 @@ fn the_identification_report_renders_the_document() {
     let rows = html.matches("<tr>").count();
     let expected = doc["models"].as_array().unwrap().len();
     assert!(rows > expected, "{rows} rows for {expected} models");
+}
+
+/// Every residual of the identify document `doc` of the FANUC data: its `measured_mm` is the
+/// file's displacement on its line (to 1e-9 mm) and equals `predicted_mm + residual_mm`.
+fn measured_is_the_file(doc: &Value) {
+    let text = std::fs::read_to_string(FANUC_DATA).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let residuals = doc["residuals"].as_array().unwrap();
+    assert!(!residuals.is_empty());
+    let three = |v: &Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    for r in residuals {
+        let line = r["line"].as_u64().unwrap() as usize;
+        let cells: Vec<f64> = lines[line - 1]
+            .split(',')
+            .skip(11)
+            .map(|c| c.parse().unwrap())
+            .collect();
+        let (m, p, e) = (
+            three(&r["measured_mm"]),
+            three(&r["predicted_mm"]),
+            three(&r["residual_mm"]),
+        );
+        for a in 0..3 {
+            assert!(
+                (m[a] - cells[a]).abs() < 1e-9,
+                "line {line}: {m:?} {cells:?}"
+            );
+            assert!((m[a] - p[a] - e[a]).abs() < 1e-12, "line {line}");
+        }
+    }
+}
+
+#[test]
+fn the_identification_report_of_a_model_with_virtual_springs() {
+    let d = temp_dir("report-identify-springs");
+    let shown = stiffid(&["setups", "show", FANUC]);
+    let spring =
+        "\n[[model.spring]]\nname = \"bend\"\nkind = \"rotation\"\nlink = 3\naxis = [1, 0, 0]\n";
+    let setup = write_file(
+        &d,
+        "springs.toml",
+        &(String::from_utf8(shown.stdout).unwrap() + spring),
+    );
+    let report = d.join("report");
+    let args = [
+        "identify",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--data",
+        FANUC_DATA,
+        "--report",
+        report.to_str().unwrap(),
+        "--json",
+    ];
+    let doc = json(&stiffid(&args));
+    assert_eq!(read_json(&report.join("identify.json")), doc);
+    let names: Vec<&str> = (doc["parameters"].as_array().unwrap().iter())
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names.len(), 7);
+    assert!(names.contains(&"bend"), "{names:?}");
+    measured_is_the_file(&doc);
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    fetches_nothing(&html);
+    for needle in [
+        "id=\"measured\"",
+        "id=\"parameters\"",
+        "id=\"qq\"",
+        "<td>bend</td>",
+    ] {
+        assert!(html.contains(needle), "{needle}");
+    }
+    // One interval per identified parameter (plotters draws each error bar as one path of its
+    // stem and caps).
+    let identified = (doc["parameters"].as_array().unwrap().iter())
+        .filter(|p| p["ci95"].is_array())
+        .count();
+    assert!(identified >= 6, "{identified}");
+    let measured = std::fs::read_to_string(report.join("figures/measured.svg")).unwrap();
+    let coordinates = 3 * doc["residuals"].as_array().unwrap().len();
+    assert_eq!(measured.matches("<circle").count(), coordinates);
 }

@@ -110,6 +110,10 @@ pub struct Identification {
     pub uncertainty: Option<Uncertainty>,
     /// `delta - Psi h` of every row, m, rows as in the module docs (unweighted, also in robust mode).
     pub residuals: DVector<f64>,
+    /// The displacement the fit predicts for each measurement, m, three per measurement in the
+    /// order of `residuals`: the measured displacement is `predicted + residuals` (with fitted
+    /// offsets, the prediction includes its point's offset).
+    pub predicted: DVector<f64>,
     /// `sqrt(|r|^2 / m)`, m.
     pub residual_rms: f64,
     /// `cond_2(Psi)` of the (unweighted) observation matrix.
@@ -295,16 +299,18 @@ impl<'a> InBlocks<'a> {
 }
 
 impl Solved {
-    /// The identification with `residuals` (`delta - Psi h` of every measurement, [`residuals`]).
+    /// The identification with `residuals` and `predicted` (`delta - Psi h` and `Psi h` of every
+    /// measurement, [`residuals`]).
     ///
     /// # Panics
-    /// Unless there are three residuals per measurement.
-    pub fn finish(self, residuals: Vec<f64>) -> Identification {
+    /// Unless there are three residuals and three predictions per measurement.
+    pub fn finish(self, (residuals, predicted): (Vec<f64>, Vec<f64>)) -> Identification {
         assert_eq!(residuals.len(), 3 * self.measurements);
+        assert_eq!(predicted.len(), 3 * self.measurements);
         finish(
             self.postures,
             self.solution.h,
-            DVector::from_vec(residuals),
+            (DVector::from_vec(residuals), DVector::from_vec(predicted)),
             self.solution.unit_covariance,
             6,
             self.solution.cond,
@@ -313,17 +319,28 @@ impl Solved {
     }
 }
 
-/// `delta - Psi h` of some measurements (checked), three per measurement in the row order of
-/// [`crate::observation`], computed in parallel blocks of [`BLOCK`] (the same values whatever
-/// the blocks).
-pub fn residuals(arm: &Arm, h: &Vector6<f64>, measurements: &[Measurement]) -> Vec<f64> {
-    measurements
+/// `delta - Psi h` and `Psi h` of some measurements (checked), three per measurement in the row
+/// order of [`crate::observation`], computed in parallel blocks of [`BLOCK`] (the same values
+/// whatever the blocks).
+pub fn residuals(
+    arm: &Arm,
+    h: &Vector6<f64>,
+    measurements: &[Measurement],
+) -> (Vec<f64>, Vec<f64>) {
+    let blocks: Vec<(DVector<f64>, DVector<f64>)> = measurements
         .par_chunks(BLOCK)
-        .flat_map_iter(|block| {
+        .map(|block| {
             let (psi, delta) = rows(arm, block);
-            (delta - psi * h).as_slice().to_vec()
+            let predicted = psi * h;
+            (delta - &predicted, predicted)
         })
-        .collect()
+        .collect();
+    let mut out = (Vec::new(), Vec::new());
+    for (r, p) in blocks {
+        out.0.extend_from_slice(r.as_slice());
+        out.1.extend_from_slice(p.as_slice());
+    }
+    out
 }
 
 /// `Psi` and `delta` of some measurements ([`assemble`]).
@@ -370,11 +387,10 @@ impl Observations {
         check_deflection(self.delta.iter())?;
         let factor = Factor::try_new(self.psi.clone())?;
         let h = factor.solve(&self.delta);
-        let residuals = &self.delta - &self.psi * h;
         Ok(finish(
             self.postures,
             h,
-            residuals,
+            self.split(&h),
             factor.unit_covariance(),
             6,
             factor.cond(),
@@ -403,7 +419,7 @@ impl Observations {
         let mut id = finish(
             self.postures,
             fit.h,
-            &self.delta - &self.psi * fit.h,
+            self.split(&fit.h),
             nonnegative::unit_covariance(factor.r(), &fit.active),
             free,
             factor.cond(),
@@ -435,11 +451,10 @@ impl Observations {
         };
         let (h, weighted, fit) = robust::fit(&self.psi, &self.delta, start, loss, &solve)?;
         let h = Vector6::from_column_slice(h.as_slice());
-        let residuals = &self.delta - &self.psi * h;
         Ok(finish(
             self.postures,
             h,
-            residuals,
+            self.split(&h),
             weighted.unit_covariance(),
             6,
             factor.cond(),
@@ -448,12 +463,20 @@ impl Observations {
     }
 }
 
-/// The statistics of compliance `h` with residuals `delta - Psi h`,
+impl Observations {
+    /// The residuals `delta - Psi h` and the predictions `Psi h` of the compliance `h`.
+    pub(crate) fn split(&self, h: &Vector6<f64>) -> (DVector<f64>, DVector<f64>) {
+        let predicted = &self.psi * h;
+        (&self.delta - &predicted, predicted)
+    }
+}
+
+/// The statistics of compliance `h` with residuals `delta - Psi h` and predictions `Psi h`,
 /// `(Psi^T W Psi)^-1 = unit_covariance` and `free` estimated compliances.
 fn finish(
     postures: usize,
     h: Vector6<f64>,
-    residuals: DVector<f64>,
+    (residuals, predicted): (DVector<f64>, DVector<f64>),
     unit_covariance: Matrix6<f64>,
     free: usize,
     cond_psi: f64,
@@ -478,6 +501,7 @@ fn finish(
         uncertainty,
         residual_rms: (residuals.norm_squared() / rows as f64).sqrt(),
         residuals,
+        predicted,
         cond_psi,
         rows,
         postures,

@@ -83,10 +83,12 @@ pub fn least_squares(
         })
         .collect::<Vec<_>>();
     let free = 6 + 3 * offsets.len();
+    // With the offsets, what the fit predicts is the measured displacement less its residual.
+    let predicted = &obs.delta - &residuals;
     let id = finish(
         obs.postures,
         h,
-        residuals,
+        (residuals, predicted),
         factor.unit_covariance(),
         free,
         factor.cond(),

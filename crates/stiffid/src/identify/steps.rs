@@ -191,7 +191,8 @@ pub fn generalised(
     }
     let mut id = method.fit(&white)?;
     let h = DVector::from_column_slice(id.compliance.as_slice());
-    id.residuals = &obs.delta - &obs.psi * h;
+    id.predicted = &obs.psi * h;
+    id.residuals = &obs.delta - &id.predicted;
     id.residual_rms = (id.residuals.norm_squared() / id.residuals.len() as f64).sqrt();
     Ok(id)
 }

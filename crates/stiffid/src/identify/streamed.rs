@@ -92,9 +92,11 @@ pub fn least_squares<R: BufRead + Send>(
     let solved = blocks.solve()?;
     let h = solved.solution.h;
     let mut all = std::mem::take(&mut kept.displacements);
+    let mut predicted = vec![0.0; all.len()];
     all.par_chunks_mut(3 * BLOCK)
+        .zip(predicted.par_chunks_mut(3 * BLOCK))
         .enumerate()
-        .for_each(|(b, block)| {
+        .for_each(|(b, (block, fitted))| {
             let first = b * BLOCK;
             let measurements: Vec<Measurement> = (first..first + block.len() / 3)
                 .map(|i| {
@@ -108,9 +110,11 @@ pub fn least_squares<R: BufRead + Send>(
                     }
                 })
                 .collect();
-            block.copy_from_slice(&residuals(setup.arm(), &h, &measurements));
+            let (r, p) = residuals(setup.arm(), &h, &measurements);
+            block.copy_from_slice(&r);
+            fitted.copy_from_slice(&p);
         });
-    Ok((solved.finish(all), rows))
+    Ok((solved.finish((all, predicted)), rows))
 }
 
 /// What the residual of each row needs besides its posture's axis angles and measuring point:

@@ -113,6 +113,8 @@ pub struct Fit {
     pub covariance: Option<DMatrix<f64>>,
     /// `delta - Psi h`, m, rows in the order of [`crate::observation`].
     pub residuals: DVector<f64>,
+    /// `Psi h`, the displacement the fit predicts, m, rows in the order of `residuals`.
+    pub predicted: DVector<f64>,
     /// `|delta - Psi h|^2`, m^2.
     pub rss: f64,
     /// Rows of `Psi`.
@@ -437,7 +439,8 @@ fn finish(
     robust: Option<RobustFit>,
 ) -> Fit {
     let identifiability = scaled.identifiability();
-    let residuals = &obs.delta - &obs.psi * &h;
+    let predicted = &obs.psi * &h;
+    let residuals = &obs.delta - &predicted;
     let rss = residuals.norm_squared();
     let rows = obs.psi.nrows();
     // A robust fit's variance: the weighted residuals over the rows of non-zero weight.
@@ -475,6 +478,7 @@ fn finish(
         identifiability,
         covariance: (dof > 0).then_some(covariance),
         residuals,
+        predicted,
         rss,
         rows,
         postures: obs.postures,

@@ -129,8 +129,23 @@ pub fn temporary(dir: &Path) -> std::io::Result<(PathBuf, File)> {
 /// # Errors
 /// When the file cannot be created or written (a full device).
 pub fn write_temporary(dir: &Path, bytes: &[u8]) -> std::io::Result<PathBuf> {
+    write_temporary_as(dir, bytes, true)
+}
+
+/// [`write_temporary`], synced to the disk only when `sync` is true. Unsynced, the file is still
+/// put in place whole by a rename (a reader or a killed run never sees part of it), but a power
+/// cut right after the run may lose it: for files a run writes again at will (a report's page
+/// and figures), whose one sync each costs more than drawing them.
+///
+/// # Errors
+/// When the file cannot be created or written (a full device).
+pub fn write_temporary_as(dir: &Path, bytes: &[u8], sync: bool) -> std::io::Result<PathBuf> {
     let (tmp, mut file) = temporary(dir)?;
-    match file.write_all(bytes).and_then(|_| file.sync_all()) {
+    let written = file.write_all(bytes).and_then(|_| match sync {
+        true => file.sync_all(),
+        false => Ok(()),
+    });
+    match written {
         Ok(()) => Ok(tmp),
         Err(e) => {
             let _ = std::fs::remove_file(&tmp);

@@ -77,6 +77,9 @@ impl Plot for Force<'_> {
 
 struct Segments<'a>(&'a [SegmentDocument]);
 
+/// A value drawn per segment, mm.
+type Value = dyn Fn(&SegmentDocument) -> f64;
+
 /// The figure `segments`: each program segment's largest deflection before and after
 /// compensation.
 pub fn segments(segments: &[SegmentDocument]) -> Result<Figure> {
@@ -84,10 +87,10 @@ pub fn segments(segments: &[SegmentDocument]) -> Result<Figure> {
         "segments",
         "The largest TCP deflection of each program segment (a program line: a G-code block with \
          its arc points, a robot program's target), mm. Black: before compensation, under the \
-         process force. Blue: after, the residual of the compensated targets (at zero on this \
-         scale). Grey: 2 standard deviations of the deflection from the compliance covariance \
-         (what the stiffness's uncertainty leaves after compensation), where the stiffness file \
-         has one.",
+         process force. Blue: after compensation, the error predicted to remain, 2 standard \
+         deviations of the deflection from the compliance covariance (what the stiffness's \
+         uncertainty leaves), where the stiffness file has one; the compensated targets \
+         reproduce the model itself to below 0.1 um (the table's residual).",
         &Segments(segments),
     )
 }
@@ -129,19 +132,12 @@ impl Plot for Segments<'_> {
                 .map(|(k, v)| (k as f64 + 1.0, g(v)))
                 .collect()
         };
+        let mut drawn: Vec<(&Value, RGBColor)> =
+            vec![(&|v: &SegmentDocument| v.deflection_before_mm, BLACK)];
         if s.iter().any(|g| g.deflection_std_mm.is_some()) {
-            let style = ShapeStyle::from(BLACK.mix(0.4)).stroke_width(1);
-            chart
-                .draw_series(DashedLineSeries::new(points(&std), 5, 4, style))
-                .map_err(failed)?;
+            drawn.push((&std, colour(2)));
         }
-        for (g, c) in [
-            (
-                &(|v: &SegmentDocument| v.deflection_before_mm) as &dyn Fn(&SegmentDocument) -> f64,
-                BLACK,
-            ),
-            (&|v: &SegmentDocument| v.deflection_after_mm, colour(2)),
-        ] {
+        for (g, c) in drawn {
             let style = ShapeStyle::from(c).stroke_width(2);
             chart
                 .draw_series(LineSeries::new(points(g), style))

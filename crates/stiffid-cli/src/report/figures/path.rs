@@ -19,9 +19,11 @@ pub fn deflection(results: &[Compensated]) -> Result<Figure> {
         "TCP translation deflection |d| along the path, mm. Black: before compensation (the robot \
          at the nominal axis angles under the path's wrench), with its band +-2 standard deviations \
          from the compliance covariance where the stiffness file has one. Blue: after compensation, \
-         the residual of the compensated axis angles (below 0.1 um, at zero on this scale); its band: \
-         0 to 2 standard deviations of the predicted deflection, the error the stiffness's \
-         uncertainty leaves. Orange dashed (--free-tool-axis): before the tool-axis optimisation.",
+         the error predicted to remain, 2 standard deviations of the predicted deflection (the \
+         compensation removes the predicted deflection, not the stiffness's uncertainty); without \
+         a covariance it cannot be predicted and is not drawn. The compensated axis angles \
+         reproduce the model itself to below 0.1 um (the summary gives the largest residual). \
+         Orange dashed (--free-tool-axis): before the tool-axis optimisation.",
         &Deflection(results),
     )
 }
@@ -67,10 +69,6 @@ impl Plot for Deflection<'_> {
             chart
                 .draw_series([Polygon::new(before, BLACK.mix(0.15).filled())])
                 .map_err(failed)?;
-            let after = band(&|_| 0.0, &sd);
-            chart
-                .draw_series([Polygon::new(after, colour(2).mix(0.2).filled())])
-                .map_err(failed)?;
         }
         let line = |f: &dyn Fn(&Compensated) -> f64| -> Vec<(f64, f64)> {
             r.iter().enumerate().map(|(i, c)| (x(i), f(c))).collect()
@@ -91,12 +89,14 @@ impl Plot for Deflection<'_> {
                 ShapeStyle::from(BLACK).stroke_width(2),
             ))
             .map_err(failed)?;
-        chart
-            .draw_series(LineSeries::new(
-                line(&|c| c.residual_position * 1e3),
-                ShapeStyle::from(colour(2)).stroke_width(2),
-            ))
-            .map_err(failed)?;
+        if r.iter().any(|c| c.translation_norm_std.is_some()) {
+            chart
+                .draw_series(LineSeries::new(
+                    line(&sd),
+                    ShapeStyle::from(colour(2)).stroke_width(2),
+                ))
+                .map_err(failed)?;
+        }
         Ok(())
     }
 }

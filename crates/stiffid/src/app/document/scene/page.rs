@@ -19,13 +19,14 @@ const STYLE: &str = "
 .stiffid-scene { position: relative; font: 13px/1.4 system-ui, sans-serif; color: #222; }
 .stiffid-scene .view { box-sizing: border-box; width: 100%; height: 560px; border: 1px solid #ccd; }
 .stiffid-scene .controls { margin: 4px 0; }
-.stiffid-scene .legend { position: absolute; top: 36px; left: 8px; background: rgba(255,255,255,0.85);
-  padding: 6px 8px; border-radius: 4px; max-width: 46%; }
+.stiffid-scene .legend { margin-top: 4px; padding: 6px 8px; border: 1px solid #ccd; border-radius: 4px;
+}
 .stiffid-scene .legend .note { color: #666; font-style: italic; }
 .stiffid-scene .key { display: inline-block; width: 12px; height: 12px; margin: 0 4px 0 6px;
   vertical-align: -1px; border-radius: 2px; }
 .stiffid-scene .ramp { display: inline-block; width: 80px; height: 10px;
   background: linear-gradient(to right, hsl(238,85%,45%), hsl(120,85%,45%), hsl(0,85%,45%)); }
+.stiffid-scene .stage { position: relative; }
 .stiffid-scene .scale { position: absolute; bottom: 14px; right: 14px; background: rgba(255,255,255,0.85);
   padding: 4px 8px; border-radius: 4px; text-align: center; }
 .stiffid-scene .bar { height: 6px; border: 2px solid #222; border-top: none; margin: 0 auto; }
@@ -52,8 +53,9 @@ pub fn fragment(scene: &Scene, id: &str) -> String {
     }
     s.push_str(
         "</select> <span class=\"help\">drag: orbit, right drag: pan, wheel: zoom</span></div>\n\
-         <div class=\"view\"></div><div class=\"legend\"></div>\n\
-         <div class=\"scale\"><div class=\"bar-text\"></div><div class=\"bar\"></div></div>\n</div>\n",
+         <div class=\"stage\"><div class=\"view\"></div>\n\
+         <div class=\"scale\"><div class=\"bar-text\"></div><div class=\"bar\"></div></div></div>\n\
+         <div class=\"legend\"></div>\n</div>\n",
     );
     let _ = writeln!(
         s,

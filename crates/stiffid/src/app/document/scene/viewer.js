@@ -28,26 +28,6 @@ function draw(root, scene) {
 
   const postures = scene.postures;
   const v3 = (a) => new THREE.Vector3(a[0], a[1], a[2]);
-  const box = new THREE.Box3();
-  for (const p of postures) {
-    for (const f of p.link_frames) box.expandByPoint(v3(f.translation_m));
-    box.expandByPoint(v3(p.tcp_m));
-  }
-  if (scene.tracker_m) box.expandByPoint(v3(scene.tracker_m));
-  if (scene.anchor_m) box.expandByPoint(v3(scene.anchor_m));
-  for (const o of scene.obstacles) { box.expandByPoint(v3(o.min_m)); box.expandByPoint(v3(o.max_m)); }
-  for (const q of scene.path) box.expandByPoint(v3(q.at_m));
-  const size = Math.max(box.getSize(new THREE.Vector3()).length(), 0.5);
-  const centre = box.getCenter(new THREE.Vector3());
-
-  // Displacements are drawn magnified: the largest arrow or ellipsoid about a tenth of the scene.
-  let largest = 0;
-  for (const p of postures) {
-    for (const a of p.arrows) for (const d of [a.measured_m, a.predicted_m]) if (d) largest = Math.max(largest, v3(d).length());
-    if (p.ellipsoid) largest = Math.max(largest, ...p.ellipsoid.semi_axes_m);
-  }
-  const gain = largest > 0 ? nice(0.1 * size / largest) : 1;
-
   // The robot: one geometry per link shape, one group per posture.
   const geometries = scene.links.map((l) => l.geometry.map((g) => {
     const b = new THREE.BufferGeometry();
@@ -80,6 +60,27 @@ function draw(root, scene) {
     world.add(g);
     return g;
   });
+
+  // The scene's bounds: the robot's shapes in every posture (not only the link frames' origins,
+  // which leave out what stands above them), the tool points, the cell and the path.
+  const box = new THREE.Box3();
+  world.updateMatrixWorld(true);
+  for (const g of robots) box.expandByObject(g);
+  for (const p of postures) box.expandByPoint(v3(p.tcp_m));
+  if (scene.tracker_m) box.expandByPoint(v3(scene.tracker_m));
+  if (scene.anchor_m) box.expandByPoint(v3(scene.anchor_m));
+  for (const o of scene.obstacles) { box.expandByPoint(v3(o.min_m)); box.expandByPoint(v3(o.max_m)); }
+  for (const q of scene.path) box.expandByPoint(v3(q.at_m));
+  const size = Math.max(box.getSize(new THREE.Vector3()).length(), 0.5);
+  const centre = box.getCenter(new THREE.Vector3());
+
+  // Displacements are drawn magnified: the largest arrow or ellipsoid about a sixth of the scene.
+  let largest = 0;
+  for (const p of postures) {
+    for (const a of p.arrows) for (const d of [a.measured_m, a.predicted_m]) if (d) largest = Math.max(largest, v3(d).length());
+    if (p.ellipsoid) largest = Math.max(largest, ...p.ellipsoid.semi_axes_m);
+  }
+  const gain = largest > 0 ? nice(size / 6 / largest) : 1;
 
   // The cell.
   const lineMaterial = (colour) => new THREE.LineBasicMaterial({ color: colour });
@@ -123,15 +124,34 @@ function draw(root, scene) {
     world.add(g);
     return g;
   });
+  // Arrows as solid shafts and heads (a line is one pixel wide whatever the zoom), drawn over the
+  // bodies, as thick as the scene's size asks.
+  const shaft = new THREE.CylinderGeometry(1, 1, 1, 12), head = new THREE.ConeGeometry(1, 1, 16);
+  const thickness = size / 400;
+  const arrow = (at, d, colour) => {
+    const v = v3(d), n = v.length() * gain;
+    if (!(n > 0)) return null;
+    const m = new THREE.MeshBasicMaterial({ color: colour, depthTest: false, transparent: true });
+    const g = new THREE.Group();
+    const h = Math.min(0.3 * n, 8 * thickness), r = Math.min(thickness, 0.08 * n);
+    const s = new THREE.Mesh(shaft, m), c = new THREE.Mesh(head, m);
+    s.scale.set(r, n - h, r);
+    s.position.set(0, (n - h) / 2, 0);
+    c.scale.set(2.6 * r, h, 2.6 * r);
+    c.position.set(0, n - h / 2, 0);
+    g.add(s, c);
+    g.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), v.normalize());
+    g.position.copy(v3(at));
+    g.renderOrder = 11;
+    s.renderOrder = c.renderOrder = 11;
+    return g;
+  };
   const arrows = postures.map((p) => {
     const g = new THREE.Group();
     for (const a of p.arrows) {
       for (const [d, colour] of [[a.measured_m, 0x1f77b4], [a.predicted_m, 0xd62728]]) {
-        if (!d) continue;
-        const v = v3(d), n = v.length();
-        if (n === 0) continue;
-        const len = n * gain;
-        g.add(new THREE.ArrowHelper(v.normalize(), v3(a.at_m), len, colour, 0.25 * len, 0.12 * len));
+        const drawn = d && arrow(a.at_m, d, colour);
+        if (drawn) g.add(drawn);
       }
     }
     world.add(g);
@@ -179,9 +199,11 @@ function draw(root, scene) {
   // The legend and the scale bar.
   const legend = root.querySelector('.legend');
   const rows = [];
-  rows.push(`displacements and ellipsoids drawn x${gain.toLocaleString('en')}`);
-  if (postures.some((p) => p.arrows.some((a) => a.measured_m))) rows.push(key('#1f77b4', scene.arrow_names[0]));
-  if (postures.some((p) => p.arrows.some((a) => a.predicted_m))) rows.push(key('#d62728', scene.arrow_names[1]));
+  const mm = (x) => `${Number((x * 1e3).toPrecision(3)).toLocaleString('en')} mm`;
+  if (largest > 0) rows.push(`displacements and ellipsoids drawn x${gain.toLocaleString('en')}: ${mm(0.1 / gain)} of displacement drawn 100 mm long`);
+  const longest = (k) => Math.max(0, ...postures.flatMap((p) => p.arrows.map((a) => (a[k] ? v3(a[k]).length() : 0))));
+  if (postures.some((p) => p.arrows.some((a) => a.measured_m))) rows.push(key('#1f77b4', `${scene.arrow_names[0]}, the longest ${mm(longest('measured_m'))}`));
+  if (postures.some((p) => p.arrows.some((a) => a.predicted_m))) rows.push(key('#d62728', `${scene.arrow_names[1]}, the longest ${mm(longest('predicted_m'))}`));
   if (postures.some((p) => p.ellipsoid)) rows.push(key('#9467bd', `compliance ellipsoid at the TCP, under ${scene.ellipsoid_force_n.toFixed(0)} N`));
   if (scene.tracker_m) {
     rows.push(key('#2b7a2b', 'tracker; lines of sight by margin:'));

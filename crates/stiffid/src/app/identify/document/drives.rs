@@ -232,6 +232,41 @@ pub struct Residual {
     pub residual_mm: [f64; 3],
     /// The length of `residual_mm`, mm.
     pub norm_mm: f64,
+    /// The measured displacement, base frame, x, y, z, mm: `predicted_mm + residual_mm`.
+    pub measured_mm: [f64; 3],
+    /// The displacement the fit predicts, base frame, x, y, z, mm (with fitted offsets, its
+    /// point's offset included).
+    pub predicted_mm: [f64; 3],
+}
+
+impl Residual {
+    /// Measurement `i`'s residual of `residuals` and prediction of `predicted` (m, three per
+    /// measurement), labelled from `origin`.
+    pub fn new(
+        origin: &Origin,
+        i: usize,
+        residuals: &DVector<f64>,
+        predicted: &DVector<f64>,
+    ) -> Self {
+        let r = residuals.fixed_rows::<3>(3 * i).map(mm);
+        let p = predicted.fixed_rows::<3>(3 * i).map(mm);
+        Residual {
+            posture: origin.label(i).to_string(),
+            point: origin.points[i] + 1,
+            line: origin.lines.as_ref().map(|l| l[i]),
+            residual_mm: r.into(),
+            norm_mm: r.norm(),
+            measured_mm: (p + r).into(),
+            predicted_mm: p.into(),
+        }
+    }
+
+    /// Every measurement's residual ([`Residual::new`]).
+    pub fn all(origin: &Origin, residuals: &DVector<f64>, predicted: &DVector<f64>) -> Vec<Self> {
+        (0..residuals.len() / 3)
+            .map(|i| Residual::new(origin, i, residuals, predicted))
+            .collect()
+    }
 }
 
 /// The robust fit's reweighting.
@@ -471,31 +506,15 @@ fn offsets(report: &Report) -> Option<Vec<PointOffset>> {
     Some(rows.collect())
 }
 
-fn line(report: &Report, i: usize) -> Option<u64> {
-    report.origin.lines.as_ref().map(|l| l[i])
-}
-
 /// The residual of measurement `i` of `report`.
 fn residual(report: &Report, i: usize) -> Residual {
-    let origin = &report.origin;
-    let r = report
-        .identification
-        .residuals
-        .fixed_rows::<3>(3 * i)
-        .map(mm);
-    Residual {
-        posture: origin.label(i).to_string(),
-        point: origin.points[i] + 1,
-        line: line(report, i),
-        residual_mm: r.into(),
-        norm_mm: r.norm(),
-    }
+    let id = &report.identification;
+    Residual::new(&report.origin, i, &id.residuals, &id.predicted)
 }
 
 fn residuals(report: &Report) -> Vec<Residual> {
-    (0..report.origin.points.len())
-        .map(|i| residual(report, i))
-        .collect()
+    let id = &report.identification;
+    Residual::all(&report.origin, &id.residuals, &id.predicted)
 }
 
 /// The [`LARGEST_RESIDUALS`] longest residuals of `report`, the longest first.

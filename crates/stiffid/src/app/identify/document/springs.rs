@@ -3,7 +3,7 @@
 //! for such a setup. Every parameter is named with its kind and unit (Nm/rad for the drives and
 //! rotational springs, N/mm for translational ones) and every stiffness is in that unit.
 
-use super::drives::{prediction, region, Robust};
+use super::drives::{prediction, region, Residual, Robust};
 use crate::app::document::{finite, mm};
 use crate::app::identify::springs::Report;
 use crate::common::warning::Warning;
@@ -41,6 +41,10 @@ pub struct Document {
     /// (a warning says so); left out for another fit.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nonnegative_stop_reason: Option<crate::common::stop::Stop>,
+    /// The setup's tracker noise on a displacement coordinate, mm (the model check's).
+    pub noise_std_mm: f64,
+    /// Every measurement's residual, measured and predicted displacement.
+    pub residuals: Vec<Residual>,
     /// With a robust fit: the reweighting.
     pub robust: Option<Robust>,
     /// With cross-validation: the cross-validation over postures.
@@ -129,6 +133,8 @@ impl Document {
             fit: fit_doc(f, variance),
             chi2_p_value: f.adequacy_p_value(variance),
             nonnegative_stop_reason: f.nonnegative_stop,
+            noise_std_mm: mm(variance.sqrt()),
+            residuals: Residual::all(&report.origin, &f.residuals, &f.predicted),
             robust: f
                 .robust
                 .as_ref()
