@@ -100,15 +100,21 @@ def test_known_errors_come_back_with_the_commands_document_and_files(paper, cli,
         (dict(gravity="lumped"), ["--gravity", "lumped"]),
         (dict(tolerance_mm=0.5, tolerance_deg=0.05), ["--tolerance-mm", "0.5", "--tolerance-deg", "0.05"]),
         (dict(reregister=True), ["--reregister"]),
+        (dict(level=0.9), ["--level", "0.9"]),
     ],
 )
 def test_every_option_equals_the_command(paper, cli, campaign, kwargs, flags):
     _, _, fit, held = campaign
-    if kwargs.get("reregister"):
+    if kwargs.get("reregister") or kwargs.get("level"):
         kwargs, flags = dict(kwargs, validate=held), [*flags, "--validate", held]
     with pytest.warns(UserWarning) if kwargs.get("geometry") == "offsets" else _nothing():
         mine = stiffid.calibrate(paper, fit, **kwargs)
     assert mine == cli("calibrate", "--setup", SETUP, "--data", fit, *flags, "--json")
+    if kwargs.get("level"):
+        intervals = mine["validation"]["intervals"]
+        assert intervals["level"] == 0.9 and intervals["method"] == "jackknife+"
+        assert mine["validation"]["coverage"] == intervals["coverage"]
+        assert all(e["interval_mm"] is not None for e in mine["validation"]["errors"])
 
 
 def test_a_setup_with_the_calibrated_robot_serves_every_function(paper, cli, campaign):

@@ -45,6 +45,12 @@ pub struct Args {
     /// Register the tracker anew on the --validate readings (another series: the tracker moved).
     #[arg(long, requires = "validate")]
     reregister: bool,
+    /// The level of the --validate readings' prediction intervals [0.5 to 0.999], default
+    /// 0.95: jackknife+ over the fitted postures (one fit each, at most 500), built from their
+    /// leave-one-posture-out errors; the document's validation reports each reading's interval
+    /// and the share of held-out coordinates inside (coverage).
+    #[arg(long)]
+    level: Option<f64>,
     /// Fit readings that no rigid transform explains (a mirror image of the robot's points, or a
     /// residual beyond the larger of 10 mm and 1000 times the tracker noise) instead of refusing
     /// them.
@@ -124,6 +130,7 @@ pub fn run(args: &Args) -> Result<()> {
         priors,
         progress: &bars,
         maps: Spec::parse(&args.maps)?,
+        level: args.level,
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);
@@ -227,6 +234,18 @@ fn text_of(d: &Document) -> String {
             v.errors.len(),
             v.nominal_rms_mm
         );
+        if let Some(i) = &v.intervals {
+            text += &format!(
+                "  {:.0}% prediction intervals ({}, {} folds): {:.1}% of {} held-out coordinates inside{}\n",
+                100.0 * i.level,
+                i.method,
+                i.folds,
+                i.coverage_percent,
+                i.coordinates,
+                i.median_width_mm
+                    .map_or(String::new(), |w| format!(", median width {w:.4} mm"))
+            );
+        }
     }
     text + "\n" + &d.fragment
 }

@@ -577,3 +577,97 @@ fn calibrate_with_loaded_readings_writes_the_stiffness_file() {
     let text = String::from_utf8(stiffid(&args[..7]).stdout).unwrap();
     assert!(text.contains("from 300 readings"), "{text}");
 }
+
+/// `--validate --level`: each held-out reading's error gets its jackknife+ interval from the
+/// fitted postures' leave-one-posture-out errors, and `validation.coverage` is the share of the
+/// held-out coordinates inside; `--level` means nothing without `--validate`.
+#[test]
+fn calibrate_gives_held_out_readings_intervals_and_their_coverage() {
+    let d = temp_dir("calibrate-intervals");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(30, 11)),
+    );
+    let held = write_file(
+        &d,
+        "held.csv",
+        &readings(&model, &x, &tracker, &postures(20, 12)),
+    );
+    // The offsets alone leave the other joint errors unmodelled: held-out errors of a few
+    // tenths of a millimetre.
+    let args = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--geometry",
+        "offsets",
+        "--validate",
+        held.to_str().unwrap(),
+        "--level",
+        "0.9",
+    ];
+    let doc = json(&stiffid(&[&args[..], &["--json"]].concat()));
+    let v = &doc["validation"];
+    let i = &v["intervals"];
+    assert_eq!(i["method"], "jackknife+");
+    assert_eq!(i["level"].as_f64(), Some(0.9));
+    assert_eq!(i["folds"].as_u64(), Some(30));
+    let errors = v["errors"].as_array().unwrap();
+    assert_eq!(i["coordinates"].as_u64(), Some(3 * errors.len() as u64));
+    assert!(v["rms_mm"].as_f64().unwrap() > 0.05, "{}", v["rms_mm"]);
+    // Every interval holds finite ends around a real width; the coverage counts the errors
+    // inside them.
+    let mut inside = 0;
+    for e in errors {
+        for c in 0..3 {
+            let end = |k: usize| e["interval_mm"][c][k].as_f64().unwrap();
+            let value = e["error_mm"][c].as_f64().unwrap();
+            assert!(end(1) - end(0) > 0.01, "{e}");
+            inside += usize::from(end(0) <= value && value <= end(1));
+        }
+    }
+    assert_eq!(i["covered"].as_u64(), Some(inside as u64));
+    let coverage = inside as f64 / (3 * errors.len()) as f64;
+    assert_eq!(v["coverage"].as_f64(), Some(coverage));
+    assert!(coverage > 0.5, "{coverage}");
+    assert!(doc["cross_validation"].is_null());
+    let text = String::from_utf8(stiffid(&args).stdout).unwrap();
+    assert!(
+        text.contains("90% prediction intervals (jackknife+, 30 folds)"),
+        "{text}"
+    );
+    // A level without held-out readings, or outside [0.5, 0.999], is the option's error.
+    for (bad, say) in [
+        (&["--level", "0.9"][..], "only with --validate"),
+        (
+            &["--validate", held.to_str().unwrap(), "--level", "1.5"][..],
+            "0.999",
+        ),
+    ] {
+        let out = stiffid(
+            &[
+                &[
+                    "calibrate",
+                    "--setup",
+                    SETUP,
+                    "--data",
+                    data.to_str().unwrap(),
+                ][..],
+                bad,
+            ]
+            .concat(),
+        );
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.starts_with("error: --level: ") && err.contains(say),
+            "{err}"
+        );
+    }
+}

@@ -367,12 +367,13 @@ def calibrate(
     tolerance_mm: Optional[float] = None,
     tolerance_deg: Optional[float] = None,
     maps: str = "auto",
+    level: Optional[float] = None,
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,
     stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
 ) -> dict[str, Any]:
-    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation, cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
+    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
     postures_deg: ArrayLike,

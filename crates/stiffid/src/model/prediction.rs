@@ -129,32 +129,17 @@ impl Calibration {
     /// # Panics
     /// If `rows` does not have one column per parameter.
     pub fn interval(&self, rows: &DMatrix<f64>, level: f64) -> Interval {
-        let n = self.scores();
         // Each fold's prediction `mu_(-k)` and scale, without allocating per fold: a path's
         // every point asks for an interval.
-        let mu: Vec<(Vector3<f64>, f64)> = self
+        let folds: Vec<(Vector3<f64>, f64, &[f64])> = self
             .folds
             .iter()
             .map(|f| {
                 let mu = Vector3::from_fn(|c, _| rows.row(c).tr_dot(&f.compliance));
-                (mu, mu.norm() + self.noise_floor)
+                (mu, mu.norm() + self.noise_floor, f.scores.as_slice())
             })
             .collect();
-        let [k_lo, k_hi] = ranks(n, level);
-        let mut values = Vec::with_capacity(n);
-        let mut end = |c: usize, sign: f64, k: usize| {
-            values.clear();
-            for (f, (mu, s)) in self.folds.iter().zip(&mu) {
-                values.extend(f.scores.iter().map(|r| mu[c] + sign * r * s));
-            }
-            smallest(&mut values, k)
-        };
-        std::array::from_fn(|c| {
-            [
-                k_lo.map_or(f64::NEG_INFINITY, |k| end(c, -1.0, k)),
-                k_hi.map_or(f64::INFINITY, |k| end(c, 1.0, k)),
-            ]
-        })
+        interval_of(&folds, level)
     }
 }
 
@@ -269,6 +254,29 @@ pub fn jackknife_covariance(folds: &[HeldOut], postures: usize) -> DMatrix<f64> 
     }
     let (n, d) = (postures as f64, postures as f64 / k);
     sum * ((n - d) / (d * k))
+}
+
+/// The interval (P2) at `level` from each fold's prediction `mu_(-k)` of the three
+/// coordinates, the scale `s` its scores are relative to and its scores `R` (P1): the
+/// jackknife+ (one fold per posture) or CV+ of any model whose folds predict a point; an end is
+/// infinite when there are too few scores for the level.
+pub fn interval_of(folds: &[(Vector3<f64>, f64, &[f64])], level: f64) -> Interval {
+    let n = folds.iter().map(|f| f.2.len()).sum();
+    let [k_lo, k_hi] = ranks(n, level);
+    let mut values = Vec::with_capacity(n);
+    let mut end = |c: usize, sign: f64, k: usize| {
+        values.clear();
+        for (mu, s, scores) in folds {
+            values.extend(scores.iter().map(|r| mu[c] + sign * r * s));
+        }
+        smallest(&mut values, k)
+    };
+    std::array::from_fn(|c| {
+        [
+            k_lo.map_or(f64::NEG_INFINITY, |k| end(c, -1.0, k)),
+            k_hi.map_or(f64::INFINITY, |k| end(c, 1.0, k)),
+        ]
+    })
 }
 
 /// The 1-based ranks of `q-` and `q+` (P2) among `n` values at `level`; `None` for an infinite end.

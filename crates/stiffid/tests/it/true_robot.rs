@@ -426,6 +426,7 @@ fn calibrated(
         priors: None,
         progress: &(),
         maps: stiffid::metrology::calibration::maps::Spec::None,
+        level: None,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");

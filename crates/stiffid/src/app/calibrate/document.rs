@@ -286,8 +286,38 @@ pub struct ValidationDocument {
     pub max_mm: f64,
     /// The nominal robot's RMS on the same readings, the tracker registered on them, mm.
     pub nominal_rms_mm: f64,
+    /// The prediction intervals of the held-out readings' errors and how well they covered
+    /// them (`--validate`, with at most 500 fitted postures); `null` for the cross-validation.
+    pub intervals: Option<IntervalsDocument>,
+    /// The share of the held-out coordinates inside their prediction intervals (`intervals`'
+    /// `coverage`); `null` without intervals.
+    pub coverage: Option<f64>,
     /// Every held-out reading's error.
     pub errors: Vec<PointError>,
+}
+
+/// The prediction intervals of held-out readings' errors: jackknife+ over the fitted postures,
+/// built from their leave-one-posture-out errors.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct IntervalsDocument {
+    /// `jackknife+`.
+    pub method: &'static str,
+    /// The intervals' level (`--level`, default 0.95).
+    pub level: f64,
+    /// The folds (fitted postures) they are built from.
+    pub folds: usize,
+    /// The share of the held-out coordinates inside their intervals: near `level` when the
+    /// held-out postures are like the fitted ones.
+    pub coverage: f64,
+    /// `coverage`, %.
+    pub coverage_percent: f64,
+    /// Held-out coordinates inside their intervals.
+    pub covered: usize,
+    /// Held-out coordinates (three per reading).
+    pub coordinates: usize,
+    /// The median over the held-out readings of the intervals' mean width over x, y and z, mm.
+    pub median_width_mm: Option<f64>,
 }
 
 /// One held-out reading's error.
@@ -302,6 +332,9 @@ pub struct PointError {
     pub error_mm: [f64; 3],
     /// Its length, mm.
     pub error_norm_mm: f64,
+    /// The prediction interval `[lower, upper]` of each coordinate of `error_mm`, mm (`null`
+    /// ends: too few fitted readings for the level); `null` without intervals.
+    pub interval_mm: Option<[[Option<f64>; 2]; 3]>,
 }
 
 impl Document {
@@ -444,12 +477,35 @@ fn frame_vector(t: &nalgebra::Isometry3<f64>) -> [f64; 6] {
 }
 
 fn held(h: &Held) -> ValidationDocument {
+    let intervals = h.coverage.as_ref().map(|c| {
+        let mut widths: Vec<f64> = (h.intervals.iter().flatten())
+            .map(|i| i.iter().map(|c| c[1] - c[0]).sum::<f64>() / 3.0)
+            .filter(|w| w.is_finite())
+            .collect();
+        widths.sort_by(f64::total_cmp);
+        IntervalsDocument {
+            method: "jackknife+",
+            level: c.level,
+            folds: c.folds,
+            coverage: c.coverage(),
+            coverage_percent: 100.0 * c.coverage(),
+            covered: c.covered,
+            coordinates: c.coordinates,
+            median_width_mm: widths.get(widths.len() / 2).map(|w| mm(*w)),
+        }
+    });
+    let mut errors = errors(&h.calibrated, &h.labels);
+    for (e, i) in errors.iter_mut().zip(h.intervals.iter().flatten()) {
+        e.interval_mm = Some(crate::app::document::interval_mm(*i));
+    }
     ValidationDocument {
         data: h.name.clone(),
         rms_mm: mm(h.calibrated.rms),
         max_mm: mm(h.calibrated.max),
         nominal_rms_mm: mm(h.nominal.rms),
-        errors: errors(&h.calibrated, &h.labels),
+        coverage: intervals.as_ref().map(|i| i.coverage),
+        intervals,
+        errors,
     }
 }
 
@@ -544,6 +600,7 @@ fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {
             point: e.point + 1,
             error_mm: [mm(e.error.x), mm(e.error.y), mm(e.error.z)],
             error_norm_mm: mm(e.error.norm()),
+            interval_mm: None,
         })
         .collect()
 }

@@ -2,14 +2,16 @@
 //! terms, the tracker's registration and the measuring points fitted together from the readings
 //! of a campaign ([`crate::metrology::calibration`]); with loaded readings (load steps) the
 //! compliances of the setup's stiffness model in the same fit ([`ErrorModel::with_loads`]);
-//! held-out validation and leave-one-posture-out cross-validation; the calibrated robot as a
+//! held-out validation with prediction intervals built from the leave-one-posture-out errors
+//! (jackknife+, [`crate::metrology::calibration::intervals`]) and their coverage, and
+//! leave-one-posture-out cross-validation; the calibrated robot as a
 //! robot TOML file and a URDF, the fitted compliances as a stiffness file. `--geometry none
 //! --gravity none` is the cell calibration of `calibrate-cell`.
 //!
 //! Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
 //! [`crate::metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
 //! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
-//! cross-validation (one fit per posture).
+//! cross-validation (one fit per posture; beyond it, held-out readings get no intervals).
 
 mod compliance;
 pub mod document;
@@ -28,6 +30,7 @@ use crate::io::readings::Readings as Data;
 use crate::metrology::calibration::error_model::{MeasuredIn, Observation};
 use crate::metrology::calibration::fit::{self, Fit, Options, Priors};
 use crate::metrology::calibration::gravity::{self, Gravity};
+use crate::metrology::calibration::intervals::{self, Coverage, Intervals};
 use crate::metrology::calibration::validation::{self, Validation};
 use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
 use crate::observation::deflection::base_wrench;
@@ -108,6 +111,11 @@ pub struct Request<'a> {
     pub progress: &'a dyn Progress,
     /// The joint error maps fitted ([`crate::metrology::calibration::maps`]).
     pub maps: crate::metrology::calibration::maps::Spec,
+    /// The level of the held-out readings' prediction intervals
+    /// ([`crate::metrology::calibration::intervals`]), within
+    /// [`crate::model::prediction::LEVEL`], only with `validate`; `None` for
+    /// [`crate::model::prediction::DEFAULT_LEVEL`].
+    pub level: Option<f64>,
 }
 
 /// A validation with the nominal model's error beside it.
@@ -121,6 +129,11 @@ pub struct Held {
     pub nominal: Validation,
     /// The posture labels of the readings.
     pub labels: Vec<String>,
+    /// The prediction interval of each of `calibrated`'s errors, m, when the held-out readings
+    /// have them ([`crate::metrology::calibration::intervals`]).
+    pub intervals: Option<Vec<crate::model::prediction::Interval>>,
+    /// The share of the held-out coordinates inside their intervals.
+    pub coverage: Option<Coverage>,
 }
 
 /// What the job found.
@@ -230,7 +243,9 @@ pub fn model(
 /// Those of [`read`], [`model`], [`fit::start`], [`fit::fit`], [`validation::validate`] and
 /// [`validation::cross_validate`], as [`Error::Input`] naming the file;
 /// [`Error::InvalidField`] (`cross_validate`) beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures,
-/// (`validate`) when the held-out readings are in another frame than the fitted.
+/// (`validate`) when the held-out readings are in another frame than the fitted;
+/// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
+/// [`crate::model::prediction::LEVEL`] or without `validate`.
 pub fn run(request: &Request<'_>) -> Result<Report> {
     let setup = request.readings.setup;
     let name = &request.readings.name;
@@ -239,6 +254,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     if request.cross_validate {
         cross_validation_size(&obs)?;
     }
+    let level = interval_level(request)?;
     let model = model(setup, measured_in, request.geometry, request.gravity)?;
     let model = match obs.iter().any(Observation::loaded) {
         true => model.with_loads(setup)?,
@@ -291,23 +307,58 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         postures[o.posture] = o.q;
     }
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
+    let with_intervals = request.validate.is_some() && cross_validation_size(&obs).is_ok();
+    if request.validate.is_some() && !with_intervals {
+        warnings.push(Warning::new(
+            WarningKind::LeftOut,
+            format!(
+                "the held-out readings get no prediction intervals: they take one fold per fitted posture, at most {MAX_CROSS_VALIDATION_POSTURES}"
+            ),
+        ));
+    }
     let cross_validation = match request.cross_validate {
         false => None,
-        true => Some(cross(
+        true => Some(Held {
+            name: "cross-validation".into(),
+            calibrated: validation::cross_validate(
+                &model,
+                &obs,
+                &fitted.estimate,
+                &options,
+                request.progress,
+            )
+            .map_err(|e| in_data(name, e))?,
+            nominal: nominal.clone(),
+            labels: data.labels.clone(),
+            intervals: None,
+            coverage: None,
+        }),
+    };
+    // The intervals' folds: linearised at the fit; refitted with maps (their weakly determined
+    // coefficients take the linearised folds far beyond where the refitted ones go).
+    let folds = match (with_intervals, model.map_start()) {
+        (false, _) => None,
+        (true, None) => Some(validation::leave_one_out_linearised(
+            &model, &obs, &fitted, &options,
+        )),
+        (true, Some(_)) => Some(validation::leave_one_out(
             &model,
-            &reference,
-            (&obs, &fitted.estimate),
-            (&options, request.progress),
-            &data,
-            name,
-        )?),
+            &obs,
+            &fitted.estimate,
+            &options,
+            request.progress,
+        )),
+    };
+    let intervals = match folds {
+        None => None,
+        Some(f) => Some(Intervals::new(&f.map_err(|e| in_data(name, e))?)),
     };
     let validation = match &request.validate {
         None => None,
         Some((held_name, text)) => Some(held_out(
             request,
             (&model, &reference),
-            &fitted.estimate,
+            (&fitted.estimate, intervals.as_ref().map(|i| (i, level))),
             held_name,
             text,
             &mut warnings,
@@ -351,6 +402,26 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     })
 }
 
+/// The level of the held-out readings' prediction intervals: `request.level`, else
+/// [`crate::model::prediction::DEFAULT_LEVEL`].
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
+/// [`crate::model::prediction::LEVEL`], or one given without held-out readings.
+fn interval_level(request: &Request<'_>) -> Result<f64> {
+    use crate::model::prediction::{check_level, DEFAULT_LEVEL};
+    match (request.level, &request.validate) {
+        (None, _) => Ok(DEFAULT_LEVEL),
+        (Some(_), None) => Err(Error::InvalidOption {
+            option: JobOption::Level,
+            message: "only with --validate: the level is that of the held-out readings' prediction intervals".into(),
+        }),
+        (Some(l), Some(_)) => check_level("level", l)
+            .map(|_| l)
+            .map_err(|e| e.for_option(JobOption::Level)),
+    }
+}
+
 /// Refuses cross-validation beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures, before any fit.
 fn cross_validation_size(obs: &[Observation]) -> Result<()> {
     let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
@@ -365,24 +436,6 @@ fn cross_validation_size(obs: &[Observation]) -> Result<()> {
         }),
         false => Ok(()),
     }
-}
-
-fn cross(
-    model: &ErrorModel,
-    reference: &ErrorModel,
-    (obs, start): (&[Observation], &Estimate),
-    (options, progress): (&Options, &dyn Progress),
-    data: &Data,
-    name: &str,
-) -> Result<Held> {
-    let calibrated = validation::cross_validate(model, obs, start, options, progress)
-        .map_err(|e| in_data(name, e))?;
-    Ok(Held {
-        name: "cross-validation".into(),
-        calibrated,
-        nominal: nominal(reference, obs, name)?,
-        labels: data.labels.clone(),
-    })
 }
 
 /// The nominal reference of every validation, whatever the model fitted: the nominal robot,
@@ -412,7 +465,7 @@ fn nominal(reference: &ErrorModel, obs: &[Observation], name: &str) -> Result<Va
 fn held_out(
     request: &Request<'_>,
     (model, reference): (&ErrorModel, &ErrorModel),
-    estimate: &Estimate,
+    (estimate, intervals): (&Estimate, Option<(&Intervals, f64)>),
     name: &str,
     text: &str,
     warnings: &mut Vec<Warning>,
@@ -442,11 +495,26 @@ fn held_out(
             values: estimate.values.clone(),
         },
     };
+    let calibrated = validation::validate(model, &estimate, &obs).map_err(|e| in_data(name, e))?;
+    let bounds = match intervals {
+        None => None,
+        Some((i, level)) => {
+            let bounds = i
+                .of(model, &estimate, &obs, level, request.reregister)
+                .map_err(|e| in_data(name, e))?;
+            let errors: Vec<_> = calibrated.errors.iter().map(|e| e.error).collect();
+            let coverage = intervals::coverage(&bounds, &errors, level, i.folds());
+            Some((bounds, coverage))
+        }
+    };
+    let (intervals, coverage) = bounds.unzip();
     let held = Held {
         name: name.to_string(),
-        calibrated: validation::validate(model, &estimate, &obs).map_err(|e| in_data(name, e))?,
+        calibrated,
         nominal: nominal(reference, &obs, name)?,
         labels: data.labels.clone(),
+        intervals,
+        coverage,
     };
     // The gate of the fitted readings: a held-out reading that the nominal robot registered on
     // them, or the calibration, misses by more than a robot's error is not of this robot.

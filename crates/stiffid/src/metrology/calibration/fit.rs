@@ -178,6 +178,86 @@ pub(super) fn fit_within(
     problem.finish(estimate, identifiability, iterations, stop)
 }
 
+/// Leave-one-posture-out linearised at the converged fit `fit` of `observations` (with the
+/// options it was fitted with): per posture, in increasing order, the estimate of the fit without
+/// it, one exact least-squares step of the linearised problem from `fit`. With `A = U S V^T` the
+/// scaled Jacobian of the fitted parameters and its prior rows, `r` the residuals with the prior
+/// rows, `U_p` the rows of posture `p`, `r_p` its residuals and `H = U_p U_p^T` its leverage, the
+/// kept rows' gradient is `g = U^T r - U_p^T r_p` and the step
+/// `dx = -V S^-1 (g + U_p^T (I - H)^-1 U_p g)` (Sherman-Morrison-Woodbury on the kept rows'
+/// normal equations, never formed; at the full fit's optimum `U^T r = 0` and it is
+/// `V S^-1 U_p^T (I - H)^-1 r_p`): exact to second order in the change of the parameters, as the
+/// maps' choice is.
+///
+/// # Errors
+/// Those of [`ErrorModel::residuals`] and [`ErrorModel::jacobian_of`]; [`Error::NotFinite`] when
+/// the SVD does not converge; [`Error::InvalidField`] (`readings`) when a posture alone
+/// determines a parameter (its leverage 1: without it the fit is undetermined).
+pub(super) fn leave_one_out_linearised(
+    model: &ErrorModel,
+    observations: &[Observation],
+    fit: &Fit,
+    options: &Options,
+) -> Result<Vec<(usize, Estimate)>> {
+    let scales = model.column_scales_of(options.length, observations);
+    let fitted = &fit.fitted;
+    let regularised = options.priors.is_some() || model.map_start().is_some();
+    let problem = Problem {
+        model,
+        observations,
+        fitted,
+        scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
+        priors: regularised.then(|| prior_weights(model, fitted, options, observations.len())),
+        noise: options.priors.map(|p| p.noise),
+        nominal: model.nominal(),
+    };
+    let a = problem.jacobian(&fit.estimate)?;
+    let r = problem.residuals(&fit.estimate)?;
+    let svd = a.capped_svd(true, true).ok_or_else(not_converged)?;
+    let (u, v_t) = (
+        svd.u.ok_or_else(not_converged)?,
+        svd.v_t.ok_or_else(not_converged)?,
+    );
+    let s = &svd.singular_values;
+    let largest = s.iter().copied().fold(0.0, f64::max);
+    let kept: Vec<usize> = (0..s.len()).filter(|&i| s[i] > 1e-12 * largest).collect();
+    let u = u.select_columns(kept.iter());
+    let gradient = u.tr_mul(&r);
+    // V S^-1, the kept singular values.
+    let vs = DMatrix::from_fn(v_t.ncols(), kept.len(), |row, c| {
+        v_t[(kept[c], row)] / s[kept[c]]
+    });
+    let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
+    postures.sort_unstable();
+    postures.dedup();
+    postures
+        .iter()
+        .map(|&p| {
+            let rows: Vec<usize> = (observations.iter().enumerate())
+                .filter(|(_, o)| o.posture == p)
+                .flat_map(|(i, _)| 3 * i..3 * i + 3)
+                .collect();
+            let u_p = u.select_rows(rows.iter());
+            let r_p = DVector::from_iterator(rows.len(), rows.iter().map(|&i| r[i]));
+            let kept_rows = DMatrix::identity(rows.len(), rows.len()) - &u_p * u_p.transpose();
+            let g = &gradient - u_p.tr_mul(&r_p);
+            let z = kept_rows
+                .lu()
+                .solve(&(&u_p * &g))
+                .filter(|z| z.iter().all(|v| v.is_finite()));
+            let z = z.ok_or_else(|| Error::InvalidField {
+                field: "readings".into(),
+                message: format!(
+                    "posture {} alone determines a parameter: without it the calibration is undetermined; read more postures",
+                    p + 1
+                ),
+            })?;
+            let dx = -(&vs * (&g + u_p.tr_mul(&z)));
+            Ok((p, problem.step(&fit.estimate, &dx)))
+        })
+        .collect()
+}
+
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
 /// ([`crate::metrology::register::fit`], Umeyama) for tracker readings, the identity for base-frame ones.
 ///

@@ -13,7 +13,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
 /// The UR10 read at one point (as a T-Mac 109 mm along the flange axis), full geometry.
-fn model() -> ErrorModel {
+pub(super) fn model() -> ErrorModel {
     let robot = ur10();
     ErrorModel::new(
         &robot,
@@ -27,7 +27,12 @@ fn model() -> ErrorModel {
 
 /// A truth with every identified geometric error drawn within +-0.5 mm or mrad and, with maps,
 /// their coefficients `amplitude / h` (rad) of random sign.
-fn truth(model: &ErrorModel, identified: &[usize], amplitude: f64, seed: u64) -> Estimate {
+pub(super) fn truth(
+    model: &ErrorModel,
+    identified: &[usize],
+    amplitude: f64,
+    seed: u64,
+) -> Estimate {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut x = model.nominal();
     for (c, p) in model.parameters().iter().enumerate() {
@@ -45,7 +50,7 @@ fn truth(model: &ErrorModel, identified: &[usize], amplitude: f64, seed: u64) ->
     }
 }
 
-fn identified(model: &ErrorModel, qs: &[Vector6<f64>]) -> Vec<usize> {
+pub(super) fn identified(model: &ErrorModel, qs: &[Vector6<f64>]) -> Vec<usize> {
     let nominal = Estimate {
         frame: nalgebra::Isometry3::identity(),
         values: model.nominal(),
@@ -57,7 +62,7 @@ fn identified(model: &ErrorModel, qs: &[Vector6<f64>]) -> Vec<usize> {
         .identified
 }
 
-fn options(ridge: f64) -> Options {
+pub(super) fn options(ridge: f64) -> Options {
     Options {
         length: 1.0,
         priors: None,
@@ -65,7 +70,7 @@ fn options(ridge: f64) -> Options {
     }
 }
 
-fn noisy(mut data: Vec<Observation>, sd: f64, seed: u64) -> Vec<Observation> {
+pub(super) fn noisy(mut data: Vec<Observation>, sd: f64, seed: u64) -> Vec<Observation> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let normal = Normal::new(0.0, sd).unwrap();
     for o in &mut data {

@@ -17,6 +17,8 @@
 //! - [`fit`]: Levenberg-Marquardt over the identifiable parameters, standard deviations, the
 //!   noise-ratio model check.
 //! - [`validation`]: the held-out position error of readings not fitted.
+//! - [`intervals`]: prediction intervals of the position error from the held-out errors of
+//!   leave-one-posture-out (jackknife+), and their coverage.
 //! - [`robot_file`]: the calibrated robot, as a robot TOML file and as a URDF.
 //!
 //! Equations and sources: docs/model.md, section "Calibration".
@@ -25,6 +27,7 @@ pub mod error_model;
 pub mod fit;
 pub mod gravity;
 pub mod identifiability;
+pub mod intervals;
 pub mod maps;
 pub mod robot_file;
 pub mod validation;
@@ -33,6 +36,8 @@ pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter
 
 #[cfg(test)]
 mod heavy_tests;
+#[cfg(test)]
+mod intervals_tests;
 #[cfg(test)]
 mod loaded_tests;
 #[cfg(test)]

@@ -75,6 +75,17 @@ pub fn validate(
     ))
 }
 
+/// One fold of leave-one-posture-out: the fit without a posture and that posture's errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fold {
+    /// The posture held out.
+    pub posture: usize,
+    /// The fit of the other postures, re-centred ([`Estimate::recentre`]).
+    pub estimate: Estimate,
+    /// The held-out posture's errors predicted by it.
+    pub held: Validation,
+}
+
 /// Leave-one-posture-out: each posture predicted by the fit of the others from `start` (the
 /// full fit's estimate makes each fold converge in a step or two). The folds run on the worker
 /// threads, each independent of the others, so the result does not depend on the thread count;
@@ -90,6 +101,26 @@ pub fn cross_validate(
     options: &Options,
     progress: &dyn Progress,
 ) -> Result<Validation> {
+    let folds = leave_one_out(model, observations, start, options, progress)?;
+    Ok(pooled(&folds))
+}
+
+/// The held-out errors of every fold of [`leave_one_out`], in the order of the folds.
+pub fn pooled(folds: &[Fold]) -> Validation {
+    Validation::new(folds.iter().flat_map(|f| f.held.errors.clone()).collect())
+}
+
+/// The folds of [`cross_validate`], one per posture in increasing order.
+///
+/// # Errors
+/// As [`cross_validate`].
+pub fn leave_one_out(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    progress: &dyn Progress,
+) -> Result<Vec<Fold>> {
     let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
     postures.dedup();
@@ -101,21 +132,58 @@ pub fn cross_validate(
     }
     progress.begin("cross-validation", postures.len());
     let tally = Tally::new(progress);
-    let folds: Vec<Result<Validation>> = postures
+    let folds: Vec<Result<Fold>> = postures
         .par_iter()
         .map(|&p| {
             let (out, kept): (Vec<Observation>, Vec<Observation>) =
                 observations.iter().cloned().partition(|o| o.posture == p);
             let fitted = fit::fit(model, &kept, start, options)?;
-            let held = validate(model, &fitted.estimate, &out);
+            let held = validate(model, &fitted.estimate, &out)?;
             tally.add(1);
-            held
+            Ok(Fold {
+                posture: p,
+                estimate: fitted.estimate.recentre(),
+                held,
+            })
         })
         .collect();
     progress.end();
-    let mut errors = Vec::new();
-    for fold in folds {
-        errors.extend(fold?.errors);
+    folds.into_iter().collect()
+}
+
+/// The folds of [`leave_one_out`] linearised at the converged fit `fit` of `observations` with
+/// `options` (one least-squares step each from the fit, exact to second order in the change of
+/// the parameters: [`fit::leave_one_out_linearised`]), each held-out posture's errors computed
+/// at its fold's estimate: the cost of one fit for all the folds.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with fewer than 2 postures; those of
+/// [`fit::leave_one_out_linearised`] and [`validate`].
+pub fn leave_one_out_linearised(
+    model: &ErrorModel,
+    observations: &[Observation],
+    fit: &fit::Fit,
+    options: &Options,
+) -> Result<Vec<Fold>> {
+    let folds = fit::leave_one_out_linearised(model, observations, fit, options)?;
+    if folds.len() < 2 {
+        return Err(Error::InvalidField {
+            field: "readings".into(),
+            message: "cross-validation needs 2 postures or more".into(),
+        });
     }
-    Ok(Validation::new(errors))
+    folds
+        .into_par_iter()
+        .map(|(p, estimate)| {
+            let out: Vec<Observation> = (observations.iter())
+                .filter(|o| o.posture == p)
+                .cloned()
+                .collect();
+            Ok(Fold {
+                posture: p,
+                held: validate(model, &estimate, &out)?,
+                estimate,
+            })
+        })
+        .collect()
 }
