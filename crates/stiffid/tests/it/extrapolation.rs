@@ -7,7 +7,8 @@
 use nalgebra::Vector6;
 use stiffid::app::compensate::document::{header, values, Document as CompensateDocument, Names};
 use stiffid::app::compensate::{self, Input};
-use stiffid::app::identify::{self, Data, Options};
+use stiffid::app::identify::{self, Options};
+use stiffid::app::measurements::Data;
 use stiffid::app::{predict, validate};
 use stiffid::common::warning::{Warning, WarningKind};
 use stiffid::io::stiffness;
