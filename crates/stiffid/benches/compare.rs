@@ -9,8 +9,9 @@
 //!   gradient); `compare/local-search-fd`: the same with finite-difference gradients;
 //!   `compare/local-search-active-set`: the same with our SQP.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
+use std::hint::black_box;
 use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions, Solver};
 use stiffid::identify;
 use stiffid::math::lsq::Factor;

@@ -5,8 +5,9 @@
 //! with leave-one-posture-out cross-validation (43 folds; target: under 50 ms beyond the
 //! compensation).
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Translation3, Vector6};
+use std::hint::black_box;
 use stiffid::identify::cross_validation::{cross_validate, Method};
 use stiffid::identify::prediction::calibrate;
 use stiffid::machining::compensate::{self, Options, PathPoint, Target};

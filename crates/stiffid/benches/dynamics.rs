@@ -5,8 +5,9 @@
 //! compensate job's per-point dynamics of a 10 000-point program
 //! ([`stiffid::machining::dynamics::program`]: every point milled, so every point's modes).
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Matrix3, Vector3, Vector6};
+use std::hint::black_box;
 use stiffid::machining;
 use stiffid::machining::compensate::{self, Options, PathPoint, Target};
 use stiffid::machining::process::file;

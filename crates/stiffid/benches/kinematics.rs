@@ -3,8 +3,9 @@
 //! Target (issue 2): under 1 microsecond. Also the 6x6 kernels of the design criteria against
 //! nalgebra's general ones (issue 14): the dexterity's inverse and the condition number of `R`.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Matrix6, Vector3};
+use std::hint::black_box;
 use stiffid::math::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;
 use stiffid::{dexterity, setup, Coordinates};

@@ -7,10 +7,11 @@
 //! on their values). Throughput is reported per posture or per run, so linear growth shows as a
 //! constant throughput.
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use nalgebra::{DVector, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use std::hint::black_box;
 use stiffid::design::evaluate;
 use stiffid::math::lsq::Factor;
 use stiffid::observation::rope_observation_matrix;

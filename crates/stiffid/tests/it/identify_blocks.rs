@@ -16,7 +16,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     // 1500 postures x 4 points: six blocks, the last one partial.
     let data = noisy(&setup, 1500, 1);
-    assert!(data.len() > 5 * BLOCK && data.len() % BLOCK != 0);
+    assert!(data.len() > 5 * BLOCK && !data.len().is_multiple_of(BLOCK));
     let blocks = identify::least_squares(setup.arm(), &data).unwrap();
     let whole = Observations::from_measurements(setup.arm(), &data)
         .unwrap()

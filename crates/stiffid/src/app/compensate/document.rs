@@ -539,7 +539,7 @@ impl Summary {
 
     /// Keeps point `i` in the sample and among the largest, if it belongs there.
     fn keep(&mut self, i: usize, r: &Compensated, d: f64) {
-        if i % self.stride == 0 {
+        if i.is_multiple_of(self.stride) {
             self.sample.push((i, r.clone()));
             if self.sample.len() > SAMPLE {
                 self.stride *= 2;

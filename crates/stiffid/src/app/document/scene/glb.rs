@@ -251,7 +251,7 @@ impl Writer {
 
 /// Pads `v` to a multiple of 4 bytes with `byte`.
 fn pad(v: &mut Vec<u8>, byte: u8) {
-    while v.len() % 4 != 0 {
+    while !v.len().is_multiple_of(4) {
         v.push(byte);
     }
 }
