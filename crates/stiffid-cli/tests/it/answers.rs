@@ -437,3 +437,27 @@ fn cross_validation_beyond_its_posture_limit_is_refused_at_once() {
     );
     assert!(line.starts_with("error: "), "{line}");
 }
+
+/// The maps' coefficients, held by their ridge, are not free parameters: 12 distinct postures
+/// of 4 points (144 coordinates) calibrate with two 32-harmonic maps (128 coefficients beside
+/// the geometry's), which the count of every fitted coefficient refused.
+#[test]
+fn map_coefficients_do_not_count_against_distinct_postures() {
+    let d = temp_dir("answers-maps-count");
+    let model = model();
+    let text = readings(&model, &truth(&model), &tracker(), &postures(12, 3));
+    write_file(&d, "twelve.csv", &text);
+    let data = d.join("twelve.csv");
+    let out = stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--maps",
+        "J1:32,J2:32",
+        "--json",
+    ]);
+    let doc = crate::common::json(&out);
+    assert!(doc["parameters"].as_array().unwrap().len() > 144, "{doc}");
+}

@@ -533,10 +533,8 @@ fn held_out(
     Ok(held)
 }
 
-/// Refuses readings whose distinct postures ([`crate::design::distinct`], the default distances)
-/// give no more coordinates than the fit has parameters: repeated readings of few postures
-/// determine nothing the fit does not choose, and would write a "calibrated" robot that is the
-/// nominal one (or any other).
+/// Refuses readings whose distinct postures ([`crate::design::distinct`]) give no more coordinates
+/// than the fit has parameters (but the maps' ridge-held ones): they would determine nothing.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) naming the count of distinct postures, of readings, of
@@ -552,7 +550,9 @@ fn refuse_repeated(setup: &Setup, data: &Data, model: &ErrorModel, fit: &Fit) ->
     crate::design::distinct::distinct_pool(setup.robot(), &postures, &mut usable, &distance);
     let distinct = usable.iter().filter(|&&u| u).count();
     let coordinates = 3 * model.points() * distinct;
-    if coordinates > fit.fitted.len() {
+    let fitted = (fit.fitted.iter()).filter(|&&i| model.map_start().is_none_or(|s| i < s));
+    let fitted = fitted.count();
+    if coordinates > fitted {
         return Ok(());
     }
     Err(Error::InvalidField {
@@ -561,7 +561,7 @@ fn refuse_repeated(setup: &Setup, data: &Data, model: &ErrorModel, fit: &Fit) ->
             "{} readings of {distinct} distinct posture{} (postures closer than 2 deg in every axis, or 10 mm and 2 deg at the flange, count once) give {coordinates} coordinates for {} fitted parameters: the readings determine nothing the fit would not choose; read more distinct postures",
             data.readings.len(),
             if distinct == 1 { "" } else { "s" },
-            fit.fitted.len()
+            fitted
         ),
     })
 }
