@@ -50,7 +50,13 @@ pub fn calibrate(obs: &Observations, cv: &CrossValidation, noise_floor: f64) -> 
     Calibration {
         postures: obs.postures,
         noise_floor,
-        deflection: Deflection::from_held_out(&errors, &predicted, &variances, noise_floor),
+        deflection: Deflection::from_held_out(
+            &errors,
+            &predicted,
+            &variances,
+            noise_floor,
+            covariance,
+        ),
         folds,
     }
 }

@@ -163,12 +163,12 @@ impl Calibration {
             return self.interval(rows, level);
         };
         let mu = Vector3::from_fn(|c, _| rows.row(c).tr_dot(h));
-        let covariance = jackknife_covariance(&self.folds, self.postures);
+        let covariance = &deflection.covariance;
         let kappa = deflection.kappa(level);
         let model = (deflection.model_error * mu.norm()).powi(2);
         std::array::from_fn(|c| {
             let row = rows.row(c);
-            let v = (row * &covariance).dot(&row);
+            let v = (row * covariance).dot(&row);
             let half = kappa * (v.max(0.0) + model).sqrt();
             [mu[c] - half, mu[c] + half]
         })
@@ -185,12 +185,16 @@ pub struct Deflection {
     /// The held-out scores `|e| / sqrt(v + rho^2 |mu|^2 + sigma_0^2)` of every held-out
     /// coordinate, sorted; finite, >= 0.
     pub scores: Vec<f64>,
+    /// `S`, the jackknife covariance of the folds' compliance ([`jackknife_covariance`]), SI,
+    /// p x p: kept so that a path's every point does not form it again.
+    pub covariance: DMatrix<f64>,
 }
 
 impl Deflection {
     /// From the held-out `errors` (m, one per coordinate: measured minus the fold's prediction),
     /// the folds' `predicted` displacement lengths there (m), the jackknife `variances` of those
-    /// predictions (m^2) and the noise of one coordinate `noise_sd` (m):
+    /// predictions (m^2, from `covariance`, [`jackknife_covariance`]) and the noise of one
+    /// coordinate `noise_sd` (m):
     ///
     /// ```text
     /// rho^2 = max(0, sum (e^2 - v - sigma_0^2)) / sum |mu|^2                             (P4)
@@ -204,6 +208,7 @@ impl Deflection {
         predicted: &[f64],
         variances: &[f64],
         noise_sd: f64,
+        covariance: DMatrix<f64>,
     ) -> Option<Self> {
         let sigma2 = noise_sd * noise_sd;
         let excess: f64 = (errors.iter().zip(variances))
@@ -219,6 +224,7 @@ impl Deflection {
         (!scores.is_empty()).then_some(Deflection {
             model_error: rho,
             scores,
+            covariance,
         })
     }
 

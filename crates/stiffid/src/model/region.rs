@@ -91,7 +91,7 @@ impl PostureRange {
             .collect()
     }
 
-    /// `axis 2 at 95.00 deg (identified from 10.00 .. 80.00)` for each of `outside`.
+    /// `axis 2 at 95.00 deg (identified over 10.00 .. 80.00)` for each of `outside`.
     pub fn describe(&self, outside: &[Violation]) -> String {
         let each: Vec<String> = outside
             .iter()

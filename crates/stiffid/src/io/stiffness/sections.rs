@@ -155,29 +155,29 @@ impl PredictionSection {
 
     /// The calibration it holds.
     pub fn calibration(&self) -> Calibration {
+        let folds: Vec<HeldOut> = (self.folds.iter())
+            .map(|f| HeldOut {
+                compliance: DVector::from_column_slice(&f.compliance_si),
+                scores: f.scores.clone(),
+            })
+            .collect();
         Calibration {
             postures: self.postures,
             noise_floor: self.noise_floor_mm * 1e-3,
-            deflection: self.deflection(),
-            folds: self
-                .folds
-                .iter()
-                .map(|f| HeldOut {
-                    compliance: DVector::from_column_slice(&f.compliance_si),
-                    scores: f.scores.clone(),
-                })
-                .collect(),
+            deflection: self.deflection(&folds),
+            folds,
         }
     }
 
     /// The deflection intervals' data, when the file has them.
-    fn deflection(&self) -> Option<prediction::Deflection> {
+    fn deflection(&self, folds: &[HeldOut]) -> Option<prediction::Deflection> {
         let (rho, scores) = (self.model_error_percent?, self.deflection_scores.as_ref()?);
         let mut scores = scores.clone();
         scores.sort_by(f64::total_cmp);
         Some(prediction::Deflection {
             model_error: rho / 100.0,
             scores,
+            covariance: prediction::jackknife_covariance(folds, self.postures),
         })
     }
 
