@@ -9,6 +9,7 @@ pub mod configuration;
 pub mod dh;
 pub mod dynamics;
 pub mod error_map;
+pub mod external;
 pub mod file;
 pub mod ik;
 pub mod kinematics;
@@ -20,6 +21,7 @@ pub(crate) mod urdf_write;
 mod axis_map;
 pub use axis_map::AxisMap;
 pub use error_map::ErrorMap;
+pub use external::ExternalAxes;
 
 use nalgebra::{Isometry3, Matrix3, Unit, Vector3};
 use std::sync::Arc;
@@ -66,6 +68,8 @@ pub struct Robot {
     urdf: Option<std::sync::Arc<urdf::UrdfSource>>,
     /// The axes' error maps ([`ErrorMap`]), when any axis has one.
     error_maps: Option<Arc<[ErrorMap; 6]>>,
+    /// The cell's external axes ([`external`]), when it has any.
+    external: Option<Arc<ExternalAxes>>,
 }
 
 /// What a calibrated robot's name ends with (the robot files `stiffid calibrate` writes).
@@ -138,6 +142,7 @@ impl Robot {
             masses: None,
             urdf: None,
             error_maps: None,
+            external: None,
         }
         .with_limits(limits)
     }
@@ -237,6 +242,20 @@ impl Robot {
     pub fn with_error_maps(self, maps: [ErrorMap; 6]) -> Self {
         let error_maps = (!maps.iter().all(ErrorMap::is_empty)).then(|| Arc::new(maps));
         Self { error_maps, ..self }
+    }
+
+    /// The robot in a cell with these external axes (a carrier under the arm, a positioner under
+    /// the workpiece: [`external`]), or none.
+    pub fn with_external(self, axes: Option<ExternalAxes>) -> Self {
+        Self {
+            external: axes.map(Arc::new),
+            ..self
+        }
+    }
+
+    /// The cell's external axes, when it has any.
+    pub fn external(&self) -> Option<&ExternalAxes> {
+        self.external.as_deref()
     }
 
     /// The axes' error maps, when any axis has one.

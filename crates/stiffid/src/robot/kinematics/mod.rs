@@ -86,14 +86,7 @@ impl Robot {
     /// `H` times a coefficient, below 1e-3 of a column for maps of a few arc seconds) is left out
     /// of them, as a spring deflects the link whatever its gear's error.
     pub fn frames(&self, q: &Vector6<f64>) -> Frames {
-        let mut f = Frames {
-            joints: [Isometry3::identity(); 6],
-            axis_points: [Vector3::zeros(); 6],
-            axis_directions: [Vector3::zeros(); 6],
-            flange: *self.base(),
-            screws: [Screws::zeros(), Screws::zeros()],
-            axis_map: self.axis_map().matrix,
-        };
+        let mut f = Frames::blank();
         self.update_frames(q, &mut f);
         f
     }
@@ -101,10 +94,31 @@ impl Robot {
     /// [`Robot::frames`] at `q` written over `f` (every field), so that a loop over postures reuses
     /// one `Frames` instead of copying a new one out of each call.
     pub(crate) fn update_frames(&self, q: &Vector6<f64>, f: &mut Frames) {
+        self.update_frames_on(self.base(), q, f);
+    }
+
+    /// Forward kinematics of the arm on its carrier: axis angles `q` (rad) and external axis
+    /// values `e` (SI, the cell's order, [`crate::robot::external`]), in the cell frame. The
+    /// arm's base frame is `C(e) * base` (the carrier's pose, [`ExternalAxes::carrier_pose`]);
+    /// without external axes, or with a positioner only, [`Robot::frames`] at `q`.
+    ///
+    /// [`ExternalAxes::carrier_pose`]: crate::robot::external::ExternalAxes::carrier_pose
+    pub fn frames_at(&self, q: &Vector6<f64>, e: &[f64]) -> Frames {
+        let base = match self.external() {
+            Some(axes) if axes.carrier_len() > 0 => axes.carrier_pose(e) * self.base(),
+            _ => *self.base(),
+        };
+        let mut f = Frames::blank();
+        self.update_frames_on(&base, q, &mut f);
+        f
+    }
+
+    /// [`Robot::update_frames`] with the chain's first frame at `base` (cell frame).
+    fn update_frames_on(&self, base: &Isometry3<f64>, q: &Vector6<f64>, f: &mut Frames) {
         let theta = self.axis_map().kinematic(&self.mapped(q));
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
-        f.flange = *self.base();
+        f.flange = *base;
         f.axis_map = self.axis_map().matrix;
         let t = &mut f.flange;
         let [kinematic, axis] = &mut f.screws;
@@ -130,6 +144,20 @@ impl Robot {
         }
         compose(t, self.flange());
         kinematic.times(&self.axis_map().matrix, axis);
+    }
+}
+
+impl Frames {
+    /// Frames to be written over by [`Robot::update_frames_on`].
+    fn blank() -> Self {
+        Frames {
+            joints: [Isometry3::identity(); 6],
+            axis_points: [Vector3::zeros(); 6],
+            axis_directions: [Vector3::zeros(); 6],
+            flange: Isometry3::identity(),
+            screws: [Screws::zeros(), Screws::zeros()],
+            axis_map: Matrix6::identity(),
+        }
     }
 }
 
