@@ -86,6 +86,7 @@ fn from_arrays(
             posture: i / m,
             point: points[i % m],
             q: q[i / m],
+            e: Default::default(),
             wrench: wrench[i / m],
             displacement: Vector3::from(*dm) * 1e-3,
         })

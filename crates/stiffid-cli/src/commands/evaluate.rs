@@ -31,7 +31,7 @@ pub struct Args {
     purpose: ForArgs,
     /// The candidates of `identify --compare-models` to judge the group for, comma-separated:
     /// single candidates (`tilt3_z`, `bend2_y`, `lost2`, a declared spring's name) or families
-    /// (`tilt`, `bend`, `base`, `tool`, `lost`, `load`, `declared`); default all of them.
+    /// (`tilt`, `bend`, `carriage`, `base`, `tool`, `lost`, `load`, `declared`); default all of them.
     #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,
 }

@@ -255,6 +255,8 @@ pub enum MeasurementField {
     Moment,
     /// The measured displacement.
     Displacement,
+    /// The external axis values (`e1_mm`, ...).
+    External,
 }
 
 impl std::fmt::Display for MeasurementField {
@@ -266,6 +268,7 @@ impl std::fmt::Display for MeasurementField {
             MeasurementField::Force => write!(f, "force"),
             MeasurementField::Moment => write!(f, "moment"),
             MeasurementField::Displacement => write!(f, "displacement"),
+            MeasurementField::External => write!(f, "external axes"),
         }
     }
 }

@@ -272,7 +272,7 @@ fn observation(
             write_posture_block(arm, &frames, &wrench, &mut block, 0);
             psi.view_mut((row, 0), (p3, n)).copy_from(&block);
             for (c, spring) in candidates.iter().enumerate() {
-                let placed = spring.placed(robot, &frames);
+                let placed = spring.placed(&frames);
                 let g = spring.response(&placed, &loading, &wrench);
                 for (k, point) in points.iter().enumerate() {
                     let v = placed.velocity(&frames.point(point)) * g;

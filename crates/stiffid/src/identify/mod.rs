@@ -169,7 +169,7 @@ impl Identification {
 ///     let wrench = setup.rope_wrench(&frames);
 ///     for (point, d) in rope_displacements(&setup, &frames, k).into_iter().enumerate() {
 ///         let displacement = d;
-///         measurements.push(Measurement { posture, point, q, wrench, displacement });
+///         measurements.push(Measurement { posture, point, q, e: Default::default(), wrench, displacement });
 ///     }
 /// }
 /// let id = stiffid::identify::least_squares(setup.arm(), &measurements)?;
@@ -295,6 +295,12 @@ impl<'a> InBlocks<'a> {
     /// The axis angles of `posture` (those of its first measurement), if it was pushed.
     pub fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
         self.check.angles(posture)
+    }
+
+    /// The external axis values of `posture` (those of its first measurement), if it was
+    /// pushed.
+    pub fn external(&self, posture: usize) -> Option<&crate::robot::external::ExternalValues> {
+        self.check.external(posture)
     }
 }
 

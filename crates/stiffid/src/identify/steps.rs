@@ -127,6 +127,7 @@ impl LoadSteps {
                 posture: r.posture,
                 point: r.point,
                 q: r.q,
+                e: crate::robot::external::ExternalValues::NONE,
                 wrench,
                 displacement: r.position - reference.position,
             });

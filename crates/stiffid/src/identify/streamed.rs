@@ -105,6 +105,7 @@ pub fn least_squares<R: BufRead + Send>(
                         posture,
                         point: rows.points[i],
                         q: *blocks.angles(posture).expect("every posture was checked"),
+                        e: *blocks.external(posture).expect("every posture was checked"),
                         wrench: kept.wrench(i),
                         displacement: Vector3::from_column_slice(&block[3 * (i - first)..][..3]),
                     }

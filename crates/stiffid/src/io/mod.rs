@@ -4,6 +4,7 @@
 //! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`); [`Capped`]
 //! holds a reader of an input read in pieces to the same limit.
 //!
+//! - [`external`]: the external axis columns (`e1_mm`, `e2_deg`) every data file shares.
 //! - [`input`]: the files a front end reads: regular files only, never a wait on a FIFO.
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`output`]: the files a front end writes: where a write lands, whether it may, whole files.
@@ -14,6 +15,7 @@
 //! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
+pub mod external;
 pub mod input;
 pub mod measurements;
 pub mod output;

@@ -10,8 +10,16 @@
 //! - `base`: six springs of the base mount in the robot's base frame, translations `base_x`,
 //!   `base_y`, `base_z` and rotations `base_rx`, `base_ry`, `base_rz` about its axes through its
 //!   origin: a pedestal or floor anchoring that is not rigid.
+//! - `carriage`: three springs of the carriage of a robot on a linear track (the first carrier
+//!   axis, [`crate::robot::external`]), fixed in link 0 through the base frame's origin, in the
+//!   track's axis frame ([`crate::robot::external::ExternalAxis::frame`]): the translation
+//!   `carriage_x` along the track (the drive and rack's give), the rotations `carriage_rx` about
+//!   the track (roll) and `carriage_ry` about its horizontal cross axis (pitch): the tilt of the
+//!   carriage on its rails and guide shoes. They move with the carriage
+//!   ([`crate::Frames::base`]).
 
 use super::{Kind, Spring};
+use crate::robot::external::Role;
 use crate::{Error, Result, Robot};
 use nalgebra::{Unit, Vector3};
 
@@ -24,17 +32,20 @@ pub enum Family {
     Tool,
     /// The six springs of the base mount.
     Base,
+    /// The carriage of a linear track: along it, roll and pitch.
+    Carriage,
 }
 
 /// The families and their names in files.
-pub const FAMILIES: [(&str, Family); 3] = [
+pub const FAMILIES: [(&str, Family); 4] = [
     ("tilt", Family::Tilt),
     ("tool", Family::Tool),
     ("base", Family::Base),
+    ("carriage", Family::Carriage),
 ];
 
 impl Family {
-    /// The family named `name` (`tilt`, `tool`, `base`).
+    /// The family named `name` (`tilt`, `tool`, `base`, `carriage`).
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming `field` for another name.
@@ -46,7 +57,7 @@ impl Family {
             .ok_or_else(|| Error::InvalidField {
                 field: field.to_string(),
                 message: format!(
-                    "'{}' is not a family: expected tilt, tool or base",
+                    "'{}' is not a family: expected tilt, tool, base or carriage",
                     crate::common::limits::short(name)
                 ),
             })
@@ -58,7 +69,8 @@ impl Family {
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming `field` (`model.family[1].links`) for `tilt` without links,
-    /// a link outside 1..6 or repeated, and for links given to `tool` or `base`.
+    /// a link outside 1..6 or repeated, for links given to `tool`, `base` or `carriage`, and for
+    /// `carriage` on a robot without a carrier.
     pub fn springs(
         self,
         robot: &Robot,
@@ -110,9 +122,27 @@ impl Family {
                 }
                 Ok(out)
             }
-            Family::Tool | Family::Base if !links.is_empty() => Err(invalid(
-                "only tilt takes links (tool is fixed in link 6, base in link 0)".into(),
+            Family::Tool | Family::Base | Family::Carriage if !links.is_empty() => Err(invalid(
+                "only tilt takes links (tool is fixed in link 6, base and carriage in link 0)"
+                    .into(),
             )),
+            Family::Carriage => {
+                let carrier = robot.external().and_then(|a| a.axes().first());
+                let Some(track) = carrier.filter(|a| a.role == Role::Carrier) else {
+                    return Err(invalid(
+                        "carriage needs a robot on a track: expected a carrier axis \
+                         ([[external_axis]] with role = \"carrier\")"
+                            .into(),
+                    ));
+                };
+                let axes = robot.base().rotation.inverse() * track.frame();
+                let along = |i| axes * Vector3::ith(i, 1.0);
+                Ok(vec![
+                    spring("carriage_x".into(), Kind::Translation, 0, along(0)),
+                    spring("carriage_rx".into(), Kind::Rotation, 0, along(0)),
+                    spring("carriage_ry".into(), Kind::Rotation, 0, along(1)),
+                ])
+            }
             Family::Tool => {
                 let r = robot.flange().rotation;
                 Ok(["x", "y", "z"]

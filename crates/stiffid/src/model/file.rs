@@ -13,7 +13,7 @@
 //! law = "linear"                    # candidates only: "lost-motion" or "load-dependent" (super::Law)
 //!
 //! [[model.family]]
-//! family = "tilt"                   # tilt, tool or base (crate::model::Family)
+//! family = "tilt"                   # tilt, tool, base or carriage (crate::model::Family)
 //! links = [2, 3]                    # tilt only: its joints
 //! nominal_stiffness_nm_per_rad = 5e6   # of its rotational springs
 //! nominal_stiffness_n_per_mm = 1e4     # of its translational springs

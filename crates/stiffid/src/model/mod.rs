@@ -36,7 +36,7 @@ pub use law::{Law, DEFAULT_SMOOTHING};
 pub use region::{PostureRange, Region};
 
 use crate::robot::kinematics::{Coordinates, Frames};
-use crate::{Error, Result, Robot};
+use crate::{Error, Result};
 use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6};
 
 pub use crate::common::limits::MAX_VIRTUAL_SPRINGS;
@@ -212,9 +212,9 @@ impl Spring {
         self.law.response(placed.load(p, wrench))
     }
 
-    /// Its axis and point in the base frame at the posture `frames` of `robot`.
-    pub fn placed(&self, robot: &Robot, frames: &Frames) -> Placed {
-        let frame = link_frame(robot, frames, self.link);
+    /// Its axis and point in the base frame at the posture `frames`.
+    pub fn placed(&self, frames: &Frames) -> Placed {
+        let frame = link_frame(frames, self.link);
         Placed {
             kind: self.kind,
             u: frame.rotation * self.axis.into_inner(),
@@ -223,13 +223,14 @@ impl Spring {
     }
 }
 
-/// The frame of link `link` (0 the base, 1..6 [`Frames::joints`]) at a posture, base frame.
+/// The frame of link `link` (0 the base, [`Frames::base`]: on a carrier the carriage's mount;
+/// 1..6 [`Frames::joints`]) at a posture, base frame.
 ///
 /// # Panics
 /// If `link > 6`.
-pub fn link_frame<'a>(robot: &'a Robot, frames: &'a Frames, link: usize) -> &'a Isometry3<f64> {
+pub fn link_frame(frames: &Frames, link: usize) -> &Isometry3<f64> {
     match link {
-        0 => robot.base(),
+        0 => &frames.base,
         k => &frames.joints[k - 1],
     }
 }
@@ -377,33 +378,25 @@ impl Model {
         Self::new(self.coordinates, springs)
     }
 
-    /// The virtual springs placed at the posture `frames` of `robot`.
-    pub fn placed(&self, robot: &Robot, frames: &Frames) -> Vec<Placed> {
-        self.springs
-            .iter()
-            .map(|s| s.placed(robot, frames))
-            .collect()
+    /// The virtual springs placed at the posture `frames`.
+    pub fn placed(&self, frames: &Frames) -> Vec<Placed> {
+        self.springs.iter().map(|s| s.placed(frames)).collect()
     }
 
     /// The augmented Jacobian `[J_q | J_s1 .. J_sv]` (6 x n, base frame, rows `[v; omega]`) of
-    /// the tool point `point` (flange frame, m) at the posture `frames` of `robot`: the drive
+    /// the tool point `point` (flange frame, m) at the posture `frames`: the drive
     /// columns in the model's coordinates ([`Frames::jacobian`]), then each virtual spring's
     /// column `[u x (p - o); u]` or `[u; 0]` ([`Placed::column`]). A tool point sits beyond every
     /// link, so every spring moves it. With it, `tau = J_a^T W` are the loads of every parameter
     /// (Nm or N), `J_b diag(h) J_a^T W` a tool point's deflection and `J diag(h) J^T` the
     /// Cartesian compliance ([`crate::observation::cartesian`]).
-    pub fn jacobian(
-        &self,
-        robot: &Robot,
-        frames: &Frames,
-        point: &Vector3<f64>,
-    ) -> nalgebra::Matrix6xX<f64> {
+    pub fn jacobian(&self, frames: &Frames, point: &Vector3<f64>) -> nalgebra::Matrix6xX<f64> {
         let mut j = nalgebra::Matrix6xX::zeros(self.len());
         j.fixed_columns_mut::<6>(0)
             .copy_from(&frames.jacobian(point, self.coordinates));
         let p = frames.point(point);
         for (s, spring) in self.springs.iter().enumerate() {
-            j.set_column(6 + s, &spring.placed(robot, frames).column(&p));
+            j.set_column(6 + s, &spring.placed(frames).column(&p));
         }
         j
     }

@@ -45,7 +45,7 @@ pub fn compliance(
     h: &DVector<f64>,
 ) -> Matrix6<f64> {
     assert_eq!(h.len(), arm.model().len(), "one compliance per parameter");
-    let j = arm.model().jacobian(arm.robot(), frames, point);
+    let j = arm.model().jacobian(frames, point);
     let mut jh = j.clone();
     for (c, mut col) in jh.column_iter_mut().enumerate() {
         col *= h[c];

@@ -111,14 +111,12 @@ impl Points<'_> {
     /// # Panics
     /// If `h` does not have one value per parameter ([`crate::model::Compliance::check`]).
     pub fn deflection(&self, wrench: &Vector6<f64>, h: &DVector<f64>) -> PointDeflection {
-        let (model, robot) = (self.arm.model(), self.arm.robot());
+        let model = self.arm.model();
         assert_eq!(h.len(), model.len(), "one compliance per parameter");
-        let jb = model.jacobian(robot, self.frames, self.observed);
+        let jb = model.jacobian(self.frames, self.observed);
         let torques = match self.loaded == self.observed {
             true => jb.tr_mul(wrench),
-            false => model
-                .jacobian(robot, self.frames, self.loaded)
-                .tr_mul(wrench),
+            false => model.jacobian(self.frames, self.loaded).tr_mul(wrench),
         };
         let joint_deflections = torques.component_mul(h);
         PointDeflection {

@@ -99,7 +99,7 @@ pub fn joint_compliance(
         }
     };
     if !model.is_drives_only() {
-        let j = model.jacobian(arm.robot(), frames, point);
+        let j = model.jacobian(frames, point);
         let inverse = crate::math::linalg::inverse(&frames.jacobian(point, Coordinates::Axis))?;
         let mut springs = Matrix6::zeros();
         for s in 6..model.len() {
@@ -154,7 +154,7 @@ pub fn surge(
     let u = force.try_normalize(0.0)?;
     let h = &compliance.h;
     assert_eq!(h.len(), arm.model().len(), "one compliance per parameter");
-    let j = arm.model().jacobian(arm.robot(), frames, point);
+    let j = arm.model().jacobian(frames, point);
     let g = DVector::from_fn(h.len(), |p, _| {
         let along = u.dot(&j.fixed_view::<3, 1>(0, p));
         along * along

@@ -73,12 +73,12 @@ pub fn to_base(
     }
     if wrench == Frame::Tool {
         // The posture's frames, computed once per run of measurements with the same angles.
-        let mut last: Option<(nalgebra::Vector6<f64>, Frames)> = None;
+        let mut last: Option<(nalgebra::Vector6<f64>, _, Frames)> = None;
         for m in measurements.iter_mut() {
-            if last.as_ref().is_none_or(|(q, _)| *q != m.q) {
-                last = Some((m.q, setup.robot().frames(&m.q)));
+            if last.as_ref().is_none_or(|(q, e, _)| *q != m.q || *e != m.e) {
+                last = Some((m.q, m.e, setup.robot().frames_at(&m.q, m.e.as_slice())));
             }
-            if let Some((_, frames)) = &last {
+            if let Some((_, _, frames)) = &last {
                 m.wrench = base_wrench(frames, &m.wrench, Frame::Tool);
             }
         }

@@ -3,6 +3,7 @@
 
 use crate::observation::stiffness::joint_torques;
 use crate::observation::{point_rows, SpringLoads};
+use crate::robot::external::ExternalValues;
 use crate::setup::Arm;
 use crate::{Error, MeasurementField, Result};
 use nalgebra::{DMatrix, DVector, Vector3, Vector6};
@@ -29,6 +30,10 @@ pub struct Measurement {
     pub point: usize,
     /// Axis angles q, rad (controller convention).
     pub q: Vector6<f64>,
+    /// The cell's external axis values at the posture (SI, the cell's order,
+    /// [`crate::robot::external`]); empty for a robot without external axes. The arm's frames are
+    /// [`crate::Robot::frames_at`] `(q, e)`, positions and wrenches in the cell frame.
+    pub e: ExternalValues,
     /// Wrench `[f; m]` at the loading point, base frame, N and Nm (Eq. 1).
     pub wrench: Vector6<f64>,
     /// Translation of the measuring point, loaded minus unloaded, base frame, m.
@@ -96,6 +101,8 @@ pub struct Check {
     table: Table,
     /// The axis angles of each posture's first measurement, by dense number.
     angles: Vec<Vector6<f64>>,
+    /// The external axis values of each posture's first measurement, by dense number.
+    external: Vec<ExternalValues>,
     /// Measurements checked so far.
     measurements: usize,
 }
@@ -120,7 +127,8 @@ impl Check {
             let (index, first) = self.table.entry(meas.posture, next);
             if index == self.angles.len() {
                 self.angles.push(meas.q);
-            } else if self.angles[index] != meas.q {
+                self.external.push(meas.e);
+            } else if self.angles[index] != meas.q || self.external[index] != meas.e {
                 return Err(Error::Measurement {
                     number,
                     field: MeasurementField::Posture,
@@ -147,6 +155,14 @@ impl Check {
             .get(posture)
             .map(|(index, _)| &self.angles[index])
     }
+
+    /// The external axis values of `posture` (those of its first measurement), if it was
+    /// checked.
+    pub fn external(&self, posture: usize) -> Option<&ExternalValues> {
+        self.table
+            .get(posture)
+            .map(|(index, _)| &self.external[index])
+    }
 }
 
 /// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x c`) and `delta`
@@ -170,12 +186,13 @@ pub fn assemble(
         // One run of measurements with the same axis angles: its frames (computed in place, not
         // moved: they are large), and the torques of the previous measurement's wrench.
         let first = &measurements[i];
-        let frames = arm.robot().frames(&first.q);
+        let frames = arm.robot().frames_at(&first.q, first.e.as_slice());
         let springs = psi.ncols() - 6;
         let mut tau = joint_torques(arm, &frames, &first.wrench);
         let mut loads = SpringLoads::new(arm, &frames, &first.wrench, springs);
         let mut previous = first;
-        while let Some(meas) = measurements.get(i).filter(|m| m.q == first.q) {
+        let same = |m: &&Measurement| m.q == first.q && m.e == first.e;
+        while let Some(meas) = measurements.get(i).filter(same) {
             if previous.wrench != meas.wrench {
                 tau = joint_torques(arm, &frames, &meas.wrench);
                 loads = SpringLoads::new(arm, &frames, &meas.wrench, springs);
@@ -222,6 +239,7 @@ fn check_one(arm: &Arm, number: usize, meas: &Measurement) -> Result<()> {
         };
         return Err(error(MeasurementField::Axis(v.axis), message));
     }
+    check_external(arm, meas).map_err(|message| error(MeasurementField::External, message))?;
     let force: Vector3<f64> = meas.wrench.fixed_rows::<3>(0).into();
     let moment: Vector3<f64> = meas.wrench.fixed_rows::<3>(3).into();
     let magnitudes = [
@@ -318,4 +336,19 @@ impl Table {
 
 fn widen((index, first): (u32, u32)) -> (usize, usize) {
     (index as usize, first as usize)
+}
+
+/// The measurement's external axis values against the cell's axes: one per axis, within its
+/// travel; none for a robot without external axes.
+fn check_external(arm: &Arm, meas: &Measurement) -> std::result::Result<(), String> {
+    match arm.robot().external() {
+        None if meas.e.is_empty() => Ok(()),
+        None => Err(format!(
+            "the robot has no external axes, the measurement gives {}",
+            meas.e.as_slice().len()
+        )),
+        Some(axes) => axes
+            .check(meas.e.as_slice(), "e")
+            .map_err(|e| e.to_string()),
+    }
 }

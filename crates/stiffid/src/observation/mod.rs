@@ -106,10 +106,7 @@ impl SpringLoads {
         }
         let springs = &arm.model().springs()[..count];
         let loading = frames.point(&arm.tool().loading_point);
-        let placed: Vec<Placed> = springs
-            .iter()
-            .map(|s| s.placed(arm.robot(), frames))
-            .collect();
+        let placed: Vec<Placed> = springs.iter().map(|s| s.placed(frames)).collect();
         let loads = springs
             .iter()
             .zip(&placed)

@@ -65,7 +65,7 @@ fn spring_columns_are_finite_differences_of_the_virtual_joint() {
         assert_eq!(block.ncols(), setup.model().len());
         let pf = frames.point(&setup.tool().loading_point);
         for (s, spring) in setup.model().springs().iter().enumerate() {
-            let placed = spring.placed(setup.robot(), &frames);
+            let placed = spring.placed(&frames);
             let dpf = (moved(&placed, &pf, e) - moved(&placed, &pf, -e)) / (2.0 * e);
             let rotation = match placed.kind {
                 Kind::Rotation => placed.u,
@@ -138,7 +138,7 @@ fn families_and_parameters() {
     // tool_x is along the flange's x axis at every posture.
     let q = Vector6::new(0.3, -0.2, -1.2, 0.5, 0.7, -0.4);
     let frames = setup.robot().frames(&q);
-    let u = springs[3].placed(setup.robot(), &frames).u;
+    let u = springs[3].placed(&frames).u;
     let x = frames.flange.rotation * Vector3::x();
     assert!((u - x).norm() < 1e-14);
     let h = setup.model_nominal_compliance().unwrap();

@@ -55,6 +55,7 @@ pub fn measure(
                 posture,
                 point,
                 q: *q,
+                e: Default::default(),
                 wrench,
                 displacement: d.fixed_rows::<3>(3 * point).into_owned() + noise,
             });
@@ -249,6 +250,7 @@ fn a_lost_motion_is_recovered_from_load_steps() {
                     posture,
                     point,
                     q: *q,
+                    e: Default::default(),
                     wrench,
                     displacement: d.fixed_rows::<3>(3 * point).into_owned(),
                 });

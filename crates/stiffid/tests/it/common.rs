@@ -57,6 +57,7 @@ pub fn synthetic(
                 posture: i,
                 point,
                 q: *q,
+                e: Default::default(),
                 wrench: w,
                 displacement: disp.fixed_rows::<3>(0).into_owned(),
             });

@@ -63,6 +63,7 @@ mod simulate;
 mod solver_auto;
 mod stop_reasons;
 mod study;
+mod track_stiffness;
 mod true_robot;
 mod trust;
 mod urdf;

@@ -49,6 +49,7 @@ fn noise_free(s: &Setup, h: &DVector<f64>, postures: usize, seed: u64) -> Vec<Me
                 posture,
                 point,
                 q,
+                e: Default::default(),
                 wrench,
                 displacement: d.fixed_rows::<3>(3 * point).into_owned(),
             });

@@ -49,7 +49,7 @@ fn jacobian_by_hand(s: &Setup, q: &Vector6<f64>, point: &Vector3<f64>) -> DMatri
     j.view_mut((0, 0), (6, 6)).copy_from(&drives);
     let p = frames.flange * nalgebra::Point3::from(*point);
     for (k, spring) in s.model().springs().iter().enumerate() {
-        let frame = link_frame(s.robot(), &frames, spring.link);
+        let frame = link_frame(&frames, spring.link);
         let u = frame.rotation * spring.axis.into_inner();
         let o = frame * nalgebra::Point3::from(spring.point);
         let (v, w) = match spring.kind {
@@ -201,6 +201,7 @@ fn noise_free(s: &Setup, h: &DVector<f64>, postures: usize, seed: u64) -> Vec<Me
                 posture,
                 point,
                 q,
+                e: Default::default(),
                 wrench,
                 displacement: d.fixed_rows::<3>(3 * point).into_owned(),
             });

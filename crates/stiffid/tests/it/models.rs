@@ -46,6 +46,7 @@ fn measure(
                 posture,
                 point,
                 q: *q,
+                e: Default::default(),
                 wrench,
                 displacement,
             });

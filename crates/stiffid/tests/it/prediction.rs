@@ -59,6 +59,7 @@ fn data(s: &Setup, truth: &DVector<f64>, n: usize, rng: &mut ChaCha8Rng) -> Vec<
                 posture,
                 point,
                 q,
+                e: Default::default(),
                 wrench,
                 displacement: d.fixed_rows::<3>(3 * point) + e,
             });

@@ -61,7 +61,7 @@ pub struct Args {
     compare_models: bool,
     /// The candidates of `--compare-models`, comma-separated: single candidates (`tilt3_z`,
     /// `bend2_y`, `tool_y`, `base_rz`, a declared spring's name) or families (`tilt`, `bend`,
-    /// `base`, `tool`, `declared`); default all of them. Those along a joint's own axis or
+    /// `carriage`, `base`, `tool`, `lost`, `load`, `declared`); default all of them. Those along a joint's own axis or
     /// duplicating another are left out, with the reason.
     #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,

@@ -115,7 +115,7 @@ pub struct Args {
     #[arg(long)]
     for_candidates: bool,
     /// With --for-candidates: the candidates, comma-separated, as `identify --compare-models
-    /// --candidates` names them (families `tilt`, `bend`, `base`, `tool`, `lost`, `load`,
+    /// --candidates` names them (families `tilt`, `bend`, `carriage`, `base`, `tool`, `lost`, `load`,
     /// `declared`, or single candidates); default all of them.
     #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,

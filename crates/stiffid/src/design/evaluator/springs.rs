@@ -46,7 +46,7 @@ pub(super) fn write_compact_columns(
     let t = frames.flange.translation.vector;
     let rt = frames.flange.rotation.inverse();
     for (spring, col) in setup.model().springs().iter().zip(out.chunks_exact_mut(6)) {
-        let placed = spring.placed(setup.robot(), frames);
+        let placed = spring.placed(frames);
         let load = placed.load(&loading, &wrench);
         let v = rt * placed.velocity(&t);
         let w = match placed.kind {
@@ -82,7 +82,7 @@ pub(super) fn spring_gradient(
     let (mut a_all, mut b_all) = (Vector3::zeros(), Vector3::zeros());
     let mut by_link = [(Vector3::zeros(), Vector3::zeros()); 7];
     for (s, spring) in setup.model().springs().iter().enumerate() {
-        let placed = spring.placed(setup.robot(), frames);
+        let placed = spring.placed(frames);
         let g: Vec<Vector3<f64>> = (0..points.len()).map(|m| weights(s, m)).collect();
         let motion = spring_motion(setup, &placed, &f, &pf, &points, &g);
         for (x, gx) in points

@@ -145,10 +145,10 @@ fn max_loads(setup: &Setup, measurements: &[Measurement]) -> Vec<f64> {
     let springs = setup.model().springs();
     let mut out = vec![0.0_f64; springs.len()];
     for m in measurements {
-        let frames = setup.robot().frames(&m.q);
+        let frames = setup.robot().frames_at(&m.q, m.e.as_slice());
         let loading = frames.point(&setup.tool().loading_point);
         for (s, max) in springs.iter().zip(out.iter_mut()) {
-            let load = s.placed(setup.robot(), &frames).load(&loading, &m.wrench);
+            let load = s.placed(&frames).load(&loading, &m.wrench);
             *max = max.max(load.abs());
         }
     }

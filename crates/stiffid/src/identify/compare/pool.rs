@@ -10,6 +10,9 @@
 //! - `bend<k>_x`, `bend<k>_y`, `bend<k>_z` (k = 1..5): rotations about the same three axes through
 //!   the middle of link k, halfway from its frame's origin to link k+1's at the zero posture
 //!   (bending of the link itself), for a link at least [`MIN_BEND_LENGTH`] long;
+//! - for a robot on a linear track, `carriage_x`, `carriage_rx`, `carriage_ry`: the carriage
+//!   ([`crate::model::Family::Carriage`]), before the base mount so that a base spring on the
+//!   same line is the one dropped;
 //! - `base_x`, `base_y`, `base_z`, `base_rx`, `base_ry`, `base_rz`: the base mount
 //!   ([`crate::model::Family::Base`]);
 //! - `tool_x`, `tool_y`, `tool_z`: the tool ([`crate::model::Family::Tool`]);
@@ -72,8 +75,9 @@ pub fn nonlinear_separation(load_levels: usize) -> String {
 }
 
 /// The candidate families by name, for `--candidates`.
-pub const CANDIDATE_FAMILIES: [&str; 7] =
-    ["tilt", "bend", "base", "tool", "lost", "load", "declared"];
+pub const CANDIDATE_FAMILIES: [&str; 8] = [
+    "tilt", "bend", "carriage", "base", "tool", "lost", "load", "declared",
+];
 
 /// Every candidate of the module docs on the setup's robot, before any is dropped, each with its
 /// family's name.
@@ -116,8 +120,13 @@ fn every_candidate(setup: &Setup) -> Vec<(&'static str, Spring)> {
             }
         }
     }
-    for f in [Family::Base, Family::Tool] {
-        let name = if f == Family::Base { "base" } else { "tool" };
+    let families = [
+        (Family::Carriage, "carriage"),
+        (Family::Base, "base"),
+        (Family::Tool, "tool"),
+    ];
+    for (f, name) in families {
+        // The carriage's springs exist only on a track: elsewhere the family gives none.
         let springs = f.springs(robot, &[], None, None, "candidates");
         out.extend(springs.unwrap_or_default().into_iter().map(|s| (name, s)));
     }
@@ -162,15 +171,8 @@ fn same_line(a: &Placed, b: &Placed) -> bool {
 }
 
 /// Why `spring` is dropped given the candidates kept so far, or `None`.
-fn reason(
-    setup: &Setup,
-    probes: &[Frames],
-    spring: &Spring,
-    kept: &[Spring],
-    model: &[Spring],
-) -> Option<String> {
-    let robot = setup.robot();
-    let placed: Vec<Placed> = probes.iter().map(|f| spring.placed(robot, f)).collect();
+fn reason(probes: &[Frames], spring: &Spring, kept: &[Spring], model: &[Spring]) -> Option<String> {
+    let placed: Vec<Placed> = probes.iter().map(|f| spring.placed(f)).collect();
     let everywhere = |other: &dyn Fn(&Frames) -> Placed| {
         probes
             .iter()
@@ -192,7 +194,7 @@ fn reason(
             }
         }
     }
-    let twin = |s: &Spring| s.law == spring.law && everywhere(&|f: &Frames| s.placed(robot, f));
+    let twin = |s: &Spring| s.law == spring.law && everywhere(&|f: &Frames| s.placed(f));
     if let Some(s) = model.iter().find(|s| twin(s)) {
         return Some(format!(
             "the same column as the model's spring '{}' (the same axis)",
@@ -228,7 +230,7 @@ fn build(setup: &Setup, wanted: &dyn Fn(&str, &Spring) -> bool) -> Pool {
         if !wanted(family, &s) || taken(&s.name) {
             continue;
         }
-        match reason(setup, &probes, &s, &pool.candidates, model) {
+        match reason(&probes, &s, &pool.candidates, model) {
             Some(reason) => pool.dropped.push(Dropped {
                 name: s.name,
                 reason,

@@ -59,6 +59,7 @@ pub(super) struct Columns {
     pub(super) posture: usize,
     point: usize,
     q: [usize; 6],
+    external: crate::io::external::Columns,
     force: [usize; 3],
     moment: Option<[usize; 3]>,
     displacement: Displacement,
@@ -146,10 +147,12 @@ impl Columns {
             false => None,
         };
         let (displacement, displacement_frame) = displacement(&h)?;
+        let external = crate::io::external::Columns::find(names, line)?;
         Ok(Self {
             posture,
             point,
             q,
+            external,
             force,
             moment,
             displacement,
@@ -225,10 +228,12 @@ impl Columns {
             Displacement::Relative(d) => vector3(d, any)?,
             Displacement::Positions(l, u) => vector3(l, length)? - vector3(u, length)?,
         };
+        let e = self.external.values(&field, &error)?;
         Ok(Measurement {
             posture,
             point: point - 1,
             q,
+            e,
             wrench: Vector6::new(force.x, force.y, force.z, moment.x, moment.y, moment.z),
             displacement: displacement_mm * 1e-3,
         })
@@ -280,6 +285,7 @@ fn known() -> impl Iterator<Item = &'static str> + Clone {
     [POSTURE, POINT]
         .into_iter()
         .chain(Q)
+        .chain(crate::io::external::NAMES)
         .chain(FORCE)
         .chain(MOMENT)
         .chain(FORCE_TOOL)
@@ -389,6 +395,7 @@ impl Layout {
                 Displacement::Relative(d) => d[0],
                 Displacement::Positions(l, _) => l[0],
             },
+            MeasurementField::External => c.external.first().unwrap_or(c.q[5]),
         };
         let line = line_of(number).unwrap_or(0);
         self.at(line, column, ColumnProblem::Measurement { message })

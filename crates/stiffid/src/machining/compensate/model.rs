@@ -126,7 +126,7 @@ impl<'a> Model<'a> {
         }
         let p = frames.point(tcp);
         let twist: Vector6<f64> = model
-            .placed(self.arm.robot(), frames)
+            .placed(frames)
             .iter()
             .enumerate()
             .map(|(s, spring)| spring.column(&p) * (h[6 + s] * spring.load(&p, wrench)))

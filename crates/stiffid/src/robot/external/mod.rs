@@ -48,6 +48,50 @@ pub const MAX_POSITIONER_AXES: usize = 2;
 /// Most external axes of a cell: a carrier's and a positioner's.
 pub const MAX_AXES: usize = MAX_CARRIER_AXES + MAX_POSITIONER_AXES;
 
+/// The values of a cell's external axes at one posture, in the cell's order (SI: m for a linear
+/// axis, rad for a rotary one); empty for a cell without external axes. A small copyable array
+/// of at most [`MAX_AXES`] values, so a measurement or a posture carries it without allocating.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ExternalValues {
+    values: [f64; MAX_AXES],
+    len: usize,
+}
+
+impl ExternalValues {
+    /// No values: a cell without external axes.
+    pub const NONE: ExternalValues = ExternalValues {
+        values: [0.0; MAX_AXES],
+        len: 0,
+    };
+
+    /// These values (SI, the cell's order).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`external axis values`) when there are more than [`MAX_AXES`].
+    pub fn new(values: &[f64]) -> Result<Self> {
+        if values.len() > MAX_AXES {
+            return Err(invalid(
+                "external axis values",
+                format!("expected at most {MAX_AXES}, got {}", values.len()),
+            ));
+        }
+        let mut out = Self::NONE;
+        out.values[..values.len()].copy_from_slice(values);
+        out.len = values.len();
+        Ok(out)
+    }
+
+    /// The values, SI, the cell's order.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
 /// How an external axis moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AxisKind {

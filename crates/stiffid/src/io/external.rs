@@ -1,0 +1,180 @@
+//! The external axis columns of the data files (postures, readings, measurements, paths): one
+//! column per external axis of the cell after the joint columns, named `e1_mm`, `e2_deg`, ...
+//! in the cell's order ([`crate::robot::external::ExternalAxes::column_names`]): mm for a
+//! linear axis, deg for a rotary one. Read here without the cell (any of [`NAMES`]); the values
+//! are checked against the cell's axes where the file meets the robot
+//! ([`crate::robot::external::ExternalAxes::check`]).
+
+use crate::common::error::ColumnProblem;
+use crate::common::limits;
+use crate::robot::external::{ExternalValues, MAX_AXES};
+use crate::{Error, Result};
+
+/// Every external axis column a file may hold: `e1_mm`, `e1_deg`, ... `e5_mm`, `e5_deg`.
+pub const NAMES: [&str; 2 * MAX_AXES] = [
+    "e1_mm", "e1_deg", "e2_mm", "e2_deg", "e3_mm", "e3_deg", "e4_mm", "e4_deg", "e5_mm", "e5_deg",
+];
+
+/// Where a file's external axis values sit: per axis in the cell's order, its column (0-based)
+/// and whether it is in deg (else mm).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Columns {
+    columns: Vec<(usize, bool)>,
+}
+
+impl Columns {
+    /// The external axis columns of a header (`names`, at `line`): `e1_*` to `ek_*` with no
+    /// gap, each once, in mm or deg; none when the file has none.
+    ///
+    /// # Errors
+    /// [`Error::Column`] at `line`: an axis given in both units (`e2_mm` and `e2_deg`), or a gap
+    /// (`e2_mm` without `e1_*`: missing column `e1_mm or e1_deg`).
+    pub fn find<S: AsRef<str>>(names: &[S], line: u64) -> Result<Self> {
+        let position = |name: &str| names.iter().position(|n| n.as_ref() == name);
+        let mut columns = Vec::new();
+        for axis in 0..MAX_AXES {
+            let (mm, deg) = (NAMES[2 * axis], NAMES[2 * axis + 1]);
+            match (position(mm), position(deg)) {
+                (Some(_), Some(_)) => {
+                    return Err(column_error(
+                        line,
+                        ColumnProblem::Conflict {
+                            first: mm.into(),
+                            second: deg.into(),
+                        },
+                    ))
+                }
+                (Some(c), None) => columns.push((c, false)),
+                (None, Some(c)) => columns.push((c, true)),
+                (None, None) => {
+                    if NAMES[2 * axis + 2..].iter().any(|n| position(n).is_some()) {
+                        return Err(crate::io::missing(line, &format!("{mm} or {deg}")));
+                    }
+                    break;
+                }
+            }
+        }
+        Ok(Self { columns })
+    }
+
+    /// How many external axes the file gives.
+    pub fn len(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// Whether it gives none.
+    pub fn is_empty(&self) -> bool {
+        self.columns.is_empty()
+    }
+
+    /// The column of the first axis, when the file gives any.
+    pub fn first(&self) -> Option<usize> {
+        self.columns.first().map(|c| c.0)
+    }
+
+    /// Whether axis `k` (0-based, the cell's order) is given in deg (else mm).
+    pub fn in_degrees(&self, k: usize) -> bool {
+        self.columns[k].1
+    }
+
+    /// The values of one row (SI: mm to m, deg to rad), whose field `i` is `field(i)`;
+    /// `error(column, problem)` places a problem in the row.
+    ///
+    /// # Errors
+    /// What `error` makes of a field that is not a finite number or lies outside
+    /// [`limits::LENGTH_MM`] or [`limits::ANGLE_DEG`].
+    pub fn values<'a>(
+        &self,
+        field: impl Fn(usize) -> &'a str,
+        error: impl Fn(usize, ColumnProblem) -> Error,
+    ) -> Result<ExternalValues> {
+        let mut values = [0.0; MAX_AXES];
+        for (k, &(c, degrees)) in self.columns.iter().enumerate() {
+            let text = field(c).trim();
+            let v: f64 = (text.parse().ok())
+                .filter(|v: &f64| v.is_finite())
+                .ok_or_else(|| {
+                    error(
+                        c,
+                        ColumnProblem::NotANumber {
+                            value: limits::short(text),
+                        },
+                    )
+                })?;
+            let (range, name) = match degrees {
+                true => (&limits::ANGLE_DEG, NAMES[2 * k + 1]),
+                false => (&limits::LENGTH_MM, NAMES[2 * k]),
+            };
+            if !range.contains(v) {
+                return Err(error(c, range.outside(name, v)));
+            }
+            values[k] = match degrees {
+                true => v.to_radians(),
+                false => v * 1e-3,
+            };
+        }
+        ExternalValues::new(&values[..self.columns.len()])
+    }
+}
+
+fn column_error(line: u64, problem: ColumnProblem) -> Error {
+    Error::Column {
+        line,
+        column: None,
+        name: String::new(),
+        problem,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(header: &str) -> Vec<String> {
+        header.split(',').map(str::to_string).collect()
+    }
+
+    #[test]
+    fn columns_are_found_in_the_cells_order_and_read_in_si() {
+        let header = names("q1_deg,e2_deg,e1_mm,x");
+        let c = Columns::find(&header, 1).unwrap();
+        assert_eq!(
+            (c.len(), c.in_degrees(0), c.in_degrees(1)),
+            (2, false, true)
+        );
+        let row = ["10", "90", "1500", "y"];
+        let v = c.values(
+            |i| row[i],
+            |_, p| Error::InvalidField {
+                field: String::new(),
+                message: p.to_string(),
+            },
+        );
+        assert_eq!(v.unwrap().as_slice(), [1.5, std::f64::consts::FRAC_PI_2]);
+        assert!(Columns::find(&names("q1_deg"), 1).unwrap().is_empty());
+    }
+
+    #[test]
+    fn gaps_and_two_units_are_refused() {
+        let e = Columns::find(&names("e2_mm"), 3).unwrap_err().to_string();
+        assert!(e.contains("e1_mm or e1_deg"), "{e}");
+        let e = Columns::find(&names("e1_mm,e1_deg"), 3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("e1_mm") && e.contains("e1_deg"), "{e}");
+        let c = Columns::find(&names("e1_mm"), 1).unwrap();
+        let bad = |row: [&'static str; 1]| {
+            c.values(
+                |i| row[i],
+                |_, p| Error::InvalidField {
+                    field: String::new(),
+                    message: p.to_string(),
+                },
+            )
+            .unwrap_err()
+            .to_string()
+        };
+        assert!(bad(["x"]).contains("not a finite number"));
+        assert!(bad(["1e9"]).contains("e1_mm"));
+    }
+}
