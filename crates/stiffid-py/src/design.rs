@@ -101,6 +101,8 @@ pub struct Request<'a> {
     pub distinct: bool,
     pub distinct_deg: Option<f64>,
     pub distinct_mm: Option<f64>,
+    /// Stations of a robot with external axes, each in the cell's order, mm and deg.
+    pub stations: Vec<Vec<f64>>,
     /// What the group is for.
     pub purpose: For<'a>,
 }
@@ -163,6 +165,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         distinct,
         for_candidates: r.for_candidates,
         candidates: r.candidates,
+        stations: stations(setup, &r.stations)?,
         progress: &(),
     };
     let report = py.detach(|| select::run(&request)).map_err(raise)?;
@@ -174,4 +177,31 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
 pub fn check_postures(n: usize) -> PyResult<()> {
     let most = limits::MAX_SEARCH_POSTURES as usize;
     check_count("n", n, 2, most).map_err(raise)
+}
+
+/// The stations (mm, deg, the cell's order) in SI, each with one value per external axis.
+fn stations(
+    setup: &Setup,
+    given: &[Vec<f64>],
+) -> PyResult<Vec<stiffid::robot::external::ExternalValues>> {
+    let Some(axes) = setup.robot().external() else {
+        return match given.is_empty() {
+            true => Ok(Vec::new()),
+            false => Err(value("stations: the robot has no external axes: give none")),
+        };
+    };
+    given
+        .iter()
+        .map(|s| {
+            if s.len() != axes.len() {
+                return Err(value(format!(
+                    "stations: expected {} values per station ({}), got {}",
+                    axes.len(),
+                    axes.column_names().join(", "),
+                    s.len()
+                )));
+            }
+            stiffid::robot::external::ExternalValues::new(&axes.to_si(s)).map_err(raise)
+        })
+        .collect()
 }

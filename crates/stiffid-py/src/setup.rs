@@ -348,12 +348,16 @@ impl Setup {
     /// ``gravity`` as ``calibrate``'s) or ``"both"`` (the weighted sum of the two log-criteria,
     /// ``weight`` the calibration's, default 0.5); ``ValueError`` naming a calibration option given
     /// for the stiffness alone, or ``weight`` without ``"both"``.
+    /// ``stations``: for a robot with external axes (a track), where the arm stands for the
+    /// whole group, a list of stations, each one value per axis in the cell's order (mm, deg);
+    /// the group is designed at each and the best kept (the document's ``station`` and
+    /// ``stations``). ``ValueError`` without them on such a robot, or with them on another.
     /// Deterministic for a ``seed``. Returns the document of ``stiffid select --json`` (docs/schemas/select.schema.json) as a dict: ``search``,
     /// ``criterion``, ``postures_deg`` (an array of shape ``(n, 6)``), ``value``,
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None))]
+    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None, stations=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
@@ -383,6 +387,7 @@ impl Setup {
         geometry: Option<&str>,
         gravity: Option<&str>,
         weight: Option<f64>,
+        stations: Option<Vec<Vec<f64>>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         use crate::count::optional;
         let start = start.map(|s| self.group(s, "start")).transpose()?;
@@ -411,6 +416,7 @@ impl Setup {
             distinct,
             distinct_deg,
             distinct_mm,
+            stations: stations.unwrap_or_default(),
             purpose: design::For {
                 purpose,
                 calibration_criterion,

@@ -481,6 +481,8 @@ impl Error {
 /// matching names as strings.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum JobOption {
+    /// select: the stations (external axis values) of a robot with external axes.
+    Station,
     /// compensate: the free tool axis' largest change between consecutive points, deg.
     MaxStepDeg,
     /// compensate: how far the free tool axis may turn from the path's rotation, deg.
@@ -557,6 +559,7 @@ impl JobOption {
     /// The option's name as the library and Python spell it (`max_step_deg`).
     pub fn name(self) -> &'static str {
         match self {
+            JobOption::Station => "station",
             JobOption::MaxStepDeg => "max_step_deg",
             JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
             JobOption::FreeToolAxisObjective => "free_tool_axis_objective",

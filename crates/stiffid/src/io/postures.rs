@@ -135,6 +135,28 @@ pub fn to_csv(postures: &[Vector6<f64>]) -> String {
     text
 }
 
+/// The CSV text of postures (axis angles, rad) measured with the external axes `axes` at `e`
+/// (SI, the cell's order): [`to_csv`] with one more column per axis, `e1_mm`, `e2_deg`, ...
+/// (mm and deg with 6 decimals), the same values on every row.
+pub fn to_csv_at(
+    postures: &[Vector6<f64>],
+    axes: &crate::robot::ExternalAxes,
+    e: &crate::robot::external::ExternalValues,
+) -> String {
+    let values: Vec<String> = (axes.to_display(e.as_slice()).iter())
+        .map(|v| format!("{v:.6}"))
+        .collect();
+    let mut lines = to_csv(postures)
+        .lines()
+        .map(str::to_string)
+        .collect::<Vec<_>>();
+    lines[0] += &format!(",{}", axes.column_names().join(","));
+    for line in &mut lines[1..] {
+        *line += &format!(",{}", values.join(","));
+    }
+    lines.join("\n") + "\n"
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

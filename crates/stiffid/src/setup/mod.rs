@@ -432,6 +432,29 @@ impl Setup {
         }
     }
 
+    /// The setup with the arm standing at the external axis values `e` (SI, the cell's order,
+    /// [`crate::robot::external`]): the robot's base moved by the carrier's pose, `C(e) * base`,
+    /// and its external axes dropped, everything else (the cell, the tracker, the rope's anchor,
+    /// the model) where it was. A design or a simulation of this setup is one of the arm at that
+    /// station in the fixed cell; its postures are measured with the external axes at `e`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`station`) when the robot has no external axes, or as
+    /// [`crate::robot::external::ExternalAxes::check`] for values of another count or outside
+    /// their travel.
+    pub fn at_station(&self, e: &[f64]) -> crate::Result<Setup> {
+        let Some(axes) = self.robot().external() else {
+            return Err(crate::Error::InvalidField {
+                field: "station".into(),
+                message: "the robot has no external axes".into(),
+            });
+        };
+        axes.check(e, "station")?;
+        let base = axes.carrier_pose(e) * self.robot().base();
+        let robot = (self.robot().clone().with_external(None)).with_base(base)?;
+        self.to_builder().with_robot(robot).build()
+    }
+
     /// The rope-mass wrench on the loading point of a posture, base frame.
     pub fn rope_wrench(&self, frames: &Frames) -> Vector6<f64> {
         self.load()

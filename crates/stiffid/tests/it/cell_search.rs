@@ -206,6 +206,7 @@ fn a_design_keeps_its_margin_where_one_without_hugs_a_line_of_sight() {
             distinct: None,
             for_candidates: false,
             candidates: None,
+            stations: Vec::new(),
             progress: &(),
         })
         .unwrap()

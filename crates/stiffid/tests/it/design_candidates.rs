@@ -194,6 +194,7 @@ fn global<'a>(setup: &'a Setup, n: usize, for_candidates: bool) -> select::Reque
         distinct: None,
         for_candidates,
         candidates: None,
+        stations: Vec::new(),
         progress: &(),
     }
 }

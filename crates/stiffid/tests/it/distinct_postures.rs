@@ -70,6 +70,7 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
             distinct,
             for_candidates: false,
             candidates: None,
+            stations: Vec::new(),
             progress: &(),
         })
     };

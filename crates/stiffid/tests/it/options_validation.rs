@@ -401,6 +401,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         distinct: None,
         for_candidates: false,
         candidates: None,
+        stations: Vec::new(),
         progress: &(),
     };
     let weight = CalibrationOptions {

@@ -176,3 +176,73 @@ fn measurements_with_the_track_are_read_and_checked() {
     let e = Observations::from_measurements(paper.arm(), &file.measurements).unwrap_err();
     assert!(e.to_string().contains("no external axes"), "{e}");
 }
+
+/// A select request on `setup`: a global search of 6 postures (6 starts, seed 1) at `stations`.
+fn at(setup: &Setup, stations: Vec<ExternalValues>) -> stiffid::app::select::Request<'_> {
+    stiffid::app::select::Request {
+        setup,
+        criterion: stiffid::design::Criterion::RelativeA,
+        purpose: Default::default(),
+        calibration: Default::default(),
+        method: stiffid::app::select::Method::Global,
+        start: None,
+        pool: None,
+        postures: 6,
+        target_pct: None,
+        options: stiffid::design::SearchOptions {
+            starts: 6,
+            ..Default::default()
+        },
+        restarts: None,
+        distinct: None,
+        for_candidates: false,
+        candidates: None,
+        stations,
+        progress: &(),
+    }
+}
+
+#[test]
+fn a_design_on_a_track_keeps_the_best_station() {
+    let (setup, _) = on_track();
+    let q = Vector6::new(0.3, -0.4, -1.6, 0.5, 0.7, -0.2);
+    let moved = setup.at_station(&[4.0]).unwrap();
+    assert!(moved.robot().external().is_none());
+    assert_eq!(
+        moved.robot().frames(&q),
+        setup.robot().frames_at(&q, &[4.0])
+    );
+
+    let stations: Vec<ExternalValues> = [0.5, 3.0, 5.5]
+        .iter()
+        .map(|s| ExternalValues::new(&[*s]).unwrap())
+        .collect();
+    let report = stiffid::app::select::run(&at(&setup, stations.clone())).unwrap();
+    let values: Vec<f64> = report.stations.iter().map(|s| s.value).collect();
+    let best = (0..3)
+        .min_by(|&a, &b| values[a].total_cmp(&values[b]))
+        .unwrap();
+    assert_eq!(report.station, Some(stations[best]));
+    assert_eq!(report.value, values[best]);
+    // The rope's anchor stays in the cell: the load, and so the best group, differ by station.
+    assert!(
+        values.iter().any(|v| (v / values[best] - 1.0).abs() > 1e-3),
+        "{values:?}"
+    );
+    // The station's group is the design of the arm standing there.
+    let there = setup.at_station(stations[best].as_slice()).unwrap();
+    let alone = stiffid::app::select::run(&at(&there, Vec::new())).unwrap();
+    assert_eq!(alone.postures, report.postures);
+
+    let refused = |stations, setup| {
+        stiffid::app::select::run(&at(setup, stations))
+            .unwrap_err()
+            .to_string()
+    };
+    assert!(refused(Vec::new(), &setup).contains("give 1 to 100 stations"));
+    let outside = vec![ExternalValues::new(&[6.5]).unwrap()];
+    let e = refused(outside, &setup);
+    assert!(e.contains("e1_mm (track)") && e.contains("6500"), "{e}");
+    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    assert!(refused(stations, &paper).contains("no external axes"));
+}

@@ -119,6 +119,12 @@ pub struct Args {
     /// `declared`, or single candidates); default all of them.
     #[arg(long, value_delimiter = ',')]
     candidates: Option<Vec<String>>,
+    /// For a robot with external axes (a track): where the arm stands for the whole group, one
+    /// value per axis in the cell's order (mm for a linear axis, deg for a rotary one,
+    /// comma-separated: `--station 2500`); repeat it to try several stations (1 to 100): the
+    /// group is designed at each and the best kept. --out gets the external axis columns.
+    #[arg(long)]
+    station: Vec<String>,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
     #[arg(long)]
     out: PathBuf,
@@ -176,11 +182,16 @@ pub fn run(args: &Args) -> Result<()> {
         distinct: args.distinct.then(|| distinctness(args)).transpose()?,
         for_candidates: args.for_candidates,
         candidates: args.candidates.clone(),
+        stations: stations(&args.station, &setup)?,
         progress: &bars,
     };
     let report = job::run(&request)?;
     output::warnings(&report.warnings);
-    out.write(postures::to_csv(&report.postures).as_bytes())?;
+    let csv = match (setup.robot().external(), &report.station) {
+        (Some(axes), Some(e)) => postures::to_csv_at(&report.postures, axes, e),
+        _ => postures::to_csv(&report.postures),
+    };
+    out.write(csv.as_bytes())?;
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;
     }
@@ -437,4 +448,39 @@ fn termination_text(
         s += &format!(" (the {} starts: {})", all.len(), counts.join(", "));
     }
     s
+}
+
+/// The `--station` values (mm, deg, the cell's order) in SI.
+fn stations(
+    given: &[String],
+    setup: &stiffid::Setup,
+) -> Result<Vec<stiffid::robot::external::ExternalValues>> {
+    let Some(axes) = setup.robot().external() else {
+        if !given.is_empty() {
+            bail!("--station: the robot has no external axes: give no station");
+        }
+        return Ok(Vec::new());
+    };
+    given
+        .iter()
+        .map(|text| {
+            let values: Vec<f64> = text
+                .split(',')
+                .map(|v| v.trim().parse::<f64>())
+                .collect::<std::result::Result<_, _>>()
+                .ok()
+                .filter(|v: &Vec<f64>| v.len() == axes.len())
+                .ok_or_else(|| {
+                    anyhow::anyhow!(
+                        "--station: '{}': expected {} comma-separated numbers ({})",
+                        stiffid::common::limits::short(text),
+                        axes.len(),
+                        axes.column_names().join(", ")
+                    )
+                })?;
+            Ok(stiffid::robot::external::ExternalValues::new(
+                &axes.to_si(&values),
+            )?)
+        })
+        .collect()
 }

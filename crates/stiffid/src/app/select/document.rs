@@ -58,6 +58,14 @@ pub struct Document {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(feature = "schema", schemars(schema_with = "schema::termination"))]
     pub termination: Option<&'static str>,
+    /// With external axes (a track): where the arm stands for the group, one value per axis
+    /// named as the data files' columns (`e1_mm`, `e2_deg`, ...); absent without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub station: Option<std::collections::BTreeMap<String, f64>>,
+    /// With external axes: every station tried, in the request's order, with its group's value
+    /// (`null` if infinite); the group is the smallest's.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stations: Vec<StationDoc>,
     /// How many local searches (the global search's starts; one for a local search) stopped for
     /// each reason, every reason listed; absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -246,6 +254,13 @@ impl Document {
             evaluations: r.evaluations,
             elapsed_s: r.elapsed_s,
             termination: r.termination.map(Termination::name),
+            station: (r.station.as_ref()).map(|e| station(setup, e)),
+            stations: (r.stations.iter())
+                .map(|s| StationDoc {
+                    external: station(setup, &s.e),
+                    value: finite(s.value),
+                })
+                .collect(),
             terminations: r.termination.map(|_| counts(&r.terminations)),
             postures_deg: degrees(&r.postures),
             margin_mm: mm(r.margin),
@@ -265,6 +280,30 @@ impl Document {
             report: None,
         }
     }
+}
+
+/// One station tried ([`crate::app::select::Station`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct StationDoc {
+    /// The external axis values, `e1_mm`, `e2_deg`, ...
+    #[serde(flatten)]
+    pub external: std::collections::BTreeMap<String, f64>,
+    /// Its group's value minimised (`null` if infinite).
+    pub value: Option<f64>,
+}
+
+/// External axis values (SI) by their columns' names, in mm and deg.
+fn station(
+    setup: &Setup,
+    e: &crate::robot::external::ExternalValues,
+) -> std::collections::BTreeMap<String, f64> {
+    let Some(axes) = setup.robot().external() else {
+        return Default::default();
+    };
+    (axes.column_names().into_iter())
+        .zip(axes.to_display(e.as_slice()))
+        .collect()
 }
 
 /// How many of `terminations` are of each reason, every reason listed.

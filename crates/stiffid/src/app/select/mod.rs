@@ -7,6 +7,9 @@ mod check;
 mod choose;
 pub mod document;
 mod pool;
+mod station;
+
+pub use station::{Station, MAX_STATIONS};
 
 use check::check;
 use choose::{choose, smallest, unconstrained, Found};
@@ -124,6 +127,11 @@ pub struct Request<'a> {
     /// With `for_candidates`: the candidates, as `identify --compare-models --candidates` names
     /// them (families or single candidates); `None` for the default pool.
     pub candidates: Option<Vec<String>>,
+    /// For a robot with external axes (a track, [`crate::robot::external`]): where the arm
+    /// stands for the whole group, each station one value per axis (SI, the cell's order); with
+    /// several, the group is designed at each and the best kept ([`station`]). Empty for a
+    /// robot without external axes; 1 to [`MAX_STATIONS`] with them.
+    pub stations: Vec<crate::robot::external::ExternalValues>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
     /// (`global search (relative-a)` with its starts as the total; a local search and the choice
     /// from a pool with total 0).
@@ -196,6 +204,10 @@ pub struct Report {
     pub candidates: Option<CandidatesReport>,
     /// The job's warnings: one per pair of `near`.
     pub warnings: Vec<Warning>,
+    /// With external axes: the station of the group (its postures are measured there).
+    pub station: Option<crate::robot::external::ExternalValues>,
+    /// With external axes: every station tried and its group's value, in the request's order.
+    pub stations: Vec<Station>,
 }
 
 /// A design for the candidates ([`Request::for_candidates`]).
@@ -278,6 +290,14 @@ pub struct Unconstrained {
 /// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
+    match request.setup.robot().external().is_some() || !request.stations.is_empty() {
+        true => station::at_stations(request, run_here),
+        false => run_here(request),
+    }
+}
+
+/// [`run`] on the request's setup as it stands.
+fn run_here(request: &Request) -> Result<Report> {
     if !request.for_candidates {
         return run_on(request);
     }
@@ -395,6 +415,8 @@ fn run_on(request: &Request) -> Result<Report> {
         target,
         unconstrained,
         warnings: near.iter().map(Near::warning).collect(),
+        station: None,
+        stations: Vec::new(),
         near,
         margin: design_margin(request.setup, request.options.margin),
         min_margins: min_margins(request.setup, request.options.margin, &found.postures),
