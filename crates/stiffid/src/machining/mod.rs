@@ -90,22 +90,23 @@ impl Language {
             .unwrap_or("");
         Self::from_extension(extension).ok_or_else(|| Error::InvalidField {
             field: name.into(),
-            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS)".into(),
+            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS), .jbi (Yaskawa INFORM)".into(),
         })
     }
 
-    /// The language's name in documents: `gcode`, `krl`, `rapid` or `ls`.
+    /// The language's name in documents: `gcode`, `krl`, `rapid`, `ls` or `inform`.
     pub fn name(self) -> &'static str {
         match self {
             Language::GCode => "gcode",
             Language::Robot(Dialect::Krl) => "krl",
             Language::Robot(Dialect::Rapid) => "rapid",
             Language::Robot(Dialect::FanucLs) => "ls",
+            Language::Robot(Dialect::Inform) => "inform",
         }
     }
 
     /// The extension of a file written in the language where no file name says it (Python's
-    /// `output=`): `nc`, `src`, `mod` or `ls`; [`Language::from_extension`] of it is the
+    /// `output=`): `nc`, `src`, `mod`, `ls` or `jbi`; [`Language::from_extension`] of it is the
     /// language.
     pub fn extension(self) -> &'static str {
         match self {
@@ -113,6 +114,7 @@ impl Language {
             Language::Robot(Dialect::Krl) => "src",
             Language::Robot(Dialect::Rapid) => "mod",
             Language::Robot(Dialect::FanucLs) => "ls",
+            Language::Robot(Dialect::Inform) => "jbi",
         }
     }
 
@@ -150,6 +152,7 @@ impl crate::common::choice::Choice for Language {
         Language::Robot(Dialect::Krl),
         Language::Robot(Dialect::Rapid),
         Language::Robot(Dialect::FanucLs),
+        Language::Robot(Dialect::Inform),
     ];
 
     fn name(self) -> &'static str {
@@ -162,6 +165,7 @@ impl crate::common::choice::Choice for Language {
             Language::Robot(Dialect::Krl) => "KUKA KRL",
             Language::Robot(Dialect::Rapid) => "ABB RAPID",
             Language::Robot(Dialect::FanucLs) => "FANUC LS",
+            Language::Robot(Dialect::Inform) => "Yaskawa INFORM",
         }
     }
 }

@@ -393,7 +393,7 @@ fn written_name(
         Program::Robot(_) if stem.is_empty() || dialect == Dialect::Rapid => Ok(None),
         Program::Robot(_) => {
             let name = match dialect {
-                Dialect::FanucLs => stem.to_ascii_uppercase(),
+                Dialect::FanucLs | Dialect::Inform => stem.to_ascii_uppercase(),
                 _ => stem.to_string(),
             };
             let longest = (settings.name_length).unwrap_or(generate::max_name_length(dialect));

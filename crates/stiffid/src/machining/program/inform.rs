@@ -32,7 +32,7 @@
 //!   differs from `///NPOS`, pulses that are not whole numbers, a pulse position without the
 //!   `stiffid:` comment that converts it, and a group's positions in two forms.
 
-use super::{at, number_at, six, JointTarget, Read};
+use super::{at, number_at, six, Read};
 use crate::common::limits::short;
 use crate::Result;
 use std::collections::HashMap;
