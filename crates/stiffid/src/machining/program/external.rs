@@ -73,7 +73,11 @@ fn target_values(
     };
     let mut out = Vec::with_capacity(n);
     for (k, axis) in cell.axes().iter().enumerate() {
-        let named = program.axes.get(k).cloned().unwrap_or_else(|| unnamed(program.dialect, k));
+        let named = program
+            .axes
+            .get(k)
+            .cloned()
+            .unwrap_or_else(|| unnamed(program.dialect, k));
         let display = t.external.get(k).copied().flatten().ok_or_else(|| Error::Program {
             line: t.line,
             message: format!(
@@ -120,7 +124,11 @@ fn unnamed(dialect: Dialect, k: usize) -> String {
 /// Each target's external values in the program's order (mm or deg) from the cell's SI values
 /// `e` (as [`cell_values`] returned them, or changed), for [`JointProgram::write_with_external`]:
 /// the axes past the cell's as read.
-pub fn program_values(program: &JointProgram, e: &[Vec<f64>], cell: Option<&ExternalAxes>) -> Vec<Vec<Option<f64>>> {
+pub fn program_values(
+    program: &JointProgram,
+    e: &[Vec<f64>],
+    cell: Option<&ExternalAxes>,
+) -> Vec<Vec<Option<f64>>> {
     program
         .targets
         .iter()

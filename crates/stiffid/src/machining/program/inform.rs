@@ -104,7 +104,15 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
             .collect();
         of.sort_by_key(|p| p.line);
         match of.iter().find(|p| p.form != of[0].form) {
-            Some(p) => Err(at(p.line, format!("{} positions in two forms (lines {} and {}); stiffid reads one form per group", kind.prefix(), of[0].line, p.line))),
+            Some(p) => Err(at(
+                p.line,
+                format!(
+                    "{} positions in two forms (lines {} and {}); stiffid reads one form per group",
+                    kind.prefix(),
+                    of[0].line,
+                    p.line
+                ),
+            )),
             None => Ok(of.first().map(|p| p.form)),
         }
     };
@@ -125,7 +133,16 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
             .flat_map(|(_, r)| r);
         for k in external_pulse {
             let (line, r) = directives.external.as_ref().ok_or_else(|| at(first, format!("the base or station positions are in pulses and the job does not say how many make a mm or a degree: add the comment line 'stiffid: external_pulses = .. to //INST ({} numbers: base axes, then station axes)", nb + ne)))?;
-            let r = r.get(k).ok_or_else(|| at(*line, format!("'stiffid: external_pulses gives {} numbers for {} base and station axes", r.len(), nb + ne)))?;
+            let r = r.get(k).ok_or_else(|| {
+                at(
+                    *line,
+                    format!(
+                        "'stiffid: external_pulses gives {} numbers for {} base and station axes",
+                        r.len(),
+                        nb + ne
+                    ),
+                )
+            })?;
             pulses[6 + k] = Some(*r);
         }
     }
@@ -133,7 +150,14 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
     for m in &motions {
         let get = |kind: Kind, index: u64| {
             positions.get(&(kind, index)).ok_or_else(|| {
-                at(m.line, format!("{} {}{index:05}: no such position in //POS", m.word, kind.prefix()))
+                at(
+                    m.line,
+                    format!(
+                        "{} {}{index:05}: no such position in //POS",
+                        m.word,
+                        kind.prefix()
+                    ),
+                )
             })
         };
         let robot = get(Kind::Robot, m.robot)?;
@@ -141,7 +165,14 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
             return Err(at(m.line, format!("{} C{:05}: a Cartesian position (line {}); stiffid compensates positions in pulses: teach or post the job in pulses (///POSTYPE PULSE)", m.word, m.robot, robot.line)));
         }
         if robot.values.len() != 6 {
-            return Err(at(robot.line, format!("C{:05}: expected 6 axis values, found {}", m.robot, robot.values.len())));
+            return Err(at(
+                robot.line,
+                format!(
+                    "C{:05}: expected 6 axis values, found {}",
+                    m.robot,
+                    robot.values.len()
+                ),
+            ));
         }
         let mut found: super::Found = Default::default();
         for (k, (v, span)) in robot.values.iter().enumerate() {
@@ -155,7 +186,8 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
                 return Err(at(m.line, format!("{} {}{index:05}: a position in Cartesian form (line {}); stiffid reads base and station axes in pulses or ANGLE", m.word, kind.prefix(), p.line)));
             }
             for (k, (v, span)) in p.values.iter().enumerate() {
-                external[offset + k] = Some((v / pulses[6 + offset + k].unwrap_or(1.0), span.clone()));
+                external[offset + k] =
+                    Some((v / pulses[6 + offset + k].unwrap_or(1.0), span.clone()));
             }
         }
         let mut target = six(m.line, found, "C")?.with_external(external);
@@ -194,7 +226,9 @@ fn positions(text: &str) -> Result<(HashMap<(Kind, u64), Position>, Option<(u64,
                         .split(',')
                         .map(|n| n.trim().parse::<usize>())
                         .collect::<std::result::Result<Vec<_>, _>>()
-                        .map_err(|_| at(line, "///NPOS: expected six counts C,BC,EC,P,BP,EX".into()))?;
+                        .map_err(|_| {
+                            at(line, "///NPOS: expected six counts C,BC,EC,P,BP,EX".into())
+                        })?;
                     npos = Some((line, counts));
                 }
                 _ => {}
@@ -215,24 +249,43 @@ fn positions(text: &str) -> Result<(HashMap<(Kind, u64), Position>, Option<(u64,
         let index: u64 = digits
             .parse()
             .map_err(|_| at(line, format!("{}: expected a position number", short(name))))?;
-        let form = form.ok_or_else(|| at(line, format!("{name}: a position before its form (///PULSE, ///ANGLE or ///RECTAN)")))?;
+        let form = form.ok_or_else(|| {
+            at(
+                line,
+                format!("{name}: a position before its form (///PULSE, ///ANGLE or ///RECTAN)"),
+            )
+        })?;
         let mut values = Vec::new();
         let mut from = l.find('=').map_or(l.len(), |e| e + 1);
         loop {
             let (v, span) = number_at(l, from)
                 .ok_or_else(|| at(line, format!("{name}: expected numbers separated by ','")))?;
             if form == Form::Pulse && l[span.clone()].contains(['.', 'e', 'E']) {
-                return Err(at(line, format!("{name}: {} is not a whole number of pulses", &l[span.clone()])));
+                return Err(at(
+                    line,
+                    format!(
+                        "{name}: {} is not a whole number of pulses",
+                        &l[span.clone()]
+                    ),
+                ));
             }
             values.push((v, start + span.start..start + span.end));
             let rest = l[span.end..].trim_start();
             match rest.strip_prefix(',') {
                 Some(_) => from = l.len() - rest.len() + 1,
                 None if rest.is_empty() => break,
-                None => return Err(at(line, format!("{name}: '{}' after its values", short(rest)))),
+                None => {
+                    return Err(at(
+                        line,
+                        format!("{name}: '{}' after its values", short(rest)),
+                    ))
+                }
             }
         }
-        if out.insert((kind, index), Position { line, form, values }).is_some() {
+        if out
+            .insert((kind, index), Position { line, form, values })
+            .is_some()
+        {
             return Err(at(line, format!("{name} defined twice in //POS")));
         }
     }
@@ -280,7 +333,15 @@ fn instructions(text: &str) -> Result<(Directives, Vec<Motion>)> {
         if (first.starts_with('*')
             || matches!(
                 first.as_str(),
-                "JUMP" | "CALL" | "IF" | "IFTHEN" | "IFTHENEXP" | "FOR" | "WHILE" | "WHILEEXP" | "SWITCH"
+                "JUMP"
+                    | "CALL"
+                    | "IF"
+                    | "IFTHEN"
+                    | "IFTHENEXP"
+                    | "FOR"
+                    | "WHILE"
+                    | "WHILEEXP"
+                    | "SWITCH"
             ))
             && control.is_none()
         {
@@ -361,14 +422,39 @@ fn directive(line: u64, comment: &str, directives: &mut Directives) -> Result<()
         .map(str::parse)
         .collect::<std::result::Result<_, _>>()
         .map_err(|_| at(line, format!("'stiffid: {}: expected numbers", key.trim())))?;
-    if numbers.iter().any(|n: &f64| !(n.is_finite() && *n != 0.0 && n.abs() <= 1e9)) {
-        return Err(at(line, format!("'stiffid: {}: expected pulses per unit, non-zero and at most 1e9 in size", key.trim())));
+    if numbers
+        .iter()
+        .any(|n: &f64| !(n.is_finite() && *n != 0.0 && n.abs() <= 1e9))
+    {
+        return Err(at(
+            line,
+            format!(
+                "'stiffid: {}: expected pulses per unit, non-zero and at most 1e9 in size",
+                key.trim()
+            ),
+        ));
     }
     match key.trim() {
         "pulses_per_deg" if numbers.len() == 6 => directives.robot = Some((line, numbers)),
-        "pulses_per_deg" => return Err(at(line, format!("'stiffid: pulses_per_deg: expected 6 numbers (S L U R B T), found {}", numbers.len()))),
+        "pulses_per_deg" => {
+            return Err(at(
+                line,
+                format!(
+                    "'stiffid: pulses_per_deg: expected 6 numbers (S L U R B T), found {}",
+                    numbers.len()
+                ),
+            ))
+        }
         "external_pulses" => directives.external = Some((line, numbers)),
-        other => return Err(at(line, format!("'stiffid: unknown '{}' (expected pulses_per_deg or external_pulses)", short(other)))),
+        other => {
+            return Err(at(
+                line,
+                format!(
+                    "'stiffid: unknown '{}' (expected pulses_per_deg or external_pulses)",
+                    short(other)
+                ),
+            ))
+        }
     }
     Ok(())
 }

@@ -221,7 +221,11 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
             let (offset, item) = piece;
             let item_t = item.trim();
             if let Some(g) = item_t.strip_prefix("GP") {
-                o.group = g.trim_start().bytes().next().map_or(0, |d| d.wrapping_sub(b'0'));
+                o.group = g
+                    .trim_start()
+                    .bytes()
+                    .next()
+                    .map_or(0, |d| d.wrapping_sub(b'0'));
                 if !(1..=2).contains(&o.group) {
                     return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", crate::common::limits::short(item_t.trim_end_matches(':')))));
                 }
@@ -236,7 +240,10 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
             let Some(eq) = item.find('=') else { continue };
             let name = item[..eq].trim();
             let name = name.rsplit(':').next().unwrap_or(name).trim();
-            let number = |prefix: char| name.strip_prefix(prefix).and_then(|d| d.parse::<usize>().ok());
+            let number = |prefix: char| {
+                name.strip_prefix(prefix)
+                    .and_then(|d| d.parse::<usize>().ok())
+            };
             let (values, k) = match (o.group, number('J'), number('E')) {
                 (1, Some(k @ 1..=6), _) => {
                     let (v, span) = value(l, offset + eq + 1, line, name, &["deg"])?;
@@ -268,7 +275,10 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
     for mut o in read {
         o.extended.resize(n1, None);
         o.extended.append(&mut o.second);
-        out.insert(o.index, six(o.first, o.found, "J")?.with_external(o.extended));
+        out.insert(
+            o.index,
+            six(o.first, o.found, "J")?.with_external(o.extended),
+        );
     }
     let axes = (1..=n1).map(|k| format!("E{k}"));
     let axes = axes.chain((1..=n2).map(|k| format!("GP2 J{k}")));
@@ -287,7 +297,10 @@ fn value(
         number_at(l, from).ok_or_else(|| at(line, format!("{name}: expected a number")))?;
     let unit = l[span.end..].trim_start();
     if !units.iter().any(|u| unit.starts_with(u)) {
-        return Err(at(line, format!("{name}: expected a value in {}", units.join(" or "))));
+        return Err(at(
+            line,
+            format!("{name}: expected a value in {}", units.join(" or ")),
+        ));
     }
     Ok((v, span))
 }

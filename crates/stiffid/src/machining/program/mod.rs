@@ -228,12 +228,11 @@ impl JointProgram {
         }
         let shaped = |(t, e): (&JointTarget, &Vec<Option<f64>>)| {
             e.len() == t.external.len()
-                && e.iter().zip(&t.external).all(|(a, b)| {
-                    a.is_some() == b.is_some() && a.is_none_or(|v| v.is_finite())
-                })
+                && e.iter()
+                    .zip(&t.external)
+                    .all(|(a, b)| a.is_some() == b.is_some() && a.is_none_or(|v| v.is_finite()))
         };
-        if external.len() != self.targets.len() || !self.targets.iter().zip(external).all(shaped)
-        {
+        if external.len() != self.targets.len() || !self.targets.iter().zip(external).all(shaped) {
             return Err(Error::InvalidField {
                 field: "external".into(),
                 message: format!(

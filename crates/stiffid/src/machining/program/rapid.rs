@@ -293,7 +293,8 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
     let mut external = Vec::with_capacity(6);
     for k in 0..6 {
         let name = format!("eax_{}", (b'a' + k as u8) as char);
-        let (v, span) = number_at(code, from).ok_or_else(|| bad(&format!("{name} is not a number")))?;
+        let (v, span) =
+            number_at(code, from).ok_or_else(|| bad(&format!("{name} is not a number")))?;
         let rest = code[span.end..].trim_start();
         let sep = if k < 5 { ',' } else { ']' };
         if !rest.starts_with(sep) {
