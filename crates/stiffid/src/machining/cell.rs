@@ -87,7 +87,7 @@ pub fn gcode_values(g: &GCode, cell: Option<&ExternalAxes>) -> Result<Option<Vec
     let axes = match (cell, letters.is_empty()) {
         (None, true) => return Ok(None),
         (None, false) => return Err(Error::Program { line: header, message: format!("external = {}: the program drives external axes and the robot has none", letters.iter().collect::<String>()) }),
-        (Some(c), true) => return Err(Error::Program { line: g.points.first().map_or(1, |p| p.line), message: format!("the cell has external axes ({}) and the program gives none of their values: map them to letters in a header comment, e.g. (stiffid: external = {})", names(c), c.axes().iter().zip(["U", "V", "W"].iter().cycle()).zip(["C", "B"].iter().cycle()).map(|((a, l), r)| match a.kind { AxisKind::Linear => *l, AxisKind::Rotary => *r }).collect::<Vec<_>>().join(" ")) }),
+        (Some(c), true) => return Err(Error::Program { line: g.points.first().map_or(1, |p| p.line), message: format!("the cell has external axes ({}) and the program gives none of their values: map them to letters in a header comment, e.g. (stiffid: external = {})", names(c), example_letters(c)) }),
         (Some(c), false) => c,
     };
     if letters.len() != axes.len() {
@@ -114,6 +114,20 @@ pub fn gcode_values(g: &GCode, cell: Option<&ExternalAxes>) -> Result<Option<Vec
         })
         .collect::<Result<Vec<_>>>()
         .map(Some)
+}
+
+/// Letters for the cell's axes in order: `U V W` for the linear ones, `C B A` for the rotary.
+fn example_letters(c: &ExternalAxes) -> String {
+    let (mut linear, mut rotary) = (["U", "V", "W"].iter(), ["C", "B", "A"].iter());
+    let letters: Vec<&str> = c
+        .axes()
+        .iter()
+        .filter_map(|a| match a.kind {
+            AxisKind::Linear => linear.next().copied(),
+            AxisKind::Rotary => rotary.next().copied(),
+        })
+        .collect();
+    letters.join(" ")
 }
 
 /// The cell's axes as messages name them.

@@ -8,8 +8,10 @@ use stiffid::machining::compensate::{self, Model, Options};
 use stiffid::machining::process::file;
 use stiffid::machining::program::{self, external::cell_values, Dialect};
 use stiffid::machining::{self, Language};
+use stiffid::machining::{cell, gcode};
 use stiffid::robot::external::{ExternalAxes, ExternalAxis};
 use stiffid::robot::ik;
+use stiffid::robot::ik::tool_pose;
 use stiffid::{setup, Error};
 
 const KRL: &str = "DEF track( )\nPTP {A1 10, A2 -80, A3 95, A4 0, A5 30, A6 -5, E1 1500.5, E2 0, E3 0, E4 0, E5 0, E6 0}\nDECL E6AXIS XP2={A1 11,A2 -79,A3 94,A4 0,A5 31,A6 -5,E1 1600,E2 45.25}\nLIN XP2 C_DIS\nEND\n";
@@ -293,7 +295,7 @@ fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
         (
             INFORM.replace("MOVJ C00000 BC00000", "MOVJ C00000 BC00007"),
             Dialect::Inform,
-            24,
+            23,
             "BC00007: no such position",
         ),
         (
@@ -412,4 +414,177 @@ fn a_program_that_moves_the_track_is_compensated_with_the_track_where_it_says() 
         }
         other => panic!("{other:?}"),
     }
+}
+
+const GCODE: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n(stiffid: external = U C)\nG0 X0 Y0 Z5 U0 C0\nG1 Z0 F600\nG1 X40 U20 C5\nG1 Y30 C10\n";
+
+/// A track along x and a turntable about z through (1330, -680) mm, next to the part's origin.
+fn gcode_cell() -> ExternalAxes {
+    let turn = 360f64.to_radians();
+    ExternalAxes::new(vec![
+        ExternalAxis::linear("track", x(), 0.0, 6.0),
+        ExternalAxis::rotary(
+            "table",
+            Vector3::new(1.33, -0.68, 0.0),
+            Vector3::z_axis(),
+            -turn,
+            turn,
+        ),
+    ])
+    .unwrap()
+}
+
+/// G-code's `U` and `C` drive the track and the table (the header's table); the tool is sent on
+/// its carriage to the part's point where the table turned it, the loaded tool lands on the
+/// programmed point of the part to 0.1 micrometre, and the program is written back in the part's
+/// frame with its `U` and `C` words as read.
+#[test]
+fn gcode_drives_the_cells_axes_by_its_header_table() {
+    let g = gcode::parse(GCODE, 1e-5).unwrap();
+    assert_eq!(g.external, (vec!['U', 'C'], 2));
+    let e: Vec<Vec<f64>> = g.points.iter().map(|p| p.external.clone()).collect();
+    assert_eq!(
+        e,
+        vec![
+            vec![0.0, 0.0],
+            vec![0.0, 0.0],
+            vec![20.0, 5.0],
+            vec![20.0, 10.0]
+        ]
+    );
+    // Inches and increments: U in inches under G20, added under G91; C in deg either way.
+    let inch = gcode::parse(&format!("{GCODE}G20 G91 G1 U1 C-2 F10\n"), 1e-5).unwrap();
+    let last = &inch.points.last().unwrap().external;
+    assert!((last[0] - 45.4).abs() < 1e-12 && last[1] == 8.0, "{last:?}");
+
+    let part = Isometry3::translation(1.3, -0.7, 0.4);
+    let base = setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let robot = base.robot().clone().with_external(Some(gcode_cell()));
+    let s = base
+        .to_builder()
+        .with_robot(robot)
+        .with_workpiece(part)
+        .build()
+        .unwrap();
+    let compliance = s.model_compliance("test").unwrap();
+    let process = file::parse(PROCESS, "p.toml").unwrap();
+    let program = machining::read(GCODE, Language::GCode, 1e-5).unwrap();
+    let options = Options::for_setup(&s);
+    let report = machining::compensate(
+        s.arm(),
+        s.workpiece(),
+        &compliance,
+        &program,
+        &process,
+        &options,
+    )
+    .unwrap();
+    let model = Model::new(s.arm(), &compliance).unwrap();
+    let cell = gcode_cell();
+    let again = gcode::parse(&report.program, 1e-5).unwrap();
+    for (((p, r), point), written) in report
+        .points
+        .iter()
+        .zip(&report.results)
+        .zip(&g.points)
+        .zip(&again.points)
+    {
+        let si = cell.to_si(&point.external);
+        // The part's frame from the arm's frame on its carriage.
+        let part_from_arm =
+            part.inverse() * cell.positioner_pose(&si).inverse() * cell.carrier_pose(&si);
+        let loaded = model.loaded_pose(&r.q_compensated, &p.wrench);
+        assert!(
+            (part_from_arm
+                .transform_point(&loaded.translation.vector.into())
+                .coords
+                - point.position)
+                .norm()
+                < 1e-7,
+            "{}",
+            point.line
+        );
+        let sent = tool_pose(&s.robot().frames(&r.q_compensated), &s.tool().tcp);
+        assert!(
+            (part_from_arm
+                .transform_point(&sent.translation.vector.into())
+                .coords
+                - written.position)
+                .norm()
+                < 1e-9
+        );
+        assert_eq!(written.external, point.external);
+        // The nominal pose, in the cell: the part's point where the table turned it.
+        let in_cell = (cell.positioner_pose(&si) * part)
+            .transform_point(&point.position.into())
+            .coords;
+        assert!(
+            (r.pose.translation.vector - in_cell).norm() < 1e-7,
+            "{}",
+            point.line
+        );
+    }
+    assert!(report.program.contains("U20 C5") && report.program.contains("C10"));
+    // The table turned 5 deg between the second and third points: the cut's force turns with the
+    // path over the part, not with the floor.
+    assert!((report.results[2].q_compensated - report.results[2].q).amax() > 1e-6);
+}
+
+#[test]
+fn a_gcode_axis_table_the_cell_does_not_match_is_refused_naming_the_line() {
+    let parse_err = |text: String| match gcode::parse(&text, 1e-5) {
+        Err(Error::Program { line, message }) => (line, message),
+        other => panic!("{other:?}"),
+    };
+    let (line, m) = parse_err(GCODE.replace("external = U C", "external = U X"));
+    assert!(line == 2 && m.contains("'X' is no axis letter"), "{m}");
+    let (line, m) = parse_err(GCODE.replace(
+        "(stiffid: external = U C)",
+        "(stiffid: rotary = abc)\n(stiffid: external = U C)",
+    ));
+    assert!(line == 3 && m.contains("turn the tool"), "{m}");
+    let (line, m) = parse_err(GCODE.replace("G0 X0 Y0 Z5 U0 C0", "G0 X0 Y0 Z5 U0"));
+    assert!(line == 3 && m.contains("C: a motion before"), "{m}");
+    let (line, m) = parse_err(format!("{GCODE}G2 X60 Y50 I20 J0 U30\n"));
+    assert!(line == 7 && m.contains("arc"), "{m}");
+    let g = |text: &str| gcode::parse(text, 1e-5).unwrap();
+    let values = |text: &str, cell: Option<&ExternalAxes>| match cell::gcode_values(&g(text), cell)
+    {
+        Err(Error::Program { line, message }) => (line, message),
+        other => panic!("{other:?}"),
+    };
+    let (line, m) = values(GCODE, None);
+    assert!(line == 2 && m.contains("the robot has none"), "{m}");
+    let (line, m) = values(
+        &GCODE.replace("U C", "C U").replace("U0 C0", "C0 U0"),
+        Some(&gcode_cell()),
+    );
+    assert!(
+        line == 2 && m.contains("C is a rotary letter and drives the cell's linear axis track"),
+        "{m}"
+    );
+    let (line, m) = values(
+        &GCODE
+            .replace("external = U C", "external = U")
+            .replace(" C0", "")
+            .replace(" C5", "")
+            .replace(" C10", ""),
+        Some(&gcode_cell()),
+    );
+    assert!(
+        line == 2 && m.contains("1 letters for the cell's 2 external axes"),
+        "{m}"
+    );
+    let plain = GCODE
+        .replace("(stiffid: external = U C)\n", "")
+        .replace(" U0 C0", "")
+        .replace(" U20 C5", "")
+        .replace(" C10", "");
+    let (line, m) = values(&plain, Some(&gcode_cell()));
+    assert!(line == 2 && m.contains("(stiffid: external = U C)"), "{m}");
+    let (line, m) = values(&GCODE.replace("U20", "U7000"), Some(&gcode_cell()));
+    assert!(
+        line == 5 && m.contains("U 7000 mm") && m.contains("0 to 6000 mm"),
+        "{m}"
+    );
 }

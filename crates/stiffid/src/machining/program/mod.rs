@@ -1,14 +1,20 @@
-//! Robot programs: the joint targets of KUKA KRL, ABB RAPID and FANUC LS programs, read in the
-//! order the controller moves to them and written back with everything else byte for byte.
+//! Robot programs: the joint targets of KUKA KRL, ABB RAPID, FANUC LS and Yaskawa INFORM
+//! programs, read in the order the controller moves to them and written back with everything else
+//! byte for byte.
 //!
 //! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
-//!   a point declared in the same file as `E6AXIS`/`AXIS` (further members such as `E1` are kept
-//!   as they are).
+//!   a point declared in the same file as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`.
 //! - [`rapid`]: `MoveAbsJ` (also `\Conc`) to a literal `[[j1,..,j6],[e1,..,e6]]` or to a
-//!   `jointtarget` declared in the same module (over one line or several).
+//!   `jointtarget` declared in the same module (over one line or several), with its external axes
+//!   `eax_a`..`eax_f` (`9E9`: not used).
 //! - [`ls`]: `J`/`L` motions in `/MN` to `P[i]` positions of `/POS` in joint representation
-//!   (`J1= .. deg` to `J6`); `INC` after a motion that ends `FINE` is resolved (the increment from
-//!   the previous target, written back as the increment between the compensated targets).
+//!   (`J1= .. deg` to `J6`, group 1's extended axes `E1`.. and a second group `GP2`); `INC` after a
+//!   motion that ends `FINE` is resolved (the increment from the previous target, written back as
+//!   the increment between the compensated targets).
+//! - [`inform`]: `MOVJ`/`MOVL` to `C` teaching positions in pulses, with base (`BC`) and station
+//!   (`EC`) positions; the pulses per degree from a `'stiffid:` comment of the job.
+//!
+//! A target's external axes are the cell's in the cell's order ([`external`]).
 //!
 //! Only joint targets are read. A Cartesian target (KRL `E6POS`/`POS`/`FRAME`, RAPID
 //! `MoveL`/`MoveJ`/`MoveC`, LS positions with `X = .. mm`) is refused naming its line: turning it
@@ -28,7 +34,8 @@
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows;
 //! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
-//! six numbers of each target whose value changed (with [`DECIMALS`] decimals) and nothing else;
+//! six numbers of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
+//! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
 pub mod external;
