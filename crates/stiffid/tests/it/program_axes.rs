@@ -53,16 +53,20 @@ fn cell(tilt: bool) -> ExternalAxes {
     ExternalAxes::new(axes).unwrap()
 }
 
+/// A program, its language, its external axes' names, the first two targets' external values
+/// and the first target's axes.
+type Case = (
+    &'static str,
+    Dialect,
+    &'static [&'static str],
+    Vec<Option<f64>>,
+    Vec<Option<f64>>,
+    [f64; 6],
+);
+
 #[test]
 fn every_dialect_reads_its_external_axes_and_writes_back_only_what_changed() {
-    let cases: [(
-        &str,
-        Dialect,
-        &[&str],
-        Vec<Option<f64>>,
-        Vec<Option<f64>>,
-        [f64; 6],
-    ); 4] = [
+    let cases: [Case; 4] = [
         (
             KRL,
             Dialect::Krl,
@@ -387,7 +391,8 @@ fn a_program_that_moves_the_track_is_compensated_with_the_track_where_it_says() 
         let cell_loaded = Isometry3::translation(track, 0.0, 0.0) * loaded;
         assert!((cell_loaded.translation.vector - r.pose.translation.vector).norm() < 1e-7);
         // The fixed-base compensation under the same wrench.
-        let alone = compensate::path(s.arm(), &compliance, &[p.clone()], &options).unwrap();
+        let alone =
+            compensate::path(s.arm(), &compliance, std::slice::from_ref(p), &options).unwrap();
         assert!((alone[0].q_compensated - r.q_compensated).amax() < 1e-12);
         assert!((r.q_compensated - r.q).amax() > 1e-6, "compensated");
     }
