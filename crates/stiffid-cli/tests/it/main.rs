@@ -20,6 +20,7 @@ mod mutate;
 mod optional_fields_cli;
 mod options_proptest;
 mod pool_cli;
+mod program_axes_cli;
 mod readable_files;
 mod refused_options;
 mod register_cli;

@@ -24,10 +24,12 @@
 //!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
 //!    the line.
 //! 5. The program is written back in its own format: robot programs with the compensated axis
-//!    angles and every other byte as read; G-code with the compensated TCP positions in the part
+//!    angles and every other byte as read (their external axes' values too: a robot program's
+//!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
 //!    frame (the nominal position of the compensated posture: where the controller must be sent
 //!    so that the loaded tool lands on the programmed one).
 
+pub mod cell;
 pub mod compensate;
 pub mod dynamics;
 pub mod gcode;
@@ -90,22 +92,23 @@ impl Language {
             .unwrap_or("");
         Self::from_extension(extension).ok_or_else(|| Error::InvalidField {
             field: name.into(),
-            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS)".into(),
+            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS), .jbi (Yaskawa INFORM)".into(),
         })
     }
 
-    /// The language's name in documents: `gcode`, `krl`, `rapid` or `ls`.
+    /// The language's name in documents: `gcode`, `krl`, `rapid`, `ls` or `inform`.
     pub fn name(self) -> &'static str {
         match self {
             Language::GCode => "gcode",
             Language::Robot(Dialect::Krl) => "krl",
             Language::Robot(Dialect::Rapid) => "rapid",
             Language::Robot(Dialect::FanucLs) => "ls",
+            Language::Robot(Dialect::Inform) => "inform",
         }
     }
 
     /// The extension of a file written in the language where no file name says it (Python's
-    /// `output=`): `nc`, `src`, `mod` or `ls`; [`Language::from_extension`] of it is the
+    /// `output=`): `nc`, `src`, `mod`, `ls` or `jbi`; [`Language::from_extension`] of it is the
     /// language.
     pub fn extension(self) -> &'static str {
         match self {
@@ -113,6 +116,7 @@ impl Language {
             Language::Robot(Dialect::Krl) => "src",
             Language::Robot(Dialect::Rapid) => "mod",
             Language::Robot(Dialect::FanucLs) => "ls",
+            Language::Robot(Dialect::Inform) => "jbi",
         }
     }
 
@@ -150,6 +154,7 @@ impl crate::common::choice::Choice for Language {
         Language::Robot(Dialect::Krl),
         Language::Robot(Dialect::Rapid),
         Language::Robot(Dialect::FanucLs),
+        Language::Robot(Dialect::Inform),
     ];
 
     fn name(self) -> &'static str {
@@ -162,6 +167,7 @@ impl crate::common::choice::Choice for Language {
             Language::Robot(Dialect::Krl) => "KUKA KRL",
             Language::Robot(Dialect::Rapid) => "ABB RAPID",
             Language::Robot(Dialect::FanucLs) => "FANUC LS",
+            Language::Robot(Dialect::Inform) => "Yaskawa INFORM",
         }
     }
 }
@@ -210,7 +216,9 @@ pub struct Report {
 /// # Errors
 /// [`Error::InvalidField`] for a G-code program without a `workpiece`; [`Error::Program`] naming the line of a point whose `(operation: NAME)` names no
 /// operation, or whose compensation changes the configuration; those of [`compensate::path`]
-/// (joint limits, unreachable poses, naming the line).
+/// (joint limits, unreachable poses, naming the line); for a robot program, those of
+/// [`program::external::cell_values`] (an external axis the robot's cell lacks, a value outside
+/// its travel, an axis of the cell without a value, naming the line and the axis).
 pub fn compensate(
     arm: &Arm,
     workpiece: Option<&Isometry3<f64>>,
@@ -219,7 +227,8 @@ pub fn compensate(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
-    let poses = poses(arm, workpiece, program)?;
+    let placements = cell::placements(arm, workpiece, program)?;
+    let poses = poses(arm, workpiece, program, placements.as_deref())?;
     let operations = operations(program, process)?;
     let weight = |pose: &Isometry3<f64>| {
         arm.payload().map_or(Vector6::zeros(), |p| {
@@ -227,11 +236,12 @@ pub fn compensate(
         })
     };
     let starts = feed_starts(program);
-    let (points, warnings) = path_points(&poses, &operations, &starts, weight);
+    let (points, warnings) =
+        path_points(&poses, placements.as_deref(), &operations, &starts, weight);
     let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
-    let results = compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?;
+    let mut results = compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?;
     check_configuration(&points, &results)?;
     let program = match program {
         Program::Robot(p) => {
@@ -246,8 +256,10 @@ pub fn compensate(
             let tcp = &arm.tool().tcp;
             let positions: Vec<Vector3<f64>> = results
                 .iter()
-                .map(|r| {
+                .enumerate()
+                .map(|(i, r)| {
                     let pose = tool_pose(&arm.robot().frames(&r.q_compensated), tcp);
+                    let part = placements.as_ref().map_or(part, |p| p[i].part);
                     part * nalgebra::Point3::from(pose.translation.vector)
                 })
                 .map(|p| p.coords)
@@ -255,6 +267,9 @@ pub fn compensate(
             g.write(&positions)?
         }
     };
+    if let Some(p) = &placements {
+        cell::to_cell(&mut results, p);
+    }
     Ok(Report {
         points,
         results,
@@ -277,13 +292,16 @@ fn poses(
     arm: &Arm,
     workpiece: Option<&Isometry3<f64>>,
     program: &Program,
+    placements: Option<&[cell::Placement]>,
 ) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
     match program {
         Program::GCode(g) => {
             let base = part_frame(workpiece)?;
             Ok(g.points
                 .iter()
-                .map(|p| {
+                .enumerate()
+                .map(|(i, p)| {
+                    let base = placements.map_or(base, |c| c[i].part.inverse());
                     let pose = base * Isometry3::from_parts(p.position.into(), p.orientation);
                     (p.line, Target::Pose(pose), pose)
                 })
@@ -395,14 +413,42 @@ fn feed_starts(program: &Program) -> Vec<bool> {
 }
 
 /// The path points with their base-frame wrenches, and the warnings. A feed's start
-/// ([`feed_starts`]) takes the process wrench of the feed it starts.
+/// ([`feed_starts`]) takes the process wrench of the feed it starts. With `placements` (a
+/// program that moves the cell's external axes, [`cell`]) the feed is the tool's motion over
+/// the part and the weight pulls along the cell's `-z`, each turned into the arm's frame.
 fn path_points(
     poses: &[(u64, Target, Isometry3<f64>)],
+    placements: Option<&[cell::Placement]>,
     operations: &[Option<(usize, &Operation)>],
     starts: &[bool],
     weight: impl Fn(&Isometry3<f64>) -> Vector6<f64>,
 ) -> (Vec<PathPoint>, Vec<String>) {
-    let (process, warnings) = process_wrenches(poses, operations);
+    let (mut process, warnings) = match placements {
+        None => process_wrenches(poses, operations),
+        Some(placed) => {
+            let on_part: Vec<_> = poses
+                .iter()
+                .zip(placed)
+                .map(|((line, target, pose), p)| (*line, target.clone(), p.part * pose))
+                .collect();
+            process_wrenches(&on_part, operations)
+        }
+    };
+    if let Some(placed) = placements {
+        for (w, p) in process.iter_mut().zip(placed) {
+            *w = cell::turned(&p.part.rotation.inverse().to_rotation_matrix(), w);
+        }
+    }
+    let weight = |i: usize, pose: &Isometry3<f64>| match placements {
+        None => weight(pose),
+        Some(placed) => {
+            let c = &placed[i].carrier;
+            cell::turned(
+                &c.rotation.inverse().to_rotation_matrix(),
+                &weight(&(c * pose)),
+            )
+        }
+    };
     let points = poses
         .iter()
         .enumerate()
@@ -414,7 +460,7 @@ fn path_points(
             PathPoint {
                 line: *line,
                 target: target.clone(),
-                wrench: wrench + weight(pose),
+                wrench: wrench + weight(i, pose),
                 frame: Frame::Base,
             }
         })

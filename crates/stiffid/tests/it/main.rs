@@ -50,6 +50,7 @@ mod pool;
 mod prediction;
 mod prior;
 mod process_forces;
+mod program_axes;
 mod program_forms;
 mod program_frames;
 mod programs;

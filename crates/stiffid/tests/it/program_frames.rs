@@ -166,6 +166,7 @@ fn controller_view(dialect: Dialect, text: &str) -> (Isometry3<f64>, Vec<Isometr
                 .collect();
             (tool, targets)
         }
+        Dialect::Inform => unreachable!("INFORM jobs are not generated"),
     }
 }
 

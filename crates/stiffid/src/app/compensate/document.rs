@@ -99,7 +99,7 @@ pub struct FreeToolAxis {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Program {
-    /// The program's language: `gcode`, `krl`, `rapid` or `ls`.
+    /// The program's language: `gcode`, `krl`, `rapid`, `ls` or `inform`.
     pub language: &'static str,
     /// The compensated program's language (the program's own, or a robot program's for G-code).
     pub output_language: &'static str,

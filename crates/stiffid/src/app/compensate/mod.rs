@@ -385,6 +385,10 @@ fn written_name(
         });
     }
     match program {
+        Program::GCode(g) if !g.external.0.is_empty() => Err(Error::InvalidField {
+            field: "out".into(),
+            message: format!("{out_name}: a G-code path that drives external axes is written back as G-code; the robot programs stiffid generates are for a fixed base"),
+        }),
         Program::GCode(g) => {
             let name = stem.to_ascii_uppercase();
             generate::check_plan(dialect, &name, settings, g.points.len())?;
@@ -393,7 +397,7 @@ fn written_name(
         Program::Robot(_) if stem.is_empty() || dialect == Dialect::Rapid => Ok(None),
         Program::Robot(_) => {
             let name = match dialect {
-                Dialect::FanucLs => stem.to_ascii_uppercase(),
+                Dialect::FanucLs | Dialect::Inform => stem.to_ascii_uppercase(),
                 _ => stem.to_string(),
             };
             let longest = (settings.name_length).unwrap_or(generate::max_name_length(dialect));

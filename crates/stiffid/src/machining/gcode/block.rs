@@ -2,7 +2,7 @@
 
 use super::arc::arc;
 use super::words::{check_words, Word};
-use super::{at, cycles, may_move, Block, GCode, Motion, Point, State};
+use super::{at, cycles, external_values, may_move, Block, GCode, Motion, Point, State};
 use crate::Result;
 use nalgebra::UnitQuaternion;
 use std::ops::Range;
@@ -26,6 +26,7 @@ pub(super) fn block(
     let mut motion_given = None;
     let mut drop = Vec::new();
     let mut abc_given = false;
+    let mut external_given = false;
     check_words(line, words, s)?;
     let mut feed_given = None;
     let mut cycle_words = cycles::Words::default();
@@ -71,6 +72,19 @@ pub(super) fn block(
                 radius = Some(v);
                 drop.push(w.span.clone());
             }
+            l @ ('U' | 'V' | 'W' | 'A' | 'B' | 'C') if s.external.0.contains(&l) => {
+                let k = s.external.0.iter().position(|e| *e == l).unwrap_or(0);
+                let v = match (l, s.inch) {
+                    ('U' | 'V' | 'W', true) => v * 25.4,
+                    _ => v,
+                };
+                s.e[k] = match (s.incremental, s.e[k]) {
+                    (false, _) => Some(v),
+                    (true, Some(before)) => Some(before + v),
+                    (true, None) => return Err(at(line, format!("{l}: an increment (G91) before the axis has a value: give it in G90 first"))),
+                };
+                external_given = true;
+            }
             'A' | 'B' | 'C' => {
                 if !s.rotary {
                     return Err(at(line, format!("{}: rotary words need the header comment (stiffid: rotary = abc)", w.letter)));
@@ -91,7 +105,7 @@ pub(super) fn block(
             }
             'P' => cycle_words.dwell = Some((v, w.span.clone())),
             'S' | 'M' | 'N' | 'O' | 'H' | 'D' => {}
-            other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P Q X Y Z I J K R, A B C with rotary = abc)"))),
+            other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P Q X Y Z I J K R, A B C with rotary = abc, U V W A B C mapped by external = LETTERS)"))),
         }
     }
     if let Some((g, _)) = &motion_given {
@@ -115,7 +129,7 @@ pub(super) fn block(
             line,
             span,
             cycle_words,
-            centre_given || abc_given,
+            centre_given || abc_given || external_given,
             drop,
             s,
             out,
@@ -125,7 +139,10 @@ pub(super) fn block(
         return Err(at(line, "Q: a peck depth outside a G83 cycle".into()));
     }
     let arc_only = s.motion >= 2 && (centre.iter().any(Option::is_some) || radius.is_some());
-    let moves = target.iter().any(Option::is_some) || abc_given || arc_only;
+    let moves = target.iter().any(Option::is_some) || abc_given || external_given || arc_only;
+    if external_given && s.motion >= 2 {
+        return Err(at(line, "an external axis moving along an arc: the cell's axes and the arc would not stay together; split the arc into G1 moves".into()));
+    }
     if !moves {
         if centre.iter().any(Option::is_some) || radius.is_some() {
             return Err(at(line, "I, J, K or R without an end point".into()));
@@ -136,6 +153,7 @@ pub(super) fn block(
         return Err(at(line, "a motion after G80 without G0, G1, G2 or G3: controllers differ on the motion in force after a canned cycle; give it".into()));
     }
     let tool = may_move(line, s)?;
+    let external = external_values(line, s)?;
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
     let mut end = s.position;
     for k in 0..3 {
@@ -178,6 +196,7 @@ pub(super) fn block(
             operation: s.operation.clone(),
             feed: s.feed,
             cycle: None,
+            external: external.clone(),
         });
     }
     s.position = end;

@@ -118,7 +118,7 @@ pub(super) fn block(
         return refuse("a canned cycle outside the G17 plane; stiffid drills along the part's Z");
     }
     if other_geometry {
-        return refuse("I, J, K or rotary words in a canned cycle");
+        return refuse("I, J, K, rotary or external axis words in a canned cycle");
     }
     let tool = may_move(line, s)?;
     let orientation = nalgebra::UnitQuaternion::from_euler_angles(
@@ -217,6 +217,7 @@ pub(super) fn block(
         peck,
     });
     let first = out.points.len();
+    let external = super::external_values(line, s)?;
     for (p, m) in &moves {
         out.points.push(Point {
             line,
@@ -227,6 +228,7 @@ pub(super) fn block(
             operation: s.operation.clone(),
             feed: s.feed,
             cycle: Some(index),
+            external: external.clone(),
         });
     }
     s.position = here;

@@ -92,6 +92,10 @@ pub struct Point {
     pub feed: Option<f64>,
     /// The drilling canned cycle (index into [`GCode::cycles`]) this point is a move of.
     pub cycle: Option<usize>,
+    /// The cell's external axes at this point, in the order of [`GCode::external`] (the
+    /// cell's): mm for a linear axis (`U V W`), deg for a rotary one (`A B C`); empty when the
+    /// program maps none.
+    pub external: Vec<f64>,
 }
 
 /// A motion block: where its line is and which points it made.
@@ -116,6 +120,9 @@ pub struct GCode {
     pub points: Vec<Point>,
     /// The drilling canned cycles, one per hole, in path order.
     pub cycles: Vec<Cycle>,
+    /// The letters the header maps to the cell's external axes, in the cell's order
+    /// (`(stiffid: external = U C)`), and the header's line; empty (line 0) when it maps none.
+    pub external: (Vec<char>, u64),
     blocks: Vec<Block>,
     text: String,
 }
@@ -131,6 +138,10 @@ struct State {
     operation: Option<std::sync::Arc<str>>,
     tool: Option<UnitQuaternion<f64>>,
     rotary: bool,
+    /// The letters mapped to the cell's external axes and the header's line.
+    external: (Vec<char>, u64),
+    /// Each mapped axis's value in force, mm or deg.
+    e: Vec<Option<f64>>,
     /// The line of the `M2`/`M30` that ended the program.
     ended: Option<u64>,
     feed: Option<f64>,
@@ -171,6 +182,8 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         operation: None,
         tool: None,
         rotary: false,
+        external: (Vec::new(), 0),
+        e: Vec::new(),
         ended: None,
         feed: None,
         feed_line: 0,
@@ -180,6 +193,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
     let mut out = GCode {
         points: Vec::new(),
         cycles: Vec::new(),
+        external: (Vec::new(), 0),
         blocks: Vec::new(),
         text: text.to_string(),
     };
@@ -206,7 +220,19 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
     if out.points.is_empty() {
         return Err(at(1, "no motion block (G0, G1, G2, G3) found".into()));
     }
+    out.external = s.external;
     Ok(out)
+}
+
+/// The mapped external axes' values in force for a motion on `line`: every one must have been
+/// given.
+fn external_values(line: u64, s: &State) -> Result<Vec<f64>> {
+    s.e.iter()
+        .zip(&s.external.0)
+        .map(|(v, letter)| {
+            v.ok_or_else(|| at(line, format!("{letter}: a motion before the external axis it drives has a value (the header maps it on line {}): give {letter} in this block or before", s.external.1)))
+        })
+        .collect()
 }
 
 /// The tool orientation for a motion on `line`: refused after the program's end or before the

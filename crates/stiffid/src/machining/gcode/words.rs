@@ -96,12 +96,40 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
                 v[2].to_radians(),
             ));
         }
-        "rotary" if value.trim().eq_ignore_ascii_case("abc") => s.rotary = true,
+        "rotary" if value.trim().eq_ignore_ascii_case("abc") => {
+            if let Some(l) = s.external.0.iter().find(|l| matches!(l, 'A' | 'B' | 'C')) {
+                return Err(at(line, format!("rotary = abc: {l} drives an external axis (line {}); a letter turns the tool or drives an axis, not both", s.external.1)));
+            }
+            s.rotary = true;
+        }
+        "external" => {
+            let letters: Vec<char> = value
+                .split_whitespace()
+                .map(|w| match w.to_ascii_uppercase().as_str() {
+                    l @ ("U" | "V" | "W" | "A" | "B" | "C") => Ok(l.chars().next().unwrap_or('U')),
+                    other => Err(at(line, format!("external: '{}' is no axis letter (expected U V W for linear axes, A B C for rotary ones, one per external axis of the cell in its order)", crate::common::limits::short(other)))),
+                })
+                .collect::<Result<_>>()?;
+            if letters.is_empty() || letters.len() > crate::robot::external::MAX_AXES {
+                return Err(at(line, format!("external: expected 1 to {} letters, one per external axis of the cell in its order", crate::robot::external::MAX_AXES)));
+            }
+            if let Some((i, l)) = letters.iter().enumerate().find(|(i, l)| letters[..*i].contains(l)) {
+                return Err(at(line, format!("external: {l} given twice (letter {})", i + 1)));
+            }
+            if s.rotary && letters.iter().any(|l| matches!(l, 'A' | 'B' | 'C')) {
+                return Err(at(line, "external: A, B and C turn the tool (rotary = abc): a letter turns the tool or drives an axis, not both".into()));
+            }
+            if !s.external.0.is_empty() {
+                return Err(at(line, format!("external: the external axes are mapped already (line {})", s.external.1)));
+            }
+            s.e = vec![None; letters.len()];
+            s.external = (letters, line);
+        }
         other => {
             return Err(at(
                 line,
                 format!(
-                    "stiffid header: unknown '{}' (expected tool_rpy_deg = R P Y or rotary = abc)",
+                    "stiffid header: unknown '{}' (expected tool_rpy_deg = R P Y, rotary = abc or external = LETTERS)",
                     crate::common::limits::short(other)
                 ),
             ))

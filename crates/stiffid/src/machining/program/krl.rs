@@ -2,6 +2,9 @@
 //! `{E6AXIS: ...}` and an approximation `C_PTP`, `C_DIS`, `C_VEL`, `C_ORI`, `C_SPL`), or the same
 //! to a point declared in the file: `DECL E6AXIS XP1={A1 0,...}` (or `AXIS`, with or without
 //! `DECL`, `GLOBAL`, `CONST`); `;` starts a comment. KRL is line based and case-insensitive.
+//!
+//! The members `E1` to `E6` of an aggregate are the external axes as `$EX_AX_NUM` numbers them
+//! (mm for a linear axis, deg for a rotary one): read, and written back where they change.
 
 use super::{at, number_at, six, JointTarget};
 use crate::{Error, Result};
@@ -10,8 +13,9 @@ use std::collections::HashMap;
 /// A point declared in the file: its line and its joint target, or why it is none.
 type Declared = HashMap<String, (u64, std::result::Result<JointTarget, String>)>;
 
-/// Every joint target of `text`, in the order of its motions (module docs).
-pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
+/// Every joint target of `text`, in the order of its motions (module docs), and the program's
+/// external axes: `E1` to the highest `E`n any target gives.
+pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let (declared, assigned) = declarations(text)?;
     let mut out = Vec::new();
     // The routine of the first motion, and the first jump, loop or branch.
@@ -48,7 +52,8 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
     if let (Some((line, word)), false) = (control, out.is_empty()) {
         return Err(at(line, format!("{word}: a jump, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
     }
-    Ok(out)
+    let n = out.iter().map(|t| t.external.len()).max().unwrap_or(0);
+    Ok((out, (1..=n).map(|k| format!("E{k}")).collect()))
 }
 
 /// The upper-case words of a line's code.
@@ -195,6 +200,7 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
     // An optional type: `{E6AXIS: A1 0, ...}`.
     let skip = inner.find(':').map_or(0, |c| c + 1);
     let mut found: [Option<(f64, std::ops::Range<usize>)>; 6] = Default::default();
+    let mut external: Vec<Option<(f64, std::ops::Range<usize>)>> = Vec::new();
     let mut at_byte = from + skip;
     for item in code[from + skip..to].split(',') {
         let name_start = at_byte + item.len() - item.trim_start().len();
@@ -210,22 +216,34 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
         ) {
             return Err(at(line, format!("a Cartesian target ({upper}); stiffid compensates joint targets (E6AXIS, AXIS): write the path with joint targets")));
         }
-        if let Some(k) = upper
-            .strip_prefix('A')
-            .and_then(|d| d.parse::<usize>().ok())
-        {
-            if (1..=6).contains(&k) {
-                let (v, span) = number_at(code, name_start + name.len())
-                    .ok_or_else(|| at(line, format!("{name}: expected a number")))?;
-                if found[k - 1].is_some() {
-                    return Err(at(line, format!("{name} given twice")));
-                }
-                found[k - 1] = Some((v, start + span.start..start + span.end));
+        let slot = |prefix: char| {
+            upper
+                .strip_prefix(prefix)
+                .and_then(|d| d.parse::<usize>().ok())
+                .filter(|k| (1..=6).contains(k))
+        };
+        let value = || {
+            number_at(code, name_start + name.len())
+                .map(|(v, span)| (v, start + span.start..start + span.end))
+                .ok_or_else(|| at(line, format!("{name}: expected a number")))
+        };
+        if let Some(k) = slot('A') {
+            if found[k - 1].is_some() {
+                return Err(at(line, format!("{name} given twice")));
             }
+            found[k - 1] = Some(value()?);
+        } else if let Some(k) = slot('E') {
+            if external.len() < k {
+                external.resize(k, None);
+            }
+            if external[k - 1].is_some() {
+                return Err(at(line, format!("{name} given twice")));
+            }
+            external[k - 1] = Some(value()?);
         }
         at_byte += item.len() + 1;
     }
-    six(line, found, "A").map_err(|e| match e {
+    six(line, found, "A").map(|t| t.with_external(external)).map_err(|e| match e {
         Error::Program { line, message } => Error::Program {
             line,
             message: format!("{message}: KRL keeps the axes a partial aggregate leaves out where the robot is, which the file does not say; give all six"),

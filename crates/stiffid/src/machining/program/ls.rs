@@ -2,16 +2,19 @@
 //! (any speed, a termination `FINE`, `CNTn`, `CRn` or `CDn`, the options `ACCn` and `INC`) to the
 //! `/POS` section's positions in joint representation,
 //! `P[1]{ GP1: UF : 0, UT : 1, J1= 0.000 deg, J2= ... J6= ... deg };` over one or more lines.
-//! Only group 1 (`GP1`) is read. An `INC` motion after one that ends `FINE` goes to the previous
-//! target plus the position's increments.
+//! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
+//! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
+//! one; a third group is refused. An `INC` motion after one that ends `FINE` goes to the previous
+//! target plus the position's increments (every axis of both groups).
 
 use super::{at, number_at, six, Found, JointTarget};
 use crate::Result;
 use std::collections::HashMap;
 
-/// Every joint target of `text`, in the order of the `/MN` motions (module docs).
-pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
-    let positions = positions(text)?;
+/// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
+/// program's external axes.
+pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
+    let (positions, axes) = positions(text)?;
     let mut out: Vec<JointTarget> = Vec::new();
     // Whether the previous motion ended FINE; the first jump, call, loop or branch.
     let mut previous_fine = false;
@@ -80,6 +83,11 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
             for (q, p) in target.q_deg.iter_mut().zip(previous.q_deg) {
                 *q += p;
             }
+            for (e, p) in target.external.iter_mut().zip(&previous.external) {
+                if let (Some(e), Some(p)) = (e.as_mut(), p) {
+                    *e += p;
+                }
+            }
         }
         previous_fine = termination == "FINE";
         out.push(target);
@@ -87,7 +95,7 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
     if let (Some((line, word)), false) = (control, out.is_empty()) {
         return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
     }
-    Ok(out)
+    Ok((out, axes))
 }
 
 /// After `J ` or `L ` (or another motion letter), the rest of a motion instruction.
@@ -156,12 +164,26 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
     out
 }
 
-/// The `/POS` section's positions by index (module docs).
-fn positions(text: &str) -> Result<HashMap<u64, JointTarget>> {
-    let mut out = HashMap::new();
+/// One value and its span in the text.
+type Value = Option<(f64, std::ops::Range<usize>)>;
+
+/// A position being read: its index, first line, the six axes, group 1's extended axes and
+/// group 2's axes, and the group of the values read now.
+struct Open {
+    index: u64,
+    first: u64,
+    found: Found,
+    extended: Vec<Value>,
+    second: Vec<Value>,
+    group: u8,
+}
+
+/// The `/POS` section's positions by index (module docs), and the program's external axes:
+/// group 1's `E1`.. then group 2's `J1`.. (`GP2 J1`).
+fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
+    let mut read: Vec<Open> = Vec::new();
     let mut in_pos = false;
-    // The open position: its index, line, the values found, whether in group 1.
-    let mut open: Option<(u64, u64, Found, bool)> = None;
+    let mut open: Option<Open> = None;
     for (line, start, l) in super::lines(text) {
         let t = l.trim();
         if t.starts_with('/') {
@@ -172,61 +194,115 @@ fn positions(text: &str) -> Result<HashMap<u64, JointTarget>> {
             continue;
         }
         if let Some(inner) = t.strip_prefix("P[") {
-            if let Some((_, first, ..)) = open {
-                return Err(at(first, "position without its closing '};'".into()));
+            if let Some(o) = &open {
+                return Err(at(o.first, "position without its closing '};'".into()));
             }
             let index = inner
                 .split([':', ']'])
                 .next()
                 .and_then(|i| i.trim().parse::<u64>().ok())
                 .ok_or_else(|| at(line, "P[: expected a position number".into()))?;
-            if out.contains_key(&index) {
+            if read.iter().any(|o| o.index == index) {
                 return Err(at(line, format!("P[{index}] defined twice in /POS")));
             }
-            open = Some((index, line, Default::default(), false));
+            open = Some(Open {
+                index,
+                first: line,
+                found: Default::default(),
+                extended: Vec::new(),
+                second: Vec::new(),
+                group: 0,
+            });
         }
-        let Some((_, first, found, group1)) = open.as_mut() else {
+        let Some(o) = open.as_mut() else {
             continue;
         };
         for piece in split_keeping_offsets(l) {
             let (offset, item) = piece;
             let item_t = item.trim();
             if let Some(g) = item_t.strip_prefix("GP") {
-                *group1 = g.trim_start().starts_with('1');
+                o.group = g
+                    .trim_start()
+                    .bytes()
+                    .next()
+                    .map_or(0, |d| d.wrapping_sub(b'0'));
+                if !(1..=2).contains(&o.group) {
+                    return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", crate::common::limits::short(item_t.trim_end_matches(':')))));
+                }
             }
-            if !*group1 {
+            if o.group == 0 {
                 continue;
             }
             if item_t.starts_with("X ") || item_t.starts_with("X=") || item_t.starts_with("CONFIG")
             {
-                return Err(at(*first, "a Cartesian position (CONFIG, X, Y, Z ...); stiffid compensates positions in joint representation (J1= .. deg): write the path with positions in joint representation".into()));
+                return Err(at(o.first, "a Cartesian position (CONFIG, X, Y, Z ...); stiffid compensates positions in joint representation (J1= .. deg): write the path with positions in joint representation".into()));
             }
             let Some(eq) = item.find('=') else { continue };
             let name = item[..eq].trim();
             let name = name.rsplit(':').next().unwrap_or(name).trim();
-            let Some(k) = name.strip_prefix('J').and_then(|d| d.parse::<usize>().ok()) else {
-                continue;
+            let number = |prefix: char| {
+                name.strip_prefix(prefix)
+                    .and_then(|d| d.parse::<usize>().ok())
             };
-            if !(1..=6).contains(&k) {
-                continue;
+            let (values, k) = match (o.group, number('J'), number('E')) {
+                (1, Some(k @ 1..=6), _) => {
+                    let (v, span) = value(l, offset + eq + 1, line, name, &["deg"])?;
+                    o.found[k - 1] = Some((v, start + span.start..start + span.end));
+                    continue;
+                }
+                (1, _, Some(k @ 1..=3)) => (&mut o.extended, k),
+                (2, Some(k @ 1..=6), _) => (&mut o.second, k),
+                _ => continue,
+            };
+            let (v, span) = value(l, offset + eq + 1, line, name, &["mm", "deg"])?;
+            if values.len() < k {
+                values.resize(k, None);
             }
-            let (v, span) = number_at(l, offset + eq + 1)
-                .ok_or_else(|| at(line, format!("{name}: expected a number")))?;
-            if !l[span.end..].trim_start().starts_with("deg") {
-                return Err(at(line, format!("{name}: expected a value in deg")));
-            }
-            found[k - 1] = Some((v, start + span.start..start + span.end));
+            values[k - 1] = Some((v, start + span.start..start + span.end));
         }
         if t.ends_with("};") {
-            if let Some((index, first, found, _)) = open.take() {
-                out.insert(index, six(first, found, "J")?);
+            if let Some(o) = open.take() {
+                read.push(o);
             }
         }
     }
-    if let Some((_, first, ..)) = open {
-        return Err(at(first, "position without its closing '};'".into()));
+    if let Some(o) = open {
+        return Err(at(o.first, "position without its closing '};'".into()));
     }
-    Ok(out)
+    let n1 = read.iter().map(|o| o.extended.len()).max().unwrap_or(0);
+    let n2 = read.iter().map(|o| o.second.len()).max().unwrap_or(0);
+    let mut out = HashMap::with_capacity(read.len());
+    for mut o in read {
+        o.extended.resize(n1, None);
+        o.extended.append(&mut o.second);
+        out.insert(
+            o.index,
+            six(o.first, o.found, "J")?.with_external(o.extended),
+        );
+    }
+    let axes = (1..=n1).map(|k| format!("E{k}"));
+    let axes = axes.chain((1..=n2).map(|k| format!("GP2 J{k}")));
+    Ok((out, axes.collect()))
+}
+
+/// The number after the `=` at byte `from` of `l` and its unit, one of `units`.
+fn value(
+    l: &str,
+    from: usize,
+    line: u64,
+    name: &str,
+    units: &[&str],
+) -> Result<(f64, std::ops::Range<usize>)> {
+    let (v, span) =
+        number_at(l, from).ok_or_else(|| at(line, format!("{name}: expected a number")))?;
+    let unit = l[span.end..].trim_start();
+    if !units.iter().any(|u| unit.starts_with(u)) {
+        return Err(at(
+            line,
+            format!("{name}: expected a value in {}", units.join(" or ")),
+        ));
+    }
+    Ok((v, span))
 }
 
 /// The comma-separated pieces of a line (also split at `{`) with their byte offsets.

@@ -1,14 +1,20 @@
-//! Robot programs: the joint targets of KUKA KRL, ABB RAPID and FANUC LS programs, read in the
-//! order the controller moves to them and written back with everything else byte for byte.
+//! Robot programs: the joint targets of KUKA KRL, ABB RAPID, FANUC LS and Yaskawa INFORM
+//! programs, read in the order the controller moves to them and written back with everything else
+//! byte for byte.
 //!
 //! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
-//!   a point declared in the same file as `E6AXIS`/`AXIS` (further members such as `E1` are kept
-//!   as they are).
+//!   a point declared in the same file as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`.
 //! - [`rapid`]: `MoveAbsJ` (also `\Conc`) to a literal `[[j1,..,j6],[e1,..,e6]]` or to a
-//!   `jointtarget` declared in the same module (over one line or several).
+//!   `jointtarget` declared in the same module (over one line or several), with its external axes
+//!   `eax_a`..`eax_f` (`9E9`: not used).
 //! - [`ls`]: `J`/`L` motions in `/MN` to `P[i]` positions of `/POS` in joint representation
-//!   (`J1= .. deg` to `J6`); `INC` after a motion that ends `FINE` is resolved (the increment from
-//!   the previous target, written back as the increment between the compensated targets).
+//!   (`J1= .. deg` to `J6`, group 1's extended axes `E1`.. and a second group `GP2`); `INC` after a
+//!   motion that ends `FINE` is resolved (the increment from the previous target, written back as
+//!   the increment between the compensated targets).
+//! - [`inform`]: `MOVJ`/`MOVL` to `C` teaching positions in pulses, with base (`BC`) and station
+//!   (`EC`) positions; the pulses per degree from a `'stiffid:` comment of the job.
+//!
+//! A target's external axes are the cell's in the cell's order ([`external`]).
 //!
 //! Only joint targets are read. A Cartesian target (KRL `E6POS`/`POS`/`FRAME`, RAPID
 //! `MoveL`/`MoveJ`/`MoveC`, LS positions with `X = .. mm`) is refused naming its line: turning it
@@ -28,10 +34,13 @@
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows;
 //! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
-//! six numbers of each target whose value changed (with [`DECIMALS`] decimals) and nothing else;
+//! six numbers of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
+//! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
+pub mod external;
 pub mod generate;
+pub mod inform;
 pub mod krl;
 pub mod ls;
 pub mod rapid;
@@ -56,6 +65,8 @@ pub enum Dialect {
     Rapid,
     /// FANUC LS (`.ls`), joint representation.
     FanucLs,
+    /// Yaskawa INFORM (`.jbi`), pulse positions.
+    Inform,
 }
 
 impl Dialect {
@@ -65,6 +76,7 @@ impl Dialect {
             "src" | "dat" => Some(Dialect::Krl),
             "mod" | "modx" | "prg" => Some(Dialect::Rapid),
             "ls" => Some(Dialect::FanucLs),
+            "jbi" => Some(Dialect::Inform),
             _ => None,
         }
     }
@@ -77,9 +89,16 @@ pub struct JointTarget {
     pub line: u64,
     /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles).
     pub q_deg: [f64; 6],
+    /// The external axes' values as the program gives them, one per axis of
+    /// [`JointProgram::axes`], mm for a linear axis and deg for a rotary one (as the controller
+    /// writes them); `None` where the target gives no value (RAPID `9E9`, an `E` member the KRL
+    /// aggregate leaves out).
+    pub external: Vec<Option<f64>>,
     /// Where each of the six numbers sits in the text (bytes): in the motion or in the point's
     /// declaration.
     spans: [Range<usize>; 6],
+    /// Where each external value sits in the text, as `external`.
+    external_spans: Vec<Option<Range<usize>>>,
     /// The line of the six numbers (the declaration's for a named point).
     origin: u64,
     /// The numbers hold the increment from the previous target (LS `INC`).
@@ -95,6 +114,18 @@ impl JointTarget {
             ..self.clone()
         }
     }
+
+    /// The target with the external values `values` (value and span, in the dialect's slots).
+    pub(crate) fn with_external(mut self, values: Vec<Option<(f64, Range<usize>)>>) -> Self {
+        (self.external, self.external_spans) = values
+            .into_iter()
+            .map(|v| match v {
+                Some((v, s)) => (Some(v), Some(s)),
+                None => (None, None),
+            })
+            .unzip();
+        self
+    }
 }
 
 /// A robot program and its joint targets.
@@ -104,6 +135,14 @@ pub struct JointProgram {
     pub dialect: Dialect,
     /// The targets, in the order of the motion instructions.
     pub targets: Vec<JointTarget>,
+    /// The program's external axes as it names them (KRL `E1`.., RAPID `eax_a`.., LS `E1`.. of
+    /// group 1 then `GP2 J1`.., INFORM `BC1`.. then `EC1`..), in the order of
+    /// [`JointTarget::external`]: the `n` first are the cell's `n` external axes, in the cell's
+    /// order ([`external`]).
+    pub axes: Vec<String>,
+    /// Per value (the six axes, then the external ones): the pulses per deg or mm of a value
+    /// written in pulses (INFORM), `None` for a decimal value.
+    pulses: Vec<Option<f64>>,
     text: String,
 }
 
@@ -114,16 +153,22 @@ pub struct JointProgram {
 /// a joint target with a missing, repeated or non-numeric axis value, no motion to a joint target
 /// at all, or more than [`MAX_TARGETS`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
-    let targets = match dialect {
-        Dialect::Krl => krl::targets(text)?,
-        Dialect::Rapid => rapid::targets(text)?,
-        Dialect::FanucLs => ls::targets(text)?,
+    let (mut targets, axes, pulses) = match dialect {
+        Dialect::Krl => with_decimals(krl::targets(text)?),
+        Dialect::Rapid => with_decimals(rapid::targets(text)?),
+        Dialect::FanucLs => with_decimals(ls::targets(text)?),
+        Dialect::Inform => inform::targets(text)?,
     };
+    for t in &mut targets {
+        t.external.resize(axes.len(), None);
+        t.external_spans.resize(axes.len(), None);
+    }
     if targets.is_empty() {
         let hint = match dialect {
             Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or to an E6AXIS declared in the file; a .dat holds declarations only: give the .src",
             Dialect::Rapid => "MoveAbsJ to a jointtarget",
             Dialect::FanucLs => "J or L to a P[i] of /POS in joint representation",
+            Dialect::Inform => "MOVJ or MOVL to a C-variable of //POS in pulses",
         };
         return Err(at(
             1,
@@ -139,18 +184,46 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     Ok(JointProgram {
         dialect,
         targets,
+        axes,
+        pulses,
         text: text.to_string(),
     })
 }
 
+/// A dialect's targets and axes, every value written with decimals.
+pub(crate) type Read = (Vec<JointTarget>, Vec<String>, Vec<Option<f64>>);
+
+fn with_decimals((targets, axes): (Vec<JointTarget>, Vec<String>)) -> Read {
+    (targets, axes, Vec::new())
+}
+
 impl JointProgram {
     /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) where they
-    /// differ from the ones read; every other byte as read.
+    /// differ from the ones read; the external values and every other byte as read.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`q_deg`) when `q_deg` has another length than the targets or a
-    /// value is not finite.
+    /// Those of [`JointProgram::write_with_external`].
     pub fn write(&self, q_deg: &[[f64; 6]]) -> Result<String> {
+        let external: Vec<Vec<Option<f64>>> =
+            self.targets.iter().map(|t| t.external.clone()).collect();
+        self.write_with_external(q_deg, &external)
+    }
+
+    /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) and its
+    /// external values by `external[i]` (mm or deg, in the order of [`JointProgram::axes`]) where
+    /// they differ from the ones read; every other byte as read. A value the target does not
+    /// give (`None` in [`JointTarget::external`]) stays `None`: nothing is added to a target.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`q_deg`, `external`) when a list has another length than the
+    /// targets, a row of `external` another shape than the target's values, or a value is not
+    /// finite; [`Error::Program`] naming the line where two motions to one declared point would
+    /// take different values.
+    pub fn write_with_external(
+        &self,
+        q_deg: &[[f64; 6]],
+        external: &[Vec<Option<f64>>],
+    ) -> Result<String> {
         if q_deg.len() != self.targets.len() || q_deg.iter().flatten().any(|v| !v.is_finite()) {
             return Err(Error::InvalidField {
                 field: "q_deg".into(),
@@ -160,34 +233,61 @@ impl JointProgram {
                 ),
             });
         }
+        let shaped = |(t, e): (&JointTarget, &Vec<Option<f64>>)| {
+            e.len() == t.external.len()
+                && e.iter()
+                    .zip(&t.external)
+                    .all(|(a, b)| a.is_some() == b.is_some() && a.is_none_or(|v| v.is_finite()))
+        };
+        if external.len() != self.targets.len() || !self.targets.iter().zip(external).all(shaped) {
+            return Err(Error::InvalidField {
+                field: "external".into(),
+                message: format!(
+                    "expected {} rows of finite external values, one per target, each with a value exactly where the target read has one ({})",
+                    self.targets.len(),
+                    self.axes.join(", ")
+                ),
+            });
+        }
         // Each number to write: its span, the target, the value, whether it changed.
-        let mut edits: Vec<(Range<usize>, usize, f64, bool)> =
+        let mut edits: Vec<(Range<usize>, usize, f64, bool, usize)> =
             Vec::with_capacity(6 * self.targets.len());
-        for (i, (t, q)) in self.targets.iter().zip(q_deg).enumerate() {
-            for k in 0..6 {
+        for (i, t) in self.targets.iter().enumerate() {
+            let values = |j: usize| {
+                let e = external[j].iter().map(|v| v.unwrap_or(0.0));
+                q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
+            };
+            let (now, read) = (values(i), t.values());
+            let spans = t.spans.iter().cloned().map(Some);
+            let spans = spans.chain(t.external_spans.iter().cloned());
+            for (k, span) in spans.enumerate() {
+                let Some(span) = span else { continue };
                 let (value, changed) = match (t.incremental, i.checked_sub(1)) {
-                    (true, Some(p)) => (
-                        q[k] - q_deg[p][k],
-                        q[k] != t.q_deg[k] || q_deg[p][k] != self.targets[p].q_deg[k],
-                    ),
-                    _ => (q[k], q[k] != t.q_deg[k]),
+                    (true, Some(p)) => {
+                        let (before, before_read) = (values(p), self.targets[p].values());
+                        (
+                            now[k] - before[k],
+                            now[k] != read[k] || before[k] != before_read[k],
+                        )
+                    }
+                    _ => (now[k], now[k] != read[k]),
                 };
-                edits.push((t.spans[k].clone(), i, value, changed));
+                edits.push((span, i, value, changed, k));
             }
         }
         edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
-        for (j, (span, i, value, changed)) in edits.iter().enumerate() {
-            let text = format!("{value:.DECIMALS$}");
-            if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
-                if format!("{other:.DECIMALS$}") != text {
+        for (j, (span, i, value, changed, k)) in edits.iter().enumerate() {
+            let text = self.number(*k, *value);
+            if let Some((_, first, other, ..)) = edits[..j].last().filter(|e| e.0 == *span) {
+                if self.number(*k, *other) != text {
                     let (a, b) = (&self.targets[*first], &self.targets[*i]);
                     return Err(Error::Program {
                         line: b.line,
                         message: format!(
-                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other:.DECIMALS$} and {text} deg): give each visit its own point",
-                            a.line, b.line, b.origin
+                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({} and {text}): give each visit its own point",
+                            a.line, b.line, b.origin, self.number(*k, *other)
                         ),
                     });
                 }
@@ -202,6 +302,23 @@ impl JointProgram {
         }
         out.push_str(&self.text[at..]);
         Ok(out)
+    }
+
+    /// Value `k` of a target (the six axes, then the external ones) as the program writes it:
+    /// [`DECIMALS`] decimals, or a whole number of pulses (INFORM's pulse form).
+    fn number(&self, k: usize, value: f64) -> String {
+        match self.pulses.get(k).copied().flatten() {
+            Some(per_unit) => format!("{}", (value * per_unit).round() as i64),
+            None => format!("{value:.DECIMALS$}"),
+        }
+    }
+}
+
+impl JointTarget {
+    /// The six axis values then the external ones given (absent ones as 0).
+    fn values(&self) -> Vec<f64> {
+        let e = self.external.iter().map(|v| v.unwrap_or(0.0));
+        self.q_deg.iter().copied().chain(e).collect()
     }
 }
 
@@ -284,7 +401,9 @@ pub(crate) fn six(
     Ok(JointTarget {
         line,
         q_deg,
+        external: Vec::new(),
         spans,
+        external_spans: Vec::new(),
         origin: line,
         incremental: false,
     })

@@ -3,6 +3,9 @@
 //! `jointtarget` declared in the module: `CONST jointtarget j1 := [[0,0,0,0,30,0],[9E9,..]];`
 //! (also `VAR`, `PERS`, `LOCAL`, `TASK`), over one line or several. RAPID is statement based
 //! (`;` ends one) and case-insensitive; `!` starts a comment.
+//!
+//! The second bracket holds the external axes `eax_a` to `eax_f` (mm for a linear axis, deg for
+//! a rotary one; `9E9` for an axis that is not used): read, and written back where they change.
 
 use super::{at, number_at, six, JointTarget};
 use crate::Result;
@@ -17,8 +20,9 @@ struct Statement {
     span: std::ops::Range<usize>,
 }
 
-/// Every joint target of `text`, in the order of its motions (module docs).
-pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
+/// Every joint target of `text`, in the order of its motions (module docs), and the program's
+/// external axes: `eax_a` to the last one any target gives a value (not `9E9`).
+pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let code = without_comments(text);
     let statements = statements(&code);
     let (declared, assigned) = declarations(&code, &statements)?;
@@ -66,8 +70,18 @@ pub(crate) fn targets(text: &str) -> Result<Vec<JointTarget>> {
     if let (Some((line, word)), false) = (control, out.is_empty()) {
         return Err(at(line, format!("{word}: a jump, loop or branch in a module with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
     }
-    Ok(out)
+    let n = out
+        .iter()
+        .filter_map(|t| t.external.iter().rposition(Option::is_some))
+        .max()
+        .map_or(0, |k| k + 1);
+    let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
+    Ok((out, axes.collect()))
 }
+
+/// The value RAPID writes for an external axis that is not used: `9E9` (any value from
+/// `8.9E9` on is taken as it).
+pub const UNUSED: f64 = 9e9;
 
 /// The instruction's name: the statement's first word, lower case, up to a switch or argument.
 fn first_word(body: &str) -> String {
@@ -261,7 +275,35 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
         from = code.len() - rest.len() + 1;
         *slot = Some((v, span));
     }
-    six(line, found, "rax_")
+    let target = six(line, found, "rax_")?;
+    let bad = |what: &str| {
+        at(
+            line,
+            format!("jointtarget: expected its external axes [eax_a,..,eax_f] after the robot's axes, {what}"),
+        )
+    };
+    let rest = code[from..].trim_start();
+    let Some(rest) = rest.strip_prefix(',').map(str::trim_start) else {
+        return Err(bad("not ','"));
+    };
+    if !rest.starts_with('[') {
+        return Err(bad("not '['"));
+    }
+    let mut from = code.len() - rest.len() + 1;
+    let mut external = Vec::with_capacity(6);
+    for k in 0..6 {
+        let name = format!("eax_{}", (b'a' + k as u8) as char);
+        let (v, span) =
+            number_at(code, from).ok_or_else(|| bad(&format!("{name} is not a number")))?;
+        let rest = code[span.end..].trim_start();
+        let sep = if k < 5 { ',' } else { ']' };
+        if !rest.starts_with(sep) {
+            return Err(bad(&format!("expected '{sep}' after {name}")));
+        }
+        from = code.len() - rest.len() + 1;
+        external.push((v < 8.9e9).then_some((v, span)));
+    }
+    Ok(target.with_external(external))
 }
 
 /// The target of a motion statement, `None` for a statement that is no motion; every motion

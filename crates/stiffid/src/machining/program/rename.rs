@@ -1,12 +1,12 @@
 //! A robot program written back under another file name: the name it declares follows the file's,
 //! as the controller calls a program by its file's name (KUKA System Software refuses a `.src`
 //! whose `DEF` is not its file's name; loading an LS file replaces the program its `/PROG` line
-//! names, whatever the file is called). A RAPID module's name is not its file's: it is kept.
+//! names, whatever the file is called, as loading a `.jbi` does the job its `//NAME` names). A RAPID module's name is not its file's: it is kept.
 
 use super::Dialect;
 
 /// `text`, a program of `dialect`, with the name it declares replaced by `name`: KRL's first
-/// `DEF NAME(` (also `GLOBAL DEF`), LS's `/PROG  NAME`; every other byte as it was. A RAPID
+/// `DEF NAME(` (also `GLOBAL DEF`), LS's `/PROG  NAME`, INFORM's `//NAME NAME`; every other byte as it was. A RAPID
 /// program, or one that declares no name, comes back unchanged.
 ///
 /// # Examples
@@ -30,6 +30,9 @@ pub fn renamed(text: &str, dialect: Dialect, name: &str) -> String {
         }),
         Dialect::FanucLs => declared(text, |line| {
             line.strip_prefix("/PROG").map(|r| line.len() - r.len())
+        }),
+        Dialect::Inform => declared(text, |line| {
+            line.strip_prefix("//NAME").map(|r| line.len() - r.len())
         }),
         Dialect::Rapid => None,
     };

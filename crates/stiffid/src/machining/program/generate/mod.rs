@@ -388,6 +388,7 @@ fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> 
         Dialect::Krl => krl::body(plan, part),
         Dialect::Rapid => rapid::body(plan, part),
         Dialect::FanucLs => ls::body(plan, part, warnings)?,
+        Dialect::Inform => String::new(),
     })
 }
 
@@ -396,6 +397,7 @@ fn header(plan: &Plan, main: &str, subs: &[String]) -> String {
         Dialect::Krl => krl::header(plan),
         Dialect::Rapid => rapid::header(plan, main, subs),
         Dialect::FanucLs => ls::header(plan),
+        Dialect::Inform => String::new(),
     }
 }
 
@@ -404,6 +406,7 @@ fn calls(dialect: Dialect, subs: &[String]) -> String {
         Dialect::Krl => krl::calls(subs),
         Dialect::Rapid => rapid::calls(subs),
         Dialect::FanucLs => ls::calls(subs),
+        Dialect::Inform => String::new(),
     }
 }
 
@@ -412,6 +415,7 @@ fn wrap(plan: &Plan, name: &str, header: &str, body: &str, main: bool) -> String
         Dialect::Krl => krl::wrap(name, header, body),
         Dialect::Rapid => rapid::wrap(name, header, body, main),
         Dialect::FanucLs => ls::wrap(name, header, body),
+        Dialect::Inform => String::new(),
     }
 }
 

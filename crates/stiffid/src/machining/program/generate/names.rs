@@ -28,6 +28,7 @@ pub fn max_name_length(dialect: Dialect) -> usize {
         Dialect::Krl => 24,
         Dialect::Rapid => 32,
         Dialect::FanucLs => 36,
+        Dialect::Inform => 32,
     }
 }
 
@@ -67,6 +68,12 @@ pub fn check_plan(
     targets: usize,
 ) -> Result<Vec<String>> {
     settings.validate()?;
+    if dialect == Dialect::Inform {
+        return Err(Error::InvalidField {
+            field: "out".into(),
+            message: "a G-code path is written as a new robot program in KRL, RAPID or LS; INFORM jobs are read and written back compensated, not generated".into(),
+        });
+    }
     let most = max_name_length(dialect);
     if let Some(n) = settings.name_length.filter(|&n| n > most) {
         return Err(Error::InvalidOption {
@@ -146,6 +153,7 @@ fn dialect_name(d: Dialect) -> &'static str {
         Dialect::Krl => "KUKA KRL",
         Dialect::Rapid => "ABB RAPID",
         Dialect::FanucLs => "FANUC LS",
+        Dialect::Inform => "Yaskawa INFORM",
     }
 }
 
@@ -316,5 +324,6 @@ fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
             "FOR", "IF", "JMP", "LBL", "MOD", "NOT", "OFF", "ON", "OR", "PAUSE", "RUN", "SELECT",
             "THEN", "TO", "WAIT",
         ],
+        Dialect::Inform => &[],
     }
 }

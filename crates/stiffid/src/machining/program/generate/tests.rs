@@ -90,6 +90,7 @@ fn stated(dialect: Dialect, text: &str) -> Isometry3<f64> {
             let r = rotation_zyx(after(text, "R ="), after(text, "P ="), after(text, "W ="));
             Isometry3::from_parts(Translation3::from(p.vector * 1e-3), r)
         }
+        Dialect::Inform => unreachable!("INFORM jobs are not generated"),
     }
 }
 
@@ -112,6 +113,7 @@ fn written_targets(dialect: Dialect, text: &str) -> Vec<String> {
             .filter(|p| p.contains("GP1"))
             .map(String::from)
             .collect(),
+        Dialect::Inform => unreachable!("INFORM jobs are not generated"),
     }
 }
 
@@ -164,6 +166,7 @@ fn cartesian_targets_state_the_forward_kinematics_and_the_configuration_of_the_p
                     );
                     assert!(line.contains(&config), "{config}: {line}");
                 }
+                Dialect::Inform => unreachable!("INFORM jobs are not generated"),
             }
         }
     }
@@ -507,4 +510,16 @@ fn an_ls_file_never_numbers_more_lines_than_the_pendant() {
             .lines()
             .count()
     );
+}
+
+#[test]
+fn no_inform_job_is_generated() {
+    let t = targets(&Q);
+    match generate(&plan(Dialect::Inform, "POCKET", &t, &MOVES)) {
+        Err(Error::InvalidField { field, message }) => {
+            assert_eq!(field, "out");
+            assert!(message.contains("not generated"), "{message}");
+        }
+        other => panic!("{:?}", other.map(|w| w.files.len())),
+    }
 }
