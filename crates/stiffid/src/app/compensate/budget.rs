@@ -120,7 +120,7 @@ impl Worst {
     /// [`Error::InvalidOption`] ([`JobOption::MaxErrorMm`]).
     pub fn refuse_above(&self, max_error: f64) -> Result<()> {
         let above: Vec<String> = (self.points.iter())
-            .filter(|w| !(w.0 <= max_error))
+            .filter(|w| w.0 > max_error || w.0.is_nan())
             .map(|w| {
                 format!(
                     "line {}: {} mm, mostly {} ({} mm)",
