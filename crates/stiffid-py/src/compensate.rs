@@ -12,7 +12,9 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
-use stiffid::machining::compensate::{Compensated, FreeToolAxis, Objective, Options, PathPoint};
+use stiffid::machining::compensate::{
+    Aggregate, Compensated, FreeToolAxis, Objective, Options, PathPoint,
+};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
@@ -34,7 +36,18 @@ use stiffid::observation::deflection::Frame;
 /// ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to the least deflection, or
 /// with ``free_tool_axis_objective="surge"`` to the least breakthrough surge at the drilling exits
 /// of a program (the robot must give its masses; ``surge_before_mm_s``: the surge at the path's
-/// own rotation).
+/// own rotation), or ``"bound"`` to the least error bound, summed along the path
+/// (``objective="sum"``) or at its worst point (``"max"``). Every point's error budget at
+/// ``level``: ``bound_mm`` (``(n,)``) and its parts ``bound_left_mm``,
+/// ``bound_compensation_mm``, ``bound_calibration_mm``, ``bound_force_mm`` (the force model's
+/// relative error ``force_tolerance_percent``) and ``bound_model_form_mm`` (``(n,)``, ``nan``
+/// where absent); ``max_error_mm`` refuses (``ValueError``) a path whose bound exceeds it
+/// anywhere, naming its worst points and what dominates their bound. ``map=True`` adds ``map``:
+/// the free variable's map, every point at every rotation about tool z of the free tool axis'
+/// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
+/// (``(g,)``), ``chosen_deg`` (``(n,)``: the rotation chosen), ``bound_mm``, ``deflection_mm``,
+/// ``condition`` and ``limit_distance_deg`` (``(n, g)``, ``nan`` where the turned pose is not
+/// reached).
 /// Returns a dict of arrays with one row per path point, in path order: ``line`` (the file's line
 /// numbers, ``int64``), ``q_deg`` and ``q_compensated_deg`` (``(n, 6)``, deg), ``deflection_mm``
 /// and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP under the wrench), ``force_n``
@@ -55,7 +68,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -78,6 +91,10 @@ pub fn compensate<'py>(
     name_length: Option<i64>,
     moves_per_file: i64,
     level: f64,
+    max_error_mm: Option<f64>,
+    force_tolerance_percent: f64,
+    objective: &str,
+    map: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name_length = crate::count::optional("name_length", name_length)?;
     let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;
@@ -90,6 +107,13 @@ pub fn compensate<'py>(
     let free = free_tool_axis.then_some((max_step_deg, tool_axis_range_deg));
     let mut options = options(py, s, q0_deg, free, free_tool_axis_objective)?;
     options.level = level;
+    options.max_error = max_error_mm.map(|m| m * 1e-3);
+    options.force_tolerance = force_tolerance_percent / 100.0;
+    options.map = map;
+    let aggregate = objective.parse::<Aggregate>().map_err(raise)?;
+    if let Some(free) = options.free_tool_axis.as_mut() {
+        free.aggregate = aggregate;
+    }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
         _ => {
@@ -147,6 +171,9 @@ pub fn compensate<'py>(
     let mut results: Vec<Compensated> = Vec::new();
     let mut rows: Vec<Row> = Vec::new();
     let mut dynamics: Vec<Vec<Option<f64>>> = Vec::new();
+    let at = (stiffid::app::compensate::document::header().iter())
+        .position(|h| h == DYNAMICS[0])
+        .unwrap_or(0);
     let report = py
         .detach(|| {
             job::run(
@@ -154,7 +181,7 @@ pub fn compensate<'py>(
                 |first, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
                     for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
                         let v = values(first + k, p.line, r, d);
-                        dynamics.push(v[v.len() - DYNAMICS.len()..].to_vec());
+                        dynamics.push(v[at..at + DYNAMICS.len()].to_vec());
                         rows.push(Row::new(&v));
                     }
                     points.extend_from_slice(p);
@@ -189,6 +216,27 @@ pub fn compensate<'py>(
             subprograms.set_item(&f.name, &f.text)?;
         }
         out.set_item("subprograms", subprograms)?;
+    }
+    if let Some(m) = &report.map {
+        let map = PyDict::new(py);
+        let matrix = |x: &nalgebra::DMatrix<f64>, scale: f64| {
+            let a = numpy::ndarray::Array2::from_shape_fn((x.nrows(), x.ncols()), |(i, k)| {
+                x[(i, k)] * scale
+            });
+            numpy::IntoPyArray::into_pyarray(a, py)
+        };
+        map.set_item("line", arrays::integers(py, m.lines.iter().copied()))?;
+        let deg = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a.to_degrees()));
+        map.set_item("tool_rotation_deg", deg(&m.angles))?;
+        map.set_item("chosen_deg", deg(&m.chosen))?;
+        map.set_item("bound_mm", matrix(&m.bound, 1e3))?;
+        map.set_item("deflection_mm", matrix(&m.deflection, 1e3))?;
+        map.set_item("condition", matrix(&m.condition, 1.0))?;
+        map.set_item(
+            "limit_distance_deg",
+            matrix(&m.limit_distance, 1.0f64.to_degrees()),
+        )?;
+        out.set_item("map", map)?;
     }
     Ok(out)
 }
@@ -260,6 +308,13 @@ fn table<'py>(
         "tool_rotation_deg",
         column(&|c| c.tool_rotation.to_degrees()),
     )?;
+    let bound = |c: &Compensated| c.budget.bound * 1e3;
+    out.set_item("bound_mm", column(&bound))?;
+    let names = stiffid::machining::compensate::budget::PARTS;
+    for (k, name) in names.iter().enumerate() {
+        let part = move |c: &Compensated| c.budget.parts()[k].map_or(f64::NAN, |v| v * 1e3);
+        out.set_item(format!("bound_{name}_mm"), column(&part))?;
+    }
     if results.iter().all(|c| c.deflection_std.is_some()) {
         let std = |c: &Compensated| c.deflection_std.unwrap_or_default();
         out.set_item("deflection_std_mm", part(&std, 0, 1e3))?;

@@ -71,3 +71,39 @@ def test_the_tool_centre_point_is_required(fanuc):
     # A measuring setup's measuring point is no tool.
     with pytest.raises(ValueError, match=r"tool.tcp_mm"):
         stiffid.compensate(fanuc, PATH, STIFFNESS)
+
+
+def test_the_error_budget_equals_the_command_and_refuses_above_the_largest_error(milling, cli, tmp_path):
+    theirs = command(cli, tmp_path)
+    mine = stiffid.compensate(milling, PATH, STIFFNESS)
+    np.testing.assert_allclose(mine["bound_mm"], [p["bound_mm"] for p in theirs], rtol=1e-12)
+    # The example's robot is not a calibrated one and no stiffness file carries a model comparison.
+    assert np.isnan(mine["bound_calibration_mm"]).all() and np.isnan(mine["bound_model_form_mm"]).all()
+    parts = mine["bound_left_mm"] + mine["bound_force_mm"] + mine["bound_compensation_mm"]
+    np.testing.assert_allclose(mine["bound_mm"], parts, rtol=1e-12)
+    np.testing.assert_allclose(mine["bound_force_mm"], 0.2 * np.linalg.norm(mine["deflection_mm"], axis=1), rtol=1e-12)
+    worst = mine["document"]["summary"]["budget"]["max_bound_mm"]
+    assert worst == pytest.approx(mine["bound_mm"].max(), rel=1e-12)
+    with pytest.raises(ValueError, match=r"max_error_mm: .*the worst points: line \d+: .* mostly \w+"):
+        stiffid.compensate(milling, PATH, STIFFNESS, max_error_mm=worst / 2)
+    assert stiffid.compensate(milling, PATH, STIFFNESS, max_error_mm=worst * 2)["bound_mm"].max() == pytest.approx(worst)
+
+
+def test_the_map_holds_every_point_at_every_rotation_and_the_line_chosen(milling):
+    out = stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=10.0,
+                             tool_axis_range_deg=30.0, free_tool_axis_objective="bound", objective="max", map=True)
+    m = out["map"]
+    n, g = len(out["line"]), len(m["tool_rotation_deg"])
+    np.testing.assert_allclose(m["tool_rotation_deg"], np.linspace(-30, 30, g))
+    for key in ["bound_mm", "deflection_mm", "condition", "limit_distance_deg"]:
+        assert m[key].shape == (n, g) and m[key].dtype == np.float64
+    np.testing.assert_allclose(m["chosen_deg"], out["tool_rotation_deg"], atol=1e-12)
+    # The column of the path's own rotation is the path's own bound; the chosen cells are what
+    # each point got, never above it.
+    own = int(np.argmin(np.abs(m["tool_rotation_deg"])))
+    before = [p["bound_before_mm"] for p in out["document"]["points"]]
+    np.testing.assert_allclose(m["bound_mm"][:, own], before, rtol=1e-6)
+    picked = m["bound_mm"][np.arange(n), [int(np.argmin(np.abs(m["tool_rotation_deg"] - c))) for c in m["chosen_deg"]]]
+    assert (picked <= m["bound_mm"][:, own] * (1 + 1e-9)).all()
+    assert out["bound_mm"].max() <= m["bound_mm"][:, own].max() * (1 + 1e-9)
+    assert (m["condition"][np.isfinite(m["condition"])] >= 1).all()

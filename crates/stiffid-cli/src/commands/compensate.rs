@@ -16,7 +16,9 @@ use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
-use stiffid::machining::compensate::{Compensated, FreeToolAxis, Objective, Options, PathPoint};
+use stiffid::machining::compensate::{
+    Aggregate, Compensated, FreeToolAxis, Objective, Options, PathPoint,
+};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
@@ -88,14 +90,33 @@ pub struct Args {
     #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
     frame: Frame,
     /// Choose the rotation about the tool z axis of every point to minimise the TCP deflection
-    /// (or, with --free-tool-axis-objective surge, the drilling surge).
+    /// (or, with --free-tool-axis-objective, the drilling surge or the error bound).
     #[arg(long)]
     free_tool_axis: bool,
-    /// With --free-tool-axis: what the rotation minimises: the TCP deflection at every point, or
-    /// the breakthrough surge at every drilling exit of a program (the robot must give its
-    /// masses).
+    /// With --free-tool-axis: what the rotation minimises: the TCP deflection at every point, the
+    /// breakthrough surge at every drilling exit of a program (the robot must give its masses),
+    /// or the error bound at every point (`bound_mm`).
     #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
     free_tool_axis_objective: Objective,
+    /// With --free-tool-axis: how the points' costs add up along the path: their sum, or the
+    /// worst point's (ties broken by the sum).
+    #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum", requires = "free_tool_axis")]
+    objective: Aggregate,
+    /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
+    /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
+    /// their bound.
+    #[arg(long)]
+    max_error_mm: Option<f64>,
+    /// With --report: also the map of the free variable (the rotation about tool z, on the
+    /// --free-tool-axis grid, else 5 deg steps within +-90 deg): every point's error bound,
+    /// deflection, condition number and distance to the joint limits at every rotation, with the
+    /// rotation chosen (map.csv and the figure map).
+    #[arg(long, requires = "report")]
+    map: bool,
+    /// The process force model's relative error in the error budget, percent (0 to 100): the
+    /// bound's force part is this share of the deflection.
+    #[arg(long, default_value_t = 20.0)]
+    force_tolerance_percent: f64,
     /// With --free-tool-axis: the largest change of that rotation between consecutive points, deg
     /// (0 < value <= 90).
     #[arg(long, default_value_t = 2.0, requires = "free_tool_axis")]
@@ -103,9 +124,9 @@ pub struct Args {
     /// With --free-tool-axis: the rotation stays within +- this of the path's, deg (0 < value <= 180).
     #[arg(long, default_value_t = 90.0, requires = "free_tool_axis")]
     tool_axis_range_deg: f64,
-    /// The level of the deflection's prediction intervals (0.5 to 0.999; the CSV's
-    /// `d*_lower_mm`, `d*_upper_mm`), when the stiffness file holds the held-out residuals of its
-    /// identification (`identify --cross-validate`).
+    /// The level of the error bound (`bound_mm`) and of the deflection's prediction intervals
+    /// (0.5 to 0.999; the CSV's `d*_lower_mm`, `d*_upper_mm`, when the stiffness file holds the
+    /// held-out residuals of its identification, `identify --cross-validate`).
     #[arg(long, default_value_t = 0.95)]
     level: f64,
 }
@@ -331,6 +352,9 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     stiffid::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
+    options.force_tolerance = args.force_tolerance_percent / 100.0;
+    options.max_error = args.max_error_mm.map(|m| m * 1e-3);
+    options.map = args.map;
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
@@ -338,6 +362,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
         let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)?;
         options.free_tool_axis = Some(FreeToolAxis {
             objective: args.free_tool_axis_objective,
+            aggregate: args.objective,
             ..free
         });
     }
@@ -374,6 +399,29 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
                 .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
         );
     }
+    let b = &d.budget;
+    text += &format!(
+        "error bound at {}%: largest {} (line {}), mean {}{}{}\n",
+        100.0 * b.level,
+        b.max_bound_mm.map_or(
+            "infinite (too few held-out calibration errors)".into(),
+            |m| format!("{m:.4} mm")
+        ),
+        b.max_bound_line.unwrap_or(0),
+        b.mean_bound_mm
+            .map_or("infinite".into(), |m| format!("{m:.4} mm")),
+        b.worst.first().map_or(String::new(), |w| format!(
+            ", mostly {} there",
+            w.dominant.replace('_', " ")
+        )),
+        match b.absent.is_empty() {
+            true => String::new(),
+            false => format!(
+                " ({} absent, counted as 0)",
+                b.absent.join(", ").replace('_', " ")
+            ),
+        }
+    );
     if let (Some(f), Some(o)) = (&d.free_tool_axis, &doc.free_tool_axis) {
         let [lo, hi] = f.tool_rotation_range_deg;
         text += &format!(

@@ -25,9 +25,14 @@ const FILES: [&str; 4] = [
     "path.glb",
 ];
 
+/// The map's CSV (with `--map`).
+const MAP_CSV: &str = "map.csv";
+
 /// Whether the report writes the file `rel` (relative to its directory).
 pub fn holds(rel: &Path) -> bool {
-    FILES.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures")
+    FILES.iter().any(|f| rel == Path::new(f))
+        || rel == Path::new(MAP_CSV)
+        || rel.starts_with("figures")
 }
 
 /// What the report shows of a streamed compensation: the job's report (its sample of the points
@@ -56,6 +61,10 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     if let Some(p) = &view.document.program {
         figures.push(figures::machining::force(&summary.sample)?);
         figures.push(figures::machining::segments(&p.segments)?);
+    }
+    if let Some(map) = &view.report.map {
+        figures.push(figures::map::figure(map)?);
+        dir.write(MAP_CSV, figures::map::csv(map).as_bytes())?;
     }
     dir.write_with(FILES[0], view.summary)?;
     let csv = |w: &mut dyn std::io::Write| {
@@ -152,6 +161,25 @@ fn compose(
             p.out
         ));
     }
+    let b = &s.budget;
+    items.push(match b.max_bound_mm {
+        Some(m) => format!(
+            "Error bound at {}%: at most {} mm (line {}), mean {} mm{}{}.",
+            b.level * 100.0,
+            num(m),
+            b.max_bound_line.unwrap_or(0),
+            b.mean_bound_mm.map_or("-".into(), num),
+            b.worst.first().map_or(String::new(), |w| format!(
+                ", dominated there by {}",
+                w.dominant.replace('_', " ")
+            )),
+            match b.absent.is_empty() {
+                true => String::new(),
+                false => format!(" (absent, counted as 0: {})", b.absent.join(", ")),
+            }
+        ),
+        None => "Error bound: infinite (too few held-out calibration errors for the level).".into(),
+    });
     if !document.has_covariance {
         items.push("The stiffness file has no compliance covariance: no uncertainty band (run `stiffid identify --out` to get one).".into());
     }

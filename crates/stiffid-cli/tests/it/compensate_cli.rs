@@ -604,3 +604,60 @@ fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
         "{text}"
     );
 }
+
+/// `--max-error-mm` certifies a program: above the largest bound the program is written with
+/// every target's bound as a comment; below it the command exits 2 naming the worst points and
+/// what dominates them, and writes nothing.
+#[test]
+fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
+    let dir = temp_dir("certified");
+    let (setup, stiffness) = (
+        example("milling/kuka-milling.toml"),
+        example("milling/kuka-stiffness.json"),
+    );
+    let out = dir.join("pocket.src");
+    let csv = dir.join("pocket.csv");
+    let o = program(
+        &setup,
+        &stiffness,
+        &out,
+        &["--csv", csv.to_str().unwrap(), "--json"],
+    );
+    assert_success(&o);
+    let doc = json(&o);
+    let worst = doc["summary"]["budget"]["max_bound_mm"].as_f64().unwrap();
+    let written = std::fs::read_to_string(&out).unwrap();
+    let motions = written
+        .lines()
+        .filter(|l| l.starts_with("PTP ") || l.starts_with("LIN "))
+        .count();
+    let commented = written
+        .lines()
+        .filter(|l| l.contains(" ; bound ") && l.ends_with(" mm at 95%"))
+        .count();
+    assert_eq!(commented, motions);
+    assert_eq!(motions, doc["points"].as_array().unwrap().len());
+    std::fs::remove_file(&out).unwrap();
+    std::fs::remove_file(&csv).unwrap();
+    let limit = format!("{}", worst / 2.0);
+    let o = program(
+        &setup,
+        &stiffness,
+        &out,
+        &["--csv", csv.to_str().unwrap(), "--max-error-mm", &limit],
+    );
+    let line = assert_usage_error(
+        &o,
+        &["--max-error-mm", "the worst points: line ", "mostly "],
+    );
+    assert!(line.contains(&format!("largest {worst:.4} mm")), "{line}");
+    assert!(!out.exists() && !csv.exists());
+    let o = program(
+        &setup,
+        &stiffness,
+        &out,
+        &["--max-error-mm", &format!("{}", worst * 2.0)],
+    );
+    assert_success(&o);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

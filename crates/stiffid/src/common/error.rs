@@ -489,6 +489,10 @@ pub enum JobOption {
     ToolAxisRangeDeg,
     /// compensate: what the free tool axis minimises (the deflection, or the drilling surge).
     FreeToolAxisObjective,
+    /// compensate: the largest error bound a program may have anywhere, mm.
+    MaxErrorMm,
+    /// compensate: the process force model's relative error, percent.
+    ForceTolerancePercent,
     /// compensate: the largest sagitta of the chords of a G-code arc, mm.
     ChordToleranceMm,
     /// compensate: the robot's largest TCP speed, mm/s.
@@ -563,6 +567,8 @@ impl JobOption {
             JobOption::MaxStepDeg => "max_step_deg",
             JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
             JobOption::FreeToolAxisObjective => "free_tool_axis_objective",
+            JobOption::MaxErrorMm => "max_error_mm",
+            JobOption::ForceTolerancePercent => "force_tolerance_percent",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
             JobOption::NameLength => "name_length",

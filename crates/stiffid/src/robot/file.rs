@@ -31,6 +31,9 @@
 //! rpy_deg = [0, 0, 0]
 //! [robot_geometry]                      # optional: capsule radii of the base and links 1-6
 //! link_radius_mm = [350, 260, 195, 175, 130, 110, 90]   # default scaled to the robot's size
+//! [held_out]                            # optional (stiffid calibrate --out writes it): the
+//! source = "validate"                   #   calibration's held-out position errors, "validate"
+//! errors_mm = [0.012, 0.019, 0.031]     #   or "cross-validate", each |error| in mm (1 to 1e6)
 //! ```
 //! Unknown keys are rejected.
 
@@ -53,6 +56,48 @@ struct RobotFile {
     base: Option<TransformFile>,
     flange: Option<TransformFile>,
     robot_geometry: Option<GeometryFile>,
+    held_out: Option<HeldOutFile>,
+}
+
+/// A calibrated robot's `[held_out]`: its calibration's held-out position errors.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct HeldOutFile {
+    source: String,
+    errors_mm: Vec<f64>,
+}
+
+/// The most held-out errors a robot file carries.
+pub const MAX_HELD_OUT: usize = 1_000_000;
+
+/// The `[held_out]` table checked: `source` `validate` or `cross-validate`, 1 to
+/// [`MAX_HELD_OUT`] errors, each finite, within [0, 1000] mm; sorted.
+fn held_out(file: Option<HeldOutFile>, source_name: &str) -> Result<Option<super::HeldOut>> {
+    let Some(h) = file else { return Ok(None) };
+    if !matches!(h.source.as_str(), "validate" | "cross-validate") {
+        return Err(invalid(
+            source_name,
+            "held_out.source".into(),
+            &format!(
+                "'{}': expected \"validate\" or \"cross-validate\"",
+                limits::short(&h.source)
+            ),
+        ));
+    }
+    let bad = h.errors_mm.iter().any(|e| !(0.0..=1000.0).contains(e));
+    if h.errors_mm.is_empty() || h.errors_mm.len() > MAX_HELD_OUT || bad {
+        return Err(invalid(
+            source_name,
+            "held_out.errors_mm".into(),
+            &format!("expected 1 to {MAX_HELD_OUT} lengths, each finite, within [0, 1000] mm"),
+        ));
+    }
+    let mut errors: Vec<f64> = h.errors_mm.iter().map(|e| e * 1e-3).collect();
+    errors.sort_by(f64::total_cmp);
+    Ok(Some(super::HeldOut {
+        source: h.source,
+        errors,
+    }))
 }
 
 /// A robot's `[robot_geometry]`: the capsule radii of its bodies (the tool's is the setup's).
@@ -199,6 +244,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let base = transform(file.base, "base", source_name)?;
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
+    let held = held_out(file.held_out, source_name)?;
     let axis_map = match file.axis_map {
         None => AxisMap::default(),
         Some(m) => axis_map(&m, source_name)?,
@@ -211,6 +257,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
             r.with_bodies(bodies)
                 .with_masses(masses)
                 .with_error_maps(maps)
+                .with_held_out(held)
         })
         .map_err(|e| match e {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),

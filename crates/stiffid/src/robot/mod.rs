@@ -70,6 +70,35 @@ pub struct Robot {
     error_maps: Option<Arc<[ErrorMap; 6]>>,
     /// The cell's external axes ([`external`]), when it has any.
     external: Option<Arc<ExternalAxes>>,
+    /// A calibrated robot's held-out position errors ([`HeldOut`]), when its file carries them.
+    held_out: Option<Arc<HeldOut>>,
+}
+
+/// The held-out position errors of a calibration (`stiffid calibrate --validate` or
+/// `--cross-validate`), as the calibrated robot file carries them (`[held_out]`): the length of
+/// each held-out reading's error (predicted minus read, m), sorted, and where they come from.
+/// A compensation's error budget takes their quantile at its level as the calibration's part
+/// ([`HeldOut::quantile`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldOut {
+    /// `validate` (readings the fit did not see) or `cross-validate` (leave one posture out).
+    pub source: String,
+    /// The errors' lengths, m, sorted, finite and non-negative (at least one).
+    pub errors: Vec<f64>,
+}
+
+impl HeldOut {
+    /// The split conformal quantile at `level` (Lei et al. 2018, as the stiffness's deflection
+    /// intervals take theirs): the `ceil(level (N + 1))`-th smallest of the `N` errors, m;
+    /// infinite when `N` is too small for the level.
+    pub fn quantile(&self, level: f64) -> f64 {
+        let n = self.errors.len();
+        let k = (level * (n + 1) as f64 - 1e-9).ceil() as usize;
+        match k >= 1 && k <= n {
+            true => self.errors[k - 1],
+            false => f64::INFINITY,
+        }
+    }
 }
 
 /// What a calibrated robot's name ends with (the robot files `stiffid calibrate` writes).
@@ -143,6 +172,7 @@ impl Robot {
             urdf: None,
             error_maps: None,
             external: None,
+            held_out: None,
         }
         .with_limits(limits)
     }
@@ -253,9 +283,22 @@ impl Robot {
         }
     }
 
+    /// The robot carrying a calibration's held-out position errors ([`HeldOut`]).
+    pub fn with_held_out(self, held_out: Option<HeldOut>) -> Self {
+        Self {
+            held_out: held_out.map(Arc::new),
+            ..self
+        }
+    }
+
     /// The cell's external axes, when it has any.
     pub fn external(&self) -> Option<&ExternalAxes> {
         self.external.as_deref()
+    }
+
+    /// A calibrated robot's held-out position errors, when its file carries them.
+    pub fn held_out(&self) -> Option<&HeldOut> {
+        self.held_out.as_deref()
     }
 
     /// The axes' error maps, when any axis has one.

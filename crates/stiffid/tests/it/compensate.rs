@@ -238,6 +238,9 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         free_tool_axis: free,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
+        force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
+        max_error: None,
+        map: false,
     }
 }
 

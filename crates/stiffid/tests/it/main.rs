@@ -5,6 +5,7 @@
 mod active_set;
 mod bodies;
 mod bootstrap;
+mod budget;
 mod calibrate_cell;
 mod candidates;
 mod cell;

@@ -200,8 +200,24 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         max_step: 0.0,
         range: 1.0,
         objective: compensate::Objective::Deflection,
+        aggregate: compensate::Aggregate::Sum,
     });
     rejected(options.validate(), "FreeToolAxis.max_step", "0 rad");
+    // The error budget's options: the force model's error within 0 to 100%, the largest error > 0.
+    let mut budget = compensate::Options::for_setup(&setup);
+    budget.force_tolerance = 1.5;
+    let e = budget.validate().unwrap_err();
+    assert!(
+        matches!(&e, stiffid::Error::InvalidOption { option: stiffid::JobOption::ForceTolerancePercent, message } if message == "150: expected 0 to 100 percent"),
+        "{e}"
+    );
+    let mut budget = compensate::Options::for_setup(&setup);
+    budget.max_error = Some(-1e-3);
+    let e = budget.validate().unwrap_err();
+    assert!(
+        matches!(&e, stiffid::Error::InvalidOption { option: stiffid::JobOption::MaxErrorMm, message } if message == "-1: expected a number > 0"),
+        "{e}"
+    );
     // 5e-324 deg is 0 rad: refused by the degrees' own check, naming the option.
     match FreeToolAxis::try_from_degrees(5e-324, 90.0) {
         Err(Error::InvalidOption { option, message }) => {

@@ -450,6 +450,18 @@ fn calibrated(
         .build()
         .unwrap();
     let held_rms = report.validation.as_ref().unwrap().calibrated.rms;
+    // The calibrated robot file carries the held-out errors the error budget reads.
+    if let Ok(toml) = &report.robot_toml {
+        let carried = stiffid::robot::file::parse(toml, "calibrated.toml").unwrap();
+        let h = carried.held_out().unwrap();
+        let v = &report.validation.as_ref().unwrap().calibrated;
+        assert_eq!(
+            (h.source.as_str(), h.errors.len()),
+            ("validate", v.errors.len())
+        );
+        assert!((h.errors[h.errors.len() - 1] - v.max).abs() <= 1e-12 * v.max.max(1e-3));
+        assert!(h.quantile(0.5) <= v.max);
+    }
     eprintln!(
         "calibration ({}): residual {:.4} mm, noise ratio {:.2}, held out {:.4} mm, nominal {:.4} mm",
         stiffid::common::choice::Choice::name(gravity),

@@ -4,6 +4,7 @@ pub mod chart;
 pub mod criteria;
 pub mod deviation;
 pub mod machining;
+pub mod map;
 pub mod path;
 pub mod postures;
 pub mod table;

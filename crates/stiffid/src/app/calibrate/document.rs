@@ -604,3 +604,22 @@ fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {
         })
         .collect()
 }
+
+/// The calibrated robot file's `[held_out]` table ([`crate::robot::HeldOut`]): the lengths of
+/// the held-out readings' errors (mm, shortest round-trip), those of `--validate` where given,
+/// else those of `--cross-validate`; empty without either. A compensation's error budget takes
+/// their quantile as the calibration's part.
+pub(super) fn held_out_table(validation: Option<&Held>, cross_validation: Option<&Held>) -> String {
+    let (source, held) = match (validation, cross_validation) {
+        (Some(v), _) => ("validate", v),
+        (None, Some(c)) => ("cross-validate", c),
+        (None, None) => return String::new(),
+    };
+    let errors: Vec<String> = (held.calibrated.errors.iter())
+        .map(|e| format!("{:?}", e.error.norm() * 1e3))
+        .collect();
+    format!(
+        "\n# The calibration's held-out position errors (|predicted - read|, mm): the error budget of\n# `stiffid compensate` takes their quantile at its level.\n[held_out]\nsource = \"{source}\"\nerrors_mm = [{}]\n",
+        errors.join(", ")
+    )
+}

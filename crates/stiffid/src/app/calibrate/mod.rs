@@ -13,6 +13,7 @@
 //! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
 //! cross-validation (one fit per posture; beyond it, held-out readings get no intervals).
 
+mod checks;
 mod compliance;
 pub mod document;
 mod maps;
@@ -36,6 +37,7 @@ use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
 use crate::observation::deflection::base_wrench;
 use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
+use checks::{cross_validation_size, interval_level};
 use nalgebra::{DVector, Vector3};
 
 pub use crate::io::readings::MAX_READINGS;
@@ -368,7 +370,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
-    let robot_toml = robot_file::robot_toml(&model, &fitted.estimate).map_err(|e| e.to_string());
+    let robot_toml = robot_file::robot_toml(&model, &fitted.estimate)
+        .map(|t| t + &document::held_out_table(validation.as_ref(), cross_validation.as_ref()))
+        .map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
         warnings.push(Warning::new(WarningKind::LeftOut, note));
@@ -400,42 +404,6 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         compliance,
         warnings,
     })
-}
-
-/// The level of the held-out readings' prediction intervals: `request.level`, else
-/// [`crate::model::prediction::DEFAULT_LEVEL`].
-///
-/// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
-/// [`crate::model::prediction::LEVEL`], or one given without held-out readings.
-fn interval_level(request: &Request<'_>) -> Result<f64> {
-    use crate::model::prediction::{check_level, DEFAULT_LEVEL};
-    match (request.level, &request.validate) {
-        (None, _) => Ok(DEFAULT_LEVEL),
-        (Some(_), None) => Err(Error::InvalidOption {
-            option: JobOption::Level,
-            message: "only with --validate: the level is that of the held-out readings' prediction intervals".into(),
-        }),
-        (Some(l), Some(_)) => check_level("level", l)
-            .map(|_| l)
-            .map_err(|e| e.for_option(JobOption::Level)),
-    }
-}
-
-/// Refuses cross-validation beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures, before any fit.
-fn cross_validation_size(obs: &[Observation]) -> Result<()> {
-    let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
-    postures.dedup();
-    match postures.len() > MAX_CROSS_VALIDATION_POSTURES {
-        true => Err(Error::InvalidField {
-            field: "cross_validate".into(),
-            message: format!(
-                "at most {MAX_CROSS_VALIDATION_POSTURES} postures (one fit each), got {}: validate on a held-out file instead",
-                postures.len()
-            ),
-        }),
-        false => Ok(()),
-    }
 }
 
 /// The nominal reference of every validation, whatever the model fitted: the nominal robot,

@@ -13,12 +13,13 @@ use crate::common::stop::Stop;
 use crate::common::warning::{Warning, WarningKind};
 use crate::io::stiffness::RegionSection;
 use crate::machining::compensate::Compensated;
-use crate::machining::dynamics::Dynamics;
 use crate::model::region::{self, Region};
 use crate::Coordinates;
 use nalgebra::Vector6;
 use serde::Serialize;
 use serde_json::{Map, Value};
+
+pub use super::columns::{csv_line, header, values, DYNAMICS};
 
 /// The value of the document's `generator` key: it marks a compensation report directory.
 pub const GENERATOR: &str = "stiffid compensate";
@@ -91,8 +92,11 @@ pub struct FreeToolAxis {
     /// The rotation stays within +- this of the path's, deg.
     pub range_deg: f64,
     /// What the rotation minimises: `deflection` (the TCP deflection at every point) or `surge`
-    /// (the breakthrough surge at every drilling exit).
+    /// (the breakthrough surge at every drilling exit) or `bound` (the error bound at every
+    /// point).
     pub objective: &'static str,
+    /// How the points' costs add up: `sum` or `max` (the worst point's).
+    pub aggregate: &'static str,
 }
 
 /// A compensated program: what was read, and each segment's force and deflection.
@@ -179,6 +183,9 @@ pub struct SummaryDocument {
     pub max_interval_width_mm: Option<f64>,
     /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
     pub free_tool_axis: Option<FreeSummary>,
+    /// The error budget along the path: the largest and mean bound at the level, the parts
+    /// absent, the worst points and what dominates their bound (the points' `bound_*` columns).
+    pub budget: super::budget::BudgetSummary,
     /// The largest error predicted to remain after compensation, mm: the standard deviation of
     /// the TCP deflection's length `|d|` from the compliance's covariance (the compensation
     /// removes the predicted deflection, not its uncertainty); `null` without a covariance.
@@ -261,6 +268,7 @@ fn may_be_empty(name: &str) -> bool {
         || name == "d_norm_before_mm"
         || name == "extrapolates"
         || DYNAMICS.contains(&name)
+        || name.starts_with("bound_")
 }
 
 impl Document {
@@ -283,6 +291,7 @@ impl Document {
                 max_step_deg: f.max_step.to_degrees(),
                 range_deg: f.range.to_degrees(),
                 objective: crate::common::choice::Choice::name(f.objective),
+                aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
@@ -310,121 +319,6 @@ fn segment(s: &Segment) -> SegmentDocument {
         deflection_before_mm: mm(s.deflection_before),
         deflection_after_mm: mm(s.deflection_after),
         deflection_std_mm: s.deflection_std.map(mm),
-    }
-}
-
-fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
-    items.iter().map(|i| format!("{prefix}{i}{unit}")).collect()
-}
-
-/// The column names of the CSV (and the keys of a [`Row`]).
-pub fn header() -> Vec<String> {
-    let axes = ["1", "2", "3", "4", "5", "6"];
-    let xyz = ["x", "y", "z"];
-    let mut header = vec!["point".to_string(), "line".to_string()];
-    header.extend(names("q", &axes, "_deg"));
-    header.extend(names("", &xyz, "_mm"));
-    header.extend(names("r", &xyz, "_deg"));
-    header.extend(names("f", &xyz, "_base_n"));
-    header.extend(names("m", &xyz, "_base_nm"));
-    header.extend(names("d", &xyz, "_mm"));
-    header.push("d_norm_mm".into());
-    header.extend(names("dr", &xyz, "_mrad"));
-    header.extend(names("d", &xyz, "_std_mm"));
-    header.extend(names("dr", &xyz, "_std_mrad"));
-    header.extend(names("qc", &axes, "_deg"));
-    for name in [
-        "residual_um",
-        "residual_urad",
-        "iterations",
-        "tool_rotation_deg",
-        "d_norm_before_mm",
-    ] {
-        header.push(name.into());
-    }
-    for c in xyz {
-        header.push(format!("d{c}_lower_mm"));
-        header.push(format!("d{c}_upper_mm"));
-    }
-    header.push("extrapolates".into());
-    header.extend(DYNAMICS.map(String::from));
-    header
-}
-
-/// The columns of a point's dynamics ([`crate::machining::dynamics`]): at a drilling exit the
-/// breakthrough surge, its standard deviation, the held effective mass along the drill and, with
-/// the free tool axis, the surge at the path's own rotation; at a milling point the first natural
-/// frequency and the tooth-passing frequency.
-pub const DYNAMICS: [&str; 6] = [
-    "surge_mm_s",
-    "surge_std_mm_s",
-    "effective_mass_kg",
-    "surge_before_mm_s",
-    "first_frequency_hz",
-    "tooth_passing_hz",
-];
-
-/// The values of point `i` (0-based) from `line` of its file with its dynamics `dynamics`, one
-/// per column of [`header`] (mm, deg, N, Nm, mrad, um, urad, mm/s, kg, Hz); `None` for an empty
-/// cell.
-pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<Option<f64>> {
-    let deg = |q: &Vector6<f64>| q.iter().map(|v| Some(v.to_degrees())).collect::<Vec<_>>();
-    let (rx, ry, rz) = r.pose.rotation.euler_angles();
-    let p = r.pose.translation.vector * 1e3;
-    let d = &r.deflection;
-    let mut v = vec![Some(i as f64 + 1.0), Some(line as f64)];
-    v.extend(deg(&r.q));
-    v.extend([p.x, p.y, p.z].map(Some));
-    v.extend([rx, ry, rz].map(|a| Some(a.to_degrees())));
-    v.extend(r.wrench.iter().map(|w| Some(*w)));
-    v.extend((0..3).map(|k| Some(d[k] * 1e3)));
-    v.push(Some(d.fixed_rows::<3>(0).norm() * 1e3));
-    v.extend((3..6).map(|k| Some(d[k] * 1e3)));
-    v.extend((0..6).map(|k| r.deflection_std.map(|s| s[k] * 1e3)));
-    v.extend(deg(&r.q_compensated));
-    v.extend([
-        Some(r.residual_position * 1e6),
-        Some(r.residual_rotation * 1e6),
-        Some(r.iterations as f64),
-        Some(r.tool_rotation.to_degrees()),
-        r.deflection_before
-            .map(|b| b.fixed_rows::<3>(0).norm() * 1e3),
-    ]);
-    let ends = |k: usize| r.deflection_interval.map(|i| i[k / 2][k % 2] * 1e3);
-    v.extend((0..6).map(|k| ends(k).filter(|e| e.is_finite())));
-    v.push(
-        r.outside_region
-            .as_ref()
-            .map(|o| f64::from(u8::from(!o.is_empty()))),
-    );
-    let surge = dynamics.surge.as_ref();
-    v.extend([
-        surge.map(|s| s.speed * 1e3),
-        surge.and_then(|s| s.speed_std).map(|s| s * 1e3),
-        surge.map(|s| s.mass),
-        dynamics.surge_before.map(|s| s.speed * 1e3),
-        dynamics.first_frequency,
-        dynamics.tooth_passing,
-    ]);
-    v
-}
-
-/// One CSV line of a point's values: 9 decimals (1 nm in mm, 2e-11 rad in deg), trailing zeros
-/// dropped, empty cells for missing values.
-pub fn csv_line(values: &[Option<f64>]) -> String {
-    let cells: Vec<String> = values
-        .iter()
-        .map(|v| v.map_or(String::new(), cell))
-        .collect();
-    cells.join(",")
-}
-
-/// A number with 9 decimals, trailing zeros dropped.
-fn cell(x: f64) -> String {
-    let s = format!("{x:.9}");
-    match s.trim_end_matches('0').trim_end_matches('.') {
-        "-0" => "0".into(),
-        t => t.into(),
     }
 }
 
@@ -463,6 +357,10 @@ pub struct Summary {
     stride: usize,
     /// The ten largest deflections (0-based index and result), largest first.
     pub largest: Vec<(usize, Compensated)>,
+    /// The error budget's worst points.
+    pub budget: super::budget::Worst,
+    /// The level of the bound.
+    level: f64,
 }
 
 fn norm(d: &Vector6<f64>) -> f64 {
@@ -470,8 +368,8 @@ fn norm(d: &Vector6<f64>) -> f64 {
 }
 
 impl Summary {
-    /// An empty summary; `free`: the free tool axis was asked for.
-    pub fn new(free: bool) -> Self {
+    /// An empty summary; `free`: the free tool axis was asked for; `level`: the bound's.
+    pub fn new(free: bool, level: f64) -> Self {
         Self {
             points: 0,
             max_deflection: (0.0, 0),
@@ -490,6 +388,8 @@ impl Summary {
             sample: Vec::new(),
             stride: 1,
             largest: Vec::new(),
+            budget: Default::default(),
+            level,
         }
     }
 
@@ -534,6 +434,7 @@ impl Summary {
             *lo = lo.min(r.tool_rotation);
             *hi = hi.max(r.tool_rotation);
         }
+        self.budget.add(line, r);
         self.keep(i, r, d);
     }
 
@@ -674,6 +575,7 @@ impl Summary {
             extrapolated: self.extrapolated,
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
             max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
+            budget: self.budget.document(self.level),
             free_tool_axis: self
                 .free
                 .zip(means)

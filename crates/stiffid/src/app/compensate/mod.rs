@@ -16,6 +16,9 @@
 //! deflections) and, for a program, the compensated program and each segment's force and
 //! deflection before and after.
 
+pub mod budget;
+pub mod certify;
+mod columns;
 pub mod document;
 pub mod dynamics;
 pub mod stream;
@@ -150,6 +153,9 @@ pub struct Report {
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
     pub program: Option<ProgramReport>,
+    /// With [`Options::map`]: the map of the free variable with the rotations chosen
+    /// ([`compensate::Map`]).
+    pub map: Option<compensate::Map>,
     /// Points without a process force (plunges, rapid moves, blocks no operation covers).
     pub warnings: Vec<Warning>,
 }
@@ -186,15 +192,25 @@ where
         }
         .into());
     }
-    let mut summary = Summary::new(options.free_tool_axis.is_some());
+    let mut summary = Summary::new(options.free_tool_axis.is_some(), options.level);
+    let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
             summary.add(first + k, p.line, r);
+            if options.map {
+                chosen.push(r.tool_rotation);
+            }
         }
         sink(first, points, results, d)
     };
+    let mut mapped: Option<Vec<PathPoint>> = None;
     let (name, program, warnings) = match input {
         Input::Path { name, text, frame } => {
+            if options.map {
+                let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
+                let points: Result<Vec<PathPoint>> = points.collect();
+                mapped = Some(points.map_err(|e| in_input(&name, e))?);
+            }
             let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
             let mut first = 0;
             compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
@@ -234,6 +250,9 @@ where
                 &options,
             )
             .map_err(|e| in_input(&name, e))?;
+            if options.map {
+                mapped = Some(compensated.points.clone());
+            }
             let (masses, mass_warning) = crate::observation::dynamics::mass_model(setup.arm());
             let point_dynamics = match &masses {
                 Some(m) => crate::machining::dynamics::program(
@@ -288,14 +307,27 @@ where
                             .into_iter()
                             .map(|w| Warning::new(WarningKind::Feed, w)),
                     );
-                    let mut files = written.files.into_iter();
+                    let bounds: Vec<f64> =
+                        compensated.results.iter().map(|r| r.budget.bound).collect();
+                    let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
+                    let texts = certify::generated(d, &texts, &bounds, options.level);
+                    let mut files = (written.files.into_iter().zip(texts))
+                        .map(|(f, text)| generate::File { text, ..f });
                     let main = files.next().map(|f| f.text).unwrap_or_default();
                     (main, files.collect())
                 }
-                (Language::Robot(d), _) => match &written_name {
-                    Some(to) => (renamed(&compensated.program, d, to), Vec::new()),
-                    None => (compensated.program.clone(), Vec::new()),
-                },
+                (Language::Robot(d), _) => {
+                    let text = match &written_name {
+                        Some(to) => renamed(&compensated.program, d, to),
+                        None => compensated.program.clone(),
+                    };
+                    let lines: Vec<(u64, f64)> = (compensated.points.iter())
+                        .zip(&compensated.results)
+                        .map(|(p, r)| (p.line, r.budget.bound))
+                        .collect();
+                    let text = certify::at_lines(d, &text, &lines, options.level);
+                    (text, Vec::new())
+                }
                 _ => (compensated.program.clone(), Vec::new()),
             };
             let report = ProgramReport {
@@ -310,6 +342,18 @@ where
             (name, Some(report), warnings)
         }
     };
+    if let Some(max_error) = options.max_error {
+        summary.budget.refuse_above(max_error)?;
+    }
+    let map = match &mapped {
+        Some(points) => {
+            let mut map = compensate::map(setup.arm(), &compliance, points, &options)
+                .map_err(|e| in_input(&name, e))?;
+            map.chosen = chosen;
+            Some(map)
+        }
+        None => None,
+    };
     let mut warnings = warnings;
     warnings.extend(summary.stop_warning(options.max_iterations));
     warnings.extend(summary.region_warnings(&compliance.region));
@@ -322,6 +366,7 @@ where
         compliance,
         summary,
         program,
+        map,
         warnings,
     })
 }

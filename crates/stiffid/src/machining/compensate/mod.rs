@@ -40,6 +40,14 @@
 //! and Zhu, "Stiffness-based pose optimization of an industrial robot for five-axis milling",
 //! Robotics and Computer-Integrated Manufacturing 55, 2019.
 //!
+//! With [`Objective::Bound`] the cost of a point is its error bound ([`Budget`], without the
+//! residual the Newton steps leave), taken only where it is no larger than at the path's own
+//! angle; with [`Aggregate::Max`] the dynamic programming minimises the worst point's cost along
+//! the path (a bottleneck path: each angle keeps the least worst cost of the paths reaching it,
+//! ties broken by the sum with the tie-breaking costs) instead of the sum. Every point's budget
+//! is stated whatever the objective ([`Compensated::budget`]); [`map`] gives every point's bound,
+//! deflection, condition number and distance to the joint limits at every angle of the grid.
+//!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
 //! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
@@ -52,13 +60,17 @@ pub use crate::common::stop::Stop;
 use crate::observation::deflection::Frame;
 use nalgebra::{Isometry3, Vector6};
 
+pub mod budget;
+mod map;
 mod model;
 mod options;
 mod stream;
 mod tool_axis;
 
+pub use budget::Budget;
+pub use map::{map, Map};
 pub use model::{Model, Newton};
-pub use options::{FreeToolAxis, Objective, Options};
+pub use options::{Aggregate, FreeToolAxis, Objective, Options};
 pub use stream::{path, path_with_exits, stream, CHUNK};
 
 /// The residual the Newton steps aim at, m.
@@ -139,4 +151,9 @@ pub struct Compensated {
     /// The axes of `q` outside the region the compliance was identified from
     /// ([`crate::model::region`]): empty inside; `None` when the compliance records no region.
     pub outside_region: Option<Vec<crate::common::limits::Violation>>,
+    /// The error budget at [`Options::level`] ([`Budget`]).
+    pub budget: Budget,
+    /// With [`FreeToolAxis`]: the bound at the path's own rotation, before optimisation, with
+    /// this point's residual, m.
+    pub bound_before: Option<f64>,
 }

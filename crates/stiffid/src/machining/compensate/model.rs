@@ -25,6 +25,8 @@ pub struct Model<'a> {
     weight: Option<Weight>,
     /// Newton steps at most per point.
     max_iterations: usize,
+    /// The process force model's relative error (the budget's force part).
+    force_tolerance: f64,
 }
 
 /// One point compensated by the Newton steps ([`Model::compensate`]).
@@ -78,6 +80,7 @@ impl<'a> Model<'a> {
             level: crate::model::prediction::DEFAULT_LEVEL,
             weight,
             max_iterations: MAX_ITERATIONS,
+            force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
         })
     }
 
@@ -94,6 +97,28 @@ impl<'a> Model<'a> {
             max_iterations: max_iterations.max(1),
             ..self
         }
+    }
+
+    /// The model whose error budget takes the process force model's relative error
+    /// `force_tolerance` (default [`super::budget::DEFAULT_FORCE_TOLERANCE`]).
+    pub fn with_force_tolerance(self, force_tolerance: f64) -> Self {
+        Self {
+            force_tolerance,
+            ..self
+        }
+    }
+
+    /// The error budget ([`super::Budget`]) of a point whose deflection under its wrench is `d`,
+    /// compensated to the residual `left` (m).
+    pub fn budget(&self, d: &PointDeflection, left: f64) -> super::Budget {
+        let held = self.arm.robot().held_out();
+        super::Budget::new(
+            left,
+            super::budget::compensation(d, self.compliance, self.level),
+            held.map(|h| h.quantile(self.level)),
+            self.force_tolerance * d.displacement.fixed_rows::<3>(0).norm(),
+            None,
+        )
     }
 
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the

@@ -15,7 +15,38 @@ pub struct FreeToolAxis {
     pub range: f64,
     /// What the rotation minimises.
     pub objective: Objective,
+    /// How the points' costs add up along the path: their sum, or the worst point's.
+    pub aggregate: Aggregate,
 }
+
+/// How the free tool axis adds the points' costs up along the path (`--objective`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Aggregate {
+    /// The sum over the path.
+    #[default]
+    Sum,
+    /// The worst point's (ties broken by the sum).
+    Max,
+}
+
+impl crate::common::choice::Choice for Aggregate {
+    const FIELD: &'static str = "objective";
+    const ALL: &'static [Self] = &[Aggregate::Sum, Aggregate::Max];
+    fn name(self) -> &'static str {
+        match self {
+            Aggregate::Sum => "sum",
+            Aggregate::Max => "max",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Aggregate::Sum => "The sum of the points' costs along the path",
+            Aggregate::Max => "The worst point's cost (ties broken by the sum)",
+        }
+    }
+}
+
+crate::common::choice::by_name!(Aggregate);
 
 /// What the free tool axis minimises (module docs, "The free tool axis").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -26,15 +57,18 @@ pub enum Objective {
     /// The breakthrough surge at every drilling exit of a program
     /// ([`crate::machining::dynamics`]): needs the robot's masses and a process that drills.
     Surge,
+    /// The error bound of every point ([`super::Budget`]).
+    Bound,
 }
 
 impl crate::common::choice::Choice for Objective {
     const FIELD: &'static str = "free_tool_axis_objective";
-    const ALL: &'static [Self] = &[Objective::Deflection, Objective::Surge];
+    const ALL: &'static [Self] = &[Objective::Deflection, Objective::Surge, Objective::Bound];
     fn name(self) -> &'static str {
         match self {
             Objective::Deflection => "deflection",
             Objective::Surge => "surge",
+            Objective::Bound => "bound",
         }
     }
     fn help(self) -> &'static str {
@@ -42,6 +76,9 @@ impl crate::common::choice::Choice for Objective {
             Objective::Deflection => "The TCP deflection under the path's wrench at every point",
             Objective::Surge => {
                 "The breakthrough surge at every drilling exit (a program whose robot gives its masses)"
+            }
+            Objective::Bound => {
+                "The error bound at every point: the compensation's uncertainty, the calibration's held-out error, the force model's part"
             }
         }
     }
@@ -79,6 +116,7 @@ impl FreeToolAxis {
                 JobOption::ToolAxisRangeDeg,
             )?,
             objective: Objective::Deflection,
+            aggregate: Aggregate::Sum,
         })
     }
 
@@ -137,6 +175,17 @@ pub struct Options {
     pub level: f64,
     /// Newton steps at most per point, 1 to [`super::MAX_ITERATIONS`] (the default).
     pub max_iterations: usize,
+    /// The process force model's relative error, in [0, 1] (default
+    /// [`super::budget::DEFAULT_FORCE_TOLERANCE`]): the error budget's force part
+    /// ([`super::Budget`]).
+    pub force_tolerance: f64,
+    /// The largest error bound the compensate job accepts anywhere on the path, m (> 0, finite):
+    /// a path with a point above it is refused ([`crate::app::compensate::run`]); `None` accepts
+    /// any.
+    pub max_error: Option<f64>,
+    /// The compensate job also maps the free variable ([`super::Map`]: every point at every
+    /// rotation of the grid); [`super::path`] ignores it.
+    pub map: bool,
 }
 
 impl Options {
@@ -160,6 +209,21 @@ impl Options {
             1,
             super::MAX_ITERATIONS as u64,
         )?;
+        if let Some(m) = self.max_error.filter(|m| !(m.is_finite() && *m > 0.0)) {
+            return Err(Error::InvalidOption {
+                option: JobOption::MaxErrorMm,
+                message: format!("{}: expected a number > 0", number(m * 1e3)),
+            });
+        }
+        if !(0.0..=1.0).contains(&self.force_tolerance) {
+            return Err(Error::InvalidOption {
+                option: JobOption::ForceTolerancePercent,
+                message: format!(
+                    "{}: expected 0 to 100 percent",
+                    number(self.force_tolerance * 100.0)
+                ),
+            });
+        }
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
@@ -196,6 +260,9 @@ impl Options {
             free_tool_axis: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
+            force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
+            max_error: None,
+            map: false,
         }
     }
 }

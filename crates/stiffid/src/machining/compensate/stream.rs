@@ -66,7 +66,8 @@ pub fn path_with_exits(
     };
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
-        .with_max_iterations(options.max_iterations);
+        .with_max_iterations(options.max_iterations)
+        .with_force_tolerance(options.force_tolerance);
     let nominal = nominal_postures(arm, points, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = points
         .par_iter()
@@ -95,8 +96,10 @@ fn cost<'a>(
     free: &FreeToolAxis,
     thrusts: &'a [Option<Vector3<f64>>],
 ) -> Result<Cost<'a>> {
-    if free.objective == Objective::Deflection {
-        return Ok(Cost::Deflection);
+    match free.objective {
+        Objective::Deflection => return Ok(Cost::Deflection),
+        Objective::Bound => return Ok(Cost::Bound),
+        Objective::Surge => {}
     }
     let refuse = |message: String| Error::InvalidOption {
         option: JobOption::FreeToolAxisObjective,
@@ -170,7 +173,8 @@ where
     }
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
-        .with_max_iterations(options.max_iterations);
+        .with_max_iterations(options.max_iterations)
+        .with_force_tolerance(options.force_tolerance);
     let (mut previous, mut count) = (options.q0, 0);
     loop {
         let chunk: Vec<PathPoint> = points.by_ref().take(CHUNK).collect::<Result<_>>()?;
@@ -237,10 +241,14 @@ fn compensate_chosen(
                 .prediction
                 .as_ref()
                 .map(|p| d.interval(p, &model.compliance.h, model.level));
-            let deflection_before = free.then(|| {
+            let budget = model.budget(&d, newton.residual_position);
+            let before = free.then(|| {
                 let frames = arm.robot().frames(&c.nominal[i]);
-                model.deflection(&frames, &c.wrenches[i]).0
+                model.tcp_deflection(&frames, &c.wrenches[i])
             });
+            let bound_before =
+                (before.as_ref()).map(|b| model.budget(b, newton.residual_position).bound);
+            let deflection_before = before.map(|b| b.displacement);
             Ok(Compensated {
                 q: *q,
                 pose: tool_pose(&frames, &arm.tool().tcp),
@@ -258,6 +266,8 @@ fn compensate_chosen(
                 deflection_before,
                 q_before: free.then_some(c.nominal[i]),
                 outside_region: model.compliance.region.outside(q),
+                budget,
+                bound_before,
             })
         })
         .collect();
@@ -352,7 +362,7 @@ fn check_compensated(arm: &Arm, line: u64, newton: &Newton) -> Result<()> {
 
 /// The nominal axis angles of every point: given, or by inverse kinematics continued from the
 /// previous point (the first from `start`).
-fn nominal_postures(
+pub(super) fn nominal_postures(
     arm: &Arm,
     points: &[PathPoint],
     start: Vector6<f64>,

@@ -1,7 +1,7 @@
 //! The free tool axis: the stiffness-optimal rotation about tool z along the path by dynamic
 //! programming (module docs of [`super`], "The free tool axis").
 
-use super::{FreeToolAxis, Model, TIE_BREAK};
+use super::{Aggregate, FreeToolAxis, Model, TIE_BREAK};
 use crate::observation::dynamics::tcp_surge;
 use crate::robot::dynamics::MassModel;
 use crate::robot::ik::{self, tool_pose};
@@ -13,6 +13,9 @@ use rayon::prelude::*;
 pub(super) enum Cost<'a> {
     /// The TCP translation deflection under the point's wrench, m.
     Deflection,
+    /// The error bound under the point's wrench ([`super::Budget`], without the residual the
+    /// Newton steps leave, at most 0.1 um), m.
+    Bound,
     /// At a drilling exit the surge speed of its thrust (m/s), elsewhere nothing.
     Surge {
         /// The arm's mass model.
@@ -28,6 +31,11 @@ impl Cost<'_> {
     fn of(&self, model: &Model, i: usize, frames: &Frames, wrench: &Vector6<f64>) -> Option<f64> {
         match self {
             Cost::Deflection => Some(model.deflection(frames, wrench).0.fixed_rows::<3>(0).norm()),
+            Cost::Bound => Some(
+                model
+                    .budget(&model.tcp_deflection(frames, wrench), 0.0)
+                    .bound,
+            ),
             Cost::Surge { masses, thrusts } => match &thrusts[i] {
                 None => Some(0.0),
                 Some(force) => {
@@ -42,7 +50,7 @@ impl Cost<'_> {
     /// exit costs nothing but still keeps the path smooth).
     fn scales(&self, own: &[f64]) -> Vec<f64> {
         match self {
-            Cost::Deflection => own.to_vec(),
+            Cost::Deflection | Cost::Bound => own.to_vec(),
             Cost::Surge { .. } => {
                 let largest = own.iter().copied().fold(0.0, f64::max);
                 vec![if largest > 0.0 { largest } else { 1.0 }; own.len()]
@@ -68,51 +76,26 @@ pub(super) fn optimise_tool_axis(
         .collect();
     let zero = half as usize;
     let n = nominal.len();
-    let g_count = angles.len();
     let own: Vec<f64> = columns[zero]
         .iter()
         .map(|c| c.map_or(0.0, |z| z.1))
         .collect();
-    // cost[i][g]: the smallest sum of costs up to point i ending at angle g.
-    let feasible = |i: usize, g: usize| {
-        columns[g][i]
-            .as_ref()
-            .filter(|(_, d)| *d <= own[i])
-            .map(|(_, d)| *d)
+    // A point takes an angle only where its cost is no larger than at the path's own angle.
+    let costs: Vec<Vec<Option<f64>>> = (0..n)
+        .map(|i| {
+            (columns.iter())
+                .map(|c| c[i].as_ref().map(|z| z.1).filter(|d| *d <= own[i]))
+                .collect()
+        })
+        .collect();
+    let grid = Grid {
+        angles: &angles,
+        reach,
+        range: free.range,
+        max_step: free.max_step,
+        zero,
     };
-    // The tie-breaking cost (module docs): TIE_BREAK of the scale per full range away from the
-    // path's angle and per full step between points.
-    let scales = cost.scales(&own);
-    let weight = |i: usize| TIE_BREAK * scales[i];
-    let mut cost = vec![vec![f64::INFINITY; g_count]; n];
-    let mut from = vec![vec![0usize; g_count]; n];
-    for i in 0..n {
-        let w = weight(i);
-        for g in 0..g_count {
-            let Some(d) = feasible(i, g) else { continue };
-            let own = d + w * angles[g].abs() / free.range;
-            if i == 0 {
-                cost[0][g] = own;
-                continue;
-            }
-            let lo = g.saturating_sub(reach);
-            let hi = (g + reach).min(g_count - 1);
-            let turn =
-                |a: usize| cost[i - 1][a] + w * (angles[g] - angles[a]).abs() / free.max_step;
-            if let Some(best) = (lo..=hi).min_by(|&a, &b| turn(a).total_cmp(&turn(b))) {
-                cost[i][g] = turn(best) + own;
-                from[i][g] = best;
-            }
-        }
-    }
-    let mut g = (0..g_count)
-        .min_by(|&a, &b| cost[n - 1][a].total_cmp(&cost[n - 1][b]))
-        .unwrap_or(zero);
-    let mut chosen = vec![zero; n];
-    for i in (0..n).rev() {
-        chosen[i] = g;
-        g = from[i][g];
-    }
+    let chosen = shortest(&costs, &grid, &cost.scales(&own), free.aggregate);
     chosen
         .iter()
         .enumerate()
@@ -123,14 +106,129 @@ pub(super) fn optimise_tool_axis(
         .unzip()
 }
 
+/// The grid of the free tool axis' angles.
+pub(super) struct Grid<'a> {
+    /// The angles, rad, ascending.
+    pub angles: &'a [f64],
+    /// The most cells one step between points may move.
+    pub reach: usize,
+    /// The range of the rotation, rad.
+    pub range: f64,
+    /// The largest step between points, rad.
+    pub max_step: f64,
+    /// The index of the path's own angle (0 rad).
+    pub zero: usize,
+}
+
+/// The value of a path so far: the aggregate of the costs (with [`Aggregate::Sum`], the
+/// tie-breaking costs included) and, for [`Aggregate::Max`], the sum with them as the tie-break.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Value {
+    /// What is minimised.
+    pub primary: f64,
+    /// What breaks its ties.
+    pub secondary: f64,
+}
+
+impl Value {
+    const INFINITE: Value = Value {
+        primary: f64::INFINITY,
+        secondary: f64::INFINITY,
+    };
+
+    fn less(&self, other: &Value) -> bool {
+        match self.primary.total_cmp(&other.primary) {
+            std::cmp::Ordering::Equal => self.secondary < other.secondary,
+            o => o.is_lt(),
+        }
+    }
+}
+
+/// The dynamic programming of the free tool axis: `costs[i][g]` the cost of point `i` at angle
+/// `g` (`None`: not feasible), `scales[i]` its tie-breaking scale; returns the angle index of
+/// each point on the path of least value (module docs of [`super`]), `grid.zero` everywhere
+/// when no path is feasible.
+pub(super) fn shortest(
+    costs: &[Vec<Option<f64>>],
+    grid: &Grid,
+    scales: &[f64],
+    aggregate: Aggregate,
+) -> Vec<usize> {
+    let n = costs.len();
+    let g_count = grid.angles.len();
+    let angles = grid.angles;
+    // value[i][g]: the least value of the paths up to point i ending at angle g.
+    let mut value = vec![vec![Value::INFINITE; g_count]; n];
+    let mut from = vec![vec![0usize; g_count]; n];
+    let add = |before: Value, d: f64, tie: f64| match aggregate {
+        Aggregate::Sum => Value {
+            primary: before.primary + d + tie,
+            secondary: 0.0,
+        },
+        Aggregate::Max => Value {
+            primary: before.primary.max(d),
+            secondary: before.secondary + d + tie,
+        },
+    };
+    let start = Value {
+        primary: match aggregate {
+            Aggregate::Sum => 0.0,
+            Aggregate::Max => f64::NEG_INFINITY,
+        },
+        secondary: 0.0,
+    };
+    for i in 0..n {
+        let w = TIE_BREAK * scales[i];
+        for g in 0..g_count {
+            let Some(d) = costs[i][g] else { continue };
+            let tie = w * angles[g].abs() / grid.range;
+            if i == 0 {
+                value[0][g] = add(start, d, tie);
+                continue;
+            }
+            let lo = g.saturating_sub(grid.reach);
+            let hi = (g + grid.reach).min(g_count - 1);
+            let mut best: Option<(usize, Value)> = None;
+            for a in lo..=hi {
+                if value[i - 1][a].primary == f64::INFINITY {
+                    continue;
+                }
+                let turn = w * (angles[g] - angles[a]).abs() / grid.max_step;
+                let v = add(value[i - 1][a], d, tie + turn);
+                if best.is_none_or(|(_, b)| v.less(&b)) {
+                    best = Some((a, v));
+                }
+            }
+            if let Some((a, v)) = best {
+                value[i][g] = v;
+                from[i][g] = a;
+            }
+        }
+    }
+    let last = (0..g_count).fold(None, |best: Option<usize>, g| match best {
+        Some(b) if !value[n - 1][g].less(&value[n - 1][b]) => Some(b),
+        _ if value[n - 1][g].primary == f64::INFINITY => best,
+        _ => Some(g),
+    });
+    let Some(mut g) = last else {
+        return vec![grid.zero; n];
+    };
+    let mut chosen = vec![grid.zero; n];
+    for i in (0..n).rev() {
+        chosen[i] = g;
+        g = from[i][g];
+    }
+    chosen
+}
+
 /// One angle's posture and [`Cost`] at every path point; `None` where inverse kinematics fails
 /// or the cost cannot be computed.
-type Column = Vec<Option<(Vector6<f64>, f64)>>;
+pub(super) type Column = Vec<Option<(Vector6<f64>, f64)>>;
 
 /// The postures of the path turned by `phi` about tool z, continued along the path, and their
 /// cost; `None` where inverse kinematics fails or the cost cannot be computed (at the path's own
 /// angle such a cost is 0: no other angle is then taken there).
-fn column(
+pub(super) fn column(
     model: &Model,
     nominal: &[Vector6<f64>],
     wrenches: &[Vector6<f64>],
@@ -171,4 +269,73 @@ fn column(
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every path of angle indices over `n` points on `g` angles whose consecutive indices
+    /// differ by at most `reach`, by enumeration: the least aggregate of the costs.
+    fn exhaustive(costs: &[Vec<Option<f64>>], reach: usize, aggregate: Aggregate) -> f64 {
+        let (n, g) = (costs.len(), costs[0].len());
+        let mut best = f64::INFINITY;
+        for code in 0..g.pow(n as u32) {
+            let path: Vec<usize> = (0..n).map(|i| code / g.pow(i as u32) % g).collect();
+            if path.windows(2).any(|w| w[0].abs_diff(w[1]) > reach) {
+                continue;
+            }
+            let values: Option<Vec<f64>> = (0..n).map(|i| costs[i][path[i]]).collect();
+            let Some(values) = values else { continue };
+            let value = match aggregate {
+                Aggregate::Sum => values.iter().sum(),
+                Aggregate::Max => values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            };
+            best = best.min(value);
+        }
+        best
+    }
+
+    #[test]
+    fn the_dynamic_programming_finds_the_exhaustive_optimum() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let angles = [-0.2, -0.1, 0.0, 0.1, 0.2];
+        let grid = Grid {
+            angles: &angles,
+            reach: 1,
+            range: 0.2,
+            max_step: 0.1,
+            zero: 2,
+        };
+        for trial in 0..40 {
+            let n = 6;
+            // Costs in [1, 2) mm with some infeasible cells, the path's own angle always feasible.
+            let costs: Vec<Vec<Option<f64>>> = (0..n)
+                .map(|_| {
+                    (0..5)
+                        .map(|g| {
+                            (g == 2 || rng.random::<f64>() > 0.2).then(|| 1.0 + rng.random::<f64>())
+                        })
+                        .collect()
+                })
+                .collect();
+            let scales = vec![1.0; n];
+            for aggregate in [Aggregate::Sum, Aggregate::Max] {
+                let chosen = shortest(&costs, &grid, &scales, aggregate);
+                assert!(chosen.windows(2).all(|w| w[0].abs_diff(w[1]) <= 1));
+                let values: Vec<f64> = (0..n).map(|i| costs[i][chosen[i]].unwrap()).collect();
+                let value = match aggregate {
+                    Aggregate::Sum => values.iter().sum(),
+                    Aggregate::Max => values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                };
+                let best = exhaustive(&costs, 1, aggregate);
+                // Equal up to the tie-breaking cost (1e-6 of a cost per point and step).
+                assert!(
+                    (value - best).abs() <= 1e-5,
+                    "trial {trial} {aggregate:?}: {value} against {best}"
+                );
+            }
+        }
+    }
 }
