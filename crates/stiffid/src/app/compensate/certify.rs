@@ -4,6 +4,8 @@
 //! - KUKA KRL: `; bound 0.0123 mm at 95%` at the end of the motion's line;
 //! - ABB RAPID: `! bound 0.0123 mm at 95%` at the end of the line that ends the motion
 //!   instruction (its `;`);
+//! - Yaskawa INFORM: a comment line `'bound 0.0123 mm at 95%` before the motion's line (INFORM
+//!   comments are lines of their own);
 //! - FANUC LS: the position's comment in `/POS`, `P[i:"0.0123 mm"]` (a position comment is at
 //!   most 16 characters on the pendant; a position that already has one keeps it, and a position
 //!   visited twice takes the larger bound).
@@ -40,6 +42,7 @@ pub fn at_lines(dialect: Dialect, text: &str, lines: &[(u64, f64)], level: f64) 
     }
     match dialect {
         Dialect::FanucLs => ls(text, &by_line),
+        Dialect::Inform => inform(text, &by_line, level),
         Dialect::Krl | Dialect::Rapid => {
             let marker = if dialect == Dialect::Krl { ';' } else { '!' };
             let mut out = String::with_capacity(text.len() + 40 * lines.len());
@@ -100,7 +103,23 @@ fn is_motion(dialect: Dialect, t: &str, in_mn: bool) -> bool {
             let body = t.split_once(':').map_or("", |(_, b)| b);
             in_mn && (body.starts_with("J P[") || body.starts_with("L P["))
         }
+        Dialect::Inform => t.starts_with("MOVJ ") || t.starts_with("MOVL "),
     }
+}
+
+/// An INFORM job with a comment line naming the bound before each motion line of `by_line`,
+/// indented as the motion.
+fn inform(text: &str, by_line: &HashMap<u64, f64>, level: f64) -> String {
+    let mut out = String::with_capacity(text.len() + 40 * by_line.len());
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        if let Some(b) = by_line.get(&(i as u64 + 1)) {
+            let indent = &line[..line.len() - line.trim_start().len()];
+            let end = if line.ends_with("\r\n") { "\r\n" } else { "\n" };
+            out.push_str(&format!("{indent}'{}{end}", words(*b, level)));
+        }
+        out.push_str(line);
+    }
+    out
 }
 
 /// An LS program with the bound of the position of each motion line of `by_line` as the
