@@ -43,6 +43,8 @@ fn campaign(postures: usize) -> (ErrorModel, Vec<Observation>) {
                 q,
                 measured: (frame.inverse() * Point3::from(b)).coords,
                 wrench: Vector6::zeros(),
+                e: Vec::new(),
+                table: false,
             });
         }
     }

@@ -57,8 +57,9 @@ pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
 pub(crate) fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
     let points = &setup.tool().measuring_points;
     let pairs: Vec<register::Correspondence> = (data.readings.iter())
+        .filter(|r| !r.table)
         .map(|r| register::Correspondence {
-            base: setup.robot().frames(&r.q).point(&points[r.point]),
+            base: setup.robot().frames_at(&r.q, &r.e).point(&points[r.point]),
             tracker: r.position,
         })
         .collect();

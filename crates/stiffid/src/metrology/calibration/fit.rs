@@ -259,14 +259,17 @@ pub(super) fn leave_one_out_linearised(
 }
 
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
-/// ([`crate::metrology::register::fit`], Umeyama) for tracker readings, the identity for base-frame ones.
+/// ([`crate::metrology::register::fit`], Umeyama) of the arm's measuring points for tracker
+/// readings, the identity for base-frame ones; the reflectors on a positioner's table started
+/// from their readings (the mean of `P(e)^-1 T t` over each one's).
 ///
 /// # Errors
 /// Those of [`ErrorModel::positions`] and [`crate::metrology::register::fit`] (fewer than 3 readings,
 /// collinear points).
 pub fn start(model: &ErrorModel, observations: &[Observation]) -> Result<Estimate> {
-    let values = model.nominal();
+    let mut values = model.nominal();
     let frame = start_at(model, observations, &values)?;
+    model.start_tables(&mut values, &frame, observations);
     Ok(Estimate { frame, values })
 }
 
@@ -284,6 +287,15 @@ pub fn start_at(
     Ok(match model.measured_in() {
         MeasuredIn::Base => nalgebra::Isometry3::identity(),
         MeasuredIn::Tracker => {
+            // Registered on the arm's points: the table's reflectors are not known yet.
+            let arm: Vec<Observation>;
+            let observations = match observations.iter().any(|o| o.table) {
+                false => observations,
+                true => {
+                    arm = observations.iter().filter(|o| !o.table).cloned().collect();
+                    &arm
+                }
+            };
             let b = model.predict(values, observations)?;
             let pairs: Vec<Correspondence> = (observations.iter().zip(b))
                 .map(|(o, base)| Correspondence {
