@@ -19,7 +19,7 @@
 //!   positioner angles to calibrate the positioner's axes): `point` is `T1`, `T2`, ... (`T` and
 //!   the reflector's number, from 1) instead of a measuring point's number; the row's axis
 //!   angles are the arm's at the time (not used for the reflector), its positioner columns say
-//!   where the table stood. Only in a cell with a positioner.
+//!   where the table stood. Only in a cell with a positioner, and not in a file with load steps.
 //! - `x_tracker_mm..z_tracker_mm`: the tracker's reading of the measuring point, tracker frame,
 //!   mm, within [`crate::common::limits::LENGTH_MM`]; or `x_mm,y_mm,z_mm` in the robot base frame (a
 //!   tracker already registered).
@@ -528,6 +528,10 @@ impl Columns {
             return Err(row.error(self.posture, ColumnProblem::EmptyLabel));
         }
         let (point, table) = self.point(row, points)?;
+        if table && self.load.is_some() {
+            let message = "a reflector on the positioner's table in a file with load steps: load steps read the tool's measuring points".to_string();
+            return Err(row.error(self.point, ColumnProblem::Measurement { message }));
+        }
         let mut q = Vector6::zeros();
         for (a, &c) in self.q.iter().enumerate() {
             q[a] = row.number(c)?.to_radians();
@@ -750,6 +754,58 @@ mod tests {
         assert!((first.q[0] - 10f64.to_radians()).abs() < 1e-15);
         assert_eq!(first.position, Vector3::new(1.5, -0.02, 0.3));
         assert_eq!(r.readings[2].posture, 1);
+    }
+
+    /// The Comau on a 6 m track along x, with a turntable when `positioner`.
+    fn cell(positioner: bool) -> Robot {
+        use crate::robot::external::{ExternalAxes, ExternalAxis};
+        let mut axes = vec![ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0)];
+        if positioner {
+            let p = Vector3::new(3.0, 2.0, 0.8);
+            let pi = std::f64::consts::PI;
+            axes.push(ExternalAxis::rotary("turn", p, Vector3::z_axis(), -pi, pi));
+        }
+        robot().with_external(Some(ExternalAxes::new(axes).unwrap()))
+    }
+
+    #[test]
+    fn external_axes_and_table_reflectors() {
+        let head = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,e1_mm,e2_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm";
+        let row = "0,0,-90,0,0,0";
+        let text = format!(
+            "{head}\na,1,{row},2500,0,1,2,3\nt,T1,{row},2500,45,4,5,6\nt,t2,{row},2500,45,4,5,6\n"
+        );
+        let r = parse(&text, &cell(true), 4).unwrap();
+        assert_eq!(r.readings[0].e, vec![2.5, 0.0]);
+        assert!((r.readings[1].e[1] - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        let t = &r.readings[2];
+        assert!(t.table && t.point == 1 && !r.readings[0].table);
+        assert_eq!((r.tables, r.labels.len()), (2, 2));
+        let error = |text: String, robot: &Robot| parse(&text, robot, 4).unwrap_err().to_string();
+        let e = error(format!("{head}\na,1,{row},6500,0,1,2,3\n"), &cell(true));
+        assert_eq!(
+            e,
+            "line 2, column 9 (e1_mm): e1_mm = 6500 is outside the axis's travel [0.0, 6000.0]"
+        );
+        let e = error(format!("{head}\na,T0,{row},2500,0,1,2,3\n"), &cell(true));
+        assert!(e.contains("column 2 (point): 'T0' is not a reflector on the positioner's table (T1 to T100)"), "{e}");
+        let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\na,2,{row},2400,0,1,2,3\n"), &cell(true));
+        assert!(e.contains("posture 'a' has other external axis values on line 2"), "{e}");
+        let e = error(format!("{head}\nt,T1,{row},2500,0,1,2,3\nt,T1,{row},2500,0,1,2,3\n"), &cell(true));
+        assert!(e.contains("table reflector T1 of posture 't' is read on line 2 already"), "{e}");
+        // Missing the positioner's column; a column of an axis the cell lacks.
+        let short_head = head.replace(",e2_deg", "");
+        let e = error(format!("{short_head}\na,1,{row},2500,1,2,3\n"), &cell(true));
+        assert!(e.contains("missing column 'e2_deg'"), "{e}");
+        let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\n"), &cell(false));
+        assert_eq!(
+            e,
+            "line 1, column 10 (e2_deg): no external axis has this column: the cell's external axes are e1_mm (track)"
+        );
+        let e = error(format!("{short_head}\na,T1,{row},2500,1,2,3\n"), &cell(false));
+        assert!(e.contains("'T1' names a reflector on a positioner's table, and the cell has no positioner"), "{e}");
+        let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\n"), &robot());
+        assert!(e.contains("column 9 (e1_mm): no external axis has this column: the cell has no external axes"), "{e}");
     }
 
     #[test]

@@ -585,3 +585,31 @@ impl ErrorModel {
         }
     }
 }
+
+impl ErrorModel {
+    /// Why parameter `c` of an external axis merges with the kept ones, in words (what it is
+    /// the same as); `None` for any other parameter.
+    pub fn merged_words(&self, c: usize) -> Option<&'static str> {
+        let Target::External { axis, part } = self.parameters.get(c)?.target else {
+            return None;
+        };
+        let linear = self.robot.external()?.axes().get(axis)?.kind == AxisKind::Linear;
+        Some(match (part, linear) {
+            (AxisPart::Motion { order: 1, motion: 1 | 2 }, _) => {
+                "a straightness linear in the position is a turn of the track's direction (its constant part a shift of the tracker's registration): the direction holds it"
+            }
+            (AxisPart::Motion { .. }, _) => {
+                "these readings do not separate this error motion from the kept parameters: read more stations along the travel, several postures at each"
+            }
+            (AxisPart::Direction(_), true) => {
+                "the track's direction is the tracker's registration turned with the arm on its carriage: read postures along the whole travel"
+            }
+            (AxisPart::Offset, _) => {
+                "an angular offset turns the table's zero, and the reflectors' unknown positions on the table take it"
+            }
+            _ => {
+                "read the table's reflectors at more angles of each positioner axis, the axes varied independently"
+            }
+        })
+    }
+}
