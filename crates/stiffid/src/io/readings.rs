@@ -788,11 +788,28 @@ mod tests {
             "line 2, column 9 (e1_mm): e1_mm = 6500 is outside the axis's travel [0.0, 6000.0]"
         );
         let e = error(format!("{head}\na,T0,{row},2500,0,1,2,3\n"), &cell(true));
-        assert!(e.contains("column 2 (point): 'T0' is not a reflector on the positioner's table (T1 to T100)"), "{e}");
-        let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\na,2,{row},2400,0,1,2,3\n"), &cell(true));
-        assert!(e.contains("posture 'a' has other external axis values on line 2"), "{e}");
-        let e = error(format!("{head}\nt,T1,{row},2500,0,1,2,3\nt,T1,{row},2500,0,1,2,3\n"), &cell(true));
-        assert!(e.contains("table reflector T1 of posture 't' is read on line 2 already"), "{e}");
+        assert!(
+            e.contains(
+                "column 2 (point): 'T0' is not a reflector on the positioner's table (T1 to T100)"
+            ),
+            "{e}"
+        );
+        let e = error(
+            format!("{head}\na,1,{row},2500,0,1,2,3\na,2,{row},2400,0,1,2,3\n"),
+            &cell(true),
+        );
+        assert!(
+            e.contains("posture 'a' has other external axis values on line 2"),
+            "{e}"
+        );
+        let e = error(
+            format!("{head}\nt,T1,{row},2500,0,1,2,3\nt,T1,{row},2500,0,1,2,3\n"),
+            &cell(true),
+        );
+        assert!(
+            e.contains("table reflector T1 of posture 't' is read on line 2 already"),
+            "{e}"
+        );
         // Missing the positioner's column; a column of an axis the cell lacks.
         let short_head = head.replace(",e2_deg", "");
         let e = error(format!("{short_head}\na,1,{row},2500,1,2,3\n"), &cell(true));
@@ -802,10 +819,23 @@ mod tests {
             e,
             "line 1, column 10 (e2_deg): no external axis has this column: the cell's external axes are e1_mm (track)"
         );
-        let e = error(format!("{short_head}\na,T1,{row},2500,1,2,3\n"), &cell(false));
-        assert!(e.contains("'T1' names a reflector on a positioner's table, and the cell has no positioner"), "{e}");
+        let e = error(
+            format!("{short_head}\na,T1,{row},2500,1,2,3\n"),
+            &cell(false),
+        );
+        assert!(
+            e.contains(
+                "'T1' names a reflector on a positioner's table, and the cell has no positioner"
+            ),
+            "{e}"
+        );
         let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\n"), &robot());
-        assert!(e.contains("column 9 (e1_mm): no external axis has this column: the cell has no external axes"), "{e}");
+        assert!(
+            e.contains(
+                "column 9 (e1_mm): no external axis has this column: the cell has no external axes"
+            ),
+            "{e}"
+        );
     }
 
     #[test]
