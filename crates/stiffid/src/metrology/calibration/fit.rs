@@ -137,7 +137,9 @@ pub(super) fn fit_within(
     check(observations, options)?;
     let scales = model.column_scales_of(options.length, observations);
     let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
-    let j = model.jacobian_of(&start.values, observations)?;
+    // A carrier's error motions at zero (ErrorModel::structural): what the readings determine
+    // is the cell's structure, not the micrometres of its error motions.
+    let j = model.jacobian_of(&model.structural(&start.values), observations)?;
     // The maps' coefficients (the last parameters) are regularised, not analysed: every one is
     // fitted under the ridge.
     let analysed = model.map_start().unwrap_or(j.ncols());

@@ -587,6 +587,26 @@ impl ErrorModel {
 }
 
 impl ErrorModel {
+    /// `values` with a carrier's fitted error motions at zero: where
+    /// [`crate::metrology::calibration::identifiability`] judges what the readings determine.
+    /// Error motions of a few micrometres and microradians tilt the carriage from station to
+    /// station, and would make joint 1's errors differ from the tracker's registration by that
+    /// much: identifiable in name, with a condition number of 1e9, and every fit then amplifies
+    /// the noise into them.
+    pub fn structural(&self, values: &DVector<f64>) -> DVector<f64> {
+        let mut out = values.clone();
+        for (c, p) in self.parameters.iter().enumerate() {
+            if let Target::External {
+                part: AxisPart::Motion { .. },
+                ..
+            } = p.target
+            {
+                out[c] = 0.0;
+            }
+        }
+        out
+    }
+
     /// Why parameter `c` of an external axis merges with the kept ones, in words (what it is
     /// the same as); `None` for any other parameter.
     pub fn merged_words(&self, c: usize) -> Option<&'static str> {
