@@ -29,7 +29,9 @@ use stiffid::app::readings::Request as Readings;
 /// of the others; ``tolerance_mm`` and ``tolerance_deg`` together: the nominal tolerances of the
 /// joints' length and angle errors as priors; ``maps``: the joint error maps fitted, ``"auto"``
 /// (chosen by cross-validation inside the readings with 30 distinct postures or more), ``"none"``
-/// or joints with harmonics (``"J1,J3:16"``), as ``--maps``; ``level``: the level of the
+/// or joints with harmonics (``"J1,J3:16"``), as ``--maps``; ``error_motions``: with a track,
+/// the order of its error motions' polynomials, ``"auto"`` (chosen by cross-validation) or an
+/// order ``"0"`` to ``"8"``, as ``--error-motions``; ``level``: the level of the
 /// ``validate`` readings' prediction intervals (0.5 to 0.999, default 0.95; jackknife+ over the
 /// fitted postures, from their leave-one-posture-out errors), as ``--level``. The same job as ``stiffid calibrate``: returns its
 /// document (docs/schemas/calibrate.schema.json) as a dict, equal to ``stiffid calibrate
@@ -57,7 +59,7 @@ use stiffid::app::readings::Request as Readings;
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", level=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -71,6 +73,7 @@ pub fn calibrate<'py>(
     tolerance_mm: Option<f64>,
     tolerance_deg: Option<f64>,
     maps: &str,
+    error_motions: &str,
     level: Option<f64>,
     out: Option<PathBuf>,
     urdf_out: Option<PathBuf>,
@@ -120,6 +123,8 @@ pub fn calibrate<'py>(
         priors,
         progress: &(),
         maps: stiffid::metrology::calibration::maps::Spec::parse(maps).map_err(raise)?,
+        error_motions: stiffid::metrology::calibration::motions::Spec::parse(error_motions)
+            .map_err(raise)?,
         level,
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;

@@ -73,6 +73,11 @@ pub struct Args {
     /// J1,J3:16 (a bare joint 16 harmonics; the ridge chosen by cross-validation).
     #[arg(long, default_value = "auto")]
     maps: String,
+    /// With a track (the setup's carrier axes): the order of the polynomials of its six error
+    /// motions along the travel, auto (chosen by cross-validation over the readings' postures)
+    /// or an order 0 to 8 (0: its direction alone).
+    #[arg(long, default_value = "auto")]
+    error_motions: String,
     /// Write the calibrated robot file here (robot TOML: the DH table with the errors, the axis
     /// map; point a setup's `robot` at it), the tracker and measuring-point fragment of the setup
     /// in comments at its end. Never over an input.
@@ -130,6 +135,7 @@ pub fn run(args: &Args) -> Result<()> {
         priors,
         progress: &bars,
         maps: Spec::parse(&args.maps)?,
+        error_motions: stiffid::metrology::calibration::motions::Spec::parse(&args.error_motions)?,
         level: args.level,
     };
     let report = job::run(&request)?;

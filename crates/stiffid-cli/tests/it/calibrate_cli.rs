@@ -497,6 +497,8 @@ fn loaded_readings(
                     q,
                     measured: Vector3::zeros(),
                     wrench: *wrench,
+                    e: Vec::new(),
+                    table: false,
                 };
                 let b = model.predict(x, &[o]).unwrap()[0];
                 let t = tracker.inverse() * Point3::from(b);

@@ -371,6 +371,7 @@ def calibrate(
     tolerance_mm: Optional[float] = None,
     tolerance_deg: Optional[float] = None,
     maps: str = "auto",
+    error_motions: str = "auto",
     level: Optional[float] = None,
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,

@@ -57,8 +57,9 @@ pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
 pub(crate) fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
     let points = &setup.tool().measuring_points;
     let pairs: Vec<register::Correspondence> = (data.readings.iter())
+        .filter(|r| !r.table)
         .map(|r| register::Correspondence {
-            base: setup.robot().frames(&r.q).point(&points[r.point]),
+            base: setup.robot().frames_at(&r.q, &r.e).point(&points[r.point]),
             tracker: r.position,
         })
         .collect();
@@ -100,7 +101,7 @@ pub(crate) fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
 /// ([`crate::metrology::register::suspect`] at the setup's tracker noise): tracker readings that
 /// are a mirror image of the nominal robot's points (by `registration`, or the registration of
 /// `data` when `None`), or a fitted residual (`residuals`, m, one per unloaded reading of `data`
-/// in file order) beyond [`crate::metrology::register::residual_limit`].
+/// in file order, or per unloaded reading of the arm's points: the table's reflectors left out) beyond [`crate::metrology::register::residual_limit`].
 ///
 /// # Errors
 /// [`Error::InvalidField`] in an [`Error::Input`] naming the file: `readings` for a mirror image
@@ -139,8 +140,11 @@ pub(crate) fn refuse_implausible(
             length,
             limit,
         }) => {
+            // One residual per unloaded reading, or (the tracker's registration) per unloaded
+            // reading of the arm's points, the table's reflectors left out.
+            let unloaded = data.readings.iter().filter(|r| r.unloaded()).count();
             let (reading, line) = (data.readings.iter().zip(&data.lines))
-                .filter(|(r, _)| r.unloaded())
+                .filter(|(r, _)| r.unloaded() && (residuals.len() == unloaded || !r.table))
                 .nth(index)
                 .expect("one residual per unloaded reading");
             Error::InvalidField {

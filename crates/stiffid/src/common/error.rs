@@ -523,6 +523,8 @@ pub enum JobOption {
     Tolerances,
     /// calibrate: the joint error maps fitted (auto, none or joints with harmonics).
     Maps,
+    /// calibrate: the orders of a carrier's error motions fitted (auto or an order).
+    ErrorMotions,
     /// setups new: the robot's rated payload, kg.
     PayloadKg,
     /// setups new: the file the setup is written to.
@@ -583,6 +585,7 @@ impl JobOption {
             JobOption::Candidates => "candidates",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
             JobOption::Maps => "maps",
+            JobOption::ErrorMotions => "error_motions",
             JobOption::PayloadKg => "payload_kg",
             JobOption::Out => "out",
             JobOption::Bootstrap => "bootstrap",

@@ -10,6 +10,16 @@
 //! - `point`: the measuring point, numbered from 1 as in the setup's `measuring_points_mm`; each
 //!   point at most once per posture unless the file has load steps.
 //! - `q1_deg..q6_deg`: axis angles, deg, within the robot's joint limits.
+//! - External axes (a cell with a track or a positioner, [`crate::robot::external`]): one
+//!   column per axis after the joint columns, named `e1_mm`, `e2_deg`, ... in the cell's order
+//!   ([`crate::robot::ExternalAxes::column_names`]: mm for a linear axis, deg for a rotary
+//!   one), each value within its axis's travel; required when the cell has external axes, a
+//!   column of an axis the cell lacks refused.
+//! - A reflector fixed on the positioner's table (a point of the part, read at several
+//!   positioner angles to calibrate the positioner's axes): `point` is `T1`, `T2`, ... (`T` and
+//!   the reflector's number, from 1) instead of a measuring point's number; the row's axis
+//!   angles are the arm's at the time (not used for the reflector), its positioner columns say
+//!   where the table stood. Only in a cell with a positioner, and not in a file with load steps.
 //! - `x_tracker_mm..z_tracker_mm`: the tracker's reading of the measuring point, tracker frame,
 //!   mm, within [`crate::common::limits::LENGTH_MM`]; or `x_mm,y_mm,z_mm` in the robot base frame (a
 //!   tracker already registered).
@@ -34,6 +44,9 @@ use std::collections::HashMap;
 
 /// Most rows a readings file may hold.
 pub const MAX_READINGS: usize = 100_000;
+
+/// Most reflectors on a positioner's table (`T1` ...) a readings file names.
+pub const MAX_TABLE_REFLECTORS: usize = 100;
 
 /// Largest load step number (`load_step`).
 pub const MAX_LOAD_STEP: u32 = 1000;
@@ -86,6 +99,11 @@ pub struct Reading {
     pub point: usize,
     /// Axis angles, rad.
     pub q: Vector6<f64>,
+    /// The external axes' values, SI (m, rad), the cell's order; empty without external axes.
+    pub e: Vec<f64>,
+    /// Whether `point` is a reflector on the positioner's table (`T1`, `T2`, ...), 0-based,
+    /// rather than a measuring point of the tool.
+    pub table: bool,
     /// The reading of the measuring point, m, in [`Readings::frame`].
     pub position: Vector3<f64>,
     /// The load step; `None` when the file has no load columns.
@@ -120,6 +138,8 @@ pub struct Readings {
     pub has_loads: bool,
     /// The names of the force and of the position columns in the header, comma-separated.
     pub columns: [String; 2],
+    /// How many reflectors on the positioner's table the rows read: the largest `T<k>`.
+    pub tables: usize,
 }
 
 /// The header's column names, in the documented order, without load steps.
@@ -203,7 +223,7 @@ pub fn parse(text: &str, robot: &Robot, points: usize) -> Result<Readings> {
             ColumnProblem::Empty { expected },
         ));
     }
-    let columns = Columns::new(&names, header_line)?;
+    let columns = Columns::new(&names, header_line, robot)?;
     let mut out = Readings {
         readings: Vec::new(),
         labels: Vec::new(),
@@ -212,6 +232,7 @@ pub fn parse(text: &str, robot: &Robot, points: usize) -> Result<Readings> {
         wrench_frame: columns.wrench_frame,
         has_loads: columns.load.is_some(),
         columns: columns.names(&names),
+        tables: 0,
     };
     let mut numbers = Numbers::default();
     for record in reader.records() {
@@ -234,6 +255,9 @@ pub fn parse(text: &str, robot: &Robot, points: usize) -> Result<Readings> {
             names: &names,
         };
         let reading = columns.reading(&row, robot, points, &mut out, &mut numbers)?;
+        if reading.table {
+            out.tables = out.tables.max(reading.point + 1);
+        }
         out.readings.push(reading);
         out.lines.push(line);
     }
@@ -254,6 +278,10 @@ struct Columns {
     posture: usize,
     point: usize,
     q: [usize; 6],
+    /// The external axes' columns, the cell's order.
+    e: Vec<usize>,
+    /// Whether the cell has a positioner (table reflectors allowed).
+    positioner: bool,
     position: [usize; 3],
     frame: DisplacementFrame,
     load: Option<(usize, bool)>,
@@ -318,10 +346,10 @@ impl Row<'_> {
 struct Numbers {
     /// The posture number of each label.
     labels: HashMap<String, usize>,
-    /// The axis angles of each posture and the line that gave them.
-    angles: Vec<(Vector6<f64>, u64)>,
-    /// The line of each (posture, point) read (without load steps).
-    read: HashMap<(usize, usize), u64>,
+    /// The axis angles and external axis values of each posture and the line that gave them.
+    angles: Vec<(Vector6<f64>, Vec<f64>, u64)>,
+    /// The line of each (posture, point, table) read (without load steps).
+    read: HashMap<(usize, usize, bool), u64>,
 }
 
 fn known() -> impl Iterator<Item = &'static str> + Clone {
@@ -336,9 +364,60 @@ fn known() -> impl Iterator<Item = &'static str> + Clone {
         .chain(MOMENT_TOOL)
 }
 
+/// Whether a column's name has the form of an external axis's: `e<digits>_mm` or
+/// `e<digits>_deg`.
+fn external_like(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix('e') else {
+        return false;
+    };
+    let Some((digits, unit)) = rest.split_once('_') else {
+        return false;
+    };
+    !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) && matches!(unit, "mm" | "deg")
+}
+
+/// The columns of the cell's external axes (`robot`'s, [`crate::robot::ExternalAxes`]), in the
+/// cell's order.
+///
+/// # Errors
+/// [`ColumnProblem::Measurement`] naming a column of an axis the cell lacks (or of an axis in
+/// the other unit); [`ColumnProblem::Missing`] for an axis without its column.
+fn external_columns(names: &[String], line: u64, robot: &Robot) -> Result<Vec<usize>> {
+    let wanted = robot
+        .external()
+        .map(|x| x.column_names())
+        .unwrap_or_default();
+    let described = || match robot.external() {
+        None => "the cell has no external axes".to_string(),
+        Some(x) => {
+            let list: Vec<String> = (x.column_names().iter().zip(x.axes()))
+                .map(|(c, a)| format!("{c} ({})", short(&a.name)))
+                .collect();
+            format!("the cell's external axes are {}", list.join(", "))
+        }
+    };
+    for (i, name) in names.iter().enumerate() {
+        if external_like(name) && !wanted.contains(name) {
+            let message = format!("no external axis has this column: {}", described());
+            return Err(problem(
+                line,
+                Some(i + 1),
+                name,
+                ColumnProblem::Measurement { message },
+            ));
+        }
+    }
+    wanted
+        .iter()
+        .map(|w| (names.iter().position(|n| n == w)).ok_or_else(|| super::missing(line, w)))
+        .collect()
+}
+
 impl Columns {
-    fn new(names: &[String], line: u64) -> Result<Self> {
-        super::known_names(names, line, known(), expected_columns)?;
+    fn new(names: &[String], line: u64, robot: &Robot) -> Result<Self> {
+        let e = external_columns(names, line, robot)?;
+        let others: Vec<&String> = names.iter().filter(|n| !external_like(n)).collect();
+        super::known_names(&others, line, known(), expected_columns)?;
         let find = |name: &str| names.iter().position(|n| n == name);
         let any = |set: &[&str]| set.iter().any(|n| find(n).is_some());
         let need = |name: &str| find(name).ok_or_else(|| super::missing(line, name));
@@ -405,6 +484,8 @@ impl Columns {
             posture,
             point,
             q,
+            e,
+            positioner: robot.external().is_some_and(|x| x.len() > x.carrier_len()),
             position,
             frame,
             load,
@@ -446,7 +527,11 @@ impl Columns {
         if label.is_empty() {
             return Err(row.error(self.posture, ColumnProblem::EmptyLabel));
         }
-        let point = self.point(row, points)?;
+        let (point, table) = self.point(row, points)?;
+        if table && self.load.is_some() {
+            let message = "a reflector on the positioner's table in a file with load steps: load steps read the tool's measuring points".to_string();
+            return Err(row.error(self.point, ColumnProblem::Measurement { message }));
+        }
         let mut q = Vector6::zeros();
         for (a, &c) in self.q.iter().enumerate() {
             q[a] = row.number(c)?.to_radians();
@@ -455,17 +540,20 @@ impl Columns {
             let outside = v.outside(Q[v.axis].into(), "the robot's limits");
             return Err(row.error(self.q[v.axis], outside));
         }
+        let e = self.external(row, robot)?;
         let position = row.vector3(self.position, &limits::LENGTH_MM)? * 1e-3;
         let load = self
             .load
             .map(|(c, step)| self.load(row, c, step))
             .transpose()?;
         let wrench = self.wrench(row)?;
-        let posture = self.posture_index(row, label, &q, point, so_far, numbers)?;
+        let posture = self.posture_index(row, label, (&q, &e), (point, table), so_far, numbers)?;
         Ok(Reading {
             posture,
             point,
             q,
+            e,
+            table,
             position,
             load,
             wrench,
@@ -505,10 +593,61 @@ impl Columns {
         ))
     }
 
-    fn point(&self, row: &Row, points: usize) -> Result<usize> {
+    /// The external axes' values of a row (SI), each within its axis's travel.
+    fn external(&self, row: &Row, robot: &Robot) -> Result<Vec<f64>> {
+        let Some(axes) = robot.external() else {
+            return Ok(Vec::new());
+        };
+        let mut e = Vec::with_capacity(self.e.len());
+        for (axis, &c) in axes.axes().iter().zip(&self.e) {
+            let v = row.number(c)?;
+            let si = axis.to_si(v);
+            let slack = 1e-9 * (axis.upper - axis.lower);
+            if si < axis.lower - slack || si > axis.upper + slack {
+                return Err(row.error(
+                    c,
+                    ColumnProblem::Outside {
+                        name: row.names[c].clone(),
+                        value: v,
+                        within: "the axis's travel",
+                        lower: axis.to_display(axis.lower),
+                        upper: axis.to_display(axis.upper),
+                    },
+                ));
+            }
+            e.push(si);
+        }
+        Ok(e)
+    }
+
+    /// The point of a row, 0-based, and whether it is a reflector on the positioner's table
+    /// (`T1`, `T2`, ...).
+    fn point(&self, row: &Row, points: usize) -> Result<(usize, bool)> {
         let field = row.field(self.point);
+        if let Some(k) = field.strip_prefix(['T', 't']) {
+            return match k.parse::<usize>() {
+                Ok(k) if self.positioner && (1..=MAX_TABLE_REFLECTORS).contains(&k) => {
+                    Ok((k - 1, true))
+                }
+                _ => Err(row.error(
+                    self.point,
+                    ColumnProblem::Measurement {
+                        message: match self.positioner {
+                            true => format!(
+                                "'{}' is not a reflector on the positioner's table (T1 to T{MAX_TABLE_REFLECTORS})",
+                                short(field)
+                            ),
+                            false => format!(
+                                "'{}' names a reflector on a positioner's table, and the cell has no positioner: expected a measuring point 1 to {points}",
+                                short(field)
+                            ),
+                        },
+                    },
+                )),
+            };
+        }
         match field.parse::<usize>() {
-            Ok(p) if (1..=points).contains(&p) => Ok(p - 1),
+            Ok(p) if (1..=points).contains(&p) => Ok((p - 1, false)),
             Ok(p) if p >= 1 => Err(row.error(
                 self.point,
                 ColumnProblem::Outside {
@@ -529,13 +668,13 @@ impl Columns {
     }
 
     /// The posture number of `label`: a new one, or that of earlier rows with the same angles
-    /// (and, without load steps, another point).
+    /// and external axis values (and, without load steps, another point).
     fn posture_index(
         &self,
         row: &Row,
         label: &str,
-        q: &Vector6<f64>,
-        point: usize,
+        (q, e): (&Vector6<f64>, &[f64]),
+        (point, table): (usize, bool),
         so_far: &mut Readings,
         numbers: &mut Numbers,
     ) -> Result<usize> {
@@ -543,23 +682,29 @@ impl Columns {
             let index = so_far.labels.len();
             so_far.labels.push(label.to_string());
             numbers.labels.insert(label.to_string(), index);
-            numbers.angles.push((*q, row.line));
+            numbers.angles.push((*q, e.to_vec(), row.line));
             if self.load.is_none() {
-                numbers.read.insert((index, point), row.line);
+                numbers.read.insert((index, point, table), row.line);
             }
             return Ok(index);
         };
-        let (angles, line) = numbers.angles[index];
-        let message = if angles != *q {
+        let (angles, values, line) = &numbers.angles[index];
+        let message = if angles != q {
             format!(
                 "posture '{}' has other axis angles on line {line}",
                 short(label)
             )
+        } else if values != e {
+            format!(
+                "posture '{}' has other external axis values on line {line}",
+                short(label)
+            )
         } else if self.load.is_some() {
             return Ok(index);
-        } else if let Some(line) = numbers.read.insert((index, point), row.line) {
+        } else if let Some(line) = numbers.read.insert((index, point, table), row.line) {
             format!(
-                "point {} of posture '{}' is read on line {line} already",
+                "{}{} of posture '{}' is read on line {line} already",
+                if table { "table reflector T" } else { "point " },
                 point + 1,
                 short(label)
             )
@@ -609,6 +754,88 @@ mod tests {
         assert!((first.q[0] - 10f64.to_radians()).abs() < 1e-15);
         assert_eq!(first.position, Vector3::new(1.5, -0.02, 0.3));
         assert_eq!(r.readings[2].posture, 1);
+    }
+
+    /// The Comau on a 6 m track along x, with a turntable when `positioner`.
+    fn cell(positioner: bool) -> Robot {
+        use crate::robot::external::{ExternalAxes, ExternalAxis};
+        let mut axes = vec![ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0)];
+        if positioner {
+            let p = Vector3::new(3.0, 2.0, 0.8);
+            let pi = std::f64::consts::PI;
+            axes.push(ExternalAxis::rotary("turn", p, Vector3::z_axis(), -pi, pi));
+        }
+        robot().with_external(Some(ExternalAxes::new(axes).unwrap()))
+    }
+
+    #[test]
+    fn external_axes_and_table_reflectors() {
+        let head = "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,e1_mm,e2_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm";
+        let row = "0,0,-90,0,0,0";
+        let text = format!(
+            "{head}\na,1,{row},2500,0,1,2,3\nt,T1,{row},2500,45,4,5,6\nt,t2,{row},2500,45,4,5,6\n"
+        );
+        let r = parse(&text, &cell(true), 4).unwrap();
+        assert_eq!(r.readings[0].e, vec![2.5, 0.0]);
+        assert!((r.readings[1].e[1] - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        let t = &r.readings[2];
+        assert!(t.table && t.point == 1 && !r.readings[0].table);
+        assert_eq!((r.tables, r.labels.len()), (2, 2));
+        let error = |text: String, robot: &Robot| parse(&text, robot, 4).unwrap_err().to_string();
+        let e = error(format!("{head}\na,1,{row},6500,0,1,2,3\n"), &cell(true));
+        assert_eq!(
+            e,
+            "line 2, column 9 (e1_mm): e1_mm = 6500 is outside the axis's travel [0.0, 6000.0]"
+        );
+        let e = error(format!("{head}\na,T0,{row},2500,0,1,2,3\n"), &cell(true));
+        assert!(
+            e.contains(
+                "column 2 (point): 'T0' is not a reflector on the positioner's table (T1 to T100)"
+            ),
+            "{e}"
+        );
+        let e = error(
+            format!("{head}\na,1,{row},2500,0,1,2,3\na,2,{row},2400,0,1,2,3\n"),
+            &cell(true),
+        );
+        assert!(
+            e.contains("posture 'a' has other external axis values on line 2"),
+            "{e}"
+        );
+        let e = error(
+            format!("{head}\nt,T1,{row},2500,0,1,2,3\nt,T1,{row},2500,0,1,2,3\n"),
+            &cell(true),
+        );
+        assert!(
+            e.contains("table reflector T1 of posture 't' is read on line 2 already"),
+            "{e}"
+        );
+        // Missing the positioner's column; a column of an axis the cell lacks.
+        let short_head = head.replace(",e2_deg", "");
+        let e = error(format!("{short_head}\na,1,{row},2500,1,2,3\n"), &cell(true));
+        assert!(e.contains("missing column 'e2_deg'"), "{e}");
+        let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\n"), &cell(false));
+        assert_eq!(
+            e,
+            "line 1, column 10 (e2_deg): no external axis has this column: the cell's external axes are e1_mm (track)"
+        );
+        let e = error(
+            format!("{short_head}\na,T1,{row},2500,1,2,3\n"),
+            &cell(false),
+        );
+        assert!(
+            e.contains(
+                "'T1' names a reflector on a positioner's table, and the cell has no positioner"
+            ),
+            "{e}"
+        );
+        let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\n"), &robot());
+        assert!(
+            e.contains(
+                "column 9 (e1_mm): no external axis has this column: the cell has no external axes"
+            ),
+            "{e}"
+        );
     }
 
     #[test]

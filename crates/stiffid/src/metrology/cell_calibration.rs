@@ -61,13 +61,15 @@ pub struct Calibration {
 pub fn observations(setup: &Setup, readings: &Readings) -> Result<Vec<Observation>> {
     register::correspondences(setup, readings)?;
     Ok((readings.readings.iter())
-        .filter(|r| r.unloaded())
+        .filter(|r| r.unloaded() && !r.table)
         .map(|r| Observation {
             posture: r.posture,
             point: r.point,
             q: r.q,
             measured: r.position,
             wrench: Vector6::zeros(),
+            e: r.e.clone(),
+            table: false,
         })
         .collect())
 }
@@ -104,6 +106,11 @@ pub fn fit(setup: &Setup, observations: &[Observation]) -> Result<Calibration> {
         Geometry::None,
         gravity::Terms::none(robot),
     )?;
+    // The arm on its carrier as the robot gives it.
+    let model = match robot.external() {
+        Some(_) => model.with_external_nominal(0)?,
+        None => model,
+    };
     let start = fit::start(&model, observations)?;
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),

@@ -180,6 +180,8 @@ pub(crate) fn read(
                 q: *q,
                 measured: t + Vector3::from_fn(|_, _| normal.sample(rng)),
                 wrench: Vector6::zeros(),
+                e: Vec::new(),
+                table: false,
             }
         })
         .collect())

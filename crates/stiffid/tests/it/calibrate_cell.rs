@@ -45,6 +45,8 @@ fn readings_at(
                 q: *q,
                 measured: tracker,
                 wrench: Vector6::zeros(),
+                e: Vec::new(),
+                table: false,
             });
         }
     }

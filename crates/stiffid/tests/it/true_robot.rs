@@ -230,6 +230,8 @@ impl Truth {
                         q: *q,
                         measured: Vector3::zeros(),
                         wrench: *w,
+                        e: Vec::new(),
+                        table: false,
                     };
                     let b = self.model.predict(&self.estimate.values, &[o]).unwrap()[0];
                     let t = self.estimate.frame.inverse() * Point3::from(b);
@@ -426,6 +428,7 @@ fn calibrated(
         priors: None,
         progress: &(),
         maps: stiffid::metrology::calibration::maps::Spec::None,
+        error_motions: Default::default(),
         level: None,
     })
     .unwrap();

@@ -213,7 +213,9 @@ pub struct StiffnessSection {
 pub struct Parameter {
     /// Its name (`tracker.x`, `point1.z`, `joint3.beta`, `gravity.c2`, ...).
     pub name: String,
-    /// `tracker`, `base`, `point`, `joint`, `compliance`, `gravity` or `map`.
+    /// `tracker`, `base`, `point`, `joint`, `compliance`, `gravity`, `map`, `carrier` (a
+    /// track's direction and error motions), `positioner` (its axes' lines and offsets) or
+    /// `table` (a reflector on the positioner's table).
     pub kind: &'static str,
     /// The unit of `nominal`, `value` and `sd`.
     pub unit: &'static str,
@@ -370,10 +372,14 @@ impl Document {
             .filter(|m| !fit.fitted.contains(&m.parameter))
             .map(|m| {
                 let into: Vec<String> = m.into.iter().map(|(k, _)| params[*k].name.clone()).collect();
-                let reason = match into.is_empty() {
-                    true => "no effect on the readings at these postures".to_string(),
-                    false => format!(
+                let reason = match (into.is_empty(), model.merged_words(m.parameter)) {
+                    (true, _) => "no effect on the readings at these postures".to_string(),
+                    (false, None) => format!(
                         "its effect is a combination of {} at these postures: left nominal, absorbed by them",
+                        into.join(", ")
+                    ),
+                    (false, Some(words)) => format!(
+                        "{words}; its effect is a combination of {} at these postures: left nominal, absorbed by them",
                         into.join(", ")
                     ),
                 };

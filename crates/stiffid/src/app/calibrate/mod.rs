@@ -113,6 +113,9 @@ pub struct Request<'a> {
     pub progress: &'a dyn Progress,
     /// The joint error maps fitted ([`crate::metrology::calibration::maps`]).
     pub maps: crate::metrology::calibration::maps::Spec,
+    /// The orders of the carrier's error motions fitted, with external axes
+    /// ([`crate::metrology::calibration::motions`]; ignored without).
+    pub error_motions: crate::metrology::calibration::motions::Spec,
     /// The level of the held-out readings' prediction intervals
     /// ([`crate::metrology::calibration::intervals`]), within
     /// [`crate::model::prediction::LEVEL`], only with `validate`; `None` for
@@ -169,6 +172,8 @@ pub struct Report {
     pub noise_ratio: f64,
     /// The joint error maps: what was asked, the choice and its nested held-out gain.
     pub maps: Maps,
+    /// With external axes: the orders of the carrier's error motions and how they were chosen.
+    pub error_motions: Option<crate::metrology::calibration::motions::Choice>,
     /// The held-out validation, if asked.
     pub validation: Option<Held>,
     /// The cross-validation, if asked.
@@ -211,6 +216,8 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
                 true => r.wrench,
                 false => base_wrench(&setup.robot().frames(&r.q), &r.wrench, data.wrench_frame),
             },
+            e: r.e.clone(),
+            table: r.table,
         })
         .collect();
     (obs, measured_in)
@@ -258,10 +265,6 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     }
     let level = interval_level(request)?;
     let model = model(setup, measured_in, request.geometry, request.gravity)?;
-    let model = match obs.iter().any(Observation::loaded) {
-        true => model.with_loads(setup)?,
-        false => model,
-    };
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
@@ -270,6 +273,32 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             noise: setup.noise().reading_sd(),
         }),
         ridge: 0.0,
+    };
+    let (model, error_motions) = match setup.robot().external() {
+        None => (model, None),
+        Some(_) => {
+            if measured_in == MeasuredIn::Base {
+                return Err(in_data(name, Error::InvalidField {
+                    field: "readings".into(),
+                    message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
+                }));
+            }
+            request.progress.begin("error motions", 0);
+            let chosen = crate::metrology::calibration::motions::choose(
+                &model,
+                data.tables,
+                &obs,
+                &options,
+                request.error_motions,
+            );
+            request.progress.end();
+            let (model, _, choice) = chosen.map_err(|e| in_data(name, e))?;
+            (model, Some(choice))
+        }
+    };
+    let model = match obs.iter().any(Observation::loaded) {
+        true => model.with_loads(setup)?,
+        false => model,
     };
     // The fit and the maps' choice report no count: each a stage of total 0 (a spinner).
     let progress = request.progress;
@@ -395,6 +424,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         postures,
         noise_ratio,
         maps,
+        error_motions,
         validation,
         cross_validation,
         robot_toml,
@@ -413,13 +443,17 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
 /// Those of [`ErrorModel::new`].
 fn reference(setup: &Setup, model: &ErrorModel) -> Result<ErrorModel> {
     let robot = model.robot();
-    ErrorModel::new(
+    let reference = ErrorModel::new(
         robot,
         &setup.tool().measuring_points,
         model.measured_in(),
         Geometry::None,
         gravity::Terms::none(robot),
-    )
+    )?;
+    match robot.external() {
+        Some(_) => reference.with_external_nominal(model.tables()),
+        None => Ok(reference),
+    }
 }
 
 /// The errors of the nominal `reference` on `obs` (named `name`), the tracker registered on them.
@@ -508,16 +542,27 @@ fn held_out(
 /// [`Error::InvalidField`] (`readings`) naming the count of distinct postures, of readings, of
 /// their coordinates and of the fitted parameters.
 fn refuse_repeated(setup: &Setup, data: &Data, model: &ErrorModel, fit: &Fit) -> Result<()> {
+    // The postures of the arm's points, grouped by their external axes' values: postures at two
+    // stations of a track are distinct whatever their axis angles.
     let mut postures = vec![None; data.labels.len()];
-    for r in &data.readings {
-        postures[r.posture].get_or_insert(r.q);
+    for r in data.readings.iter().filter(|r| !r.table) {
+        postures[r.posture].get_or_insert((r.q, &r.e));
     }
-    let postures: Vec<_> = postures.into_iter().flatten().collect();
-    let mut usable = vec![true; postures.len()];
+    let mut groups = std::collections::BTreeMap::<Vec<u64>, Vec<_>>::new();
+    for (q, e) in postures.into_iter().flatten() {
+        let key = e.iter().map(|v| v.to_bits()).collect();
+        groups.entry(key).or_default().push(q);
+    }
     let distance = crate::design::distinct::Distinctness::default();
-    crate::design::distinct::distinct_pool(setup.robot(), &postures, &mut usable, &distance);
-    let distinct = usable.iter().filter(|&&u| u).count();
-    let coordinates = 3 * model.points() * distinct;
+    let distinct: usize = (groups.values())
+        .map(|postures| {
+            let mut usable = vec![true; postures.len()];
+            crate::design::distinct::distinct_pool(setup.robot(), postures, &mut usable, &distance);
+            usable.iter().filter(|&&u| u).count()
+        })
+        .sum();
+    let tables = data.readings.iter().filter(|r| r.table).count();
+    let coordinates = 3 * model.points() * distinct + 3 * tables;
     let fitted = (fit.fitted.iter()).filter(|&&i| model.map_start().is_none_or(|s| i < s));
     let fitted = fitted.count();
     if coordinates > fitted {

@@ -58,7 +58,7 @@ impl Document {
             .readings
             .iter()
             .zip(&data.lines)
-            .filter(|(r, _)| r.unloaded());
+            .filter(|(r, _)| r.unloaded() && !r.table);
         let points = unloaded
             .zip(&fit.residuals)
             .map(|((r, line), residual)| Residual {

@@ -63,7 +63,10 @@ impl Column {
                 term: index - model.gravity_start(),
                 joint: term.joint(),
             },
-            Target::Compliance { .. } | Target::Map { .. } => Column::Unloaded,
+            Target::Compliance { .. }
+            | Target::Map { .. }
+            | Target::External { .. }
+            | Target::Table { .. } => Column::Unloaded,
         }
     }
 }

@@ -137,7 +137,9 @@ pub(super) fn fit_within(
     check(observations, options)?;
     let scales = model.column_scales_of(options.length, observations);
     let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
-    let j = model.jacobian_of(&start.values, observations)?;
+    // A carrier's error motions at zero (ErrorModel::structural): what the readings determine
+    // is the cell's structure, not the micrometres of its error motions.
+    let j = model.jacobian_of(&model.structural(&start.values), observations)?;
     // The maps' coefficients (the last parameters) are regularised, not analysed: every one is
     // fitted under the ridge.
     let analysed = model.map_start().unwrap_or(j.ncols());
@@ -259,14 +261,17 @@ pub(super) fn leave_one_out_linearised(
 }
 
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
-/// ([`crate::metrology::register::fit`], Umeyama) for tracker readings, the identity for base-frame ones.
+/// ([`crate::metrology::register::fit`], Umeyama) of the arm's measuring points for tracker
+/// readings, the identity for base-frame ones; the reflectors on a positioner's table started
+/// from their readings (the mean of `P(e)^-1 T t` over each one's).
 ///
 /// # Errors
 /// Those of [`ErrorModel::positions`] and [`crate::metrology::register::fit`] (fewer than 3 readings,
 /// collinear points).
 pub fn start(model: &ErrorModel, observations: &[Observation]) -> Result<Estimate> {
-    let values = model.nominal();
+    let mut values = model.nominal();
     let frame = start_at(model, observations, &values)?;
+    model.start_tables(&mut values, &frame, observations);
     Ok(Estimate { frame, values })
 }
 
@@ -284,6 +289,15 @@ pub fn start_at(
     Ok(match model.measured_in() {
         MeasuredIn::Base => nalgebra::Isometry3::identity(),
         MeasuredIn::Tracker => {
+            // Registered on the arm's points: the table's reflectors are not known yet.
+            let arm: Vec<Observation>;
+            let observations = match observations.iter().any(|o| o.table) {
+                false => observations,
+                true => {
+                    arm = observations.iter().filter(|o| !o.table).cloned().collect();
+                    &arm
+                }
+            };
             let b = model.predict(values, observations)?;
             let pairs: Vec<Correspondence> = (observations.iter().zip(b))
                 .map(|(o, base)| Correspondence {

@@ -67,6 +67,8 @@ fn readings(model: &ErrorModel, truth: &Estimate, qs: &[Vector6<f64>]) -> Vec<Ob
                     q: *q,
                     measured: nalgebra::Vector3::zeros(),
                     wrench,
+                    e: Vec::new(),
+                    table: false,
                 });
             }
         }

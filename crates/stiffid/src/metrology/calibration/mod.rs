@@ -14,6 +14,7 @@
 //!   which, the correlations above [`identifiability::CORRELATION_REPORTED`].
 //! - [`gravity`]: the joint deflection under the robot's own weight, with known masses (the
 //!   compliances unknown) or lumped (compliance times mass moment).
+//! - [`motions`]: the orders of a carrier's error motions, chosen by cross-validation.
 //! - [`fit`]: Levenberg-Marquardt over the identifiable parameters, standard deviations, the
 //!   noise-ratio model check.
 //! - [`validation`]: the held-out position error of readings not fitted.
@@ -29,11 +30,16 @@ pub mod gravity;
 pub mod identifiability;
 pub mod intervals;
 pub mod maps;
+pub mod motions;
 pub mod robot_file;
 pub mod validation;
 
-pub use error_model::{Component, ErrorModel, Estimate, Geometry, Kind, Parameter, Target};
+pub use error_model::{
+    AxisPart, Component, ErrorModel, Estimate, Geometry, Kind, Parameter, Target,
+};
 
+#[cfg(test)]
+mod external_tests;
 #[cfg(test)]
 mod heavy_tests;
 #[cfg(test)]

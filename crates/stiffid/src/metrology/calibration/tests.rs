@@ -54,6 +54,8 @@ pub(super) fn readings(
             q: *q,
             measured: (truth.frame.inverse() * Point3::from(b)).coords,
             wrench: Vector6::zeros(),
+            e: Vec::new(),
+            table: false,
         })
         .collect()
 }

@@ -243,9 +243,9 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Corresp
     Ok(readings
         .readings
         .iter()
-        .filter(|r| r.unloaded())
+        .filter(|r| r.unloaded() && !r.table)
         .map(|r| Correspondence {
-            base: setup.robot().frames(&r.q).point(&points[r.point]),
+            base: setup.robot().frames_at(&r.q, &r.e).point(&points[r.point]),
             tracker: r.position,
         })
         .collect())
@@ -341,13 +341,15 @@ pub fn robot_covariance(
 ) -> Result<Matrix6<f64>> {
     let (sd_p, sd_r) = setup.arm().frame_sd();
     let points = &setup.tool().measuring_points;
-    let unloaded: Vec<_> = readings.readings.iter().filter(|r| r.unloaded()).collect();
+    let unloaded: Vec<_> = (readings.readings.iter())
+        .filter(|r| r.unloaded() && !r.table)
+        .collect();
     let rotated: Vec<Vector3<f64>> = (unloaded.iter())
         .map(|r| fit.base_from_tracker.rotation * r.position)
         .collect();
     let mut g = DMatrix::zeros(3 * unloaded.len(), 42);
     for (i, r) in unloaded.iter().enumerate() {
-        let frames = setup.robot().frames(&r.q);
+        let frames = setup.robot().frames_at(&r.q, &r.e);
         let b = frames.point(&points[r.point]);
         let origins = frames.joints.iter().chain([&frames.flange]);
         for (k, o) in origins.map(|f| f.translation.vector).enumerate() {

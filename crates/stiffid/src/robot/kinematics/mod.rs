@@ -117,7 +117,7 @@ impl Robot {
     }
 
     /// [`Robot::update_frames`] with the chain's first frame at `base` (cell frame).
-    fn update_frames_on(&self, base: &Isometry3<f64>, q: &Vector6<f64>, f: &mut Frames) {
+    pub(crate) fn update_frames_on(&self, base: &Isometry3<f64>, q: &Vector6<f64>, f: &mut Frames) {
         let theta = self.axis_map().kinematic(&self.mapped(q));
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
@@ -153,7 +153,7 @@ impl Robot {
 
 impl Frames {
     /// Frames to be written over by [`Robot::update_frames_on`].
-    fn blank() -> Self {
+    pub(crate) fn blank() -> Self {
         Frames {
             base: Isometry3::identity(),
             joints: [Isometry3::identity(); 6],

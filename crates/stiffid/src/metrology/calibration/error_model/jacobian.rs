@@ -1,7 +1,7 @@
 //! The identification Jacobian of the error model and the columns' scales (module docs of
 //! [`super`], "The identification Jacobian").
 
-use super::{ErrorModel, Observation, Posture, Target, NO_EFFECT};
+use super::{At, ErrorModel, Observation, Posture, Target, NO_EFFECT};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix3, Unit, UnitQuaternion, Vector3, Vector6};
 
@@ -20,23 +20,61 @@ impl ErrorModel {
         values: &DVector<f64>,
         at: &[(Vector6<f64>, usize)],
     ) -> Result<DMatrix<f64>> {
-        let points = self.points();
-        if let Some((_, k)) = at.iter().find(|(_, k)| *k >= points) {
+        self.jacobian_at(values, At::arm(at), at.len())
+    }
+
+    /// [`ErrorModel::jacobian`] of `count` positions `at`.
+    fn jacobian_at<'a>(
+        &self,
+        values: &DVector<f64>,
+        at: impl Iterator<Item = At<'a>> + Clone,
+        count: usize,
+    ) -> Result<DMatrix<f64>> {
+        let (points, tables) = (self.points(), self.tables());
+        if let Some(a) = at.clone().find(|a| match a.table {
+            false => a.point >= points,
+            true => a.point >= tables,
+        }) {
             return Err(Error::InvalidField {
                 field: "point".into(),
-                message: format!("expected a measuring point 1 to {points}, got {}", k + 1),
+                message: match a.table {
+                    false => format!(
+                        "expected a measuring point 1 to {points}, got {}",
+                        a.point + 1
+                    ),
+                    true => format!(
+                        "expected a table reflector 1 to {tables}, got {}",
+                        a.point + 1
+                    ),
+                },
             });
         }
         let robot = self.robot_at(values)?;
-        let mut j = DMatrix::zeros(3 * at.len(), self.parameters.len());
+        let mut j = DMatrix::zeros(3 * count, self.parameters.len());
         let springs = self.gravity.coordinates();
         let mut last: Option<Posture> = None;
-        for (row, (q, k)) in at.iter().enumerate() {
-            let posture = self.posture_of(&mut last, &robot, values, q);
+        for (row, a) in at.enumerate() {
+            let mut block = j.fixed_rows_mut::<3>(3 * row);
+            if a.table {
+                let b = self.table_position(values, a.e, a.point);
+                block
+                    .fixed_view_mut::<3, 3>(0, 0)
+                    .copy_from(&Matrix3::identity());
+                block
+                    .fixed_view_mut::<3, 3>(0, 3)
+                    .copy_from(&(-b.cross_matrix()));
+                if let Some(x) = &self.external {
+                    x.positioner_columns(values, a.e, a.point, |c, col| {
+                        block.column_mut(c).copy_from(&col)
+                    });
+                }
+                continue;
+            }
+            let (q, k) = (a.q, &a.point);
+            let posture = self.posture_of(&mut last, &robot, values, q, a.e);
             let f = &posture.frames;
             let c = self.point(values, *k);
             let b = f.point(&c);
-            let mut block = j.fixed_rows_mut::<3>(3 * row);
             block
                 .fixed_view_mut::<3, 3>(0, 0)
                 .copy_from(&Matrix3::identity());
@@ -48,7 +86,7 @@ impl ErrorModel {
                 .copy_from(f.flange.rotation.to_rotation_matrix().matrix());
             if let Some(s) = self.joint_start {
                 for i in 0..6 {
-                    let cols = self.joint_columns(f, values, i, &b);
+                    let cols = self.joint_columns(f, &posture.base, values, i, &b);
                     for (c, col) in cols.iter().enumerate() {
                         block.column_mut(s + 6 * i + c).copy_from(col);
                     }
@@ -64,6 +102,11 @@ impl ErrorModel {
                 let columns = std::array::from_fn(|i| jq.fixed_view::<3, 1>(0, i).into_owned());
                 self.map_columns(&columns, &posture.at, |m, col| {
                     block.column_mut(m).copy_from(&col)
+                });
+            }
+            if let Some(x) = (self.external.as_ref()).filter(|x| x.axes.carrier_len() > 0) {
+                x.carrier_columns(values, a.e, &b, |c, col| {
+                    block.column_mut(c).copy_from(&col)
                 });
             }
             if !self.gravity.is_empty() {
@@ -95,8 +138,7 @@ impl ErrorModel {
         values: &DVector<f64>,
         observations: &[Observation],
     ) -> Result<DMatrix<f64>> {
-        let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
-        let mut j = self.jacobian(values, &at)?;
+        let mut j = self.jacobian_at(values, At::of(observations), observations.len())?;
         let Some(loads) = &self.loads else {
             return Ok(j);
         };
@@ -167,15 +209,12 @@ impl ErrorModel {
     fn joint_columns(
         &self,
         f: &crate::Frames,
+        base: &nalgebra::Isometry3<f64>,
         values: &DVector<f64>,
         i: usize,
         b: &Vector3<f64>,
     ) -> [Vector3<f64>; 6] {
-        let before = if i == 0 {
-            *self.robot.base()
-        } else {
-            f.joints[i - 1]
-        };
+        let before = if i == 0 { *base } else { f.joints[i - 1] };
         let w_frame = before * self.robot.joints()[i].pre;
         let r = w_frame.rotation;
         let e = self.joint_errors(values, i);
@@ -216,6 +255,7 @@ impl ErrorModel {
                     Target::Frame(a) if a >= 3 => 1.0 / length,
                     Target::Joint { component, .. } if component.is_angle() => 1.0 / length,
                     Target::Map { .. } => 1.0 / length,
+                    Target::External { part, .. } if part.is_angle() => 1.0 / length,
                     Target::Gravity(term) => {
                         let y = rms[i - self.gravity_start];
                         let largest = (self.gravity.terms().iter().zip(&rms))

@@ -40,6 +40,11 @@ impl ErrorModel {
         if self.maps.is_some() {
             return Err(invalid("add the loads before the error maps".into()));
         }
+        if self.external.is_some() {
+            return Err(invalid(
+                "loaded readings of a cell with external axes are not calibrated: give its unloaded readings".into(),
+            ));
+        }
         if setup.tool().measuring_points.len() != self.points() {
             return Err(invalid(format!(
                 "expected a setup with the model's {} measuring points, got {}",

@@ -72,14 +72,16 @@
 //! ```
 
 mod basis;
+mod external;
 mod jacobian;
 mod loads;
 mod maps;
 mod parameter;
 
 pub use basis::Basis;
+pub use external::{MAX_FITTED_ORDER, MOTIONS};
 use loads::Loads;
-pub use parameter::{Component, Geometry, Kind, MeasuredIn, Parameter, Target};
+pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
 
 use super::gravity;
 use crate::{Error, Joint, Result, Robot};
@@ -94,6 +96,10 @@ pub const NO_EFFECT: f64 = 1e-9;
 /// One commanded posture: its frames at the deflected posture and its gravity regressors.
 struct Posture {
     q: Vector6<f64>,
+    /// The external axes' values (SI, the cell's order; empty without).
+    e: Vec<f64>,
+    /// The arm's base frame in the cell: the carrier's pose times the robot's base.
+    base: Isometry3<f64>,
     /// The axis angles the chain stands at: `q` plus the deflection under gravity.
     at: Vector6<f64>,
     frames: crate::Frames,
@@ -143,6 +149,42 @@ pub struct Observation {
     /// The wrench `[f; m]` at the setup's loading point, base frame, N and N m: zero for an
     /// unloaded reading ([`ErrorModel::with_loads`] models the others).
     pub wrench: Vector6<f64>,
+    /// The external axes' values, SI (m, rad), the cell's order ([`crate::robot::ExternalAxes`]);
+    /// empty without external axes.
+    pub e: Vec<f64>,
+    /// Whether `point` is a reflector on the positioner's table ([`ErrorModel::with_external`])
+    /// rather than a measuring point on the tool.
+    pub table: bool,
+}
+
+/// Where a predicted position is: a measuring point at axis angles `q` and external axis values
+/// `e`, or a reflector on the positioner's table.
+#[derive(Clone, Copy)]
+struct At<'a> {
+    q: &'a Vector6<f64>,
+    e: &'a [f64],
+    point: usize,
+    table: bool,
+}
+
+impl<'a> At<'a> {
+    fn arm(pairs: &'a [(Vector6<f64>, usize)]) -> impl Iterator<Item = At<'a>> + Clone {
+        pairs.iter().map(|(q, k)| At {
+            q,
+            e: &[],
+            point: *k,
+            table: false,
+        })
+    }
+
+    fn of(observations: &'a [Observation]) -> impl Iterator<Item = At<'a>> + Clone {
+        observations.iter().map(|o| At {
+            q: &o.q,
+            e: &o.e,
+            point: o.point,
+            table: o.table,
+        })
+    }
 }
 
 impl Observation {
@@ -170,6 +212,8 @@ pub struct ErrorModel {
     loads: Option<Loads>,
     /// The joints' fitted error maps ([`ErrorModel::with_maps`]).
     maps: Option<maps::Maps>,
+    /// The cell's external axes ([`ErrorModel::with_external`]).
+    external: Option<external::External>,
 }
 
 impl ErrorModel {
@@ -265,6 +309,7 @@ impl ErrorModel {
             gravity_start,
             loads: None,
             maps: None,
+            external: None,
         })
     }
 
@@ -355,7 +400,8 @@ impl ErrorModel {
     }
 
     /// The predicted base-frame positions (m) of `(q, point)` pairs (axis angles, rad; points
-    /// 0-based) at `values`, the frame's perturbation applied.
+    /// 0-based) at `values`, the frame's perturbation applied (with external axes: at `e = 0`,
+    /// cell frame).
     ///
     /// # Errors
     /// [`Error::InvalidField`] when a value is not finite.
@@ -364,6 +410,14 @@ impl ErrorModel {
         values: &DVector<f64>,
         at: &[(Vector6<f64>, usize)],
     ) -> Result<Vec<Vector3<f64>>> {
+        self.positions_at(values, At::arm(at))
+    }
+
+    fn positions_at<'a>(
+        &self,
+        values: &DVector<f64>,
+        at: impl Iterator<Item = At<'a>>,
+    ) -> Result<Vec<Vector3<f64>>> {
         let robot = self.robot_at(values)?;
         let delta = Isometry3::from_parts(
             Translation3::new(values[0], values[1], values[2]),
@@ -371,30 +425,53 @@ impl ErrorModel {
         );
         let mut last: Option<Posture> = None;
         Ok(at
-            .iter()
-            .map(|(q, k)| {
-                let p = self.posture_of(&mut last, &robot, values, q);
-                (delta * nalgebra::Point3::from(p.frames.point(&self.point(values, *k)))).coords
+            .map(|a| {
+                let b = match a.table {
+                    true => self.table_position(values, a.e, a.point),
+                    false => {
+                        let p = self.posture_of(&mut last, &robot, values, a.q, a.e);
+                        p.frames.point(&self.point(values, a.point))
+                    }
+                };
+                (delta * nalgebra::Point3::from(b)).coords
             })
             .collect())
     }
 
-    /// The posture of commanded `q` on `robot` (the chain at `values`), reused from `last` when
-    /// it is the same posture: the readings of one posture's points come together.
+    /// Table reflector `k` at `e` (cell frame, m): `P(e) x_k`.
+    fn table_position(&self, values: &DVector<f64>, e: &[f64], k: usize) -> Vector3<f64> {
+        let x = self.table(values, k);
+        (self.positioner_pose(values, e) * nalgebra::Point3::from(x)).coords
+    }
+
+    /// The posture of commanded `q` on `robot` (the chain at `values`) at external axis values
+    /// `e`, reused from `last` when it is the same posture: the readings of one posture's points
+    /// come together.
     fn posture_of<'p>(
         &self,
         last: &'p mut Option<Posture>,
         robot: &Robot,
         values: &DVector<f64>,
         q: &Vector6<f64>,
+        e: &[f64],
     ) -> &'p Posture {
-        if last.as_ref().is_none_or(|p| p.q != *q) {
+        if last.as_ref().is_none_or(|p| p.q != *q || p.e != e) {
             let regressors = self.gravity.regressors(q);
             let g = values.rows(self.gravity_start, self.gravity.len());
             let at = q + self.gravity.deflection_from(&g, &regressors);
-            let frames = robot.frames(&at);
+            let (base, frames) = match &self.external {
+                Some(x) if x.axes.carrier_len() > 0 => {
+                    let base = x.carrier(values, e) * robot.base();
+                    let mut frames = crate::Frames::blank();
+                    robot.update_frames_on(&base, &at, &mut frames);
+                    (base, frames)
+                }
+                _ => (*robot.base(), robot.frames(&at)),
+            };
             *last = Some(Posture {
                 q: *q,
+                e: e.to_vec(),
+                base,
                 at,
                 frames,
                 regressors,
@@ -414,8 +491,7 @@ impl ErrorModel {
         values: &DVector<f64>,
         observations: &[Observation],
     ) -> Result<Vec<Vector3<f64>>> {
-        let at: Vec<_> = observations.iter().map(|o| (o.q, o.point)).collect();
-        let mut b = self.positions(values, &at)?;
+        let mut b = self.positions_at(values, At::of(observations))?;
         if self.loads.is_some() {
             let turn =
                 UnitQuaternion::from_scaled_axis(Vector3::new(values[3], values[4], values[5]));

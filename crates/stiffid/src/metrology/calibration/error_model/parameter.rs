@@ -141,6 +141,55 @@ pub enum Target {
         /// Whether it is the sine's coefficient (else the cosine's).
         sine: bool,
     },
+    /// A parameter of external axis `axis` (0-based, the cell's order:
+    /// [`crate::robot::ExternalAxes`]).
+    External {
+        /// The axis, 0-based in the cell's order.
+        axis: usize,
+        /// What it moves.
+        part: AxisPart,
+    },
+    /// A coordinate (0 x, 1 y, 2 z) of a reflector fixed on the positioner's table, part frame
+    /// at `e = 0` (cell coordinates), m; reflectors 0-based.
+    Table {
+        /// The reflector, 0-based.
+        point: usize,
+        /// The coordinate: 0 x, 1 y, 2 z.
+        axis: usize,
+    },
+}
+
+/// What a parameter of an external axis moves ([`super::ErrorModel::with_external`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AxisPart {
+    /// The axis's direction turned about its nominal frame's y (0) or z (1) axis
+    /// ([`crate::robot::external::ExternalAxis::frame`]), rad.
+    Direction(usize),
+    /// A linear axis's error motion coefficient of `u^order` (`order` 1-based; `motion` 0
+    /// positioning, 1 and 2 straightness along the frame's y and z, 3 roll, 4 pitch, 5 yaw),
+    /// m or rad.
+    Motion {
+        /// The power of `u`, 1-based.
+        order: usize,
+        /// The motion, ISO 230-1's six in [`crate::robot::external::ErrorMotions`] order.
+        motion: usize,
+    },
+    /// A rotary axis's line moved along its nominal frame's y (0) or z (1) axis, m.
+    Location(usize),
+    /// A rotary axis's angular offset, rad.
+    Offset,
+}
+
+impl AxisPart {
+    /// Whether it is an angle (rad) rather than a length (m).
+    pub fn is_angle(self) -> bool {
+        match self {
+            AxisPart::Direction(_) | AxisPart::Offset => true,
+            AxisPart::Motion { motion, .. } => motion >= 3,
+            AxisPart::Location(_) => false,
+        }
+    }
 }
 
 /// The kind of a parameter, as documents name it.
@@ -162,6 +211,13 @@ pub enum Kind {
     Gravity,
     /// A coefficient of a joint's error map.
     Map,
+    /// A parameter of a carrier's linear axis: its direction or an error motion's coefficient.
+    Carrier,
+    /// A parameter of a positioner's rotary axis: its line's location and direction, its
+    /// angular offset.
+    Positioner,
+    /// A coordinate of a reflector on the positioner's table.
+    Table,
 }
 
 impl Kind {
@@ -175,6 +231,9 @@ impl Kind {
             Kind::Compliance => "compliance",
             Kind::Gravity => "gravity",
             Kind::Map => "map",
+            Kind::Carrier => "carrier",
+            Kind::Positioner => "positioner",
+            Kind::Table => "table",
         }
     }
 }
@@ -182,7 +241,8 @@ impl Kind {
 /// One parameter of the error model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Parameter {
-    /// Its name: `tracker.x`, `point2.z`, `joint3.beta`, `gravity.c2` ... (unique).
+    /// Its name: `tracker.x`, `point2.z`, `joint3.beta`, `gravity.c2`, `track.pitch.u2`,
+    /// `table1.x` ... (unique).
     pub name: String,
     /// Its kind.
     pub kind: Kind,
@@ -192,8 +252,9 @@ pub struct Parameter {
     /// a measuring point, the nominal compliance (or 0) for a compliance.
     pub nominal: f64,
     /// The order in which [`crate::metrology::calibration::identifiability`] keeps parameters: lower first
-    /// (0 the frame and the points, 1 the (M)DH errors, 2 `beta`, 3 `b`, 4 the gravity terms, 5
-    /// the error maps' coefficients).
+    /// (0 the frame, the points, the table's reflectors, a carrier's directions and a
+    /// positioner's lines, 1 the (M)DH errors, 2 `beta`, the error motions and the positioner's offsets,
+    /// 3 `b`, 4 the gravity terms, 5 the error maps' coefficients).
     pub priority: u8,
 }
 
@@ -207,6 +268,12 @@ impl Parameter {
             Target::Joint { component, .. } if component.is_angle() => "deg",
             Target::Joint { .. } => "mm",
             Target::Map { .. } => "deg",
+            Target::External {
+                part: AxisPart::Offset,
+                ..
+            } => "deg",
+            Target::External { part, .. } if part.is_angle() => "mrad",
+            Target::External { .. } | Target::Table { .. } => "mm",
             Target::Gravity(term) => term.unit(),
             Target::Compliance { kind, .. } => compliance_unit(kind),
         }
@@ -222,6 +289,7 @@ impl Parameter {
         match self.unit() {
             "mm" => 1e3,
             "deg" => 180.0 / std::f64::consts::PI,
+            "mrad" => 1e3,
             _ => match self.target {
                 Target::Gravity(term) => term.document_factor(),
                 Target::Compliance { .. } => 1e6,
