@@ -31,6 +31,11 @@
 //! rpy_deg = [0, 0, 0]
 //! [robot_geometry]                      # optional: capsule radii of the base and links 1-6
 //! link_radius_mm = [350, 260, 195, 175, 130, 110, 90]   # default scaled to the robot's size
+//! [[external_axis]]                     # optional, one per axis: a carrier under the arm (a
+//! name = "track"                        #   track) or a positioner under the workpiece
+//! role = "carrier"                      #   ([`super::external::file`] has the format)
+//! direction = [1, 0, 0]
+//! limits_mm = [0, 6000]
 //! ```
 //! Unknown keys are rejected.
 
@@ -53,6 +58,8 @@ struct RobotFile {
     base: Option<TransformFile>,
     flange: Option<TransformFile>,
     robot_geometry: Option<GeometryFile>,
+    #[serde(default)]
+    external_axis: Vec<super::external::file::AxisFile>,
 }
 
 /// A robot's `[robot_geometry]`: the capsule radii of its bodies (the tool's is the setup's).
@@ -132,7 +139,8 @@ impl TransformFile {
 /// the key, line and column), [`Error::InvalidField`] for a joint count other than six, a number
 /// that is not finite or outside its range ([`crate::common::limits`]: lengths [`limits::LENGTH_MM`],
 /// angles [`limits::ANGLE_DEG`]), `lower_deg >= upper_deg` or an axis map whose condition number
-/// exceeds [`limits::MAX_AXIS_MAP_COND`].
+/// exceeds [`limits::MAX_AXIS_MAP_COND`], and those of the `[[external_axis]]` tables
+/// ([`super::external::file`]: the file, the table and the field named).
 pub fn parse(text: &str, source_name: &str) -> Result<Robot> {
     let file: RobotFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
@@ -199,6 +207,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let base = transform(file.base, "base", source_name)?;
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
+    let external = super::external::file::build(&file.external_axis, source_name)?;
     let axis_map = match file.axis_map {
         None => AxisMap::default(),
         Some(m) => axis_map(&m, source_name)?,
@@ -211,6 +220,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
             r.with_bodies(bodies)
                 .with_masses(masses)
                 .with_error_maps(maps)
+                .with_external(external)
         })
         .map_err(|e| match e {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),

@@ -33,6 +33,7 @@
 //! the cell. Paths and programs give points of the part, never of the moving base or of the floor.
 
 mod error_motions;
+pub mod file;
 pub use error_motions::{ErrorMotions, MAX_ORDER};
 
 use crate::common::limits;
@@ -339,6 +340,22 @@ impl ExternalAxes {
             turned *= turn_about_line(&axis.point, &axis.direction, angle + axis.offset);
         }
         columns
+    }
+
+    /// The lines of the positioner's axes at `e` (SI, the cell's order): per positioner axis, its
+    /// unit direction and a point on it (m), cell frame. A point `x` of the part moves by
+    /// `d x (x - o)` per radian ([`ExternalAxes::positioner_columns`]) and turns by `d`.
+    pub fn positioner_lines(&self, e: &[f64]) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+        let start = self.carrier_len();
+        let mut turned = Isometry3::identity();
+        let mut lines = Vec::with_capacity(self.len() - start);
+        for (axis, angle) in self.axes[start..].iter().zip(e.iter().skip(start)) {
+            let d = turned.rotation * axis.direction.into_inner();
+            let o = turned * nalgebra::Point3::from(axis.point);
+            lines.push((d, o.coords));
+            turned *= turn_about_line(&axis.point, &axis.direction, angle + axis.offset);
+        }
+        lines
     }
 
     fn carrier(&self) -> impl Iterator<Item = &ExternalAxis> {

@@ -55,6 +55,9 @@ crate::common::choice::by_name!(Coordinates);
 /// The forward kinematics of one posture: every joint frame, every joint axis and the flange.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frames {
+    /// The arm's base frame (the robot's [`Robot::base`], on its carrier at `e` with
+    /// [`Robot::frames_at`]), base frame (the cell frame), m.
+    pub base: Isometry3<f64>,
     /// Frame of each joint after its rotation and fixed `post` transform (for a modified-DH robot
     /// the DH frames 1..6), base frame, m.
     pub joints: [Isometry3<f64>; 6],
@@ -118,6 +121,7 @@ impl Robot {
         let theta = self.axis_map().kinematic(&self.mapped(q));
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
+        f.base = *base;
         f.flange = *base;
         f.axis_map = self.axis_map().matrix;
         let t = &mut f.flange;
@@ -151,6 +155,7 @@ impl Frames {
     /// Frames to be written over by [`Robot::update_frames_on`].
     fn blank() -> Self {
         Frames {
+            base: Isometry3::identity(),
             joints: [Isometry3::identity(); 6],
             axis_points: [Vector3::zeros(); 6],
             axis_directions: [Vector3::zeros(); 6],
