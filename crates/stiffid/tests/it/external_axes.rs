@@ -490,3 +490,39 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn inverse_kinematics_reaches_a_point_of_the_part_with_the_carrier_where_it_is() {
+    use stiffid::robot::ik;
+    let robot = robot(&format!("{TRACK}{POSITIONER}"));
+    let axes = robot.external().unwrap();
+    let point = Vector3::new(0.1, 0.0, 0.2);
+    let workpiece = Isometry3::translation(3.0, 1.5, 1.0);
+    // The pose the arm has at a known posture, carriage at 2000 mm, table tilted and turned:
+    // written in the part's frame, then solved for from another start.
+    let e = axes.to_si(&[2000.0, 30.0, -50.0]);
+    let q = Vector6::new(0.3, 0.2, -1.7, 0.4, 0.6, -0.2);
+    let reached = ik::tool_pose(&robot.frames_at(&q, &e), &point);
+    let part = axes.positioner_pose(&e) * workpiece;
+    let in_part = part.inverse() * reached;
+    let start = Vector6::new(0.25, 0.25, -1.6, 0.3, 0.5, -0.1);
+    let options = ik::Options::default();
+    let frame = ik::TargetFrame::Part(workpiece);
+    let s = ik::solve_at(&robot, &point, &in_part, frame, &e, &start, &options).unwrap();
+    let got = ik::tool_pose(&robot.frames_at(&s.q, &e), &point);
+    close(
+        got.translation.vector.as_slice(),
+        reached.translation.vector.as_slice(),
+        1e-9,
+        "tool point",
+    );
+    assert!(got.rotation.angle_to(&reached.rotation) < 1e-9);
+    // The same target at another carriage position is another posture; outside the travel,
+    // refused naming the axis.
+    let moved = axes.to_si(&[2500.0, 30.0, -50.0]);
+    let other = ik::solve_at(&robot, &point, &in_part, frame, &moved, &start, &options).unwrap();
+    assert!((other.q - s.q).norm() > 1e-3);
+    let far = axes.to_si(&[7000.0, 30.0, -50.0]);
+    let e = ik::solve_at(&robot, &point, &in_part, frame, &far, &start, &options).unwrap_err();
+    assert!(e.to_string().contains("e1_mm (track)"), "{e}");
+}
