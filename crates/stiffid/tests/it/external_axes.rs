@@ -526,3 +526,114 @@ fn inverse_kinematics_reaches_a_point_of_the_part_with_the_carrier_where_it_is()
     let e = ik::solve_at(&robot, &point, &in_part, frame, &far, &start, &options).unwrap_err();
     assert!(e.to_string().contains("e1_mm (track)"), "{e}");
 }
+
+/// The COMAU URDF on a track (a prismatic joint between the root and the arm's mount, its frame
+/// turned 0.3 rad about z) with a tilt-rotate positioner as a second chain from the root.
+fn cell_urdf(track_limit: &str) -> String {
+    let path = format!("{}/tests/data/comau-nj165.urdf", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let mount = r#"  <joint name="mount" type="fixed">
+    <parent link="world"/>"#;
+    assert!(text.contains(mount));
+    let added = format!(
+        r#"  <link name="carriage"/>
+  <link name="table_base"/>
+  <link name="table"/>
+  <joint name="track" type="prismatic">
+    <parent link="world"/>
+    <child link="carriage"/>
+    <origin xyz="0 0 0" rpy="0 0 0.3"/>
+    <axis xyz="1 0 0"/>
+    {track_limit}
+  </joint>
+  <joint name="tilt" type="revolute">
+    <parent link="world"/>
+    <child link="table_base"/>
+    <origin xyz="3 1.5 0.8" rpy="0 0 0"/>
+    <axis xyz="1 0 0"/>
+    <limit lower="-1.5" upper="1.5" effort="1" velocity="1"/>
+  </joint>
+  <joint name="rotate" type="continuous">
+    <parent link="table_base"/>
+    <child link="table"/>
+    <origin xyz="0 0 0.2" rpy="0 0 0"/>
+    <axis xyz="0 0 1"/>
+  </joint>
+  <joint name="mount" type="fixed">
+    <parent link="carriage"/>"#
+    );
+    text.replacen(mount, &added, 1)
+}
+
+#[test]
+fn a_urdf_holds_the_track_before_the_arm_and_the_positioner_as_a_second_chain() {
+    use stiffid::robot::urdf;
+    let limit = r#"<limit lower="0" upper="6" effort="1" velocity="1"/>"#;
+    let cell = urdf::parse(&cell_urdf(limit), "cell.urdf", None).unwrap();
+    let plain_text = std::fs::read_to_string(format!(
+        "{}/tests/data/comau-nj165.urdf",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let plain = urdf::parse(&plain_text, "comau-nj165.urdf", None).unwrap();
+    let axes = cell.external().unwrap();
+    let names: Vec<&str> = axes.axes().iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names, ["track", "tilt", "rotate"]);
+    assert_eq!(axes.column_names(), ["e1_mm", "e2_deg", "e3_deg"]);
+    let track = &axes.axes()[0];
+    assert_eq!((track.lower, track.upper), (0.0, 6.0));
+    let d = Vector3::new(0.3f64.cos(), 0.3f64.sin(), 0.0);
+    close(
+        track.direction.as_slice(),
+        d.as_slice(),
+        1e-15,
+        "track direction",
+    );
+    let (tilt, rotate) = (&axes.axes()[1], &axes.axes()[2]);
+    close(tilt.point.as_slice(), &[3.0, 1.5, 0.8], 1e-15, "tilt point");
+    close(
+        rotate.point.as_slice(),
+        &[3.0, 1.5, 1.0],
+        1e-15,
+        "rotate point",
+    );
+    close(
+        rotate.direction.as_slice(),
+        &[0.0, 0.0, 1.0],
+        1e-15,
+        "rotate direction",
+    );
+    assert_eq!((tilt.lower, tilt.upper), (-1.5, 1.5));
+    assert_eq!(cell.urdf_source().unwrap().joints[0], "joint_1");
+    // The arm at e: the carriage's frame turned 0.3 rad about z, moved along its x axis.
+    let q = Vector6::new(0.3, -0.2, 0.4, 0.5, -0.6, 0.7);
+    let e = [2.5, 0.4, -1.0];
+    let turned = homogeneous(&rodrigues(&Vector3::z(), 0.3), &(d * 2.5));
+    let want = turned * matrix(&plain.frames(&q).flange);
+    close(
+        cell.frames_at(&q, &e).flange.to_homogeneous().as_slice(),
+        want.as_slice(),
+        1e-12,
+        "flange on the track",
+    );
+    // A prismatic joint inside the arm is still refused; a track without its travel too.
+    let missing = urdf::parse(&cell_urdf(""), "cell.urdf", None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        missing.contains("'track'") && missing.contains("no <limit"),
+        "{missing}"
+    );
+    let inside = std::fs::read_to_string(format!(
+        "{}/tests/data/comau-nj165-prismatic.urdf",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let e = urdf::parse(&inside, "p.urdf", None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("joint_3") && e.contains("where the arm's six revolute joints are expected"),
+        "{e}"
+    );
+}
