@@ -82,6 +82,21 @@ pub(crate) fn build(tables: &[AxisFile], source_name: &str) -> Result<Option<Ext
         .map_err(|e| in_file(e, source_name))
 }
 
+/// The cell's external axes of a JSON array of tables with the keys of `[[external_axis]]`
+/// (module docs): what a program builds in code (Python's `Robot.with_external_axes`);
+/// `source_name` names it in errors. An empty array: none.
+///
+/// # Errors
+/// [`Error::Parse`] for malformed JSON, unknown or missing keys and wrong types; those of the
+/// tables as a file's ([`crate::robot::file::parse`]).
+pub fn from_json(text: &str, source_name: &str) -> Result<Option<ExternalAxes>> {
+    let tables: Vec<AxisFile> = serde_json::from_str(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: limits::one_line(&e.to_string()),
+    })?;
+    build(&tables, source_name)
+}
+
 fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
     if t.name.trim().is_empty() {
         return Err(invalid(
