@@ -410,6 +410,13 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
             .collect()
     };
     assert_eq!(names(&setup), ["track"]);
+    // The resolved setup's JSON (reproduce's summary) shows them.
+    let resolved =
+        serde_json::to_value(stiffid::app::reproduce::document::SetupJson::new(&setup)).unwrap();
+    let axis = &resolved["robot"]["external_axes"][0];
+    assert_eq!(axis["column"], "e1_mm");
+    assert_eq!(axis["limits"], serde_json::json!([0.0, 6000.0]));
+    assert_eq!(axis["offset"], 250.0);
     assert_eq!(names(&setup), {
         let arm = setup.arm();
         (arm.robot().external().into_iter())
