@@ -171,6 +171,7 @@ impl Robot {
     /// in the cell frame, ``external_jacobian`` (6 rows, one column per axis: the tool point
     /// relative to the part) and the part's frame.
     #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis", stiffness_nm_per_rad=None, external=None))]
+    #[allow(clippy::too_many_arguments)]
     fn kinematics<'py>(
         &self,
         py: Python<'py>,

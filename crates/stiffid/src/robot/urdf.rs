@@ -422,6 +422,7 @@ fn fold(
     let (mut lower, mut upper) = (Vec::new(), Vec::new());
     let mut acc = Isometry3::identity();
     let mut carrier = Vec::new();
+    let mut last = "";
     for j in path {
         match j.joint_type {
             JointType::Fixed => acc *= pose(j)?,
@@ -433,7 +434,7 @@ fn fold(
                 return Err(format!(
                     "joint '{}' is Prismatic where the arm's six revolute joints are expected (after joint '{}'): a track's prismatic joint goes before the arm's first revolute joint",
                     limits::short(&j.name),
-                    limits::short(path.iter().filter(|p| matches!(p.joint_type, JointType::Revolute | JointType::Continuous)).next_back().map_or("", |p| p.name.as_str())),
+                    limits::short(last),
                 ))
             }
             JointType::Revolute | JointType::Continuous if j.mimic.is_some() => {
@@ -445,6 +446,7 @@ fn fold(
                 ));
             }
             JointType::Revolute | JointType::Continuous => {
+                last = j.name.as_str();
                 joints.push(Joint {
                     pre: acc * pose(j)?,
                     axis: axis(j)?,
