@@ -193,7 +193,7 @@ pub fn solve_at(
     q0: &Vector6<f64>,
     options: &Options,
 ) -> Result<Solution> {
-    crate::app::kinematics::check_external(robot, e, "external")?;
+    robot.check_external(e, "external")?;
     let (carrier, positioner) = match robot.external() {
         Some(axes) => (axes.carrier_pose(e), axes.positioner_pose(e)),
         None => (Isometry3::identity(), Isometry3::identity()),

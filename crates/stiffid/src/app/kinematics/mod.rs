@@ -198,27 +198,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
 /// (the message names the axes and their columns) or of another length, a value outside its
 /// travel (naming the axis), or values given for a robot without external axes.
 pub fn check_external(robot: &Robot, e: &[f64], field: &str) -> Result<()> {
-    match robot.external() {
-        None if e.is_empty() => Ok(()),
-        None => Err(crate::Error::InvalidField {
-            field: field.to_string(),
-            message: format!(
-                "the robot has no external axes, got {} value(s): give external axes in the robot or setup file ([[external_axis]])",
-                e.len()
-            ),
-        }),
-        Some(axes) if e.is_empty() => Err(crate::Error::InvalidField {
-            field: field.to_string(),
-            message: format!(
-                "the cell has external axes ({}): expected their values, mm for a linear axis and deg for a rotary one, in this order",
-                (axes.column_names().iter().zip(axes.axes()))
-                    .map(|(c, a)| format!("{c} {}", a.name))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        }),
-        Some(axes) => axes.check(e, field),
-    }
+    robot.check_external(e, field)
 }
 
 /// The Jacobian columns of the external axes for the tool point at `x` (cell frame, m): the

@@ -385,6 +385,39 @@ impl ExternalAxis {
     }
 }
 
+impl crate::Robot {
+    /// Whether `e` (SI, the cell's order) are the values of the robot's external axes within
+    /// their travel ([`ExternalAxes::check`]), or empty for a robot without.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`field`) when the robot has external axes and `e` is empty (the
+    /// message names the axes and their columns) or of another length, a value outside its
+    /// travel (naming the axis), or values given for a robot without external axes.
+    pub fn check_external(&self, e: &[f64], field: &str) -> Result<()> {
+        match self.external() {
+        None if e.is_empty() => Ok(()),
+        None => Err(Error::InvalidField {
+            field: field.to_string(),
+            message: format!(
+                "the robot has no external axes, got {} value(s): give external axes in the robot or setup file ([[external_axis]])",
+                e.len()
+            ),
+        }),
+        Some(axes) if e.is_empty() => Err(Error::InvalidField {
+            field: field.to_string(),
+            message: format!(
+                "the cell has external axes ({}): expected their values, mm for a linear axis and deg for a rotary one, in this order",
+                (axes.column_names().iter().zip(axes.axes()))
+                    .map(|(c, a)| format!("{c} {}", a.name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }),
+        Some(axes) => axes.check(e, field),
+    }
+    }
+}
+
 /// The rotation by `angle` (rad) about the line through `point` along `direction`.
 fn turn_about_line(
     point: &Vector3<f64>,
