@@ -6,7 +6,7 @@ use crate::error::{self, raise, Failure};
 use nalgebra::{Matrix4, Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use pyo3::types::{PyAny, PyDict};
+use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
 use stiffid::app::kinematics::document::Document;
 use stiffid::app::kinematics::{self as job, characteristic_length_or_derived};
@@ -166,8 +166,12 @@ impl Robot {
     /// the robot gives its masses, the mass matrix and the point's operational-space inertia,
     /// and with ``stiffness_nm_per_rad`` (shape ``(6,)``, Nm/rad, in ``coordinates``) the
     /// natural frequencies and mode shapes. Placeholder masses are warned about
-    /// (``UserWarning``).
-    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis", stiffness_nm_per_rad=None))]
+    /// (``UserWarning``). A robot with external axes (a track, a positioner) needs ``external``
+    /// (shape ``(n,)``, mm for a linear axis and deg for a rotary one, the cell's order): positions
+    /// in the cell frame, ``external_jacobian`` (6 rows, one column per axis: the tool point
+    /// relative to the part) and the part's frame.
+    #[pyo3(signature = (q_deg, point_mm=None, characteristic_length_mm=None, coordinates="axis", stiffness_nm_per_rad=None, external=None))]
+    #[allow(clippy::too_many_arguments)]
     fn kinematics<'py>(
         &self,
         py: Python<'py>,
@@ -176,7 +180,17 @@ impl Robot {
         characteristic_length_mm: Option<f64>,
         coordinates: &str,
         stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
+        external: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let external = match (external, self.inner.external()) {
+            (None, _) => Vec::new(),
+            (Some(_), None) => {
+                // Refused with the job's message: the robot has no external axes.
+                job::check_external(&self.inner, &[0.0], "external").map_err(raise)?;
+                Vec::new()
+            }
+            (Some(e), Some(axes)) => axes.to_si(&arrays::values(e, "external", axes.len())?),
+        };
         let stiffness = stiffness_nm_per_rad
             .map(|k| {
                 let range = &limits::STIFFNESS_NM_PER_RAD;
@@ -194,6 +208,8 @@ impl Robot {
             characteristic_length: characteristic_length_mm.map(|l| l * 1e-3),
             coordinates: coordinates_arg(coordinates)?,
             stiffness,
+            external,
+            workpiece: None,
         };
         let report = py.detach(|| job::run(request)).map_err(raise)?;
         crate::documents::warn(py, &report.warnings)?;
@@ -277,6 +293,61 @@ impl Robot {
         let group =
             postures::parse(&text, &self.inner, None).map_err(|e| error::raise_in(&name, e))?;
         Ok(arrays::degrees(py, &group))
+    }
+
+    /// The cell's external axes (a track under the arm, a positioner under the part), in the
+    /// cell's order, as dicts: ``name``, ``column`` (``e1_mm``, ``e2_deg``, ...), ``role``
+    /// (``carrier`` or ``positioner``), ``direction``, ``point_mm``, ``limits`` and ``offset`` (mm
+    /// or deg); empty for a robot without.
+    #[getter]
+    fn external_axes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = PyList::empty(py);
+        let Some(axes) = self.inner.external() else {
+            return Ok(list);
+        };
+        for (a, column) in axes.axes().iter().zip(axes.column_names()) {
+            let d = PyDict::new(py);
+            d.set_item("name", &a.name)?;
+            d.set_item("column", column)?;
+            let role = match a.role {
+                stiffid::robot::external::Role::Carrier => "carrier",
+                stiffid::robot::external::Role::Positioner => "positioner",
+            };
+            d.set_item("role", role)?;
+            d.set_item(
+                "direction",
+                a.direction.iter().copied().collect::<Vec<f64>>(),
+            )?;
+            d.set_item(
+                "point_mm",
+                (a.point * 1e3).iter().copied().collect::<Vec<f64>>(),
+            )?;
+            d.set_item("limits", vec![a.to_display(a.lower), a.to_display(a.upper)])?;
+            d.set_item("offset", a.to_display(a.offset))?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
+    /// The robot in a cell with these external axes: a list of dicts with the keys of a robot
+    /// file's ``[[external_axis]]`` tables (``name``, ``role``, ``direction``, ``limits_mm`` or
+    /// ``limits_deg``, ``offset_mm`` or ``offset_deg``, ``point_mm``, ``error_motions``), or
+    /// ``None`` / ``[]`` for none. Raises ``stiffid.InputError`` naming the table and the field.
+    fn with_external_axes(
+        &self,
+        py: Python<'_>,
+        axes: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let axes = match axes {
+            None => None,
+            Some(a) => {
+                let text: String = py.import("json")?.call_method1("dumps", (a,))?.extract()?;
+                stiffid::robot::external::file::from_json(&text, "external_axes").map_err(raise)?
+            }
+        };
+        Ok(Self {
+            inner: self.inner.clone().with_external(axes),
+        })
     }
 
     fn __repr__(&self) -> String {

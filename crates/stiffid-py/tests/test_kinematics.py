@@ -253,3 +253,84 @@ def test_the_kinematics_document_equals_the_command(robot, cli, flags, kwargs):
     length = kwargs.get("characteristic_length_mm")
     k = robot.dexterity(q, point_mm=point, characteristic_length_mm=length, coordinates=coordinates)
     assert mine["dexterity"] == (None if np.isinf(k) else pytest.approx(k, rel=1e-12))
+
+
+# A robot on a track and a part on a positioner, from the example cell and built in code,
+# against a NumPy model of the same cell written here.
+TRACK_CELL = "examples/track/track-cell.toml"
+
+
+def _rotation(axis, angle):
+    """Rodrigues' formula."""
+    axis = np.asarray(axis, float) / np.linalg.norm(axis)
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * k @ k
+
+
+def _turn(point, axis, angle):
+    t = np.eye(4)
+    r = _rotation(axis, angle)
+    t[:3, :3] = r
+    t[:3, 3] = np.asarray(point) - r @ np.asarray(point)
+    return t
+
+
+def test_a_robot_on_a_track_with_a_positioner_matches_numpy():
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[3]
+    setup = stiffid.Setup.from_file(root / TRACK_CELL)
+    robot = setup.robot
+    axes = robot.external_axes
+    assert [a["column"] for a in axes] == ["e1_mm", "e2_deg", "e3_deg"]
+    assert [a["name"] for a in axes] == ["track", "tilt", "rotate"]
+    fixed = stiffid.Robot.preset("kuka-kr210-robond")
+    q = [10, 30, -20, 40, 60, -30]
+    e = [2500.0, -30.0, 70.0]
+    doc = robot.kinematics(q, point_mm=[0, 0, 250], external=e)
+    flange = fixed.flange_pose(q)
+    np.testing.assert_allclose(
+        doc["flange_position_mm"], flange[:3, 3] + [2500.0, 0, 0], atol=1e-9
+    )
+    jacobian = np.array(doc["external_jacobian"])
+    assert jacobian.shape == (6, 3)
+    np.testing.assert_allclose(jacobian[:, 0], [1, 0, 0, 0, 0, 0], atol=1e-15)
+    # The positioner's columns: minus the part's twist at the tool point, from NumPy matrices.
+    x = np.array(doc["point_position_mm"]) * 1e-3
+    p1, d1 = np.array([3.0, 1.8, 0.7]), np.array([1.0, 0, 0])
+    p2, d2 = np.array([3.0, 1.8, 0.9]), np.array([0, 0, 1.0])
+    a1 = np.radians(e[1])
+    d2_now = _rotation(d1, a1) @ d2
+    o2_now = (_turn(p1, d1, a1) @ np.append(p2, 1))[:3]
+    for column, (d, o) in zip(jacobian[:, 1:].T, [(d1, p1), (d2_now, o2_now)]):
+        np.testing.assert_allclose(column[:3], -np.cross(d, x - o), atol=1e-9)
+        np.testing.assert_allclose(column[3:], -d, atol=1e-12)
+    part = _turn(p1, d1, a1) @ _turn(p2, d2, np.radians(e[2]))
+    part[:3, 3] += part[:3, :3] @ [3.0, 1.8, 0.9]
+    # The example's [workpiece] reaches the document through --setup only: here the part's
+    # frame is the positioner's own (identity at e = 0).
+    np.testing.assert_allclose(
+        doc["part_position_mm"],
+        (_turn(p1, d1, a1) @ _turn(p2, d2, np.radians(e[2])))[:3, 3] * 1e3,
+        atol=1e-9,
+    )
+    with pytest.raises(stiffid.InputError, match="e1_mm track"):
+        robot.kinematics(q)
+    with pytest.raises(stiffid.InputError, match="no external axes"):
+        fixed.kinematics(q, external=[100.0])
+
+
+def test_a_robot_on_a_track_built_in_code():
+    robot = stiffid.Robot.preset("kuka-kr210-robond").with_external_axes(
+        [{"name": "track", "role": "carrier", "direction": [0, 1, 0], "limits_mm": [0, 4000]}]
+    )
+    assert robot.external_axes[0]["limits"] == [0.0, 4000.0]
+    q = [0, 30, 0, 0, 60, 0]
+    moved = robot.kinematics(q, external=[1500])["flange_position_mm"]
+    here = stiffid.Robot.preset("kuka-kr210-robond").flange_pose(q)[:3, 3]
+    np.testing.assert_allclose(moved, here + [0, 1500, 0], atol=1e-9)
+    with pytest.raises(stiffid.InputError, match=r"external_axis\[1\] \(track\).limits_mm"):
+        stiffid.Robot.preset("kuka-kr210-robond").with_external_axes(
+            [{"name": "track", "role": "carrier", "direction": [0, 1, 0]}]
+        )
+    assert robot.with_external_axes(None).external_axes == []

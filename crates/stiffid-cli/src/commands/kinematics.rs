@@ -11,12 +11,21 @@ use stiffid::{common::limits, Coordinates};
 #[derive(clap::Args)]
 pub struct Args {
     /// A preset name (see `stiffid robots`), a robot .toml file or a .urdf file.
+    #[arg(long, required_unless_present = "setup", conflicts_with = "setup")]
+    robot: Option<String>,
+    /// A setup (a built-in name or a setup .toml file) instead of --robot: its robot with the
+    /// setup's base, flange and external axes, and its [workpiece] as the part's frame.
     #[arg(long)]
-    robot: String,
+    setup: Option<String>,
     /// URDF only: the tip link of the chain (default: the only leaf link, else the leaf ending the
     /// chain of six revolute joints, else tool0).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "setup")]
     tip: Option<String>,
+    /// The external axes' values of a cell with external axes (a track, a positioner), in the
+    /// cell's order (carrier first, then positioner), comma-separated: mm for a linear axis, deg
+    /// for a rotary one, each within its travel. Required for such a cell, refused without one.
+    #[arg(long, allow_hyphen_values = true)]
+    external: Option<String>,
     /// The posture: six axis angles in degrees, comma-separated, e.g. 0,0,-90,0,0,0.
     #[arg(long, allow_hyphen_values = true)]
     q_deg: String,
@@ -45,8 +54,17 @@ pub struct Args {
 
 /// Prints the kinematics of one posture.
 pub fn run(args: &Args) -> Result<()> {
-    let robot = load::robot(&args.robot, args.tip.as_deref())?;
+    let (robot, workpiece) = match (&args.setup, &args.robot) {
+        (Some(s), _) => {
+            let setup = load::setup(s)?;
+            (setup.robot().clone(), setup.workpiece().copied())
+        }
+        (None, Some(r)) => (load::robot(r, args.tip.as_deref())?, None),
+        (None, None) => anyhow::bail!("give --robot or --setup"),
+    };
     let (_, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
+    let external = external(args.external.as_deref(), &robot)?;
+    job::check_external(&robot, &external, "--external")?;
     let point = load::vector::<3>(&args.point_mm, "--point-mm", &limits::LENGTH_MM)? * 1e-3;
     let stiffness = (args.stiffness_nm_per_rad.as_deref())
         .map(|k| load::vector::<6>(k, "--stiffness-nm-per-rad", &limits::STIFFNESS_NM_PER_RAD))
@@ -58,6 +76,8 @@ pub fn run(args: &Args) -> Result<()> {
         characteristic_length: args.characteristic_length_mm.map(|l| l * 1e-3),
         coordinates: args.coordinates,
         stiffness,
+        external,
+        workpiece,
     };
     let report = job::run(request).with_context(|| match args.characteristic_length_mm {
         Some(_) => "--characteristic-length-mm",
@@ -75,7 +95,11 @@ fn text(r: &Document) -> String {
     let mut s = format!("{}\nsource: {}\n", r.robot, r.robot_source);
     s += &format!("posture q_deg: {}\n", list(&r.q_deg, 2));
     s += &format!("flange position_mm: {}\n", list(&r.flange_position_mm, 3));
-    s += "flange rotation (base frame; columns: flange x, y, z axes):\n";
+    let frame = match r.external.is_empty() {
+        true => "base frame",
+        false => "cell frame",
+    };
+    s += &format!("flange rotation ({frame}; columns: flange x, y, z axes):\n");
     for row in &r.flange_rotation {
         s += &format!("  {}\n", list(row, 6));
     }
@@ -85,7 +109,7 @@ fn text(r: &Document) -> String {
         list(&r.point_position_mm, 3)
     );
     s += &format!(
-        "Jacobian of the point (base frame, {unit}; rows vx vy vz in m/rad, wx wy wz in rad/rad):\n"
+        "Jacobian of the point ({frame}, {unit}; rows vx vy vz in m/rad, wx wy wz in rad/rad):\n"
     );
     s += "      ";
     for j in 1..=6 {
@@ -98,6 +122,43 @@ fn text(r: &Document) -> String {
             s += &format!("{:>11}", fixed(*v, 6));
         }
         s += "\n";
+    }
+    if let Some(j) = &r.external_jacobian {
+        s += &format!(
+            "external axes: {}\n",
+            (r.external.iter())
+                .map(|e| format!(
+                    "{} ({}, {}) = {}",
+                    e.column,
+                    e.name,
+                    e.role,
+                    fixed(e.value, 3)
+                ))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        s += "Jacobian columns of the external axes (cell frame, the point relative to the part; rows vx vy vz in m/m or m/rad, wx wy wz in rad/rad):\n      ";
+        for e in &r.external {
+            s += &format!("{:>11}", e.column);
+        }
+        s += "\n";
+        for (row, name) in j.iter().zip(["vx", "vy", "vz", "wx", "wy", "wz"]) {
+            s += &format!("  {name:<4}");
+            for v in row {
+                s += &format!("{:>11}", fixed(*v, 6));
+            }
+            s += "\n";
+        }
+    }
+    if let (Some(p), Some(rot), Some(x)) =
+        (&r.part_position_mm, &r.part_rotation, &r.point_in_part_mm)
+    {
+        s += &format!("part frame position_mm: {}\n", list(p, 3));
+        s += "part frame rotation (cell frame; columns: part x, y, z axes):\n";
+        for row in rot {
+            s += &format!("  {}\n", list(row, 6));
+        }
+        s += &format!("point in part frame_mm: {}\n", list(x, 3));
     }
     let k = match r.dexterity {
         Some(k) => fixed(k, 4),
@@ -115,6 +176,19 @@ fn text(r: &Document) -> String {
         s += &format!("natural frequencies Hz: {}\n", list(f, 2));
     }
     s
+}
+
+/// The values of `--external` in SI (the cell's order), checked by the job; empty without it.
+fn external(text: Option<&str>, robot: &stiffid::Robot) -> Result<Vec<f64>> {
+    let Some(text) = text else {
+        return Ok(Vec::new());
+    };
+    let values = load::numbers(text, "--external", &limits::LENGTH_MM)?;
+    Ok(match robot.external() {
+        Some(axes) if axes.len() == values.len() => axes.to_si(&values),
+        // The job's check names the axes and the count expected.
+        _ => values,
+    })
 }
 
 /// `v` with `decimals` digits after the point, without a sign on a value that rounds to zero.

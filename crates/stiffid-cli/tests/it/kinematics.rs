@@ -314,3 +314,154 @@ fn radians_given_to_q_deg_get_the_radians_warning() {
         );
     }
 }
+
+/// The example cell: a KUKA KR 210 on a 6 m track along x, a part on a tilt-rotate positioner.
+fn track_cell() -> String {
+    format!(
+        "{}/../../examples/track/track-cell.toml",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+fn numbers_of(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn a_cell_on_a_track_and_a_positioner_gives_cell_positions_and_external_columns() {
+    let q = "10,30,-20,40,60,-30";
+    let on_track = json(&stiffid(&[
+        "kinematics",
+        "--setup",
+        &track_cell(),
+        "--q-deg",
+        q,
+        "--external",
+        "3000,20,45",
+        "--point-mm",
+        "0,0,250",
+        "--json",
+    ]));
+    let fixed = json(&stiffid(&[
+        "kinematics",
+        "--robot",
+        "kuka-kr210-robond",
+        "--q-deg",
+        q,
+        "--point-mm",
+        "0,0,250",
+        "--json",
+    ]));
+    // The carriage at 3000 mm along x: every position moved by (3000, 0, 0) mm, the arm's
+    // Jacobian unchanged (a translation turns no column).
+    for key in ["flange_position_mm", "point_position_mm"] {
+        let (a, b) = (numbers_of(&on_track[key]), numbers_of(&fixed[key]));
+        for (i, shift) in [3000.0, 0.0, 0.0].iter().enumerate() {
+            assert!((a[i] - b[i] - shift).abs() < 1e-9, "{key}: {a:?} {b:?}");
+        }
+    }
+    let rows = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array().unwrap().iter().flat_map(numbers_of).collect()
+    };
+    let (a, b) = (rows(&on_track["jacobian"]), rows(&fixed["jacobian"]));
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x - y).abs() < 1e-12, "{a:?} {b:?}");
+    }
+    let columns: Vec<&str> = (on_track["external"].as_array().unwrap().iter())
+        .map(|e| e["column"].as_str().unwrap())
+        .collect();
+    assert_eq!(columns, ["e1_mm", "e2_deg", "e3_deg"]);
+    // 6 rows of 3 columns; the track's column is its direction.
+    let je: Vec<Vec<f64>> = (on_track["external_jacobian"].as_array().unwrap().iter())
+        .map(numbers_of)
+        .collect();
+    assert_eq!(je.len(), 6);
+    let track: Vec<f64> = je.iter().map(|row| row[0]).collect();
+    assert_eq!(track, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    // The rotate axis turns the part under the tool: -omega = -(its direction, tilted 20 deg
+    // about x) = (0, sin 20, -cos 20).
+    let (s, c) = 20f64.to_radians().sin_cos();
+    let rotate: Vec<f64> = je[3..].iter().map(|row| row[2]).collect();
+    for (got, want) in rotate.iter().zip([0.0, s, -c]) {
+        assert!((got - want).abs() < 1e-12, "{rotate:?}");
+    }
+    // The part's origin (3000, 1800, 900) mm tilted 20 deg about the line along x through
+    // (3000, 1800, 700): the rotate axis goes through it.
+    let part = numbers_of(&on_track["part_position_mm"]);
+    for (got, want) in part
+        .iter()
+        .zip([3000.0, 1800.0 - 200.0 * s, 700.0 + 200.0 * c])
+    {
+        assert!((got - want).abs() < 1e-9, "{part:?}");
+    }
+    let text = stiffid(&[
+        "kinematics",
+        "--setup",
+        &track_cell(),
+        "--q-deg",
+        q,
+        "--external",
+        "3000,20,45",
+    ]);
+    assert_success(&text);
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(text.contains("e1_mm (track, carrier) = 3000.000"), "{text}");
+    assert!(
+        text.contains("part frame position_mm: 3000.000, 1731.596"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_cell_with_external_axes_refuses_a_posture_without_their_values() {
+    let q = "0,30,0,0,60,0";
+    let base = ["kinematics", "--setup", &track_cell(), "--q-deg", q];
+    assert_usage_error(
+        &stiffid(&base),
+        &["--external", "e1_mm track", "e3_deg rotate"],
+    );
+    let with = |e: &str| {
+        let mut args = base.to_vec();
+        args.extend(["--external", e]);
+        stiffid(&args)
+    };
+    assert_usage_error(
+        &with("3000,20"),
+        &["--external", "expected 3 external axis values"],
+    );
+    assert_usage_error(
+        &with("6500,20,45"),
+        &["--external e1_mm (track)", "0 to 6000 mm"],
+    );
+    assert_usage_error(&with("3000,120,45"), &["e2_deg (tilt)", "-95 to 95 deg"]);
+    let plain = stiffid(&[
+        "kinematics",
+        "--robot",
+        "kuka-kr210-robond",
+        "--q-deg",
+        q,
+        "--external",
+        "100",
+    ]);
+    assert_usage_error(&plain, &["--external", "no external axes"]);
+    let robot = scratch(
+        "track-robot.toml",
+        &format!(
+            "{}\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1, 0, 0]\nlimits_deg = [0, 90]\n",
+            stiffid::robot::presets::text("kuka-kr210-robond").unwrap()
+        ),
+    );
+    let out = stiffid(&["kinematics", "--robot", &robot, "--q-deg", q]);
+    assert_usage_error(
+        &out,
+        &[
+            "track-robot.toml",
+            "external_axis[1] (track).limits_deg",
+            "limits_mm",
+        ],
+    );
+}

@@ -145,6 +145,8 @@ fn kinematics_gives_the_librarys_frequencies_with_a_stiffness() {
         stiffness: Some(Vector6::new(
             950000.0, 3e6, 900000.0, 250000.0, 200000.0, 150000.0,
         )),
+        external: Vec::new(),
+        workpiece: None,
     })
     .unwrap();
     let expected = report.modes.unwrap().frequencies;

@@ -80,8 +80,14 @@ class Robot:
         characteristic_length_mm: Optional[float] = None,
         coordinates: _Coordinates = "axis",
         stiffness_nm_per_rad: Optional[ArrayLike] = None,
+        external: Optional[ArrayLike] = None,
     ) -> dict[str, Any]:
-        """The kinematics document (docs/schemas/kinematics.schema.json), equal to `stiffid kinematics --json`."""
+        """The kinematics document (docs/schemas/kinematics.schema.json), equal to `stiffid kinematics --json`; `external` (mm/deg, the cell's order) for a robot with external axes."""
+    @property
+    def external_axes(self) -> list[dict[str, Any]]:
+        """The cell's external axes in the cell's order (name, column, role, direction, point_mm, limits, offset in mm or deg)."""
+    def with_external_axes(self, axes: Optional[Sequence[dict[str, Any]]]) -> "Robot":
+        """The robot with these external axes: dicts with the keys of [[external_axis]] tables."""
     @overload
     def dexterity(
         self,

@@ -87,7 +87,8 @@ impl Body {
 /// The bodies of the posture whose forward kinematics are `frames`, base frame, m: with the
 /// robot's collision shapes ([`Arm::shapes`]), each shape posed by its body's frame (the base,
 /// or joint frame i for link i) then the tool's capsule ([`capsules`]); else [`capsules`]. The same
-/// bodies in the same order in every posture. What the cell's checks and the drawings use.
+/// bodies in the same order in every posture. What the cell's checks and the drawings use. The
+/// bodies of an arm on a carrier move with it: give the frames of [`crate::Robot::frames_at`].
 pub fn bodies(arm: &Arm, frames: &Frames) -> Vec<Body> {
     let Some(g) = arm.shapes() else {
         return capsules(arm, frames)
@@ -95,7 +96,7 @@ pub fn bodies(arm: &Arm, frames: &Frames) -> Vec<Body> {
             .map(Body::Capsule)
             .collect();
     };
-    let base = *arm.robot().base();
+    let base = frames.base;
     let mut out: Vec<Body> = g
         .shapes
         .iter()

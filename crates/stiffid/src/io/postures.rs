@@ -2,6 +2,12 @@
 //! posture per row (at most [`MAX_GROUP_POSTURES`]), axis angles in degrees within the robot's
 //! joint limits (and, where a caller needs it, a setup's bounds), `posture` numbering the rows
 //! from 1. [`to_csv`] writes them.
+//!
+//! A cell with external axes ([`crate::robot::external`]: a track, a positioner) has one more
+//! column per axis after the angles, in the cell's order, named with its unit
+//! ([`crate::robot::external::ExternalAxes::column_names`]: `e1_mm`, `e2_deg`, ...), each value
+//! within its axis's travel; [`parse_cell`] returns them, [`to_csv_cell`] writes them. A file of
+//! a robot without external axes has none, and a column of an axis the cell lacks is refused.
 
 use crate::common::error::ColumnProblem;
 use crate::common::limits::{short, JointBox, MAX_GROUP_POSTURES};
@@ -31,23 +37,65 @@ pub const HEADER: [&str; 7] = [
 /// assert!((group[0][2] - (-90f64).to_radians()).abs() < 1e-12);
 /// assert!(postures::to_csv(&group).starts_with(&postures::HEADER.join(",")));
 /// ```
+///
+/// A cell with external axes: the file has their columns, checked as [`parse_cell`] checks
+/// them; their values are left out here ([`parse_cell`] returns them).
 pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec<Vector6<f64>>> {
+    parse_cell(text, robot, bounds).map(|p| p.q)
+}
+
+/// The postures of a cell: axis angles and external axes' values.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Postures {
+    /// Axis angles, rad, one per row.
+    pub q: Vec<Vector6<f64>>,
+    /// The external axes' values, SI (m, rad) in the cell's order, one per row (each empty for a
+    /// robot without external axes).
+    pub e: Vec<Vec<f64>>,
+}
+
+/// The header of a postures file of `robot`: [`HEADER`], then its external axes' columns.
+pub fn header(robot: &Robot) -> Vec<String> {
+    let mut names: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
+    names.extend(robot.external().map_or(Vec::new(), |a| a.column_names()));
+    names
+}
+
+/// [`parse`] with the external axes' values of a cell (module docs): one column per axis after
+/// the angles, mm or deg, each within its travel; returned in SI.
+///
+/// # Errors
+/// Those of [`parse`], the header expected being [`header`] (a column of an axis the robot
+/// lacks is a header error saying so), and a value of an external axis that is not a finite
+/// number or outside its travel (naming the line, the column and the axis).
+pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Postures> {
+    let expected = header(robot);
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
         .from_reader(text.as_bytes());
     let header = reader.headers().map_err(|e| unreadable(1, &e))?;
-    if header.iter().ne(HEADER) {
+    if header.iter().ne(expected.iter()) {
+        let extra = header.iter().find(|h| {
+            h.starts_with('e')
+                && (h.ends_with("_mm") || h.ends_with("_deg"))
+                && !expected.iter().any(|x| x == h)
+        });
+        let hint = match (extra, robot.external()) {
+            (Some(column), None) => format!(" (the robot has no external axes: {column} is the column of a cell's external axis)"),
+            (Some(column), Some(a)) => format!(" (the cell's external axes are {}: {column} names none of them)", a.column_names().join(", ")),
+            (None, _) => super::separator_hint(&header.iter().collect::<Vec<_>>()).into(),
+        };
         return Err(problem(
             1,
             None,
             ColumnProblem::Header {
-                expected: HEADER.join(","),
-                hint: super::separator_hint(&header.iter().collect::<Vec<_>>()).into(),
+                expected: expected.join(","),
+                hint,
             },
         ));
     }
-    let mut postures = Vec::new();
+    let mut postures = Postures::default();
     // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
     let mut lines = super::LineCount::new(text.as_bytes());
     for record in reader.records() {
@@ -56,16 +104,18 @@ pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec
             unreadable(line, &e)
         })?;
         let line = record.position().map_or(0, |p| lines.at(p.byte()));
-        if postures.len() == MAX_GROUP_POSTURES {
+        if postures.q.len() == MAX_GROUP_POSTURES {
             let too_many = ColumnProblem::TooMany {
                 limit: MAX_GROUP_POSTURES,
                 what: "postures",
             };
             return Err(problem(line, None, too_many));
         }
-        postures.push(row(&record, line, robot, bounds)?);
+        let (q, e) = row(&record, line, robot, bounds, &expected)?;
+        postures.q.push(q);
+        postures.e.push(e);
     }
-    if postures.is_empty() {
+    if postures.q.is_empty() {
         let what = "posture row";
         return Err(problem(1, None, ColumnProblem::NoRows { what }));
     }
@@ -77,15 +127,17 @@ fn row(
     line: u64,
     robot: &Robot,
     bounds: Option<&JointBox>,
-) -> Result<Vector6<f64>> {
-    if record.len() != HEADER.len() {
+    expected: &[String],
+) -> Result<(Vector6<f64>, Vec<f64>)> {
+    if record.len() != expected.len() {
         let count = ColumnProblem::FieldCount {
-            expected: HEADER.len(),
+            expected: expected.len(),
             got: record.len(),
         };
         return Err(problem(line, None, count));
     }
     let mut q = Vector6::zeros();
+    let mut e = Vec::new();
     for (i, field) in record.iter().skip(1).enumerate() {
         let deg = field
             .parse::<f64>()
@@ -93,16 +145,28 @@ fn row(
             .filter(|v| v.is_finite())
             .ok_or_else(|| {
                 let value = short(field);
-                problem(line, Some(i + 1), ColumnProblem::NotANumber { value })
+                let mut p = problem(line, Some(i + 1), ColumnProblem::NotANumber { value });
+                if let Error::Column { name, .. } = &mut p {
+                    *name = expected[i + 1].clone();
+                }
+                p
             })?;
-        q[i] = deg.to_radians();
+        match i {
+            0..6 => q[i] = deg.to_radians(),
+            _ => e.push(deg),
+        }
+    }
+    if let Some(axes) = robot.external() {
+        let si = axes.to_si(&e);
+        axes.check(&si, &format!("line {line}"))?;
+        e = si;
     }
     let (limits, within) = match bounds {
         Some(b) => (b, "the setup's bounds"),
         None => (robot.limits(), "the robot's limits"),
     };
     match limits.first_violation(&q) {
-        None => Ok(q),
+        None => Ok((q, e)),
         Some(v) => {
             let outside = v.outside(HEADER[v.axis + 1].into(), within);
             Err(problem(line, Some(v.axis + 1), outside))
@@ -115,7 +179,9 @@ fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {
     Error::Column {
         line,
         column: column.map(|c| c + 1),
-        name: column.map_or(String::new(), |c| HEADER[c].into()),
+        name: column
+            .and_then(|c| HEADER.get(c))
+            .map_or(String::new(), |h| h.to_string()),
         problem,
     }
 }
@@ -135,26 +201,37 @@ pub fn to_csv(postures: &[Vector6<f64>]) -> String {
     text
 }
 
+/// The CSV text of a cell's postures: [`to_csv`] with the external axes' values (SI, the cell's
+/// order, one per posture) in mm or deg after the angles, 6 decimals; `axes` `None` (a robot
+/// without external axes): [`to_csv`].
+pub fn to_csv_cell(
+    postures: &[Vector6<f64>],
+    e: &[Vec<f64>],
+    axes: Option<&crate::robot::external::ExternalAxes>,
+) -> String {
+    let Some(axes) = axes else {
+        return to_csv(postures);
+    };
+    let mut text = HEADER.join(",") + "," + &axes.column_names().join(",") + "\n";
+    for (i, (q, e)) in postures.iter().zip(e).enumerate() {
+        let angles = q.iter().map(|v| v.to_degrees());
+        let values: Vec<String> = (angles.chain(axes.to_display(e)))
+            .map(|v| format!("{v:.6}"))
+            .collect();
+        text += &format!("{},{}\n", i + 1, values.join(","));
+    }
+    text
+}
+
 /// The CSV text of postures (axis angles, rad) measured with the external axes `axes` at `e`
-/// (SI, the cell's order): [`to_csv`] with one more column per axis, `e1_mm`, `e2_deg`, ...
-/// (mm and deg with 6 decimals), the same values on every row.
+/// (SI, the cell's order): [`to_csv_cell`] with the same values on every row.
 pub fn to_csv_at(
     postures: &[Vector6<f64>],
     axes: &crate::robot::ExternalAxes,
     e: &crate::robot::external::ExternalValues,
 ) -> String {
-    let values: Vec<String> = (axes.to_display(e.as_slice()).iter())
-        .map(|v| format!("{v:.6}"))
-        .collect();
-    let mut lines = to_csv(postures)
-        .lines()
-        .map(str::to_string)
-        .collect::<Vec<_>>();
-    lines[0] += &format!(",{}", axes.column_names().join(","));
-    for line in &mut lines[1..] {
-        *line += &format!(",{}", values.join(","));
-    }
-    lines.join("\n") + "\n"
+    let e = vec![e.as_slice().to_vec(); postures.len()];
+    to_csv_cell(postures, &e, Some(axes))
 }
 
 #[cfg(test)]
@@ -228,6 +305,43 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("columns with ';'"), "{e}");
+    }
+
+    #[test]
+    fn a_cells_postures_carry_its_external_axes() {
+        let text = crate::robot::presets::text("comau-smart5-nj165-3.0").unwrap().to_string()
+            + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1, 0, 0]\nlimits_mm = [0, 6000]\n"
+            + "[[external_axis]]\nname = \"turn\"\nrole = \"positioner\"\ndirection = [0, 0, 1]\nlimits_deg = [-180, 180]\n";
+        let cell = crate::robot::file::parse(&text, "cell.toml").unwrap();
+        let q = vec![Vector6::new(0.1, -0.2, -1.5, 0.4, 0.5, -0.6); 2];
+        let e = vec![vec![1.25, 0.5], vec![5.5, -3.0]];
+        let written = to_csv_cell(&q, &e, cell.external());
+        assert!(
+            written.starts_with(&(HEADER.join(",") + ",e1_mm,e2_deg\n")),
+            "{written}"
+        );
+        assert!(written.contains(",1250.000000,28.647890\n"), "{written}");
+        let back = parse_cell(&written, &cell, None).unwrap();
+        assert_eq!(back.q.len(), 2);
+        for (a, b) in e.iter().zip(&back.e) {
+            assert_relative_eq!(a[0], b[0], epsilon = 1e-9);
+            assert_relative_eq!(a[1], b[1], epsilon = 1e-8);
+        }
+        // Without its columns, with an axis it lacks, outside the travel: refused, named.
+        let e = parse(&to_csv(&q), &cell, None).unwrap_err().to_string();
+        assert!(e.contains("e1_mm,e2_deg"), "{e}");
+        let plain = crate::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+        let e = parse(&written, &plain, None).unwrap_err().to_string();
+        assert!(e.contains("the robot has no external axes: e1_mm"), "{e}");
+        let far = written.replace(",1250.000000,", ",7000.000000,");
+        let e = parse_cell(&far, &cell, None).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2 e1_mm (track)") && e.contains("0 to 6000 mm"),
+            "{e}"
+        );
+        let nan = written.replace(",28.647890\n", ",x\n");
+        let e = parse_cell(&nan, &cell, None).unwrap_err().to_string();
+        assert!(e.contains("e2_deg"), "{e}");
     }
 
     #[test]

@@ -34,6 +34,11 @@
 //! [held_out]                            # optional (stiffid calibrate --out writes it): the
 //! source = "validate"                   #   calibration's held-out position errors, "validate"
 //! errors_mm = [0.012, 0.019, 0.031]     #   or "cross-validate", each |error| in mm (1 to 1e6)
+//! [[external_axis]]                     # optional, one per axis: a carrier under the arm (a
+//! name = "track"                        #   track) or a positioner under the workpiece
+//! role = "carrier"                      #   ([`super::external::file`] has the format)
+//! direction = [1, 0, 0]
+//! limits_mm = [0, 6000]
 //! ```
 //! Unknown keys are rejected.
 
@@ -56,6 +61,8 @@ struct RobotFile {
     base: Option<TransformFile>,
     flange: Option<TransformFile>,
     robot_geometry: Option<GeometryFile>,
+    #[serde(default)]
+    external_axis: Vec<super::external::file::AxisFile>,
     held_out: Option<HeldOutFile>,
 }
 
@@ -177,7 +184,8 @@ impl TransformFile {
 /// the key, line and column), [`Error::InvalidField`] for a joint count other than six, a number
 /// that is not finite or outside its range ([`crate::common::limits`]: lengths [`limits::LENGTH_MM`],
 /// angles [`limits::ANGLE_DEG`]), `lower_deg >= upper_deg` or an axis map whose condition number
-/// exceeds [`limits::MAX_AXIS_MAP_COND`].
+/// exceeds [`limits::MAX_AXIS_MAP_COND`], and those of the `[[external_axis]]` tables
+/// ([`super::external::file`]: the file, the table and the field named).
 pub fn parse(text: &str, source_name: &str) -> Result<Robot> {
     let file: RobotFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),
@@ -245,6 +253,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
     let held = held_out(file.held_out, source_name)?;
+    let external = super::external::file::build(&file.external_axis, source_name)?;
     let axis_map = match file.axis_map {
         None => AxisMap::default(),
         Some(m) => axis_map(&m, source_name)?,
@@ -258,6 +267,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
                 .with_masses(masses)
                 .with_error_maps(maps)
                 .with_held_out(held)
+                .with_external(external)
         })
         .map_err(|e| match e {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),

@@ -165,6 +165,46 @@ pub fn solve(
     })
 }
 
+/// Where the target of [`solve_at`] is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TargetFrame {
+    /// The cell frame (the robot's world frame).
+    Cell,
+    /// The part's frame on the positioner: the part's frame at `e = 0` in the cell (a setup's
+    /// `[workpiece]`), the target in it; the part turns with the positioner's axes at `e`.
+    Part(Isometry3<f64>),
+}
+
+/// [`solve`] for the arm of a cell with external axes at their values `e` (SI, the cell's
+/// order, [`crate::robot::external`]): the arm on its carrier at `e`, the target in the cell
+/// frame or in the part's frame on the positioner at `e` (`P(e) * workpiece * target`). The
+/// external axes stay as given: the axis angles alone are solved for. Without external axes,
+/// `e` empty and [`TargetFrame::Cell`]: [`solve`].
+///
+/// # Errors
+/// [`Error::InvalidField`] (`external`) when `e` are not the robot's external axes' values
+/// within their travel ([`crate::robot::external::ExternalAxes::check`]); those of [`solve`].
+pub fn solve_at(
+    robot: &Robot,
+    point: &Vector3<f64>,
+    target: &Isometry3<f64>,
+    frame: TargetFrame,
+    e: &[f64],
+    q0: &Vector6<f64>,
+    options: &Options,
+) -> Result<Solution> {
+    robot.check_external(e, "external")?;
+    let (carrier, positioner) = match robot.external() {
+        Some(axes) => (axes.carrier_pose(e), axes.positioner_pose(e)),
+        None => (Isometry3::identity(), Isometry3::identity()),
+    };
+    let in_cell = match frame {
+        TargetFrame::Cell => *target,
+        TargetFrame::Part(workpiece) => positioner * workpiece * target,
+    };
+    solve(robot, point, &(carrier.inverse() * in_cell), q0, options)
+}
+
 fn converged(s: &Solution, options: &Options) -> bool {
     s.position_error <= options.position_tolerance && s.rotation_error <= options.rotation_tolerance
 }

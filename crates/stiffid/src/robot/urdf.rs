@@ -3,12 +3,21 @@
 //! The chain runs from the root link to a tip link: the one named, else the only leaf link, else the
 //! only leaf ending a chain of six revolute joints, else `tool0` among several such (ROS-Industrial).
 //! Fixed joints along it are folded into the next revolute joint (or into the flange transform after
-//! the last one); revolute and continuous joints may turn about any axis. Prismatic, floating and
-//! planar joints in the chain are an error, as is a chain without exactly six revolute joints. The
+//! the last one); revolute and continuous joints may turn about any axis. Floating and planar
+//! joints in the chain are an error, as is a chain without exactly six revolute joints. The
 //! axis map is the identity: axis angles are the URDF joint positions. Joint limits come from each
 //! revolute joint's `<limit lower upper>`; continuous joints, and revolute joints without a
 //! `<limit>` (urdf-rs reads it as `lower = upper = 0`), are unlimited; an inverted or non-finite
 //! limit is an error.
+//!
+//! A robot on a track: prismatic joints before the arm's first revolute joint are the carrier's
+//! linear axes ([`crate::robot::external`]; at most three), their directions in the root link's
+//! frame (the cell frame), their travel the joint's `<limit>` (m, required); a prismatic joint
+//! after it, where the arm's revolute joints are expected, is an error naming the joint. A part on
+//! a positioner: a second chain of one or two revolute joints from the root link (through no moving
+//! joint of the arm's chain) to a leaf link is the positioner, its axes' lines those of the
+//! joints at zero, their travel the joints' limits (a continuous joint: +-175 rad); several such
+//! chains are an error.
 //!
 //! Before the XML parser sees the text, its element nesting is bounded
 //! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
@@ -72,10 +81,17 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     };
     let path = chain_to(&tip, &by_child, urdf.joints.len()).map_err(chain_error)?;
     let source = format!("{source_name}, tip link '{}'", limits::short(&tip));
-    let robot = fold(&path, &urdf.name, &source).map_err(chain_error)?;
+    let mut robot = fold(&path, &urdf.name, &source).map_err(chain_error)?;
+    let turning = positioner(&urdf, &by_child, &path).map_err(chain_error)?;
+    if !turning.is_empty() {
+        let mut axes = robot.external().map_or(Vec::new(), |a| a.axes().to_vec());
+        axes.extend(turning);
+        let axes = super::ExternalAxes::new(axes).map_err(|e| chain_error(e.to_string()))?;
+        robot = robot.with_external(Some(axes));
+    }
     let masses = masses(&urdf, &path).map_err(chain_error)?;
     let revolute: Vec<&urdf_rs::Joint> = (path.iter().copied())
-        .filter(|j| j.joint_type != JointType::Fixed)
+        .filter(|j| matches!(j.joint_type, JointType::Revolute | JointType::Continuous))
         .collect();
     let mut origins = [Isometry3::identity(); 6];
     for (o, j) in origins.iter_mut().zip(&revolute) {
@@ -106,7 +122,7 @@ fn masses(
     let mut any = false;
     for j in path {
         match j.joint_type {
-            JointType::Fixed => acc *= pose(j)?,
+            JointType::Fixed | JointType::Prismatic => acc *= pose(j)?,
             _ => {
                 link = Some(link.map_or(0, |l| l + 1));
                 acc = Isometry3::identity();
@@ -405,9 +421,22 @@ fn fold(
     let mut joints = Vec::new();
     let (mut lower, mut upper) = (Vec::new(), Vec::new());
     let mut acc = Isometry3::identity();
+    let mut carrier = Vec::new();
+    let mut last = "";
     for j in path {
         match j.joint_type {
             JointType::Fixed => acc *= pose(j)?,
+            JointType::Prismatic if joints.is_empty() => {
+                acc *= pose(j)?;
+                carrier.push(linear_axis(j, &acc)?);
+            }
+            JointType::Prismatic => {
+                return Err(format!(
+                    "joint '{}' is Prismatic where the arm's six revolute joints are expected (after joint '{}'): a track's prismatic joint goes before the arm's first revolute joint",
+                    limits::short(&j.name),
+                    limits::short(last),
+                ))
+            }
             JointType::Revolute | JointType::Continuous if j.mimic.is_some() => {
                 let master = j.mimic.as_ref().map_or("", |m| m.joint.as_str());
                 return Err(format!(
@@ -417,6 +446,7 @@ fn fold(
                 ));
             }
             JointType::Revolute | JointType::Continuous => {
+                last = j.name.as_str();
                 joints.push(Joint {
                     pre: acc * pose(j)?,
                     axis: axis(j)?,
@@ -446,7 +476,124 @@ fn fold(
         Vector6::from_column_slice(&lower),
         Vector6::from_column_slice(&upper),
     );
-    Robot::new(name, source_name, joints, limits)
+    let robot = Robot::new(name, source_name, joints, limits)
         .and_then(|r| r.with_flange(acc))
-        .map_err(|e| e.to_string())
+        .map_err(|e| e.to_string())?;
+    match carrier.is_empty() {
+        true => Ok(robot),
+        false => Ok(robot.with_external(Some(
+            super::ExternalAxes::new(carrier).map_err(|e| e.to_string())?,
+        ))),
+    }
+}
+
+/// The carrier axis of the prismatic joint `j` whose frame (at zero) is `at` in the root link's
+/// frame: its direction there, its travel its `<limit>` (m).
+fn linear_axis(
+    j: &urdf_rs::Joint,
+    at: &Isometry3<f64>,
+) -> std::result::Result<super::external::ExternalAxis, String> {
+    let name = limits::short(&j.name);
+    let (lower, upper) = (j.limit.lower, j.limit.upper);
+    if lower == 0.0 && upper == 0.0 {
+        return Err(format!(
+            "prismatic joint '{name}' (a track) has no <limit lower upper>: an external axis needs its travel, m"
+        ));
+    }
+    limits::check(
+        &format!("joint '{name}': limit lower, upper"),
+        &[lower, upper],
+        &limits::LENGTH_M,
+    )
+    .map_err(|e| e.to_string())?;
+    if lower >= upper {
+        return Err(format!(
+            "joint '{name}': limit lower = {} is not below upper = {}",
+            crate::common::words::number(lower),
+            crate::common::words::number(upper)
+        ));
+    }
+    let direction = Unit::new_normalize(at.rotation * axis(j)?.into_inner());
+    Ok(super::external::ExternalAxis::linear(
+        &j.name, direction, lower, upper,
+    ))
+}
+
+/// The positioner: the chain of one or two revolute joints from the root link to a leaf link
+/// that shares no moving joint with the arm's chain `arm` (module docs); `None` when there is
+/// none.
+fn positioner(
+    urdf: &urdf_rs::Robot,
+    by_child: &HashMap<&str, &urdf_rs::Joint>,
+    arm: &[&urdf_rs::Joint],
+) -> std::result::Result<Vec<super::external::ExternalAxis>, String> {
+    let on_arm: HashSet<&str> = arm.iter().map(|j| j.name.as_str()).collect();
+    let parents: HashSet<&str> = urdf.joints.iter().map(|j| j.parent.link.as_str()).collect();
+    let mut found: Vec<(String, Vec<&urdf_rs::Joint>)> = Vec::new();
+    for leaf in urdf.links.iter().map(|l| l.name.as_str()) {
+        if parents.contains(leaf) {
+            continue;
+        }
+        let path = chain_to(leaf, by_child, urdf.joints.len())?;
+        let moving = |j: &&&urdf_rs::Joint| j.joint_type != JointType::Fixed;
+        let shared_moving = path
+            .iter()
+            .filter(|j| on_arm.contains(j.name.as_str()))
+            .any(|j| moving(&j));
+        let own: Vec<&urdf_rs::Joint> = (path.iter().copied())
+            .filter(|j| !on_arm.contains(j.name.as_str()))
+            .collect();
+        let revolute = own.iter().filter(moving).count();
+        if shared_moving || revolute == 0 || revolute > 2 {
+            continue;
+        }
+        if own.iter().any(|j| {
+            !matches!(
+                j.joint_type,
+                JointType::Fixed | JointType::Revolute | JointType::Continuous
+            ) || j.mimic.is_some()
+        }) {
+            continue;
+        }
+        if !found.iter().any(|(_, p)| {
+            let names = |p: &[&urdf_rs::Joint]| -> Vec<String> {
+                p.iter().filter(moving).map(|j| j.name.clone()).collect()
+            };
+            names(p) == names(&path)
+        }) {
+            found.push((leaf.to_string(), path));
+        }
+    }
+    let path = match found.as_slice() {
+        [] => return Ok(Vec::new()),
+        [(_, path)] => path,
+        many => {
+            let leaves: Vec<&str> = many.iter().map(|(l, _)| l.as_str()).collect();
+            return Err(format!(
+                "several chains of revolute joints besides the arm's end in leaf links ({}): stiffid takes one positioner",
+                limits::short(&leaves.join(", "))
+            ));
+        }
+    };
+    let mut at = Isometry3::identity();
+    let mut axes = Vec::new();
+    for j in path {
+        at *= pose(j)?;
+        if j.joint_type == JointType::Fixed {
+            continue;
+        }
+        let (lower, upper) = match joint_limits(j)? {
+            (l, u) if l.is_finite() && u.is_finite() => (l, u),
+            _ => (-limits::ANGLE_RAD.max, limits::ANGLE_RAD.max),
+        };
+        let direction = Unit::new_normalize(at.rotation * axis(j)?.into_inner());
+        axes.push(super::external::ExternalAxis::rotary(
+            &j.name,
+            at.translation.vector,
+            direction,
+            lower,
+            upper,
+        ));
+    }
+    Ok(axes)
 }

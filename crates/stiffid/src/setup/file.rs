@@ -44,6 +44,7 @@ struct SetupFile {
     controller: Option<ControllerFile>,
     masses: Option<MassesFile>,
     robot_accuracy: Option<RobotAccuracyFile>,
+    external_axis: Option<Vec<crate::robot::external::file::AxisFile>>,
 }
 
 /// `[robot_accuracy]`: how far the robot model's frames may be from the true robot's.
@@ -388,7 +389,13 @@ fn in_file(e: Error, source_name: &str) -> Error {
 /// (a pedestal: results are then in the cell frame), before the robot's own base transform;
 /// `[robot_flange]` adds an adapter plate after its flange. Either is `xyz_mm` and `rpy_deg`
 /// (fixed-axis roll, pitch, yaw as URDF), the same as a robot TOML's `[base]` and `[flange]`.
+///
+/// The setup's `[[external_axis]]` tables, when it has any, replace the robot file's
+/// (`external_axis = []` takes them away: the arm on a fixed base).
 fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+    if let Some(tables) = &f.external_axis {
+        robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
+    }
     if f.robot_base.is_some() {
         let base = transform(f.robot_base, "robot_base", src)? * robot.base();
         robot = robot.with_base(base)?;

@@ -59,6 +59,10 @@
 //! [workpiece]
 //! base_from_part = { xyz_mm = [1300, -300, 400], rpy_deg = [0, 0, 0] }
 //! ```
+//! A robot on a track and a part on a positioner: `[[external_axis]]` tables
+//! ([`crate::robot::external::file`]), which replace the robot file's (`external_axis = []`
+//! takes them away); the setup's robot carries them ([`crate::Robot::external`]). With a
+//! positioner, `[workpiece]` is the part's frame at `e = 0`, cell frame.
 //!
 //! In code, [`Setup::builder`] takes the same fields in SI units and checks them as the file's
 //! ([`SetupBuilder::build`]); [`parse`] reads the file through it.

@@ -19,6 +19,7 @@ mod design_candidates;
 mod distinct_postures;
 mod dynamics;
 mod error_maps;
+mod external_axes;
 mod extrapolation;
 mod fanuc_data;
 mod fanuc_prediction;

@@ -45,6 +45,8 @@ fn joint_positions_equal_the_kinematics_job_and_link_frames_carry_the_chain() {
                 characteristic_length: Some(1.2),
                 coordinates: Coordinates::Axis,
                 stiffness: None,
+                external: Vec::new(),
+                workpiece: None,
             })
             .unwrap();
             let doc = kinematics::document::Document::new(&report, setup.robot());

@@ -1,6 +1,7 @@
 //! The document of the kinematics job ([`crate::app::kinematics`]): `stiffid kinematics --json`,
 //! Python's `Robot.kinematics(...)`. Millimetres and degrees for positions and angles, SI (m/rad,
-//! rad/rad) for the Jacobian, rows `[v; omega]`; base frame.
+//! rad/rad) for the Jacobian, rows `[v; omega]`; base frame (the cell frame of a robot with
+//! external axes, [`crate::app::kinematics`]).
 
 use crate::app::document::mass::{self, ModeShape};
 use crate::app::document::{finite, mm, rows};
@@ -57,8 +58,37 @@ pub struct Document {
     /// The modes, lowest first, with the point's direction of motion; `null` as
     /// `natural_frequencies_hz`.
     pub mode_shapes: Option<Vec<ModeShape>>,
+    /// The external axes' values, in the cell's order (empty for a robot without external
+    /// axes).
+    pub external: Vec<ExternalValue>,
+    /// The Jacobian columns of the external axes (`stiffid::app::kinematics`, module docs):
+    /// row-major, 6 rows vx, vy, vz (m/m or m/rad), wx, wy, wz (0 or rad/rad) of one column per
+    /// external axis in the cell's order: the tool point's velocity relative to the part, cell
+    /// frame; `null` without external axes.
+    pub external_jacobian: Option<Vec<Vec<f64>>>,
+    /// The part's frame at the external axes' values (the positioner's pose times the setup's
+    /// `[workpiece]`): its origin, cell frame, mm; `null` without a positioner or a workpiece.
+    pub part_position_mm: Option<[f64; 3]>,
+    /// Its rotation matrix in the cell frame, row-major; `null` as `part_position_mm`.
+    pub part_rotation: Option<[[f64; 3]; 3]>,
+    /// The point's position in the part's frame, mm; `null` as `part_position_mm`.
+    pub point_in_part_mm: Option<[f64; 3]>,
     /// What to look at before trusting the document (placeholder masses).
     pub warnings: Vec<Warning>,
+}
+
+/// One external axis's value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct ExternalValue {
+    /// Its column in data files: `e1_mm`, `e2_deg`, ...
+    pub column: String,
+    /// Its name, as the robot or setup file gives it.
+    pub name: String,
+    /// `carrier` (under the arm, linear) or `positioner` (under the part, rotary).
+    pub role: &'static str,
+    /// Its value, mm (linear) or deg (rotary).
+    pub value: f64,
 }
 
 impl Document {
@@ -87,7 +117,39 @@ impl Document {
             operational_inertia_si: report.operational_inertia.as_ref().map(rows),
             natural_frequencies_hz: frequencies,
             mode_shapes: shapes,
+            external: external_values(robot, &report.external),
+            external_jacobian: (!report.external_jacobian.is_empty()).then(|| {
+                (0..6)
+                    .map(|r| report.external_jacobian.iter().map(|c| c[r]).collect())
+                    .collect()
+            }),
+            part_position_mm: report.part.map(|p| p.translation.vector.map(mm).into()),
+            part_rotation: report
+                .part
+                .map(|p| rows(&p.rotation.to_rotation_matrix().into_inner())),
+            point_in_part_mm: report.part.map(|p| {
+                let x = f.point(&report.point);
+                p.inverse_transform_point(&x.into()).coords.map(mm).into()
+            }),
             warnings: report.warnings.clone(),
         }
     }
+}
+
+/// The values `e` (SI, the cell's order) of `robot`'s external axes in mm and deg, named.
+pub fn external_values(robot: &Robot, e: &[f64]) -> Vec<ExternalValue> {
+    let Some(axes) = robot.external() else {
+        return Vec::new();
+    };
+    (axes.axes().iter().zip(axes.column_names()).zip(e))
+        .map(|((a, column), v)| ExternalValue {
+            column,
+            name: a.name.clone(),
+            role: match a.role {
+                crate::robot::external::Role::Carrier => "carrier",
+                crate::robot::external::Role::Positioner => "positioner",
+            },
+            value: a.to_display(*v),
+        })
+        .collect()
 }

@@ -205,6 +205,9 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             radii.join(", ")
         );
     }
+    if let Some(axes) = robot.external() {
+        t += &crate::robot::external::file::toml(axes);
+    }
     let back = crate::robot::file::parse(&t, "the calibrated robot file")?;
     read_back(&robot, &back).map_err(|e| not_dh(&e))?;
     if let Some(axes) = robot.external() {

@@ -33,6 +33,7 @@
 //! the cell. Paths and programs give points of the part, never of the moving base or of the floor.
 
 mod error_motions;
+pub mod file;
 pub use error_motions::{ErrorMotions, MAX_ORDER};
 
 use crate::common::limits;
@@ -385,6 +386,22 @@ impl ExternalAxes {
         columns
     }
 
+    /// The lines of the positioner's axes at `e` (SI, the cell's order): per positioner axis, its
+    /// unit direction and a point on it (m), cell frame. A point `x` of the part moves by
+    /// `d x (x - o)` per radian ([`ExternalAxes::positioner_columns`]) and turns by `d`.
+    pub fn positioner_lines(&self, e: &[f64]) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+        let start = self.carrier_len();
+        let mut turned = Isometry3::identity();
+        let mut lines = Vec::with_capacity(self.len() - start);
+        for (axis, angle) in self.axes[start..].iter().zip(e.iter().skip(start)) {
+            let d = turned.rotation * axis.direction.into_inner();
+            let o = turned * nalgebra::Point3::from(axis.point);
+            lines.push((d, o.coords));
+            turned *= turn_about_line(&axis.point, &axis.direction, angle + axis.offset);
+        }
+        lines
+    }
+
     fn carrier(&self) -> impl Iterator<Item = &ExternalAxis> {
         self.axes.iter().take_while(|a| a.role == Role::Carrier)
     }
@@ -409,6 +426,39 @@ impl ExternalAxis {
     /// variable.
     pub fn travel(&self, s: f64) -> f64 {
         (2.0 * s - (self.lower + self.upper)) / (self.upper - self.lower)
+    }
+}
+
+impl crate::Robot {
+    /// Whether `e` (SI, the cell's order) are the values of the robot's external axes within
+    /// their travel ([`ExternalAxes::check`]), or empty for a robot without.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`field`) when the robot has external axes and `e` is empty (the
+    /// message names the axes and their columns) or of another length, a value outside its
+    /// travel (naming the axis), or values given for a robot without external axes.
+    pub fn check_external(&self, e: &[f64], field: &str) -> Result<()> {
+        match self.external() {
+        None if e.is_empty() => Ok(()),
+        None => Err(Error::InvalidField {
+            field: field.to_string(),
+            message: format!(
+                "the robot has no external axes, got {} value(s): give external axes in the robot or setup file ([[external_axis]])",
+                e.len()
+            ),
+        }),
+        Some(axes) if e.is_empty() => Err(Error::InvalidField {
+            field: field.to_string(),
+            message: format!(
+                "the cell has external axes ({}): expected their values, mm for a linear axis and deg for a rotary one, in this order",
+                (axes.column_names().iter().zip(axes.axes()))
+                    .map(|(c, a)| format!("{c} {}", a.name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }),
+        Some(axes) => axes.check(e, field),
+    }
     }
 }
 

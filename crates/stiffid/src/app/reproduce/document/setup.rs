@@ -75,6 +75,32 @@ struct RobotJson<'a> {
     base: FrameJson,
     /// The flange frame after the last joint.
     flange: FrameJson,
+    /// The cell's external axes (a track under the arm, a positioner under the part), in the
+    /// cell's order; empty without.
+    external_axes: Vec<ExternalAxisJson>,
+}
+
+/// One external axis of the cell, as its `[[external_axis]]` table gives it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+struct ExternalAxisJson {
+    /// Its name.
+    name: String,
+    /// Its column in data files: `e1_mm`, `e2_deg`, ...
+    column: String,
+    /// `carrier` (linear, under the arm) or `positioner` (rotary, under the part).
+    role: &'static str,
+    /// Its unit direction, cell frame at e = 0.
+    direction: [f64; 3],
+    /// A point on a rotary axis's line, cell frame at e = 0, mm (zero for a linear axis).
+    point_mm: [f64; 3],
+    /// Its travel, mm or deg.
+    limits: [f64; 2],
+    /// Its offset, mm or deg.
+    offset: f64,
+    /// A linear axis's error motions, one row per order: positioning, straightness y and z (mm),
+    /// roll, pitch, yaw (mrad).
+    error_motions: Vec<[f64; 6]>,
 }
 
 /// One joint: `pre`, the rotation about `axis` by the angle plus `offset_deg`, `post`.
@@ -172,6 +198,24 @@ impl<'a> SetupJson<'a> {
                 upper_limit_deg: deg(&r.limits().upper),
                 base: FrameJson::from(r.base()),
                 flange: FrameJson::from(r.flange()),
+                external_axes: (r.external().into_iter())
+                    .flat_map(|a| a.axes().iter().zip(a.column_names()))
+                    .map(|(a, column)| ExternalAxisJson {
+                        name: a.name.clone(),
+                        column,
+                        role: match a.role {
+                            crate::robot::external::Role::Carrier => "carrier",
+                            crate::robot::external::Role::Positioner => "positioner",
+                        },
+                        direction: [a.direction.x, a.direction.y, a.direction.z],
+                        point_mm: mm(&a.point),
+                        limits: [a.to_display(a.lower), a.to_display(a.upper)],
+                        offset: a.to_display(a.offset),
+                        error_motions: (a.errors.coefficients().iter())
+                            .map(|c| c.map(|v| v * 1e3))
+                            .collect(),
+                    })
+                    .collect(),
             },
             axis_map: AxisMapJson {
                 matrix: std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)])),
