@@ -191,7 +191,7 @@ fn identification_jacobian_with_a_track_and_a_positioner_matches_central_differe
 
 /// The model's carrier and positioner poses are those of the axes it writes (directions,
 /// error motions in their own frame, lines and offsets), and the robot file's
-/// `[[external_axis]]` tables read back to them (a reader of the tables' format written here).
+/// `[[external_axis]]` tables read back to them.
 #[test]
 fn the_written_axes_are_the_fitted_ones() {
     let mut robot = cell(true);
@@ -202,7 +202,7 @@ fn the_written_axes_are_the_fitted_ones() {
     let model = arm_model(&robot).with_external(&[2, 0, 0], 1).unwrap();
     let x = perturbed(&model, 4, None);
     let written = model.external_at(&x).unwrap().unwrap();
-    let text = robot_file::external_tables(&written);
+    let text = crate::robot::external::file::toml(&written);
     let read = read_tables(&text);
     for axes in [&written, &read] {
         for s in [0.0, 1.3, 3.0, 5.9, 6.0] {
@@ -227,54 +227,14 @@ fn the_written_axes_are_the_fitted_ones() {
     );
 }
 
-/// A minimal reader of the `[[external_axis]]` tables (docs/reference.md), for this test only.
+/// The axes of `[[external_axis]]` tables, read as a robot file reads them.
 fn read_tables(text: &str) -> ExternalAxes {
     let value: toml::Table = text.parse().unwrap();
-    let tables = value["external_axis"].as_array().unwrap();
-    let numbers = |v: &toml::Value| -> Vec<f64> {
-        (v.as_array().unwrap().iter())
-            .map(|x| x.as_float().unwrap())
-            .collect()
-    };
-    let axes = tables
-        .iter()
-        .map(|t| {
-            let name = t["name"].as_str().unwrap();
-            let d = numbers(&t["direction"]);
-            let d = nalgebra::Unit::new_normalize(Vector3::new(d[0], d[1], d[2]));
-            match t["role"].as_str().unwrap() {
-                "carrier" => {
-                    let l = numbers(&t["limits_mm"]);
-                    let mut a = ExternalAxis::linear(name, d, l[0] * 1e-3, l[1] * 1e-3);
-                    a.offset = t["offset_mm"].as_float().unwrap() * 1e-3;
-                    let rows = t.get("error_motions").map_or(Vec::new(), |r| {
-                        (r.as_array().unwrap().iter())
-                            .map(|row| {
-                                let v = numbers(row);
-                                std::array::from_fn(|i| v[i] * 1e-3)
-                            })
-                            .collect()
-                    });
-                    a.errors = ErrorMotions::new(rows).unwrap();
-                    a
-                }
-                _ => {
-                    let l = numbers(&t["limits_deg"]);
-                    let p = numbers(&t["point_mm"]);
-                    let mut a = ExternalAxis::rotary(
-                        name,
-                        Vector3::new(p[0], p[1], p[2]) * 1e-3,
-                        d,
-                        l[0].to_radians(),
-                        l[1].to_radians(),
-                    );
-                    a.offset = t["offset_deg"].as_float().unwrap().to_radians();
-                    a
-                }
-            }
-        })
-        .collect();
-    ExternalAxes::new(axes).unwrap()
+    let tables: Vec<crate::robot::external::file::AxisFile> =
+        value["external_axis"].clone().try_into().unwrap();
+    crate::robot::external::file::build(&tables, "test")
+        .unwrap()
+        .unwrap()
 }
 
 fn names(model: &ErrorModel, of: &[usize]) -> Vec<String> {

@@ -210,52 +210,7 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     }
     let back = crate::robot::file::parse(&t, "the calibrated robot file")?;
     read_back(&robot, &back).map_err(|e| not_dh(&e))?;
-    if let Some(axes) = robot.external() {
-        t += &external_tables(axes);
-    }
     Ok(t)
-}
-
-/// The `[[external_axis]]` tables of `axes` (the robot file's format, docs/reference.md), in
-/// the cell's order, numbers in full (shortest round trip): a linear axis's direction, travel,
-/// offset and error motions (one row per order, `[positioning_mm, straightness_y_mm,
-/// straightness_z_mm, roll_mrad, pitch_mrad, yaw_mrad]`), a rotary axis's direction, point,
-/// travel and offset.
-pub fn external_tables(axes: &crate::robot::ExternalAxes) -> String {
-    use crate::robot::external::AxisKind;
-    let mut t = String::new();
-    let list = |v: &[f64]| {
-        let items: Vec<String> = v.iter().map(|x| format!("{x:?}")).collect();
-        format!("[{}]", items.join(", "))
-    };
-    for a in axes.axes() {
-        let _ = writeln!(t, "\n[[external_axis]]");
-        let _ = writeln!(t, "name = {}", quoted(&a.name));
-        let d = a.direction.into_inner();
-        match a.kind {
-            AxisKind::Linear => {
-                let _ = writeln!(t, "role = \"carrier\"");
-                let _ = writeln!(t, "direction = {}", list(d.as_slice()));
-                let _ = writeln!(t, "limits_mm = {}", list(&[a.lower * 1e3, a.upper * 1e3]));
-                let _ = writeln!(t, "offset_mm = {:?}", a.offset * 1e3);
-                if !a.errors.is_empty() {
-                    let rows: Vec<String> = (a.errors.coefficients().iter())
-                        .map(|r| list(&r.map(|v| v * 1e3)))
-                        .collect();
-                    let _ = writeln!(t, "error_motions = [{}]", rows.join(", "));
-                }
-            }
-            AxisKind::Rotary => {
-                let _ = writeln!(t, "role = \"positioner\"");
-                let _ = writeln!(t, "direction = {}", list(d.as_slice()));
-                let _ = writeln!(t, "point_mm = {}", list((a.point * 1e3).as_slice()));
-                let deg = [a.lower.to_degrees(), a.upper.to_degrees()];
-                let _ = writeln!(t, "limits_deg = {}", list(&deg));
-                let _ = writeln!(t, "offset_deg = {:?}", a.offset.to_degrees());
-            }
-        }
-    }
-    t
 }
 
 /// Whether `back`, a written file read back, has `robot`'s flange at the same axis angles
