@@ -465,3 +465,53 @@ fn a_cell_with_external_axes_refuses_a_posture_without_their_values() {
         ],
     );
 }
+
+#[test]
+fn a_group_on_a_track_is_designed_at_each_station_and_written_with_its_columns() {
+    let dir = common::temp_dir("track-select");
+    let out = dir.join("group.csv");
+    let cell = track_cell();
+    let run = |stations: &[&str]| {
+        let mut args = vec![
+            "select",
+            "--setup",
+            &cell,
+            "--global",
+            "--postures",
+            "8",
+            "--starts",
+            "4",
+        ];
+        for s in stations {
+            args.extend(["--station", s]);
+        }
+        let out = out.to_str().unwrap();
+        stiffid(&[&args[..], &["--out", out, "--json"]].concat())
+    };
+    let doc = json(&run(&["500,0,0", "5500,0,0"]));
+    let stations = doc["stations"].as_array().unwrap();
+    assert_eq!(stations.len(), 2);
+    let values: Vec<f64> = stations
+        .iter()
+        .map(|s| s["value"].as_f64().unwrap())
+        .collect();
+    let best = if values[0] <= values[1] { 0 } else { 1 };
+    assert_eq!(doc["station"]["e1_mm"], stations[best]["e1_mm"]);
+    assert_eq!(doc["value"].as_f64().unwrap(), values[best]);
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .ends_with(",q6_deg,e1_mm,e2_deg,e3_deg"));
+    let e1 = doc["station"]["e1_mm"].as_f64().unwrap();
+    assert!(
+        lines.all(|l| l.ends_with(&format!(",{e1:.6},0.000000,0.000000"))),
+        "{csv}"
+    );
+    std::fs::remove_file(&out).unwrap();
+    assert_usage_error(&run(&["7000,0,0"]), &["e1_mm (track)", "7000"]);
+    assert_usage_error(&run(&["500"]), &["--station", "3 comma-separated numbers"]);
+    assert_usage_error(&run(&[]), &["station", "e1_mm, e2_deg, e3_deg"]);
+    assert!(!out.exists());
+}
