@@ -34,6 +34,9 @@
 //! [`MAX_READINGS`] rows. [`crate::metrology::register`] turns the unloaded readings into the tracker's
 //! transform, [`crate::identify::steps`] the loaded ones into displacements.
 
+mod external;
+use external::{external_columns, external_like};
+
 use crate::common::error::ColumnProblem;
 use crate::common::limits::{self, short};
 use crate::observation::deflection::Frame;
@@ -362,55 +365,6 @@ fn known() -> impl Iterator<Item = &'static str> + Clone {
         .chain(MOMENT)
         .chain(FORCE_TOOL)
         .chain(MOMENT_TOOL)
-}
-
-/// Whether a column's name has the form of an external axis's: `e<digits>_mm` or
-/// `e<digits>_deg`.
-fn external_like(name: &str) -> bool {
-    let Some(rest) = name.strip_prefix('e') else {
-        return false;
-    };
-    let Some((digits, unit)) = rest.split_once('_') else {
-        return false;
-    };
-    !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) && matches!(unit, "mm" | "deg")
-}
-
-/// The columns of the cell's external axes (`robot`'s, [`crate::robot::ExternalAxes`]), in the
-/// cell's order.
-///
-/// # Errors
-/// [`ColumnProblem::Measurement`] naming a column of an axis the cell lacks (or of an axis in
-/// the other unit); [`ColumnProblem::Missing`] for an axis without its column.
-fn external_columns(names: &[String], line: u64, robot: &Robot) -> Result<Vec<usize>> {
-    let wanted = robot
-        .external()
-        .map(|x| x.column_names())
-        .unwrap_or_default();
-    let described = || match robot.external() {
-        None => "the cell has no external axes".to_string(),
-        Some(x) => {
-            let list: Vec<String> = (x.column_names().iter().zip(x.axes()))
-                .map(|(c, a)| format!("{c} ({})", short(&a.name)))
-                .collect();
-            format!("the cell's external axes are {}", list.join(", "))
-        }
-    };
-    for (i, name) in names.iter().enumerate() {
-        if external_like(name) && !wanted.contains(name) {
-            let message = format!("no external axis has this column: {}", described());
-            return Err(problem(
-                line,
-                Some(i + 1),
-                name,
-                ColumnProblem::Measurement { message },
-            ));
-        }
-    }
-    wanted
-        .iter()
-        .map(|w| (names.iter().position(|n| n == w)).ok_or_else(|| super::missing(line, w)))
-        .collect()
 }
 
 impl Columns {
