@@ -41,8 +41,19 @@ fn an_inform_job_is_written_back_in_pulses_under_its_new_name() {
     let out = dir.join("cut_c.jbi");
     assert_success(&run(&job, &out));
     let written = std::fs::read_to_string(&out).unwrap();
-    let (old, new): (Vec<&str>, Vec<&str>) =
-        (JOB.split("\r\n").collect(), written.split("\r\n").collect());
+    // Each motion is certified by a comment line before it naming its error bound.
+    let is_bound = |l: &str| l.trim_start().starts_with("'bound ") && l.ends_with(" mm at 95%");
+    let lines: Vec<&str> = written.split("\r\n").collect();
+    let motions = JOB.split("\r\n").filter(|l| l.starts_with("MOV")).count();
+    assert_eq!(
+        lines.iter().filter(|l| is_bound(l)).count(),
+        motions,
+        "{written}"
+    );
+    let (old, new): (Vec<&str>, Vec<&str>) = (
+        JOB.split("\r\n").collect(),
+        lines.into_iter().filter(|l| !is_bound(l)).collect(),
+    );
     assert_eq!(old.len(), new.len());
     for (k, (a, b)) in old.iter().zip(&new).enumerate() {
         match k {
