@@ -207,6 +207,7 @@ class Setup:
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
         gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
         weight: Optional[float] = None,
+        stations: Optional[Sequence[Sequence[float]]] = None,
     ) -> dict[str, Any]:
         """The select document: search, postures_deg (n, 6), value, start_value, evaluations, termination(s), criteria; pool, target, unconstrained, candidates where they apply."""
     def random_group(self, n: int = 6, seed: int = 1) -> _Array: ...
