@@ -60,7 +60,7 @@ def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
     with pytest.raises(stiffid.InputError, match=r"process"):
         stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET)
     # The output language by its name, as the command's by the extension of --out: one rule.
-    with pytest.raises(stiffid.InputError, match=r"^output: unknown value 'cobol' \(known: gcode, krl, rapid, ls\)"):
+    with pytest.raises(stiffid.InputError, match=r"^output: unknown value 'cobol' \(known: gcode, krl, rapid, ls, inform\)"):
         stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="cobol")
 
 
