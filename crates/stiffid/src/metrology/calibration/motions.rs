@@ -97,19 +97,13 @@ impl Scored {
     }
 }
 
-/// Whether `candidate` lowers the held-out error of `current` by more than [`ACCEPT`] standard
-/// errors of the paired per-posture differences and by [`LEAST_GAIN`] of it.
+/// Whether `candidate` lowers the held-out error of `current` as the maps' choice requires
+/// ([`super::maps::lowers`]).
 fn better(current: &Scored, candidate: &Scored) -> bool {
-    let n = current.errors.len();
-    if n < 2 {
-        return false;
-    }
-    let d: Vec<f64> = (current.errors.iter().zip(&candidate.errors))
-        .map(|(a, b)| a - b)
-        .collect();
-    let mean = d.iter().sum::<f64>() / n as f64;
-    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-    mean > ACCEPT * (var / n as f64).sqrt() && candidate.total < (1.0 - LEAST_GAIN) * current.total
+    super::maps::lowers(
+        (&current.errors, current.total),
+        (&candidate.errors, candidate.total),
+    )
 }
 
 /// The highest order tried on each external axis: [`MAX_ORDER_TRIED`], at most the axis's

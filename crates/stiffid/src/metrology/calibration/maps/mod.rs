@@ -265,16 +265,27 @@ impl<'a> Inner<'a> {
 /// Whether `candidate` lowers the held-out error of `current` by more than [`ACCEPT`] standard
 /// errors of the paired per-posture differences and by [`LEAST_GAIN`] of it.
 fn better(current: &Scored, candidate: &Scored) -> bool {
-    let n = current.errors.len();
+    lowers(
+        (&current.errors, current.total),
+        (&candidate.errors, candidate.total),
+    )
+}
+
+/// Whether the candidate's held-out errors (per held-out posture, and their total) lower the
+/// current ones by more than [`ACCEPT`] standard errors of the paired per-posture differences
+/// and by [`LEAST_GAIN`] of the total: the acceptance rule of every choice by cross-validation
+/// in the calibration (the maps, the error motions' orders).
+pub(super) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64)) -> bool {
+    let n = current.0.len();
     if n < 2 {
         return false;
     }
-    let d: Vec<f64> = (current.errors.iter().zip(&candidate.errors))
+    let d: Vec<f64> = (current.0.iter().zip(candidate.0))
         .map(|(a, b)| a - b)
         .collect();
     let mean = d.iter().sum::<f64>() / n as f64;
     let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-    mean > ACCEPT * (var / n as f64).sqrt() && candidate.total < (1.0 - LEAST_GAIN) * current.total
+    mean > ACCEPT * (var / n as f64).sqrt() && candidate.1 < (1.0 - LEAST_GAIN) * current.1
 }
 
 /// Chooses the maps of `spec` by cross-validation over the postures `postures` of `linear`
