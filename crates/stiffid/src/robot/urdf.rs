@@ -397,19 +397,7 @@ fn joint_limits(j: &urdf_rs::Joint) -> std::result::Result<(f64, f64), String> {
         return Ok((f64::NEG_INFINITY, f64::INFINITY));
     }
     let name = limits::short(&j.name);
-    limits::check(
-        &format!("joint '{name}': limit lower, upper"),
-        &[lower, upper],
-        &limits::ANGLE_RAD,
-    )
-    .map_err(|e| e.to_string())?;
-    if lower >= upper {
-        return Err(format!(
-            "joint '{name}': limit lower = {} is not below upper = {}",
-            crate::common::words::number(lower),
-            crate::common::words::number(upper)
-        ));
-    }
+    check_limit(&name, lower, upper, &limits::ANGLE_RAD)?;
     Ok((lower, upper))
 }
 
@@ -500,19 +488,7 @@ fn linear_axis(
             "prismatic joint '{name}' (a track) has no <limit lower upper>: an external axis needs its travel, m"
         ));
     }
-    limits::check(
-        &format!("joint '{name}': limit lower, upper"),
-        &[lower, upper],
-        &limits::LENGTH_M,
-    )
-    .map_err(|e| e.to_string())?;
-    if lower >= upper {
-        return Err(format!(
-            "joint '{name}': limit lower = {} is not below upper = {}",
-            crate::common::words::number(lower),
-            crate::common::words::number(upper)
-        ));
-    }
+    check_limit(&name, lower, upper, &limits::LENGTH_M)?;
     let direction = Unit::new_normalize(at.rotation * axis(j)?.into_inner());
     Ok(super::external::ExternalAxis::linear(
         &j.name, direction, lower, upper,
@@ -596,4 +572,27 @@ fn positioner(
         ));
     }
     Ok(axes)
+}
+
+/// A joint's `<limit lower upper>`: both within `range` (rad or m), lower below upper.
+fn check_limit(
+    name: &str,
+    lower: f64,
+    upper: f64,
+    range: &limits::Range,
+) -> std::result::Result<(), String> {
+    limits::check(
+        &format!("joint '{name}': limit lower, upper"),
+        &[lower, upper],
+        range,
+    )
+    .map_err(|e| e.to_string())?;
+    if lower >= upper {
+        return Err(format!(
+            "joint '{name}': limit lower = {} is not below upper = {}",
+            crate::common::words::number(lower),
+            crate::common::words::number(upper)
+        ));
+    }
+    Ok(())
 }
