@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid::metrology::calibration::fit::{self, Options};
 use stiffid::metrology::calibration::{gravity, motions, ErrorModel, Estimate, Geometry};
-use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis};
+use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;
 
 /// The campaign and, with `track`, the arm on a 6 m track along x whose true error motions are
@@ -52,8 +52,8 @@ fn campaign(postures: usize, track: bool) -> (ErrorModel, Vec<Observation>) {
             0.5 * (lo + hi) + 0.6 * (hi - lo) * (rng.random::<f64>() - 0.5)
         });
         let e = match track {
-            true => vec![6.0 * (i % 12) as f64 / 11.0],
-            false => Vec::new(),
+            true => ExternalValues::new(&[6.0 * (i % 12) as f64 / 11.0]).unwrap(),
+            false => ExternalValues::NONE,
         };
         for k in 0..3 {
             obs.push(Observation {
@@ -62,7 +62,7 @@ fn campaign(postures: usize, track: bool) -> (ErrorModel, Vec<Observation>) {
                 q,
                 measured: Vector3::zeros(),
                 wrench: Vector6::zeros(),
-                e: e.clone(),
+                e,
                 table: false,
             });
         }

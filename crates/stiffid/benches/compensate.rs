@@ -62,6 +62,7 @@ fn benches(c: &mut Criterion) {
             target: Target::Pose(Translation3::new(3e-5 * i as f64, -1e-5 * i as f64, 0.0) * start),
             wrench: Vector6::new(0.0, 200.0, 0.0, 0.0, 0.0, 0.0),
             frame: Frame::Tool,
+            external: stiffid::robot::external::ExternalValues::NONE,
         })
         .collect();
     let compliance = s.model_compliance("the bench").unwrap();

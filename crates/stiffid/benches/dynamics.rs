@@ -59,6 +59,7 @@ fn dynamics(c: &mut Criterion) {
             target: Target::Posture(*q),
             wrench: Vector6::new(100.0, 0.0, 0.0, 0.0, 0.0, 0.0),
             frame: Frame::Base,
+            external: stiffid::robot::external::ExternalValues::NONE,
         })
         .collect();
     let options = Options::for_setup(&setup);

@@ -35,7 +35,8 @@ pub struct Args {
     #[command(flatten)]
     stiffness: Stiffness,
     /// Path CSV: q1_deg..q6_deg or x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg, then fx_n,fy_n,fz_n
-    /// [,mx_nm,my_nm,mz_nm] [,frame] (at most 1 000 000 rows).
+    /// [,mx_nm,my_nm,mz_nm] [,frame], and a cell's external axes e1_mm, e2_deg, ... (at most
+    /// 1 000 000 rows).
     #[arg(long)]
     path: Option<PathBuf>,
     /// A machining program instead of a path CSV: G-code (.nc .ngc .gcode .tap .cnc .g; the

@@ -497,7 +497,7 @@ fn loaded_readings(
                     q,
                     measured: Vector3::zeros(),
                     wrench: *wrench,
-                    e: Vec::new(),
+                    e: stiffid::robot::external::ExternalValues::NONE,
                     table: false,
                 };
                 let b = model.predict(x, &[o]).unwrap()[0];

@@ -59,7 +59,10 @@ pub(crate) fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
     let pairs: Vec<register::Correspondence> = (data.readings.iter())
         .filter(|r| !r.table)
         .map(|r| register::Correspondence {
-            base: setup.robot().frames_at(&r.q, &r.e).point(&points[r.point]),
+            base: setup
+                .robot()
+                .frames_at(&r.q, r.e.as_slice())
+                .point(&points[r.point]),
             tracker: r.position,
         })
         .collect();

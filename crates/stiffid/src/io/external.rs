@@ -7,7 +7,7 @@
 
 use crate::common::error::ColumnProblem;
 use crate::common::limits;
-use crate::robot::external::{ExternalValues, MAX_AXES};
+use crate::robot::external::{ExternalAxes, ExternalValues, MAX_AXES};
 use crate::{Error, Result};
 
 /// Every external axis column a file may hold: `e1_mm`, `e1_deg`, ... `e5_mm`, `e5_deg`.
@@ -57,6 +57,43 @@ impl Columns {
         Ok(Self { columns })
     }
 
+    /// The columns of the cell's external axes (`cell`'s, none without), in the cell's order:
+    /// [`Columns::find`] with each column named as the cell names it
+    /// ([`ExternalAxes::column_names`]: the unit its axis's kind takes).
+    ///
+    /// # Errors
+    /// [`Error::Column`] at `line`: [`ColumnProblem::Measurement`] naming a column of the form of
+    /// an external axis's (`e<digits>_mm` or `e<digits>_deg`, [`external_like`]) that the cell
+    /// lacks or gives in the other unit, the message listing the cell's axes;
+    /// [`ColumnProblem::Missing`] for an axis of the cell without its column.
+    pub fn against(names: &[String], line: u64, cell: Option<&ExternalAxes>) -> Result<Self> {
+        let wanted = cell.map(ExternalAxes::column_names).unwrap_or_default();
+        let described = || match cell {
+            None => "the cell has no external axes".to_string(),
+            Some(x) => {
+                let list: Vec<String> = (x.column_names().iter().zip(x.axes()))
+                    .map(|(c, a)| format!("{c} ({})", limits::short(&a.name)))
+                    .collect();
+                format!("the cell's external axes are {}", list.join(", "))
+            }
+        };
+        for (i, name) in names.iter().enumerate() {
+            if external_like(name) && !wanted.contains(name) {
+                let message = format!("no external axis has this column: {}", described());
+                return Err(Error::Column {
+                    line,
+                    column: Some(i + 1),
+                    name: name.clone(),
+                    problem: ColumnProblem::Measurement { message },
+                });
+            }
+        }
+        if let Some(w) = wanted.iter().find(|w| !names.contains(w)) {
+            return Err(crate::io::missing(line, w));
+        }
+        Self::find(names, line)
+    }
+
     /// How many external axes the file gives.
     pub fn len(&self) -> usize {
         self.columns.len()
@@ -70,6 +107,11 @@ impl Columns {
     /// The column of the first axis, when the file gives any.
     pub fn first(&self) -> Option<usize> {
         self.columns.first().map(|c| c.0)
+    }
+
+    /// The column (0-based) of axis `k` (0-based, the cell's order).
+    pub fn column(&self, k: usize) -> usize {
+        self.columns[k].0
     }
 
     /// Whether axis `k` (0-based, the cell's order) is given in deg (else mm).
@@ -115,6 +157,18 @@ impl Columns {
         }
         ExternalValues::new(&values[..self.columns.len()])
     }
+}
+
+/// Whether a column's name has the form of an external axis's: `e<digits>_mm` or
+/// `e<digits>_deg`.
+pub fn external_like(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix('e') else {
+        return false;
+    };
+    let Some((digits, unit)) = rest.split_once('_') else {
+        return false;
+    };
+    !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) && matches!(unit, "mm" | "deg")
 }
 
 fn column_error(line: u64, problem: ColumnProblem) -> Error {

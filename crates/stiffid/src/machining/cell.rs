@@ -16,15 +16,17 @@
 //! prediction intervals stay in the arm's frame on the carriage, whose orientation differs
 //! from the cell's by the carriage's error rotations only (of the order of 0.1 mrad).
 
-use super::compensate::Compensated;
+use super::compensate::{Compensated, PathPoint, Target};
 use super::gcode::GCode;
 use super::program::external::cell_values;
 use super::Program;
+use crate::common::error::ColumnProblem;
 use crate::common::words::number;
+use crate::observation::deflection::Frame;
 use crate::robot::external::AxisKind;
 use crate::robot::ExternalAxes;
 use crate::setup::Arm;
-use crate::{Error, Result};
+use crate::{Error, Result, Robot};
 use nalgebra::{Isometry3, Rotation3, Vector6};
 
 /// Where one target's arm is in the cell.
@@ -137,6 +139,63 @@ fn names(c: &ExternalAxes) -> String {
         .map(|a| format!("{} ({})", a.name, a.unit()))
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// A path file's point ([`crate::machining::path`]) in the arm's frame on its carriage, where
+/// the compensation works (module docs): its pose, a point of the part `x`, taken to
+/// `C(e)^-1 P(e) x`; a `base` wrench (cell frame) turned by `C(e)^-1`; axis angles and a `tool`
+/// wrench as given. A point of a robot without external axes is returned as it is; the results
+/// go back to the cell by [`path_to_cell`].
+///
+/// # Errors
+/// [`Error::Column`] at the point's line naming the axis ([`ColumnProblem::Measurement`]):
+/// external values for a robot without external axes, none (or another count) for a cell with
+/// them, a value outside its axis's travel ([`crate::Robot::check_external`]).
+pub fn on_carriage(robot: &Robot, mut p: PathPoint) -> Result<PathPoint> {
+    let e = p.external;
+    robot
+        .check_external(e.as_slice(), "external axes")
+        .map_err(|error| match error {
+            Error::InvalidField { field, message } => Error::Column {
+                line: p.line,
+                column: None,
+                name: field,
+                problem: ColumnProblem::Measurement { message },
+            },
+            other => other,
+        })?;
+    let Some(cell) = robot.external() else {
+        return Ok(p);
+    };
+    let carrier = cell.carrier_pose(e.as_slice());
+    if let Target::Pose(pose) = &p.target {
+        p.target = Target::Pose(carrier.inverse() * cell.positioner_pose(e.as_slice()) * pose);
+    }
+    if p.frame == Frame::Base {
+        p.wrench = turned(&carrier.rotation.inverse().to_rotation_matrix(), &p.wrench);
+    }
+    Ok(p)
+}
+
+/// The results of path points placed by [`on_carriage`] in the cell frame, as a program's
+/// ([`crate::machining::compensate()`]: the nominal pose, the wrench and the deflections; the
+/// standard deviations and intervals stay in the arm's frame on the carriage).
+pub fn path_to_cell(
+    robot: &Robot,
+    points: &[PathPoint],
+    mut results: Vec<Compensated>,
+) -> Vec<Compensated> {
+    let Some(cell) = robot.external() else {
+        return results;
+    };
+    let placements: Vec<Placement> = (points.iter())
+        .map(|p| Placement {
+            carrier: cell.carrier_pose(p.external.as_slice()),
+            part: Isometry3::identity(),
+        })
+        .collect();
+    to_cell(&mut results, &placements);
+    results
 }
 
 /// `w` (`[f; m]`) turned by `r`.

@@ -462,6 +462,7 @@ fn path_points(
                 target: target.clone(),
                 wrench: wrench + weight(i, pose),
                 frame: Frame::Base,
+                external: crate::robot::external::ExternalValues::NONE,
             }
         })
         .collect();

@@ -3,6 +3,7 @@
 //! ```text
 //! q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm][,frame]
 //! x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm][,frame]
+//! ... [,e1_mm,e2_deg,...]
 //! ```
 //! - Either the axis angles `q1_deg..q6_deg` (deg) of each point, or its TCP pose: position
 //!   `x_mm,y_mm,z_mm` (base frame, mm) and orientation `rx_deg,ry_deg,rz_deg`, fixed-axis
@@ -11,6 +12,12 @@
 //!   three or none, none means zero).
 //! - `frame` (optional): `base` or `tool`, the frame of the wrench; an empty cell or no column
 //!   takes the default the caller gives.
+//! - A cell with external axes ([`crate::robot::external`]: a track, a positioner): one column
+//!   per axis in the cell's order, `e1_mm` for a linear axis, `e2_deg` for a rotary one
+//!   ([`crate::io::external`]), the values the axes hold at the point (compensated as given,
+//!   [`crate::machining::cell::on_carriage`]). A pose is then a point of the part: in the cell
+//!   frame at `e = 0`, carried by the positioner (the cell frame itself without one), never the
+//!   moving base's; a `base` wrench is in the cell frame.
 //!
 //! Columns may come in any order; lines starting with `#` are comments. At most [`MAX_POINTS`]
 //! rows. Errors name the line and column ([`Error::Column`]).
@@ -19,6 +26,7 @@ use crate::common::error::ColumnProblem;
 use crate::common::limits::{self, short};
 use crate::machining::compensate::{PathPoint, Target};
 use crate::observation::deflection::Frame;
+use crate::robot::external::{ExternalAxes, ExternalValues};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
 
@@ -50,13 +58,15 @@ struct Columns {
     frame: Option<usize>,
 }
 
-/// Parses a path file (module docs); `default_frame` is the wrench frame of rows without one.
+/// Parses a path file (module docs) of a robot without external axes; `default_frame` is the
+/// wrench frame of rows without one. A cell's path: [`points`] with its axes.
 ///
 /// # Errors
 /// [`Error::Column`] naming the line, the column and the [`ColumnProblem`]: an unknown (with a
 /// suggestion), repeated or missing column, both or neither of the axis-angle and pose columns, a
 /// row with another number of fields than the header, a value that is not a finite number (the
-/// value shown, shortened), a frame other than `base` or `tool`, no rows, or more than
+/// value shown, shortened), a frame other than `base` or `tool`, an external axis column
+/// ([`crate::io::external::Columns::against`]: the robot has none), no rows, or more than
 /// [`MAX_POINTS`].
 ///
 /// # Examples
@@ -67,19 +77,25 @@ struct Columns {
 /// assert_eq!((points.len(), points[0].line, points[0].wrench[2]), (1, 2, -500.0));
 /// ```
 pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
-    points(text, default_frame)?.collect()
+    points(text, default_frame, None)?.collect()
 }
 
 /// The points of a path file one by one, parsed as they are asked for: [`parse`] without the
 /// whole path in memory (for [`crate::machining::compensate::stream`]). The header is checked at once.
+/// `cell` holds the robot's external axes (`None` for a robot without): one column per axis, named
+/// as the cell names it (`e1_mm` for a linear axis, `e2_deg` for a rotary one); the values are
+/// checked against the axes' travels where the points meet the robot
+/// ([`crate::machining::cell::on_carriage`]).
 ///
 /// # Errors
 /// The header's at once; each row's, and the row limit and the empty file, as an item (as
-/// [`parse`]).
-pub fn points(
-    text: &str,
+/// [`parse`]); the external axis columns' ([`crate::io::external::Columns::against`]: a column
+/// of an axis the cell lacks or in the other unit, an axis of the cell without its column).
+pub fn points<'t>(
+    text: &'t str,
     default_frame: Frame,
-) -> Result<impl Iterator<Item = Result<PathPoint>> + '_> {
+    cell: Option<&ExternalAxes>,
+) -> Result<impl Iterator<Item = Result<PathPoint>> + 't> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -94,6 +110,7 @@ pub fn points(
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
         columns(&names, header_line)?
     };
+    let external = crate::io::external::Columns::against(&names, header_line, cell)?;
     let mut records = reader.into_records();
     let mut count = 0usize;
     let mut done = false;
@@ -112,7 +129,7 @@ pub fn points(
                 record,
                 &mut lines,
                 &names,
-                &columns,
+                (&columns, &external),
                 count,
                 default_frame,
             )),
@@ -128,7 +145,7 @@ fn row(
     record: csv::Result<csv::StringRecord>,
     lines: &mut crate::io::LineCount,
     names: &[&str],
-    columns: &Columns,
+    (columns, external): (&Columns, &crate::io::external::Columns),
     before: usize,
     default_frame: Frame,
 ) -> Result<PathPoint> {
@@ -151,7 +168,9 @@ fn row(
         };
         return Err(problem(line, too_many));
     }
-    point(columns, names, &record, line, default_frame)
+    let mut point = point(columns, names, &record, line, default_frame)?;
+    point.external = external.values(|i| &record[i], |i, p| at(names, line, i, p))?;
+    Ok(point)
 }
 
 fn unreadable(line: u64, e: &csv::Error) -> Error {
@@ -161,7 +180,7 @@ fn unreadable(line: u64, e: &csv::Error) -> Error {
 
 fn expected_columns() -> String {
     format!(
-        "{} or {}, {}, optional {} and {FRAME}",
+        "{} or {}, {}, optional {}, {FRAME} and external axes e1_mm or e1_deg, ...",
         Q.join(","),
         POSE.join(","),
         FORCE.join(","),
@@ -171,7 +190,7 @@ fn expected_columns() -> String {
 
 fn columns(names: &[&str], line: u64) -> Result<Columns> {
     let known = Q.iter().chain(&POSE).chain(&FORCE).chain(&MOMENT);
-    let known = known.copied().chain([FRAME]);
+    let known = (known.copied().chain([FRAME])).chain(crate::io::external::NAMES);
     crate::io::known_names(names, line, known, expected_columns)?;
     let find = |n: &str| names.iter().position(|h| *h == n);
     let all = |set: &[&str]| -> Result<Option<Vec<usize>>> {
@@ -295,5 +314,6 @@ fn point(
         target,
         wrench,
         frame,
+        external: ExternalValues::NONE,
     })
 }

@@ -180,7 +180,7 @@ pub(crate) fn read(
                 q: *q,
                 measured: t + Vector3::from_fn(|_, _| normal.sample(rng)),
                 wrench: Vector6::zeros(),
-                e: Vec::new(),
+                e: crate::robot::external::ExternalValues::NONE,
                 table: false,
             }
         })

@@ -49,6 +49,7 @@ fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
             ),
             wrench: Vector6::new(300.0, -100.0, -400.0, 0.0, 0.0, 0.0),
             frame: Frame::Tool,
+            external: stiffid::robot::external::ExternalValues::NONE,
         })
         .collect()
 }

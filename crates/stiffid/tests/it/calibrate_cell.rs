@@ -45,7 +45,7 @@ fn readings_at(
                 q: *q,
                 measured: tracker,
                 wrench: Vector6::zeros(),
-                e: Vec::new(),
+                e: stiffid::robot::external::ExternalValues::NONE,
                 table: false,
             });
         }

@@ -226,6 +226,7 @@ fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
                 target: Target::Pose(shift * start),
                 wrench: Vector6::new(200.0, 0.0, -100.0, 0.0, 0.0, 0.0),
                 frame: Frame::Tool,
+                external: stiffid::robot::external::ExternalValues::NONE,
             }
         })
         .collect()
@@ -388,6 +389,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         target: Target::Posture(q),
         wrench: Vector6::new(fz.abs(), fz.abs(), fz, 0.0, 0.0, 0.0),
         frame: Frame::Base,
+        external: stiffid::robot::external::ExternalValues::NONE,
     };
     // A zero wrench needs no compensation; the others leave axis 2.
     let path = [
@@ -444,6 +446,7 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
         target: Target::Pose(target),
         wrench: Vector6::zeros(),
         frame: Frame::Base,
+        external: stiffid::robot::external::ExternalValues::NONE,
     }];
     let mut o = Options::for_setup(&s);
     o.q0 = deg([-60.0, 0.0, -20.0, 0.0, -40.0, 0.0]);

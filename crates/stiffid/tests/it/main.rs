@@ -47,6 +47,7 @@ mod optional_fields;
 mod options_validation;
 mod own_weight;
 mod parsers_proptest;
+mod path_axes;
 mod path_format;
 mod pool;
 mod prediction;

@@ -83,6 +83,7 @@ fn compensation_adds_the_sag_under_the_robots_weight() {
         target: Target::Posture(q),
         wrench,
         frame: Frame::Base,
+        external: stiffid::robot::external::ExternalValues::NONE,
     };
     let options = Options::for_setup(&s);
     let with =
@@ -140,6 +141,7 @@ fn a_wrong_gravity_section_is_refused() {
         target: Target::Posture(s.test_postures()[0]),
         wrench: Vector6::zeros(),
         frame: Frame::Base,
+        external: stiffid::robot::external::ExternalValues::NONE,
     };
     for (section, field) in [
         (

@@ -230,7 +230,7 @@ impl Truth {
                         q: *q,
                         measured: Vector3::zeros(),
                         wrench: *w,
-                        e: Vec::new(),
+                        e: stiffid::robot::external::ExternalValues::NONE,
                         table: false,
                     };
                     let b = self.model.predict(&self.estimate.values, &[o]).unwrap()[0];

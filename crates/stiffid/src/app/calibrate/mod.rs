@@ -552,7 +552,7 @@ fn refuse_repeated(setup: &Setup, data: &Data, model: &ErrorModel, fit: &Fit) ->
     }
     let mut groups = std::collections::BTreeMap::<Vec<u64>, Vec<_>>::new();
     for (q, e) in postures.into_iter().flatten() {
-        let key = e.iter().map(|v| v.to_bits()).collect();
+        let key = e.as_slice().iter().map(|v| v.to_bits()).collect();
         groups.entry(key).or_default().push(q);
     }
     let distance = crate::design::distinct::Distinctness::default();

@@ -29,12 +29,12 @@ use crate::machining::compensate::{
     self, Compensated, Compliance, FreeToolAxis, Options, PathPoint, CHUNK,
 };
 use crate::machining::dynamics::Dynamics;
-use crate::machining::path;
 use crate::machining::process::Process;
 use crate::machining::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
 use crate::machining::program::rename::renamed;
 use crate::machining::program::Dialect;
 use crate::machining::{self, Language, Program};
+use crate::machining::{cell, path};
 use crate::model::Parameter;
 use crate::observation::deflection::Frame;
 use crate::{Coordinates, Error, Result, Setup};
@@ -206,15 +206,24 @@ where
     let mut mapped: Option<Vec<PathPoint>> = None;
     let (name, program, warnings) = match input {
         Input::Path { name, text, frame } => {
+            let robot = setup.arm().robot();
+            let placed = |text| -> Result<_> {
+                let points = path::points(text, frame, robot.external())?;
+                Ok(points.map(|p| p.and_then(|p| cell::on_carriage(robot, p))))
+            };
             if options.map {
-                let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
+                let points = placed(text).map_err(|e| in_input(&name, e))?;
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-            let points = path::points(text, frame).map_err(|e| in_input(&name, e))?;
+            let points = placed(text).map_err(|e| in_input(&name, e))?;
             let mut first = 0;
             compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
-                add(first, p, r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
+                let r = match robot.external() {
+                    None => std::borrow::Cow::Borrowed(r),
+                    Some(_) => std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec())),
+                };
+                add(first, p, &r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
                 first += p.len();
                 Ok(())
             })

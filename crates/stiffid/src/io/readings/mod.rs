@@ -34,8 +34,8 @@
 //! [`MAX_READINGS`] rows. [`crate::metrology::register`] turns the unloaded readings into the tracker's
 //! transform, [`crate::identify::steps`] the loaded ones into displacements.
 
-mod external;
-use external::{external_columns, external_like};
+use crate::io::external::{self, external_like};
+use crate::robot::external::ExternalValues;
 
 use crate::common::error::ColumnProblem;
 use crate::common::limits::{self, short};
@@ -103,7 +103,7 @@ pub struct Reading {
     /// Axis angles, rad.
     pub q: Vector6<f64>,
     /// The external axes' values, SI (m, rad), the cell's order; empty without external axes.
-    pub e: Vec<f64>,
+    pub e: ExternalValues,
     /// Whether `point` is a reflector on the positioner's table (`T1`, `T2`, ...), 0-based,
     /// rather than a measuring point of the tool.
     pub table: bool,
@@ -282,7 +282,7 @@ struct Columns {
     point: usize,
     q: [usize; 6],
     /// The external axes' columns, the cell's order.
-    e: Vec<usize>,
+    e: external::Columns,
     /// Whether the cell has a positioner (table reflectors allowed).
     positioner: bool,
     position: [usize; 3],
@@ -350,7 +350,7 @@ struct Numbers {
     /// The posture number of each label.
     labels: HashMap<String, usize>,
     /// The axis angles and external axis values of each posture and the line that gave them.
-    angles: Vec<(Vector6<f64>, Vec<f64>, u64)>,
+    angles: Vec<(Vector6<f64>, ExternalValues, u64)>,
     /// The line of each (posture, point, table) read (without load steps).
     read: HashMap<(usize, usize, bool), u64>,
 }
@@ -369,7 +369,7 @@ fn known() -> impl Iterator<Item = &'static str> + Clone {
 
 impl Columns {
     fn new(names: &[String], line: u64, robot: &Robot) -> Result<Self> {
-        let e = external_columns(names, line, robot)?;
+        let e = external::Columns::against(names, line, robot.external())?;
         let others: Vec<&String> = names.iter().filter(|n| !external_like(n)).collect();
         super::known_names(&others, line, known(), expected_columns)?;
         let find = |name: &str| names.iter().position(|n| n == name);
@@ -548,28 +548,26 @@ impl Columns {
     }
 
     /// The external axes' values of a row (SI), each within its axis's travel.
-    fn external(&self, row: &Row, robot: &Robot) -> Result<Vec<f64>> {
+    fn external(&self, row: &Row, robot: &Robot) -> Result<ExternalValues> {
+        let e = (self.e).values(|c| row.field(c), |c, p| row.error(c, p))?;
         let Some(axes) = robot.external() else {
-            return Ok(Vec::new());
+            return Ok(e);
         };
-        let mut e = Vec::with_capacity(self.e.len());
-        for (axis, &c) in axes.axes().iter().zip(&self.e) {
-            let v = row.number(c)?;
-            let si = axis.to_si(v);
+        for (k, (axis, si)) in axes.axes().iter().zip(e.as_slice()).enumerate() {
             let slack = 1e-9 * (axis.upper - axis.lower);
-            if si < axis.lower - slack || si > axis.upper + slack {
+            if *si < axis.lower - slack || *si > axis.upper + slack {
+                let c = self.e.column(k);
                 return Err(row.error(
                     c,
                     ColumnProblem::Outside {
                         name: row.names[c].clone(),
-                        value: v,
+                        value: axis.to_display(*si),
                         within: "the axis's travel",
                         lower: axis.to_display(axis.lower),
                         upper: axis.to_display(axis.upper),
                     },
                 ));
             }
-            e.push(si);
         }
         Ok(e)
     }
@@ -627,7 +625,7 @@ impl Columns {
         &self,
         row: &Row,
         label: &str,
-        (q, e): (&Vector6<f64>, &[f64]),
+        (q, e): (&Vector6<f64>, &ExternalValues),
         (point, table): (usize, bool),
         so_far: &mut Readings,
         numbers: &mut Numbers,
@@ -636,7 +634,7 @@ impl Columns {
             let index = so_far.labels.len();
             so_far.labels.push(label.to_string());
             numbers.labels.insert(label.to_string(), index);
-            numbers.angles.push((*q, e.to_vec(), row.line));
+            numbers.angles.push((*q, *e, row.line));
             if self.load.is_none() {
                 numbers.read.insert((index, point, table), row.line);
             }

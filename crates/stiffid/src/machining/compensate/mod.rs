@@ -106,6 +106,12 @@ pub struct PathPoint {
     pub wrench: Vector6<f64>,
     /// The frame of the wrench.
     pub frame: Frame,
+    /// The values of the cell's external axes at the point (SI: m, rad; the cell's order), as a
+    /// path file gives them ([`crate::machining::path`]); empty for a cell without external axes
+    /// and for a point already in the arm's frame on its carriage (a program's, placed by
+    /// [`crate::machining::compensate()`]). The compensation itself works in the arm's frame:
+    /// a path file's points are placed there by [`crate::machining::cell::on_carriage`].
+    pub external: crate::robot::external::ExternalValues,
 }
 
 /// The compliance of every parameter of the setup's model and, from an identification, its

@@ -118,7 +118,7 @@ fn highest(model: &ErrorModel, observations: &[Observation]) -> Vec<usize> {
             AxisKind::Linear => {
                 let mut s: Vec<f64> = (observations.iter())
                     .filter(|o| !o.table)
-                    .filter_map(|o| o.e.get(i).copied())
+                    .filter_map(|o| o.e.as_slice().get(i).copied())
                     .collect();
                 s.sort_by(f64::total_cmp);
                 let width = (a.upper - a.lower) * 1e-6;

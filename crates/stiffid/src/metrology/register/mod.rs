@@ -245,7 +245,10 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Corresp
         .iter()
         .filter(|r| r.unloaded() && !r.table)
         .map(|r| Correspondence {
-            base: setup.robot().frames_at(&r.q, &r.e).point(&points[r.point]),
+            base: setup
+                .robot()
+                .frames_at(&r.q, r.e.as_slice())
+                .point(&points[r.point]),
             tracker: r.position,
         })
         .collect())
@@ -349,7 +352,7 @@ pub fn robot_covariance(
         .collect();
     let mut g = DMatrix::zeros(3 * unloaded.len(), 42);
     for (i, r) in unloaded.iter().enumerate() {
-        let frames = setup.robot().frames_at(&r.q, &r.e);
+        let frames = setup.robot().frames_at(&r.q, r.e.as_slice());
         let b = frames.point(&points[r.point]);
         let origins = frames.joints.iter().chain([&frames.flange]);
         for (k, o) in origins.map(|f| f.translation.vector).enumerate() {

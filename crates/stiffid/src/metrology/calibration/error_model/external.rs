@@ -573,7 +573,7 @@ impl ErrorModel {
                 .filter(|o| o.table && o.point == k)
                 .map(|o| {
                     let cell = frame * Point3::from(o.measured);
-                    (x.positioner(values, &o.e).inverse() * cell).coords
+                    (x.positioner(values, o.e.as_slice()).inverse() * cell).coords
                 })
                 .collect();
             if !part.is_empty() {

@@ -56,7 +56,7 @@ impl ErrorModel {
         for (row, a) in at.enumerate() {
             let mut block = j.fixed_rows_mut::<3>(3 * row);
             if a.table {
-                let b = self.table_position(values, a.e, a.point);
+                let b = self.table_position(values, a.e.as_slice(), a.point);
                 block
                     .fixed_view_mut::<3, 3>(0, 0)
                     .copy_from(&Matrix3::identity());
@@ -64,7 +64,7 @@ impl ErrorModel {
                     .fixed_view_mut::<3, 3>(0, 3)
                     .copy_from(&(-b.cross_matrix()));
                 if let Some(x) = &self.external {
-                    x.positioner_columns(values, a.e, a.point, |c, col| {
+                    x.positioner_columns(values, a.e.as_slice(), a.point, |c, col| {
                         block.column_mut(c).copy_from(&col)
                     });
                 }
@@ -105,7 +105,7 @@ impl ErrorModel {
                 });
             }
             if let Some(x) = (self.external.as_ref()).filter(|x| x.axes.carrier_len() > 0) {
-                x.carrier_columns(values, a.e, &b, |c, col| {
+                x.carrier_columns(values, a.e.as_slice(), &b, |c, col| {
                     block.column_mut(c).copy_from(&col)
                 });
             }

@@ -78,6 +78,7 @@ mod loads;
 mod maps;
 mod parameter;
 
+use crate::robot::external::ExternalValues;
 pub use basis::Basis;
 pub use external::{MAX_FITTED_ORDER, MOTIONS};
 use loads::Loads;
@@ -97,7 +98,7 @@ pub const NO_EFFECT: f64 = 1e-9;
 struct Posture {
     q: Vector6<f64>,
     /// The external axes' values (SI, the cell's order; empty without).
-    e: Vec<f64>,
+    e: ExternalValues,
     /// The arm's base frame in the cell: the carrier's pose times the robot's base.
     base: Isometry3<f64>,
     /// The axis angles the chain stands at: `q` plus the deflection under gravity.
@@ -151,7 +152,7 @@ pub struct Observation {
     pub wrench: Vector6<f64>,
     /// The external axes' values, SI (m, rad), the cell's order ([`crate::robot::ExternalAxes`]);
     /// empty without external axes.
-    pub e: Vec<f64>,
+    pub e: ExternalValues,
     /// Whether `point` is a reflector on the positioner's table ([`ErrorModel::with_external`])
     /// rather than a measuring point on the tool.
     pub table: bool,
@@ -162,7 +163,7 @@ pub struct Observation {
 #[derive(Clone, Copy)]
 struct At<'a> {
     q: &'a Vector6<f64>,
-    e: &'a [f64],
+    e: &'a ExternalValues,
     point: usize,
     table: bool,
 }
@@ -171,7 +172,7 @@ impl<'a> At<'a> {
     fn arm(pairs: &'a [(Vector6<f64>, usize)]) -> impl Iterator<Item = At<'a>> + Clone {
         pairs.iter().map(|(q, k)| At {
             q,
-            e: &[],
+            e: &ExternalValues::NONE,
             point: *k,
             table: false,
         })
@@ -427,7 +428,7 @@ impl ErrorModel {
         Ok(at
             .map(|a| {
                 let b = match a.table {
-                    true => self.table_position(values, a.e, a.point),
+                    true => self.table_position(values, a.e.as_slice(), a.point),
                     false => {
                         let p = self.posture_of(&mut last, &robot, values, a.q, a.e);
                         p.frames.point(&self.point(values, a.point))
@@ -453,15 +454,15 @@ impl ErrorModel {
         robot: &Robot,
         values: &DVector<f64>,
         q: &Vector6<f64>,
-        e: &[f64],
+        e: &ExternalValues,
     ) -> &'p Posture {
-        if last.as_ref().is_none_or(|p| p.q != *q || p.e != e) {
+        if last.as_ref().is_none_or(|p| p.q != *q || p.e != *e) {
             let regressors = self.gravity.regressors(q);
             let g = values.rows(self.gravity_start, self.gravity.len());
             let at = q + self.gravity.deflection_from(&g, &regressors);
             let (base, frames) = match &self.external {
                 Some(x) if x.axes.carrier_len() > 0 => {
-                    let base = x.carrier(values, e) * robot.base();
+                    let base = x.carrier(values, e.as_slice()) * robot.base();
                     let mut frames = crate::Frames::blank();
                     robot.update_frames_on(&base, &at, &mut frames);
                     (base, frames)
@@ -470,7 +471,7 @@ impl ErrorModel {
             };
             *last = Some(Posture {
                 q: *q,
-                e: e.to_vec(),
+                e: *e,
                 base,
                 at,
                 frames,
