@@ -593,3 +593,38 @@ fn a_gcode_axis_table_the_cell_does_not_match_is_refused_naming_the_line() {
         "{m}"
     );
 }
+
+/// An LS axis in the unit of the other kind of axis is refused naming the line and the axis, and
+/// so is one axis in two units.
+#[test]
+fn ls_units_are_checked_against_the_axes_kinds() {
+    let refused = |text: &str| {
+        let p = program::parse(text, Dialect::FanucLs);
+        match p.and_then(|p| cell_values(&p, Some(&cell(true)))) {
+            Err(Error::Program { line, message }) => (line, message),
+            other => panic!("{other:?}"),
+        }
+    };
+    let (line, message) = refused(&LS.replace("  mm\n", "  deg\n"));
+    assert_eq!(line, 11);
+    assert!(
+        message.contains("E1 in deg") && message.contains("(track) is linear, its values in mm"),
+        "{message}"
+    );
+    let rotary_in_mm = LS
+        .replace("J1=     0.000 deg", "J1=     0.000 mm")
+        .replace("J1=    45.250 deg", "J1=    45.250 mm");
+    let (line, message) = refused(&rotary_in_mm);
+    assert_eq!(line, 14);
+    assert!(
+        message.contains("GP2 J1 in mm") && message.contains("(table) is rotary"),
+        "{message}"
+    );
+    let mixed = LS.replace("E1=  1600.000  mm", "E1=  1600.000  deg");
+    let (line, message) = refused(&mixed);
+    assert_eq!(line, 21);
+    assert!(
+        message.contains("E1 in deg: the same axis is in mm on line 11"),
+        "{message}"
+    );
+}

@@ -728,8 +728,8 @@ mod tests {
             "{head}\na,1,{row},2500,0,1,2,3\nt,T1,{row},2500,45,4,5,6\nt,t2,{row},2500,45,4,5,6\n"
         );
         let r = parse(&text, &cell(true), 4).unwrap();
-        assert_eq!(r.readings[0].e, vec![2.5, 0.0]);
-        assert!((r.readings[1].e[1] - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
+        assert_eq!(r.readings[0].e.as_slice(), [2.5, 0.0]);
+        assert!((r.readings[1].e.as_slice()[1] - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
         let t = &r.readings[2];
         assert!(t.table && t.point == 1 && !r.readings[0].table);
         assert_eq!((r.tables, r.labels.len()), (2, 2));

@@ -14,7 +14,9 @@
 //! - an axis of the cell for which the target gives no value (RAPID `9E9`, a KRL aggregate
 //!   without its `E`n, an LS position without it): the controller would keep the axis where it
 //!   is, which the program does not say;
-//! - a value outside the axis's travel.
+//! - a value outside the axis's travel;
+//! - an axis written in the unit of the other kind (LS `E1= 1500 deg` for a linear axis, `mm`
+//!   for a rotary one: the controller takes the unit of the axis it drives).
 
 use super::{Dialect, JointProgram, JointTarget};
 use crate::robot::ExternalAxes;
@@ -27,6 +29,7 @@ use crate::{Error, Result};
 /// # Errors
 /// [`Error::Program`] naming the target's line and the axis (module docs).
 pub fn cell_values(program: &JointProgram, cell: Option<&ExternalAxes>) -> Result<Vec<Vec<f64>>> {
+    check_units(program, cell)?;
     program
         .targets
         .iter()
@@ -109,6 +112,31 @@ fn target_values(
         out.push(si);
     }
     Ok(out)
+}
+
+/// Each unit the program writes an axis of the cell in (LS) against the axis's kind.
+fn check_units(program: &JointProgram, cell: Option<&ExternalAxes>) -> Result<()> {
+    let Some(cell) = cell else { return Ok(()) };
+    for (k, (axis, unit)) in cell.axes().iter().zip(&program.units).enumerate() {
+        let Some((unit, line)) = unit.filter(|(u, _)| *u != axis.unit()) else {
+            continue;
+        };
+        return Err(Error::Program {
+            line,
+            message: format!(
+                "{} in {unit}: the cell's external axis {} ({}) is {}, its values in {}",
+                program.axes[k],
+                k + 1,
+                axis.name,
+                match axis.kind {
+                    crate::robot::external::AxisKind::Linear => "linear",
+                    crate::robot::external::AxisKind::Rotary => "rotary",
+                },
+                axis.unit()
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The name of the program's `k`-th external axis where the program gives none.

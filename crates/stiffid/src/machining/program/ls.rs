@@ -13,8 +13,8 @@ use std::collections::HashMap;
 
 /// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
 /// program's external axes.
-pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
-    let (positions, axes) = positions(text)?;
+pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
+    let (positions, axes, units) = positions(text)?;
     let mut out: Vec<JointTarget> = Vec::new();
     // Whether the previous motion ended FINE; the first jump, call, loop or branch.
     let mut previous_fine = false;
@@ -95,7 +95,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     if let (Some((line, word)), false) = (control, out.is_empty()) {
         return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
     }
-    Ok((out, axes))
+    Ok((out, axes, units))
 }
 
 /// After `J ` or `L ` (or another motion letter), the rest of a motion instruction.
@@ -178,10 +178,15 @@ struct Open {
     group: u8,
 }
 
-/// The `/POS` section's positions by index (module docs), and the program's external axes:
-/// group 1's `E1`.. then group 2's `J1`.. (`GP2 J1`).
-fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
+/// Per external axis of the program (its order), the unit its values are written in (`mm` or
+/// `deg`) and the line of the first.
+pub(crate) type Units = Vec<Option<(&'static str, u64)>>;
+
+/// The `/POS` section's positions by index (module docs), the program's external axes: group 1's
+/// `E1`.. then group 2's `J1`.. (`GP2 J1`), and their units.
+fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Units)> {
     let mut read: Vec<Open> = Vec::new();
+    let mut units: HashMap<(u8, usize), (&'static str, u64)> = HashMap::new();
     let mut in_pos = false;
     let mut open: Option<Open> = None;
     for (line, start, l) in super::lines(text) {
@@ -246,7 +251,7 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
             };
             let (values, k) = match (o.group, number('J'), number('E')) {
                 (1, Some(k @ 1..=6), _) => {
-                    let (v, span) = value(l, offset + eq + 1, line, name, &["deg"])?;
+                    let (v, span, _) = value(l, offset + eq + 1, line, name, &["deg"])?;
                     o.found[k - 1] = Some((v, start + span.start..start + span.end));
                     continue;
                 }
@@ -254,7 +259,11 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
                 (2, Some(k @ 1..=6), _) => (&mut o.second, k),
                 _ => continue,
             };
-            let (v, span) = value(l, offset + eq + 1, line, name, &["mm", "deg"])?;
+            let (v, span, unit) = value(l, offset + eq + 1, line, name, &["mm", "deg"])?;
+            let (first_unit, first_line) = *units.entry((o.group, k)).or_insert((unit, line));
+            if first_unit != unit {
+                return Err(at(line, format!("{name} in {unit}: the same axis is in {first_unit} on line {first_line}; one unit per axis (mm for a linear axis, deg for a rotary one)")));
+            }
             if values.len() < k {
                 values.resize(k, None);
             }
@@ -282,7 +291,9 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>)> {
     }
     let axes = (1..=n1).map(|k| format!("E{k}"));
     let axes = axes.chain((1..=n2).map(|k| format!("GP2 J{k}")));
-    Ok((out, axes.collect()))
+    let keys = (1..=n1).map(|k| (1, k)).chain((1..=n2).map(|k| (2, k)));
+    let units = keys.map(|key| units.get(&key).copied()).collect();
+    Ok((out, axes.collect(), units))
 }
 
 /// The number after the `=` at byte `from` of `l` and its unit, one of `units`.
@@ -291,18 +302,18 @@ fn value(
     from: usize,
     line: u64,
     name: &str,
-    units: &[&str],
-) -> Result<(f64, std::ops::Range<usize>)> {
+    units: &[&'static str],
+) -> Result<(f64, std::ops::Range<usize>, &'static str)> {
     let (v, span) =
         number_at(l, from).ok_or_else(|| at(line, format!("{name}: expected a number")))?;
     let unit = l[span.end..].trim_start();
-    if !units.iter().any(|u| unit.starts_with(u)) {
-        return Err(at(
+    match units.iter().find(|u| unit.starts_with(*u)) {
+        Some(u) => Ok((v, span, u)),
+        None => Err(at(
             line,
             format!("{name}: expected a value in {}", units.join(" or ")),
-        ));
+        )),
     }
-    Ok((v, span))
 }
 
 /// The comma-separated pieces of a line (also split at `{`) with their byte offsets.

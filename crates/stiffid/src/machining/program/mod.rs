@@ -143,6 +143,9 @@ pub struct JointProgram {
     /// Per value (the six axes, then the external ones): the pulses per deg or mm of a value
     /// written in pulses (INFORM), `None` for a decimal value.
     pulses: Vec<Option<f64>>,
+    /// Per external axis, the unit the program writes it in and the line of its first value,
+    /// where the language says (LS: `mm` or `deg`); empty for the others.
+    units: ls::Units,
     text: String,
 }
 
@@ -153,10 +156,15 @@ pub struct JointProgram {
 /// a joint target with a missing, repeated or non-numeric axis value, no motion to a joint target
 /// at all, or more than [`MAX_TARGETS`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
+    let mut units = Vec::new();
     let (mut targets, axes, pulses) = match dialect {
         Dialect::Krl => with_decimals(krl::targets(text)?),
         Dialect::Rapid => with_decimals(rapid::targets(text)?),
-        Dialect::FanucLs => with_decimals(ls::targets(text)?),
+        Dialect::FanucLs => {
+            let (targets, axes, written) = ls::targets(text)?;
+            units = written;
+            with_decimals((targets, axes))
+        }
         Dialect::Inform => inform::targets(text)?,
     };
     for t in &mut targets {
@@ -186,6 +194,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
         targets,
         axes,
         pulses,
+        units,
         text: text.to_string(),
     })
 }

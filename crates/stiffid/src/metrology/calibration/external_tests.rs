@@ -117,7 +117,7 @@ fn campaign(
                 q: *q,
                 measured: Vector3::zeros(),
                 wrench: Vector6::zeros(),
-                e: e.clone(),
+                e: crate::robot::external::ExternalValues::new(&e).unwrap(),
                 table: false,
             });
         }
@@ -133,7 +133,7 @@ fn campaign(
                     q: Vector6::zeros(),
                     measured: Vector3::zeros(),
                     wrench: Vector6::zeros(),
-                    e: vec![3.0, tilt, turn],
+                    e: crate::robot::external::ExternalValues::new(&[3.0, tilt, turn]).unwrap(),
                     table: true,
                 });
             }
@@ -410,7 +410,9 @@ fn noisy_readings(
                 q: *q,
                 measured: (tracker().inverse() * cell).coords + noise,
                 wrench: Vector6::zeros(),
-                e: s.map_or(Vec::new(), |s| vec![s[i]]),
+                e: s.map_or(crate::robot::external::ExternalValues::NONE, |s| {
+                    crate::robot::external::ExternalValues::new(&[s[i]]).unwrap()
+                }),
                 table: false,
             });
         }

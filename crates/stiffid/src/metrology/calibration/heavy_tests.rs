@@ -119,7 +119,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
                         q: *q,
                         measured: t.coords + Vector3::from_fn(|_, _| noise.sample(rng)),
                         wrench: Vector6::zeros(),
-                        e: Vec::new(),
+                        e: crate::robot::external::ExternalValues::NONE,
                         table: false,
                     });
                 }

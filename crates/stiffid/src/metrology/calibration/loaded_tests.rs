@@ -67,7 +67,7 @@ fn readings(model: &ErrorModel, truth: &Estimate, qs: &[Vector6<f64>]) -> Vec<Ob
                     q: *q,
                     measured: nalgebra::Vector3::zeros(),
                     wrench,
-                    e: Vec::new(),
+                    e: crate::robot::external::ExternalValues::NONE,
                     table: false,
                 });
             }

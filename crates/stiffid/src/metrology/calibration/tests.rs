@@ -54,7 +54,7 @@ pub(super) fn readings(
             q: *q,
             measured: (truth.frame.inverse() * Point3::from(b)).coords,
             wrench: Vector6::zeros(),
-            e: Vec::new(),
+            e: crate::robot::external::ExternalValues::NONE,
             table: false,
         })
         .collect()
