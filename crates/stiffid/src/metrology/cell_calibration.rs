@@ -68,7 +68,7 @@ pub fn observations(setup: &Setup, readings: &Readings) -> Result<Vec<Observatio
             q: r.q,
             measured: r.position,
             wrench: Vector6::zeros(),
-            e: r.e.clone(),
+            e: r.e,
             table: false,
         })
         .collect())

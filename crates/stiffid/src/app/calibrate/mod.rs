@@ -218,7 +218,7 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
                 true => r.wrench,
                 false => base_wrench(&setup.robot().frames(&r.q), &r.wrench, data.wrench_frame),
             },
-            e: r.e.clone(),
+            e: r.e,
             table: r.table,
         })
         .collect();
