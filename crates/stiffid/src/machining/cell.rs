@@ -1,5 +1,5 @@
-//! A program that moves the cell's external axes: each target compensated with its external
-//! axes as the program gives them.
+//! A program or a path file that moves the cell's external axes: each target compensated with
+//! its external axes as the program or the path gives them.
 //!
 //! The carrier and the positioner hold still at a target's values while the arm's springs give
 //! way, so the compensation is the arm's, in the arm's frame on its carriage (the robot's base
