@@ -5,12 +5,12 @@ use crate::commands::common::{choice, Stiffness};
 use crate::load;
 use crate::output::{print_json_or, OutFile};
 use crate::progress::Bars;
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, Context, Result};
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::read_program;
 use stiffid::app::place::document::{Document, Placement};
 use stiffid::app::place::search::Effort;
-use stiffid::app::place::{self, Free, Region, Request};
+use stiffid::app::place::{self, Region, Request};
 use stiffid::machining::compensate::{Aggregate, Options};
 use stiffid::machining::process::file;
 use stiffid::machining::Language;
@@ -115,7 +115,7 @@ pub fn run(args: &Args) -> Result<()> {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
     let own = setup.workpiece().copied();
-    let region = region(args, own.map(|o| o.translation.vector.z))?;
+    let region = region(args, own.map_or(0.0, |o| o.translation.vector.z))?;
     let out = OutFile::prepare(&args.out, "--out")?;
     let request = Request {
         setup: &setup,
@@ -151,46 +151,36 @@ pub fn run(args: &Args) -> Result<()> {
     print_json_or(args.json, &document, |d| human(d, &args.out))
 }
 
-/// The region from the arguments (mm and deg to SI); `own_z` the part's own height (m).
-fn region(args: &Args, own_z: Option<f64>) -> Result<Region> {
-    let numbers = |text: &str, option: &str, n: usize| -> Result<Vec<f64>> {
-        let v: Vec<f64> = text
-            .split(',')
+/// The region from the arguments ([`Region::from_mm_deg`]); `own_z` the part's own height (m).
+fn region(args: &Args, own_z: f64) -> Result<Region> {
+    let numbers = |text: &str, option: &str| -> Result<Vec<f64>> {
+        text.split(',')
             .map(|s| s.trim().parse::<f64>())
             .collect::<std::result::Result<_, _>>()
-            .map_err(|e| {
-                anyhow!("{option} {text}: {e}: expected {n} numbers separated by commas")
-            })?;
-        if v.len() != n {
-            bail!("{option} {text}: {} numbers, expected {n}", v.len());
-        }
-        Ok(v)
+            .map_err(|e| anyhow!("{option} {text}: {e}: expected numbers separated by commas"))
     };
-    let r = numbers(&args.region_mm, "--region-mm", 4)?;
-    let a = numbers(&args.rotation_deg, "--rotation-deg", 2)?;
-    let free = match args.free {
-        false => None,
-        true => {
-            let z = match (&args.z_mm, own_z) {
-                (Some(text), _) => {
-                    let z = numbers(text, "--z-mm", 2)?;
-                    [z[0] * 1e-3, z[1] * 1e-3]
-                }
-                (None, Some(z)) => [z - 0.1, z + 0.1],
-                (None, None) => [0.0, 0.0],
-            };
-            Some(Free {
-                z,
-                tilt: args.tilt_deg.to_radians(),
-            })
-        }
+    let exactly = |text: &str, option: &str| -> Result<[f64; 2]> {
+        let v = numbers(text, option)?;
+        v.try_into()
+            .map_err(|v: Vec<f64>| anyhow!("{option} {text}: {} numbers, expected 2", v.len()))
     };
-    Ok(Region {
-        x: [r[0] * 1e-3, r[1] * 1e-3],
-        y: [r[2] * 1e-3, r[3] * 1e-3],
-        rotation: [a[0].to_radians(), a[1].to_radians()],
-        free,
-    })
+    let r: [f64; 4] = numbers(&args.region_mm, "--region-mm")?
+        .try_into()
+        .map_err(|v: Vec<f64>| {
+            anyhow!(
+                "--region-mm {}: {} numbers, expected 4 (X0,X1,Y0,Y1)",
+                args.region_mm,
+                v.len()
+            )
+        })?;
+    let a = exactly(&args.rotation_deg, "--rotation-deg")?;
+    let z = args
+        .z_mm
+        .as_deref()
+        .map(|t| exactly(t, "--z-mm"))
+        .transpose()?;
+    let free = args.free.then_some((z, args.tilt_deg));
+    Ok(Region::from_mm_deg(r, a, free, own_z))
 }
 
 /// Parses the setup written as `--setup` would read it from `--out` (a robot file it names

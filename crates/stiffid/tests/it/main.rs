@@ -48,6 +48,7 @@ mod options_validation;
 mod own_weight;
 mod parsers_proptest;
 mod path_format;
+mod place;
 mod pool;
 mod prediction;
 mod prior;

@@ -41,6 +41,8 @@ use crate::machining::Program;
 use crate::{Error, Result, Setup};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use search::{Effort, Space};
+use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// Where the part may go, SI, base frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,6 +71,30 @@ impl Region {
     pub const MAX_EXTENT_M: f64 = 20.0;
     /// The largest tilt, deg.
     pub const MAX_TILT_DEG: f64 = 45.0;
+    /// How far the part may move up or down from its own height by default, mm.
+    pub const DEFAULT_HEIGHT_MM: f64 = 100.0;
+
+    /// The region in the front ends' units: `region_mm` `[x0, x1, y0, y1]`, `rotation_deg`
+    /// `[a0, a1]`, and for six degrees of freedom `free` the height range `[z0, z1]` in mm
+    /// (`None`: `own_z +-` [`Self::DEFAULT_HEIGHT_MM`], `own_z` the part's own height in m) and
+    /// the largest tilt in deg.
+    pub fn from_mm_deg(
+        region_mm: [f64; 4],
+        rotation_deg: [f64; 2],
+        free: Option<(Option<[f64; 2]>, f64)>,
+        own_z: f64,
+    ) -> Self {
+        let h = Self::DEFAULT_HEIGHT_MM * 1e-3;
+        Region {
+            x: [region_mm[0] * 1e-3, region_mm[1] * 1e-3],
+            y: [region_mm[2] * 1e-3, region_mm[3] * 1e-3],
+            rotation: rotation_deg.map(f64::to_radians),
+            free: free.map(|(z, tilt)| Free {
+                z: z.map_or([own_z - h, own_z + h], |z| z.map(|v| v * 1e-3)),
+                tilt: tilt.to_radians(),
+            }),
+        }
+    }
 
     /// Checks every range: finite, lower <= upper, lengths within +-[`Self::MAX_EXTENT_M`], the
     /// rotation within +-180 deg, the tilt within [0, [`Self::MAX_TILT_DEG`]].
@@ -115,9 +141,9 @@ impl Region {
     }
 
     /// The search's box: `[x, y, a]`, then with [`Region::free`] `[z, c, b]`; the tolerances
-    /// 0.5 mm and 0.05 deg.
+    /// 1 mm and 0.1 deg.
     fn space(&self) -> Space {
-        let (tm, ta) = (5e-4, 0.05f64.to_radians());
+        let (tm, ta) = (1e-3, 0.1f64.to_radians());
         let mut space = Space {
             lower: vec![self.x[0], self.y[0], self.rotation[0]],
             upper: vec![self.x[1], self.y[1], self.rotation[1]],
@@ -200,7 +226,7 @@ pub struct Report {
     pub reach: Evaluation,
     /// The objective minimised.
     pub objective: Aggregate,
-    /// Placements evaluated, both searches.
+    /// Placements evaluated (each once), both searches and the own one.
     pub evaluations: usize,
     /// The setup file's text with the chosen `[workpiece]` ([`with_workpiece`]).
     pub setup_text: String,
@@ -234,23 +260,29 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         field: "workpiece.base_from_part".into(),
         message: format!("missing in setup {}: placement starts from the part's own frame ([workpiece] base_from_part)", setup.name()),
     })?;
-    let context = evaluate::Context {
-        setup,
-        compliance: request.compliance,
-        program: request.program,
-        process: request.process,
-        options: request.options,
-        margin: request.margin,
-        max_condition: request.max_condition,
-        checker: setup.cell().map(|_| Checker::new(setup)),
-    };
+    let context = context(request);
     let space = request.region.space();
-    let at = |x: &[f64]| context.evaluate(&pose(&own, x)).ok();
+    // Both searches start from the same grid and samples: each placement is evaluated once.
+    let cache: Mutex<HashMap<Vec<u64>, Option<Evaluation>>> = Mutex::default();
+    let at = |x: &[f64]| {
+        let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+        let known = cache
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(&key)
+            .cloned();
+        known.unwrap_or_else(|| {
+            let e = context.evaluate(&pose(&own, x)).ok();
+            let mut cache = cache.lock().unwrap_or_else(|e| e.into_inner());
+            cache.insert(key, e.clone());
+            e
+        })
+    };
     let objective = request.objective;
-    let (best, n1) = search::minimise(&space, &request.effort, |x| {
+    let (best, _) = search::minimise(&space, &request.effort, |x| {
         at(x).map(|e| cost(objective, &e))
     });
-    let (reach, n2) = search::minimise(&space, &request.effort, |x| at(x).map(|e| -e.limit_margin));
+    let (reach, _) = search::minimise(&space, &request.effort, |x| at(x).map(|e| -e.limit_margin));
     let own_evaluation = context.evaluate(&own);
     let (Some(best), Some(reach)) = (best, reach) else {
         let why = match &own_evaluation {
@@ -287,14 +319,44 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             placed = c;
         }
     }
+    let evaluations = cache.lock().unwrap_or_else(|e| e.into_inner()).len() + 1;
     Ok(Report {
         setup_text: with_workpiece(request.setup_text, &placed.base_from_part),
         placed,
         own: own_evaluation,
         reach,
         objective,
-        evaluations: n1 + n2 + 1,
+        evaluations,
     })
+}
+
+/// The evaluation of the part placed at `base_from_part` (its frame in the robot base frame)
+/// under the request's checks and objective (module docs), or why it is not feasible there; the
+/// figures [`run`] compares its placements by.
+///
+/// # Errors
+/// Those of [`run`]'s checks of the request (not the region).
+pub fn evaluate(
+    request: &Request<'_>,
+    base_from_part: &Isometry3<f64>,
+) -> Result<std::result::Result<Evaluation, String>> {
+    check(request)?;
+    Ok(context(request).evaluate(base_from_part))
+}
+
+/// What a placement is checked against.
+fn context<'a>(request: &Request<'a>) -> evaluate::Context<'a> {
+    let setup = request.setup;
+    evaluate::Context {
+        setup,
+        compliance: request.compliance,
+        program: request.program,
+        process: request.process,
+        options: request.options,
+        margin: request.margin,
+        max_condition: request.max_condition,
+        checker: setup.cell().map(|_| Checker::new(setup)),
+    }
 }
 
 /// Checks the request's limits.
