@@ -3,15 +3,15 @@
 
 use nalgebra::Isometry3;
 
-/// `text` (a setup file's TOML) with its `[workpiece]` table replaced by one whose
-/// `base_from_part` is `pose` (mm and fixed-axis roll, pitch, yaw in deg, to 1 nm and 1e-8 deg);
-/// the comment and blank lines just before the next table stay. Without a `[workpiece]` table,
-/// the new one is appended.
+/// `text` (a setup file's TOML) with the body of its `[workpiece]` table replaced by one
+/// `base_from_part`, `pose` (mm and fixed-axis roll, pitch, yaw in deg, to 1 nm and 1e-8 deg);
+/// the table's header line (and its comment) and the comment and blank lines just before the
+/// next table stay. Without a `[workpiece]` table, the new one is appended.
 pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
     let t = pose.translation.vector * 1e3;
     let (r, p, y) = pose.rotation.euler_angles();
-    let table = format!(
-        "[workpiece]\nbase_from_part = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
+    let body = format!(
+        "base_from_part = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
         t.x,
         t.y,
         t.z,
@@ -32,7 +32,7 @@ pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
         } else {
             "\n"
         };
-        return format!("{text}{gap}\n{table}");
+        return format!("{text}{gap}\n[workpiece]\n{body}");
     };
     let next = (start + 1..lines.len())
         .find(|&i| header(lines[i]))
@@ -44,8 +44,8 @@ pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
     } {
         end -= 1;
     }
-    let mut out: String = lines[..start].concat();
-    out.push_str(&table);
+    let mut out: String = lines[..=start].concat();
+    out.push_str(&body);
     out.push_str(&lines[end..].concat());
     out
 }
@@ -67,7 +67,7 @@ mod tests {
         let appended = with_workpiece("name = \"a\"", &pose);
         assert!(appended.starts_with("name = \"a\"\n\n[workpiece]\nbase_from_part = "));
         let last = with_workpiece("[workpiece] # here\nbase_from_part = {}\n", &pose);
-        assert_eq!(last.matches("[workpiece]").count(), 1);
+        assert!(last.starts_with("[workpiece] # here\nbase_from_part = { xyz_mm = [1500.0"));
         assert!(!last.contains("{}"));
     }
 }
