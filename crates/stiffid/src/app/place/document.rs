@@ -61,7 +61,7 @@ impl Placement {
         let (r, p, y) = e.base_from_part.rotation.euler_angles();
         Placement {
             xyz_mm: (e.base_from_part.translation.vector * 1e3).into(),
-            rpy_deg: [r, p, y].map(f64::to_degrees),
+            rpy_deg: [r, p, y].map(|a| a.to_degrees() + 0.0),
             feasible: true,
             reason: None,
             peak_bound_mm: Some(mm(e.peak)),
@@ -86,7 +86,7 @@ impl Document {
                 let (r, p, y) = own.rotation.euler_angles();
                 Placement {
                     xyz_mm: (own.translation.vector * 1e3).into(),
-                    rpy_deg: [r, p, y].map(f64::to_degrees),
+                    rpy_deg: [r, p, y].map(|a| a.to_degrees() + 0.0),
                     feasible: false,
                     reason: Some(reason.clone()),
                     peak_bound_mm: None,

@@ -8,16 +8,19 @@ use nalgebra::Isometry3;
 /// the table's header line (and its comment) and the comment and blank lines just before the
 /// next table stay. Without a `[workpiece]` table, the new one is appended.
 pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
-    let t = pose.translation.vector * 1e3;
+    // Rounded to the digits written, `+ 0.0` turning a negative zero into 0.
+    let round = |v: f64, digits: f64| (v * digits).round() / digits + 0.0;
+    let t = pose.translation.vector.map(|v| round(v * 1e3, 1e6));
     let (r, p, y) = pose.rotation.euler_angles();
+    let [r, p, y] = [r, p, y].map(|a| round(a.to_degrees(), 1e8));
     let body = format!(
         "base_from_part = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
         t.x,
         t.y,
         t.z,
-        r.to_degrees(),
-        p.to_degrees(),
-        y.to_degrees()
+        r,
+        p,
+        y
     );
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let header = |l: &str| l.trim_start().starts_with('[');
