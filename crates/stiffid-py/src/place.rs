@@ -9,7 +9,7 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::app::place::document::Document;
 use stiffid::app::place::search::Effort;
-use stiffid::app::place::{self, Region, Request};
+use stiffid::app::place::{self as job, Region, Request};
 use stiffid::machining::compensate::Aggregate;
 use stiffid::machining::process::file;
 use stiffid::machining::Language;
@@ -42,7 +42,7 @@ pub fn place<'py>(
     program: PathBuf,
     process: PathBuf,
     region_mm: [f64; 4],
-    rotation_deg: [f64; 2],
+    rotation_deg: (f64, f64),
     free: bool,
     z_mm: Option<[f64; 2]>,
     tilt_deg: f64,
@@ -79,7 +79,7 @@ pub fn place<'py>(
     let own = s.workpiece().copied();
     let region = Region::from_mm_deg(
         region_mm,
-        rotation_deg,
+        [rotation_deg.0, rotation_deg.1],
         free.then_some((z_mm, tilt_deg)),
         own.map_or(0.0, |o| o.translation.vector.z),
     );
@@ -101,7 +101,7 @@ pub fn place<'py>(
             seed,
         },
     };
-    let report = py.detach(|| place::run(&request)).map_err(raise)?;
+    let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let out = to_python(py, &Document::new(&report, &own.unwrap_or_default()), &[])?;
     out.set_item("setup_text", &report.setup_text)?;
     Ok(out)

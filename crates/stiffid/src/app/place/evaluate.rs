@@ -114,7 +114,7 @@ impl Context<'_> {
                 self.margin.to_degrees()
             ));
         }
-        if !(condition <= self.max_condition) {
+        if condition.is_nan() || condition > self.max_condition {
             return Err(format!(
                 "the TCP Jacobian's condition number reaches {condition:.1} (at most {:.1} asked: near a singularity)",
                 self.max_condition

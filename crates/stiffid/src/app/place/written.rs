@@ -15,12 +15,7 @@ pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
     let [r, p, y] = [r, p, y].map(|a| round(a.to_degrees(), 1e8));
     let body = format!(
         "base_from_part = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
-        t.x,
-        t.y,
-        t.z,
-        r,
-        p,
-        y
+        t.x, t.y, t.z, r, p, y
     );
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let header = |l: &str| l.trim_start().starts_with('[');
