@@ -70,6 +70,9 @@ enum Command {
     Calibrate(commands::calibrate::Args),
     /// The mean cutting force and moment (about the tool tip) of every operation of a process file (milling, drilling), feed frame.
     Force(commands::force::Args),
+    /// Where to clamp the part: the placement in a region of the cell that minimises a G-code
+    /// program's error bound, every point reachable and feasible; writes the setup with it.
+    Place(commands::place::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
     /// The paper's simulation study end to end, with a report (HTML, Markdown, JSON, CSV, figures).
@@ -129,6 +132,7 @@ pub fn run() -> ExitCode {
         Command::CalibrateCell(args) => commands::calibrate_cell::run(&args),
         Command::Calibrate(args) => commands::calibrate::run(&args),
         Command::Force(args) => commands::force::run(&args),
+        Command::Place(args) => commands::place::run(&args),
         Command::Completions(args) => commands::completions::completions(&args, command()),
         Command::Man(args) => commands::completions::man(&args, command()),
         Command::Schema(args) => commands::schema::run(&args),

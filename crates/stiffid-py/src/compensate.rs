@@ -242,7 +242,7 @@ pub fn compensate<'py>(
 }
 
 /// The compensation's options from the arguments.
-fn options(
+pub(crate) fn options(
     py: Python<'_>,
     s: &stiffid::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,

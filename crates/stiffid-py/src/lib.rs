@@ -22,6 +22,7 @@ mod machining;
 mod measure;
 mod model;
 mod output;
+mod place;
 mod plan;
 mod predict;
 mod register;
@@ -54,6 +55,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compensate::compensate, m)?)?;
     m.add_function(wrap_pyfunction!(machining::process_force, m)?)?;
     m.add_function(wrap_pyfunction!(machining::read_program, m)?)?;
+    m.add_function(wrap_pyfunction!(place::place, m)?)?;
     m.add_function(wrap_pyfunction!(register::register, m)?)?;
     m.add_function(wrap_pyfunction!(register::calibrate_cell, m)?)?;
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;

@@ -49,7 +49,11 @@ impl Setup {
     /// setup's own ``package_paths`` (relative to the setup file).
     #[staticmethod]
     #[pyo3(signature = (path, *, package_paths=Vec::new()))]
-    fn from_file(py: Python<'_>, path: PathBuf, package_paths: Vec<PathBuf>) -> PyResult<Self> {
+    pub(crate) fn from_file(
+        py: Python<'_>,
+        path: PathBuf,
+        package_paths: Vec<PathBuf>,
+    ) -> PyResult<Self> {
         let text = error::read(&path)?;
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut setup = Self::parse(py, &text, &path.display().to_string(), &dir, &package_paths)?;

@@ -10,6 +10,7 @@ pub mod evaluate;
 pub mod force;
 pub mod identify;
 pub mod kinematics;
+pub mod place;
 pub mod plot;
 pub mod predict;
 pub mod register;

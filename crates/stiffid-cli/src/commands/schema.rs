@@ -17,7 +17,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 15] = [
+const DOCUMENTS: [(&str, &str); 16] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
@@ -42,6 +42,7 @@ const DOCUMENTS: [(&str, &str); 15] = [
     ("register-postures", "stiffid register --postures N --json"),
     ("calibrate-cell", "stiffid calibrate-cell --json"),
     ("calibrate", "stiffid calibrate --json"),
+    ("place", "stiffid place --json"),
 ];
 
 /// Prints the schema of the named document, or without a name the names, one per line.
@@ -74,6 +75,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "identify" => closed::<stiffid::app::identify::document::Document>(),
         "validate" => closed::<stiffid::app::validate::document::Document>(),
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
+        "place" => closed::<stiffid::app::place::document::Document>(),
         "simulate" => closed::<stiffid::app::simulate::document::Document>(),
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid::app::register::document::Document>(),

@@ -19,6 +19,7 @@ mod mass_cli;
 mod mutate;
 mod optional_fields_cli;
 mod options_proptest;
+mod place_cli;
 mod pool_cli;
 mod program_axes_cli;
 mod readable_files;

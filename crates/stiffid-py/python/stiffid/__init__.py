@@ -5,7 +5,7 @@ robots and their kinematics (``Robot``), experimental setups (``Setup``, a new o
 ``setups_new``) and posture selection,
 the measurement plan of a group (``plan``), identification and validation from measurements (``identify``, ``validate``), the deflection
 under a wrench (``deflection``), the compensation of a machining path or program (``compensate``,
-with ``process_force`` and ``read_program``), the tracker's registration, the cell's
+with ``process_force`` and ``read_program``), the part's placement (``place``), the tracker's registration, the cell's
 calibration and the robot's geometric and elastostatic calibration from raw readings
 (``register``, ``calibrate_cell``, ``calibrate``), the Monte Carlo
 simulation (``simulate``) and the paper's study (``reproduce``).
@@ -40,6 +40,7 @@ from ._stiffid import (
     deflection,
     figures,
     identify,
+    place,
     plan,
     predict,
     process_force,
@@ -69,6 +70,7 @@ __all__ = [
     "deflection",
     "figures",
     "identify",
+    "place",
     "plan",
     "predict",
     "process_force",

@@ -305,6 +305,31 @@ def read_program(
 ) -> dict[str, Any]:
     """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6)."""
 
+def place(
+    setup: Union[str, os.PathLike[str]],
+    stiffness: Union[ArrayLike, str, os.PathLike[str]],
+    *,
+    program: Union[str, os.PathLike[str]],
+    process: Union[str, os.PathLike[str]],
+    region_mm: Sequence[float],
+    rotation_deg: Sequence[float] = (-180.0, 180.0),
+    free: bool = False,
+    z_mm: Optional[Sequence[float]] = None,
+    tilt_deg: float = 10.0,
+    objective: Literal["max", "sum"] = "max",
+    margin_deg: float = 5.0,
+    max_condition: float = 1000.0,
+    seed: int = 1,
+    grid: int = 5,
+    samples: int = 32,
+    starts: int = 3,
+    chord_tolerance_mm: float = 0.01,
+    level: float = 0.95,
+    force_tolerance_percent: float = 20.0,
+    q0_deg: Optional[ArrayLike] = None,
+) -> dict[str, Any]:
+    """The document of `stiffid place --json` (placed, own, reach_only, gain_vs_own_percent, gain_vs_reach_only_percent, evaluations) and setup_text (the setup with the chosen [workpiece])."""
+
 def cartesian_compliance(
     setup: Setup,
     q_deg: ArrayLike,

@@ -28,6 +28,7 @@ pub mod evaluate;
 pub mod force;
 pub mod identify;
 pub mod kinematics;
+pub mod place;
 pub mod plan;
 pub mod predict;
 pub mod register;

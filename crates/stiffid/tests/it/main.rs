@@ -49,6 +49,7 @@ mod own_weight;
 mod parsers_proptest;
 mod path_axes;
 mod path_format;
+mod place;
 mod pool;
 mod prediction;
 mod prior;

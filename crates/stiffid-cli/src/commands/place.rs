@@ -1,0 +1,237 @@
+//! `stiffid place`: where to clamp the part so that a program's error bound is least
+//! ([`stiffid::app::place`]); writes the setup with that `[workpiece]`.
+
+use crate::commands::common::{choice, Stiffness};
+use crate::load;
+use crate::output::{print_json_or, OutFile};
+use crate::progress::Bars;
+use anyhow::{anyhow, Context, Result};
+use std::path::{Path, PathBuf};
+use stiffid::app::compensate::read_program;
+use stiffid::app::place::document::{Document, Placement};
+use stiffid::app::place::search::Effort;
+use stiffid::app::place::{self, Region, Request};
+use stiffid::machining::compensate::{Aggregate, Options};
+use stiffid::machining::process::file;
+use stiffid::machining::Language;
+use stiffid::Progress;
+
+/// Arguments of `stiffid place`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Setup file (.toml) with the part's own placement, `[workpiece] base_from_part`; written
+    /// back to --out with the placement chosen.
+    #[arg(long)]
+    setup: PathBuf,
+    #[command(flatten)]
+    stiffness: Stiffness,
+    /// The G-code program (its points in the part frame).
+    #[arg(long)]
+    program: PathBuf,
+    /// The process file (TOML) that gives every point its cutting force.
+    #[arg(long)]
+    process: PathBuf,
+    /// Where the part frame's origin may go in the robot base frame: X0,X1,Y0,Y1 in mm (each
+    /// range at most +-20000 mm).
+    #[arg(long, allow_hyphen_values = true)]
+    region_mm: String,
+    /// The part's rotation about the base z axis (the table's normal) from its own: A0,A1 in deg,
+    /// within +-180.
+    #[arg(long, allow_hyphen_values = true, default_value = "-180,180")]
+    rotation_deg: String,
+    /// The six degrees of freedom: also the part's height (--z-mm) and a tilt about the base x
+    /// and y axes (--tilt-deg).
+    #[arg(long)]
+    free: bool,
+    /// With --free: the part origin's z range, Z0,Z1 in mm; default its own z +-100 mm.
+    #[arg(long, allow_hyphen_values = true, requires = "free")]
+    z_mm: Option<String>,
+    /// With --free: the largest tilt about the base x and y axes, deg (0 to 45).
+    #[arg(long, default_value_t = 10.0, requires = "free")]
+    tilt_deg: f64,
+    /// What the placement minimises: the path's largest error bound, or their sum.
+    #[arg(long, value_parser = choice::<Aggregate>(), default_value = "max")]
+    objective: Aggregate,
+    /// Every axis angle keeps at least this distance to its joint limits, deg (0 to 90).
+    #[arg(long, default_value_t = 5.0)]
+    margin_deg: f64,
+    /// The TCP Jacobian's condition number stays below this everywhere (>= 1): away from
+    /// singularities.
+    #[arg(long, default_value_t = 1000.0)]
+    max_condition: f64,
+    /// The seed of the search's random samples: the same seed, the same placement.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Grid values per coordinate of x, y and the rotation (2 to 21).
+    #[arg(long, default_value_t = 5)]
+    grid: usize,
+    /// Seeded random placements besides the grid (0 to 10000).
+    #[arg(long, default_value_t = 32)]
+    samples: usize,
+    /// Local searches from the best placements found (1 to 16).
+    #[arg(long, default_value_t = 3)]
+    starts: usize,
+    /// G-code arcs are split into chords of at most this sagitta, mm (1e-6 <= value <= 10).
+    #[arg(long, default_value_t = 0.01)]
+    chord_tolerance_mm: f64,
+    /// The level of the error bound (0.5 to 0.999).
+    #[arg(long, default_value_t = stiffid::model::prediction::DEFAULT_LEVEL)]
+    level: f64,
+    /// The process force model's relative error in the error budget, percent (0 to 100).
+    #[arg(long, default_value_t = 20.0)]
+    force_tolerance_percent: f64,
+    /// Where inverse kinematics starts for the first point, axis angles q1..q6, deg; default
+    /// the setup's first test posture.
+    #[arg(long, allow_hyphen_values = true)]
+    q0_deg: Option<String>,
+    /// The setup written with the placement chosen (a new setup file; never one of the inputs).
+    #[arg(long)]
+    out: PathBuf,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Parses, runs the place job, writes the setup, prints.
+pub fn run(args: &Args) -> Result<()> {
+    let setup_text = load::read(&args.setup)?;
+    let setup = load::setup(&args.setup.display().to_string())?;
+    let compliance = args.stiffness.load(&setup)?;
+    let program_name = args.program.display().to_string();
+    let language = Language::of_file(&program_name).map_err(|e| anyhow!("--program {e}"))?;
+    let program = read_program(
+        &program_name,
+        &load::read(&args.program)?,
+        language,
+        args.chord_tolerance_mm * 1e-3,
+    )?;
+    let process_name = args.process.display().to_string();
+    let process = file::parse(&load::read(&args.process)?, &process_name)?;
+    let mut options = Options::for_setup(&setup);
+    stiffid::model::prediction::check_level("--level", args.level)?;
+    options.level = args.level;
+    options.force_tolerance = args.force_tolerance_percent / 100.0;
+    if let Some(text) = &args.q0_deg {
+        options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
+    }
+    let own = setup.workpiece().copied();
+    let region = region(args, own.map_or(0.0, |o| o.translation.vector.z))?;
+    let out = OutFile::prepare(&args.out, "--out")?;
+    let request = Request {
+        setup: &setup,
+        setup_text: &setup_text,
+        compliance: &compliance,
+        program: &program,
+        process: &process,
+        options: &options,
+        region,
+        objective: args.objective,
+        margin: args.margin_deg.to_radians(),
+        max_condition: args.max_condition,
+        effort: Effort {
+            grid: args.grid,
+            samples: args.samples,
+            starts: args.starts,
+            seed: args.seed,
+        },
+    };
+    let bars = Bars::new(false);
+    bars.begin("placements", 0);
+    let report = place::run(&request);
+    bars.end();
+    let report = report.map_err(|e| match e {
+        stiffid::Error::InvalidField { field, message } if !field.contains('.') => {
+            anyhow!("--{}: {message}", field.replace('_', "-"))
+        }
+        e => e.into(),
+    })?;
+    check_loads(&report.setup_text, &args.out)?;
+    out.write(report.setup_text.as_bytes())?;
+    let document = Document::new(&report, &own.unwrap_or_default());
+    print_json_or(args.json, &document, |d| human(d, &args.out))
+}
+
+/// The region from the arguments ([`Region::from_mm_deg`]); `own_z` the part's own height (m).
+fn region(args: &Args, own_z: f64) -> Result<Region> {
+    let numbers = |text: &str, option: &str| -> Result<Vec<f64>> {
+        text.split(',')
+            .map(|s| s.trim().parse::<f64>())
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|e| anyhow!("{option} {text}: {e}: expected numbers separated by commas"))
+    };
+    let exactly = |text: &str, option: &str| -> Result<[f64; 2]> {
+        let v = numbers(text, option)?;
+        v.try_into()
+            .map_err(|v: Vec<f64>| anyhow!("{option} {text}: {} numbers, expected 2", v.len()))
+    };
+    let r: [f64; 4] = numbers(&args.region_mm, "--region-mm")?
+        .try_into()
+        .map_err(|v: Vec<f64>| {
+            anyhow!(
+                "--region-mm {}: {} numbers, expected 4 (X0,X1,Y0,Y1)",
+                args.region_mm,
+                v.len()
+            )
+        })?;
+    let a = exactly(&args.rotation_deg, "--rotation-deg")?;
+    let z = args
+        .z_mm
+        .as_deref()
+        .map(|t| exactly(t, "--z-mm"))
+        .transpose()?;
+    let free = args.free.then_some((z, args.tilt_deg));
+    Ok(Region::from_mm_deg(r, a, free, own_z))
+}
+
+/// Parses the setup written as `--setup` would read it from `--out` (a robot file it names
+/// relative to its directory must be found from there).
+fn check_loads(text: &str, out: &Path) -> Result<()> {
+    let dir = out.parent().unwrap_or(Path::new(""));
+    load::setup_text_as_written(text, &out.display().to_string(), dir)
+        .context("--out: the setup written would not load from its directory (a robot file named relative to the setup's own directory?): write it beside the setup")?;
+    Ok(())
+}
+
+fn human(d: &Document, out: &Path) -> String {
+    let line = |name: &str, p: &Placement| {
+        match (p.peak_bound_mm, p.mean_bound_mm) {
+        (Some(peak), Some(mean)) => format!(
+            "{name:<11} xyz [{:.1}, {:.1}, {:.1}] mm, rpy [{:.2}, {:.2}, {:.2}] deg: peak bound {peak:.4} mm (line {}), mean {mean:.4} mm, joint-limit margin {:.1} deg, condition {:.1}\n",
+            p.xyz_mm[0], p.xyz_mm[1], p.xyz_mm[2], p.rpy_deg[0], p.rpy_deg[1], p.rpy_deg[2],
+            p.worst_line.unwrap_or(0),
+            p.min_limit_margin_deg.unwrap_or(f64::NAN),
+            p.max_condition.unwrap_or(f64::NAN),
+        ),
+        _ => format!(
+            "{name:<11} xyz [{:.1}, {:.1}, {:.1}] mm: not feasible ({})\n",
+            p.xyz_mm[0],
+            p.xyz_mm[1],
+            p.xyz_mm[2],
+            p.reason.as_deref().unwrap_or("")
+        ),
+    }
+    };
+    let mut s = format!(
+        "placement minimising the path's {} error bound ({} placements evaluated)\n",
+        if d.objective == "max" {
+            "largest"
+        } else {
+            "summed"
+        },
+        d.evaluations
+    );
+    s += &line("placed", &d.placed);
+    s += &line("own", &d.own);
+    s += &line("reach-only", &d.reach_only);
+    if let Some(g) = d.gain_vs_own_percent {
+        s += &format!("gain: {g:.1}% against the own placement, ");
+    } else {
+        s += "gain: ";
+    }
+    s += &format!(
+        "{:.1}% against the reach-only placement\nwritten: {}\n",
+        d.gain_vs_reach_only_percent,
+        out.display()
+    );
+    s
+}

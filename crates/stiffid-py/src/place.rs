@@ -1,0 +1,108 @@
+//! `stiffid.place`: where to clamp the part so that a G-code program's error bound is least
+//! ([`stiffid::app::place`]), as `stiffid place` does.
+
+use crate::documents::to_python;
+use crate::error::{self, raise};
+use crate::setup::Setup;
+use pyo3::prelude::*;
+use pyo3::types::{PyAny, PyDict};
+use std::path::PathBuf;
+use stiffid::app::place::document::Document;
+use stiffid::app::place::search::Effort;
+use stiffid::app::place::{self as job, Region, Request};
+use stiffid::machining::compensate::Aggregate;
+use stiffid::machining::process::file;
+use stiffid::machining::Language;
+
+/// The placement of the part that minimises the error bound of the G-code ``program`` (cut with
+/// the process file ``process``) on the setup file ``setup`` (a ``.toml`` path with its
+/// ``[workpiece] base_from_part``, the part's own placement) with the stiffness ``stiffness``
+/// (numbers per parameter or a stiffness file, as ``compensate``): the part frame's origin
+/// within ``region_mm`` ``(x0, x1, y0, y1)`` of the robot base frame, turned about the base z axis
+/// within ``rotation_deg`` from its own; ``free=True`` also moves its height within ``z_mm``
+/// (default its own +-100 mm) and tilts it about the base x and y axes within
+/// ``+-tilt_deg``. Every point must be reachable from ``q0_deg`` without a change of
+/// configuration, every axis ``margin_deg`` from its joint limits, the TCP Jacobian's condition
+/// number at most ``max_condition`` and, with a ``[cell]``, clear of the floor, the obstacles
+/// and itself. It minimises the path's largest bound (``objective="max"``) or their sum
+/// (``"sum"``) at ``level``, by a grid (``grid`` values per coordinate), ``samples`` random
+/// placements (``seed``) and ``starts`` local searches: the same ``seed``, the same placement.
+/// Returns the document of ``stiffid place --json`` (``placed``, ``own``, ``reach_only``: each
+/// with ``xyz_mm``, ``rpy_deg``, ``peak_bound_mm``, ``mean_bound_mm``, ``worst_line``,
+/// ``min_limit_margin_deg``, ``max_condition``, ``min_clearance_mm``; ``gain_vs_own_percent``,
+/// ``gain_vs_reach_only_percent``, ``evaluations``) and ``setup_text``: the setup file's text
+/// with the chosen ``[workpiece]``, as ``stiffid place --out`` writes it.
+#[pyfunction]
+#[pyo3(signature = (setup, stiffness, *, program, process, region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_percent=20.0, q0_deg=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn place<'py>(
+    py: Python<'py>,
+    setup: PathBuf,
+    stiffness: &Bound<'py, PyAny>,
+    program: PathBuf,
+    process: PathBuf,
+    region_mm: [f64; 4],
+    rotation_deg: (f64, f64),
+    free: bool,
+    z_mm: Option<[f64; 2]>,
+    tilt_deg: f64,
+    objective: &str,
+    margin_deg: f64,
+    max_condition: f64,
+    seed: u64,
+    grid: i64,
+    samples: i64,
+    starts: i64,
+    chord_tolerance_mm: f64,
+    level: f64,
+    force_tolerance_percent: f64,
+    q0_deg: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let setup_text = error::read(&setup)?;
+    let s = Setup::from_file(py, setup, Vec::new())?;
+    let s = &s.inner;
+    let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
+    let mut options = crate::compensate::options(py, s, q0_deg, None, None)?;
+    options.level = level;
+    options.force_tolerance = force_tolerance_percent / 100.0;
+    let name = program.display().to_string();
+    let language = Language::of_file(&name).map_err(raise)?;
+    let program = stiffid::app::compensate::read_program(
+        &name,
+        &error::read(&program)?,
+        language,
+        chord_tolerance_mm * 1e-3,
+    )
+    .map_err(raise)?;
+    let process_name = process.display().to_string();
+    let process = file::parse(&error::read(&process)?, &process_name).map_err(raise)?;
+    let own = s.workpiece().copied();
+    let region = Region::from_mm_deg(
+        region_mm,
+        [rotation_deg.0, rotation_deg.1],
+        free.then_some((z_mm, tilt_deg)),
+        own.map_or(0.0, |o| o.translation.vector.z),
+    );
+    let request = Request {
+        setup: s,
+        setup_text: &setup_text,
+        compliance: &compliance,
+        program: &program,
+        process: &process,
+        options: &options,
+        region,
+        objective: objective.parse::<Aggregate>().map_err(raise)?,
+        margin: margin_deg.to_radians(),
+        max_condition,
+        effort: Effort {
+            grid: crate::count::count("grid", grid)?,
+            samples: crate::count::count("samples", samples)?,
+            starts: crate::count::count("starts", starts)?,
+            seed,
+        },
+    };
+    let report = py.detach(|| job::run(&request)).map_err(raise)?;
+    let out = to_python(py, &Document::new(&report, &own.unwrap_or_default()), &[])?;
+    out.set_item("setup_text", &report.setup_text)?;
+    Ok(out)
+}

@@ -1,0 +1,134 @@
+//! One placement of the part evaluated: the program compensated with the part there
+//! ([`crate::machining::compensate`]), every point reachable in the start's configuration and
+//! compensated within the joint limits, then the checks of the placement (module docs of
+//! [`super`]) and the path's error bounds.
+
+use crate::cell::{CheckKind, Checker};
+use crate::machining::compensate::{Compliance, Options};
+use crate::machining::process::Process;
+use crate::machining::{self, Program};
+use crate::robot::kinematics::Coordinates;
+use crate::Setup;
+use nalgebra::Isometry3;
+
+/// The cell's checks a placement must pass at every point: the bodies against the floor, the
+/// obstacles and each other (the rope, the tracker's sight and the experiment's bounds belong
+/// to the identification, not to machining).
+const CHECKS: [CheckKind; 3] = [
+    CheckKind::Floor,
+    CheckKind::Obstacles,
+    CheckKind::SelfCollision,
+];
+
+/// What a placement is checked against.
+pub(super) struct Context<'a> {
+    pub setup: &'a Setup,
+    pub compliance: &'a Compliance,
+    pub program: &'a Program,
+    pub process: &'a Process,
+    pub options: &'a Options,
+    /// The smallest distance of every axis angle to its joint limits, rad.
+    pub margin: f64,
+    /// The largest condition number of the TCP Jacobian.
+    pub max_condition: f64,
+    /// The cell's checker, when the setup has a `[cell]`.
+    pub checker: Option<Checker<'a>>,
+}
+
+/// A placement's figures, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    /// The part frame in the robot base frame (`[workpiece] base_from_part`).
+    pub base_from_part: Isometry3<f64>,
+    /// The largest error bound over the path, m.
+    pub peak: f64,
+    /// The sum of the points' bounds, m.
+    pub sum: f64,
+    /// The path's points.
+    pub points: usize,
+    /// The program line of the largest bound.
+    pub worst_line: u64,
+    /// The smallest distance of an axis angle (nominal or compensated) to its joint limits over
+    /// the path, rad.
+    pub limit_margin: f64,
+    /// The largest condition number of the TCP Jacobian over the path.
+    pub condition: f64,
+    /// The smallest clearance of the cell's checks over the path, m; `None` without a `[cell]`.
+    pub clearance: Option<f64>,
+}
+
+impl Context<'_> {
+    /// The evaluation of the part at `pose`, or why it is not feasible there.
+    pub fn evaluate(&self, pose: &Isometry3<f64>) -> Result<Evaluation, String> {
+        let arm = self.setup.arm();
+        let report = machining::compensate(
+            arm,
+            Some(pose),
+            self.compliance,
+            self.program,
+            self.process,
+            self.options,
+        )
+        .map_err(|e| e.to_string())?;
+        let robot = arm.robot();
+        let limits = robot.limits();
+        let (mut margin, mut condition, mut clearance) = (f64::INFINITY, 0f64, None::<f64>);
+        let (mut peak, mut sum, mut worst_line) = (0f64, 0.0, 0);
+        for (p, r) in report.points.iter().zip(&report.results) {
+            for q in [&r.q, &r.q_compensated] {
+                for i in 0..6 {
+                    margin = margin.min((q[i] - limits.lower[i]).min(limits.upper[i] - q[i]));
+                }
+            }
+            let j = robot
+                .frames(&r.q)
+                .jacobian(&arm.tool().tcp, Coordinates::Axis);
+            let s = j.singular_values();
+            condition = condition.max(s.max() / s.min());
+            if let Some(checker) = &self.checker {
+                let f = checker.feasibility(&r.q);
+                for c in f.checks.iter().filter(|c| CHECKS.contains(&c.kind)) {
+                    if !c.ok {
+                        return Err(format!(
+                            "line {}: {} between {} and {}",
+                            p.line,
+                            c.kind.key(),
+                            c.between.0,
+                            c.between.1
+                        ));
+                    }
+                    let m = c.clearance.unwrap_or(c.margin);
+                    clearance = Some(clearance.map_or(m, |v| v.min(m)));
+                }
+            }
+            let bound = r.budget.bound;
+            sum += bound;
+            if bound > peak {
+                (peak, worst_line) = (bound, p.line);
+            }
+        }
+        if margin < self.margin {
+            return Err(format!(
+                "an axis comes {:.2} deg from its joint limit (at least {:.2} deg asked)",
+                margin.to_degrees(),
+                self.margin.to_degrees()
+            ));
+        }
+        if condition.is_nan() || condition > self.max_condition {
+            return Err(format!(
+                "the TCP Jacobian's condition number reaches {condition:.1} (at most {:.1} asked: near a singularity)",
+                self.max_condition
+            ));
+        }
+        Ok(Evaluation {
+            base_from_part: *pose,
+            peak,
+            sum,
+            points: report.points.len(),
+            worst_line,
+            limit_margin: margin,
+            condition,
+            clearance,
+        })
+    }
+}

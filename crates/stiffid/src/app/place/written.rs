@@ -1,0 +1,71 @@
+//! The setup file written back with the part placed: its own text, every byte but the
+//! `[workpiece]` table's, which holds the new `base_from_part`.
+
+use nalgebra::Isometry3;
+
+/// `text` (a setup file's TOML) with the body of its `[workpiece]` table replaced by one
+/// `base_from_part`, `pose` (mm and fixed-axis roll, pitch, yaw in deg, to 1 nm and 1e-8 deg);
+/// the table's header line (and its comment) and the comment and blank lines just before the
+/// next table stay. Without a `[workpiece]` table, the new one is appended.
+pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
+    // Rounded to the digits written, `+ 0.0` turning a negative zero into 0.
+    let round = |v: f64, digits: f64| (v * digits).round() / digits + 0.0;
+    let t = pose.translation.vector.map(|v| round(v * 1e3, 1e6));
+    let (r, p, y) = pose.rotation.euler_angles();
+    let [r, p, y] = [r, p, y].map(|a| round(a.to_degrees(), 1e8));
+    let body = format!(
+        "base_from_part = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
+        t.x, t.y, t.z, r, p, y
+    );
+    let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    let header = |l: &str| l.trim_start().starts_with('[');
+    let is_workpiece = |l: &str| {
+        let l = l.trim();
+        l.strip_prefix("[workpiece]")
+            .is_some_and(|rest| rest.trim().is_empty() || rest.trim_start().starts_with('#'))
+    };
+    let Some(start) = lines.iter().position(|l| is_workpiece(l)) else {
+        let gap = if text.is_empty() || text.ends_with('\n') {
+            ""
+        } else {
+            "\n"
+        };
+        return format!("{text}{gap}\n[workpiece]\n{body}");
+    };
+    let next = (start + 1..lines.len())
+        .find(|&i| header(lines[i]))
+        .unwrap_or(lines.len());
+    let mut end = next;
+    while end > start + 1 && {
+        let l = lines[end - 1].trim();
+        l.is_empty() || l.starts_with('#')
+    } {
+        end -= 1;
+    }
+    let mut out: String = lines[..=start].concat();
+    out.push_str(&body);
+    out.push_str(&lines[end..].concat());
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Translation3, UnitQuaternion};
+
+    #[test]
+    fn the_workpiece_table_is_replaced_and_the_rest_kept() {
+        let pose = Isometry3::from_parts(
+            Translation3::new(1.5, -0.25, 0.4),
+            UnitQuaternion::from_euler_angles(0.0, 0.0, 30f64.to_radians()),
+        );
+        let text = "name = \"a\"\n[workpiece]\nbase_from_part = { xyz_mm = [1, 2, 3], rpy_deg = [0, 0, 0] }\n\n# the tool\n[tool]\ntcp_mm = [0, 0, 1]\n";
+        let out = with_workpiece(text, &pose);
+        assert_eq!(out, "name = \"a\"\n[workpiece]\nbase_from_part = { xyz_mm = [1500.000000, -250.000000, 400.000000], rpy_deg = [0.00000000, 0.00000000, 30.00000000] }\n\n# the tool\n[tool]\ntcp_mm = [0, 0, 1]\n");
+        let appended = with_workpiece("name = \"a\"", &pose);
+        assert!(appended.starts_with("name = \"a\"\n\n[workpiece]\nbase_from_part = "));
+        let last = with_workpiece("[workpiece] # here\nbase_from_part = {}\n", &pose);
+        assert!(last.starts_with("[workpiece] # here\nbase_from_part = { xyz_mm = [1500.0"));
+        assert!(!last.contains("{}"));
+    }
+}
