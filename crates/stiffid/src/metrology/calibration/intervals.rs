@@ -23,6 +23,12 @@
 //! coverage is the share of held-out coordinates inside their intervals; the guarantee is the
 //! jackknife+'s (at least `1 - 2 alpha` for a posture drawn like the fitted ones, about
 //! `1 - alpha` in practice), not for postures unlike them.
+//!
+//! The folds are refitted ([`super::validation::leave_one_out`]) or linearised at the full fit
+//! ([`super::validation::leave_one_out_linearised`], what `calibrate` uses, with or without
+//! maps): a linearised fold predicts `e_(-p) = e + J dx_p`, the full fit's error plus the
+//! Jacobian at the full fit times the fold's change of the values, so that a change along a
+//! weakly determined direction moves its predictions as little as it moves the fit's.
 
 use super::error_model::{ErrorModel, Estimate, Observation};
 use super::validation::Fold;
