@@ -31,10 +31,12 @@ pub struct Maps {
 }
 
 /// The model, fit and options after the maps of `spec`: those given when no map is chosen, else
-/// the model with the chosen maps fitted from `fitted` with the chosen ridge.
+/// the model with the chosen maps fitted from the calibration's start ([`fit::start`]) with the
+/// chosen ridge (what the readings determine analysed where `fitted` analysed it).
 ///
 /// # Errors
-/// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`maps::nested`] and [`fit::fit`].
+/// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`maps::nested`], [`fit::start`] and
+/// [`fit::fit`].
 pub(super) fn fit_maps(
     spec: Spec,
     model: ErrorModel,
@@ -99,7 +101,11 @@ pub(super) fn fit_maps(
         return Ok((model, fitted, options, report));
     }
     let model = model.with_maps(harmonics)?;
-    let start = maps::extended(&model, &fitted.estimate);
+    // From the calibration's own start, not from the geometric fit: what the readings determine
+    // is analysed where the geometric fit analysed it (at the fitted geometry, parallel axes
+    // are parallel no more and their merged parameters would be fitted, drifting along a
+    // valley), so the final fit fits the parameters the choice was made with.
+    let start = fit::start(&model, observations)?;
     let options = Options { ridge, ..options };
     let fitted = fit::fit(&model, observations, &start, &options)?;
     Ok((model, fitted, options, report))

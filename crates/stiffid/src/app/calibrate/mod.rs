@@ -367,21 +367,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             coverage: None,
         }),
     };
-    // The intervals' folds: linearised at the fit; refitted with maps (their weakly determined
-    // coefficients take the linearised folds far beyond where the refitted ones go).
-    let folds = match (with_intervals, model.map_start()) {
-        (false, _) => None,
-        (true, None) => Some(validation::leave_one_out_linearised(
-            &model, &obs, &fitted, &options,
-        )),
-        (true, Some(_)) => Some(validation::leave_one_out(
-            &model,
-            &obs,
-            &fitted.estimate,
-            &options,
-            request.progress,
-        )),
-    };
+    // The intervals' folds: linearised at the fit (with the maps' ridge rows).
+    let folds = with_intervals
+        .then(|| validation::leave_one_out_linearised(&model, &obs, &fitted, &options));
     let intervals = match folds {
         None => None,
         Some(f) => Some(Intervals::new(&f.map_err(|e| in_data(name, e))?)),

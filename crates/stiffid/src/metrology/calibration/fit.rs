@@ -180,16 +180,19 @@ pub(super) fn fit_within(
     problem.finish(estimate, identifiability, iterations, stop)
 }
 
-/// Leave-one-posture-out linearised at the converged fit `fit` of `observations` (with the
-/// options it was fitted with): per posture, in increasing order, the estimate of the fit without
-/// it, one exact least-squares step of the linearised problem from `fit`. With `A = U S V^T` the
-/// scaled Jacobian of the fitted parameters and its prior rows, `r` the residuals with the prior
-/// rows, `U_p` the rows of posture `p`, `r_p` its residuals and `H = U_p U_p^T` its leverage, the
-/// kept rows' gradient is `g = U^T r - U_p^T r_p` and the step
-/// `dx = -V S^-1 (g + U_p^T (I - H)^-1 U_p g)` (Sherman-Morrison-Woodbury on the kept rows'
-/// normal equations, never formed; at the full fit's optimum `U^T r = 0` and it is
-/// `V S^-1 U_p^T (I - H)^-1 r_p`): exact to second order in the change of the parameters, as the
-/// maps' choice is.
+/// Leave-one-posture-out linearised at the fit `fit` of `observations` (with the options it was
+/// fitted with, the maps' ridge rows among them): per posture, in increasing order, the estimate
+/// of the fit without it, the full fit moved by the change that dropping the posture makes in
+/// the linearised problem. With `A = U S V^T` the scaled Jacobian of the fitted parameters and
+/// its prior rows, `U_p` the rows of posture `p`, `r_p` its residuals and `H = U_p U_p^T` its
+/// leverage, the change is `dx = V S^-1 U_p^T (I - H)^-1 r_p` (Sherman-Morrison-Woodbury on the
+/// kept rows' normal equations, never formed): exact to second order in the change of the
+/// parameters, as the maps' choice is, and taken from the full fit even where its iterations
+/// stopped short in a weakly determined direction (the folds differ from the full fit by what
+/// their posture changes, not by the rest of the full fit's own descent). Each fold comes with
+/// its estimate (re-centred) and the change of the values from the full fit's (SI, the frame's
+/// perturbation in the frame's six values), whose product with the Jacobian at the full fit is
+/// the linearised change of any prediction.
 ///
 /// # Errors
 /// Those of [`ErrorModel::residuals`] and [`ErrorModel::jacobian_of`]; [`Error::NotFinite`] when
@@ -200,7 +203,7 @@ pub(super) fn leave_one_out_linearised(
     observations: &[Observation],
     fit: &Fit,
     options: &Options,
-) -> Result<Vec<(usize, Estimate)>> {
+) -> Result<Vec<(usize, Estimate, DVector<f64>)>> {
     let scales = model.column_scales_of(options.length, observations);
     let fitted = &fit.fitted;
     let regularised = options.priors.is_some() || model.map_start().is_some();
@@ -224,7 +227,6 @@ pub(super) fn leave_one_out_linearised(
     let largest = s.iter().copied().fold(0.0, f64::max);
     let kept: Vec<usize> = (0..s.len()).filter(|&i| s[i] > 1e-12 * largest).collect();
     let u = u.select_columns(kept.iter());
-    let gradient = u.tr_mul(&r);
     // V S^-1, the kept singular values.
     let vs = DMatrix::from_fn(v_t.ncols(), kept.len(), |row, c| {
         v_t[(kept[c], row)] / s[kept[c]]
@@ -242,10 +244,9 @@ pub(super) fn leave_one_out_linearised(
             let u_p = u.select_rows(rows.iter());
             let r_p = DVector::from_iterator(rows.len(), rows.iter().map(|&i| r[i]));
             let kept_rows = DMatrix::identity(rows.len(), rows.len()) - &u_p * u_p.transpose();
-            let g = &gradient - u_p.tr_mul(&r_p);
             let z = kept_rows
                 .lu()
-                .solve(&(&u_p * &g))
+                .solve(&r_p)
                 .filter(|z| z.iter().all(|v| v.is_finite()));
             let z = z.ok_or_else(|| Error::InvalidField {
                 field: "readings".into(),
@@ -254,8 +255,12 @@ pub(super) fn leave_one_out_linearised(
                     p + 1
                 ),
             })?;
-            let dx = -(&vs * (&g + u_p.tr_mul(&z)));
-            Ok((p, problem.step(&fit.estimate, &dx)))
+            let dx = &vs * u_p.tr_mul(&z);
+            Ok((
+                p,
+                problem.step(&fit.estimate, &dx),
+                problem.change(&dx),
+            ))
         })
         .collect()
 }
@@ -427,14 +432,19 @@ impl Problem<'_> {
         })
     }
 
-    fn step(&self, e: &Estimate, dx_scaled: &DVector<f64>) -> Estimate {
-        let mut values = e.values.clone();
+    /// The change of the values (SI) of the scaled step `dx_scaled`.
+    fn change(&self, dx_scaled: &DVector<f64>) -> DVector<f64> {
+        let mut change = DVector::zeros(self.nominal.len());
         for (i, &c) in self.fitted.iter().enumerate() {
-            values[c] += dx_scaled[i] * self.scales[i];
+            change[c] = dx_scaled[i] * self.scales[i];
         }
+        change
+    }
+
+    fn step(&self, e: &Estimate, dx_scaled: &DVector<f64>) -> Estimate {
         Estimate {
             frame: e.frame,
-            values,
+            values: &e.values + self.change(dx_scaled),
         }
         .recentre()
     }

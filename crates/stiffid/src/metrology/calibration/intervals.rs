@@ -23,6 +23,12 @@
 //! coverage is the share of held-out coordinates inside their intervals; the guarantee is the
 //! jackknife+'s (at least `1 - 2 alpha` for a posture drawn like the fitted ones, about
 //! `1 - alpha` in practice), not for postures unlike them.
+//!
+//! The folds are refitted ([`super::validation::leave_one_out`]) or linearised at the full fit
+//! ([`super::validation::leave_one_out_linearised`], what `calibrate` uses, with or without
+//! maps): a linearised fold predicts `e_(-p) = e + J dx_p`, the full fit's error plus the
+//! Jacobian at the full fit times the fold's change of the values, so that a change along a
+//! weakly determined direction moves its predictions as little as it moves the fit's.
 
 use super::error_model::{ErrorModel, Estimate, Observation};
 use super::validation::Fold;
@@ -42,6 +48,10 @@ pub struct Intervals {
     /// Per fold: the fit without its posture (re-centred), and the scores `R` of its held-out
     /// coordinates (three per reading), m.
     folds: Vec<(Estimate, Vec<f64>)>,
+    /// Per fold of linearised folds ([`super::validation::leave_one_out_linearised`]), the
+    /// change of the values from the full fit's (SI): a fold predicts the full fit's errors plus
+    /// the Jacobian times it. Empty for refitted folds.
+    changes: Vec<DVector<f64>>,
 }
 
 /// How well the intervals covered held-out readings.
@@ -65,9 +75,13 @@ impl Coverage {
 }
 
 impl Intervals {
-    /// The intervals of the leave-one-posture-out `folds`.
+    /// The intervals of the leave-one-posture-out `folds`: refitted ones predict by their
+    /// estimates, linearised ones (all of them with a change) by the full fit's errors plus the
+    /// Jacobian at it times their change.
     pub fn new(folds: &[Fold]) -> Self {
+        let changes: Option<Vec<DVector<f64>>> = folds.iter().map(|f| f.change.clone()).collect();
         Intervals {
+            changes: changes.unwrap_or_default(),
             folds: (folds.iter())
                 .map(|f| {
                     let scores = (f.held.errors.iter())
@@ -91,12 +105,16 @@ impl Intervals {
 
     /// The interval at `level` of the error of each of `observations` at `estimate` (predicted
     /// minus read, base frame, m; the readings mapped by `estimate`'s frame), in their order
-    /// (module docs, C1). Each fold maps the readings by its own frame, or with `reregister`
-    /// by the frame registered anew on `observations` at its values
-    /// ([`super::fit::start_at`]: another series, the tracker moved).
+    /// (module docs, C1). Each refitted fold maps the readings by its own frame, or with
+    /// `reregister` by the frame registered anew on `observations` at its values
+    /// ([`super::fit::start_at`]: another series, the tracker moved). Linearised folds predict
+    /// `estimate`'s errors plus the Jacobian at `estimate` times their change, which with
+    /// `reregister` leaves out the change of the frame (the held-out series' own registration
+    /// takes it; the part of a geometric change it would absorb too is kept, erring wide).
     ///
     /// # Errors
-    /// Those of [`ErrorModel::residuals`] and [`super::fit::start_at`].
+    /// Those of [`ErrorModel::residuals`], [`ErrorModel::jacobian_of`] and
+    /// [`super::fit::start_at`].
     pub fn of(
         &self,
         model: &ErrorModel,
@@ -105,21 +123,41 @@ impl Intervals {
         level: f64,
         reregister: bool,
     ) -> Result<Vec<Interval>> {
-        let folds = (self.folds.par_iter())
-            .map(|(e, _)| match reregister {
-                false => Ok(e.clone()),
-                true => Ok(Estimate {
-                    frame: super::fit::start_at(model, observations, &e.values)?,
-                    values: e.values.clone(),
-                }),
+        let folds = match self.changes.is_empty() {
+            false => Vec::new(),
+            true => (self.folds.par_iter())
+                .map(|(e, _)| match reregister {
+                    false => Ok(e.clone()),
+                    true => Ok(Estimate {
+                        frame: super::fit::start_at(model, observations, &e.values)?,
+                        values: e.values.clone(),
+                    }),
+                })
+                .collect::<Result<Vec<Estimate>>>()?,
+        };
+        let changes: Vec<DVector<f64>> = (self.changes.iter())
+            .map(|c| {
+                let mut c = c.clone();
+                for (i, p) in model.parameters().iter().enumerate() {
+                    if reregister && matches!(p.target, super::Target::Frame(_)) {
+                        c[i] = 0.0;
+                    }
+                }
+                c
             })
-            .collect::<Result<Vec<Estimate>>>()?;
+            .collect();
         let mut all = Vec::with_capacity(observations.len());
         for chunk in observations.chunks(CHUNK) {
             let full = model.residuals(estimate, chunk)?;
-            let each = (folds.par_iter())
-                .map(|fold| model.residuals(fold, chunk))
-                .collect::<Result<Vec<DVector<f64>>>>()?;
+            let each = match changes.is_empty() {
+                true => (folds.par_iter())
+                    .map(|fold| model.residuals(fold, chunk))
+                    .collect::<Result<Vec<DVector<f64>>>>()?,
+                false => {
+                    let j = model.jacobian_of(&estimate.values, chunk)?;
+                    (changes.par_iter()).map(|c| &full + &j * c).collect()
+                }
+            };
             let intervals: Vec<Interval> = (0..chunk.len())
                 .into_par_iter()
                 .map(|i| {

@@ -10,7 +10,7 @@ use super::error_model::{ErrorModel, Estimate, Observation};
 use super::fit::{self, Options};
 use crate::common::progress::{Progress, Tally};
 use crate::{Error, Result};
-use nalgebra::Vector3;
+use nalgebra::{DVector, Vector3};
 use rayon::prelude::*;
 
 /// The error of one held-out reading.
@@ -84,6 +84,10 @@ pub struct Fold {
     pub estimate: Estimate,
     /// The held-out posture's errors predicted by it.
     pub held: Validation,
+    /// For a linearised fold ([`leave_one_out_linearised`]), the change of the values from the
+    /// full fit's (SI; the frame's perturbation in the frame's six values): its errors are the
+    /// full fit's plus the Jacobian at the full fit times it. `None` for a refitted fold.
+    pub change: Option<DVector<f64>>,
 }
 
 /// Leave-one-posture-out: each posture predicted by the fit of the others from `start` (the
@@ -144,6 +148,7 @@ pub fn leave_one_out(
                 posture: p,
                 estimate: fitted.estimate.recentre(),
                 held,
+                change: None,
             })
         })
         .collect();
@@ -151,14 +156,17 @@ pub fn leave_one_out(
     folds.into_iter().collect()
 }
 
-/// The folds of [`leave_one_out`] linearised at the converged fit `fit` of `observations` with
-/// `options` (one least-squares step each from the fit, exact to second order in the change of
-/// the parameters: [`fit::leave_one_out_linearised`]), each held-out posture's errors computed
-/// at its fold's estimate: the cost of one fit for all the folds.
+/// The folds of [`leave_one_out`] linearised at the fit `fit` of `observations` with `options`
+/// ([`fit::leave_one_out_linearised`]: exact to second order in the change of the parameters),
+/// each held-out posture's errors linearised too: its residuals at the full fit plus the
+/// Jacobian there times the fold's change of the values (the leave-one-out residual
+/// `(I - H)^-1 r_p` of the linear model). Linear in the changes, so a fold that moves far along
+/// a weakly determined direction changes the predictions by as little as that direction does:
+/// the cost of one fit for all the folds.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) with fewer than 2 postures; those of
-/// [`fit::leave_one_out_linearised`] and [`validate`].
+/// [`fit::leave_one_out_linearised`] and [`ErrorModel::jacobian_of`].
 pub fn leave_one_out_linearised(
     model: &ErrorModel,
     observations: &[Observation],
@@ -172,18 +180,25 @@ pub fn leave_one_out_linearised(
             message: "cross-validation needs 2 postures or more".into(),
         });
     }
-    folds
+    let jacobian = model.jacobian_of(&fit.estimate.values, observations)?;
+    Ok(folds
         .into_par_iter()
-        .map(|(p, estimate)| {
-            let out: Vec<Observation> = (observations.iter())
-                .filter(|o| o.posture == p)
-                .cloned()
+        .map(|(p, estimate, change)| {
+            let errors = (observations.iter().enumerate())
+                .filter(|(_, o)| o.posture == p)
+                .map(|(i, o)| PointError {
+                    posture: p,
+                    point: o.point,
+                    error: fit.residuals.fixed_rows::<3>(3 * i)
+                        + jacobian.fixed_rows::<3>(3 * i) * &change,
+                })
                 .collect();
-            Ok(Fold {
+            Fold {
                 posture: p,
-                held: validate(model, &estimate, &out)?,
+                held: Validation::new(errors),
                 estimate,
-            })
+                change: Some(change),
+            }
         })
-        .collect()
+        .collect())
 }
