@@ -31,3 +31,5 @@ mod select_cli;
 mod setups_new;
 mod simulate_cli;
 mod trust_cli;
+mod update_cli;
+mod update_cli;
