@@ -32,4 +32,3 @@ mod setups_new;
 mod simulate_cli;
 mod trust_cli;
 mod update_cli;
-mod update_cli;
