@@ -10,6 +10,7 @@
 //! drifted when the count reaches the smallest `k` with `P(X >= k) <= `[`SIGNIFICANCE`] (a
 //! one-sided binomial test: a false alarm in at most 1 % of checks of an undrifted robot).
 
+use crate::common::warning::{Warning, WarningKind};
 use crate::metrology::calibration::validation::Validation;
 use crate::Robot;
 use serde::Serialize;
@@ -60,6 +61,23 @@ pub fn check(robot: &Robot, errors: &Validation, level: f64) -> Option<Check> {
         outside,
         allowed,
     })
+}
+
+/// [`check`], or a warning ([`WarningKind::LeftOut`]) in `warnings` saying why there is none.
+pub fn checked(
+    robot: &Robot,
+    errors: &Validation,
+    level: f64,
+    warnings: &mut Vec<Warning>,
+) -> Option<Check> {
+    let check = check(robot, errors, level);
+    if check.is_none() {
+        warnings.push(Warning::new(
+            WarningKind::LeftOut,
+            "no check of the readings against the calibration's intervals: the robot file carries no [held_out] errors (calibrate with --validate or --cross-validate), or too few for the level",
+        ));
+    }
+    check
 }
 
 /// The largest count `k` of `n` trials of probability `p` with `P(X > k) > alpha` no more:

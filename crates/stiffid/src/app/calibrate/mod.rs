@@ -8,10 +8,12 @@
 //! robot TOML file and a URDF, the fitted compliances as a stiffness file. `--geometry none
 //! --gravity none` is the cell calibration of `calibrate-cell`.
 //!
-//! Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
+//! With [`Request::update`], a calibrated robot refitted from check readings after their check
+//! ([`drift`]). Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
 //! [`crate::metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
 //! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
-//! cross-validation (one fit per posture; beyond it, held-out readings get no intervals).
+//! cross-validation (one fit per posture; beyond it, held-out readings get no intervals), at
+//! least [`MIN_UPDATE_POSTURES`] postures with `update`.
 
 mod checks;
 mod compliance;
@@ -346,16 +348,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     refuse_repeated(setup, &data, &model, &fitted).map_err(|e| in_data(name, e))?;
     let reference = reference(setup, &model)?;
     let nominal = nominal(&reference, &obs, name)?;
-    let check = match request.update {
-        true => drift::check(setup.robot(), &nominal, level),
-        false => None,
-    };
-    if request.update && check.is_none() {
-        warnings.push(Warning::new(
-            WarningKind::LeftOut,
-            "no check of the readings against the calibration's intervals: the robot file carries no [held_out] errors (calibrate with --validate or --cross-validate), or too few for the level",
-        ));
-    }
+    let check = (request.update)
+        .then(|| drift::checked(setup.robot(), &nominal, level, &mut warnings))
+        .flatten();
     let calibrated =
         validation::validate(&model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
     let mut postures = vec![nalgebra::Vector6::zeros(); data.labels.len()];
