@@ -172,7 +172,7 @@ class Setup:
         postures_deg: ArrayLike,
         *,
         candidates: Optional[Sequence[str]] = None,
-        purpose: Literal["stiffness", "calibration", "both"] = "stiffness",
+        purpose: Literal["stiffness", "calibration", "both", "check"] = "stiffness",
         calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
         gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
@@ -202,7 +202,7 @@ class Setup:
         distinct: bool = False,
         distinct_deg: Optional[float] = None,
         distinct_mm: Optional[float] = None,
-        purpose: Literal["stiffness", "calibration", "both"] = "stiffness",
+        purpose: Literal["stiffness", "calibration", "both", "check"] = "stiffness",
         calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
         gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
@@ -405,12 +405,13 @@ def calibrate(
     maps: str = "auto",
     error_motions: str = "auto",
     level: Optional[float] = None,
+    update: bool = False,
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,
     stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
 ) -> dict[str, Any]:
-    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
+    """The document of `stiffid calibrate --json` (update=True: a calibrated robot updated from check readings, check: whether it drifted beyond its intervals): parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
     postures_deg: ArrayLike,

@@ -7,6 +7,7 @@ mod bodies;
 mod bootstrap;
 mod budget;
 mod calibrate_cell;
+mod calibration_update;
 mod candidates;
 mod cell;
 mod cell_search;

@@ -430,6 +430,7 @@ fn calibrated(
         maps: stiffid::metrology::calibration::maps::Spec::None,
         error_motions: Default::default(),
         level: None,
+        update: false,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");
