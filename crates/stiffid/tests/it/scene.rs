@@ -7,7 +7,8 @@
 use super::bodies::mesh_setup;
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::document::scene::{self, glb, page, Extras, PathPoint, Scene};
-use stiffid::app::kinematics;
+use stiffid::app::measurements::Data;
+use stiffid::app::{identify, kinematics};
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
@@ -140,21 +141,93 @@ fn ellipsoid_axes_are_the_eigen_decomposition_of_the_translational_compliance() 
         for a in 0..6 {
             c += jv.column(a) * jv.column(a).transpose() / k[a];
         }
-        let e = p.ellipsoid.unwrap();
-        let mut rebuilt = Matrix3::zeros();
-        for i in 0..3 {
-            let v = vector(e.axes[i]);
-            assert!((v.norm() - 1.0).abs() < 1e-12);
-            // An eigenvector: C v = c v.
-            assert!((c * v - v * e.compliance_m_per_n[i]).norm() < 1e-9 * c.norm());
-            rebuilt += v * v.transpose() * e.compliance_m_per_n[i];
-            assert!((e.semi_axes_m[i] - 500.0 * e.compliance_m_per_n[i]).abs() < 1e-15);
-        }
-        assert!((rebuilt - c).norm() < 1e-9 * c.norm());
-        assert!(e.compliance_m_per_n[0] <= e.compliance_m_per_n[1]);
-        assert!(e.compliance_m_per_n[1] <= e.compliance_m_per_n[2]);
-        assert_eq!(e.centre_m, p.tcp_m);
+        assert_ellipsoid(&p.ellipsoid.unwrap(), &c, 500.0);
+        assert_eq!(p.ellipsoid.unwrap().centre_m, p.tcp_m);
     }
+}
+
+/// `e` is the ellipsoid of the translational compliance `c` (m/N) under `force` (N): unit
+/// eigenvectors with rising eigenvalues that rebuild `c`, semi-axes `force c_i`.
+fn assert_ellipsoid(e: &scene::Ellipsoid, c: &Matrix3<f64>, force: f64) {
+    let mut rebuilt = Matrix3::zeros();
+    for i in 0..3 {
+        let v = vector(e.axes[i]);
+        assert!((v.norm() - 1.0).abs() < 1e-12);
+        // An eigenvector: C v = c v.
+        assert!((c * v - v * e.compliance_m_per_n[i]).norm() < 1e-9 * c.norm());
+        rebuilt += v * v.transpose() * e.compliance_m_per_n[i];
+        assert!((e.semi_axes_m[i] - force * e.compliance_m_per_n[i]).abs() < 1e-15);
+    }
+    assert!((rebuilt - c).norm() < 1e-9 * c.norm());
+    assert!(e.compliance_m_per_n[0] <= e.compliance_m_per_n[1]);
+    assert!(e.compliance_m_per_n[1] <= e.compliance_m_per_n[2]);
+}
+
+/// The identification's scene: the FANUC load tests' postures (joint positions as the
+/// kinematics give them), each arrow the document's `measured_mm` and `predicted_mm` of its
+/// posture and point, the ellipsoid that of the identified compliance under the setup's load.
+#[test]
+fn identification_scene_draws_the_documents_displacements_and_compliance() {
+    let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let setup = s.to_builder().with_tcp(s.tool().tcp).build().unwrap();
+    let request = identify::Request {
+        setup: &setup,
+        data: Data::File {
+            name: "measurements.csv".into(),
+            reader: include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+                .as_bytes(),
+        },
+        options: identify::Options::default(),
+    };
+    let report = identify::run(request).unwrap();
+    let text = serde_json::to_string(&report.document("fanuc", &setup)).unwrap();
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let postures = report.postures().unwrap();
+    let scene = identify::document::scene::scene(&setup, postures, &text).unwrap();
+    assert_eq!(scene.postures.len(), postures.len());
+    assert!(scene.anchor_m.is_some());
+    let residuals = doc["residuals"].as_array().unwrap();
+    let mut labels: Vec<&str> = Vec::new();
+    let mut drawn = 0;
+    for r in residuals {
+        let label = r["posture"].as_str().unwrap();
+        if !labels.contains(&label) {
+            labels.push(label);
+        }
+        let i = labels.iter().position(|l| *l == label).unwrap();
+        let m = r["point"].as_u64().unwrap() as usize - 1;
+        let mm = |k: &str| Vector3::from_fn(|c, _| r[k][c].as_f64().unwrap());
+        let a = scene.postures[i].arrows[m];
+        if vector(a.measured_m.unwrap()) == mm("measured_mm") * 1e-3 {
+            assert_eq!(vector(a.predicted_m.unwrap()), mm("predicted_mm") * 1e-3);
+            drawn += 1;
+        }
+        assert!(vector(a.measured_m.unwrap()).norm() >= (mm("measured_mm") * 1e-3).norm());
+    }
+    assert!(
+        drawn >= postures.len(),
+        "{drawn} arrows of {}",
+        residuals.len()
+    );
+    let h: Vec<f64> = (0..6)
+        .map(|a| doc["compliance_rad_per_nm"][a].as_f64().unwrap())
+        .collect();
+    for (p, q) in scene.postures.iter().zip(postures) {
+        let j = setup
+            .robot()
+            .frames(q)
+            .jacobian(&setup.tool().tcp, setup.model().coordinates());
+        let jv = j.fixed_rows::<3>(0);
+        let c = (0..6).fold(Matrix3::zeros(), |c, a| {
+            c + jv.column(a) * jv.column(a).transpose() * h[a]
+        });
+        assert_ellipsoid(&p.ellipsoid.unwrap(), &c, setup.load().load);
+    }
+    // One posture too few, and the model comparison (no residuals): named errors.
+    let e = identify::document::scene::scene(&setup, &postures[1..], &text).unwrap_err();
+    assert!(e.to_string().contains("postures"), "{e}");
+    let e = identify::document::scene::scene(&setup, postures, "{\"models\": []}").unwrap_err();
+    assert!(e.to_string().contains("residuals"), "{e}");
 }
 
 #[test]
