@@ -387,3 +387,106 @@ fn the_page_embeds_everything_and_fetches_nothing() {
     assert_eq!(json["postures"].as_array().unwrap().len(), 2);
     assert_eq!(json["setup"], setup.name());
 }
+
+/// A cell with a track and a tilt-rotate positioner (examples/track/track-cell.toml): each
+/// posture at its station, every joint position equal to the kinematics job's with the same
+/// external values to 1e-9 mm; the carriage at `C(e) base`, the table at `P(e)`, the rail fixed;
+/// their nodes in the `.glb`; values out of the travel refused.
+#[test]
+fn track_and_positioner_stand_at_each_postures_station() {
+    let text = include_str!("../../../../examples/track/track-cell.toml");
+    let setup = stiffid::setup::parse(text, "track-cell.toml", |r, _| {
+        stiffid::robot::presets::get(r)
+    })
+    .unwrap();
+    let axes = setup.robot().external().unwrap();
+    let postures = stiffid::design::random_group(&setup.without_cell(), 3, 6);
+    let d = f64::to_radians;
+    let stations = vec![
+        vec![0.5, d(20.0), d(45.0)],
+        vec![3.0, d(-60.0), d(200.0)],
+        vec![5.9, 0.0, d(-90.0)],
+    ];
+    let extras = Extras {
+        external: &stations,
+        ..Extras::default()
+    };
+    let s = scene::scene(&setup, &postures, &extras).unwrap();
+    let names: Vec<&str> = s.links.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names[8..], ["track", "carriage", "positioner table"]);
+    for ((p, q), e) in s.postures.iter().zip(&postures).zip(&stations) {
+        assert_eq!(&p.external, e);
+        let report = kinematics::run(kinematics::Request {
+            robot: setup.robot(),
+            q: *q,
+            point: setup.tool().tcp,
+            characteristic_length: Some(1.2),
+            coordinates: Coordinates::Axis,
+            stiffness: None,
+            external: e.clone(),
+            workpiece: None,
+        })
+        .unwrap();
+        let doc = kinematics::document::Document::new(&report, setup.robot());
+        for j in 0..6 {
+            let got = vector(p.joint_positions_m[j]) * 1e3;
+            let want = vector(doc.joint_positions_mm[j]);
+            assert!((got - want).norm() < 1e-9, "joint {j}: {got} vs {want}");
+        }
+        assert!((vector(p.tcp_m) * 1e3 - vector(doc.point_position_mm)).norm() < 1e-9);
+        // The robot's base link on the carriage, the carriage at C(e) base, the table at P(e).
+        let carriage = axes.carrier_pose(e) * setup.robot().base();
+        let table = axes.positioner_pose(e);
+        for (k, want) in [(0, carriage), (9, carriage), (10, table)] {
+            let f = &p.link_frames[k];
+            assert!((vector(f.translation_m) - want.translation.vector).norm() < 1e-12);
+            let r = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                f.rotation_xyzw[3],
+                f.rotation_xyzw[0],
+                f.rotation_xyzw[1],
+                f.rotation_xyzw[2],
+            ));
+            assert!(r.angle_to(&want.rotation) < 1e-12);
+        }
+        assert_eq!(p.link_frames[8].translation_m, [0.0; 3]);
+    }
+    // The carriage moves along x by the track's values.
+    let x: Vec<f64> = s
+        .postures
+        .iter()
+        .map(|p| p.link_frames[9].translation_m[0])
+        .collect();
+    assert!((x[1] - x[0] - 2.5).abs() < 1e-12 && (x[2] - x[0] - 5.4).abs() < 1e-12);
+    let g = gltf::Gltf::from_slice(&glb::glb(&s)).unwrap();
+    let nodes: Vec<_> = g
+        .nodes()
+        .filter_map(|n| n.name().map(String::from))
+        .collect();
+    for name in ["track", "carriage", "positioner table"] {
+        assert_eq!(nodes.iter().filter(|n| *n == name).count(), 3, "{name}");
+    }
+    let far = vec![vec![6.5, 0.0, 0.0]; 3];
+    let e = scene::scene(
+        &setup,
+        &postures,
+        &Extras {
+            external: &far,
+            ..Extras::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("external[0]") && e.contains("e1_mm"), "{e}");
+    let short = &stations[..2];
+    let e = scene::scene(
+        &setup,
+        &postures,
+        &Extras {
+            external: short,
+            ..Extras::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("one per posture"), "{e}");
+}
