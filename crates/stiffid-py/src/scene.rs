@@ -121,7 +121,7 @@ fn plan_scene(
         postures: group,
         target_pct: None,
     };
-    py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s)))
+    py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s, None)))
         .map_err(raise)
 }
 
