@@ -421,15 +421,15 @@ def plan(
 ) -> dict[str, Any]:
     """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates."""
 class Scene:
-    """The 3D scene of a plan (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, expected displacements; shown inline by Jupyter."""
+    """The 3D scene of a plan or an identification (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, displacements; shown inline by Jupyter."""
 
     def document(self) -> dict[str, Any]: ...
     def html(self, title: str = "stiffid scene") -> str: ...
     def glb(self) -> bytes: ...
     def _repr_html_(self) -> str: ...
 
-def scene(setup: Setup, postures_deg: ArrayLike) -> Scene:
-    """The 3D scene of a group (1 to 500 postures, deg): what `select --report` shows in plan.html and writes as plan.glb."""
+def scene(setup: Setup, postures_deg: Optional[ArrayLike] = None, *, document: Optional[dict[str, Any]] = None) -> Scene:
+    """The 3D scene of a group (1 to 500 postures, deg), of a plan (document=stiffid.plan(...)) or of an identification (document=stiffid.identify(...), postures_deg its postures in order): what select --report and identify --report show and write as .glb."""
 def setups_new(
     robot: _PathLike,
     *,

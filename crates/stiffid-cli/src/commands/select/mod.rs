@@ -208,6 +208,7 @@ pub fn run(args: &Args) -> Result<()> {
             &setup,
             args.criterion,
             &report.postures,
+            report.station.as_ref().map(|e| e.as_slice()),
             t,
             &provenance,
         )?;
