@@ -70,6 +70,7 @@ mod solver_auto;
 mod stop_reasons;
 mod study;
 mod track_stiffness;
+mod true_cell;
 mod true_robot;
 mod trust;
 mod urdf;
