@@ -183,7 +183,7 @@ fn external(text: Option<&str>, robot: &stiffid::Robot) -> Result<Vec<f64>> {
     let Some(text) = text else {
         return Ok(Vec::new());
     };
-    let values = load::numbers(text, "--external", &limits::LENGTH_MM)?;
+    let values = load::numbers(text, "--external", &limits::EXTERNAL_VALUE)?;
     Ok(match robot.external() {
         Some(axes) if axes.len() == values.len() => axes.to_si(&values),
         // The job's check names the axes and the count expected.

@@ -63,6 +63,10 @@ pub const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
 /// at most 100 m from the origin.
 pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");
 
+/// An external axis's value on the command line (`kinematics --external`): mm for a linear axis,
+/// deg for a rotary one, before the axis's own travel is checked.
+pub const EXTERNAL_VALUE: Range = Range::new(-1e5, 1e5, "mm or deg");
+
 /// A link's mass in a robot file (`mass_kg`): 0 to 100 t.
 pub const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
 
