@@ -88,8 +88,12 @@ fn error_map_line(map: &crate::robot::ErrorMap) -> String {
         let parts: Vec<String> = v.iter().map(|x| format!("{:?}", x.to_degrees())).collect();
         parts.join(", ")
     };
+    let backlash = match map.backlash() {
+        0.0 => String::new(),
+        b => format!(", half_backlash_deg = {:?}", b.to_degrees()),
+    };
     format!(
-        "error_map = {{ cos_deg = [{}], sin_deg = [{}] }}\n",
+        "error_map = {{ cos_deg = [{}], sin_deg = [{}]{backlash} }}\n",
         deg(map.cos()),
         deg(map.sin())
     )
