@@ -28,12 +28,15 @@ pub(super) fn columns(names: &[String], line: u64) -> Result<Option<[usize; 6]>>
     Ok(Some(out))
 }
 
-/// The directions of `row` in `columns`: each -1.0 or 1.0.
+/// The directions of `row` in `columns` (each -1.0 or 1.0), `None` without columns.
 ///
 /// # Errors
 /// [`crate::Error::Column`] (`Choice`) naming the line and column of a field that is not `-1`,
 /// `1` or `+1`.
-pub(super) fn values(row: &Row, columns: &[usize; 6]) -> Result<Vector6<f64>> {
+pub(super) fn values(row: &Row, columns: Option<[usize; 6]>) -> Result<Option<Vector6<f64>>> {
+    let Some(columns) = columns else {
+        return Ok(None);
+    };
     let mut out = Vector6::zeros();
     for (joint, &c) in columns.iter().enumerate() {
         out[joint] = match row.field(c) {
@@ -46,7 +49,7 @@ pub(super) fn values(row: &Row, columns: &[usize; 6]) -> Result<Vector6<f64>> {
             }
         };
     }
-    Ok(out)
+    Ok(Some(out))
 }
 
 #[cfg(test)]

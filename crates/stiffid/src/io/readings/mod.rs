@@ -29,9 +29,7 @@
 //!   `fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm]` in the base frame or `fx_tool_n,...[,mx_tool_nm,...]` in
 //!   the tool (flange) frame (moments optional, zero when absent; forces and moments within
 //!   [`crate::common::limits::WRENCH`]). Load and force columns come together.
-//! - Directions (optional, for a backlash term in the calibration): `dir1..dir6`, the sign of
-//!   each joint's last motion before the reading, `-1` or `+1`; all six or none
-//!   ([`direction`]). Rows of one posture share them.
+//! - Directions (optional, a backlash term's): `dir1..dir6`, one posture's alike ([`direction`]).
 //!
 //! Columns may come in any order; lines starting with `#` are comments. At most
 //! [`MAX_READINGS`] rows. [`crate::metrology::register`] turns the unloaded readings into the tracker's
@@ -517,9 +515,7 @@ impl Columns {
             .map(|(c, step)| self.load(row, c, step))
             .transpose()?;
         let wrench = self.wrench(row)?;
-        let direction = (self.direction.as_ref())
-            .map(|c| direction::values(row, c))
-            .transpose()?;
+        let direction = direction::values(row, self.direction)?;
         let at = (q, e, direction);
         let posture = self.posture_index(row, label, at, (point, table), so_far, numbers)?;
         Ok(Reading {
@@ -662,21 +658,10 @@ impl Columns {
             return Ok(index);
         };
         let ((angles, values, directions), line) = &numbers.angles[index];
-        let message = if *angles != at.0 {
-            format!(
-                "posture '{}' has other axis angles on line {line}",
-                short(label)
-            )
-        } else if *values != at.1 {
-            format!(
-                "posture '{}' has other external axis values on line {line}",
-                short(label)
-            )
-        } else if *directions != at.2 {
-            format!(
-                "posture '{}' has other directions on line {line}",
-                short(label)
-            )
+        let other = (*angles != at.0).then_some("axis angles");
+        let other = other.or((*values != at.1).then_some("external axis values"));
+        let message = if let Some(what) = other.or((*directions != at.2).then_some("directions")) {
+            format!("posture '{}' has other {what} on line {line}", short(label))
         } else if self.load.is_some() {
             return Ok(index);
         } else if let Some(line) = numbers.read.insert((index, point, table), row.line) {
