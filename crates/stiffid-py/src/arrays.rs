@@ -157,6 +157,16 @@ pub fn table<'py, const N: usize>(py: Python<'py>, rows: &[[f64; N]]) -> Bound<'
     Array2::from_shape_fn((rows.len(), N), |(r, c)| rows[r][c]).into_pyarray(py)
 }
 
+/// An `(rows, columns)` array of `entry(row, column)`.
+pub fn grid<'py>(
+    py: Python<'py>,
+    rows: usize,
+    columns: usize,
+    entry: impl Fn(usize, usize) -> f64,
+) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((rows, columns), |(r, c)| entry(r, c)).into_pyarray(py)
+}
+
 /// Postures (rad) as an `(n, 6)` array of degrees.
 pub fn degrees<'py>(py: Python<'py>, postures: &[Vector6<f64>]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((postures.len(), 6), |(r, c)| postures[r][c].to_degrees())

@@ -33,7 +33,12 @@ use stiffid::app::readings::Request as Readings;
 /// the order of its error motions' polynomials, ``"auto"`` (chosen by cross-validation) or an
 /// order ``"0"`` to ``"8"``, as ``--error-motions``; ``level``: the level of the
 /// ``validate`` readings' prediction intervals (0.5 to 0.999, default 0.95; jackknife+ over the
-/// fitted postures, from their leave-one-posture-out errors), as ``--level``. The same job as ``stiffid calibrate``: returns its
+/// fitted postures, from their leave-one-posture-out errors; with ``update`` also the level of
+/// the check's bound), as ``--level``; ``update=True``: the setup's robot a calibrated robot
+/// file, the readings a check campaign: the joint offsets, the tracker (or base) and the
+/// measuring points refitted, the rest kept (``geometry``, ``gravity`` and ``maps`` ignored),
+/// and ``check`` in the document (the readings against the calibration's held-out errors:
+/// ``drifted``, ``share_outside``), as ``--update``. The same job as ``stiffid calibrate``: returns its
 /// document (docs/schemas/calibrate.schema.json) as a dict, equal to ``stiffid calibrate
 /// --json``: ``parameters`` (``name``, ``kind``, ``unit``, ``nominal``, ``value``, ``sd``,
 /// ``identified``), ``merged``, ``rank``, ``condition``, ``correlations``, ``residual_rms_mm``,
@@ -42,7 +47,7 @@ use stiffid::app::readings::Request as Readings;
 /// ``cross_validation`` (``rms_mm``, ``max_mm``, ``nominal_rms_mm``, the error of every held-out
 /// posture and point; for ``validate`` the ``intervals``, their ``coverage`` and each reading's
 /// ``interval_mm``), ``robot_file`` (or ``robot_file_error``), ``urdf`` (or ``urdf_error``),
-/// ``fragment`` and ``warnings``; the warnings are
+/// ``fragment``, ``check`` and ``warnings``; the warnings are
 /// raised as ``UserWarning`` too.
 ///
 /// ``out``: writes the calibrated robot file (robot TOML, the calibrated DH table and axis map,
@@ -59,7 +64,7 @@ use stiffid::app::readings::Request as Readings;
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -75,6 +80,7 @@ pub fn calibrate<'py>(
     maps: &str,
     error_motions: &str,
     level: Option<f64>,
+    update: bool,
     out: Option<PathBuf>,
     urdf_out: Option<PathBuf>,
     stiffness_out: Option<PathBuf>,
@@ -126,6 +132,7 @@ pub fn calibrate<'py>(
         error_motions: stiffid::metrology::calibration::motions::Spec::parse(error_motions)
             .map_err(raise)?,
         level,
+        update,
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);

@@ -20,8 +20,8 @@ use stiffid::Setup;
 /// The keys of the evaluate document returned as NumPy arrays.
 const CRITERIA_ARRAYS: [&str; 2] = ["relative_std", "predicted_deviation_pct"];
 
-/// What a group is designed for, as Python gives it: `purpose` (`stiffness`, `calibration` or
-/// `both`, the command's `--for`) and the calibration's options (`calibration_criterion`,
+/// What a group is designed for, as Python gives it: `purpose` (`stiffness`, `calibration`,
+/// `both` or `check`, the command's `--for`) and the calibration's options (`calibration_criterion`,
 /// `geometry`, `gravity`, `weight`), which the library checks against the purpose.
 pub struct For<'a> {
     pub purpose: &'a str,
@@ -130,7 +130,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
             )))
         }
         (Some(s), _) => s.len(),
-        (None, n) => n.unwrap_or(6),
+        (None, n) => n.unwrap_or(r.purpose.parse()?.0.default_postures()),
     };
     check_postures(n)?;
     let mut options = SearchOptions {

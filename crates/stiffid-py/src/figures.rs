@@ -39,7 +39,7 @@ pub fn figures<'py>(py: Python<'py>, document: &Bound<'py, PyAny>) -> PyResult<B
 
 /// A document of Python objects (dicts, lists, tuples, NumPy arrays, numbers, strings, None; an
 /// object with `to_dict`) as JSON; NaN as null.
-fn json(o: &Bound<'_, PyAny>) -> PyResult<Value> {
+pub fn json(o: &Bound<'_, PyAny>) -> PyResult<Value> {
     if o.is_none() {
         return Ok(Value::Null);
     }

@@ -27,6 +27,7 @@ mod plan;
 mod predict;
 mod register;
 mod robot;
+mod scene;
 mod setup;
 mod setups_new;
 mod stiffness;
@@ -61,8 +62,8 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(calibrate::calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(figures::figures, m)?)?;
     m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
-    m.add_function(wrap_pyfunction!(plan::scene, m)?)?;
-    m.add_class::<plan::Scene>()?;
+    m.add_function(wrap_pyfunction!(scene::scene, m)?)?;
+    m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(setups_new::setups_new, m)?)?;
     Ok(())
 }

@@ -47,7 +47,12 @@ pub fn process_force<'py>(
 /// ``"rapid"`` or ``"ls"``), ``line`` (``(n,)``, ``int64``: each point's line); for G-code
 /// ``position_mm`` (``(n, 3)``, part frame), ``rapid`` (``(n,)`` bool: a ``G0`` move),
 /// ``tool_number`` and ``operation`` (lists, ``None`` where none is in force); for a robot
-/// program ``q_deg`` (``(n, 6)``, the joint targets' axis angles).
+/// program ``q_deg`` (``(n, 6)``, the joint targets' axis angles). Both carry the external
+/// axes: ``external_axes`` (their names as the program gives them: KRL ``E1``, RAPID
+/// ``eax_a``, a G-code header's letters ``U``..``C``, in the cell's order for G-code) and
+/// ``external`` (``(n, k)``, each point's or target's values as written, mm for a linear axis
+/// and deg for a rotary one; ``NaN`` where a robot target gives none, RAPID ``9E9`` or a KRL
+/// member left out); ``k = 0`` for a program without external axes.
 #[pyfunction]
 #[pyo3(signature = (program, *, chord_tolerance_mm=0.01))]
 pub fn read_program<'py>(
@@ -80,6 +85,12 @@ pub fn read_program<'py>(
                 .map(|p| p.operation.as_deref().map(String::from))
                 .collect();
             out.set_item("operation", ops)?;
+            let axes: Vec<String> = g.external.0.iter().map(char::to_string).collect();
+            let values = arrays::grid(py, g.points.len(), axes.len(), |i, k| {
+                g.points[i].external[k]
+            });
+            out.set_item("external", values)?;
+            out.set_item("external_axes", axes)?;
         }
         Program::Robot(r) => {
             out.set_item(
@@ -92,6 +103,11 @@ pub fn read_program<'py>(
                 .map(|t| Vector6::from(t.q_deg).map(f64::to_radians))
                 .collect();
             out.set_item("q_deg", arrays::degrees(py, &q))?;
+            let values = arrays::grid(py, r.targets.len(), r.axes.len(), |i, k| {
+                r.targets[i].external[k].unwrap_or(f64::NAN)
+            });
+            out.set_item("external", values)?;
+            out.set_item("external_axes", r.axes.clone())?;
         }
     }
     Ok(out)

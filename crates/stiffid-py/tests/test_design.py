@@ -242,6 +242,7 @@ def test_evaluate_and_select_for_the_calibration_equal_the_command(paper, cli, t
         (dict(purpose="calibration", calibration_criterion="o1", geometry="offsets"),
          ["--for", "calibration", "--calibration-criterion", "o1", "--geometry", "offsets"]),
         (dict(purpose="both", weight=0.25), ["--for", "both", "--weight", 0.25]),
+        (dict(purpose="check"), ["--for", "check"]),
     ]:
         mine = paper.evaluate(group, **kwargs)
         assert plain(mine) == cli("evaluate", *setup, "--postures", path, "--json", *flags), flags
@@ -250,6 +251,9 @@ def test_evaluate_and_select_for_the_calibration_equal_the_command(paper, cli, t
     theirs = cli("select", *setup, "--out", tmp_path / "out.csv", "--json", "--global", "--postures", 8,
                  "--starts", 2, "--polished", 1, "--max-evals", 300, "--for", "both")
     assert timeless(plain(chosen)) == timeless(theirs)
+    # A check campaign: 10 postures by default, designed for the update's offsets.
+    check = paper.select(method="global", starts=2, polished=1, max_evals=300, purpose="check")
+    assert len(check["postures_deg"]) == 10 and check["calibration"]["geometry"] == "offsets"
 
 
 def test_calibration_options_need_their_purpose(paper):
@@ -258,7 +262,7 @@ def test_calibration_options_need_their_purpose(paper):
         paper.evaluate(group, geometry="full")
     with pytest.raises(ValueError, match=r"^weight: "):
         paper.select(method="global", n=8, starts=2, purpose="calibration", weight=0.5)
-    with pytest.raises(ValueError, match=r"^purpose: 'geometry' is not a purpose \(known: stiffness, calibration, both\)"):
+    with pytest.raises(ValueError, match=r"^purpose: 'geometry' is not a purpose \(known: stiffness, calibration, both, check\)"):
         paper.evaluate(group, purpose="geometry")
     with pytest.raises(ValueError, match=r"calibration_criterion"):
         paper.evaluate(group, purpose="calibration", calibration_criterion="o2")

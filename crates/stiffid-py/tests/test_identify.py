@@ -315,3 +315,29 @@ def test_unit_slips_in_setups_and_angles_warn_as_the_command(fanuc, tmp_path):
     run = subprocess.run([str(cli_path()), "identify", "--setup", "fanuc-r2000ic-165f", "--data", str(radians)],
                          capture_output=True, text=True, check=True)
     assert [l.removeprefix("warning: ") for l in run.stderr.splitlines()] == [str(w.message) for w in caught]
+
+
+def test_the_scene_of_an_identification_draws_its_displacements(paper):
+    """stiffid.scene(setup, q_deg, document=identify(...)): each arrow the document's measured and
+    predicted displacement of its posture and point, the ellipsoid's semi-axes the identified
+    compliance's eigenvalues times the load; a plan document gives the plan's postures; another
+    document, or postures that are not the document's, are refused."""
+    k = np.array([900000.0, 2500000, 1000000, 300000, 180000, 120000])
+    q, wrench, d = synthetic(paper, k)
+    doc = stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d)
+    scene = stiffid.scene(paper, q, document=doc).document()
+    assert len(scene["postures"]) == len(q)
+    for r in doc["residuals"]:
+        a = scene["postures"][int(r["posture"]) - 1]["arrows"][r["point"] - 1]
+        np.testing.assert_allclose(np.array(a["measured_m"]) * 1e3, r["measured_mm"], rtol=1e-12)
+        np.testing.assert_allclose(np.array(a["predicted_m"]) * 1e3, r["predicted_mm"], rtol=1e-12)
+    for p in scene["postures"]:
+        e = p["ellipsoid"]
+        np.testing.assert_allclose(e["semi_axes_m"], scene["ellipsoid_force_n"] * np.array(e["compliance_m_per_n"]))
+    plan = stiffid.plan(paper, q[:3])
+    by_plan = stiffid.scene(paper, document=plan).document()
+    np.testing.assert_allclose([p["q_deg"] for p in by_plan["postures"]], q[:3], atol=1e-9)
+    with pytest.raises(stiffid.InputError, match="postures"):
+        stiffid.scene(paper, q[:3], document=doc)
+    with pytest.raises(stiffid.InputError, match="document"):
+        stiffid.scene(paper, q, document={"setup": "x"})

@@ -40,6 +40,25 @@ def test_read_program_reads_the_pocket_as_the_command_does(cli, tmp_path):
         stiffid.read_program(PROCESS)
 
 
+KRL_TRACK = ("DEF track( )\nPTP {A1 10, A2 -80, A3 95, A4 0, A5 30, A6 -5, E1 1500.5, E2 0, E3 0, E4 0, E5 0, E6 0}\n"
+             "DECL E6AXIS XP2={A1 11,A2 -79,A3 94,A4 0,A5 31,A6 -5,E1 1600,E2 45.25}\nLIN XP2 C_DIS\nEND\n")
+
+
+def test_read_program_carries_each_targets_external_values(tmp_path):
+    path = tmp_path / "track.src"
+    path.write_text(KRL_TRACK)
+    read = stiffid.read_program(path)
+    assert read["external_axes"] == ["E1", "E2", "E3", "E4", "E5", "E6"]
+    assert read["external"].shape == (2, 6)
+    np.testing.assert_array_equal(read["external"][0], [1500.5, 0, 0, 0, 0, 0])
+    # The aggregate leaves E3..E6 out: no value, NaN.
+    np.testing.assert_array_equal(read["external"][1, :2], [1600.0, 45.25])
+    assert np.isnan(read["external"][1, 2:]).all()
+    np.testing.assert_array_equal(read["q_deg"][1], [11, -79, 94, 0, 31, -5])
+    pocket = stiffid.read_program(POCKET)
+    assert pocket["external_axes"] == [] and pocket["external"].shape == (len(pocket["line"]), 0)
+
+
 @pytest.mark.parametrize("output", [None, "ls"])
 def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
     setup = stiffid.Setup.from_file(SETUP)

@@ -15,6 +15,7 @@ use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid::metrology::calibration::fit::{self, Options};
 use stiffid::metrology::calibration::maps::{self, Linear, Spec};
 use stiffid::metrology::calibration::{gravity, validation, ErrorModel, Geometry, Target};
+use stiffid::robot::external::ExternalValues;
 use stiffid::robot::presets;
 
 const POSTURES: usize = 100;
@@ -49,7 +50,7 @@ fn campaign() -> (ErrorModel, Vec<Observation>) {
             }),
             measured: Vector3::zeros(),
             wrench: Vector6::zeros(),
-            e: Vec::new(),
+            e: ExternalValues::NONE,
             table: false,
         })
         .collect();

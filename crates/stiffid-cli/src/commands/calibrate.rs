@@ -51,6 +51,15 @@ pub struct Args {
     /// and the share of held-out coordinates inside (coverage).
     #[arg(long)]
     level: Option<f64>,
+    /// Update a calibrated robot from a check campaign (--data, at least 5 postures; `select
+    /// --for check` designs about 10): the setup's robot is the calibrated robot file, and only
+    /// what drifts between sessions is refitted, the joint angle offsets, the tracker's
+    /// registration (the base) and the measuring points (the tool), the DH table, error maps and
+    /// axis map kept. First the check: each reading's error with the calibrated robot against
+    /// the bound of its calibration's held-out errors ([held_out], at --level), and whether the
+    /// robot drifted beyond it. --out writes the updated robot file.
+    #[arg(long, conflicts_with_all = ["geometry", "gravity", "maps", "error_motions"])]
+    update: bool,
     /// Fit readings that no rigid transform explains (a mirror image of the robot's points, or a
     /// residual beyond the larger of 10 mm and 1000 times the tracker noise) instead of refusing
     /// them.
@@ -137,6 +146,7 @@ pub fn run(args: &Args) -> Result<()> {
         maps: Spec::parse(&args.maps)?,
         error_motions: stiffid::metrology::calibration::motions::Spec::parse(&args.error_motions)?,
         level: args.level,
+        update: args.update,
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);
@@ -230,6 +240,7 @@ fn text_of(d: &Document) -> String {
     for c in &d.correlations {
         text += &format!("correlated: {} and {} ({:+.3})\n", c.a, c.b, c.rho);
     }
+    text += &check_text(d.check.as_ref());
     text += &maps_text(&d.maps);
     for v in d.validation.iter().chain(&d.cross_validation) {
         text += &format!(
@@ -254,6 +265,28 @@ fn text_of(d: &Document) -> String {
         }
     }
     text + "\n" + &d.fragment
+}
+
+/// The check's lines (`--update`): the bound, the readings outside it and the verdict.
+fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> String {
+    let Some(c) = c else {
+        return String::new();
+    };
+    format!(
+        "\ncheck before the update: {} of {} readings beyond {:.4} mm ({:.0}% bound of the calibration's {} held-out errors, {}): {:.1}% outside, an undrifted robot explains up to {}\n  {}\n",
+        c.outside,
+        c.readings,
+        c.bound_mm,
+        100.0 * c.level,
+        c.held_out,
+        c.source,
+        100.0 * c.share_outside,
+        c.allowed,
+        match c.drifted {
+            true => "drifted beyond its intervals: update it (--out)",
+            false => "not drifted beyond its intervals",
+        }
+    )
 }
 
 /// The maps' lines: the choice, the figure it was tuned on and the nested held-out gain.

@@ -40,8 +40,10 @@ pub struct Args {
 #[derive(clap::Args)]
 pub struct ForArgs {
     /// What the group is for: stiffness (the identification), calibration (the robot's
-    /// geometric and elastostatic calibration, as `stiffid calibrate` fits it) or both (the
-    /// weighted sum of the two log-criteria, --weight).
+    /// geometric and elastostatic calibration, as `stiffid calibrate` fits it), both (the
+    /// weighted sum of the two log-criteria, --weight) or check (a calibrated robot's check
+    /// campaign, 10 postures by default: D-optimal for what `calibrate --update` refits, the
+    /// joint offsets, the tracker and the measuring points).
     #[arg(long = "for", value_name = "PURPOSE", value_parser = choice::<Purpose>(), default_value = "stiffness")]
     pub purpose: Purpose,
     /// The calibration criterion: test-pose (the predicted RMS position error after
@@ -160,7 +162,7 @@ pub fn run(args: &Args) -> Result<()> {
     );
     if let Some(c) = &doc.calibration {
         s += &calibration_text(c);
-        if args.purpose.purpose == Purpose::Calibration {
+        if args.purpose.purpose.calibration_only() {
             s += &feasibility::text(&doc.feasibility);
             return output::print(&s);
         }

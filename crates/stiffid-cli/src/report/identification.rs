@@ -1,6 +1,7 @@
 //! The report of `stiffid identify --report DIR`: `report.html` (self-contained, figures inline as
-//! SVG), `identify.json` (the identify job's document, any of its forms, which the other files
-//! render) and `figures/` (SVG and PNG): the measured against the predicted displacements, the
+//! SVG, the 3D scene of the load tests), `identify.json` (the identify job's document, any of its
+//! forms, which the other files render), `identify.glb` (the scene as glTF binary; not for the
+//! model comparison) and `figures/` (SVG and PNG): the measured against the predicted displacements, the
 //! parameters' 95% intervals, the residuals' QQ plot against the noise, the stability
 //! of the cross-validation's folds, the prediction intervals' held-out scores, the compared
 //! models' held-out shares with their standard errors ([`stiffid_figures::identify`]).
@@ -11,13 +12,16 @@ use super::html::Writer;
 use super::tables::{num, Table};
 use crate::output::ReportDir;
 use anyhow::Result;
+use nalgebra::Vector6;
 use serde_json::Value;
 use std::path::Path;
+use stiffid::app::document::scene::{glb, Scene};
+use stiffid::Setup;
 
-/// The identification's report: `report.html`, `identify.json`.
+/// The identification's report: `report.html`, `identify.json`, `identify.glb`.
 const KIND: Kind = Kind {
     generator: "stiffid identify",
-    files: &[PAGE, "identify.json"],
+    files: &[PAGE, "identify.json", "identify.glb"],
 };
 
 /// Opens the report directory `dir` (`--report`) before the identification: new, empty or
@@ -26,18 +30,31 @@ pub fn open(dir: &Path) -> Result<ReportDir> {
     KIND.open(dir)
 }
 
-/// Writes every file of the report of the identify document `json` (its text) into `dir`.
-pub fn write(dir: ReportDir, json: &str) -> Result<()> {
+/// Writes every file of the report of the identify document `json` (its text) into `dir`, with
+/// the 3D scene of the load tests in `postures` (axis angles, rad, in the order the document's
+/// residuals first name them; `None` for the model comparison, which has no scene).
+pub fn write(
+    dir: ReportDir,
+    json: &str,
+    setup: &Setup,
+    postures: Option<&[Vector6<f64>]>,
+) -> Result<()> {
     let doc: Value = serde_json::from_str(json)?;
     let figures = report::draw(&stiffid_figures::identify::figures(&doc)?)?;
-    let setup = doc["setup"].as_str().unwrap_or_default();
-    let html = KIND.page(&format!("stiffid identification: {setup}"), |w| {
-        compose(w, &doc, &figures)
+    let scene = postures
+        .map(|p| stiffid::app::identify::document::scene::scene(setup, p, json))
+        .transpose()?;
+    let name = doc["setup"].as_str().unwrap_or_default();
+    let html = KIND.page(&format!("stiffid identification: {name}"), |w| {
+        compose(w, &doc, &figures, scene.as_ref())
     });
-    let files = vec![
+    let mut files = vec![
         (PAGE.into(), html.into_bytes()),
         (KIND.files[1].into(), json.as_bytes().to_vec()),
     ];
+    if let Some(s) = &scene {
+        files.push((KIND.files[2].into(), glb::glb(s)));
+    }
     report::write(dir, files, figures)
 }
 
@@ -52,7 +69,7 @@ fn text(v: &Value) -> String {
     }
 }
 
-fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure]) {
+fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure], scene: Option<&Scene>) {
     w.heading(
         1,
         &format!("Stiffness identification: {}", text(&doc["setup"])),
@@ -104,8 +121,13 @@ fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure]) {
     for f in figures {
         w.figure(f);
     }
+    if let Some(s) = scene {
+        w.heading(2, "The load tests in 3D");
+        w.paragraph("The robot at each load-test posture with the rope, each measuring point's measured displacement and the one the fit predicts (its longest reading's, under the full load of load steps), and the identified compliance's ellipsoid at the TCP under the setup's load, magnified (the factor in the legend).");
+        w.scene(s, KIND.files[2]);
+    }
     w.paragraph(
-        "Files: identify.json (the identify document this page renders), figures/ (SVG and PNG).",
+        "Files: identify.json (the identify document this page renders), identify.glb (the 3D scene, except for a model comparison), figures/ (SVG and PNG).",
     );
 }
 

@@ -72,12 +72,13 @@ pub struct Provenance {
 }
 
 /// Writes `plan.html`, `plan.csv`, `plan.json`, `plan.glb` and `figures/` of `postures` (axis
-/// angles, rad) into `dir`, each file whole.
+/// angles, rad; with external axes at `station`, SI) into `dir`, each file whole.
 pub fn write(
     dir: ReportDir,
     setup: &Setup,
     criterion: Criterion,
     postures: &[Vector6<f64>],
+    station: Option<&[f64]>,
     target: Option<&TargetOutcome>,
     provenance: &Provenance,
 ) -> Result<()> {
@@ -89,7 +90,7 @@ pub fn write(
     };
     let report = job::run(&request)?;
     let doc = Document::new(&report, setup);
-    let scene = job::document::scene(&report, setup)?;
+    let scene = job::document::scene(&report, setup, station)?;
     let plan = Plan {
         setup,
         postures,

@@ -510,6 +510,36 @@ fn a_group_on_a_track_is_designed_at_each_station_and_written_with_its_columns()
         "{csv}"
     );
     std::fs::remove_file(&out).unwrap();
+    // The plan's scene stands the group at its station: the carriage and the arm's base moved
+    // along the rail by e1, the external values the station's (SI).
+    let report = dir.join("plan");
+    let (o, r) = (out.to_str().unwrap(), report.to_str().unwrap());
+    let args = [
+        "select",
+        "--setup",
+        &cell,
+        "--start-random",
+        "--postures",
+        "6",
+    ];
+    let more = ["--station", "3000,20,45", "--out", o, "--report", r];
+    assert!(stiffid(&[&args[..], &more[..]].concat()).status.success());
+    let html = std::fs::read_to_string(report.join("plan.html")).unwrap();
+    let open = "id=\"scene-data\">";
+    let from = html.find(open).unwrap() + open.len();
+    let to = from + html[from..].find("</script>").unwrap();
+    let scene: serde_json::Value = serde_json::from_str(&html[from..to]).unwrap();
+    let names: Vec<&str> = (scene["links"].as_array().unwrap().iter())
+        .map(|l| l["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names[8..], ["track", "carriage", "positioner table"]);
+    for p in scene["postures"].as_array().unwrap() {
+        let e: Vec<f64> = serde_json::from_value(p["external"].clone()).unwrap();
+        assert!((e[0] - 3.0).abs() < 1e-12 && (e[1] - 20f64.to_radians()).abs() < 1e-12);
+        assert!((p["link_frames"][9]["translation_m"][0].as_f64().unwrap() - 3.0).abs() < 1e-12);
+        assert!((p["joint_positions_m"][0][0].as_f64().unwrap() - 3.0).abs() < 1e-9);
+    }
+    std::fs::remove_file(&out).unwrap();
     assert_usage_error(&run(&["7000,0,0"]), &["e1_mm (track)", "7000"]);
     assert_usage_error(&run(&["500"]), &["--station", "3 comma-separated numbers"]);
     assert_usage_error(&run(&[]), &["station", "e1_mm, e2_deg, e3_deg"]);

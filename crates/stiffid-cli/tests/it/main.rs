@@ -32,3 +32,4 @@ mod select_cli;
 mod setups_new;
 mod simulate_cli;
 mod trust_cli;
+mod update_cli;

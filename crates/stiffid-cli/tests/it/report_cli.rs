@@ -209,6 +209,16 @@ fn the_identification_report_renders_the_document() {
     }
     let measured = std::fs::read_to_string(report.join("figures/measured.svg")).unwrap();
     assert_eq!(measured.matches("<circle").count(), coordinates);
+    // The load tests in 3D: the page's scene and its glTF binary, one node per posture.
+    assert!(html.contains("scene-data") && html.contains("The load tests in 3D"));
+    let g = gltf::Gltf::from_slice(&std::fs::read(report.join("identify.glb")).unwrap()).unwrap();
+    let postures = doc["postures"].as_u64().unwrap();
+    let names: Vec<_> = g
+        .nodes()
+        .filter_map(|n| n.name().map(String::from))
+        .collect();
+    assert!(names.contains(&format!("posture {postures}")));
+    assert!(!names.contains(&format!("posture {}", postures + 1)));
 
     let models = d.join("models");
     let args = [
@@ -227,6 +237,7 @@ fn the_identification_report_renders_the_document() {
     let html = std::fs::read_to_string(models.join("report.html")).unwrap();
     fetches_nothing(&html);
     assert!(html.contains("id=\"models\""));
+    assert!(!models.join("identify.glb").exists() && !html.contains("scene-data"));
     let rows = html.matches("<tr>").count();
     let expected = doc["models"].as_array().unwrap().len();
     assert!(rows > expected, "{rows} rows for {expected} models");

@@ -172,7 +172,7 @@ class Setup:
         postures_deg: ArrayLike,
         *,
         candidates: Optional[Sequence[str]] = None,
-        purpose: Literal["stiffness", "calibration", "both"] = "stiffness",
+        purpose: Literal["stiffness", "calibration", "both", "check"] = "stiffness",
         calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
         gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
@@ -202,7 +202,7 @@ class Setup:
         distinct: bool = False,
         distinct_deg: Optional[float] = None,
         distinct_mm: Optional[float] = None,
-        purpose: Literal["stiffness", "calibration", "both"] = "stiffness",
+        purpose: Literal["stiffness", "calibration", "both", "check"] = "stiffness",
         calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
         gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
@@ -303,7 +303,7 @@ def read_program(
     *,
     chord_tolerance_mm: float = 0.01,
 ) -> dict[str, Any]:
-    """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6)."""
+    """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6); both: external_axes (k names), external (n, k) mm or deg as written, NaN where a target gives none."""
 
 def place(
     setup: Union[str, os.PathLike[str]],
@@ -405,12 +405,13 @@ def calibrate(
     maps: str = "auto",
     error_motions: str = "auto",
     level: Optional[float] = None,
+    update: bool = False,
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,
     stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
 ) -> dict[str, Any]:
-    """The document of `stiffid calibrate --json`: parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
+    """The document of `stiffid calibrate --json` (update=True: a calibrated robot updated from check readings, check: whether it drifted beyond its intervals): parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
     postures_deg: ArrayLike,
@@ -420,15 +421,15 @@ def plan(
 ) -> dict[str, Any]:
     """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates."""
 class Scene:
-    """The 3D scene of a plan (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, expected displacements; shown inline by Jupyter."""
+    """The 3D scene of a plan or an identification (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, displacements; shown inline by Jupyter."""
 
     def document(self) -> dict[str, Any]: ...
     def html(self, title: str = "stiffid scene") -> str: ...
     def glb(self) -> bytes: ...
     def _repr_html_(self) -> str: ...
 
-def scene(setup: Setup, postures_deg: ArrayLike) -> Scene:
-    """The 3D scene of a group (1 to 500 postures, deg): what `select --report` shows in plan.html and writes as plan.glb."""
+def scene(setup: Setup, postures_deg: Optional[ArrayLike] = None, *, document: Optional[dict[str, Any]] = None) -> Scene:
+    """The 3D scene of a group (1 to 500 postures, deg), of a plan (document=stiffid.plan(...)) or of an identification (document=stiffid.identify(...), postures_deg its postures in order): what select --report and identify --report show and write as .glb."""
 def setups_new(
     robot: _PathLike,
     *,

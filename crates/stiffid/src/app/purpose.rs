@@ -1,6 +1,7 @@
 //! What a group of postures is designed for (`select` and `evaluate` `--for`): the stiffness
-//! identification, the robot's calibration, or both; and the calibration design of a setup that
-//! the last two score groups with ([`crate::design::observability`]).
+//! identification, the robot's calibration, both, or the check of a calibrated robot; and the
+//! calibration design of a setup that the last three score groups with
+//! ([`crate::design::observability`]).
 
 use super::calibrate;
 use crate::common::error::JobOption;
@@ -22,16 +23,46 @@ pub enum Purpose {
     Calibration,
     /// Both: the weighted sum of the two log-criteria ([`Goal`]).
     Both,
+    /// The check of a calibrated robot (`calibrate --update`): the calibration design of what
+    /// drifts between sessions, the joint offsets, the frame and the measuring points
+    /// ([`CalibrationOptions::of`]), D-optimal by default, [`CHECK_POSTURES`] postures by default.
+    Check,
 }
+
+impl Purpose {
+    /// Whether the group is designed for a calibration alone (no stiffness criterion).
+    pub fn calibration_only(self) -> bool {
+        matches!(self, Purpose::Calibration | Purpose::Check)
+    }
+
+    /// The size of a searched group when none is given: [`CHECK_POSTURES`] for a check, 6
+    /// otherwise.
+    pub fn default_postures(self) -> usize {
+        match self {
+            Purpose::Check => CHECK_POSTURES,
+            _ => 6,
+        }
+    }
+}
+
+/// The default size of a check campaign (`select --for check`; within the search's 2 to 100
+/// postures).
+pub const CHECK_POSTURES: usize = 10;
 
 impl crate::common::choice::Choice for Purpose {
     const FIELD: &'static str = "for";
-    const ALL: &'static [Self] = &[Purpose::Stiffness, Purpose::Calibration, Purpose::Both];
+    const ALL: &'static [Self] = &[
+        Purpose::Stiffness,
+        Purpose::Calibration,
+        Purpose::Both,
+        Purpose::Check,
+    ];
     fn name(self) -> &'static str {
         match self {
             Purpose::Stiffness => "stiffness",
             Purpose::Calibration => "calibration",
             Purpose::Both => "both",
+            Purpose::Check => "check",
         }
     }
     fn help(self) -> &'static str {
@@ -39,6 +70,9 @@ impl crate::common::choice::Choice for Purpose {
             Purpose::Stiffness => "The stiffness identification (the default)",
             Purpose::Calibration => "The geometric and elastostatic calibration",
             Purpose::Both => "Both: the weighted sum of the two log-criteria",
+            Purpose::Check => {
+                "The check of a calibrated robot: its joint offsets, tracker and tool (calibrate --update)"
+            }
         }
     }
 }
@@ -89,10 +123,27 @@ impl CalibrationOptions {
     pub fn weight(&self) -> f64 {
         self.weight.unwrap_or(0.5)
     }
+
+    /// The options of a design for `purpose`: for [`Purpose::Check`] the update's model (the
+    /// joint offsets, no gravity terms) and, unless given, the D-optimal criterion (the
+    /// determinant of the information of the offsets, the frame and the points); the options
+    /// as given otherwise.
+    pub fn of(self, purpose: Purpose) -> Self {
+        match purpose {
+            Purpose::Check => CalibrationOptions {
+                criterion: Some(self.criterion.unwrap_or(CalibrationCriterion::DOptimality)),
+                geometry: Some(Geometry::Offsets),
+                gravity: Some(Gravity::None),
+                ..self
+            },
+            _ => self,
+        }
+    }
 }
 
 /// Refuses calibration options that mean nothing for `purpose`: any of them for
-/// [`Purpose::Stiffness`], the weight unless [`Purpose::Both`]; and a weight outside `(0, 1)`.
+/// [`Purpose::Stiffness`], the geometry and the gravity for [`Purpose::Check`] (fixed), the weight
+/// unless [`Purpose::Both`]; and a weight outside `(0, 1)`.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] naming the option ([`JobOption::CalibrationCriterion`],
@@ -114,6 +165,18 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
             return refuse(
                 option,
                 "a calibration option: only with for = calibration or both (the group is designed for the stiffness identification)",
+            );
+        }
+    }
+    if purpose == Purpose::Check {
+        let given = [
+            (options.geometry.is_some(), JobOption::Geometry),
+            (options.gravity.is_some(), JobOption::Gravity),
+        ];
+        if let Some((_, option)) = given.into_iter().find(|(given, _)| *given) {
+            return refuse(
+                option,
+                "not with for = check: a check campaign is designed for what calibrate --update refits (the joint offsets, the tracker and the tool)",
             );
         }
     }
@@ -170,7 +233,7 @@ pub fn goal<'a>(
 ) -> Goal<'a> {
     let calibration = match purpose {
         Purpose::Stiffness => None,
-        Purpose::Calibration => Some(1.0),
+        Purpose::Calibration | Purpose::Check => Some(1.0),
         Purpose::Both => Some(options.weight()),
     }
     .and_then(|weight| {

@@ -559,6 +559,8 @@ pub enum JobOption {
     Force,
     /// predict, validate, compensate: the level of the prediction intervals.
     Level,
+    /// calibrate: refit what drifts from a calibrated robot file.
+    Update,
 }
 
 impl JobOption {
@@ -603,6 +605,7 @@ impl JobOption {
             JobOption::Restarts => "restarts",
             JobOption::Force => "force",
             JobOption::Level => "level",
+            JobOption::Update => "update",
         }
     }
 }

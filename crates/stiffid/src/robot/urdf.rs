@@ -17,7 +17,8 @@
 //! a positioner: a second chain of one or two revolute joints from the root link (through no moving
 //! joint of the arm's chain) to a leaf link is the positioner, its axes' lines those of the
 //! joints at zero, their travel the joints' limits (a continuous joint: +-175 rad); several such
-//! chains are an error.
+//! chains are an error, and so is such a chain hanging from a link the arm moves (a positioner
+//! axis on the arm's path to the tool: the error names the joint, the link and the arm's joint).
 //!
 //! Before the XML parser sees the text, its element nesting is bounded
 //! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
@@ -55,8 +56,9 @@ pub struct UrdfSource {
 /// [`Error::Parse`] for malformed XML or nesting deeper than [`limits::MAX_XML_DEPTH`];
 /// [`Error::Chain`] when a joint names an undeclared link, a link is the child of two joints, the
 /// links do not hang from one root, the tip link is missing or ambiguous, a joint in the chain is
-/// not revolute or fixed, has a non-finite or out-of-range number or an inverted limit, or the
-/// chain does not hold exactly six revolute joints.
+/// not revolute or fixed, has a non-finite or out-of-range number or an inverted limit, the
+/// chain does not hold exactly six revolute joints, or a chain of one or two revolute joints (a
+/// positioner) hangs from a link the arm moves.
 pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> {
     let parse_error = |message: String| Error::Parse {
         source_name: source_name.to_string(),
@@ -497,7 +499,7 @@ fn linear_axis(
 
 /// The positioner: the chain of one or two revolute joints from the root link to a leaf link
 /// that shares no moving joint with the arm's chain `arm` (module docs); `None` when there is
-/// none.
+/// none. Such a chain hanging from a link the arm moves is an error ([`on_the_arm`]).
 fn positioner(
     urdf: &urdf_rs::Robot,
     by_child: &HashMap<&str, &urdf_rs::Joint>,
@@ -520,7 +522,7 @@ fn positioner(
             .filter(|j| !on_arm.contains(j.name.as_str()))
             .collect();
         let revolute = own.iter().filter(moving).count();
-        if shared_moving || revolute == 0 || revolute > 2 {
+        if revolute == 0 || revolute > 2 {
             continue;
         }
         if own.iter().any(|j| {
@@ -530,6 +532,9 @@ fn positioner(
             ) || j.mimic.is_some()
         }) {
             continue;
+        }
+        if shared_moving {
+            return Err(on_the_arm(&path, &own, &on_arm));
         }
         if !found.iter().any(|(_, p)| {
             let names = |p: &[&urdf_rs::Joint]| -> Vec<String> {
@@ -572,6 +577,25 @@ fn positioner(
         ));
     }
     Ok(axes)
+}
+
+/// The error for a chain of revolute joints `own` hanging from a link that the arm's joints
+/// move (`path` runs root first): a positioner riding on the arm would turn the tool, not the
+/// part. Names the chain's first moving joint, the arm's link it hangs from and the arm joint
+/// that moves it.
+fn on_the_arm(path: &[&urdf_rs::Joint], own: &[&urdf_rs::Joint], on_arm: &HashSet<&str>) -> String {
+    let first = own.iter().find(|j| j.joint_type != JointType::Fixed);
+    let joint = first.map_or("", |j| j.name.as_str());
+    let from = own.first().map_or("", |j| j.parent.link.as_str());
+    let arm_joint = (path.iter().rev())
+        .find(|j| on_arm.contains(j.name.as_str()) && j.joint_type != JointType::Fixed)
+        .map_or("", |j| j.name.as_str());
+    format!(
+        "joint '{}' turns a chain hanging from link '{}', which joint '{}' of the arm's chain moves: a positioner axis on the arm's path to the tool is refused (a positioner hangs from the root link through no moving joint of the arm); make the joint fixed or hang its chain from the root",
+        limits::short(joint),
+        limits::short(from),
+        limits::short(arm_joint)
+    )
 }
 
 /// A joint's `<limit lower upper>`: both within `range` (rad or m), lower below upper.

@@ -644,3 +644,37 @@ fn a_urdf_holds_the_track_before_the_arm_and_the_positioner_as_a_second_chain() 
         "{e}"
     );
 }
+
+#[test]
+fn a_urdf_positioner_hanging_from_the_arm_is_refused_naming_the_joint_and_link() {
+    use stiffid::robot::urdf;
+    let limit = r#"<limit lower="0" upper="6" effort="1" velocity="1"/>"#;
+    let tilt_on = |link: &str| {
+        let from = "<joint name=\"tilt\" type=\"revolute\">\n    <parent link=\"world\"/>";
+        let text = cell_urdf(limit);
+        assert!(text.contains(from));
+        text.replacen(
+            from,
+            &format!("<joint name=\"tilt\" type=\"revolute\">\n    <parent link=\"{link}\"/>"),
+            1,
+        )
+    };
+    // On the upper arm: moved by joint_3; through the tool: moved by joint_6.
+    for (link, tip, mover) in [
+        ("link_3", None, "joint_3"),
+        ("tool0", Some("tool0"), "joint_6"),
+    ] {
+        let e = urdf::parse(&tilt_on(link), "cell.urdf", tip)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("joint 'tilt'")
+                && e.contains(&format!("link '{link}'"))
+                && e.contains(&format!("joint '{mover}'"))
+                && e.contains("cell.urdf"),
+            "{e}"
+        );
+    }
+    // Hanging from the root (through fixed joints only) it is the positioner.
+    assert!(urdf::parse(&cell_urdf(limit), "cell.urdf", None).is_ok());
+}

@@ -7,7 +7,8 @@
 use super::bodies::mesh_setup;
 use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::document::scene::{self, glb, page, Extras, PathPoint, Scene};
-use stiffid::app::kinematics;
+use stiffid::app::measurements::Data;
+use stiffid::app::{identify, kinematics};
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
@@ -140,21 +141,93 @@ fn ellipsoid_axes_are_the_eigen_decomposition_of_the_translational_compliance() 
         for a in 0..6 {
             c += jv.column(a) * jv.column(a).transpose() / k[a];
         }
-        let e = p.ellipsoid.unwrap();
-        let mut rebuilt = Matrix3::zeros();
-        for i in 0..3 {
-            let v = vector(e.axes[i]);
-            assert!((v.norm() - 1.0).abs() < 1e-12);
-            // An eigenvector: C v = c v.
-            assert!((c * v - v * e.compliance_m_per_n[i]).norm() < 1e-9 * c.norm());
-            rebuilt += v * v.transpose() * e.compliance_m_per_n[i];
-            assert!((e.semi_axes_m[i] - 500.0 * e.compliance_m_per_n[i]).abs() < 1e-15);
-        }
-        assert!((rebuilt - c).norm() < 1e-9 * c.norm());
-        assert!(e.compliance_m_per_n[0] <= e.compliance_m_per_n[1]);
-        assert!(e.compliance_m_per_n[1] <= e.compliance_m_per_n[2]);
-        assert_eq!(e.centre_m, p.tcp_m);
+        assert_ellipsoid(&p.ellipsoid.unwrap(), &c, 500.0);
+        assert_eq!(p.ellipsoid.unwrap().centre_m, p.tcp_m);
     }
+}
+
+/// `e` is the ellipsoid of the translational compliance `c` (m/N) under `force` (N): unit
+/// eigenvectors with rising eigenvalues that rebuild `c`, semi-axes `force c_i`.
+fn assert_ellipsoid(e: &scene::Ellipsoid, c: &Matrix3<f64>, force: f64) {
+    let mut rebuilt = Matrix3::zeros();
+    for i in 0..3 {
+        let v = vector(e.axes[i]);
+        assert!((v.norm() - 1.0).abs() < 1e-12);
+        // An eigenvector: C v = c v.
+        assert!((c * v - v * e.compliance_m_per_n[i]).norm() < 1e-9 * c.norm());
+        rebuilt += v * v.transpose() * e.compliance_m_per_n[i];
+        assert!((e.semi_axes_m[i] - force * e.compliance_m_per_n[i]).abs() < 1e-15);
+    }
+    assert!((rebuilt - c).norm() < 1e-9 * c.norm());
+    assert!(e.compliance_m_per_n[0] <= e.compliance_m_per_n[1]);
+    assert!(e.compliance_m_per_n[1] <= e.compliance_m_per_n[2]);
+}
+
+/// The identification's scene: the FANUC load tests' postures (joint positions as the
+/// kinematics give them), each arrow the document's `measured_mm` and `predicted_mm` of its
+/// posture and point, the ellipsoid that of the identified compliance under the setup's load.
+#[test]
+fn identification_scene_draws_the_documents_displacements_and_compliance() {
+    let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let setup = s.to_builder().with_tcp(s.tool().tcp).build().unwrap();
+    let request = identify::Request {
+        setup: &setup,
+        data: Data::File {
+            name: "measurements.csv".into(),
+            reader: include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv")
+                .as_bytes(),
+        },
+        options: identify::Options::default(),
+    };
+    let report = identify::run(request).unwrap();
+    let text = serde_json::to_string(&report.document("fanuc", &setup)).unwrap();
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let postures = report.postures().unwrap();
+    let scene = identify::document::scene::scene(&setup, postures, &text).unwrap();
+    assert_eq!(scene.postures.len(), postures.len());
+    assert!(scene.anchor_m.is_some());
+    let residuals = doc["residuals"].as_array().unwrap();
+    let mut labels: Vec<&str> = Vec::new();
+    let mut drawn = 0;
+    for r in residuals {
+        let label = r["posture"].as_str().unwrap();
+        if !labels.contains(&label) {
+            labels.push(label);
+        }
+        let i = labels.iter().position(|l| *l == label).unwrap();
+        let m = r["point"].as_u64().unwrap() as usize - 1;
+        let mm = |k: &str| Vector3::from_fn(|c, _| r[k][c].as_f64().unwrap());
+        let a = scene.postures[i].arrows[m];
+        if vector(a.measured_m.unwrap()) == mm("measured_mm") * 1e-3 {
+            assert_eq!(vector(a.predicted_m.unwrap()), mm("predicted_mm") * 1e-3);
+            drawn += 1;
+        }
+        assert!(vector(a.measured_m.unwrap()).norm() >= (mm("measured_mm") * 1e-3).norm());
+    }
+    assert!(
+        drawn >= postures.len(),
+        "{drawn} arrows of {}",
+        residuals.len()
+    );
+    let h: Vec<f64> = (0..6)
+        .map(|a| doc["compliance_rad_per_nm"][a].as_f64().unwrap())
+        .collect();
+    for (p, q) in scene.postures.iter().zip(postures) {
+        let j = setup
+            .robot()
+            .frames(q)
+            .jacobian(&setup.tool().tcp, setup.model().coordinates());
+        let jv = j.fixed_rows::<3>(0);
+        let c = (0..6).fold(Matrix3::zeros(), |c, a| {
+            c + jv.column(a) * jv.column(a).transpose() * h[a]
+        });
+        assert_ellipsoid(&p.ellipsoid.unwrap(), &c, setup.load().load);
+    }
+    // One posture too few, and the model comparison (no residuals): named errors.
+    let e = identify::document::scene::scene(&setup, &postures[1..], &text).unwrap_err();
+    assert!(e.to_string().contains("postures"), "{e}");
+    let e = identify::document::scene::scene(&setup, postures, "{\"models\": []}").unwrap_err();
+    assert!(e.to_string().contains("residuals"), "{e}");
 }
 
 #[test]
@@ -313,4 +386,107 @@ fn the_page_embeds_everything_and_fetches_nothing() {
     let json: serde_json::Value = serde_json::from_str(&html[from..to]).unwrap();
     assert_eq!(json["postures"].as_array().unwrap().len(), 2);
     assert_eq!(json["setup"], setup.name());
+}
+
+/// A cell with a track and a tilt-rotate positioner (examples/track/track-cell.toml): each
+/// posture at its station, every joint position equal to the kinematics job's with the same
+/// external values to 1e-9 mm; the carriage at `C(e) base`, the table at `P(e)`, the rail fixed;
+/// their nodes in the `.glb`; values out of the travel refused.
+#[test]
+fn track_and_positioner_stand_at_each_postures_station() {
+    let text = include_str!("../../../../examples/track/track-cell.toml");
+    let setup = stiffid::setup::parse(text, "track-cell.toml", |r, _| {
+        stiffid::robot::presets::get(r)
+    })
+    .unwrap();
+    let axes = setup.robot().external().unwrap();
+    let postures = stiffid::design::random_group(&setup.without_cell(), 3, 6);
+    let d = f64::to_radians;
+    let stations = vec![
+        vec![0.5, d(20.0), d(45.0)],
+        vec![3.0, d(-60.0), d(200.0)],
+        vec![5.9, 0.0, d(-90.0)],
+    ];
+    let extras = Extras {
+        external: &stations,
+        ..Extras::default()
+    };
+    let s = scene::scene(&setup, &postures, &extras).unwrap();
+    let names: Vec<&str> = s.links.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names[8..], ["track", "carriage", "positioner table"]);
+    for ((p, q), e) in s.postures.iter().zip(&postures).zip(&stations) {
+        assert_eq!(&p.external, e);
+        let report = kinematics::run(kinematics::Request {
+            robot: setup.robot(),
+            q: *q,
+            point: setup.tool().tcp,
+            characteristic_length: Some(1.2),
+            coordinates: Coordinates::Axis,
+            stiffness: None,
+            external: e.clone(),
+            workpiece: None,
+        })
+        .unwrap();
+        let doc = kinematics::document::Document::new(&report, setup.robot());
+        for j in 0..6 {
+            let got = vector(p.joint_positions_m[j]) * 1e3;
+            let want = vector(doc.joint_positions_mm[j]);
+            assert!((got - want).norm() < 1e-9, "joint {j}: {got} vs {want}");
+        }
+        assert!((vector(p.tcp_m) * 1e3 - vector(doc.point_position_mm)).norm() < 1e-9);
+        // The robot's base link on the carriage, the carriage at C(e) base, the table at P(e).
+        let carriage = axes.carrier_pose(e) * setup.robot().base();
+        let table = axes.positioner_pose(e);
+        for (k, want) in [(0, carriage), (9, carriage), (10, table)] {
+            let f = &p.link_frames[k];
+            assert!((vector(f.translation_m) - want.translation.vector).norm() < 1e-12);
+            let r = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                f.rotation_xyzw[3],
+                f.rotation_xyzw[0],
+                f.rotation_xyzw[1],
+                f.rotation_xyzw[2],
+            ));
+            assert!(r.angle_to(&want.rotation) < 1e-12);
+        }
+        assert_eq!(p.link_frames[8].translation_m, [0.0; 3]);
+    }
+    // The carriage moves along x by the track's values.
+    let x: Vec<f64> = s
+        .postures
+        .iter()
+        .map(|p| p.link_frames[9].translation_m[0])
+        .collect();
+    assert!((x[1] - x[0] - 2.5).abs() < 1e-12 && (x[2] - x[0] - 5.4).abs() < 1e-12);
+    let g = gltf::Gltf::from_slice(&glb::glb(&s)).unwrap();
+    let nodes: Vec<_> = g
+        .nodes()
+        .filter_map(|n| n.name().map(String::from))
+        .collect();
+    for name in ["track", "carriage", "positioner table"] {
+        assert_eq!(nodes.iter().filter(|n| *n == name).count(), 3, "{name}");
+    }
+    let far = vec![vec![6.5, 0.0, 0.0]; 3];
+    let e = scene::scene(
+        &setup,
+        &postures,
+        &Extras {
+            external: &far,
+            ..Extras::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("external[0]") && e.contains("e1_mm"), "{e}");
+    let short = &stations[..2];
+    let e = scene::scene(
+        &setup,
+        &postures,
+        &Extras {
+            external: short,
+            ..Extras::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("one per posture"), "{e}");
 }

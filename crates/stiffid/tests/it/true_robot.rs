@@ -32,7 +32,7 @@ const NOISE: f64 = 1.5e-5;
 
 /// The setup of the campaign: the COMAU cell with a TCP 300 mm out of the flange and the
 /// tracker's noise, on `robot` (a robot file's name) within `bounds` (deg).
-fn setup_text(robot: &str, bounds: &str) -> String {
+pub(crate) fn setup_text(robot: &str, bounds: &str) -> String {
     format!(
         r#"name = "true-robot"
 robot = "{robot}"
@@ -89,17 +89,17 @@ pub(crate) fn dh_robot_text() -> String {
 }
 
 /// One robot's campaign.
-struct Case {
+pub(crate) struct Case {
     /// The nominal setup.
-    setup: Setup,
+    pub(crate) setup: Setup,
     /// The gravity model the calibration fits.
-    gravity: Gravity,
+    pub(crate) gravity: Gravity,
     /// Axis angles of the robot from the preset's axis angles (the URDF takes the kinematic
     /// angles).
-    angles: fn(&Vector6<f64>) -> Vector6<f64>,
+    pub(crate) angles: fn(&Vector6<f64>) -> Vector6<f64>,
 }
 
-fn preset_angles(q: &Vector6<f64>) -> Vector6<f64> {
+pub(crate) fn preset_angles(q: &Vector6<f64>) -> Vector6<f64> {
     *q
 }
 
@@ -109,7 +109,7 @@ fn kinematic_angles(q: &Vector6<f64>) -> Vector6<f64> {
     map.matrix * q + map.offset
 }
 
-fn dh_case() -> Case {
+pub(crate) fn dh_case() -> Case {
     let text = setup_text(
         "robot.toml",
         "[bounds]\nlower_deg = [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]\nupper_deg = [90.0, 40.0, -40.0, 180.0, 90.0, 180.0]",
@@ -145,9 +145,9 @@ fn urdf_case() -> Case {
 
 /// The true robot: its error model (geometry, the weight of [`masses`], the load compliances)
 /// and values, the tracker's frame.
-struct Truth {
-    model: ErrorModel,
-    estimate: Estimate,
+pub(crate) struct Truth {
+    pub(crate) model: ErrorModel,
+    pub(crate) estimate: Estimate,
     /// The true robot's rigid chain.
     robot: Robot,
     /// The true drive compliances, rad/(N m).
@@ -157,7 +157,7 @@ struct Truth {
 }
 
 impl Truth {
-    fn new(setup: &Setup, rng: &mut ChaCha8Rng) -> Self {
+    pub(crate) fn new(setup: &Setup, rng: &mut ChaCha8Rng) -> Self {
         let robot = setup.robot();
         let compliance = setup.nominal_compliance().unwrap() * 1.3;
         let g = gravity::Terms::masses(robot, masses(), setup.springs(), compliance).unwrap();
@@ -260,7 +260,7 @@ impl Truth {
     /// the TCP), in the tracker's frame: the joints deflected by its weight and by the wrench
     /// through the Jacobian of its own forward kinematics (central differences), the rigid
     /// chain at the deflected angles.
-    fn tcp_at(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Vector3<f64> {
+    pub(crate) fn tcp_at(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Vector3<f64> {
         let values = &self.estimate.values;
         let g = self.model.gravity();
         let sag = g.deflection(&values.rows(self.model.gravity_start(), g.len()), q);
@@ -285,7 +285,7 @@ impl Truth {
 }
 
 /// Postures spread over the arm's range (the preset's axis angles, rad).
-fn postures(
+pub(crate) fn postures(
     n: usize,
     rng: &mut ChaCha8Rng,
     angles: fn(&Vector6<f64>) -> Vector6<f64>,
@@ -327,12 +327,12 @@ fn rectangle() -> String {
 
 /// What a program does on the true robot: the TCP error's mean and largest, m.
 #[derive(Debug, Clone, Copy)]
-struct Row {
-    mean: f64,
-    max: f64,
+pub(crate) struct Row {
+    pub(crate) mean: f64,
+    pub(crate) max: f64,
 }
 
-fn row(errors: &[f64]) -> Row {
+pub(crate) fn row(errors: &[f64]) -> Row {
     Row {
         mean: errors.iter().sum::<f64>() / errors.len() as f64,
         max: errors.iter().copied().fold(0.0, f64::max),
@@ -399,15 +399,16 @@ struct Outcome {
 }
 
 /// Calibrates with `gravity`, returns the calibrated setup (the nominal controller named), the
-/// compliance, the registration and the held-out RMS.
-fn calibrated(
+/// compliance (from loaded readings), the registration, the held-out RMS and the registration on
+/// the nominal robot.
+pub(crate) fn calibrated(
     case: &Case,
     gravity: Gravity,
     data: &str,
     held: &str,
 ) -> (
     Setup,
-    stiffid::model::Compliance,
+    Option<stiffid::model::Compliance>,
     Isometry3<f64>,
     f64,
     Isometry3<f64>,
@@ -430,15 +431,19 @@ fn calibrated(
         maps: stiffid::metrology::calibration::maps::Spec::None,
         error_motions: Default::default(),
         level: None,
+        update: false,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");
-    let file = serde_json::to_string(document.stiffness_file.as_ref().unwrap()).unwrap();
-    let compliance = stiffid::io::stiffness::parse(&file)
-        .unwrap()
-        .compliance(setup.model())
-        .unwrap();
-    assert_eq!(compliance.own_weight.is_some(), gravity != Gravity::None);
+    let compliance = document.stiffness_file.as_ref().map(|file| {
+        let file = serde_json::to_string(file).unwrap();
+        let compliance = stiffid::io::stiffness::parse(&file)
+            .unwrap()
+            .compliance(setup.model())
+            .unwrap();
+        assert_eq!(compliance.own_weight.is_some(), gravity != Gravity::None);
+        compliance
+    });
     let robot = robot_file::calibrated(&report.model, &report.fit.estimate).unwrap();
     let controller = Controller {
         kinematics: Kinematics::Nominal,
@@ -540,6 +545,7 @@ fn campaign(case: &Case, seed: u64) -> Outcome {
     let held = truth.readings(&held_postures, &wrenches[..1], &mut rng);
     let (setup, compliance, frame, held_rms, nominal_frame) =
         calibrated(case, case.gravity, &data, &held);
+    let compliance = compliance.unwrap();
     // The part where the calibrated robot's tool stands at q0, the tool along its -z.
     let q0 = (case.angles)(&Vector6::from_fn(|i, _| {
         [10.0f64, 10.0, -110.0, 20.0, -50.0, 40.0][i].to_radians()
@@ -612,6 +618,7 @@ fn campaign(case: &Case, seed: u64) -> Outcome {
     // A geometry-only calibration of the same readings, joint targets.
     let (plain, plain_compliance, plain_frame, _, _) =
         calibrated(case, Gravity::None, &data, &held);
+    let plain_compliance = plain_compliance.unwrap();
     let plain = plain.to_builder().with_workpiece(part).build().unwrap();
     let (krl, results) = program(&plain, &plain_compliance, &q0, Targets::Joint);
     let geometry_only: Vec<f64> = (joint_targets(&krl).iter().zip(&results))

@@ -133,7 +133,7 @@ pub fn run(args: &Args) -> Result<()> {
             }
             let doc = r.document(name);
             if let Some(dir) = report_dir {
-                identification::write(dir, &json(&doc)?)?;
+                identification::write(dir, &json(&doc)?, &setup, None)?;
             }
             return match args.common.json {
                 true => output::print(&json(&doc)?),
@@ -154,7 +154,7 @@ pub fn run(args: &Args) -> Result<()> {
         out.write(json_text.as_bytes())?;
     }
     if let Some(dir) = report_dir {
-        identification::write(dir, &json_text)?;
+        identification::write(dir, &json_text, &setup, report.postures())?;
     }
     match args.common.json {
         true => output::print(&json_text),

@@ -77,7 +77,8 @@ pub struct Args {
     /// beside --out as OUT.target.svg and .png).
     #[arg(long, conflicts_with = "postures")]
     target_pct: Option<f64>,
-    /// Number of postures (random or global starts, pool) [default: 6; 2 to 100].
+    /// Number of postures (random or global starts, pool) [default: 6, 10 with --for check; 2
+    /// to 100].
     #[arg(long, value_parser = clap::value_parser!(u64).range(2..=limits::MAX_SEARCH_POSTURES), conflicts_with = "start")]
     postures: Option<u64>,
     /// Seed of the random start group, of the global starts or of the pool's exchange runs.
@@ -175,7 +176,7 @@ pub fn run(args: &Args) -> Result<()> {
         method: method(args, pool.is_some())?,
         start,
         pool,
-        postures: args.postures.unwrap_or(6) as usize,
+        postures: (args.postures).map_or(args.purpose.purpose.default_postures(), |n| n as usize),
         target_pct: args.target_pct,
         options: options(args),
         restarts: args.restarts.map(|r| r as usize),
@@ -207,6 +208,7 @@ pub fn run(args: &Args) -> Result<()> {
             &setup,
             args.criterion,
             &report.postures,
+            report.station.as_ref().map(|e| e.as_slice()),
             t,
             &provenance,
         )?;

@@ -11,16 +11,16 @@ use crate::{Error, Result};
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
-/// [`crate::model::prediction::LEVEL`], or one given without held-out readings.
+/// [`crate::model::prediction::LEVEL`], or one given without held-out readings or `update`.
 pub(super) fn interval_level(request: &Request<'_>) -> Result<f64> {
     use crate::model::prediction::{check_level, DEFAULT_LEVEL};
     match (request.level, &request.validate) {
         (None, _) => Ok(DEFAULT_LEVEL),
-        (Some(_), None) => Err(Error::InvalidOption {
+        (Some(_), None) if !request.update => Err(Error::InvalidOption {
             option: JobOption::Level,
-            message: "only with --validate: the level is that of the held-out readings' prediction intervals".into(),
+            message: "only with --validate or --update: the level is that of the held-out readings' prediction intervals or of the check's bound".into(),
         }),
-        (Some(l), Some(_)) => check_level("level", l)
+        (Some(l), _) => check_level("level", l)
             .map(|_| l)
             .map_err(|e| e.for_option(JobOption::Level)),
     }

@@ -61,6 +61,10 @@ pub struct Document {
     /// The joint error maps: what was asked, the choice by cross-validation inside the fitted
     /// readings and its held-out gain by an outer cross-validation around the choice.
     pub maps: MapsDocument,
+    /// With `--update`: the check readings' errors with the calibrated robot before the update
+    /// against the calibration's held-out error bound, and whether it drifted beyond them;
+    /// `null` otherwise, or without `[held_out]` in the robot file.
+    pub check: Option<super::drift::CheckDocument>,
     /// The held-out readings' errors (`--validate`), if asked.
     pub validation: Option<ValidationDocument>,
     /// The leave-one-posture-out errors (`--cross-validate`), if asked.
@@ -420,6 +424,8 @@ impl Document {
             stop_reason: fit.stop,
             errors: before_after(report),
             maps: maps_document(&report.maps),
+            check: (report.check.as_ref())
+                .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
             validation: report.validation.as_ref().map(held),
             cross_validation: report.cross_validation.as_ref().map(held),
             robot_file: report.robot_toml.as_ref().ok().cloned(),
@@ -621,9 +627,16 @@ pub(super) fn held_out_table(validation: Option<&Held>, cross_validation: Option
         (None, Some(c)) => ("cross-validate", c),
         (None, None) => return String::new(),
     };
-    let errors: Vec<String> = (held.calibrated.errors.iter())
-        .map(|e| format!("{:?}", e.error.norm() * 1e3))
-        .collect();
+    held_out_lines(
+        source,
+        held.calibrated.errors.iter().map(|e| e.error.norm()),
+    )
+}
+
+/// The `[held_out]` table of a robot file: the error lengths `lengths` (m) from `source`
+/// (`validate` or `cross-validate`).
+pub(super) fn held_out_lines(source: &str, lengths: impl Iterator<Item = f64>) -> String {
+    let errors: Vec<String> = lengths.map(|e| format!("{:?}", e * 1e3)).collect();
     format!(
         "\n# The calibration's held-out position errors (|predicted - read|, mm): the error budget of\n# `stiffid compensate` takes their quantile at its level.\n[held_out]\nsource = \"{source}\"\nerrors_mm = [{}]\n",
         errors.join(", ")

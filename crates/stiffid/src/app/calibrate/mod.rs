@@ -8,20 +8,25 @@
 //! robot TOML file and a URDF, the fitted compliances as a stiffness file. `--geometry none
 //! --gravity none` is the cell calibration of `calibrate-cell`.
 //!
-//! Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
+//! With [`Request::update`], a calibrated robot refitted from check readings after their check
+//! ([`drift`]). Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
 //! [`crate::metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
 //! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
-//! cross-validation (one fit per posture; beyond it, held-out readings get no intervals).
+//! cross-validation (one fit per posture; beyond it, held-out readings get no intervals), at
+//! least [`MIN_UPDATE_POSTURES`] postures with `update`.
 
 mod checks;
 mod compliance;
 pub mod document;
+pub mod drift;
 mod judge;
 use judge::{judge, largest_residual};
 mod maps;
+mod update;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
 pub use maps::{Maps, MAX_MAP_WORK};
+pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
 
 use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
@@ -121,8 +126,14 @@ pub struct Request<'a> {
     /// The level of the held-out readings' prediction intervals
     /// ([`crate::metrology::calibration::intervals`]), within
     /// [`crate::model::prediction::LEVEL`], only with `validate`; `None` for
-    /// [`crate::model::prediction::DEFAULT_LEVEL`].
+    /// [`crate::model::prediction::DEFAULT_LEVEL`]; with `update` also the level of the check's
+    /// bound ([`drift`]).
     pub level: Option<f64>,
+    /// Update a calibrated robot (the setup's robot, a calibrated robot file) from check
+    /// readings: the joint offsets, the frame and the measuring points refitted, the rest kept
+    /// (`geometry`, `gravity` and `maps` ignored), and the readings checked against the
+    /// calibration's held-out errors first ([`drift`]).
+    pub update: bool,
 }
 
 /// A validation with the nominal model's error beside it.
@@ -176,6 +187,9 @@ pub struct Report {
     pub maps: Maps,
     /// With external axes: the orders of the carrier's error motions and how they were chosen.
     pub error_motions: Option<crate::metrology::calibration::motions::Choice>,
+    /// With `update`: the check readings against the calibration's held-out errors, before the
+    /// update (`None` when the robot file carries no `[held_out]`, or too few for the level).
+    pub check: Option<drift::Check>,
     /// The held-out validation, if asked.
     pub validation: Option<Held>,
     /// The cross-validation, if asked.
@@ -266,7 +280,8 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         cross_validation_size(&obs)?;
     }
     let level = interval_level(request)?;
-    let model = model(setup, measured_in, request.geometry, request.gravity)?;
+    let (geometry, gravity, maps_spec) = update::settings(request, setup, &obs)?;
+    let model = model(setup, measured_in, geometry, gravity)?;
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
@@ -313,7 +328,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     progress.end();
     let (start, fitted) = fitted?;
     progress.begin("joint error maps", 0);
-    let mapped = maps::fit_maps(request.maps, model, fitted, &obs, options);
+    let mapped = maps::fit_maps(maps_spec, model, fitted, &obs, options);
     progress.end();
     let (model, fitted, options, maps) = mapped.map_err(|e| match e {
         // Too many maps for the readings is the option's error, not the data's.
@@ -333,6 +348,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     refuse_repeated(setup, &data, &model, &fitted).map_err(|e| in_data(name, e))?;
     let reference = reference(setup, &model)?;
     let nominal = nominal(&reference, &obs, name)?;
+    let check = (request.update)
+        .then(|| drift::checked(setup.robot(), &nominal, level, &mut warnings))
+        .flatten();
     let calibrated =
         validation::validate(&model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
     let mut postures = vec![nalgebra::Vector6::zeros(); data.labels.len()];
@@ -390,7 +408,14 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate)
-        .map(|t| t + &document::held_out_table(validation.as_ref(), cross_validation.as_ref()))
+        .map(|t| {
+            t + &update::held_out(
+                request,
+                setup,
+                validation.as_ref(),
+                cross_validation.as_ref(),
+            )
+        })
         .map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
@@ -398,15 +423,15 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     }
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());
-    let compliance = (request.gravity != Gravity::None || model.has_loads())
+    let compliance = (gravity != Gravity::None || model.has_loads())
         .then(|| fitted_compliance(setup, &model, &fitted));
     Ok(Report {
         data_name: name.clone(),
         labels: data.labels.clone(),
         readings: obs.len(),
         model,
-        geometry: request.geometry,
-        gravity: request.gravity,
+        geometry,
+        gravity,
         start_frame: start.frame,
         fit: fitted,
         nominal,
@@ -415,6 +440,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         noise_ratio,
         maps,
         error_motions,
+        check,
         validation,
         cross_validation,
         robot_toml,

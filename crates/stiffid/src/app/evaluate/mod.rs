@@ -66,18 +66,19 @@ pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     purpose::check(request.purpose, &request.calibration)?;
     setup.check_bodies()?;
-    if setup.model().is_drives_only() && request.purpose != Purpose::Calibration {
+    if setup.model().is_drives_only() && !request.purpose.calibration_only() {
         Factor::try_new(rope_observation_matrix(setup, postures))?;
     }
     let calibration = match request.purpose {
         Purpose::Stiffness => None,
         _ => {
-            let design = purpose::design(setup, &request.calibration)?;
-            Some((request.calibration, design.evaluate(postures)?))
+            let options = request.calibration.of(request.purpose);
+            let design = purpose::design(setup, &options)?;
+            Some((options, design.evaluate(postures)?))
         }
     };
     let candidates = match request.purpose {
-        Purpose::Calibration => None,
+        Purpose::Calibration | Purpose::Check => None,
         _ => Some(verdicts(
             setup,
             postures,

@@ -116,6 +116,16 @@ impl Report {
         }
     }
 
+    /// The postures of the measurements (axis angles, rad) in the order they first appear in the
+    /// data (what [`document::scene::scene`] takes); `None` for the model comparison.
+    pub fn postures(&self) -> Option<&[nalgebra::Vector6<f64>]> {
+        match self {
+            Report::Drives(r) => Some(&r.origin.angles),
+            Report::Springs(r) => Some(&r.origin.angles),
+            Report::Comparison(_) => None,
+        }
+    }
+
     /// The document (`stiffid identify --json`), `setup_name` the setup as given.
     pub fn document(&self, setup_name: &str, setup: &Setup) -> Document {
         match self {

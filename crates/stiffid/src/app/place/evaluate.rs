@@ -7,6 +7,7 @@ use crate::cell::{CheckKind, Checker};
 use crate::machining::compensate::{Compliance, Options};
 use crate::machining::process::Process;
 use crate::machining::{self, Program};
+use crate::math::jacobi;
 use crate::robot::kinematics::Coordinates;
 use crate::Setup;
 use nalgebra::Isometry3;
@@ -76,15 +77,12 @@ impl Context<'_> {
         let (mut peak, mut sum, mut worst_line) = (0f64, 0.0, 0);
         for (p, r) in report.points.iter().zip(&report.results) {
             for q in [&r.q, &r.q_compensated] {
-                for i in 0..6 {
-                    margin = margin.min((q[i] - limits.lower[i]).min(limits.upper[i] - q[i]));
-                }
+                margin = margin.min(limits.distance(q));
             }
             let j = robot
                 .frames(&r.q)
                 .jacobian(&arm.tool().tcp, Coordinates::Axis);
-            let s = j.singular_values();
-            condition = condition.max(s.max() / s.min());
+            condition = condition.max(jacobi::cond(&j));
             if let Some(checker) = &self.checker {
                 let f = checker.feasibility(&r.q);
                 for c in f.checks.iter().filter(|c| CHECKS.contains(&c.kind)) {

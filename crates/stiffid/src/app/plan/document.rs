@@ -227,13 +227,19 @@ fn posture((i, p): (usize, &Posture)) -> PlannedPosture {
 
 /// The plan's 3D scene ([`crate::app::document::scene`]): the group of `report` in the cell, the
 /// rope, the nominal compliance's ellipsoids at the tool centre point under the load and each
-/// measuring point's expected displacement (the plan's, nominal stiffness). What `select
-/// --report` shows in `plan.html` and writes as `plan.glb`, and Python's `stiffid.scene`.
+/// measuring point's expected displacement (the plan's, nominal stiffness); with external axes
+/// the arm on its carriage at `station` (SI, the cell's order; `None`: every axis at zero). What
+/// `select --report` shows in `plan.html` and writes as `plan.glb`, and Python's
+/// `stiffid.scene`.
 ///
 /// # Errors
 /// [`crate::Error::MissingField`] for a setup without a nominal stiffness; those of
 /// [`scene::scene`].
-pub fn scene(report: &Report, setup: &Setup) -> crate::Result<scene::Scene> {
+pub fn scene(
+    report: &Report,
+    setup: &Setup,
+    station: Option<&[f64]>,
+) -> crate::Result<scene::Scene> {
     let h = setup.try_model_nominal_compliance(super::NEEDED_BY)?;
     let postures: Vec<_> = report.postures.iter().map(|p| p.q).collect();
     let predicted: Vec<_> = report
@@ -241,10 +247,15 @@ pub fn scene(report: &Report, setup: &Setup) -> crate::Result<scene::Scene> {
         .iter()
         .map(|p| p.displacements.clone())
         .collect();
+    let external = match station {
+        Some(e) => vec![e.to_vec(); postures.len()],
+        None => Vec::new(),
+    };
     let extras = scene::Extras {
         compliance: Some(&h),
         predicted: &predicted,
         rope: true,
+        external: &external,
         ..scene::Extras::default()
     };
     scene::scene(setup, &postures, &extras)

@@ -50,6 +50,7 @@ pub(super) fn choose(
     let name = match (r.purpose, goal.calibration) {
         (Purpose::Stiffness, _) | (_, None) => r.criterion.to_string(),
         (Purpose::Calibration, Some(c)) => format!("calibration {}", choice_name(c.criterion)),
+        (Purpose::Check, Some(c)) => format!("check {}", choice_name(c.criterion)),
         (Purpose::Both, Some(c)) => {
             format!(
                 "{} and calibration {}",

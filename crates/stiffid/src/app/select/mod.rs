@@ -342,13 +342,16 @@ fn check_for_candidates(r: &Request, design: &Setup) -> Result<()> {
 fn run_on(request: &Request) -> Result<Report> {
     let design = match request.purpose {
         Purpose::Stiffness => None,
-        _ => Some(purpose::design(request.setup, &request.calibration)?),
+        _ => Some(purpose::design(
+            request.setup,
+            &request.calibration.of(request.purpose),
+        )?),
     };
     let goal = purpose::goal(
         request.purpose,
         request.criterion,
         design.as_ref(),
-        &request.calibration,
+        &request.calibration.of(request.purpose),
     );
     let pool = request
         .pool
@@ -367,7 +370,7 @@ fn run_on(request: &Request) -> Result<Report> {
         }
     };
     let elapsed_s = started.elapsed().as_secs_f64();
-    if request.purpose != Purpose::Calibration {
+    if !request.purpose.calibration_only() {
         identifiable(request.setup, &found.postures).map_err(|e| Error::Input {
             source_name: "postures: the best group the search found".into(),
             error: Box::new(e),
@@ -443,8 +446,8 @@ fn calibration_report(
     postures: &[Vector6<f64>],
 ) -> Result<CalibrationReport> {
     Ok(CalibrationReport {
-        criterion: request.calibration.criterion(),
-        options: request.calibration,
+        criterion: request.calibration.of(request.purpose).criterion(),
+        options: request.calibration.of(request.purpose),
         criteria: design.evaluate(postures)?,
         weight,
     })

@@ -26,6 +26,8 @@ use crate::{Error, Result};
 ///     "q3_deg = 85.94 deg: expected within the robot's limits [-57.30, 57.30] deg"
 /// );
 /// assert!(limits.contains(&limits.clamp(&q)));
+/// assert_eq!(limits.distance(&q), -0.5); // axis 3 is 0.5 rad beyond its upper end
+/// assert_eq!(limits.distance(&Vector6::repeat(0.25)), 0.75);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JointBox {
@@ -91,6 +93,14 @@ impl JointBox {
     /// `q` (rad) with every angle moved to the nearest point of the box.
     pub fn clamp(&self, q: &Vector6<f64>) -> Vector6<f64> {
         Vector6::from_fn(|i, _| q[i].clamp(self.lower[i], self.upper[i]))
+    }
+
+    /// The smallest distance of an angle of `q` (rad) to its end of the box, rad: negative
+    /// outside the box, NaN for a NaN angle.
+    pub fn distance(&self, q: &Vector6<f64>) -> f64 {
+        (0..6)
+            .map(|i| (q[i] - self.lower[i]).min(self.upper[i] - q[i]))
+            .fold(f64::INFINITY, |d, x| if x.is_nan() { x } else { d.min(x) })
     }
 
     /// The box grown by `margin` (rad) at both ends of every axis, e.g. to accept rounding.

@@ -8,6 +8,7 @@
 use super::stream::nominal_postures;
 use super::tool_axis::{column, Cost};
 use super::{Compliance, FreeToolAxis, Model, Options, PathPoint};
+use crate::math::jacobi;
 use crate::observation::deflection::base_wrench;
 use crate::robot::kinematics::Coordinates;
 use crate::setup::Arm;
@@ -93,15 +94,11 @@ pub fn map(
                         let frames = arm.robot().frames(q);
                         let d = model.tcp_deflection(&frames, w).displacement;
                         let j = frames.jacobian(&arm.tool().tcp, Coordinates::Axis);
-                        let s = j.singular_values();
-                        let distance = (0..6)
-                            .map(|i| (q[i] - limits.lower[i]).min(limits.upper[i] - q[i]))
-                            .fold(f64::INFINITY, f64::min);
                         [
                             *bound,
                             d.fixed_rows::<3>(0).norm(),
-                            s.max() / s.min(),
-                            distance,
+                            jacobi::cond(&j),
+                            limits.distance(q),
                         ]
                     }
                 })

@@ -19,11 +19,12 @@ use std::collections::BTreeSet;
 /// Subdivisions of a round shape's circle (capsules, cylinders, spheres).
 const ROUND: u32 = 24;
 
-/// The frame that carries `part` in the posture `frames`, base frame, m: the robot's base, joint
+/// The frame that carries `part` in the posture `frames`, base frame, m: the robot's base (on its
+/// carrier with external axes, [`Frames::base`]), joint
 /// frame i for link i ([`Frames::joints`]), the flange for the tool.
-pub(super) fn frame(arm: &Arm, frames: &Frames, part: Part) -> Isometry3<f64> {
+pub(super) fn frame(frames: &Frames, part: Part) -> Isometry3<f64> {
     match part {
-        Part::Base => *arm.robot().base(),
+        Part::Base => frames.base,
         Part::Link(i) => frames.joints[i - 1],
         Part::Tool => frames.flange,
     }
@@ -52,7 +53,7 @@ pub(super) fn links(arm: &Arm, frames: &Frames) -> Vec<Link> {
         .iter()
         .zip(names)
         .map(|(part, name)| {
-            let to_link = frame(arm, frames, *part).inverse();
+            let to_link = frame(frames, *part).inverse();
             let mut link = Link {
                 name,
                 part: part.to_string(),
@@ -142,7 +143,7 @@ fn capsule(c: &Capsule, to_link: &Isometry3<f64>) -> Geometry {
 
 impl Geometry {
     /// Triangles of `points` placed by `pose`, positions rounded to f32.
-    fn new(
+    pub(super) fn new(
         kind: &str,
         points: &[Point3<f64>],
         triangles: Vec<[u32; 3]>,

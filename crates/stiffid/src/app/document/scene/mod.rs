@@ -3,14 +3,17 @@
 //! obstacles, the tracker and its lines of sight with their margins, the rope from the loading
 //! point to its anchor, the compliance ellipsoid at the tool centre point scaled to a force, the
 //! measured and predicted displacements of the measuring points, and a path coloured by its
-//! predicted error. What `select --report`, `compensate --report`, `calibrate --report` and
-//! `identify --report` draw in 3D, and Python's `stiffid.scene`.
+//! predicted error; with external axes, the track's rail, the carriage at each posture's
+//! station and the positioner's table at its angles ([`external`]). What `select --report`,
+//! `compensate --report`, `calibrate --report` and `identify --report` draw in 3D, and Python's
+//! `stiffid.scene`.
 //!
 //! Everything in SI: metres, newtons, the unit in every field name (`_m`, `_n`, `_m_per_n`), as
 //! glTF and WebGL take them. Written as JSON, as glTF binary ([`glb`]: one node per posture named
 //! `posture N` holding one node per link named as the URDF names it) and as a self-contained
 //! HTML page ([`page`]).
 
+mod external;
 mod geometry;
 pub mod glb;
 pub mod page;
@@ -35,7 +38,8 @@ pub struct Scene {
     pub setup: String,
     /// The robot's name.
     pub robot: String,
-    /// The robot's links and the tool, with their geometry in their own frames.
+    /// The robot's links and the tool, with their geometry in their own frames; with external
+    /// axes then `track` and `carriage` (a carrier) and `positioner table` (a positioner).
     pub links: Vec<Link>,
     /// Each posture, in the order given.
     pub postures: Vec<Posture>,
@@ -102,6 +106,9 @@ pub struct Frame {
 pub struct Posture {
     /// Axis angles, deg.
     pub q_deg: [f64; 6],
+    /// The external axes' values (SI: m for a linear axis, rad for a rotary one), the cell's
+    /// order; empty without external axes.
+    pub external: Vec<f64>,
     /// Each link's frame in the base frame, in the order of [`Scene::links`].
     pub link_frames: Vec<Frame>,
     /// The origin of each joint frame ([`crate::Frames::joints`]), base frame, m.
@@ -210,6 +217,11 @@ pub struct Extras<'a> {
     /// What `measured` and `predicted` are, in words; `None`: the measured and the predicted
     /// displacement.
     pub arrow_names: Option<[&'a str; 2]>,
+    /// The external axes' values of each posture (SI, the cell's order; empty: all at zero).
+    /// The arm stands on its carriage there (frames in the cell frame,
+    /// [`crate::Robot::frames_at`]); the lines of sight's margins are the cell's checks at the
+    /// axis angles alone.
+    pub external: &'a [Vec<f64>],
 }
 
 /// The scene of the postures `postures` (axis angles, rad) of `setup`.
@@ -217,7 +229,8 @@ pub struct Extras<'a> {
 /// # Errors
 /// [`crate::Error::InvalidField`] (field `postures`) for no posture or more than
 /// [`MAX_POSTURES`]; displacements (fields `measured`, `predicted`) not one list per posture of
-/// one per measuring point, or not finite; a non-finite or negative force (field `force`); the
+/// one per measuring point, or not finite; a non-finite or negative force (field `force`);
+/// external values not one list per posture within the axes' limits (field `external`); the
 /// errors of [`Setup::check_bodies`].
 pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate::Result<Scene> {
     let invalid = |field: &str, message: String| crate::Error::InvalidField {
@@ -255,6 +268,7 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate
             return Err(invalid(field, "a displacement is not finite".into()));
         }
     }
+    check_external(setup, postures.len(), extras.external)?;
     let force = extras.force.unwrap_or(setup.load().load);
     if !force.is_finite() || force < 0.0 {
         return Err(invalid("force", format!("{force} N: expected >= 0")));
@@ -292,7 +306,11 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate
     Ok(Scene {
         setup: setup.name().to_string(),
         robot: setup.robot().name().to_string(),
-        links: geometry::links(setup.arm(), &frames),
+        links: [
+            geometry::links(setup.arm(), &frames),
+            external::links(setup.robot()),
+        ]
+        .concat(),
         postures,
         floor_z_m: setup.cell().and_then(|c| c.floor_z),
         obstacles: obstacles(setup),
@@ -320,11 +338,14 @@ struct Drawn<'a> {
 impl Drawn<'_> {
     fn posture(&self, i: usize, q: &Vector6<f64>) -> Posture {
         let (setup, tool) = (self.setup, self.setup.tool());
-        let frames = setup.robot().frames(q);
-        let link_frames = geometry::parts()
+        let e = (self.extras.external.get(i).cloned())
+            .unwrap_or_else(|| external::zero(setup.robot().external()));
+        let frames = setup.robot().frames_at(q, &e);
+        let mut link_frames: Vec<Frame> = geometry::parts()
             .iter()
-            .map(|p| frame(&geometry::frame(setup.arm(), &frames, *p)))
+            .map(|p| frame(&geometry::frame(&frames, *p)))
             .collect();
+        link_frames.extend(external::frames(setup.robot(), &e));
         let margins = self.checker.margins(q);
         let sights = match setup.tracker() {
             None => Vec::new(),
@@ -344,6 +365,7 @@ impl Drawn<'_> {
         };
         Posture {
             q_deg: std::array::from_fn(|a| q[a].to_degrees()),
+            external: e,
             link_frames,
             joint_positions_m: std::array::from_fn(|j| array(&frames.joints[j].translation.vector)),
             flange_m: array(&frames.flange.translation.vector),
@@ -394,6 +416,26 @@ pub fn ellipsoid(c: &Matrix3<f64>, centre: &Vector3<f64>, force: f64) -> Option<
         axes: order.map(|k| array(&e.eigenvectors.column(k).into())),
         semi_axes_m: values.map(|v| force * v.max(0.0)),
     })
+}
+
+/// Refuses external values `e` (per posture) unless empty or one list per posture of values
+/// within the robot's external axes' limits.
+fn check_external(setup: &Setup, postures: usize, e: &[Vec<f64>]) -> crate::Result<()> {
+    if e.is_empty() {
+        return Ok(());
+    }
+    let Some(axes) = setup.robot().external().filter(|_| e.len() == postures) else {
+        return Err(crate::Error::InvalidField {
+            field: "external".into(),
+            message: format!(
+                "{} lists: expected one per posture ({postures}) of a robot with external axes",
+                e.len()
+            ),
+        });
+    };
+    e.iter()
+        .enumerate()
+        .try_for_each(|(i, v)| axes.check(v, &format!("external[{i}]")))
 }
 
 /// The cell's obstacles.

@@ -41,8 +41,14 @@ function draw(root, scene) {
     color: colour, metalness: 0.1, roughness: 0.65, side: THREE.DoubleSide,
     transparent: ghost, opacity: ghost ? 0.22 : 1, depthWrite: !ghost,
   });
-  const robotSolid = material(0xb8bcc6, false), robotGhost = material(0x8a93a6, true);
-  const toolSolid = material(0xf08c1a, false), toolGhost = material(0xf08c1a, true);
+  // Solid and ghosted materials of the robot, the tool and the external axes' parts.
+  const materials = {
+    robot: [material(0xb8bcc6, false), material(0x8a93a6, true)],
+    tool: [material(0xf08c1a, false), material(0xf08c1a, true)],
+    axis: [material(0x5f7fa8, false), material(0x5f7fa8, true)],
+  };
+  const axisParts = ['track', 'carriage', 'positioner table'];
+  const kind = (l) => (l.part === 'tool' ? 'tool' : axisParts.includes(l.part) ? 'axis' : 'robot');
   const robots = postures.map((p) => {
     const g = new THREE.Group();
     scene.links.forEach((l, k) => {
@@ -51,8 +57,8 @@ function draw(root, scene) {
       link.position.copy(v3(f.translation_m));
       link.quaternion.set(...f.rotation_xyzw);
       for (const geo of geometries[k]) {
-        const m = new THREE.Mesh(geo, l.part === 'tool' ? toolSolid : robotSolid);
-        m.userData.tool = l.part === 'tool';
+        const m = new THREE.Mesh(geo, materials[kind(l)][0]);
+        m.userData.kind = kind(l);
         link.add(m);
       }
       g.add(link);
@@ -188,7 +194,7 @@ function draw(root, scene) {
     robots.forEach((g, i) => {
       const on = all || String(i) === choice;
       g.visible = on;
-      g.traverse((m) => { if (m.isMesh) m.material = m.userData.tool ? (all ? toolGhost : toolSolid) : (all ? robotGhost : robotSolid); });
+      g.traverse((m) => { if (m.isMesh) m.material = materials[m.userData.kind][all ? 1 : 0]; });
       overlays[i].visible = !all && on;
       arrows[i].visible = on;
     });
@@ -211,6 +217,8 @@ function draw(root, scene) {
   }
   if (scene.anchor_m) rows.push(key('#333333', 'rope from the loading point to the anchor'));
   if (scene.obstacles.length) rows.push(key('#6b8fb3', 'obstacles'));
+  const axes = scene.links.filter((l) => kind(l) === 'axis').map((l) => l.name);
+  if (axes.length) rows.push(key('#5f7fa8', `external axes: ${axes.join(', ')} at each posture's values`));
   if (errors) rows.push(`path by ${scene.path_error}: <span class="ramp"></span> ${(errors[0] * 1e3).toFixed(3)} to ${(errors[1] * 1e3).toFixed(3)} mm`);
   rows.push(`grid: 0.25 m squares at ${scene.floor_z_m === null ? 'the lowest point' : 'the floor'}, z = ${(floorZ * 1e3).toFixed(0)} mm`);
   legend.innerHTML = rows.map((r) => `<div>${r}</div>`).join('') + scene.notes.map((n) => `<div class="note">${n}</div>`).join('');

@@ -5,6 +5,7 @@
 //! ([`Comparison`]); each form is written as it is, without a tag.
 
 pub mod drives;
+pub mod scene;
 pub mod springs;
 
 pub use crate::identify::compare::Document as Comparison;

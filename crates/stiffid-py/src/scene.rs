@@ -1,0 +1,145 @@
+//! `stiffid.scene`: the 3D scene of a group of postures, a plan or an identification
+//! ([`stiffid::app::document::scene`]), built by the library as the commands' reports build it,
+//! shown inline in Jupyter and written as HTML or glTF binary.
+
+use crate::arrays::postures;
+use crate::documents::to_python;
+use crate::error::{raise, value};
+use crate::figures::json;
+use crate::setup::Setup;
+use nalgebra::Vector6;
+use pyo3::prelude::*;
+use pyo3::types::{PyAny, PyBytes, PyDict};
+use serde_json::Value;
+use stiffid::app::document::scene::{glb, page, MAX_POSTURES};
+use stiffid::app::plan::{self as job, Request};
+
+/// The 3D scene of a plan or an identification (``stiffid.scene``): the robot at each posture
+/// in the cell, the tracker's lines of sight, the rope, the compliance ellipsoids and the
+/// displacements, as ``select --report`` and ``identify --report`` show it in their pages and
+/// write it as ``.glb``.
+#[pyclass(frozen, module = "stiffid", name = "Scene")]
+pub struct Scene {
+    inner: stiffid::app::document::scene::Scene,
+}
+
+#[pymethods]
+impl Scene {
+    /// The scene's data as a dict (SI: metres and newtons, the unit in every key).
+    fn document<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        to_python(py, &self.inner, &[])
+    }
+
+    /// A self-contained HTML page of the scene titled ``title`` (opens offline).
+    #[pyo3(signature = (title="stiffid scene"))]
+    fn html(&self, title: &str) -> String {
+        page::page(&self.inner, title)
+    }
+
+    /// The scene as glTF binary (``.glb``) bytes.
+    fn glb<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &glb::glb(&self.inner))
+    }
+
+    /// The page in an ``<iframe srcdoc>``, as Jupyter shows it inline.
+    fn _repr_html_(&self) -> String {
+        let page = page::page(&self.inner, &self.inner.setup);
+        format!(
+            "<iframe srcdoc=\"{}\" style=\"width: 100%; height: 800px; border: none\"></iframe>",
+            page::escape(&page)
+        )
+    }
+}
+
+/// The 3D scene of ``setup``'s robot in its cell at the postures ``postures_deg`` (axis angles,
+/// deg, shape ``(n, 6)``, within the joint limits; 1 to 500), with its links named as the URDF
+/// names them, the cell, the tracker's lines of sight with their margins and the rope, and what
+/// ``document`` adds:
+///
+/// - ``None``: the plan's (:func:`plan`) nominal compliance ellipsoid at the tool centre point
+///   under the load and each measuring point's expected displacement (``plan.html``);
+/// - a plan (the dict :func:`plan` returns): the same for its postures (``postures_deg`` left
+///   out);
+/// - an identification (the dict :func:`identify` returns, the drives or a model, not the model
+///   comparison): each measuring point's measured and predicted displacement (the document's
+///   ``residuals``), the identified compliance's ellipsoid under the load, as ``identify
+///   --report`` draws it; ``postures_deg`` the ``q_deg`` given to :func:`identify` (one row per
+///   measurement), or one row per posture in the order the residuals first name them (for a
+///   measurement file).
+///
+/// ``InputError`` for a setup without a nominal stiffness (plans), a posture count out of
+/// range or not the document's, or another document.
+#[pyfunction]
+#[pyo3(signature = (setup, postures_deg=None, *, document=None))]
+pub fn scene(
+    py: Python<'_>,
+    setup: &Setup,
+    postures_deg: Option<&Bound<'_, PyAny>>,
+    document: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Scene> {
+    let s = &setup.inner;
+    let doc = document.map(json).transpose()?;
+    let given = |what: Option<&Bound<'_, PyAny>>| {
+        let within = (s.robot().limits(), "the joint limits");
+        let Some(p) = what else {
+            return Err(value("postures_deg: expected the postures (n, 6), deg"));
+        };
+        postures(p, "postures_deg", within, MAX_POSTURES).map(|(g, _)| g)
+    };
+    let inner = match doc {
+        None => plan_scene(py, s, &given(postures_deg)?)?,
+        Some(d) if d.get("residuals").is_some() => {
+            let group = given(postures_deg)?;
+            let text = d.to_string();
+            py.detach(|| stiffid::app::identify::document::scene::scene(s, &group, &text))
+                .map_err(raise)?
+        }
+        Some(d) if d.get("criterion").is_some() && d["postures"].is_array() => {
+            if postures_deg.is_some() {
+                return Err(value("postures_deg: a plan's postures are its own"));
+            }
+            plan_scene(py, s, &plan_postures(&d)?)?
+        }
+        Some(_) => {
+            return Err(value(
+                "document: expected a plan or an identification (the dict stiffid.plan or stiffid.identify returns)",
+            ))
+        }
+    };
+    Ok(Scene { inner })
+}
+
+/// The plan's scene of `group` ([`job::document::scene`]).
+fn plan_scene(
+    py: Python<'_>,
+    s: &stiffid::Setup,
+    group: &[Vector6<f64>],
+) -> PyResult<stiffid::app::document::scene::Scene> {
+    let request = Request {
+        setup: s,
+        criterion: stiffid::design::Criterion::RelativeA,
+        postures: group,
+        target_pct: None,
+    };
+    py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s, None)))
+        .map_err(raise)
+}
+
+/// A plan document's postures (`postures[].q_deg`), rad.
+fn plan_postures(d: &Value) -> PyResult<Vec<Vector6<f64>>> {
+    let list = d["postures"].as_array().into_iter().flatten();
+    list.enumerate()
+        .map(|(i, p)| {
+            let q: Option<Vec<f64>> =
+                (p["q_deg"].as_array()).map(|a| a.iter().filter_map(Value::as_f64).collect());
+            match q {
+                Some(q) if q.len() == 6 => {
+                    Ok(Vector6::from_iterator(q.iter().map(|v| v.to_radians())))
+                }
+                _ => Err(value(format!(
+                    "document: postures[{i}].q_deg: expected 6 numbers"
+                ))),
+            }
+        })
+        .collect()
+}
