@@ -126,11 +126,20 @@ fn a_bad_error_map_is_refused_naming_the_joint() {
 
 #[test]
 fn a_maps_list_gives_each_joint_once_in_digits() {
-    use stiffid::metrology::calibration::maps::Spec;
+    use stiffid::metrology::calibration::maps::{name, JointMaps, Spec};
     let fixed = Spec::parse("J2, j3:8").unwrap();
-    assert_eq!(fixed, Spec::Fixed([0, 16, 8, 0, 0, 0]));
+    assert_eq!(fixed, Spec::Fixed(JointMaps::from([0, 16, 8, 0, 0, 0])));
+    // A backlash term: `b` after the count, `:b` alone; named back the same way.
+    let backlash = Spec::parse("J2:8b,J4:b,J5").unwrap();
+    let want = JointMaps {
+        harmonics: [0, 8, 0, 0, 16, 0],
+        backlash: [false, true, false, true, false, false],
+    };
+    assert_eq!(backlash, Spec::Fixed(want));
+    assert_eq!(name(&want), "J2:8b,J4:b,J5:16");
+    assert_eq!(Spec::parse(&name(&want)).unwrap(), backlash);
     // A joint named twice would silently keep the last count.
-    for twice in ["J1,J1:16", "J1:8,J1:16", "J3,j3"] {
+    for twice in ["J1,J1:16", "J1:8,J1:16", "J3,j3", "J2:b,J2:8"] {
         let e = Spec::parse(twice).unwrap_err().to_string();
         assert!(
             e.starts_with("maps: ") && e.contains("twice"),
@@ -139,7 +148,8 @@ fn a_maps_list_gives_each_joint_once_in_digits() {
     }
     // Signs, leading zeros and exponents are not a joint or a count.
     for odd in [
-        "J+1", "J01", "J1:+4", "J1:08", "J1:1e1", "J1:4.0", "J1:0", "J1:65",
+        "J+1", "J01", "J1:+4", "J1:08", "J1:1e1", "J1:4.0", "J1:0", "J1:65", "J1:", "J1b", "J1:bb",
+        "J1:b8", "J1:0b", "J1:B",
     ] {
         let e = Spec::parse(odd).unwrap_err().to_string();
         assert!(e.starts_with("maps: ") && e.contains(odd), "{odd}: {e}");
