@@ -83,6 +83,12 @@ fn recovered(harmonics: [usize; 6]) -> f64 {
             assert_eq!(maps[joint].backlash(), found.estimate.values[c]);
         }
     }
+    // A URDF cannot hold them, and says so.
+    let left = super::robot_file::urdf_leaves_out(&mapped, &found.estimate).unwrap();
+    assert!(
+        left.contains("error maps and their half backlashes of joints 1, 2, 3, 4, 5, 6"),
+        "{left}"
+    );
     eprintln!("worst {:e} relative", worst / largest);
     worst / largest
 }
