@@ -29,7 +29,8 @@ use stiffid::app::readings::Request as Readings;
 /// of the others; ``tolerance_mm`` and ``tolerance_deg`` together: the nominal tolerances of the
 /// joints' length and angle errors as priors; ``maps``: the joint error maps fitted, ``"auto"``
 /// (chosen by cross-validation inside the readings with 30 distinct postures or more), ``"none"``
-/// or joints with harmonics (``"J1,J3:16"``), as ``--maps``; ``error_motions``: with a track,
+/// or joints with harmonics (``"J1,J3:16"``; ``"J2:8b"``, ``"J2:b"`` with a backlash term where
+/// the readings carry ``dir1..dir6``), as ``--maps``; ``error_motions``: with a track,
 /// the order of its error motions' polynomials, ``"auto"`` (chosen by cross-validation) or an
 /// order ``"0"`` to ``"8"``, as ``--error-motions``; ``level``: the level of the
 /// ``validate`` readings' prediction intervals (0.5 to 0.999, default 0.95; jackknife+ over the

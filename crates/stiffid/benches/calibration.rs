@@ -64,6 +64,7 @@ fn campaign(postures: usize, track: bool) -> (ErrorModel, Vec<Observation>) {
                 wrench: Vector6::zeros(),
                 e,
                 table: false,
+                direction: Vector6::zeros(),
             });
         }
     }

@@ -52,6 +52,7 @@ fn campaign() -> (ErrorModel, Vec<Observation>) {
             wrench: Vector6::zeros(),
             e: ExternalValues::NONE,
             table: false,
+            direction: Vector6::zeros(),
         })
         .collect();
     let b = truth.predict(&values, &obs).unwrap();
@@ -74,15 +75,16 @@ fn bench(c: &mut Criterion) {
     let all: Vec<usize> = (0..POSTURES).collect();
     c.bench_function("maps auto: choice and nested gain, 100 postures", |b| {
         b.iter(|| {
-            let linear = Linear::at(&model, &fitted, &obs, 1.0, Spec::Auto.candidates()).unwrap();
+            let linear =
+                Linear::at(&model, &fitted, &obs, 1.0, Spec::Auto.candidates(false)).unwrap();
             let choice = maps::choose(&linear, &all, Spec::Auto).unwrap();
             let nested = maps::nested(&linear, &all, Spec::Auto).unwrap();
             (choice, nested)
         })
     });
-    let linear = Linear::at(&model, &fitted, &obs, 1.0, Spec::Auto.candidates()).unwrap();
+    let linear = Linear::at(&model, &fitted, &obs, 1.0, Spec::Auto.candidates(false)).unwrap();
     let choice = maps::choose(&linear, &all, Spec::Auto).unwrap();
-    let mapped = model.clone().with_maps(choice.harmonics).unwrap();
+    let mapped = model.clone().with_maps(choice.maps).unwrap();
     let ridged = Options {
         ridge: choice.ridge,
         ..options

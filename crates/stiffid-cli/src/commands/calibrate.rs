@@ -79,7 +79,9 @@ pub struct Args {
     /// The joint error maps fitted (each axis's angle error as a Fourier series of its own
     /// angle): auto (joints, harmonics and ridge chosen by cross-validation inside the readings,
     /// with 30 distinct postures or more; none below), none, or joints with their harmonics,
-    /// J1,J3:16 (a bare joint 16 harmonics; the ridge chosen by cross-validation).
+    /// J1,J3:16 (a bare joint 16 harmonics; the ridge chosen by cross-validation). With the
+    /// readings' directions (dir1..dir6) a b adds the joint's backlash term (J2:8b; J2:b the
+    /// backlash alone), and auto considers one per joint.
     #[arg(long, default_value = "auto")]
     maps: String,
     /// With a track (the setup's carrier axes): the order of the polynomials of its six error

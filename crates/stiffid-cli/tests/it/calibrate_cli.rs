@@ -499,6 +499,7 @@ fn loaded_readings(
                     wrench: *wrench,
                     e: stiffid::robot::external::ExternalValues::NONE,
                     table: false,
+                    direction: Vector6::zeros(),
                 };
                 let b = model.predict(x, &[o]).unwrap()[0];
                 let t = tracker.inverse() * Point3::from(b);

@@ -2,6 +2,7 @@
 //! test file `tests/it/NAME.rs` is added as `mod NAME;` below; `common` holds the shared helpers.
 
 mod answers;
+mod backlash_cli;
 mod bodies_cli;
 mod calibrate_cli;
 mod calibrated_robot_cli;

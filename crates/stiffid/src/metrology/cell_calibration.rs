@@ -70,6 +70,7 @@ pub fn observations(setup: &Setup, readings: &Readings) -> Result<Vec<Observatio
             wrench: Vector6::zeros(),
             e: r.e,
             table: false,
+            direction: r.direction.unwrap_or_default(),
         })
         .collect())
 }

@@ -8,7 +8,10 @@
 //! e(q) = sum_{h=1..H} a_h cos(h q) + b_h sin(h q)        (rad)
 //! ```
 //!
-//! and the chain turns by `q + e(q)`: a robot with maps ([`crate::Robot::with_error_maps`])
+//! and the chain turns by `q + e(q)`. Where the approach direction is known (the sign `d` of the
+//! joint's last motion, -1 or +1: the readings' `dir1..dir6`), a backlash term adds `b d`, `b`
+//! half the backlash (rad): `e(q, d) = e(q) + b d` ([`ErrorMap::angle_from`]); without a direction
+//! the robot stands at the mean of the two approaches, `e(q)`. A robot with maps ([`crate::Robot::with_error_maps`])
 //! evaluates its kinematic angles as `theta = M (q + e(q)) + c` ([`crate::AxisMap`]), so every
 //! computation on its frames (kinematics, prediction, compensation, design) uses them. The
 //! calibration identifies the coefficients ([`crate::metrology::calibration::maps`]). Source:
@@ -22,11 +25,12 @@ pub const MAX_HARMONICS: usize = 64;
 /// The largest coefficient a map holds, rad (10 deg): an error map is a small correction.
 pub const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
-/// One axis's error map: the coefficients of harmonics `1..=H`, rad.
+/// One axis's error map: the coefficients of harmonics `1..=H` and half the backlash, rad.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ErrorMap {
     cos: Vec<f64>,
     sin: Vec<f64>,
+    backlash: f64,
 }
 
 impl ErrorMap {
@@ -60,7 +64,38 @@ impl ErrorMap {
                 MAX_COEFFICIENT.to_degrees()
             )));
         }
-        Ok(ErrorMap { cos, sin })
+        Ok(ErrorMap {
+            cos,
+            sin,
+            backlash: 0.0,
+        })
+    }
+
+    /// The map with half the backlash `b` (rad): the angle error `+ b d` approached with the
+    /// last motion's sign `d` ([`ErrorMap::angle_from`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`error_map`) when `b` is not finite or beyond
+    /// [`MAX_COEFFICIENT`].
+    pub fn with_backlash(self, b: f64) -> Result<Self> {
+        if !(b.is_finite() && b.abs() <= MAX_COEFFICIENT) {
+            return Err(Error::InvalidField {
+                field: "error_map".into(),
+                message: format!(
+                    "expected a finite half backlash within {:.0} deg",
+                    MAX_COEFFICIENT.to_degrees()
+                ),
+            });
+        }
+        Ok(ErrorMap {
+            backlash: b,
+            ..self
+        })
+    }
+
+    /// Half the backlash `b`, rad (0: no backlash term).
+    pub fn backlash(&self) -> f64 {
+        self.backlash
     }
 
     /// The number of harmonics `H` (0: no map).
@@ -68,9 +103,9 @@ impl ErrorMap {
         self.cos.len()
     }
 
-    /// Whether the map is empty (no harmonic).
+    /// Whether the map is empty (no harmonic and no backlash).
     pub fn is_empty(&self) -> bool {
-        self.cos.is_empty()
+        self.cos.is_empty() && self.backlash == 0.0
     }
 
     /// The cosine coefficients `a_1..a_H`, rad.
@@ -103,7 +138,15 @@ impl ErrorMap {
         odd + even
     }
 
-    /// The map whose coefficients are the sums of this one's and `other`'s (the longer's count).
+    /// The error `e(q) + b d` (rad) at the axis angle `q` (rad) approached with the last
+    /// motion's sign `direction` (-1.0 or 1.0).
+    #[inline]
+    pub fn angle_from(&self, q: f64, direction: f64) -> f64 {
+        self.angle(q) + self.backlash * direction
+    }
+
+    /// The map whose coefficients and backlash are the sums of this one's and `other`'s (the
+    /// longer's count).
     pub fn plus(&self, other: &ErrorMap) -> ErrorMap {
         let n = self.harmonics().max(other.harmonics());
         let at = |v: &[f64], h: usize| v.get(h).copied().unwrap_or(0.0);
@@ -114,6 +157,7 @@ impl ErrorMap {
             sin: (0..n)
                 .map(|h| at(&self.sin, h) + at(&other.sin, h))
                 .collect(),
+            backlash: self.backlash + other.backlash,
         }
     }
 }
@@ -148,5 +192,23 @@ mod tests {
         let sum = map.plus(&ErrorMap::new(vec![1e-3], vec![0.0]).unwrap());
         assert_eq!(sum.harmonics(), 40);
         assert_eq!(sum.cos()[0], 1e-4 + 1e-3);
+    }
+
+    #[test]
+    fn backlash_adds_half_the_lost_motion_by_direction() {
+        let map = ErrorMap::new(vec![1e-3], vec![2e-4])
+            .unwrap()
+            .with_backlash(5e-4)
+            .unwrap();
+        let q: f64 = 0.4;
+        let mean = 1e-3 * q.cos() + 2e-4 * q.sin();
+        assert_eq!(map.angle(q), mean);
+        assert!((map.angle_from(q, 1.0) - (mean + 5e-4)).abs() < 1e-18);
+        assert!((map.angle_from(q, -1.0) - (mean - 5e-4)).abs() < 1e-18);
+        let only = ErrorMap::default().with_backlash(1e-4).unwrap();
+        assert!(!only.is_empty());
+        assert!((only.plus(&map).backlash() - 6e-4).abs() < 1e-18);
+        assert!(ErrorMap::default().with_backlash(f64::NAN).is_err());
+        assert!(ErrorMap::default().with_backlash(0.2).is_err());
     }
 }

@@ -19,6 +19,9 @@
 //! error_map = { cos_deg = [0.001, 0.0002], sin_deg = [-0.0005, 0.0] }
 //!                                       # optional: the axis's angle error (deg) at axis angle q,
 //!                                       #   sum_h cos_deg[h-1] cos(h q) + sin_deg[h-1] sin(h q)
+//!                                       #   (each list optional, default empty), plus
+//!                                       #   half_backlash_deg (optional, default 0) times the
+//!                                       #   sign of the last motion where a reading has one
 //! # ... five more [[joint]] tables
 //! [axis_map]                            # optional: theta = matrix * q + offset
 //! matrix = [[-1,0,0,0,0,0], [0,1,0,0,0,0], [0,-1,-1,0,0,0], [0,0,0,-1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,-1]]
@@ -135,13 +138,17 @@ struct JointRow {
     error_map: Option<ErrorMapFile>,
 }
 
-/// A joint's `error_map`: the Fourier coefficients of its axis's angle error, deg
-/// ([`super::ErrorMap`]).
+/// A joint's `error_map`: the Fourier coefficients of its axis's angle error and half its
+/// backlash, deg ([`super::ErrorMap`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ErrorMapFile {
+    #[serde(default)]
     cos_deg: Vec<f64>,
+    #[serde(default)]
     sin_deg: Vec<f64>,
+    #[serde(default)]
+    half_backlash_deg: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -331,7 +338,9 @@ fn error_maps(joints: &[JointRow], source_name: &str) -> Result<[super::ErrorMap
     for (i, j) in joints.iter().enumerate() {
         if let Some(m) = &j.error_map {
             let rad = |v: &[f64]| v.iter().map(|d| d.to_radians()).collect();
-            maps[i] = super::ErrorMap::new(rad(&m.cos_deg), rad(&m.sin_deg)).map_err(|e| {
+            let map = super::ErrorMap::new(rad(&m.cos_deg), rad(&m.sin_deg))
+                .and_then(|map| map.with_backlash(m.half_backlash_deg.to_radians()));
+            maps[i] = map.map_err(|e| {
                 let message = match e {
                     Error::InvalidField { message, .. } => message,
                     other => other.to_string(),

@@ -316,6 +316,22 @@ impl Robot {
         }
     }
 
+    /// [`Robot::mapped`] approached with the last motions' signs `direction` (-1.0 or 1.0 per
+    /// axis, 0.0 for the mean of the two approaches): `q + e(q) + b d`, `b` each axis's half
+    /// backlash ([`ErrorMap::angle_from`]).
+    pub fn mapped_from(
+        &self,
+        q: &nalgebra::Vector6<f64>,
+        direction: &nalgebra::Vector6<f64>,
+    ) -> nalgebra::Vector6<f64> {
+        match &self.error_maps {
+            None => *q,
+            Some(maps) => {
+                nalgebra::Vector6::from_fn(|i, _| q[i] + maps[i].angle_from(q[i], direction[i]))
+            }
+        }
+    }
+
     /// The URDF the robot was read from, when it was ([`urdf::parse`]): a calibrated URDF is that
     /// file with its chain's joint origins corrected.
     pub fn urdf_source(&self) -> Option<&urdf::UrdfSource> {

@@ -182,6 +182,7 @@ pub(crate) fn read(
                 wrench: Vector6::zeros(),
                 e: crate::robot::external::ExternalValues::NONE,
                 table: false,
+                direction: Vector6::zeros(),
             }
         })
         .collect())

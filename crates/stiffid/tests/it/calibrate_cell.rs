@@ -47,6 +47,7 @@ fn readings_at(
                 wrench: Vector6::zeros(),
                 e: stiffid::robot::external::ExternalValues::NONE,
                 table: false,
+                direction: Vector6::zeros(),
             });
         }
     }

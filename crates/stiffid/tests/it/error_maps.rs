@@ -126,11 +126,20 @@ fn a_bad_error_map_is_refused_naming_the_joint() {
 
 #[test]
 fn a_maps_list_gives_each_joint_once_in_digits() {
-    use stiffid::metrology::calibration::maps::Spec;
+    use stiffid::metrology::calibration::maps::{name, JointMaps, Spec};
     let fixed = Spec::parse("J2, j3:8").unwrap();
-    assert_eq!(fixed, Spec::Fixed([0, 16, 8, 0, 0, 0]));
+    assert_eq!(fixed, Spec::Fixed(JointMaps::from([0, 16, 8, 0, 0, 0])));
+    // A backlash term: `b` after the count, `:b` alone; named back the same way.
+    let backlash = Spec::parse("J2:8b,J4:b,J5").unwrap();
+    let want = JointMaps {
+        harmonics: [0, 8, 0, 0, 16, 0],
+        backlash: [false, true, false, true, false, false],
+    };
+    assert_eq!(backlash, Spec::Fixed(want));
+    assert_eq!(name(&want), "J2:8b,J4:b,J5:16");
+    assert_eq!(Spec::parse(&name(&want)).unwrap(), backlash);
     // A joint named twice would silently keep the last count.
-    for twice in ["J1,J1:16", "J1:8,J1:16", "J3,j3"] {
+    for twice in ["J1,J1:16", "J1:8,J1:16", "J3,j3", "J2:b,J2:8"] {
         let e = Spec::parse(twice).unwrap_err().to_string();
         assert!(
             e.starts_with("maps: ") && e.contains("twice"),
@@ -139,9 +148,70 @@ fn a_maps_list_gives_each_joint_once_in_digits() {
     }
     // Signs, leading zeros and exponents are not a joint or a count.
     for odd in [
-        "J+1", "J01", "J1:+4", "J1:08", "J1:1e1", "J1:4.0", "J1:0", "J1:65",
+        "J+1", "J01", "J1:+4", "J1:08", "J1:1e1", "J1:4.0", "J1:0", "J1:65", "J1:", "J1b", "J1:bb",
+        "J1:b8", "J1:0b", "J1:B",
     ] {
         let e = Spec::parse(odd).unwrap_err().to_string();
         assert!(e.starts_with("maps: ") && e.contains(odd), "{odd}: {e}");
     }
+}
+
+/// Half a backlash in the robot file (deg) is read as rad, leaves the kinematics (the mean of
+/// the two approaches) as they are, and the calibrated robot file writes it back.
+#[test]
+fn a_backlash_survives_the_robot_file_round_trip() {
+    use stiffid::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    let text = TABLE
+        .replace(
+            "ERROR1",
+            "error_map = { cos_deg = [0.01], sin_deg = [0.003], half_backlash_deg = 0.02 }",
+        )
+        .replace("ERROR3", "error_map = { half_backlash_deg = -0.005 }");
+    let robot = file::parse(&text, "backlash.toml").unwrap();
+    let maps = robot.error_maps().unwrap();
+    assert_eq!(maps[0].backlash(), 0.02_f64.to_radians());
+    assert_eq!(
+        (maps[2].backlash(), maps[2].harmonics()),
+        (-0.005_f64.to_radians(), 0)
+    );
+    // Without a direction the robot stands at the mean: the backlash does not move it.
+    let plain = TABLE
+        .replace(
+            "ERROR1",
+            "error_map = { cos_deg = [0.01], sin_deg = [0.003] }",
+        )
+        .replace("ERROR3", "");
+    let plain = file::parse(&plain, "plain.toml").unwrap();
+    let q = Vector6::new(0.3, -0.4, 0.5, -0.6, 0.7, -0.8);
+    assert_eq!(robot.frames(&q).flange, plain.frames(&q).flange);
+    let points = [Vector3::new(0.0, 0.0, 0.1)];
+    let model = ErrorModel::new(
+        &robot,
+        &points,
+        MeasuredIn::Base,
+        Geometry::Full,
+        gravity::Terms::none(&robot),
+    )
+    .unwrap();
+    let estimate = Estimate {
+        frame: nalgebra::Isometry3::identity(),
+        values: model.nominal(),
+    };
+    let written = robot_file::robot_toml(&model, &estimate).unwrap();
+    assert!(written.contains("half_backlash_deg = "), "{written}");
+    let back = file::parse(&written, "calibrated.toml").unwrap();
+    let back = back.error_maps().unwrap();
+    for j in 0..6 {
+        let (a, b) = (maps[j].backlash(), back[j].backlash());
+        assert!((a - b).abs() <= 1e-15 * a.abs(), "joint {}: {a} {b}", j + 1);
+    }
+    let bad = TABLE
+        .replace("ERROR1", "error_map = { half_backlash_deg = 11.0 }")
+        .replace("ERROR3", "");
+    let e = file::parse(&bad, "bad.toml").unwrap_err().to_string();
+    assert!(
+        e.contains("bad.toml: joint[1].error_map") && e.contains("half backlash"),
+        "{e}"
+    );
 }

@@ -80,6 +80,7 @@ fn readings(
                     wrench: on_carriage(&carriage, w),
                     e: ExternalValues::NONE,
                     table: false,
+                    direction: Vector6::zeros(),
                 };
                 let b = truth.model.predict(&truth.estimate.values, &[o]).unwrap()[0];
                 let t = truth.estimate.frame.inverse() * (carriage * Point3::from(b));
@@ -154,6 +155,7 @@ fn identified(
                         wrench,
                         e: ExternalValues::NONE,
                         table: false,
+                        direction: Vector6::zeros(),
                     };
                     truth.model.predict(&truth.estimate.values, &[o]).unwrap()[0]
                 };

@@ -232,6 +232,7 @@ impl Truth {
                         wrench: *w,
                         e: stiffid::robot::external::ExternalValues::NONE,
                         table: false,
+                        direction: Vector6::zeros(),
                     };
                     let b = self.model.predict(&self.estimate.values, &[o]).unwrap()[0];
                     let t = self.estimate.frame.inverse() * Point3::from(b);

@@ -103,13 +103,15 @@ pub struct Document {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct MapsDocument {
-    /// What was asked: `auto`, `none` or the joints with their harmonics (`J1:16,J3:8`).
+    /// What was asked: `auto`, `none` or the joints with their harmonics and backlash terms
+    /// (`J1:16,J3:8b,J4:b`).
     pub asked: String,
     /// The distinct postures of the fitted readings.
     pub postures: usize,
     /// Why no map was considered; `null` when maps were.
     pub skipped: Option<String>,
-    /// The maps fitted, `J3:16,J5:8` (joint and harmonics), or `none`.
+    /// The maps fitted, `J3:16,J5:8b` (joint and harmonics, `b` a backlash term, `J2:b` the
+    /// backlash alone), or `none`.
     pub chosen: String,
     /// The ridge of the maps fitted (per reading, dimensionless); `null` without maps.
     pub ridge: Option<f64>,
@@ -154,9 +156,9 @@ pub struct MapsNested {
 }
 
 fn maps_document(m: &super::Maps) -> MapsDocument {
-    use crate::metrology::calibration::maps::Spec;
+    use crate::metrology::calibration::maps::{JointMaps, Spec};
     let choice = m.choice.as_ref();
-    let chosen = choice.map_or([0; 6], |c| c.harmonics);
+    let chosen = choice.map_or(JointMaps::NONE, |c| c.maps);
     MapsDocument {
         asked: match m.spec {
             Spec::Auto => "auto".into(),
@@ -166,12 +168,12 @@ fn maps_document(m: &super::Maps) -> MapsDocument {
         postures: m.postures,
         skipped: m.skipped.clone(),
         chosen: crate::metrology::calibration::maps::name(&chosen),
-        ridge: choice.filter(|_| chosen != [0; 6]).map(|c| c.ridge),
+        ridge: choice.filter(|_| !chosen.is_none()).map(|c| c.ridge),
         inner_rms_mm: choice.map(|c| mm(c.rms)),
         inner_none_rms_mm: choice.map(|c| mm(c.none_rms)),
         tried: (choice.iter().flat_map(|c| &c.tried))
             .map(|t| MapTried {
-                maps: crate::metrology::calibration::maps::name(&t.harmonics),
+                maps: crate::metrology::calibration::maps::name(&t.maps),
                 ridge: t.ridge,
                 rms_mm: mm(t.rms),
                 kept: t.kept,

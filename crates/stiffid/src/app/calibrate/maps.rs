@@ -8,6 +8,7 @@ use crate::metrology::calibration::fit::{self, Fit, Options};
 use crate::metrology::calibration::maps::{self, Choice, Linear, Nested, Spec};
 use crate::metrology::calibration::ErrorModel;
 use crate::{Error, Result};
+use nalgebra::Vector6;
 
 /// The most work the maps' choice takes on: readings x (map coefficients)^2, the cost of its
 /// cross-validated fits (about 1.2e-7 s of CPU each: a minute of CPU at this bound, half of it
@@ -54,7 +55,18 @@ pub(super) fn fit_maps(
         nested: None,
         skipped: None,
     };
-    let coefficients = 2 * spec.candidates().iter().sum::<usize>();
+    let directions = observations.iter().any(|o| o.direction != Vector6::zeros());
+    let candidates = spec.candidates(directions);
+    if candidates.any_backlash() && !directions {
+        return Err(Error::InvalidOption {
+            option: JobOption::Maps,
+            message: format!(
+                "{} asks for a backlash term: the readings carry no directions of approach (columns dir1..dir6)",
+                maps::name(&candidates)
+            ),
+        });
+    }
+    let coefficients = candidates.coefficients();
     let readings = observations.len();
     let work = readings as f64 * (coefficients * coefficients) as f64;
     let over = format!(
@@ -84,23 +96,17 @@ pub(super) fn fit_maps(
     if report.skipped.is_some() {
         return Ok((model, fitted, options, report));
     }
-    let linear = Linear::at(
-        &model,
-        &fitted,
-        observations,
-        options.length,
-        spec.candidates(),
-    )?;
+    let linear = Linear::at(&model, &fitted, observations, options.length, candidates)?;
     let all: Vec<usize> = (0..postures.len()).collect();
     let choice = maps::choose(&linear, &all, spec)?;
     report.nested = Some(maps::nested(&linear, &all, spec)?);
-    let harmonics = choice.harmonics;
+    let chosen = choice.maps;
     let ridge = choice.ridge;
     report.choice = Some(choice);
-    if harmonics == [0; 6] {
+    if chosen.is_none() {
         return Ok((model, fitted, options, report));
     }
-    let model = model.with_maps(harmonics)?;
+    let model = model.with_maps(chosen)?;
     // From the calibration's own start, not from the geometric fit: what the readings determine
     // is analysed where the geometric fit analysed it (at the fitted geometry, parallel axes
     // are parallel no more and their merged parameters would be fitted, drifting along a

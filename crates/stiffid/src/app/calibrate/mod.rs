@@ -234,6 +234,7 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
             },
             e: r.e,
             table: r.table,
+            direction: r.direction.unwrap_or_default(),
         })
         .collect();
     (obs, measured_in)

@@ -65,6 +65,7 @@ impl Column {
             },
             Target::Compliance { .. }
             | Target::Map { .. }
+            | Target::Backlash { .. }
             | Target::External { .. }
             | Target::Table { .. } => Column::Unloaded,
         }

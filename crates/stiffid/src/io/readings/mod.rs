@@ -29,10 +29,13 @@
 //!   `fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm]` in the base frame or `fx_tool_n,...[,mx_tool_nm,...]` in
 //!   the tool (flange) frame (moments optional, zero when absent; forces and moments within
 //!   [`crate::common::limits::WRENCH`]). Load and force columns come together.
+//! - Directions (optional, a backlash term's): `dir1..dir6`, one posture's alike ([`direction`]).
 //!
 //! Columns may come in any order; lines starting with `#` are comments. At most
 //! [`MAX_READINGS`] rows. [`crate::metrology::register`] turns the unloaded readings into the tracker's
 //! transform, [`crate::identify::steps`] the loaded ones into displacements.
+
+pub mod direction;
 
 use crate::io::external::{self, external_like};
 use crate::robot::external::ExternalValues;
@@ -114,6 +117,9 @@ pub struct Reading {
     /// The wrench `[f; m]` at the loading point, N and Nm, in [`Readings::wrench_frame`]; zero
     /// when the file has no force columns.
     pub wrench: Vector6<f64>,
+    /// The sign of each joint's last motion before the reading (-1.0 or 1.0, `dir1..dir6`);
+    /// `None` when the file has no direction columns.
+    pub direction: Option<Vector6<f64>>,
 }
 
 impl Reading {
@@ -291,6 +297,8 @@ struct Columns {
     force: Option<[usize; 3]>,
     moment: Option<[usize; 3]>,
     wrench_frame: Frame,
+    /// The direction columns (`dir1..dir6`), if any.
+    direction: Option<[usize; 6]>,
 }
 
 /// One record, its line and the header's names: what places an error.
@@ -344,13 +352,17 @@ impl Row<'_> {
     }
 }
 
+/// A row's axis angles (rad), external axis values and directions.
+type Posture = (Vector6<f64>, ExternalValues, Option<Vector6<f64>>);
+
 /// What earlier rows said about each posture and point ([`Columns::posture_index`]).
 #[derive(Default)]
 struct Numbers {
     /// The posture number of each label.
     labels: HashMap<String, usize>,
-    /// The axis angles and external axis values of each posture and the line that gave them.
-    angles: Vec<(Vector6<f64>, ExternalValues, u64)>,
+    /// The axis angles, external axis values and directions of each posture and the line that
+    /// gave them.
+    angles: Vec<(Posture, u64)>,
     /// The line of each (posture, point, table) read (without load steps).
     read: HashMap<(usize, usize, bool), u64>,
 }
@@ -365,6 +377,7 @@ fn known() -> impl Iterator<Item = &'static str> + Clone {
         .chain(MOMENT)
         .chain(FORCE_TOOL)
         .chain(MOMENT_TOOL)
+        .chain(direction::DIR)
 }
 
 impl Columns {
@@ -435,6 +448,7 @@ impl Columns {
             ),
         };
         Ok(Self {
+            direction: direction::columns(names, line)?,
             posture,
             point,
             q,
@@ -501,7 +515,9 @@ impl Columns {
             .map(|(c, step)| self.load(row, c, step))
             .transpose()?;
         let wrench = self.wrench(row)?;
-        let posture = self.posture_index(row, label, (&q, &e), (point, table), so_far, numbers)?;
+        let direction = direction::values(row, self.direction)?;
+        let at = (q, e, direction);
+        let posture = self.posture_index(row, label, at, (point, table), so_far, numbers)?;
         Ok(Reading {
             posture,
             point,
@@ -511,6 +527,7 @@ impl Columns {
             position,
             load,
             wrench,
+            direction,
         })
     }
 
@@ -625,7 +642,7 @@ impl Columns {
         &self,
         row: &Row,
         label: &str,
-        (q, e): (&Vector6<f64>, &ExternalValues),
+        at: Posture,
         (point, table): (usize, bool),
         so_far: &mut Readings,
         numbers: &mut Numbers,
@@ -634,23 +651,17 @@ impl Columns {
             let index = so_far.labels.len();
             so_far.labels.push(label.to_string());
             numbers.labels.insert(label.to_string(), index);
-            numbers.angles.push((*q, *e, row.line));
+            numbers.angles.push((at, row.line));
             if self.load.is_none() {
                 numbers.read.insert((index, point, table), row.line);
             }
             return Ok(index);
         };
-        let (angles, values, line) = &numbers.angles[index];
-        let message = if angles != q {
-            format!(
-                "posture '{}' has other axis angles on line {line}",
-                short(label)
-            )
-        } else if values != e {
-            format!(
-                "posture '{}' has other external axis values on line {line}",
-                short(label)
-            )
+        let ((angles, values, directions), line) = &numbers.angles[index];
+        let other = (*angles != at.0).then_some("axis angles");
+        let other = other.or((*values != at.1).then_some("external axis values"));
+        let message = if let Some(what) = other.or((*directions != at.2).then_some("directions")) {
+            format!("posture '{}' has other {what} on line {line}", short(label))
         } else if self.load.is_some() {
             return Ok(index);
         } else if let Some(line) = numbers.read.insert((index, point, table), row.line) {

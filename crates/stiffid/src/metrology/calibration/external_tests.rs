@@ -119,6 +119,7 @@ fn campaign(
                 wrench: Vector6::zeros(),
                 e: crate::robot::external::ExternalValues::new(&e).unwrap(),
                 table: false,
+                direction: Vector6::zeros(),
             });
         }
     }
@@ -135,6 +136,7 @@ fn campaign(
                     wrench: Vector6::zeros(),
                     e: crate::robot::external::ExternalValues::new(&[3.0, tilt, turn]).unwrap(),
                     table: true,
+                    direction: Vector6::zeros(),
                 });
             }
         }
@@ -414,6 +416,7 @@ fn noisy_readings(
                     crate::robot::external::ExternalValues::new(&[s[i]]).unwrap()
                 }),
                 table: false,
+                direction: Vector6::zeros(),
             });
         }
     }

@@ -378,7 +378,7 @@ fn prior_weights(
                     p.noise / p.angle
                 }
                 (Target::Joint { .. }, Some(p)) => p.noise / p.length,
-                (Target::Map { .. }, _) => ridge,
+                (Target::Map { .. } | Target::Backlash { .. }, _) => ridge,
                 _ => 0.0,
             }),
     )

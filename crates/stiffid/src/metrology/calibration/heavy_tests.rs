@@ -121,6 +121,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
                         wrench: Vector6::zeros(),
                         e: crate::robot::external::ExternalValues::NONE,
                         table: false,
+                        direction: Vector6::zeros(),
                     });
                 }
             }

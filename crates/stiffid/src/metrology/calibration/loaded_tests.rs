@@ -69,6 +69,7 @@ fn readings(model: &ErrorModel, truth: &Estimate, qs: &[Vector6<f64>]) -> Vec<Ob
                     wrench,
                     e: crate::robot::external::ExternalValues::NONE,
                     table: false,
+                    direction: Vector6::zeros(),
                 });
             }
         }

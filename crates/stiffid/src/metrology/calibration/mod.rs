@@ -39,6 +39,8 @@ pub use error_model::{
 };
 
 #[cfg(test)]
+mod backlash_tests;
+#[cfg(test)]
 mod external_tests;
 #[cfg(test)]
 mod heavy_tests;

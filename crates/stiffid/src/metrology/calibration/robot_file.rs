@@ -88,15 +88,19 @@ fn error_map_line(map: &crate::robot::ErrorMap) -> String {
         let parts: Vec<String> = v.iter().map(|x| format!("{:?}", x.to_degrees())).collect();
         parts.join(", ")
     };
+    let backlash = match map.backlash() {
+        0.0 => String::new(),
+        b => format!(", half_backlash_deg = {:?}", b.to_degrees()),
+    };
     format!(
-        "error_map = {{ cos_deg = [{}], sin_deg = [{}] }}\n",
+        "error_map = {{ cos_deg = [{}], sin_deg = [{}]{backlash} }}\n",
         deg(map.cos()),
         deg(map.sin())
     )
 }
 
-/// What a URDF of the calibrated robot leaves out, in words: its joint error maps (a URDF holds
-/// none); `None` when it has none.
+/// What a URDF of the calibrated robot leaves out, in words: its joint error maps and half
+/// backlashes (a URDF holds none); `None` when it has none.
 pub fn urdf_leaves_out(model: &ErrorModel, estimate: &Estimate) -> Option<String> {
     let robot = model.robot_at(&estimate.values).ok()?;
     if let Some(axes) = robot.external() {
@@ -108,8 +112,12 @@ pub fn urdf_leaves_out(model: &ErrorModel, estimate: &Estimate) -> Option<String
     }
     let maps = robot.error_maps()?;
     let joints: Vec<usize> = (0..6).filter(|&i| !maps[i].is_empty()).collect();
+    let backlash = match maps.iter().any(|m| m.backlash() != 0.0) {
+        true => " and their half backlashes",
+        false => "",
+    };
     Some(format!(
-        "the URDF leaves out the error maps of {} (a URDF holds no joint error map): a robot read from it misses them; use the robot file",
+        "the URDF leaves out the error maps{backlash} of {} (a URDF holds no joint error map): a robot read from it misses them; use the robot file",
         crate::common::warning::joint_list(joints)
     ))
 }

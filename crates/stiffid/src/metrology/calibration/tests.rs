@@ -56,6 +56,7 @@ pub(super) fn readings(
             wrench: Vector6::zeros(),
             e: crate::robot::external::ExternalValues::NONE,
             table: false,
+            direction: Vector6::zeros(),
         })
         .collect()
 }

@@ -118,7 +118,25 @@ impl Robot {
 
     /// [`Robot::update_frames`] with the chain's first frame at `base` (cell frame).
     pub(crate) fn update_frames_on(&self, base: &Isometry3<f64>, q: &Vector6<f64>, f: &mut Frames) {
-        let theta = self.axis_map().kinematic(&self.mapped(q));
+        self.update_chain(base, &self.mapped(q), f);
+    }
+
+    /// [`Robot::update_frames_on`] approached with the last motions' signs `direction` (-1.0 or
+    /// 1.0 per axis, 0.0 for the mean of the two approaches): the axes turn by
+    /// [`Robot::mapped_from`], their backlash included.
+    pub(crate) fn update_frames_from(
+        &self,
+        base: &Isometry3<f64>,
+        q: &Vector6<f64>,
+        direction: &Vector6<f64>,
+        f: &mut Frames,
+    ) {
+        self.update_chain(base, &self.mapped_from(q, direction), f);
+    }
+
+    /// The chain's frames with its axes turned by `mapped` (axis angles with their errors, rad).
+    fn update_chain(&self, base: &Isometry3<f64>, mapped: &Vector6<f64>, f: &mut Frames) {
+        let theta = self.axis_map().kinematic(mapped);
         // `flange` carries the running transform, base to the current joint, until it reaches the
         // flange.
         f.base = *base;

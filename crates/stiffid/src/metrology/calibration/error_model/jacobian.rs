@@ -70,8 +70,8 @@ impl ErrorModel {
                 }
                 continue;
             }
-            let (q, k) = (a.q, &a.point);
-            let posture = self.posture_of(&mut last, &robot, values, q, a.e);
+            let k = &a.point;
+            let posture = self.posture_of(&mut last, &robot, values, &a);
             let f = &posture.frames;
             let c = self.point(values, *k);
             let b = f.point(&c);
@@ -100,7 +100,7 @@ impl ErrorModel {
             if self.maps.is_some() {
                 let jq = f.jacobian(&c, crate::robot::kinematics::Coordinates::Axis);
                 let columns = std::array::from_fn(|i| jq.fixed_view::<3, 1>(0, i).into_owned());
-                self.map_columns(&columns, &posture.at, |m, col| {
+                self.map_columns(&columns, &posture.at, &posture.direction, |m, col| {
                     block.column_mut(m).copy_from(&col)
                 });
             }
@@ -254,7 +254,7 @@ impl ErrorModel {
                 .map(|(i, p)| match p.target {
                     Target::Frame(a) if a >= 3 => 1.0 / length,
                     Target::Joint { component, .. } if component.is_angle() => 1.0 / length,
-                    Target::Map { .. } => 1.0 / length,
+                    Target::Map { .. } | Target::Backlash { .. } => 1.0 / length,
                     Target::External { part, .. } if part.is_angle() => 1.0 / length,
                     Target::Gravity(term) => {
                         let y = rms[i - self.gravity_start];

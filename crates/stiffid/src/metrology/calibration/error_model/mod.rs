@@ -82,6 +82,7 @@ use crate::robot::external::ExternalValues;
 pub use basis::Basis;
 pub use external::{MAX_FITTED_ORDER, MOTIONS};
 use loads::Loads;
+pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
 
 use super::gravity;
@@ -94,11 +95,16 @@ pub const MAX_POINTS: usize = 100;
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
 pub const NO_EFFECT: f64 = 1e-9;
 
+/// No direction of approach: the mean of the two ([`Observation::direction`]).
+const MEAN: Vector6<f64> = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+
 /// One commanded posture: its frames at the deflected posture and its gravity regressors.
 struct Posture {
     q: Vector6<f64>,
     /// The external axes' values (SI, the cell's order; empty without).
     e: ExternalValues,
+    /// The last motions' signs ([`Observation::direction`]).
+    direction: Vector6<f64>,
     /// The arm's base frame in the cell: the carrier's pose times the robot's base.
     base: Isometry3<f64>,
     /// The axis angles the chain stands at: `q` plus the deflection under gravity.
@@ -156,6 +162,10 @@ pub struct Observation {
     /// Whether `point` is a reflector on the positioner's table ([`ErrorModel::with_external`])
     /// rather than a measuring point on the tool.
     pub table: bool,
+    /// The sign of each joint's last motion before the reading (-1.0 or 1.0, the readings'
+    /// `dir1..dir6`), by which a backlash term moves the joint ([`ErrorModel::with_maps`]); 0.0
+    /// where unknown: the mean of the two approaches.
+    pub direction: Vector6<f64>,
 }
 
 /// Where a predicted position is: a measuring point at axis angles `q` and external axis values
@@ -164,6 +174,7 @@ pub struct Observation {
 struct At<'a> {
     q: &'a Vector6<f64>,
     e: &'a ExternalValues,
+    direction: &'a Vector6<f64>,
     point: usize,
     table: bool,
 }
@@ -173,6 +184,7 @@ impl<'a> At<'a> {
         pairs.iter().map(|(q, k)| At {
             q,
             e: &ExternalValues::NONE,
+            direction: &MEAN,
             point: *k,
             table: false,
         })
@@ -182,6 +194,7 @@ impl<'a> At<'a> {
         observations.iter().map(|o| At {
             q: &o.q,
             e: &o.e,
+            direction: &o.direction,
             point: o.point,
             table: o.table,
         })
@@ -430,7 +443,7 @@ impl ErrorModel {
                 let b = match a.table {
                     true => self.table_position(values, a.e.as_slice(), a.point),
                     false => {
-                        let p = self.posture_of(&mut last, &robot, values, a.q, a.e);
+                        let p = self.posture_of(&mut last, &robot, values, &a);
                         p.frames.point(&self.point(values, a.point))
                     }
                 };
@@ -445,33 +458,34 @@ impl ErrorModel {
         (self.positioner_pose(values, e) * nalgebra::Point3::from(x)).coords
     }
 
-    /// The posture of commanded `q` on `robot` (the chain at `values`) at external axis values
-    /// `e`, reused from `last` when it is the same posture: the readings of one posture's points
-    /// come together.
+    /// The posture of commanded `a.q` on `robot` (the chain at `values`) at external axis values
+    /// `a.e` approached from `a.direction`, reused from `last` when it is the same posture: the
+    /// readings of one posture's points come together.
     fn posture_of<'p>(
         &self,
         last: &'p mut Option<Posture>,
         robot: &Robot,
         values: &DVector<f64>,
-        q: &Vector6<f64>,
-        e: &ExternalValues,
+        a: &At,
     ) -> &'p Posture {
-        if last.as_ref().is_none_or(|p| p.q != *q || p.e != *e) {
+        let (q, e, direction) = (a.q, a.e, a.direction);
+        let same = |p: &Posture| p.q == *q && p.e == *e && p.direction == *direction;
+        if !last.as_ref().is_some_and(same) {
             let regressors = self.gravity.regressors(q);
             let g = values.rows(self.gravity_start, self.gravity.len());
             let at = q + self.gravity.deflection_from(&g, &regressors);
-            let (base, frames) = match &self.external {
+            let base = match &self.external {
                 Some(x) if x.axes.carrier_len() > 0 => {
-                    let base = x.carrier(values, e.as_slice()) * robot.base();
-                    let mut frames = crate::Frames::blank();
-                    robot.update_frames_on(&base, &at, &mut frames);
-                    (base, frames)
+                    x.carrier(values, e.as_slice()) * robot.base()
                 }
-                _ => (*robot.base(), robot.frames(&at)),
+                _ => *robot.base(),
             };
+            let mut frames = crate::Frames::blank();
+            robot.update_frames_from(&base, &at, direction, &mut frames);
             *last = Some(Posture {
                 q: *q,
                 e: *e,
+                direction: *direction,
                 base,
                 at,
                 frames,

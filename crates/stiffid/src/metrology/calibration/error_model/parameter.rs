@@ -141,6 +141,13 @@ pub enum Target {
         /// Whether it is the sine's coefficient (else the cosine's).
         sine: bool,
     },
+    /// Half the backlash of joint `joint` (0-based, rad, [`crate::robot::ErrorMap::backlash`]):
+    /// its angle error's `+ b d`, `d` the sign of the joint's last motion
+    /// ([`super::Observation::direction`], [`super::ErrorModel::with_maps`]).
+    Backlash {
+        /// The joint, 0-based.
+        joint: usize,
+    },
     /// A parameter of external axis `axis` (0-based, the cell's order:
     /// [`crate::robot::ExternalAxes`]).
     External {
@@ -267,7 +274,7 @@ impl Parameter {
             Target::Point { .. } => "mm",
             Target::Joint { component, .. } if component.is_angle() => "deg",
             Target::Joint { .. } => "mm",
-            Target::Map { .. } => "deg",
+            Target::Map { .. } | Target::Backlash { .. } => "deg",
             Target::External {
                 part: AxisPart::Offset,
                 ..

@@ -15,7 +15,7 @@
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone, for
 //! every `lambda` from one SVD (never the normal equations).
 
-use super::super::error_model::{Observation, Target};
+use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
 use super::super::{ErrorModel, Estimate};
 use crate::math::linalg::CappedSvd;
@@ -33,16 +33,16 @@ pub struct Linear {
     /// The fitted parameters' scaled columns (m per typical error).
     pub geometry: DMatrix<f64>,
     /// Per joint, its map's scaled columns to the largest harmonic count `H`: `cos 1..H`, then
-    /// `sin 1..H`; empty for a joint not a candidate.
+    /// `sin 1..H` (a joint with a candidate map), then its backlash term's (a candidate
+    /// backlash); empty for a joint not a candidate.
     pub maps: Vec<DMatrix<f64>>,
     /// The largest harmonic count.
     pub harmonics: usize,
+    /// The candidate maps and backlash terms.
+    pub candidates: JointMaps,
     /// The rows of each posture, in posture order.
     pub rows: Vec<Vec<usize>>,
 }
-
-/// A choice of maps: the harmonics of each joint (0 none).
-pub type Harmonics = [usize; 6];
 
 /// A split's training part, prepared once for every choice of maps.
 pub struct Split {
@@ -72,7 +72,8 @@ pub fn extended(model: &ErrorModel, estimate: &Estimate) -> Estimate {
 
 impl Linear {
     /// The calibration `model` (without maps) linearised at its fit `fitted` to `observations`
-    /// with the candidate maps `harmonics` (each joint's largest count, 0 for none), the columns
+    /// with the candidate maps `harmonics` (each joint's largest count, 0 for none, and the
+    /// candidate backlash terms), the columns
     /// scaled with the characteristic length `length` (m) as the fit scales them; the postures
     /// are those of the observations, in ascending order of their index.
     ///
@@ -84,7 +85,7 @@ impl Linear {
         fitted: &Fit,
         observations: &[Observation],
         length: f64,
-        harmonics: Harmonics,
+        harmonics: JointMaps,
     ) -> Result<Linear> {
         let wide = model.clone().with_maps(harmonics)?;
         let estimate = extended(&wide, &fitted.estimate);
@@ -94,24 +95,32 @@ impl Linear {
         let scaled = |c: usize| j.column(c) * scales[c];
         let columns: Vec<DVector<f64>> = fitted.fitted.iter().map(|&c| scaled(c)).collect();
         let geometry = DMatrix::from_columns(&columns);
-        let largest = harmonics.iter().copied().max().unwrap_or(0);
+        let largest = harmonics.harmonics.iter().copied().max().unwrap_or(0);
         let mut maps: Vec<DMatrix<f64>> = (0..6)
             .map(|joint| {
-                DMatrix::zeros(
-                    j.nrows(),
-                    if harmonics[joint] > 0 { 2 * largest } else { 0 },
-                )
+                let map = if harmonics.harmonics[joint] > 0 {
+                    2 * largest
+                } else {
+                    0
+                };
+                DMatrix::zeros(j.nrows(), map + usize::from(harmonics.backlash[joint]))
             })
             .collect();
         for (c, p) in wide.parameters().iter().enumerate() {
-            if let Target::Map {
-                joint,
-                harmonic,
-                sine,
-            } = p.target
-            {
-                let at = harmonic - 1 + if sine { largest } else { 0 };
-                maps[joint].set_column(at, &scaled(c));
+            match p.target {
+                Target::Map {
+                    joint,
+                    harmonic,
+                    sine,
+                } => {
+                    let at = harmonic - 1 + if sine { largest } else { 0 };
+                    maps[joint].set_column(at, &scaled(c));
+                }
+                Target::Backlash { joint } => {
+                    let last = maps[joint].ncols() - 1;
+                    maps[joint].set_column(last, &scaled(c));
+                }
+                _ => {}
             }
         }
         let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
@@ -128,6 +137,7 @@ impl Linear {
             geometry,
             maps,
             harmonics: largest,
+            candidates: harmonics,
             rows,
         })
     }
@@ -183,14 +193,17 @@ impl Linear {
     }
 
     /// The map columns of `choice` on `rows`.
-    fn columns(&self, choice: &Harmonics, rows: &[usize]) -> DMatrix<f64> {
+    fn columns(&self, choice: &JointMaps, rows: &[usize]) -> DMatrix<f64> {
         let mut cols = Vec::new();
-        for (j, &h) in choice.iter().enumerate().filter(|(_, &h)| h > 0) {
+        for (j, &h) in choice.harmonics.iter().enumerate().filter(|(_, &h)| h > 0) {
             cols.extend(
                 (0..h)
                     .chain(self.harmonics..self.harmonics + h)
                     .map(|c| (j, c)),
             );
+        }
+        for j in (0..6).filter(|&j| choice.backlash[j]) {
+            cols.push((j, self.maps[j].ncols() - 1));
         }
         DMatrix::from_fn(rows.len(), cols.len(), |r, c| {
             let (j, k) = cols[c];
@@ -207,7 +220,7 @@ impl Linear {
     pub fn errors(
         &self,
         split: &Split,
-        choice: &Harmonics,
+        choice: &JointMaps,
         lambdas: &[f64],
     ) -> Result<Vec<Vec<f64>>> {
         let postures = split.test_posture.last().map_or(0, |p| p + 1);
@@ -218,7 +231,7 @@ impl Linear {
             }
             out
         };
-        if *choice == [0; 6] {
+        if choice.is_none() {
             return Ok(vec![per_posture(&split.base); lambdas.len()]);
         }
         let m_t = self.columns(choice, &split.train);

@@ -7,14 +7,17 @@
 //! A joint's map ([`crate::robot::ErrorMap`]) of `H` harmonics, `H` in [`HARMONICS`], with the
 //! ridge `mu` in [`RIDGES`] ([`crate::metrology::calibration::fit::Options::ridge`]: a penalty of
 //! `mu` per reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics
-//! (a bare joint takes [`DEFAULT_HARMONICS`]) and chooses the ridge alone.
+//! (a bare joint takes [`DEFAULT_HARMONICS`]) and chooses the ridge alone. Where the readings
+//! carry the directions of approach, a joint's backlash term is a candidate too (one column,
+//! [`crate::metrology::calibration::error_model::Target::Backlash`]): `J2:8b` is 8 harmonics
+//! and the backlash, `J2:b` the backlash alone.
 //!
 //! # The choice ([`choose`])
 //! The postures are dealt into [`FOLDS`] folds (posture `p` of the training postures in fold
 //! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
 //! postures predicted by the fit of the others, at its best ridge. First each joint alone, at each
-//! harmonic count; then, from no map, the joints in the order of their own held-out error, each
-//! kept when it lowers the held-out error by more than [`ACCEPT`] standard errors of the paired
+//! harmonic count, and each joint's backlash term alone (with directions); then, from no map,
+//! these in the order of their own held-out error, each kept when it lowers the held-out error by more than [`ACCEPT`] standard errors of the paired
 //! per-posture differences (a one-sided test at about 0.1 %) and by [`LEAST_GAIN`] of it: the
 //! choice keeps no map on a robot without one. The choice is made on the linearised fit ([`linear`]): exact to second order in
 //! the parameters' change from the fit, a few nanometres on a calibrated robot.
@@ -29,18 +32,27 @@
 
 pub mod linear;
 
-pub use linear::{extended, Harmonics, Linear};
+pub use super::error_model::JointMaps;
+pub use linear::{extended, Linear};
 
 use crate::common::error::JobOption;
 use crate::robot::error_map::MAX_HARMONICS;
 use crate::{Error, Result};
 use rayon::prelude::*;
 
-/// Maps as documents name them: `J3:16,J5:8`, or `none`.
-pub fn name(h: &Harmonics) -> String {
-    let parts: Vec<String> = (h.iter().enumerate())
-        .filter(|(_, &n)| n > 0)
-        .map(|(j, n)| format!("J{}:{n}", j + 1))
+/// Maps as documents name them: `J3:16,J5:8b` (a `b` for a backlash term; `J2:b` the backlash
+/// alone), or `none`.
+pub fn name(h: &JointMaps) -> String {
+    let parts: Vec<String> = (0..6)
+        .filter(|&j| h.has(j))
+        .map(|j| {
+            let n = h.harmonics[j];
+            let b = if h.backlash[j] { "b" } else { "" };
+            match n {
+                0 => format!("J{}:b", j + 1),
+                _ => format!("J{}:{n}{b}", j + 1),
+            }
+        })
         .collect();
     match parts.is_empty() {
         true => "none".into(),
@@ -79,13 +91,15 @@ pub enum Spec {
     Auto,
     /// None.
     None,
-    /// These joints with these harmonics (the ridge chosen by cross-validation).
-    Fixed(Harmonics),
+    /// These joints with these harmonics and backlash terms (the ridge chosen by
+    /// cross-validation).
+    Fixed(JointMaps),
 }
 
 impl Spec {
-    /// Parses `auto`, `none` or a list of joints `J1,J3:16` (a joint `J1`..`J6`, optionally
-    /// `:H` harmonics, 1 to [`MAX_HARMONICS`], default [`DEFAULT_HARMONICS`]).
+    /// Parses `auto`, `none` or a list of joints `J1,J3:16,J4:8b,J5:b` (a joint `J1`..`J6`,
+    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default [`DEFAULT_HARMONICS`], a `b`
+    /// after them for a backlash term too, `:b` the backlash term alone).
     ///
     /// # Errors
     /// [`Error::InvalidOption`] ([`JobOption::Maps`]) naming the part not understood.
@@ -100,7 +114,7 @@ impl Spec {
             Error::InvalidOption {
             option: JobOption::Maps,
             message: format!(
-                "expected auto, none or joints such as J1,J3:16 (J1 to J6, 1 to {MAX_HARMONICS} harmonics), got {part:?}"
+                "expected auto, none or joints such as J1,J3:16,J4:8b,J5:b (J1 to J6, 1 to {MAX_HARMONICS} harmonics, b a backlash term), got {part:?}"
             ),
         }
         };
@@ -110,7 +124,7 @@ impl Spec {
                 .then(|| t.parse::<usize>().ok())
                 .flatten()
         };
-        let mut harmonics = [0; 6];
+        let mut maps = JointMaps::NONE;
         for part in text.split(',') {
             let part = part.trim();
             let (joint, count) = part.split_once(':').unwrap_or((part, ""));
@@ -118,29 +132,39 @@ impl Spec {
                 .and_then(number)
                 .filter(|j| (1..=6).contains(j))
                 .ok_or_else(|| bad(part))?;
-            let count = match count {
-                "" => DEFAULT_HARMONICS,
-                c => number(c)
+            let (count, backlash) = match count.strip_suffix('b') {
+                Some(c) => (c, true),
+                None => (count, false),
+            };
+            let count = match (count, backlash) {
+                ("", true) => 0,
+                ("", false) if !part.contains(':') => DEFAULT_HARMONICS,
+                (c, _) => number(c)
                     .filter(|h| (1..=MAX_HARMONICS).contains(h))
                     .ok_or_else(|| bad(part))?,
             };
-            if harmonics[joint - 1] != 0 {
+            if maps.has(joint - 1) {
                 return Err(Error::InvalidOption {
                     option: JobOption::Maps,
                     message: format!("J{joint} is given twice in {text:?}: give each joint once"),
                 });
             }
-            harmonics[joint - 1] = count;
+            maps.harmonics[joint - 1] = count;
+            maps.backlash[joint - 1] = backlash;
         }
-        Ok(Spec::Fixed(harmonics))
+        Ok(Spec::Fixed(maps))
     }
 
-    /// The harmonics of each joint the linearised fit needs columns for: every joint at the
-    /// largest of [`HARMONICS`] for [`Spec::Auto`], the fixed ones, none.
-    pub fn candidates(self) -> Harmonics {
+    /// The maps the linearised fit needs columns for: every joint at the largest of
+    /// [`HARMONICS`] for [`Spec::Auto`], with a backlash term each where the readings carry
+    /// `directions`; the fixed ones; none.
+    pub fn candidates(self, directions: bool) -> JointMaps {
         match self {
-            Spec::Auto => [HARMONICS[HARMONICS.len() - 1]; 6],
-            Spec::None => [0; 6],
+            Spec::Auto => JointMaps {
+                harmonics: [HARMONICS[HARMONICS.len() - 1]; 6],
+                backlash: [directions; 6],
+            },
+            Spec::None => JointMaps::NONE,
             Spec::Fixed(h) => h,
         }
     }
@@ -149,8 +173,8 @@ impl Spec {
 /// One candidate the choice evaluated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tried {
-    /// Its maps.
-    pub harmonics: Harmonics,
+    /// Its maps and backlash terms.
+    pub maps: JointMaps,
     /// Its best ridge.
     pub ridge: f64,
     /// Its held-out RMS error (inner cross-validation), m.
@@ -162,8 +186,8 @@ pub struct Tried {
 /// The maps chosen.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Choice {
-    /// The harmonics of each joint's map (0 none).
-    pub harmonics: Harmonics,
+    /// The harmonics of each joint's map (0 none) and its backlash terms.
+    pub maps: JointMaps,
     /// The ridge.
     pub ridge: f64,
     /// The held-out RMS error of the choice (inner cross-validation: the figure it was tuned on), m.
@@ -184,7 +208,7 @@ pub struct Nested {
     /// The held-out RMS error with the maps each outer fold chose on its training postures, m.
     pub rms: f64,
     /// The maps each outer fold chose.
-    pub choices: Vec<Harmonics>,
+    pub choices: Vec<JointMaps>,
 }
 
 /// The folds of `postures`: fold `k` holds `postures[i]` with `i mod K = k`, `K = min(FOLDS, n)`.
@@ -237,7 +261,7 @@ impl<'a> Inner<'a> {
     }
 
     /// The held-out errors of `choice` at its best ridge of [`RIDGES`].
-    fn score(&self, choice: &Harmonics) -> Result<Scored> {
+    fn score(&self, choice: &JointMaps) -> Result<Scored> {
         let per_fold = (self.splits.par_iter().zip(&self.train_readings))
             .map(|(s, &n)| {
                 let lambdas: Vec<f64> = RIDGES.iter().map(|mu| mu * n as f64).collect();
@@ -295,18 +319,18 @@ pub(super) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64)) -> bool {
 /// [`Error::NotFinite`] when an SVD does not converge.
 pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
     let inner = Inner::new(linear, postures)?;
-    let none = inner.score(&[0; 6])?;
+    let none = inner.score(&JointMaps::NONE)?;
     let none_rms = inner.rms(&none);
     let mut tried = Vec::new();
-    let mut record = |h: Harmonics, s: &Scored, kept: bool| {
+    let mut record = |maps: JointMaps, s: &Scored, kept: bool| {
         tried.push(Tried {
-            harmonics: h,
+            maps,
             ridge: s.ridge,
             rms: inner.rms(s),
             kept,
         })
     };
-    let (mut chosen, mut current) = ([0; 6], none);
+    let (mut chosen, mut current) = (JointMaps::NONE, none);
     match spec {
         Spec::None => {}
         Spec::Fixed(h) => {
@@ -315,28 +339,11 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
             (chosen, current) = (h, s);
         }
         Spec::Auto => {
-            // Each joint alone at each harmonic count: its best.
-            let mut alone = Vec::new();
-            for joint in 0..6 {
-                let mut best: Option<(usize, Scored)> = None;
-                for &h in &HARMONICS {
-                    let mut choice = [0; 6];
-                    choice[joint] = h;
-                    let s = inner.score(&choice)?;
-                    record(choice, &s, false);
-                    if best.as_ref().is_none_or(|(_, b)| s.total < b.total) {
-                        best = Some((h, s));
-                    }
-                }
-                if let Some((h, s)) = best {
-                    alone.push((joint, h, s.total));
-                }
-            }
-            alone.sort_by(|a, b| a.2.total_cmp(&b.2));
-            // Forward: the joints in that order, each kept when it lowers the error enough.
-            for (joint, h, _) in alone {
-                let mut choice = chosen;
-                choice[joint] = h;
+            let mut alone = alone(&inner, &mut record)?;
+            alone.sort_by(|a, b| a.1.total_cmp(&b.1));
+            // Forward: the terms in that order, each kept when it lowers the error enough.
+            for (term, _) in alone {
+                let choice = union(&chosen, &term);
                 let s = inner.score(&choice)?;
                 let kept = better(&current, &s);
                 record(choice, &s, kept);
@@ -348,12 +355,52 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
     }
     let rms = inner.rms(&current);
     Ok(Choice {
-        harmonics: chosen,
+        maps: chosen,
         ridge: current.ridge,
         rms,
         none_rms,
         tried,
     })
+}
+
+/// Each joint's map alone at its best of [`HARMONICS`], and each candidate backlash term alone
+/// ([`Linear::candidates`]), with their held-out errors (the sums over the folds, m^2), each
+/// evaluated candidate given to `record`.
+fn alone(
+    inner: &Inner,
+    record: &mut impl FnMut(JointMaps, &Scored, bool),
+) -> Result<Vec<(JointMaps, f64)>> {
+    let mut alone = Vec::new();
+    for joint in 0..6 {
+        let mut best: Option<(JointMaps, f64)> = None;
+        for &h in &HARMONICS {
+            let mut choice = JointMaps::NONE;
+            choice.harmonics[joint] = h;
+            let s = inner.score(&choice)?;
+            record(choice, &s, false);
+            if best.as_ref().is_none_or(|(_, b)| s.total < *b) {
+                best = Some((choice, s.total));
+            }
+        }
+        alone.extend(best);
+    }
+    for joint in (0..6).filter(|&j| inner.linear.candidates.backlash[j]) {
+        let mut choice = JointMaps::NONE;
+        choice.backlash[joint] = true;
+        let s = inner.score(&choice)?;
+        record(choice, &s, false);
+        alone.push((choice, s.total));
+    }
+    Ok(alone)
+}
+
+/// The maps of `a` and `b` together: each joint's larger harmonic count, a backlash term where
+/// either has one.
+fn union(a: &JointMaps, b: &JointMaps) -> JointMaps {
+    JointMaps {
+        harmonics: std::array::from_fn(|j| a.harmonics[j].max(b.harmonics[j])),
+        backlash: std::array::from_fn(|j| a.backlash[j] || b.backlash[j]),
+    }
 }
 
 /// The held-out gain of [`choose`] by an outer cross-validation over `postures` (module docs).
@@ -367,10 +414,10 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
             let choice = choose(linear, train, spec)?;
             let split = linear.split(train, test)?;
             let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
-            let maps = linear.errors(&split, &choice.harmonics, &[choice.ridge * n as f64])?;
-            let none = linear.errors(&split, &[0; 6], &[0.0])?;
+            let maps = linear.errors(&split, &choice.maps, &[choice.ridge * n as f64])?;
+            let none = linear.errors(&split, &JointMaps::NONE, &[0.0])?;
             let sum = |e: &[Vec<f64>]| e[0].iter().sum::<f64>();
-            Ok((sum(&maps), sum(&none), choice.harmonics))
+            Ok((sum(&maps), sum(&none), choice.maps))
         })
         .collect::<Result<Vec<_>>>()?;
     let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();
