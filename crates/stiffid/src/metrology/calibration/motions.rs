@@ -97,12 +97,13 @@ impl Scored {
     }
 }
 
-/// Whether `candidate` lowers the held-out error of `current` as the maps' choice requires
+/// Whether `candidate` lowers the held-out error of `current` by [`ACCEPT`] standard errors
 /// ([`super::maps::lowers`]).
 fn better(current: &Scored, candidate: &Scored) -> bool {
     super::maps::lowers(
         (&current.errors, current.total),
         (&candidate.errors, candidate.total),
+        ACCEPT,
     )
 }
 
