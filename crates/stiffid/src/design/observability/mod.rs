@@ -98,6 +98,9 @@ pub struct CalibrationDesign {
     /// above the group's, and their count.
     fixed: DMatrix<f64>,
     fixed_postures: usize,
+    /// `F^T F` of the fixed rows `F` (`p x p`; zero without): added to every group's
+    /// information, so a search's step forms the group's alone.
+    fixed_information: DMatrix<f64>,
     /// `H = A_0^T A_0 = R_A^T R_A` (`p x p`) from the QR `A_0 = Q_A R_A` of `test`.
     test_information: DMatrix<f64>,
     noise: f64,
@@ -171,10 +174,12 @@ impl CalibrationDesign {
             station: reference[0].1,
             fixed: DMatrix::zeros(0, 0),
             fixed_postures: 0,
+            fixed_information: DMatrix::zeros(0, 0),
             test_information: DMatrix::zeros(0, 0),
             noise,
         };
-        design.fixed = DMatrix::zeros(0, design.kept.len());
+        let p = design.kept.len();
+        (design.fixed, design.fixed_information) = (DMatrix::zeros(0, p), DMatrix::zeros(p, p));
         design.test = design.jacobian_placed(test)?;
         let r_a = score::triangular_factor(&design.test);
         design.test_information = r_a.tr_mul(&r_a);
@@ -203,9 +208,11 @@ impl CalibrationDesign {
     /// # Errors
     /// Those of [`CalibrationDesign::jacobian`].
     pub fn on_station(&self, station: ExternalValues, chosen: &[Placed]) -> Result<Self> {
+        let fixed = self.jacobian_placed(chosen)?;
         Ok(CalibrationDesign {
             station,
-            fixed: self.jacobian_placed(chosen)?,
+            fixed_information: fixed.tr_mul(&fixed),
+            fixed,
             fixed_postures: chosen.len(),
             ..self.clone()
         })
@@ -231,7 +238,7 @@ impl CalibrationDesign {
         Ok(j)
     }
 
-    /// The fixed rows stacked above `j`.
+    /// The fixed rows stacked above `j` (for the criteria that factor the whole Jacobian).
     fn with_fixed(&self, j: DMatrix<f64>) -> DMatrix<f64> {
         if self.fixed.nrows() == 0 {
             return j;
@@ -275,8 +282,8 @@ impl CalibrationDesign {
         )
     }
 
-    /// The criteria of a whole campaign `postures`, each read where it stands (module docs;
-    /// without the fixed postures of [`CalibrationDesign::on_station`]).
+    /// The criteria of a campaign's `postures`, each read where it stands (module docs), after
+    /// the fixed postures of [`CalibrationDesign::on_station`] (none on a new design).
     ///
     /// # Errors
     /// As [`CalibrationDesign::evaluate`].
@@ -287,12 +294,17 @@ impl CalibrationDesign {
                 message: "expected at least one posture".into(),
             });
         }
-        let j = self.jacobian_placed(postures)?;
-        criteria(&j, postures.len(), &self.test, self.noise)
+        let j = self.with_fixed(self.jacobian_placed(postures)?);
+        criteria(
+            &j,
+            self.fixed_postures + postures.len(),
+            &self.test,
+            self.noise,
+        )
     }
 
-    /// [`CalibrationDesign::value`] of a whole campaign `postures`, each read where it stands
-    /// (without the fixed postures of [`CalibrationDesign::on_station`]).
+    /// [`CalibrationDesign::value`] of a campaign's `postures`, each read where it stands, after
+    /// the fixed postures of [`CalibrationDesign::on_station`] (none on a new design).
     pub fn value_placed(&self, criterion: CalibrationCriterion, postures: &[Placed]) -> f64 {
         match self.jacobian_placed(postures) {
             Ok(j) => score::Scored::new(j, criterion, self).map_or(f64::INFINITY, |s| s.value),
@@ -305,8 +317,7 @@ impl CalibrationDesign {
     /// kept parameters or a non-finite posture.
     pub fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
         match self.jacobian(postures) {
-            Ok(j) => score::Scored::new(self.with_fixed(j), criterion, self)
-                .map_or(f64::INFINITY, |s| s.value),
+            Ok(j) => score::Scored::new(j, criterion, self).map_or(f64::INFINITY, |s| s.value),
             Err(_) => f64::INFINITY,
         }
     }
@@ -332,13 +343,12 @@ impl CalibrationDesign {
         for (i, t) in terms.iter().enumerate() {
             l.write_rows(t, &mut j, rows * i);
         }
-        let Some(scored) = score::Scored::new(self.with_fixed(j), criterion, self) else {
+        let Some(scored) = score::Scored::new(j, criterion, self) else {
             return (f64::INFINITY, zero);
         };
         let g = scored.log_gradient(self);
-        let f = self.fixed.nrows();
         let gradient = (terms.iter().enumerate())
-            .map(|(i, t)| l.gradient(t, &scored.j, &g, f + rows * i))
+            .map(|(i, t)| l.gradient(t, &scored.j, &g, rows * i))
             .collect();
         (scored.value, gradient)
     }
