@@ -3,7 +3,9 @@
 //! D-optimality, the predicted error) with full geometry and lumped gravity terms (55 kept
 //! parameters), without a gradient; one value of the default criterion (the predicted error)
 //! with its exact gradient, with the lumped terms (55) and with full geometry, the six
-//! compliances under known masses and a fourth measuring point (41 kept parameters); and the default global search for
+//! compliances under known masses and a fourth measuring point (41 kept parameters); a
+//! campaign's step (12 postures scored after 12 fixed) on a fixed base and on a 6 m track (its
+//! direction and error motions of order 3 designed for); and the default global search for
 //! calibration (12 postures) in the guide's tracker cell.
 //!
 //! Measured in CPU time, not wall time: the evaluations in the calling thread's, the search in
@@ -16,10 +18,11 @@ use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::purpose::{self, CalibrationOptions};
-use stiffid::design::observability::{CalibrationCriterion, CalibrationDesign};
+use stiffid::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
 use stiffid::design::{self, CalibrationGoal, Goal, SearchOptions};
 use stiffid::metrology::calibration::error_model::MeasuredIn;
 use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
+use stiffid::robot::external::{ExternalAxes, ExternalAxis};
 use stiffid::robot::{presets, LinkMass};
 use stiffid::study::observability::postures;
 use stiffid::Robot;
@@ -29,6 +32,59 @@ fn fanuc(
     g: impl Fn(&Robot) -> gravity::Terms,
     points: &[Vector3<f64>],
 ) -> (CalibrationDesign, Vec<nalgebra::Vector6<f64>>) {
+    let (model, reference, test, group) = fanuc_model(g, points);
+    let design = CalibrationDesign::new(model, 1.0, &reference, &test, 5e-5).unwrap();
+    (design, group)
+}
+
+/// The same on a 6 m track along x, its error motions of order 3 designed for: the reference
+/// and test postures dealt over six stations, the group scored at the first after 12 postures
+/// fixed at the others (so 24 in the criterion).
+fn fanuc_on_track(
+    g: impl Fn(&Robot) -> gravity::Terms,
+    points: &[Vector3<f64>],
+) -> (CalibrationDesign, Vec<nalgebra::Vector6<f64>>) {
+    let (arm, reference, test, group) = fanuc_model(g, points);
+    let axis = ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0);
+    let robot = arm
+        .robot()
+        .clone()
+        .with_external(Some(ExternalAxes::new(vec![axis]).unwrap()));
+    let model = ErrorModel::new(
+        &robot,
+        points,
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        arm.gravity().clone(),
+    )
+    .unwrap()
+    .with_external(&[3], 0)
+    .unwrap();
+    let stations = robot.external().unwrap().stations(6);
+    let placed = |qs: &[nalgebra::Vector6<f64>]| -> Vec<Placed> {
+        (qs.iter().enumerate())
+            .map(|(i, q)| (*q, stations[i % 6]))
+            .collect()
+    };
+    let design =
+        CalibrationDesign::new_placed(model, 1.0, &placed(&reference), &placed(&test), 5e-5)
+            .unwrap();
+    let fixed: Vec<Placed> = (group.iter().enumerate())
+        .map(|(i, q)| (*q, stations[1 + i % 5]))
+        .collect();
+    (design.on_station(stations[0], &fixed).unwrap(), group)
+}
+
+/// The model, reference (60), test (20) and group (12) postures of [`fanuc`].
+fn fanuc_model(
+    g: impl Fn(&Robot) -> gravity::Terms,
+    points: &[Vector3<f64>],
+) -> (
+    ErrorModel,
+    Vec<nalgebra::Vector6<f64>>,
+    Vec<nalgebra::Vector6<f64>>,
+    Vec<nalgebra::Vector6<f64>>,
+) {
     let masses: [LinkMass; 6] = std::array::from_fn(|l| LinkMass {
         mass: 200.0 - 30.0 * l as f64,
         centre: Vector3::new(0.05 * l as f64, -0.03, 0.1 + 0.02 * l as f64),
@@ -49,8 +105,7 @@ fn fanuc(
     let reference = postures(&robot, 60, &mut rng);
     let test = postures(&robot, 20, &mut rng);
     let group = postures(&robot, 12, &mut rng);
-    let design = CalibrationDesign::new(model, 1.0, &reference, &test, 5e-5).unwrap();
-    (design, group)
+    (model, reference, test, group)
 }
 
 fn bench(c: &mut Criterion<Cpu>) {
@@ -69,6 +124,19 @@ fn bench(c: &mut Criterion<Cpu>) {
     c.bench_function("calibration gradient 12 postures 55 parameters", |b| {
         b.iter(|| design.value_and_log_gradient(test_pose, &group))
     });
+    // The same group after 12 fixed, with and without the track's columns: a campaign's step.
+    let none = stiffid::robot::external::ExternalValues::NONE;
+    let fixed: Vec<Placed> = group.iter().map(|q| (*q, none)).collect();
+    let step = design.on_station(none, &fixed).unwrap();
+    c.bench_function("calibration gradient 12+12 postures 55 parameters", |b| {
+        b.iter(|| step.value_and_log_gradient(test_pose, &group))
+    });
+    let (track, group) = fanuc_on_track(lumped, &points);
+    let kept = track.kept().len();
+    c.bench_function(
+        &format!("calibration gradient 12+12 postures on a track {kept} parameters"),
+        |b| b.iter(|| track.value_and_log_gradient(test_pose, &group)),
+    );
     let masses = |r: &Robot| {
         let m = *r.masses().unwrap();
         let nominal = nalgebra::Vector6::repeat(2e-6);

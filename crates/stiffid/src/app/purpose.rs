@@ -5,11 +5,12 @@
 
 use super::calibrate;
 use crate::common::error::JobOption;
-use crate::design::observability::{CalibrationCriterion, CalibrationDesign};
+use crate::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
 use crate::metrology::calibration::gravity::Gravity;
 use crate::metrology::calibration::Geometry;
+use crate::robot::external::AxisKind;
 use crate::{Error, Result, Setup};
 
 /// What a group is designed for.
@@ -202,6 +203,12 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// # Errors
 /// Those of [`calibrate::model`] and [`CalibrationDesign::new`] (the options are checked
 /// by [`check`]).
+///
+/// On a robot with a carrier (a track), the model has the track's parameters too (its direction
+/// and its error motions of order [`DESIGN_ORDER`], [`crate::metrology::calibration::ErrorModel::with_external`]; the
+/// positioner's lines, which only reflectors on its table read, drop out as not identified),
+/// the reference postures are dealt over [`REFERENCE_STATIONS`] stations of the travel
+/// ([`crate::robot::ExternalAxes::stations`]) and every test posture is read at each of them.
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
     let model = calibrate::model(
         setup,
@@ -214,14 +221,38 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
         [] => reference.as_slice(),
         t => t,
     };
-    CalibrationDesign::new(
-        model,
+    let (length, noise) = (
         setup.characteristic_length().unwrap_or(1.0),
-        &reference,
-        test,
         setup.noise().reading_sd(),
-    )
+    );
+    let Some(axes) = setup.robot().external().filter(|a| a.carrier_len() > 0) else {
+        return CalibrationDesign::new(model, length, &reference, test, noise);
+    };
+    let orders: Vec<usize> = (axes.axes().iter())
+        .map(|a| match a.kind {
+            AxisKind::Linear => DESIGN_ORDER,
+            AxisKind::Rotary => 0,
+        })
+        .collect();
+    let model = model.with_external(&orders, 0)?;
+    let stations = axes.stations(REFERENCE_STATIONS);
+    let reference: Vec<Placed> = (reference.iter().enumerate())
+        .map(|(i, q)| (*q, stations[i % stations.len()]))
+        .collect();
+    let test: Vec<Placed> = (stations.iter())
+        .flat_map(|e| test.iter().map(move |q| (*q, *e)))
+        .collect();
+    CalibrationDesign::new_placed(model, length, &reference, &test, noise)
 }
+
+/// The order of a track's error motions a calibration design assumes (`calibrate` chooses its
+/// own from the readings, `--error-motions`): a bow and a twist along the rail are of order 2
+/// and 3.
+pub const DESIGN_ORDER: usize = 3;
+
+/// The stations of a track's travel the reference and test postures of a calibration design
+/// are read at.
+pub const REFERENCE_STATIONS: usize = 6;
 
 /// The search goal of `purpose` with the stiffness criterion `criterion` and the calibration
 /// design `design` (required unless [`Purpose::Stiffness`]).

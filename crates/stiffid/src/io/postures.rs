@@ -95,6 +95,7 @@ pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Resul
             },
         ));
     }
+    let columns = super::external::Columns::against(&expected, 1, robot.external())?;
     let mut postures = Postures::default();
     // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
     let mut lines = super::LineCount::new(text.as_bytes());
@@ -111,7 +112,7 @@ pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Resul
             };
             return Err(problem(line, None, too_many));
         }
-        let (q, e) = row(&record, line, robot, bounds, &expected)?;
+        let (q, e) = row(&record, line, robot, bounds, (&expected, &columns))?;
         postures.q.push(q);
         postures.e.push(e);
     }
@@ -122,12 +123,15 @@ pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Resul
     Ok(postures)
 }
 
+/// One row: the axis angles (rad) and the external axes' values (SI) of the header's
+/// `expected` columns, the external ones at `columns` ([`super::external::Columns`], the one
+/// reader of the data files' external columns).
 fn row(
     record: &csv::StringRecord,
     line: u64,
     robot: &Robot,
     bounds: Option<&JointBox>,
-    expected: &[String],
+    (expected, columns): (&[String], &super::external::Columns),
 ) -> Result<(Vector6<f64>, Vec<f64>)> {
     if record.len() != expected.len() {
         let count = ColumnProblem::FieldCount {
@@ -136,31 +140,28 @@ fn row(
         };
         return Err(problem(line, None, count));
     }
+    let named = |c: usize, p: ColumnProblem| {
+        let mut p = problem(line, Some(c), p);
+        if let Error::Column { name, .. } = &mut p {
+            *name = expected[c].clone();
+        }
+        p
+    };
     let mut q = Vector6::zeros();
-    let mut e = Vec::new();
-    for (i, field) in record.iter().skip(1).enumerate() {
-        let deg = field
-            .parse::<f64>()
-            .ok()
+    for (i, field) in record.iter().skip(1).take(6).enumerate() {
+        let deg = (field.parse::<f64>().ok())
             .filter(|v| v.is_finite())
             .ok_or_else(|| {
                 let value = short(field);
-                let mut p = problem(line, Some(i + 1), ColumnProblem::NotANumber { value });
-                if let Error::Column { name, .. } = &mut p {
-                    *name = expected[i + 1].clone();
-                }
-                p
+                named(i + 1, ColumnProblem::NotANumber { value })
             })?;
-        match i {
-            0..6 => q[i] = deg.to_radians(),
-            _ => e.push(deg),
-        }
+        q[i] = deg.to_radians();
     }
+    let e = columns.values(|c| record.get(c).unwrap_or(""), named)?;
     if let Some(axes) = robot.external() {
-        let si = axes.to_si(&e);
-        axes.check(&si, &format!("line {line}"))?;
-        e = si;
+        axes.check(e.as_slice(), &format!("line {line}"))?;
     }
+    let e = e.as_slice().to_vec();
     let (limits, within) = match bounds {
         Some(b) => (b, "the setup's bounds"),
         None => (robot.limits(), "the robot's limits"),

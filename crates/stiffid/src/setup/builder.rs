@@ -345,6 +345,7 @@ impl SetupBuilder {
         }
         let tcp = self.tcp.or(self.measuring_points.first().copied());
         check_tool(&loading_point, &self.measuring_points, tcp)?;
+        check_positioner(&self.robot, &tcp.unwrap_or_default())?;
         check_load(&load)?;
         check_load_steps(&self.load_steps)?;
         check_noise(&noise)?;
@@ -488,6 +489,35 @@ fn check_tool(
     )?;
     check_points("tool.measuring_points_mm", measuring_points)?;
     check_points("tool.tcp_mm", tcp.as_slice())
+}
+
+/// The closest a positioner axis's line may pass to the tool's TCP with the arm at zero, m.
+pub const POSITIONER_CLEARANCE: f64 = 1e-3;
+
+/// Refuses a positioner axis whose line passes through the tool's TCP (`tcp`, flange frame, m)
+/// within [`POSITIONER_CLEARANCE`], with the arm at zero axis angles and the carrier at the
+/// middle of its travel: an axis through the tool turns the tool, not the part (the URDF's
+/// positioner hanging from the arm's chain is refused the same way).
+fn check_positioner(robot: &Robot, tcp: &Vector3<f64>) -> Result<()> {
+    let Some(axes) = robot.external() else {
+        return Ok(());
+    };
+    let e = axes.stations(1)[0];
+    let at = robot.frames_at(&Vector6::zeros(), e.as_slice()).point(tcp);
+    for a in axes.axes().iter().skip(axes.carrier_len()) {
+        let lever = at - a.point;
+        let distance = (lever - a.direction.into_inner() * lever.dot(&a.direction)).norm();
+        if distance < POSITIONER_CLEARANCE {
+            return Err(invalid(
+                &format!("external_axis ({})", a.name),
+                &format!(
+                    "the positioner axis passes through the tool's TCP ({:.3} mm from it with the arm at zero and the carrier at the middle of its travel): a positioner turns the part, not the tool; give a point_mm on the positioner's own axis, away from the tool",
+                    distance * 1e3
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn check_load(load: &RopeLoad) -> Result<()> {

@@ -678,3 +678,38 @@ fn a_urdf_positioner_hanging_from_the_arm_is_refused_naming_the_joint_and_link()
     // Hanging from the root (through fixed joints only) it is the positioner.
     assert!(urdf::parse(&cell_urdf(limit), "cell.urdf", None).is_ok());
 }
+
+/// A setup whose positioner axis passes through the tool's TCP (with the arm at zero and the
+/// track at mid-travel) is refused naming the axis, as a URDF positioner hanging from the arm
+/// is; 5 mm away from it the setup stands.
+#[test]
+fn a_setups_positioner_axis_through_the_tool_is_refused() {
+    let text = include_str!("../../../../examples/track/track-cell.toml");
+    let parse = |text: &str| {
+        stiffid::setup::parse(text, "track-cell.toml", |r, _| {
+            stiffid::robot::presets::get(r)
+        })
+    };
+    let setup = parse(text).unwrap();
+    let axes = setup.robot().external().unwrap();
+    let e = axes.stations(1)[0];
+    let frames = setup
+        .robot()
+        .frames_at(&nalgebra::Vector6::zeros(), e.as_slice());
+    let tcp = frames.point(&setup.tool().tcp) * 1e3;
+    let at = |dy: f64| {
+        text.replacen(
+            "point_mm = [3000.0, 1800.0, 900.0]",
+            &format!("point_mm = [{:?}, {:?}, {:?}]", tcp.x, tcp.y + dy, tcp.z),
+            1,
+        )
+    };
+    let e = parse(&at(0.0)).unwrap_err().to_string();
+    assert!(
+        e.contains("track-cell.toml")
+            && e.contains("external_axis (rotate)")
+            && e.contains("passes through the tool's TCP"),
+        "{e}"
+    );
+    assert!(parse(&at(5.0)).is_ok());
+}

@@ -69,6 +69,7 @@ mod simulate;
 mod solver_auto;
 mod stop_reasons;
 mod study;
+mod track_design;
 mod track_stiffness;
 mod true_cell;
 mod true_robot;

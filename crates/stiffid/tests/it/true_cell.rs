@@ -42,11 +42,16 @@ fn true_track(s: f64) -> Isometry3<f64> {
 /// The campaign's case: the COMAU with masses of [`true_robot::dh_case`] on a nominal straight
 /// track along x, 0 to 6 m.
 fn track_case() -> true_robot::Case {
+    track_case_with("")
+}
+
+/// [`track_case`] with `more` appended to its setup file.
+pub(crate) fn track_case_with(more: &str) -> true_robot::Case {
     let arm = true_robot::dh_case();
     let text = true_robot::setup_text(
         "robot.toml",
         "[bounds]\nlower_deg = [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]\nupper_deg = [90.0, 40.0, -40.0, 180.0, 90.0, 180.0]",
-    );
+    ) + more;
     let robot = true_robot::dh_robot_text()
         + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n";
     let setup = stiffid::setup::parse(&text, "setup.toml", |_, _| {
@@ -65,11 +70,30 @@ fn readings(
     wrenches: &[Vector6<f64>],
     rng: &mut ChaCha8Rng,
 ) -> String {
-    let noise = Normal::new(0.0, NOISE).unwrap();
+    readings_with(truth, qs, Some(s), wrenches, NOISE, rng)
+}
+
+/// [`readings`] with `noise` per coordinate (m); `s` `None` for the arm on a fixed base (no
+/// carriage, no `e1_mm` column).
+pub(crate) fn readings_with(
+    truth: &Truth,
+    qs: &[Vector6<f64>],
+    s: Option<&[f64]>,
+    wrenches: &[Vector6<f64>],
+    noise: f64,
+    rng: &mut ChaCha8Rng,
+) -> String {
+    let noise = Normal::new(0.0, noise).unwrap();
     let header = stiffid::io::readings::header_with_loads();
-    let mut text = header.replace("q6_deg,", "q6_deg,e1_mm,") + "\n";
-    for (i, (q, s)) in qs.iter().zip(s).enumerate() {
-        let carriage = true_track(*s);
+    let mut text = match s {
+        Some(_) => header.replace("q6_deg,", "q6_deg,e1_mm,"),
+        None => header,
+    } + "\n";
+    for (i, q) in qs.iter().enumerate() {
+        let (carriage, column) = match s {
+            Some(s) => (true_track(s[i]), format!("{:?},", s[i] * 1e3)),
+            None => (Isometry3::identity(), String::new()),
+        };
         for (step, w) in wrenches.iter().enumerate() {
             for k in 0..truth.model.points() {
                 let o = Observation {
@@ -87,11 +111,10 @@ fn readings(
                 let t = t.coords + Vector3::from_fn(|_, _| noise.sample(rng));
                 let q: Vec<String> = q.iter().map(|v| format!("{:?}", v.to_degrees())).collect();
                 text += &format!(
-                    "P{},{},{},{:?},{step},{:?},{:?},{:?},{:?},{:?},{:?}\n",
+                    "P{},{},{},{column}{step},{:?},{:?},{:?},{:?},{:?},{:?}\n",
                     i + 1,
                     k + 1,
                     q.join(","),
-                    s * 1e3,
                     w[0],
                     w[1],
                     w[2],

@@ -123,7 +123,10 @@ pub struct Args {
     /// For a robot with external axes (a track): where the arm stands for the whole group, one
     /// value per axis in the cell's order (mm for a linear axis, deg for a rotary one,
     /// comma-separated: `--station 2500`); repeat it to try several stations (1 to 100): the
-    /// group is designed at each and the best kept. --out gets the external axis columns.
+    /// group is designed at each and the best kept; with --for calibration on a track, the
+    /// group is one campaign over them all (the postures dealt over the stations, at least 2 at
+    /// each, designed together with the track's parameters). --out gets the external axis
+    /// columns.
     #[arg(long)]
     station: Vec<String>,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).
@@ -188,8 +191,14 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let report = job::run(&request)?;
     output::warnings(&report.warnings);
+    let placed: Vec<Vec<f64>> = report
+        .placed
+        .iter()
+        .map(|e| e.as_slice().to_vec())
+        .collect();
     let csv = match (setup.robot().external(), &report.station) {
         (Some(axes), Some(e)) => postures::to_csv_at(&report.postures, axes, e),
+        (axes, _) if !placed.is_empty() => postures::to_csv_cell(&report.postures, &placed, axes),
         _ => postures::to_csv(&report.postures),
     };
     out.write(csv.as_bytes())?;

@@ -66,6 +66,11 @@ pub struct Document {
     /// (`null` if infinite); the group is the smallest's.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub stations: Vec<StationDoc>,
+    /// A calibration campaign over several stations of a track: where each posture is read
+    /// (`e1_mm`, ...), in the order of `postures_deg`; absent otherwise. `stations` then holds
+    /// the campaign's value with the postures up to each station.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub posture_stations: Vec<std::collections::BTreeMap<String, f64>>,
     /// How many local searches (the global search's starts; one for a local search) stopped for
     /// each reason, every reason listed; absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -261,6 +266,7 @@ impl Document {
                     value: finite(s.value),
                 })
                 .collect(),
+            posture_stations: r.placed.iter().map(|e| station(setup, e)).collect(),
             terminations: r.termination.map(|_| counts(&r.terminations)),
             postures_deg: degrees(&r.postures),
             margin_mm: mm(r.margin),

@@ -3,6 +3,7 @@
 //! best group of a pool of postures; optionally the smallest group for a target accuracy
 //! ([`crate::design::target`]), and the same search without the cell's checks (what they cost).
 
+mod campaign;
 mod check;
 mod choose;
 pub mod document;
@@ -129,8 +130,11 @@ pub struct Request<'a> {
     pub candidates: Option<Vec<String>>,
     /// For a robot with external axes (a track, [`crate::robot::external`]): where the arm
     /// stands for the whole group, each station one value per axis (SI, the cell's order); with
-    /// several, the group is designed at each and the best kept ([`station`]). Empty for a
-    /// robot without external axes; 1 to [`MAX_STATIONS`] with them.
+    /// several, the group is designed at each and the best kept ([`station`]); for
+    /// [`Purpose::Calibration`] on a robot with a carrier, the group is one campaign over all
+    /// of them, its postures dealt over the stations and designed together with the track's
+    /// parameters ([`campaign`], [`Report::placed`]). Empty for a robot without external axes;
+    /// 1 to [`MAX_STATIONS`] with them.
     pub stations: Vec<crate::robot::external::ExternalValues>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
     /// (`global search (relative-a)` with its starts as the total; a local search and the choice
@@ -206,8 +210,12 @@ pub struct Report {
     pub warnings: Vec<Warning>,
     /// With external axes: the station of the group (its postures are measured there).
     pub station: Option<crate::robot::external::ExternalValues>,
-    /// With external axes: every station tried and its group's value, in the request's order.
+    /// With external axes: every station tried and its group's value, in the request's order;
+    /// for a campaign over the stations, the campaign's value with the postures up to each.
     pub stations: Vec<Station>,
+    /// A campaign over several stations: where each posture is read (the external axes' values,
+    /// SI, the cell's order), in the order of `postures`; empty otherwise.
+    pub placed: Vec<crate::robot::external::ExternalValues>,
 }
 
 /// A design for the candidates ([`Request::for_candidates`]).
@@ -290,6 +298,10 @@ pub struct Unconstrained {
 /// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
+    if campaign::is_campaign(request) {
+        station::checked(request)?;
+        return campaign::campaign(request);
+    }
     match request.setup.robot().external().is_some() || !request.stations.is_empty() {
         true => station::at_stations(request, run_here),
         false => run_here(request),
@@ -420,6 +432,7 @@ fn run_on(request: &Request) -> Result<Report> {
         warnings: near.iter().map(Near::warning).collect(),
         station: None,
         stations: Vec::new(),
+        placed: Vec::new(),
         near,
         margin: design_margin(request.setup, request.options.margin),
         min_margins: min_margins(request.setup, request.options.margin, &found.postures),

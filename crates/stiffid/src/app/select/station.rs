@@ -36,31 +36,11 @@ pub(super) fn at_stations(
     request: &Request,
     run: impl Fn(&Request) -> Result<Report>,
 ) -> Result<Report> {
-    let refuse = |message: String| Error::InvalidOption {
-        option: JobOption::Station,
-        message,
-    };
-    let Some(axes) = request.setup.robot().external() else {
-        return Err(refuse(
-            "the robot has no external axes: give no station".into(),
-        ));
-    };
-    if request.stations.is_empty() || request.stations.len() > MAX_STATIONS {
-        return Err(refuse(format!(
-            "the robot has external axes ({}): give 1 to {MAX_STATIONS} stations, each one value per axis in the cell's order",
-            axes.column_names().join(", ")
-        )));
-    }
+    checked(request)?;
     let mut best: Option<Report> = None;
     let mut stations = Vec::with_capacity(request.stations.len());
     for e in &request.stations {
-        let setup = request
-            .setup
-            .at_station(e.as_slice())
-            .map_err(|error| match error {
-                Error::InvalidField { field, message } => refuse(format!("{field}: {message}")),
-                other => other,
-            })?;
+        let setup = setup_at(request, e)?;
         let report = run(&Request {
             setup: &setup,
             ..request.clone()
@@ -79,4 +59,46 @@ pub(super) fn at_stations(
     let mut best = best.expect("at least one station");
     best.stations = stations;
     Ok(best)
+}
+
+fn refuse(message: String) -> Error {
+    Error::InvalidOption {
+        option: JobOption::Station,
+        message,
+    }
+}
+
+/// Refuses stations on a robot without external axes, none on a robot with them, or more
+/// than [`MAX_STATIONS`].
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Station`]).
+pub(super) fn checked(request: &Request) -> Result<()> {
+    let Some(axes) = request.setup.robot().external() else {
+        return Err(refuse(
+            "the robot has no external axes: give no station".into(),
+        ));
+    };
+    if request.stations.is_empty() || request.stations.len() > MAX_STATIONS {
+        return Err(refuse(format!(
+            "the robot has external axes ({}): give 1 to {MAX_STATIONS} stations, each one value per axis in the cell's order",
+            axes.column_names().join(", ")
+        )));
+    }
+    Ok(())
+}
+
+/// The request's setup with the arm at station `e` ([`crate::Setup::at_station`]).
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Station`]) for a station of another count of values
+/// or outside the travel.
+pub(super) fn setup_at(request: &Request, e: &ExternalValues) -> Result<crate::Setup> {
+    request
+        .setup
+        .at_station(e.as_slice())
+        .map_err(|error| match error {
+            Error::InvalidField { field, message } => refuse(format!("{field}: {message}")),
+            other => other,
+        })
 }

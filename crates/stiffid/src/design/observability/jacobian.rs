@@ -31,7 +31,7 @@ use crate::metrology::calibration::gravity::{Term, G};
 use crate::metrology::calibration::ErrorModel;
 use crate::robot::kinematics::Coordinates;
 use crate::Frames;
-use nalgebra::{DMatrix, Matrix6, Point3, Vector3, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix6, Point3, Vector3, Vector6};
 
 /// A kept column of the design Jacobian: what it moves.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,6 +46,9 @@ pub(super) enum Column {
     Joint { joint: usize, component: Component },
     /// Gravity term `term` (index in the gravity model's terms).
     Gravity { term: usize, joint: usize },
+    /// A parameter of the carrier under the arm (a track's direction or error motion): slot
+    /// `0..` of [`Layout::carrier`]; affine in the point, `a x b + c` with `a` fixed in the cell.
+    Carrier(usize),
     /// A compliance under an applied wrench: zero on the unloaded readings a design reads (and
     /// an error map's coefficient, which no design's model holds).
     Unloaded,
@@ -90,6 +93,10 @@ pub(super) struct Posture {
     /// Per measuring point, the point Jacobian's column of every spring (the springs'
     /// coordinates); empty without gravity terms.
     springs: Vec<[Vector3<f64>; 6]>,
+    /// Per measuring point, the column of every carrier slot; and each slot's turn axis `a`
+    /// (its column is `a x b + c`): empty without a carrier.
+    carrier: Vec<Vec<Vector3<f64>>>,
+    carrier_axes: Vec<Vector3<f64>>,
 }
 
 /// The model, its kept parameters' columns and scales, and the measuring points (flange frame,
@@ -100,23 +107,43 @@ pub(super) struct Layout {
     pub(super) columns: Vec<Column>,
     pub(super) scales: Vec<f64>,
     pub(super) points: Vec<Vector3<f64>>,
+    /// The kept carrier parameters' indices in the model, by slot ([`Column::Carrier`]).
+    carrier: Vec<usize>,
+    /// The values the columns are taken at (the rigid nominal chain).
+    values: DVector<f64>,
 }
 
 impl Layout {
     /// The layout of the parameters `kept` of `model`, scaled by `scales` (one per kept).
-    pub(super) fn new(model: ErrorModel, kept: &[usize], scales: Vec<f64>) -> Self {
+    /// The layout of the parameters `kept` of `model`, scaled by `scales` (one per kept), its
+    /// columns taken at `values`.
+    pub(super) fn new(
+        model: ErrorModel,
+        kept: &[usize],
+        scales: Vec<f64>,
+        values: DVector<f64>,
+    ) -> Self {
+        let carriers = model.robot().external().map_or(0, |x| x.carrier_len());
+        let mut carrier = Vec::new();
         let columns = (kept.iter())
-            .map(|&c| Column::of(model.parameters()[c].target, &model, c))
+            .map(|&c| match model.parameters()[c].target {
+                Target::External { axis, .. } if axis < carriers => {
+                    carrier.push(c);
+                    Column::Carrier(carrier.len() - 1)
+                }
+                target => Column::of(target, &model, c),
+            })
             .collect();
-        let nominal = model.nominal();
         let points = (0..model.points())
-            .map(|k| model.point(&nominal, k))
+            .map(|k| model.point(&values, k))
             .collect();
         Layout {
             model,
             columns,
             scales,
             points,
+            carrier,
+            values,
         }
     }
 
@@ -125,15 +152,16 @@ impl Layout {
         3 * self.points.len() * postures
     }
 
-    /// The terms of posture `q` (axis angles, rad).
-    pub(super) fn posture(&self, q: &Vector6<f64>) -> Posture {
+    /// The terms of posture `q` (axis angles, rad) with the external axes at `e` (SI, the
+    /// cell's order; empty without).
+    pub(super) fn posture(&self, q: &Vector6<f64>, e: &[f64]) -> Posture {
         let robot = self.model.robot();
-        let frames = robot.frames(q);
+        let frames = robot.frames_at(q, e);
         let mut u = [Vector3::zeros(); 6];
         let mut v = [Vector3::zeros(); 6];
         for i in 0..6 {
             let before = if i == 0 {
-                *robot.base()
+                frames.base
             } else {
                 frames.joints[i - 1]
             };
@@ -161,6 +189,7 @@ impl Layout {
                 })
                 .collect(),
         };
+        let (carrier, carrier_axes) = self.carrier_terms(&points, e);
         Posture {
             frames,
             u,
@@ -171,7 +200,40 @@ impl Layout {
             levers,
             screws,
             springs,
+            carrier,
+            carrier_axes,
         }
+    }
+
+    /// The carrier slots' columns at every point of `points` (cell frame, m) at `e`, and their
+    /// turn axes `a` (a column is `a x b + c`: from the columns at the origin and at the unit
+    /// x and y points, `a = (d_y.z, -d_x.z, d_x.y)` with `d = a x unit`).
+    fn carrier_terms(
+        &self,
+        points: &[Vector3<f64>],
+        e: &[f64],
+    ) -> (Vec<Vec<Vector3<f64>>>, Vec<Vector3<f64>>) {
+        if self.carrier.is_empty() {
+            return (Vec::new(), Vec::new());
+        }
+        let at = |b: &Vector3<f64>| {
+            let mut out = vec![Vector3::zeros(); self.carrier.len()];
+            self.model.carrier_columns(&self.values, e, b, |c, col| {
+                if let Some(slot) = self.carrier.iter().position(|&k| k == c) {
+                    out[slot] = col;
+                }
+            });
+            out
+        };
+        let origin = at(&Vector3::zeros());
+        let (x, y) = (at(&Vector3::x()), at(&Vector3::y()));
+        let axes = (0..self.carrier.len())
+            .map(|s| {
+                let (dx, dy) = (x[s] - origin[s], y[s] - origin[s]);
+                Vector3::new(dy.z, -dx.z, dx.y)
+            })
+            .collect();
+        (points.iter().map(at).collect(), axes)
     }
 
     /// The unscaled column `c` at measuring point `k` of posture `p`.
@@ -196,6 +258,7 @@ impl Layout {
                 Component::B => p.v[i],
             },
             Column::Gravity { term, joint } => p.springs[k][joint] * p.regressors[term],
+            Column::Carrier(slot) => p.carrier[k][slot],
         }
     }
 
@@ -247,6 +310,7 @@ impl Layout {
                 match *column {
                     Column::FrameTranslation(_) | Column::Unloaded => {}
                     Column::FrameRotation(a) => turns[0] += gc.cross(&Vector3::ith(a, 1.0)),
+                    Column::Carrier(slot) => turns[0] += gc.cross(&p.carrier_axes[slot]),
                     Column::Point { point, .. } if point == k => by_link[6] += js.cross(&gs),
                     Column::Point { .. } => {}
                     Column::Joint {

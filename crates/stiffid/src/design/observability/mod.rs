@@ -39,8 +39,10 @@
 //! applied to calibration). It does not depend on the column scaling.
 
 use crate::math::linalg::CappedSvd;
+use crate::metrology::calibration::error_model::Observation;
 use crate::metrology::calibration::identifiability;
 use crate::metrology::calibration::ErrorModel;
+use crate::robot::external::ExternalValues;
 use crate::{Error, Result};
 use jacobian::Layout;
 use nalgebra::{DMatrix, Vector6};
@@ -78,13 +80,27 @@ pub struct CalibrationCriteria {
     pub predicted_rms: f64,
 }
 
+/// A posture where it is read: axis angles (rad) and the external axes' values (SI, the cell's
+/// order; [`ExternalValues::NONE`] without external axes).
+pub type Placed = (Vector6<f64>, ExternalValues);
+
 /// A design problem for calibration: the error model, its kept parameters and scaling, and the
-/// test postures' Jacobian.
+/// test postures' Jacobian; on a cell with a carrier (a track), where the group is read and the
+/// campaign's postures already chosen ([`CalibrationDesign::on_station`]).
 #[derive(Debug, Clone)]
 pub struct CalibrationDesign {
     layout: Layout,
     kept: Vec<usize>,
     test: DMatrix<f64>,
+    /// Where the group scored stands (the external axes' values, SI).
+    station: ExternalValues,
+    /// The scaled Jacobian of the campaign's postures chosen already (0 rows without), stacked
+    /// above the group's, and their count.
+    fixed: DMatrix<f64>,
+    fixed_postures: usize,
+    /// `F^T F` of the fixed rows `F` (`p x p`; zero without): added to every group's
+    /// information, so a search's step forms the group's alone.
+    fixed_information: DMatrix<f64>,
     /// `H = A_0^T A_0 = R_A^T R_A` (`p x p`) from the QR `A_0 = Q_A R_A` of `test`.
     test_information: DMatrix<f64>,
     noise: f64,
@@ -108,6 +124,27 @@ impl CalibrationDesign {
         test: &[Vector6<f64>],
         noise: f64,
     ) -> Result<Self> {
+        let placed = |qs: &[Vector6<f64>]| -> Vec<Placed> {
+            qs.iter().map(|q| (*q, ExternalValues::NONE)).collect()
+        };
+        Self::new_placed(model, length, &placed(reference), &placed(test), noise)
+    }
+
+    /// [`CalibrationDesign::new`] with each reference and test posture read where the cell's
+    /// external axes stand ([`Placed`]): for a model with a carrier's parameters
+    /// ([`ErrorModel::with_external`]), the reference postures spread over its travel decide
+    /// which of the track's parameters a campaign can separate. The group scored stands at the
+    /// first reference posture's station until [`CalibrationDesign::on_station`] moves it.
+    ///
+    /// # Errors
+    /// As [`CalibrationDesign::new`].
+    pub fn new_placed(
+        model: ErrorModel,
+        length: f64,
+        reference: &[Placed],
+        test: &[Placed],
+        noise: f64,
+    ) -> Result<Self> {
         for (field, v) in [("length", length), ("noise", noise)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::InvalidField {
@@ -122,20 +159,28 @@ impl CalibrationDesign {
                 message: "expected at least one reference and one test posture".into(),
             });
         }
-        let scales = model.column_scales(length, reference);
+        let qs: Vec<Vector6<f64>> = reference.iter().map(|p| p.0).collect();
+        let scales = model.column_scales(length, &qs);
         let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
-        let j = model.jacobian(&rigid(&model), &pairs(&model, reference))?;
+        let values = rigid(&model);
+        let j = model.jacobian_of(&values, &readings(&model, reference))?;
         let kept = identifiability::analyse(&j, &scales, &priorities)?.identified;
         let scales: Vec<f64> = kept.iter().map(|&c| scales[c]).collect();
-        let layout = Layout::new(model, &kept, scales);
+        let layout = Layout::new(model, &kept, scales, values);
         let mut design = CalibrationDesign {
             layout,
             kept,
             test: DMatrix::zeros(0, 0),
+            station: reference[0].1,
+            fixed: DMatrix::zeros(0, 0),
+            fixed_postures: 0,
+            fixed_information: DMatrix::zeros(0, 0),
             test_information: DMatrix::zeros(0, 0),
             noise,
         };
-        design.test = design.jacobian(test)?;
+        let p = design.kept.len();
+        (design.fixed, design.fixed_information) = (DMatrix::zeros(0, p), DMatrix::zeros(p, p));
+        design.test = design.jacobian_placed(test)?;
         let r_a = score::triangular_factor(&design.test);
         design.test_information = r_a.tr_mul(&r_a);
         Ok(design)
@@ -156,6 +201,55 @@ impl CalibrationDesign {
         self.noise
     }
 
+    /// The design of a campaign's next group: read at `station` (the external axes' values, SI,
+    /// the cell's order), after the postures `chosen` (read where each stands), whose rows join
+    /// every group's in the criteria (their count too).
+    ///
+    /// # Errors
+    /// Those of [`CalibrationDesign::jacobian`].
+    pub fn on_station(&self, station: ExternalValues, chosen: &[Placed]) -> Result<Self> {
+        let fixed = self.jacobian_placed(chosen)?;
+        Ok(CalibrationDesign {
+            station,
+            fixed_information: fixed.tr_mul(&fixed),
+            fixed,
+            fixed_postures: chosen.len(),
+            ..self.clone()
+        })
+    }
+
+    /// The scaled Jacobian of the kept parameters at `postures`, each read where it stands
+    /// ([`CalibrationDesign::jacobian`]).
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for a non-finite posture.
+    pub fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
+        if !(postures.iter()).all(|(q, e)| q.iter().chain(e.as_slice()).all(|v| v.is_finite())) {
+            return Err(Error::NotFinite {
+                what: "a posture of the calibration design".into(),
+            });
+        }
+        let l = &self.layout;
+        let mut j = DMatrix::zeros(l.rows(postures.len()), self.kept.len());
+        let rows = l.rows(1);
+        for (i, (q, e)) in postures.iter().enumerate() {
+            l.write_rows(&l.posture(q, e.as_slice()), &mut j, rows * i);
+        }
+        Ok(j)
+    }
+
+    /// The fixed rows stacked above `j` (for the criteria that factor the whole Jacobian).
+    fn with_fixed(&self, j: DMatrix<f64>) -> DMatrix<f64> {
+        if self.fixed.nrows() == 0 {
+            return j;
+        }
+        let (f, p) = self.fixed.shape();
+        let mut all = DMatrix::zeros(f + j.nrows(), p);
+        all.rows_mut(0, f).copy_from(&self.fixed);
+        all.rows_mut(f, j.nrows()).copy_from(&j);
+        all
+    }
+
     /// The scaled identification Jacobian of the kept parameters at `postures` (rad), every
     /// measuring point at each: 3 rows per (posture, point), posture-major, m per scaled unit;
     /// on the nominal chain at the commanded postures (no deflection under gravity: the
@@ -164,18 +258,8 @@ impl CalibrationDesign {
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
     pub fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
-        if !postures.iter().all(|q| q.iter().all(|v| v.is_finite())) {
-            return Err(Error::NotFinite {
-                what: "a posture of the calibration design".into(),
-            });
-        }
-        let l = &self.layout;
-        let mut j = DMatrix::zeros(l.rows(postures.len()), self.kept.len());
-        let rows = l.rows(1);
-        for (i, q) in postures.iter().enumerate() {
-            l.write_rows(&l.posture(q), &mut j, rows * i);
-        }
-        Ok(j)
+        let placed: Vec<Placed> = postures.iter().map(|q| (*q, self.station)).collect();
+        self.jacobian_placed(&placed)
     }
 
     /// The criteria of the group `postures` (rad; module docs).
@@ -191,11 +275,41 @@ impl CalibrationDesign {
             });
         }
         criteria(
-            &self.jacobian(postures)?,
-            postures.len(),
+            &self.with_fixed(self.jacobian(postures)?),
+            self.fixed_postures + postures.len(),
             &self.test,
             self.noise,
         )
+    }
+
+    /// The criteria of a campaign's `postures`, each read where it stands (module docs), after
+    /// the fixed postures of [`CalibrationDesign::on_station`] (none on a new design).
+    ///
+    /// # Errors
+    /// As [`CalibrationDesign::evaluate`].
+    pub fn evaluate_placed(&self, postures: &[Placed]) -> Result<CalibrationCriteria> {
+        if postures.is_empty() {
+            return Err(Error::InvalidField {
+                field: "postures".into(),
+                message: "expected at least one posture".into(),
+            });
+        }
+        let j = self.with_fixed(self.jacobian_placed(postures)?);
+        criteria(
+            &j,
+            self.fixed_postures + postures.len(),
+            &self.test,
+            self.noise,
+        )
+    }
+
+    /// [`CalibrationDesign::value`] of a campaign's `postures`, each read where it stands, after
+    /// the fixed postures of [`CalibrationDesign::on_station`] (none on a new design).
+    pub fn value_placed(&self, criterion: CalibrationCriterion, postures: &[Placed]) -> f64 {
+        match self.jacobian_placed(postures) {
+            Ok(j) => score::Scored::new(j, criterion, self).map_or(f64::INFINITY, |s| s.value),
+            Err(_) => f64::INFINITY,
+        }
     }
 
     /// The value of `criterion` for `postures` (rad) as a search minimises it
@@ -222,7 +336,8 @@ impl CalibrationDesign {
             return (f64::INFINITY, zero);
         }
         let l = &self.layout;
-        let terms: Vec<_> = postures.iter().map(|q| l.posture(q)).collect();
+        let e = self.station.as_slice();
+        let terms: Vec<_> = postures.iter().map(|q| l.posture(q, e)).collect();
         let rows = l.rows(1);
         let mut j = DMatrix::zeros(l.rows(postures.len()), self.kept.len());
         for (i, t) in terms.iter().enumerate() {
@@ -248,10 +363,20 @@ fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
     x
 }
 
-/// Every measuring point of `model` at every posture, posture-major.
-fn pairs(model: &ErrorModel, postures: &[Vector6<f64>]) -> Vec<(Vector6<f64>, usize)> {
-    (postures.iter())
-        .flat_map(|q| (0..model.points()).map(move |k| (*q, k)))
+/// Unloaded readings of every measuring point of `model` at every posture, posture-major.
+fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
+    (postures.iter().enumerate())
+        .flat_map(|(i, (q, e))| {
+            (0..model.points()).map(move |k| Observation {
+                posture: i,
+                point: k,
+                q: *q,
+                measured: nalgebra::Vector3::zeros(),
+                wrench: Vector6::zeros(),
+                e: *e,
+                table: false,
+            })
+        })
         .collect()
 }
 

@@ -117,7 +117,7 @@ pub(super) fn triangular_factor(a: &DMatrix<f64>) -> DMatrix<f64> {
 pub(super) struct Scored {
     /// The loss ([`CalibrationCriterion::loss`]).
     pub(super) value: f64,
-    /// The scaled Jacobian.
+    /// The scaled Jacobian of the group (without a campaign's fixed rows).
     pub(super) j: DMatrix<f64>,
     /// What `W` (module docs) is made of.
     weight: Weight,
@@ -134,7 +134,8 @@ enum Weight {
 }
 
 impl Scored {
-    /// The score of the scaled Jacobian `j` of `n` postures; `None` for a group that does not
+    /// The score of the scaled Jacobian `j` of a group, after the design's fixed postures (their
+    /// information added, [`CalibrationDesign::on_station`]); `None` for a group that does not
     /// separate the kept parameters (fewer rows than columns, an information matrix that is
     /// not positive definite, a pivot of `R` below [`RANK_TOLERANCE`] of the largest, a
     /// singular value below it for the spectral indices) or a non-finite value.
@@ -144,10 +145,11 @@ impl Scored {
         design: &CalibrationDesign,
     ) -> Option<Self> {
         let p = j.ncols();
-        if j.nrows() < p || p == 0 || !j.iter().all(|v| v.is_finite()) {
+        let rows = j.nrows() + design.fixed.nrows();
+        if rows < p || p == 0 || !j.iter().all(|v| v.is_finite()) {
             return None;
         }
-        let n = j.nrows() / design.layout.rows(1);
+        let n = rows / design.layout.rows(1);
         let (value, weight) = match criterion {
             CalibrationCriterion::O1
             | CalibrationCriterion::DOptimality
@@ -155,7 +157,7 @@ impl Scored {
             _ => {
                 // The spectral indices need the SVD anyway: of the QR's `R`, as accurate as
                 // `J_s` allows.
-                let r = triangular_factor(&j);
+                let r = triangular_factor(&design.with_fixed(j.clone()));
                 let diagonal = r.diagonal().map(f64::abs);
                 if diagonal.min() <= RANK_TOLERANCE * diagonal.max() {
                     return None;
@@ -191,8 +193,8 @@ fn from_information(
     // J^T J by the matrix-product kernel, J^T as a view of J's columns (no copy).
     let (m, p) = j.shape();
     let transposed = DMatrixView::from_slice_with_strides(j.as_slice(), p, m, m, 1);
-    let mut information = DMatrix::zeros(p, p);
-    information.gemm(1.0, &transposed, j, 0.0);
+    let mut information = design.fixed_information.clone();
+    information.gemm(1.0, &transposed, j, 1.0);
     let l = information.cholesky()?.unpack();
     let diagonal = l.diagonal();
     if diagonal.min() <= RANK_TOLERANCE * diagonal.max() {

@@ -1,5 +1,5 @@
 use super::*;
-use crate::metrology::calibration::error_model::MeasuredIn;
+use crate::metrology::calibration::error_model::{MeasuredIn, Target};
 use crate::metrology::calibration::{fit, gravity, validation, Estimate, Geometry};
 use crate::robot::presets;
 use crate::study::observability as study;
@@ -252,5 +252,101 @@ fn log_gradients_match_central_differences() {
                 "{name} {criterion:?}: worst {worst} of {scale}"
             );
         }
+    }
+}
+
+/// The FANUC on a 6 m track along x, its error motions of order 3 in the model; reference
+/// postures dealt over six stations, test postures read at each.
+fn track_design() -> (Robot, CalibrationDesign, Vec<ExternalValues>) {
+    use crate::robot::external::{ExternalAxes, ExternalAxis};
+    let axis = ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0);
+    let robot = presets::get("fanuc-r2000ic-165f")
+        .unwrap()
+        .with_external(Some(ExternalAxes::new(vec![axis]).unwrap()));
+    let stations = robot.external().unwrap().stations(6);
+    let points = [
+        Vector3::new(0.15, 0.0, 0.25),
+        Vector3::new(-0.1, 0.12, 0.3),
+        Vector3::new(0.0, -0.14, 0.2),
+    ];
+    let model = ErrorModel::new(
+        &robot,
+        &points,
+        MeasuredIn::Tracker,
+        Geometry::Full,
+        gravity::Terms::none(&robot),
+    )
+    .unwrap()
+    .with_external(&[3], 0)
+    .unwrap();
+    let reference: Vec<Placed> = (postures(&robot, 60, 1).iter().enumerate())
+        .map(|(i, q)| (*q, stations[i % 6]))
+        .collect();
+    let test: Vec<Placed> = (postures(&robot, 20, 2).iter().enumerate())
+        .map(|(i, q)| (*q, stations[i % 6]))
+        .collect();
+    let d = CalibrationDesign::new_placed(model, LENGTH, &reference, &test, 5e-5).unwrap();
+    (robot, d, stations)
+}
+
+/// On a track, the design keeps the track's direction and error motions, its Jacobian equals
+/// the error model's with the carrier's columns at every posture's station, and the exact
+/// gradient of a group at one station after postures fixed at the others matches central
+/// differences.
+#[test]
+fn a_track_campaign_is_designed_with_the_tracks_columns() {
+    let (robot, d, stations) = track_design();
+    let model = d.model();
+    let carrier = (d.kept().iter())
+        .filter(|&&c| matches!(model.parameters()[c].target, Target::External { .. }))
+        .count();
+    // The direction's 2 and the 18 error motions, less the straightnesses of order 1 (a turn
+    // of the direction) and the positioning of order 1 (merged with the joint offsets' scale).
+    assert!(carrier >= 15, "kept {carrier} of the track's 20");
+    let group: Vec<Placed> = (postures(&robot, 8, 9).iter().enumerate())
+        .map(|(i, q)| (*q, stations[i % 6]))
+        .collect();
+    let readings = readings(model, &group);
+    let full = model.jacobian_of(&rigid(model), &readings).unwrap();
+    let qs: Vec<Vector6<f64>> = postures(&robot, 60, 1);
+    let scales = model.column_scales(LENGTH, &qs);
+    let fast = d.jacobian_placed(&group).unwrap();
+    for (c, &k) in d.kept().iter().enumerate() {
+        for r in 0..full.nrows() {
+            let (a, b) = (fast[(r, c)], full[(r, k)] * scales[k]);
+            assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{r} {k}: {a} {b}");
+        }
+    }
+    let fixed: Vec<Placed> = (postures(&robot, 30, 11).iter().enumerate())
+        .map(|(i, q)| (*q, stations[1 + i % 5]))
+        .collect();
+    let here = d.on_station(stations[0], &fixed).unwrap();
+    let group = postures(&robot, 8, 12);
+    let mut all = fixed.clone();
+    all.extend(group.iter().map(|q| (*q, stations[0])));
+    for criterion in [
+        CalibrationCriterion::TestPose,
+        CalibrationCriterion::DOptimality,
+    ] {
+        let (value, gradient) = here.value_and_log_gradient(criterion, &group);
+        let whole = d.value_placed(criterion, &all);
+        assert!((value - whole).abs() <= 1e-9 * whole, "{value} {whole}");
+        let h = 1e-5;
+        let mut worst: f64 = 0.0;
+        let scale = gradient.iter().map(|g| g.amax()).fold(0.0, f64::max);
+        for i in 0..group.len() {
+            for a in 0..6 {
+                let (mut up, mut down) = (group.clone(), group.clone());
+                up[i][a] += h;
+                down[i][a] -= h;
+                let fd = (here.value(criterion, &up).ln() - here.value(criterion, &down).ln())
+                    / (2.0 * h);
+                worst = worst.max((fd - gradient[i][a]).abs());
+            }
+        }
+        assert!(
+            worst <= 1e-5 * scale,
+            "{criterion:?}: worst {worst} of {scale}"
+        );
     }
 }

@@ -270,6 +270,30 @@ impl ExternalAxes {
         self.axes.iter().filter(|a| a.role == Role::Carrier).count()
     }
 
+    /// `count` stations over the carriers' travel (at least 1; one alone at its middle): the
+    /// carrier axes together at the Chebyshev-Lobatto points `(1 - cos(pi k / (count - 1))) / 2`
+    /// of their travels (the ends included, denser towards them, where a polynomial error
+    /// motion is least determined), the positioner's axes at 0 (or the end of the travel
+    /// nearest it).
+    pub fn stations(&self, count: usize) -> Vec<ExternalValues> {
+        let count = count.max(1);
+        (0..count)
+            .map(|k| {
+                let t = match count {
+                    1 => 0.5,
+                    _ => 0.5 * (1.0 - (std::f64::consts::PI * k as f64 / (count - 1) as f64).cos()),
+                };
+                let values: Vec<f64> = (self.axes.iter())
+                    .map(|a| match a.role {
+                        Role::Carrier => a.lower + t * (a.upper - a.lower),
+                        Role::Positioner => 0.0f64.clamp(a.lower, a.upper),
+                    })
+                    .collect();
+                ExternalValues::new(&values).expect("at most MAX_AXES axes")
+            })
+            .collect()
+    }
+
     /// The columns of the axes in data files, in the cell's order: `e1_mm`, `e2_deg`, ...
     pub fn column_names(&self) -> Vec<String> {
         (self.axes.iter().enumerate())

@@ -545,6 +545,22 @@ impl ErrorModel {
         }
     }
 
+    /// The columns of the carrier's fitted parameters for the arm's point `point` (cell frame,
+    /// m) at external axis values `e` (SI, the cell's order) and `values`, as
+    /// `put(parameter, column)` (m per unit of the parameter); nothing without a carrier. Each
+    /// column is affine in the point: a translation, or a turn about an axis fixed in the cell.
+    pub(crate) fn carrier_columns(
+        &self,
+        values: &DVector<f64>,
+        e: &[f64],
+        point: &Vector3<f64>,
+        put: impl FnMut(usize, Vector3<f64>),
+    ) {
+        if let Some(x) = (self.external.as_ref()).filter(|x| x.axes.carrier_len() > 0) {
+            x.carrier_columns(values, e, point, put);
+        }
+    }
+
     /// The positioner's pose `P(e)` (cell frame from the part's frame at `e = 0`) at `values`;
     /// the identity without a positioner.
     pub fn positioner_pose(&self, values: &DVector<f64>, e: &[f64]) -> Isometry3<f64> {
