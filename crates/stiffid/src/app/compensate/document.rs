@@ -19,7 +19,9 @@ use nalgebra::Vector6;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-pub use super::columns::{csv_line, header, values, DYNAMICS};
+pub use super::columns::{
+    csv_line, external_header, external_values, header, values, DYNAMICS,
+};
 
 /// The value of the document's `generator` key: it marks a compensation report directory.
 pub const GENERATOR: &str = "stiffid compensate";

@@ -216,6 +216,7 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
+if options.free_station.is_none() {
             let points = placed(text).map_err(|e| in_input(&name, e))?;
             let mut first = 0;
             compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
@@ -228,6 +229,13 @@ where
                 Ok(())
             })
             .map_err(|f: Failure<E>| f.into_error(&name))?;
+            } else {
+                let points = path::points(text, frame, robot.external());
+                let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
+                let points = points.map_err(|e| in_input(&name, e))?;
+                on_track(setup, &compliance, &points, &options, &mut add)
+                    .map_err(|f: Failure<E>| f.into_error(&name))?;
+            }
             (name, None, Vec::new())
         }
         Input::Program {
@@ -513,6 +521,27 @@ fn program_tool(setup: &Setup) -> Tool {
             .payload()
             .map(|p| (p.mass, adapter.transform_point(&p.centre.into()).coords)),
     }
+}
+
+/// A path file's `points` (cell frame) of a robot on a track compensated with the station free
+/// ([`compensate::path_on_track`]), given to `add` in chunks of [`CHUNK`] in the cell frame.
+fn on_track<E, F>(
+    setup: &Setup,
+    compliance: &Compliance,
+    points: &[PathPoint],
+    options: &Options,
+    add: &mut F,
+) -> std::result::Result<(), Failure<E>>
+where
+    F: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    let robot = setup.arm().robot();
+    let results = compensate::path_on_track(setup.arm(), compliance, points, options)?;
+    let results = cell::path_to_cell(robot, points, results);
+    for (k, (p, r)) in points.chunks(CHUNK).zip(results.chunks(CHUNK)).enumerate() {
+        add(k * CHUNK, p, r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
+    }
+    Ok(())
 }
 
 /// A failure of the streamed path: the library's, or the sink's.
