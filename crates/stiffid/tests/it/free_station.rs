@@ -211,3 +211,21 @@ fn a_free_station_without_a_track_is_refused() {
         "{error}"
     );
 }
+
+/// The compensate CSV's external columns carry the chosen station, in mm, named as path files
+/// name them.
+#[test]
+fn the_csv_carries_the_chosen_station_in_mm() {
+    use stiffid::app::compensate::document::{external_header, external_values};
+    let points = line(3);
+    let (options, s) = free(Aggregate::Sum);
+    let compliance = s.model_compliance("test").unwrap();
+    let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
+    let cell = s.robot().external();
+    assert_eq!(external_header(cell), vec!["e1_mm".to_string()]);
+    for r in &results {
+        let e = external_values(cell, r);
+        assert_eq!(e, vec![Some(r.external.as_slice()[0] * 1e3)]);
+    }
+    assert!(external_header(None).is_empty());
+}
