@@ -386,7 +386,9 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     }
     if let Some(range) = args.free_station_mm {
         let station = FreeStation::try_from_mm(range, args.station_step_mm)?;
-        let objective = options.free_tool_axis.map_or(Objective::Bound, |f| f.objective);
+        let objective = options
+            .free_tool_axis
+            .map_or(Objective::Bound, |f| f.objective);
         options.free_station = Some(FreeStation {
             objective,
             aggregate: args.objective,

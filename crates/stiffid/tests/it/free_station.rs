@@ -122,7 +122,14 @@ fn the_station_and_rotation_chosen_equal_the_exhaustive_optimum() {
             (-1..=1)
                 .map(|k| {
                     (-2..=2)
-                        .map(|g| bound_at(&s, &points, i, (0.1 * k as f64, (5.0 * g as f64).to_radians())))
+                        .map(|g| {
+                            bound_at(
+                                &s,
+                                &points,
+                                i,
+                                (0.1 * k as f64, (5.0 * g as f64).to_radians()),
+                            )
+                        })
                         .collect()
                 })
                 .collect()
@@ -148,7 +155,10 @@ fn the_station_and_rotation_chosen_equal_the_exhaustive_optimum() {
             Aggregate::Sum => own.sum(),
             Aggregate::Max => own.fold(0.0, f64::max),
         };
-        assert!(best < own_value * 0.999, "the grid gains: {best} against {own_value}");
+        assert!(
+            best < own_value * 0.999,
+            "the grid gains: {best} against {own_value}"
+        );
     }
 }
 
@@ -168,7 +178,11 @@ fn no_point_rises_and_the_tool_lands_from_the_chosen_station() {
     let mut moved_any = false;
     for (i, (p, r)) in points.iter().zip(&results).enumerate() {
         let before = r.bound_before.unwrap();
-        assert!(r.budget.bound <= before * (1.0 + 1e-9), "{i}: {} > {before}", r.budget.bound);
+        assert!(
+            r.budget.bound <= before * (1.0 + 1e-9),
+            "{i}: {} > {before}",
+            r.budget.bound
+        );
         let e = r.external.as_slice()[0];
         assert!((e - 1.5).abs() <= 0.1 + 1e-12, "{i}: station {e}");
         moved_any |= (e - 1.5).abs() > 1e-9;
@@ -177,7 +191,9 @@ fn no_point_rises_and_the_tool_lands_from_the_chosen_station() {
         let f = rotate * r.wrench.fixed_rows::<3>(0).into_owned();
         let w = Vector6::new(f.x, f.y, f.z, 0.0, 0.0, 0.0);
         let loaded = carrier * model.loaded_pose(&r.q_compensated, &w);
-        let Target::Pose(target) = &p.target else { unreachable!() };
+        let Target::Pose(target) = &p.target else {
+            unreachable!()
+        };
         let error = (loaded.translation.vector - target.translation.vector).norm();
         assert!(error < 1e-7, "{i}: {error} m");
     }

@@ -149,6 +149,8 @@ pub struct Report {
     pub prediction_level: Option<f64>,
     /// The free tool axis, if asked.
     pub free_tool_axis: Option<FreeToolAxis>,
+    /// The free track station, if asked.
+    pub free_station: Option<compensate::FreeStation>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -192,7 +194,8 @@ where
         }
         .into());
     }
-    let mut summary = Summary::new(options.free_tool_axis.is_some(), options.level);
+    let free = options.free_tool_axis.is_some() || options.free_station.is_some();
+    let mut summary = Summary::new(free, options.level);
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
@@ -216,19 +219,22 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-if options.free_station.is_none() {
-            let points = placed(text).map_err(|e| in_input(&name, e))?;
-            let mut first = 0;
-            compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
-                let r = match robot.external() {
-                    None => std::borrow::Cow::Borrowed(r),
-                    Some(_) => std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec())),
-                };
-                add(first, p, &r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
-                first += p.len();
-                Ok(())
-            })
-            .map_err(|f: Failure<E>| f.into_error(&name))?;
+            if options.free_station.is_none() {
+                let points = placed(text).map_err(|e| in_input(&name, e))?;
+                let mut first = 0;
+                compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
+                    let r = match robot.external() {
+                        None => std::borrow::Cow::Borrowed(r),
+                        Some(_) => {
+                            std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec()))
+                        }
+                    };
+                    add(first, p, &r, &vec![Dynamics::default(); p.len()])
+                        .map_err(Failure::Sink)?;
+                    first += p.len();
+                    Ok(())
+                })
+                .map_err(|f: Failure<E>| f.into_error(&name))?;
             } else {
                 let points = path::points(text, frame, robot.external());
                 let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
@@ -378,6 +384,7 @@ if options.free_station.is_none() {
         input: name,
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
+        free_station: options.free_station,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,

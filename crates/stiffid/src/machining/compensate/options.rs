@@ -185,9 +185,9 @@ impl FreeToolAxis {
 pub struct FreeStation {
     /// The station stays within `+-range` of the path's own and within the axis's travel, m, > 0.
     pub range: f64,
-    /// Largest change of the station's offset from the path's own between consecutive points, m,
-    /// > 0: the grid's spacing. The cell files give no axis speeds: this step is the speed limit
-    /// (the step over the distance between two points, times the feed).
+    /// Largest change of the station's offset from the path's own between consecutive points
+    /// (m, positive): the grid's spacing. The cell files give no axis speeds: this step is the
+    /// speed limit (the step over the distance between two points, times the feed).
     pub max_step: f64,
     /// What the station minimises ([`Objective::Surge`] is refused: a path file has no
     /// drilling exits).
@@ -344,7 +344,8 @@ impl Options {
         };
         FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
         let free = self.free_tool_axis;
-        let (objective, aggregate) = free.map_or((s.objective, s.aggregate), |f| (f.objective, f.aggregate));
+        let (objective, aggregate) =
+            free.map_or((s.objective, s.aggregate), |f| (f.objective, f.aggregate));
         if s.objective == Objective::Surge || (objective, aggregate) != (s.objective, s.aggregate) {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeToolAxisObjective,

@@ -4,8 +4,8 @@
 
 use super::stream::{compensate_chosen, nominal_postures, Chosen};
 use super::tool_axis::{choose, column, Axis, Column, Cost, Grid, Move};
-use super::{Compensated, Compliance, FreeStation, FreeToolAxis, Model, Objective, Options};
 use super::PathPoint;
+use super::{Compensated, Compliance, FreeStation, FreeToolAxis, Model, Objective, Options};
 use crate::common::error::JobOption;
 use crate::machining::cell::{on_carriage, turned};
 use crate::observation::deflection::base_wrench;
@@ -93,7 +93,11 @@ pub fn path_on_track(
         let q = columns[s][i].as_ref().map_or(nominal[i], |c| c.0);
         (q, angles[s % angles.len()], st.wrenches[i], st.external[i])
     };
-    let picked: Vec<_> = chosen.iter().enumerate().map(|(i, &s)| pick(i, s)).collect();
+    let picked: Vec<_> = chosen
+        .iter()
+        .enumerate()
+        .map(|(i, &s)| pick(i, s))
+        .collect();
     let postures: Vec<Vector6<f64>> = picked.iter().map(|p| p.0).collect();
     let rotations: Vec<f64> = picked.iter().map(|p| p.1).collect();
     let moved: Vec<Vector6<f64>> = picked.iter().map(|p| p.2).collect();
@@ -168,7 +172,12 @@ struct Station {
 impl Station {
     /// The station `offset` (m) from each of `points`' own, `wrenches` the points' (the arm's
     /// frame at their own station).
-    fn new(cell: &ExternalAxes, points: &[PathPoint], wrenches: &[Vector6<f64>], offset: f64) -> Self {
+    fn new(
+        cell: &ExternalAxes,
+        points: &[PathPoint],
+        wrenches: &[Vector6<f64>],
+        offset: f64,
+    ) -> Self {
         let axis = &cell.axes()[0];
         let mut out = Station {
             external: Vec::with_capacity(points.len()),
@@ -185,8 +194,10 @@ impl Station {
                 e = moved;
             }
             let shift = cell.carrier_pose(&values).inverse() * cell.carrier_pose(own.as_slice());
-            out.inside.push(values[0] >= axis.lower && values[0] <= axis.upper);
-            out.wrenches.push(turned(&shift.rotation.to_rotation_matrix(), w));
+            out.inside
+                .push(values[0] >= axis.lower && values[0] <= axis.upper);
+            out.wrenches
+                .push(turned(&shift.rotation.to_rotation_matrix(), w));
             out.shift.push(shift);
             out.external.push(e);
         }

@@ -70,14 +70,27 @@ pub(super) fn optimise_tool_axis(
     let angles = free.angles();
     let columns: Vec<Column> = angles
         .par_iter()
-        .map(|&phi| column(model, nominal, wrenches, (Move::turn(phi), cost), ik_options))
+        .map(|&phi| {
+            column(
+                model,
+                nominal,
+                wrenches,
+                (Move::turn(phi), cost),
+                ik_options,
+            )
+        })
         .collect();
     let grid = Grid {
         axes: vec![free.axis(&angles)],
     };
     let chosen = choose(&columns, &grid, cost, free.aggregate);
     (chosen.iter().enumerate())
-        .map(|(i, &g)| (columns[g][i].as_ref().map_or(nominal[i], |c| c.0), angles[g]))
+        .map(|(i, &g)| {
+            (
+                columns[g][i].as_ref().map_or(nominal[i], |c| c.0),
+                angles[g],
+            )
+        })
         .unzip()
 }
 
