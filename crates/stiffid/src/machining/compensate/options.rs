@@ -138,17 +138,6 @@ impl FreeToolAxis {
         (-half..=half).map(|g| g as f64 * spacing).collect()
     }
 
-    /// The grid's axis of the rotation over `angles` ([`Self::angles`]).
-    pub(super) fn axis<'a>(&self, angles: &'a [f64]) -> super::tool_axis::Axis<'a> {
-        super::tool_axis::Axis {
-            values: angles,
-            reach: self.grid().1,
-            range: self.range,
-            max_step: self.max_step,
-            zero: angles.len() / 2,
-        }
-    }
-
     /// The number of angles of the grid: `2 floor(range / spacing) + 1`, as a float (it may be
     /// astronomically large for a tiny `max_step`).
     pub(super) fn angle_count(&self) -> f64 {
@@ -280,11 +269,15 @@ pub struct Options {
 
 impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
-    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], and a free tool axis' `max_step` in (0, 90] deg and `range` in
-    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them. [`path`] calls it.
+    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
+    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, and a free station's as
+    /// [`FreeStation::try_from_mm`] gives them, minimising the deflection or the bound with the
+    /// free tool axis' objective and aggregate. [`path`] calls it.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] naming the field, the value and the range.
+    /// [`Error::InvalidField`] naming the field, the value and the range;
+    /// [`Error::InvalidOption`] for a free station's ([`JobOption::FreeStationMm`],
+    /// [`JobOption::StationStepMm`], [`JobOption::FreeToolAxisObjective`]).
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",

@@ -3,7 +3,7 @@
 //! the grid of (station, rotation) pairs (module docs of [`super`], "The free station").
 
 use super::stream::{compensate_chosen, nominal_postures, Chosen};
-use super::tool_axis::{choose, column, Axis, Column, Cost, Grid, Move};
+use super::tool_axis::{choose, column, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
 use super::{Compensated, Compliance, FreeStation, FreeToolAxis, Model, Objective, Options};
 use crate::common::error::JobOption;
@@ -85,7 +85,7 @@ pub fn path_on_track(
         .collect();
     let mut axes = vec![station_axis(station, &offsets)];
     if let Some(f) = &options.free_tool_axis {
-        axes.push(f.axis(&angles));
+        axes.push(rotation_axis(f, &angles));
     }
     let chosen = choose(&columns, &Grid { axes }, &cost, station.aggregate);
     let pick = |i: usize, s: usize| {

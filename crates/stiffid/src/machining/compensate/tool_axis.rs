@@ -81,7 +81,7 @@ pub(super) fn optimise_tool_axis(
         })
         .collect();
     let grid = Grid {
-        axes: vec![free.axis(&angles)],
+        axes: vec![rotation_axis(free, &angles)],
     };
     let chosen = choose(&columns, &grid, cost, free.aggregate);
     (chosen.iter().enumerate())
@@ -92,6 +92,17 @@ pub(super) fn optimise_tool_axis(
             )
         })
         .unzip()
+}
+
+/// The grid's axis of the rotation of `free` over its `angles` ([`FreeToolAxis::angles`]).
+pub(super) fn rotation_axis<'a>(free: &FreeToolAxis, angles: &'a [f64]) -> Axis<'a> {
+    Axis {
+        values: angles,
+        reach: free.grid().1,
+        range: free.range,
+        max_step: free.max_step,
+        zero: angles.len() / 2,
+    }
 }
 
 /// The state of every point on the path of least value over `columns` (one per state of
