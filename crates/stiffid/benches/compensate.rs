@@ -4,7 +4,9 @@
 //! prediction interval of every point's deflection, from the drives identified on the FANUC data
 //! with leave-one-posture-out cross-validation (43 folds; target: under 50 ms beyond the
 //! compensation); and the poses with one free variable, the rotation about the spindle on a grid
-//! of 13 angles, minimising the worst point's error bound (the target: under 1 s).
+//! of 13 angles, minimising the worst point's error bound (the target: under 1 s); on the
+//! example robot on a track, a 1 m trim line of 10 000 points with the station free (13 stations,
+//! one free variable) and with the station and the rotation free (13 x 13 states).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Translation3, Vector6};
@@ -70,6 +72,7 @@ fn benches(c: &mut Criterion) {
         q0: q,
         ik: ik::Options::default(),
         free_tool_axis: None,
+        free_station: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
@@ -129,7 +132,70 @@ fn benches(c: &mut Criterion) {
             })
         },
     );
+    track(&mut group);
     group.finish();
+}
+
+/// The trim line of `examples/track` (1 m, 0.1 mm steps, the robot parked at 3000 mm) with the
+/// station free (+-60 mm in 10 mm steps), alone and with the rotation (+-30 deg in 5 deg steps),
+/// minimising the worst point's bound.
+fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
+    use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+    use stiffid::machining::compensate::{Aggregate, FreeStation, FreeToolAxis, Objective};
+    use stiffid::robot::external::ExternalValues;
+    let text = include_str!("../../../examples/track/track-cell.toml");
+    let s = setup::parse(text, "track-cell.toml", |name, _| {
+        stiffid::robot::presets::get(name)
+    })
+    .unwrap();
+    let compliance = s.model_compliance("the bench").unwrap();
+    let down = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
+    let e = ExternalValues::new(&[3.0, 0.0, 0.0]).unwrap();
+    let points: Vec<PathPoint> = (0..10_000)
+        .map(|i| PathPoint {
+            line: i as u64 + 2,
+            target: Target::Pose(Isometry3::from_parts(
+                Vector3::new(2.5 + 1e-4 * i as f64, 1.5, 0.9).into(),
+                down,
+            )),
+            wrench: Vector6::new(-150.0, 250.0, -80.0, 0.0, 0.0, 0.0),
+            frame: Frame::Base,
+            external: e,
+        })
+        .collect();
+    let station = FreeStation {
+        aggregate: Aggregate::Max,
+        ..FreeStation::try_from_mm(60.0, 10.0).unwrap()
+    };
+    let alone = Options {
+        free_station: Some(station),
+        ..Options::for_setup(&s)
+    };
+    group.bench_function(
+        "track, free station (13 stations) minimising the worst bound",
+        |b| {
+            b.iter(|| {
+                compensate::path_on_track(s.arm(), &compliance, black_box(&points), &alone).unwrap()
+            })
+        },
+    );
+    let rotation = FreeToolAxis {
+        objective: Objective::Bound,
+        aggregate: Aggregate::Max,
+        ..FreeToolAxis::try_from_degrees(5.0, 30.0).unwrap()
+    };
+    let both = Options {
+        free_tool_axis: Some(rotation),
+        ..alone
+    };
+    group.bench_function(
+        "track, station and rotation (13 x 13 states), worst bound",
+        |b| {
+            b.iter(|| {
+                compensate::path_on_track(s.arm(), &compliance, black_box(&points), &both).unwrap()
+            })
+        },
+    );
 }
 
 criterion_group!(compensate_benches, benches);

@@ -11,19 +11,22 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{csv_line, header, values, Document, Names, GENERATOR};
+use stiffid::app::compensate::document::{
+    csv_line, external_header, external_values, header, values, Document, Names, GENERATOR,
+};
 use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeToolAxis, Objective, Options, PathPoint,
+    Aggregate, Compensated, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::Language;
 use stiffid::observation::deflection::Frame;
+use stiffid::robot::ExternalAxes;
 use stiffid::{Error, Progress, Setup};
 
 /// Arguments of `stiffid compensate`.
@@ -99,10 +102,20 @@ pub struct Args {
     /// or the error bound at every point (`bound_mm`).
     #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
     free_tool_axis_objective: Objective,
-    /// With --free-tool-axis: how the points' costs add up along the path: their sum, or the
-    /// worst point's (ties broken by the sum).
-    #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum", requires = "free_tool_axis")]
+    /// With --free-tool-axis or --free-station-mm: how the points' costs add up along the path:
+    /// their sum, or the worst point's (ties broken by the sum).
+    #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
     objective: Aggregate,
+    /// With --path on a robot on a track: move the track station (the carrier's first axis) from
+    /// the path's own by up to +- this at every point, within its travel, mm (0 < value <=
+    /// 20000), jointly with the tool rotation with --free-tool-axis; it minimises the error
+    /// bound (or with --free-tool-axis, its objective: the deflection or the bound).
+    #[arg(long, requires = "path")]
+    free_station_mm: Option<f64>,
+    /// With --free-station-mm: the largest change of the station's offset from the path's own
+    /// between consecutive points, and the grid's spacing, mm (0.1 <= value <= --free-station-mm).
+    #[arg(long, default_value_t = 10.0, requires = "free_station_mm")]
+    station_step_mm: f64,
     /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
@@ -146,12 +159,13 @@ impl From<Error> for Failure {
 
 /// Where the rows go as they come: the CSV, and the document's points (for `--json` and the
 /// report).
-struct Sinks {
+struct Sinks<'s> {
     csv: Writer,
+    cell: Option<&'s ExternalAxes>,
     rows: Option<Points<Writer>>,
 }
 
-impl Sinks {
+impl Sinks<'_> {
     fn write(
         &mut self,
         first: usize,
@@ -162,7 +176,8 @@ impl Sinks {
         for (k, ((p, r), d)) in points.iter().zip(results).zip(dynamics).enumerate() {
             let index = first + k;
             let v = values(index, p.line, r, d);
-            writeln!(self.csv, "{}", csv_line(&v))?;
+            let e = external_values(self.cell, r);
+            writeln!(self.csv, "{}", csv_line(&[&v[..], &e[..]].concat()))?;
             if let Some(rows) = self.rows.as_mut() {
                 rows.push(&v)?;
             }
@@ -195,11 +210,13 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|dir| report::open(dir, "--report", None, GENERATOR, &compensation::holds))
         .transpose()?;
     let mut csv = csv_out.as_ref().unwrap_or(&out).writer()?;
-    writeln!(csv, "{}", header().join(","))?;
+    let cell = setup.robot().external();
+    let columns = [header(), external_header(cell)].concat();
+    writeln!(csv, "{}", columns.join(","))?;
     let rows = (args.common.json || report_dir.is_some())
         .then(|| out.writer().map(Points::new))
         .transpose()?;
-    let mut sinks = Sinks { csv, rows };
+    let mut sinks = Sinks { csv, cell, rows };
     let request = Request {
         setup: &setup,
         compliance,
@@ -365,6 +382,17 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
             objective: args.free_tool_axis_objective,
             aggregate: args.objective,
             ..free
+        });
+    }
+    if let Some(range) = args.free_station_mm {
+        let station = FreeStation::try_from_mm(range, args.station_step_mm)?;
+        let objective = options
+            .free_tool_axis
+            .map_or(Objective::Bound, |f| f.objective);
+        options.free_station = Some(FreeStation {
+            objective,
+            aggregate: args.objective,
+            ..station
         });
     }
     Ok(options)

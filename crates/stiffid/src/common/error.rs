@@ -489,6 +489,10 @@ pub enum JobOption {
     ToolAxisRangeDeg,
     /// compensate: what the free tool axis minimises (the deflection, or the drilling surge).
     FreeToolAxisObjective,
+    /// compensate: how far the free track station may move from the path's own, mm.
+    FreeStationMm,
+    /// compensate: the free track station's largest change between consecutive points, mm.
+    StationStepMm,
     /// compensate: the largest error bound a program may have anywhere, mm.
     MaxErrorMm,
     /// compensate: the process force model's relative error, percent.
@@ -571,6 +575,8 @@ impl JobOption {
             JobOption::MaxStepDeg => "max_step_deg",
             JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
             JobOption::FreeToolAxisObjective => "free_tool_axis_objective",
+            JobOption::FreeStationMm => "free_station_mm",
+            JobOption::StationStepMm => "station_step_mm",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::ForceTolerancePercent => "force_tolerance_percent",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",

@@ -36,6 +36,8 @@ pub(super) struct Placement {
     pub carrier: Isometry3<f64>,
     /// The part's frame from the arm's frame on the carriage.
     pub part: Isometry3<f64>,
+    /// The external axes' values (SI, the cell's order).
+    pub external: crate::robot::external::ExternalValues,
 }
 
 /// Each target's placement, `None` for a cell without external axes and a program that moves
@@ -70,6 +72,7 @@ pub(super) fn placements(
                 Placement {
                     carrier,
                     part: part.inverse() * cell.positioner_pose(e).inverse() * carrier,
+                    external: crate::robot::external::ExternalValues::new(e).unwrap_or_default(),
                 }
             })
             .collect(),
@@ -179,7 +182,9 @@ pub fn on_carriage(robot: &Robot, mut p: PathPoint) -> Result<PathPoint> {
 
 /// The results of path points placed by [`on_carriage`] in the cell frame, as a program's
 /// ([`crate::machining::compensate()`]: the nominal pose, the wrench and the deflections; the
-/// standard deviations and intervals stay in the arm's frame on the carriage).
+/// standard deviations and intervals stay in the arm's frame on the carriage), each on the
+/// carriage at its result's external values ([`Compensated::external`]: the station chosen by
+/// [`crate::machining::compensate::path_on_track`]), else at its point's.
 pub fn path_to_cell(
     robot: &Robot,
     points: &[PathPoint],
@@ -188,10 +193,17 @@ pub fn path_to_cell(
     let Some(cell) = robot.external() else {
         return results;
     };
-    let placements: Vec<Placement> = (points.iter())
-        .map(|p| Placement {
-            carrier: cell.carrier_pose(p.external.as_slice()),
-            part: Isometry3::identity(),
+    let placements: Vec<Placement> = (points.iter().zip(&results))
+        .map(|(p, r)| {
+            let e = match r.external.is_empty() {
+                true => p.external,
+                false => r.external,
+            };
+            Placement {
+                carrier: cell.carrier_pose(e.as_slice()),
+                part: Isometry3::identity(),
+                external: e,
+            }
         })
         .collect();
     to_cell(&mut results, &placements);
@@ -210,6 +222,7 @@ pub(super) fn to_cell(results: &mut [Compensated], placements: &[Placement]) {
     for (r, p) in results.iter_mut().zip(placements) {
         let rot = p.carrier.rotation.to_rotation_matrix();
         r.pose = p.carrier * r.pose;
+        r.external = p.external;
         r.wrench = turned(&rot, &r.wrench);
         r.deflection = turned(&rot, &r.deflection);
         if let Some(d) = r.deflection_before.as_mut() {

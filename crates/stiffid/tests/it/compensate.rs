@@ -237,6 +237,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         q0: s.test_postures()[0],
         ik: ik::Options::default(),
         free_tool_axis: free,
+        free_station: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,

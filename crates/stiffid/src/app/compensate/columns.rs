@@ -3,6 +3,7 @@
 
 use crate::machining::compensate::Compensated;
 use crate::machining::dynamics::Dynamics;
+use crate::robot::ExternalAxes;
 use nalgebra::Vector6;
 
 fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
@@ -101,6 +102,28 @@ pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<
     ]);
     v.extend(super::budget::values(r));
     v
+}
+
+/// The CSV's columns of the cell's external axes after [`header`]: one per axis in the cell's
+/// order, named as path files name them (`e1_mm` for a linear axis, `e2_deg` for a rotary one);
+/// none for a robot without external axes.
+pub fn external_header(cell: Option<&ExternalAxes>) -> Vec<String> {
+    cell.map_or(Vec::new(), ExternalAxes::column_names)
+}
+
+/// A point's values of the cell's external axes ([`external_header`]; mm, deg): the station
+/// chosen or the values given ([`Compensated::external`]); empty cells where the result holds
+/// none.
+pub fn external_values(cell: Option<&ExternalAxes>, r: &Compensated) -> Vec<Option<f64>> {
+    let Some(cell) = cell else {
+        return Vec::new();
+    };
+    match r.external.as_slice().len() == cell.len() {
+        true => (cell.to_display(r.external.as_slice()).into_iter())
+            .map(Some)
+            .collect(),
+        false => vec![None; cell.len()],
+    }
 }
 
 /// One CSV line of a point's values: 9 decimals (1 nm in mm, 2e-11 rad in deg), trailing zeros

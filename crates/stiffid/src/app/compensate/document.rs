@@ -19,7 +19,7 @@ use nalgebra::Vector6;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-pub use super::columns::{csv_line, header, values, DYNAMICS};
+pub use super::columns::{csv_line, external_header, external_values, header, values, DYNAMICS};
 
 /// The value of the document's `generator` key: it marks a compensation report directory.
 pub const GENERATOR: &str = "stiffid compensate";
@@ -59,6 +59,8 @@ pub struct Document {
     pub region: Option<RegionSection>,
     /// With `--free-tool-axis`: its options; else `null`.
     pub free_tool_axis: Option<FreeToolAxis>,
+    /// With `--free-station-mm`: its options; else `null`.
+    pub free_station: Option<FreeStation>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -94,6 +96,20 @@ pub struct FreeToolAxis {
     /// What the rotation minimises: `deflection` (the TCP deflection at every point) or `surge`
     /// (the breakthrough surge at every drilling exit) or `bound` (the error bound at every
     /// point).
+    pub objective: &'static str,
+    /// How the points' costs add up: `sum` or `max` (the worst point's).
+    pub aggregate: &'static str,
+}
+
+/// The options of the free track station.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FreeStation {
+    /// The station stays within +- this of the path's own, mm.
+    pub range_mm: f64,
+    /// The largest change of its offset from the path's own between consecutive points, mm.
+    pub step_mm: f64,
+    /// What it minimises: `deflection` or `bound`.
     pub objective: &'static str,
     /// How the points' costs add up: `sum` or `max` (the worst point's).
     pub aggregate: &'static str,
@@ -290,6 +306,12 @@ impl Document {
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
                 max_step_deg: f.max_step.to_degrees(),
                 range_deg: f.range.to_degrees(),
+                objective: crate::common::choice::Choice::name(f.objective),
+                aggregate: crate::common::choice::Choice::name(f.aggregate),
+            }),
+            free_station: report.free_station.map(|f| FreeStation {
+                range_mm: f.range * 1e3,
+                step_mm: f.max_step * 1e3,
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),

@@ -149,6 +149,8 @@ pub struct Report {
     pub prediction_level: Option<f64>,
     /// The free tool axis, if asked.
     pub free_tool_axis: Option<FreeToolAxis>,
+    /// The free track station, if asked.
+    pub free_station: Option<compensate::FreeStation>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -192,7 +194,8 @@ where
         }
         .into());
     }
-    let mut summary = Summary::new(options.free_tool_axis.is_some(), options.level);
+    let free = options.free_tool_axis.is_some() || options.free_station.is_some();
+    let mut summary = Summary::new(free, options.level);
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
@@ -216,18 +219,29 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-            let points = placed(text).map_err(|e| in_input(&name, e))?;
-            let mut first = 0;
-            compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
-                let r = match robot.external() {
-                    None => std::borrow::Cow::Borrowed(r),
-                    Some(_) => std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec())),
-                };
-                add(first, p, &r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
-                first += p.len();
-                Ok(())
-            })
-            .map_err(|f: Failure<E>| f.into_error(&name))?;
+            if options.free_station.is_none() {
+                let points = placed(text).map_err(|e| in_input(&name, e))?;
+                let mut first = 0;
+                compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
+                    let r = match robot.external() {
+                        None => std::borrow::Cow::Borrowed(r),
+                        Some(_) => {
+                            std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec()))
+                        }
+                    };
+                    add(first, p, &r, &vec![Dynamics::default(); p.len()])
+                        .map_err(Failure::Sink)?;
+                    first += p.len();
+                    Ok(())
+                })
+                .map_err(|f: Failure<E>| f.into_error(&name))?;
+            } else {
+                let points = path::points(text, frame, robot.external());
+                let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
+                let points = points.map_err(|e| in_input(&name, e))?;
+                on_track(setup, &compliance, &points, &options, &mut add)
+                    .map_err(|f: Failure<E>| f.into_error(&name))?;
+            }
             (name, None, Vec::new())
         }
         Input::Program {
@@ -370,6 +384,7 @@ where
         input: name,
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
+        free_station: options.free_station,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
@@ -513,6 +528,27 @@ fn program_tool(setup: &Setup) -> Tool {
             .payload()
             .map(|p| (p.mass, adapter.transform_point(&p.centre.into()).coords)),
     }
+}
+
+/// A path file's `points` (cell frame) of a robot on a track compensated with the station free
+/// ([`compensate::path_on_track`]), given to `add` in chunks of [`CHUNK`] in the cell frame.
+fn on_track<E, F>(
+    setup: &Setup,
+    compliance: &Compliance,
+    points: &[PathPoint],
+    options: &Options,
+    add: &mut F,
+) -> std::result::Result<(), Failure<E>>
+where
+    F: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    let robot = setup.arm().robot();
+    let results = compensate::path_on_track(setup.arm(), compliance, points, options)?;
+    let results = cell::path_to_cell(robot, points, results);
+    for (k, (p, r)) in points.chunks(CHUNK).zip(results.chunks(CHUNK)).enumerate() {
+        add(k * CHUNK, p, r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
+    }
+    Ok(())
 }
 
 /// A failure of the streamed path: the library's, or the sink's.

@@ -6,7 +6,7 @@
 //! obstacles needs its own check of the postures chosen.
 
 use super::stream::nominal_postures;
-use super::tool_axis::{column, Cost};
+use super::tool_axis::{column, Cost, Move};
 use super::{Compliance, FreeToolAxis, Model, Options, PathPoint};
 use crate::math::jacobi;
 use crate::observation::deflection::base_wrench;
@@ -72,9 +72,7 @@ pub fn map(
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
-    let (spacing, _) = free.grid();
-    let half = (free.range / spacing + 1e-9).floor() as isize;
-    let angles: Vec<f64> = (-half..=half).map(|g| g as f64 * spacing).collect();
+    let angles = free.angles();
     let n = points.len();
     let limits = arm.robot().limits();
     let cells: Vec<Vec<[f64; 4]>> = angles
@@ -84,7 +82,7 @@ pub fn map(
                 &model,
                 &nominal,
                 &wrenches,
-                (phi, &Cost::Bound),
+                (Move::turn(phi), &Cost::Bound),
                 &options.ik,
             );
             (postures.iter().zip(&wrenches))

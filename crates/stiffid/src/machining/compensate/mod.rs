@@ -48,6 +48,21 @@
 //! is stated whatever the objective ([`Compensated::budget`]); [`map`] gives every point's bound,
 //! deflection, condition number and distance to the joint limits at every angle of the grid.
 //!
+//! ## The free station
+//! On a robot on a track the station is free too: with [`FreeStation`], [`path_on_track`] moves
+//! the carrier's first axis at every point of a path file by an offset from the path's own
+//! station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
+//! with the rotation about tool z when the free tool axis is given: the states are the
+//! (station, rotation) pairs, each state's postures continued along the path by inverse
+//! kinematics to the same point of the part (the TCP stays where the path puts it in the cell;
+//! the wrench stays fixed in the cell frame), and the same dynamic programming chooses them,
+//! the offset changing by at most one grid step between consecutive points and the rotation by
+//! at most its `max_step`, a state taken only where its cost is no larger than at the path's own
+//! values, the tie-breaking cost summed over both variables. The cell files give no axis
+//! speeds: the step per point is the speed limit (the station moves at most `max_step` per
+//! point; at a feed `v` and points `s` apart that is `max_step v / s`). The cell's bodies are
+//! not checked for the moved postures (as for the free tool axis).
+//!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
 //! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
@@ -64,13 +79,15 @@ pub mod budget;
 mod map;
 mod model;
 mod options;
+mod station;
 mod stream;
 mod tool_axis;
 
 pub use budget::Budget;
 pub use map::{map, Map};
 pub use model::{Model, Newton};
-pub use options::{Aggregate, FreeToolAxis, Objective, Options};
+pub use options::{Aggregate, FreeStation, FreeToolAxis, Objective, Options};
+pub use station::path_on_track;
 pub use stream::{path, path_with_exits, stream, CHUNK};
 
 /// The residual the Newton steps aim at, m.
@@ -162,4 +179,8 @@ pub struct Compensated {
     /// With [`FreeToolAxis`]: the bound at the path's own rotation, before optimisation, with
     /// this point's residual, m.
     pub bound_before: Option<f64>,
+    /// The values of the cell's external axes at the point (SI, the cell's order): the station
+    /// chosen by [`FreeStation`], else the path's own; empty for a robot without external axes
+    /// and for a program's point (its values are the program's).
+    pub external: crate::robot::external::ExternalValues,
 }

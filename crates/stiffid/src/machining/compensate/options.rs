@@ -131,6 +131,13 @@ impl FreeToolAxis {
         (self.max_step / cells, cells as usize)
     }
 
+    /// The grid's angles, rad, ascending, `0` among them: `2 floor(range / spacing) + 1`.
+    pub(super) fn angles(&self) -> Vec<f64> {
+        let (spacing, _) = self.grid();
+        let half = (self.range / spacing + 1e-9).floor() as isize;
+        (-half..=half).map(|g| g as f64 * spacing).collect()
+    }
+
     /// The number of angles of the grid: `2 floor(range / spacing) + 1`, as a float (it may be
     /// astronomically large for a tiny `max_step`).
     pub(super) fn angle_count(&self) -> f64 {
@@ -160,6 +167,75 @@ impl FreeToolAxis {
     }
 }
 
+/// The free track station: the first carrier axis of the cell ([`crate::robot::external`]) moved
+/// from the path's own station at every point, jointly with the tool rotation when
+/// [`Options::free_tool_axis`] is given too (module docs of [`super`], "The free station").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeStation {
+    /// The station stays within `+-range` of the path's own and within the axis's travel, m, > 0.
+    pub range: f64,
+    /// Largest change of the station's offset from the path's own between consecutive points
+    /// (m, positive): the grid's spacing. The cell files give no axis speeds: this step is the
+    /// speed limit (the step over the distance between two points, times the feed).
+    pub max_step: f64,
+    /// What the station minimises ([`Objective::Surge`] is refused: a path file has no
+    /// drilling exits).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
+impl FreeStation {
+    /// Largest accepted `range`, mm.
+    pub const MAX_RANGE_MM: f64 = 20_000.0;
+    /// Smallest accepted `max_step`, mm.
+    pub const MIN_STEP_MM: f64 = 0.1;
+
+    /// The free station from its range and step in mm (the units of the command line):
+    /// `free_station_mm` in (0, 20 000], `station_step_mm` in [0.1, `free_station_mm`]; it
+    /// minimises the error bound ([`Objective::Bound`]) summed along the path.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the argument that is wrong ([`JobOption::FreeStationMm`]
+    /// or [`JobOption::StationStepMm`]) with the value given.
+    pub fn try_from_mm(free_station_mm: f64, station_step_mm: f64) -> Result<Self> {
+        if !(free_station_mm > 0.0 && free_station_mm <= Self::MAX_RANGE_MM) {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeStationMm,
+                message: format!(
+                    "{}: expected a number > 0 and <= {}",
+                    number(free_station_mm),
+                    Self::MAX_RANGE_MM
+                ),
+            });
+        }
+        if !(station_step_mm >= Self::MIN_STEP_MM && station_step_mm <= free_station_mm) {
+            return Err(Error::InvalidOption {
+                option: JobOption::StationStepMm,
+                message: format!(
+                    "{}: expected a number >= {} and <= --free-station-mm ({})",
+                    number(station_step_mm),
+                    Self::MIN_STEP_MM,
+                    number(free_station_mm)
+                ),
+            });
+        }
+        Ok(Self {
+            range: free_station_mm * 1e-3,
+            max_step: station_step_mm * 1e-3,
+            objective: Objective::Bound,
+            aggregate: Aggregate::Sum,
+        })
+    }
+
+    /// The offsets from the path's own station, m, ascending, `0` among them:
+    /// `k max_step` for `|k| <= floor(range / max_step)`.
+    pub(super) fn offsets(&self) -> Vec<f64> {
+        let half = (self.range / self.max_step + 1e-9).floor() as isize;
+        (-half..=half).map(|k| k as f64 * self.max_step).collect()
+    }
+}
+
 /// How to compensate a path.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
@@ -169,6 +245,9 @@ pub struct Options {
     pub ik: ik::Options,
     /// Optimise the rotation about the tool z axis.
     pub free_tool_axis: Option<FreeToolAxis>,
+    /// Optimise the track station (a path file of a cell with a carrier only,
+    /// [`super::path_on_track`]), jointly with the rotation when `free_tool_axis` is given too.
+    pub free_station: Option<FreeStation>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -190,11 +269,15 @@ pub struct Options {
 
 impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
-    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], and a free tool axis' `max_step` in (0, 90] deg and `range` in
-    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them. [`path`] calls it.
+    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
+    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, and a free station's as
+    /// [`FreeStation::try_from_mm`] gives them, minimising the deflection or the bound with the
+    /// free tool axis' objective and aggregate. [`path`] calls it.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] naming the field, the value and the range.
+    /// [`Error::InvalidField`] naming the field, the value and the range;
+    /// [`Error::InvalidOption`] for a free station's ([`JobOption::FreeStationMm`],
+    /// [`JobOption::StationStepMm`], [`JobOption::FreeToolAxisObjective`]).
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",
@@ -224,6 +307,7 @@ impl Options {
                 ),
             });
         }
+        self.validate_station()?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
@@ -245,6 +329,25 @@ impl Options {
         Ok(())
     }
 
+    /// A free station's range and step as [`FreeStation::try_from_mm`] gives them, and its
+    /// objective and aggregate those of a free tool axis given with it.
+    fn validate_station(&self) -> Result<()> {
+        let Some(s) = &self.free_station else {
+            return Ok(());
+        };
+        FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
+        let free = self.free_tool_axis;
+        let (objective, aggregate) =
+            free.map_or((s.objective, s.aggregate), |f| (f.objective, f.aggregate));
+        if s.objective == Objective::Surge || (objective, aggregate) != (s.objective, s.aggregate) {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeToolAxisObjective,
+                message: format!("{}: the free station minimises the deflection or the bound, the same objective and aggregate as the free tool axis given with it", crate::common::choice::Choice::name(s.objective)),
+            });
+        }
+        Ok(())
+    }
+
     /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
     /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis; at most
     /// [`super::MAX_ITERATIONS`] Newton steps per point.
@@ -258,6 +361,7 @@ impl Options {
                 .unwrap_or((bounds.lower + bounds.upper) / 2.0),
             ik: ik::Options::default(),
             free_tool_axis: None,
+            free_station: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,

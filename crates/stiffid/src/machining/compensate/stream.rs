@@ -57,6 +57,12 @@ pub fn path_with_exits(
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
     assert!(thrusts.is_empty() || thrusts.len() == points.len());
+    if options.free_station.is_some() {
+        return Err(Error::InvalidOption {
+            option: JobOption::FreeStationMm,
+            message: "a free station is chosen for a path file's points in the cell frame (compensate::path_on_track); a program's stations are its own".into(),
+        });
+    }
     let free = match &options.free_tool_axis {
         Some(free) => {
             free.check_grid(points.len())?;
@@ -85,6 +91,7 @@ pub fn path_with_exits(
         postures: &postures,
         rotations: &rotations,
         wrenches: &wrenches,
+        wrenches_before: &wrenches,
     };
     compensate_chosen(&model, points, &chosen, free.is_some())
 }
@@ -194,6 +201,7 @@ where
             postures: &nominal,
             rotations: &rotations,
             wrenches: &wrenches,
+            wrenches_before: &wrenches,
         };
         sink(&chunk, &compensate_chosen(&model, &chunk, &chosen, false)?)?;
         count += chunk.len();
@@ -210,15 +218,17 @@ where
 
 /// The postures chosen for a run of path points: nominal, after the tool-axis rotation (equal
 /// without one), the rotations and the base-frame wrenches.
-struct Chosen<'a> {
-    nominal: &'a [Vector6<f64>],
-    postures: &'a [Vector6<f64>],
-    rotations: &'a [f64],
-    wrenches: &'a [Vector6<f64>],
+pub(super) struct Chosen<'a> {
+    pub nominal: &'a [Vector6<f64>],
+    pub postures: &'a [Vector6<f64>],
+    pub rotations: &'a [f64],
+    pub wrenches: &'a [Vector6<f64>],
+    /// The wrenches at the path's own values (the arm's frame on the path's own station).
+    pub wrenches_before: &'a [Vector6<f64>],
 }
 
 /// Compensates every point at its chosen posture, in parallel; the first error in path order.
-fn compensate_chosen(
+pub(super) fn compensate_chosen(
     model: &Model,
     points: &[PathPoint],
     c: &Chosen,
@@ -244,7 +254,7 @@ fn compensate_chosen(
             let budget = model.budget(&d, newton.residual_position);
             let before = free.then(|| {
                 let frames = arm.robot().frames(&c.nominal[i]);
-                model.tcp_deflection(&frames, &c.wrenches[i])
+                model.tcp_deflection(&frames, &c.wrenches_before[i])
             });
             let bound_before =
                 (before.as_ref()).map(|b| model.budget(b, newton.residual_position).bound);
@@ -268,6 +278,7 @@ fn compensate_chosen(
                 outside_region: model.compliance.region.outside(q),
                 budget,
                 bound_before,
+                external: points[i].external,
             })
         })
         .collect();

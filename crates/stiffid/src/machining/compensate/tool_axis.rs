@@ -6,7 +6,7 @@ use crate::observation::dynamics::tcp_surge;
 use crate::robot::dynamics::MassModel;
 use crate::robot::ik::{self, tool_pose};
 use crate::robot::kinematics::Frames;
-use nalgebra::{UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
 
 /// What a point costs at an angle ([`super::Objective`]).
@@ -67,57 +67,140 @@ pub(super) fn optimise_tool_axis(
     (free, cost): (&FreeToolAxis, &Cost),
     ik_options: &ik::Options,
 ) -> (Vec<Vector6<f64>>, Vec<f64>) {
-    let (spacing, reach) = free.grid();
-    let half = (free.range / spacing + 1e-9).floor() as isize;
-    let angles: Vec<f64> = (-half..=half).map(|g| g as f64 * spacing).collect();
+    let angles = free.angles();
     let columns: Vec<Column> = angles
         .par_iter()
-        .map(|&phi| column(model, nominal, wrenches, (phi, cost), ik_options))
+        .map(|&phi| {
+            column(
+                model,
+                nominal,
+                wrenches,
+                (Move::turn(phi), cost),
+                ik_options,
+            )
+        })
         .collect();
-    let zero = half as usize;
-    let n = nominal.len();
-    let own: Vec<f64> = columns[zero]
-        .iter()
-        .map(|c| c.map_or(0.0, |z| z.1))
+    let grid = Grid {
+        axes: vec![rotation_axis(free, &angles)],
+    };
+    let chosen = choose(&columns, &grid, cost, free.aggregate);
+    (chosen.iter().enumerate())
+        .map(|(i, &g)| {
+            (
+                columns[g][i].as_ref().map_or(nominal[i], |c| c.0),
+                angles[g],
+            )
+        })
+        .unzip()
+}
+
+/// The grid's axis of the rotation of `free` over its `angles` ([`FreeToolAxis::angles`]).
+pub(super) fn rotation_axis<'a>(free: &FreeToolAxis, angles: &'a [f64]) -> Axis<'a> {
+    Axis {
+        values: angles,
+        reach: free.grid().1,
+        range: free.range,
+        max_step: free.max_step,
+        zero: angles.len() / 2,
+    }
+}
+
+/// The state of every point on the path of least value over `columns` (one per state of
+/// `grid`): a point takes a state only where its cost is no larger than at the path's own.
+pub(super) fn choose(
+    columns: &[Column],
+    grid: &Grid,
+    cost: &Cost,
+    aggregate: Aggregate,
+) -> Vec<usize> {
+    let zero = grid.zero();
+    let own: Vec<f64> = (columns[zero].iter())
+        .map(|c| c.as_ref().map_or(0.0, |z| z.1))
         .collect();
-    // A point takes an angle only where its cost is no larger than at the path's own angle.
-    let costs: Vec<Vec<Option<f64>>> = (0..n)
+    let costs: Vec<Vec<Option<f64>>> = (0..own.len())
         .map(|i| {
             (columns.iter())
                 .map(|c| c[i].as_ref().map(|z| z.1).filter(|d| *d <= own[i]))
                 .collect()
         })
         .collect();
-    let grid = Grid {
-        angles: &angles,
-        reach,
-        range: free.range,
-        max_step: free.max_step,
-        zero,
-    };
-    let chosen = shortest(&costs, &grid, &cost.scales(&own), free.aggregate);
-    chosen
-        .iter()
-        .enumerate()
-        .map(|(i, &g)| {
-            let q = columns[g][i].as_ref().map_or(nominal[i], |c| c.0);
-            (q, angles[g])
-        })
-        .unzip()
+    shortest(&costs, grid, &cost.scales(&own), aggregate)
 }
 
-/// The grid of the free tool axis' angles.
-pub(super) struct Grid<'a> {
-    /// The angles, rad, ascending.
-    pub angles: &'a [f64],
+/// One axis of the grid of the free variables (the tool rotation, the track station).
+pub(super) struct Axis<'a> {
+    /// The values (offsets from the path's own), ascending, rad or m.
+    pub values: &'a [f64],
     /// The most cells one step between points may move.
     pub reach: usize,
-    /// The range of the rotation, rad.
+    /// The range of the values, rad or m.
     pub range: f64,
-    /// The largest step between points, rad.
+    /// The largest step between points, rad or m.
     pub max_step: f64,
-    /// The index of the path's own angle (0 rad).
+    /// The index of the path's own value (0).
     pub zero: usize,
+}
+
+/// The grid of the free variables: its states are the combinations of the axes' values, the
+/// last axis' index running fastest.
+pub(super) struct Grid<'a> {
+    /// The axes, at least one.
+    pub axes: Vec<Axis<'a>>,
+}
+
+impl Grid<'_> {
+    /// The number of states.
+    pub fn len(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product()
+    }
+
+    /// The index on each axis of state `s`.
+    pub fn indices(&self, mut s: usize) -> Vec<usize> {
+        let mut out = vec![0; self.axes.len()];
+        for (k, a) in self.axes.iter().enumerate().rev() {
+            out[k] = s % a.values.len();
+            s /= a.values.len();
+        }
+        out
+    }
+
+    /// The state of the path's own values.
+    pub fn zero(&self) -> usize {
+        (self.axes.iter()).fold(0, |s, a| s * a.values.len() + a.zero)
+    }
+
+    /// The tie-breaking distance of state `s` from the path's own values: per axis the value
+    /// over its range, summed.
+    fn away(&self, s: usize) -> f64 {
+        let at = self.indices(s);
+        (self.axes.iter().zip(&at))
+            .map(|(a, &g)| a.values[g].abs() / a.range)
+            .sum()
+    }
+
+    /// Every state's predecessors (the states within each axis' reach) with the tie-breaking
+    /// cost of the step: per axis the change over its largest step, summed.
+    fn steps(&self) -> Vec<Vec<(usize, f64)>> {
+        (0..self.len())
+            .map(|s| {
+                let at = self.indices(s);
+                let mut out = vec![(0usize, 0.0)];
+                for (a, &g) in self.axes.iter().zip(&at) {
+                    let lo = g.saturating_sub(a.reach);
+                    let hi = (g + a.reach).min(a.values.len() - 1);
+                    out = (out.iter())
+                        .flat_map(|&(b, c)| {
+                            (lo..=hi).map(move |h| {
+                                let d = (a.values[g] - a.values[h]).abs() / a.max_step;
+                                (b * a.values.len() + h, c + d)
+                            })
+                        })
+                        .collect();
+                }
+                out
+            })
+            .collect()
+    }
 }
 
 /// The value of a path so far: the aggregate of the costs (with [`Aggregate::Sum`], the
@@ -155,9 +238,10 @@ pub(super) fn shortest(
     aggregate: Aggregate,
 ) -> Vec<usize> {
     let n = costs.len();
-    let g_count = grid.angles.len();
-    let angles = grid.angles;
-    // value[i][g]: the least value of the paths up to point i ending at angle g.
+    let g_count = grid.len();
+    let steps = grid.steps();
+    let away: Vec<f64> = (0..g_count).map(|s| grid.away(s)).collect();
+    // value[i][g]: the least value of the paths up to point i ending at state g.
     let mut value = vec![vec![Value::INFINITE; g_count]; n];
     let mut from = vec![vec![0usize; g_count]; n];
     let add = |before: Value, d: f64, tie: f64| match aggregate {
@@ -181,20 +265,17 @@ pub(super) fn shortest(
         let w = TIE_BREAK * scales[i];
         for g in 0..g_count {
             let Some(d) = costs[i][g] else { continue };
-            let tie = w * angles[g].abs() / grid.range;
+            let tie = w * away[g];
             if i == 0 {
                 value[0][g] = add(start, d, tie);
                 continue;
             }
-            let lo = g.saturating_sub(grid.reach);
-            let hi = (g + grid.reach).min(g_count - 1);
             let mut best: Option<(usize, Value)> = None;
-            for a in lo..=hi {
+            for &(a, step) in &steps[g] {
                 if value[i - 1][a].primary == f64::INFINITY {
                     continue;
                 }
-                let turn = w * (angles[g] - angles[a]).abs() / grid.max_step;
-                let v = add(value[i - 1][a], d, tie + turn);
+                let v = add(value[i - 1][a], d, tie + w * step);
                 if best.is_none_or(|(_, b)| v.less(&b)) {
                     best = Some((a, v));
                 }
@@ -211,9 +292,9 @@ pub(super) fn shortest(
         _ => Some(g),
     });
     let Some(mut g) = last else {
-        return vec![grid.zero; n];
+        return vec![grid.zero(); n];
     };
-    let mut chosen = vec![grid.zero; n];
+    let mut chosen = vec![grid.zero(); n];
     for i in (0..n).rev() {
         chosen[i] = g;
         g = from[i][g];
@@ -221,23 +302,47 @@ pub(super) fn shortest(
     chosen
 }
 
-/// One angle's posture and [`Cost`] at every path point; `None` where inverse kinematics fails
+/// One state's posture and [`Cost`] at every path point; `None` where inverse kinematics fails
 /// or the cost cannot be computed.
 pub(super) type Column = Vec<Option<(Vector6<f64>, f64)>>;
 
-/// The postures of the path turned by `phi` about tool z, continued along the path, and their
-/// cost; `None` where inverse kinematics fails or the cost cannot be computed (at the path's own
-/// angle such a cost is 0: no other angle is then taken there).
+/// How a state of the grid moves each point's pose from the path's own: turned by `phi` about
+/// tool z, then, on a moved track station, taken by each point's `shift` (the arm's frame at
+/// the path's station seen from the arm's frame at the state's, [`super::station`]).
+#[derive(Clone, Copy)]
+pub(super) struct Move<'a> {
+    /// The rotation about tool z, rad.
+    pub phi: f64,
+    /// Each point's change of the arm's frame; `None` at the path's own station.
+    pub shift: Option<&'a [Isometry3<f64>]>,
+}
+
+impl Move<'_> {
+    /// A rotation about tool z only.
+    pub fn turn(phi: f64) -> Self {
+        Move { phi, shift: None }
+    }
+
+    /// Whether this is the path's own pose.
+    fn own(&self) -> bool {
+        self.phi == 0.0 && self.shift.is_none()
+    }
+}
+
+/// The postures of the path moved by `m` ([`Move`]), continued along the path, and their cost
+/// under `wrenches` (the arm's frame of the state); `None` where inverse kinematics fails or
+/// the cost cannot be computed (at the path's own pose such a cost is 0: no other state is then
+/// taken there).
 pub(super) fn column(
     model: &Model,
     nominal: &[Vector6<f64>],
     wrenches: &[Vector6<f64>],
-    (phi, cost): (f64, &Cost),
+    (m, cost): (Move, &Cost),
     ik_options: &ik::Options,
 ) -> Column {
     let arm = model.arm;
     let tcp = &arm.tool().tcp;
-    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi);
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), m.phi);
     let options = ik::Options {
         restarts: 0,
         ..*ik_options
@@ -248,11 +353,14 @@ pub(super) fn column(
         .zip(wrenches)
         .enumerate()
         .map(|(i, (q, w))| {
-            let q = match phi == 0.0 {
+            let q = match m.own() {
                 true => Some(*q),
                 false => {
                     let mut target = tool_pose(&arm.robot().frames(q), tcp);
                     target.rotation *= turn;
+                    if let Some(shift) = m.shift {
+                        target = shift[i] * target;
+                    }
                     let start = previous.unwrap_or(*q);
                     ik::solve(arm.robot(), tcp, &target, &start, &options)
                         .or_else(|_| ik::solve(arm.robot(), tcp, &target, q, &options))
@@ -264,7 +372,7 @@ pub(super) fn column(
             let q = q?;
             match cost.of(model, i, &arm.robot().frames(&q), w) {
                 Some(c) => Some((q, c)),
-                None if phi == 0.0 => Some((q, 0.0)),
+                None if m.own() => Some((q, 0.0)),
                 None => None,
             }
         })
@@ -302,11 +410,13 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
         let angles = [-0.2, -0.1, 0.0, 0.1, 0.2];
         let grid = Grid {
-            angles: &angles,
-            reach: 1,
-            range: 0.2,
-            max_step: 0.1,
-            zero: 2,
+            axes: vec![Axis {
+                values: &angles,
+                reach: 1,
+                range: 0.2,
+                max_step: 0.1,
+                zero: 2,
+            }],
         };
         for trial in 0..40 {
             let n = 6;

@@ -1,0 +1,94 @@
+//! Held-out readings the calibration misses where the nominal robot does not: the calibration
+//! extrapolates there. A complete geometric model (and more so joint error maps) fitted on
+//! postures that cover a small region can predict postures outside it far off, centimetres on a
+//! real UR10 whose fitted postures leave joints 4 and 6 a quarter of their travel. Such readings
+//! are of this robot (the nominal robot, registered on them, explains them), so the validation
+//! keeps them and says so, rather than refusing them as readings of another robot.
+
+use super::{Warning, WarningKind};
+use crate::common::warning::joint_list;
+use crate::metrology::calibration::error_model::Observation;
+use crate::metrology::calibration::validation::Validation;
+use nalgebra::Vector6;
+
+/// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
+/// is named as outside it: 1 degree.
+const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
+
+/// The warning ([`WarningKind::Extrapolation`]) when the calibration misses held-out readings
+/// (`calibrated`, one error per observation of `held`) by more than `limit` (m) while the
+/// nominal robot's errors (`nominal`, aligned with them) stay within it; `None` otherwise. It names
+/// the worst such reading's posture (`labels`) and the joints whose angle there lies outside the
+/// range of the `fitted` observations' angles; with `moved` (the tracker not registered anew on
+/// the held-out readings) it says the tracker may have moved.
+pub(super) fn warning(
+    (name, moved): (&str, bool),
+    (fitted, held): (&[Observation], &[Observation]),
+    labels: &[String],
+    (calibrated, nominal): (&Validation, &Validation),
+    limit: f64,
+) -> Option<Warning> {
+    let missed: Vec<usize> = (0..held.len().min(calibrated.errors.len()))
+        .filter(|&i| {
+            calibrated.errors[i].error.norm() > limit
+                && nominal.errors.get(i).is_some_and(|e| e.error.norm() <= limit)
+        })
+        .collect();
+    let worst = *missed.iter().max_by(|&&a, &&b| {
+        let length = |i: usize| calibrated.errors[i].error.norm();
+        length(a).total_cmp(&length(b))
+    })?;
+    let obs = &held[worst];
+    let label = labels.get(obs.posture).map_or("?", String::as_str);
+    Some(Warning::new(
+        WarningKind::Extrapolation,
+        format!(
+            "{name}: the calibration predicts {} held-out reading{} more than {:.0} mm off where the nominal robot, registered on them, is within it: it extrapolates there (worst: posture {}, point {}, {:.1} mm against {:.3} mm nominal{}); a calibration holds where its postures were: fit postures that cover the region the robot works in{}",
+            missed.len(),
+            if missed.len() == 1 { "" } else { "s" },
+            limit * 1e3,
+            crate::common::limits::short(label),
+            obs.point + 1,
+            calibrated.errors[worst].error.norm() * 1e3,
+            nominal.errors[worst].error.norm() * 1e3,
+            outside(fitted, &obs.q),
+            match moved {
+                true => " (or the tracker moved since the fitted readings: --reregister registers it on the held-out ones)",
+                false => "",
+            },
+        ),
+    ))
+}
+
+/// `; joints 4, 6 outside the fitted postures' range (193.2 deg against -108.3 to 71.6 deg, ...)`
+/// for the joints of `q` beyond the `fitted` angles' range by more than [`OUTSIDE_RAD`]; empty
+/// when every joint lies within it.
+fn outside(fitted: &[Observation], q: &Vector6<f64>) -> String {
+    let range = |j: usize| {
+        (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+    };
+    let joints: Vec<(usize, (f64, f64))> = (0..6)
+        .map(|j| (j, range(j)))
+        .filter(|&(j, (lo, hi))| q[j] < lo - OUTSIDE_RAD || q[j] > hi + OUTSIDE_RAD)
+        .collect();
+    if joints.is_empty() {
+        return String::new();
+    }
+    let angles: Vec<String> = (joints.iter())
+        .map(|&(j, (lo, hi))| {
+            format!(
+                "{:.1} deg against {:.1} to {:.1} deg",
+                q[j].to_degrees(),
+                lo.to_degrees(),
+                hi.to_degrees()
+            )
+        })
+        .collect();
+    format!(
+        "; {} outside the fitted postures' range: {}",
+        joint_list(joints.iter().map(|&(j, _)| j)),
+        angles.join(", ")
+    )
+}
