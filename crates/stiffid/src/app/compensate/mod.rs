@@ -21,6 +21,7 @@ pub mod certify;
 mod columns;
 pub mod document;
 pub mod dynamics;
+pub mod scene;
 pub mod stream;
 
 use super::{Warning, WarningKind};
@@ -192,11 +193,12 @@ where
         }
         .into());
     }
-    let mut summary = Summary::new(options.free_tool_axis.is_some(), options.level);
+    let axes = setup.robot().external();
+    let mut summary = Summary::new(options.free_tool_axis.is_some(), options.level, axes);
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
-            summary.add(first + k, p.line, r);
+            summary.add(first + k, p.line, r, &p.external);
             if options.map {
                 chosen.push(r.tool_rotation);
             }
