@@ -154,7 +154,7 @@ pub fn run(args: &Args) -> Result<()> {
         out.write(json_text.as_bytes())?;
     }
     if let Some(dir) = report_dir {
-        let postures = report.postures().zip(report.external());
+        let postures = report.postures().map(<[_]>::to_vec).zip(report.external());
         identification::write(dir, &json_text, &setup, postures)?;
     }
     match args.common.json {

@@ -480,13 +480,13 @@ impl Summary {
 
     /// Whether the points carry the standard deviation of `|d|` (a compliance with a
     /// covariance).
-    pub fn has_covariance(&self) -> bool {
+    fn has_covariance(&self) -> bool {
         self.max_norm_std.is_some()
     }
 
     /// The postures a scene draws: the first point's and the largest deflection's, each with
     /// its label, nominal axis angles and external values.
-    pub fn scene_postures(&self) -> Vec<(String, &Vector6<f64>, &ExternalValues)> {
+    fn scene_postures(&self) -> Vec<(String, &Vector6<f64>, &ExternalValues)> {
         let first =
             (self.first.iter()).map(|(line, q, e)| (format!("first point (line {line})"), q, e));
         let largest = (self.largest_at.iter())
@@ -587,7 +587,12 @@ impl Summary {
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
             max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
             budget: self.budget.document(self.level),
-            scene: super::scene::ScenePart::new(self, self.axes.as_ref()),
+            scene: super::scene::ScenePart::new(
+                &self.sample,
+                self.has_covariance(),
+                self.scene_postures(),
+                self.axes.as_ref(),
+            ),
             free_tool_axis: self
                 .free
                 .zip(means)

@@ -5,11 +5,11 @@
 //! shows in `report.html` and writes as `scene.glb`, and Python's `stiffid.scene(setup,
 //! document=...)`.
 
-use super::document::Summary;
 use crate::app::document::scene::{self, stance, Extras, PathPoint, Scene};
 use crate::machining::compensate::Compensated;
-use crate::robot::external::ExternalAxes;
+use crate::robot::external::{ExternalAxes, ExternalValues};
 use crate::{Error, Setup};
+use nalgebra::Vector6;
 use serde::{Deserialize, Serialize};
 
 /// What the compensation's scene draws, as its document records it.
@@ -21,7 +21,7 @@ pub struct ScenePart {
     pub postures: Vec<stance::Stance>,
     /// What the path's error is, in words.
     pub path_error: String,
-    /// The sampled path points (every k-th, at most [`super::document::SAMPLE`] + 1): the TCP
+    /// The sampled path points (every k-th, at most 20 001, the summary's sample): the TCP
     /// `x, y, z` (base frame, mm) and the error (mm) the words name.
     pub path_mm: Vec<[f64; 4]>,
 }
@@ -38,16 +38,22 @@ struct ReadSummary {
 }
 
 impl ScenePart {
-    /// The scene's part of `summary`, the external values at the edges' units of `axes`: each
-    /// sampled TCP position with the error predicted to remain after compensation, the standard
+    /// The scene's part of a path's summary: `sample` its sampled points, `remaining` whether
+    /// they carry a covariance, `postures` the drawn postures (label, nominal axis angles,
+    /// external values, SI), the external values at the edges' units of `axes`. Each sampled TCP
+    /// position carries the error predicted to remain after compensation, the standard
     /// deviation of `|d|`; without a covariance, the deflection `|d|` compensated.
-    pub fn new(summary: &Summary, axes: Option<&ExternalAxes>) -> Self {
-        let remaining = summary.has_covariance();
+    pub fn new(
+        sample: &[(usize, Compensated)],
+        remaining: bool,
+        postures: Vec<(String, &Vector6<f64>, &ExternalValues)>,
+        axes: Option<&ExternalAxes>,
+    ) -> Self {
         let error = |c: &Compensated| match remaining {
             true => c.translation_norm_std.unwrap_or(0.0),
             false => c.deflection.fixed_rows::<3>(0).norm(),
         };
-        let path_mm = (summary.sample.iter())
+        let path_mm = (sample.iter())
             .map(|(_, c)| {
                 let p = c.pose.translation.vector * 1e3;
                 [p.x, p.y, p.z, error(c) * 1e3]
@@ -57,7 +63,7 @@ impl ScenePart {
             true => "error remaining after compensation (std of |d|)",
             false => "deflection compensated |d| (no covariance: no remaining error)",
         };
-        let postures = (summary.scene_postures().into_iter())
+        let postures = (postures.into_iter())
             .map(|(label, q, e)| stance::Stance::new(axes, label, q, e))
             .collect();
         ScenePart {

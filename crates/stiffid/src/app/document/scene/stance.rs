@@ -76,16 +76,15 @@ impl Stance {
     }
 }
 
+/// Postures' axis angles (rad) and their external values (SI, one list each, or none).
+pub type Postures = (Vec<Vector6<f64>>, Vec<Vec<f64>>);
+
 /// The axis angles (rad) and external values (SI) of `stances`, for [`super::scene`]: no
 /// external values (all at zero) when no stance has any.
 ///
 /// # Errors
 /// Those of [`Stance::external_si`] when some stance has external values.
-pub fn postures(
-    robot: &Robot,
-    stances: &[Stance],
-    field: &str,
-) -> crate::Result<(Vec<Vector6<f64>>, Vec<Vec<f64>>)> {
+pub fn postures(robot: &Robot, stances: &[Stance], field: &str) -> crate::Result<Postures> {
     let q = stances.iter().map(Stance::q).collect();
     if stances.iter().all(|s| s.external.is_empty()) {
         return Ok((q, Vec::new()));
