@@ -1,6 +1,6 @@
-//! `stiffid.scene`: the 3D scene of a group of postures, a plan or an identification
-//! ([`stiffid::app::document::scene`]), built by the library as the commands' reports build it,
-//! shown inline in Jupyter and written as HTML or glTF binary.
+//! `stiffid.scene`: the 3D scene of a group of postures, a plan, an identification, a
+//! calibration or a compensation ([`stiffid::app::document::scene`]), built by the library as
+//! the commands' reports build it, shown inline in Jupyter and written as HTML or glTF binary.
 
 use crate::arrays::postures;
 use crate::documents::to_python;
@@ -14,10 +14,11 @@ use serde_json::Value;
 use stiffid::app::document::scene::{glb, page, MAX_POSTURES};
 use stiffid::app::plan::{self as job, Request};
 
-/// The 3D scene of a plan or an identification (``stiffid.scene``): the robot at each posture
-/// in the cell, the tracker's lines of sight, the rope, the compliance ellipsoids and the
-/// displacements, as ``select --report`` and ``identify --report`` show it in their pages and
-/// write it as ``.glb``.
+/// The 3D scene of a plan, an identification, a calibration or a compensation
+/// (``stiffid.scene``): the robot at each posture in the cell, the tracker's lines of sight, the
+/// rope, the compliance ellipsoids, the displacements or errors and the path, as ``select
+/// --report``, ``identify --report``, ``calibrate --report`` and ``compensate --report`` show it
+/// in their pages and write it as ``.glb``.
 #[pyclass(frozen, module = "stiffid", name = "Scene")]
 pub struct Scene {
     inner: stiffid::app::document::scene::Scene,
@@ -65,10 +66,20 @@ impl Scene {
 ///   ``residuals``), the identified compliance's ellipsoid under the load, as ``identify
 ///   --report`` draws it; ``postures_deg`` the ``q_deg`` given to :func:`identify` (one row per
 ///   measurement), or one row per posture in the order the residuals first name them (for a
-///   measurement file).
+///   measurement file);
+/// - a calibration (the dict :func:`calibrate` returns; ``postures_deg`` left out): the robot at
+///   each fitted posture of the document's ``postures`` (with external axes, the track and the
+///   positioner at its values), each measuring point's error before and after the calibration,
+///   as ``calibrate --report`` draws it;
+/// - a compensation (the ``document`` of the dict :func:`compensate` returns; ``postures_deg``
+///   left out): the robot
+///   at the path's first point and at its largest deflection (at their external values), the
+///   sampled path coloured by its predicted error (the document's ``summary.scene``), as
+///   ``compensate --report`` draws it; ``InputError`` for an empty path.
 ///
 /// ``InputError`` for a setup without a nominal stiffness (plans), a posture count out of
-/// range or not the document's, or another document.
+/// range or not the document's, postures given with a document that holds its own, or another
+/// document.
 #[pyfunction]
 #[pyo3(signature = (setup, postures_deg=None, *, document=None))]
 pub fn scene(
@@ -91,22 +102,42 @@ pub fn scene(
         Some(d) if d.get("residuals").is_some() => {
             let group = given(postures_deg)?;
             let text = d.to_string();
-            py.detach(|| stiffid::app::identify::document::scene::scene(s, &group, &text))
+            py.detach(|| stiffid::app::identify::document::scene::scene(s, &group, &[], &text))
                 .map_err(raise)?
         }
+        Some(_) if postures_deg.is_some() && own(doc.as_ref()) => {
+            return Err(value("postures_deg: the document's postures are its own"));
+        }
         Some(d) if d.get("criterion").is_some() && d["postures"].is_array() => {
-            if postures_deg.is_some() {
-                return Err(value("postures_deg: a plan's postures are its own"));
-            }
             plan_scene(py, s, &plan_postures(&d)?)?
+        }
+        Some(d) if d.get("errors").is_some() && d["postures"].is_array() => {
+            let text = d.to_string();
+            py.detach(|| stiffid::app::calibrate::scene::scene(s, &text))
+                .map_err(raise)?
+        }
+        Some(d) if d["summary"].get("scene").is_some() => {
+            let text = d.to_string();
+            py.detach(|| stiffid::app::compensate::scene::of_document(s, &text))
+                .map_err(raise)?
+                .ok_or_else(|| value("document: the compensation's path is empty: no scene"))?
         }
         Some(_) => {
             return Err(value(
-                "document: expected a plan or an identification (the dict stiffid.plan or stiffid.identify returns)",
+                "document: expected a plan, an identification, a calibration or a compensation (the dict stiffid.plan, stiffid.identify, stiffid.calibrate or stiffid.compensate returns as its document)",
             ))
         }
     };
     Ok(Scene { inner })
+}
+
+/// Whether `doc` holds its own postures: a plan, a calibration or a compensation.
+fn own(doc: Option<&Value>) -> bool {
+    doc.is_some_and(|d| {
+        d.get("criterion").is_some()
+            || d.get("errors").is_some()
+            || d["summary"].get("scene").is_some()
+    })
 }
 
 /// The plan's scene of `group` ([`job::document::scene`]).

@@ -196,3 +196,26 @@ def test_stiffness_out_writes_the_commands_stiffness_file(paper, cli, campaign):
     with pytest.raises(stiffid.InputError, match=r"stiffness_out: no compliance is fitted.*gravity=\"masses\""):
         stiffid.calibrate(paper, fit, stiffness_out=d / "none.json")
     assert not (d / "none.json").exists()
+
+
+def test_the_scene_of_a_calibration_document_is_the_reports(paper, cli, campaign):
+    """stiffid.scene of the calibrate document: each fitted posture at its axis angles with its
+    errors before and after, the same glTF binary as `calibrate --report`'s errors.glb."""
+    d, _, fit, _ = campaign
+    doc = stiffid.calibrate(paper, fit)
+    scene = stiffid.scene(paper, document=doc)
+    drawn = scene.document()
+    assert {p["label"] for p in doc["postures"]} == {e["posture"] for e in doc["errors"] if e["set"] == "fitted"}
+    for posture, p in zip(doc["postures"], drawn["postures"]):
+        np.testing.assert_allclose(p["q_deg"], posture["q_deg"], atol=1e-12)
+        flange = paper.robot.flange_pose(posture["q_deg"])[:3, 3]
+        np.testing.assert_allclose(np.array(p["flange_m"]) * 1e3, flange, atol=1e-9)
+    first = next(e for e in doc["errors"] if e["posture"] == doc["postures"][0]["label"] and e["point"] == 1)
+    arrow = drawn["postures"][0]["arrows"][0]
+    np.testing.assert_allclose(np.array(arrow["measured_m"]) * 1e3, first["before_mm"], rtol=1e-12)
+    np.testing.assert_allclose(np.array(arrow["predicted_m"]) * 1e3, first["after_mm"], rtol=1e-12)
+    cli("calibrate", "--setup", SETUP, "--data", fit, "--report", d / "report", parse=False)
+    assert scene.glb() == (d / "report" / "errors.glb").read_bytes()
+    assert scene._repr_html_().startswith("<iframe srcdoc=")
+    with pytest.raises(stiffid.InputError, match="postures_deg"):
+        stiffid.scene(paper, [[0, 0, 0, 0, 0, 0]], document=doc)

@@ -107,3 +107,22 @@ def test_the_map_holds_every_point_at_every_rotation_and_the_line_chosen(milling
     assert (picked <= m["bound_mm"][:, own] * (1 + 1e-9)).all()
     assert out["bound_mm"].max() <= m["bound_mm"][:, own].max() * (1 + 1e-9)
     assert (m["condition"][np.isfinite(m["condition"])] >= 1).all()
+
+
+def test_the_scene_of_a_compensation_document_is_the_reports(milling, cli, tmp_path):
+    """stiffid.scene of the compensate document: the robot at the first point and at the largest
+    deflection, the sampled path with its error, the same glTF binary as `compensate --report`'s
+    path.glb."""
+    mine = stiffid.compensate(milling, PATH, STIFFNESS)
+    scene = stiffid.scene(milling, document=mine["document"])
+    drawn = scene.document()
+    largest = int(np.argmax(np.linalg.norm(mine["deflection_mm"], axis=1)))
+    for p, i in zip(drawn["postures"], [0, largest]):
+        np.testing.assert_allclose(p["q_deg"], mine["q_deg"][i], atol=1e-12)
+    path = np.array([p["at_m"] for p in drawn["path"]]) * 1e3
+    rows = mine["document"]["points"]
+    np.testing.assert_allclose(path, [[r["x_mm"], r["y_mm"], r["z_mm"]] for r in rows], atol=1e-9)
+    cli("compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--path", PATH,
+        "--out", tmp_path / "c.csv", "--report", tmp_path / "report", parse=False)
+    assert scene.glb() == (tmp_path / "report" / "path.glb").read_bytes()
+    assert "error remaining after compensation" in drawn["path_error"]

@@ -188,7 +188,7 @@ pub fn run(args: &Args) -> Result<()> {
         o.write(text.as_bytes())?;
     }
     if let Some(dir) = report_dir {
-        calibration::write(dir, &setup, &report, &document)?;
+        calibration::write(dir, &setup, &document)?;
     }
     output::warnings(&document.warnings);
     print_json_or(args.common.json, &document, text_of)

@@ -10,8 +10,7 @@ use super::tables::{num, Table};
 use crate::output::{json, ReportDir};
 use anyhow::Result;
 use std::path::Path;
-use stiffid::app::calibrate::document::{self as document, Document};
-use stiffid::app::calibrate::Report;
+use stiffid::app::calibrate::document::Document;
 use stiffid::app::document::scene::{glb, Scene};
 use stiffid::Setup;
 
@@ -27,18 +26,20 @@ pub fn open(dir: &Path) -> Result<ReportDir> {
     KIND.open(dir)
 }
 
-/// Writes every file of the report of `report` (whose document is `doc`) into `dir`, each whole.
-pub fn write(dir: ReportDir, setup: &Setup, report: &Report, doc: &Document) -> Result<()> {
+/// Writes every file of the report of the calibration whose document is `doc` into `dir`, each
+/// whole.
+pub fn write(dir: ReportDir, setup: &Setup, doc: &Document) -> Result<()> {
     let figures = report::draw(&stiffid_figures::calibrate::figures(
         &serde_json::to_value(doc)?,
     )?)?;
-    let scene = document::scene(report, setup)?;
+    let text = json(doc)?;
+    let scene = stiffid::app::calibrate::scene::scene(setup, &text)?;
     let html = KIND.page(&format!("stiffid calibration: {}", doc.setup), |w| {
         compose(w, doc, &figures, &scene)
     });
     let files = vec![
         (PAGE.into(), html.into_bytes()),
-        (KIND.files[1].into(), json(doc)?.into_bytes()),
+        (KIND.files[1].into(), text.into_bytes()),
         (KIND.files[2].into(), glb::glb(&scene)),
     ];
     report::write(dir, files, figures)

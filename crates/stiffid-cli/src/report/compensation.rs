@@ -12,7 +12,7 @@ use std::path::Path;
 use stiffid::app::compensate::document::GENERATOR;
 use stiffid::app::compensate::document::{Document, SegmentDocument};
 use stiffid::app::compensate::Report;
-use stiffid::app::document::scene::{self, glb, Extras, Scene};
+use stiffid::app::document::scene::{glb, Scene};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::Compensated;
 use stiffid::Setup;
@@ -75,22 +75,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
         dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
         dir.write(&format!("figures/{}.png", f.name), &f.png)?;
     }
-    let (path, path_error) = summary.scene_path();
-    let mut postures: Vec<_> = summary
-        .sample
-        .first()
-        .map(|(_, c)| c.q)
-        .into_iter()
-        .collect();
-    postures.extend(summary.largest.first().map(|(_, c)| c.q));
-    let extras = Extras {
-        path: &path,
-        path_error,
-        ..Extras::default()
-    };
-    let scene = (!postures.is_empty())
-        .then(|| scene::scene(setup, &postures, &extras))
-        .transpose()?;
+    let scene = stiffid::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),
         GENERATOR,

@@ -12,9 +12,9 @@ use super::html::Writer;
 use super::tables::{num, Table};
 use crate::output::ReportDir;
 use anyhow::Result;
-use nalgebra::Vector6;
 use serde_json::Value;
 use std::path::Path;
+use stiffid::app::document::scene::stance::Postures;
 use stiffid::app::document::scene::{glb, Scene};
 use stiffid::Setup;
 
@@ -32,17 +32,13 @@ pub fn open(dir: &Path) -> Result<ReportDir> {
 
 /// Writes every file of the report of the identify document `json` (its text) into `dir`, with
 /// the 3D scene of the load tests in `postures` (axis angles, rad, in the order the document's
-/// residuals first name them; `None` for the model comparison, which has no scene).
-pub fn write(
-    dir: ReportDir,
-    json: &str,
-    setup: &Setup,
-    postures: Option<&[Vector6<f64>]>,
-) -> Result<()> {
+/// residuals first name them, and their external axes' values, SI; `None` for the model
+/// comparison, which has no scene).
+pub fn write(dir: ReportDir, json: &str, setup: &Setup, postures: Option<Postures>) -> Result<()> {
     let doc: Value = serde_json::from_str(json)?;
     let figures = report::draw(&stiffid_figures::identify::figures(&doc)?)?;
     let scene = postures
-        .map(|p| stiffid::app::identify::document::scene::scene(setup, p, json))
+        .map(|(p, e)| stiffid::app::identify::document::scene::scene(setup, &p, &e, json))
         .transpose()?;
     let name = doc["setup"].as_str().unwrap_or_default();
     let html = KIND.page(&format!("stiffid identification: {name}"), |w| {

@@ -429,7 +429,7 @@ class Scene:
     def _repr_html_(self) -> str: ...
 
 def scene(setup: Setup, postures_deg: Optional[ArrayLike] = None, *, document: Optional[dict[str, Any]] = None) -> Scene:
-    """The 3D scene of a group (1 to 500 postures, deg), of a plan (document=stiffid.plan(...)) or of an identification (document=stiffid.identify(...), postures_deg its postures in order): what select --report and identify --report show and write as .glb."""
+    """The 3D scene of a group (1 to 500 postures, deg), of a plan (document=stiffid.plan(...)), of an identification (document=stiffid.identify(...), postures_deg its postures in order), of a calibration (document=stiffid.calibrate(...)) or of a compensation (document=stiffid.compensate(...)["document"]), the track and positioner at each posture's external values: what select, identify, calibrate and compensate --report show and write as .glb."""
 def setups_new(
     robot: _PathLike,
     *,

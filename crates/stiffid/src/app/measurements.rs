@@ -8,6 +8,7 @@ use crate::io::measurements::{self, Labels};
 use crate::io::read_text;
 use crate::io::readings::{self, has_load_column};
 use crate::observation::Measurement;
+use crate::robot::external::ExternalValues;
 use crate::setup::plausibility;
 use crate::{Error, Result, Setup};
 use nalgebra::Vector6;
@@ -38,6 +39,9 @@ pub struct Origin {
     pub points: Vec<usize>,
     /// The axis angles of each posture (rad), by posture number.
     pub angles: Vec<Vector6<f64>>,
+    /// The external axes' values of each posture (SI, the cell's order; empty values without
+    /// external axes), by posture number.
+    pub external: Vec<ExternalValues>,
     /// The line of each measurement in its file (1-based); `None` for arrays.
     pub lines: Option<Vec<u64>>,
     /// The first measurement of each posture (dense number).
@@ -65,7 +69,7 @@ impl Origin {
         labels: Labels,
         postures: Vec<usize>,
         points: Vec<usize>,
-        angles: Vec<Vector6<f64>>,
+        (angles, external): (Vec<Vector6<f64>>, Vec<ExternalValues>),
         lines: Option<Vec<u64>>,
         columns: [String; 2],
     ) -> Self {
@@ -78,6 +82,7 @@ impl Origin {
             postures,
             points,
             angles,
+            external,
             lines,
             first_of_posture,
             columns,
@@ -267,16 +272,19 @@ pub(crate) fn arrays_origin(measurements: &[Measurement]) -> Origin {
     )
 }
 
-/// The axis angles of each posture of `measurements` (numbered from 0, each with a measurement).
-fn posture_angles(measurements: &[Measurement]) -> Vec<Vector6<f64>> {
+/// The axis angles and external values of each posture of `measurements` (numbered from 0, each
+/// with a measurement).
+fn posture_angles(measurements: &[Measurement]) -> (Vec<Vector6<f64>>, Vec<ExternalValues>) {
     let count = measurements
         .iter()
         .map(|m| m.posture + 1)
         .max()
         .unwrap_or(0);
     let mut angles = vec![Vector6::zeros(); count];
+    let mut external = vec![ExternalValues::NONE; count];
     for m in measurements {
         angles[m.posture] = m.q;
+        external[m.posture] = m.e;
     }
-    angles
+    (angles, external)
 }

@@ -39,6 +39,8 @@ pub struct Rows {
     pub points: Vec<usize>,
     /// The axis angles of each posture (rad), by posture number.
     pub angles: Vec<Vector6<f64>>,
+    /// The external axes' values of each posture (SI), by posture number.
+    pub external: Vec<crate::robot::external::ExternalValues>,
     /// The file's header and columns.
     pub layout: Layout,
 }
@@ -69,6 +71,7 @@ pub fn least_squares<R: BufRead + Send>(
         lines: Vec::new(),
         points: Vec::new(),
         angles: Vec::new(),
+        external: Vec::new(),
         layout: layout.clone(),
     };
     let mut kept = Kept::new(&layout);
@@ -88,6 +91,9 @@ pub fn least_squares<R: BufRead + Send>(
     rows.labels = reader.into_labels();
     rows.angles = (0..rows.labels.len())
         .map(|p| *blocks.angles(p).expect("every posture was checked"))
+        .collect();
+    rows.external = (0..rows.labels.len())
+        .map(|p| *blocks.external(p).expect("every posture was checked"))
         .collect();
     let solved = blocks.solve()?;
     let h = solved.solution.h;

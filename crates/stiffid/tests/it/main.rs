@@ -64,6 +64,7 @@ mod register_postures;
 mod register_robot_error;
 mod robot_masses;
 mod scene;
+mod scene_external;
 mod search;
 mod setup_builder;
 mod simulate;

@@ -183,7 +183,7 @@ fn identification_scene_draws_the_documents_displacements_and_compliance() {
     let text = serde_json::to_string(&report.document("fanuc", &setup)).unwrap();
     let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
     let postures = report.postures().unwrap();
-    let scene = identify::document::scene::scene(&setup, postures, &text).unwrap();
+    let scene = identify::document::scene::scene(&setup, postures, &[], &text).unwrap();
     assert_eq!(scene.postures.len(), postures.len());
     assert!(scene.anchor_m.is_some());
     let residuals = doc["residuals"].as_array().unwrap();
@@ -224,9 +224,10 @@ fn identification_scene_draws_the_documents_displacements_and_compliance() {
         assert_ellipsoid(&p.ellipsoid.unwrap(), &c, setup.load().load);
     }
     // One posture too few, and the model comparison (no residuals): named errors.
-    let e = identify::document::scene::scene(&setup, &postures[1..], &text).unwrap_err();
+    let e = identify::document::scene::scene(&setup, &postures[1..], &[], &text).unwrap_err();
     assert!(e.to_string().contains("postures"), "{e}");
-    let e = identify::document::scene::scene(&setup, postures, "{\"models\": []}").unwrap_err();
+    let e =
+        identify::document::scene::scene(&setup, postures, &[], "{\"models\": []}").unwrap_err();
     assert!(e.to_string().contains("residuals"), "{e}");
 }
 

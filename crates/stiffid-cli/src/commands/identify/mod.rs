@@ -154,7 +154,8 @@ pub fn run(args: &Args) -> Result<()> {
         out.write(json_text.as_bytes())?;
     }
     if let Some(dir) = report_dir {
-        identification::write(dir, &json_text, &setup, report.postures())?;
+        let postures = report.postures().map(<[_]>::to_vec).zip(report.external());
+        identification::write(dir, &json_text, &setup, postures)?;
     }
     match args.common.json {
         true => output::print(&json_text),

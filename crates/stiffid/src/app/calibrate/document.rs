@@ -58,6 +58,10 @@ pub struct Document {
     /// readings (`set` `fitted`), then the held-out ones (`validation`, `--validate`), then each
     /// posture predicted by the fit of the others (`cross-validation`, `--cross-validate`).
     pub errors: Vec<BeforeAfter>,
+    /// Each fitted posture (the first [`scene::MAX_POSTURES`]): its label, axis angles and
+    /// external axes' values, in the order of the readings; what the scene draws
+    /// ([`super::scene`]).
+    pub postures: Vec<scene::stance::Stance>,
     /// The joint error maps: what was asked, the choice by cross-validation inside the fitted
     /// readings and its held-out gain by an outer cross-validation around the choice.
     pub maps: MapsDocument,
@@ -425,6 +429,16 @@ impl Document {
             iterations: fit.iterations,
             stop_reason: fit.stop,
             errors: before_after(report),
+            postures: (report
+                .labels
+                .iter()
+                .zip(&report.postures)
+                .zip(&report.external))
+            .take(scene::MAX_POSTURES)
+            .map(|((l, q), e)| {
+                scene::stance::Stance::new(report.model.robot().external(), l.clone(), q, e)
+            })
+            .collect(),
             maps: maps_document(&report.maps),
             check: (report.check.as_ref())
                 .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
@@ -567,44 +581,6 @@ fn before_after(report: &Report) -> Vec<BeforeAfter> {
         );
     }
     all
-}
-
-/// The 3D scene of the calibration: the robot at each fitted posture (the first
-/// [`scene::MAX_POSTURES`]) with each measuring point's error before the calibration (as
-/// `measured`) and after it (as `predicted`), base frame; a point without a reading in a posture
-/// has no error drawn (zero).
-///
-/// # Errors
-/// Those of [`scene::scene`].
-pub fn scene(report: &Report, setup: &crate::Setup) -> crate::Result<scene::Scene> {
-    let n = report.postures.len().min(scene::MAX_POSTURES);
-    let points = setup.tool().measuring_points.len();
-    let arrows = |v: &Validation| {
-        let mut d = vec![vec![nalgebra::Vector3::zeros(); points]; n];
-        for e in v
-            .errors
-            .iter()
-            .filter(|e| e.posture < n && e.point < points)
-        {
-            d[e.posture][e.point] = e.error;
-        }
-        d
-    };
-    let (before, after) = (arrows(&report.nominal), arrows(&report.calibrated));
-    let extras = scene::Extras {
-        measured: &before,
-        predicted: &after,
-        arrow_names: Some(["error before calibration", "error after calibration"]),
-        ..scene::Extras::default()
-    };
-    let mut s = scene::scene(setup, &report.postures[..n], &extras)?;
-    if n < report.postures.len() {
-        s.notes.push(format!(
-            "the first {n} of {} postures are drawn",
-            report.postures.len()
-        ));
-    }
-    Ok(s)
 }
 
 fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {

@@ -22,6 +22,7 @@ pub mod drift;
 mod judge;
 use judge::{judge, largest_residual};
 mod maps;
+pub mod scene;
 mod update;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
@@ -180,6 +181,9 @@ pub struct Report {
     pub calibrated: Validation,
     /// Each fitted posture's axis angles, rad, in the order of `labels`.
     pub postures: Vec<nalgebra::Vector6<f64>>,
+    /// Each fitted posture's external axes' values (SI, the cell's order; empty without
+    /// external axes), in the order of `labels`.
+    pub external: Vec<crate::robot::external::ExternalValues>,
     /// The estimated noise per coordinate over the setup's: near 1 when the model explains the
     /// readings to the tracker's noise.
     pub noise_ratio: f64,
@@ -355,8 +359,10 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let calibrated =
         validation::validate(&model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
     let mut postures = vec![nalgebra::Vector6::zeros(); data.labels.len()];
+    let mut external = vec![Default::default(); data.labels.len()];
     for o in &obs {
         postures[o.posture] = o.q;
+        external[o.posture] = o.e;
     }
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
     let with_intervals = request.validate.is_some() && cross_validation_size(&obs).is_ok();
@@ -438,6 +444,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         nominal,
         calibrated,
         postures,
+        external,
         noise_ratio,
         maps,
         error_motions,

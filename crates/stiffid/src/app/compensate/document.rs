@@ -7,13 +7,13 @@ use crate::app::compensate::{Report, Segment};
 use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
-use crate::app::document::scene::PathPoint;
 use crate::common::limits::Violation;
 use crate::common::stop::Stop;
 use crate::common::warning::{Warning, WarningKind};
 use crate::io::stiffness::RegionSection;
 use crate::machining::compensate::Compensated;
 use crate::model::region::{self, Region};
+use crate::robot::external::{ExternalAxes, ExternalValues};
 use crate::Coordinates;
 use nalgebra::Vector6;
 use serde::Serialize;
@@ -206,6 +206,10 @@ pub struct SummaryDocument {
     /// the TCP deflection's length `|d|` from the compliance's covariance (the compensation
     /// removes the predicted deflection, not its uncertainty); `null` without a covariance.
     pub max_remaining_error_mm: Option<f64>,
+    /// What the 3D scene draws (`compensate --report`'s, Python's `stiffid.scene`): the
+    /// postures at the first point and at the largest deflection, the sampled path and its
+    /// error.
+    pub scene: super::scene::ScenePart,
 }
 
 /// What the free tool axis gained.
@@ -383,6 +387,12 @@ pub struct Summary {
     pub budget: super::budget::Worst,
     /// The level of the bound.
     level: f64,
+    /// The first point's line, nominal axis angles and external values.
+    first: Option<(u64, Vector6<f64>, ExternalValues)>,
+    /// The same of the largest deflection's point.
+    largest_at: Option<(u64, Vector6<f64>, ExternalValues)>,
+    /// The cell's external axes (the document's units of the external values).
+    axes: Option<ExternalAxes>,
 }
 
 fn norm(d: &Vector6<f64>) -> f64 {
@@ -390,8 +400,9 @@ fn norm(d: &Vector6<f64>) -> f64 {
 }
 
 impl Summary {
-    /// An empty summary; `free`: the free tool axis was asked for; `level`: the bound's.
-    pub fn new(free: bool, level: f64) -> Self {
+    /// An empty summary; `free`: the free tool axis was asked for; `level`: the bound's;
+    /// `axes`: the cell's external axes.
+    pub fn new(free: bool, level: f64, axes: Option<&ExternalAxes>) -> Self {
         Self {
             points: 0,
             max_deflection: (0.0, 0),
@@ -412,14 +423,22 @@ impl Summary {
             largest: Vec::new(),
             budget: Default::default(),
             level,
+            first: None,
+            largest_at: None,
+            axes: axes.cloned(),
         }
     }
 
-    /// Adds point `i` (0-based) of the path, from `line` of its file.
-    pub fn add(&mut self, i: usize, line: u64, r: &Compensated) {
+    /// Adds point `i` (0-based) of the path, from `line` of its file, at the external values
+    /// `e` (SI, the cell's order; empty without external axes).
+    pub fn add(&mut self, i: usize, line: u64, r: &Compensated, e: &ExternalValues) {
         let d = norm(&r.deflection);
         if d > self.max_deflection.0 || self.points == 0 {
             self.max_deflection = (d, line);
+            self.largest_at = Some((line, r.q, *e));
+        }
+        if self.points == 0 {
+            self.first = Some((line, r.q, *e));
         }
         self.points += 1;
         self.sum_deflection += d;
@@ -481,28 +500,20 @@ impl Summary {
         self.largest.truncate(10);
     }
 
-    /// The sampled points as a 3D scene's path ([`crate::app::document::scene`]): each TCP
-    /// position (base frame, m) with the error predicted to remain after compensation, the
-    /// standard deviation of `|d|` (m); without a covariance, the deflection `|d|` compensated.
-    /// Then what that error is, in words.
-    pub fn scene_path(&self) -> (Vec<PathPoint>, &'static str) {
-        let remaining = self.max_norm_std.is_some();
-        let path = self
-            .sample
-            .iter()
-            .map(|(_, c)| PathPoint {
-                at_m: c.pose.translation.vector.into(),
-                error_m: match remaining {
-                    true => c.translation_norm_std.unwrap_or(0.0),
-                    false => norm(&c.deflection),
-                },
-            })
-            .collect();
-        let words = match remaining {
-            true => "error remaining after compensation (std of |d|)",
-            false => "deflection compensated |d| (no covariance: no remaining error)",
-        };
-        (path, words)
+    /// Whether the points carry the standard deviation of `|d|` (a compliance with a
+    /// covariance).
+    fn has_covariance(&self) -> bool {
+        self.max_norm_std.is_some()
+    }
+
+    /// The postures a scene draws: the first point's and the largest deflection's, each with
+    /// its label, nominal axis angles and external values.
+    fn scene_postures(&self) -> Vec<(String, &Vector6<f64>, &ExternalValues)> {
+        let first =
+            (self.first.iter()).map(|(line, q, e)| (format!("first point (line {line})"), q, e));
+        let largest = (self.largest_at.iter())
+            .map(|(line, q, e)| (format!("largest deflection (line {line})"), q, e));
+        first.chain(largest).collect()
     }
 
     /// A warning ([`WarningKind::NotConverged`]) when some point's Newton steps stopped at their
@@ -598,6 +609,12 @@ impl Summary {
             max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
             max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
             budget: self.budget.document(self.level),
+            scene: super::scene::ScenePart::new(
+                &self.sample,
+                self.has_covariance(),
+                self.scene_postures(),
+                self.axes.as_ref(),
+            ),
             free_tool_axis: self
                 .free
                 .zip(means)

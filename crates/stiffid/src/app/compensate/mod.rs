@@ -21,6 +21,7 @@ pub mod certify;
 mod columns;
 pub mod document;
 pub mod dynamics;
+pub mod scene;
 pub mod stream;
 
 use super::{Warning, WarningKind};
@@ -195,11 +196,12 @@ where
         .into());
     }
     let free = options.free_tool_axis.is_some() || options.free_station.is_some();
-    let mut summary = Summary::new(free, options.level);
+    let axes = setup.robot().external();
+    let mut summary = Summary::new(free, options.level, axes);
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
-            summary.add(first + k, p.line, r);
+            summary.add(first + k, p.line, r, &p.external);
             if options.map {
                 chosen.push(r.tool_rotation);
             }

@@ -210,7 +210,7 @@ fn from_file<R: Read + Send>(setup: &Setup, how: How, name: &str, reader: R) -> 
             rows.labels,
             rows.postures,
             rows.points,
-            rows.angles,
+            (rows.angles, rows.external),
             Some(rows.lines),
             columns,
         );

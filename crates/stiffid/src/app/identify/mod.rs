@@ -126,6 +126,21 @@ impl Report {
         }
     }
 
+    /// The external axes' values (SI, the cell's order) of [`Report::postures`], one list per
+    /// posture (empty without external axes); `None` for the model comparison.
+    pub fn external(&self) -> Option<Vec<Vec<f64>>> {
+        let origin = match self {
+            Report::Drives(r) => &r.origin,
+            Report::Springs(r) => &r.origin,
+            Report::Comparison(_) => return None,
+        };
+        let all = origin.external.iter().map(|e| e.as_slice().to_vec());
+        Some(match origin.external.iter().all(|e| e.is_empty()) {
+            true => Vec::new(),
+            false => all.collect(),
+        })
+    }
+
     /// The document (`stiffid identify --json`), `setup_name` the setup as given.
     pub fn document(&self, setup_name: &str, setup: &Setup) -> Document {
         match self {

@@ -17,6 +17,7 @@ mod external;
 mod geometry;
 pub mod glb;
 pub mod page;
+pub mod stance;
 
 use crate::cell::{CheckKind, Checker, Thing};
 use crate::observation::cartesian;

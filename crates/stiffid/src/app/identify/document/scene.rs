@@ -32,7 +32,9 @@ struct Read {
 /// measurement's). Each measuring point of a posture carries the displacement of its
 /// longest measured displacement (the full load of load steps): measured and predicted, base
 /// frame, as `measured_mm` and `predicted_mm` say (m here); a point not measured in a posture
-/// has zero. The ellipsoid is the identified compliance's (the document read as a stiffness
+/// has zero. With external axes, `external` gives each posture's values (SI, the cell's order:
+/// one list per entry of `postures`, or none: all at zero); the track and the positioner stand
+/// there. The ellipsoid is the identified compliance's (the document read as a stiffness
 /// file against the setup's model, [`crate::io::stiffness`]) under the setup's load; a document
 /// that does not fit the setup's model has none (a note says why).
 ///
@@ -40,7 +42,12 @@ struct Read {
 /// [`Error::InvalidField`]: `document` not an identification with residuals (the model
 /// comparison has none), a measuring point out of the tool's range (`residuals`), `postures`
 /// not one per posture of the document; those of [`scene::scene`].
-pub fn scene(setup: &Setup, postures: &[Vector6<f64>], document: &str) -> crate::Result<Scene> {
+pub fn scene(
+    setup: &Setup,
+    postures: &[Vector6<f64>],
+    external: &[Vec<f64>],
+    document: &str,
+) -> crate::Result<Scene> {
     let invalid = |field: &str, message: String| Error::InvalidField {
         field: field.to_string(),
         message,
@@ -59,15 +66,17 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], document: &str) -> crate:
             labels.push(&m.posture);
         }
     }
-    let postures: Vec<Vector6<f64>> = match postures.len() == read.residuals.len() {
-        true => (labels.iter())
-            .map(|l| {
-                let first = read.residuals.iter().position(|m| m.posture == *l);
-                postures[first.unwrap_or(0)]
-            })
-            .collect(),
-        false => postures.to_vec(),
-    };
+    let (postures, external): (Vec<Vector6<f64>>, Vec<Vec<f64>>) =
+        match postures.len() == read.residuals.len() {
+            true => {
+                let firsts: Vec<usize> = (labels.iter())
+                    .map(|l| (read.residuals.iter().position(|m| m.posture == *l)).unwrap_or(0))
+                    .collect();
+                let e = firsts.iter().filter_map(|&i| external.get(i).cloned());
+                (firsts.iter().map(|&i| postures[i]).collect(), e.collect())
+            }
+            false => (postures.to_vec(), external.to_vec()),
+        };
     if labels.len() != postures.len() {
         return Err(invalid(
             "postures",
@@ -109,6 +118,7 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], document: &str) -> crate:
         predicted: &predicted,
         rope: true,
         arrow_names: Some(["measured displacement", "displacement the fit predicts"]),
+        external: &external,
         ..Extras::default()
     };
     let mut s = scene::scene(setup, &postures, &extras)?;
