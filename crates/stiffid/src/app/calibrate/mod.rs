@@ -19,6 +19,7 @@ mod checks;
 mod compliance;
 pub mod document;
 pub mod drift;
+mod extrapolation;
 mod judge;
 use judge::{judge, largest_residual};
 mod maps;
@@ -403,7 +404,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         None => None,
         Some((held_name, text)) => Some(held_out(
             request,
-            (&model, &reference),
+            (&model, &reference, &obs),
             (&fitted.estimate, intervals.as_ref().map(|i| (i, level))),
             held_name,
             text,
@@ -490,7 +491,7 @@ fn nominal(reference: &ErrorModel, obs: &[Observation], name: &str) -> Result<Va
 /// registered anew on them with `reregister`).
 fn held_out(
     request: &Request<'_>,
-    (model, reference): (&ErrorModel, &ErrorModel),
+    (model, reference, fitted): (&ErrorModel, &ErrorModel, &[Observation]),
     (estimate, intervals): (&Estimate, Option<(&Intervals, f64)>),
     name: &str,
     text: &str,
@@ -543,9 +544,10 @@ fn held_out(
         coverage,
     };
     // The gate of the fitted readings: a held-out reading that the nominal robot registered on
-    // them, or the calibration, misses by more than a robot's error is not of this robot.
-    for errors in [&held.nominal.errors, &held.calibrated.errors] {
-        let unloaded: Vec<_> = (errors.iter())
+    // them misses by more than a robot's error is not of this robot. One the calibration alone
+    // misses that far is, and the calibration extrapolates there: a warning, not a refusal.
+    let unloaded = |v: &Validation| -> Vec<_> {
+        (v.errors.iter())
             .zip(
                 data.readings
                     .iter()
@@ -553,9 +555,17 @@ fn held_out(
             )
             .filter(|(_, r)| r.unloaded())
             .map(|(e, _)| e.error)
-            .collect();
-        refuse_implausible(&readings, &data, None, &unloaded)?;
-    }
+            .collect()
+    };
+    refuse_implausible(&readings, &data, None, &unloaded(&held.nominal))?;
+    let limit = crate::metrology::register::residual_limit(request.readings.setup.noise().reading_sd());
+    warnings.extend(extrapolation::warning(
+        (name, !request.reregister),
+        (fitted, &obs),
+        &data.labels,
+        (&held.calibrated, &held.nominal),
+        limit,
+    ));
     Ok(held)
 }
 

@@ -201,7 +201,12 @@ where
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
-            summary.add(first + k, p.line, r, &p.external);
+            // The station the compensation chose (`free_station`), else the path's own.
+            let e = match r.external.is_empty() {
+                true => &p.external,
+                false => &r.external,
+            };
+            summary.add(first + k, p.line, r, e);
             if options.map {
                 chosen.push(r.tool_rotation);
             }

@@ -375,6 +375,7 @@ fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
                 wrench: Vector6::zeros(),
                 e: *e,
                 table: false,
+                direction: Vector6::zeros(),
             })
         })
         .collect()
