@@ -75,16 +75,14 @@ fn fanuc_on_track(
     (design.on_station(stations[0], &fixed).unwrap(), group)
 }
 
+/// Postures, rad.
+type Group = Vec<nalgebra::Vector6<f64>>;
+
 /// The model, reference (60), test (20) and group (12) postures of [`fanuc`].
 fn fanuc_model(
     g: impl Fn(&Robot) -> gravity::Terms,
     points: &[Vector3<f64>],
-) -> (
-    ErrorModel,
-    Vec<nalgebra::Vector6<f64>>,
-    Vec<nalgebra::Vector6<f64>>,
-    Vec<nalgebra::Vector6<f64>>,
-) {
+) -> (ErrorModel, Group, Group, Group) {
     let masses: [LinkMass; 6] = std::array::from_fn(|l| LinkMass {
         mass: 200.0 - 30.0 * l as f64,
         centre: Vector3::new(0.05 * l as f64, -0.03, 0.1 + 0.02 * l as f64),

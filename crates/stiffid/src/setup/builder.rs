@@ -510,7 +510,7 @@ fn check_positioner(robot: &Robot, tcp: &Vector3<f64>) -> Result<()> {
         if distance < POSITIONER_CLEARANCE {
             return Err(invalid(
                 &format!("external_axis ({})", a.name),
-                &format!(
+                format!(
                     "the positioner axis passes through the tool's TCP ({:.3} mm from it with the arm at zero and the carrier at the middle of its travel): a positioner turns the part, not the tool; give a point_mm on the positioner's own axis, away from the tool",
                     distance * 1e3
                 ),
