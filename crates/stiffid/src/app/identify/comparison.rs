@@ -76,7 +76,19 @@ impl Report {
         setup_name: &str,
         setup: &Setup,
     ) -> Option<super::document::springs::Document> {
-        super::model_form::stiffness_file(self, setup_name, setup)
+        let b = self.bootstrap.as_ref()?;
+        let fit = super::springs::Report {
+            data_name: self.data_name.clone(),
+            method: super::Fit::LeastSquares,
+            fit: self.comparison.setup_fit.clone(),
+            origin: self.origin.clone(),
+            cross_validation: None,
+            prediction: None,
+            warnings: self.warnings.clone(),
+        };
+        let mut doc = super::document::springs::Document::new(&fit, setup_name, setup);
+        doc.model_form = Some(super::model_form::section(b, &self.springs));
+        Some(doc)
     }
 
     /// The recommended model as a `[model]` fragment to paste into the setup, with a comment

@@ -1,36 +1,15 @@
-//! The stiffness file of `identify --compare-models --bootstrap N --stiffness-out`: the setup's
-//! model fitted to every posture, as `identify` writes it, with the models the data support and
-//! their resampled parameter sets ([`crate::io::stiffness::ModelFormSection`]) for compensation's
-//! error budget.
+//! The `model_form` of the stiffness file `identify --compare-models --bootstrap N
+//! --stiffness-out` writes: the models the data support and their resampled parameter sets
+//! ([`crate::io::stiffness::ModelFormSection`]) for compensation's error budget.
 
-use super::comparison::Report;
-use super::document::springs::Document;
 use crate::identify::compare::Bootstrap;
 use crate::io::stiffness::{FormModelSection, FormSpring, ModelFormSection};
 use crate::model::Spring;
-use crate::Setup;
-
-/// The stiffness file of `report` on `setup` (named `setup_name`): `None` without a bootstrap.
-pub(super) fn stiffness_file(report: &Report, setup_name: &str, setup: &Setup) -> Option<Document> {
-    let b = report.bootstrap.as_ref()?;
-    let fit = super::springs::Report {
-        data_name: report.data_name.clone(),
-        method: super::Fit::LeastSquares,
-        fit: report.comparison.setup_fit.clone(),
-        origin: report.origin.clone(),
-        cross_validation: None,
-        prediction: None,
-        warnings: report.warnings.clone(),
-    };
-    let mut doc = Document::new(&fit, setup_name, setup);
-    doc.model_form = Some(section(b, &report.springs));
-    Some(doc)
-}
 
 /// The section of the bootstrap `b`, `springs` the virtual springs of the setup's model then
 /// the candidates (parameter `j >= 6` is `springs[j - 6]`): the resamples' supported models,
 /// each model's parameters in ascending order, its sets in resample order.
-fn section(b: &Bootstrap, springs: &[Spring]) -> ModelFormSection {
+pub(super) fn section(b: &Bootstrap, springs: &[Spring]) -> ModelFormSection {
     let mut models: Vec<(Vec<usize>, Vec<Vec<f64>>)> = Vec::new();
     for (indices, h) in b.supported.iter().flatten() {
         let mut order: Vec<usize> = (0..indices.len()).collect();
