@@ -50,6 +50,7 @@ pub fn compliance(
         prediction: None,
         own_weight: None,
         region: stiffid::model::Region::NotIdentified,
+        model_form: None,
     })
 }
 

@@ -35,6 +35,7 @@ fn identified_with_prediction(s: &setup::Setup) -> Compliance {
         prediction: Some(calibrate(&obs, &cv, s.noise().displacement_sd())),
         own_weight: None,
         region: Default::default(),
+        model_form: None,
     }
 }
 

@@ -23,6 +23,9 @@ pub struct Compliance {
     /// The postures it was identified from, as the region a prediction stays inside
     /// ([`crate::model::region`]).
     pub region: super::Region,
+    /// From a model comparison's posture bootstrap: the models the data support and their
+    /// resampled parameter sets ([`super::ModelForm`]), the error budget's model-form part.
+    pub model_form: Option<super::ModelForm>,
 }
 
 /// The deflection under the robot's own weight as a calibration fitted it
@@ -49,6 +52,7 @@ impl Compliance {
             prediction: None,
             own_weight: None,
             region: super::Region::NotIdentified,
+            model_form: None,
         }
     }
 

@@ -25,6 +25,7 @@
 mod compliance;
 mod family;
 pub(crate) mod file;
+pub mod form;
 mod law;
 pub mod prediction;
 pub mod region;
@@ -32,6 +33,7 @@ pub mod region;
 pub use compliance::{Compliance, OwnWeight};
 pub use family::{Family, FAMILIES};
 pub use file::{fragment, parse as parse_fragment};
+pub use form::{FormModel, ModelForm};
 pub use law::{Law, DEFAULT_SMOOTHING};
 pub use region::{PostureRange, Region};
 

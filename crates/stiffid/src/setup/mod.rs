@@ -370,6 +370,7 @@ impl Setup {
             prediction: None,
             own_weight: None,
             region: crate::model::Region::NotIdentified,
+            model_form: None,
         })
     }
 

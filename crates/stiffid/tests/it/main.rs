@@ -40,6 +40,7 @@ mod load_steps;
 mod load_steps_design;
 mod lsq;
 mod model_fits;
+mod model_form;
 mod model_prediction;
 mod models;
 mod mounting;

@@ -246,6 +246,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
             prediction: None,
             own_weight: None,
             region: Default::default(),
+            model_form: None,
         },
         &noise_free(&s, &s.model_compliance("t").unwrap().h, 4, 9),
     )

@@ -187,6 +187,7 @@ fn with_the_true_model_parameter_and_prediction_intervals_cover_at_their_level()
             prediction: Some(calibrate(&obs, &cv, s.noise().displacement_sd())),
             own_weight: None,
             region: Default::default(),
+            model_form: None,
         };
         let [a, b] = covered(&s, &c, &test, 0.95);
         (inside, all) = (inside + a, all + b);

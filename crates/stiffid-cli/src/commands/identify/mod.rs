@@ -74,6 +74,12 @@ pub struct Args {
     /// thread count (default 1).
     #[arg(long)]
     seed: Option<u64>,
+    /// With `--compare-models --bootstrap N`: also write a stiffness file, the setup's model
+    /// fitted to every posture with the models the data support and their resampled parameter
+    /// sets (`model_form`): `compensate --stiffness` takes their spread as its error budget's
+    /// model-form part.
+    #[arg(long, requires = "bootstrap")]
+    stiffness_out: Option<PathBuf>,
     /// Also write a report into this directory (created; must be missing, empty or hold an
     /// earlier identification report): the residuals' QQ plot against the noise, the folds'
     /// stability, the prediction intervals' held-out scores, the compared models.
@@ -104,6 +110,9 @@ pub fn run(args: &Args) -> Result<()> {
         .as_deref()
         .map(|p| OutFile::prepare(p, "--out"))
         .transpose()?;
+    let stiffness_out = (args.stiffness_out.as_deref())
+        .map(|p| OutFile::prepare(p, "--stiffness-out"))
+        .transpose()?;
     let report_dir = args
         .report
         .as_deref()
@@ -130,6 +139,11 @@ pub fn run(args: &Args) -> Result<()> {
         Report::Comparison(r) => {
             if let Some(out) = &out {
                 out.write(r.fragment().as_bytes())?;
+            }
+            if let (Some(out), Some(file)) = (&stiffness_out, r.stiffness_file(name, &setup)) {
+                let text = json(&file)?;
+                job::check_stiffness_file(&text, &setup, &output::flag)?;
+                out.write(text.as_bytes())?;
             }
             let doc = r.document(name);
             if let Some(dir) = report_dir {

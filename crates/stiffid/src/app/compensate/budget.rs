@@ -168,7 +168,8 @@ pub struct BudgetSummary {
     pub mean_bound_mm: Option<f64>,
     /// The parts absent somewhere (counted as 0 there): `compensation` without a covariance or
     /// prediction data in the stiffness file, `calibration` for a robot file without
-    /// `[held_out]`, `model_form` always (no stiffness file carries the compared models).
+    /// `[held_out]`, `model_form` without the stiffness file's `model_form` (the compared
+    /// models' resamples, `identify --compare-models --bootstrap N --stiffness-out`).
     pub absent: Vec<&'static str>,
     /// The points of largest bound (at most 10), largest first.
     pub worst: Vec<WorstPoint>,

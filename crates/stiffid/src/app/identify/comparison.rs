@@ -37,6 +37,11 @@ pub(super) struct Request<'a, R> {
 pub struct Report {
     /// The data's name (a file's, or `arrays`).
     pub data_name: String,
+    /// Where each measurement came from.
+    pub origin: crate::app::measurements::Origin,
+    /// The virtual springs of the setup's model, then the candidates: parameter `j >= 6` of
+    /// [`Comparison::parameters`] is `springs[j - 6]`.
+    pub springs: Vec<crate::model::Spring>,
     /// The selection path, every step, the recommendation and the nested estimate.
     pub comparison: Comparison,
     /// The candidates left out because the data could never identify them, with the reason.
@@ -59,6 +64,31 @@ impl Report {
             &self.dropped,
             self.bootstrap.as_ref(),
         )
+    }
+
+    /// The stiffness file of `stiffid identify --compare-models --bootstrap N --stiffness-out`
+    /// (`setup` named `setup_name` as given): the setup's model fitted to every posture, as
+    /// `identify` writes it, with the models the data support and their resampled parameter
+    /// sets (`model_form`, [`crate::io::stiffness::ModelFormSection`]); `None` without a
+    /// bootstrap.
+    pub fn stiffness_file(
+        &self,
+        setup_name: &str,
+        setup: &Setup,
+    ) -> Option<super::document::springs::Document> {
+        let b = self.bootstrap.as_ref()?;
+        let fit = super::springs::Report {
+            data_name: self.data_name.clone(),
+            method: super::Fit::LeastSquares,
+            fit: self.comparison.setup_fit.clone(),
+            origin: self.origin.clone(),
+            cross_validation: None,
+            prediction: None,
+            warnings: self.warnings.clone(),
+        };
+        let mut doc = super::document::springs::Document::new(&fit, setup_name, setup);
+        doc.model_form = Some(super::model_form::section(b, &self.springs));
+        Some(doc)
     }
 
     /// The recommended model as a `[model]` fragment to paste into the setup, with a comment
@@ -104,6 +134,8 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     })?;
     let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
+        springs: setup.model().with(&pool.candidates)?.springs().to_vec(),
+        origin,
         data_name,
         comparison,
         dropped: pool.dropped,

@@ -78,6 +78,12 @@ pub struct Spread {
 /// ascending) with their SI values ([`Spread::median`]).
 pub type Chosen = Vec<(usize, f64)>;
 
+/// A model one resample's data support ([`super::supported`]): its parameters (indices in
+/// [`Comparison::parameters`], the setup's model's first, then the springs in the order the
+/// selection added them) and the compliance-side value of each, SI (rad/Nm, m/N; a lost motion
+/// in rad or m, a load-dependent compliance in rad/Nm^2).
+pub type Supported = (Vec<usize>, Vec<f64>);
+
 /// The result of [`bootstrap`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bootstrap {
@@ -86,6 +92,9 @@ pub struct Bootstrap {
     /// Each resample's recommended model, by resample index; `None` when its data cannot
     /// identify it (module docs).
     pub models: Vec<Option<Chosen>>,
+    /// Each resample's supported models ([`Supported`]), by resample index; empty when its data
+    /// cannot identify its recommended model.
+    pub supported: Vec<Vec<Supported>>,
     /// The resamples whose data cannot identify their recommended model (module docs).
     pub unidentified: usize,
     /// The usable resamples whose recommended model is exactly the data's (the same parameters).
@@ -138,6 +147,21 @@ fn chosen(c: &Comparison) -> Option<Chosen> {
     Some(out)
 }
 
+/// The models `c`'s data support ([`Supported`]); none when its data do not identify its
+/// recommended model.
+fn supported(c: &Comparison) -> Vec<Supported> {
+    if !c.models[c.recommended].identified {
+        return Vec::new();
+    }
+    (super::supported(&c.models).into_iter())
+        .map(|i| {
+            let row = &c.models[i];
+            let h = row.stiffness.iter().map(|k| 1.0 / k).collect();
+            (row.parameter_indices.clone(), h)
+        })
+        .collect()
+}
+
 /// The measurements of resample `b` (module docs): postures drawn with replacement, each with
 /// all its measurements and its label.
 fn resample(postures: &[Vec<&Measurement>], seed: u64, b: usize) -> Vec<Measurement> {
@@ -176,17 +200,18 @@ pub fn bootstrap(
     }
     progress.begin("bootstrap resamples", resampling.resamples);
     let tally = Tally::new(progress);
-    let models: Vec<Option<Chosen>> = (0..resampling.resamples)
+    let (models, supported): (Vec<Option<Chosen>>, Vec<Vec<Supported>>) = (0..resampling.resamples)
         .into_par_iter()
         .map(|b| {
             let data = resample(&postures, resampling.seed, b);
-            let model = compare(setup, &data, candidates, false)
-                .ok()
-                .and_then(|c| chosen(&c));
+            let c = compare(setup, &data, candidates, false).ok();
             tally.add(1);
-            model
+            match c {
+                Some(c) => (chosen(&c), supported(&c)),
+                None => (None, Vec::new()),
+            }
         })
-        .collect();
+        .unzip();
     progress.end();
     let usable: Vec<&Chosen> = models.iter().flatten().collect();
     let mut exact: Vec<usize> = data.models[data.recommended].parameter_indices.clone();
@@ -204,6 +229,7 @@ pub fn bootstrap(
         recommended,
         parameters,
         models,
+        supported,
     })
 }
 

@@ -122,6 +122,8 @@ pub struct Comparison {
     /// The setup's model passes the model check against the tracker noise (p >= 0.01): no
     /// extension is needed.
     pub model_fits: bool,
+    /// The setup's model's fit to every posture.
+    pub setup_fit: Fit,
     /// The parameters of the setup's model followed by the candidates.
     pub parameters: Vec<crate::model::Parameter>,
     /// The most load levels (distinct wrenches) any posture of the data holds: 1 without load
@@ -252,6 +254,7 @@ pub fn compare(
         recommended_fit,
         nested,
         model_fits,
+        setup_fit: base_fit,
         parameters: model.parameters(),
         load_levels: load_levels(measurements),
     })
@@ -260,17 +263,25 @@ pub fn compare(
 /// The smallest model on the path within one standard error of the best held-out mean square
 /// (physical and identified), else the setup's model.
 fn recommend(models: &[Row]) -> usize {
+    supported(models).first().copied().unwrap_or(0)
+}
+
+/// The models the data support: the indices of the models on the path (physical and
+/// identified) whose held-out mean square is within one standard error of the best one's, the
+/// margin of the one-standard-error rule (module docs), smallest first.
+pub fn supported(models: &[Row]) -> Vec<usize> {
     let ok = |r: &Row| r.physical && r.identified;
     let best = models
         .iter()
         .filter(|r| ok(r))
         .filter_map(|r| r.held_out_mse)
         .min_by(|a, b| a.0.total_cmp(&b.0));
-    let Some((mse, se)) = best else { return 0 };
-    models
-        .iter()
-        .position(|r| ok(r) && r.held_out_mse.is_some_and(|m| m.0 <= mse + se))
-        .unwrap_or(0)
+    let Some((mse, se)) = best else {
+        return Vec::new();
+    };
+    (0..models.len())
+        .filter(|&i| ok(&models[i]) && models[i].held_out_mse.is_some_and(|m| m.0 <= mse + se))
+        .collect()
 }
 
 impl Problem<'_> {

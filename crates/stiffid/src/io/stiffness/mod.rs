@@ -34,14 +34,23 @@
 //! a posture outside it. A file without it is read, and nothing is checked
 //! ([`crate::model::Region::Unrecorded`]).
 //!
+//! The key `model_form` ([`ModelFormSection`], written by `identify --compare-models --bootstrap
+//! N --stiffness-out`) holds the models the data support and their resampled parameter sets:
+//! `compensate` takes their spread as its error budget's model-form part. A file without it is
+//! read, and the part is absent.
+//!
 //! A parameter `identify` could not separate from others carries `"identified": false` (the
 //! file's `unidentifiable` writes the combinations out): its stiffness is one of infinitely many
 //! that fit the data, so [`StiffnessFile::compliance`] refuses the file rather than predict with it.
 
 mod covariance;
+mod model_form;
 mod sections;
 
 pub use covariance::{check_covariance, check_covariance_of};
+pub use model_form::{
+    FormLaw, FormModelSection, FormSpring, ModelFormSection, MAX_MODEL_FORM_SETS,
+};
 pub use sections::{
     FoldSection, GravitySection, GravityTerm, PredictionSection, RegionSection, MAX_GRAVITY_TERMS,
 };
@@ -154,6 +163,11 @@ pub struct StiffnessFile {
     /// posture outside it. A file without it is read, and nothing is checked (said once).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub region: Option<RegionSection>,
+    /// Optional: the models the data support and their resampled parameter sets (as `identify
+    /// --compare-models --bootstrap N --stiffness-out` writes them); `compensate`'s model-form
+    /// part. A file without it is read, and the part is absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model_form: Option<ModelFormSection>,
 }
 
 /// One parameter's stiffness in a stiffness file.
@@ -248,6 +262,7 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
         "unidentifiable",
         "gravity",
         "region",
+        "model_form",
     ];
     if let Some(key) =
         (keys.keys()).find(|k| !ours.contains(&k.as_str()) && !DOCUMENT_KEYS.contains(&k.as_str()))
@@ -263,6 +278,9 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
     }
     if let Some(r) = &file.region {
         r.check()?;
+    }
+    if let Some(m) = &file.model_form {
+        m.check()?;
     }
     match &file.parameters {
         Some(parameters) => {
@@ -438,7 +456,15 @@ impl StiffnessFile {
             prediction: self.prediction.as_ref().map(PredictionSection::calibration),
             own_weight: self.gravity.as_ref().map(GravitySection::own_weight),
             region: self.region(),
+            model_form: self.model_form(model)?,
         })
+    }
+
+    /// The models of its `model_form`, the drives in `model`'s coordinates.
+    fn model_form(&self, model: &Model) -> Result<Option<crate::model::ModelForm>> {
+        (self.model_form.as_ref())
+            .map(|m| m.form(model.coordinates()))
+            .transpose()
     }
 
     /// The region of its identification postures: [`Region::Unrecorded`] when the file does
@@ -469,6 +495,7 @@ impl StiffnessFile {
         Ok(Compliance {
             own_weight: self.gravity.as_ref().map(GravitySection::own_weight),
             region: self.region(),
+            model_form: self.model_form(model)?,
             ..Compliance::drives(k.map(|v| 1.0 / v), cov)
         })
     }

@@ -20,8 +20,15 @@
 //! - `force`: the sensitivity to the force model: a wrench off by the fraction `f` (default
 //!   [`DEFAULT_FORCE_TOLERANCE`], +-20%) moves the loaded tool by `f |d|` (the deflection is
 //!   linear in the wrench), which the compensation does not remove.
-//! - `model_form`: the spread of the deflection over the models the data support; no stiffness
-//!   file carries a comparison's models, so it is absent (`None`) today.
+//! - `model_form`: the spread of the deflection over the models the data support: with a
+//!   stiffness file's `model_form` ([`crate::model::ModelForm`], the posture bootstrap of the
+//!   model comparison), the `level` percentile ([`percentile`]) of `|t_s - t|` over every
+//!   resampled parameter set `s` of every supported model, `t_s` the TCP translation the set
+//!   predicts under the point's wrench and `t` the one the compensation removes: what the
+//!   compensation leaves when the truth is one of the models the data support. A set of the
+//!   compensation's own model scatters by its parameters' uncertainty too, which the
+//!   `compensation` part also counts: the sum is conservative. Absent (`None`) without a
+//!   `model_form`.
 //!
 //! The bound is `left + force + model_form + sqrt(compensation^2 + calibration^2)`: the two
 //! random, independent parts at the same level combined in quadrature (JCGM 100:2008, the GUM,
@@ -30,10 +37,12 @@
 //! uncorrected bias", J. Res. NIST 102(5), the `U + |delta|` rule). An absent part counts as 0
 //! and is named absent.
 
+use crate::identify::compare::bootstrap::percentile;
 use crate::model::prediction::Deflection;
-use crate::model::Compliance;
+use crate::model::{Compliance, ModelForm};
 use crate::observation::deflection::PointDeflection;
-use nalgebra::{DMatrix, Matrix3};
+use crate::robot::kinematics::Frames;
+use nalgebra::{DMatrix, Matrix3, Vector3, Vector6};
 use statrs::distribution::{ChiSquared, ContinuousCDF, Normal};
 
 /// The default relative error of the process force model: +-20%.
@@ -106,6 +115,45 @@ impl Budget {
                 false => a,
             })
     }
+}
+
+/// A TCP's deflection under a wrench ([`PointDeflection`], which it dereferences to) and the
+/// model-form part of its budget.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Deflected {
+    /// The deflection under the compensation's model.
+    pub point: PointDeflection,
+    /// The model-form part at the level, m ([`model_form`]); `None` without a `model_form`.
+    pub model_form: Option<f64>,
+}
+
+impl std::ops::Deref for Deflected {
+    type Target = PointDeflection;
+    fn deref(&self) -> &PointDeflection {
+        &self.point
+    }
+}
+
+/// The model-form part at `level` (module docs): the `level` percentile of `|t_s - t|` over the
+/// sets of `form` at the posture `frames`, under `wrench` (base frame) at the tool point `tcp`
+/// (flange frame, m), `t` (m, base frame) the translation the compensation removes; `None`
+/// when `form` holds no set.
+pub fn model_form(
+    form: &ModelForm,
+    frames: &Frames,
+    tcp: &Vector3<f64>,
+    wrench: &Vector6<f64>,
+    t: &Vector3<f64>,
+    level: f64,
+) -> Option<f64> {
+    let mut e: Vec<f64> = (form.translations(frames, tcp, wrench).iter())
+        .map(|s| (s - t).norm())
+        .collect();
+    if e.is_empty() {
+        return None;
+    }
+    e.sort_by(f64::total_cmp);
+    Some(percentile(&e, level))
 }
 
 /// The `level` quantile of `|e|` for `e ~ N(0, c)` (`c` 3x3, symmetric positive semi-definite):

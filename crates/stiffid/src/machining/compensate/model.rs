@@ -110,14 +110,14 @@ impl<'a> Model<'a> {
 
     /// The error budget ([`super::Budget`]) of a point whose deflection under its wrench is `d`,
     /// compensated to the residual `left` (m).
-    pub fn budget(&self, d: &PointDeflection, left: f64) -> super::Budget {
+    pub fn budget(&self, d: &super::budget::Deflected, left: f64) -> super::Budget {
         let held = self.arm.robot().held_out();
         super::Budget::new(
             left,
             super::budget::compensation(d, self.compliance, self.level),
             held.map(|h| h.quantile(self.level)),
             self.force_tolerance * d.displacement.fixed_rows::<3>(0).norm(),
-            None,
+            d.model_form,
         )
     }
 
@@ -170,12 +170,28 @@ impl<'a> Model<'a> {
         frames: &Frames,
         wrench: &Vector6<f64>,
     ) -> (Vector6<f64>, Option<(Vector6<f64>, f64)>) {
-        let d = self.tcp_deflection(frames, wrench);
+        let d = self.point_deflection(frames, wrench);
         (d.displacement, self.std(&d))
     }
 
+    /// The TCP's deflection in the posture `frames` under `wrench` (base frame), with the
+    /// model-form part of its budget when the compliance carries a `model_form`.
+    pub(super) fn tcp_deflection(
+        &self,
+        frames: &Frames,
+        wrench: &Vector6<f64>,
+    ) -> super::budget::Deflected {
+        let point = self.point_deflection(frames, wrench);
+        let model_form = self.compliance.model_form.as_ref().and_then(|form| {
+            let t = point.displacement.fixed_rows::<3>(0).into_owned();
+            let tcp = &self.arm.tool().tcp;
+            super::budget::model_form(form, frames, tcp, wrench, &t, self.level)
+        });
+        super::budget::Deflected { point, model_form }
+    }
+
     /// The TCP's deflection in the posture `frames` under `wrench` (base frame).
-    pub(super) fn tcp_deflection(&self, frames: &Frames, wrench: &Vector6<f64>) -> PointDeflection {
+    fn point_deflection(&self, frames: &Frames, wrench: &Vector6<f64>) -> PointDeflection {
         let tcp = &self.arm.tool().tcp;
         let points = Points {
             arm: self.arm,

@@ -9,7 +9,7 @@ use crate::app::identify::springs::Report;
 use crate::common::warning::Warning;
 use crate::identify::compare::document::{fit_doc, FitDoc};
 use crate::identify::cross_validation::CrossValidation;
-use crate::io::stiffness::{PredictionSection, RegionSection};
+use crate::io::stiffness::{ModelFormSection, PredictionSection, RegionSection};
 use crate::model::Parameter;
 use crate::Setup;
 use nalgebra::DVector;
@@ -55,6 +55,11 @@ pub struct Document {
     /// The region of axis angles the data's postures span, widened by a margin (the stiffness
     /// file's `region`, [`crate::io::stiffness::RegionSection`]).
     pub region: Option<RegionSection>,
+    /// With `--compare-models --bootstrap N --stiffness-out`: the models the data support and
+    /// their resampled parameter sets (the stiffness file's `model_form`,
+    /// [`crate::io::stiffness::ModelFormSection`]); left out otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_form: Option<ModelFormSection>,
     /// Results to look at before trusting them.
     pub warnings: Vec<Warning>,
 }
@@ -149,6 +154,7 @@ impl Document {
                 &report.origin,
             ),
             region: region(&report.origin),
+            model_form: None,
             warnings: report.warnings.clone(),
         }
     }
