@@ -108,3 +108,37 @@ fn a_free_station_on_a_fixed_base_is_refused_naming_the_option() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn a_calibration_campaign_refuses_a_station_given_twice_naming_it() {
+    let dir = temp_dir("track-twice");
+    let out = dir.join("campaign.csv");
+    let setup = example("track/track-cell.toml");
+    let o = stiffid(&[
+        "select",
+        "--setup",
+        &setup,
+        "--for",
+        "calibration",
+        "--global",
+        "--postures",
+        "6",
+        "--station",
+        "500,0,0",
+        "--station",
+        "3000,0,0",
+        "--station",
+        "500,0,0",
+        "--seed",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--station") && err.contains("station 3 repeats station 1"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

@@ -116,6 +116,17 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
         .compliance(s.model())
         .unwrap();
     let form = compliance.model_form.as_ref().unwrap();
+    // A set's value beyond any robot's compliance (or not a number) is refused, naming it.
+    let mut bad: serde_json::Value = serde_json::from_str(&text).unwrap();
+    bad["model_form"]["models"][0]["compliance_si"][0][0] = serde_json::json!(1e300);
+    let error = stiffid::io::stiffness::parse(&bad.to_string())
+        .and_then(|f| f.compliance(s.model()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("model_form.models[1].compliance_si[1]") && error.contains("at most 1"),
+        "{error}"
+    );
     let counts: Vec<usize> = form.models.iter().map(|m| m.sets.len()).collect();
     println!("sets {counts:?}");
     assert_eq!(form.models.len(), 2, "{counts:?}");

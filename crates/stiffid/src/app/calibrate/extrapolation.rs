@@ -31,7 +31,10 @@ pub(super) fn warning(
     let missed: Vec<usize> = (0..held.len().min(calibrated.errors.len()))
         .filter(|&i| {
             calibrated.errors[i].error.norm() > limit
-                && nominal.errors.get(i).is_some_and(|e| e.error.norm() <= limit)
+                && nominal
+                    .errors
+                    .get(i)
+                    .is_some_and(|e| e.error.norm() <= limit)
         })
         .collect();
     let worst = *missed.iter().max_by(|&&a, &&b| {
@@ -91,4 +94,77 @@ fn outside(fitted: &[Observation], q: &Vector6<f64>) -> String {
         joint_list(joints.iter().map(|&(j, _)| j)),
         angles.join(", ")
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrology::calibration::validation::PointError;
+    use nalgebra::Vector3;
+
+    fn observation(posture: usize, q_deg: [f64; 6]) -> Observation {
+        Observation {
+            posture,
+            point: 0,
+            q: Vector6::from(q_deg.map(f64::to_radians)),
+            measured: Vector3::zeros(),
+            wrench: Vector6::zeros(),
+            e: Default::default(),
+            table: false,
+            direction: Vector6::zeros(),
+        }
+    }
+
+    fn errors(lengths_mm: &[f64]) -> Validation {
+        Validation::new(
+            (lengths_mm.iter().enumerate())
+                .map(|(posture, &l)| PointError {
+                    posture,
+                    point: 0,
+                    error: Vector3::new(0.0, l * 1e-3, 0.0),
+                })
+                .collect(),
+        )
+    }
+
+    /// Two fitted postures span joint 4 over -100..70 deg and joint 6 over -90..0 deg; the second
+    /// held-out posture turns both beyond and the calibration misses it by 110 mm.
+    fn case(nominal_mm: f64) -> Option<Warning> {
+        let fitted = [
+            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
+            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
+        ];
+        let held = [
+            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
+            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
+        ];
+        let labels = ["D1".to_string(), "D414".to_string()];
+        warning(
+            ("held.csv", false),
+            (&fitted, &held),
+            &labels,
+            (&errors(&[0.3, 110.0]), &errors(&[1.1, nominal_mm])),
+            0.02,
+        )
+    }
+
+    #[test]
+    fn names_the_posture_and_the_joints_outside_the_fitted_range() {
+        let w = case(2.0).expect("the calibration misses a reading the nominal robot explains");
+        assert_eq!(w.kind, WarningKind::Extrapolation);
+        for part in [
+            "1 held-out reading more than 20 mm off",
+            "posture D414, point 1, 110.0 mm against 2.000 mm nominal",
+            "joints 4, 6 outside the fitted postures' range: 193.0 deg against -100.0 to 70.0 deg, 90.0 deg against -90.0 to 0.0 deg",
+        ] {
+            assert!(w.message.contains(part), "{part}\n{}", w.message);
+        }
+        assert!(!w.message.contains("--reregister"), "{}", w.message);
+    }
+
+    #[test]
+    fn is_silent_when_the_nominal_robot_misses_the_reading_too() {
+        // A reading of another robot: the gate refuses it, this warning has nothing to add.
+        assert!(case(30.0).is_none());
+    }
 }

@@ -558,7 +558,8 @@ fn held_out(
             .collect()
     };
     refuse_implausible(&readings, &data, None, &unloaded(&held.nominal))?;
-    let limit = crate::metrology::register::residual_limit(request.readings.setup.noise().reading_sd());
+    let limit =
+        crate::metrology::register::residual_limit(request.readings.setup.noise().reading_sd());
     warnings.extend(extrapolation::warning(
         (name, !request.reregister),
         (fitted, &obs),

@@ -40,7 +40,7 @@ pub(super) fn is_campaign(r: &Request) -> bool {
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Station`]) with a pool, a target or the candidates,
-/// or fewer than two postures per station; the station's errors (as `select` at a station);
+/// fewer than two postures per station, or a station given twice; the station's errors (as `select` at a station);
 /// those of [`purpose::design`] and the searches; a campaign that does not separate the
 /// calibration's parameters.
 pub(super) fn campaign(r: &Request) -> Result<Report> {
@@ -56,6 +56,18 @@ pub(super) fn campaign(r: &Request) -> Result<Report> {
         return Err(refuse(format!(
             "a calibration over {count} stations reads at least 2 postures at each: give at least {} postures, or fewer stations",
             2 * count
+        )));
+    }
+    let repeated = (1..count).find_map(|k| {
+        (0..k)
+            .find(|&j| r.stations[j] == r.stations[k])
+            .map(|j| (j, k))
+    });
+    if let Some((j, k)) = repeated {
+        return Err(refuse(format!(
+            "station {} repeats station {}: a campaign deals its postures over distinct stations",
+            k + 1,
+            j + 1
         )));
     }
     let options = r.calibration.of(r.purpose);

@@ -49,7 +49,7 @@ mod sections;
 
 pub use covariance::{check_covariance, check_covariance_of};
 pub use model_form::{
-    FormLaw, FormModelSection, FormSpring, ModelFormSection, MAX_MODEL_FORM_SETS,
+    FormLaw, FormModelSection, FormSpring, ModelFormSection, MAX_COMPLIANCE_SI, MAX_MODEL_FORM_SETS,
 };
 pub use sections::{
     FoldSection, GravitySection, GravityTerm, PredictionSection, RegionSection, MAX_GRAVITY_TERMS,

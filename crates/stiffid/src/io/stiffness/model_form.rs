@@ -22,6 +22,11 @@ use serde::{Deserialize, Serialize};
 /// largest bootstrap ([`limits::MAX_BOOTSTRAP`]), ten models each.
 pub const MAX_MODEL_FORM_SETS: usize = 20_000;
 
+/// The largest magnitude of a parameter set's value (SI: rad/Nm for a drive or a rotation
+/// spring, m/N for a translation, rad/Nm^2 for a load-dependent law): a stiffness of 1 Nm/rad,
+/// 1e-3 N/mm, softer than any robot's ([`limits::STIFFNESS_NM_PER_RAD`]).
+pub const MAX_COMPLIANCE_SI: f64 = 1.0;
+
 /// The models the data support and their resampled parameter sets (module docs).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
@@ -135,7 +140,7 @@ impl ModelFormSection {
     /// [`crate::Error::InvalidField`] naming the field (`model_form.models[2].compliance_si[4]`):
     /// more than [`MAX_MODEL_FORM_SETS`] sets, a spring that is not one (as a setup's
     /// `[model]` checks it) or is not among `springs`, a set without one finite value per
-    /// parameter.
+    /// parameter or with a value beyond [`MAX_COMPLIANCE_SI`].
     pub fn form(&self, coordinates: Coordinates) -> Result<ModelForm> {
         let sets: usize = self.models.iter().map(|m| m.compliance_si.len()).sum();
         limits::check_count("model_form.compliance_si", sets, 0, MAX_MODEL_FORM_SETS)?;
@@ -158,11 +163,11 @@ impl ModelFormSection {
                     .collect::<Result<Vec<_>>>()?;
                 let model = Model::new(coordinates, own)?;
                 let sets = (m.compliance_si.iter().enumerate())
-                    .map(|(k, h)| match h.len() == model.len() && h.iter().all(|v| v.is_finite()) {
+                    .map(|(k, h)| match h.len() == model.len() && h.iter().all(|v| v.abs() <= MAX_COMPLIANCE_SI) {
                         true => Ok(DVector::from_column_slice(h)),
                         false => Err(invalid(
                             format!("{field}.compliance_si[{}]", k + 1),
-                            format!("expected {} finite values, the six drives' then the springs' in order", model.len()),
+                            format!("expected {} finite values of magnitude at most {MAX_COMPLIANCE_SI} (rad/Nm, m/N, rad/Nm^2), the six drives' then the springs' in order", model.len()),
                         )),
                     })
                     .collect::<Result<Vec<_>>>()?;

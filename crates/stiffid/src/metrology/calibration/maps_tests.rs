@@ -153,14 +153,14 @@ fn from_50_postures_the_choice_keeps_no_map_without_one_and_finds_a_weak_one() {
     // out, in 9 of 10.
     let seeds = 40usize;
     let none = (0..seeds as u64)
-        .filter(|&s| choose(0.0, 50, 200 + s).0.harmonics == [0; 6])
+        .filter(|&s| choose(0.0, 50, 200 + s).0.maps.harmonics == [0; 6])
         .count();
     assert!(none * 10 >= seeds * 9, "no map in {none} of {seeds} seeds");
     let seeds = 10usize;
     let found = (0..seeds as u64)
         .filter(|&s| {
             let (choice, nested) = choose(1e-4, 50, 300 + s);
-            choice.harmonics[1] > 0 && nested.rms < nested.none_rms
+            choice.maps.harmonics[1] > 0 && nested.rms < nested.none_rms
         })
         .count();
     assert!(found * 10 >= seeds * 9, "found in {found} of {seeds} seeds");
