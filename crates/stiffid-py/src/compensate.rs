@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeToolAxis, Objective, Options, PathPoint,
+    Aggregate, Compensated, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -42,7 +42,11 @@ use stiffid::observation::deflection::Frame;
 /// ``bound_compensation_mm``, ``bound_calibration_mm``, ``bound_force_mm`` (the force model's
 /// relative error ``force_tolerance_percent``) and ``bound_model_form_mm`` (``(n,)``, ``nan``
 /// where absent); ``max_error_mm`` refuses (``ValueError``) a path whose bound exceeds it
-/// anywhere, naming its worst points and what dominates their bound. ``map=True`` adds ``map``:
+/// anywhere, naming its worst points and what dominates their bound. On a robot on a track,
+/// ``free_station_mm=R`` moves the track up to ``+-R`` mm from a path file's own ``e1_mm`` at
+/// every point, in ``station_step_mm`` steps (also the most it moves between points), chosen
+/// with the free tool axis by one dynamic programme (as ``compensate --free-station-mm``).
+/// ``map=True`` adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'
 /// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
 /// (``(g,)``), ``chosen_deg`` (``(n,)``: the rotation chosen), ``bound_mm``, ``deflection_mm``,
@@ -68,7 +72,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false, free_station_mm=None, station_step_mm=10.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -95,6 +99,8 @@ pub fn compensate<'py>(
     force_tolerance_percent: f64,
     objective: &str,
     map: bool,
+    free_station_mm: Option<f64>,
+    station_step_mm: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name_length = crate::count::optional("name_length", name_length)?;
     let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;
@@ -113,6 +119,11 @@ pub fn compensate<'py>(
     let aggregate = objective.parse::<Aggregate>().map_err(raise)?;
     if let Some(free) = options.free_tool_axis.as_mut() {
         free.aggregate = aggregate;
+    }
+    if let Some(range) = free_station_mm {
+        let free = options.free_tool_axis.as_ref();
+        options.free_station =
+            Some(FreeStation::try_with(range, station_step_mm, free, aggregate).map_err(raise)?);
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),

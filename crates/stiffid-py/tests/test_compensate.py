@@ -126,3 +126,25 @@ def test_the_scene_of_a_compensation_document_is_the_reports(milling, cli, tmp_p
         "--out", tmp_path / "c.csv", "--report", tmp_path / "report", parse=False)
     assert scene.glb() == (tmp_path / "report" / "path.glb").read_bytes()
     assert "error remaining after compensation" in drawn["path_error"]
+
+
+def test_a_free_track_station_equals_the_command(cli, tmp_path):
+    """The trim line along the rail of the track example: the station free within +-1500 mm in
+    50 mm steps, the worst bound minimised, as `compensate --free-station-mm` chooses it."""
+    setup = REPO / "examples" / "track" / "track-cell.toml"
+    stiffness = REPO / "examples" / "milling" / "kuka-stiffness.json"
+    path = REPO / "examples" / "track" / "trim.csv"
+    options = ["--free-station-mm", "1500", "--station-step-mm", "50", "--objective", "max"]
+    out = tmp_path / "trim.csv"
+    theirs = cli("compensate", "--setup", setup, "--stiffness", stiffness, "--path", path,
+                 "--out", out, "--json", *options)["points"]
+    cell = stiffid.Setup.from_file(setup)
+    mine = stiffid.compensate(cell, path, stiffness, free_station_mm=1500.0, station_step_mm=50.0,
+                              objective="max")
+    np.testing.assert_allclose(mine["bound_mm"], [p["bound_mm"] for p in theirs], rtol=1e-12)
+    np.testing.assert_allclose(mine["q_compensated_deg"],
+                               column(theirs, *[f"qc{i}_deg" for i in range(1, 7)]), atol=1e-12)
+    own = stiffid.compensate(cell, path, stiffness, objective="max")
+    assert mine["bound_mm"].max() < 0.7 * own["bound_mm"].max()
+    with pytest.raises(ValueError, match="station-step-mm|station_step_mm"):
+        stiffid.compensate(cell, path, stiffness, free_station_mm=100.0, station_step_mm=0.0)

@@ -385,15 +385,13 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
         });
     }
     if let Some(range) = args.free_station_mm {
-        let station = FreeStation::try_from_mm(range, args.station_step_mm)?;
-        let objective = options
-            .free_tool_axis
-            .map_or(Objective::Bound, |f| f.objective);
-        options.free_station = Some(FreeStation {
-            objective,
-            aggregate: args.objective,
-            ..station
-        });
+        let free = options.free_tool_axis.as_ref();
+        options.free_station = Some(FreeStation::try_with(
+            range,
+            args.station_step_mm,
+            free,
+            args.objective,
+        )?);
     }
     Ok(options)
 }

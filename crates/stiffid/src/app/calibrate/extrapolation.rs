@@ -20,7 +20,7 @@ const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
 /// nominal robot's errors (`nominal`, aligned with them) stay within it; `None` otherwise. It names
 /// the worst such reading's posture (`labels`) and the joints whose angle there lies outside the
 /// range of the `fitted` observations' angles; with `moved` (the tracker not registered anew on
-/// the held-out readings) it says the tracker may have moved.
+/// the held-out readings) and most readings missed, it says the tracker may have moved.
 pub(super) fn warning(
     (name, moved): (&str, bool),
     (fitted, held): (&[Observation], &[Observation]),
@@ -55,7 +55,8 @@ pub(super) fn warning(
             calibrated.errors[worst].error.norm() * 1e3,
             nominal.errors[worst].error.norm() * 1e3,
             outside(fitted, &obs.q),
-            match moved {
+            // A moved tracker shifts every reading, not a few.
+            match moved && 2 * missed.len() > held.len() {
                 true => " (or the tracker moved since the fitted readings: --reregister registers it on the held-out ones)",
                 false => "",
             },
@@ -129,7 +130,7 @@ mod tests {
 
     /// Two fitted postures span joint 4 over -100..70 deg and joint 6 over -90..0 deg; the second
     /// held-out posture turns both beyond and the calibration misses it by 110 mm.
-    fn case(nominal_mm: f64) -> Option<Warning> {
+    fn case(nominal_mm: f64, moved: bool) -> Option<Warning> {
         let fitted = [
             observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
             observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
@@ -140,7 +141,7 @@ mod tests {
         ];
         let labels = ["D1".to_string(), "D414".to_string()];
         warning(
-            ("held.csv", false),
+            ("held.csv", moved),
             (&fitted, &held),
             &labels,
             (&errors(&[0.3, 110.0]), &errors(&[1.1, nominal_mm])),
@@ -150,7 +151,8 @@ mod tests {
 
     #[test]
     fn names_the_posture_and_the_joints_outside_the_fitted_range() {
-        let w = case(2.0).expect("the calibration misses a reading the nominal robot explains");
+        let w =
+            case(2.0, false).expect("the calibration misses a reading the nominal robot explains");
         assert_eq!(w.kind, WarningKind::Extrapolation);
         for part in [
             "1 held-out reading more than 20 mm off",
@@ -160,11 +162,14 @@ mod tests {
             assert!(w.message.contains(part), "{part}\n{}", w.message);
         }
         assert!(!w.message.contains("--reregister"), "{}", w.message);
+        // Without --reregister, one reading of two missed is no moved tracker either.
+        let w = case(2.0, true).unwrap();
+        assert!(!w.message.contains("--reregister"), "{}", w.message);
     }
 
     #[test]
     fn is_silent_when_the_nominal_robot_misses_the_reading_too() {
         // A reading of another robot: the gate refuses it, this warning has nothing to add.
-        assert!(case(30.0).is_none());
+        assert!(case(30.0, false).is_none());
     }
 }

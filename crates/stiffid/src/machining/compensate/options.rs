@@ -228,6 +228,25 @@ impl FreeStation {
         })
     }
 
+    /// [`FreeStation::try_from_mm`] minimising what the free tool axis `free` given with it
+    /// minimises (the bound without one), its points' costs added up by `aggregate`: the options
+    /// of `compensate --free-station-mm` and Python's `free_station_mm=`.
+    ///
+    /// # Errors
+    /// Those of [`FreeStation::try_from_mm`].
+    pub fn try_with(
+        free_station_mm: f64,
+        station_step_mm: f64,
+        free: Option<&FreeToolAxis>,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        Ok(Self {
+            objective: free.map_or(Objective::Bound, |f| f.objective),
+            aggregate,
+            ..Self::try_from_mm(free_station_mm, station_step_mm)?
+        })
+    }
+
     /// The offsets from the path's own station, m, ascending, `0` among them:
     /// `k max_step` for `|k| <= floor(range / max_step)`.
     pub(super) fn offsets(&self) -> Vec<f64> {
