@@ -365,3 +365,24 @@ fn the_surge_objective_needs_masses_and_a_drilling_exit() {
         "drilling exit",
     );
 }
+
+#[test]
+fn a_robot_without_masses_gives_no_operation_dynamics() {
+    // The FANUC preset has no masses: no point has a surge or a frequency, and the program's
+    // list of operation dynamics is empty (not one entry per operation claiming a singularity).
+    let s = setup::builtin("fanuc-r2000ic-165f")
+        .unwrap()
+        .to_builder()
+        .with_tcp(Vector3::new(0.0, 0.0, 0.25))
+        .with_workpiece(Isometry3::translation(1.3, -0.7, 0.4))
+        .build()
+        .unwrap();
+    assert!(dynamics::mass_model(s.arm()).0.is_none());
+    let text = format!("{HEADER}T1\nG0 X0 Y0 Z5\nG1 Z-2 F600\nG1 X30\nG1 X60 Y10\n");
+    let (report, rows) = compensate(&s, &text, &process(6000.0));
+    assert!(rows.iter().all(|(_, _, d)| d.first_frequency.is_none()));
+    assert!(report.program.as_ref().unwrap().dynamics.is_empty());
+    // The same program on the robot with masses has the milling operation's entry.
+    let (report, _) = compensate(&massive(), &text, &process(6000.0));
+    assert_eq!(report.program.as_ref().unwrap().dynamics.len(), 1);
+}

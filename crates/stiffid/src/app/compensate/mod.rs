@@ -310,12 +310,16 @@ where
                 .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
                 .collect();
             warnings.extend(mass_warning);
-            let (operation_dynamics, chatter) = dynamics::operations(
-                &process,
-                &compensated.points,
-                &compensated.operations,
-                &point_dynamics,
-            );
+            // Without masses no point has dynamics: the document's list is empty (its docs).
+            let (operation_dynamics, chatter) = match &masses {
+                Some(_) => dynamics::operations(
+                    &process,
+                    &compensated.points,
+                    &compensated.operations,
+                    &point_dynamics,
+                ),
+                None => (Vec::new(), Vec::new()),
+            };
             warnings.extend(chatter);
             let (text, subprograms) = match (output, &program) {
                 (Language::Robot(d), Program::GCode(g)) => {
