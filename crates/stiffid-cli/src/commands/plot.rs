@@ -63,7 +63,7 @@ pub fn run(args: &Args) -> Result<()> {
     // The figures are drawn at once: a spinner while they are drawn and written.
     let bars = Bars::new(false);
     bars.begin("figures", 0);
-    let written = figures::postures::each(&setup, &group).and_then(|figures| {
+    let written = figures::all(&stiffid_figures::postures::each(&setup, &group)).and_then(|figures| {
         for f in &figures {
             dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
             dir.write(&format!("{}.png", f.name), &f.png)?;

@@ -52,18 +52,11 @@ pub struct View<'a> {
 /// Writes every file of the report into `dir`, each whole; `summary.json` first, so the
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
-    let summary = &view.report.summary;
-    let sample: Vec<Compensated> = summary.sample.iter().map(|(_, c)| c.clone()).collect();
-    let mut figures = vec![
-        figures::path::deflection(&sample)?,
-        figures::path::path(setup, &sample)?,
-    ];
-    if let Some(p) = &view.document.program {
-        figures.push(figures::machining::force(&summary.sample)?);
-        figures.push(figures::machining::segments(&p.segments)?);
-    }
+    let sample = stiffid_figures::compensate::sample(view.report);
+    let drawings =
+        stiffid_figures::compensate::figures(setup, &sample, view.report, view.document);
+    let figures = figures::all(&drawings)?;
     if let Some(map) = &view.report.map {
-        figures.push(figures::map::figure(map)?);
         dir.write(MAP_CSV, figures::map::csv(map).as_bytes())?;
     }
     dir.write_with(FILES[0], view.summary)?;

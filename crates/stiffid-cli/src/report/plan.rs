@@ -48,11 +48,11 @@ struct Plan<'a> {
 impl Plan<'_> {
     /// Every figure of the plan: the group, each posture, and the target curve if any.
     fn figures(&self) -> Result<Vec<Figure>> {
-        let mut all = figures::postures::each(self.setup, self.postures)?;
+        let mut all = stiffid_figures::postures::each(self.setup, self.postures);
         if let Some(t) = self.target {
-            all.push(figures::target::figure(t)?);
+            all.push(stiffid_figures::target::figure(t));
         }
-        Ok(all)
+        figures::all(&all)
     }
 }
 

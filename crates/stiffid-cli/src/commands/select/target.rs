@@ -1,7 +1,7 @@
 //! `select --target-pct X`: the figure of the group sizes tried and their text.
 
 use crate::output::OutFile;
-use crate::report::figures::target as figure;
+use crate::report::figures::render;
 use anyhow::Result;
 use std::path::Path;
 use stiffid::design::target::TargetOutcome;
@@ -18,7 +18,7 @@ pub fn files(out: &Path) -> Result<[OutFile; 2]> {
 
 /// Writes the figure of the group sizes tried into the [`files`].
 pub fn write_figure(files: &[OutFile; 2], outcome: &TargetOutcome) -> Result<()> {
-    let f = figure::figure(outcome)?;
+    let f = render(&stiffid_figures::target::figure(outcome))?;
     files[0].write(f.svg.as_bytes())?;
     files[1].write(&f.png)
 }
