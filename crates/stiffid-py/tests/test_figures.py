@@ -76,6 +76,7 @@ def test_plan_figures_are_the_reports(cli, tmp_path):
         stiffid.figures(plan)
 
 
+@pytest.mark.filterwarnings("ignore::UserWarning")
 def test_compensation_figures_are_the_reports(cli, tmp_path):
     """compensate(..., figures=True) returns compensate --report's figures, byte for byte: on a
     path with the free tool axis and its map, and on a program with its process."""
