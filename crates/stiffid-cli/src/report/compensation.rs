@@ -3,7 +3,7 @@
 //! `figures/` (SVG and PNG). It reads the job's document ([`Document`]) and, for the figures, the
 //! sample of points the job kept ([`Report::summary`]).
 
-use super::figures::{self, Figure};
+use super::figures::{self, Figure, Png};
 use super::html::{page, Writer};
 use super::tables::{num, Table};
 use crate::output::{Fill, ReportDir};
@@ -55,7 +55,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     let sample = stiffid_figures::compensate::sample(view.report);
     let drawings =
         stiffid_figures::compensate::figures(setup, &sample, view.report, view.document);
-    let figures = figures::all(&drawings)?;
+    let figures = figures::all(&drawings, Png::No)?;
     if let Some(map) = &view.report.map {
         dir.write(MAP_CSV, figures::map::csv(map).as_bytes())?;
     }
@@ -64,10 +64,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
         std::io::copy(&mut std::fs::File::open(view.csv)?, w).map(drop)
     };
     dir.write_with(FILES[1], &csv)?;
-    for f in &figures {
-        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
-        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
-    }
+    dir.write_all(&figures::files(&figures))?;
     let scene = stiffid::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),

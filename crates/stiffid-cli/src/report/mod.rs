@@ -76,11 +76,7 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
     ));
     texts.push((FILES[2].into(), markdown::report(report, &doc, figures)));
     texts.push((FILES[3].into(), html::report(report, &doc, figures)));
-    let mut files: Vec<(String, &[u8])> = Vec::new();
-    for f in figures {
-        files.push((format!("figures/{}.svg", f.name), f.svg.as_bytes()));
-        files.push((format!("figures/{}.png", f.name), &f.png));
-    }
+    let mut files = figures::files(figures);
     files.extend(
         texts
             .iter()

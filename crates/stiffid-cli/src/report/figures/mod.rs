@@ -1,4 +1,5 @@
-//! The report's figures ([`stiffid_figures`]), each drawn into SVG (inline in the HTML) and PNG.
+//! The report's figures ([`stiffid_figures`]), each drawn into SVG (inline in the HTML page and
+//! in `figures/`) and, where a Markdown file or a figure command needs one, PNG.
 
 pub mod map;
 
@@ -14,27 +15,55 @@ pub struct Figure {
     pub caption: String,
     /// The SVG document.
     pub svg: String,
-    /// The PNG image.
-    pub png: Vec<u8>,
+    /// The PNG image, when asked for ([`Png::Also`]).
+    pub png: Option<Vec<u8>>,
 }
 
-/// Draws `drawing` into SVG and PNG.
-pub fn render(drawing: &Drawing) -> Result<Figure> {
+/// Whether a figure is also drawn as PNG: for the reproduce report's Markdown and the figure
+/// commands (`plot`, `select --target-pct` without `--report`), never only for a page that shows
+/// its SVG inline (the bitmap and its encoding were a quarter of a report's time).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Png {
+    /// SVG only.
+    No,
+    /// SVG and PNG.
+    Also,
+}
+
+/// Draws `drawing` into SVG and, if `png` says so, PNG.
+pub fn render(drawing: &Drawing, png: Png) -> Result<Figure> {
     let name = &drawing.name;
+    let png = match png {
+        Png::Also => Some(drawing.plot.png().with_context(|| format!("figure {name}"))?),
+        Png::No => None,
+    };
     Ok(Figure {
         name: name.clone(),
         caption: drawing.caption.clone(),
         svg: drawing.plot.svg()?,
-        png: drawing.plot.png().with_context(|| format!("figure {name}"))?,
+        png,
     })
 }
 
-/// Every drawing of `drawings` rendered, in order; drawn in parallel.
-pub fn all(drawings: &[Drawing]) -> Result<Vec<Figure>> {
-    drawings.par_iter().map(render).collect()
+/// Every drawing of `drawings` rendered ([`render`]), in order; drawn in parallel.
+pub fn all(drawings: &[Drawing], png: Png) -> Result<Vec<Figure>> {
+    drawings.par_iter().map(|d| render(d, png)).collect()
 }
 
-/// A shared figure ([`stiffid_figures`]) drawn into SVG and PNG.
+/// A shared figure ([`stiffid_figures`]) drawn into SVG only (a report page's).
 pub fn shared(f: &stiffid_figures::Figure) -> Result<Figure> {
-    render(&Drawing::new(&f.name, &f.caption, &f.chart))
+    render(&Drawing::new(&f.name, &f.caption, &f.chart), Png::No)
+}
+
+/// The files of `figures` in `figures/`: each SVG and each PNG drawn, paths relative to the
+/// report's directory.
+pub fn files(figures: &[Figure]) -> Vec<(String, &[u8])> {
+    let mut out: Vec<(String, &[u8])> = Vec::new();
+    for f in figures {
+        out.push((format!("figures/{}.svg", f.name), f.svg.as_bytes()));
+        if let Some(png) = &f.png {
+            out.push((format!("figures/{}.png", f.name), png));
+        }
+    }
+    out
 }
