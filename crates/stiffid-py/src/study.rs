@@ -99,6 +99,7 @@ const RATES: [&str; 4] = [
 /// and ``postures_<group>`` per group.
 #[pyfunction]
 #[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20, solver="auto", figures=false))]
+#[allow(clippy::too_many_arguments)]
 pub fn reproduce<'py>(
     py: Python<'py>,
     setup: Option<&Setup>,

@@ -53,8 +53,7 @@ pub struct View<'a> {
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     let sample = stiffid_figures::compensate::sample(view.report);
-    let drawings =
-        stiffid_figures::compensate::figures(setup, &sample, view.report, view.document);
+    let drawings = stiffid_figures::compensate::figures(setup, &sample, view.report, view.document);
     let figures = figures::all(&drawings, Png::No)?;
     if let Some(map) = &view.report.map {
         dir.write(MAP_CSV, figures::map::csv(map).as_bytes())?;

@@ -66,11 +66,7 @@ pub fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
 ///
 /// # Errors
 /// A file that cannot be written.
-pub fn write(
-    dir: ReportDir,
-    files: Vec<(String, Vec<u8>)>,
-    figures: Vec<Figure>,
-) -> Result<()> {
+pub fn write(dir: ReportDir, files: Vec<(String, Vec<u8>)>, figures: Vec<Figure>) -> Result<()> {
     dir.write_all(&files)?;
     dir.write_all(&figures::files(&figures))?;
     dir.finish()

@@ -17,7 +17,12 @@ use stiffid::Setup;
 /// The results of the points the job's summary kept for the figures ([`Report::summary`]'s
 /// `sample`, every k-th point), in path order.
 pub fn sample(report: &Report) -> Vec<Compensated> {
-    report.summary.sample.iter().map(|(_, c)| c.clone()).collect()
+    report
+        .summary
+        .sample
+        .iter()
+        .map(|(_, c)| c.clone())
+        .collect()
 }
 
 /// Every figure of the compensation on `setup` whose job returned `report` and `document`, in

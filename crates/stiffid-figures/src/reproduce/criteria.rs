@@ -1,8 +1,8 @@
 //! Does the criterion predict accuracy? Every design criterion of every group against the group's
 //! measured average deviation rate, one panel per criterion, with Spearman's rank correlation.
 
-use crate::{colour, failed, short, Drawing, Plot};
 use super::{criteria_values, CRITERIA};
+use crate::{colour, failed, short, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -34,7 +34,12 @@ pub enum Png {
 pub fn render(drawing: &Drawing, png: Png) -> Result<Figure> {
     let name = &drawing.name;
     let png = match png {
-        Png::Also => Some(drawing.plot.png().with_context(|| format!("figure {name}"))?),
+        Png::Also => Some(
+            drawing
+                .plot
+                .png()
+                .with_context(|| format!("figure {name}"))?,
+        ),
         Png::No => None,
     };
     Ok(Figure {
