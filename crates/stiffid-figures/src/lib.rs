@@ -1,17 +1,26 @@
 //! The figures of stiffid's reports, drawn with plotters (pure Rust) onto any of its backends:
-//! what the command writes into its reports (SVG inline in the HTML, and PNG) and what the Python
-//! package returns as SVG strings. The calibration's and the identification's figures are built
-//! from their jobs' JSON documents ([`calibrate`], [`identify`]; the documents' schemas in
-//! `docs/schemas`), so both front ends draw the same figure from the same document.
+//! what the command writes into its reports (SVG inline in the HTML, PNG beside the reproduce
+//! report's Markdown) and what the Python package returns as SVG strings. The calibration's and
+//! the identification's figures are built from their jobs' JSON documents ([`calibrate`],
+//! [`identify`]; the documents' schemas in `docs/schemas`); those of a plan ([`postures`],
+//! [`target`]), a compensation ([`compensate`]) and the paper's study ([`reproduce`]) from the
+//! library's objects the jobs return, as [`Drawing`]s drawn when a front end asks. Both front
+//! ends draw the same figure from the same document or objects.
 //!
 //! Why a crate of its own: the library (`stiffid`) computes and owns the documents and draws
 //! nothing; the command and the Python package both render, and one renderer serves both.
 
 #![deny(missing_docs)]
 
+pub mod axes;
 pub mod calibrate;
 pub mod chart;
+pub mod compensate;
+pub mod drawing;
 pub mod identify;
+pub mod postures;
+pub mod reproduce;
+pub mod target;
 
 use anyhow::{anyhow, bail, Result};
 use plotters::coord::Shift;
@@ -20,6 +29,7 @@ use plotters::style::{register_font, FontStyle};
 use std::sync::OnceLock;
 
 pub use chart::{Chart, Mark};
+pub use drawing::{png, Draw, Drawing};
 
 /// DejaVu Sans (Bitstream Vera license, `assets/DejaVuSans-LICENSE.txt`): the font text is
 /// measured and drawn with.
@@ -48,6 +58,16 @@ pub trait Plot {
     fn size(&self) -> (u32, u32);
     /// Draws onto the whole area.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>;
+}
+
+impl<P: Plot> Plot for &P {
+    fn size(&self) -> (u32, u32) {
+        (*self).size()
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        (*self).draw(root)
+    }
 }
 
 /// A figure to draw: its file stem, caption and chart.

@@ -52,6 +52,11 @@ use stiffid::observation::deflection::Frame;
 /// (``(g,)``), ``chosen_deg`` (``(n,)``: the rotation chosen), ``bound_mm``, ``deflection_mm``,
 /// ``condition`` and ``limit_distance_deg`` (``(n, g)``, ``nan`` where the turned pose is not
 /// reached).
+/// ``figures=True`` adds ``figures``: the figures of ``compensate --report`` as SVG documents
+/// (str) keyed by name, byte for byte its ``figures/<name>.svg``: ``deflection`` (the TCP
+/// deflection along the path before and after, with its band), ``path`` (the path over the
+/// robot, side and top views), for a program ``force`` and ``segments``, with ``map=True``
+/// ``map``.
 /// Returns a dict of arrays with one row per path point, in path order: ``line`` (the file's line
 /// numbers, ``int64``), ``q_deg`` and ``q_compensated_deg`` (``(n, 6)``, deg), ``deflection_mm``
 /// and ``deflection_mrad`` (``(n, 3)``, base frame, the TCP under the wrench), ``force_n``
@@ -72,7 +77,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false, free_station_mm=None, station_step_mm=10.0))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false, free_station_mm=None, station_step_mm=10.0, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -101,6 +106,7 @@ pub fn compensate<'py>(
     map: bool,
     free_station_mm: Option<f64>,
     station_step_mm: f64,
+    figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name_length = crate::count::optional("name_length", name_length)?;
     let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;
@@ -216,10 +222,13 @@ pub fn compensate<'py>(
         let column = dynamics.iter().map(|v| v[k].unwrap_or(f64::NAN));
         out.set_item(*name, arrays::vec1(py, column))?;
     }
-    out.set_item(
-        "document",
-        to_python(py, &Document::new(&report, &names, rows), &[])?,
-    )?;
+    let document = Document::new(&report, &names, rows);
+    out.set_item("document", to_python(py, &document, &[])?)?;
+    if figures {
+        let sample = stiffid_figures::compensate::sample(&report);
+        let drawings = stiffid_figures::compensate::figures(s, &sample, &report, &document);
+        out.set_item("figures", crate::figures::svgs(py, &drawings)?)?;
+    }
     if let Some(p) = &report.program {
         out.set_item("program", &p.text)?;
         let subprograms = PyDict::new(py);

@@ -157,7 +157,7 @@ fn plan_scene(
 }
 
 /// A plan document's postures (`postures[].q_deg`), rad.
-fn plan_postures(d: &Value) -> PyResult<Vec<Vector6<f64>>> {
+pub(crate) fn plan_postures(d: &Value) -> PyResult<Vec<Vector6<f64>>> {
     let list = d["postures"].as_array().into_iter().flatten();
     list.enumerate()
         .map(|(i, p)| {

@@ -93,9 +93,13 @@ const RATES: [&str; 4] = [
 /// ``Setup.evaluate``, ``mean_deviation_pct``, ``std_deviation_pct``, ``predicted_deviation_pct``,
 /// ``mean_stiffness_nm_per_rad`` (``(levels, 6)``), ``average_deviation_pct``,
 /// ``validation_error_mm``), ``start_trials`` and ``findings`` (in numbers and in words); the
-/// arrays as NumPy arrays.
+/// arrays as NumPy arrays. ``figures=True`` adds ``figures``: the figures of ``stiffid
+/// reproduce``'s report as SVG documents (str) keyed by name, byte for byte its
+/// ``figures/<name>.svg``: ``deviation_vs_noise``, ``table4_level2``, ``criteria_vs_deviation``
+/// and ``postures_<group>`` per group.
 #[pyfunction]
-#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20, solver="auto"))]
+#[pyo3(signature = (setup=None, runs=200, seed=1, starts=16, trials=20, solver="auto", figures=false))]
+#[allow(clippy::too_many_arguments)]
 pub fn reproduce<'py>(
     py: Python<'py>,
     setup: Option<&Setup>,
@@ -104,6 +108,7 @@ pub fn reproduce<'py>(
     starts: i64,
     trials: i64,
     solver: &str,
+    figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let seed = crate::count::seed("seed", seed)?;
     let options = Options {
@@ -128,7 +133,12 @@ pub fn reproduce<'py>(
     };
     let report = py.detach(|| job_reproduce::run(&request)).map_err(raise)?;
     warn(py, &report.warnings)?;
-    study_document(py, &report)
+    let out = study_document(py, &report)?;
+    if figures {
+        let drawings = stiffid_figures::reproduce::figures(&report.study);
+        out.set_item("figures", crate::figures::svgs(py, &drawings)?)?;
+    }
+    Ok(out)
 }
 
 /// The keys of a study's group returned as NumPy arrays, besides [`RATES`].

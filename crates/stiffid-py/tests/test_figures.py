@@ -1,12 +1,20 @@
-"""figures: the SVG figures of a calibration and an identification, drawn from their documents,
-are byte for byte the figures the command's reports write for the same call."""
+"""figures: the SVG figures of a calibration, an identification and a plan, drawn from their
+documents, and those a compensation and the study return, are byte for byte the figures the
+command's reports write for the same call."""
 
 import numpy as np
 import pytest
 
 import stiffid
-from conftest import FANUC_DATA, plain
+from conftest import FANUC_DATA, REPO, plain
 from test_calibrate import SETUP, campaign  # noqa: F401 (the fixture)
+from test_plan import CELL, command_plan
+
+MILLING = REPO / "examples" / "milling" / "fanuc-milling.toml"
+MILLING_PATH = REPO / "examples" / "milling" / "path.csv"
+MILLING_STIFFNESS = REPO / "examples" / "milling" / "stiffness.json"
+POCKET = REPO / "examples" / "milling" / "pocket.nc"
+PROCESS = REPO / "examples" / "milling" / "aluminium.toml"
 
 
 def test_calibration_figures_are_the_reports(paper, cli, campaign, tmp_path):  # noqa: F811
@@ -47,3 +55,50 @@ def test_other_documents_are_refused():
         stiffid.figures({"setup": "x"})
     with pytest.raises(stiffid.InputError, match="is not part of a document"):
         stiffid.figures({"errors": [object()], "geometry": "full"})
+
+
+def report_figures(directory):
+    """Every figures/<name>.svg of a report directory, keyed by name."""
+    return {p.stem: p.read_text() for p in sorted((directory / "figures").glob("*.svg"))}
+
+
+def test_plan_figures_are_the_reports(cli, tmp_path):
+    """A plan's figures from its document and setup are select --report's, byte for byte; the
+    postures drawn are the document's (one numbered label per posture)."""
+    (tmp_path / "cell.toml").write_text(CELL)
+    cell = stiffid.Setup.from_file(tmp_path / "cell.toml")
+    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--postures", 6)
+    figures = stiffid.figures(plan, setup=cell)
+    assert list(figures) == ["postures"] + [f"posture_{i:02}" for i in range(1, 7)]
+    assert figures == report_figures(tmp_path / "plan")
+    assert stiffid.figures(stiffid.plan(cell, chosen), setup=cell) == figures
+    with pytest.raises(stiffid.InputError, match="setup: a plan's figures"):
+        stiffid.figures(plan)
+
+
+@pytest.mark.filterwarnings("ignore::UserWarning")
+def test_compensation_figures_are_the_reports(cli, tmp_path):
+    """compensate(..., figures=True) returns compensate --report's figures, byte for byte: on a
+    path with the free tool axis and its map, and on a program with its process."""
+    milling = stiffid.Setup.from_file(MILLING)
+    cli("compensate", "--setup", MILLING, "--stiffness", MILLING_STIFFNESS, "--path", MILLING_PATH,
+        "--free-tool-axis", "--map", "--out", tmp_path / "c.csv", "--report", tmp_path / "r", parse=False)
+    mine = stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS, free_tool_axis=True, map=True, figures=True)
+    assert list(mine["figures"]) == ["deflection", "path", "map"]
+    assert mine["figures"] == report_figures(tmp_path / "r")
+    assert "figures" not in stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS)
+    setup = stiffid.Setup.from_file(MILLING)
+    cli("compensate", "--setup", MILLING, "--stiffness", MILLING_STIFFNESS, "--program", POCKET,
+        "--process", PROCESS, "--out", tmp_path / "p.nc", "--report", tmp_path / "p", parse=False)
+    mine = stiffid.compensate(setup, stiffness=MILLING_STIFFNESS, program=POCKET, process=PROCESS, figures=True)
+    assert list(mine["figures"]) == ["deflection", "path", "force", "segments"]
+    assert mine["figures"] == report_figures(tmp_path / "p")
+
+
+def test_study_figures_are_the_reports(cli, tmp_path):
+    """reproduce(..., figures=True) returns the report's figures of the same small study."""
+    cli("reproduce", "--out", tmp_path / "r", "--runs", 5, "--starts", 1, "--trials", 2, parse=False)
+    mine = stiffid.reproduce(runs=5, starts=1, trials=2, figures=True)
+    names = ["deviation_vs_noise", "table4_level2", "criteria_vs_deviation"]
+    assert list(mine["figures"]) == names + [f"postures_{g['name']}" for g in mine["groups"]]
+    assert mine["figures"] == report_figures(tmp_path / "r")

@@ -3,7 +3,7 @@
 use crate::load;
 use crate::output::{self, ReportDir};
 use crate::progress::Bars;
-use crate::report::figures;
+use crate::report::figures::{self, Png};
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 use stiffid::Progress;
@@ -63,13 +63,16 @@ pub fn run(args: &Args) -> Result<()> {
     // The figures are drawn at once: a spinner while they are drawn and written.
     let bars = Bars::new(false);
     bars.begin("figures", 0);
-    let written = figures::postures::each(&setup, &group).and_then(|figures| {
-        for f in &figures {
-            dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
-            dir.write(&format!("{}.png", f.name), &f.png)?;
-        }
-        Ok(figures)
-    });
+    let written = figures::all(&stiffid_figures::postures::each(&setup, &group), Png::Also)
+        .and_then(|figures| {
+            for f in &figures {
+                dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
+                if let Some(png) = &f.png {
+                    dir.write(&format!("{}.png", f.name), png)?;
+                }
+            }
+            Ok(figures)
+        });
     bars.end();
     let figures = written?;
     dir.finish()?;

@@ -73,7 +73,10 @@ pub fn run(args: &Args) -> Result<()> {
     let mut report = job::run(&request)?;
     output::warnings(&report.warnings);
     bars.begin("figures", 1);
-    let figures = figures::all(&report.study)?;
+    let figures = figures::all(
+        &stiffid_figures::reproduce::figures(&report.study),
+        figures::Png::Also,
+    )?;
     bars.end();
     report.study.elapsed_s = started.elapsed().as_secs_f64();
     report::write(out, &report, &figures)?;

@@ -3,7 +3,7 @@
 //! `figures/` (SVG and PNG). It reads the job's document ([`Document`]) and, for the figures, the
 //! sample of points the job kept ([`Report::summary`]).
 
-use super::figures::{self, Figure};
+use super::figures::{self, Figure, Png};
 use super::html::{page, Writer};
 use super::tables::{num, Table};
 use crate::output::{Fill, ReportDir};
@@ -52,18 +52,10 @@ pub struct View<'a> {
 /// Writes every file of the report into `dir`, each whole; `summary.json` first, so the
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
-    let summary = &view.report.summary;
-    let sample: Vec<Compensated> = summary.sample.iter().map(|(_, c)| c.clone()).collect();
-    let mut figures = vec![
-        figures::path::deflection(&sample)?,
-        figures::path::path(setup, &sample)?,
-    ];
-    if let Some(p) = &view.document.program {
-        figures.push(figures::machining::force(&summary.sample)?);
-        figures.push(figures::machining::segments(&p.segments)?);
-    }
+    let sample = stiffid_figures::compensate::sample(view.report);
+    let drawings = stiffid_figures::compensate::figures(setup, &sample, view.report, view.document);
+    let figures = figures::all(&drawings, Png::No)?;
     if let Some(map) = &view.report.map {
-        figures.push(figures::map::figure(map)?);
         dir.write(MAP_CSV, figures::map::csv(map).as_bytes())?;
     }
     dir.write_with(FILES[0], view.summary)?;
@@ -71,10 +63,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
         std::io::copy(&mut std::fs::File::open(view.csv)?, w).map(drop)
     };
     dir.write_with(FILES[1], &csv)?;
-    for f in &figures {
-        dir.write(&format!("figures/{}.svg", f.name), f.svg.as_bytes())?;
-        dir.write(&format!("figures/{}.png", f.name), &f.png)?;
-    }
+    dir.write_all(&figures::files(&figures))?;
     let scene = stiffid::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),

@@ -48,7 +48,7 @@ impl Kind {
     }
 }
 
-/// The shared figures `shared` drawn into SVG and PNG, in parallel.
+/// The shared figures `shared` drawn into SVG, in parallel.
 ///
 /// # Errors
 /// A figure that cannot be drawn.
@@ -61,20 +61,13 @@ pub fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
     figures.iter().find(|f| f.name == name)
 }
 
-/// Writes `files` (each a path relative to `dir` and its bytes) and every figure's SVG and PNG
-/// into `figures/`, then ends the report ([`ReportDir::finish`]).
+/// Writes `files` (each a path relative to `dir` and its bytes) and every figure's SVG into
+/// `figures/`, then ends the report ([`ReportDir::finish`]).
 ///
 /// # Errors
 /// A file that cannot be written.
-pub fn write(
-    dir: ReportDir,
-    mut files: Vec<(String, Vec<u8>)>,
-    figures: Vec<Figure>,
-) -> Result<()> {
-    for f in figures {
-        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
-        files.push((format!("figures/{}.png", f.name), f.png));
-    }
+pub fn write(dir: ReportDir, files: Vec<(String, Vec<u8>)>, figures: Vec<Figure>) -> Result<()> {
     dir.write_all(&files)?;
+    dir.write_all(&figures::files(&figures))?;
     dir.finish()
 }

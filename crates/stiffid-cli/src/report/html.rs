@@ -60,11 +60,12 @@ impl Writer for Html {
             .strip_prefix("<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
             .unwrap_or(svg);
         self.0 += &format!(
-            "<figure id=\"{}\">\n{}\n<figcaption>{} <span class=\"files\">(figures/{}.svg, .png)</span></figcaption>\n</figure>\n",
+            "<figure id=\"{}\">\n{}\n<figcaption>{} <span class=\"files\">(figures/{}.svg{})</span></figcaption>\n</figure>\n",
             figure.name,
             svg.trim(),
             inline(&figure.caption),
-            figure.name
+            figure.name,
+            if figure.png.is_some() { ", .png" } else { "" }
         );
     }
     fn scene(&mut self, scene: &Scene, glb: &str) {

@@ -21,43 +21,9 @@ use std::path::Path;
 use stiffid::app::reproduce::document::Summary;
 use stiffid::app::reproduce::Report;
 use stiffid::app::simulate::document::deviation_csv;
-use stiffid::design::Evaluation;
 use stiffid::io::postures;
-use stiffid::study::criterion_values;
 
-/// The design criteria in reports, keyed as in `stiffid evaluate`, with what they measure.
-pub const CRITERIA: [(&str, &str); 7] = [
-    (
-        "classical",
-        "max k(J_N) over the postures (the paper's classical index)",
-    ),
-    (
-        "zhang2021",
-        "classical x cond(Psi) (the paper's novel index)",
-    ),
-    ("scaled_cond", "cond(Psi diag(h) / sigma), scale-free"),
-    (
-        "d_optimal",
-        "geometric mean relative std of the compliances at level 1",
-    ),
-    (
-        "relative_a",
-        "RMS relative std of the compliances at level 1",
-    ),
-    (
-        "test_pose_mm",
-        "RMS error of the deflection predicted at the test postures, mm",
-    ),
-    ("cond_psi", "cond(Psi) in SI units"),
-];
-
-/// The values of [`CRITERIA`] of one group, in that order (the library's [`criterion_values`],
-/// `test_pose_mm` in mm).
-pub fn criteria_values(e: &Evaluation) -> [(&'static str, f64); 7] {
-    let mut v = criterion_values(e);
-    v[5] *= 1e3;
-    std::array::from_fn(|i| (CRITERIA[i].0, v[i]))
-}
+pub use stiffid_figures::reproduce::{criteria_values, CRITERIA};
 
 /// Opens the report directory `dir` (given with `option`) before the computation (see
 /// [`ReportDir::prepare`]): a non-empty directory only if it holds an earlier report of
@@ -110,11 +76,7 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
     ));
     texts.push((FILES[2].into(), markdown::report(report, &doc, figures)));
     texts.push((FILES[3].into(), html::report(report, &doc, figures)));
-    let mut files: Vec<(String, &[u8])> = Vec::new();
-    for f in figures {
-        files.push((format!("figures/{}.svg", f.name), f.svg.as_bytes()));
-        files.push((format!("figures/{}.png", f.name), &f.png));
-    }
+    let mut files = figures::files(figures);
     files.extend(
         texts
             .iter()

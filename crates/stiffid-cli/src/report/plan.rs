@@ -4,7 +4,7 @@
 //! operator needs to carry the experiment out in their cell.
 
 use super::content::Writer;
-use super::figures::{self, Figure};
+use super::figures::{self, Figure, Png};
 use super::html;
 use super::tables::{num, Table};
 use crate::output::{json, ReportDir};
@@ -48,11 +48,11 @@ struct Plan<'a> {
 impl Plan<'_> {
     /// Every figure of the plan: the group, each posture, and the target curve if any.
     fn figures(&self) -> Result<Vec<Figure>> {
-        let mut all = figures::postures::each(self.setup, self.postures)?;
+        let mut all = stiffid_figures::postures::each(self.setup, self.postures);
         if let Some(t) = self.target {
-            all.push(figures::target::figure(t)?);
+            all.push(stiffid_figures::target::figure(t));
         }
-        Ok(all)
+        figures::all(&all, Png::No)
     }
 }
 
@@ -106,17 +106,14 @@ pub fn write(
     let page = html::page(&title, GENERATOR, |w| {
         compose(&plan.doc, &figures, &scene, provenance, w);
     });
-    let mut files = vec![
+    let files = vec![
         ("plan.html".to_string(), page.into_bytes()),
         ("plan.glb".into(), glb::glb(&scene)),
         ("plan.csv".into(), plan.doc.csv().into_bytes()),
         ("plan.json".into(), json(&plan.doc)?.into_bytes()),
     ];
-    for f in figures {
-        files.push((format!("figures/{}.svg", f.name), f.svg.into_bytes()));
-        files.push((format!("figures/{}.png", f.name), f.png));
-    }
     dir.write_all(&files)?;
+    dir.write_all(&figures::files(&figures))?;
     dir.finish()
 }
 

@@ -172,10 +172,12 @@ fn the_milling_example_is_compensated_with_a_report() {
         "summary.json",
         "compensation.csv",
         "figures/deflection.svg",
-        "figures/path.png",
+        "figures/path.svg",
     ] {
         assert!(report.join(file).is_file(), "{file}");
     }
+    // The page shows each figure's SVG inline: no PNG copy is drawn for it.
+    assert!(!report.join("figures/path.png").exists());
     let html = std::fs::read_to_string(report.join("report.html")).unwrap();
     assert!(html.contains("<svg") && !html.contains("src=\"http"));
     // Again into the same report directory: it is ours, so it may be rewritten.
@@ -362,7 +364,7 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
         std::fs::read_to_string(&csv).unwrap().lines().count(),
         points.len() + 1
     );
-    for f in ["figures/force.svg", "figures/segments.png", "report.html"] {
+    for f in ["figures/force.svg", "figures/segments.svg", "report.html"] {
         assert!(report.join(f).is_file(), "{f}");
     }
     let html = std::fs::read_to_string(report.join("report.html")).unwrap();

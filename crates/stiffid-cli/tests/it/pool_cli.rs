@@ -292,10 +292,7 @@ fn report_and_plot_write_figures_that_decode() {
             &plan.join("figures").join(format!("{name}.svg")),
             (1200, 560),
         );
-        assert_eq!(
-            png_size(&plan.join("figures").join(format!("{name}.png"))),
-            (1200, 560)
-        );
+        assert!(!plan.join("figures").join(format!("{name}.png")).exists());
     }
 
     let figs = d.join("figs");

@@ -261,8 +261,9 @@ def reproduce(
     starts: int = 16,
     trials: int = 20,
     solver: Literal["auto", "slsqp", "active-set"] = "auto",
+    figures: bool = False,
 ) -> dict[str, Any]:
-    """The document of `stiffid reproduce`'s summary.json; levels, test_deflection_mm and each group's postures and deviation rates as NumPy arrays."""
+    """The document of `stiffid reproduce`'s summary.json; levels, test_deflection_mm and each group's postures and deviation rates as NumPy arrays; with figures=True, figures: the report's figures as SVG strings keyed by name."""
 def compensate(
     setup: Setup,
     path: Optional[Union[str, os.PathLike[str]]] = None,
@@ -290,8 +291,9 @@ def compensate(
     map: bool = False,
     free_station_mm: Optional[float] = None,
     station_step_mm: float = 10.0,
+    figures: bool = False,
 ) -> dict[str, Any]:
-    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg, surge_before_mm_s (n,; the last with free_tool_axis) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); bound_mm, bound_left_mm, bound_compensation_mm, bound_calibration_mm, bound_force_mm, bound_model_form_mm (n,; NaN where a part is absent); map (with map=True: line, tool_rotation_deg, chosen_deg, bound_mm, deflection_mm, condition, limit_distance_deg (n, g)); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=."""
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg, surge_before_mm_s (n,; the last with free_tool_axis) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); bound_mm, bound_left_mm, bound_compensation_mm, bound_calibration_mm, bound_force_mm, bound_model_form_mm (n,; NaN where a part is absent); map (with map=True: line, tool_rotation_deg, chosen_deg, bound_mm, deflection_mm, condition, limit_distance_deg (n, g)); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=; figures (with figures=True: the report's figures as SVG strings keyed by name)."""
 
 def process_force(
     process: Union[str, os.PathLike[str]],
@@ -376,8 +378,8 @@ def deflection(
 ) -> list[dict[str, Any]]:
     """The predict document of each posture of q_deg ((6,) or (n, 6)) under wrench ((6,) or (n, 6)), each equal to `stiffid predict --json` (loaded_mm became at_mm; observed_mm was removed: every measuring point and the TCP are in each document)."""
 
-def figures(document: Any) -> dict[str, str]:
-    """The figures of a calibration (the dict calibrate() returns) or an identification (the dict identify() returns, or a model comparison) as SVG strings keyed by name, as `calibrate --report` and `identify --report` draw them."""
+def figures(document: Any, setup: Optional[Setup] = None) -> dict[str, str]:
+    """The figures of a calibration (the dict calibrate() returns), an identification (the dict identify() returns, or a model comparison) or a plan (the dict plan() returns, with its setup) as SVG strings keyed by name, as `calibrate --report`, `identify --report` and `select --report` draw them."""
 
 def register(
     setup: Setup,

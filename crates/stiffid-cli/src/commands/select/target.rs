@@ -1,7 +1,7 @@
 //! `select --target-pct X`: the figure of the group sizes tried and their text.
 
 use crate::output::OutFile;
-use crate::report::figures::target as figure;
+use crate::report::figures::{render, Png};
 use anyhow::Result;
 use std::path::Path;
 use stiffid::design::target::TargetOutcome;
@@ -18,9 +18,9 @@ pub fn files(out: &Path) -> Result<[OutFile; 2]> {
 
 /// Writes the figure of the group sizes tried into the [`files`].
 pub fn write_figure(files: &[OutFile; 2], outcome: &TargetOutcome) -> Result<()> {
-    let f = figure::figure(outcome)?;
+    let f = render(&stiffid_figures::target::figure(outcome), Png::Also)?;
     files[0].write(f.svg.as_bytes())?;
-    files[1].write(&f.png)
+    files[1].write(f.png.as_deref().unwrap_or_default())
 }
 
 /// The group sizes tried and their worst joint, in words.

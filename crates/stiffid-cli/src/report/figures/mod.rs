@@ -1,20 +1,11 @@
-//! The report's figures, each drawn once through plotters into SVG (inline in the HTML) and PNG.
+//! The report's figures ([`stiffid_figures`]), each drawn into SVG (inline in the HTML page and
+//! in `figures/`) and, where a Markdown file or a figure command needs one, PNG.
 
-pub mod chart;
-pub mod criteria;
-pub mod deviation;
-pub mod machining;
 pub mod map;
-pub mod path;
-pub mod postures;
-pub mod table;
-pub mod target;
 
 use anyhow::{Context, Result};
-use plotters::prelude::*;
 use rayon::prelude::*;
-use stiffid::study::Study;
-pub use stiffid_figures::{colour, failed, short, Plot};
+use stiffid_figures::Drawing;
 
 /// A rendered figure.
 pub struct Figure {
@@ -24,58 +15,60 @@ pub struct Figure {
     pub caption: String,
     /// The SVG document.
     pub svg: String,
-    /// The PNG image.
-    pub png: Vec<u8>,
+    /// The PNG image, when asked for ([`Png::Also`]).
+    pub png: Option<Vec<u8>>,
 }
 
-/// Draws `plot` into SVG and PNG.
-pub fn render(name: &str, caption: &str, plot: &impl Plot) -> Result<Figure> {
-    let (w, h) = plot.size();
-    let svg = stiffid_figures::svg(plot)?;
-    let mut rgb = vec![255u8; (w * h * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(failed)?;
-        plot.draw(&root)?;
-        root.present().map_err(failed)?;
-    }
+/// Whether a figure is also drawn as PNG: for the reproduce report's Markdown and the figure
+/// commands (`plot`, `select --target-pct` without `--report`), never only for a page that shows
+/// its SVG inline (the bitmap and its encoding were a quarter of a report's time).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Png {
+    /// SVG only.
+    No,
+    /// SVG and PNG.
+    Also,
+}
+
+/// Draws `drawing` into SVG and, if `png` says so, PNG.
+pub fn render(drawing: &Drawing, png: Png) -> Result<Figure> {
+    let name = &drawing.name;
+    let png = match png {
+        Png::Also => Some(
+            drawing
+                .plot
+                .png()
+                .with_context(|| format!("figure {name}"))?,
+        ),
+        Png::No => None,
+    };
     Ok(Figure {
-        name: name.to_string(),
-        caption: caption.to_string(),
-        svg,
-        png: encode_png(&rgb, w, h).with_context(|| format!("figure {name}"))?,
+        name: name.clone(),
+        caption: drawing.caption.clone(),
+        svg: drawing.plot.svg()?,
+        png,
     })
 }
 
-/// The PNG of an RGB image: fast compression with adaptive row filters. On the report's figures
-/// that is 40x faster than `Best` (then a fifth of `stiffid reproduce`) for files 1.4x larger.
-fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>> {
-    let mut out = Vec::new();
-    let mut encoder = png::Encoder::new(&mut out, w, h);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_compression(png::Compression::Fast);
-    encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(rgb)?;
-    writer.finish()?;
-    Ok(out)
+/// Every drawing of `drawings` rendered ([`render`]), in order; drawn in parallel.
+pub fn all(drawings: &[Drawing], png: Png) -> Result<Vec<Figure>> {
+    drawings.par_iter().map(|d| render(d, png)).collect()
 }
 
-/// Every figure of the report, in report order; drawn in parallel.
-pub fn all(study: &Study) -> Result<Vec<Figure>> {
-    (0..3 + study.groups.len())
-        .into_par_iter()
-        .map(|i| match i {
-            0 => deviation::figure(study),
-            1 => table::figure(study),
-            2 => criteria::figure(study),
-            _ => postures::figure(study, i - 3),
-        })
-        .collect()
-}
-
-/// A shared figure ([`stiffid_figures`]) drawn into SVG and PNG.
+/// A shared figure ([`stiffid_figures`]) drawn into SVG only (a report page's).
 pub fn shared(f: &stiffid_figures::Figure) -> Result<Figure> {
-    render(&f.name, &f.caption, &f.chart)
+    render(&Drawing::new(&f.name, &f.caption, &f.chart), Png::No)
+}
+
+/// The files of `figures` in `figures/`: each SVG and each PNG drawn, paths relative to the
+/// report's directory.
+pub fn files(figures: &[Figure]) -> Vec<(String, &[u8])> {
+    let mut out: Vec<(String, &[u8])> = Vec::new();
+    for f in figures {
+        out.push((format!("figures/{}.svg", f.name), f.svg.as_bytes()));
+        if let Some(png) = &f.png {
+            out.push((format!("figures/{}.png", f.name), png));
+        }
+    }
+    out
 }

@@ -1,7 +1,7 @@
 //! The chart every line figure of a report draws on: a caption, `x` and `y` ranges, the axes
 //! named, the `y` labels in short numbers, no light grid lines.
 
-use super::{failed, short};
+use crate::{failed, short};
 use anyhow::Result;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;

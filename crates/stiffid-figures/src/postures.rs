@@ -3,13 +3,12 @@
 //! loading point as a square and the rope to the anchor as a thin grey line. The same scale for every
 //! group so the figures compare.
 
-use super::{colour, failed, render, Figure, Plot};
+use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use nalgebra::{Vector3, Vector6};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use rayon::prelude::*;
 use stiffid::cell::{bodies, Body, Part};
 use stiffid::study::Study;
 use stiffid::Setup;
@@ -22,6 +21,7 @@ pub struct Stick {
     pub loading_point: Vector3<f64>,
 }
 
+/// The stick figure of `setup`'s robot at the axis angles `q` (rad).
 pub fn stick(setup: &Setup, q: &Vector6<f64>) -> Stick {
     let frames = setup.robot().frames(q);
     let mut chain = vec![setup.robot().base().translation.vector];
@@ -63,7 +63,7 @@ impl<'a> Postures<'a> {
 }
 
 /// The figure `postures_<group>`.
-pub fn figure(study: &Study, group: usize) -> Result<Figure> {
+pub fn figure(study: &Study, group: usize) -> Drawing<'_> {
     let g = &study.groups[group];
     let all = study.groups.iter().flat_map(|g| g.postures.iter());
     let numbered = g
@@ -72,7 +72,7 @@ pub fn figure(study: &Study, group: usize) -> Result<Figure> {
         .copied()
         .enumerate()
         .map(|(i, q)| (i + 1, q));
-    render(
+    Drawing::new(
         &format!("postures_{}", g.name),
         &format!(
             "{}: the robot in its {} postures, side view (x-z) and top view (x-y), base frame, m. \
@@ -81,7 +81,7 @@ pub fn figure(study: &Study, group: usize) -> Result<Figure> {
             g.title,
             g.postures.len()
         ),
-        &Postures::new(
+        Postures::new(
             &study.setup,
             &g.title,
             numbered.collect(),
@@ -92,7 +92,7 @@ pub fn figure(study: &Study, group: usize) -> Result<Figure> {
 
 /// The figures of a group of postures of `setup` (axis angles, rad), all at one scale: `postures`
 /// (every posture) and `posture_<i>` (each alone, i from 01), numbered from 1 as in `plan.csv`.
-pub fn each(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Vec<Figure>> {
+pub fn each<'a>(setup: &'a Setup, postures: &[Vector6<f64>]) -> Vec<Drawing<'a>> {
     let range = data_range(setup, postures.iter());
     let numbered: Vec<(usize, Vector6<f64>)> = postures
         .iter()
@@ -105,24 +105,23 @@ pub fn each(setup: &Setup, postures: &[Vector6<f64>]) -> Result<Vec<Figure>> {
                   (numbered); squares: loading point; grey: the rope to the anchor (star); dashed: \
                   the tracker's lines of sight (triangle); boxes: obstacles; the floor (or the \
                   base plane z = 0).";
-    // Every posture alone after the group, drawn in parallel.
+    // Every posture alone after the group.
     (0..=numbered.len())
-        .into_par_iter()
         .map(|k| match k {
-            0 => render(
+            0 => Drawing::new(
                 "postures",
                 &format!(
                     "The robot in the {} postures of the plan, {legend}",
                     postures.len()
                 ),
-                &Postures::new(setup, "every posture", numbered.clone(), range),
+                Postures::new(setup, "every posture", numbered.clone(), range),
             ),
             _ => {
                 let (number, q) = numbered[k - 1];
-                render(
+                Drawing::new(
                     &format!("posture_{number:02}"),
                     &format!("Posture {number}, {legend}"),
-                    &Postures::new(
+                    Postures::new(
                         setup,
                         &format!("posture {number}"),
                         vec![(number, q)],

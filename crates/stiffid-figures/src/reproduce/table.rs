@@ -2,7 +2,7 @@
 //! and group at the level nearest multiple 1 (the paper's level 2), the best group of each joint
 //! shaded.
 
-use super::{colour, failed, render, Figure, Plot};
+use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -11,9 +11,9 @@ use stiffid::study::Study;
 struct Table<'a>(&'a Study);
 
 /// The figure `table4_level2`.
-pub fn figure(study: &Study) -> Result<Figure> {
+pub fn figure(study: &Study) -> Drawing<'_> {
     let l = study.validation_level;
-    render(
+    Drawing::new(
         "table4_level2",
         &format!(
             "Mean deviation rate +- standard deviation, %, over {} runs at noise level {} \
@@ -23,7 +23,7 @@ pub fn figure(study: &Study) -> Result<Figure> {
             l + 1,
             study.setup.noise().levels[l]
         ),
-        &Table(study),
+        Table(study),
     )
 }
 

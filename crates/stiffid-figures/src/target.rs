@@ -1,8 +1,8 @@
 //! Group size against the predicted worst-joint deviation rate (`select --target-pct`), with the
 //! target as a dashed line.
 
-use super::chart::{line_chart, whole, Axes};
-use super::{colour, failed, render, Figure, Plot};
+use crate::axes::{line_chart, whole, Axes};
+use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -11,15 +11,15 @@ use stiffid::design::target::TargetOutcome;
 struct Target<'a>(&'a TargetOutcome);
 
 /// The figure `target`.
-pub fn figure(outcome: &TargetOutcome) -> Result<Figure> {
-    render(
+pub fn figure(outcome: &TargetOutcome) -> Drawing<'_> {
+    Drawing::new(
         "target",
         &format!(
             "Predicted mean deviation rate of the worst joint at noise level multiple 1 (first \
              order) of the best group of each size; dashed: the target, {} %.",
             outcome.target_pct
         ),
-        &Target(outcome),
+        Target(outcome),
     )
 }
 

@@ -1,8 +1,8 @@
 //! Does the criterion predict accuracy? Every design criterion of every group against the group's
 //! measured average deviation rate, one panel per criterion, with Spearman's rank correlation.
 
-use super::{colour, failed, render, short, Figure, Plot};
-use crate::report::{criteria_values, CRITERIA};
+use super::{criteria_values, CRITERIA};
+use crate::{colour, failed, short, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -11,13 +11,13 @@ use stiffid::study::{spearman, Study};
 struct CriteriaPlot<'a>(&'a Study);
 
 /// The figure `criteria_vs_deviation`.
-pub fn figure(study: &Study) -> Result<Figure> {
-    render(
+pub fn figure(study: &Study) -> Drawing<'_> {
+    Drawing::new(
         "criteria_vs_deviation",
         "Each design criterion of each group (x, log scale) against the group's measured average \
          deviation rate (y: mean over joints and noise levels, %). rho: Spearman's rank \
          correlation over the groups; a criterion that predicts accuracy has rho near +1.",
-        &CriteriaPlot(study),
+        CriteriaPlot(study),
     )
 }
 

@@ -1,7 +1,7 @@
 //! The paper's Fig. 8: average deviation rate against noise level, one panel per joint, one line
 //! per group; dashed, the first-order prediction.
 
-use super::{colour, failed, render, short, Figure, Plot};
+use crate::{colour, failed, short, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -10,8 +10,8 @@ use stiffid::study::Study;
 struct Deviation<'a>(&'a Study);
 
 /// The figure `deviation_vs_noise`.
-pub fn figure(study: &Study) -> Result<Figure> {
-    render(
+pub fn figure(study: &Study) -> Drawing<'_> {
+    Drawing::new(
         "deviation_vs_noise",
         &format!(
             "Average deviation rate |k_id - k_true| / k_true of each joint against the noise level \
@@ -30,7 +30,7 @@ pub fn figure(study: &Study) -> Result<Figure> {
             study.setup.noise().displacement_variance() * 1e6,
             study.runs
         ),
-        &Deviation(study),
+        Deviation(study),
     )
 }
 

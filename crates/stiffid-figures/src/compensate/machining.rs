@@ -1,8 +1,8 @@
 //! The figures of `stiffid compensate --program --report`: the process force along the path and
 //! each program segment's deflection before and after compensation.
 
-use super::chart::{line_chart, whole, Axes};
-use super::{colour, failed, render, Figure, Plot};
+use crate::axes::{line_chart, whole, Axes};
+use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -13,14 +13,14 @@ struct Force<'a>(&'a [(usize, Compensated)]);
 
 /// The figure `force`: the process force on the tool at the points of `sample` (0-based index,
 /// result).
-pub fn force(sample: &[(usize, Compensated)]) -> Result<Figure> {
-    render(
+pub fn force(sample: &[(usize, Compensated)]) -> Drawing<'_> {
+    Drawing::new(
         "force",
         "The process force on the tool along the path, base frame, N: its length (black) and its \
          x, y, z components (colours), from the process file's operations turned along the path's \
          own feed direction. Zero where nothing cuts (rapid moves, plunges, blocks no operation \
          covers).",
-        &Force(sample),
+        Force(sample),
     )
 }
 
@@ -82,8 +82,8 @@ type Value = dyn Fn(&SegmentDocument) -> f64;
 
 /// The figure `segments`: each program segment's largest deflection before and after
 /// compensation.
-pub fn segments(segments: &[SegmentDocument]) -> Result<Figure> {
-    render(
+pub fn segments(segments: &[SegmentDocument]) -> Drawing<'_> {
+    Drawing::new(
         "segments",
         "The largest TCP deflection of each program segment (a program line: a G-code block with \
          its arc points, a robot program's target), mm. Black: before compensation, under the \
@@ -91,7 +91,7 @@ pub fn segments(segments: &[SegmentDocument]) -> Result<Figure> {
          deviations of the deflection from the compliance covariance (what the stiffness's \
          uncertainty leaves), where the stiffness file has one; the compensated targets \
          reproduce the model itself to below 0.1 um (the table's residual).",
-        &Segments(segments),
+        Segments(segments),
     )
 }
 

@@ -1,9 +1,9 @@
 //! The figures of `stiffid compensate --report`: the TCP deflection along the path before and
 //! after compensation with its uncertainty band, and the path drawn over the robot.
 
-use super::chart::{line_chart, whole, Axes};
-use super::postures::{draw_stick, projection, stick};
-use super::{colour, failed, render, Figure, Plot};
+use crate::axes::{line_chart, whole, Axes};
+use crate::postures::{draw_stick, projection, stick};
+use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -13,8 +13,8 @@ use stiffid::Setup;
 struct Deflection<'a>(&'a [Compensated]);
 
 /// The figure `deflection`.
-pub fn deflection(results: &[Compensated]) -> Result<Figure> {
-    render(
+pub fn deflection(results: &[Compensated]) -> Drawing<'_> {
+    Drawing::new(
         "deflection",
         "TCP translation deflection |d| along the path, mm. Black: before compensation (the robot \
          at the nominal axis angles under the path's wrench), with its band +-2 standard deviations \
@@ -24,7 +24,7 @@ pub fn deflection(results: &[Compensated]) -> Result<Figure> {
          a covariance it cannot be predicted and is not drawn. The compensated axis angles \
          reproduce the model itself to below 0.1 um (the summary gives the largest residual). \
          Orange dashed (--free-tool-axis): before the tool-axis optimisation.",
-        &Deflection(results),
+        Deflection(results),
     )
 }
 
@@ -107,13 +107,13 @@ struct PathOverRobot<'a> {
 }
 
 /// The figure `path`.
-pub fn path(setup: &Setup, results: &[Compensated]) -> Result<Figure> {
-    render(
+pub fn path<'a>(setup: &'a Setup, results: &'a [Compensated]) -> Drawing<'a> {
+    Drawing::new(
         "path",
         "The path (red) drawn over the robot at its first, middle and last point (stick figures: \
          base, joint origins, flange, tool centre point), side view (x-z) and top view (x-y), base \
          frame, m.",
-        &PathOverRobot { setup, results },
+        PathOverRobot { setup, results },
     )
 }
 
