@@ -18,6 +18,7 @@
 //! docs/model.md, section "Calibration", "Joint error maps".
 
 use crate::{Error, Result};
+use nalgebra::Vector6;
 
 /// Most harmonics a map holds.
 pub const MAX_HARMONICS: usize = 64;
@@ -124,10 +125,15 @@ impl ErrorMap {
     /// `q`); no `sin_cos` for an axis without harmonics.
     #[inline]
     pub fn angle(&self, q: f64) -> f64 {
-        if self.cos.is_empty() {
-            return 0.0;
+        match self.cos.is_empty() {
+            true => 0.0,
+            false => self.series(q.sin_cos()),
         }
-        let (s1, c1) = q.sin_cos();
+    }
+
+    /// [`ErrorMap::angle`] from `(sin q, cos q)`.
+    #[inline]
+    fn series(&self, (s1, c1): (f64, f64)) -> f64 {
         let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
         let (s3, c3) = (s2 * c1 + c2 * s1, c2 * c1 - s2 * s1);
         let (s4, c4) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
@@ -169,6 +175,16 @@ impl ErrorMap {
             backlash: self.backlash + other.backlash,
         }
     }
+}
+
+/// The errors `e(q_i)` (rad) of six axes' maps at the axis angles `q` (rad), each
+/// [`ErrorMap::angle`] of its own axis's angle: every `sin_cos` taken before the harmonics' sums,
+/// so that the axes' independent work overlaps.
+#[inline]
+pub fn angles(maps: &[ErrorMap; 6], q: &Vector6<f64>) -> [f64; 6] {
+    let turns: [Option<(f64, f64)>; 6] =
+        std::array::from_fn(|i| (!maps[i].cos.is_empty()).then(|| q[i].sin_cos()));
+    std::array::from_fn(|i| turns[i].map_or(0.0, |t| maps[i].series(t)))
 }
 
 #[cfg(test)]
@@ -227,6 +243,13 @@ mod tests {
             }
         }
         assert_eq!(ErrorMap::default().angle(0.3), 0.0);
+        let maps: [ErrorMap; 6] = std::array::from_fn(|i| match i % 2 {
+            0 => ErrorMap::default(),
+            _ => ErrorMap::new(vec![1e-4; i + 1], vec![-2e-4; i + 1]).unwrap(),
+        });
+        let q = Vector6::new(0.3, -1.2, 2.5, 0.0, -3.0, 1.0);
+        let each: [f64; 6] = std::array::from_fn(|i| maps[i].angle(q[i]));
+        assert_eq!(angles(&maps, &q), each);
     }
 
     #[test]
