@@ -18,6 +18,7 @@
 //! docs/model.md, section "Calibration", "Joint error maps".
 
 use crate::{Error, Result};
+use nalgebra::Vector6;
 
 /// Most harmonics a map holds.
 pub const MAX_HARMONICS: usize = 64;
@@ -119,23 +120,37 @@ impl ErrorMap {
     }
 
     /// The error `e(q)` (rad) at the axis angle `q` (rad), the harmonics by the angle-addition
-    /// recurrence from one `sin_cos`: the odd and the even harmonics in two independent chains,
-    /// each turned by `2 q` (half the dependent steps of one chain turned by `q`).
+    /// recurrence from one `sin_cos`: the harmonics `h` of each residue of `h mod 4` in their own
+    /// chain, each turned by `4 q` (a quarter of the dependent steps of one chain turned by
+    /// `q`); no `sin_cos` for an axis without harmonics.
     #[inline]
     pub fn angle(&self, q: f64) -> f64 {
-        let (s1, c1) = q.sin_cos();
-        let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
-        let ((mut so, mut co), (mut se, mut ce)) = ((s1, c1), (s2, c2));
-        let (mut odd, mut even) = (0.0, 0.0);
-        for (a, b) in self.cos.chunks(2).zip(self.sin.chunks(2)) {
-            odd += a[0] * co + b[0] * so;
-            if let (Some(a), Some(b)) = (a.get(1), b.get(1)) {
-                even += a * ce + b * se;
-            }
-            (so, co) = (so * c2 + co * s2, co * c2 - so * s2);
-            (se, ce) = (se * c2 + ce * s2, ce * c2 - se * s2);
+        match self.cos.is_empty() {
+            true => 0.0,
+            false => self.series(q.sin_cos()),
         }
-        odd + even
+    }
+
+    /// [`ErrorMap::angle`] from `(sin q, cos q)`.
+    #[inline]
+    fn series(&self, (s1, c1): (f64, f64)) -> f64 {
+        let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
+        let (s3, c3) = (s2 * c1 + c2 * s1, c2 * c1 - s2 * s1);
+        let (s4, c4) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
+        let (mut s, mut c) = ([s1, s2, s3, s4], [c1, c2, c3, c4]);
+        let mut sum = [0.0; 4];
+        let (a, b) = (self.cos.chunks_exact(4), self.sin.chunks_exact(4));
+        let (a_tail, b_tail) = (a.remainder(), b.remainder());
+        for (a, b) in a.zip(b) {
+            for i in 0..4 {
+                sum[i] += a[i] * c[i] + b[i] * s[i];
+                (s[i], c[i]) = (s[i] * c4 + c[i] * s4, c[i] * c4 - s[i] * s4);
+            }
+        }
+        for (i, (a, b)) in a_tail.iter().zip(b_tail).enumerate() {
+            sum[i] += a * c[i] + b * s[i];
+        }
+        (sum[0] + sum[1]) + (sum[2] + sum[3])
     }
 
     /// The error `e(q) + b d` (rad) at the axis angle `q` (rad) approached with the last
@@ -160,6 +175,16 @@ impl ErrorMap {
             backlash: self.backlash + other.backlash,
         }
     }
+}
+
+/// The errors `e(q_i)` (rad) of six axes' maps at the axis angles `q` (rad), each
+/// [`ErrorMap::angle`] of its own axis's angle: every `sin_cos` taken before the harmonics' sums,
+/// so that the axes' independent work overlaps.
+#[inline]
+pub fn angles(maps: &[ErrorMap; 6], q: &Vector6<f64>) -> [f64; 6] {
+    let turns: [Option<(f64, f64)>; 6] =
+        std::array::from_fn(|i| (!maps[i].cos.is_empty()).then(|| q[i].sin_cos()));
+    std::array::from_fn(|i| turns[i].map_or(0.0, |t| maps[i].series(t)))
 }
 
 #[cfg(test)]
@@ -192,6 +217,39 @@ mod tests {
         let sum = map.plus(&ErrorMap::new(vec![1e-3], vec![0.0]).unwrap());
         assert_eq!(sum.harmonics(), 40);
         assert_eq!(sum.cos()[0], 1e-4 + 1e-3);
+    }
+
+    #[test]
+    fn the_recurrence_is_the_series_at_random_angles() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        for harmonics in [1, 2, 3, 5, 16, 33, MAX_HARMONICS] {
+            let mut coefficient = || MAX_COEFFICIENT * (2.0 * rng.random::<f64>() - 1.0);
+            let cos: Vec<f64> = (0..harmonics).map(|_| coefficient()).collect();
+            let sin: Vec<f64> = (0..harmonics).map(|_| coefficient()).collect();
+            let scale: f64 = cos.iter().chain(&sin).map(|v| v.abs()).sum();
+            let map = ErrorMap::new(cos.clone(), sin.clone()).unwrap();
+            for _ in 0..200 {
+                let q = 4.0 * std::f64::consts::PI * (rng.random::<f64>() - 0.5);
+                let direct: f64 = (0..harmonics)
+                    .map(|h| {
+                        let (s, c) = ((h + 1) as f64 * q).sin_cos();
+                        cos[h] * c + sin[h] * s
+                    })
+                    .sum();
+                let got = map.angle(q);
+                assert!(got.is_finite());
+                assert!((got - direct).abs() <= 1e-12 * scale, "{harmonics} {q}");
+            }
+        }
+        assert_eq!(ErrorMap::default().angle(0.3), 0.0);
+        let maps: [ErrorMap; 6] = std::array::from_fn(|i| match i % 2 {
+            0 => ErrorMap::default(),
+            _ => ErrorMap::new(vec![1e-4; i + 1], vec![-2e-4; i + 1]).unwrap(),
+        });
+        let q = Vector6::new(0.3, -1.2, 2.5, 0.0, -3.0, 1.0);
+        let each: [f64; 6] = std::array::from_fn(|i| maps[i].angle(q[i]));
+        assert_eq!(angles(&maps, &q), each);
     }
 
     #[test]

@@ -312,7 +312,10 @@ impl Robot {
     pub fn mapped(&self, q: &nalgebra::Vector6<f64>) -> nalgebra::Vector6<f64> {
         match &self.error_maps {
             None => *q,
-            Some(maps) => nalgebra::Vector6::from_fn(|i, _| q[i] + maps[i].angle(q[i])),
+            Some(maps) => {
+                let e = error_map::angles(maps, q);
+                nalgebra::Vector6::from_fn(|i, _| q[i] + e[i])
+            }
         }
     }
 
@@ -327,7 +330,8 @@ impl Robot {
         match &self.error_maps {
             None => *q,
             Some(maps) => {
-                nalgebra::Vector6::from_fn(|i, _| q[i] + maps[i].angle_from(q[i], direction[i]))
+                let e = error_map::angles(maps, q);
+                nalgebra::Vector6::from_fn(|i, _| q[i] + (e[i] + maps[i].backlash() * direction[i]))
             }
         }
     }

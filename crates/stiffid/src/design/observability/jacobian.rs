@@ -147,6 +147,12 @@ impl Layout {
         }
     }
 
+    /// The layout of the model's parameters `kept` (a subset of this one's, model indices)
+    /// with their `scales`, taken at the same values.
+    pub(super) fn subset(&self, kept: &[usize], scales: Vec<f64>) -> Layout {
+        Layout::new(self.model.clone(), kept, scales, self.values.clone())
+    }
+
     /// The rows of the Jacobian: 3 per measuring point and posture.
     pub(super) fn rows(&self, postures: usize) -> usize {
         3 * self.points.len() * postures
@@ -208,7 +214,7 @@ impl Layout {
     /// The carrier slots' columns at every point of `points` (cell frame, m) at `e`, and their
     /// turn axes `a` (a column is `a x b + c`: from the columns at the origin and at the unit
     /// x and y points, `a = (d_y.z, -d_x.z, d_x.y)` with `d = a x unit`).
-    fn carrier_terms(
+    pub(super) fn carrier_terms(
         &self,
         points: &[Vector3<f64>],
         e: &[f64],

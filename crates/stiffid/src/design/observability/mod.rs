@@ -47,9 +47,11 @@ use crate::{Error, Result};
 use jacobian::Layout;
 use nalgebra::{DMatrix, Vector6};
 use serde::Serialize;
+use std::sync::Arc;
 
 mod jacobian;
 mod score;
+mod station;
 #[cfg(test)]
 mod tests;
 
@@ -104,6 +106,12 @@ pub struct CalibrationDesign {
     /// `H = A_0^T A_0 = R_A^T R_A` (`p x p`) from the QR `A_0 = Q_A R_A` of `test`.
     test_information: DMatrix<f64>,
     noise: f64,
+    /// What the carrier columns eliminated add, on a reduced design (`station`).
+    schur: station::Schur,
+    /// A step at one station with a carrier, reduced to the arm's columns (`station`): what
+    /// [`CalibrationDesign::value`] and its gradient score O1, D-optimality and the predicted
+    /// error on.
+    reduced: Option<Arc<CalibrationDesign>>,
 }
 
 impl CalibrationDesign {
@@ -177,6 +185,8 @@ impl CalibrationDesign {
             fixed_information: DMatrix::zeros(0, 0),
             test_information: DMatrix::zeros(0, 0),
             noise,
+            schur: station::Schur::default(),
+            reduced: None,
         };
         let p = design.kept.len();
         (design.fixed, design.fixed_information) = (DMatrix::zeros(0, p), DMatrix::zeros(p, p));
@@ -209,13 +219,16 @@ impl CalibrationDesign {
     /// Those of [`CalibrationDesign::jacobian`].
     pub fn on_station(&self, station: ExternalValues, chosen: &[Placed]) -> Result<Self> {
         let fixed = self.jacobian_placed(chosen)?;
-        Ok(CalibrationDesign {
+        let mut design = CalibrationDesign {
             station,
             fixed_information: fixed.tr_mul(&fixed),
             fixed,
             fixed_postures: chosen.len(),
+            reduced: None,
             ..self.clone()
-        })
+        };
+        design.reduced = station::reduce(&design).map(Arc::new);
+        Ok(design)
     }
 
     /// The scaled Jacobian of the kept parameters at `postures`, each read where it stands
@@ -316,8 +329,9 @@ impl CalibrationDesign {
     /// ([`CalibrationCriterion::loss`]): `+infinity` for a group that does not separate the
     /// kept parameters or a non-finite posture.
     pub fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
-        match self.jacobian(postures) {
-            Ok(j) => score::Scored::new(j, criterion, self).map_or(f64::INFINITY, |s| s.value),
+        let d = self.scorer(criterion);
+        match d.jacobian(postures) {
+            Ok(j) => score::Scored::new(j, criterion, d).map_or(f64::INFINITY, |s| s.value),
             Err(_) => f64::INFINITY,
         }
     }
@@ -335,22 +349,34 @@ impl CalibrationDesign {
         if !postures.iter().all(|q| q.iter().all(|v| v.is_finite())) {
             return (f64::INFINITY, zero);
         }
-        let l = &self.layout;
-        let e = self.station.as_slice();
+        let d = self.scorer(criterion);
+        let l = &d.layout;
+        let e = d.station.as_slice();
         let terms: Vec<_> = postures.iter().map(|q| l.posture(q, e)).collect();
         let rows = l.rows(1);
-        let mut j = DMatrix::zeros(l.rows(postures.len()), self.kept.len());
+        let mut j = DMatrix::zeros(l.rows(postures.len()), d.kept.len());
         for (i, t) in terms.iter().enumerate() {
             l.write_rows(t, &mut j, rows * i);
         }
-        let Some(scored) = score::Scored::new(j, criterion, self) else {
+        let Some(scored) = score::Scored::new(j, criterion, d) else {
             return (f64::INFINITY, zero);
         };
-        let g = scored.log_gradient(self);
+        let g = scored.log_gradient(d);
         let gradient = (terms.iter().enumerate())
             .map(|(i, t)| l.gradient(t, &scored.j, &g, rows * i))
             .collect();
         (scored.value, gradient)
+    }
+}
+
+impl CalibrationDesign {
+    /// The design a group at this design's station is scored on for `criterion`: the reduced
+    /// one (`station`) for the criteria read from the information matrix, this one otherwise.
+    fn scorer(&self, criterion: CalibrationCriterion) -> &CalibrationDesign {
+        match (&self.reduced, criterion.spectral()) {
+            (Some(reduced), false) => reduced,
+            _ => self,
+        }
     }
 }
 

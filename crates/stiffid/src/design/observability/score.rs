@@ -105,6 +105,16 @@ impl crate::common::choice::Choice for CalibrationCriterion {
 
 crate::common::choice::by_name!(CalibrationCriterion);
 
+impl CalibrationCriterion {
+    /// Whether the criterion reads singular values (O3, O4, O5), not the information matrix.
+    pub(super) fn spectral(self) -> bool {
+        matches!(
+            self,
+            CalibrationCriterion::O3 | CalibrationCriterion::O4 | CalibrationCriterion::O5
+        )
+    }
+}
+
 /// `R` (`p x p`, upper triangular) of the Householder QR of `a` (`m x p`), zero rows added
 /// when `m < p`.
 pub(super) fn triangular_factor(a: &DMatrix<f64>) -> DMatrix<f64> {
@@ -138,23 +148,22 @@ impl Scored {
     /// information added, [`CalibrationDesign::on_station`]); `None` for a group that does not
     /// separate the kept parameters (fewer rows than columns, an information matrix that is
     /// not positive definite, a pivot of `R` below [`RANK_TOLERANCE`] of the largest, a
-    /// singular value below it for the spectral indices) or a non-finite value.
+    /// singular value below it for the spectral indices) or a non-finite value. On a reduced
+    /// design (`station`), `j` holds the arm's columns and the counts are the whole design's.
     pub(super) fn new(
         j: DMatrix<f64>,
         criterion: CalibrationCriterion,
         design: &CalibrationDesign,
     ) -> Option<Self> {
-        let p = j.ncols();
+        let p = j.ncols() + design.schur.eliminated;
         let rows = j.nrows() + design.fixed.nrows();
         if rows < p || p == 0 || !j.iter().all(|v| v.is_finite()) {
             return None;
         }
         let n = rows / design.layout.rows(1);
-        let (value, weight) = match criterion {
-            CalibrationCriterion::O1
-            | CalibrationCriterion::DOptimality
-            | CalibrationCriterion::TestPose => from_information(&j, n, criterion, design)?,
-            _ => {
+        let (value, weight) = match criterion.spectral() {
+            false => from_information(&j, n, criterion, design)?,
+            true => {
                 // The spectral indices need the SVD anyway: of the QR's `R`, as accurate as
                 // `J_s` allows.
                 let r = triangular_factor(&design.with_fixed(j.clone()));
@@ -183,7 +192,8 @@ impl Scored {
 
 /// The value and `W` of O1, D-optimality or the test-pose criterion of the scaled Jacobian `j`
 /// of `n` postures, from the information matrix (module docs); `None` when it is not positive
-/// definite or a pivot is below [`RANK_TOLERANCE`] of the largest.
+/// definite or a pivot is below [`RANK_TOLERANCE`] of the largest. On a reduced design
+/// (`station`), the eliminated block's pivots, log-determinant and trace join `A`'s.
 fn from_information(
     j: &DMatrix<f64>,
     n: usize,
@@ -191,18 +201,27 @@ fn from_information(
     design: &CalibrationDesign,
 ) -> Option<(f64, Weight)> {
     // J^T J by the matrix-product kernel, J^T as a view of J's columns (no copy).
-    let (m, p) = j.shape();
-    let transposed = DMatrixView::from_slice_with_strides(j.as_slice(), p, m, m, 1);
+    let (m, arm) = j.shape();
+    let schur = &design.schur;
+    let p = arm + schur.eliminated;
+    let transposed = DMatrixView::from_slice_with_strides(j.as_slice(), arm, m, m, 1);
     let mut information = design.fixed_information.clone();
     information.gemm(1.0, &transposed, j, 1.0);
     let l = information.cholesky()?.unpack();
     let diagonal = l.diagonal();
-    if diagonal.min() <= RANK_TOLERANCE * diagonal.max() {
+    let (low, high) = match schur.eliminated {
+        0 => (diagonal.min(), diagonal.max()),
+        _ => (
+            diagonal.min().min(schur.pivots.0),
+            diagonal.max().max(schur.pivots.1),
+        ),
+    };
+    if low <= RANK_TOLERANCE * high {
         return None;
     }
     let inverse = lower_inverse(&l);
     let c = inverse.transpose() * inverse;
-    let mean_log = diagonal.iter().map(|d| d.ln()).sum::<f64>() / p as f64;
+    let mean_log = (diagonal.iter().map(|d| d.ln()).sum::<f64>() + schur.log_pivots) / p as f64;
     Some(match criterion {
         CalibrationCriterion::O1 => (
             (n as f64).sqrt() * (-mean_log).exp(),
@@ -213,7 +232,7 @@ fn from_information(
             Weight::Covariance(c, -2.0 / p as f64),
         ),
         _ => {
-            let trace = c.component_mul(&design.test_information).sum();
+            let trace = c.component_mul(&design.test_information).sum() + schur.trace;
             let m0 = (design.test.nrows() / 3).max(1) as f64;
             let value = design.noise * (trace.max(0.0) / m0).sqrt();
             (value, Weight::Test(c, trace))

@@ -350,3 +350,40 @@ fn a_track_campaign_is_designed_with_the_tracks_columns() {
         );
     }
 }
+
+/// A step at one station of the track is scored on the arm's columns (`station`): its value and
+/// gradient equal those of the whole Jacobian with every column, for each criterion read from
+/// the information matrix, and a step without fixed postures is not reduced.
+#[test]
+fn a_step_at_a_station_reduced_to_the_arm_equals_the_whole_jacobian() {
+    let (robot, d, stations) = track_design();
+    assert!(d.on_station(stations[0], &[]).unwrap().reduced.is_none());
+    let fixed: Vec<Placed> = (postures(&robot, 30, 11).iter().enumerate())
+        .map(|(i, q)| (*q, stations[1 + i % 5]))
+        .collect();
+    let here = d.on_station(stations[2], &fixed).unwrap();
+    let reduced = here
+        .reduced
+        .as_ref()
+        .expect("a step on the track is reduced");
+    assert!(reduced.kept().len() < here.kept().len());
+    let whole = CalibrationDesign {
+        reduced: None,
+        ..here.clone()
+    };
+    let group = postures(&robot, 12, 13);
+    for criterion in [
+        CalibrationCriterion::TestPose,
+        CalibrationCriterion::DOptimality,
+        CalibrationCriterion::O1,
+    ] {
+        let (value, gradient) = here.value_and_log_gradient(criterion, &group);
+        let (expected, exact) = whole.value_and_log_gradient(criterion, &group);
+        assert!(value.is_finite() && (value - expected).abs() <= 1e-10 * expected);
+        assert!((here.value(criterion, &group) - expected).abs() <= 1e-10 * expected);
+        let scale = exact.iter().map(|g| g.amax()).fold(0.0, f64::max);
+        for (g, e) in gradient.iter().zip(&exact) {
+            assert!((g - e).amax() <= 1e-8 * scale, "{criterion:?}: {g} {e}");
+        }
+    }
+}
