@@ -134,6 +134,8 @@ pub fn calibrate<'py>(
             .map_err(raise)?,
         level,
         update,
+        refit: Default::default(),
+        weight: None,
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);
