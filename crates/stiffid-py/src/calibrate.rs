@@ -39,7 +39,11 @@ use stiffid::app::readings::Request as Readings;
 /// file, the readings a check campaign: the joint offsets, the tracker (or base) and the
 /// measuring points refitted, the rest kept (``geometry``, ``gravity`` and ``maps`` ignored),
 /// and ``check`` in the document (the readings against the calibration's held-out errors:
-/// ``drifted``, ``share_outside``), as ``--update``. The same job as ``stiffid calibrate``: returns its
+/// ``drifted``, ``share_outside``), as ``--update``; ``update_parameters``: what the update
+/// refits, ``"offsets,base,tool"`` by default, ``base`` always, ``gravity`` to refit the gravity
+/// terms of ``stiffness``, as ``--update LIST``; ``stiffness``: the calibration's stiffness file
+/// (``stiffness_out``), its gravity terms kept in the update's forward model, as ``--stiffness``.
+/// The same job as ``stiffid calibrate``: returns its
 /// document (docs/schemas/calibrate.schema.json) as a dict, equal to ``stiffid calibrate
 /// --json``: ``parameters`` (``name``, ``kind``, ``unit``, ``nominal``, ``value``, ``sd``,
 /// ``identified``), ``merged``, ``rank``, ``condition``, ``correlations``, ``residual_rms_mm``,
@@ -65,7 +69,7 @@ use stiffid::app::readings::Request as Readings;
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, out=None, urdf_out=None, stiffness_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -82,6 +86,8 @@ pub fn calibrate<'py>(
     error_motions: &str,
     level: Option<f64>,
     update: bool,
+    update_parameters: Option<&str>,
+    stiffness: Option<PathBuf>,
     out: Option<PathBuf>,
     urdf_out: Option<PathBuf>,
     stiffness_out: Option<PathBuf>,
@@ -97,11 +103,31 @@ pub fn calibrate<'py>(
             "reregister: only with validate= (the held-out readings)",
         ));
     }
+    if !update && (update_parameters.is_some() || stiffness.is_some()) {
+        return Err(value(
+            "update_parameters, stiffness: only with update=True (a calibrated robot updated from check readings)",
+        ));
+    }
+    let refit = (update_parameters.map(job::Refits::parse))
+        .transpose()
+        .map_err(raise)?
+        .unwrap_or_default();
+    let weight = match &stiffness {
+        Some(p) => {
+            let name = p.display().to_string();
+            let file = stiffid::io::stiffness::parse(&error::read(p)?)
+                .map_err(|e| error::raise_in(&name, e))?;
+            (file.compliance(setup.inner.model()))
+                .map_err(|e| error::raise_in(&name, e))?
+                .own_weight
+        }
+        None => None,
+    };
     let text = error::read(&readings)?;
     let held = validate.as_ref().map(|p| error::read(p)).transpose()?;
     let mut inputs = setup.files.clone();
     inputs.extend(
-        [Some(readings.clone()), validate.clone()]
+        [Some(readings.clone()), validate.clone(), stiffness.clone()]
             .into_iter()
             .flatten(),
     );
@@ -134,6 +160,8 @@ pub fn calibrate<'py>(
             .map_err(raise)?,
         level,
         update,
+        refit,
+        weight,
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);

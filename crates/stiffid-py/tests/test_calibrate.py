@@ -219,3 +219,24 @@ def test_the_scene_of_a_calibration_document_is_the_reports(paper, cli, campaign
     assert scene._repr_html_().startswith("<iframe srcdoc=")
     with pytest.raises(stiffid.InputError, match="postures_deg"):
         stiffid.scene(paper, [[0, 0, 0, 0, 0, 0]], document=doc)
+
+
+def test_an_update_with_a_list_and_the_stiffness_file_equals_the_command(paper, cli, campaign):
+    d, _, fit, held = campaign
+    stiffid.calibrate(paper, fit, gravity="lumped", validate=held, out=d / "sag.toml",
+                      stiffness_out=d / "sag-k.json")
+    text = cli("setups", "show", SETUP, parse=False)
+    setup_file = d / "sag-setup.toml"
+    setup_file.write_text(text.replace('robot = "comau-smart5-nj165-3.0"', 'robot = "sag.toml"'))
+    calibrated = stiffid.Setup.from_file(setup_file)
+    mine = stiffid.calibrate(calibrated, held, update=True, update_parameters="offsets,base",
+                             stiffness=d / "sag-k.json")
+    theirs = cli("calibrate", "--setup", setup_file, "--data", held, "--update", "offsets,base",
+                 "--stiffness", d / "sag-k.json", "--json")
+    assert mine == theirs
+    # The tool and the gravity terms held at the calibration's values.
+    assert "point1.x" in mine["held"] and any(n.startswith("gravity.") for n in mine["held"])
+    with pytest.raises(stiffid.InputError, match=r"^update_parameters, stiffness: only with update=True"):
+        stiffid.calibrate(calibrated, held, update_parameters="offsets,base")
+    with pytest.raises(stiffid.InputError, match=r"needs base"):
+        stiffid.calibrate(calibrated, held, update=True, update_parameters="offsets,tool")

@@ -53,13 +53,22 @@ pub struct Args {
     level: Option<f64>,
     /// Update a calibrated robot from a check campaign (--data, at least 5 postures; `select
     /// --for check` designs about 10): the setup's robot is the calibrated robot file, and only
-    /// what drifts between sessions is refitted, the joint angle offsets, the tracker's
-    /// registration (the base) and the measuring points (the tool), the DH table, error maps and
-    /// axis map kept. First the check: each reading's error with the calibrated robot against
-    /// the bound of its calibration's held-out errors ([held_out], at --level), and whether the
-    /// robot drifted beyond it. --out writes the updated robot file.
-    #[arg(long, conflicts_with_all = ["geometry", "gravity", "maps", "error_motions"])]
-    update: bool,
+    /// what drifts between sessions is refitted, by default (a bare --update) offsets,base,tool:
+    /// the joint angle offsets, the tracker's registration (the base) and the measuring points
+    /// (the tool); add gravity to refit the gravity terms of --stiffness; leave out offsets or
+    /// tool to keep them (base is always refitted). The DH table, error maps, axis map and the
+    /// --stiffness file's gravity terms are kept in the forward model. A list the check
+    /// readings cannot identify is refused, naming what merges. First the check: each reading's
+    /// error with the calibrated robot against the bound of its calibration's held-out errors
+    /// ([held_out], at --level), and whether the robot drifted beyond it. --out writes the
+    /// updated robot file.
+    #[arg(long, value_name = "LIST", num_args = 0..=1, default_missing_value = "offsets,base,tool", conflicts_with_all = ["geometry", "gravity", "maps", "error_motions"])]
+    update: Option<String>,
+    /// With --update: the stiffness file of the robot's calibration (calibrate --stiffness-out):
+    /// its gravity terms (the sag under the robot's own weight) are kept in the update's
+    /// forward model, or refitted from there with gravity in the --update list.
+    #[arg(long, requires = "update")]
+    stiffness: Option<PathBuf>,
     /// Fit readings that no rigid transform explains (a mirror image of the robot's points, or a
     /// residual beyond the larger of 10 mm and 1000 times the tracker noise) instead of refusing
     /// them.
@@ -148,7 +157,14 @@ pub fn run(args: &Args) -> Result<()> {
         maps: Spec::parse(&args.maps)?,
         error_motions: stiffid::metrology::calibration::motions::Spec::parse(&args.error_motions)?,
         level: args.level,
-        update: args.update,
+        update: args.update.is_some(),
+        refit: (args.update.as_deref().map(job::Refits::parse))
+            .transpose()?
+            .unwrap_or_default(),
+        weight: match &args.stiffness {
+            Some(p) => load::stiffness(p, &setup)?.own_weight,
+            None => None,
+        },
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);

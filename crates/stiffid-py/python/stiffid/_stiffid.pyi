@@ -410,12 +410,14 @@ def calibrate(
     error_motions: str = "auto",
     level: Optional[float] = None,
     update: bool = False,
+    update_parameters: Optional[str] = None,
+    stiffness: Optional[_PathLike] = None,
     out: Optional[_PathLike] = None,
     urdf_out: Optional[_PathLike] = None,
     stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
 ) -> dict[str, Any]:
-    """The document of `stiffid calibrate --json` (update=True: a calibrated robot updated from check readings, check: whether it drifted beyond its intervals): parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
+    """The document of `stiffid calibrate --json` (update=True: a calibrated robot updated from check readings, check: whether it drifted beyond its intervals; update_parameters "offsets,base,tool,gravity" what it refits, stiffness the calibration's stiffness file whose gravity terms it keeps, held what it kept): parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
     postures_deg: ArrayLike,

@@ -68,11 +68,11 @@ errors_mm = [0.01, 0.012, 0.014, 0.016, 0.018, 0.02, 0.022, 0.024, 0.026, 0.028,
 "#;
 
 /// The calibrated robot's offsets, deg.
-const OFFSETS: [f64; 6] = [0.0, -90.0, 0.0, 0.0, 0.0, 0.0];
+pub(super) const OFFSETS: [f64; 6] = [0.0, -90.0, 0.0, 0.0, 0.0, 0.0];
 
 /// The drift of the offsets after the calibration, deg (joint 1's turns the base about its axis,
 /// joint 6's the tool: the tracker and the measuring points take them).
-const DRIFT: [f64; 6] = [0.03, -0.05, 0.04, 0.02, -0.06, 0.03];
+pub(super) const DRIFT: [f64; 6] = [0.03, -0.05, 0.04, 0.02, -0.06, 0.03];
 
 /// The robot file's text with `offsets` (deg).
 fn robot_text(offsets: &[f64; 6]) -> String {
@@ -84,16 +84,16 @@ fn robot_text(offsets: &[f64; 6]) -> String {
 }
 
 /// The robot of [`robot_text`].
-fn robot(offsets: &[f64; 6]) -> Robot {
+pub(super) fn robot(offsets: &[f64; 6]) -> Robot {
     stiffid::robot::file::parse(&robot_text(offsets), "calibrated.toml").unwrap()
 }
 
-fn drifted() -> Robot {
+pub(super) fn drifted() -> Robot {
     robot(&std::array::from_fn(|i| OFFSETS[i] + DRIFT[i]))
 }
 
 /// The setup of the calibrated robot: three measuring points, a tracker noise of 0.01 mm.
-fn setup() -> Setup {
+pub(super) fn setup() -> Setup {
     Setup::builder("check", robot(&OFFSETS))
         .with_measuring_points(vec![
             Vector3::new(0.05, 0.0, 0.12),
@@ -129,13 +129,24 @@ fn readings(
     sd: f64,
     seed: u64,
 ) -> String {
+    let at = |q: &Vector6<f64>| truth.frames(q);
+    readings_by(&at, setup, postures, (prefix, sd, seed))
+}
+
+/// [`readings`] of the true robot's frames `frames` at each commanded posture.
+pub(super) fn readings_by(
+    frames: &dyn Fn(&Vector6<f64>) -> stiffid::Frames,
+    setup: &Setup,
+    postures: &[Vector6<f64>],
+    (prefix, sd, seed): (&str, f64, u64),
+) -> String {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let noise = Normal::new(0.0, sd.max(1e-300)).unwrap();
     let mut text = String::from(
         "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm\n",
     );
     for (i, q) in postures.iter().enumerate() {
-        let frames = truth.frames(q);
+        let frames = frames(q);
         for (k, p) in setup.tool().measuring_points.iter().enumerate() {
             let b = Point3::from(frames.point(p));
             let mut t = (tracker().inverse() * b).coords;
@@ -163,7 +174,7 @@ fn update(setup: &Setup, data: &str, held: Option<&str>) -> stiffid::Result<Repo
     calibrate::run(&request(setup, data, held, true))
 }
 
-fn request<'a>(
+pub(super) fn request<'a>(
     setup: &'a Setup,
     data: &'a str,
     held: Option<&'a str>,
@@ -187,11 +198,13 @@ fn request<'a>(
         error_motions: Default::default(),
         level: None,
         update,
+        refit: Default::default(),
+        weight: None,
     }
 }
 
 /// The check postures `select --for check` designs (10, D-optimal for the update's parameters).
-fn check_postures(setup: &Setup) -> Vec<Vector6<f64>> {
+pub(super) fn check_postures(setup: &Setup) -> Vec<Vector6<f64>> {
     use stiffid::app::select;
     let request = select::Request {
         setup,

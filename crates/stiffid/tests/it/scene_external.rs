@@ -122,6 +122,8 @@ fn a_calibrations_scene_stands_each_posture_at_its_readings_station() {
         error_motions: Default::default(),
         level: None,
         update: false,
+        refit: Default::default(),
+        weight: None,
     })
     .unwrap();
     let doc = calibrate::document::Document::new(&report, "track-cell.toml");

@@ -433,6 +433,8 @@ pub(crate) fn calibrated(
         error_motions: Default::default(),
         level: None,
         update: false,
+        refit: Default::default(),
+        weight: None,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");

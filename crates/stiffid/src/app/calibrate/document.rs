@@ -31,6 +31,10 @@ pub struct Document {
     pub parameters: Vec<Parameter>,
     /// The parameters the readings do not separate from the identified ones (left nominal).
     pub merged: Vec<Merged>,
+    /// With `--update`: the parameters held at the calibration's values, in the forward model
+    /// and out of the fit (the measuring points without `tool` in the list, the gravity terms of
+    /// the calibration's stiffness file without `gravity`); empty otherwise.
+    pub held: Vec<String>,
     /// The identified parameters' count: the rank of the identification Jacobian.
     pub rank: usize,
     /// The condition number of the identified columns of the column-scaled identification
@@ -379,7 +383,7 @@ impl Document {
             .collect();
         let id = &fit.identifiability;
         let merged = (id.merged.iter())
-            .filter(|m| !fit.fitted.contains(&m.parameter))
+            .filter(|m| !fit.fitted.contains(&m.parameter) && !model.held().contains(&m.parameter))
             .map(|m| {
                 let into: Vec<String> = m.into.iter().map(|(k, _)| params[*k].name.clone()).collect();
                 let reason = match (into.is_empty(), model.merged_words(m.parameter)) {
@@ -419,6 +423,9 @@ impl Document {
             readings: report.readings,
             parameters,
             merged,
+            held: (model.held().iter())
+                .map(|&c| params[c].name.clone())
+                .collect(),
             rank: id.rank,
             condition: finite(id.condition),
             correlations,

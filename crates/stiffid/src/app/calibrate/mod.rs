@@ -24,11 +24,12 @@ mod judge;
 use judge::{judge, largest_residual};
 mod maps;
 pub mod scene;
-mod update;
+pub mod update;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
 pub use maps::{Maps, MAX_MAP_WORK};
 pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
+pub use update::{Refit, Refits};
 
 use super::in_data;
 use super::readings::{read, refuse_implausible, Request as Readings};
@@ -136,6 +137,13 @@ pub struct Request<'a> {
     /// (`geometry`, `gravity` and `maps` ignored), and the readings checked against the
     /// calibration's held-out errors first ([`drift`]).
     pub update: bool,
+    /// With `update`: what it refits ([`update::Refits`], default `offsets,base,tool`).
+    pub refit: update::Refits,
+    /// With `update`: the robot's own weight as its calibration fitted it (the calibration's
+    /// stiffness file, [`crate::model::Compliance::own_weight`]), kept in the update's forward
+    /// model (refitted from there with [`update::Refit::Gravity`]); `None` for a calibration
+    /// without gravity terms.
+    pub weight: Option<crate::model::OwnWeight>,
 }
 
 /// A validation with the nominal model's error beside it.
@@ -287,7 +295,8 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     }
     let level = interval_level(request)?;
     let (geometry, gravity, maps_spec) = update::settings(request, setup, &obs)?;
-    let model = model(setup, measured_in, geometry, gravity)?;
+    let model = update::kept(request, model(setup, measured_in, geometry, gravity)?)?;
+    update::identifiable(request, setup, &model, &obs)?;
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
@@ -352,7 +361,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
     refuse_repeated(setup, &data, &model, &fitted).map_err(|e| in_data(name, e))?;
-    let reference = reference(setup, &model)?;
+    let reference = update::reference(request, &model, reference(setup, &model)?)?;
     let nominal = nominal(&reference, &obs, name)?;
     let check = (request.update)
         .then(|| drift::checked(setup.robot(), &nominal, level, &mut warnings))

@@ -139,6 +139,7 @@ impl ErrorModel {
         observations: &[Observation],
     ) -> Result<DMatrix<f64>> {
         let mut j = self.jacobian_at(values, At::of(observations), observations.len())?;
+        self.zero_held(&mut j);
         let Some(loads) = &self.loads else {
             return Ok(j);
         };

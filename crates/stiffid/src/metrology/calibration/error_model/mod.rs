@@ -73,6 +73,7 @@
 
 mod basis;
 mod external;
+mod held;
 mod jacobian;
 mod loads;
 mod maps;
@@ -228,6 +229,8 @@ pub struct ErrorModel {
     maps: Option<maps::Maps>,
     /// The cell's external axes ([`ErrorModel::with_external`]).
     external: Option<external::External>,
+    /// The parameters held at their nominal values ([`ErrorModel::with_held`]), ascending.
+    held: Vec<usize>,
 }
 
 impl ErrorModel {
@@ -324,6 +327,7 @@ impl ErrorModel {
             loads: None,
             maps: None,
             external: None,
+            held: Vec::new(),
         })
     }
 
