@@ -70,7 +70,7 @@ pub fn place<'py>(
     let mut options = crate::compensate::options(py, s, q0_deg, None, None)?;
     options.level = level;
     options.force_tolerance = force_tolerance_percent / 100.0;
-    let (read, process, points);
+    let (read, parsed, points);
     let work = match (&program, &process, &path) {
         (Some(program), Some(process_path), None) => {
             let name = program.display().to_string();
@@ -85,10 +85,10 @@ pub fn place<'py>(
             )
             .map_err(raise)?;
             let name = process_path.display().to_string();
-            process = file::parse(&error::read(process_path)?, &name).map_err(raise)?;
+            parsed = file::parse(&error::read(process_path)?, &name).map_err(raise)?;
             Work::Program {
                 program: &read,
-                process: &process,
+                process: &parsed,
             }
         }
         (None, None, Some(p)) => {
