@@ -217,9 +217,14 @@ const MODEL_ARRAYS: [&str; 1] = ["compliance_covariance_si"];
 /// whatever the thread count), the
 /// selection redone on each resample; the document's ``bootstrap`` holds how often each
 /// parameter is chosen and the spread of its stiffness over the models chosen. Not with
-/// ``robust``, ``nonnegative``, ``cross_validate``, ``folds`` or ``offsets``.
+/// ``robust``, ``nonnegative``, ``cross_validate``, ``folds`` or ``offsets``. With
+/// ``bootstrap``, ``stiffness_out`` (a new file, never an input) receives the stiffness file of
+/// ``stiffid identify --compare-models --bootstrap N --stiffness-out``, byte for byte: the
+/// setup's model fitted to every posture with the models the data support and their resampled
+/// parameter sets (``model_form``), whose spread ``compensate`` takes as its error budget's
+/// model-form part.
 #[pyfunction]
-#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None, bootstrap=None, seed=None))]
+#[pyo3(signature = (setup, measurements=None, *, q_deg=None, wrench=None, displacement_mm=None, point=None, robust=None, nonnegative=false, cross_validate=false, folds=None, offsets=false, compare_models=false, candidates=None, bootstrap=None, seed=None, stiffness_out=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify<'py>(
     py: Python<'py>,
@@ -238,6 +243,7 @@ pub fn identify<'py>(
     candidates: Option<Vec<String>>,
     bootstrap: Option<i64>,
     seed: Option<i64>,
+    stiffness_out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let folds = count::optional("folds", folds)?;
     let bootstrap = count::optional("bootstrap", bootstrap)?;
@@ -254,7 +260,19 @@ pub fn identify<'py>(
         seed,
     };
     options.check().map_err(raise)?;
+    if stiffness_out.is_some() && bootstrap.is_none() {
+        return Err(value(
+            "stiffness_out: only with compare_models=True and bootstrap=N (the model-form file)",
+        ));
+    }
     let s = &setup.inner;
+    let stiffness_file = stiffness_out
+        .map(|p| {
+            let mut inputs = setup.files.clone();
+            inputs.extend(measurements.and_then(|m| m.extract::<PathBuf>().ok()));
+            crate::output::prepare(&p, "stiffness_out", &inputs, &[])
+        })
+        .transpose()?;
     let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let request = Request {
         setup: s,
@@ -264,7 +282,17 @@ pub fn identify<'py>(
     let report = py.detach(|| job::run(request)).map_err(raise)?;
     documents::warn(py, report.warnings())?;
     let document = match &report {
-        Report::Comparison(r) => compare::compare_models(py, setup, r)?,
+        Report::Comparison(r) => {
+            if let Some(file) = &stiffness_file {
+                let spell = |o: stiffid::common::error::JobOption| o.name().to_string();
+                let text = r.stiffness_file_text(&setup.given, s, &spell);
+                match text.map_err(raise)? {
+                    Some(text) => file.write(text.as_bytes())?,
+                    None => return Err(value("stiffness_out: only with bootstrap=N")),
+                }
+            }
+            compare::compare_models(py, setup, r)?
+        }
         Report::Drives(r) => {
             let document = Document::new(r, &setup.given, &setup.inner);
             documents::to_python(py, &document, &ARRAYS)?

@@ -9,13 +9,16 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::app::place::document::Document;
 use stiffid::app::place::search::Effort;
-use stiffid::app::place::{self as job, Region, Request};
+use stiffid::app::place::{self as job, Region, Request, Work};
 use stiffid::machining::compensate::Aggregate;
 use stiffid::machining::process::file;
 use stiffid::machining::Language;
+use stiffid::observation::deflection::Frame;
 
 /// The placement of the part that minimises the error bound of the G-code ``program`` (cut with
-/// the process file ``process``) on the setup file ``setup`` (a ``.toml`` path with its
+/// the process file ``process``), or of the path CSV ``path`` (each row's TCP pose in the part
+/// frame, a wrench in ``frame`` ``"base"``, the part frame, or ``"tool"`` where the row gives
+/// none; not with ``program``), on the setup file ``setup`` (a ``.toml`` path with its
 /// ``[workpiece] base_from_part``, the part's own placement) with the stiffness ``stiffness``
 /// (numbers per parameter or a stiffness file, as ``compensate``): the part frame's origin
 /// within ``region_mm`` ``(x0, x1, y0, y1)`` of the robot base frame, turned about the base z axis
@@ -33,14 +36,16 @@ use stiffid::machining::Language;
 /// ``gain_vs_reach_only_percent``, ``evaluations``) and ``setup_text``: the setup file's text
 /// with the chosen ``[workpiece]``, as ``stiffid place --out`` writes it.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness, *, program, process, region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_percent=20.0, q0_deg=None))]
+#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_percent=20.0, q0_deg=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn place<'py>(
     py: Python<'py>,
     setup: PathBuf,
     stiffness: &Bound<'py, PyAny>,
-    program: PathBuf,
-    process: PathBuf,
+    program: Option<PathBuf>,
+    process: Option<PathBuf>,
+    path: Option<PathBuf>,
+    frame: &str,
     region_mm: [f64; 4],
     rotation_deg: (f64, f64),
     free: bool,
@@ -65,17 +70,39 @@ pub fn place<'py>(
     let mut options = crate::compensate::options(py, s, q0_deg, None, None)?;
     options.level = level;
     options.force_tolerance = force_tolerance_percent / 100.0;
-    let name = program.display().to_string();
-    let language = Language::of_file(&name).map_err(raise)?;
-    let program = stiffid::app::compensate::read_program(
-        &name,
-        &error::read(&program)?,
-        language,
-        chord_tolerance_mm * 1e-3,
-    )
-    .map_err(raise)?;
-    let process_name = process.display().to_string();
-    let process = file::parse(&error::read(&process)?, &process_name).map_err(raise)?;
+    let (read, parsed, points);
+    let work = match (&program, &process, &path) {
+        (Some(program), Some(process_path), None) => {
+            let name = program.display().to_string();
+            let language = Language::of_file(&name).map_err(raise)?;
+            job::check_language(language).map_err(raise)?;
+            let text = error::read(program)?;
+            read = stiffid::app::compensate::read_program(
+                &name,
+                &text,
+                language,
+                chord_tolerance_mm * 1e-3,
+            )
+            .map_err(raise)?;
+            let name = process_path.display().to_string();
+            parsed = file::parse(&error::read(process_path)?, &name).map_err(raise)?;
+            Work::Program {
+                program: &read,
+                process: &parsed,
+            }
+        }
+        (None, None, Some(p)) => {
+            let frame = frame.parse::<Frame>().map_err(raise)?;
+            let text = error::read(p)?;
+            points = job::read_path(&p.display().to_string(), &text, frame).map_err(raise)?;
+            Work::Path(&points)
+        }
+        _ => {
+            return Err(error::value(
+                "expected program= and process= (a G-code program and its process file), or path= (a path CSV), not both",
+            ))
+        }
+    };
     let own = s.workpiece().copied();
     let region = Region::from_mm_deg(
         region_mm,
@@ -87,8 +114,7 @@ pub fn place<'py>(
         setup: s,
         setup_text: &setup_text,
         compliance: &compliance,
-        program: &program,
-        process: &process,
+        work,
         options: &options,
         region,
         objective: objective.parse::<Aggregate>().map_err(raise)?,

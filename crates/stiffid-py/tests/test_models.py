@@ -1,6 +1,8 @@
 """Models beyond the six drives from Python: identify over a setup with virtual springs, and
 `identify(..., compare_models=True)`, each the same document as the command's."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -116,3 +118,21 @@ def test_noise_free_recovery_of_an_elbow_tilt_spring_from_arrays(paper):
     # The drives alone on the same data leave residuals far above the tracker noise.
     drives = stiffid.identify(paper, q_deg=q, wrench=wrench, displacement_mm=d)
     assert drives["noise_ratio"] > 3 and drives["model_error_dominates"]
+
+
+def test_compare_models_bootstrap_writes_the_commands_stiffness_file(fanuc, cli, tmp_path):
+    """stiffness_out= writes the model-form file of `--stiffness-out`, byte for byte (one library
+    function builds it for both)."""
+    theirs, mine = tmp_path / "cli.json", tmp_path / "py.json"
+    cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--compare-models",
+        "--bootstrap", "10", "--seed", "3", "--stiffness-out", theirs, "--json")
+    stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=10, seed=3,
+                     stiffness_out=mine)
+    assert mine.read_bytes() == theirs.read_bytes()
+    form = json.loads(mine.read_text())["model_form"]
+    assert (form["resamples"], form["seed"]) == (10, 3) and form["models"]
+    with pytest.raises(ValueError, match="stiffness_out: only with compare_models=True and bootstrap"):
+        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, stiffness_out=tmp_path / "x.json")
+    with pytest.raises(ValueError, match="stiffness_out"):
+        stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=2, stiffness_out=FANUC_DATA)
+    assert not (tmp_path / "x.json").exists()

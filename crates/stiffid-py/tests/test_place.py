@@ -1,5 +1,7 @@
 """stiffid.place against `stiffid place` on the drilling panel of the milling example."""
 
+import pytest
+
 import stiffid
 from conftest import REPO
 
@@ -23,3 +25,31 @@ def test_place_equals_the_command(cli, tmp_path):
     del mine["setup_text"]
     assert mine == theirs
     assert mine["gain_vs_own_percent"] > 25 and mine["gain_vs_reach_only_percent"] > 0
+
+
+def test_place_a_path_file_equals_the_command(cli, tmp_path):
+    """The example's path file with its poses in the part frame: the same placement and document
+    from both front ends; a robot program refused naming why."""
+    lines = (MILLING / "path.csv").read_text().splitlines()
+    rows = [lines[0]]
+    for line in lines[1:]:
+        fields = line.split(",")
+        for k, own in enumerate((1300.0, -700.0, 400.0)):
+            fields[k] = f"{float(fields[k]) - own:.9f}"
+        rows.append(",".join(fields))
+    part, out = tmp_path / "part.csv", tmp_path / "placed.toml"
+    part.write_text("\n".join(rows) + "\n")
+    stiffness = MILLING / "stiffness.json"
+    theirs = cli("place", "--setup", SETUP, "--stiffness", stiffness, "--path", part,
+                 "--region-mm", "500,2000,-1500,500", "--grid", "3", "--samples", "8",
+                 "--starts", "1", "--out", out, "--json")
+    mine = stiffid.place(SETUP, stiffness, path=part, region_mm=(500, 2000, -1500, 500),
+                         grid=3, samples=8, starts=1)
+    assert mine.pop("setup_text") == out.read_text()
+    assert mine == theirs and mine["gain_vs_own_percent"] > 0
+    with pytest.raises(ValueError, match="program: a KUKA KRL program's targets"):
+        stiffid.place(SETUP, stiffness, program=MILLING / "pocket.src",
+                      process=MILLING / "aluminium.toml", region_mm=(500, 2000, -1500, 500))
+    with pytest.raises(ValueError, match="expected program= and process="):
+        stiffid.place(SETUP, stiffness, path=part, program=MILLING / "pocket.nc",
+                      region_mm=(500, 2000, -1500, 500))

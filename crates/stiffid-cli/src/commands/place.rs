@@ -5,32 +5,45 @@ use crate::commands::common::{choice, Stiffness};
 use crate::load;
 use crate::output::{print_json_or, OutFile};
 use crate::progress::Bars;
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::read_program;
 use stiffid::app::place::document::{Document, Placement};
 use stiffid::app::place::search::Effort;
-use stiffid::app::place::{self, Region, Request};
+use stiffid::app::place::{self, Region, Request, Work};
 use stiffid::machining::compensate::{Aggregate, Options};
 use stiffid::machining::process::file;
 use stiffid::machining::Language;
+use stiffid::observation::deflection::Frame;
 use stiffid::Progress;
 
 /// Arguments of `stiffid place`.
 #[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("input").required(true).args(["path", "program"])))]
 pub struct Args {
-    /// Setup file (.toml) with the part's own placement, `[workpiece] base_from_part`; written
-    /// back to --out with the placement chosen.
+    /// Setup file (.toml) or built-in setup name (`stiffid setups`) with the part's own
+    /// placement, `[workpiece] base_from_part`, and the tool's `[tool] tcp_mm`; its text written
+    /// to --out with the placement chosen.
     #[arg(long)]
-    setup: PathBuf,
+    setup: String,
     #[command(flatten)]
     stiffness: Stiffness,
-    /// The G-code program (its points in the part frame).
+    /// The G-code program (its points in the part frame). Robot programs are refused: stiffid
+    /// reads their joint targets, which do not move with the part.
+    #[arg(long, requires = "process")]
+    program: Option<PathBuf>,
+    /// With --program: the process file (TOML) that gives every point its cutting force.
+    #[arg(long, requires = "program")]
+    process: Option<PathBuf>,
+    /// A path CSV instead of a program, as compensate reads it but each TCP pose (x_mm, y_mm,
+    /// z_mm, rx_deg, ry_deg, rz_deg) in the part frame and a `base` wrench in the part frame
+    /// (turning with it); rows of axis angles are refused.
     #[arg(long)]
-    program: PathBuf,
-    /// The process file (TOML) that gives every point its cutting force.
-    #[arg(long)]
-    process: PathBuf,
+    path: Option<PathBuf>,
+    /// With --path: the frame of the wrench in rows without a `frame` value (`base`: the part
+    /// frame).
+    #[arg(long, value_parser = choice::<Frame>(), default_value = "base", requires = "path")]
+    frame: Frame,
     /// Where the part frame's origin may go in the robot base frame: X0,X1,Y0,Y1 in mm (each
     /// range at most +-20000 mm).
     #[arg(long, allow_hyphen_values = true)]
@@ -94,19 +107,35 @@ pub struct Args {
 
 /// Parses, runs the place job, writes the setup, prints.
 pub fn run(args: &Args) -> Result<()> {
-    let setup_text = load::read(&args.setup)?;
-    let setup = load::setup(&args.setup.display().to_string())?;
+    let setup = load::setup(&args.setup)?;
+    // A built-in setup is written from its own text (`stiffid setups show NAME`).
+    let setup_path = Path::new(&args.setup);
+    let setup_text = match setup_path.is_file() {
+        true => load::read(setup_path)?,
+        false => stiffid::setup::builtin_text(&args.setup)?.to_string(),
+    };
     let compliance = args.stiffness.load(&setup)?;
-    let program_name = args.program.display().to_string();
-    let language = Language::of_file(&program_name).map_err(|e| anyhow!("--program {e}"))?;
-    let program = read_program(
-        &program_name,
-        &load::read(&args.program)?,
-        language,
-        args.chord_tolerance_mm * 1e-3,
-    )?;
-    let process_name = args.process.display().to_string();
-    let process = file::parse(&load::read(&args.process)?, &process_name)?;
+    let (program, process, path);
+    let work = match (&args.program, &args.process, &args.path) {
+        (Some(program_path), Some(process_path), _) => {
+            let name = program_path.display().to_string();
+            let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
+            place::check_language(language).map_err(option_error)?;
+            let text = load::read(program_path)?;
+            program = read_program(&name, &text, language, args.chord_tolerance_mm * 1e-3)?;
+            let name = process_path.display().to_string();
+            process = file::parse(&load::read(process_path)?, &name)?;
+            Work::Program {
+                program: &program,
+                process: &process,
+            }
+        }
+        (_, _, Some(p)) => {
+            path = place::read_path(&p.display().to_string(), &load::read(p)?, args.frame)?;
+            Work::Path(&path)
+        }
+        _ => bail!("expected --program and --process, or --path"),
+    };
     let mut options = Options::for_setup(&setup);
     stiffid::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
@@ -121,8 +150,7 @@ pub fn run(args: &Args) -> Result<()> {
         setup: &setup,
         setup_text: &setup_text,
         compliance: &compliance,
-        program: &program,
-        process: &process,
+        work,
         options: &options,
         region,
         objective: args.objective,
@@ -139,16 +167,21 @@ pub fn run(args: &Args) -> Result<()> {
     bars.begin("placements", 0);
     let report = place::run(&request);
     bars.end();
-    let report = report.map_err(|e| match e {
-        stiffid::Error::InvalidField { field, message } if !field.contains('.') => {
-            anyhow!("--{}: {message}", field.replace('_', "-"))
-        }
-        e => e.into(),
-    })?;
+    let report = report.map_err(option_error)?;
     check_loads(&report.setup_text, &args.out)?;
     out.write(report.setup_text.as_bytes())?;
     let document = Document::new(&report, &own.unwrap_or_default());
     print_json_or(args.json, &document, |d| human(d, &args.out))
+}
+
+/// The library's error, a field that is an option named as the option (`--region-mm`).
+fn option_error(e: stiffid::Error) -> anyhow::Error {
+    match e {
+        stiffid::Error::InvalidField { field, message } if !field.contains('.') => {
+            anyhow!("--{}: {message}", field.replace('_', "-"))
+        }
+        e => e.into(),
+    }
 }
 
 /// The region from the arguments ([`Region::from_mm_deg`]); `own_z` the part's own height (m).

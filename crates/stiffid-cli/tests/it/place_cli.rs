@@ -78,3 +78,123 @@ fn the_panel_is_placed_better_than_its_own_and_the_reach_only_placement() {
     );
     assert_success(&stiffid(&["place", "--help"]));
 }
+
+/// The example's path file with its poses in the part frame (its own placement at (1300, -700,
+/// 400) mm, not turned), each row moved by `shift_mm`.
+fn path_in_part_frame(shift_mm: [f64; 3]) -> String {
+    let text = std::fs::read_to_string(example("path.csv")).unwrap();
+    let mut lines = text.lines();
+    let mut out = format!("{}\n", lines.next().unwrap());
+    for line in lines {
+        let mut fields: Vec<String> = line.split(',').map(String::from).collect();
+        for (k, own) in [1300.0, -700.0, 400.0].iter().enumerate() {
+            let v: f64 = fields[k].parse().unwrap();
+            fields[k] = format!("{:.9}", v - own + shift_mm[k]);
+        }
+        out += &(fields.join(",") + "\n");
+    }
+    out
+}
+
+#[test]
+fn a_path_file_is_placed_and_compensating_it_there_gives_the_bound_stated() {
+    let dir = temp_dir("place-path");
+    let part = dir.join("part.csv");
+    std::fs::write(&part, path_in_part_frame([0.0; 3])).unwrap();
+    let (part, out) = (
+        part.display().to_string(),
+        dir.join("placed.toml").display().to_string(),
+    );
+    let (setup, stiffness) = (example("fanuc-milling.toml"), example("stiffness.json"));
+    let rest = [
+        "--stiffness",
+        &stiffness,
+        "--path",
+        &part,
+        "--region-mm",
+        "500,2000,-1500,500",
+        "--rotation-deg",
+        "0,0",
+        "--grid",
+        "3",
+        "--samples",
+        "8",
+        "--starts",
+        "1",
+    ];
+    let d = json(&stiffid(&args(&setup, &out, &rest)));
+    assert!(d["gain_vs_own_percent"].as_f64().unwrap() > 0.0, "{d}");
+    // The rows carried to the placement, in the base frame as compensate reads them.
+    let xyz: Vec<f64> = (d["placed"]["xyz_mm"].as_array().unwrap().iter())
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let base = dir.join("base.csv");
+    std::fs::write(&base, path_in_part_frame([xyz[0], xyz[1], xyz[2]])).unwrap();
+    let c = json(&stiffid(&[
+        "compensate",
+        "--setup",
+        &setup,
+        "--stiffness",
+        &stiffness,
+        "--path",
+        &base.display().to_string(),
+        "--out",
+        &dir.join("compensated.csv").display().to_string(),
+        "--json",
+    ]));
+    let peak = c["summary"]["budget"]["max_bound_mm"].as_f64().unwrap();
+    let placed = d["placed"]["peak_bound_mm"].as_f64().unwrap();
+    assert!((peak - placed).abs() < 1e-6 * placed, "{peak} vs {placed}");
+    // With the part at its own placement, the path is the example's own: the own bound is
+    // compensate's on the example's file.
+    let own = json(&stiffid(&[
+        "compensate",
+        "--setup",
+        &setup,
+        "--stiffness",
+        &stiffness,
+        "--path",
+        &example("path.csv"),
+        "--out",
+        &dir.join("own.csv").display().to_string(),
+        "--json",
+    ]));
+    let own_peak = own["summary"]["budget"]["max_bound_mm"].as_f64().unwrap();
+    let stated = d["own"]["peak_bound_mm"].as_f64().unwrap();
+    assert!(
+        (own_peak - stated).abs() < 1e-6 * stated,
+        "{own_peak} vs {stated}"
+    );
+}
+
+#[test]
+fn robot_programs_and_built_in_setups_without_a_tool_are_refused_naming_why() {
+    let dir = temp_dir("place-refused");
+    let out = dir.join("placed.toml").display().to_string();
+    let stiffness = example("stiffness.json");
+    let (krl, process) = (example("pocket.src"), example("aluminium.toml"));
+    let rest = [
+        "--stiffness",
+        &stiffness,
+        "--program",
+        &krl,
+        "--process",
+        &process,
+        "--region-mm",
+        "500,2000,-1500,500",
+    ];
+    let setup = example("fanuc-milling.toml");
+    assert_usage_error(
+        &stiffid(&args(&setup, &out, &rest)),
+        &["--program: a KUKA KRL program's targets", "joint targets"],
+    );
+    // A built-in setup is read (not "no such file") and refused for what it lacks.
+    let mut gcode = rest.to_vec();
+    let pocket = example("pocket.nc");
+    gcode[3] = &pocket;
+    assert_usage_error(
+        &stiffid(&args("fanuc-r2000ic-165f", &out, &gcode)),
+        &["tool.tcp_mm", "missing in setup fanuc-r2000ic-165f"],
+    );
+    assert!(!std::path::Path::new(&out).exists());
+}

@@ -241,6 +241,7 @@ def identify(
     candidates: Optional[Sequence[str]] = None,
     bootstrap: Optional[int] = None,
     seed: Optional[int] = None,
+    stiffness_out: Optional[_PathLike] = None,
 ) -> dict[str, Any]: ...
 def validate(
     setup: Setup,
@@ -313,8 +314,10 @@ def place(
     setup: Union[str, os.PathLike[str]],
     stiffness: Union[ArrayLike, str, os.PathLike[str]],
     *,
-    program: Union[str, os.PathLike[str]],
-    process: Union[str, os.PathLike[str]],
+    program: Optional[Union[str, os.PathLike[str]]] = None,
+    process: Optional[Union[str, os.PathLike[str]]] = None,
+    path: Optional[Union[str, os.PathLike[str]]] = None,
+    frame: Literal["base", "tool"] = "base",
     region_mm: Sequence[float],
     rotation_deg: Sequence[float] = (-180.0, 180.0),
     free: bool = False,

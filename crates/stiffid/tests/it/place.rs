@@ -1,12 +1,14 @@
 //! The place job: its optimum against a dense grid search of the same placements, the same
 //! result whatever the number of threads, the setup written back, never worse than the own or
-//! the reach-only placement, and its refusals.
+//! the reach-only placement, a path file placed as the G-code of its points, and its refusals.
 
-use nalgebra::{Isometry3, Translation3};
-use stiffid::app::place::{self, search::Effort, Region, Request};
-use stiffid::machining::compensate::{Aggregate, Compliance, Options};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
+use stiffid::app::place::{self, search::Effort, Region, Request, Work};
+use stiffid::machining::compensate::{Aggregate, Compliance, Options, PathPoint, Target};
 use stiffid::machining::process::Process;
+use stiffid::machining::program::Dialect;
 use stiffid::machining::{self, Language, Program};
+use stiffid::observation::deflection::Frame;
 use stiffid::robot::presets;
 use stiffid::{Error, Setup};
 
@@ -51,8 +53,10 @@ fn request<'a>(i: &'a Inputs, region: Region, effort: Effort) -> Request<'a> {
         setup: &i.setup,
         setup_text: SETUP,
         compliance: &i.compliance,
-        program: &i.program,
-        process: &i.process,
+        work: Work::Program {
+            program: &i.program,
+            process: &i.process,
+        },
         options: &i.options,
         region,
         objective: Aggregate::Max,
@@ -192,4 +196,127 @@ fn bad_requests_are_refused_naming_the_field() {
         matches!(&e, Error::InvalidField { field, message } if field == "region_mm" && message.contains("no placement")),
         "{e}"
     );
+}
+
+/// The G-code line's points as a path file gives them for placement: each TCP pose and its
+/// base-frame wrench in the part frame (at the own placement, what the G-code's process gives).
+fn as_path(i: &Inputs) -> Vec<PathPoint> {
+    let own = *i.setup.workpiece().unwrap();
+    let arm = i.setup.arm();
+    let report = machining::compensate(
+        arm,
+        Some(&own),
+        &i.compliance,
+        &i.program,
+        &i.process,
+        &i.options,
+    )
+    .unwrap();
+    let back = own.rotation.inverse();
+    report
+        .points
+        .iter()
+        .map(|p| {
+            let Target::Pose(pose) = p.target else {
+                panic!("a G-code point is a pose")
+            };
+            assert_eq!(p.frame, Frame::Base);
+            let f = back * p.wrench.fixed_rows::<3>(0).into_owned();
+            let m = back * p.wrench.fixed_rows::<3>(3).into_owned();
+            PathPoint {
+                line: p.line,
+                target: Target::Pose(own.inverse() * pose),
+                wrench: Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z),
+                frame: Frame::Base,
+                external: p.external,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn a_path_file_is_placed_as_the_gcode_of_its_points() {
+    let i = inputs(LINE);
+    let points = as_path(&i);
+    let region = Region {
+        rotation: [-40f64.to_radians(), 40f64.to_radians()],
+        ..SMALL
+    };
+    let effort = Effort {
+        grid: 3,
+        samples: 8,
+        starts: 1,
+        seed: 2,
+    };
+    let g = request(&i, region, effort);
+    let mut p = request(&i, region, effort);
+    p.work = Work::Path(&points);
+    // The part moved and turned: the poses and the wrenches turn with it in both.
+    let mut feasible = 0;
+    for (x, y, a) in [(1.3, -0.7, 0.0), (1.1, -0.5, 35.0), (1.4, -0.8, -30.0)] {
+        let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), f64::to_radians(a));
+        let pose = Isometry3::from_parts(Translation3::new(x, y, 0.4), turn);
+        let (eg, ep) = (
+            place::evaluate(&g, &pose).unwrap(),
+            place::evaluate(&p, &pose).unwrap(),
+        );
+        assert_eq!(eg.is_ok(), ep.is_ok(), "{eg:?} vs {ep:?}");
+        if let (Ok(eg), Ok(ep)) = (eg, ep) {
+            feasible += 1;
+            assert!(
+                (eg.peak - ep.peak).abs() <= 1e-9 * eg.peak,
+                "{eg:?} vs {ep:?}"
+            );
+            assert!((eg.sum - ep.sum).abs() <= 1e-9 * eg.sum, "{eg:?} vs {ep:?}");
+            assert_eq!((eg.worst_line, eg.points), (ep.worst_line, ep.points));
+        }
+    }
+    assert!(feasible >= 2, "{feasible}");
+    let (rg, rp) = (place::run(&g).unwrap(), place::run(&p).unwrap());
+    let (a, b) = (&rg.placed.base_from_part, &rp.placed.base_from_part);
+    assert!((a.translation.vector - b.translation.vector).norm() < 1e-6);
+    assert!(a.rotation.angle_to(&b.rotation) < 1e-6);
+    assert!((rg.placed.peak - rp.placed.peak).abs() <= 1e-9 * rg.placed.peak);
+    assert_eq!(rg.setup_text, rp.setup_text);
+}
+
+#[test]
+fn robot_programs_and_axis_angle_rows_are_refused_naming_why() {
+    let i = inputs(LINE);
+    let krl = "DEF a( )\nPTP {A1 -90, A2 -10, A3 -20, A4 0, A5 -60, A6 180}\nEND\n";
+    let krl = machining::read(krl, Language::Robot(Dialect::Krl), 1e-4).unwrap();
+    let mut r = request(&i, SMALL, Request::EFFORT);
+    r.work = Work::Program {
+        program: &krl,
+        process: &i.process,
+    };
+    let e = place::run(&r).unwrap_err();
+    assert!(
+        matches!(&e, Error::InvalidField { field, message } if field == "program" && message.starts_with("a KUKA KRL program's targets as stiffid reads them are joint targets (E6AXIS, AXIS)")),
+        "{e}"
+    );
+    let rows = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n-90,-10,-20,0,-60,180,0,0,-100\n";
+    let rows = place::read_path("rows.csv", rows, Frame::Base).unwrap();
+    r.work = Work::Path(&rows);
+    let e = place::run(&r).unwrap_err();
+    assert!(
+        matches!(&e, Error::InvalidField { field, message } if field == "path" && message.starts_with("line 2: axis angles")),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_built_in_setup_is_written_with_the_workpiece_appended() {
+    let text = stiffid::setup::builtin_text("fanuc-r2000ic-165f").unwrap();
+    let pose = Isometry3::from_parts(
+        Translation3::new(1.2, -0.3, 0.45),
+        UnitQuaternion::from_euler_angles(0.0, 0.0, -20f64.to_radians()),
+    );
+    let out = place::with_workpiece(text, &pose);
+    assert!(out.starts_with(text));
+    let read = stiffid::setup::parse(&out, "placed.toml", |n, _| presets::get(n)).unwrap();
+    let w = read.workpiece().unwrap();
+    assert!((w.translation.vector - pose.translation.vector).norm() < 1e-12);
+    assert!(w.rotation.angle_to(&pose.rotation) < 1e-9);
+    assert_eq!(read.name(), "fanuc-r2000ic-165f");
 }

@@ -140,10 +140,10 @@ pub fn run(args: &Args) -> Result<()> {
             if let Some(out) = &out {
                 out.write(r.fragment().as_bytes())?;
             }
-            if let (Some(out), Some(file)) = (&stiffness_out, r.stiffness_file(name, &setup)) {
-                let text = json(&file)?;
-                job::check_stiffness_file(&text, &setup, &output::flag)?;
-                out.write(text.as_bytes())?;
+            if let Some(out) = &stiffness_out {
+                if let Some(text) = r.stiffness_file_text(name, &setup, &output::flag)? {
+                    out.write(text.as_bytes())?;
+                }
             }
             let doc = r.document(name);
             if let Some(dir) = report_dir {

@@ -6,13 +6,14 @@
 
 use crate::app::measurements::{angle_warnings, on_measurements, Data};
 use crate::app::Warning;
+use crate::common::error::JobOption;
 use crate::common::progress::Progress;
 use crate::identify::compare::{
     bootstrap, compare, default_pool, pool_by_name, Bootstrap, Comparison, Document, Dropped,
     Resampling,
 };
 use crate::model::fragment;
-use crate::{Result, Setup};
+use crate::{Error, Result, Setup};
 use std::io::Read;
 
 /// What to compare.
@@ -89,6 +90,31 @@ impl Report {
         let mut doc = super::document::springs::Document::new(&fit, setup_name, setup);
         doc.model_form = Some(super::model_form::section(b, &self.springs));
         Some(doc)
+    }
+
+    /// The text of the stiffness file of `stiffid identify --compare-models --bootstrap N
+    /// --stiffness-out` and of Python's `identify(..., stiffness_out=...)`:
+    /// [`Report::stiffness_file`] as pretty JSON ending in a line end, read back as `validate`,
+    /// `predict` and `compensate` read it ([`super::check_stiffness_file`], its options as the
+    /// front end `spell`s them) before anything is written; `None` without a bootstrap.
+    ///
+    /// # Errors
+    /// Those of [`super::check_stiffness_file`].
+    pub fn stiffness_file_text(
+        &self,
+        setup_name: &str,
+        setup: &Setup,
+        spell: &dyn Fn(JobOption) -> String,
+    ) -> Result<Option<String>> {
+        let Some(file) = self.stiffness_file(setup_name, setup) else {
+            return Ok(None);
+        };
+        let text = serde_json::to_string_pretty(&file).map_err(|e| Error::InvalidOption {
+            option: JobOption::Out,
+            message: format!("not written: {e}"),
+        })? + "\n";
+        super::check_stiffness_file(&text, setup, spell)?;
+        Ok(Some(text))
     }
 
     /// The recommended model as a `[model]` fragment to paste into the setup, with a comment

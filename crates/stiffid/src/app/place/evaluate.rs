@@ -1,12 +1,12 @@
-//! One placement of the part evaluated: the program compensated with the part there
-//! ([`crate::machining::compensate`]), every point reachable in the start's configuration and
+//! One placement of the part evaluated: the program (or path) compensated with the part there
+//! ([`crate::machining::compensate()`], [`crate::machining::compensate::path`]), every point reachable in the start's configuration and
 //! compensated within the joint limits, then the checks of the placement (module docs of
 //! [`super`]) and the path's error bounds.
 
+use super::work::{self, Work};
 use crate::cell::{CheckKind, Checker};
-use crate::machining::compensate::{Compliance, Options};
-use crate::machining::process::Process;
-use crate::machining::{self, Program};
+use crate::machining;
+use crate::machining::compensate::{self, Compensated, Compliance, Options};
 use crate::math::jacobi;
 use crate::robot::kinematics::Coordinates;
 use crate::Setup;
@@ -25,8 +25,7 @@ const CHECKS: [CheckKind; 3] = [
 pub(super) struct Context<'a> {
     pub setup: &'a Setup,
     pub compliance: &'a Compliance,
-    pub program: &'a Program,
-    pub process: &'a Process,
+    pub work: Work<'a>,
     pub options: &'a Options,
     /// The smallest distance of every axis angle to its joint limits, rad.
     pub margin: f64,
@@ -62,20 +61,12 @@ impl Context<'_> {
     /// The evaluation of the part at `pose`, or why it is not feasible there.
     pub fn evaluate(&self, pose: &Isometry3<f64>) -> Result<Evaluation, String> {
         let arm = self.setup.arm();
-        let report = machining::compensate(
-            arm,
-            Some(pose),
-            self.compliance,
-            self.program,
-            self.process,
-            self.options,
-        )
-        .map_err(|e| e.to_string())?;
+        let (lines, results) = self.compensate(pose).map_err(|e| e.to_string())?;
         let robot = arm.robot();
         let limits = robot.limits();
         let (mut margin, mut condition, mut clearance) = (f64::INFINITY, 0f64, None::<f64>);
         let (mut peak, mut sum, mut worst_line) = (0f64, 0.0, 0);
-        for (p, r) in report.points.iter().zip(&report.results) {
+        for (&line, r) in lines.iter().zip(&results) {
             for q in [&r.q, &r.q_compensated] {
                 margin = margin.min(limits.distance(q));
             }
@@ -89,7 +80,7 @@ impl Context<'_> {
                     if !c.ok {
                         return Err(format!(
                             "line {}: {} between {} and {}",
-                            p.line,
+                            line,
                             c.kind.key(),
                             c.between.0,
                             c.between.1
@@ -102,7 +93,7 @@ impl Context<'_> {
             let bound = r.budget.bound;
             sum += bound;
             if bound > peak {
-                (peak, worst_line) = (bound, p.line);
+                (peak, worst_line) = (bound, line);
             }
         }
         if margin < self.margin {
@@ -122,11 +113,35 @@ impl Context<'_> {
             base_from_part: *pose,
             peak,
             sum,
-            points: report.points.len(),
+            points: results.len(),
             worst_line,
             limit_margin: margin,
             condition,
             clearance,
         })
+    }
+
+    /// The work compensated with the part at `pose`: each point's line and compensation.
+    fn compensate(&self, pose: &Isometry3<f64>) -> crate::Result<(Vec<u64>, Vec<Compensated>)> {
+        let arm = self.setup.arm();
+        match self.work {
+            Work::Program { program, process } => {
+                let report = machining::compensate(
+                    arm,
+                    Some(pose),
+                    self.compliance,
+                    program,
+                    process,
+                    self.options,
+                )?;
+                let lines = report.points.iter().map(|p| p.line).collect();
+                Ok((lines, report.results))
+            }
+            Work::Path(points) => {
+                let placed = work::placed(points, pose);
+                let results = compensate::path(arm, self.compliance, &placed, self.options)?;
+                Ok((placed.iter().map(|p| p.line).collect(), results))
+            }
+        }
     }
 }

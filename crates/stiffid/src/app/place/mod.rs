@@ -1,12 +1,18 @@
 //! The place job: where to clamp the part so that a machining program's error bound is least.
 //!
-//! The part frame (`[workpiece] base_from_part`, the frame a G-code program's points are in)
-//! moves within a region of the cell: its origin's x and y in the robot base frame within
+//! The part frame (`[workpiece] base_from_part`) moves, and with it the work ([`Work`]) in it: a
+//! G-code program's points (its coordinates are the part frame's), or a path file's rows, whose
+//! TCP poses are read in the part frame (not in the base frame, as `compensate` reads them) and
+//! whose `base` wrenches turn with the part ([`read_path`]). A robot program is refused
+//! ([`Work::check`]): stiffid reads its joint targets only, and axis angles stay where they are
+//! when the part moves; the frame its Cartesian targets would be in (KRL `$BASE`, the RAPID work
+//! object, the LS `UFRAME`, the INFORM user frame) is the part frame that would move. The part
+//! frame moves within a region of the cell: its origin's x and y in the robot base frame within
 //! [`Region::x`] and [`Region::y`], turned about the base z axis (the table's normal, through the
 //! part's origin) by an angle within [`Region::rotation`] from the setup's own rotation; with
 //! [`Region::free`] also its height and a tilt about the base x and y axes, the six degrees of
-//! freedom: `R = Rz(a) Ry(b) Rx(c) R_own`. At every placement tried the program is compensated
-//! ([`crate::machining::compensate`]: every point reachable by inverse kinematics from the
+//! freedom: `R = Rz(a) Ry(b) Rx(c) R_own`. At every placement tried the work is compensated
+//! ([`crate::machining::compensate()`]: every point reachable by inverse kinematics from the
 //! start posture without a change of configuration, every compensated posture within the joint
 //! limits), and the placement is feasible when every axis angle stays [`Request::margin`] from
 //! its joint limits, the TCP Jacobian's condition number stays below
@@ -28,16 +34,16 @@
 pub mod document;
 mod evaluate;
 pub mod search;
+mod work;
 mod written;
 
 pub use evaluate::Evaluation;
+pub use work::{check_language, read_path, Work};
 pub use written::with_workpiece;
 
 use crate::cell::Checker;
 use crate::common::words::number;
 use crate::machining::compensate::{Aggregate, Compliance, Options};
-use crate::machining::process::Process;
-use crate::machining::Program;
 use crate::{Error, Result, Setup};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use search::{Effort, Space};
@@ -180,10 +186,9 @@ pub struct Request<'a> {
     pub setup_text: &'a str,
     /// The joint compliance.
     pub compliance: &'a Compliance,
-    /// The program (G-code: its points are in the part frame).
-    pub program: &'a Program,
-    /// The process that cuts it.
-    pub process: &'a Process,
+    /// What is placed: a G-code program and its process, or a path file's points, each in the
+    /// part frame ([`Work`]).
+    pub work: Work<'a>,
     /// The compensation's options (start posture, level, force tolerance).
     pub options: &'a Options,
     /// Where the part may go.
@@ -250,8 +255,8 @@ fn cost(objective: Aggregate, e: &Evaluation) -> f64 {
 ///
 /// # Errors
 /// [`Error::InvalidField`] for a region, margin, condition or effort outside its limits, a setup
-/// without `[workpiece]` or `[tool] tcp_mm`, a program other than G-code (a robot program's
-/// targets do not move with the part), and no feasible placement in the region (naming why the
+/// without `[workpiece]` or `[tool] tcp_mm`, work the part cannot carry ([`Work::check`]: a robot
+/// program's joint targets, a path file's axis angles), and no feasible placement in the region (naming why the
 /// setup's own placement fails); those of [`Options::validate`].
 pub fn run(request: &Request<'_>) -> Result<Report> {
     check(request)?;
@@ -350,8 +355,7 @@ fn context<'a>(request: &Request<'a>) -> evaluate::Context<'a> {
     evaluate::Context {
         setup,
         compliance: request.compliance,
-        program: request.program,
-        process: request.process,
+        work: request.work,
         options: request.options,
         margin: request.margin,
         max_condition: request.max_condition,
@@ -406,8 +410,5 @@ fn check(request: &Request<'_>) -> Result<()> {
     if !request.setup.tcp_given() {
         return field("tool.tcp_mm", format!("missing in setup {}: placement compensates the cutting tool's centre point ([tool] tcp_mm)", request.setup.name()));
     }
-    if !matches!(request.program, Program::GCode(_)) {
-        return field("program", "placement moves the part, and a robot program's targets do not move with it: give the G-code program (its points are in the part frame)".into());
-    }
-    Ok(())
+    request.work.check(request.setup)
 }

@@ -1,0 +1,113 @@
+//! What is placed: a G-code program cut under a process, or a path file's points; each as the
+//! part frame carries it, and what cannot move with the part refused naming why.
+
+use crate::common::choice::Choice;
+use crate::machining::compensate::{PathPoint, Target};
+use crate::machining::process::Process;
+use crate::machining::program::Dialect;
+use crate::machining::{Language, Program};
+use crate::observation::deflection::Frame;
+use crate::{Error, Result, Setup};
+use nalgebra::Isometry3;
+
+/// The work placed with the part.
+#[derive(Debug, Clone, Copy)]
+pub enum Work<'a> {
+    /// A G-code program, its points in the part frame, cut under `process`.
+    Program {
+        /// The program ([`crate::machining::read`]).
+        program: &'a Program,
+        /// The process that gives every point its wrench.
+        process: &'a Process,
+    },
+    /// A path file's points ([`crate::machining::path`], [`read_path`]): each row's TCP pose
+    /// (`x_mm..rz_deg`) in the part frame, its wrench in the tool frame (`tool`) or in the part
+    /// frame (`base`: the part's own frame here, turning with it as the cut does).
+    Path(&'a [PathPoint]),
+}
+
+/// Reads a path file's text (`name` for its errors) for placement: the rows of
+/// [`crate::machining::path::parse`] with `default_frame` for rows without a `frame`.
+///
+/// # Errors
+/// Those of [`crate::machining::path::parse`], as [`Error::Input`] naming the file.
+pub fn read_path(name: &str, text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
+    crate::machining::path::parse(text, default_frame).map_err(|e| Error::Input {
+        source_name: name.to_string(),
+        error: Box::new(e),
+    })
+}
+
+impl Work<'_> {
+    /// Refuses what the part cannot carry: a robot program ([`check_language`]), a path file's
+    /// axis-angle rows, a path file on a robot with external axes.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`program`, `path`) naming why.
+    pub fn check(&self, setup: &Setup) -> Result<()> {
+        let refuse = |field: &str, message: String| {
+            Err(Error::InvalidField {
+                field: field.into(),
+                message,
+            })
+        };
+        match self {
+            Work::Program { program, .. } => check_language(program.language()),
+            Work::Path(points) => {
+                if setup.robot().external().is_some() {
+                    return refuse("path", format!("setup {} has external axes: a path file is placed on a robot without them (give the program as G-code)", setup.name()));
+                }
+                match points.iter().find(|p| matches!(p.target, Target::Posture(_))) {
+                    Some(p) => refuse("path", format!("line {}: axis angles (q1_deg..q6_deg) do not move with the part: give each row's TCP pose in the part frame (x_mm, y_mm, z_mm, rx_deg, ry_deg, rz_deg)", p.line)),
+                    None => Ok(()),
+                }
+            }
+        }
+    }
+}
+
+/// Refuses a program language whose targets do not move with the part: every robot program's
+/// (stiffid reads their joint targets; a Cartesian target its reader refuses); G-code passes.
+/// A front end checks it before reading the program.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`program`) naming the language, its joint targets and what to give.
+pub fn check_language(language: Language) -> Result<()> {
+    match language {
+        Language::GCode => Ok(()),
+        Language::Robot(d) => Err(Error::InvalidField {
+            field: "program".into(),
+            message: format!("a {} program's targets as stiffid reads them are joint targets ({}), and axis angles do not move with the part; stiffid reads no Cartesian target (the controller's configuration flags would choose among the inverse-kinematics solutions): give the program as G-code, or its TCP poses in the part frame as a path file", language.help(), joint_form(d)),
+        }),
+    }
+}
+
+/// The points of a path file with the part at `base_from_part`: each pose and each `base`
+/// wrench (the part frame's, module docs) carried into the robot base frame.
+pub(super) fn placed(points: &[PathPoint], base_from_part: &Isometry3<f64>) -> Vec<PathPoint> {
+    let turn = base_from_part.rotation;
+    points
+        .iter()
+        .map(|p| {
+            let mut p = p.clone();
+            if let Target::Pose(pose) = p.target {
+                p.target = Target::Pose(base_from_part * pose);
+            }
+            if p.frame == Frame::Base {
+                let (f, m) = (p.wrench.fixed_rows::<3>(0), p.wrench.fixed_rows::<3>(3));
+                let (f, m) = (turn * f.into_owned(), turn * m.into_owned());
+                p.wrench = nalgebra::Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
+            }
+            p
+        })
+        .collect()
+}
+
+fn joint_form(d: Dialect) -> &'static str {
+    match d {
+        Dialect::Krl => "E6AXIS, AXIS",
+        Dialect::Rapid => "jointtarget",
+        Dialect::FanucLs => "positions in joint representation",
+        Dialect::Inform => "pulse positions",
+    }
+}
