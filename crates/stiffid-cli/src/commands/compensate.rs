@@ -469,6 +469,17 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             f.mean_change_percent,
         );
     }
+    if let Some(f) = &doc.feasibility {
+        text += &format!(
+            "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision)\n",
+            f.margin_deg,
+            f.max_condition,
+            if f.collisions_checked { "checked" } else { "not checked" },
+            f.states_removed_limit_margin,
+            f.states_removed_singularity,
+            f.states_removed_collision,
+        );
+    }
     if let Some(p) = &doc.program {
         text += &format!(
             "program ({}, process {}): {}, process force up to {:.1} N\n",
