@@ -136,14 +136,16 @@ impl<'a> Checks<'a> {
     /// `Removed` with a count of one for the first check posture `q` (rad) fails, `None` when it
     /// passes every check.
     pub fn fails(&self, q: &Vector6<f64>) -> Option<Removed> {
-        if !(self.robot.limits().distance(q) >= self.margin) {
+        let distance = self.robot.limits().distance(q);
+        if distance.is_nan() || distance < self.margin {
             return Some(Removed {
                 limit_margin: 1,
                 ..Removed::default()
             });
         }
         let j = self.robot.frames(q).jacobian(&self.tcp, Coordinates::Axis);
-        if !(jacobi::cond(&j) <= self.max_condition) {
+        let condition = jacobi::cond(&j);
+        if condition.is_nan() || condition > self.max_condition {
             return Some(Removed {
                 singularity: 1,
                 ..Removed::default()
