@@ -46,6 +46,10 @@ use stiffid::observation::deflection::Frame;
 /// ``free_station_mm=R`` moves the track up to ``+-R`` mm from a path file's own ``e1_mm`` at
 /// every point, in ``station_step_mm`` steps (also the most it moves between points), chosen
 /// with the free tool axis by one dynamic programme (as ``compensate --free-station-mm``).
+/// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
+/// number of at most ``max_condition`` and, with the setup's ``[cell]`` on a fixed base, clear of
+/// the floor, the obstacles and itself (as ``--margin-deg``, ``--max-condition``; the
+/// ``document``'s ``feasibility`` counts the states each check removed).
 /// ``map=True`` adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'
 /// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
@@ -77,7 +81,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false, free_station_mm=None, station_step_mm=10.0, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false, free_station_mm=None, station_step_mm=10.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -106,6 +110,8 @@ pub fn compensate<'py>(
     map: bool,
     free_station_mm: Option<f64>,
     station_step_mm: f64,
+    margin_deg: f64,
+    max_condition: f64,
     figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name_length = crate::count::optional("name_length", name_length)?;
@@ -122,6 +128,8 @@ pub fn compensate<'py>(
     options.max_error = max_error_mm.map(|m| m * 1e-3);
     options.force_tolerance = force_tolerance_percent / 100.0;
     options.map = map;
+    options.feasible.margin = margin_deg.to_radians();
+    options.feasible.max_condition = max_condition;
     let aggregate = objective.parse::<Aggregate>().map_err(raise)?;
     if let Some(free) = options.free_tool_axis.as_mut() {
         free.aggregate = aggregate;

@@ -78,6 +78,7 @@ fn benches(c: &mut Criterion) {
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
         max_error: None,
+        feasible: compensate::Feasible::for_setup(&s),
         map: false,
     };
     let solved = compensate::path(s.arm(), &compliance, &poses, &options).unwrap();

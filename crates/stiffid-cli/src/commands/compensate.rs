@@ -19,7 +19,7 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
+    Aggregate, Compensated, Feasible, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -116,6 +116,14 @@ pub struct Args {
     /// between consecutive points, and the grid's spacing, mm (0.1 <= value <= --free-station-mm).
     #[arg(long, default_value_t = 10.0, requires = "free_station_mm")]
     station_step_mm: f64,
+    /// With --free-tool-axis or --free-station-mm: every moved posture keeps at least this
+    /// distance to the joint limits, deg (0 to 90); the path's own posture stays as it is.
+    #[arg(long, default_value_t = Feasible::DEFAULT_MARGIN_DEG)]
+    margin_deg: f64,
+    /// With --free-tool-axis or --free-station-mm: a moved posture's TCP Jacobian condition
+    /// number stays at most this (finite, >= 1): away from singularities.
+    #[arg(long, default_value_t = Feasible::DEFAULT_MAX_CONDITION)]
+    max_condition: f64,
     /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
@@ -373,6 +381,8 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     options.force_tolerance = args.force_tolerance_percent / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);
     options.map = args.map;
+    options.feasible.margin = args.margin_deg.to_radians();
+    options.feasible.max_condition = args.max_condition;
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
@@ -457,6 +467,17 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             f.mean_deflection_before_mm,
             f.mean_deflection_after_mm,
             f.mean_change_percent,
+        );
+    }
+    if let Some(f) = &doc.feasibility {
+        text += &format!(
+            "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision)\n",
+            f.margin_deg,
+            f.max_condition,
+            if f.collisions_checked { "checked" } else { "not checked" },
+            f.states_removed_limit_margin,
+            f.states_removed_singularity,
+            f.states_removed_collision,
         );
     }
     if let Some(p) = &doc.program {

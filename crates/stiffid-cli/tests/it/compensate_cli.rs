@@ -259,6 +259,14 @@ fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
         assert!(!line.contains(other), "{line}");
         assert!(!out.exists());
     }
+    for (option, value, expected) in [
+        ("--margin-deg", "91", "expected 0 to 90"),
+        ("--max-condition", "0.5", "expected a finite number >= 1"),
+    ] {
+        let o = compensate(&path, &out, &["--free-tool-axis", option, value]);
+        assert_usage_error(&o, &[&format!("{option}: {value}: {expected}")]);
+        assert!(!out.exists());
+    }
     // The surge objective needs the robot's masses (the example's robot gives none) and means
     // nothing without the free tool axis.
     let surge = ["--free-tool-axis-objective", "surge"];
@@ -593,6 +601,14 @@ fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
     );
     let shown =
         format!("mean TCP deflection {before:.4} mm before, {after:.4} mm after ({change:+.1}%)");
+    assert!(text.contains(&shown), "{shown} not in\n{text}");
+    let feasible = &doc["feasibility"];
+    assert!((feasible["margin_deg"].as_f64().unwrap() - 5.0).abs() < 1e-9);
+    assert_eq!(feasible["collisions_checked"].as_bool(), Some(false));
+    let shown = format!(
+        "states removed {} (limit margin)",
+        feasible["states_removed_limit_margin"].as_u64().unwrap()
+    );
     assert!(text.contains(&shown), "{shown} not in\n{text}");
     let program = &doc["program"];
     let forces = program["segments"].as_array().unwrap().iter();

@@ -495,6 +495,10 @@ pub enum JobOption {
     StationStepMm,
     /// compensate: the largest error bound a program may have anywhere, mm.
     MaxErrorMm,
+    /// compensate: the distance every moved posture keeps to the joint limits, deg.
+    MarginDeg,
+    /// compensate: the largest condition number of a moved posture's TCP Jacobian.
+    MaxCondition,
     /// compensate: the process force model's relative error, percent.
     ForceTolerancePercent,
     /// compensate: the largest sagitta of the chords of a G-code arc, mm.
@@ -578,6 +582,8 @@ impl JobOption {
             JobOption::FreeStationMm => "free_station_mm",
             JobOption::StationStepMm => "station_step_mm",
             JobOption::MaxErrorMm => "max_error_mm",
+            JobOption::MarginDeg => "margin_deg",
+            JobOption::MaxCondition => "max_condition",
             JobOption::ForceTolerancePercent => "force_tolerance_percent",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",

@@ -216,7 +216,7 @@ fn inverse_kinematics_round_trips_for_every_preset() {
 
 /// A straight line of poses around the TCP of the setup's first test posture, 2 mm apart, with a
 /// 200 N force in the tool frame.
-fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
+pub(crate) fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
     let start = tool_pose(&s.robot().frames(&s.test_postures()[0]), &s.tool().tcp);
     (0..n)
         .map(|i| {
@@ -232,7 +232,7 @@ fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
         .collect()
 }
 
-fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
+pub(crate) fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
     Options {
         q0: s.test_postures()[0],
         ik: ik::Options::default(),
@@ -242,6 +242,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
         max_error: None,
+        feasible: compensate::Feasible::for_setup(s),
         map: false,
     }
 }

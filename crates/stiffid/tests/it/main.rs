@@ -25,6 +25,7 @@ mod external_axes;
 mod extrapolation;
 mod fanuc_data;
 mod fanuc_prediction;
+mod feasible_states;
 mod formats_proptest;
 mod forward_model;
 mod free_station;

@@ -61,6 +61,9 @@ pub struct Document {
     pub free_tool_axis: Option<FreeToolAxis>,
     /// With `--free-station-mm`: its options; else `null`.
     pub free_station: Option<FreeStation>,
+    /// With a free variable: the feasibility checks of its moved postures and the states each
+    /// removed; else `null`.
+    pub feasibility: Option<super::feasibility::Feasibility>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -319,6 +322,7 @@ impl Document {
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
+            feasibility: report.feasibility.clone(),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
                 output_language: p.output.name(),
@@ -393,6 +397,8 @@ pub struct Summary {
     largest_at: Option<(u64, Vector6<f64>, ExternalValues)>,
     /// The cell's external axes (the document's units of the external values).
     axes: Option<ExternalAxes>,
+    /// The states the feasibility checks removed, summed over the points.
+    pub removed: crate::machining::compensate::Removed,
 }
 
 fn norm(d: &Vector6<f64>) -> f64 {
@@ -426,6 +432,7 @@ impl Summary {
             first: None,
             largest_at: None,
             axes: axes.cloned(),
+            removed: Default::default(),
         }
     }
 
@@ -441,6 +448,7 @@ impl Summary {
             self.first = Some((line, r.q, *e));
         }
         self.points += 1;
+        self.removed += r.removed;
         self.sum_deflection += d;
         let rotation = r.deflection.fixed_rows::<3>(3).norm();
         self.max_rotation = self.max_rotation.max(rotation);

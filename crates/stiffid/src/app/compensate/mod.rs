@@ -21,6 +21,7 @@ pub mod certify;
 mod columns;
 pub mod document;
 pub mod dynamics;
+pub mod feasibility;
 pub mod scene;
 pub mod stream;
 
@@ -152,6 +153,9 @@ pub struct Report {
     pub free_tool_axis: Option<FreeToolAxis>,
     /// The free track station, if asked.
     pub free_station: Option<compensate::FreeStation>,
+    /// With a free variable: the feasibility checks of its moved postures and the states each
+    /// removed.
+    pub feasibility: Option<feasibility::Feasibility>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -396,6 +400,7 @@ where
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
         free_station: options.free_station,
+        feasibility: feasibility::Feasibility::new(&options, setup.arm().robot(), summary.removed),
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,

@@ -60,8 +60,20 @@
 //! at most its `max_step`, a state taken only where its cost is no larger than at the path's own
 //! values, the tie-breaking cost summed over both variables. The cell files give no axis
 //! speeds: the step per point is the speed limit (the station moves at most `max_step` per
-//! point; at a feed `v` and points `s` apart that is `max_step v / s`). The cell's bodies are
-//! not checked for the moved postures (as for the free tool axis).
+//! point; at a feed `v` and points `s` apart that is `max_step v / s`).
+//!
+//! ## Feasibility
+//! Every posture a free variable moves a point to must be feasible ([`Feasible`], the checks
+//! `stiffid place` asks of a placement): each axis angle at least [`Feasible::margin`] from its
+//! joint limits, the TCP Jacobian's condition number at most [`Feasible::max_condition`] and,
+//! with the setup's `[cell]` on a fixed base ([`Feasible::checks_cell`]), the robot's bodies clear
+//! of the floor, the obstacles and each other ([`crate::cell::Checker`]). A state whose posture
+//! fails is not taken at that point; the path's own posture is kept as it is whatever it fails
+//! (the no-worse rule: the path stays feasible as given). Each result counts its point's states
+//! each check removed ([`Compensated::removed`]: states that inverse kinematics reaches with a
+//! cost no larger than the path's own, counted by the first check they fail). With a free
+//! station, or an arm on a carrier, the bodies are not checked: the checker places the arm's
+//! bodies at the cell's origin, which a carrier moves.
 //!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
@@ -76,6 +88,7 @@ use crate::observation::deflection::Frame;
 use nalgebra::{Isometry3, Vector6};
 
 pub mod budget;
+mod feasible;
 mod map;
 mod model;
 mod options;
@@ -84,6 +97,7 @@ mod stream;
 mod tool_axis;
 
 pub use budget::Budget;
+pub use feasible::{Feasible, Removed};
 pub use map::{map, Map};
 pub use model::{Model, Newton};
 pub use options::{Aggregate, FreeStation, FreeToolAxis, Objective, Options};
@@ -183,4 +197,7 @@ pub struct Compensated {
     /// chosen by [`FreeStation`], else the path's own; empty for a robot without external axes
     /// and for a program's point (its values are the program's).
     pub external: crate::robot::external::ExternalValues,
+    /// With a free variable: the states of its grid at this point that the feasibility checks
+    /// removed ([`Feasible`]); zero without.
+    pub removed: Removed,
 }

@@ -281,6 +281,9 @@ pub struct Options {
     /// a path with a point above it is refused ([`crate::app::compensate::run`]); `None` accepts
     /// any.
     pub max_error: Option<f64>,
+    /// What every posture the free variables move a point to must keep: the joint-limit margin,
+    /// the condition number and the cell's collision checks ([`super::Feasible`]).
+    pub feasible: super::Feasible,
     /// The compensate job also maps the free variable ([`super::Map`]: every point at every
     /// rotation of the grid); [`super::path`] ignores it.
     pub map: bool,
@@ -296,7 +299,8 @@ impl Options {
     /// # Errors
     /// [`Error::InvalidField`] naming the field, the value and the range;
     /// [`Error::InvalidOption`] for a free station's ([`JobOption::FreeStationMm`],
-    /// [`JobOption::StationStepMm`], [`JobOption::FreeToolAxisObjective`]).
+    /// [`JobOption::StationStepMm`], [`JobOption::FreeToolAxisObjective`]) and the feasibility's
+    /// ([`super::Feasible::validate`]).
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",
@@ -327,6 +331,7 @@ impl Options {
             });
         }
         self.validate_station()?;
+        self.feasible.validate()?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
@@ -369,7 +374,8 @@ impl Options {
 
     /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
     /// the middle of its bounds), with [`ik::Options::default`]; no free tool axis; at most
-    /// [`super::MAX_ITERATIONS`] Newton steps per point.
+    /// [`super::MAX_ITERATIONS`] Newton steps per point; the feasibility of
+    /// [`super::Feasible::for_setup`].
     pub fn for_setup(setup: &Setup) -> Self {
         let bounds = setup.bounds();
         Self {
@@ -385,6 +391,7 @@ impl Options {
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
             max_error: None,
+            feasible: super::Feasible::for_setup(setup),
             map: false,
         }
     }

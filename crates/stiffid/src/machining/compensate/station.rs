@@ -2,6 +2,7 @@
 //! jointly with the rotation about tool z, by the dynamic programming of the free tool axis over
 //! the grid of (station, rotation) pairs (module docs of [`super`], "The free station").
 
+use super::feasible::Checks;
 use super::stream::{compensate_chosen, nominal_postures, Chosen};
 use super::tool_axis::{choose, column, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
@@ -87,7 +88,13 @@ pub fn path_on_track(
     if let Some(f) = &options.free_tool_axis {
         axes.push(rotation_axis(f, &angles));
     }
-    let chosen = choose(&columns, &Grid { axes }, &cost, station.aggregate);
+    let checks = Checks::new(&model, &options.feasible, true);
+    let (chosen, removed) = choose(
+        &columns,
+        &Grid { axes },
+        (&cost, &checks),
+        station.aggregate,
+    );
     let pick = |i: usize, s: usize| {
         let st = &stations[s / angles.len()];
         let q = columns[s][i].as_ref().map_or(nominal[i], |c| c.0);
@@ -107,6 +114,7 @@ pub fn path_on_track(
         rotations: &rotations,
         wrenches: &moved,
         wrenches_before: &wrenches,
+        removed: &removed,
     };
     let mut results = compensate_chosen(&model, &placed, &at, true)?;
     for (r, p) in results.iter_mut().zip(&picked) {

@@ -1,5 +1,6 @@
 //! A whole path compensated: in parallel, in chunks of bounded memory, the failing points named.
 
+use super::feasible::Checks;
 use super::tool_axis::{optimise_tool_axis, Cost};
 use super::{
     Compensated, Compliance, FreeToolAxis, Model, Newton, Objective, Options, PathPoint, Target,
@@ -80,11 +81,16 @@ pub fn path_with_exits(
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
-    let (postures, rotations) = match &free {
-        None => (nominal.clone(), vec![0.0; points.len()]),
-        Some((free, cost)) => {
-            optimise_tool_axis(&model, &nominal, &wrenches, (free, cost), &options.ik)
-        }
+    let checks = Checks::new(&model, &options.feasible, false);
+    let (postures, rotations, removed) = match &free {
+        None => (nominal.clone(), vec![0.0; points.len()], Vec::new()),
+        Some((free, cost)) => optimise_tool_axis(
+            &model,
+            &nominal,
+            &wrenches,
+            (free, cost, &checks),
+            &options.ik,
+        ),
     };
     let chosen = Chosen {
         nominal: &nominal,
@@ -92,6 +98,7 @@ pub fn path_with_exits(
         rotations: &rotations,
         wrenches: &wrenches,
         wrenches_before: &wrenches,
+        removed: &removed,
     };
     compensate_chosen(&model, points, &chosen, free.is_some())
 }
@@ -202,6 +209,7 @@ where
             rotations: &rotations,
             wrenches: &wrenches,
             wrenches_before: &wrenches,
+            removed: &[],
         };
         sink(&chunk, &compensate_chosen(&model, &chunk, &chosen, false)?)?;
         count += chunk.len();
@@ -225,6 +233,8 @@ pub(super) struct Chosen<'a> {
     pub wrenches: &'a [Vector6<f64>],
     /// The wrenches at the path's own values (the arm's frame on the path's own station).
     pub wrenches_before: &'a [Vector6<f64>],
+    /// Each point's states the feasibility checks removed; empty without a free variable.
+    pub removed: &'a [super::Removed],
 }
 
 /// Compensates every point at its chosen posture, in parallel; the first error in path order.
@@ -279,6 +289,7 @@ pub(super) fn compensate_chosen(
                 budget,
                 bound_before,
                 external: points[i].external,
+                removed: c.removed.get(i).copied().unwrap_or_default(),
             })
         })
         .collect();

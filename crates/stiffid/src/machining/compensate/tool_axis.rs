@@ -1,7 +1,8 @@
 //! The free tool axis: the stiffness-optimal rotation about tool z along the path by dynamic
 //! programming (module docs of [`super`], "The free tool axis").
 
-use super::{Aggregate, FreeToolAxis, Model, TIE_BREAK};
+use super::feasible::Checks;
+use super::{Aggregate, FreeToolAxis, Model, Removed, TIE_BREAK};
 use crate::observation::dynamics::tcp_surge;
 use crate::robot::dynamics::MassModel;
 use crate::robot::ik::{self, tool_pose};
@@ -59,14 +60,15 @@ impl Cost<'_> {
     }
 }
 
-/// The postures and tool rotations of the free tool axis (module docs).
+/// The postures and tool rotations of the free tool axis (module docs), with each point's
+/// states `checks` removed.
 pub(super) fn optimise_tool_axis(
     model: &Model,
     nominal: &[Vector6<f64>],
     wrenches: &[Vector6<f64>],
-    (free, cost): (&FreeToolAxis, &Cost),
+    (free, cost, checks): (&FreeToolAxis, &Cost, &Checks),
     ik_options: &ik::Options,
-) -> (Vec<Vector6<f64>>, Vec<f64>) {
+) -> (Vec<Vector6<f64>>, Vec<f64>, Vec<Removed>) {
     let angles = free.angles();
     let columns: Vec<Column> = angles
         .par_iter()
@@ -83,15 +85,16 @@ pub(super) fn optimise_tool_axis(
     let grid = Grid {
         axes: vec![rotation_axis(free, &angles)],
     };
-    let chosen = choose(&columns, &grid, cost, free.aggregate);
-    (chosen.iter().enumerate())
+    let (chosen, removed) = choose(&columns, &grid, (cost, checks), free.aggregate);
+    let (postures, rotations) = (chosen.iter().enumerate())
         .map(|(i, &g)| {
             (
                 columns[g][i].as_ref().map_or(nominal[i], |c| c.0),
                 angles[g],
             )
         })
-        .unzip()
+        .unzip();
+    (postures, rotations, removed)
 }
 
 /// The grid's axis of the rotation of `free` over its `angles` ([`FreeToolAxis::angles`]).
@@ -106,25 +109,43 @@ pub(super) fn rotation_axis<'a>(free: &FreeToolAxis, angles: &'a [f64]) -> Axis<
 }
 
 /// The state of every point on the path of least value over `columns` (one per state of
-/// `grid`): a point takes a state only where its cost is no larger than at the path's own.
+/// `grid`): a point takes a state only where its cost is no larger than at the path's own and
+/// its moved posture passes `checks` (the path's own posture is kept as it is); with each point's
+/// states the checks removed.
 pub(super) fn choose(
     columns: &[Column],
     grid: &Grid,
-    cost: &Cost,
+    (cost, checks): (&Cost, &Checks),
     aggregate: Aggregate,
-) -> Vec<usize> {
+) -> (Vec<usize>, Vec<Removed>) {
     let zero = grid.zero();
     let own: Vec<f64> = (columns[zero].iter())
         .map(|c| c.as_ref().map_or(0.0, |z| z.1))
         .collect();
-    let costs: Vec<Vec<Option<f64>>> = (0..own.len())
+    let (costs, removed): (Vec<Vec<Option<f64>>>, Vec<Removed>) = (0..own.len())
+        .into_par_iter()
         .map(|i| {
-            (columns.iter())
-                .map(|c| c[i].as_ref().map(|z| z.1).filter(|d| *d <= own[i]))
-                .collect()
+            let mut removed = Removed::default();
+            let costs = (columns.iter().enumerate())
+                .map(|(g, c)| {
+                    let (q, d) = c[i].as_ref().filter(|z| z.1 <= own[i])?;
+                    if g == zero {
+                        return Some(*d);
+                    }
+                    match checks.fails(q) {
+                        Some(r) => {
+                            removed += r;
+                            None
+                        }
+                        None => Some(*d),
+                    }
+                })
+                .collect();
+            (costs, removed)
         })
-        .collect();
-    shortest(&costs, grid, &cost.scales(&own), aggregate)
+        .unzip();
+    let chosen = shortest(&costs, grid, &cost.scales(&own), aggregate);
+    (chosen, removed)
 }
 
 /// One axis of the grid of the free variables (the tool rotation, the track station).

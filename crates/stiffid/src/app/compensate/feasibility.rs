@@ -1,0 +1,50 @@
+//! What the feasibility checks of the free variables kept out of the optimisation
+//! ([`crate::machining::compensate::Feasible`]): their limits and how many states each removed.
+
+use crate::machining::compensate::{Options, Removed};
+use crate::Robot;
+use serde::Serialize;
+
+/// The feasibility of the moved postures of the free variables (`--free-tool-axis`,
+/// `--free-station-mm`): a state (a value of the free variables at a path point) that inverse
+/// kinematics reaches with a cost no larger than the path's own is removed when its posture
+/// fails a check; each removed state is counted once, by the first check it fails in the order
+/// joint-limit margin, singularity, collision. The path's own posture is kept as it is.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Feasibility {
+    /// Every axis angle of a moved posture keeps at least this distance to its joint limits,
+    /// deg (`--margin-deg`).
+    pub margin_deg: f64,
+    /// The largest condition number of a moved posture's TCP Jacobian (`--max-condition`).
+    pub max_condition: f64,
+    /// Whether the cell's collision checks (floor, obstacles, self-collision) applied: with a
+    /// `[cell]`, an arm on a fixed base and the station not free.
+    pub collisions_checked: bool,
+    /// The states removed within the margin of a joint limit, summed over the path's points.
+    pub states_removed_limit_margin: usize,
+    /// The states removed near a singularity (condition number above the largest).
+    pub states_removed_singularity: usize,
+    /// The states removed by a collision.
+    pub states_removed_collision: usize,
+}
+
+impl Feasibility {
+    /// The feasibility of `options` for `robot` with the states `removed` over the path;
+    /// `None` without a free variable.
+    pub fn new(options: &Options, robot: &Robot, removed: Removed) -> Option<Self> {
+        let station = options.free_station.is_some();
+        if options.free_tool_axis.is_none() && !station {
+            return None;
+        }
+        let f = &options.feasible;
+        Some(Feasibility {
+            margin_deg: f.margin.to_degrees(),
+            max_condition: f.max_condition,
+            collisions_checked: f.checks_cell(robot, station),
+            states_removed_limit_margin: removed.limit_margin,
+            states_removed_singularity: removed.singularity,
+            states_removed_collision: removed.collision,
+        })
+    }
+}

@@ -1,0 +1,162 @@
+//! Which moved postures the free variables may take: the joint-limit margin, the distance to a
+//! singularity and the cell's collision checks (module docs of [`super`], "Feasibility").
+
+use super::Model;
+use crate::cell::{CheckKind, Checker};
+use crate::common::error::JobOption;
+use crate::common::words::number;
+use crate::math::jacobi;
+use crate::robot::kinematics::Coordinates;
+use crate::{Error, Result, Robot, Setup};
+use nalgebra::{Vector3, Vector6};
+use std::sync::Arc;
+
+/// What every posture the free variables move a point to must keep (module docs of [`super`],
+/// "Feasibility"); the path's own posture is kept as it is. The defaults are those of
+/// `stiffid place`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Feasible {
+    /// The smallest distance of every axis angle to its joint limits, rad, in [0, pi/2].
+    pub margin: f64,
+    /// The largest condition number of the TCP Jacobian (axis coordinates, rows `[v; omega]`
+    /// in m/rad and rad/rad), finite and >= 1: away from singularities.
+    pub max_condition: f64,
+    /// The setup whose `[cell]` checks (floor, obstacles, self-collision; parry3d-f64 distances,
+    /// [`crate::cell::Checker`]) every moved posture passes; `None`: no collision check. It
+    /// applies to an arm on a fixed base only ([`Feasible::checks_cell`]).
+    pub cell: Option<Arc<Setup>>,
+}
+
+impl Feasible {
+    /// The default of [`Feasible::margin`], deg.
+    pub const DEFAULT_MARGIN_DEG: f64 = 5.0;
+    /// The default of [`Feasible::max_condition`].
+    pub const DEFAULT_MAX_CONDITION: f64 = 1000.0;
+
+    /// The defaults for `setup`: a margin of [`Feasible::DEFAULT_MARGIN_DEG`], a condition
+    /// number of at most [`Feasible::DEFAULT_MAX_CONDITION`] and, when the setup has a `[cell]`,
+    /// its collision checks.
+    pub fn for_setup(setup: &Setup) -> Self {
+        Self {
+            margin: Self::DEFAULT_MARGIN_DEG.to_radians(),
+            max_condition: Self::DEFAULT_MAX_CONDITION,
+            cell: setup.cell().map(|_| Arc::new(setup.clone())),
+        }
+    }
+
+    /// Checks the margin (0 to 90 deg) and the condition number (finite, >= 1).
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] ([`JobOption::MarginDeg`] or [`JobOption::MaxCondition`]) with
+    /// the value given.
+    pub fn validate(&self) -> Result<()> {
+        if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&self.margin) {
+            return Err(Error::InvalidOption {
+                option: JobOption::MarginDeg,
+                message: format!("{}: expected 0 to 90", number(self.margin.to_degrees())),
+            });
+        }
+        if !(self.max_condition >= 1.0 && self.max_condition.is_finite()) {
+            return Err(Error::InvalidOption {
+                option: JobOption::MaxCondition,
+                message: format!(
+                    "{}: expected a finite number >= 1",
+                    number(self.max_condition)
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Whether the cell's collision checks apply to the moved postures of `robot`: with a
+    /// `[cell]`, an arm on a fixed base and the station not free (the checker places the arm's
+    /// bodies at the cell's origin, which a carrier moves).
+    pub fn checks_cell(&self, robot: &Robot, free_station: bool) -> bool {
+        let carrier = robot.external().is_some_and(|c| c.carrier_len() > 0);
+        self.cell.is_some() && !carrier && !free_station
+    }
+}
+
+/// The states the checks removed ([`Feasible`]): over the grid's states at a path point (or,
+/// summed, over the path), those reached by inverse kinematics and no worse than the path's own
+/// that a check refused, each counted once, by the first check it fails in this order.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Removed {
+    /// Within [`Feasible::margin`] of a joint limit.
+    pub limit_margin: usize,
+    /// A TCP Jacobian's condition number above [`Feasible::max_condition`] (or not finite).
+    pub singularity: usize,
+    /// A collision of the cell's checks.
+    pub collision: usize,
+}
+
+impl std::ops::AddAssign for Removed {
+    fn add_assign(&mut self, other: Self) {
+        self.limit_margin += other.limit_margin;
+        self.singularity += other.singularity;
+        self.collision += other.collision;
+    }
+}
+
+/// The cell's checks a moved posture must pass: the bodies against the floor, the obstacles and
+/// each other (as `stiffid place`'s).
+const COLLISIONS: [CheckKind; 3] = [
+    CheckKind::Floor,
+    CheckKind::Obstacles,
+    CheckKind::SelfCollision,
+];
+
+/// The checks of [`Feasible`] for one arm, worked out once for every posture.
+pub(super) struct Checks<'a> {
+    robot: &'a Robot,
+    tcp: Vector3<f64>,
+    margin: f64,
+    max_condition: f64,
+    checker: Option<Checker<'a>>,
+}
+
+impl<'a> Checks<'a> {
+    /// The checks of `feasible` for the arm of `model`, the collisions when
+    /// [`Feasible::checks_cell`] (with `free_station`).
+    pub fn new(model: &Model<'a>, feasible: &'a Feasible, free_station: bool) -> Self {
+        let robot = model.arm.robot();
+        let checker = match feasible.checks_cell(robot, free_station) {
+            true => feasible.cell.as_deref().map(Checker::new),
+            false => None,
+        };
+        Checks {
+            robot,
+            tcp: model.arm.tool().tcp,
+            margin: feasible.margin,
+            max_condition: feasible.max_condition,
+            checker,
+        }
+    }
+
+    /// `Removed` with a count of one for the first check posture `q` (rad) fails, `None` when it
+    /// passes every check.
+    pub fn fails(&self, q: &Vector6<f64>) -> Option<Removed> {
+        let distance = self.robot.limits().distance(q);
+        if distance.is_nan() || distance < self.margin {
+            return Some(Removed {
+                limit_margin: 1,
+                ..Removed::default()
+            });
+        }
+        let j = self.robot.frames(q).jacobian(&self.tcp, Coordinates::Axis);
+        let condition = jacobi::cond(&j);
+        if condition.is_nan() || condition > self.max_condition {
+            return Some(Removed {
+                singularity: 1,
+                ..Removed::default()
+            });
+        }
+        let collides = self.checker.as_ref().is_some_and(|c| {
+            (c.margins(q).iter()).any(|m| COLLISIONS.contains(&m.kind) && m.margin < 0.0)
+        });
+        collides.then(|| Removed {
+            collision: 1,
+            ..Removed::default()
+        })
+    }
+}
