@@ -71,7 +71,8 @@ enum Command {
     /// The mean cutting force and moment (about the tool tip) of every operation of a process file (milling, drilling), feed frame.
     Force(commands::force::Args),
     /// Where to clamp the part: the placement in a region of the cell that minimises a G-code
-    /// program's error bound, every point reachable and feasible; writes the setup with it.
+    /// program's (or a path file's) error bound, every point reachable and feasible; writes the
+    /// setup with it.
     Place(commands::place::Args),
     /// Monte Carlo identification with groups of postures from files (the paper's Section IV-A).
     Simulate(commands::simulate::Args),
