@@ -67,6 +67,20 @@ def test_bad_free_axis_and_start_are_refused(milling):
         stiffid.compensate(milling, REPO / "nope.csv", STIFFNESS)
 
 
+def test_the_feasibility_checks_are_the_commands(milling, cli, tmp_path):
+    with pytest.raises(ValueError, match=r"^margin_deg: 91: expected 0 to 90$"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, margin_deg=91.0)
+    with pytest.raises(ValueError, match=r"^max_condition: 0.5: expected a finite number >= 1$"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, max_condition=0.5)
+    extra = ["--free-tool-axis", "--margin-deg", "15", "--max-condition", "500"]
+    args = ["compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--path", PATH]
+    theirs = cli(*args, "--out", tmp_path / "c.csv", "--json", *extra)
+    mine = stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, margin_deg=15.0, max_condition=500.0)
+    assert mine["document"]["feasibility"] == theirs["feasibility"]
+    assert theirs["feasibility"]["max_condition"] == 500.0
+    assert mine["tool_rotation_deg"].tolist() == [p["tool_rotation_deg"] for p in theirs["points"]]
+
+
 def test_the_tool_centre_point_is_required(fanuc):
     # A measuring setup's measuring point is no tool.
     with pytest.raises(ValueError, match=r"tool.tcp_mm"):
