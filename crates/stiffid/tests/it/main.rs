@@ -26,6 +26,7 @@ mod fanuc_data;
 mod fanuc_prediction;
 mod formats_proptest;
 mod forward_model;
+mod free_positioner;
 mod free_station;
 mod gcode_cycles;
 mod gradients;

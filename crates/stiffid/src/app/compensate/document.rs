@@ -61,6 +61,8 @@ pub struct Document {
     pub free_tool_axis: Option<FreeToolAxis>,
     /// With `--free-station-mm`: its options; else `null`.
     pub free_station: Option<FreeStation>,
+    /// With `--free-positioner-deg`: its options; else `null`.
+    pub free_positioner: Option<FreePositioner>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -109,6 +111,20 @@ pub struct FreeStation {
     pub range_mm: f64,
     /// The largest change of its offset from the path's own between consecutive points, mm.
     pub step_mm: f64,
+    /// What it minimises: `deflection` or `bound`.
+    pub objective: &'static str,
+    /// How the points' costs add up: `sum` or `max` (the worst point's).
+    pub aggregate: &'static str,
+}
+
+/// The options of the free positioner: its last axis (the table's turn).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FreePositioner {
+    /// The angle stays within +- this of the path's own, deg.
+    pub range_deg: f64,
+    /// The largest change of its offset from the path's own between consecutive points, deg.
+    pub step_deg: f64,
     /// What it minimises: `deflection` or `bound`.
     pub objective: &'static str,
     /// How the points' costs add up: `sum` or `max` (the worst point's).
@@ -316,6 +332,12 @@ impl Document {
             free_station: report.free_station.map(|f| FreeStation {
                 range_mm: f.range * 1e3,
                 step_mm: f.max_step * 1e3,
+                objective: crate::common::choice::Choice::name(f.objective),
+                aggregate: crate::common::choice::Choice::name(f.aggregate),
+            }),
+            free_positioner: report.free_positioner.map(|f| FreePositioner {
+                range_deg: f.range.to_degrees(),
+                step_deg: f.max_step.to_degrees(),
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),

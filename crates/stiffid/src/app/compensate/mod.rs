@@ -152,6 +152,8 @@ pub struct Report {
     pub free_tool_axis: Option<FreeToolAxis>,
     /// The free track station, if asked.
     pub free_station: Option<compensate::FreeStation>,
+    /// The free positioner, if asked.
+    pub free_positioner: Option<compensate::FreePositioner>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -195,13 +197,14 @@ where
         }
         .into());
     }
-    let free = options.free_tool_axis.is_some() || options.free_station.is_some();
+    let external = options.free_station.is_some() || options.free_positioner.is_some();
+    let free = options.free_tool_axis.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
-            // The station the compensation chose (`free_station`), else the path's own.
+            // The values the compensation chose (a free station or positioner), else the path's own.
             let e = match r.external.is_empty() {
                 true => &p.external,
                 false => &r.external,
@@ -226,7 +229,7 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-            if options.free_station.is_none() {
+            if !external {
                 let points = placed(text).map_err(|e| in_input(&name, e))?;
                 let mut first = 0;
                 compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
@@ -392,6 +395,7 @@ where
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
         free_station: options.free_station,
+        free_positioner: options.free_positioner,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
@@ -537,8 +541,9 @@ fn program_tool(setup: &Setup) -> Tool {
     }
 }
 
-/// A path file's `points` (cell frame) of a robot on a track compensated with the station free
-/// ([`compensate::path_on_track`]), given to `add` in chunks of [`CHUNK`] in the cell frame.
+/// A path file's `points` (cell frame) of a robot on a track compensated with the station or
+/// the positioner free ([`compensate::path_on_track`]), given to `add` in chunks of [`CHUNK`] in
+/// the cell frame.
 fn on_track<E, F>(
     setup: &Setup,
     compliance: &Compliance,

@@ -50,8 +50,9 @@
 //!
 //! ## The free station
 //! On a robot on a track the station is free too: with [`FreeStation`], [`path_on_track`] moves
-//! the carrier's first axis at every point of a path file by an offset from the path's own
-//! station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
+//! the carrier's first axis at every point of a path file (and [`crate::machining::compensate()`]
+//! at every target of a program, written back with the stations chosen) by an offset from the
+//! path's own station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
 //! with the rotation about tool z when the free tool axis is given: the states are the
 //! (station, rotation) pairs, each state's postures continued along the path by inverse
 //! kinematics to the same point of the part (the TCP stays where the path puts it in the cell;
@@ -62,6 +63,17 @@
 //! speeds: the step per point is the speed limit (the station moves at most `max_step` per
 //! point; at a feed `v` and points `s` apart that is `max_step v / s`). The cell's bodies are
 //! not checked for the moved postures (as for the free tool axis).
+//!
+//! ## The free positioner
+//! With [`FreePositioner`] the positioner's last axis (the table's turn; a turntable's only
+//! axis) is a variable of the same grid, with its own range and step (deg), alone or jointly
+//! with the station and the rotation (the states are their combinations). Turning the table
+//! turns the part, so each point's target in the arm's frame moves by
+//! `C(e')^-1 P(e') P(e)^-1 C(e)` ([`crate::robot::external`]; the station's shift is the case
+//! `P(e') = P(e)`), the process force turns with the part (the cut follows it: a path file's
+//! wrench too), and a program's tool weight stays along the cell's `-z` at the turned tool. The
+//! same rules hold: the axis's travel, one grid step at most between points, no point worse
+//! than at the path's own values.
 //!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
@@ -86,7 +98,8 @@ mod tool_axis;
 pub use budget::Budget;
 pub use map::{map, Map};
 pub use model::{Model, Newton};
-pub use options::{Aggregate, FreeStation, FreeToolAxis, Objective, Options};
+pub use options::{Aggregate, FreePositioner, FreeStation, FreeToolAxis, Objective, Options};
+pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub use stream::{path, path_with_exits, stream, CHUNK};
 
