@@ -80,6 +80,7 @@ fn benches(c: &mut Criterion) {
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
         max_error: None,
         map: false,
+        map_over: compensate::MapVariable::Rotation,
     };
     let solved = compensate::path(s.arm(), &compliance, &poses, &options).unwrap();
     let postures: Vec<PathPoint> = poses

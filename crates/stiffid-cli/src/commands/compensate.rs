@@ -19,8 +19,8 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreePositioner, FreeStation, FreeToolAxis, Objective, Options,
-    PathPoint,
+    Aggregate, Compensated, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
+    Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -134,12 +134,14 @@ pub struct Args {
     /// their bound.
     #[arg(long)]
     max_error_mm: Option<f64>,
-    /// With --report: also the map of the free variable (the rotation about tool z, on the
-    /// --free-tool-axis grid, else 5 deg steps within +-90 deg): every point's error bound,
-    /// deflection, condition number and distance to the joint limits at every rotation, with the
-    /// rotation chosen (map.csv and the figure map).
-    #[arg(long, requires = "report")]
-    map: bool,
+    /// With --report: also the map of a free variable: `rotation` (the default: the rotation
+    /// about tool z, on the --free-tool-axis grid, else 5 deg steps within +-90 deg) or `track`
+    /// (the track station, on the --free-station-mm grid, else 50 mm steps within +-1000 mm):
+    /// every point's error bound, deflection, condition number, distance to the joint limits and,
+    /// with a [cell] floor or obstacles, to them, at every value, with the value chosen (map.csv
+    /// and the figure map).
+    #[arg(long, requires = "report", num_args = 0..=1, default_missing_value = "rotation", value_parser = choice::<MapVariable>())]
+    map: Option<MapVariable>,
     /// The process force model's relative error in the error budget, percent (0 to 100): the
     /// bound's force part is this share of the deflection.
     #[arg(long, default_value_t = 20.0)]
@@ -385,7 +387,8 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     options.level = args.level;
     options.force_tolerance = args.force_tolerance_percent / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);
-    options.map = args.map;
+    options.map = args.map.is_some();
+    options.map_over = args.map.unwrap_or_default();
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }

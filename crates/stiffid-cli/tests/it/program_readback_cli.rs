@@ -165,8 +165,8 @@ fn compensate(
     extra: &[&str],
 ) -> (program::JointProgram, Vec<Row>) {
     let input = write_file(dir, name, program);
-    let out = dir.join(format!("{tag}-{name}"));
-    let csv = dir.join(format!("{tag}-{name}.csv"));
+    let out = dir.join(format!("{tag}_{name}"));
+    let csv = dir.join(format!("{tag}_{name}.csv"));
     let (setup, stiffness, process) = (
         example("track/track-cell.toml"),
         example("milling/kuka-stiffness.json"),

@@ -250,10 +250,7 @@ pub fn compensate(
     let mut results = match free {
         false => compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?,
         true => {
-            let own: Vec<ExternalValues> = placements.as_ref().map_or_else(
-                || vec![ExternalValues::NONE; points.len()],
-                |p| p.iter().map(|p| p.external).collect(),
-            );
+            let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
             let weighted = arm.payload().is_some();
             compensate::on_track(arm, compliance, &points, (&own, weighted), options)?
         }
@@ -499,7 +496,7 @@ fn path_points(
                 target: target.clone(),
                 wrench: wrench + weight(i, pose),
                 frame: Frame::Base,
-                external: crate::robot::external::ExternalValues::NONE,
+                external: placements.map_or(ExternalValues::NONE, |p| p[i].external),
             }
         })
         .collect();

@@ -244,6 +244,7 @@ fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
         max_error: None,
         map: false,
+        map_over: compensate::MapVariable::Rotation,
     }
 }
 

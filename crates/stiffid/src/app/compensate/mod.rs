@@ -211,7 +211,14 @@ where
             };
             summary.add(first + k, p.line, r, e);
             if options.map {
-                chosen.push(r.tool_rotation);
+                chosen.push(match options.map_over {
+                    compensate::MapVariable::Rotation => r.tool_rotation,
+                    // The station's offset from the point's own.
+                    compensate::MapVariable::Track => match (e.as_slice(), p.external.as_slice()) {
+                        ([e, ..], [own, ..]) => e - own,
+                        _ => 0.0,
+                    },
+                });
             }
         }
         sink(first, points, results, d)
@@ -380,8 +387,9 @@ where
     }
     let map = match &mapped {
         Some(points) => {
-            let mut map = compensate::map(setup.arm(), &compliance, points, &options)
-                .map_err(|e| in_input(&name, e))?;
+            let mut map =
+                compensate::map(setup.arm(), &compliance, points, (&options, setup.cell()))
+                    .map_err(|e| in_input(&name, e))?;
             map.chosen = chosen;
             Some(map)
         }

@@ -96,7 +96,7 @@ mod stream;
 mod tool_axis;
 
 pub use budget::Budget;
-pub use map::{map, Map};
+pub use map::{map, Map, MapVariable};
 pub use model::{Model, Newton};
 pub use options::{Aggregate, FreePositioner, FreeStation, FreeToolAxis, Objective, Options};
 pub(crate) use station::on_track;
@@ -137,10 +137,10 @@ pub struct PathPoint {
     /// The frame of the wrench.
     pub frame: Frame,
     /// The values of the cell's external axes at the point (SI: m, rad; the cell's order), as a
-    /// path file gives them ([`crate::machining::path`]); empty for a cell without external axes
-    /// and for a point already in the arm's frame on its carriage (a program's, placed by
-    /// [`crate::machining::compensate()`]). The compensation itself works in the arm's frame:
-    /// a path file's points are placed there by [`crate::machining::cell::on_carriage`].
+    /// path file or a program gives them ([`crate::machining::path`],
+    /// [`crate::machining::compensate()`]); empty for a cell without external axes. The
+    /// compensation itself works in the arm's frame: a path file's points are placed there by
+    /// [`crate::machining::cell::on_carriage`], a program's by [`crate::machining::compensate()`].
     pub external: crate::robot::external::ExternalValues,
 }
 
@@ -193,7 +193,7 @@ pub struct Compensated {
     /// this point's residual, m.
     pub bound_before: Option<f64>,
     /// The values of the cell's external axes at the point (SI, the cell's order): the station
-    /// chosen by [`FreeStation`], else the path's own; empty for a robot without external axes
-    /// and for a program's point (its values are the program's).
+    /// and table angle chosen by [`FreeStation`] and [`FreePositioner`], else the path's or the
+    /// program's own; empty for a robot without external axes.
     pub external: crate::robot::external::ExternalValues,
 }

@@ -365,8 +365,10 @@ pub struct Options {
     /// any.
     pub max_error: Option<f64>,
     /// The compensate job also maps the free variable ([`super::Map`]: every point at every
-    /// rotation of the grid); [`super::path`] ignores it.
+    /// value of the grid of [`Options::map_over`]); [`super::path`] ignores it.
     pub map: bool,
+    /// The variable of the map: the rotation about tool z (the default) or the track station.
+    pub map_over: super::MapVariable,
 }
 
 impl Options {
@@ -492,6 +494,7 @@ impl Options {
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
             max_error: None,
             map: false,
+            map_over: super::MapVariable::Rotation,
         }
     }
 }

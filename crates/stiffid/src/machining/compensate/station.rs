@@ -166,7 +166,7 @@ fn given(mut results: Vec<Compensated>, own: &[ExternalValues]) -> Result<Vec<Co
 
 /// One free external axis: its index in the cell, its offsets from the path's own values (m or
 /// rad, ascending, 0 among them), its range and step.
-struct FreeAxis {
+pub(super) struct FreeAxis {
     index: usize,
     offsets: Vec<f64>,
     range: f64,
@@ -189,7 +189,7 @@ impl FreeAxis {
 /// The cell and the free external axes of `options` in the cell's order: the carrier's first
 /// axis for the free station, the positioner's last for the free positioner; each refused where
 /// the cell lacks it.
-fn free_axes<'a>(
+pub(super) fn free_axes<'a>(
     cell: Option<&'a ExternalAxes>,
     options: &Options,
 ) -> Result<(&'a ExternalAxes, Vec<FreeAxis>)> {
@@ -235,7 +235,7 @@ fn free_axes<'a>(
 
 /// Every combination of the free axes' offsets, `(axis index, offset)` per free axis, the last
 /// axis' offset running fastest (the order of [`Grid`]'s states).
-fn states(free: &[FreeAxis]) -> Vec<Vec<(usize, f64)>> {
+pub(super) fn states(free: &[FreeAxis]) -> Vec<Vec<(usize, f64)>> {
     free.iter().fold(vec![Vec::new()], |states, a| {
         (states.iter())
             .flat_map(|s| {
@@ -250,7 +250,7 @@ fn states(free: &[FreeAxis]) -> Vec<Vec<(usize, f64)>> {
 }
 
 /// Refuses a grid of more than [`FreeToolAxis::MAX_GRID_CELLS`] cells.
-fn check_grid(options: &Options, states: usize, points: usize) -> Result<()> {
+pub(super) fn check_grid(options: &Options, states: usize, points: usize) -> Result<()> {
     let cells = states as f64 * points as f64;
     if cells <= FreeToolAxis::MAX_GRID_CELLS {
         return Ok(());
@@ -282,12 +282,12 @@ fn check_grid(options: &Options, states: usize, points: usize) -> Result<()> {
 /// The points at their own external values: the values, the wrenches (the arm's frame on the
 /// carriage there), the nominal TCP poses (the same frame) and the tool's weight the wrenches
 /// hold (`None`: none).
-struct Own<'a> {
-    values: &'a [ExternalValues],
-    wrenches: &'a [Vector6<f64>],
-    poses: Vec<Isometry3<f64>>,
-    weight: Option<&'a Payload>,
-    tcp: Vector3<f64>,
+pub(super) struct Own<'a> {
+    pub values: &'a [ExternalValues],
+    pub wrenches: &'a [Vector6<f64>],
+    pub poses: Vec<Isometry3<f64>>,
+    pub weight: Option<&'a Payload>,
+    pub tcp: Vector3<f64>,
 }
 
 impl Own<'_> {
@@ -303,11 +303,11 @@ impl Own<'_> {
 
 /// One state of the free external axes: the values, whether they are within the travel, the
 /// change of a point's pose in the arm's frame and the wrench in the moved arm's frame.
-struct Station {
-    external: Vec<ExternalValues>,
-    inside: Vec<bool>,
-    shift: Vec<Isometry3<f64>>,
-    wrenches: Vec<Vector6<f64>>,
+pub(super) struct Station {
+    pub external: Vec<ExternalValues>,
+    pub inside: Vec<bool>,
+    pub shift: Vec<Isometry3<f64>>,
+    pub wrenches: Vec<Vector6<f64>>,
 }
 
 impl Station {
@@ -316,7 +316,7 @@ impl Station {
     /// by `C(e')^-1 P(e') P(e)^-1 C(e)` (module docs of [`crate::robot::external`]); the
     /// process wrench turns with it (the cut follows the part) and the tool's weight stays along
     /// the cell's `-z` at the turned tool.
-    fn new(cell: &ExternalAxes, at: &Own, moves: &[(usize, f64)]) -> Self {
+    pub(super) fn new(cell: &ExternalAxes, at: &Own, moves: &[(usize, f64)]) -> Self {
         let n = at.values.len();
         let mut out = Station {
             external: Vec::with_capacity(n),
