@@ -218,17 +218,18 @@ fn every_dialect_reads_back_its_external_values_and_the_compensated_targets() {
     }
 }
 
-#[test]
-fn a_free_station_is_written_into_every_target_of_a_program() {
-    let dir = temp_dir("readback-free");
-    let (range, step) = (200.0, 50.0);
-    let free = ["--free-station-mm", "200", "--station-step-mm", "50"];
+/// A free external axis `axis` (0: the track, mm; 2: the table, deg) compensated with `free`
+/// options of range `range` and step `step`, read back from every dialect.
+fn free_axis_is_written(free: &[&str], axis: usize, (range, step): (f64, f64)) {
+    let dir = temp_dir(&format!("readback-free-{axis}"));
+    let upper = [6000.0, 95.0, 360.0][axis];
+    let lower = [0.0, -95.0, -360.0][axis];
     for (dialect, name, text, tolerance) in programs() {
         let (_, own) = compensate(&dir, (dialect, name, &text), "own", &[]);
-        let (written, rows) = compensate(&dir, (dialect, name, &text), "free", &free);
-        // INFORM writes the track in whole pulses, 0.01 mm.
-        let e_tolerance = match dialect {
-            Dialect::Inform => 0.005 + 1e-9,
+        let (written, rows) = compensate(&dir, (dialect, name, &text), "free", free);
+        // INFORM writes the track in whole pulses, 0.01 mm (its table in decimals).
+        let e_tolerance = match (dialect, axis) {
+            (Dialect::Inform, 0) => 0.005 + 1e-9,
             _ => 1e-9,
         };
         let mut moved = false;
@@ -236,33 +237,36 @@ fn a_free_station_is_written_into_every_target_of_a_program() {
             .zip(targets())
             .enumerate()
         {
-            let station = t.external[0].unwrap();
+            let value = t.external[axis].unwrap();
             assert!(
-                (station - r.e[0]).abs() <= e_tolerance,
-                "{dialect:?} {i}: {station} mm written, the CSV's {}",
-                r.e[0]
+                (value - r.e[axis]).abs() <= e_tolerance,
+                "{dialect:?} {i}: {value} written, the CSV's {}",
+                r.e[axis]
             );
             assert!(
-                (station - e[0]).abs() <= range + e_tolerance,
-                "{dialect:?} {i}: {station} mm from {}",
-                e[0]
+                (value - e[axis]).abs() <= range + e_tolerance,
+                "{dialect:?} {i}: {value} from {}",
+                e[axis]
             );
-            assert!((-e_tolerance..=6000.0).contains(&station), "{station}");
-            moved |= (station - e[0]).abs() > 1.0;
-            assert_eq!(&t.external[1..3], &[Some(e[1]), Some(e[2])], "{dialect:?}");
+            assert!((lower - e_tolerance..=upper).contains(&value), "{value}");
+            moved |= (value - e[axis]).abs() > 1e-3;
+            for k in (0..3).filter(|k| *k != axis) {
+                assert_eq!(t.external[k], Some(e[k]), "{dialect:?} {i}");
+                assert_eq!(r.e[k], e[k], "{dialect:?} {i}");
+            }
             for k in 0..6 {
                 assert!((t.q_deg[k] - r.qc[k]).abs() <= tolerance, "{dialect:?} {i}");
             }
             assert!(
                 r.bound <= own[i].bound + 1e-9,
-                "{dialect:?} {i}: {} mm against {} mm at the given station",
+                "{dialect:?} {i}: {} mm against {} mm at the given values",
                 r.bound,
                 own[i].bound
             );
         }
-        assert!(moved, "{dialect:?}: the station moves somewhere");
+        assert!(moved, "{dialect:?}: the axis moves somewhere");
         let offsets: Vec<f64> = (rows.iter().zip(targets()))
-            .map(|(r, (_, e))| r.e[0] - e[0])
+            .map(|(r, (_, e))| r.e[axis] - e[axis])
             .collect();
         for w in offsets.windows(2) {
             assert!(
@@ -270,5 +274,58 @@ fn a_free_station_is_written_into_every_target_of_a_program() {
                 "{dialect:?}: offsets {offsets:?}"
             );
         }
+    }
+}
+
+#[test]
+fn a_free_station_is_written_into_every_target_of_a_program() {
+    let free = ["--free-station-mm", "200", "--station-step-mm", "50"];
+    free_axis_is_written(&free, 0, (200.0, 50.0));
+}
+
+#[test]
+fn a_free_table_angle_is_written_into_every_target_of_a_program() {
+    let free = ["--free-positioner-deg", "20", "--positioner-step-deg", "5"];
+    free_axis_is_written(&free, 2, (20.0, 5.0));
+}
+
+/// `--map track` on the trim line along the rail: `map.csv` holds every point at every
+/// station's offset of the free station's grid, with the collision distance column (empty: the
+/// cell has no floor or obstacles) and one chosen station per point, the CSV's.
+#[test]
+fn the_track_map_holds_every_station_and_the_one_chosen() {
+    let dir = temp_dir("track-map");
+    let (setup, stiffness, path) = (
+        example("track/track-cell.toml"),
+        example("milling/kuka-stiffness.json"),
+        example("track/trim.csv"),
+    );
+    let (out, report) = (dir.join("trim.csv"), dir.join("report"));
+    let mut args = vec!["compensate", "--setup", &setup, "--stiffness", &stiffness];
+    args.extend(["--path", &path, "--out", out.to_str().unwrap()]);
+    args.extend(["--free-station-mm", "200", "--station-step-mm", "100"]);
+    args.extend(["--map", "track", "--report", report.to_str().unwrap()]);
+    assert_success(&stiffid(&args));
+    let map = std::fs::read_to_string(report.join("map.csv")).unwrap();
+    let mut lines = map.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "point,line,station_offset_mm,bound_mm,deflection_mm,condition,limit_distance_deg,collision_distance_mm,chosen"
+    );
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let points = csv.lines().count() - 1;
+    assert_eq!(rows.len(), 5 * points);
+    for (i, point) in rows.chunks(5).enumerate() {
+        let offsets: Vec<f64> = point.iter().map(|r| r[2].parse().unwrap()).collect();
+        assert_eq!(offsets, vec![-200.0, -100.0, 0.0, 100.0, 200.0], "{i}");
+        assert!(point.iter().all(|r| r[7].is_empty()), "{i}");
+        assert_eq!(point.iter().filter(|r| r[8] == "1").count(), 1, "{i}");
+        assert!(
+            point.iter().all(|r| r[3].parse::<f64>().unwrap() > 0.0),
+            "{i}"
+        );
     }
 }
