@@ -103,8 +103,8 @@ pub struct Args {
     /// or the error bound at every point (`bound_mm`).
     #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
     free_tool_axis_objective: Objective,
-    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: how the points' costs add up along the path:
-    /// their sum, or the worst point's (ties broken by the sum).
+    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: how the points' costs
+    /// add up along the path: their sum, or the worst point's (ties broken by the sum).
     #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
     objective: Aggregate,
     /// On a robot on a track: move the track station (the carrier's first axis) from the path's

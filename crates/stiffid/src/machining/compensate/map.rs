@@ -1,8 +1,9 @@
 //! The map of one free variable along a path: for every path point and every value of the
 //! variable, the error bound, the deflection, the condition number of the TCP Jacobian, the
 //! distance to the joint limits and, in a cell with bodies to clear, the distance to them. The
-//! variable is the rotation about the spindle on the free tool axis' grid ([`MapVariable::Rotation`])
-//! or the track station on the free station's grid ([`MapVariable::Track`]); each value's
+//! variable is the rotation about the spindle on the free tool axis' grid
+//! ([`MapVariable::Rotation`]) or the track station on the free station's grid
+//! ([`MapVariable::Track`]); each value's
 //! postures continued along the path by inverse kinematics as the optimisation takes them
 //! (module docs of [`super`], "The free tool axis", "The free station"). The collision distance
 //! is that of the robot's bodies (and the tool's capsule) to the cell's floor and obstacles
@@ -12,7 +13,7 @@
 use super::station::{free_axes, states, Own, Station};
 use super::stream::nominal_postures;
 use super::tool_axis::{column, Cost, Move};
-use super::{Compliance, FreeStation, FreeToolAxis, Model, Options, PathPoint};
+use super::{Compliance, FreeStation, FreeToolAxis, MapVariable, Model, Options, PathPoint};
 use crate::cell::{bodies, body_box, body_floor, Part};
 use crate::math::jacobi;
 use crate::observation::deflection::base_wrench;
@@ -23,35 +24,6 @@ use crate::setup::{Arm, Cell};
 use crate::Result;
 use nalgebra::{DMatrix, Vector6};
 use rayon::prelude::*;
-
-/// The free variable a map is drawn over (`compensate --map rotation|track`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum MapVariable {
-    /// The rotation about tool z (the free tool axis).
-    #[default]
-    Rotation,
-    /// The track station (the carrier's first axis, the free station).
-    Track,
-}
-
-impl crate::common::choice::Choice for MapVariable {
-    const FIELD: &'static str = "map";
-    const ALL: &'static [Self] = &[MapVariable::Rotation, MapVariable::Track];
-    fn name(self) -> &'static str {
-        match self {
-            MapVariable::Rotation => "rotation",
-            MapVariable::Track => "track",
-        }
-    }
-    fn help(self) -> &'static str {
-        match self {
-            MapVariable::Rotation => "The rotation about the spindle (tool z)",
-            MapVariable::Track => "The track station (a robot on a track)",
-        }
-    }
-}
-
-crate::common::choice::by_name!(MapVariable);
 
 /// The map (module docs). Every matrix has one row per path point (path order) and one column
 /// per value of the variable; `NaN` where inverse kinematics does not reach the moved pose or

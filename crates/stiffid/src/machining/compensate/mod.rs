@@ -96,9 +96,11 @@ mod stream;
 mod tool_axis;
 
 pub use budget::Budget;
-pub use map::{map, Map, MapVariable};
+pub use map::{map, Map};
 pub use model::{Model, Newton};
-pub use options::{Aggregate, FreePositioner, FreeStation, FreeToolAxis, Objective, Options};
+pub use options::{
+    Aggregate, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective, Options,
+};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub use stream::{path, path_with_exits, stream, CHUNK};

@@ -334,6 +334,35 @@ impl FreePositioner {
     }
 }
 
+/// The free variable a map is drawn over (`compensate --map rotation|track`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MapVariable {
+    /// The rotation about tool z (the free tool axis).
+    #[default]
+    Rotation,
+    /// The track station (the carrier's first axis, the free station).
+    Track,
+}
+
+impl crate::common::choice::Choice for MapVariable {
+    const FIELD: &'static str = "map";
+    const ALL: &'static [Self] = &[MapVariable::Rotation, MapVariable::Track];
+    fn name(self) -> &'static str {
+        match self {
+            MapVariable::Rotation => "rotation",
+            MapVariable::Track => "track",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            MapVariable::Rotation => "The rotation about the spindle (tool z)",
+            MapVariable::Track => "The track station (a robot on a track)",
+        }
+    }
+}
+
+crate::common::choice::by_name!(MapVariable);
+
 /// How to compensate a path.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
@@ -368,7 +397,7 @@ pub struct Options {
     /// value of the grid of [`Options::map_over`]); [`super::path`] ignores it.
     pub map: bool,
     /// The variable of the map: the rotation about tool z (the default) or the track station.
-    pub map_over: super::MapVariable,
+    pub map_over: MapVariable,
 }
 
 impl Options {
@@ -494,7 +523,7 @@ impl Options {
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
             max_error: None,
             map: false,
-            map_over: super::MapVariable::Rotation,
+            map_over: MapVariable::Rotation,
         }
     }
 }
