@@ -114,7 +114,7 @@ pub fn map(
             };
             free.check_grid(points.len())?;
             let angles = free.angles();
-            let cells: Vec<Vec<[f64; 5]>> = (angles.par_iter())
+            let cells: Vec<Cells> = (angles.par_iter())
                 .map(|&phi| mapped.column(Move::turn(phi), &wrenches, &own, None))
                 .collect();
             (angles, Vec::new(), cells)
@@ -147,7 +147,7 @@ fn track(
     arm: &Arm,
     wrenches: &[Vector6<f64>],
     own: &[ExternalValues],
-) -> Result<(Vec<f64>, Vec<Vec<[f64; 5]>>)> {
+) -> Result<(Vec<f64>, Vec<Cells>)> {
     let station = match mapped.options.free_station {
         Some(s) => s,
         None => {
@@ -185,6 +185,10 @@ fn track(
     Ok((offsets, cells))
 }
 
+/// One column of the map: per point the bound, deflection, condition number, joint-limit
+/// distance and collision distance (SI).
+type Cells = Vec<[f64; 5]>;
+
 /// What every column of the map shares.
 struct Mapped<'a> {
     model: &'a Model<'a>,
@@ -204,7 +208,7 @@ impl Mapped<'_> {
         wrenches: &[Vector6<f64>],
         external: &[ExternalValues],
         inside: Option<&[bool]>,
-    ) -> Vec<[f64; 5]> {
+    ) -> Cells {
         let arm = self.model.arm;
         let limits = arm.robot().limits();
         let postures = column(
