@@ -403,14 +403,17 @@ pub struct Options {
 impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
     /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
-    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, and a free station's as
-    /// [`FreeStation::try_from_mm`] gives them, minimising the deflection or the bound with the
-    /// free tool axis' objective and aggregate. [`path`] calls it.
+    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, a free station's as
+    /// [`FreeStation::try_from_mm`] and a free positioner's as [`FreePositioner::try_with`]
+    /// give them, minimising the deflection or the bound with the free tool axis' objective and
+    /// aggregate. [`path`] calls it.
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field, the value and the range;
-    /// [`Error::InvalidOption`] for a free station's ([`JobOption::FreeStationMm`],
-    /// [`JobOption::StationStepMm`], [`JobOption::FreeToolAxisObjective`]).
+    /// [`Error::InvalidOption`] for a free station's or positioner's
+    /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
+    /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
+    /// [`JobOption::FreeToolAxisObjective`]).
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",
