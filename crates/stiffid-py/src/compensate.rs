@@ -13,7 +13,8 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
+    Aggregate, Compensated, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
+    Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -44,18 +45,24 @@ use stiffid::observation::deflection::Frame;
 /// where absent); ``max_error_mm`` refuses (``ValueError``) a path whose bound exceeds it
 /// anywhere, naming its worst points and what dominates their bound. On a robot on a track,
 /// ``free_station_mm=R`` moves the track up to ``+-R`` mm from a path file's own ``e1_mm`` at
-/// every point, in ``station_step_mm`` steps (also the most it moves between points), chosen
-/// with the free tool axis by one dynamic programme (as ``compensate --free-station-mm``).
+/// every point (or a program's target, written back with the stations chosen), in
+/// ``station_step_mm`` steps (also the most it moves between points), chosen with the free tool
+/// axis by one dynamic programme (as ``compensate --free-station-mm``); on a cell with a
+/// positioner, ``free_positioner_deg=R`` turns its last axis up to ``+-R`` deg from the path's
+/// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``).
 /// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
 /// number of at most ``max_condition`` and, with the setup's ``[cell]`` on a fixed base, clear of
 /// the floor, the obstacles and itself (as ``--margin-deg``, ``--max-condition``; the
 /// ``document``'s ``feasibility`` counts the states each check removed).
-/// ``map=True`` adds ``map``:
+/// ``map=True`` (or ``"rotation"``) adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'
 /// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
 /// (``(g,)``), ``chosen_deg`` (``(n,)``: the rotation chosen), ``bound_mm``, ``deflection_mm``,
 /// ``condition`` and ``limit_distance_deg`` (``(n, g)``, ``nan`` where the turned pose is not
-/// reached).
+/// reached) and, with a cell floor or obstacles, ``collision_distance_mm`` (``(n, g)``);
+/// ``map="track"`` maps the track station instead (the free station's grid, else 50 mm steps
+/// within +-1000 mm): ``station_offset_mm`` (``(g,)``) and ``chosen_mm`` (``(n,)``) for the
+/// rotation's two, ``nan`` beyond the travel (as ``--map track``).
 /// ``figures=True`` adds ``figures``: the figures of ``compensate --report`` as SVG documents
 /// (str) keyed by name, byte for byte its ``figures/<name>.svg``: ``deflection`` (the TCP
 /// deflection along the path before and after, with its band), ``path`` (the path over the
@@ -81,7 +88,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=false, free_station_mm=None, station_step_mm=10.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -107,9 +114,11 @@ pub fn compensate<'py>(
     max_error_mm: Option<f64>,
     force_tolerance_percent: f64,
     objective: &str,
-    map: bool,
+    map: Option<&Bound<'py, PyAny>>,
     free_station_mm: Option<f64>,
     station_step_mm: f64,
+    free_positioner_deg: Option<f64>,
+    positioner_step_deg: f64,
     margin_deg: f64,
     max_condition: f64,
     figures: bool,
@@ -127,7 +136,7 @@ pub fn compensate<'py>(
     options.level = level;
     options.max_error = max_error_mm.map(|m| m * 1e-3);
     options.force_tolerance = force_tolerance_percent / 100.0;
-    options.map = map;
+    (options.map, options.map_over) = map_over(map)?;
     options.feasible.margin = margin_deg.to_radians();
     options.feasible.max_condition = max_condition;
     let aggregate = objective.parse::<Aggregate>().map_err(raise)?;
@@ -138,6 +147,12 @@ pub fn compensate<'py>(
         let free = options.free_tool_axis.as_ref();
         options.free_station =
             Some(FreeStation::try_with(range, station_step_mm, free, aggregate).map_err(raise)?);
+    }
+    if let Some(range) = free_positioner_deg {
+        let free = options.free_tool_axis.as_ref();
+        options.free_positioner = Some(
+            FreePositioner::try_with(range, positioner_step_deg, free, aggregate).map_err(raise)?,
+        );
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
@@ -255,8 +270,20 @@ pub fn compensate<'py>(
         };
         map.set_item("line", arrays::integers(py, m.lines.iter().copied()))?;
         let deg = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a.to_degrees()));
-        map.set_item("tool_rotation_deg", deg(&m.angles))?;
-        map.set_item("chosen_deg", deg(&m.chosen))?;
+        let mm = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a * 1e3));
+        match m.variable {
+            MapVariable::Rotation => {
+                map.set_item("tool_rotation_deg", deg(&m.angles))?;
+                map.set_item("chosen_deg", deg(&m.chosen))?;
+            }
+            MapVariable::Track => {
+                map.set_item("station_offset_mm", mm(&m.stations))?;
+                map.set_item("chosen_mm", mm(&m.chosen))?;
+            }
+        }
+        if let Some(c) = &m.collision_distance {
+            map.set_item("collision_distance_mm", matrix(c, 1e3))?;
+        }
         map.set_item("bound_mm", matrix(&m.bound, 1e3))?;
         map.set_item("deflection_mm", matrix(&m.deflection, 1e3))?;
         map.set_item("condition", matrix(&m.condition, 1.0))?;
@@ -267,6 +294,21 @@ pub fn compensate<'py>(
         out.set_item("map", map)?;
     }
     Ok(out)
+}
+
+/// `map=`: `None` or `False` (no map), `True` or `"rotation"` (the rotation's), `"track"` (the
+/// station's).
+fn map_over(map: Option<&Bound<'_, PyAny>>) -> PyResult<(bool, MapVariable)> {
+    let Some(map) = map else {
+        return Ok((false, MapVariable::Rotation));
+    };
+    if let Ok(on) = map.extract::<bool>() {
+        return Ok((on, MapVariable::Rotation));
+    }
+    let name: String = map
+        .extract()
+        .map_err(|_| error::value("map: expected True, False, \"rotation\" or \"track\""))?;
+    Ok((true, name.parse::<MapVariable>().map_err(raise)?))
 }
 
 /// The compensation's options from the arguments.

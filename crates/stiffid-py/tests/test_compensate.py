@@ -162,3 +162,45 @@ def test_a_free_track_station_equals_the_command(cli, tmp_path):
     assert mine["bound_mm"].max() < 0.7 * own["bound_mm"].max()
     with pytest.raises(ValueError, match="station-step-mm|station_step_mm"):
         stiffid.compensate(cell, path, stiffness, free_station_mm=100.0, station_step_mm=0.0)
+
+
+def test_a_free_table_angle_equals_the_command(cli, tmp_path):
+    """The cut across the table's far side of the track example: the table's angle free within
+    +-180 deg in 5 deg steps, the worst bound minimised, as `compensate --free-positioner-deg`
+    chooses it: the same bounds and angles, none worse than at the table at rest."""
+    setup = REPO / "examples" / "track" / "track-cell.toml"
+    stiffness = REPO / "examples" / "milling" / "kuka-stiffness.json"
+    path = REPO / "examples" / "track" / "table.csv"
+    options = ["--free-positioner-deg", "180", "--positioner-step-deg", "5", "--objective", "max"]
+    theirs = cli("compensate", "--setup", setup, "--stiffness", stiffness, "--path", path,
+                 "--out", tmp_path / "table.csv", "--json", *options)["points"]
+    cell = stiffid.Setup.from_file(setup)
+    mine = stiffid.compensate(cell, path, stiffness, free_positioner_deg=180.0, positioner_step_deg=5.0,
+                              objective="max")
+    np.testing.assert_allclose(mine["bound_mm"], [p["bound_mm"] for p in theirs], rtol=1e-12)
+    assert mine["document"]["free_positioner"]["range_deg"] == pytest.approx(180.0)
+    own = stiffid.compensate(cell, path, stiffness, objective="max")
+    assert (mine["bound_mm"] <= own["bound_mm"] * (1 + 1e-9)).all()
+    assert mine["bound_mm"].max() < 0.6 * own["bound_mm"].max()
+    with pytest.raises(ValueError, match="positioner-step-deg|positioner_step_deg"):
+        stiffid.compensate(cell, path, stiffness, free_positioner_deg=10.0, positioner_step_deg=20.0)
+
+
+def test_the_track_map_holds_every_station_and_the_one_chosen():
+    """map="track" on the trim line along the rail: every point at every station of the free
+    station's grid, the station chosen the one each point got, its cell the point's bound."""
+    setup = stiffid.Setup.from_file(REPO / "examples" / "track" / "track-cell.toml")
+    stiffness = REPO / "examples" / "milling" / "kuka-stiffness.json"
+    path = REPO / "examples" / "track" / "trim.csv"
+    out = stiffid.compensate(setup, path, stiffness, free_station_mm=200.0, station_step_mm=100.0,
+                             objective="max", map="track")
+    m = out["map"]
+    np.testing.assert_allclose(m["station_offset_mm"], [-200, -100, 0, 100, 200], atol=1e-9)
+    n = len(out["line"])
+    assert m["bound_mm"].shape == (n, 5) and "tool_rotation_deg" not in m
+    assert np.isin(np.round(m["chosen_mm"], 6), m["station_offset_mm"]).all()
+    assert (m["chosen_mm"] != 0).any()
+    picked = m["bound_mm"][np.arange(n), [int(np.argmin(np.abs(m["station_offset_mm"] - c))) for c in m["chosen_mm"]]]
+    np.testing.assert_allclose(picked, out["bound_mm"], rtol=1e-6)
+    with pytest.raises(ValueError, match="map"):
+        stiffid.compensate(setup, path, stiffness, map="station")

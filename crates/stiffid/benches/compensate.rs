@@ -74,12 +74,14 @@ fn benches(c: &mut Criterion) {
         ik: ik::Options::default(),
         free_tool_axis: None,
         free_station: None,
+        free_positioner: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
         max_error: None,
         feasible: compensate::Feasible::for_setup(&s),
         map: false,
+        map_over: compensate::MapVariable::Rotation,
     };
     let solved = compensate::path(s.arm(), &compliance, &poses, &options).unwrap();
     let postures: Vec<PathPoint> = poses

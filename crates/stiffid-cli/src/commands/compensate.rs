@@ -19,7 +19,8 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, Feasible, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
+    Aggregate, Compensated, Feasible, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
+    Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -102,39 +103,53 @@ pub struct Args {
     /// or the error bound at every point (`bound_mm`).
     #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
     free_tool_axis_objective: Objective,
-    /// With --free-tool-axis or --free-station-mm: how the points' costs add up along the path:
-    /// their sum, or the worst point's (ties broken by the sum).
+    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: how the points' costs
+    /// add up along the path: their sum, or the worst point's (ties broken by the sum).
     #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
     objective: Aggregate,
-    /// With --path on a robot on a track: move the track station (the carrier's first axis) from
-    /// the path's own by up to +- this at every point, within its travel, mm (0 < value <=
-    /// 20000), jointly with the tool rotation with --free-tool-axis; it minimises the error
-    /// bound (or with --free-tool-axis, its objective: the deflection or the bound).
-    #[arg(long, requires = "path")]
+    /// On a robot on a track: move the track station (the carrier's first axis) from the path's
+    /// or the program's own by up to +- this at every point, within its travel, mm (0 < value
+    /// <= 20000), jointly with the tool rotation with --free-tool-axis; it minimises the error
+    /// bound (or with --free-tool-axis, its objective: the deflection or the bound). A program
+    /// is written back with the stations chosen in every target.
+    #[arg(long)]
     free_station_mm: Option<f64>,
     /// With --free-station-mm: the largest change of the station's offset from the path's own
     /// between consecutive points, and the grid's spacing, mm (0.1 <= value <= --free-station-mm).
     #[arg(long, default_value_t = 10.0, requires = "free_station_mm")]
     station_step_mm: f64,
-    /// With --free-tool-axis or --free-station-mm: every moved posture keeps at least this
+    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: every moved posture keeps at least this
     /// distance to the joint limits, deg (0 to 90); the path's own posture stays as it is.
     #[arg(long, default_value_t = Feasible::DEFAULT_MARGIN_DEG)]
     margin_deg: f64,
-    /// With --free-tool-axis or --free-station-mm: a moved posture's TCP Jacobian condition
+    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: a moved posture's TCP Jacobian condition
     /// number stays at most this (finite, >= 1): away from singularities.
     #[arg(long, default_value_t = Feasible::DEFAULT_MAX_CONDITION)]
     max_condition: f64,
+    /// On a cell with a positioner: turn its last axis (the table's turn) from the path's or the
+    /// program's own angle by up to +- this at every point, within its travel, deg (0 < value
+    /// <= 360), jointly with the station and the tool rotation when they are free too; it
+    /// minimises what the station does. A program is written back with the angles chosen.
+    #[arg(long)]
+    free_positioner_deg: Option<f64>,
+    /// With --free-positioner-deg: the largest change of the angle's offset from the path's own
+    /// between consecutive points, and the grid's spacing, deg (0.01 <= value <=
+    /// --free-positioner-deg).
+    #[arg(long, default_value_t = 5.0, requires = "free_positioner_deg")]
+    positioner_step_deg: f64,
     /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
     #[arg(long)]
     max_error_mm: Option<f64>,
-    /// With --report: also the map of the free variable (the rotation about tool z, on the
-    /// --free-tool-axis grid, else 5 deg steps within +-90 deg): every point's error bound,
-    /// deflection, condition number and distance to the joint limits at every rotation, with the
-    /// rotation chosen (map.csv and the figure map).
-    #[arg(long, requires = "report")]
-    map: bool,
+    /// With --report: also the map of a free variable: `rotation` (the default: the rotation
+    /// about tool z, on the --free-tool-axis grid, else 5 deg steps within +-90 deg) or `track`
+    /// (the track station, on the --free-station-mm grid, else 50 mm steps within +-1000 mm):
+    /// every point's error bound, deflection, condition number, distance to the joint limits and,
+    /// with a [cell] floor or obstacles, to them, at every value, with the value chosen (map.csv
+    /// and the figure map).
+    #[arg(long, requires = "report", num_args = 0..=1, default_missing_value = "rotation", value_parser = choice::<MapVariable>())]
+    map: Option<MapVariable>,
     /// The process force model's relative error in the error budget, percent (0 to 100): the
     /// bound's force part is this share of the deflection.
     #[arg(long, default_value_t = 20.0)]
@@ -380,7 +395,8 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     options.level = args.level;
     options.force_tolerance = args.force_tolerance_percent / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);
-    options.map = args.map;
+    options.map = args.map.is_some();
+    options.map_over = args.map.unwrap_or_default();
     options.feasible.margin = args.margin_deg.to_radians();
     options.feasible.max_condition = args.max_condition;
     if let Some(text) = &args.q0_deg {
@@ -399,6 +415,15 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
         options.free_station = Some(FreeStation::try_with(
             range,
             args.station_step_mm,
+            free,
+            args.objective,
+        )?);
+    }
+    if let Some(range) = args.free_positioner_deg {
+        let free = options.free_tool_axis.as_ref();
+        options.free_positioner = Some(FreePositioner::try_with(
+            range,
+            args.positioner_step_deg,
             free,
             args.objective,
         )?);

@@ -23,6 +23,7 @@ mod options_proptest;
 mod place_cli;
 mod pool_cli;
 mod program_axes_cli;
+mod program_readback_cli;
 mod readable_files;
 mod refused_options;
 mod register_cli;

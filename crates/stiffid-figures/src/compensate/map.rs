@@ -1,12 +1,13 @@
 //! The figure `map` of `stiffid compensate --map --report`: the error bound of every path point
-//! at every rotation about the spindle, the rotation chosen drawn on it.
+//! at every rotation about the spindle (or, with `--map track`, every track station), the value
+//! chosen drawn on it.
 
 use crate::axes::{line_chart, whole, Axes};
 use crate::{failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::machining::compensate::Map;
+use stiffid::machining::compensate::{Map, MapVariable};
 
 /// Columns drawn at most (every k-th point).
 const COLUMNS: usize = 600;
@@ -18,10 +19,11 @@ pub fn figure(map: &Map) -> Drawing<'_> {
     Drawing::new(
         "map",
         "The error bound (bound_mm, at the budget's level) of every path point at every rotation \
-         about the spindle from the path's own, light (small) to dark (large), white where the \
-         turned pose is not reached; the black line: the rotation chosen. Every value, with the \
-         deflection, the Jacobian's condition number and the distance to the joint limits: \
-         map.csv.",
+         about the spindle (with --map track, every track station) from the path's own, light \
+         (small) to dark (large), white where the moved pose is not reached or the station is \
+         beyond the travel; the black line: the value chosen. Every value, with the deflection, \
+         the Jacobian's condition number, the distance to the joint limits and to the cell's \
+         floor and obstacles: map.csv.",
         Drawn(map),
     )
 }
@@ -33,8 +35,8 @@ impl Plot for Drawn<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let m = self.0;
-        let (n, g) = (m.bound.nrows(), m.angles.len());
-        let deg: Vec<f64> = m.angles.iter().map(|a| a.to_degrees()).collect();
+        let (n, g) = (m.bound.nrows(), m.bound.ncols());
+        let (deg, scale, caption, y_desc) = axis(m);
         let half = match g {
             0 | 1 => 1.0,
             _ => (deg[1] - deg[0]) / 2.0,
@@ -47,12 +49,12 @@ impl Plot for Drawn<'_> {
                 (a.min(*v), b.max(*v))
             });
         let axes = Axes {
-            caption: "Error bound over path point and tool rotation",
+            caption,
             x: 0.5..n as f64 + 0.5,
             y: deg.first().copied().unwrap_or(0.0) - half
                 ..deg.last().copied().unwrap_or(0.0) + half,
             x_desc: "path point",
-            y_desc: "rotation about tool z, deg",
+            y_desc,
             x_label: &whole,
         };
         let mut chart = line_chart(root, &axes)?;
@@ -81,7 +83,7 @@ impl Plot for Drawn<'_> {
             }))
             .map_err(failed)?;
         let line: Vec<(f64, f64)> = (m.chosen.iter().enumerate())
-            .map(|(i, a)| (i as f64 + 1.0, a.to_degrees()))
+            .map(|(i, a)| (i as f64 + 1.0, a * scale))
             .collect();
         chart
             .draw_series(LineSeries::new(
@@ -90,5 +92,24 @@ impl Plot for Drawn<'_> {
             ))
             .map_err(failed)?;
         Ok(())
+    }
+}
+
+/// The values of the map's columns in the figure's unit (deg or mm), that unit's scale from SI,
+/// the caption and the axis' description.
+pub fn axis(m: &Map) -> (Vec<f64>, f64, &'static str, &'static str) {
+    match m.variable {
+        MapVariable::Rotation => (
+            m.angles.iter().map(|a| a.to_degrees()).collect(),
+            180.0 / std::f64::consts::PI,
+            "Error bound over path point and tool rotation",
+            "rotation about tool z, deg",
+        ),
+        MapVariable::Track => (
+            m.stations.iter().map(|s| s * 1e3).collect(),
+            1e3,
+            "Error bound over path point and track station",
+            "station from the path's own, mm",
+        ),
     }
 }

@@ -493,6 +493,10 @@ pub enum JobOption {
     FreeStationMm,
     /// compensate: the free track station's largest change between consecutive points, mm.
     StationStepMm,
+    /// compensate: how far the free positioner may turn from the path's own angle, deg.
+    FreePositionerDeg,
+    /// compensate: the free positioner's largest change between consecutive points, deg.
+    PositionerStepDeg,
     /// compensate: the largest error bound a program may have anywhere, mm.
     MaxErrorMm,
     /// compensate: the distance every moved posture keeps to the joint limits, deg.
@@ -581,6 +585,8 @@ impl JobOption {
             JobOption::FreeToolAxisObjective => "free_tool_axis_objective",
             JobOption::FreeStationMm => "free_station_mm",
             JobOption::StationStepMm => "station_step_mm",
+            JobOption::FreePositionerDeg => "free_positioner_deg",
+            JobOption::PositionerStepDeg => "positioner_step_deg",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",
             JobOption::MaxCondition => "max_condition",

@@ -65,18 +65,42 @@ pub(super) fn placements(
     let Some(cell) = cell.filter(|c| !c.is_empty()) else {
         return Ok(None);
     };
-    Ok(Some(
-        e.iter()
-            .map(|e| {
-                let carrier = cell.carrier_pose(e);
-                Placement {
-                    carrier,
-                    part: part.inverse() * cell.positioner_pose(e).inverse() * carrier,
-                    external: crate::robot::external::ExternalValues::new(e).unwrap_or_default(),
-                }
-            })
-            .collect(),
-    ))
+    Ok(Some(e.iter().map(|e| placement(cell, e, &part)).collect()))
+}
+
+/// The placements of a program's targets at the external values the compensation chose
+/// ([`Compensated::external`]: a free station's, [`crate::machining::compensate::on_track`]), for
+/// a program [`placements`] placed (a cell with external axes).
+///
+/// # Errors
+/// Those of [`super::part_frame`] for G-code without a `workpiece`.
+pub(super) fn at_chosen(
+    arm: &Arm,
+    workpiece: Option<&Isometry3<f64>>,
+    program: &Program,
+    results: &[Compensated],
+) -> Result<Vec<Placement>> {
+    let Some(cell) = arm.robot().external() else {
+        return Ok(Vec::new());
+    };
+    let part = match program {
+        Program::Robot(_) => Isometry3::identity(),
+        Program::GCode(_) => super::part_frame(workpiece)?,
+    };
+    Ok((results.iter())
+        .map(|r| placement(cell, r.external.as_slice(), &part))
+        .collect())
+}
+
+/// The placement at the external values `e` (SI, the cell's order) of a program whose part frame
+/// is `part` at `e = 0` (the identity for a robot program: its targets are the arm's).
+fn placement(cell: &ExternalAxes, e: &[f64], part: &Isometry3<f64>) -> Placement {
+    let carrier = cell.carrier_pose(e);
+    Placement {
+        carrier,
+        part: part.inverse() * cell.positioner_pose(e).inverse() * carrier,
+        external: crate::robot::external::ExternalValues::new(e).unwrap_or_default(),
+    }
 }
 
 /// A G-code program's external axis values at each point in the cell's order, SI, checked:

@@ -27,7 +27,11 @@
 //!    angles and every other byte as read (their external axes' values too: a robot program's
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
 //!    frame (the nominal position of the compensated posture: where the controller must be sent
-//!    so that the loaded tool lands on the programmed one).
+//!    so that the loaded tool lands on the programmed one). With a free station or positioner
+//!    ([`compensate::Options::free_station`], [`compensate::Options::free_positioner`]) the
+//!    values chosen replace the program's in every target (G-code: every point written carries
+//!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
+//!    the compensated postures there.
 
 pub mod cell;
 pub mod compensate;
@@ -44,6 +48,7 @@ use crate::machining::gcode::{GCode, Motion};
 use crate::machining::process::{Kind, Operation, Process};
 use crate::machining::program::{Dialect, JointProgram};
 use crate::observation::deflection::Frame;
+use crate::robot::external::ExternalValues;
 use crate::robot::ik::tool_pose;
 use crate::setup::Arm;
 use crate::{Error, Result};
@@ -241,15 +246,36 @@ pub fn compensate(
     let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
-    let mut results = compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?;
+    let free = options.free_station.is_some() || options.free_positioner.is_some();
+    let mut results = match free {
+        false => compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?,
+        true => {
+            let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
+            let weighted = arm.payload().is_some();
+            compensate::on_track(arm, compliance, &points, (&own, weighted), options)?
+        }
+    };
     check_configuration(&points, &results)?;
+    let placements = match (&placements, free) {
+        (Some(_), true) => Some(cell::at_chosen(arm, workpiece, program, &results)?),
+        _ => placements,
+    };
     let program = match program {
         Program::Robot(p) => {
             let q: Vec<[f64; 6]> = results
                 .iter()
                 .map(|r| r.q_compensated.map(f64::to_degrees).into())
                 .collect();
-            p.write(&q)?
+            match (&placements, arm.robot().external()) {
+                (Some(placed), axes @ Some(_)) => {
+                    let e: Vec<Vec<f64>> = placed
+                        .iter()
+                        .map(|p| p.external.as_slice().to_vec())
+                        .collect();
+                    p.write_with_external(&q, &program::external::program_values(p, &e, axes))?
+                }
+                _ => p.write(&q)?,
+            }
         }
         Program::GCode(g) => {
             let part = part_frame(workpiece)?.inverse();
@@ -264,7 +290,15 @@ pub fn compensate(
                 })
                 .map(|p| p.coords)
                 .collect();
-            g.write(&positions)?
+            match (free, arm.robot().external()) {
+                (true, Some(axes)) => {
+                    let e: Vec<Vec<f64>> = (placements.iter().flatten())
+                        .map(|p| axes.to_display(p.external.as_slice()))
+                        .collect();
+                    g.write_with_external(&positions, &e)?
+                }
+                _ => g.write(&positions)?,
+            }
         }
     };
     if let Some(p) = &placements {
@@ -462,7 +496,7 @@ fn path_points(
                 target: target.clone(),
                 wrench: wrench + weight(i, pose),
                 frame: Frame::Base,
-                external: crate::robot::external::ExternalValues::NONE,
+                external: placements.map_or(ExternalValues::NONE, |p| p[i].external),
             }
         })
         .collect();

@@ -238,12 +238,14 @@ pub(crate) fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         ik: ik::Options::default(),
         free_tool_axis: free,
         free_station: None,
+        free_positioner: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
         max_error: None,
         feasible: compensate::Feasible::for_setup(s),
         map: false,
+        map_over: compensate::MapVariable::Rotation,
     }
 }
 

@@ -64,6 +64,8 @@ pub struct Document {
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed; else `null`.
     pub feasibility: Option<super::feasibility::Feasibility>,
+    /// With `--free-positioner-deg`: its options; else `null`.
+    pub free_positioner: Option<FreePositioner>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -112,6 +114,20 @@ pub struct FreeStation {
     pub range_mm: f64,
     /// The largest change of its offset from the path's own between consecutive points, mm.
     pub step_mm: f64,
+    /// What it minimises: `deflection` or `bound`.
+    pub objective: &'static str,
+    /// How the points' costs add up: `sum` or `max` (the worst point's).
+    pub aggregate: &'static str,
+}
+
+/// The options of the free positioner: its last axis (the table's turn).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FreePositioner {
+    /// The angle stays within +- this of the path's own, deg.
+    pub range_deg: f64,
+    /// The largest change of its offset from the path's own between consecutive points, deg.
+    pub step_deg: f64,
     /// What it minimises: `deflection` or `bound`.
     pub objective: &'static str,
     /// How the points' costs add up: `sum` or `max` (the worst point's).
@@ -323,6 +339,12 @@ impl Document {
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             feasibility: report.feasibility.clone(),
+            free_positioner: report.free_positioner.map(|f| FreePositioner {
+                range_deg: f.range.to_degrees(),
+                step_deg: f.max_step.to_degrees(),
+                objective: crate::common::choice::Choice::name(f.objective),
+                aggregate: crate::common::choice::Choice::name(f.aggregate),
+            }),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
                 output_language: p.output.name(),

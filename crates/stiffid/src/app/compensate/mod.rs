@@ -156,6 +156,8 @@ pub struct Report {
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed.
     pub feasibility: Option<feasibility::Feasibility>,
+    /// The free positioner, if asked.
+    pub free_positioner: Option<compensate::FreePositioner>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -199,20 +201,28 @@ where
         }
         .into());
     }
-    let free = options.free_tool_axis.is_some() || options.free_station.is_some();
+    let external = options.free_station.is_some() || options.free_positioner.is_some();
+    let free = options.free_tool_axis.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
     let mut chosen: Vec<f64> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
-            // The station the compensation chose (`free_station`), else the path's own.
+            // The values the compensation chose (a free station or positioner), else the path's own.
             let e = match r.external.is_empty() {
                 true => &p.external,
                 false => &r.external,
             };
             summary.add(first + k, p.line, r, e);
             if options.map {
-                chosen.push(r.tool_rotation);
+                chosen.push(match options.map_over {
+                    compensate::MapVariable::Rotation => r.tool_rotation,
+                    // The station's offset from the point's own.
+                    compensate::MapVariable::Track => match (e.as_slice(), p.external.as_slice()) {
+                        ([e, ..], [own, ..]) => e - own,
+                        _ => 0.0,
+                    },
+                });
             }
         }
         sink(first, points, results, d)
@@ -230,7 +240,7 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-            if options.free_station.is_none() {
+            if !external {
                 let points = placed(text).map_err(|e| in_input(&name, e))?;
                 let mut first = 0;
                 compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
@@ -385,8 +395,9 @@ where
     }
     let map = match &mapped {
         Some(points) => {
-            let mut map = compensate::map(setup.arm(), &compliance, points, &options)
-                .map_err(|e| in_input(&name, e))?;
+            let mut map =
+                compensate::map(setup.arm(), &compliance, points, (&options, setup.cell()))
+                    .map_err(|e| in_input(&name, e))?;
             map.chosen = chosen;
             Some(map)
         }
@@ -401,6 +412,7 @@ where
         free_tool_axis: options.free_tool_axis,
         free_station: options.free_station,
         feasibility: feasibility::Feasibility::new(&options, setup.arm().robot(), summary.removed),
+        free_positioner: options.free_positioner,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
@@ -546,8 +558,9 @@ fn program_tool(setup: &Setup) -> Tool {
     }
 }
 
-/// A path file's `points` (cell frame) of a robot on a track compensated with the station free
-/// ([`compensate::path_on_track`]), given to `add` in chunks of [`CHUNK`] in the cell frame.
+/// A path file's `points` (cell frame) of a robot on a track compensated with the station or
+/// the positioner free ([`compensate::path_on_track`]), given to `add` in chunks of [`CHUNK`] in
+/// the cell frame.
 fn on_track<E, F>(
     setup: &Setup,
     compliance: &Compliance,

@@ -50,8 +50,9 @@
 //!
 //! ## The free station
 //! On a robot on a track the station is free too: with [`FreeStation`], [`path_on_track`] moves
-//! the carrier's first axis at every point of a path file by an offset from the path's own
-//! station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
+//! the carrier's first axis at every point of a path file (and [`crate::machining::compensate()`]
+//! at every target of a program, written back with the stations chosen) by an offset from the
+//! path's own station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
 //! with the rotation about tool z when the free tool axis is given: the states are the
 //! (station, rotation) pairs, each state's postures continued along the path by inverse
 //! kinematics to the same point of the part (the TCP stays where the path puts it in the cell;
@@ -74,6 +75,17 @@
 //! cost no larger than the path's own, counted by the first check they fail). With a free
 //! station, or an arm on a carrier, the bodies are not checked: the checker places the arm's
 //! bodies at the cell's origin, which a carrier moves.
+//!
+//! ## The free positioner
+//! With [`FreePositioner`] the positioner's last axis (the table's turn; a turntable's only
+//! axis) is a variable of the same grid, with its own range and step (deg), alone or jointly
+//! with the station and the rotation (the states are their combinations). Turning the table
+//! turns the part, so each point's target in the arm's frame moves by
+//! `C(e')^-1 P(e') P(e)^-1 C(e)` ([`crate::robot::external`]; the station's shift is the case
+//! `P(e') = P(e)`), the process force turns with the part (the cut follows it: a path file's
+//! wrench too), and a program's tool weight stays along the cell's `-z` at the turned tool. The
+//! same rules hold: the axis's travel, one grid step at most between points, no point worse
+//! than at the path's own values.
 //!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
@@ -100,7 +112,10 @@ pub use budget::Budget;
 pub use feasible::{Feasible, Removed};
 pub use map::{map, Map};
 pub use model::{Model, Newton};
-pub use options::{Aggregate, FreeStation, FreeToolAxis, Objective, Options};
+pub use options::{
+    Aggregate, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective, Options,
+};
+pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub use stream::{path, path_with_exits, stream, CHUNK};
 
@@ -138,10 +153,10 @@ pub struct PathPoint {
     /// The frame of the wrench.
     pub frame: Frame,
     /// The values of the cell's external axes at the point (SI: m, rad; the cell's order), as a
-    /// path file gives them ([`crate::machining::path`]); empty for a cell without external axes
-    /// and for a point already in the arm's frame on its carriage (a program's, placed by
-    /// [`crate::machining::compensate()`]). The compensation itself works in the arm's frame:
-    /// a path file's points are placed there by [`crate::machining::cell::on_carriage`].
+    /// path file or a program gives them ([`crate::machining::path`],
+    /// [`crate::machining::compensate()`]); empty for a cell without external axes. The
+    /// compensation itself works in the arm's frame: a path file's points are placed there by
+    /// [`crate::machining::cell::on_carriage`], a program's by [`crate::machining::compensate()`].
     pub external: crate::robot::external::ExternalValues,
 }
 
@@ -194,8 +209,8 @@ pub struct Compensated {
     /// this point's residual, m.
     pub bound_before: Option<f64>,
     /// The values of the cell's external axes at the point (SI, the cell's order): the station
-    /// chosen by [`FreeStation`], else the path's own; empty for a robot without external axes
-    /// and for a program's point (its values are the program's).
+    /// and table angle chosen by [`FreeStation`] and [`FreePositioner`], else the path's or the
+    /// program's own; empty for a robot without external axes.
     pub external: crate::robot::external::ExternalValues,
     /// With a free variable: the states of its grid at this point that the feasibility checks
     /// removed ([`Feasible`]); zero without.

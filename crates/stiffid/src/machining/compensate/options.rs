@@ -250,10 +250,118 @@ impl FreeStation {
     /// The offsets from the path's own station, m, ascending, `0` among them:
     /// `k max_step` for `|k| <= floor(range / max_step)`.
     pub(super) fn offsets(&self) -> Vec<f64> {
-        let half = (self.range / self.max_step + 1e-9).floor() as isize;
-        (-half..=half).map(|k| k as f64 * self.max_step).collect()
+        offsets(self.range, self.max_step)
     }
 }
+
+/// `k step` for `|k| <= floor(range / step)`, ascending.
+fn offsets(range: f64, step: f64) -> Vec<f64> {
+    let half = (range / step + 1e-9).floor() as isize;
+    (-half..=half).map(|k| k as f64 * step).collect()
+}
+
+/// The free positioner: the positioner's last axis (the table's turn; a turntable's only axis,
+/// [`crate::robot::external`]) turned from the path's own angle at every point, jointly with
+/// the free station and the tool rotation when they are given too (module docs of [`super`],
+/// "The free positioner"). Its options mirror the station's: a range and a step, in deg.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreePositioner {
+    /// The angle stays within `+-range` of the path's own and within the axis's travel, rad, > 0.
+    pub range: f64,
+    /// Largest change of the angle's offset from the path's own between consecutive points
+    /// (rad, positive): the grid's spacing, and the speed limit (as the station's step).
+    pub max_step: f64,
+    /// What the positioner minimises ([`Objective::Surge`] is refused).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
+impl FreePositioner {
+    /// Largest accepted `range`, deg.
+    pub const MAX_RANGE_DEG: f64 = 360.0;
+    /// Smallest accepted `max_step`, deg.
+    pub const MIN_STEP_DEG: f64 = 0.01;
+
+    /// The free positioner from its range and step in degrees (the units of the command line
+    /// and the Python package): `free_positioner_deg` in (0, 360], `positioner_step_deg` in
+    /// [0.01, `free_positioner_deg`]; it minimises what the free tool axis `free` minimises (the
+    /// bound without one), its points' costs added up by `aggregate`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the argument that is wrong
+    /// ([`JobOption::FreePositionerDeg`] or [`JobOption::PositionerStepDeg`]) with the value
+    /// given.
+    pub fn try_with(
+        free_positioner_deg: f64,
+        positioner_step_deg: f64,
+        free: Option<&FreeToolAxis>,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        let (range, step) = (free_positioner_deg, positioner_step_deg);
+        if !(range > 0.0 && range <= Self::MAX_RANGE_DEG) {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreePositionerDeg,
+                message: format!(
+                    "{}: expected a number > 0 and <= {}",
+                    number(range),
+                    Self::MAX_RANGE_DEG
+                ),
+            });
+        }
+        if !(step >= Self::MIN_STEP_DEG && step <= range) {
+            return Err(Error::InvalidOption {
+                option: JobOption::PositionerStepDeg,
+                message: format!(
+                    "{}: expected a number >= {} and <= --free-positioner-deg ({})",
+                    number(step),
+                    Self::MIN_STEP_DEG,
+                    number(range)
+                ),
+            });
+        }
+        Ok(Self {
+            range: range.to_radians(),
+            max_step: step.to_radians(),
+            objective: free.map_or(Objective::Bound, |f| f.objective),
+            aggregate,
+        })
+    }
+
+    /// The offsets from the path's own angle, rad, ascending, `0` among them.
+    pub(super) fn offsets(&self) -> Vec<f64> {
+        offsets(self.range, self.max_step)
+    }
+}
+
+/// The free variable a map is drawn over (`compensate --map rotation|track`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MapVariable {
+    /// The rotation about tool z (the free tool axis).
+    #[default]
+    Rotation,
+    /// The track station (the carrier's first axis, the free station).
+    Track,
+}
+
+impl crate::common::choice::Choice for MapVariable {
+    const FIELD: &'static str = "map";
+    const ALL: &'static [Self] = &[MapVariable::Rotation, MapVariable::Track];
+    fn name(self) -> &'static str {
+        match self {
+            MapVariable::Rotation => "rotation",
+            MapVariable::Track => "track",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            MapVariable::Rotation => "The rotation about the spindle (tool z)",
+            MapVariable::Track => "The track station (a robot on a track)",
+        }
+    }
+}
+
+crate::common::choice::by_name!(MapVariable);
 
 /// How to compensate a path.
 #[derive(Debug, Clone, PartialEq)]
@@ -264,9 +372,13 @@ pub struct Options {
     pub ik: ik::Options,
     /// Optimise the rotation about the tool z axis.
     pub free_tool_axis: Option<FreeToolAxis>,
-    /// Optimise the track station (a path file of a cell with a carrier only,
-    /// [`super::path_on_track`]), jointly with the rotation when `free_tool_axis` is given too.
+    /// Optimise the track station (a cell with a carrier: a path file's points,
+    /// [`super::path_on_track`], or a program's, [`crate::machining::compensate()`]), jointly
+    /// with the rotation when `free_tool_axis` is given too.
     pub free_station: Option<FreeStation>,
+    /// Optimise the positioner's angle (a cell with a positioner), jointly with the station and
+    /// the rotation when they are given too.
+    pub free_positioner: Option<FreePositioner>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -285,22 +397,26 @@ pub struct Options {
     /// the condition number and the cell's collision checks ([`super::Feasible`]).
     pub feasible: super::Feasible,
     /// The compensate job also maps the free variable ([`super::Map`]: every point at every
-    /// rotation of the grid); [`super::path`] ignores it.
+    /// value of the grid of [`Options::map_over`]); [`super::path`] ignores it.
     pub map: bool,
+    /// The variable of the map: the rotation about tool z (the default) or the track station.
+    pub map_over: MapVariable,
 }
 
 impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
     /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
-    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, and a free station's as
-    /// [`FreeStation::try_from_mm`] gives them, minimising the deflection or the bound with the
-    /// free tool axis' objective and aggregate. [`path`] calls it.
+    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, a free station's as
+    /// [`FreeStation::try_from_mm`] and a free positioner's as [`FreePositioner::try_with`]
+    /// give them, minimising the deflection or the bound with the free tool axis' objective and
+    /// aggregate. [`path`] calls it.
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field, the value and the range;
-    /// [`Error::InvalidOption`] for a free station's ([`JobOption::FreeStationMm`],
-    /// [`JobOption::StationStepMm`], [`JobOption::FreeToolAxisObjective`]) and the feasibility's
-    /// ([`super::Feasible::validate`]).
+    /// [`Error::InvalidOption`] for a free station's or positioner's
+    /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
+    /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
+    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]).
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",
@@ -353,23 +469,45 @@ impl Options {
         Ok(())
     }
 
-    /// A free station's range and step as [`FreeStation::try_from_mm`] gives them, and its
-    /// objective and aggregate those of a free tool axis given with it.
+    /// A free station's range and step as [`FreeStation::try_from_mm`] gives them, a free
+    /// positioner's as [`FreePositioner::try_with`], and their objective and aggregate those of
+    /// a free tool axis given with them and of each other.
     fn validate_station(&self) -> Result<()> {
-        let Some(s) = &self.free_station else {
+        if let Some(s) = &self.free_station {
+            FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
+        }
+        if let Some(p) = &self.free_positioner {
+            FreePositioner::try_with(
+                p.range.to_degrees(),
+                p.max_step.to_degrees(),
+                None,
+                p.aggregate,
+            )?;
+        }
+        let station = self.free_station.map(|s| (s.objective, s.aggregate));
+        let positioner = self.free_positioner.map(|p| (p.objective, p.aggregate));
+        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
+        let Some(own) = station.or(positioner) else {
             return Ok(());
         };
-        FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
-        let free = self.free_tool_axis;
-        let (objective, aggregate) =
-            free.map_or((s.objective, s.aggregate), |f| (f.objective, f.aggregate));
-        if s.objective == Objective::Surge || (objective, aggregate) != (s.objective, s.aggregate) {
+        let agree = [station, positioner, tool]
+            .iter()
+            .flatten()
+            .all(|c| *c == own);
+        if own.0 == Objective::Surge || !agree {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeToolAxisObjective,
-                message: format!("{}: the free station minimises the deflection or the bound, the same objective and aggregate as the free tool axis given with it", crate::common::choice::Choice::name(s.objective)),
+                message: format!("{}: the free station and positioner minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", crate::common::choice::Choice::name(own.0)),
             });
         }
         Ok(())
+    }
+
+    /// What the free station or positioner minimise and how the costs add up: theirs (equal,
+    /// [`Options::validate`]); `None` without either.
+    pub(super) fn external_objective(&self) -> Option<(Objective, Aggregate)> {
+        let station = self.free_station.map(|s| (s.objective, s.aggregate));
+        station.or(self.free_positioner.map(|p| (p.objective, p.aggregate)))
     }
 
     /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
@@ -387,12 +525,14 @@ impl Options {
             ik: ik::Options::default(),
             free_tool_axis: None,
             free_station: None,
+            free_positioner: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
             max_error: None,
             feasible: super::Feasible::for_setup(setup),
             map: false,
+            map_over: MapVariable::Rotation,
         }
     }
 }

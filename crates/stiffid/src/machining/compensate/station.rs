@@ -1,19 +1,21 @@
-//! The free track station: the carrier's first axis chosen at every point of a path file,
-//! jointly with the rotation about tool z, by the dynamic programming of the free tool axis over
-//! the grid of (station, rotation) pairs (module docs of [`super`], "The free station").
+//! The free track station and the free positioner: the carrier's first axis and the
+//! positioner's last chosen at every point of a path file or a program, jointly with the
+//! rotation about tool z, by the dynamic programming of the free tool axis over the grid of
+//! (station, positioner angle, rotation) states (module docs of [`super`], "The free station").
 
 use super::feasible::Checks;
 use super::stream::{compensate_chosen, nominal_postures, Chosen};
 use super::tool_axis::{choose, column, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
-use super::{Compensated, Compliance, FreeStation, FreeToolAxis, Model, Objective, Options};
+use super::{Compensated, Compliance, FreeToolAxis, Model, Objective, Options};
 use crate::common::error::JobOption;
 use crate::machining::cell::{on_carriage, turned};
 use crate::observation::deflection::base_wrench;
 use crate::robot::external::{ExternalAxes, ExternalValues};
-use crate::setup::Arm;
+use crate::robot::ik::tool_pose;
+use crate::setup::{Arm, Payload};
 use crate::{Error, Result};
-use nalgebra::{Isometry3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use rayon::prelude::*;
 
 /// Compensates the points of a path file of a cell with a carrier (a track), as
@@ -40,29 +42,65 @@ pub fn path_on_track(
     let placed: Vec<PathPoint> = (points.iter())
         .map(|p| on_carriage(robot, p.clone()))
         .collect::<Result<_>>()?;
-    let Some(station) = &options.free_station else {
+    let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
+    on_track(arm, compliance, &placed, (&own, false), options)
+}
+
+/// Compensates `placed`, points in the arm's frame on its carriage at their own external values
+/// `own` (a path file's points placed by [`on_carriage`], a program's placed by
+/// [`crate::machining::compensate()`]), with the station free ([`Options::free_station`]), the
+/// positioner's angle free ([`Options::free_positioner`]) and the tool rotation with
+/// [`Options::free_tool_axis`]; each result's [`Compensated::external`] holds the values chosen,
+/// its postures in the arm's frame on the carriage at them. `weighted`: the points' wrenches
+/// hold the tool's weight ([`crate::setup::Payload::wrench`] at the nominal pose, a program's),
+/// which stays along the cell's `-z` when the positioner turns the tool with the part. Without
+/// a free station or positioner, the points at their own values.
+///
+/// # Errors
+/// Those of [`path_on_track`]; [`Error::InvalidOption`] ([`JobOption::FreePositionerDeg`]) for
+/// a cell without a positioner axis.
+pub(crate) fn on_track(
+    arm: &Arm,
+    compliance: &Compliance,
+    placed: &[PathPoint],
+    (own, weighted): (&[ExternalValues], bool),
+    options: &Options,
+) -> Result<Vec<Compensated>> {
+    options.validate()?;
+    let robot = arm.robot();
+    let Some((objective, aggregate)) = options.external_objective() else {
         let plain = Options {
             free_station: None,
+            free_positioner: None,
             ..options.clone()
         };
-        return given(super::path(arm, compliance, &placed, &plain)?, points);
+        return given(super::path(arm, compliance, placed, &plain)?, own);
     };
-    let cell = carrier(robot.external())?;
+    let (cell, free) = free_axes(robot.external(), options)?;
     let angles = options.free_tool_axis.map_or(vec![0.0], |f| f.angles());
-    let offsets = station.offsets();
-    check_grid(station, offsets.len() * angles.len(), points.len())?;
+    let states = states(&free);
+    check_grid(options, states.len() * angles.len(), placed.len())?;
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
         .with_max_iterations(options.max_iterations)
         .with_force_tolerance(options.force_tolerance);
-    let nominal = nominal_postures(arm, &placed, options.q0, options)?;
+    let nominal = nominal_postures(arm, placed, options.q0, options)?;
     let wrenches: Vec<Vector6<f64>> = (placed.par_iter().zip(&nominal))
         .map(|(p, q)| base_wrench(&robot.frames(q), &p.wrench, p.frame))
         .collect();
-    let stations: Vec<Station> = (offsets.iter())
-        .map(|&d| Station::new(cell, points, &wrenches, d))
+    let at = Own {
+        values: own,
+        wrenches: &wrenches,
+        poses: (nominal.iter())
+            .map(|q| tool_pose(&robot.frames(q), &arm.tool().tcp))
+            .collect(),
+        weight: weighted.then(|| arm.payload()).flatten(),
+        tcp: arm.tool().tcp,
+    };
+    let stations: Vec<Station> = (states.par_iter())
+        .map(|moves| Station::new(cell, &at, moves))
         .collect();
-    let cost = match station.objective {
+    let cost = match objective {
         Objective::Deflection => Cost::Deflection,
         _ => Cost::Bound,
     };
@@ -73,7 +111,10 @@ pub fn path_on_track(
             let st = &stations[k];
             let m = Move {
                 phi: angles[g],
-                shift: (offsets[k] != 0.0).then_some(st.shift.as_slice()),
+                shift: states[k]
+                    .iter()
+                    .any(|m| m.1 != 0.0)
+                    .then_some(st.shift.as_slice()),
             };
             let mut c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
             for (cell, inside) in c.iter_mut().zip(&st.inside) {
@@ -84,16 +125,16 @@ pub fn path_on_track(
             c
         })
         .collect();
-    let mut axes = vec![station_axis(station, &offsets)];
+    let mut axes: Vec<Axis> = free.iter().map(FreeAxis::axis).collect();
     if let Some(f) = &options.free_tool_axis {
         axes.push(rotation_axis(f, &angles));
     }
-    let checks = Checks::new(&model, &options.feasible, true);
+    let checks = Checks::new(&model, &options.feasible, options.free_station.is_some());
     let (chosen, removed) = choose(
         &columns,
         &Grid { axes },
         (&cost, &checks),
-        station.aggregate,
+        aggregate,
     );
     let pick = |i: usize, s: usize| {
         let st = &stations[s / angles.len()];
@@ -116,7 +157,7 @@ pub fn path_on_track(
         wrenches_before: &wrenches,
         removed: &removed,
     };
-    let mut results = compensate_chosen(&model, &placed, &at, true)?;
+    let mut results = compensate_chosen(&model, placed, &at, true)?;
     for (r, p) in results.iter_mut().zip(&picked) {
         r.external = p.3;
     }
@@ -124,88 +165,197 @@ pub fn path_on_track(
 }
 
 /// Each result's external values: the point's own.
-fn given(mut results: Vec<Compensated>, points: &[PathPoint]) -> Result<Vec<Compensated>> {
-    for (r, p) in results.iter_mut().zip(points) {
-        r.external = p.external;
+fn given(mut results: Vec<Compensated>, own: &[ExternalValues]) -> Result<Vec<Compensated>> {
+    for (r, e) in results.iter_mut().zip(own) {
+        r.external = *e;
     }
     Ok(results)
 }
 
-/// The cell's axes, refused without a carrier axis.
-fn carrier(cell: Option<&ExternalAxes>) -> Result<&ExternalAxes> {
-    cell.filter(|c| c.carrier_len() > 0)
-        .ok_or_else(|| Error::InvalidOption {
+/// One free external axis: its index in the cell, its offsets from the path's own values (m or
+/// rad, ascending, 0 among them), its range and step.
+pub(super) struct FreeAxis {
+    index: usize,
+    offsets: Vec<f64>,
+    range: f64,
+    max_step: f64,
+}
+
+impl FreeAxis {
+    /// The grid's axis over the offsets.
+    fn axis(&self) -> Axis<'_> {
+        Axis {
+            values: &self.offsets,
+            reach: 1,
+            range: self.range,
+            max_step: self.max_step,
+            zero: self.offsets.len() / 2,
+        }
+    }
+}
+
+/// The cell and the free external axes of `options` in the cell's order: the carrier's first
+/// axis for the free station, the positioner's last for the free positioner; each refused where
+/// the cell lacks it.
+pub(super) fn free_axes<'a>(
+    cell: Option<&'a ExternalAxes>,
+    options: &Options,
+) -> Result<(&'a ExternalAxes, Vec<FreeAxis>)> {
+    let carriers = cell.map_or(0, ExternalAxes::carrier_len);
+    let positioners = cell.map_or(0, ExternalAxes::len) - carriers;
+    let mut out = Vec::new();
+    if let Some(s) = &options.free_station {
+        if carriers == 0 {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeStationMm,
+                message: "the robot has no carrier axis (a track): a free station moves the carrier's first axis, which the robot file's [[external_axis]] with role = \"carrier\" gives".into(),
+            });
+        }
+        out.push(FreeAxis {
+            index: 0,
+            offsets: s.offsets(),
+            range: s.range,
+            max_step: s.max_step,
+        });
+    }
+    if let Some(p) = &options.free_positioner {
+        if positioners == 0 {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreePositionerDeg,
+                message: "the robot has no positioner axis: a free positioner turns the positioner's last axis, which the robot file's [[external_axis]] with role = \"positioner\" gives".into(),
+            });
+        }
+        out.push(FreeAxis {
+            index: carriers + positioners - 1,
+            offsets: p.offsets(),
+            range: p.range,
+            max_step: p.max_step,
+        });
+    }
+    match cell {
+        Some(cell) if !out.is_empty() => Ok((cell, out)),
+        _ => Err(Error::InvalidOption {
             option: JobOption::FreeStationMm,
-            message: "the robot has no carrier axis (a track): a free station moves the carrier's first axis, which the robot file's [[external_axis]] with role = \"carrier\" gives".into(),
-        })
+            message: "no free external axis given".into(),
+        }),
+    }
+}
+
+/// Every combination of the free axes' offsets, `(axis index, offset)` per free axis, the last
+/// axis' offset running fastest (the order of [`Grid`]'s states).
+pub(super) fn states(free: &[FreeAxis]) -> Vec<Vec<(usize, f64)>> {
+    free.iter().fold(vec![Vec::new()], |states, a| {
+        (states.iter())
+            .flat_map(|s| {
+                a.offsets.iter().map(move |&d| {
+                    let mut s = s.clone();
+                    s.push((a.index, d));
+                    s
+                })
+            })
+            .collect()
+    })
 }
 
 /// Refuses a grid of more than [`FreeToolAxis::MAX_GRID_CELLS`] cells.
-fn check_grid(station: &FreeStation, states: usize, points: usize) -> Result<()> {
+pub(super) fn check_grid(options: &Options, states: usize, points: usize) -> Result<()> {
     let cells = states as f64 * points as f64;
     if cells <= FreeToolAxis::MAX_GRID_CELLS {
         return Ok(());
     }
+    let (option, what) = match (&options.free_station, &options.free_positioner) {
+        (Some(s), _) => (
+            JobOption::FreeStationMm,
+            format!("+-{} mm in steps of {} mm", s.range * 1e3, s.max_step * 1e3),
+        ),
+        (None, Some(p)) => (
+            JobOption::FreePositionerDeg,
+            format!(
+                "+-{} deg in steps of {} deg",
+                p.range.to_degrees(),
+                p.max_step.to_degrees()
+            ),
+        ),
+        (None, None) => (JobOption::FreeStationMm, String::new()),
+    };
     Err(Error::InvalidOption {
-        option: JobOption::FreeStationMm,
+        option,
         message: format!(
-            "+-{} mm in steps of {} mm makes {states} states (stations x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
-            station.range * 1e3,
-            station.max_step * 1e3,
+            "{what} makes {states} states (stations x positioner angles x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
             FreeToolAxis::MAX_GRID_CELLS
         ),
     })
 }
 
-/// The grid's axis of the station over `offsets` ([`FreeStation::offsets`]).
-fn station_axis<'a>(station: &FreeStation, offsets: &'a [f64]) -> Axis<'a> {
-    Axis {
-        values: offsets,
-        reach: 1,
-        range: station.range,
-        max_step: station.max_step,
-        zero: offsets.len() / 2,
+/// The points at their own external values: the values, the wrenches (the arm's frame on the
+/// carriage there), the nominal TCP poses (the same frame) and the tool's weight the wrenches
+/// hold (`None`: none).
+pub(super) struct Own<'a> {
+    pub values: &'a [ExternalValues],
+    pub wrenches: &'a [Vector6<f64>],
+    pub poses: Vec<Isometry3<f64>>,
+    pub weight: Option<&'a Payload>,
+    pub tcp: Vector3<f64>,
+}
+
+impl Own<'_> {
+    /// The weight's wrench in the arm's frame on the carriage `carrier` of a tool at `pose`
+    /// (that frame); zero without one.
+    fn weight(&self, carrier: &Isometry3<f64>, pose: &Isometry3<f64>) -> Vector6<f64> {
+        self.weight.map_or(Vector6::zeros(), |w| {
+            let inverse = carrier.rotation.inverse().to_rotation_matrix();
+            turned(&inverse, &w.wrench(&(carrier * pose).rotation, &self.tcp))
+        })
     }
 }
 
-/// One offset of the station from each point's own: the values, whether they are within the
-/// travel, the change of the arm's frame and the wrench in the moved arm's frame.
-struct Station {
-    external: Vec<ExternalValues>,
-    inside: Vec<bool>,
-    shift: Vec<Isometry3<f64>>,
-    wrenches: Vec<Vector6<f64>>,
+/// One state of the free external axes: the values, whether they are within the travel, the
+/// change of a point's pose in the arm's frame and the wrench in the moved arm's frame.
+pub(super) struct Station {
+    pub external: Vec<ExternalValues>,
+    pub inside: Vec<bool>,
+    pub shift: Vec<Isometry3<f64>>,
+    pub wrenches: Vec<Vector6<f64>>,
 }
 
 impl Station {
-    /// The station `offset` (m) from each of `points`' own, `wrenches` the points' (the arm's
-    /// frame at their own station).
-    fn new(
-        cell: &ExternalAxes,
-        points: &[PathPoint],
-        wrenches: &[Vector6<f64>],
-        offset: f64,
-    ) -> Self {
-        let axis = &cell.axes()[0];
+    /// The state `moves` (per free axis its index and offset, m or rad) from the points' own
+    /// values. The part moves with the positioner, so a point's pose in the arm's frame moves
+    /// by `C(e')^-1 P(e') P(e)^-1 C(e)` (module docs of [`crate::robot::external`]); the
+    /// process wrench turns with it (the cut follows the part) and the tool's weight stays along
+    /// the cell's `-z` at the turned tool.
+    pub(super) fn new(cell: &ExternalAxes, at: &Own, moves: &[(usize, f64)]) -> Self {
+        let n = at.values.len();
         let mut out = Station {
-            external: Vec::with_capacity(points.len()),
-            inside: Vec::with_capacity(points.len()),
-            shift: Vec::with_capacity(points.len()),
-            wrenches: Vec::with_capacity(points.len()),
+            external: Vec::with_capacity(n),
+            inside: Vec::with_capacity(n),
+            shift: Vec::with_capacity(n),
+            wrenches: Vec::with_capacity(n),
         };
-        for (p, w) in points.iter().zip(wrenches) {
-            let own = p.external;
-            let mut e = own;
+        for (i, own) in at.values.iter().enumerate() {
             let mut values = own.as_slice().to_vec();
-            values[0] += offset;
-            if let Ok(moved) = ExternalValues::new(&values) {
-                e = moved;
+            let mut inside = true;
+            for &(k, d) in moves {
+                values[k] += d;
+                let a = &cell.axes()[k];
+                inside &= values[k] >= a.lower && values[k] <= a.upper;
             }
-            let shift = cell.carrier_pose(&values).inverse() * cell.carrier_pose(own.as_slice());
-            out.inside
-                .push(values[0] >= axis.lower && values[0] <= axis.upper);
+            let e = ExternalValues::new(&values).unwrap_or(*own);
+            let (from, to) = (own.as_slice(), values.as_slice());
+            let (c, c_moved) = (cell.carrier_pose(from), cell.carrier_pose(to));
+            let shift = c_moved.inverse()
+                * cell.positioner_pose(to)
+                * cell.positioner_pose(from).inverse()
+                * c;
+            let weight = at.weight(&c, &at.poses[i]);
+            let process = turned(
+                &shift.rotation.to_rotation_matrix(),
+                &(at.wrenches[i] - weight),
+            );
+            let moved_pose = shift * at.poses[i];
             out.wrenches
-                .push(turned(&shift.rotation.to_rotation_matrix(), w));
+                .push(process + at.weight(&c_moved, &moved_pose));
+            out.inside.push(inside);
             out.shift.push(shift);
             out.external.push(e);
         }

@@ -27,6 +27,7 @@ pub(super) fn block(
     let mut drop = Vec::new();
     let mut abc_given = false;
     let mut external_given = false;
+    let mut external_words = Vec::new();
     check_words(line, words, s)?;
     let mut feed_given = None;
     let mut cycle_words = cycles::Words::default();
@@ -84,6 +85,7 @@ pub(super) fn block(
                     (true, None) => return Err(at(line, format!("{l}: an increment (G91) before the axis has a value: give it in G90 first"))),
                 };
                 external_given = true;
+                external_words.push(w.span.clone());
             }
             'A' | 'B' | 'C' => {
                 if !s.rotary {
@@ -205,6 +207,7 @@ pub(super) fn block(
         line: span,
         points: first..out.points.len(),
         drop,
+        external_words,
         arc_word,
         inch: s.inch,
         incremental: s.incremental,

@@ -236,6 +236,7 @@ pub(super) fn block(
         line: span,
         points: first..out.points.len(),
         drop,
+        external_words: Vec::new(),
         arc_word: None,
         inch: s.inch,
         incremental: false,

@@ -36,7 +36,10 @@
 //! words are replaced by the corrected position of each point (a canned cycle becomes its `G0`,
 //! `G1` and `G4` blocks; an arc becomes its chords, `G2`/`G3`
 //! becomes `G1`), in the program's own units and distance mode. Only positions are corrected: a
-//! 3-axis program has no words for the tool's rotation.
+//! 3-axis program has no words for the tool's rotation. [`GCode::write_with_external`] also writes
+//! the mapped external axes' values of every point (a station chosen by the compensation): the
+//! block's own external words are dropped and every written point carries all of them, in the
+//! header's order, in the program's units and distance mode.
 
 mod arc;
 mod block;
@@ -105,6 +108,9 @@ struct Block {
     points: Range<usize>,
     /// Word spans to drop (`X Y Z I J K R`) and the span of a `G2`/`G3` word to write as `G1`.
     drop: Vec<Range<usize>>,
+    /// The spans of the words of the mapped external axes, dropped where the external values
+    /// are written anew ([`GCode::write_with_external`]).
+    external_words: Vec<Range<usize>>,
     arc_word: Option<Range<usize>>,
     inch: bool,
     incremental: bool,
