@@ -130,12 +130,7 @@ pub(crate) fn on_track(
         axes.push(rotation_axis(f, &angles));
     }
     let checks = Checks::new(&model, &options.feasible, options.free_station.is_some());
-    let (chosen, removed) = choose(
-        &columns,
-        &Grid { axes },
-        (&cost, &checks),
-        aggregate,
-    );
+    let (chosen, removed) = choose(&columns, &Grid { axes }, (&cost, &checks), aggregate);
     let pick = |i: usize, s: usize| {
         let st = &stations[s / angles.len()];
         let q = columns[s][i].as_ref().map_or(nominal[i], |c| c.0);
