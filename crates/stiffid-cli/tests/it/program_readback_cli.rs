@@ -329,3 +329,20 @@ fn the_track_map_holds_every_station_and_the_one_chosen() {
         );
     }
 }
+
+/// `--map track` on a robot without a track is refused naming `--map`, nothing written.
+#[test]
+fn a_track_map_without_a_track_is_refused_naming_the_option() {
+    let dir = temp_dir("track-map-none");
+    let (setup, stiffness, path) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+        example("milling/path.csv"),
+    );
+    let (out, report) = (dir.join("out.csv"), dir.join("report"));
+    let mut args = vec!["compensate", "--setup", &setup, "--stiffness", &stiffness];
+    args.extend(["--path", &path, "--out", out.to_str().unwrap()]);
+    args.extend(["--map", "track", "--report", report.to_str().unwrap()]);
+    common::refused(&dir, &args, &["--map", "no carrier axis"]);
+    assert!(!out.exists() && !report.exists());
+}

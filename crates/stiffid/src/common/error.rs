@@ -497,6 +497,8 @@ pub enum JobOption {
     FreePositionerDeg,
     /// compensate: the free positioner's largest change between consecutive points, deg.
     PositionerStepDeg,
+    /// compensate: the free variable mapped (the tool rotation or the track station).
+    Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
     MaxErrorMm,
     /// compensate: the distance every moved posture keeps to the joint limits, deg.
@@ -587,6 +589,7 @@ impl JobOption {
             JobOption::StationStepMm => "station_step_mm",
             JobOption::FreePositionerDeg => "free_positioner_deg",
             JobOption::PositionerStepDeg => "positioner_step_deg",
+            JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",
             JobOption::MaxCondition => "max_condition",

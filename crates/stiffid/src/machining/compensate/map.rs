@@ -15,13 +15,14 @@ use super::stream::nominal_postures;
 use super::tool_axis::{column, Cost, Move};
 use super::{Compliance, FreeStation, FreeToolAxis, MapVariable, Model, Options, PathPoint};
 use crate::cell::{bodies, body_box, body_floor, Part};
+use crate::common::error::JobOption;
 use crate::math::jacobi;
 use crate::observation::deflection::base_wrench;
 use crate::robot::external::ExternalValues;
 use crate::robot::ik::tool_pose;
 use crate::robot::kinematics::Coordinates;
 use crate::setup::{Arm, Cell};
-use crate::Result;
+use crate::{Error, Result};
 use nalgebra::{DMatrix, Vector6};
 use rayon::prelude::*;
 
@@ -159,6 +160,12 @@ fn track(
         free_positioner: None,
         ..mapped.options.clone()
     };
+    if arm.robot().external().is_none_or(|c| c.carrier_len() == 0) {
+        return Err(Error::InvalidOption {
+            option: JobOption::Map,
+            message: "track: the robot has no carrier axis (a track) to map; the robot file's [[external_axis]] with role = \"carrier\" gives one".into(),
+        });
+    }
     let (axes, free) = free_axes(arm.robot().external(), &only)?;
     let offsets = station.offsets();
     let states = states(&free);
