@@ -94,7 +94,7 @@ pub fn place<'py>(
         (None, None, Some(p)) => {
             let frame = frame.parse::<Frame>().map_err(raise)?;
             let text = error::read(p)?;
-            points = job::read_path(&p.display().to_string(), &text, frame).map_err(raise)?;
+            points = job::read_path(s, &p.display().to_string(), &text, frame).map_err(raise)?;
             Work::Path(&points)
         }
         _ => {

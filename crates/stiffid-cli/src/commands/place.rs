@@ -131,7 +131,9 @@ pub fn run(args: &Args) -> Result<()> {
             }
         }
         (_, _, Some(p)) => {
-            path = place::read_path(&p.display().to_string(), &load::read(p)?, args.frame)?;
+            let text = load::read(p)?;
+            path = place::read_path(&setup, &p.display().to_string(), &text, args.frame)
+                .map_err(option_error)?;
             Work::Path(&path)
         }
         _ => bail!("expected --program and --process, or --path"),

@@ -196,5 +196,29 @@ fn robot_programs_and_built_in_setups_without_a_tool_are_refused_naming_why() {
         &stiffid(&args("fanuc-r2000ic-165f", &out, &gcode)),
         &["tool.tcp_mm", "missing in setup fanuc-r2000ic-165f"],
     );
+    // A path file on a cell with external axes: refused for the cell, before its e columns are
+    // read (not "the cell has no external axes").
+    let track = format!("{}/../../examples/track", env!("CARGO_MANIFEST_DIR"));
+    let (cell, table) = (
+        format!("{track}/track-cell.toml"),
+        format!("{track}/table.csv"),
+    );
+    let kuka = example("kuka-stiffness.json");
+    let path = [
+        "--stiffness",
+        &kuka,
+        "--path",
+        &table,
+        "--region-mm",
+        "500,2000,-1500,500",
+    ];
+    assert_usage_error(
+        &stiffid(&args(&cell, &out, &path)),
+        &[
+            "--path",
+            "has external axes",
+            "a path file is placed on a robot without them",
+        ],
+    );
     assert!(!std::path::Path::new(&out).exists());
 }

@@ -296,7 +296,7 @@ fn robot_programs_and_axis_angle_rows_are_refused_naming_why() {
         "{e}"
     );
     let rows = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n-90,-10,-20,0,-60,180,0,0,-100\n";
-    let rows = place::read_path("rows.csv", rows, Frame::Base).unwrap();
+    let rows = place::read_path(&i.setup, "rows.csv", rows, Frame::Base).unwrap();
     r.work = Work::Path(&rows);
     let e = place::run(&r).unwrap_err();
     assert!(

@@ -26,12 +26,19 @@ pub enum Work<'a> {
     Path(&'a [PathPoint]),
 }
 
-/// Reads a path file's text (`name` for its errors) for placement: the rows of
+/// Reads a path file's text (`name` for its errors) for placement on `setup`: the rows of
 /// [`crate::machining::path::parse`] with `default_frame` for rows without a `frame`.
 ///
 /// # Errors
-/// Those of [`crate::machining::path::parse`], as [`Error::Input`] naming the file.
-pub fn read_path(name: &str, text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {
+/// [`Error::InvalidField`] (`path`) for a setup whose robot has external axes (before reading);
+/// those of [`crate::machining::path::parse`], as [`Error::Input`] naming the file.
+pub fn read_path(
+    setup: &Setup,
+    name: &str,
+    text: &str,
+    default_frame: Frame,
+) -> Result<Vec<PathPoint>> {
+    refuse_external(setup)?;
     crate::machining::path::parse(text, default_frame).map_err(|e| Error::Input {
         source_name: name.to_string(),
         error: Box::new(e),
@@ -54,9 +61,7 @@ impl Work<'_> {
         match self {
             Work::Program { program, .. } => check_language(program.language()),
             Work::Path(points) => {
-                if setup.robot().external().is_some() {
-                    return refuse("path", format!("setup {} has external axes: a path file is placed on a robot without them (give the program as G-code)", setup.name()));
-                }
+                refuse_external(setup)?;
                 match points.iter().find(|p| matches!(p.target, Target::Posture(_))) {
                     Some(p) => refuse("path", format!("line {}: axis angles (q1_deg..q6_deg) do not move with the part: give each row's TCP pose in the part frame (x_mm, y_mm, z_mm, rx_deg, ry_deg, rz_deg)", p.line)),
                     None => Ok(()),
@@ -109,5 +114,16 @@ fn joint_form(d: Dialect) -> &'static str {
         Dialect::Rapid => "jointtarget",
         Dialect::FanucLs => "positions in joint representation",
         Dialect::Inform => "pulse positions",
+    }
+}
+
+/// Refuses a path file on a robot with external axes (module docs of [`Work::Path`]).
+fn refuse_external(setup: &Setup) -> Result<()> {
+    match setup.robot().external() {
+        Some(_) => Err(Error::InvalidField {
+            field: "path".into(),
+            message: format!("setup {} has external axes: a path file is placed on a robot without them (give the program as G-code)", setup.name()),
+        }),
+        None => Ok(()),
     }
 }
