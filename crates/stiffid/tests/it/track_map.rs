@@ -135,7 +135,8 @@ fn every_cell_of_the_track_map_is_a_compensation_at_its_station() {
     assert!(spread.1 - spread.0 > 1e-3, "{spread:?}");
 }
 
-/// A robot without a track: the track map is refused naming the option.
+/// A robot without a track: the track map is refused naming `--map` (not the free station,
+/// which was not given).
 #[test]
 fn a_track_map_without_a_track_is_refused() {
     let s = milling(false, 0.0);
@@ -154,7 +155,7 @@ fn a_track_map_without_a_track_is_refused() {
         matches!(
             error,
             stiffid::Error::InvalidOption {
-                option: stiffid::JobOption::FreeStationMm,
+                option: stiffid::JobOption::Map,
                 ..
             }
         ),
