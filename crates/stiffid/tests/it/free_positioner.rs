@@ -112,37 +112,8 @@ fn bound_at(s: &Setup, points: &[PathPoint], i: usize, (d, phi): (f64, f64)) -> 
     Some(r[0].budget.bound)
 }
 
-/// The least aggregate of the bounds over every path of states (table index, rotation index)
-/// whose indices change by at most one per point, each point no worse than at its own values
-/// (state (1, 2)).
-fn exhaustive(bounds: &[Vec<Vec<Option<f64>>>], aggregate: Aggregate) -> f64 {
-    let n = bounds.len();
-    let states: Vec<(usize, usize)> = (0..3).flat_map(|k| (0..5).map(move |g| (k, g))).collect();
-    let mut best = f64::INFINITY;
-    for code in 0..states.len().pow(n as u32) {
-        let path: Vec<(usize, usize)> = (0..n)
-            .map(|i| states[code / states.len().pow(i as u32) % states.len()])
-            .collect();
-        let near = |a: usize, b: usize| a.abs_diff(b) <= 1;
-        if (path.windows(2)).any(|w| !near(w[0].0, w[1].0) || !near(w[0].1, w[1].1)) {
-            continue;
-        }
-        let values: Option<Vec<f64>> = (0..n)
-            .map(|i| {
-                let own = bounds[i][1][2]?;
-                bounds[i][path[i].0][path[i].1].filter(|b| *b <= own)
-            })
-            .collect();
-        let Some(values) = values else { continue };
-        let value = match aggregate {
-            Aggregate::Sum => values.iter().sum(),
-            Aggregate::Max => values.iter().copied().fold(0.0, f64::max),
-        };
-        best = best.min(value);
-    }
-    best
-}
-
+/// The optimum by enumeration: [`crate::free_station::exhaustive`] over (table angle index,
+/// rotation index) states.
 #[test]
 fn the_table_angle_and_rotation_chosen_equal_the_exhaustive_optimum() {
     let points = line(4);
@@ -172,7 +143,7 @@ fn the_table_angle_and_rotation_chosen_equal_the_exhaustive_optimum() {
             Aggregate::Sum => chosen.iter().sum(),
             Aggregate::Max => chosen.iter().copied().fold(0.0, f64::max),
         };
-        let best = exhaustive(&bounds, aggregate);
+        let best = crate::free_station::exhaustive(&bounds, aggregate);
         // Equal up to the tie-breaking cost (1e-6 of a bound per point and variable).
         assert!(
             (value - best).abs() <= 1e-5 * best,

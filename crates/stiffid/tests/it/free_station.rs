@@ -82,10 +82,10 @@ fn bound_at(s: &Setup, points: &[PathPoint], i: usize, (d, phi): (f64, f64)) -> 
     Some(r[0].budget.bound)
 }
 
-/// The least aggregate of the bounds over every path of states (station offset index, rotation
-/// index) whose indices change by at most one per point, each point no worse than at its own
-/// values (state (1, 2)).
-fn exhaustive(bounds: &[Vec<Vec<Option<f64>>>], aggregate: Aggregate) -> f64 {
+/// The least aggregate of the bounds over every path of states (index on the first free axis, a
+/// station offset or a table angle; rotation index) whose indices change by at most one per
+/// point, each point no worse than at its own values (state (1, 2)).
+pub(crate) fn exhaustive(bounds: &[Vec<Vec<Option<f64>>>], aggregate: Aggregate) -> f64 {
     let n = bounds.len();
     let states: Vec<(usize, usize)> = (0..3).flat_map(|k| (0..5).map(move |g| (k, g))).collect();
     let mut best = f64::INFINITY;
