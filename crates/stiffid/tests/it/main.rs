@@ -81,5 +81,6 @@ mod track_map;
 mod track_stiffness;
 mod true_cell;
 mod true_robot;
+mod true_table;
 mod trust;
 mod urdf;
