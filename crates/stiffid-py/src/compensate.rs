@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
-    Options, PathPoint,
+    Aggregate, Compensated, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
+    Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -50,6 +50,12 @@ use stiffid::observation::deflection::Frame;
 /// axis by one dynamic programme (as ``compensate --free-station-mm``); on a cell with a
 /// positioner, ``free_positioner_deg=R`` turns its last axis up to ``+-R`` deg from the path's
 /// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``).
+/// ``free_lead_tilt=True`` leans the tool axis within a cone about the path's own (ball-end
+/// milling, deburring; as ``--free-lead-tilt``): the lead (towards the feed) and the tilt
+/// (across it) on a grid of ``lead_tilt_step_deg`` (also the most each changes between points),
+/// the TCP on the path's point, jointly with the other free variables; a path's cone is
+/// ``cone_deg`` (0 to 30 deg), a program's its process file's (``[tool_axis] cone_deg``), written
+/// as a robot program (``output=``); ``lead_deg`` and ``tilt_deg`` (``(n,)``) hold the lean chosen.
 /// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
 /// number of at most ``max_condition`` and, with the setup's ``[cell]`` on a fixed base, clear of
 /// the floor, the obstacles and itself (as ``--margin-deg``, ``--max-condition``; the
@@ -88,7 +94,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -119,6 +125,9 @@ pub fn compensate<'py>(
     station_step_mm: f64,
     free_positioner_deg: Option<f64>,
     positioner_step_deg: f64,
+    free_lead_tilt: bool,
+    cone_deg: Option<f64>,
+    lead_tilt_step_deg: f64,
     margin_deg: f64,
     max_condition: f64,
     figures: bool,
@@ -153,6 +162,14 @@ pub fn compensate<'py>(
         options.free_positioner = Some(
             FreePositioner::try_with(range, positioner_step_deg, free, aggregate).map_err(raise)?,
         );
+    }
+    if free_lead_tilt {
+        let free = options.free_tool_axis.as_ref();
+        options.free_lead_tilt = Some(
+            FreeLeadTilt::try_with(cone_deg, lead_tilt_step_deg, free, aggregate).map_err(raise)?,
+        );
+    } else if cone_deg.is_some() {
+        return Err(error::value("cone_deg: only with free_lead_tilt=True"));
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
@@ -378,6 +395,8 @@ fn table<'py>(
         "tool_rotation_deg",
         column(&|c| c.tool_rotation.to_degrees()),
     )?;
+    out.set_item("lead_deg", column(&|c| c.lead.to_degrees()))?;
+    out.set_item("tilt_deg", column(&|c| c.tilt.to_degrees()))?;
     let bound = |c: &Compensated| c.budget.bound * 1e3;
     out.set_item("bound_mm", column(&bound))?;
     let names = stiffid::machining::compensate::budget::PARTS;

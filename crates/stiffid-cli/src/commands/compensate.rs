@@ -19,8 +19,8 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, Feasible, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
-    Objective, Options, PathPoint,
+    Aggregate, Compensated, Feasible, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
+    MapVariable, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -103,7 +103,7 @@ pub struct Args {
     /// or the error bound at every point (`bound_mm`).
     #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
     free_tool_axis_objective: Objective,
-    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: how the points' costs
+    /// With --free-tool-axis, --free-station-mm, --free-positioner-deg or --free-lead-tilt: how the points' costs
     /// add up along the path: their sum, or the worst point's (ties broken by the sum).
     #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
     objective: Aggregate,
@@ -137,6 +137,21 @@ pub struct Args {
     /// --free-positioner-deg).
     #[arg(long, default_value_t = 5.0, requires = "free_positioner_deg")]
     positioner_step_deg: f64,
+    /// Lean the tool axis (ball-end milling, deburring) from the path's or the program's own
+    /// within a cone: the lead (towards the feed) and the tilt (across it) chosen at every point,
+    /// the TCP on the path's point, jointly with the tool rotation, the station and the
+    /// positioner when they are free too; it minimises what they do (the bound alone). A path's
+    /// cone is --cone-deg; a program's, its process file's operations' ([tool_axis] cone_deg),
+    /// written as a robot program (--out X.ls|.src|.mod: G-code has no words for the axis).
+    #[arg(long)]
+    free_lead_tilt: bool,
+    /// With --free-lead-tilt and a --path: the cone's half angle, deg (0 < value <= 30).
+    #[arg(long, requires = "free_lead_tilt")]
+    cone_deg: Option<f64>,
+    /// With --free-lead-tilt: the largest change of the lead, and of the tilt, between
+    /// consecutive points, and the grid's spacing, deg (0.1 <= value <= the cone).
+    #[arg(long, default_value_t = 2.0, requires = "free_lead_tilt")]
+    lead_tilt_step_deg: f64,
     /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
@@ -425,6 +440,14 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
             range,
             args.positioner_step_deg,
             free,
+            args.objective,
+        )?);
+    }
+    if args.free_lead_tilt {
+        options.free_lead_tilt = Some(FreeLeadTilt::try_with(
+            args.cone_deg,
+            args.lead_tilt_step_deg,
+            options.free_tool_axis.as_ref(),
             args.objective,
         )?);
     }

@@ -14,6 +14,7 @@ mod extrapolation_cli;
 mod hardening;
 mod identify_cli;
 mod kinematics;
+mod lead_tilt_cli;
 mod limits_edges;
 mod mass_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]

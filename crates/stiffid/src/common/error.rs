@@ -497,6 +497,13 @@ pub enum JobOption {
     FreePositionerDeg,
     /// compensate: the free positioner's largest change between consecutive points, deg.
     PositionerStepDeg,
+    /// compensate: the tool axis' lead and tilt free within the cone.
+    FreeLeadTilt,
+    /// compensate: the cone's half angle a path file's tool axis may lean within, deg.
+    ConeDeg,
+    /// compensate: the largest change of the lead and of the tilt between consecutive points,
+    /// deg.
+    LeadTiltStepDeg,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -589,6 +596,9 @@ impl JobOption {
             JobOption::StationStepMm => "station_step_mm",
             JobOption::FreePositionerDeg => "free_positioner_deg",
             JobOption::PositionerStepDeg => "positioner_step_deg",
+            JobOption::FreeLeadTilt => "free_lead_tilt",
+            JobOption::ConeDeg => "cone_deg",
+            JobOption::LeadTiltStepDeg => "lead_tilt_step_deg",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

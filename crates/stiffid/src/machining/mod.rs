@@ -17,7 +17,9 @@
 //!    cuts; a milling point fed along the tool axis (a plunge) gets no force and is counted. With the
 //!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
 //!    wrench ([`crate::setup::Payload::wrench`]).
-//! 3. [`compensate::path_with_exits`] compensates every point, refusing any whose compensated
+//! 3. [`compensate::path_with_exits`] compensates every point (with
+//!    [`compensate::Options::free_lead_tilt`], each point's cone its operation's
+//!    [`Operation::cone`]; a rapid move, a point no operation covers and a drilling point none), refusing any whose compensated
 //!    axis angles leave the joint limits (naming its line); the free tool axis may minimise the
 //!    surge at the drilling exits ([`dynamics::exit_thrusts`]).
 //! 4. Compensated targets that move more than [`MAX_CORRECTION_DEG`] from the nominal ones, or
@@ -247,12 +249,24 @@ pub fn compensate(
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
     let free = options.free_station.is_some() || options.free_positioner.is_some();
+    let cones = match &options.free_lead_tilt {
+        Some(l) => {
+            let allowed: Vec<f64> = (operations.iter())
+                .map(|o| o.map_or(0.0, |(_, op)| op.cone))
+                .collect();
+            compensate::cones(l, points.len(), Some(&allowed))?
+        }
+        None => Vec::new(),
+    };
     let mut results = match free {
-        false => compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?,
+        false => {
+            let at = (thrusts.as_slice(), cones.as_slice());
+            compensate::path_in_cones(arm, compliance, &points, at, options)?
+        }
         true => {
             let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
             let weighted = arm.payload().is_some();
-            compensate::on_track(arm, compliance, &points, (&own, weighted), options)?
+            compensate::on_track(arm, compliance, &points, (&own, weighted, &cones), options)?
         }
     };
     check_configuration(&points, &results)?;

@@ -83,11 +83,15 @@ fn bound_at(s: &Setup, points: &[PathPoint], i: usize, (d, phi): (f64, f64)) -> 
 }
 
 /// The least aggregate of the bounds over every path of states (index on the first free axis, a
-/// station offset or a table angle; rotation index) whose indices change by at most one per
-/// point, each point no worse than at its own values (state (1, 2)).
+/// station offset, a table angle or a lead; index on the second, a rotation or a tilt) whose
+/// indices change by at most one per point, each point no worse than at its own values (the
+/// middle state of each axis: (1, 2) on 3 x 5 states).
 pub(crate) fn exhaustive(bounds: &[Vec<Vec<Option<f64>>>], aggregate: Aggregate) -> f64 {
     let n = bounds.len();
-    let states: Vec<(usize, usize)> = (0..3).flat_map(|k| (0..5).map(move |g| (k, g))).collect();
+    let (first, second) = (bounds[0].len(), bounds[0][0].len());
+    let states: Vec<(usize, usize)> = (0..first)
+        .flat_map(|k| (0..second).map(move |g| (k, g)))
+        .collect();
     let mut best = f64::INFINITY;
     for code in 0..states.len().pow(n as u32) {
         let path: Vec<(usize, usize)> = (0..n)
@@ -99,7 +103,7 @@ pub(crate) fn exhaustive(bounds: &[Vec<Vec<Option<f64>>>], aggregate: Aggregate)
         }
         let values: Option<Vec<f64>> = (0..n)
             .map(|i| {
-                let own = bounds[i][1][2]?;
+                let own = bounds[i][first / 2][second / 2]?;
                 bounds[i][path[i].0][path[i].1].filter(|b| *b <= own)
             })
             .collect();

@@ -39,6 +39,7 @@ mod identify_streamed;
 mod jacobians;
 mod joint_box;
 mod layout;
+mod lead_tilt;
 mod load_steps;
 mod load_steps_design;
 mod lsq;

@@ -31,6 +31,8 @@ pub fn header() -> Vec<String> {
         "residual_urad",
         "iterations",
         "tool_rotation_deg",
+        "lead_deg",
+        "tilt_deg",
         "d_norm_before_mm",
     ] {
         header.push(name.into());
@@ -81,6 +83,8 @@ pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<
         Some(r.residual_rotation * 1e6),
         Some(r.iterations as f64),
         Some(r.tool_rotation.to_degrees()),
+        Some(r.lead.to_degrees()),
+        Some(r.tilt.to_degrees()),
         r.deflection_before
             .map(|b| b.fixed_rows::<3>(0).norm() * 1e3),
     ]);

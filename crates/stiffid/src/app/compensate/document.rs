@@ -66,6 +66,9 @@ pub struct Document {
     pub feasibility: Option<super::feasibility::Feasibility>,
     /// With `--free-positioner-deg`: its options; else `null`.
     pub free_positioner: Option<FreePositioner>,
+    /// With `--free-lead-tilt`: its options; else `null`. The lead and tilt chosen are every
+    /// point's `lead_deg` and `tilt_deg`.
+    pub free_lead_tilt: Option<FreeLeadTilt>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -129,6 +132,22 @@ pub struct FreePositioner {
     /// The largest change of its offset from the path's own between consecutive points, deg.
     pub step_deg: f64,
     /// What it minimises: `deflection` or `bound`.
+    pub objective: &'static str,
+    /// How the points' costs add up: `sum` or `max` (the worst point's).
+    pub aggregate: &'static str,
+}
+
+/// The options of the free lead and tilt of the tool axis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct FreeLeadTilt {
+    /// The cone's half angle the tool axis leans within about the path's own, deg
+    /// (`--cone-deg`); `null` for a program, whose process file gives each operation's
+    /// (`[tool_axis] cone_deg`).
+    pub cone_deg: Option<f64>,
+    /// The largest change of the lead, and of the tilt, between consecutive points, deg.
+    pub step_deg: f64,
+    /// What the lean minimises: `deflection` or `bound`.
     pub objective: &'static str,
     /// How the points' costs add up: `sum` or `max` (the worst point's).
     pub aggregate: &'static str,
@@ -341,6 +360,12 @@ impl Document {
             feasibility: report.feasibility.clone(),
             free_positioner: report.free_positioner.map(|f| FreePositioner {
                 range_deg: f.range.to_degrees(),
+                step_deg: f.max_step.to_degrees(),
+                objective: crate::common::choice::Choice::name(f.objective),
+                aggregate: crate::common::choice::Choice::name(f.aggregate),
+            }),
+            free_lead_tilt: report.free_lead_tilt.map(|f| FreeLeadTilt {
+                cone_deg: f.cone.map(f64::to_degrees),
                 step_deg: f.max_step.to_degrees(),
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),

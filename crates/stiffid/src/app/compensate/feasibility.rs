@@ -34,7 +34,7 @@ impl Feasibility {
     /// `None` without a free variable.
     pub fn new(options: &Options, robot: &Robot, removed: Removed) -> Option<Self> {
         let station = options.free_station.is_some();
-        if options.free_tool_axis.is_none() && !station {
+        if options.free_tool_axis.is_none() && options.free_lead_tilt.is_none() && !station {
             return None;
         }
         let f = &options.feasible;

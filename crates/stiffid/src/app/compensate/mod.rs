@@ -158,6 +158,8 @@ pub struct Report {
     pub feasibility: Option<feasibility::Feasibility>,
     /// The free positioner, if asked.
     pub free_positioner: Option<compensate::FreePositioner>,
+    /// The free lead and tilt of the tool axis, if asked.
+    pub free_lead_tilt: Option<compensate::FreeLeadTilt>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -202,7 +204,7 @@ where
         .into());
     }
     let external = options.free_station.is_some() || options.free_positioner.is_some();
-    let free = options.free_tool_axis.is_some() || external;
+    let free = options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
     let mut chosen: Vec<f64> = Vec::new();
@@ -277,6 +279,7 @@ where
             settings,
         } => {
             check_output(language, output).map_err(|e| in_input(&name, e))?;
+            check_lean(&options, output)?;
             settings.validate()?;
             if let (Language::GCode, Language::Robot(d)) = (language, output) {
                 generate::check_payload(d, settings.targets, &program_tool(setup))?;
@@ -413,6 +416,7 @@ where
         free_station: options.free_station,
         feasibility: feasibility::Feasibility::new(&options, setup.arm().robot(), summary.removed),
         free_positioner: options.free_positioner,
+        free_lead_tilt: options.free_lead_tilt,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
@@ -450,6 +454,21 @@ fn check_output(language: Language, output: Language) -> Result<()> {
                 output.name()
             ),
         }),
+    }
+}
+
+/// Refuses a free lead and tilt for a program written as G-code: its blocks carry positions
+/// only, so the leaned postures would be lost.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::FreeLeadTilt`]).
+fn check_lean(options: &Options, output: Language) -> Result<()> {
+    match (options.free_lead_tilt, output) {
+        (Some(_), Language::GCode) => Err(Error::InvalidOption {
+            option: crate::JobOption::FreeLeadTilt,
+            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
+        }),
+        _ => Ok(()),
     }
 }
 

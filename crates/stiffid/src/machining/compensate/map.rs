@@ -169,7 +169,7 @@ fn track(
     let (axes, free) = free_axes(arm.robot().external(), &only)?;
     let offsets = station.offsets();
     let states = states(&free);
-    super::station::check_grid(&only, states.len(), own.len())?;
+    super::station::check_grid(&only, states.len() as f64, own.len())?;
     let at = Own {
         values: own,
         wrenches,
@@ -185,6 +185,7 @@ fn track(
             let m = Move {
                 phi: 0.0,
                 shift: (d != 0.0).then_some(st.shift.as_slice()),
+                lean: None,
             };
             mapped.column(m, &st.wrenches, &st.external, Some(&st.inside))
         })

@@ -87,6 +87,30 @@
 //! same rules hold: the axis's travel, one grid step at most between points, no point worse
 //! than at the path's own values.
 //!
+//! ## Lead and tilt
+//! In ball-end milling and deburring the tool's axis may lean from the program's within a cone
+//! the process allows (never in drilling: a drill's axis is the hole's). With [`FreeLeadTilt`]
+//! the lead and the tilt are two more variables of the same grid, alone or jointly with the
+//! rotation, the station and the positioner (the states are their combinations). At every point
+//! the lean's frame is `f`, the feed direction across the tool axis (the TCP's motion from the
+//! previous point; the first point's to the second; a point that does not move across the axis
+//! takes the previous point's, else the tool's own x axis), and `c = z x f` across it, `z` the
+//! path's own tool axis: the lead leans the axis towards the feed, the tilt across it, and the
+//! leaned tool is the path's pose turned by `sqrt(lead^2 + tilt^2)` about `lead c - tilt f`
+//! through the TCP ([`lean`]): its axis `cos(a) z + sin(a) (lead f + tilt c) / a` makes the
+//! angle `a = sqrt(lead^2 + tilt^2)` with the path's. The TCP stays on the path's point; only
+//! the tool's axis leans (after the rotation about it). Lead and tilt take the values
+//! `k max_step` within the cone's half angle (a state with `a` above a point's cone is not a
+//! state there; a program's point takes its operation's cone, a rapid move, a point no
+//! operation covers and a drilling point none), each changing by at most one step between
+//! consecutive points. The wrench at the TCP stays fixed in the part frame (on a fixed base,
+//! the base frame), as for the rotation: the process force is the process file's mean over a
+//! revolution in the frame of the feed and the surface, which a lean within the cone does not
+//! move, and the change of the cutting edge's engagement with a small lean is a second-order
+//! change of that mean the force model's tolerance covers; the tool's weight is kept at the
+//! path's axis (its moment about the TCP changes by at most `2 sin(cone / 2)` of itself, 17% of
+//! a small moment at 10 deg).
+//!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
 //! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
@@ -101,6 +125,7 @@ use nalgebra::{Isometry3, Vector6};
 
 pub mod budget;
 mod feasible;
+mod lead_tilt;
 mod map;
 mod model;
 mod options;
@@ -110,13 +135,17 @@ mod tool_axis;
 
 pub use budget::Budget;
 pub use feasible::{Feasible, Removed};
+pub(crate) use lead_tilt::cones;
+pub use lead_tilt::lean;
 pub use map::{map, Map};
 pub use model::{Model, Newton};
 pub use options::{
-    Aggregate, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective, Options,
+    Aggregate, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
+    Options,
 };
 pub(crate) use station::on_track;
 pub use station::path_on_track;
+pub(crate) use stream::path_in_cones;
 pub use stream::{path, path_with_exits, stream, CHUNK};
 
 /// The residual the Newton steps aim at, m.
@@ -195,6 +224,12 @@ pub struct Compensated {
     pub stop: Stop,
     /// The rotation about tool z chosen by [`FreeToolAxis`] (0 without), rad.
     pub tool_rotation: f64,
+    /// The lead chosen by [`FreeLeadTilt`] (0 without), rad: the tool axis leaned towards the
+    /// feed ([`lean`]).
+    pub lead: f64,
+    /// The tilt chosen by [`FreeLeadTilt`] (0 without), rad: the tool axis leaned across the
+    /// feed ([`lean`]).
+    pub tilt: f64,
     /// With [`FreeToolAxis`]: the deflection at the path's own rotation, before optimisation.
     pub deflection_before: Option<Vector6<f64>>,
     /// With [`FreeToolAxis`]: the nominal axis angles at the path's own rotation, before

@@ -255,7 +255,7 @@ impl FreeStation {
 }
 
 /// `k step` for `|k| <= floor(range / step)`, ascending.
-fn offsets(range: f64, step: f64) -> Vec<f64> {
+pub(super) fn offsets(range: f64, step: f64) -> Vec<f64> {
     let half = (range / step + 1e-9).floor() as isize;
     (-half..=half).map(|k| k as f64 * step).collect()
 }
@@ -334,6 +334,115 @@ impl FreePositioner {
     }
 }
 
+/// The lead and the tilt of the tool axis, free within a cone about the path's own axis
+/// (module docs of [`super`], "Lead and tilt"), on a grid of `max_step` spacing, jointly with
+/// the rotation about tool z, the station and the positioner when they are free too.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeLeadTilt {
+    /// The cone's half angle, rad, in (0, [`FreeLeadTilt::MAX_CONE_DEG`]]: `Some` for a path
+    /// file's points (`--cone-deg`); `None` for a program's, whose process file gives each
+    /// operation's cone ([`crate::machining::process::Operation::cone`]).
+    pub cone: Option<f64>,
+    /// The largest change of the lead, and of the tilt, between consecutive points (rad, at
+    /// least [`FreeLeadTilt::MIN_STEP_DEG`], at most the cone): the grid's spacing.
+    pub max_step: f64,
+    /// What the lean minimises: the deflection or the bound ([`Objective::Surge`] is refused:
+    /// a drill's axis is the hole's).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
+impl FreeLeadTilt {
+    /// The largest cone's half angle, deg: of `--cone-deg` and of a process file's
+    /// `[tool_axis] cone_deg`.
+    pub const MAX_CONE_DEG: f64 = 30.0;
+    /// The smallest accepted `max_step`, deg.
+    pub const MIN_STEP_DEG: f64 = 0.1;
+
+    /// The free lead and tilt from the cone's half angle (`None`: the process file's) and the
+    /// step in degrees (the units of the command line and the Python package): `cone_deg` in
+    /// (0, 30], `step_deg` in [0.1, `cone_deg`] (at most 30 without a cone); it minimises what
+    /// the free tool axis `free` minimises (the bound without one), its points' costs added up
+    /// by `aggregate`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the argument that is wrong ([`JobOption::ConeDeg`] or
+    /// [`JobOption::LeadTiltStepDeg`]) with the value given; ([`JobOption::FreeToolAxisObjective`])
+    /// for the surge.
+    pub fn try_with(
+        cone_deg: Option<f64>,
+        step_deg: f64,
+        free: Option<&FreeToolAxis>,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        let objective = free.map_or(Objective::Bound, |f| f.objective);
+        Self::checked(cone_deg, step_deg, objective, aggregate)
+    }
+
+    /// Checks the fields as [`FreeLeadTilt::try_with`] gives them.
+    ///
+    /// # Errors
+    /// Those of [`FreeLeadTilt::try_with`].
+    pub fn validate(&self) -> Result<()> {
+        let cone = self.cone.map(f64::to_degrees);
+        Self::checked(
+            cone,
+            self.max_step.to_degrees(),
+            self.objective,
+            self.aggregate,
+        )
+        .map(|_| ())
+    }
+
+    /// [`FreeLeadTilt::try_with`] with its objective.
+    fn checked(
+        cone_deg: Option<f64>,
+        step_deg: f64,
+        objective: Objective,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        if let Some(c) = cone_deg.filter(|c| !(*c > 0.0 && *c <= Self::MAX_CONE_DEG)) {
+            return Err(Error::InvalidOption {
+                option: JobOption::ConeDeg,
+                message: format!(
+                    "{}: expected a number > 0 and <= {} (the cone's half angle)",
+                    number(c),
+                    Self::MAX_CONE_DEG
+                ),
+            });
+        }
+        let most = cone_deg.unwrap_or(Self::MAX_CONE_DEG);
+        if !(step_deg >= Self::MIN_STEP_DEG && step_deg <= most) {
+            return Err(Error::InvalidOption {
+                option: JobOption::LeadTiltStepDeg,
+                message: format!(
+                    "{}: expected a number >= {} and <= {} ({})",
+                    number(step_deg),
+                    Self::MIN_STEP_DEG,
+                    number(most),
+                    match cone_deg {
+                        Some(_) => "--cone-deg",
+                        None => "the largest cone",
+                    }
+                ),
+            });
+        }
+        if objective == Objective::Surge {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeToolAxisObjective,
+                message: "surge: the surge is a drilling exit's, and a drill's axis is the hole's: the lead and tilt minimise the deflection or the bound".into(),
+            });
+        }
+        Ok(Self {
+            cone: cone_deg.map(f64::to_radians),
+            max_step: step_deg.to_radians(),
+            objective,
+            aggregate,
+        })
+    }
+}
+
 /// The free variable a map is drawn over (`compensate --map rotation|track`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MapVariable {
@@ -379,6 +488,9 @@ pub struct Options {
     /// Optimise the positioner's angle (a cell with a positioner), jointly with the station and
     /// the rotation when they are given too.
     pub free_positioner: Option<FreePositioner>,
+    /// Lean the tool axis within a cone about the path's own ([`FreeLeadTilt`]), jointly
+    /// with the rotation, the station and the positioner when they are free too.
+    pub free_lead_tilt: Option<FreeLeadTilt>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -447,6 +559,9 @@ impl Options {
             });
         }
         self.validate_station()?;
+        if let Some(l) = &self.free_lead_tilt {
+            l.validate()?;
+        }
         self.feasible.validate()?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
@@ -487,17 +602,18 @@ impl Options {
         let station = self.free_station.map(|s| (s.objective, s.aggregate));
         let positioner = self.free_positioner.map(|p| (p.objective, p.aggregate));
         let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
-        let Some(own) = station.or(positioner) else {
+        let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
+        let Some(own) = station.or(positioner).or(lean) else {
             return Ok(());
         };
-        let agree = [station, positioner, tool]
+        let agree = [station, positioner, tool, lean]
             .iter()
             .flatten()
             .all(|c| *c == own);
         if own.0 == Objective::Surge || !agree {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeToolAxisObjective,
-                message: format!("{}: the free station and positioner minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", crate::common::choice::Choice::name(own.0)),
+                message: format!("{}: the free station, positioner, lead and tilt minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", crate::common::choice::Choice::name(own.0)),
             });
         }
         Ok(())
@@ -526,6 +642,7 @@ impl Options {
             free_tool_axis: None,
             free_station: None,
             free_positioner: None,
+            free_lead_tilt: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,

@@ -4,8 +4,9 @@
 //! (station, positioner angle, rotation) states (module docs of [`super`], "The free station").
 
 use super::feasible::Checks;
-use super::stream::{compensate_chosen, nominal_postures, Chosen};
-use super::tool_axis::{choose, column, rotation_axis, Axis, Column, Cost, Grid, Move};
+use super::lead_tilt::{cones, lean_count, Leaning};
+use super::stream::{compensate_chosen, nominal_postures, path_in_cones, Chosen};
+use super::tool_axis::{choose, column, lean_axes, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
 use super::{Compensated, Compliance, FreeToolAxis, Model, Objective, Options};
 use crate::common::error::JobOption;
@@ -43,7 +44,11 @@ pub fn path_on_track(
         .map(|p| on_carriage(robot, p.clone()))
         .collect::<Result<_>>()?;
     let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
-    on_track(arm, compliance, &placed, (&own, false), options)
+    let cones = match &options.free_lead_tilt {
+        Some(l) => cones(l, points.len(), None)?,
+        None => Vec::new(),
+    };
+    on_track(arm, compliance, &placed, (&own, false, &cones), options)
 }
 
 /// Compensates `placed`, points in the arm's frame on its carriage at their own external values
@@ -63,7 +68,7 @@ pub(crate) fn on_track(
     arm: &Arm,
     compliance: &Compliance,
     placed: &[PathPoint],
-    (own, weighted): (&[ExternalValues], bool),
+    (own, weighted, cones): (&[ExternalValues], bool, &[f64]),
     options: &Options,
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
@@ -74,12 +79,19 @@ pub(crate) fn on_track(
             free_positioner: None,
             ..options.clone()
         };
-        return given(super::path(arm, compliance, placed, &plain)?, own);
+        let results = path_in_cones(arm, compliance, placed, (&[], cones), &plain)?;
+        return given(results, own);
     };
     let (cell, free) = free_axes(robot.external(), options)?;
     let angles = options.free_tool_axis.map_or(vec![0.0], |f| f.angles());
     let states = states(&free);
-    check_grid(options, states.len() * angles.len(), placed.len())?;
+    let largest = cones.iter().copied().fold(0.0, f64::max);
+    let leans = (options.free_lead_tilt.as_ref()).map_or(1.0, |l| lean_count(l, largest));
+    check_grid(
+        options,
+        (states.len() * angles.len()) as f64 * leans,
+        placed.len(),
+    )?;
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
         .with_max_iterations(options.max_iterations)
@@ -100,21 +112,24 @@ pub(crate) fn on_track(
     let stations: Vec<Station> = (states.par_iter())
         .map(|moves| Station::new(cell, &at, moves))
         .collect();
+    let leaning = Leaning::new(options.free_lead_tilt.as_ref(), &at.poses, cones.to_vec());
+    let (a, per_station) = (angles.len(), leaning.len() * angles.len());
     let cost = match objective {
         Objective::Deflection => Cost::Deflection,
         _ => Cost::Bound,
     };
-    let columns: Vec<Column> = (0..stations.len() * angles.len())
+    let columns: Vec<Column> = (0..stations.len() * per_station)
         .into_par_iter()
         .map(|s| {
-            let (k, g) = (s / angles.len(), s % angles.len());
+            let k = s / per_station;
             let st = &stations[k];
             let m = Move {
-                phi: angles[g],
+                phi: angles[s % a],
                 shift: states[k]
                     .iter()
                     .any(|m| m.1 != 0.0)
                     .then_some(st.shift.as_slice()),
+                lean: leaning.at(s % per_station / a),
             };
             let mut c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
             for (cell, inside) in c.iter_mut().zip(&st.inside) {
@@ -126,15 +141,17 @@ pub(crate) fn on_track(
         })
         .collect();
     let mut axes: Vec<Axis> = free.iter().map(FreeAxis::axis).collect();
+    axes.extend(lean_axes(&leaning));
     if let Some(f) = &options.free_tool_axis {
         axes.push(rotation_axis(f, &angles));
     }
     let checks = Checks::new(&model, &options.feasible, options.free_station.is_some());
     let (chosen, removed) = choose(&columns, &Grid { axes }, (&cost, &checks), aggregate);
     let pick = |i: usize, s: usize| {
-        let st = &stations[s / angles.len()];
+        let st = &stations[s / per_station];
         let q = columns[s][i].as_ref().map_or(nominal[i], |c| c.0);
-        (q, angles[s % angles.len()], st.wrenches[i], st.external[i])
+        let lean = leaning.state(s % per_station / a);
+        (q, angles[s % a], st.wrenches[i], st.external[i], lean)
     };
     let picked: Vec<_> = chosen
         .iter()
@@ -144,10 +161,12 @@ pub(crate) fn on_track(
     let postures: Vec<Vector6<f64>> = picked.iter().map(|p| p.0).collect();
     let rotations: Vec<f64> = picked.iter().map(|p| p.1).collect();
     let moved: Vec<Vector6<f64>> = picked.iter().map(|p| p.2).collect();
+    let leans: Vec<(f64, f64)> = picked.iter().map(|p| p.4).collect();
     let at = Chosen {
         nominal: &nominal,
         postures: &postures,
         rotations: &rotations,
+        leans: &leans,
         wrenches: &moved,
         wrenches_before: &wrenches,
         removed: &removed,
@@ -253,8 +272,8 @@ pub(super) fn states(free: &[FreeAxis]) -> Vec<Vec<(usize, f64)>> {
 }
 
 /// Refuses a grid of more than [`FreeToolAxis::MAX_GRID_CELLS`] cells.
-pub(super) fn check_grid(options: &Options, states: usize, points: usize) -> Result<()> {
-    let cells = states as f64 * points as f64;
+pub(super) fn check_grid(options: &Options, states: f64, points: usize) -> Result<()> {
+    let cells = states * points as f64;
     if cells <= FreeToolAxis::MAX_GRID_CELLS {
         return Ok(());
     }
@@ -276,7 +295,7 @@ pub(super) fn check_grid(options: &Options, states: usize, points: usize) -> Res
     Err(Error::InvalidOption {
         option,
         message: format!(
-            "{what} makes {states} states (stations x positioner angles x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
+            "{what} makes {states} states (stations x positioner angles x leans x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
             FreeToolAxis::MAX_GRID_CELLS
         ),
     })

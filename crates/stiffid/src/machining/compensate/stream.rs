@@ -1,10 +1,11 @@
 //! A whole path compensated: in parallel, in chunks of bounded memory, the failing points named.
 
 use super::feasible::Checks;
+use super::lead_tilt::{check_cells, cones, Leaning};
 use super::tool_axis::{optimise_tool_axis, Cost};
 use super::{
-    Compensated, Compliance, FreeToolAxis, Model, Newton, Objective, Options, PathPoint, Target,
-    REQUIRED_M, REQUIRED_RAD,
+    Compensated, Compliance, Model, Newton, Objective, Options, PathPoint, Target, REQUIRED_M,
+    REQUIRED_RAD,
 };
 use crate::common::error::{ColumnProblem, JobOption};
 use crate::observation::deflection::base_wrench;
@@ -12,7 +13,7 @@ use crate::robot::configuration::Configuration;
 use crate::robot::ik::{self, tool_pose};
 use crate::setup::Arm;
 use crate::{Error, Result};
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use rayon::prelude::*;
 
 /// Compensates every point of a path (module docs), the points in parallel; the result does not
@@ -20,7 +21,7 @@ use rayon::prelude::*;
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
-/// tool axis grid beyond [`FreeToolAxis::MAX_GRID_CELLS`] ([`FreeToolAxis::check_grid`]);
+/// tool axis grid beyond [`super::FreeToolAxis::MAX_GRID_CELLS`] ([`super::FreeToolAxis::check_grid`]);
 /// [`Error::InvalidOption`] ([`JobOption::FreeToolAxisObjective`]) for the surge objective, which
 /// needs a drilling program ([`path_with_exits`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
@@ -57,6 +58,27 @@ pub fn path_with_exits(
     options: &Options,
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
+    let cones = match &options.free_lead_tilt {
+        Some(l) => cones(l, points.len(), None)?,
+        None => Vec::new(),
+    };
+    path_in_cones(arm, compliance, points, (thrusts, &cones), options)
+}
+
+/// [`path_with_exits`] with each point's cone of the free lead and tilt (rad, one per point
+/// with [`Options::free_lead_tilt`], [`super::lead_tilt::cones`]; a program's from its
+/// process).
+///
+/// # Errors
+/// Those of [`path_with_exits`].
+pub(crate) fn path_in_cones(
+    arm: &Arm,
+    compliance: &Compliance,
+    points: &[PathPoint],
+    (thrusts, cones): (&[Option<Vector3<f64>>], &[f64]),
+    options: &Options,
+) -> Result<Vec<Compensated>> {
+    options.validate()?;
     assert!(thrusts.is_empty() || thrusts.len() == points.len());
     if options.free_station.is_some() || options.free_positioner.is_some() {
         return Err(Error::InvalidOption {
@@ -64,12 +86,16 @@ pub fn path_with_exits(
             message: "a free station or positioner is chosen for points with their external values (compensate::path_on_track for a path file's, machining::compensate for a program's); these points have none".into(),
         });
     }
-    let free = match &options.free_tool_axis {
-        Some(free) => {
-            free.check_grid(points.len())?;
-            Some((free, cost(arm, free, thrusts)?))
-        }
-        None => None,
+    let (rotation, lean) = (
+        options.free_tool_axis.as_ref(),
+        options.free_lead_tilt.as_ref(),
+    );
+    let largest = cones.iter().copied().fold(0.0, f64::max);
+    check_cells(options, points.len(), largest)?;
+    let free = match (rotation, lean) {
+        (Some(f), _) => Some((cost(arm, f.objective, thrusts)?, f.aggregate)),
+        (None, Some(l)) => Some((cost(arm, l.objective, thrusts)?, l.aggregate)),
+        (None, None) => None,
     };
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
@@ -82,20 +108,33 @@ pub fn path_with_exits(
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
     let checks = Checks::new(&model, &options.feasible, false);
-    let (postures, rotations, removed) = match &free {
-        None => (nominal.clone(), vec![0.0; points.len()], Vec::new()),
-        Some((free, cost)) => optimise_tool_axis(
-            &model,
-            &nominal,
-            &wrenches,
-            (free, cost, &checks),
-            &options.ik,
+    let (postures, rotations, leans, removed) = match &free {
+        None => (
+            nominal.clone(),
+            vec![0.0; points.len()],
+            Vec::new(),
+            Vec::new(),
         ),
+        Some((cost, aggregate)) => {
+            let poses: Vec<Isometry3<f64>> = (nominal.iter())
+                .map(|q| tool_pose(&arm.robot().frames(q), &arm.tool().tcp))
+                .collect();
+            let leaning = Leaning::new(lean, &poses, cones.to_vec());
+            optimise_tool_axis(
+                &model,
+                &nominal,
+                &wrenches,
+                (rotation, &leaning, *aggregate),
+                (cost, &checks),
+                &options.ik,
+            )
+        }
     };
     let chosen = Chosen {
         nominal: &nominal,
         postures: &postures,
         rotations: &rotations,
+        leans: &leans,
         wrenches: &wrenches,
         wrenches_before: &wrenches,
         removed: &removed,
@@ -103,14 +142,14 @@ pub fn path_with_exits(
     compensate_chosen(&model, points, &chosen, free.is_some())
 }
 
-/// The cost of the free tool axis' objective; for the surge, the arm's mass model and the
+/// The cost of the free variables' `objective`; for the surge, the arm's mass model and the
 /// path's drilling exits (`thrusts`), refused without either.
 fn cost<'a>(
     arm: &Arm,
-    free: &FreeToolAxis,
+    objective: Objective,
     thrusts: &'a [Option<Vector3<f64>>],
 ) -> Result<Cost<'a>> {
-    match free.objective {
+    match objective {
         Objective::Deflection => return Ok(Cost::Deflection),
         Objective::Bound => return Ok(Cost::Bound),
         Objective::Surge => {}
@@ -150,8 +189,8 @@ pub const CHUNK: usize = 4096;
 /// iterator, e.g. a file's rows as they are parsed) and are compensated [`CHUNK`] at a time (in
 /// parallel within a chunk, inverse kinematics continued from the previous chunk's last
 /// posture); `sink` gets each chunk's points and results, in path order, before the next chunk is
-/// read. With [`FreeToolAxis`] the whole path is one problem (dynamic programming over the
-/// path): its points are collected (at most [`FreeToolAxis::MAX_GRID_CELLS`] grid cells) and
+/// read. With [`super::FreeToolAxis`] or [`super::FreeLeadTilt`] the whole path is one problem (dynamic programming over the
+/// path): its points are collected (at most [`super::FreeToolAxis::MAX_GRID_CELLS`] grid cells) and
 /// compensated by [`path`], then given to `sink` chunk by chunk. The results equal [`path`]'s.
 /// Returns the number of points.
 ///
@@ -173,11 +212,12 @@ where
 {
     options.validate()?;
     let mut points = points.into_iter();
-    if let Some(free) = &options.free_tool_axis {
+    if options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() {
+        let cone = options.free_lead_tilt.and_then(|l| l.cone).unwrap_or(0.0);
         let mut all = Vec::new();
         for p in points {
             all.push(p?);
-            free.check_grid(all.len())?;
+            check_cells(options, all.len(), cone)?;
         }
         let results = path(arm, compliance, &all, options)?;
         for (p, r) in all.chunks(CHUNK).zip(results.chunks(CHUNK)) {
@@ -207,6 +247,7 @@ where
             nominal: &nominal,
             postures: &nominal,
             rotations: &rotations,
+            leans: &[],
             wrenches: &wrenches,
             wrenches_before: &wrenches,
             removed: &[],
@@ -230,6 +271,8 @@ pub(super) struct Chosen<'a> {
     pub nominal: &'a [Vector6<f64>],
     pub postures: &'a [Vector6<f64>],
     pub rotations: &'a [f64],
+    /// Each point's `(lead, tilt)`, rad; empty without a free lead and tilt.
+    pub leans: &'a [(f64, f64)],
     pub wrenches: &'a [Vector6<f64>],
     /// The wrenches at the path's own values (the arm's frame on the path's own station).
     pub wrenches_before: &'a [Vector6<f64>],
@@ -283,6 +326,8 @@ pub(super) fn compensate_chosen(
                 iterations: newton.iterations,
                 stop: newton.stop,
                 tool_rotation: c.rotations[i],
+                lead: c.leans.get(i).map_or(0.0, |l| l.0),
+                tilt: c.leans.get(i).map_or(0.0, |l| l.1),
                 deflection_before,
                 q_before: free.then_some(c.nominal[i]),
                 outside_region: model.compliance.region.outside(q),

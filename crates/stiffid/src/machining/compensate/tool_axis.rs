@@ -2,6 +2,7 @@
 //! programming (module docs of [`super`], "The free tool axis").
 
 use super::feasible::Checks;
+use super::lead_tilt::{lean, Lean, Leaning};
 use super::{Aggregate, FreeToolAxis, Model, Removed, TIE_BREAK};
 use crate::observation::dynamics::tcp_surge;
 use crate::robot::dynamics::MassModel;
@@ -60,41 +61,47 @@ impl Cost<'_> {
     }
 }
 
-/// The postures and tool rotations of the free tool axis (module docs), with each point's
-/// states `checks` removed.
+/// What the free variables of a path on a fixed base chose at every point: the posture, the
+/// rotation about tool z and the `(lead, tilt)`, rad; and each point's states the checks removed.
+pub(super) type Picked = (Vec<Vector6<f64>>, Vec<f64>, Vec<(f64, f64)>, Vec<Removed>);
+
+/// The postures, tool rotations and leans of the free tool axis (`rotation`, else none) and the
+/// free lead and tilt (`leaning`, module docs), their costs added up by `aggregate`, with each
+/// point's states `checks` removed.
 pub(super) fn optimise_tool_axis(
     model: &Model,
     nominal: &[Vector6<f64>],
     wrenches: &[Vector6<f64>],
-    (free, cost, checks): (&FreeToolAxis, &Cost, &Checks),
+    (rotation, leaning, aggregate): (Option<&FreeToolAxis>, &Leaning, Aggregate),
+    (cost, checks): (&Cost, &Checks),
     ik_options: &ik::Options,
-) -> (Vec<Vector6<f64>>, Vec<f64>, Vec<Removed>) {
-    let angles = free.angles();
-    let columns: Vec<Column> = angles
-        .par_iter()
-        .map(|&phi| {
-            column(
-                model,
-                nominal,
-                wrenches,
-                (Move::turn(phi), cost),
-                ik_options,
-            )
+) -> Picked {
+    let angles = rotation.map_or(vec![0.0], FreeToolAxis::angles);
+    let a = angles.len();
+    let columns: Vec<Column> = (0..leaning.len() * a)
+        .into_par_iter()
+        .map(|s| {
+            let m = Move {
+                phi: angles[s % a],
+                shift: None,
+                lean: leaning.at(s / a),
+            };
+            column(model, nominal, wrenches, (m, cost), ik_options)
         })
         .collect();
-    let grid = Grid {
-        axes: vec![rotation_axis(free, &angles)],
-    };
-    let (chosen, removed) = choose(&columns, &grid, (cost, checks), free.aggregate);
-    let (postures, rotations) = (chosen.iter().enumerate())
-        .map(|(i, &g)| {
-            (
-                columns[g][i].as_ref().map_or(nominal[i], |c| c.0),
-                angles[g],
-            )
-        })
-        .unzip();
-    (postures, rotations, removed)
+    let mut axes = lean_axes(leaning);
+    if let Some(f) = rotation {
+        axes.push(rotation_axis(f, &angles));
+    }
+    let (chosen, removed) = choose(&columns, &Grid { axes }, (cost, checks), aggregate);
+    let mut out: Picked = (Vec::new(), Vec::new(), Vec::new(), removed);
+    for (i, &s) in chosen.iter().enumerate() {
+        out.0
+            .push(columns[s][i].as_ref().map_or(nominal[i], |c| c.0));
+        out.1.push(angles[s % a]);
+        out.2.push(leaning.state(s / a));
+    }
+    out
 }
 
 /// The grid's axis of the rotation of `free` over its `angles` ([`FreeToolAxis::angles`]).
@@ -105,6 +112,23 @@ pub(super) fn rotation_axis<'a>(free: &FreeToolAxis, angles: &'a [f64]) -> Axis<
         range: free.range,
         max_step: free.max_step,
         zero: angles.len() / 2,
+    }
+}
+
+/// The grid's lead and tilt axes of `leaning` (none without a free lean).
+pub(super) fn lean_axes(leaning: &Leaning) -> Vec<Axis<'_>> {
+    let offsets = leaning.offsets();
+    match offsets.last() {
+        None => Vec::new(),
+        Some(&range) => (0..2)
+            .map(|_| Axis {
+                values: offsets,
+                reach: 1,
+                range: range.max(leaning.step()),
+                max_step: leaning.step(),
+                zero: offsets.len() / 2,
+            })
+            .collect(),
     }
 }
 
@@ -328,25 +352,32 @@ pub(super) fn shortest(
 pub(super) type Column = Vec<Option<(Vector6<f64>, f64)>>;
 
 /// How a state of the grid moves each point's pose from the path's own: turned by `phi` about
-/// tool z, then, on a moved track station, taken by each point's `shift` (the arm's frame at
-/// the path's station seen from the arm's frame at the state's, [`super::station`]).
+/// tool z, leaned by `lean` ([`super::lean`]), then, on a moved track station, taken by each
+/// point's `shift` (the arm's frame at the path's station seen from the arm's frame at the
+/// state's, [`super::station`]).
 #[derive(Clone, Copy)]
 pub(super) struct Move<'a> {
     /// The rotation about tool z, rad.
     pub phi: f64,
     /// Each point's change of the arm's frame; `None` at the path's own station.
     pub shift: Option<&'a [Isometry3<f64>]>,
+    /// The lean; `None` without a free lead and tilt.
+    pub lean: Option<Lean<'a>>,
 }
 
 impl Move<'_> {
     /// A rotation about tool z only.
     pub fn turn(phi: f64) -> Self {
-        Move { phi, shift: None }
+        Move {
+            phi,
+            shift: None,
+            lean: None,
+        }
     }
 
     /// Whether this is the path's own pose.
     fn own(&self) -> bool {
-        self.phi == 0.0 && self.shift.is_none()
+        self.phi == 0.0 && self.shift.is_none() && self.lean.is_none_or(|l| l.zero())
     }
 }
 
@@ -374,11 +405,16 @@ pub(super) fn column(
         .zip(wrenches)
         .enumerate()
         .map(|(i, (q, w))| {
-            let q = match m.own() {
-                true => Some(*q),
-                false => {
+            let inside = m.lean.is_none_or(|l| l.inside(i));
+            let q = match (m.own(), inside) {
+                (true, _) => Some(*q),
+                (false, false) => None,
+                (false, true) => {
                     let mut target = tool_pose(&arm.robot().frames(q), tcp);
                     target.rotation *= turn;
+                    if let Some(l) = &m.lean {
+                        target.rotation = lean(&l.frames[i], l.lead, l.tilt) * target.rotation;
+                    }
                     if let Some(shift) = m.shift {
                         target = shift[i] * target;
                     }

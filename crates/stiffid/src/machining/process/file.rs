@@ -22,6 +22,15 @@
 //! the motion instructions of a robot program it covers). A drilling operation has
 //! `[tool] diameter_mm`, `[cut] feed_per_rev_mm` and `[coefficients] specific_energy_n_per_mm2,
 //! specific_thrust_n_per_mm2`.
+//! A milling operation may let the tool axis lean from the program's own within a cone (ball-end
+//! milling, deburring), which `compensate --free-lead-tilt` uses
+//! ([`crate::machining::compensate::FreeLeadTilt`]):
+//! ```toml
+//! [tool_axis]
+//! cone_deg = 10                    # the cone's half angle, [0, 30] deg
+//! ```
+//! (`[operation.tool_axis]` in an `[[operation]]` table). A drilling operation that gives one is
+//! refused: a drill's axis is the hole's.
 //! Where the workpiece sits is the cell's, not the process's: `[workpiece] base_from_part` is a
 //! field of the setup ([`crate::setup`]); a process file that has one is refused, saying so.
 //!
@@ -30,7 +39,8 @@
 //! `feed_per_rev_mm` (0, 5]; `spindle_rpm` [1, 100000]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
 //! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
 //! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most [`MAX_OPERATIONS`] operations;
-//! `lines` two 1-based line numbers, first <= last.
+//! `lines` two 1-based line numbers, first <= last; `tool_axis.cone_deg` [0, 30]
+//! ([`crate::machining::compensate::FreeLeadTilt::MAX_CONE_DEG`]).
 //!
 //! # Ambiguity
 //! Two operations with the same name, the same `tool_number`, overlapping `lines`, or both
@@ -58,6 +68,11 @@ const CUTTING_SIGNED: Range = Range::new(-2e4, 2e4, "N/mm^2");
 const SPINDLE: Range = Range::new(1.0, 1e5, "rpm");
 const EDGE: Range = Range::new(0.0, 1e3, "N/mm");
 const EDGE_SIGNED: Range = Range::new(-1e3, 1e3, "N/mm");
+const CONE: Range = Range::new(
+    0.0,
+    crate::machining::compensate::FreeLeadTilt::MAX_CONE_DEG,
+    "deg",
+);
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -70,6 +85,7 @@ struct FileToml {
     tool: Option<ToolToml>,
     cut: Option<CutToml>,
     coefficients: Option<CoefficientsToml>,
+    tool_axis: Option<ToolAxisToml>,
     operation: Option<Vec<OperationToml>>,
 }
 
@@ -83,6 +99,13 @@ struct OperationToml {
     tool: ToolToml,
     cut: CutToml,
     coefficients: CoefficientsToml,
+    tool_axis: Option<ToolAxisToml>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ToolAxisToml {
+    cone_deg: f64,
 }
 
 #[derive(Deserialize)]
@@ -152,6 +175,7 @@ fn process(file: FileToml) -> Result<Process> {
         ("tool_number", file.tool_number.is_some()),
         ("lines", file.lines.is_some()),
         ("coefficients", file.coefficients.is_some()),
+        ("tool_axis", file.tool_axis.is_some()),
     ];
     let tables = match (file.operation, file.tool, file.cut) {
         (Some(list), None, None) if !top_level.iter().any(|(_, given)| *given) => list
@@ -168,6 +192,7 @@ fn process(file: FileToml) -> Result<Process> {
                 tool,
                 cut,
                 coefficients: file.coefficients.unwrap_or_default(),
+                tool_axis: file.tool_axis,
             };
             vec![(String::new(), single)]
         }
@@ -295,11 +320,26 @@ fn operation(i: usize, prefix: &str, t: OperationToml) -> Result<Operation> {
             ))
         }
     };
+    let cone = cone(prefix, &kind, t.tool_axis.as_ref())?;
     Ok(Operation {
         name,
         selector,
         kind,
+        cone,
     })
+}
+
+/// The operation's cone, rad: `[tool_axis] cone_deg` within [`CONE`] for milling (0 without),
+/// refused for drilling.
+fn cone(prefix: &str, kind: &super::Kind, axis: Option<&ToolAxisToml>) -> Result<f64> {
+    let Some(axis) = axis else { return Ok(0.0) };
+    if matches!(kind, super::Kind::Drilling(_)) {
+        return Err(invalid(
+            &format!("{prefix}tool_axis.cone_deg"),
+            "a drilling operation's tool axis is the hole's: it cannot lean (a cone is for milling: ball-end milling, deburring)",
+        ));
+    }
+    Ok(ranged(prefix, "tool_axis.cone_deg", axis.cone_deg, &CONE)?.to_radians())
 }
 
 fn milling(prefix: &str, diameter: f64, t: &OperationToml) -> Result<Milling> {

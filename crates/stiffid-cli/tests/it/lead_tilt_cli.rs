@@ -1,0 +1,227 @@
+//! `stiffid compensate --free-lead-tilt`: a path file leans within `--cone-deg` (the CSV's and
+//! the JSON's `lead_deg`, `tilt_deg`), no point worse than at its own axis; a G-code program
+//! leans within its process file's cone and its robot program's joint targets are the leaned
+//! compensated postures; written back as G-code it is refused, as are bad values, naming the
+//! option, nothing written.
+
+use crate::common;
+
+use common::{assert_success, json, refused, stiffid, temp_dir, write_file};
+use std::path::Path;
+
+fn example(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The CSV `csv`'s columns `names` of every row.
+fn columns(csv: &Path, names: &[&str]) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let at: Vec<usize> = (names.iter())
+        .map(|n| header.iter().position(|h| h == n).unwrap())
+        .collect();
+    lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            at.iter().map(|&k| cells[k].parse().unwrap()).collect()
+        })
+        .collect()
+}
+
+/// The milling example's first 40 path points compensated with `extra` into `out`.
+fn milling(dir: &Path, out: &str, extra: &[&str]) -> std::process::Output {
+    let text = std::fs::read_to_string(example("milling/path.csv")).unwrap();
+    let head: Vec<&str> = text.lines().take(41).collect();
+    let path = write_file(dir, "path.csv", &(head.join("\n") + "\n"));
+    let (setup, stiffness) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+    );
+    let out = dir.join(out);
+    let mut args = vec!["compensate", "--setup", &setup, "--stiffness", &stiffness];
+    args.extend([
+        "--path",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    args.extend(extra);
+    stiffid(&args)
+}
+
+#[test]
+fn a_path_leans_within_its_cone_and_no_point_rises() {
+    let dir = temp_dir("lead-tilt-path");
+    assert_success(&milling(&dir, "own.csv", &[]));
+    let lean = [
+        "--free-lead-tilt",
+        "--cone-deg",
+        "6",
+        "--lead-tilt-step-deg",
+        "3",
+        "--objective",
+        "max",
+        "--json",
+    ];
+    let out = milling(&dir, "lean.csv", &lean);
+    assert_success(&out);
+    let doc = json(&out);
+    assert_eq!(doc["free_lead_tilt"]["cone_deg"], 6.0);
+    assert_eq!(doc["free_lead_tilt"]["objective"], "bound");
+    let names = ["bound_mm", "lead_deg", "tilt_deg"];
+    let (own, lean) = (
+        columns(&dir.join("own.csv"), &names),
+        columns(&dir.join("lean.csv"), &names),
+    );
+    let points = doc["points"].as_array().unwrap();
+    assert_eq!(points.len(), lean.len());
+    let mut leaned = 0;
+    for (i, (a, b)) in own.iter().zip(&lean).enumerate() {
+        assert_eq!(a[1..], [0.0, 0.0], "{i}: no lean without the flag");
+        assert!(b[0] <= a[0] + 1e-6, "{i}: {} mm > {} mm", b[0], a[0]);
+        assert!(b[1].hypot(b[2]) <= 6.0 + 1e-9, "{i}: outside the cone");
+        assert_eq!(points[i]["lead_deg"].as_f64().unwrap(), b[1]);
+        leaned += usize::from(b[1] != 0.0 || b[2] != 0.0);
+    }
+    for w in lean.windows(2) {
+        assert!((w[1][1] - w[0][1]).abs() <= 3.0 + 1e-9 && (w[1][2] - w[0][2]).abs() <= 3.0 + 1e-9);
+    }
+    assert!(leaned > 0, "the tool leans somewhere");
+    let peak = |rows: &[Vec<f64>]| rows.iter().map(|r| r[0]).fold(0.0, f64::max);
+    assert!(peak(&lean) < peak(&own), "the peak bound falls");
+}
+
+#[test]
+fn a_program_leans_within_its_process_cone_into_its_joint_targets() {
+    let dir = temp_dir("lead-tilt-program");
+    let process = std::fs::read_to_string(example("milling/trim.toml")).unwrap();
+    let process = write_file(
+        &dir,
+        "trim.toml",
+        &(process + "\n[operation.tool_axis]\ncone_deg = 4\n"),
+    );
+    let (setup, stiffness, program) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+        example("milling/trim.nc"),
+    );
+    let run = |name: &str, extra: &[&str]| {
+        let (out, csv) = (
+            dir.join(format!("{name}.ls")),
+            dir.join(format!("{name}.csv")),
+        );
+        let mut args = vec!["compensate", "--setup", &setup, "--stiffness", &stiffness];
+        args.extend([
+            "--program",
+            &program,
+            "--process",
+            process.to_str().unwrap(),
+        ]);
+        args.extend([
+            "--out",
+            out.to_str().unwrap(),
+            "--csv",
+            csv.to_str().unwrap(),
+        ]);
+        args.extend(["--targets", "joint"]);
+        args.extend(extra);
+        assert_success(&stiffid(&args));
+        (std::fs::read_to_string(out).unwrap(), csv)
+    };
+    let (_, own_csv) = run("OWN", &[]);
+    let lean = ["--free-lead-tilt", "--lead-tilt-step-deg", "2"];
+    let (ls, csv) = run("LEAN", &lean);
+    let names = [
+        "lead_deg", "tilt_deg", "qc1_deg", "qc2_deg", "qc3_deg", "qc4_deg", "qc5_deg",
+    ];
+    let (rows, own) = (columns(&csv, &names), columns(&own_csv, &names));
+    assert!(rows.iter().all(|r| r[0].hypot(r[1]) <= 4.0 + 1e-9));
+    let moved: Vec<&Vec<f64>> = (rows.iter().zip(&own))
+        .filter(|(r, o)| (r[0] != 0.0 || r[1] != 0.0) && (r[2] - o[2]).abs() > 0.01)
+        .map(|(r, _)| r)
+        .collect();
+    assert!(!moved.is_empty(), "some compensated posture leans");
+    // Every joint target of the LS program is a compensated posture of the CSV, leaned ones too.
+    let targets: Vec<Vec<f64>> = (ls.split("J1=").skip(1))
+        .map(|t| {
+            (t.split('=').take(5))
+                .map(|v| v.trim().split(' ').next().unwrap().parse().unwrap())
+                .collect()
+        })
+        .collect();
+    assert!(!targets.is_empty());
+    let near = |t: &[f64], r: &[f64]| t.iter().zip(&r[2..]).all(|(a, b)| (a - b).abs() < 2e-3);
+    for t in &targets {
+        assert!(
+            rows.iter().any(|r| near(t, r)),
+            "{t:?} is no compensated posture"
+        );
+    }
+    assert!(moved.iter().any(|r| targets.iter().any(|t| near(t, r))));
+}
+
+#[test]
+fn bad_lean_options_and_gcode_written_as_gcode_are_refused() {
+    let dir = temp_dir("lead-tilt-refused");
+    let (setup, stiffness) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+    );
+    let path = example("milling/path.csv");
+    let base = [
+        "compensate",
+        "--setup",
+        &setup,
+        "--stiffness",
+        &stiffness,
+        "--path",
+        &path,
+        "--out",
+        "{dir}/out.csv",
+        "--free-lead-tilt",
+    ];
+    for (extra, option) in [
+        (vec!["--cone-deg", "40"], "--cone-deg"),
+        (vec!["--cone-deg", "-2"], "--cone-deg"),
+        (vec!["--cone-deg", "NaN"], "--cone-deg"),
+        (
+            vec!["--cone-deg", "5", "--lead-tilt-step-deg", "0"],
+            "--lead-tilt-step-deg",
+        ),
+        (
+            vec!["--cone-deg", "5", "--lead-tilt-step-deg", "6"],
+            "--lead-tilt-step-deg",
+        ),
+        (vec![], "--cone-deg"),
+    ] {
+        let args: Vec<&str> = base.iter().copied().chain(extra).collect();
+        refused(&dir, &args, &[option]);
+    }
+    let process = std::fs::read_to_string(example("milling/trim.toml")).unwrap();
+    write_file(
+        &dir,
+        "trim.toml",
+        &(process + "\n[operation.tool_axis]\ncone_deg = 4\n"),
+    );
+    let program = example("milling/trim.nc");
+    let args = [
+        "compensate",
+        "--setup",
+        &setup,
+        "--stiffness",
+        &stiffness,
+        "--program",
+        &program,
+        "--process",
+        "{dir}/trim.toml",
+        "--out",
+        "{dir}/trim.nc",
+        "--free-lead-tilt",
+    ];
+    refused(&dir, &args, &["--free-lead-tilt", "robot program"]);
+}
