@@ -51,8 +51,9 @@ use stiffid::observation::deflection::Frame;
 /// positioner, ``free_positioner_deg=R`` turns its last axis up to ``+-R`` deg from the path's
 /// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``).
 /// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
-/// number of at most ``max_condition`` and, with the setup's ``[cell]`` on a fixed base, clear of
-/// the floor, the obstacles and itself (as ``--margin-deg``, ``--max-condition``; the
+/// number of at most ``max_condition`` and, with the setup's ``[cell]``, clear of the floor, the
+/// obstacles and itself, an arm on a track on its carriage at the station chosen (as
+/// ``--margin-deg``, ``--max-condition``; the
 /// ``document``'s ``feasibility`` counts the states each check removed).
 /// ``map=True`` (or ``"rotation"``) adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'

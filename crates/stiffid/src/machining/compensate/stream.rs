@@ -9,6 +9,7 @@ use super::{
 use crate::common::error::{ColumnProblem, JobOption};
 use crate::observation::deflection::base_wrench;
 use crate::robot::configuration::Configuration;
+use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
 use crate::setup::Arm;
 use crate::{Error, Result};
@@ -81,12 +82,13 @@ pub fn path_with_exits(
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
-    let checks = Checks::new(&model, &options.feasible, false);
+    let checks = Checks::new(&model, &options.feasible);
+    let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
     let (postures, rotations, removed) = match &free {
         None => (nominal.clone(), vec![0.0; points.len()], Vec::new()),
         Some((free, cost)) => optimise_tool_axis(
             &model,
-            &nominal,
+            (&nominal, &own),
             &wrenches,
             (free, cost, &checks),
             &options.ik,

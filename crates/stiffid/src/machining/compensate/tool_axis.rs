@@ -5,6 +5,7 @@ use super::feasible::Checks;
 use super::{Aggregate, FreeToolAxis, Model, Removed, TIE_BREAK};
 use crate::observation::dynamics::tcp_surge;
 use crate::robot::dynamics::MassModel;
+use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
 use crate::robot::kinematics::Frames;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
@@ -61,10 +62,10 @@ impl Cost<'_> {
 }
 
 /// The postures and tool rotations of the free tool axis (module docs), with each point's
-/// states `checks` removed.
+/// states `checks` removed (the arm on its carriage at each point's external values `own`).
 pub(super) fn optimise_tool_axis(
     model: &Model,
-    nominal: &[Vector6<f64>],
+    (nominal, own): (&[Vector6<f64>], &[ExternalValues]),
     wrenches: &[Vector6<f64>],
     (free, cost, checks): (&FreeToolAxis, &Cost, &Checks),
     ik_options: &ik::Options,
@@ -85,7 +86,8 @@ pub(super) fn optimise_tool_axis(
     let grid = Grid {
         axes: vec![rotation_axis(free, &angles)],
     };
-    let (chosen, removed) = choose(&columns, &grid, (cost, checks), free.aggregate);
+    let at = vec![own; columns.len()];
+    let (chosen, removed) = choose((&columns, &at), &grid, (cost, checks), free.aggregate);
     let (postures, rotations) = (chosen.iter().enumerate())
         .map(|(i, &g)| {
             (
@@ -109,11 +111,12 @@ pub(super) fn rotation_axis<'a>(free: &FreeToolAxis, angles: &'a [f64]) -> Axis<
 }
 
 /// The state of every point on the path of least value over `columns` (one per state of
-/// `grid`): a point takes a state only where its cost is no larger than at the path's own and
-/// its moved posture passes `checks` (the path's own posture is kept as it is); with each point's
-/// states the checks removed.
+/// `grid`, with each point's external values `at` that state in `external`): a point takes a
+/// state only where its cost is no larger than at the path's own and its moved posture passes
+/// `checks` (the path's own posture is kept as it is); with each point's states the checks
+/// removed.
 pub(super) fn choose(
-    columns: &[Column],
+    (columns, external): (&[Column], &[&[ExternalValues]]),
     grid: &Grid,
     (cost, checks): (&Cost, &Checks),
     aggregate: Aggregate,
@@ -132,7 +135,7 @@ pub(super) fn choose(
                     if g == zero {
                         return Some(*d);
                     }
-                    match checks.fails(q) {
+                    match checks.fails(q, &external[g][i]) {
                         Some(r) => {
                             removed += r;
                             None
