@@ -57,8 +57,9 @@ use stiffid::observation::deflection::Frame;
 /// ``cone_deg`` (0 to 30 deg), a program's its process file's (``[tool_axis] cone_deg``), written
 /// as a robot program (``output=``); ``lead_deg`` and ``tilt_deg`` (``(n,)``) hold the lean chosen.
 /// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
-/// number of at most ``max_condition`` and, with the setup's ``[cell]`` on a fixed base, clear of
-/// the floor, the obstacles and itself (as ``--margin-deg``, ``--max-condition``; the
+/// number of at most ``max_condition`` and, with the setup's ``[cell]``, clear of the floor, the
+/// obstacles and itself, an arm on a track on its carriage at the station chosen (as
+/// ``--margin-deg``, ``--max-condition``; the
 /// ``document``'s ``feasibility`` counts the states each check removed).
 /// ``map=True`` (or ``"rotation"``) adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'

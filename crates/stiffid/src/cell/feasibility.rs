@@ -174,8 +174,17 @@ impl<'a> Checker<'a> {
 
     /// The feasibility of posture `q` (axis angles, rad).
     pub fn feasibility(&self, q: &Vector6<f64>) -> Feasibility {
+        self.feasibility_at(q, &[])
+    }
+
+    /// The feasibility of posture `q` (axis angles, rad) with the cell's external axes at `e`
+    /// (SI, the cell's order, [`crate::robot::external`]): the arm's bodies on their carriage,
+    /// its base at `C(e) * base` ([`crate::Robot::frames_at`]), against the floor, the
+    /// obstacles, the rope's anchor and the tracker, which stand in the cell frame. Empty `e`
+    /// (or a robot without a carrier): [`Checker::feasibility`].
+    pub fn feasibility_at(&self, q: &Vector6<f64>, e: &[f64]) -> Feasibility {
         let mut exact = Margins::new(false, false);
-        self.collect(q, &mut exact);
+        self.collect(q, e, &mut exact);
         let margins = exact.margins;
         let checks = self
             .kinds
@@ -223,8 +232,14 @@ impl<'a> Checker<'a> {
     /// the spheres' gap as its margin (a lower bound of its distance, never failing) instead of
     /// the exact distance ([`Checker::feasibility`] works every distance out).
     pub fn margins(&self, q: &Vector6<f64>) -> Vec<Margin> {
+        self.margins_at(q, &[])
+    }
+
+    /// [`Checker::margins`] with the cell's external axes at `e`, the arm on its carriage
+    /// ([`Checker::feasibility_at`]).
+    pub fn margins_at(&self, q: &Vector6<f64>, e: &[f64]) -> Vec<Margin> {
         let mut out = Margins::new(false, true);
-        self.collect(q, &mut out);
+        self.collect(q, e, &mut out);
         out.margins
     }
 
@@ -259,11 +274,13 @@ impl<'a> Checker<'a> {
     /// ```
     pub fn margins_and_gradients(&self, q: &Vector6<f64>) -> (Vec<Margin>, MarginGradients) {
         let mut out = Margins::new(true, true);
-        self.collect(q, &mut out);
+        self.collect(q, &[], &mut out);
         out.finish()
     }
 
-    fn collect(&self, q: &Vector6<f64>, out: &mut Margins) {
+    /// The margins of posture `q` with the external axes at `e` (the arm on its carriage;
+    /// empty: at the cell's origin) into `out`.
+    fn collect(&self, q: &Vector6<f64>, e: &[f64], out: &mut Margins) {
         let s = self.setup;
         for a in 0..6 {
             let (low, high) = (q[a] - s.bounds().lower[a], s.bounds().upper[a] - q[a]);
@@ -277,7 +294,10 @@ impl<'a> Checker<'a> {
         if !self.constrains() {
             return;
         }
-        let frames = s.robot().frames(q);
+        let frames = match e.is_empty() {
+            true => s.robot().frames(q),
+            false => s.robot().frames_at(q, e),
+        };
         let bodies = bodies(s.arm(), &frames);
         let loading = frames.point(&s.tool().loading_point);
         if let Some(cell) = &s.cell() {

@@ -77,6 +77,7 @@ mod simulate;
 mod solver_auto;
 mod stop_reasons;
 mod study;
+mod track_collisions;
 mod track_design;
 mod track_map;
 mod track_stiffness;

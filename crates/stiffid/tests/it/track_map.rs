@@ -2,10 +2,11 @@
 //! that point alone at that station (its bound and deflection); stations beyond the travel are
 //! empty; the collision distance equals the feasibility checker's clearance to the floor and the
 //! obstacles of a fixed-base robot whose cell is moved by the station (the arm on its carriage
-//! sees the cell move the other way).
+//! sees the cell move the other way), and the checker's of the robot on its track at the
+//! station.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::cell::CheckKind;
+use stiffid::cell::{CheckKind, Checker};
 use stiffid::machining::cell::on_carriage;
 use stiffid::machining::compensate::{self, FreeStation, MapVariable, Options, PathPoint, Target};
 use stiffid::observation::deflection::Frame;
@@ -124,6 +125,13 @@ fn every_cell_of_the_track_map_is_a_compensation_at_its_station() {
                 "{i} {d}: {} against the checker's {clearance}",
                 collision[(i, k)]
             );
+            // The checker of the robot on its track, the arm on its carriage at the station.
+            let at = Checker::new(&s).feasibility_at(&r.q, &[station]);
+            let on_track = (at.checks.iter())
+                .filter(|c| matches!(c.kind, CheckKind::Floor | CheckKind::Obstacles))
+                .filter_map(|c| c.clearance)
+                .fold(f64::INFINITY, f64::min);
+            assert!((collision[(i, k)] - on_track).abs() <= 1e-9, "{i} {d}");
         }
     }
     // The stations differ: the map is not one column repeated.

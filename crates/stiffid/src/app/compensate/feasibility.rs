@@ -2,14 +2,14 @@
 //! ([`crate::machining::compensate::Feasible`]): their limits and how many states each removed.
 
 use crate::machining::compensate::{Options, Removed};
-use crate::Robot;
 use serde::Serialize;
 
 /// The feasibility of the moved postures of the free variables (`--free-tool-axis`,
-/// `--free-station-mm`): a state (a value of the free variables at a path point) that inverse
-/// kinematics reaches with a cost no larger than the path's own is removed when its posture
-/// fails a check; each removed state is counted once, by the first check it fails in the order
-/// joint-limit margin, singularity, collision. The path's own posture is kept as it is.
+/// `--free-station-mm`, `--free-positioner-deg`): a state (a value of the free variables at a
+/// path point) that inverse kinematics reaches with a cost no larger than the path's own is
+/// removed when its posture fails a check; each removed state is counted once, by the first
+/// check it fails in the order joint-limit margin, singularity, collision. The path's own
+/// posture is kept as it is.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Feasibility {
@@ -19,7 +19,7 @@ pub struct Feasibility {
     /// The largest condition number of a moved posture's TCP Jacobian (`--max-condition`).
     pub max_condition: f64,
     /// Whether the cell's collision checks (floor, obstacles, self-collision) applied: with a
-    /// `[cell]`, an arm on a fixed base and the station not free.
+    /// `[cell]` (an arm on a carrier on its carriage at each state's station).
     pub collisions_checked: bool,
     /// The states removed within the margin of a joint limit, summed over the path's points.
     pub states_removed_limit_margin: usize,
@@ -30,18 +30,21 @@ pub struct Feasibility {
 }
 
 impl Feasibility {
-    /// The feasibility of `options` for `robot` with the states `removed` over the path;
-    /// `None` without a free variable.
-    pub fn new(options: &Options, robot: &Robot, removed: Removed) -> Option<Self> {
-        let station = options.free_station.is_some();
-        if options.free_tool_axis.is_none() && options.free_lead_tilt.is_none() && !station {
+    /// The feasibility of `options` with the states `removed` over the path; `None` without a
+    /// free variable.
+    pub fn new(options: &Options, removed: Removed) -> Option<Self> {
+        let free = options.free_tool_axis.is_some()
+            || options.free_lead_tilt.is_some()
+            || options.free_station.is_some()
+            || options.free_positioner.is_some();
+        if !free {
             return None;
         }
         let f = &options.feasible;
         Some(Feasibility {
             margin_deg: f.margin.to_degrees(),
             max_condition: f.max_condition,
-            collisions_checked: f.checks_cell(robot, station),
+            collisions_checked: f.checks_cell(),
             states_removed_limit_margin: removed.limit_margin,
             states_removed_singularity: removed.singularity,
             states_removed_collision: removed.collision,

@@ -414,7 +414,7 @@ where
         springs: setup.springs(),
         free_tool_axis: options.free_tool_axis,
         free_station: options.free_station,
-        feasibility: feasibility::Feasibility::new(&options, setup.arm().robot(), summary.removed),
+        feasibility: feasibility::Feasibility::new(&options, summary.removed),
         free_positioner: options.free_positioner,
         free_lead_tilt: options.free_lead_tilt,
         parameters: setup.model().parameters(),

@@ -6,6 +6,7 @@ use crate::cell::{CheckKind, Checker};
 use crate::common::error::JobOption;
 use crate::common::words::number;
 use crate::math::jacobi;
+use crate::robot::external::ExternalValues;
 use crate::robot::kinematics::Coordinates;
 use crate::{Error, Result, Robot, Setup};
 use nalgebra::{Vector3, Vector6};
@@ -22,8 +23,10 @@ pub struct Feasible {
     /// in m/rad and rad/rad), finite and >= 1: away from singularities.
     pub max_condition: f64,
     /// The setup whose `[cell]` checks (floor, obstacles, self-collision; parry3d-f64 distances,
-    /// [`crate::cell::Checker`]) every moved posture passes; `None`: no collision check. It
-    /// applies to an arm on a fixed base only ([`Feasible::checks_cell`]).
+    /// [`crate::cell::Checker`]) every moved posture passes; `None`: no collision check. An arm
+    /// on a carrier is checked on its carriage at the state's external values (the station
+    /// chosen, or the point's own; [`crate::cell::Checker::feasibility_at`]); the cell's floor
+    /// and obstacles stand in the cell frame (a positioner turns the part, not them).
     pub cell: Option<Arc<Setup>>,
 }
 
@@ -68,12 +71,9 @@ impl Feasible {
         Ok(())
     }
 
-    /// Whether the cell's collision checks apply to the moved postures of `robot`: with a
-    /// `[cell]`, an arm on a fixed base and the station not free (the checker places the arm's
-    /// bodies at the cell's origin, which a carrier moves).
-    pub fn checks_cell(&self, robot: &Robot, free_station: bool) -> bool {
-        let carrier = robot.external().is_some_and(|c| c.carrier_len() > 0);
-        self.cell.is_some() && !carrier && !free_station
+    /// Whether the cell's collision checks apply to the moved postures: with a `[cell]`.
+    pub fn checks_cell(&self) -> bool {
+        self.cell.is_some()
     }
 }
 
@@ -116,14 +116,10 @@ pub(super) struct Checks<'a> {
 }
 
 impl<'a> Checks<'a> {
-    /// The checks of `feasible` for the arm of `model`, the collisions when
-    /// [`Feasible::checks_cell`] (with `free_station`).
-    pub fn new(model: &Model<'a>, feasible: &'a Feasible, free_station: bool) -> Self {
+    /// The checks of `feasible` for the arm of `model`, the collisions with a `[cell]`.
+    pub fn new(model: &Model<'a>, feasible: &'a Feasible) -> Self {
         let robot = model.arm.robot();
-        let checker = match feasible.checks_cell(robot, free_station) {
-            true => feasible.cell.as_deref().map(Checker::new),
-            false => None,
-        };
+        let checker = feasible.cell.as_deref().map(Checker::new);
         Checks {
             robot,
             tcp: model.arm.tool().tcp,
@@ -133,9 +129,9 @@ impl<'a> Checks<'a> {
         }
     }
 
-    /// `Removed` with a count of one for the first check posture `q` (rad) fails, `None` when it
-    /// passes every check.
-    pub fn fails(&self, q: &Vector6<f64>) -> Option<Removed> {
+    /// `Removed` with a count of one for the first check posture `q` (rad) fails with the
+    /// external axes at `e` (the arm on its carriage there), `None` when it passes every check.
+    pub fn fails(&self, q: &Vector6<f64>, e: &ExternalValues) -> Option<Removed> {
         let distance = self.robot.limits().distance(q);
         if distance.is_nan() || distance < self.margin {
             return Some(Removed {
@@ -152,7 +148,8 @@ impl<'a> Checks<'a> {
             });
         }
         let collides = self.checker.as_ref().is_some_and(|c| {
-            (c.margins(q).iter()).any(|m| COLLISIONS.contains(&m.kind) && m.margin < 0.0)
+            (c.margins_at(q, e.as_slice()).iter())
+                .any(|m| COLLISIONS.contains(&m.kind) && m.margin < 0.0)
         });
         collides.then(|| Removed {
             collision: 1,

@@ -67,14 +67,15 @@
 //! Every posture a free variable moves a point to must be feasible ([`Feasible`], the checks
 //! `stiffid place` asks of a placement): each axis angle at least [`Feasible::margin`] from its
 //! joint limits, the TCP Jacobian's condition number at most [`Feasible::max_condition`] and,
-//! with the setup's `[cell]` on a fixed base ([`Feasible::checks_cell`]), the robot's bodies clear
-//! of the floor, the obstacles and each other ([`crate::cell::Checker`]). A state whose posture
+//! with the setup's `[cell]` ([`Feasible::checks_cell`]), the robot's bodies clear of the floor,
+//! the obstacles and each other ([`crate::cell::Checker`]; an arm on a carrier on its carriage at
+//! the state's station, [`crate::cell::Checker::feasibility_at`]). A state whose posture
 //! fails is not taken at that point; the path's own posture is kept as it is whatever it fails
 //! (the no-worse rule: the path stays feasible as given). Each result counts its point's states
 //! each check removed ([`Compensated::removed`]: states that inverse kinematics reaches with a
-//! cost no larger than the path's own, counted by the first check they fail). With a free
-//! station, or an arm on a carrier, the bodies are not checked: the checker places the arm's
-//! bodies at the cell's origin, which a carrier moves.
+//! cost no larger than the path's own, counted by the first check they fail). The floor and the
+//! obstacles stand in the cell frame: a positioner turns the part, not them (the positioner's
+//! own bodies are not modelled).
 //!
 //! ## The free positioner
 //! With [`FreePositioner`] the positioner's last axis (the table's turn; a turntable's only

@@ -145,8 +145,12 @@ pub(crate) fn on_track(
     if let Some(f) = &options.free_tool_axis {
         axes.push(rotation_axis(f, &angles));
     }
-    let checks = Checks::new(&model, &options.feasible, options.free_station.is_some());
-    let (chosen, removed) = choose(&columns, &Grid { axes }, (&cost, &checks), aggregate);
+    let checks = Checks::new(&model, &options.feasible);
+    let external: Vec<&[ExternalValues]> = (0..columns.len())
+        .map(|s| stations[s / angles.len()].external.as_slice())
+        .collect();
+    let grid = Grid { axes };
+    let (chosen, removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
     let pick = |i: usize, s: usize| {
         let st = &stations[s / per_station];
         let q = columns[s][i].as_ref().map_or(nominal[i], |c| c.0);

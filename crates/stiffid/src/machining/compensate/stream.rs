@@ -10,6 +10,7 @@ use super::{
 use crate::common::error::{ColumnProblem, JobOption};
 use crate::observation::deflection::base_wrench;
 use crate::robot::configuration::Configuration;
+use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
 use crate::setup::Arm;
 use crate::{Error, Result};
@@ -107,7 +108,8 @@ pub(crate) fn path_in_cones(
         .zip(&nominal)
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
-    let checks = Checks::new(&model, &options.feasible, false);
+    let checks = Checks::new(&model, &options.feasible);
+    let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
     let (postures, rotations, leans, removed) = match &free {
         None => (
             nominal.clone(),
@@ -122,7 +124,7 @@ pub(crate) fn path_in_cones(
             let leaning = Leaning::new(lean, &poses, cones.to_vec());
             optimise_tool_axis(
                 &model,
-                &nominal,
+                (&nominal, &own),
                 &wrenches,
                 (rotation, &leaning, *aggregate),
                 (cost, &checks),

@@ -6,6 +6,7 @@ use super::lead_tilt::{lean, Lean, Leaning};
 use super::{Aggregate, FreeToolAxis, Model, Removed, TIE_BREAK};
 use crate::observation::dynamics::tcp_surge;
 use crate::robot::dynamics::MassModel;
+use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
 use crate::robot::kinematics::Frames;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
@@ -67,10 +68,11 @@ pub(super) type Picked = (Vec<Vector6<f64>>, Vec<f64>, Vec<(f64, f64)>, Vec<Remo
 
 /// The postures, tool rotations and leans of the free tool axis (`rotation`, else none) and the
 /// free lead and tilt (`leaning`, module docs), their costs added up by `aggregate`, with each
-/// point's states `checks` removed.
+/// point's states `checks` removed (the arm on its carriage at each point's external values
+/// `own`).
 pub(super) fn optimise_tool_axis(
     model: &Model,
-    nominal: &[Vector6<f64>],
+    (nominal, own): (&[Vector6<f64>], &[ExternalValues]),
     wrenches: &[Vector6<f64>],
     (rotation, leaning, aggregate): (Option<&FreeToolAxis>, &Leaning, Aggregate),
     (cost, checks): (&Cost, &Checks),
@@ -93,7 +95,8 @@ pub(super) fn optimise_tool_axis(
     if let Some(f) = rotation {
         axes.push(rotation_axis(f, &angles));
     }
-    let (chosen, removed) = choose(&columns, &Grid { axes }, (cost, checks), aggregate);
+    let at = vec![own; columns.len()];
+    let (chosen, removed) = choose((&columns, &at), &Grid { axes }, (cost, checks), aggregate);
     let mut out: Picked = (Vec::new(), Vec::new(), Vec::new(), removed);
     for (i, &s) in chosen.iter().enumerate() {
         out.0
@@ -133,11 +136,12 @@ pub(super) fn lean_axes(leaning: &Leaning) -> Vec<Axis<'_>> {
 }
 
 /// The state of every point on the path of least value over `columns` (one per state of
-/// `grid`): a point takes a state only where its cost is no larger than at the path's own and
-/// its moved posture passes `checks` (the path's own posture is kept as it is); with each point's
-/// states the checks removed.
+/// `grid`, with each point's external values `at` that state in `external`): a point takes a
+/// state only where its cost is no larger than at the path's own and its moved posture passes
+/// `checks` (the path's own posture is kept as it is); with each point's states the checks
+/// removed.
 pub(super) fn choose(
-    columns: &[Column],
+    (columns, external): (&[Column], &[&[ExternalValues]]),
     grid: &Grid,
     (cost, checks): (&Cost, &Checks),
     aggregate: Aggregate,
@@ -156,7 +160,7 @@ pub(super) fn choose(
                     if g == zero {
                         return Some(*d);
                     }
-                    match checks.fails(q) {
+                    match checks.fails(q, &external[g][i]) {
                         Some(r) => {
                             removed += r;
                             None
