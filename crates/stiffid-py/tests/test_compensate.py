@@ -204,3 +204,18 @@ def test_the_track_map_holds_every_station_and_the_one_chosen():
     np.testing.assert_allclose(picked, out["bound_mm"], rtol=1e-6)
     with pytest.raises(ValueError, match="map"):
         stiffid.compensate(setup, path, stiffness, map="station")
+
+
+def test_lead_and_tilt_equal_the_command(milling, cli, tmp_path):
+    extra = ["--free-lead-tilt", "--cone-deg", "6", "--lead-tilt-step-deg", "3", "--objective", "max"]
+    theirs = command(cli, tmp_path, *extra)
+    mine = stiffid.compensate(milling, PATH, STIFFNESS, free_lead_tilt=True, cone_deg=6, lead_tilt_step_deg=3, objective="max")
+    for key in ["lead_deg", "tilt_deg", "bound_mm"]:
+        np.testing.assert_allclose(mine[key], [p[key] for p in theirs], rtol=1e-12, atol=1e-12)
+    assert np.hypot(mine["lead_deg"], mine["tilt_deg"]).max() <= 6 + 1e-9
+    assert np.abs(mine["lead_deg"]).max() > 0
+    assert mine["document"]["free_lead_tilt"]["step_deg"] == pytest.approx(3)
+    with pytest.raises(ValueError, match="cone_deg"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_lead_tilt=True, cone_deg=45)
+    with pytest.raises(ValueError, match="cone_deg"):
+        stiffid.compensate(milling, PATH, STIFFNESS, cone_deg=5)
