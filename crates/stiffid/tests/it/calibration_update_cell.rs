@@ -196,3 +196,62 @@ fn a_track_offset_without_table_reflectors_is_refused() {
     );
     update(&setup, &data, None, "offsets,base,tool").unwrap();
 }
+
+/// `select --for check` on the cell, given three stations of the track, designs the check at the
+/// best of them (the arm there, the track's calibration held); the 10 postures it designs, read
+/// over the three stations and the table's angles with its reflectors, update the cell as the
+/// random ones do (noise-free: held out to 1e-9 mm, the track's zero to 1e-9 mm).
+#[test]
+fn the_check_designed_on_the_cell_updates_it() {
+    use stiffid::app::select;
+    use stiffid::robot::external::ExternalValues;
+    let setup = cell_setup();
+    let stations: Vec<ExternalValues> = [0.5, 2.0, 3.5]
+        .iter()
+        .map(|s| ExternalValues::new(&[*s, 0.0]).unwrap())
+        .collect();
+    let report = select::run(&select::Request {
+        setup: &setup,
+        criterion: stiffid::design::Criterion::RelativeA,
+        purpose: stiffid::app::purpose::Purpose::Check,
+        calibration: Default::default(),
+        method: select::Method::Global,
+        start: None,
+        pool: None,
+        postures: stiffid::app::purpose::Purpose::Check.default_postures(),
+        target_pct: None,
+        options: stiffid::design::SearchOptions {
+            starts: 2,
+            ..Default::default()
+        },
+        restarts: None,
+        distinct: None,
+        for_candidates: false,
+        candidates: None,
+        stations,
+        progress: &(),
+    })
+    .unwrap();
+    assert_eq!((report.postures.len(), report.stations.len()), (10, 3));
+    assert!(report.station.is_some());
+    let truth = drifted();
+    let data = readings(&truth, &setup, &report.postures, true);
+    let held = readings(
+        &truth,
+        &setup,
+        &stiffid::design::random_group(&setup, 20, 9),
+        false,
+    );
+    let updated = update(&setup, &data, Some(&held), "offsets,base,tool,external").unwrap();
+    let validation = updated.validation.as_ref().unwrap();
+    assert!(
+        validation.calibrated.rms < 1e-12,
+        "{:e}",
+        validation.calibrated.rms
+    );
+    let track = value(&updated, "track.offset") * 1e3;
+    assert!(
+        (track - TRACK_DRIFT).abs() < 1e-9,
+        "track offset {track} mm"
+    );
+}
