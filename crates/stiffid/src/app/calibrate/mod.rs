@@ -307,29 +307,25 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     };
     let (model, error_motions) = match setup.robot().external() {
         None => (model, None),
+        Some(_) if measured_in == MeasuredIn::Base => {
+            return Err(in_data(name, Error::InvalidField {
+                field: "readings".into(),
+                message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
+            }));
+        }
+        Some(_) if request.update => update::external(request, model, data.tables, name)?,
         Some(_) => {
-            if measured_in == MeasuredIn::Base {
-                return Err(in_data(name, Error::InvalidField {
-                    field: "readings".into(),
-                    message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
-                }));
-            }
-            if request.update {
-                let model = update::external(request, model, data.tables);
-                (model.map_err(|e| in_data(name, e))?, None)
-            } else {
-                request.progress.begin("error motions", 0);
-                let chosen = crate::metrology::calibration::motions::choose(
-                    &model,
-                    data.tables,
-                    &obs,
-                    &options,
-                    request.error_motions,
-                );
-                request.progress.end();
-                let (model, _, choice) = chosen.map_err(|e| in_data(name, e))?;
-                (model, Some(choice))
-            }
+            request.progress.begin("error motions", 0);
+            let chosen = crate::metrology::calibration::motions::choose(
+                &model,
+                data.tables,
+                &obs,
+                &options,
+                request.error_motions,
+            );
+            request.progress.end();
+            let (model, _, choice) = chosen.map_err(|e| in_data(name, e))?;
+            (model, Some(choice))
         }
     };
     update::identifiable(request, setup, &model, &obs)?;

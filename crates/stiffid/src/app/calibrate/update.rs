@@ -243,16 +243,24 @@ pub(super) fn kept(request: &Request<'_>, model: ErrorModel) -> Result<ErrorMode
 
 /// With `update` on a cell: `model` (without external axes) with the calibrated robot file's
 /// external axes held and their zero offsets fitted with [`Refit::External`]
-/// ([`ErrorModel::with_external_offsets`]), `tables` reflectors on the positioner's table.
+/// ([`ErrorModel::with_external_offsets`]), `tables` reflectors on the positioner's table; no
+/// choice of error motions (they are held).
 ///
 /// # Errors
-/// Those of [`ErrorModel::with_external_offsets`].
+/// Those of [`ErrorModel::with_external_offsets`], as [`Error::Input`] naming the readings
+/// `name`.
 pub(super) fn external(
     request: &Request<'_>,
     model: ErrorModel,
     tables: usize,
-) -> Result<ErrorModel> {
-    model.with_external_offsets(tables, request.refit.contains(Refit::External))
+    name: &str,
+) -> Result<(
+    ErrorModel,
+    Option<crate::metrology::calibration::motions::Choice>,
+)> {
+    let offsets = request.refit.contains(Refit::External);
+    let model = model.with_external_offsets(tables, offsets);
+    Ok((model.map_err(|e| super::in_data(name, e))?, None))
 }
 
 /// The stiffness file's value of each gravity term of `model`: `(index, value)`, SI.
