@@ -55,9 +55,11 @@ pub struct Args {
     /// --for check` designs about 10): the setup's robot is the calibrated robot file, and only
     /// what drifts between sessions is refitted, by default (a bare --update) offsets,base,tool:
     /// the joint angle offsets, the tracker's registration (the base) and the measuring points
-    /// (the tool); add gravity to refit the gravity terms of --stiffness; leave out offsets or
-    /// tool to keep them (base is always refitted). The DH table, error maps, axis map and the
-    /// --stiffness file's gravity terms are kept in the forward model. A list the check
+    /// (the tool); add gravity to refit the gravity terms of --stiffness, external (a cell with
+    /// a track or a positioner) to refit the external axes' zero offsets; leave out offsets or
+    /// tool to keep them (base is always refitted). The DH table, error maps, axis map, the
+    /// track's direction and error motions, the positioner's axis lines and the --stiffness
+    /// file's gravity terms are kept in the forward model. A list the check
     /// readings cannot identify is refused, naming what merges. First the check: each reading's
     /// error with the calibrated robot against the bound of its calibration's held-out errors
     /// ([held_out], at --level), and whether the robot drifted beyond it. --out writes the

@@ -29,12 +29,36 @@ pub fn is_are(n: usize) -> &'static str {
 }
 
 /// A number for messages: plain for moderate magnitudes, shortest round-trip scientific notation
-/// otherwise (`1e308`, never 309 digits).
+/// otherwise (`1e308`, never 309 digits); rounded to 12 significant digits ([`as_given`]), so a
+/// value the user gave in degrees and converted to radians reads as given (`-60`, not
+/// `-59.99999999999999`).
 pub fn number(v: f64) -> String {
+    let v = as_given(v);
     if v == 0.0 || (1e-4..1e9).contains(&v.abs()) || !v.is_finite() {
         format!("{v}")
     } else {
         format!("{v:e}")
+    }
+}
+
+/// `v` rounded to 12 significant digits: a value the user gave, back in the user's unit after a
+/// conversion (degrees to radians and back: `(-60f64).to_radians().to_degrees()` is
+/// `-59.99999999999999`, and `as_given` of it `-60`), for messages and documents; a value
+/// that reads no shorter rounded (one not finite, a subnormal) as it is.
+///
+/// # Examples
+/// ```
+/// use stiffid::common::words::as_given;
+/// assert_eq!(as_given((-60f64).to_radians().to_degrees()), -60.0);
+/// assert_eq!(as_given(15f64.to_radians().to_degrees()), 15.0);
+/// assert_eq!(as_given(0.123456789012345), 0.123456789012);
+/// ```
+pub fn as_given(v: f64) -> f64 {
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    // Only when it reads shorter: a subnormal's rounding would read longer.
+    match format!("{rounded:e}").len() < format!("{v:e}").len() {
+        true => rounded,
+        false => v,
     }
 }
 
@@ -72,6 +96,11 @@ mod tests {
         assert_eq!(number(1e-320), "1e-320");
         assert_eq!(number(950000.0), "950000");
         assert_eq!(number(f64::NAN), "NaN");
+        // Degrees the user gave, converted to radians and back, read as given.
+        for deg in [-60.0f64, -120.0, 15.0, 130.2] {
+            assert_eq!(number(deg.to_radians().to_degrees()), format!("{deg}"));
+        }
+        assert_eq!(number(1.0 / 3.0), "0.333333333333");
     }
 
     #[test]

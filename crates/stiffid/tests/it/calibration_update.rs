@@ -75,7 +75,7 @@ pub(super) const OFFSETS: [f64; 6] = [0.0, -90.0, 0.0, 0.0, 0.0, 0.0];
 pub(super) const DRIFT: [f64; 6] = [0.03, -0.05, 0.04, 0.02, -0.06, 0.03];
 
 /// The robot file's text with `offsets` (deg).
-fn robot_text(offsets: &[f64; 6]) -> String {
+pub(super) fn robot_text(offsets: &[f64; 6]) -> String {
     let mut text = CALIBRATED.to_string();
     for (i, o) in offsets.iter().enumerate() {
         text = text.replace(&format!("OFF{}", i + 1), &format!("{o:?}"));

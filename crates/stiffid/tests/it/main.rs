@@ -8,6 +8,7 @@ mod bootstrap;
 mod budget;
 mod calibrate_cell;
 mod calibration_update;
+mod calibration_update_cell;
 mod calibration_update_kept;
 mod candidates;
 mod cell;

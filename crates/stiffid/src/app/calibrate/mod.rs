@@ -296,7 +296,6 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let level = interval_level(request)?;
     let (geometry, gravity, maps_spec) = update::settings(request, setup, &obs)?;
     let model = update::kept(request, model(setup, measured_in, geometry, gravity)?)?;
-    update::identifiable(request, setup, &model, &obs)?;
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
@@ -308,13 +307,14 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     };
     let (model, error_motions) = match setup.robot().external() {
         None => (model, None),
+        Some(_) if measured_in == MeasuredIn::Base => {
+            return Err(in_data(name, Error::InvalidField {
+                field: "readings".into(),
+                message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
+            }));
+        }
+        Some(_) if request.update => update::external(request, model, data.tables, name)?,
         Some(_) => {
-            if measured_in == MeasuredIn::Base {
-                return Err(in_data(name, Error::InvalidField {
-                    field: "readings".into(),
-                    message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
-                }));
-            }
             request.progress.begin("error motions", 0);
             let chosen = crate::metrology::calibration::motions::choose(
                 &model,
@@ -328,6 +328,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             (model, Some(choice))
         }
     };
+    update::identifiable(request, setup, &model, &obs)?;
     let model = match obs.iter().any(Observation::loaded) {
         true => model.with_loads(setup)?,
         false => model,

@@ -14,11 +14,21 @@
 //! their values ([`ErrorModel::with_held`]): the sag under the robot's own weight is predicted,
 //! not absorbed by the offsets.
 //!
+//! On a cell with external axes ([`crate::robot::external`]) the calibrated robot file carries
+//! the track's direction and error motions and the positioner's axis lines: held
+//! ([`ErrorModel::with_external_offsets`]); [`Refit::External`] refits each axis's zero offset
+//! (a re-mastered encoder), the reflectors on the positioner's table are fitted as in every
+//! session. The check readings may be read at several stations and angles.
+//!
 //! Before the fit the check readings must separate what the list refits as well as a generic
 //! campaign does ([`REFERENCE_POSTURES`] random postures): a rank below such a campaign's refuses
 //! the list, naming the parameters it identifies and the check readings merge, and what each
 //! merges with (joint 1's offset merges into the tracker's registration and joint 6's into the
-//! measuring points on any campaign: they are left, not refused).
+//! measuring points on any campaign: they are left, not refused). With [`Refit::External`] the
+//! check readings must separate at least one external axis's zero offset, else the list is
+//! refused naming what each merges with (a track's merges with the tracker's registration
+//! without reflectors on a positioner's table; a one-axis positioner's with the reflectors'
+//! positions on its table).
 
 use super::Request;
 use crate::common::choice::{self, Choice};
@@ -50,17 +60,26 @@ pub enum Refit {
     Tool,
     /// The gravity terms of the calibration's stiffness file, started from their values.
     Gravity,
+    /// The external axes' zero offsets (a cell's track and positioner: a re-mastered encoder).
+    External,
 }
 
 impl Choice for Refit {
     const FIELD: &'static str = "update";
-    const ALL: &'static [Self] = &[Refit::Offsets, Refit::Base, Refit::Tool, Refit::Gravity];
+    const ALL: &'static [Self] = &[
+        Refit::Offsets,
+        Refit::Base,
+        Refit::Tool,
+        Refit::Gravity,
+        Refit::External,
+    ];
     fn name(self) -> &'static str {
         match self {
             Refit::Offsets => "offsets",
             Refit::Base => "base",
             Refit::Tool => "tool",
             Refit::Gravity => "gravity",
+            Refit::External => "external",
         }
     }
     fn help(self) -> &'static str {
@@ -71,6 +90,7 @@ impl Choice for Refit {
             }
             Refit::Tool => "The measuring points",
             Refit::Gravity => "The gravity terms of the calibration's stiffness file",
+            Refit::External => "The external axes' zero offsets (a cell's track and positioner)",
         }
     }
 }
@@ -132,10 +152,10 @@ impl Refits {
 ///
 /// # Errors
 /// With `update`, [`Error::InvalidOption`] ([`JobOption::Update`]) when the setup's robot is not
-/// a calibrated robot file (its name ends with [`crate::robot::CALIBRATED`]), the cell has
-/// external axes, the readings are loaded or hold fewer than [`MIN_POSTURES`] postures, the
-/// list refits the gravity terms without the calibration's stiffness file or that file's
-/// gravity model is unknown.
+/// a calibrated robot file (its name ends with [`crate::robot::CALIBRATED`]), the list refits
+/// the external axes' offsets of a robot without external axes, the readings are loaded or hold
+/// fewer than [`MIN_POSTURES`] postures, the list refits the gravity terms without the
+/// calibration's stiffness file or that file's gravity model is unknown.
 pub(super) fn settings(
     request: &Request<'_>,
     setup: &Setup,
@@ -157,8 +177,11 @@ pub(super) fn settings(
             robot.name()
         ));
     }
-    if robot.external().is_some() {
-        return refuse("a cell with external axes is not updated: calibrate it again".into());
+    if robot.external().is_none() && request.refit.contains(Refit::External) {
+        return refuse(format!(
+            "external: the robot {:?} has no external axes (a track or a positioner)",
+            robot.name()
+        ));
     }
     if obs.iter().any(Observation::loaded) {
         return refuse(
@@ -218,6 +241,28 @@ pub(super) fn kept(request: &Request<'_>, model: ErrorModel) -> Result<ErrorMode
     Ok(model)
 }
 
+/// With `update` on a cell: `model` (without external axes) with the calibrated robot file's
+/// external axes held and their zero offsets fitted with [`Refit::External`]
+/// ([`ErrorModel::with_external_offsets`]), `tables` reflectors on the positioner's table; no
+/// choice of error motions (they are held).
+///
+/// # Errors
+/// Those of [`ErrorModel::with_external_offsets`], as [`Error::Input`] naming the readings
+/// `name`.
+pub(super) fn external(
+    request: &Request<'_>,
+    model: ErrorModel,
+    tables: usize,
+    name: &str,
+) -> Result<(
+    ErrorModel,
+    Option<crate::metrology::calibration::motions::Choice>,
+)> {
+    let offsets = request.refit.contains(Refit::External);
+    let model = model.with_external_offsets(tables, offsets);
+    Ok((model.map_err(|e| super::in_data(name, e))?, None))
+}
+
 /// The stiffness file's value of each gravity term of `model`: `(index, value)`, SI.
 fn gravity_values(request: &Request<'_>, model: &ErrorModel) -> Result<Vec<(usize, f64)>> {
     let Some(weight) = &request.weight else {
@@ -263,6 +308,10 @@ pub(super) fn reference(
         Geometry::None,
         model.gravity().clone(),
     )?;
+    let with = match rigid.robot().external() {
+        Some(_) => with.with_external_nominal(model.tables())?,
+        None => with,
+    };
     let (from, to) = (model.gravity_start(), with.gravity_start());
     let held: Vec<(usize, f64)> = (0..model.gravity().len())
         .map(|i| (to + i, model.nominal()[from + i]))
@@ -294,40 +343,42 @@ pub(super) fn identifiable(
         let j = model.jacobian_of(&model.nominal(), readings)?;
         identifiability::analyse(&j, &scales, &priorities)
     };
-    let postures = crate::design::random_group(setup, REFERENCE_POSTURES, 1);
-    let generic: Vec<Observation> = (postures.iter().enumerate())
-        .flat_map(|(i, q)| {
-            (0..model.points()).map(move |k| Observation {
-                posture: i,
-                point: k,
-                q: *q,
-                measured: nalgebra::Vector3::zeros(),
-                wrench: nalgebra::Vector6::zeros(),
-                e: Default::default(),
-                table: false,
-                direction: nalgebra::Vector6::zeros(),
-            })
-        })
-        .collect();
-    let (generic, check) = (analyse(&generic)?, analyse(obs)?);
-    if check.rank >= generic.rank {
+    let (generic, check) = (analyse(&generic(setup, model))?, analyse(obs)?);
+    let params = model.parameters();
+    // An external axis's zero offset the list refits and the check merges: refused whatever a
+    // generic campaign separates (module docs).
+    let zero = |c: usize| {
+        use crate::metrology::calibration::{AxisPart, Target};
+        let part = match params[c].target {
+            Target::External { part, .. } => Some(part),
+            _ => None,
+        };
+        matches!(part, Some(AxisPart::Offset | AxisPart::Shift)) && !model.held().contains(&c)
+    };
+    // `external` listed and none of its zero offsets separated: it would refit nothing.
+    let lost_zero = request.refit.contains(Refit::External)
+        && (0..params.len())
+            .filter(|&c| zero(c))
+            .all(|c| !check.identified.contains(&c));
+    if check.rank >= generic.rank && !lost_zero {
         return Ok(());
     }
-    let params = model.parameters();
     let lost: Vec<String> = (check.merged.iter())
-        .filter(|m| generic.identified.contains(&m.parameter))
+        .filter(|m| generic.identified.contains(&m.parameter) || (lost_zero && zero(m.parameter)))
         .map(|m| {
             let into: Vec<&str> = m
                 .into
                 .iter()
                 .map(|(k, _)| params[*k].name.as_str())
                 .collect();
+            let why = model.merged_words(m.parameter).map(|w| format!(" ({w})"));
             match into.is_empty() {
                 true => format!("{} (no effect at these postures)", params[m.parameter].name),
                 false => format!(
-                    "{} merges with {}",
+                    "{} merges with {}{}",
                     params[m.parameter].name,
-                    into.join(", ")
+                    into.join(", "),
+                    why.unwrap_or_default()
                 ),
             }
         })
@@ -341,6 +392,45 @@ pub(super) fn identifiable(
             lost.join("; ")
         ),
     })
+}
+
+/// The generic campaign the check readings are compared with: [`REFERENCE_POSTURES`] random
+/// postures of `setup` with every measuring point of `model`; on a cell dealt over
+/// [`crate::app::purpose::REFERENCE_STATIONS`] stations of the carrier's travel, and with
+/// `model`'s reflectors on the positioner's table read at each posture's positioner angles
+/// (spread over each axis's travel).
+fn generic(setup: &Setup, model: &ErrorModel) -> Vec<Observation> {
+    let postures = crate::design::random_group(setup, REFERENCE_POSTURES, 1);
+    let stations = (setup.robot().external())
+        .map(|a| a.stations(crate::app::purpose::REFERENCE_STATIONS))
+        .unwrap_or_else(|| vec![Default::default()]);
+    let axes = setup.robot().external();
+    let at = |i: usize| -> crate::robot::external::ExternalValues {
+        let mut e = stations[i % stations.len()].as_slice().to_vec();
+        for (j, a) in axes.iter().flat_map(|a| a.axes()).enumerate() {
+            if a.role == crate::robot::external::Role::Positioner {
+                let t = ((i + 1) as f64 * (0.618_034 + 0.1 * j as f64)).fract();
+                e[j] = a.lower + t * (a.upper - a.lower);
+            }
+        }
+        crate::robot::external::ExternalValues::new(&e).expect("the cell's axes")
+    };
+    let reading = |posture: usize, point: usize, q, table: bool| Observation {
+        posture,
+        point,
+        q,
+        measured: nalgebra::Vector3::zeros(),
+        wrench: nalgebra::Vector6::zeros(),
+        e: at(posture),
+        table,
+        direction: nalgebra::Vector6::zeros(),
+    };
+    (postures.iter().enumerate())
+        .flat_map(|(i, q)| {
+            let arm = (0..model.points()).map(move |k| reading(i, k, *q, false));
+            arm.chain((0..model.tables()).map(move |k| reading(i, k, *q, true)))
+        })
+        .collect()
 }
 
 /// The `[held_out]` table of the robot file: the held-out errors of this job's validation (else

@@ -10,6 +10,7 @@ use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::common::limits::Violation;
 use crate::common::stop::Stop;
 use crate::common::warning::{Warning, WarningKind};
+use crate::common::words::as_given;
 use crate::io::stiffness::RegionSection;
 use crate::machining::compensate::Compensated;
 use crate::model::region::{self, Region};
@@ -346,21 +347,21 @@ impl Document {
             prediction_level: report.prediction_level,
             region: RegionSection::of(&report.compliance.region),
             free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
-                max_step_deg: f.max_step.to_degrees(),
-                range_deg: f.range.to_degrees(),
+                max_step_deg: as_given(f.max_step.to_degrees()),
+                range_deg: as_given(f.range.to_degrees()),
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             free_station: report.free_station.map(|f| FreeStation {
-                range_mm: f.range * 1e3,
-                step_mm: f.max_step * 1e3,
+                range_mm: as_given(f.range * 1e3),
+                step_mm: as_given(f.max_step * 1e3),
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             feasibility: report.feasibility.clone(),
             free_positioner: report.free_positioner.map(|f| FreePositioner {
-                range_deg: f.range.to_degrees(),
-                step_deg: f.max_step.to_degrees(),
+                range_deg: as_given(f.range.to_degrees()),
+                step_deg: as_given(f.max_step.to_degrees()),
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),

@@ -42,7 +42,7 @@ impl Feasibility {
         }
         let f = &options.feasible;
         Some(Feasibility {
-            margin_deg: f.margin.to_degrees(),
+            margin_deg: crate::common::words::as_given(f.margin.to_degrees()),
             max_condition: f.max_condition,
             collisions_checked: f.checks_cell(),
             states_removed_limit_margin: removed.limit_margin,

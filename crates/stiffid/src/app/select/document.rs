@@ -269,7 +269,7 @@ impl Document {
             posture_stations: r.placed.iter().map(|e| station(setup, e)).collect(),
             terminations: r.termination.map(|_| counts(&r.terminations)),
             postures_deg: degrees(&r.postures),
-            margin_mm: mm(r.margin),
+            margin_mm: crate::common::words::as_given(mm(r.margin)),
             min_margin_mm: r.min_margins.iter().map(|m| m.map(mm)).collect(),
             criteria: Criteria::from(&r.evaluation),
             calibration: (r.calibration.as_ref())

@@ -54,6 +54,9 @@ pub(super) struct External {
     /// Whether the axes' parameters are fitted (else the axes stand as the robot gives them and
     /// only the table's reflectors are parameters: [`ErrorModel::with_external_nominal`]).
     fitted: bool,
+    /// Each linear axis's zero offset parameter, when the model has one
+    /// ([`ErrorModel::with_external_offsets`]).
+    pub(super) shifts: Vec<Option<usize>>,
 }
 
 /// The left Jacobian of SO(3) at the rotation vector `phi` (module docs).
@@ -98,12 +101,22 @@ impl External {
         y * values[s] + z * values[s + 1]
     }
 
+    /// Linear axis `i`'s fitted zero offset in `values` (0 without one), m.
+    fn shift(&self, values: &DVector<f64>, i: usize) -> f64 {
+        self.shifts
+            .get(i)
+            .copied()
+            .flatten()
+            .map_or(0.0, |c| values[c])
+    }
+
     fn linear(&self, values: &DVector<f64>, i: usize, s: f64) -> Linear {
         let axis = &self.axes.axes()[i];
         let phi = self.phi(values, i);
         let frame = UnitQuaternion::from_scaled_axis(phi) * self.frames[i];
         let u = axis.travel(s);
-        let (mut t, mut r) = (Vector3::new(s + axis.offset, 0.0, 0.0), Vector3::zeros());
+        let along = s + axis.offset + self.shift(values, i);
+        let (mut t, mut r) = (Vector3::new(along, 0.0, 0.0), Vector3::zeros());
         let mut power = 1.0;
         let start = self.starts[i] + 2;
         for k in 0..self.orders[i] {
@@ -166,6 +179,9 @@ impl External {
             for (k, n) in self.across(i).iter().enumerate() {
                 let w = jl * n;
                 put(s + k, rc * (w.cross(&m) - turn * w.cross(&y)));
+            }
+            if let Some(c) = self.shifts.get(i).copied().flatten() {
+                put(c, rc * (l.frame * Vector3::x()));
             }
             let jr = left_jacobian(&l.turn);
             let mut power = 1.0;
@@ -287,6 +303,7 @@ impl External {
                 AxisKind::Linear => {
                     let l = self.linear(values, i, axis.lower);
                     axis.direction = Unit::new_normalize(l.frame * Vector3::x());
+                    axis.offset += self.shift(values, i);
                     // The file's frame of that direction, and the turn from the model's to it.
                     let to_file = axis.frame().inverse() * l.frame;
                     let s = self.starts[i] + 2;
@@ -492,6 +509,7 @@ impl ErrorModel {
         }
         self.external = Some(External {
             frames: axes.axes().iter().map(ExternalAxis::frame).collect(),
+            shifts: vec![None; axes.len()],
             axes,
             orders,
             starts,
@@ -642,6 +660,9 @@ impl ErrorModel {
             }
             (AxisPart::Offset, _) => {
                 "an angular offset turns the table's zero, and the reflectors' unknown positions on the table take it"
+            }
+            (AxisPart::Shift, _) => {
+                "a track's zero offset moves the arm along the track as a shift of the tracker's registration does: only reflectors on a positioner's table, read at several angles, tell them apart"
             }
             _ => {
                 "read the table's reflectors at more angles of each positioner axis, the axes varied independently"

@@ -73,6 +73,7 @@
 
 mod basis;
 mod external;
+mod external_offsets;
 mod held;
 mod jacobian;
 mod loads;

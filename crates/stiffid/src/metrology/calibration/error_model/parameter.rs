@@ -186,6 +186,9 @@ pub enum AxisPart {
     Location(usize),
     /// A rotary axis's angular offset, rad.
     Offset,
+    /// A linear axis's zero offset: its carriage moved along its direction, m (fitted by an
+    /// update only, [`super::ErrorModel::with_external_offsets`]).
+    Shift,
 }
 
 impl AxisPart {
@@ -194,7 +197,7 @@ impl AxisPart {
         match self {
             AxisPart::Direction(_) | AxisPart::Offset => true,
             AxisPart::Motion { motion, .. } => motion >= 3,
-            AxisPart::Location(_) => false,
+            AxisPart::Location(_) | AxisPart::Shift => false,
         }
     }
 }
