@@ -198,6 +198,36 @@ pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Prog
     }
 }
 
+/// `program` with its Cartesian targets' axis angles ([`program::cartesian`]: the controller's
+/// inverse kinematics in the configuration each names, from `options`' start posture), on
+/// `setup`'s controller; with `placed`, the part frame at that pose (the setup's base frame)
+/// carries the targets ([`program::cartesian::resolve_placed`]). Any other program as it is.
+///
+/// # Errors
+/// Those of [`crate::Setup::controller_robot`], [`program::cartesian::resolve`] and
+/// [`program::cartesian::resolve_placed`] (naming the line).
+pub fn resolve<'a>(
+    program: &'a Program,
+    setup: &crate::Setup,
+    placed: Option<&Isometry3<f64>>,
+    options: &compensate::Options,
+) -> Result<std::borrow::Cow<'a, Program>> {
+    use program::cartesian;
+    let Program::Robot(p) = program else {
+        return Ok(std::borrow::Cow::Borrowed(program));
+    };
+    if placed.is_none() && !cartesian::is_cartesian(p) {
+        return Ok(std::borrow::Cow::Borrowed(program));
+    }
+    let controller = cartesian::Controller::of(setup)?;
+    let start = (&options.q0, &options.ik);
+    let resolved = match placed {
+        Some(part) => cartesian::resolve_placed(p, &controller, part, start)?,
+        None => cartesian::resolve(p, &controller, start.0, start.1)?,
+    };
+    Ok(std::borrow::Cow::Owned(Program::Robot(resolved)))
+}
+
 /// The compensation of a program.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Report {
@@ -232,6 +262,14 @@ pub fn compensate(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
+    if let Program::Robot(p) = program {
+        if let Some(t) = p.targets.iter().find(|t| t.q_deg.iter().any(|v| !v.is_finite())) {
+            return Err(Error::Program {
+                line: t.line,
+                message: "a Cartesian target without its axis angles: resolve the program on its setup first (machining::resolve)".into(),
+            });
+        }
+    }
     let placements = cell::placements(arm, workpiece, program)?;
     let poses = poses(arm, workpiece, program, placements.as_deref())?;
     let operations = operations(program, process)?;

@@ -10,6 +10,7 @@ mod calibrate_cell;
 mod calibration_update;
 mod calibration_update_kept;
 mod candidates;
+mod cartesian_programs;
 mod cell;
 mod cell_search;
 mod comau_checks;

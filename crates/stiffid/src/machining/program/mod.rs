@@ -38,6 +38,7 @@
 //! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
+pub mod cartesian;
 pub mod external;
 pub mod generate;
 pub mod inform;
@@ -103,6 +104,9 @@ pub struct JointTarget {
     origin: u64,
     /// The numbers hold the increment from the previous target (LS `INC`).
     incremental: bool,
+    /// A Cartesian target's pose, frame and configuration data ([`cartesian`]): its
+    /// [`JointTarget::q_deg`] are NaN until [`cartesian::resolve`] gives them.
+    pub cartesian: Option<Box<cartesian::Cartesian>>,
 }
 
 impl JointTarget {
@@ -112,6 +116,20 @@ impl JointTarget {
             line,
             incremental,
             ..self.clone()
+        }
+    }
+
+    /// A Cartesian target on `line` (its axis angles NaN until resolved).
+    pub(crate) fn cartesian(line: u64, c: cartesian::Cartesian) -> Self {
+        JointTarget {
+            line,
+            q_deg: [f64::NAN; 6],
+            external: Vec::new(),
+            spans: Default::default(),
+            external_spans: Vec::new(),
+            origin: line,
+            incremental: false,
+            cartesian: Some(Box::new(c)),
         }
     }
 
@@ -146,6 +164,8 @@ pub struct JointProgram {
     /// Per external axis, the unit the program writes it in and the line of its first value,
     /// where the language says (LS: `mm` or `deg`); empty for the others.
     units: ls::Units,
+    /// What writes the Cartesian targets back, once resolved ([`cartesian::resolve`]).
+    writer: Option<Box<cartesian::Writer>>,
     text: String,
 }
 
@@ -195,6 +215,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
         axes,
         pulses,
         units,
+        writer: None,
         text: text.to_string(),
     })
 }
@@ -258,8 +279,8 @@ impl JointProgram {
                 ),
             });
         }
-        // Each number to write: its span, the target, the value, whether it changed.
-        let mut edits: Vec<(Range<usize>, usize, f64, bool, usize)> =
+        // Each number to write: its span, the target, its text, whether it changed.
+        let mut edits: Vec<(Range<usize>, usize, String, bool)> =
             Vec::with_capacity(6 * self.targets.len());
         for (i, t) in self.targets.iter().enumerate() {
             let values = |j: usize| {
@@ -267,7 +288,18 @@ impl JointProgram {
                 q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
             };
             let (now, read) = (values(i), t.values());
-            let spans = t.spans.iter().cloned().map(Some);
+            if let Some(c) = &t.cartesian {
+                let writer = self.writer.as_ref().ok_or_else(|| {
+                    at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
+                })?;
+                let q = nalgebra::Vector6::from(q_deg[i]).map(f64::to_radians);
+                let changed = now[..6] != read[..6];
+                for (span, text) in writer.texts(self.dialect, c, &q) {
+                    edits.push((span, i, text, changed));
+                }
+            }
+            let joint = t.cartesian.is_none();
+            let spans = t.spans.iter().map(|s| joint.then(|| s.clone()));
             let spans = spans.chain(t.external_spans.iter().cloned());
             for (k, span) in spans.enumerate() {
                 let Some(span) = span else { continue };
@@ -281,22 +313,21 @@ impl JointProgram {
                     }
                     _ => (now[k], now[k] != read[k]),
                 };
-                edits.push((span, i, value, changed, k));
+                edits.push((span, i, self.number(k, value), changed));
             }
         }
         edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
-        for (j, (span, i, value, changed, k)) in edits.iter().enumerate() {
-            let text = self.number(*k, *value);
-            if let Some((_, first, other, ..)) = edits[..j].last().filter(|e| e.0 == *span) {
-                if self.number(*k, *other) != text {
+        for (j, (span, i, text, changed)) in edits.iter().enumerate() {
+            if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
+                if other != text {
                     let (a, b) = (&self.targets[*first], &self.targets[*i]);
                     return Err(Error::Program {
                         line: b.line,
                         message: format!(
-                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({} and {text}): give each visit its own point",
-                            a.line, b.line, b.origin, self.number(*k, *other)
+                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other} and {text}): give each visit its own point",
+                            a.line, b.line, b.origin
                         ),
                     });
                 }
@@ -305,7 +336,7 @@ impl JointProgram {
             let shared_change = edits[j..].iter().take_while(|e| e.0 == *span).any(|e| e.3);
             if *changed || shared_change {
                 out.push_str(&self.text[at..span.start]);
-                out.push_str(&text);
+                out.push_str(text);
                 at = span.end;
             }
         }
@@ -415,5 +446,6 @@ pub(crate) fn six(
         external_spans: Vec::new(),
         origin: line,
         incremental: false,
+        cartesian: None,
     })
 }
