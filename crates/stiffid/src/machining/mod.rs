@@ -3,7 +3,8 @@
 //!
 //! 1. The program gives the path: G-code points (part frame, placed in the base frame by the
 //!    setup's `[workpiece] base_from_part`) as TCP poses, or a robot program's joint targets
-//!    ([`crate::machining::program`]) as axis angles.
+//!    ([`crate::machining::program`]) as axis angles, its Cartesian targets as the axis angles
+//!    the controller moves to ([`resolve`] first).
 //! 2. The process gives each point its wrench: the operation that covers it
 //!    ([`Operation`]: G-code `(operation: NAME)` comments, then `T` tool numbers, then an operation
 //!    without a selector; robot programs: the operation whose `lines` hold the target's line, then
@@ -24,7 +25,8 @@
 //!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
 //!    the line.
 //! 5. The program is written back in its own format: robot programs with the compensated axis
-//!    angles and every other byte as read (their external axes' values too: a robot program's
+//!    angles (Cartesian targets: the pose the controller must be told, with the configuration
+//!    data of the compensated posture) and every other byte as read (their external axes' values too: a robot program's
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
 //!    frame (the nominal position of the compensated posture: where the controller must be sent
 //!    so that the loaded tool lands on the programmed one). With a free station or positioner
@@ -263,7 +265,11 @@ pub fn compensate(
     options: &compensate::Options,
 ) -> Result<Report> {
     if let Program::Robot(p) = program {
-        if let Some(t) = p.targets.iter().find(|t| t.q_deg.iter().any(|v| !v.is_finite())) {
+        if let Some(t) = p
+            .targets
+            .iter()
+            .find(|t| t.q_deg.iter().any(|v| !v.is_finite()))
+        {
             return Err(Error::Program {
                 line: t.line,
                 message: "a Cartesian target without its axis angles: resolve the program on its setup first (machining::resolve)".into(),

@@ -127,7 +127,11 @@ fn the_configuration_data_choose_the_solution_of_a_pose() {
         let q = targets[1].q_deg;
         let twin = [q[0], q[1], q[2], q[3] - 180.0, -q[4], q[5] - 180.0];
         let robot = s.robot();
-        let flipped = Target::new(robot, &s.tool().tcp, &Vector6::from(twin).map(f64::to_radians));
+        let flipped = Target::new(
+            robot,
+            &s.tool().tcp,
+            &Vector6::from(twin).map(f64::to_radians),
+        );
         let (_, twin_text) = {
             let t = [targets[0].clone(), flipped];
             let moves = [Move::Rapid, Move::Rapid];
@@ -175,16 +179,24 @@ fn a_compensated_cartesian_program_equals_the_path_file_of_its_poses() {
                 .unwrap();
         // The path file: the same poses in the base frame with the wrenches the program's
         // points got from the process.
-        let mut csv = String::from("x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm\n");
+        let mut csv =
+            String::from("x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm\n");
         for (pose, p) in poses.iter().zip(&report.points) {
             let pose = part * pose;
             let t = pose.translation.vector * 1e3;
             let (rx, ry, rz) = pose.rotation.euler_angles();
-            let cells: Vec<String> = [t.x, t.y, t.z, rx.to_degrees(), ry.to_degrees(), rz.to_degrees()]
-                .iter()
-                .chain(p.wrench.iter())
-                .map(|v| format!("{v:e}"))
-                .collect();
+            let cells: Vec<String> = [
+                t.x,
+                t.y,
+                t.z,
+                rx.to_degrees(),
+                ry.to_degrees(),
+                rz.to_degrees(),
+            ]
+            .iter()
+            .chain(p.wrench.iter())
+            .map(|v| format!("{v:e}"))
+            .collect();
             csv += &(cells.join(",") + "\n");
         }
         let points = machining::path::parse(&csv, Frame::Base).unwrap();
@@ -194,7 +206,10 @@ fn a_compensated_cartesian_program_equals_the_path_file_of_its_poses() {
             panic!()
         };
         for ((a, b), t) in report.results.iter().zip(&by_csv).zip(&back.targets) {
-            let (qa, qb) = (a.q_compensated.map(f64::to_degrees), b.q_compensated.map(f64::to_degrees));
+            let (qa, qb) = (
+                a.q_compensated.map(f64::to_degrees),
+                b.q_compensated.map(f64::to_degrees),
+            );
             assert!((qa - qb).amax() <= 1e-9, "{dialect:?}: {qa} {qb}");
             // The written pose's decimals (RAPID's quaternion to 1e-9, about 1e-7 deg) bound
             // the axis angles read back.
@@ -250,7 +265,11 @@ fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
         // A pose out of reach in the configuration it names: axis 1 in its fourth quadrant.
         (
             Dialect::Rapid,
-            replaced(&rapid, &format!("],[{conf}],["), &format!("],[3{}],[", &conf[conf.find(',').unwrap()..])),
+            replaced(
+                &rapid,
+                &format!("],[{conf}],["),
+                &format!("],[3{}],[", &conf[conf.find(',').unwrap()..]),
+            ),
             line_of(&rapid, "MoveJ"),
             "out of reach in the configuration [3,",
         ),
@@ -270,14 +289,22 @@ fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
         ),
         (
             Dialect::Rapid,
-            replaced(&rapid, "tooldata tspindle := [TRUE,[[6.9", "tooldata tspindle := [TRUE,[[7.9"),
+            replaced(
+                &rapid,
+                "tooldata tspindle := [TRUE,[[6.9",
+                "tooldata tspindle := [TRUE,[[7.9",
+            ),
             line_of(&rapid, "tooldata"),
             "is not the setup's",
         ),
         // A work object the robot holds, a base the controller holds.
         (
             Dialect::Rapid,
-            replaced(&rapid, "wobjdata wpart := [FALSE", "wobjdata wpart := [TRUE"),
+            replaced(
+                &rapid,
+                "wobjdata wpart := [FALSE",
+                "wobjdata wpart := [TRUE",
+            ),
             line_of(&rapid, "wobjdata"),
             "wobjdata wpart: a work object the robot holds",
         ),
@@ -332,7 +359,10 @@ fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
     };
     let e = stiffid::app::compensate::run::<Error, _>(request, |_, _, _, _| Ok(())).unwrap_err();
     let message = e.to_string();
-    assert!(message.contains("cut.src") && message.contains(&format!("line {first_krl}")), "{message}");
+    assert!(
+        message.contains("cut.src") && message.contains(&format!("line {first_krl}")),
+        "{message}"
+    );
 }
 
 /// A cut of seven points as G-code, every move a cutting one.
@@ -348,19 +378,37 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
     let (_, rapid) = written(&s, Dialect::Rapid, &cut(7), false);
     let (_, ls) = written(&s, Dialect::FanucLs, &cut(7), false);
     let ls = in_user_frame(&s, &ls);
-    let programs: Vec<(Dialect, Program)> = [(Dialect::Krl, krl), (Dialect::Rapid, rapid), (Dialect::FanucLs, ls)]
-        .into_iter()
-        .map(|(d, text)| (d, machining::read(&text, Language::Robot(d), 1e-4).unwrap()))
-        .collect();
+    let programs: Vec<(Dialect, Program)> = [
+        (Dialect::Krl, krl),
+        (Dialect::Rapid, rapid),
+        (Dialect::FanucLs, ls),
+    ]
+    .into_iter()
+    .map(|(d, text)| (d, machining::read(&text, Language::Robot(d), 1e-4).unwrap()))
+    .collect();
     // Joint targets and targets in the world frame do not move with the part.
     let (_, world) = written(&s, Dialect::FanucLs, &cut(7), false);
     let joint = "DEF a( )\nPTP {A1 -20, A2 -10, A3 -20, A4 0, A5 -60, A6 180}\nEND\n";
     let refused: Vec<(Dialect, Program, &str)> = [
-        (Dialect::FanucLs, world.as_str(), "the world frame: the targets are not in the part frame"),
-        (Dialect::Krl, joint, "joint targets (E6AXIS, AXIS, line 2 the first)"),
+        (
+            Dialect::FanucLs,
+            world.as_str(),
+            "the world frame: the targets are not in the part frame",
+        ),
+        (
+            Dialect::Krl,
+            joint,
+            "joint targets (E6AXIS, AXIS, line 2 the first)",
+        ),
     ]
     .into_iter()
-    .map(|(d, text, needle)| (d, machining::read(text, Language::Robot(d), 1e-4).unwrap(), needle))
+    .map(|(d, text, needle)| {
+        (
+            d,
+            machining::read(text, Language::Robot(d), 1e-4).unwrap(),
+            needle,
+        )
+    })
     .collect();
     let region = Region {
         x: [0.9, 1.5],
@@ -399,18 +447,30 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
         let mut feasible = 0;
         for (x, y) in [(1.3, -0.7), (1.1, -0.5), (1.4, -0.8)] {
             let pose = Isometry3::translation(x, y, 0.4);
-            let (eg, er) = (place::evaluate(&g, &pose).unwrap(), place::evaluate(&r, &pose).unwrap());
+            let (eg, er) = (
+                place::evaluate(&g, &pose).unwrap(),
+                place::evaluate(&r, &pose).unwrap(),
+            );
             assert_eq!(eg.is_ok(), er.is_ok(), "{dialect:?}: {eg:?} vs {er:?}");
             if let (Ok(eg), Ok(er)) = (eg, er) {
                 feasible += 1;
-                assert!((eg.peak - er.peak).abs() <= 1e-9 * eg.peak, "{dialect:?}: {eg:?} vs {er:?}");
+                assert!(
+                    (eg.peak - er.peak).abs() <= 1e-9 * eg.peak,
+                    "{dialect:?}: {eg:?} vs {er:?}"
+                );
                 assert!((eg.sum - er.sum).abs() <= 1e-9 * eg.sum, "{dialect:?}");
             }
         }
         assert!(feasible >= 2, "{dialect:?}: {feasible}");
         let placed = place::run(&r).unwrap();
-        let (a, b) = (&by_gcode.placed.base_from_part, &placed.placed.base_from_part);
-        assert!((a.translation.vector - b.translation.vector).norm() < 1e-6, "{dialect:?}");
+        let (a, b) = (
+            &by_gcode.placed.base_from_part,
+            &placed.placed.base_from_part,
+        );
+        assert!(
+            (a.translation.vector - b.translation.vector).norm() < 1e-6,
+            "{dialect:?}"
+        );
         assert!((by_gcode.placed.peak - placed.placed.peak).abs() <= 1e-9 * placed.placed.peak);
         assert_eq!(by_gcode.setup_text, placed.setup_text);
     }

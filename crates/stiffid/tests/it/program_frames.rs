@@ -236,9 +236,8 @@ fn written_cartesian_programs_read_back_to_their_targets() {
             };
             let stated = frame * c.pose();
             let written = stiffid::robot::ik::tool_pose(&robot.frames(&r.q_compensated), &tcp);
-            pose_error = pose_error.max(
-                (stated.translation.vector - written.translation.vector).norm() * 1e3,
-            );
+            pose_error = pose_error
+                .max((stated.translation.vector - written.translation.vector).norm() * 1e3);
             angle_error = angle_error.max(stated.rotation.angle_to(&written.rotation).to_degrees());
             let arm = Configuration::of(robot, &r.q_compensated);
             assert_eq!(c.flags, Some(Flags::of(dialect, &arm)), "{dialect:?}");
@@ -246,8 +245,15 @@ fn written_cartesian_programs_read_back_to_their_targets() {
             q_error = q_error.max((q - r.q_compensated.map(f64::to_degrees)).amax());
         }
         // RAPID's quaternion is written to 1e-9: its rotation to about 1e-7 deg.
-        let angle = if dialect == Dialect::Rapid { 2e-7 } else { 1e-9 };
-        assert!(pose_error <= 1e-9 && angle_error <= angle, "{dialect:?}: {pose_error} mm {angle_error} deg");
+        let angle = if dialect == Dialect::Rapid {
+            2e-7
+        } else {
+            1e-9
+        };
+        assert!(
+            pose_error <= 1e-9 && angle_error <= angle,
+            "{dialect:?}: {pose_error} mm {angle_error} deg"
+        );
         let read_back = crate::cartesian_programs::read_back(dialect);
         assert!(q_error <= read_back, "{dialect:?}: {q_error} deg");
     }

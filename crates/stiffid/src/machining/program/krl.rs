@@ -5,6 +5,10 @@
 //!
 //! The members `E1` to `E6` of an aggregate are the external axes as `$EX_AX_NUM` numbers them
 //! (mm for a linear axis, deg for a rotary one): read, and written back where they change.
+//!
+//! An aggregate or declared point with `X`, `Y`, `Z`, `A`, `B`, `C` (`E6POS`, `POS`, `FRAME`,
+//! with `S` and `T`) is a Cartesian target in the `$BASE` and for the `$TOOL` the program sets
+//! before the motion ([`super::cartesian`]).
 
 use super::cartesian::{self, Frame};
 use super::{at, number_at, six, JointTarget};
@@ -23,7 +27,9 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let mut routine: Option<(String, u64)> = None;
     let mut current: Option<(String, u64)> = None;
     let mut control: Option<(u64, String)> = None;
-    let unset = |name: &str| Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set {name} = {{X .., Y .., Z .., A .., B .., C ..}} in the program"));
+    let unset = |name: &str| {
+        Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set {name} = {{X .., Y .., Z .., A .., B .., C ..}} in the program"))
+    };
     let (mut base, mut tool) = (unset("$BASE"), unset("$TOOL"));
     for (line, start, l) in super::lines(text) {
         let code = l.split(';').next().unwrap_or("");
@@ -111,7 +117,9 @@ fn declarations(text: &str) -> Result<(Declared, HashMap<String, u64>)> {
             ["E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME", name, ..] => {
                 let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
                 let value = match code.find('{') {
-                    None => Err(format!("{name} is declared on line {line} without a value (set at run time)")),
+                    None => Err(format!(
+                        "{name} is declared on line {line} without a value (set at run time)"
+                    )),
                     Some(open) => Ok(aggregate_at(line, start, code, open)?),
                 };
                 declared.insert(name, (line, value));
@@ -259,7 +267,11 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
     }
     if !pose.is_empty() {
         if found.iter().any(Option::is_some) {
-            return Err(at(line, "an aggregate with both axis angles (A1..) and a Cartesian pose (X..): give one".into()));
+            return Err(at(
+                line,
+                "an aggregate with both axis angles (A1..) and a Cartesian pose (X..): give one"
+                    .into(),
+            ));
         }
         let c = cartesian::krl::target(line, start, code, &pose)?;
         return Ok(JointTarget::cartesian(line, c).with_external(external));

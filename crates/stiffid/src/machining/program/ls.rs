@@ -5,7 +5,9 @@
 //! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
 //! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
 //! one; a third group is refused. An `INC` motion after one that ends `FINE` goes to the previous
-//! target plus the position's increments (every axis of both groups).
+//! target plus the position's increments (every axis of both groups). A position in Cartesian
+//! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
+//! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
 
 use super::cartesian::ls::{self as cartesian, Value};
 use super::cartesian::Flags;
@@ -251,7 +253,11 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
             }
             if let Some((user, n)) = cartesian::frame_number(line, item_t)? {
                 if o.group == 1 {
-                    *(if user { &mut o.frames.0 } else { &mut o.frames.1 }) = Some(n);
+                    *(if user {
+                        &mut o.frames.0
+                    } else {
+                        &mut o.frames.1
+                    }) = Some(n);
                 }
                 continue;
             }
@@ -262,7 +268,10 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
                 name.strip_prefix(prefix)
                     .and_then(|d| d.parse::<usize>().ok())
             };
-            if let (1, Some(k)) = (o.group, cartesian::POSE.iter().position(|(n, _)| *n == name)) {
+            if let (1, Some(k)) = (
+                o.group,
+                cartesian::POSE.iter().position(|(n, _)| *n == name),
+            ) {
                 let (v, span, _) = value(l, offset + eq + 1, line, name, &[cartesian::POSE[k].1])?;
                 o.pose[k] = Some((v, start + span.start..start + span.end));
                 continue;

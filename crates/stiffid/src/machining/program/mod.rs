@@ -1,6 +1,6 @@
 //! Robot programs: the joint targets of KUKA KRL, ABB RAPID, FANUC LS and Yaskawa INFORM
-//! programs, read in the order the controller moves to them and written back with everything else
-//! byte for byte.
+//! programs and the Cartesian targets of KRL, RAPID and LS ones ([`cartesian`]), read in the
+//! order the controller moves to them and written back with everything else byte for byte.
 //!
 //! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
 //!   a point declared in the same file as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`.
@@ -16,13 +16,12 @@
 //!
 //! A target's external axes are the cell's in the cell's order ([`external`]).
 //!
-//! Only joint targets are read. A Cartesian target (KRL `E6POS`/`POS`/`FRAME`, RAPID
-//! `MoveL`/`MoveJ`/`MoveC`, LS positions with `X = .. mm`) is refused naming its line: turning it
-//! into axis angles needs the controller's configuration flags (KUKA `S`/`T`, ABB `confdata`,
-//! FANUC `CONFIG : 'N U T, ...'`) and its own kinematic conventions to pick the one of up to eight
-//! inverse-kinematics solutions the controller would take, and a compensated target would have to
-//! be written back with flags the controller agrees with. Joint targets are unambiguous in both
-//! directions.
+//! Cartesian targets (KRL `E6POS`/`POS`/`FRAME` aggregates and points, RAPID `MoveL`/`MoveJ` to
+//! `robtarget`s, LS positions in Cartesian representation) are read with their frame, tool and
+//! configuration data ([`cartesian`]); their axis angles are NaN until [`cartesian::resolve`]
+//! gives the ones the controller moves to (inverse kinematics in the configuration the data
+//! name). A program may mix both kinds. A compensated Cartesian target is written back as the
+//! pose the controller must be told, with the configuration data of the compensated posture.
 //!
 //! Every other motion instruction is refused naming its line and what to do, never skipped: a
 //! circular or spline motion (the path between the points is not the compensated one), a relative
@@ -34,7 +33,8 @@
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows;
 //! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
-//! six numbers of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
+//! six numbers (a Cartesian target: its pose's numbers and, where they changed, its
+//! configuration data) of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
 //! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
@@ -88,7 +88,8 @@ impl Dialect {
 pub struct JointTarget {
     /// The line of its motion instruction, 1-based.
     pub line: u64,
-    /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles).
+    /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles; a
+    /// Cartesian target's NaN until [`cartesian::resolve`]).
     pub q_deg: [f64; 6],
     /// The external axes' values as the program gives them, one per axis of
     /// [`JointProgram::axes`], mm for a linear axis and deg for a rotary one (as the controller
@@ -173,7 +174,8 @@ pub struct JointProgram {
 ///
 /// # Errors
 /// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
-/// a joint target with a missing, repeated or non-numeric axis value, no motion to a joint target
+/// a joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
+/// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
 /// at all, or more than [`MAX_TARGETS`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     let mut units = Vec::new();
@@ -193,9 +195,9 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     }
     if targets.is_empty() {
         let hint = match dialect {
-            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or to an E6AXIS declared in the file; a .dat holds declarations only: give the .src",
-            Dialect::Rapid => "MoveAbsJ to a jointtarget",
-            Dialect::FanucLs => "J or L to a P[i] of /POS in joint representation",
+            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src",
+            Dialect::Rapid => "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget",
+            Dialect::FanucLs => "J or L to a P[i] of /POS",
             Dialect::Inform => "MOVJ or MOVL to a C-variable of //POS in pulses",
         };
         return Err(at(
@@ -248,7 +250,8 @@ impl JointProgram {
     /// [`Error::InvalidField`] (`q_deg`, `external`) when a list has another length than the
     /// targets, a row of `external` another shape than the target's values, or a value is not
     /// finite; [`Error::Program`] naming the line where two motions to one declared point would
-    /// take different values.
+    /// take different values, or of a Cartesian target of a program not resolved
+    /// ([`cartesian::resolve`]).
     pub fn write_with_external(
         &self,
         q_deg: &[[f64; 6]],

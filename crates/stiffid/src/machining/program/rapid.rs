@@ -6,6 +6,10 @@
 //!
 //! The second bracket holds the external axes `eax_a` to `eax_f` (mm for a linear axis, deg for
 //! a rotary one; `9E9` for an axis that is not used): read, and written back where they change.
+//!
+//! `MoveL` and `MoveJ` (also `\Conc`) to a `robtarget` literal or one declared in the module are
+//! Cartesian targets, with their `tooldata` and `\WObj:=` `wobjdata` declared in the module
+//! ([`super::cartesian`]).
 
 use super::cartesian::{self, Frame};
 use super::{at, number_at, six, JointTarget};
@@ -380,7 +384,11 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     } else if let Some(rest) = after_name.strip_prefix(',') {
         from = s.span.end - rest.len();
     }
-    let kind = if cartesian { "robtarget" } else { "jointtarget" };
+    let kind = if cartesian {
+        "robtarget"
+    } else {
+        "jointtarget"
+    };
     let named = |ident: &str| -> Result<JointTarget> {
         let key = ident.to_ascii_lowercase();
         if let Some(assigned_on) = data.assigned.get(&key) {

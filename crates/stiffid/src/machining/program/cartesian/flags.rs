@@ -56,12 +56,14 @@ impl Flags {
         let (letters, turns) = text.split_once(',').unwrap_or((text, ""));
         let letters: String = letters.chars().filter(|c| !c.is_whitespace()).collect();
         let letters = letters.to_ascii_uppercase();
-        let pick = |a: char, b: char| match (letters.contains(a), letters.contains(b)) {
+        let pick = |a: char, b: char| {
+            match (letters.contains(a), letters.contains(b)) {
             (true, false) => Ok(a),
             (false, true) => Ok(b),
             _ => Err(format!(
                 "CONFIG '{text}': expected one of {a} and {b} among its letters (flip F/N, elbow U/D, side T/B)"
             )),
+        }
         };
         let (flip, elbow, side) = (pick('F', 'N')?, pick('U', 'D')?, pick('T', 'B')?);
         if letters.len() != 3 {
@@ -70,7 +72,12 @@ impl Flags {
             ));
         }
         let mut t = [0i64; 3];
-        for (k, w) in turns.split(',').map(str::trim).filter(|w| !w.is_empty()).enumerate() {
+        for (k, w) in turns
+            .split(',')
+            .map(str::trim)
+            .filter(|w| !w.is_empty())
+            .enumerate()
+        {
             let slot = t.get_mut(k).ok_or_else(|| {
                 format!("CONFIG '{text}': more than three turn numbers (J1, J4, J6)")
             })?;
@@ -127,7 +134,12 @@ mod tests {
             Flags::fanuc("F D B, -1, 0, 1"),
             Ok(Flags::Fanuc("F D B, -1, 0, 1".into()))
         );
-        for bad in ["N X T, 0, 0, 0", "N U, 0, 0, 0", "N U T, a, 0, 0", "N F U T"] {
+        for bad in [
+            "N X T, 0, 0, 0",
+            "N U, 0, 0, 0",
+            "N U T, a, 0, 0",
+            "N F U T",
+        ] {
             assert!(Flags::fanuc(bad).is_err(), "{bad}");
         }
     }

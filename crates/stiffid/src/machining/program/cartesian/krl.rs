@@ -61,7 +61,12 @@ pub(crate) fn target(
 fn bits(line: u64, code: &str, after: usize, name: &str) -> Result<(u64, Range<usize>, bool)> {
     let rest = code[after..].trim_start();
     let from = code.len() - rest.len();
-    let bad = || at(line, format!("{name}: expected a binary string 'B..' or a whole number"));
+    let bad = || {
+        at(
+            line,
+            format!("{name}: expected a binary string 'B..' or a whole number"),
+        )
+    };
     if let Some(inner) = rest.strip_prefix('\'') {
         let close = inner.find('\'').ok_or_else(bad)?;
         let digits = inner[..close]
@@ -120,7 +125,10 @@ fn literal(value: &str) -> Option<Isometry3<f64>> {
     let mut v = [None; 6];
     for item in inner.split(',') {
         let item = item.trim();
-        let name: String = item.chars().take_while(|c| c.is_ascii_alphabetic()).collect();
+        let name: String = item
+            .chars()
+            .take_while(|c| c.is_ascii_alphabetic())
+            .collect();
         let k = POSE.iter().position(|p| p.eq_ignore_ascii_case(&name))?;
         let (x, _) = number_at(item, name.len())?;
         v[k] = Some(v[k].map_or(x, |_| f64::NAN));
@@ -129,11 +137,8 @@ fn literal(value: &str) -> Option<Isometry3<f64>> {
     if v.iter().any(|x| !x.is_finite()) {
         return None;
     }
-    let r = UnitQuaternion::from_euler_angles(
-        v[5].to_radians(),
-        v[4].to_radians(),
-        v[3].to_radians(),
-    );
+    let r =
+        UnitQuaternion::from_euler_angles(v[5].to_radians(), v[4].to_radians(), v[3].to_radians());
     Some(Isometry3::from_parts(
         Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
         r,
@@ -154,8 +159,15 @@ mod tests {
         assert!((f.translation.vector.x - 1.0).abs() < 1e-15);
         let x = f.rotation * nalgebra::Vector3::x();
         assert!((x - nalgebra::Vector3::y()).norm() < 1e-12, "{x}");
-        assert_eq!(frame_set(4, "$TOOL=$NULLFRAME"), Some((false, Frame::World)));
-        for held in ["$BASE = BASE_DATA[1]", "BAS(#BASE, 1)", "$TOOL = {X 1, Y 2}"] {
+        assert_eq!(
+            frame_set(4, "$TOOL=$NULLFRAME"),
+            Some((false, Frame::World))
+        );
+        for held in [
+            "$BASE = BASE_DATA[1]",
+            "BAS(#BASE, 1)",
+            "$TOOL = {X 1, Y 2}",
+        ] {
             assert!(
                 matches!(frame_set(5, held), Some((_, Frame::Unknown(5, _)))),
                 "{held}"

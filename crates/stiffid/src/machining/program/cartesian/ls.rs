@@ -46,7 +46,10 @@ pub(crate) fn config(line: u64, start: usize, l: &str) -> Result<Option<(Flags, 
     let open = l[at_config..].find('\'').map(|o| at_config + o + 1);
     let close = open.and_then(|o| l[o..].find('\'').map(|c| o + c));
     let (Some(open), Some(close)) = (open, close) else {
-        return Err(at(line, "CONFIG: expected its text in quotes, 'N U T, 0, 0, 0'".into()));
+        return Err(at(
+            line,
+            "CONFIG: expected its text in quotes, 'N U T, 0, 0, 0'".into(),
+        ));
     };
     let flags = Flags::fanuc(&l[open..close]).map_err(|why| at(line, why))?;
     Ok(Some((flags, start + open..start + close)))
@@ -81,14 +84,22 @@ pub(crate) fn target(
             .filter(|(_, v)| v.is_none())
             .map(|((n, _), _)| *n)
             .collect();
-        at(line, format!("a Cartesian position without {}: give X, Y, Z, W, P and R", missing.join(", ")))
+        at(
+            line,
+            format!(
+                "a Cartesian position without {}: give X, Y, Z, W, P and R",
+                missing.join(", ")
+            ),
+        )
     })?;
     let mut c = Cartesian::new(Dialect::FanucLs, &values);
     if let Some((flags, span)) = config {
         c.flags = Some(flags);
         c.flag_spans = vec![(span, Part::Fanuc)];
     }
-    let unknown = |name: &str| Frame::Unknown(line, format!("a Cartesian position without {name}: its frame is the controller's, which the program does not say; give {name} : n"));
+    let unknown = |name: &str| {
+        Frame::Unknown(line, format!("a Cartesian position without {name}: its frame is the controller's, which the program does not say; give {name} : n"))
+    };
     c.frame = match user {
         Some(0) => Frame::World,
         Some(n) => Frame::Numbered(line, n),

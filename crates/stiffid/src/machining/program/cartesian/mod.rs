@@ -103,9 +103,9 @@ impl Cartesian {
             UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians())
         };
         let rotation = match dialect {
-            Dialect::Rapid => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-                n[3], n[4], n[5], n[6],
-            )),
+            Dialect::Rapid => {
+                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(n[3], n[4], n[5], n[6]))
+            }
             Dialect::FanucLs => r(n[5], n[4], n[3]),
             _ => r(n[3], n[4], n[5]),
         };
@@ -124,10 +124,7 @@ impl Cartesian {
 
     /// The pose in its frame, m.
     pub fn pose(&self) -> Isometry3<f64> {
-        Isometry3::from_parts(
-            Translation3::from(self.position_mm * 1e-3),
-            self.rotation,
-        )
+        Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation)
     }
 
     /// The texts that state `pose` (in the target's frame, m) with the configuration `arm`, each

@@ -15,13 +15,28 @@ const UNIT: f64 = 1e-4;
 /// The target of the `robtarget` literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,
 /// ..,eax_f]]` at or after byte `from` of `code` (`9E9`: an external axis not used).
 pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarget> {
-    let bad = |what: &str| at(line, format!("robtarget: expected [[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]], {what}"));
+    let bad = |what: &str| {
+        at(line, format!("robtarget: expected [[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]], {what}"))
+    };
     let (node, _) = literal::parse(code, from).ok_or_else(|| bad("not a literal"))?;
-    let parts = node.list().filter(|p| p.len() == 4).ok_or_else(|| bad("not four brackets"))?;
-    let mut pose = parts[0].numbers(3).ok_or_else(|| bad("the position is not 3 numbers"))?;
-    pose.extend(parts[1].numbers(4).ok_or_else(|| bad("the orientation is not 4 numbers"))?);
-    let conf = parts[2].numbers(4).ok_or_else(|| bad("the confdata are not 4 numbers"))?;
-    let external = parts[3].numbers(6).ok_or_else(|| bad("the external axes are not 6 numbers"))?;
+    let parts = node
+        .list()
+        .filter(|p| p.len() == 4)
+        .ok_or_else(|| bad("not four brackets"))?;
+    let mut pose = parts[0]
+        .numbers(3)
+        .ok_or_else(|| bad("the position is not 3 numbers"))?;
+    pose.extend(
+        parts[1]
+            .numbers(4)
+            .ok_or_else(|| bad("the orientation is not 4 numbers"))?,
+    );
+    let conf = parts[2]
+        .numbers(4)
+        .ok_or_else(|| bad("the confdata are not 4 numbers"))?;
+    let external = parts[3]
+        .numbers(6)
+        .ok_or_else(|| bad("the external axes are not 6 numbers"))?;
     check_unit(line, &pose[3..])?;
     if conf.iter().any(|(v, _)| v.fract() != 0.0) {
         return Err(bad("the confdata are not whole numbers"));
@@ -43,7 +58,13 @@ fn check_unit(line: u64, q: &[(f64, std::ops::Range<usize>)]) -> Result<()> {
     let norm = q.iter().map(|(v, _)| v * v).sum::<f64>().sqrt();
     match (norm - 1.0).abs() <= UNIT {
         true => Ok(()),
-        false => Err(at(line, format!("the orientation's quaternion has norm {}: expected 1 (within {UNIT})", crate::common::words::number(norm)))),
+        false => Err(at(
+            line,
+            format!(
+                "the orientation's quaternion has norm {}: expected 1 (within {UNIT})",
+                crate::common::words::number(norm)
+            ),
+        )),
     }
 }
 
@@ -72,7 +93,9 @@ pub(crate) fn frame(kind: &str, name: &str, line: u64, code: &str, from: usize) 
         let frame = match (kind, items) {
             ("tooldata", [hold, tframe, ..]) => match hold.boolean() {
                 Some(true) => pose(line, tframe)?,
-                _ => return Err(bad("a stationary tool (robhold FALSE): stiffid compensates a tool the robot holds")),
+                _ => return Err(bad(
+                    "a stationary tool (robhold FALSE): stiffid compensates a tool the robot holds",
+                )),
             },
             ("wobjdata", [hold, programmed, _, uframe, oframe, ..]) => {
                 match (hold.boolean(), programmed.boolean()) {
@@ -101,7 +124,10 @@ pub(crate) fn motion(
 ) -> Result<JointTarget> {
     let parts = top_level(args);
     let [target, _speed, _zone, tool, ..] = parts.as_slice() else {
-        return Err(at(line, "expected a target, a speed, a zone and a tool".into()));
+        return Err(at(
+            line,
+            "expected a target, a speed, a zone and a tool".into(),
+        ));
     };
     let text = args[target.clone()].trim_start();
     let mut t = if text.starts_with('[') {
@@ -119,13 +145,16 @@ pub(crate) fn motion(
     };
     let tool_text = &args[tool.clone()];
     let (tool_name, switches) = tool_text.split_once('\\').unwrap_or((tool_text, ""));
-    let wobj = switches
-        .split('\\')
-        .find_map(|s| {
-            let (k, v) = s.split_once(":=")?;
-            k.trim().eq_ignore_ascii_case("wobj").then(|| v.trim().to_string())
-        });
-    let c = t.cartesian.as_deref_mut().ok_or_else(|| at(line, "expected a robtarget".into()))?;
+    let wobj = switches.split('\\').find_map(|s| {
+        let (k, v) = s.split_once(":=")?;
+        k.trim()
+            .eq_ignore_ascii_case("wobj")
+            .then(|| v.trim().to_string())
+    });
+    let c = t
+        .cartesian
+        .as_deref_mut()
+        .ok_or_else(|| at(line, "expected a robtarget".into()))?;
     c.tool = lookup(line, "tooldata", "tool0", tool_name.trim(), frames);
     c.frame = match wobj {
         None => Frame::World,
@@ -135,7 +164,13 @@ pub(crate) fn motion(
 }
 
 /// The frame of a tool or work object named in a motion.
-fn lookup(line: u64, kind: &str, flange: &str, name: &str, frames: &HashMap<String, Frame>) -> Frame {
+fn lookup(
+    line: u64,
+    kind: &str,
+    flange: &str,
+    name: &str,
+    frames: &HashMap<String, Frame>,
+) -> Frame {
     let key = name.to_ascii_lowercase();
     if key == flange {
         return Frame::World;

@@ -214,8 +214,9 @@ fn on_truth(
         ..*options
     };
     let truth = controller.truth;
-    let s = ik::solve(truth, &controller.tcp, target, &q, &one)
-        .map_err(|e| format!("the setup's robot does not reach the pose near the controller's posture: {e}"))?;
+    let s = ik::solve(truth, &controller.tcp, target, &q, &one).map_err(|e| {
+        format!("the setup's robot does not reach the pose near the controller's posture: {e}")
+    })?;
     match Configuration::of(truth, &s.q).change_from(&Configuration::of(controller.robot, &q)) {
         Some(change) => Err(format!("the setup's robot reaches the pose only in another configuration than the controller's ({change})")),
         None => Ok(s.q),
