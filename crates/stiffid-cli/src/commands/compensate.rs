@@ -45,7 +45,8 @@ pub struct Args {
     path: Option<PathBuf>,
     /// A machining program instead of a path CSV: G-code (.nc .ngc .gcode .tap .cnc .g; the
     /// part frame from the setup's [workpiece]), KUKA KRL (.src .dat), ABB RAPID (.mod .modx
-    /// .prg), FANUC LS (.ls) or Yaskawa INFORM (.jbi) joint targets. Needs --process.
+    /// .prg), FANUC LS (.ls) joint or Cartesian targets, or Yaskawa INFORM (.jbi) joint targets.
+    /// Needs --process.
     #[arg(long, requires = "process")]
     program: Option<PathBuf>,
     /// With --program: the process file (TOML) that gives every point its cutting force.

@@ -28,8 +28,10 @@ pub struct Args {
     setup: String,
     #[command(flatten)]
     stiffness: Stiffness,
-    /// The G-code program (its points in the part frame). Robot programs are refused: stiffid
-    /// reads their joint targets, which do not move with the part.
+    /// The G-code program (its points in the part frame), or a KUKA KRL, ABB RAPID or FANUC LS
+    /// program of Cartesian targets in the part frame ($BASE or work object equal to the
+    /// setup's [workpiece], LS user frame UF n >= 1). Joint targets are refused: they do not move
+    /// with the part.
     #[arg(long, requires = "process")]
     program: Option<PathBuf>,
     /// With --program: the process file (TOML) that gives every point its cutting force.

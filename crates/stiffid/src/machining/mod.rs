@@ -3,7 +3,8 @@
 //!
 //! 1. The program gives the path: G-code points (part frame, placed in the base frame by the
 //!    setup's `[workpiece] base_from_part`) as TCP poses, or a robot program's joint targets
-//!    ([`crate::machining::program`]) as axis angles.
+//!    ([`crate::machining::program`]) as axis angles, its Cartesian targets as the axis angles
+//!    the controller moves to ([`resolve`] first).
 //! 2. The process gives each point its wrench: the operation that covers it
 //!    ([`Operation`]: G-code `(operation: NAME)` comments, then `T` tool numbers, then an operation
 //!    without a selector; robot programs: the operation whose `lines` hold the target's line, then
@@ -26,7 +27,8 @@
 //!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
 //!    the line.
 //! 5. The program is written back in its own format: robot programs with the compensated axis
-//!    angles and every other byte as read (their external axes' values too: a robot program's
+//!    angles (Cartesian targets: the pose the controller must be told, with the configuration
+//!    data of the compensated posture) and every other byte as read (their external axes' values too: a robot program's
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
 //!    frame (the nominal position of the compensated posture: where the controller must be sent
 //!    so that the loaded tool lands on the programmed one). With a free station or positioner
@@ -200,6 +202,36 @@ pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Prog
     }
 }
 
+/// `program` with its Cartesian targets' axis angles ([`program::cartesian`]: the controller's
+/// inverse kinematics in the configuration each names, from `options`' start posture), on
+/// `setup`'s controller; with `placed`, the part frame at that pose (the setup's base frame)
+/// carries the targets ([`program::cartesian::resolve_placed`]). Any other program as it is.
+///
+/// # Errors
+/// Those of [`crate::Setup::controller_robot`], [`program::cartesian::resolve`] and
+/// [`program::cartesian::resolve_placed`] (naming the line).
+pub fn resolve<'a>(
+    program: &'a Program,
+    setup: &crate::Setup,
+    placed: Option<&Isometry3<f64>>,
+    options: &compensate::Options,
+) -> Result<std::borrow::Cow<'a, Program>> {
+    use program::cartesian;
+    let Program::Robot(p) = program else {
+        return Ok(std::borrow::Cow::Borrowed(program));
+    };
+    if placed.is_none() && !cartesian::is_cartesian(p) {
+        return Ok(std::borrow::Cow::Borrowed(program));
+    }
+    let controller = cartesian::Controller::of(setup)?;
+    let start = (&options.q0, &options.ik);
+    let resolved = match placed {
+        Some(part) => cartesian::resolve_placed(p, &controller, part, start)?,
+        None => cartesian::resolve(p, &controller, start.0, start.1)?,
+    };
+    Ok(std::borrow::Cow::Owned(Program::Robot(resolved)))
+}
+
 /// The compensation of a program.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Report {
@@ -234,6 +266,18 @@ pub fn compensate(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
+    if let Program::Robot(p) = program {
+        if let Some(t) = p
+            .targets
+            .iter()
+            .find(|t| t.q_deg.iter().any(|v| !v.is_finite()))
+        {
+            return Err(Error::Program {
+                line: t.line,
+                message: "a Cartesian target without its axis angles: resolve the program on its setup first (machining::resolve)".into(),
+            });
+        }
+    }
     let placements = cell::placements(arm, workpiece, program)?;
     let poses = poses(arm, workpiece, program, placements.as_deref())?;
     let operations = operations(program, process)?;

@@ -292,7 +292,7 @@ fn robot_programs_and_axis_angle_rows_are_refused_naming_why() {
     };
     let e = place::run(&r).unwrap_err();
     assert!(
-        matches!(&e, Error::InvalidField { field, message } if field == "program" && message.starts_with("a KUKA KRL program's targets as stiffid reads them are joint targets (E6AXIS, AXIS)")),
+        matches!(&e, Error::InvalidField { field, message } if field == "program" && message.starts_with("a KUKA KRL program's targets are joint targets (E6AXIS, AXIS, line 2 the first)")),
         "{e}"
     );
     let rows = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n-90,-10,-20,0,-60,180,0,0,-100\n";

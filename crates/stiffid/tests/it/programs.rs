@@ -91,7 +91,7 @@ fn malformed_programs_are_refused_naming_the_line() {
             RAPID.replace("MoveAbsJ j1", "MoveL p1"),
             Dialect::Rapid,
             5,
-            "Cartesian",
+            "not a robtarget declared",
         ),
         (
             RAPID.replace("[[10.5,-20,30,0,45.125,0]", "[[10.5,-20,30,0,45.125]"),

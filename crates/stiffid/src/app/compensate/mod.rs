@@ -286,6 +286,13 @@ where
             }
             let program =
                 machining::read(text, language, chord_tolerance).map_err(|e| in_input(&name, e))?;
+            // A Cartesian program's targets as the controller moves to them (a copy only then).
+            let resolved = match machining::resolve(&program, setup, None, &options) {
+                Ok(std::borrow::Cow::Owned(p)) => Some(p),
+                Ok(std::borrow::Cow::Borrowed(_)) => None,
+                Err(e) => return Err(in_input(&name, e).into()),
+            };
+            let program = resolved.unwrap_or(program);
             // Every name and setting of the output before the compensation, which can be long.
             let written_name = written_name(&program, output, &out_name, &settings)?;
             let compensated = machining::compensate(

@@ -126,11 +126,16 @@ impl Context<'_> {
         let arm = self.setup.arm();
         match self.work {
             Work::Program { program, process } => {
+                let placed = match program {
+                    machining::Program::Robot(_) => Some(pose),
+                    machining::Program::GCode(_) => None,
+                };
+                let program = machining::resolve(program, self.setup, placed, self.options)?;
                 let report = machining::compensate(
                     arm,
                     Some(pose),
                     self.compliance,
-                    program,
+                    &program,
                     process,
                     self.options,
                 )?;

@@ -3,11 +3,13 @@
 //! The part frame (`[workpiece] base_from_part`) moves, and with it the work ([`Work`]) in it: a
 //! G-code program's points (its coordinates are the part frame's), or a path file's rows, whose
 //! TCP poses are read in the part frame (not in the base frame, as `compensate` reads them) and
-//! whose `base` wrenches turn with the part ([`read_path`]). A robot program is refused
-//! ([`Work::check`]): stiffid reads its joint targets only, and axis angles stay where they are
-//! when the part moves; the frame its Cartesian targets would be in (KRL `$BASE`, the RAPID work
-//! object, the LS `UFRAME`, the INFORM user frame) is the part frame that would move. The part
-//! frame moves within a region of the cell: its origin's x and y in the robot base frame within
+//! whose `base` wrenches turn with the part ([`read_path`]), or a robot program's Cartesian
+//! targets in the part frame (a KRL `$BASE` or a RAPID work object equal to the setup's
+//! `[workpiece]`, an LS user frame `UF : n`; [`crate::machining::program::cartesian`]), the
+//! controller's inverse kinematics in the shoulder, elbow and wrist their configuration data
+//! name at every placement. A robot program with joint targets is refused ([`Work::check`]):
+//! axis angles stay where they are when the part moves, as are targets in another frame. The
+//! part frame moves within a region of the cell: its origin's x and y in the robot base frame within
 //! [`Region::x`] and [`Region::y`], turned about the base z axis (the table's normal, through the
 //! part's origin) by an angle within [`Region::rotation`] from the setup's own rotation; with
 //! [`Region::free`] also its height and a tilt about the base x and y axes, the six degrees of

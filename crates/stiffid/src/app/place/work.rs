@@ -13,7 +13,9 @@ use nalgebra::Isometry3;
 /// The work placed with the part.
 #[derive(Debug, Clone, Copy)]
 pub enum Work<'a> {
-    /// A G-code program, its points in the part frame, cut under `process`.
+    /// A G-code program, its points in the part frame, or a robot program whose targets are all
+    /// Cartesian ones in the part frame ([`crate::machining::program::cartesian`]), cut under
+    /// `process`.
     Program {
         /// The program ([`crate::machining::read`]).
         program: &'a Program,
@@ -46,8 +48,10 @@ pub fn read_path(
 }
 
 impl Work<'_> {
-    /// Refuses what the part cannot carry: a robot program ([`check_language`]), a path file's
-    /// axis-angle rows, a path file on a robot with external axes.
+    /// Refuses what the part cannot carry: a robot program with joint targets (axis angles stay
+    /// where they are), a path file's axis-angle rows, a path file on a robot with external
+    /// axes. (Whether a robot program's Cartesian targets are in the part frame is checked as
+    /// they are placed: [`crate::machining::program::cartesian::resolve_placed`].)
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`program`, `path`) naming why.
@@ -59,7 +63,16 @@ impl Work<'_> {
             })
         };
         match self {
-            Work::Program { program, .. } => check_language(program.language()),
+            Work::Program { program, .. } => {
+                check_language(program.language())?;
+                let Program::Robot(p) = program else {
+                    return Ok(());
+                };
+                match p.targets.iter().find(|t| t.cartesian.is_none()) {
+                    Some(t) => refuse("program", format!("a {} program's targets are joint targets ({}, line {} the first), and axis angles do not move with the part: give its targets as Cartesian ones in the part frame ({}), or the program as G-code, or its TCP poses in the part frame as a path file", program.language().help(), joint_form(p.dialect), t.line, part_form(p.dialect))),
+                    None => Ok(()),
+                }
+            }
             Work::Path(points) => {
                 refuse_external(setup)?;
                 match points.iter().find(|p| matches!(p.target, Target::Posture(_))) {
@@ -71,19 +84,30 @@ impl Work<'_> {
     }
 }
 
-/// Refuses a program language whose targets do not move with the part: every robot program's
-/// (stiffid reads their joint targets; a Cartesian target its reader refuses); G-code passes.
-/// A front end checks it before reading the program.
+/// Refuses a program language whose targets cannot move with the part: Yaskawa INFORM's
+/// (stiffid reads its pulse positions only); G-code and the languages with Cartesian targets
+/// (KRL, RAPID, LS) pass, their targets checked once read ([`Work::check`]). A front end
+/// checks it before reading the program.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`program`) naming the language, its joint targets and what to give.
 pub fn check_language(language: Language) -> Result<()> {
     match language {
-        Language::GCode => Ok(()),
-        Language::Robot(d) => Err(Error::InvalidField {
+        Language::Robot(d @ Dialect::Inform) => Err(Error::InvalidField {
             field: "program".into(),
-            message: format!("a {} program's targets as stiffid reads them are joint targets ({}), and axis angles do not move with the part; stiffid reads no Cartesian target (the controller's configuration flags would choose among the inverse-kinematics solutions): give the program as G-code, or its TCP poses in the part frame as a path file", language.help(), joint_form(d)),
+            message: format!("a {} program's targets are joint targets ({}), and axis angles do not move with the part: give the program as G-code, or its TCP poses in the part frame as a path file", language.help(), joint_form(d)),
         }),
+        _ => Ok(()),
+    }
+}
+
+/// Where a dialect's Cartesian targets are in the part frame.
+fn part_form(d: Dialect) -> &'static str {
+    match d {
+        Dialect::Krl => "E6POS with $BASE equal to [workpiece]",
+        Dialect::Rapid => "robtargets with a wobjdata equal to [workpiece]",
+        Dialect::FanucLs => "Cartesian positions in a user frame UF : n, n >= 1",
+        Dialect::Inform => "none",
     }
 }
 

@@ -5,7 +5,12 @@
 //!
 //! The members `E1` to `E6` of an aggregate are the external axes as `$EX_AX_NUM` numbers them
 //! (mm for a linear axis, deg for a rotary one): read, and written back where they change.
+//!
+//! An aggregate or declared point with `X`, `Y`, `Z`, `A`, `B`, `C` (`E6POS`, `POS`, `FRAME`,
+//! with `S` and `T`) is a Cartesian target in the `$BASE` and for the `$TOOL` the program sets
+//! before the motion ([`super::cartesian`]).
 
+use super::cartesian::{self, Frame};
 use super::{at, number_at, six, JointTarget};
 use crate::{Error, Result};
 use std::collections::HashMap;
@@ -22,8 +27,16 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let mut routine: Option<(String, u64)> = None;
     let mut current: Option<(String, u64)> = None;
     let mut control: Option<(u64, String)> = None;
+    let unset = |name: &str| {
+        Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set {name} = {{X .., Y .., Z .., A .., B .., C ..}} in the program"))
+    };
+    let (mut base, mut tool) = (unset("$BASE"), unset("$TOOL"));
     for (line, start, l) in super::lines(text) {
         let code = l.split(';').next().unwrap_or("");
+        if let Some((is_base, frame)) = cartesian::krl::frame_set(line, code) {
+            *(if is_base { &mut base } else { &mut tool }) = frame;
+            continue;
+        }
         let words = words(code);
         let first = words.first().map(String::as_str).unwrap_or("");
         if let Some(name) = routine_name(&words) {
@@ -37,9 +50,17 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         {
             control = Some((line, first.to_string()));
         }
-        let Some(target) = motion(line, start, code, first, &declared, &assigned)? else {
+        let Some(mut target) = motion(line, start, code, first, &declared, &assigned)? else {
             continue;
         };
+        if let Some(c) = target.cartesian.as_deref_mut() {
+            let at_motion = |f: &Frame| match f {
+                Frame::Unknown(0, why) => Frame::Unknown(line, why.clone()),
+                other => other.clone(),
+            };
+            (c.frame, c.tool) = (at_motion(&base), at_motion(&tool));
+            c.follows = matches!(first, "LIN" | "SLIN");
+        }
         match (&routine, &current) {
             (Some((a, a_line)), Some((b, b_line))) if a != b => {
                 return Err(at(line, format!("motions in DEF {a} (line {a_line}) and DEF {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one DEF")));
@@ -93,12 +114,13 @@ fn declarations(text: &str) -> Result<(Declared, HashMap<String, u64>)> {
             .collect();
         let declares = words.first().is_some_and(|f| f == "DECL") || w.len() < words.len();
         match w.as_slice() {
-            [kind @ ("E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME"), name, ..] => {
+            ["E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME", name, ..] => {
                 let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
-                let value = match (*kind, code.find('{')) {
-                    (_, None) => Err(format!("{name} is declared on line {line} without a value (set at run time)")),
-                    ("E6AXIS" | "AXIS", Some(open)) => Ok(aggregate_at(line, start, code, open)?),
-                    _ => Err(format!("{name} is a Cartesian point ({kind}, line {line}); stiffid compensates joint targets (E6AXIS, AXIS): write the path with joint targets")),
+                let value = match code.find('{') {
+                    None => Err(format!(
+                        "{name} is declared on line {line} without a value (set at run time)"
+                    )),
+                    Some(open) => Ok(aggregate_at(line, start, code, open)?),
                 };
                 declared.insert(name, (line, value));
             }
@@ -201,6 +223,7 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
     let skip = inner.find(':').map_or(0, |c| c + 1);
     let mut found: [Option<(f64, std::ops::Range<usize>)>; 6] = Default::default();
     let mut external: Vec<Option<(f64, std::ops::Range<usize>)>> = Vec::new();
+    let mut pose: Vec<(String, usize)> = Vec::new();
     let mut at_byte = from + skip;
     for item in code[from + skip..to].split(',') {
         let name_start = at_byte + item.len() - item.trim_start().len();
@@ -210,11 +233,10 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
             .take_while(|c| c.is_ascii_alphanumeric())
             .collect();
         let upper = name.to_ascii_uppercase();
-        if matches!(
-            upper.as_str(),
-            "X" | "Y" | "Z" | "A" | "B" | "C" | "S" | "T"
-        ) {
-            return Err(at(line, format!("a Cartesian target ({upper}); stiffid compensates joint targets (E6AXIS, AXIS): write the path with joint targets")));
+        if cartesian::krl::is_member(&upper) {
+            pose.push((upper, name_start + name.len()));
+            at_byte += item.len() + 1;
+            continue;
         }
         let slot = |prefix: char| {
             upper
@@ -242,6 +264,17 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
             external[k - 1] = Some(value()?);
         }
         at_byte += item.len() + 1;
+    }
+    if !pose.is_empty() {
+        if found.iter().any(Option::is_some) {
+            return Err(at(
+                line,
+                "an aggregate with both axis angles (A1..) and a Cartesian pose (X..): give one"
+                    .into(),
+            ));
+        }
+        let c = cartesian::krl::target(line, start, code, &pose)?;
+        return Ok(JointTarget::cartesian(line, c).with_external(external));
     }
     six(line, found, "A").map(|t| t.with_external(external)).map_err(|e| match e {
         Error::Program { line, message } => Error::Program {

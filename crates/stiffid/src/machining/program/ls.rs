@@ -5,8 +5,12 @@
 //! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
 //! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
 //! one; a third group is refused. An `INC` motion after one that ends `FINE` goes to the previous
-//! target plus the position's increments (every axis of both groups).
+//! target plus the position's increments (every axis of both groups). A position in Cartesian
+//! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
+//! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
 
+use super::cartesian::ls::{self as cartesian, Value};
+use super::cartesian::Flags;
 use super::{at, number_at, six, Found, JointTarget};
 use crate::Result;
 use std::collections::HashMap;
@@ -76,6 +80,9 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
             )
         })?;
         let mut target = position.moved_to(line, incremental);
+        if incremental && target.cartesian.is_some() {
+            return Err(at(line, format!("{letter} P[{index}] INC: an increment of a Cartesian position; stiffid follows absolute Cartesian positions: write P[{index}] absolute")));
+        }
         if incremental {
             let Some(previous) = out.last().filter(|_| previous_fine) else {
                 return Err(at(line, format!("{letter} P[{index}] INC: an increment from where the robot is, which only a previous motion ending FINE in this program fixes; end the previous motion FINE or write P[{index}] absolute")));
@@ -164,9 +171,6 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
     out
 }
 
-/// One value and its span in the text.
-type Value = Option<(f64, std::ops::Range<usize>)>;
-
 /// A position being read: its index, first line, the six axes, group 1's extended axes and
 /// group 2's axes, and the group of the values read now.
 struct Open {
@@ -176,6 +180,10 @@ struct Open {
     extended: Vec<Value>,
     second: Vec<Value>,
     group: u8,
+    /// A Cartesian position's `X`..`R`, `CONFIG` and user and tool frame numbers.
+    pose: [Value; 6],
+    config: Option<(Flags, std::ops::Range<usize>)>,
+    frames: (Option<u32>, Option<u32>),
 }
 
 /// Per external axis of the program (its order), the unit its values are written in (`mm` or
@@ -217,14 +225,18 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
                 extended: Vec::new(),
                 second: Vec::new(),
                 group: 0,
+                pose: Default::default(),
+                config: None,
+                frames: (None, None),
             });
         }
         let Some(o) = open.as_mut() else {
             continue;
         };
-        for piece in split_keeping_offsets(l) {
+        let masked = cartesian::masked(l);
+        for piece in split_keeping_offsets(&masked) {
             let (offset, item) = piece;
-            let item_t = item.trim();
+            let mut item_t = item.trim();
             if let Some(g) = item_t.strip_prefix("GP") {
                 o.group = g
                     .trim_start()
@@ -234,13 +246,20 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
                 if !(1..=2).contains(&o.group) {
                     return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", crate::common::limits::short(item_t.trim_end_matches(':')))));
                 }
+                item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
             }
             if o.group == 0 {
                 continue;
             }
-            if item_t.starts_with("X ") || item_t.starts_with("X=") || item_t.starts_with("CONFIG")
-            {
-                return Err(at(o.first, "a Cartesian position (CONFIG, X, Y, Z ...); stiffid compensates positions in joint representation (J1= .. deg): write the path with positions in joint representation".into()));
+            if let Some((user, n)) = cartesian::frame_number(line, item_t)? {
+                if o.group == 1 {
+                    *(if user {
+                        &mut o.frames.0
+                    } else {
+                        &mut o.frames.1
+                    }) = Some(n);
+                }
+                continue;
             }
             let Some(eq) = item.find('=') else { continue };
             let name = item[..eq].trim();
@@ -249,6 +268,14 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
                 name.strip_prefix(prefix)
                     .and_then(|d| d.parse::<usize>().ok())
             };
+            if let (1, Some(k)) = (
+                o.group,
+                cartesian::POSE.iter().position(|(n, _)| *n == name),
+            ) {
+                let (v, span, _) = value(l, offset + eq + 1, line, name, &[cartesian::POSE[k].1])?;
+                o.pose[k] = Some((v, start + span.start..start + span.end));
+                continue;
+            }
             let (values, k) = match (o.group, number('J'), number('E')) {
                 (1, Some(k @ 1..=6), _) => {
                     let (v, span, _) = value(l, offset + eq + 1, line, name, &["deg"])?;
@@ -269,6 +296,11 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
             }
             values[k - 1] = Some((v, start + span.start..start + span.end));
         }
+        if o.group == 1 {
+            if let Some(c) = cartesian::config(line, start, l)? {
+                o.config = Some(c);
+            }
+        }
         if t.ends_with("};") {
             if let Some(o) = open.take() {
                 read.push(o);
@@ -284,10 +316,17 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
     for mut o in read {
         o.extended.resize(n1, None);
         o.extended.append(&mut o.second);
-        out.insert(
-            o.index,
-            six(o.first, o.found, "J")?.with_external(o.extended),
-        );
+        let target = match o.pose.iter().any(Option::is_some) || o.config.is_some() {
+            true if o.found.iter().any(Option::is_some) => {
+                return Err(at(o.first, "a position with both joint (J1=) and Cartesian (X =, CONFIG) values: give one representation".into()));
+            }
+            true => {
+                let c = cartesian::target(o.first, &o.pose, o.config.take(), o.frames)?;
+                JointTarget::cartesian(o.first, c)
+            }
+            false => six(o.first, o.found, "J")?,
+        };
+        out.insert(o.index, target.with_external(o.extended));
     }
     let axes = (1..=n1).map(|k| format!("E{k}"));
     let axes = axes.chain((1..=n2).map(|k| format!("GP2 J{k}")));

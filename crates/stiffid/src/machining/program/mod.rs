@@ -1,6 +1,6 @@
 //! Robot programs: the joint targets of KUKA KRL, ABB RAPID, FANUC LS and Yaskawa INFORM
-//! programs, read in the order the controller moves to them and written back with everything else
-//! byte for byte.
+//! programs and the Cartesian targets of KRL, RAPID and LS ones ([`cartesian`]), read in the
+//! order the controller moves to them and written back with everything else byte for byte.
 //!
 //! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
 //!   a point declared in the same file as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`.
@@ -16,13 +16,12 @@
 //!
 //! A target's external axes are the cell's in the cell's order ([`external`]).
 //!
-//! Only joint targets are read. A Cartesian target (KRL `E6POS`/`POS`/`FRAME`, RAPID
-//! `MoveL`/`MoveJ`/`MoveC`, LS positions with `X = .. mm`) is refused naming its line: turning it
-//! into axis angles needs the controller's configuration flags (KUKA `S`/`T`, ABB `confdata`,
-//! FANUC `CONFIG : 'N U T, ...'`) and its own kinematic conventions to pick the one of up to eight
-//! inverse-kinematics solutions the controller would take, and a compensated target would have to
-//! be written back with flags the controller agrees with. Joint targets are unambiguous in both
-//! directions.
+//! Cartesian targets (KRL `E6POS`/`POS`/`FRAME` aggregates and points, RAPID `MoveL`/`MoveJ` to
+//! `robtarget`s, LS positions in Cartesian representation) are read with their frame, tool and
+//! configuration data ([`cartesian`]); their axis angles are NaN until [`cartesian::resolve`]
+//! gives the ones the controller moves to (inverse kinematics in the configuration the data
+//! name). A program may mix both kinds. A compensated Cartesian target is written back as the
+//! pose the controller must be told, with the configuration data of the compensated posture.
 //!
 //! Every other motion instruction is refused naming its line and what to do, never skipped: a
 //! circular or spline motion (the path between the points is not the compensated one), a relative
@@ -34,10 +33,12 @@
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows;
 //! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
-//! six numbers of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
+//! six numbers (a Cartesian target: its pose's numbers and, where they changed, its
+//! configuration data) of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
 //! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
+pub mod cartesian;
 pub mod external;
 pub mod generate;
 pub mod inform;
@@ -87,7 +88,8 @@ impl Dialect {
 pub struct JointTarget {
     /// The line of its motion instruction, 1-based.
     pub line: u64,
-    /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles).
+    /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles; a
+    /// Cartesian target's NaN until [`cartesian::resolve`]).
     pub q_deg: [f64; 6],
     /// The external axes' values as the program gives them, one per axis of
     /// [`JointProgram::axes`], mm for a linear axis and deg for a rotary one (as the controller
@@ -103,6 +105,9 @@ pub struct JointTarget {
     origin: u64,
     /// The numbers hold the increment from the previous target (LS `INC`).
     incremental: bool,
+    /// A Cartesian target's pose, frame and configuration data ([`cartesian`]): its
+    /// [`JointTarget::q_deg`] are NaN until [`cartesian::resolve`] gives them.
+    pub cartesian: Option<Box<cartesian::Cartesian>>,
 }
 
 impl JointTarget {
@@ -112,6 +117,20 @@ impl JointTarget {
             line,
             incremental,
             ..self.clone()
+        }
+    }
+
+    /// A Cartesian target on `line` (its axis angles NaN until resolved).
+    pub(crate) fn cartesian(line: u64, c: cartesian::Cartesian) -> Self {
+        JointTarget {
+            line,
+            q_deg: [f64::NAN; 6],
+            external: Vec::new(),
+            spans: Default::default(),
+            external_spans: Vec::new(),
+            origin: line,
+            incremental: false,
+            cartesian: Some(Box::new(c)),
         }
     }
 
@@ -146,6 +165,8 @@ pub struct JointProgram {
     /// Per external axis, the unit the program writes it in and the line of its first value,
     /// where the language says (LS: `mm` or `deg`); empty for the others.
     units: ls::Units,
+    /// What writes the Cartesian targets back, once resolved ([`cartesian::resolve`]).
+    writer: Option<Box<cartesian::Writer>>,
     text: String,
 }
 
@@ -153,7 +174,8 @@ pub struct JointProgram {
 ///
 /// # Errors
 /// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
-/// a joint target with a missing, repeated or non-numeric axis value, no motion to a joint target
+/// a joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
+/// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
 /// at all, or more than [`MAX_TARGETS`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     let mut units = Vec::new();
@@ -173,9 +195,9 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     }
     if targets.is_empty() {
         let hint = match dialect {
-            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or to an E6AXIS declared in the file; a .dat holds declarations only: give the .src",
-            Dialect::Rapid => "MoveAbsJ to a jointtarget",
-            Dialect::FanucLs => "J or L to a P[i] of /POS in joint representation",
+            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src",
+            Dialect::Rapid => "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget",
+            Dialect::FanucLs => "J or L to a P[i] of /POS",
             Dialect::Inform => "MOVJ or MOVL to a C-variable of //POS in pulses",
         };
         return Err(at(
@@ -195,6 +217,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
         axes,
         pulses,
         units,
+        writer: None,
         text: text.to_string(),
     })
 }
@@ -227,7 +250,8 @@ impl JointProgram {
     /// [`Error::InvalidField`] (`q_deg`, `external`) when a list has another length than the
     /// targets, a row of `external` another shape than the target's values, or a value is not
     /// finite; [`Error::Program`] naming the line where two motions to one declared point would
-    /// take different values.
+    /// take different values, or of a Cartesian target of a program not resolved
+    /// ([`cartesian::resolve`]).
     pub fn write_with_external(
         &self,
         q_deg: &[[f64; 6]],
@@ -258,8 +282,8 @@ impl JointProgram {
                 ),
             });
         }
-        // Each number to write: its span, the target, the value, whether it changed.
-        let mut edits: Vec<(Range<usize>, usize, f64, bool, usize)> =
+        // Each number to write: its span, the target, its text, whether it changed.
+        let mut edits: Vec<(Range<usize>, usize, String, bool)> =
             Vec::with_capacity(6 * self.targets.len());
         for (i, t) in self.targets.iter().enumerate() {
             let values = |j: usize| {
@@ -267,7 +291,18 @@ impl JointProgram {
                 q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
             };
             let (now, read) = (values(i), t.values());
-            let spans = t.spans.iter().cloned().map(Some);
+            if let Some(c) = &t.cartesian {
+                let writer = self.writer.as_ref().ok_or_else(|| {
+                    at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
+                })?;
+                let q = nalgebra::Vector6::from(q_deg[i]).map(f64::to_radians);
+                let changed = now[..6] != read[..6];
+                for (span, text) in writer.texts(self.dialect, c, &q) {
+                    edits.push((span, i, text, changed));
+                }
+            }
+            let joint = t.cartesian.is_none();
+            let spans = t.spans.iter().map(|s| joint.then(|| s.clone()));
             let spans = spans.chain(t.external_spans.iter().cloned());
             for (k, span) in spans.enumerate() {
                 let Some(span) = span else { continue };
@@ -281,22 +316,21 @@ impl JointProgram {
                     }
                     _ => (now[k], now[k] != read[k]),
                 };
-                edits.push((span, i, value, changed, k));
+                edits.push((span, i, self.number(k, value), changed));
             }
         }
         edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
-        for (j, (span, i, value, changed, k)) in edits.iter().enumerate() {
-            let text = self.number(*k, *value);
-            if let Some((_, first, other, ..)) = edits[..j].last().filter(|e| e.0 == *span) {
-                if self.number(*k, *other) != text {
+        for (j, (span, i, text, changed)) in edits.iter().enumerate() {
+            if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
+                if other != text {
                     let (a, b) = (&self.targets[*first], &self.targets[*i]);
                     return Err(Error::Program {
                         line: b.line,
                         message: format!(
-                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({} and {text}): give each visit its own point",
-                            a.line, b.line, b.origin, self.number(*k, *other)
+                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other} and {text}): give each visit its own point",
+                            a.line, b.line, b.origin
                         ),
                     });
                 }
@@ -305,7 +339,7 @@ impl JointProgram {
             let shared_change = edits[j..].iter().take_while(|e| e.0 == *span).any(|e| e.3);
             if *changed || shared_change {
                 out.push_str(&self.text[at..span.start]);
-                out.push_str(&text);
+                out.push_str(text);
                 at = span.end;
             }
         }
@@ -415,5 +449,6 @@ pub(crate) fn six(
         external_spans: Vec::new(),
         origin: line,
         incremental: false,
+        cartesian: None,
     })
 }

@@ -6,13 +6,26 @@
 //!
 //! The second bracket holds the external axes `eax_a` to `eax_f` (mm for a linear axis, deg for
 //! a rotary one; `9E9` for an axis that is not used): read, and written back where they change.
+//!
+//! `MoveL` and `MoveJ` (also `\Conc`) to a `robtarget` literal or one declared in the module are
+//! Cartesian targets, with their `tooldata` and `\WObj:=` `wobjdata` declared in the module
+//! ([`super::cartesian`]).
 
+use super::cartesian::{self, Frame};
 use super::{at, number_at, six, JointTarget};
 use crate::Result;
 use std::collections::HashMap;
 
-/// A `jointtarget` declared in the module: its joint target, or why it is none.
+/// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
 type Declared = HashMap<String, std::result::Result<JointTarget, String>>;
+
+/// The module's declared data: targets, tools and work objects (by lower-case name), and the
+/// statements that assign a declared target at run time.
+struct Data {
+    targets: Declared,
+    frames: HashMap<String, Frame>,
+    assigned: HashMap<String, u64>,
+}
 
 /// One statement: its line, and its bytes in the text.
 struct Statement {
@@ -25,7 +38,7 @@ struct Statement {
 pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let code = without_comments(text);
     let statements = statements(&code);
-    let (declared, assigned) = declarations(&code, &statements)?;
+    let data = declarations(&code, &statements)?;
     let mut out = Vec::new();
     let mut routine: Option<(String, u64)> = None;
     let mut current: Option<(String, u64)> = None;
@@ -55,7 +68,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         {
             control = Some((s.line, first.to_uppercase()));
         }
-        let Some(target) = motion(s, &code, &first, &declared, &assigned)? else {
+        let Some(target) = motion(s, &code, &first, &data)? else {
             continue;
         };
         match (&routine, &current) {
@@ -201,9 +214,10 @@ fn statements(code: &str) -> Vec<Statement> {
     out
 }
 
-/// The `jointtarget`s declared in the module, and the statements that assign one at run time.
-fn declarations(code: &str, statements: &[Statement]) -> Result<(Declared, HashMap<String, u64>)> {
+/// The data declared in the module ([`Data`]).
+fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
     let mut declared = Declared::new();
+    let mut frames = HashMap::new();
     let mut assignments = Vec::new();
     for s in statements {
         let body = &code[s.span.clone()];
@@ -227,6 +241,28 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<(Declared, HashM
                 };
                 declared.insert(name.to_string(), value);
             }
+            ["const" | "var" | "pers", kind, name, ..] if cartesian::rapid::is_data(kind) => {
+                let name = name.trim_end_matches(';');
+                let Some(eq) = body.find(":=").filter(|_| !name.contains('{')) else {
+                    let why = format!("{kind} {name} is declared on line {} without a value or as an array: declare each with its value", s.line);
+                    match *kind {
+                        "robtarget" => _ = declared.insert(name.to_string(), Err(why)),
+                        _ => _ = frames.insert(name.to_string(), Frame::Unknown(s.line, why)),
+                    }
+                    continue;
+                };
+                let from = s.span.start + eq + 2;
+                match *kind {
+                    "robtarget" => {
+                        let target = cartesian::rapid::robtarget(s.line, code, from)?;
+                        declared.insert(name.to_string(), Ok(target));
+                    }
+                    _ => {
+                        let frame = cartesian::rapid::frame(kind, name, s.line, code, from);
+                        frames.insert(name.to_string(), frame);
+                    }
+                }
+            }
             [first, ..] if body.contains(":=") && !matches!(*first, "const" | "var" | "pers") => {
                 let name = first.split(['.', '{']).next().unwrap_or(first);
                 assignments.push((name.to_string(), s.line));
@@ -236,10 +272,20 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<(Declared, HashM
     }
     let assigned = assignments
         .into_iter()
-        .filter(|(name, _)| declared.contains_key(name))
+        .filter(|(name, _)| declared.contains_key(name) || frames.contains_key(name))
         .rev()
         .collect();
-    Ok((declared, assigned))
+    let assigned: HashMap<String, u64> = assigned;
+    for (name, line) in &assigned {
+        if let Some(f) = frames.get_mut(name) {
+            *f = Frame::Unknown(*line, format!("{name} is assigned on line {line}, so its value at the motion is the controller's, not the module's"));
+        }
+    }
+    Ok(Data {
+        targets: declared,
+        frames,
+        assigned,
+    })
 }
 
 /// The joint target of the literal `[[j1,..,j6],[..]]` at or after byte `from` of `code`.
@@ -308,24 +354,19 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
 
 /// The target of a motion statement, `None` for a statement that is no motion; every motion
 /// outside the subset refused naming the line.
-fn motion(
-    s: &Statement,
-    code: &str,
-    first: &str,
-    declared: &Declared,
-    assigned: &HashMap<String, u64>,
-) -> Result<Option<JointTarget>> {
+fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<JointTarget>> {
     let line = s.line;
     let name = &code[s.span.clone()].trim_start()[..first.len()];
-    if first != "moveabsj" {
+    let cartesian = matches!(first, "movel" | "movej");
+    if first != "moveabsj" && !cartesian {
         let why = match first {
-            "movel" | "movej" | "movec" | "movelsync" | "movejsync" | "movecsync" | "moveldo"
+            "movec" | "movelsync" | "movejsync" | "movecsync" | "moveldo"
             | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
-            | "movejao" | "movecao" => "a Cartesian motion (robtarget); stiffid compensates joint targets: write the path as MoveAbsJ to jointtargets",
+            | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
             "moveextj" => "a motion of external axes only; not compensated: remove it",
-            f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveAbsJ and set the events apart",
+            f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
             f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
-            f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveAbsJ to jointtargets",
+            f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
             _ => return Ok(None),
         };
         return Err(at(line, format!("{name}: {why}")));
@@ -343,6 +384,35 @@ fn motion(
     } else if let Some(rest) = after_name.strip_prefix(',') {
         from = s.span.end - rest.len();
     }
+    let kind = if cartesian {
+        "robtarget"
+    } else {
+        "jointtarget"
+    };
+    let named = |ident: &str| -> Result<JointTarget> {
+        let key = ident.to_ascii_lowercase();
+        if let Some(assigned_on) = data.assigned.get(&key) {
+            return Err(at(line, format!("{name} {ident}: {ident} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared {kind}")));
+        }
+        match data.targets.get(&key) {
+            Some(Ok(t)) if t.cartesian.is_some() == cartesian => Ok(t.moved_to(line, false)),
+            Some(Ok(_)) => Err(at(line, format!("{name} {ident}: not a {kind}"))),
+            Some(Err(why)) => Err(at(line, format!("{name} {ident}: {why}"))),
+            None => Err(at(line, format!("{name} {ident}: not a {kind} declared in this module; stiffid compensates one file: declare it in the module or write the target as a literal"))),
+        }
+    };
+    if cartesian {
+        let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
+        let args = (code, from, &code[from..end]);
+        return cartesian::rapid::motion(line, args, &named, &data.frames)
+            .map_err(|e| match e {
+                crate::Error::Program { line, message } if !message.starts_with(name) => {
+                    at(line, format!("{name}: {message}"))
+                }
+                other => other,
+            })
+            .map(Some);
+    }
     let target_text = code[from..s.span.end].trim_start();
     if target_text.starts_with("[[") {
         return literal(line, code, from).map(Some);
@@ -355,13 +425,5 @@ fn motion(
     if ident.is_empty() || next.starts_with(['{', '(', '.']) {
         return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
     }
-    let key = ident.to_ascii_lowercase();
-    if let Some(assigned_on) = assigned.get(&key) {
-        return Err(at(line, format!("{name} {ident}: {ident} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared jointtarget")));
-    }
-    match declared.get(&key) {
-        Some(Ok(t)) => Ok(Some(t.moved_to(line, false))),
-        Some(Err(why)) => Err(at(line, format!("{name} {ident}: {why}"))),
-        None => Err(at(line, format!("{name} {ident}: not a jointtarget declared in this module; stiffid compensates one file: declare it in the module or write the target as a literal [[..],[..]]"))),
-    }
+    named(&ident).map(Some)
 }

@@ -1,0 +1,488 @@
+//! Cartesian robot programs (KRL `E6POS`, RAPID `robtarget`, LS Cartesian positions): the
+//! configuration data choose the inverse-kinematics solution, a compensated program equals the
+//! path file of the same poses, placement moves the targets as it moves a G-code program's, and
+//! what cannot be read is refused naming the line.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
+use stiffid::app::place::{self, search::Effort, Region, Request, Work};
+use stiffid::machining::compensate::{self, Aggregate, Options};
+use stiffid::machining::program::generate::{generate, Move, Plan, Settings, Target, Tool};
+use stiffid::machining::program::Dialect;
+use stiffid::machining::{self, Language, Program};
+use stiffid::observation::deflection::Frame;
+use stiffid::robot::{ik, presets};
+use stiffid::{Error, Setup};
+
+const SETUP: &str = include_str!("../../../../examples/milling/fanuc-milling.toml");
+const PROCESS: &str = include_str!("../../../../examples/milling/aluminium.toml");
+
+fn setup() -> Setup {
+    stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+}
+
+fn compliance(s: &Setup) -> compensate::Compliance {
+    stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
+        .unwrap()
+        .compliance(s.model())
+        .unwrap()
+}
+
+fn process() -> stiffid::machining::process::Process {
+    stiffid::machining::process::file::parse(PROCESS, "aluminium.toml").unwrap()
+}
+
+/// A straight cut along the part's x at depth 4 mm, the tool down the part's -z: `n` poses
+/// 10 mm apart, part frame.
+fn cut(n: usize) -> Vec<Isometry3<f64>> {
+    let down = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
+    (0..n)
+        .map(|i| Isometry3::from_parts(Translation3::new(0.01 * i as f64, 0.0, -0.004), down))
+        .collect()
+}
+
+/// The program stiffid writes for the part-frame poses `poses` on `s` (the postures by inverse
+/// kinematics from the setup's start), every move a cutting one (KRL `LIN`), or the first a
+/// joint one (`rapid_first`): its targets and its text.
+fn written(
+    s: &Setup,
+    dialect: Dialect,
+    poses: &[Isometry3<f64>],
+    rapid_first: bool,
+) -> (Vec<Target>, String) {
+    let (robot, tcp, part) = (s.robot(), s.tool().tcp, *s.workpiece().unwrap());
+    let mut q = Options::for_setup(s).q0;
+    let targets: Vec<Target> = poses
+        .iter()
+        .map(|p| {
+            q = ik::solve(robot, &tcp, &(part * p), &q, &ik::Options::default())
+                .unwrap()
+                .q;
+            Target::new(robot, &tcp, &q)
+        })
+        .collect();
+    let mut moves = vec![Move::Feed(0.03); targets.len()];
+    if rapid_first {
+        moves[0] = Move::Rapid;
+    }
+    let plan = Plan {
+        dialect,
+        name: "CUT",
+        targets: &targets,
+        moves: &moves,
+        tool: Tool {
+            frame: Isometry3::from(Translation3::from(tcp)),
+            payload: Some((10.0, Vector3::new(0.0, 0.0, 0.1))),
+        },
+        work: part,
+        world: Isometry3::identity(),
+        approximation: 1e-5,
+        settings: Settings::default(),
+    };
+    let text = generate(&plan).unwrap().files.remove(0).text;
+    (targets, text)
+}
+
+/// An LS program's positions put in user frame 1 (the part frame) instead of the world.
+fn in_user_frame(s: &Setup, text: &str) -> String {
+    let part = *s.workpiece().unwrap();
+    // The world positions of the writer moved into the part frame: X, Y and Z less the part's
+    // origin (the example's part frame is not turned).
+    assert!(part.rotation.angle() < 1e-12);
+    let o = part.translation.vector * 1e3;
+    let mut out = String::new();
+    for line in text.split_inclusive('\n') {
+        let mut l = line.replace("UF : 0", "UF : 1");
+        if let Some(rest) = l.trim_start().strip_prefix("X = ") {
+            let v: Vec<f64> = rest
+                .split(['=', ','])
+                .filter_map(|w| w.trim().trim_end_matches("mm").trim().parse().ok())
+                .collect();
+            l = format!(
+                "\tX = {:.9} mm,\tY = {:.9} mm,\tZ = {:.9} mm,\n",
+                v[0] - o.x,
+                v[1] - o.y,
+                v[2] - o.z
+            );
+        }
+        out += &l;
+    }
+    out
+}
+
+fn read(s: &Setup, dialect: Dialect, text: &str) -> Program {
+    let p = machining::read(text, Language::Robot(dialect), 1e-4).unwrap();
+    machining::resolve(&p, s, None, &Options::for_setup(s))
+        .unwrap()
+        .into_owned()
+}
+
+#[test]
+fn the_configuration_data_choose_the_solution_of_a_pose() {
+    let s = setup();
+    let poses = cut(2);
+    for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
+        let (targets, text) = written(&s, dialect, &poses, true);
+        // The second target's wrist flipped: the same pose, the other solution, as the writer
+        // states it for the posture (q4 + 180, -q5, q6 + 180) (PTP: KUKA reads S and T).
+        let q = targets[1].q_deg;
+        let twin = [q[0], q[1], q[2], q[3] - 180.0, -q[4], q[5] - 180.0];
+        let robot = s.robot();
+        let flipped = Target::new(
+            robot,
+            &s.tool().tcp,
+            &Vector6::from(twin).map(f64::to_radians),
+        );
+        let (_, twin_text) = {
+            let t = [targets[0].clone(), flipped];
+            let moves = [Move::Rapid, Move::Rapid];
+            let plan = Plan {
+                dialect,
+                name: "CUT",
+                targets: &t,
+                moves: &moves,
+                tool: Tool {
+                    frame: Isometry3::from(Translation3::from(s.tool().tcp)),
+                    payload: Some((10.0, Vector3::new(0.0, 0.0, 0.1))),
+                },
+                work: *s.workpiece().unwrap(),
+                world: Isometry3::identity(),
+                approximation: 1e-5,
+                settings: Settings::default(),
+            };
+            ((), generate(&plan).unwrap().files.remove(0).text)
+        };
+        for (text, want) in [(&text, q), (&twin_text, twin)] {
+            let Program::Robot(p) = read(&s, dialect, text) else {
+                panic!()
+            };
+            let got = Vector6::from(p.targets[1].q_deg);
+            assert!(
+                (got - Vector6::from(want)).amax() <= 1e-9,
+                "{dialect:?}: {got} against {want:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_compensated_cartesian_program_equals_the_path_file_of_its_poses() {
+    let s = setup();
+    let (compliance, process) = (compliance(&s), process());
+    let options = Options::for_setup(&s);
+    let part = *s.workpiece().unwrap();
+    let poses = cut(7);
+    for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
+        let (_, text) = written(&s, dialect, &poses, true);
+        let program = read(&s, dialect, &text);
+        let report =
+            machining::compensate(s.arm(), None, &compliance, &program, &process, &options)
+                .unwrap();
+        // The path file: the same poses in the base frame with the wrenches the program's
+        // points got from the process.
+        let mut csv =
+            String::from("x_mm,y_mm,z_mm,rx_deg,ry_deg,rz_deg,fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm\n");
+        for (pose, p) in poses.iter().zip(&report.points) {
+            let pose = part * pose;
+            let t = pose.translation.vector * 1e3;
+            let (rx, ry, rz) = pose.rotation.euler_angles();
+            let cells: Vec<String> = [
+                t.x,
+                t.y,
+                t.z,
+                rx.to_degrees(),
+                ry.to_degrees(),
+                rz.to_degrees(),
+            ]
+            .iter()
+            .chain(p.wrench.iter())
+            .map(|v| format!("{v:e}"))
+            .collect();
+            csv += &(cells.join(",") + "\n");
+        }
+        let points = machining::path::parse(&csv, Frame::Base).unwrap();
+        let by_csv = compensate::path(s.arm(), &compliance, &points, &options).unwrap();
+        // The compensated program read back: the controller moves to the compensated postures.
+        let Program::Robot(back) = read(&s, dialect, &report.program) else {
+            panic!()
+        };
+        for ((a, b), t) in report.results.iter().zip(&by_csv).zip(&back.targets) {
+            let (qa, qb) = (
+                a.q_compensated.map(f64::to_degrees),
+                b.q_compensated.map(f64::to_degrees),
+            );
+            assert!((qa - qb).amax() <= 1e-9, "{dialect:?}: {qa} {qb}");
+            // The written pose's decimals (RAPID's quaternion to 1e-9, about 1e-7 deg) bound
+            // the axis angles read back.
+            let back = (qa - Vector6::from(t.q_deg)).amax();
+            assert!(back <= read_back(dialect), "{dialect:?}: {back} deg");
+            assert!((qa - a.q.map(f64::to_degrees)).amax() > 1e-3, "moved");
+        }
+        assert_ne!(report.program, text);
+        assert_eq!(report.program.lines().count(), text.lines().count());
+    }
+}
+
+/// How close a written program's targets read back to the axis angles written, deg: the
+/// written decimals of the pose (1e-9 mm and deg, RAPID's quaternion 1e-9) through the inverse
+/// kinematics.
+pub fn read_back(dialect: Dialect) -> f64 {
+    match dialect {
+        Dialect::Rapid => 1e-6,
+        _ => 1e-8,
+    }
+}
+
+/// `text` with `from` replaced by `to` once (which must be there).
+fn replaced(text: &str, from: &str, to: &str) -> String {
+    assert!(text.contains(from), "{from} in {text}");
+    text.replacen(from, to, 1)
+}
+
+#[test]
+fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
+    let s = setup();
+    let options = Options::for_setup(&s);
+    let poses = cut(2);
+    let (_, krl) = written(&s, Dialect::Krl, &poses, true);
+    let (_, rapid) = written(&s, Dialect::Rapid, &poses, true);
+    let (_, ls) = written(&s, Dialect::FanucLs, &poses, true);
+    let line_of = |text: &str, needle: &str| {
+        text.lines().position(|l| l.contains(needle)).unwrap() as u64 + 1
+    };
+    let first_krl = line_of(&krl, "PTP {E6POS");
+    let krl_s = krl.lines().nth(first_krl as usize - 1).unwrap();
+    let status = &krl_s[krl_s.find("S 'B").unwrap()..][..8];
+    let rapid_conf = rapid.lines().find(|l| l.contains("MoveJ")).unwrap();
+    let conf = rapid_conf.split("],[").nth(2).unwrap();
+    let cases: Vec<(Dialect, String, u64, &str)> = vec![
+        // An unknown configuration.
+        (
+            Dialect::FanucLs,
+            replaced(&ls, "CONFIG : 'N", "CONFIG : 'X"),
+            line_of(&ls, "CONFIG"),
+            "CONFIG 'X",
+        ),
+        // A pose out of reach in the configuration it names: axis 1 in its fourth quadrant.
+        (
+            Dialect::Rapid,
+            replaced(
+                &rapid,
+                &format!("],[{conf}],["),
+                &format!("],[3{}],[", &conf[conf.find(',').unwrap()..]),
+            ),
+            line_of(&rapid, "MoveJ"),
+            "out of reach in the configuration [3,",
+        ),
+        // The shoulder behind axis 1 and the elbow down, out of reach in the joint limits.
+        (
+            Dialect::Krl,
+            replaced(&krl, status, "S 'B001'"),
+            first_krl,
+            "out of reach in the configuration S 'B001'",
+        ),
+        // A tool that is not the setup's.
+        (
+            Dialect::Krl,
+            replaced(&krl, "$TOOL = {X 6.9", "$TOOL = {X 16.9"),
+            line_of(&krl, "$TOOL ="),
+            "is not the setup's",
+        ),
+        (
+            Dialect::Rapid,
+            replaced(
+                &rapid,
+                "tooldata tspindle := [TRUE,[[6.9",
+                "tooldata tspindle := [TRUE,[[7.9",
+            ),
+            line_of(&rapid, "tooldata"),
+            "is not the setup's",
+        ),
+        // A work object the robot holds, a base the controller holds.
+        (
+            Dialect::Rapid,
+            replaced(
+                &rapid,
+                "wobjdata wpart := [FALSE",
+                "wobjdata wpart := [TRUE",
+            ),
+            line_of(&rapid, "wobjdata"),
+            "wobjdata wpart: a work object the robot holds",
+        ),
+        (
+            Dialect::Krl,
+            krl.lines()
+                .map(|l| match l.starts_with("$BASE") {
+                    true => "$BASE = BASE_DATA[1]\n".to_string(),
+                    false => format!("{l}\n"),
+                })
+                .collect(),
+            line_of(&krl, "$BASE ="),
+            "BASE_DATA[1]",
+        ),
+        // An LS user frame without a part frame is fine here (the setup has one); a RAPID tool
+        // not declared is not.
+        (
+            Dialect::Rapid,
+            rapid.replace("tspindle\\WObj", "tmill\\WObj"),
+            line_of(&rapid, "MoveJ"),
+            "tooldata tmill: not declared",
+        ),
+    ];
+    for (dialect, text, line, needle) in cases {
+        let e = machining::read(&text, Language::Robot(dialect), 1e-4)
+            .and_then(|p| machining::resolve(&p, &s, None, &options).map(|_| ()));
+        match e {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{dialect:?} {needle}: {message}");
+                assert!(message.contains(needle), "{dialect:?}: {message}");
+            }
+            other => panic!("{dialect:?} {needle}: {other:?}"),
+        }
+    }
+    // Through the compensate job: the file and the line named.
+    let text = replaced(&krl, status, "S 'B001'");
+    let request = stiffid::app::compensate::Request {
+        setup: &s,
+        compliance: compliance(&s),
+        input: stiffid::app::compensate::Input::Program {
+            name: "cut.src".into(),
+            text: &text,
+            language: Language::Robot(Dialect::Krl),
+            process_name: "aluminium.toml".into(),
+            process: process(),
+            chord_tolerance: 1e-4,
+            output: Language::Robot(Dialect::Krl),
+            out_name: "out.src".into(),
+            settings: Settings::default(),
+        },
+        options,
+    };
+    let e = stiffid::app::compensate::run::<Error, _>(request, |_, _, _, _| Ok(())).unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.contains("cut.src") && message.contains(&format!("line {first_krl}")),
+        "{message}"
+    );
+}
+
+/// A cut of seven points as G-code, every move a cutting one.
+const GCODE: &str = "(stiffid: tool_rpy_deg = 180 0 0)\nG21 G90 G17\nG1 X0 Y0 Z-4 F1800\nG1 X10\nG1 X20\nG1 X30\nG1 X40\nG1 X50\nG1 X60\n";
+
+#[test]
+fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() {
+    let s = setup();
+    let (compliance, process) = (compliance(&s), process());
+    let options = Options::for_setup(&s);
+    let gcode = machining::read(GCODE, Language::GCode, 1e-4).unwrap();
+    let (_, krl) = written(&s, Dialect::Krl, &cut(7), false);
+    let (_, rapid) = written(&s, Dialect::Rapid, &cut(7), false);
+    let (_, ls) = written(&s, Dialect::FanucLs, &cut(7), false);
+    let ls = in_user_frame(&s, &ls);
+    let programs: Vec<(Dialect, Program)> = [
+        (Dialect::Krl, krl),
+        (Dialect::Rapid, rapid),
+        (Dialect::FanucLs, ls),
+    ]
+    .into_iter()
+    .map(|(d, text)| (d, machining::read(&text, Language::Robot(d), 1e-4).unwrap()))
+    .collect();
+    // Joint targets and targets in the world frame do not move with the part.
+    let (_, world) = written(&s, Dialect::FanucLs, &cut(7), false);
+    let joint = "DEF a( )\nPTP {A1 -20, A2 -10, A3 -20, A4 0, A5 -60, A6 180}\nEND\n";
+    let refused: Vec<(Dialect, Program, &str)> = [
+        (
+            Dialect::FanucLs,
+            world.as_str(),
+            "the world frame: the targets are not in the part frame",
+        ),
+        (
+            Dialect::Krl,
+            joint,
+            "joint targets (E6AXIS, AXIS, line 2 the first)",
+        ),
+    ]
+    .into_iter()
+    .map(|(d, text, needle)| {
+        (
+            d,
+            machining::read(text, Language::Robot(d), 1e-4).unwrap(),
+            needle,
+        )
+    })
+    .collect();
+    let region = Region {
+        x: [0.9, 1.5],
+        y: [-0.9, -0.3],
+        rotation: [0.0, 0.0],
+        free: None,
+    };
+    let effort = Effort {
+        grid: 3,
+        samples: 6,
+        starts: 1,
+        seed: 2,
+    };
+    let request = |work| Request {
+        setup: &s,
+        setup_text: SETUP,
+        compliance: &compliance,
+        work,
+        options: &options,
+        region,
+        objective: Aggregate::Max,
+        margin: 5f64.to_radians(),
+        max_condition: 1000.0,
+        effort,
+    };
+    let g = request(Work::Program {
+        program: &gcode,
+        process: &process,
+    });
+    let by_gcode = place::run(&g).unwrap();
+    for (dialect, program) in &programs {
+        let r = request(Work::Program {
+            program,
+            process: &process,
+        });
+        let mut feasible = 0;
+        for (x, y) in [(1.3, -0.7), (1.1, -0.5), (1.4, -0.8)] {
+            let pose = Isometry3::translation(x, y, 0.4);
+            let (eg, er) = (
+                place::evaluate(&g, &pose).unwrap(),
+                place::evaluate(&r, &pose).unwrap(),
+            );
+            assert_eq!(eg.is_ok(), er.is_ok(), "{dialect:?}: {eg:?} vs {er:?}");
+            if let (Ok(eg), Ok(er)) = (eg, er) {
+                feasible += 1;
+                assert!(
+                    (eg.peak - er.peak).abs() <= 1e-9 * eg.peak,
+                    "{dialect:?}: {eg:?} vs {er:?}"
+                );
+                assert!((eg.sum - er.sum).abs() <= 1e-9 * eg.sum, "{dialect:?}");
+            }
+        }
+        assert!(feasible >= 2, "{dialect:?}: {feasible}");
+        let placed = place::run(&r).unwrap();
+        let (a, b) = (
+            &by_gcode.placed.base_from_part,
+            &placed.placed.base_from_part,
+        );
+        assert!(
+            (a.translation.vector - b.translation.vector).norm() < 1e-6,
+            "{dialect:?}"
+        );
+        assert!((by_gcode.placed.peak - placed.placed.peak).abs() <= 1e-9 * placed.placed.peak);
+        assert_eq!(by_gcode.setup_text, placed.setup_text);
+    }
+    for (dialect, program, needle) in &refused {
+        let r = request(Work::Program {
+            program,
+            process: &process,
+        });
+        let e = match place::run(&r) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("{dialect:?} placed"),
+        };
+        assert!(e.contains(needle), "{dialect:?}: {e}");
+    }
+}
