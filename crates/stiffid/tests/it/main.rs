@@ -76,6 +76,7 @@ mod simulate;
 mod solver_auto;
 mod stop_reasons;
 mod study;
+mod table_design;
 mod track_design;
 mod track_map;
 mod track_stiffness;
