@@ -5,12 +5,12 @@
 
 use super::calibrate;
 use crate::common::error::JobOption;
-use crate::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
+use crate::design::observability::{CalibrationCriterion, CalibrationDesign, Placed, TableDesign};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
 use crate::metrology::calibration::gravity::Gravity;
 use crate::metrology::calibration::Geometry;
-use crate::robot::external::AxisKind;
+use crate::robot::external::{AxisKind, ExternalAxes, ExternalValues};
 use crate::{Error, Result, Setup};
 
 /// What a group is designed for.
@@ -209,6 +209,11 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// positioner's lines, which only reflectors on its table read, drop out as not identified),
 /// the reference postures are dealt over [`REFERENCE_STATIONS`] stations of the travel
 /// ([`crate::robot::ExternalAxes::stations`]) and every test posture is read at each of them.
+/// With reflectors on a positioner's table (`[workpiece] reflectors_mm`), the model has the
+/// positioner's lines and offsets and the reflectors' coordinates too, and the table is read at
+/// [`REFERENCE_TABLE_ANGLES`] angles ([`table_grid`]) for reference, for the part's test
+/// points and as the readings a group is scored with until `select` chooses its own
+/// ([`CalibrationDesign::new_with_table`]).
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
     let model = calibrate::model(
         setup,
@@ -225,7 +230,10 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
         setup.characteristic_length().unwrap_or(1.0),
         setup.noise().reading_sd(),
     );
-    let Some(axes) = setup.robot().external().filter(|a| a.carrier_len() > 0) else {
+    let reflectors = setup.table_reflectors();
+    let Some(axes) =
+        (setup.robot().external()).filter(|a| a.carrier_len() > 0 || !reflectors.is_empty())
+    else {
         return CalibrationDesign::new(model, length, &reference, test, noise);
     };
     let orders: Vec<usize> = (axes.axes().iter())
@@ -234,7 +242,7 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
             AxisKind::Rotary => 0,
         })
         .collect();
-    let model = model.with_external(&orders, 0)?;
+    let model = model.with_external(&orders, reflectors.len())?;
     let stations = axes.stations(REFERENCE_STATIONS);
     let reference: Vec<Placed> = (reference.iter().enumerate())
         .map(|(i, q)| (*q, stations[i % stations.len()]))
@@ -242,7 +250,49 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
     let test: Vec<Placed> = (stations.iter())
         .flat_map(|e| test.iter().map(move |q| (*q, *e)))
         .collect();
-    CalibrationDesign::new_placed(model, length, &reference, &test, noise)
+    if reflectors.is_empty() {
+        return CalibrationDesign::new_placed(model, length, &reference, &test, noise);
+    }
+    let table = TableDesign {
+        reflectors,
+        reference: table_grid(axes, REFERENCE_TABLE_ANGLES, &stations[0]),
+    };
+    CalibrationDesign::new_with_table(model, length, &reference, &test, noise, &table)
+}
+
+/// How many positioner angles (about: a grid of the same count of values per axis) the table's
+/// reflectors are read at in a calibration design's reference campaign.
+pub const REFERENCE_TABLE_ANGLES: usize = 16;
+
+/// About `count` values of the positioner's axes of `axes`: a grid of `round(count^(1/k))`
+/// values per axis (`k` positioner axes), each at the middles of equal parts of its travel
+/// (never its ends: a turntable's two ends are one angle), the carrier's axes at their values
+/// in `carrier` (SI, the cell's order). Only `carrier` without a positioner.
+pub fn table_grid(
+    axes: &ExternalAxes,
+    count: usize,
+    carrier: &ExternalValues,
+) -> Vec<ExternalValues> {
+    let k = axes.len() - axes.carrier_len();
+    let per = (count.max(1) as f64)
+        .powf(1.0 / k.max(1) as f64)
+        .round()
+        .max(1.0) as usize;
+    let mut grid = vec![carrier.as_slice().to_vec()];
+    for (i, a) in axes.axes().iter().enumerate().skip(axes.carrier_len()) {
+        grid = (grid.iter())
+            .flat_map(|e| {
+                (0..per).map(move |j| {
+                    let mut e = e.clone();
+                    e[i] = a.lower + (j as f64 + 0.5) / per as f64 * (a.upper - a.lower);
+                    e
+                })
+            })
+            .collect();
+    }
+    (grid.iter())
+        .map(|e| ExternalValues::new(e).expect("the cell's axes"))
+        .collect()
 }
 
 /// The order of a track's error motions a calibration design assumes (`calibrate` chooses its

@@ -39,6 +39,7 @@ impl Setup {
             tool_radius: None,
             tracker: None,
             workpiece: None,
+            table_reflectors: Vec::new(),
             controller: Controller::default(),
             payload: None,
             mass_sd: 0.0,
@@ -73,6 +74,7 @@ impl Setup {
             tool_radius: Some(arm.geometry.tool_radius),
             tracker: workcell.tracker.clone(),
             workpiece: workcell.workpiece,
+            table_reflectors: workcell.table_reflectors.clone(),
             controller: workcell.controller.clone(),
             payload: arm.payload,
             mass_sd: arm.mass_sd,
@@ -131,6 +133,7 @@ pub struct SetupBuilder {
     tool_radius: Option<f64>,
     tracker: Option<Tracker>,
     workpiece: Option<Isometry3<f64>>,
+    table_reflectors: Vec<Vector3<f64>>,
     controller: Controller,
     payload: Option<Payload>,
     mass_sd: f64,
@@ -288,6 +291,15 @@ impl SetupBuilder {
         self
     }
 
+    /// Reflectors fixed on the positioner's table, the part's frame ([`Self::with_workpiece`]),
+    /// m (default none; at most [`limits::MAX_TABLE_REFLECTORS`], each coordinate within
+    /// [`limits::LENGTH_MM`]; they need a workpiece and a positioner): the points `select --for
+    /// calibration` designs the positioner's angles for, read as `T1`, `T2`, ... in that order.
+    pub fn with_table_reflectors(mut self, reflectors: Vec<Vector3<f64>>) -> Self {
+        self.table_reflectors = reflectors;
+        self
+    }
+
     /// The tool's mass and centre of mass (default none; the mass within [`limits::TOOL_MASS_KG`],
     /// the centre's coordinates within [`limits::LENGTH_MM`]).
     pub fn with_payload(mut self, payload: Payload) -> Self {
@@ -393,6 +405,11 @@ impl SetupBuilder {
             let field = "workpiece.base_from_part.xyz_mm";
             check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
         }
+        check_table_reflectors(
+            &self.table_reflectors,
+            &self.robot,
+            self.workpiece.is_some(),
+        )?;
         if let Some(p) = &self.payload {
             limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
             check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
@@ -451,6 +468,7 @@ impl SetupBuilder {
                 cell: self.cell,
                 tracker,
                 workpiece: self.workpiece,
+                table_reflectors: self.table_reflectors,
                 controller: self.controller,
             },
             notes: Vec::new(),
@@ -472,6 +490,32 @@ fn check_scaled(field: &str, values: &[f64], scale: f64, range: &limits::Range) 
 fn check_points(field: &str, points: &[Vector3<f64>]) -> Result<()> {
     let values: Vec<f64> = points.iter().flat_map(|p| p.iter().copied()).collect();
     check_scaled(field, &values, 1e3, &limits::LENGTH_MM)
+}
+
+/// Refuses table reflectors beyond [`limits::MAX_TABLE_REFLECTORS`] or [`limits::LENGTH_MM`],
+/// or without a workpiece frame or a positioner.
+fn check_table_reflectors(
+    reflectors: &[Vector3<f64>],
+    robot: &crate::Robot,
+    workpiece: bool,
+) -> Result<()> {
+    let field = "workpiece.reflectors_mm";
+    if reflectors.is_empty() {
+        return Ok(());
+    }
+    limits::check_count(field, reflectors.len(), 0, limits::MAX_TABLE_REFLECTORS)?;
+    check_points(field, reflectors)?;
+    let positioner = robot.external().is_some_and(|a| a.len() > a.carrier_len());
+    match (workpiece, positioner) {
+        (true, true) => Ok(()),
+        _ => Err(crate::Error::InvalidField {
+            field: field.into(),
+            message: match workpiece {
+                false => "reflectors on the table need the part's frame: give [workpiece] base_from_part".into(),
+                true => "reflectors on a positioner's table, and the cell has no positioner: give its [[external_axis]] (role = \"positioner\") or no reflectors".into(),
+            },
+        }),
+    }
 }
 
 fn check_tool(

@@ -76,6 +76,8 @@ struct ControllerFile {
 #[serde(deny_unknown_fields)]
 struct WorkpieceFile {
     base_from_part: TransformFile,
+    #[serde(default, deserialize_with = "crate::common::exact::arrays")]
+    reflectors_mm: Vec<[f64; 3]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -502,6 +504,8 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
         limits::check(&format!("{field}.xyz_mm"), &t.xyz_mm, &limits::LENGTH_MM)?;
         limits::check(&format!("{field}.rpy_deg"), &t.rpy_deg, &limits::ANGLE_DEG)?;
         b = b.with_workpiece(t.isometry());
+        let reflectors = w.reflectors_mm.iter().map(|p| Vector3::from(*p) * 1e-3);
+        b = b.with_table_reflectors(reflectors.collect());
     }
     Ok(b)
 }

@@ -95,7 +95,7 @@ use crate::model::{Compliance, Model, Spring};
 use crate::robot::collision::CollisionGeometry;
 use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{Error, Result, Robot};
-use nalgebra::{Isometry3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 
 /// The error of the setup field `field`.
 fn invalid(field: &str, message: impl Into<String>) -> Error {
@@ -389,6 +389,12 @@ impl Setup {
         self.arm.payload()
     }
 
+    /// The reflectors on the positioner's table, cell frame at `e = 0`, m
+    /// ([`Workcell::table_reflectors`]).
+    pub fn table_reflectors(&self) -> Vec<Vector3<f64>> {
+        self.workcell.table_reflectors()
+    }
+
     /// A G-code program's part frame in the robot base frame, m ([`Workcell::workpiece`]).
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workcell.workpiece()
@@ -430,6 +436,7 @@ impl Setup {
         Setup {
             workcell: Workcell {
                 workpiece: self.workcell.workpiece,
+                table_reflectors: self.workcell.table_reflectors.clone(),
                 controller: self.workcell.controller.clone(),
                 ..Workcell::default()
             },
@@ -439,8 +446,8 @@ impl Setup {
 
     /// The setup with the arm standing at the external axis values `e` (SI, the cell's order,
     /// [`crate::robot::external`]): the robot's base moved by the carrier's pose, `C(e) * base`,
-    /// and its external axes dropped, everything else (the cell, the tracker, the rope's anchor,
-    /// the model) where it was. A design or a simulation of this setup is one of the arm at that
+    /// and its external axes dropped (with them the reflectors on the positioner's table),
+    /// everything else (the cell, the tracker, the rope's anchor, the model) where it was. A design or a simulation of this setup is one of the arm at that
     /// station in the fixed cell; its postures are measured with the external axes at `e`.
     ///
     /// # Errors
@@ -457,7 +464,8 @@ impl Setup {
         axes.check(e, "station")?;
         let base = axes.carrier_pose(e) * self.robot().base();
         let robot = (self.robot().clone().with_external(None)).with_base(base)?;
-        self.to_builder().with_robot(robot).build()
+        let builder = self.to_builder().with_robot(robot);
+        builder.with_table_reflectors(Vec::new()).build()
     }
 
     /// The rope-mass wrench on the loading point of a posture, base frame.

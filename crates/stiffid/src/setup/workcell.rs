@@ -3,7 +3,7 @@
 
 use super::{Cell, Tracker};
 use crate::Robot;
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Vector3};
 
 /// Which kinematics the robot controller runs a program with (`[controller] kinematics`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -81,6 +81,8 @@ pub struct Workcell {
     pub(super) cell: Option<Cell>,
     pub(super) tracker: Option<Tracker>,
     pub(super) workpiece: Option<Isometry3<f64>>,
+    /// Reflectors on the positioner's table, the part's frame, m.
+    pub(super) table_reflectors: Vec<Vector3<f64>>,
     pub(super) controller: Controller,
 }
 
@@ -103,6 +105,16 @@ impl Workcell {
     /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workpiece.as_ref()
+    }
+
+    /// `[workpiece] reflectors_mm`: the reflectors fixed on the positioner's table (`T1`, `T2`,
+    /// ... of a readings file), in the cell frame with every axis at 0 (the part's frame
+    /// `base_from_part` applied), m; empty without.
+    pub fn table_reflectors(&self) -> Vec<Vector3<f64>> {
+        let part = self.workpiece.unwrap_or_default();
+        (self.table_reflectors.iter())
+            .map(|p| (part * nalgebra::Point3::from(*p)).coords)
+            .collect()
     }
 
     /// `[controller]`: the kinematics of the controller that runs a program.

@@ -79,6 +79,7 @@ mod simulate;
 mod solver_auto;
 mod stop_reasons;
 mod study;
+mod table_design;
 mod track_collisions;
 mod track_design;
 mod track_map;

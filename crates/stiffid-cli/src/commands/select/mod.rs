@@ -197,8 +197,8 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|e| e.as_slice().to_vec())
         .collect();
     let csv = match (setup.robot().external(), &report.station) {
-        (Some(axes), Some(e)) => postures::to_csv_at(&report.postures, axes, e),
         (axes, _) if !placed.is_empty() => postures::to_csv_cell(&report.postures, &placed, axes),
+        (Some(axes), Some(e)) => postures::to_csv_at(&report.postures, axes, e),
         _ => postures::to_csv(&report.postures),
     };
     out.write(csv.as_bytes())?;

@@ -9,6 +9,7 @@ mod choose;
 pub mod document;
 mod pool;
 mod station;
+mod table;
 
 pub use station::{Station, MAX_STATIONS};
 
@@ -298,14 +299,16 @@ pub struct Unconstrained {
 /// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
-    if campaign::is_campaign(request) {
+    let report = if campaign::is_campaign(request) {
         station::checked(request)?;
-        return campaign::campaign(request);
-    }
-    match request.setup.robot().external().is_some() || !request.stations.is_empty() {
-        true => station::at_stations(request, run_here),
-        false => run_here(request),
-    }
+        campaign::campaign(request)?
+    } else {
+        match request.setup.robot().external().is_some() || !request.stations.is_empty() {
+            true => station::at_stations(request, run_here)?,
+            false => run_here(request)?,
+        }
+    };
+    table::with_table(request, report)
 }
 
 /// [`run`] on the request's setup as it stands.

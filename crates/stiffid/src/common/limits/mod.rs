@@ -218,6 +218,10 @@ pub const MAX_GROUPS: usize = 100;
 /// Most measuring points of a setup.
 pub const MAX_MEASURING_POINTS: usize = 100;
 
+/// Most reflectors on a positioner's table: a setup's `[workpiece] reflectors_mm`, a readings
+/// file's `T1` ...
+pub const MAX_TABLE_REFLECTORS: usize = 100;
+
 /// Most parameters of a model in a stiffness file: the six drives and
 /// [`MAX_VIRTUAL_SPRINGS`] virtual springs.
 pub const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;

@@ -110,7 +110,7 @@ pub(super) struct Layout {
     /// The kept carrier parameters' indices in the model, by slot ([`Column::Carrier`]).
     carrier: Vec<usize>,
     /// The values the columns are taken at (the rigid nominal chain).
-    values: DVector<f64>,
+    pub(super) values: DVector<f64>,
 }
 
 impl Layout {

@@ -52,10 +52,12 @@ use std::sync::Arc;
 mod jacobian;
 mod score;
 mod station;
+mod table;
 #[cfg(test)]
 mod tests;
 
 pub use score::CalibrationCriterion;
+pub use table::{TableChoice, TableDesign};
 
 /// A singular value below this share of the largest counts as zero: the group does not
 /// separate the kept parameters.
@@ -96,8 +98,11 @@ pub struct CalibrationDesign {
     test: DMatrix<f64>,
     /// Where the group scored stands (the external axes' values, SI).
     station: ExternalValues,
-    /// The scaled Jacobian of the campaign's postures chosen already (0 rows without), stacked
-    /// above the group's, and their count.
+    /// The scaled rows of the table reflectors' readings at the positioner's angles (`table`; 0
+    /// rows without), the first of `fixed`.
+    table: DMatrix<f64>,
+    /// The scaled Jacobian of the table's readings and of the campaign's postures chosen already
+    /// (0 rows without), stacked above the group's, and the postures' count.
     fixed: DMatrix<f64>,
     fixed_postures: usize,
     /// `F^T F` of the fixed rows `F` (`p x p`; zero without): added to every group's
@@ -153,6 +158,40 @@ impl CalibrationDesign {
         test: &[Placed],
         noise: f64,
     ) -> Result<Self> {
+        Self::build(model, length, reference, test, noise, None)
+    }
+
+    /// [`CalibrationDesign::new_placed`] for a model with reflectors on the positioner's table
+    /// ([`ErrorModel::with_external`]): the Jacobian taken with the reflectors where `table`
+    /// puts them, the table read at `table.reference` too (in the reference campaign, and as
+    /// the fixed rows of every group until [`CalibrationDesign::with_table_angles`] replaces
+    /// them), and the test rows with every reflector as a point of the part at each reference
+    /// angle (module `table`).
+    ///
+    /// # Errors
+    /// As [`CalibrationDesign::new`]; [`Error::InvalidField`] (`table`) for another count of
+    /// reflectors than the model's, or no reference angle.
+    pub fn new_with_table(
+        model: ErrorModel,
+        length: f64,
+        reference: &[Placed],
+        test: &[Placed],
+        noise: f64,
+        table: &TableDesign,
+    ) -> Result<Self> {
+        Self::build(model, length, reference, test, noise, Some(table))
+    }
+
+    /// [`CalibrationDesign::new_placed`], with `table` when the model has table reflectors
+    /// ([`TableDesign`]).
+    fn build(
+        model: ErrorModel,
+        length: f64,
+        reference: &[Placed],
+        test: &[Placed],
+        noise: f64,
+        table: Option<&TableDesign>,
+    ) -> Result<Self> {
         for (field, v) in [("length", length), ("noise", noise)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::InvalidField {
@@ -170,8 +209,13 @@ impl CalibrationDesign {
         let qs: Vec<Vector6<f64>> = reference.iter().map(|p| p.0).collect();
         let scales = model.column_scales(length, &qs);
         let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
-        let values = rigid(&model);
-        let j = model.jacobian_of(&values, &readings(&model, reference))?;
+        let mut values = rigid(&model);
+        let mut observations = readings(&model, reference);
+        if let Some(t) = table {
+            t.place(&model, &mut values)?;
+            observations.extend(table::readings(model.tables(), &t.reference));
+        }
+        let j = model.jacobian_of(&values, &observations)?;
         let kept = identifiability::analyse(&j, &scales, &priorities)?.identified;
         let scales: Vec<f64> = kept.iter().map(|&c| scales[c]).collect();
         let layout = Layout::new(model, &kept, scales, values);
@@ -180,6 +224,7 @@ impl CalibrationDesign {
             kept,
             test: DMatrix::zeros(0, 0),
             station: reference[0].1,
+            table: DMatrix::zeros(0, 0),
             fixed: DMatrix::zeros(0, 0),
             fixed_postures: 0,
             fixed_information: DMatrix::zeros(0, 0),
@@ -190,7 +235,12 @@ impl CalibrationDesign {
         };
         let p = design.kept.len();
         (design.fixed, design.fixed_information) = (DMatrix::zeros(0, p), DMatrix::zeros(p, p));
+        design.table = DMatrix::zeros(0, p);
         design.test = design.jacobian_placed(test)?;
+        if let Some(t) = table {
+            design.test = stack(&design.test, &design.table_rows(&t.reference, true)?);
+            design = design.with_table_angles(&t.reference)?;
+        }
         let r_a = score::triangular_factor(&design.test);
         design.test_information = r_a.tr_mul(&r_a);
         Ok(design)
@@ -218,7 +268,7 @@ impl CalibrationDesign {
     /// # Errors
     /// Those of [`CalibrationDesign::jacobian`].
     pub fn on_station(&self, station: ExternalValues, chosen: &[Placed]) -> Result<Self> {
-        let fixed = self.jacobian_placed(chosen)?;
+        let fixed = stack(&self.table, &self.jacobian_placed(chosen)?);
         let mut design = CalibrationDesign {
             station,
             fixed_information: fixed.tr_mul(&fixed),
@@ -253,14 +303,10 @@ impl CalibrationDesign {
 
     /// The fixed rows stacked above `j` (for the criteria that factor the whole Jacobian).
     fn with_fixed(&self, j: DMatrix<f64>) -> DMatrix<f64> {
-        if self.fixed.nrows() == 0 {
-            return j;
+        match self.fixed.nrows() {
+            0 => j,
+            _ => stack(&self.fixed, &j),
         }
-        let (f, p) = self.fixed.shape();
-        let mut all = DMatrix::zeros(f + j.nrows(), p);
-        all.rows_mut(0, f).copy_from(&self.fixed);
-        all.rows_mut(f, j.nrows()).copy_from(&j);
-        all
     }
 
     /// The scaled identification Jacobian of the kept parameters at `postures` (rad), every
@@ -378,6 +424,14 @@ impl CalibrationDesign {
             _ => self,
         }
     }
+}
+
+/// `a` above `b` (the same columns).
+fn stack(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut all = DMatrix::zeros(a.nrows() + b.nrows(), b.ncols());
+    all.rows_mut(0, a.nrows()).copy_from(a);
+    all.rows_mut(a.nrows(), b.nrows()).copy_from(b);
+    all
 }
 
 /// The model's nominal values with the gravity terms at zero: the rigid nominal chain, where the

@@ -202,12 +202,44 @@ fn from_information(
 ) -> Option<(f64, Weight)> {
     // J^T J by the matrix-product kernel, J^T as a view of J's columns (no copy).
     let (m, arm) = j.shape();
-    let schur = &design.schur;
-    let p = arm + schur.eliminated;
     let transposed = DMatrixView::from_slice_with_strides(j.as_slice(), arm, m, m, 1);
     let mut information = design.fixed_information.clone();
     information.gemm(1.0, &transposed, j, 1.0);
-    let l = information.cholesky()?.unpack();
+    from_factor(information.cholesky()?.unpack(), n, criterion, design)
+}
+
+/// The loss of `criterion` ([`CalibrationCriterion::loss`]) for the whole information matrix
+/// `information` (`p x p`, scaled, the kept parameters; the fixed rows' included) of `n`
+/// postures' worth of rows, on a design that is not reduced; `+infinity` when it is not
+/// positive definite or a pivot (a singular value, for the spectral indices) is below
+/// [`RANK_TOLERANCE`] of the largest.
+pub(super) fn information_loss(
+    information: DMatrix<f64>,
+    n: usize,
+    criterion: CalibrationCriterion,
+    design: &CalibrationDesign,
+) -> f64 {
+    let value = information.cholesky().and_then(|c| {
+        let l = c.unpack();
+        match criterion.spectral() {
+            true => spectral(&l.transpose(), criterion).map(|(v, _)| v),
+            false => from_factor(l, n, criterion, design).map(|(v, _)| v),
+        }
+    });
+    value
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .unwrap_or(f64::INFINITY)
+}
+
+/// [`from_information`] from the Cholesky factor `l` of the information matrix.
+fn from_factor(
+    l: DMatrix<f64>,
+    n: usize,
+    criterion: CalibrationCriterion,
+    design: &CalibrationDesign,
+) -> Option<(f64, Weight)> {
+    let schur = &design.schur;
+    let p = l.ncols() + schur.eliminated;
     let diagonal = l.diagonal();
     let (low, high) = match schur.eliminated {
         0 => (diagonal.min(), diagonal.max()),

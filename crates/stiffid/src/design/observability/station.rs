@@ -96,6 +96,7 @@ pub(super) fn reduce(d: &CalibrationDesign) -> Option<CalibrationDesign> {
     Some(CalibrationDesign {
         layout: l.subset(&kept, scales),
         kept,
+        table: DMatrix::zeros(0, arm.len()),
         fixed: DMatrix::zeros(d.fixed.nrows(), 0),
         fixed_information: g,
         test_information: test,

@@ -52,7 +52,7 @@ use std::collections::HashMap;
 pub const MAX_READINGS: usize = 100_000;
 
 /// Most reflectors on a positioner's table (`T1` ...) a readings file names.
-pub const MAX_TABLE_REFLECTORS: usize = 100;
+pub const MAX_TABLE_REFLECTORS: usize = crate::common::limits::MAX_TABLE_REFLECTORS;
 
 /// Largest load step number (`load_step`).
 pub const MAX_LOAD_STEP: u32 = 1000;

@@ -1,0 +1,125 @@
+//! The positioner's angles of a calibration group: with reflectors on the positioner's table
+//! (`[workpiece] reflectors_mm`), every posture of `select --for calibration` also reads the
+//! table's reflectors, with the positioner at angles chosen for the group
+//! ([`crate::design::observability::CalibrationDesign::choose_table_angles`]) on the calibration
+//! design with the positioner's lines, offsets and the reflectors ([`purpose::design`]).
+//!
+//! The candidates are a grid of about [`CANDIDATE_ANGLES`] angles over the positioner's travel
+//! ([`purpose::table_grid`]: the travel is a feasibility check by construction), those with the
+//! tracker's line of sight to a reflector through an obstacle of the cell left out (the sight
+//! from the tracker's head to [`SIGHT_END`] before the reflector, where its nest and the table
+//! are). The arm's own bodies are not checked against these sights.
+
+use super::{CalibrationReport, Report, Request};
+use crate::app::purpose::{self, Purpose};
+use crate::cell::{capsule_box, Capsule, Part};
+use crate::design::observability::Placed;
+use crate::robot::external::{ExternalAxes, ExternalValues};
+use crate::{Error, Result, Setup};
+
+/// About how many candidate angles of the positioner a group's table readings are chosen among.
+pub const CANDIDATE_ANGLES: usize = 64;
+
+/// How far before a table reflector its line of sight is checked, m.
+pub const SIGHT_END: f64 = 0.05;
+
+/// `report` with the positioner's angles of its table readings chosen (module docs), where
+/// each posture is read ([`Report::placed`]) then holding them, and its value and calibration
+/// criteria those of the group with them; `report` as it is unless `r` designs for
+/// [`Purpose::Calibration`] on a setup with table reflectors.
+///
+/// # Errors
+/// [`Error::Input`] (`table`) when no candidate angle has clear lines of sight or the chosen
+/// angles do not separate the calibration's parameters; those of [`purpose::design`].
+pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
+    let reflectors = r.setup.table_reflectors();
+    let Some(axes) = r.setup.robot().external() else {
+        return Ok(report);
+    };
+    if r.purpose != Purpose::Calibration || reflectors.is_empty() {
+        return Ok(report);
+    }
+    let options = r.calibration.of(r.purpose);
+    let design = purpose::design(r.setup, &options)?;
+    let here = report.station.unwrap_or_else(|| axes.stations(1)[0]);
+    let placed: Vec<Placed> = match report.placed.is_empty() {
+        true => report.postures.iter().map(|q| (*q, here)).collect(),
+        false => (report.postures.iter().copied())
+            .zip(report.placed.iter().copied())
+            .collect(),
+    };
+    let candidates = candidates(r.setup, axes, &reflectors, &here);
+    let refuse = |message: String| Error::Input {
+        source_name: "postures: the table's readings".into(),
+        error: Box::new(Error::InvalidField {
+            field: "table".into(),
+            message,
+        }),
+    };
+    if candidates.is_empty() {
+        return Err(refuse("no angle of the positioner has clear lines of sight from the tracker to every reflector on the table: move the tracker or the reflectors".into()));
+    }
+    let criterion = options.criterion();
+    let choice = design.choose_table_angles(criterion, &placed, &candidates, placed.len())?;
+    if !choice.value.is_finite() {
+        return Err(refuse(format!(
+            "the {} postures with the table read at as many angles do not separate the calibration's {} parameters: choose more postures or reflectors",
+            placed.len(),
+            design.kept().len()
+        )));
+    }
+    let placed: Vec<Placed> = (placed.iter().zip(&choice.chosen))
+        .map(|((q, e), &c)| (*q, joined(axes, e, &candidates[c])))
+        .collect();
+    let angles: Vec<ExternalValues> = placed.iter().map(|p| p.1).collect();
+    let with = design.with_table_angles(&angles)?;
+    report.calibration = Some(CalibrationReport {
+        criterion,
+        options,
+        criteria: with.evaluate_placed(&placed)?,
+        weight: 1.0,
+    });
+    report.value = choice.value;
+    report.placed = angles;
+    Ok(report)
+}
+
+/// The carrier's values of `at` with the positioner's of `table`.
+fn joined(axes: &ExternalAxes, at: &ExternalValues, table: &ExternalValues) -> ExternalValues {
+    let mut e = at.as_slice().to_vec();
+    let c = axes.carrier_len();
+    e[c..].copy_from_slice(&table.as_slice()[c..]);
+    ExternalValues::new(&e).expect("the cell's axes")
+}
+
+/// The candidate angles (module docs), the carrier at `here`.
+fn candidates(
+    setup: &Setup,
+    axes: &ExternalAxes,
+    reflectors: &[nalgebra::Vector3<f64>],
+    here: &ExternalValues,
+) -> Vec<ExternalValues> {
+    let grid = purpose::table_grid(axes, CANDIDATE_ANGLES, here);
+    let (Some(tracker), Some(cell)) = (setup.tracker(), setup.cell()) else {
+        return grid;
+    };
+    let clear = |e: &ExternalValues| {
+        let pose = axes.positioner_pose(e.as_slice());
+        reflectors.iter().all(|x| {
+            let point = (pose * nalgebra::Point3::from(*x)).coords;
+            let towards = tracker.position - point;
+            let length = towards.norm();
+            if length <= SIGHT_END {
+                return true;
+            }
+            let sight = Capsule {
+                part: Part::Tool,
+                a: tracker.position,
+                b: point + towards * (SIGHT_END / length),
+                radius: 0.0,
+            };
+            cell.obstacles.iter().all(|o| capsule_box(&sight, o) > 0.0)
+        })
+    };
+    grid.into_iter().filter(clear).collect()
+}
