@@ -49,7 +49,9 @@ use stiffid::observation::deflection::Frame;
 /// ``station_step_mm`` steps (also the most it moves between points), chosen with the free tool
 /// axis by one dynamic programme (as ``compensate --free-station-mm``); on a cell with a
 /// positioner, ``free_positioner_deg=R`` turns its last axis up to ``+-R`` deg from the path's
-/// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``).
+/// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``), and on
+/// a two-axis positioner ``free_tilt_deg=R`` its first axis (the tilt) in ``tilt_step_deg``
+/// steps (as ``--free-tilt-deg``).
 /// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
 /// number of at most ``max_condition`` and, with the setup's ``[cell]``, clear of the floor, the
 /// obstacles and itself, an arm on a track on its carriage at the station chosen (as
@@ -89,7 +91,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -120,6 +122,8 @@ pub fn compensate<'py>(
     station_step_mm: f64,
     free_positioner_deg: Option<f64>,
     positioner_step_deg: f64,
+    free_tilt_deg: Option<f64>,
+    tilt_step_deg: f64,
     margin_deg: f64,
     max_condition: f64,
     figures: bool,
@@ -154,6 +158,11 @@ pub fn compensate<'py>(
         options.free_positioner = Some(
             FreePositioner::try_with(range, positioner_step_deg, free, aggregate).map_err(raise)?,
         );
+    }
+    if let Some(range) = free_tilt_deg {
+        let free = options.free_tool_axis.as_ref();
+        options.free_tilt =
+            Some(FreePositioner::try_tilt(range, tilt_step_deg, free, aggregate).map_err(raise)?);
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),

@@ -294,6 +294,8 @@ def compensate(
     station_step_mm: float = 10.0,
     free_positioner_deg: Optional[float] = None,
     positioner_step_deg: float = 5.0,
+    free_tilt_deg: Optional[float] = None,
+    tilt_step_deg: float = 5.0,
     margin_deg: float = 5.0,
     max_condition: float = 1000.0,
     figures: bool = False,

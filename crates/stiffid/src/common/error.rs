@@ -497,6 +497,11 @@ pub enum JobOption {
     FreePositionerDeg,
     /// compensate: the free positioner's largest change between consecutive points, deg.
     PositionerStepDeg,
+    /// compensate: how far the free tilt (a two-axis positioner's first axis) may turn from
+    /// the path's own angle, deg.
+    FreeTiltDeg,
+    /// compensate: the free tilt's largest change between consecutive points, deg.
+    TiltStepDeg,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -589,6 +594,8 @@ impl JobOption {
             JobOption::StationStepMm => "station_step_mm",
             JobOption::FreePositionerDeg => "free_positioner_deg",
             JobOption::PositionerStepDeg => "positioner_step_deg",
+            JobOption::FreeTiltDeg => "free_tilt_deg",
+            JobOption::TiltStepDeg => "tilt_step_deg",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

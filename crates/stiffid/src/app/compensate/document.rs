@@ -66,6 +66,8 @@ pub struct Document {
     pub feasibility: Option<super::feasibility::Feasibility>,
     /// With `--free-positioner-deg`: its options; else `null`.
     pub free_positioner: Option<FreePositioner>,
+    /// With `--free-tilt-deg`: its options (a two-axis positioner's first axis); else `null`.
+    pub free_tilt: Option<FreePositioner>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -120,7 +122,8 @@ pub struct FreeStation {
     pub aggregate: &'static str,
 }
 
-/// The options of the free positioner: its last axis (the table's turn).
+/// The options of a free positioner axis: its last (the table's turn, `free_positioner`) or a
+/// two-axis positioner's first (the tilt, `free_tilt`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FreePositioner {
@@ -132,6 +135,18 @@ pub struct FreePositioner {
     pub objective: &'static str,
     /// How the points' costs add up: `sum` or `max` (the worst point's).
     pub aggregate: &'static str,
+}
+
+impl FreePositioner {
+    /// The options of `f` in degrees.
+    fn new(f: crate::machining::compensate::FreePositioner) -> Self {
+        FreePositioner {
+            range_deg: f.range.to_degrees(),
+            step_deg: f.max_step.to_degrees(),
+            objective: crate::common::choice::Choice::name(f.objective),
+            aggregate: crate::common::choice::Choice::name(f.aggregate),
+        }
+    }
 }
 
 /// A compensated program: what was read, and each segment's force and deflection.
@@ -339,12 +354,8 @@ impl Document {
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             feasibility: report.feasibility.clone(),
-            free_positioner: report.free_positioner.map(|f| FreePositioner {
-                range_deg: f.range.to_degrees(),
-                step_deg: f.max_step.to_degrees(),
-                objective: crate::common::choice::Choice::name(f.objective),
-                aggregate: crate::common::choice::Choice::name(f.aggregate),
-            }),
+            free_positioner: report.free_positioner.map(FreePositioner::new),
+            free_tilt: report.free_tilt.map(FreePositioner::new),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
                 output_language: p.output.name(),

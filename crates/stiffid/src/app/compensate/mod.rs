@@ -158,6 +158,8 @@ pub struct Report {
     pub feasibility: Option<feasibility::Feasibility>,
     /// The free positioner, if asked.
     pub free_positioner: Option<compensate::FreePositioner>,
+    /// The free tilt, if asked.
+    pub free_tilt: Option<compensate::FreePositioner>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -201,7 +203,7 @@ where
         }
         .into());
     }
-    let external = options.free_station.is_some() || options.free_positioner.is_some();
+    let external = options.frees_external();
     let free = options.free_tool_axis.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
@@ -413,6 +415,7 @@ where
         free_station: options.free_station,
         feasibility: feasibility::Feasibility::new(&options, summary.removed),
         free_positioner: options.free_positioner,
+        free_tilt: options.free_tilt,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
