@@ -49,7 +49,9 @@ use stiffid::observation::deflection::Frame;
 /// ``station_step_mm`` steps (also the most it moves between points), chosen with the free tool
 /// axis by one dynamic programme (as ``compensate --free-station-mm``); on a cell with a
 /// positioner, ``free_positioner_deg=R`` turns its last axis up to ``+-R`` deg from the path's
-/// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``).
+/// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``), and on
+/// a two-axis positioner ``free_tilt_deg=R`` its first axis (the tilt) in ``tilt_step_deg``
+/// steps (as ``--free-tilt-deg``).
 /// ``free_lead_tilt=True`` leans the tool axis within a cone about the path's own (ball-end
 /// milling, deburring; as ``--free-lead-tilt``): the lead (towards the feed) and the tilt
 /// (across it) on a grid of ``lead_tilt_step_deg`` (also the most each changes between points),
@@ -95,7 +97,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -129,6 +131,8 @@ pub fn compensate<'py>(
     free_lead_tilt: bool,
     cone_deg: Option<f64>,
     lead_tilt_step_deg: f64,
+    free_tilt_deg: Option<f64>,
+    tilt_step_deg: f64,
     margin_deg: f64,
     max_condition: f64,
     figures: bool,
@@ -171,6 +175,11 @@ pub fn compensate<'py>(
         );
     } else if cone_deg.is_some() {
         return Err(error::value("cone_deg: only with free_lead_tilt=True"));
+    }
+    if let Some(range) = free_tilt_deg {
+        let free = options.free_tool_axis.as_ref();
+        options.free_tilt =
+            Some(FreePositioner::try_tilt(range, tilt_step_deg, free, aggregate).map_err(raise)?);
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),

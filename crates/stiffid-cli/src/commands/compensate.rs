@@ -153,6 +153,17 @@ pub struct Args {
     /// consecutive points, and the grid's spacing, deg (0.1 <= value <= the cone).
     #[arg(long, default_value_t = 2.0, requires = "free_lead_tilt")]
     lead_tilt_step_deg: f64,
+    /// On a cell with a two-axis positioner: turn its first axis (the tilt) from the path's or
+    /// the program's own angle by up to +- this at every point, within its travel, deg (0 <
+    /// value <= 360), jointly with the table, the station and the tool rotation when they are
+    /// free too; it minimises what the station does. A program is written back with the angles
+    /// chosen.
+    #[arg(long)]
+    free_tilt_deg: Option<f64>,
+    /// With --free-tilt-deg: the largest change of the tilt's offset from the path's own between
+    /// consecutive points, and the grid's spacing, deg (0.01 <= value <= --free-tilt-deg).
+    #[arg(long, default_value_t = 5.0, requires = "free_tilt_deg")]
+    tilt_step_deg: f64,
     /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
@@ -451,6 +462,11 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
             options.free_tool_axis.as_ref(),
             args.objective,
         )?);
+    }
+    if let Some(range) = args.free_tilt_deg {
+        let free = options.free_tool_axis.as_ref();
+        let tilt = FreePositioner::try_tilt(range, args.tilt_step_deg, free, args.objective)?;
+        options.free_tilt = Some(tilt);
     }
     Ok(options)
 }

@@ -218,7 +218,7 @@ fn every_dialect_reads_back_its_external_values_and_the_compensated_targets() {
     }
 }
 
-/// A free external axis `axis` (0: the track, mm; 2: the table, deg) compensated with `free`
+/// A free external axis `axis` (0: the track, mm; 1: the tilt, 2: the table, deg) compensated with `free`
 /// options of range `range` and step `step`, read back from every dialect.
 fn free_axis_is_written(free: &[&str], axis: usize, (range, step): (f64, f64)) {
     let dir = temp_dir(&format!("readback-free-{axis}"));
@@ -287,6 +287,12 @@ fn a_free_station_is_written_into_every_target_of_a_program() {
 fn a_free_table_angle_is_written_into_every_target_of_a_program() {
     let free = ["--free-positioner-deg", "20", "--positioner-step-deg", "5"];
     free_axis_is_written(&free, 2, (20.0, 5.0));
+}
+
+#[test]
+fn a_free_tilt_is_written_into_every_target_of_a_program() {
+    let free = ["--free-tilt-deg", "10", "--tilt-step-deg", "5"];
+    free_axis_is_written(&free, 1, (10.0, 5.0));
 }
 
 /// `--map track` on the trim line along the rail: `map.csv` holds every point at every

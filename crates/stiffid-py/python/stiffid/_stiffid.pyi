@@ -297,6 +297,8 @@ def compensate(
     free_lead_tilt: bool = False,
     cone_deg: Optional[float] = None,
     lead_tilt_step_deg: float = 2.0,
+    free_tilt_deg: Optional[float] = None,
+    tilt_step_deg: float = 5.0,
     margin_deg: float = 5.0,
     max_condition: float = 1000.0,
     figures: bool = False,

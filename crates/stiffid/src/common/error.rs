@@ -504,6 +504,11 @@ pub enum JobOption {
     /// compensate: the largest change of the lead and of the tilt between consecutive points,
     /// deg.
     LeadTiltStepDeg,
+    /// compensate: how far the free tilt (a two-axis positioner's first axis) may turn from
+    /// the path's own angle, deg.
+    FreeTiltDeg,
+    /// compensate: the free tilt's largest change between consecutive points, deg.
+    TiltStepDeg,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -599,6 +604,8 @@ impl JobOption {
             JobOption::FreeLeadTilt => "free_lead_tilt",
             JobOption::ConeDeg => "cone_deg",
             JobOption::LeadTiltStepDeg => "lead_tilt_step_deg",
+            JobOption::FreeTiltDeg => "free_tilt_deg",
+            JobOption::TiltStepDeg => "tilt_step_deg",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

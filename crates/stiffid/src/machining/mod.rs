@@ -292,7 +292,7 @@ pub fn compensate(
     let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
-    let free = options.free_station.is_some() || options.free_positioner.is_some();
+    let free = options.frees_external();
     let cones = match &options.free_lead_tilt {
         Some(l) => {
             let allowed: Vec<f64> = (operations.iter())

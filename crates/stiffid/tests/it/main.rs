@@ -32,6 +32,7 @@ mod formats_proptest;
 mod forward_model;
 mod free_positioner;
 mod free_station;
+mod free_tilt;
 mod gcode_cycles;
 mod gradients;
 mod identify;

@@ -70,6 +70,8 @@ pub struct Document {
     /// With `--free-lead-tilt`: its options; else `null`. The lead and tilt chosen are every
     /// point's `lead_deg` and `tilt_deg`.
     pub free_lead_tilt: Option<FreeLeadTilt>,
+    /// With `--free-tilt-deg`: its options (a two-axis positioner's first axis); else `null`.
+    pub free_tilt: Option<FreePositioner>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -124,7 +126,8 @@ pub struct FreeStation {
     pub aggregate: &'static str,
 }
 
-/// The options of the free positioner: its last axis (the table's turn).
+/// The options of a free positioner axis: its last (the table's turn, `free_positioner`) or a
+/// two-axis positioner's first (the tilt, `free_tilt`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FreePositioner {
@@ -152,6 +155,18 @@ pub struct FreeLeadTilt {
     pub objective: &'static str,
     /// How the points' costs add up: `sum` or `max` (the worst point's).
     pub aggregate: &'static str,
+}
+
+impl FreePositioner {
+    /// The options of `f` in degrees.
+    fn new(f: crate::machining::compensate::FreePositioner) -> Self {
+        FreePositioner {
+            range_deg: as_given(f.range.to_degrees()),
+            step_deg: as_given(f.max_step.to_degrees()),
+            objective: crate::common::choice::Choice::name(f.objective),
+            aggregate: crate::common::choice::Choice::name(f.aggregate),
+        }
+    }
 }
 
 /// A compensated program: what was read, and each segment's force and deflection.
@@ -359,15 +374,11 @@ impl Document {
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             feasibility: report.feasibility.clone(),
-            free_positioner: report.free_positioner.map(|f| FreePositioner {
-                range_deg: as_given(f.range.to_degrees()),
-                step_deg: as_given(f.max_step.to_degrees()),
-                objective: crate::common::choice::Choice::name(f.objective),
-                aggregate: crate::common::choice::Choice::name(f.aggregate),
-            }),
+            free_positioner: report.free_positioner.map(FreePositioner::new),
+            free_tilt: report.free_tilt.map(FreePositioner::new),
             free_lead_tilt: report.free_lead_tilt.map(|f| FreeLeadTilt {
-                cone_deg: f.cone.map(f64::to_degrees),
-                step_deg: f.max_step.to_degrees(),
+                cone_deg: f.cone.map(|c| as_given(c.to_degrees())),
+                step_deg: as_given(f.max_step.to_degrees()),
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),

@@ -5,11 +5,11 @@ use crate::machining::compensate::{Options, Removed};
 use serde::Serialize;
 
 /// The feasibility of the moved postures of the free variables (`--free-tool-axis`,
-/// `--free-station-mm`, `--free-positioner-deg`): a state (a value of the free variables at a
-/// path point) that inverse kinematics reaches with a cost no larger than the path's own is
-/// removed when its posture fails a check; each removed state is counted once, by the first
-/// check it fails in the order joint-limit margin, singularity, collision. The path's own
-/// posture is kept as it is.
+/// `--free-station-mm`, `--free-positioner-deg`, `--free-tilt-deg`): a state (a value of the
+/// free variables at a path point) that inverse kinematics reaches with a cost no larger than
+/// the path's own is removed when its posture fails a check; each removed state is counted
+/// once, by the first check it fails in the order joint-limit margin, singularity, collision.
+/// The path's own posture is kept as it is.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Feasibility {
@@ -33,11 +33,10 @@ impl Feasibility {
     /// The feasibility of `options` with the states `removed` over the path; `None` without a
     /// free variable.
     pub fn new(options: &Options, removed: Removed) -> Option<Self> {
-        let free = options.free_tool_axis.is_some()
-            || options.free_lead_tilt.is_some()
-            || options.free_station.is_some()
-            || options.free_positioner.is_some();
-        if !free {
+        if options.free_tool_axis.is_none()
+            && options.free_lead_tilt.is_none()
+            && !options.frees_external()
+        {
             return None;
         }
         let f = &options.feasible;

@@ -160,6 +160,8 @@ pub struct Report {
     pub free_positioner: Option<compensate::FreePositioner>,
     /// The free lead and tilt of the tool axis, if asked.
     pub free_lead_tilt: Option<compensate::FreeLeadTilt>,
+    /// The free tilt, if asked.
+    pub free_tilt: Option<compensate::FreePositioner>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -203,7 +205,7 @@ where
         }
         .into());
     }
-    let external = options.free_station.is_some() || options.free_positioner.is_some();
+    let external = options.frees_external();
     let free = options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
@@ -424,6 +426,7 @@ where
         feasibility: feasibility::Feasibility::new(&options, summary.removed),
         free_positioner: options.free_positioner,
         free_lead_tilt: options.free_lead_tilt,
+        free_tilt: options.free_tilt,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,

@@ -158,6 +158,7 @@ fn track(
     let only = Options {
         free_station: Some(station),
         free_positioner: None,
+        free_tilt: None,
         ..mapped.options.clone()
     };
     if arm.robot().external().is_none_or(|c| c.carrier_len() == 0) {

@@ -86,7 +86,9 @@
 //! `P(e') = P(e)`), the process force turns with the part (the cut follows it: a path file's
 //! wrench too), and a program's tool weight stays along the cell's `-z` at the turned tool. The
 //! same rules hold: the axis's travel, one grid step at most between points, no point worse
-//! than at the path's own values.
+//! than at the path's own values. With [`Options::free_tilt`] a two-axis positioner's first
+//! axis (the tilt, which carries the table's axis) is a variable of the grid too, by the same
+//! shift with both angles in `P(e')`.
 //!
 //! ## Lead and tilt
 //! In ball-end milling and deburring the tool's axis may lean from the program's within a cone

@@ -260,10 +260,11 @@ pub(super) fn offsets(range: f64, step: f64) -> Vec<f64> {
     (-half..=half).map(|k| k as f64 * step).collect()
 }
 
-/// The free positioner: the positioner's last axis (the table's turn; a turntable's only axis,
-/// [`crate::robot::external`]) turned from the path's own angle at every point, jointly with
-/// the free station and the tool rotation when they are given too (module docs of [`super`],
-/// "The free positioner"). Its options mirror the station's: a range and a step, in deg.
+/// A free axis of the positioner: its last axis (the table's turn; a turntable's only axis,
+/// [`Options::free_positioner`]) or a two-axis positioner's first (the tilt,
+/// [`Options::free_tilt`]), [`crate::robot::external`], turned from the path's own angle at
+/// every point, jointly with the other free variables given (module docs of [`super`], "The
+/// free positioner"). Its options mirror the station's: a range and a step, in deg.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreePositioner {
     /// The angle stays within `+-range` of the path's own and within the axis's travel, rad, > 0.
@@ -283,10 +284,11 @@ impl FreePositioner {
     /// Smallest accepted `max_step`, deg.
     pub const MIN_STEP_DEG: f64 = 0.01;
 
-    /// The free positioner from its range and step in degrees (the units of the command line
-    /// and the Python package): `free_positioner_deg` in (0, 360], `positioner_step_deg` in
-    /// [0.01, `free_positioner_deg`]; it minimises what the free tool axis `free` minimises (the
-    /// bound without one), its points' costs added up by `aggregate`.
+    /// The free positioner (its last axis) from its range and step in degrees (the units of
+    /// the command line and the Python package): `free_positioner_deg` in (0, 360],
+    /// `positioner_step_deg` in [0.01, `free_positioner_deg`]; it minimises what the free tool
+    /// axis `free` minimises (the bound without one), its points' costs added up by
+    /// `aggregate`.
     ///
     /// # Errors
     /// [`Error::InvalidOption`] naming the argument that is wrong
@@ -298,10 +300,42 @@ impl FreePositioner {
         free: Option<&FreeToolAxis>,
         aggregate: Aggregate,
     ) -> Result<Self> {
-        let (range, step) = (free_positioner_deg, positioner_step_deg);
+        let names = [JobOption::FreePositionerDeg, JobOption::PositionerStepDeg];
+        Self::try_axis(
+            (free_positioner_deg, positioner_step_deg),
+            free,
+            aggregate,
+            names,
+        )
+    }
+
+    /// The free tilt (a two-axis positioner's first axis) from its range and step in degrees,
+    /// as [`FreePositioner::try_with`]: `free_tilt_deg` in (0, 360], `tilt_step_deg` in
+    /// [0.01, `free_tilt_deg`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the argument that is wrong ([`JobOption::FreeTiltDeg`]
+    /// or [`JobOption::TiltStepDeg`]) with the value given.
+    pub fn try_tilt(
+        free_tilt_deg: f64,
+        tilt_step_deg: f64,
+        free: Option<&FreeToolAxis>,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        let names = [JobOption::FreeTiltDeg, JobOption::TiltStepDeg];
+        Self::try_axis((free_tilt_deg, tilt_step_deg), free, aggregate, names)
+    }
+
+    /// The range and step (deg) checked, each refused naming its option of `names`.
+    fn try_axis(
+        (range, step): (f64, f64),
+        free: Option<&FreeToolAxis>,
+        aggregate: Aggregate,
+        [range_option, step_option]: [JobOption; 2],
+    ) -> Result<Self> {
         if !(range > 0.0 && range <= Self::MAX_RANGE_DEG) {
             return Err(Error::InvalidOption {
-                option: JobOption::FreePositionerDeg,
+                option: range_option,
                 message: format!(
                     "{}: expected a number > 0 and <= {}",
                     number(range),
@@ -311,11 +345,12 @@ impl FreePositioner {
         }
         if !(step >= Self::MIN_STEP_DEG && step <= range) {
             return Err(Error::InvalidOption {
-                option: JobOption::PositionerStepDeg,
+                option: step_option,
                 message: format!(
-                    "{}: expected a number >= {} and <= --free-positioner-deg ({})",
+                    "{}: expected a number >= {} and <= --{} ({})",
                     number(step),
                     Self::MIN_STEP_DEG,
+                    range_option.name().replace('_', "-"),
                     number(range)
                 ),
             });
@@ -485,12 +520,15 @@ pub struct Options {
     /// [`super::path_on_track`], or a program's, [`crate::machining::compensate()`]), jointly
     /// with the rotation when `free_tool_axis` is given too.
     pub free_station: Option<FreeStation>,
-    /// Optimise the positioner's angle (a cell with a positioner), jointly with the station and
-    /// the rotation when they are given too.
+    /// Optimise the positioner's angle (a cell with a positioner: its last axis), jointly with
+    /// the station, the tilt and the rotation when they are given too.
     pub free_positioner: Option<FreePositioner>,
     /// Lean the tool axis within a cone about the path's own ([`FreeLeadTilt`]), jointly
     /// with the rotation, the station and the positioner when they are free too.
     pub free_lead_tilt: Option<FreeLeadTilt>,
+    /// Optimise the tilt (a cell with a two-axis positioner: its first axis), jointly with the
+    /// other free variables given.
+    pub free_tilt: Option<FreePositioner>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -519,8 +557,8 @@ impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
     /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
     /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, a free station's as
-    /// [`FreeStation::try_from_mm`] and a free positioner's as [`FreePositioner::try_with`]
-    /// give them, minimising the deflection or the bound with the free tool axis' objective and
+    /// [`FreeStation::try_from_mm`] and a free positioner's and tilt's as
+    /// [`FreePositioner::try_with`] and [`FreePositioner::try_tilt`] give them, minimising the deflection or the bound with the free tool axis' objective and
     /// aggregate. [`path`] calls it.
     ///
     /// # Errors
@@ -528,6 +566,7 @@ impl Options {
     /// [`Error::InvalidOption`] for a free station's or positioner's
     /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
     /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
+    /// [`JobOption::FreeTiltDeg`], [`JobOption::TiltStepDeg`],
     /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]).
     pub fn validate(&self) -> Result<()> {
         limits::check(
@@ -585,8 +624,9 @@ impl Options {
     }
 
     /// A free station's range and step as [`FreeStation::try_from_mm`] gives them, a free
-    /// positioner's as [`FreePositioner::try_with`], and their objective and aggregate those of
-    /// a free tool axis given with them and of each other.
+    /// positioner's and tilt's as [`FreePositioner::try_with`] and [`FreePositioner::try_tilt`],
+    /// and their objective and aggregate those of a free tool axis given with them and of each
+    /// other.
     fn validate_station(&self) -> Result<()> {
         if let Some(s) = &self.free_station {
             FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
@@ -599,31 +639,42 @@ impl Options {
                 p.aggregate,
             )?;
         }
+        if let Some(p) = &self.free_tilt {
+            let (range, step) = (p.range.to_degrees(), p.max_step.to_degrees());
+            FreePositioner::try_tilt(range, step, None, p.aggregate)?;
+        }
         let station = self.free_station.map(|s| (s.objective, s.aggregate));
         let positioner = self.free_positioner.map(|p| (p.objective, p.aggregate));
+        let tilt = self.free_tilt.map(|p| (p.objective, p.aggregate));
         let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
         let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
-        let Some(own) = station.or(positioner).or(lean) else {
+        let Some(own) = station.or(positioner).or(tilt).or(lean) else {
             return Ok(());
         };
-        let agree = [station, positioner, tool, lean]
+        let agree = [station, positioner, tilt, tool, lean]
             .iter()
             .flatten()
             .all(|c| *c == own);
         if own.0 == Objective::Surge || !agree {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeToolAxisObjective,
-                message: format!("{}: the free station, positioner, lead and tilt minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", crate::common::choice::Choice::name(own.0)),
+                message: format!("{}: the free station, positioner axes, lead and tilt minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", crate::common::choice::Choice::name(own.0)),
             });
         }
         Ok(())
     }
 
-    /// What the free station or positioner minimise and how the costs add up: theirs (equal,
-    /// [`Options::validate`]); `None` without either.
+    /// What the free station, positioner or tilt minimise and how the costs add up: theirs
+    /// (equal, [`Options::validate`]); `None` without any.
     pub(super) fn external_objective(&self) -> Option<(Objective, Aggregate)> {
         let station = self.free_station.map(|s| (s.objective, s.aggregate));
-        station.or(self.free_positioner.map(|p| (p.objective, p.aggregate)))
+        let positioner = self.free_positioner.or(self.free_tilt);
+        station.or(positioner.map(|p| (p.objective, p.aggregate)))
+    }
+
+    /// Whether an external axis is free: the station, the positioner or the tilt.
+    pub fn frees_external(&self) -> bool {
+        self.external_objective().is_some()
     }
 
     /// The defaults for `setup`: inverse kinematics starts at the setup's first test posture (else
@@ -643,6 +694,7 @@ impl Options {
             free_station: None,
             free_positioner: None,
             free_lead_tilt: None,
+            free_tilt: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,

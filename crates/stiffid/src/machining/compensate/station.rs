@@ -1,7 +1,8 @@
-//! The free track station and the free positioner: the carrier's first axis and the
-//! positioner's last chosen at every point of a path file or a program, jointly with the
-//! rotation about tool z, by the dynamic programming of the free tool axis over the grid of
-//! (station, positioner angle, rotation) states (module docs of [`super`], "The free station").
+//! The free track station and the free positioner: the carrier's first axis, a two-axis
+//! positioner's first (the tilt) and the positioner's last (the table) chosen at every point of
+//! a path file or a program, jointly with the rotation about tool z, by the dynamic programming
+//! of the free tool axis over the grid of (station, tilt, table angle, rotation) states (module
+//! docs of [`super`], "The free station").
 
 use super::feasible::Checks;
 use super::lead_tilt::{cones, lean_count, Leaning};
@@ -54,7 +55,8 @@ pub fn path_on_track(
 /// Compensates `placed`, points in the arm's frame on its carriage at their own external values
 /// `own` (a path file's points placed by [`on_carriage`], a program's placed by
 /// [`crate::machining::compensate()`]), with the station free ([`Options::free_station`]), the
-/// positioner's angle free ([`Options::free_positioner`]) and the tool rotation with
+/// positioner's angles free ([`Options::free_positioner`], [`Options::free_tilt`]) and the tool
+/// rotation with
 /// [`Options::free_tool_axis`]; each result's [`Compensated::external`] holds the values chosen,
 /// its postures in the arm's frame on the carriage at them. `weighted`: the points' wrenches
 /// hold the tool's weight ([`crate::setup::Payload::wrench`] at the nominal pose, a program's),
@@ -63,7 +65,8 @@ pub fn path_on_track(
 ///
 /// # Errors
 /// Those of [`path_on_track`]; [`Error::InvalidOption`] ([`JobOption::FreePositionerDeg`]) for
-/// a cell without a positioner axis.
+/// a cell without a positioner axis, ([`JobOption::FreeTiltDeg`]) without a two-axis
+/// positioner.
 pub(crate) fn on_track(
     arm: &Arm,
     compliance: &Compliance,
@@ -77,6 +80,7 @@ pub(crate) fn on_track(
         let plain = Options {
             free_station: None,
             free_positioner: None,
+            free_tilt: None,
             ..options.clone()
         };
         let results = path_in_cones(arm, compliance, placed, (&[], cones), &plain)?;
@@ -213,8 +217,8 @@ impl FreeAxis {
 }
 
 /// The cell and the free external axes of `options` in the cell's order: the carrier's first
-/// axis for the free station, the positioner's last for the free positioner; each refused where
-/// the cell lacks it.
+/// axis for the free station, a two-axis positioner's first for the free tilt, the positioner's
+/// last for the free positioner; each refused where the cell lacks it.
 pub(super) fn free_axes<'a>(
     cell: Option<&'a ExternalAxes>,
     options: &Options,
@@ -234,6 +238,20 @@ pub(super) fn free_axes<'a>(
             offsets: s.offsets(),
             range: s.range,
             max_step: s.max_step,
+        });
+    }
+    if let Some(p) = &options.free_tilt {
+        if positioners < 2 {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeTiltDeg,
+                message: format!("the robot's positioner has {positioners} axis(es): a free tilt turns a two-axis positioner's first axis (the table's turn, its last, is --free-positioner-deg), which the robot file's [[external_axis]] with role = \"positioner\" give"),
+            });
+        }
+        out.push(FreeAxis {
+            index: carriers,
+            offsets: p.offsets(),
+            range: p.range,
+            max_step: p.max_step,
         });
     }
     if let Some(p) = &options.free_positioner {
@@ -281,25 +299,25 @@ pub(super) fn check_grid(options: &Options, states: f64, points: usize) -> Resul
     if cells <= FreeToolAxis::MAX_GRID_CELLS {
         return Ok(());
     }
+    let degrees = |p: &super::FreePositioner| {
+        let (range, step) = (p.range.to_degrees(), p.max_step.to_degrees());
+        format!("+-{range} deg in steps of {step} deg")
+    };
     let (option, what) = match (&options.free_station, &options.free_positioner) {
         (Some(s), _) => (
             JobOption::FreeStationMm,
             format!("+-{} mm in steps of {} mm", s.range * 1e3, s.max_step * 1e3),
         ),
-        (None, Some(p)) => (
-            JobOption::FreePositionerDeg,
-            format!(
-                "+-{} deg in steps of {} deg",
-                p.range.to_degrees(),
-                p.max_step.to_degrees()
-            ),
-        ),
-        (None, None) => (JobOption::FreeStationMm, String::new()),
+        (None, Some(p)) => (JobOption::FreePositionerDeg, degrees(p)),
+        (None, None) => match &options.free_tilt {
+            Some(p) => (JobOption::FreeTiltDeg, degrees(p)),
+            None => (JobOption::FreeStationMm, String::new()),
+        },
     };
     Err(Error::InvalidOption {
         option,
         message: format!(
-            "{what} makes {states} states (stations x positioner angles x leans x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
+            "{what} makes {states} states (stations x tilts x table angles x leans x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
             FreeToolAxis::MAX_GRID_CELLS
         ),
     })

@@ -81,10 +81,10 @@ pub(crate) fn path_in_cones(
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
     assert!(thrusts.is_empty() || thrusts.len() == points.len());
-    if options.free_station.is_some() || options.free_positioner.is_some() {
+    if options.frees_external() {
         return Err(Error::InvalidOption {
             option: JobOption::FreeStationMm,
-            message: "a free station or positioner is chosen for points with their external values (compensate::path_on_track for a path file's, machining::compensate for a program's); these points have none".into(),
+            message: "a free station, positioner or tilt is chosen for points with their external values (compensate::path_on_track for a path file's, machining::compensate for a program's); these points have none".into(),
         });
     }
     let (rotation, lean) = (
