@@ -109,6 +109,12 @@ fn the_leans_chosen_equal_the_exhaustive_optimum() {
         let options = options(&s, 10.0, 5.0, aggregate);
         let results = compensate::path(s.arm(), &compliance, &points, &options).unwrap();
         let chosen: Vec<f64> = results.iter().map(|r| r.budget.bound).collect();
+        // Each point's bound is the one computed by hand at the lead and tilt it states.
+        for (i, r) in results.iter().enumerate() {
+            let at = |v: f64| (v / step).round() as isize + 2;
+            let by_hand = bounds[i][at(r.lead) as usize][at(r.tilt) as usize].unwrap();
+            assert!((r.budget.bound - by_hand).abs() <= 1e-6 * by_hand, "{i}");
+        }
         let value = match aggregate {
             Aggregate::Sum => chosen.iter().sum(),
             Aggregate::Max => chosen.iter().copied().fold(0.0, f64::max),
@@ -198,6 +204,21 @@ fn the_axis_chosen_lies_in_the_cone_and_the_tool_lands_on_it() {
         assert!(turned < 1e-6, "{i}: the loaded axis {turned} rad off");
     }
     assert!(leaned_any, "the tool leans somewhere");
+}
+
+/// The lean of a pose by hand: the axis turned by `a = sqrt(lead^2 + tilt^2)`, towards the feed
+/// by the lead and across it (`c = z x f`) by the tilt.
+#[test]
+fn the_lean_turns_the_axis_towards_the_feed_and_across_it() {
+    let (z, f) = (-Vector3::z(), Vector3::x());
+    let c = z.cross(&f);
+    for (lead, tilt) in [(0.1, 0.0), (0.0, 0.07), (-0.05, 0.12), (0.0, 0.0)] {
+        let turned = compensate::lean(&[f, c], lead, tilt) * z;
+        let a: f64 = f64::hypot(lead, tilt);
+        let expected =
+            z * a.cos() + (f * lead + c * tilt) * if a > 0.0 { a.sin() / a } else { 0.0 };
+        assert!((turned - expected).norm() < 1e-15, "{lead} {tilt}");
+    }
 }
 
 /// A path file's lean needs its cone; bad values are refused naming the option.
