@@ -47,7 +47,8 @@ pub fn process_force<'py>(
 /// ``"rapid"`` or ``"ls"``), ``line`` (``(n,)``, ``int64``: each point's line); for G-code
 /// ``position_mm`` (``(n, 3)``, part frame), ``rapid`` (``(n,)`` bool: a ``G0`` move),
 /// ``tool_number`` and ``operation`` (lists, ``None`` where none is in force); for a robot
-/// program ``q_deg`` (``(n, 6)``, the joint targets' axis angles). Both carry the external
+/// program ``q_deg`` (``(n, 6)``, the joint targets' axis angles; ``NaN`` for a Cartesian
+/// target, whose axis angles need the setup: ``compensate`` resolves them). Both carry the external
 /// axes: ``external_axes`` (their names as the program gives them: KRL ``E1``, RAPID
 /// ``eax_a``, a G-code header's letters ``U``..``C``, in the cell's order for G-code) and
 /// ``external`` (``(n, k)``, each point's or target's values as written, mm for a linear axis

@@ -186,7 +186,9 @@ fn robot_programs_and_built_in_setups_without_a_tool_are_refused_naming_why() {
     let setup = example("fanuc-milling.toml");
     assert_usage_error(
         &stiffid(&args(&setup, &out, &rest)),
-        &["--program: a KUKA KRL program's targets", "joint targets"],
+        // The example's KRL program states a tool without the setup's TCP: its Cartesian
+        // targets are read, and refused for that tool, naming the line.
+        &["line 13: the program's tool", "is not the setup's"],
     );
     // A built-in setup is read (not "no such file") and refused for what it lacks.
     let mut gcode = rest.to_vec();

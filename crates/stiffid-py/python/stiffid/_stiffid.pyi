@@ -317,7 +317,7 @@ def read_program(
     *,
     chord_tolerance_mm: float = 0.01,
 ) -> dict[str, Any]:
-    """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6); both: external_axes (k names), external (n, k) mm or deg as written, NaN where a target gives none."""
+    """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6), NaN for a Cartesian target (its axis angles need the setup: compensate resolves them); both: external_axes (k names), external (n, k) mm or deg as written, NaN where a target gives none."""
 
 def place(
     setup: Union[str, os.PathLike[str]],
