@@ -34,6 +34,7 @@ mod schemas;
 mod select_cli;
 mod setups_new;
 mod simulate_cli;
+mod table_cli;
 mod track_cli;
 mod trust_cli;
 mod update_cli;

@@ -468,6 +468,27 @@ impl Setup {
         builder.with_table_reflectors(Vec::new()).build()
     }
 
+    /// The setup with the carrier's axes at their values in `e` (SI, the cell's order): the
+    /// robot's base moved by the carrier's pose, `C(e) * base`, and only the positioner's axes
+    /// left (with the reflectors on its table); [`Setup::at_station`] without a positioner.
+    ///
+    /// # Errors
+    /// As [`Setup::at_station`].
+    pub fn at_carrier(&self, e: &[f64]) -> crate::Result<Setup> {
+        let Some(axes) = self.robot().external() else {
+            return self.at_station(e);
+        };
+        axes.check(e, "station")?;
+        let rest = axes.axes()[axes.carrier_len()..].to_vec();
+        if rest.is_empty() {
+            return self.at_station(e);
+        }
+        let base = axes.carrier_pose(e) * self.robot().base();
+        let positioner = crate::robot::ExternalAxes::new(rest)?;
+        let robot = (self.robot().clone().with_external(Some(positioner))).with_base(base)?;
+        self.to_builder().with_robot(robot).build()
+    }
+
     /// The rope-mass wrench on the loading point of a posture, base frame.
     pub fn rope_wrench(&self, frames: &Frames) -> Vector6<f64> {
         self.load()

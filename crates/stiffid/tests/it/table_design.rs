@@ -347,3 +347,23 @@ fn designed_angles_beat_random_angles() {
     assert!(designed_value < random_value);
     assert!(designed_rms < random_rms);
 }
+
+/// Reflectors on a table need a positioner: the setup names the field.
+#[test]
+fn table_reflectors_without_a_positioner_are_refused() {
+    let without = SETUP
+        .split("[tool]")
+        .enumerate()
+        .map(|(i, part)| match i {
+            0 => "name = \"table\"\nrobot = \"kuka-kr210-robond\"\n".to_string(),
+            _ => format!("[tool]{part}"),
+        })
+        .collect::<String>();
+    let e = stiffid::setup::parse(&without, "table.toml", |name, _| {
+        stiffid::robot::presets::get(name)
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("workpiece.reflectors_mm"), "{e}");
+    assert!(e.contains("no positioner"), "{e}");
+}

@@ -67,8 +67,10 @@ pub struct Document {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub stations: Vec<StationDoc>,
     /// A calibration campaign over several stations of a track: where each posture is read
-    /// (`e1_mm`, ...), in the order of `postures_deg`; absent otherwise. `stations` then holds
-    /// the campaign's value with the postures up to each station.
+    /// (`e1_mm`, ...), in the order of `postures_deg`; `stations` then holds the campaign's
+    /// value with the postures up to each station. With reflectors on a positioner's table
+    /// (`for` `calibration`): each posture's station with the positioner's angles chosen for
+    /// the table's readings at that posture (`e2_deg`, ...). Absent otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub posture_stations: Vec<std::collections::BTreeMap<String, f64>>,
     /// How many local searches (the global search's starts; one for a local search) stopped for

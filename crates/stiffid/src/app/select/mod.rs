@@ -215,7 +215,9 @@ pub struct Report {
     /// for a campaign over the stations, the campaign's value with the postures up to each.
     pub stations: Vec<Station>,
     /// A campaign over several stations: where each posture is read (the external axes' values,
-    /// SI, the cell's order), in the order of `postures`; empty otherwise.
+    /// SI, the cell's order), in the order of `postures`; with reflectors on a positioner's
+    /// table ([`Purpose::Calibration`]), each posture's station with the positioner's angles
+    /// chosen for the table's readings at that posture (`table`); empty otherwise.
     pub placed: Vec<crate::robot::external::ExternalValues>,
 }
 

@@ -39,16 +39,28 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
     if r.purpose != Purpose::Calibration || reflectors.is_empty() {
         return Ok(report);
     }
-    let options = r.calibration.of(r.purpose);
-    let design = purpose::design(r.setup, &options)?;
     let here = report.station.unwrap_or_else(|| axes.stations(1)[0]);
-    let placed: Vec<Placed> = match report.placed.is_empty() {
-        true => report.postures.iter().map(|q| (*q, here)).collect(),
-        false => (report.postures.iter().copied())
-            .zip(report.placed.iter().copied())
-            .collect(),
+    let where_read: Vec<ExternalValues> = match report.placed.is_empty() {
+        true => vec![here; report.postures.len()],
+        false => report.placed.clone(),
     };
-    let candidates = candidates(r.setup, axes, &reflectors, &here);
+    // One station of a track: the design of the arm there with the positioner (the track's
+    // own parameters need a campaign over its stations).
+    let cut = match report.placed.is_empty() {
+        true => axes.carrier_len(),
+        false => 0,
+    };
+    let setup = match cut {
+        0 => r.setup.clone(),
+        _ => r.setup.at_carrier(here.as_slice())?,
+    };
+    let options = r.calibration.of(r.purpose);
+    let design = purpose::design(&setup, &options)?;
+    let placed: Vec<Placed> = (report.postures.iter().zip(&where_read))
+        .map(|(q, e)| (*q, tail(e, cut)))
+        .collect();
+    let design_axes = setup.robot().external().expect("a positioner");
+    let candidates = candidates(&setup, design_axes, &reflectors, &tail(&here, cut));
     let refuse = |message: String| Error::Input {
         source_name: "postures: the table's readings".into(),
         error: Box::new(Error::InvalidField {
@@ -69,7 +81,7 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
         )));
     }
     let placed: Vec<Placed> = (placed.iter().zip(&choice.chosen))
-        .map(|((q, e), &c)| (*q, joined(axes, e, &candidates[c])))
+        .map(|((q, e), &c)| (*q, joined(design_axes, e, &candidates[c])))
         .collect();
     let angles: Vec<ExternalValues> = placed.iter().map(|p| p.1).collect();
     let with = design.with_table_angles(&angles)?;
@@ -80,8 +92,24 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
         weight: 1.0,
     });
     report.value = choice.value;
-    report.placed = angles;
+    report.placed = (where_read.iter().zip(&angles))
+        .map(|(at, e)| joined(axes, at, &lifted(at, e, cut)))
+        .collect();
     Ok(report)
+}
+
+/// `e` without its first `cut` values.
+fn tail(e: &ExternalValues, cut: usize) -> ExternalValues {
+    ExternalValues::new(&e.as_slice()[cut..]).expect("fewer axes")
+}
+
+/// `e` (the axes after the first `cut`) with the first `cut` values of `at` before it.
+fn lifted(at: &ExternalValues, e: &ExternalValues, cut: usize) -> ExternalValues {
+    let values: Vec<f64> = (at.as_slice()[..cut].iter())
+        .chain(e.as_slice())
+        .copied()
+        .collect();
+    ExternalValues::new(&values).expect("the cell's axes")
 }
 
 /// The carrier's values of `at` with the positioner's of `table`.

@@ -1,0 +1,66 @@
+//! `stiffid select --for calibration` on the example track cell with reflectors on its table:
+//! `--out` and the document give every posture its positioner angles for the table's readings,
+//! within the travel, at the station asked for.
+
+use crate::common;
+
+use common::{json, stiffid, temp_dir};
+use std::path::Path;
+
+#[test]
+fn select_gives_each_posture_the_positioners_angles() {
+    let dir = temp_dir("table-angles");
+    let example =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/track/track-cell.toml");
+    // `[workpiece]` is the example's last table: the reflectors join it.
+    let text = std::fs::read_to_string(example).unwrap()
+        + "reflectors_mm = [[300, 0, 40], [-200, 250, 40], [-100, -300, 60]]\n";
+    let setup = dir.join("cell.toml");
+    std::fs::write(&setup, text).unwrap();
+    let out = dir.join("campaign.csv");
+    let doc = json(&stiffid(&[
+        "select",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--for",
+        "calibration",
+        "--start-random",
+        "--postures",
+        "12",
+        "--station",
+        "3000,0,0",
+        "--seed",
+        "1",
+        "--max-evals",
+        "100",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let stations = doc["posture_stations"].as_array().unwrap();
+    assert_eq!(stations.len(), 12);
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(&header[7..], ["e1_mm", "e2_deg", "e3_deg"]);
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').skip(7).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 12);
+    for (row, station) in rows.iter().zip(stations) {
+        assert_eq!(row[0], 3000.0);
+        assert!(row[1].abs() < 95.0 && row[2].abs() < 360.0, "{row:?}");
+        assert!((station["e2_deg"].as_f64().unwrap() - row[1]).abs() < 1e-5);
+        assert!((station["e3_deg"].as_f64().unwrap() - row[2]).abs() < 1e-5);
+    }
+    assert!(rows
+        .iter()
+        .any(|r| r[1] != rows[0][1] || r[2] != rows[0][2]));
+    // The value minimised is the group's predicted error with the table read at its angles.
+    let predicted = doc["calibration"]["predicted_rms_mm"].as_f64().unwrap();
+    let value = doc["value"].as_f64().unwrap() * 1e3;
+    assert!(
+        (predicted - value).abs() <= 1e-6 * predicted,
+        "{predicted} {value}"
+    );
+}
