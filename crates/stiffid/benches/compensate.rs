@@ -75,6 +75,7 @@ fn benches(c: &mut Criterion) {
         free_tool_axis: None,
         free_station: None,
         free_positioner: None,
+        free_configuration: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,

@@ -497,6 +497,8 @@ pub enum JobOption {
     FreePositionerDeg,
     /// compensate: the free positioner's largest change between consecutive points, deg.
     PositionerStepDeg,
+    /// compensate: the robot's configuration chosen among the arm's (shoulder, elbow, wrist).
+    FreeConfiguration,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -589,6 +591,7 @@ impl JobOption {
             JobOption::StationStepMm => "station_step_mm",
             JobOption::FreePositionerDeg => "free_positioner_deg",
             JobOption::PositionerStepDeg => "positioner_step_deg",
+            JobOption::FreeConfiguration => "free_configuration",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

@@ -31,7 +31,12 @@
 //!    ([`compensate::Options::free_station`], [`compensate::Options::free_positioner`]) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
 //!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
-//!    the compensated postures there.
+//!    the compensated postures there. With a free configuration
+//!    ([`compensate::Options::free_configuration`]) the whole program is compensated in every
+//!    configuration of the arm and the best kept ([`compensate::FreeConfiguration`]): one
+//!    configuration per program (a G-code program's rapid moves are compensated too, so its
+//!    runs of cutting moves do not each get their own); a joint program's targets are solved
+//!    in another configuration from their nominal poses, and written back with its angles.
 
 pub mod cell;
 pub mod compensate;
@@ -211,6 +216,9 @@ pub struct Report {
     pub program: String,
     /// What the user should know: plunges without a milling force, points no operation covers.
     pub warnings: Vec<String>,
+    /// With a free configuration ([`compensate::Options::free_configuration`]): every
+    /// configuration of the arm evaluated over the whole program, the one chosen.
+    pub configurations: Option<compensate::Configurations>,
 }
 
 /// Compensates `program` under `process` (module docs) on `arm` with the compliance `compliance`
@@ -247,12 +255,19 @@ pub fn compensate(
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
     let free = options.free_station.is_some() || options.free_positioner.is_some();
-    let mut results = match free {
-        false => compensate::path_with_exits(arm, compliance, &points, &thrusts, options)?,
+    let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
+    let evaluate = |points: &[PathPoint], options: &compensate::Options| match free {
+        false => compensate::path_with_exits(arm, compliance, points, &thrusts, options),
         true => {
-            let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
             let weighted = arm.payload().is_some();
-            compensate::on_track(arm, compliance, &points, (&own, weighted), options)?
+            compensate::on_track(arm, compliance, points, (&own, weighted), options)
+        }
+    };
+    let (mut results, configurations) = match options.free_configuration {
+        None => (evaluate(&points, options)?, None),
+        Some(_) => {
+            let (results, c) = compensate::choose(arm, compliance, &points, options, evaluate)?;
+            (results, Some(c))
         }
     };
     check_configuration(&points, &results)?;
@@ -310,6 +325,7 @@ pub fn compensate(
         operations: indices,
         program,
         warnings,
+        configurations,
     })
 }
 

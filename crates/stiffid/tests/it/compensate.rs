@@ -239,6 +239,7 @@ pub(crate) fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         free_tool_axis: free,
         free_station: None,
         free_positioner: None,
+        free_configuration: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,

@@ -66,6 +66,9 @@ pub struct Document {
     pub feasibility: Option<super::feasibility::Feasibility>,
     /// With `--free-positioner-deg`: its options; else `null`.
     pub free_positioner: Option<FreePositioner>,
+    /// With `--free-configuration`: every configuration of the arm evaluated over the path and
+    /// the one chosen; else `null`.
+    pub configurations: Option<super::configurations::ConfigurationsDocument>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -345,6 +348,8 @@ impl Document {
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
+            configurations: (report.configurations.as_ref())
+                .map(super::configurations::ConfigurationsDocument::new),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
                 output_language: p.output.name(),

@@ -6,7 +6,8 @@ use crate::Robot;
 use serde::Serialize;
 
 /// The feasibility of the moved postures of the free variables (`--free-tool-axis`,
-/// `--free-station-mm`): a state (a value of the free variables at a path point) that inverse
+/// `--free-station-mm`, `--free-configuration`: a configuration whose posture fails a check at
+/// a point is refused): a state (a value of the free variables at a path point) that inverse
 /// kinematics reaches with a cost no larger than the path's own is removed when its posture
 /// fails a check; each removed state is counted once, by the first check it fails in the order
 /// joint-limit margin, singularity, collision. The path's own posture is kept as it is.
@@ -34,7 +35,7 @@ impl Feasibility {
     /// `None` without a free variable.
     pub fn new(options: &Options, robot: &Robot, removed: Removed) -> Option<Self> {
         let station = options.free_station.is_some();
-        if options.free_tool_axis.is_none() && !station {
+        if options.free_tool_axis.is_none() && !station && options.free_configuration.is_none() {
             return None;
         }
         let f = &options.feasible;

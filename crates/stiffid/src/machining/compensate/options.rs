@@ -379,6 +379,12 @@ pub struct Options {
     /// Optimise the positioner's angle (a cell with a positioner), jointly with the station and
     /// the rotation when they are given too.
     pub free_positioner: Option<FreePositioner>,
+    /// Evaluate the path in every configuration of the arm and keep the best
+    /// ([`super::FreeConfiguration`]), jointly with the other free variables (their dynamic
+    /// programming run in each configuration); `None`: the path's own configuration.
+    /// [`super::path_configurations`], [`crate::machining::compensate()`] and the compensate
+    /// job evaluate it; [`super::path`] and [`super::stream`] ignore it.
+    pub free_configuration: Option<super::FreeConfiguration>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -447,6 +453,7 @@ impl Options {
             });
         }
         self.validate_station()?;
+        self.validate_configuration()?;
         self.feasible.validate()?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
@@ -503,6 +510,23 @@ impl Options {
         Ok(())
     }
 
+    /// A free configuration's objective not the surge ([`super::FreeConfiguration::check`]) and
+    /// its objective and aggregate those of the other free variables given with it.
+    fn validate_configuration(&self) -> Result<()> {
+        let Some(c) = &self.free_configuration else {
+            return Ok(());
+        };
+        c.check(0)?;
+        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
+        match self.external_objective().or(tool) {
+            Some(other) if other != (c.objective, c.aggregate) => Err(Error::InvalidOption {
+                option: JobOption::FreeConfiguration,
+                message: "the free configuration minimises the same objective and aggregate as the other free variables given with it".into(),
+            }),
+            _ => Ok(()),
+        }
+    }
+
     /// What the free station or positioner minimise and how the costs add up: theirs (equal,
     /// [`Options::validate`]); `None` without either.
     pub(super) fn external_objective(&self) -> Option<(Objective, Aggregate)> {
@@ -526,6 +550,7 @@ impl Options {
             free_tool_axis: None,
             free_station: None,
             free_positioner: None,
+            free_configuration: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
