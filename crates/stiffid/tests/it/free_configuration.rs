@@ -212,7 +212,12 @@ fn a_configuration_that_fails_a_point_is_refused_naming_it_and_the_path_own_is_k
         .unwrap();
     let (line, why) = flip.refused.clone().unwrap();
     assert_eq!(line, Some(first), "{why}");
-    assert!(why.contains("margin"), "{why}");
+    // The first point within the margin: its posture fails the margin, or (at the limit) its
+    // compensation leaves the joint limits.
+    assert!(
+        why.contains("margin") || why.contains("joint limits"),
+        "{why}"
+    );
     assert!(c
         .branches
         .iter()

@@ -238,7 +238,8 @@ pub(crate) fn choose(
                 let before = (points.iter())
                     .position(|p| Some(p.line) == line_of(&e))
                     .filter(|&i| i > 0);
-                // A point before the one that fails may fail a check: evaluated up to it.
+                // A point before the one that fails may fail a check or its compensation (the nominal
+                // postures are solved first): evaluated up to it.
                 let earlier = before.and_then(|i| {
                     let run = match own {
                         true => evaluate(&points[..i], &alone),
@@ -250,8 +251,12 @@ pub(crate) fn choose(
                             },
                         ),
                     };
-                    let run = run.ok()?;
-                    refusal(arm.robot(), &configuration, (&points[..i], &run), &checks)
+                    match run {
+                        Ok(run) => {
+                            refusal(arm.robot(), &configuration, (&points[..i], &run), &checks)
+                        }
+                        Err(e) => Some((line_of(&e), e.to_string())),
+                    }
                 });
                 branch.refused = Some(earlier.unwrap_or((line_of(&e), e.to_string())));
                 if own {
