@@ -30,8 +30,6 @@ use stiffid::observation::deflection::Frame;
 use stiffid::robot::ExternalAxes;
 use stiffid::{Error, Progress, Setup};
 
-mod configurations;
-
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
 #[command(group(clap::ArgGroup::new("input").required(true).args(["path", "program"])))]
@@ -519,7 +517,7 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
         );
     }
     if let Some(c) = &doc.configurations {
-        text += &configurations::table(c);
+        text += &crate::commands::configuration_table::table(c);
     }
     if let Some(p) = &doc.program {
         text += &format!(
