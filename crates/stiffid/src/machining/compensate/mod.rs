@@ -128,12 +128,13 @@ mod tool_axis;
 
 pub use budget::Budget;
 pub(crate) use configuration::choose;
-pub use configuration::{path_configurations, posed, Branch, Configurations, FreeConfiguration};
+pub use configuration::{path_configurations, posed, Branch, Configurations};
 pub use feasible::{Feasible, Removed};
 pub use map::{map, Map};
 pub use model::{Model, Newton};
 pub use options::{
-    Aggregate, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective, Options,
+    Aggregate, FreeConfiguration, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
+    Objective, Options,
 };
 pub(crate) use station::on_track;
 pub use station::path_on_track;

@@ -334,6 +334,63 @@ impl FreePositioner {
     }
 }
 
+/// The free configuration (`compensate --free-configuration`): what the path's objective is
+/// and how its points' costs add up, those of the other free variables given with it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeConfiguration {
+    /// What a point costs: the TCP deflection or the error bound ([`Objective::Surge`] is
+    /// refused).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
+impl FreeConfiguration {
+    /// The most path points a free configuration evaluates (every configuration holds the whole
+    /// path).
+    pub const MAX_POINTS: usize = 100_000;
+    /// Random starts of inverse kinematics that look for the configurations of the first point.
+    pub const SEEDS: usize = 128;
+
+    /// The free configuration minimising what the free tool axis `free` minimises (the bound
+    /// without one), its points' costs added up by `aggregate`: the option
+    /// `compensate --free-configuration` and Python's `free_configuration=True`.
+    pub fn with(free: Option<&FreeToolAxis>, aggregate: Aggregate) -> Self {
+        Self {
+            objective: free.map_or(Objective::Bound, |f| f.objective),
+            aggregate,
+        }
+    }
+
+    /// Refuses the surge objective and a path of more than [`Self::MAX_POINTS`] points.
+    ///
+    /// # Errors
+    /// [`Error::OptionCombination`] (`free_configuration` not with `free_tool_axis_objective`)
+    /// for the surge; [`Error::InvalidOption`] ([`JobOption::FreeConfiguration`]) for too many
+    /// points.
+    pub fn check(&self, points: usize) -> Result<()> {
+        if self.objective == Objective::Surge {
+            return Err(Error::OptionCombination {
+                option: JobOption::FreeConfiguration,
+                with: vec![JobOption::FreeToolAxisObjective],
+                needs: false,
+                reason: "surge: the configuration is chosen by the deflection or the error bound"
+                    .into(),
+            });
+        }
+        if points > Self::MAX_POINTS {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeConfiguration,
+                message: format!(
+                    "{points} path points: at most {} (every configuration holds the whole path)",
+                    Self::MAX_POINTS
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// The free variable a map is drawn over (`compensate --map rotation|track`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MapVariable {
@@ -380,11 +437,11 @@ pub struct Options {
     /// the rotation when they are given too.
     pub free_positioner: Option<FreePositioner>,
     /// Evaluate the path in every configuration of the arm and keep the best
-    /// ([`super::FreeConfiguration`]), jointly with the other free variables (their dynamic
+    /// ([`FreeConfiguration`]), jointly with the other free variables (their dynamic
     /// programming run in each configuration); `None`: the path's own configuration.
     /// [`super::path_configurations`], [`crate::machining::compensate()`] and the compensate
     /// job evaluate it; [`super::path`] and [`super::stream`] ignore it.
-    pub free_configuration: Option<super::FreeConfiguration>,
+    pub free_configuration: Option<FreeConfiguration>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -510,7 +567,7 @@ impl Options {
         Ok(())
     }
 
-    /// A free configuration's objective not the surge ([`super::FreeConfiguration::check`]) and
+    /// A free configuration's objective not the surge ([`FreeConfiguration::check`]) and
     /// its objective and aggregate those of the other free variables given with it.
     fn validate_configuration(&self) -> Result<()> {
         let Some(c) = &self.free_configuration else {
