@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
+    Aggregate, Compensated, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
     Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
@@ -63,6 +63,11 @@ use stiffid::observation::deflection::Frame;
 /// obstacles and itself, an arm on a track on its carriage at the station chosen (as
 /// ``--margin-deg``, ``--max-condition``; the
 /// ``document``'s ``feasibility`` counts the states each check removed).
+/// ``free_configuration=True`` compensates the whole path in every configuration of the arm
+/// (shoulder, elbow and wrist branches, up to 8) and keeps the one of least ``objective`` of the
+/// bound (of the deflection with the free tool axis' ``"deflection"``), every point reached and
+/// every posture feasible in it, jointly with the other free variables (as
+/// ``--free-configuration``; the ``document``'s ``configurations``).
 /// ``map=True`` (or ``"rotation"``) adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'
 /// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
@@ -97,7 +102,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, free_configuration=false, figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -135,6 +140,7 @@ pub fn compensate<'py>(
     tilt_step_deg: f64,
     margin_deg: f64,
     max_condition: f64,
+    free_configuration: bool,
     figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name_length = crate::count::optional("name_length", name_length)?;
@@ -180,6 +186,10 @@ pub fn compensate<'py>(
         let free = options.free_tool_axis.as_ref();
         options.free_tilt =
             Some(FreePositioner::try_tilt(range, tilt_step_deg, free, aggregate).map_err(raise)?);
+    }
+    if free_configuration {
+        let free = options.free_tool_axis.as_ref();
+        options.free_configuration = Some(FreeConfiguration::with(free, aggregate));
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),

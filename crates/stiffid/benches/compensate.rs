@@ -77,6 +77,7 @@ fn benches(c: &mut Criterion) {
         free_positioner: None,
         free_lead_tilt: None,
         free_tilt: None,
+        free_configuration: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,

@@ -19,7 +19,7 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, Feasible, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
+    Aggregate, Compensated, Feasible, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
     MapVariable, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
@@ -104,7 +104,14 @@ pub struct Args {
     /// or the error bound at every point (`bound_mm`).
     #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
     free_tool_axis_objective: Objective,
-    /// With --free-tool-axis, --free-station-mm, --free-positioner-deg or --free-lead-tilt: how the points' costs
+    /// Compensate the whole path in every configuration of the arm (shoulder, elbow and wrist
+    /// branches, up to 8) and keep the one of least --objective (of the error bound, or of the
+    /// deflection with --free-tool-axis), every point reached and every posture feasible in it
+    /// (--margin-deg, --max-condition, the cell's collisions), jointly with the other free
+    /// variables; one configuration per path file or program (at most 100000 points).
+    #[arg(long)]
+    free_configuration: bool,
+    /// With --free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt or --free-configuration: how the points' costs
     /// add up along the path: their sum, or the worst point's (ties broken by the sum).
     #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
     objective: Aggregate,
@@ -446,6 +453,10 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
             args.objective,
         )?);
     }
+    if args.free_configuration {
+        let free = options.free_tool_axis.as_ref();
+        options.free_configuration = Some(FreeConfiguration::with(free, args.objective));
+    }
     if let Some(range) = args.free_positioner_deg {
         let free = options.free_tool_axis.as_ref();
         options.free_positioner = Some(FreePositioner::try_with(
@@ -544,6 +555,9 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             f.states_removed_singularity,
             f.states_removed_collision,
         );
+    }
+    if let Some(c) = &doc.configurations {
+        text += &crate::commands::configuration_table::table(c);
     }
     if let Some(p) = &doc.program {
         text += &format!(

@@ -6,6 +6,7 @@ pub mod cell_readings;
 pub mod common;
 pub mod compensate;
 pub mod completions;
+pub mod configuration_table;
 pub mod evaluate;
 pub mod force;
 pub mod identify;

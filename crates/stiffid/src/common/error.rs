@@ -509,6 +509,8 @@ pub enum JobOption {
     FreeTiltDeg,
     /// compensate: the free tilt's largest change between consecutive points, deg.
     TiltStepDeg,
+    /// compensate: the robot's configuration chosen among the arm's (shoulder, elbow, wrist).
+    FreeConfiguration,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -606,6 +608,7 @@ impl JobOption {
             JobOption::LeadTiltStepDeg => "lead_tilt_step_deg",
             JobOption::FreeTiltDeg => "free_tilt_deg",
             JobOption::TiltStepDeg => "tilt_step_deg",
+            JobOption::FreeConfiguration => "free_configuration",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

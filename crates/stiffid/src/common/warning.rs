@@ -56,6 +56,9 @@ pub enum WarningKind {
     /// A milling point's first natural frequency is near a harmonic of the tooth-passing
     /// frequency ([`crate::machining::dynamics`]).
     Chatter,
+    /// The free configuration kept the path's own for want of another, or left it because it
+    /// cannot take the path ([`crate::machining::compensate::FreeConfiguration`]).
+    Configuration,
     /// A file written leaves out part of the model: a URDF holds no joint error map
     /// ([`crate::robot::ErrorMap`]).
     LeftOut,
@@ -85,6 +88,7 @@ impl WarningKind {
             WarningKind::Masses => "masses",
             WarningKind::Chatter => "chatter",
             WarningKind::LeftOut => "left-out",
+            WarningKind::Configuration => "configuration",
             WarningKind::Extrapolation => "extrapolation",
         }
     }

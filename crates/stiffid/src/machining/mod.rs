@@ -35,7 +35,12 @@
 //!    ([`compensate::Options::free_station`], [`compensate::Options::free_positioner`]) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
 //!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
-//!    the compensated postures there.
+//!    the compensated postures there. With a free configuration
+//!    ([`compensate::Options::free_configuration`]) the whole program is compensated in every
+//!    configuration of the arm and the best kept ([`compensate::FreeConfiguration`]): one
+//!    configuration per program (a G-code program's rapid moves are compensated too, so its
+//!    runs of cutting moves do not each get their own); a joint program's targets are solved
+//!    in another configuration from their nominal poses, and written back with its angles.
 
 pub mod cell;
 pub mod compensate;
@@ -245,6 +250,9 @@ pub struct Report {
     pub program: String,
     /// What the user should know: plunges without a milling force, points no operation covers.
     pub warnings: Vec<String>,
+    /// With a free configuration ([`compensate::Options::free_configuration`]): every
+    /// configuration of the arm evaluated over the whole program, the one chosen.
+    pub configurations: Option<compensate::Configurations>,
 }
 
 /// Compensates `program` under `process` (module docs) on `arm` with the compliance `compliance`
@@ -302,15 +310,22 @@ pub fn compensate(
         }
         None => Vec::new(),
     };
-    let mut results = match free {
+    let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
+    let evaluate = |points: &[PathPoint], options: &compensate::Options| match free {
         false => {
             let at = (thrusts.as_slice(), cones.as_slice());
-            compensate::path_in_cones(arm, compliance, &points, at, options)?
+            compensate::path_in_cones(arm, compliance, points, at, options)
         }
         true => {
-            let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
             let weighted = arm.payload().is_some();
-            compensate::on_track(arm, compliance, &points, (&own, weighted, &cones), options)?
+            compensate::on_track(arm, compliance, points, (&own, weighted, &cones), options)
+        }
+    };
+    let (mut results, configurations) = match options.free_configuration {
+        None => (evaluate(&points, options)?, None),
+        Some(_) => {
+            let (results, c) = compensate::choose(arm, compliance, &points, options, evaluate)?;
+            (results, Some(c))
         }
     };
     check_configuration(&points, &results)?;
@@ -368,6 +383,7 @@ pub fn compensate(
         operations: indices,
         program,
         warnings,
+        configurations,
     })
 }
 

@@ -210,7 +210,7 @@ fn converged(s: &Solution, options: &Options) -> bool {
 }
 
 /// A uniform random posture within the joint limits (within +-pi on an unlimited axis).
-fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
+pub(crate) fn random_posture(robot: &Robot, rng: &mut ChaCha8Rng) -> Vector6<f64> {
     Vector6::from_fn(|i, _| {
         let lo = robot.limits().lower[i].max(-std::f64::consts::PI);
         let hi = robot.limits().upper[i].min(std::f64::consts::PI);

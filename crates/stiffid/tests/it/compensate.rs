@@ -241,6 +241,7 @@ pub(crate) fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         free_positioner: None,
         free_lead_tilt: None,
         free_tilt: None,
+        free_configuration: None,
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,

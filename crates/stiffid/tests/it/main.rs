@@ -30,6 +30,7 @@ mod fanuc_prediction;
 mod feasible_states;
 mod formats_proptest;
 mod forward_model;
+mod free_configuration;
 mod free_positioner;
 mod free_station;
 mod free_tilt;

@@ -72,6 +72,9 @@ pub struct Document {
     pub free_lead_tilt: Option<FreeLeadTilt>,
     /// With `--free-tilt-deg`: its options (a two-axis positioner's first axis); else `null`.
     pub free_tilt: Option<FreePositioner>,
+    /// With `--free-configuration`: every configuration of the arm evaluated over the path and
+    /// the one chosen; else `null`.
+    pub configurations: Option<super::configurations::ConfigurationsDocument>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
     pub program: Option<Program>,
@@ -382,6 +385,8 @@ impl Document {
                 objective: crate::common::choice::Choice::name(f.objective),
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
+            configurations: (report.configurations.as_ref())
+                .map(super::configurations::ConfigurationsDocument::new),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
                 output_language: p.output.name(),

@@ -5,7 +5,8 @@ use crate::machining::compensate::{Options, Removed};
 use serde::Serialize;
 
 /// The feasibility of the moved postures of the free variables (`--free-tool-axis`,
-/// `--free-station-mm`, `--free-positioner-deg`, `--free-tilt-deg`): a state (a value of the
+/// `--free-station-mm`, `--free-positioner-deg`, `--free-tilt-deg`, `--free-lead-tilt`; with `--free-configuration` a configuration whose posture
+/// fails a check at a point is refused): a state (a value of the
 /// free variables at a path point) that inverse kinematics reaches with a cost no larger than
 /// the path's own is removed when its posture fails a check; each removed state is counted
 /// once, by the first check it fails in the order joint-limit margin, singularity, collision.
@@ -35,6 +36,7 @@ impl Feasibility {
     pub fn new(options: &Options, removed: Removed) -> Option<Self> {
         if options.free_tool_axis.is_none()
             && options.free_lead_tilt.is_none()
+            && options.free_configuration.is_none()
             && !options.frees_external()
         {
             return None;

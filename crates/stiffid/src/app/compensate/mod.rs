@@ -19,6 +19,7 @@
 pub mod budget;
 pub mod certify;
 mod columns;
+pub mod configurations;
 pub mod document;
 pub mod dynamics;
 pub mod feasibility;
@@ -169,6 +170,9 @@ pub struct Report {
     /// With [`Options::map`]: the map of the free variable with the rotations chosen
     /// ([`compensate::Map`]).
     pub map: Option<compensate::Map>,
+    /// With [`Options::free_configuration`]: every configuration of the arm evaluated over the
+    /// path, the one chosen ([`compensate::Configurations`]).
+    pub configurations: Option<compensate::Configurations>,
     /// Points without a process force (plunges, rapid moves, blocks no operation covers).
     pub warnings: Vec<Warning>,
 }
@@ -232,6 +236,7 @@ where
         sink(first, points, results, d)
     };
     let mut mapped: Option<Vec<PathPoint>> = None;
+    let mut chosen_configurations: Option<compensate::Configurations> = None;
     let (name, program, warnings) = match input {
         Input::Path { name, text, frame } => {
             let robot = setup.arm().robot();
@@ -244,7 +249,22 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-            if !external {
+            if options.free_configuration.is_some() {
+                let points = placed(text).map_err(|e| in_input(&name, e))?;
+                let points: Result<Vec<PathPoint>> = points.collect();
+                let points = points.map_err(|e| in_input(&name, e))?;
+                let (results, c) =
+                    compensate::path_configurations(setup.arm(), &compliance, &points, &options)
+                        .map_err(|e| in_input(&name, e))?;
+                let results = cell::path_to_cell(robot, &points, results);
+                for (k, (p, r)) in points.chunks(CHUNK).zip(results.chunks(CHUNK)).enumerate() {
+                    add(k * CHUNK, p, r, &vec![Dynamics::default(); p.len()])?;
+                }
+                if let Some(m) = mapped.as_mut() {
+                    *m = c.in_chosen(setup.arm(), m);
+                }
+                chosen_configurations = Some(c);
+            } else if !external {
                 let points = placed(text).map_err(|e| in_input(&name, e))?;
                 let mut first = 0;
                 compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
@@ -307,8 +327,12 @@ where
             )
             .map_err(|e| in_input(&name, e))?;
             if options.map {
-                mapped = Some(compensated.points.clone());
+                mapped = Some(match &compensated.configurations {
+                    Some(c) => c.in_chosen(setup.arm(), &compensated.points),
+                    None => compensated.points.clone(),
+                });
             }
+            chosen_configurations = compensated.configurations.clone();
             let (masses, mass_warning) = crate::observation::dynamics::mass_model(setup.arm());
             let point_dynamics = match &masses {
                 Some(m) => crate::machining::dynamics::program(
@@ -407,8 +431,15 @@ where
     }
     let map = match &mapped {
         Some(points) => {
+            let in_chosen = Options {
+                q0: (chosen_configurations.as_ref())
+                    .and_then(compensate::Configurations::start)
+                    .unwrap_or(options.q0),
+                free_configuration: None,
+                ..options.clone()
+            };
             let mut map =
-                compensate::map(setup.arm(), &compliance, points, (&options, setup.cell()))
+                compensate::map(setup.arm(), &compliance, points, (&in_chosen, setup.cell()))
                     .map_err(|e| in_input(&name, e))?;
             map.chosen = chosen;
             Some(map)
@@ -416,6 +447,10 @@ where
         None => None,
     };
     let mut warnings = warnings;
+    if let Some(c) = &chosen_configurations {
+        (c.warnings.iter())
+            .for_each(|w| warnings.push(Warning::new(WarningKind::Configuration, w.clone())));
+    }
     warnings.extend(summary.stop_warning(options.max_iterations));
     warnings.extend(summary.region_warnings(&compliance.region));
     Ok(Report {
@@ -433,6 +468,7 @@ where
         summary,
         program,
         map,
+        configurations: chosen_configurations,
         warnings,
     })
 }

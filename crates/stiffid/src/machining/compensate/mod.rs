@@ -114,6 +114,23 @@
 //! path's axis (its moment about the TCP changes by at most `2 sin(cone / 2)` of itself, 17% of
 //! a small moment at 10 deg).
 //!
+//! ## The free configuration
+//! A pose is reached in up to eight configurations of the arm (the shoulder, elbow and wrist
+//! choices, [`crate::robot::configuration`]). With [`FreeConfiguration`] the whole path is
+//! compensated in each ([`path_configurations`], [`crate::machining::compensate()`]): the path's
+//! own as given, every other from its posture at the first point (inverse kinematics from
+//! [`FreeConfiguration::SEEDS`] seeded starts, the solution nearest to the path's own posture in
+//! each configuration), continued point by point, a joint target solved from its nominal pose;
+//! the other free variables are chosen in each by their dynamic programming. A configuration
+//! cannot change along a continuous cut, so one holds the whole path. It is refused at the
+//! first point inverse kinematics cannot reach in it, that its compensation fails, whose
+//! posture fails a check of [`Feasible`] or leaves the configuration. Of the others the one of
+//! least path objective is kept (each point's TCP deflection or bound, as the other free
+//! variables minimise, summed or the worst, [`Aggregate`]), the path's own on a tie: no path
+//! is worse than in its own configuration, which is kept whatever the checks say. When no
+//! other configuration takes the path, its own is kept with a warning; when the path's own
+//! cannot take it, the best other one is, with a warning; when none can, the path's own error.
+//!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
 //! drilling program instead ([`path_with_exits`], [`crate::machining::dynamics`]): a drilling
 //! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
@@ -127,6 +144,7 @@ use crate::observation::deflection::Frame;
 use nalgebra::{Isometry3, Vector6};
 
 pub mod budget;
+mod configuration;
 mod feasible;
 mod lead_tilt;
 mod map;
@@ -137,13 +155,15 @@ mod stream;
 mod tool_axis;
 
 pub use budget::Budget;
+pub(crate) use configuration::choose;
+pub use configuration::{path_configurations, posed, Branch, Configurations};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
 pub use map::{map, Map};
 pub use model::{Model, Newton};
 pub use options::{
-    Aggregate, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
+    Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
     Options,
 };
 pub(crate) use station::on_track;

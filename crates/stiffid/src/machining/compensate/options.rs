@@ -388,6 +388,17 @@ pub struct FreeLeadTilt {
     pub aggregate: Aggregate,
 }
 
+/// The free configuration (`compensate --free-configuration`): what the path's objective is
+/// and how its points' costs add up, those of the other free variables given with it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeConfiguration {
+    /// What a point costs: the TCP deflection or the error bound ([`Objective::Surge`] is
+    /// refused).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
 impl FreeLeadTilt {
     /// The largest cone's half angle, deg: of `--cone-deg` and of a process file's
     /// `[tool_axis] cone_deg`.
@@ -478,6 +489,52 @@ impl FreeLeadTilt {
     }
 }
 
+impl FreeConfiguration {
+    /// The most path points a free configuration evaluates (every configuration holds the whole
+    /// path).
+    pub const MAX_POINTS: usize = 100_000;
+    /// Random starts of inverse kinematics that look for the configurations of the first point.
+    pub const SEEDS: usize = 128;
+
+    /// The free configuration minimising what the free tool axis `free` minimises (the bound
+    /// without one), its points' costs added up by `aggregate`: the option
+    /// `compensate --free-configuration` and Python's `free_configuration=True`.
+    pub fn with(free: Option<&FreeToolAxis>, aggregate: Aggregate) -> Self {
+        Self {
+            objective: free.map_or(Objective::Bound, |f| f.objective),
+            aggregate,
+        }
+    }
+
+    /// Refuses the surge objective and a path of more than [`Self::MAX_POINTS`] points.
+    ///
+    /// # Errors
+    /// [`Error::OptionCombination`] (`free_configuration` not with `free_tool_axis_objective`)
+    /// for the surge; [`Error::InvalidOption`] ([`JobOption::FreeConfiguration`]) for too many
+    /// points.
+    pub fn check(&self, points: usize) -> Result<()> {
+        if self.objective == Objective::Surge {
+            return Err(Error::OptionCombination {
+                option: JobOption::FreeConfiguration,
+                with: vec![JobOption::FreeToolAxisObjective],
+                needs: false,
+                reason: "surge: the configuration is chosen by the deflection or the error bound"
+                    .into(),
+            });
+        }
+        if points > Self::MAX_POINTS {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeConfiguration,
+                message: format!(
+                    "{points} path points: at most {} (every configuration holds the whole path)",
+                    Self::MAX_POINTS
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// The free variable a map is drawn over (`compensate --map rotation|track`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MapVariable {
@@ -529,6 +586,12 @@ pub struct Options {
     /// Optimise the tilt (a cell with a two-axis positioner: its first axis), jointly with the
     /// other free variables given.
     pub free_tilt: Option<FreePositioner>,
+    /// Evaluate the path in every configuration of the arm and keep the best
+    /// ([`FreeConfiguration`]), jointly with the other free variables (their dynamic
+    /// programming run in each configuration); `None`: the path's own configuration.
+    /// [`super::path_configurations`], [`crate::machining::compensate()`] and the compensate
+    /// job evaluate it; [`super::path`] and [`super::stream`] ignore it.
+    pub free_configuration: Option<FreeConfiguration>,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`crate::model::prediction`]), within
     /// [`crate::model::prediction::LEVEL`].
@@ -601,6 +664,7 @@ impl Options {
         if let Some(l) = &self.free_lead_tilt {
             l.validate()?;
         }
+        self.validate_configuration()?;
         self.feasible.validate()?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
@@ -664,6 +728,24 @@ impl Options {
         Ok(())
     }
 
+    /// A free configuration's objective not the surge ([`FreeConfiguration::check`]) and
+    /// its objective and aggregate those of the other free variables given with it.
+    fn validate_configuration(&self) -> Result<()> {
+        let Some(c) = &self.free_configuration else {
+            return Ok(());
+        };
+        c.check(0)?;
+        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
+        let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
+        match self.external_objective().or(tool).or(lean) {
+            Some(other) if other != (c.objective, c.aggregate) => Err(Error::InvalidOption {
+                option: JobOption::FreeConfiguration,
+                message: "the free configuration minimises the same objective and aggregate as the other free variables given with it".into(),
+            }),
+            _ => Ok(()),
+        }
+    }
+
     /// What the free station, positioner or tilt minimise and how the costs add up: theirs
     /// (equal, [`Options::validate`]); `None` without any.
     pub(super) fn external_objective(&self) -> Option<(Objective, Aggregate)> {
@@ -695,6 +777,7 @@ impl Options {
             free_positioner: None,
             free_lead_tilt: None,
             free_tilt: None,
+            free_configuration: None,
             level: crate::model::prediction::DEFAULT_LEVEL,
             max_iterations: super::MAX_ITERATIONS,
             force_tolerance: super::budget::DEFAULT_FORCE_TOLERANCE,
