@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable,
-    Objective, Options, PathPoint,
+    Aggregate, Compensated, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
+    FreeToolAxis, MapVariable, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;

@@ -19,8 +19,8 @@ use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, Feasible, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
-    MapVariable, Objective, Options, PathPoint,
+    Aggregate, Compensated, Feasible, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
+    FreeToolAxis, MapVariable, Objective, Options, PathPoint,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;

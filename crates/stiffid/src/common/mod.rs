@@ -4,6 +4,7 @@
 pub mod choice;
 pub mod error;
 pub(crate) mod exact;
+pub mod job_option;
 pub mod limits;
 pub mod progress;
 pub mod stop;

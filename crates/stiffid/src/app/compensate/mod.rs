@@ -23,6 +23,8 @@ pub mod configurations;
 pub mod document;
 pub mod dynamics;
 pub mod feasibility;
+mod free;
+mod output;
 pub mod scene;
 pub mod stream;
 
@@ -300,8 +302,8 @@ where
             out_name,
             settings,
         } => {
-            check_output(language, output).map_err(|e| in_input(&name, e))?;
-            check_lean(&options, output)?;
+            output::check_output(language, output).map_err(|e| in_input(&name, e))?;
+            output::check_lean(&options, output)?;
             settings.validate()?;
             if let (Language::GCode, Language::Robot(d)) = (language, output) {
                 generate::check_payload(d, settings.targets, &program_tool(setup))?;
@@ -485,37 +487,6 @@ pub fn read_program(
     chord_tolerance: f64,
 ) -> Result<Program> {
     machining::read(text, language, chord_tolerance).map_err(|e| in_input(name, e))
-}
-
-/// Refuses an output language a program cannot be written in: a robot program stays in its own.
-fn check_output(language: Language, output: Language) -> Result<()> {
-    match (language, output) {
-        (a, b) if a == b => Ok(()),
-        (Language::GCode, Language::Robot(_)) => Ok(()),
-        _ => Err(Error::InvalidField {
-            field: "out".into(),
-            message: format!(
-                "a program in {} is written back in its own language, not as {}",
-                language.name(),
-                output.name()
-            ),
-        }),
-    }
-}
-
-/// Refuses a free lead and tilt for a program written as G-code: its blocks carry positions
-/// only, so the leaned postures would be lost.
-///
-/// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::FreeLeadTilt`]).
-fn check_lean(options: &Options, output: Language) -> Result<()> {
-    match (options.free_lead_tilt, output) {
-        (Some(_), Language::GCode) => Err(Error::InvalidOption {
-            option: crate::JobOption::FreeLeadTilt,
-            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
-        }),
-        _ => Ok(()),
-    }
 }
 
 /// The name of the program written, checked before anything is computed: for a G-code program

@@ -156,15 +156,14 @@ mod tool_axis;
 
 pub use budget::Budget;
 pub(crate) use configuration::choose;
-pub use configuration::{path_configurations, posed, Branch, Configurations};
+pub use configuration::{path_configurations, posed, Branch, Configurations, FreeConfiguration};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
-pub use lead_tilt::lean;
+pub use lead_tilt::{lean, FreeLeadTilt};
 pub use map::{map, Map};
 pub use model::{Model, Newton};
 pub use options::{
-    Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective,
-    Options,
+    Aggregate, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective, Options,
 };
 pub(crate) use station::on_track;
 pub use station::path_on_track;
