@@ -1,11 +1,8 @@
 //! The options of the jobs' requests a user sets directly ([`JobOption`]), named by
-//! [`Error::InvalidOption`] and [`Error::OptionCombination`].
-
-#[cfg(doc)]
-use super::error::Error;
+//! [`crate::Error::InvalidOption`] and [`crate::Error::OptionCombination`].
 
 /// The options of the jobs' requests that a user sets directly (not fields of a file), named by
-/// [`Error::InvalidOption`]: one enum, so that a front end maps each to its own spelling without
+/// [`crate::Error::InvalidOption`]: one enum, so that a front end maps each to its own spelling without
 /// matching names as strings.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum JobOption {
@@ -179,7 +176,7 @@ impl JobOption {
     }
 }
 
-/// The text of [`Error::OptionCombination`], each option spelled by `name` (the library and
+/// The text of [`crate::Error::OptionCombination`], each option spelled by `name` (the library and
 /// Python by [`JobOption::name`], the command by its flag): `robust: not with nonnegative:
 /// REASON`, `seed: only with bootstrap`.
 pub fn combination(

@@ -3,9 +3,8 @@
 //! objective kept (module docs of [`super`], "The free configuration").
 
 use super::feasible::Checks;
-use super::{Aggregate, Compensated, Compliance, FreeToolAxis, Model, Objective, Options};
+use super::{Aggregate, Compensated, Compliance, FreeConfiguration, Model, Objective, Options};
 use super::{PathPoint, Removed, Target};
-use crate::common::error::JobOption;
 use crate::robot::configuration::Configuration;
 use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
@@ -404,61 +403,4 @@ fn starts(
         }
     }
     best.iter().flatten().map(|b| b.1).collect()
-}
-
-/// The free configuration (`compensate --free-configuration`): what the path's objective is
-/// and how its points' costs add up, those of the other free variables given with it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FreeConfiguration {
-    /// What a point costs: the TCP deflection or the error bound ([`Objective::Surge`] is
-    /// refused).
-    pub objective: Objective,
-    /// How the points' costs add up along the path.
-    pub aggregate: Aggregate,
-}
-
-impl FreeConfiguration {
-    /// The most path points a free configuration evaluates (every configuration holds the whole
-    /// path).
-    pub const MAX_POINTS: usize = 100_000;
-    /// Random starts of inverse kinematics that look for the configurations of the first point.
-    pub const SEEDS: usize = 128;
-
-    /// The free configuration minimising what the free tool axis `free` minimises (the bound
-    /// without one), its points' costs added up by `aggregate`: the option
-    /// `compensate --free-configuration` and Python's `free_configuration=True`.
-    pub fn with(free: Option<&FreeToolAxis>, aggregate: Aggregate) -> Self {
-        Self {
-            objective: free.map_or(Objective::Bound, |f| f.objective),
-            aggregate,
-        }
-    }
-
-    /// Refuses the surge objective and a path of more than [`Self::MAX_POINTS`] points.
-    ///
-    /// # Errors
-    /// [`Error::OptionCombination`] (`free_configuration` not with `free_tool_axis_objective`)
-    /// for the surge; [`Error::InvalidOption`] ([`JobOption::FreeConfiguration`]) for too many
-    /// points.
-    pub fn check(&self, points: usize) -> Result<()> {
-        if self.objective == Objective::Surge {
-            return Err(Error::OptionCombination {
-                option: JobOption::FreeConfiguration,
-                with: vec![JobOption::FreeToolAxisObjective],
-                needs: false,
-                reason: "surge: the configuration is chosen by the deflection or the error bound"
-                    .into(),
-            });
-        }
-        if points > Self::MAX_POINTS {
-            return Err(Error::InvalidOption {
-                option: JobOption::FreeConfiguration,
-                message: format!(
-                    "{points} path points: at most {} (every configuration holds the whole path)",
-                    Self::MAX_POINTS
-                ),
-            });
-        }
-        Ok(())
-    }
 }

@@ -1,8 +1,7 @@
 //! The tool axis' lead and tilt as free variables: the axis leaned from the path's own within a
 //! cone, the TCP on the path's point (module docs of [`super`], "Lead and tilt").
 
-use super::options::{offsets, FreeToolAxis, Options};
-use super::{Aggregate, Objective};
+use super::options::{offsets, FreeLeadTilt, FreeToolAxis, Options};
 use crate::common::error::JobOption;
 use crate::common::words::number;
 use crate::{Error, Result};
@@ -229,113 +228,4 @@ pub(super) fn lean_frames(poses: &[Isometry3<f64>]) -> Vec<[Vector3<f64>; 2]> {
 /// takes the tool's z to `cos(a) z + sin(a) (lead f + tilt c) / a`, `a` the lean's angle.
 pub fn lean(frame: &[Vector3<f64>; 2], lead: f64, tilt: f64) -> UnitQuaternion<f64> {
     UnitQuaternion::from_scaled_axis(frame[1] * lead - frame[0] * tilt)
-}
-
-/// The lead and the tilt of the tool axis, free within a cone about the path's own axis
-/// (module docs of [`super`], "Lead and tilt"), on a grid of `max_step` spacing, jointly with
-/// the rotation about tool z, the station and the positioner when they are free too.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FreeLeadTilt {
-    /// The cone's half angle, rad, in (0, [`FreeLeadTilt::MAX_CONE_DEG`]]: `Some` for a path
-    /// file's points (`--cone-deg`); `None` for a program's, whose process file gives each
-    /// operation's cone ([`crate::machining::process::Operation::cone`]).
-    pub cone: Option<f64>,
-    /// The largest change of the lead, and of the tilt, between consecutive points (rad, at
-    /// least [`FreeLeadTilt::MIN_STEP_DEG`], at most the cone): the grid's spacing.
-    pub max_step: f64,
-    /// What the lean minimises: the deflection or the bound ([`Objective::Surge`] is refused:
-    /// a drill's axis is the hole's).
-    pub objective: Objective,
-    /// How the points' costs add up along the path.
-    pub aggregate: Aggregate,
-}
-
-impl FreeLeadTilt {
-    /// The largest cone's half angle, deg: of `--cone-deg` and of a process file's
-    /// `[tool_axis] cone_deg`.
-    pub const MAX_CONE_DEG: f64 = 30.0;
-    /// The smallest accepted `max_step`, deg.
-    pub const MIN_STEP_DEG: f64 = 0.1;
-
-    /// The free lead and tilt from the cone's half angle (`None`: the process file's) and the
-    /// step in degrees (the units of the command line and the Python package): `cone_deg` in
-    /// (0, 30], `step_deg` in [0.1, `cone_deg`] (at most 30 without a cone); it minimises what
-    /// the free tool axis `free` minimises (the bound without one), its points' costs added up
-    /// by `aggregate`.
-    ///
-    /// # Errors
-    /// [`Error::InvalidOption`] naming the argument that is wrong ([`JobOption::ConeDeg`] or
-    /// [`JobOption::LeadTiltStepDeg`]) with the value given; ([`JobOption::FreeToolAxisObjective`])
-    /// for the surge.
-    pub fn try_with(
-        cone_deg: Option<f64>,
-        step_deg: f64,
-        free: Option<&FreeToolAxis>,
-        aggregate: Aggregate,
-    ) -> Result<Self> {
-        let objective = free.map_or(Objective::Bound, |f| f.objective);
-        Self::checked(cone_deg, step_deg, objective, aggregate)
-    }
-
-    /// Checks the fields as [`FreeLeadTilt::try_with`] gives them.
-    ///
-    /// # Errors
-    /// Those of [`FreeLeadTilt::try_with`].
-    pub fn validate(&self) -> Result<()> {
-        let cone = self.cone.map(f64::to_degrees);
-        Self::checked(
-            cone,
-            self.max_step.to_degrees(),
-            self.objective,
-            self.aggregate,
-        )
-        .map(|_| ())
-    }
-
-    /// [`FreeLeadTilt::try_with`] with its objective.
-    fn checked(
-        cone_deg: Option<f64>,
-        step_deg: f64,
-        objective: Objective,
-        aggregate: Aggregate,
-    ) -> Result<Self> {
-        if let Some(c) = cone_deg.filter(|c| !(*c > 0.0 && *c <= Self::MAX_CONE_DEG)) {
-            return Err(Error::InvalidOption {
-                option: JobOption::ConeDeg,
-                message: format!(
-                    "{}: expected a number > 0 and <= {} (the cone's half angle)",
-                    number(c),
-                    Self::MAX_CONE_DEG
-                ),
-            });
-        }
-        let most = cone_deg.unwrap_or(Self::MAX_CONE_DEG);
-        if !(step_deg >= Self::MIN_STEP_DEG && step_deg <= most) {
-            return Err(Error::InvalidOption {
-                option: JobOption::LeadTiltStepDeg,
-                message: format!(
-                    "{}: expected a number >= {} and <= {} ({})",
-                    number(step_deg),
-                    Self::MIN_STEP_DEG,
-                    number(most),
-                    match cone_deg {
-                        Some(_) => "--cone-deg",
-                        None => "the largest cone",
-                    }
-                ),
-            });
-        }
-        if objective == Objective::Surge {
-            return Err(Error::InvalidOption {
-                option: JobOption::FreeToolAxisObjective,
-                message: "surge: the surge is a drilling exit's, and a drill's axis is the hole's: the lead and tilt minimise the deflection or the bound".into(),
-            });
-        }
-        Ok(Self {
-            cone: cone_deg.map(f64::to_radians),
-            max_step: step_deg.to_radians(),
-            objective,
-            aggregate,
-        })
-    }
 }

@@ -153,17 +153,19 @@ mod options;
 mod station;
 mod stream;
 mod tool_axis;
+mod validate;
 
 pub use budget::Budget;
 pub(crate) use configuration::choose;
-pub use configuration::{path_configurations, posed, Branch, Configurations, FreeConfiguration};
+pub use configuration::{path_configurations, posed, Branch, Configurations};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
-pub use lead_tilt::{lean, FreeLeadTilt};
+pub use lead_tilt::lean;
 pub use map::{map, Map};
 pub use model::{Model, Newton};
 pub use options::{
-    Aggregate, FreePositioner, FreeStation, FreeToolAxis, MapVariable, Objective, Options,
+    Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
+    MapVariable, Objective, Options,
 };
 pub(crate) use station::on_track;
 pub use station::path_on_track;

@@ -1,10 +1,9 @@
 //! How to compensate a path: the free tool axis and the options of the Newton steps.
 
-use super::{FreeConfiguration, FreeLeadTilt};
 use crate::common::error::JobOption;
 use crate::common::words::number;
 use crate::robot::ik::{self};
-use crate::{common::limits, Error, Result, Setup};
+use crate::{Error, Result, Setup};
 use nalgebra::Vector6;
 
 /// The stiffness-optimal rotation about the tool z axis (module docs).
@@ -370,6 +369,172 @@ impl FreePositioner {
     }
 }
 
+/// The lead and the tilt of the tool axis, free within a cone about the path's own axis
+/// (module docs of [`super`], "Lead and tilt"), on a grid of `max_step` spacing, jointly with
+/// the rotation about tool z, the station and the positioner when they are free too.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeLeadTilt {
+    /// The cone's half angle, rad, in (0, [`FreeLeadTilt::MAX_CONE_DEG`]]: `Some` for a path
+    /// file's points (`--cone-deg`); `None` for a program's, whose process file gives each
+    /// operation's cone ([`crate::machining::process::Operation::cone`]).
+    pub cone: Option<f64>,
+    /// The largest change of the lead, and of the tilt, between consecutive points (rad, at
+    /// least [`FreeLeadTilt::MIN_STEP_DEG`], at most the cone): the grid's spacing.
+    pub max_step: f64,
+    /// What the lean minimises: the deflection or the bound ([`Objective::Surge`] is refused:
+    /// a drill's axis is the hole's).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
+/// The free configuration (`compensate --free-configuration`): what the path's objective is
+/// and how its points' costs add up, those of the other free variables given with it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeConfiguration {
+    /// What a point costs: the TCP deflection or the error bound ([`Objective::Surge`] is
+    /// refused).
+    pub objective: Objective,
+    /// How the points' costs add up along the path.
+    pub aggregate: Aggregate,
+}
+
+impl FreeLeadTilt {
+    /// The largest cone's half angle, deg: of `--cone-deg` and of a process file's
+    /// `[tool_axis] cone_deg`.
+    pub const MAX_CONE_DEG: f64 = 30.0;
+    /// The smallest accepted `max_step`, deg.
+    pub const MIN_STEP_DEG: f64 = 0.1;
+
+    /// The free lead and tilt from the cone's half angle (`None`: the process file's) and the
+    /// step in degrees (the units of the command line and the Python package): `cone_deg` in
+    /// (0, 30], `step_deg` in [0.1, `cone_deg`] (at most 30 without a cone); it minimises what
+    /// the free tool axis `free` minimises (the bound without one), its points' costs added up
+    /// by `aggregate`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the argument that is wrong ([`JobOption::ConeDeg`] or
+    /// [`JobOption::LeadTiltStepDeg`]) with the value given; ([`JobOption::FreeToolAxisObjective`])
+    /// for the surge.
+    pub fn try_with(
+        cone_deg: Option<f64>,
+        step_deg: f64,
+        free: Option<&FreeToolAxis>,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        let objective = free.map_or(Objective::Bound, |f| f.objective);
+        Self::checked(cone_deg, step_deg, objective, aggregate)
+    }
+
+    /// Checks the fields as [`FreeLeadTilt::try_with`] gives them.
+    ///
+    /// # Errors
+    /// Those of [`FreeLeadTilt::try_with`].
+    pub fn validate(&self) -> Result<()> {
+        let cone = self.cone.map(f64::to_degrees);
+        Self::checked(
+            cone,
+            self.max_step.to_degrees(),
+            self.objective,
+            self.aggregate,
+        )
+        .map(|_| ())
+    }
+
+    /// [`FreeLeadTilt::try_with`] with its objective.
+    fn checked(
+        cone_deg: Option<f64>,
+        step_deg: f64,
+        objective: Objective,
+        aggregate: Aggregate,
+    ) -> Result<Self> {
+        if let Some(c) = cone_deg.filter(|c| !(*c > 0.0 && *c <= Self::MAX_CONE_DEG)) {
+            return Err(Error::InvalidOption {
+                option: JobOption::ConeDeg,
+                message: format!(
+                    "{}: expected a number > 0 and <= {} (the cone's half angle)",
+                    number(c),
+                    Self::MAX_CONE_DEG
+                ),
+            });
+        }
+        let most = cone_deg.unwrap_or(Self::MAX_CONE_DEG);
+        if !(step_deg >= Self::MIN_STEP_DEG && step_deg <= most) {
+            return Err(Error::InvalidOption {
+                option: JobOption::LeadTiltStepDeg,
+                message: format!(
+                    "{}: expected a number >= {} and <= {} ({})",
+                    number(step_deg),
+                    Self::MIN_STEP_DEG,
+                    number(most),
+                    match cone_deg {
+                        Some(_) => "--cone-deg",
+                        None => "the largest cone",
+                    }
+                ),
+            });
+        }
+        if objective == Objective::Surge {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeToolAxisObjective,
+                message: "surge: the surge is a drilling exit's, and a drill's axis is the hole's: the lead and tilt minimise the deflection or the bound".into(),
+            });
+        }
+        Ok(Self {
+            cone: cone_deg.map(f64::to_radians),
+            max_step: step_deg.to_radians(),
+            objective,
+            aggregate,
+        })
+    }
+}
+
+impl FreeConfiguration {
+    /// The most path points a free configuration evaluates (every configuration holds the whole
+    /// path).
+    pub const MAX_POINTS: usize = 100_000;
+    /// Random starts of inverse kinematics that look for the configurations of the first point.
+    pub const SEEDS: usize = 128;
+
+    /// The free configuration minimising what the free tool axis `free` minimises (the bound
+    /// without one), its points' costs added up by `aggregate`: the option
+    /// `compensate --free-configuration` and Python's `free_configuration=True`.
+    pub fn with(free: Option<&FreeToolAxis>, aggregate: Aggregate) -> Self {
+        Self {
+            objective: free.map_or(Objective::Bound, |f| f.objective),
+            aggregate,
+        }
+    }
+
+    /// Refuses the surge objective and a path of more than [`Self::MAX_POINTS`] points.
+    ///
+    /// # Errors
+    /// [`Error::OptionCombination`] (`free_configuration` not with `free_tool_axis_objective`)
+    /// for the surge; [`Error::InvalidOption`] ([`JobOption::FreeConfiguration`]) for too many
+    /// points.
+    pub fn check(&self, points: usize) -> Result<()> {
+        if self.objective == Objective::Surge {
+            return Err(Error::OptionCombination {
+                option: JobOption::FreeConfiguration,
+                with: vec![JobOption::FreeToolAxisObjective],
+                needs: false,
+                reason: "surge: the configuration is chosen by the deflection or the error bound"
+                    .into(),
+            });
+        }
+        if points > Self::MAX_POINTS {
+            return Err(Error::InvalidOption {
+                option: JobOption::FreeConfiguration,
+                message: format!(
+                    "{points} path points: at most {} (every configuration holds the whole path)",
+                    Self::MAX_POINTS
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
 /// The free variable a map is drawn over (`compensate --map rotation|track`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MapVariable {
@@ -452,135 +617,6 @@ pub struct Options {
 }
 
 impl Options {
-    /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
-    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
-    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, a free station's as
-    /// [`FreeStation::try_from_mm`] and a free positioner's and tilt's as
-    /// [`FreePositioner::try_with`] and [`FreePositioner::try_tilt`] give them, minimising the deflection or the bound with the free tool axis' objective and
-    /// aggregate. [`path`] calls it.
-    ///
-    /// # Errors
-    /// [`Error::InvalidField`] naming the field, the value and the range;
-    /// [`Error::InvalidOption`] for a free station's or positioner's
-    /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
-    /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
-    /// [`JobOption::FreeTiltDeg`], [`JobOption::TiltStepDeg`],
-    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]).
-    pub fn validate(&self) -> Result<()> {
-        limits::check(
-            "compensate::Options.q0",
-            self.q0.as_slice(),
-            &limits::ANGLE_RAD,
-        )?;
-        self.ik.validate()?;
-        crate::model::prediction::check_level("compensate::Options.level", self.level)?;
-        limits::check_integer(
-            "compensate::Options.max_iterations",
-            self.max_iterations as u64,
-            1,
-            super::MAX_ITERATIONS as u64,
-        )?;
-        if let Some(m) = self.max_error.filter(|m| !(m.is_finite() && *m > 0.0)) {
-            return Err(Error::InvalidOption {
-                option: JobOption::MaxErrorMm,
-                message: format!("{}: expected a number > 0", number(m * 1e3)),
-            });
-        }
-        if !(0.0..=1.0).contains(&self.force_tolerance) {
-            return Err(Error::InvalidOption {
-                option: JobOption::ForceTolerancePercent,
-                message: format!(
-                    "{}: expected 0 to 100 percent",
-                    number(self.force_tolerance * 100.0)
-                ),
-            });
-        }
-        self.validate_station()?;
-        if let Some(l) = &self.free_lead_tilt {
-            l.validate()?;
-        }
-        self.validate_configuration()?;
-        self.feasible.validate()?;
-        let Some(free) = &self.free_tool_axis else {
-            return Ok(());
-        };
-        let fields = [
-            ("max_step", free.max_step, FreeToolAxis::MAX_STEP_DEG),
-            ("range", free.range, FreeToolAxis::MAX_RANGE_DEG),
-        ];
-        for (field, value, most) in fields {
-            if !(value > 0.0 && value <= most.to_radians()) {
-                return Err(Error::InvalidField {
-                    field: format!("FreeToolAxis.{field}"),
-                    message: format!(
-                        "{} rad: expected a number > 0 and <= {most} deg",
-                        number(value)
-                    ),
-                });
-            }
-        }
-        Ok(())
-    }
-
-    /// A free station's range and step as [`FreeStation::try_from_mm`] gives them, a free
-    /// positioner's and tilt's as [`FreePositioner::try_with`] and [`FreePositioner::try_tilt`],
-    /// and their objective and aggregate those of a free tool axis given with them and of each
-    /// other.
-    fn validate_station(&self) -> Result<()> {
-        if let Some(s) = &self.free_station {
-            FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
-        }
-        if let Some(p) = &self.free_positioner {
-            FreePositioner::try_with(
-                p.range.to_degrees(),
-                p.max_step.to_degrees(),
-                None,
-                p.aggregate,
-            )?;
-        }
-        if let Some(p) = &self.free_tilt {
-            let (range, step) = (p.range.to_degrees(), p.max_step.to_degrees());
-            FreePositioner::try_tilt(range, step, None, p.aggregate)?;
-        }
-        let station = self.free_station.map(|s| (s.objective, s.aggregate));
-        let positioner = self.free_positioner.map(|p| (p.objective, p.aggregate));
-        let tilt = self.free_tilt.map(|p| (p.objective, p.aggregate));
-        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
-        let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
-        let Some(own) = station.or(positioner).or(tilt).or(lean) else {
-            return Ok(());
-        };
-        let agree = [station, positioner, tilt, tool, lean]
-            .iter()
-            .flatten()
-            .all(|c| *c == own);
-        if own.0 == Objective::Surge || !agree {
-            return Err(Error::InvalidOption {
-                option: JobOption::FreeToolAxisObjective,
-                message: format!("{}: the free station, positioner axes, lead and tilt minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", crate::common::choice::Choice::name(own.0)),
-            });
-        }
-        Ok(())
-    }
-
-    /// A free configuration's objective not the surge ([`FreeConfiguration::check`]) and
-    /// its objective and aggregate those of the other free variables given with it.
-    fn validate_configuration(&self) -> Result<()> {
-        let Some(c) = &self.free_configuration else {
-            return Ok(());
-        };
-        c.check(0)?;
-        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
-        let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
-        match self.external_objective().or(tool).or(lean) {
-            Some(other) if other != (c.objective, c.aggregate) => Err(Error::InvalidOption {
-                option: JobOption::FreeConfiguration,
-                message: "the free configuration minimises the same objective and aggregate as the other free variables given with it".into(),
-            }),
-            _ => Ok(()),
-        }
-    }
-
     /// What the free station, positioner or tilt minimise and how the costs add up: theirs
     /// (equal, [`Options::validate`]); `None` without any.
     pub(super) fn external_objective(&self) -> Option<(Objective, Aggregate)> {
