@@ -227,7 +227,7 @@ fn path(setup: &stiffid::Setup, q0: &Vector6<f64>) -> String {
 }
 
 /// Compensates `text` (a path with `e1_mm`) on `setup` with `options`.
-fn compensated(
+pub(crate) fn compensated(
     setup: &stiffid::Setup,
     compliance: &stiffid::model::Compliance,
     options: &Options,

@@ -8,18 +8,15 @@
 //! rotation chosen for the least deflection, and the true robot's TCP error is measured against
 //! where the part truly is, beside the nominal controller's (its nominal arm and table).
 
+use crate::true_cell::compensated;
 use crate::true_robot::{self, Row, Truth};
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::app::compensate::{self, Input};
-use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreePositioner, FreeToolAxis, Objective, Options, PathPoint,
-};
+use stiffid::machining::compensate::{Aggregate, FreePositioner, FreeToolAxis, Objective, Options};
 use stiffid::metrology::calibration::error_model::Observation;
 use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::ExternalValues;
 use stiffid::robot::ik;
 
@@ -174,33 +171,6 @@ fn path(poses: &[Isometry3<f64>]) -> String {
         );
     }
     text
-}
-
-/// Compensates `text` on `setup` with `options`.
-fn compensated(
-    setup: &stiffid::Setup,
-    compliance: &stiffid::model::Compliance,
-    options: &Options,
-    text: &str,
-) -> (Vec<PathPoint>, Vec<Compensated>) {
-    let request = compensate::Request {
-        setup,
-        compliance: compliance.clone(),
-        input: Input::Path {
-            name: "path.csv".into(),
-            text,
-            frame: Frame::Base,
-        },
-        options: options.clone(),
-    };
-    let (mut points, mut results) = (Vec::new(), Vec::new());
-    compensate::run::<stiffid::Error, _>(request, |_, p, r, _| {
-        points.extend_from_slice(p);
-        results.extend_from_slice(r);
-        Ok(())
-    })
-    .unwrap();
-    (points, results)
 }
 
 /// The true cell calibrated from 30 postures of the arm and 4 table reflectors at 12 angles with
