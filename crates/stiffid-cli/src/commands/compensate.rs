@@ -126,11 +126,11 @@ pub struct Args {
     /// between consecutive points, and the grid's spacing, mm (0.1 <= value <= --free-station-mm).
     #[arg(long, default_value_t = 10.0, requires = "free_station_mm")]
     station_step_mm: f64,
-    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: every moved posture keeps at least this
+    /// With a free variable (--free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt, --free-configuration): every moved posture keeps at least this
     /// distance to the joint limits, deg (0 to 90); the path's own posture stays as it is.
     #[arg(long, default_value_t = Feasible::DEFAULT_MARGIN_DEG)]
     margin_deg: f64,
-    /// With --free-tool-axis, --free-station-mm or --free-positioner-deg: a moved posture's TCP Jacobian condition
+    /// With a free variable (--free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt, --free-configuration): a moved posture's TCP Jacobian condition
     /// number stays at most this (finite, >= 1): away from singularities.
     #[arg(long, default_value_t = Feasible::DEFAULT_MAX_CONDITION)]
     max_condition: f64,
