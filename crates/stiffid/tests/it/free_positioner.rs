@@ -139,25 +139,7 @@ fn the_table_angle_and_rotation_chosen_equal_the_exhaustive_optimum() {
         let (options, s) = free(aggregate);
         let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
         let chosen: Vec<f64> = results.iter().map(|r| r.budget.bound).collect();
-        let value = match aggregate {
-            Aggregate::Sum => chosen.iter().sum(),
-            Aggregate::Max => chosen.iter().copied().fold(0.0, f64::max),
-        };
-        let best = crate::free_station::exhaustive(&bounds, aggregate);
-        // Equal up to the tie-breaking cost (1e-6 of a bound per point and variable).
-        assert!(
-            (value - best).abs() <= 1e-5 * best,
-            "{aggregate:?}: {value} against {best}"
-        );
-        let own = bounds.iter().map(|b| b[1][2].unwrap());
-        let own_value = match aggregate {
-            Aggregate::Sum => own.sum(),
-            Aggregate::Max => own.fold(0.0, f64::max),
-        };
-        assert!(
-            best < own_value * 0.999,
-            "the grid gains: {best} against {own_value}"
-        );
+        crate::free_station::assert_exhaustive_optimum(&chosen, &bounds, aggregate, (1, 2));
     }
 }
 

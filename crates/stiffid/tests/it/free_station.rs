@@ -117,6 +117,33 @@ pub(crate) fn exhaustive(bounds: &[Vec<Vec<Option<f64>>>], aggregate: Aggregate)
     best
 }
 
+/// Asserts the dynamic programming's choice is the exhaustive optimum: the path's value of the
+/// `chosen` bounds (m) by `aggregate` equals [`exhaustive`]'s over `bounds` (up to the
+/// tie-breaking cost, 1e-6 of a bound per point and variable), and the grid gains over the
+/// path's own state `own` (indices into each point's `bounds`).
+pub(crate) fn assert_exhaustive_optimum(
+    chosen: &[f64],
+    bounds: &[Vec<Vec<Option<f64>>>],
+    aggregate: Aggregate,
+    own: (usize, usize),
+) {
+    let add = |v: &mut dyn Iterator<Item = f64>| match aggregate {
+        Aggregate::Sum => v.sum(),
+        Aggregate::Max => v.fold(0.0, f64::max),
+    };
+    let value = add(&mut chosen.iter().copied());
+    let best = exhaustive(bounds, aggregate);
+    assert!(
+        (value - best).abs() <= 1e-5 * best,
+        "{aggregate:?}: {value} against {best}"
+    );
+    let own_value = add(&mut bounds.iter().map(|b| b[own.0][own.1].unwrap()));
+    assert!(
+        best < own_value * 0.999,
+        "the grid gains: {best} against {own_value}"
+    );
+}
+
 #[test]
 fn the_station_and_rotation_chosen_equal_the_exhaustive_optimum() {
     let points = line(4);
@@ -144,25 +171,7 @@ fn the_station_and_rotation_chosen_equal_the_exhaustive_optimum() {
         let (options, s) = free(aggregate);
         let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
         let chosen: Vec<f64> = results.iter().map(|r| r.budget.bound).collect();
-        let value = match aggregate {
-            Aggregate::Sum => chosen.iter().sum(),
-            Aggregate::Max => chosen.iter().copied().fold(0.0, f64::max),
-        };
-        let best = exhaustive(&bounds, aggregate);
-        // Equal up to the tie-breaking cost (1e-6 of a bound per point and variable).
-        assert!(
-            (value - best).abs() <= 1e-5 * best,
-            "{aggregate:?}: {value} against {best}"
-        );
-        let own = bounds.iter().map(|b| b[1][2].unwrap());
-        let own_value = match aggregate {
-            Aggregate::Sum => own.sum(),
-            Aggregate::Max => own.fold(0.0, f64::max),
-        };
-        assert!(
-            best < own_value * 0.999,
-            "the grid gains: {best} against {own_value}"
-        );
+        assert_exhaustive_optimum(&chosen, &bounds, aggregate, (1, 2));
     }
 }
 
