@@ -130,7 +130,7 @@ impl Region {
 pub fn unrecorded_warning() -> Warning {
     Warning::new(
         WarningKind::Extrapolation,
-        "the stiffness file does not record the postures it was identified from (no region: a file written before stiffness files carried it), so no posture is checked for extrapolation; identify again to have them checked",
+        "the stiffness file does not record the postures it was identified from (no `region`: a nominal stiffness written by hand, or a file from an older stiffid), so no posture is checked for extrapolation; a file from `identify --out` records them",
     )
 }
 
