@@ -150,6 +150,7 @@ mod lead_tilt;
 mod map;
 mod model;
 mod options;
+mod speed;
 mod station;
 mod stream;
 mod tool_axis;
@@ -167,6 +168,7 @@ pub use options::{
     Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
     MapVariable, Objective, Options,
 };
+pub use speed::{has_speed_limits, move_times, speed_shares};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;
