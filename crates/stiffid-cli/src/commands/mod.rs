@@ -7,6 +7,7 @@ pub mod common;
 pub mod compensate;
 pub mod completions;
 pub mod configuration_table;
+pub mod speed_line;
 pub mod evaluate;
 pub mod force;
 pub mod identify;

@@ -17,7 +17,8 @@ use serde::Serialize;
 use std::sync::Arc;
 
 /// Why the moves were not checked without a limit.
-const NO_LIMITS: &str = "no axis has a speed limit (a robot file's or setup's max_speed_deg_s, a URDF joint's <limit velocity>, an external axis's max_speed_mm_s or max_speed_deg_s)";
+const NO_LIMITS: &str =
+    "no axis has a speed limit (max_speed_deg_s, max_speed_mm_s, a URDF's <limit velocity>)";
 /// Why the moves of a path file without feeds were not checked.
 const NO_FEED_COLUMN: &str = "the path file has no feed_mm_s column";
 /// Why a robot program's moves were not checked.
