@@ -300,7 +300,7 @@ impl Robot {
     /// # Errors
     /// [`Error::InvalidField`] (`max_speed_deg_s`) when a speed is NaN or not above 0.
     pub fn with_max_speeds(self, max_speeds: Vector6<f64>) -> Result<Self> {
-        if let Some(i) = max_speeds.iter().position(|v| !(*v > 0.0)) {
+        if let Some(i) = max_speeds.iter().position(|v| v.is_nan() || *v <= 0.0) {
             return Err(invalid(
                 format!("max_speed_deg_s[{}]", i + 1),
                 "expected a speed above 0 (infinite: no limit)",

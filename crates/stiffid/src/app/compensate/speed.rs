@@ -4,11 +4,11 @@
 //! its largest speed along the path at the path's own values and at those chosen.
 
 use super::{in_input, Input};
+use crate::common::words::as_given;
 use crate::machining::compensate::{
     has_speed_limits, move_times, speed_shares, Compensated, Options, PathPoint, Target,
 };
 use crate::machining::{self, path, Language, Program};
-use crate::common::words::as_given;
 use crate::robot::external::ExternalValues;
 use crate::robot::ik::tool_pose;
 use crate::{Result, Robot, Setup};

@@ -243,7 +243,9 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
     }
     let max_speed = match (t.max_speed_mm_s, t.max_speed_deg_s) {
         (Some(v), _) => limits::check_speeds(&field_in("max_speed_mm_s"), &[v]).map(|_| v * 1e-3),
-        (_, Some(v)) => limits::check_speeds(&field_in("max_speed_deg_s"), &[v]).map(|_| v.to_radians()),
+        (_, Some(v)) => {
+            limits::check_speeds(&field_in("max_speed_deg_s"), &[v]).map(|_| v.to_radians())
+        }
         (None, None) => Ok(f64::INFINITY),
     }?;
     Ok(ExternalAxis {
