@@ -547,15 +547,17 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     }
     if let Some(f) = &doc.feasibility {
         text += &format!(
-            "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision)\n",
+            "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision); moves refused {} (axis speed)\n",
             f.margin_deg,
             f.max_condition,
             if f.collisions_checked { "checked" } else { "not checked" },
             f.states_removed_limit_margin,
             f.states_removed_singularity,
             f.states_removed_collision,
+            f.moves_refused_speed,
         );
     }
+    text += &crate::commands::speed_line::line(&doc.speed_limits);
     if let Some(c) = &doc.configurations {
         text += &crate::commands::configuration_table::table(c);
     }

@@ -22,4 +22,5 @@ pub mod select;
 pub mod setups;
 pub mod setups_new;
 pub mod simulate;
+pub mod speed_line;
 pub mod validate;

@@ -19,6 +19,11 @@
 //!   frame at `e = 0`, carried by the positioner (the cell frame itself without one), never the
 //!   moving base's; a `base` wrench is in the cell frame.
 //!
+//! - `feed_mm_s` (optional): the feed of the move to the point, mm/s in (0, 10 000]; an empty
+//!   cell: no feed for that move (nor for the first point). The compensate job keeps every axis
+//!   of the free variables' moves within its largest speed at it ([`feeds`]); without the
+//!   column no speed is checked.
+//!
 //! Columns may come in any order; lines starting with `#` are comments. At most [`MAX_POINTS`]
 //! rows. Errors name the line and column ([`Error::Column`]).
 
@@ -38,6 +43,10 @@ const POSE: [&str; 6] = ["x_mm", "y_mm", "z_mm", "rx_deg", "ry_deg", "rz_deg"];
 const FORCE: [&str; 3] = ["fx_n", "fy_n", "fz_n"];
 const MOMENT: [&str; 3] = ["mx_nm", "my_nm", "mz_nm"];
 const FRAME: &str = "frame";
+const FEED: &str = "feed_mm_s";
+
+/// The accepted feed of a path file's `feed_mm_s`, mm/s: above 0, at most 10 000.
+pub const FEED_MM_S: limits::Range = limits::Range::new(0.0, 1e4, "mm/s");
 
 /// The error at `line`, in no column.
 fn problem(line: u64, problem: ColumnProblem) -> Error {
@@ -56,6 +65,7 @@ struct Columns {
     force: [usize; 3],
     moment: Option<[usize; 3]>,
     frame: Option<usize>,
+    feed: Option<usize>,
 }
 
 /// Parses a path file (module docs) of a robot without external axes; `default_frame` is the
@@ -180,7 +190,7 @@ fn unreadable(line: u64, e: &csv::Error) -> Error {
 
 fn expected_columns() -> String {
     format!(
-        "{} or {}, {}, optional {}, {FRAME} and external axes e1_mm or e1_deg, ...",
+        "{} or {}, {}, optional {}, {FRAME}, {FEED} and external axes e1_mm or e1_deg, ...",
         Q.join(","),
         POSE.join(","),
         FORCE.join(","),
@@ -190,7 +200,7 @@ fn expected_columns() -> String {
 
 fn columns(names: &[&str], line: u64) -> Result<Columns> {
     let known = Q.iter().chain(&POSE).chain(&FORCE).chain(&MOMENT);
-    let known = (known.copied().chain([FRAME])).chain(crate::io::external::NAMES);
+    let known = (known.copied().chain([FRAME, FEED])).chain(crate::io::external::NAMES);
     crate::io::known_names(names, line, known, expected_columns)?;
     let find = |n: &str| names.iter().position(|h| *h == n);
     let all = |set: &[&str]| -> Result<Option<Vec<usize>>> {
@@ -225,6 +235,7 @@ fn columns(names: &[&str], line: u64) -> Result<Columns> {
         force: as3(force),
         moment: all(&MOMENT)?.map(as3),
         frame: find(FRAME),
+        feed: find(FEED),
     })
 }
 
@@ -297,6 +308,9 @@ fn point(
             wrench[3 + k] = within(i, &limits::WRENCH)?;
         }
     }
+    if let Some(i) = c.feed {
+        feed(record, names, i, line)?;
+    }
     let frame = match c.frame.map(|i| &record[i]) {
         None | Some("") => default_frame,
         Some("base") => Frame::Base,
@@ -316,4 +330,58 @@ fn point(
         frame,
         external: ExternalValues::NONE,
     })
+}
+
+/// The feed of a row's `feed_mm_s` (field `i`), m/s: `None` for an empty cell.
+fn feed(record: &csv::StringRecord, names: &[&str], i: usize, line: u64) -> Result<Option<f64>> {
+    if record[i].is_empty() {
+        return Ok(None);
+    }
+    let v = number(record, names, i, line)?;
+    match v > 0.0 && FEED_MM_S.contains(v) {
+        true => Ok(Some(v * 1e-3)),
+        false => {
+            let outside = ColumnProblem::Outside {
+                name: names[i].into(),
+                value: v,
+                within: "the feeds (above 0)",
+                lower: FEED_MM_S.min,
+                upper: FEED_MM_S.max,
+            };
+            Err(at(names, line, i, outside))
+        }
+    }
+}
+
+/// The feed of the move to each row of a path file (module docs), m/s, in row order: `None`
+/// for a row whose `feed_mm_s` is empty; `None` for a file without the column.
+///
+/// # Errors
+/// Those of [`points`] for the rows up to the first one whose feed is not a number within
+/// [`FEED_MM_S`] and above 0 ([`Error::Column`] naming its line and column).
+pub fn feeds(text: &str) -> Result<Option<Vec<Option<f64>>>> {
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
+    let names: Vec<&str> = header.iter().collect();
+    let Some(i) = names.iter().position(|n| *n == FEED) else {
+        return Ok(None);
+    };
+    let mut lines = crate::io::LineCount::with_comments(text.as_bytes());
+    let mut out = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| lines.at(p.byte()));
+            unreadable(line, &e)
+        })?;
+        let line = record.position().map_or(0, |p| lines.at(p.byte()));
+        match record.get(i) {
+            Some(_) => out.push(feed(&record, &names, i, line)?),
+            None => out.push(None),
+        }
+    }
+    Ok(Some(out))
 }

@@ -4,6 +4,10 @@
 //! name = "COMAU SMART5 NJ 165-3.0"
 //! source = "where the numbers come from"
 //! convention = "modified-dh"            # or "standard-dh"
+//! max_speed_deg_s = [110, 110, 110, 180, 180, 260]
+//!                                       # optional: each axis's largest speed, deg/s, each in
+//!                                       #   (0, 10 000]; none: no limit (the compensate job
+//!                                       #   keeps every axis within it at the program's feed)
 //! [[joint]]                             # six, base to flange
 //! a_mm = 0.0
 //! alpha_deg = 0.0
@@ -59,6 +63,8 @@ struct RobotFile {
     #[serde(default)]
     source: String,
     convention: Convention,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    max_speed_deg_s: Option<[f64; 6]>,
     joint: Vec<JointRow>,
     axis_map: Option<AxisMapFile>,
     base: Option<TransformFile>,
@@ -190,7 +196,7 @@ impl TransformFile {
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types (the message names
 /// the key, line and column), [`Error::InvalidField`] for a joint count other than six, a number
 /// that is not finite or outside its range ([`crate::common::limits`]: lengths [`limits::LENGTH_MM`],
-/// angles [`limits::ANGLE_DEG`]), `lower_deg >= upper_deg` or an axis map whose condition number
+/// angles [`limits::ANGLE_DEG`], speeds [`limits::AXIS_SPEED`]), `lower_deg >= upper_deg` or an axis map whose condition number
 /// exceeds [`limits::MAX_AXIS_MAP_COND`], and those of the `[[external_axis]]` tables
 /// ([`super::external::file`]: the file, the table and the field named).
 pub fn parse(text: &str, source_name: &str) -> Result<Robot> {
@@ -260,6 +266,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
     let held = held_out(file.held_out, source_name)?;
+    let speeds = max_speeds(file.max_speed_deg_s.as_ref(), source_name)?;
     let external = super::external::file::build(&file.external_axis, source_name)?;
     let axis_map = match file.axis_map {
         None => AxisMap::default(),
@@ -269,6 +276,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         .and_then(|r| r.with_axis_map(axis_map))
         .and_then(|r| r.with_base(base))
         .and_then(|r| r.with_flange(flange))
+        .and_then(|r| r.with_max_speeds(speeds))
         .map(|r| {
             r.with_bodies(bodies)
                 .with_masses(masses)
@@ -280,6 +288,17 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
             Error::InvalidField { field, message } => invalid(source_name, field, &message),
             other => other,
         })
+}
+
+/// Each axis's largest speed of `max_speed_deg_s` (a robot file's or a setup's, in the file
+/// `source_name`), rad/s, each checked by [`limits::check_speeds`]; infinite (no limit) without
+/// the field.
+pub(crate) fn max_speeds(deg_s: Option<&[f64; 6]>, source_name: &str) -> Result<Vector6<f64>> {
+    let Some(v) = deg_s else {
+        return Ok(Vector6::repeat(f64::INFINITY));
+    };
+    limits::check_speeds(&format!("{source_name}: max_speed_deg_s"), v)?;
+    Ok(Vector6::from_iterator(v.iter().map(|d| d.to_radians())))
 }
 
 /// The links' masses, centres and inertia tensors of `mass_kg`, `com_mm` (every joint or none)

@@ -23,7 +23,7 @@ pub use axis_map::AxisMap;
 pub use error_map::ErrorMap;
 pub use external::ExternalAxes;
 
-use nalgebra::{Isometry3, Matrix3, Unit, Vector3};
+use nalgebra::{Isometry3, Matrix3, Unit, Vector3, Vector6};
 use std::sync::Arc;
 
 use crate::common::limits::{self, JointBox};
@@ -72,6 +72,8 @@ pub struct Robot {
     external: Option<Arc<ExternalAxes>>,
     /// A calibrated robot's held-out position errors ([`HeldOut`]), when its file carries them.
     held_out: Option<Arc<HeldOut>>,
+    /// Each axis's largest speed, rad/s; infinite: no limit.
+    max_speeds: Vector6<f64>,
 }
 
 /// The held-out position errors of a calibration (`stiffid calibrate --validate` or
@@ -173,6 +175,7 @@ impl Robot {
             error_maps: None,
             external: None,
             held_out: None,
+            max_speeds: Vector6::repeat(f64::INFINITY),
         }
         .with_limits(limits)
     }
@@ -289,6 +292,28 @@ impl Robot {
             held_out: held_out.map(Arc::new),
             ..self
         }
+    }
+
+    /// The robot with these largest axis speeds (rad/s, axis coordinates; infinite: no limit),
+    /// as a robot file's `max_speed_deg_s` or a URDF's `<limit velocity>` give them.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`max_speed_deg_s`) when a speed is NaN or not above 0.
+    pub fn with_max_speeds(self, max_speeds: Vector6<f64>) -> Result<Self> {
+        if let Some(i) = max_speeds.iter().position(|v| v.is_nan() || *v <= 0.0) {
+            return Err(invalid(
+                format!("max_speed_deg_s[{}]", i + 1),
+                "expected a speed above 0 (infinite: no limit)",
+            ));
+        }
+        Ok(Self { max_speeds, ..self })
+    }
+
+    /// Each axis's largest speed, rad/s (axis coordinates); infinite where the robot's
+    /// description gives none. The compensate job keeps every axis within it at the program's
+    /// feed ([`crate::machining::compensate::Feasible::move_times`]).
+    pub fn max_speeds(&self) -> &Vector6<f64> {
+        &self.max_speeds
     }
 
     /// The cell's external axes, when it has any.

@@ -8,7 +8,8 @@
 //! axis map is the identity: axis angles are the URDF joint positions. Joint limits come from each
 //! revolute joint's `<limit lower upper>`; continuous joints, and revolute joints without a
 //! `<limit>` (urdf-rs reads it as `lower = upper = 0`), are unlimited; an inverted or non-finite
-//! limit is an error.
+//! limit is an error. Each joint's `<limit velocity>` (rad/s, m/s for a track's prismatic joint)
+//! is its axis's largest speed; zero or none: no limit.
 //!
 //! A robot on a track: prismatic joints before the arm's first revolute joint are the carrier's
 //! linear axes ([`crate::robot::external`]; at most three), their directions in the root link's
@@ -409,7 +410,7 @@ fn fold(
     source_name: &str,
 ) -> std::result::Result<Robot, String> {
     let mut joints = Vec::new();
-    let (mut lower, mut upper) = (Vec::new(), Vec::new());
+    let (mut lower, mut upper, mut speeds) = (Vec::new(), Vec::new(), Vec::new());
     let mut acc = Isometry3::identity();
     let mut carrier = Vec::new();
     let mut last = "";
@@ -446,6 +447,7 @@ fn fold(
                 let (l, u) = joint_limits(j)?;
                 lower.push(l);
                 upper.push(u);
+                speeds.push(velocity(j)?);
                 acc = Isometry3::identity();
             }
             ref other => {
@@ -468,6 +470,7 @@ fn fold(
     );
     let robot = Robot::new(name, source_name, joints, limits)
         .and_then(|r| r.with_flange(acc))
+        .and_then(|r| r.with_max_speeds(Vector6::from_column_slice(&speeds)))
         .map_err(|e| e.to_string())?;
     match carrier.is_empty() {
         true => Ok(robot),
@@ -492,9 +495,27 @@ fn linear_axis(
     }
     check_limit(&name, lower, upper, &limits::LENGTH_M)?;
     let direction = Unit::new_normalize(at.rotation * axis(j)?.into_inner());
-    Ok(super::external::ExternalAxis::linear(
-        &j.name, direction, lower, upper,
-    ))
+    Ok(super::external::ExternalAxis {
+        max_speed: velocity(j)?,
+        ..super::external::ExternalAxis::linear(&j.name, direction, lower, upper)
+    })
+}
+
+/// The largest speed of joint `j`, its `<limit velocity>` (rad/s or m/s): infinite (no limit)
+/// where it is zero or absent (urdf-rs reads an absent one as 0).
+///
+/// # Errors
+/// A message naming the joint for a negative or non-finite velocity.
+fn velocity(j: &urdf_rs::Joint) -> std::result::Result<f64, String> {
+    match j.limit.velocity {
+        v if v == 0.0 => Ok(f64::INFINITY),
+        v if v > 0.0 && v.is_finite() => Ok(v),
+        v => Err(format!(
+            "joint '{}': limit velocity {} is not a speed (expected above 0; 0 or none: no limit)",
+            limits::short(&j.name),
+            crate::common::words::number(v)
+        )),
+    }
 }
 
 /// The positioner: the chain of one or two revolute joints from the root link to a leaf link
@@ -568,13 +589,16 @@ fn positioner(
             _ => (-limits::ANGLE_RAD.max, limits::ANGLE_RAD.max),
         };
         let direction = Unit::new_normalize(at.rotation * axis(j)?.into_inner());
-        axes.push(super::external::ExternalAxis::rotary(
-            &j.name,
-            at.translation.vector,
-            direction,
-            lower,
-            upper,
-        ));
+        axes.push(super::external::ExternalAxis {
+            max_speed: velocity(j)?,
+            ..super::external::ExternalAxis::rotary(
+                &j.name,
+                at.translation.vector,
+                direction,
+                lower,
+                upper,
+            )
+        });
     }
     Ok(axes)
 }

@@ -25,6 +25,8 @@ struct SetupFile {
     package_paths: Vec<String>,
     robot_base: Option<TransformFile>,
     robot_flange: Option<TransformFile>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    max_speed_deg_s: Option<[f64; 6]>,
     #[serde(default)]
     springs: Coordinates,
     characteristic_length_mm: Option<f64>,
@@ -393,8 +395,12 @@ fn in_file(e: Error, source_name: &str) -> Error {
 /// (fixed-axis roll, pitch, yaw as URDF), the same as a robot TOML's `[base]` and `[flange]`.
 ///
 /// The setup's `[[external_axis]]` tables, when it has any, replace the robot file's
-/// (`external_axis = []` takes them away: the arm on a fixed base).
+/// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
+/// replaces the robot's axis speeds.
 fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+    if let Some(v) = &f.max_speed_deg_s {
+        robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
+    }
     if let Some(tables) = &f.external_axis {
         robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
     }

@@ -79,6 +79,7 @@ mod search;
 mod setup_builder;
 mod simulate;
 mod solver_auto;
+mod speed_limits;
 mod stop_reasons;
 mod study;
 mod table_design;

@@ -66,6 +66,10 @@ pub struct Document {
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed; else `null`.
     pub feasibility: Option<super::feasibility::Feasibility>,
+    /// The axes' speed limits at the program's feed: whether the free variables' moves were
+    /// checked against them, and each axis's highest share of its largest speed along the path
+    /// at the path's own values and at those chosen.
+    pub speed_limits: super::speed::SpeedLimits,
     /// With `--free-positioner-deg`: its options; else `null`.
     pub free_positioner: Option<FreePositioner>,
     /// With `--free-lead-tilt`: its options; else `null`. The lead and tilt chosen are every
@@ -305,6 +309,7 @@ impl Document {
                 aggregate: crate::common::choice::Choice::name(f.aggregate),
             }),
             feasibility: report.feasibility.clone(),
+            speed_limits: report.speed_limits.clone(),
             free_positioner: report.free_positioner.map(FreePositioner::new),
             free_tilt: report.free_tilt.map(FreePositioner::new),
             free_lead_tilt: report.free_lead_tilt.map(|f| FreeLeadTilt {

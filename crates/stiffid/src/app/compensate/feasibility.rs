@@ -28,6 +28,9 @@ pub struct Feasibility {
     pub states_removed_singularity: usize,
     /// The states removed by a collision.
     pub states_removed_collision: usize,
+    /// The moves between feasible states of consecutive points refused because an axis would
+    /// exceed its largest speed at the program's feed (`speed_limits`), summed over the path.
+    pub moves_refused_speed: usize,
 }
 
 impl Feasibility {
@@ -49,6 +52,7 @@ impl Feasibility {
             states_removed_limit_margin: removed.limit_margin,
             states_removed_singularity: removed.singularity,
             states_removed_collision: removed.collision,
+            moves_refused_speed: removed.speed,
         })
     }
 }

@@ -26,6 +26,7 @@ pub mod feasibility;
 mod free;
 mod output;
 pub mod scene;
+pub mod speed;
 pub mod stream;
 
 use super::{Warning, WarningKind};
@@ -159,6 +160,9 @@ pub struct Report {
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed.
     pub feasibility: Option<feasibility::Feasibility>,
+    /// The axes' speed limits at the program's feed: whether checked, each axis's highest
+    /// share of its largest speed at the path's own values and at those chosen.
+    pub speed_limits: speed::SpeedLimits,
     /// The free positioner, if asked.
     pub free_positioner: Option<compensate::FreePositioner>,
     /// The free lead and tilt of the tool axis, if asked.
@@ -211,6 +215,7 @@ where
         }
         .into());
     }
+    let (options, mut speeds) = speed::prepare(setup, &input, options)?;
     let external = options.frees_external();
     let free = options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() || external;
     let axes = setup.robot().external();
@@ -224,6 +229,7 @@ where
                 false => &r.external,
             };
             summary.add(first + k, p.line, r, e);
+            speeds.add(first + k, p, r);
             if options.map {
                 chosen.push(match options.map_over {
                     compensate::MapVariable::Rotation => r.tool_rotation,
@@ -461,6 +467,7 @@ where
         free_tool_axis: options.free_tool_axis,
         free_station: options.free_station,
         feasibility: feasibility::Feasibility::new(&options, summary.removed),
+        speed_limits: speeds.document(),
         free_positioner: options.free_positioner,
         free_lead_tilt: options.free_lead_tilt,
         free_tilt: options.free_tilt,

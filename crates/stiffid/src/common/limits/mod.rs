@@ -56,6 +56,33 @@ impl std::fmt::Display for Range {
     }
 }
 
+/// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
+/// above 0, at most 10 000 deg/s or mm/s ([`check_speeds`]).
+pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
+
+/// Checks every largest speed of `values` (deg/s or mm/s): finite, above 0 and within
+/// [`AXIS_SPEED`]; the error names `field` and the value found.
+///
+/// # Errors
+/// [`Error::InvalidField`] for the first value that is not.
+pub fn check_speeds(field: &str, values: &[f64]) -> Result<()> {
+    check(field, values, &AXIS_SPEED)?;
+    match values.iter().position(|v| *v <= 0.0) {
+        None => Ok(()),
+        Some(i) => Err(Error::InvalidField {
+            field: match values.len() {
+                1 => field.to_string(),
+                _ => format!("{field}[{}]", i + 1),
+            },
+            message: format!(
+                "{} is not a speed: expected above 0, at most {} (leave the field out for no limit)",
+                number(values[i]),
+                number(AXIS_SPEED.max)
+            ),
+        }),
+    }
+}
+
 /// A capsule radius of a robot file's `[robot_geometry]`: 1 um to 10 m.
 pub const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
 

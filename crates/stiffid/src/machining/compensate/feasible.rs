@@ -1,6 +1,7 @@
 //! Which moved postures the free variables may take: the joint-limit margin, the distance to a
 //! singularity and the cell's collision checks (module docs of [`super`], "Feasibility").
 
+use super::speed::Pace;
 use super::Model;
 use crate::cell::{CheckKind, Checker};
 use crate::common::error::JobOption;
@@ -28,6 +29,13 @@ pub struct Feasible {
     /// chosen, or the point's own; [`crate::cell::Checker::feasibility_at`]); the cell's floor
     /// and obstacles stand in the cell frame (a positioner turns the part, not them).
     pub cell: Option<Arc<Setup>>,
+    /// The time of the move to each path point, s, from the program's feed
+    /// ([`super::move_times`]; `None` for a point whose move has no limit: the first, a rapid
+    /// move): a move of the free variables between consecutive points is taken only where every
+    /// axis with a largest speed ([`crate::Robot::max_speeds`],
+    /// [`crate::robot::external::ExternalAxis::max_speed`]) moves at most that speed times it
+    /// (the path's own moves are kept whatever they do). `None`: no speed check (no feed).
+    pub move_times: Option<Arc<[Option<f64>]>>,
 }
 
 impl Feasible {
@@ -38,12 +46,13 @@ impl Feasible {
 
     /// The defaults for `setup`: a margin of [`Feasible::DEFAULT_MARGIN_DEG`], a condition
     /// number of at most [`Feasible::DEFAULT_MAX_CONDITION`] and, when the setup has a `[cell]`,
-    /// its collision checks.
+    /// its collision checks; no speed check ([`Feasible::move_times`]).
     pub fn for_setup(setup: &Setup) -> Self {
         Self {
             margin: Self::DEFAULT_MARGIN_DEG.to_radians(),
             max_condition: Self::DEFAULT_MAX_CONDITION,
             cell: setup.cell().map(|_| Arc::new(setup.clone())),
+            move_times: None,
         }
     }
 
@@ -88,6 +97,10 @@ pub struct Removed {
     pub singularity: usize,
     /// A collision of the cell's checks.
     pub collision: usize,
+    /// Moves between feasible states of consecutive points refused because an axis would
+    /// exceed its largest speed ([`Feasible::move_times`]): transitions, not states, counted at
+    /// the point they move to.
+    pub speed: usize,
 }
 
 impl std::ops::AddAssign for Removed {
@@ -95,6 +108,7 @@ impl std::ops::AddAssign for Removed {
         self.limit_margin += other.limit_margin;
         self.singularity += other.singularity;
         self.collision += other.collision;
+        self.speed += other.speed;
     }
 }
 
@@ -113,10 +127,13 @@ pub(super) struct Checks<'a> {
     margin: f64,
     max_condition: f64,
     checker: Option<Checker<'a>>,
+    /// The axes' speed limits at the path's move times; `None`: none.
+    pub pace: Option<Pace<'a>>,
 }
 
 impl<'a> Checks<'a> {
-    /// The checks of `feasible` for the arm of `model`, the collisions with a `[cell]`.
+    /// The checks of `feasible` for the arm of `model`, the collisions with a `[cell]`, the
+    /// speeds with move times and limits.
     pub fn new(model: &Model<'a>, feasible: &'a Feasible) -> Self {
         let robot = model.arm.robot();
         let checker = feasible.cell.as_deref().map(Checker::new);
@@ -126,6 +143,7 @@ impl<'a> Checks<'a> {
             margin: feasible.margin,
             max_condition: feasible.max_condition,
             checker,
+            pace: Pace::new(robot, feasible.move_times.as_deref()),
         }
     }
 

@@ -59,9 +59,9 @@
 //! the wrench stays fixed in the cell frame), and the same dynamic programming chooses them,
 //! the offset changing by at most one grid step between consecutive points and the rotation by
 //! at most its `max_step`, a state taken only where its cost is no larger than at the path's own
-//! values, the tie-breaking cost summed over both variables. The cell files give no axis
-//! speeds: the step per point is the speed limit (the station moves at most `max_step` per
-//! point; at a feed `v` and points `s` apart that is `max_step v / s`).
+//! values, the tie-breaking cost summed over both variables. The station moves at most
+//! `max_step` per point (at a feed `v` and points `s` apart, `max_step v / s`); the axes' own
+//! speed limits bind further ("Speed limits").
 //!
 //! ## Feasibility
 //! Every posture a free variable moves a point to must be feasible ([`Feasible`], the checks
@@ -76,6 +76,18 @@
 //! cost no larger than the path's own, counted by the first check they fail). The floor and the
 //! obstacles stand in the cell frame: a positioner turns the part, not them (the positioner's
 //! own bodies are not modelled).
+//!
+//! ## Speed limits
+//! At the program's feed every axis must keep within its largest speed
+//! ([`crate::Robot::max_speeds`], [`crate::robot::external::ExternalAxis::max_speed`]), or the
+//! controller slows the TCP below the feed. With [`Feasible::move_times`] (the time of the move
+//! to each point: the TCP distance between the program's targets over the feed, [`move_times`])
+//! the dynamic programming takes a move from a state at point `i - 1` to a state at point `i`
+//! only where every axis with a limit moves at most `v_max dt_i` ([`speed_shares`]): the arm's
+//! six by the two states' nominal postures, the external axes by their values. The path's own
+//! moves are kept whatever they do (no point worse than the program); a point without a time
+//! (the first, a rapid move) takes any move. Each result counts the moves to it refused
+//! ([`Removed::speed`]).
 //!
 //! ## The free positioner
 //! With [`FreePositioner`] the positioner's last axis (the table's turn; a turntable's only
@@ -150,6 +162,7 @@ mod lead_tilt;
 mod map;
 mod model;
 mod options;
+mod speed;
 mod station;
 mod stream;
 mod tool_axis;
@@ -167,6 +180,7 @@ pub use options::{
     Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
     MapVariable, Objective, Options,
 };
+pub use speed::{has_speed_limits, move_times, speed_shares};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;

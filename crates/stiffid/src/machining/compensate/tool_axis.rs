@@ -11,6 +11,7 @@ use crate::robot::ik::{self, tool_pose};
 use crate::robot::kinematics::Frames;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
+use std::cell::Cell;
 
 /// What a point costs at an angle ([`super::Objective`]).
 pub(super) enum Cost<'a> {
@@ -138,8 +139,9 @@ pub(super) fn lean_axes(leaning: &Leaning) -> Vec<Axis<'_>> {
 /// The state of every point on the path of least value over `columns` (one per state of
 /// `grid`, with each point's external values `at` that state in `external`): a point takes a
 /// state only where its cost is no larger than at the path's own and its moved posture passes
-/// `checks` (the path's own posture is kept as it is); with each point's states the checks
-/// removed.
+/// `checks` (the path's own posture is kept as it is), and moves from one point's state to the
+/// next's only within the axes' speed limits of `checks` ([`super::Feasible::move_times`]; the
+/// path's own moves always); with each point's states the checks removed and moves refused.
 pub(super) fn choose(
     (columns, external): (&[Column], &[&[ExternalValues]]),
     grid: &Grid,
@@ -172,7 +174,25 @@ pub(super) fn choose(
             (costs, removed)
         })
         .unzip();
-    let chosen = shortest(&costs, grid, &cost.scales(&own), aggregate);
+    let refused: Vec<Cell<usize>> = (0..own.len()).map(|_| Cell::new(0)).collect();
+    let allowed = |i: usize, a: usize, g: usize| {
+        let Some(pace) = &checks.pace else {
+            return true;
+        };
+        let (Some(from), Some(to)) = (&columns[a][i - 1], &columns[g][i]) else {
+            return true;
+        };
+        let ok = pace.allows(i, (&from.0, &external[a][i - 1]), (&to.0, &external[g][i]));
+        if !ok {
+            refused[i].set(refused[i].get() + 1);
+        }
+        ok
+    };
+    let chosen = shortest(&costs, grid, &cost.scales(&own), aggregate, &allowed);
+    let mut removed = removed;
+    for (r, n) in removed.iter_mut().zip(&refused) {
+        r.speed = n.get();
+    }
     (chosen, removed)
 }
 
@@ -277,17 +297,20 @@ impl Value {
 }
 
 /// The dynamic programming of the free tool axis: `costs[i][g]` the cost of point `i` at angle
-/// `g` (`None`: not feasible), `scales[i]` its tie-breaking scale; returns the angle index of
-/// each point on the path of least value (module docs of [`super`]), `grid.zero` everywhere
-/// when no path is feasible.
+/// `g` (`None`: not feasible), `scales[i]` its tie-breaking scale, `allowed(i, a, g)` whether
+/// the move from state `a` at point `i - 1` to state `g` at point `i` may be taken (the axes'
+/// speed limits; the path's own move, `grid.zero` to `grid.zero`, always is); returns the
+/// angle index of each point on the path of least value (module docs of [`super`]),
+/// `grid.zero` everywhere when no path is feasible.
 pub(super) fn shortest(
     costs: &[Vec<Option<f64>>],
     grid: &Grid,
     scales: &[f64],
     aggregate: Aggregate,
+    allowed: &dyn Fn(usize, usize, usize) -> bool,
 ) -> Vec<usize> {
     let n = costs.len();
-    let g_count = grid.len();
+    let (g_count, zero) = (grid.len(), grid.zero());
     let steps = grid.steps();
     let away: Vec<f64> = (0..g_count).map(|s| grid.away(s)).collect();
     // value[i][g]: the least value of the paths up to point i ending at state g.
@@ -324,6 +347,10 @@ pub(super) fn shortest(
                 if value[i - 1][a].primary == f64::INFINITY {
                     continue;
                 }
+                let own = a == zero && g == zero;
+                if !own && !allowed(i, a, g) {
+                    continue;
+                }
                 let v = add(value[i - 1][a], d, tie + w * step);
                 if best.is_none_or(|(_, b)| v.less(&b)) {
                     best = Some((a, v));
@@ -341,9 +368,9 @@ pub(super) fn shortest(
         _ => Some(g),
     });
     let Some(mut g) = last else {
-        return vec![grid.zero(); n];
+        return vec![zero; n];
     };
-    let mut chosen = vec![grid.zero(); n];
+    let mut chosen = vec![zero; n];
     for i in (0..n).rev() {
         chosen[i] = g;
         g = from[i][g];
@@ -445,13 +472,26 @@ mod tests {
     use super::*;
 
     /// Every path of angle indices over `n` points on `g` angles whose consecutive indices
-    /// differ by at most `reach`, by enumeration: the least aggregate of the costs.
-    fn exhaustive(costs: &[Vec<Option<f64>>], reach: usize, aggregate: Aggregate) -> f64 {
+    /// differ by at most `reach` and whose moves `allowed` takes (the own angle `zero` kept
+    /// always allowed), by enumeration: the least aggregate of the costs.
+    fn exhaustive(
+        costs: &[Vec<Option<f64>>],
+        (reach, zero): (usize, usize),
+        aggregate: Aggregate,
+        allowed: &dyn Fn(usize, usize, usize) -> bool,
+    ) -> f64 {
         let (n, g) = (costs.len(), costs[0].len());
         let mut best = f64::INFINITY;
         for code in 0..g.pow(n as u32) {
             let path: Vec<usize> = (0..n).map(|i| code / g.pow(i as u32) % g).collect();
             if path.windows(2).any(|w| w[0].abs_diff(w[1]) > reach) {
+                continue;
+            }
+            let refused = (1..n).any(|i| {
+                let own = path[i - 1] == zero && path[i] == zero;
+                !own && !allowed(i, path[i - 1], path[i])
+            });
+            if refused {
                 continue;
             }
             let values: Option<Vec<f64>> = (0..n).map(|i| costs[i][path[i]]).collect();
@@ -466,7 +506,7 @@ mod tests {
     }
 
     #[test]
-    fn the_dynamic_programming_finds_the_exhaustive_optimum() {
+    fn the_dynamic_programming_finds_the_exhaustive_optimum_with_refused_moves() {
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
         let angles = [-0.2, -0.1, 0.0, 0.1, 0.2];
@@ -492,15 +532,24 @@ mod tests {
                 })
                 .collect();
             let scales = vec![1.0; n];
+            // Every third trial refuses a random third of the moves (the speed limits).
+            let mask: Vec<bool> = (0..n * 25).map(|_| rng.random::<f64>() > 0.33).collect();
+            let masked = trial % 3 == 0;
+            let allowed = |i: usize, a: usize, g: usize| !masked || mask[i * 25 + a * 5 + g];
             for aggregate in [Aggregate::Sum, Aggregate::Max] {
-                let chosen = shortest(&costs, &grid, &scales, aggregate);
+                let chosen = shortest(&costs, &grid, &scales, aggregate, &allowed);
                 assert!(chosen.windows(2).all(|w| w[0].abs_diff(w[1]) <= 1));
+                let taken = (1..n).all(|i| {
+                    let own = chosen[i - 1] == 2 && chosen[i] == 2;
+                    own || allowed(i, chosen[i - 1], chosen[i])
+                });
+                assert!(taken, "trial {trial}: a refused move taken");
                 let values: Vec<f64> = (0..n).map(|i| costs[i][chosen[i]].unwrap()).collect();
                 let value = match aggregate {
                     Aggregate::Sum => values.iter().sum(),
                     Aggregate::Max => values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
                 };
-                let best = exhaustive(&costs, 1, aggregate);
+                let best = exhaustive(&costs, (1, 2), aggregate, &allowed);
                 // Equal up to the tie-breaking cost (1e-6 of a cost per point and step).
                 assert!(
                     (value - best).abs() <= 1e-5,

@@ -9,6 +9,7 @@
 //! direction = [1.0, 0.0, 0.0]    # cell frame at e = 0 (normalised when read)
 //! limits_mm = [0.0, 6000.0]      # linear: limits_mm (required), offset_mm (default 0)
 //! offset_mm = 0.0
+//! max_speed_mm_s = 1000.0        # optional, linear: the largest speed, mm/s in (0, 10 000]
 //! error_motions = [[0.0, 0.05, 0.0, 0.0, 0.1, 0.0]]
 //!                                # optional, linear only: one row per order 1..K of
 //!                                #   [positioning_mm, straightness_y_mm, straightness_z_mm,
@@ -20,7 +21,10 @@
 //! direction = [1.0, 0.0, 0.0]
 //! point_mm = [3000.0, 1500.0, 800.0] # a point on the axis's line, cell frame at e = 0
 //! limits_deg = [-90.0, 90.0]     # rotary: limits_deg (required), offset_deg (default 0)
+//! max_speed_deg_s = 90.0         # optional, rotary: the largest speed, deg/s in (0, 10 000]
 //! ```
+//!
+//! Without a `max_speed_*` the axis has no speed limit.
 //!
 //! Unknown keys are rejected; a field of the other kind of axis (`limits_deg` on a carrier,
 //! `point_mm` on one, `limits_mm` or `error_motions` on a positioner) is an error naming the
@@ -51,6 +55,8 @@ pub(crate) struct AxisFile {
     point_mm: Option<[f64; 3]>,
     #[serde(default, deserialize_with = "crate::common::exact::option_arrays")]
     error_motions: Option<Vec<[f64; 6]>>,
+    max_speed_mm_s: Option<f64>,
+    max_speed_deg_s: Option<f64>,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy)]
@@ -67,7 +73,7 @@ enum RoleFile {
 /// [`Error::InvalidField`] naming the file, the table (`external_axis[i] (name)`) and the field
 /// for a missing travel (`limits_mm` on a carrier, `limits_deg` on a positioner), a field of the
 /// other kind of axis, a zero or non-finite direction, a number outside its range
-/// ([`limits::LENGTH_MM`], [`limits::ANGLE_DEG`]), error motions beyond
+/// ([`limits::LENGTH_MM`], [`limits::ANGLE_DEG`], [`limits::AXIS_SPEED`]), error motions beyond
 /// [`super::error_motions::MAX_COEFFICIENT`] or [`super::MAX_ORDER`], and everything
 /// [`ExternalAxes::new`] checks (counts, names, travel).
 pub(crate) fn build(tables: &[AxisFile], source_name: &str) -> Result<Option<ExternalAxes>> {
@@ -107,6 +113,7 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
     }
     let table = format!("{table} ({})", limits::short(&t.name));
     let field = |f: &str| format!("{table}.{f}");
+    let field_in = |f: &str| format!("{source_name}: {table}.{f}");
     let refuse = |present: bool, f: &str, why: &str| match present {
         true => Err(invalid(source_name, &field(f), why)),
         false => Ok(()),
@@ -134,6 +141,7 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
                 "given on a linear carrier axis: a carrier axis takes limits_mm and offset_mm (mm)";
             refuse(t.limits_deg.is_some(), "limits_deg", linear)?;
             refuse(t.offset_deg.is_some(), "offset_deg", linear)?;
+            refuse(t.max_speed_deg_s.is_some(), "max_speed_deg_s", linear)?;
             refuse(
                 t.point_mm.is_some(),
                 "point_mm",
@@ -183,6 +191,7 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
             let rotary = "given on a rotary positioner axis: a positioner axis takes limits_deg, offset_deg and point_mm";
             refuse(t.limits_mm.is_some(), "limits_mm", rotary)?;
             refuse(t.offset_mm.is_some(), "offset_mm", rotary)?;
+            refuse(t.max_speed_mm_s.is_some(), "max_speed_mm_s", rotary)?;
             refuse(
                 t.error_motions.is_some(),
                 "error_motions",
@@ -232,6 +241,13 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
             "expected [lower, upper] with lower below upper",
         ));
     }
+    let max_speed = match (t.max_speed_mm_s, t.max_speed_deg_s) {
+        (Some(v), _) => limits::check_speeds(&field_in("max_speed_mm_s"), &[v]).map(|_| v * 1e-3),
+        (_, Some(v)) => {
+            limits::check_speeds(&field_in("max_speed_deg_s"), &[v]).map(|_| v.to_radians())
+        }
+        (None, None) => Ok(f64::INFINITY),
+    }?;
     Ok(ExternalAxis {
         name: t.name.clone(),
         kind,
@@ -242,6 +258,7 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
         lower,
         upper,
         errors,
+        max_speed,
     })
 }
 
@@ -263,6 +280,9 @@ pub fn toml(axes: &ExternalAxes) -> String {
                 let _ = writeln!(t, "direction = {}", list(d.as_slice()));
                 let _ = writeln!(t, "limits_mm = {}", list(&[a.lower * 1e3, a.upper * 1e3]));
                 let _ = writeln!(t, "offset_mm = {:?}", a.offset * 1e3);
+                if a.max_speed.is_finite() {
+                    let _ = writeln!(t, "max_speed_mm_s = {:?}", a.max_speed * 1e3);
+                }
                 if !a.errors.is_empty() {
                     let rows: Vec<String> = (a.errors.coefficients().iter())
                         .map(|r| list(&r.map(|v| v * 1e3)))
@@ -277,6 +297,9 @@ pub fn toml(axes: &ExternalAxes) -> String {
                 let deg = [a.lower.to_degrees(), a.upper.to_degrees()];
                 let _ = writeln!(t, "limits_deg = {}", list(&deg));
                 let _ = writeln!(t, "offset_deg = {:?}", a.offset.to_degrees());
+                if a.max_speed.is_finite() {
+                    let _ = writeln!(t, "max_speed_deg_s = {:?}", a.max_speed.to_degrees());
+                }
             }
         }
     }

@@ -133,11 +133,14 @@ pub struct ExternalAxis {
     pub upper: f64,
     /// A linear axis's error motions along its travel (empty for none; a rotary axis has none).
     pub errors: ErrorMotions,
+    /// The axis's largest speed, m/s or rad/s; infinite: no limit (`max_speed_mm_s`,
+    /// `max_speed_deg_s`).
+    pub max_speed: f64,
 }
 
 impl ExternalAxis {
-    /// A linear carrier axis along `direction` with travel `lower..upper` (m), no offset and no
-    /// error motions.
+    /// A linear carrier axis along `direction` with travel `lower..upper` (m), no offset, no
+    /// error motions and no speed limit.
     pub fn linear(name: &str, direction: Unit<Vector3<f64>>, lower: f64, upper: f64) -> Self {
         Self {
             name: name.to_string(),
@@ -149,11 +152,12 @@ impl ExternalAxis {
             lower,
             upper,
             errors: ErrorMotions::default(),
+            max_speed: f64::INFINITY,
         }
     }
 
     /// A rotary positioner axis about the line through `point` (m) along `direction`, travel
-    /// `lower..upper` (rad), no offset.
+    /// `lower..upper` (rad), no offset and no speed limit.
     pub fn rotary(
         name: &str,
         point: Vector3<f64>,

@@ -1,0 +1,242 @@
+//! The axes' speed limits at the program's feed in the compensate job: the time of every move
+//! the free variables' dynamic programming keeps the axes within
+//! ([`crate::machining::compensate::Feasible::move_times`]), and each axis's highest share of
+//! its largest speed along the path at the path's own values and at those chosen.
+
+use super::{in_input, Input};
+use crate::common::words::as_given;
+use crate::machining::compensate::{
+    has_speed_limits, move_times, speed_shares, Compensated, Options, PathPoint, Target,
+};
+use crate::machining::{self, path, Language, Program};
+use crate::robot::external::ExternalValues;
+use crate::robot::ik::tool_pose;
+use crate::{Result, Robot, Setup};
+use nalgebra::{Vector3, Vector6};
+use serde::Serialize;
+use std::sync::Arc;
+
+/// Why the moves were not checked without a limit.
+const NO_LIMITS: &str =
+    "no axis has a speed limit (max_speed_deg_s, max_speed_mm_s, a URDF's <limit velocity>)";
+/// Why the moves of a path file without feeds were not checked.
+const NO_FEED_COLUMN: &str = "the path file has no feed_mm_s column";
+/// Why a robot program's moves were not checked.
+const ROBOT_PROGRAM: &str = "a robot program's programmed speeds are not read: the check needs a G-code program (its F words) or a path file with a feed_mm_s column";
+
+/// The axes' speed limits at the program's feed (`compensate`'s free variables keep every axis
+/// within its largest speed between consecutive points; the path's own moves are kept whatever
+/// they do). A move's time is the TCP distance between the program's targets over the feed of
+/// the move (a G-code program's `F` in force, a path file's `feed_mm_s`); the first point and
+/// a rapid move (`G0`: the controller's own speed) have none.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct SpeedLimits {
+    /// Whether the moves were checked: an axis has a largest speed and the path a feed.
+    pub checked: bool,
+    /// Why they were not (no limit, no feed); `null` when they were.
+    pub not_checked_because: Option<String>,
+    /// Every axis: the arm's six (`q1`..`q6`), then the cell's external axes in order.
+    pub axes: Vec<AxisSpeed>,
+}
+
+/// One axis's largest speed and its highest share of it along the path, `|dq| / (v_max dt)`
+/// over the moves with a time (above 1: faster than the axis can move at the feed). The shares
+/// are of the nominal postures (the compensation's change of an axis is a small fraction of a
+/// degree); `null` when the moves were not checked or the axis has no limit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct AxisSpeed {
+    /// The axis: `q1`..`q6` for the arm's, an external axis's name.
+    pub axis: String,
+    /// A rotary axis's largest speed, deg/s; `null` for a linear axis or none.
+    pub max_speed_deg_s: Option<f64>,
+    /// A linear axis's largest speed, mm/s; `null` for a rotary axis or none.
+    pub max_speed_mm_s: Option<f64>,
+    /// The highest share at the path's own values.
+    pub own_highest_share: Option<f64>,
+    /// The program or path file line of the point the own highest share moves to (`null` when
+    /// no limited axis moves).
+    pub own_line: Option<u64>,
+    /// That point's number along the path, 1-based.
+    pub own_point: Option<usize>,
+    /// The highest share at the values chosen (the path's own without a free variable).
+    pub chosen_highest_share: Option<f64>,
+    /// The line of the point the chosen highest share moves to.
+    pub chosen_line: Option<u64>,
+    /// That point's number along the path, 1-based.
+    pub chosen_point: Option<usize>,
+}
+
+/// The options with the move times of `input` on `setup` (none where the moves are not
+/// checked), and the tracker of the shares along the path.
+///
+/// # Errors
+/// Those of [`path::feeds`] and [`path::points`] for a path file with a `feed_mm_s` column, of
+/// [`machining::read`] for a G-code program (as [`crate::Error::Input`] naming the file).
+pub(super) fn prepare<'a>(
+    setup: &'a Setup,
+    input: &Input,
+    mut options: Options,
+) -> Result<(Options, Tracker<'a>)> {
+    let robot = setup.robot();
+    let (times, why) = match has_speed_limits(robot) {
+        false => (None, Some(NO_LIMITS)),
+        true => times(setup, input)?,
+    };
+    let times: Option<Arc<[Option<f64>]>> = times.map(Into::into);
+    options.feasible.move_times = times.clone();
+    let axes = 6 + robot.external().map_or(0, |c| c.len());
+    let tracker = Tracker {
+        robot,
+        times,
+        why,
+        previous: None,
+        own: vec![Highest::default(); axes],
+        chosen: vec![Highest::default(); axes],
+    };
+    Ok((options, tracker))
+}
+
+/// The move times of `input` (module docs), or why there are none.
+fn times(setup: &Setup, input: &Input) -> Result<(Option<Vec<Option<f64>>>, Option<&'static str>)> {
+    match input {
+        Input::Path { name, text, frame } => {
+            let Some(feeds) = path::feeds(text).map_err(|e| in_input(name, e))? else {
+                return Ok((None, Some(NO_FEED_COLUMN)));
+            };
+            let robot = setup.robot();
+            let points = path::points(text, *frame, robot.external());
+            let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
+            let points = points.map_err(|e| in_input(name, e))?;
+            let tcp = setup.arm().tool().tcp;
+            let at: Vec<Vector3<f64>> = points.iter().map(|p| in_part(robot, &tcp, p)).collect();
+            Ok((Some(move_times(&at, &feeds)), None))
+        }
+        Input::Program {
+            name,
+            text,
+            language: Language::GCode,
+            chord_tolerance,
+            ..
+        } => {
+            let program = machining::read(text, Language::GCode, *chord_tolerance)
+                .map_err(|e| in_input(name, e))?;
+            let Program::GCode(g) = program else {
+                return Ok((None, Some(ROBOT_PROGRAM)));
+            };
+            let at: Vec<Vector3<f64>> = g.points.iter().map(|p| p.position).collect();
+            let feeds: Vec<Option<f64>> = (g.points.iter())
+                .map(|p| match p.motion {
+                    machining::gcode::Motion::Feed => p.feed,
+                    machining::gcode::Motion::Rapid => None,
+                })
+                .collect();
+            Ok((Some(move_times(&at, &feeds)), None))
+        }
+        Input::Program { .. } => Ok((None, Some(ROBOT_PROGRAM))),
+    }
+}
+
+/// The TCP of a path file's point in the part's frame (m): a pose's position; axis angles'
+/// TCP taken from the arm on its carriage through the cell back by the positioner.
+fn in_part(robot: &Robot, tcp: &Vector3<f64>, p: &PathPoint) -> Vector3<f64> {
+    match &p.target {
+        Target::Pose(x) => x.translation.vector,
+        Target::Posture(q) => {
+            let at = tool_pose(&robot.frames(q), tcp);
+            let e = p.external.as_slice();
+            match robot.external() {
+                None => at.translation.vector,
+                Some(c) => {
+                    let part = c.positioner_pose(e).inverse() * c.carrier_pose(e) * at;
+                    part.translation.vector
+                }
+            }
+        }
+    }
+}
+
+/// An axis's highest share so far and where.
+#[derive(Debug, Clone, Copy, Default)]
+struct Highest {
+    share: f64,
+    line: u64,
+    point: usize,
+}
+
+/// The shares of the axes' speeds along the path, point by point.
+pub(super) struct Tracker<'a> {
+    robot: &'a Robot,
+    times: Option<Arc<[Option<f64>]>>,
+    why: Option<&'static str>,
+    /// The previous point's own and chosen axis angles and external values.
+    previous: Option<[(Vector6<f64>, ExternalValues); 2]>,
+    own: Vec<Highest>,
+    chosen: Vec<Highest>,
+}
+
+impl Tracker<'_> {
+    /// Adds the point of index `i` (0-based, path order) with its result.
+    pub fn add(&mut self, i: usize, p: &PathPoint, r: &Compensated) {
+        let Some(times) = &self.times else { return };
+        let chosen_e = match r.external.is_empty() {
+            true => p.external,
+            false => r.external,
+        };
+        let now = [(r.q_before.unwrap_or(r.q), p.external), (r.q, chosen_e)];
+        if let (Some(before), Some(Some(dt))) = (&self.previous, times.get(i)) {
+            for (k, highest) in [&mut self.own, &mut self.chosen].into_iter().enumerate() {
+                let (from, to) = (&before[k], &now[k]);
+                let shares = speed_shares(self.robot, *dt, (&from.0, &from.1), (&to.0, &to.1));
+                for (h, s) in highest.iter_mut().zip(shares) {
+                    if s > h.share {
+                        *h = Highest {
+                            share: s,
+                            line: p.line,
+                            point: i + 1,
+                        };
+                    }
+                }
+            }
+        }
+        self.previous = Some(now);
+    }
+
+    /// The document's object.
+    pub fn document(&self) -> SpeedLimits {
+        let robot = self.robot;
+        let mut axes: Vec<(String, f64, bool)> = (0..6)
+            .map(|k| (format!("q{}", k + 1), robot.max_speeds()[k], true))
+            .collect();
+        for a in robot.external().map_or(&[][..], |c| c.axes()) {
+            let rotary = a.kind == crate::robot::external::AxisKind::Rotary;
+            axes.push((a.name.clone(), a.max_speed, rotary));
+        }
+        let checked = self.times.is_some();
+        let axes = (axes.into_iter().enumerate())
+            .map(|(k, (axis, v, rotary))| {
+                let limited = v.is_finite();
+                let shown = |h: &Highest| (checked && limited).then_some(*h);
+                let at = |h: Option<Highest>| h.filter(|h| h.point > 0);
+                let (own, chosen) = (shown(&self.own[k]), shown(&self.chosen[k]));
+                AxisSpeed {
+                    axis,
+                    max_speed_deg_s: (limited && rotary).then(|| as_given(v.to_degrees())),
+                    max_speed_mm_s: (limited && !rotary).then(|| as_given(v * 1e3)),
+                    own_highest_share: own.map(|h| h.share),
+                    own_line: at(own).map(|h| h.line),
+                    own_point: at(own).map(|h| h.point),
+                    chosen_highest_share: chosen.map(|h| h.share),
+                    chosen_line: at(chosen).map(|h| h.line),
+                    chosen_point: at(chosen).map(|h| h.point),
+                }
+            })
+            .collect();
+        SpeedLimits {
+            checked,
+            not_checked_because: self.why.map(str::to_string),
+            axes,
+        }
+    }
+}
