@@ -14,9 +14,10 @@ impl Obstacle {
     /// function that carries the part), and fixed there (`carried_by` `None`); a fixed box
     /// (or one whose axis `axes` lacks) as it is.
     pub fn at(&self, axes: Option<&ExternalAxes>, e: &[f64]) -> Obstacle {
-        let axis = self.carried_by.as_ref().and_then(|name| {
-            axes.and_then(|a| a.axes().iter().position(|x| &x.name == name))
-        });
+        let axis = self
+            .carried_by
+            .as_ref()
+            .and_then(|name| axes.and_then(|a| a.axes().iter().position(|x| &x.name == name)));
         let (Some(axes), Some(j)) = (axes, axis) else {
             return self.clone();
         };

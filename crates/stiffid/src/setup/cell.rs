@@ -102,7 +102,11 @@ impl Obstacle {
     fn local(&self, p: &Vector3<f64>) -> Vector3<f64> {
         match self.turned() {
             false => *p,
-            true => self.pose.inverse_transform_point(&nalgebra::Point3::from(*p)).coords,
+            true => {
+                self.pose
+                    .inverse_transform_point(&nalgebra::Point3::from(*p))
+                    .coords
+            }
         }
     }
 }

@@ -468,7 +468,10 @@ impl Setup {
         let mut builder = self.to_builder().with_robot(robot);
         if let Some(cell) = self.cell() {
             let obstacles = cell.obstacles_at(self.robot(), e).into_owned();
-            builder = builder.with_cell(Cell { obstacles, ..cell.clone() });
+            builder = builder.with_cell(Cell {
+                obstacles,
+                ..cell.clone()
+            });
         }
         builder.with_table_reflectors(Vec::new()).build()
     }

@@ -78,11 +78,7 @@ fn collides(checker: &Checker, q: &Vector6<f64>, e: &ExternalValues) -> bool {
 
 /// A box of half-size `half` (m) centred at `centre` (cell frame, m).
 fn boxed(centre: &Vector3<f64>, half: f64) -> Obstacle {
-    Obstacle {
-        name: "fixture".into(),
-        min: centre.add_scalar(-half),
-        max: centre.add_scalar(half),
-    }
+    Obstacle::fixed("fixture", centre.add_scalar(-half), centre.add_scalar(half))
 }
 
 #[test]
