@@ -307,3 +307,48 @@ fn a_table_angle_that_drives_the_arm_into_a_box_on_the_table_is_not_taken() {
         "point {i}'s choice changes"
     );
 }
+
+/// The gradient of a turned box's margin (from the witness turned back into the cell) equals
+/// central differences.
+#[test]
+fn a_turned_box_margin_gradient_matches_finite_differences() {
+    let s = on_table(Vec::new());
+    let q = Vector6::new(0.2, 0.3, -0.2, 0.4, -0.6, 0.3);
+    let frames = s.robot().frames(&q);
+    let c = capsules(s.arm(), &frames)[4];
+    let half = 0.08;
+    let centre = (c.a + c.b) / 2.0 + Vector3::new(0.0, 1.0, 0.3).normalize() * (c.radius + 0.15);
+    let pose = Isometry3::from_parts(
+        Translation3::from(centre),
+        UnitQuaternion::from_euler_angles(0.3, 0.5, -0.8),
+    );
+    let o = Obstacle {
+        pose,
+        ..Obstacle::fixed("turned", Vector3::repeat(-half), Vector3::repeat(half))
+    };
+    let s = on_table(vec![o]);
+    let checker = Checker::new(&s);
+    let (margins, gradients) = checker.margins_and_gradients(&q);
+    let obstacle = |m: &[stiffid::cell::Margin]| -> Vec<usize> {
+        (0..m.len())
+            .filter(|&i| m[i].kind == CheckKind::Obstacles && m[i].margin < 0.05)
+            .collect()
+    };
+    let near = obstacle(&margins);
+    assert!(!near.is_empty(), "a body within 5 cm of the box");
+    let h = 1e-6;
+    for &i in &near {
+        for a in 0..6 {
+            let (mut up, mut down) = (q, q);
+            up[a] += h;
+            down[a] -= h;
+            let fd =
+                (checker.margins(&up)[i].margin - checker.margins(&down)[i].margin) / (2.0 * h);
+            let g = gradients.gradient(i)[a];
+            assert!(
+                (g - fd).abs() < 1e-5 * (1.0 + fd.abs()),
+                "{i} {a}: {g} {fd}"
+            );
+        }
+    }
+}
