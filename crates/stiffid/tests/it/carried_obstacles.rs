@@ -2,17 +2,19 @@
 //! box against brute force; a carried box turns with the part (the axes up to its own);
 //! `at_station` freezes it; the free table angle never drives the arm into a box on the table
 //! (checked independently at the chosen angle), the choice changes and no bound rises; bad
-//! fields are refused naming the file and the field.
+//! fields are refused naming the file and the field; a turned box's margin gradient matches
+//! central differences.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{bodies, body_box, capsule_box, capsules, Capsule, CheckKind, Checker, Part};
+use stiffid::machining::compensate::PathPoint;
 use stiffid::machining::compensate::{self, Aggregate, Compensated, FreePositioner, Options};
-use stiffid::machining::compensate::{PathPoint, Target};
-use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;
-use stiffid::setup::{Cell, Obstacle};
+use stiffid::setup::Obstacle;
 use stiffid::{setup, Setup};
+
+use crate::track_collisions::{in_cell, line_at};
 
 /// The distance of point `p` to the box `o` (turned by its pose), exact: `p` in the box's
 /// frame, clamped into it.
@@ -173,36 +175,13 @@ fn on_table(obstacles: Vec<Obstacle>) -> Setup {
         ExternalAxis::rotary("table", TABLE.into(), Vector3::z_axis(), -limit, limit),
     ])
     .unwrap();
-    let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
-    let base = setup::parse(text, "milling.toml", |name, _| presets::get(name)).unwrap();
-    let robot = base.robot().clone().with_external(Some(cell));
-    let cell = Cell {
-        floor_z: None,
-        clearance: 0.01,
-        obstacles,
-    };
-    (base.to_builder().with_robot(robot))
-        .with_cell(cell)
-        .build()
-        .unwrap()
+    in_cell(cell, obstacles)
 }
 
 /// `n` points of a line along x on the part (the tool pointing down), the station 1.5 m, the
 /// table at rest.
 fn line(n: usize) -> Vec<PathPoint> {
-    let down = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
-    (0..n)
-        .map(|i| PathPoint {
-            line: i as u64 + 2,
-            target: Target::Pose(Isometry3::from_parts(
-                Vector3::new(2.6 + 0.05 * i as f64, -0.4, 0.5).into(),
-                down,
-            )),
-            wrench: Vector6::new(300.0, -200.0, -400.0, 0.0, 0.0, 0.0),
-            frame: Frame::Base,
-            external: ExternalValues::new(&[1.5, 0.0]).unwrap(),
-        })
-        .collect()
+    line_at(n, &[1.5, 0.0])
 }
 
 /// The free table +-20 deg in 10 deg steps, the bound summed.
