@@ -78,14 +78,38 @@ pub(crate) fn capsule_floor_witness(c: &Capsule, floor_z: f64) -> (f64, Witness)
     (low.z - c.radius - floor_z, witness)
 }
 
-/// Signed distance between a capsule and an axis-aligned box, m (parry's contact query, GJK
-/// outside and EPA for the penetration depth inside); at most 10 km.
+/// Signed distance between a capsule and a box, m (parry's contact query, GJK outside and EPA
+/// for the penetration depth inside); at most 10 km. A turned box ([`Obstacle::pose`]): the
+/// capsule moved into the box's frame by the inverse of its pose (a rigid motion keeps the
+/// distance), there against the axis-aligned box.
 pub fn capsule_box(c: &Capsule, b: &Obstacle) -> f64 {
     capsule_box_witness(c, b).0
 }
 
-/// [`capsule_box`] and its witness (parry's contact points and normal); `None` beyond 10 km.
+/// [`capsule_box`] and its witness (parry's contact points and normal, cell frame); `None`
+/// beyond 10 km.
 pub(crate) fn capsule_box_witness(c: &Capsule, b: &Obstacle) -> (f64, Option<Witness>) {
+    if !b.turned() {
+        return capsule_aligned_box(c, b);
+    }
+    let to_box = |p: &Vector3<f64>| b.pose.inverse_transform_point(&Point3::from(*p)).coords;
+    let local = Capsule {
+        a: to_box(&c.a),
+        b: to_box(&c.b),
+        ..*c
+    };
+    let (d, w) = capsule_aligned_box(&local, b);
+    let back = |p: Vector3<f64>| (b.pose * Point3::from(p)).coords;
+    let w = w.map(|w| Witness {
+        a: back(w.a),
+        b: back(w.b),
+        normal: b.pose.rotation * w.normal,
+    });
+    (d, w)
+}
+
+/// [`capsule_box_witness`] of the box's corners in the capsule's frame (its pose left out).
+fn capsule_aligned_box(c: &Capsule, b: &Obstacle) -> (f64, Option<Witness>) {
     let centre = (b.min + b.max) / 2.0;
     let cuboid = shape::Cuboid::new((b.max - b.min) / 2.0);
     let capsule = shape::Capsule::new(
@@ -188,7 +212,8 @@ pub(crate) fn body_floor_witness(b: &Body, floor_z: f64) -> (f64, Witness) {
     (low.z - floor_z, witness)
 }
 
-/// Signed distance between a body and an axis-aligned box, m; at most 10 km.
+/// Signed distance between a body and a box (turned by its [`Obstacle::pose`]), m; at most
+/// 10 km.
 pub fn body_box(b: &Body, o: &Obstacle) -> f64 {
     body_box_witness(b, o).0
 }
@@ -198,11 +223,12 @@ pub(crate) fn body_box_witness(b: &Body, o: &Obstacle) -> (f64, Option<Witness>)
     match b {
         Body::Capsule(c) => capsule_box_witness(c, o),
         Body::Solid(_) => {
-            let centre = Isometry3::translation(
-                (o.min.x + o.max.x) / 2.0,
-                (o.min.y + o.max.y) / 2.0,
-                (o.min.z + o.max.z) / 2.0,
-            );
+            let centre = o.pose
+                * Isometry3::translation(
+                    (o.min.x + o.max.x) / 2.0,
+                    (o.min.y + o.max.y) / 2.0,
+                    (o.min.z + o.max.z) / 2.0,
+                );
             let cuboid = shape::Cuboid::new((o.max - o.min) / 2.0);
             with_parry(b, |s, p| contact(p, s, &centre, &cuboid))
         }

@@ -5,7 +5,7 @@ use super::check::{CheckKind, Margin, Thing};
 use super::distance::{body_body, body_body_witness, body_box_witness, body_floor_witness};
 use super::distance::{capsule_box_witness, closest_on_segment, Witness};
 use super::motion::{part_carrier, Carrier, Deferred, MarginGradients, Margins};
-use crate::setup::Setup;
+use crate::setup::{Obstacle, Setup};
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -172,16 +172,19 @@ impl<'a> Checker<'a> {
         self.kinds.len() > 1
     }
 
-    /// The feasibility of posture `q` (axis angles, rad).
+    /// The feasibility of posture `q` (axis angles, rad), the external axes (if any) at the
+    /// cell's origin and the boxes a positioner carries at `e = 0`.
     pub fn feasibility(&self, q: &Vector6<f64>) -> Feasibility {
         self.feasibility_at(q, &[])
     }
 
     /// The feasibility of posture `q` (axis angles, rad) with the cell's external axes at `e`
     /// (SI, the cell's order, [`crate::robot::external`]): the arm's bodies on their carriage,
-    /// its base at `C(e) * base` ([`crate::Robot::frames_at`]), against the floor, the
-    /// obstacles, the rope's anchor and the tracker, which stand in the cell frame. Empty `e`
-    /// (or a robot without a carrier): [`Checker::feasibility`].
+    /// its base at `C(e) * base` ([`crate::Robot::frames_at`]), against the floor, the fixed
+    /// obstacles, the rope's anchor and the tracker, which stand in the cell frame, and the
+    /// boxes a positioner carries where `e` turns them ([`crate::setup::Obstacle::at`]). Empty
+    /// `e` (or a robot without external axes): [`Checker::feasibility`], the carried boxes at
+    /// `e = 0`.
     pub fn feasibility_at(&self, q: &Vector6<f64>, e: &[f64]) -> Feasibility {
         let mut exact = Margins::new(false, false);
         self.collect(q, e, &mut exact);
@@ -300,18 +303,21 @@ impl<'a> Checker<'a> {
         };
         let bodies = bodies(s.arm(), &frames);
         let loading = frames.point(&s.tool().loading_point);
+        let obstacles = s.cell().map(|c| c.obstacles_at(s.robot(), e));
+        let obstacles = obstacles.as_deref().unwrap_or(&[]);
         if let Some(cell) = &s.cell() {
-            self.body_margins(&bodies, &loading, cell, out);
+            self.body_margins(&bodies, &loading, cell, obstacles, out);
         }
         if let Some(t) = &s.tracker() {
             for (i, p) in s.tool().measuring_points.iter().enumerate() {
                 let p = frames.point(p);
                 let sight = line(&t.position, &p, s.geometry().tool_radius);
+                let things = (&bodies[..], obstacles);
                 self.line_margins(
                     CheckKind::LineOfSight,
                     &sight,
                     Thing::Sight(i),
-                    &bodies,
+                    things,
                     self.keep,
                     out,
                 );
@@ -367,6 +373,7 @@ impl<'a> Checker<'a> {
         bodies: &[Body],
         loading: &Vector3<f64>,
         cell: &crate::setup::Cell,
+        obstacles: &[Obstacle],
         out: &mut Margins,
     ) {
         let c = cell.clearance + self.keep;
@@ -387,8 +394,8 @@ impl<'a> Checker<'a> {
         }
         for b in bodies {
             let (centre, r) = b.bound();
-            for (i, o) in cell.obstacles.iter().enumerate() {
-                let inside = centre.zip_zip_map(&o.min, &o.max, |v, lo, hi| v.clamp(lo, hi));
+            for (i, o) in obstacles.iter().enumerate() {
+                let inside = o.nearest(&centre);
                 let (d, w) = match far_gap(out, &centre, &inside, r, c) {
                     Some((d, w)) => (d, Some(w)),
                     None => body_box_witness(b, o),
@@ -416,16 +423,17 @@ impl<'a> Checker<'a> {
         }
         let exempt = self.setup.geometry().tool_radius + cell.clearance;
         let rope = line(&self.setup.load().anchor, loading, exempt);
-        self.line_margins(CheckKind::Rope, &rope, Thing::Rope, bodies, c, out);
+        let things = (bodies, obstacles);
+        self.line_margins(CheckKind::Rope, &rope, Thing::Rope, things, c, out);
     }
 
-    /// Margins of a line (rope or sight) against every body and obstacle.
+    /// Margins of a line (rope or sight) against every body and obstacle (where they stand).
     fn line_margins(
         &self,
         kind: CheckKind,
         line: &Line,
         thing: Thing,
-        bodies: &[Body],
+        (bodies, obstacles): (&[Body], &[Obstacle]),
         required: f64,
         out: &mut Margins,
     ) {
@@ -449,12 +457,7 @@ impl<'a> Checker<'a> {
             let m = margin(kind, m, required, thing, Thing::Part(b.part()));
             out.witness(m, carrier, part_carrier(b.part()), w);
         }
-        let obstacles = self
-            .setup
-            .cell()
-            .into_iter()
-            .flat_map(|c| c.obstacles.iter());
-        for (i, o) in obstacles.enumerate() {
+        for (i, o) in obstacles.iter().enumerate() {
             let (d, w) = capsule_box_witness(&line.full, o);
             let m = margin(kind, d - required, required, thing, Thing::Obstacle(i));
             out.witness(m, line.full_carrier, Carrier::Fixed, w);

@@ -330,7 +330,8 @@ impl SetupBuilder {
     /// [`Error::InvalidField`] naming the field as a setup file names it (unit in the name, the
     /// value given in that unit) for a missing required field, an empty name, a number that is not
     /// finite or outside its documented range, no measuring point or no noise level (or more than
-    /// their limits), bounds not below each other, and an inconsistent cell or tracker ([`Cell`],
+    /// their limits), bounds not below each other, and an inconsistent cell (a box `carried_by` no
+    /// positioner axis of the robot's) or tracker ([`Cell`],
     /// [`Tracker`]) or virtual springs ([`crate::model::check_springs`]); [`Error::OutsideBox`] with the field, the value and the range for bounds or
     /// test postures outside the robot's limits.
     pub fn build(self) -> Result<Setup> {
@@ -374,6 +375,7 @@ impl SetupBuilder {
         }
         if let Some(c) = &self.cell {
             cell::check_cell(c)?;
+            super::carried::check_carried(c, &self.robot)?;
         }
         let model = Model::new(self.springs, self.virtual_springs)?;
         model.with(&self.candidate_springs)?;

@@ -9,6 +9,7 @@
 //! name = "table"
 //! min_mm = [1200, -400, 0]
 //! max_mm = [1800, 400, 750]
+//! # carried_by = "rotate"           # a positioner axis: the box turns with the part
 //! [robot_geometry]                  # capsule radii (default: scaled to the robot's size)
 //! link_radius_mm = [350, 260, 195, 175, 130, 110, 90]   # base, links 1-6
 //! tool_radius_mm = 150
@@ -37,25 +38,76 @@ pub struct Cell {
     pub floor_z: Option<f64>,
     /// Smallest allowed distance between bodies that must not touch, m (default 0).
     pub clearance: f64,
-    /// Axis-aligned boxes the robot, the tool and the rope must clear.
+    /// Boxes the robot, the tool and the rope must clear: fixed, or carried by a positioner
+    /// axis ([`Obstacle::carried_by`], [`Cell::obstacles_at`]).
     pub obstacles: Vec<Obstacle>,
 }
 
-/// An axis-aligned box of the cell (table, fixture, tracker stand), base frame, m.
+/// A box of the cell (table, fixture, tracker stand): axis-aligned in its own frame, which
+/// stands at [`Obstacle::pose`] in the cell (base frame), m.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Obstacle {
     /// Its name in reports.
     pub name: String,
-    /// Lowest corner, m.
+    /// Lowest corner, its own frame, m.
     pub min: Vector3<f64>,
-    /// Highest corner, m (every coordinate above `min`'s).
+    /// Highest corner, its own frame, m (every coordinate above `min`'s).
     pub max: Vector3<f64>,
+    /// The name of the positioner axis (an `[[external_axis]]` of role positioner) that
+    /// carries it, as the part is carried: with the cell's external axes at `e` it stands at
+    /// `P_j(e) * pose`, `P_j` the positioner's pose through that axis (the axes before it in
+    /// the chain included, [`Obstacle::at`]); `None`: it stands in the cell. A track carries
+    /// the arm, not obstacles.
+    pub carried_by: Option<String>,
+    /// Its frame in the cell (cell frame from its own), m: the identity for a box of a setup
+    /// file (an axis-aligned box, a carried one as given at `e = 0` with zero offsets, the frame
+    /// the part's points are given in); a carried box frozen at a station ([`Obstacle::at`])
+    /// is turned.
+    pub pose: Isometry3<f64>,
 }
 
 impl Obstacle {
-    /// Whether the point `p` (m) lies inside the box or on its boundary.
+    /// A fixed axis-aligned box between the corners `min` and `max` (cell frame, m).
+    pub fn fixed(name: impl Into<String>, min: Vector3<f64>, max: Vector3<f64>) -> Self {
+        Self {
+            name: name.into(),
+            min,
+            max,
+            carried_by: None,
+            pose: Isometry3::identity(),
+        }
+    }
+
+    /// Whether the point `p` (cell frame, m) lies inside the box or on its boundary.
     pub fn contains(&self, p: &Vector3<f64>) -> bool {
+        let p = self.local(p);
         (0..3).all(|i| p[i] >= self.min[i] && p[i] <= self.max[i])
+    }
+
+    /// The point of the box nearest `p` (cell frame, m): `p` itself inside.
+    pub fn nearest(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        let inside = (self.local(p)).zip_zip_map(&self.min, &self.max, |v, lo, hi| v.clamp(lo, hi));
+        match self.turned() {
+            false => inside,
+            true => (self.pose * nalgebra::Point3::from(inside)).coords,
+        }
+    }
+
+    /// Whether its frame is not the cell's (a box to turn into its frame for a distance).
+    pub fn turned(&self) -> bool {
+        self.pose != Isometry3::identity()
+    }
+
+    /// `p` (cell frame) in the box's own frame.
+    fn local(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        match self.turned() {
+            false => *p,
+            true => {
+                self.pose
+                    .inverse_transform_point(&nalgebra::Point3::from(*p))
+                    .coords
+            }
+        }
     }
 }
 

@@ -533,6 +533,7 @@ struct ObstacleFile {
     min_mm: [f64; 3],
     #[serde(deserialize_with = "crate::common::exact::array")]
     max_mm: [f64; 3],
+    carried_by: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -564,9 +565,8 @@ fn read_cell(f: CellFile) -> Cell {
             .obstacle
             .into_iter()
             .map(|o| Obstacle {
-                name: o.name,
-                min: mm(&o.min_mm),
-                max: mm(&o.max_mm),
+                carried_by: o.carried_by,
+                ..Obstacle::fixed(o.name, mm(&o.min_mm), mm(&o.max_mm))
             })
             .collect(),
     }

@@ -69,6 +69,7 @@
 
 mod arm;
 mod builder;
+mod carried;
 mod cell;
 mod experiment;
 mod file;
@@ -446,8 +447,8 @@ impl Setup {
 
     /// The setup with the arm standing at the external axis values `e` (SI, the cell's order,
     /// [`crate::robot::external`]): the robot's base moved by the carrier's pose, `C(e) * base`,
-    /// and its external axes dropped (with them the reflectors on the positioner's table),
-    /// everything else (the cell, the tracker, the rope's anchor, the model) where it was. A design or a simulation of this setup is one of the arm at that
+    /// and its external axes dropped (with them the reflectors on the positioner's table; the
+    /// boxes a positioner carries fixed where `e` puts them, [`Obstacle::at`]), everything else (the cell, the tracker, the rope's anchor, the model) where it was. A design or a simulation of this setup is one of the arm at that
     /// station in the fixed cell; its postures are measured with the external axes at `e`.
     ///
     /// # Errors
@@ -464,7 +465,14 @@ impl Setup {
         axes.check(e, "station")?;
         let base = axes.carrier_pose(e) * self.robot().base();
         let robot = (self.robot().clone().with_external(None)).with_base(base)?;
-        let builder = self.to_builder().with_robot(robot);
+        let mut builder = self.to_builder().with_robot(robot);
+        if let Some(cell) = self.cell() {
+            let obstacles = cell.obstacles_at(self.robot(), e).into_owned();
+            builder = builder.with_cell(Cell {
+                obstacles,
+                ..cell.clone()
+            });
+        }
         builder.with_table_reflectors(Vec::new()).build()
     }
 

@@ -72,11 +72,11 @@ fn hull_distances_equal_hand_computed_ones() {
     );
     // The forearm (link 4) along x at z = 0.78 + 1.28 + 0.2 = 2.26, radius 0.14 (a vertex of the
     // 48-gon straight up): a box 2.6 m high over it is 0.2 m away.
-    let lid = Obstacle {
-        name: "lid".into(),
-        min: Vector3::new(0.6, -0.5, 2.6),
-        max: Vector3::new(1.0, 0.5, 3.0),
-    };
+    let lid = Obstacle::fixed(
+        "lid",
+        Vector3::new(0.6, -0.5, 2.6),
+        Vector3::new(1.0, 0.5, 3.0),
+    );
     close(
         body_box(&body(&setup, &zero, Part::Link(4)), &lid),
         0.2,

@@ -19,11 +19,11 @@ fn capsule(a: [f64; 3], b: [f64; 3], radius: f64) -> Capsule {
 }
 
 fn unit_box() -> Obstacle {
-    Obstacle {
-        name: "table".into(),
-        min: Vector3::new(-1.0, -1.0, 0.0),
-        max: Vector3::new(1.0, 1.0, 1.0),
-    }
+    Obstacle::fixed(
+        "table",
+        Vector3::new(-1.0, -1.0, 0.0),
+        Vector3::new(1.0, 1.0, 1.0),
+    )
 }
 
 #[test]

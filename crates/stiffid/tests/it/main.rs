@@ -11,6 +11,7 @@ mod calibration_update;
 mod calibration_update_cell;
 mod calibration_update_kept;
 mod candidates;
+mod carried_obstacles;
 mod cartesian_programs;
 mod cell;
 mod cell_search;

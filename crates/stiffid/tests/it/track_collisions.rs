@@ -18,13 +18,13 @@ use stiffid::{setup, Setup};
 /// The FANUC milling example on a track along x (0 to 6 m) in a cell with `obstacles` and a
 /// clearance of 10 mm.
 fn on_track(obstacles: Vec<Obstacle>) -> Setup {
-    let cell = ExternalAxes::new(vec![ExternalAxis::linear(
-        "track",
-        Vector3::x_axis(),
-        0.0,
-        6.0,
-    )])
-    .unwrap();
+    let track = ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0);
+    in_cell(ExternalAxes::new(vec![track]).unwrap(), obstacles)
+}
+
+/// The FANUC milling example with the external axes `cell` in a cell with `obstacles` and a
+/// clearance of 10 mm.
+pub(crate) fn in_cell(cell: ExternalAxes, obstacles: Vec<Obstacle>) -> Setup {
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
     let base = setup::parse(text, "milling.toml", |name, _| presets::get(name)).unwrap();
     let robot = base.robot().clone().with_external(Some(cell));
@@ -42,6 +42,11 @@ fn on_track(obstacles: Vec<Obstacle>) -> Setup {
 /// `n` points of a line along x in the cell (the tool pointing down, a base-frame force), at
 /// the station 1.5 m.
 fn line(n: usize) -> Vec<PathPoint> {
+    line_at(n, &[1.5])
+}
+
+/// [`line`] with the external axes at `e` (SI, the cell's order).
+pub(crate) fn line_at(n: usize, e: &[f64]) -> Vec<PathPoint> {
     let down = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
     (0..n)
         .map(|i| PathPoint {
@@ -52,7 +57,7 @@ fn line(n: usize) -> Vec<PathPoint> {
             )),
             wrench: Vector6::new(300.0, -200.0, -400.0, 0.0, 0.0, 0.0),
             frame: Frame::Base,
-            external: ExternalValues::new(&[1.5]).unwrap(),
+            external: ExternalValues::new(e).unwrap(),
         })
         .collect()
 }
@@ -78,11 +83,7 @@ fn collides(checker: &Checker, q: &Vector6<f64>, e: &ExternalValues) -> bool {
 
 /// A box of half-size `half` (m) centred at `centre` (cell frame, m).
 fn boxed(centre: &Vector3<f64>, half: f64) -> Obstacle {
-    Obstacle {
-        name: "fixture".into(),
-        min: centre.add_scalar(-half),
-        max: centre.add_scalar(half),
-    }
+    Obstacle::fixed("fixture", centre.add_scalar(-half), centre.add_scalar(half))
 }
 
 #[test]

@@ -20,11 +20,11 @@ fn cell_at(shift: f64) -> Cell {
     Cell {
         floor_z: Some(-0.3),
         clearance: 0.0,
-        obstacles: vec![Obstacle {
-            name: "fixture".into(),
-            min: Vector3::new(2.0 - shift, 0.4, -0.3),
-            max: Vector3::new(2.3 - shift, 0.9, 0.6),
-        }],
+        obstacles: vec![Obstacle::fixed(
+            "fixture",
+            Vector3::new(2.0 - shift, 0.4, -0.3),
+            Vector3::new(2.3 - shift, 0.9, 0.6),
+        )],
     }
 }
 

@@ -75,7 +75,7 @@ impl Context<'_> {
                 .jacobian(&arm.tool().tcp, Coordinates::Axis);
             condition = condition.max(jacobi::cond(&j));
             if let Some(checker) = &self.checker {
-                let f = checker.feasibility(&r.q);
+                let f = checker.feasibility_at(&r.q, r.external.as_slice());
                 for c in f.checks.iter().filter(|c| CHECKS.contains(&c.kind)) {
                     if !c.ok {
                         return Err(format!(

@@ -146,7 +146,8 @@ fn candidates(
                 b: point + towards * (SIGHT_END / length),
                 radius: 0.0,
             };
-            cell.obstacles.iter().all(|o| capsule_box(&sight, o) > 0.0)
+            let obstacles = cell.obstacles_at(setup.robot(), e.as_slice());
+            obstacles.iter().all(|o| capsule_box(&sight, o) > 0.0)
         })
     };
     grid.into_iter().filter(clear).collect()

@@ -27,7 +27,8 @@ pub struct Feasible {
     /// [`crate::cell::Checker`]) every moved posture passes; `None`: no collision check. An arm
     /// on a carrier is checked on its carriage at the state's external values (the station
     /// chosen, or the point's own; [`crate::cell::Checker::feasibility_at`]); the cell's floor
-    /// and obstacles stand in the cell frame (a positioner turns the part, not them).
+    /// and fixed obstacles stand in the cell frame, the boxes a positioner carries turn with the
+    /// state's angles ([`crate::setup::Obstacle::carried_by`]).
     pub cell: Option<Arc<Setup>>,
     /// The time of the move to each path point, s, from the program's feed
     /// ([`super::move_times`]; `None` for a point whose move has no limit: the first, a rapid

@@ -247,20 +247,21 @@ impl Mapped<'_> {
     }
 
     /// The smallest distance of the bodies at `q` (the arm on its carriage at `e`) to the cell's
-    /// floor and obstacles, m; `NaN` without a cell.
+    /// floor and obstacles (those a positioner carries turned to `e`), m; `NaN` without a cell.
     fn clearance(&self, q: &Vector6<f64>, e: &ExternalValues) -> f64 {
         let Some(cell) = self.cell else {
             return f64::NAN;
         };
         let arm = self.model.arm;
         let frames = arm.robot().frames_at(q, e.as_slice());
+        let obstacles = cell.obstacles_at(arm.robot(), e.as_slice());
         let mut nearest = f64::INFINITY;
         for b in bodies(arm, &frames) {
             // The base stands on the floor (as the cell's floor check has it).
             if let Some(z) = cell.floor_z.filter(|_| b.part() != Part::Base) {
                 nearest = nearest.min(body_floor(&b, z));
             }
-            for o in &cell.obstacles {
+            for o in obstacles.iter() {
                 nearest = nearest.min(body_box(&b, o));
             }
         }

@@ -74,8 +74,8 @@
 //! (the no-worse rule: the path stays feasible as given). Each result counts its point's states
 //! each check removed ([`Compensated::removed`]: states that inverse kinematics reaches with a
 //! cost no larger than the path's own, counted by the first check they fail). The floor and the
-//! obstacles stand in the cell frame: a positioner turns the part, not them (the positioner's
-//! own bodies are not modelled).
+//! fixed obstacles stand in the cell frame; the boxes a positioner carries
+//! ([`crate::setup::Obstacle::carried_by`]) turn with the state's table and tilt.
 //!
 //! ## Speed limits
 //! At the program's feed every axis must keep within its largest speed

@@ -347,7 +347,7 @@ impl Drawn<'_> {
             .map(|p| frame(&geometry::frame(&frames, *p)))
             .collect();
         link_frames.extend(external::frames(setup.robot(), &e));
-        let margins = self.checker.margins(q);
+        let margins = self.checker.margins_at(q, &e);
         let sights = match setup.tracker() {
             None => Vec::new(),
             Some(_) => (0..tool.measuring_points.len())
