@@ -545,6 +545,12 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             f.mean_change_percent,
         );
     }
+    if let Some(l) = &d.free_lead_tilt {
+        text += &format!(
+            "lead and tilt: largest lead {:.2} deg, largest tilt {:.2} deg, largest lean {:.2} deg, mean lean {:.2} deg\n",
+            l.max_lead_deg, l.max_tilt_deg, l.max_lean_deg, l.mean_lean_deg
+        );
+    }
     if let Some(f) = &doc.feasibility {
         text += &format!(
             "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision)\n",
