@@ -589,7 +589,7 @@ fn ls_user_and_tool_frames_are_taken_only_as_the_program_names_them() {
                 assert_eq!(l, *line, "{needle}: {message}");
                 assert!(message.contains(needle.as_str()), "{needle}: {message}");
             }
-            other => panic!("{needle}: {other:?}"),
+            other => panic!("{needle}: {other:?}\n{text}"),
         }
     }
 }

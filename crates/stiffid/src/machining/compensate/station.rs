@@ -155,7 +155,7 @@ pub(crate) fn on_track(
     }
     let checks = Checks::new(&model, &options.feasible);
     let external: Vec<&[ExternalValues]> = (0..columns.len())
-        .map(|s| stations[s / angles.len()].external.as_slice())
+        .map(|s| stations[s / per_station].external.as_slice())
         .collect();
     let grid = Grid { axes };
     let (chosen, removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
