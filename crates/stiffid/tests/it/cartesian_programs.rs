@@ -571,7 +571,7 @@ fn ls_user_and_tool_frames_are_taken_only_as_the_program_names_them() {
         // A remark without a number, and two remarks naming two frames.
         (
             &no_number,
-            line_of(&no_number, "stiffid"),
+            line_of(&no_number, "stiffid: user_frame ;"),
             "stiffid: user_frame: expected = and a frame number".into(),
         ),
         (

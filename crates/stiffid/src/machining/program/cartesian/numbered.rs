@@ -68,12 +68,14 @@ fn declared(text: &str, key: &str) -> Result<Option<(u64, u32)>> {
             ));
         };
         match found {
-            Some((first, m)) if m != n => return Err(at(
-                line,
-                format!(
+            Some((first, m)) if m != n => {
+                return Err(at(
+                    line,
+                    format!(
                     "{key} = {n}: the remark on line {first} names {m}; one frame is the program's"
                 ),
-            )),
+                ))
+            }
             Some(_) => {}
             None => found = Some((line, n)),
         }
