@@ -75,15 +75,9 @@ pub fn place<'py>(
         (Some(program), Some(process_path), None) => {
             let name = program.display().to_string();
             let language = Language::of_file(&name).map_err(raise)?;
-            job::check_language(language).map_err(raise)?;
             let text = error::read(program)?;
-            read = stiffid::app::compensate::read_program(
-                &name,
-                &text,
-                language,
-                chord_tolerance_mm * 1e-3,
-            )
-            .map_err(raise)?;
+            let tolerance = chord_tolerance_mm * 1e-3;
+            read = job::read_program(s, &name, &text, language, tolerance).map_err(raise)?;
             let name = process_path.display().to_string();
             parsed = file::parse(&error::read(process_path)?, &name).map_err(raise)?;
             Work::Program {

@@ -180,8 +180,8 @@ pub struct Args {
     /// about tool z, on the --free-tool-axis grid, else 5 deg steps within +-90 deg) or `track`
     /// (the track station, on the --free-station-mm grid, else 50 mm steps within +-1000 mm):
     /// every point's error bound, deflection, condition number, distance to the joint limits and,
-    /// with a [cell] floor or obstacles, to them, at every value, with the value chosen (map.csv
-    /// and the figure map).
+    /// with a [cell] floor or obstacles, to them, at every value, every other free variable at
+    /// the value chosen at the point, with the value chosen (map.csv and the figure map).
     #[arg(long, requires = "report", num_args = 0..=1, default_missing_value = "rotation", value_parser = choice::<MapVariable>())]
     map: Option<MapVariable>,
     /// The process force model's relative error in the error budget, percent (0 to 100): the
@@ -543,6 +543,12 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             f.mean_deflection_before_mm,
             f.mean_deflection_after_mm,
             f.mean_change_percent,
+        );
+    }
+    if let Some(l) = &d.free_lead_tilt {
+        text += &format!(
+            "lead and tilt: largest lead {:.2} deg, largest tilt {:.2} deg, largest lean {:.2} deg, mean lean {:.2} deg\n",
+            l.max_lead_deg, l.max_tilt_deg, l.max_lean_deg, l.mean_lean_deg
         );
     }
     if let Some(f) = &doc.feasibility {

@@ -7,7 +7,6 @@ use crate::output::{print_json_or, OutFile};
 use crate::progress::Bars;
 use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::read_program;
 use stiffid::app::place::document::{Document, Placement};
 use stiffid::app::place::search::Effort;
 use stiffid::app::place::{self, Region, Request, Work};
@@ -30,8 +29,8 @@ pub struct Args {
     stiffness: Stiffness,
     /// The G-code program (its points in the part frame), or a KUKA KRL, ABB RAPID or FANUC LS
     /// program of Cartesian targets in the part frame ($BASE or work object equal to the
-    /// setup's [workpiece], LS user frame UF n >= 1). Joint targets are refused: they do not move
-    /// with the part.
+    /// setup's [workpiece], LS user frame UF n >= 1 that a remark `! stiffid: user_frame = n ;`
+    /// names). Joint targets are refused: they do not move with the part.
     #[arg(long, requires = "process")]
     program: Option<PathBuf>,
     /// With --program: the process file (TOML) that gives every point its cutting force.
@@ -122,9 +121,10 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(program_path), Some(process_path), _) => {
             let name = program_path.display().to_string();
             let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
-            place::check_language(language).map_err(option_error)?;
             let text = load::read(program_path)?;
-            program = read_program(&name, &text, language, args.chord_tolerance_mm * 1e-3)?;
+            let tolerance = args.chord_tolerance_mm * 1e-3;
+            program = place::read_program(&setup, &name, &text, language, tolerance)
+                .map_err(option_error)?;
             let name = process_path.display().to_string();
             process = file::parse(&load::read(process_path)?, &name)?;
             Work::Program {

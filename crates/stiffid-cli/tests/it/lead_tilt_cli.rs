@@ -58,7 +58,7 @@ fn milling(dir: &Path, out: &str, extra: &[&str]) -> std::process::Output {
 fn a_path_leans_within_its_cone_and_no_point_rises() {
     let dir = temp_dir("lead-tilt-path");
     assert_success(&milling(&dir, "own.csv", &[]));
-    let lean = [
+    let flags = [
         "--free-lead-tilt",
         "--cone-deg",
         "6",
@@ -68,7 +68,7 @@ fn a_path_leans_within_its_cone_and_no_point_rises() {
         "max",
         "--json",
     ];
-    let out = milling(&dir, "lean.csv", &lean);
+    let out = milling(&dir, "lean.csv", &flags);
     assert_success(&out);
     let doc = json(&out);
     assert!((doc["free_lead_tilt"]["cone_deg"].as_f64().unwrap() - 6.0).abs() < 1e-12);
@@ -94,6 +94,42 @@ fn a_path_leans_within_its_cone_and_no_point_rises() {
     assert!(leaned > 0, "the tool leans somewhere");
     let peak = |rows: &[Vec<f64>]| rows.iter().map(|r| r[0]).fold(0.0, f64::max);
     assert!(peak(&lean) < peak(&own), "the peak bound falls");
+    // The summary's leans are the points' (the largest magnitudes, the mean angle), and the
+    // text states them.
+    let s = &doc["summary"]["free_lead_tilt"];
+    let angles: Vec<f64> = lean.iter().map(|r| r[1].hypot(r[2])).collect();
+    let expected = [
+        (
+            "max_lead_deg",
+            lean.iter().map(|r| r[1].abs()).fold(0.0, f64::max),
+        ),
+        (
+            "max_tilt_deg",
+            lean.iter().map(|r| r[2].abs()).fold(0.0, f64::max),
+        ),
+        ("max_lean_deg", angles.iter().copied().fold(0.0, f64::max)),
+        (
+            "mean_lean_deg",
+            angles.iter().sum::<f64>() / angles.len() as f64,
+        ),
+    ];
+    for (key, value) in expected {
+        assert!(
+            (s[key].as_f64().unwrap() - value).abs() < 1e-9,
+            "{key}: {s}"
+        );
+    }
+    assert!(expected[2].1 > 0.0);
+    let text = milling(&dir, "lean-text.csv", &flags[..flags.len() - 1]);
+    assert_success(&text);
+    let stdout = String::from_utf8_lossy(&text.stdout);
+    let line = format!(
+        "lead and tilt: largest lead {:.2} deg, largest tilt {:.2} deg, largest lean {:.2} deg, mean lean {:.2} deg",
+        expected[0].1, expected[1].1, expected[2].1, expected[3].1
+    );
+    assert!(stdout.contains(&line), "{stdout}");
+    let own_text = milling(&dir, "own-text.csv", &[]);
+    assert!(!String::from_utf8_lossy(&own_text.stdout).contains("lead and tilt"));
 }
 
 #[test]

@@ -11,6 +11,7 @@ mod common;
 mod compensate_cli;
 mod completions;
 mod extrapolation_cli;
+mod free_options_refused;
 mod hardening;
 mod identify_cli;
 mod kinematics;

@@ -184,12 +184,39 @@ fn robot_programs_and_built_in_setups_without_a_tool_are_refused_naming_why() {
         "500,2000,-1500,500",
     ];
     let setup = example("fanuc-milling.toml");
+    let refused = stiffid(&args(&setup, &out, &rest));
     assert_usage_error(
-        &stiffid(&args(&setup, &out, &rest)),
+        &refused,
         // The example's KRL program states a tool without the setup's TCP: its Cartesian
-        // targets are read, and refused for that tool, naming the line.
-        &["line 13: the program's tool", "is not the setup's"],
+        // targets are read, and refused for that tool, naming the file and the line.
+        &[
+            &format!("{krl}: line 13: the program's tool"),
+            "is not the setup's",
+        ],
     );
+    // Before any placement is tried, and the error compensate gives for that program.
+    let errors = |o: &std::process::Output| -> Vec<String> {
+        (String::from_utf8_lossy(&o.stderr).lines())
+            .filter(|l| l.starts_with("error"))
+            .map(String::from)
+            .collect()
+    };
+    let written = dir.join("pocket.src").display().to_string();
+    let compensated = stiffid(&[
+        "compensate",
+        "--setup",
+        &setup,
+        "--stiffness",
+        &stiffness,
+        "--program",
+        &krl,
+        "--process",
+        &process,
+        "--out",
+        &written,
+    ]);
+    assert_eq!(errors(&refused), errors(&compensated));
+    assert!(!errors(&refused)[0].contains("--region-mm"));
     // A built-in setup is read (not "no such file") and refused for what it lacks.
     let mut gcode = rest.to_vec();
     let pocket = example("pocket.nc");

@@ -82,8 +82,19 @@ fn written(
     (targets, text)
 }
 
-/// An LS program's positions put in user frame 1 (the part frame) instead of the world.
+/// An LS program's positions put in user frame 1 instead of the world, the remark naming it
+/// the part frame.
 fn in_user_frame(s: &Setup, text: &str) -> String {
+    named_part_frame(&positions_in_user_frame(s, text))
+}
+
+/// The remark naming user frame 1 the part frame, first in `/MN`.
+fn named_part_frame(text: &str) -> String {
+    text.replacen("/MN\n", "/MN\n   1:  ! stiffid: user_frame = 1 ;\n", 1)
+}
+
+/// An LS program's positions put in user frame 1 (the part's place) instead of the world.
+fn positions_in_user_frame(s: &Setup, text: &str) -> String {
     let part = *s.workpiece().unwrap();
     // The world positions of the writer moved into the part frame: X, Y and Z less the part's
     // origin (the example's part frame is not turned).
@@ -484,5 +495,101 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
             Ok(_) => panic!("{dialect:?} placed"),
         };
         assert!(e.contains(needle), "{dialect:?}: {e}");
+    }
+}
+
+/// The line of `needle`'s first occurrence in `text`, 1-based.
+fn line_of(text: &str, needle: &str) -> u64 {
+    text.lines().position(|l| l.contains(needle)).unwrap() as u64 + 1
+}
+
+/// The line of the position (`P[i]{`) whose frames are the `n`-th `UF : ..` of `text`.
+fn position_line(text: &str, n: usize) -> u64 {
+    let at = text.match_indices("UF : ").nth(n).unwrap().0;
+    let before: Vec<&str> = text[..at].lines().collect();
+    before.iter().rposition(|l| l.starts_with("P[")).unwrap() as u64 + 1
+}
+
+#[test]
+fn ls_user_and_tool_frames_are_taken_only_as_the_program_names_them() {
+    let s = setup();
+    let options = Options::for_setup(&s);
+    let (_, world) = written(&s, Dialect::FanucLs, &cut(3), false);
+    let part = positions_in_user_frame(&s, &world);
+    let named = named_part_frame(&part);
+    let resolve = |text: &str| {
+        let p = machining::read(text, Language::Robot(Dialect::FanucLs), 1e-4)?;
+        machining::resolve(&p, &s, None, &options).map(|_| ())
+    };
+    // The world, and the user frame the remark names the part frame: read.
+    resolve(&world).unwrap();
+    resolve(&named).unwrap();
+    // The second position's frames as `with`.
+    let second = |text: &str, with: &str| {
+        let at = text.match_indices("UF : 1, UT : 1").nth(1).unwrap().0;
+        format!("{}{with}{}", &text[..at], &text[at + 14..])
+    };
+    let remark = line_of(&named, "stiffid: user_frame");
+    let tool_remark = named.replacen("/MN\n", "/MN\n   1:  ! stiffid: tool_frame = 3 ;\n", 1);
+    let no_number = part.replacen("/MN\n", "/MN\n   1:  ! stiffid: user_frame ;\n", 1);
+    let twice = named_part_frame(&named.replacen("user_frame = 1", "user_frame = 2", 1));
+    let (other_user, other_tool) = (
+        second(&named, "UF : 2, UT : 1"),
+        second(&named, "UF : 1, UT : 2"),
+    );
+    let cases: Vec<(&str, u64, String)> = vec![
+        // A user frame no remark names.
+        (
+            &part,
+            position_line(&part, 0),
+            "UF : 1: a user frame held on the controller, which the program does not state".into(),
+        ),
+        // Another user frame than the one named.
+        (
+            &other_user,
+            position_line(&other_user, 1),
+            format!("UF : 2: the program names user frame 1 the part frame (line {remark})"),
+        ),
+        // Another tool frame than the first position's.
+        (
+            &other_tool,
+            position_line(&other_tool, 1),
+            format!(
+                "UT : 2: the program's positions are for tool frame 1 (line {})",
+                position_line(&other_tool, 0)
+            ),
+        ),
+        // Another tool frame than the one a remark names.
+        (
+            &tool_remark,
+            position_line(&tool_remark, 0),
+            format!(
+                "UT : 1: the program's positions are for tool frame 3 (line {})",
+                line_of(&tool_remark, "tool_frame")
+            ),
+        ),
+        // A remark without a number, and two remarks naming two frames.
+        (
+            &no_number,
+            line_of(&no_number, "stiffid: user_frame ;"),
+            "stiffid: user_frame: expected = and a frame number".into(),
+        ),
+        (
+            &twice,
+            line_of(&twice, "user_frame = 2"),
+            format!(
+                "stiffid: user_frame = 2: the remark on line {} names 1",
+                line_of(&twice, "user_frame = 1")
+            ),
+        ),
+    ];
+    for (text, line, needle) in &cases {
+        match resolve(text) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, *line, "{needle}: {message}");
+                assert!(message.contains(needle.as_str()), "{needle}: {message}");
+            }
+            other => panic!("{needle}: {other:?}\n{text}"),
+        }
     }
 }

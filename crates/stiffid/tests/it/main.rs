@@ -48,6 +48,7 @@ mod lead_tilt;
 mod load_steps;
 mod load_steps_design;
 mod lsq;
+mod map_chosen;
 mod model_fits;
 mod model_form;
 mod model_prediction;

@@ -8,7 +8,9 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{CheckKind, Checker};
 use stiffid::machining::cell::on_carriage;
-use stiffid::machining::compensate::{self, FreeStation, MapVariable, Options, PathPoint, Target};
+use stiffid::machining::compensate::{
+    self, ChosenValues, FreeStation, MapVariable, Options, PathPoint, Target,
+};
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;
@@ -65,6 +67,16 @@ fn line(n: usize) -> Vec<PathPoint> {
         .collect()
 }
 
+/// Every point at its own values: the path's own rotation, lean and external values.
+fn own_values(points: &[PathPoint]) -> Vec<ChosenValues> {
+    (points.iter())
+        .map(|p| ChosenValues {
+            external: p.external,
+            ..Default::default()
+        })
+        .collect()
+}
+
 #[test]
 fn every_cell_of_the_track_map_is_a_compensation_at_its_station() {
     let s = milling(true, 0.0);
@@ -79,7 +91,15 @@ fn every_cell_of_the_track_map_is_a_compensation_at_its_station() {
         free_station: Some(FreeStation::try_from_mm(100.0, 50.0).unwrap()),
         ..Options::for_setup(&s)
     };
-    let m = compensate::map(s.arm(), &compliance, &placed, (&options, s.cell())).unwrap();
+    let own = own_values(&placed);
+    let m = compensate::map(
+        s.arm(),
+        &compliance,
+        &placed,
+        (&options, s.cell()),
+        (&own, false),
+    );
+    let m = m.unwrap();
     assert_eq!(m.variable, MapVariable::Track);
     assert!(m.angles.is_empty());
     let expected = [-0.1, -0.05, 0.0, 0.05, 0.1];
@@ -158,7 +178,9 @@ fn a_track_map_without_a_track_is_refused() {
         map_over: MapVariable::Track,
         ..Options::for_setup(&s)
     };
-    let error = compensate::map(s.arm(), &compliance, &points, (&options, s.cell())).unwrap_err();
+    let own = own_values(&points);
+    let at = (&options, s.cell());
+    let error = compensate::map(s.arm(), &compliance, &points, at, (&own, false)).unwrap_err();
     assert!(
         matches!(
             error,

@@ -188,6 +188,8 @@ pub struct SummaryDocument {
     pub max_interval_width_mm: Option<f64>,
     /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
     pub free_tool_axis: Option<FreeSummary>,
+    /// With `--free-lead-tilt`: the leans chosen; else `null`.
+    pub free_lead_tilt: Option<LeanSummary>,
     /// The error budget along the path: the largest and mean bound at the level, the parts
     /// absent, the worst points and what dominates their bound (the points' `bound_*` columns).
     pub budget: super::budget::BudgetSummary,
@@ -218,6 +220,21 @@ pub struct FreeSummary {
     /// How much the rotations chosen change the mean TCP deflection, %: negative when they
     /// lower it.
     pub mean_change_percent: f64,
+}
+
+/// The leans of the tool axis chosen along the path (`--free-lead-tilt`): the points'
+/// `lead_deg` and `tilt_deg`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct LeanSummary {
+    /// The largest lead (towards the feed) in magnitude, deg.
+    pub max_lead_deg: f64,
+    /// The largest tilt (across the feed) in magnitude, deg.
+    pub max_tilt_deg: f64,
+    /// The largest angle of the axis to the path's own, `sqrt(lead^2 + tilt^2)`, deg.
+    pub max_lean_deg: f64,
+    /// The mean of that angle over the path's points, deg.
+    pub mean_lean_deg: f64,
 }
 
 /// One path point: the columns of [`header`] by name, `null` for an empty cell.
@@ -379,6 +396,9 @@ pub struct Summary {
     max_norm_std: Option<f64>,
     /// Sum of |d| before and after the tool-axis optimisation, and the rotation range, rad.
     free: Option<(f64, f64, f64, f64)>,
+    /// With the free lead and tilt: the largest |lead|, |tilt| and lean angle, and the sum of
+    /// the lean angles, rad.
+    lean: Option<[f64; 4]>,
     /// Every `stride`-th point (0-based index and result), at most [`SAMPLE`] + 1.
     pub sample: Vec<(usize, Compensated)>,
     stride: usize,
@@ -421,6 +441,7 @@ impl Summary {
             max_interval_width: None,
             max_norm_std: None,
             free: free.then_some((0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY)),
+            lean: None,
             sample: Vec::new(),
             stride: 1,
             largest: Vec::new(),
@@ -430,6 +451,15 @@ impl Summary {
             largest_at: None,
             axes: axes.cloned(),
             removed: Default::default(),
+        }
+    }
+
+    /// The summary of a path whose lead and tilt are free: it states the leans chosen
+    /// ([`LeanSummary`]).
+    pub fn with_lean(self) -> Self {
+        Self {
+            lean: Some([0.0; 4]),
+            ..self
         }
     }
 
@@ -479,6 +509,11 @@ impl Summary {
             *after += d;
             *lo = lo.min(r.tool_rotation);
             *hi = hi.max(r.tool_rotation);
+        }
+        if let Some([lead, tilt, most, sum]) = &mut self.lean {
+            let angle = r.lead.hypot(r.tilt);
+            (*lead, *tilt) = (lead.max(r.lead.abs()), tilt.max(r.tilt.abs()));
+            (*most, *sum) = (most.max(angle), *sum + angle);
         }
         self.budget.add(line, r);
         self.keep(i, r, d);
@@ -620,6 +655,12 @@ impl Summary {
                 self.scene_postures(),
                 self.axes.as_ref(),
             ),
+            free_lead_tilt: self.lean.map(|[lead, tilt, most, sum]| LeanSummary {
+                max_lead_deg: lead.to_degrees(),
+                max_tilt_deg: tilt.to_degrees(),
+                max_lean_deg: most.to_degrees(),
+                mean_lean_deg: (sum / self.points.max(1) as f64).to_degrees(),
+            }),
             free_tool_axis: self
                 .free
                 .zip(means)

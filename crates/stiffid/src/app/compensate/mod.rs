@@ -220,7 +220,10 @@ where
     let free = options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
-    let mut chosen: Vec<f64> = Vec::new();
+    if options.free_lead_tilt.is_some() {
+        summary = summary.with_lean();
+    }
+    let mut chosen: Vec<compensate::ChosenValues> = Vec::new();
     let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
             // The values the compensation chose (a free station or positioner), else the path's own.
@@ -231,14 +234,7 @@ where
             summary.add(first + k, p.line, r, e);
             speeds.add(first + k, p, r);
             if options.map {
-                chosen.push(match options.map_over {
-                    compensate::MapVariable::Rotation => r.tool_rotation,
-                    // The station's offset from the point's own.
-                    compensate::MapVariable::Track => match (e.as_slice(), p.external.as_slice()) {
-                        ([e, ..], [own, ..]) => e - own,
-                        _ => 0.0,
-                    },
-                });
+                chosen.push(compensate::ChosenValues::of(r, &p.external));
             }
         }
         sink(first, points, results, d)
@@ -446,11 +442,11 @@ where
                 free_configuration: None,
                 ..options.clone()
             };
-            let mut map =
-                compensate::map(setup.arm(), &compliance, points, (&in_chosen, setup.cell()))
-                    .map_err(|e| in_input(&name, e))?;
-            map.chosen = chosen;
-            Some(map)
+            // A program's wrenches hold the tool's weight (machining::compensate).
+            let weighted = program.is_some() && setup.arm().payload().is_some();
+            let at = (&in_chosen, setup.cell());
+            let map = compensate::map(setup.arm(), &compliance, points, at, (&chosen, weighted));
+            Some(map.map_err(|e| in_input(&name, e))?)
         }
         None => None,
     };

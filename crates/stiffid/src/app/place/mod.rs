@@ -40,7 +40,7 @@ mod work;
 mod written;
 
 pub use evaluate::Evaluation;
-pub use work::{check_language, read_path, Work};
+pub use work::{check_language, read_path, read_program, Work};
 pub use written::with_workpiece;
 
 use crate::cell::Checker;

@@ -4,7 +4,7 @@
 use crate::common::choice::Choice;
 use crate::machining::compensate::{PathPoint, Target};
 use crate::machining::process::Process;
-use crate::machining::program::Dialect;
+use crate::machining::program::{cartesian, Dialect};
 use crate::machining::{Language, Program};
 use crate::observation::deflection::Frame;
 use crate::{Error, Result, Setup};
@@ -47,14 +47,58 @@ pub fn read_path(
     })
 }
 
+/// Reads a program file's text (`name` for its errors; G-code arcs split into chords of at
+/// most `chord_tolerance`, m) for placement on `setup`: its language ([`check_language`]), the
+/// program ([`crate::machining::read`]), and what the part cannot carry ([`Work::check`]),
+/// refused before any placement is tried.
+///
+/// # Errors
+/// Those of [`check_language`] and [`Work::check`]; those of [`crate::machining::read`] and
+/// [`Work::check`]'s naming a line ([`Error::Program`]: a tool that is not the setup's, a
+/// frame that is not the part's) as [`Error::Input`] naming the file, as `compensate` names
+/// them.
+pub fn read_program(
+    setup: &Setup,
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+) -> Result<Program> {
+    check_language(language)?;
+    let in_file = |e: Error| match e {
+        e @ Error::Program { .. } => Error::Input {
+            source_name: name.to_string(),
+            error: Box::new(e),
+        },
+        e => e,
+    };
+    let program = crate::machining::read(text, language, chord_tolerance).map_err(in_file)?;
+    check_program(setup, &program).map_err(in_file)?;
+    Ok(program)
+}
+
+/// Refuses a program the part cannot carry ([`Work::check`]).
+fn check_program(setup: &Setup, program: &Program) -> Result<()> {
+    check_language(program.language())?;
+    let Program::Robot(p) = program else {
+        return Ok(());
+    };
+    match p.targets.iter().find(|t| t.cartesian.is_none()) {
+        Some(t) => Err(Error::InvalidField { field: "program".into(), message: format!("a {} program's targets are joint targets ({}, line {} the first), and axis angles do not move with the part: give its targets as Cartesian ones in the part frame ({}), or the program as G-code, or its TCP poses in the part frame as a path file", program.language().help(), joint_form(p.dialect), t.line, part_form(p.dialect)) }),
+        None => cartesian::check_placed(p, &cartesian::Controller::of(setup)?),
+    }
+}
+
 impl Work<'_> {
     /// Refuses what the part cannot carry: a robot program with joint targets (axis angles stay
-    /// where they are), a path file's axis-angle rows, a path file on a robot with external
-    /// axes. (Whether a robot program's Cartesian targets are in the part frame is checked as
-    /// they are placed: [`crate::machining::program::cartesian::resolve_placed`].)
+    /// where they are) or whose Cartesian targets are not for the setup's tool or not in the
+    /// part frame ([`crate::machining::program::cartesian::check_placed`]), a path file's
+    /// axis-angle rows, a path file on a robot with external axes.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`program`, `path`) naming why.
+    /// [`Error::InvalidField`] (`program`, `path`) naming why; [`Error::Program`] naming the
+    /// line of a target for another tool or in another frame; those of
+    /// [`Setup::controller_robot`].
     pub fn check(&self, setup: &Setup) -> Result<()> {
         let refuse = |field: &str, message: String| {
             Err(Error::InvalidField {
@@ -63,16 +107,7 @@ impl Work<'_> {
             })
         };
         match self {
-            Work::Program { program, .. } => {
-                check_language(program.language())?;
-                let Program::Robot(p) = program else {
-                    return Ok(());
-                };
-                match p.targets.iter().find(|t| t.cartesian.is_none()) {
-                    Some(t) => refuse("program", format!("a {} program's targets are joint targets ({}, line {} the first), and axis angles do not move with the part: give its targets as Cartesian ones in the part frame ({}), or the program as G-code, or its TCP poses in the part frame as a path file", program.language().help(), joint_form(p.dialect), t.line, part_form(p.dialect))),
-                    None => Ok(()),
-                }
-            }
+            Work::Program { program, .. } => check_program(setup, program),
             Work::Path(points) => {
                 refuse_external(setup)?;
                 match points.iter().find(|p| matches!(p.target, Target::Posture(_))) {

@@ -5,12 +5,16 @@
 //! ([`MapVariable::Rotation`]) or the track station on the free station's grid
 //! ([`MapVariable::Track`]); each value's
 //! postures continued along the path by inverse kinematics as the optimisation takes them
-//! (module docs of [`super`], "The free tool axis", "The free station"). The collision distance
+//! (module docs of [`super`], "The free tool axis", "The free station"), every other free
+//! variable at the value the compensation chose at that point ([`ChosenValues`]: the rotation,
+//! the lead and tilt, the station, the positioner's angles), so that the cell of the value
+//! chosen is the compensated point's bound. The collision distance
 //! is that of the robot's bodies (and the tool's capsule) to the cell's floor and obstacles
 //! ([`crate::cell::body_floor`], [`crate::cell::body_box`]; the base stands on the floor), the
 //! arm on its carriage at the point's station; the robot's self-collision is not mapped.
 
-use super::station::{free_axes, states, Own, Station};
+use super::lead_tilt::{lean, lean_frames};
+use super::station::{Own, Station};
 use super::stream::nominal_postures;
 use super::tool_axis::{column, Cost, Move};
 use super::{Compliance, FreeStation, FreeToolAxis, MapVariable, Model, Options, PathPoint};
@@ -23,7 +27,7 @@ use crate::robot::ik::tool_pose;
 use crate::robot::kinematics::Coordinates;
 use crate::setup::{Arm, Cell};
 use crate::{Error, Result};
-use nalgebra::{DMatrix, Vector6};
+use nalgebra::{DMatrix, Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
 
 /// The map (module docs). Every matrix has one row per path point (path order) and one column
@@ -55,9 +59,9 @@ pub struct Map {
     /// The smallest distance of the robot's bodies to the cell's floor and obstacles (m,
     /// negative: penetration; module docs); `None` for a cell without a floor or obstacles.
     pub collision_distance: Option<DMatrix<f64>>,
-    /// The value chosen at every point (the rotation, rad, or the station's offset, m; the
-    /// path's own, 0, where the variable is not free): the line drawn on the map; empty until
-    /// the compensate job fills it.
+    /// The value chosen at every point (the rotation, rad, or the station's offset from the
+    /// point's own, m; the path's own, 0, where the variable is not free), from the
+    /// [`ChosenValues`] the map was drawn with: the line drawn on the map.
     pub chosen: Vec<f64>,
 }
 
@@ -72,23 +76,61 @@ impl Map {
     pub const DEFAULT_STATION_RANGE_MM: f64 = 1000.0;
 }
 
+/// What the compensation chose at one path point besides the point itself: the values the
+/// map holds fixed while it maps one variable (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ChosenValues {
+    /// The rotation about tool z, rad ([`super::Compensated::tool_rotation`]).
+    pub rotation: f64,
+    /// The lead and the tilt, rad ([`super::Compensated::lead`], [`super::Compensated::tilt`]).
+    pub lean: (f64, f64),
+    /// The external axes' values (SI, the cell's order; [`super::Compensated::external`]); empty
+    /// without external axes.
+    pub external: ExternalValues,
+}
+
+impl ChosenValues {
+    /// The values of a compensated point: its rotation, lean and external values (`own`, the
+    /// point's own, where the result holds none).
+    pub fn of(r: &super::Compensated, own: &ExternalValues) -> Self {
+        ChosenValues {
+            rotation: r.tool_rotation,
+            lean: (r.lead, r.tilt),
+            external: match r.external.is_empty() {
+                true => *own,
+                false => r.external,
+            },
+        }
+    }
+}
+
 /// The map of `points` (module docs; in the arm's frame on its carriage at each point's own
 /// external values, as the compensation takes them) over [`Options::map_over`]: the free tool
 /// axis' grid of `options` (else a 5 deg grid within +-90 deg), or the free station's (else a
-/// 50 mm grid within +-1000 mm), under the error budget of `options`; `cell` the setup's
-/// `[cell]` (the collision distance, with a floor or obstacles).
+/// 50 mm grid within +-1000 mm), under the error budget of `options`, every other variable at
+/// `chosen` (one per point: what the compensation chose; [`ChosenValues::default`] with the
+/// points' own external values for the path's own); `weighted`: the points' wrenches hold the
+/// tool's weight (a program's, [`super::path_on_track`]'s rule); `cell` the setup's `[cell]`
+/// (the collision distance, with a floor or obstacles).
 ///
 /// # Errors
 /// Those of [`super::path`] for the options, the grid's size and the nominal postures; for the
-/// track, those of [`super::path_on_track`] for a robot without a carrier axis and the grid's
-/// size.
+/// track, [`Error::InvalidOption`] ([`JobOption::Map`]) for a robot without a carrier axis and
+/// the grid's size; [`Error::InvalidField`] (`chosen`) for a count other than the points'.
 pub fn map(
     arm: &Arm,
     compliance: &Compliance,
     points: &[PathPoint],
     (options, cell): (&Options, Option<&Cell>),
+    (chosen, weighted): (&[ChosenValues], bool),
 ) -> Result<Map> {
     options.validate()?;
+    if chosen.len() != points.len() {
+        return Err(Error::InvalidField {
+            field: "chosen".into(),
+            message: format!("{} values for {} path points", chosen.len(), points.len()),
+        });
+    }
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
         .with_force_tolerance(options.force_tolerance);
@@ -99,12 +141,22 @@ pub fn map(
         .map(|(p, q)| base_wrench(&arm.robot().frames(q), &p.wrench, p.frame))
         .collect();
     let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
+    let at = Own {
+        values: &own,
+        wrenches: &wrenches,
+        poses: (nominal.iter())
+            .map(|q| tool_pose(&arm.robot().frames(q), &arm.tool().tcp))
+            .collect(),
+        weight: weighted.then(|| arm.payload()).flatten(),
+        tcp: arm.tool().tcp,
+    };
     let mapped = Mapped {
         model: &model,
         cell: cell.filter(|c| c.floor_z.is_some() || !c.obstacles.is_empty()),
         nominal: &nominal,
         options,
     };
+    let leans = leans(&at.poses, chosen);
     let (angles, stations, cells) = match options.map_over {
         MapVariable::Rotation => {
             let free = match options.free_tool_axis {
@@ -115,13 +167,23 @@ pub fn map(
             };
             free.check_grid(points.len())?;
             let angles = free.angles();
+            let values = chosen.iter().map(|c| c.external.as_slice().to_vec());
+            let st = moved(arm, &at, values);
+            let shift = rest(&st, &at.poses, &leans, &vec![0.0; points.len()]);
             let cells: Vec<Cells> = (angles.par_iter())
-                .map(|&phi| mapped.column(Move::turn(phi), &wrenches, &own, None))
+                .map(|&phi| {
+                    let m = Move {
+                        phi,
+                        shift: shift.as_deref(),
+                        lean: None,
+                    };
+                    mapped.column(m, &st.wrenches, &st.external, None)
+                })
                 .collect();
             (angles, Vec::new(), cells)
         }
         MapVariable::Track => {
-            let (stations, cells) = track(&mapped, arm, &wrenches, &own)?;
+            let (stations, cells) = track(&mapped, arm, &at, (chosen, &leans))?;
             (Vec::new(), stations, cells)
         }
     };
@@ -137,17 +199,79 @@ pub fn map(
         angles,
         stations,
         lines: points.iter().map(|p| p.line).collect(),
-        chosen: Vec::new(),
+        chosen: (chosen.iter().zip(&own))
+            .map(|(c, o)| match options.map_over {
+                MapVariable::Rotation => c.rotation,
+                MapVariable::Track => match (c.external.as_slice(), o.as_slice()) {
+                    ([e, ..], [o, ..]) => e - o,
+                    _ => 0.0,
+                },
+            })
+            .collect(),
     })
 }
 
+/// Each point's chosen lean as a turn about its TCP (`None` for none): the rotation of
+/// [`lean`] in the point's lean frame.
+fn leans(poses: &[Isometry3<f64>], chosen: &[ChosenValues]) -> Vec<Option<UnitQuaternion<f64>>> {
+    if chosen.iter().all(|c| c.lean == (0.0, 0.0)) {
+        return vec![None; chosen.len()];
+    }
+    (lean_frames(poses).iter().zip(chosen))
+        .map(|(f, c)| (c.lean != (0.0, 0.0)).then(|| lean(f, c.lean.0, c.lean.1)))
+        .collect()
+}
+
+/// The points moved to their external `values` (one per point, the cell's order): on a robot
+/// without external axes, or at their own values, the points as they are.
+fn moved(arm: &Arm, at: &Own, values: impl Iterator<Item = Vec<f64>>) -> Station {
+    let values: Vec<Vec<f64>> = values.collect();
+    let own = (at.values.iter().zip(&values)).all(|(o, v)| o.as_slice() == v.as_slice());
+    match arm.robot().external() {
+        Some(cell) if !own => Station::at_values(cell, at, values.into_iter()),
+        _ => Station {
+            external: at.values.to_vec(),
+            inside: vec![true; at.values.len()],
+            shift: vec![Isometry3::identity(); at.values.len()],
+            wrenches: at.wrenches.to_vec(),
+        },
+    }
+}
+
+/// Each point's move to the rest of its chosen values, left of its pose `poses[i]`: the
+/// station's shift of `st` after the chosen lean (`leans`) after the chosen rotation about
+/// tool z (`rotations`), both about the TCP, as [`column`] moves a point; `None` where every
+/// point keeps its own pose.
+fn rest(
+    st: &Station,
+    poses: &[Isometry3<f64>],
+    leans: &[Option<UnitQuaternion<f64>>],
+    rotations: &[f64],
+) -> Option<Vec<Isometry3<f64>>> {
+    let mut any = false;
+    let out = (0..poses.len())
+        .map(|i| {
+            let r = poses[i].rotation;
+            let turn =
+                r * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), rotations[i]) * r.inverse();
+            let about = leans[i].unwrap_or_else(UnitQuaternion::identity) * turn;
+            let o = poses[i].translation.vector;
+            any |=
+                rotations[i] != 0.0 || leans[i].is_some() || st.shift[i] != Isometry3::identity();
+            st.shift[i] * Isometry3::from_parts(Translation3::from(o - about * o), about)
+        })
+        .collect();
+    any.then_some(out)
+}
+
 /// The track map's stations (offsets, m) and each station's column of cells: the free
-/// station's grid (else the default one), the points moved as the free station moves them.
+/// station's grid (else the default one), the points moved as the free station moves them,
+/// every other variable at its `chosen` values (the `leans` of [`leans`]).
 fn track(
     mapped: &Mapped,
     arm: &Arm,
-    wrenches: &[Vector6<f64>],
-    own: &[ExternalValues],
+    at: &Own,
+    (chosen, leans): (&[ChosenValues], &[Option<UnitQuaternion<f64>>]),
 ) -> Result<(Vec<f64>, Vec<Cells>)> {
     let station = match mapped.options.free_station {
         Some(s) => s,
@@ -155,37 +279,33 @@ fn track(
             FreeStation::try_from_mm(Map::DEFAULT_STATION_RANGE_MM, Map::DEFAULT_STATION_STEP_MM)?
         }
     };
-    let only = Options {
-        free_station: Some(station),
-        free_positioner: None,
-        free_tilt: None,
-        ..mapped.options.clone()
-    };
     if arm.robot().external().is_none_or(|c| c.carrier_len() == 0) {
         return Err(Error::InvalidOption {
             option: JobOption::Map,
             message: "track: the robot has no carrier axis (a track) to map; the robot file's [[external_axis]] with role = \"carrier\" gives one".into(),
         });
     }
-    let (axes, free) = free_axes(arm.robot().external(), &only)?;
     let offsets = station.offsets();
-    let states = states(&free);
-    super::station::check_grid(&only, states.len() as f64, own.len())?;
-    let at = Own {
-        values: own,
-        wrenches,
-        poses: (mapped.nominal.iter())
-            .map(|q| tool_pose(&arm.robot().frames(q), &arm.tool().tcp))
-            .collect(),
-        weight: None,
-        tcp: arm.tool().tcp,
+    let only = Options {
+        free_station: Some(station),
+        free_positioner: None,
+        free_tilt: None,
+        ..mapped.options.clone()
     };
-    let cells = (states.par_iter().zip(&offsets))
-        .map(|(moves, &d)| {
-            let st = Station::new(axes, &at, moves);
+    super::station::check_grid(&only, offsets.len() as f64, at.values.len())?;
+    let rotations: Vec<f64> = chosen.iter().map(|c| c.rotation).collect();
+    let cells = (offsets.par_iter())
+        .map(|&d| {
+            let values = (chosen.iter().zip(at.values)).map(|(c, own)| {
+                let mut v = c.external.as_slice().to_vec();
+                v[0] = own.as_slice()[0] + d;
+                v
+            });
+            let st = moved(arm, at, values);
+            let shift = rest(&st, &at.poses, leans, &rotations);
             let m = Move {
                 phi: 0.0,
-                shift: (d != 0.0).then_some(st.shift.as_slice()),
+                shift: shift.as_deref(),
                 lean: None,
             };
             mapped.column(m, &st.wrenches, &st.external, Some(&st.inside))

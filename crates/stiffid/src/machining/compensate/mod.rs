@@ -174,7 +174,7 @@ pub use configuration::{path_configurations, posed, Branch, Configurations};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
-pub use map::{map, Map};
+pub use map::{map, ChosenValues, Map};
 pub use model::{Model, Newton};
 pub use options::{
     Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,

@@ -343,6 +343,16 @@ impl FreePositioner {
                 ),
             });
         }
+        if range < Self::MIN_STEP_DEG {
+            return Err(Error::InvalidOption {
+                option: range_option,
+                message: format!(
+                    "{}: below the smallest step, {} deg: the range would hold no angle but the path's own",
+                    number(range),
+                    Self::MIN_STEP_DEG
+                ),
+            });
+        }
         if !(step >= Self::MIN_STEP_DEG && step <= range) {
             return Err(Error::InvalidOption {
                 option: step_option,
@@ -455,6 +465,16 @@ impl FreeLeadTilt {
                     "{}: expected a number > 0 and <= {} (the cone's half angle)",
                     number(c),
                     Self::MAX_CONE_DEG
+                ),
+            });
+        }
+        if let Some(c) = cone_deg.filter(|c| *c < Self::MIN_STEP_DEG) {
+            return Err(Error::InvalidOption {
+                option: JobOption::ConeDeg,
+                message: format!(
+                    "{}: below the smallest step of the lead and tilt, {} deg: the cone would hold no lean",
+                    number(c),
+                    Self::MIN_STEP_DEG
                 ),
             });
         }

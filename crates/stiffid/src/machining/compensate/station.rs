@@ -127,6 +127,10 @@ pub(crate) fn on_track(
         .map(|s| {
             let k = s / per_station;
             let st = &stations[k];
+            // A state beyond the travel at every point is no state: no inverse kinematics.
+            if !st.inside.contains(&true) {
+                return vec![None; nominal.len()];
+            }
             let m = Move {
                 phi: angles[s % a],
                 shift: states[k]
@@ -151,7 +155,7 @@ pub(crate) fn on_track(
     }
     let checks = Checks::new(&model, &options.feasible);
     let external: Vec<&[ExternalValues]> = (0..columns.len())
-        .map(|s| stations[s / angles.len()].external.as_slice())
+        .map(|s| stations[s / per_station].external.as_slice())
         .collect();
     let grid = Grid { axes };
     let (chosen, removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
@@ -361,6 +365,23 @@ impl Station {
     /// process wrench turns with it (the cut follows the part) and the tool's weight stays along
     /// the cell's `-z` at the turned tool.
     pub(super) fn new(cell: &ExternalAxes, at: &Own, moves: &[(usize, f64)]) -> Self {
+        let values = (at.values.iter()).map(|own| {
+            let mut values = own.as_slice().to_vec();
+            for &(k, d) in moves {
+                values[k] += d;
+            }
+            values
+        });
+        Self::at_values(cell, at, values)
+    }
+
+    /// Each point moved from its own values to its own of `values` (the cell's order, SI), as
+    /// [`Station::new`] moves them.
+    pub(super) fn at_values(
+        cell: &ExternalAxes,
+        at: &Own,
+        values: impl Iterator<Item = Vec<f64>>,
+    ) -> Self {
         let n = at.values.len();
         let mut out = Station {
             external: Vec::with_capacity(n),
@@ -368,14 +389,10 @@ impl Station {
             shift: Vec::with_capacity(n),
             wrenches: Vec::with_capacity(n),
         };
-        for (i, own) in at.values.iter().enumerate() {
-            let mut values = own.as_slice().to_vec();
-            let mut inside = true;
-            for &(k, d) in moves {
-                values[k] += d;
-                let a = &cell.axes()[k];
-                inside &= values[k] >= a.lower && values[k] <= a.upper;
-            }
+        for (i, (own, values)) in at.values.iter().zip(values).enumerate() {
+            // Only the moved axes: the own values are the path's or the program's.
+            let inside = (cell.axes().iter().zip(&values).zip(own.as_slice()))
+                .all(|((a, v), o)| v == o || (*v >= a.lower && *v <= a.upper));
             let e = ExternalValues::new(&values).unwrap_or(*own);
             let (from, to) = (own.as_slice(), values.as_slice());
             let (c, c_moved) = (cell.carrier_pose(from), cell.carrier_pose(to));

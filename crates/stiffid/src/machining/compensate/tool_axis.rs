@@ -397,15 +397,6 @@ pub(super) struct Move<'a> {
 }
 
 impl Move<'_> {
-    /// A rotation about tool z only.
-    pub fn turn(phi: f64) -> Self {
-        Move {
-            phi,
-            shift: None,
-            lean: None,
-        }
-    }
-
     /// Whether this is the path's own pose.
     fn own(&self) -> bool {
         self.phi == 0.0 && self.shift.is_none() && self.lean.is_none_or(|l| l.zero())

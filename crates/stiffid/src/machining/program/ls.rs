@@ -102,6 +102,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
     if let (Some((line, word)), false) = (control, out.is_empty()) {
         return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
     }
+    super::cartesian::numbered::apply(text, &mut out)?;
     Ok((out, axes, units))
 }
 

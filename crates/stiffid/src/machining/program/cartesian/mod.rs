@@ -13,9 +13,11 @@
 //!   (its `tframe`) and `\WObj:=` a `wobjdata` declared in the module (`uframe` then `oframe`,
 //!   `robhold FALSE`, `ufprog TRUE`), or `wobj0` / none: the world.
 //! - FANUC LS: positions of `/POS` in Cartesian representation, `CONFIG : 'N U T, 0, 0, 0'`,
-//!   `X = .. mm` to `R = .. deg` (`R = Rz(R) Ry(P) Rx(W)`), in `UF : 0` (the world) or a user
-//!   frame `UF : n` (n >= 1, which must hold the part frame: the setup's `[workpiece]`), with a
-//!   tool frame `UT : n` that must hold the setup's tool (an LS program cannot state either).
+//!   `X = .. mm` to `R = .. deg` (`R = Rz(R) Ry(P) Rx(W)`), in `UF : 0` (the world) or the user
+//!   frame `UF : n` (n >= 1) a remark `! stiffid: user_frame = n ;` names the part frame (the
+//!   setup's `[workpiece]`), all in one tool frame `UT : n` that must hold the setup's tool (a
+//!   remark `! stiffid: tool_frame = n ;` names it, else the first position's): an LS program
+//!   cannot state either frame ([`numbered`]).
 //!
 //! A target without configuration data (a KRL `FRAME`, or `POS` without `S` and `T`) and a KRL
 //! `LIN` (whose `S` and `T` a KUKA controller ignores) keep the configuration of the previous
@@ -38,13 +40,16 @@ mod flags;
 pub(crate) mod krl;
 mod literal;
 pub(crate) mod ls;
+pub(crate) mod numbered;
 pub(crate) mod rapid;
 mod resolve;
 mod solve;
 
 pub use flags::Flags;
 pub(crate) use resolve::Writer;
-pub use resolve::{is_cartesian, resolve, resolve_placed, Controller, SAME_M, SAME_RAD};
+pub use resolve::{
+    check_placed, is_cartesian, resolve, resolve_placed, Controller, SAME_M, SAME_RAD,
+};
 
 use super::generate::{number, v, zyx_deg};
 use super::Dialect;

@@ -118,10 +118,28 @@ pub fn resolve_placed(
     base_from_part: &Isometry3<f64>,
     (start, options): (&Vector6<f64>, &ik::Options),
 ) -> Result<JointProgram> {
-    if let Some(t) = program.targets.iter().find(|t| t.cartesian.is_none()) {
-        return Err(at(t.line, "a joint target: axis angles do not move with the part; give every target as a Cartesian one in the part frame".into()));
-    }
+    check_placed(program, controller)?;
     resolve_in(program, controller, Some(base_from_part), (start, options))
+}
+
+/// The checks of [`resolve_placed`] that hold wherever the part is placed: every target a
+/// Cartesian one, for the setup's tool, in the part frame. A placement search runs them once,
+/// before it tries any placement.
+///
+/// # Errors
+/// [`Error::Program`] naming the line of the first target (or of the frame it states) that
+/// fails: a joint target, a tool that is not the setup's or that the program leaves to the
+/// controller, a frame that is not the part's (as [`resolve_placed`]).
+pub fn check_placed(program: &JointProgram, controller: &Controller) -> Result<()> {
+    let part = Isometry3::identity();
+    for t in &program.targets {
+        let Some(c) = t.cartesian.as_deref() else {
+            return Err(at(t.line, "a joint target: axis angles do not move with the part; give every target as a Cartesian one in the part frame".into()));
+        };
+        check_tool(&c.tool, t.line, controller)?;
+        base_frame(&c.frame, t.line, controller, Some(&part))?;
+    }
+    Ok(())
 }
 
 fn resolve_in(
