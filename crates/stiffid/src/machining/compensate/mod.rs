@@ -122,7 +122,13 @@
 //! [`FreeConfiguration::SEEDS`] seeded starts, the solution nearest to the path's own posture in
 //! each configuration), continued point by point, a joint target solved from its nominal pose;
 //! the other free variables are chosen in each by their dynamic programming. A configuration
-//! cannot change along a continuous cut, so one holds the whole path. It is refused at the
+//! cannot change along a continuous cut, so one holds the whole path ([`Scope::Program`]), or,
+//! with [`Scope::Run`], each run ([`starts`]: a cut and the joint moves that lead to it, where
+//! the arm may change configuration): each run is compensated alone in each configuration,
+//! from the posture the path's own reaches at its first point, so the other free variables'
+//! step limits start afresh at each run (the joint move between runs is a move of its own), and
+//! the runs' choices minimise the program's objective (the max over the runs, or the sum:
+//! per run). A configuration is refused for a path or a run at the
 //! first point inverse kinematics cannot reach in it, that its compensation fails, whose
 //! posture fails a check of [`Feasible`] or leaves the configuration. Of the others the one of
 //! least path objective is kept (each point's TCP deflection or bound, as the other free
@@ -150,14 +156,14 @@ mod lead_tilt;
 mod map;
 mod model;
 mod options;
+mod runs;
 mod station;
 mod stream;
 mod tool_axis;
 mod validate;
 
 pub use budget::Budget;
-pub(crate) use configuration::choose;
-pub use configuration::{path_configurations, posed, Branch, Configurations};
+pub use configuration::{path_configurations, path_runs, posed, Branch, Configurations};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
@@ -167,6 +173,8 @@ pub use options::{
     Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
     MapVariable, Objective, Options,
 };
+pub(crate) use runs::choose;
+pub use runs::{starts, Run, Scope};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;
