@@ -88,7 +88,10 @@ fn each_run_takes_the_exhaustive_best_pair_of_configurations_and_beats_one_for_t
                     .map(|b| {
                         assert!(b.refused.is_none(), "{:?}", b.refused);
                         let q0 = Vector6::from(b.configuration.q_deg).map(f64::to_radians);
-                        let o = Options { q0, ..options(&s, None) };
+                        let o = Options {
+                            q0,
+                            ..options(&s, None)
+                        };
                         compensate::path(s.arm(), &compliance, &path[r.clone()], &o).unwrap()
                     })
                     .collect()
@@ -106,8 +109,14 @@ fn each_run_takes_the_exhaustive_best_pair_of_configurations_and_beats_one_for_t
         }
         let ((i, j), v) = best.unwrap();
         let got = value(&results, aggregate);
-        assert!((got.0 - v.0).abs() <= 1e-8 * v.0, "{aggregate:?}: {got:?} {v:?}");
-        assert!((got.1 - v.1).abs() <= 1e-6 * v.1, "{aggregate:?}: {got:?} {v:?}");
+        assert!(
+            (got.0 - v.0).abs() <= 1e-8 * v.0,
+            "{aggregate:?}: {got:?} {v:?}"
+        );
+        assert!(
+            (got.1 - v.1).abs() <= 1e-6 * v.1,
+            "{aggregate:?}: {got:?} {v:?}"
+        );
         let chosen = (c.runs[0].chosen, c.runs[1].chosen);
         let key = |k: usize, b: usize| {
             let a = &c.runs[k].branches[b].configuration;
@@ -124,7 +133,11 @@ fn each_run_takes_the_exhaustive_best_pair_of_configurations_and_beats_one_for_t
         let (program, p) = path_runs(s.arm(), &compliance, (&path, &[0, 6]), &whole).unwrap();
         assert!(p.runs.is_empty());
         let one = value(&program, aggregate);
-        println!("{aggregate:?}: per run {:.6} mm, per program {:.6} mm", got.0 * 1e3, one.0 * 1e3);
+        println!(
+            "{aggregate:?}: per run {:.6} mm, per program {:.6} mm",
+            got.0 * 1e3,
+            one.0 * 1e3
+        );
         assert!(got.0 < 0.995 * one.0, "{got:?} against {one:?}");
         // The document states each run and the program's objective.
         let doc = ConfigurationsDocument::new(&c);
@@ -145,7 +158,11 @@ fn wide_milling() -> Setup {
 
 /// The drilling panel compensated per run on `s`, written in `output`.
 fn panel(s: &Setup, output: Language) -> Result<job::Report, Error> {
-    drill(s, include_str!("../../../../examples/milling/panel.nc"), output)
+    drill(
+        s,
+        include_str!("../../../../examples/milling/panel.nc"),
+        output,
+    )
 }
 
 /// Two holes, the second at `d` (mm, part frame) from the first.
@@ -236,8 +253,16 @@ fn a_gcode_program_runs_between_rapid_moves_and_its_gcode_is_refused_naming_the_
             assert!(v <= own * (1.0 + 1e-9), "{}", r.run);
         }
     }
-    // Every hole is best in one configuration here (elbow down); two holes far apart are not.
+    // Every hole is best in one configuration here (elbow down), so one for the program gives
+    // the same; two holes far apart are not.
     assert!(doc.runs.iter().all(|r| r.chosen == doc.runs[0].chosen));
+    let whole = per(&s, Aggregate::Sum, Scope::Program);
+    let text = include_str!("../../../../examples/milling/panel.nc");
+    let program = drill_with(&s, text, Language::GCode, whole).unwrap();
+    let one = ConfigurationsDocument::new(program.configurations.as_ref().unwrap());
+    assert_eq!(one.chosen, doc.runs[0].chosen);
+    let (a, b) = (one.objective_mm.unwrap(), doc.objective_mm.unwrap());
+    assert!((a - b).abs() < 1e-9 * a, "{a} {b}");
     let far = two_holes([-1300.0, 700.0, 800.0]);
     let report = drill(&s, &far, Language::Robot(Dialect::FanucLs)).unwrap();
     let doc = ConfigurationsDocument::new(report.configurations.as_ref().unwrap());
@@ -248,7 +273,11 @@ fn a_gcode_program_runs_between_rapid_moves_and_its_gcode_is_refused_naming_the_
     // The robot program moves to each run with its configuration.
     let text = &report.program.as_ref().unwrap().text;
     for r in [first, other] {
-        assert!(text.contains(&format!("CONFIG : '{}'", r.fanuc)), "{}", r.fanuc);
+        assert!(
+            text.contains(&format!("CONFIG : '{}'", r.fanuc)),
+            "{}",
+            r.fanuc
+        );
     }
     match drill(&s, &far, Language::GCode).unwrap_err() {
         Error::InvalidOption { option, message } => {

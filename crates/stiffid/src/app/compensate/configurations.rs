@@ -124,8 +124,9 @@ impl ConfigurationsDocument {
         };
         let objective = match c.aggregate {
             Aggregate::Sum => chosen.iter().map(|b| b.sum).sum::<Option<f64>>(),
-            Aggregate::Max => (chosen.iter().map(|b| b.peak))
-                .try_fold(0.0, |m, p| p.map(|p| f64::max(m, p))),
+            Aggregate::Max => {
+                (chosen.iter().map(|b| b.peak)).try_fold(0.0, |m, p| p.map(|p| f64::max(m, p)))
+            }
         };
         ConfigurationsDocument {
             objective: c.objective.name(),

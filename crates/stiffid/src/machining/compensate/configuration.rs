@@ -6,7 +6,6 @@ use super::feasible::Checks;
 use super::{Aggregate, Compensated, Compliance, FreeConfiguration, Model, Objective, Options};
 use super::{PathPoint, Removed, Target};
 use crate::robot::configuration::Configuration;
-use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
 use crate::setup::Arm;
 use crate::{Error, Result, Robot};
@@ -14,6 +13,7 @@ use nalgebra::{Isometry3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// One configuration of the arm evaluated over the path.
 #[derive(Debug, Clone, PartialEq)]
@@ -37,7 +37,7 @@ pub struct Branch {
 impl Branch {
     /// The path's objective in this configuration (the peak or the sum, with the other as the
     /// tie-break), `None` when refused; a peak below `floor` (m) counts as `floor` (a run whose
-    /// peak is below the program's, [`super::runs`]).
+    /// peak is below the program's worst run's).
     fn value(&self, aggregate: Aggregate, floor: f64) -> Option<(f64, f64)> {
         let (peak, sum) = (self.peak?, self.sum?);
         Some(match aggregate {
@@ -69,12 +69,27 @@ pub struct Configurations {
     pub warnings: Vec<String>,
     /// With one configuration per run ([`super::Scope::Run`]): each run's, in path order
     /// (`branches` and `chosen` are then the first run's); empty with one per program.
-    pub runs: Vec<super::Run>,
+    pub runs: Vec<Run>,
+}
+
+/// One run's configurations, the one chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// Its points: 0-based indices into the path.
+    pub points: Range<usize>,
+    /// The line of its first point.
+    pub first_line: u64,
+    /// The line of its last point.
+    pub last_line: u64,
+    /// The configurations found at its first point ([`Configurations::branches`]).
+    pub branches: Vec<Branch>,
+    /// The index in `branches` of the one chosen.
+    pub chosen: usize,
 }
 
 impl Configurations {
-    /// The axis angles (rad) that start the path in the configuration chosen, `None` when it is
-    /// the path's own (its start posture starts it).
+    /// The axis angles (rad) that start the path in the configuration chosen (per run, the
+    /// first run's), `None` when it is the path's own (its start posture starts it).
     pub fn start(&self) -> Option<Vector6<f64>> {
         let b = &self.branches[self.chosen];
         (!b.own).then(|| Vector6::from(b.configuration.q_deg).map(f64::to_radians))
@@ -88,49 +103,6 @@ impl Configurations {
             false => posed(arm, points),
         }
     }
-}
-
-/// Compensates `placed`, a path file's points in the arm's frame (on its carriage at their own
-/// external values), in every configuration of the arm and keeps the best (module docs of
-/// [`super`], "The free configuration"), each configuration with the other free variables of
-/// `options` ([`super::path_on_track`]'s dynamic programming): [`path_runs`] with one run.
-///
-/// # Errors
-/// Those of [`FreeConfiguration::check`]; [`Error::InvalidField`] (`free_configuration`)
-/// without [`Options::free_configuration`]; when no configuration takes the path, the error of
-/// the path's own (those of [`super::path`] and [`super::path_on_track`]).
-pub fn path_configurations(
-    arm: &Arm,
-    compliance: &Compliance,
-    placed: &[PathPoint],
-    options: &Options,
-) -> Result<(Vec<Compensated>, Configurations)> {
-    path_runs(arm, compliance, (placed, &[0]), options)
-}
-
-/// [`path_configurations`] of a path whose runs start at the 0-based indices `starts` (the
-/// first 0, increasing; [`super::starts`]): with [`super::Scope::Run`] each run takes its own
-/// configuration, compensated alone.
-///
-/// # Errors
-/// Those of [`path_configurations`], for the first run no configuration takes.
-pub fn path_runs(
-    arm: &Arm,
-    compliance: &Compliance,
-    (placed, starts): (&[PathPoint], &[usize]),
-    options: &Options,
-) -> Result<(Vec<Compensated>, Configurations)> {
-    let own: Vec<ExternalValues> = placed.iter().map(|p| p.external).collect();
-    let cones = match &options.free_lead_tilt {
-        Some(l) => super::lead_tilt::cones(l, placed.len(), None)?,
-        None => Vec::new(),
-    };
-    let at = (placed, starts);
-    super::runs::choose(arm, compliance, at, options, |first, points, o| {
-        let n = first..first + points.len();
-        let cones = cones.get(n.clone()).unwrap_or(&[]);
-        super::on_track(arm, compliance, points, (&own[n], false, cones), o)
-    })
 }
 
 /// `points` with every posture target replaced by its TCP pose (forward kinematics at the arm's

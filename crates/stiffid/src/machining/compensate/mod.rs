@@ -157,13 +157,14 @@ mod map;
 mod model;
 mod options;
 mod runs;
+mod scope;
 mod station;
 mod stream;
 mod tool_axis;
 mod validate;
 
 pub use budget::Budget;
-pub use configuration::{path_configurations, path_runs, posed, Branch, Configurations};
+pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
@@ -174,7 +175,8 @@ pub use options::{
     MapVariable, Objective, Options,
 };
 pub(crate) use runs::choose;
-pub use runs::{starts, Run, Scope};
+pub use runs::{path_configurations, path_runs, starts};
+pub use scope::Scope;
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;

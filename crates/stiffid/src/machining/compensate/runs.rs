@@ -2,57 +2,13 @@
 //! it, given each its own configuration of the arm (module docs of [`super`], "The free
 //! configuration").
 
-use super::configuration::{better, choose_one, evaluate_branch, Branch, Configurations};
+use super::configuration::{better, choose_one, evaluate_branch, Branch, Configurations, Run};
 use super::stream::nominal_postures;
 use super::{Aggregate, Compensated, Compliance, Options, PathPoint};
+use crate::robot::external::ExternalValues;
 use crate::setup::Arm;
 use crate::{Error, Result};
 use std::ops::Range;
-
-/// What one configuration of the free configuration holds (`--configuration-per`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Scope {
-    /// The whole path or program: no change of configuration anywhere.
-    #[default]
-    Program,
-    /// Each run ([`starts`]): the arm may change configuration in the joint move that starts
-    /// a run.
-    Run,
-}
-
-impl crate::common::choice::Choice for Scope {
-    const FIELD: &'static str = "configuration_per";
-    const ALL: &'static [Self] = &[Scope::Program, Scope::Run];
-    fn name(self) -> &'static str {
-        match self {
-            Scope::Program => "program",
-            Scope::Run => "run",
-        }
-    }
-    fn help(self) -> &'static str {
-        match self {
-            Scope::Program => "One configuration holds the whole program",
-            Scope::Run => "Each run between rapid moves takes its own configuration",
-        }
-    }
-}
-
-crate::common::choice::by_name!(Scope);
-
-/// One run's configurations, the one chosen.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Run {
-    /// Its points: 0-based indices into the path.
-    pub points: Range<usize>,
-    /// The line of its first point.
-    pub first_line: u64,
-    /// The line of its last point.
-    pub last_line: u64,
-    /// The configurations found at its first point ([`Configurations::branches`]).
-    pub branches: Vec<Branch>,
-    /// The index in `branches` of the one chosen.
-    pub chosen: usize,
-}
 
 /// The 0-based indices of the points that start a run, given whether each point is reached by
 /// a joint move (a G-code rapid `G0`, a robot program's `PTP`, `MoveJ`, `MoveAbsJ`, `J`,
@@ -69,8 +25,51 @@ pub fn starts(joint: &[bool]) -> Vec<usize> {
     std::iter::once(0).chain(later).collect()
 }
 
+/// Compensates `placed`, a path file's points in the arm's frame (on its carriage at their own
+/// external values), in every configuration of the arm and keeps the best (module docs of
+/// [`super`], "The free configuration"), each configuration with the other free variables of
+/// `options` ([`super::path_on_track`]'s dynamic programming): [`path_runs`] with one run.
+///
+/// # Errors
+/// Those of [`super::FreeConfiguration::check`]; [`Error::InvalidField`] (`free_configuration`)
+/// without [`Options::free_configuration`]; when no configuration takes the path, the error of
+/// the path's own (those of [`super::path`] and [`super::path_on_track`]).
+pub fn path_configurations(
+    arm: &Arm,
+    compliance: &Compliance,
+    placed: &[PathPoint],
+    options: &Options,
+) -> Result<(Vec<Compensated>, Configurations)> {
+    path_runs(arm, compliance, (placed, &[0]), options)
+}
+
+/// [`path_configurations`] of a path whose runs start at the 0-based indices `starts`
+/// ([`super::starts`]; the first run starts at 0 whatever they say): with
+/// [`super::Scope::Run`] each run takes its own configuration, compensated alone.
+///
+/// # Errors
+/// Those of [`path_configurations`], for the first run no configuration takes.
+pub fn path_runs(
+    arm: &Arm,
+    compliance: &Compliance,
+    (placed, starts): (&[PathPoint], &[usize]),
+    options: &Options,
+) -> Result<(Vec<Compensated>, Configurations)> {
+    let own: Vec<ExternalValues> = placed.iter().map(|p| p.external).collect();
+    let cones = match &options.free_lead_tilt {
+        Some(l) => super::lead_tilt::cones(l, placed.len(), None)?,
+        None => Vec::new(),
+    };
+    let at = (placed, starts);
+    choose(arm, compliance, at, options, |first, points, o| {
+        let n = first..first + points.len();
+        let cones = cones.get(n.clone()).unwrap_or(&[]);
+        super::on_track(arm, compliance, points, (&own[n], false, cones), o)
+    })
+}
+
 /// The path compensated in the configuration of least objective: one for the whole path
-/// ([`Scope::Program`]), else one per run starting at `starts` ([`Scope::Run`]), each run
+/// ([`super::Scope::Program`]), else one per run starting at `starts` ([`super::Scope::Run`]), each run
 /// compensated alone by `evaluate(first, points, options)` (`first`: the 0-based index of
 /// `points[0]` in the path) from the posture the path's own configuration reaches at its first
 /// point. For the max, each run minimises its peak, then, its peak floored at the worst run's,
@@ -106,7 +105,9 @@ pub(crate) fn choose(
             ..options.clone()
         };
         let run = &points[r.clone()];
-        let one = choose_one(arm, compliance, run, (&at, 0.0), |p, o| evaluate(r.start, p, o))?;
+        let one = choose_one(arm, compliance, run, (&at, 0.0), |p, o| {
+            evaluate(r.start, p, o)
+        })?;
         // The next run starts where the path's own postures end this one.
         let own = nominal_postures(arm, run, start, &at).ok();
         start = own.and_then(|q| q.last().copied()).unwrap_or(start);
