@@ -14,7 +14,7 @@ use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS}
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid::machining::compensate::{
     Aggregate, Compensated, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
-    FreeToolAxis, MapVariable, Objective, Options, PathPoint,
+    FreeToolAxis, MapVariable, Objective, Options, PathPoint, Scope,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -67,7 +67,9 @@ use stiffid::observation::deflection::Frame;
 /// (shoulder, elbow and wrist branches, up to 8) and keeps the one of least ``objective`` of the
 /// bound (of the deflection with the free tool axis' ``"deflection"``), every point reached and
 /// every posture feasible in it, jointly with the other free variables (as
-/// ``--free-configuration``; the ``document``'s ``configurations``).
+/// ``--free-configuration``; the ``document``'s ``configurations``); ``configuration_per="run"``
+/// gives each run (a cut and the rapid or joint moves that lead to it) its own (as
+/// ``--configuration-per run``; the ``configurations``' ``runs``).
 /// ``map=True`` (or ``"rotation"``) adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'
 /// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
@@ -102,7 +104,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, free_configuration=false, figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, free_configuration=false, configuration_per="program", figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -141,6 +143,7 @@ pub fn compensate<'py>(
     margin_deg: f64,
     max_condition: f64,
     free_configuration: bool,
+    configuration_per: &str,
     figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name_length = crate::count::optional("name_length", name_length)?;
@@ -187,9 +190,17 @@ pub fn compensate<'py>(
         options.free_tilt =
             Some(FreePositioner::try_tilt(range, tilt_step_deg, free, aggregate).map_err(raise)?);
     }
+    let per = configuration_per.parse::<Scope>().map_err(raise)?;
     if free_configuration {
         let free = options.free_tool_axis.as_ref();
-        options.free_configuration = Some(FreeConfiguration::with(free, aggregate));
+        options.free_configuration = Some(FreeConfiguration {
+            per,
+            ..FreeConfiguration::with(free, aggregate)
+        });
+    } else if per != Scope::Program {
+        return Err(error::value(
+            "configuration_per: only with free_configuration=True",
+        ));
     }
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),

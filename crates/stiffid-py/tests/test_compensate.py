@@ -219,3 +219,21 @@ def test_lead_and_tilt_equal_the_command(milling, cli, tmp_path):
         stiffid.compensate(milling, PATH, STIFFNESS, free_lead_tilt=True, cone_deg=45)
     with pytest.raises(ValueError, match="cone_deg"):
         stiffid.compensate(milling, PATH, STIFFNESS, cone_deg=5)
+
+
+def test_one_configuration_per_run_equals_the_command(milling, cli, tmp_path):
+    milling_dir = REPO / "examples" / "milling"
+    program, process = milling_dir / "panel.nc", milling_dir / "drilling.toml"
+    out = tmp_path / "panel.ls"
+    args = ["compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--program", program, "--process", process]
+    theirs = cli(*args, "--out", out, "--json", "--free-configuration", "--configuration-per", "run")["configurations"]
+    mine = stiffid.compensate(milling, stiffness=STIFFNESS, program=program, process=process, output="ls",
+                              free_configuration=True, configuration_per="run")["document"]["configurations"]
+    assert mine == theirs
+    # 20 holes, 20 runs; on the FANUC's own limits each keeps the program's own configuration.
+    assert (mine["per"], len(mine["runs"])) == ("run", 20)
+    assert all(r["chosen_own"] for r in mine["runs"])
+    with pytest.raises(ValueError, match="configuration_per"):
+        stiffid.compensate(milling, PATH, STIFFNESS, configuration_per="run")
+    with pytest.raises(ValueError, match="configuration_per"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_configuration=True, configuration_per="hole")

@@ -20,7 +20,7 @@ use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::common::words::count;
 use stiffid::machining::compensate::{
     Aggregate, Compensated, Feasible, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
-    FreeToolAxis, MapVariable, Objective, Options, PathPoint,
+    FreeToolAxis, MapVariable, Objective, Options, PathPoint, Scope,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
@@ -108,9 +108,17 @@ pub struct Args {
     /// branches, up to 8) and keep the one of least --objective (of the error bound, or of the
     /// deflection with --free-tool-axis), every point reached and every posture feasible in it
     /// (--margin-deg, --max-condition, the cell's collisions), jointly with the other free
-    /// variables; one configuration per path file or program (at most 100000 points).
+    /// variables; one configuration per path file or program (at most 100000 points), or per
+    /// run with --configuration-per run.
     #[arg(long)]
     free_configuration: bool,
+    /// With --free-configuration: what one configuration holds: the whole program, or each run
+    /// (a cut and the rapid or joint moves that lead to it: G-code G0, PTP, MoveJ, MoveAbsJ, J,
+    /// MOVJ), each run then compensated alone in each configuration (the other free variables'
+    /// step limits start afresh at each run) and the runs' choices minimising --objective over
+    /// the program; a program written as G-code must keep one configuration in every run.
+    #[arg(long, value_parser = choice::<Scope>(), default_value = "program", requires = "free_configuration")]
+    configuration_per: Scope,
     /// With --free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt or --free-configuration: how the points' costs
     /// add up along the path: their sum, or the worst point's (ties broken by the sum).
     #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
@@ -455,7 +463,10 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     }
     if args.free_configuration {
         let free = options.free_tool_axis.as_ref();
-        options.free_configuration = Some(FreeConfiguration::with(free, args.objective));
+        options.free_configuration = Some(FreeConfiguration {
+            per: args.configuration_per,
+            ..FreeConfiguration::with(free, args.objective)
+        });
     }
     if let Some(range) = args.free_positioner_deg {
         let free = options.free_tool_axis.as_ref();

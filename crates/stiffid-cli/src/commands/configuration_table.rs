@@ -1,10 +1,23 @@
 //! The text table of `stiffid compensate --free-configuration`: every configuration of the arm, its
-//! objective or why it cannot take the path, and the one chosen.
+//! objective or why it cannot take the path, and the one chosen; per run, each run's choice.
 
-use stiffid::app::compensate::configurations::ConfigurationsDocument;
+use stiffid::app::compensate::configurations::{ConfigurationsDocument, RunRow};
 
-/// The table of the document's configurations.
+/// A length in mm with four decimals, `-` for none.
+fn value(v: Option<f64>) -> String {
+    v.map_or("-".to_string(), |v| format!("{v:.4}"))
+}
+
+/// The table of the document's configurations, and per run the runs'.
 pub fn table(c: &ConfigurationsDocument) -> String {
+    match c.runs.is_empty() {
+        true => program(c),
+        false => runs(c),
+    }
+}
+
+/// The table of one configuration per program.
+fn program(c: &ConfigurationsDocument) -> String {
     let mut text = format!(
         "free configuration (minimising the {} of the {}): {} chosen{}\n  {:<34} {:<16} {:>12} {:>12}\n",
         c.aggregate,
@@ -21,7 +34,6 @@ pub fn table(c: &ConfigurationsDocument) -> String {
         "max mm"
     );
     for r in &c.configurations {
-        let value = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
         let mark = match (r.chosen, r.own) {
             (true, true) => "chosen, own",
             (true, false) => "chosen",
@@ -48,4 +60,46 @@ pub fn table(c: &ConfigurationsDocument) -> String {
         );
     }
     text
+}
+
+/// The table of one configuration per run: each run's lines, choice and objective beside its
+/// own configuration's.
+fn runs(c: &ConfigurationsDocument) -> String {
+    let moved = c.runs.iter().filter(|r| !r.chosen_own).count();
+    let mut text = format!(
+        "free configuration per run (minimising the {} of the {}): {} mm over {} runs, {} in another configuration than the program's own\n  {:>4} {:>13} {:<34} {:>12} {:>12} {:>12}\n",
+        c.aggregate,
+        c.objective,
+        value(c.objective_mm),
+        c.runs.len(),
+        moved,
+        "run",
+        "lines",
+        "configuration",
+        "sum mm",
+        "max mm",
+        "own mm"
+    );
+    for r in &c.runs {
+        text += &row(r);
+    }
+    text
+}
+
+/// One run's line.
+fn row(r: &RunRow) -> String {
+    format!(
+        "  {:>4} {:>13} {:<34} {:>12} {:>12} {:>12}  {}\n",
+        r.run,
+        format!("{}-{}", r.first_line, r.last_line),
+        r.chosen,
+        value(r.sum_mm),
+        value(r.max_mm),
+        value(r.own_objective_mm),
+        match (r.chosen_own, &r.own) {
+            (true, _) => "own".to_string(),
+            (false, Some(own)) => format!("own: {own}"),
+            (false, None) => "own reaches no posture".to_string(),
+        }
+    )
 }

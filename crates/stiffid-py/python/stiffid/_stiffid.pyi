@@ -302,6 +302,7 @@ def compensate(
     margin_deg: float = 5.0,
     max_condition: float = 1000.0,
     free_configuration: bool = False,
+    configuration_per: Literal["program", "run"] = "program",
     figures: bool = False,
 ) -> dict[str, Any]:
     """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg, lead_deg, tilt_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg, surge_before_mm_s (n,; the last with free_tool_axis) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); bound_mm, bound_left_mm, bound_compensation_mm, bound_calibration_mm, bound_force_mm, bound_model_form_mm (n,; NaN where a part is absent); map (with map=True or "rotation": line, tool_rotation_deg, chosen_deg, bound_mm, deflection_mm, condition, limit_distance_deg (n, g); with map="track": station_offset_mm and chosen_mm for the first two; collision_distance_mm (n, g) with a cell floor or obstacles); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=; figures (with figures=True: the report's figures as SVG strings keyed by name)."""

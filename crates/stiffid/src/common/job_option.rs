@@ -36,6 +36,9 @@ pub enum JobOption {
     TiltStepDeg,
     /// compensate: the robot's configuration chosen among the arm's (shoulder, elbow, wrist).
     FreeConfiguration,
+    /// compensate: what one configuration of the free configuration holds (the program, or
+    /// each run between rapid moves).
+    ConfigurationPer,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -134,6 +137,7 @@ impl JobOption {
             JobOption::FreeTiltDeg => "free_tilt_deg",
             JobOption::TiltStepDeg => "tilt_step_deg",
             JobOption::FreeConfiguration => "free_configuration",
+            JobOption::ConfigurationPer => "configuration_per",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

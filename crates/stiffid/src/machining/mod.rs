@@ -38,9 +38,13 @@
 //!    the compensated postures there. With a free configuration
 //!    ([`compensate::Options::free_configuration`]) the whole program is compensated in every
 //!    configuration of the arm and the best kept ([`compensate::FreeConfiguration`]): one
-//!    configuration per program (a G-code program's rapid moves are compensated too, so its
-//!    runs of cutting moves do not each get their own); a joint program's targets are solved
-//!    in another configuration from their nominal poses, and written back with its angles.
+//!    configuration per program, or with [`compensate::Scope::Run`] one per run
+//!    ([`compensate::starts`]: a cut and the joint moves that lead to it, G-code `G0`, robot
+//!    programs' `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`); a joint program's targets are solved
+//!    in another configuration from their nominal poses, and written back with its angles, a
+//!    Cartesian target with the configuration data of its compensated posture. A G-code
+//!    program names no configuration: its positions are written whatever the runs' (the
+//!    compensate job refuses G-code output whose runs differ).
 
 pub mod cell;
 pub mod compensate;
@@ -311,20 +315,27 @@ pub fn compensate(
         None => Vec::new(),
     };
     let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
-    let evaluate = |points: &[PathPoint], options: &compensate::Options| match free {
-        false => {
-            let at = (thrusts.as_slice(), cones.as_slice());
-            compensate::path_in_cones(arm, compliance, points, at, options)
-        }
-        true => {
-            let weighted = arm.payload().is_some();
-            compensate::on_track(arm, compliance, points, (&own, weighted, &cones), options)
+    // The points from `first` on: each per-point list sliced to them (a run's).
+    let evaluate = |first: usize, points: &[PathPoint], options: &compensate::Options| {
+        let n = first..first + points.len();
+        let cones = cones.get(n.clone()).unwrap_or(&[]);
+        match free {
+            false => {
+                let at = (thrusts.get(n).unwrap_or(&[]), cones);
+                compensate::path_in_cones(arm, compliance, points, at, options)
+            }
+            true => {
+                let weighted = arm.payload().is_some();
+                compensate::on_track(arm, compliance, points, (&own[n], weighted, cones), options)
+            }
         }
     };
     let (mut results, configurations) = match options.free_configuration {
-        None => (evaluate(&points, options)?, None),
+        None => (evaluate(0, &points, options)?, None),
         Some(_) => {
-            let (results, c) = compensate::choose(arm, compliance, &points, options, evaluate)?;
+            let starts = compensate::starts(&joint_moves(program));
+            let at = (points.as_slice(), starts.as_slice());
+            let (results, c) = compensate::choose(arm, compliance, at, options, evaluate)?;
             (results, Some(c))
         }
     };
@@ -493,6 +504,15 @@ fn operations<'a>(
                 by_line.or(fallback)
             })
             .collect()),
+    }
+}
+
+/// Whether each point is reached by a joint move: a G-code rapid move (`G0`), a robot
+/// program's joint motion ([`JointProgram::joint_moves`]).
+fn joint_moves(program: &Program) -> Vec<bool> {
+    match program {
+        Program::GCode(g) => g.points.iter().map(|p| p.motion == Motion::Rapid).collect(),
+        Program::Robot(r) => r.joint_moves(),
     }
 }
 

@@ -16,7 +16,7 @@ use stiffid::{setup, Coordinates, Error, JobOption, Setup};
 
 /// The FANUC preset with its TCP on the flange axis, 250 mm out, and joint limits `limits_deg`
 /// (lower, upper per axis).
-fn fanuc(limits_deg: [(f64, f64); 6]) -> Setup {
+pub(crate) fn fanuc(limits_deg: [(f64, f64); 6]) -> Setup {
     let s = setup::builtin("fanuc-r2000ic-165f").unwrap();
     let tcp = Vector3::new(0.0, 0.0, 0.25);
     let s = s
@@ -36,7 +36,7 @@ fn fanuc(limits_deg: [(f64, f64); 6]) -> Setup {
 }
 
 /// Every axis within +-300 deg: every configuration of the arm reaches the path.
-const WIDE: [(f64, f64); 6] = [(-300.0, 300.0); 6];
+pub(crate) const WIDE: [(f64, f64); 6] = [(-300.0, 300.0); 6];
 
 fn free_options(s: &Setup, aggregate: Aggregate) -> Options {
     Options {

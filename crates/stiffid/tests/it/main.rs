@@ -19,6 +19,7 @@ mod comau_checks;
 mod common;
 mod compensate;
 mod compensate_dynamics;
+mod configuration_runs;
 mod criteria;
 mod design_candidates;
 mod distinct_postures;

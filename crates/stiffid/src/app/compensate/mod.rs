@@ -330,6 +330,7 @@ where
                 &options,
             )
             .map_err(|e| in_input(&name, e))?;
+            output::check_runs(compensated.configurations.as_ref(), output)?;
             if options.map {
                 mapped = Some(match &compensated.configurations {
                     Some(c) => c.in_chosen(setup.arm(), &compensated.points),

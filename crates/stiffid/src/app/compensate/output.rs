@@ -1,7 +1,8 @@
 //! What a compensated program may be written as: the output language a program takes, and
-//! a lean G-code cannot carry.
+//! a lean or runs' configurations G-code cannot carry.
 
-use crate::machining::compensate::Options;
+use super::configurations::name;
+use crate::machining::compensate::{Configurations, Options, Run};
 use crate::machining::Language;
 #[cfg(doc)]
 use crate::JobOption;
@@ -36,4 +37,33 @@ pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
         }),
         _ => Ok(()),
     }
+}
+
+/// Refuses a program written as G-code whose runs ([`crate::machining::compensate::Scope::Run`])
+/// were compensated in different configurations: its blocks carry positions only, so the
+/// controller would hold the first run's configuration throughout.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::ConfigurationPer`]) naming the first run whose
+/// configuration is not the first run's, its lines and both configurations.
+pub(super) fn check_runs(configurations: Option<&Configurations>, output: Language) -> Result<()> {
+    let runs = configurations.map_or(&[][..], |c| c.runs.as_slice());
+    let (Language::GCode, Some(first)) = (output, runs.first()) else {
+        return Ok(());
+    };
+    let named = |r: &Run| name(&r.branches[r.chosen].configuration);
+    let Some((k, run)) = (runs.iter().enumerate()).find(|(_, r)| named(r) != named(first)) else {
+        return Ok(());
+    };
+    Err(Error::InvalidOption {
+        option: crate::JobOption::ConfigurationPer,
+        message: format!(
+            "run: run {} (lines {} to {}) is compensated in {}, run 1 in {}; a G-code program cannot name a configuration, so the controller would keep one throughout: write a robot program (--out X.src, .mod or .ls; Python output=), whose joint moves carry each run's configuration, or keep one configuration per program",
+            k + 1,
+            run.first_line,
+            run.last_line,
+            named(run),
+            named(first)
+        ),
+    })
 }

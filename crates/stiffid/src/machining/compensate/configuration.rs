@@ -6,7 +6,6 @@ use super::feasible::Checks;
 use super::{Aggregate, Compensated, Compliance, FreeConfiguration, Model, Objective, Options};
 use super::{PathPoint, Removed, Target};
 use crate::robot::configuration::Configuration;
-use crate::robot::external::ExternalValues;
 use crate::robot::ik::{self, tool_pose};
 use crate::setup::Arm;
 use crate::{Error, Result, Robot};
@@ -14,6 +13,7 @@ use nalgebra::{Isometry3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// One configuration of the arm evaluated over the path.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,13 +36,20 @@ pub struct Branch {
 
 impl Branch {
     /// The path's objective in this configuration (the peak or the sum, with the other as the
-    /// tie-break), `None` when refused.
-    fn value(&self, aggregate: Aggregate) -> Option<(f64, f64)> {
+    /// tie-break), `None` when refused; a peak below `floor` (m) counts as `floor` (a run whose
+    /// peak is below the program's worst run's).
+    fn value(&self, aggregate: Aggregate, floor: f64) -> Option<(f64, f64)> {
         let (peak, sum) = (self.peak?, self.sum?);
         Some(match aggregate {
             Aggregate::Sum => (sum, peak),
-            Aggregate::Max => (peak, sum),
+            Aggregate::Max => (peak.max(floor), sum),
         })
+    }
+
+    /// Whether it may be chosen: it takes the path, or it is the path's own and reaches every
+    /// point (the no-worse rule keeps it whatever the checks say).
+    pub(super) fn takes(&self) -> bool {
+        self.peak.is_some() && (self.own || self.refused.is_none())
     }
 }
 
@@ -60,11 +67,29 @@ pub struct Configurations {
     pub chosen: usize,
     /// What the user should know: the path's own kept for want of another, or refused.
     pub warnings: Vec<String>,
+    /// With one configuration per run ([`super::Scope::Run`]): each run's, in path order
+    /// (`branches` and `chosen` are then the first run's); empty with one per program.
+    pub runs: Vec<Run>,
+}
+
+/// One run's configurations, the one chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Run {
+    /// Its points: 0-based indices into the path.
+    pub points: Range<usize>,
+    /// The line of its first point.
+    pub first_line: u64,
+    /// The line of its last point.
+    pub last_line: u64,
+    /// The configurations found at its first point ([`Configurations::branches`]).
+    pub branches: Vec<Branch>,
+    /// The index in `branches` of the one chosen.
+    pub chosen: usize,
 }
 
 impl Configurations {
-    /// The axis angles (rad) that start the path in the configuration chosen, `None` when it is
-    /// the path's own (its start posture starts it).
+    /// The axis angles (rad) that start the path in the configuration chosen (per run, the
+    /// first run's), `None` when it is the path's own (its start posture starts it).
     pub fn start(&self) -> Option<Vector6<f64>> {
         let b = &self.branches[self.chosen];
         (!b.own).then(|| Vector6::from(b.configuration.q_deg).map(f64::to_radians))
@@ -78,31 +103,6 @@ impl Configurations {
             false => posed(arm, points),
         }
     }
-}
-
-/// Compensates `placed`, a path file's points in the arm's frame (on its carriage at their own
-/// external values), in every configuration of the arm and keeps the best (module docs of
-/// [`super`], "The free configuration"), each configuration with the other free variables of
-/// `options` ([`super::path_on_track`]'s dynamic programming).
-///
-/// # Errors
-/// Those of [`FreeConfiguration::check`]; [`Error::InvalidField`] (`free_configuration`)
-/// without [`Options::free_configuration`]; when no configuration takes the path, the error of
-/// the path's own (those of [`super::path`] and [`super::path_on_track`]).
-pub fn path_configurations(
-    arm: &Arm,
-    compliance: &Compliance,
-    placed: &[PathPoint],
-    options: &Options,
-) -> Result<(Vec<Compensated>, Configurations)> {
-    let own: Vec<ExternalValues> = placed.iter().map(|p| p.external).collect();
-    let cones = match &options.free_lead_tilt {
-        Some(l) => super::lead_tilt::cones(l, placed.len(), None)?,
-        None => Vec::new(),
-    };
-    choose(arm, compliance, placed, options, |points, o| {
-        super::on_track(arm, compliance, points, (&own, false, &cones), o)
-    })
 }
 
 /// `points` with every posture target replaced by its TCP pose (forward kinematics at the arm's
@@ -123,15 +123,16 @@ pub fn posed(arm: &Arm, points: &[PathPoint]) -> Vec<PathPoint> {
 /// The path compensated by `evaluate` in every configuration of the arm, the best kept (module
 /// docs of [`super`]): the path's own as given, every other from its posture at the first
 /// point with the points' poses ([`posed`]), refused where a point fails, a posture fails the
-/// checks of [`Options::feasible`] or leaves the configuration.
+/// checks of [`Options::feasible`] or leaves the configuration; a peak below `floor` (m) counts
+/// as `floor` ([`Branch::value`]).
 ///
 /// # Errors
 /// Those of [`path_configurations`].
-pub(crate) fn choose(
+pub(super) fn choose_one(
     arm: &Arm,
     compliance: &Compliance,
     points: &[PathPoint],
-    options: &Options,
+    (options, floor): (&Options, f64),
     evaluate: impl Fn(&[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<(Vec<Compensated>, Configurations)> {
     let free = options
@@ -215,11 +216,10 @@ pub(crate) fn choose(
                 branch.sum = Some(costs.iter().sum());
                 branch.refused = refusal(arm.robot(), &configuration, (points, &results), &checks);
                 // The path's own is kept whatever the checks say (the no-worse rule).
-                let takes = own || branch.refused.is_none();
-                if takes
+                if branch.takes()
                     && best
                         .as_ref()
-                        .is_none_or(|b| better(&branch, &branches[b.0], free.aggregate))
+                        .is_none_or(|b| better(&branch, &branches[b.0], free.aggregate, floor))
                 {
                     best = Some((branches.len(), results));
                 }
@@ -237,10 +237,10 @@ pub(crate) fn choose(
 /// Whether branch `a` is better than `b`: a lower objective (its tie-break next), or equal and
 /// the path's own. Values within [`super::TIE_BREAK`] of each other (relative) are equal: a
 /// gain below it is not worth another configuration (a spherical wrist's flip gives the same
-/// deflections to rounding).
-fn better(a: &Branch, b: &Branch, aggregate: Aggregate) -> bool {
+/// deflections to rounding). A peak below `floor` counts as `floor` ([`Branch::value`]).
+pub(super) fn better(a: &Branch, b: &Branch, aggregate: Aggregate, floor: f64) -> bool {
     let below = |x: f64, y: f64| x < y - super::TIE_BREAK * y.abs();
-    match (a.value(aggregate), b.value(aggregate)) {
+    match (a.value(aggregate, floor), b.value(aggregate, floor)) {
         (Some(v), Some(w)) if below(v.0, w.0) => true,
         (Some(v), Some(w)) if below(w.0, v.0) => false,
         (Some(v), Some(w)) if below(v.1, w.1) => !b.own,
@@ -291,8 +291,36 @@ fn finish(
         branches,
         chosen,
         warnings,
+        runs: Vec::new(),
     };
     Ok((results, configurations))
+}
+
+/// `points` compensated by `evaluate` in `branch`'s configuration, as [`choose_one`] did
+/// (the path's own as given, another from its first posture with the points' poses).
+///
+/// # Errors
+/// Those of `evaluate`.
+pub(super) fn evaluate_branch(
+    arm: &Arm,
+    points: &[PathPoint],
+    (options, branch): (&Options, &Branch),
+    evaluate: impl Fn(&[PathPoint], &Options) -> Result<Vec<Compensated>>,
+) -> Result<Vec<Compensated>> {
+    let alone = Options {
+        free_configuration: None,
+        ..options.clone()
+    };
+    match branch.own {
+        true => evaluate(points, &alone),
+        false => evaluate(
+            &posed(arm, points),
+            &Options {
+                q0: Vector6::from(branch.configuration.q_deg).map(f64::to_radians),
+                ..alone
+            },
+        ),
+    }
 }
 
 /// A point's cost under `objective`: its deflection's length or its bound, m.

@@ -134,7 +134,13 @@
 //! [`FreeConfiguration::SEEDS`] seeded starts, the solution nearest to the path's own posture in
 //! each configuration), continued point by point, a joint target solved from its nominal pose;
 //! the other free variables are chosen in each by their dynamic programming. A configuration
-//! cannot change along a continuous cut, so one holds the whole path. It is refused at the
+//! cannot change along a continuous cut, so one holds the whole path ([`Scope::Program`]), or,
+//! with [`Scope::Run`], each run ([`starts`]: a cut and the joint moves that lead to it, where
+//! the arm may change configuration): each run is compensated alone in each configuration,
+//! from the posture the path's own reaches at its first point, so the other free variables'
+//! step limits start afresh at each run (the joint move between runs is a move of its own), and
+//! the runs' choices minimise the program's objective (the max over the runs, or the sum:
+//! per run). A configuration is refused for a path or a run at the
 //! first point inverse kinematics cannot reach in it, that its compensation fails, whose
 //! posture fails a check of [`Feasible`] or leaves the configuration. Of the others the one of
 //! least path objective is kept (each point's TCP deflection or bound, as the other free
@@ -162,6 +168,8 @@ mod lead_tilt;
 mod map;
 mod model;
 mod options;
+mod runs;
+mod scope;
 mod speed;
 mod station;
 mod stream;
@@ -169,8 +177,7 @@ mod tool_axis;
 mod validate;
 
 pub use budget::Budget;
-pub(crate) use configuration::choose;
-pub use configuration::{path_configurations, posed, Branch, Configurations};
+pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
@@ -181,6 +188,9 @@ pub use options::{
     MapVariable, Objective, Options,
 };
 pub use speed::{has_speed_limits, move_times, speed_shares};
+pub(crate) use runs::choose;
+pub use runs::{path_configurations, path_runs, starts};
+pub use scope::Scope;
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;

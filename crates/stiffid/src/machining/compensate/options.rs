@@ -407,6 +407,9 @@ pub struct FreeConfiguration {
     pub objective: Objective,
     /// How the points' costs add up along the path.
     pub aggregate: Aggregate,
+    /// What one configuration holds: the whole program, or each run between rapid moves
+    /// ([`super::Scope`]).
+    pub per: super::Scope,
 }
 
 impl FreeLeadTilt {
@@ -518,11 +521,13 @@ impl FreeConfiguration {
 
     /// The free configuration minimising what the free tool axis `free` minimises (the bound
     /// without one), its points' costs added up by `aggregate`: the option
-    /// `compensate --free-configuration` and Python's `free_configuration=True`.
+    /// `compensate --free-configuration` and Python's `free_configuration=True`; one
+    /// configuration per program ([`FreeConfiguration::per`] to change it).
     pub fn with(free: Option<&FreeToolAxis>, aggregate: Aggregate) -> Self {
         Self {
             objective: free.map_or(Objective::Bound, |f| f.objective),
             aggregate,
+            per: super::Scope::Program,
         }
     }
 

@@ -122,13 +122,22 @@ impl Options {
         Ok(())
     }
 
-    /// A free configuration's objective not the surge ([`FreeConfiguration::check`]) and
-    /// its objective and aggregate those of the other free variables given with it.
+    /// A free configuration's objective not the surge ([`FreeConfiguration::check`]), one per
+    /// run not with a map, and its objective and aggregate those of the other free variables
+    /// given with it.
     fn validate_configuration(&self) -> Result<()> {
         let Some(c) = &self.free_configuration else {
             return Ok(());
         };
         c.check(0)?;
+        if c.per == super::Scope::Run && self.map {
+            return Err(Error::OptionCombination {
+                option: JobOption::ConfigurationPer,
+                with: vec![JobOption::Map],
+                needs: false,
+                reason: "run: a map is drawn over the whole program in one configuration".into(),
+            });
+        }
         let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
         let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
         match self.external_objective().or(tool).or(lean) {

@@ -44,6 +44,7 @@ pub mod generate;
 pub mod inform;
 pub mod krl;
 pub mod ls;
+mod motion;
 pub mod rapid;
 pub mod rename;
 
