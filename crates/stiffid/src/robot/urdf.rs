@@ -508,7 +508,7 @@ fn linear_axis(
 /// A message naming the joint for a negative or non-finite velocity.
 fn velocity(j: &urdf_rs::Joint) -> std::result::Result<f64, String> {
     match j.limit.velocity {
-        v if v == 0.0 => Ok(f64::INFINITY),
+        0.0 => Ok(f64::INFINITY),
         v if v > 0.0 && v.is_finite() => Ok(v),
         v => Err(format!(
             "joint '{}': limit velocity {} is not a speed (expected above 0; 0 or none: no limit)",

@@ -109,9 +109,9 @@ fn a_slow_track_keeps_the_free_station_within_its_speed() {
     let track = track.unwrap();
     assert_eq!(track.max_speed_mm_s, Some(40.0));
     assert!(track.chosen_highest_share.unwrap() <= 1.0);
-    assert!(doc.feasibility.unwrap().moves_refused_speed > 0);
+    assert!(doc.feasibility.as_ref().unwrap().moves_refused_speed > 0);
     // A limit never lowers the worst bound.
-    let peak = |d: &Document| d.summary.budget.max_bound_mm;
+    let peak = |d: &Document| d.summary.budget.max_bound_mm.unwrap();
     assert!(peak(&doc) >= peak(&free) - 1e-12);
 }
 
@@ -221,7 +221,7 @@ fn the_paths_own_moves_are_kept_when_they_break_the_limit() {
 
 #[test]
 fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
-    let robot = include_str!("../../../presets/kuka-kr210-robond.toml");
+    let robot = include_str!("../../presets/kuka-kr210-robond.toml");
     let with = |v: &str| {
         robot.replacen(
             "convention =",

@@ -98,8 +98,11 @@ pub(super) fn prepare<'a>(
     Ok((options, tracker))
 }
 
+/// The move times of a path (s, one per point), or why there are none.
+type Times = (Option<Vec<Option<f64>>>, Option<&'static str>);
+
 /// The move times of `input` (module docs), or why there are none.
-fn times(setup: &Setup, input: &Input) -> Result<(Option<Vec<Option<f64>>>, Option<&'static str>)> {
+fn times(setup: &Setup, input: &Input) -> Result<Times> {
     match input {
         Input::Path { name, text, frame } => {
             let Some(feeds) = path::feeds(text).map_err(|e| in_input(name, e))? else {
