@@ -187,10 +187,10 @@ pub use options::{
     Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
     MapVariable, Objective, Options,
 };
-pub use speed::{has_speed_limits, move_times, speed_shares};
 pub(crate) use runs::choose;
 pub use runs::{path_configurations, path_runs, starts};
 pub use scope::Scope;
+pub use speed::{has_speed_limits, move_times, speed_shares};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;

@@ -100,10 +100,18 @@ pub(crate) fn choose(
     let mut start = options.q0;
     let mut chosen = Vec::with_capacity(ranges.len());
     for r in &ranges {
-        let at = Options {
+        let mut at = Options {
             q0: start,
             ..options.clone()
         };
+        // The run's own move times (the speed limits' clock starts again after the rapid).
+        at.feasible.move_times = (options.feasible.move_times.as_deref())
+            .and_then(|t| t.get(r.clone()))
+            .map(|t| {
+                (t.iter().enumerate())
+                    .map(|(i, &d)| d.filter(|_| i > 0))
+                    .collect()
+            });
         let run = &points[r.clone()];
         let one = choose_one(arm, compliance, run, (&at, 0.0), |p, o| {
             evaluate(r.start, p, o)
