@@ -574,7 +574,10 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             f.moves_refused_speed,
         );
     }
-    text += &crate::commands::speed_line::line(&doc.speed_limits);
+    // Why the speeds were not checked matters where a free variable moves the axes.
+    if doc.speed_limits.not_checked_because.is_none() || doc.feasibility.is_some() {
+        text += &crate::commands::speed_line::line(&doc.speed_limits);
+    }
     if let Some(c) = &doc.configurations {
         text += &crate::commands::configuration_table::table(c);
     }
