@@ -62,6 +62,7 @@ mod path_axes;
 mod path_format;
 mod place;
 mod pool;
+mod refined_grid;
 mod prediction;
 mod prior;
 mod process_forces;

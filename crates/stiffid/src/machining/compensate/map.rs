@@ -187,6 +187,7 @@ fn track(
                 phi: 0.0,
                 shift: (d != 0.0).then_some(st.shift.as_slice()),
                 lean: None,
+                line: None,
             };
             mapped.column(m, &st.wrenches, &st.external, Some(&st.inside))
         })

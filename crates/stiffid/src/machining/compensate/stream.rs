@@ -93,6 +93,8 @@ pub(crate) fn path_in_cones(
     );
     let largest = cones.iter().copied().fold(0.0, f64::max);
     check_cells(options, points.len(), largest)?;
+    let axes = 2 * usize::from(lean.is_some()) + usize::from(rotation.is_some());
+    super::refine::check(options.refine, axes, points.len())?;
     let free = match (rotation, lean) {
         (Some(f), _) => Some((cost(arm, f.objective, thrusts)?, f.aggregate)),
         (None, Some(l)) => Some((cost(arm, l.objective, thrusts)?, l.aggregate)),
@@ -128,7 +130,7 @@ pub(crate) fn path_in_cones(
                 &wrenches,
                 (rotation, &leaning, *aggregate),
                 (cost, &checks),
-                &options.ik,
+                options,
             )
         }
     };

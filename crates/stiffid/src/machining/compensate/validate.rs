@@ -24,7 +24,8 @@ impl Options {
     /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
     /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
     /// [`JobOption::FreeTiltDeg`], [`JobOption::TiltStepDeg`],
-    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]).
+    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]);
+    /// ([`JobOption::Refine`]) for more than [`super::refine::MAX_LEVELS`] levels.
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",
@@ -60,6 +61,7 @@ impl Options {
         }
         self.validate_configuration()?;
         self.feasible.validate()?;
+        super::refine::check(self.refine, 0, 0)?;
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
