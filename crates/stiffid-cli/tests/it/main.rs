@@ -15,6 +15,7 @@ mod hardening;
 mod identify_cli;
 mod kinematics;
 mod lead_tilt_cli;
+mod refine_cli;
 mod limits_edges;
 mod mass_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]

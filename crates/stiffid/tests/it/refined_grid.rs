@@ -33,7 +33,9 @@ fn rotation(s: &Setup, max_step_deg: f64, aggregate: Aggregate, refine: usize) -
 
 /// Whether every value of `values` (rad or m) is a whole number of `step`s.
 fn on_steps(values: impl Iterator<Item = f64>, step: f64) -> bool {
-    values.into_iter().all(|v| ((v / step) - (v / step).round()).abs() < 1e-6)
+    values
+        .into_iter()
+        .all(|v| ((v / step) - (v / step).round()).abs() < 1e-6)
 }
 
 #[test]
@@ -49,7 +51,10 @@ fn the_refined_rotation_never_rises_keeps_the_step_and_reaches_the_fine_grid() {
         for levels in 1..=2 {
             let refined = run(&rotation(&s, 5.0, aggregate, levels));
             let value = total(&refined, aggregate);
-            assert!(value <= previous * (1.0 + 1e-6), "{levels}: {value} above {previous}");
+            assert!(
+                value <= previous * (1.0 + 1e-6),
+                "{levels}: {value} above {previous}"
+            );
             previous = value;
             for w in refined.windows(2) {
                 let change = (w[1].tool_rotation - w[0].tool_rotation).abs();
@@ -85,7 +90,8 @@ fn the_refined_station_and_rotation_never_rise_and_keep_the_step() {
             free_station: Some(station),
             ..rotation(&s, 5.0, aggregate, refine)
         };
-        let run = |o: &Options| compensate::path_on_track(s.arm(), &compliance, &points, o).unwrap();
+        let run =
+            |o: &Options| compensate::path_on_track(s.arm(), &compliance, &points, o).unwrap();
         let coarse = run(&options(0));
         let refined = run(&options(1));
         let (a, b) = (total(&coarse, aggregate), total(&refined, aggregate));
@@ -108,6 +114,15 @@ fn bad_refine_values_are_refused() {
     let e = compensate::path(s.arm(), &compliance, &points, &options).unwrap_err();
     assert!(
         matches!(&e, Error::InvalidOption { option: JobOption::Refine, message } if message.starts_with("5: expected 0 to 4")),
+        "{e}"
+    );
+    let plain = Options {
+        refine: 1,
+        ..Options::for_setup(&s)
+    };
+    let e = compensate::path(s.arm(), &compliance, &points, &plain).unwrap_err();
+    assert!(
+        matches!(&e, Error::InvalidOption { option: JobOption::Refine, message } if message.contains("none is free")),
         "{e}"
     );
     assert!(refine::check(refine::MAX_LEVELS, 1, 1000).is_ok());

@@ -443,12 +443,17 @@ mod tests {
         let (n, states) = (line.len(), cells.len());
         let mut best = f64::INFINITY;
         for code in 0..states.pow(n as u32) {
-            let path: Vec<usize> = (0..n).map(|i| code / states.pow(i as u32) % states).collect();
+            let path: Vec<usize> = (0..n)
+                .map(|i| code / states.pow(i as u32) % states)
+                .collect();
             let values: Vec<Vec<f64>> = (0..n).map(|i| value(line, half, i, path[i])).collect();
             let fast = values.windows(2).any(|w| {
-                (w[0].iter().zip(&w[1]).zip(max_step)).any(|((a, b), m)| (a - b).abs() > m * (1.0 + 1e-9))
+                (w[0].iter().zip(&w[1]).zip(max_step))
+                    .any(|((a, b), m)| (a - b).abs() > m * (1.0 + 1e-9))
             });
-            let costs: Option<Vec<f64>> = (0..n).map(|i| cells[path[i]][i].as_ref().map(|z| z.1)).collect();
+            let costs: Option<Vec<f64>> = (0..n)
+                .map(|i| cells[path[i]][i].as_ref().map(|z| z.1))
+                .collect();
             if let (false, Some(costs)) = (fast, costs) {
                 best = best.min(total(&costs, aggregate));
             }
@@ -476,7 +481,9 @@ mod tests {
         for (axes, n) in cases {
             let grid = Grid { axes };
             let max_step: Vec<f64> = grid.axes.iter().map(|a| a.max_step).collect();
-            let half: Vec<f64> = (grid.axes.iter()).map(|a| a.max_step / a.reach as f64 / 2.0).collect();
+            let half: Vec<f64> = (grid.axes.iter())
+                .map(|a| a.max_step / a.reach as f64 / 2.0)
+                .collect();
             for trial in 0..12 {
                 // A line on the grid moving by at most each axis' reach per point.
                 let mut at: Vec<usize> = vec![2; grid.axes.len()];
@@ -484,7 +491,8 @@ mod tests {
                     .map(|_| {
                         (grid.axes.iter().zip(&mut at))
                             .map(|(x, g)| {
-                                let step = rng.random_range(0..=2 * x.reach) as isize - x.reach as isize;
+                                let step =
+                                    rng.random_range(0..=2 * x.reach) as isize - x.reach as isize;
                                 *g = (*g as isize + step).clamp(0, 4) as usize;
                                 x.values[*g]
                             })
@@ -510,11 +518,15 @@ mod tests {
                     .collect();
                 for aggregate in [Aggregate::Sum, Aggregate::Max] {
                     let chosen = band.shortest(&cells, &vec![1.0; n], aggregate);
-                    let costs: Vec<f64> = chosen.cells.iter().map(|c| c.as_ref().unwrap().1).collect();
+                    let costs: Vec<f64> =
+                        chosen.cells.iter().map(|c| c.as_ref().unwrap().1).collect();
                     let found = total(&costs, aggregate);
                     let best = exhaustive((&values, &half, &max_step), &cells, aggregate);
                     // Equal up to the tie-breaking cost (1e-6 of a cost per point and step).
-                    assert!((found - best).abs() <= 1e-5, "trial {trial} {aggregate:?}: {found} against {best}");
+                    assert!(
+                        (found - best).abs() <= 1e-5,
+                        "trial {trial} {aggregate:?}: {found} against {best}"
+                    );
                     assert!(found <= total(&[1.5; 7][..n], aggregate) + 1e-5);
                     for w in chosen.values.windows(2) {
                         for ((x, y), m) in w[0].iter().zip(&w[1]).zip(&max_step) {
