@@ -15,7 +15,6 @@ mod hardening;
 mod identify_cli;
 mod kinematics;
 mod lead_tilt_cli;
-mod refine_cli;
 mod limits_edges;
 mod mass_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
@@ -27,6 +26,7 @@ mod pool_cli;
 mod program_axes_cli;
 mod program_readback_cli;
 mod readable_files;
+mod refine_cli;
 mod refused_options;
 mod register_cli;
 mod report_cli;
