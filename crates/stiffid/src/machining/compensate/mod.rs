@@ -164,6 +164,7 @@ use nalgebra::{Isometry3, Vector6};
 pub mod budget;
 mod configuration;
 mod feasible;
+mod fixed_base;
 mod lead_tilt;
 mod map;
 mod model;

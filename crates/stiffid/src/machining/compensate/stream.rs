@@ -1,8 +1,9 @@
 //! A whole path compensated: in parallel, in chunks of bounded memory, the failing points named.
 
 use super::feasible::Checks;
+use super::fixed_base::optimise_tool_axis;
 use super::lead_tilt::{check_cells, cones, Leaning};
-use super::tool_axis::{optimise_tool_axis, Cost};
+use super::tool_axis::Cost;
 use super::{
     Compensated, Compliance, Model, Newton, Objective, Options, PathPoint, Target, REQUIRED_M,
     REQUIRED_RAD,
