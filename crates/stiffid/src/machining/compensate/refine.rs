@@ -464,8 +464,8 @@ mod tests {
     #[test]
     fn the_band_dynamic_programming_finds_the_exhaustive_optimum_and_never_rises() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
-        let a = [-0.2, -0.1, 0.0, 0.1, 0.2];
-        let b = [-0.1, -0.05, 0.0, 0.05, 0.1];
+        const A: [f64; 5] = [-0.2, -0.1, 0.0, 0.1, 0.2];
+        const B: [f64; 5] = [-0.1, -0.05, 0.0, 0.05, 0.1];
         let axis = |values: &'static [f64], reach: usize, max_step: f64| Axis {
             values,
             reach,
@@ -475,8 +475,8 @@ mod tests {
         };
         // One axis of reach 1 over 7 points; two axes (the second of reach 2) over 4 points.
         let cases = [
-            (vec![axis(&a, 1, 0.1)], 7),
-            (vec![axis(&a, 1, 0.1), axis(&b, 2, 0.1)], 4),
+            (vec![axis(&A, 1, 0.1)], 7),
+            (vec![axis(&A, 1, 0.1), axis(&B, 2, 0.1)], 4),
         ];
         for (axes, n) in cases {
             let grid = Grid { axes };
