@@ -122,7 +122,7 @@ pub(super) fn refine(
     let mut line = Line {
         values: chosen.iter().map(|&s| value_of(s)).collect(),
         cells: (chosen.iter().enumerate())
-            .map(|(i, &s)| columns[s][i].clone())
+            .map(|(i, &s)| columns[s][i])
             .collect(),
     };
     let own_costs: Vec<f64> = own
@@ -273,7 +273,7 @@ impl Band {
         removed: &mut Removed,
     ) -> Option<(nalgebra::Vector6<f64>, f64)> {
         if steps.iter().all(|&k| k == 0) {
-            return own[i].clone();
+            return own[i];
         }
         if steps.iter().zip(&self.limit).any(|(k, l)| k.abs() > *l) {
             return None;
@@ -345,7 +345,7 @@ impl Band {
                 })
                 .collect(),
             cells: (chosen.iter().enumerate())
-                .map(|(i, &s)| cells[s][i].clone())
+                .map(|(i, &s)| cells[s][i])
                 .collect(),
         }
     }
@@ -509,7 +509,7 @@ mod tests {
                     .map(|s| {
                         (0..n)
                             .map(|i| match s == band.centre() {
-                                true => line.cells[i].clone(),
+                                true => line.cells[i],
                                 false => (rng.random::<f64>() > 0.2)
                                     .then(|| (Vector6::zeros(), 1.0 + rng.random::<f64>())),
                             })
