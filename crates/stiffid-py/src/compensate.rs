@@ -63,6 +63,8 @@ use stiffid::observation::deflection::Frame;
 /// obstacles and itself, an arm on a track on its carriage at the station chosen (as
 /// ``--margin-deg``, ``--max-condition``; the
 /// ``document``'s ``feasibility`` counts the states each check removed).
+/// ``refine=L`` (0 to 4) refines the free variables' grid ``L`` times around the line chosen
+/// on it, each level halving every step (as ``--refine``; the ``document``'s ``refine``).
 /// ``free_configuration=True`` compensates the whole path in every configuration of the arm
 /// (shoulder, elbow and wrist branches, up to 8) and keeps the one of least ``objective`` of the
 /// bound (of the deflection with the free tool axis' ``"deflection"``), every point reached and
@@ -104,7 +106,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, free_configuration=false, configuration_per="program", figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, refine=0, free_configuration=false, configuration_per="program", figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -142,6 +144,7 @@ pub fn compensate<'py>(
     tilt_step_deg: f64,
     margin_deg: f64,
     max_condition: f64,
+    refine: i64,
     free_configuration: bool,
     configuration_per: &str,
     figures: bool,
@@ -162,6 +165,7 @@ pub fn compensate<'py>(
     (options.map, options.map_over) = map_over(map)?;
     options.feasible.margin = margin_deg.to_radians();
     options.feasible.max_condition = max_condition;
+    options.refine = crate::count::count("refine", refine)?;
     let aggregate = objective.parse::<Aggregate>().map_err(raise)?;
     if let Some(free) = options.free_tool_axis.as_mut() {
         free.aggregate = aggregate;

@@ -237,3 +237,17 @@ def test_one_configuration_per_run_equals_the_command(milling, cli, tmp_path):
         stiffid.compensate(milling, PATH, STIFFNESS, configuration_per="run")
     with pytest.raises(ValueError, match="configuration_per"):
         stiffid.compensate(milling, PATH, STIFFNESS, free_configuration=True, configuration_per="hole")
+
+
+def test_refine_never_rises_and_bad_values_are_refused(milling):
+    free = dict(free_tool_axis=True, max_step_deg=5, free_tool_axis_objective="bound", objective="max")
+    grid = stiffid.compensate(milling, PATH, STIFFNESS, **free)
+    refined = stiffid.compensate(milling, PATH, STIFFNESS, refine=1, **free)
+    assert (grid["document"]["refine"], refined["document"]["refine"]) == (0, 1)
+    assert refined["bound_mm"].max() <= grid["bound_mm"].max() * (1 + 1e-9)
+    assert refined["bound_mm"].sum() < grid["bound_mm"].sum()
+    assert np.all(np.abs(np.diff(refined["tool_rotation_deg"])) <= 5 + 1e-9)
+    with pytest.raises(ValueError, match="refine: 1: .*none is free"):
+        stiffid.compensate(milling, PATH, STIFFNESS, refine=1)
+    with pytest.raises(ValueError, match="refine: 5: expected 0 to 4"):
+        stiffid.compensate(milling, PATH, STIFFNESS, refine=5, **free)

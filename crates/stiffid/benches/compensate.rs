@@ -85,6 +85,7 @@ fn benches(c: &mut Criterion) {
         feasible: compensate::Feasible::for_setup(&s),
         map: false,
         map_over: compensate::MapVariable::Rotation,
+        refine: 0,
     };
     let solved = compensate::path(s.arm(), &compliance, &poses, &options).unwrap();
     let postures: Vec<PathPoint> = poses

@@ -142,6 +142,12 @@ pub struct Args {
     /// number stays at most this (finite, >= 1): away from singularities.
     #[arg(long, default_value_t = Feasible::DEFAULT_MAX_CONDITION)]
     max_condition: f64,
+    /// With a free variable (--free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt): refine its grid this many times around the line chosen on
+    /// it (0 to 4): each level halves every free variable's step and chooses again within +-1
+    /// previous step of the previous line; the steps given stay the largest change between
+    /// points.
+    #[arg(long, default_value_t = 0)]
+    refine: usize,
     /// On a cell with a positioner: turn its last axis (the table's turn) from the path's or the
     /// program's own angle by up to +- this at every point, within its travel, deg (0 < value
     /// <= 360), jointly with the station and the tool rotation when they are free too; it
@@ -441,6 +447,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     options.map_over = args.map.unwrap_or_default();
     options.feasible.margin = args.margin_deg.to_radians();
     options.feasible.max_condition = args.max_condition;
+    options.refine = args.refine;
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
@@ -577,6 +584,9 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     // Why the speeds were not checked matters where a free variable moves the axes.
     if doc.speed_limits.not_checked_because.is_none() || doc.feasibility.is_some() {
         text += &crate::commands::speed_line::line(&doc.speed_limits);
+    }
+    if let Some(levels) = doc.refine.filter(|&l| l > 0) {
+        text += &format!("the free variables' grid refined {levels} time(s) around the line chosen on it, each level halving every step\n");
     }
     if let Some(c) = &doc.configurations {
         text += &crate::commands::configuration_table::table(c);

@@ -9,7 +9,7 @@ use crate::common;
 use common::{assert_success, json, refused, stiffid, temp_dir, write_file};
 use std::path::Path;
 
-fn example(name: &str) -> String {
+pub(crate) fn example(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples")
         .join(name)
@@ -34,7 +34,7 @@ fn columns(csv: &Path, names: &[&str]) -> Vec<Vec<f64>> {
 }
 
 /// The milling example's first 40 path points compensated with `extra` into `out`.
-fn milling(dir: &Path, out: &str, extra: &[&str]) -> std::process::Output {
+pub(crate) fn milling(dir: &Path, out: &str, extra: &[&str]) -> std::process::Output {
     let text = std::fs::read_to_string(example("milling/path.csv")).unwrap();
     let head: Vec<&str> = text.lines().take(41).collect();
     let path = write_file(dir, "path.csv", &(head.join("\n") + "\n"));

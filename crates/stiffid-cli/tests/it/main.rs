@@ -27,6 +27,7 @@ mod pool_cli;
 mod program_axes_cli;
 mod program_readback_cli;
 mod readable_files;
+mod refine_cli;
 mod refused_options;
 mod register_cli;
 mod report_cli;

@@ -301,6 +301,7 @@ def compensate(
     tilt_step_deg: float = 5.0,
     margin_deg: float = 5.0,
     max_condition: float = 1000.0,
+    refine: int = 0,
     free_configuration: bool = False,
     configuration_per: Literal["program", "run"] = "program",
     figures: bool = False,

@@ -47,6 +47,8 @@ pub enum JobOption {
     MarginDeg,
     /// compensate: the largest condition number of a moved posture's TCP Jacobian.
     MaxCondition,
+    /// compensate: the levels of refinement of the free variables' grid.
+    Refine,
     /// compensate: the process force model's relative error, percent.
     ForceTolerancePercent,
     /// compensate: the largest sagitta of the chords of a G-code arc, mm.
@@ -142,6 +144,7 @@ impl JobOption {
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",
             JobOption::MaxCondition => "max_condition",
+            JobOption::Refine => "refine",
             JobOption::ForceTolerancePercent => "force_tolerance_percent",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",

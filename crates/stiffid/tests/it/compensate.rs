@@ -249,6 +249,7 @@ pub(crate) fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
         feasible: compensate::Feasible::for_setup(s),
         map: false,
         map_over: compensate::MapVariable::Rotation,
+        refine: 0,
     }
 }
 

@@ -14,7 +14,7 @@ use stiffid::robot::presets;
 use stiffid::{setup, Setup};
 
 /// The FANUC milling example on a track along x (0 to 6 m, pitching 0.2 mrad at its end).
-fn on_track() -> Setup {
+pub(crate) fn on_track() -> Setup {
     let mut track = ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0);
     track.errors = ErrorMotions::new(vec![[0.0, 0.0, 0.0, 0.0, 2e-4, 0.0]]).unwrap();
     let cell = ExternalAxes::new(vec![track]).unwrap();
@@ -26,7 +26,7 @@ fn on_track() -> Setup {
 
 /// `n` points of a line along x in the cell (the tool pointing down, a base-frame force), at
 /// the station 1.5 m.
-fn line(n: usize) -> Vec<PathPoint> {
+pub(crate) fn line(n: usize) -> Vec<PathPoint> {
     (0..n)
         .map(|i| PathPoint {
             line: i as u64 + 2,

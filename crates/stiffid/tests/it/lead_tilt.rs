@@ -15,7 +15,7 @@ use stiffid::robot::presets;
 use stiffid::{setup, Error, JobOption, Setup};
 
 /// The FANUC milling example (a fixed base).
-fn milling() -> Setup {
+pub(crate) fn milling() -> Setup {
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
     setup::parse(text, "milling.toml", |name, _| presets::get(name)).unwrap()
 }
@@ -26,7 +26,7 @@ fn down() -> UnitQuaternion<f64> {
 }
 
 /// `n` points of a line along +x (the feed), the tool pointing down, a base-frame force.
-fn line(n: usize) -> Vec<PathPoint> {
+pub(crate) fn line(n: usize) -> Vec<PathPoint> {
     (0..n)
         .map(|i| PathPoint {
             line: i as u64 + 2,

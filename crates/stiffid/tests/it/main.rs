@@ -73,6 +73,7 @@ mod program_forms;
 mod program_frames;
 mod program_station;
 mod programs;
+mod refined_grid;
 mod register_postures;
 mod register_robot_error;
 mod robot_masses;

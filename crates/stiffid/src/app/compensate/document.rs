@@ -77,6 +77,10 @@ pub struct Document {
     pub free_lead_tilt: Option<FreeLeadTilt>,
     /// With `--free-tilt-deg`: its options (a two-axis positioner's first axis); else `null`.
     pub free_tilt: Option<FreePositioner>,
+    /// With a free variable: the levels its grid was refined around the line chosen on it
+    /// (`--refine`, 0 to 4: each halves every free variable's step in a band around the
+    /// previous level's line); else `null`.
+    pub refine: Option<usize>,
     /// With `--free-configuration`: every configuration of the arm evaluated over the path and
     /// the one chosen; else `null`.
     pub configurations: Option<super::configurations::ConfigurationsDocument>,
@@ -329,6 +333,7 @@ impl Document {
             speed_limits: report.speed_limits.clone(),
             free_positioner: report.free_positioner.map(FreePositioner::new),
             free_tilt: report.free_tilt.map(FreePositioner::new),
+            refine: report.refine,
             free_lead_tilt: report.free_lead_tilt.map(|f| FreeLeadTilt {
                 cone_deg: f.cone.map(|c| as_given(c.to_degrees())),
                 step_deg: as_given(f.max_step.to_degrees()),

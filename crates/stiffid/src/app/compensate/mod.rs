@@ -169,6 +169,8 @@ pub struct Report {
     pub free_lead_tilt: Option<compensate::FreeLeadTilt>,
     /// The free tilt, if asked.
     pub free_tilt: Option<compensate::FreePositioner>,
+    /// With a free variable: the levels of its grid's refinement ([`Options::refine`]).
+    pub refine: Option<usize>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
     pub summary: Summary,
     /// With a program: the compensated program and its segments.
@@ -468,6 +470,7 @@ where
         free_positioner: options.free_positioner,
         free_lead_tilt: options.free_lead_tilt,
         free_tilt: options.free_tilt,
+        refine: free.then_some(options.refine),
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,

@@ -138,9 +138,10 @@ impl Lean<'_> {
         self.lead == 0.0 && self.tilt == 0.0
     }
 
-    /// Whether the lean is within point `i`'s cone.
-    pub fn inside(&self, i: usize) -> bool {
-        self.lead.hypot(self.tilt) <= self.cones[i] * (1.0 + 1e-12)
+    /// Whether the lean `(lead, tilt)` (rad; this lean's own, or a refined line's at the
+    /// point) is within point `i`'s cone.
+    pub fn inside(&self, i: usize, lead: f64, tilt: f64) -> bool {
+        lead.hypot(tilt) <= self.cones[i] * (1.0 + 1e-12)
     }
 }
 
@@ -166,11 +167,6 @@ impl Leaning {
     /// The number of lean states (1 without a free lean).
     pub fn len(&self) -> usize {
         self.leans.states.len()
-    }
-
-    /// State `k`'s `(lead, tilt)`, rad.
-    pub fn state(&self, k: usize) -> (f64, f64) {
-        self.leans.states[k]
     }
 
     /// State `k`'s lean of every point; `None` without a free lean.

@@ -307,6 +307,7 @@ fn track(
                 phi: 0.0,
                 shift: shift.as_deref(),
                 lean: None,
+                line: None,
             };
             mapped.column(m, &st.wrenches, &st.external, Some(&st.inside))
         })

@@ -63,6 +63,24 @@
 //! `max_step` per point (at a feed `v` and points `s` apart, `max_step v / s`); the axes' own
 //! speed limits bind further ("Speed limits").
 //!
+//! ## Refining the grid
+//! The grid's step is also the largest change between points, and a fine grid everywhere costs
+//! `states^2` transitions per point and a column of inverse kinematics per state. With
+//! [`Options::refine`] `= L` (at most [`refine::MAX_LEVELS`]) the line the dynamic programming
+//! chose on the grid is refined `L` times ([`refine`]): at each level every free axis' step is
+//! halved and the states at each point are the previous level's values plus `k` halved steps,
+//! `|k| <= 2` [`refine::BAND`] on every axis (a band of +-[`refine::BAND`] of the previous
+//! level's cells), within each axis' range, the travel and the cone. Each band state's postures
+//! are continued along the path by inverse kinematics at its per-point values, a state is taken
+//! where its cost is no larger than at the path's own values and its posture passes the checks
+//! below, and a dynamic programming over the bands chooses the line of least value whose every
+//! free variable changes by at most its `max_step` between points (the user's step keeps its
+//! meaning: the refined line moves in finer steps, never faster), with the same tie-breaking
+//! costs. The previous line is in the band with its own postures, so the refined line's value
+//! (the sum, or the worst point's) is never above the grid's, and no point's cost rises above
+//! the path's own. One level costs `(4 BAND + 1)^axes` columns, 5 on one free axis: a fraction
+//! of a grid of the halved step everywhere.
+//!
 //! ## Feasibility
 //! Every posture a free variable moves a point to must be feasible ([`Feasible`], the checks
 //! `stiffid place` asks of a placement): each axis angle at least [`Feasible::margin`] from its
@@ -164,10 +182,12 @@ use nalgebra::{Isometry3, Vector6};
 pub mod budget;
 mod configuration;
 mod feasible;
+mod fixed_base;
 mod lead_tilt;
 mod map;
 mod model;
 mod options;
+pub mod refine;
 mod runs;
 mod scope;
 mod speed;

@@ -639,6 +639,10 @@ pub struct Options {
     pub map: bool,
     /// The variable of the map: the rotation about tool z (the default) or the track station.
     pub map_over: MapVariable,
+    /// Levels of refinement of the free variables' grid around the line chosen on it, 0 to
+    /// [`super::refine::MAX_LEVELS`] (module docs of [`super`], "Refining the grid"); 0: the
+    /// grid alone.
+    pub refine: usize,
 }
 
 impl Options {
@@ -681,6 +685,7 @@ impl Options {
             feasible: super::Feasible::for_setup(setup),
             map: false,
             map_over: MapVariable::Rotation,
+            refine: 0,
         }
     }
 }

@@ -6,6 +6,7 @@
 
 use super::feasible::Checks;
 use super::lead_tilt::{cones, lean_count, Leaning};
+use super::refine::{refine, Evaluate, Layout};
 use super::stream::{compensate_chosen, nominal_postures, path_in_cones, Chosen};
 use super::tool_axis::{choose, column, lean_axes, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
@@ -96,6 +97,9 @@ pub(crate) fn on_track(
         (states.len() * angles.len()) as f64 * leans,
         placed.len(),
     )?;
+    let lean_axes_count = 2 * usize::from(options.free_lead_tilt.is_some());
+    let axes = free.len() + lean_axes_count + usize::from(options.free_tool_axis.is_some());
+    super::refine::check(options.refine, axes, placed.len())?;
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
         .with_max_iterations(options.max_iterations)
@@ -138,6 +142,7 @@ pub(crate) fn on_track(
                     .any(|m| m.1 != 0.0)
                     .then_some(st.shift.as_slice()),
                 lean: leaning.at(s % per_station / a),
+                line: None,
             };
             let mut c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
             for (cell, inside) in c.iter_mut().zip(&st.inside) {
@@ -158,22 +163,48 @@ pub(crate) fn on_track(
         .map(|s| stations[s / per_station].external.as_slice())
         .collect();
     let grid = Grid { axes };
-    let (chosen, removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
-    let pick = |i: usize, s: usize| {
-        let st = &stations[s / per_station];
-        let q = columns[s][i].as_ref().map_or(nominal[i], |c| c.0);
-        let lean = leaning.state(s % per_station / a);
-        (q, angles[s % a], st.wrenches[i], st.external[i], lean)
+    let (chosen, mut removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
+    let layout = Layout::new(free.len(), &leaning, options.free_tool_axis.is_some());
+    let along = |values: &[Vec<f64>]| {
+        let moves: Vec<Vec<(usize, f64)>> = (values.iter())
+            .map(|v| free.iter().zip(v).map(|(f, &d)| (f.index, d)).collect())
+            .collect();
+        Station::along(cell, &at, |i| &moves[i])
     };
-    let picked: Vec<_> = chosen
-        .iter()
-        .enumerate()
-        .map(|(i, &s)| pick(i, s))
+    let evaluate = |values: &[Vec<f64>]| {
+        let st = along(values);
+        let line: Vec<[f64; 3]> = values.iter().map(|v| layout.turn_lean(v)).collect();
+        let m = Move {
+            phi: 0.0,
+            shift: Some(&st.shift),
+            lean: leaning.at(leaning.len() / 2),
+            line: Some(&line),
+        };
+        let mut c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
+        for (cell, inside) in c.iter_mut().zip(&st.inside) {
+            if !inside {
+                *cell = None;
+            }
+        }
+        (c, st.external)
+    };
+    let refined = (options.refine, &evaluate as &Evaluate);
+    let line = refine(
+        &grid,
+        (&columns, &chosen),
+        refined,
+        (&cost, &checks),
+        aggregate,
+        &mut removed,
+    );
+    let st = along(&line.values);
+    let postures: Vec<Vector6<f64>> = (line.cells.iter().zip(&nominal))
+        .map(|(c, q)| c.as_ref().map_or(*q, |c| c.0))
         .collect();
-    let postures: Vec<Vector6<f64>> = picked.iter().map(|p| p.0).collect();
-    let rotations: Vec<f64> = picked.iter().map(|p| p.1).collect();
-    let moved: Vec<Vector6<f64>> = picked.iter().map(|p| p.2).collect();
-    let leans: Vec<(f64, f64)> = picked.iter().map(|p| p.4).collect();
+    let turned: Vec<[f64; 3]> = line.values.iter().map(|v| layout.turn_lean(v)).collect();
+    let rotations: Vec<f64> = turned.iter().map(|t| t[0]).collect();
+    let leans: Vec<(f64, f64)> = turned.iter().map(|t| (t[1], t[2])).collect();
+    let moved = st.wrenches;
     let at = Chosen {
         nominal: &nominal,
         postures: &postures,
@@ -184,8 +215,8 @@ pub(crate) fn on_track(
         removed: &removed,
     };
     let mut results = compensate_chosen(&model, placed, &at, true)?;
-    for (r, p) in results.iter_mut().zip(&picked) {
-        r.external = p.3;
+    for (r, e) in results.iter_mut().zip(st.external) {
+        r.external = e;
     }
     Ok(results)
 }
@@ -365,9 +396,18 @@ impl Station {
     /// process wrench turns with it (the cut follows the part) and the tool's weight stays along
     /// the cell's `-z` at the turned tool.
     pub(super) fn new(cell: &ExternalAxes, at: &Own, moves: &[(usize, f64)]) -> Self {
-        let values = (at.values.iter()).map(|own| {
+        Self::along(cell, at, |_| moves)
+    }
+
+    /// [`Station::new`] with each point's own `moves(i)` (a refined line's, [`super::refine`]).
+    pub(super) fn along<'m>(
+        cell: &ExternalAxes,
+        at: &Own,
+        moves: impl Fn(usize) -> &'m [(usize, f64)],
+    ) -> Self {
+        let values = (at.values.iter().enumerate()).map(|(i, own)| {
             let mut values = own.as_slice().to_vec();
-            for &(k, d) in moves {
+            for &(k, d) in moves(i) {
                 values[k] += d;
             }
             values

@@ -1,8 +1,9 @@
 //! A whole path compensated: in parallel, in chunks of bounded memory, the failing points named.
 
 use super::feasible::Checks;
+use super::fixed_base::optimise_tool_axis;
 use super::lead_tilt::{check_cells, cones, Leaning};
-use super::tool_axis::{optimise_tool_axis, Cost};
+use super::tool_axis::Cost;
 use super::{
     Compensated, Compliance, Model, Newton, Objective, Options, PathPoint, Target, REQUIRED_M,
     REQUIRED_RAD,
@@ -93,6 +94,8 @@ pub(crate) fn path_in_cones(
     );
     let largest = cones.iter().copied().fold(0.0, f64::max);
     check_cells(options, points.len(), largest)?;
+    let axes = 2 * usize::from(lean.is_some()) + usize::from(rotation.is_some());
+    super::refine::check(options.refine, axes, points.len())?;
     let free = match (rotation, lean) {
         (Some(f), _) => Some((cost(arm, f.objective, thrusts)?, f.aggregate)),
         (None, Some(l)) => Some((cost(arm, l.objective, thrusts)?, l.aggregate)),
@@ -128,7 +131,7 @@ pub(crate) fn path_in_cones(
                 &wrenches,
                 (rotation, &leaning, *aggregate),
                 (cost, &checks),
-                &options.ik,
+                options,
             )
         }
     };

@@ -52,7 +52,7 @@ impl Cost<'_> {
     /// The scale of the tie-breaking cost of each point from the costs `own` at the path's
     /// angle: the point's own for the deflection, the largest for the surge (a point that is no
     /// exit costs nothing but still keeps the path smooth).
-    fn scales(&self, own: &[f64]) -> Vec<f64> {
+    pub(super) fn scales(&self, own: &[f64]) -> Vec<f64> {
         match self {
             Cost::Deflection | Cost::Bound => own.to_vec(),
             Cost::Surge { .. } => {
@@ -61,51 +61,6 @@ impl Cost<'_> {
             }
         }
     }
-}
-
-/// What the free variables of a path on a fixed base chose at every point: the posture, the
-/// rotation about tool z and the `(lead, tilt)`, rad; and each point's states the checks removed.
-pub(super) type Picked = (Vec<Vector6<f64>>, Vec<f64>, Vec<(f64, f64)>, Vec<Removed>);
-
-/// The postures, tool rotations and leans of the free tool axis (`rotation`, else none) and the
-/// free lead and tilt (`leaning`, module docs), their costs added up by `aggregate`, with each
-/// point's states `checks` removed (the arm on its carriage at each point's external values
-/// `own`).
-pub(super) fn optimise_tool_axis(
-    model: &Model,
-    (nominal, own): (&[Vector6<f64>], &[ExternalValues]),
-    wrenches: &[Vector6<f64>],
-    (rotation, leaning, aggregate): (Option<&FreeToolAxis>, &Leaning, Aggregate),
-    (cost, checks): (&Cost, &Checks),
-    ik_options: &ik::Options,
-) -> Picked {
-    let angles = rotation.map_or(vec![0.0], FreeToolAxis::angles);
-    let a = angles.len();
-    let columns: Vec<Column> = (0..leaning.len() * a)
-        .into_par_iter()
-        .map(|s| {
-            let m = Move {
-                phi: angles[s % a],
-                shift: None,
-                lean: leaning.at(s / a),
-            };
-            column(model, nominal, wrenches, (m, cost), ik_options)
-        })
-        .collect();
-    let mut axes = lean_axes(leaning);
-    if let Some(f) = rotation {
-        axes.push(rotation_axis(f, &angles));
-    }
-    let at = vec![own; columns.len()];
-    let (chosen, removed) = choose((&columns, &at), &Grid { axes }, (cost, checks), aggregate);
-    let mut out: Picked = (Vec::new(), Vec::new(), Vec::new(), removed);
-    for (i, &s) in chosen.iter().enumerate() {
-        out.0
-            .push(columns[s][i].as_ref().map_or(nominal[i], |c| c.0));
-        out.1.push(angles[s % a]);
-        out.2.push(leaning.state(s / a));
-    }
-    out
 }
 
 /// The grid's axis of the rotation of `free` over its `angles` ([`FreeToolAxis::angles`]).
@@ -283,12 +238,12 @@ pub(super) struct Value {
 }
 
 impl Value {
-    const INFINITE: Value = Value {
+    pub(super) const INFINITE: Value = Value {
         primary: f64::INFINITY,
         secondary: f64::INFINITY,
     };
 
-    fn less(&self, other: &Value) -> bool {
+    pub(super) fn less(&self, other: &Value) -> bool {
         match self.primary.total_cmp(&other.primary) {
             std::cmp::Ordering::Equal => self.secondary < other.secondary,
             o => o.is_lt(),
@@ -385,7 +340,8 @@ pub(super) type Column = Vec<Option<(Vector6<f64>, f64)>>;
 /// How a state of the grid moves each point's pose from the path's own: turned by `phi` about
 /// tool z, leaned by `lean` ([`super::lean`]), then, on a moved track station, taken by each
 /// point's `shift` (the arm's frame at the path's station seen from the arm's frame at the
-/// state's, [`super::station`]).
+/// state's, [`super::station`]); a refined state ([`super::refine`]) adds each point's `line`
+/// to the rotation and the lean.
 #[derive(Clone, Copy)]
 pub(super) struct Move<'a> {
     /// The rotation about tool z, rad.
@@ -394,12 +350,23 @@ pub(super) struct Move<'a> {
     pub shift: Option<&'a [Isometry3<f64>]>,
     /// The lean; `None` without a free lead and tilt.
     pub lean: Option<Lean<'a>>,
+    /// Each point's `[rotation, lead, tilt]` (rad) added to `phi` and the lean's: the line a
+    /// refined band lies around; `None`: none.
+    pub line: Option<&'a [[f64; 3]]>,
 }
 
 impl Move<'_> {
     /// Whether this is the path's own pose.
     fn own(&self) -> bool {
-        self.phi == 0.0 && self.shift.is_none() && self.lean.is_none_or(|l| l.zero())
+        let still = self.shift.is_none() && self.line.is_none();
+        self.phi == 0.0 && still && self.lean.is_none_or(|l| l.zero())
+    }
+
+    /// The rotation, lead and tilt at point `i`, rad.
+    fn at(&self, i: usize) -> [f64; 3] {
+        let [phi, lead, tilt] = self.line.map_or([0.0; 3], |l| l[i]);
+        let (l, t) = self.lean.map_or((0.0, 0.0), |l| (l.lead, l.tilt));
+        [self.phi + phi, l + lead, t + tilt]
     }
 }
 
@@ -416,7 +383,6 @@ pub(super) fn column(
 ) -> Column {
     let arm = model.arm;
     let tcp = &arm.tool().tcp;
-    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), m.phi);
     let options = ik::Options {
         restarts: 0,
         ..*ik_options
@@ -427,15 +393,16 @@ pub(super) fn column(
         .zip(wrenches)
         .enumerate()
         .map(|(i, (q, w))| {
-            let inside = m.lean.is_none_or(|l| l.inside(i));
+            let [phi, lead, tilt] = m.at(i);
+            let inside = m.lean.is_none_or(|l| l.inside(i, lead, tilt));
             let q = match (m.own(), inside) {
                 (true, _) => Some(*q),
                 (false, false) => None,
                 (false, true) => {
                     let mut target = tool_pose(&arm.robot().frames(q), tcp);
-                    target.rotation *= turn;
+                    target.rotation *= UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi);
                     if let Some(l) = &m.lean {
-                        target.rotation = lean(&l.frames[i], l.lead, l.tilt) * target.rotation;
+                        target.rotation = lean(&l.frames[i], lead, tilt) * target.rotation;
                     }
                     if let Some(shift) = m.shift {
                         target = shift[i] * target;

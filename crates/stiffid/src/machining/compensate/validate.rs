@@ -24,7 +24,9 @@ impl Options {
     /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
     /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
     /// [`JobOption::FreeTiltDeg`], [`JobOption::TiltStepDeg`],
-    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]).
+    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]);
+    /// ([`JobOption::Refine`]) for more than [`super::refine::MAX_LEVELS`] levels, or levels
+    /// without a free variable whose grid they refine.
     pub fn validate(&self) -> Result<()> {
         limits::check(
             "compensate::Options.q0",
@@ -60,6 +62,14 @@ impl Options {
         }
         self.validate_configuration()?;
         self.feasible.validate()?;
+        super::refine::check(self.refine, 0, 0)?;
+        let free = self.free_tool_axis.is_some() || self.free_lead_tilt.is_some();
+        if self.refine > 0 && !(free || self.frees_external()) {
+            return Err(Error::InvalidOption {
+                option: JobOption::Refine,
+                message: format!("{}: it refines the grid of a free variable (the tool axis, the station, the positioner, the tilt or the lead and tilt); none is free", self.refine),
+            });
+        }
         let Some(free) = &self.free_tool_axis else {
             return Ok(());
         };
