@@ -64,7 +64,7 @@ pub(super) fn optimise_tool_axis(
     let refined = (options.refine, &evaluate as &Evaluate);
     let line = refine(
         &grid,
-        (&columns, &chosen),
+        (&columns, &chosen, &at),
         refined,
         (cost, checks),
         aggregate,

@@ -176,6 +176,7 @@ pub fn map(
                         phi,
                         shift: shift.as_deref(),
                         lean: None,
+                        line: None,
                     };
                     mapped.column(m, &st.wrenches, &st.external, None)
                 })

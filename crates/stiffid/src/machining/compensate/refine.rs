@@ -3,6 +3,7 @@
 //! [`super`], "Refining the grid").
 
 use super::feasible::{Checks, Removed};
+use super::speed::Pace;
 use super::tool_axis::{Column, Cost, Grid, Value};
 use super::{Aggregate, TIE_BREAK};
 use crate::common::error::JobOption;
@@ -62,6 +63,9 @@ pub(super) struct Line {
     pub values: Vec<Vec<f64>>,
     /// Per point the posture and the cost at the values.
     pub cells: Column,
+    /// Per point the external axes' values at the values (SI, the cell's order; empty on a
+    /// fixed base), what the axes' speed limits check.
+    pub external: Vec<ExternalValues>,
 }
 
 /// Refuses more than [`MAX_LEVELS`] levels, and a band of more cells than
@@ -100,7 +104,7 @@ pub fn check(levels: usize, axes: usize, points: usize) -> Result<()> {
 /// never rises.
 pub(super) fn refine(
     grid: &Grid,
-    (columns, chosen): (&[Column], &[usize]),
+    (columns, chosen, external): (&[Column], &[usize], &[&[ExternalValues]]),
     (levels, evaluate): (usize, &Evaluate),
     (cost, checks): (&Cost, &Checks),
     aggregate: Aggregate,
@@ -111,6 +115,7 @@ pub(super) fn refine(
         return Line {
             values: Vec::new(),
             cells: Vec::new(),
+            external: Vec::new(),
         };
     }
     let value_of = |s: usize| -> Vec<f64> {
@@ -124,6 +129,9 @@ pub(super) fn refine(
         cells: (chosen.iter().enumerate())
             .map(|(i, &s)| columns[s][i])
             .collect(),
+        external: (chosen.iter().enumerate())
+            .map(|(i, &s)| external[s][i])
+            .collect(),
     };
     let own_costs: Vec<f64> = own
         .iter()
@@ -132,8 +140,13 @@ pub(super) fn refine(
     let scales = cost.scales(&own_costs);
     for level in 1..=levels {
         let band = Band::new(grid, &line, level);
-        let cells = band.cells((&line, own), evaluate, checks, removed);
-        line = band.shortest(&cells, &scales, aggregate);
+        let (cells, external) = band.cells((&line, own), evaluate, checks, removed);
+        line = band.shortest(
+            (&cells, &external),
+            &scales,
+            aggregate,
+            checks.pace.as_ref(),
+        );
     }
     line
 }
@@ -218,13 +231,13 @@ impl Band {
         evaluate: &Evaluate,
         checks: &Checks,
         removed: &mut [Removed],
-    ) -> Vec<Column> {
+    ) -> (Vec<Column>, Vec<Vec<ExternalValues>>) {
         let n = line.values.len();
-        let evaluated: Vec<(Column, Vec<Removed>)> = (0..self.len())
+        let evaluated: Vec<(Column, Vec<ExternalValues>, Vec<Removed>)> = (0..self.len())
             .into_par_iter()
             .map(|s| {
                 if s == self.centre() {
-                    return (line.cells.clone(), Vec::new());
+                    return (line.cells.clone(), line.external.clone(), Vec::new());
                 }
                 let steps: Vec<Vec<i64>> = (0..n).map(|i| self.at(i, s)).collect();
                 let values: Vec<Vec<f64>> = (steps.iter())
@@ -248,17 +261,17 @@ impl Band {
                         )
                     })
                     .collect();
-                (cells, removed)
+                (cells, external, removed)
             })
             .collect();
         (evaluated.into_iter())
-            .map(|(cells, r)| {
+            .map(|(cells, external, r)| {
                 for (total, r) in removed.iter_mut().zip(r) {
                     *total += r;
                 }
-                cells
+                (cells, external)
             })
-            .collect()
+            .unzip()
     }
 
     /// Point `i`'s cell at the values `steps` of a band state whose column is `column`: the
@@ -291,8 +304,23 @@ impl Band {
 
     /// The line of least value over `cells` (module docs of [`super`]: the costs added up by
     /// `aggregate`, the tie-breaking costs scaled by `scales`), every axis changing by at most
-    /// its reach between points.
-    fn shortest(&self, cells: &[Column], scales: &[f64], aggregate: Aggregate) -> Line {
+    /// its reach between points and, with speed limits `pace`, every move but the path's own
+    /// between two points within them (as [`super::tool_axis::choose`]'s).
+    fn shortest(
+        &self,
+        (cells, external): (&[Column], &[Vec<ExternalValues>]),
+        scales: &[f64],
+        aggregate: Aggregate,
+        pace: Option<&Pace>,
+    ) -> Line {
+        let allowed = |i: usize, a: usize, g: usize| {
+            let own = |p: usize, s: usize| self.at(p, s).iter().all(|&k| k == 0);
+            let (Some(pace), Some(from), Some(to)) = (pace, cells[a][i - 1], cells[g][i]) else {
+                return true;
+            };
+            (own(i - 1, a) && own(i, g))
+                || pace.allows(i, (&from.0, &external[a][i - 1]), (&to.0, &external[g][i]))
+        };
         let (n, states) = (self.line.len(), self.len());
         let mut value = vec![vec![Value::INFINITE; states]; n];
         let mut from = vec![vec![0usize; states]; n];
@@ -310,7 +338,7 @@ impl Band {
                 }
                 let mut best: Option<(usize, Value)> = None;
                 for (a, step) in self.before(i, &here) {
-                    if value[i - 1][a].primary == f64::INFINITY {
+                    if value[i - 1][a].primary == f64::INFINITY || !allowed(i, a, g) {
                         continue;
                     }
                     let v = value[i - 1][a].then(d, tie + w * step, aggregate);
@@ -346,6 +374,9 @@ impl Band {
                 .collect(),
             cells: (chosen.iter().enumerate())
                 .map(|(i, &s)| cells[s][i])
+                .collect(),
+            external: (chosen.iter().enumerate())
+                .map(|(i, &s)| external[s][i])
                 .collect(),
         }
     }
@@ -502,6 +533,7 @@ mod tests {
                 let line = Line {
                     values: values.clone(),
                     cells: vec![Some((Vector6::zeros(), 1.5)); n],
+                    external: vec![ExternalValues::default(); n],
                 };
                 let band = Band::new(&grid, &line, 1);
                 // Costs in [1, 2) with some cells missing, the line's own always there.
@@ -517,7 +549,8 @@ mod tests {
                     })
                     .collect();
                 for aggregate in [Aggregate::Sum, Aggregate::Max] {
-                    let chosen = band.shortest(&cells, &vec![1.0; n], aggregate);
+                    let external = vec![vec![ExternalValues::default(); n]; band.len()];
+                    let chosen = band.shortest((&cells, &external), &vec![1.0; n], aggregate, None);
                     let costs: Vec<f64> =
                         chosen.cells.iter().map(|c| c.as_ref().unwrap().1).collect();
                     let found = total(&costs, aggregate);

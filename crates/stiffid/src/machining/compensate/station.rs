@@ -191,7 +191,7 @@ pub(crate) fn on_track(
     let refined = (options.refine, &evaluate as &Evaluate);
     let line = refine(
         &grid,
-        (&columns, &chosen),
+        (&columns, &chosen, &external),
         refined,
         (&cost, &checks),
         aggregate,
