@@ -135,12 +135,7 @@ pub(super) fn choose_one(
     (options, floor): (&Options, f64),
     evaluate: impl Fn(&[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<(Vec<Compensated>, Configurations)> {
-    let free = options
-        .free_configuration
-        .ok_or_else(|| Error::InvalidField {
-            field: "free_configuration".into(),
-            message: "missing: the configurations are evaluated for a free configuration".into(),
-        })?;
+    let free = free_configuration(options)?;
     free.check(points.len())?;
     let Some(first) = points.first() else {
         return Err(Error::InvalidField {
@@ -431,4 +426,17 @@ fn starts(
         }
     }
     best.iter().flatten().map(|b| b.1).collect()
+}
+
+/// The free configuration of `options`.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`free_configuration`) without one.
+pub(super) fn free_configuration(options: &Options) -> Result<FreeConfiguration> {
+    options
+        .free_configuration
+        .ok_or_else(|| Error::InvalidField {
+            field: "free_configuration".into(),
+            message: "missing: the configurations are evaluated for a free configuration".into(),
+        })
 }

@@ -411,33 +411,6 @@ impl Band {
     }
 }
 
-impl Value {
-    /// The value of the empty path: nothing summed, the worst of nothing.
-    fn start(aggregate: Aggregate) -> Value {
-        Value {
-            primary: match aggregate {
-                Aggregate::Sum => 0.0,
-                Aggregate::Max => f64::NEG_INFINITY,
-            },
-            secondary: 0.0,
-        }
-    }
-
-    /// The value of the path continued by a point of cost `d` with the tie-breaking cost `tie`.
-    fn then(self, d: f64, tie: f64, aggregate: Aggregate) -> Value {
-        match aggregate {
-            Aggregate::Sum => Value {
-                primary: self.primary + d + tie,
-                secondary: 0.0,
-            },
-            Aggregate::Max => Value {
-                primary: self.primary.max(d),
-                secondary: self.secondary + d + tie,
-            },
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::tool_axis::Axis;

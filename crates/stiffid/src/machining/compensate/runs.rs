@@ -7,7 +7,7 @@ use super::stream::nominal_postures;
 use super::{Aggregate, Compensated, Compliance, Options, PathPoint};
 use crate::robot::external::ExternalValues;
 use crate::setup::Arm;
-use crate::{Error, Result};
+use crate::Result;
 use std::ops::Range;
 
 /// The 0-based indices of the points that start a run, given whether each point is reached by
@@ -84,12 +84,7 @@ pub(crate) fn choose(
     options: &Options,
     evaluate: impl Fn(usize, &[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<(Vec<Compensated>, Configurations)> {
-    let free = options
-        .free_configuration
-        .ok_or_else(|| Error::InvalidField {
-            field: "free_configuration".into(),
-            message: "missing: the configurations are evaluated for a free configuration".into(),
-        })?;
+    let free = super::configuration::free_configuration(options)?;
     if free.per == super::Scope::Program {
         return choose_one(arm, compliance, points, (options, 0.0), |p, o| {
             evaluate(0, p, o)

@@ -243,6 +243,31 @@ impl Value {
         secondary: f64::INFINITY,
     };
 
+    /// The value of the empty path: nothing summed, the worst of nothing.
+    pub(super) fn start(aggregate: Aggregate) -> Value {
+        Value {
+            primary: match aggregate {
+                Aggregate::Sum => 0.0,
+                Aggregate::Max => f64::NEG_INFINITY,
+            },
+            secondary: 0.0,
+        }
+    }
+
+    /// The value of the path continued by a point of cost `d` with the tie-breaking cost `tie`.
+    pub(super) fn then(self, d: f64, tie: f64, aggregate: Aggregate) -> Value {
+        match aggregate {
+            Aggregate::Sum => Value {
+                primary: self.primary + d + tie,
+                secondary: 0.0,
+            },
+            Aggregate::Max => Value {
+                primary: self.primary.max(d),
+                secondary: self.secondary + d + tie,
+            },
+        }
+    }
+
     pub(super) fn less(&self, other: &Value) -> bool {
         match self.primary.total_cmp(&other.primary) {
             std::cmp::Ordering::Equal => self.secondary < other.secondary,
@@ -271,23 +296,8 @@ pub(super) fn shortest(
     // value[i][g]: the least value of the paths up to point i ending at state g.
     let mut value = vec![vec![Value::INFINITE; g_count]; n];
     let mut from = vec![vec![0usize; g_count]; n];
-    let add = |before: Value, d: f64, tie: f64| match aggregate {
-        Aggregate::Sum => Value {
-            primary: before.primary + d + tie,
-            secondary: 0.0,
-        },
-        Aggregate::Max => Value {
-            primary: before.primary.max(d),
-            secondary: before.secondary + d + tie,
-        },
-    };
-    let start = Value {
-        primary: match aggregate {
-            Aggregate::Sum => 0.0,
-            Aggregate::Max => f64::NEG_INFINITY,
-        },
-        secondary: 0.0,
-    };
+    let add = |before: Value, d: f64, tie: f64| before.then(d, tie, aggregate);
+    let start = Value::start(aggregate);
     for i in 0..n {
         let w = TIE_BREAK * scales[i];
         for g in 0..g_count {
