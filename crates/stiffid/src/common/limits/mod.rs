@@ -60,13 +60,22 @@ impl std::fmt::Display for Range {
 /// above 0, at most 10 000 deg/s or mm/s ([`check_speeds`]).
 pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
 
-/// Checks every largest speed of `values` (deg/s or mm/s): finite, above 0 and within
-/// [`AXIS_SPEED`]; the error names `field` and the value found.
+/// Checks every largest speed of `values` (mm/s where `field` ends in `_mm_s`, else deg/s):
+/// finite, above 0 and within [`AXIS_SPEED`]; the error names `field`, the value found and its
+/// unit.
 ///
 /// # Errors
 /// [`Error::InvalidField`] for the first value that is not.
 pub fn check_speeds(field: &str, values: &[f64]) -> Result<()> {
-    check(field, values, &AXIS_SPEED)?;
+    let unit = match field.ends_with("_mm_s") {
+        true => "mm/s",
+        false => "deg/s",
+    };
+    check(
+        field,
+        values,
+        &Range::new(AXIS_SPEED.min, AXIS_SPEED.max, unit),
+    )?;
     match values.iter().position(|v| *v <= 0.0) {
         None => Ok(()),
         Some(i) => Err(Error::InvalidField {
