@@ -121,9 +121,22 @@ fn a_station_that_drives_the_arm_into_a_box_is_not_taken() {
         .expect("a box clear of the path's own postures that the unchecked choice hits");
     let checker = Checker::new(&s);
     let out = compensate::path_on_track(s.arm(), &compliance, &points, &options(&s)).unwrap();
+    assert_avoided(&out, (i, far), |k, c| {
+        assert!(!collides(&checker, &c.q, &c.external), "point {k} collides");
+    });
+}
+
+/// The checked choice `out` avoids the obstacle the unchecked choice `far` at point `i` hits:
+/// every point passes `clear` (its index and its result), no bound rises above the path's own, the checks removed some
+/// states and point `i`'s choice changes.
+pub(crate) fn assert_avoided(
+    out: &[Compensated],
+    (i, far): (usize, &Compensated),
+    clear: impl Fn(usize, &Compensated),
+) {
     let mut removed = 0;
     for (k, c) in out.iter().enumerate() {
-        assert!(!collides(&checker, &c.q, &c.external), "point {k} collides");
+        clear(k, c);
         assert!(
             c.budget.bound <= c.bound_before.unwrap() * (1.0 + 1e-9),
             "{k}"
