@@ -65,6 +65,9 @@ pub enum WarningKind {
     /// A posture or path point lies outside the region the stiffness was identified from, or
     /// the stiffness file does not record that region ([`crate::model::region`]).
     Extrapolation,
+    /// A robot program's linear moves whose programmed speed stiffid does not read: the axes'
+    /// speed limits are not checked there ([`crate::machining::program::speed`]).
+    Speed,
 }
 
 impl WarningKind {
@@ -90,6 +93,7 @@ impl WarningKind {
             WarningKind::LeftOut => "left-out",
             WarningKind::Configuration => "configuration",
             WarningKind::Extrapolation => "extrapolation",
+            WarningKind::Speed => "speed",
         }
     }
 }

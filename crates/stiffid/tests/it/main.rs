@@ -71,6 +71,7 @@ mod process_forces;
 mod program_axes;
 mod program_forms;
 mod program_frames;
+mod program_speeds;
 mod program_station;
 mod programs;
 mod refined_grid;

@@ -217,7 +217,8 @@ where
         }
         .into());
     }
-    let (options, mut speeds) = speed::prepare(setup, &input, options)?;
+    let read = read_checked(setup, &input, &options)?;
+    let (options, mut speeds) = speed::prepare(setup, &input, read.as_ref(), options)?;
     let external = options.frees_external();
     let free = options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() || external;
     let axes = setup.robot().external();
@@ -297,7 +298,6 @@ where
         }
         Input::Program {
             name,
-            text,
             language,
             process_name,
             process,
@@ -305,22 +305,11 @@ where
             output,
             out_name,
             settings,
+            ..
         } => {
-            output::check_output(language, output).map_err(|e| in_input(&name, e))?;
-            output::check_lean(&options, output)?;
-            settings.validate()?;
-            if let (Language::GCode, Language::Robot(d)) = (language, output) {
-                generate::check_payload(d, settings.targets, &program_tool(setup))?;
-            }
-            let program =
-                machining::read(text, language, chord_tolerance).map_err(|e| in_input(&name, e))?;
-            // A Cartesian program's targets as the controller moves to them (a copy only then).
-            let resolved = match machining::resolve(&program, setup, None, &options) {
-                Ok(std::borrow::Cow::Owned(p)) => Some(p),
-                Ok(std::borrow::Cow::Borrowed(_)) => None,
-                Err(e) => return Err(in_input(&name, e).into()),
+            let Some(program) = read else {
+                unreachable!("read_checked reads every program")
             };
-            let program = resolved.unwrap_or(program);
             // Every name and setting of the output before the compensation, which can be long.
             let written_name = written_name(&program, output, &out_name, &settings)?;
             let compensated = machining::compensate(
@@ -458,6 +447,7 @@ where
         (c.warnings.iter())
             .for_each(|w| warnings.push(Warning::new(WarningKind::Configuration, w.clone())));
     }
+    warnings.extend(speeds.warning());
     warnings.extend(summary.stop_warning(options.max_iterations));
     warnings.extend(summary.region_warnings(&compliance.region));
     Ok(Report {
@@ -480,6 +470,43 @@ where
         configurations: chosen_configurations,
         warnings,
     })
+}
+
+/// The program of a program input, checked against its output and options, read and its
+/// Cartesian targets resolved on `setup`'s controller (as the controller moves to them);
+/// `None` for a path file.
+///
+/// # Errors
+/// Those of [`output::check_output`], [`output::check_lean`], [`Settings::validate`],
+/// [`generate::check_payload`], [`machining::read`] and [`machining::resolve`] (the program's
+/// as [`Error::Input`] naming its file).
+fn read_checked(setup: &Setup, input: &Input, options: &Options) -> Result<Option<Program>> {
+    let Input::Program {
+        name,
+        text,
+        language,
+        chord_tolerance,
+        output,
+        settings,
+        ..
+    } = input
+    else {
+        return Ok(None);
+    };
+    let (language, output) = (*language, *output);
+    output::check_output(language, output).map_err(|e| in_input(name, e))?;
+    output::check_lean(options, output)?;
+    settings.validate()?;
+    if let (Language::GCode, Language::Robot(d)) = (language, output) {
+        generate::check_payload(d, settings.targets, &program_tool(setup))?;
+    }
+    let program = read_program(name, text, language, *chord_tolerance)?;
+    // A Cartesian program's targets as the controller moves to them (a copy only then).
+    match machining::resolve(&program, setup, None, options) {
+        Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
+        Ok(std::borrow::Cow::Borrowed(_)) => Ok(Some(program)),
+        Err(e) => Err(in_input(name, e)),
+    }
 }
 
 /// Reads a program file's text in `language` (G-code arcs split to `chord_tolerance`, m), its

@@ -4,11 +4,15 @@
 //! its largest speed along the path at the path's own values and at those chosen.
 
 use super::{in_input, Input};
-use crate::common::words::as_given;
+use crate::common::warning::{Warning, WarningKind};
+use crate::common::words::{as_given, count};
 use crate::machining::compensate::{
-    has_speed_limits, move_times, speed_shares, Compensated, Options, PathPoint, Target,
+    has_speed_limits, move_times, speed_shares, Compensated, Options, PathPoint, Rate, Target,
 };
-use crate::machining::{self, path, Language, Program};
+use crate::machining::program::external::cell_values;
+use crate::machining::program::speed::Speed;
+use crate::machining::program::JointProgram;
+use crate::machining::{path, Program};
 use crate::robot::external::ExternalValues;
 use crate::robot::ik::tool_pose;
 use crate::{Result, Robot, Setup};
@@ -21,14 +25,15 @@ const NO_LIMITS: &str =
     "no axis has a speed limit (max_speed_deg_s, max_speed_mm_s, a URDF's <limit velocity>)";
 /// Why the moves of a path file without feeds were not checked.
 const NO_FEED_COLUMN: &str = "the path file has no feed_mm_s column";
-/// Why a robot program's moves were not checked.
-const ROBOT_PROGRAM: &str = "a robot program's programmed speeds are not read: the check needs a G-code program (its F words) or a path file with a feed_mm_s column";
 
 /// The axes' speed limits at the program's feed (`compensate`'s free variables keep every axis
 /// within its largest speed between consecutive points; the path's own moves are kept whatever
-/// they do). A move's time is the TCP distance between the program's targets over the feed of
-/// the move (a G-code program's `F` in force, a path file's `feed_mm_s`); the first point and
-/// a rapid move (`G0`: the controller's own speed) have none.
+/// they do). A move's time is the TCP distance between the program's targets (in the part's
+/// frame) over the feed of the move (a G-code program's `F` in force, a path file's
+/// `feed_mm_s`, a robot program's programmed path speed), or the time a robot program gives
+/// ([`crate::machining::program::speed`]); the first point, a rapid move (`G0`) and a joint
+/// motion (the controller's own speed) have none, nor a linear motion whose speed the program
+/// gives in a form stiffid does not read (`moves_not_read`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct SpeedLimits {
@@ -36,6 +41,9 @@ pub struct SpeedLimits {
     pub checked: bool,
     /// Why they were not (no limit, no feed); `null` when they were.
     pub not_checked_because: Option<String>,
+    /// A robot program's linear moves whose programmed speed is not read (a variable, a
+    /// register, an orientation speed: a warning names the first and why): not checked.
+    pub moves_not_read: usize,
     /// Every axis: the arm's six (`q1`..`q6`), then the cell's external axes in order.
     pub axes: Vec<AxisSpeed>,
 }
@@ -68,21 +76,23 @@ pub struct AxisSpeed {
     pub chosen_point: Option<usize>,
 }
 
-/// The options with the move times of `input` on `setup` (none where the moves are not
-/// checked), and the tracker of the shares along the path.
+/// The options with the move times of `input` on `setup` (`program`: the program it holds,
+/// read and its Cartesian targets resolved; none where the moves are not checked), and the
+/// tracker of the shares along the path.
 ///
 /// # Errors
 /// Those of [`path::feeds`] and [`path::points`] for a path file with a `feed_mm_s` column, of
-/// [`machining::read`] for a G-code program (as [`crate::Error::Input`] naming the file).
+/// [`cell_values`] for a robot program (as [`crate::Error::Input`] naming the file).
 pub(super) fn prepare<'a>(
     setup: &'a Setup,
     input: &Input,
+    program: Option<&Program>,
     mut options: Options,
 ) -> Result<(Options, Tracker<'a>)> {
     let robot = setup.robot();
-    let (times, why) = match has_speed_limits(robot) {
-        false => (None, Some(NO_LIMITS)),
-        true => times(setup, input)?,
+    let (times, why, not_read) = match has_speed_limits(robot) {
+        false => (None, Some(NO_LIMITS), Vec::new()),
+        true => times(setup, input, program)?,
     };
     let times: Option<Arc<[Option<f64>]>> = times.map(Into::into);
     options.feasible.move_times = times.clone();
@@ -91,6 +101,7 @@ pub(super) fn prepare<'a>(
         robot,
         times,
         why,
+        not_read,
         previous: None,
         own: vec![Highest::default(); axes],
         chosen: vec![Highest::default(); axes],
@@ -98,64 +109,86 @@ pub(super) fn prepare<'a>(
     Ok((options, tracker))
 }
 
-/// The move times of a path (s, one per point), or why there are none.
-type Times = (Option<Vec<Option<f64>>>, Option<&'static str>);
+/// The move times of a path (s, one per point), or why there are none; the lines of the moves
+/// whose speed is not read and why.
+type Times = (
+    Option<Vec<Option<f64>>>,
+    Option<&'static str>,
+    Vec<(u64, String)>,
+);
 
 /// The move times of `input` (module docs), or why there are none.
-fn times(setup: &Setup, input: &Input) -> Result<Times> {
-    match input {
-        Input::Path { name, text, frame } => {
+fn times(setup: &Setup, input: &Input, program: Option<&Program>) -> Result<Times> {
+    let robot = setup.robot();
+    let tcp = setup.arm().tool().tcp;
+    match (input, program) {
+        (Input::Path { name, text, frame }, _) => {
             let Some(feeds) = path::feeds(text).map_err(|e| in_input(name, e))? else {
-                return Ok((None, Some(NO_FEED_COLUMN)));
+                return Ok((None, Some(NO_FEED_COLUMN), Vec::new()));
             };
-            let robot = setup.robot();
             let points = path::points(text, *frame, robot.external());
             let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
             let points = points.map_err(|e| in_input(name, e))?;
-            let tcp = setup.arm().tool().tcp;
-            let at: Vec<Vector3<f64>> = points.iter().map(|p| in_part(robot, &tcp, p)).collect();
-            Ok((Some(move_times(&at, &feeds)), None))
-        }
-        Input::Program {
-            name,
-            text,
-            language: Language::GCode,
-            chord_tolerance,
-            ..
-        } => {
-            let program = machining::read(text, Language::GCode, *chord_tolerance)
-                .map_err(|e| in_input(name, e))?;
-            let Program::GCode(g) = program else {
-                return Ok((None, Some(ROBOT_PROGRAM)));
-            };
-            let at: Vec<Vector3<f64>> = g.points.iter().map(|p| p.position).collect();
-            let feeds: Vec<Option<f64>> = (g.points.iter())
-                .map(|p| match p.motion {
-                    machining::gcode::Motion::Feed => p.feed,
-                    machining::gcode::Motion::Rapid => None,
+            let at: Vec<Vector3<f64>> = (points.iter())
+                .map(|p| match &p.target {
+                    Target::Pose(x) => x.translation.vector,
+                    Target::Posture(q) => in_part(robot, &tcp, q, p.external.as_slice()),
                 })
                 .collect();
-            Ok((Some(move_times(&at, &feeds)), None))
+            let rates: Vec<Option<Rate>> = feeds.iter().map(|f| f.map(Rate::Feed)).collect();
+            Ok((Some(move_times(&at, &rates)), None, Vec::new()))
         }
-        Input::Program { .. } => Ok((None, Some(ROBOT_PROGRAM))),
+        (_, Some(Program::GCode(g))) => {
+            let at: Vec<Vector3<f64>> = g.points.iter().map(|p| p.position).collect();
+            let rates: Vec<Option<Rate>> = (g.points.iter())
+                .map(|p| match p.motion {
+                    crate::machining::gcode::Motion::Feed => p.feed.map(Rate::Feed),
+                    crate::machining::gcode::Motion::Rapid => None,
+                })
+                .collect();
+            Ok((Some(move_times(&at, &rates)), None, Vec::new()))
+        }
+        (Input::Program { name, .. }, Some(Program::Robot(p))) => {
+            robot_times(robot, &tcp, p).map_err(|e| in_input(name, e))
+        }
+        (Input::Program { .. }, None) => Ok((None, None, Vec::new())),
     }
 }
 
-/// The TCP of a path file's point in the part's frame (m): a pose's position; axis angles'
-/// TCP taken from the arm on its carriage through the cell back by the positioner.
-fn in_part(robot: &Robot, tcp: &Vector3<f64>, p: &PathPoint) -> Vector3<f64> {
-    match &p.target {
-        Target::Pose(x) => x.translation.vector,
-        Target::Posture(q) => {
-            let at = tool_pose(&robot.frames(q), tcp);
-            let e = p.external.as_slice();
-            match robot.external() {
-                None => at.translation.vector,
-                Some(c) => {
-                    let part = c.positioner_pose(e).inverse() * c.carrier_pose(e) * at;
-                    part.translation.vector
-                }
+/// The move times of a robot program's targets at their programmed speeds
+/// ([`JointProgram`]'s [`Speed`]s).
+fn robot_times(robot: &Robot, tcp: &Vector3<f64>, p: &JointProgram) -> Result<Times> {
+    let external = cell_values(p, robot.external())?;
+    let at: Vec<Vector3<f64>> = (p.targets.iter().zip(&external))
+        .map(|(t, e)| {
+            let q = Vector6::from(t.q_deg).map(f64::to_radians);
+            in_part(robot, tcp, &q, e)
+        })
+        .collect();
+    let mut not_read = Vec::new();
+    let rates: Vec<Option<Rate>> = (p.targets.iter())
+        .map(|t| match &t.speed {
+            Speed::Joint => None,
+            Speed::Path(v) => Some(Rate::Feed(*v)),
+            Speed::Duration(s) => Some(Rate::Duration(*s)),
+            Speed::Unread(why) => {
+                not_read.push((t.line, why.clone()));
+                None
             }
+        })
+        .collect();
+    Ok((Some(move_times(&at, &rates)), None, not_read))
+}
+
+/// The TCP at the axis angles `q` (rad) and the external values `e` (SI, the cell's order) in
+/// the part's frame (m): the arm on its carriage, through the cell back by the positioner.
+fn in_part(robot: &Robot, tcp: &Vector3<f64>, q: &Vector6<f64>, e: &[f64]) -> Vector3<f64> {
+    let at = tool_pose(&robot.frames(q), tcp);
+    match robot.external() {
+        None => at.translation.vector,
+        Some(c) => {
+            let part = c.positioner_pose(e).inverse() * c.carrier_pose(e) * at;
+            part.translation.vector
         }
     }
 }
@@ -173,6 +206,8 @@ pub(super) struct Tracker<'a> {
     robot: &'a Robot,
     times: Option<Arc<[Option<f64>]>>,
     why: Option<&'static str>,
+    /// The moves whose programmed speed is not read: their lines and why.
+    not_read: Vec<(u64, String)>,
     /// The previous point's own and chosen axis angles and external values.
     previous: Option<[(Vector6<f64>, ExternalValues); 2]>,
     own: Vec<Highest>,
@@ -239,7 +274,21 @@ impl Tracker<'_> {
         SpeedLimits {
             checked,
             not_checked_because: self.why.map(str::to_string),
+            moves_not_read: self.not_read.len(),
             axes,
         }
+    }
+
+    /// The warning that some moves' programmed speeds are not read, naming the first.
+    pub fn warning(&self) -> Option<Warning> {
+        let (line, why) = self.not_read.first()?;
+        let n = self.not_read.len();
+        Some(Warning::new(
+            WarningKind::Speed,
+            format!(
+                "the programmed speed of {} is not read, so the axes' speed limits are not checked there (the first, line {line}: {why})",
+                count(n, "linear move")
+            ),
+        ))
     }
 }

@@ -99,12 +99,14 @@
 //! At the program's feed every axis must keep within its largest speed
 //! ([`crate::Robot::max_speeds`], [`crate::robot::external::ExternalAxis::max_speed`]), or the
 //! controller slows the TCP below the feed. With [`Feasible::move_times`] (the time of the move
-//! to each point: the TCP distance between the program's targets over the feed, [`move_times`])
+//! to each point: the TCP distance between the program's targets over the feed, or the time a
+//! robot program gives, [`move_times`])
 //! the dynamic programming takes a move from a state at point `i - 1` to a state at point `i`
 //! only where every axis with a limit moves at most `v_max dt_i` ([`speed_shares`]): the arm's
 //! six by the two states' nominal postures, the external axes by their values. The path's own
 //! moves are kept whatever they do (no point worse than the program); a point without a time
-//! (the first, a rapid move) takes any move. Each result counts the moves to it refused
+//! (the first, a rapid or joint move, a robot program's linear move whose speed is not read,
+//! [`crate::machining::program::speed`]) takes any move. Each result counts the moves to it refused
 //! ([`Removed::speed`]).
 //!
 //! ## The free positioner
@@ -210,7 +212,7 @@ pub use options::{
 pub(crate) use runs::choose;
 pub use runs::{path_configurations, path_runs, starts};
 pub use scope::Scope;
-pub use speed::{has_speed_limits, move_times, speed_shares};
+pub use speed::{has_speed_limits, move_times, speed_shares, Rate};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;

@@ -5,15 +5,25 @@ use crate::robot::external::ExternalValues;
 use crate::Robot;
 use nalgebra::{Vector3, Vector6};
 
+/// How fast the move to a point goes, as the program or path file states it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Rate {
+    /// The TCP's feed, m/s: the move takes its distance over the feed.
+    Feed(f64),
+    /// The move's time, s.
+    Duration(f64),
+}
+
 /// The time of the move to each point of a path through the TCP `positions` (m, the part's
-/// frame) at the `feeds` of the moves to them (m/s, one per point), s: `|p_i - p_(i-1)| /
-/// feed_i`; `None` for the first point and a point without a feed (a rapid move: the
-/// controller's own speed).
-pub fn move_times(positions: &[Vector3<f64>], feeds: &[Option<f64>]) -> Vec<Option<f64>> {
+/// frame) at the `rates` of the moves to them (one per point), s: `|p_i - p_(i-1)| / feed_i`,
+/// or the time given; `None` for the first point and a point without a rate (a rapid or joint
+/// move: the controller's own speed).
+pub fn move_times(positions: &[Vector3<f64>], rates: &[Option<Rate>]) -> Vec<Option<f64>> {
     (0..positions.len())
-        .map(|i| match (i, feeds.get(i).copied().flatten()) {
+        .map(|i| match (i, rates.get(i).copied().flatten()) {
             (0, _) | (_, None) => None,
-            (_, Some(f)) => Some((positions[i] - positions[i - 1]).norm() / f),
+            (_, Some(Rate::Feed(f))) => Some((positions[i] - positions[i - 1]).norm() / f),
+            (_, Some(Rate::Duration(t))) => Some(t),
         })
         .collect()
 }

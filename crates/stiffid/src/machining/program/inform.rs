@@ -192,6 +192,7 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
         }
         let mut target = six(m.line, found, "C")?.with_external(external);
         target.origin = robot.line;
+        target.speed = m.speed.clone();
         out.push(target);
     }
     let axes = (1..=nb).map(|k| format!("BC{k}"));
@@ -299,6 +300,7 @@ struct Motion {
     robot: u64,
     base: Option<u64>,
     station: Option<u64>,
+    speed: super::speed::Speed,
 }
 
 /// The `stiffid:` comments of `//INST`: the robot's and the external axes' pulses per unit, with
@@ -385,6 +387,7 @@ fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
         robot,
         base: None,
         station: None,
+        speed: super::speed::inform(line, word, &words[1..])?,
     };
     for w in &words[1..] {
         let upper = w.to_ascii_uppercase();

@@ -31,10 +31,14 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set {name} = {{X .., Y .., Z .., A .., B .., C ..}} in the program"))
     };
     let (mut base, mut tool) = (unset("$BASE"), unset("$TOOL"));
+    let mut speed = super::speed::Krl::new();
     for (line, start, l) in super::lines(text) {
         let code = l.split(';').next().unwrap_or("");
         if let Some((is_base, frame)) = cartesian::krl::frame_set(line, code) {
             *(if is_base { &mut base } else { &mut tool }) = frame;
+            continue;
+        }
+        if speed.set(line, code)? {
             continue;
         }
         let words = words(code);
@@ -53,6 +57,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         let Some(mut target) = motion(line, start, code, first, &declared, &assigned)? else {
             continue;
         };
+        target.speed = speed.motion(line, first, code)?;
         if let Some(c) = target.cartesian.as_deref_mut() {
             let at_motion = |f: &Frame| match f {
                 Frame::Unknown(0, why) => Frame::Unknown(line, why.clone()),

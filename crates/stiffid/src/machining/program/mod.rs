@@ -44,9 +44,9 @@ pub mod generate;
 pub mod inform;
 pub mod krl;
 pub mod ls;
-mod motion;
 pub mod rapid;
 pub mod rename;
+pub mod speed;
 
 use crate::{Error, Result};
 use std::ops::Range;
@@ -109,6 +109,9 @@ pub struct JointTarget {
     /// A Cartesian target's pose, frame and configuration data ([`cartesian`]): its
     /// [`JointTarget::q_deg`] are NaN until [`cartesian::resolve`] gives them.
     pub cartesian: Option<Box<cartesian::Cartesian>>,
+    /// How the controller moves to it: a joint motion, or a linear one at its programmed
+    /// speed ([`speed`]).
+    pub speed: speed::Speed,
 }
 
 impl JointTarget {
@@ -132,6 +135,7 @@ impl JointTarget {
             origin: line,
             incremental: false,
             cartesian: Some(Box::new(c)),
+            speed: speed::Speed::Unread(NOT_READ.into()),
         }
     }
 
@@ -451,5 +455,9 @@ pub(crate) fn six(
         origin: line,
         incremental: false,
         cartesian: None,
+        speed: speed::Speed::Unread(NOT_READ.into()),
     })
 }
+
+/// A target's speed before its motion instruction gives it.
+const NOT_READ: &str = "the motion's speed is not read";

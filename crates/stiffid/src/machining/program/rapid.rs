@@ -12,6 +12,7 @@
 //! ([`super::cartesian`]).
 
 use super::cartesian::{self, Frame};
+use super::speed::{self, RapidSpeeds};
 use super::{at, number_at, six, JointTarget};
 use crate::Result;
 use std::collections::HashMap;
@@ -19,11 +20,12 @@ use std::collections::HashMap;
 /// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
 type Declared = HashMap<String, std::result::Result<JointTarget, String>>;
 
-/// The module's declared data: targets, tools and work objects (by lower-case name), and the
-/// statements that assign a declared target at run time.
+/// The module's declared data: targets, tools and work objects, speeds (by lower-case name),
+/// and the statements that assign a declared target at run time.
 struct Data {
     targets: Declared,
     frames: HashMap<String, Frame>,
+    speeds: RapidSpeeds,
     assigned: HashMap<String, u64>,
 }
 
@@ -218,6 +220,7 @@ fn statements(code: &str) -> Vec<Statement> {
 fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
     let mut declared = Declared::new();
     let mut frames = HashMap::new();
+    let mut speeds = RapidSpeeds::new();
     let mut assignments = Vec::new();
     for s in statements {
         let body = &code[s.span.clone()];
@@ -240,6 +243,17 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                     (false, Some(eq)) => Ok(literal(s.line, code, s.span.start + eq + 2)?),
                 };
                 declared.insert(name.to_string(), value);
+            }
+            ["const" | "var" | "pers", "speeddata", name, ..] => {
+                let name = name.trim_end_matches(';');
+                let v_tcp = (body.find(":=").filter(|_| !name.contains('{')))
+                    .and_then(|eq| cartesian::literal::parse(code, s.span.start + eq + 2))
+                    .and_then(|(node, _)| node.numbers(4))
+                    .map(|v| (v[0].0, s.line));
+                let why = || {
+                    format!("speeddata {name} is declared on line {} without a literal value or as an array: its speed is the controller's", s.line)
+                };
+                speeds.insert(name.to_string(), v_tcp.ok_or_else(why));
             }
             ["const" | "var" | "pers", kind, name, ..] if cartesian::rapid::is_data(kind) => {
                 let name = name.trim_end_matches(';');
@@ -270,20 +284,28 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             _ => {}
         }
     }
+    let known = |name: &String| {
+        declared.contains_key(name) || frames.contains_key(name) || speeds.contains_key(name)
+    };
     let assigned = assignments
         .into_iter()
-        .filter(|(name, _)| declared.contains_key(name) || frames.contains_key(name))
+        .filter(|(name, _)| known(name))
         .rev()
         .collect();
     let assigned: HashMap<String, u64> = assigned;
     for (name, line) in &assigned {
+        let why = format!("{name} is assigned on line {line}, so its value at the motion is the controller's, not the module's");
         if let Some(f) = frames.get_mut(name) {
-            *f = Frame::Unknown(*line, format!("{name} is assigned on line {line}, so its value at the motion is the controller's, not the module's"));
+            *f = Frame::Unknown(*line, why.clone());
+        }
+        if let Some(v) = speeds.get_mut(name) {
+            *v = Err(why);
         }
     }
     Ok(Data {
         targets: declared,
         frames,
+        speeds,
         assigned,
     })
 }
@@ -403,19 +425,23 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     };
     if cartesian {
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
-        let args = (code, from, &code[from..end]);
-        return cartesian::rapid::motion(line, args, &named, &data.frames)
+        let args = &code[from..end];
+        let argument = cartesian::rapid::top_level(args)
+            .get(1)
+            .map(|r| &args[r.clone()]);
+        let mut target = cartesian::rapid::motion(line, (code, from, args), &named, &data.frames)
             .map_err(|e| match e {
-                crate::Error::Program { line, message } if !message.starts_with(name) => {
-                    at(line, format!("{name}: {message}"))
-                }
-                other => other,
-            })
-            .map(Some);
+            crate::Error::Program { line, message } if !message.starts_with(name) => {
+                at(line, format!("{name}: {message}"))
+            }
+            other => other,
+        })?;
+        target.speed = speed::rapid(line, first, argument, &data.speeds)?;
+        return Ok(Some(target));
     }
     let target_text = code[from..s.span.end].trim_start();
     if target_text.starts_with("[[") {
-        return literal(line, code, from).map(Some);
+        return literal(line, code, from).map(|t| Some(joint(t)));
     }
     let ident: String = target_text
         .chars()
@@ -425,5 +451,13 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     if ident.is_empty() || next.starts_with(['{', '(', '.']) {
         return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
     }
-    named(&ident).map(Some)
+    named(&ident).map(|t| Some(joint(t)))
+}
+
+/// A `MoveAbsJ`'s target: a joint motion.
+fn joint(target: JointTarget) -> JointTarget {
+    JointTarget {
+        speed: speed::Speed::Joint,
+        ..target
+    }
 }

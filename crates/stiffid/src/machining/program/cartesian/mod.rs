@@ -38,7 +38,7 @@
 
 mod flags;
 pub(crate) mod krl;
-mod literal;
+pub(crate) mod literal;
 pub(crate) mod ls;
 pub(crate) mod numbered;
 pub(crate) mod rapid;

@@ -182,7 +182,7 @@ fn lookup(
 
 /// The byte ranges of the comma-separated arguments of `args` outside brackets, parentheses
 /// and strings.
-fn top_level(args: &str) -> Vec<std::ops::Range<usize>> {
+pub(crate) fn top_level(args: &str) -> Vec<std::ops::Range<usize>> {
     let (mut out, mut depth, mut in_string, mut from) = (Vec::new(), 0i32, false, 0);
     for (i, c) in args.char_indices() {
         match c {

@@ -6,7 +6,9 @@
 //! seeded random postures within the joint limits, each solution also with its wrist flipped;
 //! every solution is tried with each axis turned by whole revolutions within its limits (the
 //! turn data of KUKA, ABB and FANUC name the revolution). The first start that gives a solution
-//! in the configuration asked gives it, the variant nearest the start.
+//! in the configuration asked gives it, the variant nearest the start. A solution with an axis
+//! within 1e-6 rad of a quarter turn (a configuration boundary, such as a wrist axis at 0 on a
+//! vertical tool) is in the configuration of either side.
 
 use super::Flags;
 use crate::machining::program::Dialect;
@@ -72,7 +74,8 @@ pub(crate) fn configured(
         let mut best: Option<(f64, Vector6<f64>)> = None;
         for q in solutions.iter().flat_map(|q| turns(robot, q)) {
             let arm = Configuration::of(robot, &q);
-            if wanted(&arm) {
+            let either = |n: &Vector6<f64>| wanted(&Configuration::of(robot, n));
+            if wanted(&arm) || either_side(&q).iter().any(either) {
                 let d = (q - start).norm();
                 if best.is_none_or(|(b, _)| d < b) {
                     best = Some((d, q));
@@ -92,6 +95,34 @@ pub(crate) fn configured(
         true => Err(Miss::Unreachable(first_error.unwrap_or_default())),
         false => Err(Miss::Elsewhere(reached)),
     }
+}
+
+/// How near a quarter turn an axis angle is on the boundary of the configuration data, rad
+/// (1e-6 rad: far below a controller's resolution, far above the inverse kinematics' error).
+const BOUNDARY: f64 = 1e-6;
+
+/// `q` with each axis within [`BOUNDARY`] of a multiple of 90 deg (where ABB's quadrant data,
+/// KUKA's turn bits and FANUC's turn numbers change) put just across it, every combination:
+/// a posture on the boundary has the configuration data of either side (the targets a
+/// controller was told, read back, land within rounding of where they were written).
+fn either_side(q: &Vector6<f64>) -> Vec<Vector6<f64>> {
+    let quarter = PI / 2.0;
+    let mut out = vec![*q];
+    for k in 0..6 {
+        let edge = (q[k] / quarter).round() * quarter;
+        if (q[k] - edge).abs() > BOUNDARY {
+            continue;
+        }
+        let across = |p: &Vector6<f64>, side: f64| {
+            let mut p = *p;
+            p[k] = edge + side * 2.0 * BOUNDARY;
+            p
+        };
+        out = (out.iter())
+            .flat_map(|p| [across(p, -1.0), across(p, 1.0)])
+            .collect();
+    }
+    out
 }
 
 /// The same pose with the wrist flipped (exact for a spherical wrist, a start otherwise).
