@@ -210,10 +210,12 @@ pub(super) fn rapid(
         ))
     };
     if let Some(t) = switch("T") {
-        return literal(t).map_or(Ok(unread(t)), |s| duration(line, &format!("\\T:={t}"), s));
+        let what = format!("\\T:={t}");
+        return literal(t).map_or(Ok(unread(&what)), |s| duration(line, &what, s));
     }
     if let Some(v) = switch("V") {
-        return literal(v).map_or(Ok(unread(v)), |mm_s| path(line, &format!("\\V:={v}"), mm_s));
+        let what = format!("\\V:={v}");
+        return literal(v).map_or(Ok(unread(&what)), |mm_s| path(line, &what, mm_s));
     }
     if name.starts_with('[') {
         let v_tcp = super::cartesian::literal::parse(name, 0).and_then(|(n, _)| n.numbers(4));
