@@ -13,6 +13,8 @@ use stiffid::app::force::document::Document;
 use stiffid::app::{compensate, force};
 use stiffid::machining::gcode::Motion;
 use stiffid::machining::process::file;
+use stiffid::machining::program::speed::Speed;
+use stiffid::machining::program::JointProgram;
 use stiffid::machining::{Language, Program};
 
 /// The mean cutting force of every operation of the process file ``process`` (TOML, the format
@@ -53,7 +55,13 @@ pub fn process_force<'py>(
 /// ``eax_a``, a G-code header's letters ``U``..``C``, in the cell's order for G-code) and
 /// ``external`` (``(n, k)``, each point's or target's values as written, mm for a linear axis
 /// and deg for a rotary one; ``NaN`` where a robot target gives none, RAPID ``9E9`` or a KRL
-/// member left out); ``k = 0`` for a program without external axes.
+/// member left out); ``k = 0`` for a program without external axes. Both carry ``feed_mm_s``
+/// (``(n,)``: the TCP speed of the move to each point, a G-code feed move's ``F`` in force, a
+/// robot program's programmed path speed of a linear motion; ``NaN`` elsewhere); a robot
+/// program also ``joint`` (``(n,)`` bool: a joint motion, which the controller times),
+/// ``time_s`` (``(n,)``: the move's time where the program gives it, RAPID ``\\T``, LS ``sec``;
+/// ``NaN`` elsewhere) and ``speed_not_read`` (a list: why a linear motion's speed is not read, a
+/// variable or a register; ``None`` where it is).
 #[pyfunction]
 #[pyo3(signature = (program, *, chord_tolerance_mm=0.01))]
 pub fn read_program<'py>(
@@ -86,6 +94,11 @@ pub fn read_program<'py>(
                 .map(|p| p.operation.as_deref().map(String::from))
                 .collect();
             out.set_item("operation", ops)?;
+            let feeds = g.points.iter().map(|p| match p.motion {
+                Motion::Feed => p.feed.map_or(f64::NAN, |f| f * 1e3),
+                Motion::Rapid => f64::NAN,
+            });
+            out.set_item("feed_mm_s", numpy::PyArray1::from_vec(py, feeds.collect()))?;
             let axes: Vec<String> = g.external.0.iter().map(char::to_string).collect();
             let values = arrays::grid(py, g.points.len(), axes.len(), |i, k| {
                 g.points[i].external[k]
@@ -109,7 +122,40 @@ pub fn read_program<'py>(
             });
             out.set_item("external", values)?;
             out.set_item("external_axes", r.axes.clone())?;
+            speeds(py, &out, r)?;
         }
     }
     Ok(out)
+}
+
+/// A robot program's speeds into `out` (module docs of
+/// [`stiffid::machining::program::speed`]): `joint`, `feed_mm_s`, `time_s`, `speed_not_read`.
+fn speeds(py: Python<'_>, out: &Bound<'_, PyDict>, r: &JointProgram) -> PyResult<()> {
+    let of = |f: fn(&Speed) -> f64| {
+        let values = r.targets.iter().map(|t| f(&t.speed)).collect();
+        numpy::PyArray1::from_vec(py, values)
+    };
+    let joint: Vec<bool> = r.targets.iter().map(|t| t.speed == Speed::Joint).collect();
+    out.set_item("joint", numpy::PyArray1::from_vec(py, joint))?;
+    out.set_item(
+        "feed_mm_s",
+        of(|s| match s {
+            Speed::Path(v) => v * 1e3,
+            _ => f64::NAN,
+        }),
+    )?;
+    out.set_item(
+        "time_s",
+        of(|s| match s {
+            Speed::Duration(t) => *t,
+            _ => f64::NAN,
+        }),
+    )?;
+    let why: Vec<Option<String>> = (r.targets.iter())
+        .map(|t| match &t.speed {
+            Speed::Unread(why) => Some(why.clone()),
+            _ => None,
+        })
+        .collect();
+    out.set_item("speed_not_read", why)
 }

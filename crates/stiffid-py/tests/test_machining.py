@@ -59,6 +59,17 @@ def test_read_program_carries_each_targets_external_values(tmp_path):
     assert pocket["external_axes"] == [] and pocket["external"].shape == (len(pocket["line"]), 0)
 
 
+def test_read_program_gives_the_programmed_speeds():
+    # The LS pocket is written from pocket.nc: the same feed at every move, a joint move first.
+    gcode = stiffid.read_program(POCKET)
+    ls = stiffid.read_program(MILLING / "pocket.ls")
+    np.testing.assert_array_equal(np.isnan(gcode["feed_mm_s"]), gcode["rapid"])
+    np.testing.assert_allclose(ls["feed_mm_s"], gcode["feed_mm_s"], rtol=1e-12)
+    np.testing.assert_array_equal(ls["joint"], gcode["rapid"])
+    assert np.isnan(ls["time_s"]).all() and ls["speed_not_read"] == [None] * len(ls["line"])
+    np.testing.assert_allclose(np.unique(gcode["feed_mm_s"][~gcode["rapid"]].round(9)), [5, 30])
+
+
 @pytest.mark.parametrize("output", [None, "ls"])
 def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
     setup = stiffid.Setup.from_file(SETUP)
