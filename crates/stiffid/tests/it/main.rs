@@ -74,6 +74,7 @@ mod program_frames;
 mod program_speeds;
 mod program_station;
 mod programs;
+mod programs_proptest;
 mod refined_grid;
 mod register_postures;
 mod register_robot_error;
