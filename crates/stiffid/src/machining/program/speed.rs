@@ -195,8 +195,7 @@ pub(super) fn rapid(
     let Some(argument) = argument else {
         return Ok(Speed::Unread("no speed argument".into()));
     };
-    let mut parts = argument.split('\\');
-    let name = parts.next().unwrap_or("").trim();
+    let name = argument.split('\\').next().unwrap_or("").trim();
     let switch = |key: &str| {
         (argument.split('\\').skip(1)).find_map(|s| {
             let (k, v) = s.split_once(":=")?;
