@@ -86,6 +86,7 @@ mod solver_auto;
 mod speed_limits;
 mod stop_reasons;
 mod study;
+mod table_carried;
 mod table_design;
 mod track_collisions;
 mod track_design;
