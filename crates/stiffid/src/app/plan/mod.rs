@@ -36,6 +36,12 @@ pub struct Request<'a> {
     pub postures: &'a [Vector6<f64>],
     /// The predicted deviation rate (%) the group was chosen to reach, if it was.
     pub target_pct: Option<f64>,
+    /// With external axes: where each posture is read, the axes' values (SI, the cell's order,
+    /// within their limits), one list per posture (a station, or a calibration's table angles,
+    /// [`crate::app::select::Report::placed`]); the plan writes them for the operator and draws
+    /// its scene there (the rope, the checks and the displacements stay the arm's at rest).
+    /// Empty: not given.
+    pub external: &'a [Vec<f64>],
 }
 
 /// What the plan says about one posture.
@@ -56,6 +62,9 @@ pub struct Posture {
     pub without_pct: [f64; 6],
     /// The posture's checks in the cell.
     pub feasibility: Feasibility,
+    /// Where it is read: the external axes' values (SI, the cell's order); empty when not given
+    /// ([`Request::external`]).
+    pub external: Vec<f64>,
 }
 
 /// A measurement plan.
@@ -79,11 +88,13 @@ pub struct Report {
 ///
 /// # Errors
 /// [`crate::Error::InvalidField`] (`postures`) for none or more than [`MAX_POSTURES`];
-/// [`crate::Error::MissingField`] for a setup without a nominal stiffness; the errors of
-/// [`Setup::check_bodies`].
+/// external values (field `external`) not one list per posture of values within the axes'
+/// limits; [`crate::Error::MissingField`] for a setup without a nominal stiffness; the errors
+/// of [`Setup::check_bodies`].
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     crate::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
+    crate::app::document::scene::check_external(setup, postures.len(), request.external)?;
     let k = setup.try_nominal_stiffness(NEEDED_BY)?;
     setup.check_bodies()?;
     let evaluator = Evaluator::new(setup);
@@ -92,7 +103,8 @@ pub fn run(request: &Request) -> Result<Report> {
     let planned = postures
         .iter()
         .zip(&without_each)
-        .map(|(q, without)| {
+        .enumerate()
+        .map(|(i, (q, without))| {
             let frames = setup.robot().frames(q);
             let lp = frames.point(&setup.tool().loading_point);
             let rope = setup.load().anchor - lp;
@@ -104,6 +116,7 @@ pub fn run(request: &Request) -> Result<Report> {
                 displacements: rope_displacements(setup, &frames, k),
                 without_pct: predicted_deviation_pct(without, 1.0),
                 feasibility: checker.feasibility(q),
+                external: request.external.get(i).cloned().unwrap_or_default(),
             }
         })
         .collect();

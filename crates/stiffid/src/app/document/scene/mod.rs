@@ -432,7 +432,7 @@ pub fn ellipsoid(c: &Matrix3<f64>, centre: &Vector3<f64>, force: f64) -> Option<
 
 /// Refuses external values `e` (per posture) unless empty or one list per posture of values
 /// within the robot's external axes' limits.
-fn check_external(setup: &Setup, postures: usize, e: &[Vec<f64>]) -> crate::Result<()> {
+pub(crate) fn check_external(setup: &Setup, postures: usize, e: &[Vec<f64>]) -> crate::Result<()> {
     if e.is_empty() {
         return Ok(());
     }
