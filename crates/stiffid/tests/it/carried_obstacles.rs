@@ -221,9 +221,15 @@ fn by_hand(s: &Setup, q: &Vector6<f64>, e: &ExternalValues, o: &Obstacle) -> f64
         pose: turn(TABLE.map(|v| v * 1e3), Vector3::z(), e.as_slice()[1]),
         ..o.clone()
     };
+    arm_to_box(s, q, e, &turned)
+}
+
+/// The smallest distance of the bodies of `q` (on the carriage at `e`) to the box `o` where it
+/// stands, m.
+pub(crate) fn arm_to_box(s: &Setup, q: &Vector6<f64>, e: &ExternalValues, o: &Obstacle) -> f64 {
     let frames = s.robot().frames_at(q, e.as_slice());
     (bodies(s.arm(), &frames).iter())
-        .map(|b| body_box(b, &turned))
+        .map(|b| body_box(b, o))
         .fold(f64::INFINITY, f64::min)
 }
 

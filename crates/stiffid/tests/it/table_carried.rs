@@ -6,11 +6,11 @@
 use nalgebra::Vector6;
 use stiffid::app::purpose::{self, CalibrationOptions};
 use stiffid::app::select::CANDIDATE_ANGLES;
-use stiffid::cell::{bodies, body_box};
 use stiffid::design::observability::Placed;
 use stiffid::robot::external::ExternalValues;
 use stiffid::Setup;
 
+use crate::carried_obstacles::arm_to_box;
 use crate::table_design::{designed, SETUP};
 
 /// The table design's cell with a clearance of 20 mm, a tracker in front and a post 1.2 m tall
@@ -31,10 +31,7 @@ fn cell() -> Setup {
 /// (`setup`'s obstacle 1 where `e` puts it).
 fn to_post(setup: &Setup, q: &Vector6<f64>, e: &ExternalValues) -> f64 {
     let post = setup.cell().unwrap().obstacles[0].at(setup.robot().external(), e.as_slice());
-    let frames = setup.robot().frames_at(q, e.as_slice());
-    (bodies(setup.arm(), &frames).iter())
-        .map(|b| body_box(b, &post))
-        .fold(f64::INFINITY, f64::min)
+    arm_to_box(setup, q, e, &post)
 }
 
 #[test]
