@@ -67,6 +67,18 @@ fn select_gives_each_posture_the_positioners_angles() {
     };
     assert_eq!(cells(&plan, 0..10), cells(&csv, 0..10));
     assert_eq!(cells(&plan, 10..11)[0], ["rope_x"]);
+    // And `plan.json` each posture's, as the document's stations.
+    let text = std::fs::read_to_string(dir.join("plan/plan.json")).unwrap();
+    let planned: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for (p, station) in planned["postures"].as_array().unwrap().iter().zip(stations) {
+        for column in ["e1_mm", "e2_deg", "e3_deg"] {
+            let (got, want) = (
+                p[column].as_f64().unwrap(),
+                station[column].as_f64().unwrap(),
+            );
+            assert!((got - want).abs() < 1e-9, "{column}: {got} {want}");
+        }
+    }
     // The value minimised is the group's predicted error with the table read at its angles.
     let predicted = doc["calibration"]["predicted_rms_mm"].as_f64().unwrap();
     let value = doc["value"].as_f64().unwrap() * 1e3;

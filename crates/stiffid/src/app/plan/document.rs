@@ -88,8 +88,8 @@ pub struct PlannedPosture {
     pub q_deg: [f64; 6],
     /// Where it is read with external axes: each axis's value by its column's name (`e1_mm`,
     /// `e2_deg`, ...: mm for a linear axis, deg for a rotary one), the station or the table's
-    /// angles; left out when the plan was given none.
-    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    /// angles; none when the plan was given none.
+    #[serde(flatten)]
     pub external: BTreeMap<String, f64>,
     /// Unit vector from the loading point to the rope anchor, base frame.
     pub rope_direction: [f64; 3],
