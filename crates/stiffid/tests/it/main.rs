@@ -64,6 +64,7 @@ mod parsers_proptest;
 mod path_axes;
 mod path_format;
 mod place;
+mod plan_external;
 mod pool;
 mod prediction;
 mod prior;

@@ -38,9 +38,10 @@ pub struct Request<'a> {
     pub target_pct: Option<f64>,
     /// With external axes: where each posture is read, the axes' values (SI, the cell's order,
     /// within their limits), one list per posture (a station, or a calibration's table angles,
-    /// [`crate::app::select::Report::placed`]); the plan writes them for the operator and draws
-    /// its scene there (the rope, the checks and the displacements stay the arm's at rest).
-    /// Empty: not given.
+    /// [`crate::app::select::Report::placed`]); the plan writes them for the operator and
+    /// works each posture out there: the arm on its carriage (its rope, loading point and
+    /// displacements, [`crate::Robot::frames_at`]), its checks with the boxes the positioner
+    /// carries turned ([`Checker::feasibility_at`]), its scene. Empty: every axis at 0.
     pub external: &'a [Vec<f64>],
 }
 
@@ -105,7 +106,11 @@ pub fn run(request: &Request) -> Result<Report> {
         .zip(&without_each)
         .enumerate()
         .map(|(i, (q, without))| {
-            let frames = setup.robot().frames(q);
+            let e = request.external.get(i).map_or(&[][..], Vec::as_slice);
+            let frames = match e.is_empty() {
+                true => setup.robot().frames(q),
+                false => setup.robot().frames_at(q, e),
+            };
             let lp = frames.point(&setup.tool().loading_point);
             let rope = setup.load().anchor - lp;
             Posture {
@@ -115,8 +120,8 @@ pub fn run(request: &Request) -> Result<Report> {
                 loading_point_z: lp.z,
                 displacements: rope_displacements(setup, &frames, k),
                 without_pct: predicted_deviation_pct(without, 1.0),
-                feasibility: checker.feasibility(q),
-                external: request.external.get(i).cloned().unwrap_or_default(),
+                feasibility: checker.feasibility_at(q, e),
+                external: e.to_vec(),
             }
         })
         .collect();
