@@ -41,6 +41,7 @@ pub fn plan<'py>(
         criterion: criterion.parse().map_err(raise)?,
         postures: &group,
         target_pct,
+        external: &[],
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     warn(py, &report.warnings)?;

@@ -151,8 +151,9 @@ fn plan_scene(
         criterion: stiffid::design::Criterion::RelativeA,
         postures: group,
         target_pct: None,
+        external: &[],
     };
-    py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s, None)))
+    py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s)))
         .map_err(raise)
 }
 

@@ -72,13 +72,14 @@ pub struct Provenance {
 }
 
 /// Writes `plan.html`, `plan.csv`, `plan.json`, `plan.glb` and `figures/` of `postures` (axis
-/// angles, rad; with external axes at `station`, SI) into `dir`, each file whole.
+/// angles, rad; with external axes each read at its `external` values, SI, one list per
+/// posture) into `dir`, each file whole.
 pub fn write(
     dir: ReportDir,
     setup: &Setup,
     criterion: Criterion,
     postures: &[Vector6<f64>],
-    station: Option<&[f64]>,
+    external: &[Vec<f64>],
     target: Option<&TargetOutcome>,
     provenance: &Provenance,
 ) -> Result<()> {
@@ -87,10 +88,11 @@ pub fn write(
         criterion,
         postures,
         target_pct: target.map(|t| t.target_pct),
+        external,
     };
     let report = job::run(&request)?;
     let doc = Document::new(&report, setup);
-    let scene = job::document::scene(&report, setup, station)?;
+    let scene = job::document::scene(&report, setup)?;
     let plan = Plan {
         setup,
         postures,

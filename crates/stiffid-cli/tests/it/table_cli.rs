@@ -1,6 +1,6 @@
 //! `stiffid select --for calibration` on the example track cell with reflectors on its table:
 //! `--out` and the document give every posture its positioner angles for the table's readings,
-//! within the travel, at the station asked for.
+//! within the travel, at the station asked for; the plan (`--report`) writes them too.
 
 use crate::common;
 
@@ -35,6 +35,8 @@ fn select_gives_each_posture_the_positioners_angles() {
         "100",
         "--out",
         out.to_str().unwrap(),
+        "--report",
+        dir.join("plan").to_str().unwrap(),
         "--json",
     ]));
     let stations = doc["posture_stations"].as_array().unwrap();
@@ -56,6 +58,27 @@ fn select_gives_each_posture_the_positioners_angles() {
     assert!(rows
         .iter()
         .any(|r| r[1] != rows[0][1] || r[2] != rows[0][2]));
+    // The plan's table gives each reading the same values as the postures file, after q6.
+    let plan = std::fs::read_to_string(dir.join("plan/plan.csv")).unwrap();
+    let cells = |text: &str, columns: std::ops::Range<usize>| -> Vec<Vec<String>> {
+        (text.lines())
+            .map(|l| l.split(',').map(String::from).collect::<Vec<_>>()[columns.clone()].to_vec())
+            .collect()
+    };
+    assert_eq!(cells(&plan, 0..10), cells(&csv, 0..10));
+    assert_eq!(cells(&plan, 10..11)[0], ["rope_x"]);
+    // And `plan.json` each posture's, as the document's stations.
+    let text = std::fs::read_to_string(dir.join("plan/plan.json")).unwrap();
+    let planned: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for (p, station) in planned["postures"].as_array().unwrap().iter().zip(stations) {
+        for column in ["e1_mm", "e2_deg", "e3_deg"] {
+            let (got, want) = (
+                p[column].as_f64().unwrap(),
+                station[column].as_f64().unwrap(),
+            );
+            assert!((got - want).abs() < 1e-9, "{column}: {got} {want}");
+        }
+    }
     // The value minimised is the group's predicted error with the table read at its angles.
     let predicted = doc["calibration"]["predicted_rms_mm"].as_f64().unwrap();
     let value = doc["value"].as_f64().unwrap() * 1e3;

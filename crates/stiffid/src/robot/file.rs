@@ -6,8 +6,9 @@
 //! convention = "modified-dh"            # or "standard-dh"
 //! max_speed_deg_s = [110, 110, 110, 180, 180, 260]
 //!                                       # optional: each axis's largest speed, deg/s, each in
-//!                                       #   (0, 10 000]; none: no limit (the compensate job
-//!                                       #   keeps every axis within it at the program's feed)
+//!                                       #   (0, 10 000] or inf (that axis unlimited); none: no
+//!                                       #   limit (the compensate job keeps every axis within
+//!                                       #   it at the program's feed)
 //! [[joint]]                             # six, base to flange
 //! a_mm = 0.0
 //! alpha_deg = 0.0
@@ -291,13 +292,18 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
 }
 
 /// Each axis's largest speed of `max_speed_deg_s` (a robot file's or a setup's, in the file
-/// `source_name`), rad/s, each checked by [`limits::check_speeds`]; infinite (no limit) without
-/// the field.
+/// `source_name`), rad/s: TOML's `inf` for an axis without a limit, every other value checked
+/// by [`limits::check_speeds`] (NaN, 0, negatives and values above the range refused naming
+/// the axis); infinite (no limit) without the field.
 pub(crate) fn max_speeds(deg_s: Option<&[f64; 6]>, source_name: &str) -> Result<Vector6<f64>> {
     let Some(v) = deg_s else {
         return Ok(Vector6::repeat(f64::INFINITY));
     };
-    limits::check_speeds(&format!("{source_name}: max_speed_deg_s"), v)?;
+    let limited = v.map(|d| match d == f64::INFINITY {
+        true => limits::AXIS_SPEED.max,
+        false => d,
+    });
+    limits::check_speeds(&format!("{source_name}: max_speed_deg_s"), &limited)?;
     Ok(Vector6::from_iterator(v.iter().map(|d| d.to_radians())))
 }
 

@@ -98,18 +98,18 @@ fn a_capsule_and_a_turned_box_match_brute_force() {
 }
 
 /// The track-and-positioner example with `obstacles` appended to its text.
-fn track_cell(obstacles: &str) -> stiffid::Result<Setup> {
+pub(crate) fn track_cell(obstacles: &str) -> stiffid::Result<Setup> {
     let text = include_str!("../../../../examples/track/track-cell.toml").to_string()
         + "\n[cell]\nclearance_mm = 10\n"
         + obstacles;
     setup::parse(&text, "track-cell.toml", |name, _| presets::get(name))
 }
 
-const PLATE: &str = "[[cell.obstacle]]\nname = \"plate\"\nmin_mm = [2700, 1500, 850]\n\
+pub(crate) const PLATE: &str = "[[cell.obstacle]]\nname = \"plate\"\nmin_mm = [2700, 1500, 850]\n\
                      max_mm = [3300, 2100, 900]\ncarried_by = \"AXIS\"\n";
 
 /// Turning by `angle` about the line through `point` along `direction`.
-fn turn(point: [f64; 3], direction: Vector3<f64>, angle: f64) -> Isometry3<f64> {
+pub(crate) fn turn(point: [f64; 3], direction: Vector3<f64>, angle: f64) -> Isometry3<f64> {
     let p = Translation3::from(Vector3::from(point) * 1e-3);
     let r = UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(direction), angle);
     p * r * p.inverse()
@@ -221,9 +221,15 @@ fn by_hand(s: &Setup, q: &Vector6<f64>, e: &ExternalValues, o: &Obstacle) -> f64
         pose: turn(TABLE.map(|v| v * 1e3), Vector3::z(), e.as_slice()[1]),
         ..o.clone()
     };
+    arm_to_box(s, q, e, &turned)
+}
+
+/// The smallest distance of the bodies of `q` (on the carriage at `e`) to the box `o` where it
+/// stands, m.
+pub(crate) fn arm_to_box(s: &Setup, q: &Vector6<f64>, e: &ExternalValues, o: &Obstacle) -> f64 {
     let frames = s.robot().frames_at(q, e.as_slice());
     (bodies(s.arm(), &frames).iter())
-        .map(|b| body_box(b, &turned))
+        .map(|b| body_box(b, o))
         .fold(f64::INFINITY, f64::min)
 }
 

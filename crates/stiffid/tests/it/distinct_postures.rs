@@ -110,6 +110,7 @@ fn the_plan_flags_near_postures() {
             criterion: stiffid::design::Criterion::RelativeA,
             postures: group,
             target_pct: None,
+            external: &[],
         };
         plan::run(&request).unwrap()
     };

@@ -2,7 +2,8 @@
 //! optimum equals an exhaustive search over every path of leans on a small grid (each lean's
 //! bound computed independently, at the pose leaned by hand); no point's bound rises; every
 //! chosen axis lies within the cone at the lead and tilt stated; the loaded tool lands on the
-//! leaned pose; a cone for drilling and bad values are refused naming the field or option.
+//! leaned pose; a cone for drilling and bad values are refused naming the field or option; a
+//! streamed path's grid too large is refused naming its states per point and the most points.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
@@ -267,6 +268,64 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
         matches!(&e, Error::InvalidOption { option: JobOption::LeadTiltStepDeg, message } if message.contains("cells")),
         "{e}"
     );
+}
+
+/// A streamed path's grid past the limit is refused naming the states per path point and the
+/// most points the limit allows (5e6 cells), not the points read when the check failed.
+#[test]
+fn a_streamed_grid_too_large_names_its_states_per_point() {
+    let s = milling();
+    let compliance = s.model_compliance("test").unwrap();
+    let refused = |o: &Options| {
+        let points = line(100).into_iter().map(Ok);
+        match compensate::stream(s.arm(), &compliance, points, o, |_, _| Ok::<(), Error>(())) {
+            Err(Error::InvalidOption { option, message }) => (option, message),
+            other => panic!("{other:?}"),
+        }
+    };
+    // 0.1 deg steps in a 30 deg cone: 601 x 601 = 361201 leans, floor(5e6 / 361201) = 13 points.
+    let (option, message) = refused(&options(&s, 30.0, 0.1, Aggregate::Sum));
+    assert_eq!(option, JobOption::LeadTiltStepDeg);
+    for part in [
+        "0.1 deg within a cone of 30 deg makes 361201 leans x 1 rotations = 361201 states per path point",
+        "at most 5e6 cells: at most 13 path points",
+    ] {
+        assert!(message.contains(part), "{part}: {message}");
+    }
+    assert!(!message.contains("x 14 path points"), "{message}");
+    // With the rotation free in 1 deg steps over +-180 deg (361 rotations): 1.3e8 states.
+    let o = Options {
+        free_tool_axis: Some(FreeToolAxis {
+            objective: Objective::Bound,
+            ..FreeToolAxis::try_from_degrees(1.0, 180.0).unwrap()
+        }),
+        ..options(&s, 30.0, 0.1, Aggregate::Sum)
+    };
+    let (_, message) = refused(&o);
+    assert!(
+        message.contains("361201 leans x 361 rotations = 130393561 states per path point"),
+        "{message}"
+    );
+    assert!(
+        message.contains("not one path point") && !message.contains("x 1 path"),
+        "{message}"
+    );
+    // The rotation alone in 0.1 deg steps: 3601 rotations, at most 1388 points.
+    let o = Options {
+        free_tool_axis: Some(FreeToolAxis::try_from_degrees(0.1, 180.0).unwrap()),
+        ..Options::for_setup(&s)
+    };
+    let points = line(1400).into_iter().map(Ok);
+    let e = compensate::stream(s.arm(), &compliance, points, &o, |_, _| Ok::<(), Error>(()));
+    let Err(Error::InvalidOption { option, message }) = e else {
+        panic!("{e:?}");
+    };
+    assert_eq!(option, JobOption::MaxStepDeg);
+    assert!(
+        message.contains("3601 rotations = 3601 states per path point"),
+        "{message}"
+    );
+    assert!(message.contains("at most 1388 path points"), "{message}");
 }
 
 const MILLING: &str = "name = \"finish\"\n[tool]\ndiameter_mm = 10\nflutes = 2\n[cut]\nfeed_per_tooth_mm = 0.05\naxial_depth_mm = 1\nradial_depth_mm = 2\nmode = \"down\"\n[coefficients]\npreset = \"al7075-t6\"\n";

@@ -2,9 +2,10 @@
 //! a tilt-rotate positioner (examples/track/track-cell.toml): each posture drawn at the external
 //! values its readings, measurements or path points carry, every joint position equal to the
 //! kinematics job's with those values to 1e-9 mm, and the scene drawn again from the document
-//! alone (as Python draws it) equal to the command's.
+//! alone (as Python draws it) equal to the command's. A box the positioner carries is drawn
+//! where each posture's values put it.
 
-use nalgebra::{Point3, Vector3, Vector6};
+use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::document::scene::Scene;
 use stiffid::app::measurements::Data;
 use stiffid::app::{calibrate, compensate, identify, kinematics};
@@ -15,6 +16,8 @@ use stiffid::observation::Measurement;
 use stiffid::robot::external::ExternalValues;
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::Setup;
+
+use crate::carried_obstacles::{track_cell as track_cell_with, turn, PLATE};
 
 fn track_cell() -> Setup {
     let text = include_str!("../../../../examples/track/track-cell.toml");
@@ -264,4 +267,41 @@ fn a_compensations_scene_stands_at_the_path_points_stations() {
         );
     }
     assert_eq!(scene.path.len(), 5);
+}
+
+/// A box the positioner carries, in a compensation's scene: its frame in each drawn posture
+/// applied to its corners equals the table's tilt and turn at that posture's values (about
+/// their lines, [`turn`]) applied to the box at rest, to 1e-9 m.
+#[test]
+fn a_carried_box_is_drawn_where_each_postures_values_put_it() {
+    let setup = track_cell_with(&PLATE.replace("AXIS", "rotate")).unwrap();
+    let (q, e) = postures(&setup, 3);
+    let axes = setup.robot().external();
+    let values: Vec<ExternalValues> = e.iter().map(|e| ExternalValues::new(e).unwrap()).collect();
+    let drawn = (q.iter().zip(&values).enumerate())
+        .map(|(i, (q, e))| (format!("point {}", i + 1), q, e))
+        .collect();
+    let part = compensate::scene::ScenePart::new(&[], false, drawn, axes);
+    let scene = compensate::scene::scene(&setup, &part).unwrap().unwrap();
+    let plate = &scene.obstacles[0];
+    assert_eq!(plate.carried_by.as_deref(), Some("rotate"));
+    assert_eq!(plate.frames.len(), q.len());
+    let (min, max) = (Vector3::from(plate.min_m), Vector3::from(plate.max_m));
+    for (f, e) in plate.frames.iter().zip(&e) {
+        let [x, y, z, w] = f.rotation_xyzw;
+        let frame = Isometry3::from_parts(
+            Translation3::from(Vector3::from(f.translation_m)),
+            UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)),
+        );
+        let table = turn([3000.0, 1800.0, 700.0], Vector3::x(), e[1])
+            * turn([3000.0, 1800.0, 900.0], Vector3::z(), e[2]);
+        for k in 0..8 {
+            let corner = Point3::from(Vector3::from_fn(|a, _| match (k >> a) & 1 {
+                0 => min[a],
+                _ => max[a],
+            }));
+            let error = (frame * corner - table * corner).norm();
+            assert!(error < 1e-9, "corner {k} at {e:?}: {error} m");
+        }
+    }
 }

@@ -3,7 +3,8 @@
 //! stations the job writes, against the feed and the TCP distance of the path file's rows),
 //! where without the limit the optimum moves the track faster; a joint's limit binds the free
 //! tool rotation; the path's own moves are kept when they break it themselves; bad values are
-//! refused naming the file and the field.
+//! refused naming the file and the field; a URDF's speeds on some joints only survive the
+//! calibrated robot file (`inf` for the others).
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Arc;
@@ -281,4 +282,56 @@ fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
         feeds.contains("feed_mm_s") && feeds.contains("line 3"),
         "{feeds}"
     );
+}
+
+/// A URDF with `<limit velocity>` on joints 1-3 only (0: none on 4-6) gives a calibrated robot
+/// file that reads back with the same limits on 1-3 and none on 4-6 (`inf`); `inf` is accepted
+/// in a robot file, NaN, -inf, 0, negatives and more than 10 000 deg/s are refused naming the
+/// axis.
+#[test]
+fn partial_urdf_speeds_survive_the_calibrated_robot_file() {
+    use stiffid::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/comau-nj165.urdf");
+    let urdf = std::fs::read_to_string(path).unwrap();
+    let parts: Vec<&str> = urdf.split(r#"velocity="2""#).collect();
+    assert_eq!(parts.len(), 7, "six joints with a velocity");
+    let mut text = parts[0].to_string();
+    for (part, v) in parts[1..].iter().zip(["1.5", "2", "2.5", "0", "0", "0"]) {
+        text += &format!(r#"velocity="{v}""#);
+        text += part;
+    }
+    let robot = stiffid::robot::urdf::parse(&text, "partial.urdf", None).unwrap();
+    let want = [1.5, 2.0, 2.5, f64::INFINITY, f64::INFINITY, f64::INFINITY];
+    assert_eq!(robot.max_speeds().as_slice(), want);
+    let points = [Vector3::new(0.1, 0.0, 0.2)];
+    let terms = gravity::Terms::none(&robot);
+    let model = ErrorModel::new(&robot, &points, MeasuredIn::Base, Geometry::Full, terms).unwrap();
+    let estimate = Estimate {
+        frame: Isometry3::identity(),
+        values: model.nominal(),
+    };
+    let file = robot_file::robot_toml(&model, &estimate).unwrap();
+    assert!(file.contains("max_speed_deg_s = ["), "{file}");
+    let back = stiffid::robot::file::parse(&file, "calibrated.toml").unwrap();
+    for (got, want) in back.max_speeds().iter().zip(want) {
+        match want.is_finite() {
+            true => assert!((got - want).abs() < 1e-12 * want, "{got} {want}"),
+            false => assert_eq!(*got, f64::INFINITY),
+        }
+    }
+    // In a robot file: inf is no limit; NaN, -inf, 0, negatives and above 10 000 are refused.
+    let robot = include_str!("../../presets/kuka-kr210-robond.toml");
+    let with = |v: &str| {
+        let line = format!("max_speed_deg_s = [100, 100, {v}, 100, 100, 100]\nconvention =");
+        stiffid::robot::file::parse(&robot.replacen("convention =", &line, 1), "kr210.toml")
+    };
+    assert_eq!(with("inf").unwrap().max_speeds()[2], f64::INFINITY);
+    for bad in ["nan", "-inf", "0", "-5", "10001"] {
+        let message = with(bad).unwrap_err().to_string();
+        assert!(
+            message.contains("kr210.toml: max_speed_deg_s[3]"),
+            "{bad}: {message}"
+        );
+    }
 }

@@ -21,7 +21,7 @@ use stiffid::Setup;
 
 /// A KUKA KR 210 on a fixed base, a tilt-rotate positioner beside it with three reflectors on
 /// its table, the tracker in front of both.
-const SETUP: &str = r#"
+pub(crate) const SETUP: &str = r#"
 name = "table"
 robot = "kuka-kr210-robond"
 [[external_axis]]
@@ -74,7 +74,7 @@ fn options() -> CalibrationOptions {
 }
 
 /// The designed campaign: postures and where each is read.
-fn designed(setup: &Setup) -> (select::Report, Vec<Placed>) {
+pub(crate) fn designed(setup: &Setup) -> (select::Report, Vec<Placed>) {
     let report = select::run(&Request {
         setup,
         criterion: Criterion::RelativeA,

@@ -212,12 +212,16 @@ pub fn run(args: &Args) -> Result<()> {
             seed: report.seed,
             value: report.value,
         };
+        let external = match &report.station {
+            Some(e) if placed.is_empty() => vec![e.as_slice().to_vec(); report.postures.len()],
+            _ => placed,
+        };
         plan::write(
             dir,
             &setup,
             args.criterion,
             &report.postures,
-            report.station.as_ref().map(|e| e.as_slice()),
+            &external,
             t,
             &provenance,
         )?;

@@ -9,6 +9,7 @@ use crate::app::plan::{Posture, Report};
 use crate::design::unidentifiable;
 use crate::Setup;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// The measurement plan: the setup's load and bodies, what the group predicts, and what each
 /// posture asks of the operator.
@@ -85,6 +86,11 @@ pub struct PlannedPosture {
     pub posture: usize,
     /// Axis angles q1..q6, deg.
     pub q_deg: [f64; 6],
+    /// Where it is read with external axes: each axis's value by its column's name (`e1_mm`,
+    /// `e2_deg`, ...: mm for a linear axis, deg for a rotary one), the station or the table's
+    /// angles; none when the plan was given none.
+    #[serde(flatten)]
+    pub external: BTreeMap<String, f64>,
     /// Unit vector from the loading point to the rope anchor, base frame.
     pub rope_direction: [f64; 3],
     /// Distance from the loading point to the anchor, mm.
@@ -139,12 +145,15 @@ impl Document {
             virtual_springs: !setup.model().is_drives_only(),
             parameters: parameters(e, setup),
             unidentifiable: unidentifiable(e, setup),
-            postures: report.postures.iter().enumerate().map(posture).collect(),
+            postures: (report.postures.iter().enumerate())
+                .map(|p| posture(p, setup))
+                .collect(),
             near_postures: report.near.iter().map(NearDoc::from).collect(),
         }
     }
 
-    /// `plan.csv`: one row per posture (axis angles, rope direction and length, the loading
+    /// `plan.csv`: one row per posture (axis angles, with external axes their values where the
+    /// posture is read, `e1_mm`, `e2_deg`, ..., rope direction and length, the loading
     /// point's height, each measuring point's expected displacement, the leave-one-out rates:
     /// each joint's predicted deviation rate at noise multiple 1 if that posture could not be
     /// measured, `inf` where the rest cannot identify it; the smallest clearance and the failed
@@ -166,6 +175,9 @@ impl Document {
         ]
         .map(String::from)
         .to_vec();
+        let axes: Vec<String> =
+            (self.postures.first()).map_or(Vec::new(), |p| p.external.keys().cloned().collect());
+        header.splice(7..7, axes.iter().cloned());
         for k in 1..=self.measuring_points {
             header.extend(["dx", "dy", "dz"].map(|c| format!("point{k}_{c}_mm")));
         }
@@ -178,6 +190,8 @@ impl Document {
         let rows = self.postures.iter().map(|r| {
             let mut cells = vec![r.posture.to_string()];
             cells.extend(fixed(&r.q_deg, 6));
+            let values: Vec<f64> = axes.iter().map(|a| r.external[a]).collect();
+            cells.extend(fixed(&values, 6));
             cells.extend(fixed(&r.rope_direction, 6));
             cells.push(format!("{:.1}", r.rope_length_mm));
             cells.push(format!("{:.1}", r.loading_point_z_mm));
@@ -207,11 +221,18 @@ fn bodies(setup: &Setup) -> Bodies {
     }
 }
 
-fn posture((i, p): (usize, &Posture)) -> PlannedPosture {
+fn posture((i, p): (usize, &Posture), setup: &Setup) -> PlannedPosture {
     let worst = p.without_pct.iter().copied().fold(0.0, f64::max);
+    let external = match setup.robot().external().filter(|_| !p.external.is_empty()) {
+        None => BTreeMap::new(),
+        Some(axes) => (axes.column_names().into_iter())
+            .zip(axes.to_display(&p.external))
+            .collect(),
+    };
     PlannedPosture {
         posture: i + 1,
         q_deg: p.q.map(f64::to_degrees).into(),
+        external,
         rope_direction: p.rope_direction.into(),
         rope_length_mm: mm(p.rope_length),
         loading_point_z_mm: mm(p.loading_point_z),
@@ -228,18 +249,14 @@ fn posture((i, p): (usize, &Posture)) -> PlannedPosture {
 /// The plan's 3D scene ([`crate::app::document::scene`]): the group of `report` in the cell, the
 /// rope, the nominal compliance's ellipsoids at the tool centre point under the load and each
 /// measuring point's expected displacement (the plan's, nominal stiffness); with external axes
-/// the arm on its carriage at `station` (SI, the cell's order; `None`: every axis at zero). What
-/// `select --report` shows in `plan.html` and writes as `plan.glb`, and Python's
-/// `stiffid.scene`.
+/// each posture where the plan reads it ([`Posture::external`]: the arm on its carriage, the
+/// table and the boxes it carries turned; every axis at zero when not given). What `select
+/// --report` shows in `plan.html` and writes as `plan.glb`, and Python's `stiffid.scene`.
 ///
 /// # Errors
 /// [`crate::Error::MissingField`] for a setup without a nominal stiffness; those of
 /// [`scene::scene`].
-pub fn scene(
-    report: &Report,
-    setup: &Setup,
-    station: Option<&[f64]>,
-) -> crate::Result<scene::Scene> {
+pub fn scene(report: &Report, setup: &Setup) -> crate::Result<scene::Scene> {
     let h = setup.try_model_nominal_compliance(super::NEEDED_BY)?;
     let postures: Vec<_> = report.postures.iter().map(|p| p.q).collect();
     let predicted: Vec<_> = report
@@ -247,9 +264,9 @@ pub fn scene(
         .iter()
         .map(|p| p.displacements.clone())
         .collect();
-    let external = match station {
-        Some(e) => vec![e.to_vec(); postures.len()],
-        None => Vec::new(),
+    let external: Vec<Vec<f64>> = match report.postures.iter().all(|p| !p.external.is_empty()) {
+        true => report.postures.iter().map(|p| p.external.clone()).collect(),
+        false => Vec::new(),
     };
     let extras = scene::Extras {
         compliance: Some(&h),

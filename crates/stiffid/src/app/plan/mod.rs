@@ -36,6 +36,13 @@ pub struct Request<'a> {
     pub postures: &'a [Vector6<f64>],
     /// The predicted deviation rate (%) the group was chosen to reach, if it was.
     pub target_pct: Option<f64>,
+    /// With external axes: where each posture is read, the axes' values (SI, the cell's order,
+    /// within their limits), one list per posture (a station, or a calibration's table angles,
+    /// [`crate::app::select::Report::placed`]); the plan writes them for the operator and
+    /// works each posture out there: the arm on its carriage (its rope, loading point and
+    /// displacements, [`crate::Robot::frames_at`]), its checks with the boxes the positioner
+    /// carries turned ([`Checker::feasibility_at`]), its scene. Empty: every axis at 0.
+    pub external: &'a [Vec<f64>],
 }
 
 /// What the plan says about one posture.
@@ -56,6 +63,9 @@ pub struct Posture {
     pub without_pct: [f64; 6],
     /// The posture's checks in the cell.
     pub feasibility: Feasibility,
+    /// Where it is read: the external axes' values (SI, the cell's order); empty when not given
+    /// ([`Request::external`]).
+    pub external: Vec<f64>,
 }
 
 /// A measurement plan.
@@ -79,11 +89,13 @@ pub struct Report {
 ///
 /// # Errors
 /// [`crate::Error::InvalidField`] (`postures`) for none or more than [`MAX_POSTURES`];
-/// [`crate::Error::MissingField`] for a setup without a nominal stiffness; the errors of
-/// [`Setup::check_bodies`].
+/// external values (field `external`) not one list per posture of values within the axes'
+/// limits; [`crate::Error::MissingField`] for a setup without a nominal stiffness; the errors
+/// of [`Setup::check_bodies`].
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     crate::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
+    crate::app::document::scene::check_external(setup, postures.len(), request.external)?;
     let k = setup.try_nominal_stiffness(NEEDED_BY)?;
     setup.check_bodies()?;
     let evaluator = Evaluator::new(setup);
@@ -92,8 +104,13 @@ pub fn run(request: &Request) -> Result<Report> {
     let planned = postures
         .iter()
         .zip(&without_each)
-        .map(|(q, without)| {
-            let frames = setup.robot().frames(q);
+        .enumerate()
+        .map(|(i, (q, without))| {
+            let e = request.external.get(i).map_or(&[][..], Vec::as_slice);
+            let frames = match e.is_empty() {
+                true => setup.robot().frames(q),
+                false => setup.robot().frames_at(q, e),
+            };
             let lp = frames.point(&setup.tool().loading_point);
             let rope = setup.load().anchor - lp;
             Posture {
@@ -103,7 +120,8 @@ pub fn run(request: &Request) -> Result<Report> {
                 loading_point_z: lp.z,
                 displacements: rope_displacements(setup, &frames, k),
                 without_pct: predicted_deviation_pct(without, 1.0),
-                feasibility: checker.feasibility(q),
+                feasibility: checker.feasibility_at(q, e),
+                external: e.to_vec(),
             }
         })
         .collect();

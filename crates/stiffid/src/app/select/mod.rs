@@ -12,6 +12,7 @@ mod station;
 mod table;
 
 pub use station::{Station, MAX_STATIONS};
+pub use table::CANDIDATE_ANGLES;
 
 use check::check;
 use choose::{choose, smallest, unconstrained, Found};

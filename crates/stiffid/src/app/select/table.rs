@@ -8,14 +8,20 @@
 //! ([`purpose::table_grid`]: the travel is a feasibility check by construction), those with the
 //! tracker's line of sight to a reflector through an obstacle of the cell left out (the sight
 //! from the tracker's head to [`SIGHT_END`] before the reflector, where its nest and the table
-//! are). The arm's own bodies are not checked against these sights.
+//! are). The arm's own bodies are not checked against these sights. With boxes the positioner
+//! carries (`[[cell.obstacle]] carried_by`), a posture is read only at a candidate where its
+//! arm, its rope and its lines of sight clear those boxes turned there, by the cell's checks
+//! with the design's margin ([`design_checker`]): the arm's postures are designed with the
+//! boxes at rest, the table's angles then keep them clear of the arm.
 
 use super::{CalibrationReport, Report, Request};
 use crate::app::purpose::{self, Purpose};
-use crate::cell::{capsule_box, Capsule, Part};
+use crate::cell::{capsule_box, Capsule, Part, Thing};
 use crate::design::observability::Placed;
+use crate::design::search::design_checker;
 use crate::robot::external::{ExternalAxes, ExternalValues};
 use crate::{Error, Result, Setup};
+use rayon::prelude::*;
 
 /// About how many candidate angles of the positioner a group's table readings are chosen among.
 pub const CANDIDATE_ANGLES: usize = 64;
@@ -29,8 +35,9 @@ pub const SIGHT_END: f64 = 0.05;
 /// [`Purpose::Calibration`] on a setup with table reflectors.
 ///
 /// # Errors
-/// [`Error::Input`] (`table`) when no candidate angle has clear lines of sight or the chosen
-/// angles do not separate the calibration's parameters; those of [`purpose::design`].
+/// [`Error::Input`] (`table`) when no candidate angle has clear lines of sight, a posture meets
+/// a box the positioner carries at every candidate, or the chosen angles do not separate the
+/// calibration's parameters; those of [`purpose::design`].
 pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
     let reflectors = r.setup.table_reflectors();
     let Some(axes) = r.setup.robot().external() else {
@@ -71,8 +78,18 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
     if candidates.is_empty() {
         return Err(refuse("no angle of the positioner has clear lines of sight from the tracker to every reflector on the table: move the tracker or the reflectors".into()));
     }
+    let read_at = |at: &ExternalValues, table: &ExternalValues| {
+        let e = joined(design_axes, &tail(at, cut), table);
+        joined(axes, at, &lifted(at, &e, cut))
+    };
+    let allowed = clear_of_carried(r, &report.postures, &where_read, &candidates, read_at);
+    if let Some(i) = (allowed.iter().flatten()).position(|a| !a.contains(&true)) {
+        return Err(refuse(format!("posture {} of the group meets a box the positioner carries (its arm, rope or a line of sight within the clearance) at every candidate angle with clear lines of sight to the reflectors: move the box, the reflectors or the tracker, or choose other postures", i + 1)));
+    }
     let criterion = options.criterion();
-    let choice = design.choose_table_angles(criterion, &placed, &candidates, placed.len())?;
+    let count = placed.len();
+    let choice =
+        design.choose_table_angles(criterion, &placed, &candidates, count, allowed.as_deref())?;
     if !choice.value.is_finite() {
         return Err(refuse(format!(
             "the {} postures with the table read at as many angles do not separate the calibration's {} parameters: choose more postures or reflectors",
@@ -92,10 +109,42 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
         weight: 1.0,
     });
     report.value = choice.value;
-    report.placed = (where_read.iter().zip(&angles))
-        .map(|(at, e)| joined(axes, at, &lifted(at, e, cut)))
+    report.placed = (where_read.iter().zip(&choice.chosen))
+        .map(|(at, &c)| read_at(at, &candidates[c]))
         .collect();
     Ok(report)
+}
+
+/// Whether each posture (`postures[i]` read where `where_read[i]` puts the external axes) clears
+/// the boxes the positioner carries with the table at each of `candidates` (`read_at`: the
+/// cell's values of a reading there), by every check's pairs with such a box (module docs);
+/// `None` when the cell carries none.
+fn clear_of_carried(
+    r: &Request,
+    postures: &[nalgebra::Vector6<f64>],
+    where_read: &[ExternalValues],
+    candidates: &[ExternalValues],
+    read_at: impl Fn(&ExternalValues, &ExternalValues) -> ExternalValues + Sync,
+) -> Option<Vec<Vec<bool>>> {
+    let obstacles = &r.setup.cell()?.obstacles;
+    let carried = |t: Thing| matches!(t, Thing::Obstacle(i) if obstacles[i].carried_by.is_some());
+    if !obstacles.iter().any(|o| o.carried_by.is_some()) {
+        return None;
+    }
+    let checker = design_checker(r.setup, r.options.margin);
+    let clear = |q: &nalgebra::Vector6<f64>, e: &ExternalValues| {
+        (checker.margins_at(q, e.as_slice()).iter())
+            .filter(|m| carried(m.between.0) || carried(m.between.1))
+            .all(|m| m.margin >= 0.0)
+    };
+    let rows = (postures.par_iter().zip(where_read))
+        .map(|(q, at)| {
+            (candidates.iter())
+                .map(|c| clear(q, &read_at(at, c)))
+                .collect()
+        })
+        .collect();
+    Some(rows)
 }
 
 /// `e` without its first `cut` values.

@@ -84,9 +84,13 @@ pub fn check_speeds(field: &str, values: &[f64]) -> Result<()> {
                 _ => format!("{field}[{}]", i + 1),
             },
             message: format!(
-                "{} is not a speed: expected above 0, at most {} (leave the field out for no limit)",
+                "{} is not a speed: expected above 0, at most {} ({})",
                 number(values[i]),
-                number(AXIS_SPEED.max)
+                number(AXIS_SPEED.max),
+                match values.len() {
+                    1 => "leave the field out for no limit",
+                    _ => "inf for an axis without a limit, or leave the field out for none",
+                }
             ),
         }),
     }

@@ -149,11 +149,15 @@ impl CalibrationDesign {
     /// The angles of `count` readings of the table (each reading every reflector) that minimise
     /// `criterion` with the group `postures` (each read where it stands), chosen among
     /// `candidates` (the external axes' values, SI; the positioner's are what matter) by the
-    /// greedy choice and exchange of the module docs. The value is `+infinity` when no choice
-    /// separates the kept parameters.
+    /// greedy choice and exchange of the module docs. With `allowed`, reading `i` takes only a
+    /// candidate `c` with `allowed[i][c]` (one row of `candidates.len()` per reading: where the
+    /// arm's posture of reading `i` clears what the positioner carries); `None` allows every
+    /// candidate to every reading. The value is `+infinity` when no choice separates the kept
+    /// parameters.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`table`) with no candidate or a count of 0; those of
+    /// [`Error::InvalidField`] (`table`) with no candidate or a count of 0, or `allowed` with
+    /// another shape or a reading with no candidate allowed; those of
     /// [`CalibrationDesign::table_rows`] and [`CalibrationDesign::jacobian_placed`].
     pub fn choose_table_angles(
         &self,
@@ -161,6 +165,7 @@ impl CalibrationDesign {
         postures: &[Placed],
         candidates: &[ExternalValues],
         count: usize,
+        allowed: Option<&[Vec<bool>]>,
     ) -> Result<TableChoice> {
         if candidates.is_empty() || count == 0 {
             return Err(Error::InvalidField {
@@ -171,6 +176,8 @@ impl CalibrationDesign {
                 ),
             });
         }
+        check_allowed(allowed, count, candidates.len())?;
+        let may = |i: usize, c: usize| allowed.is_none_or(|a| a[i][c]);
         let d = self.with_table_angles(&[])?;
         let arm = d.jacobian_placed(postures)?;
         let mut base = d.fixed_information.clone();
@@ -184,23 +191,24 @@ impl CalibrationDesign {
         let rows = d.fixed.nrows() + arm.nrows() + 3 * count * d.model().tables();
         let n = rows / d.layout.rows(1).max(1);
         let loss = |m: DMatrix<f64>| score::information_loss(m, n, criterion, &d);
-        // The candidate that gives `info` the smallest loss, the first of equals.
-        let best = |info: &DMatrix<f64>, ridge: f64| {
+        // The candidate of reading `i` that gives `info` the smallest loss, the first of equals.
+        let best = |info: &DMatrix<f64>, ridge: f64, i: usize| {
             (0..blocks.len())
                 .into_par_iter()
+                .filter(|&c| may(i, c))
                 .map(|c| {
                     let mut m = info + &blocks[c];
                     m.set_diagonal(&(m.diagonal().add_scalar(ridge)));
                     (loss(m), c)
                 })
                 .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
-                .expect("candidates")
+                .expect("an allowed candidate")
         };
         let p = base.nrows().max(1) as f64;
         let ridge = RIDGE * base.trace() / p;
         let (mut info, mut chosen) = (base, Vec::with_capacity(count));
-        for _ in 0..count {
-            let (_, c) = best(&info, ridge);
+        for i in 0..count {
+            let (_, c) = best(&info, ridge, i);
             info += &blocks[c];
             chosen.push(c);
         }
@@ -209,7 +217,7 @@ impl CalibrationDesign {
             let mut improved = false;
             for i in 0..count {
                 let without = &info - &blocks[chosen[i]];
-                let (v, c) = best(&without, 0.0);
+                let (v, c) = best(&without, 0.0, i);
                 if v < value * (1.0 - 1e-9) {
                     (info, chosen[i], value, improved) = (without + &blocks[c], c, v, true);
                 }
@@ -224,4 +232,26 @@ impl CalibrationDesign {
             .value_placed(criterion, postures);
         Ok(TableChoice { chosen, value })
     }
+}
+
+/// Refuses an `allowed` of [`CalibrationDesign::choose_table_angles`] that is not `count` rows
+/// of `candidates` flags, or leaves a reading no candidate.
+fn check_allowed(allowed: Option<&[Vec<bool>]>, count: usize, candidates: usize) -> Result<()> {
+    let Some(allowed) = allowed else {
+        return Ok(());
+    };
+    let shaped = allowed.len() == count && allowed.iter().all(|a| a.len() == candidates);
+    let empty = allowed.iter().position(|a| !a.contains(&true));
+    let message = match (shaped, empty) {
+        (true, None) => return Ok(()),
+        (false, _) => format!(
+            "expected {count} rows of {candidates} allowed candidates, got {} rows",
+            allowed.len()
+        ),
+        (true, Some(i)) => format!("reading {} has no allowed candidate angle", i + 1),
+    };
+    Err(Error::InvalidField {
+        field: "table".into(),
+        message,
+    })
 }

@@ -77,6 +77,57 @@ pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Res
     })
 }
 
+/// [`check_cells`] while a path streams in, `read` points read so far (its length unknown):
+/// refuses a grid past [`FreeToolAxis::MAX_GRID_CELLS`] naming the states per path point
+/// (leans x rotations) and the most path points the limit allows, never a count of the path's
+/// points.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::LeadTiltStepDeg`], or [`JobOption::MaxStepDeg`]
+/// without a free lean) with the states per point and what to change.
+pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> Result<()> {
+    if check_cells(options, read, largest).is_ok() {
+        return Ok(());
+    }
+    let angles = options.free_tool_axis.map_or(1.0, |f| f.angle_count());
+    let (option, grid, per, change) = match (&options.free_lead_tilt, &options.free_tool_axis) {
+        (Some(l), _) => (
+            JobOption::LeadTiltStepDeg,
+            format!(
+                "{} deg within a cone of {} deg makes {} leans x {angles} rotations",
+                number(l.max_step.to_degrees()),
+                number(largest.to_degrees()),
+                lean_count(l, largest)
+            ),
+            lean_count(l, largest),
+            "a larger step, a smaller cone, a coarser rotation grid or a shorter path",
+        ),
+        (None, Some(f)) => (
+            JobOption::MaxStepDeg,
+            format!(
+                "{} deg with a range of +-{} deg makes {angles} rotations",
+                number(f.max_step.to_degrees()),
+                number(f.range.to_degrees())
+            ),
+            1.0,
+            "a larger step, a smaller range or a shorter path",
+        ),
+        (None, None) => return Ok(()),
+    };
+    let states = per * angles;
+    let limit = FreeToolAxis::MAX_GRID_CELLS;
+    let most = match (limit / states).floor() {
+        0.0 => "not one path point".to_string(),
+        n => format!("at most {n} path points"),
+    };
+    Err(Error::InvalidOption {
+        option,
+        message: format!(
+            "{grid} = {states} states per path point; the grid holds at most {limit:.0e} cells: {most} ({change})"
+        ),
+    })
+}
+
 /// The number of `(lead, tilt)` states of `free` within cones up to `largest` (rad), as a
 /// float: `(2 floor(largest / max_step) + 1)^2`.
 pub(super) fn lean_count(free: &FreeLeadTilt, largest: f64) -> f64 {

@@ -2,7 +2,7 @@
 
 use super::feasible::Checks;
 use super::fixed_base::optimise_tool_axis;
-use super::lead_tilt::{check_cells, cones, Leaning};
+use super::lead_tilt::{check_cells, check_streaming, cones, Leaning};
 use super::tool_axis::Cost;
 use super::{
     Compensated, Compliance, Model, Newton, Objective, Options, PathPoint, Target, REQUIRED_M,
@@ -222,7 +222,7 @@ where
         let mut all = Vec::new();
         for p in points {
             all.push(p?);
-            check_cells(options, all.len(), cone)?;
+            check_streaming(options, all.len(), cone)?;
         }
         let results = path(arm, compliance, &all, options)?;
         for (p, r) in all.chunks(CHUNK).zip(results.chunks(CHUNK)) {

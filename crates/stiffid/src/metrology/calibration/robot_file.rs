@@ -124,7 +124,7 @@ pub fn urdf_leaves_out(model: &ErrorModel, estimate: &Estimate) -> Option<String
 
 /// The calibrated robot as a robot TOML file (module docs): its chain as a DH table in the
 /// nominal robot's notation (a URDF robot's in standard DH, [`dh::table`]), Hayati's `beta_deg`
-/// where a row needs it, the axis map, joint limits, axis speeds (when every axis has one), base, flange, capsule radii and masses (their
+/// where a row needs it, the axis map, joint limits, axis speeds (when any axis has one: `inf` for an axis without), base, flange, capsule radii and masses (their
 /// centres carried into the table's link frames) of the nominal robot. Numbers are written in
 /// full (shortest round-trip) and the file is read back: its flange is the calibrated robot's
 /// within [`READ_BACK`] of the robot's size at three postures.
@@ -158,7 +158,8 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
             Convention::StandardDh => "standard-dh",
         }
     );
-    if nominal.max_speeds().iter().all(|v| v.is_finite()) {
+    // Every axis's speed when one has a limit: `inf` for one without.
+    if nominal.max_speeds().iter().any(|v| v.is_finite()) {
         let deg: Vec<String> = (nominal.max_speeds().iter())
             .map(|v| format!("{:?}", v.to_degrees()))
             .collect();

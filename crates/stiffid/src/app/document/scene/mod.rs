@@ -46,7 +46,8 @@ pub struct Scene {
     pub postures: Vec<Posture>,
     /// The floor's height (base z), m; `null` without a floor.
     pub floor_z_m: Option<f64>,
-    /// The cell's obstacles (axis-aligned boxes), base frame.
+    /// The cell's obstacles (boxes), base frame; a box the positioner carries where each
+    /// posture's external values put it ([`Obstacle::frames`]).
     pub obstacles: Vec<Obstacle>,
     /// The tracker head, base frame, m; `null` without `[tracker]`.
     pub tracker_m: Option<[f64; 3]>,
@@ -189,10 +190,19 @@ pub struct PathPoint {
 pub struct Obstacle {
     /// Its name in the setup.
     pub name: String,
-    /// Lowest corner, base frame, m.
+    /// Lowest corner, m: base frame, or the box's own frame when it has `frames`.
     pub min_m: [f64; 3],
-    /// Highest corner, base frame, m.
+    /// Highest corner, m: base frame, or the box's own frame when it has `frames`.
     pub max_m: [f64; 3],
+    /// The positioner axis that carries it (`[[cell.obstacle]] carried_by`); `null` for a box
+    /// that stands in the cell.
+    pub carried_by: Option<String>,
+    /// For a box that moves with the external axes or stands turned (carried, or frozen at a
+    /// station): its frame in each posture, in the order of [`Scene::postures`] (the box is
+    /// the points `R x + t` of `x` between `min_m` and `max_m`): the positioner's pose through
+    /// the carrying axis at the posture's external values ([`crate::setup::Obstacle::at`]).
+    /// Empty for a box that stands as given, axis-aligned in the base frame.
+    pub frames: Vec<Frame>,
 }
 
 /// What to draw besides the setup and its postures.
@@ -282,6 +292,7 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate
         extras,
         force,
     };
+    let obstacles = obstacles(setup, extras.external, postures.len());
     let postures = postures
         .iter()
         .enumerate()
@@ -314,7 +325,7 @@ pub fn scene(setup: &Setup, postures: &[Vector6<f64>], extras: &Extras) -> crate
         .concat(),
         postures,
         floor_z_m: setup.cell().and_then(|c| c.floor_z),
-        obstacles: obstacles(setup),
+        obstacles,
         tracker_m: setup.tracker().map(|t| array(&t.position)),
         anchor_m: extras.rope.then(|| array(&setup.load().anchor)),
         ellipsoid_force_n: force,
@@ -421,7 +432,7 @@ pub fn ellipsoid(c: &Matrix3<f64>, centre: &Vector3<f64>, force: f64) -> Option<
 
 /// Refuses external values `e` (per posture) unless empty or one list per posture of values
 /// within the robot's external axes' limits.
-fn check_external(setup: &Setup, postures: usize, e: &[Vec<f64>]) -> crate::Result<()> {
+pub(crate) fn check_external(setup: &Setup, postures: usize, e: &[Vec<f64>]) -> crate::Result<()> {
     if e.is_empty() {
         return Ok(());
     }
@@ -439,10 +450,21 @@ fn check_external(setup: &Setup, postures: usize, e: &[Vec<f64>]) -> crate::Resu
         .try_for_each(|(i, v)| axes.check(v, &format!("external[{i}]")))
 }
 
-/// The cell's obstacles.
-fn obstacles(setup: &Setup) -> Vec<Obstacle> {
+/// The cell's obstacles, each that moves or stands turned with its frame in each of `postures`
+/// postures at its external values `external` (empty: every axis at 0).
+fn obstacles(setup: &Setup, external: &[Vec<f64>], postures: usize) -> Vec<Obstacle> {
     let Some(cell) = setup.cell() else {
         return Vec::new();
+    };
+    let axes = setup.robot().external();
+    let frames = |o: &crate::setup::Obstacle| -> Vec<Frame> {
+        if o.carried_by.is_none() && o.pose == Isometry3::identity() {
+            return Vec::new();
+        }
+        (0..postures)
+            .map(|i| external.get(i).map_or(&[][..], Vec::as_slice))
+            .map(|e| frame(&o.at(axes, e).pose))
+            .collect()
     };
     cell.obstacles
         .iter()
@@ -450,6 +472,8 @@ fn obstacles(setup: &Setup) -> Vec<Obstacle> {
             name: o.name.clone(),
             min_m: array(&o.min),
             max_m: array(&o.max),
+            carried_by: o.carried_by.clone(),
+            frames: frames(o),
         })
         .collect()
 }

@@ -46,11 +46,31 @@ function draw(root, scene) {
     robot: [material(0xb8bcc6, false), material(0x8a93a6, true)],
     tool: [material(0xf08c1a, false), material(0xf08c1a, true)],
     axis: [material(0x5f7fa8, false), material(0x5f7fa8, true)],
+    obstacle: [false, true].map((ghost) => new THREE.MeshStandardMaterial({
+      color: 0x6b8fb3, transparent: true, opacity: ghost ? 0.2 : 0.45, depthWrite: false,
+    })),
+  };
+  // An obstacle's box between its corners, in its own frame (the base frame without frames).
+  const obstacleBox = (o) => {
+    const s = v3(o.max_m).sub(v3(o.min_m));
+    const m = new THREE.Mesh(new THREE.BoxGeometry(s.x, s.y, s.z), materials.obstacle[0]);
+    m.position.copy(v3(o.min_m).add(v3(o.max_m)).multiplyScalar(0.5));
+    m.userData.kind = 'obstacle';
+    return m;
   };
   const axisParts = ['track', 'carriage', 'positioner table'];
   const kind = (l) => (l.part === 'tool' ? 'tool' : axisParts.includes(l.part) ? 'axis' : 'robot');
-  const robots = postures.map((p) => {
+  const robots = postures.map((p, i) => {
     const g = new THREE.Group();
+    // The boxes that move with the external axes, where this posture's values put them.
+    for (const o of scene.obstacles.filter((b) => b.frames.length)) {
+      const f = o.frames[i];
+      const at = new THREE.Group();
+      at.position.copy(v3(f.translation_m));
+      at.quaternion.set(...f.rotation_xyzw);
+      at.add(obstacleBox(o));
+      g.add(at);
+    }
     scene.links.forEach((l, k) => {
       const f = p.link_frames[k];
       const link = new THREE.Group();
@@ -75,7 +95,7 @@ function draw(root, scene) {
   for (const p of postures) box.expandByPoint(v3(p.tcp_m));
   if (scene.tracker_m) box.expandByPoint(v3(scene.tracker_m));
   if (scene.anchor_m) box.expandByPoint(v3(scene.anchor_m));
-  for (const o of scene.obstacles) { box.expandByPoint(v3(o.min_m)); box.expandByPoint(v3(o.max_m)); }
+  for (const o of scene.obstacles.filter((b) => !b.frames.length)) { box.expandByPoint(v3(o.min_m)); box.expandByPoint(v3(o.max_m)); }
   for (const q of scene.path) box.expandByPoint(v3(q.at_m));
   const size = Math.max(box.getSize(new THREE.Vector3()).length(), 0.5);
   const centre = box.getCenter(new THREE.Vector3());
@@ -101,13 +121,7 @@ function draw(root, scene) {
   grid.rotation.x = Math.PI / 2;
   grid.position.set(centre.x, centre.y, floorZ);
   world.add(grid);
-  for (const o of scene.obstacles) {
-    const s = v3(o.max_m).sub(v3(o.min_m));
-    const m = new THREE.Mesh(new THREE.BoxGeometry(s.x, s.y, s.z),
-      new THREE.MeshStandardMaterial({ color: 0x6b8fb3, transparent: true, opacity: 0.45, depthWrite: false }));
-    m.position.copy(v3(o.min_m).add(v3(o.max_m)).multiplyScalar(0.5));
-    world.add(m);
-  }
+  for (const o of scene.obstacles.filter((b) => !b.frames.length)) world.add(obstacleBox(o));
   if (scene.tracker_m) world.add(ball(scene.tracker_m, 0.06, 0x2b7a2b));
   if (scene.anchor_m) world.add(ball(scene.anchor_m, 0.04, 0x444444));
 
