@@ -22,28 +22,54 @@ use stiffid::app::plan::{self as job, Request};
 /// point to the anchor, the loading point's height, the expected displacement of every measuring
 /// point under the load with the nominal stiffness (Eq. 3-7), the cell's checks, and each joint's
 /// predicted deviation rate if that posture could not be measured (leave-one-out).
-/// ``InputError`` for a setup without a nominal stiffness, or a robot whose meshes were not found
-/// with a ``[cell]``.
+/// With external axes, ``external`` (shape ``(n, k)``, mm for a linear axis and deg for a rotary
+/// one, the cell's order) says where each posture is read, as the postures file's ``e1_mm``..
+/// columns do for the command: the plan works each posture out there and gives its values.
+/// ``InputError`` for a setup without a nominal stiffness, a robot whose meshes were not found
+/// with a ``[cell]``, or ``external`` not one row per posture of values within the axes' travel
+/// (or given for a robot without external axes); ``ValueError`` for a row of another length.
 #[pyfunction]
-#[pyo3(signature = (setup, postures_deg, *, criterion="relative-a", target_pct=None))]
+#[pyo3(signature = (setup, postures_deg, *, criterion="relative-a", target_pct=None, external=None))]
 pub fn plan<'py>(
     py: Python<'py>,
     setup: &Setup,
     postures_deg: &Bound<'py, PyAny>,
     criterion: &str,
     target_pct: Option<f64>,
+    external: Option<Vec<Vec<f64>>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let within = (s.robot().limits(), "the joint limits");
     let (group, _) = postures(postures_deg, "postures_deg", within, job::MAX_POSTURES)?;
+    let external = in_si(s, external.unwrap_or_default())?;
     let request = Request {
         setup: s,
         criterion: criterion.parse().map_err(raise)?,
         postures: &group,
         target_pct,
-        external: &[],
+        external: &external,
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     warn(py, &report.warnings)?;
     to_python(py, &Document::new(&report, s), &[])
+}
+
+/// Each row of external values (mm, deg) in SI; rows of another length, or for a robot without
+/// external axes, as given (the job refuses them naming `external`).
+pub(crate) fn in_si(s: &stiffid::Setup, rows: Vec<Vec<f64>>) -> PyResult<Vec<Vec<f64>>> {
+    let Some(axes) = s.robot().external() else {
+        return Ok(rows);
+    };
+    rows.into_iter()
+        .enumerate()
+        .map(|(i, e)| match e.len() == axes.len() {
+            true => Ok(axes.to_si(&e)),
+            false => Err(crate::error::value(format!(
+                "external[{i}]: expected {} values ({}), got {}",
+                axes.len(),
+                axes.column_names().join(", "),
+                e.len()
+            ))),
+        })
+        .collect()
 }

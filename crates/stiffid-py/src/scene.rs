@@ -98,7 +98,7 @@ pub fn scene(
         postures(p, "postures_deg", within, MAX_POSTURES).map(|(g, _)| g)
     };
     let inner = match doc {
-        None => plan_scene(py, s, &given(postures_deg)?)?,
+        None => plan_scene(py, s, &given(postures_deg)?, &[])?,
         Some(d) if d.get("residuals").is_some() => {
             let group = given(postures_deg)?;
             let text = d.to_string();
@@ -109,7 +109,7 @@ pub fn scene(
             return Err(value("postures_deg: the document's postures are its own"));
         }
         Some(d) if d.get("criterion").is_some() && d["postures"].is_array() => {
-            plan_scene(py, s, &plan_postures(&d)?)?
+            plan_scene(py, s, &plan_postures(&d)?, &plan_external(s, &d)?)?
         }
         Some(d) if d.get("errors").is_some() && d["postures"].is_array() => {
             let text = d.to_string();
@@ -140,21 +140,50 @@ fn own(doc: Option<&Value>) -> bool {
     })
 }
 
-/// The plan's scene of `group` ([`job::document::scene`]).
+/// The plan's scene of `group` ([`job::document::scene`]) at the external values `external`
+/// (SI, one row per posture; empty: every axis at 0).
 fn plan_scene(
     py: Python<'_>,
     s: &stiffid::Setup,
     group: &[Vector6<f64>],
+    external: &[Vec<f64>],
 ) -> PyResult<stiffid::app::document::scene::Scene> {
     let request = Request {
         setup: s,
         criterion: stiffid::design::Criterion::RelativeA,
         postures: group,
         target_pct: None,
-        external: &[],
+        external,
     };
     py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s)))
         .map_err(raise)
+}
+
+/// A plan document's external values (`postures[].e1_mm`, .., the cell's columns), SI; empty
+/// for a robot without external axes or a plan without them.
+fn plan_external(s: &stiffid::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> {
+    let Some(axes) = s.robot().external() else {
+        return Ok(Vec::new());
+    };
+    let columns = axes.column_names();
+    let list = d["postures"].as_array().into_iter().flatten();
+    let rows: Vec<Option<Vec<f64>>> = list
+        .map(|p| columns.iter().map(|c| p[c.as_str()].as_f64()).collect())
+        .collect();
+    match rows.iter().all(Option::is_none) {
+        true => Ok(Vec::new()),
+        false => {
+            let rows = rows.into_iter().enumerate().map(|(i, r)| {
+                r.ok_or_else(|| {
+                    value(format!(
+                        "document: postures[{i}]: expected the values {}",
+                        columns.join(", ")
+                    ))
+                })
+            });
+            crate::plan::in_si(s, rows.collect::<PyResult<_>>()?)
+        }
+    }
 }
 
 /// A plan document's postures (`postures[].q_deg`), rad.

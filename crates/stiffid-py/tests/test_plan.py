@@ -89,3 +89,29 @@ def test_a_plan_takes_at_most_1000_postures(paper):
     """The plan's leave-one-out is quadratic in the count: its maximum is 1000, refused beyond."""
     with pytest.raises(ValueError, match=r"postures_deg: expected 1 to 1000 postures, got 1001"):
         stiffid.plan(paper, np.zeros((1001, 6)))
+
+
+def test_a_plan_at_external_values_works_each_posture_out_there():
+    # The track cell: each posture read at its station and table angles, the rope from the
+    # loading point of the arm on its carriage (the flange where kinematics puts it) to the anchor.
+    setup = stiffid.Setup.from_file(REPO / "examples" / "track" / "track-cell.toml")
+    q = [[0, 30, 0, 0, 60, 0], [10, 35, -5, 0, 55, 0]]
+    external = [[3000, 0, 0], [3500, 10, 45]]
+    plan = stiffid.plan(setup, q, external=external)
+    for p, qi, e in zip(plan["postures"], q, external):
+        assert [p["e1_mm"], p["e2_deg"], p["e3_deg"]] == e
+        k = setup.robot.kinematics(qi, external=e)
+        flange = np.eye(4)
+        flange[:3, :3], flange[:3, 3] = k["flange_rotation"], k["flange_position_mm"]
+        loading = (flange @ np.append(setup.loading_point_mm, 1.0))[:3]
+        np.testing.assert_allclose(p["rope_length_mm"], np.linalg.norm(setup.anchor_mm - loading), rtol=1e-12)
+    at_zero = stiffid.plan(setup, q)
+    assert at_zero["postures"][0]["rope_length_mm"] != plan["postures"][0]["rope_length_mm"]
+    # The plan's scene stands the arm where the plan read it (SI: m, rad).
+    scene = stiffid.scene(setup, document=plan).document()
+    for shown, e in zip(scene["postures"], external):
+        np.testing.assert_allclose(shown["external"], [e[0] / 1e3, np.radians(e[1]), np.radians(e[2])], rtol=1e-12)
+    with pytest.raises(ValueError, match=r"external\[1\]: expected 3 values"):
+        stiffid.plan(setup, q, external=[[3000, 0, 0], [3500, 10]])
+    with pytest.raises(stiffid.InputError, match="external"):
+        stiffid.plan(setup, q, external=[[3000, 0, 0], [9000, 0, 0]])

@@ -439,8 +439,9 @@ def plan(
     *,
     criterion: _CriterionName = "relative-a",
     target_pct: Optional[float] = None,
+    external: Optional[Sequence[Sequence[float]]] = None,
 ) -> dict[str, Any]:
-    """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates."""
+    """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates; external (n, k) mm/deg, the cell's order: where each posture is read (its e1_mm.. in the document)."""
 class Scene:
     """The 3D scene of a plan or an identification (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, displacements; shown inline by Jupyter."""
 
