@@ -4,20 +4,12 @@
 use crate::common;
 
 use common::{
-    assert_success, assert_usage_error, identify_fanuc, json, numbers, stiffid, temp_dir,
+    assert_success, assert_usage_error, example, identify_fanuc, json, numbers, stiffid, temp_dir,
     write_file,
 };
 use std::path::Path;
 
 const FANUC_Q: &str = "--q-deg=-59.991,-16.693,-28.93,3.788,-62.93,144.919";
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 #[test]
 fn a_tool_frame_wrench_predicts_what_the_rotated_base_wrench_does() {

@@ -5,16 +5,9 @@
 //! make no sense), each refused with exit code 2 in one line naming the option, no panic,
 //! nothing written.
 
+use crate::common::example;
 use crate::common::{refused, temp_dir};
 use std::path::Path;
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// `compensate` of the milling example's path (`--free-lead-tilt` given) or of the track's
 /// table cut (a two-axis positioner), output into `{dir}`.

@@ -6,16 +6,8 @@
 
 use crate::common;
 
-use common::{assert_success, json, refused, stiffid, temp_dir, write_file};
+use common::{assert_success, example, json, refused, stiffid, temp_dir, write_file};
 use std::path::Path;
-
-pub(crate) fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// The CSV `csv`'s columns `names` of every row.
 fn columns(csv: &Path, names: &[&str]) -> Vec<Vec<f64>> {

@@ -4,16 +4,8 @@
 
 use crate::common;
 
-use common::{assert_success, assert_usage_error, stiffid, temp_dir, write_file};
+use common::{assert_success, assert_usage_error, example, stiffid, temp_dir, write_file};
 use std::path::Path;
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// Two teaching positions near the milling example's posture, 1000 pulses per degree.
 const JOB: &str = "/JOB\r\n//NAME CUT\r\n//POS\r\n///NPOS 2,0,0,0,0,0\r\n///TOOL 0\r\n///POSTYPE PULSE\r\n///PULSE\r\nC00000=-59991,-16693,-28930,3788,-62930,144919\r\nC00001=-58991,-16693,-28930,3788,-62930,144919\r\n//INST\r\n///DATE 2026/11/25 12:00\r\n///ATTR SC,RW\r\n///GROUP1 RB1\r\n'stiffid: pulses_per_deg = 1000 1000 1000 1000 1000 1000\r\nNOP\r\nMOVJ C00000 VJ=10.00\r\nMOVL C00001 V=20.0\r\nEND\r\n";

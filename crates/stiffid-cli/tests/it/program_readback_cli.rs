@@ -9,17 +9,9 @@
 
 use crate::common;
 
-use common::{assert_success, stiffid, temp_dir, write_file};
+use common::{assert_success, example, stiffid, temp_dir, write_file};
 use std::path::Path;
 use stiffid::machining::program::{self, Dialect};
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// The targets: axis angles (deg, whole hundredths for INFORM's 100 pulses per degree) near the
 /// cell's test posture and the external values: track (mm, the first 100 mm from the end of its

@@ -5,16 +5,8 @@
 
 use crate::common;
 
-use common::{assert_success, assert_usage_error, stiffid, temp_dir, write_file};
+use common::{assert_success, assert_usage_error, example, stiffid, temp_dir, write_file};
 use std::path::Path;
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// The pocket's move on `line` of the file at `speed` instead of 30mm/sec, compensated with the
 /// tool rotation free on the FANUC cell whose joints move at most 50 deg/s.

@@ -3,8 +3,9 @@
 //! rotation on the halved steps and within `--max-step-deg` of the previous point's; bad values
 //! refused naming `--refine`, nothing written.
 
+use crate::common::example;
 use crate::common::{json, refused, temp_dir};
-use crate::lead_tilt_cli::{example, milling};
+use crate::lead_tilt_cli::milling;
 
 /// The peak and the sum of the points' `bound_mm`, and their `tool_rotation_deg`.
 fn bounds(doc: &serde_json::Value) -> (f64, f64, Vec<f64>) {

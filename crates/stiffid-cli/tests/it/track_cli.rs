@@ -5,16 +5,8 @@
 
 use crate::common;
 
-use common::{assert_success, stiffid, temp_dir};
+use common::{assert_success, example, stiffid, temp_dir};
 use std::path::Path;
-
-fn example(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
 
 /// The trim line compensated with `extra` options: each row's `bound_mm` and `e1_mm`.
 fn trim(out: &Path, extra: &[&str]) -> Vec<(f64, f64)> {
