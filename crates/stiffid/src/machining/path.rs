@@ -106,11 +106,7 @@ pub fn points<'t>(
     default_frame: Frame,
     cell: Option<&ExternalAxes>,
 ) -> Result<impl Iterator<Item = Result<PathPoint>> + 't> {
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
+    let mut reader = reader(text);
     let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
     // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.
     let mut lines = crate::io::LineCount::with_comments(text.as_bytes());
@@ -159,11 +155,7 @@ fn row(
     before: usize,
     default_frame: Frame,
 ) -> Result<PathPoint> {
-    let record = record.map_err(|e| {
-        let line = e.position().map_or(0, |p| lines.at(p.byte()));
-        unreadable(line, &e)
-    })?;
-    let line = record.position().map_or(0, |p| lines.at(p.byte()));
+    let (record, line) = located(record, lines)?;
     if record.len() != names.len() {
         let count = ColumnProblem::FieldCount {
             expected: names.len(),
@@ -181,6 +173,29 @@ fn row(
     let mut point = point(columns, names, &record, line, default_frame)?;
     point.external = external.values(|i| &record[i], |i, p| at(names, line, i, p))?;
     Ok(point)
+}
+
+/// A path file's CSV reader: fields trimmed, rows of any length (checked against the header
+/// row by row), `#` lines skipped.
+fn reader(text: &str) -> csv::Reader<&[u8]> {
+    csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes())
+}
+
+/// A record read and its line, or the error naming the line where it could not be read.
+fn located(
+    record: csv::Result<csv::StringRecord>,
+    lines: &mut crate::io::LineCount,
+) -> Result<(csv::StringRecord, u64)> {
+    let record = record.map_err(|e| {
+        let line = e.position().map_or(0, |p| lines.at(p.byte()));
+        unreadable(line, &e)
+    })?;
+    let line = record.position().map_or(0, |p| lines.at(p.byte()));
+    Ok((record, line))
 }
 
 fn unreadable(line: u64, e: &csv::Error) -> Error {
@@ -360,11 +375,7 @@ fn feed(record: &csv::StringRecord, names: &[&str], i: usize, line: u64) -> Resu
 /// Those of [`points`] for the rows up to the first one whose feed is not a number within
 /// [`FEED_MM_S`] and above 0 ([`Error::Column`] naming its line and column).
 pub fn feeds(text: &str) -> Result<Option<Vec<Option<f64>>>> {
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
+    let mut reader = reader(text);
     let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
     let names: Vec<&str> = header.iter().collect();
     let Some(i) = names.iter().position(|n| *n == FEED) else {
@@ -373,11 +384,7 @@ pub fn feeds(text: &str) -> Result<Option<Vec<Option<f64>>>> {
     let mut lines = crate::io::LineCount::with_comments(text.as_bytes());
     let mut out = Vec::new();
     for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map_or(0, |p| lines.at(p.byte()));
-            unreadable(line, &e)
-        })?;
-        let line = record.position().map_or(0, |p| lines.at(p.byte()));
+        let (record, line) = located(record, &mut lines)?;
         match record.get(i) {
             Some(_) => out.push(feed(&record, &names, i, line)?),
             None => out.push(None),
