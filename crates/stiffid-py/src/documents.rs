@@ -1,12 +1,13 @@
 //! The library's documents ([`stiffid::app::document`]) as Python objects, and the jobs' warnings as
 //! `UserWarning`s: the one way Python results are built, so they equal the command's JSON.
 
+use crate::error::value;
 use numpy::PyArray1;
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde::Serialize;
-use serde_json::Value;
+use serde_json::{Map, Number, Value};
 use std::ffi::CString;
 use stiffid::common::warning::Warning;
 
@@ -102,4 +103,50 @@ pub fn warn(py: Python<'_>, warnings: &[Warning]) -> PyResult<()> {
         PyErr::warn(py, category.as_any(), &message, 1)?;
     }
     Ok(())
+}
+
+/// A document of Python objects (dicts, lists, tuples, NumPy arrays, numbers, strings, None; an
+/// object with `to_dict`) as JSON; NaN as null.
+pub fn json(o: &Bound<'_, PyAny>) -> PyResult<Value> {
+    if o.is_none() {
+        return Ok(Value::Null);
+    }
+    if let Ok(b) = o.cast::<PyBool>() {
+        return Ok(Value::Bool(b.is_true()));
+    }
+    if let Ok(i) = o.cast::<PyInt>() {
+        return Ok(match i.extract::<i64>() {
+            Ok(v) => Value::Number(v.into()),
+            Err(_) => Value::Number(Number::from_f64(i.extract::<f64>()?).unwrap_or(0.into())),
+        });
+    }
+    if let Ok(s) = o.cast::<PyString>() {
+        return Ok(Value::String(s.to_string()));
+    }
+    if let Ok(d) = o.cast::<PyDict>() {
+        let mut map = Map::new();
+        for (k, v) in d.iter() {
+            map.insert(k.str()?.to_string(), json(&v)?);
+        }
+        return Ok(Value::Object(map));
+    }
+    if o.cast::<PyList>().is_ok() || o.cast::<PyTuple>().is_ok() {
+        return o
+            .try_iter()?
+            .map(|v| json(&v?))
+            .collect::<PyResult<_>>()
+            .map(Value::Array);
+    }
+    if o.cast::<PyFloat>().is_ok() || o.hasattr("__float__")? && !o.hasattr("tolist")? {
+        return Ok(Number::from_f64(o.extract::<f64>()?).map_or(Value::Null, Value::Number));
+    }
+    for method in ["to_dict", "tolist"] {
+        if o.hasattr(method)? {
+            return json(&o.call_method0(method)?);
+        }
+    }
+    Err(value(format!(
+        "document: a {} is not part of a document",
+        o.get_type().name()?
+    )))
 }

@@ -3,9 +3,8 @@
 //! the commands' reports build it, shown inline in Jupyter and written as HTML or glTF binary.
 
 use crate::arrays::postures;
-use crate::documents::to_python;
+use crate::documents::{json, to_python};
 use crate::error::{raise, value};
-use crate::figures::json;
 use crate::setup::Setup;
 use nalgebra::Vector6;
 use pyo3::prelude::*;
