@@ -3,13 +3,12 @@
 //! calibration design of a setup that the last three score groups with
 //! ([`crate::design::observability`]).
 
-use super::calibrate;
 use crate::common::error::JobOption;
 use crate::design::observability::{CalibrationCriterion, CalibrationDesign, Placed, TableDesign};
 use crate::design::{random_group, CalibrationGoal, Criterion, Goal};
 use crate::metrology::calibration::error_model::MeasuredIn;
 use crate::metrology::calibration::gravity::Gravity;
-use crate::metrology::calibration::Geometry;
+use crate::metrology::calibration::{self, Geometry};
 use crate::robot::external::{AxisKind, ExternalAxes, ExternalValues};
 use crate::{Error, Result, Setup};
 
@@ -201,7 +200,7 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// machining region; the reference postures without them) and the setup's noise per coordinate.
 ///
 /// # Errors
-/// Those of [`calibrate::model`] and [`CalibrationDesign::new`] (the options are checked
+/// Those of [`calibration::model`] and [`CalibrationDesign::new`] (the options are checked
 /// by [`check`]).
 ///
 /// On a robot with a carrier (a track), the model has the track's parameters too (its direction
@@ -215,7 +214,7 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// points and as the readings a group is scored with until `select` chooses its own
 /// ([`CalibrationDesign::new_with_table`]).
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
-    let model = calibrate::model(
+    let model = calibration::model(
         setup,
         MeasuredIn::Tracker,
         options.geometry(),

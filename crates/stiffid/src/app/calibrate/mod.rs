@@ -43,7 +43,7 @@ use crate::metrology::calibration::fit::{self, Fit, Options, Priors};
 use crate::metrology::calibration::gravity::{self, Gravity};
 use crate::metrology::calibration::intervals::{self, Coverage, Intervals};
 use crate::metrology::calibration::validation::{self, Validation};
-use crate::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
+use crate::metrology::calibration::{model, robot_file, ErrorModel, Estimate, Geometry};
 use crate::observation::deflection::base_wrench;
 use crate::observation::frames::DisplacementFrame;
 use crate::{Error, Result, Setup};
@@ -251,29 +251,6 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
         })
         .collect();
     (obs, measured_in)
-}
-
-/// The error model of `setup` for readings in `measured_in`.
-///
-/// # Errors
-/// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses; those
-/// of [`ErrorModel::new`] and [`gravity::Terms::of`].
-pub fn model(
-    setup: &Setup,
-    measured_in: MeasuredIn,
-    geometry: Geometry,
-    gravity: Gravity,
-) -> Result<ErrorModel> {
-    let robot = setup.robot();
-    let nominal = setup.nominal_compliance().unwrap_or_default();
-    let g = gravity::Terms::of(robot, gravity, setup.springs(), nominal)?;
-    ErrorModel::new(
-        robot,
-        &setup.tool().measuring_points,
-        measured_in,
-        geometry,
-        g,
-    )
 }
 
 /// Runs the job.

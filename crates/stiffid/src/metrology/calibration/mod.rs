@@ -8,7 +8,7 @@
 //! - [`error_model`]: the parameters ([`Parameter`]: name, kind, unit, nominal) of a complete
 //!   error model of every chain stiffid reads (DH, modified DH, URDF, with its axis map), the
 //!   predicted reflector positions and their identification Jacobian (analytic, from the joint
-//!   screws), with the column scaling.
+//!   screws), with the column scaling; [`model`]: the error model of a setup, as `calibrate` fits it.
 //! - [`identifiability`]: which parameters the readings determine, by QR with column pivoting on
 //!   the column-scaled Jacobian: the rank, the condition number, the parameters merged and into
 //!   which, the correlations above [`identifiability::CORRELATION_REPORTED`].
@@ -37,6 +37,32 @@ pub mod validation;
 pub use error_model::{
     AxisPart, Component, ErrorModel, Estimate, Geometry, Kind, Parameter, Target,
 };
+
+use crate::{Result, Setup};
+use error_model::MeasuredIn;
+
+/// The error model of `setup` for readings in `measured_in`.
+///
+/// # Errors
+/// [`crate::Error::InvalidField`] (`gravity`) for [`gravity::Gravity::Masses`] with a robot without masses; those
+/// of [`ErrorModel::new`] and [`gravity::Terms::of`].
+pub fn model(
+    setup: &Setup,
+    measured_in: MeasuredIn,
+    geometry: Geometry,
+    gravity: gravity::Gravity,
+) -> Result<ErrorModel> {
+    let robot = setup.robot();
+    let nominal = setup.nominal_compliance().unwrap_or_default();
+    let g = gravity::Terms::of(robot, gravity, setup.springs(), nominal)?;
+    ErrorModel::new(
+        robot,
+        &setup.tool().measuring_points,
+        measured_in,
+        geometry,
+        g,
+    )
+}
 
 #[cfg(test)]
 mod backlash_tests;
