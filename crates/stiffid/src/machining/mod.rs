@@ -53,6 +53,7 @@ pub mod gcode;
 pub mod path;
 pub mod process;
 pub mod program;
+mod text;
 pub mod weight;
 
 use crate::common::words::{count, is_are};

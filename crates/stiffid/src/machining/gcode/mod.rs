@@ -203,7 +203,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         blocks: Vec::new(),
         text: text.to_string(),
     };
-    for (line, start, l) in super::program::lines(text) {
+    for (line, start, l) in super::text::lines(text) {
         if line as usize > MAX_BLOCKS {
             return Err(at(line, format!("more than {MAX_BLOCKS} lines")));
         }

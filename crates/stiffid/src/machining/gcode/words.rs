@@ -44,7 +44,7 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
                 format!("'{c}': expected a word (a letter and a number)"),
             ));
         }
-        let (value, span) = crate::machining::program::number_at(l, i + 1).ok_or_else(|| {
+        let (value, span) = crate::machining::text::number_at(l, i + 1).ok_or_else(|| {
             at(
                 line,
                 format!("{letter}: expected a number after the letter"),
