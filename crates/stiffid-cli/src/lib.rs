@@ -91,7 +91,7 @@ enum Command {
 /// Runs the command on the process's arguments: the exit code (0 success, 2 bad input with one
 /// `error:` line on stderr). The binary calls it once the standard streams are checked.
 pub fn run() -> ExitCode {
-    if let Err(message) = stiffid::common::threads::start() {
+    if let Err(message) = stiffid_core::common::threads::start() {
         return fail(&message);
     }
     let cli = match command()
@@ -108,11 +108,11 @@ pub fn run() -> ExitCode {
             };
         }
     };
-    if cli.package_path.len() > stiffid::setup::MAX_PACKAGE_PATHS {
+    if cli.package_path.len() > stiffid_core::setup::MAX_PACKAGE_PATHS {
         return fail(&format!(
             "--package-path: {} given, at most {}",
             cli.package_path.len(),
-            stiffid::setup::MAX_PACKAGE_PATHS
+            stiffid_core::setup::MAX_PACKAGE_PATHS
         ));
     }
     load::set_package_paths(cli.package_path);
@@ -198,12 +198,14 @@ fn usage_error(e: &clap::Error) -> ExitCode {
 /// The command's own hint for a library error that a command can mend: which command writes a
 /// missing setup field, which shows why postures are infeasible.
 fn hint(e: &anyhow::Error) -> &'static str {
-    let error = e.chain().find_map(|c| c.downcast_ref::<stiffid::Error>());
+    let error = e
+        .chain()
+        .find_map(|c| c.downcast_ref::<stiffid_core::Error>());
     match error {
-        Some(stiffid::Error::MissingField { field, .. }) if !field.starts_with("test.") => {
+        Some(stiffid_core::Error::MissingField { field, .. }) if !field.starts_with("test.") => {
             "; `stiffid setups new --robot R` writes it"
         }
-        Some(stiffid::Error::Infeasible { .. }) => {
+        Some(stiffid_core::Error::Infeasible { .. }) => {
             "; `stiffid evaluate --postures FILE` shows every posture's checks"
         }
         _ => "",

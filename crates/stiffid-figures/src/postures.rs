@@ -9,9 +9,9 @@ use nalgebra::{Vector3, Vector6};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::cell::{bodies, Body, Part};
-use stiffid::study::Study;
-use stiffid::Setup;
+use stiffid_core::cell::{bodies, Body, Part};
+use stiffid_core::Setup;
+use stiffid_design::study::Study;
 
 /// The points of one posture's stick figure (base frame, m), and its loading point.
 pub struct Stick {

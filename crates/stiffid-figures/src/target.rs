@@ -6,7 +6,7 @@ use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::design::target::TargetOutcome;
+use stiffid_design::target::TargetOutcome;
 
 struct Target<'a>(&'a TargetOutcome);
 

@@ -1,5 +1,5 @@
 //! `stiffid.calibrate`: the robot calibration job of `stiffid calibrate`
-//! ([`stiffid::app::calibrate`]) and the calibrated robot's files.
+//! ([`stiffid_calibrate::app::calibrate`]) and the calibrated robot's files.
 
 use crate::documents::{to_python, warn};
 use crate::error::{self, raise, value};
@@ -8,9 +8,9 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::app::calibrate::document::Document;
-use stiffid::app::calibrate::{self as job, Tolerances};
-use stiffid::app::readings::Request as Readings;
+use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
+use stiffid_metrology::app::readings::Request as Readings;
 
 /// Calibrates the robot from the ``readings`` of a campaign (a CSV path in the ``stiffid
 /// register --data`` format: ``posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm``
@@ -115,7 +115,7 @@ pub fn calibrate<'py>(
     let weight = match &stiffness {
         Some(p) => {
             let name = p.display().to_string();
-            let file = stiffid::io::stiffness::parse(&error::read(p)?)
+            let file = stiffid_core::io::stiffness::parse(&error::read(p)?)
                 .map_err(|e| error::raise_in(&name, e))?;
             (file.compliance(setup.inner.model()))
                 .map_err(|e| error::raise_in(&name, e))?
@@ -155,8 +155,8 @@ pub fn calibrate<'py>(
         cross_validate,
         priors,
         progress: &(),
-        maps: stiffid::metrology::calibration::maps::Spec::parse(maps).map_err(raise)?,
-        error_motions: stiffid::metrology::calibration::motions::Spec::parse(error_motions)
+        maps: stiffid_metrology::calibration::maps::Spec::parse(maps).map_err(raise)?,
+        error_motions: stiffid_metrology::calibration::motions::Spec::parse(error_motions)
             .map_err(raise)?,
         level,
         update,

@@ -1,5 +1,5 @@
 //! `stiffid.compensate`: deflection compensation of a machining path, over
-//! [`stiffid::machining::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
+//! [`stiffid_machining::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
 //! steps; the free tool axis after Caro et al., ICRA 2013, and Xiong et al., RCIM 2019).
 
 use crate::arrays;
@@ -10,17 +10,17 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
-use stiffid::app::compensate::{self as job, Input, Request};
-use stiffid::machining::compensate::{
+use stiffid_core::observation::deflection::Frame;
+use stiffid_machining::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
+use stiffid_machining::app::compensate::{self as job, Input, Request};
+use stiffid_machining::compensate::{
     Aggregate, Compensated, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
     FreeToolAxis, MapVariable, Objective, Options, PathPoint, Scope,
 };
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::machining::process::file;
-use stiffid::machining::program::generate::{Settings, Targets};
-use stiffid::machining::Language;
-use stiffid::observation::deflection::Frame;
+use stiffid_machining::dynamics::Dynamics;
+use stiffid_machining::process::file;
+use stiffid_machining::program::generate::{Settings, Targets};
+use stiffid_machining::Language;
 
 /// Compensates a machining path with the stiffness ``stiffness`` of every parameter of the setup's
 /// model: one number per parameter (the six drives, Nm/rad, then the virtual springs, Nm/rad or
@@ -263,7 +263,7 @@ pub fn compensate<'py>(
     let mut results: Vec<Compensated> = Vec::new();
     let mut rows: Vec<Row> = Vec::new();
     let mut dynamics: Vec<Vec<Option<f64>>> = Vec::new();
-    let at = (stiffid::app::compensate::document::header().iter())
+    let at = (stiffid_machining::app::compensate::document::header().iter())
         .position(|h| h == DYNAMICS[0])
         .unwrap_or(0);
     let report = py
@@ -278,7 +278,7 @@ pub fn compensate<'py>(
                     }
                     points.extend_from_slice(p);
                     results.extend_from_slice(r);
-                    Ok::<(), stiffid::Error>(())
+                    Ok::<(), stiffid_core::Error>(())
                 },
             )
         })
@@ -366,7 +366,7 @@ fn map_over(map: Option<&Bound<'_, PyAny>>) -> PyResult<(bool, MapVariable)> {
 /// The compensation's options from the arguments.
 pub(crate) fn options(
     py: Python<'_>,
-    s: &stiffid::Setup,
+    s: &stiffid_core::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,
     free_tool_axis: Option<(f64, f64)>,
     objective: Option<&str>,
@@ -376,7 +376,7 @@ pub(crate) fn options(
         let r = s.robot();
         let within = (r.limits(), "the joint limits");
         options.q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
-        let warning = stiffid::setup::plausibility::radians_in_option("q0_deg", &options.q0);
+        let warning = stiffid_core::setup::plausibility::radians_in_option("q0_deg", &options.q0);
         warn(py, &Vec::from_iter(warning))?;
     }
     let objective = objective.map(str::parse::<Objective>).transpose();
@@ -434,7 +434,7 @@ fn table<'py>(
     out.set_item("tilt_deg", column(&|c| c.tilt.to_degrees()))?;
     let bound = |c: &Compensated| c.budget.bound * 1e3;
     out.set_item("bound_mm", column(&bound))?;
-    let names = stiffid::machining::compensate::budget::PARTS;
+    let names = stiffid_machining::compensate::budget::PARTS;
     for (k, name) in names.iter().enumerate() {
         let part = move |c: &Compensated| c.budget.parts()[k].map_or(f64::NAN, |v| v * 1e3);
         out.set_item(format!("bound_{name}_mm"), column(&part))?;

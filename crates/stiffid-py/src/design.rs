@@ -1,21 +1,21 @@
 //! `Setup.evaluate` and `Setup.select`: the library's evaluate and select jobs
-//! ([`stiffid::app::evaluate`], [`stiffid::app::select`]), their documents as dicts.
+//! ([`stiffid_design::app::evaluate`], [`stiffid_design::app::select`]), their documents as dicts.
 
 use crate::documents::{to_python, warn};
 use crate::error::{raise, value};
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use stiffid::app::purpose::{CalibrationOptions, Purpose};
-use stiffid::app::{evaluate, select};
-use stiffid::app::{
+use stiffid_core::common::choice::Choice;
+use stiffid_core::common::limits::{self, check_count};
+use stiffid_core::Setup;
+use stiffid_design::app::purpose::{CalibrationOptions, Purpose};
+use stiffid_design::app::{evaluate, select};
+use stiffid_design::app::{
     evaluate::document::Document as Evaluated, select::document::Document as Selected,
 };
-use stiffid::common::choice::Choice;
-use stiffid::common::limits::{self, check_count};
-use stiffid::design::distinct::Distinctness;
-use stiffid::design::SearchOptions;
-use stiffid::Setup;
+use stiffid_design::distinct::Distinctness;
+use stiffid_design::SearchOptions;
 
 /// The keys of the evaluate document returned as NumPy arrays.
 const CRITERIA_ARRAYS: [&str; 2] = ["relative_std", "predicted_deviation_pct"];
@@ -183,7 +183,7 @@ pub fn check_postures(n: usize) -> PyResult<()> {
 fn stations(
     setup: &Setup,
     given: &[Vec<f64>],
-) -> PyResult<Vec<stiffid::robot::external::ExternalValues>> {
+) -> PyResult<Vec<stiffid_core::robot::external::ExternalValues>> {
     let Some(axes) = setup.robot().external() else {
         return match given.is_empty() {
             true => Ok(Vec::new()),
@@ -201,7 +201,7 @@ fn stations(
                     s.len()
                 )));
             }
-            stiffid::robot::external::ExternalValues::new(&axes.to_si(s)).map_err(raise)
+            stiffid_core::robot::external::ExternalValues::new(&axes.to_si(s)).map_err(raise)
         })
         .collect()
 }

@@ -1,4 +1,4 @@
-//! The library's documents ([`stiffid::app::document`]) as Python objects, and the jobs' warnings as
+//! The library's documents ([`stiffid_core::app::document`]) as Python objects, and the jobs' warnings as
 //! `UserWarning`s: the one way Python results are built, so they equal the command's JSON.
 
 use crate::error::value;
@@ -9,7 +9,7 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde::Serialize;
 use serde_json::{Map, Number, Value};
 use std::ffi::CString;
-use stiffid::common::warning::Warning;
+use stiffid_core::common::warning::Warning;
 
 /// `document` as Python objects (JSON's: dict, list, str, int, float, bool, None), with the keys
 /// of `arrays` (at the top level) as NumPy float arrays (`null` as NaN).

@@ -1,6 +1,6 @@
 //! `stiffid.process_force` and `stiffid.read_program`: the process forces of a process file
-//! ([`stiffid::app::force`]) and the path of a machining program
-//! ([`stiffid::app::compensate::read_program`]), as the command reads them.
+//! ([`stiffid_machining::app::force`]) and the path of a machining program
+//! ([`stiffid_machining::app::compensate::read_program`]), as the command reads them.
 
 use crate::arrays;
 use crate::documents::to_python;
@@ -9,13 +9,13 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::app::force::document::Document;
-use stiffid::app::{compensate, force};
-use stiffid::machining::gcode::Motion;
-use stiffid::machining::process::file;
-use stiffid::machining::program::speed::Speed;
-use stiffid::machining::program::JointProgram;
-use stiffid::machining::{Language, Program};
+use stiffid_machining::app::force::document::Document;
+use stiffid_machining::app::{compensate, force};
+use stiffid_machining::gcode::Motion;
+use stiffid_machining::process::file;
+use stiffid_machining::program::speed::Speed;
+use stiffid_machining::program::JointProgram;
+use stiffid_machining::{Language, Program};
 
 /// The mean cutting force of every operation of the process file ``process`` (TOML, the format
 /// of ``stiffid force --process``), over one revolution, in the feed frame ``[feed, normal,
@@ -129,7 +129,7 @@ pub fn read_program<'py>(
 }
 
 /// A robot program's speeds into `out` (module docs of
-/// [`stiffid::machining::program::speed`]): `joint`, `feed_mm_s`, `time_s`, `speed_not_read`.
+/// [`stiffid_machining::program::speed`]): `joint`, `feed_mm_s`, `time_s`, `speed_not_read`.
 fn speeds(py: Python<'_>, out: &Bound<'_, PyDict>, r: &JointProgram) -> PyResult<()> {
     let of = |f: fn(&Speed) -> f64| {
         let values = r.targets.iter().map(|t| f(&t.speed)).collect();

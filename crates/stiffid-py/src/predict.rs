@@ -1,5 +1,5 @@
 //! `stiffid.predict` and `stiffid.deflection`: the predict job of `stiffid predict`
-//! ([`stiffid::app::predict`]), for one posture or for each of many.
+//! ([`stiffid_core::app::predict`]), for one posture or for each of many.
 
 use crate::arrays::{self, rows};
 use crate::documents;
@@ -8,12 +8,12 @@ use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
-use stiffid::app::predict as job;
-use stiffid::app::predict::document::Document;
-use stiffid::common::limits;
-use stiffid::model::Compliance;
-use stiffid::observation::deflection::Frame;
-use stiffid::setup::plausibility::radians_in_option;
+use stiffid_core::app::predict as job;
+use stiffid_core::app::predict::document::Document;
+use stiffid_core::common::limits;
+use stiffid_core::model::Compliance;
+use stiffid_core::observation::deflection::Frame;
+use stiffid_core::setup::plausibility::radians_in_option;
 
 /// The forward model (Zhang et al. 2021, Eq. 3-7) of one posture ``q_deg`` (shape ``(6,)``, deg,
 /// within the joint limits) under ``wrench`` (``[fx, fy, fz, mx, my, mz]``, N and Nm, in
@@ -121,7 +121,7 @@ pub fn deflection<'py>(
     let documents = documents.map_err(|b| raise_in(&format!("posture {}", b.0), b.1))?;
     // Each distinct warning once: the mass model's and a stiffness file without its region are
     // every posture's; a posture outside the region is its own.
-    let mut warnings: Vec<stiffid::common::warning::Warning> = Vec::new();
+    let mut warnings: Vec<stiffid_core::common::warning::Warning> = Vec::new();
     for w in documents.iter().flat_map(|d| &d.warnings) {
         if !warnings.contains(w) {
             warnings.push(w.clone());
@@ -184,7 +184,7 @@ impl Options {
         setup: &Setup,
         q: Vector6<f64>,
         wrench: Vector6<f64>,
-    ) -> stiffid::Result<Document> {
+    ) -> stiffid_core::Result<Document> {
         let s = &setup.inner;
         let report = job::run(job::Request {
             setup: s,

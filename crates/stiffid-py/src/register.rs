@@ -1,7 +1,7 @@
 //! `stiffid.register` and `stiffid.calibrate_cell`: the tracker's transform from raw readings
-//! ([`stiffid::app::register`]) and the transform with the measuring points fitted together
-//! ([`stiffid::app::calibrate_cell`]), as the command computes them; the postures to register in
-//! ([`stiffid::app::register::propose`]).
+//! ([`stiffid_calibrate::app::register`]) and the transform with the measuring points fitted together
+//! ([`stiffid_calibrate::app::calibrate_cell`]), as the command computes them; the postures to register in
+//! ([`stiffid_calibrate::app::register::propose`]).
 
 use crate::count;
 use crate::documents::{to_python, warn};
@@ -10,17 +10,17 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::app::calibrate_cell as calibrate_job;
-use stiffid::app::calibrate_cell::document::Calibration;
-use stiffid::app::register as register_job;
-use stiffid::app::register::document::{Document, Proposal};
-use stiffid::design::registration as design;
+use stiffid_calibrate::app::calibrate_cell as calibrate_job;
+use stiffid_calibrate::app::calibrate_cell::document::Calibration;
+use stiffid_calibrate::app::register as register_job;
+use stiffid_calibrate::app::register::document::{Document, Proposal};
+use stiffid_design::registration as design;
 
 /// The readings of `path` as a job's request runs on them.
 fn with_request<T>(
     setup: &Setup,
     (path, force): (PathBuf, bool),
-    job: impl FnOnce(&register_job::Request<'_>) -> stiffid::Result<T>,
+    job: impl FnOnce(&register_job::Request<'_>) -> stiffid_core::Result<T>,
 ) -> PyResult<T> {
     let text = error::read(&path)?;
     let request = register_job::Request {
@@ -93,7 +93,7 @@ pub fn register<'py>(
             return to_python(py, &Proposal::new(&report, &setup.given), &[]);
         }
         _ => {
-            return Err(raise(stiffid::Error::InvalidField {
+            return Err(raise(stiffid_core::Error::InvalidField {
                 field: "readings".into(),
                 message: "give the readings to register from, or postures=N to propose, not both"
                     .into(),

@@ -1,5 +1,5 @@
 //! `stiffid.scene`: the 3D scene of a group of postures, a plan, an identification, a
-//! calibration or a compensation ([`stiffid::app::document::scene`]), built by the library as
+//! calibration or a compensation ([`stiffid_view`]), built by the library as
 //! the commands' reports build it, shown inline in Jupyter and written as HTML or glTF binary.
 
 use crate::arrays::postures;
@@ -10,8 +10,8 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyBytes, PyDict};
 use serde_json::Value;
-use stiffid::app::document::scene::{glb, page, MAX_POSTURES};
-use stiffid::app::plan::{self as job, Request};
+use stiffid_design::app::plan::{self as job, Request};
+use stiffid_view::{glb, page, MAX_POSTURES};
 
 /// The 3D scene of a plan, an identification, a calibration or a compensation
 /// (``stiffid.scene``): the robot at each posture in the cell, the tracker's lines of sight, the
@@ -20,7 +20,7 @@ use stiffid::app::plan::{self as job, Request};
 /// in their pages and write it as ``.glb``.
 #[pyclass(frozen, module = "stiffid", name = "Scene")]
 pub struct Scene {
-    inner: stiffid::app::document::scene::Scene,
+    inner: stiffid_view::Scene,
 }
 
 #[pymethods]
@@ -101,7 +101,7 @@ pub fn scene(
         Some(d) if d.get("residuals").is_some() => {
             let group = given(postures_deg)?;
             let text = d.to_string();
-            py.detach(|| stiffid::app::identify::document::scene::scene(s, &group, &[], &text))
+            py.detach(|| stiffid_identify::app::identify::document::scene::scene(s, &group, &[], &text))
                 .map_err(raise)?
         }
         Some(_) if postures_deg.is_some() && own(doc.as_ref()) => {
@@ -112,12 +112,12 @@ pub fn scene(
         }
         Some(d) if d.get("errors").is_some() && d["postures"].is_array() => {
             let text = d.to_string();
-            py.detach(|| stiffid::app::calibrate::scene::scene(s, &text))
+            py.detach(|| stiffid_calibrate::app::calibrate::scene::scene(s, &text))
                 .map_err(raise)?
         }
         Some(d) if d["summary"].get("scene").is_some() => {
             let text = d.to_string();
-            py.detach(|| stiffid::app::compensate::scene::of_document(s, &text))
+            py.detach(|| stiffid_machining::app::compensate::scene::of_document(s, &text))
                 .map_err(raise)?
                 .ok_or_else(|| value("document: the compensation's path is empty: no scene"))?
         }
@@ -143,13 +143,13 @@ fn own(doc: Option<&Value>) -> bool {
 /// (SI, one row per posture; empty: every axis at 0).
 fn plan_scene(
     py: Python<'_>,
-    s: &stiffid::Setup,
+    s: &stiffid_core::Setup,
     group: &[Vector6<f64>],
     external: &[Vec<f64>],
-) -> PyResult<stiffid::app::document::scene::Scene> {
+) -> PyResult<stiffid_view::Scene> {
     let request = Request {
         setup: s,
-        criterion: stiffid::design::Criterion::RelativeA,
+        criterion: stiffid_design::Criterion::RelativeA,
         postures: group,
         target_pct: None,
         external,
@@ -160,7 +160,7 @@ fn plan_scene(
 
 /// A plan document's external values (`postures[].e1_mm`, .., the cell's columns), SI; empty
 /// for a robot without external axes or a plan without them.
-fn plan_external(s: &stiffid::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> {
+fn plan_external(s: &stiffid_core::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> {
     let Some(axes) = s.robot().external() else {
         return Ok(Vec::new());
     };

@@ -7,10 +7,10 @@ use crate::error::{self, raise};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use std::path::PathBuf;
-use stiffid::common::limits;
-use stiffid::io::stiffness;
-use stiffid::model::{Compliance, ParameterKind};
-use stiffid::Setup;
+use stiffid_core::common::limits;
+use stiffid_core::io::stiffness;
+use stiffid_core::model::{Compliance, ParameterKind};
+use stiffid_core::Setup;
 
 /// The compliance of every parameter of `setup`'s model from `obj`: the path of a stiffness JSON
 /// file (as `identify(...)` and `stiffid identify --out` write it; its covariance when present),
@@ -49,7 +49,7 @@ pub fn compliance(
         covariance,
         prediction: None,
         own_weight: None,
-        region: stiffid::model::Region::NotIdentified,
+        region: stiffid_core::model::Region::NotIdentified,
         model_form: None,
     })
 }

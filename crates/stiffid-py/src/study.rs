@@ -1,18 +1,18 @@
 //! `stiffid.simulate` and `stiffid.reproduce`: the Monte Carlo identification of groups of
-//! postures and the paper's simulation study, over [`stiffid::study::simulate`] and [`stiffid::study`].
+//! postures and the paper's simulation study, over [`stiffid_design::study::simulate`] and [`stiffid_design::study`].
 
 use crate::documents::{to_python, warn};
 use crate::error::{raise, value};
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
-use stiffid::app::reproduce as job_reproduce;
-use stiffid::app::reproduce::document::Summary;
-use stiffid::app::simulate as job;
-use stiffid::app::simulate::document::Document;
-use stiffid::common::limits::{self, check_count};
-use stiffid::study::simulate as monte_carlo;
-use stiffid::study::Options;
+use stiffid_core::common::limits::{self, check_count};
+use stiffid_design::app::reproduce as job_reproduce;
+use stiffid_design::app::reproduce::document::Summary;
+use stiffid_design::app::simulate as job;
+use stiffid_design::app::simulate::document::Document;
+use stiffid_design::study::simulate as monte_carlo;
+use stiffid_design::study::Options;
 
 /// A count within `[min, max]` (`field` names it in errors, a negative one too).
 fn count(field: &str, v: i64, min: u64, max: u64) -> PyResult<usize> {
@@ -122,7 +122,7 @@ pub fn reproduce<'py>(
     let setup = match setup {
         Some(s) => &s.inner,
         None => {
-            paper = stiffid::setup::builtin("zhang2021-comau-nj165").map_err(raise)?;
+            paper = stiffid_core::setup::builtin("zhang2021-comau-nj165").map_err(raise)?;
             &paper
         }
     };

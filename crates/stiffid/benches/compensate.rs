@@ -13,6 +13,7 @@ use nalgebra::{Translation3, Vector6};
 use std::hint::black_box;
 use stiffid::identify::cross_validation::{cross_validate, Method};
 use stiffid::identify::prediction::calibrate;
+use stiffid::identify::Identify;
 use stiffid::machining::compensate::{self, Options, PathPoint, Target};
 use stiffid::model::Compliance;
 use stiffid::observation::deflection::Frame;

@@ -7,6 +7,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector6;
 use std::hint::black_box;
 use stiffid::identify::cross_validation::Method;
+use stiffid::identify::Identify;
 use stiffid::identify::{cross_validate, Loss};
 use stiffid::io::measurements;
 use stiffid::observation::{Measurement, Observations};

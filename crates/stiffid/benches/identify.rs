@@ -3,6 +3,7 @@
 //! confidence intervals). Target: < 5 microseconds median. Also the kinematics that build `Psi` from
 //! the 24 measurements, and the whole path, for reference.
 
+use stiffid::identify::Identify;
 #[path = "../tests/it/common.rs"]
 mod common;
 

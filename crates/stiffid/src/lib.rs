@@ -1,7 +1,17 @@
 //! # stiffid
 //!
-//! Joint stiffness identification of 6-axis serial industrial robots, and the design of its
-//! experiment: which postures to measure in.
+//! Joint stiffness identification of 6-axis serial industrial robots, the design of its
+//! experiment (which postures to measure in), calibration and deflection compensation for robotic
+//! machining: the library under one name. Each concern is a crate of its own, re-exported here:
+//!
+//! - `stiffid-core` ([`robot`], [`model`], [`setup`], [`observation`], [`cell`], [`io`],
+//!   [`math`], [`common`], the jobs' pattern in [`app`]): what every stage stands on;
+//! - `stiffid-view` ([`app::document::scene`]): the 3D scenes (glTF, three.js page);
+//! - `stiffid-metrology` ([`metrology`]): registration, cell and robot calibration;
+//! - `stiffid-identify` ([`identify`]): the stiffness identification;
+//! - `stiffid-design` ([`design`], [`study`]): the experiment design and the paper's study;
+//! - `stiffid-calibrate`: the calibration jobs;
+//! - `stiffid-machining` ([`machining`]): machining programs and their compensation.
 //!
 //! The model is the Virtual Joint Method of Zhang, Guo, Sun and Sun, "Method of Postures Selection
 //! for Industrial Robot Joint Stiffness Identification", IEEE Access 9, 2021,
@@ -20,26 +30,34 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-pub mod app;
-pub mod cell;
-pub mod common;
-pub mod design;
-pub mod identify;
-pub mod io;
-pub mod machining;
-pub mod math;
-pub mod metrology;
-pub mod model;
-pub mod observation;
-pub mod robot;
-pub mod setup;
-pub mod study;
+pub use stiffid_core::{cell, common, io, math, model, observation, robot, setup};
+pub use stiffid_core::{
+    dexterity, AxisMap, ColumnProblem, Coordinates, Error, Frames, JobOption, Joint,
+    MeasurementField, Progress, Result, Robot, Setup,
+};
+pub use stiffid_design as design;
+pub use stiffid_design::study;
+pub use stiffid_identify as identify;
+pub use stiffid_machining as machining;
+pub use stiffid_metrology as metrology;
 
-pub use common::error::{ColumnProblem, Error, JobOption, MeasurementField, Result};
-pub use common::progress::Progress;
-pub use robot::kinematics::{dexterity, Coordinates, Frames};
-pub use robot::{AxisMap, Joint, Robot};
-pub use setup::Setup;
+pub mod app {
+    //! The jobs of every crate under one path: one entry point per use case, run the same way by
+    //! every front end (the pattern: `stiffid_core::app`).
+    pub use stiffid_calibrate::app::{calibrate, calibrate_cell, register};
+    pub use stiffid_core::app::{in_data, kinematics, predict, setups_new, Warning, WarningKind};
+    pub use stiffid_design::app::{evaluate, plan, purpose, reproduce, select, simulate};
+    pub use stiffid_identify::app::{identify, measurements, validate};
+    pub use stiffid_machining::app::{compensate, force, place};
+    pub use stiffid_metrology::app::readings;
+
+    pub mod document {
+        //! The documents' parts the jobs share.
+        pub use stiffid_core::app::document::*;
+        pub use stiffid_design::app::document::{candidates, group};
+        pub use stiffid_view as scene;
+    }
+}
 
 /// The Rust examples of the README, run as doctests.
 #[doc = include_str!("../../../README.md")]

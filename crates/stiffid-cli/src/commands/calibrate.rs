@@ -1,6 +1,6 @@
 //! `stiffid calibrate`: the robot's geometric errors, gravity terms, the tracker's registration
 //! and the measuring points fitted together from unloaded readings
-//! ([`stiffid::app::calibrate`]), with held-out validation, and the calibrated robot
+//! ([`stiffid_calibrate::app::calibrate`]), with held-out validation, and the calibrated robot
 //! written as a robot file and a URDF.
 
 use crate::load;
@@ -9,12 +9,12 @@ use crate::progress::Bars;
 use crate::report::calibration;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::app::calibrate::document::Document;
-use stiffid::app::calibrate::{self as job, Tolerances};
-use stiffid::app::readings::Request as Readings;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::maps::Spec;
-use stiffid::metrology::calibration::Geometry;
+use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
+use stiffid_metrology::app::readings::Request as Readings;
+use stiffid_metrology::calibration::gravity::Gravity;
+use stiffid_metrology::calibration::maps::Spec;
+use stiffid_metrology::calibration::Geometry;
 
 use crate::commands::common::{choice, Common};
 
@@ -157,7 +157,7 @@ pub fn run(args: &Args) -> Result<()> {
         priors,
         progress: &bars,
         maps: Spec::parse(&args.maps)?,
-        error_motions: stiffid::metrology::calibration::motions::Spec::parse(&args.error_motions)?,
+        error_motions: stiffid_metrology::calibration::motions::Spec::parse(&args.error_motions)?,
         level: args.level,
         update: args.update.is_some(),
         refit: (args.update.as_deref().map(job::Refits::parse))
@@ -288,7 +288,7 @@ fn text_of(d: &Document) -> String {
 }
 
 /// The check's lines (`--update`): the bound, the readings outside it and the verdict.
-fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> String {
+fn check_text(c: Option<&stiffid_calibrate::app::calibrate::drift::CheckDocument>) -> String {
     let Some(c) = c else {
         return String::new();
     };
@@ -310,7 +310,7 @@ fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> Stri
 }
 
 /// The maps' lines: the choice, the figure it was tuned on and the nested held-out gain.
-fn maps_text(m: &stiffid::app::calibrate::document::MapsDocument) -> String {
+fn maps_text(m: &stiffid_calibrate::app::calibrate::document::MapsDocument) -> String {
     if let Some(why) = &m.skipped {
         return format!("\njoint error maps: none ({why})\n");
     }

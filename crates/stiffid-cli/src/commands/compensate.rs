@@ -1,5 +1,5 @@
-//! `stiffid compensate`: arguments to a request of [`stiffid::app::compensate`], the rows of its
-//! CSV and JSON document ([`stiffid::app::compensate::document`]) written as the job computes them,
+//! `stiffid compensate`: arguments to a request of [`stiffid_machining::app::compensate`], the rows of its
+//! CSV and JSON document ([`stiffid_machining::app::compensate::document`]) written as the job computes them,
 //! then the compensated program, the text or JSON, and the report.
 
 use crate::commands::common::choice;
@@ -11,24 +11,24 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{
+use stiffid_core::common::words::count;
+use stiffid_core::observation::deflection::Frame;
+use stiffid_core::robot::ExternalAxes;
+use stiffid_core::{Error, Progress, Setup};
+use stiffid_machining::app::compensate::document::{
     csv_line, external_header, external_values, header, values, Document, Names, GENERATOR,
 };
-use stiffid::app::compensate::dynamics::OperationDynamics;
-use stiffid::app::compensate::stream::Points;
-use stiffid::app::compensate::{self as job, Input, Report, Request};
-use stiffid::common::words::count;
-use stiffid::machining::compensate::{
+use stiffid_machining::app::compensate::dynamics::OperationDynamics;
+use stiffid_machining::app::compensate::stream::Points;
+use stiffid_machining::app::compensate::{self as job, Input, Report, Request};
+use stiffid_machining::compensate::{
     Aggregate, Compensated, Feasible, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
     FreeToolAxis, MapVariable, Objective, Options, PathPoint, Scope,
 };
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::machining::process::file;
-use stiffid::machining::program::generate::{Settings, Targets};
-use stiffid::machining::Language;
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::ExternalAxes;
-use stiffid::{Error, Progress, Setup};
+use stiffid_machining::dynamics::Dynamics;
+use stiffid_machining::process::file;
+use stiffid_machining::program::generate::{Settings, Targets};
+use stiffid_machining::Language;
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -420,7 +420,7 @@ fn finish(
 /// main program's extension.
 fn write_subprograms(
     out: &Path,
-    files: &[stiffid::machining::program::generate::File],
+    files: &[stiffid_machining::program::generate::File],
 ) -> Result<()> {
     let extension = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let dir = out.parent().unwrap_or(Path::new(""));
@@ -439,7 +439,7 @@ fn write_subprograms(
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
-    stiffid::model::prediction::check_level("--level", args.level)?;
+    stiffid_core::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
     options.force_tolerance = args.force_tolerance_percent / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);

@@ -6,18 +6,18 @@ use crate::output::{self, json};
 use crate::{feasibility, load};
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::document::candidates::CandidatesDoc;
-use stiffid::app::document::group::{CalibrationDoc, Criteria, Infinite, InfiniteCriterion};
-use stiffid::app::evaluate::document::Document;
-use stiffid::app::evaluate::{self as job, Request};
-use stiffid::app::purpose::{CalibrationOptions, Purpose};
-use stiffid::common::limits::short;
-use stiffid::common::words::count;
-use stiffid::design::observability::CalibrationCriterion;
-use stiffid::design::{Criterion, Evaluation};
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::Geometry;
-use stiffid::{Error, Setup};
+use stiffid_core::common::limits::short;
+use stiffid_core::common::words::count;
+use stiffid_core::{Error, Setup};
+use stiffid_design::app::document::candidates::CandidatesDoc;
+use stiffid_design::app::document::group::{CalibrationDoc, Criteria, Infinite, InfiniteCriterion};
+use stiffid_design::app::evaluate::document::Document;
+use stiffid_design::app::evaluate::{self as job, Request};
+use stiffid_design::app::purpose::{CalibrationOptions, Purpose};
+use stiffid_design::observability::CalibrationCriterion;
+use stiffid_design::{Criterion, Evaluation};
+use stiffid_metrology::calibration::gravity::Gravity;
+use stiffid_metrology::calibration::Geometry;
 
 /// Arguments of `stiffid evaluate`.
 #[derive(clap::Args)]

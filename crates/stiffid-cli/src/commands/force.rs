@@ -1,15 +1,15 @@
 //! `stiffid force`: the mean cutting force of every operation of a process file, feed frame
-//! ([`stiffid::machining::process`]).
+//! ([`stiffid_machining::process`]).
 
 use crate::load;
 use crate::output::print_json_or;
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::force::document::Document;
-use stiffid::app::force::{self, Request};
-use stiffid::machining::process::file;
-use stiffid::Progress;
+use stiffid_core::Progress;
+use stiffid_machining::app::force::document::Document;
+use stiffid_machining::app::force::{self, Request};
+use stiffid_machining::process::file;
 
 /// Arguments of `stiffid force`.
 #[derive(clap::Args)]
@@ -43,7 +43,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = force::run(&request);
     bars.end();
     let report = report.map_err(|e| match e {
-        stiffid::Error::InvalidField { field, message } => {
+        stiffid_core::Error::InvalidField { field, message } => {
             anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
         }
         e => e.into(),

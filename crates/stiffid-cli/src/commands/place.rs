@@ -1,5 +1,5 @@
 //! `stiffid place`: where to clamp the part so that a program's error bound is least
-//! ([`stiffid::app::place`]); writes the setup with that `[workpiece]`.
+//! ([`stiffid_machining::app::place`]); writes the setup with that `[workpiece]`.
 
 use crate::commands::common::{choice, Stiffness};
 use crate::load;
@@ -7,14 +7,14 @@ use crate::output::{print_json_or, OutFile};
 use crate::progress::Bars;
 use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};
-use stiffid::app::place::document::{Document, Placement};
-use stiffid::app::place::search::Effort;
-use stiffid::app::place::{self, Region, Request, Work};
-use stiffid::machining::compensate::{Aggregate, Options};
-use stiffid::machining::process::file;
-use stiffid::machining::Language;
-use stiffid::observation::deflection::Frame;
-use stiffid::Progress;
+use stiffid_core::observation::deflection::Frame;
+use stiffid_core::Progress;
+use stiffid_machining::app::place::document::{Document, Placement};
+use stiffid_machining::app::place::search::Effort;
+use stiffid_machining::app::place::{self, Region, Request, Work};
+use stiffid_machining::compensate::{Aggregate, Options};
+use stiffid_machining::process::file;
+use stiffid_machining::Language;
 
 /// Arguments of `stiffid place`.
 #[derive(clap::Args)]
@@ -89,7 +89,7 @@ pub struct Args {
     #[arg(long, default_value_t = 0.01)]
     chord_tolerance_mm: f64,
     /// The level of the error bound (0.5 to 0.999).
-    #[arg(long, default_value_t = stiffid::model::prediction::DEFAULT_LEVEL)]
+    #[arg(long, default_value_t = stiffid_core::model::prediction::DEFAULT_LEVEL)]
     level: f64,
     /// The process force model's relative error in the error budget, percent (0 to 100).
     #[arg(long, default_value_t = 20.0)]
@@ -113,7 +113,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup_path = Path::new(&args.setup);
     let setup_text = match setup_path.is_file() {
         true => load::read(setup_path)?,
-        false => stiffid::setup::builtin_text(&args.setup)?.to_string(),
+        false => stiffid_core::setup::builtin_text(&args.setup)?.to_string(),
     };
     let compliance = args.stiffness.load(&setup)?;
     let (program, process, path);
@@ -141,7 +141,7 @@ pub fn run(args: &Args) -> Result<()> {
         _ => bail!("expected --program and --process, or --path"),
     };
     let mut options = Options::for_setup(&setup);
-    stiffid::model::prediction::check_level("--level", args.level)?;
+    stiffid_core::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
     options.force_tolerance = args.force_tolerance_percent / 100.0;
     if let Some(text) = &args.q0_deg {
@@ -179,9 +179,9 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The library's error, a field that is an option named as the option (`--region-mm`).
-fn option_error(e: stiffid::Error) -> anyhow::Error {
+fn option_error(e: stiffid_core::Error) -> anyhow::Error {
     match e {
-        stiffid::Error::InvalidField { field, message } if !field.contains('.') => {
+        stiffid_core::Error::InvalidField { field, message } if !field.contains('.') => {
             anyhow!("--{}: {message}", field.replace('_', "-"))
         }
         e => e.into(),

@@ -6,7 +6,7 @@ use crate::progress::Bars;
 use crate::report::figures::{self, Png};
 use anyhow::Result;
 use std::path::{Path, PathBuf};
-use stiffid::Progress;
+use stiffid_core::Progress;
 
 /// Arguments of `stiffid plot`.
 #[derive(clap::Args)]

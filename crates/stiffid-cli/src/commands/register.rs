@@ -1,17 +1,17 @@
 //! `stiffid register`: the laser tracker's transform to the robot base from measuring points read
-//! by the tracker at known axis angles ([`stiffid::app::register`]: Umeyama's least-squares rigid
+//! by the tracker at known axis angles ([`stiffid_calibrate::app::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation, and the `[tracker]` fragment of the setup
 //! file; or, with `--postures N`, the registration postures to read
-//! ([`stiffid::app::register::propose`]).
+//! ([`stiffid_calibrate::app::register::propose`]).
 
 use crate::commands::cell_readings::{self, three, Outcome};
 use crate::output::print_json_or;
 use crate::progress::Bars;
 use anyhow::Result;
-use stiffid::app::register as job;
-use stiffid::app::register::document::{Document, Proposal};
-use stiffid::design::registration as design;
-use stiffid::Progress;
+use stiffid_calibrate::app::register as job;
+use stiffid_calibrate::app::register::document::{Document, Proposal};
+use stiffid_core::Progress;
+use stiffid_design::registration as design;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
 /// gets the `[tracker] base_from_tracker` fragment. Or `--postures N` proposes the postures to
@@ -34,7 +34,7 @@ pub struct Args {
     #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
     /// Exchange runs of --postures, 1 to 50 [default: 8].
-    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid::common::limits::MAX_POOL_RESTARTS))]
+    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid_core::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }
 
@@ -58,7 +58,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// `--postures N`: the proposal, and the readings template written with `--out`.
-fn propose(args: &Args, setup: &stiffid::Setup, n: usize) -> Result<()> {
+fn propose(args: &Args, setup: &stiffid_core::Setup, n: usize) -> Result<()> {
     let out = args.readings.prepare_out()?;
     let defaults = design::Options::default();
     let request = job::DesignRequest {
@@ -140,7 +140,7 @@ fn text_of(d: &Document) -> String {
     for p in &d.points {
         text += &format!(
             "{:<8} {:>5} {:>5}  {:.4} [{}]\n",
-            stiffid::common::limits::short(&p.posture),
+            stiffid_core::common::limits::short(&p.posture),
             p.point,
             p.line,
             p.residual_norm_mm,

@@ -2,7 +2,7 @@
 
 use crate::output;
 use anyhow::Result;
-use stiffid::robot::presets;
+use stiffid_core::robot::presets;
 
 /// Prints every preset: name, robot, source.
 pub fn run() -> Result<()> {

@@ -2,7 +2,7 @@
 
 use crate::output;
 use anyhow::Result;
-use stiffid::setup;
+use stiffid_core::setup;
 
 /// Arguments of `stiffid setups`.
 #[derive(clap::Args)]

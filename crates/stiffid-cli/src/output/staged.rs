@@ -179,9 +179,9 @@ pub fn discard() {
     release();
 }
 
-/// Puts `tmp` in place as `target` ([`stiffid::io::output::place`]), the error naming it.
+/// Puts `tmp` in place as `target` ([`stiffid_core::io::output::place`]), the error naming it.
 fn place(tmp: &Path, target: &Path, new_only: bool) -> Result<()> {
-    stiffid::io::output::place(tmp, target, new_only)
+    stiffid_core::io::output::place(tmp, target, new_only)
         .with_context(|| format!("{}: cannot write", target.display()))
 }
 

@@ -10,9 +10,9 @@ use super::tables::{num, Table};
 use crate::output::{json, ReportDir};
 use anyhow::Result;
 use std::path::Path;
-use stiffid::app::calibrate::document::Document;
-use stiffid::app::document::scene::{glb, Scene};
-use stiffid::Setup;
+use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid_core::Setup;
+use stiffid_view::{glb, Scene};
 
 /// The calibration's report: `report.html`, `calibration.json`, `errors.glb`.
 const KIND: Kind = Kind {
@@ -33,7 +33,7 @@ pub fn write(dir: ReportDir, setup: &Setup, doc: &Document) -> Result<()> {
         &serde_json::to_value(doc)?,
     )?)?;
     let text = json(doc)?;
-    let scene = stiffid::app::calibrate::scene::scene(setup, &text)?;
+    let scene = stiffid_calibrate::app::calibrate::scene::scene(setup, &text)?;
     let html = KIND.page(&format!("stiffid calibration: {}", doc.setup), |w| {
         compose(w, doc, &figures, &scene)
     });

@@ -35,9 +35,9 @@ impl Kind {
         };
         let mark = format!("content=\"{}\"", self.generator);
         ReportDir::prepare(dir, "--report", None, &holds, &|d| {
-            stiffid::io::input::open(&d.join(PAGE))
+            stiffid_core::io::input::open(&d.join(PAGE))
                 .ok()
-                .and_then(|f| stiffid::io::read_text(PAGE, f).ok())
+                .and_then(|f| stiffid_core::io::read_text(PAGE, f).ok())
                 .is_some_and(|t| t.contains(&mark))
         })
     }

@@ -4,11 +4,11 @@ use super::content::compose;
 pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::app::reproduce::document::{Summary, GENERATOR};
-use stiffid::app::reproduce::Report;
+use stiffid_design::app::reproduce::document::{Summary, GENERATOR};
+use stiffid_design::app::reproduce::Report;
 
-use stiffid::app::document::scene::page::{self as scene_page, escape};
-use stiffid::app::document::scene::Scene;
+use stiffid_view::page::{self as scene_page, escape};
+use stiffid_view::Scene;
 
 /// Escaped text with `code spans` as `<code>`.
 fn inline(text: &str) -> String {

@@ -14,9 +14,9 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
-use stiffid::app::document::scene::stance::Postures;
-use stiffid::app::document::scene::{glb, Scene};
-use stiffid::Setup;
+use stiffid_core::Setup;
+use stiffid_view::stance::Postures;
+use stiffid_view::{glb, Scene};
 
 /// The identification's report: `report.html`, `identify.json`, `identify.glb`.
 const KIND: Kind = Kind {
@@ -38,7 +38,7 @@ pub fn write(dir: ReportDir, json: &str, setup: &Setup, postures: Option<Posture
     let doc: Value = serde_json::from_str(json)?;
     let figures = report::draw(&stiffid_figures::identify::figures(&doc)?)?;
     let scene = postures
-        .map(|(p, e)| stiffid::app::identify::document::scene::scene(setup, &p, &e, json))
+        .map(|(p, e)| stiffid_identify::app::identify::document::scene::scene(setup, &p, &e, json))
         .transpose()?;
     let name = doc["setup"].as_str().unwrap_or_default();
     let html = KIND.page(&format!("stiffid identification: {name}"), |w| {

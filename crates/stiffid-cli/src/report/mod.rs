@@ -18,10 +18,10 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use figures::Figure;
 use std::path::Path;
-use stiffid::app::reproduce::document::Summary;
-use stiffid::app::reproduce::Report;
-use stiffid::app::simulate::document::deviation_csv;
-use stiffid::io::postures;
+use stiffid_core::io::postures;
+use stiffid_design::app::reproduce::document::Summary;
+use stiffid_design::app::reproduce::Report;
+use stiffid_design::app::simulate::document::deviation_csv;
 
 pub use stiffid_figures::reproduce::{criteria_values, CRITERIA};
 
@@ -90,7 +90,7 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
 mod tests {
     use super::holds;
     use std::path::Path;
-    use stiffid::app::reproduce::document::GENERATOR;
+    use stiffid_design::app::reproduce::document::GENERATOR;
 
     fn open(dir: &Path, force: bool) -> anyhow::Result<crate::output::ReportDir> {
         super::open(dir, "--out", Some(force), GENERATOR, &holds)

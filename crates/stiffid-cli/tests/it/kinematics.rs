@@ -65,9 +65,12 @@ fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
     let k = v["dexterity"].as_f64().unwrap();
     assert!(k > 1.0 && k.is_finite());
     // No length given: the robot's own, the one that minimises the median dexterity of the point.
-    let robot = stiffid::robot::presets::get(COMAU).unwrap();
-    let l = stiffid::setup::prior::robot_characteristic_length(&robot, &nalgebra::Vector3::zeros())
-        .unwrap();
+    let robot = stiffid_core::robot::presets::get(COMAU).unwrap();
+    let l = stiffid_core::setup::prior::robot_characteristic_length(
+        &robot,
+        &nalgebra::Vector3::zeros(),
+    )
+    .unwrap();
     assert_eq!(v["characteristic_length_source"], "derived");
     assert_eq!(v["characteristic_length_mm"].as_f64().unwrap(), l * 1e3);
     assert_eq!(v["joint_positions_mm"].as_array().unwrap().len(), 6);
@@ -452,7 +455,7 @@ fn a_cell_with_external_axes_refuses_a_posture_without_their_values() {
         "track-robot.toml",
         &format!(
             "{}\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1, 0, 0]\nlimits_deg = [0, 90]\n",
-            stiffid::robot::presets::text("kuka-kr210-robond").unwrap()
+            stiffid_core::robot::presets::text("kuka-kr210-robond").unwrap()
         ),
     );
     let out = stiffid(&["kinematics", "--robot", &robot, "--q-deg", q]);

@@ -39,7 +39,7 @@ fn the_check_finds_the_drift_and_the_update_recovers_it() {
     assert!(std::fs::read_to_string(&robot)
         .unwrap()
         .contains("[held_out]"));
-    let setup_text = stiffid::setup::builtin_text(SETUP).unwrap().replace(
+    let setup_text = stiffid_core::setup::builtin_text(SETUP).unwrap().replace(
         "robot = \"comau-smart5-nj165-3.0\"",
         "robot = \"robot.toml\"",
     );

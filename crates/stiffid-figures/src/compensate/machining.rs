@@ -6,8 +6,8 @@ use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::app::compensate::document::SegmentDocument;
-use stiffid::machining::compensate::Compensated;
+use stiffid_machining::app::compensate::document::SegmentDocument;
+use stiffid_machining::compensate::Compensated;
 
 struct Force<'a>(&'a [(usize, Compensated)]);
 

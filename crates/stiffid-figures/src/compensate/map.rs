@@ -7,7 +7,7 @@ use crate::{failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::machining::compensate::{Map, MapVariable};
+use stiffid_machining::compensate::{Map, MapVariable};
 
 /// Columns drawn at most (every k-th point).
 const COLUMNS: usize = 600;

@@ -7,8 +7,8 @@ use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::machining::compensate::Compensated;
-use stiffid::Setup;
+use stiffid_core::Setup;
+use stiffid_machining::compensate::Compensated;
 
 struct Deflection<'a>(&'a [Compensated]);
 

@@ -6,7 +6,7 @@ use crate::{colour, failed, short, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::study::{spearman, Study};
+use stiffid_design::study::{spearman, Study};
 
 struct CriteriaPlot<'a>(&'a Study);
 

@@ -5,7 +5,7 @@ use crate::{colour, failed, short, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::study::Study;
+use stiffid_design::study::Study;
 
 struct Deviation<'a>(&'a Study);
 

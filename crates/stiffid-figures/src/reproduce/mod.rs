@@ -9,8 +9,8 @@ pub mod deviation;
 pub mod table;
 
 use crate::Drawing;
-use stiffid::design::Evaluation;
-use stiffid::study::{criterion_values, Study};
+use stiffid_design::study::{criterion_values, Study};
+use stiffid_design::Evaluation;
 
 /// The design criteria the study's report compares, keyed as in `stiffid evaluate`, with what
 /// they measure.

@@ -6,7 +6,7 @@ use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::study::Study;
+use stiffid_design::study::Study;
 
 struct Table<'a>(&'a Study);
 

@@ -3,6 +3,7 @@
 //! (Eq. 22) and the errors.
 
 use crate::common;
+use stiffid::identify::Identify;
 use stiffid::model::Compliance;
 
 use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};

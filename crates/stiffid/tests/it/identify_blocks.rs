@@ -4,6 +4,7 @@
 //! recovery of the stiffness from a generated measurement file of many postures.
 
 use crate::common;
+use stiffid::identify::Identify;
 
 use common::{assert_close, measurement_csv, noisy, synthetic};
 use stiffid::identify::{self, BLOCK};

@@ -4,6 +4,7 @@
 //! bits with 1 and 2 threads; errors that name the line and column of a row far into the file.
 
 use crate::common;
+use stiffid::identify::Identify;
 
 use common::{assert_close, measurement_csv, noisy};
 use stiffid::identify::{self, streamed, Identification};

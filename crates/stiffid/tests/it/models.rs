@@ -9,6 +9,7 @@ use stiffid::design::{local, random_group, Criterion, SearchOptions};
 use stiffid::identify::compare::compare;
 use stiffid::identify::cross_validation::{cross_validate_model, Method};
 use stiffid::identify::svd::fit;
+use stiffid::identify::Identify;
 use stiffid::model::{Family, Kind, Spring};
 use stiffid::observation::{posture_block, Measurement, Observations};
 use stiffid::setup::Setup;

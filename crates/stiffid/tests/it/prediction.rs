@@ -16,6 +16,7 @@ use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, 
 use stiffid::identify::prediction::calibrate;
 use stiffid::identify::svd::fit;
 use stiffid::identify::validate::compare_at;
+use stiffid::identify::Identify;
 use stiffid::model::prediction::{inside, Calibration};
 use stiffid::model::{Compliance, Family};
 use stiffid::observation::{posture_block, Measurement, Observations};

@@ -3,6 +3,7 @@
 //! measurement frames, the unit check and the share of the deflection explained.
 
 use crate::common;
+use stiffid::identify::Identify;
 use stiffid::model::Compliance;
 
 use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};

@@ -1,15 +1,15 @@
 //! `stiffid identify` over a model with virtual springs, and `--compare-models`: the library's
-//! fits ([`stiffid::identify::svd`], [`stiffid::identify::compare`]) rendered as text.
+//! fits ([`stiffid_identify::svd`], [`stiffid_identify::compare`]) rendered as text.
 
 use super::text;
-use stiffid::app::identify::document::springs::{CrossValidationDoc, Document};
-use stiffid::app::identify::springs::Report;
-use stiffid::common::words::count;
-use stiffid::identify::adequacy::Verdict;
-use stiffid::identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
-use stiffid::identify::compare::{parameter_docs, Comparison};
-use stiffid::identify::svd::Fit;
-use stiffid::Setup;
+use stiffid_core::common::words::count;
+use stiffid_core::Setup;
+use stiffid_identify::adequacy::Verdict;
+use stiffid_identify::app::identify::document::springs::{CrossValidationDoc, Document};
+use stiffid_identify::app::identify::springs::Report;
+use stiffid_identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
+use stiffid_identify::compare::{parameter_docs, Comparison};
+use stiffid_identify::svd::Fit;
 
 /// The bootstrap's table from its document.
 fn bootstrap_text(b: &BootstrapDoc) -> String {

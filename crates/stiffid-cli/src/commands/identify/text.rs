@@ -1,15 +1,15 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
-use stiffid::app::identify::document::drives::{
+use stiffid_core::io::stiffness::PredictionSection;
+use stiffid_core::robot::kinematics::Coordinates;
+use stiffid_core::Setup;
+use stiffid_identify::adequacy::{Verdict, SIGNIFICANCE};
+use stiffid_identify::app::identify::document::drives::{
     CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
 };
-use stiffid::app::identify::drives::Report;
-use stiffid::app::identify::Fit;
-use stiffid::identify::adequacy::{Verdict, SIGNIFICANCE};
-use stiffid::io::stiffness::PredictionSection;
-use stiffid::robot::kinematics::Coordinates;
-use stiffid::Setup;
+use stiffid_identify::app::identify::drives::Report;
+use stiffid_identify::app::identify::Fit;
 
 /// `v` with `decimals` decimals, or `n/a` if it is not finite.
 fn num(v: f64, decimals: usize) -> String {
@@ -65,7 +65,7 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
         setup_name,
         run.data_name,
         id.rows,
-        stiffid::common::words::count(id.postures, "posture"),
+        stiffid_core::common::words::count(id.postures, "posture"),
         num(id.cond_psi, 4),
         num(doc.residual_rms_mm, 4)
     );
@@ -135,7 +135,7 @@ load steps (* beyond the tracker noise, p < 0.01):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
 ",
-            stiffid::common::limits::short(&l.posture),
+            stiffid_core::common::limits::short(&l.posture),
             l.levels,
             opt(l.slope_mm_per_kn, 4),
             opt(l.zero_load_offset_mm, 4),
@@ -164,7 +164,7 @@ offsets fitted beside the compliances (base frame):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
 ",
-            stiffid::common::limits::short(&o.posture),
+            stiffid_core::common::limits::short(&o.posture),
             o.point,
             num(x, 4),
             num(y, 4),
@@ -313,7 +313,7 @@ fn down_weighted(robust: &Robust) -> String {
         robust.scale_mm,
         robust.iterations,
         if robust.converged { "" } else { " (not converged)" },
-        stiffid::identify::robust::DOWN_WEIGHTED
+        stiffid_identify::robust::DOWN_WEIGHTED
     );
     for row in rows.iter().take(shown) {
         s += &format!(
@@ -420,7 +420,7 @@ pub fn prediction(p: &PredictionSection) -> String {
         "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {}% of the predicted displacement plus {:.4} mm{model}\n",
         p.method,
         scores,
-        stiffid::common::words::count(p.postures, "posture"),
+        stiffid_core::common::words::count(p.postures, "posture"),
         opt(p.score_q95_percent, 1),
         p.noise_floor_mm
     )

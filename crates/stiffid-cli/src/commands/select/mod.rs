@@ -1,7 +1,7 @@
 //! `stiffid select`: the group of postures that minimises a design criterion (local SQP from a
 //! start group, global multistart, or the best of a pool of postures), optionally the smallest
 //! group for a target accuracy and a measurement plan (`--report`): the arguments made into a
-//! [`stiffid::app::select::Request`], the job run, its report rendered.
+//! [`stiffid_design::app::select::Request`], the job run, its report rendered.
 
 mod target;
 
@@ -13,14 +13,14 @@ use crate::progress::Bars;
 use crate::report::plan;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::app::select::document::{Document, Free, Pool};
-use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
-use stiffid::common::limits::{self, short};
-use stiffid::common::words::count;
-use stiffid::design::distinct::Distinctness;
-use stiffid::design::observability::CalibrationCriterion;
-use stiffid::design::{Criterion, Gradient, SearchOptions, Solver};
-use stiffid::{io::postures, Setup};
+use stiffid_core::common::limits::{self, short};
+use stiffid_core::common::words::count;
+use stiffid_core::{io::postures, Setup};
+use stiffid_design::app::select::document::{Document, Free, Pool};
+use stiffid_design::app::select::{self as job, Method, PoolInput, Report, Request};
+use stiffid_design::distinct::Distinctness;
+use stiffid_design::observability::CalibrationCriterion;
+use stiffid_design::{Criterion, Gradient, SearchOptions, Solver};
 
 /// Arguments of `stiffid select`.
 #[derive(clap::Args)]
@@ -236,7 +236,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
-fn distinctness(args: &Args) -> stiffid::Result<Distinctness> {
+fn distinctness(args: &Args) -> stiffid_core::Result<Distinctness> {
     Distinctness::try_from_deg_mm(args.distinct_deg, args.distinct_mm)
 }
 
@@ -363,7 +363,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
         number(shown(r, free_value)),
         percent(free.cost_percent),
     );
-    // None only for a setup without a nominal stiffness (stiffid::design::Evaluation).
+    // None only for a setup without a nominal stiffness (stiffid_design::Evaluation).
     if let (Some(feasible), Some(unconstrained)) = (
         free.feasible_predicted_average_pct,
         free.predicted_average_pct,
@@ -379,7 +379,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
 /// The value the search minimised, in words: the stiffness criterion, the calibration
 /// criterion's loss in the text's units ([`shown`]), or both.
 fn objective(r: &Report) -> String {
-    use stiffid::common::choice::Choice;
+    use stiffid_core::common::choice::Choice;
     let loss = |c: CalibrationCriterion| match c {
         CalibrationCriterion::TestPose => "calibration test-pose (predicted RMS error, mm)".into(),
         CalibrationCriterion::DOptimality => "calibration 1/d-optimality (1/mm^2)".into(),
@@ -450,13 +450,10 @@ fn outcome_text(setup: &Setup, r: &Report) -> String {
 
 /// Why the search stopped: the reason of the search that found the group, and for several
 /// searches how many stopped for each reason.
-fn termination_text(
-    t: stiffid::design::Termination,
-    all: &[stiffid::design::Termination],
-) -> String {
+fn termination_text(t: stiffid_design::Termination, all: &[stiffid_design::Termination]) -> String {
     let mut s = t.name().to_string();
     if all.len() > 1 {
-        let counts: Vec<String> = (stiffid::design::Termination::ALL.iter())
+        let counts: Vec<String> = (stiffid_design::Termination::ALL.iter())
             .filter(|r| r.count(all) > 0)
             .map(|r| format!("{} {r}", r.count(all)))
             .collect();
@@ -468,8 +465,8 @@ fn termination_text(
 /// The `--station` values (mm, deg, the cell's order) in SI.
 fn stations(
     given: &[String],
-    setup: &stiffid::Setup,
-) -> Result<Vec<stiffid::robot::external::ExternalValues>> {
+    setup: &stiffid_core::Setup,
+) -> Result<Vec<stiffid_core::robot::external::ExternalValues>> {
     let Some(axes) = setup.robot().external() else {
         if !given.is_empty() {
             bail!("--station: the robot has no external axes: give no station");
@@ -488,12 +485,12 @@ fn stations(
                 .ok_or_else(|| {
                     anyhow::anyhow!(
                         "--station: '{}': expected {} comma-separated numbers ({})",
-                        stiffid::common::limits::short(text),
+                        stiffid_core::common::limits::short(text),
                         axes.len(),
                         axes.column_names().join(", ")
                     )
                 })?;
-            Ok(stiffid::robot::external::ExternalValues::new(
+            Ok(stiffid_core::robot::external::ExternalValues::new(
                 &axes.to_si(&values),
             )?)
         })

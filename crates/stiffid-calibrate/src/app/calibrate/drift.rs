@@ -1,0 +1,189 @@
+//! The check of a calibrated robot on another day (`calibrate --update`): each check reading's
+//! error with the calibrated robot as it is (the tracker registered on the check readings, the
+//! setup's measuring points) against the calibration's held-out error bound, and the verdict
+//! whether the robot drifted beyond it.
+//!
+//! The bound is the split conformal quantile at the level of the calibration's held-out error
+//! lengths (the calibrated robot file's `[held_out]`, [`stiffid_core::robot::HeldOut::quantile`]): a
+//! reading of the undrifted robot lies beyond it with probability at most `1 - level`. The count
+//! of the `n` check readings beyond it is then at most binomial `(n, 1 - level)`, and the robot
+//! drifted when the count reaches the smallest `k` with `P(X >= k) <= `[`SIGNIFICANCE`] (a
+//! one-sided binomial test: a false alarm in at most 1 % of checks of an undrifted robot).
+
+use serde::Serialize;
+use stiffid_core::common::warning::{Warning, WarningKind};
+use stiffid_core::Robot;
+use stiffid_metrology::calibration::validation::Validation;
+
+/// The false-alarm rate of the drift verdict on an undrifted robot.
+pub const SIGNIFICANCE: f64 = 0.01;
+
+/// The check of a calibrated robot (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Check {
+    /// The level of the bound.
+    pub level: f64,
+    /// Where the calibration's held-out errors come from: `validate` or `cross-validate`.
+    pub source: String,
+    /// The held-out errors' count.
+    pub held_out: usize,
+    /// The bound on an error's length, m.
+    pub bound: f64,
+    /// Per check reading (in the order of the errors checked): beyond the bound.
+    pub outside: Vec<bool>,
+    /// The most readings beyond the bound an undrifted robot explains ([`SIGNIFICANCE`]).
+    pub allowed: usize,
+    /// Whether the robot drifted beyond its intervals: more than `allowed` readings outside.
+    pub drifted: bool,
+}
+
+/// The check of `errors` (the check readings' errors with the calibrated `robot`) at `level`;
+/// `None` when the robot carries no held-out errors or too few for the level (the bound
+/// infinite).
+pub fn check(robot: &Robot, errors: &Validation, level: f64) -> Option<Check> {
+    let held = robot.held_out()?;
+    let bound = held.quantile(level);
+    if !bound.is_finite() {
+        return None;
+    }
+    let outside: Vec<bool> = errors
+        .errors
+        .iter()
+        .map(|e| e.error.norm() > bound)
+        .collect();
+    let allowed = allowed(outside.len(), 1.0 - level, SIGNIFICANCE);
+    Some(Check {
+        level,
+        source: held.source.clone(),
+        held_out: held.errors.len(),
+        bound,
+        drifted: outside.iter().filter(|&&o| o).count() > allowed,
+        outside,
+        allowed,
+    })
+}
+
+/// [`check`], or a warning ([`WarningKind::LeftOut`]) in `warnings` saying why there is none.
+pub fn checked(
+    robot: &Robot,
+    errors: &Validation,
+    level: f64,
+    warnings: &mut Vec<Warning>,
+) -> Option<Check> {
+    let check = check(robot, errors, level);
+    if check.is_none() {
+        warnings.push(Warning::new(
+            WarningKind::LeftOut,
+            "no check of the readings against the calibration's intervals: the robot file carries no [held_out] errors (calibrate with --validate or --cross-validate), or too few for the level",
+        ));
+    }
+    check
+}
+
+/// The largest count `k` of `n` trials of probability `p` with `P(X > k) > alpha` no more:
+/// the smallest `k` with `P(X >= k + 1) <= alpha` (binomial, the probabilities summed in
+/// log space so that no term underflows the sum's start).
+fn allowed(n: usize, p: f64, alpha: f64) -> usize {
+    if p <= 0.0 {
+        return 0;
+    }
+    let (ln_p, ln_q) = (p.ln(), (1.0 - p).ln());
+    let mut ln_pmf = n as f64 * ln_q;
+    let mut cdf = 0.0;
+    for k in 0..n {
+        cdf += ln_pmf.exp();
+        if 1.0 - cdf <= alpha {
+            return k;
+        }
+        ln_pmf += ((n - k) as f64 / (k + 1) as f64).ln() + ln_p - ln_q;
+    }
+    n
+}
+
+/// The check in the calibration's document.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct CheckDocument {
+    /// The level of the bound (`--level`, default 0.95).
+    pub level: f64,
+    /// Where the calibration's held-out errors come from (`[held_out] source`): `validate` or
+    /// `cross-validate`.
+    pub source: String,
+    /// The count of the calibration's held-out errors.
+    pub held_out: usize,
+    /// The bound on a reading's error length: the calibration's held-out errors' conformal
+    /// quantile at `level`, mm.
+    pub bound_mm: f64,
+    /// The check readings' count.
+    pub readings: usize,
+    /// The check readings whose error with the calibrated robot (before the update) lies beyond
+    /// the bound.
+    pub outside: usize,
+    /// `outside` over `readings`.
+    pub share_outside: f64,
+    /// The most readings outside an undrifted robot explains (one-sided binomial test at 1 %).
+    pub allowed: usize,
+    /// Whether the robot drifted beyond its intervals: `outside` above `allowed`.
+    pub drifted: bool,
+    /// Each check reading: its posture, point, error length with the calibrated robot and whether
+    /// it lies beyond the bound.
+    pub errors: Vec<CheckedReading>,
+}
+
+/// One check reading.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct CheckedReading {
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// The error's length with the calibrated robot, mm.
+    pub error_mm: f64,
+    /// Beyond the bound.
+    pub outside: bool,
+}
+
+impl CheckDocument {
+    /// The document of `check` of `errors` (posture labels `labels`).
+    pub fn new(check: &Check, errors: &Validation, labels: &[String]) -> Self {
+        let outside = check.outside.iter().filter(|&&o| o).count();
+        let readings = check.outside.len();
+        CheckDocument {
+            level: check.level,
+            source: check.source.clone(),
+            held_out: check.held_out,
+            bound_mm: check.bound * 1e3,
+            readings,
+            outside,
+            share_outside: outside as f64 / readings.max(1) as f64,
+            allowed: check.allowed,
+            drifted: check.drifted,
+            errors: (errors.errors.iter().zip(&check.outside))
+                .map(|(e, &outside)| CheckedReading {
+                    posture: labels.get(e.posture).cloned().unwrap_or_default(),
+                    point: e.point + 1,
+                    error_mm: e.error.norm() * 1e3,
+                    outside,
+                })
+                .collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::allowed;
+
+    #[test]
+    fn allowed_is_the_binomial_critical_count() {
+        // n = 10, p = 0.05: P(X >= 3) = 0.0115 > 0.01, P(X >= 4) = 0.00103.
+        assert_eq!(allowed(10, 0.05, 0.01), 3);
+        // n = 1: P(X >= 1) = 0.05 > 0.01.
+        assert_eq!(allowed(1, 0.05, 0.01), 1);
+        assert_eq!(allowed(10, 0.0, 0.01), 0);
+        // n = 100000, p = 0.05: mean 5000, sd 68.9; the 99 % quantile near 5000 + 2.33 sd.
+        let k = allowed(100_000, 0.05, 0.01);
+        assert!((5155..=5165).contains(&k), "{k}");
+    }
+}

@@ -1,0 +1,175 @@
+//! Held-out readings the calibration misses where the nominal robot does not: the calibration
+//! extrapolates there. A complete geometric model (and more so joint error maps) fitted on
+//! postures that cover a small region can predict postures outside it far off, centimetres on a
+//! real UR10 whose fitted postures leave joints 4 and 6 a quarter of their travel. Such readings
+//! are of this robot (the nominal robot, registered on them, explains them), so the validation
+//! keeps them and says so, rather than refusing them as readings of another robot.
+
+use super::{Warning, WarningKind};
+use nalgebra::Vector6;
+use stiffid_core::common::warning::joint_list;
+use stiffid_metrology::calibration::error_model::Observation;
+use stiffid_metrology::calibration::validation::Validation;
+
+/// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
+/// is named as outside it: 1 degree.
+const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
+
+/// The warning ([`WarningKind::Extrapolation`]) when the calibration misses held-out readings
+/// (`calibrated`, one error per observation of `held`) by more than `limit` (m) while the
+/// nominal robot's errors (`nominal`, aligned with them) stay within it; `None` otherwise. It names
+/// the worst such reading's posture (`labels`) and the joints whose angle there lies outside the
+/// range of the `fitted` observations' angles; with `moved` (the tracker not registered anew on
+/// the held-out readings) and most readings missed, it says the tracker may have moved.
+pub(super) fn warning(
+    (name, moved): (&str, bool),
+    (fitted, held): (&[Observation], &[Observation]),
+    labels: &[String],
+    (calibrated, nominal): (&Validation, &Validation),
+    limit: f64,
+) -> Option<Warning> {
+    let missed: Vec<usize> = (0..held.len().min(calibrated.errors.len()))
+        .filter(|&i| {
+            calibrated.errors[i].error.norm() > limit
+                && nominal
+                    .errors
+                    .get(i)
+                    .is_some_and(|e| e.error.norm() <= limit)
+        })
+        .collect();
+    let worst = *missed.iter().max_by(|&&a, &&b| {
+        let length = |i: usize| calibrated.errors[i].error.norm();
+        length(a).total_cmp(&length(b))
+    })?;
+    let obs = &held[worst];
+    let label = labels.get(obs.posture).map_or("?", String::as_str);
+    Some(Warning::new(
+        WarningKind::Extrapolation,
+        format!(
+            "{name}: the calibration predicts {} held-out reading{} more than {:.0} mm off where the nominal robot, registered on them, is within it: it extrapolates there (worst: posture {}, point {}, {:.1} mm against {:.3} mm nominal{}); a calibration holds where its postures were: fit postures that cover the region the robot works in{}",
+            missed.len(),
+            if missed.len() == 1 { "" } else { "s" },
+            limit * 1e3,
+            stiffid_core::common::limits::short(label),
+            obs.point + 1,
+            calibrated.errors[worst].error.norm() * 1e3,
+            nominal.errors[worst].error.norm() * 1e3,
+            outside(fitted, &obs.q),
+            // A moved tracker shifts every reading, not a few.
+            match moved && 2 * missed.len() > held.len() {
+                true => " (or the tracker moved since the fitted readings: --reregister registers it on the held-out ones)",
+                false => "",
+            },
+        ),
+    ))
+}
+
+/// `; joints 4, 6 outside the fitted postures' range (193.2 deg against -108.3 to 71.6 deg, ...)`
+/// for the joints of `q` beyond the `fitted` angles' range by more than [`OUTSIDE_RAD`]; empty
+/// when every joint lies within it.
+fn outside(fitted: &[Observation], q: &Vector6<f64>) -> String {
+    let range = |j: usize| {
+        (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+    };
+    let joints: Vec<(usize, (f64, f64))> = (0..6)
+        .map(|j| (j, range(j)))
+        .filter(|&(j, (lo, hi))| q[j] < lo - OUTSIDE_RAD || q[j] > hi + OUTSIDE_RAD)
+        .collect();
+    if joints.is_empty() {
+        return String::new();
+    }
+    let angles: Vec<String> = (joints.iter())
+        .map(|&(j, (lo, hi))| {
+            format!(
+                "{:.1} deg against {:.1} to {:.1} deg",
+                q[j].to_degrees(),
+                lo.to_degrees(),
+                hi.to_degrees()
+            )
+        })
+        .collect();
+    format!(
+        "; {} outside the fitted postures' range: {}",
+        joint_list(joints.iter().map(|&(j, _)| j)),
+        angles.join(", ")
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+    use stiffid_metrology::calibration::validation::PointError;
+
+    fn observation(posture: usize, q_deg: [f64; 6]) -> Observation {
+        Observation {
+            posture,
+            point: 0,
+            q: Vector6::from(q_deg.map(f64::to_radians)),
+            measured: Vector3::zeros(),
+            wrench: Vector6::zeros(),
+            e: Default::default(),
+            table: false,
+            direction: Vector6::zeros(),
+        }
+    }
+
+    fn errors(lengths_mm: &[f64]) -> Validation {
+        Validation::new(
+            (lengths_mm.iter().enumerate())
+                .map(|(posture, &l)| PointError {
+                    posture,
+                    point: 0,
+                    error: Vector3::new(0.0, l * 1e-3, 0.0),
+                })
+                .collect(),
+        )
+    }
+
+    /// Two fitted postures span joint 4 over -100..70 deg and joint 6 over -90..0 deg; the second
+    /// held-out posture turns both beyond and the calibration misses it by 110 mm.
+    fn case(nominal_mm: f64, moved: bool) -> Option<Warning> {
+        let fitted = [
+            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
+            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
+        ];
+        let held = [
+            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
+            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
+        ];
+        let labels = ["D1".to_string(), "D414".to_string()];
+        warning(
+            ("held.csv", moved),
+            (&fitted, &held),
+            &labels,
+            (&errors(&[0.3, 110.0]), &errors(&[1.1, nominal_mm])),
+            0.02,
+        )
+    }
+
+    #[test]
+    fn names_the_posture_and_the_joints_outside_the_fitted_range() {
+        let w =
+            case(2.0, false).expect("the calibration misses a reading the nominal robot explains");
+        assert_eq!(w.kind, WarningKind::Extrapolation);
+        for part in [
+            "1 held-out reading more than 20 mm off",
+            "posture D414, point 1, 110.0 mm against 2.000 mm nominal",
+            "joints 4, 6 outside the fitted postures' range: 193.0 deg against -100.0 to 70.0 deg, 90.0 deg against -90.0 to 0.0 deg",
+        ] {
+            assert!(w.message.contains(part), "{part}\n{}", w.message);
+        }
+        assert!(!w.message.contains("--reregister"), "{}", w.message);
+        // Without --reregister, one reading of two missed is no moved tracker either.
+        let w = case(2.0, true).unwrap();
+        assert!(!w.message.contains("--reregister"), "{}", w.message);
+    }
+
+    #[test]
+    fn is_silent_when_the_nominal_robot_misses_the_reading_too() {
+        // A reading of another robot: the gate refuses it, this warning has nothing to add.
+        assert!(case(30.0, false).is_none());
+    }
+}

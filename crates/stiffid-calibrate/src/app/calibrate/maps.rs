@@ -1,0 +1,118 @@
+//! The joint error maps of a calibration ([`stiffid_metrology::calibration::maps`]): the choice by
+//! cross-validation inside the fitted readings, its nested held-out gain, and the fit with the
+//! maps chosen.
+
+use nalgebra::Vector6;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::{Error, Result};
+use stiffid_metrology::calibration::error_model::Observation;
+use stiffid_metrology::calibration::fit::{self, Fit, Options};
+use stiffid_metrology::calibration::maps::{self, Choice, Linear, Nested, Spec};
+use stiffid_metrology::calibration::ErrorModel;
+
+/// The most work the maps' choice takes on: readings x (map coefficients)^2, the cost of its
+/// cross-validated fits (about 1.2e-7 s of CPU each: a minute of CPU at this bound, half of it
+/// on two cores). `--maps auto` (up to 32 harmonics per joint, 384 coefficients) chooses maps on
+/// up to 3390 readings; `--maps J1,J3:16` (64 coefficients) on up to 122 070.
+pub const MAX_MAP_WORK: f64 = 5e8;
+
+/// What the maps' choice found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Maps {
+    /// What was asked.
+    pub spec: Spec,
+    /// The distinct postures of the fitted readings.
+    pub postures: usize,
+    /// The choice, when maps were considered.
+    pub choice: Option<Choice>,
+    /// Its held-out gain, when maps were considered.
+    pub nested: Option<Nested>,
+    /// Why no map was considered, when none was.
+    pub skipped: Option<String>,
+}
+
+/// The model, fit and options after the maps of `spec`: those given when no map is chosen, else
+/// the model with the chosen maps fitted from the calibration's start ([`fit::start`]) with the
+/// chosen ridge (what the readings determine analysed where `fitted` analysed it).
+///
+/// # Errors
+/// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`maps::nested`], [`fit::start`] and
+/// [`fit::fit`].
+pub(super) fn fit_maps(
+    spec: Spec,
+    model: ErrorModel,
+    fitted: Fit,
+    observations: &[Observation],
+    options: Options,
+) -> Result<(ErrorModel, Fit, Options, Maps)> {
+    let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
+    postures.sort_unstable();
+    postures.dedup();
+    let mut report = Maps {
+        spec,
+        postures: postures.len(),
+        choice: None,
+        nested: None,
+        skipped: None,
+    };
+    let directions = observations.iter().any(|o| o.direction != Vector6::zeros());
+    let candidates = spec.candidates(directions);
+    if candidates.any_backlash() && !directions {
+        return Err(Error::InvalidOption {
+            option: JobOption::Maps,
+            message: format!(
+                "{} asks for a backlash term: the readings carry no directions of approach (columns dir1..dir6)",
+                maps::name(&candidates)
+            ),
+        });
+    }
+    let coefficients = candidates.coefficients();
+    let readings = observations.len();
+    let work = readings as f64 * (coefficients * coefficients) as f64;
+    let over = format!(
+        "{readings} readings x {coefficients}^2 map coefficients = {work:.3e}, more than the {MAX_MAP_WORK:.0e} on which maps are chosen in about a minute"
+    );
+    report.skipped = match spec {
+        Spec::None => Some("--maps none".into()),
+        Spec::Auto if postures.len() < maps::MIN_POSTURES => Some(format!(
+            "{} distinct postures, fewer than the {} with which maps are chosen",
+            postures.len(),
+            maps::MIN_POSTURES
+        )),
+        Spec::Auto if work > MAX_MAP_WORK => Some(format!(
+            "{over}: give fewer joints or harmonics (--maps J2,J3:8) or fewer readings"
+        )),
+        Spec::Fixed(h) if work > MAX_MAP_WORK => {
+            return Err(Error::InvalidOption {
+                option: JobOption::Maps,
+                message: format!(
+                    "{}: {over}; give fewer joints or harmonics, or fewer readings",
+                    maps::name(&h)
+                ),
+            })
+        }
+        _ => None,
+    };
+    if report.skipped.is_some() {
+        return Ok((model, fitted, options, report));
+    }
+    let linear = Linear::at(&model, &fitted, observations, options.length, candidates)?;
+    let all: Vec<usize> = (0..postures.len()).collect();
+    let choice = maps::choose(&linear, &all, spec)?;
+    report.nested = Some(maps::nested(&linear, &all, spec)?);
+    let chosen = choice.maps;
+    let ridge = choice.ridge;
+    report.choice = Some(choice);
+    if chosen.is_none() {
+        return Ok((model, fitted, options, report));
+    }
+    let model = model.with_maps(chosen)?;
+    // From the calibration's own start, not from the geometric fit: what the readings determine
+    // is analysed where the geometric fit analysed it (at the fitted geometry, parallel axes
+    // are parallel no more and their merged parameters would be fitted, drifting along a
+    // valley), so the final fit fits the parameters the choice was made with.
+    let start = fit::start(&model, observations)?;
+    let options = Options { ridge, ..options };
+    let fitted = fit::fit(&model, observations, &start, &options)?;
+    Ok((model, fitted, options, report))
+}

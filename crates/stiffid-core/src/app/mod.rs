@@ -1,0 +1,40 @@
+//! The jobs of stiffid: one entry point per use case, run the same way by every front end.
+//!
+//! # The pattern
+//! A job is a module with
+//! - a typed **request** (`Request`): everything the job needs, in SI units and library types
+//!   (a [`Setup`](crate::Setup), the data or where to read it, the choices as library enums);
+//! - `run(&Request) -> Result<Report>`: the whole job (every check and every decision about what
+//!   to compute), and nothing about how the result is shown;
+//! - a typed **report** (`Report`): what the job found, in SI units, with
+//!   `warnings: Vec<Warning>`: results the user must look at before trusting them (a likely unit
+//!   mistake, a stiffness that is not physical).
+//!
+//! The output documents (the JSON and CSV stiffid writes, units in every key) are built from the
+//! reports in [`crate::app::document`]. Front ends only parse, call and render: the command line
+//! (`stiffid`) turns its arguments into a request, calls `run`, prints each warning as
+//! `warning: MESSAGE` on stderr and renders the report as text or its document as JSON; the
+//! Python package raises each warning as a `UserWarning` with the same message and returns the
+//! document as dicts and arrays. The same call therefore gives the same document and the same
+//! warnings from both.
+//!
+//! Errors are [`crate::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
+//! never of one front end's options; each front end adds its own hints.
+
+pub mod kinematics;
+pub mod predict;
+pub mod setups_new;
+
+pub mod document;
+
+pub use crate::common::warning::{Warning, WarningKind};
+
+use crate::Error;
+
+/// `error` about the data named `name`.
+pub fn in_data(name: &str, error: Error) -> Error {
+    Error::Input {
+        source_name: name.to_string(),
+        error: Box::new(error),
+    }
+}

@@ -1,0 +1,295 @@
+//! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here but the
+//! opening of [`input`] files and the writing of [`output`]): the
+//! caller reads the file and adds its name to errors. [`text`] turns the bytes a caller read into
+//! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`); [`Capped`]
+//! holds a reader of an input read in pieces to the same limit.
+//!
+//! - [`external`]: the external axis columns (`e1_mm`, `e2_deg`) every data file shares.
+//! - [`input`]: the files a front end reads: regular files only, never a wait on a FIFO.
+//! - [`measurements`]: the measurement CSV of an identification or validation.
+//! - [`output`]: the files a front end writes: where a write lands, whether it may, whole files.
+//! - [`path`]: the path (pose list) CSV of compensation.
+//! - [`postures`]: the postures CSV of a group of postures.
+//! - [`program`]: the joint targets of robot programs (KUKA KRL, ABB RAPID, FANUC LS).
+//! - [`readings`]: the registration readings CSV (axis angles and tracker readings).
+//! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
+//! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
+
+pub mod external;
+pub mod input;
+pub mod measurements;
+pub mod output;
+pub mod postures;
+pub mod readings;
+pub mod stiffness;
+
+use crate::common::error::ColumnProblem;
+use crate::common::limits::{short, MAX_INPUT_BYTES};
+use crate::{Error, Result};
+use std::io::Read;
+
+/// The text of an input file from its bytes as read: the reader stops after
+/// [`MAX_INPUT_BYTES`] + 1 bytes (`Read::take`), so more than the limit means the file is larger.
+///
+/// # Errors
+/// [`Error::Parse`] naming `source_name`: larger than the input limit, or not UTF-8 text (with
+/// the offset of the first invalid byte).
+///
+/// # Examples
+/// ```
+/// let text = stiffid::io::text("group.csv", b"q1_deg,q2_deg".to_vec()).unwrap();
+/// assert_eq!(text, "q1_deg,q2_deg");
+/// let e = stiffid::io::text("bin.csv", vec![0xff, 0xfe]).unwrap_err();
+/// assert_eq!(e.to_string(), "bin.csv: not UTF-8 text (invalid byte at offset 0)");
+/// ```
+pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
+    let error = |message: String| Error::Parse {
+        source_name: source_name.to_string(),
+        message,
+    };
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(error(too_large()));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        error(format!(
+            "not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
+
+/// The text of an input read from `reader` (a file the caller opened): at most
+/// [`MAX_INPUT_BYTES`] + 1 bytes are read, then [`text`].
+///
+/// # Errors
+/// [`Error::Parse`] naming `source_name`: a read error (`cannot read: ...`), and those of [`text`].
+///
+/// # Examples
+/// ```
+/// let text = stiffid::io::read_text("group.csv", &b"q1_deg"[..]).unwrap();
+/// assert_eq!(text, "q1_deg");
+/// ```
+pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
+    let mut bytes = Vec::new();
+    reader
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::Parse {
+            source_name: source_name.to_string(),
+            message: format!("cannot read: {e}"),
+        })?;
+    text(source_name, bytes)
+}
+
+/// "larger than the input limit of 256 MiB": the one wording of [`text`] and [`Capped`].
+fn too_large() -> String {
+    format!(
+        "larger than the input limit of {} MiB",
+        MAX_INPUT_BYTES >> 20
+    )
+}
+
+/// A reader of an input (a file the caller opened) that fails with "larger than the input limit"
+/// once more than [`MAX_INPUT_BYTES`] have been read from it: the limit of [`text`] for inputs
+/// read in pieces (`identify::streamed`).
+///
+/// # Examples
+/// ```
+/// use std::io::Read;
+/// let mut small = stiffid::io::Capped::new(&b"q1_deg"[..]);
+/// let mut text = String::new();
+/// small.read_to_string(&mut text).unwrap();
+/// assert_eq!(text, "q1_deg");
+/// ```
+#[derive(Debug)]
+pub struct Capped<R> {
+    inner: R,
+    read: u64,
+}
+
+impl<R> Capped<R> {
+    /// `inner`, nothing read yet.
+    pub fn new(inner: R) -> Self {
+        Capped { inner, read: 0 }
+    }
+
+    /// The reader inside, without the limit.
+    pub fn into_inner(self) -> R {
+        self.inner
+    }
+}
+
+impl<R: Read> Read for Capped<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.read += n as u64;
+        if self.read > MAX_INPUT_BYTES {
+            return Err(std::io::Error::other(too_large()));
+        }
+        Ok(n)
+    }
+}
+
+/// The error for a column `name` missing from the header at `line`.
+pub fn missing(line: u64, name: &str) -> Error {
+    Error::Column {
+        line,
+        column: None,
+        name: name.into(),
+        problem: ColumnProblem::Missing {
+            missing: name.into(),
+        },
+    }
+}
+
+/// The hint for a header read as one column holding `;`: a spreadsheet that writes `;` between
+/// columns (as in locales whose decimal mark is a comma); empty otherwise.
+fn separator_hint<S: AsRef<str>>(names: &[S]) -> &'static str {
+    match names {
+        [only] if only.as_ref().contains(';') => {
+            " (this header separates its columns with ';', as spreadsheets in some locales save \
+             CSV: save it with ',' as the field separator and '.' as the decimal mark)"
+        }
+        _ => "",
+    }
+}
+
+/// Checks that every name of a header (at `line`) is one of `known`, and none comes twice.
+///
+/// # Errors
+/// [`ColumnProblem::Unknown`] (with a suggestion and `expected()`) or
+/// [`ColumnProblem::Duplicate`], naming the column.
+pub fn known_names<'a, S, I>(
+    names: &[S],
+    line: u64,
+    known: I,
+    expected: fn() -> String,
+) -> Result<()>
+where
+    S: AsRef<str>,
+    I: Iterator<Item = &'a str> + Clone,
+{
+    for (i, name) in names.iter().map(AsRef::as_ref).enumerate() {
+        let problem = if !known.clone().any(|k| k == name) {
+            ColumnProblem::Unknown {
+                given: short(name),
+                suggestion: suggestion(name, known.clone()).map(str::to_string),
+                expected: expected() + separator_hint(names),
+            }
+        } else if names[..i].iter().any(|n| n.as_ref() == name) {
+            ColumnProblem::Duplicate { given: short(name) }
+        } else {
+            continue;
+        };
+        return Err(Error::Column {
+            line,
+            column: Some(i + 1),
+            name: String::new(),
+            problem,
+        });
+    }
+    Ok(())
+}
+
+/// The `known` column a misspelled one probably meant: the same but for case or a missing unit
+/// suffix (`q4` for `q4_deg`), or at most two edits away.
+fn suggestion<'a, I>(name: &str, known: I) -> Option<&'a str>
+where
+    I: Iterator<Item = &'a str> + Clone,
+{
+    let lower = name.to_lowercase();
+    let unit_missing = |k: &str| {
+        k.strip_prefix(lower.as_str())
+            .is_some_and(|r| r.starts_with('_'))
+    };
+    known.clone().find(|k| unit_missing(k)).or_else(|| {
+        known
+            .map(|k| (edit_distance(&lower, k), k))
+            .filter(|(d, _)| *d <= 2)
+            .min()
+            .map(|(_, k)| k)
+    })
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let next = (diagonal + usize::from(ca != *cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            diagonal = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}
+
+/// The line (1-based) of the record that starts at or after a byte of `body` (its line ends
+/// skipped), counted on from the previous byte asked for (bytes asked for never decrease). Not
+/// `csv`'s own line count, which is one too low after a `\r\n` line end (the `\n` is counted when
+/// the next record is read, after its position was taken).
+pub struct LineCount<'a> {
+    body: &'a [u8],
+    byte: usize,
+    line: u64,
+    comments: bool,
+}
+
+impl<'a> LineCount<'a> {
+    /// Lines of `body`, counted from its start (line 1).
+    pub(crate) fn new(body: &'a [u8]) -> Self {
+        Self {
+            body,
+            byte: 0,
+            line: 1,
+            comments: false,
+        }
+    }
+
+    /// [`LineCount::new`] for a reader that skips comment lines (`#` first), which it reports at
+    /// the comment's start.
+    pub fn with_comments(body: &'a [u8]) -> Self {
+        Self {
+            comments: true,
+            ..Self::new(body)
+        }
+    }
+
+    /// The line of the record at `byte`.
+    pub fn at(&mut self, byte: u64) -> u64 {
+        let mut end = usize::try_from(byte).map_or(self.body.len(), |b| b.min(self.body.len()));
+        loop {
+            while matches!(self.body.get(end), Some(b'\r' | b'\n')) {
+                end += 1;
+            }
+            if !(self.comments && self.body.get(end) == Some(&b'#')) {
+                break;
+            }
+            end = self.body[end..]
+                .iter()
+                .position(|b| *b == b'\n')
+                .map_or(self.body.len(), |n| end + n);
+        }
+        let end = end.max(self.byte);
+        self.line += self.body[self.byte..end]
+            .iter()
+            .filter(|b| **b == b'\n')
+            .count() as u64;
+        self.byte = end;
+        self.line
+    }
+}
+
+/// A `csv` reader's error without its own position (the caller names the line, counted by
+/// [`LineCount`]): `invalid UTF-8 in field 3`, or the reader's message.
+pub fn csv_message(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::Utf8 { err, .. } => format!("invalid UTF-8 in field {}", err.field() + 1),
+        csv::ErrorKind::Io(io) => io.to_string(),
+        _ => e.to_string(),
+    }
+}

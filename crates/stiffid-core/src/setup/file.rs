@@ -1,0 +1,621 @@
+//! The setup TOML file (format in [`super`]): read, converted to SI and built through
+//! [`SetupBuilder`], which checks every field.
+
+use super::{
+    cell, mm, Cell, CellConstraints, Noise, Obstacle, RopeLoad, Setup, SetupBuilder, Tracker,
+};
+use crate::common::limits::{self, JointBox};
+use crate::common::warning::{Warning, WarningKind};
+use crate::model::file::ModelFile;
+use crate::robot::file::{transform, TransformFile};
+use crate::robot::kinematics::Coordinates;
+use crate::{Error, Result, Robot};
+use nalgebra::{Vector3, Vector6};
+use serde::Deserialize;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SetupFile {
+    name: String,
+    #[serde(default)]
+    description: String,
+    robot: String,
+    robot_tip: Option<String>,
+    #[serde(default)]
+    package_paths: Vec<String>,
+    robot_base: Option<TransformFile>,
+    robot_flange: Option<TransformFile>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    max_speed_deg_s: Option<[f64; 6]>,
+    #[serde(default)]
+    springs: Coordinates,
+    characteristic_length_mm: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    nominal_stiffness_nm_per_rad: Option<[f64; 6]>,
+    tool: ToolFile,
+    loading: LoadingFile,
+    noise: NoiseFile,
+    bounds: BoundsFile,
+    test: Option<TestFile>,
+    constraints: Option<ConstraintsFile>,
+    cell: Option<CellFile>,
+    robot_geometry: Option<GeometryFile>,
+    tracker: Option<TrackerFile>,
+    model: Option<ModelFile>,
+    workpiece: Option<WorkpieceFile>,
+    controller: Option<ControllerFile>,
+    masses: Option<MassesFile>,
+    robot_accuracy: Option<RobotAccuracyFile>,
+    external_axis: Option<Vec<crate::robot::external::file::AxisFile>>,
+}
+
+/// `[robot_accuracy]`: how far the robot model's frames may be from the true robot's.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotAccuracyFile {
+    frame_sd_mm: f64,
+    frame_sd_mrad: f64,
+}
+
+/// `[masses]`: how well the robot's and the tool's masses are known.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MassesFile {
+    sd_percent: f64,
+}
+
+/// `[controller]`: the kinematics of the controller that runs a generated program.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ControllerFile {
+    kinematics: Option<String>,
+    robot: Option<String>,
+    robot_tip: Option<String>,
+}
+
+/// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WorkpieceFile {
+    base_from_part: TransformFile,
+    #[serde(default, deserialize_with = "crate::common::exact::arrays")]
+    reflectors_mm: Vec<[f64; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ToolFile {
+    #[serde(deserialize_with = "crate::common::exact::array")]
+    loading_point_mm: [f64; 3],
+    #[serde(deserialize_with = "crate::common::exact::arrays")]
+    measuring_points_mm: Vec<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    tcp_mm: Option<[f64; 3]>,
+    #[serde(default)]
+    mass_kg: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    centre_of_mass_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    inertia_kg_m2: Option<[f64; 6]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoadingFile {
+    load_n: f64,
+    #[serde(deserialize_with = "crate::common::exact::array")]
+    anchor_mm: [f64; 3],
+    #[serde(default)]
+    steps_n: Vec<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NoiseFile {
+    reading_sd_mm: Option<f64>,
+    variance_mm2: Option<f64>,
+    level_multiples: Vec<f64>,
+}
+
+impl NoiseFile {
+    /// The variance of one coordinate of one reading, m^2, and the note of the old
+    /// `variance_mm2` (what it meant: one displacement coordinate, or with load steps one
+    /// reading's), `steps` whether the setup has `[loading] steps_n`.
+    fn reading_variance(&self, steps: bool) -> Result<(f64, Option<Warning>)> {
+        match (self.reading_sd_mm, self.variance_mm2) {
+            (Some(sd), None) => {
+                limits::check("noise.reading_sd_mm", &[sd], &limits::READING_SD_MM)?;
+                let sd = sd * 1e-3;
+                Ok((sd * sd, None))
+            }
+            (None, Some(v)) => {
+                limits::check("noise.variance_mm2", &[v], &limits::VARIANCE_MM2)?;
+                let (reading, meant, formula) = match steps {
+                    false => (v / 2.0, "one coordinate of one displacement (a loaded minus an unloaded reading)", "sqrt(variance_mm2 / 2)"),
+                    true => (v, "one coordinate of one reading (with loading.steps_n)", "sqrt(variance_mm2)"),
+                };
+                let note = Warning::new(
+                    WarningKind::OldField,
+                    format!(
+                        "noise.variance_mm2 = {v} is the old noise field, the variance of {meant}: read as reading_sd_mm = {formula} = {:.6} mm, the standard deviation of one coordinate of one tracker reading; write reading_sd_mm instead",
+                        reading.sqrt()
+                    ),
+                );
+                Ok((reading * 1e-6, Some(note)))
+            }
+            (Some(_), Some(_)) => Err(Error::InvalidField {
+                field: "noise.variance_mm2".into(),
+                message: "expected reading_sd_mm or the old variance_mm2, not both".into(),
+            }),
+            (None, None) => Err(Error::InvalidField {
+                field: "noise.reading_sd_mm".into(),
+                message: "missing: expected the standard deviation of one coordinate of one tracker reading, mm".into(),
+            }),
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoundsFile {
+    #[serde(deserialize_with = "crate::common::exact::array")]
+    lower_deg: [f64; 6],
+    #[serde(deserialize_with = "crate::common::exact::array")]
+    upper_deg: [f64; 6],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TestFile {
+    #[serde(deserialize_with = "crate::common::exact::arrays")]
+    postures_deg: Vec<[f64; 6]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConstraintsFile {
+    loading_point_min_z_mm: Option<f64>,
+    #[serde(default)]
+    anchor_below_loading_point: bool,
+}
+
+/// The built-in setups: `(name, TOML)`.
+const BUILTIN: &crate::robot::builtin::Table = &[
+    (
+        "zhang2021-comau-nj165",
+        include_str!("../../../stiffid/setups/zhang2021-comau-nj165.toml"),
+    ),
+    (
+        "fanuc-r2000ic-165f",
+        include_str!("../../../stiffid/setups/fanuc-r2000ic-165f.toml"),
+    ),
+];
+
+/// Names of the built-in setups.
+pub fn builtin_names() -> impl Iterator<Item = &'static str> {
+    crate::robot::builtin::names(BUILTIN)
+}
+
+/// The TOML text of a built-in setup.
+///
+/// # Errors
+/// [`Error::Unknown`] if no built-in setup has this name.
+pub fn builtin_text(name: &str) -> Result<&'static str> {
+    crate::robot::builtin::text(BUILTIN, "setup", name)
+}
+
+/// A built-in setup, its robot taken from the presets.
+///
+/// # Examples
+/// The paper's cell (Zhang et al. 2021, Tables 1-3): four measuring points, six noise levels, the
+/// bounds of Table 1 inside the robot's joint limits.
+/// ```
+/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// assert_eq!(setup.tool().measuring_points.len(), 4);
+/// assert_eq!(setup.noise().levels, [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]);
+/// assert!((setup.bounds().upper[1].to_degrees() - 40.0).abs() < 1e-12);
+/// assert!(setup.robot().limits().contains(&setup.bounds().upper));
+/// assert!(stiffid::setup::builtin("no-such-setup").is_err());
+/// # Ok::<(), stiffid::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Unknown`] if no built-in setup has this name.
+pub fn builtin(name: &str) -> Result<Setup> {
+    parse(builtin_text(name)?, &format!("setup {name}"), |r, _| {
+        crate::robot::presets::get(r)
+    })
+}
+
+/// Parses a setup TOML. `source_name` (the file name) is used in errors; `resolve_robot` turns the
+/// `robot` field (and the optional `robot_tip`) into a [`Robot`] (a preset, or a file the caller
+/// reads). [`parse_with`] also hands over the setup's `package_paths`.
+///
+/// # Errors
+/// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
+/// [`Error::InvalidField`] naming the file, the field and the value for everything
+/// [`SetupBuilder::build`] checks (for example a stiffness outside
+/// [`limits::STIFFNESS_NM_PER_RAD`]) and for bad
+/// `[robot_base]`/`[robot_flange]` offsets; [`Error::OutsideBox`] naming the file, the field and
+/// the value for bounds or test postures outside the robot's limits; whatever `resolve_robot`
+/// returns.
+pub fn parse<F>(text: &str, source_name: &str, mut resolve_robot: F) -> Result<Setup>
+where
+    F: FnMut(&str, Option<&str>) -> Result<Robot>,
+{
+    parse_with(text, source_name, |r: &RobotRequest| {
+        resolve_robot(r.reference, r.tip)
+    })
+}
+
+/// What a setup file asks of its robot: the `robot` reference, the `robot_tip` link and the
+/// `package_paths` (as written, relative to the setup file) where a URDF's `package://` meshes
+/// are looked for ([`crate::robot::collision`]).
+#[derive(Debug, Clone, Copy)]
+pub struct RobotRequest<'a> {
+    /// The `robot` field: a preset name or a robot file.
+    pub reference: &'a str,
+    /// The `robot_tip` field (URDF only).
+    pub tip: Option<&'a str>,
+    /// The `package_paths` field: at most [`MAX_PACKAGE_PATHS`] directories.
+    pub package_paths: &'a [String],
+    /// The field that names it: `robot`, or `controller.robot` (the robot file the controller
+    /// runs).
+    pub field: &'a str,
+}
+
+/// Most `package_paths` a setup may list.
+pub const MAX_PACKAGE_PATHS: usize = 64;
+
+/// [`parse`] with the whole [`RobotRequest`] handed to `resolve_robot` (once for `robot`, once
+/// more for `[controller] robot`).
+///
+/// # Errors
+/// Those of [`parse`]; [`Error::InvalidField`] (`package_paths`) for more than
+/// [`MAX_PACKAGE_PATHS`] paths or an empty one, (`controller.kinematics`) for a kinematics other
+/// than `nominal` or `calibrated`, or `[controller] robot` with `kinematics = "calibrated"`.
+pub fn parse_with<F>(text: &str, source_name: &str, mut resolve_robot: F) -> Result<Setup>
+where
+    F: FnMut(&RobotRequest) -> Result<Robot>,
+{
+    let mut file: SetupFile = toml::from_str(text).map_err(|e| Error::Parse {
+        source_name: source_name.to_string(),
+        message: limits::one_line(&e.to_string()),
+    })?;
+    check_package_paths(&file.package_paths).map_err(|e| in_file(e, source_name))?;
+    let robot = resolve_robot(&RobotRequest {
+        reference: &file.robot,
+        tip: file.robot_tip.as_deref(),
+        package_paths: &file.package_paths,
+        field: "robot",
+    })?;
+    let robot = mounted(robot, &file, source_name)?;
+    let mut controller = match file.controller.take() {
+        None => super::Controller::default(),
+        Some(c) => controller(c, &file, source_name, &mut resolve_robot)?,
+    };
+    controller.world = transform(file.robot_base, "robot_base", source_name)?;
+    controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
+    let steps = !file.loading.steps_n.is_empty();
+    let (reading_variance, note) = file
+        .noise
+        .reading_variance(steps)
+        .map_err(|e| in_file(e, source_name))?;
+    let mut setup = builder(file, robot, reading_variance)
+        .map(|b| b.with_controller(controller))
+        .and_then(SetupBuilder::build)
+        .map_err(|e| in_file(e, source_name))?;
+    setup.notes.extend(note);
+    Ok(setup)
+}
+
+/// `[controller]`: its kinematics and the robot file it runs (resolved as `robot` is, with the
+/// setup's offsets).
+fn controller<F>(
+    c: ControllerFile,
+    file: &SetupFile,
+    source_name: &str,
+    resolve_robot: &mut F,
+) -> Result<super::Controller>
+where
+    F: FnMut(&RobotRequest) -> Result<Robot>,
+{
+    use super::Kinematics;
+    let kinematics = match c.kinematics.as_deref().map(str::parse::<Kinematics>) {
+        None => Kinematics::Nominal,
+        Some(Ok(k)) => k,
+        Some(Err(e)) => return Err(in_file(e, source_name)),
+    };
+    let robot = match (&c.robot, kinematics) {
+        (None, _) => None,
+        (Some(_), Kinematics::Calibrated) => {
+            return Err(in_file(
+                Error::InvalidField {
+                    field: "controller.robot".into(),
+                    message: "given with kinematics = \"calibrated\": a controller loaded with the calibrated model runs the setup's robot; leave robot out, or say kinematics = \"nominal\"".into(),
+                },
+                source_name,
+            ))
+        }
+        (Some(reference), Kinematics::Nominal) => {
+            let robot = resolve_robot(&RobotRequest {
+                reference,
+                tip: c.robot_tip.as_deref(),
+                package_paths: &file.package_paths,
+                field: "controller.robot",
+            })?;
+            Some(mounted(robot, file, source_name)?)
+        }
+    };
+    Ok(super::Controller {
+        kinematics,
+        robot,
+        ..Default::default()
+    })
+}
+
+fn check_package_paths(paths: &[String]) -> Result<()> {
+    limits::check_count("package_paths", paths.len(), 0, MAX_PACKAGE_PATHS)?;
+    match paths.iter().position(|p| p.trim().is_empty()) {
+        Some(i) => Err(Error::InvalidField {
+            field: format!("package_paths[{}]", i + 1),
+            message: "expected a directory, got an empty path".into(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// A field error placed in the file `source_name` (`"cell.toml: bounds.lower_deg[2]"`).
+fn in_file(e: Error, source_name: &str) -> Error {
+    match e {
+        Error::InvalidField { field, message } => Error::InvalidField {
+            field: format!("{source_name}: {field}"),
+            message,
+        },
+        Error::OutsideBox {
+            field,
+            value_deg,
+            within,
+            lower_deg,
+            upper_deg,
+        } => Error::OutsideBox {
+            field: format!("{source_name}: {field}"),
+            value_deg,
+            within,
+            lower_deg,
+            upper_deg,
+        },
+        other => other,
+    }
+}
+
+/// The robot with the setup's offsets: `[robot_base]` places the robot's base frame in the cell
+/// (a pedestal: results are then in the cell frame), before the robot's own base transform;
+/// `[robot_flange]` adds an adapter plate after its flange. Either is `xyz_mm` and `rpy_deg`
+/// (fixed-axis roll, pitch, yaw as URDF), the same as a robot TOML's `[base]` and `[flange]`.
+///
+/// The setup's `[[external_axis]]` tables, when it has any, replace the robot file's
+/// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
+/// replaces the robot's axis speeds.
+fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+    if let Some(v) = &f.max_speed_deg_s {
+        robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
+    }
+    if let Some(tables) = &f.external_axis {
+        robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
+    }
+    if f.robot_base.is_some() {
+        let base = transform(f.robot_base, "robot_base", src)? * robot.base();
+        robot = robot.with_base(base)?;
+    }
+    if f.robot_flange.is_some() {
+        let flange = robot.flange() * transform(f.robot_flange, "robot_flange", src)?;
+        robot = robot.with_flange(flange)?;
+    }
+    Ok(robot)
+}
+
+fn deg6(v: &[f64; 6]) -> Vector6<f64> {
+    Vector6::from_iterator(v.iter().map(|d| d.to_radians()))
+}
+
+/// The file's fields in SI units, for [`SetupBuilder::build`] to check.
+fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBuilder> {
+    let measuring_points = f.tool.measuring_points_mm.iter().map(mm).collect();
+    let springs = match &f.model {
+        Some(m) => m.springs(&robot)?,
+        None => Default::default(),
+    };
+    let mut b = Setup::builder(f.name, robot)
+        .with_virtual_springs(springs.model)
+        .with_candidate_springs(springs.candidates)
+        .with_description(f.description)
+        .with_robot_ref(f.robot)
+        .with_springs(f.springs)
+        .with_loading_point(mm(&f.tool.loading_point_mm))
+        .with_measuring_points(measuring_points)
+        .with_load(RopeLoad {
+            load: f.loading.load_n,
+            anchor: mm(&f.loading.anchor_mm),
+        })
+        .with_load_steps(f.loading.steps_n)
+        .with_noise(Noise {
+            reading_variance,
+            levels: f.noise.level_multiples,
+        })
+        .with_bounds(JointBox::new(
+            deg6(&f.bounds.lower_deg),
+            deg6(&f.bounds.upper_deg),
+        ));
+    if let Some(l) = f.characteristic_length_mm {
+        b = b.with_characteristic_length(l * 1e-3);
+    }
+    if let Some(k) = f.nominal_stiffness_nm_per_rad {
+        b = b.with_nominal_stiffness(Vector6::from(k));
+    }
+    if let Some(tcp) = &f.tool.tcp_mm {
+        b = b.with_tcp(mm(tcp));
+    }
+    match (f.tool.mass_kg, &f.tool.centre_of_mass_mm) {
+        (Some(mass), Some(c)) => {
+            b = b.with_payload(crate::setup::Payload {
+                mass,
+                centre: mm(c),
+                inertia: crate::robot::dynamics::body::tensor(
+                    f.tool.inertia_kg_m2.unwrap_or_default(),
+                ),
+            })
+        }
+        (None, None) if f.tool.inertia_kg_m2.is_some() => {
+            return Err(Error::InvalidField {
+                field: "tool.inertia_kg_m2".into(),
+                message: "inertia_kg_m2 needs mass_kg and centre_of_mass_mm".into(),
+            })
+        }
+        (None, None) => {}
+        _ => {
+            return Err(Error::InvalidField {
+                field: "tool.mass_kg".into(),
+                message: "mass_kg and centre_of_mass_mm come together: give both or neither".into(),
+            })
+        }
+    }
+    if let Some(a) = &f.robot_accuracy {
+        b = b.with_frame_sd(a.frame_sd_mm * 1e-3, a.frame_sd_mrad * 1e-3);
+    }
+    if let Some(m) = &f.masses {
+        b = b.with_mass_sd(m.sd_percent * 1e-2);
+    }
+    if let Some(t) = f.test {
+        b = b.with_test_postures(t.postures_deg.iter().map(deg6).collect());
+    }
+    if let Some(c) = f.constraints {
+        b = b.with_constraints(CellConstraints {
+            loading_point_min_z: c.loading_point_min_z_mm.map(|z| z * 1e-3),
+            anchor_below_loading_point: c.anchor_below_loading_point,
+        });
+    }
+    if let Some(c) = f.cell {
+        b = b.with_cell(read_cell(c));
+    }
+    if let Some(g) = f.robot_geometry {
+        b = read_geometry(g, b);
+    }
+    if let Some(t) = f.tracker {
+        b = b.with_tracker(read_tracker(t)?);
+    }
+    if let Some(w) = f.workpiece {
+        let t = &w.base_from_part;
+        let field = "workpiece.base_from_part";
+        limits::check(&format!("{field}.xyz_mm"), &t.xyz_mm, &limits::LENGTH_MM)?;
+        limits::check(&format!("{field}.rpy_deg"), &t.rpy_deg, &limits::ANGLE_DEG)?;
+        b = b.with_workpiece(t.isometry());
+        let reflectors = w.reflectors_mm.iter().map(|p| Vector3::from(*p) * 1e-3);
+        b = b.with_table_reflectors(reflectors.collect());
+    }
+    Ok(b)
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CellFile {
+    floor_z_mm: Option<f64>,
+    clearance_mm: Option<f64>,
+    #[serde(default)]
+    obstacle: Vec<ObstacleFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObstacleFile {
+    name: String,
+    #[serde(deserialize_with = "crate::common::exact::array")]
+    min_mm: [f64; 3],
+    #[serde(deserialize_with = "crate::common::exact::array")]
+    max_mm: [f64; 3],
+    carried_by: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GeometryFile {
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    link_radius_mm: Option<[f64; 7]>,
+    tool_radius_mm: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrackerFile {
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    position_mm: Option<[f64; 3]>,
+    max_incidence_deg: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option_arrays")]
+    measuring_normals: Option<Vec<[f64; 3]>>,
+    base_from_tracker: Option<TransformFile>,
+    registration_uncertainty_mm: Option<f64>,
+}
+
+/// The `[cell]` table in SI units (checked when the setup is built).
+fn read_cell(f: CellFile) -> Cell {
+    Cell {
+        floor_z: f.floor_z_mm.map(|z| z * 1e-3),
+        clearance: f.clearance_mm.unwrap_or(0.0) * 1e-3,
+        obstacles: f
+            .obstacle
+            .into_iter()
+            .map(|o| Obstacle {
+                carried_by: o.carried_by,
+                ..Obstacle::fixed(o.name, mm(&o.min_mm), mm(&o.max_mm))
+            })
+            .collect(),
+    }
+}
+
+/// The builder with the radii the file gives.
+fn read_geometry(f: GeometryFile, mut b: SetupBuilder) -> SetupBuilder {
+    if let Some(radii) = f.link_radius_mm {
+        b = b.with_link_radii(radii.map(|r| r * 1e-3));
+    }
+    if let Some(r) = f.tool_radius_mm {
+        b = b.with_tool_radius(r * 1e-3);
+    }
+    b
+}
+
+/// The `[tracker]` table in SI units: the position is `position_mm`, or the translation of
+/// `base_from_tracker` (checked when the setup is built).
+fn read_tracker(f: TrackerFile) -> Result<Tracker> {
+    if let Some(t) = &f.base_from_tracker {
+        cell::position("tracker.base_from_tracker.xyz_mm", &t.xyz_mm)?;
+        let rpy = &limits::ANGLE_DEG;
+        limits::check("tracker.base_from_tracker.rpy_deg", &t.rpy_deg, rpy)?;
+    }
+    if let Some(u) = f.registration_uncertainty_mm {
+        limits::check(
+            "tracker.registration_uncertainty_mm",
+            &[u],
+            &limits::MARGIN_MM,
+        )?;
+    }
+    let base_from_tracker = f.base_from_tracker.map(|t| t.isometry());
+    let position = match (f.position_mm, &base_from_tracker) {
+        (Some(p), _) => mm(&p),
+        (None, Some(t)) => t.translation.vector,
+        (None, None) => {
+            return Err(super::invalid(
+                "tracker",
+                "expected position_mm or base_from_tracker",
+            ))
+        }
+    };
+    Ok(Tracker {
+        position,
+        max_incidence: f.max_incidence_deg.map(f64::to_radians),
+        measuring_normals: f
+            .measuring_normals
+            .map_or(Vec::new(), |n| n.into_iter().map(Vector3::from).collect()),
+        base_from_tracker,
+        registration_uncertainty: f.registration_uncertainty_mm.map(|u| u * 1e-3),
+    })
+}

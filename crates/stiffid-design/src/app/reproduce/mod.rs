@@ -1,0 +1,46 @@
+//! The reproduce job: the paper's simulation study (Zhang et al. 2021, Section IV-A, Fig. 8,
+//! Tables 3-5) as [`crate::study::run`] runs it, and what it found ([`crate::study::findings`]),
+//! computed once for every front end and document.
+
+pub mod document;
+
+use crate::study::{self, findings, Findings, Options, Study};
+use stiffid_core::app::Warning;
+use stiffid_core::common::progress::Progress;
+use stiffid_core::{Result, Setup};
+
+/// The study to run.
+pub struct Request<'a> {
+    /// The setup (the paper's: `zhang2021-comau-nj165`); its nominal stiffness is the true
+    /// stiffness of the simulation.
+    pub setup: &'a Setup,
+    /// Runs, seed, starts per global search, start groups of the start-group check.
+    pub options: Options,
+    /// Where the study reports its stages (`&()` for nowhere).
+    pub progress: &'a dyn Progress,
+}
+
+/// What the study found.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The study: every group, its simulation and validation, the start-group check.
+    pub study: Study,
+    /// What it found, in numbers.
+    pub findings: Findings,
+    /// None today: the job's warnings, for the pattern ([`stiffid_core::app`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs the study.
+///
+/// # Errors
+/// The errors of [`study::run`]: counts out of range, a setup without a nominal stiffness or a
+/// characteristic length.
+pub fn run(request: &Request) -> Result<Report> {
+    let study = study::run(request.setup, &request.options, request.progress)?;
+    Ok(Report {
+        findings: findings(&study),
+        study,
+        warnings: Vec::new(),
+    })
+}

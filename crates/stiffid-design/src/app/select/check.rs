@@ -1,0 +1,115 @@
+//! The request's checks: its parts fit its method, and its counts are in range.
+
+use super::{in_pool, Method, Request, TARGET_PCT};
+use super::{DISTINCT_DEG, DISTINCT_MM};
+use crate::app::purpose::{self, Purpose};
+use crate::pool::MAX_POOL;
+use stiffid_core::cell::Checker;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::common::limits::{self, check_count};
+use stiffid_core::{Error, Result};
+
+/// The request's parts fit its method, and its counts are in range.
+pub(super) fn check(r: &Request) -> Result<()> {
+    r.setup.check_bodies()?;
+    let invalid = |field: &str, message: &str| {
+        Err(Error::InvalidField {
+            field: field.into(),
+            message: message.into(),
+        })
+    };
+    let invalid_option = |option, message: &str| {
+        Err(Error::InvalidOption {
+            option,
+            message: message.into(),
+        })
+    };
+    if r.start.is_some() && r.method != Method::Local {
+        return invalid_option(JobOption::Start, "only for a local search");
+    }
+    if r.pool.is_some() != (r.method == Method::Pool) {
+        return invalid("pool", "a pool choice needs the pool postures, and only it");
+    }
+    if let Some(d) = &r.distinct {
+        if r.method != Method::Pool {
+            return invalid(
+                "distinct",
+                "only for a pool choice: a search moves every posture freely and cannot forbid pairs; choose from a pool of postures (the pool keeps the first of every near pair), or drop distinct and look at the near pairs flagged",
+            );
+        }
+        let deg = |v: f64| limits::check("distinct_deg", &[v.to_degrees()], &DISTINCT_DEG);
+        (deg(d.joint).and(deg(d.angle))).map_err(|e| e.for_option(JobOption::DistinctDeg))?;
+        limits::check("distinct_mm", &[d.position * 1e3], &DISTINCT_MM)
+            .map_err(|e| e.for_option(JobOption::DistinctMm))?;
+    }
+    let most = limits::MAX_SEARCH_POSTURES as usize;
+    match &r.start {
+        Some(start) => check_count("start", start.len(), 2, most)
+            .map_err(|e| e.for_option(JobOption::Start))?,
+        None if r.target_pct.is_none() => check_count("postures", r.postures, 2, most)?,
+        None => {}
+    }
+    if let Some(restarts) = r.restarts {
+        if r.method != Method::Pool {
+            return invalid_option(
+                JobOption::Restarts,
+                "only for a pool choice (the exchange runs over the pool)",
+            );
+        }
+        limits::check_integer("restarts", restarts as u64, 1, limits::MAX_POOL_RESTARTS)
+            .map_err(|e| e.for_option(JobOption::Restarts))?;
+    }
+    if r.options.margin.is_some() && !Checker::new(r.setup).constrains() {
+        return invalid_option(
+            JobOption::MarginMm,
+            "the setup has no cell, tracker or constraints to keep a margin to",
+        );
+    }
+    purpose::check(r.purpose, &r.calibration)?;
+    if r.candidates.is_some() && !r.for_candidates {
+        return Err(Error::OptionCombination {
+            option: JobOption::Candidates,
+            with: vec![JobOption::ForCandidates],
+            needs: true,
+            reason: String::new(),
+        });
+    }
+    if r.for_candidates && r.purpose != Purpose::Stiffness {
+        return invalid_option(
+            JobOption::ForCandidates,
+            "the candidates are springs of the stiffness model: design for them with the stiffness purpose, and for the calibration separately",
+        );
+    }
+    if r.for_candidates && r.target_pct.is_some() {
+        return invalid_option(
+            JobOption::ForCandidates,
+            "a target deviation rate is for the drives: give the number of postures",
+        );
+    }
+    if let Some(pct) = r.target_pct {
+        limits::check("target_pct", &[pct], &TARGET_PCT)
+            .map_err(|e| e.for_option(JobOption::TargetPct))?;
+        if r.purpose != Purpose::Stiffness {
+            return invalid_option(
+                JobOption::TargetPct,
+                "a target deviation rate is for the stiffness design only",
+            );
+        }
+        if r.method == Method::Local {
+            return invalid_option(
+                JobOption::TargetPct,
+                "needs a pool or the global search to choose each group",
+            );
+        }
+    }
+    if let Some(p) = &r.pool {
+        if p.postures.len() > MAX_POOL {
+            let message = format!(
+                "{} postures: a pool holds at most {MAX_POOL}",
+                p.postures.len()
+            );
+            return Err(in_pool(&p.name, "pool", message));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,25 @@
+//! The document of the identify job ([`crate::app::identify`]): `stiffid identify --json` (and
+//! `--out`), whatever the model and the options. One document with one schema
+//! (`docs/schemas/identify.schema.json`), in one of three forms by what was asked: the six drive
+//! springs ([`drives`]), a model with virtual springs ([`springs`]) or the model comparison
+//! ([`Comparison`]); each form is written as it is, without a tag.
+
+pub mod drives;
+pub mod scene;
+pub mod springs;
+
+pub use crate::compare::Document as Comparison;
+use serde::Serialize;
+
+/// `stiffid identify --json`: the identification of the setup's model or the model comparison.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub enum Document {
+    /// The six drive springs (the setup's model without virtual springs), fitted by QR.
+    Drives(Box<drives::Document>),
+    /// A model with virtual springs, fitted by the column-scaled SVD.
+    Springs(Box<springs::Document>),
+    /// The model comparison (`compare_models`).
+    Comparison(Box<Comparison>),
+}

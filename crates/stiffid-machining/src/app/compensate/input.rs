@@ -1,0 +1,63 @@
+//! A program input of the compensate job read and checked before anything is computed: its
+//! output, options and settings, its text, and its Cartesian targets resolved as the controller
+//! moves to them.
+
+use super::{generate, in_input, output, program_tool, Input};
+use crate::compensate::Options;
+use crate::{self as machining, Language, Program};
+use stiffid_core::{Result, Setup};
+
+/// The program of a program input, checked against its output and options, read and its
+/// Cartesian targets resolved on `setup`'s controller (as the controller moves to them);
+/// `None` for a path file.
+///
+/// # Errors
+/// Those of [`output::check_output`], [`output::check_lean`], [`Settings::validate`],
+/// [`generate::check_payload`], [`machining::read`] and [`machining::resolve`] (the program's
+/// as [`Error::Input`] naming its file).
+pub(super) fn read_checked(
+    setup: &Setup,
+    input: &Input,
+    options: &Options,
+) -> Result<Option<Program>> {
+    let Input::Program {
+        name,
+        text,
+        language,
+        chord_tolerance,
+        output,
+        settings,
+        ..
+    } = input
+    else {
+        return Ok(None);
+    };
+    let (language, output) = (*language, *output);
+    output::check_output(language, output).map_err(|e| in_input(name, e))?;
+    output::check_lean(options, output)?;
+    settings.validate()?;
+    if let (Language::GCode, Language::Robot(d)) = (language, output) {
+        generate::check_payload(d, settings.targets, &program_tool(setup))?;
+    }
+    let program = read_program(name, text, language, *chord_tolerance)?;
+    // A Cartesian program's targets as the controller moves to them (a copy only then).
+    match machining::resolve(&program, setup, None, options) {
+        Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
+        Ok(std::borrow::Cow::Borrowed(_)) => Ok(Some(program)),
+        Err(e) => Err(in_input(name, e)),
+    }
+}
+
+/// Reads a program file's text in `language` (G-code arcs split to `chord_tolerance`, m), its
+/// errors placed in the file `name`.
+///
+/// # Errors
+/// Those of [`machining::read`], as [`Error::Input`].
+pub fn read_program(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+) -> Result<Program> {
+    machining::read(text, language, chord_tolerance).map_err(|e| in_input(name, e))
+}

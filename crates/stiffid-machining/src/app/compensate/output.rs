@@ -1,0 +1,69 @@
+//! What a compensated program may be written as: the output language a program takes, and
+//! a lean or runs' configurations G-code cannot carry.
+
+use super::configurations::name;
+use crate::compensate::{Configurations, Options, Run};
+use crate::Language;
+#[cfg(doc)]
+use stiffid_core::JobOption;
+use stiffid_core::{Error, Result};
+
+/// Refuses an output language a program cannot be written in: a robot program stays in its own.
+pub(super) fn check_output(language: Language, output: Language) -> Result<()> {
+    match (language, output) {
+        (a, b) if a == b => Ok(()),
+        (Language::GCode, Language::Robot(_)) => Ok(()),
+        _ => Err(Error::InvalidField {
+            field: "out".into(),
+            message: format!(
+                "a program in {} is written back in its own language, not as {}",
+                language.name(),
+                output.name()
+            ),
+        }),
+    }
+}
+
+/// Refuses a free lead and tilt for a program written as G-code: its blocks carry positions
+/// only, so the leaned postures would be lost.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::FreeLeadTilt`]).
+pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
+    match (options.free_lead_tilt, output) {
+        (Some(_), Language::GCode) => Err(Error::InvalidOption {
+            option: stiffid_core::JobOption::FreeLeadTilt,
+            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses a program written as G-code whose runs ([`crate::compensate::Scope::Run`])
+/// were compensated in different configurations: its blocks carry positions only, so the
+/// controller would hold the first run's configuration throughout.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::ConfigurationPer`]) naming the first run whose
+/// configuration is not the first run's, its lines and both configurations.
+pub(super) fn check_runs(configurations: Option<&Configurations>, output: Language) -> Result<()> {
+    let runs = configurations.map_or(&[][..], |c| c.runs.as_slice());
+    let (Language::GCode, Some(first)) = (output, runs.first()) else {
+        return Ok(());
+    };
+    let named = |r: &Run| name(&r.branches[r.chosen].configuration);
+    let Some((k, run)) = (runs.iter().enumerate()).find(|(_, r)| named(r) != named(first)) else {
+        return Ok(());
+    };
+    Err(Error::InvalidOption {
+        option: stiffid_core::JobOption::ConfigurationPer,
+        message: format!(
+            "run: run {} (lines {} to {}) is compensated in {}, run 1 in {}; a G-code program cannot name a configuration, so the controller would keep one throughout: write a robot program (--out X.src, .mod or .ls; Python output=), whose joint moves carry each run's configuration, or keep one configuration per program",
+            k + 1,
+            run.first_line,
+            run.last_line,
+            named(run),
+            named(first)
+        ),
+    })
+}

@@ -1,0 +1,246 @@
+//! Drilling canned cycles `G81` (drill), `G82` (drill, dwell at the bottom) and `G83` (peck
+//! drill), read as the moves they make (the sequence of LinuxCNC's and FANUC's manuals) and
+//! written back as those moves, `G0`/`G1`/`G4` blocks of their own, so the controller runs the
+//! compensated points and never a cycle of its own.
+//!
+//! In a cycle (until `G0`-`G3` or `G80`) every block with `X`, `Y` or `Z` (or the `G8x` word)
+//! drills one hole at its `X Y`: rapid up to `R` if below it, rapid over the hole, rapid down to
+//! `R`, feed to `Z` (`G83`: pecks of `Q`, each followed by a rapid out to `R` and a rapid back to
+//! [`PECK_CLEARANCE_MM`] above the depth reached), dwell `P` (`G82`), rapid out to the clearance
+//! level (`G98`, the default: the higher of `R` and the level the cycle started from; `G99`: `R`).
+//! `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
+//! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
+//! plane, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
+//! `Z` or `R`, a bottom not below `R`, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
+//! outside `G83`, and a block of `R`, `Q` or `P` alone (controllers differ on whether it drills).
+
+use super::{at, may_move, Block, GCode, Motion, Point, State, MAX_POINTS};
+use nalgebra::Vector3;
+use std::ops::Range;
+use stiffid_core::Result;
+
+/// How far above the depth reached a `G83` peck's rapid re-approach stops, mm (LinuxCNC's
+/// 0.010 inch).
+pub const PECK_CLEARANCE_MM: f64 = 0.254;
+
+/// One hole of a drilling canned cycle, part frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cycle {
+    /// The line of its block, 1-based.
+    pub line: u64,
+    /// `81`, `82` or `83`.
+    pub code: u8,
+    /// The bottom of the hole (`X Y Z`), m.
+    pub bottom: Vector3<f64>,
+    /// The `R` level the feed starts from, m.
+    pub retract: f64,
+    /// The level it leaves to (`G98`: the higher of `R` and the level the cycle started from;
+    /// `G99`: `R`), m.
+    pub clearance: f64,
+    /// `G82`'s dwell `P`, as written (the controller's unit: seconds or milliseconds).
+    pub dwell: Option<f64>,
+    /// `G83`'s peck depth `Q`, m.
+    pub peck: Option<f64>,
+}
+
+/// The cycle's words in force (modal within a cycle), in the units of their blocks (m).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Modal {
+    /// The `Z` level before the cycle's first block.
+    initial: f64,
+    depth: Option<f64>,
+    retract: Option<f64>,
+    peck: Option<f64>,
+    /// `P`: its value and its text.
+    dwell: Option<(f64, String)>,
+}
+
+impl Modal {
+    /// A cycle starting with the tool at `z`.
+    pub(super) fn starting_at(z: f64) -> Self {
+        Modal {
+            initial: z,
+            ..Default::default()
+        }
+    }
+}
+
+/// The words of one block that a cycle reads, as written (the block's units).
+#[derive(Debug, Default)]
+pub(super) struct Words {
+    pub xyz: [Option<f64>; 3],
+    pub retract: Option<f64>,
+    pub peck: Option<f64>,
+    pub dwell: Option<(f64, Range<usize>)>,
+    /// The block has the `G8x` word.
+    pub given: bool,
+}
+
+/// A block in a canned cycle (module docs): its hole's moves added to `out`.
+pub(super) fn block(
+    line: u64,
+    span: Range<usize>,
+    w: Words,
+    other_geometry: bool,
+    mut drop: Vec<Range<usize>>,
+    s: &mut State,
+    out: &mut GCode,
+) -> Result<()> {
+    let code = s.motion;
+    let name = format!("G{code}");
+    let scale = if s.inch { 25.4e-3 } else { 1e-3 };
+    let text = |r: &Range<usize>| out.text[r.clone()].to_string();
+    if let Some((v, r)) = &w.dwell {
+        s.cycle.dwell = Some((*v, text(r)));
+        drop.push(r.clone());
+    }
+    if let Some(z) = w.xyz[2] {
+        s.cycle.depth = Some(z * scale);
+    }
+    if let Some(r) = w.retract {
+        s.cycle.retract = Some(r * scale);
+    }
+    if let Some(q) = w.peck {
+        s.cycle.peck = Some(q * scale);
+    }
+    let drills = w.given || w.xyz.iter().any(Option::is_some);
+    if !drills {
+        if w.retract.is_some() || w.peck.is_some() || w.dwell.is_some() {
+            return Err(at(line, format!("{name}: R, Q or P without X, Y or Z: controllers differ on whether such a block drills; give the hole's X Y")));
+        }
+        return Ok(());
+    }
+    let refuse = |why: &str| Err(at(line, format!("{name}: {why}")));
+    if s.incremental {
+        return refuse("a canned cycle under G91: controllers differ on what R and Z count from; write it in G90");
+    }
+    if s.plane != 17 {
+        return refuse("a canned cycle outside the G17 plane; stiffid drills along the part's Z");
+    }
+    if other_geometry {
+        return refuse("I, J, K, rotary or external axis words in a canned cycle");
+    }
+    let tool = may_move(line, s)?;
+    let orientation = nalgebra::UnitQuaternion::from_euler_angles(
+        s.abc[0].to_radians(),
+        s.abc[1].to_radians(),
+        s.abc[2].to_radians(),
+    ) * tool;
+    if (orientation * Vector3::z() + Vector3::z()).norm() > 1e-9 {
+        return refuse("a canned cycle drills along the part's -Z, and the tool does not point that way (tool_rpy_deg)");
+    }
+    let (Some(depth), Some(retract)) = (s.cycle.depth, s.cycle.retract) else {
+        return refuse("a canned cycle needs its depth Z and its retract level R");
+    };
+    if depth >= retract {
+        return refuse("the bottom Z must lie below the retract level R");
+    }
+    let peck = match (code, s.cycle.peck) {
+        (83, Some(q)) if q > 0.0 => Some(q),
+        (83, _) => return refuse("a peck depth Q above 0 is needed"),
+        (_, Some(_)) => return refuse("Q (a peck depth) belongs to G83"),
+        _ => None,
+    };
+    let dwell = match (code, &s.cycle.dwell) {
+        (82, Some(p)) => Some(p.clone()),
+        (82, None) => return refuse("a dwell P is needed"),
+        (_, Some(_)) => return refuse("P (a dwell) belongs to G82"),
+        _ => None,
+    };
+    if let Some(q) = peck {
+        if (retract - depth) / q > MAX_POINTS as f64 / 3.0 {
+            return Err(at(
+                line,
+                format!("{name}: more than {MAX_POINTS} path points of pecks"),
+            ));
+        }
+    }
+    let x = w.xyz[0].map_or(s.position.x, |v| v * scale);
+    let y = w.xyz[1].map_or(s.position.y, |v| v * scale);
+    let clearance = match s.retract_to_r {
+        true => retract,
+        false => retract.max(s.cycle.initial),
+    };
+    let mut moves: Vec<(Vector3<f64>, Motion)> = Vec::new();
+    let mut here = s.position;
+    let mut go = |p: Vector3<f64>, m: Motion, moves: &mut Vec<(Vector3<f64>, Motion)>| {
+        if (p - here).norm() > 1e-12 {
+            moves.push((p, m));
+            here = p;
+        }
+    };
+    let at_xy = |z: f64| Vector3::new(x, y, z);
+    let above = s.position.z.max(retract);
+    go(
+        Vector3::new(s.position.x, s.position.y, above),
+        Motion::Rapid,
+        &mut moves,
+    );
+    go(at_xy(above), Motion::Rapid, &mut moves);
+    go(at_xy(retract), Motion::Rapid, &mut moves);
+    let mut reached = retract;
+    let bottom_index = loop {
+        // A peck too small to change the level in floating point goes to the bottom.
+        let next = peck
+            .map(|q| (reached - q).max(depth))
+            .filter(|n| *n < reached)
+            .unwrap_or(depth);
+        if reached < retract {
+            go(at_xy(retract), Motion::Rapid, &mut moves);
+            go(
+                at_xy((reached + PECK_CLEARANCE_MM * 1e-3).min(retract)),
+                Motion::Rapid,
+                &mut moves,
+            );
+        }
+        go(at_xy(next), Motion::Feed, &mut moves);
+        reached = next;
+        if next <= depth {
+            break moves.len() - 1;
+        }
+    };
+    go(at_xy(clearance), Motion::Rapid, &mut moves);
+    if !moves
+        .iter()
+        .all(|(p, _)| p.iter().all(|v| v.abs() <= 100.0))
+    {
+        return Err(at(line, "position beyond 100 m".into()));
+    }
+    let index = out.cycles.len();
+    out.cycles.push(super::Cycle {
+        line,
+        code,
+        bottom: at_xy(depth),
+        retract,
+        clearance,
+        dwell: dwell.as_ref().map(|(v, _)| *v),
+        peck,
+    });
+    let first = out.points.len();
+    let external = super::external_values(line, s)?;
+    for (p, m) in &moves {
+        out.points.push(Point {
+            line,
+            position: *p,
+            orientation,
+            motion: *m,
+            tool_number: s.tool_number,
+            operation: s.operation.clone(),
+            feed: s.feed,
+            cycle: Some(index),
+            external: external.clone(),
+        });
+    }
+    s.position = here;
+    out.blocks.push(Block {
+        line: span,
+        points: first..out.points.len(),
+        drop,
+        external_words: Vec::new(),
+        arc_word: None,
+        inch: s.inch,
+        incremental: false,
+        cycle: Some(dwell.map(|(_, text)| (bottom_index, text))),
+    });
+    Ok(())
+}

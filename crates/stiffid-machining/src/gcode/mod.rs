@@ -1,0 +1,254 @@
+//! G-code (ISO 6983 subset): the tool path of a milling or drilling program in the part frame,
+//! read with every block's place in the text, and written back with corrected positions.
+//!
+//! ## What is read
+//! - Motion: `G0` (rapid), `G1` (feed), `G2`/`G3` (clockwise / counter-clockwise arcs seen from
+//!   the positive end of the plane's normal) with `X Y Z`, the centre by `I J K` (incremental
+//!   from the start, in every distance mode) or the radius `R` (negative: the arc over 180 deg);
+//!   a helix moves linearly along the normal. `G17`/`G18`/`G19` choose the XY, ZX, YZ plane.
+//! - Drilling canned cycles `G81`, `G82`, `G83` with `G98`/`G99`, ended by `G80` or `G0`-`G3`:
+//!   each hole read as the moves it makes ([`Cycle`], module `cycles`); after `G80` a motion
+//!   needs its `G0`-`G3`.
+//! - Modes: `G90`/`G91` absolute / incremental, `G20`/`G21` inch / mm; `G4` dwell, `G40`, `G49`,
+//!   `G80`, `G94` are accepted and change nothing here. `F` is the feed rate (modal, per minute:
+//!   mm/min under `G21`, inch/min under `G20`), kept with every point for the robot programs
+//!   written from the path; a change of units while an `F` is in force needs the `F` again in
+//!   its block (controllers differ on whether the feed follows the units). `S`, `M`, `N`, `O`, `P`
+//!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` sets the
+//!   tool number (which selects the process operation).
+//! - Comments `( ... )` and `; ...`. A comment `(operation: NAME)` selects the process operation
+//!   named `NAME` from there on. Header comments state the tool orientation:
+//!   `(stiffid: tool_rpy_deg = 180 0 0)`, the tool frame in the part frame as fixed-axis
+//!   roll-pitch-yaw (`180 0 0` points the tool z axis down, along the part's -Z); and, to allow
+//!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute) then turn the tool by
+//!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation.
+//! - Arcs are split into chords whose sagitta is at most the chord tolerance.
+//!
+//! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
+//! saying it belongs to the CAM post), as are an arc whose end is not on its
+//! circle (more than 1 um or 1e-6 of the radius off), an arc of radius below 1 um, a letter given
+//! twice in one block (but `G` and `M`), a feed rate `F` outside `(0, MAX_FEED]`, a subprogram
+//! call or return (`M97`, `M98`, `M99`), a motion after the program's end (`M2`, `M30`), and more
+//! than [`MAX_POINTS`] points.
+//!
+//! ## What is written
+//! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
+//! words are replaced by the corrected position of each point (a canned cycle becomes its `G0`,
+//! `G1` and `G4` blocks; an arc becomes its chords, `G2`/`G3`
+//! becomes `G1`), in the program's own units and distance mode. Only positions are corrected: a
+//! 3-axis program has no words for the tool's rotation. [`GCode::write_with_external`] also writes
+//! the mapped external axes' values of every point (a station chosen by the compensation): the
+//! block's own external words are dropped and every written point carries all of them, in the
+//! header's order, in the program's units and distance mode.
+
+mod arc;
+mod block;
+mod cycles;
+mod words;
+mod write;
+
+pub use cycles::{Cycle, PECK_CLEARANCE_MM};
+pub use words::MAX_FEED;
+
+use block::block;
+use nalgebra::{UnitQuaternion, Vector3};
+use std::ops::Range;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::{Error, Result};
+use words::words;
+
+/// The most path points (after splitting arcs).
+pub const MAX_POINTS: usize = 1_000_000;
+/// The most blocks (lines).
+pub const MAX_BLOCKS: usize = 1_000_000;
+/// The accepted chord tolerance, mm.
+pub const CHORD_TOLERANCE_MM: stiffid_core::common::limits::Range =
+    stiffid_core::common::limits::Range::new(1e-6, 10.0, "mm");
+
+/// Rapid or cutting motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Motion {
+    /// `G0`: no cutting.
+    Rapid,
+    /// `G1`, `G2`, `G3`: cutting.
+    Feed,
+}
+
+/// One point of the tool path, part frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// The line of its block, 1-based.
+    pub line: u64,
+    /// The tool point, part frame, m.
+    pub position: Vector3<f64>,
+    /// The tool frame in the part frame.
+    pub orientation: UnitQuaternion<f64>,
+    /// Rapid or cutting.
+    pub motion: Motion,
+    /// The tool number in force (`T` word).
+    pub tool_number: Option<u32>,
+    /// The operation named in force (`(operation: NAME)`), shared by every point it covers (an
+    /// arc's thousands of chords hold one copy of the name).
+    pub operation: Option<std::sync::Arc<str>>,
+    /// The feed rate in force (the last `F` word, per minute in the units of its block), m/s;
+    /// `None` before the first `F`.
+    pub feed: Option<f64>,
+    /// The drilling canned cycle (index into [`GCode::cycles`]) this point is a move of.
+    pub cycle: Option<usize>,
+    /// The cell's external axes at this point, in the order of [`GCode::external`] (the
+    /// cell's): mm for a linear axis (`U V W`), deg for a rotary one (`A B C`); empty when the
+    /// program maps none.
+    pub external: Vec<f64>,
+}
+
+/// A motion block: where its line is and which points it made.
+#[derive(Debug, Clone, PartialEq)]
+struct Block {
+    line: Range<usize>,
+    points: Range<usize>,
+    /// Word spans to drop (`X Y Z I J K R`) and the span of a `G2`/`G3` word to write as `G1`.
+    drop: Vec<Range<usize>>,
+    /// The spans of the words of the mapped external axes, dropped where the external values
+    /// are written anew ([`GCode::write_with_external`]).
+    external_words: Vec<Range<usize>>,
+    arc_word: Option<Range<usize>>,
+    inch: bool,
+    incremental: bool,
+    /// A canned cycle's block: its points written as `G0`/`G1` blocks of their own, and the dwell
+    /// `G4 P..` after the point of this index (within the block) with the `P` word as written.
+    cycle: Option<Option<(usize, String)>>,
+}
+
+/// A G-code program and its tool path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GCode {
+    /// Every point, in path order.
+    pub points: Vec<Point>,
+    /// The drilling canned cycles, one per hole, in path order.
+    pub cycles: Vec<Cycle>,
+    /// The letters the header maps to the cell's external axes, in the cell's order
+    /// (`(stiffid: external = U C)`), and the header's line; empty (line 0) when it maps none.
+    pub external: (Vec<char>, u64),
+    blocks: Vec<Block>,
+    text: String,
+}
+
+struct State {
+    position: Vector3<f64>,
+    abc: [f64; 3],
+    motion: u8,
+    plane: u8,
+    inch: bool,
+    incremental: bool,
+    tool_number: Option<u32>,
+    operation: Option<std::sync::Arc<str>>,
+    tool: Option<UnitQuaternion<f64>>,
+    rotary: bool,
+    /// The letters mapped to the cell's external axes and the header's line.
+    external: (Vec<char>, u64),
+    /// Each mapped axis's value in force, mm or deg.
+    e: Vec<Option<f64>>,
+    /// The line of the `M2`/`M30` that ended the program.
+    ended: Option<u64>,
+    feed: Option<f64>,
+    /// The line of the `F` word in force.
+    feed_line: u64,
+    /// `G99`: canned cycles retract to `R` (else, `G98`, to the level they started from).
+    retract_to_r: bool,
+    /// The canned cycle's words in force.
+    cycle: cycles::Modal,
+}
+
+fn at(line: u64, message: String) -> Error {
+    Error::Program { line, message }
+}
+
+/// Parses `text` (module docs), arcs split to `chord_tolerance` (m).
+///
+/// # Errors
+/// [`Error::InvalidOption`] for a chord tolerance outside [`CHORD_TOLERANCE_MM`];
+/// [`Error::Program`] naming the line for anything outside the subset, a malformed word, an arc
+/// off its circle, no tool orientation in the header, rotary words without `rotary = abc`, no
+/// motion at all, or more than [`MAX_BLOCKS`] lines or [`MAX_POINTS`] points.
+pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
+    stiffid_core::common::limits::check(
+        "chord_tolerance_mm",
+        &[chord_tolerance * 1e3],
+        &CHORD_TOLERANCE_MM,
+    )
+    .map_err(|e| e.for_option(JobOption::ChordToleranceMm))?;
+    let mut s = State {
+        position: Vector3::zeros(),
+        abc: [0.0; 3],
+        motion: 0,
+        plane: 17,
+        inch: false,
+        incremental: false,
+        tool_number: None,
+        operation: None,
+        tool: None,
+        rotary: false,
+        external: (Vec::new(), 0),
+        e: Vec::new(),
+        ended: None,
+        feed: None,
+        feed_line: 0,
+        retract_to_r: false,
+        cycle: Default::default(),
+    };
+    let mut out = GCode {
+        points: Vec::new(),
+        cycles: Vec::new(),
+        external: (Vec::new(), 0),
+        blocks: Vec::new(),
+        text: text.to_string(),
+    };
+    for (line, start, l) in super::text::lines(text) {
+        if line as usize > MAX_BLOCKS {
+            return Err(at(line, format!("more than {MAX_BLOCKS} lines")));
+        }
+        let words = words(line, start, l, &mut s)?;
+        block(
+            line,
+            start..start + l.len(),
+            &words,
+            &mut s,
+            &mut out,
+            chord_tolerance,
+        )?;
+        if out.points.len() > MAX_POINTS {
+            return Err(at(
+                line,
+                format!("more than {MAX_POINTS} path points (after splitting arcs)"),
+            ));
+        }
+    }
+    if out.points.is_empty() {
+        return Err(at(1, "no motion block (G0, G1, G2, G3) found".into()));
+    }
+    out.external = s.external;
+    Ok(out)
+}
+
+/// The mapped external axes' values in force for a motion on `line`: every one must have been
+/// given.
+fn external_values(line: u64, s: &State) -> Result<Vec<f64>> {
+    s.e.iter()
+        .zip(&s.external.0)
+        .map(|(v, letter)| {
+            v.ok_or_else(|| at(line, format!("{letter}: a motion before the external axis it drives has a value (the header maps it on line {}): give {letter} in this block or before", s.external.1)))
+        })
+        .collect()
+}
+
+/// The tool orientation for a motion on `line`: refused after the program's end or before the
+/// header states it.
+fn may_move(line: u64, s: &State) -> Result<UnitQuaternion<f64>> {
+    if let Some(end) = s.ended {
+        return Err(at(
+            line,
+            format!("a motion after the end of the program (M2/M30 on line {end})"),
+        ));
+    }
+    s.tool.ok_or_else(|| at(line, "no tool orientation: state it in a header comment before the first motion, e.g. (stiffid: tool_rpy_deg = 180 0 0)".into()))
+}

@@ -1,0 +1,175 @@
+//! The words of a block: read from a line, comments read for the header and operation names,
+//! and what the subset refuses before any word is applied.
+
+use super::{at, State};
+use nalgebra::UnitQuaternion;
+use std::ops::Range;
+use stiffid_core::Result;
+
+/// A word: letter, value and span (bytes of the text).
+pub(super) struct Word {
+    pub(super) letter: char,
+    pub(super) value: f64,
+    pub(super) span: Range<usize>,
+}
+
+/// The words of one line; comments are read for the header and operation names.
+pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<Vec<Word>> {
+    let bytes = l.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i] as char;
+        if c == '(' {
+            let end = l[i..]
+                .find(')')
+                .map(|e| i + e)
+                .ok_or_else(|| at(line, "comment without its closing ')'".into()))?;
+            comment(line, &l[i + 1..end], s)?;
+            i = end + 1;
+            continue;
+        }
+        if c == ';' {
+            comment(line, &l[i + 1..], s)?;
+            break;
+        }
+        if c.is_whitespace() || c == '%' {
+            i += 1;
+            continue;
+        }
+        let letter = c.to_ascii_uppercase();
+        if !letter.is_ascii_alphabetic() {
+            return Err(at(
+                line,
+                format!("'{c}': expected a word (a letter and a number)"),
+            ));
+        }
+        let (value, span) = crate::text::number_at(l, i + 1).ok_or_else(|| {
+            at(
+                line,
+                format!("{letter}: expected a number after the letter"),
+            )
+        })?;
+        out.push(Word {
+            letter,
+            value,
+            span: start + i..start + span.end,
+        });
+        i = span.end;
+    }
+    Ok(out)
+}
+
+pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
+    let t = text.trim();
+    if let Some(name) = t.strip_prefix("operation:") {
+        s.operation = Some(name.trim().into());
+    }
+    let Some(directive) = t.strip_prefix("stiffid:") else {
+        return Ok(());
+    };
+    let (key, value) = directive
+        .split_once('=')
+        .ok_or_else(|| at(line, "stiffid header: expected 'key = value'".into()))?;
+    match key.trim() {
+        "tool_rpy_deg" => {
+            let v: Vec<f64> = value
+                .split_whitespace()
+                .map(str::parse)
+                .collect::<std::result::Result<_, _>>()
+                .map_err(|_| at(line, "tool_rpy_deg: expected three numbers, deg".into()))?;
+            if v.len() != 3
+                || v.iter()
+                    .any(|a| !stiffid_core::common::limits::ANGLE_DEG.contains(*a))
+            {
+                return Err(at(
+                    line,
+                    format!(
+                        "tool_rpy_deg: expected three numbers within {}",
+                        stiffid_core::common::limits::ANGLE_DEG
+                    ),
+                ));
+            }
+            s.tool = Some(UnitQuaternion::from_euler_angles(
+                v[0].to_radians(),
+                v[1].to_radians(),
+                v[2].to_radians(),
+            ));
+        }
+        "rotary" if value.trim().eq_ignore_ascii_case("abc") => {
+            if let Some(l) = s.external.0.iter().find(|l| matches!(l, 'A' | 'B' | 'C')) {
+                return Err(at(line, format!("rotary = abc: {l} drives an external axis (line {}); a letter turns the tool or drives an axis, not both", s.external.1)));
+            }
+            s.rotary = true;
+        }
+        "external" => {
+            let letters: Vec<char> = value
+                .split_whitespace()
+                .map(|w| match w.to_ascii_uppercase().as_str() {
+                    l @ ("U" | "V" | "W" | "A" | "B" | "C") => Ok(l.chars().next().unwrap_or('U')),
+                    other => Err(at(line, format!("external: '{}' is no axis letter (expected U V W for linear axes, A B C for rotary ones, one per external axis of the cell in its order)", stiffid_core::common::limits::short(other)))),
+                })
+                .collect::<Result<_>>()?;
+            if letters.is_empty() || letters.len() > stiffid_core::robot::external::MAX_AXES {
+                return Err(at(line, format!("external: expected 1 to {} letters, one per external axis of the cell in its order", stiffid_core::robot::external::MAX_AXES)));
+            }
+            if let Some((i, l)) = letters.iter().enumerate().find(|(i, l)| letters[..*i].contains(l)) {
+                return Err(at(line, format!("external: {l} given twice (letter {})", i + 1)));
+            }
+            if s.rotary && letters.iter().any(|l| matches!(l, 'A' | 'B' | 'C')) {
+                return Err(at(line, "external: A, B and C turn the tool (rotary = abc): a letter turns the tool or drives an axis, not both".into()));
+            }
+            if !s.external.0.is_empty() {
+                return Err(at(line, format!("external: the external axes are mapped already (line {})", s.external.1)));
+            }
+            s.e = vec![None; letters.len()];
+            s.external = (letters, line);
+        }
+        other => {
+            return Err(at(
+                line,
+                format!(
+                    "stiffid header: unknown '{}' (expected tool_rpy_deg = R P Y, rotary = abc or external = LETTERS)",
+                    stiffid_core::common::limits::short(other)
+                ),
+            ))
+        }
+    }
+    Ok(())
+}
+
+/// The largest feed rate `F` accepted (mm/min, or inch/min after `G20`).
+pub const MAX_FEED: f64 = 1e6;
+
+/// What the subset refuses in the words of one block, before any is applied: a letter given twice
+/// (`G` and `M` aside: several modal groups may share a block), a feed rate outside
+/// `(0, MAX_FEED]`, a subprogram call or return (`M97`, `M98`, `M99`: the path would go where
+/// this file does not say). `M2`/`M30` end the program: a motion after them is refused.
+pub(super) fn check_words(line: u64, words: &[Word], s: &mut State) -> Result<()> {
+    for (i, w) in words.iter().enumerate() {
+        let again = words[..i].iter().any(|o| o.letter == w.letter);
+        if again && !matches!(w.letter, 'G' | 'M') {
+            return Err(at(line, format!("{} given twice in one block", w.letter)));
+        }
+        match w.letter {
+            'F' if !(w.value > 0.0 && w.value <= MAX_FEED) => {
+                return Err(at(
+                    line,
+                    format!(
+                        "F{}: expected a feed rate in (0, {MAX_FEED}] (mm/min, inch/min after G20)",
+                        w.value
+                    ),
+                ));
+            }
+            'M' if [97.0, 98.0, 99.0].contains(&w.value) => {
+                return Err(at(
+                    line,
+                    format!("M{}: subprogram calls and returns are not followed; expand the program into one file first", w.value),
+                ));
+            }
+            'M' if w.value == 2.0 || w.value == 30.0 => s.ended = Some(line),
+            _ => {}
+        }
+    }
+    Ok(())
+}

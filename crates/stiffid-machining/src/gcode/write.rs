@@ -1,0 +1,161 @@
+//! The program written back with corrected positions (module docs of [`super`], "What is written").
+
+use super::{GCode, Motion};
+use nalgebra::Vector3;
+use std::ops::Range;
+use stiffid_core::{Error, Result};
+
+impl GCode {
+    /// The program with each point at `positions[i]` (part frame, m) (module docs).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`positions`) for another number of positions than points or a
+    /// position that is not finite.
+    pub fn write(&self, positions: &[Vector3<f64>]) -> Result<String> {
+        self.written(positions, None)
+    }
+
+    /// [`GCode::write`] with each point's mapped external axes at `external[i]` (mm for `U V W`,
+    /// deg for `A B C`, in the order of [`GCode::external`]) (module docs).
+    ///
+    /// # Errors
+    /// Those of [`GCode::write`]; [`Error::InvalidField`] (`external`) for another number of
+    /// rows than points, a row of another length than the letters mapped, or a value that is
+    /// not finite.
+    pub fn write_with_external(
+        &self,
+        positions: &[Vector3<f64>],
+        external: &[Vec<f64>],
+    ) -> Result<String> {
+        let letters = self.external.0.len();
+        if external.len() != self.points.len()
+            || (external.iter()).any(|e| e.len() != letters || !e.iter().all(|v| v.is_finite()))
+        {
+            return Err(Error::InvalidField {
+                field: "external".into(),
+                message: format!(
+                    "expected {} rows of {letters} finite external values, one per point",
+                    self.points.len()
+                ),
+            });
+        }
+        self.written(positions, Some(external))
+    }
+
+    /// The program written (module docs): the external values too when given.
+    fn written(&self, positions: &[Vector3<f64>], external: Option<&[Vec<f64>]>) -> Result<String> {
+        if positions.len() != self.points.len()
+            || positions.iter().any(|p| !p.iter().all(|v| v.is_finite()))
+        {
+            return Err(Error::InvalidField {
+                field: "positions".into(),
+                message: format!(
+                    "expected {} finite positions, one per point",
+                    self.points.len()
+                ),
+            });
+        }
+        let letters = &self.external.0;
+        let mut written_e = vec![0.0; letters.len()];
+        let mut out = String::with_capacity(self.text.len() * 2);
+        let mut at = 0;
+        // The position the controller is at, as written (for incremental blocks).
+        let mut written = Vector3::zeros();
+        for b in &self.blocks {
+            out.push_str(&self.text[at..b.line.start]);
+            let scale = if b.inch { 25.4e-3 } else { 1e-3 };
+            let mut words = |k: usize| {
+                let p = &positions[k];
+                let v = if b.incremental {
+                    (p - written) / scale
+                } else {
+                    p / scale
+                };
+                written = *p;
+                let mut text = format!("X{:.6} Y{:.6} Z{:.6}", v.x, v.y, v.z);
+                for (j, l) in letters.iter().enumerate() {
+                    let Some(e) = external.map(|e| e[k][j]) else {
+                        break;
+                    };
+                    let unit = match (l, b.inch) {
+                        ('U' | 'V' | 'W', true) => 25.4,
+                        _ => 1.0,
+                    };
+                    let value = if b.incremental { e - written_e[j] } else { e };
+                    written_e[j] = e;
+                    text.push_str(&format!(" {l}{:.6}", value / unit));
+                }
+                text
+            };
+            let mut drop = b.drop.clone();
+            if external.is_some() {
+                drop.extend(b.external_words.iter().cloned());
+            }
+            let ending = match self.text[b.line.end..].starts_with("\r\n") {
+                true => "\r\n",
+                false => "\n",
+            };
+            if let Some(dwell) = &b.cycle {
+                drop.sort_by_key(|r| r.start);
+                let mut from = b.line.start;
+                for r in &drop {
+                    out.push_str(&self.text[from..r.start]);
+                    from = r.end;
+                }
+                out.push_str(&self.text[from..b.line.end]);
+                for (j, (k, point)) in (b.points.clone())
+                    .zip(&self.points[b.points.clone()])
+                    .enumerate()
+                {
+                    out.push_str(ending);
+                    out.push_str(match point.motion {
+                        Motion::Rapid => "G0 ",
+                        Motion::Feed => "G1 ",
+                    });
+                    out.push_str(&words(k));
+                    if let Some((_, p_word)) = dwell.as_ref().filter(|(after, _)| *after == j) {
+                        out.push_str(ending);
+                        out.push_str("G4 ");
+                        out.push_str(p_word);
+                    }
+                }
+                at = b.line.end;
+                continue;
+            }
+            let first = words(b.points.start);
+            let mut line = String::new();
+            let mut from = b.line.start;
+            let mut edits: Vec<(Range<usize>, &str)> =
+                drop.iter().map(|r| (r.clone(), "")).collect();
+            if let Some(g) = &b.arc_word {
+                edits.push((g.clone(), "G1"));
+            }
+            edits.sort_by_key(|(r, _)| r.start);
+            let insert = edits
+                .iter()
+                .find(|(_, t)| t.is_empty())
+                .map_or(b.line.end, |(r, _)| r.start);
+            for (r, t) in &edits {
+                line.push_str(&self.text[from..r.start]);
+                if r.start == insert {
+                    line.push_str(&first);
+                }
+                line.push_str(t);
+                from = r.end;
+            }
+            line.push_str(&self.text[from..b.line.end]);
+            if insert == b.line.end {
+                line.push(' ');
+                line.push_str(&first);
+            }
+            out.push_str(&line);
+            for k in b.points.start + 1..b.points.end {
+                out.push_str(ending);
+                out.push_str(&words(k));
+            }
+            at = b.line.end;
+        }
+        out.push_str(&self.text[at..]);
+        Ok(out)
+    }
+}

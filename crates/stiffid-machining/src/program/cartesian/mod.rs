@@ -1,0 +1,181 @@
+//! Cartesian targets of robot programs: a TCP pose in a frame the program names, with the
+//! configuration data that picks one of the inverse-kinematics solutions of the pose.
+//!
+//! Read (each dialect's module says the forms):
+//! - KUKA KRL: `PTP`/`LIN` to an aggregate `{X .., Y .., Z .., A .., B .., C .., S .., T ..}`
+//!   (optionally typed `{E6POS: ..}`, `POS`, `FRAME`) or to a point declared in the file as
+//!   `E6POS`/`POS`/`FRAME`; `S` and `T` as a binary string `'B110'` or a decimal number (as a
+//!   `.dat` writes them); external axes `E1`.. as in joint targets. The frame is the `$BASE`
+//!   assigned before the motion (a literal frame, or `$NULLFRAME`/`$WORLD`: the world), the tool
+//!   the `$TOOL` assigned before it (a literal frame).
+//! - ABB RAPID: `MoveL`/`MoveJ` to a `robtarget` literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,
+//!   cfx],[eax_a,..]]` or one declared in the module, with a `tooldata` declared in the module
+//!   (its `tframe`) and `\WObj:=` a `wobjdata` declared in the module (`uframe` then `oframe`,
+//!   `robhold FALSE`, `ufprog TRUE`), or `wobj0` / none: the world.
+//! - FANUC LS: positions of `/POS` in Cartesian representation, `CONFIG : 'N U T, 0, 0, 0'`,
+//!   `X = .. mm` to `R = .. deg` (`R = Rz(R) Ry(P) Rx(W)`), in `UF : 0` (the world) or the user
+//!   frame `UF : n` (n >= 1) a remark `! stiffid: user_frame = n ;` names the part frame (the
+//!   setup's `[workpiece]`), all in one tool frame `UT : n` that must hold the setup's tool (a
+//!   remark `! stiffid: tool_frame = n ;` names it, else the first position's): an LS program
+//!   cannot state either frame ([`numbered`]).
+//!
+//! A target without configuration data (a KRL `FRAME`, or `POS` without `S` and `T`) and a KRL
+//! `LIN` (whose `S` and `T` a KUKA controller ignores) keep the configuration of the previous
+//! target: its shoulder, elbow and wrist, each axis in the revolution nearest the previous
+//! posture's. The first target must name one.
+//!
+//! ## Axis angles
+//! A Cartesian target's axis angles are what the controller would move to: [`resolve`] runs
+//! inverse kinematics in the controller's nominal kinematics ([`stiffid_core::Setup::controller_robot`])
+//! and keeps the one solution whose configuration data are the target's
+//! ([`stiffid_core::robot::configuration`]), the nearest the previous target's; then, when the setup's
+//! robot is another (a calibrated one), the posture of the setup's robot that puts the tool on
+//! the same pose, continued from it: the robot must land where the program says. Compensated,
+//! a target is written back in its own form: the pose the controller must be told (the
+//! forward kinematics of the compensated axis angles in the controller's kinematics, in the
+//! target's frame) with the configuration data of the compensated posture, as the programs
+//! written from G-code state it ([`super::generate`]).
+
+mod flags;
+pub(crate) mod krl;
+pub(crate) mod literal;
+pub(crate) mod ls;
+pub(crate) mod numbered;
+pub(crate) mod rapid;
+mod resolve;
+mod solve;
+
+pub use flags::Flags;
+pub(crate) use resolve::Writer;
+pub use resolve::{
+    check_placed, is_cartesian, resolve, resolve_placed, Controller, SAME_M, SAME_RAD,
+};
+
+use super::generate::{number, v, zyx_deg};
+use super::Dialect;
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use std::ops::Range;
+use stiffid_core::robot::configuration::Configuration;
+
+/// A frame a target is given in, or a tool it is given for, as the program states it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Frame {
+    /// The controller's world (KRL `$NULLFRAME`/`$WORLD`, RAPID `wobj0` or no `\WObj`, LS
+    /// `UF : 0`); for a tool, the flange itself (RAPID `tool0`).
+    World,
+    /// A frame the program states on `line` (KRL `$BASE`, `$TOOL`, RAPID `wobjdata`,
+    /// `tooldata`): in the controller's world (a base, a work object) or flange (a tool), m.
+    Stated(u64, Isometry3<f64>),
+    /// A frame held on the controller by number (LS `UF : n`, `UT : n`), on `line`.
+    Numbered(u64, u32),
+    /// A frame the program leaves to the controller (not set, a variable, a number of the
+    /// controller's table): the line of the motion and why.
+    Unknown(u64, String),
+}
+
+/// A Cartesian target as the program gives it (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cartesian {
+    /// The TCP position in the target's frame, mm.
+    pub position_mm: Vector3<f64>,
+    /// The tool's orientation in the target's frame.
+    pub rotation: UnitQuaternion<f64>,
+    /// The configuration data; `None`: the previous target's (module docs).
+    pub flags: Option<Flags>,
+    /// The controller ignores the configuration data and continues from the previous posture
+    /// (KRL `LIN`, `SLIN`: KUKA reads `S` and `T` for `PTP` only): its shoulder, elbow and
+    /// wrist kept, each axis the revolution nearest the previous posture's.
+    pub follows: bool,
+    /// The frame the pose is in.
+    pub frame: Frame,
+    /// The tool the pose is of.
+    pub tool: Frame,
+    /// Where the pose's numbers sit in the text (bytes), in the dialect's order (KRL X, Y, Z,
+    /// A, B, C; RAPID x, y, z, q1..q4; LS X, Y, Z, W, P, R).
+    pub(crate) spans: Vec<Range<usize>>,
+    /// Where the configuration data sit and how they are written.
+    pub(crate) flag_spans: Vec<(Range<usize>, flags::Part)>,
+    /// The frame in the setup's base frame, once resolved.
+    pub(crate) base_from_frame: Option<Isometry3<f64>>,
+}
+
+impl Cartesian {
+    /// A target of `pose` numbers read in `dialect`'s order (module docs of the dialects): the
+    /// position (mm) then the orientation (KRL A, B, C deg; RAPID a quaternion; LS W, P, R deg).
+    pub(crate) fn new(dialect: Dialect, numbers: &[(f64, Range<usize>)]) -> Self {
+        let n: Vec<f64> = numbers.iter().map(|(v, _)| *v).collect();
+        let r = |a: f64, b: f64, c: f64| {
+            UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians())
+        };
+        let rotation = match dialect {
+            Dialect::Rapid => {
+                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(n[3], n[4], n[5], n[6]))
+            }
+            Dialect::FanucLs => r(n[5], n[4], n[3]),
+            _ => r(n[3], n[4], n[5]),
+        };
+        Cartesian {
+            position_mm: Vector3::new(n[0], n[1], n[2]),
+            rotation,
+            flags: None,
+            follows: false,
+            frame: Frame::World,
+            tool: Frame::World,
+            spans: numbers.iter().map(|(_, s)| s.clone()).collect(),
+            flag_spans: Vec::new(),
+            base_from_frame: None,
+        }
+    }
+
+    /// The pose in its frame, m.
+    pub fn pose(&self) -> Isometry3<f64> {
+        Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation)
+    }
+
+    /// The texts that state `pose` (in the target's frame, m) with the configuration `arm`, each
+    /// with its span: the pose's numbers with [`super::DECIMALS`] decimals, the configuration
+    /// data where they differ from the ones read.
+    pub(crate) fn texts(
+        &self,
+        dialect: Dialect,
+        pose: &Isometry3<f64>,
+        arm: &Configuration,
+    ) -> Vec<(Range<usize>, String)> {
+        let p = pose.translation.vector * 1e3;
+        let [a, b, c] = zyx_deg(&pose.rotation);
+        let values: Vec<f64> = match dialect {
+            Dialect::Rapid => {
+                let q = pose.rotation.quaternion();
+                let s = if q.w < 0.0 { -1.0 } else { 1.0 };
+                vec![p.x, p.y, p.z, s * q.w, s * q.i, s * q.j, s * q.k]
+            }
+            Dialect::FanucLs => vec![p.x, p.y, p.z, c, b, a],
+            _ => vec![p.x, p.y, p.z, a, b, c],
+        };
+        let mut out: Vec<(Range<usize>, String)> = (self.spans.iter().cloned())
+            .zip(values.iter().map(|x| v(*x)))
+            .collect();
+        let now = Flags::of(dialect, arm);
+        if self.flags.as_ref() != Some(&now) {
+            out.extend(
+                (self.flag_spans.iter()).map(|(span, part)| (span.clone(), part.text(&now))),
+            );
+        }
+        out
+    }
+}
+
+/// A frame's pose in words, mm and deg (`X, Y, Z, A, B, C`: `R = Rz(A) Ry(B) Rx(C)`).
+pub(crate) fn words(f: &Isometry3<f64>) -> String {
+    let p = f.translation.vector * 1e3;
+    let [a, b, c] = zyx_deg(&f.rotation);
+    format!(
+        "X {} mm, Y {} mm, Z {} mm, A {} deg, B {} deg, C {} deg",
+        number(p.x),
+        number(p.y),
+        number(p.z),
+        number(a),
+        number(b),
+        number(c)
+    )
+}

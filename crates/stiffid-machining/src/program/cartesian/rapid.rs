@@ -1,0 +1,206 @@
+//! ABB RAPID's Cartesian targets (module docs of [`super`]): `MoveL`/`MoveJ` to a `robtarget`
+//! with its `tooldata` and `\WObj:=` `wobjdata`, each a literal or declared in the module.
+
+use super::flags::Part;
+use super::literal::{self, Node};
+use super::{Cartesian, Flags, Frame};
+use crate::program::{at, Dialect, JointTarget};
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
+use std::collections::HashMap;
+use stiffid_core::Result;
+
+/// How far from 1 the norm of a quaternion the program gives may be.
+const UNIT: f64 = 1e-4;
+
+/// The target of the `robtarget` literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,
+/// ..,eax_f]]` at or after byte `from` of `code` (`9E9`: an external axis not used).
+pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarget> {
+    let bad = |what: &str| {
+        at(line, format!("robtarget: expected [[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]], {what}"))
+    };
+    let (node, _) = literal::parse(code, from).ok_or_else(|| bad("not a literal"))?;
+    let parts = node
+        .list()
+        .filter(|p| p.len() == 4)
+        .ok_or_else(|| bad("not four brackets"))?;
+    let mut pose = parts[0]
+        .numbers(3)
+        .ok_or_else(|| bad("the position is not 3 numbers"))?;
+    pose.extend(
+        parts[1]
+            .numbers(4)
+            .ok_or_else(|| bad("the orientation is not 4 numbers"))?,
+    );
+    let conf = parts[2]
+        .numbers(4)
+        .ok_or_else(|| bad("the confdata are not 4 numbers"))?;
+    let external = parts[3]
+        .numbers(6)
+        .ok_or_else(|| bad("the external axes are not 6 numbers"))?;
+    check_unit(line, &pose[3..])?;
+    if conf.iter().any(|(v, _)| v.fract() != 0.0) {
+        return Err(bad("the confdata are not whole numbers"));
+    }
+    let mut c = Cartesian::new(Dialect::Rapid, &pose);
+    c.flags = Some(Flags::Abb([0, 1, 2, 3].map(|k| conf[k].0 as i64)));
+    c.flag_spans = (conf.into_iter().enumerate())
+        .map(|(k, (_, span))| (span, Part::Abb(k)))
+        .collect();
+    let external = external
+        .into_iter()
+        .map(|(v, s)| (v < 8.9e9).then_some((v, s)))
+        .collect();
+    Ok(JointTarget::cartesian(line, c).with_external(external))
+}
+
+/// Refuses an orientation that is not a unit quaternion.
+fn check_unit(line: u64, q: &[(f64, std::ops::Range<usize>)]) -> Result<()> {
+    let norm = q.iter().map(|(v, _)| v * v).sum::<f64>().sqrt();
+    match (norm - 1.0).abs() <= UNIT {
+        true => Ok(()),
+        false => Err(at(
+            line,
+            format!(
+                "the orientation's quaternion has norm {}: expected 1 (within {UNIT})",
+                stiffid_core::common::words::number(norm)
+            ),
+        )),
+    }
+}
+
+/// A RAPID `pose` `[[x,y,z],[q1,q2,q3,q4]]` (mm) as a frame, m.
+fn pose(line: u64, node: &Node) -> Result<Isometry3<f64>> {
+    let bad = || at(line, "expected a pose [[x,y,z],[q1,q2,q3,q4]]".into());
+    let parts = node.list().filter(|p| p.len() == 2).ok_or_else(bad)?;
+    let p = parts[0].numbers(3).ok_or_else(bad)?;
+    let q = parts[1].numbers(4).ok_or_else(bad)?;
+    check_unit(line, &q)?;
+    let r = UnitQuaternion::from_quaternion(Quaternion::new(q[0].0, q[1].0, q[2].0, q[3].0));
+    Ok(Isometry3::from_parts(
+        Translation3::new(p[0].0 * 1e-3, p[1].0 * 1e-3, p[2].0 * 1e-3),
+        r,
+    ))
+}
+
+/// The frame a `tooldata` (its `tframe`, the robot holding the tool) or `wobjdata` (`uframe`
+/// then `oframe`, a fixed user frame the robot does not hold) literal at or after byte `from`
+/// states, or why it is none.
+pub(crate) fn frame(kind: &str, name: &str, line: u64, code: &str, from: usize) -> Frame {
+    let read = || -> Result<Frame> {
+        let bad = |what: &str| at(line, format!("{kind} {name}: {what}"));
+        let (node, _) = literal::parse(code, from).ok_or_else(|| bad("expected a literal"))?;
+        let items = node.list().ok_or_else(|| bad("expected a literal"))?;
+        let frame = match (kind, items) {
+            ("tooldata", [hold, tframe, ..]) => match hold.boolean() {
+                Some(true) => pose(line, tframe)?,
+                _ => return Err(bad(
+                    "a stationary tool (robhold FALSE): stiffid compensates a tool the robot holds",
+                )),
+            },
+            ("wobjdata", [hold, programmed, _, uframe, oframe, ..]) => {
+                match (hold.boolean(), programmed.boolean()) {
+                    (Some(false), Some(true)) => pose(line, uframe)? * pose(line, oframe)?,
+                    _ => return Err(bad("a work object the robot holds or a mechanical unit moves (robhold TRUE or ufprog FALSE): stiffid reads a fixed work object")),
+                }
+            }
+            _ => return Err(bad("expected the members of its type")),
+        };
+        Ok(Frame::Stated(line, frame))
+    };
+    read().unwrap_or_else(|e| match e {
+        stiffid_core::Error::Program { line, message } => Frame::Unknown(line, message),
+        other => Frame::Unknown(line, other.to_string()),
+    })
+}
+
+/// A `MoveL`/`MoveJ` statement's target, tool and work object from its arguments `args` (the
+/// text after the instruction's name and switches, without `;`, at byte `from` of `code`);
+/// `named` gives a declared `robtarget` by name.
+pub(crate) fn motion(
+    line: u64,
+    (code, from, args): (&str, usize, &str),
+    named: &dyn Fn(&str) -> Result<JointTarget>,
+    frames: &HashMap<String, Frame>,
+) -> Result<JointTarget> {
+    let parts = top_level(args);
+    let [target, _speed, _zone, tool, ..] = parts.as_slice() else {
+        return Err(at(
+            line,
+            "expected a target, a speed, a zone and a tool".into(),
+        ));
+    };
+    let text = args[target.clone()].trim_start();
+    let mut t = if text.starts_with('[') {
+        robtarget(line, code, from + target.start)?
+    } else {
+        let ident: String = text
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+            .collect();
+        let next = text[ident.len()..].trim_start();
+        if ident.is_empty() || !(next.is_empty() || next.starts_with('\\')) {
+            return Err(at(line, "the target is computed on the controller (Offs, RelTool, an expression, a function or an array element); stiffid compensates robtarget literals and robtargets declared in the module".into()));
+        }
+        named(&ident)?
+    };
+    let tool_text = &args[tool.clone()];
+    let (tool_name, switches) = tool_text.split_once('\\').unwrap_or((tool_text, ""));
+    let wobj = switches.split('\\').find_map(|s| {
+        let (k, v) = s.split_once(":=")?;
+        k.trim()
+            .eq_ignore_ascii_case("wobj")
+            .then(|| v.trim().to_string())
+    });
+    let c = t
+        .cartesian
+        .as_deref_mut()
+        .ok_or_else(|| at(line, "expected a robtarget".into()))?;
+    c.tool = lookup(line, "tooldata", "tool0", tool_name.trim(), frames);
+    c.frame = match wobj {
+        None => Frame::World,
+        Some(w) => lookup(line, "wobjdata", "wobj0", &w, frames),
+    };
+    Ok(t)
+}
+
+/// The frame of a tool or work object named in a motion.
+fn lookup(
+    line: u64,
+    kind: &str,
+    flange: &str,
+    name: &str,
+    frames: &HashMap<String, Frame>,
+) -> Frame {
+    let key = name.to_ascii_lowercase();
+    if key == flange {
+        return Frame::World;
+    }
+    frames.get(&key).cloned().unwrap_or_else(|| {
+        Frame::Unknown(line, format!("{kind} {name}: not declared in this module with a value; stiffid reads the {kind} the module states"))
+    })
+}
+
+/// The byte ranges of the comma-separated arguments of `args` outside brackets, parentheses
+/// and strings.
+pub(crate) fn top_level(args: &str) -> Vec<std::ops::Range<usize>> {
+    let (mut out, mut depth, mut in_string, mut from) = (Vec::new(), 0i32, false, 0);
+    for (i, c) in args.char_indices() {
+        match c {
+            '"' => in_string = !in_string,
+            '[' | '(' if !in_string => depth += 1,
+            ']' | ')' if !in_string => depth -= 1,
+            ',' if !in_string && depth == 0 => {
+                out.push(from..i);
+                from = i + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push(from..args.len());
+    out
+}
+
+/// Whether a declared type is one of the Cartesian data (`robtarget`, `tooldata`, `wobjdata`).
+pub(crate) fn is_data(kind: &str) -> bool {
+    matches!(kind, "robtarget" | "tooldata" | "wobjdata")
+}

@@ -1,0 +1,292 @@
+//! A program's Cartesian targets turned into the axis angles the controller moves to (module
+//! docs of [`super`]).
+
+use super::solve::{configured, Miss};
+use super::{words, Cartesian, Flags, Frame};
+use crate::program::{at, Dialect, JointProgram};
+use nalgebra::{Isometry3, Translation3, Vector3, Vector6};
+use stiffid_core::robot::configuration::Configuration;
+use stiffid_core::robot::ik::{self, tool_pose};
+use stiffid_core::{Result, Robot, Setup};
+
+/// How far a frame the program states may be from the setup's (its tool, its `[workpiece]`)
+/// and still be it: 1 micrometre.
+pub const SAME_M: f64 = 1e-6;
+/// The same for the frames' orientations: 1 microradian.
+pub const SAME_RAD: f64 = 1e-6;
+
+/// What a Cartesian target is resolved against: the controller's kinematics and frames, and
+/// the setup's robot.
+#[derive(Debug, Clone, Copy)]
+pub struct Controller<'a> {
+    /// The kinematics the controller runs ([`Setup::controller_robot`]).
+    pub robot: &'a Robot,
+    /// The setup's robot, whose axis angles compensation takes.
+    pub truth: &'a Robot,
+    /// The tool centre point, flange frame of both robots, m (`[tool] tcp_mm`).
+    pub tcp: Vector3<f64>,
+    /// The tool frame as the controller holds it: in its flange frame (after the setup's
+    /// `[robot_flange]` adapter), m.
+    pub tool: Isometry3<f64>,
+    /// The controller's world in the setup's base frame (`[robot_base]`), m.
+    pub world: Isometry3<f64>,
+    /// The part frame in the setup's base frame (`[workpiece] base_from_part`), if given.
+    pub part: Option<Isometry3<f64>>,
+}
+
+impl<'a> Controller<'a> {
+    /// The controller of `setup`.
+    ///
+    /// # Errors
+    /// Those of [`Setup::controller_robot`].
+    pub fn of(setup: &'a Setup) -> Result<Self> {
+        let c = setup.workcell().controller();
+        Ok(Controller {
+            robot: setup.controller_robot()?,
+            truth: setup.robot(),
+            tcp: setup.tool().tcp,
+            tool: c.adapter * Translation3::from(setup.tool().tcp),
+            world: c.world,
+            part: setup.workpiece().copied(),
+        })
+    }
+}
+
+/// What writes a resolved program's Cartesian targets back: the controller's kinematics and the
+/// tool centre point.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Writer {
+    pub robot: Robot,
+    pub tcp: Vector3<f64>,
+}
+
+impl Writer {
+    /// The texts of Cartesian target `c` at axis angles `q` (rad), with their spans.
+    pub(crate) fn texts(
+        &self,
+        dialect: Dialect,
+        c: &Cartesian,
+        q: &Vector6<f64>,
+    ) -> Vec<(std::ops::Range<usize>, String)> {
+        let pose = tool_pose(&self.robot.frames(q), &self.tcp);
+        let local = c.base_from_frame.unwrap_or_default().inverse() * pose;
+        c.texts(dialect, &local, &Configuration::of(&self.robot, q))
+    }
+}
+
+/// Whether a program has Cartesian targets.
+pub fn is_cartesian(program: &JointProgram) -> bool {
+    program.targets.iter().any(|t| t.cartesian.is_some())
+}
+
+/// The program with every Cartesian target's axis angles (module docs of [`super`]): from
+/// `start` (rad) for the first target, then each from the previous one, by inverse kinematics
+/// with `options` (its seed for the random starts). A program without Cartesian targets comes
+/// back as it is.
+///
+/// # Errors
+/// [`Error::Program`] naming the target's line (or the line that states the frame): a frame
+/// the program leaves to the controller (KRL without `$BASE` or `$TOOL`, `BASE_DATA[n]`), a
+/// tool that is not the setup's ([`SAME_M`], [`SAME_RAD`]), an LS user frame without the
+/// setup's `[workpiece]`, the first target without configuration data, a pose out of reach in
+/// the configuration it names (with the configurations it is reached in), a robot with
+/// external axes (not read with Cartesian targets yet).
+pub fn resolve(
+    program: &JointProgram,
+    controller: &Controller,
+    start: &Vector6<f64>,
+    options: &ik::Options,
+) -> Result<JointProgram> {
+    resolve_in(program, controller, None, (start, options))
+}
+
+/// [`resolve`] with the part at `base_from_part` (the setup's base frame) instead of the
+/// setup's `[workpiece]`: every Cartesian target must be in the part frame (a KRL `$BASE` or
+/// RAPID work object equal to the setup's `[workpiece]`, an LS user frame), and moves with it.
+/// The configuration data name the shoulder, elbow and wrist ([`Flags::branch`]); the
+/// revolutions of the axes (KUKA's turn, ABB's quadrants, FANUC's turn numbers, which hold for
+/// the program's own placement) are those nearest the start posture and the previous target,
+/// as for a G-code program's points: a compensated program written for the new placement
+/// states its own.
+///
+/// # Errors
+/// Those of [`resolve`]; [`Error::Program`] naming the line of a joint target (axis angles do
+/// not move with the part) or of a target in another frame than the part's.
+pub fn resolve_placed(
+    program: &JointProgram,
+    controller: &Controller,
+    base_from_part: &Isometry3<f64>,
+    (start, options): (&Vector6<f64>, &ik::Options),
+) -> Result<JointProgram> {
+    check_placed(program, controller)?;
+    resolve_in(program, controller, Some(base_from_part), (start, options))
+}
+
+/// The checks of [`resolve_placed`] that hold wherever the part is placed: every target a
+/// Cartesian one, for the setup's tool, in the part frame. A placement search runs them once,
+/// before it tries any placement.
+///
+/// # Errors
+/// [`Error::Program`] naming the line of the first target (or of the frame it states) that
+/// fails: a joint target, a tool that is not the setup's or that the program leaves to the
+/// controller, a frame that is not the part's (as [`resolve_placed`]).
+pub fn check_placed(program: &JointProgram, controller: &Controller) -> Result<()> {
+    let part = Isometry3::identity();
+    for t in &program.targets {
+        let Some(c) = t.cartesian.as_deref() else {
+            return Err(at(t.line, "a joint target: axis angles do not move with the part; give every target as a Cartesian one in the part frame".into()));
+        };
+        check_tool(&c.tool, t.line, controller)?;
+        base_frame(&c.frame, t.line, controller, Some(&part))?;
+    }
+    Ok(())
+}
+
+fn resolve_in(
+    program: &JointProgram,
+    controller: &Controller,
+    placed: Option<&Isometry3<f64>>,
+    (start, options): (&Vector6<f64>, &ik::Options),
+) -> Result<JointProgram> {
+    if !is_cartesian(program) {
+        return Ok(program.clone());
+    }
+    let dialect = program.dialect;
+    let mut out = program.clone();
+    let mut previous = *start;
+    let mut flags: Option<Flags> = None;
+    let mut previous_arm: Option<Configuration> = None;
+    for t in &mut out.targets {
+        let line = t.line;
+        let Some(c) = t.cartesian.as_deref_mut() else {
+            previous = Vector6::from(t.q_deg).map(f64::to_radians);
+            let arm = Configuration::of(controller.robot, &previous);
+            (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
+            continue;
+        };
+        if controller.truth.external().is_some() {
+            return Err(at(line, "a Cartesian target on a robot with external axes: stiffid reads those as joint targets only; write the program with joint targets".into()));
+        }
+        check_tool(&c.tool, line, controller)?;
+        let frame = base_frame(&c.frame, line, controller, placed)?;
+        let target = frame * c.pose();
+        let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
+        let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", match dialect {
+            Dialect::Rapid => "confdata",
+            Dialect::FanucLs => "CONFIG",
+            _ => "S and T",
+        })))?;
+        let accept = |arm: &Configuration| match (&kept, placed) {
+            (Some(before), _) => arm.change_from(before).is_none(),
+            (None, Some(_)) => Flags::of(dialect, arm).branch() == wanted.branch(),
+            (None, None) => Flags::of(dialect, arm) == wanted,
+        };
+        let q = configured(
+            controller.robot,
+            &controller.tcp,
+            &target,
+            &previous,
+            (dialect, &accept),
+            options,
+        )
+        .map_err(|miss| at(line, missed(&wanted, miss)))?;
+        let q = on_truth(controller, &target, q, options).map_err(|why| at(line, why))?;
+        c.base_from_frame = Some(frame);
+        t.q_deg = q.map(f64::to_degrees).into();
+        previous = q;
+        let arm = Configuration::of(controller.robot, &q);
+        (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
+    }
+    out.writer = Some(Box::new(Writer {
+        robot: controller.robot.clone(),
+        tcp: controller.tcp,
+    }));
+    Ok(out)
+}
+
+/// The message of a pose not reached in the configuration `wanted`.
+fn missed(wanted: &Flags, miss: Miss) -> String {
+    match miss {
+        Miss::Elsewhere(found) => format!(
+            "the pose is out of reach in the configuration {} within the joint limits; inverse kinematics reaches it in {}",
+            wanted.text(),
+            found.iter().map(Flags::text).collect::<Vec<_>>().join(", ")
+        ),
+        Miss::Unreachable(why) => format!("the pose is out of reach: {why}"),
+    }
+}
+
+/// The setup's robot's posture at the pose the controller's posture `q` reaches, continued
+/// from it (the same when both are one robot).
+fn on_truth(
+    controller: &Controller,
+    target: &Isometry3<f64>,
+    q: Vector6<f64>,
+    options: &ik::Options,
+) -> std::result::Result<Vector6<f64>, String> {
+    if std::ptr::eq(controller.robot, controller.truth) {
+        return Ok(q);
+    }
+    let one = ik::Options {
+        restarts: 0,
+        ..*options
+    };
+    let truth = controller.truth;
+    let s = ik::solve(truth, &controller.tcp, target, &q, &one).map_err(|e| {
+        format!("the setup's robot does not reach the pose near the controller's posture: {e}")
+    })?;
+    match Configuration::of(truth, &s.q).change_from(&Configuration::of(controller.robot, &q)) {
+        Some(change) => Err(format!("the setup's robot reaches the pose only in another configuration than the controller's ({change})")),
+        None => Ok(s.q),
+    }
+}
+
+/// Refuses a tool that is not the setup's (module docs of [`resolve`]).
+fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
+    let (stated, on) = match tool {
+        Frame::Numbered(..) => return Ok(()),
+        Frame::Unknown(l, why) => return Err(at(*l, why.clone())),
+        Frame::World => (Isometry3::identity(), line),
+        Frame::Stated(l, f) => (*f, *l),
+    };
+    if same(&stated, &controller.tool) {
+        return Ok(());
+    }
+    Err(at(on, format!("the program's tool ({}) is not the setup's ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the program for it", words(&stated), words(&controller.tool))))
+}
+
+/// Whether two frames are one within [`SAME_M`] and [`SAME_RAD`].
+fn same(a: &Isometry3<f64>, b: &Isometry3<f64>) -> bool {
+    (a.translation.vector - b.translation.vector).norm() <= SAME_M
+        && a.rotation.angle_to(&b.rotation) <= SAME_RAD
+}
+
+/// The frame of a target in the setup's base frame; with `placed`, the part's at that pose.
+fn base_frame(
+    frame: &Frame,
+    line: u64,
+    c: &Controller,
+    placed: Option<&Isometry3<f64>>,
+) -> Result<Isometry3<f64>> {
+    let not_part = |l: u64, what: String| {
+        at(l, format!("{what}: the targets are not in the part frame (the setup's [workpiece]), so they do not move with the part; give them in a base or work object equal to [workpiece]"))
+    };
+    match frame {
+        Frame::Unknown(l, why) => Err(at(*l, why.clone())),
+        Frame::World => match placed {
+            Some(_) => Err(not_part(line, "the world frame".into())),
+            None => Ok(c.world),
+        },
+        Frame::Stated(l, f) => {
+            let base = c.world * f;
+            match placed {
+                None => Ok(base),
+                Some(p) if c.part.is_some_and(|part| same(&part, &base)) => Ok(*p),
+                Some(_) => Err(not_part(*l, format!("the frame {}", words(f)))),
+            }
+        }
+        Frame::Numbered(l, n) => placed.copied().or(c.part).ok_or_else(|| {
+            at(*l, format!("UF : {n}: a user frame held on the controller, which stiffid takes as the part frame; the setup gives none ([workpiece] base_from_part)"))
+        }),
+    }
+}

@@ -1,0 +1,125 @@
+//! FANUC LS (`.ls`): `/PROG NAME`, `/ATTR`, `/MN`, `/POS`, `/END` (module docs of [`super`]).
+
+use super::{in_world, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT};
+use std::fmt::Write;
+use stiffid_core::{Error, Result};
+
+/// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
+pub const COMMENT: &str = "stiffid";
+
+/// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
+/// whose values (the tool frame from the controller's flange) the remarks state, one per line
+/// (a remark is at most 32 characters on the pendant).
+pub(super) fn header(plan: &Plan) -> String {
+    let t = &plan.tool.frame;
+    let p = t.translation.vector * 1e3;
+    let [r, pitch, w] = zyx_deg(&t.rotation);
+    let mut s = String::from("! set UTOOL[1] to the tool: ;\n");
+    for (name, value, unit) in [
+        ("X", p.x, "mm"),
+        ("Y", p.y, "mm"),
+        ("Z", p.z, "mm"),
+        ("W", w, "deg"),
+        ("P", pitch, "deg"),
+        ("R", r, "deg"),
+    ] {
+        let _ = writeln!(s, "! UT1 {name} = {} {unit} ;", number(value));
+    }
+    s + "UFRAME_NUM=0 ;\nUTOOL_NUM=1 ;\n"
+}
+
+/// A feed (m/s) as an LS speed: whole mm/sec, else whole cm/min, else the nearest cm/min (with a
+/// warning); `None` below 1 cm/min.
+pub(crate) fn speed(feed: f64) -> Option<(String, bool)> {
+    let whole = |x: f64| (x - x.round()).abs() <= 1e-9 * x.max(1.0) && x.round() >= 1.0;
+    let (mm_s, cm_min) = (feed * 1e3, feed * 6e3);
+    if whole(mm_s) {
+        Some((format!("{}mm/sec", mm_s.round()), true))
+    } else if whole(cm_min) {
+        Some((format!("{}cm/min", cm_min.round()), true))
+    } else if cm_min >= 1.0 {
+        Some((format!("{}cm/min", cm_min.round()), false))
+    } else {
+        None
+    }
+}
+
+/// The moves (`/MN` lines, unnumbered) and positions of one file, `/POS` between them.
+pub(super) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+    let mut mn = String::with_capacity(part.targets.len() * 30);
+    let mut pos = String::with_capacity(part.targets.len() * 200);
+    let n = part.targets.len();
+    for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
+        let i = k + 1;
+        let exact = part.last && k + 1 == n;
+        let _ = match m {
+            Move::Rapid => writeln!(mn, "J P[{i}] {RAPID_PERCENT}% FINE ;"),
+            Move::Feed(f) => {
+                let (text, is_exact) = speed(*f).ok_or_else(|| Error::Program {
+                    line: (part.first + i) as u64,
+                    message: format!(
+                        "a feed of {} mm/min is below 1 cm/min, the slowest an LS program states",
+                        number(f * 6e4)
+                    ),
+                })?;
+                if !is_exact {
+                    let w = format!(
+                        "a feed of {} mm/min has no whole mm/sec or cm/min: written as {text}",
+                        number(f * 6e4)
+                    );
+                    if !warnings.contains(&w) {
+                        warnings.push(w);
+                    }
+                }
+                writeln!(
+                    mn,
+                    "L P[{i}] {text} {} ;",
+                    if exact { "FINE" } else { "CNT100" }
+                )
+            }
+        };
+        let _ = write!(pos, "P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,");
+        let _ = match plan.settings.targets {
+            Targets::Joint => write!(
+                pos,
+                "\n\tJ1= {} deg,\tJ2= {} deg,\tJ3= {} deg,\n\tJ4= {} deg,\tJ5= {} deg,\tJ6= {} deg\n}};\n",
+                v(t.q_deg[0]), v(t.q_deg[1]), v(t.q_deg[2]), v(t.q_deg[3]), v(t.q_deg[4]), v(t.q_deg[5])
+            ),
+            Targets::Cartesian => {
+                let (p, rotation) = in_world(plan, &t.pose);
+                let [r, pitch, w] = zyx_deg(&rotation);
+                write!(
+                    pos,
+                    "\t\tCONFIG : '{}',\n\tX = {} mm,\tY = {} mm,\tZ = {} mm,\n\tW = {} deg,\tP = {} deg,\tR = {} deg\n}};\n",
+                    t.arm.fanuc(), v(p.x), v(p.y), v(p.z), v(w), v(pitch), v(r)
+                )
+            }
+        };
+    }
+    Ok(format!("{mn}/POS\n{pos}"))
+}
+
+/// The main program's calls of its sub-programs.
+pub(super) fn calls(subs: &[String]) -> String {
+    subs.iter()
+        .map(|n| format!("CALL {n} ;\n"))
+        .collect::<String>()
+        + "/POS\n"
+}
+
+/// A whole `.ls` file: the `/MN` lines numbered.
+pub(super) fn wrap(name: &str, header: &str, body: &str) -> String {
+    let (mn, pos) = body.split_once("/POS\n").unwrap_or((body, ""));
+    let mut s = format!(
+        "/PROG  {name}\n/ATTR\nCOMMENT\t\t= \"{COMMENT}\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n"
+    );
+    for (i, line) in header.lines().chain(mn.lines()).enumerate() {
+        let pad = if line.starts_with(['J', 'L']) {
+            ""
+        } else {
+            "  "
+        };
+        let _ = writeln!(s, "{:>4}:{pad}{line}", i + 1);
+    }
+    s + "/POS\n" + pos + "/END\n"
+}

@@ -1,0 +1,511 @@
+//! New robot programs from compensated targets: what a G-code path becomes for a robot controller
+//! ([`generate`]), each target moved to at the path's own speed ([`Move`], from the G-code's `F`
+//! words: [`moves`]).
+//!
+//! ## Targets
+//! By default ([`Targets::Cartesian`]) every target is the compensated pose expressed in the
+//! controller's own nominal kinematics: the forward kinematics of the compensated axis angles,
+//! the tool centre point's position and the flange's orientation, with the configuration data
+//! of the compensated posture ([`stiffid_core::robot::configuration`]). Cutting moves are linear
+//! (KUKA `LIN`, ABB `MoveL`, FANUC `L`): the controller interpolates the tool in a straight line
+//! between compensated points, as the G-code does between its points. The first target and rapid
+//! moves (`G0`) are joint motions to Cartesian targets with their configuration (`PTP`, `MoveJ`,
+//! `J`). With [`Targets::Joint`] every target is the compensated axis angles (`PTP {A1 ..}`,
+//! `MoveAbsJ`, positions in joint representation), cutting moves included: the controller
+//! interpolates the axes, and the tool leaves the straight line between two targets by the joint
+//! interpolation's deviation.
+//!
+//! ## The tool and the work object
+//! Every frame a program states is the controller's ([`stiffid_core::setup::Controller`]): the tool
+//! from the controller's flange, an adapter plate (the setup's `[robot_flange]`) included
+//! ([`Tool::frame`]), and positions, base and work object in the controller's world, the robot
+//! file's base frame, a pedestal (the setup's `[robot_base]`) taken out ([`Plan::world`]).
+//! - KUKA KRL (`.src`): `$TOOL` is the tool frame (the TCP with the mounted flange's
+//!   orientation), `$LOAD` its mass and centre of mass when the setup gives them, `$BASE` the part
+//!   frame (`[workpiece] base_from_part`) in the world; targets in the part frame.
+//! - ABB RAPID (`.mod`): `PERS tooldata tspindle` (the tool frame, the mass and centre of mass,
+//!   required) and `PERS wobjdata wpart` (the part frame in the world as its user frame); targets
+//!   in the part frame.
+//! - FANUC LS (`.ls`): positions in user frame 0 (the world) with tool frame 1 (`UT : 1`), which
+//!   must hold the tool frame on the controller (an LS program cannot set it); the program states
+//!   its values in remarks.
+//!
+//! ## Controller rules
+//! Every rule comes from the controller's manual (docs/reference.md lists the sources):
+//! - the program's name is an identifier of the language, not a reserved word, within
+//!   [`Settings::name_length`] (default: KRL 24, RAPID 32, LS 8 as on R-30iA controllers; at
+//!   most [`max_name_length`]: KRL 24, RAPID 32, LS 36);
+//!   a generated program is called as its file is named, so the name is the file's stem;
+//! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
+//!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`;
+//! - intermediate cutting points are approximated within the chord tolerance (KRL `C_DIS` with
+//!   `$APO.CDIS`, RAPID a `zonedata` of that size, LS `CNT100`); the last point is exact (no
+//!   approximation, `fine`, `FINE`), as are the first point and rapid moves;
+//! - feeds are written exactly: KRL `$VEL.CP` in m/s and RAPID `v_tcp` in mm/s with 9 decimals,
+//!   LS in whole `mm/sec`, else whole `cm/min` (exact for a feed in whole mm/min divisible by 10),
+//!   else the nearest whole `cm/min` with a warning; a feed above [`Settings::max_tcp_speed`] or
+//!   one an LS program cannot state (below 1 cm/min) is refused naming the G-code line;
+//! - the LS `COMMENT` is at most 16 characters, and an LS file at most [`LS_MAX_LINES`]
+//!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
+//! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
+//! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
+//!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
+//!   program calls in order.
+//!
+//! Each program written reads back ([`super::parse`], joint targets) or states its targets to
+//! `10^-DECIMALS` mm and deg.
+
+mod krl;
+mod ls;
+mod names;
+mod rapid;
+
+pub use names::{
+    check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
+    MAX_FILES,
+};
+
+use super::{Dialect, DECIMALS};
+use crate::gcode::{Motion, Point};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
+use stiffid_core::common::error::JobOption;
+use stiffid_core::robot::configuration::Configuration;
+use stiffid_core::{Error, Result, Robot};
+
+/// How the robot moves to a target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Move {
+    /// A joint motion at the program's rapid speed: the first target and rapid moves (`G0`).
+    Rapid,
+    /// A cutting move at the path's feed, m/s.
+    Feed(f64),
+}
+
+/// What the targets of a generated program are (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Targets {
+    /// Compensated poses with their configuration; cutting moves linear.
+    #[default]
+    Cartesian,
+    /// Compensated axis angles; every move axis-interpolated.
+    Joint,
+}
+
+impl Targets {
+    /// Both, the default first.
+    pub const ALL: [Targets; 2] = [Targets::Cartesian, Targets::Joint];
+
+    /// The name in options and documents: `cartesian` or `joint`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Targets::Cartesian => "cartesian",
+            Targets::Joint => "joint",
+        }
+    }
+}
+
+impl stiffid_core::common::choice::Choice for Targets {
+    const FIELD: &'static str = "targets";
+    const ALL: &'static [Self] = &Targets::ALL;
+    fn name(self) -> &'static str {
+        Targets::name(self)
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Targets::Cartesian => {
+                "Compensated poses with their configuration, cutting moves linear"
+            }
+            Targets::Joint => "Compensated axis angles, every move axis-interpolated",
+        }
+    }
+}
+
+stiffid_core::common::choice::by_name!(Targets);
+
+/// The rapid speed of RAPID's `vrapid`, mm/s, or [`Settings::max_tcp_speed`] when slower.
+pub const RAPID_SPEED_MM_S: f64 = 200.0;
+/// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J`), percent of the axes' top speed.
+pub const RAPID_PERCENT: u32 = 20;
+/// The slowest feed written, m/s (0.001 mm/s): a slower one is refused, never written as 0.
+pub const MIN_FEED: f64 = 1e-6;
+/// The range of [`Settings::moves_per_file`].
+pub const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
+/// The range of [`Settings::name_length`].
+pub const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
+
+/// How programs are written (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Cartesian or joint targets.
+    pub targets: Targets,
+    /// The robot's largest TCP speed, m/s (> 0, at most 10): a faster feed is refused.
+    pub max_tcp_speed: f64,
+    /// The longest program name the controller takes; `None`: the dialect's
+    /// ([`default_name_length`]).
+    pub name_length: Option<usize>,
+    /// The most moves in one program file (within [`MOVES_PER_FILE`]).
+    pub moves_per_file: usize,
+}
+
+impl Default for Settings {
+    /// Cartesian targets, 2000 mm/s, the dialect's name length, 10 000 moves per file.
+    fn default() -> Self {
+        Self {
+            targets: Targets::Cartesian,
+            max_tcp_speed: 2.0,
+            name_length: None,
+            moves_per_file: 10_000,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks every field against its limit.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] naming the option ([`JobOption::MaxTcpSpeedMmS`],
+    /// [`JobOption::NameLength`], [`JobOption::MovesPerFile`]), the value and the range.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |option, message: String| Err(Error::InvalidOption { option, message });
+        if !(self.max_tcp_speed > 0.0 && self.max_tcp_speed <= 10.0) {
+            return bad(
+                JobOption::MaxTcpSpeedMmS,
+                format!(
+                    "{} mm/s: expected > 0 and at most 10000",
+                    self.max_tcp_speed * 1e3
+                ),
+            );
+        }
+        if let Some(n) = self.name_length.filter(|n| !NAME_LENGTH.contains(n)) {
+            return bad(
+                JobOption::NameLength,
+                format!(
+                    "{n}: expected {} to {}",
+                    NAME_LENGTH.start(),
+                    NAME_LENGTH.end()
+                ),
+            );
+        }
+        if !MOVES_PER_FILE.contains(&self.moves_per_file) {
+            return bad(
+                JobOption::MovesPerFile,
+                format!(
+                    "{}: expected {} to {}",
+                    self.moves_per_file,
+                    MOVES_PER_FILE.start(),
+                    MOVES_PER_FILE.end()
+                ),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// One target: the compensated axis angles, the TCP pose they give, their configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Target {
+    /// Axis angles q1..q6, deg.
+    pub q_deg: [f64; 6],
+    /// The TCP position (m) and the flange's orientation, base frame: the forward kinematics of
+    /// the axis angles.
+    pub pose: Isometry3<f64>,
+    /// The configuration of the axis angles.
+    pub arm: Configuration,
+}
+
+impl Target {
+    /// The target of `robot` at axis angles `q` (rad) with the tool centre point `tcp` (flange
+    /// frame, m).
+    pub fn new(robot: &Robot, tcp: &Vector3<f64>, q: &Vector6<f64>) -> Self {
+        let frames = robot.frames(q);
+        Self {
+            q_deg: q.map(f64::to_degrees).into(),
+            pose: stiffid_core::robot::ik::tool_pose(&frames, tcp),
+            arm: Configuration::of(robot, q),
+        }
+    }
+}
+
+/// The tool a program is written for, as the controller holds it: its frame and, if known, its
+/// mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tool {
+    /// The tool frame in the controller's flange frame: its origin the tool centre point, its
+    /// axes those of the flange the targets' orientations are given for (the mounted flange,
+    /// after an adapter plate); lengths in m.
+    pub frame: Isometry3<f64>,
+    /// The mass (kg) and centre of mass (the controller's flange frame, m), if the setup gives
+    /// them.
+    pub payload: Option<(f64, Vector3<f64>)>,
+}
+
+/// What to write.
+#[derive(Debug, Clone, Copy)]
+pub struct Plan<'a> {
+    /// The language.
+    pub dialect: Dialect,
+    /// The program's name: its file's stem.
+    pub name: &'a str,
+    /// The targets, in path order.
+    pub targets: &'a [Target],
+    /// How to move to each target (one per target).
+    pub moves: &'a [Move],
+    /// The tool.
+    pub tool: Tool,
+    /// The part frame (the work object) in the frame of the targets' poses (the setup's base
+    /// frame).
+    pub work: Isometry3<f64>,
+    /// The controller's world frame in the frame of the targets' poses (the setup's
+    /// `[robot_base]`): what the program's world positions, base and work object are relative to.
+    pub world: Isometry3<f64>,
+    /// The approximation of intermediate cutting points, m (the chord tolerance).
+    pub approximation: f64,
+    /// How.
+    pub settings: Settings,
+}
+
+/// One program file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct File {
+    /// The program's name (the file's stem).
+    pub name: String,
+    /// Its text.
+    pub text: String,
+}
+
+/// The programs written: the main program first, then its sub-programs in call order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Written {
+    /// The files.
+    pub files: Vec<File>,
+    /// What the user should know (a feed LS cannot state exactly).
+    pub warnings: Vec<String>,
+}
+
+/// How the robot moves to each point of a G-code path: the first point and rapid moves
+/// [`Move::Rapid`], cutting moves at the feed in force.
+///
+/// # Errors
+/// [`Error::Program`] naming the line of a cutting move with no feed rate (`F`) in force, or one
+/// faster than `max_tcp_speed` (m/s).
+pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
+    let error = |line, message: String| Err(Error::Program { line, message });
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| match (i, p.motion, p.feed) {
+            (0, _, _) | (_, Motion::Rapid, _) => Ok(Move::Rapid),
+            (_, Motion::Feed, Some(f)) if f > max_tcp_speed => error(p.line, format!(
+                "a feed of {} mm/s ({} mm/min) is faster than the robot's largest TCP speed, {} mm/s (a setting: max_tcp_speed_mm_s)",
+                number(f * 1e3), number(f * 6e4), number(max_tcp_speed * 1e3)
+            )),
+            (_, Motion::Feed, Some(f)) => Ok(Move::Feed(f)),
+            (_, Motion::Feed, None) => error(
+                p.line,
+                "a cutting move without a feed rate (F) in force: a robot program written from the path moves at its feed".into(),
+            ),
+        })
+        .collect()
+}
+
+/// The program of `plan` (module docs), split into sub-programs when it has more moves than
+/// [`Settings::moves_per_file`].
+///
+/// # Errors
+/// [`Error::InvalidOption`] for settings outside their limits (option named), a program name the
+/// controller does not accept or that leaves no room for the sub-programs' numbers
+/// ([`JobOption::ProgramName`]), more than [`MAX_FILES`] sub-programs
+/// ([`JobOption::MovesPerFile`]); [`Error::InvalidField`] for no
+/// target or more than [`super::MAX_TARGETS`], an axis angle that is not finite (`targets`), a
+/// count of moves other than the targets' or a feed below [`MIN_FEED`] or not finite (`moves`),
+/// a RAPID program with Cartesian targets and a tool without mass (`tool.mass_kg`);
+/// [`Error::Program`] for a feed an LS program
+/// cannot state (naming the target's 1-based index as its line).
+pub fn generate(plan: &Plan) -> Result<Written> {
+    let names = check_plan(plan.dialect, plan.name, &plan.settings, plan.targets.len())?;
+    check_targets(plan)?;
+    let per_file = moves_per_file(plan.dialect, &plan.settings);
+    let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
+    let mut written = Written {
+        files: Vec::new(),
+        warnings: Vec::new(),
+    };
+    let mut first = 0;
+    let mut bodies = Vec::new();
+    for (chunk, name) in chunks
+        .iter()
+        .zip(names.iter().skip(usize::from(chunks.len() > 1)))
+    {
+        let part = Part {
+            first,
+            targets: chunk,
+            moves: &plan.moves[first..first + chunk.len()],
+            last: first + chunk.len() == plan.targets.len(),
+        };
+        bodies.push((name.clone(), body(plan, &part, &mut written.warnings)?));
+        first += chunk.len();
+    }
+    let header = header(plan, &names[0], &names[1..]);
+    if chunks.len() == 1 {
+        let (name, text) = bodies.pop().unwrap_or_default();
+        written.files.push(File {
+            text: wrap(plan, &name, &header, &text, true),
+            name,
+        });
+    } else {
+        written.files.push(File {
+            name: names[0].clone(),
+            text: wrap(
+                plan,
+                &names[0],
+                &header,
+                &calls(plan.dialect, &names[1..]),
+                true,
+            ),
+        });
+        for (name, text) in bodies {
+            written.files.push(File {
+                text: wrap(plan, &name, "", &text, false),
+                name,
+            });
+        }
+    }
+    Ok(written)
+}
+
+/// A run of targets written into one file.
+pub(crate) struct Part<'a> {
+    /// The 0-based index of its first target in the whole program.
+    pub first: usize,
+    pub targets: &'a [Target],
+    pub moves: &'a [Move],
+    /// Whether it ends the whole program (its last point exact).
+    pub last: bool,
+}
+
+fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+    Ok(match plan.dialect {
+        Dialect::Krl => krl::body(plan, part),
+        Dialect::Rapid => rapid::body(plan, part),
+        Dialect::FanucLs => ls::body(plan, part, warnings)?,
+        Dialect::Inform => String::new(),
+    })
+}
+
+fn header(plan: &Plan, main: &str, subs: &[String]) -> String {
+    match plan.dialect {
+        Dialect::Krl => krl::header(plan),
+        Dialect::Rapid => rapid::header(plan, main, subs),
+        Dialect::FanucLs => ls::header(plan),
+        Dialect::Inform => String::new(),
+    }
+}
+
+fn calls(dialect: Dialect, subs: &[String]) -> String {
+    match dialect {
+        Dialect::Krl => krl::calls(subs),
+        Dialect::Rapid => rapid::calls(subs),
+        Dialect::FanucLs => ls::calls(subs),
+        Dialect::Inform => String::new(),
+    }
+}
+
+fn wrap(plan: &Plan, name: &str, header: &str, body: &str, main: bool) -> String {
+    match plan.dialect {
+        Dialect::Krl => krl::wrap(name, header, body),
+        Dialect::Rapid => rapid::wrap(name, header, body, main),
+        Dialect::FanucLs => ls::wrap(name, header, body),
+        Dialect::Inform => String::new(),
+    }
+}
+
+fn invalid(field: &str, message: String) -> Error {
+    Error::InvalidField {
+        field: field.into(),
+        message,
+    }
+}
+
+fn check_targets(plan: &Plan) -> Result<()> {
+    let t = plan.targets;
+    if t.is_empty()
+        || t.len() > super::MAX_TARGETS
+        || t.iter().flat_map(|t| t.q_deg).any(|v| !v.is_finite())
+    {
+        return Err(invalid(
+            "targets",
+            format!(
+                "expected 1 to {} targets of 6 finite axis angles",
+                super::MAX_TARGETS
+            ),
+        ));
+    }
+    let bad_feed = plan
+        .moves
+        .iter()
+        .any(|m| matches!(m, Move::Feed(f) if !(f.is_finite() && *f >= MIN_FEED)));
+    if plan.moves.len() != t.len() || bad_feed {
+        return Err(invalid(
+            "moves",
+            format!(
+                "expected one move per target ({}), each feed finite and at least {} mm/s",
+                t.len(),
+                MIN_FEED * 1e3
+            ),
+        ));
+    }
+    check_payload(plan.dialect, plan.settings.targets, &plan.tool)
+}
+
+/// Whether a program of `dialect` with `targets` can be written for `tool`: a RAPID program
+/// with Cartesian targets states the tool's mass and centre of mass.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`tool.mass_kg`) when the program needs them and `tool` has none.
+pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<()> {
+    let needs_mass = dialect == Dialect::Rapid && targets == Targets::Cartesian;
+    if needs_mass && tool.payload.is_none() {
+        return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
+    }
+    Ok(())
+}
+
+/// `x` with [`DECIMALS`] decimals, a negative zero without its sign.
+pub(crate) fn v(x: f64) -> String {
+    let s = format!("{x:.DECIMALS$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// A number as short as it is exact to [`DECIMALS`] decimals (trailing zeros dropped).
+pub(crate) fn number(x: f64) -> String {
+    let s = v(x);
+    match s.contains('.') {
+        true => s.trim_end_matches('0').trim_end_matches('.').to_string(),
+        false => s,
+    }
+}
+
+/// A target's pose in the frame `work` (part frame): position (mm) and rotation.
+pub(crate) fn in_work(plan: &Plan, t: &Target) -> (Vector3<f64>, UnitQuaternion<f64>) {
+    let local = plan.work.inverse() * t.pose;
+    (local.translation.vector * 1e3, local.rotation)
+}
+
+/// A pose (the frame of the targets' poses) in the controller's world: position (mm) and
+/// rotation.
+pub(crate) fn in_world(plan: &Plan, pose: &Isometry3<f64>) -> (Vector3<f64>, UnitQuaternion<f64>) {
+    let local = plan.world.inverse() * pose;
+    (local.translation.vector * 1e3, local.rotation)
+}
+
+/// KUKA's A, B, C and FANUC's R, P, W (deg): `R = Rz(A) Ry(B) Rx(C)`.
+pub(crate) fn zyx_deg(r: &UnitQuaternion<f64>) -> [f64; 3] {
+    let (roll, pitch, yaw) = r.euler_angles();
+    [yaw.to_degrees(), pitch.to_degrees(), roll.to_degrees()]
+}
+
+#[cfg(test)]
+mod tests;

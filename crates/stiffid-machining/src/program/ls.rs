@@ -1,0 +1,373 @@
+//! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;` and `L P[i] 50mm/sec CNT100 ;`
+//! (any speed, a termination `FINE`, `CNTn`, `CRn` or `CDn`, the options `ACCn` and `INC`) to the
+//! `/POS` section's positions in joint representation,
+//! `P[1]{ GP1: UF : 0, UT : 1, J1= 0.000 deg, J2= ... J6= ... deg };` over one or more lines.
+//! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
+//! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
+//! one; a third group is refused. An `INC` motion after one that ends `FINE` goes to the previous
+//! target plus the position's increments (every axis of both groups). A position in Cartesian
+//! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
+//! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
+
+use super::cartesian::ls::{self as cartesian, Value};
+use super::cartesian::Flags;
+use super::{at, number_at, six, Found, JointTarget};
+use std::collections::HashMap;
+use stiffid_core::Result;
+
+/// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
+/// program's external axes.
+pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
+    let (positions, axes, units) = positions(text)?;
+    let mut out: Vec<JointTarget> = Vec::new();
+    // Whether the previous motion ended FINE; the first jump, call, loop or branch.
+    let mut previous_fine = false;
+    let mut control: Option<(u64, String)> = None;
+    for (line, instruction) in instructions(text) {
+        let t = instruction.trim();
+        let first = t
+            .split(|c: char| c.is_whitespace() || c == '[' || c == '(')
+            .next()
+            .unwrap_or("")
+            .to_ascii_uppercase();
+        if matches!(
+            first.as_str(),
+            "JMP" | "IF" | "FOR" | "SELECT" | "CALL" | "RUN"
+        ) && control.is_none()
+        {
+            control = Some((line, first.clone()));
+        }
+        let Some(rest) = motion_rest(t) else {
+            continue;
+        };
+        let letter = &t[..1];
+        if matches!(letter, "C" | "A") {
+            return Err(at(line, format!("{letter}: a circular motion; the arc between compensated points is not the compensated arc: split it into L motions")));
+        }
+        let (index, after) = target(line, letter, rest)?;
+        let words: Vec<String> = after
+            .split_whitespace()
+            .map(str::to_ascii_uppercase)
+            .collect();
+        let termination = words.get(1).map(String::as_str).unwrap_or("");
+        if !(termination == "FINE"
+            || ["CNT", "CR", "CD"]
+                .iter()
+                .any(|p| termination.starts_with(p)))
+        {
+            return Err(at(line, format!("{letter} P[{index}]: expected a speed and a termination (FINE, CNTn, CRn, CDn)")));
+        }
+        let mut incremental = false;
+        for w in &words[2..] {
+            match w.as_str() {
+                "INC" => incremental = true,
+                a if a.starts_with("ACC") => {}
+                o if o.starts_with("OFFSET")
+                    || o.starts_with("TOOL_OFFSET")
+                    || o.starts_with("VOFFSET") =>
+                {
+                    return Err(at(line, format!("{letter} P[{index}] {}: the offset is held on the controller (a position register or vision offset), not in this program; apply it to the positions and remove it", stiffid_core::common::limits::short(w))));
+                }
+                other => {
+                    return Err(at(line, format!("{letter} P[{index}] {}: an option stiffid does not follow (the path or its end would not be the program's); remove it or compensate the program without it", stiffid_core::common::limits::short(other))));
+                }
+            }
+        }
+        let position = positions.get(&index).ok_or_else(|| {
+            at(
+                line,
+                format!("{letter} P[{index}]: no position P[{index}] in /POS"),
+            )
+        })?;
+        let mut target = position.moved_to(line, incremental);
+        let speed_word = after.split_whitespace().next().unwrap_or("");
+        target.speed = super::speed::ls(line, letter, speed_word)?;
+        if incremental && target.cartesian.is_some() {
+            return Err(at(line, format!("{letter} P[{index}] INC: an increment of a Cartesian position; stiffid follows absolute Cartesian positions: write P[{index}] absolute")));
+        }
+        if incremental {
+            let Some(previous) = out.last().filter(|_| previous_fine) else {
+                return Err(at(line, format!("{letter} P[{index}] INC: an increment from where the robot is, which only a previous motion ending FINE in this program fixes; end the previous motion FINE or write P[{index}] absolute")));
+            };
+            for (q, p) in target.q_deg.iter_mut().zip(previous.q_deg) {
+                *q += p;
+            }
+            for (e, p) in target.external.iter_mut().zip(&previous.external) {
+                if let (Some(e), Some(p)) = (e.as_mut(), p) {
+                    *e += p;
+                }
+            }
+        }
+        previous_fine = termination == "FINE";
+        out.push(target);
+    }
+    if let (Some((line, word)), false) = (control, out.is_empty()) {
+        return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
+    }
+    super::cartesian::numbered::apply(text, &mut out)?;
+    Ok((out, axes, units))
+}
+
+/// After `J ` or `L ` (or another motion letter), the rest of a motion instruction.
+fn motion_rest(t: &str) -> Option<&str> {
+    let mut chars = t.chars();
+    let letter = chars.next()?;
+    let rest = chars.as_str();
+    let next = rest.trim_start();
+    (matches!(letter, 'J' | 'L' | 'C' | 'A') && next.len() < rest.len() && next.starts_with('P'))
+        .then_some(next)
+}
+
+/// The position index of a motion's target `P[i]` or `P[i:comment]` and the text after it;
+/// position registers and indirect indices refused.
+fn target<'a>(line: u64, letter: &str, rest: &'a str) -> Result<(u64, &'a str)> {
+    if rest.starts_with("PR[") {
+        return Err(at(line, format!("{letter} PR[..]: a position register holds its value on the controller, not in this program; copy it into a P[] position")));
+    }
+    let inner = rest
+        .strip_prefix("P[")
+        .ok_or_else(|| at(line, format!("{letter}: expected a target P[i]")))?;
+    let close = inner
+        .find(']')
+        .ok_or_else(|| at(line, format!("{letter} P[: expected ']'")))?;
+    let index = inner[..close].split(':').next().unwrap_or("").trim();
+    let index: u64 = index.parse().map_err(|_| {
+        at(line, format!("{letter} P[{}]: the index is computed on the controller (a register); stiffid follows positions by number", stiffid_core::common::limits::short(index)))
+    })?;
+    Ok((index, &inner[close + 1..]))
+}
+
+/// The `/MN` instructions: the line of each and its text (continuation lines `   :` joined),
+/// without the line number and the closing `;`; comments (`!`, `//`) dropped.
+fn instructions(text: &str) -> Vec<(u64, String)> {
+    let mut out: Vec<(u64, String)> = Vec::new();
+    let mut in_mn = false;
+    for (line, _, l) in super::lines(text) {
+        let t = l.trim();
+        if t.starts_with('/') {
+            in_mn = t.starts_with("/MN");
+            continue;
+        }
+        if !in_mn {
+            continue;
+        }
+        let Some((number, body)) = t.split_once(':') else {
+            continue;
+        };
+        let body = body.trim_end().trim_end_matches(';');
+        match number.trim() {
+            "" => {
+                if let Some(last) = out.last_mut() {
+                    last.1.push(' ');
+                    last.1.push_str(body);
+                }
+            }
+            n if n.chars().all(|c| c.is_ascii_digit()) => {
+                let b = body.trim_start();
+                if !(b.starts_with('!') || b.starts_with("//")) {
+                    out.push((line, body.to_string()));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// A position being read: its index, first line, the six axes, group 1's extended axes and
+/// group 2's axes, and the group of the values read now.
+struct Open {
+    index: u64,
+    first: u64,
+    found: Found,
+    extended: Vec<Value>,
+    second: Vec<Value>,
+    group: u8,
+    /// A Cartesian position's `X`..`R`, `CONFIG` and user and tool frame numbers.
+    pose: [Value; 6],
+    config: Option<(Flags, std::ops::Range<usize>)>,
+    frames: (Option<u32>, Option<u32>),
+}
+
+/// Per external axis of the program (its order), the unit its values are written in (`mm` or
+/// `deg`) and the line of the first.
+pub(crate) type Units = Vec<Option<(&'static str, u64)>>;
+
+/// The `/POS` section's positions by index (module docs), the program's external axes: group 1's
+/// `E1`.. then group 2's `J1`.. (`GP2 J1`), and their units.
+fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Units)> {
+    let mut read: Vec<Open> = Vec::new();
+    let mut units: HashMap<(u8, usize), (&'static str, u64)> = HashMap::new();
+    let mut in_pos = false;
+    let mut open: Option<Open> = None;
+    for (line, start, l) in super::lines(text) {
+        let t = l.trim();
+        if t.starts_with('/') {
+            in_pos = t.starts_with("/POS");
+            continue;
+        }
+        if !in_pos {
+            continue;
+        }
+        if let Some(inner) = t.strip_prefix("P[") {
+            if let Some(o) = &open {
+                return Err(at(o.first, "position without its closing '};'".into()));
+            }
+            let index = inner
+                .split([':', ']'])
+                .next()
+                .and_then(|i| i.trim().parse::<u64>().ok())
+                .ok_or_else(|| at(line, "P[: expected a position number".into()))?;
+            if read.iter().any(|o| o.index == index) {
+                return Err(at(line, format!("P[{index}] defined twice in /POS")));
+            }
+            open = Some(Open {
+                index,
+                first: line,
+                found: Default::default(),
+                extended: Vec::new(),
+                second: Vec::new(),
+                group: 0,
+                pose: Default::default(),
+                config: None,
+                frames: (None, None),
+            });
+        }
+        let Some(o) = open.as_mut() else {
+            continue;
+        };
+        let masked = cartesian::masked(l);
+        for piece in split_keeping_offsets(&masked) {
+            let (offset, item) = piece;
+            let mut item_t = item.trim();
+            if let Some(g) = item_t.strip_prefix("GP") {
+                o.group = g
+                    .trim_start()
+                    .bytes()
+                    .next()
+                    .map_or(0, |d| d.wrapping_sub(b'0'));
+                if !(1..=2).contains(&o.group) {
+                    return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
+                }
+                item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
+            }
+            if o.group == 0 {
+                continue;
+            }
+            if let Some((user, n)) = cartesian::frame_number(line, item_t)? {
+                if o.group == 1 {
+                    *(if user {
+                        &mut o.frames.0
+                    } else {
+                        &mut o.frames.1
+                    }) = Some(n);
+                }
+                continue;
+            }
+            let Some(eq) = item.find('=') else { continue };
+            let name = item[..eq].trim();
+            let name = name.rsplit(':').next().unwrap_or(name).trim();
+            let number = |prefix: char| {
+                name.strip_prefix(prefix)
+                    .and_then(|d| d.parse::<usize>().ok())
+            };
+            if let (1, Some(k)) = (
+                o.group,
+                cartesian::POSE.iter().position(|(n, _)| *n == name),
+            ) {
+                let (v, span, _) = value(l, offset + eq + 1, line, name, &[cartesian::POSE[k].1])?;
+                o.pose[k] = Some((v, start + span.start..start + span.end));
+                continue;
+            }
+            let (values, k) = match (o.group, number('J'), number('E')) {
+                (1, Some(k @ 1..=6), _) => {
+                    let (v, span, _) = value(l, offset + eq + 1, line, name, &["deg"])?;
+                    o.found[k - 1] = Some((v, start + span.start..start + span.end));
+                    continue;
+                }
+                (1, _, Some(k @ 1..=3)) => (&mut o.extended, k),
+                (2, Some(k @ 1..=6), _) => (&mut o.second, k),
+                _ => continue,
+            };
+            let (v, span, unit) = value(l, offset + eq + 1, line, name, &["mm", "deg"])?;
+            let (first_unit, first_line) = *units.entry((o.group, k)).or_insert((unit, line));
+            if first_unit != unit {
+                return Err(at(line, format!("{name} in {unit}: the same axis is in {first_unit} on line {first_line}; one unit per axis (mm for a linear axis, deg for a rotary one)")));
+            }
+            if values.len() < k {
+                values.resize(k, None);
+            }
+            values[k - 1] = Some((v, start + span.start..start + span.end));
+        }
+        if o.group == 1 {
+            if let Some(c) = cartesian::config(line, start, l)? {
+                o.config = Some(c);
+            }
+        }
+        if t.ends_with("};") {
+            if let Some(o) = open.take() {
+                read.push(o);
+            }
+        }
+    }
+    if let Some(o) = open {
+        return Err(at(o.first, "position without its closing '};'".into()));
+    }
+    let n1 = read.iter().map(|o| o.extended.len()).max().unwrap_or(0);
+    let n2 = read.iter().map(|o| o.second.len()).max().unwrap_or(0);
+    let mut out = HashMap::with_capacity(read.len());
+    for mut o in read {
+        o.extended.resize(n1, None);
+        o.extended.append(&mut o.second);
+        let target = match o.pose.iter().any(Option::is_some) || o.config.is_some() {
+            true if o.found.iter().any(Option::is_some) => {
+                return Err(at(o.first, "a position with both joint (J1=) and Cartesian (X =, CONFIG) values: give one representation".into()));
+            }
+            true => {
+                let c = cartesian::target(o.first, &o.pose, o.config.take(), o.frames)?;
+                JointTarget::cartesian(o.first, c)
+            }
+            false => six(o.first, o.found, "J")?,
+        };
+        out.insert(o.index, target.with_external(o.extended));
+    }
+    let axes = (1..=n1).map(|k| format!("E{k}"));
+    let axes = axes.chain((1..=n2).map(|k| format!("GP2 J{k}")));
+    let keys = (1..=n1).map(|k| (1, k)).chain((1..=n2).map(|k| (2, k)));
+    let units = keys.map(|key| units.get(&key).copied()).collect();
+    Ok((out, axes.collect(), units))
+}
+
+/// The number after the `=` at byte `from` of `l` and its unit, one of `units`.
+fn value(
+    l: &str,
+    from: usize,
+    line: u64,
+    name: &str,
+    units: &[&'static str],
+) -> Result<(f64, std::ops::Range<usize>, &'static str)> {
+    let (v, span) =
+        number_at(l, from).ok_or_else(|| at(line, format!("{name}: expected a number")))?;
+    let unit = l[span.end..].trim_start();
+    match units.iter().find(|u| unit.starts_with(*u)) {
+        Some(u) => Ok((v, span, u)),
+        None => Err(at(
+            line,
+            format!("{name}: expected a value in {}", units.join(" or ")),
+        )),
+    }
+}
+
+/// The comma-separated pieces of a line (also split at `{`) with their byte offsets.
+fn split_keeping_offsets(l: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut from = 0;
+    for (i, c) in l.char_indices() {
+        if c == ',' || c == '{' {
+            out.push((from, &l[from..i]));
+            from = i + 1;
+        }
+    }
+    out.push((from, &l[from..]));
+    out
+}

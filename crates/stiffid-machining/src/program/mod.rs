@@ -1,0 +1,414 @@
+//! Robot programs: the joint targets of KUKA KRL, ABB RAPID, FANUC LS and Yaskawa INFORM
+//! programs and the Cartesian targets of KRL, RAPID and LS ones ([`cartesian`]), read in the
+//! order the controller moves to them and written back with everything else byte for byte.
+//!
+//! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
+//!   a point declared in the same file as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`.
+//! - [`rapid`]: `MoveAbsJ` (also `\Conc`) to a literal `[[j1,..,j6],[e1,..,e6]]` or to a
+//!   `jointtarget` declared in the same module (over one line or several), with its external axes
+//!   `eax_a`..`eax_f` (`9E9`: not used).
+//! - [`ls`]: `J`/`L` motions in `/MN` to `P[i]` positions of `/POS` in joint representation
+//!   (`J1= .. deg` to `J6`, group 1's extended axes `E1`.. and a second group `GP2`); `INC` after a
+//!   motion that ends `FINE` is resolved (the increment from the previous target, written back as
+//!   the increment between the compensated targets).
+//! - [`inform`]: `MOVJ`/`MOVL` to `C` teaching positions in pulses, with base (`BC`) and station
+//!   (`EC`) positions; the pulses per degree from a `'stiffid:` comment of the job.
+//!
+//! A target's external axes are the cell's in the cell's order ([`external`]).
+//!
+//! Cartesian targets (KRL `E6POS`/`POS`/`FRAME` aggregates and points, RAPID `MoveL`/`MoveJ` to
+//! `robtarget`s, LS positions in Cartesian representation) are read with their frame, tool and
+//! configuration data ([`cartesian`]); their axis angles are NaN until [`cartesian::resolve`]
+//! gives the ones the controller moves to (inverse kinematics in the configuration the data
+//! name). A program may mix both kinds. A compensated Cartesian target is written back as the
+//! pose the controller must be told, with the configuration data of the compensated posture.
+//!
+//! Every other motion instruction is refused naming its line and what to do, never skipped: a
+//! circular or spline motion (the path between the points is not the compensated one), a relative
+//! motion the file cannot resolve exactly, an offset or target held in a register on the
+//! controller (LS `Offset,PR[]`, `Tool_Offset`, `PR[]`), a point declared outside the file or
+//! assigned at run time, a search or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`),
+//! motions in more than one routine, and jumps, loops, branches and calls in a program with
+//! motions (the order the controller runs would not be the file's).
+//!
+//! The targets come in the order of the motion instructions, which is the order the path follows;
+//! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
+//! six numbers (a Cartesian target: its pose's numbers and, where they changed, its
+//! configuration data) of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
+//! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
+//! a point visited twice takes one value, so the two visits' compensations must agree.
+
+pub mod cartesian;
+pub mod external;
+pub mod generate;
+pub mod inform;
+pub mod krl;
+pub mod ls;
+pub mod rapid;
+pub mod rename;
+pub mod speed;
+
+pub(crate) use super::text::{lines, number_at};
+use std::ops::Range;
+use stiffid_core::{Error, Result};
+
+/// Decimals of a written joint value, deg (1e-9 deg: the compensation's precision; controllers
+/// round to their own).
+pub const DECIMALS: usize = 9;
+
+/// The most joint targets a program may hold.
+pub const MAX_TARGETS: usize = 1_000_000;
+
+/// The robot-program language.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dialect {
+    /// KUKA KRL (`.src`, `.dat`).
+    Krl,
+    /// ABB RAPID (`.mod`, `.modx`, `.prg`).
+    Rapid,
+    /// FANUC LS (`.ls`), joint representation.
+    FanucLs,
+    /// Yaskawa INFORM (`.jbi`), pulse positions.
+    Inform,
+}
+
+impl Dialect {
+    /// The dialect of a file name's extension (case-insensitive), if it is one of ours.
+    pub fn from_extension(extension: &str) -> Option<Self> {
+        match extension.to_ascii_lowercase().as_str() {
+            "src" | "dat" => Some(Dialect::Krl),
+            "mod" | "modx" | "prg" => Some(Dialect::Rapid),
+            "ls" => Some(Dialect::FanucLs),
+            "jbi" => Some(Dialect::Inform),
+            _ => None,
+        }
+    }
+}
+
+/// One joint target of a program: one motion instruction's destination.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointTarget {
+    /// The line of its motion instruction, 1-based.
+    pub line: u64,
+    /// Axis angles q1..q6, deg (an incremental target resolved to its absolute angles; a
+    /// Cartesian target's NaN until [`cartesian::resolve`]).
+    pub q_deg: [f64; 6],
+    /// The external axes' values as the program gives them, one per axis of
+    /// [`JointProgram::axes`], mm for a linear axis and deg for a rotary one (as the controller
+    /// writes them); `None` where the target gives no value (RAPID `9E9`, an `E` member the KRL
+    /// aggregate leaves out).
+    pub external: Vec<Option<f64>>,
+    /// Where each of the six numbers sits in the text (bytes): in the motion or in the point's
+    /// declaration.
+    spans: [Range<usize>; 6],
+    /// Where each external value sits in the text, as `external`.
+    external_spans: Vec<Option<Range<usize>>>,
+    /// The line of the six numbers (the declaration's for a named point).
+    origin: u64,
+    /// The numbers hold the increment from the previous target (LS `INC`).
+    incremental: bool,
+    /// A Cartesian target's pose, frame and configuration data ([`cartesian`]): its
+    /// [`JointTarget::q_deg`] are NaN until [`cartesian::resolve`] gives them.
+    pub cartesian: Option<Box<cartesian::Cartesian>>,
+    /// How the controller moves to it: a joint motion, or a linear one at its programmed
+    /// speed ([`speed`]).
+    pub speed: speed::Speed,
+}
+
+impl JointTarget {
+    /// The same point as the target of the motion on `line`; `incremental` as it says.
+    pub(crate) fn moved_to(&self, line: u64, incremental: bool) -> Self {
+        JointTarget {
+            line,
+            incremental,
+            ..self.clone()
+        }
+    }
+
+    /// A Cartesian target on `line` (its axis angles NaN until resolved).
+    pub(crate) fn cartesian(line: u64, c: cartesian::Cartesian) -> Self {
+        JointTarget {
+            line,
+            q_deg: [f64::NAN; 6],
+            external: Vec::new(),
+            spans: Default::default(),
+            external_spans: Vec::new(),
+            origin: line,
+            incremental: false,
+            cartesian: Some(Box::new(c)),
+            speed: speed::Speed::Unread(NOT_READ.into()),
+        }
+    }
+
+    /// The target with the external values `values` (value and span, in the dialect's slots).
+    pub(crate) fn with_external(mut self, values: Vec<Option<(f64, Range<usize>)>>) -> Self {
+        (self.external, self.external_spans) = values
+            .into_iter()
+            .map(|v| match v {
+                Some((v, s)) => (Some(v), Some(s)),
+                None => (None, None),
+            })
+            .unzip();
+        self
+    }
+}
+
+/// A robot program and its joint targets.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointProgram {
+    /// The language.
+    pub dialect: Dialect,
+    /// The targets, in the order of the motion instructions.
+    pub targets: Vec<JointTarget>,
+    /// The program's external axes as it names them (KRL `E1`.., RAPID `eax_a`.., LS `E1`.. of
+    /// group 1 then `GP2 J1`.., INFORM `BC1`.. then `EC1`..), in the order of
+    /// [`JointTarget::external`]: the `n` first are the cell's `n` external axes, in the cell's
+    /// order ([`external`]).
+    pub axes: Vec<String>,
+    /// Per value (the six axes, then the external ones): the pulses per deg or mm of a value
+    /// written in pulses (INFORM), `None` for a decimal value.
+    pulses: Vec<Option<f64>>,
+    /// Per external axis, the unit the program writes it in and the line of its first value,
+    /// where the language says (LS: `mm` or `deg`); empty for the others.
+    units: ls::Units,
+    /// What writes the Cartesian targets back, once resolved ([`cartesian::resolve`]).
+    writer: Option<Box<cartesian::Writer>>,
+    text: String,
+}
+
+/// Parses the joint targets of `text` in `dialect`.
+///
+/// # Errors
+/// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
+/// a joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
+/// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
+/// at all, or more than [`MAX_TARGETS`].
+pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
+    let mut units = Vec::new();
+    let (mut targets, axes, pulses) = match dialect {
+        Dialect::Krl => with_decimals(krl::targets(text)?),
+        Dialect::Rapid => with_decimals(rapid::targets(text)?),
+        Dialect::FanucLs => {
+            let (targets, axes, written) = ls::targets(text)?;
+            units = written;
+            with_decimals((targets, axes))
+        }
+        Dialect::Inform => inform::targets(text)?,
+    };
+    for t in &mut targets {
+        t.external.resize(axes.len(), None);
+        t.external_spans.resize(axes.len(), None);
+    }
+    if targets.is_empty() {
+        let hint = match dialect {
+            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src",
+            Dialect::Rapid => "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget",
+            Dialect::FanucLs => "J or L to a P[i] of /POS",
+            Dialect::Inform => "MOVJ or MOVL to a C-variable of //POS in pulses",
+        };
+        return Err(at(
+            1,
+            format!("no motion to a joint target found (expected {hint})"),
+        ));
+    }
+    if targets.len() > MAX_TARGETS {
+        return Err(at(
+            targets[MAX_TARGETS].line,
+            format!("more than {MAX_TARGETS} joint targets"),
+        ));
+    }
+    Ok(JointProgram {
+        dialect,
+        targets,
+        axes,
+        pulses,
+        units,
+        writer: None,
+        text: text.to_string(),
+    })
+}
+
+/// A dialect's targets and axes, every value written with decimals.
+pub(crate) type Read = (Vec<JointTarget>, Vec<String>, Vec<Option<f64>>);
+
+fn with_decimals((targets, axes): (Vec<JointTarget>, Vec<String>)) -> Read {
+    (targets, axes, Vec::new())
+}
+
+impl JointProgram {
+    /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) where they
+    /// differ from the ones read; the external values and every other byte as read.
+    ///
+    /// # Errors
+    /// Those of [`JointProgram::write_with_external`].
+    pub fn write(&self, q_deg: &[[f64; 6]]) -> Result<String> {
+        let external: Vec<Vec<Option<f64>>> =
+            self.targets.iter().map(|t| t.external.clone()).collect();
+        self.write_with_external(q_deg, &external)
+    }
+
+    /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) and its
+    /// external values by `external[i]` (mm or deg, in the order of [`JointProgram::axes`]) where
+    /// they differ from the ones read; every other byte as read. A value the target does not
+    /// give (`None` in [`JointTarget::external`]) stays `None`: nothing is added to a target.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`q_deg`, `external`) when a list has another length than the
+    /// targets, a row of `external` another shape than the target's values, or a value is not
+    /// finite; [`Error::Program`] naming the line where two motions to one declared point would
+    /// take different values, or of a Cartesian target of a program not resolved
+    /// ([`cartesian::resolve`]).
+    pub fn write_with_external(
+        &self,
+        q_deg: &[[f64; 6]],
+        external: &[Vec<Option<f64>>],
+    ) -> Result<String> {
+        if q_deg.len() != self.targets.len() || q_deg.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(Error::InvalidField {
+                field: "q_deg".into(),
+                message: format!(
+                    "expected {} rows of 6 finite axis angles, one per target",
+                    self.targets.len()
+                ),
+            });
+        }
+        let shaped = |(t, e): (&JointTarget, &Vec<Option<f64>>)| {
+            e.len() == t.external.len()
+                && e.iter()
+                    .zip(&t.external)
+                    .all(|(a, b)| a.is_some() == b.is_some() && a.is_none_or(|v| v.is_finite()))
+        };
+        if external.len() != self.targets.len() || !self.targets.iter().zip(external).all(shaped) {
+            return Err(Error::InvalidField {
+                field: "external".into(),
+                message: format!(
+                    "expected {} rows of finite external values, one per target, each with a value exactly where the target read has one ({})",
+                    self.targets.len(),
+                    self.axes.join(", ")
+                ),
+            });
+        }
+        // Each number to write: its span, the target, its text, whether it changed.
+        let mut edits: Vec<(Range<usize>, usize, String, bool)> =
+            Vec::with_capacity(6 * self.targets.len());
+        for (i, t) in self.targets.iter().enumerate() {
+            let values = |j: usize| {
+                let e = external[j].iter().map(|v| v.unwrap_or(0.0));
+                q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
+            };
+            let (now, read) = (values(i), t.values());
+            if let Some(c) = &t.cartesian {
+                let writer = self.writer.as_ref().ok_or_else(|| {
+                    at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
+                })?;
+                let q = nalgebra::Vector6::from(q_deg[i]).map(f64::to_radians);
+                let changed = now[..6] != read[..6];
+                for (span, text) in writer.texts(self.dialect, c, &q) {
+                    edits.push((span, i, text, changed));
+                }
+            }
+            let joint = t.cartesian.is_none();
+            let spans = t.spans.iter().map(|s| joint.then(|| s.clone()));
+            let spans = spans.chain(t.external_spans.iter().cloned());
+            for (k, span) in spans.enumerate() {
+                let Some(span) = span else { continue };
+                let (value, changed) = match (t.incremental, i.checked_sub(1)) {
+                    (true, Some(p)) => {
+                        let (before, before_read) = (values(p), self.targets[p].values());
+                        (
+                            now[k] - before[k],
+                            now[k] != read[k] || before[k] != before_read[k],
+                        )
+                    }
+                    _ => (now[k], now[k] != read[k]),
+                };
+                edits.push((span, i, self.number(k, value), changed));
+            }
+        }
+        edits.sort_by_key(|e| e.0.start);
+        let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
+        let mut at = 0;
+        for (j, (span, i, text, changed)) in edits.iter().enumerate() {
+            if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
+                if other != text {
+                    let (a, b) = (&self.targets[*first], &self.targets[*i]);
+                    return Err(Error::Program {
+                        line: b.line,
+                        message: format!(
+                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other} and {text}): give each visit its own point",
+                            a.line, b.line, b.origin
+                        ),
+                    });
+                }
+                continue;
+            }
+            let shared_change = edits[j..].iter().take_while(|e| e.0 == *span).any(|e| e.3);
+            if *changed || shared_change {
+                out.push_str(&self.text[at..span.start]);
+                out.push_str(text);
+                at = span.end;
+            }
+        }
+        out.push_str(&self.text[at..]);
+        Ok(out)
+    }
+
+    /// Value `k` of a target (the six axes, then the external ones) as the program writes it:
+    /// [`DECIMALS`] decimals, or a whole number of pulses (INFORM's pulse form).
+    fn number(&self, k: usize, value: f64) -> String {
+        match self.pulses.get(k).copied().flatten() {
+            Some(per_unit) => format!("{}", (value * per_unit).round() as i64),
+            None => format!("{value:.DECIMALS$}"),
+        }
+    }
+}
+
+impl JointTarget {
+    /// The six axis values then the external ones given (absent ones as 0).
+    fn values(&self) -> Vec<f64> {
+        let e = self.external.iter().map(|v| v.unwrap_or(0.0));
+        self.q_deg.iter().copied().chain(e).collect()
+    }
+}
+
+/// The error at `line`.
+pub(crate) fn at(line: u64, message: String) -> Error {
+    Error::Program { line, message }
+}
+
+/// The six axis values of a target as found so far: value and span.
+pub(crate) type Found = [Option<(f64, Range<usize>)>; 6];
+
+/// Six axis values collected by name (`A1`.., `J1`..): the target, or what is missing.
+pub(crate) fn six(
+    line: u64,
+    found: [Option<(f64, Range<usize>)>; 6],
+    names: &str,
+) -> Result<JointTarget> {
+    let mut q_deg = [0.0; 6];
+    let mut spans: [Range<usize>; 6] = Default::default();
+    for (k, f) in found.into_iter().enumerate() {
+        let (v, s) = f.ok_or_else(|| {
+            at(
+                line,
+                format!("joint target without axis {} ({names}{})", k + 1, k + 1),
+            )
+        })?;
+        q_deg[k] = v;
+        spans[k] = s;
+    }
+    Ok(JointTarget {
+        line,
+        q_deg,
+        external: Vec::new(),
+        spans,
+        external_spans: Vec::new(),
+        origin: line,
+        incremental: false,
+        cartesian: None,
+        speed: speed::Speed::Unread(NOT_READ.into()),
+    })
+}
+
+/// A target's speed before its motion instruction gives it.
+const NOT_READ: &str = "the motion's speed is not read";

@@ -1,0 +1,463 @@
+//! ABB RAPID: `MoveAbsJ [[..],[..]], v100, z10, tool0;` (also `MoveAbsJ \Conc, ..`, and the
+//! switches `\ID`, `\NoEOffs`, `\V`, `\T`, `\Z`, `\Inpos`, `\WObj`, `\TLoad`) to a literal or to a
+//! `jointtarget` declared in the module: `CONST jointtarget j1 := [[0,0,0,0,30,0],[9E9,..]];`
+//! (also `VAR`, `PERS`, `LOCAL`, `TASK`), over one line or several. RAPID is statement based
+//! (`;` ends one) and case-insensitive; `!` starts a comment.
+//!
+//! The second bracket holds the external axes `eax_a` to `eax_f` (mm for a linear axis, deg for
+//! a rotary one; `9E9` for an axis that is not used): read, and written back where they change.
+//!
+//! `MoveL` and `MoveJ` (also `\Conc`) to a `robtarget` literal or one declared in the module are
+//! Cartesian targets, with their `tooldata` and `\WObj:=` `wobjdata` declared in the module
+//! ([`super::cartesian`]).
+
+use super::cartesian::{self, Frame};
+use super::speed::{self, RapidSpeeds};
+use super::{at, number_at, six, JointTarget};
+use std::collections::HashMap;
+use stiffid_core::Result;
+
+/// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
+type Declared = HashMap<String, std::result::Result<JointTarget, String>>;
+
+/// The module's declared data: targets, tools and work objects, speeds (by lower-case name),
+/// and the statements that assign a declared target at run time.
+struct Data {
+    targets: Declared,
+    frames: HashMap<String, Frame>,
+    speeds: RapidSpeeds,
+    assigned: HashMap<String, u64>,
+}
+
+/// One statement: its line, and its bytes in the text.
+struct Statement {
+    line: u64,
+    span: std::ops::Range<usize>,
+}
+
+/// Every joint target of `text`, in the order of its motions (module docs), and the program's
+/// external axes: `eax_a` to the last one any target gives a value (not `9E9`).
+pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
+    let code = without_comments(text);
+    let statements = statements(&code);
+    let data = declarations(&code, &statements)?;
+    let mut out = Vec::new();
+    let mut routine: Option<(String, u64)> = None;
+    let mut current: Option<(String, u64)> = None;
+    let mut control: Option<(u64, String)> = None;
+    for s in &statements {
+        let body = &code[s.span.clone()];
+        let first = first_word(body);
+        let words: Vec<String> = body
+            .split_whitespace()
+            .take(3)
+            .map(str::to_ascii_lowercase)
+            .collect();
+        let w: Vec<&str> = words
+            .iter()
+            .map(String::as_str)
+            .skip_while(|w| matches!(*w, "local" | "task"))
+            .collect();
+        if let ["proc" | "trap", name, ..] | ["func", _, name, ..] = w.as_slice() {
+            let name = name.split('(').next().unwrap_or(name).to_string();
+            current = Some((name, s.line));
+            continue;
+        }
+        if matches!(
+            first.as_str(),
+            "if" | "for" | "while" | "test" | "goto" | "retry" | "trynext"
+        ) && control.is_none()
+        {
+            control = Some((s.line, first.to_uppercase()));
+        }
+        let Some(target) = motion(s, &code, &first, &data)? else {
+            continue;
+        };
+        match (&routine, &current) {
+            (Some((a, a_line)), Some((b, b_line))) if a != b => {
+                return Err(at(s.line, format!("motions in PROC {a} (line {a_line}) and PROC {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one PROC")));
+            }
+            (None, _) => routine = current.clone(),
+            _ => {}
+        }
+        out.push(target);
+    }
+    if let (Some((line, word)), false) = (control, out.is_empty()) {
+        return Err(at(line, format!("{word}: a jump, loop or branch in a module with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
+    }
+    let n = out
+        .iter()
+        .filter_map(|t| t.external.iter().rposition(Option::is_some))
+        .max()
+        .map_or(0, |k| k + 1);
+    let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
+    Ok((out, axes.collect()))
+}
+
+/// The value RAPID writes for an external axis that is not used: `9E9` (any value from
+/// `8.9E9` on is taken as it).
+pub const UNUSED: f64 = 9e9;
+
+/// The instruction's name: the statement's first word, lower case, up to a switch or argument.
+fn first_word(body: &str) -> String {
+    body.trim_start()
+        .split(|c: char| c.is_whitespace() || matches!(c, '\\' | ',' | ';' | '(' | ':'))
+        .next()
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// `text` with every comment (`!` outside a string, to the line's end) blanked, byte for byte.
+fn without_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let (mut in_string, mut in_comment) = (false, false);
+    for c in text.chars() {
+        match c {
+            '\n' => (in_string, in_comment) = (false, false),
+            '"' if !in_comment => in_string = !in_string,
+            '!' if !in_string => in_comment = true,
+            _ => {}
+        }
+        match in_comment {
+            true => out.extend(std::iter::repeat_n(' ', c.len_utf8())),
+            false => out.push(c),
+        }
+    }
+    out
+}
+
+/// Lines that are statements of their own, without a `;`: the module's structure.
+fn is_header(line: &str) -> bool {
+    let t = line.trim();
+    let w: Vec<String> = t
+        .split_whitespace()
+        .take(3)
+        .map(str::to_ascii_lowercase)
+        .collect();
+    let w: Vec<&str> = w
+        .iter()
+        .map(String::as_str)
+        .skip_while(|w| matches!(*w, "local" | "task"))
+        .collect();
+    let first = w.first().map_or("", |f| f.split('(').next().unwrap_or(f));
+    t.starts_with('%')
+        || t.to_ascii_uppercase().ends_with("THEN")
+        || matches!(
+            first,
+            "module"
+                | "endmodule"
+                | "proc"
+                | "endproc"
+                | "func"
+                | "endfunc"
+                | "trap"
+                | "endtrap"
+                | "record"
+                | "endrecord"
+                | "elseif"
+                | "else"
+                | "endif"
+                | "for"
+                | "endfor"
+                | "while"
+                | "endwhile"
+                | "test"
+                | "case"
+                | "default"
+                | "endtest"
+                | "error"
+                | "undo"
+                | "backward"
+        )
+        || t.starts_with("VERSION:")
+        || t.starts_with("LANGUAGE:")
+}
+
+/// The statements of `code` (comments blanked): each ends at a `;` outside a string, or is a
+/// header line.
+fn statements(code: &str) -> Vec<Statement> {
+    let mut out = Vec::new();
+    let mut open: Option<(u64, usize)> = None;
+    for (line, start, l) in super::lines(code) {
+        let mut in_string = false;
+        for (i, c) in l.char_indices() {
+            if open.is_none() {
+                if c.is_whitespace() {
+                    continue;
+                }
+                if is_header(&l[i..]) {
+                    out.push(Statement {
+                        line,
+                        span: start + i..start + l.len(),
+                    });
+                    break;
+                }
+                open = Some((line, start + i));
+            }
+            match c {
+                '"' => in_string = !in_string,
+                ';' if !in_string => {
+                    let (first, from) = open.take().unwrap_or((line, start + i));
+                    out.push(Statement {
+                        line: first,
+                        span: from..start + i + 1,
+                    });
+                }
+                _ => {}
+            }
+        }
+    }
+    if let Some((line, from)) = open {
+        out.push(Statement {
+            line,
+            span: from..code.len(),
+        });
+    }
+    out
+}
+
+/// The data declared in the module ([`Data`]).
+fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
+    let mut declared = Declared::new();
+    let mut frames = HashMap::new();
+    let mut speeds = RapidSpeeds::new();
+    let mut assignments = Vec::new();
+    for s in statements {
+        let body = &code[s.span.clone()];
+        let lower = body.to_ascii_lowercase();
+        let words: Vec<&str> = lower
+            .split(|c: char| c.is_whitespace() || c == ':' || c == '=')
+            .filter(|w| !w.is_empty())
+            .skip_while(|w| matches!(*w, "local" | "task"))
+            .collect();
+        match words.as_slice() {
+            ["const" | "var" | "pers", "jointtarget", name, ..] => {
+                let name = name.trim_end_matches(';');
+                let (name, array) = match name.split_once('{') {
+                    Some((n, _)) => (n, true),
+                    None => (name, false),
+                };
+                let value = match (array, body.find(":=")) {
+                    (true, _) => Err(format!("{name} is an array of jointtargets (line {}): declare each target on its own or write it as a literal", s.line)),
+                    (false, None) => Err(format!("{name} is declared on line {} without a value (set at run time)", s.line)),
+                    (false, Some(eq)) => Ok(literal(s.line, code, s.span.start + eq + 2)?),
+                };
+                declared.insert(name.to_string(), value);
+            }
+            ["const" | "var" | "pers", "speeddata", name, ..] => {
+                let name = name.trim_end_matches(';');
+                let v_tcp = (body.find(":=").filter(|_| !name.contains('{')))
+                    .and_then(|eq| cartesian::literal::parse(code, s.span.start + eq + 2))
+                    .and_then(|(node, _)| node.numbers(4))
+                    .map(|v| (v[0].0, s.line));
+                let why = || {
+                    format!("speeddata {name} is declared on line {} without a literal value or as an array: its speed is the controller's", s.line)
+                };
+                speeds.insert(name.to_string(), v_tcp.ok_or_else(why));
+            }
+            ["const" | "var" | "pers", kind, name, ..] if cartesian::rapid::is_data(kind) => {
+                let name = name.trim_end_matches(';');
+                let Some(eq) = body.find(":=").filter(|_| !name.contains('{')) else {
+                    let why = format!("{kind} {name} is declared on line {} without a value or as an array: declare each with its value", s.line);
+                    match *kind {
+                        "robtarget" => _ = declared.insert(name.to_string(), Err(why)),
+                        _ => _ = frames.insert(name.to_string(), Frame::Unknown(s.line, why)),
+                    }
+                    continue;
+                };
+                let from = s.span.start + eq + 2;
+                match *kind {
+                    "robtarget" => {
+                        let target = cartesian::rapid::robtarget(s.line, code, from)?;
+                        declared.insert(name.to_string(), Ok(target));
+                    }
+                    _ => {
+                        let frame = cartesian::rapid::frame(kind, name, s.line, code, from);
+                        frames.insert(name.to_string(), frame);
+                    }
+                }
+            }
+            [first, ..] if body.contains(":=") && !matches!(*first, "const" | "var" | "pers") => {
+                let name = first.split(['.', '{']).next().unwrap_or(first);
+                assignments.push((name.to_string(), s.line));
+            }
+            _ => {}
+        }
+    }
+    let known = |name: &String| {
+        declared.contains_key(name) || frames.contains_key(name) || speeds.contains_key(name)
+    };
+    let assigned = assignments
+        .into_iter()
+        .filter(|(name, _)| known(name))
+        .rev()
+        .collect();
+    let assigned: HashMap<String, u64> = assigned;
+    for (name, line) in &assigned {
+        let why = format!("{name} is assigned on line {line}, so its value at the motion is the controller's, not the module's");
+        if let Some(f) = frames.get_mut(name) {
+            *f = Frame::Unknown(*line, why.clone());
+        }
+        if let Some(v) = speeds.get_mut(name) {
+            *v = Err(why);
+        }
+    }
+    Ok(Data {
+        targets: declared,
+        frames,
+        speeds,
+        assigned,
+    })
+}
+
+/// The joint target of the literal `[[j1,..,j6],[..]]` at or after byte `from` of `code`.
+fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
+    let rest = &code[from..];
+    let open = from + rest.len() - rest.trim_start().len();
+    if !code[open..].starts_with("[[") {
+        return Err(at(
+            line,
+            "jointtarget: expected a literal [[j1,..,j6],[e1,..,e6]]".into(),
+        ));
+    }
+    let mut found: [Option<(f64, std::ops::Range<usize>)>; 6] = Default::default();
+    let mut from = open + 2;
+    for (k, slot) in found.iter_mut().enumerate() {
+        let (v, span) = number_at(code, from).ok_or_else(|| {
+            at(
+                line,
+                format!(
+                    "jointtarget: expected 6 numbers in its first bracket, axis {} is not one",
+                    k + 1
+                ),
+            )
+        })?;
+        let rest = code[span.end..].trim_start();
+        let sep = if k < 5 { ',' } else { ']' };
+        if !rest.starts_with(sep) {
+            return Err(at(
+                line,
+                format!("jointtarget: expected '{sep}' after axis {}", k + 1),
+            ));
+        }
+        from = code.len() - rest.len() + 1;
+        *slot = Some((v, span));
+    }
+    let target = six(line, found, "rax_")?;
+    let bad = |what: &str| {
+        at(
+            line,
+            format!("jointtarget: expected its external axes [eax_a,..,eax_f] after the robot's axes, {what}"),
+        )
+    };
+    let rest = code[from..].trim_start();
+    let Some(rest) = rest.strip_prefix(',').map(str::trim_start) else {
+        return Err(bad("not ','"));
+    };
+    if !rest.starts_with('[') {
+        return Err(bad("not '['"));
+    }
+    let mut from = code.len() - rest.len() + 1;
+    let mut external = Vec::with_capacity(6);
+    for k in 0..6 {
+        let name = format!("eax_{}", (b'a' + k as u8) as char);
+        let (v, span) =
+            number_at(code, from).ok_or_else(|| bad(&format!("{name} is not a number")))?;
+        let rest = code[span.end..].trim_start();
+        let sep = if k < 5 { ',' } else { ']' };
+        if !rest.starts_with(sep) {
+            return Err(bad(&format!("expected '{sep}' after {name}")));
+        }
+        from = code.len() - rest.len() + 1;
+        external.push((v < 8.9e9).then_some((v, span)));
+    }
+    Ok(target.with_external(external))
+}
+
+/// The target of a motion statement, `None` for a statement that is no motion; every motion
+/// outside the subset refused naming the line.
+fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<JointTarget>> {
+    let line = s.line;
+    let name = &code[s.span.clone()].trim_start()[..first.len()];
+    let cartesian = matches!(first, "movel" | "movej");
+    if first != "moveabsj" && !cartesian {
+        let why = match first {
+            "movec" | "movelsync" | "movejsync" | "movecsync" | "moveldo"
+            | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
+            | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
+            "moveextj" => "a motion of external axes only; not compensated: remove it",
+            f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
+            f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
+            f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
+            _ => return Ok(None),
+        };
+        return Err(at(line, format!("{name}: {why}")));
+    }
+    // Past the name: an optional switch such as `\Conc`, then the target.
+    let mut from = s.span.start + code[s.span.clone()].len()
+        - code[s.span.clone()].trim_start().len()
+        + first.len();
+    let after_name = code[from..s.span.end].trim_start();
+    if after_name.starts_with('\\') {
+        let comma = after_name
+            .find(',')
+            .ok_or_else(|| at(line, format!("{name}: expected ',' after its switch")))?;
+        from = s.span.end - after_name.len() + comma + 1;
+    } else if let Some(rest) = after_name.strip_prefix(',') {
+        from = s.span.end - rest.len();
+    }
+    let kind = if cartesian {
+        "robtarget"
+    } else {
+        "jointtarget"
+    };
+    let named = |ident: &str| -> Result<JointTarget> {
+        let key = ident.to_ascii_lowercase();
+        if let Some(assigned_on) = data.assigned.get(&key) {
+            return Err(at(line, format!("{name} {ident}: {ident} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared {kind}")));
+        }
+        match data.targets.get(&key) {
+            Some(Ok(t)) if t.cartesian.is_some() == cartesian => Ok(t.moved_to(line, false)),
+            Some(Ok(_)) => Err(at(line, format!("{name} {ident}: not a {kind}"))),
+            Some(Err(why)) => Err(at(line, format!("{name} {ident}: {why}"))),
+            None => Err(at(line, format!("{name} {ident}: not a {kind} declared in this module; stiffid compensates one file: declare it in the module or write the target as a literal"))),
+        }
+    };
+    if cartesian {
+        let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
+        let args = &code[from..end];
+        let argument = cartesian::rapid::top_level(args)
+            .get(1)
+            .map(|r| &args[r.clone()]);
+        let mut target = cartesian::rapid::motion(line, (code, from, args), &named, &data.frames)
+            .map_err(|e| match e {
+            stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
+                at(line, format!("{name}: {message}"))
+            }
+            other => other,
+        })?;
+        target.speed = speed::rapid(line, first, argument, &data.speeds)?;
+        return Ok(Some(target));
+    }
+    let target_text = code[from..s.span.end].trim_start();
+    if target_text.starts_with("[[") {
+        return literal(line, code, from).map(|t| Some(joint(t)));
+    }
+    let ident: String = target_text
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    let next = target_text[ident.len()..].trim_start();
+    if ident.is_empty() || next.starts_with(['{', '(', '.']) {
+        return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
+    }
+    named(&ident).map(|t| Some(joint(t)))
+}
+
+/// A `MoveAbsJ`'s target: a joint motion.
+fn joint(target: JointTarget) -> JointTarget {
+    JointTarget {
+        speed: speed::Speed::Joint,
+        ..target
+    }
+}

@@ -1,0 +1,602 @@
+//! The calibration fit: Levenberg-Marquardt over the identifiable parameters, with standard
+//! deviations.
+//!
+//! The parameters kept by [`crate::calibration::identifiability`] at the start (the merged stay
+//! nominal) minimise `|r(x)|^2`, `r` the residuals of [`ErrorModel::residuals`], by
+//! Levenberg-Marquardt (Marquardt 1963) in the scaled parameters `x_s = x / s`
+//! ([`ErrorModel::column_scales`]): each iteration factors `[J_s | r]` by Householder QR once
+//! (`J_s` the scaled Jacobian) and `R = U S V^T` by SVD once, then solves `[R; sqrt(lambda) I]
+//! dx_s = -[Q^T r; 0]` for each trial `lambda` from that SVD (never the normal equations), accepts the step when the cost falls (and divides `lambda` by 10) or
+//! multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
+//! after every step ([`Estimate::recentre`]).
+//!
+//! Standard deviations: the covariance of the fitted parameters is `sigma^2 (J^T J)^-1` at the
+//! solution, `sigma^2 = |r|^2 / (3n - p)` the noise variance per coordinate estimated from the
+//! residuals (`n` readings, `p` parameters fitted). With priors ([`Priors`]: the nominal
+//! tolerances), every joint error is fitted, each with the prior row `(x - x_0) sigma_t /
+//! sigma_p` (`sigma_t` the tracker noise per coordinate, `sigma_p` the tolerance), a weakly
+//! determined combination gets a value pulled towards nominal, and the covariance is
+//! `sigma_t^2 (J_a^T J_a)^-1` of the augmented Jacobian: the posterior of a Gaussian prior and
+//! noise (Tikhonov regularisation as Bayesian estimation).
+
+use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
+use super::identifiability::{self, Identifiability};
+use crate::register::Correspondence;
+use nalgebra::{DMatrix, DVector};
+use stiffid_core::common::stop::Stop;
+use stiffid_core::common::warning::{Warning, WarningKind};
+use stiffid_core::math::linalg::CappedSvd;
+use stiffid_core::{Error, Result};
+
+/// Most Levenberg-Marquardt iterations.
+pub const MAX_ITERATIONS: usize = 100;
+
+/// Most readings a calibration fits.
+pub const MAX_READINGS: usize = 100_000;
+
+/// The scaled step length below which the fit has converged.
+pub const STEP_TOLERANCE: f64 = 1e-13;
+
+/// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
+/// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
+///
+/// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than
+/// [`STEP_TOLERANCE`] (scaled, times one plus the number of parameters fitted);
+/// [`Stop::Stalled`], an accepted step lowered the cost by at most `1e-15` of it;
+/// [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the last) lowered the cost:
+/// both minima within rounding; [`Stop::IterationLimit`], [`MAX_ITERATIONS`] taken with the cost
+/// still falling.
+pub fn stop_warning(stop: Stop, iterations: usize) -> Option<Warning> {
+    (stop == Stop::IterationLimit).then(|| {
+        Warning::new(
+            WarningKind::NotConverged,
+            format!(
+                "the calibration's Levenberg-Marquardt fit stopped at its limit of {iterations} iterations with the residuals still falling: its parameters may still move; read more varied postures or give tolerances"
+            ),
+        )
+    })
+}
+
+/// Nominal tolerances of the joint errors, as Gaussian priors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Priors {
+    /// Standard deviation of a length error, m.
+    pub length: f64,
+    /// Standard deviation of an angle error, rad.
+    pub angle: f64,
+    /// The tracker's noise per coordinate, m (the priors' weight against the readings).
+    pub noise: f64,
+}
+
+/// What the fit needs besides the model and the readings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// The characteristic length of the column scaling, m.
+    pub length: f64,
+    /// Priors on the joint errors, if any.
+    pub priors: Option<Priors>,
+    /// The ridge `mu` on the error maps' coefficients ([`ErrorModel::with_maps`]), dimensionless:
+    /// each coefficient gets the row `sqrt(mu n) L (x - x_0)` (`n` the readings, `L` the
+    /// characteristic length), a penalty of `mu` per reading on a coefficient that moves a point
+    /// at `L` by 1 m. 0 without maps.
+    pub ridge: f64,
+}
+
+/// The fitted calibration.
+#[derive(Debug, Clone)]
+pub struct Fit {
+    /// The estimate (re-centred: the frame's six values are zero, the frame holds them).
+    pub estimate: Estimate,
+    /// What the readings determine, at the start.
+    pub identifiability: Identifiability,
+    /// The fitted parameters' indices, ascending: the identified, or with priors every joint
+    /// error too.
+    pub fitted: Vec<usize>,
+    /// The standard deviation of each parameter (SI); `None` for a parameter not fitted. The
+    /// frame's are those of its base-frame perturbation.
+    pub sd: Vec<Option<f64>>,
+    /// The covariance of the fitted parameters (SI, `fitted` order).
+    pub covariance: DMatrix<f64>,
+    /// The residuals at the solution, 3 per reading, base frame, m.
+    pub residuals: DVector<f64>,
+    /// RMS of the residuals' lengths, m.
+    pub rms: f64,
+    /// The noise per coordinate estimated from the residuals, m.
+    pub sigma: f64,
+    /// Iterations taken.
+    pub iterations: usize,
+    /// Why the iterations stopped ([`stop_warning`] lists the reasons).
+    pub stop: Stop,
+}
+
+/// Fits `model` to `observations` from `start` (module docs).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with no reading, more than [`MAX_READINGS`], a
+/// non-finite reading, or fewer coordinates than fitted parameters plus one;
+/// [`Error::InvalidField`] (`options`) for a non-positive length or prior; those of
+/// [`ErrorModel::jacobian`] and [`identifiability::analyse`]; [`Error::NotFinite`] when the fit
+/// diverges.
+pub fn fit(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+) -> Result<Fit> {
+    fit_within(model, observations, start, options, MAX_ITERATIONS)
+}
+
+/// [`fit`] with at most `limit` iterations.
+pub(super) fn fit_within(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    limit: usize,
+) -> Result<Fit> {
+    check(observations, options)?;
+    let scales = model.column_scales_of(options.length, observations);
+    let priorities: Vec<u8> = model.parameters().iter().map(|p| p.priority).collect();
+    // A carrier's error motions at zero (ErrorModel::structural): what the readings determine
+    // is the cell's structure, not the micrometres of its error motions.
+    let j = model.jacobian_of(&model.structural(&start.values), observations)?;
+    // The maps' coefficients (the last parameters) are regularised, not analysed: every one is
+    // fitted under the ridge.
+    let analysed = model.map_start().unwrap_or(j.ncols());
+    let identifiability = identifiability::analyse(
+        &j.columns(0, analysed).into_owned(),
+        &scales.rows(0, analysed).into_owned(),
+        &priorities[..analysed],
+    )?;
+    let fitted: Vec<usize> = (0..model.parameters().len())
+        .filter(|&c| {
+            identifiability.identified.contains(&c)
+                || (options.priors.is_some() && model.parameters()[c].kind == Kind::Joint)
+                || c >= analysed
+        })
+        .collect();
+    let coordinates = 3 * observations.len();
+    let regularised = options.priors.is_some() || analysed < j.ncols();
+    if !regularised && coordinates <= fitted.len() {
+        return Err(Error::InvalidField {
+            field: "readings".into(),
+            message: format!(
+                "{} readings give {coordinates} coordinates for {} identifiable parameters: read more postures",
+                observations.len(),
+                fitted.len()
+            ),
+        });
+    }
+    let problem = Problem {
+        model,
+        observations,
+        fitted: &fitted,
+        scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
+        priors: regularised.then(|| prior_weights(model, &fitted, options, observations.len())),
+        noise: options.priors.map(|p| p.noise),
+        nominal: model.nominal(),
+    };
+    let (estimate, iterations, stop) = problem.minimise(start.recentre(), limit)?;
+    problem.finish(estimate, identifiability, iterations, stop)
+}
+
+/// Leave-one-posture-out linearised at the fit `fit` of `observations` (with the options it was
+/// fitted with, the maps' ridge rows among them): per posture, in increasing order, the estimate
+/// of the fit without it, the full fit moved by the change that dropping the posture makes in
+/// the linearised problem. With `A = U S V^T` the scaled Jacobian of the fitted parameters and
+/// its prior rows, `U_p` the rows of posture `p`, `r_p` its residuals and `H = U_p U_p^T` its
+/// leverage, the change is `dx = V S^-1 U_p^T (I - H)^-1 r_p` (Sherman-Morrison-Woodbury on the
+/// kept rows' normal equations, never formed): exact to second order in the change of the
+/// parameters, as the maps' choice is, and taken from the full fit even where its iterations
+/// stopped short in a weakly determined direction (the folds differ from the full fit by what
+/// their posture changes, not by the rest of the full fit's own descent). Each fold comes with
+/// its estimate (re-centred) and the change of the values from the full fit's (SI, the frame's
+/// perturbation in the frame's six values), whose product with the Jacobian at the full fit is
+/// the linearised change of any prediction.
+///
+/// # Errors
+/// Those of [`ErrorModel::residuals`] and [`ErrorModel::jacobian_of`]; [`Error::NotFinite`] when
+/// the SVD does not converge; [`Error::InvalidField`] (`readings`) when a posture alone
+/// determines a parameter (its leverage 1: without it the fit is undetermined).
+pub(super) fn leave_one_out_linearised(
+    model: &ErrorModel,
+    observations: &[Observation],
+    fit: &Fit,
+    options: &Options,
+) -> Result<Vec<(usize, Estimate, DVector<f64>)>> {
+    let scales = model.column_scales_of(options.length, observations);
+    let fitted = &fit.fitted;
+    let regularised = options.priors.is_some() || model.map_start().is_some();
+    let problem = Problem {
+        model,
+        observations,
+        fitted,
+        scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
+        priors: regularised.then(|| prior_weights(model, fitted, options, observations.len())),
+        noise: options.priors.map(|p| p.noise),
+        nominal: model.nominal(),
+    };
+    let a = problem.jacobian(&fit.estimate)?;
+    let r = problem.residuals(&fit.estimate)?;
+    let svd = a.capped_svd(true, true).ok_or_else(not_converged)?;
+    let (u, v_t) = (
+        svd.u.ok_or_else(not_converged)?,
+        svd.v_t.ok_or_else(not_converged)?,
+    );
+    let s = &svd.singular_values;
+    let largest = s.iter().copied().fold(0.0, f64::max);
+    let kept: Vec<usize> = (0..s.len()).filter(|&i| s[i] > 1e-12 * largest).collect();
+    let u = u.select_columns(kept.iter());
+    // V S^-1, the kept singular values.
+    let vs = DMatrix::from_fn(v_t.ncols(), kept.len(), |row, c| {
+        v_t[(kept[c], row)] / s[kept[c]]
+    });
+    let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
+    postures.sort_unstable();
+    postures.dedup();
+    postures
+        .iter()
+        .map(|&p| {
+            let rows: Vec<usize> = (observations.iter().enumerate())
+                .filter(|(_, o)| o.posture == p)
+                .flat_map(|(i, _)| 3 * i..3 * i + 3)
+                .collect();
+            let u_p = u.select_rows(rows.iter());
+            let r_p = DVector::from_iterator(rows.len(), rows.iter().map(|&i| r[i]));
+            let kept_rows = DMatrix::identity(rows.len(), rows.len()) - &u_p * u_p.transpose();
+            let z = kept_rows
+                .lu()
+                .solve(&r_p)
+                .filter(|z| z.iter().all(|v| v.is_finite()));
+            let z = z.ok_or_else(|| Error::InvalidField {
+                field: "readings".into(),
+                message: format!(
+                    "posture {} alone determines a parameter: without it the calibration is undetermined; read more postures",
+                    p + 1
+                ),
+            })?;
+            let dx = &vs * u_p.tr_mul(&z);
+            Ok((
+                p,
+                problem.step(&fit.estimate, &dx),
+                problem.change(&dx),
+            ))
+        })
+        .collect()
+}
+
+/// The start of a fit: the nominal values, and the frame registered on the nominal positions
+/// ([`crate::register::fit`], Umeyama) of the arm's measuring points for tracker
+/// readings, the identity for base-frame ones; the reflectors on a positioner's table started
+/// from their readings (the mean of `P(e)^-1 T t` over each one's).
+///
+/// # Errors
+/// Those of [`ErrorModel::positions`] and [`crate::register::fit`] (fewer than 3 readings,
+/// collinear points).
+pub fn start(model: &ErrorModel, observations: &[Observation]) -> Result<Estimate> {
+    let mut values = model.nominal();
+    let frame = start_at(model, observations, &values)?;
+    model.start_tables(&mut values, &frame, observations);
+    Ok(Estimate { frame, values })
+}
+
+/// The measurement frame registered on the positions the model predicts at `values` (SI)
+/// ([`crate::register::fit`]) for tracker readings, the identity for base-frame ones: the
+/// tracker registered anew on held-out readings of another series.
+///
+/// # Errors
+/// As [`start`].
+pub fn start_at(
+    model: &ErrorModel,
+    observations: &[Observation],
+    values: &DVector<f64>,
+) -> Result<nalgebra::Isometry3<f64>> {
+    Ok(match model.measured_in() {
+        MeasuredIn::Base => nalgebra::Isometry3::identity(),
+        MeasuredIn::Tracker => {
+            // Registered on the arm's points: the table's reflectors are not known yet.
+            let arm: Vec<Observation>;
+            let observations = match observations.iter().any(|o| o.table) {
+                false => observations,
+                true => {
+                    arm = observations.iter().filter(|o| !o.table).cloned().collect();
+                    &arm
+                }
+            };
+            let b = model.predict(values, observations)?;
+            let pairs: Vec<Correspondence> = (observations.iter().zip(b))
+                .map(|(o, base)| Correspondence {
+                    base,
+                    tracker: o.measured,
+                })
+                .collect();
+            crate::register::fit(&pairs)?.base_from_tracker
+        }
+    })
+}
+
+fn check(observations: &[Observation], options: &Options) -> Result<()> {
+    let invalid = |field: &str, message: String| Error::InvalidField {
+        field: field.into(),
+        message,
+    };
+    if observations.is_empty() || observations.len() > MAX_READINGS {
+        return Err(invalid(
+            "readings",
+            format!(
+                "expected 1 to {MAX_READINGS} unloaded readings, got {}",
+                observations.len()
+            ),
+        ));
+    }
+    if let Some(o) = observations
+        .iter()
+        .find(|o| !(o.q.iter().chain(o.measured.iter()).all(|v| v.is_finite())))
+    {
+        return Err(invalid(
+            "readings",
+            format!("posture {}: expected finite numbers", o.posture + 1),
+        ));
+    }
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    if !positive(options.length) {
+        return Err(invalid(
+            "options",
+            "expected a positive characteristic length".into(),
+        ));
+    }
+    if !(options.ridge.is_finite() && options.ridge >= 0.0) {
+        return Err(invalid("options", "expected a ridge of 0 or more".into()));
+    }
+    if let Some(p) = options.priors {
+        if !(positive(p.length) && positive(p.angle) && positive(p.noise)) {
+            return Err(invalid(
+                "options",
+                "expected positive prior tolerances and noise".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The weight of each fitted parameter's prior row (per SI unit): `sigma_t / sigma_p` of a joint
+/// error with priors, `sqrt(mu n) L` of a map's coefficient ([`Options::ridge`], `n` readings),
+/// 0 for any other parameter.
+fn prior_weights(
+    model: &ErrorModel,
+    fitted: &[usize],
+    options: &Options,
+    readings: usize,
+) -> DVector<f64> {
+    let ridge = (options.ridge * readings as f64).sqrt() * options.length;
+    DVector::from_iterator(
+        fitted.len(),
+        fitted
+            .iter()
+            .map(|&c| match (model.parameters()[c].target, options.priors) {
+                (Target::Joint { component, .. }, Some(p)) if component.is_angle() => {
+                    p.noise / p.angle
+                }
+                (Target::Joint { .. }, Some(p)) => p.noise / p.length,
+                (Target::Map { .. } | Target::Backlash { .. }, _) => ridge,
+                _ => 0.0,
+            }),
+    )
+}
+
+struct Problem<'a> {
+    model: &'a ErrorModel,
+    observations: &'a [Observation],
+    fitted: &'a [usize],
+    scales: DVector<f64>,
+    priors: Option<DVector<f64>>,
+    /// The priors' tracker noise, m.
+    noise: Option<f64>,
+    nominal: DVector<f64>,
+}
+
+impl Problem<'_> {
+    /// The residuals with the prior rows.
+    fn residuals(&self, e: &Estimate) -> Result<DVector<f64>> {
+        let r = self.model.residuals(e, self.observations)?;
+        Ok(match &self.priors {
+            None => r,
+            Some(w) => {
+                let n = r.len();
+                let mut all = r.resize_vertically(n + w.len(), 0.0);
+                for (i, &c) in self.fitted.iter().enumerate() {
+                    all[n + i] = w[i] * (e.values[c] - self.nominal[c]);
+                }
+                all
+            }
+        })
+    }
+
+    /// The scaled Jacobian of the fitted parameters with the prior rows.
+    fn jacobian(&self, e: &Estimate) -> Result<DMatrix<f64>> {
+        let full = self.model.jacobian_of(&e.values, self.observations)?;
+        let mut j = full.select_columns(self.fitted.iter());
+        for (c, s) in self.scales.iter().enumerate() {
+            j.column_mut(c).scale_mut(*s);
+        }
+        Ok(match &self.priors {
+            None => j,
+            Some(w) => {
+                let (m, n) = j.shape();
+                let mut all = j.resize_vertically(m + n, 0.0);
+                for i in 0..n {
+                    all[(m + i, i)] = w[i] * self.scales[i];
+                }
+                all
+            }
+        })
+    }
+
+    /// The change of the values (SI) of the scaled step `dx_scaled`.
+    fn change(&self, dx_scaled: &DVector<f64>) -> DVector<f64> {
+        let mut change = DVector::zeros(self.nominal.len());
+        for (i, &c) in self.fitted.iter().enumerate() {
+            change[c] = dx_scaled[i] * self.scales[i];
+        }
+        change
+    }
+
+    fn step(&self, e: &Estimate, dx_scaled: &DVector<f64>) -> Estimate {
+        Estimate {
+            frame: e.frame,
+            values: &e.values + self.change(dx_scaled),
+        }
+        .recentre()
+    }
+
+    fn minimise(&self, mut e: Estimate, limit: usize) -> Result<(Estimate, usize, Stop)> {
+        let mut r = self.residuals(&e)?;
+        let mut cost = r.norm_squared();
+        let mut lambda = 1e-9;
+        let n = self.fitted.len();
+        for iteration in 1..=limit {
+            let j = self.jacobian(&e)?;
+            let (rt, qtr) = factor(&j, &r);
+            let damped = Damped::new(rt, &qtr)?;
+            let mut accepted = false;
+            for _ in 0..30 {
+                let dx = damped.step(lambda);
+                let trial = self.step(&e, &dx);
+                let r_trial = self.residuals(&trial)?;
+                let c = r_trial.norm_squared();
+                if !c.is_finite() {
+                    return Err(Error::NotFinite {
+                        what: "the calibration's residuals".into(),
+                    });
+                }
+                if c <= cost {
+                    let small = dx.norm() < STEP_TOLERANCE * (1.0 + n as f64);
+                    let stalled = cost - c <= 1e-15 * cost;
+                    e = trial;
+                    r = r_trial;
+                    cost = c;
+                    lambda = (lambda / 10.0).max(1e-12);
+                    accepted = true;
+                    if small {
+                        return Ok((e, iteration, Stop::Converged));
+                    }
+                    if stalled {
+                        return Ok((e, iteration, Stop::Stalled));
+                    }
+                    break;
+                }
+                lambda *= 10.0;
+            }
+            if !accepted {
+                return Ok((e, iteration, Stop::DampingExhausted));
+            }
+        }
+        Ok((e, limit, Stop::IterationLimit))
+    }
+
+    fn finish(
+        &self,
+        estimate: Estimate,
+        identifiability: Identifiability,
+        iterations: usize,
+        stop: Stop,
+    ) -> Result<Fit> {
+        let r_all = self.residuals(&estimate)?;
+        let data = 3 * self.observations.len();
+        let residuals = r_all.rows(0, data).into_owned();
+        let ssr = residuals.norm_squared();
+        let n = self.fitted.len();
+        let sigma = match self.priors {
+            None => (ssr / (data - n).max(1) as f64).sqrt(),
+            Some(_) => (ssr / data.saturating_sub(identifiability.rank).max(1) as f64).sqrt(),
+        };
+        let j = self.jacobian(&estimate)?;
+        let (rt, _) = factor(&j, &DVector::zeros(j.nrows()));
+        let svd = rt.capped_svd(false, true).ok_or_else(not_converged)?;
+        let v_t = svd.v_t.ok_or_else(not_converged)?;
+        let s = &svd.singular_values;
+        let inverse = DMatrix::from_diagonal(&s.map(|v| 1.0 / (v * v)));
+        let unit = v_t.transpose() * inverse * &v_t;
+        let noise2 = self.noise.map_or(sigma * sigma, |t| t * t);
+        let covariance = DMatrix::from_fn(n, n, |a, b| {
+            unit[(a, b)] * self.scales[a] * self.scales[b] * noise2
+        });
+        let mut sd = vec![None; self.model.parameters().len()];
+        for (i, &c) in self.fitted.iter().enumerate() {
+            sd[c] = Some(covariance[(i, i)].sqrt());
+        }
+        let readings = self.observations.len();
+        let rms = (ssr / readings as f64).sqrt();
+        Ok(Fit {
+            estimate,
+            identifiability,
+            fitted: self.fitted.to_vec(),
+            sd,
+            covariance,
+            residuals,
+            rms,
+            sigma,
+            iterations,
+            stop,
+        })
+    }
+}
+
+/// `R` (`n x n`) and `Q^T r` (`n`) of the QR factorisation of `j` (`m x n`, `m >= n`), from one
+/// Householder pass over `[j | r]`.
+fn factor(j: &DMatrix<f64>, r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
+    let (m, n) = j.shape();
+    let mut a = j.clone().insert_column(n, 0.0);
+    a.column_mut(n).copy_from(r);
+    let mut taus = vec![0.0; n.min(m)];
+    stiffid_core::math::linalg::householder_qr_columns(a.as_mut_slice(), m, &mut taus);
+    let k = n.min(m);
+    let rt = DMatrix::from_fn(k, n, |i, c| if i <= c { a[(i, c)] } else { 0.0 });
+    (rt, a.column(n).rows(0, k).into_owned())
+}
+
+/// The damped steps of one iteration from one SVD `R = U S V^T` of the triangular factor: the
+/// least-squares solution of `[R; sqrt(lambda) I] dx = -[Q^T r; 0]` is `dx = -V diag(s_i / (s_i^2
+/// + lambda)) U^T Q^T r` for every `lambda` (never the normal equations).
+struct Damped {
+    /// `U^T Q^T r`.
+    projected: DVector<f64>,
+    singular: DVector<f64>,
+    v: DMatrix<f64>,
+}
+
+impl Damped {
+    fn new(rt: DMatrix<f64>, qtr: &DVector<f64>) -> Result<Self> {
+        let svd = rt.capped_svd(true, true).ok_or_else(not_converged)?;
+        let (u, v_t) = (
+            svd.u.ok_or_else(not_converged)?,
+            svd.v_t.ok_or_else(not_converged)?,
+        );
+        Ok(Damped {
+            projected: u.tr_mul(qtr),
+            singular: svd.singular_values,
+            v: v_t.transpose(),
+        })
+    }
+
+    /// The step at damping `lambda`.
+    fn step(&self, lambda: f64) -> DVector<f64> {
+        let weights = DVector::from_iterator(
+            self.singular.len(),
+            (self.singular.iter().zip(self.projected.iter())).map(|(s, g)| {
+                let d = s * s + lambda;
+                match d > 0.0 {
+                    true => -s * g / d,
+                    false => 0.0,
+                }
+            }),
+        );
+        &self.v * weights
+    }
+}
+
+fn not_converged() -> Error {
+    Error::NotFinite {
+        what: "the calibration's SVD did not converge".into(),
+    }
+}

@@ -1,0 +1,456 @@
+//! The deflection of the joints under the robot's own weight (and the tool's).
+//!
+//! Link `l` (0-based: the body turned by joints `0..=l`, its frame the joint frame
+//! [`stiffid_core::Frames::joints`]`[l]`, the tool part of link 5) of mass `m_l` with its centre `s_l`
+//! (link frame) weighs `m_l g`, `g = (0, 0, -`[`G`]`)` m/s^2 in the robot base frame (the base's
+//! z axis points up). The joint torques it exerts, in the springs' coordinates, are
+//! `tau = J_l(p)^T m_l g` with `J_l` the translational Jacobian of the centre `p` (base frame) as
+//! a point of link `l`, and the springs deflect by `dq_j = c_j tau_j(q)` (Klimchik, Pashkevich et
+//! al.: the compliance error of heavy robots under gravity). The torques are evaluated on the
+//! nominal chain at the commanded posture: the geometric errors change them by a relative
+//! amount of their own size, far below what a fit resolves, and so the deflection is linear in
+//! the unknowns.
+//!
+//! - [`Gravity::Masses`]: masses and centres known (URDF `<inertial>`, robot files' `mass_kg`,
+//!   `com_mm`), the six compliances `c_j` unknown: one term per joint, regressor `tau_j(q)` (N m).
+//! - [`Gravity::LumpedLinks`]: masses unknown. Writing `m_l s_l = (m_l s_x, m_l s_y, m_l s_z)`, the
+//!   torque is linear in the four mass moments `(m_l, m_l s_l)` of every link:
+//!   `tau_j = sum_l [m_l Y_jl0(q) + sum_k (m_l s_l)_k Y_jlk(q)]`, `Y_jl0 = J_l(o_l)[:, j] . g` (the
+//!   unit mass at the link origin `o_l`), `Y_jlk = (J_l(o_l + R_l e_k) - J_l(o_l))[:, j] . g`. The
+//!   unknowns are the products `c_j m_l` and `c_j (m_l s_l)_k`, one term per joint `j` and link
+//!   `l` it carries and moment `k`. Only combinations are separable: a compliance and a mass
+//!   never apart (scaling every mass and dividing every compliance leaves the deflection), a
+//!   vertical joint's terms not at all (gravity exerts no torque about it), a moment along a joint
+//!   axis not by that joint; [`crate::calibration::identifiability`] keeps the independent terms
+//!   and names the merged.
+//! - [`Gravity::Lumped`]: the same for three bodies ([`BODIES`]): the upper arm (link 1), the
+//!   forearm (link 2, with link 3, the forearm tube that joint 4 rolls, lumped in) and the wrist
+//!   (link 4, with the flange and the tool, link 5, lumped in). A lumped link's mass moments are
+//!   taken as fixed in its body's frame: exact for a centre on the rolling axis (joints 4 and 6
+//!   of a spherical wrist), an approximation otherwise. On an anthropomorphic arm (joint 1
+//!   vertical, 2 and 3 horizontal and parallel) the separable products are, in the absolute
+//!   angles `phi_2` of the upper arm and `phi_23` of the forearm: `c_2` times `A, B, C, D` of
+//!   `tau_2 = A cos phi_2 + B sin phi_2 + C cos phi_23 + D sin phi_23 + (the wrist's)`, `c_3`
+//!   times `C, D` of `tau_3`, and the wrist's first moments with `c_2`, `c_3`, `c_4` and `c_5`:
+//!   17 terms on the FANUC R-2000iC/165F (kinematic springs) against 30 for every link.
+
+use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
+use serde::Serialize;
+use stiffid_core::robot::kinematics::Coordinates;
+use stiffid_core::{Error, Result, Robot};
+
+/// Standard gravity, m/s^2.
+pub const G: f64 = 9.80665;
+
+/// The bodies of [`Gravity::Lumped`] (links, 0-based): the turret (no term: joint 1 is vertical
+/// on every floor robot, and its terms merge), the upper arm, the forearm with link 3 lumped in,
+/// the wrist with link 5 and the tool lumped in.
+pub const BODIES: [usize; 4] = [0, 1, 2, 4];
+
+/// Which gravity terms a calibration fits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Gravity {
+    /// None: the unloaded positions are the rigid robot's.
+    #[default]
+    None,
+    /// Known masses and centres, unknown compliances.
+    Masses,
+    /// Unknown masses: compliance times mass moment of three bodies, the upper arm, the forearm
+    /// and the wrist ([`Terms::lumped_bodies`]).
+    Lumped,
+    /// Unknown masses: compliance times mass moment, for every spring and every link it carries
+    /// ([`Terms::lumped`]).
+    LumpedLinks,
+}
+
+impl stiffid_core::common::choice::Choice for Gravity {
+    const FIELD: &'static str = "gravity";
+    const ALL: &'static [Self] = &[
+        Gravity::None,
+        Gravity::Masses,
+        Gravity::Lumped,
+        Gravity::LumpedLinks,
+    ];
+    fn name(self) -> &'static str {
+        match self {
+            Gravity::None => "none",
+            Gravity::Masses => "masses",
+            Gravity::Lumped => "lumped",
+            Gravity::LumpedLinks => "lumped-links",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Gravity::None => "The rigid robot",
+            Gravity::Masses => "Known link masses and centres, the joint compliances fitted",
+            Gravity::Lumped => {
+                "Unknown masses: compliance times mass moment of the upper arm, the forearm and the wrist"
+            }
+            Gravity::LumpedLinks => {
+                "Unknown masses: compliance times mass moment, every joint and every link it carries"
+            }
+        }
+    }
+}
+
+stiffid_core::common::choice::by_name!(Gravity);
+
+pub use stiffid_core::robot::LinkMass;
+
+/// One gravity term.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Term {
+    /// The compliance of spring `joint` (0-based), rad/(N m), regressor `tau_joint(q)`, N m.
+    Compliance {
+        /// The spring, 0-based.
+        joint: usize,
+    },
+    /// `c_joint` times mass moment `moment` (0 the mass, 1-3 the first moment along the link
+    /// frame's x, y, z) of link `link` (0-based).
+    Lumped {
+        /// The spring, 0-based.
+        joint: usize,
+        /// The link, 0-based.
+        link: usize,
+        /// 0 the mass, 1-3 the first moment's x, y, z.
+        moment: usize,
+    },
+}
+
+impl Term {
+    /// The spring it deflects, 0-based.
+    pub fn joint(self) -> usize {
+        match self {
+            Term::Compliance { joint } | Term::Lumped { joint, .. } => joint,
+        }
+    }
+
+    /// The unit in documents.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Term::Compliance { .. } => "urad/(N m)",
+            Term::Lumped { moment: 0, .. } => "urad kg/(N m)",
+            Term::Lumped { .. } => "urad kg/N",
+        }
+    }
+
+    /// The factor from SI to the document's unit.
+    pub fn document_factor(self) -> f64 {
+        1e6
+    }
+
+    /// Its parameter name: `gravity.c2` for joint 2's compliance, `gravity.c2.link3.mx` for a
+    /// lumped term (the joint, the link, the mass moment `m`, `mx`, `my` or `mz`).
+    pub fn name(self) -> String {
+        match self {
+            Term::Compliance { joint } => format!("gravity.c{}", joint + 1),
+            Term::Lumped {
+                joint,
+                link,
+                moment,
+            } => format!(
+                "gravity.c{}.link{}.{}",
+                joint + 1,
+                link + 1,
+                ["m", "mx", "my", "mz"][moment]
+            ),
+        }
+    }
+}
+
+/// The gravity terms of a calibration and what their regressors need.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Terms {
+    kind: Gravity,
+    robot: Robot,
+    coordinates: Coordinates,
+    masses: Option<[LinkMass; 6]>,
+    nominal: Vector6<f64>,
+    terms: Vec<Term>,
+    /// `M^-1` of the axis map, for kinematic springs.
+    inverse_map: Matrix6<f64>,
+}
+
+impl Terms {
+    /// No gravity term.
+    pub fn none(robot: &Robot) -> Self {
+        Self::with_terms(
+            (robot, Gravity::None),
+            Coordinates::Axis,
+            None,
+            Vector6::zeros(),
+            Vec::new(),
+        )
+    }
+
+    /// The model `gravity` of `robot` with springs in `coordinates`: [`Terms::none`],
+    /// [`Terms::masses`] of the robot's link masses (the compliances' nominal values `nominal`,
+    /// rad/(N m)), [`Terms::lumped_bodies`] or [`Terms::lumped`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses;
+    /// those of [`Terms::masses`].
+    pub fn of(
+        robot: &Robot,
+        gravity: Gravity,
+        coordinates: Coordinates,
+        nominal: Vector6<f64>,
+    ) -> Result<Self> {
+        match gravity {
+            Gravity::None => Ok(Self::none(robot)),
+            Gravity::Lumped => Ok(Self::lumped_bodies(robot, coordinates)),
+            Gravity::LumpedLinks => Ok(Self::lumped(robot, coordinates)),
+            Gravity::Masses => {
+                let Some(masses) = robot.masses() else {
+                    return Err(Error::InvalidField {
+                        field: "gravity".into(),
+                        message: format!(
+                            "masses: the robot '{}' gives no link masses (mass_kg and com_mm per joint in a robot file, <inertial> in a URDF): give them or use lumped",
+                            robot.name()
+                        ),
+                    });
+                };
+                Self::masses(robot, *masses, coordinates, nominal)
+            }
+        }
+    }
+
+    /// Known masses and centres, the compliances of the springs (in `coordinates`) unknown, their
+    /// nominal values `nominal` (rad/(N m), zeros when unknown).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`mass_kg`, `com_mm`) when a mass is negative or not finite or a
+    /// centre not finite, or (`mass_kg`) when every mass is zero.
+    pub fn masses(
+        robot: &Robot,
+        masses: [LinkMass; 6],
+        coordinates: Coordinates,
+        nominal: Vector6<f64>,
+    ) -> Result<Self> {
+        for (i, m) in masses.iter().enumerate() {
+            if !(m.mass.is_finite() && m.mass >= 0.0) {
+                return Err(invalid(i, "mass_kg", "expected a finite mass, 0 or more"));
+            }
+            if !m.centre.iter().all(|v| v.is_finite()) {
+                return Err(invalid(i, "com_mm", "expected finite numbers"));
+            }
+        }
+        if masses.iter().all(|m| m.mass == 0.0) {
+            return Err(invalid(0, "mass_kg", "expected a link with mass"));
+        }
+        let terms = (0..6).map(|joint| Term::Compliance { joint }).collect();
+        Ok(Self::with_terms(
+            (robot, Gravity::Masses),
+            coordinates,
+            Some(masses),
+            nominal,
+            terms,
+        ))
+    }
+
+    /// Unknown masses: the lumped terms of every spring (in `coordinates`) and every link it
+    /// carries.
+    pub fn lumped(robot: &Robot, coordinates: Coordinates) -> Self {
+        Self::lumped_links(
+            (robot, Gravity::LumpedLinks),
+            coordinates,
+            &[0, 1, 2, 3, 4, 5],
+        )
+    }
+
+    /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of
+    /// every spring (in `coordinates`) and every link of [`BODIES`] it carries.
+    pub fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
+        Self::lumped_links((robot, Gravity::Lumped), coordinates, &BODIES)
+    }
+
+    /// The lumped terms of every spring and every link of `links` (0-based) it carries.
+    fn lumped_links(
+        (robot, kind): (&Robot, Gravity),
+        coordinates: Coordinates,
+        links: &[usize],
+    ) -> Self {
+        let m = robot.axis_map().matrix;
+        let carries = |joint: usize, link: usize| match coordinates {
+            Coordinates::Kinematic => joint <= link,
+            Coordinates::Axis => (0..=link).any(|i| m[(i, joint)] != 0.0),
+        };
+        let mut terms = Vec::new();
+        for joint in 0..6 {
+            for &link in links {
+                if carries(joint, link) {
+                    terms.extend((0..4).map(|moment| Term::Lumped {
+                        joint,
+                        link,
+                        moment,
+                    }));
+                }
+            }
+        }
+        Self::with_terms((robot, kind), coordinates, None, Vector6::zeros(), terms)
+    }
+
+    fn with_terms(
+        (robot, kind): (&Robot, Gravity),
+        coordinates: Coordinates,
+        masses: Option<[LinkMass; 6]>,
+        nominal: Vector6<f64>,
+        terms: Vec<Term>,
+    ) -> Self {
+        Terms {
+            kind,
+            inverse_map: robot
+                .axis_map()
+                .matrix
+                .try_inverse()
+                .unwrap_or_else(Matrix6::identity),
+            robot: robot.clone(),
+            coordinates,
+            masses,
+            nominal,
+            terms,
+        }
+    }
+
+    /// Which model it is.
+    pub fn kind(&self) -> Gravity {
+        self.kind
+    }
+
+    /// The terms, in parameter order.
+    pub fn terms(&self) -> &[Term] {
+        &self.terms
+    }
+
+    /// How many terms.
+    pub fn len(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// Whether there is no term.
+    pub fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The springs' coordinates.
+    pub fn coordinates(&self) -> Coordinates {
+        self.coordinates
+    }
+
+    /// The known masses, if any.
+    pub fn link_masses(&self) -> Option<&[LinkMass; 6]> {
+        self.masses.as_ref()
+    }
+
+    /// The nominal value (SI) of `term`: its compliance's nominal value (rad/(N m), zero when
+    /// unknown), zero for a lumped term.
+    pub(crate) fn nominal(&self, term: Term) -> f64 {
+        match term {
+            Term::Compliance { joint } => self.nominal[joint],
+            Term::Lumped { .. } => 0.0,
+        }
+    }
+
+    /// The unit torques `tau[l][k]` (springs' coordinates) of link `l`'s mass moment `k` at
+    /// axis angles `q` (rad): module docs, `Y_.lk`.
+    fn unit_torques(&self, q: &Vector6<f64>) -> [[Vector6<f64>; 4]; 6] {
+        let f = self.robot.frames(q);
+        let g = Vector3::new(0.0, 0.0, -G);
+        let m = self.robot.axis_map().matrix;
+        std::array::from_fn(|l| {
+            let frame = f.joints[l];
+            let o = frame.translation.vector;
+            std::array::from_fn(|k| {
+                let mut theta = Vector6::zeros();
+                for i in 0..=l {
+                    let z = f.axis_directions[i];
+                    let arm = match k {
+                        0 => o - f.axis_points[i],
+                        _ => frame.rotation * Vector3::ith(k - 1, 1.0),
+                    };
+                    theta[i] = z.cross(&arm).dot(&g);
+                }
+                match self.coordinates {
+                    Coordinates::Kinematic => theta,
+                    Coordinates::Axis => m.transpose() * theta,
+                }
+            })
+        })
+    }
+
+    /// The regressor of every term at axis angles `q` (rad): the torque (N m) of a compliance
+    /// term, the unit torque of a lumped one (module docs).
+    pub fn regressors(&self, q: &Vector6<f64>) -> Vec<f64> {
+        if self.terms.is_empty() {
+            return Vec::new();
+        }
+        let unit = self.unit_torques(q);
+        let torque = self.masses.map(|masses| {
+            let mut tau = Vector6::zeros();
+            for (l, lm) in masses.iter().enumerate() {
+                tau += unit[l][0] * lm.mass;
+                for k in 0..3 {
+                    tau += unit[l][k + 1] * (lm.mass * lm.centre[k]);
+                }
+            }
+            tau
+        });
+        self.terms
+            .iter()
+            .map(|t| match *t {
+                Term::Compliance { joint } => torque.map_or(0.0, |tau| tau[joint]),
+                Term::Lumped {
+                    joint,
+                    link,
+                    moment,
+                } => unit[link][moment][joint],
+            })
+            .collect()
+    }
+
+    /// The deflection in axis angles (rad) at commanded axis angles `q` (rad) with the term
+    /// values `values` (SI, term order).
+    pub fn deflection(&self, values: &DVectorView<'_, f64>, q: &Vector6<f64>) -> Vector6<f64> {
+        match self.terms.is_empty() {
+            true => Vector6::zeros(),
+            false => self.deflection_from(values, &self.regressors(q)),
+        }
+    }
+
+    /// [`Terms::deflection`] from the regressors of the posture ([`Terms::regressors`]).
+    pub fn deflection_from(
+        &self,
+        values: &DVectorView<'_, f64>,
+        regressors: &[f64],
+    ) -> Vector6<f64> {
+        let mut springs = Vector6::zeros();
+        for ((t, y), v) in self.terms.iter().zip(regressors).zip(values.iter()) {
+            springs[t.joint()] += v * y;
+        }
+        match self.coordinates {
+            Coordinates::Axis => springs,
+            Coordinates::Kinematic => self.inverse_map * springs,
+        }
+    }
+
+    /// The RMS of each term's regressor over the postures `qs` (axis angles, rad).
+    pub fn regressor_rms(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
+        let mut sum = vec![0.0; self.terms.len()];
+        for q in qs {
+            for (s, y) in sum.iter_mut().zip(self.regressors(q)) {
+                *s += y * y;
+            }
+        }
+        let n = qs.len().max(1) as f64;
+        sum.iter().map(|s| (s / n).sqrt()).collect()
+    }
+}
+
+fn invalid(link: usize, field: &str, message: &str) -> Error {
+    Error::InvalidField {
+        field: format!("joint[{}].{field}", link + 1),
+        message: message.into(),
+    }
+}

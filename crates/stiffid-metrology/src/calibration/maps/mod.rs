@@ -1,0 +1,444 @@
+//! Which joint error maps a calibration fits: joints, harmonics and ridge chosen by
+//! cross-validation inside the fitted readings, and the held-out gain of that choice measured by
+//! an outer cross-validation around it (nested: the figure quoted is never the one the choice was
+//! tuned on).
+//!
+//! # The candidates
+//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in [`HARMONICS`], with the
+//! ridge `mu` in [`RIDGES`] ([`crate::calibration::fit::Options::ridge`]: a penalty of
+//! `mu` per reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics
+//! (a bare joint takes [`DEFAULT_HARMONICS`]) and chooses the ridge alone. Where the readings
+//! carry the directions of approach, a joint's backlash term is a candidate too (one column,
+//! [`crate::calibration::error_model::Target::Backlash`]): `J2:8b` is 8 harmonics
+//! and the backlash, `J2:b` the backlash alone.
+//!
+//! # The choice ([`choose`])
+//! The postures are dealt into [`FOLDS`] folds (posture `p` of the training postures in fold
+//! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
+//! postures predicted by the fit of the others, at its best ridge. First each joint alone, at each
+//! harmonic count, and each joint's backlash term alone (with directions); then, from no map,
+//! these in the order of their own held-out error, each kept when it lowers the held-out error by
+//! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided
+//! test at about 0.6 %) and by [`LEAST_GAIN`] of it: the choice keeps no map on a robot without
+//! one. The choice is made on the linearised fit ([`linear`]): exact to second order in
+//! the parameters' change from the fit, a few nanometres on a calibrated robot.
+//!
+//! # The honest figure ([`nested`])
+//! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
+//! training postures and predicts its held-out postures with it, beside the geometry alone on the
+//! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
+//! (rayon), the result independent of the thread count.
+//!
+//! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
+
+pub mod linear;
+
+pub use super::error_model::JointMaps;
+pub use linear::{extended, Linear};
+
+use rayon::prelude::*;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::robot::error_map::MAX_HARMONICS;
+use stiffid_core::{Error, Result};
+
+/// Maps as documents name them: `J3:16,J5:8b` (a `b` for a backlash term; `J2:b` the backlash
+/// alone), or `none`.
+pub fn name(h: &JointMaps) -> String {
+    let parts: Vec<String> = (0..6)
+        .filter(|&j| h.has(j))
+        .map(|j| {
+            let n = h.harmonics[j];
+            let b = if h.backlash[j] { "b" } else { "" };
+            match n {
+                0 => format!("J{}:b", j + 1),
+                _ => format!("J{}:{n}{b}", j + 1),
+            }
+        })
+        .collect();
+    match parts.is_empty() {
+        true => "none".into(),
+        false => parts.join(","),
+    }
+}
+
+/// The harmonic counts `--maps auto` tries per joint.
+pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+
+/// The harmonics of a joint named without a count (`--maps J2`).
+pub const DEFAULT_HARMONICS: usize = 16;
+
+/// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
+/// joint's 32 harmonics may need a stronger hold than from 100.
+pub const RIDGES: [f64; 11] = [
+    1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0,
+];
+
+/// The folds of the inner and of the outer cross-validation.
+pub const FOLDS: usize = 5;
+
+/// The standard errors of the paired per-posture differences by which a carrier's error motion
+/// order must lower the held-out error to be kept ([`super::motions`]).
+pub const ACCEPT: f64 = 3.0;
+
+/// The standard errors of the paired per-posture differences by which a joint's map must lower
+/// the held-out error to be kept: fewer than [`ACCEPT`], since the per-posture errors of a
+/// campaign of 50 postures are heavy-tailed (a map that cut the inner held-out squared error of
+/// the UR10's series C by a quarter stood 2.5 to 3 standard errors out); the choice still keeps
+/// no map on a robot without one in 9 seeds of 10 or more from 50 postures (`maps_tests.rs`;
+/// at 2 standard errors, in 34 of 40).
+pub const MAP_ACCEPT: f64 = 2.5;
+
+/// The least share of the held-out squared error a map must remove to be kept.
+pub const LEAST_GAIN: f64 = 0.02;
+
+/// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
+/// folds of at least six postures.
+pub const MIN_POSTURES: usize = 30;
+
+/// Which maps a calibration fits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Spec {
+    /// Chosen by cross-validation with [`MIN_POSTURES`] postures or more, none below.
+    #[default]
+    Auto,
+    /// None.
+    None,
+    /// These joints with these harmonics and backlash terms (the ridge chosen by
+    /// cross-validation).
+    Fixed(JointMaps),
+}
+
+impl Spec {
+    /// Parses `auto`, `none` or a list of joints `J1,J3:16,J4:8b,J5:b` (a joint `J1`..`J6`,
+    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default [`DEFAULT_HARMONICS`], a `b`
+    /// after them for a backlash term too, `:b` the backlash term alone).
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] ([`JobOption::Maps`]) naming the part not understood.
+    pub fn parse(text: &str) -> Result<Self> {
+        let text = text.trim();
+        match text {
+            "auto" => return Ok(Spec::Auto),
+            "none" => return Ok(Spec::None),
+            _ => {}
+        }
+        let bad = |part: &str| {
+            Error::InvalidOption {
+            option: JobOption::Maps,
+            message: format!(
+                "expected auto, none or joints such as J1,J3:16,J4:8b,J5:b (J1 to J6, 1 to {MAX_HARMONICS} harmonics, b a backlash term), got {part:?}"
+            ),
+        }
+        };
+        // Digits only: `+1`, `01` or `1e1` are not a joint or a count.
+        let number = |t: &str| {
+            (!t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) && !t.starts_with('0'))
+                .then(|| t.parse::<usize>().ok())
+                .flatten()
+        };
+        let mut maps = JointMaps::NONE;
+        for part in text.split(',') {
+            let part = part.trim();
+            let (joint, count) = part.split_once(':').unwrap_or((part, ""));
+            let joint = (joint.strip_prefix(['J', 'j']))
+                .and_then(number)
+                .filter(|j| (1..=6).contains(j))
+                .ok_or_else(|| bad(part))?;
+            let (count, backlash) = match count.strip_suffix('b') {
+                Some(c) => (c, true),
+                None => (count, false),
+            };
+            let count = match (count, backlash) {
+                ("", true) => 0,
+                ("", false) if !part.contains(':') => DEFAULT_HARMONICS,
+                (c, _) => number(c)
+                    .filter(|h| (1..=MAX_HARMONICS).contains(h))
+                    .ok_or_else(|| bad(part))?,
+            };
+            if maps.has(joint - 1) {
+                return Err(Error::InvalidOption {
+                    option: JobOption::Maps,
+                    message: format!("J{joint} is given twice in {text:?}: give each joint once"),
+                });
+            }
+            maps.harmonics[joint - 1] = count;
+            maps.backlash[joint - 1] = backlash;
+        }
+        Ok(Spec::Fixed(maps))
+    }
+
+    /// The maps the linearised fit needs columns for: every joint at the largest of
+    /// [`HARMONICS`] for [`Spec::Auto`], with a backlash term each where the readings carry
+    /// `directions`; the fixed ones; none.
+    pub fn candidates(self, directions: bool) -> JointMaps {
+        match self {
+            Spec::Auto => JointMaps {
+                harmonics: [HARMONICS[HARMONICS.len() - 1]; 6],
+                backlash: [directions; 6],
+            },
+            Spec::None => JointMaps::NONE,
+            Spec::Fixed(h) => h,
+        }
+    }
+}
+
+/// One candidate the choice evaluated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tried {
+    /// Its maps and backlash terms.
+    pub maps: JointMaps,
+    /// Its best ridge.
+    pub ridge: f64,
+    /// Its held-out RMS error (inner cross-validation), m.
+    pub rms: f64,
+    /// Whether the choice kept it (a step of the forward selection that passed [`ACCEPT`]).
+    pub kept: bool,
+}
+
+/// The maps chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choice {
+    /// The harmonics of each joint's map (0 none) and its backlash terms.
+    pub maps: JointMaps,
+    /// The ridge.
+    pub ridge: f64,
+    /// The held-out RMS error of the choice (inner cross-validation: the figure it was tuned on), m.
+    pub rms: f64,
+    /// The held-out RMS error without maps on the same folds, m.
+    pub none_rms: f64,
+    /// Every candidate evaluated, in order.
+    pub tried: Vec<Tried>,
+}
+
+/// The held-out gain of choosing maps by cross-validation (the outer folds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nested {
+    /// The outer folds.
+    pub folds: usize,
+    /// The held-out RMS error without maps, m.
+    pub none_rms: f64,
+    /// The held-out RMS error with the maps each outer fold chose on its training postures, m.
+    pub rms: f64,
+    /// The maps each outer fold chose.
+    pub choices: Vec<JointMaps>,
+}
+
+/// The folds of `postures`: fold `k` holds `postures[i]` with `i mod K = k`, `K = min(FOLDS, n)`.
+fn folds(postures: &[usize]) -> Vec<(Vec<usize>, Vec<usize>)> {
+    let k = FOLDS.min(postures.len());
+    (0..k)
+        .map(|f| {
+            let in_fold = |keep: bool| {
+                (postures.iter().enumerate())
+                    .filter(|(i, _)| (i % k == f) == keep)
+                    .map(|(_, p)| *p)
+                    .collect::<Vec<usize>>()
+            };
+            (in_fold(false), in_fold(true))
+        })
+        .collect()
+}
+
+/// The inner cross-validation of some postures: its splits, prepared once.
+struct Inner<'a> {
+    linear: &'a Linear,
+    splits: Vec<linear::Split>,
+    /// The readings of the held-out postures, all folds.
+    readings: usize,
+    /// The training readings of each split (the ridge's `n`).
+    train_readings: Vec<usize>,
+}
+
+/// A candidate's held-out errors at its best ridge.
+struct Scored {
+    ridge: f64,
+    /// Per held-out posture (all folds, in order), the sum of squared errors, m^2.
+    errors: Vec<f64>,
+    total: f64,
+}
+
+impl<'a> Inner<'a> {
+    fn new(linear: &'a Linear, postures: &[usize]) -> Result<Self> {
+        let parts = folds(postures);
+        let readings_of = |ps: &[usize]| ps.iter().map(|&p| linear.rows[p].len() / 3).sum();
+        let splits = (parts.par_iter())
+            .map(|(train, test)| linear.split(train, test))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Inner {
+            linear,
+            readings: readings_of(postures),
+            train_readings: parts.iter().map(|(t, _)| readings_of(t)).collect(),
+            splits,
+        })
+    }
+
+    /// The held-out errors of `choice` at its best ridge of [`RIDGES`].
+    fn score(&self, choice: &JointMaps) -> Result<Scored> {
+        let per_fold = (self.splits.par_iter().zip(&self.train_readings))
+            .map(|(s, &n)| {
+                let lambdas: Vec<f64> = RIDGES.iter().map(|mu| mu * n as f64).collect();
+                self.linear.errors(s, choice, &lambdas)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let totals: Vec<f64> = (0..RIDGES.len())
+            .map(|r| per_fold.iter().flat_map(|f| &f[r]).sum())
+            .collect();
+        let best = (0..RIDGES.len())
+            .min_by(|&a, &b| totals[a].total_cmp(&totals[b]))
+            .unwrap_or(0);
+        Ok(Scored {
+            ridge: RIDGES[best],
+            errors: per_fold.iter().flat_map(|f| f[best].clone()).collect(),
+            total: totals[best],
+        })
+    }
+
+    fn rms(&self, s: &Scored) -> f64 {
+        (s.total / self.readings.max(1) as f64).sqrt()
+    }
+}
+
+/// Whether `candidate` lowers the held-out error of `current` by more than [`MAP_ACCEPT`]
+/// standard errors of the paired per-posture differences and by [`LEAST_GAIN`] of it.
+fn better(current: &Scored, candidate: &Scored) -> bool {
+    lowers(
+        (&current.errors, current.total),
+        (&candidate.errors, candidate.total),
+        MAP_ACCEPT,
+    )
+}
+
+/// Whether the candidate's held-out errors (per held-out posture, and their total) lower the
+/// current ones by more than `accept` standard errors of the paired per-posture differences
+/// and by [`LEAST_GAIN`] of the total: the acceptance rule of every choice by cross-validation
+/// in the calibration (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
+pub(super) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
+    let n = current.0.len();
+    if n < 2 {
+        return false;
+    }
+    let d: Vec<f64> = (current.0.iter().zip(candidate.0))
+        .map(|(a, b)| a - b)
+        .collect();
+    let mean = d.iter().sum::<f64>() / n as f64;
+    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    mean > accept * (var / n as f64).sqrt() && candidate.1 < (1.0 - LEAST_GAIN) * current.1
+}
+
+/// Chooses the maps of `spec` by cross-validation over the postures `postures` of `linear`
+/// (module docs).
+///
+/// # Errors
+/// [`Error::NotFinite`] when an SVD does not converge.
+pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
+    let inner = Inner::new(linear, postures)?;
+    let none = inner.score(&JointMaps::NONE)?;
+    let none_rms = inner.rms(&none);
+    let mut tried = Vec::new();
+    let mut record = |maps: JointMaps, s: &Scored, kept: bool| {
+        tried.push(Tried {
+            maps,
+            ridge: s.ridge,
+            rms: inner.rms(s),
+            kept,
+        })
+    };
+    let (mut chosen, mut current) = (JointMaps::NONE, none);
+    match spec {
+        Spec::None => {}
+        Spec::Fixed(h) => {
+            let s = inner.score(&h)?;
+            record(h, &s, true);
+            (chosen, current) = (h, s);
+        }
+        Spec::Auto => {
+            let mut alone = alone(&inner, &mut record)?;
+            alone.sort_by(|a, b| a.1.total_cmp(&b.1));
+            // Forward: the terms in that order, each kept when it lowers the error enough.
+            for (term, _) in alone {
+                let choice = union(&chosen, &term);
+                let s = inner.score(&choice)?;
+                let kept = better(&current, &s);
+                record(choice, &s, kept);
+                if kept {
+                    (chosen, current) = (choice, s);
+                }
+            }
+        }
+    }
+    let rms = inner.rms(&current);
+    Ok(Choice {
+        maps: chosen,
+        ridge: current.ridge,
+        rms,
+        none_rms,
+        tried,
+    })
+}
+
+/// Each joint's map alone at its best of [`HARMONICS`], and each candidate backlash term alone
+/// ([`Linear::candidates`]), with their held-out errors (the sums over the folds, m^2), each
+/// evaluated candidate given to `record`.
+fn alone(
+    inner: &Inner,
+    record: &mut impl FnMut(JointMaps, &Scored, bool),
+) -> Result<Vec<(JointMaps, f64)>> {
+    let mut alone = Vec::new();
+    for joint in 0..6 {
+        let mut best: Option<(JointMaps, f64)> = None;
+        for &h in &HARMONICS {
+            let mut choice = JointMaps::NONE;
+            choice.harmonics[joint] = h;
+            let s = inner.score(&choice)?;
+            record(choice, &s, false);
+            if best.as_ref().is_none_or(|(_, b)| s.total < *b) {
+                best = Some((choice, s.total));
+            }
+        }
+        alone.extend(best);
+    }
+    for joint in (0..6).filter(|&j| inner.linear.candidates.backlash[j]) {
+        let mut choice = JointMaps::NONE;
+        choice.backlash[joint] = true;
+        let s = inner.score(&choice)?;
+        record(choice, &s, false);
+        alone.push((choice, s.total));
+    }
+    Ok(alone)
+}
+
+/// The maps of `a` and `b` together: each joint's larger harmonic count, a backlash term where
+/// either has one.
+fn union(a: &JointMaps, b: &JointMaps) -> JointMaps {
+    JointMaps {
+        harmonics: std::array::from_fn(|j| a.harmonics[j].max(b.harmonics[j])),
+        backlash: std::array::from_fn(|j| a.backlash[j] || b.backlash[j]),
+    }
+}
+
+/// The held-out gain of [`choose`] by an outer cross-validation over `postures` (module docs).
+///
+/// # Errors
+/// Those of [`choose`].
+pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested> {
+    let parts = folds(postures);
+    let outer = (parts.par_iter())
+        .map(|(train, test)| {
+            let choice = choose(linear, train, spec)?;
+            let split = linear.split(train, test)?;
+            let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
+            let maps = linear.errors(&split, &choice.maps, &[choice.ridge * n as f64])?;
+            let none = linear.errors(&split, &JointMaps::NONE, &[0.0])?;
+            let sum = |e: &[Vec<f64>]| e[0].iter().sum::<f64>();
+            Ok((sum(&maps), sum(&none), choice.maps))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();
+    let rms = |total: f64| (total / readings.max(1) as f64).sqrt();
+    Ok(Nested {
+        folds: parts.len(),
+        rms: rms(outer.iter().map(|o| o.0).sum()),
+        none_rms: rms(outer.iter().map(|o| o.1).sum()),
+        choices: outer.iter().map(|o| o.2).collect(),
+    })
+}

@@ -1,7 +1,0 @@
-//! The laser tracker in the cell: registering the tracker to the robot base ([`register`]),
-//! calibrating the tracker and the measuring points from unloaded readings ([`cell_calibration`]), and
-//! the robot's geometric and elastostatic calibration from one campaign ([`calibration`]).
-
-pub mod calibration;
-pub mod cell_calibration;
-pub mod register;
