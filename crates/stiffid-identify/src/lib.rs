@@ -161,13 +161,16 @@ impl Identification {
 /// Measurements simulated without noise on the paper's setup (8 seeded postures, the setup's
 /// nominal stiffness) give that stiffness back.
 /// ```
-/// use stiffid::design::random_group;
-/// use stiffid::observation::Measurement;
-/// use stiffid::observation::stiffness::rope_displacements;
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// use rand::SeedableRng;
+/// use stiffid_core::observation::Measurement;
+/// use stiffid_core::robot::ik::random_posture;
+/// use stiffid_core::observation::stiffness::rope_displacements;
+/// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let k = setup.try_nominal_stiffness("this example")?;
 /// let mut measurements = Vec::new();
-/// for (posture, q) in random_group(&setup, 8, 1).into_iter().enumerate() {
+/// let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+/// for posture in 0..8 {
+///     let q = random_posture(setup.robot(), &mut rng);
 ///     let frames = setup.robot().frames(&q);
 ///     let wrench = setup.rope_wrench(&frames);
 ///     for (point, d) in rope_displacements(&setup, &frames, k).into_iter().enumerate() {
@@ -175,9 +178,9 @@ impl Identification {
 ///         measurements.push(Measurement { posture, point, q, e: Default::default(), wrench, displacement });
 ///     }
 /// }
-/// let id = stiffid::identify::least_squares(setup.arm(), &measurements)?;
+/// let id = stiffid_identify::least_squares(setup.arm(), &measurements)?;
 /// assert!((0..6).all(|j| (id.stiffness[j] / k[j] - 1.0).abs() < 1e-9));
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 ///
 /// # Errors

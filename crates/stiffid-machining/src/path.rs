@@ -81,9 +81,9 @@ struct Columns {
 ///
 /// # Examples
 /// ```
-/// use stiffid::observation::deflection::Frame;
+/// use stiffid_core::observation::deflection::Frame;
 /// let text = "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n0,0,-90,0,30,0,0,0,-500\n";
-/// let points = stiffid::machining::path::parse(text, Frame::Base).unwrap();
+/// let points = stiffid_machining::path::parse(text, Frame::Base).unwrap();
 /// assert_eq!((points.len(), points[0].line, points[0].wrench[2]), (1, 2, -500.0));
 /// ```
 pub fn parse(text: &str, default_frame: Frame) -> Result<Vec<PathPoint>> {

@@ -257,12 +257,13 @@ impl<'a> Checker<'a> {
     /// # Examples
     /// The gradient of the floor margin of a posture against central differences.
     /// ```
-    /// use stiffid::cell::{CheckKind, Checker};
-    /// let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string()
+    /// use stiffid_core::cell::{CheckKind, Checker};
+    /// let text = stiffid_core::setup::builtin_text("zhang2021-comau-nj165")?.to_string()
     ///     + "[cell]\nfloor_z_mm = 0.0\n";
-    /// let setup = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))?;
+    /// let setup = stiffid_core::setup::parse(&text, "cell.toml", |r, _| stiffid_core::robot::presets::get(r))?;
     /// let checker = Checker::new(&setup);
-    /// let q = stiffid::design::random_group(&setup, 1, 3)[0];
+    /// let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
+    /// let q = stiffid_core::robot::ik::random_posture(setup.robot(), &mut rng);
     /// let (margins, gradients) = checker.margins_and_gradients(&q);
     /// let i = margins.iter().position(|m| m.kind == CheckKind::Floor).unwrap();
     /// let h = 1e-6;
@@ -273,7 +274,7 @@ impl<'a> Checker<'a> {
     ///     let fd = (checker.margins(&up)[i].margin - checker.margins(&down)[i].margin) / (2.0 * h);
     ///     assert!((gradients.gradient(i)[a] - fd).abs() < 1e-6);
     /// }
-    /// # Ok::<(), stiffid::Error>(())
+    /// # Ok::<(), stiffid_core::Error>(())
     /// ```
     pub fn margins_and_gradients(&self, q: &Vector6<f64>) -> (Vec<Margin>, MarginGradients) {
         let mut out = Margins::new(true, true);

@@ -11,14 +11,14 @@
 //!
 //! ```
 //! use nalgebra::Vector6;
-//! let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+//! let text = stiffid_core::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
 //!     + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n";
-//! let setup = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
+//! let setup = stiffid_core::setup::parse(&text, "cell.toml", |r, _| stiffid_core::robot::presets::get(r)).unwrap();
 //! // Upper arm tilted 40 deg forward, forearm pointing 100 deg down: the tool is in the floor.
 //! let q = Vector6::new(0.0, 40f64.to_radians(), -170f64.to_radians(), 0.0, 0.0, 0.0);
-//! let f = stiffid::cell::feasibility(&setup, &q);
+//! let f = stiffid_core::cell::feasibility(&setup, &q);
 //! assert!(!f.feasible());
-//! assert!(f.violations().any(|c| c.kind == stiffid::cell::CheckKind::Floor));
+//! assert!(f.violations().any(|c| c.kind == stiffid_core::cell::CheckKind::Floor));
 //! ```
 
 mod bodies;

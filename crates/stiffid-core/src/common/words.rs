@@ -8,7 +8,7 @@
 ///
 /// # Examples
 /// ```
-/// use stiffid::common::words::{count, is_are};
+/// use stiffid_core::common::words::{count, is_are};
 /// assert_eq!(format!("{} {} rapid", count(1, "point"), is_are(1)), "1 point is rapid");
 /// assert_eq!(format!("{} {} rapid", count(2, "point"), is_are(2)), "2 points are rapid");
 /// ```
@@ -48,7 +48,7 @@ pub fn number(v: f64) -> String {
 ///
 /// # Examples
 /// ```
-/// use stiffid::common::words::as_given;
+/// use stiffid_core::common::words::as_given;
 /// assert_eq!(as_given((-60f64).to_radians().to_degrees()), -60.0);
 /// assert_eq!(as_given(15f64.to_radians().to_degrees()), 15.0);
 /// assert_eq!(as_given(0.123456789012345), 0.123456789012);

@@ -17,7 +17,7 @@ use std::path::Path;
 ///
 /// # Examples
 /// ```
-/// let e = stiffid::io::input::open(std::path::Path::new("/dev/null")).unwrap_err();
+/// let e = stiffid_core::io::input::open(std::path::Path::new("/dev/null")).unwrap_err();
 /// assert_eq!(e.to_string(), "is a device, not a regular file; give a file");
 /// ```
 pub fn open(path: &Path) -> std::io::Result<File> {

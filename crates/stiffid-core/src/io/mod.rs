@@ -37,9 +37,9 @@ use std::io::Read;
 ///
 /// # Examples
 /// ```
-/// let text = stiffid::io::text("group.csv", b"q1_deg,q2_deg".to_vec()).unwrap();
+/// let text = stiffid_core::io::text("group.csv", b"q1_deg,q2_deg".to_vec()).unwrap();
 /// assert_eq!(text, "q1_deg,q2_deg");
-/// let e = stiffid::io::text("bin.csv", vec![0xff, 0xfe]).unwrap_err();
+/// let e = stiffid_core::io::text("bin.csv", vec![0xff, 0xfe]).unwrap_err();
 /// assert_eq!(e.to_string(), "bin.csv: not UTF-8 text (invalid byte at offset 0)");
 /// ```
 pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
@@ -66,7 +66,7 @@ pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
 ///
 /// # Examples
 /// ```
-/// let text = stiffid::io::read_text("group.csv", &b"q1_deg"[..]).unwrap();
+/// let text = stiffid_core::io::read_text("group.csv", &b"q1_deg"[..]).unwrap();
 /// assert_eq!(text, "q1_deg");
 /// ```
 pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
@@ -96,7 +96,7 @@ fn too_large() -> String {
 /// # Examples
 /// ```
 /// use std::io::Read;
-/// let mut small = stiffid::io::Capped::new(&b"q1_deg"[..]);
+/// let mut small = stiffid_core::io::Capped::new(&b"q1_deg"[..]);
 /// let mut text = String::new();
 /// small.read_to_string(&mut text).unwrap();
 /// assert_eq!(text, "q1_deg");

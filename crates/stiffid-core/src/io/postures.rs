@@ -30,8 +30,8 @@ pub const HEADER: [&str; 7] = [
 ///
 /// # Examples
 /// ```
-/// use stiffid::io::postures;
-/// let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+/// use stiffid_core::io::postures;
+/// let robot = stiffid_core::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
 /// let text = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\n1,0,0,-90,0,30,0\n";
 /// let group = postures::parse(text, &robot, None).unwrap();
 /// assert!((group[0][2] - (-90f64).to_radians()).abs() < 1e-12);

@@ -133,7 +133,7 @@ impl Robot {
     /// # Examples
     /// ```
     /// use nalgebra::Vector6;
-    /// use stiffid::{common::limits::JointBox, robot::dh, Robot};
+    /// use stiffid_core::{common::limits::JointBox, robot::dh, Robot};
     /// let row = dh::Row { a: 0.5, alpha: 0.0, d: 0.1, theta_offset: 0.0 };
     /// let joints = std::array::from_fn(|_| dh::joint(dh::Convention::StandardDh, &row));
     /// let limits = JointBox::new(Vector6::repeat(-3.0), Vector6::repeat(3.0));
@@ -141,7 +141,7 @@ impl Robot {
     /// assert_eq!(robot.limits().upper[0], 3.0);
     /// let reversed = JointBox::new(Vector6::repeat(3.0), Vector6::repeat(-3.0));
     /// assert!(Robot::new("planar", "example", joints, reversed).is_err());
-    /// # Ok::<(), stiffid::Error>(())
+    /// # Ok::<(), stiffid_core::Error>(())
     /// ```
     pub fn new(
         name: impl Into<String>,

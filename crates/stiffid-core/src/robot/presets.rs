@@ -41,7 +41,7 @@ pub fn text(name: &str) -> Result<&'static str> {
 /// Forward kinematics and the Jacobian of the flange origin at a posture (axis angles, rad):
 /// ```
 /// use nalgebra::{Vector3, Vector6};
-/// use stiffid::{robot::presets, Coordinates};
+/// use stiffid_core::{robot::presets, Coordinates};
 /// let robot = presets::get("comau-smart5-nj165-3.0")?;
 /// let q = Vector6::new(0.0, 0.0, -90.0, 0.0, 30.0, 0.0).map(f64::to_radians);
 /// assert!(robot.limits().contains(&q));
@@ -49,7 +49,7 @@ pub fn text(name: &str) -> Result<&'static str> {
 /// let j = frames.jacobian(&Vector3::zeros(), Coordinates::Axis); // rows [v; omega]
 /// assert_eq!(j.shape(), (6, 6));
 /// assert!(frames.flange.translation.vector.norm() > 1.0);
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn get(name: &str) -> Result<Robot> {
     file::parse(text(name)?, &format!("preset {name}"))

@@ -94,9 +94,9 @@ pub const DEFAULT_FRAME_SD: (f64, f64) = (3e-4, 3e-4);
 ///
 /// ```
 /// use nalgebra::{Vector3, Vector6};
-/// use stiffid::setup::{Noise, RopeLoad, Setup};
+/// use stiffid_core::setup::{Noise, RopeLoad, Setup};
 ///
-/// let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+/// let robot = stiffid_core::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
 /// let setup = Setup::builder("my-cell", robot)
 ///     .with_loading_point(Vector3::new(0.15, 0.0, 0.2))
 ///     .with_measuring_points(vec![Vector3::new(0.08, 0.08, 0.26)])

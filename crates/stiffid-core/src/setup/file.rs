@@ -210,13 +210,13 @@ pub fn builtin_text(name: &str) -> Result<&'static str> {
 /// The paper's cell (Zhang et al. 2021, Tables 1-3): four measuring points, six noise levels, the
 /// bounds of Table 1 inside the robot's joint limits.
 /// ```
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// assert_eq!(setup.tool().measuring_points.len(), 4);
 /// assert_eq!(setup.noise().levels, [0.5, 1.0, 1.5, 2.0, 2.5, 3.0]);
 /// assert!((setup.bounds().upper[1].to_degrees() - 40.0).abs() < 1e-12);
 /// assert!(setup.robot().limits().contains(&setup.bounds().upper));
-/// assert!(stiffid::setup::builtin("no-such-setup").is_err());
-/// # Ok::<(), stiffid::Error>(())
+/// assert!(stiffid_core::setup::builtin("no-such-setup").is_err());
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 ///
 /// # Errors

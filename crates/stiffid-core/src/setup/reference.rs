@@ -36,8 +36,8 @@ pub struct Meshes<'a> {
 ///
 /// # Examples
 /// ```
-/// use stiffid::setup::reference;
-/// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
+/// use stiffid_core::setup::reference;
+/// let no_files = |_: &std::path::Path| None::<stiffid_core::Result<String>>;
 /// let robot = reference::robot("fanuc-r2000ic-165f", None, no_files).unwrap();
 /// assert_eq!(robot.name(), "FANUC R-2000iC/165F");
 /// let e = reference::robot("robots/mine.toml", None, no_files).unwrap_err();
@@ -206,8 +206,8 @@ fn xacro(name: &str) -> Error {
 ///
 /// # Examples
 /// ```
-/// use stiffid::setup::reference;
-/// let no_files = |_: &std::path::Path| None::<stiffid::Result<String>>;
+/// use stiffid_core::setup::reference;
+/// let no_files = |_: &std::path::Path| None::<stiffid_core::Result<String>>;
 /// let setup = reference::setup("zhang2021-comau-nj165", no_files).unwrap();
 /// assert_eq!(setup.robot().name(), "COMAU SMART5 NJ 165-3.0");
 /// ```

@@ -598,14 +598,14 @@ fn finite(v: f64) -> f64 {
 /// relative standard deviations, and the predicted deviation rate grows as the square root of the
 /// noise level (levels 0.5 and 2.0: a factor of 2).
 /// ```
-/// use stiffid::design::{evaluate, random_group, Criterion};
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// use stiffid_design::::{evaluate, random_group, Criterion};
+/// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let e = evaluate(&setup, &random_group(&setup, 8, 1));
 /// let rms = e.relative_std.norm() / 6f64.sqrt();
 /// assert!((e.value(Criterion::RelativeA) - rms).abs() < 1e-12 * rms);
 /// let (low, high) = (e.predicted_deviation_pct[0], e.predicted_deviation_pct[3]);
 /// assert!((0..6).all(|j| (high[j] / low[j] - 2.0).abs() < 1e-12));
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn evaluate(setup: &Setup, postures: &[Vector6<f64>]) -> Evaluation {
     Evaluator::new(setup).evaluation(postures)

@@ -118,14 +118,14 @@ pub struct CellConstraints {
 /// # Examples
 /// A posture whose constraints all hold passes the exact checks.
 /// ```
-/// use stiffid::cell::Checker;
-/// use stiffid::design::search::cell_constraints;
-/// let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string()
+/// use stiffid_core::cell::Checker;
+/// use stiffid_design::search::cell_constraints;
+/// let text = stiffid_core::setup::builtin_text("zhang2021-comau-nj165")?.to_string()
 ///     + "[cell]\nfloor_z_mm = 0.0\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
-/// let setup = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))?;
+/// let setup = stiffid_core::setup::parse(&text, "cell.toml", |r, _| stiffid_core::robot::presets::get(r))?;
 /// let checker = Checker::new(&setup);
 /// let mut held = 0;
-/// for q in stiffid::design::random_group(&setup, 20, 1) {
+/// for q in stiffid_design::random_group(&setup, 20, 1) {
 ///     let c = cell_constraints(&checker, &q);
 ///     assert_eq!(c.values.len(), checker.kinds().len() - 1);
 ///     if c.values.iter().all(|v| *v <= 0.0) {
@@ -137,7 +137,7 @@ pub struct CellConstraints {
 /// assert!(held > 0);
 /// let lost = cell_constraints(&checker, &nalgebra::Vector6::repeat(f64::NAN));
 /// assert!(lost.values.iter().all(|v| *v == f64::INFINITY));
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn cell_constraints(checker: &Checker, q: &Vector6<f64>) -> CellConstraints {
     let kinds = kinds(checker);

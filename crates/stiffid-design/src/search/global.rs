@@ -46,14 +46,14 @@ use stiffid_core::Result;
 /// Two starts on the paper's setup: the same group with the same seed, and the evaluations of
 /// both starts counted.
 /// ```
-/// use stiffid::design::{global, Criterion, SearchOptions};
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// use stiffid_design::::{global, Criterion, SearchOptions};
+/// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let options = SearchOptions { starts: 2, polished: 1, max_evals: 150, ..SearchOptions::quick() };
 /// let a = global(&setup, Criterion::DOptimal, 8, &options, &())?;
 /// assert_eq!(a.postures.len(), 8);
 /// assert!(a.value < a.start_value);
 /// assert_eq!(a, global(&setup, Criterion::DOptimal, 8, &options, &())?);
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn global(
     setup: &Setup,

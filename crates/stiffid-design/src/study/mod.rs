@@ -177,15 +177,15 @@ pub struct Study {
 /// # Examples
 /// A small study on the paper's setup: 5 runs, 1 start per global search, no start-group check.
 /// ```
-/// use stiffid::study::{self, Options};
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// use stiffid_design::study::{self, Options};
+/// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let options = Options { runs: 5, seed: 1, starts: 1, trials: 0, ..Options::default() };
 /// let s = study::run(&setup, &options, &())?;
 /// assert_eq!(s.groups.len(), 5);
 /// assert_eq!(s.groups[2].name, "group3-zhang2021");
 /// let f = study::findings(&s);
 /// assert!(f.prediction_error.is_finite());
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn run(setup: &Setup, options: &Options, progress: &dyn Progress) -> Result<Study> {
     let started = std::time::Instant::now();

@@ -25,7 +25,7 @@ fn ranks(v: &[f64]) -> Vec<f64> {
 ///
 /// # Examples
 /// ```
-/// let rho = stiffid::study::spearman(&[1.0, 2.0, 3.0], &[30.0, 20.0, 10.0]);
+/// let rho = stiffid_design::study::spearman(&[1.0, 2.0, 3.0], &[30.0, 20.0, 10.0]);
 /// assert_eq!(rho, Some(-1.0));
 /// ```
 pub fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {

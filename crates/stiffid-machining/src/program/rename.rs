@@ -11,7 +11,7 @@ use super::Dialect;
 ///
 /// # Examples
 /// ```
-/// use stiffid::machining::program::{rename::renamed, Dialect};
+/// use stiffid_machining::program::{rename::renamed, Dialect};
 /// let krl = "&ACCESS RVP\nDEF pocket( )\n  PTP {A1 0}\nEND\n";
 /// assert_eq!(renamed(krl, Dialect::Krl, "pocket_c"), "&ACCESS RVP\nDEF pocket_c( )\n  PTP {A1 0}\nEND\n");
 /// let ls = "/PROG  POCKET\n/ATTR\n";

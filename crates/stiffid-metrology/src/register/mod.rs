@@ -264,7 +264,7 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Corresp
 /// # Examples
 /// ```
 /// use nalgebra::{Isometry3, Vector3};
-/// use stiffid::metrology::register::{fit, Correspondence};
+/// use stiffid_metrology::register::{fit, Correspondence};
 /// let truth = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.1, -0.2, 3.0));
 /// let tracker = [Vector3::zeros(), Vector3::x(), Vector3::y(), Vector3::new(0.3, 0.2, 1.0)];
 /// let points: Vec<_> = tracker

@@ -1,13 +1,29 @@
-//! The library's layout by pipeline stage (docs/ARCHITECTURE.md): at most 16 entries at the
-//! root of `src/`, no import circle between its top-level modules (a module's code, outside
-//! comments and tests, names `crate::OTHER` only for modules below it) nor between its files, no
-//! job folder of `app/` importing another, and no library file over 700 lines.
+//! The library's layout by concern (docs/ARCHITECTURE.md): crates that stand on each other
+//! without a circle, no import circle between the files of a crate (a folder's `mod.rs` and
+//! `lib.rs` included), no job folder of an `app/` importing another, no library file over 700
+//! lines, and each crate's public surface the one docs/ARCHITECTURE.md lists.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-fn src() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+/// The library crates, from the ground up, and this facade last.
+const CRATES: [&str; 8] = [
+    "stiffid-core",
+    "stiffid-view",
+    "stiffid-metrology",
+    "stiffid-identify",
+    "stiffid-design",
+    "stiffid-calibrate",
+    "stiffid-machining",
+    "stiffid",
+];
+
+fn crate_dir(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(name)
+}
+
+fn src_of(name: &str) -> PathBuf {
+    crate_dir(name).join("src")
 }
 
 /// The `.rs` files under `dir`, test modules left out.
@@ -25,54 +41,46 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The top-level modules a module's code names (`crate::NAME`), outside comments and
-/// `#[cfg(test)]` items (everything after the first is left out: test modules come last).
-fn imports(module: &Path, tops: &BTreeSet<String>) -> BTreeSet<String> {
-    let own = module.file_name().unwrap().to_string_lossy().into_owned();
-    let mut files = Vec::new();
-    sources(module, &mut files);
-    let mut found = BTreeSet::new();
-    for file in files {
-        let text = std::fs::read_to_string(&file).unwrap();
-        let code = text.split("#[cfg(test)]").next().unwrap();
-        for line in code.lines().filter(|l| !l.trim_start().starts_with("//")) {
-            for (at, _) in line.match_indices("crate::") {
-                let name: String = line[at + 7..]
-                    .chars()
-                    .take_while(|c| c.is_alphanumeric() || *c == '_')
-                    .collect();
-                if tops.contains(&name) && name != own {
-                    found.insert(name);
-                }
-            }
-            // `use crate::{a::.., b::..}`: every group member at the top.
-            if let Some(group) = line.trim_start().strip_prefix("use crate::{") {
-                for part in group.split(',') {
-                    let name = part.trim().split("::").next().unwrap_or("").to_string();
-                    if tops.contains(&name) && name != own {
-                        found.insert(name);
-                    }
-                }
-            }
-        }
-    }
-    found
-}
-
-fn top_modules() -> BTreeSet<String> {
-    std::fs::read_dir(src())
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.is_dir())
-        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+/// The library crates a crate's manifest depends on (`[dependencies]`, not the dev-dependencies).
+fn crate_dependencies(name: &str) -> BTreeSet<String> {
+    let manifest = std::fs::read_to_string(crate_dir(name).join("Cargo.toml")).unwrap();
+    let deps = (manifest
+        .split("\n[")
+        .find(|s| s.starts_with("dependencies]")))
+    .unwrap_or_default();
+    (deps.lines())
+        .filter_map(|l| l.split(['.', ' ', '=']).next())
+        .filter(|d| CRATES.contains(d))
+        .map(String::from)
         .collect()
 }
 
 #[test]
-fn the_root_holds_at_most_sixteen_entries() {
-    let entries = std::fs::read_dir(src()).unwrap().count();
-    assert!(entries <= 16, "{entries} entries at the library's root");
-    assert!(top_modules().len() >= 10, "the stages are directories");
+fn no_circle_between_crates() {
+    let graph: BTreeMap<String, BTreeSet<String>> = CRATES
+        .iter()
+        .map(|c| (c.to_string(), crate_dependencies(c)))
+        .collect();
+    assert!(graph["stiffid-core"].is_empty(), "{graph:?}");
+    assert!(
+        graph["stiffid-machining"].contains("stiffid-core"),
+        "{graph:?}"
+    );
+    assert_eq!(
+        graph["stiffid"].len(),
+        CRATES.len() - 1,
+        "the facade re-exports every crate"
+    );
+    if let Some(c) = circle(&graph) {
+        panic!("circle between crates: {}", c.join(" -> "));
+    }
+    // Each crate depends only on crates listed before it: the stack reads from the ground up.
+    for (at, name) in CRATES.iter().enumerate() {
+        for dep in &graph[*name] {
+            let below = CRATES[..at].contains(&dep.as_str());
+            assert!(below, "{name} depends on {dep}, listed above it");
+        }
+    }
 }
 
 /// A depth-first search for a circle in the import graph; returns one if there is any.
@@ -106,27 +114,6 @@ fn circle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
 }
 
 #[test]
-fn no_import_circle_between_top_level_modules() {
-    let tops = top_modules();
-    let graph: BTreeMap<String, BTreeSet<String>> = tops
-        .iter()
-        .map(|t| (t.clone(), imports(&src().join(t), &tops)))
-        .collect();
-    assert!(
-        graph["common"].is_empty(),
-        "common imports {:?}",
-        graph["common"]
-    );
-    assert!(graph["app"].len() > 5, "the jobs import the stages");
-    if let Some(c) = circle(&graph) {
-        panic!(
-            "import circle between top-level modules: {}",
-            c.join(" -> ")
-        );
-    }
-}
-
-#[test]
 fn a_circle_is_found() {
     let g = |edges: &[(&str, &str)]| {
         let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
@@ -148,27 +135,27 @@ fn a_circle_is_found() {
 
 /// Every library file: its path under `src/` and its code before the first `#[cfg(test)]`
 /// (test files, `tests.rs` and `tests/`, left out).
-fn library_files() -> Vec<(PathBuf, String)> {
+fn library_files(name: &str) -> Vec<(PathBuf, String)> {
     let mut files = Vec::new();
-    sources(&src(), &mut files);
+    sources(&src_of(name), &mut files);
     files.sort();
     files
         .into_iter()
         .map(|f| {
             let text = std::fs::read_to_string(&f).unwrap();
             let code = text.split("#[cfg(test)]").next().unwrap().to_string();
-            (f.strip_prefix(src()).unwrap().to_path_buf(), code)
+            (f.strip_prefix(src_of(name)).unwrap().to_path_buf(), code)
         })
         .collect()
 }
 
 #[test]
 fn no_library_file_is_over_700_lines() {
-    let long: Vec<String> = library_files()
-        .iter()
-        .map(|(f, code)| (f, code.lines().count()))
-        .filter(|(_, n)| *n > 700)
-        .map(|(f, n)| format!("{} ({n} lines)", f.display()))
+    let long: Vec<String> = (CRATES.iter())
+        .flat_map(|c| library_files(c).into_iter().map(move |f| (c, f)))
+        .map(|(c, (f, code))| (c, f, code.lines().count()))
+        .filter(|(_, _, n)| *n > 700)
+        .map(|(c, f, n)| format!("{c}/src/{} ({n} lines)", f.display()))
         .collect();
     assert!(long.is_empty(), "split by idea: {long:?}");
 }
@@ -258,8 +245,8 @@ fn expand(tree: &str) -> Vec<String> {
 /// a public re-export (`pub use`).
 type Module = (Vec<String>, Vec<(String, bool)>);
 
-fn modules() -> Vec<Module> {
-    library_files()
+fn modules(name: &str) -> Vec<Module> {
+    library_files(name)
         .into_iter()
         .map(|(file, code)| {
             let mut path: Vec<String> = (file.with_extension("").iter())
@@ -345,18 +332,19 @@ fn resolve(
     Some(at)
 }
 
-/// The import graph between library files: an edge from a file to every other file its code
-/// names an item of (through re-exports), a folder's `mod.rs` and the files in it excepted (a
-/// child extends its parent).
-fn file_graph() -> BTreeMap<String, BTreeSet<String>> {
-    let graph: BTreeMap<Vec<String>, Vec<(String, bool)>> = modules().into_iter().collect();
-    let related = |a: &[String], b: &[String]| a.starts_with(b) || b.starts_with(a);
+/// The import graph between the files of crate `name`: an edge from a file to every other file
+/// its code names an item of (through re-exports), a folder's `mod.rs` (and `lib.rs`) and the
+/// files in it included. A public re-export (`pub use`) is the module's face, not a use of it: it
+/// draws no edge of its own.
+fn file_graph(name: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let graph: BTreeMap<Vec<String>, Vec<(String, bool)>> = modules(name).into_iter().collect();
     graph
         .iter()
         .map(|(module, named)| {
             let to = (named.iter())
+                .filter(|(_, public)| !public)
                 .filter_map(|(p, _)| resolve(&graph, module, p, 0))
-                .filter(|t| !related(t, module))
+                .filter(|t| t != module)
                 .map(|t| t.join("/"))
                 .collect();
             (module.join("/"), to)
@@ -394,15 +382,25 @@ fn circles(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
 
 #[test]
 fn no_import_circle_between_files() {
-    let graph = file_graph();
+    let core = file_graph("stiffid-core");
+    assert!(core["cell/feasibility"].contains("cell/bodies"), "{core:?}");
+    let metrology = file_graph("stiffid-metrology");
     assert!(
-        graph["cell/feasibility"].contains("cell/bodies"),
-        "{graph:?}"
+        metrology["calibration/error_model/loads"].contains("calibration/error_model/parameter")
     );
-    assert!(graph["metrology/calibration/error_model/loads"]
-        .contains("metrology/calibration/error_model/parameter"));
-    let found = circles(&graph);
-    assert!(found.is_empty(), "import circles between files: {found:?}");
+    // A child naming its folder's `mod.rs` is an edge too.
+    let machining = file_graph("stiffid-machining");
+    assert!(
+        machining["program/krl"].contains("program"),
+        "{machining:?}"
+    );
+    for name in CRATES {
+        let found = circles(&file_graph(name));
+        assert!(
+            found.is_empty(),
+            "import circles between the files of {name}: {found:?}"
+        );
+    }
 }
 
 #[test]
@@ -435,76 +433,124 @@ fn file_circles_are_found() {
 
 /// The job folder a library file belongs to (`app/<job>/...`), `None` outside one: `app/document`
 /// and the files directly in `app/` are what the jobs share.
-fn job_folder(file: &str) -> Option<&str> {
+fn job_folder<'a>(name: &str, file: &'a str) -> Option<&'a str> {
     let mut parts = file.split('/');
     let (Some("app"), Some(job)) = (parts.next(), parts.next()) else {
         return None;
     };
-    (job != "document" && src().join("app").join(job).is_dir()).then_some(job)
+    (job != "document" && src_of(name).join("app").join(job).is_dir()).then_some(job)
+}
+
+/// The job folders of other crates that a file's code names (`stiffid_design::app::select`).
+fn other_jobs(code: &str) -> Vec<String> {
+    let code = strip(code);
+    let mut found = Vec::new();
+    for name in CRATES {
+        let root = format!("{}::app::", name.replace('-', "_"));
+        for (at, _) in code.match_indices(&root) {
+            let job: String = (code[at + root.len()..].chars())
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            if job_folder(name, &format!("app/{job}")).is_some() {
+                found.push(format!("{name}: {job}"));
+            }
+        }
+    }
+    found
 }
 
 #[test]
 fn no_job_folder_imports_another() {
-    let graph = file_graph();
-    let crossing: Vec<String> = (graph.iter())
-        .flat_map(|(from, to)| to.iter().map(move |t| (from, t)))
-        .filter_map(|(from, to)| match (job_folder(from), job_folder(to)) {
-            (Some(a), Some(b)) if a != b => Some(format!("{from} -> {to}")),
-            _ => None,
-        })
-        .collect();
+    let mut crossing = Vec::new();
+    for name in CRATES {
+        let graph = file_graph(name);
+        crossing.extend(
+            (graph.iter())
+                .flat_map(|(from, to)| to.iter().map(move |t| (from, t)))
+                .filter_map(
+                    |(from, to)| match (job_folder(name, from), job_folder(name, to)) {
+                        (Some(a), Some(b)) if a != b => Some(format!("{name}: {from} -> {to}")),
+                        _ => None,
+                    },
+                ),
+        );
+        for (file, code) in library_files(name) {
+            let file = file.with_extension("").to_string_lossy().into_owned();
+            if job_folder(name, &file).is_some() {
+                let jobs = other_jobs(&code);
+                crossing.extend(jobs.into_iter().map(|j| format!("{name}: {file} -> {j}")));
+            }
+        }
+    }
+    let design = file_graph("stiffid-design");
     assert!(
-        graph["app/plan/document"]
-            .iter()
-            .any(|t| t.starts_with("app/document")),
-        "{graph:?}"
+        (design["app/plan/document"].iter()).any(|t| t.starts_with("app/document")),
+        "{design:?}"
     );
     assert!(
         crossing.is_empty(),
-        "move what jobs share to app/document: {crossing:#?}"
+        "move what jobs share to an app/document: {crossing:#?}"
     );
-    assert_eq!(job_folder("app/select/document"), Some("select"));
-    assert_eq!(job_folder("app/select"), Some("select"));
-    assert_eq!(job_folder("app/document/scene"), None);
-    assert_eq!(job_folder("app/readings"), None);
+    assert_eq!(
+        job_folder("stiffid-design", "app/select/document"),
+        Some("select")
+    );
+    assert_eq!(job_folder("stiffid-design", "app/select"), Some("select"));
+    assert_eq!(job_folder("stiffid-core", "app/document/mass"), None);
+    assert_eq!(job_folder("stiffid-metrology", "app/readings"), None);
+    assert_eq!(
+        other_jobs("use stiffid_core::app::predict::Request;"),
+        ["stiffid-core: predict"]
+    );
 }
 
-/// The names `lib.rs` makes public at the crate's root: its `pub mod` modules and the items of
-/// its `pub use` lines.
+/// The names `lib.rs` makes public at the crate's root: its `pub mod` modules, the items of its
+/// `pub use` lines and the items it defines `pub` (functions, types, traits, constants).
 fn public_surface(lib: &str) -> BTreeSet<String> {
     let code = strip(lib);
     let mut names = BTreeSet::new();
-    for statement in code.split(';') {
-        // From the line the statement starts on (attributes and blank lines before it left out).
-        let at = (statement.match_indices('\n').map(|(i, _)| i + 1))
-            .chain([0])
-            .filter(|&i| statement[i..].trim_start().starts_with("pub "))
-            .min()
-            .unwrap_or(statement.len());
-        let statement = statement[at..].trim();
-        if let Some(module) = statement.strip_prefix("pub mod ") {
-            names.insert(module.trim().to_string());
-        } else if let Some(tree) = statement.strip_prefix("pub use ") {
-            for path in expand(tree) {
-                let name = path.rsplit("::").next().unwrap_or("").trim();
-                names.insert(name.to_string());
+    let word = |s: &str| -> String {
+        (s.chars())
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let starts = (code.match_indices('\n').map(|(i, _)| i + 1)).chain([0]);
+    for at in starts {
+        // Items compiled only as doctests are no part of the surface.
+        let doctest = code[..at].trim_end().ends_with("#[cfg(doctest)]");
+        let Some(rest) = code[at..].strip_prefix("pub ").filter(|_| !doctest) else {
+            continue;
+        };
+        if let Some(tree) = rest.strip_prefix("use ") {
+            let end = tree.find(';').unwrap_or(tree.len());
+            for path in expand(&tree[..end]) {
+                names.insert(path.rsplit("::").next().unwrap_or("").trim().to_string());
+            }
+            continue;
+        }
+        for kind in [
+            "mod ", "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ",
+        ] {
+            if let Some(name) = rest.strip_prefix(kind) {
+                names.insert(word(name));
             }
         }
     }
     names
 }
 
-/// The names listed in `docs/ARCHITECTURE.md`'s section "Public surface": every `stiffid::NAME`
-/// that starts a list line.
-fn listed_surface(architecture: &str) -> BTreeSet<String> {
+/// The names listed in `docs/ARCHITECTURE.md`'s section "Public surface" for crate `krate`
+/// (`stiffid_core`): every `` `krate::NAME` `` that starts a list line.
+fn listed_surface(architecture: &str, krate: &str) -> BTreeSet<String> {
     let section = (architecture.split("\n## "))
         .find(|s| s.starts_with("Public surface"))
         .expect("docs/ARCHITECTURE.md has a section 'Public surface'");
     let mut names = BTreeSet::new();
+    let start = format!("`{krate}::");
     for line in section.lines().filter(|l| l.starts_with("- ")) {
         let head = line.split("`: ").next().unwrap_or("");
-        for (at, _) in head.match_indices("`stiffid::") {
-            let name: String = (head[at + 10..].chars())
+        for (at, _) in head.match_indices(&start) {
+            let name: String = (head[at + start.len()..].chars())
                 .take_while(|c| c.is_alphanumeric() || *c == '_')
                 .collect();
             names.insert(name);
@@ -515,26 +561,34 @@ fn listed_surface(architecture: &str) -> BTreeSet<String> {
 
 #[test]
 fn the_public_surface_is_the_one_architecture_lists() {
-    let lib = std::fs::read_to_string(src().join("lib.rs")).unwrap();
     let architecture =
-        std::fs::read_to_string(src().join("../../../docs/ARCHITECTURE.md")).unwrap();
-    let (public, listed) = (public_surface(&lib), listed_surface(&architecture));
-    assert!(
-        public.contains("app") && public.contains("Setup"),
-        "{public:?}"
-    );
-    assert!(public.len() >= 20, "{public:?}");
-    assert_eq!(
-        public, listed,
-        "lib.rs's pub mod and pub use against docs/ARCHITECTURE.md's 'Public surface'"
-    );
+        std::fs::read_to_string(crate_dir("stiffid").join("../../docs/ARCHITECTURE.md")).unwrap();
+    for name in CRATES {
+        let lib = std::fs::read_to_string(src_of(name).join("lib.rs")).unwrap();
+        let krate = name.replace('-', "_");
+        let (public, listed) = (public_surface(&lib), listed_surface(&architecture, &krate));
+        assert!(!public.is_empty(), "{name}");
+        assert_eq!(
+            public, listed,
+            "{name}'s lib.rs (pub mod, pub use) against docs/ARCHITECTURE.md's 'Public surface'"
+        );
+    }
+    let core =
+        public_surface(&std::fs::read_to_string(src_of("stiffid-core").join("lib.rs")).unwrap());
+    assert!(core.contains("app") && core.contains("Setup"), "{core:?}");
     // The parsers themselves.
-    let lib =
-        "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\n";
+    let lib = "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\npub fn e() {}\nimpl X {\n    pub fn inner() {}\n}\npub struct F;\n#[cfg(doctest)]\npub struct G;\n";
     assert_eq!(
         public_surface(lib),
-        ["B", "D", "a"].map(String::from).into()
+        ["B", "D", "F", "a", "e"].map(String::from).into()
     );
-    let doc = "# A\n## Public surface\n\n- `stiffid::a`, `stiffid::B`: x `stiffid::no`\n## Next\n- `stiffid::c`: y\n";
-    assert_eq!(listed_surface(doc), ["B", "a"].map(String::from).into());
+    let doc = "# A\n## Public surface\n\n- `stiffid::a`, `stiffid::B`: x `stiffid::no`\n- `stiffid_core::d`: z\n## Next\n- `stiffid::c`: y\n";
+    assert_eq!(
+        listed_surface(doc, "stiffid"),
+        ["B", "a"].map(String::from).into()
+    );
+    assert_eq!(
+        listed_surface(doc, "stiffid_core"),
+        ["d"].map(String::from).into()
+    );
 }

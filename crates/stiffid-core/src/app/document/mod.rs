@@ -19,7 +19,6 @@ pub mod transform;
 /// The JSON Schemas of the documents' fields that hold one of a choice's names.
 #[cfg(feature = "schema")]
 pub mod schema {
-    //! JSON Schemas of the documents' named choices.
     use crate::common::choice::{names, Choice};
     use schemars::{json_schema, Schema};
 

@@ -28,7 +28,7 @@ pub struct Document {
     pub characteristic_length_mm: f64,
     /// Where it comes from: `given`, or `derived` from the robot (the length minimising the
     /// point's median dexterity over the joint limits,
-    /// `stiffid::setup::prior::robot_characteristic_length`).
+    /// `stiffid_core::setup::prior::robot_characteristic_length`).
     pub characteristic_length_source: &'static str,
     /// The point of the Jacobian, flange frame, mm.
     pub point_mm: [f64; 3],
@@ -61,7 +61,7 @@ pub struct Document {
     /// The external axes' values, in the cell's order (empty for a robot without external
     /// axes).
     pub external: Vec<ExternalValue>,
-    /// The Jacobian columns of the external axes (`stiffid::app::kinematics`, module docs):
+    /// The Jacobian columns of the external axes (`stiffid_core::app::kinematics`, module docs):
     /// row-major, 6 rows vx, vy, vz (m/m or m/rad), wx, wy, wz (0 or rad/rad) of one column per
     /// external axis in the cell's order: the tool point's velocity relative to the part, cell
     /// frame; `null` without external axes.

@@ -13,7 +13,7 @@ use crate::{Error, Result};
 /// # Examples
 /// ```
 /// use nalgebra::Vector6;
-/// use stiffid::common::limits::JointBox;
+/// use stiffid_core::common::limits::JointBox;
 ///
 /// let limits = JointBox::new(Vector6::repeat(-1.0), Vector6::repeat(1.0));
 /// let q = Vector6::new(0.0, 0.5, 1.5, 0.0, 0.0, 0.0);

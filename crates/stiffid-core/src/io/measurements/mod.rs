@@ -79,15 +79,15 @@ pub struct MeasurementFile {
 /// # Examples
 /// The FANUC R-2000iC/165F data of the repository, turned into the base frame of its setup:
 /// ```
-/// use stiffid::io::measurements;
+/// use stiffid_core::io::measurements;
 /// let text = include_str!(concat!(
 ///     env!("CARGO_MANIFEST_DIR"),
 ///     "/../../examples/data/fanuc-r2000ic-165f/measurements.csv"
 /// ));
 /// let mut file = measurements::parse(text)?;
 /// assert_eq!((file.measurements.len(), file.labels.len()), (43, 43));
-/// file.to_base_frame(&stiffid::setup::builtin("fanuc-r2000ic-165f")?)?;
-/// # Ok::<(), stiffid::Error>(())
+/// file.to_base_frame(&stiffid_core::setup::builtin("fanuc-r2000ic-165f")?)?;
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn parse(text: &str) -> Result<MeasurementFile> {
     let mut reader = Reader::new(text.as_bytes())?;

@@ -203,8 +203,8 @@ pub fn has_load_column(header_line: &str) -> bool {
 ///
 /// # Examples
 /// ```
-/// use stiffid::io::readings;
-/// let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+/// use stiffid_core::io::readings;
+/// let robot = stiffid_core::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
 /// let text = format!("{}\nA,1,0,0,-90,0,0,0,1000,2000,300\n", readings::header());
 /// let r = readings::parse(&text, &robot, 4).unwrap();
 /// assert_eq!((r.readings[0].point, r.readings[0].position.x), (0, 1.0));

@@ -15,7 +15,7 @@ use nalgebra::{DMatrix, Matrix6};
 /// # Examples
 /// ```
 /// use nalgebra::Matrix6;
-/// use stiffid::io::stiffness::check_covariance;
+/// use stiffid_core::io::stiffness::check_covariance;
 /// assert!(check_covariance(&Matrix6::from_diagonal_element(1e-14)).is_ok());
 /// assert!(check_covariance(&Matrix6::from_diagonal_element(-1e-14)).is_err());
 /// ```

@@ -233,8 +233,8 @@ const EXPECTED: &str = "JSON with the key parameters (name, kind, unit, stiffnes
 /// # Examples
 /// ```
 /// let text = r#"{"setup": "any", "stiffness_nm_per_rad": [9.5e5, 3e6, 9e5, 2.5e5, 2e5, 1.5e5]}"#;
-/// let file = stiffid::io::stiffness::parse(text).unwrap();
-/// let model = stiffid::model::Model::default();
+/// let file = stiffid_core::io::stiffness::parse(text).unwrap();
+/// let model = stiffid_core::model::Model::default();
 /// let c = file.compliance(&model).unwrap();
 /// assert_eq!(c.h[1], 1.0 / 3e6);
 /// assert!(c.covariance.is_none());

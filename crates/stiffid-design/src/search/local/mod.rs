@@ -51,14 +51,14 @@ const PENALTY: f64 = 1e3;
 /// From a seeded start group of 8 postures on the paper's setup, SQP on `relative-a` ends lower,
 /// within the bounds.
 /// ```
-/// use stiffid::design::{local, random_group, Criterion, SearchOptions};
-/// let setup = stiffid::setup::builtin("zhang2021-comau-nj165")?;
+/// use stiffid_design::::{local, random_group, Criterion, SearchOptions};
+/// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let start = random_group(&setup, 8, 1);
 /// let options = SearchOptions { max_evals: 200, ..SearchOptions::default() };
 /// let out = local(&setup, Criterion::RelativeA, &start, &options)?;
 /// assert!(out.value < out.start_value);
 /// assert!(out.postures.iter().all(|q| setup.bounds().contains(q)));
-/// # Ok::<(), stiffid::Error>(())
+/// # Ok::<(), stiffid_core::Error>(())
 /// ```
 pub fn local(
     setup: &Setup,

@@ -55,9 +55,9 @@
 //! # Example
 //! ```
 //! use nalgebra::{Isometry3, Vector3, Vector6};
-//! use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
-//! use stiffid::metrology::calibration::error_model::MeasuredIn;
-//! use stiffid::robot::presets;
+//! use stiffid_metrology::calibration::{gravity, ErrorModel, Geometry};
+//! use stiffid_metrology::calibration::error_model::MeasuredIn;
+//! use stiffid_core::robot::presets;
 //! let robot = presets::get("fanuc-r2000ic-165f")?;
 //! let points = vec![Vector3::new(0.1, 0.0, 0.2), Vector3::new(-0.1, 0.05, 0.2)];
 //! let model = ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full,
@@ -68,7 +68,7 @@
 //! assert_eq!(j.shape(), (3, model.parameters().len()));
 //! let p = &model.parameters()[6 + 3 * 2];       // after the frame and the points
 //! assert_eq!((p.name.as_str(), p.unit()), ("joint1.theta", "deg"));
-//! # Ok::<(), stiffid::Error>(())
+//! # Ok::<(), stiffid_core::Error>(())
 //! ```
 
 mod basis;

@@ -135,7 +135,7 @@ pub struct Document {
     /// With cross-validation: the cross-validation over postures.
     pub cross_validation: Option<CrossValidation>,
     /// With raw readings under load steps: each posture's linearity, zero-load offset and
-    /// hysteresis (`stiffid::identify::steps`).
+    /// hysteresis (`stiffid_identify::steps`).
     pub load_steps: Option<Vec<LoadStep>>,
     /// With offsets fitted beside the compliances: one per posture and measuring point.
     pub offsets: Option<Vec<PointOffset>>,
