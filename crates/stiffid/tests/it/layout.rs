@@ -522,8 +522,13 @@ fn public_surface(lib: &str) -> BTreeSet<String> {
             continue;
         };
         if let Some(tree) = rest.strip_prefix("use ") {
-            let end = tree.find(';').unwrap_or(tree.len());
-            for path in expand(&tree[..end]) {
+            let tree = &tree[..tree.find(';').unwrap_or(tree.len())];
+            // `pub use a::b as c;`: the name is the alias.
+            if let (false, Some((_, alias))) = (tree.contains('{'), tree.split_once(" as ")) {
+                names.insert(alias.trim().to_string());
+                continue;
+            }
+            for path in expand(tree) {
                 names.insert(path.rsplit("::").next().unwrap_or("").trim().to_string());
             }
             continue;
@@ -577,10 +582,10 @@ fn the_public_surface_is_the_one_architecture_lists() {
         public_surface(&std::fs::read_to_string(src_of("stiffid-core").join("lib.rs")).unwrap());
     assert!(core.contains("app") && core.contains("Setup"), "{core:?}");
     // The parsers themselves.
-    let lib = "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\npub fn e() {}\nimpl X {\n    pub fn inner() {}\n}\npub struct F;\n#[cfg(doctest)]\npub struct G;\n";
+    let lib = "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\npub fn e() {}\nimpl X {\n    pub fn inner() {}\n}\npub struct F;\n#[cfg(doctest)]\npub struct G;\npub use h as i;\n";
     assert_eq!(
         public_surface(lib),
-        ["B", "D", "F", "a", "e"].map(String::from).into()
+        ["B", "D", "F", "a", "e", "i"].map(String::from).into()
     );
     let doc = "# A\n## Public surface\n\n- `stiffid::a`, `stiffid::B`: x `stiffid::no`\n- `stiffid_core::d`: z\n## Next\n- `stiffid::c`: y\n";
     assert_eq!(
