@@ -91,11 +91,21 @@ enum Command {
 /// Runs the command on the process's arguments: the exit code (0 success, 2 bad input with one
 /// `error:` line on stderr). The binary calls it once the standard streams are checked.
 pub fn run() -> ExitCode {
+    ExitCode::from(run_from(std::env::args_os()))
+}
+
+/// Runs the command on `args` (the program's name first, as `std::env::args_os` gives it): the
+/// exit code of [`run`] as a number. The Python package's `stiffid` script calls it with `sys.argv`.
+pub fn run_from<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
     if let Err(message) = stiffid::common::threads::start() {
-        return fail(&message);
+        return report(&message);
     }
     let cli = match command()
-        .try_get_matches()
+        .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m))
     {
         Ok(cli) => cli,
@@ -103,13 +113,13 @@ pub fn run() -> ExitCode {
         Err(e) => {
             // --help, --version: their text on stdout.
             return match output::print(&e.render().to_string()) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => fail(&output::one_line_chain(&e)),
+                Ok(()) => 0,
+                Err(e) => report(&output::one_line_chain(&e)),
             };
         }
     };
     if cli.package_path.len() > stiffid::setup::MAX_PACKAGE_PATHS {
-        return fail(&format!(
+        return report(&format!(
             "--package-path: {} given, at most {}",
             cli.package_path.len(),
             stiffid::setup::MAX_PACKAGE_PATHS
@@ -139,10 +149,10 @@ pub fn run() -> ExitCode {
         Command::Schema(args) => commands::schema::run(&args),
     };
     match result.and_then(|()| output::staged::commit()) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         Err(e) => {
             output::staged::discard();
-            fail(&(output::one_line_chain(&e) + hint(&e)))
+            report(&(output::one_line_chain(&e) + hint(&e)))
         }
     }
 }
@@ -181,7 +191,7 @@ fn command() -> clap::Command {
 
 /// A usage error of the command line, whole as clap words it (the missing arguments, the similar
 /// option, the usage line), on the one `error: ` line every error gets; exit code 2.
-fn usage_error(e: &clap::Error) -> ExitCode {
+fn usage_error(e: &clap::Error) -> u8 {
     let text = e.render().to_string();
     let mut line = String::new();
     for part in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
@@ -190,7 +200,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
         }
         line += part;
     }
-    fail(&line)
+    report(&line)
 }
 
 /// Prints `message` as one `error: ` line on stderr (long words cut) and returns exit code 2. A
@@ -212,9 +222,14 @@ fn hint(e: &anyhow::Error) -> &'static str {
 
 /// Prints `error: MESSAGE` (one line) on stderr: exit code 2.
 pub fn fail(message: &str) -> ExitCode {
+    ExitCode::from(report(message))
+}
+
+/// Prints `error: MESSAGE` (one line) on stderr and returns exit code 2.
+fn report(message: &str) -> u8 {
     use std::io::Write;
     let message = message.strip_prefix("error: ").unwrap_or(message);
     let line = output::one_line(message);
     let _ = writeln!(std::io::stderr().lock(), "error: {line}");
-    ExitCode::from(2)
+    2
 }
