@@ -145,3 +145,56 @@ fn the_examples_documents_changed_only_by_kind_and_the_renamed_keys() {
     // A comparison that can fail: the documents hold renamed keys.
     assert!(renames >= 4, "{renames}");
 }
+
+/// The options renamed: the old spelling is refused (exit code 2, one line) naming the new one,
+/// where `--postures` still means a postures file it is read as one.
+#[test]
+fn the_old_spellings_are_refused_naming_the_new_ones() {
+    let cell = crate::common::example("cell/zhang2021-tracker.toml");
+    let milling = crate::common::example("milling/fanuc-milling.toml");
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &[
+                "select",
+                "--setup",
+                &cell,
+                "--start-random",
+                "--postures",
+                "6",
+                "--out",
+                "x.csv",
+            ],
+            "--postures: renamed --count in `stiffid select`",
+        ),
+        (
+            &["register", "--setup", &cell, "--postures=3"],
+            "--postures: renamed --count in `stiffid register`",
+        ),
+        (
+            &[
+                "compensate",
+                "--setup",
+                &milling,
+                "--force-tolerance-percent",
+                "10",
+            ],
+            "--force-tolerance-percent: renamed --force-tolerance-pct in `stiffid compensate`",
+        ),
+        (
+            &[
+                "place",
+                "--setup",
+                &milling,
+                "--force-tolerance-percent",
+                "10",
+            ],
+            "--force-tolerance-percent: renamed --force-tolerance-pct in `stiffid place`",
+        ),
+    ];
+    for (args, message) in cases {
+        crate::common::assert_usage_error(&crate::common::stiffid(args), &[message]);
+    }
+    let group = crate::common::example("cell/feasible-relative-a.csv");
+    let evaluate = crate::common::stiffid(&["evaluate", "--setup", &cell, "--postures", &group]);
+    crate::common::assert_success(&evaluate);
+}
