@@ -1,5 +1,7 @@
 //! The `stiffid` command: robot kinematics, joint stiffness identification, posture selection
-//! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
+//! and the paper's study. Bad input prints one line naming the file, line or field and exits 2;
+//! a gate the result fails (`compensate --max-error-mm`, `calibrate --update`'s drift check)
+//! prints one line and exits 1.
 //!
 //! The command's code is this library, and `main.rs` only checks the standard streams and calls
 //! [`run`]: a library crate is compiled as soon as the `stiffid` library's metadata is ready,
@@ -11,6 +13,7 @@ mod feasibility;
 mod load;
 mod output;
 mod progress;
+mod renamed;
 mod report;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -22,7 +25,7 @@ use std::process::ExitCode;
     name = "stiffid",
     version,
     about,
-    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; docs/reference.md, 'Limits and safety', lists them all."
+    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. A gate the result fails (--max-error-mm, calibrate --update's drift check): one 'error:' line, exit code 1. Every count option states its limit in its help; docs/reference.md, 'Limits and safety', lists them all."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -104,6 +107,13 @@ where
     if let Err(message) = stiffid::common::threads::start() {
         return report(&message);
     }
+    let args: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
+    let words: Vec<String> = (args.iter().skip(1))
+        .filter_map(|a| a.to_str().map(str::to_owned))
+        .collect();
+    if let Some(message) = renamed::refused(&words) {
+        return report(&message);
+    }
     let cli = match command()
         .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m))
@@ -152,8 +162,20 @@ where
         Ok(()) => 0,
         Err(e) => {
             output::staged::discard();
-            report(&(output::one_line_chain(&e) + hint(&e)))
+            let message = output::one_line_chain(&e) + hint(&e);
+            report_with(&message, exit_code(&e))
         }
+    }
+}
+
+/// The exit code of a failed run: 1 for a gate the user set that the result failed
+/// ([`stiffid::Error::is_gate`]: `compensate --max-error-mm`, `calibrate --update`'s drift
+/// check), 2 for every other error (bad input, no answer).
+fn exit_code(e: &anyhow::Error) -> u8 {
+    let error = e.chain().find_map(|c| c.downcast_ref::<stiffid::Error>());
+    match error.is_some_and(stiffid::Error::is_gate) {
+        true => 1,
+        false => 2,
     }
 }
 
@@ -227,9 +249,14 @@ pub fn fail(message: &str) -> ExitCode {
 
 /// Prints `error: MESSAGE` (one line) on stderr and returns exit code 2.
 fn report(message: &str) -> u8 {
+    report_with(message, 2)
+}
+
+/// Prints `error: MESSAGE` (one line) on stderr and returns `code`.
+fn report_with(message: &str, code: u8) -> u8 {
     use std::io::Write;
     let message = message.strip_prefix("error: ").unwrap_or(message);
     let line = output::one_line(message);
     let _ = writeln!(std::io::stderr().lock(), "error: {line}");
-    2
+    code
 }

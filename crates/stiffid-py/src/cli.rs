@@ -6,7 +6,7 @@ use pyo3::prelude::*;
 use std::ffi::OsString;
 
 /// Runs the `stiffid` command on `argv` (the program's name first, as `sys.argv`) and ends the
-/// process with its exit code (0 success, 2 bad input), as the binary does. It never returns: the
+/// process with its exit code (0 success, 1 a gate the result failed, 2 bad input), as the binary does. It never returns: the
 /// command owns the process from here (its outputs are flushed by the exit).
 #[pyfunction]
 pub fn _cli(py: Python<'_>, argv: Vec<OsString>) -> PyResult<()> {

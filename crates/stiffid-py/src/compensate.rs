@@ -41,7 +41,7 @@ use stiffid::observation::deflection::Frame;
 /// (``objective="sum"``) or at its worst point (``"max"``). Every point's error budget at
 /// ``level``: ``bound_mm`` (``(n,)``) and its parts ``bound_left_mm``,
 /// ``bound_compensation_mm``, ``bound_calibration_mm``, ``bound_force_mm`` (the force model's
-/// relative error ``force_tolerance_percent``) and ``bound_model_form_mm`` (``(n,)``, ``nan``
+/// relative error ``force_tolerance_pct``) and ``bound_model_form_mm`` (``(n,)``, ``nan``
 /// where absent); ``max_error_mm`` refuses (``ValueError``) a path whose bound exceeds it
 /// anywhere, naming its worst points and what dominates their bound. On a robot on a track,
 /// ``free_station_mm=R`` moves the track up to ``+-R`` mm from a path file's own ``e1_mm`` at
@@ -106,7 +106,7 @@ use stiffid::observation::deflection::Frame;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, refine=0, free_configuration=false, configuration_per="program", figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, refine=0, free_configuration=false, configuration_per="program", figures=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -130,7 +130,7 @@ pub fn compensate<'py>(
     moves_per_file: i64,
     level: f64,
     max_error_mm: Option<f64>,
-    force_tolerance_percent: f64,
+    force_tolerance_pct: f64,
     objective: &str,
     map: Option<&Bound<'py, PyAny>>,
     free_station_mm: Option<f64>,
@@ -161,7 +161,7 @@ pub fn compensate<'py>(
     let mut options = options(py, s, q0_deg, free, free_tool_axis_objective)?;
     options.level = level;
     options.max_error = max_error_mm.map(|m| m * 1e-3);
-    options.force_tolerance = force_tolerance_percent / 100.0;
+    options.force_tolerance = force_tolerance_pct / 100.0;
     (options.map, options.map_over) = map_over(map)?;
     options.feasible.margin = margin_deg.to_radians();
     options.feasible.max_condition = max_condition;

@@ -32,11 +32,11 @@ use stiffid::observation::deflection::Frame;
 /// placements (``seed``) and ``starts`` local searches: the same ``seed``, the same placement.
 /// Returns the document of ``stiffid place --json`` (``placed``, ``own``, ``reach_only``: each
 /// with ``xyz_mm``, ``rpy_deg``, ``peak_bound_mm``, ``mean_bound_mm``, ``worst_line``,
-/// ``min_limit_margin_deg``, ``max_condition``, ``min_clearance_mm``; ``gain_vs_own_percent``,
-/// ``gain_vs_reach_only_percent``, ``evaluations``) and ``setup_text``: the setup file's text
+/// ``min_limit_margin_deg``, ``max_condition``, ``min_clearance_mm``; ``gain_vs_own_pct``,
+/// ``gain_vs_reach_only_pct``, ``evaluations``) and ``setup_text``: the setup file's text
 /// with the chosen ``[workpiece]``, as ``stiffid place --out`` writes it.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_percent=20.0, q0_deg=None))]
+#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_pct=20.0, q0_deg=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn place<'py>(
     py: Python<'py>,
@@ -60,7 +60,7 @@ pub fn place<'py>(
     starts: i64,
     chord_tolerance_mm: f64,
     level: f64,
-    force_tolerance_percent: f64,
+    force_tolerance_pct: f64,
     q0_deg: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let setup_text = error::read(&setup)?;
@@ -69,7 +69,7 @@ pub fn place<'py>(
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let mut options = crate::compensate::options(py, s, q0_deg, None, None)?;
     options.level = level;
-    options.force_tolerance = force_tolerance_percent / 100.0;
+    options.force_tolerance = force_tolerance_pct / 100.0;
     let (read, parsed, points);
     let work = match (&program, &process, &path) {
         (Some(program), Some(process_path), None) => {

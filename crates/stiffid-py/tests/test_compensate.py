@@ -98,7 +98,7 @@ def test_the_error_budget_equals_the_command_and_refuses_above_the_largest_error
     np.testing.assert_allclose(mine["bound_force_mm"], 0.2 * np.linalg.norm(mine["deflection_mm"], axis=1), rtol=1e-12)
     worst = mine["document"]["summary"]["budget"]["max_bound_mm"]
     assert worst == pytest.approx(mine["bound_mm"].max(), rel=1e-12)
-    with pytest.raises(ValueError, match=r"max_error_mm: .*the worst points: line \d+: .* mostly \w+"):
+    with pytest.raises(stiffid.GateError, match=r"max_error_mm: .*the worst points: line \d+: .* mostly \w+"):
         stiffid.compensate(milling, PATH, STIFFNESS, max_error_mm=worst / 2)
     assert stiffid.compensate(milling, PATH, STIFFNESS, max_error_mm=worst * 2)["bound_mm"].max() == pytest.approx(worst)
 

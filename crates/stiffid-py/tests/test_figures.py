@@ -51,10 +51,13 @@ def test_identification_figures_are_the_reports(fanuc, cli, tmp_path):
 
 
 def test_other_documents_are_refused():
-    with pytest.raises(stiffid.InputError, match="document: not an identify document"):
-        stiffid.figures({"setup": "x"})
+    # Which document it is, its `kind` says: no guess from its keys.
+    with pytest.raises(stiffid.InputError, match="document: its `kind` is \"\""):
+        stiffid.figures({"setup": "x", "errors": [], "geometry": "full"})
+    with pytest.raises(stiffid.InputError, match="document: its `kind` is \"predict\""):
+        stiffid.figures({"kind": "predict", "residuals": []})
     with pytest.raises(stiffid.InputError, match="is not part of a document"):
-        stiffid.figures({"errors": [object()], "geometry": "full"})
+        stiffid.figures({"kind": "calibrate", "errors": [object()], "geometry": "full"})
 
 
 def report_figures(directory):
@@ -67,7 +70,7 @@ def test_plan_figures_are_the_reports(cli, tmp_path):
     postures drawn are the document's (one numbered label per posture)."""
     (tmp_path / "cell.toml").write_text(CELL)
     cell = stiffid.Setup.from_file(tmp_path / "cell.toml")
-    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--postures", 6)
+    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--count", 6)
     figures = stiffid.figures(plan, setup=cell)
     assert list(figures) == ["postures"] + [f"posture_{i:02}" for i in range(1, 7)]
     assert figures == report_figures(tmp_path / "plan")

@@ -53,7 +53,7 @@ def test_predict_gives_the_commands_modes_and_surge(tmp_path, cli):
 
 def test_masses_known_to_a_percentage_widen_the_surge_as_the_command_says(tmp_path, cli):
     path = files(tmp_path)
-    path.write_text(path.read_text() + "\n[masses]\nsd_percent = 10\n")
+    path.write_text(path.read_text() + "\n[masses]\nsd_pct = 10\n")
     setup = stiffid.Setup.from_file(path)
     doc = stiffid.predict(setup, Q, [200, -100, -1500, 0, 0, 0])
     command = cli("predict", "--setup", path, "--q-deg", ",".join(map(str, Q)), "--wrench", "200,-100,-1500", "--json")

@@ -185,7 +185,7 @@ pub struct Args {
     /// consecutive points, and the grid's spacing, deg (0.01 <= value <= --free-tilt-deg).
     #[arg(long, default_value_t = 5.0, requires = "free_tilt_deg")]
     tilt_step_deg: f64,
-    /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
+    /// Refuse (a failed gate: exit 1, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
     #[arg(long)]
@@ -201,7 +201,7 @@ pub struct Args {
     /// The process force model's relative error in the error budget, percent (0 to 100): the
     /// bound's force part is this share of the deflection.
     #[arg(long, default_value_t = 20.0)]
-    force_tolerance_percent: f64,
+    force_tolerance_pct: f64,
     /// With --free-tool-axis: the largest change of that rotation between consecutive points, deg
     /// (0 < value <= 90).
     #[arg(long, default_value_t = 2.0, requires = "free_tool_axis")]
@@ -441,7 +441,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     stiffid::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
-    options.force_tolerance = args.force_tolerance_percent / 100.0;
+    options.force_tolerance = args.force_tolerance_pct / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);
     options.map = args.map.is_some();
     options.map_over = args.map.unwrap_or_default();
@@ -560,7 +560,7 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             o.objective,
             f.mean_deflection_before_mm,
             f.mean_deflection_after_mm,
-            f.mean_change_percent,
+            f.mean_change_pct,
         );
     }
     if let Some(l) = &d.free_lead_tilt {
@@ -647,7 +647,7 @@ fn dynamics_line(o: &OperationDynamics) -> String {
         line += &format!("first natural frequency {lo:.1}-{hi:.1} Hz");
         if let (Some(t), Some(p), Some(k)) = (
             o.tooth_passing_hz,
-            o.nearest_harmonic_percent,
+            o.nearest_harmonic_pct,
             o.nearest_harmonic_order,
         ) {
             line += &format!(", tooth passing {t:.1} Hz (nearest: {p:.1}% from harmonic {k})");

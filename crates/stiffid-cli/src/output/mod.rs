@@ -108,9 +108,10 @@ pub fn one_line_chain(e: &anyhow::Error) -> String {
 /// One error of a chain in words; a job option's as the command names it ([`flag`]).
 fn named(e: &(dyn std::error::Error + 'static)) -> String {
     match e.downcast_ref::<stiffid::Error>() {
-        Some(stiffid::Error::InvalidOption { option, message }) => {
-            format!("{}: {message}", flag(*option))
-        }
+        Some(
+            stiffid::Error::InvalidOption { option, message }
+            | stiffid::Error::Gate { option, message },
+        ) => format!("{}: {message}", flag(*option)),
         Some(stiffid::Error::OptionCombination {
             option,
             with,

@@ -4,8 +4,8 @@
 use crate::common;
 
 use common::{
-    assert_success, assert_usage_error, example, identify_fanuc, json, numbers, stiffid, temp_dir,
-    write_file,
+    assert_failed_gate, assert_success, assert_usage_error, example, identify_fanuc, json, numbers,
+    stiffid, temp_dir, write_file,
 };
 use std::path::Path;
 
@@ -585,7 +585,7 @@ fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
     );
     assert!((before - number("sum_deflection_before_mm") / points).abs() < 1e-12 * before);
     assert!((after - number("sum_deflection_after_mm") / points).abs() < 1e-12 * after);
-    let change = number("mean_change_percent");
+    let change = number("mean_change_pct");
     assert!((change - 100.0 * (after / before - 1.0)).abs() < 1e-9);
     assert!(
         change < 0.0,
@@ -616,8 +616,8 @@ fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
 }
 
 /// `--max-error-mm` certifies a program: above the largest bound the program is written with
-/// every target's bound as a comment; below it the command exits 2 naming the worst points and
-/// what dominates them, and writes nothing.
+/// every target's bound as a comment; below it the gate fails: the command exits 1 (not 2, bad
+/// input) naming the worst points and what dominates them, and writes nothing.
 #[test]
 fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
     let dir = temp_dir("certified");
@@ -656,7 +656,7 @@ fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
         &out,
         &["--csv", csv.to_str().unwrap(), "--max-error-mm", &limit],
     );
-    let line = assert_usage_error(
+    let line = assert_failed_gate(
         &o,
         &["--max-error-mm", "the worst points: line ", "mostly "],
     );

@@ -10,6 +10,7 @@ mod cell_cli;
 mod common;
 mod compensate_cli;
 mod completions;
+mod documents_renamed;
 mod extrapolation_cli;
 mod free_options_refused;
 mod hardening;

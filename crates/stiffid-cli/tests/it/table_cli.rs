@@ -25,7 +25,7 @@ fn select_gives_each_posture_the_positioners_angles() {
         "--for",
         "calibration",
         "--start-random",
-        "--postures",
+        "--count",
         "12",
         "--station",
         "3000,0,0",

@@ -113,7 +113,7 @@ fn a_calibration_campaign_refuses_a_station_given_twice_naming_it() {
         "--for",
         "calibration",
         "--global",
-        "--postures",
+        "--count",
         "6",
         "--station",
         "500,0,0",

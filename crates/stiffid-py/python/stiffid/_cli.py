@@ -1,7 +1,8 @@
 """The ``stiffid`` command installed with the Python package (the wheel's console script).
 
 It runs the same command-line program as the Rust ``stiffid`` binary, compiled into the package's
-native module: same options, same outputs, same exit codes (0 success, 2 bad input). ``python -m stiffid`` runs it too.
+native module: same options, same outputs, same exit codes (0 success, 1 a gate the result failed, 2 bad
+input). ``python -m stiffid`` runs it too.
 """
 
 import signal

@@ -6,6 +6,17 @@ from typing import Any, Literal, Optional, Sequence, Union, final, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._documents import (
+    CalibrateCellDocument,
+    CalibrateDocument,
+    KinematicsDocument,
+    PlaceDocument,
+    PlanDocument,
+    PredictDocument,
+    RegisterDocument,
+    RegisterPosturesDocument,
+)
+
 __version__: str
 __all__: list[str]
 
@@ -17,6 +28,11 @@ _CriterionName = Literal[
 _PathLike = Union[str, "os.PathLike[str]"]
 _Array = NDArray[np.float64]
 _Ints = NDArray[np.int64]
+
+class _Placed(PlaceDocument):
+    """`place`'s document and the setup with the chosen ``[workpiece]``."""
+
+    setup_text: str
 
 @final
 class Error(ValueError):
@@ -30,6 +46,9 @@ class InfeasibleError(Error):
 
 class UnidentifiableError(Error):
     """Data that cannot identify every parameter."""
+
+class GateError(Error):
+    """A result beyond a bound the caller set (``compensate``'s ``max_error_mm``)."""
 
 class Robot:
     """A 6-axis serial robot (immutable); postures in deg, (6,) or (n, 6)."""
@@ -81,7 +100,7 @@ class Robot:
         coordinates: _Coordinates = "axis",
         stiffness_nm_per_rad: Optional[ArrayLike] = None,
         external: Optional[ArrayLike] = None,
-    ) -> dict[str, Any]:
+    ) -> KinematicsDocument:
         """The kinematics document (docs/schemas/kinematics.schema.json), equal to `stiffid kinematics --json`; `external` (mm/deg, the cell's order) for a robot with external axes."""
     @property
     def external_axes(self) -> list[dict[str, Any]]:
@@ -287,7 +306,7 @@ def compensate(
     moves_per_file: int = 10000,
     level: float = 0.95,
     max_error_mm: Optional[float] = None,
-    force_tolerance_percent: float = 20.0,
+    force_tolerance_pct: float = 20.0,
     objective: Literal["sum", "max"] = "sum",
     map: Union[bool, Literal["rotation", "track"], None] = None,
     free_station_mm: Optional[float] = None,
@@ -344,10 +363,10 @@ def place(
     starts: int = 3,
     chord_tolerance_mm: float = 0.01,
     level: float = 0.95,
-    force_tolerance_percent: float = 20.0,
+    force_tolerance_pct: float = 20.0,
     q0_deg: Optional[ArrayLike] = None,
-) -> dict[str, Any]:
-    """The document of `stiffid place --json` (placed, own, reach_only, gain_vs_own_percent, gain_vs_reach_only_percent, evaluations) and setup_text (the setup with the chosen [workpiece])."""
+) -> _Placed:
+    """The document of `stiffid place --json` (placed, own, reach_only, gain_vs_own_pct, gain_vs_reach_only_pct, evaluations) and setup_text (the setup with the chosen [workpiece])."""
 
 def cartesian_compliance(
     setup: Setup,
@@ -377,7 +396,7 @@ def predict(
     stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
     level: Optional[float] = None,
-) -> dict[str, Any]:
+) -> PredictDocument:
     """The predict document (docs/schemas/predict.schema.json), equal to `stiffid predict --json`."""
 
 def deflection(
@@ -400,15 +419,16 @@ def register(
     setup: Setup,
     readings: Optional[Union[str, os.PathLike[str]]] = None,
     *,
-    postures: Optional[int] = None,
+    count: Optional[int] = None,
     seed: int = 1,
     candidates: Optional[int] = None,
     restarts: Optional[int] = None,
     force: bool = False,
-) -> dict[str, Any]:
-    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment. With postures=N instead of readings, that of `stiffid register --postures N --json`: setup, seed, postures (posture, q_deg), measuring_points, noise_std_mm, translation_std_mm, rotation_std_deg, rotation_std_total_deg, random_median_rotation_std_total_deg, candidates, feasible, checks, method, evaluations, readings_template."""
+    postures: None = None,
+) -> Union[RegisterDocument, RegisterPosturesDocument]:
+    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment. With count=N instead of readings, that of `stiffid register --count N --json` (`postures=` is refused: renamed count): setup, seed, postures (posture, q_deg), measuring_points, noise_std_mm, translation_std_mm, rotation_std_deg, rotation_std_total_deg, random_median_rotation_std_total_deg, candidates, feasible, checks, method, evaluations, readings_template."""
 
-def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]], *, force: bool = False) -> dict[str, Any]:
+def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]], *, force: bool = False) -> CalibrateCellDocument:
     """The document of `stiffid calibrate-cell --json`: the transform as for register, points (setup_mm, fitted_mm, shift_mm, std_mm), absolute_error_rms_mm, noise_std_mm, readings, iterations, fragment."""
 def calibrate(
     setup: Setup,
@@ -431,7 +451,7 @@ def calibrate(
     urdf_out: Optional[_PathLike] = None,
     stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
-) -> dict[str, Any]:
+) -> CalibrateDocument:
     """The document of `stiffid calibrate --json` (update=True: a calibrated robot updated from check readings, check: whether it drifted beyond its intervals; update_parameters "offsets,base,tool,gravity,external" what it refits (external: a cell's external axes' zero offsets), stiffness the calibration's stiffness file whose gravity terms it keeps, held what it kept): parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
@@ -440,7 +460,7 @@ def plan(
     criterion: _CriterionName = "relative-a",
     target_pct: Optional[float] = None,
     external: Optional[Sequence[Sequence[float]]] = None,
-) -> dict[str, Any]:
+) -> PlanDocument:
     """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates; external (n, k) mm/deg, the cell's order: where each posture is read (its e1_mm.. in the document)."""
 class Scene:
     """The 3D scene of a plan or an identification (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, displacements; shown inline by Jupyter."""

@@ -41,6 +41,17 @@ pub enum Error {
         /// What was expected.
         message: String,
     },
+    /// A gate the caller set failed: the job ran and its result lies beyond the bound an option
+    /// gave (`compensate`'s `max_error_mm`, a calibration check that finds the robot drifted).
+    /// Not bad input: the command exits with code 1 (2 for every other error), Python raises
+    /// `GateError`. The option is named as for [`Error::InvalidOption`].
+    #[error("{option}: {message}")]
+    Gate {
+        /// The option that set the gate.
+        option: JobOption,
+        /// What the result was and the bound it failed.
+        message: String,
+    },
     /// Options of a job's request set together that cannot go together, or an option set
     /// without the one it needs. A front end names the options its own way, as for
     /// [`Error::InvalidOption`] ([`combination`]).
@@ -474,6 +485,12 @@ impl Error {
             Error::Input { error, .. } => error.root(),
             other => other,
         }
+    }
+
+    /// Whether this is a failed gate ([`Error::Gate`]) rather than bad input or a computation
+    /// without an answer: the command's exit code 1.
+    pub fn is_gate(&self) -> bool {
+        matches!(self.root(), Error::Gate { .. })
     }
 }
 

@@ -145,7 +145,7 @@ impl JobOption {
             JobOption::MarginDeg => "margin_deg",
             JobOption::MaxCondition => "max_condition",
             JobOption::Refine => "refine",
-            JobOption::ForceTolerancePercent => "force_tolerance_percent",
+            JobOption::ForceTolerancePercent => "force_tolerance_pct",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
             JobOption::NameLength => "name_length",

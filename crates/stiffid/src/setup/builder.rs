@@ -432,7 +432,7 @@ impl SetupBuilder {
             &limits::FRAME_SD,
         )?;
         limits::check(
-            "masses.sd_percent",
+            "masses.sd_pct",
             &[self.mass_sd * 1e2],
             &limits::MASS_SD_PERCENT,
         )?;

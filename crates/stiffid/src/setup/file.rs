@@ -61,7 +61,9 @@ struct RobotAccuracyFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct MassesFile {
-    sd_percent: f64,
+    /// Spelt `sd_percent` before every percentage's key ended in `_pct`: still read.
+    #[serde(alias = "sd_percent")]
+    sd_pct: f64,
 }
 
 /// `[controller]`: the kinematics of the controller that runs a generated program.
@@ -484,7 +486,7 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
         b = b.with_frame_sd(a.frame_sd_mm * 1e-3, a.frame_sd_mrad * 1e-3);
     }
     if let Some(m) = &f.masses {
-        b = b.with_mass_sd(m.sd_percent * 1e-2);
+        b = b.with_mass_sd(m.sd_pct * 1e-2);
     }
     if let Some(t) = f.test {
         b = b.with_test_postures(t.postures_deg.iter().map(deg6).collect());

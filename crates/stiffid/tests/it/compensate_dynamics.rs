@@ -208,7 +208,7 @@ fn milling_points_get_their_first_frequency_and_a_chatter_warning_near_a_harmoni
     );
     let op = &report.program.as_ref().unwrap().dynamics[0];
     assert_eq!(op.nearest_harmonic_order, Some(1));
-    assert!(op.nearest_harmonic_percent.unwrap() <= 10.0);
+    assert!(op.nearest_harmonic_pct.unwrap() <= 10.0);
     // Far from every harmonic (300 Hz): no warning.
     let (report, _) = compensate(&s, &text, &process(6000.0));
     assert!(report

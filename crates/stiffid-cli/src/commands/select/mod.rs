@@ -45,7 +45,7 @@ pub struct Args {
     /// Global search: local searches from --starts seeded start groups, the best kept.
     #[arg(long)]
     global: bool,
-    /// Choose the best --postures of the postures in this file (posture,q1_deg,...,q6_deg; at
+    /// Choose the best --count of the postures in this file (posture,q1_deg,...,q6_deg; at
     /// most 10000), e.g. postures taught on the pendant: exact by enumeration when there are at
     /// most 100000 groups, else the best of --restarts seeded exchange runs. Postures outside the
     /// setup's bounds are reported and skipped.
@@ -75,12 +75,12 @@ pub struct Args {
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
     /// prints the group size against the worst joint's rate and plots it (into --report, else
     /// beside --out as OUT.target.svg and .png).
-    #[arg(long, conflicts_with = "postures")]
+    #[arg(long, conflicts_with = "count")]
     target_pct: Option<f64>,
     /// Number of postures (random or global starts, pool) [default: 6, 10 with --for check; 2
     /// to 100].
     #[arg(long, value_parser = clap::value_parser!(u64).range(2..=limits::MAX_SEARCH_POSTURES), conflicts_with = "start")]
-    postures: Option<u64>,
+    count: Option<u64>,
     /// Seed of the random start group, of the global starts or of the pool's exchange runs.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -179,7 +179,7 @@ pub fn run(args: &Args) -> Result<()> {
         method: method(args, pool.is_some())?,
         start,
         pool,
-        postures: (args.postures).map_or(args.purpose.purpose.default_postures(), |n| n as usize),
+        postures: (args.count).map_or(args.purpose.purpose.default_postures(), |n| n as usize),
         target_pct: args.target_pct,
         options: options(args),
         restarts: args.restarts.map(|r| r as usize),
@@ -361,7 +361,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
         "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({}%)\n",
         number(shown(r, r.value)),
         number(shown(r, free_value)),
-        percent(free.cost_percent),
+        percent(free.cost_pct),
     );
     // None only for a setup without a nominal stiffness (stiffid::design::Evaluation).
     if let (Some(feasible), Some(unconstrained)) = (
@@ -370,7 +370,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
     ) {
         text += &format!(
             "  predicted mean deviation rate: {feasible:.3}% feasible vs {unconstrained:.3}% unconstrained ({}%)\n",
-            percent(free.predicted_average_change_percent)
+            percent(free.predicted_average_change_pct)
         );
     }
     text

@@ -14,6 +14,8 @@ use serde::Serialize;
 /// readings determine, the residual and held-out errors, the calibrated robot's files.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "calibrate")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("calibrate")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -327,7 +329,7 @@ pub struct IntervalsDocument {
     /// held-out postures are like the fitted ones.
     pub coverage: f64,
     /// `coverage`, %.
-    pub coverage_percent: f64,
+    pub coverage_pct: f64,
     /// Held-out coordinates inside their intervals.
     pub covered: usize,
     /// Held-out coordinates (three per reading).
@@ -523,7 +525,7 @@ fn held(h: &Held) -> ValidationDocument {
             level: c.level,
             folds: c.folds,
             coverage: c.coverage(),
-            coverage_percent: 100.0 * c.coverage(),
+            coverage_pct: 100.0 * c.coverage(),
             covered: c.covered,
             coordinates: c.coordinates,
             median_width_mm: widths.get(widths.len() / 2).map(|w| mm(*w)),

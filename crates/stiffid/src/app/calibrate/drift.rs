@@ -10,9 +10,10 @@
 //! drifted when the count reaches the smallest `k` with `P(X >= k) <= `[`SIGNIFICANCE`] (a
 //! one-sided binomial test: a false alarm in at most 1 % of checks of an undrifted robot).
 
+use crate::common::error::JobOption;
 use crate::common::warning::{Warning, WarningKind};
 use crate::metrology::calibration::validation::Validation;
-use crate::Robot;
+use crate::{Error, Result, Robot};
 use serde::Serialize;
 
 /// The false-alarm rate of the drift verdict on an undrifted robot.
@@ -167,6 +168,24 @@ impl CheckDocument {
                     outside,
                 })
                 .collect(),
+        }
+    }
+
+    /// The check as a gate: a robot that drifted beyond its intervals fails it. The update's
+    /// outputs stand (the command writes them, then exits with code 1).
+    ///
+    /// # Errors
+    /// [`Error::Gate`] ([`JobOption::Update`]) when [`CheckDocument::drifted`].
+    pub fn gate(&self) -> Result<()> {
+        match self.drifted {
+            false => Ok(()),
+            true => Err(Error::Gate {
+                option: JobOption::Update,
+                message: format!(
+                    "the robot drifted beyond its intervals: {} of {} check readings beyond {:.4} mm, an undrifted robot explains up to {}",
+                    self.outside, self.readings, self.bound_mm, self.allowed
+                ),
+            }),
         }
     }
 }

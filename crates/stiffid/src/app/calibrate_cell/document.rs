@@ -10,6 +10,8 @@ use serde::Serialize;
 /// absolute error.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "calibrate-cell")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("calibrate-cell")))]
 pub struct Calibration {
     /// The setup as given.
     pub setup: String,

@@ -29,6 +29,8 @@ pub const GENERATOR: &str = "stiffid compensate";
 /// The compensate document. Units in the key names.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "compensate")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("compensate")))]
 pub struct Document {
     /// `stiffid compensate`: marks a report directory as ours.
     pub generator: &'static str,
@@ -223,7 +225,7 @@ pub struct FreeSummary {
     pub mean_deflection_after_mm: f64,
     /// How much the rotations chosen change the mean TCP deflection, %: negative when they
     /// lower it.
-    pub mean_change_percent: f64,
+    pub mean_change_pct: f64,
 }
 
 /// The leans of the tool axis chosen along the path (`--free-lead-tilt`): the points'
@@ -677,7 +679,7 @@ impl Summary {
                         tool_rotation_range_deg: [lo.to_degrees(), hi.to_degrees()],
                         mean_deflection_before_mm: mm(mean_before),
                         mean_deflection_after_mm: mm(mean_after),
-                        mean_change_percent: 100.0 * (mean_after / mean_before - 1.0),
+                        mean_change_pct: 100.0 * (mean_after / mean_before - 1.0),
                     }
                 }),
         }

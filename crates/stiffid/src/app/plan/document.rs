@@ -15,6 +15,8 @@ use std::collections::BTreeMap;
 /// posture asks of the operator.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "plan")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("plan")))]
 pub struct Document {
     /// The setup's name.
     pub setup: String,

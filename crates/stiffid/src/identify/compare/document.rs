@@ -11,6 +11,8 @@ use serde::Serialize;
 /// `stiffid identify --compare-models --json`.
 #[derive(Debug, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "identify-comparison")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("identify-comparison")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,

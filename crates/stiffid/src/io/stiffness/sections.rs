@@ -97,14 +97,14 @@ pub struct PredictionSection {
     #[serde(default)]
     pub score_q95: Option<f64>,
     /// `score_q95` in %. Written for the reader, ignored when read.
-    #[serde(default)]
-    pub score_q95_percent: Option<f64>,
+    #[serde(default, alias = "score_q95_percent")]
+    pub score_q95_pct: Option<f64>,
     /// `rho` of the deflection intervals ([`prediction::Deflection::model_error`], P4) in %: the
     /// model's held-out error relative to the predicted displacement, the tracker noise and the
     /// estimate's variance taken out; in [0, 10 000]. With `deflection_scores`; a file without
     /// them gives the measurement intervals (wider) for the deflection.
-    #[serde(default)]
-    pub model_error_percent: Option<f64>,
+    #[serde(default, alias = "model_error_percent")]
+    pub model_error_pct: Option<f64>,
     /// The studentised held-out scores of the deflection intervals
     /// ([`prediction::Deflection::scores`]), one per held-out coordinate; finite, >= 0.
     #[serde(default)]
@@ -137,8 +137,8 @@ impl PredictionSection {
             postures: calibration.postures,
             noise_floor_mm: calibration.noise_floor * 1e3,
             score_q95: calibration.score_quantile(0.95),
-            score_q95_percent: calibration.score_quantile(0.95).map(|q| 100.0 * q),
-            model_error_percent: (calibration.deflection.as_ref()).map(|d| 100.0 * d.model_error),
+            score_q95_pct: calibration.score_quantile(0.95).map(|q| 100.0 * q),
+            model_error_pct: (calibration.deflection.as_ref()).map(|d| 100.0 * d.model_error),
             deflection_scores: (calibration.deflection.as_ref()).map(|d| d.scores.clone()),
             folds: calibration
                 .folds
@@ -171,7 +171,7 @@ impl PredictionSection {
 
     /// The deflection intervals' data, when the file has them.
     fn deflection(&self, folds: &[HeldOut]) -> Option<prediction::Deflection> {
-        let (rho, scores) = (self.model_error_percent?, self.deflection_scores.as_ref()?);
+        let (rho, scores) = (self.model_error_pct?, self.deflection_scores.as_ref()?);
         let mut scores = scores.clone();
         scores.sort_by(f64::total_cmp);
         Some(prediction::Deflection {
@@ -181,11 +181,11 @@ impl PredictionSection {
         })
     }
 
-    /// Checks `model_error_percent` and `deflection_scores`: both or neither, within their
+    /// Checks `model_error_pct` and `deflection_scores`: both or neither, within their
     /// ranges, at most [`prediction::MAX_SCORES`] scores.
     fn check_deflection(&self) -> Result<()> {
-        let field = "prediction.model_error_percent";
-        match (self.model_error_percent, &self.deflection_scores) {
+        let field = "prediction.model_error_pct";
+        match (self.model_error_pct, &self.deflection_scores) {
             (None, None) => Ok(()),
             (Some(r), _) if !(0.0..=1e4).contains(&r) => Err(invalid(
                 field.into(),
@@ -216,7 +216,7 @@ impl PredictionSection {
             )),
             _ => Err(invalid(
                 field.into(),
-                "expected model_error_percent and deflection_scores together, or neither".into(),
+                "expected model_error_pct and deflection_scores together, or neither".into(),
             )),
         }
     }
