@@ -94,6 +94,9 @@ pub fn run() -> ExitCode {
     if let Err(message) = stiffid::common::threads::start() {
         return fail(&message);
     }
+    if let Some(message) = commands::compensate::retired(std::env::args_os()) {
+        return fail(&message);
+    }
     let cli = match command()
         .try_get_matches()
         .and_then(|m| Cli::from_arg_matches(&m))

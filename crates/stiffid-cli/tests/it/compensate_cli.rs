@@ -241,33 +241,42 @@ fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
     let dir = temp_dir("freeaxis");
     let out = dir.join("out.csv");
     let path = example("milling/path.csv");
-    for (option, value, other) in [
-        ("--max-step-deg", "0", "--tool-axis-range-deg"),
-        ("--max-step-deg", "NaN", "--tool-axis-range-deg"),
-        ("--tool-axis-range-deg", "1e308", "--max-step-deg"),
+    for (text, option, value, other) in [
+        ("tool-rotation=-90..90/0", "step", "0", "range"),
+        ("tool-rotation=-90..90/91", "step", "91", "range"),
+        ("tool-rotation=-1e308..1e308", "range", "1e308", "step"),
     ] {
-        let o = compensate(&path, &out, &["--free-tool-axis", option, value]);
-        let line = assert_usage_error(&o, &[&format!("{option}: {value}: expected a number > 0")]);
-        assert!(!line.contains(other), "{line}");
+        let o = compensate(&path, &out, &["--free", text]);
+        let line = assert_usage_error(
+            &o,
+            &[&format!(
+                "--free tool-rotation {option}: {value}: expected a number > 0"
+            )],
+        );
+        assert!(!line.contains(&format!("tool-rotation {other}")), "{line}");
         assert!(!out.exists());
     }
     for (option, value, expected) in [
         ("--margin-deg", "91", "expected 0 to 90"),
         ("--max-condition", "0.5", "expected a finite number >= 1"),
     ] {
-        let o = compensate(&path, &out, &["--free-tool-axis", option, value]);
+        let o = compensate(&path, &out, &["--free", "tool-rotation", option, value]);
         assert_usage_error(&o, &[&format!("{option}: {value}: {expected}")]);
         assert!(!out.exists());
     }
     // The surge objective needs the robot's masses (the example's robot gives none) and means
     // nothing without the free tool axis.
-    let surge = ["--free-tool-axis-objective", "surge"];
-    let o = compensate(&path, &out, &[&["--free-tool-axis"][..], &surge].concat());
+    let surge = ["--minimise", "surge"];
+    let free = ["--free", "tool-rotation"];
+    let o = compensate(&path, &out, &[&free[..], &surge].concat());
     assert_usage_error(
         &o,
-        &["--free-tool-axis-objective: surge: the surge needs the robot's masses"],
+        &["--minimise: surge: the surge needs the robot's masses"],
     );
-    assert_usage_error(&compensate(&path, &out, &surge), &["--free-tool-axis"]);
+    assert_usage_error(
+        &compensate(&path, &out, &surge),
+        &["--minimise: only with --free"],
+    );
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -557,7 +566,7 @@ fn generated_programs_keep_the_controller_rules() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The text's free-tool-axis gain and largest process force are the document's, which are the
+/// The text's free tool rotation's gain and largest process force are the document's, which are the
 /// means of its sums and the largest of its segments' forces.
 #[test]
 fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
@@ -566,7 +575,7 @@ fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
         example("milling/fanuc-milling.toml"),
         example("milling/stiffness.json"),
     );
-    let free = ["--free-tool-axis"];
+    let free = ["--free", "tool-rotation", "--minimise", "deflection"];
     let doc = json(&program(
         &setup,
         &stiffness,
@@ -669,5 +678,43 @@ fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
         &["--max-error-mm", &format!("{}", worst * 2.0)],
     );
     assert_success(&o);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// On the shipped FANUC pocket every free variable minimises the bound the document reports:
+/// with the tool rotation free no point's `bound_mm` rises above its bound at the program's own
+/// rotation, and the sum falls.
+#[test]
+fn a_free_tool_rotation_raises_no_points_bound_on_the_shipped_pocket() {
+    let dir = temp_dir("pocket-no-rise");
+    let (setup, stiffness) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+    );
+    let bounds = |name: &str, extra: &[&str]| -> Vec<f64> {
+        let out = dir.join(name);
+        let doc = json(&program(
+            &setup,
+            &stiffness,
+            &out,
+            &[extra, &["--json"]].concat(),
+        ));
+        (doc["points"].as_array().unwrap().iter())
+            .map(|p| p["bound_mm"].as_f64().unwrap())
+            .collect()
+    };
+    let own = bounds("OWN.ls", &[]);
+    let free = bounds("FREE.ls", &["--free", "tool-rotation"]);
+    assert_eq!((own.len(), free.len()), (372, 372));
+    for (i, (a, b)) in own.iter().zip(&free).enumerate() {
+        assert!(b <= &(a + 1e-6), "point {i}: {b} mm above {a} mm");
+    }
+    let sum = |v: &[f64]| v.iter().sum::<f64>();
+    assert!(
+        sum(&free) < sum(&own),
+        "{} against {}",
+        sum(&free),
+        sum(&own)
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
