@@ -718,3 +718,84 @@ fn a_free_tool_rotation_raises_no_points_bound_on_the_shipped_pocket() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The free rotation's dynamic programming is the exhaustive optimum of the bound the document
+/// reports: on the first five points of the milling path and a grid of 9 rotations (5 deg
+/// cells, at most 10 deg between points), every sequence of the map's cells (the reported bound
+/// at every rotation) that keeps the step, the feasibility and no point above its own bound is
+/// enumerated; the least sum is the sum of the points' `bound_mm` the job chose.
+#[test]
+fn the_free_rotation_is_the_exhaustive_optimum_of_the_reported_bound_on_a_small_grid() {
+    let dir = temp_dir("free-exhaustive");
+    let text = std::fs::read_to_string(example("milling/path.csv")).unwrap();
+    let short: Vec<&str> = text.lines().take(6).collect();
+    let path = dir.join("short.csv");
+    std::fs::write(&path, short.join("\n") + "\n").unwrap();
+    let (setup, stiffness) = (
+        example("milling/fanuc-milling.toml"),
+        example("milling/stiffness.json"),
+    );
+    let report = dir.join("r");
+    let out = stiffid(&[
+        "compensate",
+        "--setup",
+        &setup,
+        "--stiffness",
+        &stiffness,
+        "--path",
+        path.to_str().unwrap(),
+        "--out",
+        dir.join("out.csv").to_str().unwrap(),
+        "--free",
+        "tool-rotation=-20..20/10",
+        "--report",
+        report.to_str().unwrap(),
+        "--map",
+        "--json",
+    ]);
+    let doc = json(&out);
+    let chosen: f64 = (doc["points"].as_array().unwrap().iter())
+        .map(|p| p["bound_mm"].as_f64().unwrap())
+        .sum();
+    // map.csv: point, line, rotation, bound, deflection, condition, limit distance, ...
+    let map = std::fs::read_to_string(report.join("map.csv")).unwrap();
+    let mut cells = vec![Vec::new(); 5];
+    for line in map.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        let number = |k: usize| v[k].parse::<f64>().ok();
+        let point = v[0].parse::<usize>().unwrap() - 1;
+        cells[point].push((number(2).unwrap(), number(3), number(5), number(6)));
+    }
+    let angles: Vec<f64> = cells[0].iter().map(|c| c.0).collect();
+    assert_eq!(angles.len(), 9);
+    let own = angles.iter().position(|a| *a == 0.0).unwrap();
+    // A point's allowed rotations: reached, no worse than its own, feasible (margin 5 deg,
+    // condition 1000) unless its own.
+    let allowed: Vec<Vec<Option<f64>>> = (cells.iter())
+        .map(|row| {
+            let own_bound = row[own].1.unwrap();
+            (row.iter().enumerate())
+                .map(|(k, &(_, b, condition, limit))| {
+                    let b = b.filter(|b| *b <= own_bound)?;
+                    let feasible = condition.is_some_and(|c| c <= 1000.0)
+                        && limit.is_some_and(|l| l >= 5.0);
+                    (k == own || feasible).then_some(b)
+                })
+                .collect()
+        })
+        .collect();
+    let mut best = f64::INFINITY;
+    for code in 0..9usize.pow(5) {
+        let seq: Vec<usize> = (0..5).map(|i| code / 9usize.pow(i) % 9).collect();
+        if seq.windows(2).any(|w| (angles[w[0]] - angles[w[1]]).abs() > 10.0 + 1e-9) {
+            continue;
+        }
+        let sum: Option<f64> = seq.iter().enumerate().map(|(i, &k)| allowed[i][k]).sum();
+        best = sum.map_or(best, |s| best.min(s));
+    }
+    assert!(
+        (chosen - best).abs() <= 1e-6 * best,
+        "the job's sum {chosen} mm, the exhaustive optimum {best} mm"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

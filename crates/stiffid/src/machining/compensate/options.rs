@@ -533,7 +533,7 @@ impl FreeConfiguration {
     /// Refuses the surge objective and a path of more than [`Self::MAX_POINTS`] points.
     ///
     /// # Errors
-    /// [`Error::OptionCombination`] (`free_configuration` not with `free_tool_axis_objective`)
+    /// [`Error::OptionCombination`] (`free configuration` not with `minimise`)
     /// for the surge; [`Error::InvalidOption`] ([`JobOption::FreeConfiguration`]) for too many
     /// points.
     pub fn check(&self, points: usize) -> Result<()> {
