@@ -777,8 +777,8 @@ fn the_free_rotation_is_the_exhaustive_optimum_of_the_reported_bound_on_a_small_
             (row.iter().enumerate())
                 .map(|(k, &(_, b, condition, limit))| {
                     let b = b.filter(|b| *b <= own_bound)?;
-                    let feasible = condition.is_some_and(|c| c <= 1000.0)
-                        && limit.is_some_and(|l| l >= 5.0);
+                    let feasible =
+                        condition.is_some_and(|c| c <= 1000.0) && limit.is_some_and(|l| l >= 5.0);
                     (k == own || feasible).then_some(b)
                 })
                 .collect()
@@ -787,7 +787,10 @@ fn the_free_rotation_is_the_exhaustive_optimum_of_the_reported_bound_on_a_small_
     let mut best = f64::INFINITY;
     for code in 0..9usize.pow(5) {
         let seq: Vec<usize> = (0..5).map(|i| code / 9usize.pow(i) % 9).collect();
-        if seq.windows(2).any(|w| (angles[w[0]] - angles[w[1]]).abs() > 10.0 + 1e-9) {
+        if seq
+            .windows(2)
+            .any(|w| (angles[w[0]] - angles[w[1]]).abs() > 10.0 + 1e-9)
+        {
             continue;
         }
         let sum: Option<f64> = seq.iter().enumerate().map(|(i, &k)| allowed[i][k]).sum();

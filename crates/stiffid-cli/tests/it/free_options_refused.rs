@@ -247,6 +247,17 @@ fn combinations_that_make_no_sense_are_refused_naming_the_option() {
         &["--free", "configuration", "--free", "configuration=run"],
         &["--free", "configuration", "twice"],
     );
+    // An axis by its name and by its keyword is one variable; a name the cell does not have.
+    run(
+        compensate(true),
+        &["--free", "rotate=-10..10", "--free", "positioner=-10..10"],
+        &["--free", "positioner", "twice"],
+    );
+    run(
+        compensate(true),
+        &["--free", "turn=-10..10"],
+        &["--free", "turn: unknown variable", "track, tilt, rotate"],
+    );
     // The options of the free variables without one.
     for option in [
         ["--minimise", "bound"],

@@ -281,6 +281,13 @@ fn a_free_table_angle_is_written_into_every_target_of_a_program() {
     free_axis_is_written(&free, 2, (20.0, 5.0));
 }
 
+/// The positioner's axes by their names in the cell file: `rotate` is the table's turn, `tilt`
+/// its tilt.
+#[test]
+fn a_free_axis_named_as_the_cell_names_it_is_that_axis() {
+    free_axis_is_written(&["--free", "rotate=-20..20/5"], 2, (20.0, 5.0));
+}
+
 #[test]
 fn a_free_tilt_is_written_into_every_target_of_a_program() {
     let free = ["--free", "tilt=-10..10/5"];
