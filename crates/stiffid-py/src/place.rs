@@ -67,7 +67,7 @@ pub fn place<'py>(
     let s = Setup::from_file(py, setup, Vec::new())?;
     let s = &s.inner;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
-    let mut options = crate::compensate::options(py, s, q0_deg, None, None)?;
+    let mut options = crate::compensate::options(py, s, q0_deg)?;
     options.level = level;
     options.force_tolerance = force_tolerance_pct / 100.0;
     let (read, parsed, points);

@@ -85,8 +85,8 @@ def test_compensation_figures_are_the_reports(cli, tmp_path):
     path with the free tool axis and its map, and on a program with its process."""
     milling = stiffid.Setup.from_file(MILLING)
     cli("compensate", "--setup", MILLING, "--stiffness", MILLING_STIFFNESS, "--path", MILLING_PATH,
-        "--free-tool-axis", "--map", "--out", tmp_path / "c.csv", "--report", tmp_path / "r", parse=False)
-    mine = stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS, free_tool_axis=True, map=True, figures=True)
+        "--free", "tool-rotation", "--map", "--out", tmp_path / "c.csv", "--report", tmp_path / "r", parse=False)
+    mine = stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS, free=["tool-rotation"], map=True, figures=True)
     assert list(mine["figures"]) == ["deflection", "path", "map"]
     assert mine["figures"] == report_figures(tmp_path / "r")
     assert "figures" not in stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS)

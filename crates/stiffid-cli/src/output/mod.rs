@@ -122,7 +122,7 @@ fn named(e: &(dyn std::error::Error + 'static)) -> String {
     }
 }
 
-/// A job option as the command names it: `--max-step-deg`; the program's name comes from `--out`.
+/// A job option as the command names it: `--margin-deg`, `--free station range`; the program's name comes from `--out`.
 pub fn flag(option: JobOption) -> String {
     match option {
         JobOption::ProgramName => "--out: program name".into(),

@@ -33,7 +33,7 @@ pub enum Error {
     },
     /// An option of a job's request has a value outside what it may hold. A front end names the
     /// option its own way: Python by its keyword (`max_step_deg`, as this error's text does),
-    /// the command by its option (`--max-step-deg`).
+    /// the command by its option (`--margin-deg`).
     #[error("{option}: {message}")]
     InvalidOption {
         /// The option.

@@ -8,6 +8,10 @@
 pub enum JobOption {
     /// select: the stations (external axis values) of a robot with external axes.
     Station,
+    /// compensate: a free variable (`--free`, Python's `free=`).
+    Free,
+    /// compensate, place: how the points' costs add up along the path (sum or max).
+    Objective,
     /// compensate: the free tool axis' largest change between consecutive points, deg.
     MaxStepDeg,
     /// compensate: how far the free tool axis may turn from the path's rotation, deg.
@@ -122,24 +126,27 @@ pub enum JobOption {
 }
 
 impl JobOption {
-    /// The option's name as the library and Python spell it (`max_step_deg`).
+    /// The option's name as the library and Python spell it (`max_condition`); a free
+    /// variable's range or step as `free station range`.
     pub fn name(self) -> &'static str {
         match self {
             JobOption::Station => "station",
-            JobOption::MaxStepDeg => "max_step_deg",
-            JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
-            JobOption::FreeToolAxisObjective => "free_tool_axis_objective",
-            JobOption::FreeStationMm => "free_station_mm",
-            JobOption::StationStepMm => "station_step_mm",
-            JobOption::FreePositionerDeg => "free_positioner_deg",
-            JobOption::PositionerStepDeg => "positioner_step_deg",
-            JobOption::FreeLeadTilt => "free_lead_tilt",
-            JobOption::ConeDeg => "cone_deg",
-            JobOption::LeadTiltStepDeg => "lead_tilt_step_deg",
-            JobOption::FreeTiltDeg => "free_tilt_deg",
-            JobOption::TiltStepDeg => "tilt_step_deg",
-            JobOption::FreeConfiguration => "free_configuration",
-            JobOption::ConfigurationPer => "configuration_per",
+            JobOption::Free => "free",
+            JobOption::Objective => "objective",
+            JobOption::MaxStepDeg => "free tool-rotation step",
+            JobOption::ToolAxisRangeDeg => "free tool-rotation range",
+            JobOption::FreeToolAxisObjective => "minimise",
+            JobOption::FreeStationMm => "free station range",
+            JobOption::StationStepMm => "free station step",
+            JobOption::FreePositionerDeg => "free positioner range",
+            JobOption::PositionerStepDeg => "free positioner step",
+            JobOption::FreeLeadTilt => "free lead-tilt",
+            JobOption::ConeDeg => "free lead-tilt range",
+            JobOption::LeadTiltStepDeg => "free lead-tilt step",
+            JobOption::FreeTiltDeg => "free tilt range",
+            JobOption::TiltStepDeg => "free tilt step",
+            JobOption::FreeConfiguration => "free configuration",
+            JobOption::ConfigurationPer => "free configuration",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",

@@ -173,6 +173,6 @@ pub struct BudgetSummary {
     pub absent: Vec<&'static str>,
     /// The points of largest bound (at most 10), largest first.
     pub worst: Vec<WorstPoint>,
-    /// With `--free-tool-axis`: the largest bound at the path's own rotation, mm; else `null`.
+    /// With `--free tool-rotation`: the largest bound at the path's own rotation, mm; else `null`.
     pub max_bound_before_mm: Option<f64>,
 }
