@@ -278,7 +278,7 @@ fn a_lost_motion_is_recovered_from_load_steps() {
 /// dropped, has a name the check knows, and a name of the user's own passes.
 #[test]
 fn a_declared_candidate_named_like_a_family_is_refused() {
-    use stiffid::identify::compare::pool::is_family_name;
+    use stiffid::model::is_family_name;
     let named = ELBOW
         .replace("elbow_z", "tilt3_z")
         .replace("rotation\"", "rotation\"\ncandidate = true");
