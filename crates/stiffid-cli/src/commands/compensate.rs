@@ -267,6 +267,9 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
     let out = args.out.display().to_string();
     let (output, out_name) =
         Language::output(language, Some(&out), None, "").map_err(|e| anyhow!("--out {e}"))?;
+    if let (Language::GCode, Language::Robot(_)) = (language, output) {
+        check_subprogram_files(&args.out)?;
+    }
     let process_name = process.display().to_string();
     let parsed = file::parse(&load::read(process)?, &process_name)?;
     Ok(Input::Program {
@@ -354,6 +357,39 @@ fn finish(
         (true, Some(_)) => write_stdout_with(&json),
         _ => print(&human(args, setup, report, names)),
     }
+}
+
+/// Refuses, before anything is computed, a file beside `out` named as one of the sub-programs a
+/// split program writes there (`NAME_01.EXT`, ..: the stem upper case, `out`'s extension) that
+/// `out` does not call: only an earlier run's sub-programs of the same `out` are replaced.
+fn check_subprogram_files(out: &Path) -> Result<()> {
+    let name = |p: Option<&std::ffi::OsStr>| p.and_then(|s| s.to_str()).unwrap_or("").to_string();
+    let (stem, extension) = (name(out.file_stem()), name(out.extension()));
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let main = std::fs::read_to_string(out).unwrap_or_default();
+    let prefix = format!("{}_", stem.to_ascii_uppercase());
+    for entry in entries.flatten() {
+        let file = name(Some(&entry.file_name()));
+        let Some(sub) = file.strip_suffix(&format!(".{extension}")) else {
+            continue;
+        };
+        let number = sub.strip_prefix(&prefix).unwrap_or("");
+        let numbered = !number.is_empty() && number.bytes().all(|b| b.is_ascii_digit());
+        if numbered && !main.contains(sub) {
+            bail!(
+                "--out {}: {file} beside it is named as one of its sub-programs (a program of more than --moves-per-file moves is split into {prefix}01.{extension}, ..), and {} does not call it as an earlier run's: move it away or choose another --out",
+                out.display(),
+                out.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// A split program's sub-programs, each beside the main program in a file of its name with the

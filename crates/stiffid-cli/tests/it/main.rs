@@ -14,6 +14,7 @@ mod documents_renamed;
 mod extrapolation_cli;
 mod free_options_refused;
 mod hardening;
+mod hardening_edges;
 mod identify_cli;
 mod kinematics;
 mod lead_tilt_cli;

@@ -59,12 +59,23 @@ pub enum JobOption {
     ChordToleranceMm,
     /// compensate: the robot's largest TCP speed, mm/s.
     MaxTcpSpeedMmS,
+    /// compensate: what the targets of a robot program written from G-code are (Cartesian or
+    /// joint).
+    Targets,
     /// compensate: the longest program name the controller takes.
     NameLength,
     /// compensate: the most moves in one program file.
     MovesPerFile,
     /// compensate: the name of the robot program written (from the output file's name).
     ProgramName,
+    /// select: the stiffness design criterion to minimise.
+    Criterion,
+    /// select: the local searches of a global search.
+    Starts,
+    /// select: the SQP steps of every global start before the best continue.
+    ScreenSteps,
+    /// select: the global starts that continue after the screening.
+    Polished,
     /// select: the target predicted deviation rate, %.
     TargetPct,
     /// select: the group a local search starts from.
@@ -155,9 +166,14 @@ impl JobOption {
             JobOption::ForceTolerancePercent => "force_tolerance_pct",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
+            JobOption::Targets => "targets",
             JobOption::NameLength => "name_length",
             JobOption::MovesPerFile => "moves_per_file",
             JobOption::ProgramName => "name",
+            JobOption::Criterion => "criterion",
+            JobOption::Starts => "starts",
+            JobOption::ScreenSteps => "screen_steps",
+            JobOption::Polished => "polished",
             JobOption::TargetPct => "target_pct",
             JobOption::Start => "start",
             JobOption::DistinctDeg => "distinct_deg",

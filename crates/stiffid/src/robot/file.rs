@@ -362,7 +362,12 @@ fn error_maps(joints: &[JointRow], source_name: &str) -> Result<[super::ErrorMap
     let mut maps: [super::ErrorMap; 6] = Default::default();
     for (i, j) in joints.iter().enumerate() {
         if let Some(m) = &j.error_map {
-            let rad = |v: &[f64]| v.iter().map(|d| d.to_radians()).collect();
+            // Each list is optional: one left out holds zeros, as many as the other.
+            let n = m.cos_deg.len().max(m.sin_deg.len());
+            let rad = |v: &[f64]| match v.is_empty() {
+                true => vec![0.0; n],
+                false => v.iter().map(|d| d.to_radians()).collect(),
+            };
             let map = super::ErrorMap::new(rad(&m.cos_deg), rad(&m.sin_deg))
                 .and_then(|map| map.with_backlash(m.half_backlash_deg.to_radians()));
             maps[i] = map.map_err(|e| {

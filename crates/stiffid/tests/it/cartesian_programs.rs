@@ -128,6 +128,26 @@ fn read(s: &Setup, dialect: Dialect, text: &str) -> Program {
 }
 
 #[test]
+fn a_program_with_a_byte_order_mark_reads_as_without_it() {
+    let s = setup();
+    for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
+        let (targets, text) = written(&s, dialect, &cut(3), true);
+        let Program::Robot(p) = read(&s, dialect, &format!("\u{feff}{text}")) else {
+            panic!()
+        };
+        assert_eq!(p.targets.len(), targets.len(), "{dialect:?}");
+        for (got, want) in p.targets.iter().zip(&targets) {
+            let got = Vector6::from(got.q_deg);
+            let want = Vector6::from(want.q_deg);
+            assert!(
+                (got - want).amax() <= read_back(dialect),
+                "{dialect:?}: {got} {want}"
+            );
+        }
+    }
+}
+
+#[test]
 fn the_configuration_data_choose_the_solution_of_a_pose() {
     let s = setup();
     let poses = cut(2);

@@ -10,7 +10,7 @@ use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use crate::progress::Bars;
-use crate::report::plan;
+use crate::report::{campaign, plan};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid::app::select::document::{Document, Free, Pool};
@@ -32,8 +32,8 @@ pub struct Args {
     /// ranks groups of postures as their measured accuracy does (in `stiffid reproduce`,
     /// Spearman's rho +1.00 against the simulated deviation rates); the paper's zhang2021 does not
     /// (rho -0.10): see docs/guide.md, "The paper's study".
-    #[arg(long, default_value = "relative-a")]
-    criterion: Criterion,
+    #[arg(long)]
+    criterion: Option<Criterion>,
     #[command(flatten)]
     purpose: ForArgs,
     /// Start group (posture,q1_deg,...,q6_deg) of a local search.
@@ -89,10 +89,10 @@ pub struct Args {
     starts: Option<u64>,
     /// SQP steps of every global start before the best --polished continue; 0 runs every start
     /// to convergence [default: 60; 0 to 10000000].
-    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
     screen_steps: Option<u64>,
     /// Global starts that continue after the screening [default: 8; 1 to 10000].
-    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     polished: Option<u64>,
     /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
     /// each finite-difference probe as one) [default: 6000; 1 to 10000000].
@@ -165,18 +165,30 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(_), None) => Some(target::files(&args.out)?),
         _ => None,
     };
+    let campaign = args.purpose.purpose.calibration_only();
     let report_dir = args
         .report
         .as_deref()
-        .map(|dir| plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)))
+        .map(|dir| match campaign {
+            true => plan::open(dir, args.force),
+            false => plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)),
+        })
         .transpose()?;
+    let method = method(args, pool.is_some())?;
+    let given = job::Given {
+        criterion: args.criterion.is_some(),
+        starts: args.starts.is_some(),
+        screen_steps: args.screen_steps.is_some(),
+        polished: args.polished.is_some(),
+    };
+    job::check_given(args.purpose.purpose, method, given)?;
     let bars = Bars::new(false);
     let request = Request {
         setup: &setup,
-        criterion: args.criterion,
+        criterion: criterion(args),
         purpose: args.purpose.purpose,
         calibration: args.purpose.options(),
-        method: method(args, pool.is_some())?,
+        method,
         start,
         pool,
         postures: (args.count).map_or(args.purpose.purpose.default_postures(), |n| n as usize),
@@ -205,6 +217,17 @@ pub fn run(args: &Args) -> Result<()> {
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;
     }
+    let mut doc = Document::new(&report, &setup);
+    doc.out = Some(args.out.display().to_string());
+    doc.report = args.report.as_ref().map(|d| d.display().to_string());
+    let report_dir = match (report_dir, campaign) {
+        (Some(dir), true) => {
+            let command = crate::commands::common::command_line();
+            campaign::write(dir, &setup, &doc, &csv, &command)?;
+            None
+        }
+        (dir, _) => dir,
+    };
     if let Some(dir) = report_dir {
         let t = report.target.as_ref();
         let provenance = plan::Provenance {
@@ -219,16 +242,13 @@ pub fn run(args: &Args) -> Result<()> {
         plan::write(
             dir,
             &setup,
-            args.criterion,
+            criterion(args),
             &report.postures,
             &external,
             t,
             &provenance,
         )?;
     }
-    let mut doc = Document::new(&report, &setup);
-    doc.out = Some(args.out.display().to_string());
-    doc.report = args.report.as_ref().map(|d| d.display().to_string());
     match args.common.json {
         true => output::print(&json(&doc)?),
         false => output::print(&text(args, &setup, &report, &doc)),
@@ -238,6 +258,11 @@ pub fn run(args: &Args) -> Result<()> {
 /// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
 fn distinctness(args: &Args) -> stiffid::Result<Distinctness> {
     Distinctness::try_from_deg_mm(args.distinct_deg, args.distinct_mm)
+}
+
+/// The stiffness criterion: the one given, else relative-a.
+fn criterion(args: &Args) -> Criterion {
+    args.criterion.unwrap_or(Criterion::RelativeA)
 }
 
 /// The method the arguments ask for.

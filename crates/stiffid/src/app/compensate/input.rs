@@ -13,6 +13,7 @@ use crate::{Result, Setup};
 ///
 /// # Errors
 /// Those of [`output::check_output`], [`output::check_lean`], [`Settings::validate`],
+/// [`output::check_settings`],
 /// [`generate::check_payload`], [`machining::read`] and [`machining::resolve`] (the program's
 /// as [`Error::Input`] naming its file).
 pub(super) fn read_checked(
@@ -36,6 +37,7 @@ pub(super) fn read_checked(
     output::check_output(language, output).map_err(|e| in_input(name, e))?;
     output::check_lean(options, output)?;
     settings.validate()?;
+    output::check_settings(language, output, settings)?;
     if let (Language::GCode, Language::Robot(d)) = (language, output) {
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
     }

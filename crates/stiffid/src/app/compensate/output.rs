@@ -3,6 +3,7 @@
 
 use super::configurations::name;
 use crate::machining::compensate::{Configurations, Options, Run};
+use crate::machining::program::generate::Settings;
 use crate::machining::Language;
 #[cfg(doc)]
 use crate::JobOption;
@@ -21,6 +22,51 @@ pub(super) fn check_output(language: Language, output: Language) -> Result<()> {
                 output.name()
             ),
         }),
+    }
+}
+
+/// Refuses the settings of a generated robot program where none is generated: the targets and
+/// the moves per file for a robot program written back (it keeps its own targets, in one file),
+/// the targets and the name length for a program written as G-code. A setting at its default
+/// changes nothing and passes.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Targets`], [`JobOption::MovesPerFile`],
+/// [`JobOption::NameLength`]).
+pub(super) fn check_settings(
+    language: Language,
+    output: Language,
+    settings: &Settings,
+) -> Result<()> {
+    let default = Settings::default();
+    let given = [
+        (
+            settings.targets != default.targets,
+            crate::JobOption::Targets,
+        ),
+        (
+            settings.moves_per_file != default.moves_per_file,
+            crate::JobOption::MovesPerFile,
+        ),
+        (settings.name_length.is_some(), crate::JobOption::NameLength),
+    ];
+    let (unused, why): (&[crate::JobOption], _) = match (language, output) {
+        (Language::GCode, Language::Robot(_)) => return Ok(()),
+        (Language::Robot(_), _) => (
+            &[crate::JobOption::Targets, crate::JobOption::MovesPerFile],
+            "only for a G-code program written as a robot program: a robot program is written back with its own targets, in one file",
+        ),
+        (_, Language::GCode) => (
+            &[crate::JobOption::Targets, crate::JobOption::MovesPerFile, crate::JobOption::NameLength],
+            "only for a G-code program written as a robot program (--out X.ls, .src or .mod; Python output=): G-code carries positions and no program name",
+        ),
+    };
+    match given.iter().find(|(g, o)| *g && unused.contains(o)) {
+        Some((_, option)) => Err(Error::InvalidOption {
+            option: *option,
+            message: why.into(),
+        }),
+        None => Ok(()),
     }
 }
 

@@ -125,7 +125,8 @@ pub struct FoldSection {
     /// `parameters`; finite.
     pub compliance_si: Vec<f64>,
     /// The score of each held-out coordinate: `|measured - predicted|` over `|predicted| +
-    /// noise_floor_mm`, the prediction the fold's (three per measurement, x, y, z); finite, >= 0.
+    /// noise_floor_mm`, the prediction the fold's (three per measurement, x, y, z, at least one
+    /// measurement per posture held out); finite, >= 0.
     pub scores: Vec<f64>,
 }
 
@@ -278,6 +279,13 @@ impl PredictionSection {
                     "expected at least one finite number >= 0".into(),
                 ));
             }
+            let (scores, held_out) = (f.scores.len(), f.postures.len());
+            if scores % 3 != 0 || held_out == 0 || scores < 3 * held_out {
+                return Err(invalid(
+                    format!("{field}.scores"),
+                    format!("{scores} scores for {held_out} postures held out: expected three per measurement (x, y, z), at least one measurement per posture"),
+                ));
+            }
             total = total.saturating_add(f.scores.len());
         }
         limits::check_count("prediction scores", total, 1, prediction::MAX_SCORES)
@@ -293,9 +301,11 @@ impl PredictionSection {
 pub struct RegionSection {
     /// The postures the stiffness was identified from (at least 1).
     pub postures: usize,
-    /// Per axis, the smallest angle of those postures, deg; finite.
+    /// Per axis, the smallest angle of those postures, deg; within
+    /// [`crate::common::limits::ANGLE_DEG`] (-10 000 to 10 000).
     pub lower_deg: [f64; 6],
-    /// Per axis, the largest, deg; finite, at least `lower_deg`.
+    /// Per axis, the largest, deg; within [`crate::common::limits::ANGLE_DEG`], at least
+    /// `lower_deg`.
     pub upper_deg: [f64; 6],
     /// The margin that widens every axis' range at both ends, deg, within
     /// [0, [`crate::model::region::MAX_MARGIN_DEG`]] (written as
@@ -341,6 +351,8 @@ impl RegionSection {
                 "0: expected at least 1 posture".into(),
             ));
         }
+        limits::check("region.lower_deg", &self.lower_deg, &limits::ANGLE_DEG)?;
+        limits::check("region.upper_deg", &self.upper_deg, &limits::ANGLE_DEG)?;
         for i in 0..6 {
             let (lo, hi) = (self.lower_deg[i], self.upper_deg[i]);
             if !(lo.is_finite() && hi.is_finite() && lo <= hi) {

@@ -11,7 +11,7 @@
 //! `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
 //! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
 //! plane, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
-//! `Z` or `R`, a bottom not below `R`, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
+//! `Z` or `R` or a feed rate `F` in force, a bottom not below `R`, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
 //! outside `G83`, and a block of `R`, `Q` or `P` alone (controllers differ on whether it drills).
 
 use super::{at, may_move, Block, GCode, Motion, Point, State, MAX_POINTS};
@@ -134,6 +134,9 @@ pub(super) fn block(
     };
     if depth >= retract {
         return refuse("the bottom Z must lie below the retract level R");
+    }
+    if s.feed.is_none() {
+        return refuse("a canned cycle feeds to Z at the feed rate F in force, and none is: give F in this block or before");
     }
     let peck = match (code, s.cycle.peck) {
         (83, Some(q)) if q > 0.0 => Some(q),

@@ -20,7 +20,7 @@
 //!   named `NAME` from there on. Header comments state the tool orientation:
 //!   `(stiffid: tool_rpy_deg = 180 0 0)`, the tool frame in the part frame as fixed-axis
 //!   roll-pitch-yaw (`180 0 0` points the tool z axis down, along the part's -Z); and, to allow
-//!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute) then turn the tool by
+//!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute, -360 to 360) then turn the tool by
 //!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation.
 //! - Arcs are split into chords whose sagitta is at most the chord tolerance.
 //!
