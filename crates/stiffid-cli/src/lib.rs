@@ -114,8 +114,8 @@ where
     if let Some(message) = renamed::refused(&words) {
         return report(&message);
     }
-    if let Some(message) = commands::compensate::retired(std::env::args_os()) {
-        return fail(&message);
+    if let Some(message) = commands::compensate::retired(args.iter().cloned()) {
+        return report(&message);
     }
     let cli = match command()
         .try_get_matches_from(args)
