@@ -17,8 +17,10 @@ pub struct Compliance {
     /// From an identification cross-validated over postures: what its prediction intervals are
     /// built from ([`crate::model::prediction`]).
     pub prediction: Option<Calibration>,
-    /// From a calibration that fitted the robot's own weight: the gravity terms it fitted
-    /// ([`OwnWeight`]); compensation then adds the sag under the robot's weight.
+    /// From a stiffness file written before the calibrated robot file carried them: the gravity
+    /// terms a calibration fitted ([`OwnWeight`]). The calibrated robot's own
+    /// ([`crate::Robot::own_weight`]) take their place; compensation refuses the two when they
+    /// differ.
     pub own_weight: Option<OwnWeight>,
     /// The postures it was identified from, as the region a prediction stays inside
     /// ([`crate::model::region`]).
@@ -31,7 +33,8 @@ pub struct Compliance {
 /// The deflection under the robot's own weight as a calibration fitted it
 /// (`stiffid calibrate --gravity`, [`crate::metrology::calibration::gravity`]): the gravity model
 /// and the value of each of its terms. A calibration with gravity describes the robot without its
-/// sag, so compensation adds it (docs/model.md, "Compensation").
+/// sag, so compensation adds it (docs/model.md, "Compensation"). The calibrated robot file
+/// carries it (`[gravity]`, [`crate::Robot::own_weight`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct OwnWeight {
     /// The gravity model: `masses`, `lumped` or `lumped-links`.
@@ -40,6 +43,11 @@ pub struct OwnWeight {
     /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
     /// model's term order.
     pub terms: Vec<(String, f64)>,
+    /// The tool's mass (kg) the calibration's setup gave (`[tool] mass_kg`), `None` without:
+    /// with `masses` the tool joined link 6 in the fit (compensation joins the setup's tool the
+    /// same way); lumped terms hold the weight of the tool the robot carried, so compensation
+    /// refuses a setup whose tool's mass differs from it.
+    pub tool_mass: Option<f64>,
 }
 
 impl Compliance {

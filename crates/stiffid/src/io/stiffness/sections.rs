@@ -72,6 +72,7 @@ impl GravitySection {
             terms: (self.terms.iter())
                 .map(|t| (t.name.clone(), t.value_si))
                 .collect(),
+            tool_mass: None,
         }
     }
 }

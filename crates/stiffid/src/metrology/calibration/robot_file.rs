@@ -240,7 +240,7 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
     for q in &q {
         let (a, b) = (robot.frames(q).flange, back.frames(q).flange);
         distance = distance.max((a.translation.vector - b.translation.vector).norm());
-        angle = angle.max(a.rotation.angle_to(&b.rotation));
+        angle = angle.max(crate::robot::file::angle_between(&a.rotation, &b.rotation));
     }
     let tolerance = READ_BACK * robot.size();
     match distance <= tolerance && angle <= READ_BACK {
@@ -413,7 +413,7 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
 }
 
 fn transform(t: &Isometry3<f64>) -> String {
-    let (r, p, y) = t.rotation.euler_angles();
+    let [r, p, y] = crate::robot::file::rpy(&t.rotation);
     format!(
         "xyz_mm = {}\nrpy_deg = [{:?}, {:?}, {:?}]\n",
         list(&(t.translation.vector * 1e3)),
