@@ -3,6 +3,7 @@
 
 use super::prediction::Calibration;
 use super::Model;
+use super::OwnWeight;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
@@ -28,26 +29,6 @@ pub struct Compliance {
     /// From a model comparison's posture bootstrap: the models the data support and their
     /// resampled parameter sets ([`super::ModelForm`]), the error budget's model-form part.
     pub model_form: Option<super::ModelForm>,
-}
-
-/// The deflection under the robot's own weight as a calibration fitted it
-/// (`stiffid calibrate --gravity`, [`crate::metrology::calibration::gravity`]): the gravity model
-/// and the value of each of its terms. A calibration with gravity describes the robot without its
-/// sag, so compensation adds it (docs/model.md, "Compensation"). The calibrated robot file
-/// carries it (`[gravity]`, [`crate::Robot::own_weight`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct OwnWeight {
-    /// The gravity model: `masses`, `lumped` or `lumped-links`.
-    pub gravity: String,
-    /// Each term's name (`gravity.c2`, `gravity.c2.link3.mx`) and value, SI (rad/(N m) for a
-    /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
-    /// model's term order.
-    pub terms: Vec<(String, f64)>,
-    /// The tool's mass (kg) the calibration's setup gave (`[tool] mass_kg`), `None` without:
-    /// with `masses` the tool joined link 6 in the fit (compensation joins the setup's tool the
-    /// same way); lumped terms hold the weight of the tool the robot carried, so compensation
-    /// refuses a setup whose tool's mass differs from it.
-    pub tool_mass: Option<f64>,
 }
 
 impl Compliance {

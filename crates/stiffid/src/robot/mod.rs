@@ -23,6 +23,7 @@ mod axis_map;
 pub use axis_map::AxisMap;
 pub use error_map::ErrorMap;
 pub use external::ExternalAxes;
+pub use weight_file::OwnWeight;
 
 use nalgebra::{Isometry3, Matrix3, Unit, Vector3, Vector6};
 use std::sync::Arc;
@@ -73,9 +74,9 @@ pub struct Robot {
     external: Option<Arc<ExternalAxes>>,
     /// A calibrated robot's held-out position errors ([`HeldOut`]), when its file carries them.
     held_out: Option<Arc<HeldOut>>,
-    /// A calibrated robot's sag under its own weight ([`crate::model::OwnWeight`]), when its
+    /// A calibrated robot's sag under its own weight ([`OwnWeight`]), when its
     /// file carries it.
-    own_weight: Option<Arc<crate::model::OwnWeight>>,
+    own_weight: Option<Arc<OwnWeight>>,
     /// Each axis's largest speed, rad/s; infinite: no limit.
     max_speeds: Vector6<f64>,
 }
@@ -299,9 +300,9 @@ impl Robot {
         }
     }
 
-    /// The robot carrying a calibration's gravity terms ([`crate::model::OwnWeight`]): the sag
+    /// The robot carrying a calibration's gravity terms ([`OwnWeight`]): the sag
     /// under its own weight that compensation adds.
-    pub fn with_own_weight(self, own_weight: Option<crate::model::OwnWeight>) -> Self {
+    pub fn with_own_weight(self, own_weight: Option<OwnWeight>) -> Self {
         Self {
             own_weight: own_weight.map(Arc::new),
             ..self
@@ -342,7 +343,7 @@ impl Robot {
 
     /// A calibrated robot's sag under its own weight (its file's `[gravity]`), when it carries
     /// one.
-    pub fn own_weight(&self) -> Option<&crate::model::OwnWeight> {
+    pub fn own_weight(&self) -> Option<&OwnWeight> {
         self.own_weight.as_deref()
     }
 

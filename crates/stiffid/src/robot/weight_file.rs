@@ -12,12 +12,41 @@
 //! ```
 
 use crate::common::limits::{self, check_in};
-use crate::io::stiffness::{GravityTerm, MAX_GRAVITY_TERMS};
-use crate::metrology::calibration::gravity::Gravity;
-use crate::model::OwnWeight;
 use crate::{Error, Result};
 use serde::Deserialize;
 use std::fmt::Write;
+
+/// The most gravity terms a robot or stiffness file holds: four mass moments of six links for
+/// each of the six springs.
+pub const MAX_GRAVITY_TERMS: usize = 144;
+
+/// The deflection under the robot's own weight as a calibration fitted it
+/// (`stiffid calibrate --gravity`, [`crate::metrology::calibration::gravity`]): the gravity model
+/// and the value of each of its terms. A calibration with gravity describes the robot without its
+/// sag, so compensation adds it (docs/model.md, "Compensation"). The calibrated robot file
+/// carries it (`[gravity]`, [`crate::Robot::own_weight`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OwnWeight {
+    /// The gravity model: `masses`, `lumped` or `lumped-links`.
+    pub gravity: String,
+    /// Each term's name (`gravity.c2`, `gravity.c2.link3.mx`) and value, SI (rad/(N m) for a
+    /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
+    /// model's term order.
+    pub terms: Vec<(String, f64)>,
+    /// The tool's mass (kg) the calibration's setup gave (`[tool] mass_kg`), `None` without:
+    /// with `masses` the tool joined link 6 in the fit (compensation joins the setup's tool the
+    /// same way); lumped terms hold the weight of the tool the robot carried, so compensation
+    /// refuses a setup whose tool's mass differs from it.
+    pub tool_mass: Option<f64>,
+}
+
+/// One term of a `[gravity]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TermFile {
+    name: String,
+    value_si: f64,
+}
 
 /// A robot file's `[gravity]` table.
 #[derive(Debug, Deserialize)]
@@ -25,7 +54,7 @@ use std::fmt::Write;
 pub(super) struct GravityFile {
     model: String,
     tool_mass_kg: Option<f64>,
-    terms: Vec<GravityTerm>,
+    terms: Vec<TermFile>,
 }
 
 /// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped` or
@@ -40,17 +69,14 @@ pub(super) fn build(file: Option<GravityFile>, source_name: &str) -> Result<Opti
         field: format!("{source_name}: gravity.{field}"),
         message,
     };
-    match g.model.parse::<Gravity>() {
-        Ok(Gravity::Masses | Gravity::Lumped | Gravity::LumpedLinks) => {}
-        _ => {
-            return Err(invalid(
-                "model".into(),
-                format!(
-                    "'{}': expected masses, lumped or lumped-links",
-                    limits::short(&g.model)
-                ),
-            ))
-        }
+    if !matches!(g.model.as_str(), "masses" | "lumped" | "lumped-links") {
+        return Err(invalid(
+            "model".into(),
+            format!(
+                "'{}': expected masses, lumped or lumped-links",
+                limits::short(&g.model)
+            ),
+        ));
     }
     let n = g.terms.len();
     if n == 0 || n > MAX_GRAVITY_TERMS {
