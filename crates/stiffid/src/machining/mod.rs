@@ -30,8 +30,8 @@
 //!    angles (Cartesian targets: the pose the controller must be told, with the configuration
 //!    data of the compensated posture) and every other byte as read (their external axes' values too: a robot program's
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
-//!    frame (the nominal position of the compensated posture: where the controller must be sent
-//!    so that the loaded tool lands on the programmed one). With a free station or positioner
+//!    frame (the controller's forward kinematics of the compensated posture, [`compensate_for`]:
+//!    where the controller must be sent so that the loaded tool lands on the programmed one). With a free station or positioner
 //!    ([`compensate::Options::free_station`], [`compensate::Options::free_positioner`]) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
 //!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
@@ -278,6 +278,24 @@ pub fn compensate(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
+    let at = (arm, workpiece, compliance);
+    compensate_for(arm.robot(), at, program, process, options)
+}
+
+/// [`compensate()`] for a controller that runs the kinematics of `controller`
+/// ([`crate::Setup::controller_robot`]): a G-code program's positions are written as the
+/// controller's forward kinematics of the compensated axis angles (its inverse kinematics then
+/// returns them), in the part frame; robot programs' joint targets are the angles themselves.
+///
+/// # Errors
+/// Those of [`compensate()`].
+pub fn compensate_for(
+    controller: &crate::Robot,
+    (arm, workpiece, compliance): (&Arm, Option<&Isometry3<f64>>, &Compliance),
+    program: &Program,
+    process: &Process,
+    options: &compensate::Options,
+) -> Result<Report> {
     if let Program::Robot(p) = program {
         if let Some(t) = p
             .targets
@@ -293,8 +311,9 @@ pub fn compensate(
     let placements = cell::placements(arm, workpiece, program)?;
     let poses = poses(arm, workpiece, program, placements.as_deref())?;
     let operations = operations(program, process)?;
+    let tool = weight::tool_load(arm, compliance);
     let weight = |pose: &Isometry3<f64>| {
-        arm.payload().map_or(Vector6::zeros(), |p| {
+        tool.map_or(Vector6::zeros(), |p| {
             p.wrench(&pose.rotation, &arm.tool().tcp)
         })
     };
@@ -325,7 +344,7 @@ pub fn compensate(
                 compensate::path_in_cones(arm, compliance, points, at, options)
             }
             true => {
-                let weighted = arm.payload().is_some();
+                let weighted = tool.is_some();
                 compensate::on_track(arm, compliance, points, (&own[n], weighted, cones), options)
             }
         }
@@ -368,7 +387,7 @@ pub fn compensate(
                 .iter()
                 .enumerate()
                 .map(|(i, r)| {
-                    let pose = tool_pose(&arm.robot().frames(&r.q_compensated), tcp);
+                    let pose = tool_pose(&controller.frames(&r.q_compensated), tcp);
                     let part = placements.as_ref().map_or(part, |p| p[i].part);
                     part * nalgebra::Point3::from(pose.translation.vector)
                 })

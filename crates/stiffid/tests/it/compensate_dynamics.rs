@@ -87,8 +87,12 @@ fn compensate_with(
             process_name: "p.toml".into(),
             process: file::parse(process, "p.toml").unwrap(),
             chord_tolerance: 1e-5,
-            output: Language::GCode,
-            out_name: String::new(),
+            // A rotation about the tool axis reaches the controller in a robot program only.
+            output: match options.free_tool_axis {
+                Some(_) => Language::Robot(stiffid::machining::program::Dialect::Krl),
+                None => Language::GCode,
+            },
+            out_name: "p.src".into(),
             settings: Settings::default(),
         },
         options,

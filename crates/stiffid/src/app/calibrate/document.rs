@@ -212,10 +212,6 @@ pub struct StiffnessSection {
     pub compliance_covariance_si: Vec<Vec<f64>>,
     /// Whether the calibration fitted each parameter (the others are the setup's nominal).
     pub fitted: Vec<bool>,
-    /// With gravity terms fitted: the robot's own weight, which `compensate` adds to the
-    /// program (the calibrated robot is the robot without its sag).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub gravity: Option<crate::io::stiffness::GravitySection>,
     /// The region of axis angles the fitted readings' postures span, widened by a margin:
     /// what `predict`, `validate` and `compensate` flag a posture outside of
     /// ([`crate::io::stiffness::RegionSection`]).
@@ -466,10 +462,6 @@ impl Document {
                         .map(|r| r.iter().copied().collect())
                         .collect(),
                     fitted: c.fitted.clone(),
-                    gravity: c
-                        .own_weight
-                        .as_ref()
-                        .map(crate::io::stiffness::GravitySection::new),
                     region: crate::model::PostureRange::of(&report.postures)
                         .map(|r| crate::io::stiffness::RegionSection::new(&r)),
                 }),

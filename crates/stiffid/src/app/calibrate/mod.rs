@@ -139,10 +139,11 @@ pub struct Request<'a> {
     pub update: bool,
     /// With `update`: what it refits ([`update::Refits`], default `offsets,base,tool`).
     pub refit: update::Refits,
-    /// With `update`: the robot's own weight as its calibration fitted it (the calibration's
-    /// stiffness file, [`crate::model::Compliance::own_weight`]), kept in the update's forward
-    /// model (refitted from there with [`update::Refit::Gravity`]); `None` for a calibration
-    /// without gravity terms.
+    /// With `update`: the robot's own weight as a stiffness file written before the calibrated
+    /// robot file carried it holds it ([`crate::model::Compliance::own_weight`]); the robot
+    /// file's (`[gravity]`) take its place, and the two must agree ([`update::weight`]). Kept in
+    /// the update's forward model (refitted from there with [`update::Refit::Gravity`]); `None`
+    /// for a calibration without gravity terms or a robot file carrying them.
     pub weight: Option<crate::model::OwnWeight>,
 }
 
@@ -253,7 +254,8 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
     (obs, measured_in)
 }
 
-/// The error model of `setup` for readings in `measured_in`.
+/// The error model of `setup` for readings in `measured_in`; with [`Gravity::Masses`] the
+/// setup's tool (`[tool] mass_kg`, `centre_of_mass_mm`) joins link 6 ([`gravity::with_tool`]).
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses; those
@@ -266,7 +268,8 @@ pub fn model(
 ) -> Result<ErrorModel> {
     let robot = setup.robot();
     let nominal = setup.nominal_compliance().unwrap_or_default();
-    let g = gravity::Terms::of(robot, gravity, setup.springs(), nominal)?;
+    let weighed = gravity::with_tool(robot, setup.payload().map(|p| p.body()));
+    let g = gravity::Terms::of(&weighed, gravity, setup.springs(), nominal)?;
     ErrorModel::new(
         robot,
         &setup.tool().measuring_points,
@@ -425,19 +428,30 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
+    // The sag, in the robot file's link frames.
+    let own_weight = compliance::own_weight(&model, &fitted, update::tool_mass(request)?);
     let robot_toml = robot_file::robot_toml(&model, &fitted.estimate)
-        .map(|t| {
-            t + &update::held_out(
+        .and_then(|t| {
+            let sag = (own_weight.as_ref())
+                .map(|w| robot_file::own_weight_in_table(&model, &fitted.estimate, w))
+                .transpose()?;
+            Ok(t + &update::held_out(
                 request,
                 setup,
                 validation.as_ref(),
                 cross_validation.as_ref(),
-            )
+            ) + &sag.map_or(String::new(), |w| crate::robot::weight_file::toml(&w)))
         })
         .map_err(|e| e.to_string());
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
         warnings.push(Warning::new(WarningKind::LeftOut, note));
+    }
+    if let (Ok(_), Some(w)) = (&urdf, &own_weight) {
+        warnings.push(Warning::new(
+            WarningKind::LeftOut,
+            format!("the URDF leaves out the sag under the robot's own weight (the {} gravity terms: a URDF has no place for them): a robot read from it is rigid; use the robot file", w.gravity),
+        ));
     }
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());

@@ -1,5 +1,5 @@
 //! What a compensated program may be written as: the output language a program takes, and
-//! a lean or runs' configurations G-code cannot carry.
+//! a lean, a tool axis' rotation or runs' configurations G-code cannot carry.
 
 use super::configurations::name;
 use crate::machining::compensate::{Configurations, Options, Run};
@@ -80,6 +80,22 @@ pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
             option: crate::JobOption::FreeLeadTilt,
             message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses a free tool axis for a program written as G-code: its blocks carry positions only,
+/// so the rotation chosen about the tool's axis would not reach the controller (it would run the
+/// program's own posture).
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::ToolAxisRangeDeg`]).
+pub(super) fn check_tool_axis(options: &Options, output: Language) -> Result<()> {
+    match (&options.free_tool_axis, output) {
+        (Some(_), Language::GCode) => Err(Error::InvalidOption {
+            option: crate::JobOption::ToolAxisRangeDeg,
+            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no word for the rotation about the tool's axis), so the rotation chosen would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry it".into(),
         }),
         _ => Ok(()),
     }

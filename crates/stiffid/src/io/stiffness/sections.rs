@@ -11,9 +11,7 @@ use crate::Result;
 use nalgebra::{DVector, Vector6};
 use serde::{Deserialize, Serialize};
 
-/// The most gravity terms a stiffness file holds: four mass moments of six links for each of
-/// the six springs.
-pub const MAX_GRAVITY_TERMS: usize = 144;
+pub use crate::robot::weight_file::MAX_GRAVITY_TERMS;
 
 /// The gravity terms a calibration fitted ([`crate::model::OwnWeight`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -72,6 +70,7 @@ impl GravitySection {
             terms: (self.terms.iter())
                 .map(|t| (t.name.clone(), t.value_si))
                 .collect(),
+            tool_mass: None,
         }
     }
 }
