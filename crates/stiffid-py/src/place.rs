@@ -54,7 +54,7 @@ pub fn place<'py>(
     objective: &str,
     margin_deg: f64,
     max_condition: f64,
-    seed: u64,
+    seed: i64,
     grid: i64,
     samples: i64,
     starts: i64,
@@ -118,7 +118,7 @@ pub fn place<'py>(
             grid: crate::count::count("grid", grid)?,
             samples: crate::count::count("samples", samples)?,
             starts: crate::count::count("starts", starts)?,
-            seed,
+            seed: crate::count::seed("seed", seed)?,
         },
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;

@@ -115,3 +115,6 @@ def test_a_plan_at_external_values_works_each_posture_out_there():
         stiffid.plan(setup, q, external=[[3000, 0, 0], [3500, 10]])
     with pytest.raises(stiffid.InputError, match="external"):
         stiffid.plan(setup, q, external=[[3000, 0, 0], [9000, 0, 0]])
+    # Without them it is refused, as the kinematics refuse it: every posture would stand at 0.
+    with pytest.raises(stiffid.InputError, match=r"^external: none given: the robot has external axes"):
+        stiffid.plan(setup, q)

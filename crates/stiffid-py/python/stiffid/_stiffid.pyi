@@ -200,7 +200,7 @@ class Setup:
         """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable, candidates, calibration (with purpose calibration or both); None where the setup lacks the field."""
     def select(
         self,
-        criterion: _CriterionName = "relative-a",
+        criterion: Optional[_CriterionName] = None,
         method: Optional[Literal["global", "local", "pool"]] = None,
         start: Optional[ArrayLike] = None,
         n: Optional[int] = None,

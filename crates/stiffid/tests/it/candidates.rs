@@ -287,7 +287,10 @@ fn a_declared_candidate_named_like_a_family_is_refused() {
         stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap()
     );
     let parsed = stiffid::setup::parse(&text, "test setup", |r, _| stiffid::robot::presets::get(r));
-    let e = parsed.err().expect("refused").to_string();
+    let Err(e) = parsed else {
+        panic!("not refused")
+    };
+    let e = e.to_string();
     assert!(
         e.contains("\"tilt3_z\": a declared candidate named like a built-in"),
         "{e}"

@@ -41,7 +41,8 @@ fn a_plans_postures_stand_where_they_are_read() {
         target_pct: None,
         external: &[],
     });
-    let e0 = none.err().expect("refused").to_string();
+    let Err(e0) = none else { panic!("not refused") };
+    let e0 = e0.to_string();
     assert!(
         e0.contains("external: none given: the robot has external axes (e1_mm, "),
         "{e0}"
