@@ -381,23 +381,20 @@ fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<Free> {
 
 /// Refuses a keyword that `free=` or `minimise=` replaced, saying how to write it.
 fn refuse_retired(retired: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
-    let Some(retired) = retired else {
+    let Some(key) = retired.and_then(|r| r.keys().into_iter().next()) else {
         return Ok(());
     };
-    for key in retired.keys() {
-        let key: String = key.extract()?;
-        let Some((option, value)) = free::retired(&key.replace('_', "-")) else {
-            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                "compensate() got an unexpected keyword argument '{key}'"
-            )));
-        };
-        let how = match option {
-            "free" => format!("free=[\"{value}\"]"),
-            _ => format!("{option}=\"{value}\""),
-        };
-        return Err(error::value(format!("{key}: removed; write {how}")));
-    }
-    Ok(())
+    let key: String = key.extract()?;
+    let Some((option, value)) = free::retired(&key.replace('_', "-")) else {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "compensate() got an unexpected keyword argument '{key}'"
+        )));
+    };
+    let how = match option {
+        "free" => format!("free=[\"{value}\"]"),
+        _ => format!("{option}=\"{value}\""),
+    };
+    Err(error::value(format!("{key}: removed; write {how}")))
 }
 
 /// The per-point results as arrays (see [`compensate`]).

@@ -417,7 +417,9 @@ fn write_subprograms(
 /// `args`, saying how to write it with `--free`.
 pub fn retired(args: impl Iterator<Item = std::ffi::OsString>) -> Option<String> {
     let args: Vec<String> = args.map(|a| a.to_string_lossy().into_owned()).collect();
-    args.iter().position(|a| a == "compensate")?;
+    if !args.iter().any(|a| a == "compensate") {
+        return None;
+    }
     args.iter().find_map(|a| {
         let name = a.strip_prefix("--")?.split('=').next()?;
         let (option, value) = stiffid::machining::compensate::free::retired(name)?;
@@ -439,7 +441,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let free = args
         .free
         .iter()
-        .map(|f| Free::parse(f))
+        .map(|f| Free::parse(f.as_str()))
         .collect::<stiffid::Result<Vec<_>>>()?;
     let freedom = Freedom {
         free,

@@ -104,13 +104,13 @@ fn options() -> Vec<Given> {
         Given {
             base: place(),
             extra: vec![],
-            write: |v| vec![format!("--region-mm={}", vec![v; 4].join(","))],
+            write: |v| vec![format!("--region-mm={}", [v; 4].join(","))],
             names: vec!["--region-mm"],
         },
         Given {
             base: place(),
             extra: region,
-            write: |v| vec![format!("--rotation-deg={}", vec![v; 2].join(","))],
+            write: |v| vec![format!("--rotation-deg={}", [v; 2].join(","))],
             names: vec!["--rotation-deg"],
         },
     ]
