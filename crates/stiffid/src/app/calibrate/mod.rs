@@ -428,31 +428,19 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
-    // The sag, in the robot file's link frames.
     let own_weight = compliance::own_weight(&model, &fitted, update::tool_mass(request)?);
-    let robot_toml = robot_file::robot_toml(&model, &fitted.estimate)
-        .and_then(|t| {
-            let sag = (own_weight.as_ref())
-                .map(|w| robot_file::own_weight_in_table(&model, &fitted.estimate, w))
-                .transpose()?;
-            Ok(t + &update::held_out(
-                request,
-                setup,
-                validation.as_ref(),
-                cross_validation.as_ref(),
-            ) + &sag.map_or(String::new(), |w| crate::robot::weight_file::toml(&w)))
-        })
-        .map_err(|e| e.to_string());
+    let held = (validation.as_ref(), cross_validation.as_ref());
+    let robot_toml = update::robot_file(
+        request,
+        (&model, &fitted.estimate),
+        held,
+        own_weight.as_ref(),
+    );
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
         warnings.push(Warning::new(WarningKind::LeftOut, note));
     }
-    if let (Ok(_), Some(w)) = (&urdf, &own_weight) {
-        warnings.push(Warning::new(
-            WarningKind::LeftOut,
-            format!("the URDF leaves out the sag under the robot's own weight (the {} gravity terms: a URDF has no place for them): a robot read from it is rigid; use the robot file", w.gravity),
-        ));
-    }
+    warnings.extend(update::urdf_rigid(urdf.is_ok(), own_weight.as_ref()));
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());
     let compliance = (gravity != Gravity::None || model.has_loads())

@@ -37,7 +37,7 @@ use crate::metrology::calibration::error_model::Observation;
 use crate::metrology::calibration::gravity::Gravity;
 use crate::metrology::calibration::identifiability;
 use crate::metrology::calibration::maps::Spec;
-use crate::metrology::calibration::{ErrorModel, Geometry};
+use crate::metrology::calibration::{robot_file, ErrorModel, Geometry};
 use crate::model::OwnWeight;
 use crate::{Error, Result, Setup};
 
@@ -488,4 +488,38 @@ pub(super) fn tool_mass(request: &Request<'_>) -> Result<Option<f64>> {
         Some(w) if w.gravity != "masses" => w.tool_mass,
         _ => payload,
     })
+}
+
+/// The calibrated robot file's text ([`robot_file::robot_toml`]): the robot, its `[held_out]`
+/// ([`held_out`]) and its sag `own` in the file's link frames
+/// ([`robot_file::own_weight_in_table`]); or why there is none.
+pub(super) fn robot_file(
+    request: &Request<'_>,
+    (model, estimate): (&ErrorModel, &crate::metrology::calibration::Estimate),
+    (validation, cross_validation): (Option<&super::Held>, Option<&super::Held>),
+    own: Option<&OwnWeight>,
+) -> std::result::Result<String, String> {
+    let setup = request.readings.setup;
+    robot_file::robot_toml(model, estimate)
+        .and_then(|t| {
+            let sag = own
+                .map(|w| robot_file::own_weight_in_table(model, estimate, w))
+                .transpose()?;
+            let sag = sag.map_or(String::new(), |w| crate::robot::weight_file::toml(&w));
+            Ok(t + &held_out(request, setup, validation, cross_validation) + &sag)
+        })
+        .map_err(|e| e.to_string())
+}
+
+/// The warning that a URDF written (`written`) of a robot with the gravity terms `own` leaves
+/// its sag out; none without either.
+pub(super) fn urdf_rigid(
+    written: bool,
+    own: Option<&OwnWeight>,
+) -> Option<crate::common::warning::Warning> {
+    let own = own.filter(|_| written)?;
+    Some(crate::common::warning::Warning::new(
+        crate::common::warning::WarningKind::LeftOut,
+        format!("the URDF leaves out the sag under the robot's own weight (the {} gravity terms: a URDF has no place for them): a robot read from it is rigid; use the robot file", own.gravity),
+    ))
 }
