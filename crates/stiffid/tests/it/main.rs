@@ -76,6 +76,7 @@ mod program_forms;
 mod program_frames;
 mod program_speeds;
 mod program_station;
+mod program_wrenches;
 mod programs;
 mod programs_proptest;
 mod refined_grid;
